@@ -1,0 +1,26 @@
+# refracta: `make demo` and `make test` are the two set-up commands (README).
+PYTHON ?= python3
+PYTEST_ARGS ?=
+SOURCES := $(shell find cpp python -name '*.h' -o -name '*.cpp' 2>/dev/null) CMakeLists.txt pyproject.toml
+
+.PHONY: install demo test bench clean
+install: .install.stamp
+
+# Debian packages first, then the package itself (editable) into the current Python.
+.install.stamp: .ci/debian-packages.txt $(SOURCES)
+	bash .ci/install-debian-packages
+	$(PYTHON) -m pip install --upgrade --quiet pip
+	$(PYTHON) -m pip install -e '.[test]'
+	touch $@
+
+demo: install
+	$(PYTHON) -m refracta demo --out out
+
+test: install
+	$(PYTHON) -m pytest $(PYTEST_ARGS)
+
+bench: install
+	$(PYTHON) benchmarks/run_all.py
+
+clean:
+	rm -rf build out .install.stamp

@@ -1,0 +1,39 @@
+// CustomField: a refractive-index field written in Python as vectorised callables
+// ior(points (N,3)) -> (N,) and grad_ior(points (N,3)) -> (N,3). Slow (one Python call per
+// evaluation from the integrators) but lets researchers try any field.
+#pragma once
+
+#include "refracta/bindings/bindings.h"
+#include "refracta/media/index_field.h"
+
+namespace refracta {
+
+class CustomField : public IndexField {
+ public:
+  CustomField(py::object ior, py::object grad_ior, bool height_only);
+  ~CustomField() override;
+
+  std::string type_name() const override { return "CustomField"; }
+  void evaluate(const Vec3d& p, double* n, Vec3d* grad) const override;
+  bool height_only() const override { return height_only_; }
+  void evaluate_height(double h, double* n, double* dn_dh) const override;
+  const std::vector<ParamSpec>& param_specs() const override { return specs_; }
+  std::vector<double> param_values() const override { return {}; }
+  std::shared_ptr<const IndexField> with_param_values(const std::vector<double>& values) const override;
+
+  // Vectorised calls with shape checks (one Python call for all points).
+  DoubleArray call_ior(const DoubleArray& points) const;
+  DoubleArray call_grad(const DoubleArray& points) const;
+
+  const py::object& ior_function() const { return *ior_; }
+  const py::object& grad_function() const { return *grad_; }
+
+ private:
+  // Held by pointer so the destructor can take the GIL before releasing them.
+  py::object* ior_;
+  py::object* grad_;
+  bool height_only_;
+  std::vector<ParamSpec> specs_;
+};
+
+}  // namespace refracta

@@ -1,0 +1,78 @@
+// Runs long C++ work with the GIL released on a worker thread, while the calling thread wakes
+// every 50 ms to check for Ctrl-C (then cancels the work and raises KeyboardInterrupt) and to
+// report progress to an optional Python callable progress(done, total).
+#pragma once
+
+#include "refracta/bindings/bindings.h"
+#include "refracta/core/parallel.h"
+
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+namespace refracta {
+
+template <class Work>
+void run_interruptible(WorkControl& control, const py::object& progress, Work&& work) {
+  std::exception_ptr error;
+  std::mutex mutex;
+  std::condition_variable finished_cv;
+  bool finished = false, interrupted = false;
+  {
+    py::gil_scoped_release release;
+    std::thread worker([&] {
+      try {
+        work();
+      } catch (...) {
+        error = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      finished = true;
+      finished_cv.notify_all();
+    });
+    std::unique_lock<std::mutex> lock(mutex);
+    while (!finished) {
+      finished_cv.wait_for(lock, std::chrono::milliseconds(50));
+      if (finished) break;
+      lock.unlock();
+      {
+        py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) {
+          interrupted = true;
+          control.cancel = true;
+        } else if (!progress.is_none()) {
+          try {
+            progress(control.done.load(), control.total);
+          } catch (py::error_already_set&) {
+            control.cancel = true;
+            lock.lock();
+            finished_cv.wait(lock, [&] { return finished; });
+            lock.unlock();
+            worker.join();
+            throw;
+          }
+        }
+      }
+      lock.lock();
+      if (interrupted) {
+        finished_cv.wait(lock, [&] { return finished; });
+        break;
+      }
+    }
+    lock.unlock();
+    worker.join();
+  }
+  if (interrupted) throw py::error_already_set();  // the KeyboardInterrupt PyErr_CheckSignals set
+  if (error) {
+    try {
+      std::rethrow_exception(error);
+    } catch (const Cancelled&) {
+      throw std::runtime_error("work was cancelled");
+    }
+  }
+  if (!progress.is_none()) progress(control.done.load(), control.total);
+}
+
+}  // namespace refracta

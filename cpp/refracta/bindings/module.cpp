@@ -1,0 +1,9 @@
+// refracta._core: the compiled half of the refracta package. One bind_<area> per C++ folder.
+#include "refracta/bindings/bindings.h"
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "refracta's C++ core (private; use the refracta package)";
+  refracta::bind_core(m);
+  refracta::bind_media(m);
+  refracta::bind_rays(m);
+}

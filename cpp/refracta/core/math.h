@@ -1,0 +1,38 @@
+// Small math shared by every layer: Eigen aliases and scalar helpers that work for double and
+// for automatic-differentiation scalars (ceres::Jet), so one templated implementation serves both.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <limits>
+
+namespace refracta {
+
+template <class T>
+using Vec3 = Eigen::Matrix<T, 3, 1>;
+using Vec3d = Vec3<double>;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The plain double value of a scalar (the Jet's `.a` part). Specialised by the edit layer for
+// ceres::Jet; a class template rather than a function so it binds at instantiation time.
+template <class T>
+struct ScalarValue {
+  static double of(const T& x) { return static_cast<double>(x); }
+};
+
+template <class T>
+inline double value_of(const T& x) {
+  return ScalarValue<T>::of(x);
+}
+
+template <class T>
+inline bool is_finite(const Vec3<T>& v) {
+  return std::isfinite(value_of(v.x())) && std::isfinite(value_of(v.y())) &&
+         std::isfinite(value_of(v.z()));
+}
+
+inline double degrees_to_radians(double deg) { return deg * kPi / 180.0; }
+
+}  // namespace refracta

@@ -1,0 +1,115 @@
+// Hydrostatic pressure of an air column with an arbitrary temperature profile:
+//   ln P(h) = ln P(h_ref) - (g/R_d) J(h),   J(h) = integral from h_ref to h of dz / T(z).
+// J is tabulated once at construction on a node set the profile chooses (fine where T varies
+// fast), each interval by 4-point Gauss-Legendre, and read back by cubic Hermite interpolation
+// with the exact J' = 1/T at the nodes; the interpolation error is below 1e-12 relative for the
+// profiles refracta builds. Templated on the scalar so derivatives reach the parameters.
+#pragma once
+
+#include "refracta/core/error.h"
+#include "refracta/core/math.h"
+#include "refracta/media/air.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace refracta {
+
+// Sorted, de-duplicated nodes: [lo, hi] every `step`, plus finer runs (from, to, step).
+struct NodeRun {
+  double from, to, step;
+};
+inline std::vector<double> make_nodes(double lo, double hi, std::vector<NodeRun> runs) {
+  std::vector<double> nodes;
+  for (const auto& run : runs) {
+    const double from = std::max(lo, run.from), to = std::min(hi, run.to);
+    if (!(to > from) || !(run.step > 0.0)) continue;
+    const int count = static_cast<int>(std::ceil((to - from) / run.step));
+    for (int i = 0; i <= count; ++i) nodes.push_back(from + (to - from) * i / count);
+  }
+  nodes.push_back(lo);
+  nodes.push_back(hi);
+  std::sort(nodes.begin(), nodes.end());
+  std::vector<double> unique;
+  for (double h : nodes) {
+    if (unique.empty() || h - unique.back() > 1e-9 * (1.0 + std::abs(h))) unique.push_back(h);
+  }
+  return unique;
+}
+
+template <class T>
+class HydrostaticColumn {
+ public:
+  HydrostaticColumn() = default;
+
+  // temperature(h, &T, &dT_dh) gives the profile; h_ref is where `pressure_ref` [Pa] holds.
+  template <class Profile>
+  HydrostaticColumn(const Profile& temperature, std::vector<double> nodes, double h_ref,
+                    const T& pressure_ref, const char* owner)
+      : nodes_(std::move(nodes)), owner_(owner) {
+    using std::log;
+    j_.resize(nodes_.size());
+    inv_t_.resize(nodes_.size());
+    for (size_t i = 0; i < nodes_.size(); ++i) inv_t_[i] = T(1.0) / checked(temperature, nodes_[i]);
+    // J from the lowest node, then shifted so that J(h_ref) = 0.
+    j_[0] = T(0.0);
+    static const double kX[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+                                 0.8611363115940526};
+    static const double kW[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                                 0.3478548451374538};
+    for (size_t i = 1; i < nodes_.size(); ++i) {
+      const double a = nodes_[i - 1], b = nodes_[i], half = 0.5 * (b - a), mid = 0.5 * (a + b);
+      T sum(0.0);
+      for (int q = 0; q < 4; ++q) sum += kW[q] / checked(temperature, mid + half * kX[q]);
+      j_[i] = j_[i - 1] + half * sum;
+    }
+    const T j_ref = integral(h_ref);
+    for (auto& j : j_) j -= j_ref;
+    log_p_ref_ = log(pressure_ref);
+  }
+
+  double lowest() const { return nodes_.front(); }
+  double highest() const { return nodes_.back(); }
+
+  // ln P [ln Pa] at h; NumericalError outside the tabulated range.
+  T log_pressure(const T& h) const {
+    return log_p_ref_ - T(kGravity / kGasConstantDryAir) * integral(h);
+  }
+
+ private:
+  template <class Profile>
+  T checked(const Profile& temperature, double h) const {
+    T t, slope;
+    temperature(T(h), &t, &slope);
+    if (!(value_of(t) > 0.0) || !std::isfinite(value_of(t))) {
+      throw_invalid(owner_, ": temperature is ", value_of(t), " K at h = ", h,
+                    " m; it must stay > 0 K over [", nodes_.front(), ", ", nodes_.back(), "] m");
+    }
+    return t;
+  }
+
+  T integral(const T& h) const {
+    const double hv = value_of(h);
+    if (!(hv >= nodes_.front() && hv <= nodes_.back())) {
+      throw_numerical(owner_, ": height ", hv, " m is outside the modelled range [",
+                      nodes_.front(), ", ", nodes_.back(), "] m");
+    }
+    size_t i = std::upper_bound(nodes_.begin(), nodes_.end(), hv) - nodes_.begin();
+    i = std::clamp<size_t>(i, 1, nodes_.size() - 1);
+    const double a = nodes_[i - 1], width = nodes_[i] - a;
+    const T u = (h - a) / width;
+    const T u2 = u * u, u3 = u2 * u;
+    // Cubic Hermite basis on [0, 1].
+    const T h00 = T(2.0) * u3 - T(3.0) * u2 + T(1.0), h10 = u3 - T(2.0) * u2 + u;
+    const T h01 = T(-2.0) * u3 + T(3.0) * u2, h11 = u3 - u2;
+    return h00 * j_[i - 1] + h10 * width * inv_t_[i - 1] + h01 * j_[i] + h11 * width * inv_t_[i];
+  }
+
+  std::vector<double> nodes_;
+  std::vector<T> j_, inv_t_;
+  T log_p_ref_;
+  const char* owner_ = "";
+};
+
+}  // namespace refracta

@@ -1,0 +1,33 @@
+// Shared, non-template parts of IndexField.
+#include "refracta/media/index_field.h"
+
+#include "refracta/core/error.h"
+
+#include <stdexcept>
+
+namespace refracta {
+
+void IndexField::evaluate_height(double, double*, double*) const {
+  throw std::logic_error(type_name() + " is not a height-only field");
+}
+
+void IndexField::evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const {
+  evaluate(p, n, grad);
+  if (!(std::isfinite(*n) && *n > 0.0) || !is_finite(*grad)) {
+    throw_numerical(type_name(), ": refractive index n = ", *n, ", grad n = (", grad->x(), ", ",
+                    grad->y(), ", ", grad->z(), ") at (", p.x(), ", ", p.y(), ", ", p.z(),
+                    ") m; n must be finite and > 0");
+  }
+}
+
+size_t IndexField::param_index(const std::string& name) const {
+  const auto& specs = param_specs();
+  std::string names;
+  for (size_t i = 0; i < specs.size(); ++i) {
+    if (specs[i].name == name) return i;
+    names += (i ? ", " : "") + specs[i].name;
+  }
+  throw_invalid(type_name(), ": unknown parameter '", name, "' (parameters: ", names, ")");
+}
+
+}  // namespace refracta

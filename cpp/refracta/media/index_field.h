@@ -1,0 +1,75 @@
+// The refractive-index field interface: n(x) and its gradient, named parameters, and the
+// height-only flag. Models are written once as templates on the scalar (double for rendering,
+// ceres::Jet for editing) and wrapped for double by ModelField (model_field.h).
+#pragma once
+
+#include "refracta/core/math.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace refracta {
+
+// One named model parameter. [lower, upper] is the box an optimiser searches by default;
+// construction checks physical validity only (model's validate), not this box.
+struct ParamSpec {
+  std::string name;
+  double default_value;
+  double lower;
+  double upper;
+  std::string unit;
+  std::string doc;
+};
+
+class IndexField {
+ public:
+  virtual ~IndexField() = default;
+
+  virtual std::string type_name() const = 0;
+
+  // n at p [m] and grad n [1/m]. Does not check the result; see evaluate_checked.
+  virtual void evaluate(const Vec3d& p, double* n, Vec3d* grad) const = 0;
+
+  // True when n depends on the height y alone; then evaluate_height is available.
+  virtual bool height_only() const = 0;
+  // n(h) and dn/dh [1/m]. Throws std::logic_error for fields that are not height-only.
+  virtual void evaluate_height(double h, double* n, double* dn_dh) const;
+
+  virtual const std::vector<ParamSpec>& param_specs() const = 0;
+  virtual std::vector<double> param_values() const = 0;
+  // A new field of the same model with other parameter values (validated).
+  virtual std::shared_ptr<const IndexField> with_param_values(
+      const std::vector<double>& values) const = 0;
+  // Parameters an optimiser holds fixed by default because a joint change of them with others
+  // leaves every ray path unchanged (a gauge freedom of the model).
+  virtual std::vector<std::string> gauge_params() const { return {}; }
+
+  // evaluate, throwing NumericalError when n <= 0 or anything is not finite.
+  void evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const;
+  // Index of a parameter by name; throws std::invalid_argument listing the valid names.
+  size_t param_index(const std::string& name) const;
+};
+
+using FieldPtr = std::shared_ptr<const IndexField>;
+
+// Temperature and pressure of a physical air column (fields built from air properties).
+class AirColumn {
+ public:
+  virtual ~AirColumn() = default;
+  virtual double temperature(double h) const = 0;  // [K]
+  virtual double pressure(double h) const = 0;     // [Pa]
+};
+
+// Mixin giving a height-only model its 3D evaluate from evaluate_height.
+template <class Derived, class T>
+struct HeightOnlyModel {
+  static constexpr bool kHeightOnly = true;
+  void evaluate(const Vec3<T>& p, T* n, Vec3<T>* grad) const {
+    T dn_dh;
+    static_cast<const Derived*>(this)->evaluate_height(p.y(), n, &dn_dh);
+    *grad = Vec3<T>(T(0.0), dn_dh, T(0.0));
+  }
+};
+
+}  // namespace refracta

@@ -1,0 +1,93 @@
+// ModelField: wraps a scalar-templated model (Model<T>) as a double IndexField, so each model is
+// written once. A model provides:
+//   struct Config;                                   fixed data that is not a parameter
+//   static const char* kTypeName; static constexpr bool kHeightOnly;
+//   static std::vector<ParamSpec> param_specs(const Config&);
+//   static void validate(const Config&, const std::vector<double>&);   throws invalid_argument
+//   Model(const Config&, const std::vector<T>& values);
+//   void evaluate(const Vec3<T>&, T* n, Vec3<T>* grad) const;   (+ evaluate_height if height-only)
+#pragma once
+
+#include "refracta/core/error.h"
+#include "refracta/media/index_field.h"
+
+#include <memory>
+#include <utility>
+
+namespace refracta {
+
+template <template <class> class Model>
+class ModelField : public IndexField {
+ public:
+  using Config = typename Model<double>::Config;
+
+  ModelField(Config config, std::vector<double> values)
+      : config_(std::move(config)),
+        specs_(Model<double>::param_specs(config_)),
+        values_(checked(specs_, config_, std::move(values))),
+        model_(config_, values_) {}
+
+  static const char* model_name() { return Model<double>::kTypeName; }
+  static std::vector<ParamSpec> param_specs_for(const Config& config) {
+    return Model<double>::param_specs(config);
+  }
+
+  std::string type_name() const override { return Model<double>::kTypeName; }
+  void evaluate(const Vec3d& p, double* n, Vec3d* grad) const override {
+    model_.evaluate(p, n, grad);
+  }
+  bool height_only() const override { return Model<double>::kHeightOnly; }
+  void evaluate_height(double h, double* n, double* dn_dh) const override {
+    if constexpr (Model<double>::kHeightOnly) {
+      model_.evaluate_height(h, n, dn_dh);
+    } else {
+      IndexField::evaluate_height(h, n, dn_dh);
+    }
+  }
+  const std::vector<ParamSpec>& param_specs() const override { return specs_; }
+  std::vector<double> param_values() const override { return values_; }
+  std::shared_ptr<const IndexField> with_param_values(
+      const std::vector<double>& values) const override {
+    return make_with(values);
+  }
+  std::vector<std::string> gauge_params() const override { return Model<double>::gauge_params(); }
+
+  const Config& config() const { return config_; }
+  const Model<double>& model() const { return model_; }
+
+ protected:
+  virtual std::shared_ptr<const IndexField> make_with(const std::vector<double>& values) const {
+    return std::make_shared<ModelField>(config_, values);
+  }
+
+ private:
+  static std::vector<double> checked(const std::vector<ParamSpec>& specs, const Config& config,
+                                     std::vector<double> values) {
+    if (values.size() != specs.size()) {
+      throw_invalid(Model<double>::kTypeName, ": expected ", specs.size(), " parameters, got ",
+                    values.size());
+    }
+    for (size_t i = 0; i < values.size(); ++i) {
+      if (!std::isfinite(values[i])) {
+        throw_invalid(Model<double>::kTypeName, ": ", specs[i].name, " must be finite (got ",
+                      values[i], ")");
+      }
+    }
+    Model<double>::validate(config, values);
+    return values;
+  }
+
+  Config config_;
+  std::vector<ParamSpec> specs_;
+  std::vector<double> values_;
+  Model<double> model_;
+};
+
+// Default values of a model's parameters, in order.
+inline std::vector<double> default_values(const std::vector<ParamSpec>& specs) {
+  std::vector<double> values;
+  for (const auto& spec : specs) values.push_back(spec.default_value);
+  return values;
+}
+
+}  // namespace refracta

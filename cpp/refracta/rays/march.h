@@ -1,0 +1,187 @@
+// The one stepping loop of the curved-ray integrators (rk4, rk45), templated on the scalar so it
+// also runs with ceres::Jet for editing. It launches with v0 = n(x0) t0, advances with a stepper,
+// ends the path at max_length exactly or where it descends through stop_height (located on the
+// continuous segment, not at a vertex), and hands every accepted segment to a visitor
+// `bool visit(const RayNode<T>& a, const RayNode<T>& b)` that returns false to stop.
+#pragma once
+
+#include "refracta/core/error.h"
+#include "refracta/rays/ray_node.h"
+#include "refracta/rays/trace_options.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace refracta {
+
+namespace detail {
+
+// The right-hand side of the ray equations at a state: (dx/ds, dv/ds) = (v/n, grad n).
+template <class T>
+struct RayRate {
+  Vec3<T> dx, dv;
+};
+
+template <class T>
+RayRate<T> rate(const RayNode<T>& node) {
+  return {node.v / node.n, node.grad};
+}
+
+template <class T, class Field>
+RayNode<T> node_at(const Field& field, const T& s, const RayNode<T>& a, const T& h,
+                   const Vec3<T>& dx, const Vec3<T>& dv, int64_t* evaluations) {
+  return make_node(field, T(s), Vec3<T>(a.x + h * dx), Vec3<T>(a.v + h * dv), evaluations);
+}
+
+}  // namespace detail
+
+// Classic fourth-order Runge-Kutta with a fixed step (the original editor's integrator).
+template <class T, class Field>
+class Rk4Stepper {
+ public:
+  explicit Rk4Stepper(double step) : step_(step) {}
+
+  RayNode<T> advance(const Field& field, const RayNode<T>& a, double remaining, int64_t* evals) {
+    using detail::node_at;
+    const T h(std::min(step_, remaining));
+    const auto k1 = detail::rate(a);
+    const auto n2 = node_at(field, a.s, a, T(0.5) * h, k1.dx, k1.dv, evals);
+    const auto k2 = detail::rate(n2);
+    const auto n3 = node_at(field, a.s, a, T(0.5) * h, k2.dx, k2.dv, evals);
+    const auto k3 = detail::rate(n3);
+    const auto n4 = node_at(field, a.s, a, h, k3.dx, k3.dv, evals);
+    const auto k4 = detail::rate(n4);
+    const Vec3<T> dx = (k1.dx + T(2.0) * k2.dx + T(2.0) * k3.dx + k4.dx) / T(6.0);
+    const Vec3<T> dv = (k1.dv + T(2.0) * k2.dv + T(2.0) * k3.dv + k4.dv) / T(6.0);
+    return node_at(field, T(a.s + h), a, h, dx, dv, evals);
+  }
+
+ private:
+  double step_;
+};
+
+// Dormand-Prince 5(4) (Hairer, Norsett & Wanner, Solving ODEs I, II.5) with first-same-as-last.
+// Error control aims at the global position error `tol` [m] over the path: each step's local
+// position error plus its direction error carried over the remaining length must stay below
+// tol * h / max_length (error per unit step), so the contributions add up to about tol.
+template <class T, class Field>
+class Rk45Stepper {
+ public:
+  Rk45Stepper(double tol, double max_step, double max_length)
+      : tol_(tol), max_step_(max_step), max_length_(max_length),
+        h_(std::min({max_step, max_length, 1.0})) {}
+
+  RayNode<T> advance(const Field& field, const RayNode<T>& a, double remaining, int64_t* evals) {
+    using detail::node_at;
+    static constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
+    static constexpr double a21 = 1.0 / 5;
+    static constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
+    static constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
+    static constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
+                            a54 = -212.0 / 729;
+    static constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247,
+                            a64 = 49.0 / 176, a65 = -5103.0 / 18656;
+    static constexpr double b1 = 35.0 / 384, b3 = 500.0 / 1113, b4 = 125.0 / 192,
+                            b5 = -2187.0 / 6784, b6 = 11.0 / 84;
+    static constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920,
+                            e5 = -17253.0 / 339200, e6 = 22.0 / 525, e7 = -1.0 / 40;
+    (void)c2, (void)c3, (void)c4, (void)c5;
+    const auto k1 = detail::rate(a);
+    for (int attempt = 0;; ++attempt) {
+      const double hv = std::min(h_, remaining);
+      const T h(hv);
+      auto stage = [&](const Vec3<T>& dx, const Vec3<T>& dv) {
+        return detail::rate(node_at(field, a.s, a, h, dx, dv, evals));
+      };
+      const auto k2 = stage(a21 * k1.dx, a21 * k1.dv);
+      const auto k3 = stage(a31 * k1.dx + a32 * k2.dx, a31 * k1.dv + a32 * k2.dv);
+      const auto k4 = stage(a41 * k1.dx + a42 * k2.dx + a43 * k3.dx,
+                            a41 * k1.dv + a42 * k2.dv + a43 * k3.dv);
+      const auto k5 = stage(a51 * k1.dx + a52 * k2.dx + a53 * k3.dx + a54 * k4.dx,
+                            a51 * k1.dv + a52 * k2.dv + a53 * k3.dv + a54 * k4.dv);
+      const auto k6 = stage(a61 * k1.dx + a62 * k2.dx + a63 * k3.dx + a64 * k4.dx + a65 * k5.dx,
+                            a61 * k1.dv + a62 * k2.dv + a63 * k3.dv + a64 * k4.dv + a65 * k5.dv);
+      const Vec3<T> dx = b1 * k1.dx + b3 * k3.dx + b4 * k4.dx + b5 * k5.dx + b6 * k6.dx;
+      const Vec3<T> dv = b1 * k1.dv + b3 * k3.dv + b4 * k4.dv + b5 * k5.dv + b6 * k6.dv;
+      RayNode<T> b = node_at(field, T(a.s + h), a, h, dx, dv, evals);
+      const auto k7 = detail::rate(b);
+      // Error estimate of the embedded 4th-order solution.
+      const Vec3<T> ex = h * (e1 * k1.dx + e3 * k3.dx + e4 * k4.dx + e5 * k5.dx + e6 * k6.dx + e7 * k7.dx);
+      const Vec3<T> ev = h * (e1 * k1.dv + e3 * k3.dv + e4 * k4.dv + e5 * k5.dv + e6 * k6.dv + e7 * k7.dv);
+      double err_x = 0.0, err_v = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        err_x = std::max(err_x, std::abs(value_of(ex[i])));
+        err_v = std::max(err_v, std::abs(value_of(ev[i])));
+      }
+      const double carried = std::max(remaining - hv, 0.0) / value_of(b.n);
+      const double allowed = tol_ * hv / max_length_;
+      const double error = (err_x + err_v * carried) / allowed;
+      // Error per unit step scales as h^4: step factor error^(-1/4), safety 0.9, within [0.2, 5].
+      const double factor =
+          error == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(error, -0.25), 0.2, 5.0);
+      if (error <= 1.0 || hv <= kMinStep * max_length_) {
+        h_ = std::min(hv * factor, max_step_);
+        return b;
+      }
+      h_ = hv * std::min(factor, 0.9);
+      if (attempt > 200) {
+        throw_numerical("rk45: step size collapsed at arc length ", value_of(a.s), " m");
+      }
+    }
+  }
+
+ private:
+  static constexpr double kMinStep = 1e-12;  // relative to max_length: below it, accept
+  double tol_, max_step_, max_length_, h_;
+};
+
+// Traces from x0 along the unit direction t0 with `stepper`, calling visit on each segment.
+template <class T, class Field, class Stepper, class Visitor>
+TraceEnd<T> march(const Field& field, const Vec3<T>& x0, const Vec3<T>& t0,
+                  const TraceOptions& options, Stepper& stepper, Visitor&& visit) {
+  TraceEnd<T> out;
+  RayNode<T> node = make_node(field, T(0.0), x0, Vec3<T>::Zero().eval(), &out.evaluations);
+  node.v = node.n * t0;  // launch with |v0| = n(x0) (ORACLES.md: not a unit v0)
+  const double length = options.max_length;
+  const Vec3d up(0.0, 1.0, 0.0);
+  while (true) {
+    const double remaining = length - value_of(node.s);
+    if (remaining <= 1e-12 * length) {
+      out.stop = TraceStop::kMaxLength;
+      break;
+    }
+    if (out.steps >= options.max_steps) {
+      throw_numerical("ray needed more than max_steps = ", options.max_steps, " steps");
+    }
+    RayNode<T> next = stepper.advance(field, node, remaining, &out.evaluations);
+    ++out.steps;
+    bool stopped_at_height = false;
+    if (options.stop_height &&
+        value_of(node.x.y()) > *options.stop_height) {
+      const PathSegment<T> segment(node, next);
+      const T u = first_plane_crossing(segment, up, *options.stop_height);
+      if (value_of(u) >= 0.0) {
+        const Vec3<T> x = segment.position(u);
+        const Vec3<T> dir = segment.velocity(u).normalized();
+        next = make_node(field, T(node.s + u * segment.length()), x, Vec3<T>::Zero().eval(),
+                         &out.evaluations);
+        next.v = next.n * dir;
+        stopped_at_height = true;
+      }
+    }
+    if (!visit(node, next)) {
+      out.stop = TraceStop::kVisitor;
+      node = next;
+      break;
+    }
+    node = next;
+    if (stopped_at_height) {
+      out.stop = TraceStop::kStopHeight;
+      break;
+    }
+  }
+  out.end = node;
+  return out;
+}
+
+}  // namespace refracta

@@ -1,0 +1,100 @@
+// RayPath queries on the continuous path.
+#include "refracta/rays/ray_path.h"
+
+#include "refracta/core/error.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace refracta {
+
+RayPath::RayPath(std::vector<RayNode<double>> nodes, TraceStop stop, int64_t evaluations)
+    : nodes_(std::move(nodes)), stop_(stop), evaluations_(evaluations) {
+  if (nodes_.empty()) throw std::logic_error("RayPath needs at least one node");
+}
+
+size_t RayPath::segment_index(double s) const {
+  auto it = std::upper_bound(nodes_.begin(), nodes_.end(), s,
+                             [](double value, const RayNode<double>& n) { return value < n.s; });
+  const size_t i = size_t(it - nodes_.begin());
+  return std::clamp<size_t>(i, 1, nodes_.size() - 1) - 1;
+}
+
+Vec3d RayPath::point_at(double s, Vec3d* direction) const {
+  if (!(s >= 0.0 && s <= length() * (1 + 1e-12) + 1e-12)) {
+    throw_invalid("s must be in [0, ", length(), "] m (got ", s, ")");
+  }
+  if (nodes_.size() == 1) {
+    if (direction) *direction = nodes_[0].tangent().normalized();
+    return nodes_[0].x;
+  }
+  const size_t i = segment_index(s);
+  const PathSegment<double> seg(nodes_[i], nodes_[i + 1]);
+  const double u = seg.length() > 0 ? std::clamp((s - seg.start()) / seg.length(), 0.0, 1.0) : 0.0;
+  if (direction) *direction = seg.velocity(u).normalized();
+  return seg.position(u);
+}
+
+ClosestPoint RayPath::closest_point(const Vec3d& q) const {
+  if (!is_finite(q)) throw_invalid("closest_point: the point must be finite");
+  ClosestPoint best{nodes_[0].x, (nodes_[0].x - q).norm(), 0.0};
+  for (size_t i = 0; i + 1 < nodes_.size(); ++i) {
+    const RayNode<double>& a = nodes_[i];
+    const RayNode<double>& b = nodes_[i + 1];
+    // Skip segments that cannot beat the best: the curve stays within `bulge` of its chord.
+    const double chord = (b.x - a.x).norm(), length = b.s - a.s;
+    const double bulge = 0.5 * std::sqrt(std::max(length * length - chord * chord, 0.0)) + 1e-9;
+    const Vec3d mid = 0.5 * (a.x + b.x);
+    if ((mid - q).norm() - 0.5 * chord - bulge > best.distance) continue;
+    const PathSegment<double> seg(a, b);
+    double d2;
+    const double u = closest_on_segment(seg, q, &d2);
+    if (std::sqrt(d2) < best.distance) {
+      best = {seg.position(u), std::sqrt(d2), seg.start() + u * seg.length()};
+    }
+  }
+  return best;
+}
+
+std::vector<Crossing> RayPath::crossings(const Vec3d& normal, double offset) const {
+  if (!is_finite(normal) || normal.norm() == 0.0 || !std::isfinite(offset)) {
+    throw_invalid("crossings: the plane must have a finite, non-zero normal and a finite offset");
+  }
+  const Vec3d unit = normal.normalized();
+  const double off = offset / normal.norm();
+  std::vector<Crossing> out;
+  auto add = [&](const PathSegment<double>& seg, double u) {
+    const double s = seg.start() + u * seg.length();
+    if (!out.empty() && std::abs(out.back().s - s) <= 1e-9 * (1.0 + s)) return;  // at a node
+    out.push_back({seg.position(u), s, seg.velocity(u).normalized()});
+  };
+  if (nodes_.size() == 1 && unit.dot(nodes_[0].x) == off) {
+    out.push_back({nodes_[0].x, 0.0, nodes_[0].tangent().normalized()});
+  }
+  // Each segment sampled at 32 points, so a path that dips through the plane and back within one
+  // segment still reports both crossings; each sign change refined by bisection.
+  constexpr int kSamples = 32;
+  for (size_t i = 0; i + 1 < nodes_.size(); ++i) {
+    const PathSegment<double> seg(nodes_[i], nodes_[i + 1]);
+    auto f = [&](double u) { return unit.dot(seg.position(u)) - off; };
+    double u_prev = 0.0, f_prev = f(0.0);
+    if (f_prev == 0.0) add(seg, 0.0);
+    for (int j = 1; j <= kSamples; ++j) {
+      const double u = double(j) / kSamples, fu = f(u);
+      if (fu == 0.0) {
+        add(seg, u);
+      } else if (f_prev != 0.0 && (fu > 0.0) != (f_prev > 0.0)) {
+        double a = u_prev, b = u;
+        for (int it = 0; it < 80 && b - a > 1e-16; ++it) {
+          const double m = 0.5 * (a + b), fm = f(m);
+          if (fm != 0.0 && (fm > 0.0) == (f_prev > 0.0)) a = m; else b = m;
+        }
+        add(seg, 0.5 * (a + b));
+      }
+      u_prev = u, f_prev = fu;
+    }
+  }
+  return out;
+}
+
+}  // namespace refracta

@@ -1,0 +1,348 @@
+// Exact curved rays in a field that depends on height only (double precision).
+// In such a field the ray stays in its vertical plane and n(h) cos e = beta is constant
+// (Bouguer's invariant; e = elevation), so along a branch where h is monotone
+//   dr/dh = beta / sqrt(n^2 - beta^2),   ds/dh = n / sqrt(n^2 - beta^2)    (per |dh|),
+// with r the horizontal distance. Branches end at turning heights n(h_t) = beta, where the ray
+// reverses vertically; near them the substitution h = h_t + kappa u^2 removes the inverse square
+// root singularity: dr/du = 2u beta / sqrt(n^2 - beta^2) stays finite. Both integrals use adaptive
+// 15-point Gauss-Kronrod panels, so paths are exact up to the quadrature tolerance. Every panel end
+// becomes a path node with exact position, direction (cos e = beta/n) and field, handed to the same
+// segment visitor as the Runge-Kutta integrators.
+#pragma once
+
+#include "refracta/core/error.h"
+#include "refracta/rays/ray_node.h"
+#include "refracta/rays/trace_options.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace refracta {
+
+namespace detail {
+
+// 15-point Kronrod nodes on [-1, 1] (positive half, centre last), its weights, and the weights of
+// the embedded 7-point Gauss rule (on nodes 1, 3, 5, 7).
+constexpr double kGkNodes[8] = {0.991455371120813, 0.949107912342759, 0.864864423359769,
+                                0.741531185599394, 0.586087235467691, 0.405845151377397,
+                                0.207784955007898, 0.0};
+constexpr double kGkWeights[8] = {0.022935322010529, 0.063092092629979, 0.104790010322250,
+                                  0.140653259715525, 0.169004726639267, 0.190350578064785,
+                                  0.204432940075298, 0.209482141084728};
+constexpr double kGaussWeights[4] = {0.129484966168870, 0.279705391489277, 0.381830050505119,
+                                     0.417959183673469};
+
+}  // namespace detail
+
+template <class Field>
+class StratifiedTracer {
+ public:
+  StratifiedTracer(const Field& field, const TraceOptions& options)
+      : field_(field), options_(options), length_(options.max_length),
+        spacing_(options.step > 0.0 ? options.step : 50.0),
+        scan_step_(std::min(1.0, spacing_)) {}
+
+  template <class Visitor>
+  TraceEnd<double> trace(const Vec3d& x0, const Vec3d& t0, Visitor&& visit) {
+    out_ = TraceEnd<double>{};
+    s_ = r_ = 0.0;
+    reached_end_ = false;
+    origin_ = x0;
+    const double cos_e0 = std::hypot(t0.x(), t0.z()), sin_e0 = t0.y();
+    horizontal_ = cos_e0 > 0.0 ? Vec3d(t0.x() / cos_e0, 0.0, t0.z() / cos_e0) : Vec3d(1, 0, 0);
+    double n0, dn0;
+    eval(x0.y(), &n0, &dn0);
+    beta_ = n0 * cos_e0;
+    // n0 - beta = n0 (1 - cos e0), written without cancellation.
+    const double gap0 = n0 * sin_e0 * sin_e0 / (1.0 + cos_e0);
+    last_ = node(0.0, 0.0, x0.y(), n0, dn0, sin_e0);
+    stopped_ = false;
+
+    auto visitor = [&](const RayNode<double>& a, const RayNode<double>& b) { return visit(a, b); };
+    visit_ = visitor;
+    if (options_.stop_height && x0.y() <= *options_.stop_height && sin_e0 <= 0.0) {
+      out_.stop = TraceStop::kStopHeight;
+    } else if (gap0 <= 1e-15 * n0 && dn0 == 0.0) {
+      straight_horizontal(n0);
+    } else {
+      double h = x0.y();
+      bool turning = gap0 <= 1e-15 * n0;
+      double direction = turning ? (dn0 > 0.0 ? 1.0 : -1.0) : (sin_e0 > 0.0 ? 1.0 : -1.0);
+      if (turning) set_turning_point(h);
+      while (!done()) {
+        if (!branch(&h, &turning, &direction)) break;
+      }
+    }
+    out_.end = last_;
+    return out_;
+  }
+
+ private:
+  // One evaluation of n(h), dn/dh.
+  void eval(double h, double* n, double* dn) {
+    field_.evaluate_height(h, n, dn);
+    ++out_.evaluations;
+    if (!(*n > 0.0) || !std::isfinite(*n) || !std::isfinite(*dn)) {
+      throw_numerical("ray reached n = ", *n, " (dn/dh = ", *dn, ") at height ", h,
+                      " m; the refractive index must be finite and > 0 along the path");
+    }
+  }
+
+  RayNode<double> node(double s, double r, double h, double n, double dn, double sin_e) const {
+    const double cos_e = std::min(beta_ / n, 1.0);
+    RayNode<double> out;
+    out.s = s;
+    out.x = Vec3d(origin_.x() + r * horizontal_.x(), h, origin_.z() + r * horizontal_.z());
+    out.n = n;
+    out.v = n * (cos_e * horizontal_ + Vec3d(0.0, sin_e, 0.0));
+    out.grad = Vec3d(0.0, dn, 0.0);
+    return out;
+  }
+
+  bool done() const { return stopped_ || out_.stop != TraceStop::kMaxLength || reached_end_; }
+
+  void emit(const RayNode<double>& next) {
+    if (!visit_(last_, next)) {
+      out_.stop = TraceStop::kVisitor;
+      stopped_ = true;
+    }
+    last_ = next;
+    ++out_.steps;
+  }
+
+  void straight_horizontal(double n0) {
+    const int count = std::max(1, int(std::ceil(length_ / spacing_)));
+    for (int i = 1; i <= count && !done(); ++i) {
+      const double s = length_ * i / count;
+      emit(node(s, s, origin_.y(), n0, 0.0, 0.0));
+    }
+    reached_end_ = true;
+  }
+
+  // --- the integrand in either variable -------------------------------------------------------
+  // A panel variable w maps to a height: plain panels h = w; u-panels h = centre + side w^2 around
+  // a turning height. rates() gives dr/dw, ds/dw (per |dw|) and n - beta at w.
+  struct Variable {
+    bool substituted = false;
+    double centre = 0.0, side = 1.0;  // for u-panels
+    double height(double w) const { return substituted ? centre + side * w * w : w; }
+  };
+
+  void rates(const Variable& var, double w, double* dr, double* ds, double* gap) {
+    const double h = var.height(w);
+    double n, dn;
+    eval(h, &n, &dn);
+    double d;
+    if (var.substituted && std::abs(h - var.centre) < 1e-3) {
+      // n(h) - n(h_t) by Simpson's rule on dn/dh: the plain difference of two values near 1
+      // would lose most digits right next to the turning point.
+      double n_mid, dn_mid;
+      eval(0.5 * (h + var.centre), &n_mid, &dn_mid);
+      d = (h - var.centre) / 6.0 * (turning_slope_ + 4.0 * dn_mid + dn) + turning_gap_;
+    } else {
+      d = n - beta_;
+    }
+    *gap = d;
+    const double q = std::sqrt(std::max(d, 1e-300) * (n + beta_));
+    const double jacobian = var.substituted ? 2.0 * std::abs(w) : 1.0;
+    *dr = jacobian * beta_ / q;
+    *ds = jacobian * n / q;
+  }
+
+  struct PanelSums {
+    double r = 0, s = 0, error = 0, min_gap = 1e300;
+  };
+
+  PanelSums gauss_kronrod(const Variable& var, double wa, double wb) {
+    const double half = 0.5 * std::abs(wb - wa), mid = 0.5 * (wa + wb);
+    PanelSums sums;
+    double gauss_r = 0, gauss_s = 0;
+    for (int i = 0; i < 8; ++i) {
+      const int signs = i == 7 ? 1 : 2;
+      for (int k = 0; k < signs; ++k) {
+        const double w = mid + (k ? -1 : 1) * half * detail::kGkNodes[i];
+        double dr, ds, gap;
+        rates(var, w, &dr, &ds, &gap);
+        sums.min_gap = std::min(sums.min_gap, gap);
+        sums.r += detail::kGkWeights[i] * dr;
+        sums.s += detail::kGkWeights[i] * ds;
+        if (i % 2 == 1) {
+          gauss_r += detail::kGaussWeights[i / 2] * dr;
+          gauss_s += detail::kGaussWeights[i / 2] * ds;
+        }
+      }
+    }
+    sums.r *= half, sums.s *= half;
+    sums.error = half * std::max(std::abs(sums.r / half - gauss_r), std::abs(sums.s / half - gauss_s));
+    return sums;
+  }
+
+  // Integrates the panel [wa, wb] adaptively and emits its nodes in path order. Returns false if
+  // a turning point lies inside (n <= beta at a quadrature node): the caller shortens the panel.
+  bool integrate(const Variable& var, double wa, double wb, double direction, int depth = 0) {
+    if (done()) return true;
+    const PanelSums sums = gauss_kronrod(var, wa, wb);
+    if (sums.min_gap <= 0.0 && !var.substituted) return false;
+    const bool too_long = sums.s > spacing_;
+    // Error per unit length, floored at what round-off in n - beta allows (a relative 1e-16 of n
+    // over the smallest gap): asking for less only splits panels to chase noise.
+    const double noise = 1e3 * 2.2e-16 * sums.s * (beta_ + 1.0) / std::max(sums.min_gap, 1e-300);
+    const bool inaccurate =
+        sums.error > std::max(options_.tol * std::max(sums.s / length_, 1e-6), noise);
+    if ((too_long || inaccurate) && depth < 40 && std::abs(wb - wa) > 1e-12 * (1 + std::abs(wa))) {
+      const double mid = 0.5 * (wa + wb);
+      if (!integrate(var, wa, mid, direction, depth + 1)) return false;
+      return integrate(var, mid, wb, direction, depth + 1);
+    }
+    if (s_ + sums.s >= length_) {
+      finish_inside(var, wa, wb, direction, sums);
+      return true;
+    }
+    s_ += sums.s;
+    r_ += sums.r;
+    emit_at(var.height(wb), direction);
+    return true;
+  }
+
+  void emit_at(double h, double direction, bool turning = false) {
+    double n, dn;
+    eval(h, &n, &dn);
+    const double sin_e =
+        turning ? 0.0 : direction * std::sqrt(std::max(n - beta_, 0.0) * (n + beta_)) / n;
+    emit(node(s_, r_, h, n, dn, sin_e));
+  }
+
+  // The path reaches max_length inside [wa, wb]: find w with s(w) = max_length by Newton.
+  void finish_inside(const Variable& var, double wa, double wb, double direction,
+                     const PanelSums& whole) {
+    const double target = length_ - s_;
+    double w = wa + (wb - wa) * std::clamp(target / whole.s, 0.0, 1.0);
+    PanelSums part;
+    for (int it = 0; it < 30; ++it) {
+      part = gauss_kronrod(var, wa, w);
+      const double residual = part.s - target;
+      if (std::abs(residual) <= 1e-3 * options_.tol) break;
+      double dr, ds, gap;
+      rates(var, w, &dr, &ds, &gap);
+      const double sign = wb > wa ? 1.0 : -1.0;
+      const double next = w - sign * residual / ds;
+      w = sign > 0 ? std::clamp(next, wa, wb) : std::clamp(next, wb, wa);
+    }
+    s_ = length_;
+    r_ += part.r;
+    emit_at(var.height(w), direction);
+    reached_end_ = true;
+  }
+
+  // Root of n(h) = beta in (h_pos, h_neg], g(h_pos) > 0 >= g(h_neg): Newton kept in the bracket.
+  double turning_height(double h_pos, double h_neg) {
+    double lo = h_pos, hi = h_neg, h = 0.5 * (lo + hi);
+    for (int it = 0; it < 100 && std::abs(hi - lo) > 1e-13 * (1.0 + std::abs(h)); ++it) {
+      double n, dn;
+      eval(h, &n, &dn);
+      const double g = n - beta_;
+      if (g == 0.0) break;
+      if (g > 0.0) lo = h; else hi = h;
+      const double newton = dn != 0.0 ? h - g / dn : h;
+      const bool inside = (newton - lo) * (newton - hi) < 0.0;
+      h = inside ? newton : 0.5 * (lo + hi);
+    }
+    return h;
+  }
+
+  void set_turning_point(double h_t) {
+    double n, dn;
+    eval(h_t, &n, &dn);
+    turning_gap_ = n - beta_;
+    turning_slope_ = dn;
+  }
+
+  // u-panel from height ha to the turning height ht (towards = true), or from ht out to hb.
+  bool integrate_near_turning(double ht, double h_other, bool towards, double direction) {
+    Variable var;
+    var.substituted = true;
+    var.centre = ht;
+    var.side = h_other > ht ? 1.0 : -1.0;
+    const double u = std::sqrt(std::abs(h_other - ht));
+    return towards ? integrate(var, u, 0.0, direction) : integrate(var, 0.0, u, direction);
+  }
+
+  // Follows one monotone branch from *h in *direction; on reaching a turning height updates the
+  // state for the next branch and returns true.
+  bool branch(double* h_start, bool* turning_start, double* direction) {
+    const double dir = *direction;
+    double h_prev = *h_start, delta = *turning_start ? 1e-4 : scan_step_;
+    bool from_turning = *turning_start;
+    const double start_turning_gap = turning_gap_, start_turning_slope = turning_slope_;
+    Variable plain;
+    for (int iteration = 0; !done(); ++iteration) {
+      if (iteration > 10'000'000) throw_numerical("stratified: no progress near h = ", h_prev, " m");
+      const double budget = length_ - s_ + 1e-9;
+      double h_next = h_prev + dir * std::min(delta, budget);
+      bool at_stop = false;
+      if (dir < 0.0 && options_.stop_height && h_next <= *options_.stop_height) {
+        h_next = *options_.stop_height;
+        at_stop = true;
+      }
+      double n_next, dn_next;
+      eval(h_next, &n_next, &dn_next);
+      const double gap_next = n_next - beta_;
+      if (gap_next <= 0.0) {
+        if (from_turning) {  // a second turning point within one scan step: look closer
+          if (delta < 1e-12) throw_numerical("stratified: cannot resolve a duct at h = ", h_prev, " m");
+          delta *= 0.25;
+          continue;
+        }
+        const double ht = turning_height(h_prev, h_next);
+        set_turning_point(ht);
+        if (!integrate_near_turning(ht, h_prev, true, dir)) {
+          delta *= 0.25;
+          continue;
+        }
+        if (done()) return false;
+        *h_start = ht;
+        *turning_start = true;
+        *direction = -dir;
+        last_.v = last_.n * Vec3d(last_.v.x(), 0.0, last_.v.z()).normalized();
+        return true;
+      }
+      bool ok;
+      if (from_turning) {
+        turning_gap_ = start_turning_gap, turning_slope_ = start_turning_slope;
+        ok = integrate_near_turning(*h_start, h_next, false, dir);
+      } else {
+        ok = integrate(plain, h_prev, h_next, dir);
+      }
+      if (!ok) {  // a turning point hides inside the panel
+        delta *= 0.25;
+        continue;
+      }
+      if (done()) return false;
+      if (at_stop) {
+        out_.stop = TraceStop::kStopHeight;
+        return false;
+      }
+      h_prev = h_next;
+      from_turning = false;
+      // Next scan step: approaching a turning point (n falling along the motion), aim 1.5x past
+      // its linear prediction so it is bracketed; otherwise grow the step.
+      delta = std::min(scan_step_, 2.0 * delta);
+      if (dir * dn_next < 0.0) delta = std::min(delta, std::max(1.5 * gap_next / std::abs(dn_next), 1e-9));
+    }
+    return false;
+  }
+
+  const Field& field_;
+  const TraceOptions& options_;
+  double length_, spacing_, scan_step_;
+  Vec3d origin_, horizontal_;
+  double beta_ = 0.0, s_ = 0.0, r_ = 0.0;
+  double turning_gap_ = 0.0, turning_slope_ = 0.0;
+  bool stopped_ = false, reached_end_ = false;
+  RayNode<double> last_;
+  TraceEnd<double> out_;
+  std::function<bool(const RayNode<double>&, const RayNode<double>&)> visit_;
+};
+
+}  // namespace refracta

@@ -1,0 +1,95 @@
+// The double-precision entry points over rk4, rk45 and stratified.
+#include "refracta/rays/trace.h"
+
+#include "refracta/core/error.h"
+#include "refracta/rays/march.h"
+#include "refracta/rays/stratified.h"
+
+namespace refracta {
+
+namespace {
+
+void validate_ray(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
+                  const TraceOptions& options) {
+  options.validate();
+  if (!is_finite(origin)) {
+    throw_invalid("origin must be finite (got (", origin.x(), ", ", origin.y(), ", ", origin.z(), "))");
+  }
+  if (!is_finite(direction) || direction.norm() == 0.0) {
+    throw_invalid("direction must be finite and non-zero (got (", direction.x(), ", ",
+                  direction.y(), ", ", direction.z(), "))");
+  }
+  if (options.method == TraceMethod::kStratified && !field.height_only()) {
+    throw_invalid("method 'stratified' needs a field that depends on height only; ",
+                  field.type_name(), " does not (use 'rk45')");
+  }
+  if (options.stop_height && origin.y() < *options.stop_height) {
+    throw_invalid("origin height ", origin.y(), " m is below stop_height ", *options.stop_height, " m");
+  }
+}
+
+}  // namespace
+
+TraceEnd<double> trace(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
+                       const TraceOptions& options, const SegmentVisitor& visit) {
+  validate_ray(field, origin, direction, options);
+  const Vec3d t0 = direction.normalized();
+  switch (options.method) {
+    case TraceMethod::kRk4: {
+      Rk4Stepper<double, IndexField> stepper(options.step > 0 ? options.step : 0.3);
+      return march(field, origin, t0, options, stepper, visit);
+    }
+    case TraceMethod::kRk45: {
+      const double max_step = options.step > 0 ? options.step : options.max_length;
+      Rk45Stepper<double, IndexField> stepper(options.tol, max_step, options.max_length);
+      return march(field, origin, t0, options, stepper, visit);
+    }
+    case TraceMethod::kStratified: {
+      StratifiedTracer<IndexField> tracer(field, options);
+      return tracer.trace(origin, t0, visit);
+    }
+  }
+  throw std::logic_error("unknown trace method");
+}
+
+RayPath trace_path(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
+                   const TraceOptions& options) {
+  std::vector<RayNode<double>> nodes;
+  const TraceEnd<double> end =
+      trace(field, origin, direction, options, [&](const RayNode<double>& a, const RayNode<double>& b) {
+        if (nodes.empty()) nodes.push_back(a);
+        nodes.push_back(b);
+        return true;
+      });
+  if (nodes.empty()) nodes.push_back(end.end);
+  return RayPath(std::move(nodes), end.stop, end.evaluations);
+}
+
+RayBatchEnds trace_batch(const IndexField& field, const std::vector<Vec3d>& origins,
+                         const std::vector<Vec3d>& directions, const TraceOptions& options,
+                         WorkControl& control) {
+  if (origins.size() != directions.size()) {
+    throw_invalid("origins and directions must have the same length (", origins.size(), " vs ",
+                  directions.size(), ")");
+  }
+  const int64_t count = int64_t(origins.size());
+  for (int64_t i = 0; i < count; ++i) validate_ray(field, origins[i], directions[i], options);
+  RayBatchEnds out;
+  out.points.resize(count);
+  out.directions.resize(count);
+  out.lengths.resize(count);
+  out.stops.resize(count);
+  out.evaluations.resize(count);
+  const auto keep_going = [](const RayNode<double>&, const RayNode<double>&) { return true; };
+  parallel_for_each(count, 1, control, [&](int64_t i) {
+    const TraceEnd<double> end = trace(field, origins[i], directions[i], options, keep_going);
+    out.points[i] = end.end.x;
+    out.directions[i] = end.end.v.normalized();
+    out.lengths[i] = end.end.s;
+    out.stops[i] = int(end.stop);
+    out.evaluations[i] = end.evaluations;
+  });
+  return out;
+}
+
+}  // namespace refracta

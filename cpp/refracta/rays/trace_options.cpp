@@ -1,0 +1,51 @@
+// Parsing and validation of TraceOptions.
+#include "refracta/rays/trace_options.h"
+
+#include "refracta/core/error.h"
+
+namespace refracta {
+
+TraceMethod parse_trace_method(const std::string& name) {
+  if (name == "rk4") return TraceMethod::kRk4;
+  if (name == "rk45") return TraceMethod::kRk45;
+  if (name == "stratified") return TraceMethod::kStratified;
+  throw_invalid("method must be 'rk4', 'rk45' or 'stratified' (got '", name, "')");
+}
+
+const char* trace_method_name(TraceMethod method) {
+  switch (method) {
+    case TraceMethod::kRk4: return "rk4";
+    case TraceMethod::kRk45: return "rk45";
+    case TraceMethod::kStratified: return "stratified";
+  }
+  return "?";
+}
+
+const char* trace_stop_name(TraceStop stop) {
+  switch (stop) {
+    case TraceStop::kMaxLength: return "max_length";
+    case TraceStop::kStopHeight: return "stop_height";
+    case TraceStop::kVisitor: return "stopped";
+  }
+  return "?";
+}
+
+void TraceOptions::validate() const {
+  if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
+  if (!(step >= 0.0) || !std::isfinite(step)) {
+    throw_invalid("step must be > 0, or None for the default (got ", step, ")");
+  }
+  if (!(max_length > 0.0) || !std::isfinite(max_length)) {
+    throw_invalid("max_length must be > 0 and finite (got ", max_length, ")");
+  }
+  if (stop_height && !std::isfinite(*stop_height)) {
+    throw_invalid("stop_height must be finite (got ", *stop_height, ")");
+  }
+  if (method == TraceMethod::kRk4 && max_length / (step > 0 ? step : 0.3) > double(max_steps)) {
+    throw_invalid("rk4 with step ", step, " m needs more than ", max_steps,
+                  " steps for max_length ", max_length, " m");
+  }
+  if (max_steps <= 0) throw_invalid("max_steps must be > 0 (got ", max_steps, ")");
+}
+
+}  // namespace refracta

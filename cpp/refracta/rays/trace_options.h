@@ -1,0 +1,44 @@
+// Options and results shared by every ray integrator.
+#pragma once
+
+#include "refracta/rays/ray_node.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace refracta {
+
+enum class TraceMethod { kRk4, kRk45, kStratified };
+
+TraceMethod parse_trace_method(const std::string& name);  // "rk4", "rk45", "stratified"
+const char* trace_method_name(TraceMethod method);
+
+struct TraceOptions {
+  TraceMethod method = TraceMethod::kRk45;
+  // rk45 and stratified: target error of positions along the path [m].
+  double tol = 1e-6;
+  // rk4: the fixed step [m] (default 0.3, the original editor's). rk45: the largest step
+  // (default: no limit). stratified: the largest distance between path nodes (default 50 m).
+  // 0 selects the default.
+  double step = 0.0;
+  double max_length = 1000.0;           // arc length at which the path ends [m]
+  std::optional<double> stop_height;    // the path ends where it descends through this height [m]
+  int64_t max_steps = 10'000'000;       // a guard against runaway step-size collapse
+
+  // Throws std::invalid_argument naming the bad field.
+  void validate() const;
+};
+
+enum class TraceStop { kMaxLength, kStopHeight, kVisitor };
+const char* trace_stop_name(TraceStop stop);
+
+template <class T>
+struct TraceEnd {
+  RayNode<T> end;
+  TraceStop stop = TraceStop::kMaxLength;
+  int64_t steps = 0;
+  int64_t evaluations = 0;  // field evaluations (n and grad n together count as one)
+};
+
+}  // namespace refracta

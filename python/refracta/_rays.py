@@ -1,0 +1,76 @@
+"""Batch ray tracing: argument shaping and the result object around the C++ batch tracer."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Iterator, Optional, Union
+
+import numpy as np
+
+from refracta import _core
+from refracta._progress import ProgressBar
+
+
+@dataclass(frozen=True)
+class RayBatch:
+    """Ends of a batch of traced rays.
+
+    Unpacks as ``end_points, end_directions, lengths = trace_rays(...)``.
+
+    Attributes:
+        end_points: (N, 3) float64, where each path ended [m].
+        end_directions: (N, 3) float64, unit tangents there.
+        lengths: (N,) float64, arc length of each path [m].
+        stops: (N,) str array, why each path ended ('max_length' or 'stop_height').
+        evaluations: (N,) int64, field evaluations per ray.
+    """
+
+    end_points: np.ndarray
+    end_directions: np.ndarray
+    lengths: np.ndarray
+    stops: np.ndarray
+    evaluations: np.ndarray
+
+    def __iter__(self) -> Iterator[np.ndarray]:
+        return iter((self.end_points, self.end_directions, self.lengths))
+
+    def __len__(self) -> int:
+        return 3
+
+
+def trace_rays(
+    field: _core.IndexField,
+    origins,
+    directions,
+    method: str = "rk45",
+    tol: float = 1e-6,
+    step: Optional[float] = None,
+    max_length: float = 1000.0,
+    stop_height: Optional[float] = None,
+    progress: Union[bool, Callable[[int, int], None]] = False,
+) -> RayBatch:
+    """Trace many curved rays in parallel (oneTBB, GIL released; Ctrl-C stops it).
+
+    origins: (3,) or (N, 3); directions: (N, 3) or (3,) -- a single row is broadcast against
+    the other. Options as in :func:`refracta.trace_ray`. progress: True for a bar on stderr, or
+    a callable ``progress(done, total)`` called about every 50 ms.
+    """
+    origins = np.asarray(origins, dtype=np.float64)
+    directions = np.asarray(directions, dtype=np.float64)
+    if origins.ndim == 1 and directions.ndim == 2:
+        origins = np.broadcast_to(origins, directions.shape)
+    elif directions.ndim == 1 and origins.ndim == 2:
+        directions = np.broadcast_to(directions, origins.shape)
+    origins = np.atleast_2d(origins)
+    directions = np.atleast_2d(directions)
+    if origins.shape != directions.shape:
+        raise ValueError(
+            f"origins and directions must have matching shapes (N, 3); got {origins.shape} and {directions.shape}"
+        )
+    callback = ProgressBar("tracing rays") if progress is True else (progress or None)
+    points, dirs, lengths, stops, evaluations = _core._trace_batch(
+        field, np.ascontiguousarray(origins), np.ascontiguousarray(directions), method, tol, step,
+        max_length, stop_height, callback,
+    )
+    names = np.array(_core._stop_names)
+    return RayBatch(points, dirs, lengths, names[stops.astype(np.int64)], evaluations.astype(np.int64))
