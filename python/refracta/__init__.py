@@ -17,12 +17,13 @@ from refracta._core import (
     TemperatureProfile,
     trace_ray,
 )
-from refracta._rays import RayBatch, trace_rays
+from refracta._rays import ElevationTable, RayBatch, trace_rays
 
 __version__ = "0.1.0"
 
 __all__ = [
     "CustomField",
+    "ElevationTable",
     "IndexField",
     "IoError",
     "LinearSquaredProfile",

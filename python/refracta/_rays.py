@@ -74,3 +74,71 @@ def trace_rays(
     )
     names = np.array(_core._stop_names)
     return RayBatch(points, dirs, lengths, names[stops.astype(np.int64)], evaluations.astype(np.int64))
+
+
+class ElevationTable:
+    """Paths by launch elevation from one eye height in a height-only field.
+
+    Every ray launched with the same elevation from the same height follows the same path in its
+    vertical plane, so the table traces a few hundred to a few thousand elevations exactly
+    (method 'stratified') and serves any number of rays, at any azimuth, by interpolation. It
+    refines until the interpolation error is below ``tol`` [m] along the whole path, never
+    interpolates between rays of different kind (one reaching the ground, one turning), and traces
+    queries exactly where such an edge could not be resolved.
+
+    The eye is at (0, eye_height, 0); elevations and azimuths are in degrees, azimuth measured from
+    +x toward +z.
+    """
+
+    def __init__(
+        self,
+        field: _core.IndexField,
+        eye_height: float,
+        min_elevation: float,
+        max_elevation: float,
+        tol: float = 1e-3,
+        max_length: float = 1000.0,
+        stop_height: Optional[float] = None,
+        step: Optional[float] = None,
+        trace_tol: Optional[float] = None,
+        progress: Union[bool, Callable[[int, int], None]] = False,
+    ):
+        callback = ProgressBar("elevation table") if progress is True else (progress or None)
+        self._table = _core._ElevationTable(
+            field, eye_height, min_elevation, max_elevation, tol, max_length, stop_height, step,
+            trace_tol, callback,
+        )
+        self.field = field
+        self.eye_height = eye_height
+        self.tol = tol
+
+    @property
+    def size(self) -> int:
+        """Number of exactly traced elevations."""
+        return self._table.size
+
+    @property
+    def evaluations(self) -> int:
+        """Field evaluations spent building the table."""
+        return self._table.evaluations
+
+    @property
+    def exact_intervals(self) -> int:
+        """Elevation intervals where queries are traced exactly (unresolved kind changes)."""
+        return self._table.exact_intervals
+
+    @property
+    def elevations(self) -> np.ndarray:
+        """The traced elevations [deg]."""
+        return self._table.elevations
+
+    def ends(self, elevations, azimuths=0.0) -> RayBatch:
+        """Ends of the rays launched at ``elevations`` [deg] (and ``azimuths`` [deg])."""
+        points, dirs, lengths, stops = self._table.ends(
+            np.asarray(elevations, dtype=np.float64).ravel(), np.asarray(azimuths, dtype=np.float64).ravel()
+        )
+        names = np.array(_core._stop_names)
+        return RayBatch(points, dirs, lengths, names[stops.astype(np.int64)], np.zeros(len(lengths), np.int64))
+
+    def __repr__(self) -> str:
+        return f"ElevationTable(size={self.size}, eye_height={self.eye_height}, tol={self.tol})"

@@ -1,6 +1,7 @@
 // Python bindings of the ray integrators (cpp/refracta/rays): trace_ray, the batch tracer, RayPath.
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/interruptible.h"
+#include "refracta/rays/elevation_table.h"
 #include "refracta/rays/trace.h"
 
 #include <optional>
@@ -121,7 +122,7 @@ The ray equations dx/ds = v/n, dv/ds = grad n are launched with v0 = n(origin) *
 method: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path),
 'rk4' (fixed step `step`, default 0.3 m, the original editor's), or 'stratified' (height-only
 fields: exact paths from n(h) cos(e) = const by quadrature to `tol`; `step` is the largest node
-spacing, default 50 m). max_length [m]: arc length at which the path ends. stop_height [m]: the
+spacing, default 100 m). max_length [m]: arc length at which the path ends. stop_height [m]: the
 path ends where it descends through this height (a ground). Raises ValueError for bad arguments
 and refracta.NumericalError where n <= 0 or is not finite.)doc");
 
@@ -146,6 +147,64 @@ and refracta.NumericalError where n <= 0 or is not finite.)doc");
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("method"),
         py::arg("tol"), py::arg("step"), py::arg("max_length"), py::arg("stop_height"),
         py::arg("progress"));
+  py::class_<ElevationTable, std::shared_ptr<ElevationTable>>(m, "_ElevationTable")
+      .def(py::init([](const std::shared_ptr<IndexField>& field, double eye_height, double min_deg,
+                       double max_deg, double tol, double max_length, std::optional<double> stop_height,
+                       std::optional<double> step, std::optional<double> trace_tol, const py::object& progress) {
+             checked_field(field);
+             ElevationTableOptions options;
+             options.eye_height = eye_height;
+             options.min_elevation = degrees_to_radians(min_deg);
+             options.max_elevation = degrees_to_radians(max_deg);
+             options.tol = tol;
+             options.trace = make_options("stratified", trace_tol ? *trace_tol : tol, step,
+                                          max_length, stop_height);
+             options.validate();
+             WorkControl control;
+             std::shared_ptr<ElevationTable> table;
+             run_interruptible(control, progress, [&] {
+               table = std::make_shared<ElevationTable>(field, options, control);
+             });
+             return table;
+           }),
+           py::arg("field"), py::arg("eye_height"), py::arg("min_elevation"), py::arg("max_elevation"),
+           py::arg("tol"), py::arg("max_length"), py::arg("stop_height"), py::arg("step"),
+           py::arg("trace_tol"), py::arg("progress"))
+      .def("ends",
+           [](const ElevationTable& table, const py::object& elevations, const py::object& azimuths) {
+             const std::vector<double> e = to_values(elevations, "elevations");
+             std::vector<double> a = to_values(azimuths, "azimuths");
+             if (a.size() == 1 && e.size() != 1) a.assign(e.size(), a[0]);
+             if (a.size() != e.size()) {
+               throw_invalid("azimuths must be one value or one per elevation (", a.size(), " vs ", e.size(), ")");
+             }
+             std::vector<Vec3d> points(e.size()), directions(e.size());
+             std::vector<double> lengths(e.size()), stops(e.size());
+             {
+               py::gil_scoped_release release;
+               WorkControl control;
+               parallel_for_each(int64_t(e.size()), 64, control, [&](int64_t i) {
+                 const PlaneState p = table.end(degrees_to_radians(e[i]));
+                 const double ca = std::cos(degrees_to_radians(a[i])), sa = std::sin(degrees_to_radians(a[i]));
+                 points[i] = Vec3d(p.r * ca, p.h, p.r * sa);
+                 directions[i] = Vec3d(p.cos_e * ca, p.sin_e, p.cos_e * sa);
+                 lengths[i] = p.s;
+                 stops[i] = double(int(p.stop));
+               });
+             }
+             return py::make_tuple(points_to_array(points), points_to_array(directions),
+                                   values_to_array(lengths), values_to_array(stops));
+           },
+           py::arg("elevations"), py::arg("azimuths"))
+      .def_property_readonly("size", &ElevationTable::size)
+      .def_property_readonly("evaluations", &ElevationTable::evaluations)
+      .def_property_readonly("exact_intervals", &ElevationTable::exact_intervals)
+      .def_property_readonly("elevations", [](const ElevationTable& t) {
+        std::vector<double> deg;
+        for (double e : t.elevations()) deg.push_back(e * 180.0 / kPi);
+        return values_to_array(deg);
+      });
+
   m.attr("_stop_names") = py::make_tuple(trace_stop_name(TraceStop::kMaxLength),
                                          trace_stop_name(TraceStop::kStopHeight),
                                          trace_stop_name(TraceStop::kVisitor));

@@ -40,7 +40,7 @@ class StratifiedTracer {
  public:
   StratifiedTracer(const Field& field, const TraceOptions& options)
       : field_(field), options_(options), length_(options.max_length),
-        spacing_(options.step > 0.0 ? options.step : 50.0),
+        spacing_(options.step > 0.0 ? options.step : 100.0),
         scan_step_(std::min(1.0, spacing_)) {}
 
   template <class Visitor>

@@ -19,7 +19,7 @@ struct TraceOptions {
   // rk45 and stratified: target error of positions along the path [m].
   double tol = 1e-6;
   // rk4: the fixed step [m] (default 0.3, the original editor's). rk45: the largest step
-  // (default: no limit). stratified: the largest distance between path nodes (default 50 m).
+  // (default: no limit). stratified: the largest distance between path nodes (default 100 m).
   // 0 selects the default.
   double step = 0.0;
   double max_length = 1000.0;           // arc length at which the path ends [m]

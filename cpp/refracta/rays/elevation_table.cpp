@@ -1,0 +1,207 @@
+// ElevationTable: adaptive construction over oneTBB, interpolated queries.
+#include "refracta/rays/elevation_table.h"
+
+#include "refracta/core/error.h"
+#include "refracta/rays/trace.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+namespace refracta {
+
+void ElevationTableOptions::validate() const {
+  trace.validate();
+  if (!std::isfinite(eye_height)) throw_invalid("eye_height must be finite (got ", eye_height, ")");
+  const double limit = 0.5 * kPi;
+  if (!(min_elevation >= -limit && max_elevation <= limit && min_elevation < max_elevation)) {
+    throw_invalid("elevations must satisfy -90 deg <= min_elevation < max_elevation <= 90 deg (got ",
+                  min_elevation * 180 / kPi, ", ", max_elevation * 180 / kPi, ")");
+  }
+  if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
+  if (initial_rays < 2) throw_invalid("initial_rays must be >= 2 (got ", initial_rays, ")");
+  if (!(min_spacing > 0.0)) throw_invalid("min_spacing must be > 0 (got ", min_spacing, ")");
+  if (trace.stop_height && eye_height < *trace.stop_height) {
+    throw_invalid("eye_height ", eye_height, " m is below stop_height ", *trace.stop_height, " m");
+  }
+}
+
+ElevationTable::Entry ElevationTable::trace_entry(double elevation) const {
+  TraceOptions trace = options_.trace;
+  trace.method = TraceMethod::kStratified;
+  Entry entry;
+  entry.path = std::make_shared<RayPath>(trace_path(
+      *field_, Vec3d(0.0, options_.eye_height, 0.0), Vec3d(std::cos(elevation), std::sin(elevation), 0.0),
+      trace));
+  int turns = 0;
+  const auto& nodes = entry.path->nodes();
+  for (size_t i = 1; i < nodes.size(); ++i) {
+    if ((nodes[i].v.y() > 0.0) != (nodes[i - 1].v.y() > 0.0) && nodes[i].v.y() != 0.0) ++turns;
+  }
+  entry.kind = int(entry.path->stop()) + 4 * turns;
+  return entry;
+}
+
+PlaneState ElevationTable::state_of(const RayPath& path, double s) {
+  Vec3d direction;
+  const Vec3d x = path.point_at(std::clamp(s, 0.0, path.length()), &direction);
+  return {x.x(), x.y(), std::min(s, path.length()), direction.x(), direction.y(), path.stop()};
+}
+
+PlaneState ElevationTable::interpolate(const std::vector<double>& elevations,
+                                       const std::vector<Entry>& entries, size_t i, double elevation,
+                                       double fraction) {
+  // Stencil: four neighbours of one kind when they exist, else the interval's two ends.
+  size_t first = i, count = 2;
+  if (i >= 1 && i + 2 < entries.size()) {
+    const int kind = entries[i].kind;
+    if (entries[i - 1].kind == kind && entries[i + 1].kind == kind && entries[i + 2].kind == kind) {
+      first = i - 1, count = 4;
+    }
+  }
+  double length = 0.0, weights[4];
+  for (size_t k = 0; k < count; ++k) {  // Lagrange weights on the (uneven) elevations
+    double w = 1.0;
+    for (size_t j = 0; j < count; ++j) {
+      if (j != k) w *= (elevation - elevations[first + j]) / (elevations[first + k] - elevations[first + j]);
+    }
+    weights[k] = w;
+    length += w * entries[first + k].path->length();
+  }
+  PlaneState out{0, 0, 0, 0, 0, entries[i].path->stop()};
+  for (size_t k = 0; k < count; ++k) {
+    const RayPath& path = *entries[first + k].path;
+    const PlaneState p = state_of(path, fraction * path.length());
+    out.r += weights[k] * p.r;
+    out.h += weights[k] * p.h;
+    out.cos_e += weights[k] * p.cos_e;
+    out.sin_e += weights[k] * p.sin_e;
+  }
+  out.s = fraction * length;
+  const double norm = std::hypot(out.cos_e, out.sin_e);
+  out.cos_e /= norm;
+  out.sin_e /= norm;
+  return out;
+}
+
+// Largest distance between the path traced at `elevation` (inside interval i) and the
+// interpolation, at the end and at 1/4, 1/2, 3/4 of the length.
+double ElevationTable::mismatch(const std::vector<double>& elevations, const std::vector<Entry>& entries,
+                                size_t i, const Entry& mid, double elevation) {
+  double worst = 0.0;
+  for (double fraction : {0.25, 0.5, 0.75, 1.0}) {
+    const PlaneState p = interpolate(elevations, entries, i, elevation, fraction);
+    const PlaneState m = state_of(*mid.path, fraction * mid.path->length());
+    worst = std::max(worst, std::hypot(p.r - m.r, p.h - m.h));
+  }
+  return worst;
+}
+
+ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& options, WorkControl& control)
+    : field_(std::move(field)), options_(options) {
+  if (!field_) throw_invalid("ElevationTable needs a field");
+  if (!field_->height_only()) {
+    throw_invalid("ElevationTable needs a field that depends on height only; ", field_->type_name(),
+                  " does not");
+  }
+  options_.trace.method = TraceMethod::kStratified;
+  options_.validate();
+  std::atomic<int64_t> evaluations{0};
+  auto trace_all = [&](const std::vector<double>& e) {
+    std::vector<Entry> out(e.size());
+    WorkControl inner;
+    parallel_for_each(int64_t(e.size()), 1, inner, [&](int64_t i) {
+      if (control.cancel) throw Cancelled();
+      out[i] = trace_entry(e[i]);
+      evaluations += out[i].path->evaluations();
+      control.done.fetch_add(1);
+    });
+    return out;
+  };
+
+  const int n0 = options_.initial_rays;
+  std::vector<double> e(n0);
+  for (int i = 0; i < n0; ++i) {
+    e[i] = options_.min_elevation + (options_.max_elevation - options_.min_elevation) * i / (n0 - 1);
+  }
+  control.total = n0;
+  std::vector<Entry> entries = trace_all(e);
+  std::vector<int> open(n0 - 1, 1);  // 1: interval still to check; 0: accepted; 2: exact
+  while (true) {
+    std::vector<double> mids;
+    std::vector<size_t> which;
+    for (size_t i = 0; i + 1 < e.size(); ++i) {
+      if (open[i] == 1) {
+        mids.push_back(0.5 * (e[i] + e[i + 1]));
+        which.push_back(i);
+      }
+    }
+    if (mids.empty()) break;
+    control.total += int64_t(mids.size());
+    std::vector<Entry> traced = trace_all(mids);
+    std::vector<double> next_e;
+    std::vector<Entry> next_entries;
+    std::vector<int> next_open;
+    size_t k = 0;
+    for (size_t i = 0; i < e.size(); ++i) {
+      next_e.push_back(e[i]);
+      next_entries.push_back(entries[i]);
+      if (i + 1 == e.size()) break;
+      if (k < which.size() && which[k] == i) {
+        const Entry& mid = traced[k++];
+        const bool same_kind = entries[i].kind == mid.kind && mid.kind == entries[i + 1].kind;
+        // The check measures the interpolation *before* the midpoint joins the table; cubic
+        // interpolation's error falls 16x when the spacing halves, so 4 tol leaves a 4x margin.
+        const bool close =
+            same_kind && mismatch(e, entries, i, mid, 0.5 * (e[i] + e[i + 1])) <= 4.0 * options_.tol;
+        const bool narrow = e[i + 1] - e[i] <= 2.0 * options_.min_spacing;
+        const int state = close ? 0 : (narrow ? (same_kind ? 0 : 2) : 1);
+        next_e.push_back(0.5 * (e[i] + e[i + 1]));
+        next_entries.push_back(mid);
+        next_open.push_back(state);
+        next_open.push_back(state);
+      } else {
+        next_open.push_back(open[i]);
+      }
+    }
+    e.swap(next_e);
+    entries.swap(next_entries);
+    open.swap(next_open);
+  }
+  elevations_ = std::move(e);
+  entries_ = std::move(entries);
+  exact_.resize(open.size());
+  for (size_t i = 0; i < open.size(); ++i) exact_[i] = open[i] == 2;
+  evaluations_ = evaluations;
+}
+
+size_t ElevationTable::exact_intervals() const {
+  return size_t(std::count(exact_.begin(), exact_.end(), true));
+}
+
+size_t ElevationTable::interval(double elevation) const {
+  if (!(elevation >= elevations_.front() && elevation <= elevations_.back())) {
+    throw_invalid("elevation ", elevation * 180 / kPi, " deg is outside the table [",
+                  elevations_.front() * 180 / kPi, ", ", elevations_.back() * 180 / kPi, "] deg");
+  }
+  const size_t i = size_t(std::upper_bound(elevations_.begin(), elevations_.end(), elevation) -
+                          elevations_.begin());
+  return std::clamp<size_t>(i, 1, elevations_.size() - 1) - 1;
+}
+
+PlaneState ElevationTable::at(double elevation, double s) const {
+  const size_t i = interval(elevation);
+  if (exact_[i] && elevation != elevations_[i] && elevation != elevations_[i + 1]) {
+    return state_of(*trace_entry(elevation).path, s);
+  }
+  // Paths of one kind end alike: at max_length (same s) or on the stop height (s interpolated).
+  const PlaneState whole = interpolate(elevations_, entries_, i, elevation, 1.0);
+  if (s >= whole.s) return whole;
+  return interpolate(elevations_, entries_, i, elevation, std::max(s, 0.0) / whole.s);
+}
+
+PlaneState ElevationTable::end(double elevation) const {
+  return at(elevation, std::numeric_limits<double>::infinity());
+}
+
+}  // namespace refracta

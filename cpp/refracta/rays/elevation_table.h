@@ -1,0 +1,80 @@
+// ElevationTable: paths by launch elevation from one eye height in a height-only field. Every ray
+// with the same elevation from the same height follows the same path in its vertical plane, so a
+// whole image (any azimuth) is served from a few thousand exact (stratified) traces.
+// The table refines adaptively: an interval of elevations is accepted when the path traced at its
+// midpoint agrees with the cubic interpolation of its neighbours to within `tol` [m] at the end
+// and at three interior arc lengths. Neighbours of different kind (one hits the ground, the other
+// turns; a different number of turning points) are never interpolated: the interval is bisected
+// down to `min_spacing`, and queries falling in what remains are traced exactly.
+#pragma once
+
+#include "refracta/core/parallel.h"
+#include "refracta/media/index_field.h"
+#include "refracta/rays/ray_path.h"
+#include "refracta/rays/trace_options.h"
+
+#include <memory>
+#include <vector>
+
+namespace refracta {
+
+struct ElevationTableOptions {
+  double eye_height = 1.5;          // [m]
+  double min_elevation = -0.0175;   // [rad]
+  double max_elevation = 0.0175;    // [rad]
+  double tol = 1e-3;                // interpolation tolerance [m]
+  int initial_rays = 65;
+  double min_spacing = 1e-7;        // [rad]
+  TraceOptions trace;               // method is forced to stratified
+
+  void validate() const;
+};
+
+// A point of a path in its vertical plane: horizontal distance r, height h, arc length s and the
+// unit tangent (cos e, sin e).
+struct PlaneState {
+  double r, h, s;
+  double cos_e, sin_e;
+  TraceStop stop;
+};
+
+class ElevationTable {
+ public:
+  ElevationTable(FieldPtr field, const ElevationTableOptions& options, WorkControl& control);
+
+  // End of the path launched at `elevation` [rad].
+  PlaneState end(double elevation) const;
+  // Point at arc length s [m] (clamped to the path's length) of the path launched at `elevation`.
+  PlaneState at(double elevation, double s) const;
+
+  size_t size() const { return entries_.size(); }
+  int64_t evaluations() const { return evaluations_; }
+  size_t exact_intervals() const;  // intervals where queries are traced exactly
+  const ElevationTableOptions& options() const { return options_; }
+  const std::vector<double>& elevations() const { return elevations_; }
+
+ private:
+  struct Entry {
+    std::shared_ptr<const RayPath> path;
+    int kind = 0;  // stop reason and number of turning points, packed
+  };
+  Entry trace_entry(double elevation) const;
+  static PlaneState state_of(const RayPath& path, double s);
+  // Interpolated state at `elevation` inside interval i of (elevations, entries), at the given
+  // fraction of the interpolated length: cubic through four neighbours of one kind, else linear.
+  static PlaneState interpolate(const std::vector<double>& elevations, const std::vector<Entry>& entries,
+                                size_t i, double elevation, double fraction);
+  static double mismatch(const std::vector<double>& elevations, const std::vector<Entry>& entries,
+                         size_t i, const Entry& mid, double elevation);
+  // Index i with elevations_[i] <= e <= elevations_[i + 1].
+  size_t interval(double elevation) const;
+
+  FieldPtr field_;
+  ElevationTableOptions options_;
+  std::vector<double> elevations_;
+  std::vector<Entry> entries_;
+  std::vector<bool> exact_;  // per interval: trace queries exactly
+  int64_t evaluations_ = 0;
+};
+
+}  // namespace refracta
