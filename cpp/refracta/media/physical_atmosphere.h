@@ -70,8 +70,8 @@ class PhysicalAtmosphereModel : public HeightOnlyModel<PhysicalAtmosphereModel<T
     const double base = value_of(p_[kInversionBase]), thick = value_of(p_[kInversionThickness]);
     std::vector<double> nodes = make_nodes(
         kLowest, kHighest,
-        {{kLowest, 2000.0, 10.0}, {2000.0, kHighest, 100.0}, {0.0, 12.0 * depth, depth / 10.0},
-         {base, base + thick, thick / 20.0}});
+        {{kLowest, 2000.0, 10.0}, {2000.0, kHighest, 100.0}, {0.0, 12.0 * depth, depth / 40.0},
+         {base, base + thick, thick / 80.0}});
     column_ = HydrostaticColumn<T>([this](const T& h, T* t, T* dt) { temperature(h, t, dt); },
                                    std::move(nodes), 0.0, p_[kGroundPressure], kTypeName);
   }

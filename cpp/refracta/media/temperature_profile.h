@@ -74,7 +74,7 @@ class TemperatureProfileModel : public HeightOnlyModel<TemperatureProfileModel<T
     wavelength_ = v[m + 2];
     compute_slopes();
     std::vector<NodeRun> runs = {{h_.front() - kBelow, h_.back() + kAbove, 100.0}};
-    for (size_t i = 0; i + 1 < m; ++i) runs.push_back({h_[i], h_[i + 1], (h_[i + 1] - h_[i]) / 8});
+    for (size_t i = 0; i + 1 < m; ++i) runs.push_back({h_[i], h_[i + 1], (h_[i + 1] - h_[i]) / 16});
     const double w0 = h_[1] - h_[0], w1 = h_[m - 1] - h_[m - 2];
     runs.push_back({h_.front() - 10 * w0, h_.front(), w0 / 8});
     runs.push_back({h_.back(), h_.back() + 10 * w1, w1 / 8});

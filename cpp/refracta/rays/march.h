@@ -42,8 +42,12 @@ class Rk4Stepper {
   explicit Rk4Stepper(double step) : step_(step) {}
 
   RayNode<T> advance(const Field& field, const RayNode<T>& a, double remaining, int64_t* evals) {
+    return step_fixed(field, a, T(std::min(step_, remaining)), evals);
+  }
+
+  // One step of exactly h (also used to land on an event inside a step).
+  RayNode<T> step_fixed(const Field& field, const RayNode<T>& a, const T& h, int64_t* evals) const {
     using detail::node_at;
-    const T h(std::min(step_, remaining));
     const auto k1 = detail::rate(a);
     const auto n2 = node_at(field, a.s, a, T(0.5) * h, k1.dx, k1.dv, evals);
     const auto k2 = detail::rate(n2);
@@ -72,47 +76,10 @@ class Rk45Stepper {
         h_(std::min({max_step, max_length, 1.0})) {}
 
   RayNode<T> advance(const Field& field, const RayNode<T>& a, double remaining, int64_t* evals) {
-    using detail::node_at;
-    static constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
-    static constexpr double a21 = 1.0 / 5;
-    static constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
-    static constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
-    static constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
-                            a54 = -212.0 / 729;
-    static constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247,
-                            a64 = 49.0 / 176, a65 = -5103.0 / 18656;
-    static constexpr double b1 = 35.0 / 384, b3 = 500.0 / 1113, b4 = 125.0 / 192,
-                            b5 = -2187.0 / 6784, b6 = 11.0 / 84;
-    static constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920,
-                            e5 = -17253.0 / 339200, e6 = 22.0 / 525, e7 = -1.0 / 40;
-    (void)c2, (void)c3, (void)c4, (void)c5;
-    const auto k1 = detail::rate(a);
     for (int attempt = 0;; ++attempt) {
       const double hv = std::min(h_, remaining);
-      const T h(hv);
-      auto stage = [&](const Vec3<T>& dx, const Vec3<T>& dv) {
-        return detail::rate(node_at(field, a.s, a, h, dx, dv, evals));
-      };
-      const auto k2 = stage(a21 * k1.dx, a21 * k1.dv);
-      const auto k3 = stage(a31 * k1.dx + a32 * k2.dx, a31 * k1.dv + a32 * k2.dv);
-      const auto k4 = stage(a41 * k1.dx + a42 * k2.dx + a43 * k3.dx,
-                            a41 * k1.dv + a42 * k2.dv + a43 * k3.dv);
-      const auto k5 = stage(a51 * k1.dx + a52 * k2.dx + a53 * k3.dx + a54 * k4.dx,
-                            a51 * k1.dv + a52 * k2.dv + a53 * k3.dv + a54 * k4.dv);
-      const auto k6 = stage(a61 * k1.dx + a62 * k2.dx + a63 * k3.dx + a64 * k4.dx + a65 * k5.dx,
-                            a61 * k1.dv + a62 * k2.dv + a63 * k3.dv + a64 * k4.dv + a65 * k5.dv);
-      const Vec3<T> dx = b1 * k1.dx + b3 * k3.dx + b4 * k4.dx + b5 * k5.dx + b6 * k6.dx;
-      const Vec3<T> dv = b1 * k1.dv + b3 * k3.dv + b4 * k4.dv + b5 * k5.dv + b6 * k6.dv;
-      RayNode<T> b = node_at(field, T(a.s + h), a, h, dx, dv, evals);
-      const auto k7 = detail::rate(b);
-      // Error estimate of the embedded 4th-order solution.
-      const Vec3<T> ex = h * (e1 * k1.dx + e3 * k3.dx + e4 * k4.dx + e5 * k5.dx + e6 * k6.dx + e7 * k7.dx);
-      const Vec3<T> ev = h * (e1 * k1.dv + e3 * k3.dv + e4 * k4.dv + e5 * k5.dv + e6 * k6.dv + e7 * k7.dv);
-      double err_x = 0.0, err_v = 0.0;
-      for (int i = 0; i < 3; ++i) {
-        err_x = std::max(err_x, std::abs(value_of(ex[i])));
-        err_v = std::max(err_v, std::abs(value_of(ev[i])));
-      }
+      double err_x, err_v;
+      RayNode<T> b = dormand_prince(field, a, T(hv), evals, &err_x, &err_v);
       const double carried = std::max(remaining - hv, 0.0) / value_of(b.n);
       const double allowed = tol_ * hv / max_length_;
       const double error = (err_x + err_v * carried) / allowed;
@@ -130,7 +97,54 @@ class Rk45Stepper {
     }
   }
 
+  // One step of exactly h (also used to land on an event inside a step).
+  RayNode<T> step_fixed(const Field& field, const RayNode<T>& a, const T& h, int64_t* evals) const {
+    double err_x, err_v;
+    return dormand_prince(field, a, h, evals, &err_x, &err_v);
+  }
+
  private:
+  // One Dormand-Prince step and the max-norm errors of the embedded 4th-order solution.
+  static RayNode<T> dormand_prince(const Field& field, const RayNode<T>& a, const T& h, int64_t* evals,
+                                   double* err_x, double* err_v) {
+    using detail::node_at;
+    static constexpr double a21 = 1.0 / 5;
+    static constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
+    static constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
+    static constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
+                            a54 = -212.0 / 729;
+    static constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247,
+                            a64 = 49.0 / 176, a65 = -5103.0 / 18656;
+    static constexpr double b1 = 35.0 / 384, b3 = 500.0 / 1113, b4 = 125.0 / 192,
+                            b5 = -2187.0 / 6784, b6 = 11.0 / 84;
+    static constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920,
+                            e5 = -17253.0 / 339200, e6 = 22.0 / 525, e7 = -1.0 / 40;
+    const auto k1 = detail::rate(a);
+    auto stage = [&](const Vec3<T>& dx, const Vec3<T>& dv) {
+      return detail::rate(node_at(field, a.s, a, h, dx, dv, evals));
+    };
+    const auto k2 = stage(a21 * k1.dx, a21 * k1.dv);
+    const auto k3 = stage(a31 * k1.dx + a32 * k2.dx, a31 * k1.dv + a32 * k2.dv);
+    const auto k4 = stage(a41 * k1.dx + a42 * k2.dx + a43 * k3.dx,
+                          a41 * k1.dv + a42 * k2.dv + a43 * k3.dv);
+    const auto k5 = stage(a51 * k1.dx + a52 * k2.dx + a53 * k3.dx + a54 * k4.dx,
+                          a51 * k1.dv + a52 * k2.dv + a53 * k3.dv + a54 * k4.dv);
+    const auto k6 = stage(a61 * k1.dx + a62 * k2.dx + a63 * k3.dx + a64 * k4.dx + a65 * k5.dx,
+                          a61 * k1.dv + a62 * k2.dv + a63 * k3.dv + a64 * k4.dv + a65 * k5.dv);
+    const Vec3<T> dx = b1 * k1.dx + b3 * k3.dx + b4 * k4.dx + b5 * k5.dx + b6 * k6.dx;
+    const Vec3<T> dv = b1 * k1.dv + b3 * k3.dv + b4 * k4.dv + b5 * k5.dv + b6 * k6.dv;
+    RayNode<T> b = node_at(field, T(a.s + h), a, h, dx, dv, evals);
+    const auto k7 = detail::rate(b);  // first same as last: the next step's k1
+    const Vec3<T> ex = h * (e1 * k1.dx + e3 * k3.dx + e4 * k4.dx + e5 * k5.dx + e6 * k6.dx + e7 * k7.dx);
+    const Vec3<T> ev = h * (e1 * k1.dv + e3 * k3.dv + e4 * k4.dv + e5 * k5.dv + e6 * k6.dv + e7 * k7.dv);
+    *err_x = *err_v = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      *err_x = std::max(*err_x, std::abs(value_of(ex[i])));
+      *err_v = std::max(*err_v, std::abs(value_of(ev[i])));
+    }
+    return b;
+  }
+
   static constexpr double kMinStep = 1e-12;  // relative to max_length: below it, accept
   double tol_, max_step_, max_length_, h_;
 };
@@ -161,11 +175,19 @@ TraceEnd<T> march(const Field& field, const Vec3<T>& x0, const Vec3<T>& t0,
       const PathSegment<T> segment(node, next);
       const T u = first_plane_crossing(segment, up, *options.stop_height);
       if (value_of(u) >= 0.0) {
-        const Vec3<T> x = segment.position(u);
-        const Vec3<T> dir = segment.velocity(u).normalized();
-        next = make_node(field, T(node.s + u * segment.length()), x, Vec3<T>::Zero().eval(),
-                         &out.evaluations);
-        next.v = next.n * dir;
+        // The interpolant locates the crossing; a step of exactly that length from the segment's
+        // start gives the integrator's own state there, and Newton on the height lands on it.
+        T h = u * segment.length();
+        for (int it = 0; it < 4; ++it) {
+          next = stepper.step_fixed(field, node, h, &out.evaluations);
+          const T miss = next.x.y() - T(*options.stop_height);
+          const T rate_y = next.v.y() / next.n;
+          if (std::abs(value_of(miss)) <= 1e-13 * (1.0 + std::abs(*options.stop_height)) ||
+              value_of(rate_y) >= 0.0) {
+            break;
+          }
+          h -= miss / rate_y;
+        }
         stopped_at_height = true;
       }
     }

@@ -56,6 +56,7 @@ class StratifiedTracer {
     beta_ = n0 * cos_e0;
     // n0 - beta = n0 (1 - cos e0), written without cancellation.
     const double gap0 = n0 * sin_e0 * sin_e0 / (1.0 + cos_e0);
+    launch_h_ = x0.y(), launch_gap_ = gap0, launch_slope_ = dn0;
     last_ = node(0.0, 0.0, x0.y(), n0, dn0, sin_e0);
     stopped_ = false;
 
@@ -126,6 +127,9 @@ class StratifiedTracer {
   struct Variable {
     bool substituted = false;
     double centre = 0.0, side = 1.0;  // for u-panels
+    // A height where n - beta is known accurately (the launch point or a turning height), and
+    // dn/dh there: n - beta nearby is taken from it when the plain difference loses digits.
+    double ref_h = 0.0, ref_gap = 0.0, ref_slope = 0.0;
     double height(double w) const { return substituted ? centre + side * w * w : w; }
   };
 
@@ -133,15 +137,17 @@ class StratifiedTracer {
     const double h = var.height(w);
     double n, dn;
     eval(h, &n, &dn);
-    double d;
-    if (var.substituted && std::abs(h - var.centre) < 1e-3) {
-      // n(h) - n(h_t) by Simpson's rule on dn/dh: the plain difference of two values near 1
-      // would lose most digits right next to the turning point.
+    double d = n - beta_;
+    if (d < 1e-6 * n) {
+      // n - beta is a difference of two numbers near 1 (absolute error ~4e-16): below 1e-6 it
+      // keeps fewer than 10 digits. ref_gap + (n(h) - n(ref)) with the integral of dn/dh by
+      // Simpson's rule does not cancel; its error is below the trapezoid-midpoint discrepancy.
+      // Take whichever error is smaller.
       double n_mid, dn_mid;
-      eval(0.5 * (h + var.centre), &n_mid, &dn_mid);
-      d = (h - var.centre) / 6.0 * (turning_slope_ + 4.0 * dn_mid + dn) + turning_gap_;
-    } else {
-      d = n - beta_;
+      eval(0.5 * (h + var.ref_h), &n_mid, &dn_mid);
+      const double dh = h - var.ref_h;
+      const double simpson_error = std::abs(dh * (var.ref_slope - 2.0 * dn_mid + dn)) / 12.0;
+      if (simpson_error < 4e-16 * n) d = dh / 6.0 * (var.ref_slope + 4.0 * dn_mid + dn) + var.ref_gap;
     }
     *gap = d;
     const double q = std::sqrt(std::max(d, 1e-300) * (n + beta_));
@@ -187,10 +193,10 @@ class StratifiedTracer {
     const bool too_long = sums.s > spacing_;
     // Error per unit length, floored at what round-off in n - beta allows (a relative 1e-16 of n
     // over the smallest gap): asking for less only splits panels to chase noise.
-    const double noise = 1e3 * 2.2e-16 * sums.s * (beta_ + 1.0) / std::max(sums.min_gap, 1e-300);
+    const double noise = 2.2e-16 * sums.s * (beta_ + 1.0) / std::max(sums.min_gap, 1e-300);
     const bool inaccurate =
         sums.error > std::max(options_.tol * std::max(sums.s / length_, 1e-6), noise);
-    if ((too_long || inaccurate) && depth < 40 && std::abs(wb - wa) > 1e-12 * (1 + std::abs(wa))) {
+    if ((too_long || inaccurate) && depth < 30 && std::abs(wb - wa) > 1e-12 * (1 + std::abs(wa))) {
       const double mid = 0.5 * (wa + wb);
       if (!integrate(var, wa, mid, direction, depth + 1)) return false;
       return integrate(var, mid, wb, direction, depth + 1);
@@ -264,6 +270,7 @@ class StratifiedTracer {
     var.substituted = true;
     var.centre = ht;
     var.side = h_other > ht ? 1.0 : -1.0;
+    var.ref_h = ht, var.ref_gap = turning_gap_, var.ref_slope = turning_slope_;
     const double u = std::sqrt(std::abs(h_other - ht));
     return towards ? integrate(var, u, 0.0, direction) : integrate(var, 0.0, u, direction);
   }
@@ -276,6 +283,11 @@ class StratifiedTracer {
     bool from_turning = *turning_start;
     const double start_turning_gap = turning_gap_, start_turning_slope = turning_slope_;
     Variable plain;
+    if (from_turning) {
+      plain.ref_h = *h_start, plain.ref_gap = turning_gap_, plain.ref_slope = turning_slope_;
+    } else {
+      plain.ref_h = launch_h_, plain.ref_gap = launch_gap_, plain.ref_slope = launch_slope_;
+    }
     for (int iteration = 0; !done(); ++iteration) {
       if (iteration > 10'000'000) throw_numerical("stratified: no progress near h = ", h_prev, " m");
       const double budget = length_ - s_ + 1e-9;
@@ -339,6 +351,7 @@ class StratifiedTracer {
   Vec3d origin_, horizontal_;
   double beta_ = 0.0, s_ = 0.0, r_ = 0.0;
   double turning_gap_ = 0.0, turning_slope_ = 0.0;
+  double launch_h_ = 0.0, launch_gap_ = 0.0, launch_slope_ = 0.0;
   bool stopped_ = false, reached_end_ = false;
   RayNode<double> last_;
   TraceEnd<double> out_;

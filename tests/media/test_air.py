@@ -1,0 +1,95 @@
+"""The index of air and the standard atmosphere against published values (ORACLES.md, 'The air')."""
+
+import numpy as np
+import pytest
+
+import refracta
+
+# Ciddor (1996), Edlen (1966) and Birch & Downs (1993) agree within 1e-8 on n - 1.
+AIR_INDEX_AGREEMENT = 1e-8
+# Edlen's compressibility term makes n - 1 not exactly proportional to P/T: 0.3 % at most near
+# the ground, so laws derived from n - 1 = K P / T hold to 1 %.
+GAS_LAW_TOLERANCE = 0.01
+
+R_D = 287.053
+G = 9.80665
+
+
+def test_index_of_air_at_standard_conditions():
+    air = refracta.PhysicalAtmosphere()
+    assert air.ior([0.0, 0.0, 0.0]) - 1.0 == pytest.approx(2.7784e-4, abs=AIR_INDEX_AGREEMENT)
+
+
+def test_dispersion_rises_one_and_a_half_percent_from_red_to_blue():
+    red = refracta.PhysicalAtmosphere(wavelength=650.0).ior([0, 0, 0]) - 1
+    blue = refracta.PhysicalAtmosphere(wavelength=450.0).ior([0, 0, 0]) - 1
+    # Ciddor: +1.5 %; K(450)/K(650) = 7.978/7.858 = 1.01527 from the ORACLES table.
+    assert blue / red == pytest.approx(7.978 / 7.858, rel=5e-4)
+
+
+def test_index_temperature_derivative_is_minus_n_minus_one_over_t():
+    t, dt = 288.15, 0.01
+    n = lambda temp: refracta.PhysicalAtmosphere(t_ground=temp).ior([0, 0, 0])  # noqa: E731
+    derivative = (n(t + dt) - n(t - dt)) / (2 * dt)
+    assert derivative == pytest.approx(-(n(t) - 1) / t, rel=GAS_LAW_TOLERANCE)
+    assert derivative == pytest.approx(-9.6e-7, rel=0.01)
+
+
+def test_standard_atmosphere_temperature_and_pressure():
+    air = refracta.PhysicalAtmosphere()
+    heights = np.array([0.0, 500.0, 1000.0, 5000.0, 10000.0])
+    np.testing.assert_allclose(air.temperature(heights), 288.15 - 0.0065 * heights, rtol=0, atol=1e-9)
+    # USSA 1976 troposphere closed form, 1 - (L/T0) h with L/T0 = 0.0065/288.15; the hydrostatic
+    # table integrates the same equation, to 1e-9 relative.
+    closed_form = 101325.0 * (1.0 - 0.0065 / 288.15 * heights) ** (G / (R_D * 0.0065))
+    np.testing.assert_allclose(air.pressure(heights), closed_form, rtol=1e-9)
+
+
+def test_hydrostatic_pressure_through_an_inversion_layer():
+    # Isothermal check: with zero lapse rate, P = P0 exp(-g h / (R_d T)) exactly.
+    air = refracta.PhysicalAtmosphere(lapse_rate=0.0, t_ground=270.0)
+    h = np.array([10.0, 100.0, 2000.0])
+    np.testing.assert_allclose(air.pressure(h), 101325.0 * np.exp(-G * h / (R_D * 270.0)), rtol=1e-10)
+    # With an inversion: dlnP/dh = -g/(R_d T) at every height (central differences of the table).
+    inv = refracta.PhysicalAtmosphere(inversion_dt=8.0, inversion_base=20.0, inversion_thickness=15.0)
+    for height in (5.0, 25.0, 27.5, 34.0, 60.0):
+        step = 1e-3
+        dlnp = (np.log(inv.pressure(height + step)) - np.log(inv.pressure(height - step))) / (2 * step)
+        assert dlnp == pytest.approx(-G / (R_D * inv.temperature(height)), rel=1e-7)
+
+
+@pytest.mark.parametrize("height", [0.05, 1.0, 22.0, 27.5, 31.0, 300.0])
+def test_vertical_index_gradient_follows_the_hydrostatic_law(height):
+    # dn/dh = -((n - 1)/T)(dT/dh + g/R_d) (ORACLES.md), inside a hot surface layer and an inversion.
+    air = refracta.PhysicalAtmosphere(surface_dt=8.0, surface_depth=0.2, inversion_dt=6.0,
+                                      inversion_base=20.0, inversion_thickness=10.0)
+    step = 1e-4
+    dt_dh = (air.temperature(height + step) - air.temperature(height - step)) / (2 * step)
+    n = air.ior([0.0, height, 0.0])
+    expected = -((n - 1) / air.temperature(height)) * (dt_dh + G / R_D)
+    assert air.grad_ior([0.0, height, 0.0])[1] == pytest.approx(expected, rel=GAS_LAW_TOLERANCE)
+
+
+def test_standard_near_ground_gradient():
+    # ORACLES.md: dn/dh ~ -2.67e-8 1/m near the ground in the standard atmosphere.
+    assert refracta.PhysicalAtmosphere().grad_ior([0, 1.0, 0])[1] == pytest.approx(-2.67e-8, rel=0.02)
+
+
+def test_ducting_inversion_bends_rays_with_the_earth():
+    # dn/dh = -n / R_E ~ -1.57e-7 1/m for an inversion of about +0.13 K/m at 15 C (ORACLES.md).
+    air = refracta.PhysicalAtmosphere(lapse_rate=-0.13)
+    assert air.grad_ior([0, 1.0, 0])[1] == pytest.approx(-1.0 / 6371e3, rel=0.03)
+
+
+def test_humidity_lowers_the_index_slightly():
+    dry = refracta.PhysicalAtmosphere().ior([0, 0, 0])
+    humid = refracta.PhysicalAtmosphere(humidity=1.0).ior([0, 0, 0])
+    # Saturated at 15 C: e_s = 1705 Pa; water term -(3.7345 - 0.0401 sigma^2) 1e-10 per Pa.
+    sigma2 = 1 / 0.55**2
+    assert humid - dry == pytest.approx(-1705.0 * (3.7345 - 0.0401 * sigma2) * 1e-10, rel=0.01)
+
+
+def test_surface_layer_temperature_profile():
+    air = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
+    h = np.array([0.0, 0.1, 0.3])
+    np.testing.assert_allclose(air.temperature(h), 288.15 - 0.0065 * h + 10.0 * np.exp(-h / 0.1), atol=1e-9)
