@@ -1,6 +1,7 @@
 // Runs long C++ work with the GIL released on a worker thread, while the calling thread wakes
 // every 50 ms to check for Ctrl-C (then cancels the work and raises KeyboardInterrupt) and to
-// report progress to an optional Python callable progress(done, total).
+// report progress to an optional Python callable progress(done, total); an exception raised by
+// the callback cancels the work the same way.
 #pragma once
 
 #include "refracta/bindings/bindings.h"
@@ -45,13 +46,12 @@ void run_interruptible(WorkControl& control, const py::object& progress, Work&& 
         } else if (!progress.is_none()) {
           try {
             progress(control.done.load(), control.total);
-          } catch (py::error_already_set&) {
+          } catch (py::error_already_set& error) {
+            // Raised by the callback: stop like Ctrl-C, re-raised once the worker has finished
+            // (waiting here, with the GIL held, would deadlock a worker calling into Python).
+            error.restore();
+            interrupted = true;
             control.cancel = true;
-            lock.lock();
-            finished_cv.wait(lock, [&] { return finished; });
-            lock.unlock();
-            worker.join();
-            throw;
           }
         }
       }
@@ -64,7 +64,7 @@ void run_interruptible(WorkControl& control, const py::object& progress, Work&& 
     lock.unlock();
     worker.join();
   }
-  if (interrupted) throw py::error_already_set();  // the KeyboardInterrupt PyErr_CheckSignals set
+  if (interrupted) throw py::error_already_set();  // KeyboardInterrupt, or the callback's error
   if (error) {
     try {
       std::rethrow_exception(error);

@@ -86,7 +86,17 @@ class Rk45Stepper {
       // Error per unit step scales as h^4: step factor error^(-1/4), safety 0.9, within [0.2, 5].
       const double factor =
           error == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(error, -0.25), 0.2, 5.0);
-      if (error <= 1.0 || hv <= kMinStep * max_length_) {
+      const bool at_min_step = hv <= kMinStep * max_length_;
+      if (error <= 1.0 || at_min_step) {
+        // A few minimum steps carry the ray across a discontinuity of the field; a long run of
+        // them means the field is singular here (n -> 0, an infinite gradient).
+        // Tiny accepted steps shrinking toward a point (a Zeno sequence) mean the same.
+        min_steps_in_a_row_ = hv <= kTinyStep * max_length_ ? min_steps_in_a_row_ + 1 : 0;
+        if (min_steps_in_a_row_ > 1000) {
+          throw_numerical("rk45: step size collapsed at (", value_of(a.x.x()), ", ", value_of(a.x.y()),
+                          ", ", value_of(a.x.z()), ") m where n = ", value_of(a.n), " and |grad n| = ",
+                          value_of(a.grad.norm()), " 1/m; the field is singular there");
+        }
         h_ = std::min(hv * factor, max_step_);
         return b;
       }
@@ -145,8 +155,10 @@ class Rk45Stepper {
     return b;
   }
 
-  static constexpr double kMinStep = 1e-12;  // relative to max_length: below it, accept
+  static constexpr double kMinStep = 1e-12;   // relative to max_length: below it, accept
+  static constexpr double kTinyStep = 1e-9;   // relative to max_length: 1000 in a row = singular
   double tol_, max_step_, max_length_, h_;
+  int min_steps_in_a_row_ = 0;
 };
 
 // Traces from x0 along the unit direction t0 with `stepper`, calling visit on each segment.
