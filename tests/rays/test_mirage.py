@@ -52,8 +52,9 @@ def test_tangent_point_and_hidden_height_for_n_squared_linear():
     assert abs(lowest[1]) < 1e-8  # touches the ground: G/2 (5 cm)^2 ~ 1e-8 between samples
     for distance in (1200.0, 2000.0):
         (point, _, _), = path.crossings([1, 0, 0], distance)
-        # Exact parabola through the tangent point: y = alpha (x - x*)^2 / (4 beta^2), beta = n0.
-        x_exact = 2 * n0**2 * np.tan(theta_c) / alpha * np.sqrt(n0**2 + alpha * EYE) / n0
+        # Exact parabola with its vertex on the ground: beta = n(h_e) cos(theta_c) = n0, so
+        # y = alpha (x - x_v)^2 / (4 n0^2) with x_v = 2 n0^2 tan(theta_c) / alpha.
+        x_exact = 2 * n0**2 * np.tan(theta_c) / alpha
         assert point[1] == pytest.approx(alpha * (distance - x_exact) ** 2 / (4 * n0**2), abs=1e-8)
         assert point[1] == pytest.approx(g / 2 * (distance - x_star) ** 2, rel=5e-3)
 
