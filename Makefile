@@ -17,7 +17,7 @@ demo: install
 	$(PYTHON) -m refracta demo --out out
 
 test: install
-	$(PYTHON) -m pytest $(PYTEST_ARGS)
+	$(PYTHON) -m pytest --nbmake tests notebooks $(PYTEST_ARGS)
 
 bench: install
 	$(PYTHON) benchmarks/run_all.py

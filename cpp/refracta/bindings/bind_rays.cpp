@@ -73,6 +73,14 @@ ray_vectors (N,3) the integrated v (|v| = n); stop: why the path ended ('max_len
                                    points_to_array({direction}).reshape({py::ssize_t(3)}));
            },
            py::arg("s"), "(point, unit tangent) at arc length s [m] on the continuous path.")
+      .def("sample",
+           [](const RayPath& p, int count) {
+             if (count < 2) throw_invalid("count must be >= 2 (got ", count, ")");
+             std::vector<Vec3d> points(count);
+             for (int i = 0; i < count; ++i) points[i] = p.point_at(p.length() * i / (count - 1));
+             return points_to_array(points);
+           },
+           py::arg("count") = 200, "count points (count, 3) evenly spaced in arc length on the continuous path.")
       .def("closest_point",
            [](const RayPath& p, const py::object& q) {
              const ClosestPoint c = p.closest_point(to_point(q, "q"));

@@ -1,0 +1,98 @@
+"""Plots of curved rays and the atmospheres that bend them (matplotlib).
+
+Every ray drawn here is traced by the library's integrators (refracta.trace_ray); nothing is
+re-computed in Python.
+"""
+
+from __future__ import annotations
+
+from typing import Optional, Sequence
+
+import numpy as np
+
+from refracta import _core
+
+
+def _profile_heights(field, low: float, high: float, count: int = 400) -> np.ndarray:
+    if high <= low:
+        high = low + 1.0
+    return np.linspace(low, high, count)
+
+
+def ray_fan(
+    field: _core.IndexField,
+    eye_height: float,
+    elevations: Sequence[float],
+    max_length: float,
+    ground: Optional[float] = 0.0,
+    method: Optional[str] = None,
+    tol: float = 1e-6,
+    title: Optional[str] = None,
+    figsize=(11.0, 4.2),
+):
+    """Rays from one eye in their vertical plane, beside the temperature and index profiles.
+
+    Args:
+        field: any IndexField (height-only fields are traced exactly with method 'stratified').
+        eye_height: height of the eye [m] (scene units for LogisticProfile).
+        elevations: launch elevations [deg], negative below the horizon.
+        max_length: arc length of each ray [m].
+        ground: height where rays end on the ground [m], or None for no ground.
+        method: integrator; default 'stratified' for height-only fields, else 'rk45'.
+        tol: integrator tolerance [m].
+
+    Returns:
+        A matplotlib Figure. The ray panel's vertical scale is exaggerated (its own y range);
+        rays are coloured by elevation, those reaching the ground drawn dashed.
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib import cm, colors
+
+    elevations = np.atleast_1d(np.asarray(elevations, dtype=float))
+    if elevations.size == 0 or not np.all(np.isfinite(elevations)):
+        raise ValueError("elevations must be a non-empty list of finite angles in degrees")
+    if not np.isfinite(eye_height) or (ground is not None and eye_height < ground):
+        raise ValueError(f"eye_height must be finite and above the ground (got {eye_height})")
+    method = method or ("stratified" if field.height_only else "rk45")
+
+    has_temperature = hasattr(field, "temperature")
+    fig, axes = plt.subplots(1, 3 if has_temperature else 2, figsize=figsize,
+                             gridspec_kw={"width_ratios": [4, 1, 1] if has_temperature else [4, 1]},
+                             sharey=True, constrained_layout=True)
+    ax_rays = axes[0]
+    norm = colors.Normalize(elevations.min(), elevations.max() if np.ptp(elevations) > 0 else elevations.min() + 1)
+    cmap = cm.viridis
+    low, high = eye_height, eye_height
+    for elevation in elevations:
+        e = np.radians(elevation)
+        path = _core.trace_ray(field, [0.0, eye_height, 0.0], [np.cos(e), np.sin(e), 0.0], method=method,
+                               tol=tol, max_length=max_length, stop_height=ground)
+        points = path.sample(max(200, 2 * len(path)))
+        low, high = min(low, points[:, 1].min()), max(high, points[:, 1].max())
+        ax_rays.plot(points[:, 0], points[:, 1], color=cmap(norm(elevation)), lw=1.0,
+                     ls="--" if path.stop == "stop_height" else "-")
+    if ground is not None:
+        ax_rays.axhline(ground, color="0.35", lw=1.5)
+        low = min(low, ground)
+    ax_rays.plot([0.0], [eye_height], "o", color="crimson", ms=5, label="eye")
+    ax_rays.set_xlabel("distance [m]")
+    ax_rays.set_ylabel("height [m] (vertical scale exaggerated)")
+    ax_rays.set_xlim(0, None)
+    ax_rays.legend(loc="upper left")
+    fig.colorbar(cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax_rays, label="launch elevation [deg]", pad=0.01)
+    ax_rays.set_title(title or f"{field.type_name}: rays from {eye_height:g} m")
+
+    margin = 0.05 * (high - low if high > low else 1.0)
+    heights = _profile_heights(field, low - margin, high + margin)
+    points = np.stack([np.zeros_like(heights), heights, np.zeros_like(heights)], axis=1)
+    ax_index = axes[-1]
+    ax_index.plot((field.ior(points) - 1.0) * 1e6, heights, color="tab:blue")
+    ax_index.set_xlabel("(n - 1) x 1e6")
+    ax_index.set_title("index")
+    if has_temperature:
+        ax_t = axes[1]
+        ax_t.plot(field.temperature(heights) - 273.15, heights, color="tab:red")
+        ax_t.set_xlabel("T [°C]")
+        ax_t.set_title("temperature")
+    ax_rays.set_ylim(low - margin, high + margin)
+    return fig

@@ -1,0 +1,46 @@
+"""The ray-fan plot and the command line."""
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+import refracta
+from refracta import cli, plot
+
+
+def test_ray_fan_draws_one_line_per_ray_and_the_profiles(hot_road):
+    elevations = np.linspace(-0.5, 0.3, 9)
+    figure = plot.ray_fan(hot_road, 1.5, elevations, 800.0)
+    rays, temperature, index = figure.axes[:3]
+    ray_lines = [line for line in rays.get_lines() if len(line.get_xdata()) > 2]
+    assert len(ray_lines) == len(elevations)
+    # Rays steeper than the critical depression (~0.25 deg) end on the road, drawn dashed.
+    dashed = [line for line in ray_lines if line.get_linestyle() == "--"]
+    assert len(dashed) == int(np.sum(elevations < -0.26))
+    for line in dashed:
+        assert line.get_ydata()[-1] == pytest.approx(0.0, abs=1e-9)
+    # The temperature panel shows the surface layer: 25 C at the road.
+    t = temperature.get_lines()[0]
+    assert t.get_xdata()[np.argmin(np.abs(t.get_ydata()))] == pytest.approx(25.0, abs=0.5)
+    assert len(index.get_lines()) == 1
+    plt.close(figure)
+
+
+def test_ray_fan_without_temperature_or_ground():
+    figure = plot.ray_fan(refracta.LogisticProfile(), 1.5, [-5, 0, 5], 30.0, ground=None)
+    assert len(figure.axes) == 3  # rays, index, colour bar
+    plt.close(figure)
+
+
+def test_ray_fan_rejects_bad_input(hot_road):
+    with pytest.raises(ValueError, match="elevations"):
+        plot.ray_fan(hot_road, 1.5, [], 100.0)
+    with pytest.raises(ValueError, match="eye_height"):
+        plot.ray_fan(hot_road, -1.0, [0.0], 100.0)
+
+
+def test_demo_writes_the_ray_fans(tmp_path):
+    assert cli.main(["demo", "--out", str(tmp_path)]) == 0
+    written = sorted(p.name for p in tmp_path.glob("*.png"))
+    assert written == ["rays_cold_sea.png", "rays_editor.png", "rays_hot_road.png"]
+    assert all((tmp_path / name).stat().st_size > 10_000 for name in written)
