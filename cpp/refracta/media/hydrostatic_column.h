@@ -9,6 +9,7 @@
 #include "refracta/core/error.h"
 #include "refracta/core/math.h"
 #include "refracta/media/air.h"
+#include "refracta/media/index_field.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,7 +65,7 @@ class HydrostaticColumn {
       for (int q = 0; q < 4; ++q) sum += kW[q] / checked(temperature, mid + half * kX[q]);
       j_[i] = j_[i - 1] + half * sum;
     }
-    const T j_ref = integral(h_ref);
+    const T j_ref = integral(T(h_ref));
     for (auto& j : j_) j -= j_ref;
     log_p_ref_ = log(pressure_ref);
   }
@@ -110,6 +111,29 @@ class HydrostaticColumn {
   std::vector<T> j_, inv_t_;
   T log_p_ref_;
   const char* owner_ = "";
+};
+
+}  // namespace refracta
+
+namespace refracta {
+
+// Shared by the models of air in hydrostatic balance: Derived provides temperature(h, &t, &dt),
+// column(), humidity() and wavelength(); this gives pressure(h) and n(h), dn/dh.
+template <class Derived, class T>
+struct HydrostaticAirModel : HeightOnlyModel<Derived, T> {
+  T pressure(const T& h) const {
+    using std::exp;
+    return exp(self().column().log_pressure(h));
+  }
+
+  void evaluate_height(const T& h, T* n, T* dn_dh) const {
+    T t, dt;
+    self().temperature(h, &t, &dt);
+    air_column_index(pressure(h), t, dt, self().humidity(), self().wavelength(), n, dn_dh);
+  }
+
+ private:
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
 };
 
 }  // namespace refracta

@@ -16,7 +16,7 @@
 namespace refracta {
 
 template <class T>
-class PhysicalAtmosphereModel : public HeightOnlyModel<PhysicalAtmosphereModel<T>, T> {
+class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereModel<T>, T> {
  public:
   struct Config {};
   static constexpr const char* kTypeName = "PhysicalAtmosphere";
@@ -93,16 +93,9 @@ class PhysicalAtmosphereModel : public HeightOnlyModel<PhysicalAtmosphereModel<T
     }
   }
 
-  T pressure(const T& h) const {
-    using std::exp;
-    return exp(column_.log_pressure(h));
-  }
-
-  void evaluate_height(const T& h, T* n, T* dn_dh) const {
-    T t, dt;
-    temperature(h, &t, &dt);
-    air_column_index(pressure(h), t, dt, p_[kHumidity], p_[kWavelength], n, dn_dh);
-  }
+  const HydrostaticColumn<T>& column() const { return column_; }
+  const T& humidity() const { return p_[kHumidity]; }
+  const T& wavelength() const { return p_[kWavelength]; }
 
  private:
   std::vector<T> p_;

@@ -17,7 +17,7 @@
 namespace refracta {
 
 template <class T>
-class TemperatureProfileModel : public HeightOnlyModel<TemperatureProfileModel<T>, T> {
+class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileModel<T>, T> {
  public:
   struct Config {
     std::vector<double> heights;  // [m], strictly increasing
@@ -107,16 +107,9 @@ class TemperatureProfileModel : public HeightOnlyModel<TemperatureProfileModel<T
              (T(3.0) * u2 - T(2.0) * u) * slope_[i];
   }
 
-  T pressure(const T& h) const {
-    using std::exp;
-    return exp(column_.log_pressure(h));
-  }
-
-  void evaluate_height(const T& h, T* n, T* dn_dh) const {
-    T t, dt;
-    temperature(h, &t, &dt);
-    air_column_index(pressure(h), t, dt, humidity_, wavelength_, n, dn_dh);
-  }
+  const HydrostaticColumn<T>& column() const { return column_; }
+  const T& humidity() const { return humidity_; }
+  const T& wavelength() const { return wavelength_; }
 
  private:
   static double sign(double x) { return (x > 0) - (x < 0); }

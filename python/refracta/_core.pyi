@@ -1,0 +1,243 @@
+"""
+refracta's C++ core (private; use the refracta package)
+"""
+from __future__ import annotations
+import numpy
+import numpy.typing
+import typing
+__all__: list[str] = ['CustomField', 'IndexField', 'IoError', 'LinearSquaredProfile', 'LogisticProfile', 'NumericalError', 'PhysicalAtmosphere', 'RayPath', 'TemperatureProfile', 'trace_ray']
+class NumericalError(RuntimeError):
+    pass
+class IoError(OSError):
+    pass
+class IndexField:
+    """
+    A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres, y up.
+    
+    ior(points) -> n, shape (N,) (float for one point); grad_ior(points) -> grad n [1/m], (N, 3).
+    params: dict of parameter values; param_names; bounds: dict name -> (lower, upper), the box an
+    optimiser searches; with_params(**values) -> a new field; height_only: n depends on y alone;
+    gauge_params: parameters an optimiser holds fixed by default (a joint scaling leaves rays unchanged).
+    Raises refracta.NumericalError where n <= 0 or is not finite.
+    """
+    def __repr__(self) -> str:
+        ...
+    def grad_ior(self, points: typing.Any) -> typing.Any:
+        """
+        Gradient of n [1/m] at points (N, 3) -> (N, 3).
+        """
+    def ior(self, points: typing.Any) -> typing.Any:
+        """
+        Refractive index at points (N, 3) -> (N,).
+        """
+    def with_params(self, **kwargs) -> IndexField:
+        """
+        A new field of the same model with the given parameters changed.
+        """
+    @property
+    def bounds(self) -> dict:
+        ...
+    @property
+    def gauge_params(self) -> list[str]:
+        ...
+    @property
+    def height_only(self) -> bool:
+        ...
+    @property
+    def param_info(self) -> list:
+        """
+        One dict per parameter: name, default, lower, upper, unit, doc.
+        """
+    @property
+    def param_names(self) -> list[str]:
+        ...
+    @property
+    def params(self) -> dict:
+        ...
+    @property
+    def type_name(self) -> str:
+        ...
+class LogisticProfile(IndexField):
+    """
+    The original mirage editor's height profile (Choi 2017), in scene units:
+    n(h) = 1 + 0.003 k_s (f(n_bg, 10 a_bg, 0, h) + f(n_inv, -0.1 a_inv, h_ciso, h)
+           + f(n_hot, 0.3 a_hot, 0, h)) / (|n_bg| + |n_inv| + |n_hot|),  f(L, w, x0, x) = L/(1 + e^((x0-x)/w)).
+    Scaling n_bg, n_inv, n_hot together changes nothing (gauge freedom): editing fixes n_bg by default.
+    
+    Parameters (name [unit] default, optimiser bounds: meaning):
+        n_bg [1] 3, [-10, 10]: background amplitude
+        n_inv [1] 0.1, [-10, 10]: inversion-layer amplitude
+        n_hot [1] 0.1, [-10, 10]: hot-spot amplitude
+        h_ciso [scene units] 1, [-10, 100]: height of the inversion layer
+        a_bg [1] 1, [0.01, 100]: background width (logistic width 10 a_bg)
+        a_inv [1] 1, [0.01, 100]: inversion width (logistic width 0.1 a_inv)
+        a_hot [1] 1, [0.01, 100]: hot-spot width (logistic width 0.3 a_hot)
+        k_s [1] 10, [-300, 300]: overall strength: n - 1 reaches 0.003 k_s
+    """
+    def __init__(self, *args, **kwargs) -> None:
+        ...
+class LinearSquaredProfile(IndexField):
+    """
+    n^2 = n0^2 + alpha y: rays are parabolas y = y0 + t0 x + alpha x^2 / (4 beta^2), beta = n(y0) cos(e0).
+    
+    Parameters (name [unit] default, optimiser bounds: meaning):
+        n0 [1] 1.00028, [0.5, 3]: index at y = 0
+        alpha [1/m] 0, [-0.001, 0.001]: d(n^2)/dy
+    """
+    def __init__(self, *args, **kwargs) -> None:
+        ...
+class PhysicalAtmosphere(IndexField):
+    """
+    Real air: U.S. Standard Atmosphere 1976 temperature + a smooth inversion layer + a surface layer
+    surface_dt * exp(-h / surface_depth) (h >= 0), hydrostatic pressure, and the index of air from
+    Edlen's formula revised by Birch & Downs (1993/94) at `wavelength`, optional relative humidity.
+    Defaults give n - 1 = 2.7784e-4 at the ground (15 C, 101325 Pa, 550 nm). Modelled for heights in
+    [-1000, 32000] m.
+    
+    Parameters (name [unit] default, optimiser bounds: meaning):
+        t_ground [K] 288.15, [220, 330]: air temperature at h = 0 without the surface layer
+        lapse_rate [K/m] 0.0065, [-0.02, 0.02]: tropospheric dT/dh is -lapse_rate
+        pressure [Pa] 101325, [50000, 110000]: pressure at h = 0
+        inversion_dt [K] 0, [-30, 30]: temperature rise across the inversion layer
+        inversion_base [m] 100, [-100, 5000]: bottom of the inversion layer
+        inversion_thickness [m] 10, [0.1, 2000]: thickness of the inversion layer
+        surface_dt [K] 0, [-30, 60]: surface-layer excess temperature at h = 0
+        surface_depth [m] 0.1, [0.005, 10]: e-folding depth of the surface layer
+        humidity [1] 0, [0, 1]: relative humidity
+        wavelength [nm] 550, [380, 780]: vacuum wavelength
+    """
+    def __init__(self, *args, **kwargs) -> None:
+        ...
+    def pressure(self, heights: typing.Any) -> typing.Any:
+        """
+        Hydrostatic pressure [Pa] at the given heights [m].
+        """
+    def temperature(self, heights: typing.Any) -> typing.Any:
+        """
+        Air temperature [K] at the given heights [m] (scalar or 1-D array).
+        """
+class TemperatureProfile(IndexField):
+    """
+    A measured sounding: temperatures [K] at strictly increasing heights [m], joined by a monotone C1
+    cubic (pchip) and levelling off smoothly beyond the ends; hydrostatic pressure from `pressure` [Pa]
+    at the lowest height; n from the same air formula as PhysicalAtmosphere. The temperatures are the
+    parameters t0, t1, ... (with pressure, humidity, wavelength).
+    """
+    def __init__(self, heights: typing.Any, temperatures: typing.Any, pressure: typing.SupportsFloat | typing.SupportsIndex = 101325.0, humidity: typing.SupportsFloat | typing.SupportsIndex = 0.0, wavelength: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> None:
+        ...
+    def pressure(self, heights: typing.Any) -> typing.Any:
+        """
+        Hydrostatic pressure [Pa] at the given heights [m].
+        """
+    def temperature(self, heights: typing.Any) -> typing.Any:
+        """
+        Air temperature [K] at the given heights [m] (scalar or 1-D array).
+        """
+    @property
+    def heights(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+class CustomField(IndexField):
+    """
+    A field written in Python: ior(points (N,3)) -> (N,) and grad_ior(points (N,3)) -> (N,3), both
+    vectorised. height_only=True promises n depends on y alone (enables method='stratified').
+    Slow: the integrators call back into Python at every evaluation.
+    """
+    def __init__(self, ior: typing.Any, grad_ior: typing.Any, height_only: bool = False) -> None:
+        ...
+    @property
+    def grad_function(self) -> typing.Any:
+        ...
+    @property
+    def ior_function(self) -> typing.Any:
+        ...
+class RayPath:
+    """
+    A traced light path. Arrays are per node (the integrator's steps; the path between nodes is the
+    quintic Hermite interpolant of positions, tangents and curvatures, accurate to O(step^6)).
+    
+    points (N,3) [m]; directions (N,3) unit tangents; arc_length (N,) [m]; ior (N,) n at each node;
+    ray_vectors (N,3) the integrated v (|v| = n); stop: why the path ended ('max_length',
+    'stop_height'); evaluations: field evaluations used.
+    """
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def at_height(self, y: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Every point where the path crosses height y [m], in path order, (K, 3).
+        """
+    def closest_point(self, q: typing.Any) -> tuple[numpy.ndarray, float, float]:
+        """
+        (point, distance, s): the point of the continuous path closest to q, its distance [m] and its arc length [m].
+        """
+    def crossings(self, normal: typing.Any, offset: typing.SupportsFloat | typing.SupportsIndex) -> list:
+        """
+        Crossings of the plane normal . x = offset: a list of (point, s, unit direction).
+        """
+    def point_at(self, s: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """
+        (point, unit tangent) at arc length s [m] on the continuous path.
+        """
+    def sample(self, count: typing.SupportsInt | typing.SupportsIndex = 200) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        count points (count, 3) evenly spaced in arc length on the continuous path.
+        """
+    @property
+    def arc_length(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def directions(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def evaluations(self) -> int:
+        ...
+    @property
+    def ior(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def length(self) -> float:
+        """
+        Arc length of the whole path [m].
+        """
+    @property
+    def points(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def ray_vectors(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def stop(self) -> str:
+        ...
+class _ElevationTable:
+    def __init__(self, field: IndexField, eye_height: typing.SupportsFloat | typing.SupportsIndex, min_elevation: typing.SupportsFloat | typing.SupportsIndex, max_elevation: typing.SupportsFloat | typing.SupportsIndex, tol: typing.SupportsFloat | typing.SupportsIndex, max_length: typing.SupportsFloat | typing.SupportsIndex, stop_height: typing.SupportsFloat | typing.SupportsIndex | None, step: typing.SupportsFloat | typing.SupportsIndex | None, trace_tol: typing.SupportsFloat | typing.SupportsIndex | None, progress: typing.Any) -> None:
+        ...
+    def ends(self, elevations: typing.Any, azimuths: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+        ...
+    @property
+    def elevations(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def evaluations(self) -> int:
+        ...
+    @property
+    def exact_intervals(self) -> int:
+        ...
+    @property
+    def size(self) -> int:
+        ...
+def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, method: str, tol: typing.SupportsFloat | typing.SupportsIndex, step: typing.SupportsFloat | typing.SupportsIndex | None, max_length: typing.SupportsFloat | typing.SupportsIndex, stop_height: typing.SupportsFloat | typing.SupportsIndex | None, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+    ...
+def trace_ray(field: IndexField, origin: typing.Any, direction: typing.Any, method: str = 'rk45', tol: typing.SupportsFloat | typing.SupportsIndex = 1e-06, step: typing.SupportsFloat | typing.SupportsIndex | None = None, max_length: typing.SupportsFloat | typing.SupportsIndex = 1000.0, stop_height: typing.SupportsFloat | typing.SupportsIndex | None = None) -> RayPath:
+    """
+    Trace one curved ray through `field` and return its RayPath.
+    
+    The ray equations dx/ds = v/n, dv/ds = grad n are launched with v0 = n(origin) * direction/|direction|.
+    method: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path),
+    'rk4' (fixed step `step`, default 0.3 m, the original editor's), or 'stratified' (height-only
+    fields: exact paths from n(h) cos(e) = const by quadrature to `tol`; `step` is the largest node
+    spacing, default 100 m). max_length [m]: arc length at which the path ends. stop_height [m]: the
+    path ends where it descends through this height (a ground). Raises ValueError for bad arguments
+    and refracta.NumericalError where n <= 0 or is not finite.
+    """
+_stop_names: tuple = ('max_length', 'stop_height', 'stopped')
