@@ -2,10 +2,11 @@
 
 Fields (n(x) and grad n): LogisticProfile, PhysicalAtmosphere, TemperatureProfile,
 LinearSquaredProfile, CustomField. Rays: trace_ray (one RayPath), trace_rays (a batch, in
-parallel). Plots: refracta.plot. Units: metres, kelvin, pascal, nanometres; y is up.
+parallel), ElevationTable. Images: Scene, Camera, render, refracta.io. Plots: refracta.plot. Units: metres, kelvin, pascal, nanometres; y is up.
 """
 
 from refracta._core import (
+    Camera,
     CustomField,
     IndexField,
     IoError,
@@ -14,14 +15,18 @@ from refracta._core import (
     NumericalError,
     PhysicalAtmosphere,
     RayPath,
+    Scene,
     TemperatureProfile,
     trace_ray,
 )
+from refracta import io
+from refracta._render import render
 from refracta._rays import ElevationTable, RayBatch, trace_rays
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "Camera",
     "CustomField",
     "ElevationTable",
     "IndexField",
@@ -32,7 +37,10 @@ __all__ = [
     "PhysicalAtmosphere",
     "RayBatch",
     "RayPath",
+    "Scene",
     "TemperatureProfile",
+    "io",
+    "render",
     "trace_ray",
     "trace_rays",
 ]

@@ -17,11 +17,11 @@ namespace refracta {
 
 template <class T>
 struct RayNode {
-  T s;          // arc length from the start [m]
-  Vec3<T> x;    // position [m]
-  Vec3<T> v;    // ray vector n t, |v| = n
-  T n;          // refractive index at x
-  Vec3<T> grad; // grad n at x [1/m]
+  T s = T(0.0);                        // arc length from the start [m]
+  Vec3<T> x = Vec3<T>::Zero();         // position [m]
+  Vec3<T> v = Vec3<T>::Zero();         // ray vector n t, |v| = n
+  T n = T(1.0);                        // refractive index at x
+  Vec3<T> grad = Vec3<T>::Zero();      // grad n at x [1/m]
 
   Vec3<T> tangent() const { return v / n; }  // dx/ds
   // d^2x/ds^2 = d(v/n)/ds = grad/n - v (grad . v)/n^3.

@@ -1,0 +1,33 @@
+// Python binding of the renderers (cpp/refracta/render).
+#include "refracta/bindings/bind_scene.h"
+#include "refracta/bindings/interruptible.h"
+#include "refracta/render/renderer.h"
+
+namespace refracta {
+
+void bind_render(py::module_& m) {
+  m.def("_render",
+        [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::shared_ptr<IndexField>& field,
+           const std::string& method, int spp, uint64_t seed, double max_length, double chord, double tol,
+           const py::object& progress) {
+          if (!scene) throw_invalid("scene must be a refracta.Scene");
+          RenderOptions options;
+          options.method = parse_render_method(method);
+          options.spp = spp;
+          options.seed = seed;
+          options.max_length = max_length;
+          options.chord = chord;
+          options.tol = tol;
+          options.validate();
+          WorkControl control;
+          Image image;
+          run_interruptible(control, progress, [&] {
+            image = render(scene->geometry, scene->lighting, camera, field.get(), options, control);
+          });
+          return image_to_float32(image);
+        },
+        py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("method"), py::arg("spp"), py::arg("seed"),
+        py::arg("max_length"), py::arg("chord"), py::arg("tol"), py::arg("progress"));
+}
+
+}  // namespace refracta

@@ -1,0 +1,19 @@
+// What the scene and render bindings share: the Python-side scene (geometry + lights).
+#pragma once
+
+#include "refracta/bindings/bindings.h"
+#include "refracta/core/image.h"
+#include "refracta/scene/camera.h"
+#include "refracta/scene/embree_scene.h"
+#include "refracta/shading/lights.h"
+
+namespace refracta {
+
+struct RenderScene {
+  Scene geometry;
+  Lighting lighting;
+};
+
+py::array_t<float> image_to_float32(const Image& image);
+
+}  // namespace refracta

@@ -1,0 +1,141 @@
+// The straight and curved renderers and Blinn-Phong shading with sun shadows.
+#include "refracta/render/renderer.h"
+
+#include "refracta/core/error.h"
+#include "refracta/core/rng.h"
+#include "refracta/rays/trace.h"
+#include "refracta/render/tile_loop.h"
+#include "refracta/shading/blinn_phong.h"
+
+#include <cmath>
+
+namespace refracta {
+
+RenderMethod parse_render_method(const std::string& name) {
+  if (name == "straight") return RenderMethod::kStraight;
+  if (name == "curved") return RenderMethod::kCurved;
+  throw_invalid("method must be 'straight' or 'curved' (got '", name, "')");
+}
+
+void RenderOptions::validate() const {
+  if (spp < 1) throw_invalid("spp must be >= 1 (got ", spp, ")");
+  if (!(max_length > 0.0) || !std::isfinite(max_length)) throw_invalid("max_length must be > 0 (got ", max_length, ")");
+  if (!(chord > 0.0) || !std::isfinite(chord)) throw_invalid("chord must be > 0 (got ", chord, ")");
+  if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
+  if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
+}
+
+namespace {
+
+constexpr double kFar = 1e7;  // [m] straight rays end here
+
+// Point u in [lo, hi] of the segment on the plane through `on` with normal n (Newton).
+double refine_on_plane(const PathSegment<double>& seg, const Vec3d& n, const Vec3d& on, double u, double lo,
+                       double hi) {
+  for (int it = 0; it < 8; ++it) {
+    const double f = n.dot(seg.position(u) - on), df = n.dot(seg.velocity(u));
+    if (df == 0.0) break;
+    const double next = std::clamp(u - f / df, lo, hi);
+    if (std::abs(next - u) < 1e-14) return next;
+    u = next;
+  }
+  return u;
+}
+
+}  // namespace
+
+PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& origin, const Vec3d& dir,
+                    const RenderOptions& options) {
+  PathEnd end;
+  end.direction = dir.normalized();
+  if (!field || options.method == RenderMethod::kStraight) {
+    end.hit = scene.intersect(origin, end.direction, kFar);
+    if (end.hit) end.length = end.hit->t;
+    return end;
+  }
+  TraceOptions trace_options;
+  trace_options.method = field->height_only() ? TraceMethod::kStratified : TraceMethod::kRk45;
+  trace_options.tol = options.tol;
+  trace_options.max_length = options.max_length;
+  trace_options.step = std::max(options.chord, 1.0) * 20.0;
+  trace(*field, origin, end.direction, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
+    const PathSegment<double> seg(a, b);
+    const int chords = std::max(1, int(std::ceil(seg.length() / options.chord)));
+    for (int i = 0; i < chords; ++i) {
+      const double u0 = double(i) / chords, u1 = double(i + 1) / chords;
+      const Vec3d p0 = seg.position(u0), d = seg.position(u1) - p0;
+      const double len = d.norm();
+      if (len == 0.0) continue;
+      // Each chord reaches slightly into the next so that no hit is lost at a joint.
+      const auto hit = scene.intersect(p0, d / len, len * (1.0 + 1e-6) + 1e-6);
+      if (!hit) continue;
+      const double du = u1 - u0;
+      const double u = refine_on_plane(seg, hit->normal, hit->point, u0 + du * hit->t / len, u0 - 0.5 * du,
+                                       std::min(u1 + 0.5 * du, 1.0));
+      Hit refined = *hit;
+      refined.point = seg.position(u);
+      end.hit = refined;
+      end.direction = seg.velocity(u).normalized();
+      end.length = seg.start() + u * seg.length();
+      return false;
+    }
+    end.direction = b.v.normalized();
+    end.length = b.s;
+    return true;
+  });
+  return end;
+}
+
+namespace {
+
+Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter) {
+  if (!end.hit) return lighting.sky.radiance(end.direction);
+  const Hit& hit = *end.hit;
+  const Material& material = scene.material(hit.geometry);
+  const Vec3d wo = -end.direction;
+  Vec3d radiance = material.kd.cwiseProduct(lighting.sky.mean_radiance());  // unoccluded sky, Lambert
+  const Sun& sun = lighting.sun;
+  if (sun.radiance.maxCoeff() > 0.0) {
+    Vec3d wi = sun.direction;
+    if (jitter) {  // a uniform point of the sun's disc: soft shadow edges converge with spp
+      const double r = 0.5 * degrees_to_radians(sun.angular_diameter) * std::sqrt(rng.uniform());
+      const double phi = 2.0 * kPi * rng.uniform();
+      const Vec3d a = std::abs(wi.y()) < 0.9 ? Vec3d(0, 1, 0) : Vec3d(1, 0, 0);
+      const Vec3d t1 = wi.cross(a).normalized(), t2 = wi.cross(t1);
+      wi = (wi + r * std::cos(phi) * t1 + r * std::sin(phi) * t2).normalized();
+    }
+    const double cos_i = hit.normal.dot(wi);
+    if (cos_i > 0.0) {
+      const Vec3d p = hit.point + hit.normal * (1e-5 + 2e-6 * hit.point.cwiseAbs().maxCoeff());
+      if (!lighting.shadows || !scene.occluded(p, wi, kFar)) {
+        radiance += blinn_phong(material, hit.normal, wo, wi).cwiseProduct(sun.irradiance()) * cos_i;
+      }
+    }
+  }
+  return radiance;
+}
+
+}  // namespace
+
+Image render(const Scene& scene, const Lighting& lighting, const Camera& camera, const IndexField* field,
+             const RenderOptions& options, WorkControl& control) {
+  options.validate();
+  scene.commit();
+  const int strata = int(std::ceil(std::sqrt(double(options.spp))));
+  return render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
+    Rng rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x));
+    Vec3d sum = Vec3d::Zero();
+    for (int s = 0; s < options.spp; ++s) {
+      double du = 0.5, dv = 0.5;
+      if (options.spp > 1) {  // stratified jitter over a strata x strata grid
+        du = ((s % strata) + rng.uniform()) / strata;
+        dv = (((s / strata) % strata) + rng.uniform()) / strata;
+      }
+      const PathEnd end = follow_path(scene, field, camera.position(), camera.direction(x + du, y + dv), options);
+      sum += shade(scene, lighting, end, rng, options.spp > 1);
+    }
+    return Vec3d(sum / options.spp);
+  });
+}
+
+}  // namespace refracta

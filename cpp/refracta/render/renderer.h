@@ -1,0 +1,34 @@
+// Rendering a scene through an atmosphere: 'straight' (ray casting, no refraction: the
+// reference) and 'curved' (exact: the integrator's path cut into chords tested against the
+// Embree scene, the hit refined on the continuous path, shading at the true hit).
+#pragma once
+
+#include "refracta/core/image.h"
+#include "refracta/core/parallel.h"
+#include "refracta/media/index_field.h"
+#include "refracta/render/render_options.h"
+#include "refracta/scene/camera.h"
+#include "refracta/scene/embree_scene.h"
+#include "refracta/shading/lights.h"
+
+#include <optional>
+
+namespace refracta {
+
+// Where a camera ray ends: a surface hit (with the direction the light path arrives from) or
+// the sky seen along `direction`.
+struct PathEnd {
+  std::optional<Hit> hit;
+  Vec3d direction;  // unit, along the path at its end (toward the hit or the sky)
+  double length = 0.0;
+};
+
+// The end of the (curved, if field is given) path from origin along dir.
+PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& origin, const Vec3d& dir,
+                    const RenderOptions& options);
+
+// Linear RGB radiance image (height, width, 3). field may be null (then 'curved' = 'straight').
+Image render(const Scene& scene, const Lighting& lighting, const Camera& camera, const IndexField* field,
+             const RenderOptions& options, WorkControl& control);
+
+}  // namespace refracta

@@ -1,0 +1,49 @@
+// Pinhole camera.
+#include "refracta/scene/camera.h"
+
+#include "refracta/core/error.h"
+
+#include <cmath>
+
+namespace refracta {
+
+Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
+               int height)
+    : position_(position), vfov_(vfov_deg), width_(width), height_(height) {
+  if (!is_finite(position)) throw_invalid("Camera: position must be finite");
+  if (!is_finite(look_at)) throw_invalid("Camera: look_at must be finite");
+  if (!is_finite(up)) throw_invalid("Camera: up must be finite");
+  if (!(vfov_deg > 0.0 && vfov_deg < 180.0)) {
+    throw_invalid("Camera: vfov must be in (0, 180) degrees (got ", vfov_deg, ")");
+  }
+  if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
+  const Vec3d view = look_at - position;
+  if (view.norm() == 0.0) throw_invalid("Camera: look_at must differ from position");
+  forward_ = view.normalized();
+  const Vec3d side = forward_.cross(up);
+  if (up.norm() == 0.0 || side.norm() < 1e-9 * up.norm()) {
+    throw_invalid("Camera: up must be non-zero and not parallel to the view direction");
+  }
+  right_ = side.normalized();
+  up_ = right_.cross(forward_);
+  tan_half_ = std::tan(0.5 * degrees_to_radians(vfov_deg));
+}
+
+Vec3d Camera::direction(double u, double v) const {
+  const double x = (2.0 * u / width_ - 1.0) * tan_half_ * width_ / height_;
+  const double y = (1.0 - 2.0 * v / height_) * tan_half_;
+  return (forward_ + x * right_ + y * up_).normalized();
+}
+
+Vec3d Camera::project(const Vec3d& point) const {
+  const Vec3d d = point - position_;
+  const double depth = d.dot(forward_);
+  const double x = d.dot(right_) / depth, y = d.dot(up_) / depth;
+  const double u = 0.5 * width_ * (1.0 + x / (tan_half_ * width_ / height_));
+  const double v = 0.5 * height_ * (1.0 - y / tan_half_);
+  return Vec3d(u, v, depth);
+}
+
+double Camera::pixel_angle() const { return 2.0 * std::atan(tan_half_) / height_; }
+
+}  // namespace refracta

@@ -1,0 +1,35 @@
+// Pinhole camera. Pixel coordinates (u, v): u to the right, v down, pixel (i, j) covers
+// [i, i+1) x [j, j+1), its centre at (i + 0.5, j + 0.5). y is up in the world.
+#pragma once
+
+#include "refracta/core/math.h"
+
+namespace refracta {
+
+class Camera {
+ public:
+  // vfov: full vertical field of view [deg] in (0, 180). Throws std::invalid_argument for NaN
+  // input, a zero view direction, an up vector parallel to it, or a size < 1.
+  Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
+         int height);
+
+  // Unit direction of the ray through pixel coordinates (u, v).
+  Vec3d direction(double u, double v) const;
+  // (u, v, depth) of a world point; depth [m] along the view axis, <= 0 behind the camera.
+  Vec3d project(const Vec3d& point) const;
+
+  const Vec3d& position() const { return position_; }
+  const Vec3d& forward() const { return forward_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  double vfov() const { return vfov_; }
+  // Angle subtended by one pixel at the image centre [rad].
+  double pixel_angle() const;
+
+ private:
+  Vec3d position_, forward_, right_, up_;
+  double vfov_, tan_half_;
+  int width_, height_;
+};
+
+}  // namespace refracta

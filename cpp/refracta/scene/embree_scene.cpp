@@ -1,0 +1,217 @@
+// Embree 3 scene: triangle meshes and spheres, checked single-ray queries.
+#include "refracta/scene/embree_scene.h"
+
+#include "refracta/core/error.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <string>
+
+namespace refracta {
+
+void Material::validate() const {
+  for (int i = 0; i < 3; ++i) {
+    if (!(kd[i] >= 0.0 && kd[i] <= 1.0)) throw_invalid("Material: kd must be in [0, 1] (got ", kd[i], ")");
+    if (!(ks[i] >= 0.0 && ks[i] <= 1.0)) throw_invalid("Material: ks must be in [0, 1] (got ", ks[i], ")");
+  }
+  if (!(ns >= 0.0) || !std::isfinite(ns)) throw_invalid("Material: ns must be >= 0 (got ", ns, ")");
+}
+
+namespace {
+
+// Embree works in float; beyond this a coordinate loses metre precision and Embree may assert.
+constexpr double kMaxCoordinate = 1e7;
+
+void check_ray(const Vec3d& origin, const Vec3d& dir, double t_max) {
+  if (!is_finite(origin) || origin.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    throw_numerical("ray origin (", origin.x(), ", ", origin.y(), ", ", origin.z(),
+                    ") is not finite or beyond 1e7 m");
+  }
+  if (!is_finite(dir) || std::abs(dir.norm() - 1.0) > 1e-6) {
+    throw_numerical("ray direction (", dir.x(), ", ", dir.y(), ", ", dir.z(), ") is not a finite unit vector");
+  }
+  if (!(t_max > 0.0)) throw_numerical("ray length must be > 0 (got ", t_max, ")");
+}
+
+}  // namespace
+
+struct Scene::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  mutable bool dirty = true;
+  mutable std::mutex commit_mutex;
+  std::string error;
+
+  Impl() {
+    device = rtcNewDevice(nullptr);
+    if (!device) throw std::runtime_error("Embree: cannot create a device");
+    rtcSetDeviceErrorFunction(
+        device, [](void* user, RTCError, const char* message) {
+          static_cast<Impl*>(user)->error = message ? message : "unknown Embree error";
+        },
+        this);
+    scene = rtcNewScene(device);
+  }
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+  void check() {
+    if (!error.empty()) {
+      const std::string message = "Embree: " + error;
+      error.clear();
+      throw std::runtime_error(message);
+    }
+  }
+};
+
+Scene::Scene() : impl_(std::make_unique<Impl>()) {}
+Scene::~Scene() = default;
+
+unsigned Scene::add_mesh(const std::vector<Vec3d>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                         const Material& material) {
+  material.validate();
+  if (vertices.empty() || triangles.empty()) throw_invalid("add_mesh: vertices and triangles must not be empty");
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    if (!is_finite(vertices[i]) || vertices[i].cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      throw_invalid("add_mesh: vertices[", i, "] must be finite and within 1e7 m");
+    }
+  }
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      if (triangles[i][k] < 0 || size_t(triangles[i][k]) >= vertices.size()) {
+        throw_invalid("add_mesh: triangles[", i, "] refers to vertex ", triangles[i][k], " of ", vertices.size());
+      }
+    }
+  }
+  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), vertices.size()));
+  auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                           3 * sizeof(unsigned), triangles.size()));
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    for (int k = 0; k < 3; ++k) v[3 * i + k] = float(vertices[i][k]);
+  }
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k) t[3 * i + k] = unsigned(triangles[i][k]);
+  }
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(impl_->scene, geometry);
+  rtcReleaseGeometry(geometry);
+  impl_->check();
+  if (id != materials_.size()) throw std::logic_error("Embree geometry ids out of order");
+  materials_.push_back(material);
+  triangles_ += triangles.size();
+  impl_->dirty = true;
+  return id;
+}
+
+unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector<double>& radii,
+                            const Material& material) {
+  material.validate();
+  if (centres.empty() || centres.size() != radii.size()) {
+    throw_invalid("add_spheres: needs as many radii as centres (", centres.size(), " vs ", radii.size(), ")");
+  }
+  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                                        4 * sizeof(float), centres.size()));
+  for (size_t i = 0; i < centres.size(); ++i) {
+    if (!is_finite(centres[i]) || centres[i].cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      throw_invalid("add_spheres: centres[", i, "] must be finite and within 1e7 m");
+    }
+    if (!(radii[i] > 0.0) || !std::isfinite(radii[i])) {
+      throw_invalid("add_spheres: radii[", i, "] must be > 0 (got ", radii[i], ")");
+    }
+    for (int k = 0; k < 3; ++k) v[4 * i + k] = float(centres[i][k]);
+    v[4 * i + 3] = float(radii[i]);
+  }
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(impl_->scene, geometry);
+  rtcReleaseGeometry(geometry);
+  impl_->check();
+  materials_.push_back(material);
+  impl_->dirty = true;
+  return id;
+}
+
+void Scene::commit() const {
+  std::lock_guard<std::mutex> lock(impl_->commit_mutex);
+  if (!impl_->dirty) return;
+  rtcCommitScene(impl_->scene);
+  impl_->check();
+  impl_->dirty = false;
+}
+
+namespace {
+
+void fill_ray(RTCRay& ray, const Vec3d& origin, const Vec3d& dir, double t_max) {
+  ray.org_x = float(origin.x()), ray.org_y = float(origin.y()), ray.org_z = float(origin.z());
+  ray.dir_x = float(dir.x()), ray.dir_y = float(dir.y()), ray.dir_z = float(dir.z());
+  ray.tnear = 0.0f;
+  ray.tfar = float(std::min(t_max, 3e38));
+  ray.time = 0.0f;
+  ray.mask = 0xFFFFFFFFu;
+  ray.id = 0;
+  ray.flags = 0;
+}
+
+}  // namespace
+
+std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, double t_max) const {
+  check_ray(origin, dir, t_max);
+  if (impl_->dirty) commit();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit query;
+  fill_ray(query.ray, origin, dir, t_max);
+  query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &context, &query);
+  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  Hit hit;
+  hit.t = query.ray.tfar;
+  hit.point = origin + hit.t * dir;
+  Vec3d normal(query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z);
+  normal.normalize();
+  hit.normal = normal.dot(dir) > 0.0 ? Vec3d(-normal) : normal;
+  hit.geometry = query.hit.geomID;
+  hit.primitive = query.hit.primID;
+  return hit;
+}
+
+bool Scene::occluded(const Vec3d& origin, const Vec3d& dir, double t_max) const {
+  check_ray(origin, dir, t_max);
+  if (impl_->dirty) commit();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray;
+  fill_ray(ray, origin, dir, t_max);
+  rtcOccluded1(impl_->scene, &context, &ray);
+  return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+Mesh ground_mesh(double height, double half_size) {
+  if (!(half_size > 0.0) || !std::isfinite(height)) throw_invalid("ground: half_size must be > 0 and height finite");
+  Mesh mesh;
+  mesh.vertices = {{-half_size, height, -half_size}, {half_size, height, -half_size},
+                   {half_size, height, half_size}, {-half_size, height, half_size}};
+  mesh.triangles = {{0, 2, 1}, {0, 3, 2}};
+  return mesh;
+}
+
+Mesh box_mesh(const Vec3d& centre, const Vec3d& size) {
+  if (!is_finite(centre) || !(size.minCoeff() > 0.0)) throw_invalid("box: size must be > 0 and centre finite");
+  Mesh mesh;
+  for (int i = 0; i < 8; ++i) {
+    mesh.vertices.push_back(centre + 0.5 * Vec3d((i & 1) ? size.x() : -size.x(), (i & 2) ? size.y() : -size.y(),
+                                                 (i & 4) ? size.z() : -size.z()));
+  }
+  mesh.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                    {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return mesh;
+}
+
+}  // namespace refracta

@@ -1,0 +1,63 @@
+// The scene's geometry in Embree 3 (the only file that includes Embree), with a material per
+// geometry. Every ray is checked before Embree sees it: Debian's Embree is built with assertions
+// on and aborts the process on a NaN or huge ray.
+#pragma once
+
+#include "refracta/core/math.h"
+#include "refracta/scene/material.h"
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace refracta {
+
+struct Hit {
+  double t;          // distance along the (unit) direction [m]
+  Vec3d point;       // [m]
+  Vec3d normal;      // unit geometric normal, facing the incoming ray
+  unsigned geometry;
+  unsigned primitive;
+};
+
+class Scene {
+ public:
+  Scene();
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  // Triangles index into vertices; returns the geometry id.
+  unsigned add_mesh(const std::vector<Vec3d>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                    const Material& material);
+  unsigned add_spheres(const std::vector<Vec3d>& centres, const std::vector<double>& radii,
+                       const Material& material);
+
+  // Builds the acceleration structure; called by the renderers (not thread-safe itself).
+  void commit() const;
+
+  // Closest hit along origin + t dir, t in (0, t_max]; dir must be unit. Throws on bad rays.
+  std::optional<Hit> intersect(const Vec3d& origin, const Vec3d& dir, double t_max) const;
+  bool occluded(const Vec3d& origin, const Vec3d& dir, double t_max) const;
+
+  const Material& material(unsigned geometry) const { return materials_.at(geometry); }
+  size_t geometry_count() const { return materials_.size(); }
+  size_t triangle_count() const { return triangles_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::vector<Material> materials_;
+  size_t triangles_ = 0;
+};
+
+// Shapes a mirage scene needs, as triangle meshes.
+struct Mesh {
+  std::vector<Vec3d> vertices;
+  std::vector<std::array<int, 3>> triangles;
+};
+Mesh ground_mesh(double height, double half_size);                 // a square at y = height
+Mesh box_mesh(const Vec3d& centre, const Vec3d& size);             // axis-aligned box
+
+}  // namespace refracta

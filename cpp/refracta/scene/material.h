@@ -1,0 +1,17 @@
+// Surface parameters of a Blinn-Phong material (as in Wavefront MTL: Kd, Ks, Ns), linear RGB.
+// The shading layer evaluates it (shading/blinn_phong.h).
+#pragma once
+
+#include "refracta/core/math.h"
+
+namespace refracta {
+
+struct Material {
+  Vec3d kd{0.5, 0.5, 0.5};  // diffuse albedo in [0, 1]
+  Vec3d ks{0.0, 0.0, 0.0};  // specular albedo in [0, 1]
+  double ns = 1.0;          // Phong exponent, >= 0
+
+  void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+}  // namespace refracta

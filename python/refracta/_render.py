@@ -1,0 +1,40 @@
+"""refracta.render: images of a scene seen through an atmosphere."""
+
+from __future__ import annotations
+
+from typing import Callable, Optional, Union
+
+import numpy as np
+
+from refracta import _core
+from refracta._progress import ProgressBar
+
+
+def render(
+    scene: _core.Scene,
+    camera: _core.Camera,
+    field: Optional[_core.IndexField] = None,
+    method: str = "curved",
+    spp: int = 1,
+    seed: int = 0,
+    progress: Union[bool, Callable[[int, int], None]] = True,
+    max_length: float = 5000.0,
+    chord: float = 5.0,
+    tol: float = 1e-4,
+) -> np.ndarray:
+    """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3).
+
+    method: 'curved' -- exact curved rays: the integrator's path (stratified for height-only
+    fields, rk45 otherwise, to `tol` [m]) cut into chords of at most `chord` [m] tested against the
+    scene, hits refined on the continuous path; rays end after `max_length` [m] and show the sky in
+    their last direction. 'straight' -- ray casting without atmosphere (the reference). With
+    field=None both are straight. spp: samples per pixel (1: pixel centres; more: stratified
+    jitter, soft sun shadows), seeded by `seed`. progress: a bar on stderr (True), a callable
+    progress(done, total), or False. Runs on all cores with the GIL released; Ctrl-C stops it.
+    """
+    if isinstance(spp, bool) or int(spp) != spp:
+        raise ValueError(f"spp must be a whole number >= 1 (got {spp!r})")
+    if int(seed) != seed or seed < 0:
+        raise ValueError(f"seed must be a whole number >= 0 (got {seed!r})")
+    callback = ProgressBar("rendering") if progress is True else (progress or None)
+    return _core._render(scene, camera, field, method, int(spp), int(seed), max_length, chord, tol, callback)
