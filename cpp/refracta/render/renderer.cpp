@@ -58,6 +58,8 @@ PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& or
   trace_options.tol = options.tol;
   trace_options.max_length = options.max_length;
   trace_options.step = std::max(options.chord, 1.0) * 20.0;
+  // Nothing can be hit below the lowest geometry: end the path 1 m under it (or under the eye).
+  trace_options.stop_height = std::min(scene.lowest(), origin.y()) - 1.0;
   trace(*field, origin, end.direction, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
     const PathSegment<double> seg(a, b);
     const int chords = std::max(1, int(std::ceil(seg.length() / options.chord)));

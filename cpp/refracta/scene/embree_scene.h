@@ -7,6 +7,7 @@
 #include "refracta/scene/material.h"
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -44,12 +45,15 @@ class Scene {
   const Material& material(unsigned geometry) const { return materials_.at(geometry); }
   size_t geometry_count() const { return materials_.size(); }
   size_t triangle_count() const { return triangles_; }
+  // Lowest y of any geometry [m] (+inf for an empty scene).
+  double lowest() const { return lowest_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<Material> materials_;
   size_t triangles_ = 0;
+  double lowest_ = std::numeric_limits<double>::infinity();
 };
 
 // Shapes a mirage scene needs, as triangle meshes.

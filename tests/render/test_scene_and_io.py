@@ -1,0 +1,85 @@
+"""Cameras, scenes, image files and their errors."""
+
+import numpy as np
+import pytest
+
+import refracta
+
+
+def test_camera_ray_and_project_are_inverse():
+    camera = refracta.Camera([1, 2, 3], [10, 1, -2], vfov=40, width=200, height=100)
+    for u, v in [(0.5, 0.5), (100, 50), (199.5, 10.25)]:
+        origin, direction = camera.ray(u, v)
+        np.testing.assert_allclose(camera.project(origin + 7.0 * direction)[:2], [u, v], atol=1e-9)
+    # The image centre looks at look_at; vfov spans the height.
+    np.testing.assert_allclose(camera.project([10, 1, -2])[:2], [100, 50], atol=1e-9)
+    top = camera.ray(100, 0)[1]
+    bottom = camera.ray(100, 100)[1]
+    assert np.degrees(np.arccos(top @ bottom)) == pytest.approx(40.0, abs=1e-9)
+
+
+def test_pick_returns_the_visible_point():
+    scene = refracta.Scene()
+    scene.add_box([10, 0, 0], [2, 2, 2])
+    camera = refracta.Camera([0, 0, 0], [10, 0, 0], width=11, height=11)
+    np.testing.assert_allclose(camera.pick(scene, 5.5, 5.5), [9, 0, 0], atol=1e-5)
+    assert camera.pick(scene, 0, 0) is None
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(width=0), "size"),
+        (dict(position=[0, float("nan"), 0]), "position must be finite"),
+        (dict(up=[1, 0, 0]), "not parallel"),
+        (dict(look_at=[0, 0, 0]), "look_at must differ"),
+        (dict(vfov=180), "vfov"),
+    ],
+)
+def test_bad_cameras_raise_value_errors(kwargs, message):
+    args = dict(position=[0, 0, 0], look_at=[1, 0, 0], up=[0, 1, 0], vfov=45, width=4, height=4)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=message):
+        refracta.Camera(**args)
+
+
+def test_bad_scene_input_raises_value_errors():
+    scene = refracta.Scene()
+    with pytest.raises(ValueError, match="kd must be in"):
+        scene.add_box([0, 0, 0], [1, 1, 1], kd=(2, 0, 0))
+    with pytest.raises(ValueError, match="refers to vertex 7"):
+        scene.add_mesh(np.zeros((3, 3)), [[0, 1, 7]])
+    with pytest.raises(ValueError, match="radii"):
+        scene.add_sphere([0, 0, 0], -1.0)
+    with pytest.raises(ValueError, match="vertices"):
+        scene.add_mesh(np.array([[0, 0, np.inf], [1, 0, 0], [0, 1, 0]]), [[0, 1, 2]])
+    camera = refracta.Camera([0, 0, 0], [1, 0, 0], width=4, height=4)
+    with pytest.raises(ValueError, match="method must be"):
+        refracta.render(scene, camera, method="raytrace", progress=False)
+    with pytest.raises(ValueError, match="spp"):
+        refracta.render(scene, camera, spp=0, progress=False)
+
+
+def test_image_files_round_trip(tmp_path):
+    image = np.random.default_rng(1).uniform(0, 4, size=(6, 5, 3)).astype(np.float32)
+    refracta.io.write_image(tmp_path / "a.exr", image)
+    np.testing.assert_array_equal(refracta.io.read_image(tmp_path / "a.exr"), image)  # linear float kept
+    flat = np.ones((2, 3, 3), np.float32)
+    refracta.io.write_image(tmp_path / "a.png", flat)  # Reinhard: 1 -> 0.5, sRGB: 0.7354 -> 188/255
+    np.testing.assert_allclose(refracta.io.read_image(tmp_path / "a.png"), 188 / 255, atol=0.6 / 255)
+    refracta.io.write_image(tmp_path / "b.png", flat * 0.25, tonemap="linear", gamma="linear", exposure=2.0)
+    np.testing.assert_allclose(refracta.io.read_image(tmp_path / "b.png"), 128 / 255, atol=0.6 / 255)
+
+
+def test_image_file_errors(tmp_path):
+    with pytest.raises(refracta.IoError, match="no such image file"):
+        refracta.io.read_image(tmp_path / "missing.exr")
+    with pytest.raises(refracta.IoError):
+        refracta.io.write_image(tmp_path / "no" / "dir" / "x.png", np.zeros((2, 2, 3)))
+    with pytest.raises(ValueError, match="finite"):
+        refracta.io.write_image(tmp_path / "x.exr", np.full((2, 2, 3), np.nan))
+    with pytest.raises(ValueError, match="tonemap"):
+        refracta.io.write_image(tmp_path / "x.png", np.zeros((2, 2, 3)), tonemap="aces")
+    (tmp_path / "bad.png").write_text("not an image")
+    with pytest.raises(refracta.IoError):
+        refracta.io.read_image(tmp_path / "bad.png")
