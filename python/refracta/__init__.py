@@ -7,6 +7,7 @@ parallel), ElevationTable. Images: Scene, Camera, render, refracta.io. Plots: re
 
 from refracta._core import (
     Camera,
+    CurvedEarth,
     CustomField,
     IndexField,
     IoError,
@@ -27,6 +28,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "Camera",
+    "CurvedEarth",
     "CustomField",
     "ElevationTable",
     "IndexField",

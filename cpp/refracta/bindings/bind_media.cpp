@@ -1,6 +1,7 @@
 // Python bindings of the refractive-index fields (cpp/refracta/media) and CustomField.
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/custom_field.h"
+#include "refracta/media/curved_earth.h"
 #include "refracta/media/fields.h"
 
 #include <set>
@@ -228,6 +229,25 @@ parameters t0, t1, ... (with pressure, humidity, wavelength).)doc");
                py::arg("humidity") = 0.0, py::arg("wavelength") = 550.0)
       .def_property_readonly("heights", [](const TemperatureProfile& f) { return values_to_array(f.config().heights); });
   add_air_column<TemperatureProfile>(sounding);
+
+  py::class_<CurvedEarth, IndexField, std::shared_ptr<CurvedEarth>>(m, "CurvedEarth", R"doc(
+A height-only atmosphere over a spherical Earth, in flat coordinates (conformal Earth-flattening
+transform): x' = distance along the surface, y' = R ln(r/R), n' = n(h) e^(y'/R). Exact for rays in
+their vertical plane; scene heights y' differ from true heights by h^2/(2R) (0.8 mm at 100 m):
+true_height(y') and flat_height(h) convert. Use it for anything seen over kilometres (horizons,
+looming, Fata Morgana).)doc")
+      .def(py::init([](const std::shared_ptr<IndexField>& base, double radius) {
+             return std::make_shared<CurvedEarth>(base, radius);
+           }),
+           py::arg("base"), py::arg("radius") = kEarthRadius)
+      .def_property_readonly("base", [](const CurvedEarth& f) { return std::const_pointer_cast<IndexField>(f.base()); })
+      .def_property_readonly("radius", &CurvedEarth::radius)
+      .def("true_height", [](const CurvedEarth& f, const py::object& y) {
+             return per_height(y, [&](double v) { return f.true_height(v); });
+           }, py::arg("y"), "True height h [m] of flat-frame heights y'.")
+      .def("flat_height", [](const CurvedEarth& f, const py::object& h) {
+             return per_height(h, [&](double v) { return f.flat_height(v); });
+           }, py::arg("h"), "Flat-frame height y' of true heights h [m].");
 
   py::class_<CustomField, IndexField, std::shared_ptr<CustomField>>(m, "CustomField", R"doc(
 A field written in Python: ior(points (N,3)) -> (N,) and grad_ior(points (N,3)) -> (N,3), both

@@ -8,7 +8,7 @@ namespace refracta {
 void bind_render(py::module_& m) {
   m.def("_render",
         [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::shared_ptr<IndexField>& field,
-           const std::string& method, int spp, uint64_t seed, double max_length, double chord, double tol,
+           const std::string& method, int spp, uint64_t seed, double max_length, double chord, double sagitta, double tol,
            const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
           RenderOptions options;
@@ -17,6 +17,7 @@ void bind_render(py::module_& m) {
           options.seed = seed;
           options.max_length = max_length;
           options.chord = chord;
+          options.sagitta = sagitta;
           options.tol = tol;
           options.validate();
           WorkControl control;
@@ -27,7 +28,7 @@ void bind_render(py::module_& m) {
           return image_to_float32(image);
         },
         py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("method"), py::arg("spp"), py::arg("seed"),
-        py::arg("max_length"), py::arg("chord"), py::arg("tol"), py::arg("progress"));
+        py::arg("max_length"), py::arg("chord"), py::arg("sagitta"), py::arg("tol"), py::arg("progress"));
 }
 
 }  // namespace refracta

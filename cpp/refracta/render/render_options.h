@@ -16,7 +16,8 @@ struct RenderOptions {
   int spp = 1;                // samples per pixel (1: the pixel centre; more: stratified jitter)
   uint64_t seed = 0;
   double max_length = 5000.0; // curved rays end here and show the sky in their last direction [m]
-  double chord = 5.0;         // longest straight chord tested against the geometry [m]
+  double chord = 200.0;       // longest straight chord tested against the geometry [m]
+  double sagitta = 1e-3;      // largest distance between a chord and the curved path [m]
   // Integrator for curved rays; tol [m]. Height-only fields use 'stratified', others 'rk45'.
   double tol = 1e-4;
   int tile = 16;

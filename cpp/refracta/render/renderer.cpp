@@ -21,6 +21,7 @@ void RenderOptions::validate() const {
   if (spp < 1) throw_invalid("spp must be >= 1 (got ", spp, ")");
   if (!(max_length > 0.0) || !std::isfinite(max_length)) throw_invalid("max_length must be > 0 (got ", max_length, ")");
   if (!(chord > 0.0) || !std::isfinite(chord)) throw_invalid("chord must be > 0 (got ", chord, ")");
+  if (!(sagitta > 0.0) || !std::isfinite(sagitta)) throw_invalid("sagitta must be > 0 (got ", sagitta, ")");
   if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
   if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
 }
@@ -57,12 +58,22 @@ PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& or
   trace_options.method = field->height_only() ? TraceMethod::kStratified : TraceMethod::kRk45;
   trace_options.tol = options.tol;
   trace_options.max_length = options.max_length;
-  trace_options.step = std::max(options.chord, 1.0) * 20.0;
+  trace_options.step = options.chord;
   // Nothing can be hit below the lowest geometry: end the path 1 m under it (or under the eye).
   trace_options.stop_height = std::min(scene.lowest(), origin.y()) - 1.0;
   trace(*field, origin, end.direction, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
     const PathSegment<double> seg(a, b);
-    const int chords = std::max(1, int(std::ceil(seg.length() / options.chord)));
+    // Deviation of the path from the segment's chord, sampled; it shrinks with the square of the
+    // chord length, so n chords deviate by about sagitta / n^2.
+    const Vec3d a_x = a.x, ab = b.x - a.x;
+    const double ab2 = std::max(ab.squaredNorm(), 1e-300);
+    double deviation = 0.0;
+    for (double u : {0.25, 0.5, 0.75}) {
+      const Vec3d q = seg.position(u) - a_x;
+      deviation = std::max(deviation, (q - ab * (q.dot(ab) / ab2)).norm());
+    }
+    const int by_sagitta = int(std::ceil(std::sqrt(deviation / options.sagitta)));
+    const int chords = std::clamp(std::max(by_sagitta, int(std::ceil(seg.length() / options.chord))), 1, 1 << 20);
     for (int i = 0; i < chords; ++i) {
       const double u0 = double(i) / chords, u1 = double(i + 1) / chords;
       const Vec3d p0 = seg.position(u0), d = seg.position(u1) - p0;

@@ -1,0 +1,51 @@
+// The Earth-flattening transform.
+#include "refracta/media/curved_earth.h"
+
+#include "refracta/core/error.h"
+
+#include <cmath>
+
+namespace refracta {
+
+CurvedEarth::CurvedEarth(FieldPtr base, double radius) : base_(std::move(base)), radius_(radius) {
+  if (!base_) throw_invalid("CurvedEarth: needs a base field");
+  if (!base_->height_only()) {
+    throw_invalid("CurvedEarth: the base field must depend on height only (", base_->type_name(), " does not)");
+  }
+  if (!(radius > 0.0) || !std::isfinite(radius)) throw_invalid("CurvedEarth: radius must be > 0 (got ", radius, ")");
+  specs_ = base_->param_specs();
+  specs_.push_back({"earth_radius", kEarthRadius, 6000e3, 1e9, "m", "radius of curvature of the ground"});
+}
+
+double CurvedEarth::true_height(double y) const { return radius_ * std::expm1(y / radius_); }
+double CurvedEarth::flat_height(double h) const { return radius_ * std::log1p(h / radius_); }
+
+void CurvedEarth::evaluate_height(double y, double* n, double* dn_dy) const {
+  const double scale = std::exp(y / radius_);  // r / R = dh/dy'
+  double n_base, dn_base;
+  base_->evaluate_height(radius_ * (scale - 1.0), &n_base, &dn_base);
+  *n = n_base * scale;
+  *dn_dy = scale * (dn_base * scale + n_base / radius_);
+}
+
+void CurvedEarth::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
+  double dn;
+  evaluate_height(p.y(), n, &dn);
+  *grad = Vec3d(0.0, dn, 0.0);
+}
+
+std::vector<double> CurvedEarth::param_values() const {
+  std::vector<double> values = base_->param_values();
+  values.push_back(radius_);
+  return values;
+}
+
+std::shared_ptr<const IndexField> CurvedEarth::with_param_values(const std::vector<double>& values) const {
+  if (values.size() != specs_.size()) {
+    throw_invalid("CurvedEarth: expected ", specs_.size(), " parameters, got ", values.size());
+  }
+  std::vector<double> base_values(values.begin(), values.end() - 1);
+  return std::make_shared<CurvedEarth>(base_->with_param_values(base_values), values.back());
+}
+
+}  // namespace refracta

@@ -1,0 +1,42 @@
+// CurvedEarth: a height-only atmosphere over a spherical Earth, mapped to flat coordinates by the
+// conformal Earth-flattening transform (e.g. Born & Wolf 3.2; used for radio ducting):
+//   x' = R phi (distance along the surface),  y' = R ln(r / R),  n'(y') = n(h) r / R = n(h) e^(y'/R),
+//   with h = r - R = R (e^(y'/R) - 1) the true height.
+// In the vertical plane of a ray it is exact: Bouguer's invariant on the sphere, n r cos e = const,
+// becomes n' cos e' = const on the plane. Scene heights y' differ from true heights by
+// h^2 / (2R) (0.8 mm at 100 m); true_height() and flat_height() convert.
+#pragma once
+
+#include "refracta/media/index_field.h"
+
+namespace refracta {
+
+constexpr double kEarthRadius = 6371e3;  // [m], mean radius
+
+class CurvedEarth : public IndexField {
+ public:
+  // base must be height-only; radius > 0 [m].
+  CurvedEarth(FieldPtr base, double radius = kEarthRadius);
+
+  std::string type_name() const override { return "CurvedEarth"; }
+  void evaluate(const Vec3d& p, double* n, Vec3d* grad) const override;
+  bool height_only() const override { return true; }
+  void evaluate_height(double y, double* n, double* dn_dy) const override;
+  // The base field's parameters, then earth_radius.
+  const std::vector<ParamSpec>& param_specs() const override { return specs_; }
+  std::vector<double> param_values() const override;
+  std::shared_ptr<const IndexField> with_param_values(const std::vector<double>& values) const override;
+  std::vector<std::string> gauge_params() const override { return base_->gauge_params(); }
+
+  const FieldPtr& base() const { return base_; }
+  double radius() const { return radius_; }
+  double true_height(double flat_y) const;   // h from y'
+  double flat_height(double height) const;   // y' from h
+
+ private:
+  FieldPtr base_;
+  double radius_;
+  std::vector<ParamSpec> specs_;
+};
+
+}  // namespace refracta
