@@ -257,10 +257,12 @@ class StratifiedTracer {
     return h;
   }
 
+  // n - beta is zero at a turning height by definition; the root finder's residual is round-off,
+  // and carrying it would swamp n(h) - n(h_t) right next to h_t.
   void set_turning_point(double h_t) {
     double n, dn;
     eval(h_t, &n, &dn);
-    turning_gap_ = n - beta_;
+    turning_gap_ = 0.0;
     turning_slope_ = dn;
   }
 
@@ -300,13 +302,16 @@ class StratifiedTracer {
       double n_next, dn_next;
       eval(h_next, &n_next, &dn_next);
       const double gap_next = n_next - beta_;
-      if (gap_next <= 0.0) {
+      // Within round-off of beta (8 ulps of n): the turning height is here, to within
+      // noise / |dn/dh|; scanning on would creep toward it forever.
+      const bool at_turning = gap_next > 0.0 && gap_next <= 8 * 2.2e-16 * n_next && !from_turning;
+      if (gap_next <= 0.0 || at_turning) {
         if (from_turning) {  // a second turning point within one scan step: look closer
           if (delta < 1e-12) throw_numerical("stratified: cannot resolve a duct at h = ", h_prev, " m");
           delta *= 0.25;
           continue;
         }
-        const double ht = turning_height(h_prev, h_next);
+        const double ht = at_turning ? h_next : turning_height(h_prev, h_next);
         set_turning_point(ht);
         if (!integrate_near_turning(ht, h_prev, true, dir)) {
           delta *= 0.25;
