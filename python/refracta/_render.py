@@ -22,13 +22,17 @@ def render(
     chord: float = 200.0,
     sagitta: float = 1e-3,
     tol: float = 1e-4,
+    table: bool = True,
+    integrator: Optional[str] = None,
 ) -> np.ndarray:
     """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3).
 
     method: 'curved' -- exact curved rays: the integrator's path (stratified for height-only
     fields, rk45 otherwise, to `tol` [m]) cut into chords tested against the scene -- at most
     `chord` [m] long and never farther than `sagitta` [m] from the path -- hits refined on the
-    continuous path; rays end after `max_length` [m] and show the sky in
+    continuous path (height-only fields: every pixel served from one ElevationTable for the
+    eye height, interpolated to `tol`; table=False traces each pixel; integrator='rk45' forces rk45
+    per pixel); rays end after `max_length` [m] and show the sky in
     their last direction. 'straight' -- ray casting without atmosphere (the reference). With
     field=None both are straight. spp: samples per pixel (1: pixel centres; more: stratified
     jitter, soft sun shadows), seeded by `seed`. progress: a bar on stderr (True), a callable
@@ -39,4 +43,4 @@ def render(
     if int(seed) != seed or seed < 0:
         raise ValueError(f"seed must be a whole number >= 0 (got {seed!r})")
     callback = ProgressBar("rendering") if progress is True else (progress or None)
-    return _core._render(scene, camera, field, method, int(spp), int(seed), max_length, chord, sagitta, tol, callback)
+    return _core._render(scene, camera, field, method, int(spp), int(seed), max_length, chord, sagitta, tol, bool(table), integrator, callback)

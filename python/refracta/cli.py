@@ -1,4 +1,4 @@
-"""The `refracta` command line: `refracta demo --out DIR`."""
+"""The `refracta` command line: `refracta demo --out DIR [--size WxH]`."""
 
 from __future__ import annotations
 
@@ -8,35 +8,63 @@ import time
 from pathlib import Path
 
 
-def demo(out: Path) -> int:
-    """Ray fans of the example atmospheres, as PNG files in `out`."""
+def _size(text: str):
+    try:
+        width, height = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"size must look like 640x240 (got {text!r})") from None
+    if width < 1 or height < 1:
+        raise argparse.ArgumentTypeError(f"size must be at least 1x1 (got {text!r})")
+    return width, height
+
+
+def demo(out: Path, size=(480, 160)) -> int:
+    """Each example scene without and with its atmosphere, side by side, and the ray fans; PNGs in `out`."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    import refracta
     from refracta import examples, plot
 
     out.mkdir(parents=True, exist_ok=True)
-    for name, make in examples.ATMOSPHERES.items():
+    for name, make in examples.EXAMPLES.items():
         start = time.perf_counter()
+        example = make(*size)
+        # The reference: no atmosphere, but the same (curved or flat) Earth.
+        reference_field = None
+        if isinstance(example.field, refracta.CurvedEarth):
+            reference_field = refracta.CurvedEarth(refracta.LinearSquaredProfile(1.0, 0.0), example.field.radius)
+        render = dict(progress=False, max_length=example.max_length)
+        without = refracta.render(example.scene, example.camera, reference_field, **render)
+        with_air = refracta.render(example.scene, example.camera, example.field, **render)
+        figure, axes = plt.subplots(2, 1, figsize=(9, 2 * 9 * size[1] / size[0] + 1.2), constrained_layout=True)
+        for ax, image, label in zip(axes, (without, with_air), ("without the atmosphere", "through the atmosphere")):
+            ax.imshow(refracta.io.to_display(image))
+            ax.set_title(f"{name}: {label}", fontsize=10)
+            ax.axis("off")
+        figure.savefig(out / f"{name}.png", dpi=110)
+        plt.close(figure)
+        print(f"wrote {out / (name + '.png')} ({time.perf_counter() - start:.1f} s)")
+    for name, make in examples.ATMOSPHERES.items():
         field, eye, elevations, length = make()
         figure = plot.ray_fan(field, eye, elevations, length, title=f"{name}: {field.type_name}")
-        path = out / f"rays_{name}.png"
-        figure.savefig(path, dpi=110)
+        figure.savefig(out / f"rays_{name}.png", dpi=110)
         plt.close(figure)
-        print(f"wrote {path} ({time.perf_counter() - start:.2f} s)")
+        print(f"wrote {out / ('rays_' + name + '.png')}")
     return 0
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="refracta", description="Physically based mirages.")
     commands = parser.add_subparsers(dest="command", required=True)
-    demo_parser = commands.add_parser("demo", help="draw the demo images")
+    demo_parser = commands.add_parser("demo", help="render the example mirages and ray fans")
     demo_parser.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
+    demo_parser.add_argument("--size", type=_size, default=(480, 160), help="image size WxH (default 480x160)")
     args = parser.parse_args(argv)
     if args.command == "demo":
-        return demo(args.out)
+        return demo(args.out, args.size)
     parser.error(f"unknown command {args.command}")
     return 2
 

@@ -62,17 +62,17 @@ def _ship(scene, x, z, scale=1.0):
 
 
 def cold_sea(width: int = 640, height: int = 240) -> Example:
-    """Superior mirage (looming) over a cold sea on the curved Earth: warm air +12 K over the
-    lowest 40 m lifts a ship 28 km away, below the geometric horizon, into view; eye at 5 m."""
+    """Superior mirage (looming) over a cold sea on the curved Earth: warm air +7 K over the
+    lowest 50 m lifts a ship 28 km away, below the geometric horizon, into view; eye at 5 m."""
     scene = _core.Scene()
     scene.set_sun(**SUN)
     scene.set_sky(**SKY)
     scene.add_ground(0.0, 120000.0, kd=(0.04, 0.08, 0.12), ks=(0.05, 0.05, 0.05), ns=200.0)
     _ship(scene, 28000.0, -150.0)
-    base = _core.PhysicalAtmosphere(t_ground=278.15, inversion_dt=12.0, inversion_base=0.0, inversion_thickness=40.0)
+    base = _core.PhysicalAtmosphere(t_ground=278.15, inversion_dt=7.0, inversion_base=0.0, inversion_thickness=50.0)
     field = _core.CurvedEarth(base)
-    camera = _camera((0.0, 5.0, 0.0), (28000.0, 5.0, 0.0), 0.35, width, height)
-    return Example("cold_sea", scene, camera, field, 60000.0, cold_sea.__doc__)
+    camera = _camera((0.0, 5.0, 0.0), (28000.0, 12.0, 0.0), 0.3, width, height)
+    return Example("cold_sea", scene, camera, field, 29000.0, cold_sea.__doc__)
 
 
 def fata_morgana(width: int = 640, height: int = 240) -> Example:
@@ -89,7 +89,7 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
     base = _core.PhysicalAtmosphere(t_ground=276.15, inversion_dt=10.0, inversion_base=12.0, inversion_thickness=8.0)
     field = _core.CurvedEarth(base)
     camera = _camera((0.0, 14.0, 0.0), (30000.0, 14.0, 0.0), 0.35, width, height)
-    return Example("fata_morgana", scene, camera, field, 70000.0, fata_morgana.__doc__)
+    return Example("fata_morgana", scene, camera, field, 30500.0, fata_morgana.__doc__)
 
 
 EXAMPLES = {"hot_road": hot_road, "cold_sea": cold_sea, "fata_morgana": fata_morgana}

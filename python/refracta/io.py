@@ -23,3 +23,8 @@ def write_image(path, image, exposure: float = 1.0, tonemap: str = "reinhard", g
 def read_image(path) -> np.ndarray:
     """Read any image OpenImageIO reads as float32 (H, W, C); 8-bit files come back in [0, 1]."""
     return _core._read_image(os.fspath(path))
+
+
+def to_display(image, exposure: float = 1.0, tonemap: str = "reinhard", gamma: str = "srgb") -> np.ndarray:
+    """The display values write_image would store in a PNG, as float32 in [0, 1] (for imshow)."""
+    return _core._display(np.asarray(image), exposure, tonemap, gamma)

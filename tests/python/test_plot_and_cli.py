@@ -39,8 +39,11 @@ def test_ray_fan_rejects_bad_input(hot_road):
         plot.ray_fan(hot_road, -1.0, [0.0], 100.0)
 
 
-def test_demo_writes_the_ray_fans(tmp_path):
-    assert cli.main(["demo", "--out", str(tmp_path)]) == 0
+def test_demo_writes_the_renders_and_ray_fans(tmp_path):
+    assert cli.main(["demo", "--out", str(tmp_path), "--size", "72x24"]) == 0
     written = sorted(p.name for p in tmp_path.glob("*.png"))
-    assert written == ["rays_cold_sea.png", "rays_editor.png", "rays_hot_road.png"]
-    assert all((tmp_path / name).stat().st_size > 10_000 for name in written)
+    assert written == ["cold_sea.png", "fata_morgana.png", "hot_road.png",
+                       "rays_cold_sea.png", "rays_editor.png", "rays_hot_road.png"]
+    assert all((tmp_path / name).stat().st_size > 5_000 for name in written)
+    with pytest.raises(SystemExit):
+        cli.main(["demo", "--size", "0x5"])

@@ -3,13 +3,16 @@
 #include "refracta/bindings/interruptible.h"
 #include "refracta/render/renderer.h"
 
+#include <optional>
+#include <string>
+
 namespace refracta {
 
 void bind_render(py::module_& m) {
   m.def("_render",
         [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::shared_ptr<IndexField>& field,
            const std::string& method, int spp, uint64_t seed, double max_length, double chord, double sagitta, double tol,
-           const py::object& progress) {
+           bool table, std::optional<std::string> integrator, const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
           RenderOptions options;
           options.method = parse_render_method(method);
@@ -19,16 +22,18 @@ void bind_render(py::module_& m) {
           options.chord = chord;
           options.sagitta = sagitta;
           options.tol = tol;
+          options.use_table = table;
+          if (integrator) options.integrator = parse_trace_method(*integrator);
           options.validate();
           WorkControl control;
           Image image;
           run_interruptible(control, progress, [&] {
-            image = render(scene->geometry, scene->lighting, camera, field.get(), options, control);
+            image = render(scene->geometry, scene->lighting, camera, field, options, control);
           });
           return image_to_float32(image);
         },
         py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("method"), py::arg("spp"), py::arg("seed"),
-        py::arg("max_length"), py::arg("chord"), py::arg("sagitta"), py::arg("tol"), py::arg("progress"));
+        py::arg("max_length"), py::arg("chord"), py::arg("sagitta"), py::arg("tol"), py::arg("table"), py::arg("integrator"), py::arg("progress"));
 }
 
 }  // namespace refracta

@@ -46,6 +46,19 @@ Image array_to_image(const py::object& object) {
   return image;
 }
 
+// Exposure, tone mapping and transfer curve for display (alpha, the 4th channel, untouched).
+void encode_for_display(Image& image, double exposure, const std::string& tonemap_name, const std::string& gamma) {
+  if (!(exposure > 0.0) || !std::isfinite(exposure)) throw_invalid("exposure must be > 0 (got ", exposure, ")");
+  const Tonemap mode = parse_tonemap(tonemap_name);
+  if (gamma != "srgb" && gamma != "linear") throw_invalid("gamma must be 'srgb' or 'linear' (got '", gamma, "')");
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    if (image.channels == 4 && i % 4 == 3) continue;
+    float& v = image.pixels[i];
+    v = tonemap(v, float(exposure), mode);
+    if (gamma == "srgb") v = srgb_encode(v);
+  }
+}
+
 }  // namespace
 
 py::array_t<float> image_to_float32(const Image& image) {
@@ -186,23 +199,23 @@ vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (
         [](const std::string& path, const py::object& array, double exposure, const std::string& tonemap_name,
            const std::string& gamma) {
           Image image = array_to_image(array);
-          if (!(exposure > 0.0) || !std::isfinite(exposure)) throw_invalid("exposure must be > 0 (got ", exposure, ")");
-          const Tonemap mode = parse_tonemap(tonemap_name);
-          if (gamma != "srgb" && gamma != "linear") throw_invalid("gamma must be 'srgb' or 'linear' (got '", gamma, "')");
           if (is_float_format(path)) {
+            if (!(exposure > 0.0) || !std::isfinite(exposure)) throw_invalid("exposure must be > 0 (got ", exposure, ")");
             for (float& v : image.pixels) v *= float(exposure);
           } else {
-            for (size_t i = 0; i < image.pixels.size(); ++i) {
-              const bool alpha = image.channels == 4 && i % 4 == 3;
-              float& v = image.pixels[i];
-              if (!alpha) v = tonemap(v, float(exposure), mode);
-              if (!alpha && gamma == "srgb") v = srgb_encode(v);
-            }
+            encode_for_display(image, exposure, tonemap_name, gamma);
           }
           py::gil_scoped_release release;
           write_image(path, image);
         },
         py::arg("path"), py::arg("image"), py::arg("exposure"), py::arg("tonemap"), py::arg("gamma"));
+  m.def("_display",
+        [](const py::object& array, double exposure, const std::string& tonemap_name, const std::string& gamma) {
+          Image image = array_to_image(array);
+          encode_for_display(image, exposure, tonemap_name, gamma);
+          return image_to_float32(image);
+        },
+        py::arg("image"), py::arg("exposure"), py::arg("tonemap"), py::arg("gamma"));
   m.def("_read_image", [](const std::string& path) { return image_to_float32(read_image(path)); }, py::arg("path"));
 }
 

@@ -21,6 +21,8 @@ void ElevationTableOptions::validate() const {
   if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
   if (initial_rays < 2) throw_invalid("initial_rays must be >= 2 (got ", initial_rays, ")");
   if (!(min_spacing > 0.0)) throw_invalid("min_spacing must be > 0 (got ", min_spacing, ")");
+  if (!(angular_tol >= 0.0)) throw_invalid("angular_tol must be >= 0 (got ", angular_tol, ")");
+  if (max_rays < initial_rays) throw_invalid("max_rays must be >= initial_rays (got ", max_rays, ")");
   if (trace.stop_height && eye_height < *trace.stop_height) {
     throw_invalid("eye_height ", eye_height, " m is below stop_height ", *trace.stop_height, " m");
   }
@@ -84,15 +86,14 @@ PlaneState ElevationTable::interpolate(const std::vector<double>& elevations,
   return out;
 }
 
-// Largest distance between the path traced at `elevation` (inside interval i) and the
-// interpolation, at the end and at 1/4, 1/2, 3/4 of the length.
-double ElevationTable::mismatch(const std::vector<double>& elevations, const std::vector<Entry>& entries,
-                                size_t i, const Entry& mid, double elevation) {
-  double worst = 0.0;
+double ElevationTable::excess(const std::vector<double>& elevations, const std::vector<Entry>& entries, size_t i,
+                              const Entry& mid, double elevation, double scale) const {
+  double worst = -std::numeric_limits<double>::infinity();
   for (double fraction : {0.25, 0.5, 0.75, 1.0}) {
     const PlaneState p = interpolate(elevations, entries, i, elevation, fraction);
     const PlaneState m = state_of(*mid.path, fraction * mid.path->length());
-    worst = std::max(worst, std::hypot(p.r - m.r, p.h - m.h));
+    const double allowed = scale * (options_.tol + options_.angular_tol * m.s);
+    worst = std::max(worst, std::hypot(p.r - m.r, p.h - m.h) - allowed);
   }
   return worst;
 }
@@ -137,6 +138,10 @@ ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& opti
       }
     }
     if (mids.empty()) break;
+    if (int64_t(e.size() + mids.size()) > options_.max_rays) {  // give up refining: trace those exactly
+      for (auto& state : open) state = state == 1 ? 2 : state;
+      break;
+    }
     control.total += int64_t(mids.size());
     std::vector<Entry> traced = trace_all(mids);
     std::vector<double> next_e;
@@ -152,8 +157,7 @@ ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& opti
         const bool same_kind = entries[i].kind == mid.kind && mid.kind == entries[i + 1].kind;
         // The check measures the interpolation *before* the midpoint joins the table; cubic
         // interpolation's error falls 16x when the spacing halves, so 4 tol leaves a 4x margin.
-        const bool close =
-            same_kind && mismatch(e, entries, i, mid, 0.5 * (e[i] + e[i + 1])) <= 4.0 * options_.tol;
+        const bool close = same_kind && excess(e, entries, i, mid, 0.5 * (e[i] + e[i + 1]), 4.0) <= 0.0;
         const bool narrow = e[i + 1] - e[i] <= 2.0 * options_.min_spacing;
         const int state = close ? 0 : (narrow ? (same_kind ? 0 : 2) : 1);
         next_e.push_back(0.5 * (e[i] + e[i + 1]));
@@ -198,6 +202,30 @@ PlaneState ElevationTable::at(double elevation, double s) const {
   const PlaneState whole = interpolate(elevations_, entries_, i, elevation, 1.0);
   if (s >= whole.s) return whole;
   return interpolate(elevations_, entries_, i, elevation, std::max(s, 0.0) / whole.s);
+}
+
+RayPath ElevationTable::path(double elevation) const {
+  const size_t i = interval(elevation);
+  if (exact_[i] && elevation != elevations_[i] && elevation != elevations_[i + 1]) {
+    return *trace_entry(elevation).path;
+  }
+  const double w = (elevation - elevations_[i]) / (elevations_[i + 1] - elevations_[i]);
+  const RayPath& nearest = *entries_[w < 0.5 ? i : i + 1].path;
+  const double length = nearest.length();
+  std::vector<RayNode<double>> nodes;
+  nodes.reserve(nearest.nodes().size());
+  for (const auto& template_node : nearest.nodes()) {
+    const PlaneState p = interpolate(elevations_, entries_, i, elevation, length > 0 ? template_node.s / length : 0.0);
+    RayNode<double> node;
+    node.s = p.s;
+    node.x = Vec3d(p.r, p.h, 0.0);
+    double dn;
+    field_->evaluate_height(p.h, &node.n, &dn);
+    node.grad = Vec3d(0.0, dn, 0.0);
+    node.v = node.n * Vec3d(p.cos_e, p.sin_e, 0.0);
+    nodes.push_back(node);
+  }
+  return RayPath(std::move(nodes), nearest.stop(), 0);
 }
 
 PlaneState ElevationTable::end(double elevation) const {

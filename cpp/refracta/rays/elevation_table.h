@@ -22,7 +22,9 @@ struct ElevationTableOptions {
   double eye_height = 1.5;          // [m]
   double min_elevation = -0.0175;   // [rad]
   double max_elevation = 0.0175;    // [rad]
-  double tol = 1e-3;                // interpolation tolerance [m]
+  double tol = 1e-3;                // interpolation tolerance [m] ...
+  double angular_tol = 0.0;         // ... plus this much per metre of path [rad] (renders: a pixel)
+  int64_t max_rays = 200000;        // beyond this many exact traces, unresolved intervals stay exact
   int initial_rays = 65;
   double min_spacing = 1e-7;        // [rad]
   TraceOptions trace;               // method is forced to stratified
@@ -46,6 +48,10 @@ class ElevationTable {
   PlaneState end(double elevation) const;
   // Point at arc length s [m] (clamped to the path's length) of the path launched at `elevation`.
   PlaneState at(double elevation, double s) const;
+  // The whole path launched at `elevation`, in the vertical plane z = 0 with the eye at
+  // (0, eye_height, 0): interpolated at the node fractions of the nearer traced elevation, or
+  // traced exactly inside an interval where interpolation is not allowed.
+  RayPath path(double elevation) const;
 
   size_t size() const { return entries_.size(); }
   int64_t evaluations() const { return evaluations_; }
@@ -64,8 +70,10 @@ class ElevationTable {
   // fraction of the interpolated length: cubic through four neighbours of one kind, else linear.
   static PlaneState interpolate(const std::vector<double>& elevations, const std::vector<Entry>& entries,
                                 size_t i, double elevation, double fraction);
-  static double mismatch(const std::vector<double>& elevations, const std::vector<Entry>& entries,
-                         size_t i, const Entry& mid, double elevation);
+  // Largest distance between the path at `elevation` and its interpolation, less what the
+  // tolerance allows at each checked arc length (<= 0: close enough).
+  double excess(const std::vector<double>& elevations, const std::vector<Entry>& entries, size_t i,
+                const Entry& mid, double elevation, double scale) const;
   // Index i with elevations_[i] <= e <= elevations_[i + 1].
   size_t interval(double elevation) const;
 

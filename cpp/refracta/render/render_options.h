@@ -4,6 +4,7 @@
 #include "refracta/rays/trace_options.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace refracta {
@@ -20,6 +21,10 @@ struct RenderOptions {
   double sagitta = 1e-3;      // largest distance between a chord and the curved path [m]
   // Integrator for curved rays; tol [m]. Height-only fields use 'stratified', others 'rk45'.
   double tol = 1e-4;
+  std::optional<TraceMethod> integrator;  // force 'rk45' or 'stratified' (default: by the field)
+  // Height-only fields: serve every pixel from one ElevationTable for the camera's eye height
+  // (interpolated to `tol`) instead of tracing each pixel.
+  bool use_table = true;
   int tile = 16;
 
   void validate() const;

@@ -3,6 +3,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/rng.h"
+#include "refracta/rays/elevation_table.h"
 #include "refracta/rays/trace.h"
 #include "refracta/render/tile_loop.h"
 #include "refracta/shading/blinn_phong.h"
@@ -24,6 +25,7 @@ void RenderOptions::validate() const {
   if (!(sagitta > 0.0) || !std::isfinite(sagitta)) throw_invalid("sagitta must be > 0 (got ", sagitta, ")");
   if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
   if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
+  if (integrator == TraceMethod::kRk4) throw_invalid("integrator must be 'rk45' or 'stratified' for rendering");
 }
 
 namespace {
@@ -45,6 +47,58 @@ double refine_on_plane(const PathSegment<double>& seg, const Vec3d& n, const Vec
 
 }  // namespace
 
+namespace {
+
+TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, const Vec3d& origin,
+                                  const RenderOptions& options) {
+  TraceOptions trace_options;
+  trace_options.method = options.integrator ? *options.integrator
+                                            : (field.height_only() ? TraceMethod::kStratified : TraceMethod::kRk45);
+  trace_options.tol = options.tol;
+  trace_options.max_length = options.max_length;
+  trace_options.step = options.chord;
+  // Nothing can be hit below the lowest geometry: end the path 1 m under it (or under the eye).
+  trace_options.stop_height = std::min(scene.lowest(), origin.y()) - 1.0;
+  return trace_options;
+}
+
+}  // namespace
+
+bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<double>& b,
+                    const RenderOptions& options, PathEnd* end) {
+  const PathSegment<double> seg(a, b);
+  // Deviation of the path from the segment's chord, sampled; it shrinks with the square of the
+  // chord length, so n chords deviate by about deviation / n^2.
+  const Vec3d ab = b.x - a.x;
+  const double ab2 = std::max(ab.squaredNorm(), 1e-300);
+  double deviation = 0.0;
+  for (double u : {0.25, 0.5, 0.75}) {
+    const Vec3d q = seg.position(u) - a.x;
+    deviation = std::max(deviation, (q - ab * (q.dot(ab) / ab2)).norm());
+  }
+  const int by_sagitta = int(std::ceil(std::sqrt(deviation / options.sagitta)));
+  const int chords = std::clamp(std::max(by_sagitta, int(std::ceil(seg.length() / options.chord))), 1, 1 << 20);
+  for (int i = 0; i < chords; ++i) {
+    const double u0 = double(i) / chords, u1 = double(i + 1) / chords;
+    const Vec3d p0 = seg.position(u0), d = seg.position(u1) - p0;
+    const double len = d.norm();
+    if (len == 0.0) continue;
+    // Each chord reaches slightly into the next so that no hit is lost at a joint.
+    const auto hit = scene.intersect(p0, d / len, len * (1.0 + 1e-6) + 1e-6);
+    if (!hit) continue;
+    const double du = u1 - u0;
+    const double u = refine_on_plane(seg, hit->normal, hit->point, u0 + du * hit->t / len, u0 - 0.5 * du,
+                                     std::min(u1 + 0.5 * du, 1.0));
+    Hit refined = *hit;
+    refined.point = seg.position(u);
+    end->hit = refined;
+    end->direction = seg.velocity(u).normalized();
+    end->length = seg.start() + u * seg.length();
+    return true;
+  }
+  return false;
+}
+
 PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& origin, const Vec3d& dir,
                     const RenderOptions& options) {
   PathEnd end;
@@ -54,44 +108,9 @@ PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& or
     if (end.hit) end.length = end.hit->t;
     return end;
   }
-  TraceOptions trace_options;
-  trace_options.method = field->height_only() ? TraceMethod::kStratified : TraceMethod::kRk45;
-  trace_options.tol = options.tol;
-  trace_options.max_length = options.max_length;
-  trace_options.step = options.chord;
-  // Nothing can be hit below the lowest geometry: end the path 1 m under it (or under the eye).
-  trace_options.stop_height = std::min(scene.lowest(), origin.y()) - 1.0;
+  const TraceOptions trace_options = curved_trace_options(scene, *field, origin, options);
   trace(*field, origin, end.direction, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
-    const PathSegment<double> seg(a, b);
-    // Deviation of the path from the segment's chord, sampled; it shrinks with the square of the
-    // chord length, so n chords deviate by about sagitta / n^2.
-    const Vec3d a_x = a.x, ab = b.x - a.x;
-    const double ab2 = std::max(ab.squaredNorm(), 1e-300);
-    double deviation = 0.0;
-    for (double u : {0.25, 0.5, 0.75}) {
-      const Vec3d q = seg.position(u) - a_x;
-      deviation = std::max(deviation, (q - ab * (q.dot(ab) / ab2)).norm());
-    }
-    const int by_sagitta = int(std::ceil(std::sqrt(deviation / options.sagitta)));
-    const int chords = std::clamp(std::max(by_sagitta, int(std::ceil(seg.length() / options.chord))), 1, 1 << 20);
-    for (int i = 0; i < chords; ++i) {
-      const double u0 = double(i) / chords, u1 = double(i + 1) / chords;
-      const Vec3d p0 = seg.position(u0), d = seg.position(u1) - p0;
-      const double len = d.norm();
-      if (len == 0.0) continue;
-      // Each chord reaches slightly into the next so that no hit is lost at a joint.
-      const auto hit = scene.intersect(p0, d / len, len * (1.0 + 1e-6) + 1e-6);
-      if (!hit) continue;
-      const double du = u1 - u0;
-      const double u = refine_on_plane(seg, hit->normal, hit->point, u0 + du * hit->t / len, u0 - 0.5 * du,
-                                       std::min(u1 + 0.5 * du, 1.0));
-      Hit refined = *hit;
-      refined.point = seg.position(u);
-      end.hit = refined;
-      end.direction = seg.velocity(u).normalized();
-      end.length = seg.start() + u * seg.length();
-      return false;
-    }
+    if (hit_on_segment(scene, a, b, options, &end)) return false;
     end.direction = b.v.normalized();
     end.length = b.s;
     return true;
@@ -130,10 +149,70 @@ Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rn
 
 }  // namespace
 
-Image render(const Scene& scene, const Lighting& lighting, const Camera& camera, const IndexField* field,
+namespace {
+
+// The elevations [rad] the camera's pixels look along, with a margin of two pixels.
+std::pair<double, double> elevation_range(const Camera& camera) {
+  double lo = kPi, hi = -kPi;
+  const int steps = 64;
+  for (int i = 0; i <= steps; ++i) {
+    for (int j = 0; j <= steps; ++j) {
+      const Vec3d d = camera.direction(camera.width() * double(i) / steps, camera.height() * double(j) / steps);
+      const double e = std::asin(std::clamp(d.y(), -1.0, 1.0));
+      lo = std::min(lo, e), hi = std::max(hi, e);
+    }
+  }
+  const double margin = 2.0 * camera.pixel_angle() * std::max(1.0, double(camera.width()) / camera.height());
+  return {std::max(lo - margin, -0.5 * kPi), std::min(hi + margin, 0.5 * kPi)};
+}
+
+// The path of a camera ray served by the table: the table's path for its elevation, turned to
+// its azimuth about the eye.
+PathEnd follow_table_path(const Scene& scene, const ElevationTable& table, const Vec3d& eye, const Vec3d& dir,
+                          const RenderOptions& options) {
+  PathEnd end;
+  end.direction = dir;
+  const double e = std::asin(std::clamp(dir.y(), -1.0, 1.0));
+  const double horizontal = std::hypot(dir.x(), dir.z());
+  const double cx = horizontal > 0 ? dir.x() / horizontal : 1.0, cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
+  const RayPath plane = table.path(e);
+  auto turned = [&](const RayNode<double>& n) {
+    RayNode<double> out = n;
+    out.x = Vec3d(eye.x() + n.x.x() * cx, n.x.y(), eye.z() + n.x.x() * cz);
+    out.v = Vec3d(n.v.x() * cx, n.v.y(), n.v.x() * cz);
+    return out;
+  };
+  const auto& nodes = plane.nodes();
+  for (size_t k = 0; k + 1 < nodes.size(); ++k) {
+    const RayNode<double> b = turned(nodes[k + 1]);
+    if (hit_on_segment(scene, turned(nodes[k]), b, options, &end)) return end;
+    end.direction = b.v.normalized();
+    end.length = b.s;
+  }
+  return end;
+}
+
+}  // namespace
+
+Image render(const Scene& scene, const Lighting& lighting, const Camera& camera, const FieldPtr& field,
              const RenderOptions& options, WorkControl& control) {
   options.validate();
   scene.commit();
+  std::unique_ptr<ElevationTable> table;
+  if (field && field->height_only() && options.method == RenderMethod::kCurved && options.use_table &&
+      (!options.integrator || *options.integrator == TraceMethod::kStratified)) {
+    ElevationTableOptions table_options;
+    table_options.eye_height = camera.position().y();
+    std::tie(table_options.min_elevation, table_options.max_elevation) = elevation_range(camera);
+    table_options.tol = options.tol;
+    // A quarter of a pixel's angle per metre of path: errors well below what a pixel resolves.
+    table_options.angular_tol = 0.25 * camera.pixel_angle();
+    // More exact traces than a quarter of the pixels would not pay: trace the rest per pixel.
+    table_options.max_rays = std::max<int64_t>(int64_t(camera.width()) * camera.height() / 4, 2 * table_options.initial_rays);
+    table_options.trace = curved_trace_options(scene, *field, camera.position(), options);
+    table = std::make_unique<ElevationTable>(field, table_options, control);
+    control.done = 0;
+  }
   const int strata = int(std::ceil(std::sqrt(double(options.spp))));
   return render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
     Rng rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x));
@@ -144,7 +223,9 @@ Image render(const Scene& scene, const Lighting& lighting, const Camera& camera,
         du = ((s % strata) + rng.uniform()) / strata;
         dv = (((s / strata) % strata) + rng.uniform()) / strata;
       }
-      const PathEnd end = follow_path(scene, field, camera.position(), camera.direction(x + du, y + dv), options);
+      const Vec3d dir = camera.direction(x + du, y + dv);
+      const PathEnd end = table ? follow_table_path(scene, *table, camera.position(), dir, options)
+                                : follow_path(scene, field.get(), camera.position(), dir, options);
       sum += shade(scene, lighting, end, rng, options.spp > 1);
     }
     return Vec3d(sum / options.spp);

@@ -6,6 +6,7 @@
 #include "refracta/core/image.h"
 #include "refracta/core/parallel.h"
 #include "refracta/media/index_field.h"
+#include "refracta/rays/ray_node.h"
 #include "refracta/render/render_options.h"
 #include "refracta/scene/camera.h"
 #include "refracta/scene/embree_scene.h"
@@ -23,12 +24,17 @@ struct PathEnd {
   double length = 0.0;
 };
 
+// Tests the path segment a -> b against the scene in chords (at most options.chord long, within
+// options.sagitta of the path); on a hit fills `end` and returns true.
+bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<double>& b,
+                    const RenderOptions& options, PathEnd* end);
+
 // The end of the (curved, if field is given) path from origin along dir.
 PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& origin, const Vec3d& dir,
                     const RenderOptions& options);
 
 // Linear RGB radiance image (height, width, 3). field may be null (then 'curved' = 'straight').
-Image render(const Scene& scene, const Lighting& lighting, const Camera& camera, const IndexField* field,
+Image render(const Scene& scene, const Lighting& lighting, const Camera& camera, const FieldPtr& field,
              const RenderOptions& options, WorkControl& control);
 
 }  // namespace refracta

@@ -1,0 +1,67 @@
+"""Rendering the hot_road example at 1280x720, 1 spp, 2 threads (renderer issue benchmark).
+
+Time and peak memory (each method in a fresh process) for straight ray casting, curved rays
+served by the ElevationTable (the default for height-only fields), and curved rays with rk45
+forced per pixel. Goals (issue): curved (table) within 5x of straight. raster_march is not built
+yet and is not measured.
+
+    python benchmarks/bench_render.py [--size 1280x720]   -> benchmarks/results/render.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import resource
+import subprocess
+import sys
+import time
+
+from _common import write_results
+
+METHODS = {
+    "straight": dict(method="straight"),
+    "curved_table": dict(method="curved"),
+    "curved_rk45_per_pixel": dict(method="curved", integrator="rk45", table=False),
+}
+
+
+def run_one(name: str, width: int, height: int) -> dict:
+    import refracta
+    from refracta import examples
+
+    example = examples.hot_road(width, height)
+    field = None if name == "straight" else example.field
+    start = time.perf_counter()
+    image = refracta.render(example.scene, example.camera, field, progress=False, max_length=example.max_length,
+                            **METHODS[name])
+    seconds = time.perf_counter() - start
+    return {"seconds": seconds, "peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
+            "mean_radiance": float(image.mean()), "us_per_pixel": 1e6 * seconds / (width * height)}
+
+
+def main(width: int, height: int) -> dict:
+    rows = {}
+    for name in METHODS:
+        output = subprocess.run([sys.executable, __file__, "--one", name, "--size", f"{width}x{height}"],
+                                check=True, capture_output=True, text=True).stdout
+        rows[name] = json.loads(output.strip().splitlines()[-1])
+        print(f"{name:24s} {rows[name]['seconds']:8.2f} s  {rows[name]['us_per_pixel']:7.2f} us/pixel  "
+              f"peak {rows[name]['peak_rss_mb']:.0f} MB")
+    ratios = {"curved_table_over_straight": rows["curved_table"]["seconds"] / rows["straight"]["seconds"],
+              "rk45_per_pixel_over_table": rows["curved_rk45_per_pixel"]["seconds"] / rows["curved_table"]["seconds"]}
+    print("ratios", ratios)
+    return {"setup": {"scene": "examples.hot_road", "size": [width, height], "spp": 1}, "methods": rows,
+            "ratios": ratios, "goals": {"curved_within_5x_of_straight": ratios["curved_table_over_straight"] <= 5}}
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--size", default="1280x720")
+    parser.add_argument("--one", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    w, h = (int(v) for v in args.size.split("x"))
+    if args.one:
+        print(json.dumps(run_one(args.one, w, h)))
+    else:
+        print("->", write_results("render", main(w, h)))
