@@ -22,6 +22,7 @@ from refracta._core import (
 )
 from refracta import io
 from refracta._render import render
+from refracta.scene_file import SceneFile, load_scene
 from refracta._rays import ElevationTable, RayBatch, trace_rays
 
 __version__ = "0.1.0"
@@ -40,8 +41,10 @@ __all__ = [
     "RayBatch",
     "RayPath",
     "Scene",
+    "SceneFile",
     "TemperatureProfile",
     "io",
+    "load_scene",
     "render",
     "trace_ray",
     "trace_rays",

@@ -1,4 +1,5 @@
-"""The `refracta` command line: `refracta demo --out DIR [--size WxH]`."""
+"""The `refracta` command line: `refracta demo --out DIR [--size WxH]` and
+`refracta render scene.toml -o out.exr --method curved --size 1280x720`."""
 
 from __future__ import annotations
 
@@ -56,15 +57,38 @@ def demo(out: Path, size=(480, 160)) -> int:
     return 0
 
 
+def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exposure: float) -> int:
+    """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped)."""
+    import refracta
+
+    scene, camera, field = refracta.load_scene(scene_path)
+    if size is not None:
+        camera = camera.resized(*size)
+    start = time.perf_counter()
+    image = refracta.render(scene, camera, field, method=method, spp=spp, progress=True)
+    refracta.io.write_image(output, image, exposure=exposure)
+    print(f"wrote {output} ({camera.width}x{camera.height}, {method}, {time.perf_counter() - start:.1f} s)")
+    return 0
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="refracta", description="Physically based mirages.")
     commands = parser.add_subparsers(dest="command", required=True)
     demo_parser = commands.add_parser("demo", help="render the example mirages and ray fans")
     demo_parser.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
     demo_parser.add_argument("--size", type=_size, default=(480, 160), help="image size WxH (default 480x160)")
+    render_parser = commands.add_parser("render", help="render a TOML scene file")
+    render_parser.add_argument("scene", type=Path, help="scene file (.toml)")
+    render_parser.add_argument("-o", "--output", type=Path, default=Path("out.exr"), help="image file (default out.exr)")
+    render_parser.add_argument("--method", choices=["curved", "straight"], default="curved")
+    render_parser.add_argument("--size", type=_size, default=None, help="WxH (default: the file's camera size)")
+    render_parser.add_argument("--spp", type=int, default=1, help="samples per pixel")
+    render_parser.add_argument("--exposure", type=float, default=1.0)
     args = parser.parse_args(argv)
     if args.command == "demo":
         return demo(args.out, args.size)
+    if args.command == "render":
+        return render_file(args.scene, args.output, args.method, args.size, args.spp, args.exposure)
     parser.error(f"unknown command {args.command}")
     return 2
 

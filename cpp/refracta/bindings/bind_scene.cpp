@@ -2,6 +2,7 @@
 #include "refracta/bindings/bind_scene.h"
 
 #include "refracta/scene/image_io.h"
+#include "refracta/scene/obj_loader.h"
 #include "refracta/shading/tonemap.h"
 
 #include <cmath>
@@ -92,6 +93,20 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
            py::arg("vertices"), py::arg("triangles"), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5),
            py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0,
            "Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices. Returns its id.")
+      .def("add_obj",
+           [](RenderScene& s, const std::string& path, const py::object& offset, double scale) {
+             const Vec3d shift = to_point(offset, "offset");
+             if (!(scale > 0.0) || !std::isfinite(scale)) throw_invalid("scale must be > 0 (got ", scale, ")");
+             py::list ids;
+             for (auto& part : load_obj(path)) {
+               for (auto& v : part.mesh.vertices) v = v * scale + shift;
+               ids.append(s.geometry.add_mesh(part.mesh.vertices, part.mesh.triangles, part.material));
+             }
+             return ids;
+           },
+           py::arg("path"), py::arg("offset") = py::make_tuple(0.0, 0.0, 0.0), py::arg("scale") = 1.0,
+           "Add a Wavefront OBJ (+ MTL: Kd, Ks, Ns) file, scaled then offset; returns the geometry ids. "
+           "Texture maps are not applied yet.")
       .def("add_ground",
            [](RenderScene& s, double height, double size, const py::object& kd, const py::object& ks, double ns) {
              const Mesh mesh = ground_mesh(height, 0.5 * size);
@@ -131,7 +146,7 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
            [](RenderScene& s, const py::object& horizon, const py::object& zenith) {
              Sky sky;
              sky.horizon = to_rgb(horizon, "horizon");
-             sky.zenith = to_rgb(zenith, "zenith");
+             sky.zenith = zenith.is_none() ? sky.horizon : to_rgb(zenith, "zenith");
              sky.validate();
              s.lighting.sky = sky;
            },
@@ -187,6 +202,8 @@ vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (
            py::arg("scene"), py::arg("u"), py::arg("v"),
            "The scene point seen at pixel (u, v) without atmosphere (straight ray), or None.")
       .def_property_readonly("position", [](const Camera& c) { return points_to_array({c.position()}).reshape({py::ssize_t(3)}); })
+      .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
+           "The same view at another image size (vertical field of view kept).")
       .def_property_readonly("width", &Camera::width)
       .def_property_readonly("height", &Camera::height)
       .def_property_readonly("vfov", &Camera::vfov)

@@ -23,6 +23,8 @@ class Camera {
   int width() const { return width_; }
   int height() const { return height_; }
   double vfov() const { return vfov_; }
+  // The same view at another image size (the vertical field of view is kept).
+  Camera resized(int width, int height) const { return Camera(position_, position_ + forward_, up_, vfov_, width, height); }
   // Angle subtended by one pixel at the image centre [rad].
   double pixel_angle() const;
 

@@ -1,0 +1,21 @@
+// Wavefront OBJ + MTL meshes (tinyobjloader; the only file that includes it).
+#pragma once
+
+#include "refracta/scene/embree_scene.h"
+#include "refracta/scene/material.h"
+
+#include <string>
+#include <vector>
+
+namespace refracta {
+
+// One mesh per material of the file, with the material's Kd, Ks, Ns. Texture maps (map_Kd) are
+// reported in `texture` but not yet applied. Throws IoError for a missing or malformed file.
+struct MaterialMesh {
+  Mesh mesh;
+  Material material;
+  std::string name, texture;
+};
+std::vector<MaterialMesh> load_obj(const std::string& path);
+
+}  // namespace refracta

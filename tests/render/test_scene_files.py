@@ -1,0 +1,81 @@
+"""TOML scene files, OBJ meshes and the render command."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import cli
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+
+
+def test_load_scene_builds_scene_camera_and_field():
+    scene, camera, field = refracta.load_scene(DATA / "hot_road.toml")
+    assert (camera.width, camera.height, camera.vfov) == (96, 32, 2.2)
+    assert isinstance(field, refracta.PhysicalAtmosphere) and field.params["surface_dt"] == 10.0
+    assert scene.geometry_count == 4  # ground, box, and the OBJ's two materials
+    image = refracta.render(scene, camera, field, progress=False)
+    assert image.shape == (32, 96, 3) and np.all(np.isfinite(image))
+
+
+def test_obj_materials_come_from_the_mtl_file():
+    scene = refracta.Scene()
+    ids = scene.add_obj(str(DATA / "tent.obj"), offset=(10, 0, 0))
+    assert len(ids) == 2
+    # Facing the canvas side at z = +1 (triangle (10,0,1), (11.5,1,1), (10,2,1) after the offset).
+    camera = refracta.Camera([10.5, 1, 5], [10.5, 1, 0], vfov=10, width=9, height=9)
+    np.testing.assert_allclose(camera.pick(scene, 4.5, 4.5), [10.5, 1.0, 1.0], atol=1e-5)
+    scene.set_sky((1, 1, 1))
+    image = refracta.render(scene, camera, progress=False)
+    # Lambertian canvas (Kd 0.8 0.6 0.2) under a uniform white sky: radiance = Kd.
+    np.testing.assert_allclose(image[4, 4], (0.8, 0.6, 0.2), atol=1e-6)
+
+
+def write(tmp_path, text, name="scene.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+CAMERA = "[camera]\nposition = [0, 1, 0]\nlook_at = [10, 1, 0]\nsize = [8, 4]\n"
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("[camera\nposition = [0, 1, 0]\n", r"scene.toml: malformed TOML: .*line 1"),
+        (CAMERA + "[atmosphere]\nmodel = 'Fog'\n", r"scene.toml:6: \[atmosphere\] model: unknown model 'Fog'"),
+        (CAMERA + "[atmosphere]\nsurface_dt = 5\nsurface_depth = -1\n", r"scene.toml:7: \[atmosphere\] surface_depth"),
+        (CAMERA + "[[objects]]\ntype = 'box'\ncentre = [1, 2]\nsize = [1, 1, 1]\n",
+         r"scene.toml:7: \[\[objects\]\] #1 centre: must be a list of 3 numbers"),
+        (CAMERA + "[[objects]]\ntype = 'ground'\n[[objects]]\ntype = 'cone'\n",
+         r"scene.toml:8: \[\[objects\]\] #2 type: unknown type 'cone'"),
+        (CAMERA + "[[objects]]\ntype = 'sphere'\ncentre = [1, 2, 3]\nradius = 1\ncolour = [1, 0, 0]\n",
+         r"scene.toml:9: \[\[objects\]\] #1 colour: unknown key"),
+        ("[camera]\nposition = [0, 1, 0]\nlook_at = [0, 1, 0]\n", r"scene.toml:1: \[camera\]: .*look_at must differ"),
+        ("[camera]\nlook_at = [1, 1, 0]\n", r"scene.toml:1: \[camera\] position: missing"),
+    ],
+)
+def test_scene_file_errors_name_file_line_and_key(tmp_path, text, message):
+    with pytest.raises(ValueError, match=message):
+        refracta.load_scene(write(tmp_path, text))
+
+
+def test_missing_files_raise_io_errors(tmp_path):
+    with pytest.raises(refracta.IoError, match="no such scene file"):
+        refracta.load_scene(tmp_path / "nothing.toml")
+    path = write(tmp_path, CAMERA + "[[objects]]\ntype = 'obj'\nfile = 'boat.obj'\n")
+    with pytest.raises(refracta.IoError, match="boat.obj"):
+        refracta.load_scene(path)
+    (tmp_path / "broken.obj").write_text("v 0 0 0\nf 1 2 9\n")
+    with pytest.raises(refracta.IoError, match="broken.obj"):
+        refracta.Scene().add_obj(str(tmp_path / "broken.obj"))
+
+
+def test_render_command_writes_the_image(tmp_path):
+    output = tmp_path / "road.exr"
+    assert cli.main(["render", str(DATA / "hot_road.toml"), "-o", str(output), "--size", "48x16"]) == 0
+    image = refracta.io.read_image(output)
+    assert image.shape == (16, 48, 3)
