@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['CustomField', 'IndexField', 'IoError', 'LinearSquaredProfile', 'LogisticProfile', 'NumericalError', 'PhysicalAtmosphere', 'RayPath', 'TemperatureProfile', 'trace_ray']
+__all__: list[str] = ['Camera', 'CurvedEarth', 'CustomField', 'IndexField', 'IoError', 'LinearSquaredProfile', 'LogisticProfile', 'NumericalError', 'PhysicalAtmosphere', 'RayPath', 'Scene', 'TemperatureProfile', 'trace_ray']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -136,6 +136,30 @@ class TemperatureProfile(IndexField):
     @property
     def heights(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
+class CurvedEarth(IndexField):
+    """
+    A height-only atmosphere over a spherical Earth, in flat coordinates (conformal Earth-flattening
+    transform): x' = distance along the surface, y' = R ln(r/R), n' = n(h) e^(y'/R). Exact for rays in
+    their vertical plane; scene heights y' differ from true heights by h^2/(2R) (0.8 mm at 100 m):
+    true_height(y') and flat_height(h) convert. Use it for anything seen over kilometres (horizons,
+    looming, Fata Morgana).
+    """
+    def __init__(self, base: IndexField, radius: typing.SupportsFloat | typing.SupportsIndex = 6371000.0) -> None:
+        ...
+    def flat_height(self, h: typing.Any) -> typing.Any:
+        """
+        Flat-frame height y' of true heights h [m].
+        """
+    def true_height(self, y: typing.Any) -> typing.Any:
+        """
+        True height h [m] of flat-frame heights y'.
+        """
+    @property
+    def base(self) -> IndexField:
+        ...
+    @property
+    def radius(self) -> float:
+        ...
 class CustomField(IndexField):
     """
     A field written in Python: ior(points (N,3)) -> (N,) and grad_ior(points (N,3)) -> (N,3), both
@@ -226,7 +250,96 @@ class _ElevationTable:
     @property
     def size(self) -> int:
         ...
+class Scene:
+    """
+    Geometry (Embree) with Blinn-Phong materials, a sun and a sky. Materials: kd (diffuse albedo,
+    RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.
+    """
+    shadows: bool
+    def __init__(self) -> None:
+        ...
+    def add_box(self, centre: typing.Any, size: typing.Any, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+        """
+        Add an axis-aligned box: centre (3,) and size (3,) [m].
+        """
+    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+        """
+        Add a square ground of side `size` [m] at y = height, centred on the origin.
+        """
+    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+        """
+        Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices. Returns its id.
+        """
+    def add_obj(self, path: str, offset: typing.Any = (0.0, 0.0, 0.0), scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> list:
+        """
+        Add a Wavefront OBJ (+ MTL: Kd, Ks, Ns) file, scaled then offset; returns the geometry ids. Texture maps are not applied yet.
+        """
+    def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+        """
+        Add a sphere (exact, not tessellated).
+        """
+    def intersect(self, origin: typing.Any, direction: typing.Any) -> typing.Any:
+        """
+        First hit of a straight ray: (point, distance, geometry id), or None.
+        """
+    def set_sky(self, horizon: typing.Any, zenith: typing.Any = None) -> None:
+        """
+        Sky radiance toward the horizon (and below) and straight up (default: same, a constant sky).
+        """
+    def set_sun(self, direction: typing.Any, radiance: typing.Any, angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> None:
+        """
+        The sun: direction toward it, disc radiance (RGB), angular diameter [deg].
+        """
+    @property
+    def geometry_count(self) -> int:
+        ...
+class Camera:
+    """
+    Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
+    vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at
+    (i + 0.5, j + 0.5).
+    """
+    def __init__(self, position: typing.Any, look_at: typing.Any, up: typing.Any = (0.0, 1.0, 0.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def pick(self, scene: Scene, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex) -> typing.Any:
+        """
+        The scene point seen at pixel (u, v) without atmosphere (straight ray), or None.
+        """
+    def project(self, points: typing.Any) -> typing.Any:
+        """
+        (u, v, depth) per point (N, 3); depth [m] along the view axis, <= 0 behind.
+        """
+    def ray(self, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """
+        (origin, unit direction) of the ray through pixel coordinates (u, v).
+        """
+    def resized(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> Camera:
+        """
+        The same view at another image size (vertical field of view kept).
+        """
+    @property
+    def height(self) -> int:
+        ...
+    @property
+    def position(self) -> numpy.ndarray:
+        ...
+    @property
+    def vfov(self) -> float:
+        ...
+    @property
+    def width(self) -> int:
+        ...
+def _display(image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: str) -> numpy.typing.NDArray[numpy.float32]:
+    ...
+def _read_image(path: str) -> numpy.typing.NDArray[numpy.float32]:
+    ...
+def _render(scene: Scene, camera: Camera, field: IndexField, method: str, spp: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex, max_length: typing.SupportsFloat | typing.SupportsIndex, chord: typing.SupportsFloat | typing.SupportsIndex, sagitta: typing.SupportsFloat | typing.SupportsIndex, tol: typing.SupportsFloat | typing.SupportsIndex, table: bool, integrator: str | None, progress: typing.Any) -> numpy.typing.NDArray[numpy.float32]:
+    ...
 def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, method: str, tol: typing.SupportsFloat | typing.SupportsIndex, step: typing.SupportsFloat | typing.SupportsIndex | None, max_length: typing.SupportsFloat | typing.SupportsIndex, stop_height: typing.SupportsFloat | typing.SupportsIndex | None, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+    ...
+def _write_image(path: str, image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: str) -> None:
     ...
 def trace_ray(field: IndexField, origin: typing.Any, direction: typing.Any, method: str = 'rk45', tol: typing.SupportsFloat | typing.SupportsIndex = 1e-06, step: typing.SupportsFloat | typing.SupportsIndex | None = None, max_length: typing.SupportsFloat | typing.SupportsIndex = 1000.0, stop_height: typing.SupportsFloat | typing.SupportsIndex | None = None) -> RayPath:
     """
