@@ -7,5 +7,6 @@ PYBIND11_MODULE(_core, m) {
   refracta::bind_media(m);
   refracta::bind_rays(m);
   refracta::bind_scene(m);
+  refracta::bind_raster(m);
   refracta::bind_render(m);
 }

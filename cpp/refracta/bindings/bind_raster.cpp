@@ -1,0 +1,115 @@
+// Python bindings of the moment math and per-pixel OIT (cpp/refracta/raster).
+#include "refracta/bindings/bindings.h"
+#include "refracta/raster/moments.h"
+#include "refracta/raster/oit.h"
+
+#include <optional>
+
+namespace refracta {
+
+namespace {
+
+DoubleArray as_matrix(const py::object& object, py::ssize_t columns, const char* what) {
+  DoubleArray array;
+  try {
+    array = py::cast<DoubleArray>(object);
+  } catch (const py::cast_error&) {
+    throw_invalid(what, " must be an array of numbers");
+  }
+  if (array.ndim() != 2 || (columns > 0 && array.shape(1) != columns)) {
+    throw_invalid(what, " must have shape (N, ", columns, ")");
+  }
+  for (py::ssize_t i = 0; i < array.size(); ++i) {
+    if (!std::isfinite(array.data()[i])) throw_invalid(what, " must be finite");
+  }
+  return array;
+}
+
+}  // namespace
+
+void bind_raster(py::module_& m) {
+  m.def("_shadow_intensity",
+        [](const py::object& moments, const py::object& depths, const std::string& method, bool is_signed,
+           std::optional<double> bias, std::optional<std::vector<double>> bias_vector) {
+          const DoubleArray b = as_matrix(moments, 4, "moments");
+          const std::vector<double> z = to_values(depths, "z_f");
+          if (py::ssize_t(z.size()) != b.shape(0)) throw_invalid("moments and z_f must have the same length");
+          const double alpha = bias ? *bias : (is_signed ? 3e-7 : 3e-6);
+          if (!(alpha >= 0.0 && alpha < 1.0)) throw_invalid("bias must be in [0, 1) (got ", alpha, ")");
+          const std::vector<double> target =
+              bias_vector ? *bias_vector
+                          : (is_signed ? std::vector<double>{0, 0.375, 0, 0.375} : std::vector<double>{0.5, 0.5, 0.5, 0.5});
+          if (target.size() != 4) throw_invalid("bias_vector must have 4 entries (got ", target.size(), ")");
+          if (method != "hamburger" && method != "hausdorff" && method != "vsm" && method != "canonical") {
+            throw_invalid("method must be 'hamburger', 'hausdorff', 'vsm' or 'canonical' (got '", method, "')");
+          }
+          std::vector<double> out(z.size());
+          for (size_t i = 0; i < z.size(); ++i) {
+            const std::vector<double> raw = {1.0, b.at(i, 0), b.at(i, 1), b.at(i, 2), b.at(i, 3)};
+            const std::vector<double> biased = bias_moments(raw, alpha, target);
+            const std::array<double, 4> c = {biased[1], biased[2], biased[3], biased[4]};
+            if (method == "hamburger") out[i] = hamburger_4msm(c, z[i]);
+            if (method == "hausdorff") out[i] = hausdorff_4msm(c, z[i], is_signed ? -1.0 : 0.0, 1.0);
+            if (method == "vsm") out[i] = vsm_shadow(c[0], c[1], z[i], 1e-12);
+            if (method == "canonical") {
+              const MomentBound bound = canonical_bound(biased, z[i]);
+              out[i] = bound.fallback ? vsm_shadow(c[0], c[1], z[i], 1e-12) : bound.lower;
+            }
+          }
+          return values_to_array(out);
+        },
+        py::arg("moments"), py::arg("z_f"), py::arg("method"), py::arg("signed"), py::arg("bias"), py::arg("bias_vector"));
+
+  m.def("_canonical_bound",
+        [](const std::vector<double>& b, double z_f) {
+          const MomentBound bound = canonical_bound(b, z_f);
+          return py::make_tuple(bound.lower, bound.at_query, bound.fallback);
+        },
+        py::arg("moments"), py::arg("z_f"));
+
+  m.def("_composite",
+        [](const py::object& depths, const py::object& alphas, const py::object& colors, const py::object& background,
+           const std::string& method, int moments, const std::string& kind, double beta, std::optional<double> bias,
+           std::optional<std::pair<double, double>> z_range, std::optional<int> layers, const std::string& weight) {
+          const std::vector<double> z = to_values(depths, "depths"), a = to_values(alphas, "alphas");
+          const std::vector<Vec3d> c = z.empty() ? std::vector<Vec3d>{} : to_points(colors, "colors");
+          if (a.size() != z.size() || c.size() != z.size()) {
+            throw_invalid("depths, alphas and colors must describe the same fragments (", z.size(), ", ", a.size(),
+                          ", ", c.size(), ")");
+          }
+          std::vector<Fragment> fragments;
+          for (size_t i = 0; i < z.size(); ++i) fragments.push_back({z[i], a[i], c[i]});
+          validate_fragments(fragments);
+          const Vec3d bg = to_point(background, "background");
+          Vec3d out;
+          if (method == "exact") {
+            out = composite_exact(fragments, bg);
+          } else if (method == "peel") {
+            if (!layers) throw_invalid("method 'peel' needs layers");
+            out = composite_peeled(fragments, bg, *layers);
+          } else if (method == "wboit") {
+            out = composite_wboit(fragments, bg, weight);
+          } else if (method == "mboit") {
+            if (kind != "power") throw_invalid("kind must be 'power' (trigonometric moments are not implemented yet)");
+            MbOitOptions options;
+            options.moments = moments;
+            options.beta = beta;
+            if (bias) options.bias = *bias;
+            if (z_range) {
+              if (!(z_range->first > 0.0 && z_range->second > z_range->first)) {
+                throw_invalid("z_range must be (near, far) with 0 < near < far");
+              }
+              options.z_near = z_range->first, options.z_far = z_range->second;
+            }
+            out = composite_mboit(fragments, bg, options);
+          } else {
+            throw_invalid("method must be 'exact', 'peel', 'wboit' or 'mboit' (got '", method, "')");
+          }
+          return points_to_array({out}).reshape({py::ssize_t(3)});
+        },
+        py::arg("depths"), py::arg("alphas"), py::arg("colors"), py::arg("background"), py::arg("method"),
+        py::arg("moments"), py::arg("kind"), py::arg("beta"), py::arg("bias"), py::arg("z_range"), py::arg("layers"),
+        py::arg("weight"));
+}
+
+}  // namespace refracta

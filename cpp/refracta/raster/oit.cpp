@@ -1,0 +1,117 @@
+// Per-pixel transparency compositing.
+#include "refracta/raster/oit.h"
+
+#include "refracta/core/error.h"
+#include "refracta/raster/moments.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace refracta {
+
+void validate_fragments(const std::vector<Fragment>& fragments) {
+  for (size_t i = 0; i < fragments.size(); ++i) {
+    const Fragment& f = fragments[i];
+    if (!(f.depth > 0.0) || !std::isfinite(f.depth)) throw_invalid("depths[", i, "] must be > 0 and finite (got ", f.depth, ")");
+    if (!(f.alpha >= 0.0 && f.alpha <= 1.0)) throw_invalid("alphas[", i, "] must be in [0, 1] (got ", f.alpha, ")");
+    if (!is_finite(f.colour)) throw_invalid("colors[", i, "] must be finite");
+  }
+}
+
+namespace {
+
+// Stable sort by depth: equal depths keep their submission order (deterministic tie-break).
+void sort_front_to_back(std::vector<Fragment>& fragments) {
+  std::stable_sort(fragments.begin(), fragments.end(),
+                   [](const Fragment& a, const Fragment& b) { return a.depth < b.depth; });
+}
+
+}  // namespace
+
+Vec3d composite_peeled(std::vector<Fragment> fragments, const Vec3d& background, int layers) {
+  if (layers < 1) throw_invalid("layers must be >= 1 (got ", layers, ")");
+  sort_front_to_back(fragments);
+  Vec3d colour = Vec3d::Zero();
+  double transmittance = 1.0;
+  for (size_t i = 0; i < fragments.size() && int(i) < layers; ++i) {
+    colour += transmittance * fragments[i].alpha * fragments[i].colour;
+    transmittance *= 1.0 - fragments[i].alpha;
+  }
+  return colour + transmittance * background;
+}
+
+Vec3d composite_exact(std::vector<Fragment> fragments, const Vec3d& background) {
+  const int count = int(fragments.size());
+  return composite_peeled(std::move(fragments), background, std::max(count, 1));
+}
+
+Vec3d composite_wboit(const std::vector<Fragment>& fragments, const Vec3d& background, const std::string& weight) {
+  if (weight != "eq7" && weight != "eq9") throw_invalid("weight must be 'eq7' or 'eq9' (got '", weight, "')");
+  Vec3d accum = Vec3d::Zero();
+  double accum_alpha = 0.0, revealage = 1.0;
+  for (const Fragment& f : fragments) {
+    const double z = std::abs(f.depth);
+    const double raw = weight == "eq7" ? 10.0 / (1e-5 + std::pow(z / 5.0, 2) + std::pow(z / 200.0, 6))
+                                       : 0.03 / (1e-5 + std::pow(z / 200.0, 4));
+    const double w = f.alpha * std::clamp(raw, 1e-2, 3e3);
+    accum += f.colour * f.alpha * w;
+    accum_alpha += f.alpha * w;
+    revealage *= 1.0 - f.alpha;
+  }
+  const Vec3d average = accum / std::clamp(accum_alpha, 1e-4, 5e4);
+  return average * (1.0 - revealage) + background * revealage;
+}
+
+Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& background, const MbOitOptions& options) {
+  // Published fp32 bias vectors and strengths (MOMENTS.md 4.4).
+  static const std::vector<double> kBias4 = {0, 0.375, 0, 0.375};
+  static const std::vector<double> kBias6 = {0, 0.48, 0, 0.451, 0, 0.45};
+  static const std::vector<double> kBias8 = {0, 0.75, 0, 0.676667, 0, 0.63, 0, 0.600303};
+  const int m = options.moments;
+  if (m != 4 && m != 6 && m != 8) throw_invalid("moments must be 4, 6 or 8 (got ", m, ")");
+  if (!(options.beta >= 0.0 && options.beta <= 1.0)) throw_invalid("beta must be in [0, 1] (got ", options.beta, ")");
+  const std::vector<double>& target = m == 4 ? kBias4 : (m == 6 ? kBias6 : kBias8);
+  const double alpha_bias = options.bias >= 0.0 ? options.bias : (m == 4 ? 5e-7 : (m == 6 ? 5e-6 : 5e-5));
+  if (fragments.empty()) return background;
+  // Log depth warp to [-1, 1] over the given or the fragments' range (MOMENTS.md 4.2).
+  double z_near = options.z_near, z_far = options.z_far;
+  if (!(z_far > z_near && z_near > 0.0)) {
+    z_near = z_far = fragments[0].depth;
+    for (const Fragment& f : fragments) z_near = std::min(z_near, f.depth), z_far = std::max(z_far, f.depth);
+    if (z_far <= z_near) z_far = z_near * (1.0 + 1e-6);
+  }
+  const double log_near = std::log(z_near), log_range = std::log(z_far) - log_near;
+  auto warp = [&](double z) {
+    return std::clamp((std::log(std::clamp(z, z_near, z_far)) - log_near) / log_range, 0.0, 1.0) * 2.0 - 1.0;
+  };
+  // Pass 1: absorbance a = -ln(1 - alpha), alpha clamped so a stays finite (vkQuake: 0.999).
+  std::vector<double> b(m + 1, 0.0);
+  for (const Fragment& f : fragments) {
+    const double a = -std::log(1.0 - std::min(f.alpha, 0.999));
+    const double z = warp(f.depth);
+    double power = 1.0;
+    for (int j = 0; j <= m; ++j, power *= z) b[j] += a * power;
+  }
+  const double total = b[0];
+  const double total_transmittance = std::exp(-total);
+  if (total < 0.00100050033) return background * total_transmittance + Vec3d::Zero();  // < 0.1 % covered
+  for (int j = 1; j <= m; ++j) b[j] /= total;
+  b[0] = 1.0;
+  const std::vector<double> biased = bias_moments(b, alpha_bias, target);
+  // Pass 2: each fragment weighted by its estimated transmittance.
+  Vec3d accum = Vec3d::Zero();
+  double accum_alpha = 0.0;
+  for (const Fragment& f : fragments) {
+    const double alpha = std::min(f.alpha, 0.999);
+    const MomentBound bound = canonical_bound(biased, warp(f.depth));
+    const double absorbance = bound.lower + options.beta * bound.at_query;
+    const double t = std::clamp(std::exp(-total * absorbance), 0.0, 1.0);
+    accum += alpha * t * f.colour;
+    accum_alpha += alpha * t;
+  }
+  // Resolve: the total coverage is exact; the colour is the transmittance-weighted average.
+  if (!(accum_alpha > 0.0)) return background * total_transmittance;
+  return total_transmittance * background + (1.0 - total_transmittance) * accum / accum_alpha;
+}
+
+}  // namespace refracta

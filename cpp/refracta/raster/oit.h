@@ -1,0 +1,35 @@
+// Order-independent transparency for one pixel's fragments (view depth, alpha, colour):
+// the exact front-to-back composite (= depth peeling with enough layers), depth peeling with k
+// layers, weighted blended OIT (McGuire & Bavoil, JCGT 2013) and moment-based OIT with power
+// moments (Muenstermann et al., I3D 2018; MOMENTS.md 4).
+#pragma once
+
+#include "refracta/core/math.h"
+
+#include <string>
+#include <vector>
+
+namespace refracta {
+
+struct Fragment {
+  double depth;  // view depth [m], > 0
+  double alpha;  // in [0, 1]
+  Vec3d colour;  // linear RGB, not premultiplied
+};
+
+struct MbOitOptions {
+  int moments = 4;              // 4, 6 or 8 power moments
+  double beta = 0.25;           // overestimation: the share of the fragment's own layer in front
+  double bias = -1.0;           // < 0: the published fp32 value for the moment count
+  double z_near = 0.0, z_far = 0.0;  // log-warp range; z_far <= z_near: the fragments' own range
+};
+
+Vec3d composite_exact(std::vector<Fragment> fragments, const Vec3d& background);
+Vec3d composite_peeled(std::vector<Fragment> fragments, const Vec3d& background, int layers);
+// weight: "eq7" or "eq9" of McGuire & Bavoil.
+Vec3d composite_wboit(const std::vector<Fragment>& fragments, const Vec3d& background, const std::string& weight);
+Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& background, const MbOitOptions& options);
+
+void validate_fragments(const std::vector<Fragment>& fragments);  // throws std::invalid_argument
+
+}  // namespace refracta

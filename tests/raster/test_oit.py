@@ -1,0 +1,114 @@
+"""Per-pixel transparency: exact compositing and its approximations (shared/MOMENTS.md 4)."""
+
+import itertools
+
+import numpy as np
+import pytest
+
+from refracta import oit
+
+# The published fp32 biases move the moments by <= 5e-5; transmittances follow to ~1e-4.
+BIAS_TOLERANCE = 2e-4
+
+
+def random_pixel(rng, count):
+    return rng.uniform(1.0, 50.0, count), rng.uniform(0.05, 0.9, count), rng.uniform(0, 1, (count, 3))
+
+
+def test_exact_is_front_to_back_compositing():
+    depths, alphas = [3.0, 1.0, 2.0], [0.5, 0.25, 0.8]
+    colors = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    # Front to back: green (1 m), blue (2 m), red (3 m).
+    expected = 0.25 * np.array([0, 1, 0]) + 0.75 * 0.8 * np.array([0, 0, 1]) + 0.75 * 0.2 * 0.5 * np.array([1, 0, 0])
+    expected = expected + 0.75 * 0.2 * 0.5 * np.array([0.1, 0.2, 0.3])
+    np.testing.assert_allclose(oit.composite(depths, alphas, colors, (0.1, 0.2, 0.3)), expected, atol=1e-15)
+
+
+def test_peeling_with_enough_layers_is_exact_and_fewer_drop_the_farthest(rng):
+    depths, alphas, colors = random_pixel(rng, 6)
+    exact = oit.composite(depths, alphas, colors, method="exact")
+    np.testing.assert_array_equal(oit.composite(depths, alphas, colors, method="peel", layers=6), exact)
+    near = np.argsort(depths)[:3]
+    np.testing.assert_allclose(oit.composite(depths, alphas, colors, method="peel", layers=3),
+                               oit.composite(depths[near], alphas[near], colors[near]), atol=1e-15)
+
+
+@pytest.mark.parametrize("moments", [4, 6, 8])
+def test_mboit_is_order_independent(rng, moments):
+    depths, alphas, colors = random_pixel(rng, 5)
+    reference = oit.composite(depths, alphas, colors, method="mboit", moments=moments)
+    for order in itertools.islice(itertools.permutations(range(5)), 0, 120, 7):
+        order = list(order)
+        np.testing.assert_allclose(oit.composite(depths[order], alphas[order], colors[order], method="mboit",
+                                                 moments=moments), reference, atol=1e-12)
+
+
+@pytest.mark.parametrize("moments", [4, 6, 8])
+def test_mboit_total_transmittance_is_exact(rng, moments):
+    depths, alphas, _ = random_pixel(rng, 7)
+    black = np.zeros((7, 3))
+    result = oit.composite(depths, alphas, black, (1.0, 1.0, 1.0), method="mboit", moments=moments)
+    np.testing.assert_allclose(result, np.prod(1 - alphas), rtol=1e-12)
+
+
+@pytest.mark.parametrize("moments", [4, 6, 8])
+def test_mboit_is_exact_for_up_to_n_plus_one_fragments_with_beta_zero(rng, moments):
+    for count in range(1, moments // 2 + 2):
+        depths, alphas, colors = random_pixel(rng, count)
+        exact = oit.composite(depths, alphas, colors, (0.2, 0.3, 0.4))
+        mboit = oit.composite(depths, alphas, colors, (0.2, 0.3, 0.4), method="mboit", moments=moments, beta=0.0)
+        np.testing.assert_allclose(mboit, exact, atol=BIAS_TOLERANCE)
+
+
+def test_a_single_fragment_is_exact_for_any_beta():
+    for beta in (0.0, 0.25, 1.0):
+        np.testing.assert_allclose(oit.composite([4.0], [0.6], [[0.9, 0.5, 0.1]], (0, 0, 1), method="mboit", beta=beta),
+                                   [0.54, 0.3, 0.06 + 0.4], atol=1e-12)
+
+
+def test_mboit_error_falls_with_more_moments(rng):
+    errors = {4: [], 6: [], 8: []}
+    for _ in range(200):
+        depths, alphas, colors = random_pixel(rng, 8)
+        exact = oit.composite(depths, alphas, colors)
+        for m in errors:
+            errors[m].append(np.abs(oit.composite(depths, alphas, colors, method="mboit", moments=m) - exact).mean())
+    means = {m: np.mean(e) for m, e in errors.items()}
+    assert means[4] > means[6] > means[8], means
+
+
+def test_wboit_is_exact_for_one_fragment_and_keeps_coverage(rng):
+    np.testing.assert_allclose(oit.composite([10.0], [0.4], [[1, 0, 0]], (0, 0, 1), method="wboit"), [0.4, 0, 0.6])
+    depths, alphas, colors = random_pixel(rng, 5)
+    for weight in ("eq7", "eq9"):
+        result = oit.composite(depths, alphas, np.zeros((5, 3)), (1, 1, 1), method="wboit", weight=weight)
+        np.testing.assert_allclose(result, np.prod(1 - alphas), rtol=1e-12)
+
+
+@pytest.mark.parametrize("method", ["exact", "wboit", "mboit"])
+def test_degenerate_pixels_never_give_nan(method):
+    cases = [([], [], np.zeros((0, 3))), ([5.0] * 4, [0.5] * 4, np.ones((4, 3))), ([2.0, 3.0], [1.0, 1.0], np.ones((2, 3))),
+             ([2.0, 3.0], [0.0, 0.0], np.ones((2, 3)))]
+    for depths, alphas, colors in cases:
+        result = oit.composite(depths, alphas, colors, (0.5, 0.5, 0.5), method=method)
+        assert np.all(np.isfinite(result)), (depths, alphas)
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(alphas=[1.5]), r"alphas\[0\] must be in \[0, 1\]"),
+        (dict(depths=[np.nan]), "depths must be finite"),
+        (dict(depths=[-1.0]), r"depths\[0\] must be > 0"),
+        (dict(method="mboit", moments=5), "moments must be 4, 6 or 8"),
+        (dict(method="sorted"), "method must be"),
+        (dict(method="mboit", kind="trig"), "not implemented"),
+        (dict(method="peel"), "needs layers"),
+        (dict(colors=[[1, 0, 0], [0, 1, 0]]), "same fragments"),
+    ],
+)
+def test_bad_arguments_raise(kwargs, message):
+    args = dict(depths=[2.0], alphas=[0.5], colors=[[1, 0, 0]])
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=message):
+        oit.composite(**args)
