@@ -25,9 +25,23 @@ def power_moments(depths, weights=None, count: int = 4) -> np.ndarray:
     return np.stack([np.sum(weights * depths**j, axis=-1) for j in range(1, count + 1)], axis=-1)
 
 
+def quantize(moments, depth_range: str = "unit", inverse: bool = False) -> np.ndarray:
+    """The optimised quantisation transform (unit: I3D 2015 dense; signed: JCGT 2017 Theta*_4) of
+    (..., 4) moments, or its inverse. Moments of any depth in range map into [0, 1]^4."""
+    if depth_range not in ("unit", "signed"):
+        raise ValueError(f"depth_range must be 'unit' or 'signed' (got {depth_range!r})")
+    moments = np.asarray(moments, dtype=np.float64)
+    flat = np.ascontiguousarray(moments.reshape(-1, 4))
+    return _core._quantize_moments(flat, depth_range == "signed", inverse).reshape(moments.shape)
+
+
 def shadow_intensity(moments, z_f, method: str = "hamburger", depth_range: str = "unit",
-                     bias: Optional[float] = None, bias_vector: Optional[Sequence[float]] = None) -> np.ndarray:
-    """Shadow intensity in [0, 1] from (..., 4) moments at receiver depths (...)."""
+                     bias: Optional[float] = None, bias_vector: Optional[Sequence[float]] = None,
+                     storage: str = "fp64") -> np.ndarray:
+    """Shadow intensity in [0, 1] from (..., 4) moments at receiver depths (...).
+
+    storage emulates how the moments were kept: 'fp64', 'fp32', or 'unorm16' (quantised through
+    the optimised transform, as RGBA16_UNORM on a GPU; use a larger bias, e.g. 3e-5 / 6e-5)."""
     if depth_range not in ("unit", "signed"):
         raise ValueError(f"depth_range must be 'unit' or 'signed' (got {depth_range!r})")
     moments = np.asarray(moments, dtype=np.float64)
@@ -38,5 +52,5 @@ def shadow_intensity(moments, z_f, method: str = "hamburger", depth_range: str =
     flat_b = np.broadcast_to(moments, shape + (4,)).reshape(-1, 4)
     flat_z = np.broadcast_to(z_f, shape).reshape(-1)
     out = _core._shadow_intensity(np.ascontiguousarray(flat_b), np.ascontiguousarray(flat_z), method,
-                                  depth_range == "signed", bias, None if bias_vector is None else list(bias_vector))
+                                  depth_range == "signed", bias, None if bias_vector is None else list(bias_vector), storage)
     return out.reshape(shape)

@@ -86,3 +86,21 @@ def test_bad_arguments_raise():
         M.shadow_intensity(np.zeros(4), 0.5, depth_range="half")
     with pytest.raises(ValueError, match="finite"):
         M.shadow_intensity([np.nan, 0, 0, 0], 0.5)
+
+
+@pytest.mark.parametrize("depth_range, lo", [("unit", 0.0), ("signed", -1.0)])
+def test_quantization_transforms_stay_in_the_unit_cube_and_round_trip(rng, depth_range, lo):
+    z = np.linspace(lo, 1.0, 2001)
+    q = M.quantize(M.power_moments(z[:, None]), depth_range)
+    # MOMENTS.md: min ~ -6e-8 (the published constants' rounding), max ~ 1.
+    assert q.min() >= -1e-7 and q.max() <= 1.0 + 1e-7
+    b, _, _ = random_texels(rng, signed=depth_range == "signed")
+    np.testing.assert_allclose(M.quantize(M.quantize(b, depth_range), depth_range, inverse=True), b, atol=1e-9)
+
+
+def test_unorm16_storage_needs_its_larger_bias(rng):
+    b, z_f, pcf = random_texels(rng)
+    s = M.shadow_intensity(b, z_f, "hamburger", storage="unorm16", bias=3e-5)
+    assert np.all(np.isfinite(s))
+    assert np.all(s <= pcf + 3e-5 / 2 + 2e-3)  # 16-bit rounding moves the bound by ~1e-3
+    assert np.abs(s - M.shadow_intensity(b, z_f, "hamburger", bias=3e-5)).mean() < 5e-3

@@ -2,6 +2,7 @@
 #include "refracta/bindings/bindings.h"
 #include "refracta/raster/moments.h"
 #include "refracta/raster/oit.h"
+#include "refracta/raster/quantization.h"
 
 #include <optional>
 
@@ -30,7 +31,8 @@ DoubleArray as_matrix(const py::object& object, py::ssize_t columns, const char*
 void bind_raster(py::module_& m) {
   m.def("_shadow_intensity",
         [](const py::object& moments, const py::object& depths, const std::string& method, bool is_signed,
-           std::optional<double> bias, std::optional<std::vector<double>> bias_vector) {
+           std::optional<double> bias, std::optional<std::vector<double>> bias_vector, const std::string& storage_name) {
+          const MomentStorage storage = parse_moment_storage(storage_name);
           const DoubleArray b = as_matrix(moments, 4, "moments");
           const std::vector<double> z = to_values(depths, "z_f");
           if (py::ssize_t(z.size()) != b.shape(0)) throw_invalid("moments and z_f must have the same length");
@@ -45,7 +47,8 @@ void bind_raster(py::module_& m) {
           }
           std::vector<double> out(z.size());
           for (size_t i = 0; i < z.size(); ++i) {
-            const std::vector<double> raw = {1.0, b.at(i, 0), b.at(i, 1), b.at(i, 2), b.at(i, 3)};
+            const Moments4 read = stored_moments({b.at(i, 0), b.at(i, 1), b.at(i, 2), b.at(i, 3)}, storage, is_signed);
+            const std::vector<double> raw = {1.0, read[0], read[1], read[2], read[3]};
             const std::vector<double> biased = bias_moments(raw, alpha, target);
             const std::array<double, 4> c = {biased[1], biased[2], biased[3], biased[4]};
             if (method == "hamburger") out[i] = hamburger_4msm(c, z[i]);
@@ -58,7 +61,20 @@ void bind_raster(py::module_& m) {
           }
           return values_to_array(out);
         },
-        py::arg("moments"), py::arg("z_f"), py::arg("method"), py::arg("signed"), py::arg("bias"), py::arg("bias_vector"));
+        py::arg("moments"), py::arg("z_f"), py::arg("method"), py::arg("signed"), py::arg("bias"), py::arg("bias_vector"),
+        py::arg("storage"));
+  m.def("_quantize_moments",
+        [](const py::object& moments, bool is_signed, bool inverse) {
+          const DoubleArray b = as_matrix(moments, 4, "moments");
+          DoubleArray out({b.shape(0), py::ssize_t(4)});
+          for (py::ssize_t i = 0; i < b.shape(0); ++i) {
+            const Moments4 in = {b.at(i, 0), b.at(i, 1), b.at(i, 2), b.at(i, 3)};
+            const Moments4 r = inverse ? inverse_quantization_transform(in, is_signed) : quantization_transform(in, is_signed);
+            for (int k = 0; k < 4; ++k) out.mutable_at(i, k) = r[k];
+          }
+          return out;
+        },
+        py::arg("moments"), py::arg("signed"), py::arg("inverse"));
 
   m.def("_canonical_bound",
         [](const std::vector<double>& b, double z_f) {

@@ -1,0 +1,23 @@
+// Storage of 4 power moments as a GPU would keep them: fp32, or 16-bit UNORM after the optimised
+// quantisation transforms (MOMENTS.md 2.5): the dense affine transform of Peters & Klein (I3D
+// 2015) for depths in [0, 1], and the sparse transform Theta*_4 of Peters et al. (JCGT 2017) for
+// depths in [-1, 1]. Decoding the stored value gives the moments a shader would read back.
+#pragma once
+
+#include <array>
+#include <string>
+
+namespace refracta {
+
+using Moments4 = std::array<double, 4>;
+
+enum class MomentStorage { kFp64, kFp32, kUnorm16 };
+MomentStorage parse_moment_storage(const std::string& name);  // "fp64", "fp32", "unorm16"
+
+// q = A b + offset, the optimised transform (signed: Theta*_4); every q of a depth in range lies in [0, 1]^4.
+Moments4 quantization_transform(const Moments4& b, bool signed_depth);
+Moments4 inverse_quantization_transform(const Moments4& q, bool signed_depth);
+// b as read back after storage (unorm16: transform, round to 16 bits, inverse transform).
+Moments4 stored_moments(const Moments4& b, MomentStorage storage, bool signed_depth);
+
+}  // namespace refracta
