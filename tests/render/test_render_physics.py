@@ -107,3 +107,16 @@ def test_spp_and_seed_are_reproducible():
     b = refracta.render(scene, camera, spp=4, seed=3, progress=False)
     c = refracta.render(scene, camera, spp=4, seed=4, progress=False)
     assert np.array_equal(a, b) and not np.array_equal(a, c)
+
+
+@pytest.mark.parametrize("name", ["hot_road", "cold_sea"])
+def test_table_rendering_matches_tracing_every_pixel(name):
+    from refracta import examples
+
+    example = getattr(examples, name)(64, 24)
+    options = dict(progress=False, max_length=example.max_length)
+    table = refracta.render(example.scene, example.camera, example.field, **options)
+    traced = refracta.render(example.scene, example.camera, example.field, table=False, **options)
+    differs = np.any(np.abs(table - traced) > 1e-3, axis=2)
+    # The table interpolates paths to a quarter pixel: at most an edge pixel may flip.
+    assert differs.mean() <= 0.01, differs.mean()

@@ -174,6 +174,12 @@ ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& opti
   }
   elevations_ = std::move(e);
   entries_ = std::move(entries);
+  for (Entry& entry : entries_) {
+    const auto& nodes = entry.path->nodes();
+    entry.lowest.resize(nodes.size());
+    double low = std::numeric_limits<double>::infinity();
+    for (size_t k = nodes.size(); k-- > 0;) entry.lowest[k] = low = std::min(low, nodes[k].x.y());
+  }
   exact_.resize(open.size());
   for (size_t i = 0; i < open.size(); ++i) exact_[i] = open[i] == 2;
   evaluations_ = evaluations;
@@ -204,28 +210,72 @@ PlaneState ElevationTable::at(double elevation, double s) const {
   return interpolate(elevations_, entries_, i, elevation, std::max(s, 0.0) / whole.s);
 }
 
-RayPath ElevationTable::path(double elevation) const {
-  const size_t i = interval(elevation);
+RayNode<double> ElevationTable::interpolated_node(size_t i, double elevation, const RayPath& nearest, size_t k) const {
+  const double length = nearest.length();
+  const double fraction = length > 0 ? nearest.nodes()[k].s / length : 0.0;
+  const PlaneState p = interpolate(elevations_, entries_, i, elevation, fraction);
+  RayNode<double> node;
+  node.s = p.s;
+  node.x = Vec3d(p.r, p.h, 0.0);
+  double dn;
+  field_->evaluate_height(p.h, &node.n, &dn);
+  node.grad = Vec3d(0.0, dn, 0.0);
+  node.v = node.n * Vec3d(p.cos_e, p.sin_e, 0.0);
+  return node;
+}
+
+ElevationTable::LazyPath ElevationTable::lazy_path(double elevation) const {
+  LazyPath lazy;
+  lazy.table_ = this;
+  lazy.elevation_ = elevation;
+  lazy.interval_ = interval(elevation);
+  const size_t i = lazy.interval_;
   if (exact_[i] && elevation != elevations_[i] && elevation != elevations_[i + 1]) {
-    return *trace_entry(elevation).path;
+    lazy.exact_ = trace_entry(elevation).path;
+    const auto& nodes = lazy.exact_->nodes();
+    lazy.exact_lowest_.resize(nodes.size());
+    double low = std::numeric_limits<double>::infinity();
+    for (size_t k = nodes.size(); k-- > 0;) lazy.exact_lowest_[k] = low = std::min(low, nodes[k].x.y());
+    return lazy;
   }
   const double w = (elevation - elevations_[i]) / (elevations_[i + 1] - elevations_[i]);
-  const RayPath& nearest = *entries_[w < 0.5 ? i : i + 1].path;
-  const double length = nearest.length();
+  lazy.template_ = w < 0.5 ? i : i + 1;
+  return lazy;
+}
+
+size_t ElevationTable::LazyPath::size() const {
+  return exact_ ? exact_->nodes().size() : table_->entries_[template_].path->nodes().size();
+}
+
+TraceStop ElevationTable::LazyPath::stop() const {
+  return exact_ ? exact_->stop() : table_->entries_[template_].path->stop();
+}
+
+RayNode<double> ElevationTable::LazyPath::node(size_t k) const {
+  if (exact_) return exact_->nodes()[k];
+  return table_->interpolated_node(interval_, elevation_, *table_->entries_[template_].path, k);
+}
+
+double ElevationTable::LazyPath::lowest_from(size_t k) const {
+  if (exact_) return exact_lowest_[k];
+  // The interpolated path lies between its stencil's paths up to the table tolerance: bound it by
+  // the lowest of the two bracketing paths at the same node fraction, less a margin.
+  const auto& a = table_->entries_[interval_];
+  const auto& b = table_->entries_[interval_ + 1];
+  const auto& t = table_->entries_[template_];
+  const double fraction = double(k) / std::max<size_t>(t.lowest.size() - 1, 1);
+  auto at = [&](const Entry& entry) {
+    const size_t index = std::min(entry.lowest.size() - 1, size_t(std::floor(fraction * (entry.lowest.size() - 1))));
+    return entry.lowest[index > 0 ? index - 1 : 0];
+  };
+  return std::min(at(a), at(b)) - 1.0;
+}
+
+RayPath ElevationTable::path(double elevation) const {
+  const LazyPath lazy = lazy_path(elevation);
   std::vector<RayNode<double>> nodes;
-  nodes.reserve(nearest.nodes().size());
-  for (const auto& template_node : nearest.nodes()) {
-    const PlaneState p = interpolate(elevations_, entries_, i, elevation, length > 0 ? template_node.s / length : 0.0);
-    RayNode<double> node;
-    node.s = p.s;
-    node.x = Vec3d(p.r, p.h, 0.0);
-    double dn;
-    field_->evaluate_height(p.h, &node.n, &dn);
-    node.grad = Vec3d(0.0, dn, 0.0);
-    node.v = node.n * Vec3d(p.cos_e, p.sin_e, 0.0);
-    nodes.push_back(node);
-  }
-  return RayPath(std::move(nodes), nearest.stop(), 0);
+  for (size_t k = 0; k < lazy.size(); ++k) nodes.push_back(lazy.node(k));
+  return RayPath(std::move(nodes), lazy.stop(), 0);
 }
 
 PlaneState ElevationTable::end(double elevation) const {

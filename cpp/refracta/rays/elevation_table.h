@@ -53,6 +53,25 @@ class ElevationTable {
   // traced exactly inside an interval where interpolation is not allowed.
   RayPath path(double elevation) const;
 
+  // The same path node by node, built only as far as a caller walks it.
+  class LazyPath {
+   public:
+    size_t size() const;
+    RayNode<double> node(size_t k) const;
+    // A lower bound of the path's height from node k on (for early exits above a scene).
+    double lowest_from(size_t k) const;
+    TraceStop stop() const;
+
+   private:
+    friend class ElevationTable;
+    const ElevationTable* table_ = nullptr;
+    size_t interval_ = 0, template_ = 0;
+    double elevation_ = 0.0;
+    std::shared_ptr<const RayPath> exact_;  // inside an exact interval
+    std::vector<double> exact_lowest_;
+  };
+  LazyPath lazy_path(double elevation) const;
+
   size_t size() const { return entries_.size(); }
   int64_t evaluations() const { return evaluations_; }
   size_t exact_intervals() const;  // intervals where queries are traced exactly
@@ -62,8 +81,10 @@ class ElevationTable {
  private:
   struct Entry {
     std::shared_ptr<const RayPath> path;
-    int kind = 0;  // stop reason and number of turning points, packed
+    int kind = 0;                  // stop reason and number of turning points, packed
+    std::vector<double> lowest;    // lowest height from each node to the end
   };
+  RayNode<double> interpolated_node(size_t i, double elevation, const RayPath& nearest, size_t k) const;
   Entry trace_entry(double elevation) const;
   static PlaneState state_of(const RayPath& path, double s);
   // Interpolated state at `elevation` inside interval i of (elevations, entries), at the given

@@ -175,20 +175,25 @@ PathEnd follow_table_path(const Scene& scene, const ElevationTable& table, const
   const double e = std::asin(std::clamp(dir.y(), -1.0, 1.0));
   const double horizontal = std::hypot(dir.x(), dir.z());
   const double cx = horizontal > 0 ? dir.x() / horizontal : 1.0, cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
-  const RayPath plane = table.path(e);
+  const ElevationTable::LazyPath plane = table.lazy_path(e);
   auto turned = [&](const RayNode<double>& n) {
     RayNode<double> out = n;
     out.x = Vec3d(eye.x() + n.x.x() * cx, n.x.y(), eye.z() + n.x.x() * cz);
     out.v = Vec3d(n.v.x() * cx, n.v.y(), n.v.x() * cz);
     return out;
   };
-  const auto& nodes = plane.nodes();
-  for (size_t k = 0; k + 1 < nodes.size(); ++k) {
-    const RayNode<double> b = turned(nodes[k + 1]);
-    if (hit_on_segment(scene, turned(nodes[k]), b, options, &end)) return end;
+  RayNode<double> a = turned(plane.node(0));
+  for (size_t k = 0; k + 1 < plane.size(); ++k) {
+    // Nothing left to hit once the rest of the path stays above every object.
+    if (plane.lowest_from(k) > scene.highest()) break;
+    const RayNode<double> b = turned(plane.node(k + 1));
+    if (hit_on_segment(scene, a, b, options, &end)) return end;
     end.direction = b.v.normalized();
     end.length = b.s;
+    a = b;
   }
+  // The sky is seen along the path's last direction.
+  if (plane.size() > 1) end.direction = turned(plane.node(plane.size() - 1)).v.normalized();
   return end;
 }
 

@@ -105,7 +105,7 @@ unsigned Scene::add_mesh(const std::vector<Vec3d>& vertices, const std::vector<s
   if (id != materials_.size()) throw std::logic_error("Embree geometry ids out of order");
   materials_.push_back(material);
   triangles_ += triangles.size();
-  for (const auto& v : vertices) lowest_ = std::min(lowest_, v.y());
+  for (const auto& v : vertices) lowest_ = std::min(lowest_, v.y()), highest_ = std::max(highest_, v.y());
   impl_->dirty = true;
   return id;
 }
@@ -128,6 +128,7 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
     }
     for (int k = 0; k < 3; ++k) v[4 * i + k] = float(centres[i][k]);
     lowest_ = std::min(lowest_, centres[i].y() - radii[i]);
+    highest_ = std::max(highest_, centres[i].y() + radii[i]);
     v[4 * i + 3] = float(radii[i]);
   }
   rtcCommitGeometry(geometry);

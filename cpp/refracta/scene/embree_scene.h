@@ -47,6 +47,8 @@ class Scene {
   size_t triangle_count() const { return triangles_; }
   // Lowest y of any geometry [m] (+inf for an empty scene).
   double lowest() const { return lowest_; }
+  // Highest y of any geometry [m] (-inf for an empty scene).
+  double highest() const { return highest_; }
 
  private:
   struct Impl;
@@ -54,6 +56,7 @@ class Scene {
   std::vector<Material> materials_;
   size_t triangles_ = 0;
   double lowest_ = std::numeric_limits<double>::infinity();
+  double highest_ = -std::numeric_limits<double>::infinity();
 };
 
 // Shapes a mirage scene needs, as triangle meshes.
