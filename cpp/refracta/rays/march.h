@@ -6,6 +6,7 @@
 #pragma once
 
 #include "refracta/core/error.h"
+#include "refracta/core/parallel.h"
 #include "refracta/rays/ray_node.h"
 #include "refracta/rays/trace_options.h"
 
@@ -176,6 +177,7 @@ TraceEnd<T> march(const Field& field, const Vec3<T>& x0, const Vec3<T>& t0,
       out.stop = TraceStop::kMaxLength;
       break;
     }
+    if (options.cancel && options.cancel->load(std::memory_order_relaxed)) throw Cancelled();
     if (out.steps >= options.max_steps) {
       throw_numerical("ray needed more than max_steps = ", options.max_steps, " steps");
     }

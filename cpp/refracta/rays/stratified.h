@@ -11,6 +11,7 @@
 #pragma once
 
 #include "refracta/core/error.h"
+#include "refracta/core/parallel.h"
 #include "refracta/rays/ray_node.h"
 #include "refracta/rays/trace_options.h"
 
@@ -104,6 +105,7 @@ class StratifiedTracer {
   bool done() const { return stopped_ || out_.stop != TraceStop::kMaxLength || reached_end_; }
 
   void emit(const RayNode<double>& next) {
+    if (options_.cancel && options_.cancel->load(std::memory_order_relaxed)) throw Cancelled();
     if (!visit_(last_, next)) {
       out_.stop = TraceStop::kVisitor;
       stopped_ = true;

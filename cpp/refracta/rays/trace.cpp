@@ -81,8 +81,10 @@ RayBatchEnds trace_batch(const IndexField& field, const std::vector<Vec3d>& orig
   out.stops.resize(count);
   out.evaluations.resize(count);
   const auto keep_going = [](const RayNode<double>&, const RayNode<double>&) { return true; };
+  TraceOptions cancellable = options;
+  cancellable.cancel = &control.cancel;
   parallel_for_each(count, 1, control, [&](int64_t i) {
-    const TraceEnd<double> end = trace(field, origins[i], directions[i], options, keep_going);
+    const TraceEnd<double> end = trace(field, origins[i], directions[i], cancellable, keep_going);
     out.points[i] = end.end.x;
     out.directions[i] = end.end.v.normalized();
     out.lengths[i] = end.end.s;

@@ -3,6 +3,7 @@
 
 #include "refracta/rays/ray_node.h"
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -25,6 +26,8 @@ struct TraceOptions {
   double max_length = 1000.0;           // arc length at which the path ends [m]
   std::optional<double> stop_height;    // the path ends where it descends through this height [m]
   int64_t max_steps = 10'000'000;       // a guard against runaway step-size collapse
+  // Polled at every step: when set, the trace throws Cancelled (Ctrl-C in a long batch).
+  const std::atomic<bool>* cancel = nullptr;
 
   // Throws std::invalid_argument naming the bad field.
   void validate() const;
