@@ -5,8 +5,9 @@ moments=4, kind='power', beta=0.25, bias=None, z_range=None, layers=None, weight
 depths are view depths (> 0), alphas in [0, 1], colors (K, 3) linear RGB (not premultiplied).
 'exact' sorts (= depth peeling with enough layers); 'peel' keeps the `layers` nearest; 'wboit' is
 McGuire & Bavoil 2013 with weight 'eq7' or 'eq9'; 'mboit' is moment-based OIT with 4, 6 or 8 power
-moments, a log depth warp over z_range (default: the fragments' range), overestimation beta and
-the published fp32 biases. Trigonometric moments are not implemented yet.
+moments (kind='power') or 2, 3 or 4 trigonometric moments (kind='trig', wrapping zone pi/10), a log
+depth warp over z_range (default: the fragments' range), overestimation beta and the published
+fp32 biases.
 """
 
 from __future__ import annotations

@@ -33,21 +33,24 @@ def test_peeling_with_enough_layers_is_exact_and_fewer_drop_the_farthest(rng):
                                oit.composite(depths[near], alphas[near], colors[near]), atol=1e-15)
 
 
-@pytest.mark.parametrize("moments", [4, 6, 8])
-def test_mboit_is_order_independent(rng, moments):
+VARIANTS = [("power", 4), ("power", 6), ("power", 8), ("trig", 2), ("trig", 3), ("trig", 4)]
+
+
+@pytest.mark.parametrize("kind, moments", VARIANTS)
+def test_mboit_is_order_independent(rng, kind, moments):
     depths, alphas, colors = random_pixel(rng, 5)
-    reference = oit.composite(depths, alphas, colors, method="mboit", moments=moments)
+    reference = oit.composite(depths, alphas, colors, method="mboit", moments=moments, kind=kind)
     for order in itertools.islice(itertools.permutations(range(5)), 0, 120, 7):
         order = list(order)
         np.testing.assert_allclose(oit.composite(depths[order], alphas[order], colors[order], method="mboit",
-                                                 moments=moments), reference, atol=1e-12)
+                                                 moments=moments, kind=kind), reference, atol=1e-12)
 
 
-@pytest.mark.parametrize("moments", [4, 6, 8])
-def test_mboit_total_transmittance_is_exact(rng, moments):
+@pytest.mark.parametrize("kind, moments", VARIANTS)
+def test_mboit_total_transmittance_is_exact(rng, kind, moments):
     depths, alphas, _ = random_pixel(rng, 7)
     black = np.zeros((7, 3))
-    result = oit.composite(depths, alphas, black, (1.0, 1.0, 1.0), method="mboit", moments=moments)
+    result = oit.composite(depths, alphas, black, (1.0, 1.0, 1.0), method="mboit", moments=moments, kind=kind)
     np.testing.assert_allclose(result, np.prod(1 - alphas), rtol=1e-12)
 
 
@@ -60,21 +63,24 @@ def test_mboit_is_exact_for_up_to_n_plus_one_fragments_with_beta_zero(rng, momen
         np.testing.assert_allclose(mboit, exact, atol=BIAS_TOLERANCE)
 
 
-def test_a_single_fragment_is_exact_for_any_beta():
+@pytest.mark.parametrize("kind, moments", VARIANTS)
+def test_a_single_fragment_is_exact_for_any_beta(kind, moments):
     for beta in (0.0, 0.25, 1.0):
-        np.testing.assert_allclose(oit.composite([4.0], [0.6], [[0.9, 0.5, 0.1]], (0, 0, 1), method="mboit", beta=beta),
-                                   [0.54, 0.3, 0.06 + 0.4], atol=1e-12)
+        np.testing.assert_allclose(oit.composite([4.0], [0.6], [[0.9, 0.5, 0.1]], (0, 0, 1), method="mboit", beta=beta,
+                                                 kind=kind, moments=moments), [0.54, 0.3, 0.06 + 0.4], atol=1e-12)
 
 
-def test_mboit_error_falls_with_more_moments(rng):
-    errors = {4: [], 6: [], 8: []}
+@pytest.mark.parametrize("kind, counts", [("power", (4, 6, 8)), ("trig", (2, 3, 4))])
+def test_mboit_error_falls_with_more_moments(rng, kind, counts):
+    errors = {m: [] for m in counts}
     for _ in range(200):
         depths, alphas, colors = random_pixel(rng, 8)
         exact = oit.composite(depths, alphas, colors)
         for m in errors:
-            errors[m].append(np.abs(oit.composite(depths, alphas, colors, method="mboit", moments=m) - exact).mean())
-    means = {m: np.mean(e) for m, e in errors.items()}
-    assert means[4] > means[6] > means[8], means
+            result = oit.composite(depths, alphas, colors, method="mboit", moments=m, kind=kind)
+            errors[m].append(np.abs(result - exact).mean())
+    means = [np.mean(errors[m]) for m in counts]
+    assert means[0] > means[1] > means[2], means
 
 
 def test_wboit_is_exact_for_one_fragment_and_keeps_coverage(rng):
@@ -85,12 +91,15 @@ def test_wboit_is_exact_for_one_fragment_and_keeps_coverage(rng):
         np.testing.assert_allclose(result, np.prod(1 - alphas), rtol=1e-12)
 
 
-@pytest.mark.parametrize("method", ["exact", "wboit", "mboit"])
+@pytest.mark.parametrize("method", ["exact", "wboit", "mboit", "mboit_trig"])
 def test_degenerate_pixels_never_give_nan(method):
+    kind = "trig" if method == "mboit_trig" else "power"
+    method = "mboit" if method == "mboit_trig" else method
     cases = [([], [], np.zeros((0, 3))), ([5.0] * 4, [0.5] * 4, np.ones((4, 3))), ([2.0, 3.0], [1.0, 1.0], np.ones((2, 3))),
              ([2.0, 3.0], [0.0, 0.0], np.ones((2, 3)))]
     for depths, alphas, colors in cases:
-        result = oit.composite(depths, alphas, colors, (0.5, 0.5, 0.5), method=method)
+        result = oit.composite(depths, alphas, colors, (0.5, 0.5, 0.5), method=method, kind=kind,
+                               moments=3 if kind == "trig" else 4)
         assert np.all(np.isfinite(result)), (depths, alphas)
 
 
@@ -102,7 +111,8 @@ def test_degenerate_pixels_never_give_nan(method):
         (dict(depths=[-1.0]), r"depths\[0\] must be > 0"),
         (dict(method="mboit", moments=5), "moments must be 4, 6 or 8"),
         (dict(method="sorted"), "method must be"),
-        (dict(method="mboit", kind="trig"), "not implemented"),
+        (dict(method="mboit", kind="complex"), "kind must be 'power' or 'trig'"),
+        (dict(method="mboit", kind="trig", moments=6), "trigonometric moments must be 2, 3 or 4"),
         (dict(method="peel"), "needs layers"),
         (dict(colors=[[1, 0, 0], [0, 1, 0]]), "same fragments"),
     ],

@@ -106,8 +106,9 @@ void bind_raster(py::module_& m) {
           } else if (method == "wboit") {
             out = composite_wboit(fragments, bg, weight);
           } else if (method == "mboit") {
-            if (kind != "power") throw_invalid("kind must be 'power' (trigonometric moments are not implemented yet)");
+            if (kind != "power" && kind != "trig") throw_invalid("kind must be 'power' or 'trig' (got '", kind, "')");
             MbOitOptions options;
+            options.trigonometric = kind == "trig";
             options.moments = moments;
             options.beta = beta;
             if (bias) options.bias = *bias;

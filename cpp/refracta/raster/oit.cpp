@@ -4,8 +4,12 @@
 #include "refracta/core/error.h"
 #include "refracta/raster/moments.h"
 
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 namespace refracta {
 
@@ -62,15 +66,78 @@ Vec3d composite_wboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   return average * (1.0 - revealage) + background * revealage;
 }
 
+namespace {
+
+using Complex = std::complex<double>;
+
+// Monotone in the angle of (x, y) on the unit circle, range [-1, 7) (Peters' circleToParameter).
+double circle_to_parameter(double x, double y) {
+  double r = std::abs(y) - std::abs(x);
+  r = x < 0.0 ? 2.0 - r : r;
+  return y < 0.0 ? 6.0 - r : r;
+}
+
+// Absorbance in front of the query at angle phi0 from normalised trigonometric moments c_0..c_n
+// (MOMENTS.md 4.3): Toeplitz solve, roots on the unit circle, weights by a Vandermonde solve, the
+// query's own atom counted with beta and roots in the wrapping zone by a linear ramp.
+double trigonometric_absorbance(const std::vector<Complex>& c, double phi0, double beta) {
+  constexpr double kWrap = kPi / 10.0;  // wrapping-zone angle theta
+  const double p_b = circle_to_parameter(std::cos(2.0 * kPi - kWrap), std::sin(2.0 * kPi - kWrap));
+  const double ramp_scale = 1.0 / (7.0 - p_b), ramp_offset = 1.0 - 7.0 / (7.0 - p_b);
+  const int n = int(c.size()) - 1;
+  Eigen::MatrixXcd toeplitz(n + 1, n + 1);
+  for (int j = 0; j <= n; ++j) {
+    for (int k = 0; k <= n; ++k) toeplitz(j, k) = j >= k ? c[j - k] : std::conj(c[k - j]);
+  }
+  const Complex u0 = std::polar(1.0, phi0);
+  Eigen::VectorXcd rhs(n + 1);
+  for (int j = 0; j <= n; ++j) rhs[j] = std::pow(u0, j);
+  Eigen::LDLT<Eigen::MatrixXcd> ldlt(toeplitz);
+  if (ldlt.info() != Eigen::Success || ldlt.vectorD().real().minCoeff() <= 1e-14) return beta;
+  const Eigen::VectorXcd x = ldlt.solve(rhs);
+  int degree = n;
+  const double scale = x.cwiseAbs().maxCoeff();
+  while (degree > 0 && std::abs(x[degree]) <= 1e-12 * scale) --degree;
+  std::vector<Complex> support = {u0};
+  if (degree > 0) {
+    Eigen::MatrixXcd companion = Eigen::MatrixXcd::Zero(degree, degree);
+    for (int i = 1; i < degree; ++i) companion(i, i - 1) = 1.0;
+    for (int i = 0; i < degree; ++i) companion(i, degree - 1) = -std::conj(x[i]) / std::conj(x[degree]);
+    Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(companion, false);
+    if (solver.info() != Eigen::Success) return beta;
+    for (int i = 0; i < degree; ++i) support.push_back(solver.eigenvalues()[i] / std::abs(solver.eigenvalues()[i]));
+  }
+  const int k = int(support.size());
+  Eigen::MatrixXcd vandermonde(k, k);
+  Eigen::VectorXcd moments(k);
+  for (int j = 0; j < k; ++j) {
+    for (int i = 0; i < k; ++i) vandermonde(j, i) = std::pow(support[i], j);
+    moments[j] = c[j];
+  }
+  const Eigen::VectorXcd w = vandermonde.fullPivLu().solve(moments);
+  if (!w.allFinite()) return beta;
+  const double p0 = circle_to_parameter(u0.real(), u0.imag());
+  double absorbance = beta * w[0].real();
+  for (int i = 1; i < k; ++i) {
+    const double p = circle_to_parameter(support[i].real(), support[i].imag());
+    const double in_front = (p < p0 ? 1.0 : 0.0) + std::clamp(p * ramp_scale + ramp_offset, 0.0, 1.0);
+    absorbance += w[i].real() * in_front;
+  }
+  return std::isfinite(absorbance) ? std::clamp(absorbance, 0.0, 1.0) : beta;
+}
+
+}  // namespace
+
 Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& background, const MbOitOptions& options) {
   // Published fp32 bias vectors and strengths (MOMENTS.md 4.4).
   static const std::vector<double> kBias4 = {0, 0.375, 0, 0.375};
   static const std::vector<double> kBias6 = {0, 0.48, 0, 0.451, 0, 0.45};
   static const std::vector<double> kBias8 = {0, 0.75, 0, 0.676667, 0, 0.63, 0, 0.600303};
   const int m = options.moments;
-  if (m != 4 && m != 6 && m != 8) throw_invalid("moments must be 4, 6 or 8 (got ", m, ")");
+  if (options.trigonometric && (m < 2 || m > 4)) throw_invalid("trigonometric moments must be 2, 3 or 4 (got ", m, ")");
+  if (!options.trigonometric && m != 4 && m != 6 && m != 8) throw_invalid("moments must be 4, 6 or 8 (got ", m, ")");
   if (!(options.beta >= 0.0 && options.beta <= 1.0)) throw_invalid("beta must be in [0, 1] (got ", options.beta, ")");
-  const std::vector<double>& target = m == 4 ? kBias4 : (m == 6 ? kBias6 : kBias8);
+  const std::vector<double>& target = m == 6 ? kBias6 : (m == 8 ? kBias8 : kBias4);
   const double alpha_bias = options.bias >= 0.0 ? options.bias : (m == 4 ? 5e-7 : (m == 6 ? 5e-6 : 5e-5));
   if (fragments.empty()) return background;
   // Log depth warp to [-1, 1] over the given or the fragments' range (MOMENTS.md 4.2).
@@ -84,6 +151,33 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   auto warp = [&](double z) {
     return std::clamp((std::log(std::clamp(z, z_near, z_far)) - log_near) / log_range, 0.0, 1.0) * 2.0 - 1.0;
   };
+  if (options.trigonometric) {
+    // Depths fill [0, 2 pi - theta] of the circle (MOMENTS.md 4.2); bias scales toward uniform.
+    const double kWrap = kPi / 10.0;
+    auto angle = [&](double z) { return (warp(z) + 1.0) * (kPi - kWrap / 2.0); };
+    std::vector<Complex> c(m + 1, Complex(0.0));
+    double total = 0.0;
+    for (const Fragment& f : fragments) {
+      const double a = -std::log(1.0 - std::min(f.alpha, 0.999));
+      total += a;
+      for (int j = 0; j <= m; ++j) c[j] += a * std::polar(1.0, j * angle(f.depth));
+    }
+    const double total_transmittance = std::exp(-total);
+    if (total < 0.00100050033) return background * total_transmittance;
+    const double trig_bias = options.bias >= 0.0 ? options.bias : (m == 2 ? 4e-4 : 2e-4);
+    for (int j = 1; j <= m; ++j) c[j] *= (1.0 - trig_bias) / total;
+    c[0] = 1.0;
+    Vec3d accum = Vec3d::Zero();
+    double accum_alpha = 0.0;
+    for (const Fragment& f : fragments) {
+      const double alpha = std::min(f.alpha, 0.999);
+      const double t = std::clamp(std::exp(-total * trigonometric_absorbance(c, angle(f.depth), options.beta)), 0.0, 1.0);
+      accum += alpha * t * f.colour;
+      accum_alpha += alpha * t;
+    }
+    if (!(accum_alpha > 0.0)) return background * total_transmittance;
+    return total_transmittance * background + (1.0 - total_transmittance) * accum / accum_alpha;
+  }
   // Pass 1: absorbance a = -ln(1 - alpha), alpha clamped so a stays finite (vkQuake: 0.999).
   std::vector<double> b(m + 1, 0.0);
   for (const Fragment& f : fragments) {

@@ -18,7 +18,8 @@ struct Fragment {
 };
 
 struct MbOitOptions {
-  int moments = 4;              // 4, 6 or 8 power moments
+  bool trigonometric = false;   // power moments (4, 6, 8) or trigonometric ones (2, 3, 4 complex)
+  int moments = 4;              // 4, 6 or 8 power moments; 2, 3 or 4 trigonometric
   double beta = 0.25;           // overestimation: the share of the fragment's own layer in front
   double bias = -1.0;           // < 0: the published fp32 value for the moment count
   double z_near = 0.0, z_far = 0.0;  // log-warp range; z_far <= z_near: the fragments' own range
