@@ -83,3 +83,10 @@ def test_image_file_errors(tmp_path):
     (tmp_path / "bad.png").write_text("not an image")
     with pytest.raises(refracta.IoError):
         refracta.io.read_image(tmp_path / "bad.png")
+
+
+def test_pick_rejects_non_finite_pixels():
+    scene = refracta.Scene()
+    camera = refracta.Camera([0, 0, 0], [1, 0, 0], width=4, height=4)
+    with pytest.raises(ValueError, match="finite"):
+        camera.pick(scene, float("nan"), 1.0)

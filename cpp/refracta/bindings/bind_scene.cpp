@@ -195,6 +195,7 @@ vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (
            py::arg("points"), "(u, v, depth) per point (N, 3); depth [m] along the view axis, <= 0 behind.")
       .def("pick",
            [](const Camera& c, const RenderScene& s, double u, double v) -> py::object {
+             if (!std::isfinite(u) || !std::isfinite(v)) throw_invalid("u and v must be finite");
              const auto hit = s.geometry.intersect(c.position(), c.direction(u, v), 1e7);
              if (!hit) return py::none();
              return points_to_array({hit->point}).reshape({py::ssize_t(3)});

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <complex>
 #include <vector>
 
 namespace refracta {
@@ -21,6 +22,11 @@ struct MomentBound {
 // root is not real, or anything is not finite: lower = 1 if z_f > b_1 else 0... replaced by the
 // caller's choice; here: L = 0, w0 = 1 (MBOIT then returns beta, exact for a single atom at z_f).
 MomentBound canonical_bound(const std::vector<double>& b, double z_f);
+
+// The same bound for trigonometric moments c_0 = 1, c_1 .. c_n = E[e^(i j phi)] of angles in
+// [0, 2 pi - pi/10] (MBOIT, MOMENTS.md 4.3), at the query angle phi0: Toeplitz solve, roots on the
+// unit circle; roots in the wrapping zone count partly in front (a linear ramp). Not clamped.
+MomentBound trigonometric_bound(const std::vector<std::complex<double>>& c, double phi0);
 
 // (1 - alpha) b + alpha b* on b_1 .. b_m.
 std::vector<double> bias_moments(const std::vector<double>& b, double alpha, const std::vector<double>& target);

@@ -4,9 +4,6 @@
 #include "refracta/core/error.h"
 #include "refracta/raster/moments.h"
 
-#include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -66,68 +63,6 @@ Vec3d composite_wboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   return average * (1.0 - revealage) + background * revealage;
 }
 
-namespace {
-
-using Complex = std::complex<double>;
-
-// Monotone in the angle of (x, y) on the unit circle, range [-1, 7) (Peters' circleToParameter).
-double circle_to_parameter(double x, double y) {
-  double r = std::abs(y) - std::abs(x);
-  r = x < 0.0 ? 2.0 - r : r;
-  return y < 0.0 ? 6.0 - r : r;
-}
-
-// Absorbance in front of the query at angle phi0 from normalised trigonometric moments c_0..c_n
-// (MOMENTS.md 4.3): Toeplitz solve, roots on the unit circle, weights by a Vandermonde solve, the
-// query's own atom counted with beta and roots in the wrapping zone by a linear ramp.
-double trigonometric_absorbance(const std::vector<Complex>& c, double phi0, double beta) {
-  constexpr double kWrap = kPi / 10.0;  // wrapping-zone angle theta
-  const double p_b = circle_to_parameter(std::cos(2.0 * kPi - kWrap), std::sin(2.0 * kPi - kWrap));
-  const double ramp_scale = 1.0 / (7.0 - p_b), ramp_offset = 1.0 - 7.0 / (7.0 - p_b);
-  const int n = int(c.size()) - 1;
-  Eigen::MatrixXcd toeplitz(n + 1, n + 1);
-  for (int j = 0; j <= n; ++j) {
-    for (int k = 0; k <= n; ++k) toeplitz(j, k) = j >= k ? c[j - k] : std::conj(c[k - j]);
-  }
-  const Complex u0 = std::polar(1.0, phi0);
-  Eigen::VectorXcd rhs(n + 1);
-  for (int j = 0; j <= n; ++j) rhs[j] = std::pow(u0, j);
-  Eigen::LDLT<Eigen::MatrixXcd> ldlt(toeplitz);
-  if (ldlt.info() != Eigen::Success || ldlt.vectorD().real().minCoeff() <= 1e-14) return beta;
-  const Eigen::VectorXcd x = ldlt.solve(rhs);
-  int degree = n;
-  const double scale = x.cwiseAbs().maxCoeff();
-  while (degree > 0 && std::abs(x[degree]) <= 1e-12 * scale) --degree;
-  std::vector<Complex> support = {u0};
-  if (degree > 0) {
-    Eigen::MatrixXcd companion = Eigen::MatrixXcd::Zero(degree, degree);
-    for (int i = 1; i < degree; ++i) companion(i, i - 1) = 1.0;
-    for (int i = 0; i < degree; ++i) companion(i, degree - 1) = -std::conj(x[i]) / std::conj(x[degree]);
-    Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(companion, false);
-    if (solver.info() != Eigen::Success) return beta;
-    for (int i = 0; i < degree; ++i) support.push_back(solver.eigenvalues()[i] / std::abs(solver.eigenvalues()[i]));
-  }
-  const int k = int(support.size());
-  Eigen::MatrixXcd vandermonde(k, k);
-  Eigen::VectorXcd moments(k);
-  for (int j = 0; j < k; ++j) {
-    for (int i = 0; i < k; ++i) vandermonde(j, i) = std::pow(support[i], j);
-    moments[j] = c[j];
-  }
-  const Eigen::VectorXcd w = vandermonde.fullPivLu().solve(moments);
-  if (!w.allFinite()) return beta;
-  const double p0 = circle_to_parameter(u0.real(), u0.imag());
-  double absorbance = beta * w[0].real();
-  for (int i = 1; i < k; ++i) {
-    const double p = circle_to_parameter(support[i].real(), support[i].imag());
-    const double in_front = (p < p0 ? 1.0 : 0.0) + std::clamp(p * ramp_scale + ramp_offset, 0.0, 1.0);
-    absorbance += w[i].real() * in_front;
-  }
-  return std::isfinite(absorbance) ? std::clamp(absorbance, 0.0, 1.0) : beta;
-}
-
-}  // namespace
-
 Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& background, const MbOitOptions& options) {
   // Published fp32 bias vectors and strengths (MOMENTS.md 4.4).
   static const std::vector<double> kBias4 = {0, 0.375, 0, 0.375};
@@ -155,7 +90,7 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
     // Depths fill [0, 2 pi - theta] of the circle (MOMENTS.md 4.2); bias scales toward uniform.
     const double kWrap = kPi / 10.0;
     auto angle = [&](double z) { return (warp(z) + 1.0) * (kPi - kWrap / 2.0); };
-    std::vector<Complex> c(m + 1, Complex(0.0));
+    std::vector<std::complex<double>> c(m + 1, 0.0);
     double total = 0.0;
     for (const Fragment& f : fragments) {
       const double a = -std::log(1.0 - std::min(f.alpha, 0.999));
@@ -171,7 +106,9 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
     double accum_alpha = 0.0;
     for (const Fragment& f : fragments) {
       const double alpha = std::min(f.alpha, 0.999);
-      const double t = std::clamp(std::exp(-total * trigonometric_absorbance(c, angle(f.depth), options.beta)), 0.0, 1.0);
+      const MomentBound bound = trigonometric_bound(c, angle(f.depth));
+      const double absorbance = std::clamp(bound.lower + options.beta * bound.at_query, 0.0, 1.0);
+      const double t = std::clamp(std::exp(-total * absorbance), 0.0, 1.0);
       accum += alpha * t * f.colour;
       accum_alpha += alpha * t;
     }

@@ -258,8 +258,9 @@ RayNode<double> ElevationTable::LazyPath::node(size_t k) const {
 
 double ElevationTable::LazyPath::lowest_from(size_t k) const {
   if (exact_) return exact_lowest_[k];
-  // The interpolated path lies between its stencil's paths up to the table tolerance: bound it by
-  // the lowest of the two bracketing paths at the same node fraction, less a margin.
+  // The interpolated path lies between its bracketing paths up to the error the table was refined
+  // to (accepted at 4 (tol + angular_tol s), see the constructor); bound it by the
+  // lowest of the two from one node earlier on, less that error.
   const auto& a = table_->entries_[interval_];
   const auto& b = table_->entries_[interval_ + 1];
   const auto& t = table_->entries_[template_];
@@ -268,7 +269,9 @@ double ElevationTable::LazyPath::lowest_from(size_t k) const {
     const size_t index = std::min(entry.lowest.size() - 1, size_t(std::floor(fraction * (entry.lowest.size() - 1))));
     return entry.lowest[index > 0 ? index - 1 : 0];
   };
-  return std::min(at(a), at(b)) - 1.0;
+  const double length = std::max(a.path->length(), b.path->length());
+  const double margin = 4.0 * (table_->options_.tol + table_->options_.angular_tol * length);
+  return std::min(at(a), at(b)) - margin;
 }
 
 RayPath ElevationTable::path(double elevation) const {
