@@ -21,11 +21,7 @@ double CurvedEarth::true_height(double y) const { return radius_ * std::expm1(y 
 double CurvedEarth::flat_height(double h) const { return radius_ * std::log1p(h / radius_); }
 
 void CurvedEarth::evaluate_height(double y, double* n, double* dn_dy) const {
-  const double scale = std::exp(y / radius_);  // r / R = dh/dy'
-  double n_base, dn_base;
-  base_->evaluate_height(radius_ * (scale - 1.0), &n_base, &dn_base);
-  *n = n_base * scale;
-  *dn_dy = scale * (dn_base * scale + n_base / radius_);
+  flattened_height(*base_, radius_, y, n, dn_dy);
 }
 
 void CurvedEarth::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {

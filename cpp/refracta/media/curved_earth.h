@@ -9,9 +9,23 @@
 
 #include "refracta/media/index_field.h"
 
+#include <cmath>
+
 namespace refracta {
 
 constexpr double kEarthRadius = 6371e3;  // [m], mean radius
+
+// n'(y') and dn'/dy' of the flattened atmosphere from a height-only base with
+// base.evaluate_height(h, &n, &dn_dh); templated so editing differentiates through it.
+template <class T, class Base>
+void flattened_height(const Base& base, const T& radius, const T& y, T* n, T* dn_dy) {
+  using std::exp;
+  const T scale = exp(y / radius);  // r / R = dh/dy'
+  T n_base, dn_base;
+  base.evaluate_height(radius * (scale - T(1.0)), &n_base, &dn_base);
+  *n = n_base * scale;
+  *dn_dy = scale * (dn_base * scale + n_base / radius);
+}
 
 class CurvedEarth : public IndexField {
  public:

@@ -53,6 +53,10 @@ class IndexField {
 
 using FieldPtr = std::shared_ptr<const IndexField>;
 
+// The Config of a model with no fixed data besides its parameters. A model's Config is a type
+// outside the model template, so Model<double> and Model<Jet> share it.
+struct NoConfig {};
+
 // Temperature and pressure of a physical air column (fields built from air properties).
 class AirColumn {
  public:

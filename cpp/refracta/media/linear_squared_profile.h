@@ -11,7 +11,7 @@ namespace refracta {
 template <class T>
 class LinearSquaredModel : public HeightOnlyModel<LinearSquaredModel<T>, T> {
  public:
-  struct Config {};
+  using Config = NoConfig;
   static constexpr const char* kTypeName = "LinearSquaredProfile";
 
   static std::vector<ParamSpec> param_specs(const Config&) {

@@ -19,7 +19,7 @@ namespace refracta {
 template <class T>
 class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
  public:
-  struct Config {};
+  using Config = NoConfig;
   static constexpr const char* kTypeName = "LogisticProfile";
   enum Index { kNBg, kNInv, kNHot, kHCiso, kABg, kAInv, kAHot, kKs, kCount };
 

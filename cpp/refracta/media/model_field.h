@@ -1,6 +1,6 @@
 // ModelField: wraps a scalar-templated model (Model<T>) as a double IndexField, so each model is
 // written once. A model provides:
-//   struct Config;                                   fixed data that is not a parameter
+//   using Config = ...;       fixed data that is not a parameter, one type for every T (NoConfig)
 //   static const char* kTypeName; static constexpr bool kHeightOnly;
 //   static std::vector<ParamSpec> param_specs(const Config&);
 //   static void validate(const Config&, const std::vector<double>&);   throws invalid_argument

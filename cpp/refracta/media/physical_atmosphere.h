@@ -2,7 +2,7 @@
 // temperature and lapse rate adjustable) + an inversion layer (temperature rising by
 // inversion_dt across [inversion_base, inversion_base + inversion_thickness], quintic smooth step)
 // + a surface layer surface_dt e^(-h/surface_depth) for h >= 0 (hot road, warm or cold water;
-// constant below h = 0, where the ground is). Pressure is hydrostatic for that temperature
+// continued smoothly below h = 0, where the ground is). Pressure is hydrostatic for that temperature
 // profile (hydrostatic_column.h); n from the modified Edlén formula (air.h), optional humidity.
 // Defaults: the standard atmosphere, n - 1 = 2.7784e-4 at the ground at 550 nm.
 #pragma once
@@ -18,7 +18,7 @@ namespace refracta {
 template <class T>
 class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereModel<T>, T> {
  public:
-  struct Config {};
+  using Config = NoConfig;
   static constexpr const char* kTypeName = "PhysicalAtmosphere";
   enum Index {
     kGroundTemperature, kLapseRate, kGroundPressure, kInversionDt, kInversionBase,
@@ -84,12 +84,17 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
     smoothstep5((h - p_[kInversionBase]) / p_[kInversionThickness], &step, &dstep);
     *t += p_[kInversionDt] * step;
     *dt_dh += p_[kInversionDt] * dstep / p_[kInversionThickness];
+    // Below the ground the layer continues as dT (2 - e^(h/d)): T and dT/dh stay continuous at
+    // h = 0, so grad n has no jump there (a jump would cost rk4 an O(step) error and break the
+    // derivatives editing takes through a ray crossing it), and T stays bounded as h -> -inf.
     if (value_of(h) > 0.0) {
       const T surface = p_[kSurfaceDt] * exp(-h / p_[kSurfaceDepth]);
       *t += surface;
       *dt_dh -= surface / p_[kSurfaceDepth];
     } else {
-      *t += p_[kSurfaceDt];
+      const T rise = p_[kSurfaceDt] * exp(h / p_[kSurfaceDepth]);
+      *t += T(2.0) * p_[kSurfaceDt] - rise;
+      *dt_dh -= rise / p_[kSurfaceDepth];
     }
   }
 

@@ -16,12 +16,15 @@
 
 namespace refracta {
 
+// The sounding's fixed heights [m], strictly increasing (not parameters).
+struct SoundingHeights {
+  std::vector<double> heights;
+};
+
 template <class T>
 class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileModel<T>, T> {
  public:
-  struct Config {
-    std::vector<double> heights;  // [m], strictly increasing
-  };
+  using Config = SoundingHeights;
   static constexpr const char* kTypeName = "TemperatureProfile";
   static constexpr double kBelow = 2000.0, kAbove = 20000.0;  // modelled margin [m]
 

@@ -122,27 +122,31 @@ T first_plane_crossing(const PathSegment<T>& seg, const Vec3d& normal, double of
   return u;
 }
 
+// The plain double values of a node (the Jet's value parts).
+template <class T>
+RayNode<double> node_values(const RayNode<T>& a) {
+  auto v = [](const Vec3<T>& x) { return Vec3d(value_of(x.x()), value_of(x.y()), value_of(x.z())); };
+  return {value_of(a.s), v(a.x), v(a.v), value_of(a.n), v(a.grad)};
+}
+
+// A lower bound on the distance from q to the path between nodes a and b: the curve stays
+// within its bulge (from arc length vs chord) of the chord. Lets searches skip segments.
+inline double segment_distance_bound(const RayNode<double>& a, const RayNode<double>& b, const Vec3d& q) {
+  const double chord = (b.x - a.x).norm(), length = b.s - a.s;
+  const double bulge = 0.5 * std::sqrt(std::max(length * length - chord * chord, 0.0)) + 1e-9;
+  return (0.5 * (a.x + b.x) - q).norm() - 0.5 * chord - bulge;
+}
+
 // u in [0, 1] of the point of the segment closest to q (global over the segment: the best of
 // the ends and of Newton on (x(u) - q) . x'(u) = 0 from 9 starts), and its squared distance.
-template <class T>
-T closest_on_segment(const PathSegment<T>& seg, const Vec3<T>& q, double* distance2) {
-  auto dist2 = [&](double u) {
-    const Vec3<T> p = seg.position(T(u));
-    double d = 0;
-    for (int k = 0; k < 3; ++k) d += std::pow(value_of(p[k]) - value_of(q[k]), 2);
-    return d;
-  };
+inline double closest_on_segment(const PathSegment<double>& seg, const Vec3d& q, double* distance2) {
+  auto dist2 = [&](double u) { return (seg.position(u) - q).squaredNorm(); };
   double best_u = 0.0, best = dist2(0.0);
   for (int start = 0; start <= 8; ++start) {
     double u = start / 8.0;
     for (int it = 0; it < 30; ++it) {
-      const Vec3<T> p = seg.position(T(u)), dp = seg.velocity(T(u)), ddp = seg.acceleration(T(u));
-      double g = 0, dg = 0;
-      for (int k = 0; k < 3; ++k) {
-        const double e = value_of(p[k]) - value_of(q[k]);
-        g += e * value_of(dp[k]);
-        dg += value_of(dp[k]) * value_of(dp[k]) + e * value_of(ddp[k]);
-      }
+      const Vec3d e = seg.position(u) - q, dp = seg.velocity(u), ddp = seg.acceleration(u);
+      const double g = e.dot(dp), dg = dp.dot(dp) + e.dot(ddp);
       if (!(dg > 0.0)) break;
       const double next = std::clamp(u - g / dg, 0.0, 1.0);
       const bool done = std::abs(next - u) < 1e-15;
@@ -154,8 +158,16 @@ T closest_on_segment(const PathSegment<T>& seg, const Vec3<T>& q, double* distan
   }
   if (dist2(1.0) < best) best = dist2(1.0), best_u = 1.0;
   *distance2 = best;
-  T u(best_u);
-  if (best_u > 0.0 && best_u < 1.0) {  // one Newton step in T: derivatives of the interior optimum
+  return best_u;
+}
+
+// The closest point's u found in double, carried into T by one Newton step on
+// (x(u) - q) . x'(u) = 0 so that it has the derivatives of the interior optimum (an end point,
+// u = 0 or 1, keeps a constant u).
+template <class T>
+T refine_closest(const PathSegment<T>& seg, const Vec3<T>& q, double u_value) {
+  T u(u_value);
+  if (u_value > 0.0 && u_value < 1.0) {
     const Vec3<T> p = seg.position(u), dp = seg.velocity(u), ddp = seg.acceleration(u);
     const T g = (p - q).dot(dp), dg = dp.dot(dp) + (p - q).dot(ddp);
     if (value_of(dg) > 0.0) u = u - g / dg;

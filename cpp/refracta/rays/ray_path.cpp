@@ -41,11 +41,7 @@ ClosestPoint RayPath::closest_point(const Vec3d& q) const {
   for (size_t i = 0; i + 1 < nodes_.size(); ++i) {
     const RayNode<double>& a = nodes_[i];
     const RayNode<double>& b = nodes_[i + 1];
-    // Skip segments that cannot beat the best: the curve stays within `bulge` of its chord.
-    const double chord = (b.x - a.x).norm(), length = b.s - a.s;
-    const double bulge = 0.5 * std::sqrt(std::max(length * length - chord * chord, 0.0)) + 1e-9;
-    const Vec3d mid = 0.5 * (a.x + b.x);
-    if ((mid - q).norm() - 0.5 * chord - bulge > best.distance) continue;
+    if (segment_distance_bound(a, b, q) > best.distance) continue;
     const PathSegment<double> seg(a, b);
     double d2;
     const double u = closest_on_segment(seg, q, &d2);

@@ -1,0 +1,118 @@
+// EditProblem: free parameters, bounds and residual evaluation shared by both back-ends.
+#include "refracta/edit/edit_problem.h"
+
+#include "refracta/core/parallel.h"
+#include "refracta/edit/pair_miss.h"
+
+#include <ceres/cost_function.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace refracta {
+
+EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const ProblemSpec& spec,
+                         const std::atomic<bool>* cancel)
+    : field_(std::move(field)), pairs_(std::move(pairs)), options_(spec.pair),
+      derivatives_(spec.derivatives), context_(std::make_unique<EvaluationContext>()) {
+  if (!field_) throw_invalid("field must be an IndexField (got None)");
+  options_.validate();
+  validate_pairs(pairs_, options_);
+  context_->cancel = cancel;
+  values_ = field_->param_values();
+  const auto& specs = field_->param_specs();
+
+  std::vector<std::string> names = spec.free;
+  if (names.empty()) {
+    const auto gauge = field_->gauge_params();
+    for (const auto& s : specs) {
+      if (std::find(gauge.begin(), gauge.end(), s.name) == gauge.end()) names.push_back(s.name);
+    }
+  }
+  for (const auto& name : names) {
+    const int index = int(field_->param_index(name));  // throws, listing the valid names
+    if (std::find(free_.begin(), free_.end(), index) != free_.end()) {
+      throw_invalid("free parameter '", name, "' is listed twice");
+    }
+    free_.push_back(index);
+  }
+  for (const auto& [name, box] : spec.bounds) {
+    field_->param_index(name);
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      throw_invalid("bounds given for '", name, "', which is not a free parameter");
+    }
+  }
+  for (int index : free_) {
+    const ParamSpec& s = specs[index];
+    double lo = s.lower, hi = s.upper;
+    if (auto it = spec.bounds.find(s.name); it != spec.bounds.end()) std::tie(lo, hi) = it->second;
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
+      throw_invalid("bounds of '", s.name, "' must be finite with lower < upper (got [", lo, ", ", hi, "])");
+    }
+    const double x = values_[index];
+    if (x < lo || x > hi) {
+      throw_invalid("the start value of '", s.name, "' (", x, " ", s.unit, ") lies outside its bounds [",
+                    lo, ", ", hi, "]; widen them with bounds={'", s.name, "': (lower, upper)}");
+    }
+    start_.push_back(x);
+    lower_.push_back(lo);
+    upper_.push_back(hi);
+  }
+  if (free_.empty()) throw_invalid("no free parameters: name at least one in free");
+  costs_ = make_pair_costs(field_, values_, free_, pairs_, options_, derivatives_, context_.get());
+}
+
+EditProblem::~EditProblem() = default;
+
+std::vector<std::string> EditProblem::free_names() const {
+  std::vector<std::string> names;
+  for (int index : free_) names.push_back(field_->param_specs()[index].name);
+  return names;
+}
+
+bool EditProblem::evaluate(const std::vector<double>& x, std::vector<double>* residuals,
+                           std::vector<double>* jacobian) const {
+  const int m = num_free();
+  residuals->assign(num_residuals(), 0.0);
+  if (jacobian) jacobian->assign(size_t(num_residuals()) * m, 0.0);
+  std::vector<char> ok(pairs_.size(), 0);
+  WorkControl control;
+  parallel_for_each(int64_t(pairs_.size()), 1, control, [&](int64_t i) {
+    const double* parameters[] = {x.data()};
+    double* block = jacobian ? jacobian->data() + 3 * i * m : nullptr;
+    double* blocks[] = {block};
+    ok[i] = costs_[i]->Evaluate(parameters, residuals->data() + 3 * i, jacobian ? blocks : nullptr);
+  });
+  return std::all_of(ok.begin(), ok.end(), [](char v) { return v != 0; });
+}
+
+double EditProblem::cost(const std::vector<double>& x) const {
+  std::vector<double> r;
+  if (!evaluate(x, &r)) return std::numeric_limits<double>::infinity();
+  double sum = 0.0;
+  for (double v : r) sum += v * v;
+  return 0.5 * sum;
+}
+
+std::vector<double> EditProblem::full_values(const std::vector<double>& x) const {
+  std::vector<double> full = values_;
+  for (size_t i = 0; i < free_.size(); ++i) full[free_[i]] = x[i];
+  return full;
+}
+
+FieldPtr EditProblem::field_at(const std::vector<double>& x) const {
+  return field_->with_param_values(full_values(x));
+}
+
+std::vector<double> EditProblem::distances(const std::vector<double>& x) const {
+  const FieldPtr field = field_at(x);
+  std::vector<double> out(pairs_.size());
+  WorkControl control;
+  parallel_for_each(int64_t(pairs_.size()), 1, control, [&](int64_t i) {
+    out[i] = pair_miss<double>(*field, pairs_[i], options_).distance;
+  });
+  return out;
+}
+
+}  // namespace refracta

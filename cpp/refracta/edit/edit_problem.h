@@ -1,0 +1,67 @@
+// An edit: a field, its free parameters with bounds, and the point pairs' residual blocks.
+// Parameters the backends see are the free ones only; the rest stay at the start values.
+#pragma once
+
+#include "refracta/edit/pair_cost.h"
+
+#include <map>
+#include <string>
+#include <utility>
+
+namespace refracta {
+
+struct ProblemSpec {
+  // Names of the free parameters; empty: every parameter except the model's gauge ones.
+  std::vector<std::string> free;
+  // Bounds overriding the model's search box, by parameter name.
+  std::map<std::string, std::pair<double, double>> bounds;
+  Derivatives derivatives = Derivatives::kAutomatic;
+  PairOptions pair;
+};
+
+class EditProblem {
+ public:
+  // Throws std::invalid_argument for unknown names, empty or inverted bounds, a start outside
+  // the bounds, or bad pairs.
+  EditProblem(FieldPtr field, std::vector<PointPair> pairs, const ProblemSpec& spec,
+              const std::atomic<bool>* cancel);
+  ~EditProblem();
+
+  int num_free() const { return int(free_.size()); }
+  int num_residuals() const { return 3 * int(pairs_.size()); }
+  const std::vector<PointPair>& pairs() const { return pairs_; }
+  const std::vector<int>& free() const { return free_; }
+  std::vector<std::string> free_names() const;
+  const std::vector<double>& start() const { return start_; }   // free values at the start
+  const std::vector<double>& lower() const { return lower_; }
+  const std::vector<double>& upper() const { return upper_; }
+  Derivatives derivatives() const { return derivatives_; }
+  const std::vector<std::unique_ptr<ceres::CostFunction>>& costs() const { return costs_; }
+  EvaluationContext& context() const { return *context_; }
+
+  // Weighted residuals (3 per pair) at free values x and, if jacobian is given, the row-major
+  // (num_residuals x num_free) Jacobian; pairs in parallel. False when an evaluation failed.
+  bool evaluate(const std::vector<double>& x, std::vector<double>* residuals,
+                std::vector<double>* jacobian = nullptr) const;
+  // 1/2 sum of squared weighted residuals, or +inf when an evaluation failed.
+  double cost(const std::vector<double>& x) const;
+
+  // Every parameter value with the free ones at x, and the field they make.
+  std::vector<double> full_values(const std::vector<double>& x) const;
+  FieldPtr field_at(const std::vector<double>& x) const;
+  // Unweighted distance of each pair's path from its source [m] for the field at x.
+  std::vector<double> distances(const std::vector<double>& x) const;
+
+ private:
+  FieldPtr field_;
+  std::vector<PointPair> pairs_;
+  PairOptions options_;
+  Derivatives derivatives_;
+  std::vector<double> values_;
+  std::vector<int> free_;
+  std::vector<double> start_, lower_, upper_;
+  std::unique_ptr<EvaluationContext> context_;
+  std::vector<std::unique_ptr<ceres::CostFunction>> costs_;
+};
+
+}  // namespace refracta

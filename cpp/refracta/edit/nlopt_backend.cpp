@@ -1,0 +1,133 @@
+// The nlopt back-end: any nlopt algorithm by name on the same residual blocks. The free
+// parameters are mapped to [0, 1] by their bounds, so derivative-free methods see a well-scaled
+// box; gradient-based ones get J^T r from the automatic (or numeric) derivatives.
+#include "refracta/edit/edit_settings.h"
+
+#include <nlopt.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace refracta {
+
+void check_nlopt_algorithm(const std::string& algorithm) {
+  if (nlopt_algorithm_from_string(algorithm.c_str()) == nlopt_algorithm(-1)) {
+    throw_invalid("unknown nlopt algorithm '", algorithm,
+                  "' (e.g. LN_BOBYQA, LN_NELDERMEAD, LN_SBPLX, LN_COBYLA, GN_DIRECT_L, LD_LBFGS, LD_MMA)");
+  }
+}
+
+namespace {
+
+struct Objective {
+  const EditProblem& problem;
+  const SolveSettings& settings;
+  WorkControl& control;
+  BackendResult& out;
+  nlopt::opt* opt = nullptr;
+  double best = std::numeric_limits<double>::infinity();
+
+  std::vector<double> to_params(const std::vector<double>& unit) const {
+    std::vector<double> x(unit.size());
+    for (size_t i = 0; i < unit.size(); ++i) {
+      x[i] = problem.lower()[i] + std::clamp(unit[i], 0.0, 1.0) * (problem.upper()[i] - problem.lower()[i]);
+    }
+    return x;
+  }
+
+  double operator()(const std::vector<double>& unit, std::vector<double>& grad) {
+    if (control.cancel.load()) opt->force_stop();
+    const std::vector<double> x = to_params(unit);
+    std::vector<double> r, jacobian;
+    ++out.evaluations;
+    control.done = out.evaluations;
+    double cost = std::numeric_limits<double>::infinity();
+    if (problem.evaluate(x, &r, grad.empty() ? nullptr : &jacobian)) {
+      cost = 0.0;
+      for (double v : r) cost += 0.5 * v * v;
+    }
+    if (!grad.empty()) {
+      const int m = problem.num_free();
+      for (int j = 0; j < m; ++j) {
+        double g = 0.0;
+        if (std::isfinite(cost)) {
+          for (int k = 0; k < problem.num_residuals(); ++k) g += jacobian[size_t(k) * m + j] * r[k];
+        }
+        grad[j] = g * (problem.upper()[j] - problem.lower()[j]);
+      }
+    }
+    if (cost < best) best = cost, out.x = x;
+    out.history.push_back(best);
+    // nlopt has no "failed evaluation": a huge finite cost steers it away.
+    return std::isfinite(cost) ? cost : 1e300;
+  }
+};
+
+std::string result_name(nlopt::result result) {
+  switch (result) {
+    case nlopt::SUCCESS: return "success";
+    case nlopt::STOPVAL_REACHED: return "target cost reached";
+    case nlopt::FTOL_REACHED: return "cost tolerance reached";
+    case nlopt::XTOL_REACHED: return "parameter tolerance reached";
+    case nlopt::MAXEVAL_REACHED: return "evaluation limit reached";
+    case nlopt::MAXTIME_REACHED: return "time limit reached";
+    default: return concat("result ", int(result));
+  }
+}
+
+}  // namespace
+
+BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& algorithm,
+                               const SolveSettings& settings, WorkControl& control) {
+  check_nlopt_algorithm(algorithm);
+  const int m = problem.num_free();
+  BackendResult out;
+  out.x = problem.start();
+  Objective objective{problem, settings, control, out};
+  std::vector<double> unit(m);
+  for (int i = 0; i < m; ++i) {
+    unit[i] = (problem.start()[i] - problem.lower()[i]) / (problem.upper()[i] - problem.lower()[i]);
+  }
+  control.total = settings.max_evaluations;
+  const std::string prefix = concat("nlopt ", algorithm, ": ");
+  try {
+    nlopt::opt opt(algorithm.c_str(), unsigned(m));
+    objective.opt = &opt;
+    opt.set_lower_bounds(std::vector<double>(m, 0.0));
+    opt.set_upper_bounds(std::vector<double>(m, 1.0));
+    opt.set_min_objective(
+        [](unsigned n, const double* x, double* grad, void* data) {
+          std::vector<double> point(x, x + n), gradient(grad ? n : 0);
+          const double f = (*static_cast<Objective*>(data))(point, gradient);
+          if (grad) std::copy(gradient.begin(), gradient.end(), grad);
+          return f;
+        },
+        &objective);
+    opt.set_ftol_rel(settings.function_tolerance);
+    opt.set_xtol_rel(settings.parameter_tolerance);
+    opt.set_maxeval(settings.max_evaluations);
+    if (settings.max_time > 0.0) opt.set_maxtime(settings.max_time);
+    if (settings.target_cost > 0.0) opt.set_stopval(settings.target_cost);
+    double minimum;
+    const nlopt::result result = opt.optimize(unit, minimum);
+    out.converged = result > 0 && result != nlopt::MAXEVAL_REACHED && result != nlopt::MAXTIME_REACHED;
+    out.message = prefix + result_name(result);
+  } catch (const nlopt::forced_stop&) {
+    if (control.cancel.load()) throw Cancelled();
+    out.message = prefix + "forced stop";
+  } catch (const nlopt::roundoff_limited&) {
+    out.converged = true;  // nlopt's own advice: the result is usually still useful
+    out.message = prefix + "stopped by round-off (the cost cannot be reduced further)";
+  } catch (const std::invalid_argument& error) {
+    out.message = prefix + "invalid arguments: " + error.what();
+  } catch (const std::bad_alloc&) {
+    out.message = prefix + "out of memory";
+  } catch (const std::runtime_error& error) {
+    out.message = prefix + "failure: " + error.what();
+  }
+  if (control.cancel.load()) throw Cancelled();
+  out.iterations = int(out.evaluations);
+  return out;
+}
+
+}  // namespace refracta

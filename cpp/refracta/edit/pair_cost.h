@@ -1,0 +1,34 @@
+// One residual block per point pair, as a ceres::CostFunction over the free parameters (one
+// parameter block of size free.size(); 3 residuals: sqrt(weight) times the miss vector). Both
+// back-ends use them: Ceres adds them to its Problem, nlopt calls Evaluate for values and
+// gradients. Derivatives are automatic (ceres::Jet through the templated field and integrator)
+// when the field has a templated model, central differences otherwise.
+#pragma once
+
+#include "refracta/edit/evaluation_context.h"
+#include "refracta/edit/point_pair.h"
+#include "refracta/media/index_field.h"
+
+#include <memory>
+#include <vector>
+
+namespace ceres {
+class CostFunction;
+}
+
+namespace refracta {
+
+enum class Derivatives { kAutomatic, kNumeric };
+const char* derivatives_name(Derivatives derivatives);  // "automatic", "numeric"
+
+// True when the field can be differentiated automatically.
+bool has_templated_model(const IndexField& field);
+
+// values: every parameter of the field (the fixed ones stay at these values); free: indices of
+// the parameters in the block. context must outlive the cost functions.
+std::vector<std::unique_ptr<ceres::CostFunction>> make_pair_costs(
+    const FieldPtr& field, const std::vector<double>& values, const std::vector<int>& free,
+    const std::vector<PointPair>& pairs, const PairOptions& options, Derivatives derivatives,
+    EvaluationContext* context);
+
+}  // namespace refracta

@@ -1,0 +1,56 @@
+// Validation of point pairs and their trace options.
+#include "refracta/edit/point_pair.h"
+
+#include "refracta/core/error.h"
+
+#include <cmath>
+
+namespace refracta {
+
+PairDistance parse_pair_distance(const std::string& name) {
+  if (name == "continuous") return PairDistance::kContinuous;
+  if (name == "vertex") return PairDistance::kVertex;
+  throw_invalid("distance must be 'continuous' or 'vertex' (got '", name, "')");
+}
+
+void PairOptions::validate() const {
+  if (method == TraceMethod::kStratified) {
+    throw_invalid("editing traces with 'rk45' or 'rk4' (the stratified tracer has no derivatives)");
+  }
+  if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
+  if (!(step >= 0.0) || !std::isfinite(step)) throw_invalid("step must be >= 0 (got ", step, ")");
+  if (ground && !std::isfinite(*ground)) throw_invalid("ground must be finite (got ", *ground, ")");
+  if (!(reach >= 1.0) || !std::isfinite(reach)) throw_invalid("reach must be >= 1 (got ", reach, ")");
+}
+
+TraceOptions PairOptions::trace_options(const PointPair& pair) const {
+  TraceOptions options;
+  options.method = method;
+  options.tol = tol;
+  options.step = step;
+  options.max_length = reach * pair.range() + 1.0;
+  options.stop_height = ground;
+  return options;
+}
+
+void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& options) {
+  if (pairs.empty()) throw_invalid("pairs is empty: give at least one PointPair");
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const PointPair& p = pairs[i];
+    if (!is_finite(p.origin)) throw_invalid("pair ", i, ": the eye position is not finite");
+    if (!is_finite(p.direction) || p.direction.norm() == 0.0) {
+      throw_invalid("pair ", i, ": the destination direction must be finite and non-zero");
+    }
+    if (!is_finite(p.source)) throw_invalid("pair ", i, ": the source point is not finite");
+    if (!(p.weight > 0.0) || !std::isfinite(p.weight)) {
+      throw_invalid("pair ", i, ": weight must be > 0 (got ", p.weight, ")");
+    }
+    if (!(p.range() > 0.0)) throw_invalid("pair ", i, ": the source is at the eye");
+    if (options.ground && p.origin.y() < *options.ground) {
+      throw_invalid("pair ", i, ": the eye (height ", p.origin.y(), " m) is below the ground (",
+                    *options.ground, " m)");
+    }
+  }
+}
+
+}  // namespace refracta

@@ -1,0 +1,50 @@
+// A point pair of the mirage editor (Choi 2017): light launched from the eye toward a destination
+// (where the artist wants the image) should pass through a source (the scene point to be seen
+// there). PairOptions say how that light path is traced and measured.
+#pragma once
+
+#include "refracta/core/math.h"
+#include "refracta/rays/trace_options.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace refracta {
+
+struct PointPair {
+  Vec3d origin = Vec3d::Zero();     // the eye [m]
+  Vec3d direction = Vec3d::UnitX(); // toward the destination (any length > 0)
+  Vec3d source = Vec3d::UnitX();    // the scene point to be seen along it [m]
+  double weight = 1.0;              // importance; the residual is scaled by sqrt(weight)
+
+  double range() const { return (source - origin).norm(); }  // [m]
+};
+
+// How far a path passes from its source.
+//   continuous: closest approach of the continuous (quintic Hermite) path, smooth in the field's
+//               parameters;
+//   vertex:     the nearest integrator node (the original editor's measure, piecewise constant).
+enum class PairDistance { kContinuous, kVertex };
+
+struct PairOptions {
+  TraceMethod method = TraceMethod::kRk45;  // rk45 or rk4 (stratified has no derivatives)
+  double tol = 1e-9;                        // rk45 target position error [m]
+  double step = 0.0;                        // rk4 step [m] (0: 0.3, the original's)
+  std::optional<double> ground;             // paths end where they descend through it [m]
+  PairDistance distance = PairDistance::kContinuous;
+  // The path is traced to reach x |source - eye| + 1 m, and stops early once it is past the source.
+  double reach = 1.5;
+
+  // Throws std::invalid_argument naming the bad field.
+  void validate() const;
+  TraceOptions trace_options(const PointPair& pair) const;
+};
+
+PairDistance parse_pair_distance(const std::string& name);  // "continuous", "vertex"
+
+// Throws std::invalid_argument naming the pair and the bad value (NaN, zero direction,
+// weight <= 0, source at the eye, eye below the ground).
+void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& options);
+
+}  // namespace refracta

@@ -1,0 +1,359 @@
+"""refracta.edit: find the atmosphere that puts a mirage image where an artist wants it.
+
+The original mirage editor (Choi 2017) let an artist click point pairs: a *destination* (where the
+image should appear: a pixel of a camera, or a 3D point the eye looks toward) and a *source* (the
+scene point to be seen there). The light path launched from the eye toward the destination should
+pass through the source. refracta measures each pair by the closest approach of the continuous
+path to the source (the miss vector, perpendicular to the path) and minimises the weighted sum of
+squared misses over the field's parameters:
+
+* ``backend='ceres'``: Levenberg-Marquardt with one residual block per pair and exact derivatives
+  by automatic differentiation (ceres::Jet) through the same integrator that renders;
+* ``backend='nlopt:<ALGORITHM>'``: any nlopt algorithm (LN_BOBYQA was the original editor's
+  choice; LD_LBFGS and LD_MMA get the automatic derivatives), for comparison.
+
+Example::
+
+    import refracta
+    from refracta.edit import PointPair, solve
+
+    field = refracta.LogisticProfile()
+    pairs = [PointPair(destination=(1000.0, 1.2, 0.0), source=(1000.0, 3.0, 0.0))]
+    result = solve(field, eye_or_camera=(0.0, 1.5, 0.0), pairs=pairs, free=["k_s", "h_ciso"])
+    print(result)            # the report: costs, distances, parameters before and after
+    solved = result.field
+
+Units: metres (scene units for LogisticProfile); cost is 1/2 sum weight * miss^2 [m^2].
+"""
+
+from __future__ import annotations
+
+import time as _time
+from dataclasses import dataclass, field as _dataclass_field
+from typing import Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from refracta import _core
+from refracta._progress import ProgressBar
+
+__all__ = ["EditResult", "PointPair", "distances", "jacobian", "solve", "NLOPT_ALGORITHMS"]
+
+#: nlopt algorithms known to work on edits (any other nlopt name is accepted too).
+NLOPT_ALGORITHMS = ("LN_BOBYQA", "LN_NELDERMEAD", "LN_SBPLX", "LN_COBYLA", "GN_DIRECT_L", "LD_LBFGS", "LD_MMA")
+
+
+def _vector(value, sizes, what: str) -> np.ndarray:
+    array = np.asarray(value, dtype=float)
+    if array.ndim != 1 or array.size not in sizes or not np.all(np.isfinite(array)):
+        wanted = " or ".join(str(s) for s in sizes)
+        raise ValueError(f"{what} must be {wanted} finite numbers (got {value!r})")
+    return array
+
+
+@dataclass(frozen=True)
+class PointPair:
+    """One constraint of an edit.
+
+    destination: where the image should appear -- a pixel ``(u, v)`` of the camera passed to
+        solve(), or a 3D point [m] the eye looks toward (only its direction from the eye matters).
+    source: the 3D scene point [m] that should be seen there (``camera.pick(scene, u, v)`` finds
+        the point a pixel shows without atmosphere).
+    weight: importance (> 0); the pair's miss is scaled by sqrt(weight) in the cost.
+    """
+
+    destination: Tuple[float, ...]
+    source: Tuple[float, float, float]
+    weight: float = 1.0
+
+    def __post_init__(self):
+        destination = _vector(self.destination, (2, 3), "PointPair destination")
+        source = _vector(self.source, (3,), "PointPair source")
+        weight = float(self.weight)
+        if not (weight > 0.0 and np.isfinite(weight)):
+            raise ValueError(f"PointPair weight must be > 0 (got {self.weight!r})")
+        object.__setattr__(self, "destination", tuple(destination))
+        object.__setattr__(self, "source", tuple(source))
+        object.__setattr__(self, "weight", weight)
+
+    @property
+    def is_pixel(self) -> bool:
+        return len(self.destination) == 2
+
+
+def _pair_rays(eye_or_camera, pairs: Sequence[PointPair]):
+    """(eye, camera or None, origins, directions, sources, weights) of the pairs."""
+    if isinstance(pairs, PointPair):
+        pairs = [pairs]
+    pairs = list(pairs)
+    if not pairs:
+        raise ValueError("pairs is empty: give at least one PointPair")
+    for i, pair in enumerate(pairs):
+        if not isinstance(pair, PointPair):
+            raise ValueError(f"pairs[{i}] must be a PointPair (got {type(pair).__name__})")
+    camera = eye_or_camera if isinstance(eye_or_camera, _core.Camera) else None
+    eye = camera.position if camera is not None else _vector(eye_or_camera, (3,), "eye_or_camera")
+    directions = []
+    for i, pair in enumerate(pairs):
+        if pair.is_pixel:
+            if camera is None:
+                raise ValueError(f"pairs[{i}] gives a pixel destination {pair.destination}; pass a Camera "
+                                 "as eye_or_camera (or give the destination as a 3D point)")
+            directions.append(camera.ray(*pair.destination)[1])
+        else:
+            direction = np.asarray(pair.destination) - eye
+            if not np.linalg.norm(direction) > 0.0:
+                raise ValueError(f"pairs[{i}]: the destination is at the eye")
+            directions.append(direction)
+    origins = np.tile(eye, (len(pairs), 1))
+    sources = np.array([p.source for p in pairs])
+    weights = np.array([p.weight for p in pairs])
+    return pairs, eye, camera, origins, np.array(directions), sources, weights
+
+
+def _pair_options(integrator: str, tol: float, step: Optional[float], ground: Optional[float],
+                  distance: str, reach: float):
+    if integrator not in ("rk45", "rk4"):
+        raise ValueError(f"integrator must be 'rk45' or 'rk4' (got {integrator!r})")
+    return _core._PairOptions(integrator, tol, step, ground, distance, reach)
+
+
+@dataclass
+class EditResult:
+    """What solve() found. ``print(result)`` shows the report.
+
+    field: the solved field; start: the field it started from. cost / initial_cost: 1/2 sum of
+    weight * miss^2 [m^2]; distances: each pair's miss [m] after solving (initial_distances before).
+    success: the back-end converged and every pair's miss is below accept_angle times its range.
+    history: cost per iteration (ceres) or best cost per evaluation (nlopt). free: the optimised
+    parameters; insensitive: requested free parameters no pair depends on (held fixed).
+    iterations, evaluations (cost evaluations), pair_traces (traced pairs, derivative passes
+    included), time [s] (solving only).
+    """
+
+    field: _core.IndexField
+    start: _core.IndexField
+    pairs: List[PointPair]
+    eye: np.ndarray
+    camera: Optional[_core.Camera]
+    cost: float
+    initial_cost: float
+    distances: np.ndarray
+    initial_distances: np.ndarray
+    iterations: int
+    evaluations: int
+    pair_traces: int
+    time: float
+    success: bool
+    converged: bool
+    message: str
+    history: np.ndarray
+    free: List[str]
+    insensitive: List[str]
+    backend: str
+    derivatives: str
+    starts: int = 1
+    trace_options: Dict[str, object] = _dataclass_field(default_factory=dict)
+
+    def paths(self, which: str = "solved") -> List[_core.RayPath]:
+        """Each pair's light path through the solved field ('solved') or the start ('start')."""
+        if which not in ("solved", "start"):
+            raise ValueError(f"which must be 'solved' or 'start' (got {which!r})")
+        field = self.field if which == "solved" else self.start
+        _, _, _, origins, directions, sources, _ = _pair_rays(self.camera if self.camera is not None else self.eye, self.pairs)
+        options = self.trace_options
+        out = []
+        for origin, direction, source in zip(origins, directions, sources):
+            length = options["reach"] * float(np.linalg.norm(source - origin)) + 1.0
+            out.append(_core.trace_ray(field, origin, direction, method=options["integrator"], tol=options["tol"],
+                                       step=options["step"], max_length=length, stop_height=options["ground"]))
+        return out
+
+    def report(self) -> str:
+        """A readable summary: outcome, costs, per-pair distances, parameters before and after."""
+        verdict = "success" if self.success else "FAILED"
+        lines = [
+            f"Edit of {self.field.type_name} with {self.backend} ({self.derivatives} derivatives): {verdict}",
+            f"  cost {self.initial_cost:.4g} -> {self.cost:.4g} m^2 in {self.iterations} iterations, "
+            f"{self.evaluations} evaluations, {self.pair_traces} pair traces, {self.time:.3g} s"
+            + (f" ({self.starts} starts)" if self.starts > 1 else ""),
+            "  pair  weight  miss before [m]  miss after [m]  range [m]",
+        ]
+        for i, pair in enumerate(self.pairs):
+            distance = float(np.linalg.norm(np.asarray(pair.source) - self.eye))
+            lines.append(f"  {i:4d}  {pair.weight:6.3g}  {self.initial_distances[i]:15.4g}  "
+                         f"{self.distances[i]:14.4g}  {distance:9.4g}")
+        info = {p["name"]: p for p in self.start.param_info}
+        start, solved = self.start.params, self.field.params
+        lines.append("  parameter            start          solved         unit")
+        for name in self.free:
+            lines.append(f"  {name:18s} {start[name]:14.8g} {solved[name]:14.8g}  {info[name]['unit']}")
+        fixed = [n for n in start if n not in self.free]
+        if fixed:
+            lines.append("  held fixed: " + ", ".join(fixed))
+        if self.insensitive:
+            lines.append("  no pair depends on (held fixed): " + ", ".join(self.insensitive))
+        lines.append("  " + self.message)
+        return "\n".join(lines)
+
+    __str__ = report
+
+    def __repr__(self) -> str:
+        return (f"EditResult(success={self.success}, cost={self.cost:.3g}, max miss={np.max(self.distances):.3g} m, "
+                f"backend={self.backend!r}, iterations={self.iterations}, time={self.time:.3g} s)")
+
+
+def solve(
+    field: _core.IndexField,
+    eye_or_camera,
+    pairs: Sequence[PointPair],
+    free: Optional[Sequence[str]] = None,
+    backend: str = "ceres",
+    *,
+    bounds: Optional[Dict[str, Tuple[float, float]]] = None,
+    starts: int = 1,
+    seed: int = 0,
+    derivatives: str = "auto",
+    distance: str = "continuous",
+    integrator: str = "rk45",
+    tol: float = 1e-9,
+    step: Optional[float] = None,
+    ground: Optional[float] = None,
+    reach: float = 1.5,
+    loss: str = "none",
+    loss_scale: float = 1.0,
+    max_iterations: int = 200,
+    max_evaluations: int = 3000,
+    max_time: Optional[float] = None,
+    target_cost: Optional[float] = None,
+    accept_angle: float = 1e-6,
+    function_tolerance: float = 1e-14,
+    parameter_tolerance: float = 1e-12,
+    gradient_tolerance: float = 1e-16,
+    progress: Union[bool, Callable[[int, int], None]] = False,
+) -> EditResult:
+    """Solve for the parameters of `field` that make each pair's light path pass its source.
+
+    Args:
+        field: any IndexField. Built-in models (LogisticProfile, PhysicalAtmosphere,
+            TemperatureProfile, LinearSquaredProfile, and CurvedEarth over them) get automatic
+            derivatives; other fields (CustomField) central differences.
+        eye_or_camera: a Camera (pixel destinations allowed) or the eye position (3,) [m].
+        pairs: PointPairs.
+        free: names of the parameters to optimise; default every parameter except the model's
+            gauge ones (LogisticProfile's n_bg: a common scale of the amplitudes changes nothing).
+            Free parameters on which no pair depends are held fixed and listed in
+            result.insensitive.
+        backend: 'ceres' or 'nlopt:<ALGORITHM>' (see NLOPT_ALGORITHMS; any nlopt name works).
+        bounds: {name: (lower, upper)} overriding the model's search box.
+        starts: number of starts; the first is `field`, the others uniform in the bounds (seeded by
+            `seed`); the best result is returned with times and evaluations summed.
+        derivatives: 'auto', 'automatic' (ceres::Jet) or 'numeric' (central differences).
+        distance: 'continuous' (closest approach of the continuous path) or 'vertex' (nearest
+            integrator node, the original editor's piecewise-constant measure).
+        integrator, tol, step: 'rk45' to `tol` [m] (default 1e-9) or 'rk4' with `step` [m]
+            (default 0.3, the original's).
+        ground: height [m] where paths end on the ground (default: none).
+        reach: paths are traced to reach * |source - eye| + 1 m (and stop once past the source).
+        loss, loss_scale: ceres robust loss ('huber', 'soft_l1', 'cauchy', 'arctan') on each
+            pair's squared miss, quadratic below loss_scale [m].
+        max_iterations (ceres), max_evaluations (nlopt), max_time [s], target_cost [m^2] (stop
+            once reached), function/parameter/gradient_tolerance: stopping criteria.
+        accept_angle: a pair is met when its miss <= accept_angle * |source - eye| [rad].
+        progress: True for a bar on stderr, or a callable progress(done, total).
+
+    Returns:
+        EditResult. Not converging, or an image no atmosphere within the bounds can make, is a
+        result with success False and a message, not an exception.
+
+    Raises:
+        ValueError: bad pairs (NaN, pixel without camera), unknown parameter names or nlopt
+            algorithm, bounds not containing the start. refracta.NumericalError: the start field
+            cannot trace the pairs. KeyboardInterrupt on Ctrl-C.
+    """
+    pairs, eye, camera, origins, directions, sources, weights = _pair_rays(eye_or_camera, pairs)
+    if not isinstance(field, _core.IndexField):
+        raise ValueError(f"field must be an IndexField (got {type(field).__name__})")
+    if isinstance(starts, bool) or int(starts) != starts or starts < 1:
+        raise ValueError(f"starts must be a whole number >= 1 (got {starts!r})")
+    if free is not None:
+        if isinstance(free, str):
+            free = [free]
+        free = list(free)
+        if not free:
+            raise ValueError("free is empty: name at least one parameter (or pass None for the default)")
+        unknown = [n for n in free if n not in field.param_names]
+        if unknown:
+            raise ValueError(f"unknown parameter(s) {unknown} for {field.type_name}; "
+                             f"valid names: {field.param_names}")
+    options = _pair_options(integrator, tol, step, ground, distance, reach)
+    settings = _core._SolveSettings()
+    settings.backend = backend
+    settings.max_iterations = int(max_iterations)
+    settings.max_evaluations = int(max_evaluations)
+    settings.max_time = 0.0 if max_time is None else float(max_time)
+    settings.function_tolerance = function_tolerance
+    settings.parameter_tolerance = parameter_tolerance
+    settings.gradient_tolerance = gradient_tolerance
+    settings.target_cost = 0.0 if target_cost is None else float(target_cost)
+    settings.loss = loss
+    settings.loss_scale = loss_scale
+    settings.accept_angle = accept_angle
+    settings.validate()
+    bounds = {k: (float(v[0]), float(v[1])) for k, v in (bounds or {}).items()}
+    callback = ProgressBar(f"editing ({backend})") if progress is True else (progress or None)
+
+    def run(start_field):
+        return _core._solve_edit(start_field, origins, directions, sources, weights, free or [], bounds,
+                                 derivatives, options, settings, callback)
+
+    initial = _core._pair_distances(field, origins, directions, sources, options)
+    best = first = run(field)
+    total_time, total_evaluations, total_traces = best["time"], best["evaluations"], best["pair_traces"]
+    if starts > 1:
+        rng = np.random.default_rng(seed)
+        box = field.bounds
+        box.update(bounds)
+        for _ in range(starts - 1):
+            trial_start = field.with_params(**{n: float(rng.uniform(*box[n])) for n in best["free"]})
+            try:
+                trial = run(trial_start)
+            except _core.NumericalError:
+                continue  # this start cannot trace the pairs; try the next
+            total_time += trial["time"]
+            total_evaluations += trial["evaluations"]
+            total_traces += trial["pair_traces"]
+            if (trial["success"], -trial["cost"]) > (best["success"], -best["cost"]):
+                best = trial
+    names = field.param_names
+    solved = field.with_params(**dict(zip(names, (float(v) for v in best["values"]))))
+    return EditResult(
+        field=solved, start=field, pairs=pairs, eye=np.asarray(eye), camera=camera, cost=best["cost"],
+        initial_cost=first["initial_cost"],
+        distances=best["distances"], initial_distances=initial, iterations=best["iterations"],
+        evaluations=total_evaluations, pair_traces=total_traces, time=total_time, success=best["success"],
+        converged=best["converged"], message=best["message"], history=best["history"], free=best["free"],
+        insensitive=best["insensitive"], backend=backend, derivatives=best["derivatives"], starts=int(starts),
+        trace_options=dict(integrator=integrator, tol=tol, step=step, ground=ground, reach=reach),
+    )
+
+
+def distances(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], *, distance: str = "continuous",
+              integrator: str = "rk45", tol: float = 1e-9, step: Optional[float] = None,
+              ground: Optional[float] = None, reach: float = 1.5) -> np.ndarray:
+    """Each pair's miss [m]: how far the path launched toward its destination passes its source."""
+    _, _, _, origins, directions, sources, _ = _pair_rays(eye_or_camera, pairs)
+    return _core._pair_distances(field, origins, directions, sources,
+                                 _pair_options(integrator, tol, step, ground, distance, reach))
+
+
+def jacobian(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], free: Optional[Sequence[str]] = None,
+             *, derivatives: str = "auto", distance: str = "continuous", integrator: str = "rk45", tol: float = 1e-9,
+             step: Optional[float] = None, ground: Optional[float] = None,
+             reach: float = 1.5) -> Tuple[np.ndarray, np.ndarray, List[str]]:
+    """(residuals (3P,), Jacobian (3P, F), free names) at `field`: the weighted miss vectors an
+    edit minimises and their derivatives in the free parameters (for sensitivity studies)."""
+    _, _, _, origins, directions, sources, weights = _pair_rays(eye_or_camera, pairs)
+    free = [free] if isinstance(free, str) else list(free or [])
+    return _core._pair_jacobian(field, origins, directions, sources, weights, free, derivatives,
+                                _pair_options(integrator, tol, step, ground, distance, reach))
