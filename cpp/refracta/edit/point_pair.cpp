@@ -3,9 +3,14 @@
 
 #include "refracta/core/error.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace refracta {
+
+namespace {
+constexpr double kRoundOffTolerance = 1e-13;  // per metre of path
+}  // namespace
 
 PairDistance parse_pair_distance(const std::string& name) {
   if (name == "continuous") return PairDistance::kContinuous;
@@ -26,9 +31,10 @@ void PairOptions::validate() const {
 TraceOptions PairOptions::trace_options(const PointPair& pair) const {
   TraceOptions options;
   options.method = method;
-  options.tol = tol;
   options.step = step;
   options.max_length = reach * pair.range() + 1.0;
+  // Below ~1e-13 of the path length a position tolerance asks for more than round-off allows.
+  options.tol = std::max(tol, kRoundOffTolerance * options.max_length);
   options.stop_height = ground;
   return options;
 }

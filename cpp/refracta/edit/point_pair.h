@@ -29,7 +29,7 @@ enum class PairDistance { kContinuous, kVertex };
 
 struct PairOptions {
   TraceMethod method = TraceMethod::kRk45;  // rk45 or rk4 (stratified has no derivatives)
-  double tol = 1e-9;                        // rk45 target position error [m]
+  double tol = 1e-9;   // rk45 target position error [m] (at least 1e-13 per metre of path)
   double step = 0.0;                        // rk4 step [m] (0: 0.3, the original's)
   std::optional<double> ground;             // paths end where they descend through it [m]
   PairDistance distance = PairDistance::kContinuous;

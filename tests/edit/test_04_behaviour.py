@@ -1,0 +1,121 @@
+"""What an artist meets: impossible requests, weights, defaults for degenerate parameters,
+multi-start, the report, and bad input."""
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta.edit import PointPair, distances, solve
+
+from .conftest import pairs_from
+
+
+def test_an_impossible_request_fails_with_a_message():
+    """An image 600 m above the horizon at 1 km needs alpha = 2.4e-3, outside its bounds (+-1e-3)."""
+    result = solve(refracta.LinearSquaredProfile(), (0.0, 1.5, 0.0), [PointPair((1.0, 1.5, 0.0), (1000.0, 600.0, 0.0))],
+                   free="alpha")
+    assert not result.success
+    assert "pair 0 misses its source" in result.message
+    assert result.distances[0] > 1.0
+
+
+def test_a_heavier_weight_pulls_its_pair_closer():
+    """Two pairs no single alpha satisfies: the weight decides the compromise."""
+    field, eye = refracta.LinearSquaredProfile(), (0.0, 1.5, 0.0)
+    a, b = (1000.0, 3.0, 0.0), (1000.0, 2.5, 0.0)
+    misses = []
+    for weight in (1.0, 100.0):
+        pairs = [PointPair((1.0, 1.5, 0.0), a, weight=weight), PointPair((1.0, 1.5, 0.0), b)]
+        misses.append(solve(field, eye, pairs, free="alpha").distances)
+    assert misses[1][0] < 0.05 * misses[0][0]
+    assert misses[1][1] > misses[0][1]
+
+
+def test_the_logistic_gauge_amplitude_is_fixed_by_default():
+    field = refracta.LogisticProfile()
+    pairs = pairs_from(field.with_params(k_s=12.0), (0.0, 1.5, 0.0), [-0.3, 0.3], [50.0, 50.0])
+    result = solve(field, (0.0, 1.5, 0.0), pairs, max_iterations=30)
+    assert "n_bg" not in result.free
+    assert result.field.params["n_bg"] == field.params["n_bg"]
+
+
+def test_parameters_no_pair_depends_on_are_reported_and_kept():
+    """An inversion layer at 100-110 m cannot touch rays that stay below 2 m."""
+    truth = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
+    pairs = pairs_from(truth, (0.0, 1.4, 0.0), [-0.2, -0.12], [500.0, 600.0], ground=0.0)
+    start = truth.with_params(surface_dt=8.0)
+    result = solve(start, (0.0, 1.4, 0.0), pairs, free=["surface_dt", "inversion_dt", "inversion_base"], ground=0.0)
+    assert set(result.insensitive) == {"inversion_dt", "inversion_base"}
+    assert result.free == ["surface_dt"]
+    assert result.field.params["inversion_base"] == start.params["inversion_base"]
+    assert result.success, result.message
+
+
+def test_multistart_keeps_the_best_of_its_starts():
+    truth = refracta.LogisticProfile(k_s=12.0, h_ciso=2.0, n_inv=0.5)
+    eye = (0.0, 1.5, 0.0)
+    pairs = pairs_from(truth, eye, [-0.5, -0.2, 0.1, 0.6], [50.0, 50.0, 50.0, 50.0])
+    start = refracta.LogisticProfile()
+    free = ["k_s", "h_ciso", "n_inv"]
+    single = solve(start, eye, pairs, free=free)
+    multi = solve(start, eye, pairs, free=free, starts=6, seed=3)
+    assert multi.cost <= single.cost
+    assert multi.starts == 6 and multi.evaluations > single.evaluations
+
+
+def test_the_report_names_the_outcome_and_the_parameters(road_pairs):
+    truth, eye, pairs = road_pairs
+    result = solve(truth.with_params(surface_dt=8.0), eye, pairs, free=["surface_dt"], ground=0.0)
+    text = str(result)
+    assert "success" in text and "surface_dt" in text and "ceres" in text
+    assert "EditResult(success=True" in repr(result)
+    assert len(result.history) == result.iterations + 1
+    assert len(result.paths()) == len(pairs)
+
+
+def test_vertex_distance_never_beats_the_continuous_one():
+    """The original editor's node distance is an upper bound of the true closest approach."""
+    field = refracta.LogisticProfile()
+    pairs = [PointPair((1.0, 1.5, 0.0), (50.0 + 0.07 * k, 1.9, 0.0)) for k in range(5)]
+    continuous = distances(field, (0.0, 1.5, 0.0), pairs)
+    vertex = distances(field, (0.0, 1.5, 0.0), pairs, distance="vertex", integrator="rk4", step=0.3)
+    assert np.all(vertex >= continuous - 1e-9)
+    assert np.max(vertex - continuous) > 1e-4
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(pairs=[]), "pairs is empty"),
+    (dict(pairs=[PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))], free=["nope"]), "unknown parameter"),
+    (dict(backend="nlopt:LN_NOPE"), "unknown nlopt algorithm"),
+    (dict(backend="scipy"), "backend must be"),
+    (dict(pairs=[PointPair((10.0, 20.0), (50.0, 2.0, 0.0))]), "pixel destination"),
+    (dict(eye_or_camera=(0.0, np.nan, 0.0)), "eye_or_camera"),
+    (dict(free=[]), "free is empty"),
+    (dict(bounds={"k_s": (20.0, 30.0)}, free=["k_s"]), "outside its bounds"),
+    (dict(loss="huber", backend="nlopt:LN_BOBYQA"), "robust loss"),
+    (dict(integrator="stratified"), "integrator"),
+])
+def test_bad_input_raises_value_error(kwargs, match):
+    args = dict(field=refracta.LogisticProfile(), eye_or_camera=(0.0, 1.5, 0.0),
+                pairs=[PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))])
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        solve(**args)
+
+
+@pytest.mark.parametrize("destination, source, weight", [
+    ((np.nan, 1.0, 0.0), (1.0, 1.0, 1.0), 1.0),
+    ((1.0, 1.0, 0.0), (1.0, np.inf, 1.0), 1.0),
+    ((1.0, 1.0, 0.0), (1.0, 1.0), 1.0),
+    ((1.0, 1.0, 0.0), (1.0, 1.0, 1.0), 0.0),
+])
+def test_bad_point_pairs_raise_value_error(destination, source, weight):
+    with pytest.raises(ValueError, match="PointPair"):
+        PointPair(destination, source, weight)
+
+
+def test_a_field_that_cannot_trace_raises_numerical_error():
+    """n^2 < 0 below y = -n0^2/alpha: an eye there cannot launch a ray."""
+    field = refracta.LinearSquaredProfile(alpha=1e-3)
+    with pytest.raises(refracta.NumericalError, match="n = nan"):
+        solve(field, (0.0, -2000.0, 0.0), [PointPair((1.0, -2000.0, 0.0), (100.0, -2000.0, 0.0))], free="alpha")
