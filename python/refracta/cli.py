@@ -1,5 +1,6 @@
-"""The `refracta` command line: `refracta demo --out DIR [--size WxH]` and
-`refracta render scene.toml -o out.exr --method curved --size 1280x720`."""
+"""The `refracta` command line: `refracta demo --out DIR [--size WxH]`,
+`refracta render scene.toml -o out.exr --method curved --size 1280x720` and
+`refracta edit scene.toml --pairs pairs.json -o solved.toml`."""
 
 from __future__ import annotations
 
@@ -71,6 +72,25 @@ def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exp
     return 0
 
 
+def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str = None) -> int:
+    """Solve the scene's atmosphere for the pairs file; write the scene with the solved atmosphere."""
+    import refracta
+    from refracta import edit
+    from refracta.scene_file import with_atmosphere
+
+    scene, camera, field = refracta.load_scene(scene_path)
+    if field is None:
+        raise ValueError(f"{scene_path}: has no [atmosphere] table to edit")
+    pairs, options = edit.load_pairs(pairs_path, scene, camera)
+    if backend is not None:
+        options["backend"] = backend
+    result = edit.solve(field, camera, pairs, progress=True, **options)
+    print(result.report())
+    output.write_text(with_atmosphere(Path(scene_path).read_text(), result.field))
+    print(f"wrote {output}")
+    return 0 if result.success else 1
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="refracta", description="Physically based mirages.")
     commands = parser.add_subparsers(dest="command", required=True)
@@ -84,11 +104,18 @@ def main(argv=None) -> int:
     render_parser.add_argument("--size", type=_size, default=None, help="WxH (default: the file's camera size)")
     render_parser.add_argument("--spp", type=int, default=1, help="samples per pixel")
     render_parser.add_argument("--exposure", type=float, default=1.0)
+    edit_parser = commands.add_parser("edit", help="solve a scene's atmosphere for point pairs (JSON)")
+    edit_parser.add_argument("scene", type=Path, help="scene file (.toml) with an [atmosphere] table")
+    edit_parser.add_argument("--pairs", type=Path, required=True, help="pairs file (.json), see refracta.edit.load_pairs")
+    edit_parser.add_argument("-o", "--output", type=Path, required=True, help="scene file to write (.toml)")
+    edit_parser.add_argument("--backend", default=None, help="ceres (default) or nlopt:<ALGORITHM>")
     args = parser.parse_args(argv)
     if args.command == "demo":
         return demo(args.out, args.size)
     if args.command == "render":
         return render_file(args.scene, args.output, args.method, args.size, args.spp, args.exposure)
+    if args.command == "edit":
+        return edit_file(args.scene, args.pairs, args.output, args.backend)
     parser.error(f"unknown command {args.command}")
     return 2
 

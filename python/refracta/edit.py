@@ -37,7 +37,7 @@ import numpy as np
 from refracta import _core
 from refracta._progress import ProgressBar
 
-__all__ = ["EditResult", "PointPair", "distances", "jacobian", "solve", "NLOPT_ALGORITHMS"]
+__all__ = ["EditResult", "PointPair", "distances", "jacobian", "load_pairs", "solve", "NLOPT_ALGORITHMS"]
 
 #: nlopt algorithms known to work on edits (any other nlopt name is accepted too).
 NLOPT_ALGORITHMS = ("LN_BOBYQA", "LN_NELDERMEAD", "LN_SBPLX", "LN_COBYLA", "GN_DIRECT_L", "LD_LBFGS", "LD_MMA")
@@ -357,3 +357,54 @@ def jacobian(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair],
     free = [free] if isinstance(free, str) else list(free or [])
     return _core._pair_jacobian(field, origins, directions, sources, weights, free, derivatives,
                                 _pair_options(integrator, tol, step, ground, distance, reach))
+
+
+def load_pairs(path, scene: Optional[_core.Scene] = None, camera: Optional[_core.Camera] = None) -> Tuple[List[PointPair], dict]:
+    """Point pairs from a JSON file, and the solve options it carries.
+
+    Format::
+
+        {"pairs": [{"destination": [u, v] or [x, y, z], "source": [x, y, z] or {"pixel": [u, v]},
+                    "weight": 1.0}, ...],
+         "free": ["surface_dt"], "backend": "ceres", "ground": 0.0}      # optional solve() options
+
+    A source given as a pixel is the scene point the camera sees there without atmosphere
+    (camera.pick), so `scene` and `camera` are needed for it. Raises refracta.IoError for a missing
+    file and ValueError naming the file and the pair for anything malformed.
+    """
+    import json
+    from pathlib import Path
+
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as error:
+        raise _core.IoError(f"cannot read pairs file {path}: {error.strerror}") from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as error:
+        raise ValueError(f"{path}:{error.lineno}: not valid JSON: {error.msg}") from None
+    if not isinstance(data, dict) or not isinstance(data.get("pairs"), list):
+        raise ValueError(f"{path}: expected an object with a list 'pairs'")
+    pairs = []
+    for i, entry in enumerate(data["pairs"]):
+        where = f"{path}: pairs[{i}]"
+        if not isinstance(entry, dict) or "destination" not in entry or "source" not in entry:
+            raise ValueError(f"{where}: needs 'destination' and 'source'")
+        unknown = set(entry) - {"destination", "source", "weight"}
+        if unknown:
+            raise ValueError(f"{where}: unknown key '{sorted(unknown)[0]}'")
+        source = entry["source"]
+        if isinstance(source, dict):
+            if scene is None or camera is None or "pixel" not in source:
+                raise ValueError(f"{where}: a source given as {{'pixel': [u, v]}} needs the scene and camera")
+            u, v = _vector(source["pixel"], (2,), f"{where} source pixel")
+            source = camera.pick(scene, u, v)
+            if source is None:
+                raise ValueError(f"{where}: the camera sees no scene object at pixel ({u:g}, {v:g})")
+        try:
+            pairs.append(PointPair(entry["destination"], source, entry.get("weight", 1.0)))
+        except ValueError as error:
+            raise ValueError(f"{where}: {error}") from None
+    options = {k: v for k, v in data.items() if k != "pairs"}
+    return pairs, options

@@ -96,3 +96,46 @@ def ray_fan(
         ax_t.set_title("temperature")
     ax_rays.set_ylim(low - margin, high + margin)
     return fig
+
+
+def edit_report(result, figsize=(12.0, 4.2)):
+    """An edit at a glance: each pair's light path before (dashed) and after (solid) the solve,
+    seen from the side (distance from the eye vs height), with its source (x) and the eye; and
+    the cost history on a log scale.
+
+    Args:
+        result: a refracta.edit.EditResult.
+
+    Returns:
+        A matplotlib Figure. Paths are traced by the library (EditResult.paths) with the options
+        the solve used.
+    """
+    import matplotlib.pyplot as plt
+
+    fig, (ax_paths, ax_cost) = plt.subplots(1, 2, figsize=figsize, gridspec_kw={"width_ratios": [3, 1.3]},
+                                           constrained_layout=True)
+    eye = np.asarray(result.eye, dtype=float)
+    colours = plt.cm.tab10(np.arange(len(result.pairs)) % 10)
+    for which, style in (("start", "--"), ("solved", "-")):
+        for path, pair, colour in zip(result.paths(which), result.pairs, colours):
+            points = path.sample(max(200, 2 * len(path)))
+            along = np.hypot(points[:, 0] - eye[0], points[:, 2] - eye[2])
+            ax_paths.plot(along, points[:, 1], style, color=colour, lw=1.0 if which == "start" else 1.6,
+                          alpha=0.6 if which == "start" else 1.0)
+    for i, (pair, colour) in enumerate(zip(result.pairs, colours)):
+        source = np.asarray(pair.source)
+        ax_paths.plot(np.hypot(source[0] - eye[0], source[2] - eye[2]), source[1], "x", color=colour, ms=9, mew=2,
+                      label=f"pair {i}: miss {result.initial_distances[i]:.2g} -> {result.distances[i]:.2g} m")
+    ax_paths.plot([0.0], [eye[1]], "o", color="crimson", ms=5, label="eye")
+    ax_paths.set_xlabel("distance from the eye [m]")
+    ax_paths.set_ylabel("height [m]")
+    ax_paths.set_title(f"{result.field.type_name}: paths before (dashed) and after (solid)")
+    ax_paths.legend(fontsize=8, loc="best")
+
+    history = np.maximum(np.asarray(result.history, dtype=float), np.finfo(float).tiny)
+    ax_cost.semilogy(np.arange(len(history)), history, color="tab:blue")
+    ax_cost.set_xlabel("iteration" if result.backend == "ceres" else "evaluation")
+    ax_cost.set_ylabel("cost [m²]")
+    ax_cost.set_title(f"{result.backend}: {'success' if result.success else 'failed'}")
+    ax_cost.grid(True, which="both", alpha=0.3)
+    return fig

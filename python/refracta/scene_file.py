@@ -223,3 +223,43 @@ def load_scene(path) -> SceneFile:
             except ValueError as error:
                 raise where.error(str(error), "atmosphere", "curved_earth") from None
     return SceneFile(scene, camera, field)
+
+
+def _toml_value(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    return repr(float(value))
+
+
+def atmosphere_table(field: _core.IndexField) -> str:
+    """The [atmosphere] table that load_scene reads back as `field` (every parameter written)."""
+    curved = None
+    if isinstance(field, _core.CurvedEarth):
+        curved, field = field.radius, field.base
+    if field.type_name not in MODELS:
+        raise ValueError(f"{field.type_name} cannot be written to a scene file (expected one of {', '.join(MODELS)})")
+    lines = ["[atmosphere]", f'model = "{field.type_name}"']
+    params = dict(field.params)
+    if isinstance(field, _core.TemperatureProfile):
+        count = len(field.heights)
+        lines.append(f"heights = {_toml_value(list(field.heights))}")
+        lines.append(f"temperatures = {_toml_value([params.pop(f't{i}') for i in range(count)])}")
+    lines += [f"{name} = {_toml_value(value)}" for name, value in params.items()]
+    if curved is not None:
+        lines.append(f"curved_earth = {_toml_value(curved)}")
+    return "\n".join(lines) + "\n"
+
+
+def with_atmosphere(text: str, field: _core.IndexField) -> str:
+    """A scene file's text with its [atmosphere] table replaced by `field` (appended if absent);
+    everything else, comments included, is kept."""
+    lines = text.splitlines(keepends=True)
+    header = re.compile(r"^\s*\[\[?\s*([A-Za-z0-9_.\"-]+)\s*\]\]?")
+    start = next((i for i, line in enumerate(lines) if (m := header.match(line)) and m.group(1) == "atmosphere"), None)
+    table = atmosphere_table(field)
+    if start is None:
+        return text + ("" if text.endswith("\n") or not text else "\n") + "\n" + table
+    end = next((i for i in range(start + 1, len(lines)) if header.match(lines[i])), len(lines))
+    return "".join(lines[:start]) + table + "\n" + "".join(lines[end:]).lstrip("\n")
