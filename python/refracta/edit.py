@@ -226,6 +226,7 @@ def solve(
     max_evaluations: int = 3000,
     max_time: Optional[float] = None,
     target_cost: Optional[float] = None,
+    trust_region: float = 0.1,
     accept_angle: float = 1e-6,
     function_tolerance: float = 1e-14,
     parameter_tolerance: float = 1e-12,
@@ -259,6 +260,9 @@ def solve(
             pair's squared miss, quadratic below loss_scale [m].
         max_iterations (ceres), max_evaluations (nlopt), max_time [s], target_cost [m^2] (stop
             once reached), function/parameter/gradient_tolerance: stopping criteria.
+        trust_region: ceres' initial trust-region radius as a fraction of each free parameter's
+            bound range (default 0.1: cautious first steps; narrow layers have flat regions a bold
+            step lands in).
         accept_angle: a pair is met when its miss <= accept_angle * |source - eye| [rad].
         progress: True for a bar on stderr, or a callable progress(done, total).
 
@@ -296,6 +300,7 @@ def solve(
     settings.parameter_tolerance = parameter_tolerance
     settings.gradient_tolerance = gradient_tolerance
     settings.target_cost = 0.0 if target_cost is None else float(target_cost)
+    settings.trust_region = float(trust_region)
     settings.loss = loss
     settings.loss_scale = loss_scale
     settings.accept_angle = accept_angle

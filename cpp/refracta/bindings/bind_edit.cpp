@@ -68,6 +68,7 @@ void bind_edit(py::module_& m) {
       .def_readwrite("parameter_tolerance", &SolveSettings::parameter_tolerance)
       .def_readwrite("gradient_tolerance", &SolveSettings::gradient_tolerance)
       .def_readwrite("target_cost", &SolveSettings::target_cost)
+      .def_readwrite("trust_region", &SolveSettings::trust_region)
       .def_readwrite("loss", &SolveSettings::loss)
       .def_readwrite("loss_scale", &SolveSettings::loss_scale)
       .def_readwrite("accept_angle", &SolveSettings::accept_angle)

@@ -15,7 +15,9 @@ class EditCallback : public ceres::IterationCallback {
       : settings_(settings), control_(control), history_(history) {}
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
-    history_->push_back(summary.cost);
+    // A rejected step leaves the solver where it was: the history follows the accepted points.
+    const bool moved = summary.iteration == 0 || summary.step_is_successful || history_->empty();
+    history_->push_back(moved ? summary.cost : history_->back());
     control_.done = summary.iteration;
     if (control_.cancel.load()) return ceres::SOLVER_ABORT;
     if (summary.cost <= settings_.target_cost) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
@@ -91,6 +93,7 @@ BackendResult solve_with_ceres(const EditProblem& problem, const SolveSettings& 
   options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = settings.max_iterations;
+  options.initial_trust_region_radius = settings.trust_region;
   options.function_tolerance = settings.function_tolerance;
   options.parameter_tolerance = settings.parameter_tolerance;
   options.gradient_tolerance = settings.gradient_tolerance;

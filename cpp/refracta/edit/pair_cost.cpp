@@ -8,8 +8,11 @@
 
 #include <ceres/dynamic_autodiff_cost_function.h>
 #include <ceres/dynamic_numeric_diff_cost_function.h>
+#include <tbb/enumerable_thread_specific.h>
 
 #include <cmath>
+#include <optional>
+#include <tuple>
 
 namespace refracta {
 
@@ -45,14 +48,55 @@ struct PairCostBase {
   }
 };
 
+inline bool same_value(double a, double b) { return a == b; }
+template <int N>
+bool same_value(const ceres::Jet<double, N>& a, const ceres::Jet<double, N>& b) {
+  return a.a == b.a && a.v == b.v;
+}
+
+// The last model each thread built, per scalar type, shared by the pairs of one problem: every
+// pair of an evaluation uses the same parameters, and building a model can cost more than a
+// trace (PhysicalAtmosphere tabulates its hydrostatic column).
+template <class Tag>
+class ModelCache {
+ public:
+  template <class T>
+  using Model = typename Tag::template Model<T>;
+  using Config = typename Model<double>::Config;
+
+  template <class T>
+  const Model<T>& get(const Config& config, const std::vector<T>& values) {
+    Slot<T>& slot = std::get<Slot<T>>(slots_.local());
+    const bool hit = slot.model && slot.values.size() == values.size() &&
+                     std::equal(values.begin(), values.end(), slot.values.begin(),
+                                [](const T& a, const T& b) { return same_value(a, b); });
+    if (!hit) {
+      slot.model.reset();
+      slot.model.emplace(config, values);
+      slot.values = values;
+    }
+    return *slot.model;
+  }
+
+ private:
+  template <class T>
+  struct Slot {
+    std::vector<T> values;
+    std::optional<Model<T>> model;
+  };
+  using Jet = ceres::Jet<double, kJetStride>;
+  tbb::enumerable_thread_specific<std::tuple<Slot<double>, Slot<Jet>>> slots_;
+};
+
 template <class Tag>
 struct ModelPairCost : PairCostBase {
   using Config = typename Tag::template Model<double>::Config;
   Config config;
   bool curved;
+  std::shared_ptr<ModelCache<Tag>> cache;
 
-  ModelPairCost(PairCostBase base, Config config, bool curved)
-      : PairCostBase(std::move(base)), config(std::move(config)), curved(curved) {}
+  ModelPairCost(PairCostBase base, Config config, bool curved, std::shared_ptr<ModelCache<Tag>> cache)
+      : PairCostBase(std::move(base)), config(std::move(config)), curved(curved), cache(std::move(cache)) {}
 
   template <class T>
   bool operator()(T const* const* parameters, T* residuals) const {
@@ -68,7 +112,7 @@ struct ModelPairCost : PairCostBase {
         if (!(value_of(radius) > 0.0)) throw_invalid("earth_radius must be > 0");
       }
       Tag::template Model<double>::validate(config, plain);
-      const typename Tag::template Model<T> model(config, full);
+      const auto& model = cache->get(config, full);
       PairMiss<T> miss;
       if (curved) {
         const FlattenedModel<typename Tag::template Model<T>, T> flat{model, radius};
@@ -124,13 +168,16 @@ std::vector<std::unique_ptr<ceres::CostFunction>> make_pair_costs(
   }
   const int m = int(free.size());
   std::vector<std::unique_ptr<ceres::CostFunction>> costs;
+  std::shared_ptr<void> cache;  // one ModelCache for all pairs
   for (const PointPair& pair : pairs) {
     PairCostBase base{values, free, pair, options, context};
     if (derivatives == Derivatives::kAutomatic) {
       visit_templated_model(*field, [&](auto tag, const auto& config, bool curved) {
-        using Functor = ModelPairCost<decltype(tag)>;
-        costs.push_back(finish(new ceres::DynamicAutoDiffCostFunction<Functor, kJetStride>(
-                                   new Functor(base, config, curved)),
+        using Tag = decltype(tag);
+        using Functor = ModelPairCost<Tag>;
+        if (!cache) cache = std::make_shared<ModelCache<Tag>>();
+        costs.push_back(finish(new ceres::DynamicAutoDiffCostFunction<Functor, kJetStride>(new Functor(
+                                   base, config, curved, std::static_pointer_cast<ModelCache<Tag>>(cache))),
                                m));
       });
     } else {

@@ -19,6 +19,9 @@ void SolveSettings::validate() const {
       {"max_time", max_time}, {"function_tolerance", function_tolerance},
       {"parameter_tolerance", parameter_tolerance}, {"gradient_tolerance", gradient_tolerance},
       {"target_cost", target_cost}, {"accept_angle", accept_angle}};
+  if (!(trust_region > 0.0) || !std::isfinite(trust_region)) {
+    throw_invalid("trust_region must be > 0 (got ", trust_region, ")");
+  }
   for (const auto& [name, value] : non_negative) {
     if (!(value >= 0.0) || !std::isfinite(value)) throw_invalid(name, " must be >= 0 (got ", value, ")");
   }
