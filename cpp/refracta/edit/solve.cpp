@@ -119,6 +119,7 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
   }
   out.success = result.converged && unmet.empty();
   out.message = result.message;
+  while (!out.message.empty() && out.message.back() == '.') out.message.pop_back();
   if (!unmet.empty()) {
     out.message += concat(". Not every pair is met: ", unmet,
                           ". No atmosphere with these free parameters within their bounds puts every "
