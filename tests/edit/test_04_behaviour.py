@@ -119,3 +119,27 @@ def test_a_field_that_cannot_trace_raises_numerical_error():
     field = refracta.LinearSquaredProfile(alpha=1e-3)
     with pytest.raises(refracta.NumericalError, match="n = nan"):
         solve(field, (0.0, -2000.0, 0.0), [PointPair((1.0, -2000.0, 0.0), (100.0, -2000.0, 0.0))], free="alpha")
+
+
+def test_a_robust_loss_lets_the_consistent_pairs_win_over_an_outlier():
+    """Three pairs from one alpha and one far off: Cauchy's loss keeps the three nearly met."""
+    truth = refracta.LinearSquaredProfile(alpha=4e-6)
+    eye = (0.0, 1.5, 0.0)
+    pairs = pairs_from(truth, eye, [0.0, -0.02, 0.02], [800.0, 900.0, 1000.0])
+    pairs.append(PointPair((1.0, 1.5, 0.0), (900.0, 6.0, 0.0)))  # the outlier
+    plain = solve(truth.with_params(alpha=1e-6), eye, pairs, free="alpha")
+    robust = solve(truth.with_params(alpha=1e-6), eye, pairs, free="alpha", loss="cauchy", loss_scale=0.01)
+    assert np.max(robust.distances[:3]) < 0.01 * np.max(plain.distances[:3])
+    assert robust.field.params["alpha"] == pytest.approx(4e-6, rel=1e-3)
+
+
+def test_an_error_raised_by_the_progress_callback_stops_the_solve():
+    class Stop(Exception):
+        pass
+
+    def progress(done, total):
+        raise Stop()
+
+    with pytest.raises(Stop):
+        solve(refracta.LogisticProfile(), (0.0, 1.5, 0.0), [PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))],
+              free="k_s", progress=progress)
