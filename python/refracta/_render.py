@@ -24,6 +24,10 @@ def render(
     tol: float = 1e-4,
     table: bool = True,
     integrator: Optional[str] = None,
+    march: str = "rk45",
+    step: float = 0.3,
+    max_steps: int = 1000,
+    guard_band: float = 0.1,
 ) -> np.ndarray:
     """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3).
 
@@ -34,7 +38,12 @@ def render(
     eye height, interpolated to `tol`; table=False traces each pixel; integrator='rk45' forces rk45
     per pixel); rays end after `max_length` [m] and show the sky in
     their last direction. 'straight' -- ray casting without atmosphere (the reference). With
-    field=None both are straight. spp: samples per pixel (1: pixel centres; more: stratified
+    field=None both are straight. 'raster_march' -- the original editor's method: the scene is
+    rasterized from the camera (with `guard_band`, a fraction of the image added on each side)
+    and each pixel's curved ray is marched ('rk45' to `tol` over max_length, or march='rk4' with
+    `step` [m] for at most `max_steps` steps: the original's 0.3 m x 1000) until a step lands
+    behind the depth buffer; that raster pixel's colour is shown. It cannot show what no raster
+    pixel shows (outside the view, hidden, beyond the curved Earth's horizon). spp: samples per pixel (1: pixel centres; more: stratified
     jitter, soft sun shadows), seeded by `seed`. progress: a bar on stderr (True), a callable
     progress(done, total), or False. Runs on all cores with the GIL released; Ctrl-C stops it.
     """
@@ -43,4 +52,7 @@ def render(
     if int(seed) != seed or seed < 0:
         raise ValueError(f"seed must be a whole number >= 0 (got {seed!r})")
     callback = ProgressBar("rendering") if progress is True else (progress or None)
-    return _core._render(scene, camera, field, method, int(spp), int(seed), max_length, chord, sagitta, tol, bool(table), integrator, callback)
+    if isinstance(max_steps, bool) or int(max_steps) != max_steps:
+        raise ValueError(f"max_steps must be a whole number >= 1 (got {max_steps!r})")
+    return _core._render(scene, camera, field, method, int(spp), int(seed), max_length, chord, sagitta, tol,
+                         bool(table), integrator, march, step, int(max_steps), guard_band, callback)

@@ -1,6 +1,8 @@
 // Python bindings of the moment math and per-pixel OIT (cpp/refracta/raster).
-#include "refracta/bindings/bindings.h"
+#include "refracta/bindings/bind_scene.h"
+#include "refracta/bindings/interruptible.h"
 #include "refracta/raster/moments.h"
+#include "refracta/raster/rasterizer.h"
 #include "refracta/raster/oit.h"
 #include "refracta/raster/quantization.h"
 
@@ -29,6 +31,38 @@ DoubleArray as_matrix(const py::object& object, py::ssize_t columns, const char*
 }  // namespace
 
 void bind_raster(py::module_& m) {
+  m.def("_rasterize",
+        [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, double guard_band, int tile) {
+          if (!scene) throw_invalid("scene must be a refracta.Scene");
+          const RasterView view = RasterView::from_camera(camera, guard_band);
+          WorkControl control;
+          VisibilityBuffer buffer;
+          RasterStats stats;
+          run_interruptible(control, py::none(), [&] { buffer = rasterize(scene->geometry, view, control, tile, &stats); });
+          const py::ssize_t h = buffer.height, w = buffer.width;
+          py::array_t<float> depth({h, w}), barycentric({h, w, py::ssize_t(3)});
+          py::array_t<int64_t> geometry({h, w}), primitive({h, w});
+          for (py::ssize_t i = 0; i < h * w; ++i) {
+            depth.mutable_data()[i] = buffer.depth[i];
+            const bool covered = buffer.geometry[i] != VisibilityBuffer::kNone;
+            geometry.mutable_data()[i] = covered ? int64_t(buffer.geometry[i]) : -1;
+            primitive.mutable_data()[i] = covered ? int64_t(buffer.primitive[i]) : -1;
+            float* b = barycentric.mutable_data() + 3 * i;
+            b[1] = buffer.b1[i], b[2] = buffer.b2[i], b[0] = covered ? 1.0f - b[1] - b[2] : 0.0f;
+          }
+          py::dict out;
+          out["depth"] = depth;
+          out["geometry"] = geometry;
+          out["primitive"] = primitive;
+          out["barycentric"] = barycentric;
+          out["offset"] = py::make_tuple(view.offset_x(), view.offset_y());
+          out["triangles"] = stats.triangles_in;
+          out["screen_triangles"] = stats.triangles_drawn;
+          out["fragments"] = stats.fragments;
+          return out;
+        },
+        py::arg("scene"), py::arg("camera"), py::arg("guard_band"), py::arg("tile"));
+
   m.def("_shadow_intensity",
         [](const py::object& moments, const py::object& depths, const std::string& method, bool is_signed,
            std::optional<double> bias, std::optional<std::vector<double>> bias_vector, const std::string& storage_name) {

@@ -12,7 +12,8 @@ void bind_render(py::module_& m) {
   m.def("_render",
         [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::shared_ptr<IndexField>& field,
            const std::string& method, int spp, uint64_t seed, double max_length, double chord, double sagitta, double tol,
-           bool table, std::optional<std::string> integrator, const py::object& progress) {
+           bool table, std::optional<std::string> integrator, const std::string& march, double step, int max_steps,
+           double guard_band, const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
           RenderOptions options;
           options.method = parse_render_method(method);
@@ -24,6 +25,10 @@ void bind_render(py::module_& m) {
           options.tol = tol;
           options.use_table = table;
           if (integrator) options.integrator = parse_trace_method(*integrator);
+          options.march = parse_trace_method(march);
+          options.step = step;
+          options.max_steps = max_steps;
+          options.guard_band = guard_band;
           options.validate();
           WorkControl control;
           Image image;
@@ -33,7 +38,8 @@ void bind_render(py::module_& m) {
           return image_to_float32(image);
         },
         py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("method"), py::arg("spp"), py::arg("seed"),
-        py::arg("max_length"), py::arg("chord"), py::arg("sagitta"), py::arg("tol"), py::arg("table"), py::arg("integrator"), py::arg("progress"));
+        py::arg("max_length"), py::arg("chord"), py::arg("sagitta"), py::arg("tol"), py::arg("table"), py::arg("integrator"),
+        py::arg("march"), py::arg("step"), py::arg("max_steps"), py::arg("guard_band"), py::arg("progress"));
 }
 
 }  // namespace refracta

@@ -9,8 +9,8 @@
 
 namespace refracta {
 
-enum class RenderMethod { kStraight, kCurved };
-RenderMethod parse_render_method(const std::string& name);  // "straight", "curved"
+enum class RenderMethod { kStraight, kCurved, kRasterMarch };
+RenderMethod parse_render_method(const std::string& name);  // "straight", "curved", "raster_march"
 
 struct RenderOptions {
   RenderMethod method = RenderMethod::kCurved;
@@ -26,6 +26,16 @@ struct RenderOptions {
   // (interpolated to `tol`) instead of tracing each pixel.
   bool use_table = true;
   int tile = 16;
+
+  // raster_march (the original editor's method): the integrator marching each pixel's ray
+  // against the depth buffer: 'rk4' with `step` [m] for at most `max_steps` steps (the
+  // original: 0.3 m, 1000 steps), or 'rk45' to `tol` over max_length.
+  TraceMethod march = TraceMethod::kRk45;
+  double step = 0.3;
+  int max_steps = 1000;
+  // Extra raster view on each side, as a fraction of the image size: rays that bend out of the
+  // camera's view can still find geometry there. What is in no raster pixel cannot appear.
+  double guard_band = 0.1;
 
   void validate() const;
 };

@@ -15,7 +15,8 @@ namespace refracta {
 RenderMethod parse_render_method(const std::string& name) {
   if (name == "straight") return RenderMethod::kStraight;
   if (name == "curved") return RenderMethod::kCurved;
-  throw_invalid("method must be 'straight' or 'curved' (got '", name, "')");
+  if (name == "raster_march") return RenderMethod::kRasterMarch;
+  throw_invalid("method must be 'straight', 'curved' or 'raster_march' (got '", name, "')");
 }
 
 void RenderOptions::validate() const {
@@ -26,6 +27,10 @@ void RenderOptions::validate() const {
   if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
   if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
   if (integrator == TraceMethod::kRk4) throw_invalid("integrator must be 'rk45' or 'stratified' for rendering");
+  if (march == TraceMethod::kStratified) throw_invalid("march must be 'rk4' or 'rk45'");
+  if (!(step > 0.0) || !std::isfinite(step)) throw_invalid("step must be > 0 (got ", step, ")");
+  if (max_steps < 1) throw_invalid("max_steps must be >= 1 (got ", max_steps, ")");
+  if (!(guard_band >= 0.0 && guard_band <= 2.0)) throw_invalid("guard_band must be in [0, 2] (got ", guard_band, ")");
 }
 
 namespace {
@@ -118,8 +123,6 @@ PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& or
   return end;
 }
 
-namespace {
-
 Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter) {
   if (!end.hit) return lighting.sky.radiance(end.direction);
   const Hit& hit = *end.hit;
@@ -146,8 +149,6 @@ Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rn
   }
   return radiance;
 }
-
-}  // namespace
 
 namespace {
 
@@ -203,6 +204,9 @@ Image render(const Scene& scene, const Lighting& lighting, const Camera& camera,
              const RenderOptions& options, WorkControl& control) {
   options.validate();
   scene.commit();
+  if (options.method == RenderMethod::kRasterMarch) {
+    return render_raster_march(scene, lighting, camera, field, options, control);
+  }
   std::unique_ptr<ElevationTable> table;
   if (field && field->height_only() && options.method == RenderMethod::kCurved && options.use_table &&
       (!options.integrator || *options.integrator == TraceMethod::kStratified)) {

@@ -5,6 +5,7 @@
 
 #include "refracta/core/image.h"
 #include "refracta/core/parallel.h"
+#include "refracta/core/rng.h"
 #include "refracta/media/index_field.h"
 #include "refracta/rays/ray_node.h"
 #include "refracta/render/render_options.h"
@@ -32,6 +33,15 @@ bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<
 // The end of the (curved, if field is given) path from origin along dir.
 PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& origin, const Vec3d& dir,
                     const RenderOptions& options);
+
+// Radiance leaving the path's end toward the eye: Blinn-Phong at a hit with sky light and the sun
+// (shadow rays through Embree; the sun's disc sampled when jitter), or the sky.
+Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter);
+
+// The original editor's method (raster_march.cpp): rasterize, then march each pixel's curved
+// ray against the depth buffer.
+Image render_raster_march(const Scene& scene, const Lighting& lighting, const Camera& camera, const FieldPtr& field,
+                          const RenderOptions& options, WorkControl& control);
 
 // Linear RGB radiance image (height, width, 3). field may be null (then 'curved' = 'straight').
 Image render(const Scene& scene, const Lighting& lighting, const Camera& camera, const FieldPtr& field,

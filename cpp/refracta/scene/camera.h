@@ -20,6 +20,9 @@ class Camera {
 
   const Vec3d& position() const { return position_; }
   const Vec3d& forward() const { return forward_; }
+  const Vec3d& right() const { return right_; }
+  const Vec3d& up() const { return up_; }         // the image's up (orthonormal to forward)
+  double tan_half() const { return tan_half_; }    // tan of half the vertical field of view
   int width() const { return width_; }
   int height() const { return height_; }
   double vfov() const { return vfov_; }

@@ -104,6 +104,7 @@ unsigned Scene::add_mesh(const std::vector<Vec3d>& vertices, const std::vector<s
   impl_->check();
   if (id != materials_.size()) throw std::logic_error("Embree geometry ids out of order");
   materials_.push_back(material);
+  meshes_.push_back({id, Mesh{vertices, triangles}});
   triangles_ += triangles.size();
   for (const auto& v : vertices) lowest_ = std::min(lowest_, v.y()), highest_ = std::max(highest_, v.y());
   impl_->dirty = true;
@@ -136,6 +137,14 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
   rtcReleaseGeometry(geometry);
   impl_->check();
   materials_.push_back(material);
+  SceneMesh spheres{id, {}};
+  for (size_t i = 0; i < centres.size(); ++i) {
+    const Mesh sphere = sphere_mesh(centres[i], radii[i], 48, 24);
+    const int offset = int(spheres.mesh.vertices.size());
+    spheres.mesh.vertices.insert(spheres.mesh.vertices.end(), sphere.vertices.begin(), sphere.vertices.end());
+    for (const auto& t : sphere.triangles) spheres.mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  }
+  meshes_.push_back(std::move(spheres));
   impl_->dirty = true;
   return id;
 }
@@ -214,6 +223,30 @@ Mesh box_mesh(const Vec3d& centre, const Vec3d& size) {
   }
   mesh.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                     {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return mesh;
+}
+
+Mesh sphere_mesh(const Vec3d& centre, double radius, int segments, int rings) {
+  if (!is_finite(centre) || !(radius > 0.0) || segments < 3 || rings < 2) {
+    throw_invalid("sphere: radius must be > 0, centre finite, segments >= 3, rings >= 2");
+  }
+  Mesh mesh;
+  for (int j = 0; j <= rings; ++j) {
+    const double theta = kPi * j / rings;
+    for (int i = 0; i < segments; ++i) {
+      const double phi = 2.0 * kPi * i / segments;
+      mesh.vertices.push_back(centre + radius * Vec3d(std::sin(theta) * std::cos(phi), std::cos(theta),
+                                                      std::sin(theta) * std::sin(phi)));
+    }
+  }
+  for (int j = 0; j < rings; ++j) {
+    for (int i = 0; i < segments; ++i) {
+      const int a = j * segments + i, b = j * segments + (i + 1) % segments;
+      const int c = a + segments, d = b + segments;
+      if (j > 0) mesh.triangles.push_back({a, b, c});
+      if (j + 1 < rings) mesh.triangles.push_back({b, d, c});
+    }
+  }
   return mesh;
 }
 

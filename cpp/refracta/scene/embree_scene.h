@@ -14,6 +14,18 @@
 
 namespace refracta {
 
+// A triangle mesh.
+struct Mesh {
+  std::vector<Vec3d> vertices;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+// A geometry of the scene as triangles, for the rasterizer (spheres tessellated).
+struct SceneMesh {
+  unsigned geometry;
+  Mesh mesh;
+};
+
 struct Hit {
   double t;          // distance along the (unit) direction [m]
   Vec3d point;       // [m]
@@ -43,6 +55,8 @@ class Scene {
   bool occluded(const Vec3d& origin, const Vec3d& dir, double t_max) const;
 
   const Material& material(unsigned geometry) const { return materials_.at(geometry); }
+  // Every geometry as triangles (spheres as 48 x 24 UV spheres), in geometry order.
+  const std::vector<SceneMesh>& meshes() const { return meshes_; }
   size_t geometry_count() const { return materials_.size(); }
   size_t triangle_count() const { return triangles_; }
   // Lowest y of any geometry [m] (+inf for an empty scene).
@@ -54,17 +68,15 @@ class Scene {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<Material> materials_;
+  std::vector<SceneMesh> meshes_;
   size_t triangles_ = 0;
   double lowest_ = std::numeric_limits<double>::infinity();
   double highest_ = -std::numeric_limits<double>::infinity();
 };
 
 // Shapes a mirage scene needs, as triangle meshes.
-struct Mesh {
-  std::vector<Vec3d> vertices;
-  std::vector<std::array<int, 3>> triangles;
-};
 Mesh ground_mesh(double height, double half_size);                 // a square at y = height
 Mesh box_mesh(const Vec3d& centre, const Vec3d& size);             // axis-aligned box
+Mesh sphere_mesh(const Vec3d& centre, double radius, int segments, int rings);  // a UV sphere
 
 }  // namespace refracta

@@ -1,0 +1,121 @@
+// raster_march: the original mirage editor's renderer (Choi 2017), rebuilt on the CPU. The scene
+// is rasterized once from the camera (with a guard band) and shaded per raster pixel; then each
+// image pixel's curved ray is marched with the integrator, every step projected into the raster
+// view, and the first step that lands behind the depth buffer picks the colour there (the
+// crossing refined on the continuous path by bisection).
+// Inherent limits, kept on purpose: what no raster pixel shows (outside the view and guard band,
+// hidden behind nearer surfaces, below the horizon of a curved Earth) cannot appear, and a step
+// that passes behind a thin object's depth counts as a hit on it.
+#include "refracta/raster/rasterizer.h"
+#include "refracta/rays/trace.h"
+#include "refracta/render/renderer.h"
+#include "refracta/render/tile_loop.h"
+
+#include <cmath>
+
+namespace refracta {
+
+namespace {
+
+struct RasterFrame {
+  RasterView view;
+  VisibilityBuffer buffer;
+  Image colour;
+
+  // The raster pixel a world point projects to and whether the point lies behind its surface.
+  // The surface's depth there is interpolated in 1/depth between the four nearest pixel centres
+  // when they show the same geometry (exact for a plane, where 1/depth is affine on screen):
+  // at grazing angles a ground pixel spans hundreds of metres of depth, and the nearest centre's
+  // depth alone would put points just above the ground behind it.
+  bool behind(const Vec3d& x, int* px, int* py) const {
+    const Vec3d p = view.to_view(x);
+    if (view.perspective() && p.z() <= view.near()) return false;
+    double u, v;
+    view.to_pixel(p, &u, &v);
+    if (!(u >= 0.0 && v >= 0.0 && u < buffer.width && v < buffer.height)) return false;
+    *px = int(u), *py = int(v);
+    return p.z() >= surface_depth(u, v, *px, *py);
+  }
+
+  double surface_depth(double u, double v, int px, int py) const {
+    const double fx = u - 0.5, fy = v - 0.5;
+    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    const double nearest = buffer.depth[buffer.index(px, py)];
+    if (x0 < 0 || y0 < 0 || x0 + 1 >= buffer.width || y0 + 1 >= buffer.height) return nearest;
+    const uint32_t g = buffer.geometry[buffer.index(x0, y0)];
+    double inverse = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      const int x = x0 + (k & 1), y = y0 + (k >> 1);
+      const size_t i = buffer.index(x, y);
+      if (g == VisibilityBuffer::kNone || buffer.geometry[i] != g) return nearest;
+      const double w = ((k & 1) ? fx - x0 : 1.0 - (fx - x0)) * ((k >> 1) ? fy - y0 : 1.0 - (fy - y0));
+      inverse += w / buffer.depth[i];
+    }
+    return 1.0 / inverse;
+  }
+};
+
+// The crossing of the depth buffer inside segment a -> b (b behind, a not): bisection on u.
+void refine_crossing(const RasterFrame& frame, const RayNode<double>& a, const RayNode<double>& b, int* px, int* py) {
+  const PathSegment<double> segment(a, b);
+  double lo = 0.0, hi = 1.0;
+  for (int it = 0; it < 30; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    int x, y;
+    if (frame.behind(segment.position(mid), &x, &y)) {
+      hi = mid, *px = x, *py = y;
+    } else {
+      lo = mid;
+    }
+  }
+}
+
+}  // namespace
+
+Image render_raster_march(const Scene& scene, const Lighting& lighting, const Camera& camera, const FieldPtr& field,
+                          const RenderOptions& options, WorkControl& control) {
+  RasterFrame frame{RasterView::from_camera(camera, options.guard_band), {}, {}};
+  frame.buffer = rasterize(scene, frame.view, control);
+  const Vec3d eye = camera.position();
+  frame.colour = render_tiles(frame.view.width(), frame.view.height(), options.tile, control, [&](int x, int y) {
+    PathEnd end;
+    end.hit = surface_at(scene, frame.buffer, x, y, eye);
+    if (!end.hit) return Vec3d::Zero().eval();
+    end.direction = (end.hit->point - eye).normalized();
+    Rng rng(options.seed, uint64_t(y) * uint64_t(frame.view.width()) + uint64_t(x));
+    return shade(scene, lighting, end, rng, false);
+  });
+  auto colour_at = [&](int px, int py) {
+    const float* c = frame.colour.at(px, py);
+    return Vec3d(c[0], c[1], c[2]);
+  };
+
+  TraceOptions trace_options;
+  trace_options.method = options.march;
+  trace_options.step = options.march == TraceMethod::kRk4 ? options.step : 0.0;
+  trace_options.tol = options.tol;
+  trace_options.max_length =
+      options.march == TraceMethod::kRk4 ? options.step * options.max_steps : options.max_length;
+  trace_options.cancel = &control.cancel;
+  control.done = 0;
+  return render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
+    const Vec3d dir = camera.direction(x + 0.5, y + 0.5);
+    if (!field) {  // a straight ray projects onto its own pixel all along
+      const int px = x + frame.view.offset_x(), py = y + frame.view.offset_y();
+      return frame.buffer.covered(px, py) ? colour_at(px, py) : lighting.sky.radiance(dir);
+    }
+    std::optional<Vec3d> radiance;
+    Vec3d last = dir;
+    trace(*field, eye, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
+      int px, py;
+      last = b.v.normalized();
+      if (!frame.behind(b.x, &px, &py)) return true;
+      refine_crossing(frame, a, b, &px, &py);
+      radiance = colour_at(px, py);
+      return false;
+    });
+    return radiance ? *radiance : lighting.sky.radiance(last);
+  });
+}
+
+}  // namespace refracta

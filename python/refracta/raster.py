@@ -1,0 +1,40 @@
+"""refracta.raster: the CPU rasterizer's buffers, for inspection and tests.
+
+rasterize(scene, camera) draws the scene's triangles (spheres tessellated) with refracta's own
+rasterizer -- near-plane and guard-band clipping, perspective-correct barycentrics, a z-buffer,
+tiles over threads -- into a visibility buffer. The renderers use the same code
+(render(method='raster_march')).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from refracta import _core
+
+__all__ = ["RasterBuffers", "rasterize"]
+
+
+@dataclass
+class RasterBuffers:
+    """depth (H, W) float32 view depth [m] (inf where empty); geometry, primitive (H, W) int64
+    (-1 where empty); barycentric (H, W, 3) float32 weights of the triangle's vertices; offset:
+    (x, y) of the camera image's pixel (0, 0) inside the buffers (the guard band); counts."""
+
+    depth: np.ndarray
+    geometry: np.ndarray
+    primitive: np.ndarray
+    barycentric: np.ndarray
+    offset: tuple
+    triangles: int
+    screen_triangles: int
+    fragments: int
+
+
+def rasterize(scene: _core.Scene, camera: _core.Camera, guard_band: float = 0.0, tile: int = 32) -> RasterBuffers:
+    """Rasterize `scene` from `camera` (its image widened by guard_band on each side)."""
+    if isinstance(tile, bool) or int(tile) != tile or tile < 1:
+        raise ValueError(f"tile must be a whole number >= 1 (got {tile!r})")
+    return RasterBuffers(**_core._rasterize(scene, camera, float(guard_band), int(tile)))

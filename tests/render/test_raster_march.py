@@ -1,0 +1,75 @@
+"""raster_march, the original editor's renderer rebuilt on the CPU rasterizer, against the
+straight and exact curved renderers."""
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import examples
+
+# Shading the raster point (float32 barycentrics) instead of the ray-cast point changes radiance
+# by round-off only.
+SAME_RADIANCE = 1e-4
+
+
+def differing(a, b, relative=0.02):
+    """Fraction of pixels whose radiance differs by more than `relative` of the brighter one."""
+    scale = np.maximum(np.abs(a).max(axis=2), np.abs(b).max(axis=2)) + 1e-6
+    return np.mean(np.abs(a - b).max(axis=2) > relative * scale)
+
+
+def test_without_a_field_raster_march_equals_straight():
+    example = examples.hot_road(160, 60)
+    straight = refracta.render(example.scene, example.camera, None, method="straight", progress=False)
+    marched = refracta.render(example.scene, example.camera, None, method="raster_march", progress=False)
+    scale = np.abs(straight).max()
+    # Both sample pixel centres: coverage agrees, so even silhouettes match here.
+    assert np.max(np.abs(straight - marched)) < SAME_RADIANCE * scale
+
+
+def test_raster_march_agrees_with_curved_where_the_hit_is_in_view():
+    """The hot road: every curved path ends on something the raster view shows (or the sky), so
+    the two renderers differ only where a step size or a silhouette decides between neighbours."""
+    example = examples.hot_road(160, 60)
+    render = dict(progress=False, max_length=example.max_length)
+    curved = refracta.render(example.scene, example.camera, example.field, method="curved", **render)
+    marched = refracta.render(example.scene, example.camera, example.field, method="raster_march", **render)
+    assert differing(curved, marched) < 0.03
+    # The mirage itself: below the horizon, bright pixels are the mirrored sky (the road is dark).
+    horizon = int(np.ceil(example.camera.project([1e6, example.camera.position[1], 0.0])[1]))
+    bright_curved = curved[horizon:].max(axis=2) > 0.5
+    bright_marched = marched[horizon:].max(axis=2) > 0.5
+    assert bright_curved.sum() > 2 * example.camera.width  # a band at least two rows deep
+    assert np.mean(bright_curved == bright_marched) > 0.98
+
+def test_the_original_settings_see_no_farther_than_300_m():
+    """rk4 with 0.3 m steps for 1000 steps ends every path at 300 m: the buildings 700 m away
+    vanish (their pixels show the sky), an inherent limit of the original settings."""
+    example = examples.hot_road(160, 60)
+    camera = example.camera
+    x, y = 5, 15  # a distant building at the image's left edge
+    assert camera.pick(example.scene, x + 0.5, y + 0.5)[0] > 600.0
+    marched = refracta.render(example.scene, camera, example.field, method="raster_march", march="rk4",
+                              step=0.3, max_steps=1000, progress=False)
+    curved = refracta.render(example.scene, camera, example.field, progress=False, max_length=example.max_length)
+    full = refracta.render(example.scene, camera, example.field, method="raster_march", progress=False,
+                           max_length=example.max_length)
+    # The sky along this row, from a column where nothing stands (the sky depends on elevation
+    # only; 5 m above the road the air bends rays by microradians).
+    open_column = next(c for c in range(x + 1, camera.width) if camera.pick(example.scene, c + 0.5, y + 0.5) is None)
+    sky = marched[y, open_column]
+    np.testing.assert_allclose(marched[y, x], sky, rtol=1e-3)
+    for image in (curved, full):  # the building, seen when the path may run to max_length
+        assert np.abs(image[y, x] - sky).max() > 0.1 * sky.max()
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(guard_band=-0.1), "guard_band"),
+    (dict(march="stratified"), "march"),
+    (dict(max_steps=0), "max_steps"),
+    (dict(step=0.0), "step"),
+])
+def test_bad_options_raise_value_error(kwargs, match):
+    example = examples.hot_road(16, 8)
+    with pytest.raises(ValueError, match=match):
+        refracta.render(example.scene, example.camera, example.field, method="raster_march", progress=False, **kwargs)
