@@ -28,6 +28,7 @@ def render(
     step: float = 0.3,
     max_steps: int = 1000,
     guard_band: float = 0.1,
+    texture_filter: bool = True,
 ) -> np.ndarray:
     """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3).
 
@@ -43,7 +44,9 @@ def render(
     and each pixel's curved ray is marched ('rk45' to `tol` over max_length, or march='rk4' with
     `step` [m] for at most `max_steps` steps: the original's 0.3 m x 1000) until a step lands
     behind the depth buffer; that raster pixel's colour is shown. It cannot show what no raster
-    pixel shows (outside the view, hidden, beyond the curved Earth's horizon). spp: samples per pixel (1: pixel centres; more: stratified
+    pixel shows (outside the view, hidden, beyond the curved Earth's horizon). Textures are filtered
+    by OpenImageIO over each sample's ray-cone footprint (texture_filter=False point-samples them:
+    only for references). spp: samples per pixel (1: pixel centres; more: stratified
     jitter, soft sun shadows), seeded by `seed`. progress: a bar on stderr (True), a callable
     progress(done, total), or False. Runs on all cores with the GIL released; Ctrl-C stops it.
     """
@@ -55,4 +58,5 @@ def render(
     if isinstance(max_steps, bool) or int(max_steps) != max_steps:
         raise ValueError(f"max_steps must be a whole number >= 1 (got {max_steps!r})")
     return _core._render(scene, camera, field, method, int(spp), int(seed), max_length, chord, sagitta, tol,
-                         bool(table), integrator, march, step, int(max_steps), guard_band, callback)
+                         bool(table), integrator, march, step, int(max_steps), guard_band, bool(texture_filter),
+                         callback)

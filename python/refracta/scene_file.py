@@ -21,14 +21,17 @@
     [sky]                               # optional
     horizon = [0.75, 0.82, 0.92]
     zenith = [0.22, 0.42, 0.85]
+    # or: environment = "sky.exr" (equirectangular, y up), scale = 1.0
 
     [[objects]]                         # any number
-    type = "ground"                     # ground | box | sphere | obj | mesh
-    height = 0.0                        # per type: ground (height, size), box (centre, size),
-    kd = [0.1, 0.1, 0.1]                # sphere (centre, radius), obj (file, offset, scale),
-                                        # mesh (vertices, triangles); all: kd, ks, ns
+    type = "ground"                     # ground | box | sphere | obj | mesh | billboard
+    height = 0.0                        # per type: ground (height, size, texture, texture_size),
+    kd = [0.1, 0.1, 0.1]                # box (centre, size), sphere (centre, radius), obj (file,
+                                        # offset, scale), mesh (vertices, triangles, uvs, texture),
+                                        # billboard (centre, width, height, texture, facing);
+                                        # all: kd, ks, ns
 
-File names (obj) are relative to the TOML file. Errors raise ValueError naming the file, the line
+File names (obj, textures, environment) are relative to the TOML file. Errors raise ValueError naming the file, the line
 and the key; missing files raise refracta.IoError.
 """
 
@@ -54,11 +57,12 @@ MODELS = {
     "TemperatureProfile": _core.TemperatureProfile,
 }
 OBJECT_KEYS = {
-    "ground": {"height", "size"},
+    "ground": {"height", "size", "texture", "texture_size"},
     "box": {"centre", "size"},
     "sphere": {"centre", "radius"},
     "obj": {"file", "offset", "scale"},
-    "mesh": {"vertices", "triangles"},
+    "mesh": {"vertices", "triangles", "uvs", "texture"},
+    "billboard": {"centre", "width", "height", "texture", "facing"},
 }
 MATERIAL_KEYS = {"kd", "ks", "ns"}
 
@@ -159,9 +163,12 @@ def load_scene(path) -> SceneFile:
             raise where.error(str(error), "sun") from None
     if "sky" in data:
         sky = data["sky"]
-        horizon = get(sky, "sky", "horizon", lambda v: _number_list(v, 3), required=True)
+        environment = get(sky, "sky", "environment", str, None)
+        horizon = get(sky, "sky", "horizon", lambda v: _number_list(v, 3), required=environment is None)
         try:
-            scene.set_sky(horizon, get(sky, "sky", "zenith", lambda v: _number_list(v, 3), horizon))
+            scene.set_sky(horizon, get(sky, "sky", "zenith", lambda v: _number_list(v, 3), horizon),
+                          None if environment is None else str(path.parent / environment),
+                          get(sky, "sky", "scale", float, 1.0))
         except ValueError as error:
             raise where.error(str(error), "sky") from None
 
@@ -175,10 +182,20 @@ def load_scene(path) -> SceneFile:
         material = dict(kd=get(obj, "objects", "kd", lambda v: _number_list(v, 3), [0.5, 0.5, 0.5], index=index),
                         ks=get(obj, "objects", "ks", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
                         ns=get(obj, "objects", "ns", float, 1.0, index=index))
+        texture = get(obj, "objects", "texture", str, None, index=index)
+        texture = None if texture is None else str(path.parent / texture)
         try:
             if kind == "ground":
                 scene.add_ground(get(obj, "objects", "height", float, 0.0, index=index),
-                                 get(obj, "objects", "size", float, 20000.0, index=index), **material)
+                                 get(obj, "objects", "size", float, 20000.0, index=index), **material,
+                                 texture=texture, texture_size=get(obj, "objects", "texture_size", float, 1.0, index=index))
+            elif kind == "billboard":
+                scene.add_billboard(get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
+                                    get(obj, "objects", "width", float, required=True, index=index),
+                                    get(obj, "objects", "height", float, required=True, index=index),
+                                    get(obj, "objects", "texture", str, required=True, index=index) and texture,
+                                    get(obj, "objects", "facing", lambda v: _number_list(v, 3), [-1.0, 0.0, 0.0],
+                                        index=index), kd=material["kd"])
             elif kind == "box":
                 scene.add_box(get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
                               get(obj, "objects", "size", lambda v: _number_list(v, 3), required=True, index=index),
@@ -193,7 +210,8 @@ def load_scene(path) -> SceneFile:
                               get(obj, "objects", "scale", float, 1.0, index=index))
             else:
                 scene.add_mesh(get(obj, "objects", "vertices", list, required=True, index=index),
-                               get(obj, "objects", "triangles", list, required=True, index=index), **material)
+                               get(obj, "objects", "triangles", list, required=True, index=index), **material,
+                               uvs=get(obj, "objects", "uvs", list, None, index=index), texture=texture)
         except ValueError as error:
             raise where.error(str(error), "objects", None, index) from None
 

@@ -13,7 +13,7 @@ void bind_render(py::module_& m) {
         [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::shared_ptr<IndexField>& field,
            const std::string& method, int spp, uint64_t seed, double max_length, double chord, double sagitta, double tol,
            bool table, std::optional<std::string> integrator, const std::string& march, double step, int max_steps,
-           double guard_band, const py::object& progress) {
+           double guard_band, bool texture_filter, const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
           RenderOptions options;
           options.method = parse_render_method(method);
@@ -29,6 +29,7 @@ void bind_render(py::module_& m) {
           options.step = step;
           options.max_steps = max_steps;
           options.guard_band = guard_band;
+          options.texture_filter = texture_filter;
           options.validate();
           WorkControl control;
           Image image;
@@ -39,7 +40,7 @@ void bind_render(py::module_& m) {
         },
         py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("method"), py::arg("spp"), py::arg("seed"),
         py::arg("max_length"), py::arg("chord"), py::arg("sagitta"), py::arg("tol"), py::arg("table"), py::arg("integrator"),
-        py::arg("march"), py::arg("step"), py::arg("max_steps"), py::arg("guard_band"), py::arg("progress"));
+        py::arg("march"), py::arg("step"), py::arg("max_steps"), py::arg("guard_band"), py::arg("texture_filter"), py::arg("progress"));
 }
 
 }  // namespace refracta

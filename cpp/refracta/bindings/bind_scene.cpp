@@ -6,6 +6,7 @@
 #include "refracta/shading/tonemap.h"
 
 #include <cmath>
+#include <optional>
 
 namespace refracta {
 
@@ -20,6 +21,24 @@ Material material_from(const py::object& kd, const py::object& ks, double ns) {
   m.ns = ns;
   m.validate();
   return m;
+}
+
+std::vector<Eigen::Vector2d> to_uvs(const py::object& object, size_t count) {
+  DoubleArray array;
+  try {
+    array = py::cast<DoubleArray>(object);
+  } catch (const py::cast_error&) {
+    throw_invalid("uvs must be a float array of shape (N, 2)");
+  }
+  if (array.ndim() != 2 || array.shape(1) != 2 || size_t(array.shape(0)) != count) {
+    throw_invalid("uvs must have shape (", count, ", 2): one per vertex");
+  }
+  std::vector<Eigen::Vector2d> out(count);
+  for (size_t i = 0; i < count; ++i) {
+    out[i] = Eigen::Vector2d(array.at(i, 0), array.at(i, 1));
+    if (!std::isfinite(out[i].x()) || !std::isfinite(out[i].y())) throw_invalid("uvs must be finite");
+  }
+  return out;
 }
 
 DoubleArray image_to_array(const Image& image) {
@@ -75,8 +94,10 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
       .def(py::init<>())
       .def("add_mesh",
            [](RenderScene& s, const py::object& vertices, const py::object& triangles, const py::object& kd,
-              const py::object& ks, double ns) {
-             const std::vector<Vec3d> v = to_points(vertices, "vertices");
+              const py::object& ks, double ns, const py::object& uvs, std::optional<std::string> texture) {
+             Mesh mesh;
+             mesh.vertices = to_points(vertices, "vertices");
+             const std::vector<Vec3d>& v = mesh.vertices;
              py::array_t<long long, py::array::c_style | py::array::forcecast> t;
              try {
                t = py::cast<decltype(t)>(triangles);
@@ -88,11 +109,17 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
              for (py::ssize_t i = 0; i < t.shape(0); ++i) {
                for (int k = 0; k < 3; ++k) tris[i][k] = int(std::clamp<long long>(t.at(i, k), -1, 1LL << 30));
              }
-             return s.geometry.add_mesh(v, tris, material_from(kd, ks, ns));
+             mesh.triangles = tris;
+             if (!uvs.is_none()) mesh.uvs = to_uvs(uvs, v.size());
+             Material material = material_from(kd, ks, ns);
+             if (texture) material.kd_texture = s.geometry.textures().add(*texture);
+             return s.geometry.add_mesh(mesh, material);
            },
            py::arg("vertices"), py::arg("triangles"), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5),
-           py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0,
-           "Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices. Returns its id.")
+           py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0, py::arg("uvs") = py::none(),
+           py::arg("texture") = py::none(),
+           "Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices; optional uvs (N, 2) texture\n"
+           "coordinates (u right, v up) and a texture image file multiplying kd. Returns its id.")
       .def("add_obj",
            [](RenderScene& s, const std::string& path, const py::object& offset, double scale) {
              const Vec3d shift = to_point(offset, "offset");
@@ -100,21 +127,55 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
              py::list ids;
              for (auto& part : load_obj(path)) {
                for (auto& v : part.mesh.vertices) v = v * scale + shift;
-               ids.append(s.geometry.add_mesh(part.mesh.vertices, part.mesh.triangles, part.material));
+               if (!part.texture.empty()) part.material.kd_texture = s.geometry.textures().add(part.texture);
+               ids.append(s.geometry.add_mesh(part.mesh, part.material));
              }
              return ids;
            },
            py::arg("path"), py::arg("offset") = py::make_tuple(0.0, 0.0, 0.0), py::arg("scale") = 1.0,
-           "Add a Wavefront OBJ (+ MTL: Kd, Ks, Ns) file, scaled then offset; returns the geometry ids. "
-           "Texture maps are not applied yet.")
+           "Add a Wavefront OBJ (+ MTL: Kd, Ks, Ns, map_Kd with the file's texture coordinates) file, scaled\n"
+           "then offset; returns the geometry ids. A missing OBJ, MTL or texture raises refracta.IoError.")
       .def("add_ground",
-           [](RenderScene& s, double height, double size, const py::object& kd, const py::object& ks, double ns) {
-             const Mesh mesh = ground_mesh(height, 0.5 * size);
-             return s.geometry.add_mesh(mesh.vertices, mesh.triangles, material_from(kd, ks, ns));
+           [](RenderScene& s, double height, double size, const py::object& kd, const py::object& ks, double ns,
+              std::optional<std::string> texture, double texture_size) {
+             Mesh mesh = ground_mesh(height, 0.5 * size);
+             Material material = material_from(kd, ks, ns);
+             if (texture) {
+               if (!(texture_size > 0.0) || !std::isfinite(texture_size)) {
+                 throw_invalid("texture_size must be > 0 (got ", texture_size, ")");
+               }
+               material.kd_texture = s.geometry.textures().add(*texture);
+               for (const auto& v : mesh.vertices) mesh.uvs.emplace_back(v.x() / texture_size, -v.z() / texture_size);
+             }
+             return s.geometry.add_mesh(mesh, material);
            },
            py::arg("height") = 0.0, py::arg("size") = 20000.0, py::arg("kd") = py::make_tuple(0.3, 0.3, 0.3),
-           py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0,
-           "Add a square ground of side `size` [m] at y = height, centred on the origin.")
+           py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0, py::arg("texture") = py::none(),
+           py::arg("texture_size") = 1.0,
+           "Add a square ground of side `size` [m] at y = height, centred on the origin; an optional texture\n"
+           "repeats every texture_size [m] (u along +x, v along -z).")
+      .def("add_billboard",
+           [](RenderScene& s, const py::object& centre, double width, double height, const std::string& texture,
+              const py::object& facing, const py::object& kd) {
+             const Vec3d c = to_point(centre, "centre"), f = to_point(facing, "facing");
+             Vec3d across(f.z(), 0.0, -f.x());
+             if (across.norm() == 0.0) throw_invalid("facing must have a horizontal component");
+             if (!(width > 0.0) || !(height > 0.0)) throw_invalid("width and height must be > 0");
+             across = across.normalized() * (0.5 * width);
+             const Vec3d up(0.0, 0.5 * height, 0.0);
+             Mesh mesh;
+             mesh.vertices = {c - across - up, c + across - up, c + across + up, c - across + up};
+             mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+             mesh.uvs = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}};
+             Material material = material_from(kd, py::make_tuple(0.0, 0.0, 0.0), 1.0);
+             material.kd_texture = s.geometry.textures().add(texture);
+             return s.geometry.add_mesh(mesh, material);
+           },
+           py::arg("centre"), py::arg("width"), py::arg("height"), py::arg("texture"),
+           py::arg("facing") = py::make_tuple(-1.0, 0.0, 0.0), py::arg("kd") = py::make_tuple(1.0, 1.0, 1.0),
+           "Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at\n"
+           "`centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the\n"
+           "-x side), upright.")
       .def("add_box",
            [](RenderScene& s, const py::object& centre, const py::object& size, const py::object& kd,
               const py::object& ks, double ns) {
@@ -143,15 +204,24 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
            py::arg("direction"), py::arg("radiance"), py::arg("angular_diameter") = 0.53,
            "The sun: direction toward it, disc radiance (RGB), angular diameter [deg].")
       .def("set_sky",
-           [](RenderScene& s, const py::object& horizon, const py::object& zenith) {
+           [](RenderScene& s, const py::object& horizon, const py::object& zenith,
+              std::optional<std::string> environment, double scale) {
              Sky sky;
-             sky.horizon = to_rgb(horizon, "horizon");
+             sky.horizon = horizon.is_none() ? sky.horizon : to_rgb(horizon, "horizon");
              sky.zenith = zenith.is_none() ? sky.horizon : to_rgb(zenith, "zenith");
+             sky.scale = scale;
+             if (environment) {
+               sky.textures = s.geometry.shared_textures();
+               sky.environment = s.geometry.textures().add(*environment);
+             }
              sky.validate();
              s.lighting.sky = sky;
            },
-           py::arg("horizon"), py::arg("zenith") = py::none(),
-           "Sky radiance toward the horizon (and below) and straight up (default: same, a constant sky).")
+           py::arg("horizon") = py::none(), py::arg("zenith") = py::none(), py::arg("environment") = py::none(),
+           py::arg("scale") = 1.0,
+           "Sky radiance toward the horizon (and below) and straight up (default: same, a constant sky), or an\n"
+           "equirectangular environment map file (y up, top row the zenith, centre column along +x, radiance\n"
+           "times `scale`; 8/16-bit files are sRGB-decoded).")
       .def_property("shadows", [](const RenderScene& s) { return s.lighting.shadows; },
                     [](RenderScene& s, bool on) { s.lighting.shadows = on; })
       .def_property_readonly("geometry_count", [](const RenderScene& s) { return s.geometry.geometry_count(); })

@@ -82,8 +82,9 @@ Image render_raster_march(const Scene& scene, const Lighting& lighting, const Ca
     end.hit = surface_at(scene, frame.buffer, x, y, eye);
     if (!end.hit) return Vec3d::Zero().eval();
     end.direction = (end.hit->point - eye).normalized();
+    end.length = end.hit->t;
     Rng rng(options.seed, uint64_t(y) * uint64_t(frame.view.width()) + uint64_t(x));
-    return shade(scene, lighting, end, rng, false);
+    return shade(scene, lighting, end, rng, false, options.texture_filter ? camera.pixel_angle() : 0.0);
   });
   auto colour_at = [&](int px, int py) {
     const float* c = frame.colour.at(px, py);

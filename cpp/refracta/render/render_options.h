@@ -26,6 +26,9 @@ struct RenderOptions {
   // (interpolated to `tol`) instead of tracing each pixel.
   bool use_table = true;
   int tile = 16;
+  // Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point
+  // samples the finest level (aliases: only for references and tests).
+  bool texture_filter = true;
 
   // raster_march (the original editor's method): the integrator marching each pixel's ray
   // against the depth buffer: 'rk4' with `step` [m] for at most `max_steps` steps (the

@@ -123,10 +123,15 @@ PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& or
   return end;
 }
 
-Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter) {
-  if (!end.hit) return lighting.sky.radiance(end.direction);
+Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter,
+            double pixel_angle) {
+  // The pixel's cone: its width grows with the path length (refraction's own spreading of the
+  // cone along a curved path is neglected).
+  const double footprint = pixel_angle * end.length;
+  if (!end.hit) return lighting.sky.radiance(end.direction, pixel_angle);
   const Hit& hit = *end.hit;
-  const Material& material = scene.material(hit.geometry);
+  Material material = scene.material(hit.geometry);
+  material.kd = scene.albedo(hit, end.direction, footprint);
   const Vec3d wo = -end.direction;
   Vec3d radiance = material.kd.cwiseProduct(lighting.sky.mean_radiance());  // unoccluded sky, Lambert
   const Sun& sun = lighting.sun;
@@ -223,6 +228,8 @@ Image render(const Scene& scene, const Lighting& lighting, const Camera& camera,
     control.done = 0;
   }
   const int strata = int(std::ceil(std::sqrt(double(options.spp))));
+  // Each sample's cone covers its share of the pixel.
+  const double pixel_angle = camera.pixel_angle() / strata;
   return render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
     Rng rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x));
     Vec3d sum = Vec3d::Zero();
@@ -235,7 +242,7 @@ Image render(const Scene& scene, const Lighting& lighting, const Camera& camera,
       const Vec3d dir = camera.direction(x + du, y + dv);
       const PathEnd end = table ? follow_table_path(scene, *table, camera.position(), dir, options)
                                 : follow_path(scene, field.get(), camera.position(), dir, options);
-      sum += shade(scene, lighting, end, rng, options.spp > 1);
+      sum += shade(scene, lighting, end, rng, options.spp > 1, options.texture_filter ? pixel_angle : 0.0);
     }
     return Vec3d(sum / options.spp);
   });

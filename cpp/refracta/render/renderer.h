@@ -35,8 +35,10 @@ PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& or
                     const RenderOptions& options);
 
 // Radiance leaving the path's end toward the eye: Blinn-Phong at a hit with sky light and the sun
-// (shadow rays through Embree; the sun's disc sampled when jitter), or the sky.
-Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter);
+// (shadow rays through Embree; the sun's disc sampled when jitter), or the sky. Textures are
+// filtered over the cone of angle pixel_angle [rad] (0: point sampled).
+Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter,
+            double pixel_angle);
 
 // The original editor's method (raster_march.cpp): rasterize, then march each pixel's curved
 // ray against the depth buffer.

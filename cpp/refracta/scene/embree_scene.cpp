@@ -5,6 +5,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -13,6 +14,7 @@
 namespace refracta {
 
 void Material::validate() const {
+  if (kd_texture < -1) throw_invalid("Material: kd_texture must be a texture id or -1 (got ", kd_texture, ")");
   for (int i = 0; i < 3; ++i) {
     if (!(kd[i] >= 0.0 && kd[i] <= 1.0)) throw_invalid("Material: kd must be in [0, 1] (got ", kd[i], ")");
     if (!(ks[i] >= 0.0 && ks[i] <= 1.0)) throw_invalid("Material: ks must be in [0, 1] (got ", ks[i], ")");
@@ -111,6 +113,19 @@ unsigned Scene::add_mesh(const std::vector<Vec3d>& vertices, const std::vector<s
   return id;
 }
 
+unsigned Scene::add_mesh(const Mesh& mesh, const Material& material) {
+  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.vertices.size()) {
+    throw_invalid("add_mesh: uvs must have one entry per vertex (", mesh.uvs.size(), " vs ", mesh.vertices.size(), ")");
+  }
+  for (const auto& uv : mesh.uvs) {
+    if (!std::isfinite(uv.x()) || !std::isfinite(uv.y())) throw_invalid("add_mesh: uvs must be finite");
+  }
+  if (material.kd_texture >= 0 && mesh.uvs.empty()) throw_invalid("add_mesh: a textured material needs uvs");
+  const unsigned id = add_mesh(mesh.vertices, mesh.triangles, material);
+  meshes_.back().mesh.uvs = mesh.uvs;
+  return id;
+}
+
 unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector<double>& radii,
                             const Material& material) {
   material.validate();
@@ -191,6 +206,8 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
   hit.normal = normal.dot(dir) > 0.0 ? Vec3d(-normal) : normal;
   hit.geometry = query.hit.geomID;
   hit.primitive = query.hit.primID;
+  hit.b1 = query.hit.u;
+  hit.b2 = query.hit.v;
   return hit;
 }
 
@@ -224,6 +241,42 @@ Mesh box_mesh(const Vec3d& centre, const Vec3d& size) {
   mesh.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                     {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
   return mesh;
+}
+
+Vec3d Scene::albedo(const Hit& hit, const Vec3d& dir, double footprint) const {
+  const Material& material = materials_.at(hit.geometry);
+  if (material.kd_texture < 0) return material.kd;
+  const Mesh& mesh = meshes_.at(hit.geometry).mesh;
+  const auto& tri = mesh.triangles.at(hit.primitive);
+  const Eigen::Vector2d uv = (1.0 - hit.b1 - hit.b2) * mesh.uvs[tri[0]] + hit.b1 * mesh.uvs[tri[1]] +
+                             hit.b2 * mesh.uvs[tri[2]];
+  TextureLookup at;
+  at.s = uv.x();
+  at.t = 1.0 - uv.y();  // OIIO's t runs down the image, OBJ's v up
+  if (footprint > 0.0) {
+    // Footprint axes across the ray, projected along it onto the plane; then barycentric
+    // offsets by the pseudo-inverse of the edge matrix, and uv offsets by the uv edges.
+    const Vec3d& p0 = mesh.vertices[tri[0]];
+    Eigen::Matrix<double, 3, 2> edges;
+    edges << mesh.vertices[tri[1]] - p0, mesh.vertices[tri[2]] - p0;
+    Eigen::Matrix2d uv_edges;
+    uv_edges << mesh.uvs[tri[1]] - mesh.uvs[tri[0]], mesh.uvs[tri[2]] - mesh.uvs[tri[0]];
+    const Vec3d n = edges.col(0).cross(edges.col(1));
+    const Vec3d d = dir.normalized();
+    const Vec3d side = (std::abs(d.y()) < 0.99 ? d.cross(Vec3d::UnitY()) : d.cross(Vec3d::UnitX())).normalized();
+    const Vec3d axes[2] = {side * footprint, d.cross(side) * footprint};
+    const Eigen::Matrix<double, 2, 3> to_bary = (edges.transpose() * edges).inverse() * edges.transpose();
+    Eigen::Vector2d duv[2];
+    for (int k = 0; k < 2; ++k) {
+      const double along = n.dot(d);
+      const Vec3d on_plane = std::abs(along) > 1e-12 * n.norm() ? Vec3d(axes[k] - d * (n.dot(axes[k]) / along)) : axes[k];
+      duv[k] = uv_edges * (to_bary * on_plane);
+    }
+    // A grazing view stretches the footprint without bound: cap it at a few texture repeats.
+    at.dsdx = std::clamp(duv[0].x(), -4.0, 4.0), at.dtdx = std::clamp(-duv[0].y(), -4.0, 4.0);
+    at.dsdy = std::clamp(duv[1].x(), -4.0, 4.0), at.dtdy = std::clamp(-duv[1].y(), -4.0, 4.0);
+  }
+  return material.kd.cwiseProduct(textures_->lookup(material.kd_texture, at));
 }
 
 Mesh sphere_mesh(const Vec3d& centre, double radius, int segments, int rings) {

@@ -10,6 +10,7 @@ struct Material {
   Vec3d kd{0.5, 0.5, 0.5};  // diffuse albedo in [0, 1]
   Vec3d ks{0.0, 0.0, 0.0};  // specular albedo in [0, 1]
   double ns = 1.0;          // Phong exponent, >= 0
+  int kd_texture = -1;      // Textures id multiplying kd (MTL map_Kd), -1 for none
 
   void validate() const;  // throws std::invalid_argument naming the bad field
 };

@@ -9,8 +9,9 @@
 
 namespace refracta {
 
-// One mesh per material of the file, with the material's Kd, Ks, Ns. Texture maps (map_Kd) are
-// reported in `texture` but not yet applied. Throws IoError for a missing or malformed file.
+// One mesh per material of the file, with the material's Kd, Ks, Ns; a material with a diffuse
+// map (map_Kd) and texture coordinates on every face gets uvs and `texture`, the map's path
+// (relative to the MTL's folder resolved). Throws IoError for a missing or malformed file.
 struct MaterialMesh {
   Mesh mesh;
   Material material;

@@ -1,0 +1,126 @@
+// Textures: OIIO make_texture + TextureSystem.
+#include "refracta/scene/textures.h"
+
+#include "refracta/core/error.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/texture.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <mutex>
+
+namespace refracta {
+
+namespace fs = std::filesystem;
+
+struct Textures::Impl {
+  OIIO::TextureSystem* system = nullptr;
+  std::vector<OIIO::ustring> files;  // prepared (MIP-mapped, linear) files, by id
+  std::mutex mutex;
+
+  Impl() {
+    system = OIIO::TextureSystem::create(false);  // private: our files, our options
+    system->attribute("max_memory_MB", 512.0f);
+  }
+  ~Impl() { OIIO::TextureSystem::destroy(system); }
+};
+
+Textures::Textures() : impl_(std::make_unique<Impl>()) {}
+Textures::~Textures() = default;
+
+namespace {
+
+// The prepared copy of `path`: a tiled, MIP-mapped, linear half-float OpenEXR in the temp
+// folder, named by the source's path, size and time so an edited file is prepared again.
+std::string prepare(const std::string& path) {
+  std::error_code error;
+  const auto size = fs::file_size(path, error);
+  if (error) throw IoError(concat("no such texture file: '", path, "'"));
+  const auto time = fs::last_write_time(path, error).time_since_epoch().count();
+  const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time));
+  const fs::path folder = fs::temp_directory_path() / "refracta-textures";
+  fs::create_directories(folder, error);
+  const fs::path prepared = folder / concat(std::hex, key, ".exr");
+  if (fs::exists(prepared)) return prepared.string();
+
+  OIIO::ImageBuf source(path);
+  if (!source.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
+    throw IoError(concat("cannot read texture '", path, "': ", source.geterror()));
+  }
+  // 8- and 16-bit images store sRGB-encoded colour: filter in linear light.
+  const OIIO::TypeDesc stored = source.spec().format;
+  OIIO::ImageBuf linear = source;
+  if (stored == OIIO::TypeDesc::UINT8 || stored == OIIO::TypeDesc::UINT16) {
+    linear = OIIO::ImageBufAlgo::colorconvert(source, "sRGB", "linear");
+    if (linear.has_error()) throw IoError(concat("texture '", path, "': ", linear.geterror()));
+  }
+  OIIO::ImageSpec config;
+  config.attribute("maketx:filtername", "lanczos3");
+  config.attribute("tile_width", 64);
+  config.attribute("tile_height", 64);
+  config.attribute("compression", "zip");
+  config.set_format(OIIO::TypeDesc::HALF);
+  // Written under a temporary name and renamed, so concurrent sessions never read a partial file.
+  const fs::path partial = prepared.string() + concat(".", std::hash<std::string>()(path), ".part.exr");
+  if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, linear, partial.string(), config)) {
+    throw IoError(concat("cannot prepare texture '", path, "': ", OIIO::geterror()));
+  }
+  fs::rename(partial, prepared, error);
+  if (error && !fs::exists(prepared)) throw IoError(concat("cannot store prepared texture for '", path, "'"));
+  return prepared.string();
+}
+
+Vec3d to_rgb(const float* c, int channels) {
+  return channels >= 3 ? Vec3d(c[0], c[1], c[2]) : Vec3d(c[0], c[0], c[0]);
+}
+
+}  // namespace
+
+int Textures::add(const std::string& path) {
+  for (size_t i = 0; i < paths_.size(); ++i) {
+    if (paths_[i] == path) return int(i);
+  }
+  const std::string prepared = prepare(path);
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->files.emplace_back(prepared);
+  paths_.push_back(path);
+  return int(paths_.size() - 1);
+}
+
+Vec3d Textures::lookup(int id, const TextureLookup& at) const {
+  OIIO::TextureOpt options;
+  options.swrap = options.twrap = OIIO::TextureOpt::WrapPeriodic;
+  float result[3] = {0, 0, 0};
+  const OIIO::ustring& file = impl_->files.at(id);
+  if (!impl_->system->texture(file, options, float(at.s), float(at.t), float(at.dsdx), float(at.dtdx),
+                              float(at.dsdy), float(at.dtdy), 3, result)) {
+    throw IoError(concat("texture lookup failed for '", paths_.at(id), "': ", impl_->system->geterror()));
+  }
+  return to_rgb(result, 3);
+}
+
+Vec3d Textures::environment(int id, const Vec3d& dir, double footprint) const {
+  // Equirectangular, y up: s = 1/2 + atan2(z, x) / 2 pi (the centre column looks along +x),
+  // t = 1/2 - asin(y) / pi (the top row is the zenith). The footprint becomes (s, t) widths.
+  const double lat = std::asin(std::clamp(dir.y(), -1.0, 1.0));
+  TextureLookup at;
+  at.s = 0.5 + std::atan2(dir.z(), dir.x()) / (2.0 * kPi);
+  at.t = 0.5 - lat / kPi;
+  at.dsdx = footprint / (2.0 * kPi * std::max(std::cos(lat), 1e-3));
+  at.dtdy = footprint / kPi;
+  OIIO::TextureOpt options;
+  options.swrap = OIIO::TextureOpt::WrapPeriodic;
+  options.twrap = OIIO::TextureOpt::WrapClamp;
+  float result[3] = {0, 0, 0};
+  if (!impl_->system->texture(impl_->files.at(id), options, float(at.s), float(at.t), float(at.dsdx), 0.0f, 0.0f,
+                              float(at.dtdy), 3, result)) {
+    throw IoError(concat("environment lookup failed for '", paths_.at(id), "': ", impl_->system->geterror()));
+  }
+  return to_rgb(result, 3);
+}
+
+}  // namespace refracta

@@ -1,0 +1,46 @@
+// Image textures through OpenImageIO's TextureSystem: MIP-mapped, anisotropic filtering driven by
+// the footprint of a pixel on the surface. A texture file is prepared once by OIIO's
+// make_texture (linearised from sRGB when stored in 8 or 16 bits, MIP-mapped, tiled) into a
+// cache file; lookups then go through the shared TextureSystem. The only OIIO texture user.
+#pragma once
+
+#include "refracta/core/math.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace refracta {
+
+// Texture coordinates (s, t) in OIIO's convention: s right, t down, [0, 1] over the image,
+// repeating outside. d*dx, d*dy: the change of (s, t) across one pixel's footprint.
+struct TextureLookup {
+  double s = 0.0, t = 0.0;
+  double dsdx = 0.0, dtdx = 0.0, dsdy = 0.0, dtdy = 0.0;
+};
+
+class Textures {
+ public:
+  Textures();
+  ~Textures();
+  Textures(const Textures&) = delete;
+  Textures& operator=(const Textures&) = delete;
+
+  // Registers an image file (any format OIIO reads); returns its id. The same path twice gives
+  // the same id. Throws IoError naming the file when it is missing or unreadable.
+  int add(const std::string& path);
+  // Filtered linear RGB (a grey or RGBA image gives its first channels, grey replicated).
+  Vec3d lookup(int id, const TextureLookup& at) const;
+  // Filtered linear RGB of an equirectangular (lat-long) environment map seen along unit dir:
+  // y up, the top row the zenith, the centre column looking along +x, s growing toward +z;
+  // footprint: the angular width of the lookup [rad].
+  Vec3d environment(int id, const Vec3d& dir, double footprint) const;
+  const std::string& path(int id) const { return paths_.at(id); }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::vector<std::string> paths_;
+};
+
+}  // namespace refracta
