@@ -1,6 +1,6 @@
 """Rendering the hot_road example at 1280x720, 1 spp, 2 threads (renderer issue benchmark).
 
-Time and peak memory (each method in a fresh process) for straight ray casting, curved rays
+Time, peak memory and chords per pixel (each method in a fresh process) for straight ray casting, curved rays
 served by the ElevationTable (the default for height-only fields), curved rays with rk45 forced
 per pixel, raster_march with rk45, and raster_march with the original editor's settings (rk4,
 step 0.3 m, 1000 steps). Goals (issue): curved (table) within 5x of straight, and >= 50x faster
@@ -35,12 +35,14 @@ def run_one(name: str, width: int, height: int) -> dict:
 
     example = examples.hot_road(width, height)
     field = None if name == "straight" else example.field
+    counts = {}
     start = time.perf_counter()
     image = refracta.render(example.scene, example.camera, field, progress=False, max_length=example.max_length,
-                            **METHODS[name])
+                            stats=counts, **METHODS[name])
     seconds = time.perf_counter() - start
     return {"seconds": seconds, "peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
-            "mean_radiance": float(image.mean()), "us_per_pixel": 1e6 * seconds / (width * height)}
+            "mean_radiance": float(image.mean()), "us_per_pixel": 1e6 * seconds / (width * height),
+            "chords_per_pixel": counts["chords"] / counts["samples"] if counts.get("chords") else None}
 
 
 def main(width: int, height: int) -> dict:
@@ -50,7 +52,7 @@ def main(width: int, height: int) -> dict:
                                 check=True, capture_output=True, text=True).stdout
         rows[name] = json.loads(output.strip().splitlines()[-1])
         print(f"{name:24s} {rows[name]['seconds']:8.2f} s  {rows[name]['us_per_pixel']:7.2f} us/pixel  "
-              f"peak {rows[name]['peak_rss_mb']:.0f} MB")
+              f"peak {rows[name]['peak_rss_mb']:.0f} MB  chords/pixel {rows[name]['chords_per_pixel']}")
     ratios = {"curved_table_over_straight": rows["curved_table"]["seconds"] / rows["straight"]["seconds"],
               "rk45_per_pixel_over_table": rows["curved_rk45_per_pixel"]["seconds"] / rows["curved_table"]["seconds"],
               "raster_march_original_over_curved_table":

@@ -29,6 +29,7 @@ def render(
     max_steps: int = 1000,
     guard_band: float = 0.1,
     texture_filter: bool = True,
+    stats: Optional[dict] = None,
 ) -> np.ndarray:
     """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3).
 
@@ -46,7 +47,8 @@ def render(
     behind the depth buffer; that raster pixel's colour is shown. It cannot show what no raster
     pixel shows (outside the view, hidden, beyond the curved Earth's horizon). Textures are filtered
     by OpenImageIO over each sample's ray-cone footprint (texture_filter=False point-samples them:
-    only for references). spp: samples per pixel (1: pixel centres; more: stratified
+    only for references). stats: a dict to fill with counts ('samples', 'chords': Embree queries
+    along the paths; raster_march does not count its marching). spp: samples per pixel (1: pixel centres; more: stratified
     jitter, soft sun shadows), seeded by `seed`. progress: a bar on stderr (True), a callable
     progress(done, total), or False. Runs on all cores with the GIL released; Ctrl-C stops it.
     """
@@ -57,6 +59,11 @@ def render(
     callback = ProgressBar("rendering") if progress is True else (progress or None)
     if isinstance(max_steps, bool) or int(max_steps) != max_steps:
         raise ValueError(f"max_steps must be a whole number >= 1 (got {max_steps!r})")
-    return _core._render(scene, camera, field, method, int(spp), int(seed), max_length, chord, sagitta, tol,
-                         bool(table), integrator, march, step, int(max_steps), guard_band, bool(texture_filter),
-                         callback)
+    if stats is not None and not isinstance(stats, dict):
+        raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
+    image, counts = _core._render(scene, camera, field, method, int(spp), int(seed), max_length, chord, sagitta, tol,
+                                  bool(table), integrator, march, step, int(max_steps), guard_band,
+                                  bool(texture_filter), callback)
+    if stats is not None:
+        stats.update(counts)
+    return image

@@ -73,3 +73,15 @@ def test_bad_options_raise_value_error(kwargs, match):
     example = examples.hot_road(16, 8)
     with pytest.raises(ValueError, match=match):
         refracta.render(example.scene, example.camera, example.field, method="raster_march", progress=False, **kwargs)
+
+
+def test_render_counts_its_chords():
+    example = examples.hot_road(32, 12)
+    straight, curved = {}, {}
+    refracta.render(example.scene, example.camera, None, method="straight", progress=False, stats=straight)
+    refracta.render(example.scene, example.camera, example.field, progress=False, max_length=example.max_length,
+                    stats=curved)
+    assert straight == {"samples": 32 * 12, "chords": 32 * 12}  # one straight ray per pixel
+    assert curved["samples"] == 32 * 12 and curved["chords"] > 2 * curved["samples"]
+    with pytest.raises(ValueError, match="stats"):
+        refracta.render(example.scene, example.camera, None, progress=False, stats=[])

@@ -33,10 +33,14 @@ void bind_render(py::module_& m) {
           options.validate();
           WorkControl control;
           Image image;
+          RenderStats stats;
           run_interruptible(control, progress, [&] {
-            image = render(scene->geometry, scene->lighting, camera, field, options, control);
+            image = render(scene->geometry, scene->lighting, camera, field, options, control, &stats);
           });
-          return image_to_float32(image);
+          py::dict counts;
+          counts["samples"] = stats.samples;
+          counts["chords"] = stats.chords;
+          return py::make_tuple(image_to_float32(image), counts);
         },
         py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("method"), py::arg("spp"), py::arg("seed"),
         py::arg("max_length"), py::arg("chord"), py::arg("sagitta"), py::arg("tol"), py::arg("table"), py::arg("integrator"),

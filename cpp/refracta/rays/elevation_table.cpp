@@ -50,40 +50,62 @@ PlaneState ElevationTable::state_of(const RayPath& path, double s) {
   return {x.x(), x.y(), std::min(s, path.length()), direction.x(), direction.y(), path.stop()};
 }
 
-PlaneState ElevationTable::interpolate(const std::vector<double>& elevations,
-                                       const std::vector<Entry>& entries, size_t i, double elevation,
-                                       double fraction) {
-  // Stencil: four neighbours of one kind when they exist, else the interval's two ends.
-  size_t first = i, count = 2;
+namespace {
+
+// Stencil of interval i: four neighbours of one kind when they exist, else the interval's ends.
+template <class Entries>
+std::pair<size_t, size_t> stencil_of(const Entries& entries, size_t i) {
   if (i >= 1 && i + 2 < entries.size()) {
     const int kind = entries[i].kind;
-    if (entries[i - 1].kind == kind && entries[i + 1].kind == kind && entries[i + 2].kind == kind) {
-      first = i - 1, count = 4;
-    }
+    if (entries[i - 1].kind == kind && entries[i + 1].kind == kind && entries[i + 2].kind == kind) return {i - 1, 4};
   }
-  double length = 0.0, weights[4];
-  for (size_t k = 0; k < count; ++k) {  // Lagrange weights on the (uneven) elevations
+  return {i, 2};
+}
+
+// Lagrange weights at `elevation` on the stencil's (uneven) elevations.
+void lagrange_weights(const std::vector<double>& elevations, size_t first, size_t count, double elevation,
+                      double* weights) {
+  for (size_t k = 0; k < count; ++k) {
     double w = 1.0;
     for (size_t j = 0; j < count; ++j) {
       if (j != k) w *= (elevation - elevations[first + j]) / (elevations[first + k] - elevations[first + j]);
     }
     weights[k] = w;
-    length += w * entries[first + k].path->length();
   }
-  PlaneState out{0, 0, 0, 0, 0, entries[i].path->stop()};
+}
+
+// The weighted state of a stencil (directions renormalised) at arc length s.
+PlaneState blend(const double* weights, const PlaneState* states, size_t count, double s, TraceStop stop) {
+  PlaneState out{0, 0, s, 0, 0, stop};
   for (size_t k = 0; k < count; ++k) {
-    const RayPath& path = *entries[first + k].path;
-    const PlaneState p = state_of(path, fraction * path.length());
-    out.r += weights[k] * p.r;
-    out.h += weights[k] * p.h;
-    out.cos_e += weights[k] * p.cos_e;
-    out.sin_e += weights[k] * p.sin_e;
+    out.r += weights[k] * states[k].r;
+    out.h += weights[k] * states[k].h;
+    out.cos_e += weights[k] * states[k].cos_e;
+    out.sin_e += weights[k] * states[k].sin_e;
   }
-  out.s = fraction * length;
   const double norm = std::hypot(out.cos_e, out.sin_e);
   out.cos_e /= norm;
   out.sin_e /= norm;
   return out;
+}
+
+}  // namespace
+
+std::pair<size_t, size_t> ElevationTable::stencil(size_t i) const { return stencil_of(entries_, i); }
+
+PlaneState ElevationTable::interpolate(const std::vector<double>& elevations,
+                                       const std::vector<Entry>& entries, size_t i, double elevation,
+                                       double fraction) {
+  const auto [first, count] = stencil_of(entries, i);
+  double length = 0.0, weights[4];
+  lagrange_weights(elevations, first, count, elevation, weights);
+  for (size_t k = 0; k < count; ++k) length += weights[k] * entries[first + k].path->length();
+  PlaneState states[4];
+  for (size_t k = 0; k < count; ++k) {
+    const RayPath& path = *entries[first + k].path;
+    states[k] = state_of(path, fraction * path.length());
+  }
+  return blend(weights, states, count, fraction * length, entries[i].path->stop());
 }
 
 double ElevationTable::excess(const std::vector<double>& elevations, const std::vector<Entry>& entries, size_t i,
@@ -183,6 +205,27 @@ ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& opti
   exact_.resize(open.size());
   for (size_t i = 0; i < open.size(); ++i) exact_[i] = open[i] == 2;
   evaluations_ = evaluations;
+  precompute_stencils();
+}
+
+void ElevationTable::precompute_stencils() {
+  stencils_.assign(exact_.size(), {});
+  for (size_t i = 0; i < exact_.size(); ++i) {
+    if (exact_[i]) continue;
+    const auto [first, count] = stencil(i);
+    for (int t = 0; t < 2; ++t) {
+      const RayPath& nearest = *entries_[i + t].path;
+      auto& states = stencils_[i].at_nodes[t];
+      states.reserve(nearest.nodes().size() * count);
+      for (const auto& node : nearest.nodes()) {
+        const double fraction = nearest.length() > 0 ? node.s / nearest.length() : 0.0;
+        for (size_t k = 0; k < count; ++k) {
+          const RayPath& path = *entries_[first + k].path;
+          states.push_back(state_of(path, fraction * path.length()));
+        }
+      }
+    }
+  }
 }
 
 size_t ElevationTable::exact_intervals() const {
@@ -210,10 +253,7 @@ PlaneState ElevationTable::at(double elevation, double s) const {
   return interpolate(elevations_, entries_, i, elevation, std::max(s, 0.0) / whole.s);
 }
 
-RayNode<double> ElevationTable::interpolated_node(size_t i, double elevation, const RayPath& nearest, size_t k) const {
-  const double length = nearest.length();
-  const double fraction = length > 0 ? nearest.nodes()[k].s / length : 0.0;
-  const PlaneState p = interpolate(elevations_, entries_, i, elevation, fraction);
+RayNode<double> ElevationTable::node_of(const PlaneState& p) const {
   RayNode<double> node;
   node.s = p.s;
   node.x = Vec3d(p.r, p.h, 0.0);
@@ -240,6 +280,10 @@ ElevationTable::LazyPath ElevationTable::lazy_path(double elevation) const {
   }
   const double w = (elevation - elevations_[i]) / (elevations_[i + 1] - elevations_[i]);
   lazy.template_ = w < 0.5 ? i : i + 1;
+  const auto [first, count] = stencil(i);
+  lagrange_weights(elevations_, first, count, elevation, lazy.weights_);
+  lazy.count_ = count;
+  for (size_t k = 0; k < count; ++k) lazy.length_ += lazy.weights_[k] * entries_[first + k].path->length();
   return lazy;
 }
 
@@ -253,7 +297,11 @@ TraceStop ElevationTable::LazyPath::stop() const {
 
 RayNode<double> ElevationTable::LazyPath::node(size_t k) const {
   if (exact_) return exact_->nodes()[k];
-  return table_->interpolated_node(interval_, elevation_, *table_->entries_[template_].path, k);
+  // The same interpolation as interpolate(), from the states precomputed at the template's nodes.
+  const RayPath& nearest = *table_->entries_[template_].path;
+  const PlaneState* states = &table_->stencils_[interval_].at_nodes[template_ - interval_][k * count_];
+  const double fraction = nearest.length() > 0 ? nearest.nodes()[k].s / nearest.length() : 0.0;
+  return table_->node_of(blend(weights_, states, count_, fraction * length_, table_->entries_[interval_].path->stop()));
 }
 
 double ElevationTable::LazyPath::lowest_from(size_t k) const {

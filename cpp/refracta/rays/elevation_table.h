@@ -69,6 +69,10 @@ class ElevationTable {
     double elevation_ = 0.0;
     std::shared_ptr<const RayPath> exact_;  // inside an exact interval
     std::vector<double> exact_lowest_;
+    // Interpolation stencil of this elevation (served from the interval's precomputed states).
+    double weights_[4] = {0, 0, 0, 0};
+    size_t count_ = 0;
+    double length_ = 0.0;
   };
   LazyPath lazy_path(double elevation) const;
 
@@ -84,7 +88,15 @@ class ElevationTable {
     int kind = 0;                  // stop reason and number of turning points, packed
     std::vector<double> lowest;    // lowest height from each node to the end
   };
-  RayNode<double> interpolated_node(size_t i, double elevation, const RayPath& nearest, size_t k) const;
+  RayNode<double> node_of(const PlaneState& p) const;
+  // The stencil of interval i: its first entry and count (4 neighbours of one kind, else 2).
+  std::pair<size_t, size_t> stencil(size_t i) const;
+  // Per interval and template (0: its lower entry, 1: its upper), the stencil entries' states at
+  // the template's node fractions, node-major: what every pixel of that interval interpolates.
+  struct StencilStates {
+    std::vector<PlaneState> at_nodes[2];
+  };
+  void precompute_stencils();
   Entry trace_entry(double elevation) const;
   static PlaneState state_of(const RayPath& path, double s);
   // Interpolated state at `elevation` inside interval i of (elevations, entries), at the given
@@ -103,6 +115,7 @@ class ElevationTable {
   std::vector<double> elevations_;
   std::vector<Entry> entries_;
   std::vector<bool> exact_;  // per interval: trace queries exactly
+  std::vector<StencilStates> stencils_;
   int64_t evaluations_ = 0;
 };
 

@@ -73,7 +73,7 @@ void refine_crossing(const RasterFrame& frame, const RayNode<double>& a, const R
 }  // namespace
 
 Image render_raster_march(const Scene& scene, const Lighting& lighting, const Camera& camera, const FieldPtr& field,
-                          const RenderOptions& options, WorkControl& control) {
+                          const RenderOptions& options, WorkControl& control, RenderStats* stats) {
   RasterFrame frame{RasterView::from_camera(camera, options.guard_band), {}, {}};
   frame.buffer = rasterize(scene, frame.view, control);
   const Vec3d eye = camera.position();
@@ -99,6 +99,7 @@ Image render_raster_march(const Scene& scene, const Lighting& lighting, const Ca
       options.march == TraceMethod::kRk4 ? options.step * options.max_steps : options.max_length;
   trace_options.cancel = &control.cancel;
   control.done = 0;
+  if (stats) stats->samples = int64_t(camera.width()) * camera.height();
   return render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
     const Vec3d dir = camera.direction(x + 0.5, y + 0.5);
     if (!field) {  // a straight ray projects onto its own pixel all along

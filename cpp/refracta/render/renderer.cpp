@@ -8,6 +8,7 @@
 #include "refracta/render/tile_loop.h"
 #include "refracta/shading/blinn_phong.h"
 
+#include <atomic>
 #include <cmath>
 
 namespace refracta {
@@ -89,6 +90,7 @@ bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<
     const double len = d.norm();
     if (len == 0.0) continue;
     // Each chord reaches slightly into the next so that no hit is lost at a joint.
+    ++end->chords;
     const auto hit = scene.intersect(p0, d / len, len * (1.0 + 1e-6) + 1e-6);
     if (!hit) continue;
     const double du = u1 - u0;
@@ -110,6 +112,7 @@ PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& or
   end.direction = dir.normalized();
   if (!field || options.method == RenderMethod::kStraight) {
     end.hit = scene.intersect(origin, end.direction, kFar);
+    end.chords = 1;
     if (end.hit) end.length = end.hit->t;
     return end;
   }
@@ -206,12 +209,13 @@ PathEnd follow_table_path(const Scene& scene, const ElevationTable& table, const
 }  // namespace
 
 Image render(const Scene& scene, const Lighting& lighting, const Camera& camera, const FieldPtr& field,
-             const RenderOptions& options, WorkControl& control) {
+             const RenderOptions& options, WorkControl& control, RenderStats* stats) {
   options.validate();
   scene.commit();
   if (options.method == RenderMethod::kRasterMarch) {
-    return render_raster_march(scene, lighting, camera, field, options, control);
+    return render_raster_march(scene, lighting, camera, field, options, control, stats);
   }
+  std::atomic<int64_t> chords{0};
   std::unique_ptr<ElevationTable> table;
   if (field && field->height_only() && options.method == RenderMethod::kCurved && options.use_table &&
       (!options.integrator || *options.integrator == TraceMethod::kStratified)) {
@@ -230,7 +234,7 @@ Image render(const Scene& scene, const Lighting& lighting, const Camera& camera,
   const int strata = int(std::ceil(std::sqrt(double(options.spp))));
   // Each sample's cone covers its share of the pixel.
   const double pixel_angle = camera.pixel_angle() / strata;
-  return render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
+  Image image = render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
     Rng rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x));
     Vec3d sum = Vec3d::Zero();
     for (int s = 0; s < options.spp; ++s) {
@@ -243,9 +247,15 @@ Image render(const Scene& scene, const Lighting& lighting, const Camera& camera,
       const PathEnd end = table ? follow_table_path(scene, *table, camera.position(), dir, options)
                                 : follow_path(scene, field.get(), camera.position(), dir, options);
       sum += shade(scene, lighting, end, rng, options.spp > 1, options.texture_filter ? pixel_angle : 0.0);
+      chords.fetch_add(end.chords, std::memory_order_relaxed);
     }
     return Vec3d(sum / options.spp);
   });
+  if (stats) {
+    stats->samples = int64_t(camera.width()) * camera.height() * options.spp;
+    stats->chords = chords.load();
+  }
+  return image;
 }
 
 }  // namespace refracta

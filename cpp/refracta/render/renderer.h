@@ -23,6 +23,13 @@ struct PathEnd {
   std::optional<Hit> hit;
   Vec3d direction;  // unit, along the path at its end (toward the hit or the sky)
   double length = 0.0;
+  int64_t chords = 0;  // straight chords tested against the scene on the way
+};
+
+// What a render did, summed over its samples.
+struct RenderStats {
+  int64_t samples = 0;
+  int64_t chords = 0;  // Embree queries along curved paths (straight rays count one each)
 };
 
 // Tests the path segment a -> b against the scene in chords (at most options.chord long, within
@@ -43,10 +50,10 @@ Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rn
 // The original editor's method (raster_march.cpp): rasterize, then march each pixel's curved
 // ray against the depth buffer.
 Image render_raster_march(const Scene& scene, const Lighting& lighting, const Camera& camera, const FieldPtr& field,
-                          const RenderOptions& options, WorkControl& control);
+                          const RenderOptions& options, WorkControl& control, RenderStats* stats);
 
 // Linear RGB radiance image (height, width, 3). field may be null (then 'curved' = 'straight').
 Image render(const Scene& scene, const Lighting& lighting, const Camera& camera, const FieldPtr& field,
-             const RenderOptions& options, WorkControl& control);
+             const RenderOptions& options, WorkControl& control, RenderStats* stats = nullptr);
 
 }  // namespace refracta
