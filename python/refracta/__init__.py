@@ -22,6 +22,7 @@ from refracta._core import (
 )
 from refracta import io
 from refracta._render import render
+from refracta._raster_render import render_raster
 from refracta.scene_file import SceneFile, load_scene
 from refracta._rays import ElevationTable, RayBatch, trace_rays
 
@@ -46,6 +47,7 @@ __all__ = [
     "io",
     "load_scene",
     "render",
+    "render_raster",
     "trace_ray",
     "trace_rays",
 ]

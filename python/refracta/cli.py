@@ -100,7 +100,7 @@ def main(argv=None) -> int:
     render_parser = commands.add_parser("render", help="render a TOML scene file")
     render_parser.add_argument("scene", type=Path, help="scene file (.toml)")
     render_parser.add_argument("-o", "--output", type=Path, default=Path("out.exr"), help="image file (default out.exr)")
-    render_parser.add_argument("--method", choices=["curved", "straight"], default="curved")
+    render_parser.add_argument("--method", choices=["curved", "straight", "raster_march"], default="curved")
     render_parser.add_argument("--size", type=_size, default=None, help="WxH (default: the file's camera size)")
     render_parser.add_argument("--spp", type=int, default=1, help="samples per pixel")
     render_parser.add_argument("--exposure", type=float, default=1.0)

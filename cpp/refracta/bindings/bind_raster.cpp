@@ -1,6 +1,7 @@
 // Python bindings of the moment math and per-pixel OIT (cpp/refracta/raster).
 #include "refracta/bindings/bind_scene.h"
 #include "refracta/bindings/interruptible.h"
+#include "refracta/raster/moment_shadow.h"
 #include "refracta/raster/moments.h"
 #include "refracta/raster/rasterizer.h"
 #include "refracta/raster/oit.h"
@@ -70,28 +71,18 @@ void bind_raster(py::module_& m) {
           const DoubleArray b = as_matrix(moments, 4, "moments");
           const std::vector<double> z = to_values(depths, "z_f");
           if (py::ssize_t(z.size()) != b.shape(0)) throw_invalid("moments and z_f must have the same length");
-          const double alpha = bias ? *bias : (is_signed ? 3e-7 : 3e-6);
-          if (!(alpha >= 0.0 && alpha < 1.0)) throw_invalid("bias must be in [0, 1) (got ", alpha, ")");
-          const std::vector<double> target =
-              bias_vector ? *bias_vector
-                          : (is_signed ? std::vector<double>{0, 0.375, 0, 0.375} : std::vector<double>{0.5, 0.5, 0.5, 0.5});
-          if (target.size() != 4) throw_invalid("bias_vector must have 4 entries (got ", target.size(), ")");
-          if (method != "hamburger" && method != "hausdorff" && method != "vsm" && method != "canonical") {
-            throw_invalid("method must be 'hamburger', 'hausdorff', 'vsm' or 'canonical' (got '", method, "')");
+          MomentShadowSettings settings = MomentShadowSettings::defaults(is_signed);  // fp32 biases, as documented
+          settings.method = parse_moment_shadow_method(method);
+          settings.storage = storage;
+          if (bias) settings.bias = *bias;
+          if (bias_vector) {
+            if (bias_vector->size() != 4) throw_invalid("bias_vector must have 4 entries (got ", bias_vector->size(), ")");
+            std::copy(bias_vector->begin(), bias_vector->end(), settings.bias_vector.begin());
           }
+          settings.validate();
           std::vector<double> out(z.size());
           for (size_t i = 0; i < z.size(); ++i) {
-            const Moments4 read = stored_moments({b.at(i, 0), b.at(i, 1), b.at(i, 2), b.at(i, 3)}, storage, is_signed);
-            const std::vector<double> raw = {1.0, read[0], read[1], read[2], read[3]};
-            const std::vector<double> biased = bias_moments(raw, alpha, target);
-            const std::array<double, 4> c = {biased[1], biased[2], biased[3], biased[4]};
-            if (method == "hamburger") out[i] = hamburger_4msm(c, z[i]);
-            if (method == "hausdorff") out[i] = hausdorff_4msm(c, z[i], is_signed ? -1.0 : 0.0, 1.0);
-            if (method == "vsm") out[i] = vsm_shadow(c[0], c[1], z[i], 1e-12);
-            if (method == "canonical") {
-              const MomentBound bound = canonical_bound(biased, z[i]);
-              out[i] = bound.fallback ? vsm_shadow(c[0], c[1], z[i], 1e-12) : bound.lower;
-            }
+            out[i] = moment_shadow({b.at(i, 0), b.at(i, 1), b.at(i, 2), b.at(i, 3)}, z[i], settings);
           }
           return values_to_array(out);
         },

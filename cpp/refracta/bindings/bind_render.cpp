@@ -1,6 +1,7 @@
 // Python binding of the renderers (cpp/refracta/render).
 #include "refracta/bindings/bind_scene.h"
 #include "refracta/bindings/interruptible.h"
+#include "refracta/render/raster_renderer.h"
 #include "refracta/render/renderer.h"
 
 #include <optional>
@@ -45,6 +46,50 @@ void bind_render(py::module_& m) {
         py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("method"), py::arg("spp"), py::arg("seed"),
         py::arg("max_length"), py::arg("chord"), py::arg("sagitta"), py::arg("tol"), py::arg("table"), py::arg("integrator"),
         py::arg("march"), py::arg("step"), py::arg("max_steps"), py::arg("guard_band"), py::arg("texture_filter"), py::arg("progress"));
+
+  m.def("_render_raster",
+        [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::string& shadows, int resolution,
+           int kernel, bool signed_depth, std::optional<double> bias, std::optional<std::vector<double>> bias_vector,
+           const std::string& storage, double depth_bias, double normal_offset, double bleeding_reduction,
+           const py::object& shadow_centre, std::optional<double> shadow_half_size, std::optional<double> shadow_distance,
+           bool output_shadow, const py::object& progress) {
+          if (!scene) throw_invalid("scene must be a refracta.Scene");
+          RasterRenderOptions options;
+          options.shadows = shadows;
+          if (shadows != "embree" && shadows != "none") parse_shadow_method(shadows);
+          ShadowMapOptions& map = options.shadow_map;
+          map.resolution = resolution;
+          map.kernel = kernel;
+          map.moments = MomentShadowSettings::defaults(signed_depth, parse_moment_storage(storage));
+          if (bias) map.moments.bias = *bias;
+          if (bias_vector) {
+            if (bias_vector->size() != 4) throw_invalid("bias_vector must have 4 entries (got ", bias_vector->size(), ")");
+            std::copy(bias_vector->begin(), bias_vector->end(), map.moments.bias_vector.begin());
+          }
+          map.depth_bias = depth_bias;
+          map.normal_offset = normal_offset;
+          map.bleeding_reduction = bleeding_reduction;
+          if (!shadow_centre.is_none()) options.shadow_centre = to_point(shadow_centre, "shadow_centre");
+          options.shadow_half_size = shadow_half_size;
+          if (shadow_distance) options.shadow_distance = *shadow_distance;
+          options.output_shadow = output_shadow;
+          options.validate();
+          WorkControl control;
+          Image image;
+          RasterRenderStats stats;
+          run_interruptible(control, progress, [&] {
+            image = render_raster(scene->geometry, scene->lighting, camera, options, control, &stats);
+          });
+          py::dict counts;
+          counts["seconds"] = stats.seconds;
+          counts["shadow_build_seconds"] = stats.shadow_build_seconds;
+          counts["bytes_per_texel"] = stats.bytes_per_texel;
+          return py::make_tuple(image_to_float32(image), counts);
+        },
+        py::arg("scene"), py::arg("camera"), py::arg("shadows"), py::arg("resolution"), py::arg("kernel"),
+        py::arg("signed_depth"), py::arg("bias"), py::arg("bias_vector"), py::arg("storage"), py::arg("depth_bias"),
+        py::arg("normal_offset"), py::arg("bleeding_reduction"), py::arg("shadow_centre"), py::arg("shadow_half_size"),
+        py::arg("shadow_distance"), py::arg("output_shadow"), py::arg("progress"));
 }
 
 }  // namespace refracta

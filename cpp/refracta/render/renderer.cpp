@@ -126,8 +126,13 @@ PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& or
   return end;
 }
 
+double sun_occlusion(const Scene& scene, const Hit& hit, const Vec3d& wi) {
+  const Vec3d p = hit.point + hit.normal * (1e-5 + 2e-6 * hit.point.cwiseAbs().maxCoeff());
+  return scene.occluded(p, wi, kFar) ? 1.0 : 0.0;
+}
+
 Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter,
-            double pixel_angle) {
+            double pixel_angle, const SunShadow* sun_shadow) {
   // The pixel's cone: its width grows with the path length (refraction's own spreading of the
   // cone along a curved path is neglected).
   const double footprint = pixel_angle * end.length;
@@ -149,10 +154,8 @@ Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rn
     }
     const double cos_i = hit.normal.dot(wi);
     if (cos_i > 0.0) {
-      const Vec3d p = hit.point + hit.normal * (1e-5 + 2e-6 * hit.point.cwiseAbs().maxCoeff());
-      if (!lighting.shadows || !scene.occluded(p, wi, kFar)) {
-        radiance += blinn_phong(material, hit.normal, wo, wi).cwiseProduct(sun.irradiance()) * cos_i;
-      }
+      const double shadow = !lighting.shadows ? 0.0 : sun_shadow ? (*sun_shadow)(hit, wi) : sun_occlusion(scene, hit, wi);
+      radiance += blinn_phong(material, hit.normal, wo, wi).cwiseProduct(sun.irradiance()) * (cos_i * (1.0 - shadow));
     }
   }
   return radiance;

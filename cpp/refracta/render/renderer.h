@@ -13,6 +13,7 @@
 #include "refracta/scene/embree_scene.h"
 #include "refracta/shading/lights.h"
 
+#include <functional>
 #include <optional>
 
 namespace refracta {
@@ -41,11 +42,16 @@ bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<
 PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& origin, const Vec3d& dir,
                     const RenderOptions& options);
 
+// The fraction of the sun a hit does not see along wi (0: lit, 1: in shadow).
+using SunShadow = std::function<double(const Hit& hit, const Vec3d& wi)>;
+// The reference: an Embree shadow ray (hard: 0 or 1).
+double sun_occlusion(const Scene& scene, const Hit& hit, const Vec3d& wi);
+
 // Radiance leaving the path's end toward the eye: Blinn-Phong at a hit with sky light and the sun
-// (shadow rays through Embree; the sun's disc sampled when jitter), or the sky. Textures are
-// filtered over the cone of angle pixel_angle [rad] (0: point sampled).
+// (shadowed by sun_shadow, default Embree shadow rays; the sun's disc sampled when jitter), or the
+// sky. Textures are filtered over the cone of angle pixel_angle [rad] (0: point sampled).
 Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter,
-            double pixel_angle);
+            double pixel_angle, const SunShadow* sun_shadow = nullptr);
 
 // The original editor's method (raster_march.cpp): rasterize, then march each pixel's curved
 // ray against the depth buffer.

@@ -1,0 +1,187 @@
+// Shadow maps: build (rasterize, moments, separable box filter, storage) and lookups.
+#include "refracta/raster/shadow_map.h"
+
+#include "refracta/core/error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace refracta {
+
+ShadowMethod parse_shadow_method(const std::string& name) {
+  if (name == "hard") return ShadowMethod::kHard;
+  if (name == "pcf") return ShadowMethod::kPcf;
+  if (name == "vsm") return ShadowMethod::kVsm;
+  if (name == "hamburger") return ShadowMethod::kHamburger;
+  if (name == "hausdorff") return ShadowMethod::kHausdorff;
+  throw_invalid("shadow method must be 'hard', 'pcf', 'vsm', 'hamburger' or 'hausdorff' (got '", name, "')");
+}
+
+const char* shadow_method_name(ShadowMethod method) {
+  switch (method) {
+    case ShadowMethod::kHard: return "hard";
+    case ShadowMethod::kPcf: return "pcf";
+    case ShadowMethod::kVsm: return "vsm";
+    case ShadowMethod::kHamburger: return "hamburger";
+    case ShadowMethod::kHausdorff: return "hausdorff";
+  }
+  return "?";
+}
+
+void ShadowMapOptions::validate() const {
+  if (resolution < 2 || resolution > 16384) throw_invalid("resolution must be in [2, 16384] (got ", resolution, ")");
+  if (kernel < 1 || kernel % 2 == 0 || kernel > resolution) {
+    throw_invalid("kernel must be an odd size >= 1 and <= resolution (got ", kernel, ")");
+  }
+  moments.validate();
+  if (!(depth_bias >= 0.0) || !std::isfinite(depth_bias)) throw_invalid("depth_bias must be >= 0 (got ", depth_bias, ")");
+  if (!(normal_offset >= 0.0) || !std::isfinite(normal_offset)) {
+    throw_invalid("normal_offset must be >= 0 (got ", normal_offset, ")");
+  }
+  if (!(bleeding_reduction >= 0.0 && bleeding_reduction < 1.0)) {
+    throw_invalid("bleeding_reduction must be in [0, 1) (got ", bleeding_reduction, ")");
+  }
+}
+
+namespace {
+
+bool uses_moments(ShadowMethod m) {
+  return m == ShadowMethod::kVsm || m == ShadowMethod::kHamburger || m == ShadowMethod::kHausdorff;
+}
+
+// In-place box filter of width k along rows (stride 1) or columns (stride n), clamped at the
+// edges, by a running sum: O(1) per texel whatever k.
+void box_filter(std::vector<Moments4>& m, int n, int k, bool along_rows, WorkControl& control) {
+  const int r = k / 2;
+  parallel_for_each(n, 8, control, [&](int64_t line) {
+    auto at = [&](int i) -> Moments4& {
+      const int c = std::clamp(i, 0, n - 1);
+      return along_rows ? m[size_t(line) * n + c] : m[size_t(c) * n + line];
+    };
+    std::vector<Moments4> out(n);
+    Moments4 sum{0, 0, 0, 0};
+    for (int i = -r; i <= r; ++i) {
+      for (int j = 0; j < 4; ++j) sum[j] += at(i)[j];
+    }
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < 4; ++j) out[i][j] = sum[j] / k;
+      for (int j = 0; j < 4; ++j) sum[j] += at(i + r + 1)[j] - at(i - r)[j];
+    }
+    for (int i = 0; i < n; ++i) at(i) = out[i];
+  });
+}
+
+}  // namespace
+
+ShadowMap::ShadowMap(const Scene& scene, const Vec3d& toward_light, const Vec3d& centre, double half_size,
+                     const ShadowMapOptions& options, WorkControl& control)
+    : options_(options) {
+  options_.validate();
+  if (!is_finite(toward_light) || toward_light.norm() == 0.0) throw_invalid("the light direction must be finite and non-zero");
+  if (!is_finite(centre) || !(half_size > 0.0) || !std::isfinite(half_size)) {
+    throw_invalid("the shadow map needs a finite centre and half_size > 0 (got ", half_size, ")");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const Vec3d along = -toward_light.normalized();
+  const Vec3d up = std::abs(along.y()) < 0.99 ? Vec3d::UnitY() : Vec3d::UnitX();
+  const int n = options_.resolution;
+  view_ = RasterView::orthographic(centre, along, up, half_size, half_size, n, n);
+  texel_ = 2.0 * half_size / n;
+  buffer_ = rasterize(scene, view_, control);
+  near_ = std::numeric_limits<double>::infinity(), far_ = -near_;
+  for (float d : buffer_.depth) {
+    if (std::isfinite(d)) near_ = std::min(near_, double(d)), far_ = std::max(far_, double(d));
+  }
+  if (!(far_ > near_)) near_ = 0.0, far_ = 1.0;
+  const double margin = 1e-3 * (far_ - near_) + 1e-6;
+  near_ -= margin, far_ += margin;
+
+  if (uses_moments(options_.method)) {
+    moments_.resize(size_t(n) * n);
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) {
+        const double z = depth_at(x, y);
+        moments_[size_t(y) * n + x] = {z, z * z, z * z * z, z * z * z * z};
+      }
+    }
+    if (options_.kernel > 1) {
+      box_filter(moments_, n, options_.kernel, true, control);
+      box_filter(moments_, n, options_.kernel, false, control);
+    }
+    for (auto& b : moments_) b = stored_moments(b, options_.moments.storage, options_.moments.signed_depth);
+  }
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double ShadowMap::normalised(double depth) const {
+  const double z = (depth - near_) / (far_ - near_);
+  return options_.moments.signed_depth ? 2.0 * z - 1.0 : z;
+}
+
+double ShadowMap::depth_at(int x, int y) const {
+  const float d = buffer_.depth[buffer_.index(x, y)];
+  return std::isfinite(d) ? normalised(d) : 1.0;
+}
+
+int ShadowMap::bytes_per_texel() const {
+  if (!uses_moments(options_.method)) return 4;
+  switch (options_.moments.storage) {
+    case MomentStorage::kFp64: return 32;
+    case MomentStorage::kFp32: return 16;
+    case MomentStorage::kUnorm16: return 8;
+  }
+  return 0;
+}
+
+double ShadowMap::shadow(const Vec3d& point, const Vec3d& normal) const {
+  const Vec3d p = view_.to_view(point + normal * (options_.normal_offset * texel_));
+  double u, v;
+  view_.to_pixel(p, &u, &v);
+  const int n = options_.resolution;
+  if (!(u >= 0.0 && v >= 0.0 && u < n && v < n)) return 0.0;  // outside the map: lit
+  const double z = normalised(p.z());
+  if (!uses_moments(options_.method)) {
+    // Receiver-plane depth bias: each texel of the window is compared with the receiver's plane
+    // extended to it (depth slopes from its normal in the light's frame), so a sloped receiver
+    // does not shadow itself over a wide kernel.
+    const Vec3d nl = view_.to_view(normal) - view_.to_view(Vec3d::Zero());  // the normal in the light's frame
+    const double scale = texel_ / (far_ - near_) * (options_.moments.signed_depth ? 2.0 : 1.0);
+    const double nz = std::max(std::abs(nl.z()), 0.05) * (nl.z() < 0 ? -1.0 : 1.0);
+    const double slope_x = -nl.x() / nz * scale, slope_y = nl.y() / nz * scale;  // per texel (v down)
+    const int cx = int(u), cy = int(v), r = options_.method == ShadowMethod::kPcf ? options_.kernel / 2 : 0;
+    int blocked = 0;
+    for (int y = cy - r; y <= cy + r; ++y) {
+      for (int x = cx - r; x <= cx + r; ++x) {
+        const double plane = z + slope_x * (x + 0.5 - u) + slope_y * (y + 0.5 - v);
+        blocked += depth_at(std::clamp(x, 0, n - 1), std::clamp(y, 0, n - 1)) < plane - options_.depth_bias;
+      }
+    }
+    return double(blocked) / double((2 * r + 1) * (2 * r + 1));
+  }
+  // Bilinear filtering between texel centres, as texture hardware reads the moment map.
+  const double fx = std::clamp(u - 0.5, 0.0, n - 1.0), fy = std::clamp(v - 0.5, 0.0, n - 1.0);
+  const int x0 = std::min(int(fx), n - 2 < 0 ? 0 : n - 2), y0 = std::min(int(fy), n - 2 < 0 ? 0 : n - 2);
+  const double tx = fx - x0, ty = fy - y0;
+  Moments4 b{0, 0, 0, 0};
+  for (int k = 0; k < 4; ++k) {
+    const int x = x0 + (k & 1), y = y0 + (k >> 1);
+    const double w = ((k & 1) ? tx : 1.0 - tx) * ((k >> 1) ? ty : 1.0 - ty);
+    const Moments4& m = moments_[size_t(y) * n + x];
+    for (int j = 0; j < 4; ++j) b[j] += w * m[j];
+  }
+  MomentShadowSettings settings = options_.moments;
+  settings.storage = MomentStorage::kFp64;  // already stored at build time
+  settings.method = options_.method == ShadowMethod::kVsm         ? MomentShadowMethod::kVsm
+                    : options_.method == ShadowMethod::kHausdorff ? MomentShadowMethod::kHausdorff
+                                                                  : MomentShadowMethod::kHamburger;
+  double s = moment_shadow(b, z, settings);
+  if (options_.method == ShadowMethod::kVsm && options_.bleeding_reduction > 0.0) {
+    const double lit = std::clamp((1.0 - s - options_.bleeding_reduction) / (1.0 - options_.bleeding_reduction), 0.0, 1.0);
+    s = 1.0 - lit;
+  }
+  return std::clamp(s, 0.0, 1.0);
+}
+
+}  // namespace refracta

@@ -1,0 +1,92 @@
+// render_raster: the real-time pipeline on the CPU, for comparing shadow methods (issue 5): the
+// camera view rasterized into a visibility buffer, every pixel shaded once, the sun's shadow
+// from a shadow map (hard, PCF, VSM, Hamburger / Hausdorff 4MSM) or from Embree shadow rays (the
+// reference). No atmosphere: this is the straight-ray view.
+#include "refracta/render/raster_renderer.h"
+
+#include "refracta/core/error.h"
+#include "refracta/render/tile_loop.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace refracta {
+
+void RasterRenderOptions::validate() const {
+  if (shadows != "embree" && shadows != "none") shadow_map.validate();
+  if (shadow_half_size && (!(*shadow_half_size > 0.0) || !std::isfinite(*shadow_half_size))) {
+    throw_invalid("shadow_half_size must be > 0 (got ", *shadow_half_size, ")");
+  }
+  if (shadow_centre && !is_finite(*shadow_centre)) throw_invalid("shadow_centre must be finite");
+  if (!(shadow_distance > 0.0)) throw_invalid("shadow_distance must be > 0 (got ", shadow_distance, ")");
+  if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
+}
+
+Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& camera,
+                    const RasterRenderOptions& options, WorkControl& control, RasterRenderStats* stats) {
+  options.validate();
+  scene.commit();
+  const auto start = std::chrono::steady_clock::now();
+  const RasterView view = RasterView::from_camera(camera);
+  const VisibilityBuffer buffer = rasterize(scene, view, control);
+  const Vec3d eye = camera.position();
+
+  // The shadow map covers, seen from the sun, the visible points within shadow_distance.
+  std::unique_ptr<ShadowMap> map;
+  if (options.shadows != "embree" && options.shadows != "none") {
+    ShadowMapOptions map_options = options.shadow_map;
+    map_options.method = parse_shadow_method(options.shadows);
+    const Vec3d along = -lighting.sun.direction.normalized();
+    const Vec3d side = (std::abs(along.y()) < 0.99 ? along.cross(Vec3d::UnitY()) : along.cross(Vec3d::UnitX())).normalized();
+    const Vec3d up = side.cross(along);
+    Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (int y = 0; y < buffer.height; ++y) {
+      for (int x = 0; x < buffer.width; ++x) {
+        const auto hit = surface_at(scene, buffer, x, y, eye);
+        if (!hit || (hit->point - eye).norm() > options.shadow_distance) continue;
+        const Vec3d q(hit->point.dot(side), hit->point.dot(up), hit->point.dot(along));
+        lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+      }
+    }
+    Vec3d centre = options.shadow_centre.value_or(Vec3d::Zero());
+    double half = options.shadow_half_size.value_or(1.0);
+    if (!options.shadow_centre || !options.shadow_half_size) {
+      if (!(hi.x() >= lo.x())) lo = hi = Vec3d::Zero();
+      const Vec3d mid = 0.5 * (lo + hi);
+      if (!options.shadow_centre) centre = mid.x() * side + mid.y() * up + mid.z() * along;
+      if (!options.shadow_half_size) half = std::max(0.5 * (hi - lo).head<2>().maxCoeff() * 1.02, 1e-3);
+    }
+    map = std::make_unique<ShadowMap>(scene, lighting.sun.direction, centre, half, map_options, control);
+  }
+  const SunShadow from_map = [&](const Hit& hit, const Vec3d&) { return map->shadow(hit.point, hit.normal); };
+  Lighting light = lighting;
+  light.shadows = options.shadows != "none";
+  const SunShadow* sun_shadow = map ? &from_map : nullptr;
+
+  control.done = 0;
+  Image image = render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
+    const auto hit = surface_at(scene, buffer, x, y, eye);
+    const Vec3d dir = camera.direction(x + 0.5, y + 0.5);
+    if (options.output_shadow) {  // (shadow intensity, 1) where the sun faces the surface, else (0, 0)
+      if (!hit || hit->normal.dot(lighting.sun.direction) <= 0.0) return Vec3d::Zero().eval();
+      const double s = !light.shadows ? 0.0 : map ? map->shadow(hit->point, hit->normal) : sun_occlusion(scene, *hit, lighting.sun.direction);
+      return Vec3d(s, 1.0, 0.0);
+    }
+    PathEnd end;
+    end.direction = dir;
+    end.hit = hit;
+    if (hit) end.length = hit->t;
+    Rng rng(0, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x));
+    return shade(scene, light, end, rng, false, camera.pixel_angle(), sun_shadow);
+  });
+  if (stats) {
+    stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->shadow_build_seconds = map ? map->build_seconds() : 0.0;
+    stats->bytes_per_texel = map ? map->bytes_per_texel() : 0;
+  }
+  return image;
+}
+
+}  // namespace refracta

@@ -1,0 +1,42 @@
+// render_raster: rasterized view, shading once per pixel, the sun's shadow from a shadow map
+// method (raster/shadow_map.h) or Embree rays (the reference). See raster_renderer.cpp.
+#pragma once
+
+#include "refracta/core/image.h"
+#include "refracta/raster/shadow_map.h"
+#include "refracta/render/renderer.h"
+
+#include <limits>
+#include <optional>
+#include <string>
+
+namespace refracta {
+
+struct RasterRenderOptions {
+  // "embree" (shadow rays: the reference), "none", or a ShadowMap method ("hard", "pcf", "vsm",
+  // "hamburger", "hausdorff") with shadow_map's settings (method is taken from here).
+  std::string shadows = "hamburger";
+  ShadowMapOptions shadow_map;
+  // The region the map covers: by default fitted, seen from the sun, to the visible points
+  // closer than shadow_distance [m] to the camera.
+  std::optional<Vec3d> shadow_centre;
+  std::optional<double> shadow_half_size;
+  double shadow_distance = std::numeric_limits<double>::infinity();
+  // Instead of radiance, each pixel's (shadow intensity, 1, 0) where the surface faces the sun
+  // and (0, 0, 0) elsewhere: what compare.shadows measures.
+  bool output_shadow = false;
+  int tile = 16;
+
+  void validate() const;
+};
+
+struct RasterRenderStats {
+  double seconds = 0.0;               // the whole render
+  double shadow_build_seconds = 0.0;  // rasterizing, filtering and storing the shadow map
+  int bytes_per_texel = 0;
+};
+
+Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& camera,
+                    const RasterRenderOptions& options, WorkControl& control, RasterRenderStats* stats = nullptr);
+
+}  // namespace refracta

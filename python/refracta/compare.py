@@ -1,0 +1,103 @@
+"""refracta.compare: shadow methods measured against their references, as tables and figures.
+
+compare.shadows(scene, camera, methods, kernels) renders the sun's shadow intensity per pixel
+(render_raster(output='shadow')) with each method and kernel and compares it with the reference:
+Embree shadow rays for unfiltered (1 x 1) lookups and for 'hard' / 'pcf', and PCF with the same
+kernel for filtered moment methods (shared/MOMENTS.md: filtered MSM approximates filtered PCF).
+"""
+
+from __future__ import annotations
+
+from typing import Dict, List, Optional, Sequence
+
+import numpy as np
+
+from refracta import _core
+from refracta._raster_render import render_raster
+
+__all__ = ["format_table", "shadows"]
+
+#: A pixel leaks light (or is over-shadowed) when its intensity is this much below (above) the
+#: reference: a quarter of a 8-bit display's 64 levels, visible as a seam.
+LEAK_THRESHOLD = 0.05
+
+
+def _reference_of(method: str, kernel: int) -> str:
+    return "embree" if kernel == 1 or method in ("hard", "pcf", "embree") else "pcf"
+
+
+def shadows(scene: _core.Scene, camera: _core.Camera,
+            methods: Sequence[str] = ("hard", "pcf", "vsm", "msm_hamburger", "msm_hausdorff"),
+            kernels: Sequence[int] = (1, 5, 9), figure: bool = True, **options):
+    """Each (method, kernel) against its reference.
+
+    options go to render_raster (resolution, depth_range, storage, bias, ...). Returns (rows,
+    fig): rows, one dict per method and kernel with method, kernel, reference, mean_error,
+    p99_error, light_leak (fraction of lit-side pixels at least LEAK_THRESHOLD below the
+    reference), over_shadow (the same above), nan_count, bits_per_texel, seconds; fig (when
+    `figure`) shows, for the largest kernel, each method's shadow image and its error map.
+    """
+    kernels = [int(k) for k in kernels]
+    if not methods or not kernels:
+        raise ValueError("methods and kernels must not be empty")
+    references: Dict[tuple, np.ndarray] = {}
+
+    def reference(name: str, kernel: int) -> np.ndarray:
+        key = (name, kernel if name == "pcf" else 1)
+        if key not in references:
+            references[key] = render_raster(scene, camera, name, kernel=key[1], output="shadow", **options)
+        return references[key]
+
+    rows: List[dict] = []
+    images = {}
+    for kernel in kernels:
+        for method in methods:
+            counts: dict = {}
+            image = render_raster(scene, camera, method, kernel=kernel, output="shadow", stats=counts, **options)
+            ref_name = _reference_of(method, kernel)
+            truth = reference(ref_name, kernel)
+            valid = (image[..., 1] > 0) & (truth[..., 1] > 0)
+            error = image[..., 0][valid] - truth[..., 0][valid]
+            finite = np.isfinite(error)
+            abs_error = np.abs(error[finite]) if finite.any() else np.zeros(1)
+            rows.append({
+                "method": method, "kernel": kernel, "reference": ref_name if ref_name == "embree" else f"pcf {kernel}x{kernel}",
+                "mean_error": float(abs_error.mean()), "p99_error": float(np.quantile(abs_error, 0.99)),
+                "light_leak": float(np.mean(error[finite] < -LEAK_THRESHOLD)) if finite.any() else 0.0,
+                "over_shadow": float(np.mean(error[finite] > LEAK_THRESHOLD)) if finite.any() else 0.0,
+                "nan_count": int(np.count_nonzero(~np.isfinite(image[..., 0]))),
+                "bits_per_texel": 8 * counts["bytes_per_texel"], "seconds": counts["seconds"],
+            })
+            images[(method, kernel)] = (image, truth)
+    fig = _figure(images, methods, max(kernels)) if figure else None
+    return rows, fig
+
+
+def _figure(images, methods, kernel):
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, len(methods), figsize=(3.2 * len(methods), 4.6), squeeze=False,
+                             constrained_layout=True)
+    for column, method in enumerate(methods):
+        image, truth = images[(method, kernel)]
+        axes[0, column].imshow(image[..., 0], cmap="gray_r", vmin=0, vmax=1)
+        axes[0, column].set_title(f"{method} {kernel}x{kernel}", fontsize=9)
+        error = np.where(image[..., 1] > 0, image[..., 0] - truth[..., 0], 0.0)
+        shown = axes[1, column].imshow(error, cmap="RdBu_r", vmin=-0.5, vmax=0.5)
+        axes[1, column].set_title("error (red: too dark)", fontsize=8)
+        for ax in axes[:, column]:
+            ax.axis("off")
+    fig.colorbar(shown, ax=axes[1, :].tolist(), shrink=0.8, label="shadow - reference")
+    return fig
+
+
+def format_table(rows: Sequence[dict]) -> str:
+    """The rows of shadows() as aligned text."""
+    header = f"{'method':14s} {'kernel':>6s} {'reference':>10s} {'mean':>8s} {'p99':>8s} {'leak':>7s} " \
+             f"{'over':>7s} {'NaN':>4s} {'bits':>5s} {'time [s]':>8s}"
+    lines = [header]
+    for r in rows:
+        lines.append(f"{r['method']:14s} {r['kernel']:6d} {r['reference']:>10s} {r['mean_error']:8.4f} "
+                     f"{r['p99_error']:8.4f} {r['light_leak']:7.4f} {r['over_shadow']:7.4f} {r['nan_count']:4d} "
+                     f"{r['bits_per_texel']:5d} {r['seconds']:8.3f}")
+    return "\n".join(lines)

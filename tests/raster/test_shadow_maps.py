@@ -1,0 +1,96 @@
+"""Shadow maps from the CPU rasterizer, against Embree shadow rays and PCF (shared/MOMENTS.md)."""
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import compare
+
+
+def boxes_in_sun():
+    scene = refracta.Scene()
+    scene.set_sun((-0.5, 0.6, 0.3), (2e4, 2e4, 2e4))
+    scene.set_sky((0.5, 0.6, 0.8), (0.2, 0.3, 0.7))
+    scene.add_ground(0.0, 200.0)
+    scene.add_box((10, 2, 0), (2, 4, 2))
+    scene.add_box((16, 1, 3), (3, 2, 1))
+    scene.add_box((6, 0.5, -4), (1, 1, 1))
+    return scene
+
+
+CAMERA = refracta.Camera((-5, 8, -10), (10, 0, 0), (0, 1, 0), 50, 128, 80)
+MAP = dict(resolution=512, shadow_distance=60.0)
+
+
+def shadow(method, **kwargs):
+    return refracta.render_raster(boxes_in_sun(), CAMERA, method, output="shadow", **MAP, **kwargs)
+
+
+def test_a_hard_shadow_map_matches_shadow_rays_away_from_edges():
+    truth, mapped = shadow("embree"), shadow("hard")
+    valid = (truth[..., 1] > 0) & (mapped[..., 1] > 0)
+    in_shadow, lit = valid & (truth[..., 0] == 1), valid & (truth[..., 0] == 0)
+    assert in_shadow.sum() > 50  # there are shadows to get right
+    # Texels are 12 cm here: only pixels within a texel or two of an edge may differ.
+    assert np.mean(mapped[..., 0][in_shadow] == 1) > 0.85
+    assert np.mean(mapped[..., 0][lit] == 0) > 0.99
+
+
+def test_radiance_with_shadow_rays_equals_the_straight_renderer():
+    scene = boxes_in_sun()
+    rasterized = refracta.render_raster(scene, CAMERA, "embree")
+    traced = refracta.render(scene, CAMERA, None, method="straight", progress=False)
+    np.testing.assert_allclose(rasterized, traced, rtol=1e-4, atol=1e-4 * traced.max())
+
+
+@pytest.mark.parametrize("kernel", [5, 9])
+def test_filtered_moments_approach_pcf_with_the_same_kernel(kernel):
+    rows, _ = compare.shadows(boxes_in_sun(), CAMERA, methods=("vsm", "msm_hamburger", "msm_hausdorff"),
+                              kernels=(kernel,), figure=False, **MAP)
+    errors = {r["method"]: r for r in rows}
+    for r in rows:
+        assert r["reference"] == f"pcf {kernel}x{kernel}" and r["nan_count"] == 0
+        assert r["mean_error"] < 0.01
+    # MOMENTS.md: Hamburger's bound is sharper than VSM's.
+    assert errors["msm_hamburger"]["p99_error"] <= errors["vsm"]["p99_error"] + 1e-9
+
+
+def test_vsm_hamburger_hausdorff_are_ordered_per_pixel():
+    """All three read the same filtered moments: VSM <= Hamburger <= Hausdorff (MOMENTS.md 2.4)."""
+    vsm, hamburger, hausdorff = (shadow(m, kernel=7)[..., 0] for m in ("vsm", "msm_hamburger", "msm_hausdorff"))
+    assert np.all(vsm <= hamburger + 1e-6)
+    assert np.all(hamburger <= hausdorff + 1e-6)
+
+
+@pytest.mark.parametrize("storage, depth_range", [("unorm16", "unit"), ("unorm16", "signed"), ("fp32", "signed")])
+def test_storage_and_depth_range_change_little(storage, depth_range):
+    reference = shadow("msm_hamburger", kernel=5, storage="fp64")[..., 0]
+    other = shadow("msm_hamburger", kernel=5, storage=storage, depth_range=depth_range)[..., 0]
+    assert np.all(np.isfinite(other))
+    # unorm16's larger bias (3e-5 / 6e-5) lightens shadows slightly; the mean change stays small.
+    assert np.abs(other - reference).mean() < 0.01
+
+
+def test_compare_reports_bits_and_times():
+    rows, fig = compare.shadows(boxes_in_sun(), CAMERA, methods=("hard", "msm_hamburger"), kernels=(1, 3),
+                                storage="unorm16", **MAP)
+    bits = {(r["method"], r["kernel"]): r["bits_per_texel"] for r in rows}
+    assert bits[("hard", 1)] == 32 and bits[("msm_hamburger", 3)] == 64
+    assert all(r["seconds"] > 0 for r in rows)
+    assert len(fig.axes) >= 4
+    assert "msm_hamburger" in compare.format_table(rows)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(kernel=4), "kernel"),
+    (dict(resolution=1), "resolution"),
+    (dict(shadows="pcss"), "shadows must be"),
+    (dict(storage="fp16"), "storage"),
+    (dict(depth_range="half"), "depth_range"),
+    (dict(bias=1.5), "bias"),
+])
+def test_bad_shadow_options_raise_value_error(kwargs, match):
+    args = dict(shadows="msm_hamburger")
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        refracta.render_raster(boxes_in_sun(), CAMERA, **args)
