@@ -100,17 +100,24 @@ ShadowMap::ShadowMap(const Scene& scene, const Vec3d& toward_light, const Vec3d&
 
   if (uses_moments(options_.method)) {
     moments_.resize(size_t(n) * n);
-    for (int y = 0; y < n; ++y) {
+    parallel_for_each(n, 8, control, [&](int64_t y) {
       for (int x = 0; x < n; ++x) {
-        const double z = depth_at(x, y);
+        const double z = depth_at(x, int(y));
         moments_[size_t(y) * n + x] = {z, z * z, z * z * z, z * z * z * z};
       }
-    }
+    });
     if (options_.kernel > 1) {
       box_filter(moments_, n, options_.kernel, true, control);
       box_filter(moments_, n, options_.kernel, false, control);
     }
-    for (auto& b : moments_) b = stored_moments(b, options_.moments.storage, options_.moments.signed_depth);
+    if (options_.moments.storage != MomentStorage::kFp64) {
+      parallel_for_each(n, 8, control, [&](int64_t y) {
+        for (int x = 0; x < n; ++x) {
+          Moments4& b = moments_[size_t(y) * n + x];
+          b = stored_moments(b, options_.moments.storage, options_.moments.signed_depth);
+        }
+      });
+    }
   }
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

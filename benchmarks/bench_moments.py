@@ -1,0 +1,65 @@
+"""Moment shadow maps against PCF (issue: moment-based rendering).
+
+A 1024^2 shadow map of the sun over a small scene of boxes, rendered at 512 x 320 with
+render_raster(output='shadow'): for kernels 3x3 ... 31x31, the time to build the map (rasterize,
+moments, separable box filter, storage) and the whole render (lookups included) for PCF and the
+moment methods, and their errors against PCF with the same kernel (refracta.compare.shadows).
+Goal: MSM's cost flat in the kernel size and below PCF's from 9x9 on.
+
+    python benchmarks/bench_moments.py     -> benchmarks/results/moments.json
+"""
+
+from __future__ import annotations
+
+import refracta
+from refracta import compare
+from _common import write_results
+
+KERNELS = (3, 5, 9, 15, 21, 31)
+METHODS = ("pcf", "vsm", "msm_hamburger", "msm_hausdorff")
+
+
+def scene_and_camera():
+    scene = refracta.Scene()
+    scene.set_sun((-0.5, 0.6, 0.3), (2e4, 2e4, 2e4))
+    scene.set_sky((0.5, 0.6, 0.8), (0.2, 0.3, 0.7))
+    scene.add_ground(0.0, 200.0)
+    for i in range(6):
+        for j in range(4):
+            scene.add_box((4.0 + 5.0 * i, 0.5 + 0.4 * ((i + j) % 4), -8.0 + 5.0 * j), (1.5, 1.0 + 0.8 * ((i + j) % 4), 1.5))
+    camera = refracta.Camera((-6, 12, -18), (14, 0, 0), (0, 1, 0), 50, 512, 320)
+    return scene, camera
+
+
+def main() -> dict:
+    scene, camera = scene_and_camera()
+    rows = []
+    for storage in ("fp32", "unorm16"):
+        table, _ = compare.shadows(scene, camera, methods=METHODS, kernels=KERNELS, figure=False, resolution=1024,
+                                   storage=storage)
+        for row in table:
+            row["storage"] = storage
+            counts = {}
+            refracta.render_raster(scene, camera, row["method"], kernel=row["kernel"], resolution=1024,
+                                   storage=storage, output="shadow", stats=counts)
+            row["build_seconds"] = counts["shadow_build_seconds"]
+            row["lookup_seconds"] = counts["seconds"] - counts["shadow_build_seconds"]
+            rows.append(row)
+            print(f"{storage:8s} {row['method']:14s} {row['kernel']:3d}  build {row['build_seconds']:.3f} s  "
+                  f"lookups {row['lookup_seconds']:.3f} s  mean error {row['mean_error']:.4f}  p99 {row['p99_error']:.3f}")
+    fp32 = [r for r in rows if r["storage"] == "fp32"]
+    total = {(r["method"], r["kernel"]): r["build_seconds"] + r["lookup_seconds"] for r in fp32}
+    msm = [total[("msm_hamburger", k)] for k in KERNELS]
+    goals = {
+        "msm_cost_ratio_31_over_3": msm[-1] / msm[0],
+        "msm_below_pcf_from_9x9": all(total[("msm_hamburger", k)] < total[("pcf", k)] for k in KERNELS if k >= 9),
+    }
+    print(goals)
+    payload = {"setup": {"shadow_map": 1024, "image": [camera.width, camera.height], "kernels": KERNELS},
+               "rows": rows, "goals": goals}
+    print(f"wrote {write_results('moments', payload)}")
+    return payload
+
+
+if __name__ == "__main__":
+    main()
