@@ -5,11 +5,18 @@ render_raster(output='shadow'): for kernels 3x3 ... 31x31, the time to build the
 moments, separable box filter, storage) and the whole render (lookups included) for PCF and the
 moment methods, and their errors against PCF with the same kernel (refracta.compare.shadows).
 Goal: MSM's cost flat in the kernel size and below PCF's from 9x9 on.
+Transparency: a view through 8 and 32 tilted transparent sheets (8 and 32 fragments per pixel),
+each OIT method's time (render_raster with shadows off, shading included) and bytes per pixel,
+and its error against the exact sorted composite (refracta.compare.transparency). The image is
+256^2 by default (--oit-size): MBOIT on the CPU costs microseconds per fragment, so the issue's
+1024^2 x 32 fragments takes minutes per method.
 
     python benchmarks/bench_moments.py     -> benchmarks/results/moments.json
 """
 
 from __future__ import annotations
+
+import numpy as np
 
 import refracta
 from refracta import compare
@@ -31,7 +38,39 @@ def scene_and_camera():
     return scene, camera
 
 
-def main() -> dict:
+def glass_stack(layers: int, size: int):
+    """`layers` tilted transparent sheets filling a size^2 view (one fragment each per pixel, at
+    depths that vary across the image), in front of a wall."""
+    rng = np.random.default_rng(1)
+    scene = refracta.Scene()
+    scene.set_sky((0.5, 0.6, 0.8), (0.2, 0.3, 0.7))
+    scene.set_sun((-0.5, 0.6, 0.3), (2e4, 2e4, 2e4))
+    scene.add_box((80.0, 0.0, 0.0), (1.0, 300.0, 300.0), kd=(0.8, 0.8, 0.8))
+    for i in range(layers):
+        x0, ty, tz = 8.0 + 2.0 * i, rng.uniform(-0.15, 0.15), rng.uniform(-0.15, 0.15)
+        corners = [(x0 + ty * y + tz * z, y, z) for y, z in ((-60, -60), (60, -60), (60, 60), (-60, 60))]
+        scene.add_mesh(corners, [[0, 1, 2], [0, 2, 3]], kd=tuple(rng.uniform(0.1, 0.9, 3)), alpha=float(rng.uniform(0.1, 0.5)))
+    camera = refracta.Camera((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0, 1, 0), 40, size, size)
+    return scene, camera
+
+
+def transparency_rows(size: int) -> list:
+    rows = []
+    for layers in (8, 32):
+        scene, camera = glass_stack(layers, size)
+        table, _ = compare.transparency(scene, camera, methods=("peel 4", "wboit eq7", "mboit 4", "mboit 6", "mboit 8",
+                                                                 "mboit trig 2", "mboit trig 3", "mboit trig 4"),
+                                        figure=False, shadows="none")
+        for row in table:
+            row["fragments_per_pixel"] = layers
+            row["image"] = [size, size]
+            rows.append(row)
+            print(f"{layers:2d} fragments  {row['method']:14s} {row['seconds']:7.3f} s  "
+                  f"{row['bytes_per_pixel']:6.1f} B/px  mean error {row['mean_error']:.4f}  p99 {row['p99_error']:.4f}")
+    return rows
+
+
+def main(oit_size: int = 256) -> dict:
     scene, camera = scene_and_camera()
     rows = []
     for storage in ("fp32", "unorm16"):
@@ -56,10 +95,14 @@ def main() -> dict:
     }
     print(goals)
     payload = {"setup": {"shadow_map": 1024, "image": [camera.width, camera.height], "kernels": KERNELS},
-               "rows": rows, "goals": goals}
+               "rows": rows, "goals": goals, "transparency": transparency_rows(oit_size)}
     print(f"wrote {write_results('moments', payload)}")
     return payload
 
 
 if __name__ == "__main__":
-    main()
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--oit-size", type=int, default=256, help="transparency image size (default 256)")
+    main(parser.parse_args().oit_size)

@@ -33,6 +33,12 @@ def render_raster(
     shadow_half_size: Optional[float] = None,
     shadow_distance: Optional[float] = None,
     output: str = "radiance",
+    transparency: Optional[str] = None,
+    moments: int = 4,
+    kind: str = "power",
+    beta: float = 0.25,
+    layers: int = 4,
+    weight: str = "eq7",
     stats: Optional[dict] = None,
     progress: Union[bool, Callable[[int, int], None]] = False,
 ) -> np.ndarray:
@@ -48,8 +54,14 @@ def render_raster(
     compare offset (normalised depth); normal_offset: receivers moved along their normal, in texels;
     bleeding_reduction: VSM's light-bleeding reduction amount.
     output: 'radiance' (float32 (H, W, 3) linear) or 'shadow' ((H, W, 2): shadow intensity in [0, 1]
-    and 1 where the surface faces the sun, zeros elsewhere). stats: a dict to fill with 'seconds',
-    'shadow_build_seconds', 'bytes_per_texel'. No atmosphere: this is the straight-ray view.
+    and 1 where the surface faces the sun, zeros elsewhere).
+    transparency: None (every surface opaque) or how surfaces with alpha < 1 are composited over the
+    opaque ones from the rasterizer's per-pixel fragment lists: 'exact' (sorted), 'peel' (`layers`
+    nearest), 'wboit' (McGuire & Bavoil, weight 'eq7' / 'eq9'), 'mboit' (`moments` 4/6/8 power or
+    2/3/4 trigonometric with kind='trig', overestimation `beta`, log depth warp over the frame's
+    fragment range). Shadows treat every surface as opaque.
+    stats: a dict to fill with 'seconds', 'shadow_build_seconds', 'bytes_per_texel',
+    'transparent_fragments', 'oit_bytes_per_pixel'. No atmosphere: this is the straight-ray view.
     """
     if shadows not in SHADOW_METHODS:
         raise ValueError(f"shadows must be one of {', '.join(SHADOW_METHODS)} (got {shadows!r})")
@@ -66,7 +78,8 @@ def render_raster(
     image, counts = _core._render_raster(
         scene, camera, SHADOW_METHODS[shadows], int(resolution), int(kernel), depth_range == "signed", bias,
         None if bias_vector is None else [float(v) for v in bias_vector], storage, depth_bias, normal_offset,
-        bleeding_reduction, shadow_centre, shadow_half_size, shadow_distance, output == "shadow", callback)
+        bleeding_reduction, shadow_centre, shadow_half_size, shadow_distance, output == "shadow", transparency,
+        int(moments), kind, float(beta), int(layers), weight, callback)
     if stats is not None:
         stats.update(counts)
     return image[..., :2] if output == "shadow" else image

@@ -1,9 +1,11 @@
-"""refracta.compare: shadow methods measured against their references, as tables and figures.
+"""refracta.compare: shadow and transparency methods measured against their references.
 
 compare.shadows(scene, camera, methods, kernels) renders the sun's shadow intensity per pixel
 (render_raster(output='shadow')) with each method and kernel and compares it with the reference:
 Embree shadow rays for unfiltered (1 x 1) lookups and for 'hard' / 'pcf', and PCF with the same
 kernel for filtered moment methods (shared/MOMENTS.md: filtered MSM approximates filtered PCF).
+compare.transparency(scene, camera, methods) composites the same rasterized fragments with each
+OIT method and compares with the exact (sorted) composite.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import numpy as np
 from refracta import _core
 from refracta._raster_render import render_raster
 
-__all__ = ["format_table", "shadows"]
+__all__ = ["format_table", "shadows", "transparency"]
 
 #: A pixel leaks light (or is over-shadowed) when its intensity is this much below (above) the
 #: reference: a quarter of a 8-bit display's 64 levels, visible as a seam.
@@ -73,6 +75,67 @@ def shadows(scene: _core.Scene, camera: _core.Camera,
     return rows, fig
 
 
+#: Transparency methods of compare.transparency: name -> render_raster keyword arguments.
+TRANSPARENCY_METHODS = {
+    "peel 2": dict(transparency="peel", layers=2),
+    "peel 4": dict(transparency="peel", layers=4),
+    "wboit eq7": dict(transparency="wboit", weight="eq7"),
+    "wboit eq9": dict(transparency="wboit", weight="eq9"),
+    "mboit 4": dict(transparency="mboit", moments=4),
+    "mboit 6": dict(transparency="mboit", moments=6),
+    "mboit 8": dict(transparency="mboit", moments=8),
+    "mboit trig 2": dict(transparency="mboit", moments=2, kind="trig"),
+    "mboit trig 3": dict(transparency="mboit", moments=3, kind="trig"),
+    "mboit trig 4": dict(transparency="mboit", moments=4, kind="trig"),
+}
+
+
+def transparency(scene: _core.Scene, camera: _core.Camera, methods: Sequence[str] = tuple(TRANSPARENCY_METHODS),
+                 figure: bool = True, **options):
+    """Each transparency method against the exact (sorted) composite of the same fragments.
+
+    methods: names of TRANSPARENCY_METHODS. options go to render_raster (shadows, ...). Returns
+    (rows, fig): rows with method, mean_error and p99_error (per pixel, the largest channel's
+    error relative to the exact pixel's brightest channel, over pixels with fragments), nan_count,
+    bytes_per_pixel, seconds; fig shows the exact image and each method's error map.
+    """
+    unknown = [m for m in methods if m not in TRANSPARENCY_METHODS]
+    if unknown:
+        raise ValueError(f"unknown transparency methods {unknown} (expected some of {list(TRANSPARENCY_METHODS)})")
+    counts: dict = {}
+    exact = render_raster(scene, camera, transparency="exact", stats=counts, **options)
+    opaque = render_raster(scene, camera, transparency=None, **options)
+    covered = np.abs(exact - opaque).max(axis=2) > 0  # pixels whose colour transparency changes
+    scale = np.maximum(exact.max(axis=2), 1e-6)
+    rows, images = [], {}
+    for method in methods:
+        stats: dict = {}
+        image = render_raster(scene, camera, stats=stats, **TRANSPARENCY_METHODS[method], **options)
+        error = (np.abs(image - exact).max(axis=2) / scale)[covered]
+        finite = error[np.isfinite(error)] if error.size else np.zeros(1)
+        rows.append({"method": method, "mean_error": float(finite.mean()) if finite.size else 0.0,
+                     "p99_error": float(np.quantile(finite, 0.99)) if finite.size else 0.0,
+                     "nan_count": int(np.count_nonzero(~np.isfinite(image))),
+                     "bytes_per_pixel": stats["oit_bytes_per_pixel"], "seconds": stats["seconds"]})
+        images[method] = image
+    rows.insert(0, {"method": "exact", "mean_error": 0.0, "p99_error": 0.0, "nan_count": 0,
+                    "bytes_per_pixel": counts["oit_bytes_per_pixel"], "seconds": counts["seconds"]})
+    fig = None
+    if figure:
+        import matplotlib.pyplot as plt
+        from refracta.io import to_display
+
+        fig, axes = plt.subplots(1, len(methods) + 1, figsize=(2.8 * (len(methods) + 1), 2.6), constrained_layout=True)
+        axes[0].imshow(to_display(exact))
+        axes[0].set_title("exact (sorted)", fontsize=9)
+        for ax, method in zip(axes[1:], methods):
+            ax.imshow(np.abs(images[method] - exact).max(axis=2) / scale, cmap="magma", vmin=0, vmax=0.3)
+            ax.set_title(f"{method}: error", fontsize=9)
+        for ax in axes:
+            ax.axis("off")
+    return rows, fig
+
+
 def _figure(images, methods, kernel):
     import matplotlib.pyplot as plt
 
@@ -92,7 +155,13 @@ def _figure(images, methods, kernel):
 
 
 def format_table(rows: Sequence[dict]) -> str:
-    """The rows of shadows() as aligned text."""
+    """The rows of shadows() or transparency() as aligned text."""
+    if rows and "kernel" not in rows[0]:
+        lines = [f"{'method':14s} {'mean':>8s} {'p99':>8s} {'NaN':>4s} {'bytes/px':>9s} {'time [s]':>8s}"]
+        for r in rows:
+            lines.append(f"{r['method']:14s} {r['mean_error']:8.4f} {r['p99_error']:8.4f} {r['nan_count']:4d} "
+                         f"{r['bytes_per_pixel']:9.1f} {r['seconds']:8.3f}")
+        return "\n".join(lines)
     header = f"{'method':14s} {'kernel':>6s} {'reference':>10s} {'mean':>8s} {'p99':>8s} {'leak':>7s} " \
              f"{'over':>7s} {'NaN':>4s} {'bits':>5s} {'time [s]':>8s}"
     lines = [header]

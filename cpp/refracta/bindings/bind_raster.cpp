@@ -122,31 +122,24 @@ void bind_raster(py::module_& m) {
           for (size_t i = 0; i < z.size(); ++i) fragments.push_back({z[i], a[i], c[i]});
           validate_fragments(fragments);
           const Vec3d bg = to_point(background, "background");
-          Vec3d out;
-          if (method == "exact") {
-            out = composite_exact(fragments, bg);
-          } else if (method == "peel") {
-            if (!layers) throw_invalid("method 'peel' needs layers");
-            out = composite_peeled(fragments, bg, *layers);
-          } else if (method == "wboit") {
-            out = composite_wboit(fragments, bg, weight);
-          } else if (method == "mboit") {
-            if (kind != "power" && kind != "trig") throw_invalid("kind must be 'power' or 'trig' (got '", kind, "')");
-            MbOitOptions options;
-            options.trigonometric = kind == "trig";
-            options.moments = moments;
-            options.beta = beta;
-            if (bias) options.bias = *bias;
-            if (z_range) {
-              if (!(z_range->first > 0.0 && z_range->second > z_range->first)) {
-                throw_invalid("z_range must be (near, far) with 0 < near < far");
-              }
-              options.z_near = z_range->first, options.z_far = z_range->second;
+          OitSettings settings;
+          settings.method = parse_oit_method(method);
+          if (settings.method == OitMethod::kPeel && !layers) throw_invalid("method 'peel' needs layers");
+          if (layers) settings.layers = *layers;
+          settings.weight = weight;
+          if (kind != "power" && kind != "trig") throw_invalid("kind must be 'power' or 'trig' (got '", kind, "')");
+          settings.mboit.trigonometric = kind == "trig";
+          settings.mboit.moments = moments;
+          settings.mboit.beta = beta;
+          if (bias) settings.mboit.bias = *bias;
+          if (z_range) {
+            if (!(z_range->first > 0.0 && z_range->second > z_range->first)) {
+              throw_invalid("z_range must be (near, far) with 0 < near < far");
             }
-            out = composite_mboit(fragments, bg, options);
-          } else {
-            throw_invalid("method must be 'exact', 'peel', 'wboit' or 'mboit' (got '", method, "')");
+            settings.mboit.z_near = z_range->first, settings.mboit.z_far = z_range->second;
           }
+          if (settings.method == OitMethod::kMboit) settings.validate();
+          const Vec3d out = composite(fragments, bg, settings);
           return points_to_array({out}).reshape({py::ssize_t(3)});
         },
         py::arg("depths"), py::arg("alphas"), py::arg("colors"), py::arg("background"), py::arg("method"),

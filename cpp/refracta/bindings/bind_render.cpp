@@ -52,9 +52,21 @@ void bind_render(py::module_& m) {
            int kernel, bool signed_depth, std::optional<double> bias, std::optional<std::vector<double>> bias_vector,
            const std::string& storage, double depth_bias, double normal_offset, double bleeding_reduction,
            const py::object& shadow_centre, std::optional<double> shadow_half_size, std::optional<double> shadow_distance,
-           bool output_shadow, const py::object& progress) {
+           bool output_shadow, std::optional<std::string> transparency, int oit_moments, const std::string& oit_kind,
+           double beta, int layers, const std::string& weight, const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
           RasterRenderOptions options;
+          if (transparency) {
+            OitSettings oit;
+            oit.method = parse_oit_method(*transparency);
+            if (oit_kind != "power" && oit_kind != "trig") throw_invalid("kind must be 'power' or 'trig' (got '", oit_kind, "')");
+            oit.mboit.trigonometric = oit_kind == "trig";
+            oit.mboit.moments = oit_moments;
+            oit.mboit.beta = beta;
+            oit.layers = layers;
+            oit.weight = weight;
+            options.transparency = oit;
+          }
           options.shadows = shadows;
           if (shadows != "embree" && shadows != "none") parse_shadow_method(shadows);
           ShadowMapOptions& map = options.shadow_map;
@@ -84,12 +96,15 @@ void bind_render(py::module_& m) {
           counts["seconds"] = stats.seconds;
           counts["shadow_build_seconds"] = stats.shadow_build_seconds;
           counts["bytes_per_texel"] = stats.bytes_per_texel;
+          counts["transparent_fragments"] = stats.transparent_fragments;
+          counts["oit_bytes_per_pixel"] = stats.oit_bytes_per_pixel;
           return py::make_tuple(image_to_float32(image), counts);
         },
         py::arg("scene"), py::arg("camera"), py::arg("shadows"), py::arg("resolution"), py::arg("kernel"),
         py::arg("signed_depth"), py::arg("bias"), py::arg("bias_vector"), py::arg("storage"), py::arg("depth_bias"),
         py::arg("normal_offset"), py::arg("bleeding_reduction"), py::arg("shadow_centre"), py::arg("shadow_half_size"),
-        py::arg("shadow_distance"), py::arg("output_shadow"), py::arg("progress"));
+        py::arg("shadow_distance"), py::arg("output_shadow"), py::arg("transparency"), py::arg("moments"),
+        py::arg("kind"), py::arg("beta"), py::arg("layers"), py::arg("weight"), py::arg("progress"));
 }
 
 }  // namespace refracta

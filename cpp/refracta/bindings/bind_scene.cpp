@@ -14,11 +14,12 @@ namespace {
 
 Vec3d to_rgb(const py::handle& value, const char* what) { return to_point(value, what); }
 
-Material material_from(const py::object& kd, const py::object& ks, double ns) {
+Material material_from(const py::object& kd, const py::object& ks, double ns, double alpha = 1.0) {
   Material m;
   m.kd = to_rgb(kd, "kd");
   m.ks = to_rgb(ks, "ks");
   m.ns = ns;
+  m.alpha = alpha;
   m.validate();
   return m;
 }
@@ -94,7 +95,7 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
       .def(py::init<>())
       .def("add_mesh",
            [](RenderScene& s, const py::object& vertices, const py::object& triangles, const py::object& kd,
-              const py::object& ks, double ns, const py::object& uvs, std::optional<std::string> texture) {
+              const py::object& ks, double ns, const py::object& uvs, std::optional<std::string> texture, double alpha) {
              Mesh mesh;
              mesh.vertices = to_points(vertices, "vertices");
              const std::vector<Vec3d>& v = mesh.vertices;
@@ -111,15 +112,16 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
              }
              mesh.triangles = tris;
              if (!uvs.is_none()) mesh.uvs = to_uvs(uvs, v.size());
-             Material material = material_from(kd, ks, ns);
+             Material material = material_from(kd, ks, ns, alpha);
              if (texture) material.kd_texture = s.geometry.textures().add(*texture);
              return s.geometry.add_mesh(mesh, material);
            },
            py::arg("vertices"), py::arg("triangles"), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5),
            py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0, py::arg("uvs") = py::none(),
-           py::arg("texture") = py::none(),
+           py::arg("texture") = py::none(), py::arg("alpha") = 1.0,
            "Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices; optional uvs (N, 2) texture\n"
-           "coordinates (u right, v up) and a texture image file multiplying kd. Returns its id.")
+           "coordinates (u right, v up) and a texture image file multiplying kd; alpha < 1 makes it transparent\n"
+           "in render_raster. Returns its id.")
       .def("add_obj",
            [](RenderScene& s, const std::string& path, const py::object& offset, double scale) {
              const Vec3d shift = to_point(offset, "offset");
@@ -178,13 +180,13 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
            "-x side), upright.")
       .def("add_box",
            [](RenderScene& s, const py::object& centre, const py::object& size, const py::object& kd,
-              const py::object& ks, double ns) {
+              const py::object& ks, double ns, double alpha) {
              const Mesh mesh = box_mesh(to_point(centre, "centre"), to_point(size, "size"));
-             return s.geometry.add_mesh(mesh.vertices, mesh.triangles, material_from(kd, ks, ns));
+             return s.geometry.add_mesh(mesh.vertices, mesh.triangles, material_from(kd, ks, ns, alpha));
            },
            py::arg("centre"), py::arg("size"), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5),
-           py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0,
-           "Add an axis-aligned box: centre (3,) and size (3,) [m].")
+           py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0, py::arg("alpha") = 1.0,
+           "Add an axis-aligned box: centre (3,) and size (3,) [m]; alpha < 1: transparent in render_raster.")
       .def("add_sphere",
            [](RenderScene& s, const py::object& centre, double radius, const py::object& kd, const py::object& ks,
               double ns) {

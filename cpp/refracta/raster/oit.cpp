@@ -145,4 +145,50 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   return total_transmittance * background + (1.0 - total_transmittance) * accum / accum_alpha;
 }
 
+OitMethod parse_oit_method(const std::string& name) {
+  if (name == "exact") return OitMethod::kExact;
+  if (name == "peel") return OitMethod::kPeel;
+  if (name == "wboit") return OitMethod::kWboit;
+  if (name == "mboit") return OitMethod::kMboit;
+  throw_invalid("method must be 'exact', 'peel', 'wboit' or 'mboit' (got '", name, "')");
+}
+
+void OitSettings::validate() const {
+  if (method == OitMethod::kPeel && layers < 1) throw_invalid("layers must be >= 1 (got ", layers, ")");
+  if (method == OitMethod::kWboit && weight != "eq7" && weight != "eq9") {
+    throw_invalid("weight must be 'eq7' or 'eq9' (got '", weight, "')");
+  }
+  if (method == OitMethod::kMboit) {
+    const int m = mboit.moments;
+    if (mboit.trigonometric ? (m < 2 || m > 4) : (m != 4 && m != 6 && m != 8)) {
+      throw_invalid(mboit.trigonometric ? "trigonometric moments must be 2, 3 or 4" : "power moments must be 4, 6 or 8",
+                    " (got ", m, ")");
+    }
+    if (!(mboit.beta >= 0.0 && mboit.beta <= 1.0)) throw_invalid("beta must be in [0, 1] (got ", mboit.beta, ")");
+    if (mboit.z_far > mboit.z_near && !(mboit.z_near > 0.0)) {
+      throw_invalid("z_range must be (near, far) with 0 < near < far");
+    }
+  }
+}
+
+double OitSettings::bytes_per_pixel(double fragments_per_pixel) const {
+  switch (method) {
+    case OitMethod::kExact: return 20.0 * fragments_per_pixel;
+    case OitMethod::kPeel: return 12.0 * layers;
+    case OitMethod::kWboit: return 10.0;
+    case OitMethod::kMboit: return 4.0 * (1 + (mboit.trigonometric ? 2 * mboit.moments : mboit.moments)) + 8.0;
+  }
+  return 0.0;
+}
+
+Vec3d composite(const std::vector<Fragment>& fragments, const Vec3d& background, const OitSettings& settings) {
+  switch (settings.method) {
+    case OitMethod::kExact: return composite_exact(fragments, background);
+    case OitMethod::kPeel: return composite_peeled(fragments, background, settings.layers);
+    case OitMethod::kWboit: return composite_wboit(fragments, background, settings.weight);
+    case OitMethod::kMboit: return composite_mboit(fragments, background, settings.mboit);
+  }
+  return background;
+}
+
 }  // namespace refracta

@@ -33,4 +33,23 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
 
 void validate_fragments(const std::vector<Fragment>& fragments);  // throws std::invalid_argument
 
+enum class OitMethod { kExact, kPeel, kWboit, kMboit };
+OitMethod parse_oit_method(const std::string& name);  // "exact", "peel", "wboit", "mboit"
+
+// One OIT configuration: the method and its settings.
+struct OitSettings {
+  OitMethod method = OitMethod::kMboit;
+  int layers = 4;               // peel
+  std::string weight = "eq7";   // wboit
+  MbOitOptions mboit;
+
+  void validate() const;        // throws std::invalid_argument naming the bad field
+  // Bytes per pixel a GPU would keep: sorted lists 20 per fragment (depth, alpha, RGB fp32);
+  // peeling 12 per layer (RGBA16F + depth fp32); WBOIT 10 (RGBA16F + R16F); MBOIT b0 and the
+  // moments in fp32 plus the RGBA16F accumulation.
+  double bytes_per_pixel(double fragments_per_pixel) const;
+};
+
+Vec3d composite(const std::vector<Fragment>& fragments, const Vec3d& background, const OitSettings& settings);
+
 }  // namespace refracta

@@ -23,6 +23,7 @@ struct ScreenTriangle {
   double u[3], v[3], depth[3];
   Vec3d bary[3];
   uint32_t geometry, primitive;
+  bool transparent = false;
 };
 
 // Guard band of the clipping planes: screen coordinates stay within 4x the view (exact
@@ -76,8 +77,10 @@ inline bool owns_boundary(double ax, double ay, double bx, double by) {
   return (dy == 0.0 && dx < 0.0) || dy > 0.0;
 }
 
-void fill(const ScreenTriangle& t, bool perspective, int x0, int y0, int x1, int y1, VisibilityBuffer* out,
-          int64_t* fragments) {
+// Calls emit(x, y, depth, barycentrics) for every pixel centre the triangle covers in the tile.
+template <class Emit>
+void fill(const ScreenTriangle& t, bool perspective, int x0, int y0, int x1, int y1, int64_t* fragments,
+          const Emit& emit) {
   double area = edge(t.u[0], t.v[0], t.u[1], t.v[1], t.u[2], t.v[2]);
   if (area == 0.0 || !std::isfinite(area)) return;
   int i0 = 0, i1 = 1, i2 = 2;
@@ -115,21 +118,22 @@ void fill(const ScreenTriangle& t, bool perspective, int x0, int y0, int x1, int
         depth = l[0] * t.depth[order[0]] + l[1] * t.depth[order[1]] + l[2] * t.depth[order[2]];
         bary = l[0] * t.bary[order[0]] + l[1] * t.bary[order[1]] + l[2] * t.bary[order[2]];
       }
-      const size_t i = out->index(x, y);
-      if (!(depth < out->depth[i])) continue;
-      out->depth[i] = float(depth);
-      out->geometry[i] = t.geometry;
-      out->primitive[i] = t.primitive;
-      out->b1[i] = float(bary.y());
-      out->b2[i] = float(bary.z());
+      emit(x, y, depth, bary);
     }
   }
 }
 
 }  // namespace
 
+int64_t FragmentLists::total() const {
+  int64_t n = 0;
+  for (const auto& list : lists) n += int64_t(list.size());
+  return n;
+}
+
 VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkControl& control, int tile,
-                           RasterStats* stats) {
+                           RasterStats* stats, const std::vector<bool>* transparent, FragmentLists* fragments) {
+  if (transparent && !fragments) throw_invalid("rasterize: transparent geometry needs fragment lists");
   if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
   // Clip and project every triangle.
   std::vector<ScreenTriangle> screen;
@@ -148,6 +152,7 @@ VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkContr
       ScreenTriangle t;
       t.geometry = mesh.geometry;
       t.primitive = uint32_t(p);
+      t.transparent = transparent && mesh.geometry < transparent->size() && (*transparent)[mesh.geometry];
       double u[8], v[8];
       for (size_t k = 0; k < polygon.size(); ++k) view.to_pixel(polygon[k].p, &u[k], &v[k]);
       for (size_t k = 1; k + 1 < polygon.size(); ++k) {  // a fan over the clipped polygon
@@ -189,39 +194,74 @@ VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkContr
   out.primitive.assign(pixels, VisibilityBuffer::kNone);
   out.b1.assign(pixels, 0.0f);
   out.b2.assign(pixels, 0.0f);
-  std::atomic<int64_t> fragments{0};
+  if (fragments) {
+    fragments->width = out.width;
+    fragments->height = out.height;
+    fragments->lists.assign(pixels, {});
+  }
+  std::atomic<int64_t> covered{0};
   parallel_for_each(int64_t(bins.size()), 1, control, [&](int64_t b) {
     const int x0 = int(b % tiles_x) * tile, y0 = int(b / tiles_x) * tile;
     const int x1 = std::min(x0 + tile, out.width), y1 = std::min(y0 + tile, out.height);
     int64_t count = 0;
-    for (uint32_t i : bins[b]) fill(screen[i], view.perspective(), x0, y0, x1, y1, &out, &count);
-    fragments.fetch_add(count, std::memory_order_relaxed);
+    // Opaque surfaces first: the z-buffer.
+    for (uint32_t i : bins[b]) {
+      const ScreenTriangle& t = screen[i];
+      if (t.transparent) continue;
+      fill(t, view.perspective(), x0, y0, x1, y1, &count, [&](int x, int y, double depth, const Vec3d& bary) {
+        const size_t k = out.index(x, y);
+        if (!(depth < out.depth[k])) return;
+        out.depth[k] = float(depth);
+        out.geometry[k] = t.geometry;
+        out.primitive[k] = t.primitive;
+        out.b1[k] = float(bary.y());
+        out.b2[k] = float(bary.z());
+      });
+    }
+    // Then transparent ones, kept where they are in front of the opaque surface.
+    if (fragments) {
+      for (uint32_t i : bins[b]) {
+        const ScreenTriangle& t = screen[i];
+        if (!t.transparent) continue;
+        fill(t, view.perspective(), x0, y0, x1, y1, &count, [&](int x, int y, double depth, const Vec3d& bary) {
+          const size_t k = out.index(x, y);
+          if (!(depth < out.depth[k])) return;
+          fragments->lists[k].push_back({float(depth), t.geometry, t.primitive, float(bary.y()), float(bary.z())});
+        });
+      }
+    }
+    covered.fetch_add(count, std::memory_order_relaxed);
   });
   if (stats) {
     stats->triangles_in = submitted;
     stats->triangles_drawn = int64_t(screen.size());
-    stats->fragments = fragments.load();
+    stats->fragments = covered.load();
   }
   return out;
 }
 
-std::optional<Hit> surface_at(const Scene& scene, const VisibilityBuffer& buffer, int x, int y, const Vec3d& toward) {
-  if (x < 0 || y < 0 || x >= buffer.width || y >= buffer.height || !buffer.covered(x, y)) return std::nullopt;
-  const size_t i = buffer.index(x, y);
-  const SceneMesh& mesh = scene.meshes().at(buffer.geometry[i]);
-  const auto& tri = mesh.mesh.triangles.at(buffer.primitive[i]);
+Hit surface_of(const Scene& scene, uint32_t geometry, uint32_t primitive, double b1, double b2, const Vec3d& toward) {
+  const SceneMesh& mesh = scene.meshes().at(geometry);
+  const auto& tri = mesh.mesh.triangles.at(primitive);
   const Vec3d& a = mesh.mesh.vertices[tri[0]];
   const Vec3d& b = mesh.mesh.vertices[tri[1]];
   const Vec3d& c = mesh.mesh.vertices[tri[2]];
-  const double b1 = buffer.b1[i], b2 = buffer.b2[i];
   Hit hit;
   hit.point = (1.0 - b1 - b2) * a + b1 * b + b2 * c;
   hit.normal = (b - a).cross(c - a).normalized();
   if (hit.normal.dot(toward - hit.point) < 0.0) hit.normal = -hit.normal;
   hit.t = (toward - hit.point).norm();
-  hit.geometry = buffer.geometry[i];
-  hit.primitive = buffer.primitive[i];
+  hit.geometry = geometry;
+  hit.primitive = primitive;
+  hit.b1 = b1;
+  hit.b2 = b2;
   return hit;
+}
+
+std::optional<Hit> surface_at(const Scene& scene, const VisibilityBuffer& buffer, int x, int y, const Vec3d& toward) {
+  if (x < 0 || y < 0 || x >= buffer.width || y >= buffer.height || !buffer.covered(x, y)) return std::nullopt;
+  const size_t i = buffer.index(x, y);
+  return surface_of(scene, buffer.geometry[i], buffer.primitive[i], buffer.b1[i], buffer.b2[i], toward);
 }
 
 }  // namespace refracta

@@ -29,6 +29,22 @@ struct VisibilityBuffer {
   bool covered(int x, int y) const { return geometry[index(x, y)] != kNone; }
 };
 
+// A fragment of a transparent surface: what the visibility buffer keeps, per fragment.
+struct RasterFragment {
+  float depth;
+  uint32_t geometry, primitive;
+  float b1, b2;
+};
+
+// Per-pixel lists of the transparent fragments in front of the opaque surface, in submission
+// order (sorting is the compositor's business).
+struct FragmentLists {
+  int width = 0, height = 0;
+  std::vector<std::vector<RasterFragment>> lists;
+  size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
+  int64_t total() const;
+};
+
 struct RasterStats {
   int64_t triangles_in = 0;     // scene triangles submitted
   int64_t triangles_drawn = 0;  // screen triangles after clipping
@@ -36,8 +52,15 @@ struct RasterStats {
 };
 
 // Draws every mesh of the scene. Degenerate triangles are skipped; no back-face culling.
+// With `transparent` (per geometry id) and `fragments`, the flagged geometries are drawn after the
+// opaque ones, per tile, into fragment lists where they lie in front of the opaque surface (the
+// same culling for every compositing method) instead of into the buffer.
 VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkControl& control, int tile = 32,
-                           RasterStats* stats = nullptr);
+                           RasterStats* stats = nullptr, const std::vector<bool>* transparent = nullptr,
+                           FragmentLists* fragments = nullptr);
+
+// The surface at barycentrics (b1, b2) of a triangle, its normal facing `toward`.
+Hit surface_of(const Scene& scene, uint32_t geometry, uint32_t primitive, double b1, double b2, const Vec3d& toward);
 
 // The surface a pixel shows: its world point (from the barycentrics), the unit geometric normal
 // facing `toward` (the viewer's side), the geometry and primitive; nullopt where nothing is drawn.

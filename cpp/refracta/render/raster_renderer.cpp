@@ -1,7 +1,8 @@
-// render_raster: the real-time pipeline on the CPU, for comparing shadow methods (issue 5): the
+// render_raster: the real-time pipeline on the CPU, for comparing moment methods (issue 5): the
 // camera view rasterized into a visibility buffer, every pixel shaded once, the sun's shadow
 // from a shadow map (hard, PCF, VSM, Hamburger / Hausdorff 4MSM) or from Embree shadow rays (the
-// reference). No atmosphere: this is the straight-ray view.
+// reference), transparent surfaces (alpha < 1) composited from per-pixel fragment lists (exact,
+// peeling, WBOIT, MBOIT). Shadows treat every surface as opaque. No atmosphere: the straight view.
 #include "refracta/render/raster_renderer.h"
 
 #include "refracta/core/error.h"
@@ -22,6 +23,7 @@ void RasterRenderOptions::validate() const {
   if (shadow_centre && !is_finite(*shadow_centre)) throw_invalid("shadow_centre must be finite");
   if (!(shadow_distance > 0.0)) throw_invalid("shadow_distance must be > 0 (got ", shadow_distance, ")");
   if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
+  if (transparency) transparency->validate();
 }
 
 Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& camera,
@@ -30,8 +32,23 @@ Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& 
   scene.commit();
   const auto start = std::chrono::steady_clock::now();
   const RasterView view = RasterView::from_camera(camera);
-  const VisibilityBuffer buffer = rasterize(scene, view, control);
+  std::vector<bool> transparent(scene.geometry_count(), false);
+  bool any_transparent = false;
+  if (options.transparency) {
+    for (size_t g = 0; g < transparent.size(); ++g) any_transparent |= transparent[g] = scene.material(unsigned(g)).alpha < 1.0;
+  }
+  FragmentLists fragments;
+  const VisibilityBuffer buffer =
+      rasterize(scene, view, control, 32, nullptr, any_transparent ? &transparent : nullptr, any_transparent ? &fragments : nullptr);
   const Vec3d eye = camera.position();
+  OitSettings oit = options.transparency.value_or(OitSettings{});
+  if (any_transparent && oit.method == OitMethod::kMboit && !(oit.mboit.z_far > oit.mboit.z_near)) {
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (const auto& list : fragments.lists) {
+      for (const auto& f : list) lo = std::min(lo, double(f.depth)), hi = std::max(hi, double(f.depth));
+    }
+    if (hi > lo) oit.mboit.z_near = lo, oit.mboit.z_far = hi * (1.0 + 1e-6);
+  }
 
   // The shadow map covers, seen from the sun, the visible points within shadow_distance.
   std::unique_ptr<ShadowMap> map;
@@ -79,12 +96,29 @@ Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& 
     end.hit = hit;
     if (hit) end.length = hit->t;
     Rng rng(0, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x));
-    return shade(scene, light, end, rng, false, camera.pixel_angle(), sun_shadow);
+    const Vec3d behind = shade(scene, light, end, rng, false, camera.pixel_angle(), sun_shadow);
+    if (!any_transparent) return behind;
+    const auto& list = fragments.lists[fragments.index(x, y)];
+    if (list.empty()) return behind;
+    std::vector<Fragment> layers;
+    layers.reserve(list.size());
+    for (const RasterFragment& f : list) {
+      PathEnd surface;
+      surface.direction = dir;
+      surface.hit = surface_of(scene, f.geometry, f.primitive, f.b1, f.b2, eye);
+      surface.length = surface.hit->t;
+      layers.push_back({double(f.depth), scene.material(f.geometry).alpha,
+                        shade(scene, light, surface, rng, false, camera.pixel_angle(), sun_shadow)});
+    }
+    return composite(layers, behind, oit);
   });
   if (stats) {
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->shadow_build_seconds = map ? map->build_seconds() : 0.0;
     stats->bytes_per_texel = map ? map->bytes_per_texel() : 0;
+    stats->transparent_fragments = fragments.total();
+    const double per_pixel = double(fragments.total()) / (double(camera.width()) * camera.height());
+    stats->oit_bytes_per_pixel = any_transparent ? oit.bytes_per_pixel(per_pixel) : 0.0;
   }
   return image;
 }

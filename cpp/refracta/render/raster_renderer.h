@@ -3,6 +3,7 @@
 #pragma once
 
 #include "refracta/core/image.h"
+#include "refracta/raster/oit.h"
 #include "refracta/raster/shadow_map.h"
 #include "refracta/render/renderer.h"
 
@@ -25,6 +26,10 @@ struct RasterRenderOptions {
   // Instead of radiance, each pixel's (shadow intensity, 1, 0) where the surface faces the sun
   // and (0, 0, 0) elsewhere: what compare.shadows measures.
   bool output_shadow = false;
+  // Surfaces with material alpha < 1 are composited over the opaque ones with this method
+  // (fragments from the rasterizer, culled by the opaque depth); without it they are opaque.
+  // MBOIT's log-depth range, when not set, is fitted to the frame's fragments.
+  std::optional<OitSettings> transparency;
   int tile = 16;
 
   void validate() const;
@@ -34,6 +39,8 @@ struct RasterRenderStats {
   double seconds = 0.0;               // the whole render
   double shadow_build_seconds = 0.0;  // rasterizing, filtering and storing the shadow map
   int bytes_per_texel = 0;
+  int64_t transparent_fragments = 0;  // in front of the opaque surfaces
+  double oit_bytes_per_pixel = 0.0;   // what the transparency method keeps per pixel (mean)
 };
 
 Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& camera,

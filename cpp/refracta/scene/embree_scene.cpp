@@ -15,6 +15,7 @@ namespace refracta {
 
 void Material::validate() const {
   if (kd_texture < -1) throw_invalid("Material: kd_texture must be a texture id or -1 (got ", kd_texture, ")");
+  if (!(alpha >= 0.0 && alpha <= 1.0)) throw_invalid("Material: alpha must be in [0, 1] (got ", alpha, ")");
   for (int i = 0; i < 3; ++i) {
     if (!(kd[i] >= 0.0 && kd[i] <= 1.0)) throw_invalid("Material: kd must be in [0, 1] (got ", kd[i], ")");
     if (!(ks[i] >= 0.0 && ks[i] <= 1.0)) throw_invalid("Material: ks must be in [0, 1] (got ", ks[i], ")");

@@ -76,6 +76,7 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       part.material.kd = Vec3d(m.diffuse[0], m.diffuse[1], m.diffuse[2]).cwiseMax(0.0).cwiseMin(1.0);
       part.material.ks = Vec3d(m.specular[0], m.specular[1], m.specular[2]).cwiseMax(0.0).cwiseMin(1.0);
       part.material.ns = std::max(0.0, double(m.shininess));
+      part.material.alpha = std::clamp(double(m.dissolve), 0.0, 1.0);
     }
     if (!part.mesh.triangles.empty()) out.push_back(std::move(part));
   }

@@ -1,0 +1,85 @@
+"""Transparency over a rasterized scene: per-pixel fragment lists composited by each OIT method
+(shared/MOMENTS.md 4), against the exact sorted composite."""
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import compare
+
+CAMERA = refracta.Camera((-2, 2, 0), (14, 1.2, 0), (0, 1, 0), 30, 96, 60)
+SLABS = [((0.9, 0.1, 0.1), 6.0, -0.5), ((0.1, 0.9, 0.1), 8.0, 0.0), ((0.1, 0.1, 0.9), 10.0, 0.5)]
+
+
+def glass_scene(slabs=SLABS, alpha=0.5, wall=True):
+    scene = refracta.Scene()
+    scene.set_sun((-0.5, 0.6, 0.3), (2e4, 2e4, 2e4))
+    scene.set_sky((0.5, 0.6, 0.8), (0.2, 0.3, 0.7))
+    scene.add_ground(0.0, 200.0)
+    if wall:
+        scene.add_box((14, 1.5, 0), (1, 3, 6), kd=(0.8, 0.8, 0.8))
+    for colour, x, z in slabs:
+        scene.add_box((x, 1.5, z), (0.3, 2.5, 3), kd=colour, alpha=alpha)
+    return scene
+
+
+def test_error_falls_with_more_moments():
+    rows, _ = compare.transparency(glass_scene(), CAMERA, methods=("wboit eq7", "mboit 4", "mboit 6", "mboit 8"),
+                                   figure=False, shadows="embree")
+    error = {r["method"]: r["mean_error"] for r in rows}
+    assert error["mboit 8"] < error["mboit 6"] < error["mboit 4"] < error["wboit eq7"]
+    assert all(r["nan_count"] == 0 for r in rows)
+
+
+def test_mboit_is_exact_for_up_to_n_plus_one_fragments_with_beta_zero():
+    """One slab: two faces per pixel, fewer than the 3 atoms 4 power moments resolve."""
+    scene = glass_scene(slabs=SLABS[:1])
+    exact = refracta.render_raster(scene, CAMERA, "embree", transparency="exact")
+    mboit = refracta.render_raster(scene, CAMERA, "embree", transparency="mboit", moments=4, beta=0.0)
+    np.testing.assert_allclose(mboit, exact, rtol=1e-4, atol=1e-5 * exact.max())
+
+
+def test_compositing_does_not_depend_on_submission_order():
+    forward = refracta.render_raster(glass_scene(SLABS), CAMERA, "embree", transparency="mboit", moments=6)
+    backward = refracta.render_raster(glass_scene(SLABS[::-1]), CAMERA, "embree", transparency="mboit", moments=6)
+    np.testing.assert_allclose(forward, backward, rtol=1e-6, atol=1e-7)
+
+
+@pytest.mark.parametrize("method", ["exact", "wboit", "mboit"])
+def test_total_transmittance_is_the_product_of_one_minus_alpha(method):
+    """Black slabs (no reflection) in front of the sky: each pixel is the sky times (1 - alpha)^k,
+    k the faces crossed, for every method (WBOIT and MBOIT keep the total transmittance exactly)."""
+    alpha = 0.3
+    slabs = [((0.0, 0.0, 0.0), 6.0, 0.0), ((0.0, 0.0, 0.0), 8.0, 0.0)]
+    scene = glass_scene(slabs=slabs, alpha=alpha, wall=False)
+    scene.set_sun((-0.5, 0.6, 0.3), (0.0, 0.0, 0.0))  # no sun: black surfaces reflect nothing
+    image = refracta.render_raster(scene, CAMERA, "none", transparency=method)
+    sky = refracta.render_raster(glass_scene(slabs=[], wall=False), CAMERA, "none")
+    u, v, _ = CAMERA.project([7.0, 2.2, 0.0])  # above the ground's horizon, through both slabs
+    np.testing.assert_allclose(image[int(v), int(u)], sky[int(v), int(u)] * (1 - alpha) ** 4, rtol=1e-5)
+
+
+def test_an_opaque_render_ignores_alpha_and_stats_count_fragments():
+    scene = glass_scene()
+    stats = {}
+    refracta.render_raster(scene, CAMERA, "embree", transparency="exact", stats=stats)
+    assert stats["transparent_fragments"] > 0 and stats["oit_bytes_per_pixel"] > 0
+    opaque_stats = {}
+    refracta.render_raster(scene, CAMERA, "embree", stats=opaque_stats)
+    assert opaque_stats["transparent_fragments"] == 0
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(transparency="sorted"), "method must be"),
+    (dict(transparency="mboit", moments=5), "power moments"),
+    (dict(transparency="mboit", kind="exp"), "kind"),
+    (dict(transparency="wboit", weight="eq8"), "weight"),
+])
+def test_bad_transparency_options_raise_value_error(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        refracta.render_raster(glass_scene(), CAMERA, "embree", **kwargs)
+
+
+def test_alpha_outside_0_1_is_rejected():
+    with pytest.raises(ValueError, match="alpha"):
+        refracta.Scene().add_box((0, 0, 0), (1, 1, 1), alpha=1.5)
