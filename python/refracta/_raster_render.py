@@ -39,6 +39,7 @@ def render_raster(
     beta: float = 0.25,
     layers: int = 4,
     weight: str = "eq7",
+    shadow_light: int = -1,
     stats: Optional[dict] = None,
     progress: Union[bool, Callable[[int, int], None]] = False,
 ) -> np.ndarray:
@@ -54,7 +55,9 @@ def render_raster(
     compare offset (normalised depth); normal_offset: receivers moved along their normal, in texels;
     bleeding_reduction: VSM's light-bleeding reduction amount.
     output: 'radiance' (float32 (H, W, 3) linear) or 'shadow' ((H, W, 2): shadow intensity in [0, 1]
-    and 1 where the surface faces the sun, zeros elsewhere).
+    and 1 where the light reaches the surface, zeros elsewhere) for the sun (shadow_light=-1) or the
+    scene's spot light `shadow_light`. Spot lights get perspective shadow maps covering their cones;
+    'embree' samples an area spot light (radius > 0) with 64 shadow rays (soft reference).
     transparency: None (every surface opaque) or how surfaces with alpha < 1 are composited over the
     opaque ones from the rasterizer's per-pixel fragment lists: 'exact' (sorted), 'peel' (`layers`
     nearest), 'wboit' (McGuire & Bavoil, weight 'eq7' / 'eq9'), 'mboit' (`moments` 4/6/8 power or
@@ -79,7 +82,7 @@ def render_raster(
         scene, camera, SHADOW_METHODS[shadows], int(resolution), int(kernel), depth_range == "signed", bias,
         None if bias_vector is None else [float(v) for v in bias_vector], storage, depth_bias, normal_offset,
         bleeding_reduction, shadow_centre, shadow_half_size, shadow_distance, output == "shadow", transparency,
-        int(moments), kind, float(beta), int(layers), weight, callback)
+        int(moments), kind, float(beta), int(layers), weight, int(shadow_light), callback)
     if stats is not None:
         stats.update(counts)
     return image[..., :2] if output == "shadow" else image

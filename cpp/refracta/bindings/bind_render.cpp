@@ -53,7 +53,7 @@ void bind_render(py::module_& m) {
            const std::string& storage, double depth_bias, double normal_offset, double bleeding_reduction,
            const py::object& shadow_centre, std::optional<double> shadow_half_size, std::optional<double> shadow_distance,
            bool output_shadow, std::optional<std::string> transparency, int oit_moments, const std::string& oit_kind,
-           double beta, int layers, const std::string& weight, const py::object& progress) {
+           double beta, int layers, const std::string& weight, int shadow_light, const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
           RasterRenderOptions options;
           if (transparency) {
@@ -85,6 +85,7 @@ void bind_render(py::module_& m) {
           options.shadow_half_size = shadow_half_size;
           if (shadow_distance) options.shadow_distance = *shadow_distance;
           options.output_shadow = output_shadow;
+          options.shadow_light = shadow_light;
           options.validate();
           WorkControl control;
           Image image;
@@ -104,7 +105,8 @@ void bind_render(py::module_& m) {
         py::arg("signed_depth"), py::arg("bias"), py::arg("bias_vector"), py::arg("storage"), py::arg("depth_bias"),
         py::arg("normal_offset"), py::arg("bleeding_reduction"), py::arg("shadow_centre"), py::arg("shadow_half_size"),
         py::arg("shadow_distance"), py::arg("output_shadow"), py::arg("transparency"), py::arg("moments"),
-        py::arg("kind"), py::arg("beta"), py::arg("layers"), py::arg("weight"), py::arg("progress"));
+        py::arg("kind"), py::arg("beta"), py::arg("layers"), py::arg("weight"), py::arg("shadow_light"),
+        py::arg("progress"));
 }
 
 }  // namespace refracta

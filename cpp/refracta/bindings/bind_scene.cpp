@@ -224,6 +224,24 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
            "Sky radiance toward the horizon (and below) and straight up (default: same, a constant sky), or an\n"
            "equirectangular environment map file (y up, top row the zenith, centre column along +x, radiance\n"
            "times `scale`; 8/16-bit files are sRGB-decoded).")
+      .def("add_spot_light",
+           [](RenderScene& s, const py::object& position, const py::object& direction, double angle,
+              const py::object& intensity, double radius) {
+             SpotLight spot;
+             spot.position = to_point(position, "position");
+             spot.direction = to_point(direction, "direction");
+             spot.angle = angle;
+             spot.intensity = to_rgb(intensity, "intensity");
+             spot.radius = radius;
+             spot.validate();
+             s.lighting.spots.push_back(spot);
+             return s.lighting.spots.size() - 1;
+           },
+           py::arg("position"), py::arg("direction"), py::arg("angle") = 60.0,
+           py::arg("intensity") = py::make_tuple(100.0, 100.0, 100.0), py::arg("radius") = 0.0,
+           "Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] with\n"
+           "`intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 makes it a disc (area light) whose\n"
+           "shadows are sampled soft. Returns its index.")
       .def_property("shadows", [](const RenderScene& s) { return s.lighting.shadows; },
                     [](RenderScene& s, bool on) { s.lighting.shadows = on; })
       .def_property_readonly("geometry_count", [](const RenderScene& s) { return s.geometry.geometry_count(); })

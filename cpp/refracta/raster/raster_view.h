@@ -13,6 +13,10 @@ class RasterView {
   // The camera's view, widened by guard_band (a fraction of the image size added on each side;
   // the pixel grid grows with it so pixels keep their size). near [m]: the clipping distance.
   static RasterView from_camera(const Camera& camera, double guard_band = 0.0, double near = 0.05);
+  // A square perspective view from `origin` along `direction` with half field of view
+  // atan(tan_half) each way, on a size x size grid (a spot light's shadow map).
+  static RasterView perspective(const Vec3d& origin, const Vec3d& direction, const Vec3d& up, double tan_half,
+                                int size, double near);
   // An orthographic view along `direction` centred on `centre`, covering half_width x half_height
   // [m] across, on a width x height grid (a directional light's shadow map).
   static RasterView orthographic(const Vec3d& centre, const Vec3d& direction, const Vec3d& up, double half_width,
@@ -41,8 +45,13 @@ class RasterView {
   // The half extents at depth 1 (perspective: tangents of the half angles) or in metres.
   double half_x() const { return half_x_; }
   double half_y() const { return half_y_; }
+  // The width of one pixel [m] at view depth z.
+  double pixel_width(double z) const { return 2.0 * half_x_ * (perspective_ ? z : 1.0) / width_; }
 
  private:
+  // A view at origin looking along direction with `up` roughly up (validated; extents unset).
+  static RasterView framed(const Vec3d& origin, const Vec3d& direction, const Vec3d& up, const char* what);
+
   Vec3d origin_, right_, up_, forward_;
   double half_x_ = 1.0, half_y_ = 1.0, near_ = 0.05;
   int width_ = 1, height_ = 1, offset_x_ = 0, offset_y_ = 0;

@@ -83,12 +83,26 @@ ShadowMap::ShadowMap(const Scene& scene, const Vec3d& toward_light, const Vec3d&
   if (!is_finite(centre) || !(half_size > 0.0) || !std::isfinite(half_size)) {
     throw_invalid("the shadow map needs a finite centre and half_size > 0 (got ", half_size, ")");
   }
-  const auto start = std::chrono::steady_clock::now();
   const Vec3d along = -toward_light.normalized();
   const Vec3d up = std::abs(along.y()) < 0.99 ? Vec3d::UnitY() : Vec3d::UnitX();
   const int n = options_.resolution;
   view_ = RasterView::orthographic(centre, along, up, half_size, half_size, n, n);
-  texel_ = 2.0 * half_size / n;
+  build(scene, control);
+}
+
+ShadowMap::ShadowMap(const Scene& scene, const RasterView& light_view, const ShadowMapOptions& options,
+                     WorkControl& control)
+    : options_(options), view_(light_view) {
+  options_.validate();
+  if (view_.width() != options_.resolution || view_.height() != options_.resolution) {
+    throw_invalid("the light view must be resolution x resolution texels");
+  }
+  build(scene, control);
+}
+
+void ShadowMap::build(const Scene& scene, WorkControl& control) {
+  const auto start = std::chrono::steady_clock::now();
+  const int n = options_.resolution;
   buffer_ = rasterize(scene, view_, control);
   near_ = std::numeric_limits<double>::infinity(), far_ = -near_;
   for (float d : buffer_.depth) {
@@ -143,7 +157,11 @@ int ShadowMap::bytes_per_texel() const {
 }
 
 double ShadowMap::shadow(const Vec3d& point, const Vec3d& normal) const {
-  const Vec3d p = view_.to_view(point + normal * (options_.normal_offset * texel_));
+  const double receiver_depth = view_.to_view(point).z();
+  if (view_.perspective() && receiver_depth <= view_.near()) return 0.0;  // behind the light: lit
+  const double texel = view_.pixel_width(receiver_depth);
+  const Vec3d p = view_.to_view(point + normal * (options_.normal_offset * texel));
+  if (view_.perspective() && p.z() <= view_.near()) return 0.0;
   double u, v;
   view_.to_pixel(p, &u, &v);
   const int n = options_.resolution;
@@ -154,7 +172,7 @@ double ShadowMap::shadow(const Vec3d& point, const Vec3d& normal) const {
     // extended to it (depth slopes from its normal in the light's frame), so a sloped receiver
     // does not shadow itself over a wide kernel.
     const Vec3d nl = view_.to_view(normal) - view_.to_view(Vec3d::Zero());  // the normal in the light's frame
-    const double scale = texel_ / (far_ - near_) * (options_.moments.signed_depth ? 2.0 : 1.0);
+    const double scale = texel / (far_ - near_) * (options_.moments.signed_depth ? 2.0 : 1.0);
     const double nz = std::max(std::abs(nl.z()), 0.05) * (nl.z() < 0 ? -1.0 : 1.0);
     const double slope_x = -nl.x() / nz * scale, slope_y = nl.y() / nz * scale;  // per texel (v down)
     const int cx = int(u), cy = int(v), r = options_.method == ShadowMethod::kPcf ? options_.kernel / 2 : 0;

@@ -1,4 +1,5 @@
-// Shadow maps of a directional light (the sun) from refracta's rasterizer: the light-view depth
+// Shadow maps of a directional light (the sun, orthographic) or a spot light (perspective) from
+// refracta's rasterizer: the light-view depth
 // map, and what each method reads from it (shared/MOMENTS.md):
 //   hard       one depth compare (the classic shadow map);
 //   pcf        the fraction of a k x k texel window in front of the receiver (cost grows as k^2);
@@ -42,6 +43,8 @@ class ShadowMap {
   // `centre` (seen from the light).
   ShadowMap(const Scene& scene, const Vec3d& toward_light, const Vec3d& centre, double half_size,
             const ShadowMapOptions& options, WorkControl& control);
+  // Any light view: a spot light's perspective view from its position (RasterView::perspective).
+  ShadowMap(const Scene& scene, const RasterView& light_view, const ShadowMapOptions& options, WorkControl& control);
 
   // Shadow intensity in [0, 1] at a surface point with unit normal n (0: lit, 1: in shadow).
   double shadow(const Vec3d& point, const Vec3d& normal) const;
@@ -51,13 +54,14 @@ class ShadowMap {
   const ShadowMapOptions& options() const { return options_; }
 
  private:
+  void build(const Scene& scene, WorkControl& control);
   double normalised(double depth) const;
   double depth_at(int x, int y) const;  // normalised; the far end where nothing is drawn
 
   ShadowMapOptions options_;
   RasterView view_;
   VisibilityBuffer buffer_;
-  double near_ = 0.0, far_ = 1.0, texel_ = 1.0;
+  double near_ = 0.0, far_ = 1.0;
   std::vector<Moments4> moments_;  // filtered and stored, per texel
   double build_seconds_ = 0.0;
 };

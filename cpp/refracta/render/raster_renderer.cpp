@@ -24,6 +24,7 @@ void RasterRenderOptions::validate() const {
   if (!(shadow_distance > 0.0)) throw_invalid("shadow_distance must be > 0 (got ", shadow_distance, ")");
   if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
   if (transparency) transparency->validate();
+  if (shadow_light < -1) throw_invalid("shadow_light must be -1 (the sun) or a spot light index (got ", shadow_light, ")");
 }
 
 Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& camera,
@@ -77,18 +78,46 @@ Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& 
     }
     map = std::make_unique<ShadowMap>(scene, lighting.sun.direction, centre, half, map_options, control);
   }
+  // One perspective map per spot light, covering its cone.
+  std::vector<std::unique_ptr<ShadowMap>> spot_maps;
+  if (map) {
+    for (const SpotLight& spot : lighting.spots) {
+      ShadowMapOptions map_options = options.shadow_map;
+      map_options.method = parse_shadow_method(options.shadows);
+      const Vec3d up = std::abs(spot.direction.y()) < 0.99 ? Vec3d::UnitY() : Vec3d::UnitX();
+      const RasterView spot_view = RasterView::perspective(spot.position, spot.direction, up,
+                                                           std::tan(0.5 * degrees_to_radians(spot.angle)),
+                                                           map_options.resolution, 0.01);
+      spot_maps.push_back(std::make_unique<ShadowMap>(scene, spot_view, map_options, control));
+    }
+  }
+  if (options.shadow_light >= int(lighting.spots.size())) {
+    throw_invalid("shadow_light ", options.shadow_light, " is not a spot light of the scene (it has ",
+                  lighting.spots.size(), ")");
+  }
   const SunShadow from_map = [&](const Hit& hit, const Vec3d&) { return map->shadow(hit.point, hit.normal); };
+  const SpotShadow from_spot_maps = [&](const Hit& hit, size_t k) { return spot_maps[k]->shadow(hit.point, hit.normal); };
   Lighting light = lighting;
   light.shadows = options.shadows != "none";
   const SunShadow* sun_shadow = map ? &from_map : nullptr;
+  const SpotShadow* spot_shadow = map ? &from_spot_maps : nullptr;
 
   control.done = 0;
   Image image = render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
     const auto hit = surface_at(scene, buffer, x, y, eye);
     const Vec3d dir = camera.direction(x + 0.5, y + 0.5);
-    if (options.output_shadow) {  // (shadow intensity, 1) where the sun faces the surface, else (0, 0)
-      if (!hit || hit->normal.dot(lighting.sun.direction) <= 0.0) return Vec3d::Zero().eval();
-      const double s = !light.shadows ? 0.0 : map ? map->shadow(hit->point, hit->normal) : sun_occlusion(scene, *hit, lighting.sun.direction);
+    if (options.output_shadow) {  // (shadow intensity, 1) where the light reaches the surface, else (0, 0)
+      if (!hit) return Vec3d::Zero().eval();
+      if (options.shadow_light < 0) {
+        if (hit->normal.dot(lighting.sun.direction) <= 0.0) return Vec3d::Zero().eval();
+        const double s = !light.shadows ? 0.0 : map ? map->shadow(hit->point, hit->normal) : sun_occlusion(scene, *hit, lighting.sun.direction);
+        return Vec3d(s, 1.0, 0.0);
+      }
+      const SpotLight& spot = lighting.spots[options.shadow_light];
+      if (!spot.covers(hit->point) || hit->normal.dot(spot.position - hit->point) <= 0.0) return Vec3d::Zero().eval();
+      const double s = !light.shadows ? 0.0
+                       : map         ? spot_maps[options.shadow_light]->shadow(hit->point, hit->normal)
+                                     : spot_occlusion(scene, *hit, spot);
       return Vec3d(s, 1.0, 0.0);
     }
     PathEnd end;
@@ -96,7 +125,7 @@ Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& 
     end.hit = hit;
     if (hit) end.length = hit->t;
     Rng rng(0, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x));
-    const Vec3d behind = shade(scene, light, end, rng, false, camera.pixel_angle(), sun_shadow);
+    const Vec3d behind = shade(scene, light, end, rng, false, camera.pixel_angle(), sun_shadow, spot_shadow);
     if (!any_transparent) return behind;
     const auto& list = fragments.lists[fragments.index(x, y)];
     if (list.empty()) return behind;
@@ -108,7 +137,7 @@ Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& 
       surface.hit = surface_of(scene, f.geometry, f.primitive, f.b1, f.b2, eye);
       surface.length = surface.hit->t;
       layers.push_back({double(f.depth), scene.material(f.geometry).alpha,
-                        shade(scene, light, surface, rng, false, camera.pixel_angle(), sun_shadow)});
+                        shade(scene, light, surface, rng, false, camera.pixel_angle(), sun_shadow, spot_shadow)});
     }
     return composite(layers, behind, oit);
   });

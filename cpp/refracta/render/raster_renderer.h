@@ -26,6 +26,7 @@ struct RasterRenderOptions {
   // Instead of radiance, each pixel's (shadow intensity, 1, 0) where the surface faces the sun
   // and (0, 0, 0) elsewhere: what compare.shadows measures.
   bool output_shadow = false;
+  int shadow_light = -1;  // output_shadow: -1 the sun, k >= 0 the scene's spot light k
   // Surfaces with material alpha < 1 are composited over the opaque ones with this method
   // (fragments from the rasterizer, culled by the opaque depth); without it they are opaque.
   // MBOIT's log-depth range, when not set, is fitted to the frame's fragments.

@@ -131,8 +131,30 @@ double sun_occlusion(const Scene& scene, const Hit& hit, const Vec3d& wi) {
   return scene.occluded(p, wi, kFar) ? 1.0 : 0.0;
 }
 
+double spot_occlusion(const Scene& scene, const Hit& hit, const SpotLight& light) {
+  const Vec3d p = hit.point + hit.normal * (1e-5 + 2e-6 * hit.point.cwiseAbs().maxCoeff());
+  auto blocked = [&](const Vec3d& target) {
+    const Vec3d to = target - p;
+    const double d = to.norm();
+    return d > 0.0 && scene.occluded(p, to / d, d * (1.0 - 1e-7)) ? 1.0 : 0.0;
+  };
+  if (light.radius <= 0.0) return blocked(light.position);
+  // 8 x 8 stratified points of the disc (concentric by sqrt of the radial stratum).
+  const Vec3d a = std::abs(light.direction.y()) < 0.9 ? Vec3d::UnitY() : Vec3d::UnitX();
+  const Vec3d t1 = light.direction.cross(a).normalized(), t2 = light.direction.cross(t1);
+  constexpr int kStrata = 8;
+  double sum = 0.0;
+  for (int i = 0; i < kStrata; ++i) {
+    for (int j = 0; j < kStrata; ++j) {
+      const double r = light.radius * std::sqrt((i + 0.5) / kStrata), phi = 2.0 * kPi * (j + 0.5 * (i % 2)) / kStrata;
+      sum += blocked(light.position + r * (std::cos(phi) * t1 + std::sin(phi) * t2));
+    }
+  }
+  return sum / (kStrata * kStrata);
+}
+
 Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter,
-            double pixel_angle, const SunShadow* sun_shadow) {
+            double pixel_angle, const SunShadow* sun_shadow, const SpotShadow* spot_shadow) {
   // The pixel's cone: its width grows with the path length (refraction's own spreading of the
   // cone along a curved path is neglected).
   const double footprint = pixel_angle * end.length;
@@ -157,6 +179,18 @@ Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rn
       const double shadow = !lighting.shadows ? 0.0 : sun_shadow ? (*sun_shadow)(hit, wi) : sun_occlusion(scene, hit, wi);
       radiance += blinn_phong(material, hit.normal, wo, wi).cwiseProduct(sun.irradiance()) * (cos_i * (1.0 - shadow));
     }
+  }
+  for (size_t k = 0; k < lighting.spots.size(); ++k) {
+    const SpotLight& spot = lighting.spots[k];
+    if (!spot.covers(hit.point)) continue;
+    const Vec3d to_light = spot.position - hit.point;
+    const double d2 = to_light.squaredNorm();
+    const Vec3d wi = to_light / std::sqrt(d2);
+    const double cos_i = hit.normal.dot(wi);
+    if (cos_i <= 0.0) continue;
+    const double shadow =
+        !lighting.shadows ? 0.0 : spot_shadow ? (*spot_shadow)(hit, k) : spot_occlusion(scene, hit, spot);
+    radiance += blinn_phong(material, hit.normal, wo, wi).cwiseProduct(spot.intensity) * (cos_i * (1.0 - shadow) / d2);
   }
   return radiance;
 }

@@ -46,12 +46,17 @@ PathEnd follow_path(const Scene& scene, const IndexField* field, const Vec3d& or
 using SunShadow = std::function<double(const Hit& hit, const Vec3d& wi)>;
 // The reference: an Embree shadow ray (hard: 0 or 1).
 double sun_occlusion(const Scene& scene, const Hit& hit, const Vec3d& wi);
+// The fraction of spot light `index` a hit does not see.
+using SpotShadow = std::function<double(const Hit& hit, size_t index)>;
+// The reference: a shadow ray to the point light, or for an area light (radius > 0) 64 shadow
+// rays to stratified points of its disc (soft shadows).
+double spot_occlusion(const Scene& scene, const Hit& hit, const SpotLight& light);
 
 // Radiance leaving the path's end toward the eye: Blinn-Phong at a hit with sky light and the sun
 // (shadowed by sun_shadow, default Embree shadow rays; the sun's disc sampled when jitter), or the
 // sky. Textures are filtered over the cone of angle pixel_angle [rad] (0: point sampled).
 Vec3d shade(const Scene& scene, const Lighting& lighting, const PathEnd& end, Rng& rng, bool jitter,
-            double pixel_angle, const SunShadow* sun_shadow = nullptr);
+            double pixel_angle, const SunShadow* sun_shadow = nullptr, const SpotShadow* spot_shadow = nullptr);
 
 // The original editor's method (raster_march.cpp): rasterize, then march each pixel's curved
 // ray against the depth buffer.

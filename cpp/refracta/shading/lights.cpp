@@ -52,4 +52,19 @@ void Sky::validate() {
   mean_ = sum * (2.0 / (kRings * kSegments));  // (1/pi) * 2 pi * (1/kRings) * (1/kSegments) * sum
 }
 
+bool SpotLight::covers(const Vec3d& point) const {
+  const Vec3d to_point = point - position;
+  const double d = to_point.norm();
+  return d > 0.0 && to_point.dot(direction) >= d * std::cos(0.5 * degrees_to_radians(angle));
+}
+
+void SpotLight::validate() {
+  if (!is_finite(position)) throw_invalid("spot light position must be finite");
+  if (!is_finite(direction) || direction.norm() == 0.0) throw_invalid("spot light direction must be finite and non-zero");
+  direction.normalize();
+  if (!(angle > 0.0 && angle <= 170.0)) throw_invalid("spot light angle must be in (0, 170] deg (got ", angle, ")");
+  if (!is_finite(intensity) || intensity.minCoeff() < 0.0) throw_invalid("spot light intensity must be finite and >= 0");
+  if (!(radius >= 0.0) || !std::isfinite(radius)) throw_invalid("spot light radius must be >= 0 (got ", radius, ")");
+}
+
 }  // namespace refracta

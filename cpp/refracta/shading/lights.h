@@ -6,6 +6,7 @@
 #include "refracta/scene/textures.h"
 
 #include <memory>
+#include <vector>
 
 namespace refracta {
 
@@ -42,9 +43,24 @@ struct Sky {
   Vec3d mean_ = Vec3d::Zero();
 };
 
+// A spot light: a point (or, for soft shadows, a disc of `radius` facing `direction`) emitting
+// intensity [W/sr per channel] into a cone of full angle `angle`; irradiance I cos / d^2.
+struct SpotLight {
+  Vec3d position{0.0, 10.0, 0.0};
+  Vec3d direction{0.0, -1.0, 0.0};  // the cone's axis (normalised on validate)
+  double angle = 60.0;              // full cone angle [deg], in (0, 170]
+  Vec3d intensity{100.0, 100.0, 100.0};
+  double radius = 0.0;              // [m]; > 0: an area light, its shadows sampled (soft)
+
+  // Whether a point lies inside the cone.
+  bool covers(const Vec3d& point) const;
+  void validate();
+};
+
 struct Lighting {
   Sun sun;
   Sky sky;
+  std::vector<SpotLight> spots;
   bool shadows = true;
 };
 
