@@ -79,7 +79,7 @@ def main(oit_size: int = 256) -> dict:
         for row in table:
             row["storage"] = storage
             counts = {}
-            refracta.render_raster(scene, camera, row["method"], kernel=row["kernel"], resolution=1024,
+            refracta.render_raster(scene, camera, shadows=row["method"], kernel=row["kernel"], resolution=1024,
                                    storage=storage, output="shadow", stats=counts)
             row["build_seconds"] = counts["shadow_build_seconds"]
             row["lookup_seconds"] = counts["seconds"] - counts["shadow_build_seconds"]

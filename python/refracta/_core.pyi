@@ -259,33 +259,51 @@ class Scene:
     shadows: bool
     def __init__(self) -> None:
         ...
-    def add_box(self, centre: typing.Any, size: typing.Any, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: str, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = (1.0, 1.0, 1.0)) -> int:
         """
-        Add an axis-aligned box: centre (3,) and size (3,) [m].
+        Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at
+        `centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the
+        -x side), upright.
         """
-    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_box(self, centre: typing.Any, size: typing.Any, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
-        Add a square ground of side `size` [m] at y = height, centred on the origin.
+        Add an axis-aligned box: centre (3,) and size (3,) [m]; alpha < 1: transparent in render_raster.
         """
-    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: str | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
-        Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices. Returns its id.
+        Add a square ground of side `size` [m] at y = height, centred on the origin; an optional texture
+        repeats every texture_size [m] (u along +x, v along -z).
+        """
+    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, uvs: typing.Any = None, texture: str | None = None, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+        """
+        Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices; optional uvs (N, 2) texture
+        coordinates (u right, v up) and a texture image file multiplying kd; alpha < 1 makes it transparent
+        in render_raster. Returns its id.
         """
     def add_obj(self, path: str, offset: typing.Any = (0.0, 0.0, 0.0), scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> list:
         """
-        Add a Wavefront OBJ (+ MTL: Kd, Ks, Ns) file, scaled then offset; returns the geometry ids. Texture maps are not applied yet.
+        Add a Wavefront OBJ (+ MTL: Kd, Ks, Ns, map_Kd with the file's texture coordinates) file, scaled
+        then offset; returns the geometry ids. A missing OBJ, MTL or texture raises refracta.IoError.
         """
     def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
         Add a sphere (exact, not tessellated).
         """
+    def add_spot_light(self, position: typing.Any, direction: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex = 60.0, intensity: typing.Any = (100.0, 100.0, 100.0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> int:
+        """
+        Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] with
+        `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 makes it a disc (area light) whose
+        shadows are sampled soft. Returns its index.
+        """
     def intersect(self, origin: typing.Any, direction: typing.Any) -> typing.Any:
         """
         First hit of a straight ray: (point, distance, geometry id), or None.
         """
-    def set_sky(self, horizon: typing.Any, zenith: typing.Any = None) -> None:
+    def set_sky(self, horizon: typing.Any = None, zenith: typing.Any = None, environment: str | None = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
-        Sky radiance toward the horizon (and below) and straight up (default: same, a constant sky).
+        Sky radiance toward the horizon (and below) and straight up (default: same, a constant sky), or an
+        equirectangular environment map file (y up, top row the zenith, centre column along +x, radiance
+        times `scale`; 8/16-bit files are sRGB-decoded).
         """
     def set_sun(self, direction: typing.Any, radiance: typing.Any, angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> None:
         """
@@ -414,9 +432,13 @@ def _pair_jacobian(field: IndexField, origins: typing.Any, directions: typing.An
     ...
 def _quantize_moments(moments: typing.Any, signed: bool, inverse: bool) -> numpy.typing.NDArray[numpy.float64]:
     ...
+def _rasterize(scene: Scene, camera: Camera, guard_band: typing.SupportsFloat | typing.SupportsIndex, tile: typing.SupportsInt | typing.SupportsIndex) -> dict:
+    ...
 def _read_image(path: str) -> numpy.typing.NDArray[numpy.float32]:
     ...
-def _render(scene: Scene, camera: Camera, field: IndexField, method: str, spp: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex, max_length: typing.SupportsFloat | typing.SupportsIndex, chord: typing.SupportsFloat | typing.SupportsIndex, sagitta: typing.SupportsFloat | typing.SupportsIndex, tol: typing.SupportsFloat | typing.SupportsIndex, table: bool, integrator: str | None, progress: typing.Any) -> numpy.typing.NDArray[numpy.float32]:
+def _render(scene: Scene, camera: Camera, field: IndexField, method: str, spp: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex, max_length: typing.SupportsFloat | typing.SupportsIndex, chord: typing.SupportsFloat | typing.SupportsIndex, sagitta: typing.SupportsFloat | typing.SupportsIndex, tol: typing.SupportsFloat | typing.SupportsIndex, table: bool, integrator: str | None, march: str, step: typing.SupportsFloat | typing.SupportsIndex, max_steps: typing.SupportsInt | typing.SupportsIndex, guard_band: typing.SupportsFloat | typing.SupportsIndex, texture_filter: bool, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], dict]:
+    ...
+def _render_raster(scene: Scene, camera: Camera, shadows: str, resolution: typing.SupportsInt | typing.SupportsIndex, kernel: typing.SupportsInt | typing.SupportsIndex, signed_depth: bool, bias: typing.SupportsFloat | typing.SupportsIndex | None, bias_vector: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, storage: str, depth_bias: typing.SupportsFloat | typing.SupportsIndex, normal_offset: typing.SupportsFloat | typing.SupportsIndex, bleeding_reduction: typing.SupportsFloat | typing.SupportsIndex, shadow_centre: typing.Any, shadow_half_size: typing.SupportsFloat | typing.SupportsIndex | None, shadow_distance: typing.SupportsFloat | typing.SupportsIndex | None, output_shadow: bool, transparency: str | None, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, layers: typing.SupportsInt | typing.SupportsIndex, weight: str, shadow_light: typing.SupportsInt | typing.SupportsIndex, use_sun: bool, spots: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], dict]:
     ...
 def _shadow_intensity(moments: typing.Any, z_f: typing.Any, method: str, signed: bool, bias: typing.SupportsFloat | typing.SupportsIndex | None, bias_vector: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, storage: str) -> numpy.typing.NDArray[numpy.float64]:
     ...

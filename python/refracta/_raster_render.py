@@ -15,9 +15,31 @@ SHADOW_METHODS = {"hard": "hard", "pcf": "pcf", "vsm": "vsm", "msm_hamburger": "
                   "msm_hausdorff": "hausdorff", "embree": "embree", "none": "none"}
 
 
+def _select_lights(lights):
+    """(use the sun, spot indices or None for all) from render_raster's `lights`."""
+    if lights is None:
+        return True, None
+    if isinstance(lights, str):
+        if lights == "sun":
+            return True, []
+        if lights == "spots":
+            return False, None
+        raise ValueError(f"lights must be None, 'sun', 'spots' or a list of 'sun' and spot indices (got {lights!r})")
+    use_sun, spots = False, []
+    for light in lights:
+        if light == "sun":
+            use_sun = True
+        elif isinstance(light, (int, np.integer)) and not isinstance(light, bool):
+            spots.append(int(light))
+        else:
+            raise ValueError(f"lights entries must be 'sun' or spot-light indices (got {light!r})")
+    return use_sun, spots
+
+
 def render_raster(
     scene: _core.Scene,
     camera: _core.Camera,
+    lights=None,
     shadows: str = "msm_hamburger",
     *,
     resolution: int = 1024,
@@ -43,7 +65,10 @@ def render_raster(
     stats: Optional[dict] = None,
     progress: Union[bool, Callable[[int, int], None]] = False,
 ) -> np.ndarray:
-    """Render `scene` from `camera` by rasterization, the sun's shadow from a shadow map.
+    """Render `scene` from `camera` by rasterization, the lights' shadows from shadow maps.
+
+    lights: which of the scene's lights shine: None (all: its sun and spot lights), "sun", "spots",
+    or a list of "sun" and spot-light indices (as returned by Scene.add_spot_light).
 
     shadows: 'hard' (one depth compare), 'pcf' (k x k compares), 'vsm', 'msm_hamburger',
     'msm_hausdorff' (moments filtered k x k by separable running sums, cost independent of k),
@@ -66,6 +91,7 @@ def render_raster(
     stats: a dict to fill with 'seconds', 'shadow_build_seconds', 'bytes_per_texel',
     'transparent_fragments', 'oit_bytes_per_pixel'. No atmosphere: this is the straight-ray view.
     """
+    use_sun, spots = _select_lights(lights)
     if shadows not in SHADOW_METHODS:
         raise ValueError(f"shadows must be one of {', '.join(SHADOW_METHODS)} (got {shadows!r})")
     if depth_range not in ("unit", "signed"):
@@ -82,7 +108,7 @@ def render_raster(
         scene, camera, SHADOW_METHODS[shadows], int(resolution), int(kernel), depth_range == "signed", bias,
         None if bias_vector is None else [float(v) for v in bias_vector], storage, depth_bias, normal_offset,
         bleeding_reduction, shadow_centre, shadow_half_size, shadow_distance, output == "shadow", transparency,
-        int(moments), kind, float(beta), int(layers), weight, int(shadow_light), callback)
+        int(moments), kind, float(beta), int(layers), weight, int(shadow_light), use_sun, spots, callback)
     if stats is not None:
         stats.update(counts)
     return image[..., :2] if output == "shadow" else image

@@ -47,7 +47,7 @@ def shadows(scene: _core.Scene, camera: _core.Camera,
     def reference(name: str, kernel: int) -> np.ndarray:
         key = (name, kernel if name == "pcf" else 1)
         if key not in references:
-            references[key] = render_raster(scene, camera, name, kernel=key[1], output="shadow", **options)
+            references[key] = render_raster(scene, camera, shadows=name, kernel=key[1], output="shadow", **options)
         return references[key]
 
     rows: List[dict] = []
@@ -55,7 +55,7 @@ def shadows(scene: _core.Scene, camera: _core.Camera,
     for kernel in kernels:
         for method in methods:
             counts: dict = {}
-            image = render_raster(scene, camera, method, kernel=kernel, output="shadow", stats=counts, **options)
+            image = render_raster(scene, camera, shadows=method, kernel=kernel, output="shadow", stats=counts, **options)
             ref_name = _reference_of(method, kernel)
             truth = reference(ref_name, kernel)
             valid = (image[..., 1] > 0) & (truth[..., 1] > 0)

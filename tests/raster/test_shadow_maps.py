@@ -23,7 +23,7 @@ MAP = dict(resolution=512, shadow_distance=60.0)
 
 
 def shadow(method, **kwargs):
-    return refracta.render_raster(boxes_in_sun(), CAMERA, method, output="shadow", **MAP, **kwargs)
+    return refracta.render_raster(boxes_in_sun(), CAMERA, shadows=method, output="shadow", **MAP, **kwargs)
 
 
 def test_a_hard_shadow_map_matches_shadow_rays_away_from_edges():
@@ -38,7 +38,7 @@ def test_a_hard_shadow_map_matches_shadow_rays_away_from_edges():
 
 def test_radiance_with_shadow_rays_equals_the_straight_renderer():
     scene = boxes_in_sun()
-    rasterized = refracta.render_raster(scene, CAMERA, "embree")
+    rasterized = refracta.render_raster(scene, CAMERA, shadows="embree")
     traced = refracta.render(scene, CAMERA, None, method="straight", progress=False)
     np.testing.assert_allclose(rasterized, traced, rtol=1e-4, atol=1e-4 * traced.max())
 

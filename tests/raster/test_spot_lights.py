@@ -50,8 +50,8 @@ def test_nothing_is_lit_outside_the_cone():
 
 def test_a_spot_shadow_map_matches_shadow_rays():
     scene = lamp_scene()
-    truth = refracta.render_raster(scene, CAMERA, "embree", output="shadow", shadow_light=0)
-    mapped = refracta.render_raster(scene, CAMERA, "hard", output="shadow", shadow_light=0, resolution=1024)
+    truth = refracta.render_raster(scene, CAMERA, shadows="embree", output="shadow", shadow_light=0)
+    mapped = refracta.render_raster(scene, CAMERA, shadows="hard", output="shadow", shadow_light=0, resolution=1024)
     valid = (truth[..., 1] > 0) & (mapped[..., 1] > 0)
     in_shadow, lit = valid & (truth[..., 0] == 1), valid & (truth[..., 0] == 0)
     assert in_shadow.sum() > 50  # the box's shadow beside it
@@ -63,12 +63,12 @@ def test_an_area_light_casts_a_penumbra_that_filtered_moments_follow():
     """A 0.5 m disc: Embree's 64 samples give an umbra (1) and a penumbra (0 < s < 1); filtered
     MSM from the spot's perspective map approximates it better than a hard map."""
     scene = lamp_scene(radius=0.5)
-    soft = refracta.render_raster(scene, CAMERA, "embree", output="shadow", shadow_light=0)
+    soft = refracta.render_raster(scene, CAMERA, shadows="embree", output="shadow", shadow_light=0)
     shadow = soft[..., 0][soft[..., 1] > 0]
     assert np.any(shadow == 1.0) and np.any((shadow > 0.05) & (shadow < 0.95))
     errors = {}
     for method, kernel in (("hard", 1), ("msm_hamburger", 15)):
-        image = refracta.render_raster(scene, CAMERA, method, kernel=kernel, output="shadow", shadow_light=0,
+        image = refracta.render_raster(scene, CAMERA, shadows=method, kernel=kernel, output="shadow", shadow_light=0,
                                        resolution=512)
         valid = (soft[..., 1] > 0) & (image[..., 1] > 0)
         errors[method] = np.abs(image[..., 0] - soft[..., 0])[valid].mean()
@@ -88,4 +88,18 @@ def test_bad_spot_lights_raise_value_error(kwargs, match):
 
 def test_a_missing_spot_light_index_raises_value_error():
     with pytest.raises(ValueError, match="shadow_light"):
-        refracta.render_raster(lamp_scene(), CAMERA, "hard", output="shadow", shadow_light=3)
+        refracta.render_raster(lamp_scene(), CAMERA, shadows="hard", output="shadow", shadow_light=3)
+
+
+def test_lights_select_the_scene_lights():
+    scene = lamp_scene(occluder=False)
+    scene.set_sun((0.2, 1.0, 0.1), (1e3, 1e3, 1e3))
+    both = refracta.render_raster(scene, CAMERA, shadows="embree")
+    sun = refracta.render_raster(scene, CAMERA, "sun", shadows="embree")
+    spot = refracta.render_raster(scene, CAMERA, [0], shadows="embree")
+    np.testing.assert_allclose(both, sun + spot, rtol=1e-5, atol=1e-6)  # light adds up
+    assert spot.max() > 0 and sun.max() > 0
+    with pytest.raises(ValueError, match="spot light 2"):
+        refracta.render_raster(scene, CAMERA, [2], shadows="embree")
+    with pytest.raises(ValueError, match="lights"):
+        refracta.render_raster(scene, CAMERA, "moon", shadows="embree")

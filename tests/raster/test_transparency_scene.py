@@ -34,14 +34,14 @@ def test_error_falls_with_more_moments():
 def test_mboit_is_exact_for_up_to_n_plus_one_fragments_with_beta_zero():
     """One slab: two faces per pixel, fewer than the 3 atoms 4 power moments resolve."""
     scene = glass_scene(slabs=SLABS[:1])
-    exact = refracta.render_raster(scene, CAMERA, "embree", transparency="exact")
-    mboit = refracta.render_raster(scene, CAMERA, "embree", transparency="mboit", moments=4, beta=0.0)
+    exact = refracta.render_raster(scene, CAMERA, shadows="embree", transparency="exact")
+    mboit = refracta.render_raster(scene, CAMERA, shadows="embree", transparency="mboit", moments=4, beta=0.0)
     np.testing.assert_allclose(mboit, exact, rtol=1e-4, atol=1e-5 * exact.max())
 
 
 def test_compositing_does_not_depend_on_submission_order():
-    forward = refracta.render_raster(glass_scene(SLABS), CAMERA, "embree", transparency="mboit", moments=6)
-    backward = refracta.render_raster(glass_scene(SLABS[::-1]), CAMERA, "embree", transparency="mboit", moments=6)
+    forward = refracta.render_raster(glass_scene(SLABS), CAMERA, shadows="embree", transparency="mboit", moments=6)
+    backward = refracta.render_raster(glass_scene(SLABS[::-1]), CAMERA, shadows="embree", transparency="mboit", moments=6)
     np.testing.assert_allclose(forward, backward, rtol=1e-6, atol=1e-7)
 
 
@@ -53,8 +53,8 @@ def test_total_transmittance_is_the_product_of_one_minus_alpha(method):
     slabs = [((0.0, 0.0, 0.0), 6.0, 0.0), ((0.0, 0.0, 0.0), 8.0, 0.0)]
     scene = glass_scene(slabs=slabs, alpha=alpha, wall=False)
     scene.set_sun((-0.5, 0.6, 0.3), (0.0, 0.0, 0.0))  # no sun: black surfaces reflect nothing
-    image = refracta.render_raster(scene, CAMERA, "none", transparency=method)
-    sky = refracta.render_raster(glass_scene(slabs=[], wall=False), CAMERA, "none")
+    image = refracta.render_raster(scene, CAMERA, shadows="none", transparency=method)
+    sky = refracta.render_raster(glass_scene(slabs=[], wall=False), CAMERA, shadows="none")
     u, v, _ = CAMERA.project([7.0, 2.2, 0.0])  # above the ground's horizon, through both slabs
     np.testing.assert_allclose(image[int(v), int(u)], sky[int(v), int(u)] * (1 - alpha) ** 4, rtol=1e-5)
 
@@ -62,10 +62,10 @@ def test_total_transmittance_is_the_product_of_one_minus_alpha(method):
 def test_an_opaque_render_ignores_alpha_and_stats_count_fragments():
     scene = glass_scene()
     stats = {}
-    refracta.render_raster(scene, CAMERA, "embree", transparency="exact", stats=stats)
+    refracta.render_raster(scene, CAMERA, shadows="embree", transparency="exact", stats=stats)
     assert stats["transparent_fragments"] > 0 and stats["oit_bytes_per_pixel"] > 0
     opaque_stats = {}
-    refracta.render_raster(scene, CAMERA, "embree", stats=opaque_stats)
+    refracta.render_raster(scene, CAMERA, shadows="embree", stats=opaque_stats)
     assert opaque_stats["transparent_fragments"] == 0
 
 
@@ -77,7 +77,7 @@ def test_an_opaque_render_ignores_alpha_and_stats_count_fragments():
 ])
 def test_bad_transparency_options_raise_value_error(kwargs, match):
     with pytest.raises(ValueError, match=match):
-        refracta.render_raster(glass_scene(), CAMERA, "embree", **kwargs)
+        refracta.render_raster(glass_scene(), CAMERA, shadows="embree", **kwargs)
 
 
 def test_alpha_outside_0_1_is_rejected():

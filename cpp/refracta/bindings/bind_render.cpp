@@ -53,7 +53,8 @@ void bind_render(py::module_& m) {
            const std::string& storage, double depth_bias, double normal_offset, double bleeding_reduction,
            const py::object& shadow_centre, std::optional<double> shadow_half_size, std::optional<double> shadow_distance,
            bool output_shadow, std::optional<std::string> transparency, int oit_moments, const std::string& oit_kind,
-           double beta, int layers, const std::string& weight, int shadow_light, const py::object& progress) {
+           double beta, int layers, const std::string& weight, int shadow_light, bool use_sun,
+           std::optional<std::vector<int>> spots, const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
           RasterRenderOptions options;
           if (transparency) {
@@ -86,6 +87,8 @@ void bind_render(py::module_& m) {
           if (shadow_distance) options.shadow_distance = *shadow_distance;
           options.output_shadow = output_shadow;
           options.shadow_light = shadow_light;
+          options.use_sun = use_sun;
+          options.spots = spots;
           options.validate();
           WorkControl control;
           Image image;
@@ -106,7 +109,7 @@ void bind_render(py::module_& m) {
         py::arg("normal_offset"), py::arg("bleeding_reduction"), py::arg("shadow_centre"), py::arg("shadow_half_size"),
         py::arg("shadow_distance"), py::arg("output_shadow"), py::arg("transparency"), py::arg("moments"),
         py::arg("kind"), py::arg("beta"), py::arg("layers"), py::arg("weight"), py::arg("shadow_light"),
-        py::arg("progress"));
+        py::arg("use_sun"), py::arg("spots"), py::arg("progress"));
 }
 
 }  // namespace refracta

@@ -27,9 +27,20 @@ void RasterRenderOptions::validate() const {
   if (shadow_light < -1) throw_invalid("shadow_light must be -1 (the sun) or a spot light index (got ", shadow_light, ")");
 }
 
-Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& camera,
+Image render_raster(const Scene& scene, const Lighting& all_lights, const Camera& camera,
                     const RasterRenderOptions& options, WorkControl& control, RasterRenderStats* stats) {
   options.validate();
+  Lighting lighting = all_lights;
+  if (!options.use_sun) lighting.sun.radiance = Vec3d::Zero();
+  if (options.spots) {
+    lighting.spots.clear();
+    for (int k : *options.spots) {
+      if (k < 0 || size_t(k) >= all_lights.spots.size()) {
+        throw_invalid("lights: spot light ", k, " is not in the scene (it has ", all_lights.spots.size(), ")");
+      }
+      lighting.spots.push_back(all_lights.spots[k]);
+    }
+  }
   scene.commit();
   const auto start = std::chrono::steady_clock::now();
   const RasterView view = RasterView::from_camera(camera);

@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace refracta {
 
@@ -27,6 +28,9 @@ struct RasterRenderOptions {
   // and (0, 0, 0) elsewhere: what compare.shadows measures.
   bool output_shadow = false;
   int shadow_light = -1;  // output_shadow: -1 the sun, k >= 0 the scene's spot light k
+  // The scene's lights to use: the sun, and the spot lights listed (all when not given).
+  bool use_sun = true;
+  std::optional<std::vector<int>> spots;
   // Surfaces with material alpha < 1 are composited over the opaque ones with this method
   // (fragments from the rasterizer, culled by the opaque depth); without it they are opaque.
   // MBOIT's log-depth range, when not set, is fitted to the frame's fragments.
