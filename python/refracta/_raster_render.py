@@ -62,6 +62,7 @@ def render_raster(
     layers: int = 4,
     weight: str = "eq7",
     shadow_light: int = -1,
+    oit_storage: str = "fp32",
     stats: Optional[dict] = None,
     progress: Union[bool, Callable[[int, int], None]] = False,
 ) -> np.ndarray:
@@ -87,7 +88,8 @@ def render_raster(
     opaque ones from the rasterizer's per-pixel fragment lists: 'exact' (sorted), 'peel' (`layers`
     nearest), 'wboit' (McGuire & Bavoil, weight 'eq7' / 'eq9'), 'mboit' (`moments` 4/6/8 power or
     2/3/4 trigonometric with kind='trig', overestimation `beta`, log depth warp over the frame's
-    fragment range). Shadows treat every surface as opaque.
+    fragment range; oit_storage 'unorm16': the 16-bit ROV variant). Shadows treat every surface as
+    opaque.
     stats: a dict to fill with 'seconds', 'shadow_build_seconds', 'bytes_per_texel',
     'transparent_fragments', 'oit_bytes_per_pixel'. No atmosphere: this is the straight-ray view.
     """
@@ -108,7 +110,8 @@ def render_raster(
         scene, camera, SHADOW_METHODS[shadows], int(resolution), int(kernel), depth_range == "signed", bias,
         None if bias_vector is None else [float(v) for v in bias_vector], storage, depth_bias, normal_offset,
         bleeding_reduction, shadow_centre, shadow_half_size, shadow_distance, output == "shadow", transparency,
-        int(moments), kind, float(beta), int(layers), weight, int(shadow_light), use_sun, spots, callback)
+        int(moments), kind, float(beta), int(layers), weight, int(shadow_light), use_sun, spots,
+        oit_storage, callback)
     if stats is not None:
         stats.update(counts)
     return image[..., :2] if output == "shadow" else image

@@ -22,9 +22,11 @@ from refracta import _core
 def composite(depths, alphas, colors, background=(0.0, 0.0, 0.0), method: str = "exact", moments: int = 4,
               kind: str = "power", beta: float = 0.25, bias: Optional[float] = None,
               z_range: Optional[Tuple[float, float]] = None, layers: Optional[int] = None,
-              weight: str = "eq7") -> np.ndarray:
-    """The pixel's colour after compositing its fragments over `background`."""
+              weight: str = "eq7", storage: str = "fp32") -> np.ndarray:
+    """The pixel's colour after compositing its fragments over `background`. storage: MBOIT's
+    moments in 'fp32' or the 16-bit ROV variant 'unorm16' (re-quantised after every fragment, in
+    the given order; 4 power moments or trigonometric ones)."""
     colors = np.asarray(colors, dtype=np.float64).reshape(-1, 3)
     return _core._composite(np.asarray(depths, np.float64).ravel(), np.asarray(alphas, np.float64).ravel(),
                             colors, np.asarray(background, np.float64), method, int(moments), kind, float(beta),
-                            bias, z_range, layers, weight)
+                            bias, z_range, layers, weight, storage)

@@ -111,7 +111,8 @@ void bind_raster(py::module_& m) {
   m.def("_composite",
         [](const py::object& depths, const py::object& alphas, const py::object& colors, const py::object& background,
            const std::string& method, int moments, const std::string& kind, double beta, std::optional<double> bias,
-           std::optional<std::pair<double, double>> z_range, std::optional<int> layers, const std::string& weight) {
+           std::optional<std::pair<double, double>> z_range, std::optional<int> layers, const std::string& weight,
+           const std::string& storage) {
           const std::vector<double> z = to_values(depths, "depths"), a = to_values(alphas, "alphas");
           const std::vector<Vec3d> c = z.empty() ? std::vector<Vec3d>{} : to_points(colors, "colors");
           if (a.size() != z.size() || c.size() != z.size()) {
@@ -131,6 +132,8 @@ void bind_raster(py::module_& m) {
           settings.mboit.trigonometric = kind == "trig";
           settings.mboit.moments = moments;
           settings.mboit.beta = beta;
+          if (storage != "fp32" && storage != "unorm16") throw_invalid("storage must be 'fp32' or 'unorm16' (got '", storage, "')");
+          settings.mboit.unorm16 = storage == "unorm16";
           if (bias) settings.mboit.bias = *bias;
           if (z_range) {
             if (!(z_range->first > 0.0 && z_range->second > z_range->first)) {
@@ -144,7 +147,7 @@ void bind_raster(py::module_& m) {
         },
         py::arg("depths"), py::arg("alphas"), py::arg("colors"), py::arg("background"), py::arg("method"),
         py::arg("moments"), py::arg("kind"), py::arg("beta"), py::arg("bias"), py::arg("z_range"), py::arg("layers"),
-        py::arg("weight"));
+        py::arg("weight"), py::arg("storage"));
 }
 
 }  // namespace refracta

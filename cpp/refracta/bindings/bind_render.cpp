@@ -54,7 +54,7 @@ void bind_render(py::module_& m) {
            const py::object& shadow_centre, std::optional<double> shadow_half_size, std::optional<double> shadow_distance,
            bool output_shadow, std::optional<std::string> transparency, int oit_moments, const std::string& oit_kind,
            double beta, int layers, const std::string& weight, int shadow_light, bool use_sun,
-           std::optional<std::vector<int>> spots, const py::object& progress) {
+           std::optional<std::vector<int>> spots, const std::string& oit_storage, const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
           RasterRenderOptions options;
           if (transparency) {
@@ -64,6 +64,10 @@ void bind_render(py::module_& m) {
             oit.mboit.trigonometric = oit_kind == "trig";
             oit.mboit.moments = oit_moments;
             oit.mboit.beta = beta;
+            if (oit_storage != "fp32" && oit_storage != "unorm16") {
+              throw_invalid("oit_storage must be 'fp32' or 'unorm16' (got '", oit_storage, "')");
+            }
+            oit.mboit.unorm16 = oit_storage == "unorm16";
             oit.layers = layers;
             oit.weight = weight;
             options.transparency = oit;
@@ -109,7 +113,7 @@ void bind_render(py::module_& m) {
         py::arg("normal_offset"), py::arg("bleeding_reduction"), py::arg("shadow_centre"), py::arg("shadow_half_size"),
         py::arg("shadow_distance"), py::arg("output_shadow"), py::arg("transparency"), py::arg("moments"),
         py::arg("kind"), py::arg("beta"), py::arg("layers"), py::arg("weight"), py::arg("shadow_light"),
-        py::arg("use_sun"), py::arg("spots"), py::arg("progress"));
+        py::arg("use_sun"), py::arg("spots"), py::arg("oit_storage"), py::arg("progress"));
 }
 
 }  // namespace refracta

@@ -3,6 +3,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/raster/moments.h"
+#include "refracta/raster/quantization.h"
 
 #include <algorithm>
 #include <cmath>
@@ -72,8 +73,15 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   if (options.trigonometric && (m < 2 || m > 4)) throw_invalid("trigonometric moments must be 2, 3 or 4 (got ", m, ")");
   if (!options.trigonometric && m != 4 && m != 6 && m != 8) throw_invalid("moments must be 4, 6 or 8 (got ", m, ")");
   if (!(options.beta >= 0.0 && options.beta <= 1.0)) throw_invalid("beta must be in [0, 1] (got ", options.beta, ")");
-  const std::vector<double>& target = m == 6 ? kBias6 : (m == 8 ? kBias8 : kBias4);
-  const double alpha_bias = options.bias >= 0.0 ? options.bias : (m == 4 ? 5e-7 : (m == 6 ? 5e-6 : 5e-5));
+  if (options.unorm16 && !options.trigonometric && m != 4) {
+    throw_invalid("16-bit MBOIT storage is available for 4 power moments and for trigonometric moments (got ", m,
+                  " power moments)");
+  }
+  static const std::vector<double> kBias4Unorm16 = {0, 0.628, 0, 0.628};
+  const std::vector<double>& target =
+      options.unorm16 ? kBias4Unorm16 : (m == 6 ? kBias6 : (m == 8 ? kBias8 : kBias4));
+  const double alpha_bias =
+      options.bias >= 0.0 ? options.bias : (options.unorm16 ? 6e-5 : (m == 4 ? 5e-7 : (m == 6 ? 5e-6 : 5e-5)));
   if (fragments.empty()) return background;
   // Log depth warp to [-1, 1] over the given or the fragments' range (MOMENTS.md 4.2).
   double z_near = options.z_near, z_far = options.z_far;
@@ -90,17 +98,23 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
     // Depths fill [0, 2 pi - theta] of the circle (MOMENTS.md 4.2); bias scales toward uniform.
     const double kWrap = kPi / 10.0;
     auto angle = [&](double z) { return (warp(z) + 1.0) * (kPi - kWrap / 2.0); };
-    std::vector<std::complex<double>> c(m + 1, 0.0);
+    std::vector<std::complex<double>> c(m + 1, 0.0);  // normalised (c_j / c_0) after each fragment
     double total = 0.0;
     for (const Fragment& f : fragments) {
       const double a = -std::log(1.0 - std::min(f.alpha, 0.999));
+      for (int j = 1; j <= m; ++j) {
+        c[j] = (c[j] * total + a * std::polar(1.0, j * angle(f.depth))) / (total + a);
+        if (options.unorm16) {  // stored as c/2 + 1/2 in 16 bits, per component
+          auto q = [](double v) { return (std::round(std::clamp(0.5 * v + 0.5, 0.0, 1.0) * 65535.0) / 65535.0 - 0.5) * 2.0; };
+          c[j] = {q(c[j].real()), q(c[j].imag())};
+        }
+      }
       total += a;
-      for (int j = 0; j <= m; ++j) c[j] += a * std::polar(1.0, j * angle(f.depth));
     }
     const double total_transmittance = std::exp(-total);
     if (total < 0.00100050033) return background * total_transmittance;
     const double trig_bias = options.bias >= 0.0 ? options.bias : (m == 2 ? 4e-4 : 2e-4);
-    for (int j = 1; j <= m; ++j) c[j] *= (1.0 - trig_bias) / total;
+    for (int j = 1; j <= m; ++j) c[j] *= (1.0 - trig_bias);
     c[0] = 1.0;
     Vec3d accum = Vec3d::Zero();
     double accum_alpha = 0.0;
@@ -116,17 +130,22 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
     return total_transmittance * background + (1.0 - total_transmittance) * accum / accum_alpha;
   }
   // Pass 1: absorbance a = -ln(1 - alpha), alpha clamped so a stays finite (vkQuake: 0.999).
+  // The moments are kept normalised by b0 (as the 16-bit ROV variant stores them).
   std::vector<double> b(m + 1, 0.0);
+  double total = 0.0;
   for (const Fragment& f : fragments) {
     const double a = -std::log(1.0 - std::min(f.alpha, 0.999));
     const double z = warp(f.depth);
-    double power = 1.0;
-    for (int j = 0; j <= m; ++j, power *= z) b[j] += a * power;
+    double power = z;
+    for (int j = 1; j <= m; ++j, power *= z) b[j] = (b[j] * total + a * power) / (total + a);
+    total += a;
+    if (options.unorm16) {
+      const Moments4 stored = stored_moments({b[1], b[2], b[3], b[4]}, MomentStorage::kUnorm16, true);
+      for (int j = 1; j <= 4; ++j) b[j] = stored[j - 1];
+    }
   }
-  const double total = b[0];
   const double total_transmittance = std::exp(-total);
   if (total < 0.00100050033) return background * total_transmittance + Vec3d::Zero();  // < 0.1 % covered
-  for (int j = 1; j <= m; ++j) b[j] /= total;
   b[0] = 1.0;
   const std::vector<double> biased = bias_moments(b, alpha_bias, target);
   // Pass 2: each fragment weighted by its estimated transmittance.
@@ -165,6 +184,9 @@ void OitSettings::validate() const {
                     " (got ", m, ")");
     }
     if (!(mboit.beta >= 0.0 && mboit.beta <= 1.0)) throw_invalid("beta must be in [0, 1] (got ", mboit.beta, ")");
+    if (mboit.unorm16 && !mboit.trigonometric && m != 4) {
+      throw_invalid("16-bit MBOIT storage is available for 4 power moments and for trigonometric moments");
+    }
     if (mboit.z_far > mboit.z_near && !(mboit.z_near > 0.0)) {
       throw_invalid("z_range must be (near, far) with 0 < near < far");
     }
@@ -176,7 +198,8 @@ double OitSettings::bytes_per_pixel(double fragments_per_pixel) const {
     case OitMethod::kExact: return 20.0 * fragments_per_pixel;
     case OitMethod::kPeel: return 12.0 * layers;
     case OitMethod::kWboit: return 10.0;
-    case OitMethod::kMboit: return 4.0 * (1 + (mboit.trigonometric ? 2 * mboit.moments : mboit.moments)) + 8.0;
+    case OitMethod::kMboit:
+      return 4.0 + (mboit.unorm16 ? 2.0 : 4.0) * (mboit.trigonometric ? 2 * mboit.moments : mboit.moments) + 8.0;
   }
   return 0.0;
 }

@@ -23,6 +23,11 @@ struct MbOitOptions {
   double beta = 0.25;           // overestimation: the share of the fragment's own layer in front
   double bias = -1.0;           // < 0: the published fp32 value for the moment count
   double z_near = 0.0, z_far = 0.0;  // log-warp range; z_far <= z_near: the fragments' own range
+  // fp32 (emulated in double), or the 16-bit ROV variant (MOMENTS.md 4.5): b0 in fp32 and the
+  // normalised moments re-quantised to 16 bits after every fragment, in list order (4 power
+  // moments through Theta*_4; trigonometric ones as c/2 + 1/2). 16-bit is not available for 6 and
+  // 8 power moments (their quantisation matrices are not in refracta).
+  bool unorm16 = false;
 };
 
 Vec3d composite_exact(std::vector<Fragment> fragments, const Vec3d& background);
@@ -45,8 +50,8 @@ struct OitSettings {
 
   void validate() const;        // throws std::invalid_argument naming the bad field
   // Bytes per pixel a GPU would keep: sorted lists 20 per fragment (depth, alpha, RGB fp32);
-  // peeling 12 per layer (RGBA16F + depth fp32); WBOIT 10 (RGBA16F + R16F); MBOIT b0 and the
-  // moments in fp32 plus the RGBA16F accumulation.
+  // peeling 12 per layer (RGBA16F + depth fp32); WBOIT 10 (RGBA16F + R16F); MBOIT b0 in fp32 and
+  // the moments in fp32 or 16 bits, plus the RGBA16F accumulation.
   double bytes_per_pixel(double fragments_per_pixel) const;
 };
 

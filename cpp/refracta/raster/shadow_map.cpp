@@ -51,26 +51,49 @@ bool uses_moments(ShadowMethod m) {
   return m == ShadowMethod::kVsm || m == ShadowMethod::kHamburger || m == ShadowMethod::kHausdorff;
 }
 
-// In-place box filter of width k along rows (stride 1) or columns (stride n), clamped at the
-// edges, by a running sum: O(1) per texel whatever k.
-void box_filter(std::vector<Moments4>& m, int n, int k, bool along_rows, WorkControl& control) {
+// Box filter of width k (odd) along x then y, clamped at the edges, by running sums: O(1) per
+// texel whatever k. Rows are filtered in parallel; the vertical pass walks down blocks of columns
+// with one running sum per column, so memory is read row by row.
+void box_filter(std::vector<Moments4>& m, int n, int k, WorkControl& control) {
   const int r = k / 2;
-  parallel_for_each(n, 8, control, [&](int64_t line) {
-    auto at = [&](int i) -> Moments4& {
-      const int c = std::clamp(i, 0, n - 1);
-      return along_rows ? m[size_t(line) * n + c] : m[size_t(c) * n + line];
-    };
+  auto add = [](Moments4& a, const Moments4& b, double sign) {
+    for (int j = 0; j < 4; ++j) a[j] += sign * b[j];
+  };
+  parallel_for_each(n, 8, control, [&](int64_t y) {
+    Moments4* row = &m[size_t(y) * n];
     std::vector<Moments4> out(n);
     Moments4 sum{0, 0, 0, 0};
-    for (int i = -r; i <= r; ++i) {
-      for (int j = 0; j < 4; ++j) sum[j] += at(i)[j];
+    for (int i = -r; i <= r; ++i) add(sum, row[std::clamp(i, 0, n - 1)], 1.0);
+    for (int x = 0; x < n; ++x) {
+      for (int j = 0; j < 4; ++j) out[x][j] = sum[j] / k;
+      add(sum, row[std::min(x + r + 1, n - 1)], 1.0);
+      add(sum, row[std::max(x - r, 0)], -1.0);
     }
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < 4; ++j) out[i][j] = sum[j] / k;
-      for (int j = 0; j < 4; ++j) sum[j] += at(i + r + 1)[j] - at(i - r)[j];
-    }
-    for (int i = 0; i < n; ++i) at(i) = out[i];
+    std::copy(out.begin(), out.end(), row);
   });
+  constexpr int kBlock = 64;
+  const int blocks = (n + kBlock - 1) / kBlock;
+  std::vector<Moments4> filtered(m.size());
+  parallel_for_each(blocks, 1, control, [&](int64_t b) {
+    const int x0 = int(b) * kBlock, x1 = std::min(x0 + kBlock, n);
+    std::vector<Moments4> sum(x1 - x0, Moments4{0, 0, 0, 0});
+    auto row = [&](int y) { return &m[size_t(std::clamp(y, 0, n - 1)) * n]; };
+    for (int i = -r; i <= r; ++i) {
+      for (int x = x0; x < x1; ++x) add(sum[x - x0], row(i)[x], 1.0);
+    }
+    for (int y = 0; y < n; ++y) {
+      const Moments4* enter = row(y + r + 1);
+      const Moments4* leave = row(y - r);
+      Moments4* out = &filtered[size_t(y) * n];
+      for (int x = x0; x < x1; ++x) {
+        Moments4& s = sum[x - x0];
+        for (int j = 0; j < 4; ++j) out[x][j] = s[j] / k;
+        add(s, enter[x], 1.0);
+        add(s, leave[x], -1.0);
+      }
+    }
+  });
+  m.swap(filtered);
 }
 
 }  // namespace
@@ -120,10 +143,7 @@ void ShadowMap::build(const Scene& scene, WorkControl& control) {
         moments_[size_t(y) * n + x] = {z, z * z, z * z * z, z * z * z * z};
       }
     });
-    if (options_.kernel > 1) {
-      box_filter(moments_, n, options_.kernel, true, control);
-      box_filter(moments_, n, options_.kernel, false, control);
-    }
+    if (options_.kernel > 1) box_filter(moments_, n, options_.kernel, control);
     if (options_.moments.storage != MomentStorage::kFp64) {
       parallel_for_each(n, 8, control, [&](int64_t y) {
         for (int x = 0; x < n; ++x) {
