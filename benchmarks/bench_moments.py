@@ -60,7 +60,8 @@ def transparency_rows(size: int) -> list:
         scene, camera = glass_stack(layers, size)
         table, _ = compare.transparency(scene, camera, methods=("peel 4", "wboit eq7", "mboit 4", "mboit 6", "mboit 8",
                                                                  "mboit trig 2", "mboit trig 3", "mboit trig 4",
-                                                                 "mboit 4 unorm16", "mboit trig 3 unorm16"),
+                                                                 "mboit 4 unorm16", "mboit 6 unorm16", "mboit 8 unorm16",
+                                                                 "mboit trig 3 unorm16"),
                                         figure=False, shadows="none")
         for row in table:
             row["fragments_per_pixel"] = layers

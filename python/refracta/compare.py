@@ -88,6 +88,8 @@ TRANSPARENCY_METHODS = {
     "mboit trig 3": dict(transparency="mboit", moments=3, kind="trig"),
     "mboit trig 4": dict(transparency="mboit", moments=4, kind="trig"),
     "mboit 4 unorm16": dict(transparency="mboit", moments=4, oit_storage="unorm16"),
+    "mboit 6 unorm16": dict(transparency="mboit", moments=6, oit_storage="unorm16"),
+    "mboit 8 unorm16": dict(transparency="mboit", moments=8, oit_storage="unorm16"),
     "mboit trig 3 unorm16": dict(transparency="mboit", moments=3, kind="trig", oit_storage="unorm16"),
 }
 

@@ -85,7 +85,7 @@ def test_alpha_outside_0_1_is_rejected():
         refracta.Scene().add_box((0, 0, 0), (1, 1, 1), alpha=1.5)
 
 
-@pytest.mark.parametrize("moments, kind", [(4, "power"), (3, "trig")])
+@pytest.mark.parametrize("moments, kind", [(4, "power"), (6, "power"), (8, "power"), (3, "trig")])
 def test_16_bit_rov_mboit_stays_close_to_fp32(moments, kind):
     """MOMENTS.md 4.5: b0 in fp32, normalised moments re-quantised to 16 bits after every fragment.
     Rounding makes it (slightly) order dependent; its error against the sorted composite stays that
@@ -99,14 +99,20 @@ def test_16_bit_rov_mboit_stays_close_to_fp32(moments, kind):
     scale = exact.max()
     assert np.abs(unorm16 - exact).mean() < np.abs(fp32 - exact).mean() + 1e-4 * scale
     assert np.abs(unorm16 - fp32).max() < 0.05 * scale
-    assert np.abs(reordered - unorm16).max() < 2e-3 * scale
+    assert np.abs(reordered - unorm16).max() < 5e-3 * scale  # rounding order: a few per mille
     stats = {}
     refracta.render_raster(scene, CAMERA, oit_storage="unorm16", stats=stats, **args)
     per_moment = 2 * (2 * moments if kind == "trig" else moments)
     assert stats["oit_bytes_per_pixel"] == 4 + per_moment + 8
 
 
-def test_16_bit_storage_needs_4_power_moments_or_trigonometric_ones():
-    with pytest.raises(ValueError, match="16-bit"):
-        refracta.render_raster(glass_scene(), CAMERA, shadows="embree", transparency="mboit", moments=6,
-                               oit_storage="unorm16")
+@pytest.mark.parametrize("count", [6, 8])
+def test_16_bit_mboit_transforms_keep_every_valid_moment_vector_in_range(count, rng):
+    """The 6- and 8-moment quantisation maps moments of any distribution on [-1, 1] into [0, 1]
+    (else rounding would clamp): the 16-bit round trip then costs only the rounding, < 2e-3."""
+    from refracta import _core
+    for _ in range(300):
+        k = rng.integers(1, 6)
+        z, w = rng.uniform(-1, 1, k), rng.dirichlet(np.ones(k))
+        b = [float(np.sum(w * z**j)) for j in range(1, count + 1)]
+        np.testing.assert_allclose(_core._mboit_unorm16(b), b, atol=2e-3)

@@ -32,6 +32,8 @@ DoubleArray as_matrix(const py::object& object, py::ssize_t columns, const char*
 }  // namespace
 
 void bind_raster(py::module_& m) {
+  m.def("_mboit_unorm16", [](const std::vector<double>& b) { return stored_mboit_unorm16(b); }, py::arg("b"),
+        "6 or 8 normalised power moments after MBOIT's 16-bit storage (transform, rounding, inverse).");
   m.def("_rasterize",
         [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, double guard_band, int tile) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");

@@ -25,8 +25,8 @@ struct MbOitOptions {
   double z_near = 0.0, z_far = 0.0;  // log-warp range; z_far <= z_near: the fragments' own range
   // fp32 (emulated in double), or the 16-bit ROV variant (MOMENTS.md 4.5): b0 in fp32 and the
   // normalised moments re-quantised to 16 bits after every fragment, in list order (4 power
-  // moments through Theta*_4; trigonometric ones as c/2 + 1/2). 16-bit is not available for 6 and
-  // 8 power moments (their quantisation matrices are not in refracta).
+  // moments through Theta*_4, 6 and 8 through the MBOIT matrices (stored_mboit_unorm16),
+  // trigonometric ones as c/2 + 1/2).
   bool unorm16 = false;
 };
 

@@ -1,6 +1,8 @@
 // Moment quantisation transforms (values from MOMENTS.md 2.5; column-vector orientation).
 #include "refracta/raster/quantization.h"
 
+#include <Eigen/Dense>
+
 #include "refracta/core/error.h"
 
 #include <algorithm>
@@ -66,6 +68,70 @@ Moments4 stored_moments(const Moments4& b, MomentStorage storage, bool signed_de
     for (double& v : q) v = std::round(std::clamp(v, 0.0, 1.0) * 65535.0) / 65535.0;
     out = inverse_quantization_transform(q, signed_depth);
   }
+  return out;
+}
+
+namespace {
+
+// q = A v + offset for the odd (b1, b3, ..) and even (b2, b4, ..) halves; A and offsets from the
+// MBOIT supplementary code (6 moments: its matrices act on row vectors, 8: on column vectors,
+// as the [0, 1] property of every valid moment vector confirms; tests/raster check it).
+struct MboitTransform {
+  Eigen::MatrixXd odd, even;
+  Eigen::VectorXd odd_offset, even_offset;
+};
+
+const MboitTransform& mboit_transform(int m) {
+  static const MboitTransform six = [] {
+    MboitTransform t;
+    Eigen::Matrix3d odd, even;
+    odd << 2.5, -1.87499864450, 1.26583039016, -10.0, 4.20757543111, -1.47644882902, 8.0, -1.83257678661,
+        0.71061660238;
+    even << 4.0, 9.0, -0.57759806484, -4.0, -24.0, 4.61936647543, 0.0, 16.0, -3.07953906655;
+    t.odd = odd.transpose();
+    t.even = even.transpose();
+    t.odd_offset = Eigen::Vector3d(0.5, 0.5, 0.5);
+    t.even_offset = Eigen::Vector3d(0.0, 0.0, 0.018888946);
+    return t;
+  }();
+  static const MboitTransform eight = [] {
+    MboitTransform t;
+    Eigen::Matrix4d odd, even;
+    odd << 3.48044635732474, -27.5760737514826, 55.1267384344761, -31.5311110403183, 1.26797185782836,
+        -0.928755808743913, -2.07520453231032, 1.23598848322588, -2.1671560004294, 6.17950199592966,
+        -0.276515571579297, -4.23583042392097, 0.974332879165755, -0.443426830933027, -0.360491648368785,
+        0.310149466050223;
+    even << 0.280504133158527, -0.757633844606942, 0.392179589334688, -0.887531871812237, -2.01362265883247,
+        0.221551373038988, -1.06107954265125, 2.83887201588367, -7.31010494985321, 13.9855979699139,
+        -0.114305766176437, -7.4361899359832, -15.8954215629556, 79.6186327084103, -127.457278992502,
+        63.7349456687829;
+    t.odd = odd;
+    t.even = even;
+    t.odd_offset = Eigen::Vector4d::Constant(0.5);
+    t.even_offset = Eigen::Vector4d(0.972481993925964, 1.0, 0.999179192513328, 0.991778293073131);
+    return t;
+  }();
+  if (m == 6) return six;
+  if (m == 8) return eight;
+  throw_invalid("16-bit MBOIT storage: 6 or 8 moments here (got ", m, ")");
+}
+
+Eigen::VectorXd round_trip(const Eigen::MatrixXd& a, const Eigen::VectorXd& offset, const Eigen::VectorXd& v) {
+  Eigen::VectorXd q = a * v + offset;
+  for (Eigen::Index i = 0; i < q.size(); ++i) q[i] = std::round(std::clamp(q[i], 0.0, 1.0) * 65535.0) / 65535.0;
+  return a.partialPivLu().solve(q - offset);
+}
+
+}  // namespace
+
+std::vector<double> stored_mboit_unorm16(const std::vector<double>& b) {
+  const int m = int(b.size());
+  const MboitTransform& t = mboit_transform(m);
+  Eigen::VectorXd odd(m / 2), even(m / 2);
+  for (int i = 0; i < m / 2; ++i) odd[i] = b[2 * i], even[i] = b[2 * i + 1];
+  const Eigen::VectorXd o = round_trip(t.odd, t.odd_offset, odd), e = round_trip(t.even, t.even_offset, even);
+  std::vector<double> out(m);
+  for (int i = 0; i < m / 2; ++i) out[2 * i] = o[i], out[2 * i + 1] = e[i];
   return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 namespace refracta {
 
@@ -19,5 +20,10 @@ Moments4 quantization_transform(const Moments4& b, bool signed_depth);
 Moments4 inverse_quantization_transform(const Moments4& q, bool signed_depth);
 // b as read back after storage (unorm16: transform, round to 16 bits, inverse transform).
 Moments4 stored_moments(const Moments4& b, MomentStorage storage, bool signed_depth);
+
+// MBOIT's 16-bit (ROV) storage of 6 or 8 normalised power moments b_1..b_m of depths in [-1, 1]
+// (Muenstermann et al. 2018, supplementary shader code): odd and even moments each mapped into
+// [0, 1] by a fixed matrix and offset, rounded to 16 bits, mapped back (exact inverse).
+std::vector<double> stored_mboit_unorm16(const std::vector<double>& b);
 
 }  // namespace refracta
