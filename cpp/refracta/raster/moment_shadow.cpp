@@ -37,16 +37,15 @@ void MomentShadowSettings::validate() const {
 
 double moment_shadow(const Moments4& b, double z_f, const MomentShadowSettings& settings) {
   const Moments4 read = stored_moments(b, settings.storage, settings.signed_depth);
-  const std::vector<double> raw = {1.0, read[0], read[1], read[2], read[3]};
-  const std::vector<double> target(settings.bias_vector.begin(), settings.bias_vector.end());
-  const std::vector<double> biased = bias_moments(raw, settings.bias, target);
-  const std::array<double, 4> c = {biased[1], biased[2], biased[3], biased[4]};
+  // (1 - alpha) b + alpha b* (bias_moments, without allocating: this runs once per lookup).
+  std::array<double, 4> c;
+  for (int j = 0; j < 4; ++j) c[j] = (1.0 - settings.bias) * read[j] + settings.bias * settings.bias_vector[j];
   switch (settings.method) {
     case MomentShadowMethod::kHamburger: return hamburger_4msm(c, z_f);
     case MomentShadowMethod::kHausdorff: return hausdorff_4msm(c, z_f, settings.signed_depth ? -1.0 : 0.0, 1.0);
     case MomentShadowMethod::kVsm: return vsm_shadow(c[0], c[1], z_f, 1e-12);
     case MomentShadowMethod::kCanonical: {
-      const MomentBound bound = canonical_bound(biased, z_f);
+      const MomentBound bound = canonical_bound({1.0, c[0], c[1], c[2], c[3]}, z_f);
       return bound.fallback ? vsm_shadow(c[0], c[1], z_f, 1e-12) : bound.lower;
     }
   }

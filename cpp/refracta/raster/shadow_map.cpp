@@ -51,49 +51,66 @@ bool uses_moments(ShadowMethod m) {
   return m == ShadowMethod::kVsm || m == ShadowMethod::kHamburger || m == ShadowMethod::kHausdorff;
 }
 
-// Box filter of width k (odd) along x then y, clamped at the edges, by running sums: O(1) per
-// texel whatever k. Rows are filtered in parallel; the vertical pass walks down blocks of columns
-// with one running sum per column, so memory is read row by row.
-void box_filter(std::vector<Moments4>& m, int n, int k, WorkControl& control) {
+// The moment map in two passes, O(1) per texel whatever the kernel k (odd): along each row,
+// running sums of (z, z^2, z^3, z^4) of the depths (clamped at the edges); then down blocks of
+// columns, one running sum per column (memory read row by row), each result stored as `store`
+// says (the storage emulation) on its way out.
+template <class Depth, class Store>
+std::vector<Moments4> filtered_moments(int n, int k, WorkControl& control, const Depth& depth, const Store& store) {
   const int r = k / 2;
   auto add = [](Moments4& a, const Moments4& b, double sign) {
     for (int j = 0; j < 4; ++j) a[j] += sign * b[j];
   };
+  std::vector<Moments4> rows(size_t(n) * n);
   parallel_for_each(n, 8, control, [&](int64_t y) {
-    Moments4* row = &m[size_t(y) * n];
-    std::vector<Moments4> out(n);
-    Moments4 sum{0, 0, 0, 0};
-    for (int i = -r; i <= r; ++i) add(sum, row[std::clamp(i, 0, n - 1)], 1.0);
+    std::vector<Moments4> power(n);
     for (int x = 0; x < n; ++x) {
-      for (int j = 0; j < 4; ++j) out[x][j] = sum[j] / k;
-      add(sum, row[std::min(x + r + 1, n - 1)], 1.0);
-      add(sum, row[std::max(x - r, 0)], -1.0);
+      const double z = depth(x, int(y));
+      power[x] = {z, z * z, z * z * z, z * z * z * z};
     }
-    std::copy(out.begin(), out.end(), row);
+    Moments4* row = &rows[size_t(y) * n];
+    if (k == 1) {
+      std::copy(power.begin(), power.end(), row);
+      return;
+    }
+    Moments4 sum{0, 0, 0, 0};
+    for (int i = -r; i <= r; ++i) add(sum, power[std::clamp(i, 0, n - 1)], 1.0);
+    for (int x = 0; x < n; ++x) {
+      for (int j = 0; j < 4; ++j) row[x][j] = sum[j] / k;
+      add(sum, power[std::min(x + r + 1, n - 1)], 1.0);
+      add(sum, power[std::max(x - r, 0)], -1.0);
+    }
   });
   constexpr int kBlock = 64;
   const int blocks = (n + kBlock - 1) / kBlock;
-  std::vector<Moments4> filtered(m.size());
+  std::vector<Moments4> out(rows.size());
   parallel_for_each(blocks, 1, control, [&](int64_t b) {
     const int x0 = int(b) * kBlock, x1 = std::min(x0 + kBlock, n);
+    auto row = [&](int y) { return &rows[size_t(std::clamp(y, 0, n - 1)) * n]; };
+    if (k == 1) {
+      for (int y = 0; y < n; ++y) {
+        for (int x = x0; x < x1; ++x) out[size_t(y) * n + x] = store(row(y)[x]);
+      }
+      return;
+    }
     std::vector<Moments4> sum(x1 - x0, Moments4{0, 0, 0, 0});
-    auto row = [&](int y) { return &m[size_t(std::clamp(y, 0, n - 1)) * n]; };
     for (int i = -r; i <= r; ++i) {
       for (int x = x0; x < x1; ++x) add(sum[x - x0], row(i)[x], 1.0);
     }
     for (int y = 0; y < n; ++y) {
       const Moments4* enter = row(y + r + 1);
       const Moments4* leave = row(y - r);
-      Moments4* out = &filtered[size_t(y) * n];
       for (int x = x0; x < x1; ++x) {
         Moments4& s = sum[x - x0];
-        for (int j = 0; j < 4; ++j) out[x][j] = s[j] / k;
+        Moments4 mean;
+        for (int j = 0; j < 4; ++j) mean[j] = s[j] / k;
+        out[size_t(y) * n + x] = store(mean);
         add(s, enter[x], 1.0);
         add(s, leave[x], -1.0);
       }
     }
   });
-  m.swap(filtered);
+  return out;
 }
 
 }  // namespace
@@ -136,22 +153,11 @@ void ShadowMap::build(const Scene& scene, WorkControl& control) {
   near_ -= margin, far_ += margin;
 
   if (uses_moments(options_.method)) {
-    moments_.resize(size_t(n) * n);
-    parallel_for_each(n, 8, control, [&](int64_t y) {
-      for (int x = 0; x < n; ++x) {
-        const double z = depth_at(x, int(y));
-        moments_[size_t(y) * n + x] = {z, z * z, z * z * z, z * z * z * z};
-      }
-    });
-    if (options_.kernel > 1) box_filter(moments_, n, options_.kernel, control);
-    if (options_.moments.storage != MomentStorage::kFp64) {
-      parallel_for_each(n, 8, control, [&](int64_t y) {
-        for (int x = 0; x < n; ++x) {
-          Moments4& b = moments_[size_t(y) * n + x];
-          b = stored_moments(b, options_.moments.storage, options_.moments.signed_depth);
-        }
-      });
-    }
+    const MomentStorage storage = options_.moments.storage;
+    const bool signed_depth = options_.moments.signed_depth;
+    moments_ = filtered_moments(
+        n, options_.kernel, control, [&](int x, int y) { return depth_at(x, y); },
+        [&](const Moments4& b) { return storage == MomentStorage::kFp64 ? b : stored_moments(b, storage, signed_depth); });
   }
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
