@@ -80,11 +80,15 @@ def main(oit_size: int = 256) -> dict:
                                    storage=storage)
         for row in table:
             row["storage"] = storage
-            counts = {}
-            refracta.render_raster(scene, camera, shadows=row["method"], kernel=row["kernel"], resolution=1024,
-                                   storage=storage, output="shadow", stats=counts)
-            row["build_seconds"] = counts["shadow_build_seconds"]
-            row["lookup_seconds"] = counts["seconds"] - counts["shadow_build_seconds"]
+            best = None
+            for _ in range(3):  # the best of three: single runs on 2 busy cores scatter by ~30 %
+                counts = {}
+                refracta.render_raster(scene, camera, shadows=row["method"], kernel=row["kernel"], resolution=1024,
+                                       storage=storage, output="shadow", stats=counts)
+                if best is None or counts["seconds"] < best["seconds"]:
+                    best = counts
+            row["build_seconds"] = best["shadow_build_seconds"]
+            row["lookup_seconds"] = best["seconds"] - best["shadow_build_seconds"]
             rows.append(row)
             print(f"{storage:8s} {row['method']:14s} {row['kernel']:3d}  build {row['build_seconds']:.3f} s  "
                   f"lookups {row['lookup_seconds']:.3f} s  mean error {row['mean_error']:.4f}  p99 {row['p99_error']:.3f}")
