@@ -105,14 +105,20 @@ FieldPtr EditProblem::field_at(const std::vector<double>& x) const {
   return field_->with_param_values(full_values(x));
 }
 
-std::vector<double> EditProblem::distances(const std::vector<double>& x) const {
-  const FieldPtr field = field_at(x);
-  std::vector<double> out(pairs_.size());
+std::vector<double> pair_distances(const IndexField& field, const std::vector<PointPair>& pairs,
+                                   const PairOptions& options) {
+  options.validate();
+  validate_pairs(pairs, options);
+  std::vector<double> out(pairs.size());
   WorkControl control;
-  parallel_for_each(int64_t(pairs_.size()), 1, control, [&](int64_t i) {
-    out[i] = pair_miss<double>(*field, pairs_[i], options_).distance;
+  parallel_for_each(int64_t(pairs.size()), 1, control, [&](int64_t i) {
+    out[i] = pair_miss<double>(field, pairs[i], options).distance;
   });
   return out;
+}
+
+std::vector<double> EditProblem::distances(const std::vector<double>& x) const {
+  return pair_distances(*field_at(x), pairs_, options_);
 }
 
 }  // namespace refracta

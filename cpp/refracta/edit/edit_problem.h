@@ -10,6 +10,11 @@
 
 namespace refracta {
 
+// Each pair's unweighted distance [m] for a field, measured as an edit would (pairs in parallel).
+// Throws std::invalid_argument for bad pairs or options.
+std::vector<double> pair_distances(const IndexField& field, const std::vector<PointPair>& pairs,
+                                   const PairOptions& options);
+
 struct ProblemSpec {
   // Names of the free parameters; empty: every parameter except the model's gauge ones.
   std::vector<std::string> free;

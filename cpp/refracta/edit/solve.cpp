@@ -1,7 +1,6 @@
 // solve_edit: validation, the insensitive-parameter check, the back-end, and the measured result.
 #include "refracta/edit/solve.h"
 
-#include "refracta/edit/pair_miss.h"
 
 #include <chrono>
 #include <cmath>
@@ -130,13 +129,5 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
   return out;
 }
 
-std::vector<double> pair_distances(const IndexField& field, const std::vector<PointPair>& pairs,
-                                   const PairOptions& options) {
-  options.validate();
-  validate_pairs(pairs, options);
-  std::vector<double> out;
-  for (const PointPair& pair : pairs) out.push_back(pair_miss<double>(field, pair, options).distance);
-  return out;
-}
 
 }  // namespace refracta

@@ -12,8 +12,4 @@ namespace refracta {
 SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pairs,
                         const ProblemSpec& spec, const SolveSettings& settings, WorkControl& control);
 
-// Each pair's unweighted distance [m] for a field, measured as an edit would.
-std::vector<double> pair_distances(const IndexField& field, const std::vector<PointPair>& pairs,
-                                   const PairOptions& options);
-
 }  // namespace refracta

@@ -31,7 +31,8 @@ const char* shadow_method_name(ShadowMethod method) {
 }
 
 void ShadowMapOptions::validate() const {
-  if (resolution < 2 || resolution > 16384) throw_invalid("resolution must be in [2, 16384] (got ", resolution, ")");
+  // 8192^2 texels of four double moments already take 2 GB.
+  if (resolution < 2 || resolution > 8192) throw_invalid("resolution must be in [2, 8192] (got ", resolution, ")");
   if (kernel < 1 || kernel % 2 == 0 || kernel > resolution) {
     throw_invalid("kernel must be an odd size >= 1 and <= resolution (got ", kernel, ")");
   }
@@ -213,7 +214,7 @@ double ShadowMap::shadow(const Vec3d& point, const Vec3d& normal) const {
   }
   // Bilinear filtering between texel centres, as texture hardware reads the moment map.
   const double fx = std::clamp(u - 0.5, 0.0, n - 1.0), fy = std::clamp(v - 0.5, 0.0, n - 1.0);
-  const int x0 = std::min(int(fx), n - 2 < 0 ? 0 : n - 2), y0 = std::min(int(fy), n - 2 < 0 ? 0 : n - 2);
+  const int x0 = std::min(int(fx), n - 2), y0 = std::min(int(fy), n - 2);  // resolution >= 2
   const double tx = fx - x0, ty = fy - y0;
   Moments4 b{0, 0, 0, 0};
   for (int k = 0; k < 4; ++k) {

@@ -62,11 +62,18 @@ Image render_raster(const Scene& scene, const Lighting& all_lights, const Camera
     if (hi > lo) oit.mboit.z_near = lo, oit.mboit.z_far = hi * (1.0 + 1e-6);
   }
 
-  // The shadow map covers, seen from the sun, the visible points within shadow_distance.
+  if (options.shadow_light >= int(lighting.spots.size())) {
+    throw_invalid("shadow_light ", options.shadow_light, " is not a spot light of the scene (it has ",
+                  lighting.spots.size(), ")");
+  }
+  const bool mapped = options.shadows != "embree" && options.shadows != "none";
+  ShadowMapOptions map_options = options.shadow_map;
+  if (mapped) map_options.method = parse_shadow_method(options.shadows);
+  // The sun's map (when the sun shines or its shadow is asked for) covers, seen from the sun, the
+  // visible points within shadow_distance.
   std::unique_ptr<ShadowMap> map;
-  if (options.shadows != "embree" && options.shadows != "none") {
-    ShadowMapOptions map_options = options.shadow_map;
-    map_options.method = parse_shadow_method(options.shadows);
+  const bool sun_needed = lighting.sun.radiance.maxCoeff() > 0.0 || (options.output_shadow && options.shadow_light < 0);
+  if (mapped && sun_needed) {
     const Vec3d along = -lighting.sun.direction.normalized();
     const Vec3d side = (std::abs(along.y()) < 0.99 ? along.cross(Vec3d::UnitY()) : along.cross(Vec3d::UnitX())).normalized();
     const Vec3d up = side.cross(along);
@@ -91,10 +98,8 @@ Image render_raster(const Scene& scene, const Lighting& all_lights, const Camera
   }
   // One perspective map per spot light, covering its cone.
   std::vector<std::unique_ptr<ShadowMap>> spot_maps;
-  if (map) {
+  if (mapped) {
     for (const SpotLight& spot : lighting.spots) {
-      ShadowMapOptions map_options = options.shadow_map;
-      map_options.method = parse_shadow_method(options.shadows);
       const Vec3d up = std::abs(spot.direction.y()) < 0.99 ? Vec3d::UnitY() : Vec3d::UnitX();
       const RasterView spot_view = RasterView::perspective(spot.position, spot.direction, up,
                                                            std::tan(0.5 * degrees_to_radians(spot.angle)),
@@ -102,16 +107,12 @@ Image render_raster(const Scene& scene, const Lighting& all_lights, const Camera
       spot_maps.push_back(std::make_unique<ShadowMap>(scene, spot_view, map_options, control));
     }
   }
-  if (options.shadow_light >= int(lighting.spots.size())) {
-    throw_invalid("shadow_light ", options.shadow_light, " is not a spot light of the scene (it has ",
-                  lighting.spots.size(), ")");
-  }
   const SunShadow from_map = [&](const Hit& hit, const Vec3d&) { return map->shadow(hit.point, hit.normal); };
   const SpotShadow from_spot_maps = [&](const Hit& hit, size_t k) { return spot_maps[k]->shadow(hit.point, hit.normal); };
   Lighting light = lighting;
   light.shadows = options.shadows != "none";
   const SunShadow* sun_shadow = map ? &from_map : nullptr;
-  const SpotShadow* spot_shadow = map ? &from_spot_maps : nullptr;
+  const SpotShadow* spot_shadow = mapped ? &from_spot_maps : nullptr;
 
   control.done = 0;
   Image image = render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
@@ -127,7 +128,7 @@ Image render_raster(const Scene& scene, const Lighting& all_lights, const Camera
       const SpotLight& spot = lighting.spots[options.shadow_light];
       if (!spot.covers(hit->point) || hit->normal.dot(spot.position - hit->point) <= 0.0) return Vec3d::Zero().eval();
       const double s = !light.shadows ? 0.0
-                       : map         ? spot_maps[options.shadow_light]->shadow(hit->point, hit->normal)
+                       : mapped      ? spot_maps[options.shadow_light]->shadow(hit->point, hit->normal)
                                      : spot_occlusion(scene, *hit, spot);
       return Vec3d(s, 1.0, 0.0);
     }
@@ -154,8 +155,13 @@ Image render_raster(const Scene& scene, const Lighting& all_lights, const Camera
   });
   if (stats) {
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    stats->shadow_build_seconds = map ? map->build_seconds() : 0.0;
-    stats->bytes_per_texel = map ? map->bytes_per_texel() : 0;
+    stats->shadow_build_seconds = 0.0;
+    stats->bytes_per_texel = 0;
+    if (map) spot_maps.push_back(std::move(map));
+    for (const auto& m : spot_maps) {
+      stats->shadow_build_seconds += m->build_seconds();
+      stats->bytes_per_texel = m->bytes_per_texel();
+    }
     stats->transparent_fragments = fragments.total();
     const double per_pixel = double(fragments.total()) / (double(camera.width()) * camera.height());
     stats->oit_bytes_per_pixel = any_transparent ? oit.bytes_per_pixel(per_pixel) : 0.0;
