@@ -10,7 +10,10 @@ install: .install.stamp
 .install.stamp: .ci/debian-packages.txt $(SOURCES)
 	bash .ci/install-debian-packages
 	$(PYTHON) -m pip install --upgrade --quiet pip
-	$(PYTHON) -m pip install -e '.[test]'
+	# Build requirements installed once, then no build isolation: the build directory keeps the
+	# same compiler paths, so rebuilding after an edit is incremental.
+	$(PYTHON) -m pip install --quiet 'scikit-build-core>=0.9' 'pybind11>=2.12'
+	$(PYTHON) -m pip install --no-build-isolation -e '.[test]'
 	touch $@
 
 demo: install
