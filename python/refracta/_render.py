@@ -9,61 +9,88 @@ import numpy as np
 from refracta import _core
 from refracta._progress import ProgressBar
 
+# Fields of _core.RenderOptions that render() exposes as keywords (their defaults live in C++).
+_OPTION_NAMES = tuple(name for name in dir(_core.RenderOptions) if not name.startswith("_") and name != "validate")
+
+
+def render_options(**options) -> _core.RenderOptions:
+    """A _core.RenderOptions with the given fields set (unknown names raise ValueError)."""
+    result = _core.RenderOptions()
+    for name, value in options.items():
+        if name not in _OPTION_NAMES:
+            raise ValueError(f"render: unknown option {name!r} (options: {', '.join(sorted(_OPTION_NAMES))})")
+        if name in ("spp", "max_depth", "rr_depth", "max_steps", "tile", "seed"):
+            if isinstance(value, bool) or int(value) != value or value < 0:
+                raise ValueError(f"{name} must be a whole number (got {value!r})")
+            value = int(value)
+        try:
+            setattr(result, name, value)
+        except TypeError as error:
+            raise ValueError(f"render: option {name}={value!r}: {error}") from None
+    result.validate()
+    return result
+
 
 def render(
     scene: _core.Scene,
     camera: _core.Camera,
     field: Optional[_core.IndexField] = None,
     method: str = "curved",
+    transport: str = "direct",
     spp: int = 1,
+    max_depth: Optional[int] = None,
+    spectral: bool = False,
     seed: int = 0,
     progress: Union[bool, Callable[[int, int], None]] = True,
-    max_length: float = 5000.0,
-    chord: float = 200.0,
-    sagitta: float = 1e-3,
-    tol: float = 1e-4,
-    table: bool = True,
-    integrator: Optional[str] = None,
-    march: str = "rk45",
-    step: float = 0.3,
-    max_steps: int = 1000,
-    guard_band: float = 0.1,
-    texture_filter: bool = True,
     stats: Optional[dict] = None,
+    **options,
 ) -> np.ndarray:
     """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3).
 
-    method: 'curved' -- exact curved rays: the integrator's path (stratified for height-only
-    fields, rk45 otherwise, to `tol` [m]) cut into chords tested against the scene -- at most
-    `chord` [m] long and never farther than `sagitta` [m] from the path -- hits refined on the
-    continuous path (height-only fields: every pixel served from one ElevationTable for the
-    eye height, interpolated to `tol`; table=False traces each pixel; integrator='rk45' forces rk45
-    per pixel); rays end after `max_length` [m] and show the sky in
-    their last direction. 'straight' -- ray casting without atmosphere (the reference). With
-    field=None both are straight. 'raster_march' -- the original editor's method: the scene is
-    rasterized from the camera (with `guard_band`, a fraction of the image added on each side)
-    and each pixel's curved ray is marched ('rk45' to `tol` over max_length, or march='rk4' with
-    `step` [m] for at most `max_steps` steps: the original's 0.3 m x 1000) until a step lands
-    behind the depth buffer; that raster pixel's colour is shown. It cannot show what no raster
-    pixel shows (outside the view, hidden, beyond the curved Earth's horizon). Textures are filtered
-    by OpenImageIO over each sample's ray-cone footprint (texture_filter=False point-samples them:
-    only for references). stats: a dict to fill with counts ('samples', 'chords': Embree queries
-    along the paths; raster_march does not count its marching). spp: samples per pixel (1: pixel centres; more: stratified
-    jitter, soft sun shadows), seeded by `seed`. progress: a bar on stderr (True), a callable
-    progress(done, total), or False. Runs on all cores with the GIL released; Ctrl-C stops it.
+    method: 'curved' -- exact curved rays: every segment (camera ray, bounce, shadow ray toward a
+    distant light) is the integrator's path (stratified for height-only fields, rk45 otherwise,
+    to `tol` [m]) cut into chords tested against the scene -- at most `chord` [m] long and never
+    farther than `sagitta` [m] from the path -- hits refined on the continuous path; height-only
+    fields serve camera rays from one ElevationTable for the eye (table=False traces each pixel;
+    trace='rk45' forces rk45); rays end after `max_length` [m] and see the sky in their last
+    direction. 'straight' -- ray casting without atmosphere (the reference); with field=None both
+    are straight. 'raster_march' -- the original editor's method: the scene rasterized from the
+    camera (with `guard_band`), each pixel's curved ray marched ('rk45' to `tol`, or march='rk4'
+    with `step` [m] for at most `max_steps` steps: the original's 0.3 m x 1000) until a step lands
+    behind the depth buffer; that raster pixel's colour is shown.
+
+    transport: 'direct' -- emitters seen directly and direct lighting (next-event estimation and
+    BSDF sampling, power-heuristic MIS) at the first non-specular surface, mirror and glass chains
+    followed up to max_depth; 'path' -- unidirectional path tracing with NEE and MIS, Russian
+    roulette after 3 bounces. max_depth counts scattering events (0: emitters only, 1: direct
+    lighting; Mitsuba's max_depth is this + 1; default _core.RenderOptions().max_depth).
+    spectral: 4 hero wavelengths per sample (Wilkie et al. 2014) with colours upsampled from RGB,
+    converted to linear sRGB through the CIE 1931 observer.
+    spp: samples per pixel (1: pixel centres; more: stratified jitter), seeded by `seed` per pixel
+    (independent of the thread count). Textures are filtered over each sample's ray-cone footprint
+    (texture_filter=False point-samples them). stats: a dict to fill with counts ('samples',
+    'chords': Embree queries along camera paths, 'invalid_samples'). progress: a bar on stderr
+    (True), a callable progress(done, total), or False. Runs on all cores with the GIL released;
+    Ctrl-C stops it. Further keywords: any field of refracta.RenderOptions (max_length, chord,
+    sagitta, tol, trace, table, tile, texture_filter, march, step, max_steps, guard_band, rr_depth).
     """
-    if isinstance(spp, bool) or int(spp) != spp:
+    if "integrator" in options:
+        raise ValueError("render: 'integrator' is now 'trace' (the ray integrator: 'rk45' or 'stratified')")
+    if max_depth is not None:
+        options["max_depth"] = max_depth
+    if isinstance(spectral, (bool, np.bool_)):
+        options["spectral"] = bool(spectral)
+    else:
+        raise ValueError(f"spectral must be True or False (got {spectral!r})")
+    if isinstance(spp, bool) or int(spp) != spp or spp < 1:
         raise ValueError(f"spp must be a whole number >= 1 (got {spp!r})")
-    if int(seed) != seed or seed < 0:
+    if isinstance(seed, bool) or int(seed) != seed or seed < 0:
         raise ValueError(f"seed must be a whole number >= 0 (got {seed!r})")
-    callback = ProgressBar("rendering") if progress is True else (progress or None)
-    if isinstance(max_steps, bool) or int(max_steps) != max_steps:
-        raise ValueError(f"max_steps must be a whole number >= 1 (got {max_steps!r})")
     if stats is not None and not isinstance(stats, dict):
         raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
-    image, counts = _core._render(scene, camera, field, method, int(spp), int(seed), max_length, chord, sagitta, tol,
-                                  bool(table), integrator, march, step, int(max_steps), guard_band,
-                                  bool(texture_filter), callback)
+    settings = render_options(method=method, transport=transport, spp=spp, seed=seed, **options)
+    callback = ProgressBar("rendering") if progress is True else (progress or None)
+    image, counts = _core._render(scene, camera, field, settings, callback)
     if stats is not None:
         stats.update(counts)
     return image

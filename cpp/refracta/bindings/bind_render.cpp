@@ -10,42 +10,55 @@
 namespace refracta {
 
 void bind_render(py::module_& m) {
+  py::class_<RenderOptions>(m, "RenderOptions", R"doc(
+Options of refracta.render, with their defaults (defined once, here). Set any field by name;
+validate() reports every bad value at once.)doc")
+      .def(py::init<>())
+      .def_property("method", [](const RenderOptions& o) { return o.method == RenderMethod::kStraight ? "straight" : o.method == RenderMethod::kCurved ? "curved" : "raster_march"; },
+                    [](RenderOptions& o, const std::string& v) { o.method = parse_render_method(v); },
+                    "'curved' (exact curved rays), 'straight' (no refraction) or 'raster_march' (the original editor's method)")
+      .def_property("transport", [](const RenderOptions& o) { return o.transport == Transport::kDirect ? "direct" : "path"; },
+                    [](RenderOptions& o, const std::string& v) { o.transport = parse_transport(v); },
+                    "'direct' (direct lighting with MIS, mirror/glass chains) or 'path' (path tracing)")
+      .def_readwrite("spp", &RenderOptions::spp, "samples per pixel (stratified jitter when > 1)")
+      .def_readwrite("seed", &RenderOptions::seed, "seed of the per-pixel random streams")
+      .def_readwrite("max_depth", &RenderOptions::max_depth, "scattering events per path (Mitsuba's max_depth - 1)")
+      .def_readwrite("rr_depth", &RenderOptions::rr_depth, "Russian roulette from this many events on")
+      .def_readwrite("spectral", &RenderOptions::spectral, "4 hero wavelengths per sample instead of RGB")
+      .def_readwrite("max_length", &RenderOptions::max_length, "[m] curved rays end here and show the sky")
+      .def_readwrite("chord", &RenderOptions::chord, "[m] longest straight chord tested against the geometry")
+      .def_readwrite("sagitta", &RenderOptions::sagitta, "[m] largest distance between a chord and the path")
+      .def_readwrite("tol", &RenderOptions::tol, "[m] curved-ray integration tolerance")
+      .def_property("trace", [](const RenderOptions& o) -> py::object { if (o.trace) return py::str(trace_method_name(*o.trace)); return py::none(); },
+                    [](RenderOptions& o, const py::object& v) { o.trace = v.is_none() ? std::nullopt : std::optional<TraceMethod>(parse_trace_method(py::cast<std::string>(v))); },
+                    "ray integrator for curved rays: None (stratified for height-only fields, rk45 otherwise), 'rk45', 'stratified'")
+      .def_readwrite("table", &RenderOptions::use_table, "height-only fields: serve camera rays from one ElevationTable")
+      .def_readwrite("tile", &RenderOptions::tile, "tile size [pixels] of the parallel loop")
+      .def_readwrite("texture_filter", &RenderOptions::texture_filter, "filter textures over ray-cone footprints")
+      .def_property("march", [](const RenderOptions& o) { return trace_method_name(o.march); },
+                    [](RenderOptions& o, const std::string& v) { o.march = parse_trace_method(v); },
+                    "raster_march: 'rk45' to tol, or 'rk4' with step (the original)")
+      .def_readwrite("step", &RenderOptions::step, "[m] raster_march rk4 step")
+      .def_readwrite("max_steps", &RenderOptions::max_steps, "raster_march rk4 steps")
+      .def_readwrite("guard_band", &RenderOptions::guard_band, "raster_march: extra raster view per side (fraction)")
+      .def("validate", &RenderOptions::validate);
+
   m.def("_render",
         [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::shared_ptr<IndexField>& field,
-           const std::string& method, int spp, uint64_t seed, double max_length, double chord, double sagitta, double tol,
-           bool table, std::optional<std::string> integrator, const std::string& march, double step, int max_steps,
-           double guard_band, bool texture_filter, const py::object& progress) {
+           const RenderOptions& options, const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
-          RenderOptions options;
-          options.method = parse_render_method(method);
-          options.spp = spp;
-          options.seed = seed;
-          options.max_length = max_length;
-          options.chord = chord;
-          options.sagitta = sagitta;
-          options.tol = tol;
-          options.use_table = table;
-          if (integrator) options.integrator = parse_trace_method(*integrator);
-          options.march = parse_trace_method(march);
-          options.step = step;
-          options.max_steps = max_steps;
-          options.guard_band = guard_band;
-          options.texture_filter = texture_filter;
           options.validate();
           WorkControl control;
           Image image;
           RenderStats stats;
-          run_interruptible(control, progress, [&] {
-            image = render(scene->geometry, scene->lighting, camera, field, options, control, &stats);
-          });
+          run_interruptible(control, progress, [&] { image = render(*scene, camera, field, options, control, &stats); });
           py::dict counts;
           counts["samples"] = stats.samples;
           counts["chords"] = stats.chords;
+          counts["invalid_samples"] = stats.invalid_samples;
           return py::make_tuple(image_to_float32(image), counts);
         },
-        py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("method"), py::arg("spp"), py::arg("seed"),
-        py::arg("max_length"), py::arg("chord"), py::arg("sagitta"), py::arg("tol"), py::arg("table"), py::arg("integrator"),
-        py::arg("march"), py::arg("step"), py::arg("max_steps"), py::arg("guard_band"), py::arg("texture_filter"), py::arg("progress"));
+        py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("options"), py::arg("progress"));
 
   m.def("_render_raster",
         [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::string& shadows, int resolution,
@@ -98,7 +111,7 @@ void bind_render(py::module_& m) {
           Image image;
           RasterRenderStats stats;
           run_interruptible(control, progress, [&] {
-            image = render_raster(scene->geometry, scene->lighting, camera, options, control, &stats);
+            image = render_raster(*scene, camera, options, control, &stats);
           });
           py::dict counts;
           counts["seconds"] = stats.seconds;

@@ -3,6 +3,16 @@
 
 #include "refracta/scene/image_io.h"
 #include "refracta/scene/obj_loader.h"
+#include "refracta/shading/area_light.h"
+#include "refracta/shading/constant_environment.h"
+#include "refracta/shading/dielectric.h"
+#include "refracta/shading/environment_light.h"
+#include "refracta/shading/phong.h"
+#include "refracta/shading/point_light.h"
+#include "refracta/shading/principled.h"
+#include "refracta/shading/sphere_light.h"
+#include "refracta/shading/spot_light.h"
+#include "refracta/shading/sun_light.h"
 #include "refracta/shading/tonemap.h"
 
 #include <cmath>
@@ -14,13 +24,83 @@ namespace {
 
 Vec3d to_rgb(const py::handle& value, const char* what) { return to_point(value, what); }
 
-Material material_from(const py::object& kd, const py::object& ks, double ns, double alpha = 1.0) {
-  Material m;
-  m.kd = to_rgb(kd, "kd");
-  m.ks = to_rgb(ks, "ks");
-  m.ns = ns;
-  m.alpha = alpha;
-  m.validate();
+// The material of an add_* call: `material` when given, else the Blinn-Phong shorthand (kd, ks,
+// ns, a kd texture, alpha), as the MTL files and the early API have it.
+int material_of(RenderScene& s, const py::object& material, const py::object& kd, const py::object& ks, double ns,
+                int texture = -1, double alpha = 1.0) {
+  if (!material.is_none()) {
+    std::shared_ptr<Material> m;
+    try {
+      m = py::cast<std::shared_ptr<Material>>(material);
+    } catch (const py::cast_error&) {
+      throw_invalid("material must be a refracta.shading material (got ", std::string(py::str(py::type::of(material))), ")");
+    }
+    return s.add_material(m);
+  }
+  return s.add_material(std::make_shared<BlinnPhong>(to_rgb(kd, "kd"), to_rgb(ks, "ks"), ns, texture, alpha));
+}
+
+// An emissive geometry's area light (emission: RGB radiance [W/(m^2 sr)] or None).
+void add_emission(RenderScene& s, unsigned geometry, const py::object& emission, bool two_sided) {
+  if (emission.is_none()) return;
+  const Color radiance = Color::illuminant(to_rgb(emission, "emission"));
+  if (s.geometry.is_spheres(geometry)) {
+    throw_invalid("emissive spheres: use add_sphere(..., emission=...)");
+  }
+  s.add_light(std::make_shared<AreaLight>(s.geometry.meshes().at(geometry).mesh, radiance, two_sided), int(geometry));
+}
+
+Mesh mesh_from(const py::object& vertices, const py::object& triangles) {
+  Mesh mesh;
+  mesh.vertices = to_points(vertices, "vertices");
+  py::array_t<long long, py::array::c_style | py::array::forcecast> t;
+  try {
+    t = py::cast<decltype(t)>(triangles);
+  } catch (const py::cast_error&) {
+    throw_invalid("triangles must be an integer array of shape (M, 3)");
+  }
+  if (t.ndim() != 2 || t.shape(1) != 3) throw_invalid("triangles must have shape (M, 3)");
+  mesh.triangles.resize(size_t(t.shape(0)));
+  for (py::ssize_t i = 0; i < t.shape(0); ++i) {
+    for (int k = 0; k < 3; ++k) mesh.triangles[size_t(i)][k] = int(std::clamp<long long>(t.at(i, k), -1, 1LL << 30));
+  }
+  return mesh;
+}
+
+// A gradient sky as a small equirectangular map: linear in sin(elevation) from the horizon (and
+// below) to the zenith, constant in azimuth (rows from the zenith down).
+Image gradient_sky(const Vec3d& horizon, const Vec3d& zenith) {
+  constexpr int kRows = 256, kColumns = 4;
+  Image image(kColumns, kRows, 3);
+  for (int y = 0; y < kRows; ++y) {
+    const double theta = kPi * (y + 0.5) / kRows;  // from the zenith
+    const double t = std::clamp(std::cos(theta), 0.0, 1.0);
+    const Vec3d c = (1.0 - t) * horizon + t * zenith;
+    for (int x = 0; x < kColumns; ++x) {
+      for (int k = 0; k < 3; ++k) image.at(x, y)[k] = float(c[k]);
+    }
+  }
+  return image;
+}
+
+Mat3d rotation_from(const py::object& rotation) {
+  if (rotation.is_none()) return Mat3d::Identity();
+  if (py::isinstance<py::float_>(rotation) || py::isinstance<py::int_>(rotation)) {
+    return EnvironmentLight::rotation_about_y(py::cast<double>(rotation));
+  }
+  DoubleArray array;
+  try {
+    array = py::cast<DoubleArray>(rotation);
+  } catch (const py::cast_error&) {
+    throw_invalid("rotation must be an angle about y [deg] or a 3 x 3 rotation matrix");
+  }
+  if (array.ndim() != 2 || array.shape(0) != 3 || array.shape(1) != 3) {
+    throw_invalid("rotation must be an angle about y [deg] or a 3 x 3 rotation matrix");
+  }
+  Mat3d m;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) m(i, j) = array.at(i, j);
+  }
   return m;
 }
 
@@ -90,38 +170,41 @@ py::array_t<float> image_to_float32(const Image& image) {
 
 void bind_scene(py::module_& m) {
   py::class_<RenderScene, std::shared_ptr<RenderScene>>(m, "Scene", R"doc(
-Geometry (Embree) with Blinn-Phong materials, a sun and a sky. Materials: kd (diffuse albedo,
-RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)doc")
+Geometry (Embree), materials (refracta.shading) and lights. Scene() starts empty: no sun, no sky,
+black. Every add_* takes material= (any refracta.shading material); without it the Blinn-Phong
+shorthand kd (diffuse albedo, RGB in [0, 1]), ks (specular albedo), ns (Phong exponent) applies.
+Meshes and spheres with emission= [W/(m^2 sr), RGB] are area lights (one-sided on the triangles'
+counter-clockwise front unless two_sided). Units: metres, y up.)doc")
       .def(py::init<>())
       .def("add_mesh",
-           [](RenderScene& s, const py::object& vertices, const py::object& triangles, const py::object& kd,
-              const py::object& ks, double ns, const py::object& uvs, std::optional<std::string> texture, double alpha) {
-             Mesh mesh;
-             mesh.vertices = to_points(vertices, "vertices");
-             const std::vector<Vec3d>& v = mesh.vertices;
-             py::array_t<long long, py::array::c_style | py::array::forcecast> t;
-             try {
-               t = py::cast<decltype(t)>(triangles);
-             } catch (const py::cast_error&) {
-               throw_invalid("triangles must be an integer array of shape (M, 3)");
+           [](RenderScene& s, const py::object& vertices, const py::object& triangles, const py::object& material,
+              const py::object& emission, bool two_sided, const py::object& normals, const py::object& uvs,
+              const py::object& kd, const py::object& ks, double ns, std::optional<std::string> texture, double alpha) {
+             Mesh mesh = mesh_from(vertices, triangles);
+             if (!uvs.is_none()) mesh.uvs = to_uvs(uvs, mesh.vertices.size());
+             if (!normals.is_none()) {
+               mesh.normals = to_points(normals, "normals");
+               if (mesh.normals.size() != mesh.vertices.size()) throw_invalid("normals must have one entry per vertex");
+               for (auto& n : mesh.normals) {
+                 if (!(n.norm() > 0.0)) throw_invalid("normals must be non-zero");
+                 n.normalize();
+               }
              }
-             if (t.ndim() != 2 || t.shape(1) != 3) throw_invalid("triangles must have shape (M, 3)");
-             std::vector<std::array<int, 3>> tris(t.shape(0));
-             for (py::ssize_t i = 0; i < t.shape(0); ++i) {
-               for (int k = 0; k < 3; ++k) tris[i][k] = int(std::clamp<long long>(t.at(i, k), -1, 1LL << 30));
-             }
-             mesh.triangles = tris;
-             if (!uvs.is_none()) mesh.uvs = to_uvs(uvs, v.size());
-             Material material = material_from(kd, ks, ns, alpha);
-             if (texture) material.kd_texture = s.geometry.textures().add(*texture);
-             return s.geometry.add_mesh(mesh, material);
+             const int tex = texture ? s.geometry.textures().add(*texture) : -1;
+             if (tex >= 0 && mesh.uvs.empty()) throw_invalid("add_mesh: a texture needs uvs");
+             const unsigned id = s.geometry.add_mesh(mesh, material_of(s, material, kd, ks, ns, tex, alpha));
+             add_emission(s, id, emission, two_sided);
+             return id;
            },
-           py::arg("vertices"), py::arg("triangles"), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5),
-           py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0, py::arg("uvs") = py::none(),
-           py::arg("texture") = py::none(), py::arg("alpha") = 1.0,
-           "Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices; optional uvs (N, 2) texture\n"
-           "coordinates (u right, v up) and a texture image file multiplying kd; alpha < 1 makes it transparent\n"
-           "in render_raster. Returns its id.")
+           py::arg("vertices"), py::arg("triangles"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
+           py::arg("two_sided") = false, py::arg("normals") = py::none(), py::arg("uvs") = py::none(),
+           py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
+           py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("alpha") = 1.0,
+           "Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);\n"
+           "optional per-vertex normals (N, 3) (shading normals, interpolated) and uvs (N, 2) texture\n"
+           "coordinates (u right, v up); emission makes it an area light. The kd/ks/ns/texture/alpha\n"
+           "shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without\n"
+           "material. Returns its id.")
       .def("add_obj",
            [](RenderScene& s, const std::string& path, const py::object& offset, double scale) {
              const Vec3d shift = to_point(offset, "offset");
@@ -129,33 +212,52 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
              py::list ids;
              for (auto& part : load_obj(path)) {
                for (auto& v : part.mesh.vertices) v = v * scale + shift;
-               if (!part.texture.empty()) part.material.kd_texture = s.geometry.textures().add(part.texture);
-               ids.append(s.geometry.add_mesh(part.mesh, part.material));
+               const MtlMaterial& mtl = part.material;
+               const int tex = mtl.texture.empty() ? -1 : s.geometry.textures().add(mtl.texture);
+               MaterialPtr material;
+               if ((mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7) && mtl.alpha < 1.0 && mtl.ni > 1.0) {
+                 material = std::make_shared<Dielectric>(Ior(mtl.ni));  // MTL glass
+               } else if (mtl.pr >= 0.0 || mtl.pm >= 0.0) {  // the PBR extension: Pr, Pm
+                 PrincipledParameters p;
+                 p.roughness = mtl.pr >= 0.0 ? mtl.pr : 0.5;
+                 p.metallic = mtl.pm >= 0.0 ? mtl.pm : 0.0;
+                 material = std::make_shared<Principled>(mtl.kd, p, tex);
+               } else {
+                 material = std::make_shared<BlinnPhong>(mtl.kd, mtl.ks, mtl.ns, tex, mtl.alpha);
+               }
+               const unsigned id = s.geometry.add_mesh(part.mesh, s.add_material(material));
+               if (mtl.ke.maxCoeff() > 0.0) {
+                 s.add_light(std::make_shared<AreaLight>(part.mesh, Color::illuminant(mtl.ke), false), int(id));
+               }
+               ids.append(id);
              }
              return ids;
            },
            py::arg("path"), py::arg("offset") = py::make_tuple(0.0, 0.0, 0.0), py::arg("scale") = 1.0,
-           "Add a Wavefront OBJ (+ MTL: Kd, Ks, Ns, map_Kd with the file's texture coordinates) file, scaled\n"
-           "then offset; returns the geometry ids. A missing OBJ, MTL or texture raises refracta.IoError.")
+           "Add a Wavefront OBJ file (vertex normals kept as shading normals) with its MTL materials, scaled\n"
+           "then offset: Kd, Ks, Ns, d, map_Kd -> BlinnPhong; Pr/Pm (PBR extension) -> Principled; illum 4/6/7\n"
+           "with d < 1 and Ni > 1 -> Dielectric(Ni); Ke -> an area light. Returns the geometry ids. A\n"
+           "missing OBJ, MTL or texture raises refracta.IoError.")
       .def("add_ground",
-           [](RenderScene& s, double height, double size, const py::object& kd, const py::object& ks, double ns,
-              std::optional<std::string> texture, double texture_size) {
+           [](RenderScene& s, double height, double size, const py::object& material, const py::object& kd,
+              const py::object& ks, double ns, std::optional<std::string> texture, double texture_size) {
              Mesh mesh = ground_mesh(height, 0.5 * size);
-             Material material = material_from(kd, ks, ns);
+             int tex = -1;
              if (texture) {
                if (!(texture_size > 0.0) || !std::isfinite(texture_size)) {
                  throw_invalid("texture_size must be > 0 (got ", texture_size, ")");
                }
-               material.kd_texture = s.geometry.textures().add(*texture);
+               tex = s.geometry.textures().add(*texture);
                for (const auto& v : mesh.vertices) mesh.uvs.emplace_back(v.x() / texture_size, -v.z() / texture_size);
              }
-             return s.geometry.add_mesh(mesh, material);
+             return s.geometry.add_mesh(mesh, material_of(s, material, kd, ks, ns, tex));
            },
-           py::arg("height") = 0.0, py::arg("size") = 20000.0, py::arg("kd") = py::make_tuple(0.3, 0.3, 0.3),
-           py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0, py::arg("texture") = py::none(),
-           py::arg("texture_size") = 1.0,
-           "Add a square ground of side `size` [m] at y = height, centred on the origin; an optional texture\n"
-           "repeats every texture_size [m] (u along +x, v along -z).")
+           py::arg("height") = 0.0, py::arg("size") = 20000.0, py::arg("material") = py::none(),
+           py::arg("kd") = py::make_tuple(0.3, 0.3, 0.3), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
+           py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("texture_size") = 1.0,
+           "Add a square ground of side `size` [m] at y = height, centred on the origin, facing up; an optional\n"
+           "texture repeats every texture_size [m] (u along +x, v along -z) and multiplies kd (or a\n"
+           "textured material's colour).")
       .def("add_billboard",
            [](RenderScene& s, const py::object& centre, double width, double height, const std::string& texture,
               const py::object& facing, const py::object& kd) {
@@ -169,9 +271,8 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
              mesh.vertices = {c - across - up, c + across - up, c + across + up, c - across + up};
              mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
              mesh.uvs = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}};
-             Material material = material_from(kd, py::make_tuple(0.0, 0.0, 0.0), 1.0);
-             material.kd_texture = s.geometry.textures().add(texture);
-             return s.geometry.add_mesh(mesh, material);
+             const int tex = s.geometry.textures().add(texture);
+             return s.geometry.add_mesh(mesh, s.add_material(std::make_shared<BlinnPhong>(to_rgb(kd, "kd"), Vec3d::Zero(), 1.0, tex)));
            },
            py::arg("centre"), py::arg("width"), py::arg("height"), py::arg("texture"),
            py::arg("facing") = py::make_tuple(-1.0, 0.0, 0.0), py::arg("kd") = py::make_tuple(1.0, 1.0, 1.0),
@@ -179,71 +280,109 @@ RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.)
            "`centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the\n"
            "-x side), upright.")
       .def("add_box",
-           [](RenderScene& s, const py::object& centre, const py::object& size, const py::object& kd,
-              const py::object& ks, double ns, double alpha) {
+           [](RenderScene& s, const py::object& centre, const py::object& size, const py::object& material,
+              const py::object& emission, const py::object& kd, const py::object& ks, double ns, double alpha) {
              const Mesh mesh = box_mesh(to_point(centre, "centre"), to_point(size, "size"));
-             return s.geometry.add_mesh(mesh.vertices, mesh.triangles, material_from(kd, ks, ns, alpha));
+             const unsigned id = s.geometry.add_mesh(mesh, material_of(s, material, kd, ks, ns, -1, alpha));
+             add_emission(s, id, emission, false);
+             return id;
            },
-           py::arg("centre"), py::arg("size"), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5),
-           py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0, py::arg("alpha") = 1.0,
-           "Add an axis-aligned box: centre (3,) and size (3,) [m]; alpha < 1: transparent in render_raster.")
+           py::arg("centre"), py::arg("size"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
+           py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
+           py::arg("ns") = 1.0, py::arg("alpha") = 1.0,
+           "Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]; alpha < 1: transparent in\n"
+           "render_raster.")
       .def("add_sphere",
-           [](RenderScene& s, const py::object& centre, double radius, const py::object& kd, const py::object& ks,
-              double ns) {
-             return s.geometry.add_spheres({to_point(centre, "centre")}, {radius}, material_from(kd, ks, ns));
-           },
-           py::arg("centre"), py::arg("radius"), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5),
-           py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0), py::arg("ns") = 1.0, "Add a sphere (exact, not tessellated).")
-      .def("set_sun",
-           [](RenderScene& s, const py::object& direction, const py::object& radiance, double angular_diameter) {
-             Sun sun;
-             sun.direction = to_point(direction, "direction");
-             sun.radiance = to_rgb(radiance, "radiance");
-             sun.angular_diameter = angular_diameter;
-             sun.validate();
-             s.lighting.sun = sun;
-           },
-           py::arg("direction"), py::arg("radiance"), py::arg("angular_diameter") = 0.53,
-           "The sun: direction toward it, disc radiance (RGB), angular diameter [deg].")
-      .def("set_sky",
-           [](RenderScene& s, const py::object& horizon, const py::object& zenith,
-              std::optional<std::string> environment, double scale) {
-             Sky sky;
-             sky.horizon = horizon.is_none() ? sky.horizon : to_rgb(horizon, "horizon");
-             sky.zenith = zenith.is_none() ? sky.horizon : to_rgb(zenith, "zenith");
-             sky.scale = scale;
-             if (environment) {
-               sky.textures = s.geometry.shared_textures();
-               sky.environment = s.geometry.textures().add(*environment);
+           [](RenderScene& s, const py::object& centre, double radius, const py::object& material,
+              const py::object& emission, const py::object& kd, const py::object& ks, double ns) {
+             const Vec3d c = to_point(centre, "centre");
+             const unsigned id = s.geometry.add_spheres({c}, {radius}, material_of(s, material, kd, ks, ns));
+             if (!emission.is_none()) {
+               s.add_light(std::make_shared<SphereLight>(c, radius, Color::illuminant(to_rgb(emission, "emission"))), int(id));
              }
-             sky.validate();
-             s.lighting.sky = sky;
+             return id;
+           },
+           py::arg("centre"), py::arg("radius"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
+           py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
+           py::arg("ns") = 1.0, "Add a sphere (exact, not tessellated); emission makes it a spherical light.")
+      .def("set_sun",
+           [](RenderScene& s, const py::object& direction, const py::object& radiance, double angular_diameter,
+              double limb_darkening) {
+             auto sun = std::make_shared<SunLight>(to_point(direction, "direction"), Color::illuminant(to_rgb(radiance, "radiance")),
+                                                   angular_diameter, limb_darkening);
+             s.remove_lights_if([](const Light& l) { return dynamic_cast<const SunLight*>(&l) != nullptr; });
+             s.add_light(sun);
+           },
+           py::arg("direction"), py::arg("radiance"), py::arg("angular_diameter") = 0.53, py::arg("limb_darkening") = 0.0,
+           "The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter [deg],\n"
+           "limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.")
+      .def("set_sky",
+           [](RenderScene& s, const py::object& horizon, const py::object& zenith, std::optional<std::string> environment,
+              double scale) {
+             s.remove_lights_if([](const Light& l) { return l.is_infinite() && !dynamic_cast<const SunLight*>(&l); });
+             if (environment) {
+               s.add_light(std::make_shared<EnvironmentLight>(read_image(*environment), scale));
+               return;
+             }
+             const Vec3d h = horizon.is_none() ? Vec3d(0.7, 0.8, 0.95) : to_rgb(horizon, "horizon");
+             const Vec3d z = zenith.is_none() ? h : to_rgb(zenith, "zenith");
+             if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("scale must be >= 0 (got ", scale, ")");
+             if (h.maxCoeff() > 0.0 || z.maxCoeff() > 0.0) {
+               s.add_light(std::make_shared<EnvironmentLight>(gradient_sky(h, z), scale));
+             }
            },
            py::arg("horizon") = py::none(), py::arg("zenith") = py::none(), py::arg("environment") = py::none(),
            py::arg("scale") = 1.0,
-           "Sky radiance toward the horizon (and below) and straight up (default: same, a constant sky), or an\n"
-           "equirectangular environment map file (y up, top row the zenith, centre column along +x, radiance\n"
-           "times `scale`; 8/16-bit files are sRGB-decoded).")
+           "A sky (replacing any environment): radiance toward the horizon (and below) and straight up, linear in\n"
+           "the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular\n"
+           "environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.")
+      .def("set_environment",
+           [](RenderScene& s, const py::object& source, const py::object& rotation, double scale) {
+             s.remove_lights_if([](const Light& l) { return l.is_infinite() && !dynamic_cast<const SunLight*>(&l); });
+             if (py::isinstance<py::str>(source)) {
+               s.add_light(std::make_shared<EnvironmentLight>(read_image(py::cast<std::string>(source)), scale, rotation_from(rotation)));
+             } else if (py::isinstance<py::array>(source) && py::cast<py::array>(source).ndim() >= 2) {
+               s.add_light(std::make_shared<EnvironmentLight>(array_to_image(source), scale, rotation_from(rotation)));
+             } else {
+               const Vec3d radiance = to_rgb(source, "radiance") * scale;
+               s.add_light(std::make_shared<ConstantEnvironment>(Color::illuminant(radiance)));
+             }
+           },
+           py::arg("source"), py::arg("rotation") = py::none(), py::arg("scale") = 1.0,
+           "The environment (replacing any sky): an RGB radiance (a constant environment), an equirectangular\n"
+           "map file (EXR/HDR/PNG through OpenImageIO) or a float array (H, W, 3), times `scale`, turned by\n"
+           "`rotation` (degrees about y, or a 3 x 3 matrix). Orientation: refracta.lights.EnvironmentLight.")
+      .def("add_light",
+           [](RenderScene& s, const std::shared_ptr<Light>& light) {
+             if (!light) throw_invalid("light must be a refracta.lights light");
+             return s.add_light(light);
+           },
+           py::arg("light"), "Add any refracta.lights light (not area lights of geometry: use emission=). Returns its index.")
+      .def("add_point_light",
+           [](RenderScene& s, const py::object& position, const py::object& intensity) {
+             return s.add_light(std::make_shared<PointLight>(to_point(position, "position"), Color::illuminant(to_rgb(intensity, "intensity"))));
+           },
+           py::arg("position"), py::arg("intensity"),
+           "Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns its index.")
       .def("add_spot_light",
            [](RenderScene& s, const py::object& position, const py::object& direction, double angle,
               const py::object& intensity, double radius) {
-             SpotLight spot;
-             spot.position = to_point(position, "position");
-             spot.direction = to_point(direction, "direction");
-             spot.angle = angle;
-             spot.intensity = to_rgb(intensity, "intensity");
-             spot.radius = radius;
-             spot.validate();
-             s.lighting.spots.push_back(spot);
-             return s.lighting.spots.size() - 1;
+             if (!(angle > 0.0 && angle <= 170.0)) throw_invalid("spot light angle must be in (0, 170] deg (got ", angle, ")");
+             if (!(radius >= 0.0) || !std::isfinite(radius)) throw_invalid("spot light radius must be >= 0 (got ", radius, ")");
+             const size_t index = s.add_light(std::make_shared<SpotLight>(
+                 to_point(position, "position"), to_point(direction, "direction"), angle,
+                 Color::illuminant(to_rgb(intensity, "intensity"))));
+             if (radius > 0.0) s.set_shadow_radius(index, radius);
+             size_t spots = 0;
+             for (const auto& l : s.lights()) spots += dynamic_cast<const SpotLight*>(l.get()) != nullptr;
+             return spots - 1;
            },
            py::arg("position"), py::arg("direction"), py::arg("angle") = 60.0,
            py::arg("intensity") = py::make_tuple(100.0, 100.0, 100.0), py::arg("radius") = 0.0,
            "Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] with\n"
-           "`intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 makes it a disc (area light) whose\n"
-           "shadows are sampled soft. Returns its index.")
-      .def_property("shadows", [](const RenderScene& s) { return s.lighting.shadows; },
-                    [](RenderScene& s, bool on) { s.lighting.shadows = on; })
+           "`intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives render_raster's 'embree'\n"
+           "reference soft shadows of a disc that size. Returns its index among the spot lights.")
+      .def_property_readonly("lights", [](const RenderScene& s) { return s.lights(); })
       .def_property_readonly("geometry_count", [](const RenderScene& s) { return s.geometry.geometry_count(); })
       .def("intersect",
            [](const RenderScene& s, const py::object& origin, const py::object& direction) -> py::object {

@@ -4,15 +4,10 @@
 #include "refracta/bindings/bindings.h"
 #include "refracta/core/image.h"
 #include "refracta/scene/camera.h"
+#include "refracta/render/render_scene.h"
 #include "refracta/scene/embree_scene.h"
-#include "refracta/shading/lights.h"
 
 namespace refracta {
-
-struct RenderScene {
-  Scene geometry;
-  Lighting lighting;
-};
 
 py::array_t<float> image_to_float32(const Image& image);
 

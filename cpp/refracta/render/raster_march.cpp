@@ -6,10 +6,15 @@
 // Inherent limits, kept on purpose: what no raster pixel shows (outside the view and guard band,
 // hidden behind nearer surfaces, below the horizon of a curved Earth) cannot appear, and a step
 // that passes behind a thin object's depth counts as a hit on it.
+#include "refracta/core/error.h"
 #include "refracta/raster/rasterizer.h"
 #include "refracta/rays/trace.h"
+#include "refracta/render/caster.h"
+#include "refracta/render/integrator.h"
 #include "refracta/render/renderer.h"
 #include "refracta/render/tile_loop.h"
+
+#include <tbb/enumerable_thread_specific.h>
 
 #include <cmath>
 
@@ -72,20 +77,38 @@ void refine_crossing(const RasterFrame& frame, const RayNode<double>& a, const R
 
 }  // namespace
 
-Image render_raster_march(const Scene& scene, const Lighting& lighting, const Camera& camera, const FieldPtr& field,
+Image render_raster_march(const RenderScene& render_scene, const Camera& camera, const FieldPtr& field,
                           const RenderOptions& options, WorkControl& control, RenderStats* stats) {
+  if (options.spectral) throw_invalid("raster_march renders RGB only (spectral=True needs method='curved')");
+  const Scene& scene = render_scene.geometry;
   RasterFrame frame{RasterView::from_camera(camera, options.guard_band), {}, {}};
   frame.buffer = rasterize(scene, frame.view, control);
   const Vec3d eye = camera.position();
+  // Raster pixels are shaded by the straight-ray integrator (what the original did: the colour
+  // of the rasterized surface), one sample each, seeded per raster pixel.
+  RenderOptions straight = options;
+  straight.method = RenderMethod::kStraight;
+  const Caster caster(scene, nullptr, straight);
+  const std::unique_ptr<Integrator> integrator = make_integrator(render_scene, caster, straight);
+  tbb::enumerable_thread_specific<ScratchBuffer> scratch_per_thread;
+  const double pixel_angle = options.texture_filter ? camera.pixel_angle() : 0.0;
   frame.colour = render_tiles(frame.view.width(), frame.view.height(), options.tile, control, [&](int x, int y) {
     PathEnd end;
     end.hit = surface_at(scene, frame.buffer, x, y, eye);
     if (!end.hit) return Vec3d::Zero().eval();
     end.direction = (end.hit->point - eye).normalized();
     end.length = end.hit->t;
-    Rng rng(options.seed, uint64_t(y) * uint64_t(frame.view.width()) + uint64_t(x));
-    return shade(scene, lighting, end, rng, false, options.texture_filter ? camera.pixel_angle() : 0.0);
+    Sampler sampler{Rng(options.seed, uint64_t(y) * uint64_t(frame.view.width()) + uint64_t(x))};
+    SampledWavelengths lambda = SampledWavelengths::rgb();
+    const Spectrum L = integrator->li_after(eye, end.direction, end, pixel_angle, lambda, sampler, scratch_per_thread.local());
+    return Vec3d(L.head<3>().matrix());
   });
+  const SampledWavelengths rgb = SampledWavelengths::rgb();
+  auto sky = [&](const Vec3d& dir) {
+    PathEnd escaped;
+    escaped.direction = dir;
+    return Vec3d(integrator->lighting().escaped(escaped, dir, nullptr, 0.0, true, rgb).head<3>().matrix());
+  };
   auto colour_at = [&](int px, int py) {
     const float* c = frame.colour.at(px, py);
     return Vec3d(c[0], c[1], c[2]);
@@ -104,7 +127,7 @@ Image render_raster_march(const Scene& scene, const Lighting& lighting, const Ca
     const Vec3d dir = camera.direction(x + 0.5, y + 0.5);
     if (!field) {  // a straight ray projects onto its own pixel all along
       const int px = x + frame.view.offset_x(), py = y + frame.view.offset_y();
-      return frame.buffer.covered(px, py) ? colour_at(px, py) : lighting.sky.radiance(dir);
+      return frame.buffer.covered(px, py) ? colour_at(px, py) : sky(dir);
     }
     std::optional<Vec3d> radiance;
     Vec3d last = dir;
@@ -116,7 +139,7 @@ Image render_raster_march(const Scene& scene, const Lighting& lighting, const Ca
       radiance = colour_at(px, py);
       return false;
     });
-    return radiance ? *radiance : lighting.sky.radiance(last);
+    return radiance ? *radiance : sky(last);
   });
 }
 

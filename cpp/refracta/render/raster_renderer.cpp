@@ -6,7 +6,15 @@
 #include "refracta/render/raster_renderer.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/frame.h"
+#include "refracta/core/rng.h"
+#include "refracta/core/scratch.h"
+#include "refracta/render/surface_scattering.h"
 #include "refracta/render/tile_loop.h"
+#include "refracta/shading/spot_light.h"
+#include "refracta/shading/sun_light.h"
+
+#include <tbb/enumerable_thread_specific.h>
 
 #include <chrono>
 #include <cmath>
@@ -25,29 +33,91 @@ void RasterRenderOptions::validate() const {
   if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
   if (transparency) transparency->validate();
   if (shadow_light < -1) throw_invalid("shadow_light must be -1 (the sun) or a spot light index (got ", shadow_light, ")");
+  if (light_strata < 1 || light_strata > 64) throw_invalid("light_strata must be in [1, 64] (got ", light_strata, ")");
 }
 
-Image render_raster(const Scene& scene, const Lighting& all_lights, const Camera& camera,
-                    const RasterRenderOptions& options, WorkControl& control, RasterRenderStats* stats) {
-  options.validate();
-  Lighting lighting = all_lights;
-  if (!options.use_sun) lighting.sun.radiance = Vec3d::Zero();
-  if (options.spots) {
-    lighting.spots.clear();
-    for (int k : *options.spots) {
-      if (k < 0 || size_t(k) >= all_lights.spots.size()) {
-        throw_invalid("lights: spot light ", k, " is not in the scene (it has ", all_lights.spots.size(), ")");
-      }
-      lighting.spots.push_back(all_lights.spots[k]);
+namespace {
+
+constexpr double kFar = 1e7;  // [m] shadow rays toward distant lights end here
+
+Vec3d offset_point(const Hit& hit) { return hit.point + hit.normal * (1e-5 + 2e-6 * hit.point.cwiseAbs().maxCoeff()); }
+
+double sun_occlusion(const Scene& scene, const Hit& hit, const Vec3d& wi) {
+  return scene.occluded(offset_point(hit), wi, kFar) ? 1.0 : 0.0;
+}
+
+// The reference for spot light shadows: a shadow ray to the point light, or for an area spot
+// (radius > 0) 8 x 8 stratified shadow rays to its disc (soft shadows).
+double spot_occlusion(const Scene& scene, const Hit& hit, const SpotLight& light, double radius) {
+  const Vec3d p = offset_point(hit);
+  auto blocked = [&](const Vec3d& target) {
+    const Vec3d to = target - p;
+    const double d = to.norm();
+    return d > 0.0 && scene.occluded(p, to / d, d * (1.0 - 1e-7)) ? 1.0 : 0.0;
+  };
+  if (radius <= 0.0) return blocked(light.position());
+  const Frame disc = Frame::from_z(light.direction());
+  constexpr int kStrata = 8;
+  double sum = 0.0;
+  for (int i = 0; i < kStrata; ++i) {
+    for (int j = 0; j < kStrata; ++j) {
+      const Vec2d q = sample_uniform_disk_concentric(Vec2d((i + 0.5) / kStrata, (j + 0.5) / kStrata)) * radius;
+      sum += blocked(light.position() + disc.from_local(Vec3d(q.x(), q.y(), 0.0)));
     }
   }
-  scene.commit();
+  return sum / (kStrata * kStrata);
+}
+
+bool spot_covers(const SpotLight& spot, const Vec3d& point) {
+  const Vec3d to = point - spot.position();
+  return to.norm() > 0.0 && spot.falloff(to.normalized()) > 0.0;
+}
+
+}  // namespace
+
+Image render_raster(const RenderScene& render_scene, const Camera& camera, const RasterRenderOptions& options,
+                    WorkControl& control, RasterRenderStats* stats) {
+  options.validate();
+  render_scene.prepare();
+  const Scene& scene = render_scene.geometry;
+  // The lights: the sun (the first), the spot lights (selected by options.spots), and the rest.
+  const SunLight* sun = nullptr;
+  std::vector<const SpotLight*> all_spots;
+  std::vector<size_t> spot_index;  // in the scene's light list
+  std::vector<size_t> others;
+  for (size_t i = 0; i < render_scene.lights().size(); ++i) {
+    const Light* light = render_scene.lights()[i].get();
+    if (auto s = dynamic_cast<const SunLight*>(light); s && !sun) {
+      sun = s;
+    } else if (auto spot = dynamic_cast<const SpotLight*>(light)) {
+      all_spots.push_back(spot), spot_index.push_back(i);
+    } else {
+      others.push_back(i);
+    }
+  }
+  std::vector<const SpotLight*> spots;
+  std::vector<double> spot_radius;
+  std::vector<size_t> chosen_spots;
+  for (size_t k = 0; k < all_spots.size(); ++k) chosen_spots.push_back(k);
+  if (options.spots) {
+    chosen_spots.clear();
+    for (int k : *options.spots) {
+      if (k < 0 || size_t(k) >= all_spots.size()) {
+        throw_invalid("lights: spot light ", k, " is not in the scene (it has ", all_spots.size(), ")");
+      }
+      chosen_spots.push_back(size_t(k));
+    }
+  }
+  for (size_t k : chosen_spots) spots.push_back(all_spots[k]), spot_radius.push_back(render_scene.shadow_radius(spot_index[k]));
+  const bool sun_on = sun && options.use_sun;
+  const Vec3d sun_direction = sun ? sun->direction() : Vec3d::UnitY();
   const auto start = std::chrono::steady_clock::now();
   const RasterView view = RasterView::from_camera(camera);
   std::vector<bool> transparent(scene.geometry_count(), false);
   bool any_transparent = false;
+  auto alpha_of = [&](unsigned g) { return render_scene.material(scene.material(g)).alpha(); };
   if (options.transparency) {
-    for (size_t g = 0; g < transparent.size(); ++g) any_transparent |= transparent[g] = scene.material(unsigned(g)).alpha < 1.0;
+    for (size_t g = 0; g < transparent.size(); ++g) any_transparent |= transparent[g] = alpha_of(unsigned(g)) < 1.0;
   }
   FragmentLists fragments;
   const VisibilityBuffer buffer =
@@ -62,21 +132,22 @@ Image render_raster(const Scene& scene, const Lighting& all_lights, const Camera
     if (hi > lo) oit.mboit.z_near = lo, oit.mboit.z_far = hi * (1.0 + 1e-6);
   }
 
-  if (options.shadow_light >= int(lighting.spots.size())) {
-    throw_invalid("shadow_light ", options.shadow_light, " is not a spot light of the scene (it has ",
-                  lighting.spots.size(), ")");
+  if (options.shadow_light >= int(spots.size())) {
+    throw_invalid("shadow_light ", options.shadow_light, " is not a spot light of the scene (it has ", spots.size(), ")");
   }
+  if (options.output_shadow && options.shadow_light < 0 && !sun) throw_invalid("output_shadow: the scene has no sun");
   const bool mapped = options.shadows != "embree" && options.shadows != "none";
+  const bool shadows_on = options.shadows != "none";
   ShadowMapOptions map_options = options.shadow_map;
   if (mapped) map_options.method = parse_shadow_method(options.shadows);
   // The sun's map (when the sun shines or its shadow is asked for) covers, seen from the sun, the
   // visible points within shadow_distance.
   std::unique_ptr<ShadowMap> map;
-  const bool sun_needed = lighting.sun.radiance.maxCoeff() > 0.0 || (options.output_shadow && options.shadow_light < 0);
+  const bool sun_needed = sun_on || (options.output_shadow && options.shadow_light < 0);
   if (mapped && sun_needed) {
-    const Vec3d along = -lighting.sun.direction.normalized();
-    const Vec3d side = (std::abs(along.y()) < 0.99 ? along.cross(Vec3d::UnitY()) : along.cross(Vec3d::UnitX())).normalized();
-    const Vec3d up = side.cross(along);
+    const Vec3d along = -sun_direction;
+    const Frame sun_frame = Frame::from_z(along);
+    const Vec3d side = sun_frame.s, up = sun_frame.t;
     Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (int y = 0; y < buffer.height; ++y) {
       for (int x = 0; x < buffer.width; ++x) {
@@ -94,25 +165,82 @@ Image render_raster(const Scene& scene, const Lighting& all_lights, const Camera
       if (!options.shadow_centre) centre = mid.x() * side + mid.y() * up + mid.z() * along;
       if (!options.shadow_half_size) half = std::max(0.5 * (hi - lo).head<2>().maxCoeff() * 1.02, 1e-3);
     }
-    map = std::make_unique<ShadowMap>(scene, lighting.sun.direction, centre, half, map_options, control);
+    map = std::make_unique<ShadowMap>(scene, sun_direction, centre, half, map_options, control);
   }
   // One perspective map per spot light, covering its cone.
   std::vector<std::unique_ptr<ShadowMap>> spot_maps;
   if (mapped) {
-    for (const SpotLight& spot : lighting.spots) {
-      const Vec3d up = std::abs(spot.direction.y()) < 0.99 ? Vec3d::UnitY() : Vec3d::UnitX();
-      const RasterView spot_view = RasterView::perspective(spot.position, spot.direction, up,
-                                                           std::tan(0.5 * degrees_to_radians(spot.angle)),
+    for (const SpotLight* spot : spots) {
+      const Vec3d up = std::abs(spot->direction().y()) < 0.99 ? Vec3d::UnitY() : Vec3d::UnitX();
+      const RasterView spot_view = RasterView::perspective(spot->position(), spot->direction(), up,
+                                                           std::tan(0.5 * degrees_to_radians(std::min(spot->angle(), 170.0))),
                                                            map_options.resolution, 0.01);
       spot_maps.push_back(std::make_unique<ShadowMap>(scene, spot_view, map_options, control));
     }
   }
-  const SunShadow from_map = [&](const Hit& hit, const Vec3d&) { return map->shadow(hit.point, hit.normal); };
-  const SpotShadow from_spot_maps = [&](const Hit& hit, size_t k) { return spot_maps[k]->shadow(hit.point, hit.normal); };
-  Lighting light = lighting;
-  light.shadows = options.shadows != "none";
-  const SunShadow* sun_shadow = map ? &from_map : nullptr;
-  const SpotShadow* spot_shadow = mapped ? &from_spot_maps : nullptr;
+  auto sun_shadow = [&](const Hit& hit) {
+    return !shadows_on ? 0.0 : map ? map->shadow(hit.point, hit.normal) : sun_occlusion(scene, hit, sun_direction);
+  };
+  auto spot_shadow = [&](const Hit& hit, size_t k) {
+    return !shadows_on ? 0.0 : mapped ? spot_maps[k]->shadow(hit.point, hit.normal) : spot_occlusion(scene, hit, *spots[k], spot_radius[k]);
+  };
+
+  // Shading of a rasterized surface: every chosen light evaluated deterministically -- the sun
+  // along its centre (irradiance = disc radiance x solid angle) and spots exactly, with the
+  // shadow method's visibility; other lights by light_strata^2 stratified samples with Embree
+  // shadow rays.
+  tbb::enumerable_thread_specific<ScratchBuffer> scratch_per_thread;
+  const SampledWavelengths lambda_rgb = SampledWavelengths::rgb();
+  auto shade = [&](const Hit& hit, const Vec3d& dir, double footprint) -> Vec3d {
+    ScratchBuffer& scratch = scratch_per_thread.local();
+    scratch.reset();
+    const SurfaceInteraction si = scene.interaction(hit, dir, footprint);
+    SampledWavelengths lambda = lambda_rgb;
+    const Scattering s = scattering_at(render_scene, si, MediumStack(), 1.0, lambda, scratch);
+    Spectrum L = Spectrum::Zero();
+    if (const int e = render_scene.light_of(si.geometry); e >= 0) {
+      L += render_scene.lights()[size_t(e)]->L(si.p, si.n, si.wo, lambda);
+    }
+    if (!s.bsdf) return Vec3d(L.head<3>().matrix());
+    LightSampleContext ctx;
+    ctx.p = si.p;
+    ctx.n = si.n_toward_wo();
+    auto add = [&](const Light& light, const Vec2d& u, double visibility_scale, double weight) {
+      const auto ls = light.sample_li(ctx, u, lambda);
+      if (!ls || !(ls->pdf > 0.0)) return;
+      const double cos_i = std::abs(ls->wi.dot(s.bsdf.frame.n));
+      if (ls->wi.dot(ctx.n) <= 0.0) return;
+      L += s.bsdf.f(si.wo, ls->wi) * ls->L * (cos_i * visibility_scale * weight / ls->pdf);
+    };
+    if (sun_on && hit.normal.dot(sun_direction) > 0.0) add(*sun, Vec2d(0.0, 0.0), 1.0 - sun_shadow(hit), 1.0);
+    for (size_t k = 0; k < spots.size(); ++k) {
+      if (!spot_covers(*spots[k], si.p) || hit.normal.dot(spots[k]->position() - si.p) <= 0.0) continue;
+      add(*spots[k], Vec2d(0.5, 0.5), 1.0 - spot_shadow(hit, k), 1.0);
+    }
+    const int n = options.light_strata;
+    for (size_t i : others) {
+      const Light& light = *render_scene.lights()[i];
+      for (int a = 0; a < n; ++a) {
+        for (int b = 0; b < n; ++b) {
+          const Vec2d u((a + 0.5) / n, (b + 0.5) / n);
+          const auto ls = light.sample_li(ctx, u, lambda);
+          if (!ls || !(ls->pdf > 0.0) || ls->wi.dot(ctx.n) <= 0.0) continue;
+          const Vec3d from = si.offset_toward(ls->wi);
+          const double reach = light.is_infinite() ? kFar : (ls->p_light - from).norm() * (1.0 - 1e-6);
+          if (shadows_on && scene.occluded(from, ls->wi, reach)) continue;
+          add(light, u, 1.0, 1.0 / (n * n));
+        }
+      }
+    }
+    return Vec3d(L.head<3>().matrix());
+  };
+  auto sky = [&](const Vec3d& dir) {
+    Spectrum L = Spectrum::Zero();
+    for (const auto& light : render_scene.lights()) {
+      if (light->is_infinite() && (light.get() != sun || sun_on)) L += light->Le(dir, lambda_rgb);
+    }
+    return Vec3d(L.head<3>().matrix());
+  };
 
   control.done = 0;
   Image image = render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
@@ -121,35 +249,22 @@ Image render_raster(const Scene& scene, const Lighting& all_lights, const Camera
     if (options.output_shadow) {  // (shadow intensity, 1) where the light reaches the surface, else (0, 0)
       if (!hit) return Vec3d::Zero().eval();
       if (options.shadow_light < 0) {
-        if (hit->normal.dot(lighting.sun.direction) <= 0.0) return Vec3d::Zero().eval();
-        const double s = !light.shadows ? 0.0 : map ? map->shadow(hit->point, hit->normal) : sun_occlusion(scene, *hit, lighting.sun.direction);
-        return Vec3d(s, 1.0, 0.0);
+        if (hit->normal.dot(sun_direction) <= 0.0) return Vec3d::Zero().eval();
+        return Vec3d(sun_shadow(*hit), 1.0, 0.0);
       }
-      const SpotLight& spot = lighting.spots[options.shadow_light];
-      if (!spot.covers(hit->point) || hit->normal.dot(spot.position - hit->point) <= 0.0) return Vec3d::Zero().eval();
-      const double s = !light.shadows ? 0.0
-                       : mapped      ? spot_maps[options.shadow_light]->shadow(hit->point, hit->normal)
-                                     : spot_occlusion(scene, *hit, spot);
-      return Vec3d(s, 1.0, 0.0);
+      const SpotLight& spot = *spots[size_t(options.shadow_light)];
+      if (!spot_covers(spot, hit->point) || hit->normal.dot(spot.position() - hit->point) <= 0.0) return Vec3d::Zero().eval();
+      return Vec3d(spot_shadow(*hit, size_t(options.shadow_light)), 1.0, 0.0);
     }
-    PathEnd end;
-    end.direction = dir;
-    end.hit = hit;
-    if (hit) end.length = hit->t;
-    Rng rng(0, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x));
-    const Vec3d behind = shade(scene, light, end, rng, false, camera.pixel_angle(), sun_shadow, spot_shadow);
+    const Vec3d behind = hit ? shade(*hit, dir, camera.pixel_angle() * hit->t) : sky(dir);
     if (!any_transparent) return behind;
     const auto& list = fragments.lists[fragments.index(x, y)];
     if (list.empty()) return behind;
     std::vector<Fragment> layers;
     layers.reserve(list.size());
     for (const RasterFragment& f : list) {
-      PathEnd surface;
-      surface.direction = dir;
-      surface.hit = surface_of(scene, f.geometry, f.primitive, f.b1, f.b2, eye);
-      surface.length = surface.hit->t;
-      layers.push_back({double(f.depth), scene.material(f.geometry).alpha,
-                        shade(scene, light, surface, rng, false, camera.pixel_angle(), sun_shadow, spot_shadow)});
+      const Hit surface = surface_of(scene, f.geometry, f.primitive, f.b1, f.b2, eye);
+      layers.push_back({double(f.depth), alpha_of(f.geometry), shade(surface, dir, camera.pixel_angle() * surface.t)});
     }
     return composite(layers, behind, oit);
   });

@@ -5,7 +5,9 @@
 #include "refracta/core/image.h"
 #include "refracta/raster/oit.h"
 #include "refracta/raster/shadow_map.h"
+#include "refracta/render/render_scene.h"
 #include "refracta/render/renderer.h"
+#include "refracta/scene/camera.h"
 
 #include <limits>
 #include <optional>
@@ -28,7 +30,9 @@ struct RasterRenderOptions {
   // and (0, 0, 0) elsewhere: what compare.shadows measures.
   bool output_shadow = false;
   int shadow_light = -1;  // output_shadow: -1 the sun, k >= 0 the scene's spot light k
-  // The scene's lights to use: the sun, and the spot lights listed (all when not given).
+  // The scene's lights to use: the sun, and the spot lights listed (all when not given; spot k is
+  // the k-th spot light in the scene's order). Other lights (point, area, environment) shade
+  // with Embree shadow rays.
   bool use_sun = true;
   std::optional<std::vector<int>> spots;
   // Surfaces with material alpha < 1 are composited over the opaque ones with this method
@@ -36,6 +40,9 @@ struct RasterRenderOptions {
   // MBOIT's log-depth range, when not set, is fitted to the frame's fragments.
   std::optional<OitSettings> transparency;
   int tile = 16;
+  // Stratified samples (per axis) of each light with extent other than the sun (environment,
+  // sky, area lights), deterministic per pixel.
+  int light_strata = 4;
 
   void validate() const;
 };
@@ -48,7 +55,7 @@ struct RasterRenderStats {
   double oit_bytes_per_pixel = 0.0;   // what the transparency method keeps per pixel (mean)
 };
 
-Image render_raster(const Scene& scene, const Lighting& lighting, const Camera& camera,
-                    const RasterRenderOptions& options, WorkControl& control, RasterRenderStats* stats = nullptr);
+Image render_raster(const RenderScene& scene, const Camera& camera, const RasterRenderOptions& options,
+                    WorkControl& control, RasterRenderStats* stats = nullptr);
 
 }  // namespace refracta

@@ -12,6 +12,13 @@ namespace refracta {
 enum class RenderMethod { kStraight, kCurved, kRasterMarch };
 RenderMethod parse_render_method(const std::string& name);  // "straight", "curved", "raster_march"
 
+// Light transport (render/integrator.h): 'direct' -- emitters seen directly and direct lighting
+// at the first non-specular surface (next-event estimation with MIS), following mirror and glass
+// chains up to max_depth; 'path' -- unidirectional path tracing with NEE and MIS, Russian
+// roulette, max_depth scattering events.
+enum class Transport { kDirect, kPath };
+Transport parse_transport(const std::string& name);  // "direct", "path"
+
 struct RenderOptions {
   RenderMethod method = RenderMethod::kCurved;
   int spp = 1;                // samples per pixel (1: the pixel centre; more: stratified jitter)
@@ -19,9 +26,19 @@ struct RenderOptions {
   double max_length = 5000.0; // curved rays end here and show the sky in their last direction [m]
   double chord = 200.0;       // longest straight chord tested against the geometry [m]
   double sagitta = 1e-3;      // largest distance between a chord and the curved path [m]
-  // Integrator for curved rays; tol [m]. Height-only fields use 'stratified', others 'rk45'.
+  // Ray integrator for curved rays; tol [m]. Height-only fields use 'stratified', others 'rk45'.
   double tol = 1e-4;
-  std::optional<TraceMethod> integrator;  // force 'rk45' or 'stratified' (default: by the field)
+  std::optional<TraceMethod> trace;  // force 'rk45' or 'stratified' (default: by the field)
+
+  // Light transport and its bounds.
+  Transport transport = Transport::kDirect;
+  // Scattering events along a path (0: emitters only, 1: direct lighting; Mitsuba's max_depth
+  // is this + 1). 'direct' uses it for specular chains only.
+  int max_depth = 5;
+  // Russian roulette from this many scattering events on (survival min(0.95, max throughput)).
+  int rr_depth = 3;
+  // Spectral rendering: 4 hero wavelengths per sample (Wilkie et al. 2014) instead of RGB.
+  bool spectral = false;
   // Height-only fields: serve every pixel from one ElevationTable for the camera's eye height
   // (interpolated to `tol`) instead of tracing each pixel.
   bool use_table = true;

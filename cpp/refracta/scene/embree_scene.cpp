@@ -2,6 +2,7 @@
 #include "refracta/scene/embree_scene.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/frame.h"
 
 #include <embree3/rtcore.h>
 
@@ -12,16 +13,6 @@
 #include <string>
 
 namespace refracta {
-
-void Material::validate() const {
-  if (kd_texture < -1) throw_invalid("Material: kd_texture must be a texture id or -1 (got ", kd_texture, ")");
-  if (!(alpha >= 0.0 && alpha <= 1.0)) throw_invalid("Material: alpha must be in [0, 1] (got ", alpha, ")");
-  for (int i = 0; i < 3; ++i) {
-    if (!(kd[i] >= 0.0 && kd[i] <= 1.0)) throw_invalid("Material: kd must be in [0, 1] (got ", kd[i], ")");
-    if (!(ks[i] >= 0.0 && ks[i] <= 1.0)) throw_invalid("Material: ks must be in [0, 1] (got ", ks[i], ")");
-  }
-  if (!(ns >= 0.0) || !std::isfinite(ns)) throw_invalid("Material: ns must be >= 0 (got ", ns, ")");
-}
 
 namespace {
 
@@ -74,10 +65,25 @@ struct Scene::Impl {
 Scene::Scene() : impl_(std::make_unique<Impl>()) {}
 Scene::~Scene() = default;
 
-unsigned Scene::add_mesh(const std::vector<Vec3d>& vertices, const std::vector<std::array<int, 3>>& triangles,
-                         const Material& material) {
-  material.validate();
+unsigned Scene::add_mesh(const Mesh& mesh, int material) {
+  const std::vector<Vec3d>& vertices = mesh.vertices;
+  const std::vector<std::array<int, 3>>& triangles = mesh.triangles;
+  if (material < 0) throw_invalid("add_mesh: material must be a material id (got ", material, ")");
   if (vertices.empty() || triangles.empty()) throw_invalid("add_mesh: vertices and triangles must not be empty");
+  if (!mesh.uvs.empty() && mesh.uvs.size() != vertices.size()) {
+    throw_invalid("add_mesh: uvs must have one entry per vertex (", mesh.uvs.size(), " vs ", vertices.size(), ")");
+  }
+  for (const auto& uv : mesh.uvs) {
+    if (!std::isfinite(uv.x()) || !std::isfinite(uv.y())) throw_invalid("add_mesh: uvs must be finite");
+  }
+  if (!mesh.normals.empty() && mesh.normals.size() != vertices.size()) {
+    throw_invalid("add_mesh: normals must have one entry per vertex (", mesh.normals.size(), " vs ", vertices.size(), ")");
+  }
+  for (size_t i = 0; i < mesh.normals.size(); ++i) {
+    if (!is_finite(mesh.normals[i]) || std::abs(mesh.normals[i].norm() - 1.0) > 1e-6) {
+      throw_invalid("add_mesh: normals[", i, "] must be a finite unit vector");
+    }
+  }
   for (size_t i = 0; i < vertices.size(); ++i) {
     if (!is_finite(vertices[i]) || vertices[i].cwiseAbs().maxCoeff() > kMaxCoordinate) {
       throw_invalid("add_mesh: vertices[", i, "] must be finite and within 1e7 m");
@@ -107,29 +113,16 @@ unsigned Scene::add_mesh(const std::vector<Vec3d>& vertices, const std::vector<s
   impl_->check();
   if (id != materials_.size()) throw std::logic_error("Embree geometry ids out of order");
   materials_.push_back(material);
-  meshes_.push_back({id, Mesh{vertices, triangles}});
+  meshes_.push_back({id, mesh});
+  sphere_sets_.push_back(nullptr);
   triangles_ += triangles.size();
   for (const auto& v : vertices) lowest_ = std::min(lowest_, v.y()), highest_ = std::max(highest_, v.y());
   impl_->dirty = true;
   return id;
 }
 
-unsigned Scene::add_mesh(const Mesh& mesh, const Material& material) {
-  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.vertices.size()) {
-    throw_invalid("add_mesh: uvs must have one entry per vertex (", mesh.uvs.size(), " vs ", mesh.vertices.size(), ")");
-  }
-  for (const auto& uv : mesh.uvs) {
-    if (!std::isfinite(uv.x()) || !std::isfinite(uv.y())) throw_invalid("add_mesh: uvs must be finite");
-  }
-  if (material.kd_texture >= 0 && mesh.uvs.empty()) throw_invalid("add_mesh: a textured material needs uvs");
-  const unsigned id = add_mesh(mesh.vertices, mesh.triangles, material);
-  meshes_.back().mesh.uvs = mesh.uvs;
-  return id;
-}
-
-unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector<double>& radii,
-                            const Material& material) {
-  material.validate();
+unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector<double>& radii, int material) {
+  if (material < 0) throw_invalid("add_spheres: material must be a material id (got ", material, ")");
   if (centres.empty() || centres.size() != radii.size()) {
     throw_invalid("add_spheres: needs as many radii as centres (", centres.size(), " vs ", radii.size(), ")");
   }
@@ -153,6 +146,7 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
   rtcReleaseGeometry(geometry);
   impl_->check();
   materials_.push_back(material);
+  sphere_sets_.push_back(std::make_shared<const Spheres>(Spheres{centres, radii}));
   SceneMesh spheres{id, {}};
   for (size_t i = 0; i < centres.size(); ++i) {
     const Mesh sphere = sphere_mesh(centres[i], radii[i], 48, 24);
@@ -204,7 +198,11 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
   hit.point = origin + hit.t * dir;
   Vec3d normal(query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z);
   normal.normalize();
-  hit.normal = normal.dot(dir) > 0.0 ? Vec3d(-normal) : normal;
+  // Embree's triangle Ng is (v0 - v2) x (v1 - v0) ... = -(e1 x e2) for its clockwise convention:
+  // refracta's front is counter-clockwise, (v1 - v0) x (v2 - v0).
+  if (!sphere_sets_.at(query.hit.geomID)) normal = -normal;
+  hit.front_face = normal.dot(dir) < 0.0;
+  hit.normal = hit.front_face ? normal : Vec3d(-normal);
   hit.geometry = query.hit.geomID;
   hit.primitive = query.hit.primID;
   hit.b1 = query.hit.u;
@@ -244,28 +242,64 @@ Mesh box_mesh(const Vec3d& centre, const Vec3d& size) {
   return mesh;
 }
 
-Vec3d Scene::albedo(const Hit& hit, const Vec3d& dir, double footprint) const {
-  const Material& material = materials_.at(hit.geometry);
-  if (material.kd_texture < 0) return material.kd;
+SurfaceInteraction Scene::interaction(const Hit& hit, const Vec3d& dir, double footprint) const {
+  SurfaceInteraction si;
+  si.p = hit.point;
+  si.t = hit.t;
+  si.geometry = hit.geometry;
+  si.primitive = hit.primitive;
+  si.material = materials_.at(hit.geometry);
+  si.front_face = hit.front_face;
+  si.n = hit.front_face ? hit.normal : Vec3d(-hit.normal);
+  si.ns = si.n;
+  si.wo = -dir.normalized();
+  if (const auto& spheres = sphere_sets_[hit.geometry]) {
+    // uv from the direction about the centre: u around y (from +x toward -z... as phi), v from the south pole.
+    const Vec3d c = spheres->centres.at(hit.primitive);
+    const Vec3d d = (si.p - c).normalized();
+    const double phi = std::atan2(d.z(), d.x());
+    si.uv = Eigen::Vector2d(0.5 + phi / (2.0 * kPi), 1.0 - std::acos(std::clamp(d.y(), -1.0, 1.0)) / kPi);
+    si.dpdu = Vec3d(-d.z(), 0.0, d.x());
+    if (!(si.dpdu.norm() > 1e-12)) si.dpdu = Vec3d::UnitX();
+    si.dpdu.normalize();
+    si.texture.s = si.uv.x(), si.texture.t = 1.0 - si.uv.y();
+    return si;
+  }
   const Mesh& mesh = meshes_.at(hit.geometry).mesh;
   const auto& tri = mesh.triangles.at(hit.primitive);
-  const Eigen::Vector2d uv = (1.0 - hit.b1 - hit.b2) * mesh.uvs[tri[0]] + hit.b1 * mesh.uvs[tri[1]] +
-                             hit.b2 * mesh.uvs[tri[2]];
-  TextureLookup at;
-  at.s = uv.x();
-  at.t = 1.0 - uv.y();  // OIIO's t runs down the image, OBJ's v up
+  const double b0 = 1.0 - hit.b1 - hit.b2;
+  const Vec3d& p0 = mesh.vertices[tri[0]];
+  const Vec3d e1 = mesh.vertices[tri[1]] - p0, e2 = mesh.vertices[tri[2]] - p0;
+  if (!mesh.normals.empty()) {
+    Vec3d ns = b0 * mesh.normals[tri[0]] + hit.b1 * mesh.normals[tri[1]] + hit.b2 * mesh.normals[tri[2]];
+    if (ns.norm() > 1e-12) {
+      ns.normalize();
+      si.ns = ns.dot(si.n) < 0.0 ? Vec3d(-ns) : ns;  // on the geometric normal's side
+    }
+  }
+  si.dpdu = e1.norm() > 0.0 ? Vec3d(e1.normalized()) : Vec3d::UnitX();
+  if (mesh.uvs.empty()) return si;
+  si.uv = b0 * mesh.uvs[tri[0]] + hit.b1 * mesh.uvs[tri[1]] + hit.b2 * mesh.uvs[tri[2]];
+  Eigen::Matrix2d uv_edges;
+  uv_edges << mesh.uvs[tri[1]] - mesh.uvs[tri[0]], mesh.uvs[tri[2]] - mesh.uvs[tri[0]];
+  // dp/du from the uv parametrisation when it is not degenerate.
+  if (std::abs(uv_edges.determinant()) > 1e-300) {
+    const Eigen::Matrix2d inverse = uv_edges.inverse();
+    const Vec3d dpdu = e1 * inverse(0, 0) + e2 * inverse(1, 0);
+    if (is_finite(dpdu) && dpdu.norm() > 0.0) si.dpdu = dpdu.normalized();
+  }
+  TextureLookup& at = si.texture;
+  at.s = si.uv.x();
+  at.t = 1.0 - si.uv.y();  // OIIO's t runs down the image, OBJ's v up
   if (footprint > 0.0) {
     // Footprint axes across the ray, projected along it onto the plane; then barycentric
     // offsets by the pseudo-inverse of the edge matrix, and uv offsets by the uv edges.
-    const Vec3d& p0 = mesh.vertices[tri[0]];
     Eigen::Matrix<double, 3, 2> edges;
-    edges << mesh.vertices[tri[1]] - p0, mesh.vertices[tri[2]] - p0;
-    Eigen::Matrix2d uv_edges;
-    uv_edges << mesh.uvs[tri[1]] - mesh.uvs[tri[0]], mesh.uvs[tri[2]] - mesh.uvs[tri[0]];
-    const Vec3d n = edges.col(0).cross(edges.col(1));
+    edges << e1, e2;
+    const Vec3d n = e1.cross(e2);
     const Vec3d d = dir.normalized();
-    const Vec3d side = (std::abs(d.y()) < 0.99 ? d.cross(Vec3d::UnitY()) : d.cross(Vec3d::UnitX())).normalized();
-    const Vec3d axes[2] = {side * footprint, d.cross(side) * footprint};
+    const Frame across = Frame::from_z(d);
+    const Vec3d axes[2] = {across.s * footprint, across.t * footprint};
     const Eigen::Matrix<double, 2, 3> to_bary = (edges.transpose() * edges).inverse() * edges.transpose();
     Eigen::Vector2d duv[2];
     for (int k = 0; k < 2; ++k) {
@@ -277,7 +311,7 @@ Vec3d Scene::albedo(const Hit& hit, const Vec3d& dir, double footprint) const {
     at.dsdx = std::clamp(duv[0].x(), -4.0, 4.0), at.dtdx = std::clamp(-duv[0].y(), -4.0, 4.0);
     at.dsdy = std::clamp(duv[1].x(), -4.0, 4.0), at.dtdy = std::clamp(-duv[1].y(), -4.0, 4.0);
   }
-  return material.kd.cwiseProduct(textures_->lookup(material.kd_texture, at));
+  return si;
 }
 
 Mesh sphere_mesh(const Vec3d& centre, double radius, int segments, int rings) {

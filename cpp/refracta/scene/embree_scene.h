@@ -1,10 +1,10 @@
-// The scene's geometry in Embree 3 (the only file that includes Embree), with a material per
-// geometry. Every ray is checked before Embree sees it: Debian's Embree is built with assertions
+// The scene's geometry in Embree 3 (the only file that includes Embree), with a material id per
+// geometry (the render layer's material table). Every ray is checked before Embree sees it: Debian's Embree is built with assertions
 // on and aborts the process on a NaN or huge ray.
 #pragma once
 
 #include "refracta/core/math.h"
-#include "refracta/scene/material.h"
+#include "refracta/scene/surface_interaction.h"
 #include "refracta/scene/textures.h"
 
 #include <array>
@@ -15,11 +15,14 @@
 
 namespace refracta {
 
-// A triangle mesh; uvs, when given, are one texture coordinate (u right, v up, OBJ style) per vertex.
+// A triangle mesh; uvs, when given, are one texture coordinate (u right, v up, OBJ style) per
+// vertex, and normals one unit shading normal per vertex (interpolated across each triangle).
+// A triangle's front is its counter-clockwise side: geometric normal (v1 - v0) x (v2 - v0).
 struct Mesh {
   std::vector<Vec3d> vertices;
   std::vector<std::array<int, 3>> triangles;
   std::vector<Eigen::Vector2d> uvs;
+  std::vector<Vec3d> normals;
 };
 
 // A geometry of the scene as triangles, for the rasterizer (spheres tessellated).
@@ -35,6 +38,7 @@ struct Hit {
   unsigned geometry;
   unsigned primitive;
   double b1 = 0.0, b2 = 0.0;  // barycentric weights of the triangle's vertices 1 and 2
+  bool front_face = true;     // the ray met the geometry's front (normal is then the unflipped one)
 };
 
 class Scene {
@@ -44,12 +48,10 @@ class Scene {
   Scene(const Scene&) = delete;
   Scene& operator=(const Scene&) = delete;
 
-  // Triangles index into vertices; returns the geometry id. A material's kd_texture needs uvs.
-  unsigned add_mesh(const std::vector<Vec3d>& vertices, const std::vector<std::array<int, 3>>& triangles,
-                    const Material& material);
-  unsigned add_mesh(const Mesh& mesh, const Material& material);
-  unsigned add_spheres(const std::vector<Vec3d>& centres, const std::vector<double>& radii,
-                       const Material& material);
+  // Triangles index into vertices; returns the geometry id. `material` is an id of the render
+  // layer's material table (checked there).
+  unsigned add_mesh(const Mesh& mesh, int material);
+  unsigned add_spheres(const std::vector<Vec3d>& centres, const std::vector<double>& radii, int material);
 
   // Builds the acceleration structure; called by the renderers (not thread-safe itself).
   void commit() const;
@@ -58,15 +60,18 @@ class Scene {
   std::optional<Hit> intersect(const Vec3d& origin, const Vec3d& dir, double t_max) const;
   bool occluded(const Vec3d& origin, const Vec3d& dir, double t_max) const;
 
-  const Material& material(unsigned geometry) const { return materials_.at(geometry); }
+  int material(unsigned geometry) const { return materials_.at(geometry); }
   // Every geometry as triangles (spheres as 48 x 24 UV spheres), in geometry order.
   const std::vector<SceneMesh>& meshes() const { return meshes_; }
-  // Diffuse albedo at a hit: the material's kd times its texture, filtered by OpenImageIO over
-  // the footprint of a ray cone (Akenine-Moller et al. 2019, "Texture Level of Detail Strategies
-  // for Real-Time Ray Tracing"): a disc of diameter `footprint` [m] across the arriving direction
-  // `dir`, projected onto the triangle's plane and mapped to texture space by its uv Jacobian.
-  // footprint 0 samples the finest level at the point.
-  Vec3d albedo(const Hit& hit, const Vec3d& dir, double footprint) const;
+  // Whether a geometry is an exact sphere set (add_spheres) rather than a triangle mesh.
+  bool is_spheres(unsigned geometry) const { return sphere_sets_.at(geometry) != nullptr; }
+  // Everything shading needs at a hit found along unit `dir`: the unflipped geometric normal and
+  // front-face flag, the shading normal (vertex normals interpolated, else the geometric one),
+  // uv and dp/du, and the texture footprint: the ray cone's disc of diameter `footprint` [m]
+  // across `dir`, projected onto the triangle's plane and mapped to texture space by its uv
+  // Jacobian (Akenine-Moller et al. 2019, "Texture Level of Detail Strategies for Real-Time Ray
+  // Tracing"); footprint 0 samples the finest level at the point.
+  SurfaceInteraction interaction(const Hit& hit, const Vec3d& dir, double footprint) const;
   // The scene's image textures (materials refer to them by id).
   Textures& textures() { return *textures_; }
   const Textures& textures() const { return *textures_; }
@@ -81,8 +86,13 @@ class Scene {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::vector<Material> materials_;
+  struct Spheres {
+    std::vector<Vec3d> centres;
+    std::vector<double> radii;
+  };
+  std::vector<int> materials_;
   std::vector<SceneMesh> meshes_;
+  std::vector<std::shared_ptr<const Spheres>> sphere_sets_;  // null for meshes
   std::shared_ptr<Textures> textures_ = std::make_shared<Textures>();
   size_t triangles_ = 0;
   double lowest_ = std::numeric_limits<double>::infinity();

@@ -27,19 +27,23 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
   const auto& materials = reader.GetMaterials();
   const size_t vertex_count = attrib.vertices.size() / 3;
   const size_t texcoord_count = attrib.texcoords.size() / 2;
-  // Triangles per material, as (vertex, texcoord) index pairs; texcoord -1 where the file has none.
-  std::map<int, std::vector<std::array<std::pair<int, int>, 3>>> by_material;
+  const size_t normal_count = attrib.normals.size() / 3;
+  // Triangles per material, as (vertex, texcoord, normal) indices; -1 where the file has none.
+  using Corner = std::array<int, 3>;
+  std::map<int, std::vector<std::array<Corner, 3>>> by_material;
   for (const auto& shape : reader.GetShapes()) {
     const auto& indices = shape.mesh.indices;
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
       if (shape.mesh.num_face_vertices[f] != 3) throw IoError(concat("OBJ '", path, "': a face is not a triangle"));
       const int material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
-      std::array<std::pair<int, int>, 3> triangle;
+      std::array<Corner, 3> triangle;
       for (int k = 0; k < 3; ++k) {
         const int v = indices[3 * f + k].vertex_index, t = indices[3 * f + k].texcoord_index;
+        const int n = indices[3 * f + k].normal_index;
         if (v < 0 || size_t(v) >= vertex_count) throw IoError(concat("OBJ '", path, "': vertex index out of range"));
         if (t >= 0 && size_t(t) >= texcoord_count) throw IoError(concat("OBJ '", path, "': texcoord index out of range"));
-        triangle[k] = {v, t};
+        if (n >= 0 && size_t(n) >= normal_count) throw IoError(concat("OBJ '", path, "': normal index out of range"));
+        triangle[k] = {v, t, n};
       }
       by_material[material].push_back(triangle);
     }
@@ -48,21 +52,26 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
   for (auto& [id, triangles] : by_material) {
     MaterialMesh part;
     bool textured = id >= 0 && size_t(id) < materials.size() && !materials[id].diffuse_texname.empty();
+    bool has_uvs = true, has_normals = true;
     for (const auto& triangle : triangles) {
-      for (const auto& corner : triangle) textured = textured && corner.second >= 0;
+      for (const auto& corner : triangle) has_uvs = has_uvs && corner[1] >= 0, has_normals = has_normals && corner[2] >= 0;
     }
-    // Keep only the corners this part uses, renumbered: one vertex per (position, texcoord).
-    std::map<std::pair<int, int>, int> remap;
+    textured = textured && has_uvs;
+    // Keep only the corners this part uses, renumbered: one vertex per (position, texcoord, normal).
+    std::map<Corner, int> remap;
     for (const auto& triangle : triangles) {
       std::array<int, 3> indices;
       for (int k = 0; k < 3; ++k) {
-        const std::pair<int, int> key{triangle[k].first, textured ? triangle[k].second : -1};
+        const Corner key{triangle[k][0], has_uvs ? triangle[k][1] : -1, has_normals ? triangle[k][2] : -1};
         auto [it, inserted] = remap.try_emplace(key, int(remap.size()));
         if (inserted) {
-          const int v = key.first;
+          const int v = key[0];
           part.mesh.vertices.emplace_back(attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]);
-          if (textured) {
-            part.mesh.uvs.emplace_back(attrib.texcoords[2 * key.second], attrib.texcoords[2 * key.second + 1]);
+          if (has_uvs) part.mesh.uvs.emplace_back(attrib.texcoords[2 * key[1]], attrib.texcoords[2 * key[1] + 1]);
+          if (has_normals) {
+            const Vec3d n(attrib.normals[3 * key[2]], attrib.normals[3 * key[2] + 1], attrib.normals[3 * key[2] + 2]);
+            if (!is_finite(n) || !(n.norm() > 0.0)) throw IoError(concat("OBJ '", path, "': a vertex normal is zero or not finite"));
+            part.mesh.normals.push_back(n.normalized());
           }
         }
         indices[k] = it->second;
@@ -71,12 +80,19 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
     }
     if (id >= 0 && size_t(id) < materials.size()) {
       const auto& m = materials[id];
-      part.name = m.name;
-      if (textured) part.texture = (std::filesystem::path(config.mtl_search_path) / m.diffuse_texname).string();
-      part.material.kd = Vec3d(m.diffuse[0], m.diffuse[1], m.diffuse[2]).cwiseMax(0.0).cwiseMin(1.0);
-      part.material.ks = Vec3d(m.specular[0], m.specular[1], m.specular[2]).cwiseMax(0.0).cwiseMin(1.0);
-      part.material.ns = std::max(0.0, double(m.shininess));
-      part.material.alpha = std::clamp(double(m.dissolve), 0.0, 1.0);
+      MtlMaterial& out_m = part.material;
+      out_m.name = m.name;
+      if (textured) out_m.texture = (std::filesystem::path(config.mtl_search_path) / m.diffuse_texname).string();
+      out_m.kd = Vec3d(m.diffuse[0], m.diffuse[1], m.diffuse[2]).cwiseMax(0.0).cwiseMin(1.0);
+      out_m.ks = Vec3d(m.specular[0], m.specular[1], m.specular[2]).cwiseMax(0.0).cwiseMin(1.0);
+      out_m.ns = std::max(0.0, double(m.shininess));
+      out_m.alpha = std::clamp(double(m.dissolve), 0.0, 1.0);
+      out_m.ni = m.ior;
+      out_m.illum = m.illum;
+      out_m.ke = Vec3d(m.emission[0], m.emission[1], m.emission[2]).cwiseMax(0.0);
+      // tinyobjloader reads the PBR extension's Pr and Pm; 0 is its "absent" value too.
+      out_m.pr = m.roughness > 0.0f ? double(m.roughness) : -1.0;
+      out_m.pm = m.metallic > 0.0f ? double(m.metallic) : -1.0;
     }
     if (!part.mesh.triangles.empty()) out.push_back(std::move(part));
   }

@@ -1,0 +1,157 @@
+// The curved caster (caster.h).
+#include "refracta/render/caster.h"
+
+#include "refracta/core/error.h"
+#include "refracta/rays/trace.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace refracta {
+
+namespace {
+
+constexpr double kFar = 1e7;  // [m] straight rays end here (Embree's float range, see embree_scene.cpp)
+
+// Point u in [lo, hi] of the segment on the plane through `on` with normal n (Newton).
+double refine_on_plane(const PathSegment<double>& seg, const Vec3d& n, const Vec3d& on, double u, double lo,
+                       double hi) {
+  for (int it = 0; it < 8; ++it) {
+    const double f = n.dot(seg.position(u) - on), df = n.dot(seg.velocity(u));
+    if (df == 0.0) break;
+    const double next = std::clamp(u - f / df, lo, hi);
+    if (std::abs(next - u) < 1e-14) return next;
+    u = next;
+  }
+  return u;
+}
+
+}  // namespace
+
+TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, const Vec3d& origin,
+                                  const RenderOptions& options, double max_length) {
+  TraceOptions trace_options;
+  trace_options.method = options.trace ? *options.trace
+                                       : (field.height_only() ? TraceMethod::kStratified : TraceMethod::kRk45);
+  trace_options.tol = options.tol;
+  trace_options.max_length = max_length;
+  trace_options.step = options.chord;
+  // Nothing can be hit below the lowest geometry: end the path 1 m under it (or under the origin).
+  trace_options.stop_height = std::min(scene.lowest(), origin.y()) - 1.0;
+  return trace_options;
+}
+
+bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<double>& b,
+                    const RenderOptions& options, PathEnd* end) {
+  const PathSegment<double> seg(a, b);
+  // Deviation of the path from the segment's chord, sampled; it shrinks with the square of the
+  // chord length, so n chords deviate by about deviation / n^2.
+  const Vec3d ab = b.x - a.x;
+  const double ab2 = std::max(ab.squaredNorm(), 1e-300);
+  double deviation = 0.0;
+  for (double u : {0.25, 0.5, 0.75}) {
+    const Vec3d q = seg.position(u) - a.x;
+    deviation = std::max(deviation, (q - ab * (q.dot(ab) / ab2)).norm());
+  }
+  const int by_sagitta = int(std::ceil(std::sqrt(deviation / options.sagitta)));
+  const int chords = std::clamp(std::max(by_sagitta, int(std::ceil(seg.length() / options.chord))), 1, 1 << 20);
+  for (int i = 0; i < chords; ++i) {
+    const double u0 = double(i) / chords, u1 = double(i + 1) / chords;
+    const Vec3d p0 = seg.position(u0), d = seg.position(u1) - p0;
+    const double len = d.norm();
+    if (len == 0.0) continue;
+    // Each chord reaches slightly into the next so that no hit is lost at a joint.
+    ++end->chords;
+    const auto hit = scene.intersect(p0, d / len, len * (1.0 + 1e-6) + 1e-6);
+    if (!hit) continue;
+    const double du = u1 - u0;
+    const double u = refine_on_plane(seg, hit->normal, hit->point, u0 + du * hit->t / len, u0 - 0.5 * du,
+                                     std::min(u1 + 0.5 * du, 1.0));
+    Hit refined = *hit;
+    refined.point = seg.position(u);
+    end->hit = refined;
+    end->direction = seg.velocity(u).normalized();
+    end->length = seg.start() + u * seg.length();
+    return true;
+  }
+  return false;
+}
+
+Caster::Caster(const Scene& scene, const IndexField* field, const RenderOptions& options)
+    : scene_(scene), field_(options.method == RenderMethod::kStraight ? nullptr : field), options_(options) {}
+
+void Caster::use_table(const ElevationTable* table, const Vec3d& eye) {
+  table_ = table;
+  eye_ = eye;
+}
+
+double Caster::ior(const Vec3d& p) const {
+  if (!field_) return 1.0;
+  double n;
+  Vec3d grad;
+  field_->evaluate_checked(p, &n, &grad);
+  return n;
+}
+
+PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length) const {
+  if (!field_) return cast_straight(origin, dir, max_length > 0.0 ? max_length : kFar);
+  if (table_ && origin == eye_ && max_length <= 0.0) return cast_table(dir);
+  return cast_traced(origin, dir, max_length > 0.0 ? max_length : options_.max_length);
+}
+
+bool Caster::occluded_straight(const Vec3d& origin, const Vec3d& dir, double distance) const {
+  return distance > 0.0 && scene_.occluded(origin, dir, distance);
+}
+
+PathEnd Caster::cast_straight(const Vec3d& origin, const Vec3d& dir, double max_length) const {
+  PathEnd end;
+  end.direction = dir;
+  end.hit = scene_.intersect(origin, dir, std::min(max_length, kFar));
+  end.chords = 1;
+  if (end.hit) end.length = end.hit->t;
+  return end;
+}
+
+PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length) const {
+  PathEnd end;
+  end.direction = dir;
+  const TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
+  trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
+    if (hit_on_segment(scene_, a, b, options_, &end)) return false;
+    end.direction = b.v.normalized();
+    end.length = b.s;
+    return true;
+  });
+  return end;
+}
+
+// The table's path for the ray's elevation, turned to its azimuth about the eye.
+PathEnd Caster::cast_table(const Vec3d& dir) const {
+  PathEnd end;
+  end.direction = dir;
+  const double e = std::asin(std::clamp(dir.y(), -1.0, 1.0));
+  const double horizontal = std::hypot(dir.x(), dir.z());
+  const double cx = horizontal > 0 ? dir.x() / horizontal : 1.0, cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
+  const ElevationTable::LazyPath plane = table_->lazy_path(e);
+  auto turned = [&](const RayNode<double>& n) {
+    RayNode<double> out = n;
+    out.x = Vec3d(eye_.x() + n.x.x() * cx, n.x.y(), eye_.z() + n.x.x() * cz);
+    out.v = Vec3d(n.v.x() * cx, n.v.y(), n.v.x() * cz);
+    return out;
+  };
+  RayNode<double> a = turned(plane.node(0));
+  for (size_t k = 0; k + 1 < plane.size(); ++k) {
+    // Nothing left to hit once the rest of the path stays above every object.
+    if (plane.lowest_from(k) > scene_.highest()) break;
+    const RayNode<double> b = turned(plane.node(k + 1));
+    if (hit_on_segment(scene_, a, b, options_, &end)) return end;
+    end.direction = b.v.normalized();
+    end.length = b.s;
+    a = b;
+  }
+  // The sky is seen along the path's last direction.
+  if (plane.size() > 1) end.direction = turned(plane.node(plane.size() - 1)).v.normalized();
+  return end;
+}
+
+}  // namespace refracta

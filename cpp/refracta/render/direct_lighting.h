@@ -1,0 +1,67 @@
+// Direct lighting shared by the integrators: one light chosen in proportion to its power and
+// sampled (next-event estimation), emitters met by BSDF-sampled rays, both weighted by the power
+// heuristic (Veach 1997, ch. 9) so that neither strategy is counted twice.
+//
+// Connections: finite lights (point, spot, area, sphere) by a straight shadow segment -- over the
+// metres to a lamp the air bends a ray by well under a millimetre (sagitta L^2 |grad n| / 8: a
+// 10 m connection through a 10 K / 10 cm hot road layer, |grad n| <= 1e-4 /m, deviates 1.25 mm);
+// distant lights (sun, environment, sky) by a curved shadow ray through the caster, the light
+// evaluated along the path's exit direction. In height-only fields the launch direction that
+// leaves toward a sampled direction follows from the invariant n(h) cos e = const ("pre-bent",
+// shared/SHADING.md section 6), with the Jacobian of that map in the density; other fields
+// launch along the sampled direction (exact for smooth environments; a sun near the horizon may
+// then be missed by a few arcminutes' bending).
+#pragma once
+
+#include "refracta/core/rng.h"
+#include "refracta/core/sampling.h"
+#include "refracta/core/spectrum.h"
+#include "refracta/render/caster.h"
+#include "refracta/render/render_options.h"
+#include "refracta/render/render_scene.h"
+#include "refracta/shading/bsdf.h"
+
+#include <functional>
+#include <optional>
+
+namespace refracta {
+
+// Visibility of a light from a surface point given by another method (render_raster's shadow
+// maps): returns the fraction of light `index` that reaches si along wi, or nullopt to trace.
+using LightVisibility = std::function<std::optional<double>(size_t index, const SurfaceInteraction& si, const Vec3d& wi)>;
+
+class DirectLighting {
+ public:
+  DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options);
+
+  // NEE at si with `bsdf`: f L |cos| / pdf of one light sample, MIS-weighted against BSDF
+  // sampling for non-delta lights.
+  Spectrum sample_light(const SurfaceInteraction& si, const SurfaceBsdf& bsdf, const SampledWavelengths& lambda,
+                        const Vec2d& u_light, double u_pick, const LightVisibility* visibility = nullptr) const;
+
+  // Radiance of the infinite lights seen at the end of an escaped path, MIS-weighted against
+  // light sampling from `from` (bsdf_pdf: density of the launch direction; specular: no MIS).
+  Spectrum escaped(const PathEnd& end, const Vec3d& launch_dir, const SurfaceInteraction* from, double bsdf_pdf,
+                   bool specular, const SampledWavelengths& lambda) const;
+  // Radiance an area light emits at si toward si.wo, MIS-weighted likewise.
+  Spectrum emitted(const SurfaceInteraction& si, const SurfaceInteraction* from, double bsdf_pdf, bool specular,
+                   const SampledWavelengths& lambda) const;
+
+  bool has_lights() const { return !scene_.lights().empty(); }
+
+ private:
+  double pick_probability(size_t light) const { return select_.cell_probability(light); }
+  // Pre-bending in height-only fields: the launch direction at p whose curved path leaves along
+  // `exit`, and the density factor |d omega_exit / d omega_launch|.
+  Vec3d launch_toward(const Vec3d& p, const Vec3d& exit, double* jacobian) const;
+  double exit_jacobian(const Vec3d& p, const Vec3d& launch) const;
+
+  const RenderScene& scene_;
+  const Caster& caster_;
+  const RenderOptions& options_;
+  PiecewiseConstant1D select_;  // light choice in proportion to power
+  bool pre_bend_ = false;
+  double ior_top_ = 1.0;        // n where distant paths leave the modelled air
+};
+
+}  // namespace refracta

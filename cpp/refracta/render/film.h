@@ -1,0 +1,52 @@
+// The pixel-sample loop every ray-traced renderer shares, on the one tile loop (tile_loop.h):
+// spp samples per pixel on a stratified jittered grid, a random generator seeded per pixel and
+// sample (results do not depend on the thread count), hero wavelengths per sample in spectral
+// rendering, each sample's spectrum turned to linear sRGB (shading/color.h) and averaged.
+#pragma once
+
+#include "refracta/core/parallel.h"
+#include "refracta/core/rng.h"
+#include "refracta/core/scratch.h"
+#include "refracta/core/spectrum.h"
+#include "refracta/render/integrator.h"
+#include "refracta/render/render_options.h"
+#include "refracta/render/tile_loop.h"
+#include "refracta/scene/camera.h"
+#include "refracta/shading/color.h"
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <cmath>
+
+namespace refracta {
+
+// SampleRadiance: Spectrum(const Vec3d& dir, double pixel_angle, SampledWavelengths&, Sampler&, ScratchBuffer&).
+template <class SampleRadiance>
+Image render_film(const Camera& camera, const RenderOptions& options, WorkControl& control,
+                  const SampleRadiance& radiance) {
+  const int strata = int(std::ceil(std::sqrt(double(options.spp))));
+  // Each sample's cone covers its share of the pixel.
+  const double pixel_angle = options.texture_filter ? camera.pixel_angle() / strata : 0.0;
+  tbb::enumerable_thread_specific<ScratchBuffer> scratch_per_thread;
+  return render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
+    ScratchBuffer& scratch = scratch_per_thread.local();
+    Sampler sampler{Rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x))};
+    Vec3d sum = Vec3d::Zero();
+    for (int s = 0; s < options.spp; ++s) {
+      if ((s & 63) == 63 && control.cancel.load(std::memory_order_relaxed)) throw Cancelled();
+      double du = 0.5, dv = 0.5;
+      if (options.spp > 1) {  // stratified jitter over a strata x strata grid
+        du = ((s % strata) + sampler.uniform()) / strata;
+        dv = (((s / strata) % strata) + sampler.uniform()) / strata;
+      }
+      SampledWavelengths lambda =
+          options.spectral ? SampledWavelengths::sample_uniform(sampler.uniform()) : SampledWavelengths::rgb();
+      const Spectrum L = radiance(camera.direction(x + du, y + dv), pixel_angle, lambda, sampler, scratch);
+      const Vec3d rgb = to_linear_srgb(L, lambda);
+      if (is_finite(rgb)) sum += rgb;  // a non-finite sample is dropped (the renderer counts them)
+    }
+    return Vec3d(sum / options.spp);
+  });
+}
+
+}  // namespace refracta

@@ -1,0 +1,55 @@
+// Light transport behind one interface: the radiance arriving along a camera ray (pbrt-v4's
+// RayIntegrator). 'direct' and 'path' (render_options.h) implement it; the one film loop
+// (film.h) calls it for every pixel sample of every renderer. Every segment -- camera ray,
+// bounce, shadow ray toward a distant light -- is cast through the same Caster.
+#pragma once
+
+#include "refracta/core/rng.h"
+#include "refracta/core/scratch.h"
+#include "refracta/core/spectrum.h"
+#include "refracta/render/caster.h"
+#include "refracta/render/direct_lighting.h"
+#include "refracta/render/render_options.h"
+#include "refracta/render/render_scene.h"
+
+#include <memory>
+
+namespace refracta {
+
+// The random numbers of one pixel sample.
+struct Sampler {
+  Rng rng;
+  double uniform() { return rng.uniform(); }
+  Vec2d uniform2() {
+    const double a = rng.uniform();
+    return Vec2d(a, rng.uniform());
+  }
+};
+
+class Integrator {
+ public:
+  Integrator(const RenderScene& scene, const Caster& caster, const RenderOptions& options)
+      : scene_(scene), caster_(caster), options_(options), lighting_(scene, caster, options) {}
+  virtual ~Integrator() = default;
+
+  // Radiance [W/(m^2 sr)] (RGB or at lambda) arriving at `origin` along the ray leaving it in unit
+  // direction `dir`; pixel_angle [rad] widens texture footprints with path length.
+  Spectrum li(const Vec3d& origin, const Vec3d& dir, double pixel_angle, SampledWavelengths& lambda, Sampler& sampler,
+              ScratchBuffer& scratch) const {
+    return li_after(origin, dir, caster_.cast(origin, dir), pixel_angle, lambda, sampler, scratch);
+  }
+  // The same, with the camera ray's end already found (raster_march finds it by marching).
+  virtual Spectrum li_after(const Vec3d& origin, const Vec3d& dir, const PathEnd& first, double pixel_angle,
+                            SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch) const = 0;
+  const DirectLighting& lighting() const { return lighting_; }
+
+ protected:
+  const RenderScene& scene_;
+  const Caster& caster_;
+  const RenderOptions& options_;
+  DirectLighting lighting_;
+};
+
+std::unique_ptr<Integrator> make_integrator(const RenderScene& scene, const Caster& caster, const RenderOptions& options);
+
+}  // namespace refracta

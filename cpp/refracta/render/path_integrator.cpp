@@ -1,0 +1,117 @@
+// The two integrators (integrator.h): 'path' -- unidirectional path tracing with next-event
+// estimation and MIS (Veach 1997; pbrt-v4 PathIntegrator), Russian roulette from rr_depth on
+// (survival min(0.95, max throughput), shared/SHADING.md section 6) -- and 'direct', the same walk
+// stopped after the first non-specular scattering event's direct lighting. Radiance is carried
+// as basic radiance L / n^2 through the air (conserved along curved rays, Ament et al. 2014):
+// a segment from n_a to n_b scales what arrives by (n_a / n_b)^2.
+#include "refracta/render/integrator.h"
+
+#include "refracta/render/surface_scattering.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace refracta {
+
+namespace {
+
+constexpr double kMaxSurvival = 0.95;
+
+double sqr(double x) { return x * x; }
+
+class PathTracer : public Integrator {
+ public:
+  PathTracer(const RenderScene& scene, const Caster& caster, const RenderOptions& options, bool direct_only)
+      : Integrator(scene, caster, options), direct_only_(direct_only) {}
+
+  Spectrum li_after(const Vec3d& origin, const Vec3d& dir, const PathEnd& first, double pixel_angle,
+                    SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch) const override {
+    Spectrum L = Spectrum::Zero(), beta = Spectrum::Ones();
+    Vec3d o = origin, d = dir;
+    double ior_here = caster_.ior(o);
+    double bsdf_pdf = 0.0, eta_scale = 1.0, travelled = 0.0;
+    bool specular = true;  // the camera ray counts as specular: emitters it sees are not MIS-weighted
+    SurfaceInteraction previous;
+    bool has_previous = false;
+    MediumStack media;
+    int depth = 0;
+    const int max_depth = options_.max_depth;
+    for (int passes = 0; passes < 4 * max_depth + 64; ++passes) {
+      const PathEnd end = passes == 0 ? first : caster_.cast(o, d);
+      travelled += end.length;
+      if (!end.hit) {
+        double n_top = ior_here;
+        if (caster_.curved() && caster_.field()->height_only()) {
+          double dn;
+          caster_.field()->evaluate_height(o.y() + options_.max_length * std::max(end.direction.y(), 0.0), &n_top, &dn);
+        }
+        L += beta * lighting_.escaped(end, d, has_previous ? &previous : nullptr, bsdf_pdf, specular, lambda) *
+             sqr(ior_here / n_top);
+        break;
+      }
+      SurfaceInteraction si = scene_.geometry.interaction(*end.hit, end.direction, pixel_angle * travelled);
+      if (caster_.curved()) {
+        const double ior_hit = caster_.ior(si.p);
+        beta *= sqr(ior_here / ior_hit);
+        ior_here = ior_hit;
+      }
+      L += beta * lighting_.emitted(si, has_previous ? &previous : nullptr, bsdf_pdf, specular, lambda);
+      if (depth >= max_depth) break;
+      scratch.reset();
+      const Scattering s = scattering_at(scene_, si, media, ior_here, lambda, scratch);
+      if (!s.bsdf) {  // a false hit or a pure interface: continue straight through
+        o = si.offset_toward(d);
+        continue;
+      }
+      const bool smooth = s.bsdf.bsdf->has_delta_only();
+      if (!smooth) L += beta * lighting_.sample_light(si, s.bsdf, lambda, sampler.uniform2(), sampler.uniform());
+      const double uc = sampler.uniform();
+      const auto bs = s.bsdf.sample(si.wo, uc, sampler.uniform2());
+      if (!bs) break;
+      // Light leaking through a shading normal: the sampled side must agree with the geometry.
+      if ((bs->wi.dot(si.n) > 0.0) != (si.wo.dot(si.n) > 0.0) && !bs->is_transmission()) break;
+      ++depth;
+      beta *= bs->weight;
+      bsdf_pdf = bs->pdf;
+      specular = bs->is_specular();
+      if (bs->is_transmission()) {
+        eta_scale *= sqr(bs->eta);
+        cross_interface(s, si, bs->wi, &media);
+      }
+      previous = si;
+      has_previous = true;
+      o = si.offset_toward(bs->wi);
+      d = bs->wi;
+      // 'direct' stops once a non-specular event has taken its direct lighting; its BSDF ray
+      // still finds the emitters it hits (the MIS partner of the light sample).
+      if (direct_only_ && !specular) {
+        const PathEnd last = caster_.cast(o, d);
+        if (!last.hit) {
+          L += beta * lighting_.escaped(last, d, &previous, bsdf_pdf, false, lambda);
+        } else {
+          SurfaceInteraction emitter = scene_.geometry.interaction(*last.hit, last.direction, 0.0);
+          L += beta * lighting_.emitted(emitter, &previous, bsdf_pdf, false, lambda);
+        }
+        break;
+      }
+      if (!(beta.maxCoeff() > 0.0)) break;
+      if (depth >= options_.rr_depth) {
+        const double survival = std::min(kMaxSurvival, (beta * eta_scale).maxCoeff());
+        if (sampler.uniform() >= survival) break;
+        beta /= survival;
+      }
+    }
+    return L;
+  }
+
+ private:
+  bool direct_only_;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_integrator(const RenderScene& scene, const Caster& caster, const RenderOptions& options) {
+  return std::make_unique<PathTracer>(scene, caster, options, options.transport == Transport::kDirect);
+}
+
+}  // namespace refracta

@@ -1,0 +1,59 @@
+// The renderers' scene (render_scene.h).
+#include "refracta/render/render_scene.h"
+
+#include "refracta/core/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace refracta {
+
+int RenderScene::add_material(MaterialPtr material) {
+  if (!material) throw_invalid("material must not be None");
+  materials_.push_back(std::move(material));
+  return int(materials_.size() - 1);
+}
+
+size_t RenderScene::add_light(LightPtr light, int emitter) {
+  if (!light) throw_invalid("light must not be None");
+  if (emitter >= 0) {
+    if (size_t(emitter) >= geometry.geometry_count()) throw_invalid("add_light: no geometry ", emitter);
+    if (light_of_geometry_.size() < geometry.geometry_count()) light_of_geometry_.resize(geometry.geometry_count(), -1);
+    light_of_geometry_[size_t(emitter)] = int(lights_.size());
+  }
+  lights_.push_back(std::move(light));
+  geometry_of_light_.push_back(emitter);
+  return lights_.size() - 1;
+}
+
+void RenderScene::remove_infinite_lights() {
+  remove_lights_if([](const Light& light) { return light.is_infinite(); });
+}
+
+void RenderScene::set_shadow_radius(size_t light, double radius) {
+  if (!(radius >= 0.0) || !std::isfinite(radius)) throw_invalid("radius must be >= 0 (got ", radius, ")");
+  shadow_radius_.emplace_back(lights_.at(light).get(), radius);
+}
+
+double RenderScene::shadow_radius(size_t light) const {
+  for (const auto& [l, r] : shadow_radius_) {
+    if (l == lights_.at(light).get()) return r;
+  }
+  return 0.0;
+}
+
+void RenderScene::prepare() const {
+  geometry.commit();
+  // The bounding sphere of the geometry (infinite lights' power through it).
+  Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& part : geometry.meshes()) {
+    for (const auto& v : part.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  }
+  Vec3d centre = Vec3d::Zero();
+  double radius = 1.0;
+  if (lo.x() <= hi.x()) centre = 0.5 * (lo + hi), radius = std::max(0.5 * (hi - lo).norm(), 1e-3);
+  for (const auto& light : lights_) light->preprocess(centre, radius);
+}
+
+}  // namespace refracta

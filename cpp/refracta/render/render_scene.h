@@ -1,0 +1,71 @@
+// A scene as the renderers see it: the Embree geometry, the material table its geometry ids
+// refer to, and the lights (area lights tied to the geometry that emits). What Python's
+// refracta.Scene holds.
+#pragma once
+
+#include "refracta/scene/embree_scene.h"
+#include "refracta/shading/light.h"
+#include "refracta/shading/material.h"
+
+#include <memory>
+#include <vector>
+
+namespace refracta {
+
+class RenderScene {
+ public:
+  Scene geometry;
+
+  // Adds a material to the table; returns its id.
+  int add_material(MaterialPtr material);
+  const Material& material(int id) const { return *materials_.at(size_t(id)); }
+  const MaterialPtr& material_ptr(int id) const { return materials_.at(size_t(id)); }
+  size_t material_count() const { return materials_.size(); }
+
+  // Adds a light; an area light names the geometry whose surface emits it (-1 for none).
+  size_t add_light(LightPtr light, int emitter = -1);
+  const std::vector<LightPtr>& lights() const { return lights_; }
+  // The area light a geometry emits, or -1.
+  int light_of(unsigned geometry) const {
+    return geometry < light_of_geometry_.size() ? light_of_geometry_[geometry] : -1;
+  }
+  // Removes every infinite light (set_environment / set_sky / set_physical_sky replace them).
+  void remove_infinite_lights();
+  // Removes lights for which `drop` is true (keeps area-light links consistent).
+  template <class Predicate>
+  void remove_lights_if(const Predicate& drop);
+
+  // A spot light's disc radius [m] for render_raster's soft-shadow reference ('embree' shadows
+  // of an area spot light: 64 stratified shadow rays), 0 for a point.
+  void set_shadow_radius(size_t light, double radius);
+  double shadow_radius(size_t light) const;
+
+  // Called before rendering: commits the geometry, tells the lights the scene's bounds.
+  void prepare() const;
+
+ private:
+  std::vector<MaterialPtr> materials_;
+  std::vector<LightPtr> lights_;
+  std::vector<int> light_of_geometry_;
+  std::vector<int> geometry_of_light_;
+  std::vector<std::pair<const Light*, double>> shadow_radius_;
+};
+
+template <class Predicate>
+void RenderScene::remove_lights_if(const Predicate& drop) {
+  std::vector<LightPtr> kept;
+  std::vector<int> kept_geometry;
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    if (drop(*lights_[i])) continue;
+    kept.push_back(lights_[i]);
+    kept_geometry.push_back(geometry_of_light_[i]);
+  }
+  lights_ = std::move(kept);
+  geometry_of_light_ = std::move(kept_geometry);
+  std::fill(light_of_geometry_.begin(), light_of_geometry_.end(), -1);
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    if (geometry_of_light_[i] >= 0) light_of_geometry_[size_t(geometry_of_light_[i])] = int(i);
+  }
+}
+
+}  // namespace refracta
