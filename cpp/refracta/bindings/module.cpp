@@ -10,4 +10,6 @@ PYBIND11_MODULE(_core, m) {
   refracta::bind_raster(m);
   refracta::bind_render(m);
   refracta::bind_edit(m);
+  refracta::bind_shading(m);
+  refracta::bind_lights(m);
 }

@@ -1,0 +1,520 @@
+// Python bindings of the BSDF library (shading/): the Material base and one class per material,
+// vectorised evaluation (f, pdf, sample) in the local shading frame, Fresnel functions, the GGX
+// distribution and indices of refraction. Conventions: shared/SHADING.md section 0.
+#include "refracta/bindings/bindings.h"
+#include "refracta/shading/conductor.h"
+#include "refracta/shading/dielectric.h"
+#include "refracta/shading/diffuse.h"
+#include "refracta/shading/fresnel.h"
+#include "refracta/shading/ior.h"
+#include "refracta/shading/microfacet.h"
+#include "refracta/shading/phong.h"
+#include "refracta/shading/plastic.h"
+#include "refracta/shading/principled.h"
+#include "refracta/shading/thin_film.h"
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <optional>
+
+namespace refracta {
+
+namespace {
+
+// Directions must be unit to this tolerance (float64 normalisation gives ~1e-16).
+constexpr double kUnitTolerance = 1e-6;
+
+Vec3d to_rgb(const py::handle& value, const char* name) {
+  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) return Vec3d::Constant(value.cast<double>());
+  DoubleArray a;
+  try {
+    a = py::cast<DoubleArray>(value);
+  } catch (const py::cast_error&) {
+    throw_invalid(name, " must be a number or an (r, g, b) triple");
+  }
+  if (a.ndim() == 0) return Vec3d::Constant(a.data()[0]);
+  if (a.ndim() != 1 || a.shape(0) != 3) throw_invalid(name, " must be a number or an (r, g, b) triple (got ", a.size(), " values)");
+  return Vec3d(a.data()[0], a.data()[1], a.data()[2]);
+}
+
+std::optional<Vec3d> to_optional_rgb(const py::object& value, const char* name) {
+  if (value.is_none()) return std::nullopt;
+  return to_rgb(value, name);
+}
+
+int to_texture(const py::object& texture) {
+  if (texture.is_none()) return -1;
+  const int id = texture.cast<int>();
+  if (id < 0) throw_invalid("texture must be a texture id >= 0 or None (got ", id, ")");
+  return id;
+}
+
+Ior to_ior(const py::object& ior, const py::object& sellmeier) {
+  if (!sellmeier.is_none()) {
+    const std::vector<double> c = sellmeier.cast<std::vector<double>>();
+    if (c.size() != 6) throw_invalid("sellmeier must be (B1, B2, B3, C1, C2, C3) with C in um^2 (got ", c.size(), " values)");
+    return Ior::sellmeier({c[0], c[1], c[2]}, {c[3], c[4], c[5]});
+  }
+  if (py::isinstance<py::str>(ior)) {
+    const std::string name = ior.cast<std::string>();
+    if (name == "bk7" || name == "BK7") return Ior::bk7();
+    throw_invalid("ior must be a number, 'bk7' or given by sellmeier= (got '", name, "')");
+  }
+  return Ior(ior.cast<double>());
+}
+
+// (alpha) or (alpha_u, alpha_v): exactly one form.
+std::pair<double, double> to_alphas(const py::object& alpha, const py::object& alpha_u, const py::object& alpha_v, bool required,
+                                    double fallback) {
+  const bool has_alpha = !alpha.is_none(), has_uv = !alpha_u.is_none() || !alpha_v.is_none();
+  if (has_alpha && has_uv) throw_invalid("give either alpha or alpha_u and alpha_v, not both");
+  if (has_uv) {
+    if (alpha_u.is_none() || alpha_v.is_none()) throw_invalid("alpha_u and alpha_v must be given together");
+    return {alpha_u.cast<double>(), alpha_v.cast<double>()};
+  }
+  if (!has_alpha) {
+    if (required) throw_invalid("alpha (or alpha_u and alpha_v) is required");
+    return {fallback, fallback};
+  }
+  const double a = alpha.cast<double>();
+  return {a, a};
+}
+
+std::vector<Vec3d> to_directions(const py::handle& object, const char* name) {
+  std::vector<Vec3d> w = to_points(object, name);
+  for (size_t i = 0; i < w.size(); ++i) {
+    if (!(std::abs(w[i].norm() - 1.0) <= kUnitTolerance)) {
+      throw_invalid(name, "[", i, "] must be a unit vector (got norm ", w[i].norm(), ")");
+    }
+  }
+  return w;
+}
+
+TransportMode to_mode(const std::string& mode) {
+  if (mode == "radiance") return TransportMode::kRadiance;
+  if (mode == "importance") return TransportMode::kImportance;
+  throw_invalid("mode must be 'radiance' or 'importance' (got '", mode, "')");
+}
+
+// Wavelengths per row: None (RGB), (4,) or (N, 4) [nm] in [kLambdaMin, kLambdaMax].
+struct Wavelengths {
+  std::vector<SampledWavelengths> rows;  // empty: RGB
+  bool spectral() const { return !rows.empty(); }
+  SampledWavelengths at(size_t i) const {
+    if (rows.empty()) return SampledWavelengths::rgb();
+    return rows.size() == 1 ? rows[0] : rows[i];
+  }
+};
+
+Wavelengths to_wavelengths(const py::object& object, size_t n) {
+  Wavelengths w;
+  if (object.is_none()) return w;
+  DoubleArray a = py::cast<DoubleArray>(object);
+  const bool one = a.ndim() == 1 && a.shape(0) == 4;
+  if (!(one || (a.ndim() == 2 && a.shape(1) == 4 && size_t(a.shape(0)) == n))) {
+    throw_invalid("wavelengths must have shape (4,) or (N, 4) with N = ", n, " [nm]");
+  }
+  const size_t rows = one ? 1 : n;
+  for (size_t i = 0; i < rows; ++i) {
+    SampledWavelengths s;
+    s.spectral = true;
+    for (int j = 0; j < 4; ++j) {
+      const double l = a.data()[4 * i + j];
+      if (!(l >= kLambdaMin && l <= kLambdaMax)) throw_invalid("wavelengths must be in [", kLambdaMin, ", ", kLambdaMax, "] nm (got ", l, ")");
+      s.lambda[j] = l;
+    }
+    s.pdf.setConstant(1.0 / (kLambdaMax - kLambdaMin));
+    w.rows.push_back(s);
+  }
+  return w;
+}
+
+size_t broadcast(size_t a, size_t b, const char* what) {
+  if (a == b || b == 1) return a;
+  if (a == 1) return b;
+  throw_invalid(what, ": row counts differ (", a, " and ", b, ")");
+}
+
+// Builds the BSDF at a neutral surface point (no textures: constant colours) for one row.
+class Evaluator {
+ public:
+  Evaluator(const Material& material, double eta_outside) : material_(material), eta_outside_(eta_outside) {
+    if (!std::isfinite(eta_outside) || eta_outside <= 0.0) throw_invalid("eta_outside must be finite and > 0 (got ", eta_outside, ")");
+  }
+  const Bsdf* build(SampledWavelengths* lambda) {
+    scratch_.reset();
+    MaterialContext context;
+    context.lambda = lambda;
+    context.eta_outside = eta_outside_;
+    return material_.bsdf(si_, context, scratch_);
+  }
+
+ private:
+  const Material& material_;
+  double eta_outside_;
+  SurfaceInteraction si_;
+  ScratchBuffer scratch_;
+};
+
+DoubleArray spectra_array(const std::vector<Spectrum>& values, int channels) {
+  DoubleArray out({py::ssize_t(values.size()), py::ssize_t(channels)});
+  double* d = out.mutable_data();
+  for (size_t i = 0; i < values.size(); ++i) {
+    for (int c = 0; c < channels; ++c) d[channels * i + c] = values[i][c];
+  }
+  return out;
+}
+
+template <class Fn>
+void for_rows(const Material& material, double eta_outside, const Wavelengths& wavelengths, size_t n, Fn&& fn) {
+  Evaluator evaluator(material, eta_outside);
+  SampledWavelengths lambda = wavelengths.at(0);
+  const Bsdf* bsdf = evaluator.build(&lambda);
+  for (size_t i = 0; i < n; ++i) {
+    if (wavelengths.spectral() && (i > 0)) {  // spectral: fresh wavelengths (a dielectric may terminate them)
+      lambda = wavelengths.at(i);
+      bsdf = evaluator.build(&lambda);
+    }
+    fn(i, bsdf, lambda);
+  }
+}
+
+const char* kEvalDoc =
+    "wo, wi: unit directions in the local shading frame (z = shading normal), shape (N, 3) or (3,)\n"
+    "(one side may be a single direction, broadcast), wo toward the viewer, wi toward the light.\n"
+    "wavelengths: None for RGB rendering, or (4,) / (N, 4) hero wavelengths [nm] for spectral.\n"
+    "eta_outside: index of the medium on the normal's side; mode: 'radiance' or 'importance'.";
+
+}  // namespace
+
+void bind_shading(py::module_& m) {
+  py::class_<Material, std::shared_ptr<Material>>(m, "Material",
+                                                 "A surface material (shading/material.h): builds a BSDF at a hit. Evaluate it in\n"
+                                                 "the local shading frame with f, pdf and sample (shared/SHADING.md section 0).")
+      .def(
+          "f",
+          [](const Material& material, const py::object& wo_in, const py::object& wi_in, const py::object& wavelengths,
+             double eta_outside, const std::string& mode) {
+            const auto wo = to_directions(wo_in, "wo"), wi = to_directions(wi_in, "wi");
+            const size_t n = broadcast(wo.size(), wi.size(), "wo and wi");
+            const Wavelengths w = to_wavelengths(wavelengths, n);
+            const TransportMode tm = to_mode(mode);
+            std::vector<Spectrum> out(n);
+            for_rows(material, eta_outside, w, n, [&](size_t i, const Bsdf* bsdf, const SampledWavelengths&) {
+              out[i] = bsdf ? bsdf->f(wo[wo.size() == 1 ? 0 : i], wi[wi.size() == 1 ? 0 : i], tm) : Spectrum::Zero();
+            });
+            return spectra_array(out, w.spectral() ? 4 : 3);
+          },
+          py::arg("wo"), py::arg("wi"), py::arg("wavelengths") = py::none(), py::arg("eta_outside") = 1.0,
+          py::arg("mode") = "radiance",
+          (std::string("The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per\n"
+                       "wavelength. Delta lobes give 0.\n") + kEvalDoc).c_str())
+      .def(
+          "pdf",
+          [](const Material& material, const py::object& wo_in, const py::object& wi_in, const py::object& wavelengths,
+             double eta_outside, const std::string& mode) {
+            const auto wo = to_directions(wo_in, "wo"), wi = to_directions(wi_in, "wi");
+            const size_t n = broadcast(wo.size(), wi.size(), "wo and wi");
+            const Wavelengths w = to_wavelengths(wavelengths, n);
+            const TransportMode tm = to_mode(mode);
+            std::vector<double> out(n);
+            for_rows(material, eta_outside, w, n, [&](size_t i, const Bsdf* bsdf, const SampledWavelengths&) {
+              out[i] = bsdf ? bsdf->pdf(wo[wo.size() == 1 ? 0 : i], wi[wi.size() == 1 ? 0 : i], tm) : 0.0;
+            });
+            return values_to_array(out);
+          },
+          py::arg("wo"), py::arg("wi"), py::arg("wavelengths") = py::none(), py::arg("eta_outside") = 1.0,
+          py::arg("mode") = "radiance",
+          (std::string("Density [1/sr] with which sample(wo, u) produces wi: (N,). It includes the lobe\n"
+                       "selection probabilities; delta lobes contribute 0.\n") + kEvalDoc).c_str())
+      .def(
+          "sample",
+          [](const Material& material, const py::object& wo_in, const py::object& u_in, const py::object& wavelengths,
+             double eta_outside, const std::string& mode) {
+            const auto wo = to_directions(wo_in, "wo");
+            DoubleArray u = py::cast<DoubleArray>(u_in);
+            if (!(u.ndim() == 2 && u.shape(1) == 3) && !(u.ndim() == 1 && u.shape(0) == 3)) throw_invalid("u must have shape (N, 3) or (3,)");
+            const size_t nu = u.ndim() == 1 ? 1 : size_t(u.shape(0));
+            for (py::ssize_t i = 0; i < u.size(); ++i) {
+              if (!(u.data()[i] >= 0.0 && u.data()[i] <= 1.0)) throw_invalid("u must be in [0, 1] (got ", u.data()[i], ")");
+            }
+            const size_t n = broadcast(wo.size(), nu, "wo and u");
+            const Wavelengths w = to_wavelengths(wavelengths, n);
+            const TransportMode tm = to_mode(mode);
+            std::vector<Vec3d> wi(n, Vec3d::Zero());
+            std::vector<Spectrum> weight(n, Spectrum::Zero()), f(n, Spectrum::Zero());
+            const std::vector<py::ssize_t> shape{py::ssize_t(n)};
+            py::array_t<double> pdf(shape), eta(shape);
+            py::array_t<unsigned> flags(shape);
+            py::array_t<bool> is_delta(shape), valid(shape), terminated(shape);
+            auto P = pdf.mutable_unchecked<1>(), E = eta.mutable_unchecked<1>();
+            auto F = flags.mutable_unchecked<1>();
+            auto D = is_delta.mutable_unchecked<1>(), V = valid.mutable_unchecked<1>(), T = terminated.mutable_unchecked<1>();
+            Evaluator evaluator(material, eta_outside);
+            for (size_t i = 0; i < n; ++i) {  // fresh wavelengths per sample: a dielectric may terminate them
+              SampledWavelengths lambda = w.at(i);
+              const Bsdf* bsdf = evaluator.build(&lambda);
+              const double* ui = u.data() + 3 * (nu == 1 ? 0 : i);
+              std::optional<BsdfSample> s;
+              const Vec3d& o = wo[wo.size() == 1 ? 0 : i];
+              if (bsdf && o.z() != 0.0) s = bsdf->sample(o, std::min(ui[0], 1.0 - 1e-16), Vec2d(std::min(ui[1], 1.0 - 1e-16), std::min(ui[2], 1.0 - 1e-16)), tm);
+              const bool ok = s && s->pdf > 0.0 && s->weight.maxCoeff() > 0.0;
+              V(i) = ok;
+              P(i) = ok ? s->pdf : 0.0;
+              E(i) = ok ? s->eta : 1.0;
+              F(i) = ok ? s->flags : 0u;
+              D(i) = ok && s->is_specular();
+              T(i) = lambda.secondary_terminated();
+              if (ok) wi[i] = s->wi, weight[i] = s->weight, f[i] = s->f;
+            }
+            const int channels = w.spectral() ? 4 : 3;
+            py::dict out;
+            out["wi"] = points_to_array(wi);
+            out["weight"] = spectra_array(weight, channels);
+            out["f"] = spectra_array(f, channels);
+            out["pdf"] = pdf;
+            out["flags"] = flags;
+            out["is_delta"] = is_delta;
+            out["eta"] = eta;
+            out["valid"] = valid;
+            out["terminated"] = terminated;
+            return out;
+          },
+          py::arg("wo"), py::arg("u"), py::arg("wavelengths") = py::none(), py::arg("eta_outside") = 1.0,
+          py::arg("mode") = "radiance",
+          "Sample incident directions for wo (N, 3) from uniform numbers u (N, 3) in [0, 1): u[:, 0] picks\n"
+          "the lobe, u[:, 1:] the direction. Returns a dict of arrays: wi (N, 3) (0 where invalid),\n"
+          "weight (N, C) = f |cos theta_i| / pdf (delta lobes: the lobe's albedo over its probability),\n"
+          "f (N, C), pdf (N,) (delta lobes: the lobe's selection probability), flags (N,) uint32\n"
+          "(1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular/delta), is_delta (N,),\n"
+          "eta (N,) the relative index crossed (1 for reflection), valid (N,) False where no direction\n"
+          "was produced, terminated (N,) True where a dispersive refraction kept the hero wavelength\n"
+          "only. C = 3 (RGB) or 4 (spectral). Other arguments as for f.")
+      .def("describe", &Material::describe)
+      .def("__repr__", &Material::describe)
+      .def_property_readonly("priority", &Material::priority, "Nested-dielectric priority (larger wins).")
+      .def_property_readonly("alpha", &Material::alpha, "Opacity for raster transparency, in [0, 1].")
+      .def(
+          "interior_ior",
+          [](const Material& material, std::optional<double> wavelength) {
+            SampledWavelengths l = SampledWavelengths::rgb();
+            if (wavelength) {
+              l = SampledWavelengths::sample_uniform(0.0);
+              l.lambda[0] = *wavelength;
+            }
+            return material.interior_ior(l);
+          },
+          py::arg("wavelength") = py::none(),
+          "Index of refraction of the medium a dielectric bounds, at the given wavelength [nm] (None: RGB\n"
+          "rendering's 550 nm), or None for materials that bound no medium.");
+
+  py::class_<Diffuse, Material, std::shared_ptr<Diffuse>>(m, "Diffuse",
+                                                        "Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b)\n"
+                                                        "in [0, 1] (> 1 is refused: it would create energy); texture: a texture id of the\n"
+                                                        "scene multiplying it (ignored by f/pdf/sample, which have no texture table).")
+      .def(py::init([](const py::object& reflectance, const py::object& texture) {
+             return std::make_shared<Diffuse>(to_rgb(reflectance, "reflectance"), to_texture(texture));
+           }),
+           py::arg("reflectance") = 0.5, py::arg("texture") = py::none());
+
+  py::class_<BlinnPhong, Material, std::shared_ptr<BlinnPhong>>(
+      m, "BlinnPhong",
+      "Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0, 1]\n"
+      "(numbers or (r, g, b)), ns >= 0; texture multiplies kd; alpha in [0, 1] is the raster opacity (MTL d).\n"
+      "Sampled by a mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact.")
+      .def(py::init([](const py::object& kd, const py::object& ks, double ns, const py::object& texture, double alpha) {
+             return std::make_shared<BlinnPhong>(to_rgb(kd, "kd"), to_rgb(ks, "ks"), ns, to_texture(texture), alpha);
+           }),
+           py::arg("kd") = 0.5, py::arg("ks") = 0.0, py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("alpha") = 1.0);
+
+  py::class_<Conductor, Material, std::shared_ptr<Conductor>>(
+      m, "Conductor",
+      "A smooth metal mirror with the exact complex Fresnel reflectance of eta + i k (numbers or (r, g, b),\n"
+      "relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.")
+      .def(py::init([](const py::object& eta, const py::object& k) {
+             return std::make_shared<Conductor>(to_optional_rgb(eta, "eta"), to_optional_rgb(k, "k"));
+           }),
+           py::arg("eta") = py::none(), py::arg("k") = py::none());
+
+  py::class_<RoughConductor, Material, std::shared_ptr<RoughConductor>>(
+      m, "RoughConductor",
+      "A rough metal: GGX microfacets (alpha, or alpha_u along the tangent and alpha_v along the bitangent;\n"
+      ">= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F = 1),\n"
+      "visible-normal sampling.")
+      .def(py::init([](const py::object& alpha, const py::object& alpha_u, const py::object& alpha_v, const py::object& eta,
+                       const py::object& k) {
+             const auto a = to_alphas(alpha, alpha_u, alpha_v, true, 0.0);
+             return std::make_shared<RoughConductor>(a.first, a.second, to_optional_rgb(eta, "eta"), to_optional_rgb(k, "k"));
+           }),
+           py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none(),
+           py::arg("eta") = py::none(), py::arg("k") = py::none());
+
+  py::class_<Dielectric, Material, std::shared_ptr<Dielectric>>(
+      m, "Dielectric",
+      "Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by\n"
+      "(eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3), C in\n"
+      "um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction). priority: nested\n"
+      "dielectrics (larger wins).")
+      .def(py::init([](const py::object& ior, const py::object& sellmeier, int priority) {
+             return std::make_shared<Dielectric>(to_ior(ior, sellmeier), priority);
+           }),
+           py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0);
+
+  py::class_<RoughDielectric, Material, std::shared_ptr<RoughDielectric>>(
+      m, "RoughDielectric",
+      "Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.")
+      .def(py::init([](const py::object& alpha, const py::object& ior, const py::object& sellmeier, int priority,
+                       const py::object& alpha_u, const py::object& alpha_v) {
+             const auto a = to_alphas(alpha, alpha_u, alpha_v, true, 0.0);
+             return std::make_shared<RoughDielectric>(a.first, a.second, to_ior(ior, sellmeier), priority);
+           }),
+           py::arg("alpha") = py::none(), py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0,
+           py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
+
+  py::class_<ThinDielectric, Material, std::shared_ptr<ThinDielectric>>(
+      m, "ThinDielectric",
+      "A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through\n"
+      "(no offset, no medium inside: interior_ior is None). ior as for Dielectric.")
+      .def(py::init([](const py::object& ior, const py::object& sellmeier) { return std::make_shared<ThinDielectric>(to_ior(ior, sellmeier)); }),
+           py::arg("ior") = 1.5, py::arg("sellmeier") = py::none());
+
+  py::class_<Plastic, Material, std::shared_ptr<Plastic>>(
+      m, "Plastic",
+      "Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of index\n"
+      "ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX\n"
+      "(or alpha_u, alpha_v); texture multiplies the reflectance.")
+      .def(py::init([](const py::object& reflectance, double ior, const py::object& alpha, const py::object& alpha_u,
+                       const py::object& alpha_v, const py::object& texture) {
+             const auto a = to_alphas(alpha, alpha_u, alpha_v, false, 0.0);
+             return std::make_shared<Plastic>(to_rgb(reflectance, "reflectance"), ior, a.first, a.second, to_texture(texture));
+           }),
+           py::arg("reflectance") = 0.5, py::arg("ior") = 1.5, py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(),
+           py::arg("alpha_v") = py::none(), py::arg("texture") = py::none());
+
+  py::class_<Principled, Material, std::shared_ptr<Principled>>(
+      m, "Principled",
+      "Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and\n"
+      "metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,\n"
+      "clearcoat, clearcoat_gloss, all in [0, 1]. texture multiplies base_color.")
+      .def(py::init([](const py::object& base_color, double metallic, double roughness, double anisotropic, double specular,
+                       double specular_tint, double sheen, double sheen_tint, double clearcoat, double clearcoat_gloss,
+                       const py::object& texture) {
+             PrincipledParameters p;
+             p.metallic = metallic, p.roughness = roughness, p.anisotropic = anisotropic, p.specular = specular;
+             p.specular_tint = specular_tint, p.sheen = sheen, p.sheen_tint = sheen_tint, p.clearcoat = clearcoat;
+             p.clearcoat_gloss = clearcoat_gloss;
+             return std::make_shared<Principled>(to_rgb(base_color, "base_color"), p, to_texture(texture));
+           }),
+           py::arg("base_color") = 0.5, py::arg("metallic") = 0.0, py::arg("roughness") = 0.5, py::arg("anisotropic") = 0.0,
+           py::arg("specular") = 0.5, py::arg("specular_tint") = 0.0, py::arg("sheen") = 0.0, py::arg("sheen_tint") = 0.5,
+           py::arg("clearcoat") = 0.0, py::arg("clearcoat_gloss") = 1.0, py::arg("texture") = py::none());
+
+  py::class_<ThinFilm, Material, std::shared_ptr<ThinFilm>>(
+      m, "ThinFilm",
+      "Thin-film iridescence (Belcour & Barla 2017): a film of thickness [nm] and index film_ior on a base\n"
+      "of complex index eta + i k, with GGX roughness alpha (or alpha_u, alpha_v; 0 = smooth mirror). The\n"
+      "Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.")
+      .def(py::init([](double thickness, double film_ior, const py::object& eta, const py::object& k, const py::object& alpha,
+                       const py::object& alpha_u, const py::object& alpha_v) {
+             const auto a = to_alphas(alpha, alpha_u, alpha_v, false, 0.1);
+             return std::make_shared<ThinFilm>(thickness, film_ior, to_rgb(eta, "eta"), to_rgb(k, "k"), a.first, a.second);
+           }),
+           py::arg("thickness"), py::arg("film_ior") = 1.33, py::arg("eta") = 1.5, py::arg("k") = 0.0, py::arg("alpha") = py::none(),
+           py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
+
+  // Fresnel and thin films, vectorised over numpy arrays.
+  m.def(
+      "fresnel_dielectric",
+      py::vectorize([](double cos_i, double eta) {
+        if (!(eta > 0.0) || !std::isfinite(eta)) throw_invalid("eta must be finite and > 0 (got ", eta, ")");
+        if (!(std::abs(cos_i) <= 1.0)) throw_invalid("cos_i must be in [-1, 1] (got ", cos_i, ")");
+        return fresnel_dielectric(cos_i, eta);
+      }),
+      py::arg("cos_i"), py::arg("eta"),
+      "Unpolarised Fresnel reflectance of a dielectric interface, eta = eta_t / eta_i on the side cos_i > 0\n"
+      "(cos_i < 0: from inside, 1 / eta). Total internal reflection gives 1. Vectorised.");
+  m.def(
+      "fresnel_conductor",
+      py::vectorize([](double cos_i, double eta, double k) {
+        if (!(eta > 0.0) || !std::isfinite(eta)) throw_invalid("eta must be finite and > 0 (got ", eta, ")");
+        if (!(k >= 0.0) || !std::isfinite(k)) throw_invalid("k must be finite and >= 0 (got ", k, ")");
+        if (!(std::abs(cos_i) <= 1.0)) throw_invalid("cos_i must be in [-1, 1] (got ", cos_i, ")");
+        return fresnel_complex(cos_i, std::complex<double>(eta, k));
+      }),
+      py::arg("cos_i"), py::arg("eta"), py::arg("k"),
+      "Unpolarised Fresnel reflectance of a conductor of relative complex index eta + i k at |cos_i| (exact). Vectorised.");
+  m.def(
+      "fresnel_diffuse_reflectance",
+      [](double eta) {
+        if (!(eta > 0.0) || !std::isfinite(eta)) throw_invalid("eta must be finite and > 0 (got ", eta, ")");
+        return fresnel_diffuse_reflectance(eta);
+      },
+      py::arg("eta"), "Hemispherical reflectance 2 int F(mu) mu dmu of a dielectric seen from the side where eta = eta_t / eta_i.");
+  m.def(
+      "thin_film_reflectance",
+      py::vectorize([](double cos_i, double n1, double n2, double eta, double k, double thickness, double wavelength) {
+        if (!(n1 > 0.0 && n2 > 0.0 && eta > 0.0 && k >= 0.0 && thickness >= 0.0 && wavelength > 0.0)) {
+          throw_invalid("thin_film_reflectance needs n1, n2, eta, wavelength > 0 and k, thickness >= 0");
+        }
+        return thin_film_reflectance(cos_i, n1, n2, {eta, k}, thickness, wavelength);
+      }),
+      py::arg("cos_i"), py::arg("n1"), py::arg("n2"), py::arg("eta"), py::arg("k"), py::arg("thickness"), py::arg("wavelength"),
+      "Airy reflectance of a film (index n2, thickness [nm]) between n1 and a base eta + i k at a wavelength [nm]. Vectorised.");
+
+  py::class_<TrowbridgeReitz>(m, "TrowbridgeReitz",
+                              "The GGX microfacet distribution (microfacet.h): D, Lambda, G1, height-correlated G, the\n"
+                              "visible-normal density and sampler. Directions: (N, 3) unit vectors in the local frame.")
+      .def(py::init([](double alpha_x, double alpha_y) {
+             return TrowbridgeReitz(TrowbridgeReitz::checked_alpha(alpha_x, "alpha_x"), TrowbridgeReitz::checked_alpha(alpha_y, "alpha_y"));
+           }),
+           py::arg("alpha_x"), py::arg("alpha_y"))
+      .def("D", [](const TrowbridgeReitz& d, const py::object& m_) {
+        std::vector<double> out;
+        for (const Vec3d& m : to_directions(m_, "m")) out.push_back(d.D(m));
+        return values_to_array(out);
+      }, py::arg("m"))
+      .def("G1", [](const TrowbridgeReitz& d, const py::object& w_) {
+        std::vector<double> out;
+        for (const Vec3d& w : to_directions(w_, "w")) out.push_back(d.G1(w));
+        return values_to_array(out);
+      }, py::arg("w"))
+      .def("G", [](const TrowbridgeReitz& d, const py::object& wo_, const py::object& wi_) {
+        const auto wo = to_directions(wo_, "wo"), wi = to_directions(wi_, "wi");
+        const size_t n = broadcast(wo.size(), wi.size(), "wo and wi");
+        std::vector<double> out(n);
+        for (size_t i = 0; i < n; ++i) out[i] = d.G(wo[wo.size() == 1 ? 0 : i], wi[wi.size() == 1 ? 0 : i]);
+        return values_to_array(out);
+      }, py::arg("wo"), py::arg("wi"))
+      .def("D_visible", [](const TrowbridgeReitz& d, const py::object& w_, const py::object& m_) {
+        const auto w = to_directions(w_, "w"), m = to_directions(m_, "m");
+        const size_t n = broadcast(w.size(), m.size(), "w and m");
+        std::vector<double> out(n);
+        for (size_t i = 0; i < n; ++i) out[i] = d.D_visible(w[w.size() == 1 ? 0 : i], m[m.size() == 1 ? 0 : i]);
+        return values_to_array(out);
+      }, py::arg("w"), py::arg("m"))
+      .def("sample_wm", [](const TrowbridgeReitz& d, const py::object& w_, const py::object& u_) {
+        const auto w = to_directions(w_, "w");
+        DoubleArray u = py::cast<DoubleArray>(u_);
+        if (u.ndim() != 2 || u.shape(1) != 2) throw_invalid("u must have shape (N, 2)");
+        const size_t n = broadcast(w.size(), size_t(u.shape(0)), "w and u");
+        std::vector<Vec3d> out(n);
+        for (size_t i = 0; i < n; ++i) out[i] = d.sample_wm(w[w.size() == 1 ? 0 : i], Vec2d(u.at(i, 0), u.at(i, 1)));
+        return points_to_array(out);
+      }, py::arg("w"), py::arg("u"));
+
+  py::class_<Ior>(m, "Ior", "An index of refraction: constant or Sellmeier (C in um^2).")
+      .def(py::init([](const py::object& ior, const py::object& sellmeier) { return to_ior(ior, sellmeier); }),
+           py::arg("ior") = 1.5, py::arg("sellmeier") = py::none())
+      .def("at", [](const Ior& ior, const py::object& wavelength) {
+             bool single = false;
+             std::vector<double> l = to_values(wavelength, "wavelength", &single);
+             for (double& x : l) x = ior.at(x);
+             return single ? py::object(py::float_(l[0])) : py::object(values_to_array(l));
+           }, py::arg("wavelength"),
+           "n at wavelength(s) [nm].")
+      .def_property_readonly("dispersive", &Ior::dispersive)
+      .def("__repr__", [](const Ior& ior) { return concat("Ior(", ior.describe(), ")"); });
+}
+
+}  // namespace refracta

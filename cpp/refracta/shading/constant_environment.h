@@ -1,0 +1,41 @@
+// A constant environment (shared/SHADING.md section 5): radiance L_e [W/(m^2 sr)] arriving from
+// every direction (the white furnace when L_e = 1). Sampling: cosine-weighted about ctx.n when
+// the context has a normal and sampling is kCosine (pdf 0 below the surface: the integrator's
+// BSDF sampling, MIS-weighted, must cover transmission), otherwise the uniform sphere (pdf
+// 1/(4 pi)). Irradiance on any surface: E = pi L_e.
+//
+// Integrator: an infinite light, as EnvironmentLight (environment_light.h): escaping rays add
+// Le(dir); NEE with sample_li / pdf_li(ctx, wi, ., .); preprocess(centre, R) before power().
+#pragma once
+
+#include "refracta/shading/color.h"
+#include "refracta/shading/light.h"
+
+namespace refracta {
+
+class ConstantEnvironment final : public Light {
+ public:
+  enum class Sampling { kCosine, kUniform };
+  explicit ConstantEnvironment(const Color& radiance, Sampling sampling = Sampling::kCosine);
+
+  LightType type() const override { return LightType::kInfinite; }
+  std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, const Vec2d& u,
+                                         const SampledWavelengths& lambda) const override;
+  double pdf_li(const LightSampleContext& ctx, const Vec3d& wi, const Vec3d& p_light,
+                const Vec3d& n_light) const override;
+  Spectrum Le(const Vec3d& dir, const SampledWavelengths& lambda) const override;
+  double power() const override;  // 4 pi^2 R^2 Y(L_e)
+  void preprocess(const Vec3d& centre, double radius) override;
+  std::string describe() const override;
+
+  const Color& radiance() const { return radiance_; }
+  Sampling sampling() const { return sampling_; }
+
+ private:
+  bool cosine(const LightSampleContext& ctx) const { return sampling_ == Sampling::kCosine && ctx.n.squaredNorm() > 0.0; }
+  Color radiance_;
+  Sampling sampling_;
+  double scene_radius_ = 1.0;
+};
+
+}  // namespace refracta

@@ -1,0 +1,237 @@
+// Dielectric interfaces (shared/SHADING.md sections 1-4): smooth glass, rough glass and a thin
+// pane. The relative index eta = interior ior / outside index (MaterialContext::eta_outside: the
+// air field's n or the enclosing dielectric) is seen from the outside, the side the shading
+// normal points to; wo below the surface means the path is inside.
+//   Dielectric(ior): reflect with probability F(wo), refract with 1 - F (total internal
+//     reflection: always reflect); each sample weighs 1, a refraction from eta_i into eta_t
+//     times (eta_i / eta_t)^2 when transporting radiance (pbrt-v4 TransportMode).
+//   RoughDielectric(alpha, ior): Walter et al. 2007 ("Microfacet Models for Refraction through
+//     Rough Surfaces", EGSR, eqs. 20-21) in pbrt-v4's form with the generalised half vector
+//     m = normalize(eta' wi + wo), eta' = eta_t / eta_i from wo's side, height-correlated G,
+//     visible-normal sampling, then reflection with probability F(wo.m).
+//   ThinDielectric(ior): a pane of two parallel interfaces close together: reflection
+//     R' = R + T^2 R / (1 - R^2) (all internal bounces summed), transmission 1 - R' straight
+//     through (wi = -wo, no offset, no change of index).
+// Dispersion (a Sellmeier ior) in spectral rendering: the smooth Dielectric keeps all four
+// wavelengths on reflection (each weighted by its own F over the hero's) and keeps only the hero
+// on refraction (SampledWavelengths::terminate_secondary); the rough one terminates the
+// secondaries when its BSDF is built, as pbrt-v4 does, since its lobes differ per wavelength.
+#pragma once
+
+#include "refracta/shading/fresnel.h"
+#include "refracta/shading/ior.h"
+#include "refracta/shading/material_util.h"
+#include "refracta/shading/microfacet.h"
+
+namespace refracta {
+
+class DielectricBsdf final : public Bsdf {
+ public:
+  // eta at the hero wavelength; with `lambda` set (dispersive, spectral), eta_spectrum holds the
+  // index per wavelength and a refraction terminates the secondaries.
+  DielectricBsdf(double eta, const Spectrum& eta_spectrum, SampledWavelengths* lambda)
+      : eta_(eta), eta_spectrum_(eta_spectrum), lambda_(lambda) {}
+  Spectrum f(const Vec3d&, const Vec3d&, TransportMode) const override { return Spectrum::Zero(); }
+  double pdf(const Vec3d&, const Vec3d&, TransportMode) const override { return 0.0; }
+  std::optional<BsdfSample> sample(const Vec3d& wo, double uc, const Vec2d&, TransportMode mode) const override {
+    const double r = fresnel_dielectric(wo.z(), eta_), t = 1.0 - r;
+    BsdfSample s;
+    if (uc < r) {
+      s.wi = Vec3d(-wo.x(), -wo.y(), wo.z());
+      s.pdf = r;
+      s.weight = Spectrum::Ones();
+      if (lambda_) {
+        for (int i = 1; i < kSpectrumSamples; ++i) s.weight[i] = fresnel_dielectric(wo.z(), eta_spectrum_[i]) / r;
+      }
+      s.flags = kBsdfReflection | kBsdfSpecular;
+    } else {
+      double etap = 1.0;
+      if (!refract(wo, Vec3d::UnitZ(), eta_, &etap, &s.wi)) return std::nullopt;  // t > 0 here: no TIR
+      s.pdf = t;
+      s.weight = Spectrum::Ones();
+      if (mode == TransportMode::kRadiance) s.weight /= etap * etap;
+      if (lambda_) {
+        lambda_->terminate_secondary();
+        s.weight.tail<3>().setZero();
+      }
+      s.eta = etap;
+      s.flags = kBsdfTransmission | kBsdfSpecular;
+    }
+    s.f = s.weight * s.pdf / std::abs(s.wi.z());
+    return s;
+  }
+  unsigned flags() const override { return kBsdfReflection | kBsdfTransmission | kBsdfSpecular; }
+
+ private:
+  double eta_;
+  Spectrum eta_spectrum_;
+  SampledWavelengths* lambda_;
+};
+
+class RoughDielectricBsdf final : public Bsdf {
+ public:
+  RoughDielectricBsdf(double eta, const TrowbridgeReitz& distribution) : eta_(eta), distribution_(distribution) {}
+
+  Spectrum f(const Vec3d& wo, const Vec3d& wi, TransportMode mode) const override {
+    double etap;
+    Vec3d m;
+    if (!half_vector(wo, wi, &etap, &m)) return Spectrum::Zero();
+    const double F = fresnel_dielectric(wo.dot(m), eta_);
+    const double cos_o = wo.z(), cos_i = wi.z();
+    if (cos_o * cos_i > 0.0) {
+      return Spectrum::Constant(distribution_.D(m) * distribution_.G(wo, wi) * F / std::abs(4.0 * cos_i * cos_o));
+    }
+    const double denominator = sqr(wi.dot(m) + wo.dot(m) / etap) * cos_i * cos_o;
+    double ft = distribution_.D(m) * (1.0 - F) * distribution_.G(wo, wi) * std::abs(wi.dot(m) * wo.dot(m) / denominator);
+    if (mode == TransportMode::kRadiance) ft /= etap * etap;
+    return Spectrum::Constant(ft);
+  }
+
+  double pdf(const Vec3d& wo, const Vec3d& wi, TransportMode) const override {
+    double etap;
+    Vec3d m;
+    if (!half_vector(wo, wi, &etap, &m)) return 0.0;
+    const double r = fresnel_dielectric(wo.dot(m), eta_), t = 1.0 - r;
+    if (wo.z() * wi.z() > 0.0) return distribution_.D_visible(wo, m) / (4.0 * std::abs(wo.dot(m))) * r;
+    const double denominator = sqr(wi.dot(m) + wo.dot(m) / etap);
+    return distribution_.D_visible(wo, m) * std::abs(wi.dot(m)) / denominator * t;
+  }
+
+  std::optional<BsdfSample> sample(const Vec3d& wo, double uc, const Vec2d& u, TransportMode mode) const override {
+    if (wo.z() == 0.0) return std::nullopt;
+    const Vec3d m = distribution_.sample_wm(wo, u);
+    const double r = fresnel_dielectric(wo.dot(m), eta_);
+    BsdfSample s;
+    if (uc < r) {
+      s.wi = reflect(wo, m);
+      if (!same_hemisphere(wo, s.wi)) return std::nullopt;
+      s.flags = kBsdfReflection | kBsdfGlossy;
+    } else {
+      double etap;
+      if (!refract(wo, m, eta_, &etap, &s.wi) || same_hemisphere(wo, s.wi) || s.wi.z() == 0.0) return std::nullopt;
+      s.flags = kBsdfTransmission | kBsdfGlossy;
+      s.eta = etap;
+    }
+    s.pdf = pdf(wo, s.wi, mode);
+    if (!(s.pdf > 0.0)) return std::nullopt;
+    s.f = f(wo, s.wi, mode);
+    s.weight = s.f * std::abs(s.wi.z()) / s.pdf;
+    return s;
+  }
+  unsigned flags() const override { return kBsdfReflection | kBsdfTransmission | kBsdfGlossy; }
+
+ private:
+  static double sqr(double x) { return x * x; }
+  // The generalised half vector on the normal's side; false for configurations no microfacet
+  // produces (grazing directions, back-facing microfacets).
+  bool half_vector(const Vec3d& wo, const Vec3d& wi, double* etap, Vec3d* m) const {
+    const double cos_o = wo.z(), cos_i = wi.z();
+    if (cos_o == 0.0 || cos_i == 0.0) return false;
+    const bool reflection = cos_o * cos_i > 0.0;
+    *etap = reflection ? 1.0 : (cos_o > 0.0 ? eta_ : 1.0 / eta_);
+    Vec3d h = wi * *etap + wo;
+    if (h.squaredNorm() == 0.0) return false;
+    h.normalize();
+    if (h.z() < 0.0) h = -h;
+    if (h.dot(wi) * cos_i < 0.0 || h.dot(wo) * cos_o < 0.0) return false;
+    *m = h;
+    return true;
+  }
+  double eta_;
+  TrowbridgeReitz distribution_;
+};
+
+class ThinDielectricBsdf final : public Bsdf {
+ public:
+  explicit ThinDielectricBsdf(double eta) : eta_(eta) {}
+  Spectrum f(const Vec3d&, const Vec3d&, TransportMode) const override { return Spectrum::Zero(); }
+  double pdf(const Vec3d&, const Vec3d&, TransportMode) const override { return 0.0; }
+  std::optional<BsdfSample> sample(const Vec3d& wo, double uc, const Vec2d&, TransportMode) const override {
+    if (wo.z() == 0.0) return std::nullopt;
+    double r = fresnel_dielectric(std::abs(wo.z()), eta_);
+    if (r < 1.0) r += (1.0 - r) * (1.0 - r) * r / (1.0 - r * r);
+    BsdfSample s;
+    s.weight = Spectrum::Ones();
+    if (uc < r) {
+      s.wi = Vec3d(-wo.x(), -wo.y(), wo.z());
+      s.pdf = r;
+      s.flags = kBsdfReflection | kBsdfSpecular;
+    } else {
+      s.wi = -wo;
+      s.pdf = 1.0 - r;
+      s.flags = kBsdfTransmission | kBsdfSpecular;
+    }
+    s.f = s.weight * s.pdf / std::abs(s.wi.z());
+    return s;
+  }
+  unsigned flags() const override { return kBsdfReflection | kBsdfTransmission | kBsdfSpecular; }
+
+ private:
+  double eta_;
+};
+
+class Dielectric final : public Material {
+ public:
+  explicit Dielectric(const Ior& ior = Ior(1.5), int priority = 0) : ior_(ior), priority_(priority) {}
+  const Bsdf* bsdf(const SurfaceInteraction&, const MaterialContext& context, ScratchBuffer& scratch) const override {
+    SampledWavelengths* lambda = context.lambda;
+    const double eta = *interior_ior(*lambda) / context.eta_outside;
+    Spectrum eta_spectrum = Spectrum::Constant(eta);
+    const bool dispersive = ior_.dispersive() && lambda->spectral && !lambda->secondary_terminated();
+    if (dispersive) {
+      for (int i = 0; i < kSpectrumSamples; ++i) eta_spectrum[i] = ior_.at(lambda->lambda[i]) / context.eta_outside;
+    }
+    return scratch.make<DielectricBsdf>(eta, eta_spectrum, dispersive ? lambda : nullptr);
+  }
+  std::optional<double> interior_ior(const SampledWavelengths& lambda) const override {
+    return lambda.spectral ? ior_.at(lambda.hero()) : ior_.rgb_value();
+  }
+  int priority() const override { return priority_; }
+  std::string describe() const override {
+    return concat("Dielectric(ior=", ior_.describe(), priority_ ? concat(", priority=", priority_) : "", ")");
+  }
+
+ private:
+  Ior ior_;
+  int priority_;
+};
+
+class RoughDielectric final : public Material {
+ public:
+  RoughDielectric(double alpha_u, double alpha_v, const Ior& ior = Ior(1.5), int priority = 0)
+      : alpha_u_(TrowbridgeReitz::checked_alpha(alpha_u, "alpha_u")), alpha_v_(TrowbridgeReitz::checked_alpha(alpha_v, "alpha_v")),
+        ior_(ior), priority_(priority) {}
+  const Bsdf* bsdf(const SurfaceInteraction&, const MaterialContext& context, ScratchBuffer& scratch) const override {
+    if (ior_.dispersive() && context.lambda->spectral) context.lambda->terminate_secondary();
+    return scratch.make<RoughDielectricBsdf>(*interior_ior(*context.lambda) / context.eta_outside, TrowbridgeReitz(alpha_u_, alpha_v_));
+  }
+  std::optional<double> interior_ior(const SampledWavelengths& lambda) const override {
+    return lambda.spectral ? ior_.at(lambda.hero()) : ior_.rgb_value();
+  }
+  int priority() const override { return priority_; }
+  std::string describe() const override {
+    return concat("RoughDielectric(alpha_u=", alpha_u_, ", alpha_v=", alpha_v_, ", ior=", ior_.describe(),
+                  priority_ ? concat(", priority=", priority_) : "", ")");
+  }
+
+ private:
+  double alpha_u_, alpha_v_;
+  Ior ior_;
+  int priority_;
+};
+
+class ThinDielectric final : public Material {
+ public:
+  explicit ThinDielectric(const Ior& ior = Ior(1.5)) : ior_(ior) {}
+  const Bsdf* bsdf(const SurfaceInteraction&, const MaterialContext& context, ScratchBuffer& scratch) const override {
+    const double n = context.lambda->spectral ? ior_.at(context.lambda->hero()) : ior_.rgb_value();
+    if (ior_.dispersive() && context.lambda->spectral) context.lambda->terminate_secondary();
+    return scratch.make<ThinDielectricBsdf>(n / context.eta_outside);
+  }
+  std::string describe() const override { return concat("ThinDielectric(ior=", ior_.describe(), ")"); }
+
+ private:
+  Ior ior_;
+};
+
+}  // namespace refracta

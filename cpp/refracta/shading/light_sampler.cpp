@@ -1,0 +1,36 @@
+// The light chooser (light_sampler.h).
+#include "refracta/shading/light_sampler.h"
+
+#include "refracta/core/error.h"
+
+#include <cmath>
+
+namespace refracta {
+
+LightSampler::LightSampler(std::vector<LightPtr> lights, Strategy strategy)
+    : lights_(std::move(lights)), strategy_(strategy) {
+  std::vector<double> weights(lights_.size(), 1.0);
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    if (!lights_[i]) throw_invalid("LightSampler: lights[", i, "] is null");
+    if (strategy_ == Strategy::kPower) {
+      const double p = lights_[i]->power();
+      if (!std::isfinite(p) || p < 0.0) throw_invalid("LightSampler: lights[", i, "].power() must be finite and >= 0 (got ", p, ")");
+      weights[i] = p;
+    }
+  }
+  if (!lights_.empty()) distribution_ = PiecewiseConstant1D(weights);
+}
+
+std::optional<SampledLight> LightSampler::sample(double u) const {
+  if (lights_.empty()) return std::nullopt;
+  SampledLight s;
+  distribution_.sample(std::clamp(u, 0.0, std::nextafter(1.0, 0.0)), nullptr, &s.index);
+  s.probability = distribution_.cell_probability(s.index);
+  return s;
+}
+
+double LightSampler::pmf(size_t index) const {
+  return index < lights_.size() ? distribution_.cell_probability(index) : 0.0;
+}
+
+}  // namespace refracta

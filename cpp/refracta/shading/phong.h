@@ -1,0 +1,89 @@
+// The energy-normalised Blinn-Phong BRDF of the MTL materials (Blinn 1977; normalisation
+// (ns + 8) / (8 pi), Akenine-Moller et al., Real-Time Rendering 4th ed., eq. 9.71):
+//   f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns,  h = normalize(wo + wi).
+// Sampled by a mixture: the cosine hemisphere with probability p_d = mean(kd) / (mean(kd) +
+// mean(ks)), else the lobe around the half vector, pdf_h(h) = (ns + 1) / (2 pi) (n.h)^ns (so
+// cos theta_h = u^(1/(ns+1))) reflected about h, pdf(wi) = pdf_h / (4 |wo.h|). The pdf is the exact
+// mixture; half vectors whose reflection falls below the surface are lost samples. Two-sided.
+// (The raster pipeline's shading/blinn_phong.h evaluates the same f from scene/material.h.)
+#pragma once
+
+#include "refracta/shading/material_util.h"
+
+namespace refracta {
+
+class BlinnPhongBsdf final : public TwoSidedReflection<BlinnPhongBsdf> {
+ public:
+  BlinnPhongBsdf(const Spectrum& kd, const Spectrum& ks, double ns, double p_diffuse)
+      : kd_(kd), ks_(ks), ns_(ns), p_diffuse_(p_diffuse) {}
+
+  Spectrum f_up(const Vec3d& wo, const Vec3d& wi, TransportMode) const {
+    Spectrum f = kd_ / kPi;
+    const Vec3d h = wo + wi;
+    if (p_diffuse_ < 1.0 && h.squaredNorm() > 0.0) {
+      f += ks_ * ((ns_ + 8.0) / (8.0 * kPi) * std::pow(std::max(0.0, h.normalized().z()), ns_));
+    }
+    return f;
+  }
+  double pdf_up(const Vec3d& wo, const Vec3d& wi, TransportMode) const {
+    double pdf = p_diffuse_ * cosine_hemisphere_pdf(wi.z());
+    const Vec3d hv = wo + wi;
+    if (p_diffuse_ < 1.0 && hv.squaredNorm() > 0.0) {
+      const Vec3d h = hv.normalized();
+      const double cos_h = std::max(0.0, h.z());
+      pdf += (1.0 - p_diffuse_) * (ns_ + 1.0) / (2.0 * kPi) * std::pow(cos_h, ns_) / (4.0 * std::abs(wo.dot(h)));
+    }
+    return pdf;
+  }
+  std::optional<BsdfSample> sample_up(const Vec3d& wo, double uc, const Vec2d& u, TransportMode mode) const {
+    BsdfSample s;
+    if (uc < p_diffuse_) {
+      s.wi = sample_cosine_hemisphere(u);
+    } else {
+      const double cos_h = std::pow(u.x(), 1.0 / (ns_ + 1.0));
+      const double sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h)), phi = 2.0 * kPi * u.y();
+      const Vec3d h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
+      s.wi = reflect(wo, h);
+      if (!(s.wi.z() > 0.0)) return std::nullopt;
+    }
+    s.pdf = pdf_up(wo, s.wi, mode);
+    if (!(s.pdf > 0.0)) return std::nullopt;
+    s.f = f_up(wo, s.wi, mode);
+    s.weight = s.f * s.wi.z() / s.pdf;
+    s.flags = kBsdfReflection | (uc < p_diffuse_ ? kBsdfDiffuse : kBsdfGlossy);
+    return s;
+  }
+  unsigned flags() const override { return kBsdfReflection | kBsdfDiffuse | (p_diffuse_ < 1.0 ? kBsdfGlossy : 0u); }
+
+ private:
+  Spectrum kd_, ks_;
+  double ns_, p_diffuse_;
+};
+
+class BlinnPhong final : public Material {
+ public:
+  BlinnPhong(const Vec3d& kd, const Vec3d& ks, double ns, int texture = -1, double alpha = 1.0)
+      : kd_rgb_(kd), ks_rgb_(ks), kd_(checked_reflectance(kd, "kd")), ks_(checked_reflectance(ks, "ks")),
+        ns_(checked_scalar(ns, "ns", 0.0, 1e7)), texture_(texture), alpha_(checked_scalar(alpha, "alpha", 0.0, 1.0)) {}
+
+  const Bsdf* bsdf(const SurfaceInteraction& si, const MaterialContext& context, ScratchBuffer& scratch) const override {
+    const Spectrum kd = resolve_reflectance(kd_, texture_, si, context), ks = ks_.sample(*context.lambda);
+    const double md = channel_mean(kd, *context.lambda), ms = channel_mean(ks, *context.lambda);
+    const double p_diffuse = md + ms > 0.0 ? md / (md + ms) : 1.0;
+    return scratch.make<BlinnPhongBsdf>(kd, ks, ns_, p_diffuse);
+  }
+  double alpha() const override { return alpha_; }
+  std::string describe() const override {
+    return concat("BlinnPhong(kd=", describe_rgb(kd_rgb_), ", ks=", describe_rgb(ks_rgb_), ", ns=", ns_,
+                  texture_ >= 0 ? concat(", texture=", texture_) : "", alpha_ < 1.0 ? concat(", alpha=", alpha_) : "", ")");
+  }
+
+ private:
+  Vec3d kd_rgb_, ks_rgb_;
+  Color kd_, ks_;
+  double ns_;
+  int texture_;
+  double alpha_;
+};
+
+}  // namespace refracta

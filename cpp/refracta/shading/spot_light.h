@@ -1,0 +1,48 @@
+// A spot light (shared/SHADING.md section 5): a point at `position` emitting intensity I [W/sr]
+// into a cone about `direction` of full angle `angle` [deg]. Default: a hard edge, as the old
+// renderer's spot (full intensity inside the cone, nothing outside). With inner_angle < angle the
+// edge falls off smoothly (pbrt-v4 SpotLight::I): I(w) = I * smoothstep(cos(angle/2),
+// cos(inner_angle/2), cos theta), theta the angle from the axis; full intensity inside
+// inner_angle. Power: 2 pi I ((1 - cos(inner/2)) + (cos(inner/2) - cos(angle/2)) / 2), exact
+// because the smoothstep integrates to one half over its interval.
+//
+// Integrator: a delta light (kDeltaPosition), as PointLight: sample_li gives pdf = 1,
+// L = I(w) / r^2 (nullopt outside the cone), pdf_li = 0; shadow ray to p_light.
+#pragma once
+
+#include "refracta/shading/color.h"
+#include "refracta/shading/light.h"
+
+namespace refracta {
+
+class SpotLight final : public Light {
+ public:
+  // direction: the cone's axis (non-zero, normalised here); angle: full cone angle [deg] in
+  // (0, 360]; inner_angle [deg] in (0, angle], or < 0 for "= angle" (a hard edge).
+  SpotLight(const Vec3d& position, const Vec3d& direction, double angle, const Color& intensity,
+            double inner_angle = -1.0);
+
+  LightType type() const override { return LightType::kDeltaPosition; }
+  std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, const Vec2d& u,
+                                         const SampledWavelengths& lambda) const override;
+  double pdf_li(const LightSampleContext&, const Vec3d&, const Vec3d&, const Vec3d&) const override { return 0.0; }
+  double power() const override;
+  std::string describe() const override;
+
+  // The fraction of I emitted along unit w (from the light outward): 1 inside inner_angle, the
+  // smoothstep between, 0 outside angle.
+  double falloff(const Vec3d& w) const;
+
+  const Vec3d& position() const { return position_; }
+  const Vec3d& direction() const { return direction_; }
+  double angle() const { return angle_; }
+  double inner_angle() const { return inner_angle_; }
+
+ private:
+  Vec3d position_, direction_;
+  double angle_, inner_angle_;
+  Color intensity_;
+  double cos_outer_, cos_inner_;  // cosines of the half angles
+};
+
+}  // namespace refracta

@@ -1,0 +1,87 @@
+"""The BSDF library: materials, Fresnel functions and the GGX distribution (shared/SHADING.md).
+
+Every material is a ``refracta._core.Material`` subclass, so any of them can be given where a scene
+takes ``material=``. Evaluate a material in its local shading frame (z = shading normal, x = the
+surface tangent along which ``alpha_u`` acts) with float64 unit directions of shape (N, 3) or (3,):
+
+- ``f(wo, wi)`` -> (N, 3) linear RGB BSDF values without the cosine [1/sr] (delta lobes give 0);
+- ``pdf(wo, wi)`` -> (N,) density [1/sr] of ``sample`` producing wi, lobe probabilities included;
+- ``sample(wo, u)`` with u (N, 3) uniform in [0, 1) (u[:, 0] picks the lobe, u[:, 1:] the
+  direction) -> dict of arrays ``wi`` (N, 3), ``weight`` (N, 3) = f |cos theta_i| / pdf (delta
+  lobes: albedo over the lobe's probability), ``f``, ``pdf`` (N,), ``flags`` (N,) (1 reflection,
+  2 transmission, 4 diffuse, 8 glossy, 16 specular), ``is_delta``, ``eta`` (relative index
+  crossed, 1 for reflection), ``valid`` (False where no direction came out), ``terminated``.
+
+``wo`` points toward the viewer and ``wi`` toward the light, both away from the surface (pbrt-v4's
+names; Mitsuba 3's ``si.wi`` is refracta's ``wo``). Keywords of the three methods:
+``wavelengths=`` (4,) or (N, 4) [nm] for spectral evaluation (values per wavelength, shape (N, 4)),
+``eta_outside=1.0`` (index of the medium on the normal's side), ``mode='radiance'|'importance'``
+(refraction scales radiance by (eta_i / eta_t)^2, importance not). Non-unit or NaN directions raise
+ValueError. Reflectances above 1 are refused (ValueError) because they would create energy.
+
+Materials (colours are a number or an (r, g, b) triple):
+
+- ``Diffuse(reflectance=0.5, texture=None)``
+- ``BlinnPhong(kd=0.5, ks=0.0, ns=1.0, texture=None, alpha=1.0)``
+- ``Conductor(eta=None, k=None)``: eta and k unset = a perfect mirror (F = 1)
+- ``RoughConductor(alpha=None, alpha_u=None, alpha_v=None, eta=None, k=None)``
+- ``Dielectric(ior=1.5 | 'bk7', sellmeier=None, priority=0)``
+- ``RoughDielectric(alpha, ior=1.5, sellmeier=None, priority=0, alpha_u=None, alpha_v=None)``
+- ``ThinDielectric(ior=1.5)``
+- ``Plastic(reflectance=0.5, ior=1.5, alpha=0.0)``: alpha = 0 smooth, > 0 rough (GGX)
+- ``Principled(base_color=0.5, metallic=0, roughness=0.5, anisotropic=0, specular=0.5,
+  specular_tint=0, sheen=0, sheen_tint=0.5, clearcoat=0, clearcoat_gloss=1)``
+- ``ThinFilm(thickness, film_ior=1.33, eta=1.5, k=0.0, alpha=0.1)``: thin-film iridescence
+  (thickness [nm]) over a GGX base of complex index eta + i k; alpha = 0 is a smooth mirror.
+
+Roughness ``alpha`` is the GGX parameter (>= 0; values below 1e-4 are raised to 1e-4).
+Measured BRDFs (MERL) are not provided: no MERL data set is installable from the registries.
+
+Example::
+
+    import numpy as np
+    from refracta.shading import RoughConductor
+    m = RoughConductor(alpha=0.2, eta=(0.2, 0.92, 1.1), k=(3.9, 2.45, 2.14))  # gold-like
+    wo = np.array([0.0, 0.6, 0.8])
+    s = m.sample(np.tile(wo, (4, 1)), np.random.default_rng(1).random((4, 3)))
+"""
+
+from ._core import (
+    BlinnPhong,
+    Conductor,
+    Dielectric,
+    Diffuse,
+    Ior,
+    Material,
+    Plastic,
+    Principled,
+    RoughConductor,
+    RoughDielectric,
+    ThinDielectric,
+    ThinFilm,
+    TrowbridgeReitz,
+    fresnel_conductor,
+    fresnel_dielectric,
+    fresnel_diffuse_reflectance,
+    thin_film_reflectance,
+)
+
+__all__ = [
+    "Material",
+    "Diffuse",
+    "BlinnPhong",
+    "Conductor",
+    "RoughConductor",
+    "Dielectric",
+    "RoughDielectric",
+    "ThinDielectric",
+    "Plastic",
+    "Principled",
+    "ThinFilm",
+    "Ior",
+    "TrowbridgeReitz",
+    "fresnel_dielectric",
+    "fresnel_conductor",
+    "fresnel_diffuse_reflectance",
+    "thin_film_reflectance",
+]

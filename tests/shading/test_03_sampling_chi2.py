@@ -1,0 +1,66 @@
+"""Chi-square goodness of fit of every material's sample() against its pdf() (refracta.testing.chi2),
+several wo including grazing and from inside for dielectrics; and the chi-square tester itself."""
+
+import math
+
+import numpy as np
+import pytest
+
+from refracta.testing import chi2
+
+from .conftest import direction
+from .materials import MATERIALS, SAMPLED
+
+ANGLES = [10.0, 60.0, 85.0]
+CASES = [(name, theta, below) for name in SAMPLED for theta in ANGLES for below in ((False, True) if MATERIALS[name][1] else (False,))]
+SIGNIFICANCE = 0.01  # family-wise, Sidak-corrected over every case below
+SAMPLES = 200_000
+
+
+@pytest.mark.parametrize("name, theta, below", CASES)
+def test_sampling_matches_pdf(name, theta, below):
+    material = MATERIALS[name][0]()
+    result = chi2.test_bsdf(material, direction(theta, 30.0, below), samples=SAMPLES, seed=11,
+                            significance=SIGNIFICANCE, test_count=len(CASES))
+    assert result.passed, (result, result.message)
+    # The density's integral matches the fraction of directions produced (binomial noise, 5 sigma + quadrature).
+    noise = 5 * math.sqrt(result.produced * (1 - result.produced) / SAMPLES) + 2e-3
+    assert result.pdf_integral == pytest.approx(result.produced, abs=noise)
+
+
+def test_chi2_survival_closed_forms():
+    # dof = 2: Q = exp(-x/2); dof = 1: erfc(sqrt(x/2)); dof = 4: (1 + x/2) exp(-x/2).
+    for x in (0.1, 1.0, 7.0, 40.0, 300.0):
+        assert chi2.chi2_survival(x, 2) == pytest.approx(math.exp(-x / 2), rel=1e-12)
+        assert chi2.chi2_survival(x, 1) == pytest.approx(math.erfc(math.sqrt(x / 2)), rel=1e-10)
+        assert chi2.chi2_survival(x, 4) == pytest.approx((1 + x / 2) * math.exp(-x / 2), rel=1e-12)
+    # Large dof: the mean dof has Q near 1/2 (Wilson-Hilferty: median = dof (1 - 2/(9 dof))^3).
+    dof = 1000
+    assert chi2.chi2_survival(dof * (1 - 2 / (9 * dof)) ** 3, dof) == pytest.approx(0.5, abs=1e-3)
+
+
+def test_chi2_detects_a_wrong_pdf():
+    from refracta.shading import Diffuse
+
+    material = Diffuse(0.5)
+
+    class WrongPdf:  # uniform-hemisphere density claimed for a cosine sampler
+        def sample(self, wo, u, **kw):
+            return material.sample(wo, u, **kw)
+
+        def pdf(self, wo, wi, **kw):
+            return (np.asarray(wi)[:, 2] > 0) / (2 * np.pi)
+
+    result = chi2.test_bsdf(WrongPdf(), [0.0, 0.0, 1.0], samples=50_000, seed=1)
+    assert not result.passed and result.p_value < 1e-10
+
+
+def test_sidak_correction_and_arguments():
+    from refracta.shading import Diffuse
+
+    r = chi2.test_bsdf(Diffuse(0.5), [0.0, 0.0, 1.0], samples=20_000, seed=2, significance=0.05, test_count=10)
+    assert r.significance == pytest.approx(1 - 0.95 ** 0.1)
+    with pytest.raises(ValueError, match="wo"):
+        chi2.test_bsdf(Diffuse(0.5), [0.0, 0.0, 2.0])
+    with pytest.raises(ValueError, match="significance"):
+        chi2.test_bsdf(Diffuse(0.5), [0.0, 0.0, 1.0], significance=1.5)
