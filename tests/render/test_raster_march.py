@@ -81,7 +81,8 @@ def test_render_counts_its_chords():
     refracta.render(example.scene, example.camera, None, method="straight", progress=False, stats=straight)
     refracta.render(example.scene, example.camera, example.field, progress=False, max_length=example.max_length,
                     stats=curved)
-    assert straight == {"samples": 32 * 12, "chords": 32 * 12}  # one straight ray per pixel
+    assert straight["samples"] == 32 * 12 and straight["chords"] == 32 * 12  # one straight ray per pixel
+    assert straight["invalid_samples"] == 0 and curved["invalid_samples"] == 0
     assert curved["samples"] == 32 * 12 and curved["chords"] > 2 * curved["samples"]
     with pytest.raises(ValueError, match="stats"):
         refracta.render(example.scene, example.camera, None, progress=False, stats=[])

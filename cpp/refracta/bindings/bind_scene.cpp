@@ -40,10 +40,19 @@ int material_of(RenderScene& s, const py::object& material, const py::object& kd
   return s.add_material(std::make_shared<BlinnPhong>(to_rgb(kd, "kd"), to_rgb(ks, "ks"), ns, texture, alpha));
 }
 
+// An illuminant colour, its errors naming the argument.
+Color illuminant_of(const py::handle& value, const char* what) {
+  const Vec3d rgb = to_rgb(value, what);
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(rgb[i]) || rgb[i] < 0.0) throw_invalid(what, " must be finite and >= 0 (got ", rgb[i], ")");
+  }
+  return Color::illuminant(rgb);
+}
+
 // An emissive geometry's area light (emission: RGB radiance [W/(m^2 sr)] or None).
 void add_emission(RenderScene& s, unsigned geometry, const py::object& emission, bool two_sided) {
   if (emission.is_none()) return;
-  const Color radiance = Color::illuminant(to_rgb(emission, "emission"));
+  const Color radiance = illuminant_of(emission, "emission");
   if (s.geometry.is_spheres(geometry)) {
     throw_invalid("emissive spheres: use add_sphere(..., emission=...)");
   }
@@ -298,7 +307,7 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
              const Vec3d c = to_point(centre, "centre");
              const unsigned id = s.geometry.add_spheres({c}, {radius}, material_of(s, material, kd, ks, ns));
              if (!emission.is_none()) {
-               s.add_light(std::make_shared<SphereLight>(c, radius, Color::illuminant(to_rgb(emission, "emission"))), int(id));
+               s.add_light(std::make_shared<SphereLight>(c, radius, illuminant_of(emission, "emission")), int(id));
              }
              return id;
            },
@@ -308,7 +317,7 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
       .def("set_sun",
            [](RenderScene& s, const py::object& direction, const py::object& radiance, double angular_diameter,
               double limb_darkening) {
-             auto sun = std::make_shared<SunLight>(to_point(direction, "direction"), Color::illuminant(to_rgb(radiance, "radiance")),
+             auto sun = std::make_shared<SunLight>(to_point(direction, "direction"), illuminant_of(radiance, "radiance"),
                                                    angular_diameter, limb_darkening);
              s.remove_lights_if([](const Light& l) { return dynamic_cast<const SunLight*>(&l) != nullptr; });
              s.add_light(sun);
@@ -327,7 +336,9 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
              const Vec3d h = horizon.is_none() ? Vec3d(0.7, 0.8, 0.95) : to_rgb(horizon, "horizon");
              const Vec3d z = zenith.is_none() ? h : to_rgb(zenith, "zenith");
              if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("scale must be >= 0 (got ", scale, ")");
-             if (h.maxCoeff() > 0.0 || z.maxCoeff() > 0.0) {
+             if (zenith.is_none() || z == h) {  // a constant sky, sampled by cosine
+               if (h.maxCoeff() > 0.0) s.add_light(std::make_shared<ConstantEnvironment>(illuminant_of(py::cast(std::vector<double>{h.x() * scale, h.y() * scale, h.z() * scale}), "horizon")));
+             } else if (h.maxCoeff() > 0.0 || z.maxCoeff() > 0.0) {
                s.add_light(std::make_shared<EnvironmentLight>(gradient_sky(h, z), scale));
              }
            },
@@ -360,7 +371,7 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
            py::arg("light"), "Add any refracta.lights light (not area lights of geometry: use emission=). Returns its index.")
       .def("add_point_light",
            [](RenderScene& s, const py::object& position, const py::object& intensity) {
-             return s.add_light(std::make_shared<PointLight>(to_point(position, "position"), Color::illuminant(to_rgb(intensity, "intensity"))));
+             return s.add_light(std::make_shared<PointLight>(to_point(position, "position"), illuminant_of(intensity, "intensity")));
            },
            py::arg("position"), py::arg("intensity"),
            "Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns its index.")
@@ -371,7 +382,7 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
              if (!(radius >= 0.0) || !std::isfinite(radius)) throw_invalid("spot light radius must be >= 0 (got ", radius, ")");
              const size_t index = s.add_light(std::make_shared<SpotLight>(
                  to_point(position, "position"), to_point(direction, "direction"), angle,
-                 Color::illuminant(to_rgb(intensity, "intensity"))));
+                 illuminant_of(intensity, "intensity")));
              if (radius > 0.0) s.set_shadow_radius(index, radius);
              size_t spots = 0;
              for (const auto& l : s.lights()) spots += dynamic_cast<const SpotLight*>(l.get()) != nullptr;

@@ -2,6 +2,8 @@
 // sample whatever the thread order, from a user seed.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <cstdint>
 
 namespace refracta {
@@ -20,6 +22,16 @@ class Rng {
   }
   uint64_t next() { return mix(state_ += 0x9E3779B97F4A7C15ull); }
   uint64_t state_;
+};
+
+// The random numbers of one pixel sample.
+struct Sampler {
+  Rng rng;
+  double uniform() { return rng.uniform(); }
+  Eigen::Vector2d uniform2() {
+    const double a = rng.uniform();
+    return Eigen::Vector2d(a, rng.uniform());
+  }
 };
 
 }  // namespace refracta

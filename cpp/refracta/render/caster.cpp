@@ -116,12 +116,20 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   PathEnd end;
   end.direction = dir;
   const TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
-  trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
-    if (hit_on_segment(scene_, a, b, options_, &end)) return false;
-    end.direction = b.v.normalized();
-    end.length = b.s;
-    return true;
-  });
+  double last_height = origin.y();
+  try {
+    trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
+      if (hit_on_segment(scene_, a, b, options_, &end)) return false;
+      end.direction = b.v.normalized();
+      end.length = b.s;
+      last_height = b.x.y();
+      return true;
+    });
+  } catch (const NumericalError&) {
+    // A path rising above every object out of the field's modelled heights has left the air:
+    // it sees the sky along its last direction. Anywhere else the error stands.
+    if (end.hit || !(end.direction.y() > 0.0) || !(last_height > scene_.highest())) throw;
+  }
   return end;
 }
 

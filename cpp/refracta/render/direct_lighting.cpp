@@ -20,15 +20,31 @@ DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, c
   for (const auto& light : scene.lights()) power.push_back(std::max(light->power(), 0.0));
   if (!power.empty()) select_ = PiecewiseConstant1D(power);
   pre_bend_ = caster.curved() && caster.field()->height_only();
+  all_lights_ = options.transport == Transport::kDirect;
+}
+
+double DirectLighting::distant_ior(const Vec3d& p, const Vec3d& exit) const {
+  const double n_p = caster_.ior(p);
+  if (!pre_bend_) return n_p;
+  double n_top = n_p, dn;
+  try {
+    caster_.field()->evaluate_height(p.y() + options_.max_length * std::max(exit.y(), 0.0), &n_top, &dn);
+  } catch (const std::exception&) {  // beyond the field's modelled heights: its top is the last n known
+    for (double h = p.y() + options_.max_length * std::max(exit.y(), 0.0); h > p.y(); h = p.y() + 0.5 * (h - p.y())) {
+      try {
+        caster_.field()->evaluate_height(h, &n_top, &dn);
+        break;
+      } catch (const std::exception&) {
+      }
+    }
+  }
+  return n_top;
 }
 
 Vec3d DirectLighting::launch_toward(const Vec3d& p, const Vec3d& exit, double* jacobian) const {
   *jacobian = 1.0;
   if (!pre_bend_ || exit.y() < kMinBendSine) return exit;
-  double n_p, n_top, dn;
-  const IndexField& field = *caster_.field();
-  field.evaluate_height(p.y(), &n_p, &dn);
-  field.evaluate_height(p.y() + options_.max_length * exit.y(), &n_top, &dn);
+  const double n_p = caster_.ior(p), n_top = distant_ior(p, exit);
   // n(p) cos e_launch = n_top cos e_exit, same azimuth.
   const double cos_exit = std::sqrt(std::max(0.0, 1.0 - sqr(exit.y())));
   const double cos_launch = std::min(1.0, n_top * cos_exit / n_p);
@@ -43,26 +59,33 @@ Vec3d DirectLighting::launch_toward(const Vec3d& p, const Vec3d& exit, double* j
 
 double DirectLighting::exit_jacobian(const Vec3d& p, const Vec3d& launch) const {
   if (!pre_bend_ || launch.y() < kMinBendSine) return 1.0;
-  double n_p, n_top, dn;
-  const IndexField& field = *caster_.field();
-  field.evaluate_height(p.y(), &n_p, &dn);
+  const double n_p = caster_.ior(p), n_top = distant_ior(p, launch);
   const double cos_launch = std::sqrt(std::max(0.0, 1.0 - sqr(launch.y())));
   // The exit elevation from the invariant (n_top from the straight estimate of the end height).
-  field.evaluate_height(p.y() + options_.max_length * launch.y(), &n_top, &dn);
   const double cos_exit = std::min(1.0, n_p * cos_launch / n_top);
   const double sin_exit = std::sqrt(std::max(0.0, 1.0 - sqr(cos_exit)));
   if (sin_exit < kMinBendSine) return 1.0;
   return sqr(n_p / n_top) * launch.y() / sin_exit;
 }
 
-Spectrum DirectLighting::sample_light(const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
-                                      const SampledWavelengths& lambda, const Vec2d& u_light, double u_pick,
-                                      const LightVisibility* visibility) const {
-  if (scene_.lights().empty()) return Spectrum::Zero();
+Spectrum DirectLighting::sample_lights(const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
+                                       const SampledWavelengths& lambda, Sampler& sampler) const {
+  const size_t count = scene_.lights().size();
+  if (count == 0) return Spectrum::Zero();
+  if (all_lights_) {
+    Spectrum sum = Spectrum::Zero();
+    for (size_t i = 0; i < count; ++i) sum += sample_one(i, 1.0, si, bsdf, lambda, sampler.uniform2());
+    return sum;
+  }
   size_t index;
-  select_.sample(u_pick, nullptr, &index);
+  select_.sample(sampler.uniform(), nullptr, &index);
   const double pick = pick_probability(index);
   if (!(pick > 0.0)) return Spectrum::Zero();
+  return sample_one(index, pick, si, bsdf, lambda, sampler.uniform2());
+}
+
+Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
+                                    const SampledWavelengths& lambda, const Vec2d& u_light) const {
   const Light& light = *scene_.lights()[index];
   LightSampleContext ctx;
   ctx.p = si.p;
@@ -73,26 +96,19 @@ Spectrum DirectLighting::sample_light(const SurfaceInteraction& si, const Surfac
   Spectrum L = ls->L;
   Vec3d wi = ls->wi;
   double visible = 1.0;
-  const std::optional<double> given = visibility && *visibility ? (*visibility)(index, si, wi) : std::nullopt;
   if (light.is_infinite()) {
     // Launch the curved shadow ray so that it leaves toward the sampled direction.
     double jacobian = 1.0;
     wi = launch_toward(si.p, ls->wi, &jacobian);
     light_pdf *= jacobian;
-    if (given) {
-      visible = *given;
-    } else if (caster_.curved()) {
+    if (caster_.curved()) {
       const PathEnd end = caster_.cast(si.offset_toward(wi), wi);
       if (end.hit) return Spectrum::Zero();
       L = light.Le(end.direction, lambda);  // along the exit direction
-      double n_p = caster_.ior(si.p), n_top = n_p, dn;
-      if (pre_bend_) caster_.field()->evaluate_height(si.p.y() + options_.max_length * std::max(end.direction.y(), 0.0), &n_top, &dn);
-      L *= sqr(n_p / n_top);  // basic radiance L / n^2 is conserved (Ament et al. 2014)
+      L *= sqr(caster_.ior(si.p) / distant_ior(si.p, end.direction));  // basic radiance L / n^2 is conserved (Ament et al. 2014)
     } else {
       visible = caster_.scene().occluded(si.offset_toward(wi), wi, 1e7) ? 0.0 : 1.0;
     }
-  } else if (given) {
-    visible = *given;
   } else {
     const Vec3d from = si.offset_toward(wi);
     const double distance = (ls->p_light - from).norm() * (1.0 - 1e-6) - 1e-6;

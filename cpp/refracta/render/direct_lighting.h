@@ -26,18 +26,15 @@
 
 namespace refracta {
 
-// Visibility of a light from a surface point given by another method (render_raster's shadow
-// maps): returns the fraction of light `index` that reaches si along wi, or nullopt to trace.
-using LightVisibility = std::function<std::optional<double>(size_t index, const SurfaceInteraction& si, const Vec3d& wi)>;
-
 class DirectLighting {
  public:
   DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options);
 
-  // NEE at si with `bsdf`: f L |cos| / pdf of one light sample, MIS-weighted against BSDF
-  // sampling for non-delta lights.
-  Spectrum sample_light(const SurfaceInteraction& si, const SurfaceBsdf& bsdf, const SampledWavelengths& lambda,
-                        const Vec2d& u_light, double u_pick, const LightVisibility* visibility = nullptr) const;
+  // NEE at si with `bsdf`: f L |cos| / pdf of light samples, MIS-weighted against BSDF sampling
+  // for non-delta lights. 'path' samples one light chosen in proportion to power; 'direct' one
+  // sample of every light (less noise where a few lights matter, as a sun and its sky).
+  Spectrum sample_lights(const SurfaceInteraction& si, const SurfaceBsdf& bsdf, const SampledWavelengths& lambda,
+                         Sampler& sampler) const;
 
   // Radiance of the infinite lights seen at the end of an escaped path, MIS-weighted against
   // light sampling from `from` (bsdf_pdf: density of the launch direction; specular: no MIS).
@@ -48,9 +45,14 @@ class DirectLighting {
                    const SampledWavelengths& lambda) const;
 
   bool has_lights() const { return !scene_.lights().empty(); }
+  // n of the air where a distant path from p toward `exit` leaves the modelled range (the straight
+  // estimate of its end height, within the field's range), n(p) without a height-only field.
+  double distant_ior(const Vec3d& p, const Vec3d& exit) const;
 
  private:
-  double pick_probability(size_t light) const { return select_.cell_probability(light); }
+  double pick_probability(size_t light) const { return all_lights_ ? 1.0 : select_.cell_probability(light); }
+  Spectrum sample_one(size_t index, double pick, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
+                      const SampledWavelengths& lambda, const Vec2d& u) const;
   // Pre-bending in height-only fields: the launch direction at p whose curved path leaves along
   // `exit`, and the density factor |d omega_exit / d omega_launch|.
   Vec3d launch_toward(const Vec3d& p, const Vec3d& exit, double* jacobian) const;
@@ -61,6 +63,7 @@ class DirectLighting {
   const RenderOptions& options_;
   PiecewiseConstant1D select_;  // light choice in proportion to power
   bool pre_bend_ = false;
+  bool all_lights_ = false;
   double ior_top_ = 1.0;        // n where distant paths leave the modelled air
 };
 

@@ -16,16 +16,6 @@
 
 namespace refracta {
 
-// The random numbers of one pixel sample.
-struct Sampler {
-  Rng rng;
-  double uniform() { return rng.uniform(); }
-  Vec2d uniform2() {
-    const double a = rng.uniform();
-    return Vec2d(a, rng.uniform());
-  }
-};
-
 class Integrator {
  public:
   Integrator(const RenderScene& scene, const Caster& caster, const RenderOptions& options)

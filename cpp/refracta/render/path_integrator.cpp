@@ -40,11 +40,7 @@ class PathTracer : public Integrator {
       const PathEnd end = passes == 0 ? first : caster_.cast(o, d);
       travelled += end.length;
       if (!end.hit) {
-        double n_top = ior_here;
-        if (caster_.curved() && caster_.field()->height_only()) {
-          double dn;
-          caster_.field()->evaluate_height(o.y() + options_.max_length * std::max(end.direction.y(), 0.0), &n_top, &dn);
-        }
+        const double n_top = caster_.curved() ? lighting_.distant_ior(o, end.direction) * ior_here / caster_.ior(o) : ior_here;
         L += beta * lighting_.escaped(end, d, has_previous ? &previous : nullptr, bsdf_pdf, specular, lambda) *
              sqr(ior_here / n_top);
         break;
@@ -64,7 +60,7 @@ class PathTracer : public Integrator {
         continue;
       }
       const bool smooth = s.bsdf.bsdf->has_delta_only();
-      if (!smooth) L += beta * lighting_.sample_light(si, s.bsdf, lambda, sampler.uniform2(), sampler.uniform());
+      if (!smooth) L += beta * lighting_.sample_lights(si, s.bsdf, lambda, sampler);
       const double uc = sampler.uniform();
       const auto bs = s.bsdf.sample(si.wo, uc, sampler.uniform2());
       if (!bs) break;

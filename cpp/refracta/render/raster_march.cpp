@@ -98,7 +98,13 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
     if (!end.hit) return Vec3d::Zero().eval();
     end.direction = (end.hit->point - eye).normalized();
     end.length = end.hit->t;
-    Sampler sampler{Rng(options.seed, uint64_t(y) * uint64_t(frame.view.width()) + uint64_t(x))};
+    // Seeded as the image pixel it covers (as the straight renderer seeds it), guard-band pixels after them.
+    const int ix = x - frame.view.offset_x(), iy = y - frame.view.offset_y();
+    const bool in_image = ix >= 0 && iy >= 0 && ix < camera.width() && iy < camera.height();
+    const uint64_t stream = in_image ? uint64_t(iy) * uint64_t(camera.width()) + uint64_t(ix)
+                                     : uint64_t(camera.width()) * uint64_t(camera.height()) +
+                                           uint64_t(y) * uint64_t(frame.view.width()) + uint64_t(x);
+    Sampler sampler{Rng(options.seed, stream)};
     SampledWavelengths lambda = SampledWavelengths::rgb();
     const Spectrum L = integrator->li_after(eye, end.direction, end, pixel_angle, lambda, sampler, scratch_per_thread.local());
     return Vec3d(L.head<3>().matrix());

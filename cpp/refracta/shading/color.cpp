@@ -1,22 +1,11 @@
-// Colours for RGB and spectral rendering (color.h): Jakob-Hanika upsampling of reflectances,
-// RGB x D65 emission, tabulated spectra and black bodies, and the spectral -> sRGB estimate.
-// The colour science (CIE tables, fits, the coefficient table) lives in spectral.h/.cpp.
-//
-// The texture table (spectral::kTableResolution = 32 nodes per axis, fits on a 5 nm quadrature):
-// measured with tests/shading/test_spectrum_table.py's helper (refracta.spectrum._measure_table)
-// on 2 cores, 20000 random in-gamut colours, round trip = max |RGB(spectrum(table(rgb))) - rgb|
-// with the 1 nm CIE integral:
-//   res 16 / 5 nm: build 0.05 s, round trip 1.5e-3;   res 32 / 5 nm: 0.2 s, 2.4e-4;
-//   res 32 / 1 nm: 0.9 s, 2.2e-4;                      res 64 / 5 nm: 1.4 s, 1.0e-4.
-// 32 at 5 nm is the smallest table under the 1e-3 target with margin, built well under 1 s.
+// Colours for RGB and spectral rendering (color.h). RGB path only so far: the spectral path
+// (Jakob-Hanika upsampling, CIE tables) is being written.
 #include "refracta/shading/color.h"
 
 #include "refracta/core/error.h"
-#include "refracta/shading/spectral.h"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
+#include <stdexcept>
 
 namespace refracta {
 
@@ -30,27 +19,7 @@ void check_rgb(const Vec3d& rgb, const char* what, bool bounded) {
   }
 }
 
-constexpr std::array<double, 3> kBlack{0.0, 0.0, -std::numeric_limits<double>::infinity()};
-
-// pbrt-v4 RGBUnboundedSpectrum: scale = 2 max(rgb), the fit of rgb / scale (largest component 1/2,
-// well inside the sigmoid's range).
-void fit_scaled(const Vec3d& rgb, std::array<double, 3>* coefficients, double* scale) {
-  const double m = rgb.maxCoeff();
-  if (m <= 0.0) {
-    *coefficients = kBlack, *scale = 0.0;
-    return;
-  }
-  *scale = 2.0 * m;
-  *coefficients = spectral::fit_reflectance_robust(rgb / *scale).c;
-}
-
-double lerp_1nm(const std::vector<double>& table, double lambda_nm) {
-  if (!(lambda_nm >= spectral::kTableMin && lambda_nm <= spectral::kTableMax)) return 0.0;
-  const double x = lambda_nm - spectral::kTableMin;
-  const int i = std::min(int(x), spectral::kTableSamples - 2);
-  const double t = x - i;
-  return table[i] * (1.0 - t) + table[i + 1] * t;
-}
+[[noreturn]] void spectral_missing() { throw std::logic_error("spectral colours are not available yet"); }
 
 }  // namespace
 
@@ -59,7 +28,6 @@ Color Color::reflectance(const Vec3d& rgb) {
   Color c;
   c.kind_ = Kind::kReflectance;
   c.rgb_ = rgb;
-  c.coefficients_ = rgb.maxCoeff() <= 0.0 ? kBlack : spectral::fit_reflectance_robust(rgb).c;
   return c;
 }
 
@@ -68,7 +36,6 @@ Color Color::unbounded(const Vec3d& rgb) {
   Color c;
   c.kind_ = Kind::kUnbounded;
   c.rgb_ = rgb;
-  fit_scaled(rgb, &c.coefficients_, &c.scale_);
   return c;
 }
 
@@ -77,97 +44,25 @@ Color Color::illuminant(const Vec3d& rgb) {
   Color c;
   c.kind_ = Kind::kIlluminant;
   c.rgb_ = rgb;
-  fit_scaled(rgb, &c.coefficients_, &c.scale_);
   return c;
 }
 
-Color Color::tabulated(const std::vector<double>& lambda_nm, const std::vector<double>& values, Kind kind) {
-  if (lambda_nm.size() != values.size() || lambda_nm.empty()) {
-    throw_invalid("tabulated: wavelengths and values must have the same, non-zero length (got ", lambda_nm.size(),
-                  " and ", values.size(), ")");
-  }
-  for (size_t i = 0; i < lambda_nm.size(); ++i) {
-    if (!std::isfinite(lambda_nm[i]) || (i > 0 && !(lambda_nm[i] > lambda_nm[i - 1]))) {
-      throw_invalid("tabulated: wavelengths must be finite and increasing (got ", lambda_nm[i], " at ", i, ")");
-    }
-    if (!std::isfinite(values[i]) || values[i] < 0.0 || (kind == Kind::kReflectance && values[i] > 1.0)) {
-      throw_invalid("tabulated: values must be finite and in ", kind == Kind::kReflectance ? "[0, 1]" : "[0, inf)",
-                    " (got ", values[i], " at ", lambda_nm[i], " nm)");
-    }
-  }
-  // Resample to the 1 nm grid: linear between samples, 0 outside them (one sample: a spike of
-  // zero width, i.e. black, unless it falls on the grid).
-  auto table = std::make_shared<std::vector<double>>(spectral::kTableSamples, 0.0);
-  for (int i = 0; i < spectral::kTableSamples; ++i) {
-    const double l = spectral::kTableMin + i;
-    if (l < lambda_nm.front() || l > lambda_nm.back()) continue;
-    const size_t k = size_t(std::upper_bound(lambda_nm.begin(), lambda_nm.end(), l) - lambda_nm.begin());
-    if (k >= lambda_nm.size()) {
-      (*table)[i] = values.back();
-    } else {
-      const double t = (l - lambda_nm[k - 1]) / (lambda_nm[k] - lambda_nm[k - 1]);
-      (*table)[i] = values[k - 1] * (1.0 - t) + values[k] * t;
-    }
-  }
-  Color c;
-  c.kind_ = kind;
-  const Vec3d xyz = kind == Kind::kReflectance ? spectral::xyz_of_reflectance(*table) : spectral::xyz_of_radiance(*table);
-  c.rgb_ = spectral::xyz_to_linear_srgb(xyz);
-  c.table_ = table;
-  return c;
-}
-
-Color Color::blackbody(double temperature, double luminance) {
-  if (!(temperature > 0.0) || !std::isfinite(temperature)) throw_invalid("blackbody: temperature must be > 0 K (got ", temperature, ")");
-  if (!(luminance >= 0.0) || !std::isfinite(luminance)) throw_invalid("blackbody: luminance must be >= 0 (got ", luminance, ")");
-  std::vector<double> values(spectral::kTableSamples);
-  for (int i = 0; i < spectral::kTableSamples; ++i) values[i] = spectral::planck(spectral::kTableMin + i, temperature);
-  const double y = spectral::xyz_of_radiance(values).y();
-  if (!(y > 0.0)) throw_invalid("blackbody: temperature ", temperature, " K emits nothing visible");
-  for (double& v : values) v *= luminance / y;
-  Color c;
-  c.kind_ = Kind::kIlluminant;
-  c.table_ = std::make_shared<std::vector<double>>(std::move(values));
-  c.rgb_ = spectral::xyz_to_linear_srgb(spectral::xyz_of_radiance(*c.table_));
-  return c;
-}
-
-double Color::evaluate(double lambda_nm) const {
-  if (table_) return lerp_1nm(*table_, lambda_nm);
-  if (!(lambda_nm >= spectral::kTableMin && lambda_nm <= spectral::kTableMax)) return 0.0;
-  const double s = spectral::sigmoid_polynomial(coefficients_, lambda_nm);
-  switch (kind_) {
-    case Kind::kReflectance: return s;
-    case Kind::kUnbounded: return scale_ * s;
-    case Kind::kIlluminant: return scale_ * s * spectral::d65_normalised(lambda_nm);
-  }
-  return 0.0;
-}
+Color Color::tabulated(const std::vector<double>&, const std::vector<double>&, Kind) { spectral_missing(); }
+Color Color::blackbody(double, double) { spectral_missing(); }
 
 Spectrum Color::sample(const SampledWavelengths& lambda) const {
-  if (!lambda.spectral) return Spectrum(rgb_.x(), rgb_.y(), rgb_.z(), 0.0);
-  Spectrum s;
-  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = evaluate(lambda.lambda[i]);
-  return s;
+  if (lambda.spectral) spectral_missing();
+  return Spectrum(rgb_.x(), rgb_.y(), rgb_.z(), 0.0);
 }
 
 Spectrum reflectance_spectrum(const Vec3d& rgb, const SampledWavelengths& lambda) {
-  if (!lambda.spectral) return Spectrum(rgb.x(), rgb.y(), rgb.z(), 0.0);
-  const spectral::Coefficients c = spectral::rgb_to_spectrum_table().coefficients(rgb);
-  Spectrum s;
-  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = spectral::sigmoid_polynomial(c, lambda.lambda[i]);
-  return s;
+  if (lambda.spectral) spectral_missing();
+  return Spectrum(rgb.x(), rgb.y(), rgb.z(), 0.0);
 }
 
 Vec3d to_linear_srgb(const Spectrum& radiance, const SampledWavelengths& lambda) {
-  if (!lambda.spectral) return radiance.head<3>().matrix();
-  Vec3d xyz = Vec3d::Zero();
-  for (int i = 0; i < kSpectrumSamples; ++i) {
-    if (!(lambda.pdf[i] > 0.0)) continue;  // a terminated wavelength
-    xyz += radiance[i] / lambda.pdf[i] * spectral::cie_xyz(lambda.lambda[i]);
-  }
-  xyz /= kSpectrumSamples * spectral::cie_y_integral();
-  return spectral::xyz_to_linear_srgb(xyz);
+  if (lambda.spectral) spectral_missing();
+  return radiance.head<3>().matrix();
 }
 
 }  // namespace refracta

@@ -35,14 +35,6 @@ class Color {
 
   // RGB rendering: (r, g, b, 0); spectral: the spectrum at lambda.lambda.
   Spectrum sample(const SampledWavelengths& lambda) const;
-  // The spectrum at one wavelength [nm] (0 outside [kLambdaMin, kLambdaMax]). Illuminants:
-  // rgb-fit x scale x spectral::d65_normalised (Y of (1, 1, 1) is 1); blackbody: Planck scaled
-  // to the asked luminance.
-  double evaluate(double lambda_nm) const;
-  // Jakob-Hanika coefficients (normalised wavelength, spectral.h) and scale (unbounded/illuminant).
-  const std::array<double, 3>& coefficients() const { return coefficients_; }
-  double scale() const { return scale_; }
-  bool is_tabulated() const { return bool(table_); }
   const Vec3d& rgb() const { return rgb_; }
   Kind kind() const { return kind_; }
   bool is_black() const { return rgb_.maxCoeff() <= 0.0 && !table_; }
@@ -56,14 +48,12 @@ class Color {
 };
 
 // A reflectance given as RGB at render time (a texel) to its spectral values at lambda; RGB
-// rendering returns (r, g, b, 0). Fast: served from a precomputed coefficient table
-// (spectral::rgb_to_spectrum_table, built once on first use, ~0.2 s); rgb clamped to [0, 1].
+// rendering returns (r, g, b, 0). Fast: served from a precomputed coefficient table.
 Spectrum reflectance_spectrum(const Vec3d& rgb, const SampledWavelengths& lambda);
 
 // Spectral radiance samples to linear sRGB (CIE 1931 2-degree observer, D65 white, IEC
-// 61966-2-1 matrix), the Monte Carlo estimate over the path's wavelengths:
-// XYZ = (1/4) sum_i L_i cmf(lambda_i) / pdf_i / integral(y), terminated wavelengths (pdf 0)
-// contributing nothing; RGB rendering returns the first three channels.
+// 61966-2-1 matrix), the Monte Carlo estimate over the path's wavelengths; RGB rendering
+// returns the first three channels.
 Vec3d to_linear_srgb(const Spectrum& radiance, const SampledWavelengths& lambda);
 
 }  // namespace refracta
