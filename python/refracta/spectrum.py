@@ -1,5 +1,13 @@
 """Spectral colour: RGB <-> spectra, black bodies, the CIE 1931 observer, and the physical sky.
 
+PhysicalSky(sun_direction, aerosol=1, ozone_du=300, ground_albedo=0, altitude=0,
+rayleigh_scale=1): radiance(dirs (N, 3) unit, wavelengths (M,)) -> (N, M) [W/(m^2 sr nm)]
+(direct=True integrates without the table), rgb_radiance(dirs) -> (N, 3) linear sRGB in the
+same per-nm normalisation as the renderer (Y = integral(L y)/integral(y)), sun_transmittance,
+sun_radiance(wavelengths, angular_diameter_deg=0.53), sun_radiance_rgb, solar_irradiance,
+rayleigh_optical_depth(wavelength), optical_depth, sample_li(u (N, 2)) -> (dirs, pdf, rgb),
+pdf_li(dirs) (per steradian), power() [W-like luminance, pi R^2 integral of Y], preprocess.
+
 Thin vectorised wrappers of refracta's C++ colour code (cpp/refracta/shading/color.h,
 spectral.h, physical_sky.h), the same functions spectral rendering uses. Conventions
 (shared/SHADING.md section 7):
@@ -27,8 +35,11 @@ import numpy as np
 
 from refracta import _core
 
+PhysicalSky = _core.PhysicalSky  # documented in C++ (physical_sky.h): see help(PhysicalSky)
+
 __all__ = [
     "LAMBDA_MAX",
+    "PhysicalSky",
     "LAMBDA_MIN",
     "blackbody",
     "cie_xyz",

@@ -2,6 +2,7 @@
 // _core functions wrapped by python/refracta/spectrum.py (which documents and shapes them).
 #include "refracta/bindings/bindings.h"
 #include "refracta/shading/color.h"
+#include "refracta/shading/physical_sky.h"
 #include "refracta/shading/spectral.h"
 
 #include <chrono>
@@ -30,6 +31,16 @@ DoubleArray as_array(const py::handle& object, const char* what, int ndim, py::s
     if (!std::isfinite(d[i])) throw_invalid(what, " must be finite (got ", d[i], ")");
   }
   return array;
+}
+
+std::vector<Vec3d> unit_directions(const py::handle& object) {
+  const DoubleArray a = as_array(object, "dirs", 2, 3);
+  std::vector<Vec3d> out(a.shape(0));
+  for (size_t i = 0; i < out.size(); ++i) {
+    out[i] = Vec3d(a.at(i, 0), a.at(i, 1), a.at(i, 2));
+    if (std::abs(out[i].norm() - 1.0) > 1e-6) throw_invalid("dirs must be unit vectors (row ", i, " has norm ", out[i].norm(), ")");
+  }
+  return out;
 }
 
 Color::Kind parse_kind(const std::string& kind) {
@@ -223,6 +234,106 @@ void bind_spectrum(py::module_& m) {
       },
       py::arg("resolution"), py::arg("quadrature_step_nm"), py::arg("polish_steps"), py::arg("samples"),
       py::arg("seed"));
+
+  py::class_<PhysicalSkyLight, std::shared_ptr<PhysicalSkyLight>>(m, "PhysicalSky", R"doc(
+A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
+Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
+`aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
+sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon the
+ground's Lambertian radiance (ground_albedo). See cpp/refracta/shading/physical_sky.h.)doc")
+      .def(py::init([](const py::object& sun, double aerosol, double ozone_du, double ground_albedo, double altitude,
+                       double rayleigh_scale) {
+             PhysicalSkySettings s;
+             s.sun_direction = to_point(sun, "sun_direction");
+             s.aerosol = aerosol, s.ozone_du = ozone_du, s.ground_albedo = ground_albedo, s.altitude = altitude;
+             s.rayleigh_scale = rayleigh_scale;
+             py::gil_scoped_release release;
+             return std::make_shared<PhysicalSkyLight>(s);
+           }),
+           py::arg("sun_direction"), py::arg("aerosol") = 1.0, py::arg("ozone_du") = 300.0, py::arg("ground_albedo") = 0.0,
+           py::arg("altitude") = 0.0, py::arg("rayleigh_scale") = 1.0)
+      .def("radiance",
+           [](const PhysicalSkyLight& l, const py::object& dirs, const py::object& lambda_object, bool direct) {
+             const std::vector<Vec3d> d = unit_directions(dirs);
+             const DoubleArray lambda = as_array(lambda_object, "wavelengths", 1);
+             const py::ssize_t n = py::ssize_t(d.size()), k = lambda.shape(0);
+             DoubleArray out({n, k});
+             double* o = out.mutable_data();
+             for (py::ssize_t i = 0; i < n; ++i) {
+               for (py::ssize_t j = 0; j < k; ++j) {
+                 o[i * k + j] = direct ? l.sky().radiance_direct(d[i], lambda.at(j)) : l.sky().radiance(d[i], lambda.at(j));
+               }
+             }
+             return out;
+           },
+           py::arg("dirs"), py::arg("wavelengths"), py::arg("direct") = false)
+      .def("rgb_radiance",
+           [](const PhysicalSkyLight& l, const py::object& dirs) {
+             std::vector<Vec3d> d = unit_directions(dirs);
+             for (Vec3d& v : d) v = l.sky().rgb_radiance(v);
+             return points_to_array(d);
+           },
+           py::arg("dirs"))
+      .def("sun_transmittance",
+           [](const PhysicalSkyLight& l, const py::object& lambda_object) {
+             const DoubleArray lambda = as_array(lambda_object, "wavelengths", 1);
+             std::vector<double> out(lambda.size());
+             for (size_t i = 0; i < out.size(); ++i) out[i] = l.sky().sun_transmittance(lambda.at(i));
+             return values_to_array(out);
+           },
+           py::arg("wavelengths"))
+      .def("sun_radiance",
+           [](const PhysicalSkyLight& l, const py::object& lambda_object, double diameter) {
+             const DoubleArray lambda = as_array(lambda_object, "wavelengths", 1);
+             std::vector<double> out(lambda.size());
+             for (size_t i = 0; i < out.size(); ++i) out[i] = l.sky().sun_radiance(lambda.at(i), diameter);
+             return values_to_array(out);
+           },
+           py::arg("wavelengths"), py::arg("angular_diameter_deg") = 0.53)
+      .def("sun_radiance_rgb",
+           [](const PhysicalSkyLight& l, double diameter) {
+             return points_to_array({l.sky().sun_radiance_rgb(diameter)}).reshape({py::ssize_t(3)});
+           },
+           py::arg("angular_diameter_deg") = 0.53)
+      .def_static("solar_irradiance",
+                  [](const py::object& lambda_object) {
+                    const DoubleArray lambda = as_array(lambda_object, "wavelengths", 1);
+                    std::vector<double> out(lambda.size());
+                    for (size_t i = 0; i < out.size(); ++i) out[i] = PhysicalSky::solar_irradiance(lambda.at(i));
+                    return values_to_array(out);
+                  },
+                  py::arg("wavelengths"))
+      .def("rayleigh_optical_depth", [](const PhysicalSkyLight& l, double lambda) { return l.sky().rayleigh_optical_depth(lambda); },
+           py::arg("wavelength"))
+      .def("optical_depth", [](const PhysicalSkyLight& l, double lambda) { return l.sky().optical_depth(lambda); },
+           py::arg("wavelength"))
+      .def("sample_li",
+           [](const PhysicalSkyLight& l, const py::object& u_object) {
+             const DoubleArray u = as_array(u_object, "u", 2, 2);
+             const py::ssize_t n = u.shape(0);
+             std::vector<Vec3d> dirs(n, Vec3d::Zero()), rgb(n, Vec3d::Zero());
+             std::vector<double> pdf(n, 0.0);
+             for (py::ssize_t i = 0; i < n; ++i) {
+               const auto s = l.sample_li({}, Vec2d(u.at(i, 0), u.at(i, 1)), SampledWavelengths::rgb());
+               if (!s) continue;
+               dirs[i] = s->wi, pdf[i] = s->pdf, rgb[i] = s->L.head<3>().matrix();
+             }
+             return py::make_tuple(points_to_array(dirs), values_to_array(pdf), points_to_array(rgb));
+           },
+           py::arg("u"))
+      .def("pdf_li",
+           [](const PhysicalSkyLight& l, const py::object& dirs) {
+             const std::vector<Vec3d> d = unit_directions(dirs);
+             std::vector<double> out(d.size());
+             for (size_t i = 0; i < out.size(); ++i) out[i] = l.pdf_direction(d[i]);
+             return values_to_array(out);
+           },
+           py::arg("dirs"))
+      .def("power", &PhysicalSkyLight::power)
+      .def("preprocess", [](PhysicalSkyLight& l, const py::object& c, double r) { l.preprocess(to_point(c, "centre"), r); },
+           py::arg("centre"), py::arg("radius"))
+      .def_property_readonly("build_seconds", [](const PhysicalSkyLight& l) { return l.sky().build_seconds(); })
+      .def("__repr__", &PhysicalSkyLight::describe);
 }
 
 }  // namespace refracta
