@@ -2,7 +2,8 @@
 
 Fields (n(x) and grad n): LogisticProfile, PhysicalAtmosphere, TemperatureProfile,
 LinearSquaredProfile, CustomField. Rays: trace_ray (one RayPath), trace_rays (a batch, in
-parallel), ElevationTable. Images: Scene, Camera, render, refracta.io. Plots: refracta.plot. Units: metres, kelvin, pascal, nanometres; y is up.
+parallel), ElevationTable. Images: Scene, Camera, render, refracta.io. Shading: refracta.shading (BSDFs), refracta.lights,
+refracta.spectrum (spectral colour), refracta.testing (chi-square sampler tests). Plots: refracta.plot. Units: metres, kelvin, pascal, nanometres; y is up.
 """
 
 from refracta._core import (
@@ -20,7 +21,7 @@ from refracta._core import (
     TemperatureProfile,
     trace_ray,
 )
-from refracta import io
+from refracta import io, lights, shading, spectrum, testing
 from refracta._render import render
 from refracta._raster_render import render_raster
 from refracta.scene_file import SceneFile, load_scene
@@ -45,6 +46,10 @@ __all__ = [
     "SceneFile",
     "TemperatureProfile",
     "io",
+    "lights",
+    "shading",
+    "spectrum",
+    "testing",
     "load_scene",
     "render",
     "render_raster",

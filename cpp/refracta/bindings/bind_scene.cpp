@@ -156,17 +156,32 @@ Image array_to_image(const py::object& object) {
   return image;
 }
 
-// Exposure, tone mapping and transfer curve for display (alpha, the 4th channel, untouched).
-void encode_for_display(Image& image, double exposure, const std::string& tonemap_name, const std::string& gamma) {
-  if (!(exposure > 0.0) || !std::isfinite(exposure)) throw_invalid("exposure must be > 0 (got ", exposure, ")");
-  const Tonemap mode = parse_tonemap(tonemap_name);
-  if (gamma != "srgb" && gamma != "linear") throw_invalid("gamma must be 'srgb' or 'linear' (got '", gamma, "')");
-  for (size_t i = 0; i < image.pixels.size(); ++i) {
-    if (image.channels == 4 && i % 4 == 3) continue;
-    float& v = image.pixels[i];
-    v = tonemap(v, float(exposure), mode);
-    if (gamma == "srgb") v = srgb_encode(v);
+// Exposure, tone mapping and transfer curve for display (shading/tonemap.h; alpha untouched).
+// gamma: 'srgb', 'linear' or a number g in [1, 3] (p = l^(1/g)).
+void encode_for_display(Image& image, double exposure, const std::string& tonemap_name, const py::object& gamma,
+                        std::optional<double> key, std::optional<double> white) {
+  DisplaySettings settings;
+  settings.exposure = exposure;
+  settings.tonemap = parse_tonemap(tonemap_name);
+  settings.key = key;
+  settings.white = white;
+  if (py::isinstance<py::str>(gamma)) {
+    const std::string name = py::cast<std::string>(gamma);
+    if (name == "srgb") {
+      settings.transfer = Transfer::kSrgb;
+    } else if (name == "linear") {
+      settings.transfer = Transfer::kGamma, settings.gamma = 1.0;
+    } else {
+      throw_invalid("gamma must be 'srgb', 'linear' or a number in [1, 3] (got '", name, "')");
+    }
+  } else {
+    try {
+      settings.transfer = Transfer::kGamma, settings.gamma = py::cast<double>(gamma);
+    } catch (const py::cast_error&) {
+      throw_invalid("gamma must be 'srgb', 'linear' or a number in [1, 3]");
+    }
   }
+  tonemap_image(image, settings);
 }
 
 }  // namespace
@@ -455,25 +470,28 @@ vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (
 
   m.def("_write_image",
         [](const std::string& path, const py::object& array, double exposure, const std::string& tonemap_name,
-           const std::string& gamma) {
+           const py::object& gamma, std::optional<double> key, std::optional<double> white) {
           Image image = array_to_image(array);
           if (is_float_format(path)) {
             if (!(exposure > 0.0) || !std::isfinite(exposure)) throw_invalid("exposure must be > 0 (got ", exposure, ")");
             for (float& v : image.pixels) v *= float(exposure);
           } else {
-            encode_for_display(image, exposure, tonemap_name, gamma);
+            encode_for_display(image, exposure, tonemap_name, gamma, key, white);
           }
           py::gil_scoped_release release;
           write_image(path, image);
         },
-        py::arg("path"), py::arg("image"), py::arg("exposure"), py::arg("tonemap"), py::arg("gamma"));
+        py::arg("path"), py::arg("image"), py::arg("exposure"), py::arg("tonemap"), py::arg("gamma"),
+        py::arg("key") = py::none(), py::arg("white") = py::none());
   m.def("_display",
-        [](const py::object& array, double exposure, const std::string& tonemap_name, const std::string& gamma) {
+        [](const py::object& array, double exposure, const std::string& tonemap_name, const py::object& gamma,
+           std::optional<double> key, std::optional<double> white) {
           Image image = array_to_image(array);
-          encode_for_display(image, exposure, tonemap_name, gamma);
+          encode_for_display(image, exposure, tonemap_name, gamma, key, white);
           return image_to_float32(image);
         },
-        py::arg("image"), py::arg("exposure"), py::arg("tonemap"), py::arg("gamma"));
+        py::arg("image"), py::arg("exposure"), py::arg("tonemap"), py::arg("gamma"), py::arg("key") = py::none(),
+        py::arg("white") = py::none());
   m.def("_read_image", [](const std::string& path) { return image_to_float32(read_image(path)); }, py::arg("path"));
 }
 

@@ -12,4 +12,5 @@ PYBIND11_MODULE(_core, m) {
   refracta::bind_edit(m);
   refracta::bind_shading(m);
   refracta::bind_lights(m);
+  refracta::bind_spectrum(m);
 }

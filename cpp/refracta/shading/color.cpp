@@ -1,11 +1,29 @@
-// Colours for RGB and spectral rendering (color.h). RGB path only so far: the spectral path
-// (Jakob-Hanika upsampling, CIE tables) is being written.
+// Colours for RGB and spectral rendering (color.h): Jakob-Hanika upsampling of reflectances,
+// RGB x D65 emission, tabulated spectra and black bodies, and the spectral -> sRGB estimate.
+// The colour science (CIE tables, fits, the coefficient table) lives in spectral.h/.cpp.
+//
+// The texture table (spectral::rgb_to_spectrum_table): 32 nodes per axis, fits on a 5 nm
+// quadrature, 2 Gauss-Newton polish steps per lookup. Measured with
+// refracta.spectrum._measure_table (20000 uniform random colours in [0, 1]^3, round trip = max
+// |RGB(spectrum(rgb)) - rgb| with the 1 nm CIE integral; build time on 2 shared cores):
+//   res 32, no polish:   build 0.17 s, max 3.5e-3, mean 8.5e-4, lookup 0.1 us
+//   res 64, no polish:   build 1.7 s,  max 7.6e-4, mean 2.1e-4
+//   res 16, 2 steps:     build 0.03 s, max 2.3e-3 (a poor start near white)
+//   res 24, 2 steps:     build 0.08 s, max 7.9e-5
+//   res 32, 1 step:      build 0.17 s, max 1.1e-3, mean 4e-6, lookup 0.7 us
+//   res 32, 2 steps:     build 0.17 s, max 7.0e-5, mean 1.9e-6, lookup 1.3 us   <- chosen
+//   res 32, 2 steps at 1 nm: build 0.65 s, max 5.4e-5, lookup 3 us
+// Interpolated coefficients alone miss 1e-3 below res ~64 (whose build exceeds 1 s): the
+// coefficients grow like 1/sqrt(distance) to the gamut's walls. Two polish steps at 5 nm cost
+// ~1.3 us per lookup and bring the error 14x under the 1e-3 target.
 #include "refracta/shading/color.h"
 
 #include "refracta/core/error.h"
+#include "refracta/shading/spectral.h"
 
+#include <algorithm>
 #include <cmath>
-#include <stdexcept>
+#include <limits>
 
 namespace refracta {
 
@@ -19,7 +37,27 @@ void check_rgb(const Vec3d& rgb, const char* what, bool bounded) {
   }
 }
 
-[[noreturn]] void spectral_missing() { throw std::logic_error("spectral colours are not available yet"); }
+constexpr std::array<double, 3> kBlack{0.0, 0.0, -std::numeric_limits<double>::infinity()};
+
+// pbrt-v4 RGBUnboundedSpectrum: scale = 2 max(rgb), the fit of rgb / scale (largest component 1/2,
+// well inside the sigmoid's range).
+void fit_scaled(const Vec3d& rgb, std::array<double, 3>* coefficients, double* scale) {
+  const double m = rgb.maxCoeff();
+  if (m <= 0.0) {
+    *coefficients = kBlack, *scale = 0.0;
+    return;
+  }
+  *scale = 2.0 * m;
+  *coefficients = spectral::fit_reflectance_robust(rgb / *scale).c;
+}
+
+double lerp_1nm(const std::vector<double>& table, double lambda_nm) {
+  if (!(lambda_nm >= spectral::kTableMin && lambda_nm <= spectral::kTableMax)) return 0.0;
+  const double x = lambda_nm - spectral::kTableMin;
+  const int i = std::min(int(x), spectral::kTableSamples - 2);
+  const double t = x - i;
+  return table[i] * (1.0 - t) + table[i + 1] * t;
+}
 
 }  // namespace
 
@@ -28,6 +66,7 @@ Color Color::reflectance(const Vec3d& rgb) {
   Color c;
   c.kind_ = Kind::kReflectance;
   c.rgb_ = rgb;
+  c.coefficients_ = rgb.maxCoeff() <= 0.0 ? kBlack : spectral::fit_reflectance_robust(rgb).c;
   return c;
 }
 
@@ -36,6 +75,7 @@ Color Color::unbounded(const Vec3d& rgb) {
   Color c;
   c.kind_ = Kind::kUnbounded;
   c.rgb_ = rgb;
+  fit_scaled(rgb, &c.coefficients_, &c.scale_);
   return c;
 }
 
@@ -44,25 +84,98 @@ Color Color::illuminant(const Vec3d& rgb) {
   Color c;
   c.kind_ = Kind::kIlluminant;
   c.rgb_ = rgb;
+  fit_scaled(rgb, &c.coefficients_, &c.scale_);
   return c;
 }
 
-Color Color::tabulated(const std::vector<double>&, const std::vector<double>&, Kind) { spectral_missing(); }
-Color Color::blackbody(double, double) { spectral_missing(); }
+Color Color::tabulated(const std::vector<double>& lambda_nm, const std::vector<double>& values, Kind kind) {
+  if (lambda_nm.size() != values.size() || lambda_nm.empty()) {
+    throw_invalid("tabulated: wavelengths and values must have the same, non-zero length (got ", lambda_nm.size(),
+                  " and ", values.size(), ")");
+  }
+  for (size_t i = 0; i < lambda_nm.size(); ++i) {
+    if (!std::isfinite(lambda_nm[i]) || (i > 0 && !(lambda_nm[i] > lambda_nm[i - 1]))) {
+      throw_invalid("tabulated: wavelengths must be finite and increasing (got ", lambda_nm[i], " at ", i, ")");
+    }
+    if (!std::isfinite(values[i]) || values[i] < 0.0 || (kind == Kind::kReflectance && values[i] > 1.0)) {
+      throw_invalid("tabulated: values must be finite and in ", kind == Kind::kReflectance ? "[0, 1]" : "[0, inf)",
+                    " (got ", values[i], " at ", lambda_nm[i], " nm)");
+    }
+  }
+  // Resample to the 1 nm grid: linear between samples, 0 outside them (one sample: a spike of
+  // zero width, i.e. black, unless it falls on the grid).
+  auto table = std::make_shared<std::vector<double>>(spectral::kTableSamples, 0.0);
+  for (int i = 0; i < spectral::kTableSamples; ++i) {
+    const double l = spectral::kTableMin + i;
+    if (l < lambda_nm.front() || l > lambda_nm.back()) continue;
+    const size_t k = size_t(std::upper_bound(lambda_nm.begin(), lambda_nm.end(), l) - lambda_nm.begin());
+    if (k >= lambda_nm.size()) {
+      (*table)[i] = values.back();
+    } else {
+      const double t = (l - lambda_nm[k - 1]) / (lambda_nm[k] - lambda_nm[k - 1]);
+      (*table)[i] = values[k - 1] * (1.0 - t) + values[k] * t;
+    }
+  }
+  Color c;
+  c.kind_ = kind;
+  // Reflectance-like (reflectance, unbounded) under D65; emission as radiance.
+  const Vec3d xyz = kind == Kind::kIlluminant ? spectral::xyz_of_radiance(*table) : spectral::xyz_of_reflectance(*table);
+  c.rgb_ = spectral::xyz_to_linear_srgb(xyz);
+  c.table_ = table;
+  return c;
+}
+
+Color Color::blackbody(double temperature, double luminance) {
+  if (!(temperature > 0.0) || !std::isfinite(temperature)) throw_invalid("blackbody: temperature must be > 0 K (got ", temperature, ")");
+  if (!(luminance >= 0.0) || !std::isfinite(luminance)) throw_invalid("blackbody: luminance must be >= 0 (got ", luminance, ")");
+  std::vector<double> values(spectral::kTableSamples);
+  for (int i = 0; i < spectral::kTableSamples; ++i) values[i] = spectral::planck(spectral::kTableMin + i, temperature);
+  const double y = spectral::xyz_of_radiance(values).y();
+  if (!(y > 0.0)) throw_invalid("blackbody: temperature ", temperature, " K emits nothing visible");
+  for (double& v : values) v *= luminance / y;
+  Color c;
+  c.kind_ = Kind::kIlluminant;
+  c.table_ = std::make_shared<std::vector<double>>(std::move(values));
+  c.rgb_ = spectral::xyz_to_linear_srgb(spectral::xyz_of_radiance(*c.table_));
+  return c;
+}
+
+double Color::evaluate(double lambda_nm) const {
+  if (table_) return lerp_1nm(*table_, lambda_nm);
+  if (!(lambda_nm >= spectral::kTableMin && lambda_nm <= spectral::kTableMax)) return 0.0;
+  const double s = spectral::sigmoid_polynomial(coefficients_, lambda_nm);
+  switch (kind_) {
+    case Kind::kReflectance: return s;
+    case Kind::kUnbounded: return scale_ * s;
+    case Kind::kIlluminant: return scale_ * s * spectral::d65_normalised(lambda_nm);
+  }
+  return 0.0;
+}
 
 Spectrum Color::sample(const SampledWavelengths& lambda) const {
-  if (lambda.spectral) spectral_missing();
-  return Spectrum(rgb_.x(), rgb_.y(), rgb_.z(), 0.0);
+  if (!lambda.spectral) return Spectrum(rgb_.x(), rgb_.y(), rgb_.z(), 0.0);
+  Spectrum s;
+  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = evaluate(lambda.lambda[i]);
+  return s;
 }
 
 Spectrum reflectance_spectrum(const Vec3d& rgb, const SampledWavelengths& lambda) {
-  if (lambda.spectral) spectral_missing();
-  return Spectrum(rgb.x(), rgb.y(), rgb.z(), 0.0);
+  if (!lambda.spectral) return Spectrum(rgb.x(), rgb.y(), rgb.z(), 0.0);
+  const spectral::Coefficients c = spectral::rgb_to_spectrum_table().coefficients(rgb);
+  Spectrum s;
+  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = spectral::sigmoid_polynomial(c, lambda.lambda[i]);
+  return s;
 }
 
 Vec3d to_linear_srgb(const Spectrum& radiance, const SampledWavelengths& lambda) {
-  if (lambda.spectral) spectral_missing();
-  return radiance.head<3>().matrix();
+  if (!lambda.spectral) return radiance.head<3>().matrix();
+  Vec3d xyz = Vec3d::Zero();
+  for (int i = 0; i < kSpectrumSamples; ++i) {
+    if (!(lambda.pdf[i] > 0.0)) continue;  // a terminated wavelength
+    xyz += radiance[i] / lambda.pdf[i] * spectral::cie_xyz(lambda.lambda[i]);
+  }
+  xyz /= kSpectrumSamples * spectral::cie_y_integral();
+  return spectral::xyz_to_linear_srgb(xyz);
 }
 
 }  // namespace refracta

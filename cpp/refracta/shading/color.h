@@ -28,13 +28,23 @@ class Color {
   static Color unbounded(const Vec3d& rgb);    // throws when negative or not finite
   static Color illuminant(const Vec3d& rgb);   // throws when negative or not finite
   static Color constant(double value, Kind kind) { return kind == Kind::kReflectance ? reflectance(Vec3d::Constant(value)) : kind == Kind::kIlluminant ? illuminant(Vec3d::Constant(value)) : unbounded(Vec3d::Constant(value)); }
-  // A measured spectrum: values at increasing wavelengths [nm], linearly interpolated (0 outside).
+  // A measured spectrum: values at increasing wavelengths [nm], linearly interpolated to 1 nm (0
+  // outside). rgb(): reflectance/unbounded via XYZ under D65 (normalised by D65's Y), illuminant
+  // via the spectrum's own XYZ (normalised by integral y).
   static Color tabulated(const std::vector<double>& lambda_nm, const std::vector<double>& values, Kind kind);
   // Planck's law at temperature [K], scaled so that its luminance Y is `luminance` (an illuminant).
   static Color blackbody(double temperature, double luminance = 1.0);
 
   // RGB rendering: (r, g, b, 0); spectral: the spectrum at lambda.lambda.
   Spectrum sample(const SampledWavelengths& lambda) const;
+  // The spectrum at one wavelength [nm] (0 outside [kLambdaMin, kLambdaMax]). Illuminants:
+  // rgb-fit x scale x spectral::d65_normalised (Y of (1, 1, 1) is 1); blackbody: Planck scaled
+  // to the asked luminance.
+  double evaluate(double lambda_nm) const;
+  // Jakob-Hanika coefficients (normalised wavelength, spectral.h) and scale (unbounded/illuminant).
+  const std::array<double, 3>& coefficients() const { return coefficients_; }
+  double scale() const { return scale_; }
+  bool is_tabulated() const { return bool(table_); }
   const Vec3d& rgb() const { return rgb_; }
   Kind kind() const { return kind_; }
   bool is_black() const { return rgb_.maxCoeff() <= 0.0 && !table_; }
@@ -48,12 +58,14 @@ class Color {
 };
 
 // A reflectance given as RGB at render time (a texel) to its spectral values at lambda; RGB
-// rendering returns (r, g, b, 0). Fast: served from a precomputed coefficient table.
+// rendering returns (r, g, b, 0). Fast: served from a precomputed coefficient table
+// (spectral::rgb_to_spectrum_table, built once on first use, ~0.2 s); rgb clamped to [0, 1].
 Spectrum reflectance_spectrum(const Vec3d& rgb, const SampledWavelengths& lambda);
 
 // Spectral radiance samples to linear sRGB (CIE 1931 2-degree observer, D65 white, IEC
-// 61966-2-1 matrix), the Monte Carlo estimate over the path's wavelengths; RGB rendering
-// returns the first three channels.
+// 61966-2-1 matrix), the Monte Carlo estimate over the path's wavelengths:
+// XYZ = (1/4) sum_i L_i cmf(lambda_i) / pdf_i / integral(y), terminated wavelengths (pdf 0)
+// contributing nothing; RGB rendering returns the first three channels.
 Vec3d to_linear_srgb(const Spectrum& radiance, const SampledWavelengths& lambda);
 
 }  // namespace refracta

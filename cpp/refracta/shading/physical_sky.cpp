@@ -1,0 +1,373 @@
+// Single-scattering physical sky and its light (physical_sky.h).
+#include "refracta/shading/physical_sky.h"
+
+#include "refracta/core/error.h"
+#include "refracta/shading/spectral.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+namespace refracta {
+
+namespace {
+
+constexpr double kEarthRadius = 6371e3;           // [m]
+constexpr double kTop = 80e3;                     // [m] the atmosphere's top above the ground
+constexpr double kTopRadius = kEarthRadius + kTop;
+constexpr double kRayleighHeight = 8000.0;        // [m] scale height
+constexpr double kMieHeight = 1200.0;             // [m]
+constexpr double kRayleighDepth550 = 0.097;       // Bodhaine et al. 1999, sea level, 550 nm
+const double kRayleigh550 = kRayleighDepth550 / (kRayleighHeight * (1.0 - std::exp(-kTop / kRayleighHeight)));  // [1/m]
+constexpr double kMieScattering = 2.1e-5;         // [1/m] Bruneton & Neyret 2008
+constexpr double kMieExtinction = kMieScattering / 0.9;
+constexpr double kMieG = 0.76;
+constexpr double kDobsonUnit = 2.687e20;          // [molecules/m^2]
+constexpr double kOzonePeak = 25e3, kOzoneHalfWidth = 15e3;  // [m] the tent 10..25..40 km (integral 15 km)
+constexpr double kSolarConstant = 1361.0;         // [W/m^2] Kopp & Lean 2011
+constexpr double kSunTemperature = 5778.0;        // [K]
+constexpr double kStefanBoltzmann = 5.670374419e-8;
+// Ozone absorption cross-sections [m^2] at 360, 370, ..., 830 nm: the IUP Bremen reference spectra
+// (Serdyuchenko et al. 2014, "High spectral resolution ozone absorption cross-sections - Part 2",
+// AMT 7; Gorshelev et al. 2014, Part 1) at 233 K, averaged over each 10 nm bin, as tabulated in
+// E. Bruneton's precomputed_atmospheric_scattering (2017) demo. Data, not code.
+constexpr double kOzoneCrossSection[PhysicalSky::kWavelengths] = {
+    1.18e-27,  2.182e-28, 2.818e-28, 6.636e-28, 1.527e-27, 2.763e-27, 5.52e-27,  8.451e-27,
+    1.582e-26, 2.316e-26, 3.669e-26, 4.924e-26, 7.752e-26, 9.016e-26, 1.48e-25,  1.602e-25,
+    2.139e-25, 2.755e-25, 3.091e-25, 3.5e-25,   4.266e-25, 4.672e-25, 4.398e-25, 4.701e-25,
+    5.019e-25, 4.305e-25, 3.74e-25,  3.215e-25, 2.662e-25, 2.238e-25, 1.852e-25, 1.473e-25,
+    1.209e-25, 9.423e-26, 7.455e-26, 6.566e-26, 5.105e-26, 4.15e-26,  4.228e-26, 3.237e-26,
+    2.451e-26, 2.801e-26, 2.534e-26, 1.624e-26, 1.465e-26, 2.078e-26, 1.383e-26, 7.105e-27};
+
+constexpr int kViewSteps = 64;  // midpoint samples along a view ray
+constexpr int kSunSteps = 48;   // along a sun ray (optical depth)
+
+// Linear interpolation on the 10 nm grid; 0 outside [360, 830].
+double lerp_10nm(const double* values, double lambda_nm) {
+  if (!(lambda_nm >= 360.0 && lambda_nm <= 830.0)) return 0.0;
+  const double x = (lambda_nm - 360.0) / 10.0;
+  const int i = std::min(int(x), PhysicalSky::kWavelengths - 2);
+  const double t = x - i;
+  return values[i] * (1.0 - t) + values[i + 1] * t;
+}
+
+// Densities relative to sea level (Rayleigh, Mie) and the ozone tent in [0, 1].
+struct Column {
+  double r = 0.0, m = 0.0, o = 0.0;  // [m] integrals of the relative densities along a path
+};
+
+Column densities(double h) {
+  return {std::exp(-h / kRayleighHeight), std::exp(-h / kMieHeight),
+          std::max(0.0, 1.0 - std::abs(h - kOzonePeak) / kOzoneHalfWidth)};
+}
+
+// Distance along unit d from p (inside the sphere of radius r) to its surface.
+double exit_distance(const Vec3d& p, const Vec3d& d, double r) {
+  const double b = p.dot(d), c = p.squaredNorm() - r * r;
+  return -b + std::sqrt(std::max(0.0, b * b - c));
+}
+
+bool hits_earth(const Vec3d& p, const Vec3d& d) {
+  const double b = p.dot(d), c = p.squaredNorm() - kEarthRadius * kEarthRadius;
+  const double disc = b * b - c;
+  return disc > 0.0 && -b - std::sqrt(disc) > 0.0;
+}
+
+// Column densities from p along d to the top: midpoint rule with nodes t = L s^2 (dense near p,
+// the path's low end for every ray leaving the ground upward).
+Column column_to_top(const Vec3d& p, const Vec3d& d, int steps) {
+  const double length = exit_distance(p, d, kTopRadius);
+  Column c;
+  for (int i = 0; i < steps; ++i) {
+    const double s = (i + 0.5) / steps, t = length * s * s, dt = length * 2.0 * s / steps;
+    const Column rho = densities((p + t * d).norm() - kEarthRadius);
+    c.r += rho.r * dt, c.m += rho.m * dt, c.o += rho.o * dt;
+  }
+  return c;
+}
+
+double rayleigh_phase(double mu) { return 3.0 / (16.0 * kPi) * (1.0 + mu * mu); }
+// Cornette & Shanks 1992.
+double mie_phase(double mu) {
+  const double g2 = kMieG * kMieG;
+  return 3.0 * (1.0 - g2) * (1.0 + mu * mu) /
+         (8.0 * kPi * (2.0 + g2) * std::pow(1.0 + g2 - 2.0 * kMieG * mu, 1.5));
+}
+
+double beta_rayleigh(double lambda_nm) { return kRayleigh550 * std::pow(550.0 / lambda_nm, 4.0); }
+
+// sRGB of a spectrum on the 10 nm grid (resampled to the CIE tables' 1 nm).
+Vec3d rgb_of_10nm(const double* values) {
+  std::vector<double> fine(spectral::kTableSamples);
+  for (int i = 0; i < spectral::kTableSamples; ++i) fine[i] = lerp_10nm(values, spectral::kTableMin + i);
+  return spectral::xyz_to_linear_srgb(spectral::xyz_of_radiance(fine));
+}
+
+double luminance(const Vec3d& rgb) {
+  return spectral::linear_srgb_to_xyz(rgb).y();
+}
+
+}  // namespace
+
+void PhysicalSkySettings::validate() const {
+  std::vector<std::string> problems;
+  if (!sun_direction.allFinite() || std::abs(sun_direction.norm() - 1.0) > 1e-6) {
+    problems.push_back(concat("sun_direction must be a unit vector (got norm ", sun_direction.norm(), ")"));
+  }
+  if (!(aerosol >= 0.0) || !std::isfinite(aerosol)) problems.push_back(concat("aerosol must be >= 0 (got ", aerosol, ")"));
+  if (!(ozone_du >= 0.0) || !std::isfinite(ozone_du)) problems.push_back(concat("ozone_du must be >= 0 (got ", ozone_du, ")"));
+  if (!(ground_albedo >= 0.0 && ground_albedo <= 1.0)) problems.push_back(concat("ground_albedo must be in [0, 1] (got ", ground_albedo, ")"));
+  if (!(altitude >= 0.0 && altitude <= 20000.0)) problems.push_back(concat("altitude must be in [0, 20000] m (got ", altitude, ")"));
+  if (!(rayleigh_scale >= 0.0) || !std::isfinite(rayleigh_scale)) problems.push_back(concat("rayleigh_scale must be >= 0 (got ", rayleigh_scale, ")"));
+  if (problems.empty()) return;
+  std::string message = "PhysicalSky: ";
+  for (size_t i = 0; i < problems.size(); ++i) message += (i ? "; " : "") + problems[i];
+  throw_invalid(message);
+}
+
+// --- Directions ----------------------------------------------------------------------------------
+Vec2d PhysicalSky::direction_to_xy(const Vec3d& d) {
+  double phi = std::atan2(d.z(), d.x());
+  if (phi < 0.0) phi += 2.0 * kPi;
+  const double e = std::asin(std::clamp(d.y(), -1.0, 1.0));
+  return Vec2d(std::min(phi / (2.0 * kPi), 1.0), std::sqrt(std::max(e, 0.0) / (0.5 * kPi)));
+}
+
+Vec3d PhysicalSky::xy_to_direction(const Vec2d& xy) {
+  const double phi = 2.0 * kPi * xy.x(), e = 0.5 * kPi * xy.y() * xy.y();
+  return Vec3d(std::cos(e) * std::cos(phi), std::sin(e), std::cos(e) * std::sin(phi));
+}
+
+// --- The sky -------------------------------------------------------------------------------------
+PhysicalSky::PhysicalSky(const PhysicalSkySettings& settings) : settings_(settings) {
+  settings_.validate();
+  sun_ = settings_.sun_direction;
+  const auto start = std::chrono::steady_clock::now();
+  // Sun transmittance at the observer and the ground below the horizon.
+  const Vec3d p0(0.0, kEarthRadius + settings_.altitude, 0.0);
+  const bool shadowed = hits_earth(p0, sun_);
+  const Column c0 = column_to_top(p0, sun_, 4 * kSunSteps);
+  const double ozone_density = settings_.ozone_du * kDobsonUnit / kOzoneHalfWidth;  // [1/m^3] at the peak
+  for (int w = 0; w < kWavelengths; ++w) {
+    const double l = wavelength(w);
+    const double tau = settings_.rayleigh_scale * beta_rayleigh(l) * c0.r + settings_.aerosol * kMieExtinction * c0.m +
+                       kOzoneCrossSection[w] * ozone_density * c0.o;
+    sun_transmittance_[w] = shadowed ? 0.0 : std::exp(-tau);
+    ground_[w] = settings_.ground_albedo / kPi * solar_irradiance(l) * sun_transmittance_[w] * std::max(0.0, sun_.y());
+  }
+  ground_rgb_ = rgb_of_10nm(ground_.data());
+  // The table, one direction per task.
+  table_.assign(size_t(kElevations) * kAzimuths * kWavelengths, 0.0f);
+  rgb_.assign(size_t(kElevations) * kAzimuths, Vec3d::Zero());
+  tbb::parallel_for(tbb::blocked_range<int>(0, kElevations * kAzimuths), [&](const tbb::blocked_range<int>& range) {
+    std::array<double, kWavelengths> lambda, values;
+    for (int w = 0; w < kWavelengths; ++w) lambda[w] = wavelength(w);
+    for (int cell = range.begin(); cell != range.end(); ++cell) {
+      const int row = cell / kAzimuths, column = cell % kAzimuths;
+      const Vec3d dir = xy_to_direction(Vec2d((column + 0.5) / kAzimuths, (row + 0.5) / kElevations));
+      for (int w = 0; w < kWavelengths; ++w) {
+        values[w] = 0.0;
+      }
+      // Shared path geometry for all wavelengths.
+      const double length = exit_distance(p0, dir, kTopRadius);
+      const double mu = dir.dot(sun_);
+      const double pr = rayleigh_phase(mu), pm = mie_phase(mu);
+      Column view;
+      for (int i = 0; i < kViewSteps; ++i) {
+        const double s = (i + 0.5) / kViewSteps, t = length * s * s, dt = length * 2.0 * s / kViewSteps;
+        const Vec3d x = p0 + t * dir;
+        const Column rho = densities(x.norm() - kEarthRadius);
+        Column to_x = view;  // observer -> x: the segments before plus half of this one
+        to_x.r += 0.5 * rho.r * dt, to_x.m += 0.5 * rho.m * dt, to_x.o += 0.5 * rho.o * dt;
+        view.r += rho.r * dt, view.m += rho.m * dt, view.o += rho.o * dt;
+        if (hits_earth(x, sun_)) continue;
+        const Column sun = column_to_top(x, sun_, kSunSteps);
+        const double r = to_x.r + sun.r, m = to_x.m + sun.m, o = to_x.o + sun.o;
+        for (int w = 0; w < kWavelengths; ++w) {
+          const double br = settings_.rayleigh_scale * beta_rayleigh(lambda[w]);
+          const double tau = br * r + settings_.aerosol * kMieExtinction * m + kOzoneCrossSection[w] * ozone_density * o;
+          values[w] += (br * rho.r * pr + settings_.aerosol * kMieScattering * rho.m * pm) * std::exp(-tau) * dt;
+        }
+      }
+      for (int w = 0; w < kWavelengths; ++w) {
+        values[w] *= solar_irradiance(lambda[w]);
+        table_[size_t(cell) * kWavelengths + w] = float(values[w]);
+      }
+      rgb_[cell] = rgb_of_10nm(values.data());
+    }
+  });
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double PhysicalSky::radiance_direct(const Vec3d& dir, double lambda_nm) const {
+  if (!(std::abs(dir.norm() - 1.0) < 1e-6)) throw_invalid("dir must be a unit vector (got norm ", dir.norm(), ")");
+  if (!(lambda_nm >= 360.0 && lambda_nm <= 830.0)) return 0.0;
+  if (dir.y() < 0.0) return ground_radiance(lambda_nm);
+  const Vec3d p0(0.0, kEarthRadius + settings_.altitude, 0.0);
+  const double ozone_density = settings_.ozone_du * kDobsonUnit / kOzoneHalfWidth;
+  const double sigma_o = lerp_10nm(kOzoneCrossSection, lambda_nm);
+  const double br = settings_.rayleigh_scale * beta_rayleigh(lambda_nm);
+  const double length = exit_distance(p0, dir, kTopRadius), mu = dir.dot(sun_);
+  // A finer quadrature than the table's (4x the steps on both rays): the table's reference.
+  const int view_steps = 4 * kViewSteps, sun_steps = 4 * kSunSteps;
+  double sum = 0.0, tau_view = 0.0;
+  for (int i = 0; i < view_steps; ++i) {
+    const double s = (i + 0.5) / view_steps, t = length * s * s, dt = length * 2.0 * s / view_steps;
+    const Vec3d x = p0 + t * dir;
+    const Column rho = densities(x.norm() - kEarthRadius);
+    const double ext = br * rho.r + settings_.aerosol * kMieExtinction * rho.m + sigma_o * ozone_density * rho.o;
+    const double tau_x = tau_view + 0.5 * ext * dt;
+    tau_view += ext * dt;
+    if (hits_earth(x, sun_)) continue;
+    const Column sun = column_to_top(x, sun_, sun_steps);
+    const double tau_sun = br * sun.r + settings_.aerosol * kMieExtinction * sun.m + sigma_o * ozone_density * sun.o;
+    sum += (br * rho.r * rayleigh_phase(mu) + settings_.aerosol * kMieScattering * rho.m * mie_phase(mu)) *
+           std::exp(-tau_x - tau_sun) * dt;
+  }
+  return sum * solar_irradiance(lambda_nm);
+}
+
+double PhysicalSky::radiance(const Vec3d& dir, double lambda_nm) const {
+  if (!(lambda_nm >= 360.0 && lambda_nm <= 830.0)) return 0.0;
+  if (dir.y() < 0.0) return ground_radiance(lambda_nm);
+  const Vec2d xy = direction_to_xy(dir);
+  const double fx = xy.x() * kAzimuths - 0.5, fy = std::clamp(xy.y() * kElevations - 0.5, 0.0, kElevations - 1.0);
+  const int x0 = int(std::floor(fx)), y0 = std::min(int(fy), kElevations - 2);
+  const double tx = fx - x0, ty = fy - y0;
+  const int xa = (x0 + kAzimuths) % kAzimuths, xb = (x0 + 1) % kAzimuths;
+  const double fw = (lambda_nm - 360.0) / 10.0;
+  const int w0 = std::min(int(fw), kWavelengths - 2);
+  const double tw = fw - w0;
+  double out = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    const int w = w0 + k;
+    const double v = (1.0 - ty) * ((1.0 - tx) * table_at(y0, xa, w) + tx * table_at(y0, xb, w)) +
+                     ty * ((1.0 - tx) * table_at(y0 + 1, xa, w) + tx * table_at(y0 + 1, xb, w));
+    out += (k ? tw : 1.0 - tw) * v;
+  }
+  return out;
+}
+
+Vec3d PhysicalSky::rgb_radiance(const Vec3d& dir) const {
+  if (dir.y() < 0.0) return ground_rgb_;
+  const Vec2d xy = direction_to_xy(dir);
+  const double fx = xy.x() * kAzimuths - 0.5, fy = std::clamp(xy.y() * kElevations - 0.5, 0.0, kElevations - 1.0);
+  const int x0 = int(std::floor(fx)), y0 = std::min(int(fy), kElevations - 2);
+  const double tx = fx - x0, ty = fy - y0;
+  const int xa = (x0 + kAzimuths) % kAzimuths, xb = (x0 + 1) % kAzimuths;
+  auto at = [&](int r, int c) { return rgb_[size_t(r) * kAzimuths + c]; };
+  return (1.0 - ty) * ((1.0 - tx) * at(y0, xa) + tx * at(y0, xb)) + ty * ((1.0 - tx) * at(y0 + 1, xa) + tx * at(y0 + 1, xb));
+}
+
+double PhysicalSky::ground_radiance(double lambda_nm) const { return lerp_10nm(ground_.data(), lambda_nm); }
+
+double PhysicalSky::sun_transmittance(double lambda_nm) const { return lerp_10nm(sun_transmittance_.data(), lambda_nm); }
+
+double PhysicalSky::solar_irradiance(double lambda_nm) {
+  return kPi * spectral::planck(lambda_nm, kSunTemperature) * kSolarConstant /
+         (kStefanBoltzmann * std::pow(kSunTemperature, 4.0));
+}
+
+double PhysicalSky::sun_radiance(double lambda_nm, double angular_diameter_deg) const {
+  if (!(angular_diameter_deg > 0.0 && angular_diameter_deg < 180.0)) {
+    throw_invalid("angular_diameter_deg must be in (0, 180) (got ", angular_diameter_deg, ")");
+  }
+  const double half = 0.5 * angular_diameter_deg * kPi / 180.0;
+  return sun_irradiance(lambda_nm) / (2.0 * kPi * (1.0 - std::cos(half)));
+}
+
+Vec3d PhysicalSky::sun_radiance_rgb(double angular_diameter_deg) const {
+  std::array<double, kWavelengths> values;
+  for (int w = 0; w < kWavelengths; ++w) values[w] = sun_radiance(wavelength(w), angular_diameter_deg);
+  return rgb_of_10nm(values.data());
+}
+
+double PhysicalSky::rayleigh_optical_depth(double lambda_nm) const {
+  const Vec3d p0(0.0, kEarthRadius + settings_.altitude, 0.0);
+  return settings_.rayleigh_scale * beta_rayleigh(lambda_nm) * column_to_top(p0, Vec3d::UnitY(), 4096).r;
+}
+
+double PhysicalSky::optical_depth(double lambda_nm) const {
+  const Vec3d p0(0.0, kEarthRadius + settings_.altitude, 0.0);
+  const Column c = column_to_top(p0, Vec3d::UnitY(), 4096);
+  return settings_.rayleigh_scale * beta_rayleigh(lambda_nm) * c.r + settings_.aerosol * kMieExtinction * c.m +
+         lerp_10nm(kOzoneCrossSection, lambda_nm) * settings_.ozone_du * kDobsonUnit / kOzoneHalfWidth * c.o;
+}
+
+// --- The light -----------------------------------------------------------------------------------
+PhysicalSkyLight::PhysicalSkyLight(const PhysicalSkySettings& settings) : sky_(settings) {
+  constexpr int nx = PhysicalSky::kAzimuths, ny = PhysicalSky::kElevations;
+  std::vector<double> weights(size_t(nx) * ny);
+  const double cell = 1.0 / (double(nx) * ny);
+  for (int row = 0; row < ny; ++row) {
+    for (int column = 0; column < nx; ++column) {
+      const Vec2d xy((column + 0.5) / nx, (row + 0.5) / ny);
+      const double e = 0.5 * kPi * xy.y() * xy.y();
+      const double solid_angle = 2.0 * kPi * kPi * xy.y() * std::cos(e) * cell;
+      const double y = std::max(0.0, luminance(sky_.rgb_radiance(PhysicalSky::xy_to_direction(xy))));
+      weights[size_t(row) * nx + column] = y * solid_angle;
+      radiance_integral_ += y * solid_angle;
+    }
+  }
+  radiance_integral_ += 2.0 * kPi * std::max(0.0, luminance(sky_.rgb_radiance(Vec3d(0.0, -1.0, 0.0))));
+  distribution_ = PiecewiseConstant2D(weights, nx, ny);
+}
+
+double PhysicalSkyLight::pdf_direction(const Vec3d& wi) const {
+  if (!(wi.y() > 0.0)) return 0.0;
+  const Vec2d xy = PhysicalSky::direction_to_xy(wi);
+  const double e = 0.5 * kPi * xy.y() * xy.y();
+  const double jacobian = 2.0 * kPi * kPi * xy.y() * std::cos(e);
+  if (!(jacobian > 0.0)) return 0.0;
+  return distribution_.pdf(xy) / jacobian;
+}
+
+std::optional<LightLiSample> PhysicalSkyLight::sample_li(const LightSampleContext& /*ctx*/, const Vec2d& u,
+                                                         const SampledWavelengths& lambda) const {
+  double pdf_xy = 0.0;
+  const Vec2d xy = distribution_.sample(u, &pdf_xy);
+  const double e = 0.5 * kPi * xy.y() * xy.y();
+  const double jacobian = 2.0 * kPi * kPi * xy.y() * std::cos(e);
+  if (!(pdf_xy > 0.0) || !(jacobian > 0.0)) return std::nullopt;
+  LightLiSample s;
+  s.wi = PhysicalSky::xy_to_direction(xy).normalized();
+  s.pdf = pdf_xy / jacobian;
+  if (!std::isfinite(s.pdf)) return std::nullopt;
+  s.L = Le(s.wi, lambda);
+  return s;
+}
+
+double PhysicalSkyLight::pdf_li(const LightSampleContext& /*ctx*/, const Vec3d& wi, const Vec3d& /*p_light*/,
+                                const Vec3d& /*n_light*/) const {
+  return pdf_direction(wi);
+}
+
+Spectrum PhysicalSkyLight::Le(const Vec3d& dir, const SampledWavelengths& lambda) const {
+  if (!lambda.spectral) {
+    const Vec3d c = sky_.rgb_radiance(dir);
+    return Spectrum(c.x(), c.y(), c.z(), 0.0);
+  }
+  Spectrum s;
+  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = sky_.radiance(dir, lambda.lambda[i]);
+  return s;
+}
+
+double PhysicalSkyLight::power() const { return kPi * scene_radius_ * scene_radius_ * radiance_integral_; }
+
+void PhysicalSkyLight::preprocess(const Vec3d& /*centre*/, double radius) {
+  if (!(radius > 0.0) || !std::isfinite(radius)) throw_invalid("PhysicalSkyLight: scene radius must be > 0 (got ", radius, ")");
+  scene_radius_ = radius;
+}
+
+std::string PhysicalSkyLight::describe() const {
+  const PhysicalSkySettings& s = sky_.settings();
+  return concat("PhysicalSkyLight(sun=(", s.sun_direction.x(), ", ", s.sun_direction.y(), ", ", s.sun_direction.z(),
+                "), aerosol=", s.aerosol, ", ozone_du=", s.ozone_du, ", ground_albedo=", s.ground_albedo,
+                ", altitude=", s.altitude, ")");
+}
+
+}  // namespace refracta

@@ -1,0 +1,155 @@
+"""The physical sky (shared/SHADING.md section 5): Rayleigh optical depth, sun extinction, colours,
+the table against direct integration, and the light's importance sampling."""
+
+import numpy as np
+import pytest
+
+from refracta import spectrum
+from refracta.testing import chi2
+
+# Bodhaine et al. 1999: tau_R(550 nm) = 0.097; SHADING.md asks for +-0.003.
+RAYLEIGH_DEPTH_TOLERANCE = 0.003
+# Beer-Lambert along the zenith of a Rayleigh-only sky: exp(-tau) with the same profile integral
+# (the observer's 4x finer quadrature against rayleigh_optical_depth's 4096 steps).
+TRANSMITTANCE_TOLERANCE = 1e-5
+# Table (64 x 128 directions, bilinear; float storage) against direct integration with 4x the
+# steps: measured worst relative difference 1.9e-2, median 5.6e-4, over the test directions
+# (largest next to the sun, where the Mie peak varies fastest between table nodes).
+TABLE_TOLERANCE = 3e-2
+# Sky build on 2 cores: measured ~0.5 s; SHADING asks ~1-2 s.
+BUILD_SECONDS = 2.0
+# Chi-square significance of the sampling test (one test).
+CHI2_SIGNIFICANCE = 0.01
+
+
+def unit(elevation_deg, azimuth_deg=0.0):
+    e, a = np.radians(elevation_deg), np.radians(azimuth_deg)
+    return np.array([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)])
+
+
+@pytest.fixture(scope="module")
+def sky():
+    return spectrum.PhysicalSky(unit(30.0), aerosol=1.0)
+
+
+@pytest.fixture(scope="module")
+def rayleigh_zenith():
+    return spectrum.PhysicalSky([0.0, 1.0, 0.0], aerosol=0.0, ozone_du=0.0)
+
+
+def test_rayleigh_optical_depth_is_bodhaines(rayleigh_zenith):
+    assert rayleigh_zenith.rayleigh_optical_depth(550.0) == pytest.approx(0.097, abs=RAYLEIGH_DEPTH_TOLERANCE)
+    # lambda^-4: half the wavelength, 16x the depth.
+    assert rayleigh_zenith.rayleigh_optical_depth(400.0) == pytest.approx(0.097 * (550 / 400) ** 4, rel=1e-6)
+
+
+def test_zenith_sun_through_rayleigh_keeps_exp_minus_tau(rayleigh_zenith):
+    t = rayleigh_zenith.sun_transmittance([550.0])[0]
+    assert t == pytest.approx(np.exp(-0.097), abs=TRANSMITTANCE_TOLERANCE)
+    e = rayleigh_zenith.sun_radiance([550.0])[0]
+    e0 = spectrum.PhysicalSky.solar_irradiance([550.0])[0] / (2 * np.pi * (1 - np.cos(np.radians(0.265))))
+    assert e / e0 == pytest.approx(np.exp(-0.097), abs=TRANSMITTANCE_TOLERANCE)
+
+
+def test_solar_irradiance_integrates_to_the_solar_constant():
+    lam = np.arange(100.0, 100000.0, 1.0)  # 0.1 .. 100 um: > 99.9 % of a 5778 K black body
+    assert np.trapezoid(spectrum.PhysicalSky.solar_irradiance(lam), lam) == pytest.approx(1361.0, rel=2e-3)
+
+
+def test_sky_is_bluer_at_the_zenith_than_at_the_horizon(sky):
+    zenith = sky.rgb_radiance(unit(90.0)[None])[0]
+    horizon = sky.rgb_radiance(unit(2.0, 90.0)[None])[0]
+    # Measured: B/R 2.66 at the zenith, 1.06 at 2 degrees (sun at 30 degrees, 90 degrees away).
+    assert zenith[2] / zenith[0] > 2.0
+    assert zenith[2] / zenith[0] > 1.5 * horizon[2] / horizon[0]
+
+
+def test_low_sun_is_redder():
+    low = spectrum.PhysicalSky(unit(5.0)).sun_radiance_rgb()
+    high = spectrum.PhysicalSky(unit(60.0)).sun_radiance_rgb()
+    # Measured R/B: 5.95 at 5 degrees, 1.44 at 60 degrees.
+    assert low[0] / low[2] > 3.0 * high[0] / high[2]
+
+
+def test_table_reproduces_direct_integration(sky):
+    rng = np.random.default_rng(5)
+    dirs = np.array([unit(e, a) for e, a in zip(rng.uniform(0.5, 89.5, 24), rng.uniform(0, 360, 24))])
+    lam = np.array([380.0, 450.0, 550.0, 650.0, 800.0])  # 10 nm nodes: no wavelength interpolation
+    table = sky.radiance(dirs, lam)
+    direct = sky.radiance(dirs, lam, direct=True)
+    assert np.all(direct > 0)
+    np.testing.assert_allclose(table, direct, rtol=TABLE_TOLERANCE)
+
+
+def test_below_the_horizon_is_the_lambertian_ground():
+    albedo = 0.3
+    sun = unit(40.0)
+    sky = spectrum.PhysicalSky(sun, ground_albedo=albedo)
+    lam = np.array([450.0, 550.0])
+    expected = albedo / np.pi * spectrum.PhysicalSky.solar_irradiance(lam) * sky.sun_transmittance(lam) * sun[1]
+    np.testing.assert_allclose(sky.radiance(unit(-30.0)[None], lam)[0], expected, rtol=1e-12)
+    assert np.all(spectrum.PhysicalSky(sun).radiance(unit(-30.0)[None], lam) == 0.0)
+
+
+def test_build_time(sky):
+    assert sky.build_seconds < BUILD_SECONDS
+
+
+def xy_of(dirs):
+    """The table's sampling coordinates (physical_sky.h): x = azimuth / 2 pi, y = sqrt(e / (pi/2))."""
+    x = np.mod(np.arctan2(dirs[:, 2], dirs[:, 0]), 2 * np.pi) / (2 * np.pi)
+    return x, np.sqrt(np.arcsin(np.clip(dirs[:, 1], -1, 1)) / (np.pi / 2))
+
+
+def test_light_sampling_matches_its_pdf(sky):
+    # Binned in (x, y), where the density is exactly piecewise constant on the 128 x 64 table
+    # cells (refracta.testing.chi2 bins in (theta, phi) and integrates by Gauss-Legendre, which
+    # the cell edges and the 1/y factor of pdf_w at the horizon defeat): bins of 4 x 4 cells,
+    # the expected probability of a cell pdf_li(centre) x its solid angle 2 pi^2 y cos(e) / (nx ny).
+    nx, ny, group = 128, 64, 4
+    cx, cy = (np.arange(nx) + 0.5) / nx, (np.arange(ny) + 0.5) / ny
+    xx, yy = np.meshgrid(cx, cy)
+    e = np.pi / 2 * yy**2
+    centres = np.stack([np.cos(e) * np.cos(2 * np.pi * xx), np.sin(e), np.cos(e) * np.sin(2 * np.pi * xx)], -1)
+    jac = 2 * np.pi**2 * yy * np.cos(e) / (nx * ny)
+    p_cell = sky.pdf_li(centres.reshape(-1, 3)).reshape(ny, nx) * jac
+    assert p_cell.sum() == pytest.approx(1.0, rel=1e-9)
+    p_bin = p_cell.reshape(ny // group, group, nx // group, group).sum(axis=(1, 3)).ravel()
+    n = 200_000
+    dirs, pdf, _ = sky.sample_li(np.random.default_rng(3).random((n, 2)))
+    x, y = xy_of(dirs)
+    bins = np.minimum((y * ny).astype(int) // group, ny // group - 1) * (nx // group) + np.minimum((x * nx).astype(int) // group, nx // group - 1)
+    observed = np.bincount(bins, minlength=p_bin.size)
+    expected = n * p_bin
+    keep = expected >= 5
+    statistic = np.sum((observed[keep] - expected[keep]) ** 2 / expected[keep]) + (
+        (observed[~keep].sum() - expected[~keep].sum()) ** 2 / max(expected[~keep].sum(), 1e-300) if (~keep).any() else 0.0)
+    dof = keep.sum() + (1 if (~keep).any() else 0) - 1
+    p_value = chi2.chi2_survival(statistic, int(dof))
+    assert p_value > CHI2_SIGNIFICANCE, (statistic, dof, p_value)
+
+
+def test_sample_li_pdf_equals_pdf_li_and_radiance(sky):
+    u = np.random.default_rng(6).random((2000, 2))
+    dirs, pdf, rgb = sky.sample_li(u)
+    assert np.all(dirs[:, 1] >= 0.0) and np.all(pdf > 0)
+    np.testing.assert_allclose(sky.pdf_li(dirs), pdf, rtol=1e-9)
+    np.testing.assert_allclose(sky.rgb_radiance(dirs), rgb, rtol=1e-12)
+    assert np.all(sky.pdf_li(np.array([unit(-10.0)])) == 0.0)
+
+
+def test_power_scales_with_the_scene_disc(sky):
+    sky.preprocess([0, 0, 0], 1.0)
+    p1 = sky.power()
+    sky.preprocess([0, 0, 0], 10.0)
+    assert sky.power() == pytest.approx(100.0 * p1, rel=1e-12) and p1 > 0
+    sky.preprocess([0, 0, 0], 1.0)
+
+
+def test_bad_input_raises_value_error():
+    with pytest.raises(ValueError, match="sun_direction must be a unit vector"):
+        spectrum.PhysicalSky([0.0, 2.0, 0.0])
+    with pytest.raises(ValueError, match=r"aerosol must be >= 0.*ground_albedo must be in \[0, 1\]"):
+        spectrum.PhysicalSky([0.0, 1.0, 0.0], aerosol=-1.0, ground_albedo=2.0)
+    with pytest.raises(ValueError, match="unit"):
+        spectrum.PhysicalSky([0.0, 1.0, 0.0]).radiance(np.array([[0.0, 2.0, 0.0]]), [550.0])
