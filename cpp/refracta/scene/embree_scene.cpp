@@ -198,9 +198,8 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
   hit.point = origin + hit.t * dir;
   Vec3d normal(query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z);
   normal.normalize();
-  // Embree's triangle Ng is (v0 - v2) x (v1 - v0) ... = -(e1 x e2) for its clockwise convention:
-  // refracta's front is counter-clockwise, (v1 - v0) x (v2 - v0).
-  if (!sphere_sets_.at(query.hit.geomID)) normal = -normal;
+  // Embree's triangle Ng points along (v1 - v0) x (v2 - v0): refracta's counter-clockwise front
+  // (checked by tests/render: a one-sided emitter is seen from its front only).
   hit.front_face = normal.dot(dir) < 0.0;
   hit.normal = hit.front_face ? normal : Vec3d(-normal);
   hit.geometry = query.hit.geomID;
