@@ -36,11 +36,25 @@ def test_a_hard_shadow_map_matches_shadow_rays_away_from_edges():
     assert np.mean(mapped[..., 0][lit] == 0) > 0.99
 
 
+# The raster pipeline's sky quadrature (8 x 8 BSDF strata per pixel) against the ray tracer's
+# unbiased estimate: measured 0.3 % apart over the whole image; 1 % allows the quadrature error.
+RASTER_QUADRATURE = 0.01
+
+
 def test_radiance_with_shadow_rays_equals_the_straight_renderer():
+    """Rasterized shading with Embree shadow rays estimates what the ray tracer estimates: its
+    difference from a 64-seed mean of pixel-centre ray-traced renders stays within that mean's own
+    noise (the difference between two such means), and the image means agree."""
     scene = boxes_in_sun()
     rasterized = refracta.render_raster(scene, CAMERA, shadows="embree")
-    traced = refracta.render(scene, CAMERA, None, method="straight", progress=False)
-    np.testing.assert_allclose(rasterized, traced, rtol=1e-4, atol=1e-4 * traced.max())
+    traced = [np.mean([refracta.render(scene, CAMERA, None, method="straight", progress=False, seed=first + k)
+                       for k in range(64)], axis=0) for first in (0, 1000)]
+    scale = traced[0].max(axis=2) + 1e-6
+    difference = np.abs(rasterized - traced[0]).max(axis=2) / scale
+    noise = np.abs(traced[1] - traced[0]).max(axis=2) / scale
+    for percentile in (50, 90):
+        assert np.percentile(difference, percentile) <= np.percentile(noise, percentile)
+    assert abs(rasterized.mean() - traced[0].mean()) < RASTER_QUADRATURE * traced[0].mean()
 
 
 @pytest.mark.parametrize("kernel", [5, 9])
@@ -55,11 +69,16 @@ def test_filtered_moments_approach_pcf_with_the_same_kernel(kernel):
     assert errors["msm_hamburger"]["p99_error"] <= errors["vsm"]["p99_error"] + 1e-9
 
 
+# The bounds are evaluated from fp32-filtered moments: their rounding (6e-8 relative), amplified by
+# the 3 x 3 Hankel solve, reaches 1.3e-6 (measured); 2e-6 is rounding, not an ordering error.
+ORDER_ROUNDING = 2e-6
+
+
 def test_vsm_hamburger_hausdorff_are_ordered_per_pixel():
     """All three read the same filtered moments: VSM <= Hamburger <= Hausdorff (MOMENTS.md 2.4)."""
     vsm, hamburger, hausdorff = (shadow(m, kernel=7)[..., 0] for m in ("vsm", "msm_hamburger", "msm_hausdorff"))
-    assert np.all(vsm <= hamburger + 1e-6)
-    assert np.all(hamburger <= hausdorff + 1e-6)
+    assert np.all(vsm <= hamburger + ORDER_ROUNDING)
+    assert np.all(hamburger <= hausdorff + ORDER_ROUNDING)
 
 
 @pytest.mark.parametrize("storage, depth_range", [("unorm16", "unit"), ("unorm16", "signed"), ("fp32", "signed")])

@@ -91,11 +91,12 @@ def test_a_billboard_shows_its_picture_upright(tmp_path):
 
 
 def test_an_environment_map_sky_follows_its_conventions(tmp_path):
-    """Equirectangular, y up, centre column along +x: a map red toward +x, blue toward -x, white
-    in its top rows."""
+    """Equirectangular, y up, Mitsuba 3's orientation (refracta.lights.EnvironmentLight): u = 1/4
+    looks along +x, u = 3/4 along -x, the top row up. A map red around u = 1/4, blue elsewhere,
+    white in its top rows."""
     env = np.zeros((64, 128, 3), np.float32)
-    s = (np.arange(128) + 0.5) / 128
-    facing_x = np.abs(s - 0.5) < 0.25  # the half of the columns around +x
+    u = (np.arange(128) + 0.5) / 128
+    facing_x = np.abs(u - 0.25) < 0.25  # the half of the columns around +x
     env[:, facing_x] = (1.0, 0.0, 0.0)
     env[:, ~facing_x] = (0.0, 0.0, 1.0)
     env[:4] = (1.0, 1.0, 1.0)

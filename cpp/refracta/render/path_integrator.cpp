@@ -32,7 +32,7 @@ class PathTracer : public Integrator {
     double bsdf_pdf = 0.0, eta_scale = 1.0, travelled = 0.0;
     bool specular = true;  // the camera ray counts as specular: emitters it sees are not MIS-weighted
     SurfaceInteraction previous;
-    bool has_previous = false;
+    bool has_previous = false, emission_only = false;
     MediumStack media;
     int depth = 0;
     const int max_depth = options_.max_depth;
@@ -52,7 +52,7 @@ class PathTracer : public Integrator {
         ior_here = ior_hit;
       }
       L += beta * lighting_.emitted(si, has_previous ? &previous : nullptr, bsdf_pdf, specular, lambda);
-      if (depth >= max_depth) break;
+      if (depth >= max_depth || emission_only) break;
       scratch.reset();
       const Scattering s = scattering_at(scene_, si, media, ior_here, lambda, scratch);
       if (!s.bsdf) {  // a false hit or a pure interface: continue straight through
@@ -79,17 +79,8 @@ class PathTracer : public Integrator {
       o = si.offset_toward(bs->wi);
       d = bs->wi;
       // 'direct' stops once a non-specular event has taken its direct lighting; its BSDF ray
-      // still finds the emitters it hits (the MIS partner of the light sample).
-      if (direct_only_ && !specular) {
-        const PathEnd last = caster_.cast(o, d);
-        if (!last.hit) {
-          L += beta * lighting_.escaped(last, d, &previous, bsdf_pdf, false, lambda);
-        } else {
-          SurfaceInteraction emitter = scene_.geometry.interaction(*last.hit, last.direction, 0.0);
-          L += beta * lighting_.emitted(emitter, &previous, bsdf_pdf, false, lambda);
-        }
-        break;
-      }
+      // still finds the emitters it hits (the MIS partner of the light sample) in one more pass.
+      emission_only = direct_only_ && !specular;
       if (!(beta.maxCoeff() > 0.0)) break;
       if (depth >= options_.rr_depth) {
         const double survival = std::min(kMaxSurvival, (beta * eta_scale).maxCoeff());

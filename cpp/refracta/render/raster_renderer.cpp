@@ -205,30 +205,40 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     LightSampleContext ctx;
     ctx.p = si.p;
     ctx.n = si.n_toward_wo();
-    auto add = [&](const Light& light, const Vec2d& u, double visibility_scale, double weight) {
-      const auto ls = light.sample_li(ctx, u, lambda);
-      if (!ls || !(ls->pdf > 0.0)) return;
-      const double cos_i = std::abs(ls->wi.dot(s.bsdf.frame.n));
-      if (ls->wi.dot(ctx.n) <= 0.0) return;
-      L += s.bsdf.f(si.wo, ls->wi) * ls->L * (cos_i * visibility_scale * weight / ls->pdf);
+    // f L |cos| / pdf of a light sample arriving along ls.wi, scaled by the visible fraction.
+    auto add = [&](const LightLiSample& ls, double visible, double weight) {
+      if (!(ls.pdf > 0.0) || ls.wi.dot(ctx.n) <= 0.0) return;
+      L += s.bsdf.f(si.wo, ls.wi) * ls.L * (std::abs(ls.wi.dot(s.bsdf.frame.n)) * visible * weight / ls.pdf);
     };
-    if (sun_on && hit.normal.dot(sun_direction) > 0.0) add(*sun, Vec2d(0.0, 0.0), 1.0 - sun_shadow(hit), 1.0);
+    if (sun_on && hit.normal.dot(sun_direction) > 0.0) {
+      if (const auto ls = sun->sample_li(ctx, Vec2d(0.0, 0.0), lambda)) add(*ls, 1.0 - sun_shadow(hit), 1.0);  // the disc's centre
+    }
     for (size_t k = 0; k < spots.size(); ++k) {
       if (!spot_covers(*spots[k], si.p) || hit.normal.dot(spots[k]->position() - si.p) <= 0.0) continue;
-      add(*spots[k], Vec2d(0.5, 0.5), 1.0 - spot_shadow(hit, k), 1.0);
+      if (const auto ls = spots[k]->sample_li(ctx, Vec2d(0.5, 0.5), lambda)) add(*ls, 1.0 - spot_shadow(hit, k), 1.0);
     }
     const int n = options.light_strata;
+    const double weight = 1.0 / (n * n);
     for (size_t i : others) {
       const Light& light = *render_scene.lights()[i];
       for (int a = 0; a < n; ++a) {
         for (int b = 0; b < n; ++b) {
           const Vec2d u((a + 0.5) / n, (b + 0.5) / n);
+          if (light.is_infinite()) {
+            // Environments by BSDF sampling: its weight f |cos| / pdf is smooth (for a diffuse
+            // surface, the albedo), so a few strata converge where the light's own density
+            // (luminance x sin theta) would leave a cot-shaped integrand.
+            const auto bs = s.bsdf.sample(si.wo, (a * n + b + 0.5) * weight, u);
+            if (!bs || bs->wi.dot(ctx.n) <= 0.0) continue;
+            if (shadows_on && scene.occluded(si.offset_toward(bs->wi), bs->wi, kFar)) continue;
+            L += bs->weight * light.Le(bs->wi, lambda) * weight;
+            continue;
+          }
           const auto ls = light.sample_li(ctx, u, lambda);
           if (!ls || !(ls->pdf > 0.0) || ls->wi.dot(ctx.n) <= 0.0) continue;
           const Vec3d from = si.offset_toward(ls->wi);
-          const double reach = light.is_infinite() ? kFar : (ls->p_light - from).norm() * (1.0 - 1e-6);
-          if (shadows_on && scene.occluded(from, ls->wi, reach)) continue;
-          add(light, u, 1.0, 1.0 / (n * n));
+          if (shadows_on && scene.occluded(from, ls->wi, (ls->p_light - from).norm() * (1.0 - 1e-6))) continue;
+          add(*ls, 1.0, weight);
         }
       }
     }

@@ -42,7 +42,7 @@ struct RasterRenderOptions {
   int tile = 16;
   // Stratified samples (per axis) of each light with extent other than the sun (environment,
   // sky, area lights), deterministic per pixel.
-  int light_strata = 4;
+  int light_strata = 8;
 
   void validate() const;
 };
