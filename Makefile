@@ -3,7 +3,7 @@ PYTHON ?= python3
 PYTEST_ARGS ?=
 SOURCES := $(shell find cpp python -name '*.h' -o -name '*.cpp' 2>/dev/null) CMakeLists.txt pyproject.toml
 
-.PHONY: install demo test bench clean
+.PHONY: install demo test bench stubs clean
 install: .install.stamp
 
 # Debian packages first, then the package itself (editable) into the current Python.
@@ -24,6 +24,11 @@ test: install
 
 bench: install
 	$(PYTHON) benchmarks/run_all.py
+
+# Regenerates python/refracta/_core.pyi from the built module (tests/python/test_stubs.py checks it).
+stubs: install
+	$(PYTHON) -m pybind11_stubgen refracta._core -o build/stubs
+	cp build/stubs/refracta/_core.pyi python/refracta/_core.pyi
 
 clean:
 	rm -rf build out .install.stamp

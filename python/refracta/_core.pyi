@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Camera', 'CurvedEarth', 'CustomField', 'IndexField', 'IoError', 'LinearSquaredProfile', 'LogisticProfile', 'NumericalError', 'PhysicalAtmosphere', 'RayPath', 'Scene', 'TemperatureProfile', 'trace_ray']
+__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'EnvironmentLight', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'thin_film_reflectance', 'trace_ray']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -253,10 +253,12 @@ class _ElevationTable:
         ...
 class Scene:
     """
-    Geometry (Embree) with Blinn-Phong materials, a sun and a sky. Materials: kd (diffuse albedo,
-    RGB in [0, 1]), ks (specular albedo), ns (Phong exponent). Units: metres, y up.
+    Geometry (Embree), materials (refracta.shading) and lights. Scene() starts empty: no sun, no sky,
+    black. Every add_* takes material= (any refracta.shading material); without it the Blinn-Phong
+    shorthand kd (diffuse albedo, RGB in [0, 1]), ks (specular albedo), ns (Phong exponent) applies.
+    Meshes and spheres with emission= [W/(m^2 sr), RGB] are area lights (one-sided on the triangles'
+    counter-clockwise front unless two_sided). Units: metres, y up.
     """
-    shadows: bool
     def __init__(self) -> None:
         ...
     def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: str, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = (1.0, 1.0, 1.0)) -> int:
@@ -265,52 +267,76 @@ class Scene:
         `centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the
         -x side), upright.
         """
-    def add_box(self, centre: typing.Any, size: typing.Any, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_box(self, centre: typing.Any, size: typing.Any, material: typing.Any = None, emission: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
-        Add an axis-aligned box: centre (3,) and size (3,) [m]; alpha < 1: transparent in render_raster.
+        Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]; alpha < 1: transparent in
+        render_raster.
         """
-    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: str | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: str | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
-        Add a square ground of side `size` [m] at y = height, centred on the origin; an optional texture
-        repeats every texture_size [m] (u along +x, v along -z).
+        Add a square ground of side `size` [m] at y = height, centred on the origin, facing up; an optional
+        texture repeats every texture_size [m] (u along +x, v along -z) and multiplies kd (or a
+        textured material's colour).
         """
-    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, uvs: typing.Any = None, texture: str | None = None, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_light(self, light: ...) -> int:
         """
-        Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices; optional uvs (N, 2) texture
-        coordinates (u right, v up) and a texture image file multiplying kd; alpha < 1 makes it transparent
-        in render_raster. Returns its id.
+        Add any refracta.lights light (not area lights of geometry: use emission=). Returns its index.
+        """
+    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, material: typing.Any = None, emission: typing.Any = None, two_sided: bool = False, normals: typing.Any = None, uvs: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: str | None = None, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+        """
+        Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);
+        optional per-vertex normals (N, 3) (shading normals, interpolated) and uvs (N, 2) texture
+        coordinates (u right, v up); emission makes it an area light. The kd/ks/ns/texture/alpha
+        shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without
+        material. Returns its id.
         """
     def add_obj(self, path: str, offset: typing.Any = (0.0, 0.0, 0.0), scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> list:
         """
-        Add a Wavefront OBJ (+ MTL: Kd, Ks, Ns, map_Kd with the file's texture coordinates) file, scaled
-        then offset; returns the geometry ids. A missing OBJ, MTL or texture raises refracta.IoError.
+        Add a Wavefront OBJ file (vertex normals kept as shading normals) with its MTL materials, scaled
+        then offset: Kd, Ks, Ns, d, map_Kd -> BlinnPhong; Pr/Pm (PBR extension) -> Principled; illum 4/6/7
+        with d < 1 and Ni > 1 -> Dielectric(Ni); Ke -> an area light. Returns the geometry ids. A
+        missing OBJ, MTL or texture raises refracta.IoError.
         """
-    def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_point_light(self, position: typing.Any, intensity: typing.Any) -> int:
         """
-        Add a sphere (exact, not tessellated).
+        Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns its index.
+        """
+    def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, material: typing.Any = None, emission: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+        """
+        Add a sphere (exact, not tessellated); emission makes it a spherical light.
         """
     def add_spot_light(self, position: typing.Any, direction: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex = 60.0, intensity: typing.Any = (100.0, 100.0, 100.0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> int:
         """
         Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] with
-        `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 makes it a disc (area light) whose
-        shadows are sampled soft. Returns its index.
+        `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives render_raster's 'embree'
+        reference soft shadows of a disc that size. Returns its index among the spot lights.
         """
     def intersect(self, origin: typing.Any, direction: typing.Any) -> typing.Any:
         """
         First hit of a straight ray: (point, distance, geometry id), or None.
         """
+    def set_environment(self, source: typing.Any, rotation: typing.Any = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
+        """
+        The environment (replacing any sky): an RGB radiance (a constant environment), an equirectangular
+        map file (EXR/HDR/PNG through OpenImageIO) or a float array (H, W, 3), times `scale`, turned by
+        `rotation` (degrees about y, or a 3 x 3 matrix). Orientation: refracta.lights.EnvironmentLight.
+        """
     def set_sky(self, horizon: typing.Any = None, zenith: typing.Any = None, environment: str | None = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
-        Sky radiance toward the horizon (and below) and straight up (default: same, a constant sky), or an
-        equirectangular environment map file (y up, top row the zenith, centre column along +x, radiance
-        times `scale`; 8/16-bit files are sRGB-decoded).
+        A sky (replacing any environment): radiance toward the horizon (and below) and straight up, linear in
+        the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular
+        environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.
         """
-    def set_sun(self, direction: typing.Any, radiance: typing.Any, angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> None:
+    def set_sun(self, direction: typing.Any, radiance: typing.Any, angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         """
-        The sun: direction toward it, disc radiance (RGB), angular diameter [deg].
+        The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter [deg],
+        limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.
         """
     @property
     def geometry_count(self) -> int:
+        ...
+    @property
+    def lights(self) -> list[...]:
         ...
 class Camera:
     """
@@ -349,6 +375,167 @@ class Camera:
         ...
     @property
     def width(self) -> int:
+        ...
+class RenderOptions:
+    """
+    Options of refracta.render, with their defaults (defined once, here). Set any field by name;
+    validate() reports every bad value at once.
+    """
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def chord(self) -> float:
+        """
+        [m] longest straight chord tested against the geometry
+        """
+    @chord.setter
+    def chord(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def guard_band(self) -> float:
+        """
+        raster_march: extra raster view per side (fraction)
+        """
+    @guard_band.setter
+    def guard_band(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def march(self) -> str:
+        """
+        raster_march: 'rk45' to tol, or 'rk4' with step (the original)
+        """
+    @march.setter
+    def march(self, arg1: str) -> None:
+        ...
+    @property
+    def max_depth(self) -> int:
+        """
+        scattering events per path (Mitsuba's max_depth - 1)
+        """
+    @max_depth.setter
+    def max_depth(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_length(self) -> float:
+        """
+        [m] curved rays end here and show the sky
+        """
+    @max_length.setter
+    def max_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_steps(self) -> int:
+        """
+        raster_march rk4 steps
+        """
+    @max_steps.setter
+    def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def method(self) -> str:
+        """
+        'curved' (exact curved rays), 'straight' (no refraction) or 'raster_march' (the original editor's method)
+        """
+    @method.setter
+    def method(self, arg1: str) -> None:
+        ...
+    @property
+    def rr_depth(self) -> int:
+        """
+        Russian roulette from this many events on
+        """
+    @rr_depth.setter
+    def rr_depth(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sagitta(self) -> float:
+        """
+        [m] largest distance between a chord and the path
+        """
+    @sagitta.setter
+    def sagitta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        """
+        seed of the per-pixel random streams
+        """
+    @seed.setter
+    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def spectral(self) -> bool:
+        """
+        4 hero wavelengths per sample instead of RGB
+        """
+    @spectral.setter
+    def spectral(self, arg0: bool) -> None:
+        ...
+    @property
+    def spp(self) -> int:
+        """
+        samples per pixel (stratified jitter when > 1)
+        """
+    @spp.setter
+    def spp(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def step(self) -> float:
+        """
+        [m] raster_march rk4 step
+        """
+    @step.setter
+    def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def table(self) -> bool:
+        """
+        height-only fields: serve camera rays from one ElevationTable
+        """
+    @table.setter
+    def table(self, arg0: bool) -> None:
+        ...
+    @property
+    def texture_filter(self) -> bool:
+        """
+        filter textures over ray-cone footprints
+        """
+    @texture_filter.setter
+    def texture_filter(self, arg0: bool) -> None:
+        ...
+    @property
+    def tile(self) -> int:
+        """
+        tile size [pixels] of the parallel loop
+        """
+    @tile.setter
+    def tile(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tol(self) -> float:
+        """
+        [m] curved-ray integration tolerance
+        """
+    @tol.setter
+    def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def trace(self) -> typing.Any:
+        """
+        ray integrator for curved rays: None (stratified for height-only fields, rk45 otherwise), 'rk45', 'stratified'
+        """
+    @trace.setter
+    def trace(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def transport(self) -> str:
+        """
+        'direct' (direct lighting with MIS, mirror/glass chains) or 'path' (path tracing)
+        """
+    @transport.setter
+    def transport(self, arg1: str) -> None:
         ...
 class _PairOptions:
     def __init__(self, method: str, tol: typing.SupportsFloat | typing.SupportsIndex, step: typing.SupportsFloat | typing.SupportsIndex | None, ground: typing.SupportsFloat | typing.SupportsIndex | None, distance: str, reach: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -420,12 +607,377 @@ class _SolveSettings:
     @trust_region.setter
     def trust_region(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class Material:
+    """
+    A surface material (shading/material.h): builds a BSDF at a hit. Evaluate it in
+    the local shading frame with f, pdf and sample (shared/SHADING.md section 0).
+    """
+    def __repr__(self) -> str:
+        ...
+    def describe(self) -> str:
+        ...
+    def f(self, wo: typing.Any, wi: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per
+        wavelength. Delta lobes give 0.
+        wo, wi: unit directions in the local shading frame (z = shading normal), shape (N, 3) or (3,)
+        (one side may be a single direction, broadcast), wo toward the viewer, wi toward the light.
+        wavelengths: None for RGB rendering, or (4,) / (N, 4) hero wavelengths [nm] for spectral.
+        eta_outside: index of the medium on the normal's side; mode: 'radiance' or 'importance'.
+        """
+    def interior_ior(self, wavelength: typing.SupportsFloat | typing.SupportsIndex | None = None) -> float | None:
+        """
+        Index of refraction of the medium a dielectric bounds, at the given wavelength [nm] (None: RGB
+        rendering's 550 nm), or None for materials that bound no medium.
+        """
+    def pdf(self, wo: typing.Any, wi: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Density [1/sr] with which sample(wo, u) produces wi: (N,). It includes the lobe
+        selection probabilities; delta lobes contribute 0.
+        wo, wi: unit directions in the local shading frame (z = shading normal), shape (N, 3) or (3,)
+        (one side may be a single direction, broadcast), wo toward the viewer, wi toward the light.
+        wavelengths: None for RGB rendering, or (4,) / (N, 4) hero wavelengths [nm] for spectral.
+        eta_outside: index of the medium on the normal's side; mode: 'radiance' or 'importance'.
+        """
+    def sample(self, wo: typing.Any, u: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> dict:
+        """
+        Sample incident directions for wo (N, 3) from uniform numbers u (N, 3) in [0, 1): u[:, 0] picks
+        the lobe, u[:, 1:] the direction. Returns a dict of arrays: wi (N, 3) (0 where invalid),
+        weight (N, C) = f |cos theta_i| / pdf (delta lobes: the lobe's albedo over its probability),
+        f (N, C), pdf (N,) (delta lobes: the lobe's selection probability), flags (N,) uint32
+        (1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular/delta), is_delta (N,),
+        eta (N,) the relative index crossed (1 for reflection), valid (N,) False where no direction
+        was produced, terminated (N,) True where a dispersive refraction kept the hero wavelength
+        only. C = 3 (RGB) or 4 (spectral). Other arguments as for f.
+        """
+    @property
+    def alpha(self) -> float:
+        """
+        Opacity for raster transparency, in [0, 1].
+        """
+    @property
+    def priority(self) -> int:
+        """
+        Nested-dielectric priority (larger wins).
+        """
+class Diffuse(Material):
+    """
+    Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b)
+    in [0, 1] (> 1 is refused: it would create energy); texture: a texture id of the
+    scene multiplying it (ignored by f/pdf/sample, which have no texture table).
+    """
+    def __init__(self, reflectance: typing.Any = 0.5, texture: typing.Any = None) -> None:
+        ...
+class BlinnPhong(Material):
+    """
+    Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0, 1]
+    (numbers or (r, g, b)), ns >= 0; texture multiplies kd; alpha in [0, 1] is the raster opacity (MTL d).
+    Sampled by a mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact.
+    """
+    def __init__(self, kd: typing.Any = 0.5, ks: typing.Any = 0.0, ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: typing.Any = None, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
+        ...
+class Conductor(Material):
+    """
+    A smooth metal mirror with the exact complex Fresnel reflectance of eta + i k (numbers or (r, g, b),
+    relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.
+    """
+    def __init__(self, eta: typing.Any = None, k: typing.Any = None) -> None:
+        ...
+class RoughConductor(Material):
+    """
+    A rough metal: GGX microfacets (alpha, or alpha_u along the tangent and alpha_v along the bitangent;
+    >= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F = 1),
+    visible-normal sampling.
+    """
+    def __init__(self, alpha: typing.Any = None, alpha_u: typing.Any = None, alpha_v: typing.Any = None, eta: typing.Any = None, k: typing.Any = None) -> None:
+        ...
+class Dielectric(Material):
+    """
+    Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
+    (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3), C in
+    um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction). priority: nested
+    dielectrics (larger wins).
+    """
+    def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+        ...
+class RoughDielectric(Material):
+    """
+    Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.
+    """
+    def __init__(self, alpha: typing.Any = None, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0, alpha_u: typing.Any = None, alpha_v: typing.Any = None) -> None:
+        ...
+class ThinDielectric(Material):
+    """
+    A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through
+    (no offset, no medium inside: interior_ior is None). ior as for Dielectric.
+    """
+    def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None) -> None:
+        ...
+class Plastic(Material):
+    """
+    Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of index
+    ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX
+    (or alpha_u, alpha_v); texture multiplies the reflectance.
+    """
+    def __init__(self, reflectance: typing.Any = 0.5, ior: typing.SupportsFloat | typing.SupportsIndex = 1.5, alpha: typing.Any = None, alpha_u: typing.Any = None, alpha_v: typing.Any = None, texture: typing.Any = None) -> None:
+        ...
+class Principled(Material):
+    """
+    Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and
+    metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,
+    clearcoat, clearcoat_gloss, all in [0, 1]. texture multiplies base_color.
+    """
+    def __init__(self, base_color: typing.Any = 0.5, metallic: typing.SupportsFloat | typing.SupportsIndex = 0.0, roughness: typing.SupportsFloat | typing.SupportsIndex = 0.5, anisotropic: typing.SupportsFloat | typing.SupportsIndex = 0.0, specular: typing.SupportsFloat | typing.SupportsIndex = 0.5, specular_tint: typing.SupportsFloat | typing.SupportsIndex = 0.0, sheen: typing.SupportsFloat | typing.SupportsIndex = 0.0, sheen_tint: typing.SupportsFloat | typing.SupportsIndex = 0.5, clearcoat: typing.SupportsFloat | typing.SupportsIndex = 0.0, clearcoat_gloss: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: typing.Any = None) -> None:
+        ...
+class ThinFilm(Material):
+    """
+    Thin-film iridescence (Belcour & Barla 2017): a film of thickness [nm] and index film_ior on a base
+    of complex index eta + i k, with GGX roughness alpha (or alpha_u, alpha_v; 0 = smooth mirror). The
+    Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.
+    """
+    def __init__(self, thickness: typing.SupportsFloat | typing.SupportsIndex, film_ior: typing.SupportsFloat | typing.SupportsIndex = 1.33, eta: typing.Any = 1.5, k: typing.Any = 0.0, alpha: typing.Any = None, alpha_u: typing.Any = None, alpha_v: typing.Any = None) -> None:
+        ...
+class TrowbridgeReitz:
+    """
+    The GGX microfacet distribution (microfacet.h): D, Lambda, G1, height-correlated G, the
+    visible-normal density and sampler. Directions: (N, 3) unit vectors in the local frame.
+    """
+    def D(self, m: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def D_visible(self, w: typing.Any, m: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def G(self, wo: typing.Any, wi: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def G1(self, w: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def __init__(self, alpha_x: typing.SupportsFloat | typing.SupportsIndex, alpha_y: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def sample_wm(self, w: typing.Any, u: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+class Ior:
+    """
+    An index of refraction: constant or Sellmeier (C in um^2).
+    """
+    def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def at(self, wavelength: typing.Any) -> typing.Any:
+        """
+        n at wavelength(s) [nm].
+        """
+    @property
+    def dispersive(self) -> bool:
+        ...
+class Light:
+    """
+    A light (shared/SHADING.md section 5). Methods evaluate RGB rendering, vectorised over N points.
+    """
+    def L(self, points: typing.Any, normals: typing.Any, dirs: typing.Any) -> numpy.ndarray:
+        """
+        Area lights: RGB radiance (N, 3) leaving points (N, 3) with the light's front normals (N, 3) toward unit dirs (N, 3).
+        """
+    def Le(self, dirs: typing.Any) -> numpy.ndarray:
+        """
+        Infinite lights: RGB radiance (N, 3) seen looking along unit dirs (N, 3); 0 for others.
+        """
+    def __repr__(self) -> str:
+        ...
+    def pdf_li(self, points: typing.Any, normals: typing.Any, wi: typing.Any, p_light: typing.Any = None, n_light: typing.Any = None) -> numpy.ndarray:
+        """
+        The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3).
+        """
+    def preprocess(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        Tells the light the scene's bounding sphere (centre [m], radius [m]).
+        """
+    def sample_li(self, points: typing.Any, normals: typing.Any, u: typing.Any) -> tuple:
+        """
+        Samples a direction toward the light from each point.
+        
+        points: (N, 3) [m]; normals: (N, 3) unit geometric normals (rows may be 0) or None; u: (N, 2) in [0, 1).
+        Returns (wi (N, 3) unit toward the light, L (N, 3) RGB radiance arriving [W/(m^2 sr)] (point and spot: I/r^2), pdf (N,) per steradian (delta lights: 1), distance (N,) [m] (infinite lights: inf)). A point the light cannot reach gets wi = 0, L = 0, pdf = 0, distance = 0.
+        """
+    @property
+    def is_delta(self) -> bool:
+        ...
+    @property
+    def is_infinite(self) -> bool:
+        ...
+    @property
+    def power(self) -> float:
+        """
+        Emitted power [W] as luminance Y of the RGB power (infinite lights: through the disc of the scene radius given to preprocess, 1 m until then).
+        """
+    @property
+    def type(self) -> str:
+        """
+        'delta_position' (point, spot), 'area' (meshes, spheres) or 'infinite' (sun, environments).
+        """
+class PointLight(Light):
+    """
+    A point light: intensity [W/sr] (number or RGB) from position [m]; E = I cos(theta)/r^2, power 4 pi I.
+    """
+    def __init__(self, position: typing.Any, intensity: typing.Any) -> None:
+        ...
+    @property
+    def position(self) -> typing.Any:
+        ...
+class SpotLight(Light):
+    """
+    A spot light at position [m] shining along direction into a cone of full angle [deg] with intensity [W/sr]; hard edge by default, a smoothstep falloff from inner_angle [deg] out to angle when inner_angle < angle.
+    """
+    def __init__(self, position: typing.Any, direction: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex, intensity: typing.Any, inner_angle: typing.Any = None) -> None:
+        ...
+    @property
+    def angle(self) -> float:
+        ...
+    @property
+    def inner_angle(self) -> float:
+        ...
+class SunLight(Light):
+    """
+    The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] over the disc, angular_diameter [deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).
+    """
+    def __init__(self, direction: typing.Any, radiance: typing.Any, angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    @property
+    def direction(self) -> typing.Any:
+        ...
+    @property
+    def irradiance(self) -> typing.Any:
+        """
+        RGB irradiance [W/m^2] on a surface facing the sun.
+        """
+    @property
+    def solid_angle(self) -> float:
+        """
+        Of the disc [sr].
+        """
+class AreaLight(Light):
+    """
+    An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) int, emission radiance [W/(m^2 sr)] from the counter-clockwise front ((v1 - v0) x (v2 - v0)) or both sides.
+    """
+    def __init__(self, vertices: typing.Any, triangles: typing.Any, emission: typing.Any, two_sided: bool = False) -> None:
+        ...
+    def normal(self, triangle: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
+        """
+        The front normal of a triangle (unit; 0 for a zero-area one).
+        """
+    @property
+    def area(self) -> float:
+        """
+        Total area [m^2] (zero-area triangles count 0).
+        """
+    @property
+    def two_sided(self) -> bool:
+        ...
+class SphereLight(Light):
+    """
+    An emissive sphere: centre [m], radius [m], emission radiance [W/(m^2 sr)] outward; power 4 pi^2 r^2 L.
+    """
+    def __init__(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, emission: typing.Any) -> None:
+        ...
+    @property
+    def radius(self) -> float:
+        ...
+class EnvironmentLight(Light):
+    """
+    An equirectangular environment map (H, W, 3) float linear RGB, rows top (up, +y) to bottom, times scale; rotation: degrees about +y or a 3 x 3 map-to-world rotation. Mitsuba 3's envmap orientation: u = atan2(d.x, -d.z)/(2 pi) wrapped to [0, 1), v = acos(d.y)/pi (d in the map's frame); column i at u = (i + 1/2)/W, row j at v = j/(H - 1), bilinear.
+    """
+    @staticmethod
+    def rotation_about_y(degrees: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The 3 x 3 rotation about +y by degrees (right-handed: +x turns toward -z).
+        """
+    def __init__(self, image: typing.Any, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, rotation: typing.Any = None) -> None:
+        ...
+    def direction_to_uv(self, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (u, v) (N, 2) of directions (N, 3) (normalised here).
+        """
+    def uv_to_direction(self, uv: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        World directions (N, 3) of (u, v) (N, 2).
+        """
+    @property
+    def rotation(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The 3 x 3 rotation, map frame -> world.
+        """
+    @property
+    def scale(self) -> float:
+        ...
+class ConstantEnvironment(Light):
+    """
+    Uniform radiance [W/(m^2 sr)] from every direction; sampling 'cosine' (about the point's normal, when given) or 'uniform' (the sphere). Irradiance pi L.
+    """
+    def __init__(self, radiance: typing.Any, sampling: str = 'cosine') -> None:
+        ...
+class LightSampler:
+    """
+    Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it after preprocess() of infinite lights.
+    """
+    def __init__(self, lights: collections.abc.Sequence[Light], strategy: str = 'power') -> None:
+        ...
+    def __len__(self) -> int:
+        ...
+    def pmf(self, index: typing.SupportsInt | typing.SupportsIndex) -> float:
+        ...
+    def sample(self, u: typing.Any) -> tuple[numpy.typing.NDArray[numpy.int64], numpy.typing.NDArray[numpy.float64]]:
+        """
+        (index (N,) int, probability (N,)) for u (N,) in [0, 1).
+        """
+class PhysicalSky:
+    """
+    A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
+    Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
+    `aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
+    sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon the
+    ground's Lambertian radiance (ground_albedo). See cpp/refracta/shading/physical_sky.h.
+    """
+    @staticmethod
+    def solar_irradiance(wavelengths: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def optical_depth(self, wavelength: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        ...
+    def pdf_li(self, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def power(self) -> float:
+        ...
+    def preprocess(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def radiance(self, dirs: typing.Any, wavelengths: typing.Any, direct: bool = False) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def rayleigh_optical_depth(self, wavelength: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        ...
+    def rgb_radiance(self, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def sample_li(self, u: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+        ...
+    def sun_radiance(self, wavelengths: typing.Any, angular_diameter_deg: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def sun_radiance_rgb(self, angular_diameter_deg: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> numpy.ndarray:
+        ...
+    def sun_transmittance(self, wavelengths: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def build_seconds(self) -> float:
+        ...
 def _canonical_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, bool]:
     ...
-def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, method: str, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, bias: typing.SupportsFloat | typing.SupportsIndex | None, z_range: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] | None, layers: typing.SupportsInt | typing.SupportsIndex | None, weight: str) -> numpy.ndarray:
+def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, method: str, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, bias: typing.SupportsFloat | typing.SupportsIndex | None, z_range: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] | None, layers: typing.SupportsInt | typing.SupportsIndex | None, weight: str, storage: str) -> numpy.ndarray:
     ...
-def _display(image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: str) -> numpy.typing.NDArray[numpy.float32]:
+def _display(image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: typing.Any, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None) -> numpy.typing.NDArray[numpy.float32]:
     ...
+def _mboit_unorm16(b: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
+    """
+    6 or 8 normalised power moments after MBOIT's 16-bit storage (transform, rounding, inverse).
+    """
 def _pair_distances(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, options: _PairOptions) -> numpy.typing.NDArray[numpy.float64]:
     ...
 def _pair_jacobian(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, weights: typing.Any, free: collections.abc.Sequence[str], derivatives: str, options: _PairOptions) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], list[str]]:
@@ -436,18 +988,57 @@ def _rasterize(scene: Scene, camera: Camera, guard_band: typing.SupportsFloat | 
     ...
 def _read_image(path: str) -> numpy.typing.NDArray[numpy.float32]:
     ...
-def _render(scene: Scene, camera: Camera, field: IndexField, method: str, spp: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex, max_length: typing.SupportsFloat | typing.SupportsIndex, chord: typing.SupportsFloat | typing.SupportsIndex, sagitta: typing.SupportsFloat | typing.SupportsIndex, tol: typing.SupportsFloat | typing.SupportsIndex, table: bool, integrator: str | None, march: str, step: typing.SupportsFloat | typing.SupportsIndex, max_steps: typing.SupportsInt | typing.SupportsIndex, guard_band: typing.SupportsFloat | typing.SupportsIndex, texture_filter: bool, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], dict]:
+def _render(scene: Scene, camera: Camera, field: IndexField, options: RenderOptions, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], dict]:
     ...
-def _render_raster(scene: Scene, camera: Camera, shadows: str, resolution: typing.SupportsInt | typing.SupportsIndex, kernel: typing.SupportsInt | typing.SupportsIndex, signed_depth: bool, bias: typing.SupportsFloat | typing.SupportsIndex | None, bias_vector: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, storage: str, depth_bias: typing.SupportsFloat | typing.SupportsIndex, normal_offset: typing.SupportsFloat | typing.SupportsIndex, bleeding_reduction: typing.SupportsFloat | typing.SupportsIndex, shadow_centre: typing.Any, shadow_half_size: typing.SupportsFloat | typing.SupportsIndex | None, shadow_distance: typing.SupportsFloat | typing.SupportsIndex | None, output_shadow: bool, transparency: str | None, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, layers: typing.SupportsInt | typing.SupportsIndex, weight: str, shadow_light: typing.SupportsInt | typing.SupportsIndex, use_sun: bool, spots: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], dict]:
+def _render_raster(scene: Scene, camera: Camera, shadows: str, resolution: typing.SupportsInt | typing.SupportsIndex, kernel: typing.SupportsInt | typing.SupportsIndex, signed_depth: bool, bias: typing.SupportsFloat | typing.SupportsIndex | None, bias_vector: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, storage: str, depth_bias: typing.SupportsFloat | typing.SupportsIndex, normal_offset: typing.SupportsFloat | typing.SupportsIndex, bleeding_reduction: typing.SupportsFloat | typing.SupportsIndex, shadow_centre: typing.Any, shadow_half_size: typing.SupportsFloat | typing.SupportsIndex | None, shadow_distance: typing.SupportsFloat | typing.SupportsIndex | None, output_shadow: bool, transparency: str | None, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, layers: typing.SupportsInt | typing.SupportsIndex, weight: str, shadow_light: typing.SupportsInt | typing.SupportsIndex, use_sun: bool, spots: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None, oit_storage: str, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], dict]:
     ...
 def _shadow_intensity(moments: typing.Any, z_f: typing.Any, method: str, signed: bool, bias: typing.SupportsFloat | typing.SupportsIndex | None, bias_vector: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, storage: str) -> numpy.typing.NDArray[numpy.float64]:
     ...
 def _solve_edit(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, weights: typing.Any, free: collections.abc.Sequence[str], bounds: collections.abc.Mapping[str, tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]], derivatives: str, pair_options: _PairOptions, settings: _SolveSettings, progress: typing.Any) -> dict:
     ...
+def _spectrum_blackbody(temperature: typing.SupportsFloat | typing.SupportsIndex, wavelengths: typing.Any, luminance: typing.SupportsFloat | typing.SupportsIndex | None) -> numpy.typing.NDArray[numpy.float64]:
+    ...
+def _spectrum_cie_xyz(wavelengths: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    ...
+def _spectrum_cie_y_integral() -> float:
+    ...
+def _spectrum_coefficients(rgb: typing.Any, method: str) -> numpy.typing.NDArray[numpy.float64]:
+    ...
+def _spectrum_d65(wavelengths: typing.Any, normalised: bool) -> numpy.typing.NDArray[numpy.float64]:
+    ...
+def _spectrum_measure_table(resolution: typing.SupportsInt | typing.SupportsIndex, quadrature_step_nm: typing.SupportsInt | typing.SupportsIndex, polish_steps: typing.SupportsInt | typing.SupportsIndex, samples: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex) -> dict:
+    ...
+def _spectrum_rgb_to_spectrum(rgb: typing.Any, wavelengths: typing.Any, kind: str, method: str) -> numpy.typing.NDArray[numpy.float64]:
+    ...
+def _spectrum_sample_wavelengths(u: typing.Any, terminate: bool) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+    ...
+def _spectrum_tabulated_to_rgb(wavelengths: typing.Any, values: typing.Any, kind: str) -> numpy.ndarray:
+    ...
+def _spectrum_to_linear_srgb(radiance: typing.Any, wavelengths: typing.Any, pdf: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    ...
+def _spectrum_xyz_to_linear_srgb(xyz: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    ...
 def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, method: str, tol: typing.SupportsFloat | typing.SupportsIndex, step: typing.SupportsFloat | typing.SupportsIndex | None, max_length: typing.SupportsFloat | typing.SupportsIndex, stop_height: typing.SupportsFloat | typing.SupportsIndex | None, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
     ...
-def _write_image(path: str, image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: str) -> None:
+def _write_image(path: str, image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: typing.Any, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
     ...
+def fresnel_conductor(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    Unpolarised Fresnel reflectance of a conductor of relative complex index eta + i k at |cos_i| (exact). Vectorised.
+    """
+def fresnel_dielectric(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    Unpolarised Fresnel reflectance of a dielectric interface, eta = eta_t / eta_i on the side cos_i > 0
+    (cos_i < 0: from inside, 1 / eta). Total internal reflection gives 1. Vectorised.
+    """
+def fresnel_diffuse_reflectance(eta: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    """
+    Hemispherical reflectance 2 int F(mu) mu dmu of a dielectric seen from the side where eta = eta_t / eta_i.
+    """
+def thin_film_reflectance(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], thickness: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], wavelength: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    Airy reflectance of a film (index n2, thickness [nm]) between n1 and a base eta + i k at a wavelength [nm]. Vectorised.
+    """
 def trace_ray(field: IndexField, origin: typing.Any, direction: typing.Any, method: str = 'rk45', tol: typing.SupportsFloat | typing.SupportsIndex = 1e-06, step: typing.SupportsFloat | typing.SupportsIndex | None = None, max_length: typing.SupportsFloat | typing.SupportsIndex = 1000.0, stop_height: typing.SupportsFloat | typing.SupportsIndex | None = None) -> RayPath:
     """
     Trace one curved ray through `field` and return its RayPath.

@@ -180,6 +180,22 @@ void for_rows(const Material& material, double eta_outside, const Wavelengths& w
   }
 }
 
+// Evaluates value(bsdf, wo, wi, mode) for every (wo, wi) row (one side may be a single
+// direction, broadcast) into *out; returns whether the evaluation was spectral.
+template <class T, class Value>
+bool for_pairs(const Material& material, const py::object& wo_in, const py::object& wi_in, const py::object& wavelengths,
+               double eta_outside, const std::string& mode, std::vector<T>* out, Value&& value) {
+  const auto wo = to_directions(wo_in, "wo"), wi = to_directions(wi_in, "wi");
+  const size_t n = broadcast(wo.size(), wi.size(), "wo and wi");
+  const Wavelengths w = to_wavelengths(wavelengths, n);
+  const TransportMode tm = to_mode(mode);
+  out->resize(n);
+  for_rows(material, eta_outside, w, n, [&](size_t i, const Bsdf* bsdf, const SampledWavelengths&) {
+    (*out)[i] = value(bsdf, wo[wo.size() == 1 ? 0 : i], wi[wi.size() == 1 ? 0 : i], tm);
+  });
+  return w.spectral();
+}
+
 const char* kEvalDoc =
     "wo, wi: unit directions in the local shading frame (z = shading normal), shape (N, 3) or (3,)\n"
     "(one side may be a single direction, broadcast), wo toward the viewer, wi toward the light.\n"
@@ -194,17 +210,14 @@ void bind_shading(py::module_& m) {
                                                  "the local shading frame with f, pdf and sample (shared/SHADING.md section 0).")
       .def(
           "f",
-          [](const Material& material, const py::object& wo_in, const py::object& wi_in, const py::object& wavelengths,
+          [](const Material& material, const py::object& wo, const py::object& wi, const py::object& wavelengths,
              double eta_outside, const std::string& mode) {
-            const auto wo = to_directions(wo_in, "wo"), wi = to_directions(wi_in, "wi");
-            const size_t n = broadcast(wo.size(), wi.size(), "wo and wi");
-            const Wavelengths w = to_wavelengths(wavelengths, n);
-            const TransportMode tm = to_mode(mode);
-            std::vector<Spectrum> out(n);
-            for_rows(material, eta_outside, w, n, [&](size_t i, const Bsdf* bsdf, const SampledWavelengths&) {
-              out[i] = bsdf ? bsdf->f(wo[wo.size() == 1 ? 0 : i], wi[wi.size() == 1 ? 0 : i], tm) : Spectrum::Zero();
-            });
-            return spectra_array(out, w.spectral() ? 4 : 3);
+            std::vector<Spectrum> out;
+            const bool spectral = for_pairs(material, wo, wi, wavelengths, eta_outside, mode, &out,
+                                            [](const Bsdf* bsdf, const Vec3d& o, const Vec3d& i, TransportMode tm) {
+                                              return bsdf ? bsdf->f(o, i, tm) : Spectrum::Zero().eval();
+                                            });
+            return spectra_array(out, spectral ? 4 : 3);
           },
           py::arg("wo"), py::arg("wi"), py::arg("wavelengths") = py::none(), py::arg("eta_outside") = 1.0,
           py::arg("mode") = "radiance",
@@ -212,16 +225,13 @@ void bind_shading(py::module_& m) {
                        "wavelength. Delta lobes give 0.\n") + kEvalDoc).c_str())
       .def(
           "pdf",
-          [](const Material& material, const py::object& wo_in, const py::object& wi_in, const py::object& wavelengths,
+          [](const Material& material, const py::object& wo, const py::object& wi, const py::object& wavelengths,
              double eta_outside, const std::string& mode) {
-            const auto wo = to_directions(wo_in, "wo"), wi = to_directions(wi_in, "wi");
-            const size_t n = broadcast(wo.size(), wi.size(), "wo and wi");
-            const Wavelengths w = to_wavelengths(wavelengths, n);
-            const TransportMode tm = to_mode(mode);
-            std::vector<double> out(n);
-            for_rows(material, eta_outside, w, n, [&](size_t i, const Bsdf* bsdf, const SampledWavelengths&) {
-              out[i] = bsdf ? bsdf->pdf(wo[wo.size() == 1 ? 0 : i], wi[wi.size() == 1 ? 0 : i], tm) : 0.0;
-            });
+            std::vector<double> out;
+            for_pairs(material, wo, wi, wavelengths, eta_outside, mode, &out,
+                      [](const Bsdf* bsdf, const Vec3d& o, const Vec3d& i, TransportMode tm) {
+                        return bsdf ? bsdf->pdf(o, i, tm) : 0.0;
+                      });
             return values_to_array(out);
           },
           py::arg("wo"), py::arg("wi"), py::arg("wavelengths") = py::none(), py::arg("eta_outside") = 1.0,
