@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'EnvironmentLight', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'thin_film_reflectance', 'trace_ray']
+__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'air_dispersion_scale', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'thin_film_reflectance', 'trace_ray']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -320,6 +320,18 @@ class Scene:
         The environment (replacing any sky): an RGB radiance (a constant environment), an equirectangular
         map file (EXR/HDR/PNG through OpenImageIO) or a float array (H, W, 3), times `scale`, turned by
         `rotation` (degrees about y, or a 3 x 3 matrix). Orientation: refracta.lights.EnvironmentLight.
+        """
+    def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        """
+        The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's
+        single scattering (Nishita et al. 1993) for the sun toward `sun_direction` (normalised, y up),
+        `aerosol` (Mie density scale), `ozone_du` [Dobson units], `ground_albedo` (seen below the horizon),
+        observer `altitude` [m]; and the sun: a disc of `sun_angular_diameter` [deg] with linear limb
+        darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction (reddened
+        toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral renders,
+        its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times
+        106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun
+        (e.g. an exposure). Builds the sky's table (~0.5 s).
         """
     def set_sky(self, horizon: typing.Any = None, zenith: typing.Any = None, environment: str | None = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
@@ -968,6 +980,21 @@ class PhysicalSky:
     @property
     def build_seconds(self) -> float:
         ...
+class DispersedField(IndexField):
+    """
+    A field at another wavelength: n' = 1 + scale (n - 1), grad n' = scale grad n, height-only as its
+    base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
+    base's. Spectral renders through a field build these per sample (each hero wavelength); build
+    one with dispersed_field(field, wavelength).
+    """
+    def __init__(self, base: IndexField, scale: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def base(self) -> IndexField:
+        ...
+    @property
+    def scale(self) -> float:
+        ...
 def _canonical_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, bool]:
     ...
 def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, method: str, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, bias: typing.SupportsFloat | typing.SupportsIndex | None, z_range: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] | None, layers: typing.SupportsInt | typing.SupportsIndex | None, weight: str, storage: str) -> numpy.ndarray:
@@ -1022,6 +1049,22 @@ def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any,
     ...
 def _write_image(path: str, image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: typing.Any, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
     ...
+def air_dispersion_scale(wavelength: typing.SupportsFloat | typing.SupportsIndex, reference: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> float:
+    """
+    K(wavelength)/K(reference) of dry air (Birch & Downs 1993 Edlen formula at 101325 Pa, 288.15 K):
+    the factor of n - 1 from the reference wavelength to `wavelength` [nm], both in [230, 2000].
+    """
+def dispersed_field(field: IndexField, wavelength: typing.SupportsFloat | typing.SupportsIndex, reference: typing.SupportsFloat | typing.SupportsIndex | None = None) -> IndexField:
+    """
+    The field at `wavelength` [nm] (dry-air dispersion, n - 1 scaled by air_dispersion_scale from
+    `reference`, default field_reference_wavelength(field)); CurvedEarth is rebuilt over its
+    dispersed base; the field itself when nothing changes.
+    """
+def field_reference_wavelength(field: IndexField) -> float:
+    """
+    The wavelength [nm] a field's n stands for: its `wavelength` parameter (PhysicalAtmosphere,
+    TemperatureProfile, CurvedEarth over them), else 550.
+    """
 def fresnel_conductor(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
     Unpolarised Fresnel reflectance of a conductor of relative complex index eta + i k at |cos_i| (exact). Vectorised.

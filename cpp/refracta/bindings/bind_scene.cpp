@@ -8,6 +8,7 @@
 #include "refracta/shading/dielectric.h"
 #include "refracta/shading/environment_light.h"
 #include "refracta/shading/phong.h"
+#include "refracta/shading/physical_sky.h"
 #include "refracta/shading/point_light.h"
 #include "refracta/shading/principled.h"
 #include "refracta/shading/sphere_light.h"
@@ -192,6 +193,63 @@ py::array_t<float> image_to_float32(const Image& image) {
   return out;
 }
 
+namespace {
+
+// An infinite light times a constant factor (set_physical_sky's `scale` on the sky).
+class ScaledInfiniteLight final : public Light {
+ public:
+  ScaledInfiniteLight(LightPtr light, double scale) : light_(std::move(light)), scale_(scale) {}
+  LightType type() const override { return light_->type(); }
+  std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, const Vec2d& u,
+                                         const SampledWavelengths& lambda) const override {
+    auto sample = light_->sample_li(ctx, u, lambda);
+    if (sample) sample->L *= scale_;
+    return sample;
+  }
+  double pdf_li(const LightSampleContext& ctx, const Vec3d& wi, const Vec3d& p_light, const Vec3d& n_light) const override {
+    return light_->pdf_li(ctx, wi, p_light, n_light);
+  }
+  Spectrum Le(const Vec3d& dir, const SampledWavelengths& lambda) const override { return scale_ * light_->Le(dir, lambda); }
+  double power() const override { return scale_ * light_->power(); }
+  void preprocess(const Vec3d& centre, double radius) override { light_->preprocess(centre, radius); }
+  std::string describe() const override { return concat(light_->describe(), " x ", scale_); }
+
+ private:
+  LightPtr light_;
+  double scale_;
+};
+
+// set_physical_sky: the sky light and the sun it implies. Both are spectral radiance
+// [W/(m^2 sr nm)] in spectral renders and its CIE-Y-weighted mean over wavelength in RGB (linear
+// sRGB of XYZ / integral ybar), the convention of Color::illuminant: RGB (1, 1, 1) is D65 at
+// 1 W/(m^2 sr nm) mean; multiply by integral ybar = 106.86 nm for W/(m^2 sr).
+void set_physical_sky(RenderScene& s, const PhysicalSkySettings& settings, double sun_diameter, double limb_darkening,
+                      double scale) {
+  settings.validate();
+  if (!(sun_diameter > 0.0 && sun_diameter < 180.0)) throw_invalid("sun_angular_diameter must be in (0, 180) deg (got ", sun_diameter, ")");
+  if (!(limb_darkening >= 0.0 && limb_darkening <= 1.0)) throw_invalid("limb_darkening must be in [0, 1] (got ", limb_darkening, ")");
+  if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("scale must be >= 0 and finite (got ", scale, ")");
+  std::shared_ptr<PhysicalSkyLight> sky;
+  {
+    py::gil_scoped_release release;  // the table: ~0.5 s over oneTBB
+    sky = std::make_shared<PhysicalSkyLight>(settings);
+  }
+  // The sun's disc radiance at the sky's 10 nm nodes (Color::tabulated interpolates to 1 nm).
+  std::vector<double> lambda, radiance;
+  for (int i = 0; i < PhysicalSky::kWavelengths; ++i) {
+    lambda.push_back(PhysicalSky::wavelength(i));
+    radiance.push_back(scale * sky->sky().sun_radiance(lambda.back(), sun_diameter));
+  }
+  const Color sun_colour = Color::tabulated(lambda, radiance, Color::Kind::kIlluminant);
+  s.remove_lights_if([](const Light& l) { return l.is_infinite(); });
+  if (scale > 0.0) s.add_light(scale == 1.0 ? LightPtr(sky) : std::make_shared<ScaledInfiniteLight>(sky, scale));
+  if (!sun_colour.is_black() && sun_colour.rgb().maxCoeff() > 0.0) {
+    s.add_light(std::make_shared<SunLight>(settings.sun_direction, sun_colour, sun_diameter, limb_darkening));
+  }
+}
+
+}  // namespace
+
 void bind_scene(py::module_& m) {
   py::class_<RenderScene, std::shared_ptr<RenderScene>>(m, "Scene", R"doc(
 Geometry (Embree), materials (refracta.shading) and lights. Scene() starts empty: no sun, no sky,
@@ -362,6 +420,29 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
            "A sky (replacing any environment): radiance toward the horizon (and below) and straight up, linear in\n"
            "the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular\n"
            "environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.")
+      .def("set_physical_sky",
+           [](RenderScene& s, const py::object& sun_direction, double aerosol, double ozone_du, double ground_albedo,
+              double sun_angular_diameter, double limb_darkening, double scale, double altitude) {
+             PhysicalSkySettings settings;
+             const Vec3d sun = to_point(sun_direction, "sun_direction");
+             if (!(sun.norm() > 0.0)) throw_invalid("sun_direction must be non-zero (got (", sun.x(), ", ", sun.y(), ", ", sun.z(), "))");
+             settings.sun_direction = sun.normalized();
+             settings.aerosol = aerosol, settings.ozone_du = ozone_du, settings.ground_albedo = ground_albedo;
+             settings.altitude = altitude;
+             set_physical_sky(s, settings, sun_angular_diameter, limb_darkening, scale);
+           },
+           py::arg("sun_direction"), py::arg("aerosol") = 1.0, py::arg("ozone_du") = 300.0, py::arg("ground_albedo") = 0.0,
+           py::arg("sun_angular_diameter") = 0.53, py::arg("limb_darkening") = 0.0, py::arg("scale") = 1.0,
+           py::arg("altitude") = 0.0,
+           "The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's\n"
+           "single scattering (Nishita et al. 1993) for the sun toward `sun_direction` (normalised, y up),\n"
+           "`aerosol` (Mie density scale), `ozone_du` [Dobson units], `ground_albedo` (seen below the horizon),\n"
+           "observer `altitude` [m]; and the sun: a disc of `sun_angular_diameter` [deg] with linear limb\n"
+           "darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction (reddened\n"
+           "toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral renders,\n"
+           "its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times\n"
+           "106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun\n"
+           "(e.g. an exposure). Builds the sky's table (~0.5 s).")
       .def("set_environment",
            [](RenderScene& s, const py::object& source, const py::object& rotation, double scale) {
              s.remove_lights_if([](const Light& l) { return l.is_infinite() && !dynamic_cast<const SunLight*>(&l); });

@@ -25,6 +25,7 @@ void bind_edit(py::module_& m);
 void bind_shading(py::module_& m);
 void bind_lights(py::module_& m);
 void bind_spectrum(py::module_& m);
+void bind_dispersion(py::module_& m);
 
 // (N, 3) or (3,) float array -> points; ValueError naming `what` for other shapes or NaN.
 std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single = nullptr);

@@ -13,4 +13,5 @@ PYBIND11_MODULE(_core, m) {
   refracta::bind_shading(m);
   refracta::bind_lights(m);
   refracta::bind_spectrum(m);
+  refracta::bind_dispersion(m);
 }

@@ -1,0 +1,36 @@
+// Python bindings of the air's dispersion (media/dispersed_field.h).
+#include "refracta/bindings/bindings.h"
+#include "refracta/media/dispersed_field.h"
+
+namespace refracta {
+
+void bind_dispersion(py::module_& m) {
+  py::class_<DispersedField, IndexField, std::shared_ptr<DispersedField>>(m, "DispersedField", R"doc(
+A field at another wavelength: n' = 1 + scale (n - 1), grad n' = scale grad n, height-only as its
+base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
+base's. Spectral renders through a field build these per sample (each hero wavelength); build
+one with dispersed_field(field, wavelength).)doc")
+      .def(py::init([](const std::shared_ptr<IndexField>& base, double scale) {
+             return std::make_shared<DispersedField>(base, scale);
+           }),
+           py::arg("base"), py::arg("scale"))
+      .def_property_readonly("base", [](const DispersedField& f) { return std::const_pointer_cast<IndexField>(f.base()); })
+      .def_property_readonly("scale", &DispersedField::scale);
+
+  m.def("air_dispersion_scale", &air_dispersion_scale, py::arg("wavelength"), py::arg("reference") = kDefaultFieldWavelength,
+        "K(wavelength)/K(reference) of dry air (Birch & Downs 1993 Edlen formula at 101325 Pa, 288.15 K):\n"
+        "the factor of n - 1 from the reference wavelength to `wavelength` [nm], both in [230, 2000].");
+  m.def("field_reference_wavelength", &field_reference_wavelength, py::arg("field"),
+        "The wavelength [nm] a field's n stands for: its `wavelength` parameter (PhysicalAtmosphere,\n"
+        "TemperatureProfile, CurvedEarth over them), else 550.");
+  m.def("dispersed_field",
+        [](const std::shared_ptr<IndexField>& field, double wavelength, std::optional<double> reference) {
+          return std::const_pointer_cast<IndexField>(dispersed_field(field, wavelength, reference ? *reference : 0.0));
+        },
+        py::arg("field"), py::arg("wavelength"), py::arg("reference") = py::none(),
+        "The field at `wavelength` [nm] (dry-air dispersion, n - 1 scaled by air_dispersion_scale from\n"
+        "`reference`, default field_reference_wavelength(field)); CurvedEarth is rebuilt over its\n"
+        "dispersed base; the field itself when nothing changes.");
+}
+
+}  // namespace refracta

@@ -1,0 +1,68 @@
+// Dispersion of the air (dispersed_field.h).
+#include "refracta/media/dispersed_field.h"
+
+#include "refracta/core/error.h"
+#include "refracta/media/air.h"
+#include "refracta/media/curved_earth.h"
+
+#include <cmath>
+
+namespace refracta {
+
+namespace {
+
+double dry_air_k(double wavelength_nm, const char* what) {
+  if (!(wavelength_nm >= 230.0 && wavelength_nm <= 2000.0)) {
+    throw_invalid(what, " must be in [230, 2000] nm (got ", wavelength_nm, ")");
+  }
+  return air_index(kStandardPressure, kStandardGroundTemperature, 0.0, wavelength_nm).n_minus_1;
+}
+
+}  // namespace
+
+double air_dispersion_scale(double wavelength_nm, double reference_nm) {
+  return dry_air_k(wavelength_nm, "wavelength") / dry_air_k(reference_nm, "reference wavelength");
+}
+
+double field_reference_wavelength(const IndexField& field) {
+  const std::vector<ParamSpec>& specs = field.param_specs();
+  for (size_t i = 0; i < specs.size(); ++i) {
+    if (specs[i].name == "wavelength") return field.param_values().at(i);
+  }
+  return kDefaultFieldWavelength;
+}
+
+DispersedField::DispersedField(FieldPtr base, double scale) : base_(std::move(base)), scale_(scale) {
+  if (!base_) throw_invalid("DispersedField: base must be a field (got None)");
+  if (!(scale_ > 0.0) || !std::isfinite(scale_)) throw_invalid("DispersedField: scale must be > 0 and finite (got ", scale_, ")");
+}
+
+void DispersedField::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
+  base_->evaluate(p, n, grad);
+  *n = 1.0 + scale_ * (*n - 1.0);
+  *grad *= scale_;
+}
+
+void DispersedField::evaluate_height(double h, double* n, double* dn_dh) const {
+  base_->evaluate_height(h, n, dn_dh);
+  *n = 1.0 + scale_ * (*n - 1.0);
+  *dn_dh *= scale_;
+}
+
+std::shared_ptr<const IndexField> DispersedField::with_param_values(const std::vector<double>& values) const {
+  return std::make_shared<DispersedField>(base_->with_param_values(values), scale_);
+}
+
+FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, double reference_nm) {
+  if (!field) throw_invalid("dispersed_field: field must be a field (got None)");
+  if (reference_nm <= 0.0) reference_nm = field_reference_wavelength(*field);
+  if (const auto* earth = dynamic_cast<const CurvedEarth*>(field.get())) {
+    const FieldPtr base = dispersed_field(earth->base(), wavelength_nm, reference_nm);
+    return base == earth->base() ? field : std::make_shared<CurvedEarth>(base, earth->radius());
+  }
+  const double scale = air_dispersion_scale(wavelength_nm, reference_nm);
+  if (scale == 1.0) return field;
+  return std::make_shared<DispersedField>(field, scale);
+}
+
+}  // namespace refracta

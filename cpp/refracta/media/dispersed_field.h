@@ -1,0 +1,60 @@
+// Dispersion of the air (shared/ORACLES.md, "The air"): for dry air the wavelength enters the
+// index only through the factor K(lambda) of n - 1 = K(lambda) P / T (Edlen; Birch & Downs 1993,
+// air.h), so a whole field at another wavelength is the field at its reference wavelength with
+// n - 1 scaled:
+//   n_lambda - 1 = s (n_ref - 1),  s = K(lambda) / K(lambda_ref),  grad n_lambda = s grad n_ref.
+// K is air_index's n - 1 at 101 325 Pa, 288.15 K, no water vapour (the ratio does not depend on
+// the conditions: the pressure and temperature terms multiply the dispersion term). (n - 1) rises
+// 1.5 % from 650 to 450 nm. Humid air disperses slightly differently (its water term has its own
+// wavelength law; 1e-4 of n - 1 at 100 % humidity, 20 C): the scaling ignores that.
+//
+// The reference wavelength of a field is its own `wavelength` parameter where it has one
+// (PhysicalAtmosphere, TemperatureProfile, CurvedEarth over either), else 550 nm (LogisticProfile,
+// LinearSquaredProfile, CustomField: their n is taken as the index at 550 nm). CurvedEarth is
+// dispersed through its base (n' = n(h) e^(y'/R): the Earth-flattening factor is geometry, not
+// air), so dispersed_field rebuilds it over the dispersed base.
+#pragma once
+
+#include "refracta/media/index_field.h"
+
+namespace refracta {
+
+// The reference wavelength of fields without a `wavelength` parameter [nm].
+constexpr double kDefaultFieldWavelength = 550.0;
+
+// K(lambda) / K(reference) of dry air; wavelengths [nm] in [230, 2000] (else std::invalid_argument).
+double air_dispersion_scale(double wavelength_nm, double reference_nm);
+
+// The field's `wavelength` parameter [nm], or kDefaultFieldWavelength.
+double field_reference_wavelength(const IndexField& field);
+
+// n' = 1 + scale (n - 1) of a base field, grad n' = scale grad n; height-only as its base. Its
+// parameters are the base's (with_param_values keeps the scale).
+class DispersedField final : public IndexField {
+ public:
+  // base non-null; scale > 0 and finite.
+  DispersedField(FieldPtr base, double scale);
+
+  std::string type_name() const override { return "DispersedField"; }
+  void evaluate(const Vec3d& p, double* n, Vec3d* grad) const override;
+  bool height_only() const override { return base_->height_only(); }
+  void evaluate_height(double h, double* n, double* dn_dh) const override;
+  const std::vector<ParamSpec>& param_specs() const override { return base_->param_specs(); }
+  std::vector<double> param_values() const override { return base_->param_values(); }
+  std::shared_ptr<const IndexField> with_param_values(const std::vector<double>& values) const override;
+  std::vector<std::string> gauge_params() const override { return base_->gauge_params(); }
+
+  const FieldPtr& base() const { return base_; }
+  double scale() const { return scale_; }
+
+ private:
+  FieldPtr base_;
+  double scale_;
+};
+
+// The field at `wavelength_nm` [nm]: a DispersedField by air_dispersion_scale(wavelength,
+// reference) (reference <= 0: field_reference_wavelength(*field)); CurvedEarth through its base;
+// the field itself when the scale is 1.
+FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, double reference_nm = 0.0);
+
+}  // namespace refracta
