@@ -23,7 +23,7 @@ from _common import write_results
 METHODS = {
     "straight": dict(method="straight"),
     "curved_table": dict(method="curved"),
-    "curved_rk45_per_pixel": dict(method="curved", integrator="rk45", table=False),
+    "curved_rk45_per_pixel": dict(method="curved", trace="rk45", table=False),
     "raster_march_rk45": dict(method="raster_march", march="rk45"),
     "raster_march_original": dict(method="raster_march", march="rk4", step=0.3, max_steps=1000),
 }

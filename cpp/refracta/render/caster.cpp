@@ -112,9 +112,70 @@ PathEnd Caster::cast_straight(const Vec3d& origin, const Vec3d& dir, double max_
   return end;
 }
 
+std::optional<Vec3d> Caster::escape_direction(const Vec3d& x, const Vec3d& v, double remaining) const {
+  if (!field_->height_only() || !(x.y() > scene_.highest()) || !(v.y() > 0.0) || !(remaining > 0.0)) {
+    return std::nullopt;
+  }
+  const Vec3d t = v.normalized();
+  const double cos_e = std::hypot(t.x(), t.z());
+  double n_x, dn;
+  field_->evaluate_height(x.y(), &n_x, &dn);
+  const double beta = n_x * cos_e;  // Bouguer's invariant n(h) cos e
+  // sin e at height h from the invariant; 0 where the ray would turn (or past the modelled air).
+  auto sin_at = [&](double h) {
+    double n;
+    try {
+      field_->evaluate_height(h, &n, &dn);
+    } catch (const std::exception&) {
+      return 0.0;
+    }
+    const double c = beta / n;
+    return c < 1.0 ? std::sqrt(1.0 - c * c) : 0.0;
+  };
+  // Path length from x.y() up to h: integral of dh / sin e (8-point Gauss-Legendre; sin e is
+  // smooth and bounded away from 0 on a path that does not turn).
+  static constexpr double kNodes[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+  static constexpr double kWeights[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+  constexpr double kMinSine = 1e-2;  // below 0.57 deg the quadrature loses digits near a turn: trace instead
+  auto length_to = [&](double h, bool* ok) {
+    const double mid = 0.5 * (x.y() + h), half = 0.5 * (h - x.y());
+    double sum = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      for (double sign : {-1.0, 1.0}) {
+        const double s = sin_at(mid + sign * half * kNodes[i]);
+        if (s < kMinSine) *ok = false;
+        sum += kWeights[i] / std::max(s, kMinSine);
+      }
+    }
+    return half * sum;
+  };
+  // The height where the path has run `remaining` metres (Newton on s(h) = remaining, ds/dh = 1/sin e):
+  // the sky is seen along the direction there, as at the end of a traced path.
+  double h = x.y() + remaining * t.y();
+  bool ok = sin_at(x.y()) >= kMinSine;
+  for (int it = 0; it < 6 && ok; ++it) {
+    const double s = sin_at(h);
+    if (s < kMinSine) return std::nullopt;  // the ray may turn below that height: trace it
+    const double step = (remaining - length_to(h, &ok)) * s;
+    h += step;
+    if (std::abs(step) < 1e-6 * (1.0 + std::abs(h))) break;
+  }
+  const double sin_end = sin_at(h);
+  if (!ok || sin_end < kMinSine) return std::nullopt;
+  const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_end * sin_end));
+  const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
+  return Vec3d(t.x() * scale, sin_end, t.z() * scale).normalized();
+}
+
 PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length) const {
   PathEnd end;
   end.direction = dir;
+  // A rising ray above every object that cannot turn never comes back: the invariant gives the
+  // direction it leaves along, without tracing.
+  if (const auto exit = escape_direction(origin, dir, max_length)) {
+    end.direction = *exit;
+    return end;
+  }
   const TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
   double last_height = origin.y();
   try {
@@ -123,6 +184,10 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
       end.direction = b.v.normalized();
       end.length = b.s;
       last_height = b.x.y();
+      if (const auto exit = escape_direction(b.x, b.v, max_length - b.s)) {
+        end.direction = *exit;
+        return false;
+      }
       return true;
     });
   } catch (const NumericalError&) {

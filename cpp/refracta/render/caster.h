@@ -51,6 +51,10 @@ class Caster {
   PathEnd cast_straight(const Vec3d& origin, const Vec3d& dir, double max_length) const;
   PathEnd cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length) const;
   PathEnd cast_table(const Vec3d& dir) const;
+  // Height-only fields: the direction a ray at x moving along v leaves the air along, when it is
+  // above every object, rising, and cannot turn within `remaining` [m] of path (n stays above
+  // its invariant n(h) cos e); nullopt otherwise.
+  std::optional<Vec3d> escape_direction(const Vec3d& x, const Vec3d& v, double remaining) const;
 
   const Scene& scene_;
   const IndexField* field_;
