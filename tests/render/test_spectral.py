@@ -1,0 +1,264 @@
+"""Spectral rendering end to end: white under D65, RGB against spectral, the physical sky's sun and
+sky in both modes, and dispersion -- of the air (the mirage boundary per wavelength) and of glass
+(a BK7 prism's spectrum), each against an independent prediction."""
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import _core, shading, spectrum
+
+LUMINANCE = np.array([0.2126, 0.7152, 0.0722])  # Y of linear sRGB (IEC 61966-2-1)
+# Monte Carlo bounds: a mean is compared with 4.5 standard errors estimated from the image.
+SIGMAS = 4.5
+# The Jakob-Hanika fit's RGB -> spectrum -> RGB round trip (refracta.spectrum tests: 7e-5) for
+# reflectances, twice over for a product, plus the float32 image.
+ROUND_TRIP = 5e-4
+# RGB sky = the table's 10 nm quadrature of the spectrum, spectral = its linear interpolant
+# sampled at hero wavelengths: they differ by the quadrature error (measured 7e-4 in Y).
+SKY_QUADRATURE = 2e-3
+
+
+def std_error(values):
+    """Standard error of the mean of independent pixel values (axis 0)."""
+    values = np.asarray(values, dtype=float)
+    return values.std(axis=0, ddof=1) / np.sqrt(values.shape[0])
+
+
+def downward_camera(size=24, vfov=20.0):
+    """A camera 1 m above the ground looking straight down: every pixel sees the ground."""
+    return refracta.Camera((0.0, 1.0, 0.0), (0.0, 0.0, 1e-3), (1.0, 0.0, 0.0), vfov, size, size)
+
+
+def ground_scene(albedo, environment=(1.0, 1.0, 1.0)):
+    scene = refracta.Scene()
+    scene.set_environment(environment)
+    scene.add_ground(0.0, 200.0, material=shading.Diffuse(albedo))
+    return scene
+
+
+# ---------------------------------------------------------------- white, colours
+
+
+def test_white_diffuse_under_a_white_environment_renders_white():
+    # Environment RGB (1, 1, 1) is D65 scaled to Y = 1 (Color.illuminant); a reflectance of 1 under
+    # it has the XYZ of D65 / integral(y): sRGB (1, 1, 1) by the matrix's white point (SHADING.md 7).
+    scene, camera = ground_scene((1.0, 1.0, 1.0)), downward_camera()
+    rgb = refracta.render(scene, camera, None, spp=4, progress=False)
+    # The constant environment is sampled by cosine: f cos / pdf = 1 exactly, every sample.
+    np.testing.assert_allclose(rgb, 1.0, rtol=0, atol=1e-6)
+    spectral = refracta.render(scene, camera, None, spp=16, spectral=True, progress=False).reshape(-1, 3)
+    mean, error = spectral.mean(axis=0), std_error(spectral)
+    assert np.all(np.abs(mean - 1.0) <= SIGMAS * error + ROUND_TRIP), (mean, error)
+    assert np.all(error < 0.02)  # the estimate is usefully tight (about 0.007 measured)
+
+
+@pytest.mark.parametrize("albedo", [(0.8, 0.2, 0.1), (0.1, 0.6, 0.3), (0.2, 0.3, 0.9), (0.5, 0.5, 0.5)])
+def test_coloured_diffuse_agrees_between_rgb_and_spectral(albedo):
+    # Reflectance s(lambda) (Jakob & Hanika 2019) times the D65 environment: its sRGB is the albedo
+    # itself, up to the round trip, as the RGB render gives exactly.
+    scene, camera = ground_scene(albedo, environment=(0.9, 0.9, 0.9)), downward_camera(16)
+    rgb = refracta.render(scene, camera, None, spp=4, progress=False).reshape(-1, 3)
+    np.testing.assert_allclose(rgb, np.broadcast_to(0.9 * np.array(albedo), rgb.shape), rtol=1e-6)
+    spectral = refracta.render(scene, camera, None, spp=32, spectral=True, seed=3, progress=False).reshape(-1, 3)
+    mean, error = spectral.mean(axis=0), std_error(spectral)
+    assert np.all(np.abs(mean - rgb.mean(axis=0)) <= SIGMAS * error + ROUND_TRIP), (mean, rgb.mean(axis=0), error)
+
+
+# ---------------------------------------------------------------- the physical sky in scenes
+
+
+def sky_scene(elevation_deg):
+    scene = refracta.Scene()
+    e = np.radians(elevation_deg)
+    scene.set_physical_sky((np.cos(e), np.sin(e), 0.0))
+    scene.add_ground(0.0, 200.0, material=shading.Diffuse((1.0, 1.0, 1.0)))
+    return scene
+
+
+@pytest.mark.parametrize("elevation", [60.0, 5.0])
+def test_physical_sky_rgb_and_spectral_agree_in_luminance(elevation):
+    scene, camera = sky_scene(elevation), downward_camera()
+    rgb = refracta.render(scene, camera, None, spp=8, progress=False).reshape(-1, 3) @ LUMINANCE
+    spectral = refracta.render(scene, camera, None, spp=32, spectral=True, progress=False).reshape(-1, 3) @ LUMINANCE
+    difference = abs(spectral.mean() - rgb.mean())
+    bound = SIGMAS * np.hypot(std_error(spectral), std_error(rgb)) + SKY_QUADRATURE * rgb.mean()
+    assert difference <= bound, (elevation, rgb.mean(), spectral.mean(), bound)
+
+
+def test_physical_sky_sun_is_the_extinguished_solar_spectrum():
+    # The scene's sun carries PhysicalSky.sun_radiance: its irradiance at normal incidence is
+    # E T (W/m^2 nm), here as the RGB of that spectrum (Y-weighted mean, as Color.illuminant).
+    e = np.radians(30.0)
+    scene = refracta.Scene()
+    scene.set_physical_sky((np.cos(e), np.sin(e), 0.0))
+    suns = [light for light in scene.lights if "Sun" in repr(light)]
+    assert len(suns) == 1 and len(scene.lights) == 2
+    sky = spectrum.PhysicalSky((np.cos(e), np.sin(e), 0.0))
+    lam = np.arange(360.0, 831.0, 10.0)
+    expected = spectrum.spectrum_to_rgb(lam, sky.sun_radiance(lam))
+    direction = np.array([[np.cos(e), np.sin(e), 0.0]])
+    np.testing.assert_allclose(suns[0].Le(direction)[0], expected, rtol=1e-6)
+    # The sun below the horizon leaves only the sky.
+    scene.set_physical_sky((1.0, -0.2, 0.0))
+    assert len(scene.lights) == 1
+
+
+def test_a_low_sun_turns_the_ground_orange():
+    camera = downward_camera(16)
+    ratios = {}
+    for elevation in (60.0, 5.0):
+        rgb = refracta.render(sky_scene(elevation), camera, None, spp=8, progress=False).reshape(-1, 3).mean(axis=0)
+        ratios[elevation] = rgb[0] / rgb[2]
+    # Measured: R/B = 1.33 at 60 deg, 1.66 at 5 deg (Rayleigh extinction over ~11 air masses).
+    assert ratios[5.0] > 1.15 * ratios[60.0], ratios
+
+
+@pytest.mark.parametrize("bad", [dict(sun_direction=(0.0, 0.0, 0.0)), dict(aerosol=-1.0),
+                                 dict(ground_albedo=2.0), dict(sun_angular_diameter=0.0),
+                                 dict(limb_darkening=1.5), dict(scale=-1.0), dict(scale=float("nan"))])
+def test_set_physical_sky_rejects_bad_input(bad):
+    arguments = dict(sun_direction=(0.0, 1.0, 0.0))
+    arguments.update(bad)
+    with pytest.raises(ValueError):
+        refracta.Scene().set_physical_sky(**arguments)
+
+
+def test_physical_sky_scale_multiplies_sky_and_sun():
+    camera = downward_camera(8)
+    base = refracta.render(sky_scene(40.0), camera, None, spp=4, progress=False)
+    scene = refracta.Scene()
+    e = np.radians(40.0)
+    scene.set_physical_sky((np.cos(e), np.sin(e), 0.0), scale=0.25)
+    scene.add_ground(0.0, 200.0, material=shading.Diffuse((1.0, 1.0, 1.0)))
+    scaled = refracta.render(scene, camera, None, spp=4, progress=False)
+    np.testing.assert_allclose(scaled, 0.25 * base, rtol=1e-5)  # same seeds, same samples
+
+
+# ---------------------------------------------------------------- dispersion of the air
+
+EYE = 1.4
+# Bisection of the critical depression and the stratified tracer: 1e-12 rad.
+ANGLE_TOL = 1e-11
+
+
+def hot_road():
+    return refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
+
+
+def critical_depression_bouguer(field):
+    """theta_c = arccos(n(0) / n(eye)) (Bouguer's invariant: the ray that grazes the ground)."""
+    n_ground, n_eye = field.ior(np.array([[0.0, 0.0, 0.0], [0.0, EYE, 0.0]]))
+    return np.arccos(n_ground / n_eye)
+
+
+def critical_depression_traced(field):
+    """The depression below which rays from the eye reach the ground, by bisection on trace_ray."""
+    def reaches_ground(depression):
+        path = refracta.trace_ray(field, (0.0, EYE, 0.0), (np.cos(depression), -np.sin(depression), 0.0),
+                                  method="stratified", tol=1e-8, max_length=3000.0, stop_height=0.0)
+        return path.stop == "stop_height"
+    lo, hi = 1e-3, 1e-2
+    assert not reaches_ground(lo) and reaches_ground(hi)
+    while hi - lo > 1e-13:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if reaches_ground(mid) else (mid, hi)
+    return 0.5 * (lo + hi)
+
+
+def test_dispersion_scale_is_the_ciddor_k_ratio():
+    # ORACLES.md: K = 7.978e-5 (450 nm), 7.901e-5 (550), 7.858e-5 (650) K/hPa; (n - 1) rises 1.5 %
+    # from 650 to 450 nm. K is quoted to 4 digits: 1e-4 relative.
+    assert _core.air_dispersion_scale(450.0) == pytest.approx(7.978 / 7.901, rel=1e-4)
+    assert _core.air_dispersion_scale(650.0) == pytest.approx(7.858 / 7.901, rel=1e-4)
+    assert _core.air_dispersion_scale(450.0, 650.0) == pytest.approx(1.015, abs=1e-3)
+    assert _core.air_dispersion_scale(550.0) == 1.0
+    with pytest.raises(ValueError, match="wavelength"):
+        _core.air_dispersion_scale(100.0)
+
+
+def test_dispersed_field_is_the_field_at_that_wavelength():
+    # For dry air Edlen's wavelength term multiplies the whole of n - 1: the wrapper at 450 nm equals
+    # PhysicalAtmosphere(wavelength=450) to rounding, index and gradient, curved Earth included.
+    field = hot_road()
+    points = np.array([[0.0, h, 0.0] for h in (0.0, 0.05, 0.3, 1.4, 100.0, 5000.0)])
+    for wavelength in (380.0, 450.0, 650.0, 780.0):
+        wrapped = _core.dispersed_field(field, wavelength)
+        direct = field.with_params(wavelength=wavelength)
+        np.testing.assert_allclose(wrapped.ior(points) - 1.0, direct.ior(points) - 1.0, rtol=1e-12)
+        np.testing.assert_allclose(wrapped.grad_ior(points), direct.grad_ior(points), rtol=1e-12, atol=1e-20)
+        assert wrapped.height_only
+        earth = _core.dispersed_field(refracta.CurvedEarth(field), wavelength)
+        assert earth.type_name == "CurvedEarth"
+        np.testing.assert_allclose(earth.ior(points), refracta.CurvedEarth(direct).ior(points), rtol=1e-15)
+    assert _core.field_reference_wavelength(field.with_params(wavelength=600.0)) == 600.0
+    assert _core.field_reference_wavelength(refracta.LogisticProfile()) == 550.0
+    assert _core.dispersed_field(field, 550.0) is field
+    with pytest.raises(ValueError, match="scale"):
+        _core.DispersedField(field, 0.0)
+
+
+def test_mirage_boundary_moves_with_wavelength_as_the_k_ratio_predicts():
+    field = hot_road()
+    traced = {lam: critical_depression_traced(_core.dispersed_field(field, lam)) for lam in (450.0, 650.0)}
+    for lam, theta in traced.items():
+        # trace_ray through the wrapper follows Bouguer's invariant of the field at that wavelength.
+        assert theta == pytest.approx(critical_depression_bouguer(field.with_params(wavelength=lam)), abs=ANGLE_TOL)
+    # theta_c ~ sqrt(2 dn): the ratio is sqrt(K(450)/K(650)) to the small-angle approximation
+    # (theta_c^2 / 12 relative, 2e-6 here).
+    ratio = np.sqrt(_core.air_dispersion_scale(450.0, 650.0))
+    assert traced[450.0] / traced[650.0] == pytest.approx(ratio, rel=1e-5)
+    assert traced[450.0] - traced[650.0] > 3e-5  # blue reaches 0.19 arcmin lower (measured 3.26e-5 rad)
+
+
+def edge_integrals(rows, depression_edges):
+    """Integral over the window of each channel's value [rad]: rows (H, 3) by pixel rows."""
+    return (rows * np.diff(depression_edges)[:, None]).sum(axis=0)
+
+
+def channel_weights(lam):
+    """Each sRGB channel's share of D65 white per 1 nm at lam: sum over lam is 1 for each."""
+    xyz = spectrum.cie_xyz(lam) * spectrum.d65(lam, normalised=True)[:, None] / spectrum.cie_y_integral()
+    return np.array([spectrum.xyz_to_linear_srgb(v) for v in xyz])  # (M, 3)
+
+
+def test_spectral_render_shows_the_mirage_colour_fringe():
+    # A white sky over a black road seen through the hot layer: at depression d the sky is seen at
+    # the wavelengths whose critical depression exceeds d, so the boundary is a spectrum -- red
+    # first, a blue rim lowest. The integral of each channel over the rows is the window's top
+    # plus the channel-weighted mean boundary: predicted from Bouguer's invariant with Edlen's index
+    # at each wavelength (PhysicalAtmosphere(wavelength=...), not the wrapper), measured in the render.
+    field = hot_road()
+    lam = np.arange(360.0, 831.0, 1.0)
+    theta_c = np.array([critical_depression_bouguer(field.with_params(wavelength=l)) for l in lam])
+    weights = channel_weights(lam)
+    height, width, pixel = 48, 8, 2.5e-6  # rows, columns, pixel angle [rad]
+    centre = 0.5 * (theta_c[lam == 450.0][0] + theta_c[lam == 650.0][0])
+    camera = refracta.Camera((0.0, EYE, 0.0), (1000.0 * np.cos(centre), EYE - 1000.0 * np.sin(centre), 0.0),
+                             (0.0, 1.0, 0.0), np.degrees(height * pixel), width, height)
+    edges = np.array([-np.arcsin(camera.ray(width / 2, v)[1][1]) for v in range(height + 1)])
+    assert edges[0] < theta_c.min() and edges[-1] > theta_c.max()  # the whole fringe is in view
+    scene = refracta.Scene()
+    scene.add_ground(0.0, 40000.0, material=shading.Diffuse((0.0, 0.0, 0.0)))
+    scene.set_environment((1.0, 1.0, 1.0))
+    # Tight paths: a 1e-5 m sagitta moves a grazing ray's boundary by ~2e-7 rad (dn/dh at the road
+    # 9e-5 /m over sin theta_c), well under the fringe's 8e-5 rad.
+    options = dict(tol=1e-7, sagitta=1e-5, max_length=1000.0, progress=False)
+    image = refracta.render(scene, camera, field, spp=64, spectral=True, seed=5, **options)
+    rows = image.mean(axis=1)
+    measured = edges[0] + edge_integrals(rows, edges)
+    predicted = edges[0] + (weights * (np.clip(theta_c, edges[0], edges[-1]) - edges[0])[:, None]).sum(axis=0)
+    error = np.sqrt((std_error(np.transpose(image, (1, 0, 2))) ** 2 * np.diff(edges)[:, None] ** 2).sum(axis=0))
+    assert np.all(np.abs(measured - predicted) <= SIGMAS * error + 1e-6), (measured, predicted, error)
+    # Blue's boundary lies lower than red's by about theta_c(450) - theta_c(650).
+    assert predicted[2] - predicted[0] > 2e-5
+    assert measured[2] - measured[0] > 2e-5, measured
+    # The rim: between red's and blue's critical depressions the pixels are blue, not red.
+    rim = (edges[:-1] > theta_c[lam == 650.0][0]) & (edges[1:] < theta_c[lam == 450.0][0])
+    assert rim.sum() >= 6
+    assert rows[rim, 2].mean() - rows[rim, 0].mean() > 0.5, rows[rim]
+    # RGB rendering does not disperse: the three channels share one boundary (theta_c at 550 nm).
+    rgb = refracta.render(scene, camera, field, spp=4, **options).mean(axis=1)
+    rgb_edges = edges[0] + edge_integrals(rgb, edges)
+    assert np.ptp(rgb_edges) < 1e-7
+    assert rgb_edges[0] == pytest.approx(critical_depression_bouguer(field), abs=pixel)
