@@ -64,3 +64,38 @@ def check_against(renders, expected, mask, allowance=0.0):
     relative = float(abs(sums.mean() - 1.0))
     relative_stderr = float(sums.std(ddof=1) / np.sqrt(seeds))
     return float(z.max()), sigmas, relative, relative_stderr
+
+
+def box_mesh(lo, hi, inward=False):
+    """An axis-aligned box [lo, hi] (3,) as (vertices (8, 3), triangles (12, 3)), every triangle's
+    counter-clockwise front facing out of the box (inward=True: into it)."""
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    corners = np.array([[(lo, hi)[x][0], (lo, hi)[y][1], (lo, hi)[z][2]] for x in (0, 1) for y in (0, 1) for z in (0, 1)])
+    centre = 0.5 * (lo + hi)
+    triangles = []
+    for axis in range(3):
+        others = [a for a in range(3) if a != axis]
+        for side in (0, 1):
+            quad = []
+            for a, b in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                bits = [0, 0, 0]
+                bits[axis], bits[others[0]], bits[others[1]] = side, a, b
+                quad.append(bits[0] * 4 + bits[1] * 2 + bits[2])
+            p = corners[quad]
+            outward = np.cross(p[1] - p[0], p[2] - p[0]) @ (p.mean(0) - centre) > 0
+            if outward == inward:
+                quad = quad[::-1]
+            triangles += [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]]
+    return corners, np.array(triangles)
+
+
+def fresnel_dielectric(cos_i, eta):
+    """Unpolarised Fresnel reflectance (Born & Wolf; SHADING.md section 1), eta = eta_t / eta_i,
+    cos_i > 0 on the incident side; 1 under total internal reflection."""
+    sin2_t = (1.0 - cos_i ** 2) / eta ** 2
+    if sin2_t >= 1.0:
+        return 1.0
+    cos_t = np.sqrt(1.0 - sin2_t)
+    rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
+    rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
+    return 0.5 * (rs ** 2 + rp ** 2)

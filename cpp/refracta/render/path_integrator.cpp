@@ -56,6 +56,10 @@ class PathTracer : public Integrator {
       scratch.reset();
       const Scattering s = scattering_at(scene_, si, media, ior_here, lambda, scratch);
       if (!s.bsdf) {  // a false hit or a pure interface: continue straight through
+        // A false hit still enters or leaves its medium (Schmidt & Budge 2002): without this a
+        // glass's cavity floor met inside higher-priority water was never entered, and the
+        // water's lower face then took the air, not the glass, as its outside.
+        if (s.false_hit) cross_interface(s, si, d, &media);
         o = si.offset_toward(d);
         continue;
       }
