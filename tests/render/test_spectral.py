@@ -262,3 +262,120 @@ def test_spectral_render_shows_the_mirage_colour_fringe():
     rgb_edges = edges[0] + edge_integrals(rgb, edges)
     assert np.ptp(rgb_edges) < 1e-7
     assert rgb_edges[0] == pytest.approx(critical_depression_bouguer(field), abs=pixel)
+
+
+# ---------------------------------------------------------------- dispersion of glass
+
+BK7 = (1.03961212, 0.231792344, 1.01046945, 0.00600069867, 0.0200179144, 103.560653)  # SHADING.md 7
+PRISM_APEX = np.radians(60.0)
+# The first-order spread dD/dn dn against the exact trace: second-order terms in the 2 deg spread
+# and the render's noise; 10 %.
+PRISM_FIRST_ORDER = 0.1
+
+
+def sellmeier(lam_nm):
+    um2 = (np.asarray(lam_nm, dtype=float) / 1000.0) ** 2
+    b, c = BK7[:3], BK7[3:]
+    return np.sqrt(1.0 + sum(bi * um2 / (um2 - ci) for bi, ci in zip(b, c)))
+
+
+def refract(d, normal, eta):
+    """Snell's law in vector form: d (..., 3) unit, normal toward the incident side, eta = n_i/n_t.
+    Returns the refracted direction and the unpolarised Fresnel transmittance (Hecht 4.42-4.43)."""
+    cos_i = -(d * normal).sum(axis=-1)
+    sin2_t = eta ** 2 * (1.0 - cos_i ** 2)
+    assert np.all(sin2_t < 1.0), "no total internal reflection on the test's paths"
+    cos_t = np.sqrt(1.0 - sin2_t)
+    t = eta[..., None] * d + (eta * cos_i - cos_t)[..., None] * normal
+    rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
+    rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
+    return t, 1.0 - 0.5 * (rs ** 2 + rp ** 2)
+
+
+def prism_mesh(half_length=3.0):
+    """A 60 deg BK7 prism, apex up at (0, 0.5), base 1 m below it, extruded along z: outward faces."""
+    half_base = np.tan(0.5 * PRISM_APEX)
+    corners = np.array([[0.0, 0.5], [-half_base, -0.5], [half_base, -0.5]])
+    vertices = np.array([[x, y, z] for z in (-half_length, half_length) for x, y in corners])
+    quads = [(0, 1, 4, 3), (1, 2, 5, 4), (2, 0, 3, 5)]
+    triangles = [(0, 2, 1), (3, 4, 5)] + [t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))]
+    centre = vertices.mean(axis=0)
+    oriented = []
+    for t in triangles:  # counter-clockwise seen from outside
+        p = vertices[list(t)]
+        normal = np.cross(p[1] - p[0], p[2] - p[0])
+        oriented.append(t if normal @ (p.mean(axis=0) - centre) > 0 else (t[0], t[2], t[1]))
+    return vertices, np.array(oriented)
+
+
+def test_bk7_prism_spreads_a_white_edge_into_its_spectrum():
+    # A white emitter's upper edge seen through a 60 deg BK7 prism near minimum deviation: each
+    # wavelength deviates by its own Sellmeier n (blue most), so the edge becomes a spectrum. The
+    # prediction traces every pixel's ray through the two faces by Snell's law with n(lambda) and
+    # Fresnel transmission (paths of two refractions: max_depth 2), weighs wavelengths by each
+    # channel's share of D65, and is compared with the spectral render row by row as integrals.
+    normal_left = np.array([-np.cos(0.5 * PRISM_APEX), np.sin(0.5 * PRISM_APEX), 0.0])
+    normal_right = np.array([np.cos(0.5 * PRISM_APEX), np.sin(0.5 * PRISM_APEX), 0.0])
+    apex = np.array([0.0, 0.5, 0.0])
+    incidence = np.arcsin(sellmeier(550.0) * np.sin(0.5 * PRISM_APEX))  # minimum deviation at 550 nm
+    elevation = incidence - 0.5 * PRISM_APEX
+    forward = np.array([np.cos(elevation), np.sin(elevation), 0.0])
+    eye = np.array([-0.5 * np.tan(0.5 * PRISM_APEX), 0.0, 0.0]) - 3.0 * forward  # aimed at the left face's middle
+    wall_x, wall_height, wall_half_width = 1000.0, 150.0, 50.0  # far: the edge's parallax is 1 %
+
+    def trace(origins, dirs, lam):
+        """(..., 3) rays and (L,) wavelengths -> height on the wall (..., L) and transmittance."""
+        n = sellmeier(lam)
+        shape = dirs.shape[:-1] + (lam.size,)
+        d = np.broadcast_to(dirs[..., None, :], shape + (3,))
+        t = ((apex - origins) @ normal_left) / (dirs @ normal_left)
+        p = np.broadcast_to((origins + t[..., None] * dirs)[..., None, :], shape + (3,))
+        assert np.all(np.abs(p[..., 1]) < 0.45) and np.all(np.abs(p[..., 2]) < 2.5)  # on the face
+        d, t1 = refract(d, normal_left, np.broadcast_to(1.0 / n, shape))
+        t = ((apex - p) @ normal_right) / (d @ normal_right)
+        p = p + t[..., None] * d
+        assert np.all(np.abs(p[..., 1]) < 0.45) and np.all(np.abs(p[..., 2]) < 2.5)
+        d, t2 = refract(d, -normal_right, np.broadcast_to(n, shape))
+        p = p + ((wall_x - p[..., 0]) / d[..., 0])[..., None] * d
+        return p[..., 1], p[..., 2], t1 * t2
+
+    # The wall's edge where the 550 nm ray through the face middles lands: it sits mid-image.
+    edge_y = float(trace(eye, forward, np.array([550.0]))[0][0])
+    height, width = 64, 8
+    camera = refracta.Camera(tuple(eye), tuple(eye + forward), (0.0, 1.0, 0.0), 4.0, width, height)
+    scene = refracta.Scene()
+    vertices, triangles = prism_mesh()
+    scene.add_mesh(vertices, triangles, material=shading.Dielectric(sellmeier=BK7))
+    low, w = edge_y - wall_height, wall_half_width
+    wall = np.array([[wall_x, low, w], [wall_x, edge_y, w], [wall_x, edge_y, -w], [wall_x, low, -w]])
+    scene.add_mesh(wall, np.array([[0, 1, 2], [0, 2, 3]]), emission=(1.0, 1.0, 1.0))
+    image = refracta.render(scene, camera, None, spp=64, max_depth=2, spectral=True, seed=11, progress=False)
+
+    # The prediction over each pixel: 16 sub-rows x 2 sub-columns, 2 nm steps.
+    lam = np.arange(360.0, 831.0, 2.0)
+    weights = channel_weights(lam) * 2.0
+    sub = 16
+    vs = (np.arange(height * sub) + 0.5) / sub
+    us = np.array([(x + f) for x in range(width) for f in (0.25, 0.75)])
+    dirs = np.array([[camera.ray(u, v)[1] for u in us] for v in vs])
+    y, z, transmittance = trace(eye, dirs, lam)
+    lit = ((y < edge_y) & (y > edge_y - wall_height) & (np.abs(z) < wall_half_width)) * transmittance  # (rows, columns, L)
+    predicted_rows = (lit @ weights).mean(axis=1).reshape(height, sub, 3).mean(axis=1)
+    edges = np.array([np.arcsin(camera.ray(width / 2, v)[1][1]) for v in range(height + 1)])
+    step = np.abs(np.diff(edges))[:, None]
+    rows = image.mean(axis=1)
+    measured, predicted = (rows * step).sum(axis=0), (predicted_rows * step).sum(axis=0)
+    error = np.sqrt((std_error(np.transpose(image, (1, 0, 2))) ** 2 * step ** 2).sum(axis=0))
+    quadrature = step.max() / sub / 2  # midpoint rule of each wavelength's step across a pixel
+    assert np.all(np.abs(measured - predicted) <= SIGMAS * error + quadrature), (measured, predicted, error)
+    # The spectrum is spread: blue deviates most, so its lit region reaches higher in the image.
+    # To first order the edges differ by dD/dn (n_B - n_R), dD/dn = 2 sin(A/2) / cos(i) at minimum
+    # deviation, n_B and n_R the channels' D65-weighted mean indices (0.0126 rad for this sRGB B
+    # and R; 0.0166 rad between 450 and 650 nm).
+    n_mean = (weights * sellmeier(lam)[:, None]).sum(axis=0) / weights.sum(axis=0)
+    spread = 2.0 * np.sin(0.5 * PRISM_APEX) / np.cos(incidence) * (n_mean[2] - n_mean[0])
+    lit_full = predicted_rows[-1]  # the bottom row sees the wall at every wavelength
+    bottom = image[-4:].reshape(-1, 3)
+    assert np.all(np.abs(bottom.mean(axis=0) - lit_full) <= SIGMAS * std_error(bottom)), (bottom.mean(axis=0), lit_full)
+    centroid = measured / lit_full  # edge integrals as angles below the top of the image
+    assert centroid[2] - centroid[0] == pytest.approx(spread, rel=PRISM_FIRST_ORDER), (centroid, spread)
