@@ -65,7 +65,9 @@ def render(
     roulette after 3 bounces. max_depth counts scattering events (0: emitters only, 1: direct
     lighting; Mitsuba's max_depth is this + 1; default _core.RenderOptions().max_depth).
     spectral: 4 hero wavelengths per sample (Wilkie et al. 2014) with colours upsampled from RGB,
-    converted to linear sRGB through the CIE 1931 observer.
+    converted to linear sRGB through the CIE 1931 observer. Through a field the air disperses: each
+    sample keeps its hero wavelength only and traces every segment through
+    refracta.dispersed_field(field, hero) (no eye table: about 1.7x the RGB cost on the hot road).
     spp: samples per pixel (1: pixel centres; more: stratified jitter), seeded by `seed` per pixel
     (independent of the thread count). Textures are filtered over each sample's ray-cone footprint
     (texture_filter=False point-samples them). stats: a dict to fill with counts ('samples',
