@@ -29,7 +29,35 @@
     kd = [0.1, 0.1, 0.1]                # box (centre, size), sphere (centre, radius), obj (file,
                                         # offset, scale), mesh (vertices, triangles, uvs, texture),
                                         # billboard (centre, width, height, texture, facing);
-                                        # all: kd, ks, ns
+                                        # all: kd, ks, ns (Blinn-Phong shorthand), or
+    material = "paint"                  # a [[materials]] entry by name (not obj, billboard);
+    emission = [5.0, 5.0, 5.0]          # box, sphere, mesh: an area light [W/(m^2 sr), RGB]
+                                        # (mesh: two_sided = true emits from both faces)
+
+    [[materials]]                       # any number, referenced by name from objects
+    name = "paint"
+    type = "principled"                 # and the constructor parameters of refracta.shading:
+    base_color = [0.6, 0.04, 0.03]      # diffuse (reflectance, texture), blinn_phong (kd, ks,
+    metallic = 0.75                     # ns, texture, alpha), conductor (eta, k),
+    roughness = 0.35                    # rough_conductor (alpha, alpha_u, alpha_v, eta, k),
+    clearcoat = 1.0                     # dielectric (ior, sellmeier, priority), rough_dielectric
+                                        # (alpha, alpha_u, alpha_v, ior, sellmeier, priority),
+                                        # thin_dielectric (ior), plastic (reflectance, ior, alpha),
+                                        # principled (base_color, metallic, roughness, anisotropic,
+                                        # specular, specular_tint, sheen, sheen_tint, clearcoat,
+                                        # clearcoat_gloss, texture), thin_film (thickness,
+                                        # film_ior, eta, k, alpha)
+
+    [[lights]]                          # any number (area lights: emission on objects)
+    type = "point"                      # point (position, intensity [W/sr]),
+    position = [0.0, 5.0, 0.0]          # spot (position, direction, angle [deg], intensity,
+    intensity = [100.0, 100.0, 100.0]   # inner_angle), sun (direction, radiance, angular_diameter,
+                                        # limb_darkening)
+
+    [environment]                       # optional, instead of [sky]
+    type = "physical_sky"               # constant (radiance), map (file, rotation [deg about y],
+    sun_direction = [-0.5, 0.6, 0.6]    # scale), gradient (horizon, zenith, scale), physical_sky
+    aerosol = 1.0                       # (sun_direction, aerosol, scale: also sets the sun)
 
 File names (obj, textures, environment) are relative to the TOML file. Errors raise ValueError naming the file, the line
 and the key; missing files raise refracta.IoError.
@@ -64,7 +92,33 @@ OBJECT_KEYS = {
     "mesh": {"vertices", "triangles", "uvs", "texture"},
     "billboard": {"centre", "width", "height", "texture", "facing"},
 }
-MATERIAL_KEYS = {"kd", "ks", "ns"}
+MATERIAL_KEYS = {"kd", "ks", "ns", "material"}
+EMITTERS = {"box", "sphere", "mesh"}  # object types that take emission=
+# [[materials]] type -> (refracta.shading class name, parameters); "texture" is a file name.
+MATERIAL_TYPES = {
+    "diffuse": ("Diffuse", {"reflectance", "texture"}),
+    "blinn_phong": ("BlinnPhong", {"kd", "ks", "ns", "texture", "alpha"}),
+    "conductor": ("Conductor", {"eta", "k"}),
+    "rough_conductor": ("RoughConductor", {"alpha", "alpha_u", "alpha_v", "eta", "k"}),
+    "dielectric": ("Dielectric", {"ior", "sellmeier", "priority"}),
+    "rough_dielectric": ("RoughDielectric", {"alpha", "alpha_u", "alpha_v", "ior", "sellmeier", "priority"}),
+    "thin_dielectric": ("ThinDielectric", {"ior"}),
+    "plastic": ("Plastic", {"reflectance", "ior", "alpha"}),
+    "principled": ("Principled", {"base_color", "metallic", "roughness", "anisotropic", "specular", "specular_tint",
+                                  "sheen", "sheen_tint", "clearcoat", "clearcoat_gloss", "texture"}),
+    "thin_film": ("ThinFilm", {"thickness", "film_ior", "eta", "k", "alpha"}),
+}
+LIGHT_KEYS = {
+    "point": {"position", "intensity"},
+    "spot": {"position", "direction", "angle", "intensity", "inner_angle"},
+    "sun": {"direction", "radiance", "angular_diameter", "limb_darkening"},
+}
+ENVIRONMENT_KEYS = {
+    "constant": {"radiance"},
+    "map": {"file", "rotation", "scale"},
+    "gradient": {"horizon", "zenith", "scale"},
+    "physical_sky": {"sun_direction", "aerosol", "scale"},
+}
 
 
 class SceneFile(NamedTuple):
@@ -112,6 +166,161 @@ def _number_list(value: Any, length: int) -> list:
     return [float(v) for v in value]
 
 
+def _colour(value: Any, name: str = "colour") -> list:
+    """A colour: one number (grey) or three (linear RGB), each finite and >= 0."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        value = [value] * 3
+    values = _number_list(value, 3)
+    if not all(v >= 0.0 and v < float("inf") for v in values):
+        raise ValueError(f"{name} must be finite and >= 0 (got {value})")
+    return values
+
+
+def _boolean(value: Any) -> bool:
+    if not isinstance(value, bool):
+        raise TypeError(f"must be true or false (got {value!r})")
+    return value
+
+
+def _offending_key(message: str, keys) -> Optional[str]:
+    """The parameter a constructor's error message names: a whole-word match first, then the
+    longest key the message contains (alpha -> 'alpha_u must be ...')."""
+    words = set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", message))
+    exact = [k for k in keys if k in words]
+    if exact:
+        return exact[0]
+    contained = sorted((k for k in keys if k in message), key=len, reverse=True)
+    return contained[0] if contained else None
+
+
+def _materials(entries: list, where: "_Locator", get, path: Path) -> dict:
+    """[[materials]] -> {name: refracta.shading material}."""
+    from refracta import shading
+
+    materials = {}
+    for index, entry in enumerate(entries):
+        name = get(entry, "materials", "name", str, required=True, index=index)
+        kind = get(entry, "materials", "type", str, required=True, index=index)
+        if kind not in MATERIAL_TYPES:
+            raise where.error(f"unknown material type '{kind}' (expected {', '.join(MATERIAL_TYPES)})",
+                              "materials", "type", index)
+        if name in materials:
+            raise where.error(f"material '{name}' is defined twice", "materials", "name", index)
+        class_name, keys = MATERIAL_TYPES[kind]
+        extra = set(entry) - keys - {"name", "type"}
+        if extra:
+            raise where.error(f"unknown key for a {kind} material (expected {', '.join(sorted(keys))})",
+                              "materials", sorted(extra)[0], index)
+        params = {}
+        for key in sorted(set(entry) & keys):
+            value = entry[key]
+            number = isinstance(value, (int, float)) and not isinstance(value, bool)
+            numbers = isinstance(value, list) and value and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
+            if key == "texture":
+                if not isinstance(value, str):
+                    raise where.error("must be a file name", "materials", key, index)
+                value = str(path.parent / value)
+                if not Path(value).is_file():
+                    raise _core.IoError(f"{path}: [[materials]] #{index + 1} texture: no such file '{value}'")
+            elif not (number or numbers or (key in ("ior", "eta") and isinstance(value, str))):
+                raise where.error(f"must be a number or a list of numbers (got {value!r})", "materials", key, index)
+            params[key] = value
+        try:
+            materials[name] = getattr(shading, class_name)(**params)
+        except (ValueError, TypeError) as error:
+            raise where.error(str(error).splitlines()[0], "materials", _offending_key(str(error), params), index) from None
+    return materials
+
+
+def _environment(scene: _core.Scene, table: dict, where: "_Locator", get, path: Path) -> None:
+    """[environment]: constant, map, gradient or physical_sky."""
+    kind = get(table, "environment", "type", str, required=True)
+    if kind not in ENVIRONMENT_KEYS:
+        raise where.error(f"unknown environment type '{kind}' (expected {', '.join(ENVIRONMENT_KEYS)})",
+                          "environment", "type")
+    extra = set(table) - ENVIRONMENT_KEYS[kind] - {"type"}
+    if extra:
+        raise where.error(f"unknown key for a {kind} environment", "environment", sorted(extra)[0])
+
+    def positive(value):
+        value = float(value)
+        if not (value >= 0.0 and value < float("inf")):
+            raise ValueError(f"must be finite and >= 0 (got {value})")
+        return value
+
+    scale = get(table, "environment", "scale", positive, 1.0)
+    try:
+        if kind == "constant":
+            scene.set_environment(get(table, "environment", "radiance", lambda v: _colour(v, "radiance"), required=True))
+        elif kind == "map":
+            file = get(table, "environment", "file", str, required=True)
+            scene.set_environment(str(path.parent / file), get(table, "environment", "rotation", float, None), scale)
+        elif kind == "gradient":
+            horizon = get(table, "environment", "horizon", lambda v: _colour(v, "horizon"), required=True)
+            scene.set_sky(horizon, get(table, "environment", "zenith", lambda v: _colour(v, "zenith"), horizon),
+                          None, scale)
+        else:
+            from refracta import examples
+
+            def unit(value):
+                vector = _number_list(value, 3)
+                norm = sum(v * v for v in vector) ** 0.5
+                if not norm > 0.0:
+                    raise ValueError("must be a non-zero direction")
+                return [v / norm for v in vector]
+
+            examples.set_physical_sky(scene, get(table, "environment", "sun_direction", unit, required=True),
+                                      aerosol=get(table, "environment", "aerosol", positive, 1.0), scale=scale)
+    except ValueError as error:
+        raise where.error(str(error), "environment", _offending_key(str(error), table)) from None
+
+
+def _lights(scene: _core.Scene, entries: list, data: dict, where: "_Locator", get) -> None:
+    """[[lights]]: point, spot and sun lights (area lights are objects with emission)."""
+    from refracta import lights
+
+    vector = lambda v: _number_list(v, 3)  # noqa: E731
+    for index, entry in enumerate(entries):
+        kind = get(entry, "lights", "type", str, required=True, index=index)
+        if kind == "area":
+            raise where.error("area lights are objects with emission = [r, g, b]", "lights", "type", index)
+        if kind not in LIGHT_KEYS:
+            raise where.error(f"unknown light type '{kind}' (expected {', '.join(LIGHT_KEYS)}; area lights: "
+                              "objects with emission)", "lights", "type", index)
+        extra = set(entry) - LIGHT_KEYS[kind] - {"type"}
+        if extra:
+            raise where.error(f"unknown key for a {kind} light", "lights", sorted(extra)[0], index)
+        try:
+            if kind == "point":
+                scene.add_point_light(get(entry, "lights", "position", vector, required=True, index=index),
+                                      get(entry, "lights", "intensity", lambda v: _colour(v, "intensity"),
+                                          required=True, index=index))
+            elif kind == "spot":
+                position = get(entry, "lights", "position", vector, required=True, index=index)
+                direction = get(entry, "lights", "direction", vector, required=True, index=index)
+                angle = get(entry, "lights", "angle", float, 60.0, index=index)
+                intensity = get(entry, "lights", "intensity", lambda v: _colour(v, "intensity"), required=True,
+                                index=index)
+                inner = get(entry, "lights", "inner_angle", float, None, index=index)
+                if inner is None:
+                    scene.add_spot_light(position, direction, angle, intensity)
+                else:
+                    scene.add_light(lights.SpotLight(position, direction, angle, intensity, inner))
+            else:
+                if "sun" in data or data.get("environment", {}).get("type") == "physical_sky":
+                    raise where.error("a second sun ([sun] or the physical sky has one)", "lights", "type", index)
+                scene.set_sun(get(entry, "lights", "direction", vector, required=True, index=index),
+                              get(entry, "lights", "radiance", lambda v: _colour(v, "radiance"), required=True,
+                                  index=index),
+                              get(entry, "lights", "angular_diameter", float, 0.53, index=index),
+                              get(entry, "lights", "limb_darkening", float, 0.0, index=index))
+        except ValueError as error:
+            if str(error).startswith(str(where.path)):
+                raise
+            raise where.error(str(error), "lights", _offending_key(str(error), entry), index) from None
+
+
 def load_scene(path) -> SceneFile:
     """Read a TOML scene file (format in this module's docstring)."""
     path = Path(os.fspath(path))
@@ -136,9 +345,16 @@ def load_scene(path) -> SceneFile:
                 raise
             raise where.error(str(error), name, key, index) from None
 
-    unknown = set(data) - {"camera", "atmosphere", "sun", "sky", "objects"}
+    tables = ("camera", "atmosphere", "sun", "sky", "environment", "materials", "lights", "objects")
+    unknown = set(data) - set(tables)
     if unknown:
-        raise where.error(f"unknown table (expected camera, atmosphere, sun, sky, objects)", sorted(unknown)[0])
+        raise where.error(f"unknown table (expected {', '.join(tables)})", sorted(unknown)[0])
+    for name in ("materials", "lights", "objects"):
+        if name in data and not (isinstance(data[name], list) and all(isinstance(e, dict) for e in data[name])):
+            raise where.error("must be an array of tables ([[" + name + "]])", name)
+    for name in ("camera", "atmosphere", "sun", "sky", "environment"):
+        if name in data and not isinstance(data[name], dict):
+            raise where.error("must be a table ([" + name + "])", name)
     if "camera" not in data:
         raise ValueError(f"{path}: the [camera] table is missing")
 
@@ -153,7 +369,14 @@ def load_scene(path) -> SceneFile:
         raise where.error(str(error), "camera") from None
 
     scene = _core.Scene()
+    materials = _materials(data.get("materials", []), where, get, path)
+    if "sky" in data and "environment" in data:
+        raise where.error("give [sky] or [environment], not both", "environment")
+    if "environment" in data:
+        _environment(scene, data["environment"], where, get, path)
     if "sun" in data:
+        if data.get("environment", {}).get("type") == "physical_sky":
+            raise where.error("the physical sky sets its own sun: remove [sun]", "sun")
         sun = data["sun"]
         try:
             scene.set_sun(get(sun, "sun", "direction", lambda v: _number_list(v, 3), required=True),
@@ -172,16 +395,35 @@ def load_scene(path) -> SceneFile:
         except ValueError as error:
             raise where.error(str(error), "sky") from None
 
+    _lights(scene, data.get("lights", []), data, where, get)
+
     for index, obj in enumerate(data.get("objects", [])):
         kind = get(obj, "objects", "type", str, required=True, index=index)
         if kind not in OBJECT_KEYS:
             raise where.error(f"unknown type '{kind}' (expected {', '.join(OBJECT_KEYS)})", "objects", "type", index)
-        extra = set(obj) - OBJECT_KEYS[kind] - MATERIAL_KEYS - {"type"}
+        allowed = OBJECT_KEYS[kind] | {"type"} | (MATERIAL_KEYS if kind in ("ground", "box", "sphere", "mesh") else
+                                                  {"kd"} if kind == "billboard" else set())
+        allowed |= {"emission"} if kind in EMITTERS else set()
+        allowed |= {"two_sided"} if kind == "mesh" else set()
+        extra = set(obj) - allowed
         if extra:
             raise where.error(f"unknown key for a {kind}", "objects", sorted(extra)[0], index)
         material = dict(kd=get(obj, "objects", "kd", lambda v: _number_list(v, 3), [0.5, 0.5, 0.5], index=index),
                         ks=get(obj, "objects", "ks", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
                         ns=get(obj, "objects", "ns", float, 1.0, index=index))
+        if "material" in obj:
+            name = get(obj, "objects", "material", str, index=index)
+            if name not in materials:
+                known = ", ".join(materials) or "none defined"
+                raise where.error(f"unknown material '{name}' (materials: {known})", "objects", "material", index)
+            shorthand = sorted({"kd", "ks", "ns"} & set(obj))
+            if shorthand:
+                raise where.error("give material or the kd/ks/ns shorthand, not both", "objects", shorthand[0], index)
+            material = dict(material=materials[name])
+        if kind in EMITTERS:
+            material["emission"] = get(obj, "objects", "emission", lambda v: _colour(v, "emission"), None, index=index)
+        if kind == "mesh":
+            material["two_sided"] = get(obj, "objects", "two_sided", _boolean, False, index=index)
         texture = get(obj, "objects", "texture", str, None, index=index)
         texture = None if texture is None else str(path.parent / texture)
         try:

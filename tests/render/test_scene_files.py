@@ -86,3 +86,69 @@ def test_render_command_writes_the_image(tmp_path):
     assert cli.main(["render", str(DATA / "hot_road.toml"), "-o", str(output), "--size", "48x16"]) == 0
     image = refracta.io.read_image(output)
     assert image.shape == (16, 48, 3)
+
+
+def test_every_material_and_light_type_loads_and_renders_finite():
+    scene, camera, field = refracta.load_scene(DATA / "materials_and_lights.toml")
+    assert field is None
+    # The physical sky (a scaled light: named by its repr) and its sun, point, spot, the emissive
+    # panel (AreaLight) and sphere.
+    kinds = sorted("PhysicalSky" if "PhysicalSky" in repr(light) else type(light).__name__ for light in scene.lights)
+    assert kinds == ["AreaLight", "PhysicalSky", "PointLight", "SphereLight", "SpotLight", "SunLight"]
+    assert scene.geometry_count == 12  # ground, panel, 10 objects with the ten material types
+    for transport in ("direct", "path"):
+        image = refracta.render(scene, camera, field, transport=transport, spp=2, progress=False)
+        assert image.shape == (16, 48, 3) and np.all(np.isfinite(image)) and image.min() >= 0.0
+        assert image.mean() > 0.0
+
+
+def test_materials_are_shared_by_name(tmp_path):
+    """An object naming a material renders as the same material given in Python."""
+    text = (CAMERA + "[environment]\ntype = 'constant'\nradiance = 1.0\n"
+            "[[materials]]\nname = 'red'\ntype = 'diffuse'\nreflectance = [0.8, 0.1, 0.1]\n"
+            "[[objects]]\ntype = 'sphere'\ncentre = [10, 1, 0]\nradius = 3\nmaterial = 'red'\n")
+    scene, camera, _ = refracta.load_scene(write(tmp_path, text))
+    reference = refracta.Scene()
+    reference.set_environment((1.0, 1.0, 1.0))
+    reference.add_sphere([10, 1, 0], 3.0, material=refracta.shading.Diffuse((0.8, 0.1, 0.1)))
+    options = dict(transport="path", spp=4, seed=2, progress=False)
+    np.testing.assert_array_equal(refracta.render(scene, camera, **options),
+                                  refracta.render(reference, camera, **options))
+
+
+LIGHT_CAMERA = CAMERA + "[environment]\ntype = 'constant'\nradiance = 0.1\n"
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        (CAMERA + "[[materials]]\nname = 'x'\ntype = 'velvet'\n",
+         r"scene.toml:7: \[\[materials\]\] #1 type: unknown material type 'velvet'"),
+        (CAMERA + "[[materials]]\nname = 'paint'\ntype = 'diffuse'\n[[objects]]\ntype = 'box'\n"
+         "centre = [5, 1, 0]\nsize = [1, 1, 1]\nmaterial = 'pain'\n",
+         r"scene.toml:12: \[\[objects\]\] #1 material: unknown material 'pain' \(materials: paint\)"),
+        (CAMERA + "[[materials]]\nname = 'metal'\ntype = 'rough_conductor'\n\nalpha = -0.1\n",
+         r"scene.toml:9: \[\[materials\]\] #1 alpha: alpha_u must be finite and >= 0 \(got -0.1\)"),
+        (CAMERA + "[[materials]]\nname = 'paint'\ntype = 'principled'\nroughness = -0.2\n",
+         r"scene.toml:8: \[\[materials\]\] #1 roughness: roughness must be in \[0, 1\]"),
+        (CAMERA + "[[materials]]\nname = 'glass'\ntype = 'dielectric'\niro = 1.5\n",
+         r"scene.toml:8: \[\[materials\]\] #1 iro: unknown key for a dielectric material"),
+        (CAMERA + "[[materials]]\nname = 'a'\ntype = 'diffuse'\nreflectance = 'red'\n",
+         r"scene.toml:8: \[\[materials\]\] #1 reflectance: must be a number or a list of numbers"),
+        (LIGHT_CAMERA + "[[lights]]\ntype = 'laser'\n", r"scene.toml:9: \[\[lights\]\] #1 type: unknown light type 'laser'"),
+        (LIGHT_CAMERA + "[[lights]]\ntype = 'point'\nposition = [0, 1, 0]\nintensity = -1\n",
+         r"scene.toml:11: \[\[lights\]\] #1 intensity: intensity must be finite and >= 0"),
+        (LIGHT_CAMERA + "[[lights]]\ntype = 'spot'\nposition = [0, 1, 0]\ndirection = [1, 0, 0]\nintensity = 1\n"
+         "cone = 30\n", r"scene.toml:13: \[\[lights\]\] #1 cone: unknown key for a spot light"),
+        (CAMERA + "[environment]\ntype = 'fog'\n", r"scene.toml:6: \[environment\] type: unknown environment type"),
+        (CAMERA + "[environment]\ntype = 'physical_sky'\nsun_direction = [0, 0, 0]\n",
+         r"scene.toml:7: \[environment\] sun_direction: must be a non-zero direction"),
+        (CAMERA + "[environment]\ntype = 'physical_sky'\nsun_direction = [0, 1, 0]\n[sun]\ndirection = [0, 1, 0]\n"
+         "radiance = 1\n", r"scene.toml:8: \[sun\]: the physical sky sets its own sun"),
+        (CAMERA + "[[objects]]\ntype = 'ground'\nemission = [1, 1, 1]\n",
+         r"scene.toml:7: \[\[objects\]\] #1 emission: unknown key for a ground"),
+    ],
+)
+def test_material_and_light_errors_name_file_line_and_key(tmp_path, text, message):
+    with pytest.raises(ValueError, match=message):
+        refracta.load_scene(write(tmp_path, text))
