@@ -11,10 +11,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from refracta import _core
+from refracta import _core, shading
 
-SUN = dict(direction=(-0.35, 0.45, 0.25), radiance=(2.6e4, 2.45e4, 2.2e4))
-SKY = dict(horizon=(0.75, 0.82, 0.92), zenith=(0.22, 0.42, 0.85))
+# Radiance unit of the example scenes. refracta.spectrum.PhysicalSky gives linear sRGB normalised
+# by the integral of the CIE y-bar curve (a mean spectral radiance, W/(m^2 sr nm)); times that
+# integral (106.86 nm, CIE 1931 2 deg) its Y is the y-bar-weighted radiance in W/(m^2 sr), so that
+# 683 x Y is the luminance in cd/m^2 (a clear horizon sky: ~3000-5000 cd/m^2).
+RADIANCE_SCALE = 106.857
+SKY_SIZE = (257, 1024)  # equirectangular (rows, columns): an odd row count puts a row on the horizon
 
 
 @dataclass
@@ -33,41 +37,109 @@ def _camera(position, look_at, vfov, width, height):
     return _core.Camera(position, look_at, (0.0, 1.0, 0.0), vfov, width, height)
 
 
+def sun_direction(elevation: float, azimuth: float) -> np.ndarray:
+    """Unit vector toward the sun at `elevation` above the horizon and `azimuth` [deg] measured
+    from +x (the examples' viewing direction) toward +z; y is up."""
+    e, a = np.radians(elevation), np.radians(azimuth)
+    return np.array([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)])
+
+
+def _sky_map(sky, size=SKY_SIZE) -> np.ndarray:
+    """The sky's linear sRGB radiance on an equirectangular grid (H, W, 3), EnvironmentLight's
+    orientation (u = atan2(x, -z) / 2 pi at column centres, v = acos(y) / pi = row / (H - 1));
+    the horizon row takes the radiance just above it, rows below the horizon the sky's ground."""
+    rows, columns = size
+    v = np.arange(rows) / (rows - 1)
+    u = (np.arange(columns) + 0.5) / columns
+    theta = np.minimum(np.pi * v, np.pi / 2 - 1e-4)[:, None] * np.ones((1, columns))
+    theta = np.where(v[:, None] > 0.5, np.pi * v[:, None], theta)
+    phi = 2 * np.pi * u[None, :] * np.ones((rows, 1))
+    dirs = np.stack([np.sin(theta) * np.sin(phi), np.cos(theta), -np.sin(theta) * np.cos(phi)], axis=-1)
+    return sky.rgb_radiance(dirs.reshape(-1, 3)).reshape(rows, columns, 3)
+
+
+def set_physical_sky(scene: _core.Scene, direction, aerosol: float = 1.0, scale: float = RADIANCE_SCALE) -> None:
+    """Light `scene` by a Nishita single-scattering sky (refracta.spectrum.PhysicalSky) and its sun
+    (coloured by extinction along the sun's path), both times `scale` (RADIANCE_SCALE: see above).
+    direction: toward the sun, unit, y up. Uses Scene.set_physical_sky when the build has it;
+    otherwise the sky is tabulated into an environment map and the sun set by set_sun."""
+    direction = np.asarray(direction, dtype=float)
+    if hasattr(scene, "set_physical_sky"):
+        scene.set_physical_sky(direction, aerosol=aerosol, scale=scale)
+        return
+    sky = _core.PhysicalSky(direction, aerosol=aerosol)
+    scene.set_environment(_sky_map(sky), scale=scale)
+    scene.set_sun(direction, sky.sun_radiance_rgb() * scale)
+
+
+# Materials (refracta.shading; shared/SHADING.md section 3). Indices of aluminium at ~650/550/450 nm
+# (Rakic 1995, as tabulated by refractiveindex.info).
+ALUMINIUM = dict(eta=(1.50, 0.96, 0.62), k=(7.60, 6.69, 5.30))
+
+
+def _paint(colour):
+    """Metallic car paint: a Burley principled base under a clear coat."""
+    return shading.Principled(base_color=colour, metallic=0.75, roughness=0.35, clearcoat=1.0, clearcoat_gloss=0.9)
+
+
+def _car(scene, x, z, colour, glass):
+    """A car of boxes along x: painted body, dark interior behind thin glass, black tyres."""
+    scene.add_box((x, 0.75, z), (4.2, 1.1, 1.8), material=_paint(colour))
+    scene.add_box((x - 0.3, 1.55, z), (2.1, 0.48, 1.62), material=shading.Diffuse(0.0))  # unlit cabin
+    scene.add_box((x - 0.3, 1.55, z), (2.2, 0.5, 1.7), material=glass)
+    for dx in (-1.35, 1.35):
+        for dz in (-0.92, 0.92):
+            scene.add_box((x + dx, 0.32, z + dz), (0.64, 0.64, 0.1), material=shading.Diffuse(0.03))
+
+
 def hot_road(width: int = 640, height: int = 240) -> Example:
-    """Inferior mirage: cars on asphalt 10 K warmer than the air (e-folding 10 cm), eye at 1.4 m.
-    The sky and the cars' lower halves appear mirrored below the horizon, like water."""
+    """Inferior mirage: cars on asphalt 10 K warmer than the air (e-folding 10 cm), eye at 1.4 m,
+    an afternoon sun 35 deg high behind the camera under a physical sky. Below the horizon
+    the sky's radiance and the cars' lower halves appear mirrored, like water on the road."""
     scene = _core.Scene()
-    scene.set_sun(**SUN)
-    scene.set_sky(**SKY)
-    scene.add_ground(0.0, 20000.0, kd=(0.09, 0.09, 0.1))
-    colours = [(0.75, 0.08, 0.05), (0.1, 0.25, 0.7), (0.85, 0.85, 0.8), (0.1, 0.1, 0.1)]
+    set_physical_sky(scene, sun_direction(35.0, 180.0))
+    scene.add_ground(0.0, 20000.0, material=shading.Diffuse((0.05, 0.05, 0.055)))  # asphalt, albedo ~0.05
+    glass = shading.ThinDielectric(1.5)
+    colours = [(0.6, 0.04, 0.03), (0.05, 0.15, 0.55), (0.8, 0.8, 0.76), (0.05, 0.05, 0.05)]
     for i, (x, z) in enumerate([(180.0, -1.8), (260.0, 1.7), (340.0, -1.6), (430.0, 2.0)]):
-        scene.add_box((x, 0.75, z), (4.2, 1.1, 1.8), kd=colours[i], ks=(0.25, 0.25, 0.25), ns=60.0)
-        scene.add_box((x - 0.3, 1.55, z), (2.2, 0.5, 1.7), kd=(0.15, 0.18, 0.22), ks=(0.3, 0.3, 0.3), ns=80.0)
+        _car(scene, x, z, colours[i], glass)
+    post = shading.RoughConductor(alpha=0.05, **ALUMINIUM)  # polished aluminium
     for x in np.arange(120.0, 600.0, 60.0):  # lamp posts on both sides
         for z in (-7.0, 7.0):
-            scene.add_box((x, 3.0, z), (0.2, 6.0, 0.2), kd=(0.35, 0.35, 0.35))
+            scene.add_box((x, 3.0, z), (0.2, 6.0, 0.2), material=post)
+    walls = [(0.55, 0.5, 0.45), (0.7, 0.62, 0.5), (0.45, 0.45, 0.48), (0.62, 0.42, 0.33)]
     for i, x in enumerate(np.arange(700.0, 1100.0, 55.0)):  # distant buildings
         h = 8.0 + 9.0 * ((i * 37) % 5) / 4
-        scene.add_box((x, h / 2, -35.0 - 10 * (i % 3)), (30.0, h, 12.0), kd=(0.55, 0.5, 0.45))
+        scene.add_box((x, h / 2, -35.0 - 10 * (i % 3)), (30.0, h, 12.0),
+                      material=shading.Diffuse(walls[i % len(walls)]))
     field = _core.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
     camera = _camera((0.0, 1.4, 0.0), (300.0, 1.4 - 300.0 * np.tan(np.radians(0.15)), 0.0), 2.2, width, height)
     return Example("hot_road", scene, camera, field, 3000.0, hot_road.__doc__)
 
 
 def _ship(scene, x, z, scale=1.0):
-    scene.add_box((x, 4.0 * scale, z), (18.0 * scale, 8.0 * scale, 110.0 * scale), kd=(0.12, 0.12, 0.14))
-    scene.add_box((x, 12.0 * scale, z + 20 * scale), (14.0 * scale, 8.0 * scale, 30.0 * scale), kd=(0.85, 0.85, 0.8))
-    scene.add_box((x, 21.0 * scale, z + 25 * scale), (4.0 * scale, 10.0 * scale, 4.0 * scale), kd=(0.7, 0.15, 0.1))
+    """A freighter of boxes: dark hull (painted steel), white superstructure, red funnel."""
+    hull = shading.Principled(base_color=(0.05, 0.06, 0.08), roughness=0.5)
+    scene.add_box((x, 4.0 * scale, z), (18.0 * scale, 8.0 * scale, 110.0 * scale), material=hull)
+    scene.add_box((x, 12.0 * scale, z + 20 * scale), (14.0 * scale, 8.0 * scale, 30.0 * scale),
+                  material=shading.Plastic(reflectance=(0.8, 0.8, 0.76), alpha=0.3))
+    scene.add_box((x, 21.0 * scale, z + 25 * scale), (4.0 * scale, 10.0 * scale, 4.0 * scale),
+                  material=shading.Plastic(reflectance=(0.6, 0.1, 0.06), alpha=0.3))
+
+
+def _sea():
+    """Sea water: a wind-roughened water surface (n = 1.333, GGX alpha 0.25) over a dark blue-green body (what it
+    scatters back from below, as a Lambertian base under the coat)."""
+    return shading.Plastic(reflectance=(0.01, 0.03, 0.04), ior=1.333, alpha=0.25)
 
 
 def cold_sea(width: int = 640, height: int = 240) -> Example:
     """Superior mirage (looming) over a cold sea on the curved Earth: warm air +7 K over the
-    lowest 50 m lifts a ship 28 km away, below the geometric horizon, into view; eye at 5 m."""
+    lowest 50 m lifts a ship 28 km away, below the geometric horizon, into view; eye at 5 m.
+    Sunset: the sun 2.5 deg high, 25 deg right of the ship, reddened by its long path through the air."""
     scene = _core.Scene()
-    scene.set_sun(**SUN)
-    scene.set_sky(**SKY)
-    scene.add_ground(0.0, 120000.0, kd=(0.04, 0.08, 0.12), ks=(0.05, 0.05, 0.05), ns=200.0)
+    set_physical_sky(scene, sun_direction(2.5, 25.0))
+    scene.add_ground(0.0, 120000.0, material=_sea())
     _ship(scene, 28000.0, -150.0)
     base = _core.PhysicalAtmosphere(t_ground=278.15, inversion_dt=7.0, inversion_base=0.0, inversion_thickness=50.0)
     field = _core.CurvedEarth(base)
@@ -77,15 +149,17 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
 
 def fata_morgana(width: int = 640, height: int = 240) -> Example:
     """Fata Morgana: a sharp inversion just above the eye (+10 K between 12 and 20 m) over cold
-    water stretches and stacks a coastline 30 km away into towers and inverted copies."""
+    water stretches and stacks a coastline 30 km away into towers and inverted copies; a late
+    afternoon sun 12 deg high to the left."""
     scene = _core.Scene()
-    scene.set_sun(**SUN)
-    scene.set_sky(**SKY)
-    scene.add_ground(0.0, 140000.0, kd=(0.04, 0.08, 0.12))
+    set_physical_sky(scene, sun_direction(12.0, -120.0))
+    scene.add_ground(0.0, 140000.0, material=_sea())
     rng = np.random.default_rng(7)
+    land = [(0.35, 0.3, 0.22), (0.3, 0.32, 0.2), (0.6, 0.55, 0.45), (0.5, 0.3, 0.22)]
     for z in np.arange(-1500.0, 1500.0, 120.0):  # a low coastline of hills and houses
         h = float(rng.uniform(6.0, 25.0))
-        scene.add_box((30000.0 + rng.uniform(0, 200), h / 2, z), (150.0, h, 130.0), kd=(0.35, 0.3, 0.22))
+        colour = land[int(rng.integers(len(land)))]
+        scene.add_box((30000.0 + rng.uniform(0, 200), h / 2, z), (150.0, h, 130.0), material=shading.Diffuse(colour))
     base = _core.PhysicalAtmosphere(t_ground=276.15, inversion_dt=10.0, inversion_base=12.0, inversion_thickness=8.0)
     field = _core.CurvedEarth(base)
     camera = _camera((0.0, 14.0, 0.0), (30000.0, 14.0, 0.0), 0.35, width, height)
