@@ -24,7 +24,10 @@ namespace refracta {
 template <class SampleRadiance>
 Image render_film(const Camera& camera, const RenderOptions& options, WorkControl& control,
                   const SampleRadiance& radiance) {
-  const int strata = int(std::ceil(std::sqrt(double(options.spp))));
+  // Whole passes over a strata x strata grid, the samples left over uniform over the pixel: every
+  // sample is then uniform over the pixel (a partly filled grid would leave strata unsampled).
+  const int strata = std::max(1, int(std::floor(std::sqrt(double(options.spp)) + 1e-9)));
+  const int stratified = options.spp / (strata * strata) * strata * strata;
   // Each sample's cone covers its share of the pixel.
   const double pixel_angle = options.texture_filter ? camera.pixel_angle() / strata : 0.0;
   tbb::enumerable_thread_specific<ScratchBuffer> scratch_per_thread;
@@ -35,9 +38,12 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
     for (int s = 0; s < options.spp; ++s) {
       if ((s & 63) == 63 && control.cancel.load(std::memory_order_relaxed)) throw Cancelled();
       double du = 0.5, dv = 0.5;
-      if (options.spp > 1) {  // stratified jitter over a strata x strata grid
+      if (options.spp > 1 && s < stratified) {  // stratified jitter over a strata x strata grid
         du = ((s % strata) + sampler.uniform()) / strata;
         dv = (((s / strata) % strata) + sampler.uniform()) / strata;
+      } else if (options.spp > 1) {
+        du = sampler.uniform();
+        dv = sampler.uniform();
       }
       SampledWavelengths lambda =
           options.spectral ? SampledWavelengths::sample_uniform(sampler.uniform()) : SampledWavelengths::rgb();
