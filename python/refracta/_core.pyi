@@ -315,6 +315,10 @@ class Scene:
         """
         First hit of a straight ray: (point, distance, geometry id), or None.
         """
+    def material(self, geometry: typing.SupportsInt | typing.SupportsIndex) -> ...:
+        """
+        The material of a geometry (an id returned by add_*), as a refracta.shading object.
+        """
     def set_environment(self, source: typing.Any, rotation: typing.Any = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
         The environment (replacing any sky): an RGB radiance (a constant environment), an equirectangular

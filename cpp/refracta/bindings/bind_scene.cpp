@@ -491,6 +491,14 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
            "reference soft shadows of a disc that size. Returns its index among the spot lights.")
       .def_property_readonly("lights", [](const RenderScene& s) { return s.lights(); })
       .def_property_readonly("geometry_count", [](const RenderScene& s) { return s.geometry.geometry_count(); })
+      .def("material",
+           [](const RenderScene& s, int geometry) {
+             if (geometry < 0 || size_t(geometry) >= s.geometry.geometry_count()) {
+               throw_invalid("material: no geometry ", geometry, " (the scene has ", s.geometry.geometry_count(), ")");
+             }
+             return std::const_pointer_cast<Material>(s.material_ptr(s.geometry.material(unsigned(geometry))));
+           },
+           py::arg("geometry"), "The material of a geometry (an id returned by add_*), as a refracta.shading object.")
       .def("intersect",
            [](const RenderScene& s, const py::object& origin, const py::object& direction) -> py::object {
              const Vec3d d = to_point(direction, "direction");

@@ -1,0 +1,85 @@
+"""Wavefront MTL records become refracta.shading materials: Kd/Ks/Ns -> BlinnPhong, Pr/Pm (the PBR
+extension) -> Principled, glass (illum 4/6/7 with d < 1 and Ni > 1) -> Dielectric(Ni), Ke -> an area
+light that renders its radiance."""
+
+import numpy as np
+
+import refracta
+from refracta import shading
+
+OBJ = """mtllib parts.mtl
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+vn 0 0 1
+usemtl paint
+f 1//1 2//1 3//1
+usemtl metal
+f 1//1 3//1 4//1
+o second
+v 0 0 -1
+v 1 0 -1
+v 1 1 -1
+usemtl glass
+f 5 6 7
+v 0 0 -2
+v 1 0 -2
+v 1 1 -2
+usemtl lamp
+f 8 9 10
+"""
+
+MTL = """newmtl paint
+Kd 0.8 0.1 0.1
+Ks 0.2 0.2 0.2
+Ns 50
+newmtl metal
+Kd 0.9 0.9 0.9
+Pr 0.3
+Pm 1.0
+newmtl glass
+Kd 1 1 1
+d 0.1
+Ni 1.5
+illum 7
+newmtl lamp
+Kd 0 0 0
+Ke 2 3 4
+"""
+
+
+MTL_FLOAT = 1e-7  # tinyobjloader reads MTL numbers as float32 (6e-8 relative)
+
+
+def load(tmp_path):
+    (tmp_path / "parts.obj").write_text(OBJ)
+    (tmp_path / "parts.mtl").write_text(MTL)
+    scene = refracta.Scene()
+    ids = scene.add_obj(str(tmp_path / "parts.obj"))
+    return scene, {name: i for i, name in zip(ids, ("paint", "metal", "glass", "lamp"))}
+
+
+def test_each_mtl_model_becomes_its_material(tmp_path):
+    scene, part = load(tmp_path)  # one geometry per material, in the file's order
+    kinds = {name: repr(scene.material(i)).split("(")[0] for name, i in part.items()}
+    assert kinds == {"paint": "BlinnPhong", "metal": "Principled", "glass": "Dielectric", "lamp": "BlinnPhong"}
+    # The Blinn-Phong part evaluates as the MTL's Kd/pi + Ks (Ns + 8)/(8 pi) (n.h)^Ns at normal incidence.
+    f = scene.material(part["paint"]).f([0, 0, 1.0], [0, 0, 1.0])[0]
+    np.testing.assert_allclose(f, np.array([0.8, 0.1, 0.1]) / np.pi + 0.2 * 58 / (8 * np.pi), rtol=MTL_FLOAT)
+    # Glass: the MTL's Ni, a delta lobe (f = 0 everywhere, pdf 0).
+    glass = scene.material(part["glass"])
+    assert "1.5" in repr(glass)
+    assert np.all(glass.f([0, 0, 1.0], [0.0, 0.6, 0.8]) == 0.0)
+
+
+def test_ke_makes_an_area_light_of_that_radiance(tmp_path):
+    scene, _ = load(tmp_path)
+    # The lamp triangle (z = -2, counter-clockwise toward +z) seen from the front, emitters only.
+    camera = refracta.Camera([0.7, 0.3, 5.0], [0.7, 0.3, -2.0], vfov=0.5, width=3, height=3)
+    scene_lamp_only = refracta.Scene()
+    (tmp_path / "lamp.obj").write_text("mtllib parts.mtl\nv 0 0 -2\nv 1 0 -2\nv 1 1 -2\nusemtl lamp\nf 1 2 3\n")
+    scene_lamp_only.add_obj(str(tmp_path / "lamp.obj"))
+    image = refracta.render(scene_lamp_only, camera, progress=False, max_depth=0)
+    np.testing.assert_allclose(image[1, 1], (2.0, 3.0, 4.0), rtol=1e-6)
+    assert len(scene.lights) == 1
