@@ -28,19 +28,27 @@ def test_without_a_field_raster_march_equals_straight():
 
 
 def test_raster_march_agrees_with_curved_where_the_hit_is_in_view():
-    """The hot road: every curved path ends on something the raster view shows (or the sky), so
-    the two renderers differ only where a step size or a silhouette decides between neighbours."""
+    """The hot road: every curved path ends on something the raster view shows (or the sky). Both
+    renders are averaged over 8 seeds (pixel centres, Monte Carlo lighting). Above the horizon they
+    differ only where a step size or a silhouette decides between neighbours; below it raster_march
+    also shows each raster pixel's shading for the straight view, where the curved renderer shades
+    the surface for the bent ray that arrives: glossy car paint in the mirrored images differs
+    (measured: 1.5 % of pixels above the horizon, 5.6 % below)."""
     example = examples.hot_road(160, 60)
     render = dict(progress=False, max_length=example.max_length)
-    curved = refracta.render(example.scene, example.camera, example.field, method="curved", **render)
-    marched = refracta.render(example.scene, example.camera, example.field, method="raster_march", **render)
-    assert differing(curved, marched) < 0.03
-    # The mirage itself: below the horizon, bright pixels are the mirrored sky (the road is dark).
+    curved = np.mean([refracta.render(example.scene, example.camera, example.field, method="curved", seed=s, **render)
+                      for s in range(8)], axis=0)
+    marched = np.mean([refracta.render(example.scene, example.camera, example.field, method="raster_march", seed=s,
+                                       **render) for s in range(8)], axis=0)
     horizon = int(np.ceil(example.camera.project([1e6, example.camera.position[1], 0.0])[1]))
+    assert differing(curved[:horizon], marched[:horizon]) < 0.03
+    assert differing(curved, marched) < 0.05
+    # The mirage itself: below the horizon, bright pixels are the mirrored sky (the road is dark).
     bright_curved = curved[horizon:].max(axis=2) > 0.5
     bright_marched = marched[horizon:].max(axis=2) > 0.5
     assert bright_curved.sum() > 2 * example.camera.width  # a band at least two rows deep
     assert np.mean(bright_curved == bright_marched) > 0.98
+
 
 def test_the_original_settings_see_no_farther_than_300_m():
     """rk4 with 0.3 m steps for 1000 steps ends every path at 300 m: the buildings 700 m away

@@ -85,7 +85,7 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
   frame.buffer = rasterize(scene, frame.view, control);
   const Vec3d eye = camera.position();
   // Raster pixels are shaded by the straight-ray integrator (what the original did: the colour
-  // of the rasterized surface), one sample each, seeded per raster pixel.
+  // of the rasterized surface), spp samples each, seeded as their image pixel.
   RenderOptions straight = options;
   straight.method = RenderMethod::kStraight;
   const Caster caster(scene, nullptr, straight);
@@ -105,9 +105,13 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
                                      : uint64_t(camera.width()) * uint64_t(camera.height()) +
                                            uint64_t(y) * uint64_t(frame.view.width()) + uint64_t(x);
     Sampler sampler{Rng(options.seed, stream)};
-    SampledWavelengths lambda = SampledWavelengths::rgb();
-    const Spectrum L = integrator->li_after(eye, end.direction, end, pixel_angle, lambda, sampler, scratch_per_thread.local());
-    return Vec3d(L.head<3>().matrix());
+    // spp lighting samples at the raster pixel's surface point (no jitter: the point is the pixel's).
+    Spectrum sum = Spectrum::Zero();
+    for (int s = 0; s < options.spp; ++s) {
+      SampledWavelengths lambda = SampledWavelengths::rgb();
+      sum += integrator->li_after(eye, end.direction, end, pixel_angle, lambda, sampler, scratch_per_thread.local());
+    }
+    return Vec3d((sum / options.spp).head<3>().matrix());
   });
   const SampledWavelengths rgb = SampledWavelengths::rgb();
   auto sky = [&](const Vec3d& dir) {
