@@ -325,13 +325,16 @@ class Scene:
         map file (EXR/HDR/PNG through OpenImageIO) or a float array (H, W, 3), times `scale`, turned by
         `rotation` (degrees about y, or a 3 x 3 matrix). Orientation: refracta.lights.EnvironmentLight.
         """
-    def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, below_horizon: str = 'horizon') -> None:
         """
         The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's
         single scattering (Nishita et al. 1993) for the sun toward `sun_direction` (normalised, y up),
-        `aerosol` (Mie density scale), `ozone_du` [Dobson units], `ground_albedo` (seen below the horizon),
-        observer `altitude` [m]; and the sun: a disc of `sun_angular_diameter` [deg] with linear limb
-        darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction (reddened
+        `aerosol` (Mie density scale), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon
+        `below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth (Scene.set_sky's
+        convention: the ground is geometry, and a ray ending its max_length still heading slightly down sees
+        the horizon sky, importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of
+        `ground_albedo` (which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter` [deg]
+        with linear limb darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction (reddened
         toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral renders,
         its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times
         106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun
@@ -949,13 +952,16 @@ class PhysicalSky:
     A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
     Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
     `aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
-    sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon the
-    ground's Lambertian radiance (ground_albedo). See cpp/refracta/shading/physical_sky.h.
+    sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
+    below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
+    BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
+    (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
+    default). See cpp/refracta/shading/physical_sky.h.
     """
     @staticmethod
     def solar_irradiance(wavelengths: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         ...
-    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
+    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, below_horizon: str = 'ground') -> None:
         ...
     def __repr__(self) -> str:
         ...

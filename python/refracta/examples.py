@@ -18,7 +18,6 @@ from refracta import _core, shading
 # integral (106.86 nm, CIE 1931 2 deg) its Y is the y-bar-weighted radiance in W/(m^2 sr), so that
 # 683 x Y is the luminance in cd/m^2 (a clear horizon sky: ~3000-5000 cd/m^2).
 RADIANCE_SCALE = 106.857
-SKY_SIZE = (257, 1024)  # equirectangular (rows, columns): an odd row count puts a row on the horizon
 
 
 @dataclass
@@ -44,35 +43,15 @@ def sun_direction(elevation: float, azimuth: float) -> np.ndarray:
     return np.array([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)])
 
 
-def _sky_map(sky, size=SKY_SIZE) -> np.ndarray:
-    """The sky's linear sRGB radiance on an equirectangular grid (H, W, 3), EnvironmentLight's
-    orientation (u = atan2(x, -z) / 2 pi at column centres, v = acos(y) / pi = row / (H - 1)).
-    The horizon row and every row below it take the radiance just above the horizon (Scene.set_sky's
-    convention): a path that ends at max_length still heading slightly down -- trapped in a duct
-    over the sea, or not yet turned over the road -- would meet the water or the hot layer at a
-    grazing angle and see the horizon sky there, not a black ground."""
-    rows, columns = size
-    v = np.arange(rows) / (rows - 1)
-    u = (np.arange(columns) + 0.5) / columns
-    theta = np.minimum(np.pi * v, np.pi / 2 - 1e-4)[:, None] * np.ones((1, columns))
-    phi = 2 * np.pi * u[None, :] * np.ones((rows, 1))
-    dirs = np.stack([np.sin(theta) * np.sin(phi), np.cos(theta), -np.sin(theta) * np.cos(phi)], axis=-1)
-    return sky.rgb_radiance(dirs.reshape(-1, 3)).reshape(rows, columns, 3)
-
-
 def set_physical_sky(scene: _core.Scene, direction, aerosol: float = 1.0, scale: float = RADIANCE_SCALE) -> None:
-    """Light `scene` by a Nishita single-scattering sky (refracta.spectrum.PhysicalSky) and its sun
-    (coloured by extinction along the sun's path), both times `scale` (RADIANCE_SCALE: see above).
-    direction: toward the sun (normalised here), y up; aerosol: the Mie density scale.
-    The sky is tabulated into an environment map (below the horizon: the horizon's radiance, see
-    _sky_map) and the sun set by set_sun with the sky's extinction-reddened disc radiance.
-    (Scene.set_physical_sky shows its ground_albedo's Lambertian radiance below the horizon, which
-    turns paths ending at max_length while heading down black: a dark band across the looming.)"""
-    direction = np.asarray(direction, dtype=float)
-    direction = direction / np.linalg.norm(direction)
-    sky = _core.PhysicalSky(direction, aerosol=aerosol)
-    scene.set_environment(_sky_map(sky), scale=scale)
-    scene.set_sun(direction, sky.sun_radiance_rgb() * scale)
+    """Light `scene` by Scene.set_physical_sky: a Nishita single-scattering sky and its sun disc
+    (0.53 deg, coloured by extinction along the sun's path), both times `scale` (RADIANCE_SCALE:
+    see above). direction: toward the sun (normalised), y up; aerosol: the Mie density scale.
+    Below the horizon the sky continues from the horizon at each azimuth (below_horizon='horizon'):
+    a path that ends at max_length still heading slightly down -- trapped in a duct over the sea, or
+    not yet turned over the road -- would meet the water or the hot layer at a grazing angle and see
+    the horizon sky there, not a black ground."""
+    scene.set_physical_sky(direction, aerosol=aerosol, scale=scale, below_horizon="horizon")
 
 
 # Materials (refracta.shading; shared/SHADING.md section 3). Indices of aluminium at ~650/550/450 nm

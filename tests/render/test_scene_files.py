@@ -91,10 +91,11 @@ def test_render_command_writes_the_image(tmp_path):
 def test_every_material_and_light_type_loads_and_renders_finite():
     scene, camera, field = refracta.load_scene(DATA / "materials_and_lights.toml")
     assert field is None
-    # The physical sky (tabulated into an environment map by refracta.examples.set_physical_sky)
-    # and its sun, point, spot, the emissive panel (AreaLight) and sphere.
-    kinds = sorted(type(light).__name__ for light in scene.lights)
-    assert kinds == ["AreaLight", "EnvironmentLight", "PointLight", "SphereLight", "SpotLight", "SunLight"]
+    # The physical sky (Scene.set_physical_sky through refracta.examples.set_physical_sky; scaled, so
+    # a plain Light whose repr names it) and its sun, point, spot, the emissive panel (AreaLight) and sphere.
+    kinds = sorted("PhysicalSkyLight" if "PhysicalSkyLight" in repr(light) else type(light).__name__
+                   for light in scene.lights)
+    assert kinds == ["AreaLight", "PhysicalSkyLight", "PointLight", "SphereLight", "SpotLight", "SunLight"]
     assert scene.geometry_count == 12  # ground, panel, 10 objects with the ten material types
     for transport in ("direct", "path"):
         image = refracta.render(scene, camera, field, transport=transport, spp=2, progress=False)

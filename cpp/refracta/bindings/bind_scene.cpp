@@ -422,23 +422,28 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
            "environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.")
       .def("set_physical_sky",
            [](RenderScene& s, const py::object& sun_direction, double aerosol, double ozone_du, double ground_albedo,
-              double sun_angular_diameter, double limb_darkening, double scale, double altitude) {
+              double sun_angular_diameter, double limb_darkening, double scale, double altitude,
+              const std::string& below_horizon) {
              PhysicalSkySettings settings;
              const Vec3d sun = to_point(sun_direction, "sun_direction");
              if (!(sun.norm() > 0.0)) throw_invalid("sun_direction must be non-zero (got (", sun.x(), ", ", sun.y(), ", ", sun.z(), "))");
              settings.sun_direction = sun.normalized();
              settings.aerosol = aerosol, settings.ozone_du = ozone_du, settings.ground_albedo = ground_albedo;
              settings.altitude = altitude;
+             settings.below_horizon = below_horizon_from(below_horizon);
              set_physical_sky(s, settings, sun_angular_diameter, limb_darkening, scale);
            },
            py::arg("sun_direction"), py::arg("aerosol") = 1.0, py::arg("ozone_du") = 300.0, py::arg("ground_albedo") = 0.0,
            py::arg("sun_angular_diameter") = 0.53, py::arg("limb_darkening") = 0.0, py::arg("scale") = 1.0,
-           py::arg("altitude") = 0.0,
+           py::arg("altitude") = 0.0, py::arg("below_horizon") = "horizon",
            "The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's\n"
            "single scattering (Nishita et al. 1993) for the sun toward `sun_direction` (normalised, y up),\n"
-           "`aerosol` (Mie density scale), `ozone_du` [Dobson units], `ground_albedo` (seen below the horizon),\n"
-           "observer `altitude` [m]; and the sun: a disc of `sun_angular_diameter` [deg] with linear limb\n"
-           "darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction (reddened\n"
+           "`aerosol` (Mie density scale), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon\n"
+           "`below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth (Scene.set_sky's\n"
+           "convention: the ground is geometry, and a ray ending its max_length still heading slightly down sees\n"
+           "the horizon sky, importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of\n"
+           "`ground_albedo` (which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter` [deg]\n"
+           "with linear limb darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction (reddened\n"
            "toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral renders,\n"
            "its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times\n"
            "106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun\n"

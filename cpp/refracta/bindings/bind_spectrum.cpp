@@ -239,19 +239,23 @@ void bind_spectrum(py::module_& m) {
 A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
 Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
 `aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
-sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon the
-ground's Lambertian radiance (ground_albedo). See cpp/refracta/shading/physical_sky.h.)doc")
+sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
+below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
+BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
+(ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
+default). See cpp/refracta/shading/physical_sky.h.)doc")
       .def(py::init([](const py::object& sun, double aerosol, double ozone_du, double ground_albedo, double altitude,
-                       double rayleigh_scale) {
+                       double rayleigh_scale, const std::string& below_horizon) {
              PhysicalSkySettings s;
              s.sun_direction = to_point(sun, "sun_direction");
              s.aerosol = aerosol, s.ozone_du = ozone_du, s.ground_albedo = ground_albedo, s.altitude = altitude;
              s.rayleigh_scale = rayleigh_scale;
+             s.below_horizon = below_horizon_from(below_horizon);
              py::gil_scoped_release release;
              return std::make_shared<PhysicalSkyLight>(s);
            }),
            py::arg("sun_direction"), py::arg("aerosol") = 1.0, py::arg("ozone_du") = 300.0, py::arg("ground_albedo") = 0.0,
-           py::arg("altitude") = 0.0, py::arg("rayleigh_scale") = 1.0)
+           py::arg("altitude") = 0.0, py::arg("rayleigh_scale") = 1.0, py::arg("below_horizon") = "ground")
       .def("radiance",
            [](const PhysicalSkyLight& l, const py::object& dirs, const py::object& lambda_object, bool direct) {
              const std::vector<Vec3d> d = unit_directions(dirs);

@@ -111,6 +111,29 @@ double luminance(const Vec3d& rgb) {
   return spectral::linear_srgb_to_xyz(rgb).y();
 }
 
+// The whole sphere's sampling coordinates (kHorizon, physical_sky.h): (x, t), t = (1 + s) / 2 with
+// s = sign(e) sqrt(|e| / (pi/2)); d omega = 4 pi^2 |s| cos e dx dt.
+Vec2d direction_to_xt(const Vec3d& d) {
+  const Vec2d xy = PhysicalSky::direction_to_xy(d);
+  const double e = std::atan2(d.y(), std::hypot(d.x(), d.z()));  // well conditioned at the poles too
+  const double s = std::copysign(std::sqrt(std::abs(e) / (0.5 * kPi)), e);
+  return Vec2d(xy.x(), std::clamp(0.5 * (1.0 + s), 0.0, 1.0));
+}
+
+Vec3d xt_to_direction(const Vec2d& xt) {
+  const double s = 2.0 * xt.y() - 1.0, phi = 2.0 * kPi * xt.x(), e = 0.5 * kPi * s * std::abs(s);
+  return Vec3d(std::cos(e) * std::cos(phi), std::sin(e), std::cos(e) * std::sin(phi));
+}
+
+double xt_jacobian(const Vec2d& xt) {
+  const double s = 2.0 * xt.y() - 1.0;
+  return 4.0 * kPi * kPi * std::abs(s) * std::cos(0.5 * kPi * s * s);
+}
+
+double xy_jacobian(const Vec2d& xy) { return 2.0 * kPi * kPi * xy.y() * std::cos(0.5 * kPi * xy.y() * xy.y()); }
+
+const char* name_of(BelowHorizon b) { return b == BelowHorizon::kHorizon ? "horizon" : "ground"; }
+
 }  // namespace
 
 void PhysicalSkySettings::validate() const {
@@ -123,10 +146,22 @@ void PhysicalSkySettings::validate() const {
   if (!(ground_albedo >= 0.0 && ground_albedo <= 1.0)) problems.push_back(concat("ground_albedo must be in [0, 1] (got ", ground_albedo, ")"));
   if (!(altitude >= 0.0 && altitude <= 20000.0)) problems.push_back(concat("altitude must be in [0, 20000] m (got ", altitude, ")"));
   if (!(rayleigh_scale >= 0.0) || !std::isfinite(rayleigh_scale)) problems.push_back(concat("rayleigh_scale must be >= 0 (got ", rayleigh_scale, ")"));
+  if (below_horizon != BelowHorizon::kGround && below_horizon != BelowHorizon::kHorizon) {
+    problems.push_back(concat("below_horizon must be ground or horizon (got ", int(below_horizon), ")"));
+  } else if (below_horizon == BelowHorizon::kHorizon && ground_albedo != 0.0 && !std::isnan(ground_albedo)) {
+    problems.push_back(concat("ground_albedo must be 0 with below_horizon horizon (got ", ground_albedo,
+                              "; the ground is seen only with below_horizon ground)"));
+  }
   if (problems.empty()) return;
   std::string message = "PhysicalSky: ";
   for (size_t i = 0; i < problems.size(); ++i) message += (i ? "; " : "") + problems[i];
   throw_invalid(message);
+}
+
+BelowHorizon below_horizon_from(const std::string& name) {
+  if (name == "ground") return BelowHorizon::kGround;
+  if (name == "horizon") return BelowHorizon::kHorizon;
+  throw_invalid("below_horizon must be 'ground' or 'horizon' (got '", name, "')");
 }
 
 // --- Directions ----------------------------------------------------------------------------------
@@ -206,7 +241,11 @@ PhysicalSky::PhysicalSky(const PhysicalSkySettings& settings) : settings_(settin
 double PhysicalSky::radiance_direct(const Vec3d& dir, double lambda_nm) const {
   if (!(std::abs(dir.norm() - 1.0) < 1e-6)) throw_invalid("dir must be a unit vector (got norm ", dir.norm(), ")");
   if (!(lambda_nm >= 360.0 && lambda_nm <= 830.0)) return 0.0;
-  if (dir.y() < 0.0) return ground_radiance(lambda_nm);
+  if (dir.y() < 0.0) {
+    if (settings_.below_horizon == BelowHorizon::kGround) return ground_radiance(lambda_nm);
+    const Vec3d level(dir.x(), 0.0, dir.z());  // the horizon at the same azimuth
+    return radiance_direct(level.norm() > 0.0 ? Vec3d(level.normalized()) : Vec3d::UnitX(), lambda_nm);
+  }
   const Vec3d p0(0.0, kEarthRadius + settings_.altitude, 0.0);
   const double ozone_density = settings_.ozone_du * kDobsonUnit / kOzoneHalfWidth;
   const double sigma_o = lerp_10nm(kOzoneCrossSection, lambda_nm);
@@ -233,8 +272,8 @@ double PhysicalSky::radiance_direct(const Vec3d& dir, double lambda_nm) const {
 
 double PhysicalSky::radiance(const Vec3d& dir, double lambda_nm) const {
   if (!(lambda_nm >= 360.0 && lambda_nm <= 830.0)) return 0.0;
-  if (dir.y() < 0.0) return ground_radiance(lambda_nm);
-  const Vec2d xy = direction_to_xy(dir);
+  if (dir.y() < 0.0 && settings_.below_horizon == BelowHorizon::kGround) return ground_radiance(lambda_nm);
+  const Vec2d xy = direction_to_xy(dir);  // below the horizon: y = 0, the lowest row (kHorizon)
   const double fx = xy.x() * kAzimuths - 0.5, fy = std::clamp(xy.y() * kElevations - 0.5, 0.0, kElevations - 1.0);
   const int x0 = int(std::floor(fx)), y0 = std::min(int(fy), kElevations - 2);
   const double tx = fx - x0, ty = fy - y0;
@@ -253,7 +292,7 @@ double PhysicalSky::radiance(const Vec3d& dir, double lambda_nm) const {
 }
 
 Vec3d PhysicalSky::rgb_radiance(const Vec3d& dir) const {
-  if (dir.y() < 0.0) return ground_rgb_;
+  if (dir.y() < 0.0 && settings_.below_horizon == BelowHorizon::kGround) return ground_rgb_;
   const Vec2d xy = direction_to_xy(dir);
   const double fx = xy.x() * kAzimuths - 0.5, fy = std::clamp(xy.y() * kElevations - 0.5, 0.0, kElevations - 1.0);
   const int x0 = int(std::floor(fx)), y0 = std::min(int(fy), kElevations - 2);
@@ -301,41 +340,40 @@ double PhysicalSky::optical_depth(double lambda_nm) const {
 // --- The light -----------------------------------------------------------------------------------
 PhysicalSkyLight::PhysicalSkyLight(const PhysicalSkySettings& settings) : sky_(settings) {
   constexpr int nx = PhysicalSky::kAzimuths, ny = PhysicalSky::kElevations;
-  std::vector<double> weights(size_t(nx) * ny);
-  const double cell = 1.0 / (double(nx) * ny);
-  for (int row = 0; row < ny; ++row) {
+  const int rows = whole_sphere() ? 2 * ny : ny;
+  std::vector<double> weights(size_t(nx) * rows);
+  const double cell = 1.0 / (double(nx) * rows);
+  for (int row = 0; row < rows; ++row) {
     for (int column = 0; column < nx; ++column) {
-      const Vec2d xy((column + 0.5) / nx, (row + 0.5) / ny);
-      const double e = 0.5 * kPi * xy.y() * xy.y();
-      const double solid_angle = 2.0 * kPi * kPi * xy.y() * std::cos(e) * cell;
-      const double y = std::max(0.0, luminance(sky_.rgb_radiance(PhysicalSky::xy_to_direction(xy))));
+      const Vec2d p((column + 0.5) / nx, (row + 0.5) / rows);
+      const Vec3d dir = whole_sphere() ? xt_to_direction(p) : PhysicalSky::xy_to_direction(p);
+      const double solid_angle = (whole_sphere() ? xt_jacobian(p) : xy_jacobian(p)) * cell;
+      const double y = std::max(0.0, luminance(sky_.rgb_radiance(dir)));  // Y of Le at the cell centre
       weights[size_t(row) * nx + column] = y * solid_angle;
       radiance_integral_ += y * solid_angle;
     }
   }
-  radiance_integral_ += 2.0 * kPi * std::max(0.0, luminance(sky_.rgb_radiance(Vec3d(0.0, -1.0, 0.0))));
-  distribution_ = PiecewiseConstant2D(weights, nx, ny);
+  if (!whole_sphere()) radiance_integral_ += 2.0 * kPi * std::max(0.0, luminance(sky_.rgb_radiance(Vec3d(0.0, -1.0, 0.0))));
+  distribution_ = PiecewiseConstant2D(weights, nx, rows);
 }
 
 double PhysicalSkyLight::pdf_direction(const Vec3d& wi) const {
-  if (!(wi.y() > 0.0)) return 0.0;
-  const Vec2d xy = PhysicalSky::direction_to_xy(wi);
-  const double e = 0.5 * kPi * xy.y() * xy.y();
-  const double jacobian = 2.0 * kPi * kPi * xy.y() * std::cos(e);
+  if (!whole_sphere() && !(wi.y() > 0.0)) return 0.0;
+  const Vec2d p = whole_sphere() ? direction_to_xt(wi) : PhysicalSky::direction_to_xy(wi);
+  const double jacobian = whole_sphere() ? xt_jacobian(p) : xy_jacobian(p);
   if (!(jacobian > 0.0)) return 0.0;
-  return distribution_.pdf(xy) / jacobian;
+  return distribution_.pdf(p) / jacobian;
 }
 
 std::optional<LightLiSample> PhysicalSkyLight::sample_li(const LightSampleContext& /*ctx*/, const Vec2d& u,
                                                          const SampledWavelengths& lambda) const {
-  double pdf_xy = 0.0;
-  const Vec2d xy = distribution_.sample(u, &pdf_xy);
-  const double e = 0.5 * kPi * xy.y() * xy.y();
-  const double jacobian = 2.0 * kPi * kPi * xy.y() * std::cos(e);
-  if (!(pdf_xy > 0.0) || !(jacobian > 0.0)) return std::nullopt;
+  double pdf_p = 0.0;
+  const Vec2d p = distribution_.sample(u, &pdf_p);
+  const double jacobian = whole_sphere() ? xt_jacobian(p) : xy_jacobian(p);
+  if (!(pdf_p > 0.0) || !(jacobian > 0.0)) return std::nullopt;
   LightLiSample s;
-  s.wi = PhysicalSky::xy_to_direction(xy).normalized();
-  s.pdf = pdf_xy / jacobian;
+  s.wi = (whole_sphere() ? xt_to_direction(p) : PhysicalSky::xy_to_direction(p)).normalized();
+  s.pdf = pdf_p / jacobian;
   if (!std::isfinite(s.pdf)) return std::nullopt;
   s.L = Le(s.wi, lambda);
   return s;
@@ -367,7 +405,7 @@ std::string PhysicalSkyLight::describe() const {
   const PhysicalSkySettings& s = sky_.settings();
   return concat("PhysicalSkyLight(sun=(", s.sun_direction.x(), ", ", s.sun_direction.y(), ", ", s.sun_direction.z(),
                 "), aerosol=", s.aerosol, ", ozone_du=", s.ozone_du, ", ground_albedo=", s.ground_albedo,
-                ", altitude=", s.altitude, ")");
+                ", altitude=", s.altitude, ", below_horizon=", name_of(s.below_horizon), ")");
 }
 
 }  // namespace refracta

@@ -24,8 +24,12 @@
 //
 // Radiance [W/(m^2 sr nm)] of the sky looking along dir (unit, world, y up): the single-scattered
 // sunlight along the view ray to the top of the atmosphere, the direct sun excluded. Below the
-// horizon (dir.y < 0): the ground's Lambertian radiance albedo/pi E T_sun(observer) max(0, sun.y),
-// without the air between the observer and the ground (exact at altitude 0; 0 with albedo 0).
+// horizon (dir.y < 0), by PhysicalSkySettings::below_horizon:
+// - kGround: the ground's Lambertian radiance albedo/pi E T_sun(observer) max(0, sun.y), without
+//   the air between the observer and the ground (exact at altitude 0; 0 with albedo 0);
+// - kHorizon: the sky continued from the horizon, L(azimuth, e < 0) = L(azimuth, 0) (Scene.set_sky's
+//   convention; for scenes whose ground is geometry: a ray that ends its max_length still heading
+//   slightly down would meet that ground at a grazing angle and see the horizon sky there).
 // Tabulated on construction: 48 wavelengths (360..830 nm, 10 nm), elevation e = (pi/2) v^2 on 64
 // rows (finer near the horizon) x 128 azimuths, in parallel over oneTBB.
 #pragma once
@@ -35,17 +39,25 @@
 #include "refracta/shading/light.h"
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace refracta {
+
+// What the sky shows below the horizon (see above).
+enum class BelowHorizon { kGround, kHorizon };
+
+// "ground" or "horizon" (the Python names); anything else throws std::invalid_argument.
+BelowHorizon below_horizon_from(const std::string& name);
 
 struct PhysicalSkySettings {
   Vec3d sun_direction = Vec3d(0.0, 1.0, 0.0);  // unit, toward the sun, y up
   double aerosol = 1.0;        // Mie density scale >= 0 (1: clear, 0: none; ~3-5: hazy)
   double ozone_du = 300.0;     // ozone column [Dobson units] >= 0 (0: none)
-  double ground_albedo = 0.0;  // in [0, 1]: the ground seen below the horizon
+  double ground_albedo = 0.0;  // in [0, 1]: the ground seen below the horizon (kGround; 0 with kHorizon)
   double altitude = 0.0;       // the observer's height [m] in [0, 20000]
   double rayleigh_scale = 1.0; // Rayleigh density scale >= 0 (tests: 0 isolates the other terms)
+  BelowHorizon below_horizon = BelowHorizon::kGround;
   void validate() const;       // throws std::invalid_argument listing every problem
 };
 
@@ -63,7 +75,8 @@ class PhysicalSky {
   double radiance(const Vec3d& dir, double lambda_nm) const;
   // Its linear sRGB radiance [W/(m^2 sr)] (CIE 1931, normalised by integral y: color.h).
   Vec3d rgb_radiance(const Vec3d& dir) const;
-  // Direct single-scattering integration, no table (the table's reference).
+  // Direct single-scattering integration, no table (the table's reference; kHorizon: at e = 0 below
+  // the horizon, the azimuth +x straight down).
   double radiance_direct(const Vec3d& dir, double lambda_nm) const;
 
   // Beer-Lambert transmittance of the sunlight from the top of the atmosphere to the observer.
@@ -103,11 +116,15 @@ class PhysicalSky {
 };
 
 // The sky as an infinite light: Le from the table (spectral: the 4 wavelengths interpolated; RGB:
-// the table's linear sRGB); sample_li/pdf_li importance-sample the upper hemisphere by a
-// PiecewiseConstant2D over the table's cells weighted by luminance x cell solid angle
-// (2 pi^2 y cos e / (kAzimuths kElevations)), pdf_w = pdf_xy / (2 pi^2 y cos e); the ground below
-// the horizon is reached by BSDF sampling only (pdf_li = 0 there). power() = pi R^2 integral of
-// Y(L) over the sphere, R from preprocess (1 m before).
+// the table's linear sRGB); sample_li/pdf_li importance-sample by a PiecewiseConstant2D over cells
+// weighted by the luminance of Le at the cell centre x the cell's solid angle:
+// - kGround: the upper hemisphere, the table's cells (x, y) (2 pi^2 y cos e / (kAzimuths
+//   kElevations) each), pdf_w = pdf_xy / (2 pi^2 y cos e); the ground below the horizon is reached
+//   by BSDF sampling only (pdf_li = 0 there);
+// - kHorizon: the whole sphere, (x, t) with t = (1 + s) / 2, s = sign(e) sqrt(|e| / (pi/2)) in
+//   [-1, 1] on 2 kElevations rows (the lower hemisphere mirrors the upper one's rows),
+//   pdf_w = pdf_xt / (4 pi^2 |s| cos e).
+// power() = pi R^2 integral of Y(L) over the sphere, R from preprocess (1 m before).
 class PhysicalSkyLight final : public Light {
  public:
   explicit PhysicalSkyLight(const PhysicalSkySettings& settings);
@@ -125,8 +142,10 @@ class PhysicalSkyLight final : public Light {
   double pdf_direction(const Vec3d& wi) const;  // pdf_li without the context
 
  private:
+  bool whole_sphere() const { return sky_.settings().below_horizon == BelowHorizon::kHorizon; }
+
   PhysicalSky sky_;
-  PiecewiseConstant2D distribution_;
+  PiecewiseConstant2D distribution_;  // over (x, y) (kGround) or (x, t) (kHorizon)
   double radiance_integral_ = 0.0;  // integral of Y(L) over the sphere [W/m^2]
   double scene_radius_ = 1.0;
 };
