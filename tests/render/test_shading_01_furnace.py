@@ -13,7 +13,7 @@ import refracta
 from refracta.lights import ConstantEnvironment
 from refracta.shading import Dielectric, Diffuse
 
-from .shading_scenes import check_against
+from .shading_scenes import box_mesh, check_against
 
 EXACT = 1e-5  # float32 film: cosine-sampled constant sky against a Lambertian is zero-variance
 SEEDS = 16    # per-pixel standard errors from 16 seeds (Student-t bound, shading_scenes.check_against)
@@ -88,22 +88,7 @@ def test_lossless_glass_renders_the_furnace(shape):
 
 def inward_cube(half):
     """A closed cube of side 2 half, every triangle's counter-clockwise front facing inward."""
-    corners = np.array([[x, y, z] for x in (-half, half) for y in (-half, half) for z in (-half, half)], float)
-    triangles = []
-    for axis in range(3):
-        others = [a for a in range(3) if a != axis]
-        for side in (0, 1):
-            quad = []
-            for a, b in ((0, 0), (1, 0), (1, 1), (0, 1)):
-                bits = [0, 0, 0]
-                bits[axis], bits[others[0]], bits[others[1]] = side, a, b
-                quad.append(bits[0] * 4 + bits[1] * 2 + bits[2])
-            p = corners[quad]
-            normal = np.cross(p[1] - p[0], p[2] - p[0])
-            if np.sign(normal[axis]) != (1 if side == 0 else -1):  # inward: toward the centre
-                quad = quad[::-1]
-            triangles += [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]]
-    return corners, np.array(triangles)
+    return box_mesh([-half] * 3, [half] * 3, inward=True)
 
 
 @pytest.mark.parametrize("transport,reflectance,depth", [
