@@ -87,3 +87,19 @@ def test_numeric_derivatives_drive_the_same_solve():
     assert result.derivatives == "numeric"
     assert result.success, result.message
     assert result.field.params["alpha"] == pytest.approx(6.0033784907804e-06, rel=1e-8)
+
+
+# Algorithms that run a local optimiser inside a global or augmented-Lagrangian one: nlopt leaves
+# it unset (and crashed the interpreter); refracta sets LD_LBFGS for gradient variants, else LN_BOBYQA.
+COMPOSITE = ["GN_MLSL", "GD_MLSL", "GN_MLSL_LDS", "GD_MLSL_LDS", "G_MLSL", "G_MLSL_LDS", "LN_AUGLAG",
+             "LD_AUGLAG", "LN_AUGLAG_EQ", "LD_AUGLAG_EQ", "AUGLAG", "AUGLAG_EQ"]
+
+
+@pytest.mark.parametrize("algorithm", COMPOSITE)
+def test_composite_nlopt_algorithms_run_with_a_local_optimiser(road_pairs, algorithm):
+    truth, eye, pairs = road_pairs
+    start = refracta.PhysicalAtmosphere(surface_dt=7.0, surface_depth=0.13)
+    result = solve(start, eye, pairs, free=["surface_dt", "surface_depth"], backend=f"nlopt:{algorithm}",
+                   ground=0.0, max_evaluations=400)
+    assert result.cost < result.initial_cost, result.message  # it ran and improved
+    assert np.all(np.isfinite(result.distances))

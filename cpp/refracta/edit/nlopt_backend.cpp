@@ -5,6 +5,8 @@
 
 #include <nlopt.hpp>
 
+#include <memory>
+
 #include <cmath>
 #include <limits>
 
@@ -108,6 +110,19 @@ BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& al
     opt.set_maxeval(settings.max_evaluations);
     if (settings.max_time > 0.0) opt.set_maxtime(settings.max_time);
     if (settings.target_cost > 0.0) opt.set_stopval(settings.target_cost);
+    // MLSL and AUGLAG run a local optimiser that nlopt leaves unset (it then crashes): LD_LBFGS
+    // for the gradient-based variants, LN_BOBYQA (bounded, derivative-free) for the others.
+    std::unique_ptr<nlopt::opt> local;
+    if (algorithm.find("MLSL") != std::string::npos || algorithm.find("AUGLAG") != std::string::npos) {
+      const bool gradient = algorithm.size() > 1 && algorithm[1] == 'D';
+      local = std::make_unique<nlopt::opt>(gradient ? nlopt::LD_LBFGS : nlopt::LN_BOBYQA, unsigned(m));
+      local->set_lower_bounds(std::vector<double>(m, 0.0));
+      local->set_upper_bounds(std::vector<double>(m, 1.0));
+      local->set_ftol_rel(settings.function_tolerance);
+      local->set_xtol_rel(settings.parameter_tolerance);
+      local->set_maxeval(settings.max_evaluations);
+      opt.set_local_optimizer(*local);
+    }
     double minimum;
     const nlopt::result result = opt.optimize(unit, minimum);
     out.converged = result > 0 && result != nlopt::MAXEVAL_REACHED && result != nlopt::MAXTIME_REACHED;
