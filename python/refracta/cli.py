@@ -87,7 +87,9 @@ def demo(out: Path, size=(480, 160)) -> int:
     return 0
 
 
-def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exposure: float) -> int:
+def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exposure: float,
+                transport: str = "direct", max_depth=None, spectral: bool = False, tonemap: str = "reinhard",
+                key=None) -> int:
     """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped)."""
     import refracta
 
@@ -95,9 +97,10 @@ def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exp
     if size is not None:
         camera = camera.resized(*size)
     start = time.perf_counter()
-    image = refracta.render(scene, camera, field, method=method, spp=spp, progress=True)
-    refracta.io.write_image(output, image, exposure=exposure)
-    print(f"wrote {output} ({camera.width}x{camera.height}, {method}, {time.perf_counter() - start:.1f} s)")
+    image = refracta.render(scene, camera, field, method=method, transport=transport, spp=spp, max_depth=max_depth,
+                            spectral=spectral, progress=True)
+    refracta.io.write_image(output, image, exposure=exposure, tonemap=tonemap, key=key)
+    print(f"wrote {output} ({camera.width}x{camera.height}, {method}, {transport}, {time.perf_counter() - start:.1f} s)")
     return 0
 
 
@@ -133,6 +136,12 @@ def main(argv=None) -> int:
     render_parser.add_argument("--size", type=_size, default=None, help="WxH (default: the file's camera size)")
     render_parser.add_argument("--spp", type=int, default=1, help="samples per pixel")
     render_parser.add_argument("--exposure", type=float, default=1.0)
+    render_parser.add_argument("--transport", choices=["direct", "path"], default="direct", help="light transport")
+    render_parser.add_argument("--max-depth", type=int, default=None, help="scattering events per path")
+    render_parser.add_argument("--spectral", action="store_true", help="hero-wavelength spectral rendering")
+    render_parser.add_argument("--tonemap", choices=["linear", "film", "reinhard"], default="reinhard",
+                               help="display curve for PNG/JPEG output")
+    render_parser.add_argument("--key", type=float, default=None, help="Reinhard's key (photographic operator)")
     edit_parser = commands.add_parser("edit", help="solve a scene's atmosphere for point pairs (JSON)")
     edit_parser.add_argument("scene", type=Path, help="scene file (.toml) with an [atmosphere] table")
     edit_parser.add_argument("--pairs", type=Path, required=True, help="pairs file (.json), see refracta.edit.load_pairs")
@@ -142,7 +151,8 @@ def main(argv=None) -> int:
     if args.command == "demo":
         return demo(args.out, args.size)
     if args.command == "render":
-        return render_file(args.scene, args.output, args.method, args.size, args.spp, args.exposure)
+        return render_file(args.scene, args.output, args.method, args.size, args.spp, args.exposure, args.transport,
+                           args.max_depth, args.spectral, args.tonemap, args.key)
     if args.command == "edit":
         return edit_file(args.scene, args.pairs, args.output, args.backend)
     parser.error(f"unknown command {args.command}")

@@ -1,5 +1,7 @@
 """The ray-fan plot and the command line."""
 
+from pathlib import Path
+
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
@@ -47,3 +49,12 @@ def test_demo_writes_the_renders_and_ray_fans(tmp_path):
     assert all((tmp_path / name).stat().st_size > 5_000 for name in written)
     with pytest.raises(SystemExit):
         cli.main(["demo", "--size", "0x5"])
+
+
+def test_cli_renders_a_scene_file_with_path_tracing_and_spectral_colour(tmp_path):
+    scene_file = Path(__file__).resolve().parents[1] / "data" / "hot_road.toml"
+    for extra in (["--transport", "path", "--spp", "4", "--max-depth", "3"], ["--spectral"]):
+        output = tmp_path / "image.exr"
+        assert cli.main(["render", str(scene_file), "-o", str(output), "--size", "48x16", *extra]) == 0
+        image = refracta.io.read_image(output)
+        assert image.shape[:2] == (16, 48) and np.all(np.isfinite(image)) and image.max() > 0.0
