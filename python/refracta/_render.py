@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
-from typing import Callable, Optional, Union
+import copy
+
+from typing import Callable, List, Optional, Tuple, Union
 
 import numpy as np
 
 from refracta import _core
 from refracta._progress import ProgressBar
+from refracta.sweep import map_ordered
 
 # Fields of _core.RenderOptions that render() exposes as keywords (their defaults live in C++).
 _OPTION_NAMES = tuple(name for name in dir(_core.RenderOptions) if not name.startswith("_") and name != "validate")
@@ -43,6 +46,8 @@ def render(
     seed: int = 0,
     progress: Union[bool, Callable[[int, int], None]] = True,
     stats: Optional[dict] = None,
+    executor=None,
+    tiles: Union[None, int, Tuple[int, int]] = None,
     **options,
 ) -> np.ndarray:
     """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3).
@@ -74,7 +79,16 @@ def render(
     'chords': Embree queries along camera paths, 'invalid_samples'). progress: a bar on stderr
     (True), a callable progress(done, total), or False. Runs on all cores with the GIL released;
     Ctrl-C stops it. Further keywords: any field of refracta.RenderOptions (max_length, chord,
-    sagitta, tol, trace, table, tile, texture_filter, march, step, max_steps, guard_band, rr_depth).
+    sagitta, tol, trace, table, tile, texture_filter, march, step, max_steps, guard_band, rr_depth,
+    pixel_bounds: render only pixels [x0, x1) x [y0, y1), each exactly as in the whole image).
+
+    executor, tiles: split the image into tiles rendered by `executor` (a dask.distributed Client,
+    any concurrent.futures.Executor, or None: one after another here) and assembled into the
+    image: bit-identical to a local render (every pixel has its own seed; a height-only field's
+    ElevationTable is the whole image's in every tile, rebuilt by each). tiles=(nx, ny): nx x ny
+    tiles of near-equal size; tiles=n: square tiles of n pixels; None with an executor: 128-pixel
+    tiles. Scene, camera and field are pickled to the workers (texture files by path: they must be
+    readable there). progress then reports finished tiles; stats sums the tiles' counts.
     """
     if "integrator" in options:
         raise ValueError("render: 'integrator' is now 'trace' (the ray integrator: 'rk45' or 'stratified')")
@@ -91,8 +105,73 @@ def render(
     if stats is not None and not isinstance(stats, dict):
         raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
     settings = render_options(method=method, transport=transport, spp=spp, seed=seed, **options)
-    callback = ProgressBar("rendering") if progress is True else (progress or None)
-    image, counts = _core._render(scene, camera, field, settings, callback)
+    if executor is not None or tiles is not None:
+        image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)
+    else:
+        callback = ProgressBar("rendering") if progress is True else (progress or None)
+        image, counts = _core._render(scene, camera, field, settings, callback)
     if stats is not None:
         stats.update(counts)
     return image
+
+
+# Tile side [pixels] when an executor is given without tiles: a few to a few tens of tasks for
+# the usual image sizes (each task rebuilds the eye's table, so far smaller tiles waste work).
+_DEFAULT_TILE = 128
+
+
+def tile_bounds(width: int, height: int, tiles: Union[None, int, Tuple[int, int]],
+                region: Optional[Tuple[int, int, int, int]] = None) -> List[Tuple[int, int, int, int]]:
+    """Pixel bounds (x0, y0, x1, y1) of the tiles of a width x height image (or of `region`), row
+    by row from the top left: tiles=(nx, ny) near-equal tiles, tiles=n squares of n pixels."""
+    x0, y0, x1, y1 = region if region is not None else (0, 0, width, height)
+    w, h = x1 - x0, y1 - y0
+    if tiles is None:
+        tiles = _DEFAULT_TILE
+    if isinstance(tiles, (int, np.integer)) and not isinstance(tiles, bool):
+        if tiles < 1:
+            raise ValueError(f"tiles must be a tile size >= 1 or (nx, ny) (got {tiles!r})")
+        xs = list(range(x0, x1, int(tiles))) + [x1]
+        ys = list(range(y0, y1, int(tiles))) + [y1]
+    else:
+        try:
+            nx, ny = (int(v) for v in tiles)
+        except (TypeError, ValueError):
+            raise ValueError(f"tiles must be a tile size or (nx, ny) (got {tiles!r})") from None
+        if not (1 <= nx <= w and 1 <= ny <= h) or (nx, ny) != tuple(tiles):
+            raise ValueError(f"tiles (nx, ny) must be whole numbers in [1, {w}] x [1, {h}] (got {tiles!r})")
+        xs = [x0 + (i * w) // nx for i in range(nx + 1)]
+        ys = [y0 + (j * h) // ny for j in range(ny + 1)]
+    return [(xs[i], ys[j], xs[i + 1], ys[j + 1]) for j in range(len(ys) - 1) for i in range(len(xs) - 1)]
+
+
+def _render_tile(scene, camera, field, settings, bounds):
+    """One tile on a worker: the image of `bounds` and the render's counts."""
+    settings = copy.copy(settings)  # threads of one process share the caller's options
+    settings.pixel_bounds = bounds
+    return _core._render(scene, camera, field, settings, None)
+
+
+def _render_tiled(scene, camera, field, settings, executor, tiles, progress):
+    region = settings.pixel_bounds
+    if region is not None:  # check it against the camera before sending work
+        x0, y0, x1, y1 = region
+        if not (0 <= x0 < x1 <= camera.width and 0 <= y0 < y1 <= camera.height):
+            raise ValueError(f"pixel_bounds {region} must be a non-empty rectangle inside the "
+                             f"{camera.width} x {camera.height} image")
+    bounds = tile_bounds(camera.width, camera.height, tiles, region)
+    outcomes = map_ordered(_render_tile, [(scene, camera, field, settings, b) for b in bounds], executor,
+                           progress, "rendering tiles")
+    ox, oy = (region[0], region[1]) if region is not None else (0, 0)
+    width = (region[2] - region[0]) if region is not None else camera.width
+    height = (region[3] - region[1]) if region is not None else camera.height
+    image = np.empty((height, width, 3), dtype=np.float32)
+    counts = {"samples": 0, "chords": 0, "invalid_samples": 0}
+    for (x0, y0, x1, y1), (ok, value) in zip(bounds, outcomes):
+        if not ok:
+            raise value[0]
+        tile, tile_counts = value
+        image[y0 - oy:y1 - oy, x0 - ox:x1 - ox] = tile
+        for name in counts:
+            counts[name] += tile_counts[name]
+    return image, counts

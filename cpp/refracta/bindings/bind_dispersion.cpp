@@ -15,7 +15,13 @@ one with dispersed_field(field, wavelength).)doc")
            }),
            py::arg("base"), py::arg("scale"))
       .def_property_readonly("base", [](const DispersedField& f) { return std::const_pointer_cast<IndexField>(f.base()); })
-      .def_property_readonly("scale", &DispersedField::scale);
+      .def_property_readonly("scale", &DispersedField::scale)
+      .def(py::pickle(
+          [](const DispersedField& f) { return py::make_tuple(std::const_pointer_cast<IndexField>(f.base()), f.scale()); },
+          [](const py::tuple& state) {
+            if (state.size() != 2) throw_invalid("DispersedField: bad pickle state");
+            return std::make_shared<DispersedField>(py::cast<std::shared_ptr<IndexField>>(state[0]), py::cast<double>(state[1]));
+          }));
 
   m.def("air_dispersion_scale", &air_dispersion_scale, py::arg("wavelength"), py::arg("reference") = kDefaultFieldWavelength,
         "K(wavelength)/K(reference) of dry air (Birch & Downs 1993 Edlen formula at 101325 Pa, 288.15 K):\n"

@@ -2,6 +2,7 @@
 // class under _core deriving from _core.Light, with vectorised sample_li / pdf_li / Le / L in
 // RGB rendering, for tests and users' own integrators.
 #include "refracta/bindings/bindings.h"
+#include "refracta/bindings/pickle_state.h"
 
 #include "refracta/shading/area_light.h"
 #include "refracta/shading/constant_environment.h"
@@ -185,6 +186,22 @@ Image image_from(const py::object& object) {
   return image;
 }
 
+// Pickle states: each light as its C++ constructor's arguments, colours by color_state (a
+// tabulated colour, e.g. set_physical_sky's sun, keeps its spectrum), rebuilt by that constructor.
+py::tuple xyz(const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); }
+
+void check_state(const py::tuple& t, size_t size, const char* light) {
+  if (t.size() != size) throw_invalid(light, ": bad pickle state (", t.size(), " items, expected ", size, ")");
+}
+
+DoubleArray matrix_array(const Mat3d& r) {
+  DoubleArray out({py::ssize_t(3), py::ssize_t(3)});
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) out.mutable_at(i, j) = r(i, j);
+  }
+  return out;
+}
+
 }  // namespace
 
 void bind_lights(py::module_& m) {
@@ -220,7 +237,12 @@ void bind_lights(py::module_& m) {
              return std::make_shared<PointLight>(to_point(position, "PointLight: position"), illuminant_from(intensity, "PointLight: intensity"));
            }),
            py::arg("position"), py::arg("intensity"))
-      .def_property_readonly("position", [](const PointLight& l) { return points_to_array({l.position()}).attr("reshape")(3); });
+      .def_property_readonly("position", [](const PointLight& l) { return points_to_array({l.position()}).attr("reshape")(3); })
+      .def(py::pickle([](const PointLight& l) { return py::make_tuple(xyz(l.position()), color_state(l.intensity())); },
+                      [](const py::tuple& t) {
+                        check_state(t, 2, "PointLight");
+                        return std::make_shared<PointLight>(to_point(t[0], "position"), color_from_state(t[1]));
+                      }));
 
   py::class_<SpotLight, Light, std::shared_ptr<SpotLight>>(m, "SpotLight",
       "A spot light at position [m] shining along direction into a cone of full angle [deg] with intensity [W/sr]; "
@@ -233,7 +255,16 @@ void bind_lights(py::module_& m) {
            }),
            py::arg("position"), py::arg("direction"), py::arg("angle"), py::arg("intensity"), py::arg("inner_angle") = py::none())
       .def_property_readonly("angle", &SpotLight::angle)
-      .def_property_readonly("inner_angle", &SpotLight::inner_angle);
+      .def_property_readonly("inner_angle", &SpotLight::inner_angle)
+      .def(py::pickle(
+          [](const SpotLight& l) {
+            return py::make_tuple(xyz(l.position()), xyz(l.given_direction()), l.angle(), color_state(l.intensity()), l.inner_angle());
+          },
+          [](const py::tuple& t) {
+            check_state(t, 5, "SpotLight");
+            return std::make_shared<SpotLight>(to_point(t[0], "position"), to_point(t[1], "direction"), py::cast<double>(t[2]),
+                                               color_from_state(t[3]), py::cast<double>(t[4]));
+          }));
 
   py::class_<SunLight, Light, std::shared_ptr<SunLight>>(m, "SunLight",
       "The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] over the disc, angular_diameter "
@@ -246,7 +277,16 @@ void bind_lights(py::module_& m) {
       .def_property_readonly("solid_angle", &SunLight::solid_angle, "Of the disc [sr].")
       .def_property_readonly("direction", [](const SunLight& l) { return points_to_array({l.direction()}).attr("reshape")(3); })
       .def_property_readonly("irradiance", [](const SunLight& l) { return points_to_array({l.irradiance_rgb()}).attr("reshape")(3); },
-          "RGB irradiance [W/m^2] on a surface facing the sun.");
+          "RGB irradiance [W/m^2] on a surface facing the sun.")
+      .def(py::pickle(
+          [](const SunLight& l) {
+            return py::make_tuple(xyz(l.given_direction()), color_state(l.radiance()), l.angular_diameter(), l.limb_darkening());
+          },
+          [](const py::tuple& t) {
+            check_state(t, 4, "SunLight");
+            return std::make_shared<SunLight>(to_point(t[0], "direction"), color_from_state(t[1]), py::cast<double>(t[2]),
+                                              py::cast<double>(t[3]));
+          }));
 
   py::class_<AreaLight, Light, std::shared_ptr<AreaLight>>(m, "AreaLight",
       "An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) int, emission radiance [W/(m^2 sr)] from "
@@ -278,7 +318,12 @@ void bind_lights(py::module_& m) {
       .def("normal", [](const AreaLight& l, size_t t) {
              if (t >= l.mesh().triangles.size()) throw_invalid("triangle must be < ", l.mesh().triangles.size(), " (got ", t, ")");
              return points_to_array({l.normal(t)}).attr("reshape")(3);
-           }, py::arg("triangle"), "The front normal of a triangle (unit; 0 for a zero-area one).");
+           }, py::arg("triangle"), "The front normal of a triangle (unit; 0 for a zero-area one).")
+      .def(py::pickle([](const AreaLight& l) { return py::make_tuple(mesh_state(l.mesh()), color_state(l.emission()), l.two_sided()); },
+                      [](const py::tuple& t) {
+                        check_state(t, 3, "AreaLight");
+                        return std::make_shared<AreaLight>(mesh_from_state(t[0]), color_from_state(t[1]), py::cast<bool>(t[2]));
+                      }));
 
   py::class_<SphereLight, Light, std::shared_ptr<SphereLight>>(m, "SphereLight",
       "An emissive sphere: centre [m], radius [m], emission radiance [W/(m^2 sr)] outward; power 4 pi^2 r^2 L.")
@@ -286,7 +331,12 @@ void bind_lights(py::module_& m) {
              return std::make_shared<SphereLight>(to_point(centre, "SphereLight: centre"), radius, illuminant_from(emission, "SphereLight: emission"));
            }),
            py::arg("centre"), py::arg("radius"), py::arg("emission"))
-      .def_property_readonly("radius", &SphereLight::radius);
+      .def_property_readonly("radius", &SphereLight::radius)
+      .def(py::pickle([](const SphereLight& l) { return py::make_tuple(xyz(l.centre()), l.radius(), color_state(l.emission())); },
+                      [](const py::tuple& t) {
+                        check_state(t, 3, "SphereLight");
+                        return std::make_shared<SphereLight>(to_point(t[0], "centre"), py::cast<double>(t[1]), color_from_state(t[2]));
+                      }));
 
   py::class_<EnvironmentLight, Light, std::shared_ptr<EnvironmentLight>>(m, "EnvironmentLight",
       "An equirectangular environment map (H, W, 3) float linear RGB, rows top (up, +y) to bottom, times scale; "
@@ -331,7 +381,20 @@ void bind_lights(py::module_& m) {
                for (int j = 0; j < 3; ++j) out.mutable_at(i, j) = l.rotation()(i, j);
              }
              return out;
-           }, "The 3 x 3 rotation, map frame -> world.");
+           }, "The 3 x 3 rotation, map frame -> world.")
+      .def(py::pickle(
+          [](const EnvironmentLight& l) {
+            py::array_t<float> image({py::ssize_t(l.height()), py::ssize_t(l.width()), py::ssize_t(3)});
+            float* p = image.mutable_data();
+            for (const Vec3d& texel : l.texels()) {
+              for (int k = 0; k < 3; ++k) *p++ = float(texel[k]);  // exact: the texels came from floats
+            }
+            return py::make_tuple(image, l.scale(), matrix_array(l.rotation()));
+          },
+          [](const py::tuple& t) {
+            check_state(t, 3, "EnvironmentLight");
+            return std::make_shared<EnvironmentLight>(image_from(t[0]), py::cast<double>(t[1]), rotation_from(t[2]));
+          }));
 
   py::class_<ConstantEnvironment, Light, std::shared_ptr<ConstantEnvironment>>(m, "ConstantEnvironment",
       "Uniform radiance [W/(m^2 sr)] from every direction; sampling 'cosine' (about the point's normal, when given) "
@@ -341,7 +404,12 @@ void bind_lights(py::module_& m) {
              return std::make_shared<ConstantEnvironment>(illuminant_from(radiance, "ConstantEnvironment: radiance"),
                  sampling == "cosine" ? ConstantEnvironment::Sampling::kCosine : ConstantEnvironment::Sampling::kUniform);
            }),
-           py::arg("radiance"), py::arg("sampling") = "cosine");
+           py::arg("radiance"), py::arg("sampling") = "cosine")
+      .def(py::pickle([](const ConstantEnvironment& l) { return py::make_tuple(color_state(l.radiance()), int(l.sampling())); },
+                      [](const py::tuple& t) {
+                        check_state(t, 2, "ConstantEnvironment");
+                        return std::make_shared<ConstantEnvironment>(color_from_state(t[0]), ConstantEnvironment::Sampling(py::cast<int>(t[1])));
+                      }));
 
   py::class_<LightSampler>(m, "LightSampler",
       "Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it after "

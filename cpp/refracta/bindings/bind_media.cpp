@@ -139,6 +139,12 @@ py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m,
     return std::make_shared<Field>(typename Field::Config{},
                                    values_from(Field::model_name(), specs, default_values(specs), 0, args, kwargs));
   }));
+  // Pickled as its parameter values, rebuilt (and validated) by the model's constructor.
+  cls.def(py::pickle([](const Field& f) { return py::make_tuple(f.param_values()); },
+                     [](const py::tuple& state) {
+                       if (state.size() != 1) throw_invalid(Field::model_name(), ": bad pickle state");
+                       return std::make_shared<Field>(typename Field::Config{}, py::cast<std::vector<double>>(state[0]));
+                     }));
   return cls;
 }
 
@@ -227,7 +233,14 @@ parameters t0, t1, ... (with pressure, humidity, wavelength).)doc");
                }),
                py::arg("heights"), py::arg("temperatures"), py::arg("pressure") = kStandardPressure,
                py::arg("humidity") = 0.0, py::arg("wavelength") = 550.0)
-      .def_property_readonly("heights", [](const TemperatureProfile& f) { return values_to_array(f.config().heights); });
+      .def_property_readonly("heights", [](const TemperatureProfile& f) { return values_to_array(f.config().heights); })
+      .def(py::pickle(
+          [](const TemperatureProfile& f) { return py::make_tuple(f.config().heights, f.param_values()); },
+          [](const py::tuple& state) {
+            if (state.size() != 2) throw_invalid("TemperatureProfile: bad pickle state");
+            return std::make_shared<TemperatureProfile>(TemperatureProfile::Config{py::cast<std::vector<double>>(state[0])},
+                                                        py::cast<std::vector<double>>(state[1]));
+          }));
   add_air_column<TemperatureProfile>(sounding);
 
   py::class_<CurvedEarth, IndexField, std::shared_ptr<CurvedEarth>>(m, "CurvedEarth", R"doc(
@@ -247,7 +260,13 @@ looming, Fata Morgana).)doc")
            }, py::arg("y"), "True height h [m] of flat-frame heights y'.")
       .def("flat_height", [](const CurvedEarth& f, const py::object& h) {
              return per_height(h, [&](double v) { return f.flat_height(v); });
-           }, py::arg("h"), "Flat-frame height y' of true heights h [m].");
+           }, py::arg("h"), "Flat-frame height y' of true heights h [m].")
+      .def(py::pickle(
+          [](const CurvedEarth& f) { return py::make_tuple(std::const_pointer_cast<IndexField>(f.base()), f.radius()); },
+          [](const py::tuple& state) {
+            if (state.size() != 2) throw_invalid("CurvedEarth: bad pickle state");
+            return std::make_shared<CurvedEarth>(py::cast<std::shared_ptr<IndexField>>(state[0]), py::cast<double>(state[1]));
+          }));
 
   py::class_<CustomField, IndexField, std::shared_ptr<CustomField>>(m, "CustomField", R"doc(
 A field written in Python: ior(points (N,3)) -> (N,) and grad_ior(points (N,3)) -> (N,3), both
@@ -256,7 +275,15 @@ Slow: the integrators call back into Python at every evaluation.)doc")
       .def(py::init<py::object, py::object, bool>(), py::arg("ior"), py::arg("grad_ior"),
            py::arg("height_only") = false)
       .def_property_readonly("ior_function", &CustomField::ior_function)
-      .def_property_readonly("grad_function", &CustomField::grad_function);
+      .def_property_readonly("grad_function", &CustomField::grad_function)
+      // Pickled as its callables: this works when they pickle (module-level functions with
+      // pickle; lambdas and closures with cloudpickle, as dask uses), else the pickler's error.
+      .def(py::pickle(
+          [](const CustomField& f) { return py::make_tuple(f.ior_function(), f.grad_function(), f.height_only()); },
+          [](const py::tuple& state) {
+            if (state.size() != 3) throw_invalid("CustomField: bad pickle state");
+            return std::make_shared<CustomField>(state[0], state[1], py::cast<bool>(state[2]));
+          }));
 }
 
 }  // namespace refracta

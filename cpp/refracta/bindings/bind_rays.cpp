@@ -65,6 +65,31 @@ ray_vectors (N,3) the integrated v (|v| = n); stop: why the path ended ('max_len
       .def_property_readonly("stop", [](const RayPath& p) { return std::string(trace_stop_name(p.stop())); })
       .def_property_readonly("evaluations", &RayPath::evaluations)
       .def("__len__", [](const RayPath& p) { return p.nodes().size(); })
+      // Pickled as its nodes (s, x, v, n, grad n: 11 numbers each, (N, 11) float64), stop and
+      // evaluation count; the copy answers every query exactly as the original.
+      .def(py::pickle(
+          [](const RayPath& p) {
+            DoubleArray nodes({py::ssize_t(p.nodes().size()), py::ssize_t(11)});
+            double* d = nodes.mutable_data();
+            for (const auto& n : p.nodes()) {
+              const double row[11] = {n.s, n.x.x(), n.x.y(), n.x.z(), n.v.x(), n.v.y(), n.v.z(), n.n, n.grad.x(), n.grad.y(), n.grad.z()};
+              d = std::copy(row, row + 11, d);
+            }
+            return py::make_tuple(nodes, int(p.stop()), p.evaluations());
+          },
+          [](const py::tuple& state) {
+            if (state.size() != 3) throw_invalid("RayPath: bad pickle state");
+            const DoubleArray nodes = py::cast<DoubleArray>(state[0]);
+            if (nodes.ndim() != 2 || nodes.shape(1) != 11 || nodes.shape(0) < 1) throw_invalid("RayPath: bad pickle state (nodes)");
+            const int stop = py::cast<int>(state[1]);
+            if (stop < 0 || stop > int(TraceStop::kVisitor)) throw_invalid("RayPath: bad pickle state (stop ", stop, ")");
+            std::vector<RayNode<double>> out(size_t(nodes.shape(0)));
+            for (size_t i = 0; i < out.size(); ++i) {
+              const double* r = nodes.data() + 11 * i;
+              out[i] = RayNode<double>{r[0], Vec3d(r[1], r[2], r[3]), Vec3d(r[4], r[5], r[6]), r[7], Vec3d(r[8], r[9], r[10])};
+            }
+            return std::make_shared<RayPath>(std::move(out), TraceStop(stop), py::cast<int64_t>(state[2]));
+          }))
       .def("point_at",
            [](const RayPath& p, double s) {
              Vec3d direction;

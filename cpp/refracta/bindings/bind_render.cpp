@@ -41,7 +41,46 @@ validate() reports every bad value at once.)doc")
       .def_readwrite("step", &RenderOptions::step, "[m] raster_march rk4 step")
       .def_readwrite("max_steps", &RenderOptions::max_steps, "raster_march rk4 steps")
       .def_readwrite("guard_band", &RenderOptions::guard_band, "raster_march: extra raster view per side (fraction)")
-      .def("validate", &RenderOptions::validate);
+      .def_property("pixel_bounds",
+                    [](const RenderOptions& o) -> py::object {
+                      if (!o.pixel_bounds) return py::none();
+                      const PixelBounds& b = *o.pixel_bounds;
+                      return py::make_tuple(b.x0, b.y0, b.x1, b.y1);
+                    },
+                    [](RenderOptions& o, const py::object& v) {
+                      if (v.is_none()) {
+                        o.pixel_bounds.reset();
+                        return;
+                      }
+                      std::vector<int> b;
+                      try {
+                        b = py::cast<std::vector<int>>(v);
+                      } catch (const py::cast_error&) {
+                        throw_invalid("pixel_bounds must be None or (x0, y0, x1, y1) whole numbers");
+                      }
+                      if (b.size() != 4) throw_invalid("pixel_bounds must be (x0, y0, x1, y1) (got ", b.size(), " values)");
+                      o.pixel_bounds = PixelBounds{b[0], b[1], b[2], b[3]};
+                    },
+                    "None (the whole image) or (x0, y0, x1, y1): render only pixels [x0, x1) x [y0, y1), each exactly as\n"
+                    "in the whole image (distributed tiles); the image returned has that size")
+      .def("validate", &RenderOptions::validate)
+      // Pickled as its fields by name and rebuilt through them (the defaults stay C++'s).
+      .def(py::pickle(
+          [](const py::object& self) {
+            py::dict state;
+            const py::object type = py::type::of(self);
+            const py::object property = py::module_::import("builtins").attr("property");
+            for (const py::handle name : py::module_::import("builtins").attr("dir")(type)) {
+              const std::string key = py::cast<std::string>(name);
+              if (key.rfind("_", 0) != 0 && py::isinstance(type.attr(name), property)) state[name] = self.attr(name);
+            }
+            return state;
+          },
+          [](const py::dict& state) {
+            py::object options = py::cast(RenderOptions());
+            for (const auto& item : state) options.attr(item.first) = item.second;
+            return py::cast<RenderOptions>(options);
+          }));
 
   m.def("_render",
         [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::shared_ptr<IndexField>& field,

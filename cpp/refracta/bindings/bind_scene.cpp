@@ -1,5 +1,6 @@
 // Python bindings of scenes, cameras, lights and image files (cpp/refracta/scene, shading).
 #include "refracta/bindings/bind_scene.h"
+#include "refracta/bindings/pickle_state.h"
 
 #include "refracta/scene/image_io.h"
 #include "refracta/scene/obj_loader.h"
@@ -11,6 +12,7 @@
 #include "refracta/shading/physical_sky.h"
 #include "refracta/shading/point_light.h"
 #include "refracta/shading/principled.h"
+#include "refracta/shading/scaled_light.h"
 #include "refracta/shading/sphere_light.h"
 #include "refracta/shading/spot_light.h"
 #include "refracta/shading/sun_light.h"
@@ -194,30 +196,6 @@ py::array_t<float> image_to_float32(const Image& image) {
 }
 
 namespace {
-
-// An infinite light times a constant factor (set_physical_sky's `scale` on the sky).
-class ScaledInfiniteLight final : public Light {
- public:
-  ScaledInfiniteLight(LightPtr light, double scale) : light_(std::move(light)), scale_(scale) {}
-  LightType type() const override { return light_->type(); }
-  std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, const Vec2d& u,
-                                         const SampledWavelengths& lambda) const override {
-    auto sample = light_->sample_li(ctx, u, lambda);
-    if (sample) sample->L *= scale_;
-    return sample;
-  }
-  double pdf_li(const LightSampleContext& ctx, const Vec3d& wi, const Vec3d& p_light, const Vec3d& n_light) const override {
-    return light_->pdf_li(ctx, wi, p_light, n_light);
-  }
-  Spectrum Le(const Vec3d& dir, const SampledWavelengths& lambda) const override { return scale_ * light_->Le(dir, lambda); }
-  double power() const override { return scale_ * light_->power(); }
-  void preprocess(const Vec3d& centre, double radius) override { light_->preprocess(centre, radius); }
-  std::string describe() const override { return concat(light_->describe(), " x ", scale_); }
-
- private:
-  LightPtr light_;
-  double scale_;
-};
 
 // set_physical_sky: the sky light and the sun it implies. Both are spectral radiance
 // [W/(m^2 sr nm)] in spectral renders and its CIE-Y-weighted mean over wavelength in RGB (linear
@@ -513,7 +491,9 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
              return py::make_tuple(points_to_array({hit->point}).reshape({py::ssize_t(3)}), hit->t, hit->geometry);
            },
            py::arg("origin"), py::arg("direction"),
-           "First hit of a straight ray: (point, distance, geometry id), or None.");
+           "First hit of a straight ray: (point, distance, geometry id), or None.")
+      // Pickled as its content (pickle_state.h): meshes, materials, lights, texture paths.
+      .def(py::pickle(&scene_state, &scene_from_state));
 
   py::class_<Camera>(m, "Camera", R"doc(
 Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
@@ -552,6 +532,20 @@ vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (
            py::arg("scene"), py::arg("u"), py::arg("v"),
            "The scene point seen at pixel (u, v) without atmosphere (straight ray), or None.")
       .def_property_readonly("position", [](const Camera& c) { return points_to_array({c.position()}).reshape({py::ssize_t(3)}); })
+      .def_property_readonly("look_at", [](const Camera& c) { return points_to_array({c.look_at()}).reshape({py::ssize_t(3)}); })
+      .def_property_readonly("up", [](const Camera& c) { return points_to_array({c.up_hint()}).reshape({py::ssize_t(3)}); },
+                             "The up vector given to the constructor.")
+      // Pickled as its constructor's arguments: the copy's rays are bit-identical.
+      .def(py::pickle(
+          [](const Camera& c) {
+            auto xyz = [](const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); };
+            return py::make_tuple(xyz(c.position()), xyz(c.look_at()), xyz(c.up_hint()), c.vfov(), c.width(), c.height());
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 6) throw_invalid("Camera: bad pickle state (", t.size(), " items)");
+            return Camera(to_point(t[0], "position"), to_point(t[1], "look_at"), to_point(t[2], "up"), py::cast<double>(t[3]),
+                          py::cast<int>(t[4]), py::cast<int>(t[5]));
+          }))
       .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
            "The same view at another image size (vertical field of view kept).")
       .def_property_readonly("width", &Camera::width)

@@ -196,6 +196,30 @@ bool for_pairs(const Material& material, const py::object& wo_in, const py::obje
   return w.spectral();
 }
 
+// Pickling and `parameters` of a material: its constructor's keyword arguments, read back from
+// the C++ object; unpickling calls the Python constructor with them (its checks included).
+py::tuple rgb_tuple(const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); }
+py::object optional_rgb_tuple(const std::optional<Vec3d>& v) { return v ? py::object(rgb_tuple(*v)) : py::object(py::none()); }
+py::object texture_argument(int texture) { return texture >= 0 ? py::object(py::int_(texture)) : py::object(py::none()); }
+
+// ior= or sellmeier= as the constructors take them.
+void add_ior_arguments(py::dict& kwargs, const Ior& ior) {
+  if (ior.dispersive()) {
+    const auto& b = ior.sellmeier_b();
+    const auto& c = ior.sellmeier_c();
+    kwargs["sellmeier"] = py::make_tuple(b[0], b[1], b[2], c[0], c[1], c[2]);
+  } else {
+    kwargs["ior"] = ior.rgb_value();
+  }
+}
+
+template <class T, class Class>
+void add_parameters(Class& cls, py::dict (*parameters)(const T&)) {
+  cls.def_property_readonly("parameters", parameters,
+                            "The constructor's keyword arguments that rebuild this material (pickling uses them).");
+  cls.def(py::pickle(parameters, [](const py::dict& kwargs) { return py::cast<std::shared_ptr<T>>(py::type::of<T>()(**kwargs)); }));
+}
+
 const char* kEvalDoc =
     "wo, wi: unit directions in the local shading frame (z = shading normal), shape (N, 3) or (3,)\n"
     "(one side may be a single direction, broadcast), wo toward the viewer, wi toward the light.\n"
@@ -319,39 +343,51 @@ void bind_shading(py::module_& m) {
           "Index of refraction of the medium a dielectric bounds, at the given wavelength [nm] (None: RGB\n"
           "rendering's 550 nm), or None for materials that bound no medium.");
 
-  py::class_<Diffuse, Material, std::shared_ptr<Diffuse>>(m, "Diffuse",
+  py::class_<Diffuse, Material, std::shared_ptr<Diffuse>> diffuse_class(m, "Diffuse",
                                                         "Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b)\n"
                                                         "in [0, 1] (> 1 is refused: it would create energy); texture: a texture id of the\n"
-                                                        "scene multiplying it (ignored by f/pdf/sample, which have no texture table).")
+                                                        "scene multiplying it (ignored by f/pdf/sample, which have no texture table).");
+  diffuse_class
       .def(py::init([](const py::object& reflectance, const py::object& texture) {
              return std::make_shared<Diffuse>(to_rgb(reflectance, "reflectance"), to_texture(texture));
            }),
            py::arg("reflectance") = 0.5, py::arg("texture") = py::none());
+  add_parameters<Diffuse>(diffuse_class, [](const Diffuse& m) { return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance()), py::arg("texture") = texture_argument(m.texture())); });
 
-  py::class_<BlinnPhong, Material, std::shared_ptr<BlinnPhong>>(
+  py::class_<BlinnPhong, Material, std::shared_ptr<BlinnPhong>> blinn_phong_class(
       m, "BlinnPhong",
       "Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0, 1]\n"
       "(numbers or (r, g, b)), ns >= 0; texture multiplies kd; alpha in [0, 1] is the raster opacity (MTL d).\n"
-      "Sampled by a mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact.")
+      "Sampled by a mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact.");
+  blinn_phong_class
       .def(py::init([](const py::object& kd, const py::object& ks, double ns, const py::object& texture, double alpha) {
              return std::make_shared<BlinnPhong>(to_rgb(kd, "kd"), to_rgb(ks, "ks"), ns, to_texture(texture), alpha);
            }),
            py::arg("kd") = 0.5, py::arg("ks") = 0.0, py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("alpha") = 1.0);
+  add_parameters<BlinnPhong>(blinn_phong_class, [](const BlinnPhong& m) {
+    return py::dict(py::arg("kd") = rgb_tuple(m.kd()), py::arg("ks") = rgb_tuple(m.ks()), py::arg("ns") = m.ns(),
+                    py::arg("texture") = texture_argument(m.texture()), py::arg("alpha") = m.alpha());
+  });
 
-  py::class_<Conductor, Material, std::shared_ptr<Conductor>>(
+  py::class_<Conductor, Material, std::shared_ptr<Conductor>> conductor_class(
       m, "Conductor",
       "A smooth metal mirror with the exact complex Fresnel reflectance of eta + i k (numbers or (r, g, b),\n"
-      "relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.")
+      "relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.");
+  conductor_class
       .def(py::init([](const py::object& eta, const py::object& k) {
              return std::make_shared<Conductor>(to_optional_rgb(eta, "eta"), to_optional_rgb(k, "k"));
            }),
            py::arg("eta") = py::none(), py::arg("k") = py::none());
+  add_parameters<Conductor>(conductor_class, [](const Conductor& m) {
+    return py::dict(py::arg("eta") = optional_rgb_tuple(m.index().eta()), py::arg("k") = optional_rgb_tuple(m.index().k()));
+  });
 
-  py::class_<RoughConductor, Material, std::shared_ptr<RoughConductor>>(
+  py::class_<RoughConductor, Material, std::shared_ptr<RoughConductor>> rough_conductor_class(
       m, "RoughConductor",
       "A rough metal: GGX microfacets (alpha, or alpha_u along the tangent and alpha_v along the bitangent;\n"
       ">= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F = 1),\n"
-      "visible-normal sampling.")
+      "visible-normal sampling.");
+  rough_conductor_class
       .def(py::init([](const py::object& alpha, const py::object& alpha_u, const py::object& alpha_v, const py::object& eta,
                        const py::object& k) {
              const auto a = to_alphas(alpha, alpha_u, alpha_v, true, 0.0);
@@ -359,21 +395,32 @@ void bind_shading(py::module_& m) {
            }),
            py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none(),
            py::arg("eta") = py::none(), py::arg("k") = py::none());
+  add_parameters<RoughConductor>(rough_conductor_class, [](const RoughConductor& m) {
+    return py::dict(py::arg("alpha_u") = m.alpha_u(), py::arg("alpha_v") = m.alpha_v(),
+                    py::arg("eta") = optional_rgb_tuple(m.index().eta()), py::arg("k") = optional_rgb_tuple(m.index().k()));
+  });
 
-  py::class_<Dielectric, Material, std::shared_ptr<Dielectric>>(
+  py::class_<Dielectric, Material, std::shared_ptr<Dielectric>> dielectric_class(
       m, "Dielectric",
       "Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by\n"
       "(eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3), C in\n"
       "um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction). priority: nested\n"
-      "dielectrics (larger wins).")
+      "dielectrics (larger wins).");
+  dielectric_class
       .def(py::init([](const py::object& ior, const py::object& sellmeier, int priority) {
              return std::make_shared<Dielectric>(to_ior(ior, sellmeier), priority);
            }),
            py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0);
+  add_parameters<Dielectric>(dielectric_class, [](const Dielectric& m) {
+    py::dict kwargs(py::arg("priority") = m.priority());
+    add_ior_arguments(kwargs, m.ior());
+    return kwargs;
+  });
 
-  py::class_<RoughDielectric, Material, std::shared_ptr<RoughDielectric>>(
+  py::class_<RoughDielectric, Material, std::shared_ptr<RoughDielectric>> rough_dielectric_class(
       m, "RoughDielectric",
-      "Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.")
+      "Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.");
+  rough_dielectric_class
       .def(py::init([](const py::object& alpha, const py::object& ior, const py::object& sellmeier, int priority,
                        const py::object& alpha_u, const py::object& alpha_v) {
              const auto a = to_alphas(alpha, alpha_u, alpha_v, true, 0.0);
@@ -381,19 +428,31 @@ void bind_shading(py::module_& m) {
            }),
            py::arg("alpha") = py::none(), py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0,
            py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
+  add_parameters<RoughDielectric>(rough_dielectric_class, [](const RoughDielectric& m) {
+    py::dict kwargs(py::arg("alpha_u") = m.alpha_u(), py::arg("alpha_v") = m.alpha_v(), py::arg("priority") = m.priority());
+    add_ior_arguments(kwargs, m.ior());
+    return kwargs;
+  });
 
-  py::class_<ThinDielectric, Material, std::shared_ptr<ThinDielectric>>(
+  py::class_<ThinDielectric, Material, std::shared_ptr<ThinDielectric>> thin_dielectric_class(
       m, "ThinDielectric",
       "A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through\n"
-      "(no offset, no medium inside: interior_ior is None). ior as for Dielectric.")
+      "(no offset, no medium inside: interior_ior is None). ior as for Dielectric.");
+  thin_dielectric_class
       .def(py::init([](const py::object& ior, const py::object& sellmeier) { return std::make_shared<ThinDielectric>(to_ior(ior, sellmeier)); }),
            py::arg("ior") = 1.5, py::arg("sellmeier") = py::none());
+  add_parameters<ThinDielectric>(thin_dielectric_class, [](const ThinDielectric& m) {
+    py::dict kwargs;
+    add_ior_arguments(kwargs, m.ior());
+    return kwargs;
+  });
 
-  py::class_<Plastic, Material, std::shared_ptr<Plastic>>(
+  py::class_<Plastic, Material, std::shared_ptr<Plastic>> plastic_class(
       m, "Plastic",
       "Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of index\n"
       "ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX\n"
-      "(or alpha_u, alpha_v); texture multiplies the reflectance.")
+      "(or alpha_u, alpha_v); texture multiplies the reflectance.");
+  plastic_class
       .def(py::init([](const py::object& reflectance, double ior, const py::object& alpha, const py::object& alpha_u,
                        const py::object& alpha_v, const py::object& texture) {
              const auto a = to_alphas(alpha, alpha_u, alpha_v, false, 0.0);
@@ -401,12 +460,17 @@ void bind_shading(py::module_& m) {
            }),
            py::arg("reflectance") = 0.5, py::arg("ior") = 1.5, py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(),
            py::arg("alpha_v") = py::none(), py::arg("texture") = py::none());
+  add_parameters<Plastic>(plastic_class, [](const Plastic& m) {
+    return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance()), py::arg("ior") = m.ior(), py::arg("alpha_u") = m.alpha_u(),
+                    py::arg("alpha_v") = m.alpha_v(), py::arg("texture") = texture_argument(m.texture()));
+  });
 
-  py::class_<Principled, Material, std::shared_ptr<Principled>>(
+  py::class_<Principled, Material, std::shared_ptr<Principled>> principled_class(
       m, "Principled",
       "Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and\n"
       "metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,\n"
-      "clearcoat, clearcoat_gloss, all in [0, 1]. texture multiplies base_color.")
+      "clearcoat, clearcoat_gloss, all in [0, 1]. texture multiplies base_color.");
+  principled_class
       .def(py::init([](const py::object& base_color, double metallic, double roughness, double anisotropic, double specular,
                        double specular_tint, double sheen, double sheen_tint, double clearcoat, double clearcoat_gloss,
                        const py::object& texture) {
@@ -419,12 +483,21 @@ void bind_shading(py::module_& m) {
            py::arg("base_color") = 0.5, py::arg("metallic") = 0.0, py::arg("roughness") = 0.5, py::arg("anisotropic") = 0.0,
            py::arg("specular") = 0.5, py::arg("specular_tint") = 0.0, py::arg("sheen") = 0.0, py::arg("sheen_tint") = 0.5,
            py::arg("clearcoat") = 0.0, py::arg("clearcoat_gloss") = 1.0, py::arg("texture") = py::none());
+  add_parameters<Principled>(principled_class, [](const Principled& m) {
+    const PrincipledParameters& p = m.parameters();
+    return py::dict(py::arg("base_color") = rgb_tuple(m.base_color()), py::arg("metallic") = p.metallic,
+                    py::arg("roughness") = p.roughness, py::arg("anisotropic") = p.anisotropic, py::arg("specular") = p.specular,
+                    py::arg("specular_tint") = p.specular_tint, py::arg("sheen") = p.sheen, py::arg("sheen_tint") = p.sheen_tint,
+                    py::arg("clearcoat") = p.clearcoat, py::arg("clearcoat_gloss") = p.clearcoat_gloss,
+                    py::arg("texture") = texture_argument(m.texture()));
+  });
 
-  py::class_<ThinFilm, Material, std::shared_ptr<ThinFilm>>(
+  py::class_<ThinFilm, Material, std::shared_ptr<ThinFilm>> thin_film_class(
       m, "ThinFilm",
       "Thin-film iridescence (Belcour & Barla 2017): a film of thickness [nm] and index film_ior on a base\n"
       "of complex index eta + i k, with GGX roughness alpha (or alpha_u, alpha_v; 0 = smooth mirror). The\n"
-      "Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.")
+      "Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.");
+  thin_film_class
       .def(py::init([](double thickness, double film_ior, const py::object& eta, const py::object& k, const py::object& alpha,
                        const py::object& alpha_u, const py::object& alpha_v) {
              const auto a = to_alphas(alpha, alpha_u, alpha_v, false, 0.1);
@@ -432,6 +505,10 @@ void bind_shading(py::module_& m) {
            }),
            py::arg("thickness"), py::arg("film_ior") = 1.33, py::arg("eta") = 1.5, py::arg("k") = 0.0, py::arg("alpha") = py::none(),
            py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
+  add_parameters<ThinFilm>(thin_film_class, [](const ThinFilm& m) {
+    return py::dict(py::arg("thickness") = m.thickness(), py::arg("film_ior") = m.film_ior(), py::arg("eta") = rgb_tuple(m.eta()),
+                    py::arg("k") = rgb_tuple(m.k()), py::arg("alpha_u") = m.alpha_u(), py::arg("alpha_v") = m.alpha_v());
+  });
 
   // Fresnel and thin films, vectorised over numpy arrays.
   m.def(
@@ -524,7 +601,17 @@ void bind_shading(py::module_& m) {
            }, py::arg("wavelength"),
            "n at wavelength(s) [nm].")
       .def_property_readonly("dispersive", &Ior::dispersive)
-      .def("__repr__", [](const Ior& ior) { return concat("Ior(", ior.describe(), ")"); });
+      .def("__repr__", [](const Ior& ior) { return concat("Ior(", ior.describe(), ")"); })
+      .def(py::pickle(
+          [](const Ior& ior) {
+            py::dict kwargs;
+            add_ior_arguments(kwargs, ior);
+            return kwargs;
+          },
+          [](const py::dict& kwargs) {
+            return to_ior(kwargs.contains("ior") ? py::object(kwargs["ior"]) : py::object(py::float_(1.5)),
+                          kwargs.contains("sellmeier") ? py::object(kwargs["sellmeier"]) : py::object(py::none()));
+          }));
 }
 
 }  // namespace refracta

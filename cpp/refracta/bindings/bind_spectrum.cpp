@@ -337,7 +337,26 @@ default). See cpp/refracta/shading/physical_sky.h.)doc")
       .def("preprocess", [](PhysicalSkyLight& l, const py::object& c, double r) { l.preprocess(to_point(c, "centre"), r); },
            py::arg("centre"), py::arg("radius"))
       .def_property_readonly("build_seconds", [](const PhysicalSkyLight& l) { return l.sky().build_seconds(); })
-      .def("__repr__", &PhysicalSkyLight::describe);
+      .def("__repr__", &PhysicalSkyLight::describe)
+      // Pickled as its settings; unpickling rebuilds the sky's table (~0.5 s).
+      .def(py::pickle(
+          [](const PhysicalSkyLight& l) {
+            const PhysicalSkySettings& s = l.settings();
+            return py::make_tuple(py::make_tuple(s.sun_direction.x(), s.sun_direction.y(), s.sun_direction.z()), s.aerosol,
+                                  s.ozone_du, s.ground_albedo, s.altitude, s.rayleigh_scale, int(s.below_horizon));
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 7) throw_invalid("PhysicalSky: bad pickle state (", t.size(), " items)");
+            PhysicalSkySettings s;
+            s.sun_direction = to_point(t[0], "sun_direction");
+            s.aerosol = py::cast<double>(t[1]), s.ozone_du = py::cast<double>(t[2]), s.ground_albedo = py::cast<double>(t[3]);
+            s.altitude = py::cast<double>(t[4]), s.rayleigh_scale = py::cast<double>(t[5]);
+            const int below = py::cast<int>(t[6]);
+            if (below != int(BelowHorizon::kGround) && below != int(BelowHorizon::kHorizon)) throw_invalid("PhysicalSky: bad pickle state");
+            s.below_horizon = BelowHorizon(below);
+            py::gil_scoped_release release;
+            return std::make_shared<PhysicalSkyLight>(s);
+          }));
 }
 
 }  // namespace refracta

@@ -1,6 +1,7 @@
 // The pixel-sample loop every ray-traced renderer shares, on the one tile loop (tile_loop.h):
 // spp samples per pixel on a stratified jittered grid, a random generator seeded per pixel and
-// sample (results do not depend on the thread count), hero wavelengths per sample in spectral
+// sample (results depend neither on the thread count nor on options.pixel_bounds: a part of the
+// image renders as in the whole), hero wavelengths per sample in spectral
 // rendering, each sample's spectrum turned to linear sRGB (shading/color.h) and averaged.
 #pragma once
 
@@ -31,7 +32,7 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
   // Each sample's cone covers its share of the pixel.
   const double pixel_angle = options.texture_filter ? camera.pixel_angle() / strata : 0.0;
   tbb::enumerable_thread_specific<ScratchBuffer> scratch_per_thread;
-  return render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
+  return render_tiles(options.bounds_in(camera.width(), camera.height()), options.tile, control, [&](int x, int y) {
     ScratchBuffer& scratch = scratch_per_thread.local();
     Sampler sampler{Rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x))};
     Vec3d sum = Vec3d::Zero();

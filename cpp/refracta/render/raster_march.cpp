@@ -132,8 +132,10 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
       options.march == TraceMethod::kRk4 ? options.step * options.max_steps : options.max_length;
   trace_options.cancel = &control.cancel;
   control.done = 0;
-  if (stats) stats->samples = int64_t(camera.width()) * camera.height();
-  return render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
+  // pixel_bounds limits the march; the raster (and its shading) stays the whole view's.
+  const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
+  if (stats) stats->samples = int64_t(bounds.width()) * bounds.height();
+  return render_tiles(bounds, options.tile, control, [&](int x, int y) {
     const Vec3d dir = camera.direction(x + 0.5, y + 0.5);
     if (!field) {  // a straight ray projects onto its own pixel all along
       const int px = x + frame.view.offset_x(), py = y + frame.view.offset_y();

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "refracta/rays/trace_options.h"
+#include "refracta/render/pixel_bounds.h"
 
 #include <cstdint>
 #include <optional>
@@ -43,6 +44,10 @@ struct RenderOptions {
   // (interpolated to `tol`) instead of tracing each pixel.
   bool use_table = true;
   int tile = 16;
+  // Render only these pixels of the camera's image (the result has the bounds' size); each pixel
+  // exactly as in the whole image (its seed and the eye's ElevationTable are the whole image's).
+  // Unset: the whole image. Checked against the camera by bounds_in(camera).
+  std::optional<PixelBounds> pixel_bounds;
   // Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point
   // samples the finest level (aliases: only for references and tests).
   bool texture_filter = true;
@@ -58,6 +63,9 @@ struct RenderOptions {
   double guard_band = 0.1;
 
   void validate() const;
+  // The pixels to render of a width x height image: pixel_bounds (checked to lie inside, non-empty;
+  // std::invalid_argument otherwise) or the whole image.
+  PixelBounds bounds_in(int width, int height) const;
 };
 
 }  // namespace refracta

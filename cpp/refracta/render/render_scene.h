@@ -25,6 +25,8 @@ class RenderScene {
   // Adds a light; an area light names the geometry whose surface emits it (-1 for none).
   size_t add_light(LightPtr light, int emitter = -1);
   const std::vector<LightPtr>& lights() const { return lights_; }
+  // The geometry an area light is emitted by, or -1.
+  int emitter_of(size_t light) const { return geometry_of_light_.at(light); }
   // The area light a geometry emits, or -1.
   int light_of(unsigned geometry) const {
     return geometry < light_of_geometry_.size() ? light_of_geometry_[geometry] : -1;

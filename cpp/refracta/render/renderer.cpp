@@ -51,7 +51,22 @@ void RenderOptions::validate() const {
   if (!(guard_band >= 0.0 && guard_band <= 2.0)) problem(concat("guard_band must be in [0, 2] (got ", guard_band, ")"));
   if (max_depth < 0) problem(concat("max_depth must be >= 0 (got ", max_depth, ")"));
   if (rr_depth < 1) problem(concat("rr_depth must be >= 1 (got ", rr_depth, ")"));
+  if (pixel_bounds && !(pixel_bounds->x0 >= 0 && pixel_bounds->y0 >= 0 && pixel_bounds->x1 > pixel_bounds->x0 &&
+                        pixel_bounds->y1 > pixel_bounds->y0)) {
+    problem(concat("pixel_bounds (x0, y0, x1, y1) must have 0 <= x0 < x1 and 0 <= y0 < y1 (got (", pixel_bounds->x0, ", ",
+                   pixel_bounds->y0, ", ", pixel_bounds->x1, ", ", pixel_bounds->y1, "))"));
+  }
   if (!problems.empty()) throw std::invalid_argument("RenderOptions: " + problems);
+}
+
+PixelBounds RenderOptions::bounds_in(int width, int height) const {
+  if (!pixel_bounds) return PixelBounds{0, 0, width, height};
+  const PixelBounds& b = *pixel_bounds;
+  if (!(b.x0 >= 0 && b.y0 >= 0 && b.x1 > b.x0 && b.y1 > b.y0 && b.x1 <= width && b.y1 <= height)) {
+    throw_invalid("pixel_bounds (", b.x0, ", ", b.y0, ", ", b.x1, ", ", b.y1, ") must be a non-empty rectangle inside the ",
+                  width, " x ", height, " image");
+  }
+  return b;
 }
 
 namespace {
@@ -96,6 +111,7 @@ std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera
 Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& field, const RenderOptions& options,
              WorkControl& control, RenderStats* stats) {
   options.validate();
+  options.bounds_in(camera.width(), camera.height());  // before any work
   scene.prepare();
   if (options.method == RenderMethod::kRasterMarch) return render_raster_march(scene, camera, field, options, control, stats);
   const std::unique_ptr<ElevationTable> table = eye_table(scene, camera, field, options, control);
@@ -128,7 +144,8 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& fie
                               return L;
                             });
   if (stats) {
-    stats->samples = int64_t(camera.width()) * camera.height() * options.spp;
+    const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
+    stats->samples = int64_t(bounds.width()) * bounds.height() * options.spp;
     stats->chords = chords.load();
     stats->invalid_samples = invalid.load();
   }

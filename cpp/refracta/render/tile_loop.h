@@ -5,26 +5,34 @@
 #include "refracta/core/image.h"
 #include "refracta/core/math.h"
 #include "refracta/core/parallel.h"
+#include "refracta/render/pixel_bounds.h"
 
 #include <algorithm>
 
 namespace refracta {
 
+// radiance(x, y) for every pixel of `bounds` (image coordinates) into an image of the bounds'
+// size, its pixel (0, 0) being the bounds' (x0, y0).
 template <class PixelRadiance>
-Image render_tiles(int width, int height, int tile, WorkControl& control, const PixelRadiance& radiance) {
-  Image image(width, height, 3);
-  const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile;
+Image render_tiles(const PixelBounds& bounds, int tile, WorkControl& control, const PixelRadiance& radiance) {
+  Image image(bounds.width(), bounds.height(), 3);
+  const int tiles_x = (bounds.width() + tile - 1) / tile, tiles_y = (bounds.height() + tile - 1) / tile;
   parallel_for_each(int64_t(tiles_x) * tiles_y, 1, control, [&](int64_t index) {
-    const int x0 = int(index % tiles_x) * tile, y0 = int(index / tiles_x) * tile;
-    for (int y = y0; y < std::min(y0 + tile, height); ++y) {
-      for (int x = x0; x < std::min(x0 + tile, width); ++x) {
+    const int x0 = bounds.x0 + int(index % tiles_x) * tile, y0 = bounds.y0 + int(index / tiles_x) * tile;
+    for (int y = y0; y < std::min(y0 + tile, bounds.y1); ++y) {
+      for (int x = x0; x < std::min(x0 + tile, bounds.x1); ++x) {
         const Vec3d value = radiance(x, y);
-        float* out = image.at(x, y);
+        float* out = image.at(x - bounds.x0, y - bounds.y0);
         for (int c = 0; c < 3; ++c) out[c] = float(value[c]);
       }
     }
   });
   return image;
+}
+
+template <class PixelRadiance>
+Image render_tiles(int width, int height, int tile, WorkControl& control, const PixelRadiance& radiance) {
+  return render_tiles(PixelBounds{0, 0, width, height}, tile, control, radiance);
 }
 
 }  // namespace refracta

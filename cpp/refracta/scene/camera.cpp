@@ -9,7 +9,7 @@ namespace refracta {
 
 Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
                int height)
-    : position_(position), vfov_(vfov_deg), width_(width), height_(height) {
+    : position_(position), look_at_(look_at), up_hint_(up), vfov_(vfov_deg), width_(width), height_(height) {
   if (!is_finite(position)) throw_invalid("Camera: position must be finite");
   if (!is_finite(look_at)) throw_invalid("Camera: look_at must be finite");
   if (!is_finite(up)) throw_invalid("Camera: up must be finite");

@@ -19,6 +19,9 @@ class Camera {
   Vec3d project(const Vec3d& point) const;
 
   const Vec3d& position() const { return position_; }
+  // The constructor's look_at and up, as given (a copy rebuilt from them is bit-identical).
+  const Vec3d& look_at() const { return look_at_; }
+  const Vec3d& up_hint() const { return up_hint_; }
   const Vec3d& forward() const { return forward_; }
   const Vec3d& right() const { return right_; }
   const Vec3d& up() const { return up_; }         // the image's up (orthonormal to forward)
@@ -27,12 +30,12 @@ class Camera {
   int height() const { return height_; }
   double vfov() const { return vfov_; }
   // The same view at another image size (the vertical field of view is kept).
-  Camera resized(int width, int height) const { return Camera(position_, position_ + forward_, up_, vfov_, width, height); }
+  Camera resized(int width, int height) const { return Camera(position_, look_at_, up_hint_, vfov_, width, height); }
   // Angle subtended by one pixel at the image centre [rad].
   double pixel_angle() const;
 
  private:
-  Vec3d position_, forward_, right_, up_;
+  Vec3d position_, look_at_, up_hint_, forward_, right_, up_;
   double vfov_, tan_half_;
   int width_, height_;
 };

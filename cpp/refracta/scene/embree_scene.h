@@ -65,6 +65,12 @@ class Scene {
   const std::vector<SceneMesh>& meshes() const { return meshes_; }
   // Whether a geometry is an exact sphere set (add_spheres) rather than a triangle mesh.
   bool is_spheres(unsigned geometry) const { return sphere_sets_.at(geometry) != nullptr; }
+  struct Spheres {
+    std::vector<Vec3d> centres;
+    std::vector<double> radii;
+  };
+  // A sphere set's centres and radii as given to add_spheres (null for a mesh).
+  const Spheres* spheres(unsigned geometry) const { return sphere_sets_.at(geometry).get(); }
   // Everything shading needs at a hit found along unit `dir`: the unflipped geometric normal and
   // front-face flag, the shading normal (vertex normals interpolated, else the geometric one),
   // uv and dp/du, and the texture footprint: the ray cone's disc of diameter `footprint` [m]
@@ -86,10 +92,6 @@ class Scene {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  struct Spheres {
-    std::vector<Vec3d> centres;
-    std::vector<double> radii;
-  };
   std::vector<int> materials_;
   std::vector<SceneMesh> meshes_;
   std::vector<std::shared_ptr<const Spheres>> sphere_sets_;  // null for meshes

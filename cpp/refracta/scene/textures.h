@@ -36,6 +36,7 @@ class Textures {
   // footprint: the angular width of the lookup [rad].
   Vec3d environment(int id, const Vec3d& dir, double footprint) const;
   const std::string& path(int id) const { return paths_.at(id); }
+  size_t size() const { return paths_.size(); }  // textures registered (ids 0 .. size - 1)
 
  private:
   struct Impl;

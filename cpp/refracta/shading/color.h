@@ -45,6 +45,8 @@ class Color {
   const std::array<double, 3>& coefficients() const { return coefficients_; }
   double scale() const { return scale_; }
   bool is_tabulated() const { return bool(table_); }
+  // Tabulated and blackbody colours: the spectrum at 1 nm steps from spectral::kTableMin (else null).
+  const std::vector<double>* table() const { return table_.get(); }
   const Vec3d& rgb() const { return rgb_; }
   Kind kind() const { return kind_; }
   bool is_black() const { return rgb_.maxCoeff() <= 0.0 && !table_; }

@@ -96,6 +96,8 @@ class ConductorIndex {
     if (!context.lambda->spectral) f.eta[3] = 1.0;  // the unused channel: keep the division finite
     return f;
   }
+  const std::optional<Vec3d>& eta() const { return eta_rgb_; }
+  const std::optional<Vec3d>& k() const { return k_rgb_; }
   std::string describe() const {
     if (!eta_rgb_) return "F=1";
     return concat("eta=", describe_rgb(*eta_rgb_), k_rgb_ ? concat(", k=", describe_rgb(*k_rgb_)) : "");
@@ -114,6 +116,7 @@ class Conductor final : public Material {
     return scratch.make<ConductorBsdf>(index_.at(context));
   }
   std::string describe() const override { return concat("Conductor(", index_.describe(), ")"); }
+  const ConductorIndex& index() const { return index_; }
 
  private:
   ConductorIndex index_;
@@ -131,6 +134,9 @@ class RoughConductor final : public Material {
   std::string describe() const override {
     return concat("RoughConductor(alpha_u=", alpha_u_, ", alpha_v=", alpha_v_, ", ", index_.describe(), ")");
   }
+  double alpha_u() const { return alpha_u_; }
+  double alpha_v() const { return alpha_v_; }
+  const ConductorIndex& index() const { return index_; }
 
  private:
   double alpha_u_, alpha_v_;

@@ -190,6 +190,7 @@ class Dielectric final : public Material {
   std::string describe() const override {
     return concat("Dielectric(ior=", ior_.describe(), priority_ ? concat(", priority=", priority_) : "", ")");
   }
+  const Ior& ior() const { return ior_; }
 
  private:
   Ior ior_;
@@ -213,6 +214,9 @@ class RoughDielectric final : public Material {
     return concat("RoughDielectric(alpha_u=", alpha_u_, ", alpha_v=", alpha_v_, ", ior=", ior_.describe(),
                   priority_ ? concat(", priority=", priority_) : "", ")");
   }
+  double alpha_u() const { return alpha_u_; }
+  double alpha_v() const { return alpha_v_; }
+  const Ior& ior() const { return ior_; }
 
  private:
   double alpha_u_, alpha_v_;
@@ -229,6 +233,7 @@ class ThinDielectric final : public Material {
     return scratch.make<ThinDielectricBsdf>(n / context.eta_outside);
   }
   std::string describe() const override { return concat("ThinDielectric(ior=", ior_.describe(), ")"); }
+  const Ior& ior() const { return ior_; }
 
  private:
   Ior ior_;

@@ -34,6 +34,8 @@ class Diffuse final : public Material {
   const Bsdf* bsdf(const SurfaceInteraction& si, const MaterialContext& context, ScratchBuffer& scratch) const override {
     return scratch.make<DiffuseBsdf>(resolve_reflectance(reflectance_, texture_, si, context));
   }
+  const Vec3d& reflectance() const { return rgb_; }
+  int texture() const { return texture_; }
   std::string describe() const override {
     return concat("Diffuse(reflectance=", describe_rgb(rgb_), texture_ >= 0 ? concat(", texture=", texture_) : "", ")");
   }

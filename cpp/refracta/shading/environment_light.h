@@ -62,6 +62,7 @@ class EnvironmentLight final : public Light {
   static Mat3d rotation_about_y(double degrees);
 
   int width() const { return width_; }
+  const std::vector<Vec3d>& texels() const { return texels_; }  // RGB, row-major, top row first, unscaled
   int height() const { return height_; }
   double scale() const { return scale_; }
   const Mat3d& rotation() const { return rotation_; }

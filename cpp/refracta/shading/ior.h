@@ -51,6 +51,9 @@ class Ior {
   // n in RGB rendering (at kRgbWavelength for a dispersive index).
   double rgb_value() const { return constant_; }
   bool dispersive() const { return dispersive_; }
+  // Sellmeier's B_j and C_j [um^2] (zero for a constant index).
+  const std::array<double, 3>& sellmeier_b() const { return b_; }
+  const std::array<double, 3>& sellmeier_c() const { return c_; }
   std::string describe() const {
     if (!dispersive_) return concat(constant_);
     return concat("sellmeier(B=(", b_[0], ", ", b_[1], ", ", b_[2], "), C=(", c_[0], ", ", c_[1], ", ", c_[2], "))");

@@ -73,6 +73,10 @@ class BlinnPhong final : public Material {
     return scratch.make<BlinnPhongBsdf>(kd, ks, ns_, p_diffuse);
   }
   double alpha() const override { return alpha_; }
+  const Vec3d& kd() const { return kd_rgb_; }
+  const Vec3d& ks() const { return ks_rgb_; }
+  double ns() const { return ns_; }
+  int texture() const { return texture_; }
   std::string describe() const override {
     return concat("BlinnPhong(kd=", describe_rgb(kd_rgb_), ", ks=", describe_rgb(ks_rgb_), ", ns=", ns_,
                   texture_ >= 0 ? concat(", texture=", texture_) : "", alpha_ < 1.0 ? concat(", alpha=", alpha_) : "", ")");

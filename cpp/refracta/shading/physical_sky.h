@@ -139,6 +139,7 @@ class PhysicalSkyLight final : public Light {
   std::string describe() const override;
 
   const PhysicalSky& sky() const { return sky_; }
+  const PhysicalSkySettings& settings() const { return sky_.settings(); }
   double pdf_direction(const Vec3d& wi) const;  // pdf_li without the context
 
  private:

@@ -100,6 +100,11 @@ class Plastic final : public Material {
     return concat("Plastic(reflectance=", describe_rgb(rgb_), ", ior=", ior_.describe(),
                   alpha_u_ > 0.0 ? concat(", alpha_u=", alpha_u_, ", alpha_v=", alpha_v_) : "", ")");
   }
+  const Vec3d& reflectance() const { return rgb_; }
+  double ior() const { return ior_.rgb_value(); }
+  double alpha_u() const { return alpha_u_; }
+  double alpha_v() const { return alpha_v_; }
+  int texture() const { return texture_; }
 
  private:
   static double checked_alpha_or_zero(double alpha, const char* name) {

@@ -134,6 +134,9 @@ class Principled final : public Material {
                   ", sheen=", p_.sheen, ", sheen_tint=", p_.sheen_tint, ", clearcoat=", p_.clearcoat,
                   ", clearcoat_gloss=", p_.clearcoat_gloss, ")");
   }
+  const Vec3d& base_color() const { return base_rgb_; }
+  const PrincipledParameters& parameters() const { return p_; }
+  int texture() const { return texture_; }
 
  private:
   Vec3d base_rgb_;

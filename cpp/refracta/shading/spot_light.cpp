@@ -10,6 +10,7 @@ SpotLight::SpotLight(const Vec3d& position, const Vec3d& direction, double angle
     : position_(position), angle_(angle), inner_angle_(inner_angle < 0.0 ? angle : inner_angle), intensity_(intensity) {
   detail::check_point(position, "SpotLight: position");
   direction_ = detail::check_direction(direction, "SpotLight: direction");
+  given_direction_ = direction;
   if (!std::isfinite(angle) || !(angle > 0.0) || angle > 360.0) throw_invalid("SpotLight: angle must be in (0, 360] degrees (got ", angle, ")");
   if (std::isnan(inner_angle) || !(inner_angle_ > 0.0) || inner_angle_ > angle) {
     throw_invalid("SpotLight: inner_angle must be in (0, angle = ", angle, "] degrees, or < 0 for a hard edge (got ", inner_angle, ")");

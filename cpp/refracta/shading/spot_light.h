@@ -35,11 +35,13 @@ class SpotLight final : public Light {
 
   const Vec3d& position() const { return position_; }
   const Vec3d& direction() const { return direction_; }
+  const Vec3d& given_direction() const { return given_direction_; }  // as passed to the constructor
+  const Color& intensity() const { return intensity_; }
   double angle() const { return angle_; }
   double inner_angle() const { return inner_angle_; }
 
  private:
-  Vec3d position_, direction_;
+  Vec3d position_, direction_, given_direction_;
   double angle_, inner_angle_;
   Color intensity_;
   double cos_outer_, cos_inner_;  // cosines of the half angles

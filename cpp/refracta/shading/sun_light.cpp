@@ -14,6 +14,7 @@ constexpr double kRimSlack = 1e-9;
 SunLight::SunLight(const Vec3d& direction, const Color& radiance, double angular_diameter, double limb_darkening)
     : radiance_(radiance), angular_diameter_(angular_diameter), limb_(limb_darkening) {
   frame_ = Frame::from_z(detail::check_direction(direction, "SunLight: direction"));
+  given_direction_ = direction;
   detail::check_emission(radiance, "SunLight: radiance");
   if (!std::isfinite(angular_diameter) || !(angular_diameter > 0.0) || !(angular_diameter < 180.0)) {
     throw_invalid("SunLight: angular_diameter must be in (0, 180) degrees (got ", angular_diameter, ")");

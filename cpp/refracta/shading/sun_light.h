@@ -46,6 +46,8 @@ class SunLight final : public Light {
   std::string describe() const override;
 
   const Vec3d& direction() const { return frame_.n; }
+  const Vec3d& given_direction() const { return given_direction_; }  // as passed to the constructor
+  const Color& radiance() const { return radiance_; }
   double angular_diameter() const { return angular_diameter_; }
   double limb_darkening() const { return limb_; }
   double solid_angle() const { return 2.0 * kPi * one_minus_cos_max_; }
@@ -59,6 +61,7 @@ class SunLight final : public Light {
   double disc_fraction(const Vec3d& dir) const;
 
   Frame frame_;
+  Vec3d given_direction_;
   Color radiance_;
   double angular_diameter_, limb_;
   double one_minus_cos_max_, sin2_max_;

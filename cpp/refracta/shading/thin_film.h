@@ -125,6 +125,12 @@ class ThinFilm final : public Material {
     return concat("ThinFilm(thickness=", thickness_, ", film_ior=", film_ior_, ", eta=", describe_rgb(eta_rgb_), ", k=",
                   describe_rgb(k_rgb_), ", alpha_u=", alpha_u_, ", alpha_v=", alpha_v_, ")");
   }
+  double thickness() const { return thickness_; }
+  double film_ior() const { return film_ior_; }
+  const Vec3d& eta() const { return eta_rgb_; }
+  const Vec3d& k() const { return k_rgb_; }
+  double alpha_u() const { return alpha_u_; }
+  double alpha_v() const { return alpha_v_; }
 
  private:
   double thickness_, film_ior_;

@@ -1,0 +1,164 @@
+// Pickle states of colours, meshes and scenes (pickle_state.h).
+#include "refracta/bindings/pickle_state.h"
+
+#include "refracta/shading/physical_sky.h"
+#include "refracta/shading/scaled_light.h"
+#include "refracta/shading/spectral.h"
+
+#include <string>
+
+namespace refracta {
+
+namespace {
+
+// The version of the Scene state (bump when its layout changes; older states are refused).
+constexpr int kSceneStateVersion = 1;
+
+void check_size(const py::tuple& t, size_t size, const char* what) {
+  if (t.size() != size) throw_invalid(what, ": bad pickle state (", t.size(), " items, expected ", size, ")");
+}
+
+// A light object from its pickled Python object (PhysicalSky is bound apart from Light).
+LightPtr light_from(const py::handle& object) {
+  if (py::isinstance<py::tuple>(object)) {  // ("scaled", light, scale): set_physical_sky's scaled sky
+    const py::tuple t = py::reinterpret_borrow<py::tuple>(object);
+    check_size(t, 3, "Scene light");
+    return std::make_shared<ScaledInfiniteLight>(light_from(t[1]), py::cast<double>(t[2]));
+  }
+  try {
+    return py::cast<std::shared_ptr<Light>>(object);
+  } catch (const py::cast_error&) {
+    return py::cast<std::shared_ptr<PhysicalSkyLight>>(object);
+  }
+}
+
+py::object light_object(const LightPtr& light) {
+  if (auto scaled = std::dynamic_pointer_cast<const ScaledInfiniteLight>(light)) {
+    return py::make_tuple("scaled", light_object(scaled->light()), scaled->scale());
+  }
+  if (auto sky = std::dynamic_pointer_cast<PhysicalSkyLight>(light)) return py::cast(sky);
+  return py::cast(light);
+}
+
+}  // namespace
+
+py::tuple color_state(const Color& color) {
+  const Vec3d& rgb = color.rgb();
+  py::object table = py::none();
+  if (color.table()) table = values_to_array(*color.table());
+  return py::make_tuple(int(color.kind()), py::make_tuple(rgb.x(), rgb.y(), rgb.z()), table);
+}
+
+Color color_from_state(const py::handle& object) {
+  const py::tuple t = py::cast<py::tuple>(object);
+  check_size(t, 3, "Color");
+  const int kind_id = py::cast<int>(t[0]);
+  if (kind_id < 0 || kind_id > int(Color::Kind::kIlluminant)) throw_invalid("Color: bad pickle state (kind ", kind_id, ")");
+  const auto kind = Color::Kind(kind_id);
+  if (!t[2].is_none()) {
+    const std::vector<double> values = py::cast<std::vector<double>>(t[2]);
+    std::vector<double> lambda(values.size());
+    for (size_t i = 0; i < lambda.size(); ++i) lambda[i] = spectral::kTableMin + double(i);
+    return Color::tabulated(lambda, values, kind);
+  }
+  const Vec3d rgb = to_point(t[1], "Color rgb");
+  switch (kind) {
+    case Color::Kind::kReflectance: return Color::reflectance(rgb);
+    case Color::Kind::kUnbounded: return Color::unbounded(rgb);
+    case Color::Kind::kIlluminant: return Color::illuminant(rgb);
+  }
+  return Color();
+}
+
+py::tuple mesh_state(const Mesh& mesh) {
+  py::array_t<int64_t> triangles({py::ssize_t(mesh.triangles.size()), py::ssize_t(3)});
+  int64_t* t = triangles.mutable_data();
+  for (const auto& tri : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) *t++ = tri[k];
+  }
+  py::object uvs = py::none(), normals = py::none();
+  if (!mesh.uvs.empty()) {
+    DoubleArray a({py::ssize_t(mesh.uvs.size()), py::ssize_t(2)});
+    for (size_t i = 0; i < mesh.uvs.size(); ++i) a.mutable_at(i, 0) = mesh.uvs[i].x(), a.mutable_at(i, 1) = mesh.uvs[i].y();
+    uvs = a;
+  }
+  if (!mesh.normals.empty()) normals = points_to_array(mesh.normals);
+  return py::make_tuple(points_to_array(mesh.vertices), triangles, uvs, normals);
+}
+
+Mesh mesh_from_state(const py::handle& object) {
+  const py::tuple t = py::cast<py::tuple>(object);
+  check_size(t, 4, "Mesh");
+  Mesh mesh;
+  if (py::len(t[0]) > 0) mesh.vertices = to_points(t[0], "vertices");
+  const auto triangles = py::cast<py::array_t<int64_t, py::array::c_style | py::array::forcecast>>(t[1]);
+  if (triangles.ndim() != 2 || (triangles.shape(0) > 0 && triangles.shape(1) != 3)) throw_invalid("Mesh: bad pickle state (triangles)");
+  for (py::ssize_t i = 0; i < triangles.shape(0); ++i) {
+    mesh.triangles.push_back({int(triangles.at(i, 0)), int(triangles.at(i, 1)), int(triangles.at(i, 2))});
+  }
+  if (!t[2].is_none()) {
+    const DoubleArray uvs = py::cast<DoubleArray>(t[2]);
+    if (uvs.ndim() != 2 || uvs.shape(1) != 2) throw_invalid("Mesh: bad pickle state (uvs)");
+    for (py::ssize_t i = 0; i < uvs.shape(0); ++i) mesh.uvs.emplace_back(uvs.at(i, 0), uvs.at(i, 1));
+  }
+  if (!t[3].is_none()) mesh.normals = to_points(t[3], "normals");
+  return mesh;
+}
+
+py::tuple scene_state(const RenderScene& scene) {
+  const Scene& geometry = scene.geometry;
+  py::list textures, materials, parts, lights;
+  for (int id = 0; id < int(geometry.textures().size()); ++id) textures.append(geometry.textures().path(id));
+  for (size_t id = 0; id < scene.material_count(); ++id) {
+    materials.append(py::cast(std::const_pointer_cast<Material>(scene.material_ptr(int(id)))));
+  }
+  for (unsigned g = 0; g < geometry.geometry_count(); ++g) {
+    if (const Scene::Spheres* spheres = geometry.spheres(g)) {
+      parts.append(py::make_tuple("spheres", points_to_array(spheres->centres), values_to_array(spheres->radii),
+                                  geometry.material(g)));
+    } else {
+      parts.append(py::make_tuple("mesh", mesh_state(geometry.meshes().at(g).mesh), geometry.material(g)));
+    }
+  }
+  for (size_t i = 0; i < scene.lights().size(); ++i) {
+    lights.append(py::make_tuple(light_object(scene.lights()[i]), scene.emitter_of(i), scene.shadow_radius(i)));
+  }
+  return py::make_tuple(kSceneStateVersion, textures, materials, parts, lights);
+}
+
+std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state) {
+  check_size(state, 5, "Scene");
+  if (py::cast<int>(state[0]) != kSceneStateVersion) {
+    throw_invalid("Scene: pickle state version ", py::cast<int>(state[0]), " (this refracta reads ", kSceneStateVersion, ")");
+  }
+  auto scene = std::make_shared<RenderScene>();
+  Scene& geometry = scene->geometry;
+  for (const py::handle path : state[1]) {
+    const int id = geometry.textures().add(py::cast<std::string>(path));
+    (void)id;  // ids come back in the same order (Textures::add numbers new paths in turn)
+  }
+  for (const py::handle material : state[2]) scene->add_material(py::cast<std::shared_ptr<Material>>(material));
+  for (const py::handle item : state[3]) {
+    const py::tuple part = py::cast<py::tuple>(item);
+    const std::string kind = py::cast<std::string>(part[0]);
+    if (kind == "spheres") {
+      check_size(part, 4, "Scene spheres");
+      geometry.add_spheres(to_points(part[1], "centres"), to_values(part[2], "radii"), py::cast<int>(part[3]));
+    } else if (kind == "mesh") {
+      check_size(part, 3, "Scene mesh");
+      geometry.add_mesh(mesh_from_state(part[1]), py::cast<int>(part[2]));
+    } else {
+      throw_invalid("Scene: bad pickle state (geometry kind '", kind, "')");
+    }
+  }
+  for (const py::handle item : state[4]) {
+    const py::tuple entry = py::cast<py::tuple>(item);
+    check_size(entry, 3, "Scene light");
+    const size_t index = scene->add_light(light_from(entry[0]), py::cast<int>(entry[1]));
+    const double radius = py::cast<double>(entry[2]);
+    if (radius > 0.0) scene->set_shadow_radius(index, radius);
+  }
+  return scene;
+}
+
+}  // namespace refracta

@@ -1,0 +1,37 @@
+// An infinite light times a constant factor (Scene.set_physical_sky's `scale` on its sky).
+#pragma once
+
+#include "refracta/core/error.h"
+#include "refracta/shading/light.h"
+
+#include <utility>
+
+namespace refracta {
+
+class ScaledInfiniteLight final : public Light {
+ public:
+  ScaledInfiniteLight(LightPtr light, double scale) : light_(std::move(light)), scale_(scale) {}
+  LightType type() const override { return light_->type(); }
+  std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, const Vec2d& u,
+                                         const SampledWavelengths& lambda) const override {
+    auto sample = light_->sample_li(ctx, u, lambda);
+    if (sample) sample->L *= scale_;
+    return sample;
+  }
+  double pdf_li(const LightSampleContext& ctx, const Vec3d& wi, const Vec3d& p_light, const Vec3d& n_light) const override {
+    return light_->pdf_li(ctx, wi, p_light, n_light);
+  }
+  Spectrum Le(const Vec3d& dir, const SampledWavelengths& lambda) const override { return scale_ * light_->Le(dir, lambda); }
+  double power() const override { return scale_ * light_->power(); }
+  void preprocess(const Vec3d& centre, double radius) override { light_->preprocess(centre, radius); }
+  std::string describe() const override { return concat(light_->describe(), " x ", scale_); }
+
+  const LightPtr& light() const { return light_; }
+  double scale() const { return scale_; }
+
+ private:
+  LightPtr light_;
+  double scale_;
+};
+
+}  // namespace refracta

@@ -1,0 +1,234 @@
+"""refracta.sweep: map a function over a parameter grid on any concurrent.futures.Executor.
+
+The same code runs in-process (``executor=None``), on the cores of one machine
+(``ProcessPoolExecutor``) or on a cluster through dask.distributed: pass a ``distributed.Client``
+(its ``get_executor()`` is used) or any ``concurrent.futures.Executor``. refracta has no cluster
+manager of its own; a real cluster is just another Client::
+
+    from dask_jobqueue import SLURMCluster          # or dask_kubernetes.operator.KubeCluster
+    from distributed import Client
+    cluster = SLURMCluster(cores=8, memory="16GB", walltime="01:00:00")
+    cluster.scale(jobs=10)
+    client = Client(cluster)
+    results = refracta.sweep(render_road, {"surface_dt": [2, 5, 10, 15]}, executor=client)
+
+Every refracta object pickles (fields, scenes with their meshes and texture paths, cameras,
+materials, lights, pairs, results), so arguments and results travel between processes; texture
+and OBJ files are referenced by path and must be readable by the workers (a shared file system).
+dask re-runs the tasks of a worker that dies (up to its ``allowed-failures``), so a lost worker
+costs time, not results. The tiled ``refracta.render(..., executor=, tiles=)`` and animations go
+through the same executor path (:func:`map_ordered`).
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import itertools
+import traceback
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
+
+from refracta._progress import ProgressBar
+
+__all__ = ["SweepError", "SweepFailure", "SweepResult", "grid_points", "map_ordered", "sweep"]
+
+ProgressArg = Union[bool, Callable[[int, int], None], None]
+
+
+@dataclass(frozen=True)
+class SweepFailure:
+    """A point whose call raised: its position in grid order, its parameters and the error."""
+
+    index: int
+    point: Dict[str, Any]
+    error: BaseException
+    traceback: str
+
+    def __str__(self) -> str:
+        return f"point {self.index} {self.point!r}: {type(self.error).__name__}: {self.error}"
+
+
+class SweepResult(list):
+    """The results of a sweep in grid order (a list; None where a point failed).
+
+    Attributes:
+        points: the parameter dicts, in the same order.
+        failures: one SweepFailure per failed point (empty when all succeeded).
+    """
+
+    def __init__(self, results: Iterable[Any], points: Sequence[Dict[str, Any]], failures: Sequence[SweepFailure]):
+        super().__init__(results)
+        self.points = list(points)
+        self.failures = list(failures)
+
+    @property
+    def ok(self) -> bool:
+        """True when every point succeeded."""
+        return not self.failures
+
+    def __reduce__(self):
+        return (SweepResult, (list(self), self.points, self.failures))
+
+
+class SweepError(RuntimeError):
+    """Raised by sweep(errors='raise') when points failed, after every other point finished.
+
+    Attributes:
+        failures: the SweepFailure of each failed point (parameters and exception).
+        results: the SweepResult: every successful point's result is kept (None at failures).
+    """
+
+    def __init__(self, failures: Sequence[SweepFailure], results: SweepResult):
+        self.failures = list(failures)
+        self.results = results
+        shown = "; ".join(str(f) for f in self.failures[:3])
+        more = f" (and {len(self.failures) - 3} more)" if len(self.failures) > 3 else ""
+        super().__init__(f"{len(self.failures)} of {len(results)} sweep points failed: {shown}{more}")
+
+    def __reduce__(self):
+        return (SweepError, (self.failures, self.results))
+
+
+def grid_points(grid: Union[Mapping[str, Sequence[Any]], Sequence[Mapping[str, Any]]]) -> List[Dict[str, Any]]:
+    """The points of a grid, in sweep order.
+
+    A dict of lists is the cartesian product in the dict's key order, the last key varying fastest
+    (as nested for loops, itertools.product, numpy.meshgrid(indexing='ij')): ``{"a": [1, 2], "b":
+    [3, 4]}`` gives a=1,b=3; a=1,b=4; a=2,b=3; a=2,b=4. A list of dicts is taken as it is.
+    """
+    if isinstance(grid, Mapping):
+        names = list(grid)
+        values = []
+        for name in names:
+            if not isinstance(name, str):
+                raise ValueError(f"sweep: grid keys must be parameter names (got {name!r})")
+            axis = grid[name]
+            if isinstance(axis, (str, bytes)) or not isinstance(axis, Iterable):
+                raise ValueError(f"sweep: grid[{name!r}] must be a list of values (got {axis!r})")
+            values.append(list(axis))
+        return [dict(zip(names, combination)) for combination in itertools.product(*values)]
+    if isinstance(grid, (str, bytes)) or not isinstance(grid, Iterable):
+        raise ValueError(f"sweep: grid must be a dict of lists or a list of dicts (got {type(grid).__name__})")
+    points = []
+    for i, point in enumerate(grid):
+        if not isinstance(point, Mapping) or not all(isinstance(k, str) for k in point):
+            raise ValueError(f"sweep: grid[{i}] must be a dict of parameter names to values (got {point!r})")
+        points.append(dict(point))
+    return points
+
+
+def as_executor(executor) -> Optional[concurrent.futures.Executor]:
+    """A concurrent.futures.Executor for `executor`: None stays None (in-process), a
+    dask.distributed Client gives its get_executor(pure=False) (every task runs; futures are
+    concurrent.futures futures), an Executor is returned as is."""
+    if executor is None or isinstance(executor, concurrent.futures.Executor):
+        return executor
+    if callable(getattr(executor, "get_executor", None)):
+        return executor.get_executor(pure=False)
+    raise ValueError(
+        f"executor must be None, a concurrent.futures.Executor or a dask.distributed Client (got {type(executor).__name__})"
+    )
+
+
+def _progress_callback(progress: ProgressArg, label: str) -> Optional[Callable[[int, int], None]]:
+    if progress is True:
+        return ProgressBar(label)
+    if progress is False or progress is None:
+        return None
+    if not callable(progress):
+        raise ValueError(f"progress must be True, False or a callable progress(done, total) (got {progress!r})")
+    return progress
+
+
+def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, progress: ProgressArg = False,
+                label: str = "sweep") -> List[tuple]:
+    """Calls function(*args) for each tuple of `arguments` on `executor` (as_executor's kinds);
+    returns one (ok, value) per call in the order of `arguments`: (True, result) or
+    (False, (exception, traceback text)). progress(done, total) after each finished call. Ctrl-C
+    cancels the calls not yet started and raises KeyboardInterrupt. The shared path of sweep,
+    tiled renders and animation frames."""
+    pool = as_executor(executor)
+    callback = _progress_callback(progress, label)
+    total = len(arguments)
+    outcomes: List[Optional[tuple]] = [None] * total
+    if callback:
+        callback(0, total)
+    if pool is None:
+        for i, args in enumerate(arguments):
+            try:
+                outcomes[i] = (True, function(*args))
+            except Exception as error:  # recorded with its point; KeyboardInterrupt propagates
+                outcomes[i] = (False, (error, traceback.format_exc()))
+            if callback:
+                callback(i + 1, total)
+        return outcomes
+    futures = {}
+    try:
+        for i, args in enumerate(arguments):
+            futures[pool.submit(function, *args)] = i
+        done = 0
+        for future in concurrent.futures.as_completed(futures):
+            i = futures[future]
+            error = future.exception()
+            if error is None:
+                outcomes[i] = (True, future.result())
+            else:
+                text = "".join(traceback.format_exception(type(error), error, error.__traceback__))
+                outcomes[i] = (False, (error, text))
+            done += 1
+            if callback:
+                callback(done, total)
+    except BaseException:
+        for future in futures:
+            future.cancel()
+        raise
+    return outcomes
+
+
+def sweep(function: Callable[..., Any], grid, executor=None, progress: ProgressArg = True,
+          errors: str = "raise") -> SweepResult:
+    """Run ``function(**point)`` for every point of `grid`; results in grid order.
+
+    grid: a dict of lists (the cartesian product, last key fastest: see grid_points) or a list of
+    dicts. executor: None runs the points one after another in this process; any
+    concurrent.futures.Executor (ThreadPoolExecutor, ProcessPoolExecutor: `function` must then
+    pickle, i.e. be defined at module level) or a dask.distributed Client (functions travel by
+    cloudpickle; lambdas work) runs them in parallel. progress: a bar on stderr (True), a callable
+    progress(done, total) called as points finish, or False. errors: 'raise' -- after every point
+    finished, raise SweepError naming each failed point's parameters, its ``results`` keeping
+    every other result; 'keep' -- return the SweepResult with None at failed points and their
+    SweepFailure records in ``.failures``.
+
+    Returns a SweepResult: a list of the results, with ``.points`` and ``.failures``.
+
+    Example::
+
+        def mirage_height(surface_dt, eye):
+            road = refracta.PhysicalAtmosphere(surface_dt=surface_dt)
+            return refracta.trace_ray(road, [0, eye, 0], [1, -0.003, 0], max_length=800).points[-1, 1]
+
+        heights = refracta.sweep(mirage_height, {"surface_dt": [5, 10, 15], "eye": [1.2, 1.6]},
+                                 executor=client)      # or None, or ProcessPoolExecutor()
+    """
+    if not callable(function):
+        raise ValueError(f"sweep: function must be callable (got {function!r})")
+    if errors not in ("raise", "keep"):
+        raise ValueError(f"sweep: errors must be 'raise' or 'keep' (got {errors!r})")
+    points = grid_points(grid)
+    outcomes = map_ordered(_call_with, [(function, point) for point in points], executor, progress, "sweep")
+    results, failures = [], []
+    for i, (ok, value) in enumerate(outcomes):
+        if ok:
+            results.append(value)
+        else:
+            results.append(None)
+            failures.append(SweepFailure(i, points[i], value[0], value[1]))
+    result = SweepResult(results, points, failures)
+    if failures and errors == "raise":
+        raise SweepError(failures, result)
+    return result
+
+
+def _call_with(function: Callable[..., Any], point: Dict[str, Any]) -> Any:
+    """function(**point): a module-level function, so that it pickles for process pools."""
+    return function(**point)
