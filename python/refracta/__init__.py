@@ -31,6 +31,7 @@ from refracta._render import render
 from refracta._raster_render import render_raster
 from refracta.scene_file import SceneFile, load_scene
 from refracta._rays import ElevationTable, RayBatch, trace_rays
+from refracta._sweep import SweepError, SweepFailure, SweepResult, sweep
 
 __version__ = "0.1.0"
 
@@ -51,6 +52,9 @@ __all__ = [
     "RenderOptions",
     "Scene",
     "SceneFile",
+    "SweepError",
+    "SweepFailure",
+    "SweepResult",
     "TemperatureProfile",
     "air_dispersion_scale",
     "dispersed_field",
@@ -63,6 +67,7 @@ __all__ = [
     "load_scene",
     "render",
     "render_raster",
+    "sweep",
     "trace_ray",
     "trace_rays",
 ]

@@ -10,7 +10,7 @@ import numpy as np
 
 from refracta import _core
 from refracta._progress import ProgressBar
-from refracta.sweep import map_ordered
+from refracta._sweep import map_ordered
 
 # Fields of _core.RenderOptions that render() exposes as keywords (their defaults live in C++).
 _OPTION_NAMES = tuple(name for name in dir(_core.RenderOptions) if not name.startswith("_") and name != "validate")

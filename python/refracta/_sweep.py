@@ -1,4 +1,4 @@
-"""refracta.sweep: map a function over a parameter grid on any concurrent.futures.Executor.
+"""refracta.sweep: map a function over a parameter grid on any concurrent.futures.Executor (the module refracta._sweep).
 
 The same code runs in-process (``executor=None``), on the cores of one machine
 (``ProcessPoolExecutor``) or on a cluster through dask.distributed: pass a ``distributed.Client``
