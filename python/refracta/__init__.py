@@ -4,7 +4,12 @@ Fields (n(x) and grad n): LogisticProfile, PhysicalAtmosphere, TemperatureProfil
 LinearSquaredProfile, CustomField. Rays: trace_ray (one RayPath), trace_rays (a batch, in
 parallel), ElevationTable. Images: Scene, Camera, render, refracta.io. Shading: refracta.shading (BSDFs), refracta.lights,
 refracta.spectrum (spectral colour), refracta.testing (chi-square sampler tests). Plots: refracta.plot. Units: metres, kelvin, pascal, nanometres; y is up.
+
+Submodules not imported here (edit, examples, plot, compare, moments, oit, raster, cli) load on
+first use (PEP 562), so ``import refracta`` stays cheap and does not import matplotlib.
 """
+
+import importlib as _importlib
 
 from refracta._core import (
     Camera,
@@ -24,6 +29,8 @@ from refracta._core import (
     air_dispersion_scale,
     dispersed_field,
     field_reference_wavelength,
+    get_threads,
+    set_threads,
     trace_ray,
 )
 from refracta import io, lights, shading, spectrum, testing
@@ -33,7 +40,22 @@ from refracta.scene_file import SceneFile, load_scene
 from refracta._rays import ElevationTable, RayBatch, trace_rays
 from refracta._sweep import SweepError, SweepFailure, SweepResult, sweep
 
+# The one place the version is written: pyproject.toml reads it (scikit-build-core's regex provider).
 __version__ = "0.1.0"
+
+# Submodules loaded on first attribute access (PEP 562): refracta.edit, refracta.plot, ...
+_LAZY_SUBMODULES = ("cli", "compare", "edit", "examples", "moments", "oit", "plot", "raster")
+
+
+def __getattr__(name):
+    if name in _LAZY_SUBMODULES:
+        return _importlib.import_module(f"refracta.{name}")  # binds refracta.<name> as it imports
+    raise AttributeError(f"module 'refracta' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY_SUBMODULES))
+
 
 __all__ = [
     "Camera",
@@ -59,6 +81,8 @@ __all__ = [
     "air_dispersion_scale",
     "dispersed_field",
     "field_reference_wavelength",
+    "get_threads",
+    "set_threads",
     "io",
     "lights",
     "shading",

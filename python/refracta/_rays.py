@@ -87,7 +87,7 @@ class ElevationTable:
     queries exactly where such an edge could not be resolved.
 
     The eye is at (0, eye_height, 0); elevations and azimuths are in degrees, azimuth measured from
-    +x toward +z.
+    +x toward +z. Pickles as its arguments (the table is rebuilt where it is unpickled).
     """
 
     def __init__(
@@ -104,6 +104,8 @@ class ElevationTable:
         progress: Union[bool, Callable[[int, int], None]] = False,
     ):
         callback = ProgressBar("elevation table") if progress is True else (progress or None)
+        # What pickling rebuilds the table from (the build is deterministic: the copy is identical).
+        self._arguments = (field, eye_height, min_elevation, max_elevation, tol, max_length, stop_height, step, trace_tol)
         self._table = _core._ElevationTable(
             field, eye_height, min_elevation, max_elevation, tol, max_length, stop_height, step,
             trace_tol, callback,
@@ -139,6 +141,10 @@ class ElevationTable:
         )
         names = np.array(_core._stop_names)
         return RayBatch(points, dirs, lengths, names[stops.astype(np.int64)], np.zeros(len(lengths), np.int64))
+
+    def __reduce__(self):
+        """Pickled as its constructor's arguments; unpickling rebuilds the same table."""
+        return (ElevationTable, self._arguments)
 
     def __repr__(self) -> str:
         return f"ElevationTable(size={self.size}, eye_height={self.eye_height}, tol={self.tol})"

@@ -88,6 +88,16 @@ void bind_edit(py::module_& m) {
           settings.validate();
           WorkControl control;
           SolveSummary s;
+          // Ceres' messages reach Python's logging however the solve ends (a logging error is
+          // dropped rather than thrown from a destructor).
+          struct EmitLibraryLog {
+            ~EmitLibraryLog() {
+              try {
+                emit_library_log();
+              } catch (...) {
+              }
+            }
+          } emit_log;
           run_interruptible(control, progress, [&] { s = solve_edit(field, pairs, spec, settings, control); });
           py::dict out;
           out["values"] = values_to_array(s.values);

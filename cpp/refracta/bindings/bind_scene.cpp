@@ -4,6 +4,7 @@
 
 #include "refracta/scene/image_io.h"
 #include "refracta/scene/obj_loader.h"
+#include "refracta/scene/texture_search.h"
 #include "refracta/shading/area_light.h"
 #include "refracta/shading/constant_environment.h"
 #include "refracta/shading/dielectric.h"
@@ -20,6 +21,7 @@
 
 #include <cmath>
 #include <optional>
+#include <set>
 
 namespace refracta {
 
@@ -226,6 +228,56 @@ void set_physical_sky(RenderScene& s, const PhysicalSkySettings& settings, doubl
   }
 }
 
+// Folders given as one path or a sequence of paths (str or os.PathLike).
+std::vector<std::string> to_folders(const py::object& dirs) {
+  const py::object fspath = py::module_::import("os").attr("fspath");
+  if (py::isinstance<py::str>(dirs) || py::hasattr(dirs, "__fspath__")) return {py::cast<std::string>(fspath(dirs))};
+  std::vector<std::string> out;
+  try {
+    for (const auto& item : dirs) out.push_back(py::cast<std::string>(fspath(item)));
+  } catch (const py::error_already_set& error) {
+    if (!error.matches(PyExc_TypeError)) throw;
+    throw_invalid("texture_dirs must be a folder or a sequence of folders (str or os.PathLike)");
+  }
+  return out;
+}
+
+// The texture file of each part of an OBJ ("" for none): map_Kd searched by find_texture. A
+// texture found nowhere raises FileNotFoundError, or with `warn` a UserWarning (once per name)
+// and "" (the material keeps Kd).
+std::vector<std::string> obj_texture_paths(const std::vector<MaterialMesh>& parts,
+                                           const std::vector<std::string>& texture_dirs, bool warn) {
+  std::vector<std::string> out;
+  std::set<std::string> warned;
+  for (const MaterialMesh& part : parts) {
+    const MtlMaterial& mtl = part.material;
+    if (mtl.texture_name.empty()) {
+      out.emplace_back();
+      continue;
+    }
+    std::vector<std::string> searched;
+    const auto found = find_texture(mtl.texture_name, mtl.folder, texture_dirs, &searched);
+    if (found) {
+      out.push_back(*found);
+      continue;
+    }
+    std::string folders;
+    for (const auto& folder : searched) folders += concat(folders.empty() ? "" : ", ", "'", folder, "'");
+    const std::string message = concat("texture '", mtl.texture_name, "' of material '", mtl.name,
+                                       "' not found in ", folders);
+    if (!warn) {
+      PyErr_SetString(PyExc_FileNotFoundError, message.c_str());
+      throw py::error_already_set();
+    }
+    if (warned.insert(mtl.texture_name).second &&
+        PyErr_WarnEx(PyExc_UserWarning, (message + "; its material uses Kd").c_str(), 1) != 0) {
+      throw py::error_already_set();  // warnings turned into errors
+    }
+    out.emplace_back();
+  }
+  return out;
+}
+
 }  // namespace
 
 void bind_scene(py::module_& m) {
@@ -266,14 +318,21 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
            "shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without\n"
            "material. Returns its id.")
       .def("add_obj",
-           [](RenderScene& s, const std::string& path, const py::object& offset, double scale) {
+           [](RenderScene& s, const std::string& path, const py::object& offset, double scale,
+              const py::object& texture_dirs, const std::string& missing_textures) {
              const Vec3d shift = to_point(offset, "offset");
              if (!(scale > 0.0) || !std::isfinite(scale)) throw_invalid("scale must be > 0 (got ", scale, ")");
+             if (missing_textures != "error" && missing_textures != "warn") {
+               throw_invalid("missing_textures must be 'error' or 'warn' (got '", missing_textures, "')");
+             }
+             std::vector<MaterialMesh> parts = load_obj(path);
+             const std::vector<std::string> textures = obj_texture_paths(parts, to_folders(texture_dirs), missing_textures == "warn");
              py::list ids;
-             for (auto& part : load_obj(path)) {
+             for (size_t p = 0; p < parts.size(); ++p) {
+               MaterialMesh& part = parts[p];
                for (auto& v : part.mesh.vertices) v = v * scale + shift;
                const MtlMaterial& mtl = part.material;
-               const int tex = mtl.texture.empty() ? -1 : s.geometry.textures().add(mtl.texture);
+               const int tex = textures[p].empty() ? -1 : s.geometry.textures().add(textures[p]);
                MaterialPtr material;
                if ((mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7) && mtl.alpha < 1.0 && mtl.ni > 1.0) {
                  material = std::make_shared<Dielectric>(Ior(mtl.ni));  // MTL glass
@@ -294,10 +353,19 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
              return ids;
            },
            py::arg("path"), py::arg("offset") = py::make_tuple(0.0, 0.0, 0.0), py::arg("scale") = 1.0,
-           "Add a Wavefront OBJ file (vertex normals kept as shading normals) with its MTL materials, scaled\n"
-           "then offset: Kd, Ks, Ns, d, map_Kd -> BlinnPhong; Pr/Pm (PBR extension) -> Principled; illum 4/6/7\n"
-           "with d < 1 and Ni > 1 -> Dielectric(Ni); Ke -> an area light. Returns the geometry ids. A\n"
-           "missing OBJ, MTL or texture raises refracta.IoError.")
+           py::kw_only(), py::arg("texture_dirs") = py::tuple(), py::arg("missing_textures") = "error",
+           R"doc(Add a Wavefront OBJ file with its MTL materials, scaled then offset.
+
+Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with
+d < 1 and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as shading normals.
+
+A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of
+``texture_dirs`` in order (relative folders from the working directory), as written and by its
+file name alone (a path from the author's machine). A texture found nowhere raises
+FileNotFoundError naming it and the folders searched (``missing_textures='error'``), or, with
+``missing_textures='warn'``, issues a UserWarning (Python's warnings) and its material uses Kd.
+
+Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
       .def("add_ground",
            [](RenderScene& s, double height, double size, const py::object& material, const py::object& kd,
               const py::object& ks, double ns, std::optional<std::string> texture, double texture_size) {
@@ -477,6 +545,15 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
       .def("material",
            [](const RenderScene& s, int geometry) {
              if (geometry < 0 || size_t(geometry) >= s.geometry.geometry_count()) {
+      .def_property_readonly(
+          "bounds",
+          [](const RenderScene& s) {
+            if (s.geometry.geometry_count() == 0) throw_invalid("Scene.bounds: the scene is empty");
+            return py::make_tuple(points_to_array({s.geometry.lower()}).reshape({py::ssize_t(3)}),
+                                  points_to_array({s.geometry.upper()}).reshape({py::ssize_t(3)}));
+          },
+          "(lower, upper): corners (3,) [m] of the axis-aligned box around every geometry (spheres\n"
+          "exact; a ground counts at its full size). ValueError for an empty scene.")
                throw_invalid("material: no geometry ", geometry, " (the scene has ", s.geometry.geometry_count(), ")");
              }
              return std::const_pointer_cast<Material>(s.material_ptr(s.geometry.material(unsigned(geometry))));
@@ -549,6 +626,37 @@ vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (
       .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
            "The same view at another image size (vertical field of view kept).")
       .def_property_readonly("width", &Camera::width)
+      .def_static(
+          "framing",
+          [](const py::object& scene_or_bounds, const py::object& direction, double vfov, int width, int height,
+             const py::object& up) {
+            Vec3d lower, upper;
+            if (py::isinstance<RenderScene>(scene_or_bounds)) {
+              const py::tuple bounds = scene_or_bounds.attr("bounds");
+              lower = to_point(bounds[0], "bounds[0]"), upper = to_point(bounds[1], "bounds[1]");
+            } else {
+              py::sequence bounds;
+              try {
+                bounds = py::cast<py::sequence>(scene_or_bounds);
+              } catch (const py::cast_error&) {
+                throw_invalid("Camera.framing: give a Scene or its bounds (lower, upper)");
+              }
+              if (bounds.size() != 2) throw_invalid("Camera.framing: bounds must be (lower, upper)");
+              lower = to_point(bounds[0], "bounds[0]"), upper = to_point(bounds[1], "bounds[1]");
+            }
+            return Camera::framing(lower, upper, to_point(direction, "direction"), to_point(up, "up"), vfov, width,
+                                   height);
+          },
+          py::arg("scene_or_bounds"), py::arg("direction") = py::make_tuple(-1.0, -0.5, -1.0), py::arg("vfov") = 45.0,
+          py::arg("width") = 640, py::arg("height") = 360, py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
+          R"doc(A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
+onto the box from its +x, +y, +z side) at the centre of the scene's bounds, from the distance at
+which the bounding sphere fills the narrower of the two fields of view.
+
+    scene.add_obj("city.obj", texture_dirs=["textures"])
+    camera = refracta.Camera.framing(scene, width=800, height=450)
+
+scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc")
       .def_property_readonly("height", &Camera::height)
       .def_property_readonly("vfov", &Camera::vfov)
       .def("__repr__", [](const Camera& c) {

@@ -26,6 +26,9 @@ void bind_shading(py::module_& m);
 void bind_lights(py::module_& m);
 void bind_spectrum(py::module_& m);
 void bind_dispersion(py::module_& m);
+void bind_runtime(py::module_& m);
+// Moves the queued messages of Ceres (glog) to Python's logging; call with the GIL held.
+void emit_library_log();
 
 // (N, 3) or (3,) float array -> points; ValueError naming `what` for other shapes or NaN.
 std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single = nullptr);

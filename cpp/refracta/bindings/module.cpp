@@ -4,6 +4,7 @@
 PYBIND11_MODULE(_core, m) {
   m.doc() = "refracta's C++ core (private; use the refracta package)";
   refracta::bind_core(m);
+  refracta::bind_runtime(m);  // first: threads and library messages set before any work
   refracta::bind_media(m);
   refracta::bind_rays(m);
   refracta::bind_scene(m);

@@ -34,6 +34,26 @@ Vec3d Camera::direction(double u, double v) const {
   const double y = (1.0 - 2.0 * v / height_) * tan_half_;
   return (forward_ + x * right_ + y * up_).normalized();
 }
+Camera Camera::framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& direction, const Vec3d& up,
+                       double vfov_deg, int width, int height) {
+  if (!is_finite(lower) || !is_finite(upper) || (upper - lower).minCoeff() < 0.0) {
+    throw_invalid("Camera.framing: bounds must be finite with lower <= upper (an empty scene has none)");
+  }
+  if (!is_finite(direction) || direction.norm() == 0.0) throw_invalid("Camera.framing: direction must be finite and non-zero");
+  if (!(vfov_deg > 0.0 && vfov_deg < 180.0)) {
+    throw_invalid("Camera.framing: vfov must be in (0, 180) degrees (got ", vfov_deg, ")");
+  }
+  if (width < 1 || height < 1) throw_invalid("Camera.framing: size must be at least 1x1 (got ", width, "x", height, ")");
+  const Vec3d centre = 0.5 * (lower + upper);
+  const double radius = 0.5 * (upper - lower).norm();  // of the bounding sphere
+  if (!(radius > 0.0)) throw_invalid("Camera.framing: the bounds are a single point");
+  // The sphere subtends half-angle asin(r / d): fit it to the narrower half field of view.
+  const double half_v = 0.5 * degrees_to_radians(vfov_deg);
+  const double half_h = std::atan(std::tan(half_v) * width / height);
+  const double distance = radius / std::sin(std::min(half_v, half_h));
+  return Camera(centre - distance * direction.normalized(), centre, up, vfov_deg, width, height);
+}
+
 
 Vec3d Camera::project(const Vec3d& point) const {
   const Vec3d d = point - position_;

@@ -13,6 +13,13 @@ class Camera {
   Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
          int height);
 
+  // A camera looking along `direction` at the centre of the box [lower, upper] from just far
+  // enough that the box's bounding sphere fills the narrower of the two fields of view (the whole
+  // box is in the image, touching its border only if the box is a cube seen along an axis).
+  // Throws std::invalid_argument for an empty, non-finite or single-point box.
+  static Camera framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& direction, const Vec3d& up,
+                        double vfov_deg, int width, int height);
+
   // Unit direction of the ray through pixel coordinates (u, v).
   Vec3d direction(double u, double v) const;
   // (u, v, depth) of a world point; depth [m] along the view axis, <= 0 behind the camera.

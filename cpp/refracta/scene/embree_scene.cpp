@@ -116,7 +116,7 @@ unsigned Scene::add_mesh(const Mesh& mesh, int material) {
   meshes_.push_back({id, mesh});
   sphere_sets_.push_back(nullptr);
   triangles_ += triangles.size();
-  for (const auto& v : vertices) lowest_ = std::min(lowest_, v.y()), highest_ = std::max(highest_, v.y());
+  for (const auto& v : vertices) lower_ = lower_.cwiseMin(v), upper_ = upper_.cwiseMax(v);
   impl_->dirty = true;
   return id;
 }
@@ -137,9 +137,11 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
       throw_invalid("add_spheres: radii[", i, "] must be > 0 (got ", radii[i], ")");
     }
     for (int k = 0; k < 3; ++k) v[4 * i + k] = float(centres[i][k]);
-    lowest_ = std::min(lowest_, centres[i].y() - radii[i]);
-    highest_ = std::max(highest_, centres[i].y() + radii[i]);
     v[4 * i + 3] = float(radii[i]);
+  }
+  for (size_t i = 0; i < centres.size(); ++i) {
+    lower_ = lower_.cwiseMin(centres[i] - Vec3d::Constant(radii[i]));
+    upper_ = upper_.cwiseMax(centres[i] + Vec3d::Constant(radii[i]));
   }
   rtcCommitGeometry(geometry);
   const unsigned id = rtcAttachGeometry(impl_->scene, geometry);

@@ -85,9 +85,13 @@ class Scene {
   size_t geometry_count() const { return materials_.size(); }
   size_t triangle_count() const { return triangles_; }
   // Lowest y of any geometry [m] (+inf for an empty scene).
-  double lowest() const { return lowest_; }
+  double lowest() const { return lower_.y(); }
   // Highest y of any geometry [m] (-inf for an empty scene).
-  double highest() const { return highest_; }
+  double highest() const { return upper_.y(); }
+  // Corners of the axis-aligned box around every geometry (spheres exact) [m]; lower > upper
+  // (+inf, -inf) for an empty scene.
+  const Vec3d& lower() const { return lower_; }
+  const Vec3d& upper() const { return upper_; }
 
  private:
   struct Impl;
@@ -97,8 +101,8 @@ class Scene {
   std::vector<std::shared_ptr<const Spheres>> sphere_sets_;  // null for meshes
   std::shared_ptr<Textures> textures_ = std::make_shared<Textures>();
   size_t triangles_ = 0;
-  double lowest_ = std::numeric_limits<double>::infinity();
-  double highest_ = -std::numeric_limits<double>::infinity();
+  Vec3d lower_ = Vec3d::Constant(std::numeric_limits<double>::infinity());
+  Vec3d upper_ = Vec3d::Constant(-std::numeric_limits<double>::infinity());
 };
 
 // Shapes a mirage scene needs, as triangle meshes.

@@ -20,7 +20,9 @@ struct MtlMaterial {
   Vec3d ke{0.0, 0.0, 0.0};   // emitted radiance (Ke) [W/(m^2 sr)]
   double pr = -1.0;          // PBR roughness (Pr), -1 when absent
   double pm = -1.0;          // PBR metallic (Pm), -1 when absent
-  std::string texture;       // map_Kd path (resolved), empty when none
+  std::string texture;       // map_Kd path (resolved against the MTL's folder), empty when none
+  std::string texture_name;  // map_Kd as the MTL file writes it (find_texture searches for it)
+  std::string folder;        // the folder map_Kd is relative to: the MTL's
 };
 
 }  // namespace refracta

@@ -82,7 +82,11 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       const auto& m = materials[id];
       MtlMaterial& out_m = part.material;
       out_m.name = m.name;
-      if (textured) out_m.texture = (std::filesystem::path(config.mtl_search_path) / m.diffuse_texname).string();
+      if (textured) {
+        out_m.texture = (std::filesystem::path(config.mtl_search_path) / m.diffuse_texname).string();
+        out_m.texture_name = m.diffuse_texname;
+        out_m.folder = config.mtl_search_path;
+      }
       out_m.kd = Vec3d(m.diffuse[0], m.diffuse[1], m.diffuse[2]).cwiseMax(0.0).cwiseMin(1.0);
       out_m.ks = Vec3d(m.specular[0], m.specular[1], m.specular[2]).cwiseMax(0.0).cwiseMin(1.0);
       out_m.ns = std::max(0.0, double(m.shininess));

@@ -66,6 +66,9 @@ std::string prepare(const std::string& path) {
   config.set_format(OIIO::TypeDesc::HALF);
   // Written under a temporary name and renamed, so concurrent sessions never read a partial file.
   const fs::path partial = prepared.string() + concat(".", std::hash<std::string>()(path), ".part.exr");
+  // The source's ICC profile describes its encoded colours, not the linear copy; OpenEXR has no
+  // place for it either (OIIO would print "Don't know what to do with ... ICCProfile").
+  linear.specmod().erase_attribute("ICCProfile.*");
   if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, linear, partial.string(), config)) {
     throw IoError(concat("cannot prepare texture '", path, "': ", OIIO::geterror()));
   }

@@ -1,0 +1,64 @@
+// Process-wide settings of the library: how many threads oneTBB may use, and where the messages of
+// the libraries underneath (Ceres' glog, OpenImageIO) go: to Python's logging, never the terminal.
+#include "refracta/bindings/bindings.h"
+#include "refracta/edit/ceres_log.h"
+#include "refracta/scene/oiio_messages.h"
+
+#include <tbb/global_control.h>
+
+#include <memory>
+#include <optional>
+
+namespace refracta {
+
+namespace {
+
+// The limit set by set_threads, held for the life of the module (none: oneTBB's default, every
+// core the process may use).
+std::unique_ptr<tbb::global_control>& thread_limit() {
+  static auto* limit = new std::unique_ptr<tbb::global_control>();  // leaked: outlives the last task
+  return *limit;
+}
+
+// Python logging level of a glog severity. Ceres' WARNING and ERROR lines report why a solve
+// stopped, which EditResult.message already says (its FATAL never returns): INFO, shown only when
+// the user asks for refracta's log. Its INFO lines are progress: DEBUG.
+int python_level(int severity) {
+  constexpr int kDebug = 10, kInfo = 20, kCritical = 50;  // logging.DEBUG, INFO, CRITICAL
+  return severity == 0 ? kDebug : severity < 3 ? kInfo : kCritical;
+}
+
+}  // namespace
+
+void emit_library_log() {
+  std::vector<LibraryLogRecord> records = take_ceres_log();
+  if (records.empty()) return;
+  py::object logger = py::module_::import("logging").attr("getLogger")("refracta.ceres");
+  for (const auto& record : records) logger.attr("log")(python_level(record.severity), "%s", record.message);
+}
+
+void bind_runtime(py::module_& m) {
+  capture_ceres_log();
+  silence_oiio_debug_output();
+  m.def(
+      "set_threads",
+      [](std::optional<int> n) {
+        if (n && *n < 0) throw_invalid("set_threads: n must be >= 0 or None (got ", *n, ")");
+        thread_limit().reset();  // one limit at a time: the newest is the one in force
+        if (n && *n > 0) {
+          thread_limit() = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(*n));
+        }
+      },
+      py::arg("n"), R"doc(
+Limit refracta's parallel work (oneTBB: render, trace_rays, render_raster, solve's pair traces,
+Embree's BVH builds) to n threads; n = None or 0 restores the default, every core. Results do
+not depend on it: every parallel loop writes each item's result to its own slot.)doc");
+  m.def(
+      "get_threads",
+      [] { return int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)); },
+      "The number of threads refracta's parallel work may use (see set_threads).");
+  m.def("_emit_library_log", &emit_library_log,
+        "Move queued Ceres (glog) messages to the Python logger 'refracta.ceres'.");
+}
+
+}  // namespace refracta
