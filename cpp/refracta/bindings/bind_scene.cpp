@@ -542,9 +542,6 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            "reference soft shadows of a disc that size. Returns its index among the spot lights.")
       .def_property_readonly("lights", [](const RenderScene& s) { return s.lights(); })
       .def_property_readonly("geometry_count", [](const RenderScene& s) { return s.geometry.geometry_count(); })
-      .def("material",
-           [](const RenderScene& s, int geometry) {
-             if (geometry < 0 || size_t(geometry) >= s.geometry.geometry_count()) {
       .def_property_readonly(
           "bounds",
           [](const RenderScene& s) {
@@ -554,6 +551,9 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
           },
           "(lower, upper): corners (3,) [m] of the axis-aligned box around every geometry (spheres\n"
           "exact; a ground counts at its full size). ValueError for an empty scene.")
+      .def("material",
+           [](const RenderScene& s, int geometry) {
+             if (geometry < 0 || size_t(geometry) >= s.geometry.geometry_count()) {
                throw_invalid("material: no geometry ", geometry, " (the scene has ", s.geometry.geometry_count(), ")");
              }
              return std::const_pointer_cast<Material>(s.material_ptr(s.geometry.material(unsigned(geometry))));

@@ -29,11 +29,6 @@ Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, dou
   tan_half_ = std::tan(0.5 * degrees_to_radians(vfov_deg));
 }
 
-Vec3d Camera::direction(double u, double v) const {
-  const double x = (2.0 * u / width_ - 1.0) * tan_half_ * width_ / height_;
-  const double y = (1.0 - 2.0 * v / height_) * tan_half_;
-  return (forward_ + x * right_ + y * up_).normalized();
-}
 Camera Camera::framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& direction, const Vec3d& up,
                        double vfov_deg, int width, int height) {
   if (!is_finite(lower) || !is_finite(upper) || (upper - lower).minCoeff() < 0.0) {
@@ -54,6 +49,11 @@ Camera Camera::framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& dire
   return Camera(centre - distance * direction.normalized(), centre, up, vfov_deg, width, height);
 }
 
+Vec3d Camera::direction(double u, double v) const {
+  const double x = (2.0 * u / width_ - 1.0) * tan_half_ * width_ / height_;
+  const double y = (1.0 - 2.0 * v / height_) * tan_half_;
+  return (forward_ + x * right_ + y * up_).normalized();
+}
 
 Vec3d Camera::project(const Vec3d& point) const {
   const Vec3d d = point - position_;
