@@ -253,6 +253,10 @@ Hit surface_of(const Scene& scene, uint32_t geometry, uint32_t primitive, double
   hit.t = (toward - hit.point).norm();
   hit.geometry = geometry;
   hit.primitive = primitive;
+  if (const Scene::Spheres* spheres = scene.spheres(geometry)) {
+    // A sphere set is rasterized as one tessellation per sphere, in order; its hits name the sphere.
+    hit.primitive = uint32_t(primitive / (mesh.mesh.triangles.size() / spheres->centres.size()));
+  }
   hit.b1 = b1;
   hit.b2 = b2;
   return hit;
