@@ -5,6 +5,7 @@
 #include "refracta/shading/scaled_light.h"
 #include "refracta/shading/spectral.h"
 
+#include <filesystem>
 #include <string>
 
 namespace refracta {
@@ -108,7 +109,10 @@ Mesh mesh_from_state(const py::handle& object) {
 py::tuple scene_state(const RenderScene& scene) {
   const Scene& geometry = scene.geometry;
   py::list textures, materials, parts, lights;
-  for (int id = 0; id < int(geometry.textures().size()); ++id) textures.append(geometry.textures().path(id));
+  // Absolute paths: a worker may run in another working directory (the files must be there).
+  for (int id = 0; id < int(geometry.textures().size()); ++id) {
+    textures.append(std::filesystem::absolute(geometry.textures().path(id)).string());
+  }
   for (size_t id = 0; id < scene.material_count(); ++id) {
     materials.append(py::cast(std::const_pointer_cast<Material>(scene.material_ptr(int(id)))));
   }
