@@ -3,7 +3,7 @@ PYTHON ?= python3
 PYTEST_ARGS ?=
 SOURCES := $(shell find cpp python -name '*.h' -o -name '*.cpp' 2>/dev/null) CMakeLists.txt pyproject.toml
 
-.PHONY: install demo test bench stubs clean
+.PHONY: install demo test bench stubs docs clean
 install: .install.stamp
 
 # Debian packages first, then the package itself (editable) into the current Python.
@@ -29,6 +29,11 @@ bench: install
 stubs: install
 	$(PYTHON) -m pybind11_stubgen refracta._core -o build/stubs
 	cp build/stubs/refracta/_core.pyi python/refracta/_core.pyi
+
+# API reference (autodoc + napoleon) and the notebooks (myst-nb, not executed) into build/docs;
+# -W: a warning fails the build, as in tests/package/test_docs.py.
+docs: install
+	$(PYTHON) -m sphinx -W --keep-going -b html python/docs build/docs
 
 clean:
 	rm -rf build out .install.stamp

@@ -55,11 +55,13 @@ def _vector(value, sizes, what: str) -> np.ndarray:
 class PointPair:
     """One constraint of an edit.
 
-    destination: where the image should appear -- a pixel ``(u, v)`` of the camera passed to
-        solve(), or a 3D point [m] the eye looks toward (only its direction from the eye matters).
-    source: the 3D scene point [m] that should be seen there (``camera.pick(scene, u, v)`` finds
-        the point a pixel shows without atmosphere).
-    weight: importance (> 0); the pair's miss is scaled by sqrt(weight) in the cost.
+    Attributes:
+        destination: where the image should appear -- a pixel ``(u, v)`` of the camera passed to
+            solve(), or a 3D point [m] the eye looks toward (only its direction from the eye
+            matters).
+        source: the 3D scene point [m] that should be seen there (``camera.pick(scene, u, v)``
+            finds the point a pixel shows without atmosphere).
+        weight: importance (> 0); the pair's miss is scaled by sqrt(weight) in the cost.
     """
 
     destination: Tuple[float, ...]
@@ -255,7 +257,7 @@ def solve(
         integrator, tol, step: 'rk45' to `tol` [m] (default 1e-9) or 'rk4' with `step` [m]
             (default 0.3, the original's).
         ground: height [m] where paths end on the ground (default: none).
-        reach: paths are traced to reach * |source - eye| + 1 m (and stop once past the source).
+        reach: paths are traced to ``reach * |source - eye| + 1`` m (and stop once past the source).
         loss, loss_scale: ceres robust loss ('huber', 'soft_l1', 'cauchy', 'arctan') on each
             pair's squared miss, quadratic below loss_scale [m].
         max_iterations (ceres), max_evaluations (nlopt), max_time [s], target_cost [m^2] (stop
@@ -263,7 +265,7 @@ def solve(
         trust_region: ceres' initial trust-region radius as a fraction of each free parameter's
             bound range (default 0.1: cautious first steps; narrow layers have flat regions a bold
             step lands in).
-        accept_angle: a pair is met when its miss <= accept_angle * |source - eye| [rad].
+        accept_angle: a pair is met when its miss is at most ``accept_angle * |source - eye|`` (accept_angle [rad]).
         progress: True for a bar on stderr, or a callable progress(done, total).
 
     Returns:

@@ -7,7 +7,7 @@ surface tangent along which ``alpha_u`` acts) with float64 unit directions of sh
 - ``f(wo, wi)`` -> (N, 3) linear RGB BSDF values without the cosine [1/sr] (delta lobes give 0);
 - ``pdf(wo, wi)`` -> (N,) density [1/sr] of ``sample`` producing wi, lobe probabilities included;
 - ``sample(wo, u)`` with u (N, 3) uniform in [0, 1) (u[:, 0] picks the lobe, u[:, 1:] the
-  direction) -> dict of arrays ``wi`` (N, 3), ``weight`` (N, 3) = f |cos theta_i| / pdf (delta
+  direction) -> dict of arrays ``wi`` (N, 3), ``weight`` (N, 3) = ``f |cos theta_i| / pdf`` (delta
   lobes: albedo over the lobe's probability), ``f``, ``pdf`` (N,), ``flags`` (N,) (1 reflection,
   2 transmission, 4 diffuse, 8 glossy, 16 specular), ``is_delta``, ``eta`` (relative index
   crossed, 1 for reflection), ``valid`` (False where no direction came out), ``terminated``.

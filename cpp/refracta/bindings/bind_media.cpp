@@ -156,7 +156,7 @@ A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres,
 
 ior(points) -> n, shape (N,) (float for one point); grad_ior(points) -> grad n [1/m], (N, 3).
 params: dict of parameter values; param_names; bounds: dict name -> (lower, upper), the box an
-optimiser searches; with_params(**values) -> a new field; height_only: n depends on y alone;
+optimiser searches; ``with_params(**values)`` -> a new field; height_only: n depends on y alone;
 gauge_params: parameters an optimiser holds fixed by default (a joint scaling leaves rays unchanged).
 Raises refracta.NumericalError where n <= 0 or is not finite.)doc")
       .def("ior", &ior_of, py::arg("points"), "Refractive index at points (N, 3) -> (N,).")
@@ -198,9 +198,12 @@ Raises refracta.NumericalError where n <= 0 or is not finite.)doc")
       .def("__repr__", &field_repr);
 
   bind_model<LogisticProfile>(m, "LogisticProfile", R"doc(
-The original mirage editor's height profile (Choi 2017), in scene units:
-n(h) = 1 + 0.003 k_s (f(n_bg, 10 a_bg, 0, h) + f(n_inv, -0.1 a_inv, h_ciso, h)
-       + f(n_hot, 0.3 a_hot, 0, h)) / (|n_bg| + |n_inv| + |n_hot|),  f(L, w, x0, x) = L/(1 + e^((x0-x)/w)).
+The original mirage editor's height profile (Choi 2017), in scene units::
+
+    n(h) = 1 + 0.003 k_s (f(n_bg, 10 a_bg, 0, h) + f(n_inv, -0.1 a_inv, h_ciso, h)
+           + f(n_hot, 0.3 a_hot, 0, h)) / (|n_bg| + |n_inv| + |n_hot|)
+    f(L, w, x0, x) = L / (1 + e^((x0 - x) / w))
+
 Scaling n_bg, n_inv, n_hot together changes nothing (gauge freedom): editing fixes n_bg by default.)doc");
 
   bind_model<LinearSquaredProfile>(m, "LinearSquaredProfile", R"doc(

@@ -52,7 +52,7 @@ A traced light path. Arrays are per node (the integrator's steps; the path betwe
 quintic Hermite interpolant of positions, tangents and curvatures, accurate to O(step^6)).
 
 points (N,3) [m]; directions (N,3) unit tangents; arc_length (N,) [m]; ior (N,) n at each node;
-ray_vectors (N,3) the integrated v (|v| = n); stop: why the path ended ('max_length',
+ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max_length',
 'stop_height'); evaluations: field evaluations used.)doc")
       .def_property_readonly("points", [](const RayPath& p) { return node_vectors(p, [](const RayNode<double>& n) { return n.x; }); })
       .def_property_readonly("directions", [](const RayPath& p) {
@@ -151,7 +151,7 @@ ray_vectors (N,3) the integrated v (|v| = n); stop: why the path ended ('max_len
         py::arg("stop_height") = py::none(), R"doc(
 Trace one curved ray through `field` and return its RayPath.
 
-The ray equations dx/ds = v/n, dv/ds = grad n are launched with v0 = n(origin) * direction/|direction|.
+The ray equations dx/ds = v/n, dv/ds = grad n are launched with ``v0 = n(origin) * direction / |direction|``.
 method: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path),
 'rk4' (fixed step `step`, default 0.3 m, the original editor's), or 'stratified' (height-only
 fields: exact paths from n(h) cos(e) = const by quadrature to `tol`; `step` is the largest node

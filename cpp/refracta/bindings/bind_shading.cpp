@@ -319,7 +319,7 @@ void bind_shading(py::module_& m) {
           py::arg("mode") = "radiance",
           "Sample incident directions for wo (N, 3) from uniform numbers u (N, 3) in [0, 1): u[:, 0] picks\n"
           "the lobe, u[:, 1:] the direction. Returns a dict of arrays: wi (N, 3) (0 where invalid),\n"
-          "weight (N, C) = f |cos theta_i| / pdf (delta lobes: the lobe's albedo over its probability),\n"
+          "weight (N, C) = ``f |cos theta_i| / pdf`` (delta lobes: the lobe's albedo over its probability),\n"
           "f (N, C), pdf (N,) (delta lobes: the lobe's selection probability), flags (N,) uint32\n"
           "(1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular/delta), is_delta (N,),\n"
           "eta (N,) the relative index crossed (1 for reflection), valid (N,) False where no direction\n"
@@ -530,7 +530,7 @@ void bind_shading(py::module_& m) {
         return fresnel_complex(cos_i, std::complex<double>(eta, k));
       }),
       py::arg("cos_i"), py::arg("eta"), py::arg("k"),
-      "Unpolarised Fresnel reflectance of a conductor of relative complex index eta + i k at |cos_i| (exact). Vectorised.");
+      "Unpolarised Fresnel reflectance of a conductor of relative complex index eta + i k at ``|cos_i|`` (exact). Vectorised.");
   m.def(
       "fresnel_diffuse_reflectance",
       [](double eta) {
