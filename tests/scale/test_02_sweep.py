@@ -4,6 +4,9 @@ every other result is kept, progress, and the same results from thread and proce
 import concurrent.futures
 import multiprocessing
 import pickle
+import signal
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -107,3 +110,34 @@ def render_road(surface_dt):
 def test_bad_arguments_raise_value_errors(bad, message):
     with pytest.raises(ValueError, match=message):
         sweep(**bad)
+
+
+# A bound against a hang, not a timing assertion: the interrupted sweep below would otherwise
+# render for minutes.
+INTERRUPT_WAIT = 20.0
+
+_INTERRUPTED_SWEEP = """
+import sys
+import refracta
+from refracta import examples
+
+def long_render(surface_dt):
+    road = examples.hot_road(160, 60)
+    print("ready", flush=True)
+    return refracta.render(road.scene, road.camera, road.field.with_params(surface_dt=surface_dt),
+                           spp=4096, progress=False, max_length=road.max_length)
+
+refracta.sweep(long_render, {"surface_dt": [5.0, 10.0, 15.0]}, progress=False)
+"""
+
+
+def test_ctrl_c_stops_a_sweep():
+    process = subprocess.Popen([sys.executable, "-c", _INTERRUPTED_SWEEP], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    try:
+        assert process.stdout.readline().strip() == "ready"
+        process.send_signal(signal.SIGINT)
+        _, stderr = process.communicate(timeout=INTERRUPT_WAIT)
+    finally:
+        process.kill()
+    assert process.returncode != 0 and "KeyboardInterrupt" in stderr
