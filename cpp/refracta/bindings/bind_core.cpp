@@ -1,5 +1,6 @@
 // Exceptions and array conversions shared by all bindings.
 #include "refracta/bindings/bindings.h"
+#include "refracta/bindings/running_work.h"
 
 #include <cmath>
 
@@ -74,6 +75,12 @@ DoubleArray values_to_array(const std::vector<double>& values) {
 void bind_core(py::module_& m) {
   py::register_exception<NumericalError>(m, "NumericalError", PyExc_RuntimeError);
   py::register_exception<IoError>(m, "IoError", PyExc_OSError);
+  // Interpreter exit with a daemon thread inside render or trace_rays: cancel the work and wait
+  // for it (GIL released) before Python finalizes. Cancellation takes < 1 s (the Ctrl-C tests);
+  // 10 s leaves a wide margin for a slow machine.
+  m.def("_shutdown_running_work", &shutdown_running_work, py::arg("timeout_seconds") = 10.0,
+        py::call_guard<py::gil_scoped_release>());
+  py::module_::import("atexit").attr("register")(m.attr("_shutdown_running_work"));
 }
 
 }  // namespace refracta

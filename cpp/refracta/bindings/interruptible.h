@@ -1,10 +1,12 @@
 // Runs long C++ work with the GIL released on a worker thread, while the calling thread wakes
 // every 50 ms to check for Ctrl-C (then cancels the work and raises KeyboardInterrupt) and to
 // report progress to an optional Python callable progress(done, total); an exception raised by
-// the callback cancels the work the same way.
+// the callback cancels the work the same way. Every call is registered (running_work.h) so that
+// interpreter exit cancels it and waits for it, and it never takes the GIL of an exiting interpreter.
 #pragma once
 
 #include "refracta/bindings/bindings.h"
+#include "refracta/bindings/running_work.h"
 #include "refracta/core/parallel.h"
 
 #include <chrono>
@@ -21,6 +23,11 @@ void run_interruptible(WorkControl& control, const py::object& progress, Work&& 
   std::mutex mutex;
   std::condition_variable finished_cv;
   bool finished = false, interrupted = false;
+  enter_running_work(control);
+  struct Leave {
+    WorkControl& control;
+    ~Leave() { leave_running_work(control); }  // with the GIL held again, after the block below
+  } leave{control};
   {
     py::gil_scoped_release release;
     std::thread worker([&] {
@@ -37,6 +44,10 @@ void run_interruptible(WorkControl& control, const py::object& progress, Work&& 
     while (!finished) {
       finished_cv.wait_for(lock, std::chrono::milliseconds(50));
       if (finished) break;
+      if (python_is_shutting_down()) {  // interpreter exit: stop, and never take its GIL again
+        control.cancel = true;
+        continue;
+      }
       lock.unlock();
       {
         py::gil_scoped_acquire acquire;
@@ -63,6 +74,7 @@ void run_interruptible(WorkControl& control, const py::object& progress, Work&& 
     }
     lock.unlock();
     worker.join();
+    park_if_shutting_down(control);
   }
   if (interrupted) throw py::error_already_set();  // KeyboardInterrupt, or the callback's error
   if (error) {
