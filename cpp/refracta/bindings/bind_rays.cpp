@@ -144,7 +144,13 @@ ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max
           const IndexField& f = checked_field(field);
           const TraceOptions options = make_options(method, tol, step, max_length, stop_height);
           const Vec3d o = to_point(origin, "origin"), d = to_point(direction, "direction");
-          return std::make_shared<RayPath>(trace_path(f, o, d, options));
+          // On a worker thread with the GIL released, like the batch: Ctrl-C stops a long path.
+          WorkControl control;
+          TraceOptions cancellable = options;
+          cancellable.cancel = &control.cancel;
+          std::shared_ptr<RayPath> path;
+          run_interruptible(control, py::none(), [&] { path = std::make_shared<RayPath>(trace_path(f, o, d, cancellable)); });
+          return path;
         },
         py::arg("field"), py::arg("origin"), py::arg("direction"), py::arg("method") = "rk45",
         py::arg("tol") = 1e-6, py::arg("step") = py::none(), py::arg("max_length") = 1000.0,
@@ -157,7 +163,8 @@ method: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] ov
 fields: exact paths from n(h) cos(e) = const by quadrature to `tol`; `step` is the largest node
 spacing, default 100 m). max_length [m]: arc length at which the path ends. stop_height [m]: the
 path ends where it descends through this height (a ground). Raises ValueError for bad arguments
-and refracta.NumericalError where n <= 0 or is not finite.)doc");
+(a path needing more than 10 million nodes is refused up front), refracta.NumericalError where n
+<= 0 or is not finite; Ctrl-C (KeyboardInterrupt) stops it.)doc");
 
   m.def("_trace_batch",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,

@@ -1,6 +1,10 @@
 // CustomField: calls into Python with the GIL held, checking every result's shape.
 #include "refracta/bindings/custom_field.h"
 
+#include "refracta/bindings/running_work.h"
+#include "refracta/core/parallel.h"
+#include "refracta/media/ior_range.h"
+
 namespace refracta {
 
 CustomField::CustomField(py::object ior, py::object grad_ior, bool height_only)
@@ -11,6 +15,8 @@ CustomField::CustomField(py::object ior, py::object grad_ior, bool height_only)
 }
 
 CustomField::~CustomField() {
+  // At interpreter exit a thread without the GIL must not take it: the two objects are leaked.
+  if (python_is_shutting_down() && !PyGILState_Check()) return;
   py::gil_scoped_acquire acquire;
   delete ior_;
   delete grad_;
@@ -24,20 +30,42 @@ DoubleArray CustomField::call_ior(const DoubleArray& points) const {
     throw_invalid("CustomField: ior returned ", out.size(), " values in ", out.ndim(),
                   " dimensions for ", count, " points; expected shape (", count, ",)");
   }
-  return out.reshape({count});
+  out = out.reshape({count});
+  const double* n = out.data();
+  const double* p = points.data();
+  for (py::ssize_t i = 0; i < count; ++i) {
+    if (!usable_ior(n[i])) {
+      throw_numerical("CustomField: ior returned n = ", n[i], " at (", p[3 * i], ", ", p[3 * i + 1], ", ",
+                      p[3 * i + 2], ") m; n must be finite and > 0 (in [", kMinIor, ", ", kMaxIor, "])");
+    }
+  }
+  return out;
 }
 
 DoubleArray CustomField::call_grad(const DoubleArray& points) const {
   const py::ssize_t count = points.shape(0);
   DoubleArray out = py::cast<DoubleArray>((*grad_)(points));
-  if (!(out.size() == 3 * count && (out.ndim() == 2 || (out.ndim() == 1 && count == 1)))) {
+  // Exactly (N, 3), or (3,) for one point: a (3, N) array has the same size but other meaning.
+  if (!((out.ndim() == 2 && out.shape(0) == count && out.shape(1) == 3) ||
+        (out.ndim() == 1 && count == 1 && out.shape(0) == 3))) {
     throw_invalid("CustomField: grad_ior returned ", out.size(), " values in ", out.ndim(),
                   " dimensions for ", count, " points; expected shape (", count, ", 3)");
   }
-  return out.reshape({count, py::ssize_t(3)});
+  out = out.reshape({count, py::ssize_t(3)});
+  const double* g = out.data();
+  const double* p = points.data();
+  for (py::ssize_t i = 0; i < 3 * count; ++i) {
+    if (!std::isfinite(g[i])) {
+      const py::ssize_t k = i / 3;
+      throw_numerical("CustomField: grad_ior returned (", g[3 * k], ", ", g[3 * k + 1], ", ", g[3 * k + 2],
+                      ") at (", p[3 * k], ", ", p[3 * k + 1], ", ", p[3 * k + 2], ") m; it must be finite");
+    }
+  }
+  return out;
 }
 
 void CustomField::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
+  if (python_is_shutting_down()) throw Cancelled();  // never call into an exiting interpreter
   py::gil_scoped_acquire acquire;
   DoubleArray point({py::ssize_t(1), py::ssize_t(3)});
   std::copy(p.data(), p.data() + 3, point.mutable_data());

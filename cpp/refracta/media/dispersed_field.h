@@ -38,6 +38,7 @@ class DispersedField final : public IndexField {
   std::string type_name() const override { return "DispersedField"; }
   void evaluate(const Vec3d& p, double* n, Vec3d* grad) const override;
   bool height_only() const override { return base_->height_only(); }
+  double uniform_above() const override { return base_->uniform_above(); }
   void evaluate_height(double h, double* n, double* dn_dh) const override;
   const std::vector<ParamSpec>& param_specs() const override { return base_->param_specs(); }
   std::vector<double> param_values() const override { return base_->param_values(); }

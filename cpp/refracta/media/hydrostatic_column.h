@@ -92,9 +92,11 @@ class HydrostaticColumn {
 
   T integral(const T& h) const {
     const double hv = value_of(h);
+    if (!std::isfinite(hv)) throw_numerical(owner_, ": asked for the air at a non-finite height (", hv, " m)");
     if (!(hv >= nodes_.front() && hv <= nodes_.back())) {
-      throw_numerical(owner_, ": height ", hv, " m is outside the modelled range [",
-                      nodes_.front(), ", ", nodes_.back(), "] m");
+      throw_numerical(owner_, ": height ", hv, " m is ", hv < nodes_.front() ? "below" : "above",
+                      " the modelled range [", nodes_.front(), ", ", nodes_.back(), "] m",
+                      hv < nodes_.front() ? " (a ray went below it: add a ground, or stop_height, above it)" : "");
     }
     size_t i = std::upper_bound(nodes_.begin(), nodes_.end(), hv) - nodes_.begin();
     i = std::clamp<size_t>(i, 1, nodes_.size() - 1);
@@ -126,7 +128,21 @@ struct HydrostaticAirModel : HeightOnlyModel<Derived, T> {
     return exp(self().column().log_pressure(h));
   }
 
+  // Above the modelled column the air is taken as uniform at its top state: n(top), no gradient.
+  // A ray climbing out of the column then leaves straight along its direction at the top, as it
+  // nearly does in real air (n - 1 is 4e-6 at 32 km and falls e-fold every 7 km). Below the
+  // column's bottom n stays an error (NumericalError naming the height): there is ground there.
+  double uniform_above() const { return self().column().highest(); }
+
   void evaluate_height(const T& h, T* n, T* dn_dh) const {
+    const double top = self().column().highest();
+    if (value_of(h) > top) {
+      T t, dt;
+      self().temperature(T(top), &t, &dt);
+      air_column_index(pressure(T(top)), t, dt, self().humidity(), self().wavelength(), n, dn_dh);
+      *dn_dh = T(0.0);
+      return;
+    }
     T t, dt;
     self().temperature(h, &t, &dt);
     air_column_index(pressure(h), t, dt, self().humidity(), self().wavelength(), n, dn_dh);

@@ -1,5 +1,6 @@
 // Shared, non-template parts of IndexField.
 #include "refracta/media/index_field.h"
+#include "refracta/media/ior_range.h"
 
 #include "refracta/core/error.h"
 
@@ -13,10 +14,10 @@ void IndexField::evaluate_height(double, double*, double*) const {
 
 void IndexField::evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const {
   evaluate(p, n, grad);
-  if (!(std::isfinite(*n) && *n > 0.0) || !is_finite(*grad)) {
+  if (!usable_ior(*n) || !is_finite(*grad)) {
     throw_numerical(type_name(), ": refractive index n = ", *n, ", grad n = (", grad->x(), ", ",
                     grad->y(), ", ", grad->z(), ") at (", p.x(), ", ", p.y(), ", ", p.z(),
-                    ") m; n must be finite and > 0");
+                    ") m; n must be finite and > 0 (in [", kMinIor, ", ", kMaxIor, "])");
   }
 }
 

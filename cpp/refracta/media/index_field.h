@@ -5,6 +5,7 @@
 
 #include "refracta/core/math.h"
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,6 +45,9 @@ class IndexField {
   // Parameters an optimiser holds fixed by default because a joint change of them with others
   // leaves every ray path unchanged (a gauge freedom of the model).
   virtual std::vector<std::string> gauge_params() const { return {}; }
+  // Height-only fields: n is constant (grad n = 0) at every height above this one [m] (+inf: no
+  // such height). A ray above it goes straight: the stratified tracer ends the path in one step.
+  virtual double uniform_above() const { return std::numeric_limits<double>::infinity(); }
 
   // evaluate, throwing NumericalError when n <= 0 or anything is not finite.
   void evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const;

@@ -12,9 +12,18 @@
 #include "refracta/media/index_field.h"
 
 #include <memory>
+#include <type_traits>
 #include <utility>
 
 namespace refracta {
+
+namespace detail {
+// Whether a model declares double uniform_above() const (see IndexField::uniform_above).
+template <class M, class = void>
+struct HasUniformAbove : std::false_type {};
+template <class M>
+struct HasUniformAbove<M, std::void_t<decltype(std::declval<const M&>().uniform_above())>> : std::true_type {};
+}  // namespace detail
 
 template <template <class> class Model>
 class ModelField : public IndexField {
@@ -51,6 +60,10 @@ class ModelField : public IndexField {
     return make_with(values);
   }
   std::vector<std::string> gauge_params() const override { return Model<double>::gauge_params(); }
+  double uniform_above() const override {
+    if constexpr (detail::HasUniformAbove<Model<double>>::value) return model_.uniform_above();
+    return IndexField::uniform_above();
+  }
 
   const Config& config() const { return config_; }
   const Model<double>& model() const { return model_; }

@@ -28,9 +28,10 @@ void ElevationTableOptions::validate() const {
   }
 }
 
-ElevationTable::Entry ElevationTable::trace_entry(double elevation) const {
+ElevationTable::Entry ElevationTable::trace_entry(double elevation, const std::atomic<bool>* cancel) const {
   TraceOptions trace = options_.trace;
   trace.method = TraceMethod::kStratified;
+  trace.cancel = cancel;
   Entry entry;
   entry.path = std::make_shared<RayPath>(trace_path(
       *field_, Vec3d(0.0, options_.eye_height, 0.0), Vec3d(std::cos(elevation), std::sin(elevation), 0.0),
@@ -135,7 +136,7 @@ ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& opti
     WorkControl inner;
     parallel_for_each(int64_t(e.size()), 1, inner, [&](int64_t i) {
       if (control.cancel) throw Cancelled();
-      out[i] = trace_entry(e[i]);
+      out[i] = trace_entry(e[i], &control.cancel);
       evaluations += out[i].path->evaluations();
       control.done.fetch_add(1);
     });

@@ -13,6 +13,7 @@
 #include "refracta/rays/ray_path.h"
 #include "refracta/rays/trace_options.h"
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -97,7 +98,8 @@ class ElevationTable {
     std::vector<PlaneState> at_nodes[2];
   };
   void precompute_stencils();
-  Entry trace_entry(double elevation) const;
+  // cancel: polled at every step of the trace (the constructor's Ctrl-C), or none.
+  Entry trace_entry(double elevation, const std::atomic<bool>* cancel = nullptr) const;
   static PlaneState state_of(const RayPath& path, double s);
   // Interpolated state at `elevation` inside interval i of (elevations, entries), at the given
   // fraction of the interpolated length: cubic through four neighbours of one kind, else linear.

@@ -92,7 +92,8 @@ class Rk45Stepper {
         // A few minimum steps carry the ray across a discontinuity of the field; a long run of
         // them means the field is singular here (n -> 0, an infinite gradient).
         // Tiny accepted steps shrinking toward a point (a Zeno sequence) mean the same.
-        min_steps_in_a_row_ = hv <= kTinyStep * max_length_ ? min_steps_in_a_row_ + 1 : 0;
+        // Only steps the error control shrank count: a small largest step asked for is no sign.
+        min_steps_in_a_row_ = hv <= kTinyStep * max_length_ && hv < max_step_ ? min_steps_in_a_row_ + 1 : 0;
         if (min_steps_in_a_row_ > 1000) {
           throw_numerical("rk45: step size collapsed at (", value_of(a.x.x()), ", ", value_of(a.x.y()),
                           ", ", value_of(a.x.z()), ") m where n = ", value_of(a.n), " and |grad n| = ",

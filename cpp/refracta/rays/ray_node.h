@@ -8,6 +8,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/math.h"
+#include "refracta/media/ior_range.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,11 +36,11 @@ RayNode<T> make_node(const Field& field, const T& s, const Vec3<T>& x, const Vec
   RayNode<T> node{s, x, v, T(0.0), Vec3<T>::Zero()};
   field.evaluate(x, &node.n, &node.grad);
   ++*evaluations;
-  if (!(value_of(node.n) > 0.0) || !std::isfinite(value_of(node.n)) || !is_finite(node.grad)) {
+  if (!usable_ior(value_of(node.n)) || !is_finite(node.grad)) {
     throw_numerical("ray reached n = ", value_of(node.n), " (grad n = (", value_of(node.grad.x()),
                     ", ", value_of(node.grad.y()), ", ", value_of(node.grad.z()), ")) at (",
                     value_of(x.x()), ", ", value_of(x.y()), ", ", value_of(x.z()),
-                    ") m; the refractive index must be finite and > 0 along the path");
+                    ") m; the refractive index must be finite and > 0 (in [", kMinIor, ", ", kMaxIor, "]) along the path");
   }
   if (!is_finite(x) || !is_finite(v)) {
     throw_numerical("ray state became non-finite at arc length ", value_of(s), " m");

@@ -12,6 +12,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/parallel.h"
+#include "refracta/media/ior_range.h"
 #include "refracta/rays/ray_node.h"
 #include "refracta/rays/trace_options.h"
 
@@ -42,7 +43,7 @@ class StratifiedTracer {
   StratifiedTracer(const Field& field, const TraceOptions& options)
       : field_(field), options_(options), length_(options.max_length),
         spacing_(options.step > 0.0 ? options.step : 100.0),
-        scan_step_(std::min(1.0, spacing_)) {}
+        scan_step_(std::min(1.0, spacing_)), uniform_above_(field.uniform_above()) {}
 
   template <class Visitor>
   TraceEnd<double> trace(const Vec3d& x0, const Vec3d& t0, Visitor&& visit) {
@@ -85,9 +86,9 @@ class StratifiedTracer {
   void eval(double h, double* n, double* dn) {
     field_.evaluate_height(h, n, dn);
     ++out_.evaluations;
-    if (!(*n > 0.0) || !std::isfinite(*n) || !std::isfinite(*dn)) {
+    if (!usable_ior(*n) || !std::isfinite(*dn)) {
       throw_numerical("ray reached n = ", *n, " (dn/dh = ", *dn, ") at height ", h,
-                      " m; the refractive index must be finite and > 0 along the path");
+                      " m; the refractive index must be finite and > 0 (in [", kMinIor, ", ", kMaxIor, "]) along the path");
     }
   }
 
@@ -106,6 +107,10 @@ class StratifiedTracer {
 
   void emit(const RayNode<double>& next) {
     if (options_.cancel && options_.cancel->load(std::memory_order_relaxed)) throw Cancelled();
+    if (out_.steps >= options_.max_steps) {  // e.g. a long climb scanned metre by metre
+      throw_numerical("stratified: the path needs more than max_steps = ", options_.max_steps, " nodes (at arc length ",
+                      s_, " m of ", length_, " m, height ", next.x.y(), " m)");
+    }
     if (!visit_(last_, next)) {
       out_.stop = TraceStop::kVisitor;
       stopped_ = true;
@@ -120,6 +125,17 @@ class StratifiedTracer {
       const double s = length_ * i / count;
       emit(node(s, s, origin_.y(), n0, 0.0, 0.0));
     }
+    reached_end_ = true;
+  }
+
+  // Rising from the last node at or above uniform_above: n is constant there, the rest of the path
+  // is the straight line along the last direction, exact as one node at max_length.
+  void straight_to_end() {
+    const double rest = length_ - s_, n = last_.n;
+    const double sin_e = std::sqrt(std::max(n - beta_, 0.0) * (n + beta_)) / n, cos_e = std::min(beta_ / n, 1.0);
+    s_ = length_;
+    r_ += rest * cos_e;
+    emit(node(s_, r_, last_.x.y() + rest * sin_e, n, 0.0, sin_e));
     reached_end_ = true;
   }
 
@@ -294,8 +310,13 @@ class StratifiedTracer {
     }
     for (int iteration = 0; !done(); ++iteration) {
       if (iteration > 10'000'000) throw_numerical("stratified: no progress near h = ", h_prev, " m");
+      if (dir > 0.0 && h_prev >= uniform_above_ && !from_turning) {  // uniform above: straight on
+        straight_to_end();
+        return false;
+      }
       const double budget = length_ - s_ + 1e-9;
       double h_next = h_prev + dir * std::min(delta, budget);
+      if (dir > 0.0 && h_prev < uniform_above_ && h_next > uniform_above_) h_next = uniform_above_;
       bool at_stop = false;
       if (dir < 0.0 && options_.stop_height && h_next <= *options_.stop_height) {
         h_next = *options_.stop_height;
@@ -361,6 +382,7 @@ class StratifiedTracer {
   double launch_h_ = 0.0, launch_gap_ = 0.0, launch_slope_ = 0.0;
   bool stopped_ = false, reached_end_ = false;
   RayNode<double> last_;
+  double uniform_above_;  // the field's: n is constant above it [m]
   TraceEnd<double> out_;
   std::function<bool(const RayNode<double>&, const RayNode<double>&)> visit_;
 };

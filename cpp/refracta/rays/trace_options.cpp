@@ -41,11 +41,17 @@ void TraceOptions::validate() const {
   if (stop_height && !std::isfinite(*stop_height)) {
     throw_invalid("stop_height must be finite (got ", *stop_height, ")");
   }
-  if (method == TraceMethod::kRk4 && max_length / (step > 0 ? step : 0.3) > double(max_steps)) {
-    throw_invalid("rk4 with step ", step, " m needs more than ", max_steps,
-                  " steps for max_length ", max_length, " m");
-  }
   if (max_steps <= 0) throw_invalid("max_steps must be > 0 (got ", max_steps, ")");
+  // Refused before any work: a path that needs more than max_steps steps (rk4: max_length / step;
+  // rk45: at least max_length / step when a largest step is given; stratified: at least
+  // max_length / node spacing, default 100 m) would run for minutes and fill memory with nodes.
+  const double least_step = method == TraceMethod::kRk4          ? (step > 0 ? step : 0.3)
+                            : method == TraceMethod::kStratified ? (step > 0 ? step : 100.0)
+                                                                 : step;
+  if (least_step > 0 && max_length / least_step > double(max_steps)) {
+    throw_invalid(trace_method_name(method), " with step ", least_step, " m needs more than ", max_steps,
+                  " steps for max_length ", max_length, " m (raise step or lower max_length)");
+  }
 }
 
 }  // namespace refracta

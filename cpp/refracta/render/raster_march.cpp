@@ -131,6 +131,9 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
   trace_options.max_length =
       options.march == TraceMethod::kRk4 ? options.step * options.max_steps : options.max_length;
   trace_options.cancel = &control.cancel;
+  // Nothing is rasterized below the lowest geometry: the march ends 1 m under it (as curved rays
+  // do, caster.cpp) instead of descending out of the field's modelled air.
+  trace_options.stop_height = std::min(scene.lowest(), eye.y()) - 1.0;
   control.done = 0;
   // pixel_bounds limits the march; the raster (and its shading) stays the whole view's.
   const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
