@@ -87,6 +87,9 @@ validate() reports every bad value at once.)doc")
            const RenderOptions& options, const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
           options.validate();
+          // Refused before anything is allocated (core/image.h): float32 RGB and its numpy copy.
+          const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
+          check_image_memory(bounds.width(), bounds.height(), 24.0, "render");
           WorkControl control;
           Image image;
           RenderStats stats;

@@ -372,8 +372,11 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
              Mesh mesh = ground_mesh(height, 0.5 * size);
              int tex = -1;
              if (texture) {
-               if (!(texture_size > 0.0) || !std::isfinite(texture_size)) {
-                 throw_invalid("texture_size must be > 0 (got ", texture_size, ")");
+               // float texture coordinates keep no fraction of a repeat beyond 2^23 repeats (1e40
+               // repeats gave NaN pixels): at most 1e6 across the ground keeps 4 fractional bits.
+               if (!(texture_size > 0.0) || !std::isfinite(texture_size) || !(0.5 * size / texture_size <= 1e6)) {
+                 throw_invalid("texture_size must be > 0 and at least size / 2e6 = ", 0.5 * size / 1e6,
+                               " m (got ", texture_size, ")");
                }
                tex = s.geometry.textures().add(*texture);
                for (const auto& v : mesh.vertices) mesh.uvs.emplace_back(v.x() / texture_size, -v.z() / texture_size);

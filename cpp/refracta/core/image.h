@@ -2,7 +2,12 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace refracta {
 
@@ -15,5 +20,25 @@ struct Image {
   float* at(int x, int y) { return &pixels[(std::size_t(y) * width + x) * channels]; }
   const float* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * channels]; }
 };
+
+// This machine's physical memory [bytes] (0 if unknown).
+inline double physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? double(pages) * double(page) : 0.0;
+}
+
+// Refuses, before anything is allocated, an image of width x height pixels whose buffers
+// (bytes_per_pixel in all) would not fit in physical memory: std::invalid_argument (ValueError)
+// naming `what`, the size and the bytes. Without the guard a 100000 x 100000 render asked the
+// allocator for 120 GB and was killed, or swapped for minutes.
+inline void check_image_memory(int64_t width, int64_t height, double bytes_per_pixel, const char* what) {
+  const double bytes = double(width) * double(height) * bytes_per_pixel, memory = physical_memory_bytes();
+  if (memory > 0.0 && bytes > memory) {
+    throw std::invalid_argument(std::string(what) + ": a " + std::to_string(width) + " x " + std::to_string(height) +
+                                " image needs at least " + std::to_string(int64_t(bytes)) + " bytes (" +
+                                std::to_string(int64_t(bytes / 1e9)) + " GB), more than this machine's " +
+                                std::to_string(int64_t(memory / 1e9)) + " GB of memory");
+  }
+}
 
 }  // namespace refracta

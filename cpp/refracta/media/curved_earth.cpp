@@ -17,8 +17,19 @@ CurvedEarth::CurvedEarth(FieldPtr base, double radius) : base_(std::move(base)),
   specs_.push_back({"earth_radius", kEarthRadius, 6000e3, 1e9, "m", "radius of curvature of the ground"});
 }
 
-double CurvedEarth::true_height(double y) const { return radius_ * std::expm1(y / radius_); }
-double CurvedEarth::flat_height(double h) const { return radius_ * std::log1p(h / radius_); }
+double CurvedEarth::true_height(double y) const {
+  const double h = radius_ * std::expm1(y / radius_);
+  if (!std::isfinite(h)) throw_invalid("CurvedEarth: flat height y = ", y, " m has no finite true height");
+  return h;
+}
+
+double CurvedEarth::flat_height(double h) const {
+  // h <= -R is at or below the Earth's centre, where the flattening (y = R ln(1 + h/R)) is undefined.
+  if (!(h > -radius_)) {
+    throw_invalid("CurvedEarth: true height h must be > -radius = ", -radius_, " m (got ", h, " m)");
+  }
+  return radius_ * std::log1p(h / radius_);
+}
 
 void CurvedEarth::evaluate_height(double y, double* n, double* dn_dy) const {
   flattened_height(*base_, radius_, y, n, dn_dy);

@@ -78,6 +78,8 @@ bool spot_covers(const SpotLight& spot, const Vec3d& point) {
 Image render_raster(const RenderScene& render_scene, const Camera& camera, const RasterRenderOptions& options,
                     WorkControl& control, RasterRenderStats* stats) {
   options.validate();
+  // float32 RGB here and in the numpy copy handed to Python: 24 bytes per pixel at least.
+  check_image_memory(camera.width(), camera.height(), 24.0, "render_raster");
   render_scene.prepare();
   const Scene& scene = render_scene.geometry;
   // The lights: the sun (the first), the spot lights (selected by options.spots), and the rest.

@@ -3,6 +3,7 @@
 
 #include "refracta/core/error.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace refracta {
@@ -17,7 +18,11 @@ Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, dou
     throw_invalid("Camera: vfov must be in (0, 180) degrees (got ", vfov_deg, ")");
   }
   if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
-  const Vec3d view = look_at - position;
+  Vec3d view = look_at - position;
+  if (!is_finite(view)) {  // overflowed (points 1e308 apart): the direction from scaled points
+    const double scale = std::max(position.cwiseAbs().maxCoeff(), look_at.cwiseAbs().maxCoeff());
+    view = look_at / scale - position / scale;
+  }
   if (view.norm() == 0.0) throw_invalid("Camera: look_at must differ from position");
   forward_ = view.normalized();
   const Vec3d side = forward_.cross(up);

@@ -41,9 +41,20 @@ void write_image(const std::string& path, const Image& image) {
 
 Image read_image(const std::string& path) {
   if (!std::filesystem::exists(path)) throw IoError(concat("no such image file: '", path, "'"));
+  // OIIO's readers spin on a FIFO or a device such as /dev/zero: refuse them before opening.
+  if (!std::filesystem::is_regular_file(path)) throw IoError(concat("cannot read '", path, "': not a regular file"));
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw IoError(concat("cannot read '", path, "': ", OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) {
+    throw IoError(concat("cannot read '", path, "': its header gives ", spec.width, " x ", spec.height, " pixels of ",
+                         spec.nchannels, " channels"));
+  }
+  try {  // a header claiming a huge image (a damaged or hostile file) is refused before allocating
+    check_image_memory(spec.width, spec.height, 4.0 * spec.nchannels, concat("read_image '", path, "'").c_str());
+  } catch (const std::invalid_argument& error) {
+    throw IoError(error.what());
+  }
   Image image(spec.width, spec.height, spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
     throw IoError(concat("cannot read '", path, "': ", in->geterror()));

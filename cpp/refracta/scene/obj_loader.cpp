@@ -2,6 +2,7 @@
 #include "refracta/scene/obj_loader.h"
 
 #include "refracta/core/error.h"
+#include "refracta/scene/obj_numbers.h"
 
 #include <tiny_obj_loader.h>
 
@@ -16,6 +17,7 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.mtl_search_path = std::filesystem::path(path).parent_path().string();
+  check_obj_numbers(path, config.mtl_search_path);  // regular files, no unparsable numbers
   tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, config)) {
     throw IoError(concat("cannot read OBJ '", path, "': ", reader.Error()));

@@ -51,6 +51,14 @@ std::string prepare(const std::string& path) {
   if (!source.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
     throw IoError(concat("cannot read texture '", path, "': ", source.geterror()));
   }
+  // A NaN or infinite texel would be filtered into its MIP levels and come back as NaN or as the
+  // half-float limit -65504 in renders: refuse the file.
+  const OIIO::ImageBufAlgo::PixelStats stats = OIIO::ImageBufAlgo::computePixelStats(source);
+  uint64_t non_finite = 0;
+  for (size_t c = 0; c < stats.nancount.size(); ++c) non_finite += stats.nancount[c] + stats.infcount[c];
+  if (non_finite > 0) {
+    throw IoError(concat("texture '", path, "' has ", non_finite, " NaN or infinite texel values; textures must be finite"));
+  }
   // 8- and 16-bit images store sRGB-encoded colour: filter in linear light.
   const OIIO::TypeDesc stored = source.spec().format;
   OIIO::ImageBuf linear = source;

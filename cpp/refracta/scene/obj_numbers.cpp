@@ -1,0 +1,81 @@
+// The strict number pass over OBJ and MTL files (obj_numbers.h).
+#include "refracta/scene/obj_numbers.h"
+
+#include "refracta/core/error.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <vector>
+
+namespace refracta {
+
+namespace {
+
+// Records whose arguments are all numbers. MTL colours may instead be "spectral file" or
+// "xyz x y z"; those forms are recognised and skipped or checked from the second token on.
+const std::set<std::string> kObjNumeric = {"v", "vt", "vn", "vp"};
+const std::set<std::string> kMtlNumeric = {"Ka", "Kd", "Ks", "Ke", "Tf", "Ns", "Ni", "d", "Tr", "illum", "sharpness",
+                                           "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
+
+void require_regular(const std::string& path, const char* kind) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw IoError(concat("cannot read ", kind, " '", path, "': not a regular file"));
+  }
+}
+
+// Checks one file's numeric records; appends its mtllib names to `libraries` (OBJ files).
+void check_file(const std::string& path, const char* kind, const std::set<std::string>& numeric,
+                std::vector<std::string>* libraries) {
+  require_regular(path, kind);
+  std::ifstream in(path);
+  if (!in) throw IoError(concat("cannot read ", kind, " '", path, "'"));
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const size_t comment = line.find('#');
+    if (comment != std::string::npos) line.resize(comment);
+    std::istringstream tokens(line);
+    std::string key;
+    if (!(tokens >> key)) continue;
+    if (libraries && key == "mtllib") {
+      for (std::string name; tokens >> name;) libraries->push_back(name);
+      continue;
+    }
+    if (!numeric.count(key)) continue;
+    std::string token;
+    bool first = true;
+    while (tokens >> token) {
+      if (first && (token == "spectral")) break;  // "Kd spectral file.rfl [factor]"
+      if (token == "-halo") continue;              // "d -halo 0.5"
+      if (first && token == "xyz") {               // "Kd xyz x y z"
+        first = false;
+        continue;
+      }
+      first = false;
+      errno = 0;
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      if (end != token.c_str() + token.size() || !std::isfinite(value) || errno == ERANGE) {
+        throw IoError(concat(kind, " '", path, "' line ", number, ": '", key, "' has '", token,
+                             "', which is not a finite number"));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void check_obj_numbers(const std::string& obj_path, const std::string& mtl_folder) {
+  std::vector<std::string> libraries;
+  check_file(obj_path, "OBJ", kObjNumeric, &libraries);
+  for (const std::string& name : libraries) {
+    const std::filesystem::path mtl = std::filesystem::path(mtl_folder) / name;
+    if (std::filesystem::exists(mtl)) check_file(mtl.string(), "MTL", kMtlNumeric, nullptr);
+  }
+}
+
+}  // namespace refracta
