@@ -1,9 +1,12 @@
 // The Ceres back-end: one residual block per pair, Levenberg-Marquardt over the free parameters
-// mapped to [0, 1] by their bounds (box constraints), an optional robust loss, an iteration callback for history, progress,
-// Ctrl-C and the target cost.
+// mapped to [0, 1] by their bounds (box constraints), an optional robust loss, every pair traced in
+// parallel before each evaluation (PairBatch: results independent of the thread count), an
+// iteration callback for history, progress, Ctrl-C and the target cost.
 #include "refracta/edit/edit_settings.h"
 
 #include <ceres/ceres.h>
+
+#include <algorithm>
 
 namespace refracta {
 
@@ -30,24 +33,33 @@ class EditCallback : public ceres::IterationCallback {
   std::vector<double>* history_;
 };
 
-// A pair's cost over the free parameters mapped to [0, 1] by their bounds (x = lower + u (upper -
-// lower)), as nlopt sees them too: the trust region then measures steps as fractions of each
-// parameter's range, whatever its unit.
-class UnitBoxCost : public ceres::CostFunction {
+// Every pair traced at once, in parallel on the oneTBB pool, before Ceres reads any residual block
+// (Ceres' EvaluationCallback; Ceres copies the point into `unit` first). Ceres itself then runs on
+// one thread: its sums over blocks (cost, gradient) have one order, so a solve gives the same
+// result whatever the thread count (refracta.set_threads) -- Ceres' own threads add block costs
+// in per-thread partial sums whose grouping depends on scheduling.
+class PairBatch : public ceres::EvaluationCallback {
  public:
-  UnitBoxCost(const ceres::CostFunction& cost, const EditProblem& problem) : cost_(cost), problem_(problem) {
-    set_num_residuals(cost.num_residuals());
-    *mutable_parameter_block_sizes() = cost.parameter_block_sizes();
-  }
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+  PairBatch(const EditProblem& problem, const std::vector<double>& unit) : problem_(problem), unit_(unit) {}
+
+  void PrepareForEvaluation(bool evaluate_jacobians, bool new_evaluation_point) override {
+    if (!new_evaluation_point && (jacobians_ || !evaluate_jacobians)) return;  // have what is asked
     const int m = problem_.num_free();
     std::vector<double> x(m);
-    for (int j = 0; j < m; ++j) x[j] = problem_.lower()[j] + parameters[0][j] * range(j);
-    const double* block[] = {x.data()};
-    if (!cost_.Evaluate(block, residuals, jacobians)) return false;
-    if (jacobians && jacobians[0]) {
-      for (int k = 0; k < num_residuals(); ++k) {
-        for (int j = 0; j < m; ++j) jacobians[0][k * m + j] *= range(j);
+    for (int j = 0; j < m; ++j) x[j] = problem_.lower()[j] + unit_[j] * range(j);
+    ok_ = problem_.evaluate(x, &residuals_, evaluate_jacobians ? &jacobian_ : nullptr);
+    jacobians_ = evaluate_jacobians;
+  }
+
+  // Pair i's 3 residuals and, when asked, its 3 x m Jacobian with respect to the unit box
+  // (d/du = d/dx * (upper - lower)); false when the batch's evaluation failed.
+  bool block(int i, double* residuals, double* jacobian) const {
+    if (!ok_ || (jacobian && !jacobians_)) return false;
+    const int m = problem_.num_free();
+    std::copy_n(residuals_.data() + 3 * i, 3, residuals);
+    if (jacobian) {
+      for (int k = 0; k < 3; ++k) {
+        for (int j = 0; j < m; ++j) jacobian[k * m + j] = jacobian_[size_t(3 * i + k) * m + j] * range(j);
       }
     }
     return true;
@@ -55,8 +67,29 @@ class UnitBoxCost : public ceres::CostFunction {
 
  private:
   double range(int j) const { return problem_.upper()[j] - problem_.lower()[j]; }
-  const ceres::CostFunction& cost_;
   const EditProblem& problem_;
+  const std::vector<double>& unit_;
+  std::vector<double> residuals_, jacobian_;
+  bool ok_ = false, jacobians_ = false;
+};
+
+// Pair i's residual block over the free parameters mapped to [0, 1] by their bounds (x = lower +
+// u (upper - lower)), as nlopt sees them too: the trust region then measures steps as fractions
+// of each parameter's range, whatever its unit. Its values come from the PairBatch.
+class UnitBoxCost : public ceres::CostFunction {
+ public:
+  UnitBoxCost(const PairBatch& batch, int pair, int num_free) : batch_(batch), pair_(pair) {
+    set_num_residuals(3);
+    mutable_parameter_block_sizes()->push_back(num_free);
+  }
+  bool Evaluate(double const* const* /*parameters: the batch's point*/, double* residuals,
+                double** jacobians) const override {
+    return batch_.block(pair_, residuals, jacobians ? jacobians[0] : nullptr);
+  }
+
+ private:
+  const PairBatch& batch_;
+  int pair_;
 };
 
 ceres::LossFunction* make_loss(const SolveSettings& settings) {
@@ -79,9 +112,12 @@ BackendResult solve_with_ceres(const EditProblem& problem, const SolveSettings& 
   for (int j = 0; j < m; ++j) {
     unit[j] = (problem.start()[j] - problem.lower()[j]) / (problem.upper()[j] - problem.lower()[j]);
   }
-  ceres::Problem ceres_problem;
-  for (const auto& cost : problem.costs()) {
-    ceres_problem.AddResidualBlock(new UnitBoxCost(*cost, problem), make_loss(settings), unit.data());
+  PairBatch batch(problem, unit);
+  ceres::Problem::Options problem_options;
+  problem_options.evaluation_callback = &batch;  // not owned
+  ceres::Problem ceres_problem(problem_options);
+  for (int i = 0; i < int(problem.pairs().size()); ++i) {
+    ceres_problem.AddResidualBlock(new UnitBoxCost(batch, i, m), make_loss(settings), unit.data());
   }
   for (int j = 0; j < m; ++j) {
     ceres_problem.SetParameterLowerBound(unit.data(), j, 0.0);
@@ -98,7 +134,7 @@ BackendResult solve_with_ceres(const EditProblem& problem, const SolveSettings& 
   options.parameter_tolerance = settings.parameter_tolerance;
   options.gradient_tolerance = settings.gradient_tolerance;
   if (settings.max_time > 0.0) options.max_solver_time_in_seconds = settings.max_time;
-  options.num_threads = 2;
+  options.num_threads = 1;  // the pairs run in parallel in PairBatch
   options.logging_type = ceres::SILENT;
   options.minimizer_progress_to_stdout = false;
   EditCallback callback(settings, control, &out.history);
