@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'air_dispersion_scale', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'thin_film_reflectance', 'trace_ray']
+__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'air_dispersion_scale', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -17,7 +17,7 @@ class IndexField:
     
     ior(points) -> n, shape (N,) (float for one point); grad_ior(points) -> grad n [1/m], (N, 3).
     params: dict of parameter values; param_names; bounds: dict name -> (lower, upper), the box an
-    optimiser searches; with_params(**values) -> a new field; height_only: n depends on y alone;
+    optimiser searches; ``with_params(**values)`` -> a new field; height_only: n depends on y alone;
     gauge_params: parameters an optimiser holds fixed by default (a joint scaling leaves rays unchanged).
     Raises refracta.NumericalError where n <= 0 or is not finite.
     """
@@ -60,9 +60,12 @@ class IndexField:
         ...
 class LogisticProfile(IndexField):
     """
-    The original mirage editor's height profile (Choi 2017), in scene units:
-    n(h) = 1 + 0.003 k_s (f(n_bg, 10 a_bg, 0, h) + f(n_inv, -0.1 a_inv, h_ciso, h)
-           + f(n_hot, 0.3 a_hot, 0, h)) / (|n_bg| + |n_inv| + |n_hot|),  f(L, w, x0, x) = L/(1 + e^((x0-x)/w)).
+    The original mirage editor's height profile (Choi 2017), in scene units::
+    
+        n(h) = 1 + 0.003 k_s (f(n_bg, 10 a_bg, 0, h) + f(n_inv, -0.1 a_inv, h_ciso, h)
+               + f(n_hot, 0.3 a_hot, 0, h)) / (|n_bg| + |n_inv| + |n_hot|)
+        f(L, w, x0, x) = L / (1 + e^((x0 - x) / w))
+    
     Scaling n_bg, n_inv, n_hot together changes nothing (gauge freedom): editing fixes n_bg by default.
     
     Parameters (name [unit] default, optimiser bounds: meaning):
@@ -75,7 +78,11 @@ class LogisticProfile(IndexField):
         a_hot [1] 1, [0.01, 100]: hot-spot width (logistic width 0.3 a_hot)
         k_s [1] 10, [-300, 300]: overall strength: n - 1 reaches 0.003 k_s
     """
+    def __getstate__(self) -> tuple[list[float]]:
+        ...
     def __init__(self, *args, **kwargs) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
 class LinearSquaredProfile(IndexField):
     """
@@ -85,7 +92,11 @@ class LinearSquaredProfile(IndexField):
         n0 [1] 1.00028, [0.5, 3]: index at y = 0
         alpha [1/m] 0, [-0.001, 0.001]: d(n^2)/dy
     """
+    def __getstate__(self) -> tuple[list[float]]:
+        ...
     def __init__(self, *args, **kwargs) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
 class PhysicalAtmosphere(IndexField):
     """
@@ -107,7 +118,11 @@ class PhysicalAtmosphere(IndexField):
         humidity [1] 0, [0, 1]: relative humidity
         wavelength [nm] 550, [380, 780]: vacuum wavelength
     """
+    def __getstate__(self) -> tuple[list[float]]:
+        ...
     def __init__(self, *args, **kwargs) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def pressure(self, heights: typing.Any) -> typing.Any:
         """
@@ -124,7 +139,11 @@ class TemperatureProfile(IndexField):
     at the lowest height; n from the same air formula as PhysicalAtmosphere. The temperatures are the
     parameters t0, t1, ... (with pressure, humidity, wavelength).
     """
+    def __getstate__(self) -> tuple[list[float], list[float]]:
+        ...
     def __init__(self, heights: typing.Any, temperatures: typing.Any, pressure: typing.SupportsFloat | typing.SupportsIndex = 101325.0, humidity: typing.SupportsFloat | typing.SupportsIndex = 0.0, wavelength: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def pressure(self, heights: typing.Any) -> typing.Any:
         """
@@ -145,7 +164,11 @@ class CurvedEarth(IndexField):
     true_height(y') and flat_height(h) convert. Use it for anything seen over kilometres (horizons,
     looming, Fata Morgana).
     """
+    def __getstate__(self) -> tuple[IndexField, float]:
+        ...
     def __init__(self, base: IndexField, radius: typing.SupportsFloat | typing.SupportsIndex = 6371000.0) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def flat_height(self, h: typing.Any) -> typing.Any:
         """
@@ -167,7 +190,11 @@ class CustomField(IndexField):
     vectorised. height_only=True promises n depends on y alone (enables method='stratified').
     Slow: the integrators call back into Python at every evaluation.
     """
+    def __getstate__(self) -> tuple[typing.Any, typing.Any, bool]:
+        ...
     def __init__(self, ior: typing.Any, grad_ior: typing.Any, height_only: bool = False) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
     def grad_function(self) -> typing.Any:
@@ -181,12 +208,16 @@ class RayPath:
     quintic Hermite interpolant of positions, tangents and curvatures, accurate to O(step^6)).
     
     points (N,3) [m]; directions (N,3) unit tangents; arc_length (N,) [m]; ior (N,) n at each node;
-    ray_vectors (N,3) the integrated v (|v| = n); stop: why the path ended ('max_length',
+    ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max_length',
     'stop_height'); evaluations: field evaluations used.
     """
+    def __getstate__(self) -> tuple[numpy.typing.NDArray[numpy.float64], int, int]:
+        ...
     def __len__(self) -> int:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def at_height(self, y: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -259,7 +290,11 @@ class Scene:
     Meshes and spheres with emission= [W/(m^2 sr), RGB] are area lights (one-sided on the triangles'
     counter-clockwise front unless two_sided). Units: metres, y up.
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: str, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = (1.0, 1.0, 1.0)) -> int:
         """
@@ -290,12 +325,20 @@ class Scene:
         shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without
         material. Returns its id.
         """
-    def add_obj(self, path: str, offset: typing.Any = (0.0, 0.0, 0.0), scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> list:
+    def add_obj(self, path: str, offset: typing.Any = (0.0, 0.0, 0.0), scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, texture_dirs: typing.Any = (), missing_textures: str = 'error') -> list:
         """
-        Add a Wavefront OBJ file (vertex normals kept as shading normals) with its MTL materials, scaled
-        then offset: Kd, Ks, Ns, d, map_Kd -> BlinnPhong; Pr/Pm (PBR extension) -> Principled; illum 4/6/7
-        with d < 1 and Ni > 1 -> Dielectric(Ni); Ke -> an area light. Returns the geometry ids. A
-        missing OBJ, MTL or texture raises refracta.IoError.
+        Add a Wavefront OBJ file with its MTL materials, scaled then offset.
+        
+        Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with
+        d < 1 and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as shading normals.
+        
+        A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of
+        ``texture_dirs`` in order (relative folders from the working directory), as written and by its
+        file name alone (a path from the author's machine). A texture found nowhere raises
+        FileNotFoundError naming it and the folders searched (``missing_textures='error'``), or, with
+        ``missing_textures='warn'``, issues a UserWarning (Python's warnings) and its material uses Kd.
+        
+        Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.
         """
     def add_point_light(self, position: typing.Any, intensity: typing.Any) -> int:
         """
@@ -352,6 +395,12 @@ class Scene:
         limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.
         """
     @property
+    def bounds(self) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """
+        (lower, upper): corners (3,) [m] of the axis-aligned box around every geometry (spheres
+        exact; a ground counts at its full size). ValueError for an empty scene.
+        """
+    @property
     def geometry_count(self) -> int:
         ...
     @property
@@ -363,9 +412,25 @@ class Camera:
     vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at
     (i + 0.5, j + 0.5).
     """
+    @staticmethod
+    def framing(scene_or_bounds: typing.Any, direction: typing.Any = (-1.0, -0.5, -1.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360, up: typing.Any = (0.0, 1.0, 0.0)) -> Camera:
+        """
+        A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
+        onto the box from its +x, +y, +z side) at the centre of the scene's bounds, from the distance at
+        which the bounding sphere fills the narrower of the two fields of view.
+        
+            scene.add_obj("city.obj", texture_dirs=["textures"])
+            camera = refracta.Camera.framing(scene, width=800, height=450)
+        
+        scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].
+        """
+    def __getstate__(self) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float], float, int, int]:
+        ...
     def __init__(self, position: typing.Any, look_at: typing.Any, up: typing.Any = (0.0, 1.0, 0.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def pick(self, scene: Scene, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex) -> typing.Any:
         """
@@ -387,8 +452,16 @@ class Camera:
     def height(self) -> int:
         ...
     @property
+    def look_at(self) -> numpy.ndarray:
+        ...
+    @property
     def position(self) -> numpy.ndarray:
         ...
+    @property
+    def up(self) -> numpy.ndarray:
+        """
+        The up vector given to the constructor.
+        """
     @property
     def vfov(self) -> float:
         ...
@@ -400,7 +473,11 @@ class RenderOptions:
     Options of refracta.render, with their defaults (defined once, here). Set any field by name;
     validate() reports every bad value at once.
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self) -> None:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
         ...
     def validate(self) -> None:
         ...
@@ -459,6 +536,15 @@ class RenderOptions:
         """
     @method.setter
     def method(self, arg1: str) -> None:
+        ...
+    @property
+    def pixel_bounds(self) -> typing.Any:
+        """
+        None (the whole image) or (x0, y0, x1, y1): render only pixels [x0, x1) x [y0, y1), each exactly as
+        in the whole image (distributed tiles); the image returned has that size
+        """
+    @pixel_bounds.setter
+    def pixel_bounds(self, arg1: typing.Any) -> None:
         ...
     @property
     def rr_depth(self) -> int:
@@ -662,7 +748,7 @@ class Material:
         """
         Sample incident directions for wo (N, 3) from uniform numbers u (N, 3) in [0, 1): u[:, 0] picks
         the lobe, u[:, 1:] the direction. Returns a dict of arrays: wi (N, 3) (0 where invalid),
-        weight (N, C) = f |cos theta_i| / pdf (delta lobes: the lobe's albedo over its probability),
+        weight (N, C) = ``f |cos theta_i| / pdf`` (delta lobes: the lobe's albedo over its probability),
         f (N, C), pdf (N,) (delta lobes: the lobe's selection probability), flags (N,) uint32
         (1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular/delta), is_delta (N,),
         eta (N,) the relative index crossed (1 for reflection), valid (N,) False where no direction
@@ -685,31 +771,67 @@ class Diffuse(Material):
     in [0, 1] (> 1 is refused: it would create energy); texture: a texture id of the
     scene multiplying it (ignored by f/pdf/sample, which have no texture table).
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, reflectance: typing.Any = 0.5, texture: typing.Any = None) -> None:
         ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class BlinnPhong(Material):
     """
     Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0, 1]
     (numbers or (r, g, b)), ns >= 0; texture multiplies kd; alpha in [0, 1] is the raster opacity (MTL d).
     Sampled by a mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact.
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, kd: typing.Any = 0.5, ks: typing.Any = 0.0, ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: typing.Any = None, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class Conductor(Material):
     """
     A smooth metal mirror with the exact complex Fresnel reflectance of eta + i k (numbers or (r, g, b),
     relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, eta: typing.Any = None, k: typing.Any = None) -> None:
         ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class RoughConductor(Material):
     """
     A rough metal: GGX microfacets (alpha, or alpha_u along the tangent and alpha_v along the bitangent;
     >= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F = 1),
     visible-normal sampling.
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, alpha: typing.Any = None, alpha_u: typing.Any = None, alpha_v: typing.Any = None, eta: typing.Any = None, k: typing.Any = None) -> None:
         ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class Dielectric(Material):
     """
     Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
@@ -717,45 +839,99 @@ class Dielectric(Material):
     um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction). priority: nested
     dielectrics (larger wins).
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
         ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class RoughDielectric(Material):
     """
     Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, alpha: typing.Any = None, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0, alpha_u: typing.Any = None, alpha_v: typing.Any = None) -> None:
         ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class ThinDielectric(Material):
     """
     A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through
     (no offset, no medium inside: interior_ior is None). ior as for Dielectric.
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None) -> None:
         ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class Plastic(Material):
     """
     Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of index
     ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX
     (or alpha_u, alpha_v); texture multiplies the reflectance.
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, reflectance: typing.Any = 0.5, ior: typing.SupportsFloat | typing.SupportsIndex = 1.5, alpha: typing.Any = None, alpha_u: typing.Any = None, alpha_v: typing.Any = None, texture: typing.Any = None) -> None:
         ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class Principled(Material):
     """
     Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and
     metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,
     clearcoat, clearcoat_gloss, all in [0, 1]. texture multiplies base_color.
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, base_color: typing.Any = 0.5, metallic: typing.SupportsFloat | typing.SupportsIndex = 0.0, roughness: typing.SupportsFloat | typing.SupportsIndex = 0.5, anisotropic: typing.SupportsFloat | typing.SupportsIndex = 0.0, specular: typing.SupportsFloat | typing.SupportsIndex = 0.5, specular_tint: typing.SupportsFloat | typing.SupportsIndex = 0.0, sheen: typing.SupportsFloat | typing.SupportsIndex = 0.0, sheen_tint: typing.SupportsFloat | typing.SupportsIndex = 0.5, clearcoat: typing.SupportsFloat | typing.SupportsIndex = 0.0, clearcoat_gloss: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: typing.Any = None) -> None:
         ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class ThinFilm(Material):
     """
     Thin-film iridescence (Belcour & Barla 2017): a film of thickness [nm] and index film_ior on a base
     of complex index eta + i k, with GGX roughness alpha (or alpha_u, alpha_v; 0 = smooth mirror). The
     Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, thickness: typing.SupportsFloat | typing.SupportsIndex, film_ior: typing.SupportsFloat | typing.SupportsIndex = 1.33, eta: typing.Any = 1.5, k: typing.Any = 0.0, alpha: typing.Any = None, alpha_u: typing.Any = None, alpha_v: typing.Any = None) -> None:
         ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class TrowbridgeReitz:
     """
     The GGX microfacet distribution (microfacet.h): D, Lambda, G1, height-correlated G, the
@@ -777,9 +953,13 @@ class Ior:
     """
     An index of refraction: constant or Sellmeier (C in um^2).
     """
+    def __getstate__(self) -> dict:
+        ...
     def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
         ...
     def at(self, wavelength: typing.Any) -> typing.Any:
         """
@@ -837,7 +1017,11 @@ class PointLight(Light):
     """
     A point light: intensity [W/sr] (number or RGB) from position [m]; E = I cos(theta)/r^2, power 4 pi I.
     """
+    def __getstate__(self) -> tuple[tuple, tuple]:
+        ...
     def __init__(self, position: typing.Any, intensity: typing.Any) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
     def position(self) -> typing.Any:
@@ -846,7 +1030,11 @@ class SpotLight(Light):
     """
     A spot light at position [m] shining along direction into a cone of full angle [deg] with intensity [W/sr]; hard edge by default, a smoothstep falloff from inner_angle [deg] out to angle when inner_angle < angle.
     """
+    def __getstate__(self) -> tuple[tuple, tuple, float, tuple, float]:
+        ...
     def __init__(self, position: typing.Any, direction: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex, intensity: typing.Any, inner_angle: typing.Any = None) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
     def angle(self) -> float:
@@ -858,7 +1046,11 @@ class SunLight(Light):
     """
     The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] over the disc, angular_diameter [deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).
     """
+    def __getstate__(self) -> tuple[tuple, tuple, float, float]:
+        ...
     def __init__(self, direction: typing.Any, radiance: typing.Any, angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
     def direction(self) -> typing.Any:
@@ -877,7 +1069,11 @@ class AreaLight(Light):
     """
     An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) int, emission radiance [W/(m^2 sr)] from the counter-clockwise front ((v1 - v0) x (v2 - v0)) or both sides.
     """
+    def __getstate__(self) -> tuple[tuple, tuple, bool]:
+        ...
     def __init__(self, vertices: typing.Any, triangles: typing.Any, emission: typing.Any, two_sided: bool = False) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def normal(self, triangle: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
         """
@@ -895,7 +1091,11 @@ class SphereLight(Light):
     """
     An emissive sphere: centre [m], radius [m], emission radiance [W/(m^2 sr)] outward; power 4 pi^2 r^2 L.
     """
+    def __getstate__(self) -> tuple[tuple, float, tuple]:
+        ...
     def __init__(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, emission: typing.Any) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
     def radius(self) -> float:
@@ -909,7 +1109,11 @@ class EnvironmentLight(Light):
         """
         The 3 x 3 rotation about +y by degrees (right-handed: +x turns toward -z).
         """
+    def __getstate__(self) -> tuple[numpy.typing.NDArray[numpy.float32], float, numpy.typing.NDArray[numpy.float64]]:
+        ...
     def __init__(self, image: typing.Any, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, rotation: typing.Any = None) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def direction_to_uv(self, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -931,7 +1135,11 @@ class ConstantEnvironment(Light):
     """
     Uniform radiance [W/(m^2 sr)] from every direction; sampling 'cosine' (about the point's normal, when given) or 'uniform' (the sphere). Irradiance pi L.
     """
+    def __getstate__(self) -> tuple[tuple, int]:
+        ...
     def __init__(self, radiance: typing.Any, sampling: str = 'cosine') -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
 class LightSampler:
     """
@@ -961,9 +1169,13 @@ class PhysicalSky:
     @staticmethod
     def solar_irradiance(wavelengths: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         ...
+    def __getstate__(self) -> tuple[tuple[float, float, float], float, float, float, float, float, int]:
+        ...
     def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, below_horizon: str = 'ground') -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def optical_depth(self, wavelength: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
@@ -997,7 +1209,11 @@ class DispersedField(IndexField):
     base's. Spectral renders through a field build these per sample (each hero wavelength); build
     one with dispersed_field(field, wavelength).
     """
+    def __getstate__(self) -> tuple[IndexField, float]:
+        ...
     def __init__(self, base: IndexField, scale: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
     def base(self) -> IndexField:
@@ -1011,6 +1227,10 @@ def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, backg
     ...
 def _display(image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: typing.Any, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None) -> numpy.typing.NDArray[numpy.float32]:
     ...
+def _emit_library_log() -> None:
+    """
+    Move queued Ceres (glog) messages to the Python logger 'refracta.ceres'.
+    """
 def _mboit_unorm16(b: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
     """
     6 or 8 normalised power moments after MBOIT's 16-bit storage (transform, rounding, inverse).
@@ -1030,6 +1250,8 @@ def _render(scene: Scene, camera: Camera, field: IndexField, options: RenderOpti
 def _render_raster(scene: Scene, camera: Camera, shadows: str, resolution: typing.SupportsInt | typing.SupportsIndex, kernel: typing.SupportsInt | typing.SupportsIndex, signed_depth: bool, bias: typing.SupportsFloat | typing.SupportsIndex | None, bias_vector: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, storage: str, depth_bias: typing.SupportsFloat | typing.SupportsIndex, normal_offset: typing.SupportsFloat | typing.SupportsIndex, bleeding_reduction: typing.SupportsFloat | typing.SupportsIndex, shadow_centre: typing.Any, shadow_half_size: typing.SupportsFloat | typing.SupportsIndex | None, shadow_distance: typing.SupportsFloat | typing.SupportsIndex | None, output_shadow: bool, transparency: str | None, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, layers: typing.SupportsInt | typing.SupportsIndex, weight: str, shadow_light: typing.SupportsInt | typing.SupportsIndex, use_sun: bool, spots: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None, oit_storage: str, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], dict]:
     ...
 def _shadow_intensity(moments: typing.Any, z_f: typing.Any, method: str, signed: bool, bias: typing.SupportsFloat | typing.SupportsIndex | None, bias_vector: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, storage: str) -> numpy.typing.NDArray[numpy.float64]:
+    ...
+def _shutdown_running_work(timeout_seconds: typing.SupportsFloat | typing.SupportsIndex = 10.0) -> None:
     ...
 def _solve_edit(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, weights: typing.Any, free: collections.abc.Sequence[str], bounds: collections.abc.Mapping[str, tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]], derivatives: str, pair_options: _PairOptions, settings: _SolveSettings, progress: typing.Any) -> dict:
     ...
@@ -1077,7 +1299,7 @@ def field_reference_wavelength(field: IndexField) -> float:
     """
 def fresnel_conductor(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
-    Unpolarised Fresnel reflectance of a conductor of relative complex index eta + i k at |cos_i| (exact). Vectorised.
+    Unpolarised Fresnel reflectance of a conductor of relative complex index eta + i k at ``|cos_i|`` (exact). Vectorised.
     """
 def fresnel_dielectric(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
@@ -1088,6 +1310,16 @@ def fresnel_diffuse_reflectance(eta: typing.SupportsFloat | typing.SupportsIndex
     """
     Hemispherical reflectance 2 int F(mu) mu dmu of a dielectric seen from the side where eta = eta_t / eta_i.
     """
+def get_threads() -> int:
+    """
+    The number of threads refracta's parallel work may use (see set_threads).
+    """
+def set_threads(n: typing.SupportsInt | typing.SupportsIndex | None) -> None:
+    """
+    Limit refracta's parallel work (oneTBB: render, trace_rays, render_raster, solve's pair traces,
+    Embree's BVH builds) to n threads; n = None or 0 restores the default, every core. Results do
+    not depend on it: every parallel loop writes each item's result to its own slot.
+    """
 def thin_film_reflectance(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], thickness: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], wavelength: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
     Airy reflectance of a film (index n2, thickness [nm]) between n1 and a base eta + i k at a wavelength [nm]. Vectorised.
@@ -1096,12 +1328,13 @@ def trace_ray(field: IndexField, origin: typing.Any, direction: typing.Any, meth
     """
     Trace one curved ray through `field` and return its RayPath.
     
-    The ray equations dx/ds = v/n, dv/ds = grad n are launched with v0 = n(origin) * direction/|direction|.
+    The ray equations dx/ds = v/n, dv/ds = grad n are launched with ``v0 = n(origin) * direction / |direction|``.
     method: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path),
     'rk4' (fixed step `step`, default 0.3 m, the original editor's), or 'stratified' (height-only
     fields: exact paths from n(h) cos(e) = const by quadrature to `tol`; `step` is the largest node
     spacing, default 100 m). max_length [m]: arc length at which the path ends. stop_height [m]: the
     path ends where it descends through this height (a ground). Raises ValueError for bad arguments
-    and refracta.NumericalError where n <= 0 or is not finite.
+    (a path needing more than 10 million nodes is refused up front), refracta.NumericalError where n
+    <= 0 or is not finite; Ctrl-C (KeyboardInterrupt) stops it.
     """
 _stop_names: tuple = ('max_length', 'stop_height', 'stopped')

@@ -626,9 +626,6 @@ vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (
             return Camera(to_point(t[0], "position"), to_point(t[1], "look_at"), to_point(t[2], "up"), py::cast<double>(t[3]),
                           py::cast<int>(t[4]), py::cast<int>(t[5]));
           }))
-      .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
-           "The same view at another image size (vertical field of view kept).")
-      .def_property_readonly("width", &Camera::width)
       .def_static(
           "framing",
           [](const py::object& scene_or_bounds, const py::object& direction, double vfov, int width, int height,
@@ -660,6 +657,9 @@ which the bounding sphere fills the narrower of the two fields of view.
     camera = refracta.Camera.framing(scene, width=800, height=450)
 
 scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc")
+      .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
+           "The same view at another image size (vertical field of view kept).")
+      .def_property_readonly("width", &Camera::width)
       .def_property_readonly("height", &Camera::height)
       .def_property_readonly("vfov", &Camera::vfov)
       .def("__repr__", [](const Camera& c) {
