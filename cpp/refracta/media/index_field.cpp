@@ -4,6 +4,9 @@
 
 #include "refracta/core/error.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace refracta {
@@ -19,6 +22,20 @@ void IndexField::evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const 
                     grad->y(), ", ", grad->z(), ") at (", p.x(), ", ", p.y(), ", ", p.z(),
                     ") m; n must be finite and > 0 (in [", kMinIor, ", ", kMaxIor, "])");
   }
+}
+
+double lowest_ior_sampled(const IndexField& field, double lo, double hi, double margin) {
+  double lowest = std::numeric_limits<double>::infinity(), n, dn;
+  for (double h = lo; h <= hi; h += std::max(1e-3, 1e-3 * (h - lo))) {
+    try {
+      field.evaluate_height(h, &n, &dn);
+    } catch (const std::exception&) {
+      break;
+    }
+    if (!(n > 0.0) || !std::isfinite(n)) break;
+    lowest = std::min(lowest, n);
+  }
+  return lowest - margin;
 }
 
 size_t IndexField::param_index(const std::string& name) const {

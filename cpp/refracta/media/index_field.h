@@ -57,6 +57,13 @@ class IndexField {
 
 using FieldPtr = std::shared_ptr<const IndexField>;
 
+// The least n of a height-only field over heights [lo, hi] [m], sampled every millimetre near
+// lo with the spacing growing 0.1 % per step (about 7000 samples per decade of height above
+// 1 m), less `margin`: a bound unless a dip deeper than `margin` hides between samples (the
+// default, 1e-5, is a spike of ~10 K narrower than the spacing). Heights where the field throws
+// (outside its modelled range) end the scan there.
+double lowest_ior_sampled(const IndexField& field, double lo, double hi, double margin = 1e-5);
+
 // The Config of a model with no fixed data besides its parameters. A model's Config is a type
 // outside the model template, so Model<double> and Model<Jet> share it.
 struct NoConfig {};

@@ -2,6 +2,7 @@
 #include "refracta/render/caster.h"
 
 #include "refracta/core/error.h"
+#include "refracta/render/bouguer_branch.h"
 #include "refracta/rays/trace.h"
 
 #include <algorithm>
@@ -29,7 +30,7 @@ double refine_on_plane(const PathSegment<double>& seg, const Vec3d& n, const Vec
 }  // namespace
 
 TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, const Vec3d& origin,
-                                  const RenderOptions& options, double max_length) {
+                                  const RenderOptions& options, double max_length, std::optional<double> ior_floor) {
   TraceOptions trace_options;
   trace_options.method = options.trace ? *options.trace
                                        : (field.height_only() ? TraceMethod::kStratified : TraceMethod::kRk45);
@@ -38,7 +39,17 @@ TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, c
   trace_options.step = options.chord;
   // Nothing can be hit below the lowest geometry: end the path 1 m under it (or under the origin).
   trace_options.stop_height = std::min(scene.lowest(), origin.y()) - 1.0;
+  trace_options.min_ior = ior_floor;
   return trace_options;
+}
+
+std::pair<double, double> render_heights(const Scene& scene, const Vec3d& eye, const RenderOptions& options) {
+  return {std::min(scene.lowest(), eye.y()) - 1.0, std::max(scene.highest(), eye.y()) + options.max_length};
+}
+
+double render_ior_floor(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options) {
+  const auto [lo, hi] = render_heights(scene, eye, options);
+  return lowest_ior_sampled(field, lo, hi);
 }
 
 bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<double>& b,
@@ -118,53 +129,87 @@ std::optional<Vec3d> Caster::escape_direction(const Vec3d& x, const Vec3d& v, do
   }
   const Vec3d t = v.normalized();
   const double cos_e = std::hypot(t.x(), t.z());
-  double n_x, dn;
+  double n_x, dn, sin_x;
   field_->evaluate_height(x.y(), &n_x, &dn);
-  const double beta = n_x * cos_e;  // Bouguer's invariant n(h) cos e
-  // sin e at height h from the invariant; 0 where the ray would turn (or past the modelled air).
-  auto sin_at = [&](double h) {
-    double n;
-    try {
-      field_->evaluate_height(h, &n, &dn);
-    } catch (const std::exception&) {
-      return 0.0;
-    }
-    const double c = beta / n;
-    return c < 1.0 ? std::sqrt(1.0 - c * c) : 0.0;
-  };
-  // Path length from x.y() up to h: integral of dh / sin e (8-point Gauss-Legendre; sin e is
-  // smooth and bounded away from 0 on a path that does not turn).
-  static constexpr double kNodes[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
-  static constexpr double kWeights[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-  constexpr double kMinSine = 1e-2;  // below 0.57 deg the quadrature loses digits near a turn: trace instead
-  auto length_to = [&](double h, bool* ok) {
-    const double mid = 0.5 * (x.y() + h), half = 0.5 * (h - x.y());
-    double sum = 0.0;
-    for (int i = 0; i < 4; ++i) {
-      for (double sign : {-1.0, 1.0}) {
-        const double s = sin_at(mid + sign * half * kNodes[i]);
-        if (s < kMinSine) *ok = false;
-        sum += kWeights[i] / std::max(s, kMinSine);
-      }
-    }
-    return half * sum;
-  };
-  // The height where the path has run `remaining` metres (Newton on s(h) = remaining, ds/dh = 1/sin e):
-  // the sky is seen along the direction there, as at the end of a traced path.
-  double h = x.y() + remaining * t.y();
-  bool ok = sin_at(x.y()) >= kMinSine;
-  for (int it = 0; it < 6 && ok; ++it) {
-    const double s = sin_at(h);
-    if (s < kMinSine) return std::nullopt;  // the ray may turn below that height: trace it
-    const double step = (remaining - length_to(h, &ok)) * s;
+  const BouguerBranch branch(*field_, n_x * cos_e);
+  // Below 0.57 deg of elevation the quadrature loses digits near a turn: trace instead.
+  constexpr double kMinSine = 1e-2;
+  if (!branch.at(x.y(), kMinSine, &n_x, &dn, &sin_x)) return std::nullopt;
+  // The height where the path has run `remaining` metres (Newton on s(h) = remaining, ds/dh =
+  // 1/sin e): the sky is seen along the direction there, as at the end of a traced path.
+  double h = x.y() + remaining * t.y(), n, sin_h, run, length;
+  for (int it = 0; it < 6; ++it) {
+    if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;  // the ray may turn below that height
+    if (!branch.integrate(x.y(), h, kMinSine, &run, &length)) return std::nullopt;
+    const double step = (remaining - length) * sin_h;
     h += step;
     if (std::abs(step) < 1e-6 * (1.0 + std::abs(h))) break;
   }
-  const double sin_end = sin_at(h);
-  if (!ok || sin_end < kMinSine) return std::nullopt;
-  const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_end * sin_end));
+  if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
+  const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
-  return Vec3d(t.x() * scale, sin_end, t.z() * scale).normalized();
+  return Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized();
+}
+
+std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length) const {
+  // sin e >= 0.05 (2.9 deg) at every height the ray can reach: it cannot turn, and 1/sin e is smooth
+  // enough for 8-point quadrature over metres of height.
+  constexpr double kMinSine = 0.05;
+  if (!ior_floor_ || !field_->height_only() || dir.y() == 0.0) return std::nullopt;
+  const Vec3d t = dir.normalized();
+  const double cos_e0 = std::hypot(t.x(), t.z());
+  double n0, dn0;
+  field_->evaluate_height(origin.y(), &n0, &dn0);
+  const double beta = n0 * cos_e0;
+  if (!(beta < *ior_floor_ * std::sqrt(1.0 - kMinSine * kMinSine))) return std::nullopt;
+  const BouguerBranch branch(*field_, beta);
+  const double up = t.y() > 0.0 ? 1.0 : -1.0;
+  // Rising: up to the highest object, then out of the air; falling: down to the stop height.
+  const double target = up > 0.0 ? scene_.highest() : std::min(scene_.lowest(), origin.y()) - 1.0;
+  const Vec3d across = cos_e0 > 0.0 ? Vec3d(t.x() / cos_e0, 0.0, t.z() / cos_e0) : Vec3d(1.0, 0.0, 0.0);
+  auto node_at = [&](double s, double run, double h, double n, double dn, double sin_e) {
+    RayNode<double> node;
+    node.s = s;
+    node.x = Vec3d(origin.x() + run * across.x(), h, origin.z() + run * across.z());
+    node.n = n;
+    node.v = n * (std::sqrt(std::max(0.0, 1.0 - sin_e * sin_e)) * across + Vec3d(0.0, up * sin_e, 0.0));
+    node.grad = Vec3d(0.0, dn, 0.0);
+    return node;
+  };
+  // A chord of length L on a path of curvature k = |dn/dh| cos e / n strays k L^2 / 8 from it:
+  // the height step that keeps that within the sagitta (the chord limit too).
+  auto height_step = [&](double n, double dn, double sin_e) {
+    const double curvature = std::abs(dn) * std::sqrt(std::max(0.0, 1.0 - sin_e * sin_e)) / n;
+    const double by_sagitta = curvature > 0.0 ? std::sqrt(8.0 * options_.sagitta / curvature) : options_.chord;
+    return sin_e * std::min(by_sagitta, options_.chord);
+  };
+  PathEnd end;
+  end.direction = t;
+  double h = origin.y(), s = 0.0, run = 0.0, n = n0, dn = dn0, sin_e = std::abs(t.y());
+  RayNode<double> a = node_at(0.0, 0.0, h, n, dn, sin_e);
+  a.v = n0 * t;
+  while (up * (target - h) > 0.0) {
+    double step = std::min(height_step(n, dn, sin_e), up * (target - h)), n_b, dn_b, sin_b, d_run, d_length;
+    for (int shrink = 0;; ++shrink) {  // the curvature may grow along the step (falling into a hot layer)
+      if (!branch.at(h + up * step, kMinSine, &n_b, &dn_b, &sin_b)) return std::nullopt;
+      const double at_end = height_step(n_b, dn_b, sin_b);
+      if (at_end >= step || shrink == 20) break;
+      step = at_end;
+    }
+    if (!branch.integrate(h, h + up * step, kMinSine, &d_run, &d_length)) return std::nullopt;
+    if (s + d_length > max_length) return std::nullopt;  // ends before leaving the objects' heights: trace it
+    h += up * step, s += d_length, run += d_run, n = n_b, dn = dn_b, sin_e = sin_b;
+    const RayNode<double> b = node_at(s, run, h, n, dn, sin_e);
+    if (hit_on_segment(scene_, a, b, options_, &end)) return end;
+    end.direction = b.v.normalized();
+    end.length = s;
+    a = b;
+  }
+  if (up < 0.0) return end;  // below everything: the path ends there, as a traced one at its stop height
+  const auto exit = escape_direction(a.x + Vec3d(0.0, 1e-9 * (1.0 + std::abs(a.x.y())), 0.0), a.v, max_length - s);
+  if (!exit) return std::nullopt;
+  end.direction = *exit;
+  return end;
 }
 
 PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length) const {
@@ -176,7 +221,9 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
     end.direction = *exit;
     return end;
   }
-  const TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
+  // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
+  if (auto monotone = cast_monotone(origin, dir, max_length)) return *monotone;
+  const TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length, ior_floor_);
   double last_height = origin.y();
   try {
     trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {

@@ -13,6 +13,7 @@
 #include "refracta/scene/embree_scene.h"
 
 #include <optional>
+#include <utility>
 
 namespace refracta {
 
@@ -32,6 +33,9 @@ class Caster {
 
   // Serve rays that start at `eye` from this table (its eye height must be eye.y()).
   void use_table(const ElevationTable* table, const Vec3d& eye);
+  // Height-only fields: a lower bound of n over every height a ray can reach (render_ior_floor);
+  // traced rays whose invariant lies below it cannot turn and skip the turning-point scan.
+  void set_ior_floor(double floor) { ior_floor_ = floor; }
 
   // The end of the path from origin along unit dir, at most max_length [m] long
   // (max_length <= 0: options.max_length for curved paths, the straight limit otherwise).
@@ -55,20 +59,33 @@ class Caster {
   // above every object, rising, and cannot turn within `remaining` [m] of path (n stays above
   // its invariant n(h) cos e); nullopt otherwise.
   std::optional<Vec3d> escape_direction(const Vec3d& x, const Vec3d& v, double remaining) const;
+  // Height-only fields with an ior floor: a ray so steep that it cannot turn at any height it
+  // can reach, cut into chords from Bouguer's invariant (bouguer_branch.h) up past every object
+  // (then out of the air) or down below them; nullopt where that does not apply (trace it).
+  std::optional<PathEnd> cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length) const;
 
   const Scene& scene_;
   const IndexField* field_;
   const RenderOptions& options_;
   const ElevationTable* table_ = nullptr;
   Vec3d eye_ = Vec3d::Zero();
+  std::optional<double> ior_floor_;
 };
 
 // Tests the path segment a -> b against the scene in chords; on a hit fills `end` and returns true.
 bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<double>& b,
                     const RenderOptions& options, PathEnd* end);
 
-// The trace options of curved render rays from origin through field.
+// The trace options of curved render rays from origin through field (ior_floor: see
+// TraceOptions::min_ior).
 TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, const Vec3d& origin,
-                                  const RenderOptions& options, double max_length);
+                                  const RenderOptions& options, double max_length,
+                                  std::optional<double> ior_floor = std::nullopt);
+
+// Every height a render ray can reach: from 1 m below the lowest geometry (or the eye) to
+// max_length above the highest.
+std::pair<double, double> render_heights(const Scene& scene, const Vec3d& eye, const RenderOptions& options);
+// A height-only field's least n (lowest_ior_sampled) over render_heights.
+double render_ior_floor(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options);
 
 }  // namespace refracta

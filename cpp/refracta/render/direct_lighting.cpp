@@ -8,8 +8,8 @@ namespace refracta {
 
 namespace {
 
-constexpr double kMinBendSine = 1e-3;
-constexpr double kShadowEpsilon = 1e-4;  // shadow rays to finite lights end this fraction short (pbrt's ShadowEpsilon)  // below this exit elevation the map's Jacobian is singular: no pre-bend
+constexpr double kMinBendSine = 1e-3;     // below this exit elevation the map's Jacobian is singular: no pre-bend
+constexpr double kShadowEpsilon = 1e-4;  // shadow rays to finite lights end this fraction short (pbrt's ShadowEpsilon)
 
 double sqr(double x) { return x * x; }
 
@@ -96,19 +96,21 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
   double light_pdf = ls->pdf;
   Spectrum L = ls->L;
   Vec3d wi = ls->wi;
-  double visible = 1.0;
+  double jacobian = 1.0;
+  // Launch the curved shadow ray toward a distant light so that it leaves along the sample.
+  if (light.is_infinite()) wi = launch_toward(si.p, ls->wi, &jacobian);
+  light_pdf *= jacobian;
+  // The BSDF first: a shadow ray (through curved air, the expensive part) only where it counts.
+  const Spectrum f = bsdf.f(si.wo, wi) * std::abs(wi.dot(bsdf.frame.n));
+  if (!(f.maxCoeff() > 0.0)) return Spectrum::Zero();
   if (light.is_infinite()) {
-    // Launch the curved shadow ray so that it leaves toward the sampled direction.
-    double jacobian = 1.0;
-    wi = launch_toward(si.p, ls->wi, &jacobian);
-    light_pdf *= jacobian;
     if (caster_.curved()) {
       const PathEnd end = caster_.cast(si.offset_toward(wi), wi);
       if (end.hit) return Spectrum::Zero();
       L = light.Le(end.direction, lambda);  // along the exit direction
       L *= sqr(caster_.ior(si.p) / distant_ior(si.p, end.direction));  // basic radiance L / n^2 is conserved (Ament et al. 2014)
-    } else {
-      visible = caster_.scene().occluded(si.offset_toward(wi), wi, 1e7) ? 0.0 : 1.0;
+    } else if (caster_.scene().occluded(si.offset_toward(wi), wi, 1e7)) {
+      return Spectrum::Zero();
     }
   } else {
     // Aim the shadow ray from the offset point at the light point itself: a ray parallel to wi
@@ -119,17 +121,15 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
     const Vec3d from = si.offset_toward(wi);
     const Vec3d to_light = ls->p_light - from;
     const double length = to_light.norm();
-    if (length > 0.0) {
-      visible = caster_.occluded_straight(from, to_light / length, length * (1.0 - kShadowEpsilon)) ? 0.0 : 1.0;
+    if (length > 0.0 && caster_.occluded_straight(from, to_light / length, length * (1.0 - kShadowEpsilon))) {
+      return Spectrum::Zero();
     }
   }
-  if (!(visible > 0.0) || !(L.maxCoeff() > 0.0)) return Spectrum::Zero();
-  const Spectrum f = bsdf.f(si.wo, wi) * std::abs(wi.dot(bsdf.frame.n));
-  if (!(f.maxCoeff() > 0.0)) return Spectrum::Zero();
+  if (!(L.maxCoeff() > 0.0)) return Spectrum::Zero();
   const double pdf = pick * light_pdf;
-  if (light.is_delta()) return f * L * (visible / pdf);
+  if (light.is_delta()) return f * L / pdf;
   const double weight = power_heuristic(1, pdf, 1, bsdf.pdf(si.wo, wi));
-  return f * L * (visible * weight / pdf);
+  return f * L * (weight / pdf);
 }
 
 Spectrum DirectLighting::escaped(const PathEnd& end, const Vec3d& launch_dir, const SurfaceInteraction* from,

@@ -1,0 +1,33 @@
+// A ray through a height-only field along a stretch of heights where it cannot turn. Bouguer's
+// invariant n(h) cos e = beta gives the elevation at every height, so the ray's horizontal run
+// and path length between two heights are the integrals
+//   run = int beta / sqrt(n^2 - beta^2) dh,   length = int n / sqrt(n^2 - beta^2) dh
+// (cos e / sin e and 1 / sin e per unit height), smooth while sin e stays well above 0. The
+// caster uses them for rays too steep to turn anywhere (its fast path for shadow and bounce
+// rays) and for rays that have risen above every object (where they leave the air).
+#pragma once
+
+#include "refracta/media/index_field.h"
+
+namespace refracta {
+
+class BouguerBranch {
+ public:
+  // beta = n(h0) cos e0 of the ray; the field must be height-only and outlive the branch.
+  BouguerBranch(const IndexField& field, double beta) : field_(field), beta_(beta) {}
+
+  // n, dn/dh and sin e at height h; false where the ray would be within min_sine of level
+  // (at or near a turning height) or the field cannot be evaluated (outside its modelled air).
+  bool at(double h, double min_sine, double* n, double* dn, double* sin_e) const;
+  // Run and path length from height ha to hb (8-point Gauss-Legendre); false if sin e falls
+  // below min_sine at a node.
+  bool integrate(double ha, double hb, double min_sine, double* run, double* length) const;
+
+  double beta() const { return beta_; }
+
+ private:
+  const IndexField& field_;
+  double beta_;
+};
+
+}  // namespace refracta
