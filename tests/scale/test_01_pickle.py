@@ -245,3 +245,15 @@ def test_edit_pairs_and_results_round_trip():
     assert copy.field.params == result.field.params and repr(copy) == repr(result)
     assert np.array_equal(copy.distances, result.distances)
     assert np.array_equal(copy.paths()[0].points, result.paths()[0].points)
+
+
+def test_unpickled_physical_skies_share_the_process_table():
+    """A worker unpickles a sweep's scene for every task: the sky's table is built once per process
+    (PhysicalSky::shared), the copy reading the very same table (the same build, to the bit)."""
+    sun = np.array([0.2, 0.5, -0.3]) / np.linalg.norm([0.2, 0.5, -0.3])
+    sky = refracta.spectrum.PhysicalSky(sun, aerosol=1.3)
+    copy = round_trip(sky)
+    assert copy.build_seconds == sky.build_seconds  # one build, measured once
+    other = refracta.spectrum.PhysicalSky(sun, aerosol=1.4)
+    dirs = np.array([[0.0, 1.0, 0.0], [0.6, 0.1, 0.79372539]])
+    assert not np.array_equal(other.rgb_radiance(dirs), sky.rgb_radiance(dirs))  # other settings, own table

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
+#include <mutex>
 #include <cmath>
 #include <string>
 
@@ -178,6 +180,34 @@ Vec3d PhysicalSky::xy_to_direction(const Vec2d& xy) {
 }
 
 // --- The sky -------------------------------------------------------------------------------------
+std::shared_ptr<const PhysicalSky> PhysicalSky::shared(const PhysicalSkySettings& settings) {
+  // A few skies are enough for sweeps over other parameters; each table is ~1.6 MB.
+  constexpr size_t kCached = 4;
+  static std::mutex mutex;
+  static std::deque<std::shared_ptr<const PhysicalSky>> cache;  // most recently used first
+  auto same = [&](const PhysicalSkySettings& s) {
+    return s.sun_direction == settings.sun_direction && s.aerosol == settings.aerosol && s.ozone_du == settings.ozone_du &&
+           s.ground_albedo == settings.ground_albedo && s.altitude == settings.altitude &&
+           s.rayleigh_scale == settings.rayleigh_scale && s.below_horizon == settings.below_horizon;
+  };
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (auto it = cache.begin(); it != cache.end(); ++it) {
+      if (same((*it)->settings())) {
+        std::shared_ptr<const PhysicalSky> sky = *it;
+        cache.erase(it);
+        cache.push_front(sky);
+        return sky;
+      }
+    }
+  }
+  auto sky = std::make_shared<const PhysicalSky>(settings);  // built outside the lock (~0.5 s)
+  std::lock_guard<std::mutex> lock(mutex);
+  cache.push_front(sky);
+  if (cache.size() > kCached) cache.pop_back();
+  return sky;
+}
+
 PhysicalSky::PhysicalSky(const PhysicalSkySettings& settings) : settings_(settings) {
   settings_.validate();
   sun_ = settings_.sun_direction;
@@ -338,7 +368,7 @@ double PhysicalSky::optical_depth(double lambda_nm) const {
 }
 
 // --- The light -----------------------------------------------------------------------------------
-PhysicalSkyLight::PhysicalSkyLight(const PhysicalSkySettings& settings) : sky_(settings) {
+PhysicalSkyLight::PhysicalSkyLight(const PhysicalSkySettings& settings) : sky_(PhysicalSky::shared(settings)) {
   constexpr int nx = PhysicalSky::kAzimuths, ny = PhysicalSky::kElevations;
   const int rows = whole_sphere() ? 2 * ny : ny;
   std::vector<double> weights(size_t(nx) * rows);
@@ -348,12 +378,12 @@ PhysicalSkyLight::PhysicalSkyLight(const PhysicalSkySettings& settings) : sky_(s
       const Vec2d p((column + 0.5) / nx, (row + 0.5) / rows);
       const Vec3d dir = whole_sphere() ? xt_to_direction(p) : PhysicalSky::xy_to_direction(p);
       const double solid_angle = (whole_sphere() ? xt_jacobian(p) : xy_jacobian(p)) * cell;
-      const double y = std::max(0.0, luminance(sky_.rgb_radiance(dir)));  // Y of Le at the cell centre
+      const double y = std::max(0.0, luminance(sky_->rgb_radiance(dir)));  // Y of Le at the cell centre
       weights[size_t(row) * nx + column] = y * solid_angle;
       radiance_integral_ += y * solid_angle;
     }
   }
-  if (!whole_sphere()) radiance_integral_ += 2.0 * kPi * std::max(0.0, luminance(sky_.rgb_radiance(Vec3d(0.0, -1.0, 0.0))));
+  if (!whole_sphere()) radiance_integral_ += 2.0 * kPi * std::max(0.0, luminance(sky_->rgb_radiance(Vec3d(0.0, -1.0, 0.0))));
   distribution_ = PiecewiseConstant2D(weights, nx, rows);
 }
 
@@ -386,11 +416,11 @@ double PhysicalSkyLight::pdf_li(const LightSampleContext& /*ctx*/, const Vec3d& 
 
 Spectrum PhysicalSkyLight::Le(const Vec3d& dir, const SampledWavelengths& lambda) const {
   if (!lambda.spectral) {
-    const Vec3d c = sky_.rgb_radiance(dir);
+    const Vec3d c = sky_->rgb_radiance(dir);
     return Spectrum(c.x(), c.y(), c.z(), 0.0);
   }
   Spectrum s;
-  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = sky_.radiance(dir, lambda.lambda[i]);
+  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = sky_->radiance(dir, lambda.lambda[i]);
   return s;
 }
 
@@ -402,7 +432,7 @@ void PhysicalSkyLight::preprocess(const Vec3d& /*centre*/, double radius) {
 }
 
 std::string PhysicalSkyLight::describe() const {
-  const PhysicalSkySettings& s = sky_.settings();
+  const PhysicalSkySettings& s = sky_->settings();
   return concat("PhysicalSkyLight(sun=(", s.sun_direction.x(), ", ", s.sun_direction.y(), ", ", s.sun_direction.z(),
                 "), aerosol=", s.aerosol, ", ozone_du=", s.ozone_du, ", ground_albedo=", s.ground_albedo,
                 ", altitude=", s.altitude, ", below_horizon=", name_of(s.below_horizon), ")");

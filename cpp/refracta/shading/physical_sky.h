@@ -39,6 +39,7 @@
 #include "refracta/shading/light.h"
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -96,6 +97,11 @@ class PhysicalSky {
   const PhysicalSkySettings& settings() const { return settings_; }
   double build_seconds() const { return build_seconds_; }
 
+  // The sky of these settings, shared: a process-wide cache of the last few tables (immutable), so
+  // that scenes rebuilt with the same sky -- unpickled on a worker for every task of a sweep, or
+  // built per point -- pay its build once per process (the same settings give the same table).
+  static std::shared_ptr<const PhysicalSky> shared(const PhysicalSkySettings& settings);
+
   // The table's grid: direction <-> (x = azimuth / 2 pi, y = sqrt(elevation / (pi/2))) in [0, 1]^2,
   // azimuth = atan2(dir.z, dir.x) in [0, 2 pi); solid angle d omega = 2 pi^2 y cos(e) dx dy.
   static Vec2d direction_to_xy(const Vec3d& dir);
@@ -138,14 +144,14 @@ class PhysicalSkyLight final : public Light {
   void preprocess(const Vec3d& centre, double radius) override;
   std::string describe() const override;
 
-  const PhysicalSky& sky() const { return sky_; }
-  const PhysicalSkySettings& settings() const { return sky_.settings(); }
+  const PhysicalSky& sky() const { return *sky_; }
+  const PhysicalSkySettings& settings() const { return sky_->settings(); }
   double pdf_direction(const Vec3d& wi) const;  // pdf_li without the context
 
  private:
-  bool whole_sphere() const { return sky_.settings().below_horizon == BelowHorizon::kHorizon; }
+  bool whole_sphere() const { return sky_->settings().below_horizon == BelowHorizon::kHorizon; }
 
-  PhysicalSky sky_;
+  std::shared_ptr<const PhysicalSky> sky_;  // PhysicalSky::shared
   PiecewiseConstant2D distribution_;  // over (x, y) (kGround) or (x, t) (kHorizon)
   double radiance_integral_ = 0.0;  // integral of Y(L) over the sphere [W/m^2]
   double scene_radius_ = 1.0;
