@@ -160,10 +160,9 @@ def _render_tiled(scene, camera, field, settings, executor, tiles, progress):
             raise ValueError(f"pixel_bounds {region} must be a non-empty rectangle inside the "
                              f"{camera.width} x {camera.height} image")
     bounds = tile_bounds(camera.width, camera.height, tiles, region)
-    shared = (scene, camera, field, settings)
-    if callable(getattr(executor, "scatter", None)):  # a dask Client: send the scene to each worker once
-        shared = tuple(executor.scatter(list(shared), broadcast=True, hash=False))
-    outcomes = map_ordered(_render_tile, [shared + (b,) for b in bounds], executor, progress, "rendering tiles")
+    # Scene, camera, field and options reach each dask worker once (map_ordered's `shared`).
+    outcomes = map_ordered(_render_tile, [(b,) for b in bounds], executor, progress, "rendering tiles",
+                           shared=(scene, camera, field, settings))
     ox, oy = (region[0], region[1]) if region is not None else (0, 0)
     width = (region[2] - region[0]) if region is not None else camera.width
     height = (region[3] - region[1]) if region is not None else camera.height

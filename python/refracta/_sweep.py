@@ -141,13 +141,17 @@ def _progress_callback(progress: ProgressArg, label: str) -> Optional[Callable[[
 
 
 def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, progress: ProgressArg = False,
-                label: str = "sweep") -> List[tuple]:
-    """Calls function(*args) for each tuple of `arguments` on `executor` (as_executor's kinds);
-    returns one (ok, value) per call in the order of `arguments`: (True, result) or
-    (False, (exception, traceback text)). progress(done, total) after each finished call. Ctrl-C
-    cancels the calls not yet started and raises KeyboardInterrupt. The shared path of sweep,
-    tiled renders and animation frames."""
+                label: str = "sweep", shared: tuple = ()) -> List[tuple]:
+    """Calls function(*shared, *args) for each tuple of `arguments` on `executor` (as_executor's
+    kinds); returns one (ok, value) per call in the order of `arguments`: (True, result) or
+    (False, (exception, traceback text)). `shared`: arguments common to every call (a scene, the
+    user's function), sent to each dask worker once (Client.scatter) instead of with every task.
+    progress(done, total) after each finished call. Ctrl-C cancels the calls not yet started and
+    raises KeyboardInterrupt. The shared path of sweep, tiled renders and animation frames."""
     pool = as_executor(executor)
+    if shared and callable(getattr(executor, "scatter", None)):  # a dask Client
+        shared = tuple(executor.scatter(list(shared), broadcast=True, hash=False))
+    shared = tuple(shared)
     callback = _progress_callback(progress, label)
     total = len(arguments)
     outcomes: List[Optional[tuple]] = [None] * total
@@ -156,7 +160,7 @@ def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, p
     if pool is None:
         for i, args in enumerate(arguments):
             try:
-                outcomes[i] = (True, function(*args))
+                outcomes[i] = (True, function(*shared, *args))
             except Exception as error:  # recorded with its point; KeyboardInterrupt propagates
                 outcomes[i] = (False, (error, traceback.format_exc()))
             if callback:
@@ -165,7 +169,7 @@ def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, p
     futures = {}
     try:
         for i, args in enumerate(arguments):
-            futures[pool.submit(function, *args)] = i
+            futures[pool.submit(function, *shared, *args)] = i
         done = 0
         for future in concurrent.futures.as_completed(futures):
             i = futures[future]
@@ -215,7 +219,7 @@ def sweep(function: Callable[..., Any], grid, executor=None, progress: ProgressA
     if errors not in ("raise", "keep"):
         raise ValueError(f"sweep: errors must be 'raise' or 'keep' (got {errors!r})")
     points = grid_points(grid)
-    outcomes = map_ordered(_call_with, [(function, point) for point in points], executor, progress, "sweep")
+    outcomes = map_ordered(_call_with, [(point,) for point in points], executor, progress, "sweep", shared=(function,))
     results, failures = [], []
     for i, (ok, value) in enumerate(outcomes):
         if ok:
