@@ -60,6 +60,8 @@ def dist(tmp_path_factory):
     with open(LOCK, "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)  # one build at a time on this machine
         if not list(folder.glob("refracta-*.whl")):
+            for stale in DIST.glob("*/refracta-*.whl"):  # wheels of earlier sources
+                stale.unlink()
             unpacked = tmp_path_factory.mktemp("unpacked")
             with tarfile.open(sdist) as archive:
                 archive.extractall(unpacked, filter="data")

@@ -40,6 +40,7 @@ def test_set_threads_rejects_negative():
         refracta.set_threads(-1)
 
 
+@pytest.mark.slow
 def test_curved_render_is_bit_identical_with_one_and_two_threads(threads):
     road = examples.hot_road(48, 20)
     one, two = threads(lambda: refracta.render(road.scene, road.camera, road.field, max_length=road.max_length,
