@@ -257,3 +257,18 @@ def test_unpickled_physical_skies_share_the_process_table():
     other = refracta.spectrum.PhysicalSky(sun, aerosol=1.4)
     dirs = np.array([[0.0, 1.0, 0.0], [0.6, 0.1, 0.79372539]])
     assert not np.array_equal(other.rgb_radiance(dirs), sky.rgb_radiance(dirs))  # other settings, own table
+
+
+def test_microfacet_distribution_and_light_sampler_round_trip(rng):
+    ggx = shading.TrowbridgeReitz(0.05, 0.3)
+    copy = round_trip(ggx)
+    m = rng.normal(size=(16, 3))
+    m[:, 2] = np.abs(m[:, 2])
+    m /= np.linalg.norm(m, axis=1, keepdims=True)
+    assert (copy.alpha_x, copy.alpha_y) == (0.05, 0.3) and np.array_equal(copy.D(m), ggx.D(m))
+    sampler = lights.LightSampler(light_list()[:3], strategy="uniform")
+    sampler_copy = round_trip(sampler)
+    u = np.linspace(0.0, 0.999, 25)
+    for a, b in zip(sampler_copy.sample(u), sampler.sample(u)):
+        assert np.array_equal(a, b)
+    assert len(sampler_copy) == 3 and sampler_copy.pmf(1) == sampler.pmf(1)

@@ -432,7 +432,15 @@ void bind_lights(py::module_& m) {
              return py::make_tuple(index, values_to_array(p));
            }, py::arg("u"), "(index (N,) int, probability (N,)) for u (N,) in [0, 1).")
       .def("pmf", &LightSampler::pmf, py::arg("index"))
-      .def("__len__", &LightSampler::size);
+      .def("__len__", &LightSampler::size)
+      .def(py::pickle([](const LightSampler& s) { return py::make_tuple(s.lights(), int(s.strategy())); },
+                      [](const py::tuple& t) {
+                        const int strategy = t.size() == 2 ? py::cast<int>(t[1]) : -1;
+                        if (strategy != int(LightSampler::Strategy::kPower) && strategy != int(LightSampler::Strategy::kUniform)) {
+                          throw_invalid("LightSampler: bad pickle state");
+                        }
+                        return LightSampler(py::cast<std::vector<LightPtr>>(t[0]), LightSampler::Strategy(strategy));
+                      }));
 }
 
 }  // namespace refracta

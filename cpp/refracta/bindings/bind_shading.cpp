@@ -588,7 +588,15 @@ void bind_shading(py::module_& m) {
         std::vector<Vec3d> out(n);
         for (size_t i = 0; i < n; ++i) out[i] = d.sample_wm(w[w.size() == 1 ? 0 : i], Vec2d(u.at(i, 0), u.at(i, 1)));
         return points_to_array(out);
-      }, py::arg("w"), py::arg("u"));
+      }, py::arg("w"), py::arg("u"))
+      .def_property_readonly("alpha_x", &TrowbridgeReitz::alpha_x)
+      .def_property_readonly("alpha_y", &TrowbridgeReitz::alpha_y)
+      .def(py::pickle([](const TrowbridgeReitz& d) { return py::make_tuple(d.alpha_x(), d.alpha_y()); },
+                      [](const py::tuple& t) {
+                        if (t.size() != 2) throw_invalid("TrowbridgeReitz: bad pickle state");
+                        return TrowbridgeReitz(TrowbridgeReitz::checked_alpha(py::cast<double>(t[0]), "alpha_x"),
+                                               TrowbridgeReitz::checked_alpha(py::cast<double>(t[1]), "alpha_y"));
+                      }));
 
   py::class_<Ior>(m, "Ior", "An index of refraction: constant or Sellmeier (C in um^2).")
       .def(py::init([](const py::object& ior, const py::object& sellmeier) { return to_ior(ior, sellmeier); }),
