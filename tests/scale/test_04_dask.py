@@ -104,3 +104,18 @@ def test_a_render_split_across_workers_equals_the_local_render(client, texture):
                                 progress=False, stats=stats)
         assert np.array_equal(split, local)
         assert stats["samples"] == camera.width * camera.height * 4
+
+
+def cold_only(surface_dt):
+    if surface_dt > 10.0:
+        raise ValueError(f"no table for {surface_dt} K")
+    return refracta.PhysicalAtmosphere(surface_dt=surface_dt).ior([0.0, 0.0, 0.0])
+
+
+def test_a_failing_point_on_a_worker_is_reported_with_its_parameters(client):
+    with pytest.raises(refracta.SweepError, match=r"1 of 3 sweep points failed: point 2 \{'surface_dt': 12.0\}") as caught:
+        refracta.sweep(cold_only, {"surface_dt": [2.0, 6.0, 12.0]}, executor=client, progress=False)
+    failure = caught.value.failures[0]
+    assert isinstance(failure.error, ValueError) and "no table for 12.0 K" in failure.traceback
+    results = caught.value.results
+    assert results[:2] == [cold_only(2.0), cold_only(6.0)] and results[2] is None
