@@ -2,6 +2,7 @@
 #include "refracta/raster/shadow_map.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/image.h"
 
 #include <algorithm>
 #include <chrono>
@@ -30,9 +31,21 @@ const char* shadow_method_name(ShadowMethod method) {
   return "?";
 }
 
+namespace {
+
+bool uses_moments(ShadowMethod m) {
+  return m == ShadowMethod::kVsm || m == ShadowMethod::kHamburger || m == ShadowMethod::kHausdorff;
+}
+
+}  // namespace
+
 void ShadowMapOptions::validate() const {
-  // 8192^2 texels of four double moments already take 2 GB.
+  // Peak memory at 8192^2 texels: 2.4 GB for moment maps (four doubles per texel, 2 GiB, filtered
+  // in place, plus the depth buffer), 1.3 GB while rasterizing (20 bytes per texel); measured
+  // with tests/hardening/test_05_raster_memory.py (before: 5.5 GB, the rows and the filtered
+  // copy both held, and the whole visibility buffer kept).
   if (resolution < 2 || resolution > 8192) throw_invalid("resolution must be in [2, 8192] (got ", resolution, ")");
+  check_image_memory(resolution, resolution, uses_moments(method) ? 36.0 : 20.0, "shadow map");
   if (kernel < 1 || kernel % 2 == 0 || kernel > resolution) {
     throw_invalid("kernel must be an odd size >= 1 and <= resolution (got ", kernel, ")");
   }
@@ -48,14 +61,11 @@ void ShadowMapOptions::validate() const {
 
 namespace {
 
-bool uses_moments(ShadowMethod m) {
-  return m == ShadowMethod::kVsm || m == ShadowMethod::kHamburger || m == ShadowMethod::kHausdorff;
-}
-
 // The moment map in two passes, O(1) per texel whatever the kernel k (odd): along each row,
 // running sums of (z, z^2, z^3, z^4) of the depths (clamped at the edges); then down blocks of
 // columns, one running sum per column (memory read row by row), each result stored as `store`
-// says (the storage emulation) on its way out.
+// says (the storage emulation) on its way out, in place: each block keeps the row-pass values of
+// the last r + 1 rows it overwrote (and of row 0), which the running sum still subtracts.
 template <class Depth, class Store>
 std::vector<Moments4> filtered_moments(int n, int k, WorkControl& control, const Depth& depth, const Store& store) {
   const int r = k / 2;
@@ -84,34 +94,38 @@ std::vector<Moments4> filtered_moments(int n, int k, WorkControl& control, const
   });
   constexpr int kBlock = 64;
   const int blocks = (n + kBlock - 1) / kBlock;
-  std::vector<Moments4> out(rows.size());
   parallel_for_each(blocks, 1, control, [&](int64_t b) {
-    const int x0 = int(b) * kBlock, x1 = std::min(x0 + kBlock, n);
+    const int x0 = int(b) * kBlock, x1 = std::min(x0 + kBlock, n), w = x1 - x0;
     auto row = [&](int y) { return &rows[size_t(std::clamp(y, 0, n - 1)) * n]; };
     if (k == 1) {
       for (int y = 0; y < n; ++y) {
-        for (int x = x0; x < x1; ++x) out[size_t(y) * n + x] = store(row(y)[x]);
+        for (int x = x0; x < x1; ++x) row(y)[x] = store(row(y)[x]);
       }
       return;
     }
-    std::vector<Moments4> sum(x1 - x0, Moments4{0, 0, 0, 0});
+    std::vector<Moments4> sum(w, Moments4{0, 0, 0, 0}), kept(size_t(r + 1) * w), first(row(0) + x0, row(0) + x1);
     for (int i = -r; i <= r; ++i) {
       for (int x = x0; x < x1; ++x) add(sum[x - x0], row(i)[x], 1.0);
     }
     for (int y = 0; y < n; ++y) {
-      const Moments4* enter = row(y + r + 1);
-      const Moments4* leave = row(y - r);
-      for (int x = x0; x < x1; ++x) {
-        Moments4& s = sum[x - x0];
+      Moments4* current = row(y);
+      Moments4* keep = &kept[size_t(y % (r + 1)) * w];
+      // Row y + r + 1 is not overwritten yet (at the last row it is y itself, and unused after).
+      const Moments4* enter = row(y + r + 1) + x0;
+      // Row y - r was overwritten r steps ago; its row-pass values are in `kept` (r >= 1).
+      const Moments4* leave = y - r <= 0 ? first.data() : &kept[size_t((y - r) % (r + 1)) * w];
+      for (int i = 0; i < w; ++i) {
+        Moments4& s = sum[i];
         Moments4 mean;
         for (int j = 0; j < 4; ++j) mean[j] = s[j] / k;
-        out[size_t(y) * n + x] = store(mean);
-        add(s, enter[x], 1.0);
-        add(s, leave[x], -1.0);
+        keep[i] = current[x0 + i];
+        current[x0 + i] = store(mean);
+        add(s, enter[i], 1.0);
+        add(s, leave[i], -1.0);
       }
     }
   });
-  return out;
+  return rows;
 }
 
 }  // namespace
@@ -145,6 +159,11 @@ void ShadowMap::build(const Scene& scene, WorkControl& control) {
   const auto start = std::chrono::steady_clock::now();
   const int n = options_.resolution;
   buffer_ = rasterize(scene, view_, control);
+  // Lookups read depths only: the rest of the visibility buffer (16 of its 20 bytes per texel) goes.
+  std::vector<uint32_t>().swap(buffer_.geometry);
+  std::vector<uint32_t>().swap(buffer_.primitive);
+  std::vector<float>().swap(buffer_.b1);
+  std::vector<float>().swap(buffer_.b2);
   near_ = std::numeric_limits<double>::infinity(), far_ = -near_;
   for (float d : buffer_.depth) {
     if (std::isfinite(d)) near_ = std::min(near_, double(d)), far_ = std::max(far_, double(d));
@@ -159,6 +178,7 @@ void ShadowMap::build(const Scene& scene, WorkControl& control) {
     moments_ = filtered_moments(
         n, options_.kernel, control, [&](int x, int y) { return depth_at(x, y); },
         [&](const Moments4& b) { return storage == MomentStorage::kFp64 ? b : stored_moments(b, storage, signed_depth); });
+    std::vector<float>().swap(buffer_.depth);  // moment lookups read the moments only
   }
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -108,6 +108,8 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
     // spp lighting samples at the raster pixel's surface point (no jitter: the point is the pixel's).
     Spectrum sum = Spectrum::Zero();
     for (int s = 0; s < options.spp; ++s) {
+      // Polled every 64 samples as in the film loop: a tile at 4096 spp took 1.7 s to see Ctrl-C.
+      if ((s & 63) == 63 && control.cancel.load(std::memory_order_relaxed)) throw Cancelled();
       SampledWavelengths lambda = SampledWavelengths::rgb();
       sum += integrator->li_after(eye, end.direction, end, pixel_angle, lambda, sampler, scratch_per_thread.local());
     }
