@@ -1119,7 +1119,7 @@ class EnvironmentLight(Light):
         """
         The 3 x 3 rotation about +y by degrees (right-handed: +x turns toward -z).
         """
-    def __getstate__(self) -> tuple[numpy.typing.NDArray[numpy.float32], float, numpy.typing.NDArray[numpy.float64]]:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, image: typing.Any, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, rotation: typing.Any = None) -> None:
         ...

@@ -272,3 +272,17 @@ def test_microfacet_distribution_and_light_sampler_round_trip(rng):
     for a, b in zip(sampler_copy.sample(u), sampler.sample(u)):
         assert np.array_equal(a, b)
     assert len(sampler_copy) == 3 and sampler_copy.pmf(1) == sampler.pmf(1)
+
+
+def test_an_environment_map_file_travels_as_its_path(tmp_path):
+    path = tmp_path / "sky.exr"
+    image = np.repeat(np.repeat(scenes.environment_map(), 8, axis=0), 8, axis=1)  # 64 x 128 texels, 98 KB
+    refracta.io.write_image(str(path), image)
+    scene = refracta.Scene()
+    scene.add_sphere((5.0, 1.0, 0.0), 1.0, material=shading.Conductor())
+    scene.set_environment(str(path), rotation=20.0, scale=1.5)
+    data = pickle.dumps(scene)
+    assert str(path).encode() in data and len(data) < image.nbytes / 10
+    camera = scenes.camera()
+    assert np.array_equal(scenes.render_quietly(pickle.loads(data), camera, None, spp=2),
+                          scenes.render_quietly(scene, camera, None, spp=2))

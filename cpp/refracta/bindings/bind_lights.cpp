@@ -3,6 +3,7 @@
 // RGB rendering, for tests and users' own integrators.
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/pickle_state.h"
+#include "refracta/scene/image_io.h"
 
 #include "refracta/shading/area_light.h"
 #include "refracta/shading/constant_environment.h"
@@ -383,7 +384,9 @@ void bind_lights(py::module_& m) {
              return out;
            }, "The 3 x 3 rotation, map frame -> world.")
       .def(py::pickle(
-          [](const EnvironmentLight& l) {
+          [](const EnvironmentLight& l) -> py::tuple {
+            // A map read from a file travels as its path (the file must be readable where it is unpickled).
+            if (!l.source().empty()) return py::make_tuple(l.source(), l.scale(), matrix_array(l.rotation()));
             py::array_t<float> image({py::ssize_t(l.height()), py::ssize_t(l.width()), py::ssize_t(3)});
             float* p = image.mutable_data();
             for (const Vec3d& texel : l.texels()) {
@@ -393,6 +396,12 @@ void bind_lights(py::module_& m) {
           },
           [](const py::tuple& t) {
             check_state(t, 3, "EnvironmentLight");
+            if (py::isinstance<py::str>(t[0])) {
+              const std::string path = py::cast<std::string>(t[0]);
+              auto light = std::make_shared<EnvironmentLight>(read_image(path), py::cast<double>(t[1]), rotation_from(t[2]));
+              light->set_source(path);
+              return light;
+            }
             return std::make_shared<EnvironmentLight>(image_from(t[0]), py::cast<double>(t[1]), rotation_from(t[2]));
           }));
 

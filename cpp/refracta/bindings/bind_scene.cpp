@@ -20,6 +20,7 @@
 #include "refracta/shading/tonemap.h"
 
 #include <cmath>
+#include <filesystem>
 #include <optional>
 #include <set>
 
@@ -95,6 +96,13 @@ Image gradient_sky(const Vec3d& horizon, const Vec3d& zenith) {
     }
   }
   return image;
+}
+
+// An environment map read from a file, remembering the file (a pickled scene refers to it).
+std::shared_ptr<EnvironmentLight> environment_from_file(const std::string& path, double scale, const Mat3d& rotation) {
+  auto light = std::make_shared<EnvironmentLight>(read_image(path), scale, rotation);
+  light->set_source(std::filesystem::absolute(path).string());
+  return light;
 }
 
 Mat3d rotation_from(const py::object& rotation) {
@@ -452,7 +460,7 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
               double scale) {
              s.remove_lights_if([](const Light& l) { return l.is_infinite() && !dynamic_cast<const SunLight*>(&l); });
              if (environment) {
-               s.add_light(std::make_shared<EnvironmentLight>(read_image(*environment), scale));
+               s.add_light(environment_from_file(*environment, scale, Mat3d::Identity()));
                return;
              }
              const Vec3d h = horizon.is_none() ? Vec3d(0.7, 0.8, 0.95) : to_rgb(horizon, "horizon");
@@ -501,7 +509,7 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            [](RenderScene& s, const py::object& source, const py::object& rotation, double scale) {
              s.remove_lights_if([](const Light& l) { return l.is_infinite() && !dynamic_cast<const SunLight*>(&l); });
              if (py::isinstance<py::str>(source)) {
-               s.add_light(std::make_shared<EnvironmentLight>(read_image(py::cast<std::string>(source)), scale, rotation_from(rotation)));
+               s.add_light(environment_from_file(py::cast<std::string>(source), scale, rotation_from(rotation)));
              } else if (py::isinstance<py::array>(source) && py::cast<py::array>(source).ndim() >= 2) {
                s.add_light(std::make_shared<EnvironmentLight>(array_to_image(source), scale, rotation_from(rotation)));
              } else {

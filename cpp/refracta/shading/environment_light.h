@@ -33,6 +33,9 @@
 
 #include <Eigen/Core>
 
+#include <string>
+#include <vector>
+
 namespace refracta {
 
 using Mat3d = Eigen::Matrix3d;
@@ -63,6 +66,9 @@ class EnvironmentLight final : public Light {
 
   int width() const { return width_; }
   const std::vector<Vec3d>& texels() const { return texels_; }  // RGB, row-major, top row first, unscaled
+  // The image file the map was read from ("" for an array): pickling then refers to the file.
+  const std::string& source() const { return source_; }
+  void set_source(std::string path) { source_ = std::move(path); }
   int height() const { return height_; }
   double scale() const { return scale_; }
   const Mat3d& rotation() const { return rotation_; }
@@ -76,6 +82,7 @@ class EnvironmentLight final : public Light {
   std::vector<Vec3d> texels_;  // row-major, top row first (not scaled)
   double scale_;
   Mat3d rotation_;
+  std::string source_;
   PiecewiseConstant2D distribution_;
   Color white_;                // Color::illuminant(1, 1, 1): D65 in spectral rendering
   double scene_radius_ = 1.0;
