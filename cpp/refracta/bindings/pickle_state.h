@@ -23,7 +23,7 @@ Mesh mesh_from_state(const py::handle& state);
 // Scene: textures (paths, in id order), materials (objects), geometry (meshes / sphere sets
 // with their material ids), lights (objects with the geometry they are emitted by and their
 // shadow radius). Textures are referenced by absolute path: the files must exist where it is
-// unpickled (a shared file system); environment maps travel as their pixels.
+// unpickled (a shared file system), as environment maps read from files (EnvironmentLight's pickle).
 py::tuple scene_state(const RenderScene& scene);
 std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state);
 
