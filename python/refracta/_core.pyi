@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'air_dispersion_scale', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray']
+__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'air_dispersion_scale', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -282,6 +282,10 @@ class _ElevationTable:
     @property
     def size(self) -> int:
         ...
+class TextureNotFoundError(IoError, FileNotFoundError):
+    """
+    A texture an MTL file names is in none of the folders searched (a refracta.IoError and a FileNotFoundError).
+    """
 class Scene:
     """
     Geometry (Embree), materials (refracta.shading) and lights. Scene() starts empty: no sun, no sky,
@@ -335,7 +339,8 @@ class Scene:
         A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of
         ``texture_dirs`` in order (relative folders from the working directory), as written and by its
         file name alone (a path from the author's machine). A texture found nowhere raises
-        FileNotFoundError naming it and the folders searched (``missing_textures='error'``), or, with
+        refracta.TextureNotFoundError (a refracta.IoError and a FileNotFoundError) naming it and the
+        folders searched (``missing_textures='error'``), or, with
         ``missing_textures='warn'``, issues a UserWarning (Python's warnings) and its material uses Kd.
         
         Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.

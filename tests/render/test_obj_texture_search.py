@@ -51,8 +51,10 @@ def city(tmp_path):
 
 
 def test_a_texture_in_no_searched_folder_raises_file_not_found_naming_it_and_the_folders(city):
-    with pytest.raises(FileNotFoundError) as error:
+    with pytest.raises(refracta.TextureNotFoundError) as error:
         refracta.Scene().add_obj(str(city))
+    # Both what every missing file raises and the built-in a user would catch.
+    assert isinstance(error.value, refracta.IoError) and isinstance(error.value, FileNotFoundError)
     assert "'facade.png'" in str(error.value)
     assert str(city.parent) in str(error.value)
 

@@ -250,6 +250,10 @@ std::vector<std::string> to_folders(const py::object& dirs) {
   return out;
 }
 
+// refracta.TextureNotFoundError, created by bind_scene: both a refracta.IoError (what every missing
+// file raises) and a FileNotFoundError. Kept for the life of the process, as pybind11's exceptions.
+PyObject* texture_not_found_error = nullptr;
+
 // The texture file of each part of an OBJ ("" for none): map_Kd searched by find_texture. A
 // texture found nowhere raises FileNotFoundError, or with `warn` a UserWarning (once per name)
 // and "" (the material keeps Kd).
@@ -274,7 +278,7 @@ std::vector<std::string> obj_texture_paths(const std::vector<MaterialMesh>& part
     const std::string message = concat("texture '", mtl.texture_name, "' of material '", mtl.name,
                                        "' not found in ", folders);
     if (!warn) {
-      PyErr_SetString(PyExc_FileNotFoundError, message.c_str());
+      PyErr_SetString(texture_not_found_error, message.c_str());
       throw py::error_already_set();
     }
     if (warned.insert(mtl.texture_name).second &&
@@ -289,6 +293,15 @@ std::vector<std::string> obj_texture_paths(const std::vector<MaterialMesh>& part
 }  // namespace
 
 void bind_scene(py::module_& m) {
+  if (!texture_not_found_error) {
+    py::tuple bases = py::make_tuple(m.attr("IoError"), py::handle(PyExc_FileNotFoundError));  // IoError: bind_core
+    texture_not_found_error = PyErr_NewExceptionWithDoc(
+        "refracta._core.TextureNotFoundError",
+        "A texture an MTL file names is in none of the folders searched (a refracta.IoError and a FileNotFoundError).",
+        bases.ptr(), nullptr);
+    if (!texture_not_found_error) throw py::error_already_set();
+  }
+  m.attr("TextureNotFoundError") = py::handle(texture_not_found_error);
   py::class_<RenderScene, std::shared_ptr<RenderScene>>(m, "Scene", R"doc(
 Geometry (Embree), materials (refracta.shading) and lights. Scene() starts empty: no sun, no sky,
 black. Every add_* takes material= (any refracta.shading material); without it the Blinn-Phong
@@ -370,7 +383,8 @@ d < 1 and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as sh
 A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of
 ``texture_dirs`` in order (relative folders from the working directory), as written and by its
 file name alone (a path from the author's machine). A texture found nowhere raises
-FileNotFoundError naming it and the folders searched (``missing_textures='error'``), or, with
+refracta.TextureNotFoundError (a refracta.IoError and a FileNotFoundError) naming it and the
+folders searched (``missing_textures='error'``), or, with
 ``missing_textures='warn'``, issues a UserWarning (Python's warnings) and its material uses Kd.
 
 Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
