@@ -20,6 +20,26 @@ def _size(text: str):
     return width, height
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (no usage block): `refracta render: error: ... (see --help)`."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def _count(minimum: int):
+    """argparse type: a whole number >= minimum."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be a whole number (got {text!r})") from None
+        if value < minimum:
+            raise argparse.ArgumentTypeError(f"must be >= {minimum} (got {value})")
+        return value
+    return parse
+
+
 # How the demo renders each example at its default size (480 x 160): transport, samples per
 # pixel. Measured on 2 cores (see demo's printout): the hot road path-traces; over the sea every
 # glossy reflection is another curved ray tens of km long, so those use 'direct' (first-bounce
@@ -124,7 +144,24 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str = N
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="refracta", description="Physically based mirages.")
+    """Runs a command. A user error (a missing or malformed file, a bad value: ValueError, OSError
+    and refracta.IoError, refracta.NumericalError) prints one line `refracta: error: ...` to stderr
+    and returns 1; Ctrl-C returns 130; anything else is a bug and keeps its traceback."""
+    import refracta
+
+    try:
+        return _run(argv)
+    except (ValueError, OSError, refracta.NumericalError) as error:
+        message = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
+        print(f"refracta: error: {message}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("refracta: interrupted", file=sys.stderr)
+        return 130
+
+
+def _run(argv=None) -> int:
+    parser = _Parser(prog="refracta", description="Physically based mirages.")
     commands = parser.add_subparsers(dest="command", required=True)
     demo_parser = commands.add_parser("demo", help="render the example mirages and ray fans")
     demo_parser.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
@@ -134,10 +171,10 @@ def main(argv=None) -> int:
     render_parser.add_argument("-o", "--output", type=Path, default=Path("out.exr"), help="image file (default out.exr)")
     render_parser.add_argument("--method", choices=["curved", "straight", "raster_march"], default="curved")
     render_parser.add_argument("--size", type=_size, default=None, help="WxH (default: the file's camera size)")
-    render_parser.add_argument("--spp", type=int, default=1, help="samples per pixel")
+    render_parser.add_argument("--spp", type=_count(1), default=1, help="samples per pixel")
     render_parser.add_argument("--exposure", type=float, default=1.0)
     render_parser.add_argument("--transport", choices=["direct", "path"], default="direct", help="light transport")
-    render_parser.add_argument("--max-depth", type=int, default=None, help="scattering events per path")
+    render_parser.add_argument("--max-depth", type=_count(0), default=None, help="scattering events per path")
     render_parser.add_argument("--spectral", action="store_true", help="hero-wavelength spectral rendering")
     render_parser.add_argument("--tonemap", choices=["linear", "film", "reinhard"], default="reinhard",
                                help="display curve for PNG/JPEG output")

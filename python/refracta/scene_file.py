@@ -65,6 +65,7 @@ and the key; missing files raise refracta.IoError.
 
 from __future__ import annotations
 
+import difflib
 import os
 import re
 import sys
@@ -113,6 +114,9 @@ LIGHT_KEYS = {
     "spot": {"position", "direction", "angle", "intensity", "inner_angle"},
     "sun": {"direction", "radiance", "angular_diameter", "limb_darkening"},
 }
+CAMERA_KEYS = {"position", "look_at", "up", "vfov", "size"}
+SUN_KEYS = {"direction", "radiance", "angular_diameter"}
+SKY_KEYS = {"horizon", "zenith", "environment", "scale"}
 ENVIRONMENT_KEYS = {
     "constant": {"radiance"},
     "map": {"file", "rotation", "scale"},
@@ -150,6 +154,8 @@ class _Locator:
             if current == table and (index is None or count == index) and key is not None:
                 if re.match(rf"\s*{re.escape(key)}\s*=", line):
                     return number
+            if current is None and not header_line and re.match(rf"\s*{re.escape(table)}\s*=", line):
+                header_line = number  # a top-level key where a table belongs: camera = 5
         return header_line
 
     def error(self, message: str, table: str, key: Optional[str] = None, index: Optional[int] = None) -> ValueError:
@@ -157,6 +163,30 @@ class _Locator:
         where = f"[{table}]" if index is None else f"[[{table}]] #{index + 1}"
         name = f"{where} {key}" if key else where
         return ValueError(f"{self.path}:{line}: {name}: {message}")
+
+
+def _unknown_key_message(key: str, allowed, what: str) -> str:
+    """'unknown key for a <what> (did you mean vfov?; expected ...)'."""
+    close = difflib.get_close_matches(key, sorted(allowed), n=1)
+    hint = f"did you mean {close[0]}? " if close else ""
+    return f"unknown key for {what} ({hint}expected {', '.join(sorted(allowed))})"
+
+
+def _check_keys(table: dict, allowed, where: "_Locator", name: str, what: str, index: Optional[int] = None) -> None:
+    """ValueError naming file, line and the first key of `table` not in `allowed`."""
+    extra = sorted(set(table) - set(allowed))
+    if extra:
+        raise where.error(_unknown_key_message(extra[0], allowed, what), name, extra[0], index)
+
+
+def _image_size(value: Any) -> list:
+    """[width, height]: two whole numbers >= 1 (32.7 is refused, not truncated)."""
+    if not isinstance(value, list) or len(value) != 2 or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+        raise TypeError("must be a list of 2 numbers [width, height]")
+    if not all(v == v and abs(v) != float("inf") and float(v).is_integer() and v >= 1 for v in value):
+        raise ValueError(f"must be two whole numbers of pixels >= 1 (got {value})")
+    return [int(v) for v in value]
 
 
 def _number_list(value: Any, length: int) -> list:
@@ -207,10 +237,7 @@ def _materials(entries: list, where: "_Locator", get, path: Path) -> dict:
         if name in materials:
             raise where.error(f"material '{name}' is defined twice", "materials", "name", index)
         class_name, keys = MATERIAL_TYPES[kind]
-        extra = set(entry) - keys - {"name", "type"}
-        if extra:
-            raise where.error(f"unknown key for a {kind} material (expected {', '.join(sorted(keys))})",
-                              "materials", sorted(extra)[0], index)
+        _check_keys(entry, keys | {"name", "type"}, where, "materials", f"a {kind} material", index)
         params = {}
         for key in sorted(set(entry) & keys):
             value = entry[key]
@@ -239,9 +266,7 @@ def _environment(scene: _core.Scene, table: dict, where: "_Locator", get, path: 
     if kind not in ENVIRONMENT_KEYS:
         raise where.error(f"unknown environment type '{kind}' (expected {', '.join(ENVIRONMENT_KEYS)})",
                           "environment", "type")
-    extra = set(table) - ENVIRONMENT_KEYS[kind] - {"type"}
-    if extra:
-        raise where.error(f"unknown key for a {kind} environment", "environment", sorted(extra)[0])
+    _check_keys(table, ENVIRONMENT_KEYS[kind] | {"type"}, where, "environment", f"a {kind} environment")
 
     def positive(value):
         value = float(value)
@@ -288,9 +313,7 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: "_Locator", ge
         if kind not in LIGHT_KEYS:
             raise where.error(f"unknown light type '{kind}' (expected {', '.join(LIGHT_KEYS)}; area lights: "
                               "objects with emission)", "lights", "type", index)
-        extra = set(entry) - LIGHT_KEYS[kind] - {"type"}
-        if extra:
-            raise where.error(f"unknown key for a {kind} light", "lights", sorted(extra)[0], index)
+        _check_keys(entry, LIGHT_KEYS[kind] | {"type"}, where, "lights", f"a {kind} light", index)
         try:
             if kind == "point":
                 scene.add_point_light(get(entry, "lights", "position", vector, required=True, index=index),
@@ -340,7 +363,7 @@ def load_scene(path) -> SceneFile:
             return default
         try:
             return convert(table[key])
-        except (TypeError, ValueError, _core.IoError) as error:
+        except (TypeError, ValueError, OverflowError, _core.IoError) as error:
             if isinstance(error, _core.IoError):
                 raise
             raise where.error(str(error), name, key, index) from None
@@ -359,7 +382,8 @@ def load_scene(path) -> SceneFile:
         raise ValueError(f"{path}: the [camera] table is missing")
 
     cam = data["camera"]
-    size = get(cam, "camera", "size", lambda v: [int(x) for x in _number_list(v, 2)], [640, 360])
+    _check_keys(cam, CAMERA_KEYS, where, "camera", "[camera]")
+    size = get(cam, "camera", "size", _image_size, [640, 360])
     try:
         camera = _core.Camera(get(cam, "camera", "position", lambda v: _number_list(v, 3), required=True),
                               get(cam, "camera", "look_at", lambda v: _number_list(v, 3), required=True),
@@ -378,6 +402,7 @@ def load_scene(path) -> SceneFile:
         if data.get("environment", {}).get("type") == "physical_sky":
             raise where.error("the physical sky sets its own sun: remove [sun]", "sun")
         sun = data["sun"]
+        _check_keys(sun, SUN_KEYS, where, "sun", "[sun]")
         try:
             scene.set_sun(get(sun, "sun", "direction", lambda v: _number_list(v, 3), required=True),
                           get(sun, "sun", "radiance", lambda v: _number_list(v, 3), required=True),
@@ -386,6 +411,7 @@ def load_scene(path) -> SceneFile:
             raise where.error(str(error), "sun") from None
     if "sky" in data:
         sky = data["sky"]
+        _check_keys(sky, SKY_KEYS, where, "sky", "[sky]")
         environment = get(sky, "sky", "environment", str, None)
         horizon = get(sky, "sky", "horizon", lambda v: _number_list(v, 3), required=environment is None)
         try:
@@ -405,9 +431,7 @@ def load_scene(path) -> SceneFile:
                                                   {"kd"} if kind == "billboard" else set())
         allowed |= {"emission"} if kind in EMITTERS else set()
         allowed |= {"two_sided"} if kind == "mesh" else set()
-        extra = set(obj) - allowed
-        if extra:
-            raise where.error(f"unknown key for a {kind}", "objects", sorted(extra)[0], index)
+        _check_keys(obj, allowed, where, "objects", f"a {kind}", index)
         material = dict(kd=get(obj, "objects", "kd", lambda v: _number_list(v, 3), [0.5, 0.5, 0.5], index=index),
                         ks=get(obj, "objects", "ks", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
                         ns=get(obj, "objects", "ns", float, 1.0, index=index))
@@ -464,6 +488,11 @@ def load_scene(path) -> SceneFile:
         if model not in MODELS:
             raise where.error(f"unknown model '{model}' (expected {', '.join(MODELS)})", "atmosphere", "model")
         curved = atmosphere.pop("curved_earth", False)
+        if model == "TemperatureProfile":
+            allowed = {"heights", "temperatures", "pressure", "humidity", "wavelength"}
+        else:
+            allowed = set(dict(MODELS[model]().params))
+        _check_keys(atmosphere, allowed, where, "atmosphere", f"a {model}")
         try:
             if model == "TemperatureProfile":
                 heights = atmosphere.pop("heights", None)

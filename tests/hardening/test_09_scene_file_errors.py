@@ -1,0 +1,47 @@
+"""Scene-file mistakes raise ValueError naming file, line and key (issue 13): unknown keys in
+[camera], [sun], [sky], [atmosphere] were silently ignored (`vfovv = 3` rendered at 45 degrees),
+`size = [32.7, 16.2]` was truncated, `camera = 5` raised TypeError and `size = [inf, 1]`
+OverflowError without file or line."""
+
+import pytest
+
+import refracta
+
+CAMERA = "[camera]\nposition = [0, 1, 0]\nlook_at = [10, 1, 0]\n"
+
+
+def load(tmp_path, text):
+    path = tmp_path / "scene.toml"
+    path.write_text(text)
+    return refracta.load_scene(path)
+
+
+@pytest.mark.parametrize("text, line, key, suggestion", [
+    (CAMERA + "vfovv = 3\n", 4, r"\[camera\] vfovv", "vfov"),
+    (CAMERA + "[sun]\ndirection = [0, 1, 0]\nradiance = [1, 1, 1]\nangular_diameterr = 1\n", 7,
+     r"\[sun\] angular_diameterr", "angular_diameter"),
+    (CAMERA + "[sky]\nhorizn = [1, 1, 1]\n", 5, r"\[sky\] horizn", "horizon"),
+    (CAMERA + "[atmosphere]\nsurface_dtt = 3\n", 5, r"\[atmosphere\] surface_dtt", "surface_dt"),
+    (CAMERA + '[[materials]]\nname = "a"\ntype = "diffuse"\nreflectanse = 0.5\n', 7,
+     r"\[\[materials\]\] #1 reflectanse", "reflectance"),
+    (CAMERA + '[[objects]]\ntype = "sphere"\ncentre = [5, 1, 0]\nradius = 1\nkdd = 0.5\n', 8,
+     r"\[\[objects\]\] #1 kdd", "kd"),
+])
+def test_unknown_keys_name_file_line_and_the_likely_key(tmp_path, text, line, key, suggestion):
+    with pytest.raises(ValueError, match=rf"scene.toml:{line}: .*{key}: unknown key .*did you mean {suggestion}\?"):
+        load(tmp_path, text)
+
+
+@pytest.mark.parametrize("size", ["[32.7, 16.2]", "[inf, 1]", "[nan, 2]", "[0, 10]", "[-4, 10]", "[4]", '["a", 1]'])
+def test_a_bad_image_size_is_refused_not_truncated(tmp_path, size):
+    with pytest.raises(ValueError, match=r"scene.toml:4: \[camera\] size: must be"):
+        load(tmp_path, CAMERA + f"size = {size}\n")
+
+
+def test_whole_float_sizes_are_exact(tmp_path):
+    assert (load(tmp_path, CAMERA + "size = [32.0, 16]\n").camera.width, 16) == (32, 16)
+
+
+def test_a_table_given_as_a_value_names_file_and_line(tmp_path):
+    with pytest.raises(ValueError, match=r"scene.toml:1: \[camera\]: must be a table"):
+        load(tmp_path, "camera = 5\n")

@@ -1,0 +1,24 @@
+"""An image that cannot fit in memory is refused before anything is allocated, naming its size in
+bytes (issue 13): a 100000 x 100000 render asked for 120 GB of float RGB."""
+
+import pytest
+
+import refracta
+
+
+@pytest.mark.parametrize("render", [lambda s, c: refracta.render(s, c, None, progress=False),
+                                    lambda s, c: refracta.render(s, c, refracta.PhysicalAtmosphere(), progress=False),
+                                    lambda s, c: refracta.render_raster(s, c)],
+                         ids=["straight", "curved", "raster"])
+def test_a_camera_too_large_for_memory_is_refused_naming_the_bytes(render):
+    camera = refracta.Camera([0, 1, 0], [1, 1, 0], width=100_000, height=100_000)
+    # 24 bytes per pixel at least: float32 RGB in C++ and its numpy copy.
+    with pytest.raises(ValueError, match=r"a 100000 x 100000 image needs at least 240000000000 bytes"):
+        render(refracta.Scene(), camera)
+
+
+def test_a_tile_of_that_camera_renders():
+    # pixel_bounds: only the tile is allocated.
+    camera = refracta.Camera([0, 1, 0], [1, 1, 0], width=100_000, height=100_000)
+    tile = refracta.render(refracta.Scene(), camera, None, progress=False, pixel_bounds=(0, 0, 4, 2))
+    assert tile.shape == (2, 4, 3)
