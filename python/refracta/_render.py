@@ -85,7 +85,8 @@ def render(
     executor, tiles: split the image into tiles rendered by `executor` (a dask.distributed Client,
     any concurrent.futures.Executor, or None: one after another here) and assembled into the
     image: bit-identical to a local render (every pixel has its own seed; a height-only field's
-    ElevationTable is the whole image's in every tile, rebuilt by each). tiles=(nx, ny): nx x ny
+    ElevationTable is the whole image's in every tile, rebuilt by each; raster_march tiles each
+    rasterize and shade the whole view and split only the march). tiles=(nx, ny): nx x ny
     tiles of near-equal size; tiles=n: square tiles of n pixels; None with an executor: 128-pixel
     tiles. Scene, camera and field are pickled to the workers (texture files by path: they must be
     readable there). progress then reports finished tiles; stats sums the tiles' counts.

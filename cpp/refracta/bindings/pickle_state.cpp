@@ -137,9 +137,11 @@ std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state) {
   }
   auto scene = std::make_shared<RenderScene>();
   Scene& geometry = scene->geometry;
-  for (const py::handle path : state[1]) {
-    const int id = geometry.textures().add(py::cast<std::string>(path));
-    (void)id;  // ids come back in the same order (Textures::add numbers new paths in turn)
+  int expected_id = 0;
+  for (const py::handle path : state[1]) {  // Textures::add numbers new paths in turn: the same ids
+    if (geometry.textures().add(py::cast<std::string>(path)) != expected_id++) {
+      throw_invalid("Scene: bad pickle state (texture '", py::cast<std::string>(path), "' listed twice)");
+    }
   }
   for (const py::handle material : state[2]) scene->add_material(py::cast<std::shared_ptr<Material>>(material));
   for (const py::handle item : state[3]) {
