@@ -66,6 +66,9 @@ std::string prepare(const std::string& path) {
     linear = OIIO::ImageBufAlgo::colorconvert(source, "sRGB", "linear");
     if (linear.has_error()) throw IoError(concat("texture '", path, "': ", linear.geterror()));
   }
+  // The source's ICC profile describes its encoded colours, not the linear copy; OpenEXR has no
+  // place for it either (OIIO would print "Don't know what to do with ... ICCProfile").
+  linear.specmod().erase_attribute("ICCProfile.*");
   OIIO::ImageSpec config;
   config.attribute("maketx:filtername", "lanczos3");
   config.attribute("tile_width", 64);
@@ -74,9 +77,6 @@ std::string prepare(const std::string& path) {
   config.set_format(OIIO::TypeDesc::HALF);
   // Written under a temporary name and renamed, so concurrent sessions never read a partial file.
   const fs::path partial = prepared.string() + concat(".", std::hash<std::string>()(path), ".part.exr");
-  // The source's ICC profile describes its encoded colours, not the linear copy; OpenEXR has no
-  // place for it either (OIIO would print "Don't know what to do with ... ICCProfile").
-  linear.specmod().erase_attribute("ICCProfile.*");
   if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, linear, partial.string(), config)) {
     throw IoError(concat("cannot prepare texture '", path, "': ", OIIO::geterror()));
   }
