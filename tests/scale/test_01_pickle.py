@@ -286,3 +286,47 @@ def test_an_environment_map_file_travels_as_its_path(tmp_path):
     camera = scenes.camera()
     assert np.array_equal(scenes.render_quietly(pickle.loads(data), camera, None, spp=2),
                           scenes.render_quietly(scene, camera, None, spp=2))
+
+
+def test_an_obj_scene_with_textures_in_a_sibling_folder_round_trips(tmp_path):
+    """A downloaded model: OBJ + MTL, the texture in ../textures found by texture_dirs. The pickle
+    holds the meshes and the texture's resolved absolute path, so it renders the same from another
+    working directory."""
+    (tmp_path / "model").mkdir()
+    (tmp_path / "textures").mkdir()
+    scenes.write_texture(tmp_path / "textures" / "brick.exr")
+    (tmp_path / "model" / "wall.mtl").write_text("newmtl brick\nKd 0.9 0.8 0.7\nmap_Kd brick.exr\n")
+    (tmp_path / "model" / "wall.obj").write_text(
+        "mtllib wall.mtl\nv 8 0 -2\nv 8 0 2\nv 8 3 2\nv 8 3 -2\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+        "usemtl brick\nf 1/1 3/3 2/2\nf 1/1 4/4 3/3\n")
+    scene = refracta.Scene()
+    scene.add_obj(str(tmp_path / "model" / "wall.obj"), texture_dirs=[str(tmp_path / "textures")])
+    scene.set_environment((0.5, 0.5, 0.5))
+    data = pickle.dumps(scene)
+    assert str(tmp_path / "textures" / "brick.exr").encode() in data
+    camera = scenes.camera()
+    image = scenes.render_quietly(scene, camera, None, spp=2)
+    assert image.std() > 0.0  # the checker shows
+    with pytest.MonkeyPatch.context() as patch:
+        patch.chdir(tmp_path / "model")
+        assert np.array_equal(scenes.render_quietly(pickle.loads(data), camera, None, spp=2), image)
+
+
+ABSTRACT = {"IndexField", "Material", "Light"}  # bases: their objects are always of a subclass
+
+
+def test_every_public_class_pickles():
+    """A guard for new classes: every concrete class of the compiled module defines its pickling,
+    and every class refracta exports pickles or is one of the compiled ones."""
+    import inspect
+
+    compiled = {name: obj for name, obj in vars(refracta._core).items()
+                if inspect.isclass(obj) and not name.startswith("_") and not issubclass(obj, BaseException)}
+    missing = [name for name, obj in compiled.items() if name not in ABSTRACT and "__setstate__" not in vars(obj)]
+    assert not missing, f"classes without pickling: {missing}"
+    exported = [getattr(refracta, name) for name in refracta.__all__]
+    python_classes = [obj for obj in exported if inspect.isclass(obj) and obj.__module__ != "refracta._core"
+                      and not issubclass(obj, BaseException)]
+    assert {c.__name__ for c in python_classes} >= {"RayBatch", "ElevationTable", "SceneFile", "SweepResult", "SweepFailure"}
+    for cls in python_classes:  # each is a dataclass, NamedTuple or defines __reduce__
+        assert (hasattr(cls, "__dataclass_fields__") or hasattr(cls, "_fields") or "__reduce__" in vars(cls)), cls
