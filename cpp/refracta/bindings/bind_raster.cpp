@@ -5,6 +5,7 @@
 #include "refracta/raster/moments.h"
 #include "refracta/raster/rasterizer.h"
 #include "refracta/raster/oit.h"
+#include "refracta/raster/power_moment_bound.h"
 #include "refracta/raster/quantization.h"
 
 #include <optional>
@@ -107,6 +108,22 @@ void bind_raster(py::module_& m) {
         [](const std::vector<double>& b, double z_f) {
           const MomentBound bound = canonical_bound(b, z_f);
           return py::make_tuple(bound.lower, bound.at_query, bound.fallback);
+        },
+        py::arg("moments"), py::arg("z_f"));
+
+  // MBOIT's per-pixel fast path: the moments factorised once, queried at every z_f.
+  m.def("_power_moment_bound",
+        [](const std::vector<double>& b, const py::object& z_f) {
+          const int m = int(b.size()) - 1;
+          if (m != 4 && m != 6 && m != 8) throw_invalid("moments must hold b_0 .. b_m with m = 4, 6 or 8 (got ", b.size(), " values)");
+          const std::vector<double> z = to_values(z_f, "z_f");
+          const PowerMomentBound bound(b.data(), m);
+          std::vector<double> lower(z.size()), at_query(z.size()), fallback(z.size());
+          for (size_t i = 0; i < z.size(); ++i) {
+            const MomentBound r = bound.at(z[i]);
+            lower[i] = r.lower, at_query[i] = r.at_query, fallback[i] = r.fallback ? 1.0 : 0.0;
+          }
+          return py::make_tuple(values_to_array(lower), values_to_array(at_query), values_to_array(fallback));
         },
         py::arg("moments"), py::arg("z_f"));
 

@@ -102,14 +102,24 @@ MomentBound canonical_bound(const std::vector<double>& b, double z_f) {
     if (std::abs(root.imag()) > 1e-7 * (1.0 + std::abs(root.real()))) return fallback;
     support.push_back(root.real());
   }
-  // 3. Their weights, and the mass strictly in front of z_f.
-  Eigen::VectorXd w;
-  if (!support_weights<double>(support, b, &w)) return fallback;
+  // 3. Their weights, and the mass strictly in front of z_f. The weight of atom z is the
+  // Christoffel number 1 / K(z, z), K(z, z) = v(z)^T B^-1 v(z) (Akhiezer, "The classical moment
+  // problem", ch. 2), equal to the Vandermonde solve's weights but well conditioned when a root
+  // lies far outside the depth range (a near-vanishing leading coefficient: the Vandermonde
+  // matrix then holds z^n ~ 1e16 and its solve loses every digit).
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(hankel);
+  Eigen::VectorXd w(support.size());
+  for (size_t i = 0; i < support.size(); ++i) {
+    Eigen::VectorXd v(n + 1);
+    for (int j = 0; j <= n; ++j) v[j] = std::pow(support[i], j);
+    w[Eigen::Index(i)] = 1.0 / v.dot(ldlt.solve(v));
+  }
+  if (!w.allFinite()) return fallback;
   MomentBound out;
   out.at_query = std::clamp(w[0], 0.0, 1.0);
   double lower = 0.0;
   for (size_t i = 1; i < support.size(); ++i) {
-    if (support[i] < z_f) lower += w[i];
+    if (support[i] < z_f) lower += w[Eigen::Index(i)];
   }
   out.lower = std::clamp(lower, 0.0, 1.0);
   return out;

@@ -3,9 +3,11 @@
 
 #include "refracta/core/error.h"
 #include "refracta/raster/moments.h"
+#include "refracta/raster/power_moment_bound.h"
 #include "refracta/raster/quantization.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 
@@ -105,6 +107,7 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
     double total = 0.0;
     for (const Fragment& f : fragments) {
       const double a = -std::log(1.0 - std::min(f.alpha, 0.999));
+      if (!(a > 0.0)) continue;  // nothing to add (and total + a would be 0 for a first such fragment)
       for (int j = 1; j <= m; ++j) {
         c[j] = (c[j] * total + a * std::polar(1.0, j * angle(f.depth))) / (total + a);
         if (options.unorm16) {  // stored as c/2 + 1/2 in 16 bits, per component
@@ -132,34 +135,52 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
     if (!(accum_alpha > 0.0)) return background * total_transmittance;
     return total_transmittance * background + (1.0 - total_transmittance) * accum / accum_alpha;
   }
-  // Pass 1: absorbance a = -ln(1 - alpha), alpha clamped so a stays finite (vkQuake: 0.999).
-  // The moments are kept normalised by b0 (as the 16-bit ROV variant stores them).
-  std::vector<double> b(m + 1, 0.0);
+  // Pass 1: absorbance a = -ln(1 - alpha), alpha clamped so a stays finite (vkQuake: 0.999);
+  // b_j = sum a z^j / sum a. The 16-bit ROV variant stores the moments normalised by b0 and
+  // re-quantises them after every fragment, in list order; fp32 sums and normalises once.
+  // The warped depths are kept for pass 2 (one log per fragment, not two).
+  thread_local std::vector<double> warped;
+  warped.resize(fragments.size());
+  std::array<double, PowerMomentBound::kMaxMoments + 1> b{};
   double total = 0.0;
-  for (const Fragment& f : fragments) {
-    const double a = -std::log(1.0 - std::min(f.alpha, 0.999));
-    const double z = warp(f.depth);
+  for (size_t i = 0; i < fragments.size(); ++i) {
+    const double a = -std::log(1.0 - std::min(fragments[i].alpha, 0.999));
+    const double z = warped[i] = warp(fragments[i].depth);
+    if (!options.unorm16) {
+      double power = z;
+      for (int j = 1; j <= m; ++j, power *= z) b[j] += a * power;
+      total += a;
+      continue;
+    }
+    if (!(a > 0.0)) continue;  // nothing to add (and total + a would be 0 for a first such fragment)
     double power = z;
     for (int j = 1; j <= m; ++j, power *= z) b[j] = (b[j] * total + a * power) / (total + a);
     total += a;
-    if (options.unorm16 && m == 4) {
+    if (m == 4) {
       const Moments4 stored = stored_moments({b[1], b[2], b[3], b[4]}, MomentStorage::kUnorm16, true);
       for (int j = 1; j <= 4; ++j) b[j] = stored[j - 1];
-    } else if (options.unorm16) {
-      const std::vector<double> stored = stored_mboit_unorm16(std::vector<double>(b.begin() + 1, b.end()));
+    } else {
+      const std::vector<double> stored = stored_mboit_unorm16(std::vector<double>(b.begin() + 1, b.begin() + m + 1));
       std::copy(stored.begin(), stored.end(), b.begin() + 1);
     }
   }
   const double total_transmittance = std::exp(-total);
   if (total < 0.00100050033) return background * total_transmittance + Vec3d::Zero();  // < 0.1 % covered
+  if (!options.unorm16) {
+    for (int j = 1; j <= m; ++j) b[j] /= total;
+  }
+  // Bias (1 - alpha) b + alpha b*, and the Hankel matrix factorised once for all the pixel's
+  // fragments (PowerMomentBound; closed-form roots for 4 moments).
   b[0] = 1.0;
-  const std::vector<double> biased = bias_moments(b, alpha_bias, target);
+  for (int j = 1; j <= m; ++j) b[j] = (1.0 - alpha_bias) * b[j] + alpha_bias * target[size_t(j - 1)];
+  const PowerMomentBound bound_of(b.data(), m);
   // Pass 2: each fragment weighted by its estimated transmittance.
   Vec3d accum = Vec3d::Zero();
   double accum_alpha = 0.0;
-  for (const Fragment& f : fragments) {
+  for (size_t i = 0; i < fragments.size(); ++i) {
+    const Fragment& f = fragments[i];
     const double alpha = std::min(f.alpha, 0.999);
-    const MomentBound bound = canonical_bound(biased, warp(f.depth));
+    const MomentBound bound = bound_of.at(warped[i]);
     const double absorbance = bound.lower + options.beta * bound.at_query;
     const double t = std::clamp(std::exp(-total * absorbance), 0.0, 1.0);
     accum += alpha * t * f.colour;
