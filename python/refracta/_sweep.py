@@ -144,8 +144,9 @@ def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, p
                 label: str = "sweep", shared: tuple = ()) -> List[tuple]:
     """Calls function(*shared, *args) for each tuple of `arguments` on `executor` (as_executor's
     kinds); returns one (ok, value) per call in the order of `arguments`: (True, result) or
-    (False, (exception, traceback text)). `shared`: arguments common to every call (a scene, the
-    user's function), sent to each dask worker once (Client.scatter) instead of with every task.
+    (False, (exception, traceback text)). `shared`: arguments common to every call (a tiled render's
+    scene), sent to each dask worker once (Client.scatter, broadcast) instead of with every task;
+    they are lost if every worker holding them dies, so use it for short jobs over large data.
     progress(done, total) after each finished call. Ctrl-C cancels the calls not yet started and
     raises KeyboardInterrupt. The shared path of sweep, tiled renders and animation frames."""
     pool = as_executor(executor)
@@ -201,7 +202,9 @@ def sweep(function: Callable[..., Any], grid, executor=None, progress: ProgressA
     progress(done, total) called as points finish, or False. errors: 'raise' -- after every point
     finished, raise SweepError naming each failed point's parameters, its ``results`` keeping
     every other result; 'keep' -- return the SweepResult with None at failed points and their
-    SweepFailure records in ``.failures``.
+    SweepFailure records in ``.failures``. The function (with what it closes over) travels with
+    every task; a large object every point needs can be sent once instead with dask,
+    ``scene = client.scatter(scene, broadcast=True)``, and passed in the grid (``{"scene": [scene]}``).
 
     Returns a SweepResult: a list of the results, with ``.points`` and ``.failures``.
 
@@ -219,7 +222,9 @@ def sweep(function: Callable[..., Any], grid, executor=None, progress: ProgressA
     if errors not in ("raise", "keep"):
         raise ValueError(f"sweep: errors must be 'raise' or 'keep' (got {errors!r})")
     points = grid_points(grid)
-    outcomes = map_ordered(_call_with, [(point,) for point in points], executor, progress, "sweep", shared=(function,))
+    # The function travels with every task (not scattered once): a task then re-runs on any worker,
+    # even after every worker that held a scattered copy has died.
+    outcomes = map_ordered(_call_with, [(function, point) for point in points], executor, progress, "sweep")
     results, failures = [], []
     for i, (ok, value) in enumerate(outcomes):
         if ok:

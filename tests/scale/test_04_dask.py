@@ -119,3 +119,17 @@ def test_a_failing_point_on_a_worker_is_reported_with_its_parameters(client):
     assert isinstance(failure.error, ValueError) and "no table for 12.0 K" in failure.traceback
     results = caught.value.results
     assert results[:2] == [cold_only(2.0), cold_only(6.0)] and results[2] is None
+
+
+def render_scene(scene, surface_dt):
+    return scenes.render_quietly(scene, scenes.camera(), refracta.PhysicalAtmosphere(surface_dt=surface_dt), spp=2)
+
+
+def test_a_scattered_scene_in_the_grid_reaches_the_workers(client, texture):
+    """The documented way to send a large object once: scatter it and put the future in the grid."""
+    scene = scenes.every_kind_scene(texture, "constant")
+    future = client.scatter(scene, broadcast=True)
+    remote = refracta.sweep(render_scene, {"scene": [future], "surface_dt": [3.0, 12.0]}, executor=client,
+                            progress=False)
+    for image, dt in zip(remote, [3.0, 12.0]):
+        assert np.array_equal(image, render_scene(scene, dt))
