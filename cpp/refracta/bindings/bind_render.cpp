@@ -28,6 +28,8 @@ validate() reports every bad value at once.)doc")
       .def_readwrite("max_length", &RenderOptions::max_length, "[m] curved rays end here and show the sky")
       .def_readwrite("chord", &RenderOptions::chord, "[m] longest straight chord tested against the geometry")
       .def_readwrite("sagitta", &RenderOptions::sagitta, "[m] largest distance between a chord and the path")
+      .def_readwrite("sagitta_pixels", &RenderOptions::sagitta_pixels,
+                     "camera rays: chords may stray this fraction of a pixel's footprint when more than sagitta")
       .def_readwrite("tol", &RenderOptions::tol, "[m] curved-ray integration tolerance")
       .def_property("trace", [](const RenderOptions& o) -> py::object { if (o.trace) return py::str(trace_method_name(*o.trace)); return py::none(); },
                     [](RenderOptions& o, const py::object& v) { o.trace = v.is_none() ? std::nullopt : std::optional<TraceMethod>(parse_trace_method(py::cast<std::string>(v))); },

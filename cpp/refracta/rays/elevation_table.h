@@ -62,6 +62,10 @@ class ElevationTable {
     // A lower bound of the path's height from node k on (for early exits above a scene).
     double lowest_from(size_t k) const;
     TraceStop stop() const;
+    // The table entry whose node fractions this path has (its nodes correspond one to one), or
+    // kExact when the path is traced exactly.
+    size_t template_entry() const { return exact_ ? kExact : template_; }
+    static constexpr size_t kExact = size_t(-1);
 
    private:
     friend class ElevationTable;
@@ -78,6 +82,8 @@ class ElevationTable {
   LazyPath lazy_path(double elevation) const;
 
   size_t size() const { return entries_.size(); }
+  // The path traced at elevations()[i].
+  const RayPath& entry_path(size_t i) const { return *entries_.at(i).path; }
   int64_t evaluations() const { return evaluations_; }
   size_t exact_intervals() const;  // intervals where queries are traced exactly
   const ElevationTableOptions& options() const { return options_; }

@@ -23,6 +23,17 @@ class BouguerBranch {
   // below min_sine at a node.
   bool integrate(double ha, double hb, double min_sine, double* run, double* length) const;
 
+  // The same with what a caller needs to trust one straight chord over the stretch, given sin e
+  // at both ends: `error` estimates the quadrature's error in run and length [m] by its
+  // difference from the trapezoid rule over the ends and nodes (large where a layer thinner
+  // than the node spacing sits between samples), and `turning` is the total variation of the elevation over the samples
+  // [rad] (a chord of length L strays at most L * turning / 4 from a path whose curvature
+  // keeps its sign between samples).
+  struct Stretch {
+    double run = 0.0, length = 0.0, error = 0.0, turning = 0.0;
+  };
+  bool integrate(double ha, double sin_a, double hb, double sin_b, double min_sine, Stretch* out) const;
+
   double beta() const { return beta_; }
 
  private:

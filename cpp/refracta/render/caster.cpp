@@ -3,6 +3,9 @@
 
 #include "refracta/core/error.h"
 #include "refracta/render/bouguer_branch.h"
+#include "refracta/render/chord_plan.h"
+
+#include <tbb/parallel_for.h>
 #include "refracta/rays/trace.h"
 
 #include <algorithm>
@@ -53,7 +56,7 @@ double render_ior_floor(const Scene& scene, const IndexField& field, const Vec3d
 }
 
 bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<double>& b,
-                    const RenderOptions& options, PathEnd* end) {
+                    const RenderOptions& options, PathEnd* end, double sagitta) {
   const PathSegment<double> seg(a, b);
   // Deviation of the path from the segment's chord, sampled; it shrinks with the square of the
   // chord length, so n chords deviate by about deviation / n^2.
@@ -64,10 +67,14 @@ bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<
     const Vec3d q = seg.position(u) - a.x;
     deviation = std::max(deviation, (q - ab * (q.dot(ab) / ab2)).norm());
   }
-  const int by_sagitta = int(std::ceil(std::sqrt(deviation / options.sagitta)));
-  const int chords = std::clamp(std::max(by_sagitta, int(std::ceil(seg.length() / options.chord))), 1, 1 << 20);
-  for (int i = 0; i < chords; ++i) {
-    const double u0 = double(i) / chords, u1 = double(i + 1) / chords;
+  const int by_sagitta = int(std::ceil(std::sqrt(deviation / (sagitta > 0.0 ? sagitta : options.sagitta))));
+  const int pieces = std::clamp(std::max(by_sagitta, int(std::ceil(seg.length() / options.chord))), 1, 1 << 20);
+  return hit_in_pieces(scene, seg, pieces, end);
+}
+
+bool hit_in_pieces(const Scene& scene, const PathSegment<double>& seg, int pieces, PathEnd* end) {
+  for (int i = 0; i < pieces; ++i) {
+    const double u0 = double(i) / pieces, u1 = double(i + 1) / pieces;
     const Vec3d p0 = seg.position(u0), d = seg.position(u1) - p0;
     const double len = d.norm();
     if (len == 0.0) continue;
@@ -91,9 +98,17 @@ bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<
 Caster::Caster(const Scene& scene, const IndexField* field, const RenderOptions& options)
     : scene_(scene), field_(options.method == RenderMethod::kStraight ? nullptr : field), options_(options) {}
 
-void Caster::use_table(const ElevationTable* table, const Vec3d& eye) {
+void Caster::use_table(const ElevationTable* table, const Vec3d& eye, double pixel_angle) {
   table_ = table;
   eye_ = eye;
+  // Half the allowed stray for the plan: a pixel's path interpolates its entry's, and may bend a
+  // little more between the same nodes.
+  const double sagitta = options_.sagitta, per_metre = options_.sagitta_pixels * pixel_angle;
+  auto tolerance = [&](double s) { return 0.5 * std::max(sagitta, per_metre * s); };
+  plans_.assign(table->size(), {});
+  tbb::parallel_for(size_t(0), table->size(), [&](size_t i) {
+    plans_[i] = plan_chords(table->entry_path(i), tolerance, options_.chord);
+  });
 }
 
 double Caster::ior(const Vec3d& p) const {
@@ -104,10 +119,10 @@ double Caster::ior(const Vec3d& p) const {
   return n;
 }
 
-PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length) const {
+PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const {
   if (!field_) return cast_straight(origin, dir, max_length > 0.0 ? max_length : kFar);
   if (table_ && origin == eye_ && max_length <= 0.0) return cast_table(dir);
-  return cast_traced(origin, dir, max_length > 0.0 ? max_length : options_.max_length);
+  return cast_traced(origin, dir, max_length > 0.0 ? max_length : options_.max_length, spread);
 }
 
 bool Caster::occluded_straight(const Vec3d& origin, const Vec3d& dir, double distance) const {
@@ -135,26 +150,36 @@ std::optional<Vec3d> Caster::escape_direction(const Vec3d& x, const Vec3d& v, do
   // Below 0.57 deg of elevation the quadrature loses digits near a turn: trace instead.
   constexpr double kMinSine = 1e-2;
   if (!branch.at(x.y(), kMinSine, &n_x, &dn, &sin_x)) return std::nullopt;
-  // The height where the path has run `remaining` metres (Newton on s(h) = remaining, ds/dh =
-  // 1/sin e): the sky is seen along the direction there, as at the end of a traced path.
-  double h = x.y() + remaining * t.y(), n, sin_h, run, length;
-  for (int it = 0; it < 6; ++it) {
-    if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;  // the ray may turn below that height
+  // The height where the path has run `remaining` metres, by Newton on s(h) = remaining (ds/dh =
+  // 1/sin e); the sky is seen along the direction there, as at the end of a traced path.
+  // A ray below the field's ior floor cannot turn on the way: its first guess comes from the
+  // mean of sin e at both ends (the trapezoid rule in s), and Newton runs only where sin e
+  // changes by more than 1 %. Otherwise every step integrates from x, and the quadrature's
+  // nodes check that the ray stays clear of a turn all the way up.
+  const bool cannot_turn = ior_floor_ && branch.beta() < *ior_floor_ * std::sqrt(1.0 - kMinSine * kMinSine);
+  double h = x.y() + remaining * sin_x, n, sin_h, run, length;
+  if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;  // the ray may turn below that height
+  if (cannot_turn) {
+    h = x.y() + remaining * 0.5 * (sin_x + sin_h);
+    if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
+  }
+  for (int it = 0; it < 6 && (!cannot_turn || std::abs(sin_h - sin_x) > 1e-2 * sin_x); ++it) {
     if (!branch.integrate(x.y(), h, kMinSine, &run, &length)) return std::nullopt;
     const double step = (remaining - length) * sin_h;
     h += step;
-    if (std::abs(step) < 1e-6 * (1.0 + std::abs(h))) break;
+    if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
+    // A step that moves n by less than 1e-12 turns the exit direction by < 1e-10 rad.
+    if (std::abs(step * dn) < 1e-12) break;
   }
-  if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
   const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
   return Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized();
 }
 
 std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length) const {
-  // sin e >= 0.05 (2.9 deg) at every height the ray can reach: it cannot turn, and 1/sin e is smooth
-  // enough for 8-point quadrature over metres of height.
-  constexpr double kMinSine = 0.05;
+  // sin e >= 0.02 (1.1 deg) at every height the ray can reach: it cannot turn, and 1/sin e stays
+  // smooth enough for 8-point quadrature.
+  constexpr double kMinSine = 0.02;
   if (!ior_floor_ || !field_->height_only() || dir.y() == 0.0) return std::nullopt;
   const Vec3d t = dir.normalized();
   const double cos_e0 = std::hypot(t.x(), t.z());
@@ -167,52 +192,59 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   // Rising: up to the highest object, then out of the air; falling: down to the stop height.
   const double target = up > 0.0 ? scene_.highest() : std::min(scene_.lowest(), origin.y()) - 1.0;
   const Vec3d across = cos_e0 > 0.0 ? Vec3d(t.x() / cos_e0, 0.0, t.z() / cos_e0) : Vec3d(1.0, 0.0, 0.0);
-  auto node_at = [&](double s, double run, double h, double n, double dn, double sin_e) {
-    RayNode<double> node;
-    node.s = s;
-    node.x = Vec3d(origin.x() + run * across.x(), h, origin.z() + run * across.z());
-    node.n = n;
-    node.v = n * (std::sqrt(std::max(0.0, 1.0 - sin_e * sin_e)) * across + Vec3d(0.0, up * sin_e, 0.0));
-    node.grad = Vec3d(0.0, dn, 0.0);
-    return node;
+  auto point = [&](double run, double h) { return Vec3d(origin.x() + run * across.x(), h, origin.z() + run * across.z()); };
+  auto direction = [&](double sin_e) {
+    return (std::sqrt(std::max(0.0, 1.0 - sin_e * sin_e)) * across + Vec3d(0.0, up * sin_e, 0.0)).normalized();
   };
-  // A chord of length L on a path of curvature k = |dn/dh| cos e / n strays k L^2 / 8 from it:
-  // the height step that keeps that within the sagitta (the chord limit too).
-  auto height_step = [&](double n, double dn, double sin_e) {
-    const double curvature = std::abs(dn) * std::sqrt(std::max(0.0, 1.0 - sin_e * sin_e)) / n;
-    const double by_sagitta = curvature > 0.0 ? std::sqrt(8.0 * options_.sagitta / curvature) : options_.chord;
-    return sin_e * std::min(by_sagitta, options_.chord);
-  };
+  // Stretches of height as long as one straight chord stays within the sagitta of the path
+  // (its bend and the quadrature's error bounded, BouguerBranch::Stretch): one stretch for a
+  // steep ray through a thin hot layer, more where the ray bends.
+  const double tolerance = options_.sagitta;
   PathEnd end;
   end.direction = t;
-  double h = origin.y(), s = 0.0, run = 0.0, n = n0, dn = dn0, sin_e = std::abs(t.y());
-  RayNode<double> a = node_at(0.0, 0.0, h, n, dn, sin_e);
-  a.v = n0 * t;
+  double h = origin.y(), s = 0.0, run = 0.0, sin_e = std::abs(t.y()), n, dn;
+  double step = up * (target - h);
+  Vec3d a = origin;
   while (up * (target - h) > 0.0) {
-    double step = std::min(height_step(n, dn, sin_e), up * (target - h)), n_b, dn_b, sin_b, d_run, d_length;
-    for (int shrink = 0;; ++shrink) {  // the curvature may grow along the step (falling into a hot layer)
-      if (!branch.at(h + up * step, kMinSine, &n_b, &dn_b, &sin_b)) return std::nullopt;
-      const double at_end = height_step(n_b, dn_b, sin_b);
-      if (at_end >= step || shrink == 20) break;
-      step = at_end;
+    step = std::min(step, up * (target - h));
+    double sin_b;
+    BouguerBranch::Stretch stretch;
+    if (!branch.at(h + up * step, kMinSine, &n, &dn, &sin_b)) return std::nullopt;
+    if (!branch.integrate(h, sin_e, h + up * step, sin_b, kMinSine, &stretch)) return std::nullopt;
+    const double chord = std::hypot(stretch.run, step);
+    const bool straight = stretch.error <= 0.1 * tolerance && 0.25 * chord * stretch.turning <= tolerance &&
+                          chord <= options_.chord;
+    if (!straight && step > 1e-6) {
+      step *= 0.25;
+      continue;
     }
-    if (!branch.integrate(h, h + up * step, kMinSine, &d_run, &d_length)) return std::nullopt;
-    if (s + d_length > max_length) return std::nullopt;  // ends before leaving the objects' heights: trace it
-    h += up * step, s += d_length, run += d_run, n = n_b, dn = dn_b, sin_e = sin_b;
-    const RayNode<double> b = node_at(s, run, h, n, dn, sin_e);
-    if (hit_on_segment(scene_, a, b, options_, &end)) return end;
-    end.direction = b.v.normalized();
+    if (s + stretch.length > max_length) return std::nullopt;  // ends before leaving the objects' heights: trace it
+    const Vec3d b = point(run + stretch.run, h + up * step);
+    const Vec3d d = b - a;
+    const double len = d.norm();
+    ++end.chords;
+    if (const auto hit = len > 0.0 ? scene_.intersect(a, d / len, len * (1.0 + 1e-6) + 1e-6) : std::nullopt) {
+      // On the chord, within the sagitta of the path; the direction there from the invariant.
+      double n_hit, dn_hit, sin_hit;
+      end.hit = *hit;
+      end.direction = branch.at(hit->point.y(), 0.0, &n_hit, &dn_hit, &sin_hit) ? direction(sin_hit) : d / len;
+      end.length = s + stretch.length * std::min(hit->t / len, 1.0);
+      return end;
+    }
+    h += up * step, s += stretch.length, run += stretch.run, sin_e = sin_b;
+    end.direction = direction(sin_e);
     end.length = s;
     a = b;
+    step *= 4.0;
   }
   if (up < 0.0) return end;  // below everything: the path ends there, as a traced one at its stop height
-  const auto exit = escape_direction(a.x + Vec3d(0.0, 1e-9 * (1.0 + std::abs(a.x.y())), 0.0), a.v, max_length - s);
+  const auto exit = escape_direction(a + Vec3d(0.0, 1e-9 * (1.0 + std::abs(a.y())), 0.0), n * end.direction, max_length - s);
   if (!exit) return std::nullopt;
   end.direction = *exit;
   return end;
 }
 
-PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length) const {
+PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const {
   PathEnd end;
   end.direction = dir;
   // A rising ray above every object that cannot turn never comes back: the invariant gives the
@@ -223,11 +255,14 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   }
   // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
   if (auto monotone = cast_monotone(origin, dir, max_length)) return *monotone;
-  const TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length, ior_floor_);
+  TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length, ior_floor_);
+  // A pixel's ray: an error of sagitta_pixels of its footprint (spread * s) is invisible.
+  const double per_metre = options_.sagitta_pixels * spread;
+  trace_options.tol = std::max(trace_options.tol, per_metre * max_length);
   double last_height = origin.y();
   try {
     trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
-      if (hit_on_segment(scene_, a, b, options_, &end)) return false;
+      if (hit_on_segment(scene_, a, b, options_, &end, std::max(options_.sagitta, per_metre * a.s))) return false;
       end.direction = b.v.normalized();
       end.length = b.s;
       last_height = b.x.y();
@@ -245,7 +280,8 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   return end;
 }
 
-// The table's path for the ray's elevation, turned to its azimuth about the eye.
+// The table's path for the ray's elevation, turned to its azimuth about the eye, walked along
+// its entry's chord plan (or segment by segment where it is traced exactly).
 PathEnd Caster::cast_table(const Vec3d& dir) const {
   PathEnd end;
   end.direction = dir;
@@ -253,24 +289,74 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
   const double horizontal = std::hypot(dir.x(), dir.z());
   const double cx = horizontal > 0 ? dir.x() / horizontal : 1.0, cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
   const ElevationTable::LazyPath plane = table_->lazy_path(e);
-  auto turned = [&](const RayNode<double>& n) {
-    RayNode<double> out = n;
-    out.x = Vec3d(eye_.x() + n.x.x() * cx, n.x.y(), eye_.z() + n.x.x() * cz);
-    out.v = Vec3d(n.v.x() * cx, n.v.y(), n.v.x() * cz);
+  auto turned = [&](size_t k) {
+    RayNode<double> out = plane.node(k);
+    const double r = out.x.x(), vr = out.v.x();
+    out.x = Vec3d(eye_.x() + r * cx, out.x.y(), eye_.z() + r * cz);
+    out.v = Vec3d(vr * cx, out.v.y(), vr * cz);
     return out;
   };
-  RayNode<double> a = turned(plane.node(0));
-  for (size_t k = 0; k + 1 < plane.size(); ++k) {
-    // Nothing left to hit once the rest of the path stays above every object.
-    if (plane.lowest_from(k) > scene_.highest()) break;
-    const RayNode<double> b = turned(plane.node(k + 1));
-    if (hit_on_segment(scene_, a, b, options_, &end)) return end;
-    end.direction = b.v.normalized();
-    end.length = b.s;
-    a = b;
+  const size_t entry = plane.template_entry();
+  if (entry == ElevationTable::LazyPath::kExact) {
+    RayNode<double> a = turned(0);
+    for (size_t k = 0; k + 1 < plane.size(); ++k) {
+      // Nothing left to hit once the rest of the path stays above every object.
+      if (plane.lowest_from(k) > scene_.highest()) break;
+      const RayNode<double> b = turned(k + 1);
+      if (hit_on_segment(scene_, a, b, options_, &end)) return end;
+      end.direction = b.v.normalized();
+      end.length = b.s;
+      a = b;
+    }
+  } else {
+    RayNode<double> a = turned(0);
+    for (const PlannedChord& chord : plans_[entry]) {
+      if (plane.lowest_from(chord.first) > scene_.highest()) break;
+      const RayNode<double> b = turned(chord.last);
+      if (chord.pieces > 1) {
+        if (hit_in_pieces(scene_, PathSegment<double>(a, b), int(chord.pieces), &end)) return end;
+      } else if (const Vec3d d = b.x - a.x; d.norm() > 0.0) {
+        const double len = d.norm();
+        ++end.chords;
+        if (const auto hit = scene_.intersect(a.x, d / len, len * (1.0 + 1e-6) + 1e-6)) {
+          // Refine on the segment of the path that crosses the hit's tangent plane: the first
+          // whose nodes lie on both sides of it (the chord strays from the path, so the segment
+          // under the chord's hit need not be that one), else the one under the chord's hit.
+          const double s_hit = a.s + (b.s - a.s) * std::min(hit->t / len, 1.0);
+          auto side = [&](const RayNode<double>& node) { return hit->normal.dot(node.x - hit->point); };
+          RayNode<double> from = a, to = chord.last == chord.first + 1 ? b : turned(chord.first + 1);
+          RayNode<double> under = from, under_to = to;
+          bool crossing = false;
+          for (size_t k = chord.first;; ++k) {
+            if (from.s <= s_hit) under = from, under_to = to;
+            if ((side(from) <= 0.0) != (side(to) <= 0.0)) {
+              crossing = true;
+              break;
+            }
+            if (k + 2 > chord.last) break;
+            from = to;
+            to = k + 2 == chord.last ? b : turned(k + 2);
+          }
+          if (!crossing) from = under, to = under_to;
+          const PathSegment<double> seg(from, to);
+          const double u0 = seg.length() > 0.0 ? std::clamp((s_hit - from.s) / seg.length(), 0.0, 1.0) : 0.0;
+          const double u = crossing ? refine_on_plane(seg, hit->normal, hit->point, u0, 0.0, 1.0)
+                                    : refine_on_plane(seg, hit->normal, hit->point, u0, -0.5, 1.5);
+          Hit refined = *hit;
+          refined.point = seg.position(u);
+          end.hit = refined;
+          end.direction = seg.velocity(u).normalized();
+          end.length = seg.start() + u * seg.length();
+          return end;
+        }
+      }
+      end.direction = b.v.normalized();
+      end.length = b.s;
+      a = b;
+    }
   }
   // The sky is seen along the path's last direction.
-  if (plane.size() > 1) end.direction = turned(plane.node(plane.size() - 1)).v.normalized();
+  if (plane.size() > 1) end.direction = turned(plane.size() - 1).v.normalized();
   return end;
 }
 

@@ -9,11 +9,13 @@
 #include "refracta/rays/elevation_table.h"
 #include "refracta/rays/ray_node.h"
 #include "refracta/rays/trace_options.h"
+#include "refracta/render/chord_plan.h"
 #include "refracta/render/render_options.h"
 #include "refracta/scene/embree_scene.h"
 
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace refracta {
 
@@ -31,15 +33,18 @@ class Caster {
   // options must outlive the caster.
   Caster(const Scene& scene, const IndexField* field, const RenderOptions& options);
 
-  // Serve rays that start at `eye` from this table (its eye height must be eye.y()).
-  void use_table(const ElevationTable* table, const Vec3d& eye);
+  // Serve rays that start at `eye` from this table (its eye height must be eye.y()); each
+  // entry's chords are planned to within max(sagitta, sagitta_pixels * pixel_angle * s) [m].
+  void use_table(const ElevationTable* table, const Vec3d& eye, double pixel_angle);
   // Height-only fields: a lower bound of n over every height a ray can reach (render_ior_floor);
   // traced rays whose invariant lies below it cannot turn and skip the turning-point scan.
   void set_ior_floor(double floor) { ior_floor_ = floor; }
 
   // The end of the path from origin along unit dir, at most max_length [m] long
   // (max_length <= 0: options.max_length for curved paths, the straight limit otherwise).
-  PathEnd cast(const Vec3d& origin, const Vec3d& dir, double max_length = 0.0) const;
+  // spread > 0 [rad]: the ray stands for a pixel of that angle (camera rays): its path may stray
+  // sagitta_pixels * spread * s from the exact one at arc length s (chords and rk45 tolerance).
+  PathEnd cast(const Vec3d& origin, const Vec3d& dir, double max_length = 0.0, double spread = 0.0) const;
   // Whether anything lies on the path from origin along dir within `distance` [m] of path
   // length (shadow rays toward finite lights, straight: no field bends metres-long segments
   // measurably, see render/README in the shading tests).
@@ -53,7 +58,7 @@ class Caster {
 
  private:
   PathEnd cast_straight(const Vec3d& origin, const Vec3d& dir, double max_length) const;
-  PathEnd cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length) const;
+  PathEnd cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const;
   PathEnd cast_table(const Vec3d& dir) const;
   // Height-only fields: the direction a ray at x moving along v leaves the air along, when it is
   // above every object, rising, and cannot turn within `remaining` [m] of path (n stays above
@@ -70,11 +75,15 @@ class Caster {
   const ElevationTable* table_ = nullptr;
   Vec3d eye_ = Vec3d::Zero();
   std::optional<double> ior_floor_;
+  std::vector<ChordPlan> plans_;  // per table entry
 };
 
 // Tests the path segment a -> b against the scene in chords; on a hit fills `end` and returns true.
+// sagitta: the chords' largest distance from the path (options.sagitta when <= 0).
 bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<double>& b,
-                    const RenderOptions& options, PathEnd* end);
+                    const RenderOptions& options, PathEnd* end, double sagitta = 0.0);
+// The same in `pieces` chords of equal parameter length.
+bool hit_in_pieces(const Scene& scene, const PathSegment<double>& segment, int pieces, PathEnd* end);
 
 // The trace options of curved render rays from origin through field (ior_floor: see
 // TraceOptions::min_ior).

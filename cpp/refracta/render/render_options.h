@@ -25,8 +25,11 @@ struct RenderOptions {
   int spp = 1;                // samples per pixel (1: the pixel centre; more: stratified jitter)
   uint64_t seed = 0;
   double max_length = 5000.0; // curved rays end here and show the sky in their last direction [m]
-  double chord = 200.0;       // longest straight chord tested against the geometry [m]
+  double chord = 1000.0;      // longest straight chord tested against the geometry [m]
   double sagitta = 1e-3;      // largest distance between a chord and the curved path [m]
+  // Camera rays may stray this fraction of a pixel's footprint (pixel angle x path length) from
+  // their path when that is more than `sagitta`: what a pixel cannot resolve need not be traced.
+  double sagitta_pixels = 0.25;
   // Ray integrator for curved rays; tol [m]. Height-only fields use 'stratified', others 'rk45'.
   double tol = 1e-4;
   std::optional<TraceMethod> trace;  // force 'rk45' or 'stratified' (default: by the field)

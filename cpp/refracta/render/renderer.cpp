@@ -12,6 +12,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/media/dispersed_field.h"
+#include "refracta/media/tabulated_height_field.h"
 #include "refracta/rays/elevation_table.h"
 #include "refracta/render/caster.h"
 #include "refracta/render/film.h"
@@ -42,6 +43,9 @@ void RenderOptions::validate() const {
   if (!(max_length > 0.0) || !std::isfinite(max_length)) problem(concat("max_length must be > 0 and finite (got ", max_length, ")"));
   if (!(chord > 0.0) || !std::isfinite(chord)) problem(concat("chord must be > 0 (got ", chord, ")"));
   if (!(sagitta > 0.0) || !std::isfinite(sagitta)) problem(concat("sagitta must be > 0 (got ", sagitta, ")"));
+  if (!(sagitta_pixels >= 0.0) || !std::isfinite(sagitta_pixels)) {
+    problem(concat("sagitta_pixels must be >= 0 and finite (got ", sagitta_pixels, ")"));
+  }
   if (!(tol > 0.0) || !std::isfinite(tol)) problem(concat("tol must be > 0 (got ", tol, ")"));
   if (tile < 1) problem(concat("tile must be >= 1 (got ", tile, ")"));
   if (trace && *trace == TraceMethod::kRk4) problem("trace must be 'rk45' or 'stratified' for rendering");
@@ -87,7 +91,8 @@ std::pair<double, double> elevation_range(const Camera& camera) {
 }
 
 std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera& camera, const FieldPtr& field,
-                                          const RenderOptions& options, WorkControl& control) {
+                                          const RenderOptions& options, std::optional<double> ior_floor,
+                                          WorkControl& control) {
   if (!field || !field->height_only() || options.method != RenderMethod::kCurved || !options.use_table ||
       options.spectral || (options.trace && *options.trace != TraceMethod::kStratified)) {
     return nullptr;
@@ -100,7 +105,8 @@ std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera
   table_options.angular_tol = 0.25 * camera.pixel_angle();
   // More exact traces than a quarter of the pixels would not pay: trace the rest per pixel.
   table_options.max_rays = std::max<int64_t>(int64_t(camera.width()) * camera.height() / 4, 2 * table_options.initial_rays);
-  table_options.trace = curved_trace_options(scene.geometry, *field, camera.position(), options, options.max_length);
+  table_options.trace =
+      curved_trace_options(scene.geometry, *field, camera.position(), options, options.max_length, ior_floor);
   auto table = std::make_unique<ElevationTable>(field, table_options, control);
   control.done = 0;
   return table;
@@ -108,15 +114,40 @@ std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera
 
 }  // namespace
 
-Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& field, const RenderOptions& options,
+Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exact_field, const RenderOptions& options,
              WorkControl& control, RenderStats* stats) {
   options.validate();
   options.bounds_in(camera.width(), camera.height());  // before any work
   scene.prepare();
-  if (options.method == RenderMethod::kRasterMarch) return render_raster_march(scene, camera, field, options, control, stats);
-  const std::unique_ptr<ElevationTable> table = eye_table(scene, camera, field, options, control);
+  if (options.method == RenderMethod::kRasterMarch) {
+    return render_raster_march(scene, camera, exact_field, options, control, stats);
+  }
+  // Height-only air is tabulated once (to 1e-12 in n) over every height a ray can reach.
+  // (Not when rk45 is forced: that stands for fields that are not height-only.)
+  const bool forced_rk45 = options.trace && *options.trace == TraceMethod::kRk45;
+  FieldPtr field = exact_field;
+  if (field && options.method == RenderMethod::kCurved && !forced_rk45) {
+    const auto [lo, hi] = render_heights(scene.geometry, camera.position(), options);
+    field = tabulated_for_rendering(field, lo, hi);
+  }
+  // Height-only air: the least n any ray meets, so that rays which cannot turn are traced fast.
+  // Spectral: n at each height is affine in the dispersion scale, so the floor over all
+  // wavelengths is the lower of the floors at the ends of the range.
+  std::optional<double> ior_floor;
+  if (field && field->height_only() && options.method == RenderMethod::kCurved && !forced_rk45) {
+    ior_floor = render_ior_floor(scene.geometry, *field, camera.position(), options);
+    if (options.spectral) {
+      const double reference = field_reference_wavelength(*field);
+      for (double wavelength : {kLambdaMin, kLambdaMax}) {
+        const FieldPtr air = dispersed_field(field, wavelength, reference);
+        ior_floor = std::min(*ior_floor, render_ior_floor(scene.geometry, *air, camera.position(), options));
+      }
+    }
+  }
+  const std::unique_ptr<ElevationTable> table = eye_table(scene, camera, field, options, ior_floor, control);
   Caster caster(scene.geometry, field.get(), options);
-  if (table) caster.use_table(table.get(), camera.position());
+  if (table) caster.use_table(table.get(), camera.position(), camera.pixel_angle());
+  if (ior_floor) caster.set_ior_floor(*ior_floor);
   const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
   std::atomic<int64_t> chords{0}, invalid{0};
   const Vec3d eye = camera.position();
@@ -130,13 +161,14 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& fie
                               if (dispersive) {
                                 lambda.terminate_secondary();
                                 const FieldPtr air = dispersed_field(field, lambda.hero(), reference);
-                                const Caster hero_caster(scene.geometry, air.get(), options);
+                                Caster hero_caster(scene.geometry, air.get(), options);
+                                if (ior_floor) hero_caster.set_ior_floor(*ior_floor);
                                 const std::unique_ptr<Integrator> hero = make_integrator(scene, hero_caster, options);
-                                const PathEnd first = hero_caster.cast(eye, dir);
+                                const PathEnd first = hero_caster.cast(eye, dir, 0.0, camera.pixel_angle());
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
                                 L = hero->li_after(eye, dir, first, pixel_angle, lambda, sampler, scratch);
                               } else {
-                                const PathEnd first = caster.cast(eye, dir);
+                                const PathEnd first = caster.cast(eye, dir, 0.0, camera.pixel_angle());
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
                                 L = integrator->li_after(eye, dir, first, pixel_angle, lambda, sampler, scratch);
                               }
