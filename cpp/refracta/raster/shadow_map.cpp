@@ -40,8 +40,8 @@ bool uses_moments(ShadowMethod m) {
 }  // namespace
 
 void ShadowMapOptions::validate() const {
-  // Peak memory at 8192^2 texels: 2.4 GB for moment maps (four doubles per texel, 2 GiB, filtered
-  // in place, plus the depth buffer), 1.3 GB while rasterizing (20 bytes per texel); measured
+  // Peak memory at 8192^2 texels: 2.4 GB for moment maps (fp64: four doubles per texel, 2 GiB,
+  // written once by the one-pass filter, plus the depth buffer; fp32 and unorm16 half / a quarter), 1.3 GB while rasterizing (20 bytes per texel); measured
   // with tests/hardening/test_05_raster_memory.py (before: 5.5 GB, the rows and the filtered
   // copy both held, and the whole visibility buffer kept).
   if (resolution < 2 || resolution > 8192) throw_invalid("resolution must be in [2, 8192] (got ", resolution, ")");
@@ -61,71 +61,72 @@ void ShadowMapOptions::validate() const {
 
 namespace {
 
-// The moment map in two passes, O(1) per texel whatever the kernel k (odd): along each row,
-// running sums of (z, z^2, z^3, z^4) of the depths (clamped at the edges); then down blocks of
-// columns, one running sum per column (memory read row by row), each result stored as `store`
-// says (the storage emulation) on its way out, in place: each block keeps the row-pass values of
-// the last r + 1 rows it overwrote (and of row 0), which the running sum still subtracts.
-template <class Depth, class Store>
-std::vector<Moments4> filtered_moments(int n, int k, WorkControl& control, const Depth& depth, const Store& store) {
+// The moment map in one pass, O(1) per texel whatever the kernel k (odd): the map is cut into
+// blocks of kBlock columns; each block walks down its rows keeping the horizontal box sums of
+// (z, z^2, z^3, z^4) of the last k rows (a ring, edges clamped) and their running vertical sum,
+// and writes each texel once, stored as `store` says (the storage emulation). The block's working
+// set (k rows of kBlock + k - 1 texels) stays in cache; the only full-size array is the result.
+// depth_row(y, x0, count, out): the normalised depths of row y, columns x0 .. x0 + count - 1.
+// store(mean) gives the stored texel (type Texel).
+template <class Texel, class DepthRow, class Store>
+std::vector<Texel> filtered_moments(int n, int k, WorkControl& control, const DepthRow& depth_row, const Store& store) {
   const int r = k / 2;
-  auto add = [](Moments4& a, const Moments4& b, double sign) {
-    for (int j = 0; j < 4; ++j) a[j] += sign * b[j];
-  };
-  std::vector<Moments4> rows(size_t(n) * n);
-  parallel_for_each(n, 8, control, [&](int64_t y) {
-    std::vector<Moments4> power(n);
-    for (int x = 0; x < n; ++x) {
-      const double z = depth(x, int(y));
-      power[x] = {z, z * z, z * z * z, z * z * z * z};
-    }
-    Moments4* row = &rows[size_t(y) * n];
-    if (k == 1) {
-      std::copy(power.begin(), power.end(), row);
-      return;
-    }
-    Moments4 sum{0, 0, 0, 0};
-    for (int i = -r; i <= r; ++i) add(sum, power[std::clamp(i, 0, n - 1)], 1.0);
-    for (int x = 0; x < n; ++x) {
-      for (int j = 0; j < 4; ++j) row[x][j] = sum[j] / k;
-      add(sum, power[std::min(x + r + 1, n - 1)], 1.0);
-      add(sum, power[std::max(x - r, 0)], -1.0);
-    }
-  });
   constexpr int kBlock = 64;
   const int blocks = (n + kBlock - 1) / kBlock;
-  parallel_for_each(blocks, 1, control, [&](int64_t b) {
-    const int x0 = int(b) * kBlock, x1 = std::min(x0 + kBlock, n), w = x1 - x0;
-    auto row = [&](int y) { return &rows[size_t(std::clamp(y, 0, n - 1)) * n]; };
-    if (k == 1) {
-      for (int y = 0; y < n; ++y) {
-        for (int x = x0; x < x1; ++x) row(y)[x] = store(row(y)[x]);
+  const double inv_area = 1.0 / (double(k) * double(k));
+  std::vector<Texel> out(size_t(n) * n);
+  parallel_for_each(blocks, 1, control, [&](int64_t block) {
+    const int x0 = int(block) * kBlock, w = std::min(kBlock, n - x0), span = w + 2 * r;
+    std::vector<double> z(static_cast<size_t>(span));
+    std::vector<Moments4> power(static_cast<size_t>(span)), ring(static_cast<size_t>(k) * w), entering(static_cast<size_t>(w));
+    std::vector<Moments4> column(static_cast<size_t>(w), Moments4{0, 0, 0, 0});
+    // Horizontal box sums of row y (clamped) for the block's columns.
+    auto row_sums = [&](int y, Moments4* sums) {
+      // Columns x0 - r .. x0 + w + r - 1, clamped to the map: the in-range part read at once.
+      const int lo = std::max(x0 - r, 0), hi = std::min(x0 + w + r, n);
+      depth_row(std::clamp(y, 0, n - 1), lo, hi - lo, &z[size_t(lo - (x0 - r))]);
+      for (int i = 0; i < lo - (x0 - r); ++i) z[size_t(i)] = z[size_t(lo - (x0 - r))];
+      for (int i = hi - (x0 - r); i < span; ++i) z[size_t(i)] = z[size_t(hi - 1 - (x0 - r))];
+      for (int i = 0; i < span; ++i) {
+        const double v = z[size_t(i)], v2 = v * v;
+        power[size_t(i)] = {v, v2, v2 * v, v2 * v2};
       }
-      return;
-    }
-    std::vector<Moments4> sum(w, Moments4{0, 0, 0, 0}), kept(size_t(r + 1) * w), first(row(0) + x0, row(0) + x1);
+      Moments4 s{0, 0, 0, 0};
+      for (int i = 0; i < k; ++i) {
+        for (int j = 0; j < 4; ++j) s[j] += power[size_t(i)][j];
+      }
+      for (int i = 0; i < w; ++i) {
+        sums[i] = s;
+        if (i + 1 == w) break;
+        for (int j = 0; j < 4; ++j) s[j] += power[size_t(i + k)][j] - power[size_t(i)][j];
+      }
+    };
+    // The ring holds rows y - r .. y + r (slot = row mod k, rows above 0 clamped to row 0).
     for (int i = -r; i <= r; ++i) {
-      for (int x = x0; x < x1; ++x) add(sum[x - x0], row(i)[x], 1.0);
+      Moments4* slot = &ring[size_t((i + k) % k) * w];
+      row_sums(i, slot);
+      for (int x = 0; x < w; ++x) {
+        for (int j = 0; j < 4; ++j) column[size_t(x)][j] += slot[x][j];
+      }
     }
     for (int y = 0; y < n; ++y) {
-      Moments4* current = row(y);
-      Moments4* keep = &kept[size_t(y % (r + 1)) * w];
-      // Row y + r + 1 is not overwritten yet (at the last row it is y itself, and unused after).
-      const Moments4* enter = row(y + r + 1) + x0;
-      // Row y - r was overwritten r steps ago; its row-pass values are in `kept` (r >= 1).
-      const Moments4* leave = y - r <= 0 ? first.data() : &kept[size_t((y - r) % (r + 1)) * w];
-      for (int i = 0; i < w; ++i) {
-        Moments4& s = sum[i];
+      Texel* dst = &out[size_t(y) * n + size_t(x0)];
+      for (int x = 0; x < w; ++x) {
         Moments4 mean;
-        for (int j = 0; j < 4; ++j) mean[j] = s[j] / k;
-        keep[i] = current[x0 + i];
-        current[x0 + i] = store(mean);
-        add(s, enter[i], 1.0);
-        add(s, leave[i], -1.0);
+        for (int j = 0; j < 4; ++j) mean[j] = column[size_t(x)][j] * inv_area;
+        dst[x] = store(mean);
+      }
+      if (y + 1 == n) break;
+      // Row y - r leaves, row y + r + 1 enters (same slot).
+      Moments4* slot = &ring[size_t((y - r + k) % k) * w];
+      row_sums(y + r + 1, entering.data());
+      for (int x = 0; x < w; ++x) {
+        for (int j = 0; j < 4; ++j) column[size_t(x)][j] += entering[size_t(x)][j] - slot[x][j];
+        slot[x] = entering[size_t(x)];
       }
     }
   });
-  return rows;
+  return out;
 }
 
 }  // namespace
@@ -175,9 +176,30 @@ void ShadowMap::build(const Scene& scene, WorkControl& control) {
   if (uses_moments(options_.method)) {
     const MomentStorage storage = options_.moments.storage;
     const bool signed_depth = options_.moments.signed_depth;
-    moments_ = filtered_moments(
-        n, options_.kernel, control, [&](int x, int y) { return depth_at(x, y); },
-        [&](const Moments4& b) { return storage == MomentStorage::kFp64 ? b : stored_moments(b, storage, signed_depth); });
+    // normalised(d), and 1 (the far end) where nothing is drawn, as depth_at.
+    const double inv_range = 1.0 / (far_ - near_), near = near_;
+    auto depth_row = [&](int y, int x0, int count, double* z) {
+      const float* row = &buffer_.depth[buffer_.index(x0, y)];
+      for (int i = 0; i < count; ++i) {
+        const double u = (double(row[i]) - near) * inv_range;
+        z[i] = !std::isfinite(row[i]) ? 1.0 : signed_depth ? 2.0 * u - 1.0 : u;
+      }
+    };
+    const int k = options_.kernel;
+    if (storage == MomentStorage::kFp64) {
+      moments_ = filtered_moments<Moments4>(n, k, control, depth_row, [](const Moments4& b) { return b; });
+    } else if (storage == MomentStorage::kFp32) {
+      moments_fp32_ = filtered_moments<std::array<float, 4>>(n, k, control, depth_row, [](const Moments4& b) {
+        return std::array<float, 4>{float(b[0]), float(b[1]), float(b[2]), float(b[3])};
+      });
+    } else {  // unorm16: q = A b + offset rounded to 16 bits (stored_moments before its inverse transform)
+      moments_unorm16_ = filtered_moments<std::array<uint16_t, 4>>(n, k, control, depth_row, [&](const Moments4& b) {
+        const Moments4 q = quantization_transform(b, signed_depth);
+        std::array<uint16_t, 4> out;
+        for (int j = 0; j < 4; ++j) out[j] = uint16_t(std::lround(std::clamp(q[j], 0.0, 1.0) * 65535.0));
+        return out;
+      });
+    }
     std::vector<float>().swap(buffer_.depth);  // moment lookups read the moments only
   }
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -237,11 +259,21 @@ double ShadowMap::shadow(const Vec3d& point, const Vec3d& normal) const {
   const int x0 = std::min(int(fx), n - 2), y0 = std::min(int(fy), n - 2);  // resolution >= 2
   const double tx = fx - x0, ty = fy - y0;
   Moments4 b{0, 0, 0, 0};
-  for (int k = 0; k < 4; ++k) {
-    const int x = x0 + (k & 1), y = y0 + (k >> 1);
-    const double w = ((k & 1) ? tx : 1.0 - tx) * ((k >> 1) ? ty : 1.0 - ty);
-    const Moments4& m = moments_[size_t(y) * n + x];
-    for (int j = 0; j < 4; ++j) b[j] += w * m[j];
+  auto bilinear = [&](const auto& map, double unit) {
+    for (int k = 0; k < 4; ++k) {
+      const int x = x0 + (k & 1), y = y0 + (k >> 1);
+      const double w = ((k & 1) ? tx : 1.0 - tx) * ((k >> 1) ? ty : 1.0 - ty) * unit;
+      const auto& m = map[size_t(y) * n + x];
+      for (int j = 0; j < 4; ++j) b[j] += w * double(m[j]);
+    }
+  };
+  switch (options_.moments.storage) {
+    case MomentStorage::kFp64: bilinear(moments_, 1.0); break;
+    case MomentStorage::kFp32: bilinear(moments_fp32_, 1.0); break;
+    case MomentStorage::kUnorm16:
+      bilinear(moments_unorm16_, 1.0 / 65535.0);
+      b = inverse_quantization_transform(b, options_.moments.signed_depth);
+      break;
   }
   MomentShadowSettings settings = options_.moments;
   settings.storage = MomentStorage::kFp64;  // already stored at build time

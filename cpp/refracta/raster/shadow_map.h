@@ -15,6 +15,8 @@
 #include "refracta/raster/moment_shadow.h"
 #include "refracta/raster/rasterizer.h"
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -62,7 +64,12 @@ class ShadowMap {
   RasterView view_;
   VisibilityBuffer buffer_;
   double near_ = 0.0, far_ = 1.0;
-  std::vector<Moments4> moments_;  // filtered and stored, per texel
+  // The filtered moment map as stored, per texel: fp64, fp32, or unorm16 (the quantised q of the
+  // optimised transform; lookups filter q bilinearly and transform back once, which equals
+  // filtering the decoded moments because the transform is affine).
+  std::vector<Moments4> moments_;
+  std::vector<std::array<float, 4>> moments_fp32_;
+  std::vector<std::array<uint16_t, 4>> moments_unorm16_;
   double build_seconds_ = 0.0;
 };
 
