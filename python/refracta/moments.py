@@ -22,7 +22,14 @@ def power_moments(depths, weights=None, count: int = 4) -> np.ndarray:
     """(b_1 .. b_count) of the distributions sum_l w_l delta(z_l) along the last axis (weights sum to 1)."""
     depths = np.asarray(depths, dtype=np.float64)
     weights = np.full_like(depths, 1.0 / depths.shape[-1]) if weights is None else np.asarray(weights, np.float64)
-    return np.stack([np.sum(weights * depths**j, axis=-1) for j in range(1, count + 1)], axis=-1)
+    if not (np.all(np.isfinite(depths)) and np.all(np.isfinite(weights))):
+        raise ValueError("power_moments: depths and weights must be finite")
+    with np.errstate(over="ignore"):
+        moments = np.stack([np.sum(weights * depths**j, axis=-1) for j in range(1, count + 1)], axis=-1)
+    if not np.all(np.isfinite(moments)):
+        raise ValueError(f"power_moments: the moments of these depths overflow (largest |z| = "
+                         f"{np.max(np.abs(depths)):g}; depths belong in [-1, 1])")
+    return moments
 
 
 def quantize(moments, depth_range: str = "unit", inverse: bool = False) -> np.ndarray:

@@ -14,6 +14,8 @@ namespace refracta {
 
 namespace {
 
+constexpr double kMaxMoment = 1.5;  // see _shadow_intensity
+
 DoubleArray as_matrix(const py::object& object, py::ssize_t columns, const char* what) {
   DoubleArray array;
   try {
@@ -74,6 +76,14 @@ void bind_raster(py::module_& m) {
           const DoubleArray b = as_matrix(moments, 4, "moments");
           const std::vector<double> z = to_values(depths, "z_f");
           if (py::ssize_t(z.size()) != b.shape(0)) throw_invalid("moments and z_f must have the same length");
+          // Power moments of depths in [0, 1] or [-1, 1] lie in [-1, 1]; beyond 1.5 (room for
+          // biased or hand-made moments) the fp32 / unorm16 storage transforms overflowed to NaN.
+          for (py::ssize_t i = 0; i < b.size(); ++i) {
+            if (!(std::abs(b.data()[i]) <= kMaxMoment)) {
+              throw_invalid("moments must lie in [-", kMaxMoment, ", ", kMaxMoment, "] (power moments of depths in [-1, 1]; got ",
+                            b.data()[i], ")");
+            }
+          }
           MomentShadowSettings settings = MomentShadowSettings::defaults(is_signed);  // fp32 biases, as documented
           settings.method = parse_moment_shadow_method(method);
           settings.storage = storage;

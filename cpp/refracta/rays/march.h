@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace refracta {
 
@@ -83,7 +84,8 @@ class Rk45Stepper {
       RayNode<T> b = dormand_prince(field, a, T(hv), evals, &err_x, &err_v);
       const double carried = std::max(remaining - hv, 0.0) / value_of(b.n);
       const double allowed = tol_ * hv / max_length_;
-      const double error = (err_x + err_v * carried) / allowed;
+      double error = (err_x + err_v * carried) / allowed;
+      if (std::isnan(error)) error = std::numeric_limits<double>::infinity();  // shrink, never NaN steps
       // Error per unit step scales as h^4: step factor error^(-1/4), safety 0.9, within [0.2, 5].
       const double factor =
           error == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(error, -0.25), 0.2, 5.0);

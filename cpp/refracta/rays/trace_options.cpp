@@ -5,6 +5,10 @@
 
 namespace refracta {
 
+namespace {
+constexpr double kMinRelativeTol = 1e-15;  // of max_length: double round-off of a position
+}  // namespace
+
 TraceMethod parse_trace_method(const std::string& name) {
   if (name == "rk4") return TraceMethod::kRk4;
   if (name == "rk45") return TraceMethod::kRk45;
@@ -32,6 +36,13 @@ const char* trace_stop_name(TraceStop stop) {
 
 void TraceOptions::validate() const {
   if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
+  // rk45 and stratified aim at tol over the whole path. Below round-off of the positions (1e-15
+  // of the path) rk45's error control divided by an underflowed allowance and the state became
+  // NaN ("height -nan m"), and stratified split panels chasing noise into 10 million nodes.
+  if (method != TraceMethod::kRk4 && std::isfinite(max_length) && tol < kMinRelativeTol * max_length) {
+    throw_invalid(trace_method_name(method), ": tol must be at least ", kMinRelativeTol, " x max_length = ",
+                  kMinRelativeTol * max_length, " m, the round-off of positions (got ", tol, ")");
+  }
   if (!(step >= 0.0) || !std::isfinite(step)) {
     throw_invalid("step must be > 0, or None for the default (got ", step, ")");
   }

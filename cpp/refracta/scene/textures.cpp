@@ -2,6 +2,7 @@
 #include "refracta/scene/textures.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/image.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -48,6 +49,20 @@ std::string prepare(const std::string& path) {
   if (fs::exists(prepared)) return prepared.string();
 
   OIIO::ImageBuf source(path);
+  // The header first: a damaged or hostile one claiming a huge image (or display window, which
+  // make_texture fills) was std::bad_alloc.
+  if (!source.init_spec(path, 0, 0)) throw IoError(concat("cannot read texture '", path, "': ", source.geterror()));
+  const OIIO::ImageSpec header = source.spec();
+  if (header.full_width < 1 || header.full_height < 1 || header.width < 1 || header.height < 1) {
+    throw IoError(concat("texture '", path, "': its header gives an empty image or display window"));
+  }
+  try {
+    const std::string what = concat("texture '", path, "'");
+    check_image_memory(header.width, header.height, 8.0 * header.nchannels, what.c_str());
+    check_image_memory(header.full_width, header.full_height, 8.0 * header.nchannels, what.c_str());
+  } catch (const std::invalid_argument& error) {
+    throw IoError(error.what());
+  }
   if (!source.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
     throw IoError(concat("cannot read texture '", path, "': ", source.geterror()));
   }
