@@ -36,13 +36,6 @@ const char* trace_stop_name(TraceStop stop) {
 
 void TraceOptions::validate() const {
   if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
-  // rk45 and stratified aim at tol over the whole path. Below round-off of the positions (1e-15
-  // of the path) rk45's error control divided by an underflowed allowance and the state became
-  // NaN ("height -nan m"), and stratified split panels chasing noise into 10 million nodes.
-  if (method != TraceMethod::kRk4 && std::isfinite(max_length) && tol < kMinRelativeTol * max_length) {
-    throw_invalid(trace_method_name(method), ": tol must be at least ", kMinRelativeTol, " x max_length = ",
-                  kMinRelativeTol * max_length, " m, the round-off of positions (got ", tol, ")");
-  }
   if (!(step >= 0.0) || !std::isfinite(step)) {
     throw_invalid("step must be > 0, or None for the default (got ", step, ")");
   }
@@ -62,6 +55,13 @@ void TraceOptions::validate() const {
   if (least_step > 0 && max_length / least_step > double(max_steps)) {
     throw_invalid(trace_method_name(method), " with step ", least_step, " m needs more than ", max_steps,
                   " steps for max_length ", max_length, " m (raise step or lower max_length)");
+  }
+  // rk45 and stratified aim at tol over the whole path. Below round-off of the positions (1e-15
+  // of the path) rk45's error control divided by an underflowed allowance and the state became
+  // NaN ("height -nan m"), and stratified split panels chasing noise into 10 million nodes.
+  if (method != TraceMethod::kRk4 && std::isfinite(max_length) && tol < kMinRelativeTol * max_length) {
+    throw_invalid(trace_method_name(method), ": tol must be at least ", kMinRelativeTol, " x max_length = ",
+                  kMinRelativeTol * max_length, " m, the round-off of positions (got ", tol, ")");
   }
 }
 
