@@ -26,7 +26,9 @@ void IndexField::evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const 
 
 double lowest_ior_sampled(const IndexField& field, double lo, double hi, double margin) {
   double lowest = std::numeric_limits<double>::infinity(), n, dn;
-  for (double h = lo; h <= hi; h += std::max(1e-3, 1e-3 * (h - lo))) {
+  // Finest near the ground (h = 0, or the end of the range nearer it), where layers are thin.
+  const double ground = std::clamp(0.0, lo, hi);
+  for (double h = lo; h <= hi; h += std::max(1e-3, 1e-3 * std::abs(h - ground))) {
     try {
       field.evaluate_height(h, &n, &dn);
     } catch (const std::exception&) {

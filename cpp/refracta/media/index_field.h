@@ -58,8 +58,8 @@ class IndexField {
 using FieldPtr = std::shared_ptr<const IndexField>;
 
 // The least n of a height-only field over heights [lo, hi] [m], sampled every millimetre near
-// lo with the spacing growing 0.1 % per step (about 7000 samples per decade of height above
-// 1 m), less `margin`: a bound unless a dip deeper than `margin` hides between samples (the
+// the ground (h = 0) with the spacing growing 0.1 % of the distance from it (about 2300 samples
+// per decade of height beyond 1 m), less `margin`: a bound unless a dip deeper than `margin` hides between samples (the
 // default, 1e-5, is a spike of ~10 K narrower than the spacing). Heights where the field throws
 // (outside its modelled range) end the scan there.
 double lowest_ior_sampled(const IndexField& field, double lo, double hi, double margin = 1e-5);

@@ -12,7 +12,10 @@ namespace refracta {
 
 namespace {
 
-constexpr int kInitialIntervals = 64;
+// Initial intervals of at most a metre (features thinner than the quarter-point checks can see
+// are only resolved where refinement already goes), between 64 and 1e5 of them.
+constexpr double kInitialSpacing = 1.0;  // [m]
+constexpr int kMinInitialIntervals = 64, kMaxInitialIntervals = 100000;
 constexpr int kMaxDepth = 40;          // below ~1e-8 of the range: a kink, accept it
 constexpr size_t kMaxNodes = 1 << 20;  // 16 MB at most
 
@@ -56,8 +59,10 @@ TabulatedHeightField::TabulatedHeightField(FieldPtr base, double lo, double hi, 
   Sample previous = base_at(lo_);
   h_.push_back(lo_);
   samples_.push_back(previous);
-  for (int i = 1; i <= kInitialIntervals; ++i) {
-    const double b = lo_ + (hi_ - lo_) * i / kInitialIntervals;
+  const int intervals = int(std::clamp(std::ceil((hi_ - lo_) / kInitialSpacing), double(kMinInitialIntervals),
+                                       double(kMaxInitialIntervals)));
+  for (int i = 1; i <= intervals; ++i) {
+    const double b = lo_ + (hi_ - lo_) * i / intervals;
     const Sample sb = base_at(b);
     refine(h_.back(), previous, b, sb, 0);
     previous = sb;
@@ -143,10 +148,10 @@ std::shared_ptr<const IndexField> TabulatedHeightField::with_param_values(const 
   return std::make_shared<TabulatedHeightField>(base_->with_param_values(values), lo_, hi_, tolerance_);
 }
 
-FieldPtr tabulated_for_rendering(const FieldPtr& field, double lo, double hi) {
+FieldPtr tabulate_heights(const FieldPtr& field, double lo, double hi) {
   if (!field || !field->height_only()) return field;
   if (const auto* earth = dynamic_cast<const CurvedEarth*>(field.get())) {
-    const FieldPtr base = tabulated_for_rendering(earth->base(), earth->true_height(lo), earth->true_height(hi));
+    const FieldPtr base = tabulate_heights(earth->base(), earth->true_height(lo), earth->true_height(hi));
     return std::make_shared<CurvedEarth>(base, earth->radius());
   }
   if (dynamic_cast<const TabulatedHeightField*>(field.get())) return field;

@@ -50,8 +50,8 @@ class TabulatedHeightField final : public IndexField {
   double bucket_width_ = 1.0;
 };
 
-// The field a render traces through: height-only fields tabulated over [lo, hi] (CurvedEarth's
+// Height-only fields tabulated over [lo, hi] [m] (renders, ElevationTables; CurvedEarth's
 // base in true heights, so that dispersion still scales the real n - 1); others unchanged.
-FieldPtr tabulated_for_rendering(const FieldPtr& field, double lo, double hi);
+FieldPtr tabulate_heights(const FieldPtr& field, double lo, double hi);
 
 }  // namespace refracta

@@ -2,6 +2,7 @@
 #include "refracta/rays/elevation_table.h"
 
 #include "refracta/core/error.h"
+#include "refracta/media/tabulated_height_field.h"
 #include "refracta/rays/trace.h"
 
 #include <algorithm>
@@ -130,6 +131,10 @@ ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& opti
   }
   options_.trace.method = TraceMethod::kStratified;
   options_.validate();
+  // Every height a path can reach, tabulated once (to 1e-12 in n: far below any tolerance).
+  const double reach = options_.trace.max_length;
+  field_ = tabulate_heights(field_, std::max(options_.eye_height - reach, options_.trace.stop_height.value_or(-reach) - 1.0),
+                            options_.eye_height + reach);
   std::atomic<int64_t> evaluations{0};
   auto trace_all = [&](const std::vector<double>& e) {
     std::vector<Entry> out(e.size());

@@ -56,8 +56,6 @@ class StratifiedTracer {
     double n0, dn0;
     eval(x0.y(), &n0, &dn0);
     beta_ = n0 * cos_e0;
-    // No height the ray can reach has n <= beta: no turning point to bracket.
-    scan_cap_ = options_.min_ior && beta_ < *options_.min_ior ? spacing_ : scan_step_;
     // n0 - beta = n0 (1 - cos e0), written without cancellation.
     const double gap0 = n0 * sin_e0 * sin_e0 / (1.0 + cos_e0);
     launch_h_ = x0.y(), launch_gap_ = gap0, launch_slope_ = dn0;
@@ -301,7 +299,7 @@ class StratifiedTracer {
   // state for the next branch and returns true.
   bool branch(double* h_start, bool* turning_start, double* direction) {
     const double dir = *direction;
-    double h_prev = *h_start, delta = *turning_start ? 1e-4 : scan_cap_;
+    double h_prev = *h_start, delta = *turning_start ? 1e-4 : scan_step_;
     bool from_turning = *turning_start;
     const double start_turning_gap = turning_gap_, start_turning_slope = turning_slope_;
     Variable plain;
@@ -369,7 +367,7 @@ class StratifiedTracer {
       from_turning = false;
       // Next scan step: approaching a turning point (n falling along the motion), aim 1.5x past
       // its linear prediction so it is bracketed; otherwise grow the step.
-      delta = std::min(scan_cap_, 2.0 * delta);
+      delta = std::min(scan_step_, 2.0 * delta);
       if (dir * dn_next < 0.0) delta = std::min(delta, std::max(1.5 * gap_next / std::abs(dn_next), 1e-9));
     }
     return false;
@@ -377,7 +375,7 @@ class StratifiedTracer {
 
   const Field& field_;
   const TraceOptions& options_;
-  double length_, spacing_, scan_step_, scan_cap_ = 1.0;
+  double length_, spacing_, scan_step_;
   Vec3d origin_, horizontal_;
   double beta_ = 0.0, s_ = 0.0, r_ = 0.0;
   double turning_gap_ = 0.0, turning_slope_ = 0.0;

@@ -26,11 +26,6 @@ struct TraceOptions {
   double max_length = 1000.0;           // arc length at which the path ends [m]
   std::optional<double> stop_height;    // the path ends where it descends through this height [m]
   int64_t max_steps = 10'000'000;       // a guard against runaway step-size collapse
-  // stratified: a lower bound of n over every height the path can reach (see
-  // lowest_ior_sampled). A ray whose invariant n cos e lies below it can never turn, so its
-  // heights are integrated in panels up to `step` long instead of being scanned metre by metre
-  // for turning points.
-  std::optional<double> min_ior;
   // Polled at every step: when set, the trace throws Cancelled (Ctrl-C in a long batch).
   const std::atomic<bool>* cancel = nullptr;
 

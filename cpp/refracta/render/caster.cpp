@@ -33,7 +33,7 @@ double refine_on_plane(const PathSegment<double>& seg, const Vec3d& n, const Vec
 }  // namespace
 
 TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, const Vec3d& origin,
-                                  const RenderOptions& options, double max_length, std::optional<double> ior_floor) {
+                                  const RenderOptions& options, double max_length) {
   TraceOptions trace_options;
   trace_options.method = options.trace ? *options.trace
                                        : (field.height_only() ? TraceMethod::kStratified : TraceMethod::kRk45);
@@ -42,7 +42,6 @@ TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, c
   trace_options.step = options.chord;
   // Nothing can be hit below the lowest geometry: end the path 1 m under it (or under the origin).
   trace_options.stop_height = std::min(scene.lowest(), origin.y()) - 1.0;
-  trace_options.min_ior = ior_floor;
   return trace_options;
 }
 
@@ -255,7 +254,7 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   }
   // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
   if (auto monotone = cast_monotone(origin, dir, max_length)) return *monotone;
-  TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length, ior_floor_);
+  TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
   // A pixel's ray: an error of sagitta_pixels of its footprint (spread * s) is invisible.
   const double per_metre = options_.sagitta_pixels * spread;
   trace_options.tol = std::max(trace_options.tol, per_metre * max_length);

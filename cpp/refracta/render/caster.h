@@ -37,7 +37,7 @@ class Caster {
   // entry's chords are planned to within max(sagitta, sagitta_pixels * pixel_angle * s) [m].
   void use_table(const ElevationTable* table, const Vec3d& eye, double pixel_angle);
   // Height-only fields: a lower bound of n over every height a ray can reach (render_ior_floor);
-  // traced rays whose invariant lies below it cannot turn and skip the turning-point scan.
+  // rays whose invariant n cos e lies below it cannot turn (cast_monotone, escape_direction).
   void set_ior_floor(double floor) { ior_floor_ = floor; }
 
   // The end of the path from origin along unit dir, at most max_length [m] long
@@ -85,11 +85,9 @@ bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<
 // The same in `pieces` chords of equal parameter length.
 bool hit_in_pieces(const Scene& scene, const PathSegment<double>& segment, int pieces, PathEnd* end);
 
-// The trace options of curved render rays from origin through field (ior_floor: see
-// TraceOptions::min_ior).
+// The trace options of curved render rays from origin through field.
 TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, const Vec3d& origin,
-                                  const RenderOptions& options, double max_length,
-                                  std::optional<double> ior_floor = std::nullopt);
+                                  const RenderOptions& options, double max_length);
 
 // Every height a render ray can reach: from 1 m below the lowest geometry (or the eye) to
 // max_length above the highest.

@@ -91,8 +91,7 @@ std::pair<double, double> elevation_range(const Camera& camera) {
 }
 
 std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera& camera, const FieldPtr& field,
-                                          const RenderOptions& options, std::optional<double> ior_floor,
-                                          WorkControl& control) {
+                                          const RenderOptions& options, WorkControl& control) {
   if (!field || !field->height_only() || options.method != RenderMethod::kCurved || !options.use_table ||
       options.spectral || (options.trace && *options.trace != TraceMethod::kStratified)) {
     return nullptr;
@@ -105,8 +104,7 @@ std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera
   table_options.angular_tol = 0.25 * camera.pixel_angle();
   // More exact traces than a quarter of the pixels would not pay: trace the rest per pixel.
   table_options.max_rays = std::max<int64_t>(int64_t(camera.width()) * camera.height() / 4, 2 * table_options.initial_rays);
-  table_options.trace =
-      curved_trace_options(scene.geometry, *field, camera.position(), options, options.max_length, ior_floor);
+  table_options.trace = curved_trace_options(scene.geometry, *field, camera.position(), options, options.max_length);
   auto table = std::make_unique<ElevationTable>(field, table_options, control);
   control.done = 0;
   return table;
@@ -128,9 +126,10 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   FieldPtr field = exact_field;
   if (field && options.method == RenderMethod::kCurved && !forced_rk45) {
     const auto [lo, hi] = render_heights(scene.geometry, camera.position(), options);
-    field = tabulated_for_rendering(field, lo, hi);
+    field = tabulate_heights(field, lo, hi);
   }
-  // Height-only air: the least n any ray meets, so that rays which cannot turn are traced fast.
+  // Height-only air: the least n any ray meets; rays that cannot turn are cut into chords
+  // without tracing (Caster::cast_monotone).
   // Spectral: n at each height is affine in the dispersion scale, so the floor over all
   // wavelengths is the lower of the floors at the ends of the range.
   std::optional<double> ior_floor;
@@ -144,7 +143,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
       }
     }
   }
-  const std::unique_ptr<ElevationTable> table = eye_table(scene, camera, field, options, ior_floor, control);
+  const std::unique_ptr<ElevationTable> table = eye_table(scene, camera, field, options, control);
   Caster caster(scene.geometry, field.get(), options);
   if (table) caster.use_table(table.get(), camera.position(), camera.pixel_angle());
   if (ior_floor) caster.set_ior_floor(*ior_floor);
