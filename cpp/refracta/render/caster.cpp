@@ -255,9 +255,11 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
   if (auto monotone = cast_monotone(origin, dir, max_length)) return *monotone;
   TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
-  // A pixel's ray: an error of sagitta_pixels of its footprint (spread * s) is invisible.
+  // A pixel's ray: an error of sagitta_pixels of its footprint (spread * s) is invisible. Any
+  // ray: the chords already stray up to the sagitta from the path, so the integrator need not
+  // be closer to it than that.
   const double per_metre = options_.sagitta_pixels * spread;
-  trace_options.tol = std::max(trace_options.tol, per_metre * max_length);
+  trace_options.tol = std::max({trace_options.tol, per_metre * max_length, options_.sagitta});
   double last_height = origin.y();
   try {
     trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
