@@ -3,6 +3,7 @@
 #include "refracta/bindings/custom_field.h"
 #include "refracta/media/curved_earth.h"
 #include "refracta/media/fields.h"
+#include "refracta/media/tabulated_height_field.h"
 
 #include <set>
 #include <sstream>
@@ -287,6 +288,15 @@ Slow: the integrators call back into Python at every evaluation.)doc")
             if (state.size() != 3) throw_invalid("CustomField: bad pickle state");
             return std::make_shared<CustomField>(state[0], state[1], py::cast<bool>(state[2]));
           }));
+  // Tests: the tabulation renders and ElevationTables trace through (media/tabulated_height_field.h).
+  m.def(
+      "_tabulate_heights",
+      [](const std::shared_ptr<IndexField>& field, double lo, double hi) {
+        if (!field) throw_invalid("_tabulate_heights: field must be a field (got None)");
+        return std::const_pointer_cast<IndexField>(tabulate_heights(field, lo, hi));
+      },
+      py::arg("field"), py::arg("lo"), py::arg("hi"),
+      "A height-only field tabulated over [lo, hi] m (cubic Hermite to 1e-12 in n); other fields unchanged.");
 }
 
 }  // namespace refracta
