@@ -43,6 +43,7 @@ def test_a_ray_below_the_bottom_names_the_range_and_the_remedy():
         refracta.trace_ray(field, [0, 1.5, 0], [1, -0.5, 0], max_length=5000.0)
 
 
+@pytest.mark.slow  # the eye's table traces ~150 rays through 32 km of air, scanned metre by metre
 def test_a_render_of_the_sky_past_the_top_is_finite_and_independent_of_max_length():
     # The hot road's air, looked at 15-25 degrees up: every camera ray (the eye's ElevationTable)
     # and every ray toward the sky from the road crosses 32 km within 130 km. Past the top each

@@ -28,6 +28,8 @@ class TabulatedHeightField final : public IndexField {
   // The base with other values, tabulated over the same range.
   std::shared_ptr<const IndexField> with_param_values(const std::vector<double>& values) const override;
   std::vector<std::string> gauge_params() const override { return base_->gauge_params(); }
+  // The base's: a table of its constant values above that height is the same constant (issue 13).
+  double uniform_above() const override { return base_->uniform_above(); }
 
   const FieldPtr& base() const { return base_; }
   size_t nodes() const { return h_.size(); }
