@@ -89,7 +89,8 @@ validate() reports every bad value at once.)doc")
            const RenderOptions& options, const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
           options.validate();
-          // Refused before anything is allocated (core/image.h): float32 RGB and its numpy copy.
+          // Refused before anything is allocated (core/image.h): float32 RGB, and room for one copy
+          // by the caller (the pixels themselves move into the returned array).
           const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
           check_image_memory(bounds.width(), bounds.height(), 24.0, "render");
           WorkControl control;
@@ -100,7 +101,7 @@ validate() reports every bad value at once.)doc")
           counts["samples"] = stats.samples;
           counts["chords"] = stats.chords;
           counts["invalid_samples"] = stats.invalid_samples;
-          return py::make_tuple(image_to_float32(image), counts);
+          return py::make_tuple(image_to_float32(std::move(image)), counts);
         },
         py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("options"), py::arg("progress"));
 
@@ -163,7 +164,7 @@ validate() reports every bad value at once.)doc")
           counts["bytes_per_texel"] = stats.bytes_per_texel;
           counts["transparent_fragments"] = stats.transparent_fragments;
           counts["oit_bytes_per_pixel"] = stats.oit_bytes_per_pixel;
-          return py::make_tuple(image_to_float32(image), counts);
+          return py::make_tuple(image_to_float32(std::move(image)), counts);
         },
         py::arg("scene"), py::arg("camera"), py::arg("shadows"), py::arg("resolution"), py::arg("kernel"),
         py::arg("signed_depth"), py::arg("bias"), py::arg("bias_vector"), py::arg("storage"), py::arg("depth_bias"),

@@ -205,6 +205,14 @@ py::array_t<float> image_to_float32(const Image& image) {
   return out;
 }
 
+py::array_t<float> image_to_float32(Image&& image) {
+  // The pixels move into the array's owner: a 4K frame is not held twice.
+  auto* pixels = new std::vector<float>(std::move(image.pixels));
+  py::capsule owner(pixels, [](void* p) { delete static_cast<std::vector<float>*>(p); });
+  return py::array_t<float>({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(image.channels)},
+                            pixels->data(), owner);
+}
+
 namespace {
 
 // set_physical_sky: the sky light and the sun it implies. Both are spectral radiance

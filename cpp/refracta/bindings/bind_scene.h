@@ -10,5 +10,6 @@
 namespace refracta {
 
 py::array_t<float> image_to_float32(const Image& image);
+py::array_t<float> image_to_float32(Image&& image);  // without copying the pixels
 
 }  // namespace refracta
