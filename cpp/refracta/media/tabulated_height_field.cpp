@@ -67,8 +67,16 @@ TabulatedHeightField::TabulatedHeightField(FieldPtr base, double lo, double hi, 
     refine(h_.back(), previous, b, sb, 0);
     previous = sb;
   }
-  // Buckets of equal width, about one per node.
-  const size_t buckets = std::max<size_t>(1, h_.size());
+  cubics_.resize(h_.size() - 1);
+  for (size_t k = 0; k + 1 < h_.size(); ++k) {
+    const double width = h_[k + 1] - h_[k];
+    const Sample &a = samples_[k], &b = samples_[k + 1];
+    const double da = width * a.dn, db = width * b.dn, jump = b.n - a.n;
+    cubics_[k] = {a.n, da, 3.0 * jump - 2.0 * da - db, -2.0 * jump + da + db, 1.0 / width};
+  }
+  // Buckets of equal width, 16 per node: nodes crowd into thin layers (centimetres apart in a
+  // hot layer, metres elsewhere), and a bucket should hold only a few of them.
+  const size_t buckets = std::max<size_t>(1, 16 * h_.size());
   bucket_width_ = (hi_ - lo_) / double(buckets);
   bucket_.resize(buckets + 1);
   size_t i = 0;
@@ -120,12 +128,9 @@ size_t TabulatedHeightField::interval_of(double h) const {
 }
 
 TabulatedHeightField::Sample TabulatedHeightField::interpolate(size_t i, double h) const {
-  const double width = h_[i + 1] - h_[i], t = (h - h_[i]) / width, t2 = t * t, t3 = t2 * t;
-  const Sample &a = samples_[i], &b = samples_[i + 1];
-  Sample s;
-  s.n = (2 * t3 - 3 * t2 + 1) * a.n + (t3 - 2 * t2 + t) * width * a.dn + (-2 * t3 + 3 * t2) * b.n + (t3 - t2) * width * b.dn;
-  s.dn = ((6 * t2 - 6 * t) * (a.n - b.n)) / width + (3 * t2 - 4 * t + 1) * a.dn + (3 * t2 - 2 * t) * b.dn;
-  return s;
+  const Cubic& c = cubics_[i];
+  const double t = (h - h_[i]) * c.inverse_width;
+  return {c.c0 + t * (c.c1 + t * (c.c2 + t * c.c3)), (c.c1 + t * (2.0 * c.c2 + 3.0 * t * c.c3)) * c.inverse_width};
 }
 
 void TabulatedHeightField::evaluate_height(double h, double* n, double* dn_dh) const {

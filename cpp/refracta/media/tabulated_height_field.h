@@ -47,6 +47,11 @@ class TabulatedHeightField final : public IndexField {
   double lo_, hi_, tolerance_;
   std::vector<double> h_;
   std::vector<Sample> samples_;
+  // Per interval: n = c0 + t (c1 + t (c2 + t c3)), t = (h - h_i) / width.
+  struct Cubic {
+    double c0, c1, c2, c3, inverse_width;
+  };
+  std::vector<Cubic> cubics_;
   // bucket_[k]: the interval holding lo_ + k * bucket_width_ (narrows the binary search).
   std::vector<uint32_t> bucket_;
   double bucket_width_ = 1.0;

@@ -72,7 +72,7 @@ bool BouguerBranch::integrate(double ha, double sin_a, double hb, double sin_b, 
     const double gap = std::abs(h[k + 1] - h[k]);
     trapezoid_length += 0.5 * gap * (1.0 / sine[k + 1] + 1.0 / sine[k]);
     trapezoid_run += 0.5 * gap * (cos_e[k + 1] / sine[k + 1] + cos_e[k] / sine[k]);
-    turning += std::abs(std::atan2(sine[k + 1], cos_e[k + 1]) - std::atan2(sine[k], cos_e[k]));
+    turning += std::abs(sine[k + 1] * cos_e[k] - cos_e[k + 1] * sine[k]);  // sin of the step in e
   }
   out->error = std::max(std::abs(trapezoid_run - out->run), std::abs(trapezoid_length - out->length));
   out->turning = turning;

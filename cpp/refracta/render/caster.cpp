@@ -49,9 +49,13 @@ std::pair<double, double> render_heights(const Scene& scene, const Vec3d& eye, c
   return {std::min(scene.lowest(), eye.y()) - 1.0, std::max(scene.highest(), eye.y()) + options.max_length};
 }
 
-double render_ior_floor(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options) {
+IorFloors render_ior_floors(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options) {
   const auto [lo, hi] = render_heights(scene, eye, options);
-  return lowest_ior_sampled(field, lo, hi);
+  const double top = std::max(scene.highest(), eye.y());
+  IorFloors floors;
+  floors.objects = lowest_ior_sampled(field, lo, top);
+  floors.everywhere = std::min(floors.objects, lowest_ior_sampled(field, top, hi));
+  return floors;
 }
 
 bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<double>& b,
@@ -155,7 +159,7 @@ std::optional<Vec3d> Caster::escape_direction(const Vec3d& x, const Vec3d& v, do
   // mean of sin e at both ends (the trapezoid rule in s), and Newton runs only where sin e
   // changes by more than 1 %. Otherwise every step integrates from x, and the quadrature's
   // nodes check that the ray stays clear of a turn all the way up.
-  const bool cannot_turn = ior_floor_ && branch.beta() < *ior_floor_ * std::sqrt(1.0 - kMinSine * kMinSine);
+  const bool cannot_turn = floors_ && branch.beta() < floors_->everywhere * std::sqrt(1.0 - kMinSine * kMinSine);
   double h = x.y() + remaining * sin_x, n, sin_h, run, length;
   if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;  // the ray may turn below that height
   if (cannot_turn) {
@@ -176,16 +180,16 @@ std::optional<Vec3d> Caster::escape_direction(const Vec3d& x, const Vec3d& v, do
 }
 
 std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length) const {
-  // sin e >= 0.02 (1.1 deg) at every height the ray can reach: it cannot turn, and 1/sin e stays
-  // smooth enough for 8-point quadrature.
-  constexpr double kMinSine = 0.02;
-  if (!ior_floor_ || !field_->height_only() || dir.y() == 0.0) return std::nullopt;
+  // sin e >= 0.01 (0.57 deg) at every height among the objects: the ray cannot turn there, and
+  // the stretches' error estimate splits them where 1/sin e varies too fast for 8 points.
+  constexpr double kMinSine = 0.01;
+  if (!floors_ || !field_->height_only() || dir.y() == 0.0) return std::nullopt;
   const Vec3d t = dir.normalized();
   const double cos_e0 = std::hypot(t.x(), t.z());
   double n0, dn0;
   field_->evaluate_height(origin.y(), &n0, &dn0);
   const double beta = n0 * cos_e0;
-  if (!(beta < *ior_floor_ * std::sqrt(1.0 - kMinSine * kMinSine))) return std::nullopt;
+  if (!(beta < floors_->objects * std::sqrt(1.0 - kMinSine * kMinSine))) return std::nullopt;
   const BouguerBranch branch(*field_, beta);
   const double up = t.y() > 0.0 ? 1.0 : -1.0;
   // Rising: up to the highest object, then out of the air; falling: down to the stop height.

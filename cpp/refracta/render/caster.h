@@ -19,6 +19,11 @@
 
 namespace refracta {
 
+// Lower bounds of a height-only field's n: among the scene's objects, and everywhere a ray goes.
+struct IorFloors {
+  double objects, everywhere;
+};
+
 // Where a ray ends: a surface hit, or the sky seen along `direction`.
 struct PathEnd {
   std::optional<Hit> hit;
@@ -36,9 +41,9 @@ class Caster {
   // Serve rays that start at `eye` from this table (its eye height must be eye.y()); each
   // entry's chords are planned to within max(sagitta, sagitta_pixels * pixel_angle * s) [m].
   void use_table(const ElevationTable* table, const Vec3d& eye, double pixel_angle);
-  // Height-only fields: a lower bound of n over every height a ray can reach (render_ior_floor);
-  // rays whose invariant n cos e lies below it cannot turn (cast_monotone, escape_direction).
-  void set_ior_floor(double floor) { ior_floor_ = floor; }
+  // Height-only fields: lower bounds of n (render_ior_floors); rays whose invariant n cos e lies
+  // below one cannot turn where it holds (cast_monotone among the objects, escape_direction above).
+  void set_ior_floors(const IorFloors& floors) { floors_ = floors; }
 
   // The end of the path from origin along unit dir, at most max_length [m] long
   // (max_length <= 0: options.max_length for curved paths, the straight limit otherwise).
@@ -74,7 +79,7 @@ class Caster {
   const RenderOptions& options_;
   const ElevationTable* table_ = nullptr;
   Vec3d eye_ = Vec3d::Zero();
-  std::optional<double> ior_floor_;
+  std::optional<IorFloors> floors_;
   std::vector<ChordPlan> plans_;  // per table entry
 };
 
@@ -92,7 +97,8 @@ TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, c
 // Every height a render ray can reach: from 1 m below the lowest geometry (or the eye) to
 // max_length above the highest.
 std::pair<double, double> render_heights(const Scene& scene, const Vec3d& eye, const RenderOptions& options);
-// A height-only field's least n (lowest_ior_sampled) over render_heights.
-double render_ior_floor(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options);
+// A height-only field's least n (lowest_ior_sampled) among the objects (render_heights' lower
+// end to the highest object or the eye) and over all of render_heights.
+IorFloors render_ior_floors(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options);
 
 }  // namespace refracta

@@ -132,21 +132,23 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   // without tracing (Caster::cast_monotone).
   // Spectral: n at each height is affine in the dispersion scale, so the floor over all
   // wavelengths is the lower of the floors at the ends of the range.
-  std::optional<double> ior_floor;
+  std::optional<IorFloors> floors;
   if (field && field->height_only() && options.method == RenderMethod::kCurved && !forced_rk45) {
-    ior_floor = render_ior_floor(scene.geometry, *field, camera.position(), options);
+    floors = render_ior_floors(scene.geometry, *field, camera.position(), options);
     if (options.spectral) {
       const double reference = field_reference_wavelength(*field);
       for (double wavelength : {kLambdaMin, kLambdaMax}) {
-        const FieldPtr air = dispersed_field(field, wavelength, reference);
-        ior_floor = std::min(*ior_floor, render_ior_floor(scene.geometry, *air, camera.position(), options));
+        const IorFloors at = render_ior_floors(scene.geometry, *dispersed_field(field, wavelength, reference),
+                                               camera.position(), options);
+        floors->objects = std::min(floors->objects, at.objects);
+        floors->everywhere = std::min(floors->everywhere, at.everywhere);
       }
     }
   }
   const std::unique_ptr<ElevationTable> table = eye_table(scene, camera, field, options, control);
   Caster caster(scene.geometry, field.get(), options);
   if (table) caster.use_table(table.get(), camera.position(), camera.pixel_angle());
-  if (ior_floor) caster.set_ior_floor(*ior_floor);
+  if (floors) caster.set_ior_floors(*floors);
   const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
   std::atomic<int64_t> chords{0}, invalid{0};
   const Vec3d eye = camera.position();
@@ -161,7 +163,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                                 lambda.terminate_secondary();
                                 const FieldPtr air = dispersed_field(field, lambda.hero(), reference);
                                 Caster hero_caster(scene.geometry, air.get(), options);
-                                if (ior_floor) hero_caster.set_ior_floor(*ior_floor);
+                                if (floors) hero_caster.set_ior_floors(*floors);
                                 const std::unique_ptr<Integrator> hero = make_integrator(scene, hero_caster, options);
                                 const PathEnd first = hero_caster.cast(eye, dir, 0.0, camera.pixel_angle());
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
