@@ -568,6 +568,14 @@ class RenderOptions:
     def sagitta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def sagitta_pixels(self) -> float:
+        """
+        camera rays: chords may stray this fraction of a pixel's footprint when more than sagitta
+        """
+    @sagitta_pixels.setter
+    def sagitta_pixels(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def seed(self) -> int:
         """
         seed of the per-pixel random streams
@@ -1298,6 +1306,10 @@ def _spectrum_to_linear_srgb(radiance: typing.Any, wavelengths: typing.Any, pdf:
     ...
 def _spectrum_xyz_to_linear_srgb(xyz: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
     ...
+def _tabulate_heights(field: IndexField, lo: typing.SupportsFloat | typing.SupportsIndex, hi: typing.SupportsFloat | typing.SupportsIndex) -> IndexField:
+    """
+    A height-only field tabulated over [lo, hi] m (cubic Hermite to 1e-12 in n); other fields unchanged.
+    """
 def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, method: str, tol: typing.SupportsFloat | typing.SupportsIndex, step: typing.SupportsFloat | typing.SupportsIndex | None, max_length: typing.SupportsFloat | typing.SupportsIndex, stop_height: typing.SupportsFloat | typing.SupportsIndex | None, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
     ...
 def _write_image(path: str, image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: typing.Any, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
