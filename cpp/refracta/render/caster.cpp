@@ -205,7 +205,7 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   const double tolerance = options_.sagitta;
   PathEnd end;
   end.direction = t;
-  double h = origin.y(), s = 0.0, run = 0.0, sin_e = std::abs(t.y()), n, dn;
+  double h = origin.y(), s = 0.0, run = 0.0, sin_e = std::abs(t.y()), n = n0, dn = dn0;
   double step = up * (target - h);
   Vec3d a = origin;
   while (up * (target - h) > 0.0) {
