@@ -37,7 +37,8 @@ double lowest_ior_sampled(const IndexField& field, double lo, double hi, double 
     if (!(n > 0.0) || !std::isfinite(n)) break;
     lowest = std::min(lowest, n);
   }
-  return lowest - margin;
+  // Nothing evaluable (or an empty range): no bound at all, so no ray is taken for one that cannot turn.
+  return std::isfinite(lowest) ? lowest - margin : 0.0;
 }
 
 size_t IndexField::param_index(const std::string& name) const {

@@ -76,7 +76,7 @@ TabulatedHeightField::TabulatedHeightField(FieldPtr base, double lo, double hi, 
   }
   // Buckets of equal width, 16 per node: nodes crowd into thin layers (centimetres apart in a
   // hot layer, metres elsewhere), and a bucket should hold only a few of them.
-  const size_t buckets = std::max<size_t>(1, 16 * h_.size());
+  const size_t buckets = std::clamp<size_t>(16 * h_.size(), 1, size_t(1) << 22);  // at most 16 MB
   bucket_width_ = (hi_ - lo_) / double(buckets);
   bucket_.resize(buckets + 1);
   size_t i = 0;

@@ -30,6 +30,15 @@ double refine_on_plane(const PathSegment<double>& seg, const Vec3d& n, const Vec
   return u;
 }
 
+// The path's end at parameter u of seg, where it meets the surface of `hit`.
+void end_at(const PathSegment<double>& seg, double u, const Hit& hit, PathEnd* end) {
+  Hit refined = hit;
+  refined.point = seg.position(u);
+  end->hit = refined;
+  end->direction = seg.velocity(u).normalized();
+  end->length = seg.start() + u * seg.length();
+}
+
 }  // namespace
 
 TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, const Vec3d& origin,
@@ -88,11 +97,7 @@ bool hit_in_pieces(const Scene& scene, const PathSegment<double>& seg, int piece
     const double du = u1 - u0;
     const double u = refine_on_plane(seg, hit->normal, hit->point, u0 + du * hit->t / len, u0 - 0.5 * du,
                                      std::min(u1 + 0.5 * du, 1.0));
-    Hit refined = *hit;
-    refined.point = seg.position(u);
-    end->hit = refined;
-    end->direction = seg.velocity(u).normalized();
-    end->length = seg.start() + u * seg.length();
+    end_at(seg, u, *hit, end);
     return true;
   }
   return false;
@@ -347,11 +352,7 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
           const double u0 = seg.length() > 0.0 ? std::clamp((s_hit - from.s) / seg.length(), 0.0, 1.0) : 0.0;
           const double u = crossing ? refine_on_plane(seg, hit->normal, hit->point, u0, 0.0, 1.0)
                                     : refine_on_plane(seg, hit->normal, hit->point, u0, -0.5, 1.5);
-          Hit refined = *hit;
-          refined.point = seg.position(u);
-          end.hit = refined;
-          end.direction = seg.velocity(u).normalized();
-          end.length = seg.start() + u * seg.length();
+          end_at(seg, u, *hit, &end);
           return end;
         }
       }
