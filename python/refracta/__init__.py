@@ -5,8 +5,9 @@ LinearSquaredProfile, CustomField. Rays: trace_ray (one RayPath), trace_rays (a 
 parallel), ElevationTable. Images: Scene, Camera, render, refracta.io. Shading: refracta.shading (BSDFs), refracta.lights,
 refracta.spectrum (spectral colour), refracta.testing (chi-square sampler tests). Plots: refracta.plot. Units: metres, kelvin, pascal, nanometres; y is up.
 
-Submodules not imported here (edit, examples, plot, compare, moments, oit, raster, cli) load on
-first use (PEP 562), so ``import refracta`` stays cheap and does not import matplotlib.
+Submodules not imported here (edit, examples, plot, compare, moments, oit, raster, cli, widgets:
+the interactive editor in Jupyter) load on first use (PEP 562), so ``import refracta`` stays cheap
+and does not import matplotlib.
 """
 
 import importlib as _importlib
@@ -16,6 +17,7 @@ from refracta._core import (
     CurvedEarth,
     CustomField,
     DispersedField,
+    HotSpot,
     IndexField,
     IoError,
     LinearSquaredProfile,
@@ -45,7 +47,7 @@ from refracta._sweep import SweepError, SweepFailure, SweepResult, sweep
 __version__ = "0.1.0"
 
 # Submodules loaded on first attribute access (PEP 562): refracta.edit, refracta.plot, ...
-_LAZY_SUBMODULES = ("cli", "compare", "edit", "examples", "moments", "oit", "plot", "raster")
+_LAZY_SUBMODULES = ("cli", "compare", "edit", "examples", "moments", "oit", "plot", "raster", "widgets")
 
 
 def __getattr__(name):
@@ -64,6 +66,7 @@ __all__ = [
     "CustomField",
     "DispersedField",
     "ElevationTable",
+    "HotSpot",
     "IndexField",
     "IoError",
     "LinearSquaredProfile",

@@ -51,6 +51,16 @@ def _vector(value, sizes, what: str) -> np.ndarray:
     return array
 
 
+def _number(value, what: str) -> float:
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what} must be a number (got {value!r})") from None
+    if not np.isfinite(number):
+        raise ValueError(f"{what} must be finite (got {value!r})")
+    return number
+
+
 @dataclass(frozen=True)
 class PointPair:
     """One constraint of an edit.
@@ -62,21 +72,31 @@ class PointPair:
         source: the 3D scene point [m] that should be seen there (``camera.pick(scene, u, v)``
             finds the point a pixel shows without atmosphere).
         weight: importance (> 0); the pair's miss is scaled by sqrt(weight) in the cost.
+        margin: how far (>= 0) the path may pass from the source at no cost: metres, or pixels
+            for a pixel destination (converted at the source's distance). The cost is a dead zone,
+            zero inside the margin and 1/2 weight (miss - margin)^2 outside, so less important
+            points get larger margins; a pair is met once its miss is within its margin (plus
+            solve's accept_angle times its range).
     """
 
     destination: Tuple[float, ...]
     source: Tuple[float, float, float]
     weight: float = 1.0
+    margin: float = 0.0
 
     def __post_init__(self):
         destination = _vector(self.destination, (2, 3), "PointPair destination")
         source = _vector(self.source, (3,), "PointPair source")
-        weight = float(self.weight)
-        if not (weight > 0.0 and np.isfinite(weight)):
+        weight = _number(self.weight, "PointPair weight")
+        if not weight > 0.0:
             raise ValueError(f"PointPair weight must be > 0 (got {self.weight!r})")
+        margin = _number(self.margin, "PointPair margin")
+        if not margin >= 0.0:
+            raise ValueError(f"PointPair margin must be >= 0 (got {self.margin!r})")
         object.__setattr__(self, "destination", tuple(destination))
         object.__setattr__(self, "source", tuple(source))
         object.__setattr__(self, "weight", weight)
+        object.__setattr__(self, "margin", margin)
 
     @property
     def is_pixel(self) -> bool:
@@ -84,7 +104,7 @@ class PointPair:
 
 
 def _pair_rays(eye_or_camera, pairs: Sequence[PointPair]):
-    """(eye, camera or None, origins, directions, sources, weights) of the pairs."""
+    """(pairs, eye, camera or None, origins, directions, sources, weights, margins [m]) of the pairs."""
     if isinstance(pairs, PointPair):
         pairs = [pairs]
     pairs = list(pairs)
@@ -110,7 +130,10 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair]):
     origins = np.tile(eye, (len(pairs), 1))
     sources = np.array([p.source for p in pairs])
     weights = np.array([p.weight for p in pairs])
-    return pairs, eye, camera, origins, np.array(directions), sources, weights
+    # A pixel destination's margin is in pixels: the angle they subtend at the source's distance.
+    ranges = np.linalg.norm(sources - eye, axis=1)
+    margins = np.array([p.margin * (camera.pixel_angle * r if p.is_pixel else 1.0) for p, r in zip(pairs, ranges)])
+    return pairs, eye, camera, origins, np.array(directions), sources, weights, margins
 
 
 def _pair_options(integrator: str, tol: float, step: Optional[float], ground: Optional[float],
@@ -125,11 +148,16 @@ class EditResult:
     """What solve() found. ``print(result)`` shows the report.
 
     field: the solved field; start: the field it started from. cost / initial_cost: 1/2 sum of
-    weight * miss^2 [m^2]; distances: each pair's miss [m] after solving (initial_distances before).
-    success: the back-end converged and every pair's miss is below accept_angle times its range.
-    history: cost per iteration (ceres) or best cost per evaluation (nlopt). free: the optimised
-    parameters; insensitive: requested free parameters no pair depends on (held fixed).
-    iterations, evaluations (cost evaluations), pair_traces (traced pairs, derivative passes
+    weight * (miss - margin)^2 over the pairs outside their margins [m^2]; distances: each pair's
+    miss [m] after solving (initial_distances before); margins: each pair's margin [m] (pixel
+    margins converted at the source's distance); met: per pair, whether its miss is within its
+    margin plus accept_angle times its range. success: every pair met (strategy 'local': and the
+    back-end converged). strategy: 'auto' or 'local'; stages: what the strategy did, one line per
+    stage (local solves, the global stage's design); solver_report: the back-end's own report of
+    the run that gave the result (Ceres' full summary). history: cost per iteration (ceres) or best
+    cost per evaluation (nlopt) of that run. free: the optimised parameters; insensitive: requested
+    free parameters no pair depends on (held fixed). iterations, evaluations (cost evaluations,
+    the global stage's design points included), pair_traces (traced pairs, derivative passes
     included), time [s] (solving only).
     """
 
@@ -156,13 +184,18 @@ class EditResult:
     derivatives: str
     starts: int = 1
     trace_options: Dict[str, object] = _dataclass_field(default_factory=dict)
+    margins: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0))
+    met: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0, dtype=bool))
+    strategy: str = "local"
+    stages: List[str] = _dataclass_field(default_factory=list)
+    solver_report: str = ""
 
     def paths(self, which: str = "solved") -> List[_core.RayPath]:
         """Each pair's light path through the solved field ('solved') or the start ('start')."""
         if which not in ("solved", "start"):
             raise ValueError(f"which must be 'solved' or 'start' (got {which!r})")
         field = self.field if which == "solved" else self.start
-        _, _, _, origins, directions, sources, _ = _pair_rays(self.camera if self.camera is not None else self.eye, self.pairs)
+        _, _, _, origins, directions, sources, _, _ = _pair_rays(self.camera if self.camera is not None else self.eye, self.pairs)
         options = self.trace_options
         out = []
         for origin, direction, source in zip(origins, directions, sources):
@@ -179,12 +212,14 @@ class EditResult:
             f"  cost {self.initial_cost:.4g} -> {self.cost:.4g} m^2 in {self.iterations} iterations, "
             f"{self.evaluations} evaluations, {self.pair_traces} pair traces, {self.time:.3g} s"
             + (f" ({self.starts} starts)" if self.starts > 1 else ""),
-            "  pair  weight  miss before [m]  miss after [m]  range [m]",
+            "  pair  weight  miss before [m]  miss after [m]  margin [m]  met  range [m]",
         ]
+        margins = self.margins if len(self.margins) == len(self.pairs) else np.zeros(len(self.pairs))
+        met = self.met if len(self.met) == len(self.pairs) else np.zeros(len(self.pairs), dtype=bool)
         for i, pair in enumerate(self.pairs):
             distance = float(np.linalg.norm(np.asarray(pair.source) - self.eye))
             lines.append(f"  {i:4d}  {pair.weight:6.3g}  {self.initial_distances[i]:15.4g}  "
-                         f"{self.distances[i]:14.4g}  {distance:9.4g}")
+                         f"{self.distances[i]:14.4g}  {margins[i]:10.4g}  {'yes' if met[i] else 'NO ':3s}  {distance:9.4g}")
         info = {p["name"]: p for p in self.start.param_info}
         start, solved = self.start.params, self.field.params
         lines.append("  parameter            start          solved         unit")
@@ -195,6 +230,9 @@ class EditResult:
             lines.append("  held fixed: " + ", ".join(fixed))
         if self.insensitive:
             lines.append("  no pair depends on (held fixed): " + ", ".join(self.insensitive))
+        if self.stages:
+            lines.append(f"  strategy {self.strategy}:")
+            lines += ["    " + stage for stage in self.stages]
         lines.append("  " + self.message)
         return "\n".join(lines)
 
@@ -212,6 +250,7 @@ def solve(
     free: Optional[Sequence[str]] = None,
     backend: str = "ceres",
     *,
+    strategy: str = "auto",
     bounds: Optional[Dict[str, Tuple[float, float]]] = None,
     starts: int = 1,
     seed: int = 0,
@@ -234,6 +273,9 @@ def solve(
     parameter_tolerance: float = 1e-12,
     gradient_tolerance: float = 1e-16,
     progress: Union[bool, Callable[[int, int], None]] = False,
+    quick_iterations: Optional[int] = None,
+    design_per_param: Optional[int] = None,
+    local_starts: Optional[int] = None,
 ) -> EditResult:
     """Solve for the parameters of `field` that make each pair's light path pass its source.
 
@@ -248,6 +290,11 @@ def solve(
             Free parameters on which no pair depends are held fixed and listed in
             result.insensitive.
         backend: 'ceres' or 'nlopt:<ALGORITHM>' (see NLOPT_ALGORITHMS; any nlopt name works).
+        strategy: 'auto' (default) -- a short local solve from `field` (quick_iterations); if it
+            does not meet every pair, a global stage (scans along each free parameter's axis and
+            quasi-random points over the bounds and near the start, costs in parallel on all
+            cores) and local solves from its best points (at most local_starts) until one meets
+            every pair; result.stages says what ran. 'local' -- the back-end from `field` only.
         bounds: {name: (lower, upper)} overriding the model's search box.
         starts: number of starts; the first is `field`, the others uniform in the bounds (seeded by
             `seed`); the best result is returned with times and evaluations summed.
@@ -265,7 +312,11 @@ def solve(
         trust_region: ceres' initial trust-region radius as a fraction of each free parameter's
             bound range (default 0.1: cautious first steps; narrow layers have flat regions a bold
             step lands in).
-        accept_angle: a pair is met when its miss is at most ``accept_angle * |source - eye|`` (accept_angle [rad]).
+        accept_angle: a pair is met when its miss is at most its margin plus
+            ``accept_angle * |source - eye|`` (accept_angle [rad]).
+        quick_iterations, design_per_param, local_starts: the 'auto' strategy's first local
+            solve's iterations, design points per free parameter, local solves from the design
+            (defaults: refracta's _core._SolveSettings()).
         progress: True for a bar on stderr, or a callable progress(done, total).
 
     Returns:
@@ -277,7 +328,7 @@ def solve(
             algorithm, bounds not containing the start. refracta.NumericalError: the start field
             cannot trace the pairs. KeyboardInterrupt on Ctrl-C.
     """
-    pairs, eye, camera, origins, directions, sources, weights = _pair_rays(eye_or_camera, pairs)
+    pairs, eye, camera, origins, directions, sources, weights, margins = _pair_rays(eye_or_camera, pairs)
     if not isinstance(field, _core.IndexField):
         raise ValueError(f"field must be an IndexField (got {type(field).__name__})")
     if isinstance(starts, bool) or int(starts) != starts or starts < 1:
@@ -295,6 +346,13 @@ def solve(
     options = _pair_options(integrator, tol, step, ground, distance, reach)
     settings = _core._SolveSettings()
     settings.backend = backend
+    settings.strategy = strategy
+    for name, value in (("quick_iterations", quick_iterations), ("design_per_param", design_per_param),
+                        ("local_starts", local_starts)):
+        if value is not None:
+            if isinstance(value, bool) or int(value) != value:
+                raise ValueError(f"{name} must be a whole number (got {value!r})")
+            setattr(settings, name, int(value))
     settings.max_iterations = int(max_iterations)
     settings.max_evaluations = int(max_evaluations)
     settings.max_time = 0.0 if max_time is None else float(max_time)
@@ -311,7 +369,7 @@ def solve(
     callback = ProgressBar(f"editing ({backend})") if progress is True else (progress or None)
 
     def run(start_field):
-        return _core._solve_edit(start_field, origins, directions, sources, weights, free or [], bounds,
+        return _core._solve_edit(start_field, origins, directions, sources, weights, margins, free or [], bounds,
                                  derivatives, options, settings, callback)
 
     initial = _core._pair_distances(field, origins, directions, sources, options)
@@ -342,6 +400,8 @@ def solve(
         converged=best["converged"], message=best["message"], history=best["history"], free=best["free"],
         insensitive=best["insensitive"], backend=backend, derivatives=best["derivatives"], starts=int(starts),
         trace_options=dict(integrator=integrator, tol=tol, step=step, ground=ground, reach=reach),
+        margins=margins, met=np.asarray(best["met"], dtype=bool), strategy=best["strategy"],
+        stages=list(best["stages"]), solver_report=best["solver_report"],
     )
 
 
@@ -349,7 +409,7 @@ def distances(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair]
               integrator: str = "rk45", tol: float = 1e-9, step: Optional[float] = None,
               ground: Optional[float] = None, reach: float = 1.5) -> np.ndarray:
     """Each pair's miss [m]: how far the path launched toward its destination passes its source."""
-    _, _, _, origins, directions, sources, _ = _pair_rays(eye_or_camera, pairs)
+    _, _, _, origins, directions, sources, _, _ = _pair_rays(eye_or_camera, pairs)
     return _core._pair_distances(field, origins, directions, sources,
                                  _pair_options(integrator, tol, step, ground, distance, reach))
 
@@ -360,9 +420,9 @@ def jacobian(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair],
              reach: float = 1.5) -> Tuple[np.ndarray, np.ndarray, List[str]]:
     """(residuals (3P,), Jacobian (3P, F), free names) at `field`: the weighted miss vectors an
     edit minimises and their derivatives in the free parameters (for sensitivity studies)."""
-    _, _, _, origins, directions, sources, weights = _pair_rays(eye_or_camera, pairs)
+    _, _, _, origins, directions, sources, weights, margins = _pair_rays(eye_or_camera, pairs)
     free = [free] if isinstance(free, str) else list(free or [])
-    return _core._pair_jacobian(field, origins, directions, sources, weights, free, derivatives,
+    return _core._pair_jacobian(field, origins, directions, sources, weights, margins, free, derivatives,
                                 _pair_options(integrator, tol, step, ground, distance, reach))
 
 
@@ -372,7 +432,7 @@ def load_pairs(path, scene: Optional[_core.Scene] = None, camera: Optional[_core
     Format::
 
         {"pairs": [{"destination": [u, v] or [x, y, z], "source": [x, y, z] or {"pixel": [u, v]},
-                    "weight": 1.0}, ...],
+                    "weight": 1.0, "margin": 0.0}, ...],
          "free": ["surface_dt"], "backend": "ceres", "ground": 0.0}      # optional solve() options
 
     A source given as a pixel is the scene point the camera sees there without atmosphere
@@ -398,7 +458,7 @@ def load_pairs(path, scene: Optional[_core.Scene] = None, camera: Optional[_core
         where = f"{path}: pairs[{i}]"
         if not isinstance(entry, dict) or "destination" not in entry or "source" not in entry:
             raise ValueError(f"{where}: needs 'destination' and 'source'")
-        unknown = set(entry) - {"destination", "source", "weight"}
+        unknown = set(entry) - {"destination", "source", "weight", "margin"}
         if unknown:
             raise ValueError(f"{where}: unknown key '{sorted(unknown)[0]}'")
         source = entry["source"]
@@ -410,7 +470,7 @@ def load_pairs(path, scene: Optional[_core.Scene] = None, camera: Optional[_core
             if source is None:
                 raise ValueError(f"{where}: the camera sees no scene object at pixel ({u:g}, {v:g})")
         try:
-            pairs.append(PointPair(entry["destination"], source, entry.get("weight", 1.0)))
+            pairs.append(PointPair(entry["destination"], source, entry.get("weight", 1.0), entry.get("margin", 0.0)))
         except ValueError as error:
             raise ValueError(f"{where}: {error}") from None
     options = {k: v for k, v in data.items() if k != "pairs"}

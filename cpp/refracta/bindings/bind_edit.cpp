@@ -11,18 +11,21 @@ namespace refracta {
 namespace {
 
 std::vector<PointPair> make_pairs(const py::object& origins, const py::object& directions,
-                                  const py::object& sources, const py::object& weights) {
+                                  const py::object& sources, const py::object& weights,
+                                  const py::object& margins = py::none()) {
   const std::vector<Vec3d> o = to_points(origins, "eye positions");
   const std::vector<Vec3d> d = to_points(directions, "destination directions");
   const std::vector<Vec3d> s = to_points(sources, "sources");
   const std::vector<double> w =
       weights.is_none() ? std::vector<double>(o.size(), 1.0) : to_values(weights, "weights");
-  if (o.size() != d.size() || o.size() != s.size() || o.size() != w.size()) {
-    throw_invalid("one eye, direction, source and weight per pair (got ", o.size(), ", ", d.size(),
-                  ", ", s.size(), ", ", w.size(), ")");
+  const std::vector<double> margin =
+      margins.is_none() ? std::vector<double>(o.size(), 0.0) : to_values(margins, "margins");
+  if (o.size() != d.size() || o.size() != s.size() || o.size() != w.size() || o.size() != margin.size()) {
+    throw_invalid("one eye, direction, source, weight and margin per pair (got ", o.size(), ", ", d.size(),
+                  ", ", s.size(), ", ", w.size(), ", ", margin.size(), ")");
   }
   std::vector<PointPair> pairs(o.size());
-  for (size_t i = 0; i < o.size(); ++i) pairs[i] = {o[i], d[i], s[i], w[i]};
+  for (size_t i = 0; i < o.size(); ++i) pairs[i] = {o[i], d[i], s[i], w[i], margin[i]};
   return pairs;
 }
 
@@ -61,6 +64,10 @@ void bind_edit(py::module_& m) {
   py::class_<SolveSettings>(m, "_SolveSettings")
       .def(py::init<>())
       .def_readwrite("backend", &SolveSettings::backend)
+      .def_readwrite("strategy", &SolveSettings::strategy)
+      .def_readwrite("quick_iterations", &SolveSettings::quick_iterations)
+      .def_readwrite("design_per_param", &SolveSettings::design_per_param)
+      .def_readwrite("local_starts", &SolveSettings::local_starts)
       .def_readwrite("max_iterations", &SolveSettings::max_iterations)
       .def_readwrite("max_evaluations", &SolveSettings::max_evaluations)
       .def_readwrite("max_time", &SolveSettings::max_time)
@@ -76,15 +83,16 @@ void bind_edit(py::module_& m) {
 
   m.def("_solve_edit",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
-           const py::object& sources, const py::object& weights, const std::vector<std::string>& free,
-           const std::map<std::string, std::pair<double, double>>& bounds, const std::string& derivatives,
-           const PairOptions& pair_options, const SolveSettings& settings, const py::object& progress) {
+           const py::object& sources, const py::object& weights, const py::object& margins,
+           const std::vector<std::string>& free, const std::map<std::string, std::pair<double, double>>& bounds,
+           const std::string& derivatives, const PairOptions& pair_options, const SolveSettings& settings,
+           const py::object& progress) {
           ProblemSpec spec;
           spec.free = free;
           spec.bounds = bounds;
           spec.derivatives = parse_derivatives(derivatives, *checked(field));
           spec.pair = pair_options;
-          const std::vector<PointPair> pairs = make_pairs(origins, directions, sources, weights);
+          const std::vector<PointPair> pairs = make_pairs(origins, directions, sources, weights, margins);
           settings.validate();
           WorkControl control;
           SolveSummary s;
@@ -116,10 +124,14 @@ void bind_edit(py::module_& m) {
           out["converged"] = s.converged;
           out["success"] = s.success;
           out["message"] = s.message;
+          out["met"] = std::vector<bool>(s.met.begin(), s.met.end());
+          out["strategy"] = s.strategy;
+          out["stages"] = s.stages;
+          out["solver_report"] = s.solver_report;
           return out;
         },
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"),
-        py::arg("weights"), py::arg("free"), py::arg("bounds"), py::arg("derivatives"),
+        py::arg("weights"), py::arg("margins"), py::arg("free"), py::arg("bounds"), py::arg("derivatives"),
         py::arg("pair_options"), py::arg("settings"), py::arg("progress"));
 
   m.def("_pair_distances",
@@ -138,15 +150,15 @@ void bind_edit(py::module_& m) {
 
   m.def("_pair_jacobian",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
-           const py::object& sources, const py::object& weights, const std::vector<std::string>& free,
-           const std::string& derivatives, const PairOptions& options) {
+           const py::object& sources, const py::object& weights, const py::object& margins,
+           const std::vector<std::string>& free, const std::string& derivatives, const PairOptions& options) {
           ProblemSpec spec;
           spec.free = free;
           spec.derivatives = parse_derivatives(derivatives, *checked(field));
           spec.pair = options;
           // Bounds are irrelevant here: open them so any start is accepted.
           for (const auto& name : free) spec.bounds[name] = {-1e300, 1e300};
-          EditProblem problem(field, make_pairs(origins, directions, sources, weights), spec, nullptr);
+          EditProblem problem(field, make_pairs(origins, directions, sources, weights, margins), spec, nullptr);
           std::vector<double> r, jacobian;
           bool ok;
           {
@@ -161,7 +173,7 @@ void bind_edit(py::module_& m) {
           return py::make_tuple(residuals, jac, problem.free_names());
         },
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"),
-        py::arg("weights"), py::arg("free"), py::arg("derivatives"), py::arg("options"));
+        py::arg("weights"), py::arg("margins"), py::arg("free"), py::arg("derivatives"), py::arg("options"));
 }
 
 }  // namespace refracta

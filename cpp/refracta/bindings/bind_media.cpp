@@ -3,9 +3,12 @@
 #include "refracta/bindings/custom_field.h"
 #include "refracta/media/curved_earth.h"
 #include "refracta/media/fields.h"
+#include "refracta/media/hot_spot.h"
 #include "refracta/media/tabulated_height_field.h"
 
+#include <optional>
 #include <set>
+#include <type_traits>
 #include <sstream>
 
 namespace refracta {
@@ -131,27 +134,161 @@ void add_air_column(Class& cls) {
            py::arg("heights"), "Hydrostatic pressure [Pa] at the given heights [m].");
 }
 
+// Whether a model's Config carries hot spots.
+template <class Config, class = void>
+struct HasHotSpots : std::false_type {};
+template <class Config>
+struct HasHotSpots<Config, std::void_t<decltype(std::declval<Config&>().hot_spots)>> : std::true_type {};
+
+// The hot spots given to a field's constructor: a HotSpot or a sequence of them. PhysicalAtmosphere
+// takes a spot without depth as deep as its surface layer; LogisticProfile's spots have no depth.
+std::vector<HotSpot> hot_spots_from_python(const char* model, const py::handle& object, bool with_depth,
+                                           double default_depth) {
+  std::vector<HotSpot> spots;
+  if (object.is_none()) return spots;
+  if (py::isinstance<HotSpot>(object)) return hot_spots_from_python(model, py::make_tuple(object), with_depth, default_depth);
+  if (!py::isinstance<py::sequence>(object) || py::isinstance<py::str>(object)) {
+    throw_invalid(model, ": hot_spots must be a HotSpot or a list of them (got ", std::string(py::str(object.get_type())), ")");
+  }
+  for (const py::handle& item : object) {
+    if (!py::isinstance<HotSpot>(item)) {
+      throw_invalid(model, ": hot_spots[", spots.size(), "] must be a refracta.HotSpot (got ",
+                    std::string(py::str(item.get_type())), ")");
+    }
+    HotSpot spot = py::cast<HotSpot>(item);
+    if (!with_depth && !std::isnan(spot.depth)) {
+      throw_invalid(model, ": hot_spots[", spots.size(), "] has depth ", spot.depth,
+                    "; a LogisticProfile spot takes its vertical width from a_hot (leave depth None)");
+    }
+    if (with_depth && std::isnan(spot.depth)) spot.depth = default_depth;
+    spots.push_back(spot);
+  }
+  return spots;
+}
+
 template <class Field>
 py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m, const char* name,
                                                                  const std::string& doc) {
+  using Config = typename Field::Config;
   const auto specs = Field::param_specs_for({});
   py::class_<Field, IndexField, std::shared_ptr<Field>> cls(m, name, (doc + param_table(specs)).c_str());
-  cls.def(py::init([specs](const py::args& args, const py::kwargs& kwargs) {
-    return std::make_shared<Field>(typename Field::Config{},
-                                   values_from(Field::model_name(), specs, default_values(specs), 0, args, kwargs));
+  cls.def(py::init([specs](const py::args& args, py::kwargs kwargs) {
+    Config config{};
+    std::vector<double> values = values_from(Field::model_name(), specs, default_values(specs), 0, args, [&] {
+      py::kwargs rest;
+      for (const auto& item : kwargs) {
+        if (py::cast<std::string>(item.first) != "hot_spots") rest[item.first] = item.second;
+      }
+      return rest;
+    }());
+    if constexpr (HasHotSpots<Config>::value) {
+      if (kwargs.contains("hot_spots")) {
+        constexpr bool with_depth = Field::ModelType::kSpotsHaveDepth;
+        double depth = 0.0;
+        for (size_t i = 0; i < specs.size(); ++i) {
+          if (specs[i].name == "surface_depth") depth = values[i];
+        }
+        config.hot_spots = hot_spots_from_python(Field::model_name(), kwargs["hot_spots"], with_depth, depth);
+        for (const ParamSpec& spec : Field::param_specs_for(config)) {
+          if (spec.name.rfind("hot_spot", 0) == 0) values.push_back(spec.default_value);
+        }
+      }
+    } else if (kwargs.contains("hot_spots")) {
+      throw_invalid(Field::model_name(), " takes no hot_spots");
+    }
+    return std::make_shared<Field>(config, values);
   }));
-  // Pickled as its parameter values, rebuilt (and validated) by the model's constructor.
-  cls.def(py::pickle([](const Field& f) { return py::make_tuple(f.param_values()); },
-                     [](const py::tuple& state) {
-                       if (state.size() != 1) throw_invalid(Field::model_name(), ": bad pickle state");
-                       return std::make_shared<Field>(typename Field::Config{}, py::cast<std::vector<double>>(state[0]));
-                     }));
+  if constexpr (HasHotSpots<Config>::value) {
+    cls.def_property_readonly("hot_spots", [](const Field& f) {
+      const size_t first = Field::param_specs_for(Config{}).size();
+      constexpr bool with_depth = Field::ModelType::kSpotsHaveDepth;
+      std::vector<HotSpot> spots = hot_spots_from(f.config().hot_spots, f.param_values(), first, with_depth);
+      if (!with_depth) {
+        for (HotSpot& spot : spots) spot.depth = std::nan("");
+      }
+      return spots;
+    }, "The hot spots with their current parameter values (a list of HotSpot).");
+    // Pickled as its parameter values and hot spots as made, rebuilt (and validated) by the model.
+    cls.def(py::pickle([](const Field& f) { return py::make_tuple(f.param_values(), f.config().hot_spots); },
+                       [](const py::tuple& state) {
+                         if (state.size() != 2) throw_invalid(Field::model_name(), ": bad pickle state");
+                         Config config{};
+                         config.hot_spots = py::cast<std::vector<HotSpot>>(state[1]);
+                         return std::make_shared<Field>(config, py::cast<std::vector<double>>(state[0]));
+                       }));
+  } else {
+    // Pickled as its parameter values, rebuilt (and validated) by the model's constructor.
+    cls.def(py::pickle([](const Field& f) { return py::make_tuple(f.param_values()); },
+                       [](const py::tuple& state) {
+                         if (state.size() != 1) throw_invalid(Field::model_name(), ": bad pickle state");
+                         return std::make_shared<Field>(Config{}, py::cast<std::vector<double>>(state[0]));
+                       }));
+  }
   return cls;
+}
+
+void bind_hot_spot(py::module_& m) {
+  py::class_<HotSpot>(m, "HotSpot", R"doc(
+An areal hot (dt > 0) or cold (dt < 0) patch of ground centred at (x, z) [m]: the air above it is
+warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre, with footprint
+'gaussian' F = exp(-r^2 / (2 radius^2)) or 'compact' F = (1 - r/R)^4 (4 r/R + 1) for r < R = radius
+(Wendland's C2 function: exactly zero outside). Give it to PhysicalAtmosphere(hot_spots=[...])
+(dt [K]; depth [m], None: the atmosphere's surface_depth) or LogisticProfile(hot_spots=[...])
+(dt: strength of the profile's hot-spot term there, 1 = the whole term; depth must be None: the
+term's width is a_hot). The fields expose each spot's numbers as parameters hot_spot<i>_x, _z,
+_radius, _dt (, _depth), so refracta.edit.solve can move, resize and heat them.)doc")
+      .def(py::init([](double x, double z, double radius, double dt, std::optional<double> depth,
+                       const std::string& footprint) {
+             HotSpot s;
+             s.x = x, s.z = z, s.radius = radius, s.dt = dt, s.depth = depth.value_or(std::nan(""));
+             s.footprint = parse_footprint(footprint);
+             const std::pair<const char*, double> finite[] = {{"x", x}, {"z", z}, {"radius", radius}, {"dt", dt}};
+             for (const auto& [what, value] : finite) {
+               if (!std::isfinite(value)) throw_invalid("HotSpot: ", what, " must be finite (got ", value, ")");
+             }
+             if (!(radius > 0.0)) throw_invalid("HotSpot: radius must be > 0 m (got ", radius, ")");
+             if (depth && !(*depth > 0.0 && std::isfinite(*depth))) {
+               throw_invalid("HotSpot: depth must be > 0 m and finite (got ", *depth, ")");
+             }
+             return s;
+           }),
+           py::arg("x"), py::arg("z"), py::arg("radius"), py::arg("dt"), py::arg("depth") = py::none(),
+           py::arg("footprint") = "gaussian")
+      .def_readonly("x", &HotSpot::x)
+      .def_readonly("z", &HotSpot::z)
+      .def_readonly("radius", &HotSpot::radius)
+      .def_readonly("dt", &HotSpot::dt)
+      .def_property_readonly("depth", [](const HotSpot& s) -> std::optional<double> {
+        return std::isnan(s.depth) ? std::nullopt : std::optional<double>(s.depth);
+      })
+      .def_property_readonly("footprint", [](const HotSpot& s) { return std::string(footprint_name(s.footprint)); })
+      .def_property_readonly("reach", &HotSpot::reach,
+                             "Distance [m] beyond which the footprint is below 1e-6 (compact: exactly 0).")
+      .def("__eq__", [](const HotSpot& a, const HotSpot& b) {
+        return a.x == b.x && a.z == b.z && a.radius == b.radius && a.dt == b.dt && a.footprint == b.footprint &&
+               (a.depth == b.depth || (std::isnan(a.depth) && std::isnan(b.depth)));
+      })
+      .def("__repr__", [](const HotSpot& s) {
+        return concat("HotSpot(x=", s.x, ", z=", s.z, ", radius=", s.radius, ", dt=", s.dt, ", depth=",
+                      std::isnan(s.depth) ? std::string("None") : concat(s.depth), ", footprint='",
+                      footprint_name(s.footprint), "')");
+      })
+      .def(py::pickle(
+          [](const HotSpot& s) { return py::make_tuple(s.x, s.z, s.radius, s.dt, s.depth, int(s.footprint)); },
+          [](const py::tuple& t) {
+            if (t.size() != 6) throw_invalid("HotSpot: bad pickle state");
+            HotSpot s;
+            s.x = py::cast<double>(t[0]), s.z = py::cast<double>(t[1]), s.radius = py::cast<double>(t[2]);
+            s.dt = py::cast<double>(t[3]), s.depth = py::cast<double>(t[4]);
+            s.footprint = Footprint(py::cast<int>(t[5]));
+            return s;
+          }));
 }
 
 }  // namespace
 
 void bind_media(py::module_& m) {
+  bind_hot_spot(m);
   py::class_<IndexField, std::shared_ptr<IndexField>>(m, "IndexField", R"doc(
 A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres, y up.
 
@@ -164,6 +301,17 @@ Raises refracta.NumericalError where n <= 0 or is not finite.)doc")
       .def("grad_ior", &grad_of, py::arg("points"), "Gradient of n [1/m] at points (N, 3) -> (N, 3).")
       .def_property_readonly("type_name", &IndexField::type_name)
       .def_property_readonly("height_only", &IndexField::height_only)
+      .def_property_readonly("height_only_part",
+                             [](const IndexField& f) { return std::const_pointer_cast<IndexField>(f.height_only_part()); },
+                             "A field that depends on height alone except in local regions (hot spots): the height-only "
+                             "field that holds outside them; None for other fields.")
+      .def_property_readonly("local_regions", [](const IndexField& f) {
+        py::list out;
+        for (const LocalRegion& r : f.local_regions()) {
+          out.append(py::dict(py::arg("x") = r.x, py::arg("z") = r.z, py::arg("radius") = r.radius, py::arg("top") = r.top));
+        }
+        return out;
+      }, "Where the field differs from height_only_part: vertical cylinders (x, z, radius [m]) below `top` [m].")
       .def_property_readonly("param_names", [](const IndexField& f) {
         std::vector<std::string> names;
         for (const auto& s : f.param_specs()) names.push_back(s.name);
@@ -205,17 +353,23 @@ The original mirage editor's height profile (Choi 2017), in scene units::
            + f(n_hot, 0.3 a_hot, 0, h)) / (|n_bg| + |n_inv| + |n_hot|)
     f(L, w, x0, x) = L / (1 + e^((x0 - x) / w))
 
-Scaling n_bg, n_inv, n_hot together changes nothing (gauge freedom): editing fixes n_bg by default.)doc");
+Scaling n_bg, n_inv, n_hot together changes nothing (gauge freedom): editing fixes n_bg by default.
+hot_spots=[refracta.HotSpot(x, z, radius, strength), ...] localise the hot term: its deficit near
+the ground, n_hot * sigma(-h / (0.3 a_hot)), is scaled by sum_i dt_i F_i(r_i), so the hot layer lies
+only over the spots (parameters hot_spot<i>_x, _z, _radius, _dt).)doc");
 
   bind_model<LinearSquaredProfile>(m, "LinearSquaredProfile", R"doc(
 n^2 = n0^2 + alpha y: rays are parabolas y = y0 + t0 x + alpha x^2 / (4 beta^2), beta = n(y0) cos(e0).)doc");
 
   auto physical = bind_model<PhysicalAtmosphere>(m, "PhysicalAtmosphere", R"doc(
-Real air: U.S. Standard Atmosphere 1976 temperature + a smooth inversion layer + a surface layer
-surface_dt * exp(-h / surface_depth) (h >= 0), hydrostatic pressure, and the index of air from
-Edlen's formula revised by Birch & Downs (1993/94) at `wavelength`, optional relative humidity.
-Defaults give n - 1 = 2.7784e-4 at the ground (15 C, 101325 Pa, 550 nm). Modelled for heights in
-[-1000, 32000] m.)doc");
+Real air: U.S. Standard Atmosphere 1976 temperature (its seven layers to 86 km, geometric heights,
+gravity falling with height) + a smooth inversion layer + a surface layer
+surface_dt * exp(-h / surface_depth) (h >= 0) + areal hot spots (hot_spots=[refracta.HotSpot, ...]),
+hydrostatic pressure, and the index of air from Edlen's formula revised by Birch & Downs (1993/94)
+at `wavelength`, optional relative humidity. Defaults give n - 1 = 2.7784e-4 at the ground (15 C,
+101325 Pa, 550 nm). Modelled for heights in [-1000, 86000] m (uniform above). With hot spots the
+field is no longer height-only: its parameters gain hot_spot<i>_x, _z, _radius, _dt, _depth, and
+height_only_part is the same air without them.)doc");
   add_air_column<PhysicalAtmosphere>(physical);
 
   py::class_<TemperatureProfile, IndexField, std::shared_ptr<TemperatureProfile>> sounding(

@@ -692,6 +692,8 @@ scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc")
       .def_property_readonly("width", &Camera::width)
       .def_property_readonly("height", &Camera::height)
       .def_property_readonly("vfov", &Camera::vfov)
+      .def_property_readonly("pixel_angle", &Camera::pixel_angle,
+                             "The angle [rad] one pixel subtends at the image centre (vertical field of view / height).")
       .def("__repr__", [](const Camera& c) {
         return concat("Camera(position=(", c.position().x(), ", ", c.position().y(), ", ", c.position().z(),
                       "), vfov=", c.vfov(), ", size=", c.width(), "x", c.height(), ")");

@@ -104,13 +104,13 @@ ceres::LossFunction* make_loss(const SolveSettings& settings) {
 
 }  // namespace
 
-BackendResult solve_with_ceres(const EditProblem& problem, const SolveSettings& settings,
-                               WorkControl& control) {
+BackendResult solve_with_ceres(const EditProblem& problem, const std::vector<double>& x0,
+                               const SolveSettings& settings, WorkControl& control) {
   BackendResult out;
   const int m = problem.num_free();
   std::vector<double> unit(m);
   for (int j = 0; j < m; ++j) {
-    unit[j] = (problem.start()[j] - problem.lower()[j]) / (problem.upper()[j] - problem.lower()[j]);
+    unit[j] = (x0[j] - problem.lower()[j]) / (problem.upper()[j] - problem.lower()[j]);
   }
   PairBatch batch(problem, unit);
   ceres::Problem::Options problem_options;
@@ -153,7 +153,8 @@ BackendResult solve_with_ceres(const EditProblem& problem, const SolveSettings& 
                   summary.termination_type == ceres::USER_SUCCESS;
   out.message = concat("ceres (Levenberg-Marquardt): ", ceres::TerminationTypeToString(summary.termination_type),
                        ": ", summary.message);
-  out.x = problem.start();
+  out.report = summary.FullReport();
+  out.x = x0;
   if (summary.IsSolutionUsable()) {
     for (int j = 0; j < m; ++j) {
       out.x[j] = problem.lower()[j] + unit[j] * (problem.upper()[j] - problem.lower()[j]);

@@ -14,7 +14,7 @@ namespace refracta {
 
 EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const ProblemSpec& spec,
                          const std::atomic<bool>* cancel)
-    : field_(std::move(field)), pairs_(std::move(pairs)), options_(spec.pair),
+    : field_(std::move(field)), spec_(spec), pairs_(std::move(pairs)), options_(spec.pair),
       derivatives_(spec.derivatives), context_(std::make_unique<EvaluationContext>()) {
   if (!field_) throw_invalid("field must be an IndexField (got None)");
   options_.validate();
@@ -60,10 +60,17 @@ EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const Pro
     upper_.push_back(hi);
   }
   if (free_.empty()) throw_invalid("no free parameters: name at least one in free");
+  spec_.free = names;
   costs_ = make_pair_costs(field_, values_, free_, pairs_, options_, derivatives_, context_.get());
 }
 
 EditProblem::~EditProblem() = default;
+
+std::unique_ptr<EditProblem> EditProblem::with_tolerance(double tol) const {
+  ProblemSpec spec = spec_;
+  spec.pair.tol = tol;
+  return std::make_unique<EditProblem>(field_, pairs_, spec, context_->cancel);
+}
 
 std::vector<std::string> EditProblem::free_names() const {
   std::vector<std::string> names;
@@ -72,27 +79,47 @@ std::vector<std::string> EditProblem::free_names() const {
 }
 
 bool EditProblem::evaluate(const std::vector<double>& x, std::vector<double>* residuals,
-                           std::vector<double>* jacobian) const {
+                           std::vector<double>* jacobian, bool parallel) const {
   const int m = num_free();
   residuals->assign(num_residuals(), 0.0);
   if (jacobian) jacobian->assign(size_t(num_residuals()) * m, 0.0);
   std::vector<char> ok(pairs_.size(), 0);
-  WorkControl control;
-  parallel_for_each(int64_t(pairs_.size()), 1, control, [&](int64_t i) {
+  auto pair = [&](int64_t i) {
     const double* parameters[] = {x.data()};
     double* block = jacobian ? jacobian->data() + 3 * i * m : nullptr;
     double* blocks[] = {block};
     ok[i] = costs_[i]->Evaluate(parameters, residuals->data() + 3 * i, jacobian ? blocks : nullptr);
-  });
+  };
+  if (parallel) {
+    WorkControl control;
+    parallel_for_each(int64_t(pairs_.size()), 1, control, pair);
+  } else {
+    for (int64_t i = 0; i < int64_t(pairs_.size()) && !context_->cancelled(); ++i) pair(i);
+  }
   return std::all_of(ok.begin(), ok.end(), [](char v) { return v != 0; });
 }
 
-double EditProblem::cost(const std::vector<double>& x) const {
+double EditProblem::cost(const std::vector<double>& x, bool parallel) const {
   std::vector<double> r;
-  if (!evaluate(x, &r)) return std::numeric_limits<double>::infinity();
+  if (!evaluate(x, &r, nullptr, parallel)) return std::numeric_limits<double>::infinity();
   double sum = 0.0;
   for (double v : r) sum += v * v;
   return 0.5 * sum;
+}
+
+int EditProblem::count_met(const std::vector<double>& residuals, double accept_angle) const {
+  int met = 0;
+  for (size_t i = 0; i < pairs_.size(); ++i) {
+    const double length = std::sqrt(std::pow(residuals[3 * i], 2) + std::pow(residuals[3 * i + 1], 2) +
+                                    std::pow(residuals[3 * i + 2], 2));
+    // Beyond its margin the block is sqrt(weight) (miss - margin): met within accept_angle * range.
+    if (length <= std::sqrt(pairs_[i].weight) * accept_angle * pairs_[i].range()) ++met;
+  }
+  return met;
+}
+
+bool EditProblem::all_met(const std::vector<double>& residuals, double accept_angle) const {
+  return count_met(residuals, accept_angle) == int(pairs_.size());
 }
 
 std::vector<double> EditProblem::full_values(const std::vector<double>& x) const {

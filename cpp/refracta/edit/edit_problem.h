@@ -5,6 +5,7 @@
 #include "refracta/edit/pair_cost.h"
 
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -32,6 +33,11 @@ class EditProblem {
               const std::atomic<bool>* cancel);
   ~EditProblem();
 
+  // The same problem with pairs traced to `tol` [m] (the global stage ranks points by a coarser
+  // cost; its results never reach the user).
+  std::unique_ptr<EditProblem> with_tolerance(double tol) const;
+  const PairOptions& pair_options() const { return options_; }
+
   int num_free() const { return int(free_.size()); }
   int num_residuals() const { return 3 * int(pairs_.size()); }
   const std::vector<PointPair>& pairs() const { return pairs_; }
@@ -45,11 +51,18 @@ class EditProblem {
   EvaluationContext& context() const { return *context_; }
 
   // Weighted residuals (3 per pair) at free values x and, if jacobian is given, the row-major
-  // (num_residuals x num_free) Jacobian; pairs in parallel. False when an evaluation failed.
+  // (num_residuals x num_free) Jacobian; pairs in parallel unless `parallel` is false (callers
+  // that run several points at once: each thread then builds the model once per point). False
+  // when an evaluation failed.
   bool evaluate(const std::vector<double>& x, std::vector<double>* residuals,
-                std::vector<double>* jacobian = nullptr) const;
+                std::vector<double>* jacobian = nullptr, bool parallel = true) const;
   // 1/2 sum of squared weighted residuals, or +inf when an evaluation failed.
-  double cost(const std::vector<double>& x) const;
+  double cost(const std::vector<double>& x, bool parallel = true) const;
+  // Whether every pair is met (PointPair::allowed_miss) by these residuals: a residual block's
+  // length is sqrt(weight) times the miss beyond the margin.
+  bool all_met(const std::vector<double>& residuals, double accept_angle) const;
+  // How many pairs these residuals meet.
+  int count_met(const std::vector<double>& residuals, double accept_angle) const;
 
   // Every parameter value with the free ones at x, and the field they make.
   std::vector<double> full_values(const std::vector<double>& x) const;
@@ -59,6 +72,7 @@ class EditProblem {
 
  private:
   FieldPtr field_;
+  ProblemSpec spec_;  // as given, with the free names filled in
   std::vector<PointPair> pairs_;
   PairOptions options_;
   Derivatives derivatives_;

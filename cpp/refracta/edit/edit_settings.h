@@ -13,6 +13,19 @@ namespace refracta {
 struct SolveSettings {
   // "ceres" (Levenberg-Marquardt) or "nlopt:<ALGORITHM>" with any nlopt algorithm name.
   std::string backend = "ceres";
+  // "auto": a short local solve from the start; if it does not meet every pair, the global stage
+  // (global_stage.h: axis scans through the start and quasi-random points of the free box, costs
+  // in parallel) and local solves from its best points until one meets every pair. "local": the
+  // back-end from the start only (the behaviour before strategies).
+  std::string strategy = "auto";
+  // auto: iterations of the first local solve. Measured on benchmarks/bench_edit.py: every case
+  // that LM solves from its start at all is met within 15 iterations.
+  int quick_iterations = 15;
+  // auto: points per free parameter of the global stage (scan points on its axis; as many again
+  // quasi-random points, half over the box, half near the start).
+  int design_per_param = 16;
+  // auto: local solves from the global stage's best points, at most.
+  int local_starts = 4;
   int max_iterations = 200;        // ceres: LM iterations
   int max_evaluations = 3000;      // nlopt: cost evaluations
   double max_time = 0.0;           // [s]; 0: no limit
@@ -50,8 +63,12 @@ struct SolveSummary {
   int64_t pair_traces = 0;           // traced pairs, derivative passes included
   double time = 0.0;                 // [s] solving, set-up excluded
   bool converged = false;            // the back-end ended normally
-  bool success = false;              // converged and every pair met
+  bool success = false;              // every pair met (and, for the local strategy, converged)
+  std::vector<char> met;             // per pair: miss <= PointPair::allowed_miss(accept_angle)
   std::string message;
+  std::string strategy;              // "auto" or "local"
+  std::vector<std::string> stages;   // what the strategy did, one line per stage
+  std::string solver_report;         // the back-end's own report of the run that gave the result
 };
 
 // What a back-end reports; solve() completes the summary.
@@ -62,12 +79,15 @@ struct BackendResult {
   int64_t evaluations = 0;
   bool converged = false;
   std::string message;
+  std::string report;                // ceres: Solver::Summary::FullReport(); nlopt: the message
 };
 
-BackendResult solve_with_ceres(const EditProblem& problem, const SolveSettings& settings,
-                               WorkControl& control);
-BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& algorithm,
+// The back-ends, from free values x0 (inside the bounds).
+BackendResult solve_with_ceres(const EditProblem& problem, const std::vector<double>& x0,
                                const SolveSettings& settings, WorkControl& control);
+BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& algorithm,
+                               const std::vector<double>& x0, const SolveSettings& settings,
+                               WorkControl& control);
 // Throws std::invalid_argument for a name nlopt does not know.
 void check_nlopt_algorithm(const std::string& algorithm);
 

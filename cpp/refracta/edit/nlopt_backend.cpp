@@ -80,15 +80,16 @@ std::string result_name(nlopt::result result) {
 }  // namespace
 
 BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& algorithm,
-                               const SolveSettings& settings, WorkControl& control) {
+                               const std::vector<double>& x0, const SolveSettings& settings,
+                               WorkControl& control) {
   check_nlopt_algorithm(algorithm);
   const int m = problem.num_free();
   BackendResult out;
-  out.x = problem.start();
+  out.x = x0;
   Objective objective{problem, settings, control, out};
   std::vector<double> unit(m);
   for (int i = 0; i < m; ++i) {
-    unit[i] = (problem.start()[i] - problem.lower()[i]) / (problem.upper()[i] - problem.lower()[i]);
+    unit[i] = (x0[i] - problem.lower()[i]) / (problem.upper()[i] - problem.lower()[i]);
   }
   control.total = settings.max_evaluations;
   const std::string prefix = concat("nlopt ", algorithm, ": ");
@@ -142,6 +143,7 @@ BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& al
   }
   if (control.cancel.load()) throw Cancelled();
   out.iterations = int(out.evaluations);
+  out.report = concat(out.message, " after ", out.evaluations, " evaluations; best cost ", objective.best, " m^2");
   return out;
 }
 

@@ -21,10 +21,19 @@ namespace {
 // Jet width: free parameters are differentiated 4 at a time (ceil(m / 4) passes per pair).
 constexpr int kJetStride = 4;
 
+// sqrt(weight) times the miss vector, shortened by the pair's margin (a dead zone: zero while the
+// miss is within it; outside, its length is |miss| - margin, so the cost 1/2 (|miss| - margin)^2
+// and its gradient are continuous at the margin).
 template <class T>
-void write_residuals(const PairMiss<T>& miss, double weight, T* residuals) {
-  const double scale = std::sqrt(weight);
-  for (int k = 0; k < 3; ++k) residuals[k] = miss.miss[k] * scale;
+void write_residuals(const PairMiss<T>& miss, const PointPair& pair, T* residuals) {
+  using std::sqrt;
+  const double scale = std::sqrt(pair.weight);
+  T factor(scale);
+  if (pair.margin > 0.0) {
+    const T length = sqrt(miss.miss.squaredNorm());
+    factor = value_of(length) > pair.margin ? T(scale) * (T(1.0) - T(pair.margin) / length) : T(0.0);
+  }
+  for (int k = 0; k < 3; ++k) residuals[k] = miss.miss[k] * factor;
 }
 
 // Shared by both kinds: the pair, its options and the full parameter vector.
@@ -121,7 +130,7 @@ struct ModelPairCost : PairCostBase {
         miss = pair_miss<T>(model, pair, options, context->cancel);
       }
       record(miss);
-      write_residuals(miss, pair.weight, residuals);
+      write_residuals(miss, pair, residuals);
     });
   }
 };
@@ -136,7 +145,7 @@ struct FieldPairCost : PairCostBase {
       const FieldPtr at = field->with_param_values(full_values(parameters[0]));
       const PairMiss<double> miss = pair_miss<double>(*at, pair, options, context->cancel);
       record(miss);
-      write_residuals(miss, pair.weight, residuals);
+      write_residuals(miss, pair, residuals);
     });
   }
 };

@@ -51,6 +51,9 @@ void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& opti
     if (!(p.weight > 0.0) || !std::isfinite(p.weight)) {
       throw_invalid("pair ", i, ": weight must be > 0 (got ", p.weight, ")");
     }
+    if (!(p.margin >= 0.0) || !std::isfinite(p.margin)) {
+      throw_invalid("pair ", i, ": margin must be >= 0 and finite (got ", p.margin, ")");
+    }
     if (!(p.range() > 0.0)) throw_invalid("pair ", i, ": the source is at the eye");
     if (options.ground && p.origin.y() < *options.ground) {
       throw_invalid("pair ", i, ": the eye (height ", p.origin.y(), " m) is below the ground (",

@@ -17,8 +17,14 @@ struct PointPair {
   Vec3d direction = Vec3d::UnitX(); // toward the destination (any length > 0)
   Vec3d source = Vec3d::UnitX();    // the scene point to be seen along it [m]
   double weight = 1.0;              // importance; the residual is scaled by sqrt(weight)
+  // A miss up to this distance [m] costs nothing (a dead zone: residual = miss (1 - margin/|miss|)
+  // outside it, so the cost stays C1); less important points get larger margins.
+  double margin = 0.0;
 
   double range() const { return (source - origin).norm(); }  // [m]
+  // The largest miss [m] at which the pair counts as met: its margin plus accept_angle [rad]
+  // times its range (a tolerance far below a pixel).
+  double allowed_miss(double accept_angle) const { return margin + accept_angle * range(); }
 };
 
 // How far a path passes from its source.
@@ -44,7 +50,7 @@ struct PairOptions {
 PairDistance parse_pair_distance(const std::string& name);  // "continuous", "vertex"
 
 // Throws std::invalid_argument naming the pair and the bad value (NaN, zero direction,
-// weight <= 0, source at the eye, eye below the ground).
+// weight <= 0, margin < 0, source at the eye, eye below the ground).
 void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& options);
 
 }  // namespace refracta

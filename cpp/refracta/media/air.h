@@ -2,7 +2,8 @@
 //  - Index: Edlén's formula as revised by Birch & Downs (Metrologia 30, 1993, 155; erratum 31,
 //    1994, 315): dry air with 400-450 ppm CO2, plus the water-vapour term. At 550 nm, 15 °C,
 //    101 325 Pa it gives n - 1 = 2.77837e-4 (Ciddor 1996: 2.7784e-4).
-//  - Temperature: U.S. Standard Atmosphere 1976, layers to 32 km, shifted by the ground temperature.
+//  - Temperature: U.S. Standard Atmosphere 1976, its seven layers to 86 km, shifted by the ground
+//    temperature; gravity falls as (r0 / (r0 + h))^2.
 //  - Saturation vapour pressure: Magnus form of Alduchov & Eskridge (1996).
 #pragma once
 
@@ -13,7 +14,7 @@
 namespace refracta {
 
 constexpr double kGravity = 9.80665;           // [m/s^2], standard gravity
-constexpr double kGasConstantDryAir = 287.053;  // [J/(kg K)], R*/M0 of USSA 1976
+constexpr double kGasConstantDryAir = 8314.32 / 28.9644;  // [J/(kg K)], R*/M0 of USSA 1976 (287.05307)
 constexpr double kZeroCelsius = 273.15;         // [K]
 constexpr double kStandardGroundTemperature = 288.15;  // [K]
 constexpr double kStandardLapseRate = 0.0065;          // [K/m], troposphere
@@ -63,42 +64,82 @@ void saturation_vapour_pressure(const T& temperature, T* e_s, T* de_dt) {
   *de_dt = *e_s * T(17.625 * 243.04) / (denom * denom);
 }
 
-// U.S. Standard Atmosphere 1976 temperature [K] and dT/dh [K/m] for heights up to 32 km, with the
-// troposphere's ground temperature and lapse rate as parameters (the standard: 288.15 K, 6.5 K/km).
-// Heights are treated as geopotential (the difference is 0.016 % at 1 km).
+// U.S. Standard Atmosphere 1976 (NOAA-S/T 76-1562), 0 to 86 km: seven layers of constant lapse
+// rate in geopotential height H = r0 h / (r0 + h) (r0 = 6 356 766 m; h geometric). Base heights
+// [m'] and dT/dH [K/m'] above the troposphere; the troposphere's ground temperature and lapse rate
+// are parameters (the standard: 288.15 K, 6.5 K/km'), and the layers above keep the standard
+// steps from the tropopause temperature (so a warmer ground shifts the whole column).
+constexpr double kGeopotentialRadius = 6356766.0;  // [m], r0 of USSA 1976
+constexpr double kTropopause = 11000.0;           // [m']
+struct StandardLayer {
+  double base;   // [m']
+  double slope;  // dT/dH [K/m']
+};
+constexpr StandardLayer kStandardLayers[] = {
+    {11000.0, 0.0}, {20000.0, 0.001}, {32000.0, 0.0028}, {47000.0, 0.0}, {51000.0, -0.0028}, {71000.0, -0.002}};
+constexpr double kStandardTop = 84852.0;  // [m'], 86 km geometric
+
+inline double geopotential_height(double h) { return kGeopotentialRadius * h / (kGeopotentialRadius + h); }
+inline double geometric_height(double geopotential) {
+  return kGeopotentialRadius * geopotential / (kGeopotentialRadius - geopotential);
+}
+// g(h) / g0 = dH/dh = (r0 / (r0 + h))^2.
+template <class T>
+T gravity_ratio(const T& h) {
+  const T ratio = T(kGeopotentialRadius) / (T(kGeopotentialRadius) + h);
+  return ratio * ratio;
+}
+
+// Temperature [K] and dT/dh [K/m] (geometric h [m]) of the standard atmosphere with the given ground
+// temperature [K] and tropospheric lapse rate [K/m']; above 86 km it stays at the top's value.
 template <class T>
 void standard_temperature(const T& h, const T& ground, const T& lapse, T* temperature, T* slope) {
-  const double kTropopause = 11000.0, kStratopause = 20000.0;
-  const double hv = value_of(h);
+  const T geopotential = T(kGeopotentialRadius) * h / (T(kGeopotentialRadius) + h);
+  const double hv = value_of(geopotential);
   if (hv <= kTropopause) {
-    *temperature = ground - lapse * h;
-    *slope = -lapse;
-  } else if (hv <= kStratopause) {
-    *temperature = ground - lapse * kTropopause;
-    *slope = T(0.0);
-  } else {
-    *temperature = ground - lapse * kTropopause + T(0.001) * (h - kStratopause);
-    *slope = T(0.001);
+    *temperature = ground - lapse * geopotential;
+    *slope = -lapse * gravity_ratio(h);
+    return;
   }
+  T t = ground - lapse * kTropopause;
+  double dt_dh = 0.0;
+  const size_t layers = sizeof(kStandardLayers) / sizeof(kStandardLayers[0]);
+  for (size_t i = 0; i < layers; ++i) {
+    const double base = kStandardLayers[i].base;
+    const double next = i + 1 < layers ? kStandardLayers[i + 1].base : kStandardTop;
+    if (hv <= next) {
+      t += kStandardLayers[i].slope * (geopotential - base);
+      dt_dh = kStandardLayers[i].slope;
+      break;
+    }
+    t += kStandardLayers[i].slope * (next - base);  // the whole layer below
+  }
+  *temperature = t;
+  *slope = hv > kStandardTop ? T(0.0) : T(dt_dh) * gravity_ratio(h);
 }
 
 }  // namespace refracta
 
 namespace refracta {
 
-// n(h) and dn/dh of air in hydrostatic balance, from the local pressure [Pa], temperature [K] and
-// its height derivative [K/m], relative humidity [0, 1] and wavelength [nm]:
-//   dn/dh = dN/dP P' + (dN/dT + dN/de RH e_s'(T)) T',   P' = -g P / (R_d T).
+// n of air and its sensitivities to pressure [1/Pa] and temperature [1/K] (water vapour at the
+// relative humidity following the temperature), at pressure [Pa], temperature [K], relative
+// humidity [0, 1] and wavelength [nm].
 template <class T>
-void air_column_index(const T& pressure, const T& temperature, const T& dtemperature_dh,
-                      const T& humidity, const T& wavelength_nm, T* n, T* dn_dh) {
+void air_index_at(const T& pressure, const T& temperature, const T& humidity, const T& wavelength_nm, T* n,
+                  T* dn_dpressure, T* dn_dtemperature) {
   T e_s(0.0), de_dt(0.0);
   if (value_of(humidity) != 0.0) saturation_vapour_pressure(temperature, &e_s, &de_dt);
   const AirIndex<T> air = air_index(pressure, temperature, T(humidity * e_s), wavelength_nm);
-  const T dpressure_dh = -T(kGravity / kGasConstantDryAir) * pressure / temperature;
   *n = T(1.0) + air.n_minus_1;
-  *dn_dh = air.d_pressure * dpressure_dh +
-           (air.d_temperature + air.d_vapour * humidity * de_dt) * dtemperature_dh;
+  *dn_dpressure = air.d_pressure;
+  *dn_dtemperature = air.d_temperature + air.d_vapour * humidity * de_dt;
+}
+
+// dP/dh [Pa/m] of air in hydrostatic balance: -g(h) P / (R_d T).
+template <class T>
+T hydrostatic_pressure_slope(const T& h, const T& pressure, const T& temperature) {
+  return -T(kGravity / kGasConstantDryAir) * gravity_ratio(h) * pressure / temperature;
 }
 
 }  // namespace refracta

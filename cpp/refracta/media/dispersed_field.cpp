@@ -49,6 +49,11 @@ void DispersedField::evaluate_height(double h, double* n, double* dn_dh) const {
   *dn_dh *= scale_;
 }
 
+FieldPtr DispersedField::height_only_part() const {
+  const FieldPtr part = base_->height_only_part();
+  return part ? std::make_shared<DispersedField>(part, scale_) : nullptr;
+}
+
 std::shared_ptr<const IndexField> DispersedField::with_param_values(const std::vector<double>& values) const {
   return std::make_shared<DispersedField>(base_->with_param_values(values), scale_);
 }

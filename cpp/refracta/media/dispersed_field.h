@@ -44,6 +44,9 @@ class DispersedField final : public IndexField {
   std::vector<double> param_values() const override { return base_->param_values(); }
   std::shared_ptr<const IndexField> with_param_values(const std::vector<double>& values) const override;
   std::vector<std::string> gauge_params() const override { return base_->gauge_params(); }
+  // The base's height-only part, dispersed alike; its regions.
+  FieldPtr height_only_part() const override;
+  std::vector<LocalRegion> local_regions() const override { return base_->local_regions(); }
 
   const FieldPtr& base() const { return base_; }
   double scale() const { return scale_; }

@@ -22,8 +22,9 @@ class AirModelField : public ModelField<Model>, public AirColumn {
   double pressure(double h) const override { return this->model().pressure(h); }
 
  protected:
-  std::shared_ptr<const IndexField> make_with(const std::vector<double>& values) const override {
-    return std::make_shared<AirModelField>(this->config(), values);
+  std::shared_ptr<const IndexField> make(const typename ModelField<Model>::Config& config,
+                                         const std::vector<double>& values) const override {
+    return std::make_shared<AirModelField>(config, values);
   }
 };
 

@@ -1,5 +1,6 @@
 // Hydrostatic pressure of an air column with an arbitrary temperature profile:
-//   ln P(h) = ln P(h_ref) - (g/R_d) J(h),   J(h) = integral from h_ref to h of dz / T(z).
+//   ln P(h) = ln P(h_ref) - (g0/R_d) J(h),   J(h) = integral from h_ref to h of (g(z)/g0) dz / T(z),
+// with gravity falling as g(z)/g0 = (r0 / (r0 + z))^2 (air.h).
 // J is tabulated once at construction on a node set the profile chooses (fine where T varies
 // fast), each interval by 4-point Gauss-Legendre, and read back by cubic Hermite interpolation
 // with the exact J' = 1/T at the nodes; the interpolation error is below 1e-12 relative for the
@@ -17,12 +18,17 @@
 
 namespace refracta {
 
-// Sorted, de-duplicated nodes: [lo, hi] every `step`, plus finer runs (from, to, step).
+// Sorted, de-duplicated nodes: [lo, hi] every `step`, plus finer runs (from, to, step), plus
+// `extra` nodes (kinks of the profile, where the interpolant must not straddle a jump of T').
 struct NodeRun {
   double from, to, step;
 };
-inline std::vector<double> make_nodes(double lo, double hi, std::vector<NodeRun> runs) {
+inline std::vector<double> make_nodes(double lo, double hi, std::vector<NodeRun> runs,
+                                      const std::vector<double>& extra = {}) {
   std::vector<double> nodes;
+  for (double h : extra) {
+    if (h > lo && h < hi) nodes.push_back(h);
+  }
   for (const auto& run : runs) {
     const double from = std::max(lo, run.from), to = std::min(hi, run.to);
     if (!(to > from) || !(run.step > 0.0)) continue;
@@ -52,7 +58,7 @@ class HydrostaticColumn {
     using std::log;
     j_.resize(nodes_.size());
     inv_t_.resize(nodes_.size());
-    for (size_t i = 0; i < nodes_.size(); ++i) inv_t_[i] = T(1.0) / checked(temperature, nodes_[i]);
+    for (size_t i = 0; i < nodes_.size(); ++i) inv_t_[i] = integrand(temperature, nodes_[i]);
     // J from the lowest node, then shifted so that J(h_ref) = 0.
     j_[0] = T(0.0);
     static const double kX[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
@@ -62,7 +68,7 @@ class HydrostaticColumn {
     for (size_t i = 1; i < nodes_.size(); ++i) {
       const double a = nodes_[i - 1], b = nodes_[i], half = 0.5 * (b - a), mid = 0.5 * (a + b);
       T sum(0.0);
-      for (int q = 0; q < 4; ++q) sum += kW[q] / checked(temperature, mid + half * kX[q]);
+      for (int q = 0; q < 4; ++q) sum += kW[q] * integrand(temperature, mid + half * kX[q]);
       j_[i] = j_[i - 1] + half * sum;
     }
     const T j_ref = integral(T(h_ref));
@@ -79,6 +85,12 @@ class HydrostaticColumn {
   }
 
  private:
+  // J'(h) = (g(h)/g0) / T(h).
+  template <class Profile>
+  T integrand(const Profile& temperature, double h) const {
+    return T(gravity_ratio(h)) / checked(temperature, h);
+  }
+
   template <class Profile>
   T checked(const Profile& temperature, double h) const {
     T t, slope;
@@ -110,7 +122,7 @@ class HydrostaticColumn {
   }
 
   std::vector<double> nodes_;
-  std::vector<T> j_, inv_t_;
+  std::vector<T> j_, inv_t_;  // J and J' at the nodes
   T log_p_ref_;
   const char* owner_ = "";
 };
@@ -127,6 +139,16 @@ struct HydrostaticAirModel : HeightOnlyModel<Derived, T> {
     using std::exp;
     return exp(self().column().log_pressure(h));
   }
+  // The column's pressure P [Pa], its temperature t [K] and their height slopes at h, clamped to
+  // the modelled top (above it the air is uniform: slopes 0).
+  void column_state(const T& h, T* p, T* dp_dh, T* t, T* dt_dh) const {
+    const double top = self().column().highest();
+    const T at = value_of(h) > top ? T(top) : h;
+    self().temperature(at, t, dt_dh);
+    *p = pressure(at);
+    *dp_dh = hydrostatic_pressure_slope(at, *p, *t);
+    if (value_of(h) > top) *dp_dh = *dt_dh = T(0.0);
+  }
 
   // Above the modelled column the air is taken as uniform at its top state: n(top), no gradient.
   // A ray climbing out of the column then leaves straight along its direction at the top, as it
@@ -135,17 +157,10 @@ struct HydrostaticAirModel : HeightOnlyModel<Derived, T> {
   double uniform_above() const { return self().column().highest(); }
 
   void evaluate_height(const T& h, T* n, T* dn_dh) const {
-    const double top = self().column().highest();
-    if (value_of(h) > top) {
-      T t, dt;
-      self().temperature(T(top), &t, &dt);
-      air_column_index(pressure(T(top)), t, dt, self().humidity(), self().wavelength(), n, dn_dh);
-      *dn_dh = T(0.0);
-      return;
-    }
-    T t, dt;
-    self().temperature(h, &t, &dt);
-    air_column_index(pressure(h), t, dt, self().humidity(), self().wavelength(), n, dn_dh);
+    T p, dp, t, dt, dn_dp, dn_dt;
+    column_state(h, &p, &dp, &t, &dt);
+    air_index_at(p, t, self().humidity(), self().wavelength(), n, &dn_dp, &dn_dt);
+    *dn_dh = dn_dp * dp + dn_dt * dt;
   }
 
  private:

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "refracta/core/math.h"
+#include "refracta/media/local_region.h"
 
 #include <limits>
 #include <memory>
@@ -48,6 +49,10 @@ class IndexField {
   // Height-only fields: n is constant (grad n = 0) at every height above this one [m] (+inf: no
   // such height). A ray above it goes straight: the stratified tracer ends the path in one step.
   virtual double uniform_above() const { return std::numeric_limits<double>::infinity(); }
+  // Fields that depend on height alone except in a few bounded regions (areal hot spots, a
+  // turbulent layer): the height-only field that holds outside local_regions(); null otherwise.
+  virtual std::shared_ptr<const IndexField> height_only_part() const { return nullptr; }
+  virtual std::vector<LocalRegion> local_regions() const { return {}; }
 
   // evaluate, throwing NumericalError when n <= 0 or anything is not finite.
   void evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const;
@@ -76,10 +81,12 @@ class AirColumn {
   virtual double pressure(double h) const = 0;     // [Pa]
 };
 
-// Mixin giving a height-only model its 3D evaluate from evaluate_height.
+// Mixin giving a height-only model its 3D evaluate from evaluate_height. A model whose height
+// dependence can be broken by local features (hot spots, turbulence) hides height_only() and
+// evaluate() with its own.
 template <class Derived, class T>
 struct HeightOnlyModel {
-  static constexpr bool kHeightOnly = true;
+  bool height_only() const { return true; }
   void evaluate(const Vec3<T>& p, T* n, Vec3<T>* grad) const {
     T dn_dh;
     static_cast<const Derived*>(this)->evaluate_height(p.y(), n, &dn_dh);

@@ -6,9 +6,17 @@
 //   f(L, w, x0, x) = L / (1 + e^((x0 - x)/w)).
 // Gauge freedom: scaling (n_bg, n_inv, n_hot) together changes nothing (the normaliser divides it
 // out), so an optimiser must hold one amplitude fixed: gauge_params() names n_bg.
+//
+// Areal hot spots (the follow-up's "the hot spot does not consider its spatial location"): the hot
+// term's deficit near the ground, n_hot - f(n_hot, w, 0, h) = n_hot sigma(-h/w) (w = 0.3 a_hot), is
+// scaled by S(x, z) = sum_i dt_i F_i(r_i) (hot_spot.h; dt_i the spot's strength, 1 = the whole
+// term), so the hot layer is there only over the spots and n_hot's constant far value elsewhere:
+//   hot term = n_hot (1 - S(x, z) sigma(-h/w)).
+// Without spots the term is the profile's own, n_hot (1 - sigma(-h/w)) = f(n_hot, w, 0, h).
 #pragma once
 
 #include "refracta/core/error.h"
+#include "refracta/media/hot_spot.h"
 #include "refracta/media/index_field.h"
 #include "refracta/media/logistic.h"
 
@@ -16,14 +24,30 @@
 
 namespace refracta {
 
+// The fixed data of a LogisticProfile besides its parameters: its hot spots as made, and whether
+// the hot layer is off (the height-only part of a profile with spots: the hot term at its far value).
+struct LogisticConfig {
+  std::vector<HotSpot> hot_spots;
+  bool hot_layer_off = false;
+};
+
 template <class T>
 class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
  public:
-  using Config = NoConfig;
+  using Config = LogisticConfig;
   static constexpr const char* kTypeName = "LogisticProfile";
   enum Index { kNBg, kNInv, kNHot, kHCiso, kABg, kAInv, kAHot, kKs, kCount };
 
-  static std::vector<ParamSpec> param_specs(const Config&) {
+  static std::vector<ParamSpec> param_specs(const Config& config) {
+    std::vector<ParamSpec> specs = base_param_specs();
+    const ParamSpec dt{"dt", 1.0, 0.0, 10.0, "1", "strength of the hot-spot term at the centre (1: the whole term)"};
+    for (ParamSpec& spec : hot_spot_param_specs(config.hot_spots, false, dt)) specs.push_back(spec);
+    return specs;
+  }
+  static constexpr bool kSpotsHaveDepth = false;  // whether a spot's depth is a parameter
+  static Config height_only_config(const Config&) { return {{}, true}; }
+
+  static std::vector<ParamSpec> base_param_specs() {
     return {
         {"n_bg", 3.0, -10.0, 10.0, "1", "background amplitude"},
         {"n_inv", 0.1, -10.0, 10.0, "1", "inversion-layer amplitude"},
@@ -37,7 +61,8 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
   }
   static std::vector<std::string> gauge_params() { return {"n_bg"}; }
 
-  static void validate(const Config&, const std::vector<double>& k) {
+  static void validate(const Config& config, const std::vector<double>& k) {
+    validate_hot_spots(kTypeName, k, kCount, config.hot_spots.size(), false);
     const char* widths[] = {"a_bg", "a_inv", "a_hot"};
     for (int i = 0; i < 3; ++i) {
       if (!(k[kABg + i] > 0.0)) {
@@ -54,22 +79,78 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
     }
   }
 
-  LogisticModel(const Config&, const std::vector<T>& k) {
+  LogisticModel(const Config& config, const std::vector<T>& k)
+      : spots_(config.hot_spots), hot_layer_off_(config.hot_layer_off) {
     for (int i = 0; i < kCount; ++i) k_[i] = k[i];
+    const int per = hot_spot_param_count(false);
+    for (size_t i = 0; i < spots_.size(); ++i) {
+      spot_values_.emplace_back(k.begin() + kCount + per * i, k.begin() + kCount + per * (i + 1));
+    }
   }
 
+  bool height_only() const { return spots_.empty(); }
+
   void evaluate_height(const T& h, T* n, T* dn_dh) const {
-    using std::abs;
-    const T scale = T(0.003) * k_[kKs] / (abs(k_[kNBg]) + abs(k_[kNInv]) + abs(k_[kNHot]));
-    T sum(0.0), slope(0.0);
-    add_step(k_[kNBg], T(10.0) * k_[kABg], T(0.0), h, &sum, &slope);
-    add_step(k_[kNInv], T(-0.1) * k_[kAInv], k_[kHCiso], h, &sum, &slope);
-    add_step(k_[kNHot], T(0.3) * k_[kAHot], T(0.0), h, &sum, &slope);
-    *n = T(1.0) + scale * sum;
-    *dn_dh = scale * slope;
+    T sum, slope;
+    background(h, &sum, &slope);
+    if (hot_layer_off_) {
+      sum += k_[kNHot];
+    } else {
+      add_step(k_[kNHot], hot_width(), T(0.0), h, &sum, &slope);
+    }
+    *n = T(1.0) + scale() * sum;
+    *dn_dh = scale() * slope;
+  }
+
+  void evaluate(const Vec3<T>& p, T* n, Vec3<T>* grad) const {
+    if (spots_.empty()) {
+      HeightOnlyModel<LogisticModel<T>, T>::evaluate(p, n, grad);
+      return;
+    }
+    T sum, slope;
+    background(p.y(), &sum, &slope);
+    // S(x, z) and its gradient.
+    T s(0.0), ds_dx(0.0), ds_dz(0.0);
+    for (size_t i = 0; i < spots_.size(); ++i) {
+      const std::vector<T>& v = spot_values_[i];
+      T f, df_dx, df_dz;
+      hot_spot_footprint(spots_[i].footprint, T(p.x() - v[0]), T(p.z() - v[1]), v[2], &f, &df_dx, &df_dz);
+      s += v[3] * f, ds_dx += v[3] * df_dx, ds_dz += v[3] * df_dz;
+    }
+    // n_hot (1 - S sigma(-h/w)): d/dh = n_hot S sigma'(-h/w) / w.
+    const T w = hot_width(), z = -p.y() / w;
+    const T sigma = logistic(z);
+    sum += k_[kNHot] * (T(1.0) - s * sigma);
+    slope += k_[kNHot] * s * logistic_slope(z) / w;
+    *n = T(1.0) + scale() * sum;
+    *grad = Vec3<T>(-scale() * k_[kNHot] * sigma * ds_dx, scale() * slope, -scale() * k_[kNHot] * sigma * ds_dz);
+  }
+
+  // Over each spot's reach, up to where sigma(-h/w) is negligible.
+  std::vector<LocalRegion> local_regions() const {
+    std::vector<LocalRegion> regions;
+    const double top = -std::log(kNegligibleFeature) * value_of(hot_width());
+    for (size_t i = 0; i < spots_.size(); ++i) {
+      HotSpot spot = spots_[i];
+      spot.radius = value_of(spot_values_[i][2]);
+      regions.push_back({value_of(spot_values_[i][0]), value_of(spot_values_[i][1]), spot.reach(), top});
+    }
+    return regions;
   }
 
  private:
+  T scale() const {
+    using std::abs;
+    return T(0.003) * k_[kKs] / (abs(k_[kNBg]) + abs(k_[kNInv]) + abs(k_[kNHot]));
+  }
+  T hot_width() const { return T(0.3) * k_[kAHot]; }
+  // The background and inversion steps and their slope.
+  void background(const T& h, T* sum, T* slope) const {
+    *sum = *slope = T(0.0);
+    add_step(k_[kNBg], T(10.0) * k_[kABg], T(0.0), h, sum, slope);
+    add_step(k_[kNInv], T(-0.1) * k_[kAInv], k_[kHCiso], h, sum, slope);
+  }
+
   // f(L, w, x0, x) = L sigma((x - x0)/w) and its derivative in x.
   static void add_step(const T& amplitude, const T& width, const T& x0, const T& x, T* f,
                        T* df_dx) {
@@ -79,6 +160,9 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
   }
 
   std::array<T, kCount> k_;
+  std::vector<HotSpot> spots_;               // footprints (their numbers are in spot_values_)
+  std::vector<std::vector<T>> spot_values_;  // x, z, radius, dt per spot
+  bool hot_layer_off_ = false;
 };
 
 }  // namespace refracta

@@ -1,11 +1,16 @@
 // ModelField: wraps a scalar-templated model (Model<T>) as a double IndexField, so each model is
 // written once. A model provides:
 //   using Config = ...;       fixed data that is not a parameter, one type for every T (NoConfig)
-//   static const char* kTypeName; static constexpr bool kHeightOnly;
+//   static const char* kTypeName;
 //   static std::vector<ParamSpec> param_specs(const Config&);
 //   static void validate(const Config&, const std::vector<double>&);   throws invalid_argument
 //   Model(const Config&, const std::vector<T>& values);
-//   void evaluate(const Vec3<T>&, T* n, Vec3<T>* grad) const;   (+ evaluate_height if height-only)
+//   void evaluate(const Vec3<T>&, T* n, Vec3<T>* grad) const;
+//   bool height_only() const;  (+ evaluate_height when true; HeightOnlyModel gives both)
+// and, if local features can break its height dependence (hot spots, turbulence):
+//   static Config height_only_config(const Config&);   the model without them: its parameters are
+//                                                       the first ones of the full model's
+//   std::vector<LocalRegion> local_regions() const;     where the two differ
 #pragma once
 
 #include "refracta/core/error.h"
@@ -23,12 +28,18 @@ template <class M, class = void>
 struct HasUniformAbove : std::false_type {};
 template <class M>
 struct HasUniformAbove<M, std::void_t<decltype(std::declval<const M&>().uniform_above())>> : std::true_type {};
+// Whether a model has local features (height_only_config and local_regions).
+template <class M, class = void>
+struct HasLocalFeatures : std::false_type {};
+template <class M>
+struct HasLocalFeatures<M, std::void_t<decltype(std::declval<const M&>().local_regions())>> : std::true_type {};
 }  // namespace detail
 
 template <template <class> class Model>
 class ModelField : public IndexField {
  public:
   using Config = typename Model<double>::Config;
+  using ModelType = Model<double>;
 
   ModelField(Config config, std::vector<double> values)
       : config_(std::move(config)),
@@ -45,13 +56,23 @@ class ModelField : public IndexField {
   void evaluate(const Vec3d& p, double* n, Vec3d* grad) const override {
     model_.evaluate(p, n, grad);
   }
-  bool height_only() const override { return Model<double>::kHeightOnly; }
+  bool height_only() const override { return model_.height_only(); }
   void evaluate_height(double h, double* n, double* dn_dh) const override {
-    if constexpr (Model<double>::kHeightOnly) {
-      model_.evaluate_height(h, n, dn_dh);
-    } else {
-      IndexField::evaluate_height(h, n, dn_dh);
+    if (!model_.height_only()) IndexField::evaluate_height(h, n, dn_dh);  // throws
+    model_.evaluate_height(h, n, dn_dh);
+  }
+  std::shared_ptr<const IndexField> height_only_part() const override {
+    if constexpr (detail::HasLocalFeatures<Model<double>>::value) {
+      if (model_.height_only()) return nullptr;
+      Config base = Model<double>::height_only_config(config_);
+      const size_t count = Model<double>::param_specs(base).size();
+      return make(base, std::vector<double>(values_.begin(), values_.begin() + count));
     }
+    return nullptr;
+  }
+  std::vector<LocalRegion> local_regions() const override {
+    if constexpr (detail::HasLocalFeatures<Model<double>>::value) return model_.local_regions();
+    return {};
   }
   const std::vector<ParamSpec>& param_specs() const override { return specs_; }
   std::vector<double> param_values() const override { return values_; }
@@ -69,9 +90,11 @@ class ModelField : public IndexField {
   const Model<double>& model() const { return model_; }
 
  protected:
-  virtual std::shared_ptr<const IndexField> make_with(const std::vector<double>& values) const {
-    return std::make_shared<ModelField>(config_, values);
+  // A field of the same class from a config and values (AirModelField overrides it).
+  virtual std::shared_ptr<const IndexField> make(const Config& config, const std::vector<double>& values) const {
+    return std::make_shared<ModelField>(config, values);
   }
+  std::shared_ptr<const IndexField> make_with(const std::vector<double>& values) const { return make(config_, values); }
 
  private:
   static std::vector<double> checked(const std::vector<ParamSpec>& specs, const Config& config,

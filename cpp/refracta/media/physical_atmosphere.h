@@ -1,32 +1,51 @@
-// PhysicalAtmosphere: n(h) of real air. Temperature = U.S. Standard Atmosphere 1976 (ground
-// temperature and lapse rate adjustable) + an inversion layer (temperature rising by
+// PhysicalAtmosphere: n of real air. Temperature = U.S. Standard Atmosphere 1976 to 86 km
+// (ground temperature and lapse rate adjustable; air.h) + an inversion layer (temperature rising by
 // inversion_dt across [inversion_base, inversion_base + inversion_thickness], quintic smooth step)
 // + a surface layer surface_dt e^(-h/surface_depth) for h >= 0 (hot road, warm or cold water;
-// continued smoothly below h = 0, where the ground is). Pressure is hydrostatic for that temperature
-// profile (hydrostatic_column.h); n from the modified Edlén formula (air.h), optional humidity.
-// Defaults: the standard atmosphere, n - 1 = 2.7784e-4 at the ground at 550 nm.
+// continued smoothly below h = 0, where the ground is) + areal hot spots (hot_spot.h): patches of
+// ground whose excess dt e^(-h/depth) F(r) depends on the distance r from their centre. Pressure is
+// hydrostatic for the column without the spots and horizontally uniform (a spot's own hydrostatic
+// correction is ~1e-7 of P over a metre-deep layer: ~1e-10 in n); n from the modified Edlen
+// formula (air.h) at the local temperature, optional humidity. Defaults: the standard atmosphere,
+// n - 1 = 2.7784e-4 at the ground at 550 nm. Above 86 km the air is uniform at its top state.
 #pragma once
 
 #include "refracta/core/error.h"
 #include "refracta/media/air.h"
+#include "refracta/media/hot_spot.h"
 #include "refracta/media/hydrostatic_column.h"
 #include "refracta/media/index_field.h"
 #include "refracta/media/smoothstep.h"
 
 namespace refracta {
 
+// The fixed data of a PhysicalAtmosphere besides its parameters: its hot spots as made (their
+// footprints; positions and sizes are parameters).
+struct PhysicalAtmosphereConfig {
+  std::vector<HotSpot> hot_spots;
+};
+
 template <class T>
 class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereModel<T>, T> {
  public:
-  using Config = NoConfig;
+  using Config = PhysicalAtmosphereConfig;
   static constexpr const char* kTypeName = "PhysicalAtmosphere";
   enum Index {
     kGroundTemperature, kLapseRate, kGroundPressure, kInversionDt, kInversionBase,
     kInversionThickness, kSurfaceDt, kSurfaceDepth, kHumidity, kWavelength, kCount
   };
-  static constexpr double kLowest = -1000.0, kHighest = 32000.0;  // modelled heights [m]
+  static constexpr double kLowest = -1000.0, kHighest = 86000.0;  // modelled heights [m]
 
-  static std::vector<ParamSpec> param_specs(const Config&) {
+  static std::vector<ParamSpec> param_specs(const Config& config) {
+    std::vector<ParamSpec> specs = base_param_specs();
+    const ParamSpec dt{"dt", 0.0, -30.0, 60.0, "K", "excess temperature at the centre on the ground"};
+    for (ParamSpec& spec : hot_spot_param_specs(config.hot_spots, true, dt)) specs.push_back(spec);
+    return specs;
+  }
+  static constexpr bool kSpotsHaveDepth = true;  // whether a spot's depth is a parameter
+  static Config height_only_config(const Config&) { return {}; }
+
+  static std::vector<ParamSpec> base_param_specs() {
     return {
         {"t_ground", kStandardGroundTemperature, 220.0, 330.0, "K",
          "air temperature at h = 0 without the surface layer"},
@@ -43,7 +62,8 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
   }
   static std::vector<std::string> gauge_params() { return {}; }
 
-  static void validate(const Config&, const std::vector<double>& v) {
+  static void validate(const Config& config, const std::vector<double>& v) {
+    validate_hot_spots(kTypeName, v, kCount, config.hot_spots.size(), true);
     if (!(v[kGroundPressure] > 0.0)) {
       throw_invalid("PhysicalAtmosphere: pressure must be > 0 Pa (got ", v[kGroundPressure], ")");
     }
@@ -64,19 +84,63 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
     // Positive temperature everywhere is checked while the pressure column is built.
   }
 
-  PhysicalAtmosphereModel(const Config&, const std::vector<T>& v)
-      : p_(v.begin(), v.end()) {
+  PhysicalAtmosphereModel(const Config& config, const std::vector<T>& v)
+      : p_(v.begin(), v.begin() + kCount), spots_(config.hot_spots) {
+    const int per = hot_spot_param_count(true);
+    for (size_t i = 0; i < spots_.size(); ++i) spot_values_.emplace_back(v.begin() + kCount + per * i, v.begin() + kCount + per * (i + 1));
     const double depth = value_of(p_[kSurfaceDepth]);
     const double base = value_of(p_[kInversionBase]), thick = value_of(p_[kInversionThickness]);
+    // Node spacing for the column's 1e-12 accuracy (cubic Hermite with exact slopes, 4-point
+    // Gauss-Legendre per interval): where T is linear (the standard layers) 1/T is smooth on the
+    // scale T/T' > 30 km, so 100 m near the ground and 500 m above 2 km suffice; the layers' kinks
+    // are nodes; the surface layer and the inversion vary on their own scales.
+    std::vector<double> kinks;
+    for (const StandardLayer& layer : kStandardLayers) kinks.push_back(geometric_height(layer.base));
+    kinks.push_back(geometric_height(kStandardTop));
     std::vector<double> nodes = make_nodes(
         kLowest, kHighest,
-        {{kLowest, 2000.0, 10.0}, {2000.0, kHighest, 100.0}, {0.0, 12.0 * depth, depth / 40.0},
-         {base, base + thick, thick / 80.0}});
+        {{kLowest, 2000.0, 100.0}, {2000.0, kHighest, 500.0}, {-12.0 * depth, 12.0 * depth, depth / 10.0},
+         {12.0 * depth, 40.0 * depth, depth / 2.0},
+         {base, base + thick, thick / 40.0}},
+        kinks);
     column_ = HydrostaticColumn<T>([this](const T& h, T* t, T* dt) { temperature(h, t, dt); },
                                    std::move(nodes), 0.0, p_[kGroundPressure], kTypeName);
   }
 
-  // T(h) [K] and dT/dh [K/m].
+  bool height_only() const { return spots_.empty(); }
+
+  // n and grad n at p: the column's air, heated by the spots.
+  void evaluate(const Vec3<T>& p, T* n, Vec3<T>* grad) const {
+    if (spots_.empty()) {
+      HydrostaticAirModel<PhysicalAtmosphereModel<T>, T>::evaluate(p, n, grad);
+      return;
+    }
+    T p_air, dp_dh, t, dt_dh;
+    this->column_state(p.y(), &p_air, &dp_dh, &t, &dt_dh);
+    Vec3<T> grad_t(T(0.0), dt_dh, T(0.0));
+    if (value_of(p.y()) <= column_.highest()) {
+      for (size_t i = 0; i < spots_.size(); ++i) add_spot(i, p, &t, &grad_t);
+    }
+    T dn_dp, dn_dt;
+    air_index_at(p_air, t, p_[kHumidity], p_[kWavelength], n, &dn_dp, &dn_dt);
+    *grad = dn_dt * grad_t;
+    grad->y() += dn_dp * dp_dh;
+  }
+
+  // Where the spots heat the air: a cylinder of each spot's reach, up to where e^(-h/depth) is
+  // negligible.
+  std::vector<LocalRegion> local_regions() const {
+    std::vector<LocalRegion> regions;
+    for (size_t i = 0; i < spots_.size(); ++i) {
+      HotSpot s = spots_[i];
+      s.radius = value_of(spot_values_[i][kSpotRadius]);
+      regions.push_back({value_of(spot_values_[i][kSpotX]), value_of(spot_values_[i][kSpotZ]), s.reach(),
+                         -std::log(kNegligibleFeature) * value_of(spot_values_[i][kSpotDepth])});
+    }
+    return regions;
+  }
+
+  // T(h) [K] and dT/dh [K/m] of the column (without the spots).
   void temperature(const T& h, T* t, T* dt_dh) const {
     using std::exp;
     standard_temperature(h, p_[kGroundTemperature], p_[kLapseRate], t, dt_dh);
@@ -103,7 +167,23 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
   const T& wavelength() const { return p_[kWavelength]; }
 
  private:
+  enum SpotIndex { kSpotX, kSpotZ, kSpotRadius, kSpotDt, kSpotDepth };
+
+  // Spot i's excess dt e(h) F(r) added to t, and its gradient to grad_t.
+  void add_spot(size_t i, const Vec3<T>& p, T* t, Vec3<T>* grad_t) const {
+    const std::vector<T>& v = spot_values_[i];
+    T f, df_dx, df_dz, e, de_dh;
+    hot_spot_footprint(spots_[i].footprint, T(p.x() - v[kSpotX]), T(p.z() - v[kSpotZ]), v[kSpotRadius], &f, &df_dx,
+                       &df_dz);
+    if (value_of(f) == 0.0 && value_of(df_dx) == 0.0 && value_of(df_dz) == 0.0) return;
+    surface_decay(p.y(), v[kSpotDepth], &e, &de_dh);
+    *t += v[kSpotDt] * e * f;
+    *grad_t += v[kSpotDt] * Vec3<T>(e * df_dx, de_dh * f, e * df_dz);
+  }
+
   std::vector<T> p_;
+  std::vector<HotSpot> spots_;             // footprints (their numbers are in spot_values_)
+  std::vector<std::vector<T>> spot_values_;  // x, z, radius, dt, depth per spot
   HydrostaticColumn<T> column_;
 };
 

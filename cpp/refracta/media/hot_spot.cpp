@@ -1,0 +1,66 @@
+// Hot spots' names, parameter specs and validation (hot_spot.h).
+#include "refracta/media/hot_spot.h"
+
+#include <algorithm>
+
+namespace refracta {
+
+Footprint parse_footprint(const std::string& name) {
+  if (name == "gaussian") return Footprint::kGaussian;
+  if (name == "compact") return Footprint::kCompact;
+  throw_invalid("HotSpot: footprint must be 'gaussian' or 'compact' (got '", name, "')");
+}
+
+const char* footprint_name(Footprint footprint) {
+  return footprint == Footprint::kCompact ? "compact" : "gaussian";
+}
+
+std::vector<ParamSpec> hot_spot_param_specs(const std::vector<HotSpot>& spots, bool with_depth,
+                                            const ParamSpec& dt_spec) {
+  std::vector<ParamSpec> specs;
+  for (size_t i = 0; i < spots.size(); ++i) {
+    const HotSpot& s = spots[i];
+    const std::string name = "hot_spot" + std::to_string(i) + "_";
+    // Search box: the spot may move 20 radii (at least 100 m) and grow or shrink 20-fold.
+    const double travel = std::max(100.0, 20.0 * s.radius);
+    specs.push_back({name + "x", s.x, s.x - travel, s.x + travel, "m", "x of the centre"});
+    specs.push_back({name + "z", s.z, s.z - travel, s.z + travel, "m", "z of the centre"});
+    specs.push_back({name + "radius", s.radius, s.radius / 20.0, s.radius * 20.0, "m",
+                     std::string(footprint_name(s.footprint)) + " footprint radius"});
+    ParamSpec dt = dt_spec;
+    dt.name = name + "dt";
+    dt.default_value = s.dt;
+    dt.lower = std::min(dt.lower, s.dt);
+    dt.upper = std::max(dt.upper, s.dt);
+    specs.push_back(dt);
+    if (with_depth) {
+      specs.push_back({name + "depth", s.depth, std::min(0.005, s.depth), std::max(10.0, s.depth), "m",
+                       "e-folding depth of the excess"});
+    }
+  }
+  return specs;
+}
+
+void validate_hot_spots(const char* model, const std::vector<double>& values, size_t first, size_t count,
+                        bool with_depth) {
+  const int per = hot_spot_param_count(with_depth);
+  for (size_t i = 0; i < count; ++i) {
+    const double* v = values.data() + first + per * i;
+    if (!(v[2] > 0.0)) throw_invalid(model, ": hot_spot", i, "_radius must be > 0 m (got ", v[2], ")");
+    if (with_depth && !(v[4] > 0.0)) throw_invalid(model, ": hot_spot", i, "_depth must be > 0 m (got ", v[4], ")");
+  }
+}
+
+std::vector<HotSpot> hot_spots_from(const std::vector<HotSpot>& made, const std::vector<double>& values, size_t first,
+                                    bool with_depth) {
+  std::vector<HotSpot> out = made;
+  const int per = hot_spot_param_count(with_depth);
+  for (size_t i = 0; i < out.size(); ++i) {
+    const double* v = values.data() + first + per * i;
+    out[i].x = v[0], out[i].z = v[1], out[i].radius = v[2], out[i].dt = v[3];
+    if (with_depth) out[i].depth = v[4];
+  }
+  return out;
+}
+
+}  // namespace refracta
