@@ -308,10 +308,11 @@ Raises refracta.NumericalError where n <= 0 or is not finite.)doc")
       .def_property_readonly("local_regions", [](const IndexField& f) {
         py::list out;
         for (const LocalRegion& r : f.local_regions()) {
-          out.append(py::dict(py::arg("x") = r.x, py::arg("z") = r.z, py::arg("radius") = r.radius, py::arg("top") = r.top));
+          out.append(py::dict(py::arg("x") = r.x, py::arg("z") = r.z, py::arg("radius") = r.radius, py::arg("top") = r.top,
+                              py::arg("scale") = r.scale));
         }
         return out;
-      }, "Where the field differs from height_only_part: vertical cylinders (x, z, radius [m]) below `top` [m].")
+      }, "Where the field differs from height_only_part: vertical cylinders (x, z, radius [m]) below `top` [m]; `scale` [m]: the feature's horizontal size.")
       .def_property_readonly("param_names", [](const IndexField& f) {
         std::vector<std::string> names;
         for (const auto& s : f.param_specs()) names.push_back(s.name);

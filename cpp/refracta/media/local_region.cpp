@@ -51,4 +51,10 @@ double highest_top(const std::vector<LocalRegion>& regions) {
   return top;
 }
 
+double smallest_scale(const std::vector<LocalRegion>& regions) {
+  double scale = std::numeric_limits<double>::infinity();
+  for (const LocalRegion& region : regions) scale = std::min(scale, region.scale);
+  return scale;
+}
+
 }  // namespace refracta

@@ -21,6 +21,9 @@ struct LocalRegion {
   double x = 0.0, z = 0.0;  // axis of the cylinder [m]
   double radius = std::numeric_limits<double>::infinity();  // [m]; infinite: a slab
   double top = 0.0;         // the region is everything below this height [m]
+  // The feature's horizontal scale [m] (a spot's radius): an integrator inside the region steps at
+  // most half of it, so that its error estimate cannot step over the feature.
+  double scale = std::numeric_limits<double>::infinity();
 
   bool contains(const Vec3d& p) const {
     if (!(p.y() < top)) return false;
@@ -28,7 +31,7 @@ struct LocalRegion {
     return !std::isfinite(radius) || dx * dx + dz * dz < radius * radius;
   }
   // The same region grown by `margin` [m] sideways and upward.
-  LocalRegion grown(double margin) const { return {x, z, radius + margin, top + margin}; }
+  LocalRegion grown(double margin) const { return {x, z, radius + margin, top + margin, scale}; }
   // The first parameter t in [0, length] where the segment p + t d (unit d) is inside, if any.
   std::optional<double> entry(const Vec3d& p, const Vec3d& d, double length) const;
 };
@@ -38,5 +41,7 @@ std::optional<double> first_entry(const std::vector<LocalRegion>& regions, const
                                   double length);
 // The highest top among the regions (-inf for none).
 double highest_top(const std::vector<LocalRegion>& regions);
+// The smallest scale among the regions (+inf for none).
+double smallest_scale(const std::vector<LocalRegion>& regions);
 
 }  // namespace refracta

@@ -133,7 +133,7 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
     for (size_t i = 0; i < spots_.size(); ++i) {
       HotSpot spot = spots_[i];
       spot.radius = value_of(spot_values_[i][2]);
-      regions.push_back({value_of(spot_values_[i][0]), value_of(spot_values_[i][1]), spot.reach(), top});
+      regions.push_back({value_of(spot_values_[i][0]), value_of(spot_values_[i][1]), spot.reach(), top, spot.radius});
     }
     return regions;
   }

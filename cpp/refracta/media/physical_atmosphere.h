@@ -135,7 +135,7 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
       HotSpot s = spots_[i];
       s.radius = value_of(spot_values_[i][kSpotRadius]);
       regions.push_back({value_of(spot_values_[i][kSpotX]), value_of(spot_values_[i][kSpotZ]), s.reach(),
-                         -std::log(kNegligibleFeature) * value_of(spot_values_[i][kSpotDepth])});
+                         -std::log(kNegligibleFeature) * value_of(spot_values_[i][kSpotDepth]), s.radius});
     }
     return regions;
   }

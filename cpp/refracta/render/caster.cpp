@@ -67,8 +67,25 @@ IorFloors render_ior_floors(const Scene& scene, const IndexField& field, const V
   return floors;
 }
 
-bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<double>& b,
-                    const RenderOptions& options, PathEnd* end, double sagitta) {
+bool Caster::chord_blocked(const Vec3d& p, const Vec3d& d, double len, const Handoff& from, PathEnd* end,
+                           bool regions) const {
+  ++end->chords;
+  // Each chord reaches slightly into the next so that no hit is lost at a joint.
+  const double reach = len * (1.0 + 1e-6) + 1e-6;
+  auto hit = scene_.intersect(p, d, reach);
+  if (regions && legs_) {
+    if (const auto t = first_entry(regions_, p, d, reach); t && (!hit || *t < hit->t)) {
+      end->handoff = from;
+      return true;
+    }
+  }
+  if (!hit) return false;
+  end->hit = hit;
+  return true;
+}
+
+bool Caster::segment_blocked(const RayNode<double>& a, const RayNode<double>& b, PathEnd* end, double sagitta,
+                             bool regions) const {
   const PathSegment<double> seg(a, b);
   // Deviation of the path from the segment's chord, sampled; it shrinks with the square of the
   // chord length, so n chords deviate by about deviation / n^2.
@@ -79,32 +96,46 @@ bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<
     const Vec3d q = seg.position(u) - a.x;
     deviation = std::max(deviation, (q - ab * (q.dot(ab) / ab2)).norm());
   }
-  const int by_sagitta = int(std::ceil(std::sqrt(deviation / (sagitta > 0.0 ? sagitta : options.sagitta))));
-  const int pieces = std::clamp(std::max(by_sagitta, int(std::ceil(seg.length() / options.chord))), 1, 1 << 20);
-  return hit_in_pieces(scene, seg, pieces, end);
+  const int by_sagitta = int(std::ceil(std::sqrt(deviation / (sagitta > 0.0 ? sagitta : options_.sagitta))));
+  const int pieces = std::clamp(std::max(by_sagitta, int(std::ceil(seg.length() / options_.chord))), 1, 1 << 20);
+  return pieces_blocked(seg, pieces, end, regions);
 }
 
-bool hit_in_pieces(const Scene& scene, const PathSegment<double>& seg, int pieces, PathEnd* end) {
+bool Caster::pieces_blocked(const PathSegment<double>& seg, int pieces, PathEnd* end, bool regions) const {
   for (int i = 0; i < pieces; ++i) {
     const double u0 = double(i) / pieces, u1 = double(i + 1) / pieces;
     const Vec3d p0 = seg.position(u0), d = seg.position(u1) - p0;
     const double len = d.norm();
     if (len == 0.0) continue;
-    // Each chord reaches slightly into the next so that no hit is lost at a joint.
-    ++end->chords;
-    const auto hit = scene.intersect(p0, d / len, len * (1.0 + 1e-6) + 1e-6);
-    if (!hit) continue;
+    const Handoff from{p0, seg.velocity(u0).normalized(), seg.start() + u0 * seg.length()};
+    if (!chord_blocked(p0, d / len, len, from, end, regions)) continue;
+    if (end->handoff) return true;
+    const Hit hit = *end->hit;
     const double du = u1 - u0;
-    const double u = refine_on_plane(seg, hit->normal, hit->point, u0 + du * hit->t / len, u0 - 0.5 * du,
+    const double u = refine_on_plane(seg, hit.normal, hit.point, u0 + du * hit.t / len, u0 - 0.5 * du,
                                      std::min(u1 + 0.5 * du, 1.0));
-    end_at(seg, u, *hit, end);
+    end_at(seg, u, hit, end);
     return true;
   }
   return false;
 }
 
 Caster::Caster(const Scene& scene, const IndexField* field, const RenderOptions& options)
-    : scene_(scene), field_(options.method == RenderMethod::kStraight ? nullptr : field), options_(options) {}
+    : scene_(scene), field_(options.method == RenderMethod::kStraight ? nullptr : field), options_(options) {
+  ceiling_ = scene_.highest();
+  if (!field_) return;
+  if (field_->height_only()) {
+    layered_ = field_;
+  } else if ((own_layered_ = field_->height_only_part())) {
+    layered_ = own_layered_.get();
+    regions_ = field_->local_regions();
+    ceiling_ = std::max(ceiling_, highest_top(regions_));
+    // trace = 'rk45' stands for a 3-D field: every path through the full field, no legs (the
+    // layered part still pre-bends shadow rays toward distant lights, and above every region
+    // rays still leave along Bouguer's invariant).
+    legs_ = !(options.trace && *options.trace == TraceMethod::kRk45);
+  }
+}
 
 void Caster::use_table(const ElevationTable* table, const Vec3d& eye, double pixel_angle) {
   table_ = table;
@@ -129,8 +160,88 @@ double Caster::ior(const Vec3d& p) const {
 
 PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const {
   if (!field_) return cast_straight(origin, dir, max_length > 0.0 ? max_length : kFar);
-  if (table_ && origin == eye_ && max_length <= 0.0) return cast_table(dir);
-  return cast_traced(origin, dir, max_length > 0.0 ? max_length : options_.max_length, spread);
+  const bool from_eye = table_ && origin == eye_ && max_length <= 0.0;
+  const double length = max_length > 0.0 ? max_length : options_.max_length;
+  if (legs_) return cast_in_legs(origin, dir, length, spread, from_eye);
+  if (from_eye) return cast_table(dir);
+  return cast_traced(origin, dir, length, spread);
+}
+
+bool Caster::inside_region(const Vec3d& p) const {
+  return std::any_of(regions_.begin(), regions_.end(), [&](const LocalRegion& r) { return r.contains(p); });
+}
+
+PathEnd Caster::cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,
+                             bool from_eye) const {
+  // A path that grazes a region's border could hand over back and forth: after this many legs
+  // the full field traces the rest without handing over.
+  constexpr int kMaxLegs = 32;
+  Vec3d x = origin, d = dir;
+  double s = 0.0;
+  int64_t chords = 0;
+  // Legs alternate: the layered air's until it meets a region, the full field's until it has left
+  // them all.
+  bool in_regions = inside_region(origin);
+  for (int leg = 0;; ++leg) {
+    const bool last = leg + 1 >= kMaxLegs;
+    PathEnd part;
+    if (last || in_regions) {
+      part = cast_in_regions(x, d, max_length - s, spread, s, !last);
+    } else {
+      part = leg == 0 && from_eye ? cast_table(d) : cast_traced(x, d, max_length - s, spread);
+    }
+    chords += part.chords;
+    if (!part.handoff || !(part.handoff->s < max_length - s)) {
+      part.length += s;
+      part.chords = chords;
+      part.handoff.reset();
+      return part;
+    }
+    x = part.handoff->x;
+    d = part.handoff->dir;
+    s += part.handoff->s;
+    if (!in_regions && leg > 0 && part.handoff->s <= 0.0) {
+      // No progress: the layered path enters at once where the full one has just left (a border
+      // grazed within the chords' sagitta); the full field's path goes on without handing over.
+      part = cast_in_regions(x, d, max_length - s, spread, s, false);
+      part.length += s;
+      part.chords += chords;
+      return part;
+    }
+    in_regions = !in_regions;
+  }
+}
+
+PathEnd Caster::cast_in_regions(const Vec3d& origin, const Vec3d& dir, double max_length, double spread, double s0,
+                                bool exits) const {
+  PathEnd end;
+  end.direction = dir;
+  TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
+  trace_options.method = TraceMethod::kRk45;
+  trace_options.step = std::min(options_.chord, 0.5 * smallest_scale(regions_));
+  // A pixel may stray sagitta_pixels of its footprint; a leg that hands over when it leaves the
+  // regions is held to the footprint where it starts (the path after it is the next leg's).
+  const double per_metre = options_.sagitta_pixels * spread;
+  trace_options.tol = std::max({trace_options.tol, options_.sagitta, per_metre * (exits ? s0 : s0 + max_length)});
+  bool been_inside = inside_region(origin);
+  trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
+    if (segment_blocked(a, b, &end, std::max(options_.sagitta, per_metre * (s0 + a.s)), /*regions=*/false)) return false;
+    end.direction = b.v.normalized();
+    end.length = b.s;
+    const bool inside = inside_region(b.x);
+    if (!been_inside && !inside) {  // nodes may straddle a region: the chord between them may cross it
+      const Vec3d ab = b.x - a.x;
+      const double len = ab.norm();
+      been_inside = len > 0.0 && first_entry(regions_, a.x, ab / len, len).has_value();
+    }
+    been_inside = been_inside || inside;
+    if (exits && been_inside && !inside) {
+      end.handoff = Handoff{b.x, end.direction, b.s};
+      return false;
+    }
+    return true;
+  });
+  return end;
 }
 
 bool Caster::occluded_straight(const Vec3d& origin, const Vec3d& dir, double distance) const {
@@ -147,14 +258,14 @@ PathEnd Caster::cast_straight(const Vec3d& origin, const Vec3d& dir, double max_
 }
 
 std::optional<Vec3d> Caster::escape_direction(const Vec3d& x, const Vec3d& v, double remaining) const {
-  if (!field_->height_only() || !(x.y() > scene_.highest()) || !(v.y() > 0.0) || !(remaining > 0.0)) {
+  if (!layered_ || !(x.y() > ceiling_) || !(v.y() > 0.0) || !(remaining > 0.0)) {
     return std::nullopt;
   }
   const Vec3d t = v.normalized();
   const double cos_e = std::hypot(t.x(), t.z());
   double n_x, dn, sin_x;
-  field_->evaluate_height(x.y(), &n_x, &dn);
-  const BouguerBranch branch(*field_, n_x * cos_e);
+  layered_->evaluate_height(x.y(), &n_x, &dn);
+  const BouguerBranch branch(*layered_, n_x * cos_e);
   // Below 0.57 deg of elevation the quadrature loses digits near a turn: trace instead.
   constexpr double kMinSine = 1e-2;
   if (!branch.at(x.y(), kMinSine, &n_x, &dn, &sin_x)) return std::nullopt;
@@ -188,17 +299,17 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   // sin e >= 0.01 (0.57 deg) at every height among the objects: the ray cannot turn there, and
   // the stretches' error estimate splits them where 1/sin e varies too fast for 8 points.
   constexpr double kMinSine = 0.01;
-  if (!floors_ || !field_->height_only() || dir.y() == 0.0) return std::nullopt;
+  if (!floors_ || !layered_ || dir.y() == 0.0) return std::nullopt;
   const Vec3d t = dir.normalized();
   const double cos_e0 = std::hypot(t.x(), t.z());
   double n0, dn0;
-  field_->evaluate_height(origin.y(), &n0, &dn0);
+  layered_->evaluate_height(origin.y(), &n0, &dn0);
   const double beta = n0 * cos_e0;
   if (!(beta < floors_->objects * std::sqrt(1.0 - kMinSine * kMinSine))) return std::nullopt;
-  const BouguerBranch branch(*field_, beta);
+  const BouguerBranch branch(*layered_, beta);
   const double up = t.y() > 0.0 ? 1.0 : -1.0;
   // Rising: up to the highest object, then out of the air; falling: down to the stop height.
-  const double target = up > 0.0 ? scene_.highest() : std::min(scene_.lowest(), origin.y()) - 1.0;
+  const double target = up > 0.0 ? ceiling_ : std::min(scene_.lowest(), origin.y()) - 1.0;
   const Vec3d across = cos_e0 > 0.0 ? Vec3d(t.x() / cos_e0, 0.0, t.z() / cos_e0) : Vec3d(1.0, 0.0, 0.0);
   auto point = [&](double run, double h) { return Vec3d(origin.x() + run * across.x(), h, origin.z() + run * across.z()); };
   auto direction = [&](double sin_e) {
@@ -230,11 +341,11 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
     const Vec3d b = point(run + stretch.run, h + up * step);
     const Vec3d d = b - a;
     const double len = d.norm();
-    ++end.chords;
-    if (const auto hit = len > 0.0 ? scene_.intersect(a, d / len, len * (1.0 + 1e-6) + 1e-6) : std::nullopt) {
+    if (len > 0.0 && chord_blocked(a, d / len, len, Handoff{a, end.direction, s}, &end)) {
+      if (end.handoff) return end;
       // On the chord, within the sagitta of the path; the direction there from the invariant.
+      const auto hit = end.hit;
       double n_hit, dn_hit, sin_hit;
-      end.hit = *hit;
       end.direction = branch.at(hit->point.y(), 0.0, &n_hit, &dn_hit, &sin_hit) ? direction(sin_hit) : d / len;
       end.length = s + stretch.length * std::min(hit->t / len, 1.0);
       return end;
@@ -263,7 +374,10 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   }
   // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
   if (auto monotone = cast_monotone(origin, dir, max_length)) return *monotone;
-  TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
+  const IndexField& air = legs_ ? *layered_ : *field_;  // legs outside the regions: the layered part
+  TraceOptions trace_options = curved_trace_options(scene_, air, origin, options_, max_length);
+  // Through local features rk45 steps at most half their scale (its error estimate cannot step over one).
+  if (!legs_ && !regions_.empty()) trace_options.step = std::min(options_.chord, 0.5 * smallest_scale(regions_));
   // A pixel's ray: an error of sagitta_pixels of its footprint (spread * s) is invisible. Any
   // ray: the chords already stray up to the sagitta from the path, so the integrator need not
   // be closer to it than that.
@@ -271,8 +385,8 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   trace_options.tol = std::max({trace_options.tol, per_metre * max_length, options_.sagitta});
   double last_height = origin.y();
   try {
-    trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
-      if (hit_on_segment(scene_, a, b, options_, &end, std::max(options_.sagitta, per_metre * a.s))) return false;
+    trace(air, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
+      if (segment_blocked(a, b, &end, std::max(options_.sagitta, per_metre * a.s))) return false;
       end.direction = b.v.normalized();
       end.length = b.s;
       last_height = b.x.y();
@@ -285,7 +399,7 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   } catch (const NumericalError&) {
     // A path rising above every object out of the field's modelled heights has left the air:
     // it sees the sky along its last direction. Anywhere else the error stands.
-    if (end.hit || !(end.direction.y() > 0.0) || !(last_height > scene_.highest())) throw;
+    if (end.hit || end.handoff || !(end.direction.y() > 0.0) || !(last_height > ceiling_)) throw;
   }
   return end;
 }
@@ -311,9 +425,9 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
     RayNode<double> a = turned(0);
     for (size_t k = 0; k + 1 < plane.size(); ++k) {
       // Nothing left to hit once the rest of the path stays above every object.
-      if (plane.lowest_from(k) > scene_.highest()) break;
+      if (plane.lowest_from(k) > ceiling_) break;
       const RayNode<double> b = turned(k + 1);
-      if (hit_on_segment(scene_, a, b, options_, &end)) return end;
+      if (segment_blocked(a, b, &end)) return end;
       end.direction = b.v.normalized();
       end.length = b.s;
       a = b;
@@ -321,14 +435,15 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
   } else {
     RayNode<double> a = turned(0);
     for (const PlannedChord& chord : plans_[entry]) {
-      if (plane.lowest_from(chord.first) > scene_.highest()) break;
+      if (plane.lowest_from(chord.first) > ceiling_) break;
       const RayNode<double> b = turned(chord.last);
       if (chord.pieces > 1) {
-        if (hit_in_pieces(scene_, PathSegment<double>(a, b), int(chord.pieces), &end)) return end;
+        if (pieces_blocked(PathSegment<double>(a, b), int(chord.pieces), &end)) return end;
       } else if (const Vec3d d = b.x - a.x; d.norm() > 0.0) {
         const double len = d.norm();
-        ++end.chords;
-        if (const auto hit = scene_.intersect(a.x, d / len, len * (1.0 + 1e-6) + 1e-6)) {
+        if (chord_blocked(a.x, d / len, len, Handoff{a.x, a.v.normalized(), a.s}, &end)) {
+          if (end.handoff) return end;
+          const auto hit = end.hit;
           // Refine on the segment of the path that crosses the hit's tangent plane: the first
           // whose nodes lie on both sides of it (the chord strays from the path, so the segment
           // under the chord's hit need not be that one), else the one under the chord's hit.

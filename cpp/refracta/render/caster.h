@@ -3,6 +3,12 @@
 // field the integrator's path cut into chords (at most options.chord long, within
 // options.sagitta of the continuous path) tested against the scene, the hit refined on the path.
 // Camera rays from the eye of a height-only field are served by the eye's ElevationTable.
+//
+// Fields that are height-only except in local regions (areal hot spots, a turbulent layer;
+// media/local_region.h) are cast in legs: the height-only part's path (table, Bouguer chords,
+// stratified) while it stays outside every region -- its chords are tested against the regions'
+// borders as well as the scene -- then the full field's path (rk45) from the last state before a
+// region until it has left every region, then the height-only part's again.
 #pragma once
 
 #include "refracta/media/index_field.h"
@@ -24,12 +30,22 @@ struct IorFloors {
   double objects, everywhere;
 };
 
+// A state of a path where one leg of a cast hands over to the next (fields with local regions).
+struct Handoff {
+  Vec3d x;       // position [m]
+  Vec3d dir;     // unit direction
+  double s;      // arc length from the leg's start [m]
+};
+
 // Where a ray ends: a surface hit, or the sky seen along `direction`.
 struct PathEnd {
   std::optional<Hit> hit;
   Vec3d direction;     // unit, along the path at its end (toward the hit or the sky)
   double length = 0.0; // path length [m]
   int64_t chords = 0;  // straight chords tested against the scene on the way
+  // Legs of a cast through local regions: where this leg stopped (entering a region, or having
+  // left them all) for the next to go on; unset at the path's true end.
+  std::optional<Handoff> handoff;
 };
 
 class Caster {
@@ -55,8 +71,16 @@ class Caster {
   // measurably, see render/README in the shading tests).
   bool occluded_straight(const Vec3d& origin, const Vec3d& dir, double distance) const;
 
+  // Fields with local regions: use this (tabulated) height-only part outside them instead of the
+  // field's own height_only_part().
+  void use_layered(const IndexField* layered) { layered_ = layered; }
+
   bool curved() const { return field_ != nullptr; }
   const IndexField* field() const { return field_; }
+  // The height-only air rays see outside every local region: the field itself when height-only,
+  // its height_only_part, or null (a 3-D field: everything is traced).
+  const IndexField* layered() const { return layered_; }
+  const std::vector<LocalRegion>& regions() const { return regions_; }
   const Scene& scene() const { return scene_; }
   // n of the air at p (1 without a field).
   double ior(const Vec3d& p) const;
@@ -65,6 +89,24 @@ class Caster {
   PathEnd cast_straight(const Vec3d& origin, const Vec3d& dir, double max_length) const;
   PathEnd cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const;
   PathEnd cast_table(const Vec3d& dir) const;
+  // Fields with local regions: the legs of one cast.
+  PathEnd cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_length, double spread, bool from_eye) const;
+  // The full field's path (rk45) from a state next to or inside a region, until it has been inside
+  // and has left every region (handoff), hits the scene or ends (`exits`: false on the last leg).
+  // s0: the path's arc length at origin (a pixel's footprint there bounds the leg's tolerance).
+  PathEnd cast_in_regions(const Vec3d& origin, const Vec3d& dir, double max_length, double spread, double s0,
+                          bool exits) const;
+  bool inside_region(const Vec3d& p) const;
+  // The chord p -> p + len d against the scene and, for fields with local regions, against the
+  // regions' borders: fills end->hit, or end->handoff with `from` (the chord's start state) when a
+  // region comes first; true when either stopped the path.
+  // regions = false: the scene alone (the legs inside regions).
+  bool chord_blocked(const Vec3d& p, const Vec3d& d, double len, const Handoff& from, PathEnd* end,
+                     bool regions = true) const;
+  // Tests the path segment a -> b in chords (within `sagitta` of it; options.sagitta when <= 0).
+  bool segment_blocked(const RayNode<double>& a, const RayNode<double>& b, PathEnd* end, double sagitta = 0.0,
+                       bool regions = true) const;
+  bool pieces_blocked(const PathSegment<double>& segment, int pieces, PathEnd* end, bool regions = true) const;
   // Height-only fields: the direction a ray at x moving along v leaves the air along, when it is
   // above every object, rising, and cannot turn within `remaining` [m] of path (n stays above
   // its invariant n(h) cos e); nullopt otherwise.
@@ -77,18 +119,16 @@ class Caster {
   const Scene& scene_;
   const IndexField* field_;
   const RenderOptions& options_;
+  FieldPtr own_layered_;            // the field's height_only_part, when use_layered gives none
+  const IndexField* layered_ = nullptr;
+  std::vector<LocalRegion> regions_;
+  bool legs_ = false;               // cast in legs (cast_in_legs): fields with regions, unless rk45 is forced
+  double ceiling_ = 0.0;            // nothing to hit, and no region to enter, above this height [m]
   const ElevationTable* table_ = nullptr;
   Vec3d eye_ = Vec3d::Zero();
   std::optional<IorFloors> floors_;
   std::vector<ChordPlan> plans_;  // per table entry
 };
-
-// Tests the path segment a -> b against the scene in chords; on a hit fills `end` and returns true.
-// sagitta: the chords' largest distance from the path (options.sagitta when <= 0).
-bool hit_on_segment(const Scene& scene, const RayNode<double>& a, const RayNode<double>& b,
-                    const RenderOptions& options, PathEnd* end, double sagitta = 0.0);
-// The same in `pieces` chords of equal parameter length.
-bool hit_in_pieces(const Scene& scene, const PathSegment<double>& segment, int pieces, PathEnd* end);
 
 // The trace options of curved render rays from origin through field.
 TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, const Vec3d& origin,

@@ -20,7 +20,9 @@ DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, c
   std::vector<double> power;
   for (const auto& light : scene.lights()) power.push_back(std::max(light->power(), 0.0));
   if (!power.empty()) select_ = PiecewiseConstant1D(power);
-  pre_bend_ = caster.curved() && caster.field()->height_only();
+  // Pre-bent through the height-only air (fields with local regions: outside them; a path through
+  // a spot leaves a little off the sampled direction, and is evaluated where it does leave).
+  pre_bend_ = caster.curved() && caster.layered() != nullptr;
   all_lights_ = options.transport == Transport::kDirect;
 }
 
@@ -29,11 +31,11 @@ double DirectLighting::distant_ior(const Vec3d& p, const Vec3d& exit) const {
   if (!pre_bend_) return n_p;
   double n_top = n_p, dn;
   try {
-    caster_.field()->evaluate_height(p.y() + options_.max_length * std::max(exit.y(), 0.0), &n_top, &dn);
+    caster_.layered()->evaluate_height(p.y() + options_.max_length * std::max(exit.y(), 0.0), &n_top, &dn);
   } catch (const std::exception&) {  // beyond the field's modelled heights: its top is the last n known
     for (double h = p.y() + options_.max_length * std::max(exit.y(), 0.0); h > p.y(); h = p.y() + 0.5 * (h - p.y())) {
       try {
-        caster_.field()->evaluate_height(h, &n_top, &dn);
+        caster_.layered()->evaluate_height(h, &n_top, &dn);
         break;
       } catch (const std::exception&) {
       }

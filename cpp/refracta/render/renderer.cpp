@@ -90,6 +90,7 @@ std::pair<double, double> elevation_range(const Camera& camera) {
   return {std::max(lo - margin, -0.5 * kPi), std::min(hi + margin, 0.5 * kPi)};
 }
 
+// `field`: the height-only air camera rays see outside every local region (null for 3-D fields).
 std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera& camera, const FieldPtr& field,
                                           const RenderOptions& options, WorkControl& control) {
   if (!field || !field->height_only() || options.method != RenderMethod::kCurved || !options.use_table ||
@@ -120,33 +121,38 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   if (options.method == RenderMethod::kRasterMarch) {
     return render_raster_march(scene, camera, exact_field, options, control, stats);
   }
-  // Height-only air is tabulated once (to 1e-12 in n) over every height a ray can reach.
-  // (Not when rk45 is forced: that stands for fields that are not height-only.)
+  // Height-only air -- the field, or outside its local regions its height-only part -- is
+  // tabulated once (to 1e-12 in n) over every height a ray can reach. (Not when rk45 is forced:
+  // that stands for fields that are not height-only.)
   const bool forced_rk45 = options.trace && *options.trace == TraceMethod::kRk45;
   FieldPtr field = exact_field;
-  if (field && options.method == RenderMethod::kCurved && !forced_rk45) {
+  FieldPtr layered = field && field->height_only() ? field : field ? field->height_only_part() : nullptr;
+  if (layered && (options.method != RenderMethod::kCurved || forced_rk45)) layered = nullptr;
+  if (layered) {
     const auto [lo, hi] = render_heights(scene.geometry, camera.position(), options);
-    field = tabulate_heights(field, lo, hi);
+    layered = tabulate_heights(layered, lo, hi);
+    if (field->height_only()) field = layered;
   }
   // Height-only air: the least n any ray meets; rays that cannot turn are cut into chords
   // without tracing (Caster::cast_monotone).
   // Spectral: n at each height is affine in the dispersion scale, so the floor over all
   // wavelengths is the lower of the floors at the ends of the range.
   std::optional<IorFloors> floors;
-  if (field && field->height_only() && options.method == RenderMethod::kCurved && !forced_rk45) {
-    floors = render_ior_floors(scene.geometry, *field, camera.position(), options);
+  if (layered) {
+    floors = render_ior_floors(scene.geometry, *layered, camera.position(), options);
     if (options.spectral) {
-      const double reference = field_reference_wavelength(*field);
+      const double reference = field_reference_wavelength(*layered);
       for (double wavelength : {kLambdaMin, kLambdaMax}) {
-        const IorFloors at = render_ior_floors(scene.geometry, *dispersed_field(field, wavelength, reference),
+        const IorFloors at = render_ior_floors(scene.geometry, *dispersed_field(layered, wavelength, reference),
                                                camera.position(), options);
         floors->objects = std::min(floors->objects, at.objects);
         floors->everywhere = std::min(floors->everywhere, at.everywhere);
       }
     }
   }
-  const std::unique_ptr<ElevationTable> table = eye_table(scene, camera, field, options, control);
+  const std::unique_ptr<ElevationTable> table = eye_table(scene, camera, layered, options, control);
   Caster caster(scene.geometry, field.get(), options);
+  if (layered && !field->height_only()) caster.use_layered(layered.get());
   if (table) caster.use_table(table.get(), camera.position(), camera.pixel_angle());
   if (floors) caster.set_ior_floors(*floors);
   const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);

@@ -1,0 +1,174 @@
+"""Areal hot spots (refracta.HotSpot): footprints, parameters, the height-only part outside their
+regions, gradients, and the first-order sideways deflection of a level ray (issue 10)."""
+
+import pickle
+
+import numpy as np
+import pytest
+
+import refracta
+
+# Central differences with step 1e-4 m of fields whose gradients vary on >= 0.1 m: truncation
+# ~(1e-4 / 0.1)^2 = 1e-6 relative, round-off 1e-16 / 1e-4 = 1e-12 absolute.
+GRADIENT_RELATIVE = 1e-5
+GRADIENT_ABSOLUTE = 1e-11
+
+
+def road(*spots, **params):
+    return refracta.PhysicalAtmosphere(surface_dt=params.pop("surface_dt", 10.0), surface_depth=0.1,
+                                       hot_spots=list(spots), **params)
+
+
+def test_spot_parameters_are_named_and_read_back():
+    field = road(refracta.HotSpot(100.0, -3.0, 8.0, 15.0, footprint="compact"),
+                 refracta.HotSpot(40.0, 5.0, 2.0, -4.0, depth=0.3))
+    names = field.param_names
+    assert names[-10:] == [f"hot_spot{i}_{k}" for i in (0, 1) for k in ("x", "z", "radius", "dt", "depth")]
+    assert field.params["hot_spot1_depth"] == 0.3
+    assert field.params["hot_spot0_depth"] == 0.1  # None: the atmosphere's surface_depth
+    moved = field.with_params(hot_spot0_x=120.0, hot_spot0_radius=4.0)
+    spot = moved.hot_spots[0]
+    assert (spot.x, spot.z, spot.radius, spot.dt, spot.footprint) == (120.0, -3.0, 4.0, 15.0, "compact")
+    assert pickle.loads(pickle.dumps(moved)).params == moved.params
+    assert pickle.loads(pickle.dumps(moved)).hot_spots == moved.hot_spots
+    assert not field.height_only
+    assert refracta.PhysicalAtmosphere(surface_dt=10.0).height_only
+
+
+def test_temperature_excess_follows_the_footprint():
+    # n depends on T alone at one height: n(T_column + dt e^(-h/d) F(r)) against the spot-free
+    # air at that temperature (a spot-free field whose surface layer carries the same excess).
+    spot = refracta.HotSpot(0.0, 0.0, 5.0, 6.0, depth=0.2)
+    field = road(spot, surface_dt=0.0)
+    h = 0.1
+    for r in (0.0, 2.0, 5.0, 9.0):
+        F = np.exp(-r**2 / (2 * 25.0))
+        # Same excess at this height from a surface layer: dt_s e^(-h/0.2) = 6 F e^(-h/0.2).
+        layered = refracta.PhysicalAtmosphere(surface_dt=6.0 * F, surface_depth=0.2)
+        # The layer also lowers its column's pressure at h (by ~2e-7: hydrostatic), the spot does
+        # not (the pressure stays the column's); n - 1 is proportional to P up to Edlen's
+        # compressibility term (6e-3 of it: 1e-9 of n - 1, 3e-13 in n).
+        pressure_ratio = field.pressure(h) / layered.pressure(h)
+        expected = 1.0 + (layered.ior([0.0, h, 0.0]) - 1.0) * pressure_ratio
+        assert field.ior([r, h, 0.0]) == pytest.approx(expected, abs=1e-12)
+
+
+def test_compact_spot_is_exactly_the_height_only_air_outside_its_radius():
+    field = road(refracta.HotSpot(50.0, 0.0, 6.0, 20.0, footprint="compact"))
+    part = field.height_only_part
+    assert part.height_only and part.params == {k: v for k, v in field.params.items() if not k.startswith("hot_spot")}
+    outside = np.array([[56.0001, 0.05, 0.0], [50.0, 0.02, -6.5], [80.0, 1.0, 3.0]])
+    np.testing.assert_array_equal(field.ior(outside), part.ior(outside))
+    np.testing.assert_array_equal(field.grad_ior(outside), part.grad_ior(outside))
+    inside = np.array([[50.0, 0.05, 0.0], [53.0, 0.05, 2.0]])
+    assert np.all(field.ior(inside) < part.ior(inside))  # hotter: lower index
+
+
+def test_regions_bound_where_the_field_differs_from_its_height_only_part():
+    spot = refracta.HotSpot(0.0, 0.0, 3.0, 10.0, depth=0.1)
+    field = road(spot)
+    (region,) = field.local_regions
+    assert region["radius"] == pytest.approx(spot.reach) and spot.reach == pytest.approx(3.0 * np.sqrt(2 * np.log(1e6)))
+    assert region["top"] == pytest.approx(0.1 * np.log(1e6))
+    # At the region's border the spot's temperature excess is 1e-6 of its peak; its change of n
+    # too, up to n's sensitivity to T there against at the peak (~ (n - 1) / T^2: a 10 K step from
+    # 298 K under the spot's peak on the 10 K road vs 288 K at the top, 298 * 308 / 288^2 = 1.11).
+    peak = field.height_only_part.ior([0, 0, 0]) - field.ior([0, 0, 0])
+    for p in ([region["radius"], 0.0, 0.0], [0.0, region["top"], 0.0]):
+        change = field.height_only_part.ior(p) - field.ior(p)
+        assert 0 < change <= 1.12e-6 * peak
+
+
+@pytest.mark.parametrize("footprint", ["gaussian", "compact"])
+@pytest.mark.parametrize("model", ["physical", "logistic"])
+def test_gradient_matches_central_differences(footprint, model):
+    if model == "physical":
+        field = road(refracta.HotSpot(1.0, -0.5, 2.0, 12.0, depth=0.15, footprint=footprint),
+                     refracta.HotSpot(-1.0, 1.0, 1.5, -5.0, footprint=footprint))
+    else:
+        field = refracta.LogisticProfile(hot_spots=[refracta.HotSpot(1.0, -0.5, 2.0, 0.8, footprint=footprint)])
+    rng = np.random.default_rng(4)
+    step = 1e-4
+    for p in rng.uniform([-2.5, -0.2, -2.5], [2.5, 0.6, 2.5], (20, 3)):
+        fd = [(field.ior(p + step * e) - field.ior(p - step * e)) / (2 * step) for e in np.eye(3)]
+        np.testing.assert_allclose(field.grad_ior(p), fd, rtol=GRADIENT_RELATIVE, atol=GRADIENT_ABSOLUTE)
+
+
+def test_logistic_spot_localises_the_hot_term():
+    plain = refracta.LogisticProfile()
+    spotted = refracta.LogisticProfile(hot_spots=[refracta.HotSpot(0.0, 0.0, 1.0, 1.0, footprint="compact")])
+    h = np.linspace(-2.0, 5.0, 15)
+    centre = np.stack([np.zeros_like(h), h, np.zeros_like(h)], axis=1)
+    # Strength 1 at the centre (F = 1): the profile's own hot term.
+    np.testing.assert_allclose(spotted.ior(centre), plain.ior(centre), rtol=0, atol=1e-15)
+    # Outside the spot the hot term is at its far value n_hot: the hot layer is gone.
+    far = centre + [5.0, 0.0, 0.0]
+    no_layer = spotted.height_only_part
+    np.testing.assert_array_equal(spotted.ior(far), no_layer.ior(far))
+    k = plain.params
+    w = 0.3 * k["a_hot"]
+    scale = 0.003 * k["k_s"] / (abs(k["n_bg"]) + abs(k["n_inv"]) + abs(k["n_hot"]))
+    hot_deficit = scale * k["n_hot"] / (1 + np.exp(h / w))  # n_hot sigma(-h/w)
+    # n ~ 1.03: the difference of two n carries 2e-16 absolute round-off.
+    np.testing.assert_allclose(no_layer.ior(centre) - plain.ior(centre), hot_deficit, rtol=1e-9, atol=5e-16)
+
+
+# First order in the spot's change of n (Born): a straight path, so the deflection is the integral
+# of grad_z n / n; the neglected terms are the path's own bending (~1e-5 rad over 60 m moves it
+# 0.3 mm of 10 m: 3e-5) and n - 1's nonlinearity in T (dt / T = 0.3 % for 1 K).
+DEFLECTION_FIRST_ORDER = 0.01
+
+
+@pytest.mark.parametrize("offset", [0.0, 3.0, 10.0, 16.0])
+def test_level_ray_turns_away_from_a_gaussian_spot(offset):
+    # theta(b) = (delta / n) sqrt(2 pi) (b / rho) e^(-b^2 / 2 rho^2), delta = (n - 1) dt e^(-h/depth) / T
+    # (issue 10). A deep layer (depth 2 m) keeps the ray's height, and so delta, constant.
+    rho, dt, depth, h, T = 10.0, 1.0, 2.0, 1.0, 288.15 - 0.0065 * 1.0
+    spot = refracta.HotSpot(100.0, 0.0, rho, dt, depth=depth)
+    field = refracta.PhysicalAtmosphere(hot_spots=[spot])
+    start = np.array([0.0, h, offset])
+    path = refracta.trace_ray(field, start, [1.0, 0.0, 0.0], tol=1e-12, max_length=200.0)
+    direction = path.directions[-1] / np.linalg.norm(path.directions[-1])
+    sideways = np.arctan2(direction[2], direction[0])
+    n = field.height_only_part.ior(start)
+    delta = (n - 1) * dt * np.exp(-h / depth) / T
+    expected = delta / n * np.sqrt(2 * np.pi) * offset / rho * np.exp(-offset**2 / (2 * rho**2))
+    if offset == 0.0:
+        assert abs(sideways) < 1e-15  # through the centre: stays in its vertical plane
+        assert np.max(np.abs(path.points[:, 2])) < 1e-12
+    else:
+        assert sideways > 0  # away from the centre
+        assert sideways == pytest.approx(expected, rel=DEFLECTION_FIRST_ORDER)
+
+
+@pytest.mark.parametrize("bad, match", [
+    (dict(radius=0.0), "radius must be > 0"),
+    (dict(radius=-1.0), "radius must be > 0"),
+    (dict(depth=0.0), "depth must be > 0"),
+    (dict(depth=-0.1), "depth must be > 0"),
+    (dict(x=float("nan")), "x must be finite"),
+    (dict(z=float("inf")), "z must be finite"),
+    (dict(dt=float("nan")), "dt must be finite"),
+    (dict(footprint="square"), "footprint must be 'gaussian' or 'compact'"),
+])
+def test_bad_hot_spots_are_refused(bad, match):
+    args = dict(x=0.0, z=0.0, radius=1.0, dt=5.0)
+    args.update(bad)
+    with pytest.raises(ValueError, match=match):
+        refracta.HotSpot(**args)
+
+
+def test_bad_spot_parameters_and_arguments_are_refused():
+    field = road(refracta.HotSpot(0.0, 0.0, 1.0, 5.0))
+    with pytest.raises(ValueError, match="hot_spot0_radius must be > 0"):
+        field.with_params(hot_spot0_radius=0.0)
+    with pytest.raises(ValueError, match="hot_spot0_depth must be > 0"):
+        field.with_params(hot_spot0_depth=-1.0)
+    with pytest.raises(ValueError, match="hot_spots must be a HotSpot or a list"):
+        refracta.PhysicalAtmosphere(hot_spots=3)
+    with pytest.raises(ValueError, match=r"hot_spots\[1\] must be a refracta.HotSpot"):
+        refracta.PhysicalAtmosphere(hot_spots=[refracta.HotSpot(0, 0, 1, 1), (0, 0, 1, 1)])
+    with pytest.raises(ValueError, match="leave depth None"):
+        refracta.LogisticProfile(hot_spots=[refracta.HotSpot(0, 0, 1, 1, depth=0.2)])
+    with pytest.raises(ValueError, match="takes no hot_spots"):
+        refracta.LinearSquaredProfile(hot_spots=[refracta.HotSpot(0, 0, 1, 1)])
