@@ -1,0 +1,28 @@
+"""refracta.widgets: the interactive mirage editor in Jupyter.
+
+``MirageEditor(scene, camera, field, free=None)`` shows the render through the atmosphere
+(a quarter-resolution preview, then full resolution, rendered in the background), lets you click
+point pairs on it (a scene point, then where its mirage image should appear), move the camera,
+solve for the atmosphere in the background (progress, cancel, undo/redo) and save the solved
+scene (TOML) and the pairs (JSON, as ``refracta edit`` reads them). See
+``notebooks/04_interactive_editor.ipynb``.
+
+Modules: ``model`` (EditorModel: state, gestures, undo/redo, background renders and solves; no
+user interface, testable without a browser), ``jobs`` (the background runner: a newer request
+cancels the older one), ``camera_moves`` (orbit, pan, dolly), ``files`` (the pairs and scene
+files), ``canvas`` and ``view`` (the ipywidgets / anywidget front end: ``pip install
+refracta[widgets]``).
+"""
+
+from refracta.widgets.model import EditorModel
+
+__all__ = ["EditorModel", "MirageEditor"]
+
+
+def __getattr__(name):
+    # The view needs ipywidgets and anywidget; the model does not (PEP 562: loaded on first use).
+    if name == "MirageEditor":
+        from refracta.widgets.view import MirageEditor
+
+        return MirageEditor
+    raise AttributeError(f"module 'refracta.widgets' has no attribute {name!r}")

@@ -1,0 +1,756 @@
+"""The mirage editor's state and behaviour, without any user interface (MirageEditor is its view).
+
+EditorModel holds the scene, camera, atmosphere and point pairs, turns pointer events into pairs
+and camera moves, keeps undo/redo history, and runs renders and solves in the background
+(refracta.widgets.jobs). The view forwards the browser's events to the same methods the tests
+call, and redraws when the model tells it what changed.
+
+Coordinates: pointer events and destinations are in image pixels of the editor's (full
+resolution) camera -- u right, v down, pixel (i, j) centred at (i + 0.5, j + 0.5), as Camera.ray,
+Camera.pick and Camera.project use them. Sources are scene points [m].
+
+Pointer gestures in mode 'points':
+
+- a press on nothing, first: the source -- the scene point the pixel shows without atmosphere
+  (Camera.pick); on the sky (no hit) a message says so and nothing changes;
+- a press on nothing, second: the destination -- where that point's mirage image should appear;
+  the pair is added (weight 1, margin 0);
+- a press on a marker, then moving: drags that source (picked again under the pointer) or
+  destination; the secondary button drops a source still waiting for its destination.
+
+In mode 'camera' a primary drag orbits, a secondary or shift drag pans; the wheel dollies in both
+modes (refracta.widgets.camera_moves).
+
+Rendering: every change of camera, atmosphere or scene renders the image again, first at
+1 / preview_scale of the resolution in each direction, then at full resolution; a newer request
+cancels the one still running (JobRunner slot 'render'). The straight view (no atmosphere) renders
+in its own slot when shown. Solving (slot 'solve') calls refracta.edit.solve with the pairs, the
+free parameters and the solve options; its result becomes the atmosphere (undoable), and the ray
+fan of the pairs (refracta.plot.edit_report: paths before and after) is drawn as a PNG.
+
+Observers registered with observe(callback) are called as callback(what) after each change, with
+what one of CHANGES, on the thread that made it (the caller's for events, a worker's for renders
+and solves).
+"""
+
+from __future__ import annotations
+
+import io as _io
+import logging
+import math
+import threading
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from refracta import _core
+from refracta import io as _image_io
+from refracta._render import render
+from refracta.widgets import camera_moves, files
+from refracta.widgets.jobs import Job, JobRunner
+
+__all__ = ["CHANGES", "DisplayImage", "EditorModel", "GRAB_RADIUS", "MAX_HISTORY", "check_margin", "check_weight",
+           "make_pair", "unmet_pairs"]
+
+log = logging.getLogger("refracta.widgets")
+
+#: What observers are told changed.
+CHANGES = ("image", "straight", "pairs", "camera", "field", "free", "message", "progress", "result", "history",
+           "busy", "mode", "fan")
+MAX_HISTORY = 100     # undo steps kept: each holds references to immutable objects, not copies
+GRAB_RADIUS = 8.0     # [display pixels] a press this close to a marker drags it (about a fingertip)
+DEFAULT_DISPLAY = {"key": 0.18}  # Reinhard with the photographic key (middle grey), as `refracta demo`
+                                 # shows the examples: their skies are in physical units
+
+
+@dataclass(frozen=True)
+class DisplayImage:
+    """A tone-mapped image ready to show. pixels: uint8 (H, W, 3) sRGB; level: 'preview' or
+    'full'; linear: the renderer's float32 (H, W, 3) radiance."""
+
+    pixels: np.ndarray
+    level: str
+    linear: np.ndarray
+
+
+@dataclass(frozen=True)
+class _Snapshot:
+    """What undo restores: references to the immutable scene, camera and field, the pairs tuple."""
+
+    label: str
+    scene: _core.Scene
+    scene_text: Optional[str]
+    camera: _core.Camera
+    field: _core.IndexField
+    pairs: Tuple
+    free: Optional[Tuple[str, ...]]
+    result: object
+    fan_png: Optional[bytes]
+
+
+def _finite(value, name: str) -> float:
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number (got {value!r})") from None
+    if not math.isfinite(number):
+        raise ValueError(f"{name} must be a finite number (got {value!r})")
+    return number
+
+
+def check_weight(weight, name: str = "weight") -> float:
+    """`weight` as a float; ValueError naming `name` unless finite and > 0."""
+    value = _finite(weight, name)
+    if not value > 0.0:
+        raise ValueError(f"{name} must be > 0 (got {weight!r})")
+    return value
+
+
+def check_margin(margin, name: str = "margin") -> float:
+    """`margin` as a float; ValueError naming `name` unless finite and >= 0."""
+    value = _finite(margin, name)
+    if value < 0.0:
+        raise ValueError(f"{name} must be >= 0 (got {margin!r})")
+    return value
+
+
+def make_pair(destination, source, weight=1.0, margin=0.0):
+    """A refracta.edit.PointPair, weight and margin checked first (ValueError naming them).
+
+    margin [pixels for a pixel destination, m for a 3D one]: the pair counts as met once its miss
+    is within it."""
+    from refracta.edit import PointPair
+
+    weight, margin = check_weight(weight), check_margin(margin)
+    return PointPair(tuple(float(x) for x in destination), tuple(float(x) for x in source), weight, margin=margin)
+
+
+def unmet_pairs(result) -> List[int]:
+    """Indices of the pairs an EditResult did not meet (its `met`: miss within margin)."""
+    return [i for i, ok in enumerate(result.met) if not ok]
+
+
+class EditorModel:
+    """The mirage editor without its user interface (see the module doc for gestures and units).
+
+    Args:
+        scene, camera, field: what to edit: a refracta.Scene, the full-resolution refracta.Camera
+            and the atmosphere (an IndexField with parameters, e.g. PhysicalAtmosphere).
+        free: names of the field parameters a solve may change (None: solve()'s default).
+        ground: height [m] where the pairs' paths end on the ground (solve's ground; None: none).
+        max_length: [m] rays end after this length in renders (None: RenderOptions' default).
+        render_options: further refracta.render keywords (spp, transport, ...).
+        solve_options: further refracta.edit.solve keywords (backend, accept_angle, ...).
+        scene_text: the TOML text the scene was loaded from (export keeps everything in it).
+        preview_scale: the preview renders 1/preview_scale of the width and height (4: a quarter).
+        display: refracta.io.to_display keywords (default: Reinhard with key 0.18).
+        autorender: render at once (False: only when render() is called; for tests).
+
+    Raises:
+        ValueError: wrong types, unknown free parameter names, preview_scale < 1.
+    """
+
+    def __init__(self, scene: _core.Scene, camera: _core.Camera, field: _core.IndexField,
+                 free: Optional[Sequence[str]] = None, *, ground: Optional[float] = None,
+                 max_length: Optional[float] = None, render_options: Optional[dict] = None,
+                 solve_options: Optional[dict] = None, scene_text: Optional[str] = None,
+                 preview_scale: int = 4, display: Optional[dict] = None, autorender: bool = True):
+        if not isinstance(scene, _core.Scene):
+            raise ValueError(f"scene must be a refracta.Scene (got {type(scene).__name__})")
+        if not isinstance(camera, _core.Camera):
+            raise ValueError(f"camera must be a refracta.Camera (got {type(camera).__name__})")
+        if not isinstance(field, _core.IndexField):
+            raise ValueError(f"field must be a refracta IndexField (got {type(field).__name__})")
+        if isinstance(preview_scale, bool) or int(preview_scale) != preview_scale or preview_scale < 1:
+            raise ValueError(f"preview_scale must be a whole number >= 1 (got {preview_scale!r})")
+        self._lock = threading.RLock()
+        self._observers: List[Callable[[str], None]] = []
+        self.scene, self.scene_text, self.camera, self.field = scene, scene_text, camera, field
+        self.free: Optional[Tuple[str, ...]] = None
+        self.set_free(free)
+        self.ground = None if ground is None else _finite(ground, "ground")
+        self.render_options = dict(render_options or {})
+        if max_length is not None:
+            self.render_options["max_length"] = _finite(max_length, "max_length")
+        for reserved in ("progress", "method"):  # each render job passes its own
+            if reserved in self.render_options:
+                raise ValueError(f"render_options: {reserved!r} is the editor's to choose")
+        self.solve_options = dict(solve_options or {})
+        for reserved in ("free", "ground", "progress"):
+            if reserved in self.solve_options:
+                raise ValueError(f"solve_options: pass {reserved!r} as the editor's own argument")
+        self.preview_scale = int(preview_scale)
+        self.display = dict(DEFAULT_DISPLAY if display is None else display)
+        self.pairs: Tuple = ()
+        self.pending_source: Optional[np.ndarray] = None  # a source waiting for its destination [m]
+        self.selected: Optional[int] = None
+        self.mode = "points"
+        self.show_straight = False
+        self.result = None  # the last EditResult applied
+        self.fan_png: Optional[bytes] = None  # its ray fan (refracta.plot.edit_report) as PNG
+        self.message, self.message_kind = "", "info"
+        self.images: Dict[str, Optional[DisplayImage]] = {"curved": None, "straight": None}
+        self.progress: Dict[str, Tuple[str, float]] = {}
+        self._undo: List[_Snapshot] = []
+        self._redo: List[_Snapshot] = []
+        self._drag: Optional[dict] = None
+        self.runner = JobRunner(on_progress=self._on_progress, on_error=self._on_job_error,
+                                on_finished=self._on_job_finished)
+        if autorender:
+            self.render()
+
+    # ---------------------------------------------------------------- observers and messages
+    def observe(self, callback: Callable[[str], None]) -> None:
+        """Call callback(what) after each change (what: one of CHANGES)."""
+        self._observers.append(callback)
+
+    def _notify(self, *changes: str) -> None:
+        for what in changes:
+            for callback in list(self._observers):
+                try:
+                    callback(what)
+                except Exception:  # noqa: BLE001 -- a view's failure must not break the model
+                    log.exception("refracta.widgets: observer failed on %r", what)
+
+    def say(self, message: str, kind: str = "info") -> None:
+        """Show `message` (kind 'info', 'success' or 'error') in the editor."""
+        self.message, self.message_kind = message, kind
+        self._notify("message")
+
+    # ---------------------------------------------------------------- history
+    def _snapshot(self, label: str) -> _Snapshot:
+        return _Snapshot(label, self.scene, self.scene_text, self.camera, self.field, self.pairs, self.free,
+                         self.result, self.fan_png)
+
+    def _record(self, before: _Snapshot) -> None:
+        """Push `before` (the state before an edit) on the undo stack; clears redo. Called with the
+        lock held: the caller notifies 'history' after releasing it (observers never run under the
+        model's lock, so a view may call the model from them)."""
+        self._undo.append(before)
+        del self._undo[:-MAX_HISTORY]
+        self._redo.clear()
+
+    @property
+    def can_undo(self) -> bool:
+        return bool(self._undo)
+
+    @property
+    def can_redo(self) -> bool:
+        return bool(self._redo)
+
+    def undo(self) -> bool:
+        """Restore the state before the last edit (pairs, camera, atmosphere, scene); False if none."""
+        return self._step(self._undo, self._redo, "undo", "Undid")
+
+    def redo(self) -> bool:
+        """Restore the state the last undo left; False if none."""
+        return self._step(self._redo, self._undo, "redo", "Redid")
+
+    def _step(self, source: List[_Snapshot], target: List[_Snapshot], action: str, verb: str) -> bool:
+        with self._lock:
+            state = source.pop() if source else None
+            if state is not None:
+                target.append(self._snapshot(state.label))
+                camera_changed = state.camera is not self.camera or state.scene is not self.scene
+                view_changed = camera_changed or state.field is not self.field
+                self.scene, self.scene_text, self.camera, self.field = (state.scene, state.scene_text, state.camera,
+                                                                        state.field)
+                self.pairs, self.free, self.result, self.fan_png = state.pairs, state.free, state.result, state.fan_png
+                self.pending_source, self._drag = None, None
+                if self.selected is not None and self.selected >= len(self.pairs):
+                    self.selected = None
+        if state is None:
+            self.say(f"Nothing to {action}.")
+            return False
+        self._notify("pairs", "camera", "field", "result", "fan", "history")
+        self.say(f"{verb}: {state.label}.")
+        if view_changed:
+            self.render(straight=camera_changed)
+        return True
+
+    # ---------------------------------------------------------------- pairs
+    @property
+    def result_matches_pairs(self) -> bool:
+        """Whether the last solve's result was solved for the pairs as they are now (its misses
+        and met flags describe them)."""
+        result = self.result
+        return result is not None and tuple(result.pairs) == self.pairs
+
+    def markers(self, scale: float = 1.0) -> List[dict]:
+        """What to draw over the image, in image pixels: per pair its source (projected by the camera,
+        without atmosphere) and destination, and a source waiting for its destination. Each marker:
+        {'kind': 'source'|'destination'|'pending', 'pair': index or -1, 'u', 'v', 'selected', 'met'
+        (True/False after a solve of these pairs, else None)}."""
+        with self._lock:
+            camera, pairs, selected = self.camera, self.pairs, self.selected
+            unmet = set(unmet_pairs(self.result)) if self.result_matches_pairs else None
+            pending = self.pending_source
+        out = []
+        for i, pair in enumerate(pairs):
+            met = None if unmet is None else i not in unmet
+            for kind, uv in (("source", self._project(camera, pair.source)),
+                             ("destination", self._destination_pixel(camera, pair))):
+                if uv is not None:
+                    out.append({"kind": kind, "pair": i, "u": uv[0], "v": uv[1], "selected": i == selected, "met": met})
+        if pending is not None:
+            uv = self._project(camera, pending)
+            if uv is not None:
+                out.append({"kind": "pending", "pair": -1, "u": uv[0], "v": uv[1], "selected": True, "met": None})
+        return out
+
+    @staticmethod
+    def _project(camera, point) -> Optional[Tuple[float, float]]:
+        u, v, depth = np.asarray(camera.project(np.asarray(point, dtype=float)[None, :]), dtype=float)[0]
+        return (float(u), float(v)) if depth > 0.0 else None
+
+    def _destination_pixel(self, camera, pair):
+        if len(pair.destination) == 2:
+            return float(pair.destination[0]), float(pair.destination[1])
+        return self._project(camera, pair.destination)
+
+    def add_pair(self, destination, source, weight: float = 1.0, margin: float = 0.0) -> int:
+        """Add a pair: destination a pixel (u, v) of the camera or a 3D point [m], source a scene
+        point [m]; returns its index. Raises ValueError naming a bad weight (finite, > 0) or margin
+        (finite, >= 0) or point."""
+        pair = make_pair(destination, source, weight, margin)
+        with self._lock:
+            before = self._snapshot("add pair")
+            self.pairs = self.pairs + (pair,)
+            self.selected = len(self.pairs) - 1
+            self._record(before)
+        self._notify("pairs", "history")
+        return self.selected
+
+    def _replace_pair(self, index: int, label: str, record: bool = True, **changes) -> None:
+        with self._lock:
+            self._check_index(index)
+            old = self.pairs[index]
+            values = dict(destination=old.destination, source=old.source, weight=old.weight,
+                          margin=old.margin)
+            values.update(changes)
+            new = make_pair(values["destination"], values["source"], values["weight"], values["margin"])
+            before = self._snapshot(label)
+            self.pairs = self.pairs[:index] + (new,) + self.pairs[index + 1:]
+            if record:
+                self._record(before)
+        self._notify("pairs", "history")
+
+    def _check_index(self, index: int) -> None:
+        if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < len(self.pairs):
+            raise ValueError(f"pair index must be in [0, {len(self.pairs)}) (got {index!r})")
+
+    def set_weight(self, index: int, weight: float) -> None:
+        """Set pair `index`'s weight (finite, > 0; ValueError naming it otherwise)."""
+        check_weight(weight, f"pair {index} weight")
+        self._replace_pair(index, f"weight of pair {index}", weight=weight)
+
+    def set_margin(self, index: int, margin: float) -> None:
+        """Set pair `index`'s margin (finite, >= 0 [pixels]; ValueError naming it otherwise)."""
+        check_margin(margin, f"pair {index} margin")
+        self._replace_pair(index, f"margin of pair {index}", margin=margin)
+
+    def delete_pair(self, index: int) -> None:
+        """Remove pair `index`."""
+        with self._lock:
+            self._check_index(index)
+            before = self._snapshot(f"delete pair {index}")
+            self.pairs = self.pairs[:index] + self.pairs[index + 1:]
+            if self.selected is not None:
+                self.selected = None if self.selected == index else self.selected - (self.selected > index)
+            self._record(before)
+        self._notify("pairs", "history")
+
+    def select(self, index: Optional[int]) -> None:
+        """Highlight pair `index` (None: none)."""
+        if index is not None:
+            self._check_index(index)
+        self.selected = index
+        self._notify("pairs")
+
+    def set_pairs(self, pairs: Sequence, label: str = "set pairs") -> None:
+        """Replace every pair (refracta.edit.PointPair objects; undoable)."""
+        pairs = tuple(make_pair(p.destination, p.source, p.weight, p.margin) for p in pairs)
+        with self._lock:
+            before = self._snapshot(label)
+            self.pairs, self.selected, self.pending_source = pairs, None, None
+            self._record(before)
+        self._notify("pairs", "history")
+
+    def set_free(self, free: Optional[Sequence[str]]) -> None:
+        """The parameters a solve may change (None or empty: solve()'s default). ValueError naming
+        unknown names."""
+        if isinstance(free, str):
+            free = [free]
+        free = tuple(free or ())
+        unknown = [name for name in free if name not in self.field.param_names]
+        if unknown:
+            raise ValueError(f"free: unknown parameter(s) {unknown} of {self.field.type_name}; "
+                             f"valid names: {list(self.field.param_names)}")
+        self.free = free or None
+        self._notify("free")
+
+    # ---------------------------------------------------------------- pointer events
+    def set_mode(self, mode: str) -> None:
+        """'points' (place and drag pairs) or 'camera' (orbit, pan, dolly)."""
+        if mode not in ("points", "camera"):
+            raise ValueError(f"mode must be 'points' or 'camera' (got {mode!r})")
+        self.mode, self._drag = mode, None
+        self._notify("mode")
+
+    def _nearest_marker(self, u: float, v: float, scale: float) -> Optional[dict]:
+        radius = GRAB_RADIUS / max(scale, 1e-9)
+        best, best_distance = None, radius
+        for marker in self.markers():
+            if marker["kind"] == "pending":
+                continue
+            distance = math.hypot(marker["u"] - u, marker["v"] - v)
+            if distance <= best_distance:
+                best, best_distance = marker, distance
+        return best
+
+    def pointer_down(self, u: float, v: float, button: int = 0, shift: bool = False, scale: float = 1.0) -> None:
+        """A press at pixel (u, v): button 0 primary, 2 secondary; scale: display pixels per image
+        pixel (markers are grabbed within GRAB_RADIUS display pixels)."""
+        u, v = _finite(u, "u"), _finite(v, "v")
+        if self.mode == "camera":
+            kind = "pan" if (button == 2 or shift) else "orbit"
+            self._drag = {"kind": kind, "start": (u, v), "camera": self.camera, "before": self._snapshot(kind)}
+            return
+        if button == 2:
+            if self.pending_source is not None:
+                self.pending_source = None
+                self._notify("pairs")
+                self.say("Source dropped.")
+            return
+        marker = self._nearest_marker(u, v, scale)
+        if marker is not None:
+            self._drag = {"kind": marker["kind"], "pair": marker["pair"], "start": (u, v),
+                          "marker": (marker["u"], marker["v"]),  # moves by the pointer's offset, no jump
+                          "before": self._snapshot(f"move {marker['kind']} of pair {marker['pair']}"), "moved": False}
+            self.select(marker["pair"])
+            return
+        if self.pending_source is None:
+            point = self.camera.pick(self.scene, u, v)
+            if point is None:
+                self.say(f"Nothing at pixel ({u:.1f}, {v:.1f}) to be a source (sky, or beyond the scene): "
+                         "click an object.", "error")
+                return
+            self.pending_source = np.asarray(point, dtype=float)
+            self._notify("pairs")
+            self.say(f"Source at ({point[0]:.2f}, {point[1]:.2f}, {point[2]:.2f}) m; now click where its "
+                     "mirage image should appear.")
+            return
+        source, self.pending_source = self.pending_source, None
+        index = self.add_pair((u, v), source)
+        self.say(f"Pair {index} added: destination ({u:.1f}, {v:.1f}).", "success")
+
+    def pointer_move(self, u: float, v: float) -> None:
+        """The pointer moved to (u, v) with a button held (ignored when nothing is dragged)."""
+        drag = self._drag
+        if drag is None:
+            return
+        u, v = _finite(u, "u"), _finite(v, "v")
+        du, dv = u - drag["start"][0], v - drag["start"][1]
+        if drag["kind"] in ("orbit", "pan"):
+            move = camera_moves.orbit if drag["kind"] == "orbit" else camera_moves.pan
+            self._set_camera(move(drag["camera"], du, dv))
+            return
+        if du == 0.0 and dv == 0.0 and not drag["moved"]:
+            return  # a press on a marker without a move selects it and changes nothing
+        index = drag["pair"]
+        mu, mv = drag["marker"][0] + du, drag["marker"][1] + dv
+        if drag["kind"] == "destination":
+            self._replace_pair(index, drag["before"].label, record=False, destination=(mu, mv))
+        else:
+            point = self.camera.pick(self.scene, mu, mv)
+            if point is None:
+                self.say(f"Nothing at pixel ({mu:.1f}, {mv:.1f}) to be a source; the source stays where it was.",
+                         "error")
+                return
+            self._replace_pair(index, drag["before"].label, record=False, source=point)
+        drag["moved"] = True
+
+    def pointer_up(self, u: Optional[float] = None, v: Optional[float] = None) -> None:
+        """The button was released (at (u, v), if given): ends a drag, one undo step per drag."""
+        if u is not None and v is not None:
+            self.pointer_move(u, v)
+        drag, self._drag = self._drag, None
+        if drag is None:
+            return
+        if drag["kind"] in ("orbit", "pan"):
+            if drag["camera"] is not self.camera:
+                with self._lock:
+                    self._record(drag["before"])
+                self._notify("history")
+        else:
+            if drag.get("moved"):
+                with self._lock:
+                    self._record(drag["before"])
+            self._notify("pairs", "history")
+
+    @property
+    def dragging(self) -> bool:
+        """Whether a pointer drag (marker or camera) is under way."""
+        return self._drag is not None
+
+    def click(self, u: float, v: float, button: int = 0, shift: bool = False) -> None:
+        """A press and release at (u, v) (as a browser click sends them)."""
+        self.pointer_down(u, v, button, shift)
+        self.pointer_up()
+
+    def wheel(self, steps: float) -> None:
+        """Dolly by `steps` wheel steps (> 0: toward the look-at point); one undo step."""
+        steps = _finite(steps, "steps")
+        if steps == 0.0:
+            return
+        with self._lock:
+            self._record(self._snapshot("dolly"))
+        self._notify("history")
+        self._set_camera(camera_moves.dolly(self.camera, steps))
+
+    # ---------------------------------------------------------------- camera
+    def set_camera(self, position=None, look_at=None, vfov=None) -> None:
+        """Move the camera to `position` / `look_at` [m] / `vfov` [deg] (None keeps each); one undo
+        step. ValueError naming the bad field."""
+        camera = camera_moves.with_pose(self.camera, position, look_at, vfov)
+        with self._lock:
+            self._record(self._snapshot("camera"))
+        self._notify("history")
+        self._set_camera(camera)
+
+    def _set_camera(self, camera: _core.Camera) -> None:
+        with self._lock:
+            self.camera = camera
+        self._notify("camera", "pairs")
+        self.render(straight=True)
+
+    # ---------------------------------------------------------------- rendering
+    def set_show_straight(self, show: bool) -> None:
+        """Show (and render) the straight view, without atmosphere, beside the image."""
+        self.show_straight = bool(show)
+        self._notify("straight")
+        if self.show_straight:
+            self.render(curved=False, straight=True)
+
+    def render(self, curved: bool = True, straight: bool = True) -> None:
+        """Render again in the background (the curved image progressively; the straight view if
+        shown and `straight`), superseding the renders still running."""
+        with self._lock:
+            scene, camera, field = self.scene, self.camera, self.field
+            options = dict(self.render_options)
+        if curved:
+            previews = [] if self.preview_scale == 1 else [
+                ("preview", camera.resized(max(1, camera.width // self.preview_scale),
+                                           max(1, camera.height // self.preview_scale)))]
+            stages = previews + [("full", camera)]
+
+            def curved_work(job: Job):
+                for k, (level, view) in enumerate(stages):
+                    progress = job.progress(f"rendering ({level})", k / len(stages), (k + 1) / len(stages))
+                    image = render(scene, view, field, method="curved", progress=progress, **options)
+                    job.check()
+                    self._publish(job, "curved", level, image)
+            self.runner.submit("render", curved_work, "rendering")
+        if straight and self.show_straight:
+            def straight_work(job: Job):
+                image = render(scene, camera, None, method="straight", progress=job.progress("straight view"),
+                               **options)
+                job.check()
+                self._publish(job, "straight", "full", image)
+            self.runner.submit("straight", straight_work, "straight view")
+        self._notify("busy")
+
+    def _publish(self, job: Job, kind: str, level: str, image: np.ndarray) -> None:
+        pixels = np.asarray(_image_io.to_display(image, **self.display))
+        pixels = np.clip(np.rint(pixels[..., :3] * 255.0), 0, 255).astype(np.uint8)
+        with self._lock:
+            if job.cancelled:
+                return
+            self.images[kind] = DisplayImage(pixels, level, image)
+        self._notify("image" if kind == "curved" else "straight")
+
+    def _on_progress(self, job: Job, label: str, fraction: float) -> None:
+        self.progress[job.slot] = (label, fraction)
+        self._notify("progress")
+
+    def _on_job_error(self, error: BaseException) -> None:
+        log.debug("refracta.widgets: background job failed", exc_info=error)
+        self.say(f"{type(error).__name__}: {error}", "error")
+
+    def _on_job_finished(self, job: Job) -> None:
+        if job.state == "cancelled" and job.slot == "solve":
+            self.say("Solve cancelled; nothing changed.")
+        if not self.runner.busy(job.slot):
+            self.progress.pop(job.slot, None)
+        self._notify("progress", "busy")
+
+    @property
+    def busy(self) -> bool:
+        """Whether a render or solve is running or queued."""
+        return self.runner.busy()
+
+    @property
+    def solving(self) -> bool:
+        return self.runner.busy("solve")
+
+    def wait(self, timeout: Optional[float] = None) -> bool:
+        """Block until every render and solve has finished; False if `timeout` [s] passed first."""
+        return self.runner.wait(timeout)
+
+    def cancel(self) -> None:
+        """Stop the running solve and renders (the image keeps its last finished stage)."""
+        self.runner.cancel()
+
+    def close(self) -> None:
+        """Stop the background threads (the model is unusable afterwards)."""
+        self.runner.close()
+
+    # ---------------------------------------------------------------- solving
+    def solve(self) -> Optional[Job]:
+        """Solve for the atmosphere that meets the pairs, in the background (a solve still running
+        is superseded). Returns the Job, or None (with a message) when there are no pairs."""
+        from refracta import edit
+
+        with self._lock:
+            field, camera, pairs, free = self.field, self.camera, self.pairs, self.free
+            options = dict(self.solve_options)
+        if not pairs:
+            self.say("Add at least one pair first: click a scene point, then where its image should appear.", "error")
+            return None
+        if self.ground is not None:
+            options["ground"] = self.ground
+
+        def work(job: Job):
+            result = edit.solve(field, camera, list(pairs), free=list(free) if free else None,
+                                progress=job.progress("solving"), **options)
+            job.check()
+            return result
+
+        def done(result):
+            with self._lock:
+                before = self._snapshot("solve")
+                self.field, self.result, self.fan_png = result.field, result, None
+                self._record(before)
+            self._notify("field", "result", "fan", "pairs", "history")
+            unmet = unmet_pairs(result)
+            if result.success:
+                self.say(f"Solved: every pair met ({result.iterations} iterations, {result.time:.2g} s).", "success")
+            elif unmet:
+                self.say(f"Not every image can be put there: pair(s) {', '.join(map(str, unmet))} missed. "
+                         + result.message, "error")
+            else:
+                self.say("Solve stopped: " + result.message, "error")
+            self.render(straight=False)
+            # The ray fan last (matplotlib: ~0.3 s), while the new image renders.
+            fan = _fan_png(result)
+            with self._lock:
+                if self.result is not result:  # undone meanwhile
+                    return
+                self.fan_png = fan
+            self._notify("fan")
+
+        self.say("Solving ...")
+        job = self.runner.submit("solve", work, "solving", on_done=done)
+        self._notify("busy")
+        return job
+
+    def changed_parameters(self) -> List[Tuple[str, float, float, str]]:
+        """(name, start, solved, unit) of the last solve's free parameters."""
+        result = self.result
+        if result is None:
+            return []
+        info = {p["name"]: p for p in result.start.param_info}
+        return [(name, float(result.start.params[name]), float(result.field.params[name]), info[name]["unit"])
+                for name in result.free]
+
+    # ---------------------------------------------------------------- files
+    def _solve_file_options(self) -> dict:
+        options = {k: v for k, v in self.solve_options.items() if isinstance(v, (str, int, float, bool, list))}
+        options["free"] = list(self.free) if self.free else None
+        options["ground"] = self.ground
+        return options
+
+    def pairs_json(self) -> str:
+        """The pairs in the JSON format of `refracta edit --pairs` (refracta.edit.load_pairs)."""
+        return files.pairs_json(self.pairs, self._solve_file_options())
+
+    def scene_toml(self) -> str:
+        """The scene as TOML with the editor's camera and atmosphere (refracta.load_scene)."""
+        return files.scene_toml(self.scene_text, self.camera, self.field)
+
+    def export_pairs(self, path) -> Path:
+        """Write pairs_json() to `path`; returns it. refracta.IoError if it cannot be written."""
+        return self._write(path, self.pairs_json(), "pairs")
+
+    def export_scene(self, path) -> Path:
+        """Write scene_toml() to `path`; returns it. refracta.IoError if it cannot be written."""
+        return self._write(path, self.scene_toml(), "scene")
+
+    def _write(self, path, text: str, what: str) -> Path:
+        path = Path(path)
+        try:
+            path.write_text(text)
+        except OSError as error:
+            raise _core.IoError(f"cannot write {what} file {path}: {error.strerror}") from None
+        self.say(f"Wrote {path}.", "success")
+        return path
+
+    def import_pairs(self, path) -> None:
+        """Replace the pairs by those of a pairs file (sources given as pixels are picked with the
+        editor's camera); its 'free' and 'ground' become the editor's. Undoable. Raises what
+        refracta.edit.load_pairs raises (IoError, ValueError naming the file and pair)."""
+        from refracta.edit import load_pairs
+
+        pairs, options = load_pairs(path, self.scene, self.camera)
+        if "free" in options:
+            self.set_free(options.pop("free"))
+        if "ground" in options:
+            ground = options.pop("ground")
+            self.ground = None if ground is None else _finite(ground, "ground")
+        self.solve_options.update(options)
+        self.set_pairs(pairs, label=f"load pairs from {Path(path).name}")
+        self.say(f"Loaded {len(pairs)} pair(s) from {path}.", "success")
+
+    def import_scene(self, path) -> None:
+        """Replace scene, camera and atmosphere by a scene file's (refracta.load_scene); undoable.
+        A file without [atmosphere] keeps the editor's."""
+        from refracta.scene_file import load_scene
+
+        path = Path(path)
+        scene, camera, field = load_scene(path)
+        text = path.read_text()
+        with self._lock:
+            before = self._snapshot(f"load scene {path.name}")
+            self.scene, self.scene_text, self.camera = scene, text, camera
+            if field is not None:
+                self.field = field
+                if self.free and any(n not in field.param_names for n in self.free):
+                    self.free = None
+            self.pending_source, self.selected = None, None
+            self._record(before)
+        self._notify("camera", "field", "pairs", "history")
+        self.say(f"Loaded {path}.", "success")
+        self.render()
+
+
+def _fan_png(result) -> Optional[bytes]:
+    """refracta.plot.edit_report's figure (paths before and after, cost history) as PNG bytes."""
+    import matplotlib
+
+    from refracta import plot
+
+    backend_is_agg = matplotlib.get_backend().lower() in ("agg", "module://matplotlib_inline.backend_inline")
+    if not backend_is_agg:  # pyplot in a worker thread needs a non-interactive backend
+        return None
+    import matplotlib.pyplot as plt
+
+    figure = plot.edit_report(result, figsize=(9.0, 3.2))
+    try:
+        buffer = _io.BytesIO()
+        figure.savefig(buffer, format="png", dpi=80)
+        return buffer.getvalue()
+    finally:
+        plt.close(figure)
+
