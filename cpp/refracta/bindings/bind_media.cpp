@@ -140,6 +140,12 @@ struct HasHotSpots : std::false_type {};
 template <class Config>
 struct HasHotSpots<Config, std::void_t<decltype(std::declval<Config&>().hot_spots)>> : std::true_type {};
 
+// Whether a model's Config can switch its hot layer off (LogisticProfile's height-only part).
+template <class Config, class = void>
+struct HasHotLayerOff : std::false_type {};
+template <class Config>
+struct HasHotLayerOff<Config, std::void_t<decltype(std::declval<Config&>().hot_layer_off)>> : std::true_type {};
+
 // The hot spots given to a field's constructor: a HotSpot or a sequence of them. PhysicalAtmosphere
 // takes a spot without depth as deep as its surface layer; LogisticProfile's spots have no depth.
 std::vector<HotSpot> hot_spots_from_python(const char* model, const py::handle& object, bool with_depth,
@@ -166,6 +172,16 @@ std::vector<HotSpot> hot_spots_from_python(const char* model, const py::handle& 
   return spots;
 }
 
+// turbulence=: a refracta.Turbulence (its `layer`), a TurbulenceLayer, or None.
+std::shared_ptr<const Turbulence> turbulence_from_python(const char* model, py::object object) {
+  if (object.is_none()) return nullptr;
+  if (py::hasattr(object, "layer") && !py::isinstance<Turbulence>(object)) object = object.attr("layer");
+  if (!py::isinstance<Turbulence>(object)) {
+    throw_invalid(model, ": turbulence must be a refracta.Turbulence (got ", std::string(py::str(object.get_type())), ")");
+  }
+  return py::cast<std::shared_ptr<Turbulence>>(object);
+}
+
 template <class Field>
 py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m, const char* name,
                                                                  const std::string& doc) {
@@ -177,7 +193,8 @@ py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m,
     std::vector<double> values = values_from(Field::model_name(), specs, default_values(specs), 0, args, [&] {
       py::kwargs rest;
       for (const auto& item : kwargs) {
-        if (py::cast<std::string>(item.first) != "hot_spots") rest[item.first] = item.second;
+        const std::string key = py::cast<std::string>(item.first);
+        if (key != "hot_spots" && key != "turbulence") rest[item.first] = item.second;
       }
       return rest;
     }());
@@ -196,6 +213,11 @@ py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m,
     } else if (kwargs.contains("hot_spots")) {
       throw_invalid(Field::model_name(), " takes no hot_spots");
     }
+    if constexpr (HasHotSpots<Config>::value) {
+      if (kwargs.contains("turbulence")) config.turbulence = turbulence_from_python(Field::model_name(), kwargs["turbulence"]);
+    } else if (kwargs.contains("turbulence")) {
+      throw_invalid(Field::model_name(), " takes no turbulence");
+    }
     return std::make_shared<Field>(config, values);
   }));
   if constexpr (HasHotSpots<Config>::value) {
@@ -208,12 +230,22 @@ py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m,
       }
       return spots;
     }, "The hot spots with their current parameter values (a list of HotSpot).");
-    // Pickled as its parameter values and hot spots as made, rebuilt (and validated) by the model.
-    cls.def(py::pickle([](const Field& f) { return py::make_tuple(f.param_values(), f.config().hot_spots); },
+    cls.def_property_readonly("turbulence", [](const Field& f) { return std::const_pointer_cast<Turbulence>(f.config().turbulence); },
+                              "The TurbulenceLayer this air carries (None: calm).");
+    // Pickled as its parameter values, hot spots as made and turbulence, rebuilt (and validated)
+    // by the model.
+    cls.def(py::pickle([](const Field& f) {
+                         bool layer_off = false;
+                         if constexpr (HasHotLayerOff<Config>::value) layer_off = f.config().hot_layer_off;
+                         return py::make_tuple(f.param_values(), f.config().hot_spots,
+                                               std::const_pointer_cast<Turbulence>(f.config().turbulence), layer_off);
+                       },
                        [](const py::tuple& state) {
-                         if (state.size() != 2) throw_invalid(Field::model_name(), ": bad pickle state");
+                         if (state.size() != 4) throw_invalid(Field::model_name(), ": bad pickle state");
                          Config config{};
                          config.hot_spots = py::cast<std::vector<HotSpot>>(state[1]);
+                         if (!state[2].is_none()) config.turbulence = py::cast<std::shared_ptr<Turbulence>>(state[2]);
+                         if constexpr (HasHotLayerOff<Config>::value) config.hot_layer_off = py::cast<bool>(state[3]);
                          return std::make_shared<Field>(config, py::cast<std::vector<double>>(state[0]));
                        }));
   } else {
@@ -289,6 +321,7 @@ _radius, _dt (, _depth), so refracta.edit.solve can move, resize and heat them.)
 
 void bind_media(py::module_& m) {
   bind_hot_spot(m);
+  bind_turbulence(m);
   py::class_<IndexField, std::shared_ptr<IndexField>>(m, "IndexField", R"doc(
 A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres, y up.
 

@@ -645,16 +645,43 @@ vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (
       .def_property_readonly("look_at", [](const Camera& c) { return points_to_array({c.look_at()}).reshape({py::ssize_t(3)}); })
       .def_property_readonly("up", [](const Camera& c) { return points_to_array({c.up_hint()}).reshape({py::ssize_t(3)}); },
                              "The up vector given to the constructor.")
-      // Pickled as its constructor's arguments: the copy's rays are bit-identical.
+      .def(
+          "jittered",
+          [](const Camera& c, const py::object& angles) {
+            using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+            const FloatArray map = py::cast<FloatArray>(angles);
+            if (map.ndim() != 3 || map.shape(0) != c.height() || map.shape(1) != c.width() || map.shape(2) != 2) {
+              throw_invalid("Camera.jittered: angles must have shape (height, width, 2) = (", c.height(), ", ", c.width(),
+                            ", 2)");
+            }
+            return c.jittered(std::vector<float>(map.data(), map.data() + map.size()));
+          },
+          py::arg("angles"), R"doc(
+The same camera with every ray turned by small angles [rad] toward the image's right and up: a
+map (height, width, 2) at the pixel centres, bilinear between them. Non-physical "geometric noise"
+(the follow-up editor's cheap shimmer); project() ignores it.)doc")
+      .def_property_readonly("jitter", [](const Camera& c) -> py::object {
+        if (c.jitter().empty()) return py::none();
+        py::array_t<float> out({py::ssize_t(c.height()), py::ssize_t(c.width()), py::ssize_t(2)});
+        std::copy(c.jitter().begin(), c.jitter().end(), out.mutable_data());
+        return py::object(out);
+      }, "The angle map (height, width, 2) [rad] of a jittered camera, or None.")
+      // Pickled as its constructor's arguments (and jitter): the copy's rays are bit-identical.
       .def(py::pickle(
           [](const Camera& c) {
             auto xyz = [](const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); };
-            return py::make_tuple(xyz(c.position()), xyz(c.look_at()), xyz(c.up_hint()), c.vfov(), c.width(), c.height());
+            return py::make_tuple(xyz(c.position()), xyz(c.look_at()), xyz(c.up_hint()), c.vfov(), c.width(), c.height(),
+                                  c.jitter());
           },
           [](const py::tuple& t) {
-            if (t.size() != 6) throw_invalid("Camera: bad pickle state (", t.size(), " items)");
-            return Camera(to_point(t[0], "position"), to_point(t[1], "look_at"), to_point(t[2], "up"), py::cast<double>(t[3]),
+            if (t.size() != 6 && t.size() != 7) throw_invalid("Camera: bad pickle state (", t.size(), " items)");
+            Camera camera(to_point(t[0], "position"), to_point(t[1], "look_at"), to_point(t[2], "up"), py::cast<double>(t[3]),
                           py::cast<int>(t[4]), py::cast<int>(t[5]));
+            if (t.size() == 7) {
+              auto angles = py::cast<std::vector<float>>(t[6]);
+              if (!angles.empty()) camera = camera.jittered(std::move(angles));
+            }
+            return camera;
           }))
       .def_static(
           "framing",

@@ -17,6 +17,7 @@ using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecas
 
 void bind_core(py::module_& m);
 void bind_media(py::module_& m);
+void bind_turbulence(py::module_& m);  // called by bind_media
 void bind_rays(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_render(py::module_& m);

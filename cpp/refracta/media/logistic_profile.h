@@ -19,16 +19,19 @@
 #include "refracta/media/hot_spot.h"
 #include "refracta/media/index_field.h"
 #include "refracta/media/logistic.h"
+#include "refracta/media/turbulence.h"
 
 #include <array>
 
 namespace refracta {
 
-// The fixed data of a LogisticProfile besides its parameters: its hot spots as made, and whether
-// the hot layer is off (the height-only part of a profile with spots: the hot term at its far value).
+// The fixed data of a LogisticProfile besides its parameters: its hot spots as made, whether the
+// hot layer is off (the height-only part of a profile with spots: the hot term at its far value),
+// and its turbulence (delta n added, in scene units).
 struct LogisticConfig {
   std::vector<HotSpot> hot_spots;
   bool hot_layer_off = false;
+  std::shared_ptr<const Turbulence> turbulence;
 };
 
 template <class T>
@@ -45,7 +48,7 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
     return specs;
   }
   static constexpr bool kSpotsHaveDepth = false;  // whether a spot's depth is a parameter
-  static Config height_only_config(const Config&) { return {{}, true}; }
+  static Config height_only_config(const Config& config) { return {{}, !config.hot_spots.empty(), nullptr}; }
 
   static std::vector<ParamSpec> base_param_specs() {
     return {
@@ -80,7 +83,7 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
   }
 
   LogisticModel(const Config& config, const std::vector<T>& k)
-      : spots_(config.hot_spots), hot_layer_off_(config.hot_layer_off) {
+      : spots_(config.hot_spots), hot_layer_off_(config.hot_layer_off), turbulence_(config.turbulence) {
     for (int i = 0; i < kCount; ++i) k_[i] = k[i];
     const int per = hot_spot_param_count(false);
     for (size_t i = 0; i < spots_.size(); ++i) {
@@ -88,7 +91,7 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
     }
   }
 
-  bool height_only() const { return spots_.empty(); }
+  bool height_only() const { return spots_.empty() && !turbulence_; }
 
   void evaluate_height(const T& h, T* n, T* dn_dh) const {
     T sum, slope;
@@ -105,8 +108,33 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
   void evaluate(const Vec3<T>& p, T* n, Vec3<T>* grad) const {
     if (spots_.empty()) {
       HeightOnlyModel<LogisticModel<T>, T>::evaluate(p, n, grad);
-      return;
+    } else {
+      evaluate_with_spots(p, n, grad);
     }
+    if (turbulence_) {
+      T dn;
+      Vec3<T> dgrad;
+      turbulence_->evaluate(p, &dn, &dgrad);
+      *n += dn;
+      *grad += dgrad;
+    }
+  }
+
+  // Over each spot's reach, up to where sigma(-h/w) is negligible; the turbulence's slab.
+  std::vector<LocalRegion> local_regions() const {
+    std::vector<LocalRegion> regions;
+    const double top = -std::log(kNegligibleFeature) * value_of(hot_width());
+    for (size_t i = 0; i < spots_.size(); ++i) {
+      HotSpot spot = spots_[i];
+      spot.radius = value_of(spot_values_[i][2]);
+      regions.push_back({value_of(spot_values_[i][0]), value_of(spot_values_[i][1]), spot.reach(), top, spot.radius});
+    }
+    if (turbulence_) regions.push_back(turbulence_->region());
+    return regions;
+  }
+
+ private:
+  void evaluate_with_spots(const Vec3<T>& p, T* n, Vec3<T>* grad) const {
     T sum, slope;
     background(p.y(), &sum, &slope);
     // S(x, z) and its gradient.
@@ -126,19 +154,6 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
     *grad = Vec3<T>(-scale() * k_[kNHot] * sigma * ds_dx, scale() * slope, -scale() * k_[kNHot] * sigma * ds_dz);
   }
 
-  // Over each spot's reach, up to where sigma(-h/w) is negligible.
-  std::vector<LocalRegion> local_regions() const {
-    std::vector<LocalRegion> regions;
-    const double top = -std::log(kNegligibleFeature) * value_of(hot_width());
-    for (size_t i = 0; i < spots_.size(); ++i) {
-      HotSpot spot = spots_[i];
-      spot.radius = value_of(spot_values_[i][2]);
-      regions.push_back({value_of(spot_values_[i][0]), value_of(spot_values_[i][1]), spot.reach(), top, spot.radius});
-    }
-    return regions;
-  }
-
- private:
   T scale() const {
     using std::abs;
     return T(0.003) * k_[kKs] / (abs(k_[kNBg]) + abs(k_[kNInv]) + abs(k_[kNHot]));
@@ -163,6 +178,7 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
   std::vector<HotSpot> spots_;               // footprints (their numbers are in spot_values_)
   std::vector<std::vector<T>> spot_values_;  // x, z, radius, dt per spot
   bool hot_layer_off_ = false;
+  std::shared_ptr<const Turbulence> turbulence_;
 };
 
 }  // namespace refracta

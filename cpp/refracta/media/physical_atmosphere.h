@@ -16,13 +16,15 @@
 #include "refracta/media/hydrostatic_column.h"
 #include "refracta/media/index_field.h"
 #include "refracta/media/smoothstep.h"
+#include "refracta/media/turbulence.h"
 
 namespace refracta {
 
 // The fixed data of a PhysicalAtmosphere besides its parameters: its hot spots as made (their
-// footprints; positions and sizes are parameters).
+// footprints; positions and sizes are parameters) and its turbulence (data, not parameters).
 struct PhysicalAtmosphereConfig {
   std::vector<HotSpot> hot_spots;
+  std::shared_ptr<const Turbulence> turbulence;
 };
 
 template <class T>
@@ -85,7 +87,7 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
   }
 
   PhysicalAtmosphereModel(const Config& config, const std::vector<T>& v)
-      : p_(v.begin(), v.begin() + kCount), spots_(config.hot_spots) {
+      : p_(v.begin(), v.begin() + kCount), spots_(config.hot_spots), turbulence_(config.turbulence) {
     const int per = hot_spot_param_count(true);
     for (size_t i = 0; i < spots_.size(); ++i) spot_values_.emplace_back(v.begin() + kCount + per * i, v.begin() + kCount + per * (i + 1));
     const double depth = value_of(p_[kSurfaceDepth]);
@@ -107,11 +109,11 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
                                    std::move(nodes), 0.0, p_[kGroundPressure], kTypeName);
   }
 
-  bool height_only() const { return spots_.empty(); }
+  bool height_only() const { return spots_.empty() && !turbulence_; }
 
-  // n and grad n at p: the column's air, heated by the spots.
+  // n and grad n at p: the column's air, heated by the spots, stirred by the turbulence.
   void evaluate(const Vec3<T>& p, T* n, Vec3<T>* grad) const {
-    if (spots_.empty()) {
+    if (height_only()) {
       HydrostaticAirModel<PhysicalAtmosphereModel<T>, T>::evaluate(p, n, grad);
       return;
     }
@@ -125,6 +127,13 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
     air_index_at(p_air, t, p_[kHumidity], p_[kWavelength], n, &dn_dp, &dn_dt);
     *grad = dn_dt * grad_t;
     grad->y() += dn_dp * dp_dh;
+    if (turbulence_) {
+      T dn;
+      Vec3<T> dgrad;
+      turbulence_->evaluate(p, &dn, &dgrad);
+      *n += dn;
+      *grad += dgrad;
+    }
   }
 
   // Where the spots heat the air: a cylinder of each spot's reach, up to where e^(-h/depth) is
@@ -137,6 +146,7 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
       regions.push_back({value_of(spot_values_[i][kSpotX]), value_of(spot_values_[i][kSpotZ]), s.reach(),
                          -std::log(kNegligibleFeature) * value_of(spot_values_[i][kSpotDepth]), s.radius});
     }
+    if (turbulence_) regions.push_back(turbulence_->region());
     return regions;
   }
 
@@ -184,6 +194,7 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
   std::vector<T> p_;
   std::vector<HotSpot> spots_;             // footprints (their numbers are in spot_values_)
   std::vector<std::vector<T>> spot_values_;  // x, z, radius, dt, depth per spot
+  std::shared_ptr<const Turbulence> turbulence_;
   HydrostaticColumn<T> column_;
 };
 

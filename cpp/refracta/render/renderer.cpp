@@ -86,7 +86,10 @@ std::pair<double, double> elevation_range(const Camera& camera) {
       lo = std::min(lo, e), hi = std::max(hi, e);
     }
   }
-  const double margin = 2.0 * camera.pixel_angle() * std::max(1.0, double(camera.width()) / camera.height());
+  // Two pixels, and the largest turn of a jittered camera's rays (sampled above only at the grid).
+  double jitter = 0.0;
+  for (float a : camera.jitter()) jitter = std::max(jitter, double(std::abs(a)));
+  const double margin = 2.0 * camera.pixel_angle() * std::max(1.0, double(camera.width()) / camera.height()) + 2.0 * jitter;
   return {std::max(lo - margin, -0.5 * kPi), std::min(hi + margin, 0.5 * kPi)};
 }
 

@@ -57,7 +57,41 @@ Camera Camera::framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& dire
 Vec3d Camera::direction(double u, double v) const {
   const double x = (2.0 * u / width_ - 1.0) * tan_half_ * width_ / height_;
   const double y = (1.0 - 2.0 * v / height_) * tan_half_;
-  return (forward_ + x * right_ + y * up_).normalized();
+  const Vec3d d = (forward_ + x * right_ + y * up_).normalized();
+  if (!jitter_) return d;
+  // Bilinear in the pixel-centre grid, held at the border.
+  const double fu = std::clamp(u - 0.5, 0.0, width_ - 1.0), fv = std::clamp(v - 0.5, 0.0, height_ - 1.0);
+  const int i0 = std::min(int(fu), width_ - 1), j0 = std::min(int(fv), height_ - 1);
+  const int i1 = std::min(i0 + 1, width_ - 1), j1 = std::min(j0 + 1, height_ - 1);
+  const double a = fu - i0, b = fv - j0;
+  const std::vector<float>& m = *jitter_;
+  auto at = [&](int i, int j, int k) { return double(m[(size_t(j) * width_ + i) * 2 + k]); };
+  double angle[2];
+  for (int k = 0; k < 2; ++k) {
+    angle[k] = (1 - a) * (1 - b) * at(i0, j0, k) + a * (1 - b) * at(i1, j0, k) + (1 - a) * b * at(i0, j1, k) +
+               a * b * at(i1, j1, k);
+  }
+  // Turned by the small angles about up() and right(): the right/up components of the unit vector.
+  const Vec3d side = right_ - d * d.dot(right_), rise = up_ - d * d.dot(up_);
+  return (d + angle[0] * side.normalized() + angle[1] * rise.normalized()).normalized();
+}
+
+Camera Camera::jittered(std::vector<float> angles) const {
+  if (angles.size() != size_t(width_) * height_ * 2) {
+    throw_invalid("Camera.jittered: the angle map must be (height, width, 2) = (", height_, ", ", width_,
+                  ", 2) (got ", angles.size(), " values)");
+  }
+  for (float a : angles) {
+    if (!std::isfinite(a)) throw_invalid("Camera.jittered: angles must be finite");
+  }
+  Camera out = *this;
+  out.jitter_ = std::make_shared<const std::vector<float>>(std::move(angles));
+  return out;
+}
+
+const std::vector<float>& Camera::jitter() const {
+  static const std::vector<float> kNone;
+  return jitter_ ? *jitter_ : kNone;
 }
 
 Vec3d Camera::project(const Vec3d& point) const {

@@ -4,6 +4,9 @@
 
 #include "refracta/core/math.h"
 
+#include <memory>
+#include <vector>
+
 namespace refracta {
 
 class Camera {
@@ -20,10 +23,19 @@ class Camera {
   static Camera framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& direction, const Vec3d& up,
                         double vfov_deg, int width, int height);
 
-  // Unit direction of the ray through pixel coordinates (u, v).
+  // Unit direction of the ray through pixel coordinates (u, v) (with the jitter, if any).
   Vec3d direction(double u, double v) const;
-  // (u, v, depth) of a world point; depth [m] along the view axis, <= 0 behind the camera.
+  // (u, v, depth) of a world point through the pinhole (the jitter ignored); depth [m] along
+  // the view axis, <= 0 behind the camera.
   Vec3d project(const Vec3d& point) const;
+
+  // The same camera with every ray turned by small angles [rad] toward right() and up(): a map
+  // (height, width, 2) at the pixel centres, interpolated bilinearly between them (held at the
+  // border) -- the follow-up editor's non-physical "geometric noise" for shimmer. Throws
+  // std::invalid_argument for a map of another size or with non-finite angles.
+  Camera jittered(std::vector<float> angles) const;
+  // The jitter map (empty: none).
+  const std::vector<float>& jitter() const;
 
   const Vec3d& position() const { return position_; }
   // The constructor's look_at and up, as given (a copy rebuilt from them is bit-identical).
@@ -36,7 +48,7 @@ class Camera {
   int width() const { return width_; }
   int height() const { return height_; }
   double vfov() const { return vfov_; }
-  // The same view at another image size (the vertical field of view is kept).
+  // The same view at another image size (the vertical field of view is kept; no jitter).
   Camera resized(int width, int height) const { return Camera(position_, look_at_, up_hint_, vfov_, width, height); }
   // Angle subtended by one pixel at the image centre [rad].
   double pixel_angle() const;
@@ -45,6 +57,7 @@ class Camera {
   Vec3d position_, look_at_, up_hint_, forward_, right_, up_;
   double vfov_, tan_half_;
   int width_, height_;
+  std::shared_ptr<const std::vector<float>> jitter_;  // (height, width, 2) angles [rad], or null
 };
 
 }  // namespace refracta

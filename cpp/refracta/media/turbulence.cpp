@@ -1,0 +1,81 @@
+// The periodic cubic B-spline of a turbulence grid (turbulence.h).
+#include "refracta/media/turbulence.h"
+
+#include "refracta/core/error.h"
+
+#include <algorithm>
+
+namespace refracta {
+
+namespace {
+
+// Uniform cubic B-spline weights of the four coefficients around fraction u in [0, 1) and their
+// derivatives in u.
+void bspline_weights(double u, double w[4], double dw[4]) {
+  const double u2 = u * u, u3 = u2 * u, v = 1.0 - u;
+  w[0] = v * v * v / 6.0;
+  w[1] = (3.0 * u3 - 6.0 * u2 + 4.0) / 6.0;
+  w[2] = (-3.0 * u3 + 3.0 * u2 + 3.0 * u + 1.0) / 6.0;
+  w[3] = u3 / 6.0;
+  dw[0] = -0.5 * v * v;
+  dw[1] = 1.5 * u2 - 2.0 * u;
+  dw[2] = -1.5 * u2 + u + 0.5;
+  dw[3] = 0.5 * u2;
+}
+
+}  // namespace
+
+TurbulenceGrid::TurbulenceGrid(std::vector<float> coefficients, std::array<int, 3> shape, double spacing)
+    : c_(std::move(coefficients)), n_(shape), spacing_(spacing) {
+  for (int a = 0; a < 3; ++a) {
+    if (n_[a] < 4) throw_invalid("TurbulenceGrid: every dimension must be >= 4 (got shape (", n_[0], ", ", n_[1], ", ", n_[2], "))");
+  }
+  if (c_.size() != size_t(n_[0]) * n_[1] * n_[2]) {
+    throw_invalid("TurbulenceGrid: ", c_.size(), " coefficients for shape (", n_[0], ", ", n_[1], ", ", n_[2], ")");
+  }
+  if (!(spacing_ > 0.0) || !std::isfinite(spacing_)) throw_invalid("TurbulenceGrid: spacing must be > 0 m (got ", spacing_, ")");
+  for (float c : c_) {
+    if (!std::isfinite(c)) throw_invalid("TurbulenceGrid: coefficients must be finite");
+    bound_ = std::max(bound_, double(std::abs(c)));
+  }
+}
+
+void TurbulenceGrid::evaluate(const Vec3d& p, double* value, Vec3d* grad) const {
+  // Cell and fraction per axis; coefficients i - 1 .. i + 2 (periodic) weigh on [i, i + 1).
+  double w[3][4], dw[3][4];
+  int first[3];
+  for (int a = 0; a < 3; ++a) {
+    const double t = p[a] / spacing_;
+    const double cell = std::floor(t);
+    bspline_weights(t - cell, w[a], dw[a]);
+    const long wrapped = long(std::fmod(cell, double(n_[a])));
+    first[a] = int((wrapped + n_[a] - 1) % n_[a]);
+    if (first[a] < 0) first[a] += n_[a];
+  }
+  double sum = 0.0, dx = 0.0, dy = 0.0, dz = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const int ii = (first[0] + i) % n_[0];
+    double sy = 0.0, sdy = 0.0, syz = 0.0;  // sums over j of the sums over k, weighted
+    for (int j = 0; j < 4; ++j) {
+      const int jj = (first[1] + j) % n_[1];
+      const float* row = c_.data() + (size_t(ii) * n_[1] + jj) * n_[2];
+      double s = 0.0, ds = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        const double c = row[(first[2] + k) % n_[2]];
+        s += c * w[2][k];
+        ds += c * dw[2][k];
+      }
+      sy += s * w[1][j];
+      sdy += s * dw[1][j];
+      syz += ds * w[1][j];
+    }
+    sum += sy * w[0][i];
+    dx += sy * dw[0][i];
+    dy += sdy * w[0][i];
+    dz += syz * w[0][i];
+  }
+  *value = sum;
+  *grad = Vec3d(dx, dy, dz) / spacing_;
+}
+
+}  // namespace refracta

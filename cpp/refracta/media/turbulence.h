@@ -1,0 +1,88 @@
+// Optical turbulence as a frozen-flow refractive-index fluctuation (issue 10): a periodic
+// (tileable) 3-D pattern delta_n(x) -- a uniform cubic B-spline over a grid of coefficients,
+// C2, with its exact gradient -- carried by the wind and weighted by a height envelope:
+//   n_turbulence(x, t) = scale * E(h) * B(x - wind t),
+//   E(h) = e^(-h/depth) above the ground (2 - e^(h/depth) below: C1, bounded), or 1 (no envelope).
+// The coefficients come from Python (refracta.Turbulence: a von Karman spectrum synthesised by
+// FFT and prefiltered so that the spline passes through the synthesised samples); this side
+// evaluates them, templated on the scalar like the models (a Jet position gets the linearisation
+// value + grad . dx, since the pattern is data, not a parameter).
+#pragma once
+
+#include "refracta/core/math.h"
+#include "refracta/media/local_region.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace refracta {
+
+// A periodic uniform cubic B-spline over an nx x ny x nz grid (index (i ny + j) nz + k, x = axis 0,
+// y up = axis 1, z = axis 2) of cells `spacing` [m] wide; one period is nx * spacing along x, etc.
+class TurbulenceGrid {
+ public:
+  // Throws std::invalid_argument for a size mismatch, a dimension < 4, a spacing <= 0 or a
+  // non-finite coefficient.
+  TurbulenceGrid(std::vector<float> coefficients, std::array<int, 3> shape, double spacing);
+
+  // The spline's value and gradient [1/m] at p [m] (periodic in every axis).
+  void evaluate(const Vec3d& p, double* value, Vec3d* grad) const;
+  // max |coefficient|: the spline's values are bounded by it (its weights are >= 0, sum 1).
+  double bound() const { return bound_; }
+  const std::array<int, 3>& shape() const { return n_; }
+  double spacing() const { return spacing_; }
+  const std::vector<float>& coefficients() const { return c_; }
+
+ private:
+  std::vector<float> c_;
+  std::array<int, 3> n_;
+  double spacing_, bound_ = 0.0;
+};
+
+// A grid placed in the air: scaled, shifted by the wind, under a height envelope.
+struct Turbulence {
+  std::shared_ptr<const TurbulenceGrid> grid;
+  double scale = 1.0;             // delta_n per unit of the grid's values
+  Vec3d offset = Vec3d::Zero();   // wind * t [m]: the pattern at p is the grid's at p - offset
+  double depth = std::numeric_limits<double>::infinity();  // envelope e-folding depth [m]; inf: none
+
+  // delta_n and its gradient at p, for double or Jet positions.
+  template <class T>
+  void evaluate(const Vec3<T>& p, T* dn, Vec3<T>* grad) const {
+    using std::exp;
+    const Vec3d at(value_of(p.x()) - offset.x(), value_of(p.y()) - offset.y(), value_of(p.z()) - offset.z());
+    double b;
+    Vec3d db;
+    grid->evaluate(at, &b, &db);
+    T e(1.0), de_dh(0.0);
+    if (std::isfinite(depth)) {
+      if (value_of(p.y()) > 0.0) {
+        e = exp(-p.y() / depth);
+        de_dh = -e / depth;
+      } else {
+        const T rise = exp(p.y() / depth);
+        e = T(2.0) - rise;
+        de_dh = -rise / depth;
+      }
+    }
+    // The pattern is data: its value at a Jet position is the linearisation b + db . (p - p.a).
+    T pattern(b);
+    for (int k = 0; k < 3; ++k) pattern += db[k] * (p[k] - T(value_of(p[k])));
+    *dn = T(scale) * e * pattern;
+    *grad = Vec3<T>(T(scale * db.x()) * e, T(scale) * (de_dh * pattern + e * T(db.y())), T(scale * db.z()) * e);
+  }
+
+  // Where it matters: the slab below the height where scale * E(h) * bound() is negligible
+  // (kNegligibleFeature of its peak); everywhere without an envelope. Steps inside: half a cell.
+  LocalRegion region() const {
+    LocalRegion slab;
+    slab.top = std::isfinite(depth) ? -std::log(kNegligibleFeature) * depth : std::numeric_limits<double>::infinity();
+    slab.scale = grid->spacing();
+    return slab;
+  }
+};
+
+}  // namespace refracta
