@@ -41,7 +41,10 @@ from refracta._render import render
 from refracta._raster_render import render_raster
 from refracta.scene_file import SceneFile, load_scene
 from refracta._rays import ElevationTable, RayBatch, trace_rays
+from refracta._astronomy import astronomical_refraction
 from refracta._sweep import SweepError, SweepFailure, SweepResult, sweep
+from refracta.turbulence import Turbulence
+from refracta._animate import animate, geometric_noise
 
 # The one place the version is written: pyproject.toml reads it (scikit-build-core's regex provider).
 __version__ = "0.1.0"
@@ -83,9 +86,13 @@ __all__ = [
     "SweepResult",
     "TemperatureProfile",
     "TextureNotFoundError",
+    "Turbulence",
     "air_dispersion_scale",
+    "animate",
+    "astronomical_refraction",
     "dispersed_field",
     "field_reference_wavelength",
+    "geometric_noise",
     "get_threads",
     "set_threads",
     "io",

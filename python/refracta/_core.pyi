@@ -6,11 +6,119 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'air_dispersion_scale', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray']
+__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'HotSpot', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'air_dispersion_scale', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
     pass
+class HotSpot:
+    """
+    An areal hot (dt > 0) or cold (dt < 0) patch of ground centred at (x, z) [m]: the air above it is
+    warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre, with footprint
+    'gaussian' F = exp(-r^2 / (2 radius^2)) or 'compact' F = (1 - r/R)^4 (4 r/R + 1) for r < R = radius
+    (Wendland's C2 function: exactly zero outside). Give it to PhysicalAtmosphere(hot_spots=[...])
+    (dt [K]; depth [m], None: the atmosphere's surface_depth) or LogisticProfile(hot_spots=[...])
+    (dt: strength of the profile's hot-spot term there, 1 = the whole term; depth must be None: the
+    term's width is a_hot). The fields expose each spot's numbers as parameters hot_spot<i>_x, _z,
+    _radius, _dt (, _depth), so refracta.edit.solve can move, resize and heat them.
+    """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: HotSpot) -> bool:
+        ...
+    def __getstate__(self) -> tuple[float, float, float, float, float, int]:
+        ...
+    def __init__(self, x: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex, radius: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, depth: typing.SupportsFloat | typing.SupportsIndex | None = None, footprint: str = 'gaussian') -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    @property
+    def depth(self) -> float | None:
+        ...
+    @property
+    def dt(self) -> float:
+        ...
+    @property
+    def footprint(self) -> str:
+        ...
+    @property
+    def radius(self) -> float:
+        ...
+    @property
+    def reach(self) -> float:
+        """
+        Distance [m] beyond which the footprint is below 1e-6 (compact: exactly 0).
+        """
+    @property
+    def x(self) -> float:
+        ...
+    @property
+    def z(self) -> float:
+        ...
+class TurbulenceGrid:
+    """
+    A periodic uniform cubic B-spline over a 3-D grid: TurbulenceGrid(coefficients (nx, ny, nz) float32,
+    spacing [m]); axis 0 is x, 1 is y (up), 2 is z. Built by refracta.Turbulence; evaluate(points) gives
+    the spline's values and gradients (for tests and plots).
+    """
+    def __getstate__(self) -> tuple[numpy.ndarray, float]:
+        ...
+    def __init__(self, coefficients: typing.Any, spacing: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def evaluate(self, points: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+        """
+        (values (N,), gradients (N, 3) [1/m]) at points (N, 3) [m].
+        """
+    @property
+    def bound(self) -> float:
+        """
+        max |coefficient|: a bound of |values|.
+        """
+    @property
+    def coefficients(self) -> numpy.ndarray:
+        ...
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        ...
+    @property
+    def spacing(self) -> float:
+        ...
+class TurbulenceLayer:
+    """
+    A TurbulenceGrid placed in the air: delta_n = scale * E(h) * grid(R_yaw (p - offset)), E(h) =
+    e^(-h/depth) above the ground (none for depth = inf), the lattice turned by yaw [rad] about the
+    vertical. Made by refracta.Turbulence (its `layer`).
+    """
+    def __getstate__(self) -> tuple[TurbulenceGrid, float, tuple[float, float, float], float, float]:
+        ...
+    def __init__(self, grid: TurbulenceGrid, scale: typing.SupportsFloat | typing.SupportsIndex, offset: typing.Any, depth: typing.SupportsFloat | typing.SupportsIndex, yaw: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def evaluate(self, points: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+        """
+        (delta_n (N,), its gradient (N, 3) [1/m]) at points (N, 3) [m].
+        """
+    @property
+    def depth(self) -> float:
+        ...
+    @property
+    def grid(self) -> TurbulenceGrid:
+        ...
+    @property
+    def offset(self) -> numpy.ndarray:
+        ...
+    @property
+    def scale(self) -> float:
+        ...
+    @property
+    def yaw(self) -> float:
+        """
+        The lattice's turn about the vertical [rad].
+        """
 class IndexField:
     """
     A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres, y up.
@@ -45,6 +153,16 @@ class IndexField:
     def height_only(self) -> bool:
         ...
     @property
+    def height_only_part(self) -> IndexField:
+        """
+        A field that depends on height alone except in local regions (hot spots): the height-only field that holds outside them; None for other fields.
+        """
+    @property
+    def local_regions(self) -> list:
+        """
+        Where the field differs from height_only_part: vertical cylinders (x, z, radius [m]) below `top` [m]; `scale` [m]: the feature's horizontal size.
+        """
+    @property
     def param_info(self) -> list:
         """
         One dict per parameter: name, default, lower, upper, unit, doc.
@@ -67,6 +185,9 @@ class LogisticProfile(IndexField):
         f(L, w, x0, x) = L / (1 + e^((x0 - x) / w))
     
     Scaling n_bg, n_inv, n_hot together changes nothing (gauge freedom): editing fixes n_bg by default.
+    hot_spots=[refracta.HotSpot(x, z, radius, strength), ...] localise the hot term: its deficit near
+    the ground, n_hot * sigma(-h / (0.3 a_hot)), is scaled by sum_i dt_i F_i(r_i), so the hot layer lies
+    only over the spots (parameters hot_spot<i>_x, _z, _radius, _dt).
     
     Parameters (name [unit] default, optimiser bounds: meaning):
         n_bg [1] 3, [-10, 10]: background amplitude
@@ -78,12 +199,22 @@ class LogisticProfile(IndexField):
         a_hot [1] 1, [0.01, 100]: hot-spot width (logistic width 0.3 a_hot)
         k_s [1] 10, [-300, 300]: overall strength: n - 1 reaches 0.003 k_s
     """
-    def __getstate__(self) -> tuple[list[float]]:
+    def __getstate__(self) -> tuple[list[float], list[HotSpot], TurbulenceLayer, bool]:
         ...
     def __init__(self, *args, **kwargs) -> None:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    @property
+    def hot_spots(self) -> list[HotSpot]:
+        """
+        The hot spots with their current parameter values (a list of HotSpot).
+        """
+    @property
+    def turbulence(self) -> TurbulenceLayer:
+        """
+        The TurbulenceLayer this air carries (None: calm).
+        """
 class LinearSquaredProfile(IndexField):
     """
     n^2 = n0^2 + alpha y: rays are parabolas y = y0 + t0 x + alpha x^2 / (4 beta^2), beta = n(y0) cos(e0).
@@ -100,11 +231,14 @@ class LinearSquaredProfile(IndexField):
         ...
 class PhysicalAtmosphere(IndexField):
     """
-    Real air: U.S. Standard Atmosphere 1976 temperature + a smooth inversion layer + a surface layer
-    surface_dt * exp(-h / surface_depth) (h >= 0), hydrostatic pressure, and the index of air from
-    Edlen's formula revised by Birch & Downs (1993/94) at `wavelength`, optional relative humidity.
-    Defaults give n - 1 = 2.7784e-4 at the ground (15 C, 101325 Pa, 550 nm). Modelled for heights in
-    [-1000, 32000] m.
+    Real air: U.S. Standard Atmosphere 1976 temperature (its seven layers to 86 km, geometric heights,
+    gravity falling with height) + a smooth inversion layer + a surface layer
+    surface_dt * exp(-h / surface_depth) (h >= 0) + areal hot spots (hot_spots=[refracta.HotSpot, ...]),
+    hydrostatic pressure, and the index of air from Edlen's formula revised by Birch & Downs (1993/94)
+    at `wavelength`, optional relative humidity. Defaults give n - 1 = 2.7784e-4 at the ground (15 C,
+    101325 Pa, 550 nm). Modelled for heights in [-1000, 86000] m (uniform above). With hot spots the
+    field is no longer height-only: its parameters gain hot_spot<i>_x, _z, _radius, _dt, _depth, and
+    height_only_part is the same air without them.
     
     Parameters (name [unit] default, optimiser bounds: meaning):
         t_ground [K] 288.15, [220, 330]: air temperature at h = 0 without the surface layer
@@ -118,7 +252,7 @@ class PhysicalAtmosphere(IndexField):
         humidity [1] 0, [0, 1]: relative humidity
         wavelength [nm] 550, [380, 780]: vacuum wavelength
     """
-    def __getstate__(self) -> tuple[list[float]]:
+    def __getstate__(self) -> tuple[list[float], list[HotSpot], TurbulenceLayer, bool]:
         ...
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -131,6 +265,16 @@ class PhysicalAtmosphere(IndexField):
     def temperature(self, heights: typing.Any) -> typing.Any:
         """
         Air temperature [K] at the given heights [m] (scalar or 1-D array).
+        """
+    @property
+    def hot_spots(self) -> list[HotSpot]:
+        """
+        The hot spots with their current parameter values (a list of HotSpot).
+        """
+    @property
+    def turbulence(self) -> TurbulenceLayer:
+        """
+        The TurbulenceLayer this air carries (None: calm).
         """
 class TemperatureProfile(IndexField):
     """
@@ -429,7 +573,7 @@ class Camera:
         
         scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].
         """
-    def __getstate__(self) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float], float, int, int]:
+    def __getstate__(self) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float], float, int, int, list[float]]:
         ...
     def __init__(self, position: typing.Any, look_at: typing.Any, up: typing.Any = (0.0, 1.0, 0.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360) -> None:
         ...
@@ -437,6 +581,12 @@ class Camera:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def jittered(self, angles: typing.Any) -> Camera:
+        """
+        The same camera with every ray turned by small angles [rad] toward the image's right and up: a
+        map (height, width, 2) at the pixel centres, bilinear between them. Non-physical "geometric noise"
+        (the follow-up editor's cheap shimmer); project() ignores it.
+        """
     def pick(self, scene: Scene, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex) -> typing.Any:
         """
         The scene point seen at pixel (u, v) without atmosphere (straight ray), or None.
@@ -457,8 +607,18 @@ class Camera:
     def height(self) -> int:
         ...
     @property
+    def jitter(self) -> typing.Any:
+        """
+        The angle map (height, width, 2) [rad] of a jittered camera, or None.
+        """
+    @property
     def look_at(self) -> numpy.ndarray:
         ...
+    @property
+    def pixel_angle(self) -> float:
+        """
+        The angle [rad] one pixel subtends at the image centre (vertical field of view / height).
+        """
     @property
     def position(self) -> numpy.ndarray:
         ...
@@ -661,6 +821,7 @@ class _PairOptions:
 class _SolveSettings:
     backend: str
     loss: str
+    strategy: str
     def __init__(self) -> None:
         ...
     def validate(self) -> None:
@@ -670,6 +831,12 @@ class _SolveSettings:
         ...
     @accept_angle.setter
     def accept_angle(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def design_per_param(self) -> int:
+        ...
+    @design_per_param.setter
+    def design_per_param(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def function_tolerance(self) -> float:
@@ -682,6 +849,12 @@ class _SolveSettings:
         ...
     @gradient_tolerance.setter
     def gradient_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def local_starts(self) -> int:
+        ...
+    @local_starts.setter
+    def local_starts(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def loss_scale(self) -> float:
@@ -712,6 +885,12 @@ class _SolveSettings:
         ...
     @parameter_tolerance.setter
     def parameter_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def quick_iterations(self) -> int:
+        ...
+    @quick_iterations.setter
+    def quick_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def target_cost(self) -> float:
@@ -1248,6 +1427,10 @@ class DispersedField(IndexField):
     @property
     def scale(self) -> float:
         ...
+def _astronomical_refraction(field: IndexField, elevations: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex, top: typing.SupportsFloat | typing.SupportsIndex, earth_radius: typing.SupportsFloat | typing.SupportsIndex, tol: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Refraction [rad] at apparent elevations [rad] (refracta.astronomical_refraction).
+    """
 def _canonical_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, bool]:
     ...
 def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, method: str, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, bias: typing.SupportsFloat | typing.SupportsIndex | None, z_range: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] | None, layers: typing.SupportsInt | typing.SupportsIndex | None, weight: str, storage: str) -> numpy.ndarray:
@@ -1264,7 +1447,7 @@ def _mboit_unorm16(b: collections.abc.Sequence[typing.SupportsFloat | typing.Sup
     """
 def _pair_distances(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, options: _PairOptions) -> numpy.typing.NDArray[numpy.float64]:
     ...
-def _pair_jacobian(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, weights: typing.Any, free: collections.abc.Sequence[str], derivatives: str, options: _PairOptions) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], list[str]]:
+def _pair_jacobian(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, weights: typing.Any, margins: typing.Any, free: collections.abc.Sequence[str], derivatives: str, options: _PairOptions) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], list[str]]:
     ...
 def _power_moment_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
     ...
@@ -1282,7 +1465,7 @@ def _shadow_intensity(moments: typing.Any, z_f: typing.Any, method: str, signed:
     ...
 def _shutdown_running_work(timeout_seconds: typing.SupportsFloat | typing.SupportsIndex = 10.0) -> None:
     ...
-def _solve_edit(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, weights: typing.Any, free: collections.abc.Sequence[str], bounds: collections.abc.Mapping[str, tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]], derivatives: str, pair_options: _PairOptions, settings: _SolveSettings, progress: typing.Any) -> dict:
+def _solve_edit(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, weights: typing.Any, margins: typing.Any, free: collections.abc.Sequence[str], bounds: collections.abc.Mapping[str, tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]], derivatives: str, pair_options: _PairOptions, settings: _SolveSettings, progress: typing.Any) -> dict:
     ...
 def _spectrum_blackbody(temperature: typing.SupportsFloat | typing.SupportsIndex, wavelengths: typing.Any, luminance: typing.SupportsFloat | typing.SupportsIndex | None) -> numpy.typing.NDArray[numpy.float64]:
     ...

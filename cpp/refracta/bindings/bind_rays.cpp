@@ -1,6 +1,7 @@
 // Python bindings of the ray integrators (cpp/refracta/rays): trace_ray, the batch tracer, RayPath.
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/interruptible.h"
+#include "refracta/rays/astronomical_refraction.h"
 #include "refracta/rays/elevation_table.h"
 #include "refracta/rays/trace.h"
 
@@ -165,6 +166,28 @@ spacing, default 100 m). max_length [m]: arc length at which the path ends. stop
 path ends where it descends through this height (a ground). Raises ValueError for bad arguments
 (a path needing more than 10 million nodes is refused up front), refracta.NumericalError where n
 <= 0 or is not finite; Ctrl-C (KeyboardInterrupt) stops it.)doc");
+
+  m.def("_astronomical_refraction",
+        [](const std::shared_ptr<IndexField>& field, const py::object& elevations, double eye_height, double top,
+           double earth_radius, double tol) {
+          const FieldPtr f = field;
+          AstronomicalRefractionOptions options;
+          options.eye_height = eye_height;
+          options.top = top;
+          options.earth_radius = earth_radius;
+          options.tol = tol;
+          options.validate();
+          const std::vector<double> e = to_values(elevations, "apparent elevations");
+          std::vector<double> out(e.size());
+          WorkControl control;
+          run_interruptible(control, py::none(), [&] {
+            parallel_for_each(int64_t(e.size()), 1, control,
+                              [&](int64_t i) { out[i] = astronomical_refraction(f, e[i], options); });
+          });
+          return values_to_array(out);
+        },
+        py::arg("field"), py::arg("elevations"), py::arg("eye_height"), py::arg("top"), py::arg("earth_radius"),
+        py::arg("tol"), "Refraction [rad] at apparent elevations [rad] (refracta.astronomical_refraction).");
 
   m.def("_trace_batch",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,

@@ -56,20 +56,25 @@ the spline's values and gradients (for tests and plots).)doc")
                       }));
 
   py::class_<Turbulence, std::shared_ptr<Turbulence>>(m, "TurbulenceLayer", R"doc(
-A TurbulenceGrid placed in the air: delta_n = scale * E(h) * grid(p - offset), E(h) = e^(-h/depth)
-above the ground (none for depth = inf). Made by refracta.Turbulence (its `layer`).)doc")
-      .def(py::init([](std::shared_ptr<TurbulenceGrid> grid, double scale, const py::object& offset, double depth) {
+A TurbulenceGrid placed in the air: delta_n = scale * E(h) * grid(R_yaw (p - offset)), E(h) =
+e^(-h/depth) above the ground (none for depth = inf), the lattice turned by yaw [rad] about the
+vertical. Made by refracta.Turbulence (its `layer`).)doc")
+      .def(py::init([](std::shared_ptr<TurbulenceGrid> grid, double scale, const py::object& offset, double depth,
+                       double yaw) {
              if (!grid) throw_invalid("TurbulenceLayer: grid must be a TurbulenceGrid (got None)");
              if (!std::isfinite(scale)) throw_invalid("TurbulenceLayer: scale must be finite (got ", scale, ")");
              if (!(depth > 0.0)) throw_invalid("TurbulenceLayer: depth must be > 0 m (got ", depth, ")");
+             if (!std::isfinite(yaw)) throw_invalid("TurbulenceLayer: yaw must be finite (got ", yaw, ")");
              Turbulence layer;
              layer.grid = std::move(grid);
              layer.scale = scale;
              layer.offset = to_point(offset, "offset");
              layer.depth = depth;
+             layer.set_yaw(yaw);
              return layer;
            }),
-           py::arg("grid"), py::arg("scale"), py::arg("offset"), py::arg("depth"))
+           py::arg("grid"), py::arg("scale"), py::arg("offset"), py::arg("depth"), py::arg("yaw") = 0.0)
+      .def_readonly("yaw", &Turbulence::yaw, "The lattice's turn about the vertical [rad].")
       .def_property_readonly("grid", [](const Turbulence& t) { return std::const_pointer_cast<TurbulenceGrid>(t.grid); })
       .def_readonly("scale", &Turbulence::scale)
       .def_property_readonly("offset", [](const Turbulence& t) { return points_to_array({t.offset}).reshape({py::ssize_t(3)}); })
@@ -86,15 +91,16 @@ above the ground (none for depth = inf). Made by refracta.Turbulence (its `layer
       .def(py::pickle(
           [](const Turbulence& t) {
             return py::make_tuple(std::const_pointer_cast<TurbulenceGrid>(t.grid), t.scale,
-                                  py::make_tuple(t.offset.x(), t.offset.y(), t.offset.z()), t.depth);
+                                  py::make_tuple(t.offset.x(), t.offset.y(), t.offset.z()), t.depth, t.yaw);
           },
           [](const py::tuple& s) {
-            if (s.size() != 4) throw_invalid("TurbulenceLayer: bad pickle state");
+            if (s.size() != 5) throw_invalid("TurbulenceLayer: bad pickle state");
             Turbulence layer;
             layer.grid = py::cast<std::shared_ptr<TurbulenceGrid>>(s[0]);
             layer.scale = py::cast<double>(s[1]);
             layer.offset = to_point(s[2], "offset");
             layer.depth = py::cast<double>(s[3]);
+            layer.set_yaw(py::cast<double>(s[4]));
             return layer;
           }));
 }

@@ -41,6 +41,19 @@ void CurvedEarth::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
   *grad = Vec3d(0.0, dn, 0.0);
 }
 
+Vec3d CurvedEarth::sky_direction(const Vec3d& p, const Vec3d& d) const {
+  const double rho = std::hypot(p.x(), p.z());
+  if (!(rho > 0.0)) return d;
+  const double phi = rho / radius_;
+  const Vec3d out(p.x() / rho, 0.0, p.z() / rho);  // horizontal, away from the origin
+  // Rotation by phi taking the local vertical (the origin frame's y turned toward `out`) back:
+  // y -> cos(phi) y - sin(phi) out, out -> cos(phi) out + sin(phi) y, the perpendicular kept.
+  const double along = d.dot(out), up = d.y();
+  const Vec3d across = d - along * out - up * Vec3d::UnitY();
+  const double c = std::cos(phi), s = std::sin(phi);
+  return (across + (c * along + s * up) * out + (c * up - s * along) * Vec3d::UnitY()).normalized();
+}
+
 std::vector<double> CurvedEarth::param_values() const {
   std::vector<double> values = base_->param_values();
   values.push_back(radius_);

@@ -41,6 +41,11 @@ class CurvedEarth : public IndexField {
   std::vector<double> param_values() const override;
   std::shared_ptr<const IndexField> with_param_values(const std::vector<double>& values) const override;
   std::vector<std::string> gauge_params() const override { return base_->gauge_params(); }
+  // The flat frame's x' = R phi: at horizontal distance rho from the origin the local vertical is
+  // tilted by phi = rho / R toward rho's direction, and a flat-frame direction's elevation e' is
+  // e' there (the map is conformal): turned back by phi into the origin's frame.
+  Vec3d sky_direction(const Vec3d& p, const Vec3d& d) const override;
+  double earth_radius() const override { return radius_; }
 
   const FieldPtr& base() const { return base_; }
   double radius() const { return radius_; }

@@ -47,6 +47,8 @@ class DispersedField final : public IndexField {
   // The base's height-only part, dispersed alike; its regions.
   FieldPtr height_only_part() const override;
   std::vector<LocalRegion> local_regions() const override { return base_->local_regions(); }
+  Vec3d sky_direction(const Vec3d& p, const Vec3d& d) const override { return base_->sky_direction(p, d); }
+  double earth_radius() const override { return base_->earth_radius(); }
 
   const FieldPtr& base() const { return base_; }
   double scale() const { return scale_; }

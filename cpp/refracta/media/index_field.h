@@ -53,6 +53,12 @@ class IndexField {
   // turbulent layer): the height-only field that holds outside local_regions(); null otherwise.
   virtual std::shared_ptr<const IndexField> height_only_part() const { return nullptr; }
   virtual std::vector<LocalRegion> local_regions() const { return {}; }
+  // The world-frame direction of a ray at p [m] moving along unit d in this field's coordinates:
+  // d itself, except for a spherical Earth in flat coordinates (CurvedEarth), where the frame at
+  // p is turned by the central angle from the origin's.
+  virtual Vec3d sky_direction(const Vec3d& /*p*/, const Vec3d& d) const { return d; }
+  // The radius [m] of a spherical Earth these coordinates flatten (inf: flat).
+  virtual double earth_radius() const { return std::numeric_limits<double>::infinity(); }
 
   // evaluate, throwing NumericalError when n <= 0 or anything is not finite.
   void evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const;

@@ -43,25 +43,29 @@ TurbulenceGrid::TurbulenceGrid(std::vector<float> coefficients, std::array<int, 
 void TurbulenceGrid::evaluate(const Vec3d& p, double* value, Vec3d* grad) const {
   // Cell and fraction per axis; coefficients i - 1 .. i + 2 (periodic) weigh on [i, i + 1).
   double w[3][4], dw[3][4];
-  int first[3];
+  int index[3][4];
   for (int a = 0; a < 3; ++a) {
     const double t = p[a] / spacing_;
     const double cell = std::floor(t);
     bspline_weights(t - cell, w[a], dw[a]);
-    const long wrapped = long(std::fmod(cell, double(n_[a])));
-    first[a] = int((wrapped + n_[a] - 1) % n_[a]);
-    if (first[a] < 0) first[a] += n_[a];
+    const long n = n_[a];
+    long first = (long(std::fmod(cell, double(n))) - 1) % n;  // in (-n, n)
+    if (first < 0) first += n;
+    for (int k = 0; k < 4; ++k) {
+      const long i = first + k;
+      index[a][k] = int(i < n ? i : i - n);
+    }
   }
   double sum = 0.0, dx = 0.0, dy = 0.0, dz = 0.0;
+  const size_t stride_x = size_t(n_[1]) * n_[2];
   for (int i = 0; i < 4; ++i) {
-    const int ii = (first[0] + i) % n_[0];
+    const float* plane = c_.data() + index[0][i] * stride_x;
     double sy = 0.0, sdy = 0.0, syz = 0.0;  // sums over j of the sums over k, weighted
     for (int j = 0; j < 4; ++j) {
-      const int jj = (first[1] + j) % n_[1];
-      const float* row = c_.data() + (size_t(ii) * n_[1] + jj) * n_[2];
+      const float* row = plane + size_t(index[1][j]) * n_[2];
       double s = 0.0, ds = 0.0;
       for (int k = 0; k < 4; ++k) {
-        const double c = row[(first[2] + k) % n_[2]];
+        const double c = row[index[2][k]];
         s += c * w[2][k];
         ds += c * dw[2][k];
       }

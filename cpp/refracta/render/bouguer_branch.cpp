@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <functional>
 
 namespace refracta {
 
@@ -27,21 +28,54 @@ bool BouguerBranch::at(double h, double min_sine, double* n, double* dn, double*
   return *sin_e >= min_sine;
 }
 
-bool BouguerBranch::integrate(double ha, double hb, double min_sine, double* run, double* length) const {
-  const double mid = 0.5 * (ha + hb), half = 0.5 * std::abs(hb - ha);
-  double sum_run = 0.0, sum_length = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    for (double sign : {-1.0, 1.0}) {
-      double n, dn, s;
-      if (!at(mid + sign * half * kNodes[i], min_sine, &n, &dn, &s)) return false;
-      // cos e / sin e and 1 / sin e, with cos e = beta / n.
-      sum_run += kWeights[i] * (beta_ / n) / s;
-      sum_length += kWeights[i] / s;
+namespace {
+
+// Halving depth of the adaptive integral: 2^-30 of a height range is below a micrometre for 1000 km.
+constexpr int kMaxHalvings = 30;
+
+}  // namespace
+
+bool BouguerBranch::integrate(double ha, double hb, double min_sine, double* run, double* length,
+                              double relative_tol) const {
+  // One 8-point Gauss-Legendre panel.
+  auto panel = [&](double a, double b, double* r, double* l) {
+    const double mid = 0.5 * (a + b), half = 0.5 * std::abs(b - a);
+    double sum_run = 0.0, sum_length = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      for (double sign : {-1.0, 1.0}) {
+        double n, dn, s;
+        if (!at(mid + sign * half * kNodes[i], min_sine, &n, &dn, &s)) return false;
+        // cos e / sin e and 1 / sin e, with cos e = beta / n.
+        sum_run += kWeights[i] * (beta_ / n) / s;
+        sum_length += kWeights[i] / s;
+      }
     }
-  }
-  *run = half * sum_run;
-  *length = half * sum_length;
-  return true;
+    *r = half * sum_run;
+    *l = half * sum_length;
+    return true;
+  };
+  if (!panel(ha, hb, run, length)) return false;
+  if (!(relative_tol > 0.0)) return true;
+  // Adaptive: halve a panel until its halves agree with it; the tolerance is shared out by width.
+  const double total_run = std::max(*run, 1e-300), total_length = std::max(*length, 1e-300);
+  const double width = std::abs(hb - ha);
+  std::function<bool(double, double, double, double, int, double*, double*)> refine =
+      [&](double a, double b, double whole_run, double whole_length, int depth, double* r, double* l) {
+        const double m = 0.5 * (a + b);
+        double r1, l1, r2, l2;
+        if (!panel(a, m, &r1, &l1) || !panel(m, b, &r2, &l2)) return false;
+        const double share = std::abs(b - a) / width * relative_tol;
+        if (depth >= kMaxHalvings || (std::abs(r1 + r2 - whole_run) <= share * total_run &&
+                                      std::abs(l1 + l2 - whole_length) <= share * total_length)) {
+          *r = r1 + r2, *l = l1 + l2;
+          return true;
+        }
+        double ra, la, rb, lb;
+        if (!refine(a, m, r1, l1, depth + 1, &ra, &la) || !refine(m, b, r2, l2, depth + 1, &rb, &lb)) return false;
+        *r = ra + rb, *l = la + lb;
+        return true;
+      };
+  return refine(ha, hb, *run, *length, 0, run, length);
 }
 
 bool BouguerBranch::integrate(double ha, double sin_a, double hb, double sin_b, double min_sine, Stretch* out) const {

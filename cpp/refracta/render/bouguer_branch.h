@@ -20,8 +20,10 @@ class BouguerBranch {
   // (at or near a turning height) or the field cannot be evaluated (outside its modelled air).
   bool at(double h, double min_sine, double* n, double* dn, double* sin_e) const;
   // Run and path length from height ha to hb (8-point Gauss-Legendre); false if sin e falls
-  // below min_sine at a node.
-  bool integrate(double ha, double hb, double min_sine, double* run, double* length) const;
+  // below min_sine at a node. relative_tol > 0: panels are halved until two halves agree with
+  // their whole to that fraction of the run and length (a spherical Earth's escapes need the
+  // run to metres over thousands of kilometres: it sets the central angle); 0: one panel.
+  bool integrate(double ha, double hb, double min_sine, double* run, double* length, double relative_tol = 0.0) const;
 
   // The same with what a caller needs to trust one straight chord over the stretch, given sin e
   // at both ends: `error` estimates the quadrature's error in run and length [m] by its

@@ -162,9 +162,10 @@ PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length, d
   if (!field_) return cast_straight(origin, dir, max_length > 0.0 ? max_length : kFar);
   const bool from_eye = table_ && origin == eye_ && max_length <= 0.0;
   const double length = max_length > 0.0 ? max_length : options_.max_length;
-  if (legs_) return cast_in_legs(origin, dir, length, spread, from_eye);
-  if (from_eye) return cast_table(dir);
-  return cast_traced(origin, dir, length, spread);
+  PathEnd end = legs_ ? cast_in_legs(origin, dir, length, spread, from_eye)
+                      : from_eye ? cast_table(dir) : cast_traced(origin, dir, length, spread);
+  if (!end.hit) end.direction = field_->sky_direction(end.end_point, end.direction);
+  return end;
 }
 
 bool Caster::inside_region(const Vec3d& p) const {
@@ -228,6 +229,7 @@ PathEnd Caster::cast_in_regions(const Vec3d& origin, const Vec3d& dir, double ma
     if (segment_blocked(a, b, &end, std::max(options_.sagitta, per_metre * (s0 + a.s)), /*regions=*/false)) return false;
     end.direction = b.v.normalized();
     end.length = b.s;
+    end.end_point = b.x;
     const bool inside = inside_region(b.x);
     if (!been_inside && !inside) {  // nodes may straddle a region: the chord between them may cross it
       const Vec3d ab = b.x - a.x;
@@ -257,7 +259,7 @@ PathEnd Caster::cast_straight(const Vec3d& origin, const Vec3d& dir, double max_
   return end;
 }
 
-std::optional<Vec3d> Caster::escape_direction(const Vec3d& x, const Vec3d& v, double remaining) const {
+std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec3d& v, double remaining) const {
   if (!layered_ || !(x.y() > ceiling_) || !(v.y() > 0.0) || !(remaining > 0.0)) {
     return std::nullopt;
   }
@@ -282,17 +284,23 @@ std::optional<Vec3d> Caster::escape_direction(const Vec3d& x, const Vec3d& v, do
     h = x.y() + remaining * 0.5 * (sin_x + sin_h);
     if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
   }
+  // Over a spherical Earth (flat coordinates) the run sets the central angle that turns the exit
+  // into the world frame: integrated to 1e-9 (a metre in 1000 km, 0.03" of angle).
+  const double relative_tol = std::isfinite(layered_->earth_radius()) ? 1e-9 : 0.0;
   for (int it = 0; it < 6 && (!cannot_turn || std::abs(sin_h - sin_x) > 1e-2 * sin_x); ++it) {
-    if (!branch.integrate(x.y(), h, kMinSine, &run, &length)) return std::nullopt;
+    if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol)) return std::nullopt;
     const double step = (remaining - length) * sin_h;
     h += step;
     if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
     // A step that moves n by less than 1e-12 turns the exit direction by < 1e-10 rad.
     if (std::abs(step * dn) < 1e-12) break;
   }
+  if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol)) return std::nullopt;
   const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
-  return Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized();
+  const Vec3d across = cos_e > 0.0 ? Vec3d(t.x() / cos_e, 0.0, t.z() / cos_e) : Vec3d::Zero();
+  return Escape{Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized(),
+                Vec3d(x.x() + run * across.x(), h, x.z() + run * across.z())};
 }
 
 std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length) const {
@@ -356,10 +364,12 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
     a = b;
     step *= 4.0;
   }
+  end.end_point = a;
   if (up < 0.0) return end;  // below everything: the path ends there, as a traced one at its stop height
   const auto exit = escape_direction(a + Vec3d(0.0, 1e-9 * (1.0 + std::abs(a.y())), 0.0), n * end.direction, max_length - s);
   if (!exit) return std::nullopt;
-  end.direction = *exit;
+  end.direction = exit->direction;
+  end.end_point = exit->point;
   return end;
 }
 
@@ -368,8 +378,10 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   end.direction = dir;
   // A rising ray above every object that cannot turn never comes back: the invariant gives the
   // direction it leaves along, without tracing.
+  end.end_point = origin;
   if (const auto exit = escape_direction(origin, dir, max_length)) {
-    end.direction = *exit;
+    end.direction = exit->direction;
+    end.end_point = exit->point;
     return end;
   }
   // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
@@ -389,9 +401,11 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
       if (segment_blocked(a, b, &end, std::max(options_.sagitta, per_metre * a.s))) return false;
       end.direction = b.v.normalized();
       end.length = b.s;
+      end.end_point = b.x;
       last_height = b.x.y();
       if (const auto exit = escape_direction(b.x, b.v, max_length - b.s)) {
-        end.direction = *exit;
+        end.direction = exit->direction;
+        end.end_point = exit->point;
         return false;
       }
       return true;
@@ -477,7 +491,11 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
     }
   }
   // The sky is seen along the path's last direction.
-  if (plane.size() > 1) end.direction = turned(plane.size() - 1).v.normalized();
+  if (plane.size() > 1) {
+    const RayNode<double> last = turned(plane.size() - 1);
+    end.direction = last.v.normalized();
+    end.end_point = last.x;
+  }
   return end;
 }
 

@@ -40,7 +40,10 @@ struct Handoff {
 // Where a ray ends: a surface hit, or the sky seen along `direction`.
 struct PathEnd {
   std::optional<Hit> hit;
-  Vec3d direction;     // unit, along the path at its end (toward the hit or the sky)
+  Vec3d direction;     // unit, along the path at its end (toward the hit or the sky; for the sky in
+                       // the world frame: a CurvedEarth's flat-frame direction turned by its
+                       // central angle, IndexField::sky_direction)
+  Vec3d end_point = Vec3d::Zero();  // where a path without a hit ended [m]
   double length = 0.0; // path length [m]
   int64_t chords = 0;  // straight chords tested against the scene on the way
   // Legs of a cast through local regions: where this leg stopped (entering a region, or having
@@ -107,10 +110,13 @@ class Caster {
   bool segment_blocked(const RayNode<double>& a, const RayNode<double>& b, PathEnd* end, double sagitta = 0.0,
                        bool regions = true) const;
   bool pieces_blocked(const PathSegment<double>& segment, int pieces, PathEnd* end, bool regions = true) const;
-  // Height-only fields: the direction a ray at x moving along v leaves the air along, when it is
-  // above every object, rising, and cannot turn within `remaining` [m] of path (n stays above
-  // its invariant n(h) cos e); nullopt otherwise.
-  std::optional<Vec3d> escape_direction(const Vec3d& x, const Vec3d& v, double remaining) const;
+  // Height-only fields: where a ray at x moving along v ends after `remaining` [m] of path and its
+  // direction there, when it is above every object, rising, and cannot turn on the way (n stays
+  // above its invariant n(h) cos e); nullopt otherwise.
+  struct Escape {
+    Vec3d direction, point;
+  };
+  std::optional<Escape> escape_direction(const Vec3d& x, const Vec3d& v, double remaining) const;
   // Height-only fields with an ior floor: a ray so steep that it cannot turn at any height it
   // can reach, cut into chords from Bouguer's invariant (bouguer_branch.h) up past every object
   // (then out of the air) or down below them; nullopt where that does not apply (trace it).

@@ -22,7 +22,10 @@ DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, c
   if (!power.empty()) select_ = PiecewiseConstant1D(power);
   // Pre-bent through the height-only air (fields with local regions: outside them; a path through
   // a spot leaves a little off the sampled direction, and is evaluated where it does leave).
-  pre_bend_ = caster.curved() && caster.layered() != nullptr;
+  // Not over a spherical Earth (CurvedEarth): its paths leave the air turned by their central angle
+  // as well, which the invariant alone does not give; they launch along the sample (unbiased: the
+  // light is evaluated along the exit, in the world frame).
+  pre_bend_ = caster.curved() && caster.layered() != nullptr && !std::isfinite(caster.layered()->earth_radius());
   all_lights_ = options.transport == Transport::kDirect;
 }
 

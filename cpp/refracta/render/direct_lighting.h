@@ -12,8 +12,9 @@
 // evaluated along the path's exit direction. In height-only fields the launch direction that
 // leaves toward a sampled direction follows from the invariant n(h) cos e = const ("pre-bent",
 // shared/SHADING.md section 6), with the Jacobian of that map in the density; other fields
-// launch along the sampled direction (exact for smooth environments; a sun near the horizon may
-// then be missed by a few arcminutes' bending).
+// (and a spherical Earth, whose paths also turn by their central angle) launch along the sampled
+// direction (unbiased: the light is evaluated where the path does leave; a sun near the horizon
+// is then met by fewer samples).
 #pragma once
 
 #include "refracta/core/rng.h"

@@ -1,0 +1,181 @@
+"""Realism benchmarks of issue 10: optical turbulence (refracta.Turbulence) -- its cost, its
+statistics against Kolmogorov's, the angle of arrival of traced rays, and a shimmer frame.
+
+Sections (one function each, each a dict in results/realism.json):
+  turbulence_generation  synthesis time and memory of 128^3 and 256^3 grids, their inertial ranges
+  structure_function     D_n(r) / (C_n^2 r^(2/3)) measured through the C++ evaluator across the
+                         default grid's inertial range (4 realisations), beside the ensemble formula
+  angle_of_arrival       rays traced through 4 realisations against the realisations' expectation,
+                         with the continuous spectrum's closed forms beside it; and what tiling
+                         does to a hot-road path along a lattice axis
+  shimmer_render         examples.hot_road(160, 60) with the default turbulence in its hot layer
+                         (depth 0.1 m) against the calm air
+
+    python benchmarks/bench_realism.py [--quick]     -> benchmarks/results/realism.json
+(--quick: 128^3 only, fewer rays, a 64 x 24 frame: a smoke run, not the published numbers.)
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+import tracemalloc
+
+import numpy as np
+
+from _common import timed, write_results
+
+
+def turbulence_generation(sizes=(128, 256)) -> dict:
+    import refracta
+
+    rows = {}
+    for cells in sizes:
+        tracemalloc.start()
+        air, seconds = timed(refracta.Turbulence, cells=cells)
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+        start = time.perf_counter()
+        r_min, r_max = air.inertial_range
+        statistics_seconds = time.perf_counter() - start
+        rows[str(cells)] = {
+            "cells": cells, "spacing_m": air.spacing, "tile_m": air.size, "seconds": seconds,
+            "python_peak_mb": peak / 1e6, "coefficients_mb": 4 * cells ** 3 / 1e6,
+            "memory_needed_mb": air.memory_needed(cells) / 1e6,
+            "inertial_range_m": [r_min, r_max], "inertial_range_cells": [r_min / air.spacing, r_max / air.spacing],
+            "inertial_width": r_max / r_min, "statistics_seconds": statistics_seconds}
+        print(f"{cells}^3: {seconds:.2f} s, python peak {peak / 1e6:.0f} MB (+ {4 * cells ** 3 / 1e6:.0f} MB in C++), "
+              f"inertial range {r_min:.3f}-{r_max:.3f} m (x{r_max / r_min:.1f}), statistics {statistics_seconds:.1f} s")
+    return rows
+
+
+def structure_function(cells=256, seeds=4, pairs=40_000) -> dict:
+    import refracta
+
+    rng = np.random.default_rng(7)
+    first = refracta.Turbulence(cells=cells, depth=None, seed=0)
+    r_min, r_max = first.inertial_range
+    r = np.geomspace(r_min, r_max, 7)
+    kolmogorov = first.cn2 * r ** (2 / 3)
+    per_seed = []
+    for seed in range(seeds):
+        air = first if seed == 0 else refracta.Turbulence(cells=cells, depth=None, seed=seed)
+        row = []
+        for v in r:
+            x = rng.uniform(0.0, air.size, (pairs, 3))
+            u = rng.normal(size=(pairs, 3))
+            u /= np.linalg.norm(u, axis=1)[:, None]
+            a, _ = air.layer.evaluate(x)
+            b, _ = air.layer.evaluate(x + v * u)
+            row.append(float(np.mean((b - a) ** 2)))
+        per_seed.append(np.array(row) / kolmogorov)
+    mean = np.mean(per_seed, axis=0)
+    ensemble = first.structure_function(r) / kolmogorov
+    print("D / (Cn2 r^2/3) over the inertial range:", np.round(mean, 3), " ensemble:", np.round(ensemble, 3))
+    return {"cells": cells, "r_m": r.tolist(), "measured_mean_ratio": mean.tolist(),
+            "measured_ratio_per_seed": [p.tolist() for p in per_seed], "ensemble_ratio": ensemble.tolist(),
+            "worst_mean_ratio_error": float(np.max(np.abs(mean - 1))),
+            "within_20_percent": bool(np.all(np.abs(mean - 1) <= 0.2))}
+
+
+def angle_of_arrival(seeds=4, rays=1500, along_x_cells=256) -> dict:
+    import refracta
+    from refracta import turbulence as tb
+
+    cn2, length, spacing = 1e-8, 2.0, 0.05
+    t = np.array([1.0, 0.3, 0.2]) / np.linalg.norm([1.0, 0.3, 0.2])
+    e1 = np.array([0.0, 1.0, 0.0]) - t[1] * t
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(t, e1)
+    calm = refracta.PhysicalAtmosphere(surface_dt=0.0)
+    measured, expected = [], []
+    for seed in range(seeds):
+        air = refracta.Turbulence(cn2, cells=64, spacing=spacing, depth=None, seed=seed)
+        field = refracta.PhysicalAtmosphere(surface_dt=0.0, turbulence=air)
+        origins = np.random.default_rng(100 + seed).uniform(0.0, air.size, (rays, 3)) + [0.0, 10.0, 0.0]
+        directions = np.tile(t, (rays, 1))
+        stirred = refracta.trace_rays(field, origins, directions, tol=1e-10, step=spacing / 2, max_length=length)
+        still = refracta.trace_rays(calm, origins, directions, tol=1e-10, max_length=length)
+        turn = stirred.end_directions - still.end_directions
+        measured.append(0.5 * (np.mean((turn @ e1) ** 2) + np.mean((turn @ e2) ** 2)))
+        expected.append(air.angle_of_arrival_variance(length, direction=t))
+    scatter = air.angle_of_arrival_scatter(length, direction=t)
+    sigma = math.sqrt(scatter ** 2 + 1.0 / rays) / math.sqrt(seeds)
+    ratio = float(np.mean(measured) / np.mean(expected))
+    closed = {
+        "point_l0_5mm": tb.tilt_variance(cn2, length, inner_scale=0.005),
+        "point_l0_one_cell": tb.tilt_variance(cn2, length, inner_scale=spacing),
+        "point_l0_two_cells": tb.tilt_variance(cn2, length, inner_scale=2 * spacing),
+        "g_tilt_aperture_one_cell": tb.tilt_variance(cn2, length, aperture=spacing),
+        "plane_wave_2.91_aperture_one_cell": tb.plane_wave_tilt_variance(cn2, length, spacing)}
+    print(f"angle of arrival: measured {np.mean(measured):.3e} rad^2, expected {np.mean(expected):.3e} "
+          f"(ratio {ratio:.3f} +- {sigma:.3f}); closed forms {', '.join(f'{k} {v:.3e}' for k, v in closed.items())}")
+    # A hot-road path: 300 m along +x (a lattice axis) through the default grid, against the
+    # continuous spectrum: the 12.8 m tile repeats along the path and its modes add coherently.
+    road = refracta.Turbulence(cells=along_x_cells, depth=None)
+    start = time.perf_counter()
+    along_x = {str(L): {"discrete": road.angle_of_arrival_variance(L),
+                        "continuous_l0_one_cell": tb.tilt_variance(road.cn2, L, inner_scale=road.spacing)}
+               for L in (6.4, 300.0)}
+    off_axis = road.angle_of_arrival_variance(300.0, direction=(1.0, 0.0, math.tan(math.radians(2.0))))
+    seconds = (time.perf_counter() - start) / 3
+    for L, row in along_x.items():
+        row["discrete_over_continuous"] = row["discrete"] / row["continuous_l0_one_cell"]
+    print(f"along x through the {along_x_cells}^3 default grid: discrete / continuous at 6.4 m "
+          f"{along_x['6.4']['discrete_over_continuous']:.2f}, at 300 m {along_x['300.0']['discrete_over_continuous']:.2f}; "
+          f"2 deg off the axis at 300 m {off_axis / along_x['300.0']['continuous_l0_one_cell']:.2f} "
+          f"({seconds:.1f} s per expectation)")
+    return {"setup": {"cn2": cn2, "path_m": length, "cells": 64, "spacing_m": spacing, "seeds": seeds, "rays": rays,
+                      "direction": t.tolist()},
+            "measured_rad2": float(np.mean(measured)), "expected_rad2": float(np.mean(expected)),
+            "measured_over_expected": ratio, "standard_deviation_of_ratio": sigma,
+            "realisation_scatter": scatter, "per_seed_measured": [float(m) for m in measured],
+            "continuous_closed_forms_rad2": closed,
+            "hot_road_path_along_x": along_x,
+            "hot_road_path_2deg_off_axis_over_continuous": off_axis / along_x["300.0"]["continuous_l0_one_cell"],
+            "expectation_seconds_256": seconds}
+
+
+def shimmer_render(width=160, height=60) -> dict:
+    import refracta
+    from refracta import examples
+
+    road = examples.hot_road(width, height)
+    calm_image, calm_seconds = timed(refracta.render, road.scene, road.camera, road.field, progress=False,
+                                     max_length=road.max_length, repeat=3)
+    air = refracta.Turbulence(depth=0.1)
+    field = refracta.PhysicalAtmosphere(**road.field.params, turbulence=air)
+    stats = {}
+    start = time.perf_counter()
+    image = refracta.render(road.scene, road.camera, field, progress=False, max_length=road.max_length, stats=stats)
+    seconds = time.perf_counter() - start
+    difference = float(np.mean(np.abs(image - calm_image)) / np.mean(calm_image))
+    changed = float(np.mean(np.abs(image - calm_image).max(axis=2) > 0.05 * calm_image.max()))
+    print(f"hot_road {width}x{height}: calm {calm_seconds:.3f} s, with turbulence {seconds:.1f} s "
+          f"(x{seconds / calm_seconds:.0f}), chords/pixel {stats['chords'] / stats['samples']:.0f}, "
+          f"mean |change| {difference:.3f} of the mean, pixels changed > 5% of the peak: {changed:.2f}")
+    return {"size": [width, height], "turbulence": repr(air), "calm_seconds": calm_seconds,
+            "turbulent_seconds": seconds, "slowdown": seconds / calm_seconds,
+            "chords_per_pixel": stats["chords"] / stats["samples"], "mean_relative_change": difference,
+            "fraction_of_pixels_changed": changed}
+
+
+def main(quick: bool = False) -> dict:
+    results = {"turbulence_generation": turbulence_generation((128,) if quick else (128, 256)),
+               "structure_function": structure_function(cells=128 if quick else 256, seeds=2 if quick else 4),
+               "angle_of_arrival": angle_of_arrival(seeds=2 if quick else 4, rays=500 if quick else 1500,
+                                                    along_x_cells=128 if quick else 256),
+               "shimmer_render": shimmer_render(*((64, 24) if quick else (160, 60)))}
+    return results
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    payload = main(args.quick)
+    if args.quick:
+        print("(--quick: not written)")
+    else:
+        print("->", write_results("realism", payload))

@@ -1,0 +1,84 @@
+// Astronomical refraction by tracing through the flattened spherical atmosphere (astronomical_refraction.h).
+#include "refracta/rays/astronomical_refraction.h"
+
+#include "refracta/core/error.h"
+#include "refracta/media/curved_earth.h"
+#include "refracta/rays/trace.h"
+
+#include <cmath>
+#include <optional>
+
+namespace refracta {
+
+void AstronomicalRefractionOptions::validate() const {
+  if (!std::isfinite(eye_height) || !(eye_height >= 0.0)) {
+    throw_invalid("astronomical_refraction: eye_height must be >= 0 m and finite (got ", eye_height, ")");
+  }
+  if (!std::isfinite(top) || top < 0.0) throw_invalid("astronomical_refraction: top must be >= 0 m (got ", top, ")");
+  if (!(earth_radius > 0.0) || !std::isfinite(earth_radius)) {
+    throw_invalid("astronomical_refraction: earth_radius must be > 0 m (got ", earth_radius, ")");
+  }
+  if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("astronomical_refraction: tol must be > 0 m (got ", tol, ")");
+}
+
+double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
+                               const AstronomicalRefractionOptions& options) {
+  options.validate();
+  if (!field) throw_invalid("astronomical_refraction: field must be a field (got None)");
+  if (dynamic_cast<const CurvedEarth*>(field.get())) {
+    throw_invalid("astronomical_refraction: give the air itself (true heights), not a CurvedEarth: the Earth's "
+                  "curvature is applied here (earth_radius)");
+  }
+  if (!field->height_only()) throw_invalid("astronomical_refraction: the field must depend on height only (", field->type_name(), ")");
+  if (!std::isfinite(apparent_elevation) || std::abs(apparent_elevation) > 0.5 * kPi) {
+    throw_invalid("astronomical_refraction: apparent elevation must be in [-90, 90] deg (got ",
+                  apparent_elevation * 180.0 / kPi, " deg)");
+  }
+  const double top = options.top > 0.0 ? options.top : field->uniform_above();
+  if (!std::isfinite(top)) {
+    throw_invalid("astronomical_refraction: ", field->type_name(), " is not uniform above any height; give top [m]");
+  }
+  if (!(top > options.eye_height)) {
+    throw_invalid("astronomical_refraction: the top of the air (", top, " m) must lie above the eye (", options.eye_height, " m)");
+  }
+  if (apparent_elevation == 0.5 * kPi) return 0.0;  // straight up: no bending
+  const CurvedEarth earth(field, options.earth_radius);
+  const double y_eye = earth.flat_height(options.eye_height), y_top = earth.flat_height(top);
+
+  TraceOptions trace_options;
+  trace_options.method = TraceMethod::kStratified;
+  trace_options.tol = options.tol;
+  // The longest way out: tangent to the ground to the top's sphere and a little more.
+  const double r_top = options.earth_radius + top;
+  trace_options.max_length = 2.0 * std::sqrt(r_top * r_top - options.earth_radius * options.earth_radius) + 4.0 * top;
+  // The ground, a micrometre down: a ray launched level from it must not stop at once.
+  trace_options.stop_height = -1e-6;
+  const Vec3d direction(std::cos(apparent_elevation), std::sin(apparent_elevation), 0.0);
+  std::optional<Vec3d> exit_point, exit_direction;
+  const TraceEnd<double> end = trace(earth, Vec3d(0.0, y_eye, 0.0), direction, trace_options,
+                                     [&](const RayNode<double>& a, const RayNode<double>& b) {
+                                       if (b.x.y() < y_top) return true;
+                                       const PathSegment<double> segment(a, b);
+                                       double lo = 0.0, hi = 1.0;  // a below the top, b at or above it
+                                       for (int it = 0; it < 100 && hi - lo > 1e-16; ++it) {
+                                         const double mid = 0.5 * (lo + hi);
+                                         (segment.position(mid).y() < y_top ? lo : hi) = mid;
+                                       }
+                                       exit_point = segment.position(hi);
+                                       exit_direction = segment.velocity(hi).normalized();
+                                       return false;
+                                     });
+  if (!exit_point) {
+    if (end.stop == TraceStop::kStopHeight) {
+      throw_invalid("astronomical_refraction: the ray at apparent elevation ", apparent_elevation * 180.0 / kPi,
+                    " deg meets the ground before it leaves the air (raise eye_height or the elevation)");
+    }
+    throw_numerical("astronomical_refraction: the ray did not reach the top of the air (", top, " m) within ",
+                    trace_options.max_length, " m of path (it is ducted)");
+  }
+  const double central_angle = exit_point->x() / options.earth_radius;
+  const double elevation_at_top = std::asin(std::clamp(exit_direction->y(), -1.0, 1.0));
+  return apparent_elevation - (elevation_at_top - central_angle);
+}
+
+}  // namespace refracta

@@ -1,0 +1,35 @@
+// Astronomical refraction (issue 10): how much higher a star appears than it is, seen through a
+// spherical atmosphere. The ray from the eye at apparent elevation e0 is traced through the
+// height-only air over a spherical Earth (media/curved_earth.h: in flat coordinates, exact in
+// the ray's vertical plane) by the stratified tracer, up to the top of the air (where it is
+// uniform, so the ray then goes straight). There, at central angle phi = x'/R from the eye, the
+// ray's elevation above the local horizon is e_top (the flattening is conformal), so its
+// direction -- the star's -- lies at e_top - phi above the eye's horizon, and
+//   refraction = e0 - (e_top - phi).
+// Checked against the refraction integral R = -int (dn/dr) / n tan z dr with n r sin z constant
+// (tests/rays/test_astronomical_refraction.py).
+#pragma once
+
+#include "refracta/media/index_field.h"
+
+namespace refracta {
+
+struct AstronomicalRefractionOptions {
+  double eye_height = 0.0;   // [m] above the ground (h = 0)
+  // The top of the air [m]: above it n is uniform (0: the field's uniform_above(), e.g. 86 km for
+  // PhysicalAtmosphere; a field without one needs it given).
+  double top = 0.0;
+  double earth_radius = 6371e3;  // [m]
+  double tol = 1e-7;             // the tracer's position tolerance [m]
+
+  void validate() const;
+};
+
+// Refraction [rad] of a star seen at `apparent_elevation` [rad] in [-pi/2, pi/2] through the
+// height-only `field` (true heights: a base field, not a CurvedEarth). Throws std::invalid_argument
+// for a field that is not height-only, an elevation outside the range, a top at or below the eye,
+// or a ray that meets the ground (h = 0) before it leaves the air.
+double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
+                               const AstronomicalRefractionOptions& options);
+
+}  // namespace refracta

@@ -1,0 +1,280 @@
+"""refracta.animate and refracta.geometric_noise: shimmering mirages over time (issue 10).
+
+animate renders one frame per time through the same air with its turbulence carried by the wind
+(refracta.Turbulence.at_time) -- the physical shimmer -- and/or through a camera whose rays are
+turned by a seeded random angle map (geometric_noise: the follow-up editor's cheap shimmer, not
+physical), and writes a GIF (Pillow), an MP4 (imageio-ffmpeg, ``pip install refracta[animation]``)
+or a numbered frame sequence (refracta.io: EXR linear, PNG tone mapped). Frames are tasks of the
+executor path shared with refracta.render and refracta.sweep (refracta._sweep.map_ordered).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from typing import Callable, Optional, Sequence, Union
+
+import numpy as np
+
+from refracta import _core
+from refracta._render import render_options
+from refracta._sweep import map_ordered
+
+__all__ = ["animate", "field_at_time", "geometric_noise", "geometric_noise_map"]
+
+# The fields that carry turbulence (their constructors take turbulence=).
+_TURBULENT_FIELDS = (_core.PhysicalAtmosphere, _core.LogisticProfile)
+# Heights [m] at which a rebuilt field is checked against the original (a field the constructor
+# cannot reproduce, e.g. a LogisticProfile.height_only_part with its hot layer switched off).
+_PROBE_HEIGHTS = (0.0, 0.05, 0.3, 1.5, 10.0, 100.0)
+# |n - n'| allowed between the original and the rebuilt field at the probes: both evaluate the
+# same model from the same parameters, so only round-off separates them.
+_REBUILD_TOLERANCE = 1e-13
+
+
+# -- the physical shimmer: the air at time t ----------------------------------------------------
+
+def with_turbulence(field, turbulence):
+    """The same air as `field` (a PhysicalAtmosphere or LogisticProfile: its parameters and hot
+    spots) with `turbulence` (a refracta.Turbulence, a TurbulenceLayer or None: calm) in place of
+    its own. Raises ValueError for other fields, or one its constructor cannot rebuild."""
+    if not isinstance(field, _TURBULENT_FIELDS):
+        raise ValueError(f"animate: the field must be a PhysicalAtmosphere or LogisticProfile to carry turbulence "
+                         f"(got {type(field).__name__})")
+    params = {name: value for name, value in field.params.items() if not name.startswith("hot_spot")}
+    spots = field.hot_spots
+    rebuilt = type(field)(**params, **({"hot_spots": spots} if spots else {}), turbulence=turbulence)
+    # The rebuilt air less its turbulence must be the original less its own.
+    probes = np.array([[x, h, z] for h in _PROBE_HEIGHTS for x, z in ((0.0, 0.0), (37.0, -3.0))])
+
+    def calm(f):
+        layer = f.turbulence
+        return f.ior(probes) - (layer.evaluate(probes)[0] if layer is not None else 0.0)
+
+    if rebuilt.params != field.params or np.max(np.abs(calm(rebuilt) - calm(field))) > _REBUILD_TOLERANCE:
+        raise ValueError(f"animate: this {type(field).__name__} cannot be rebuilt from its parameters and hot spots "
+                         "(is it a height_only_part?); give the full field")
+    return rebuilt
+
+
+def field_at_time(field, turbulence, t: float):
+    """`field` with `turbulence` carried by its wind to time t [s] (turbulence.at_time(t))."""
+    return with_turbulence(field, turbulence.at_time(t))
+
+
+# -- the cheap shimmer: a random angle map (not physical) ----------------------------------------
+
+def geometric_noise_map(height: int, width: int, rms: float, correlation_pixels: float, seed: int = 0,
+                        time: float = 0.0, speed: Sequence[float] = (10.0, 0.0)) -> np.ndarray:
+    """A seeded random map of small angles [rad], float64 (height, width, 2) (toward the image's
+    right and up), for Camera.jittered: NOT PHYSICAL -- the follow-up editor's "geometric noise to
+    rays", a stand-in for turbulence when tracing it costs too much.
+
+    Each component is a stationary Gaussian random field with standard deviation `rms` [rad] and
+    correlation exp(-d^2 / (2 l^2)) at a distance of d pixels, l = correlation_pixels > 0 (spectrum
+    exp(-k^2 l^2 / 2)), synthesised by FFT on a periodic grid 4 l larger than the image on each
+    side (so that opposite edges are uncorrelated). time [s] and speed (right, down) [pixels/s]:
+    the pattern translated by speed * time (exact, sub-pixel: a phase shift of its spectrum).
+    """
+    problems = []
+    if isinstance(height, bool) or not isinstance(height, (int, np.integer)) or height < 1 or \
+            isinstance(width, bool) or not isinstance(width, (int, np.integer)) or width < 1:
+        problems.append(f"height and width must be whole numbers >= 1 (got {height!r}, {width!r})")
+    if not (isinstance(rms, (int, float, np.floating)) and 0.0 <= rms < 0.1):
+        problems.append(f"rms must be in [0, 0.1) rad (got {rms!r})")
+    if not (isinstance(correlation_pixels, (int, float, np.floating)) and 0.0 < correlation_pixels < 1e4):
+        problems.append(f"correlation_pixels must be in (0, 1e4) (got {correlation_pixels!r})")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        problems.append(f"seed must be a whole number >= 0 (got {seed!r})")
+    if not (isinstance(time, (int, float, np.floating)) and math.isfinite(time)):
+        problems.append(f"time must be a finite number of seconds (got {time!r})")
+    try:
+        vx, vy = (float(v) for v in speed)
+        if not (math.isfinite(vx) and math.isfinite(vy)):
+            raise ValueError
+    except (TypeError, ValueError):
+        problems.append(f"speed must be (right, down) [pixels/s], finite (got {speed!r})")
+    if problems:
+        raise ValueError("geometric_noise: " + "; ".join(problems))
+    pad = int(math.ceil(4.0 * correlation_pixels))
+    ny, nx = _fft_size(height + pad), _fft_size(width + pad)
+    rng = np.random.default_rng(seed)
+    ky = 2.0 * math.pi * np.fft.fftfreq(ny)[:, None]
+    kx = 2.0 * math.pi * np.fft.rfftfreq(nx)[None, :]
+    # Unit-variance white noise filtered by sqrt(N P_k), sum_k P_k = 1 over the full spectrum.
+    power = np.exp(-0.5 * (kx * kx + ky * ky) * correlation_pixels ** 2)
+    full = np.exp(-0.5 * (2.0 * math.pi * np.fft.fftfreq(nx)) ** 2 * correlation_pixels ** 2).sum() * \
+        np.exp(-0.5 * (2.0 * math.pi * np.fft.fftfreq(ny)) ** 2 * correlation_pixels ** 2).sum()
+    gain = np.sqrt(nx * ny * power / full) * np.exp(-1j * (kx * vx + ky * vy) * time)
+    out = np.empty((height, width, 2))
+    for c in range(2):
+        noise = rng.standard_normal((ny, nx))
+        out[:, :, c] = np.fft.irfft2(np.fft.rfft2(noise) * gain, s=(ny, nx))[:height, :width] * rms
+    out[:, :, 1] *= -1.0  # rows grow downward; the camera's second angle is toward the image's up
+    return out
+
+
+def geometric_noise(camera: _core.Camera, rms: float, correlation_pixels: float, seed: int = 0,
+                    time: float = 0.0, speed: Sequence[float] = (10.0, 0.0)) -> _core.Camera:
+    """`camera` with every ray turned by geometric_noise_map(camera.height, camera.width, rms,
+    correlation_pixels, seed, time, speed) -- NOT PHYSICAL: a seeded per-pixel angular jitter [rad]
+    with a Gaussian spectrum (the follow-up editor's cheap shimmer; refracta.Turbulence is the
+    physical one). Camera.project ignores the jitter."""
+    return camera.jittered(geometric_noise_map(camera.height, camera.width, rms, correlation_pixels, seed, time,
+                                               speed))
+
+
+def _fft_size(n: int) -> int:
+    """The smallest 2^a 3^b 5^c >= n (a fast FFT length)."""
+    best = 1 << max(0, (n - 1).bit_length())
+    f5 = 1
+    while f5 < best:
+        f35 = f5
+        while f35 < best:
+            size = f35
+            while size < n:
+                size *= 2
+            best = min(best, size)
+            f35 *= 3
+        f5 *= 5
+    return best
+
+
+# -- animation ----------------------------------------------------------------------------------
+
+def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: Union[None, str, os.PathLike] = None,
+            fps: Optional[float] = None, turbulence=None, noise: Optional[dict] = None, executor=None,
+            progress: Union[bool, Callable[[int, int], None]] = True, exposure: float = 1.0,
+            tonemap: str = "reinhard", **options) -> np.ndarray:
+    """Render a shimmering mirage: one frame per time in `times` [s]; returns linear radiance,
+    float32 (T, H, W, 3), and writes it to `path` if given.
+
+    turbulence: a refracta.Turbulence; frame t renders `field` (a PhysicalAtmosphere or
+    LogisticProfile: its parameters and hot spots, its own turbulence replaced) with
+    turbulence.at_time(t), the pattern carried by its wind (physical). noise: keywords of
+    refracta.geometric_noise (rms [rad], correlation_pixels, seed, speed [pixels/s]): frame t's
+    camera is ``geometric_noise(camera, time=t, **noise)`` -- NOT PHYSICAL, a cheap stand-in. Give
+    either or both (ValueError if neither: every frame would be the same).
+
+    path: '.gif' (Pillow; loops), '.mp4' (H.264 through imageio-ffmpeg, frames padded to even
+    sizes), or a pattern with a '{}' field for the frame number ('frames/f{:03d}.exr': one file
+    per frame through refracta.io.write_image: EXR linear, PNG tone mapped). GIF and MP4 frames are
+    tone mapped like refracta.io.to_display(frame, exposure, tonemap) (the same curve for every
+    frame: no flicker). fps: frames per second of the file (default: 1 / the median step of
+    `times`). executor: None renders the frames one after another here (each on every core); a
+    concurrent.futures.Executor or a dask.distributed Client renders one frame per task (scene,
+    camera, field and turbulence sent to each dask worker once). progress: a bar of frames on
+    stderr (True), a callable progress(done, total), or False. Further keywords: render's
+    (method, spp, max_length, ...: see refracta.render).
+    """
+    times = np.asarray(times, dtype=np.float64)
+    if times.ndim != 1 or times.size < 1 or not np.all(np.isfinite(times)):
+        raise ValueError(f"animate: times must be a non-empty 1-D array of finite seconds (got shape {times.shape})")
+    if turbulence is None and noise is None:
+        raise ValueError("animate: give turbulence= (a refracta.Turbulence carried by its wind) or noise= "
+                         "(geometric_noise keywords): without either every frame is the same")
+    if turbulence is not None and not hasattr(turbulence, "at_time"):
+        raise ValueError(f"animate: turbulence must be a refracta.Turbulence (got {type(turbulence).__name__})")
+    if noise is not None:
+        if not isinstance(noise, dict) or "time" in noise:
+            raise ValueError(f"animate: noise must be a dict of geometric_noise keywords, without time (got {noise!r})")
+        geometric_noise_map(1, 1, **{k: v for k, v in noise.items()})  # checks the keywords before any work
+    if turbulence is not None:
+        with_turbulence(field, turbulence)  # checks the field before any work
+    fps = _frame_rate(times, fps)
+    if path is not None:
+        path = os.fspath(path)
+        _writer_for(path)  # an unknown format or a missing package fails before rendering
+    settings = render_options(**options)
+    outcomes = map_ordered(_render_frame, [(float(t),) for t in times], executor, progress, "rendering frames",
+                           shared=(scene, camera, field, settings, turbulence, noise))
+    frames = np.empty((times.size, camera.height, camera.width, 3), dtype=np.float32)
+    for i, (ok, value) in enumerate(outcomes):
+        if not ok:
+            raise value[0]
+        frames[i] = value
+    if path is not None:
+        _writer_for(path)(path, frames, fps, exposure, tonemap)
+    return frames
+
+
+def _render_frame(scene, camera, field, settings, turbulence, noise, t):
+    """One frame on a worker: the image at time t (linear float32 (H, W, 3))."""
+    air = field_at_time(field, turbulence, t) if turbulence is not None else field
+    view = geometric_noise(camera, time=t, **noise) if noise is not None else camera
+    image, _ = _core._render(scene, view, air, settings, None)
+    return image
+
+
+def _frame_rate(times: np.ndarray, fps: Optional[float]) -> float:
+    if fps is not None:
+        if not (isinstance(fps, (int, float, np.floating)) and 0.0 < fps < 1e4):
+            raise ValueError(f"animate: fps must be in (0, 1e4) (got {fps!r})")
+        return float(fps)
+    steps = np.diff(times)
+    if steps.size == 0:
+        return 1.0
+    step = float(np.median(steps))
+    if not step > 0.0:
+        raise ValueError("animate: times do not increase; give fps")
+    return 1.0 / step
+
+
+def _writer_for(path: str):
+    """The writer of `path`'s format (raising ValueError for an unknown one, ImportError naming the
+    package for a missing one)."""
+    if "{" in path:
+        return _write_sequence
+    extension = os.path.splitext(path)[1].lower()
+    if extension == ".gif":
+        try:
+            import PIL.Image  # noqa: F401
+        except ImportError:
+            raise ImportError("animate: writing a GIF needs Pillow (pip install pillow)") from None
+        return _write_gif
+    if extension == ".mp4":
+        try:
+            import imageio_ffmpeg  # noqa: F401
+        except ImportError:
+            raise ImportError("animate: writing an MP4 needs imageio-ffmpeg (pip install 'refracta[animation]')") from None
+        return _write_mp4
+    raise ValueError(f"animate: path must end in .gif or .mp4, or hold a '{{}}' field for frame files (got {path!r})")
+
+
+def _display_bytes(frames, exposure, tonemap) -> np.ndarray:
+    """uint8 (T, H, W, 3) display frames (refracta.io.to_display)."""
+    from refracta.io import to_display
+
+    return np.stack([np.round(to_display(f, exposure, tonemap) * 255.0).astype(np.uint8) for f in frames])
+
+
+def _write_gif(path, frames, fps, exposure, tonemap):
+    import PIL.Image
+
+    images = [PIL.Image.fromarray(f) for f in _display_bytes(frames, exposure, tonemap)]
+    images[0].save(path, save_all=True, append_images=images[1:], duration=int(round(1000.0 / fps)), loop=0)
+
+
+def _write_mp4(path, frames, fps, exposure, tonemap):
+    import imageio_ffmpeg
+
+    data = _display_bytes(frames, exposure, tonemap)
+    # H.264 in yuv420p needs even sizes: repeat the last row / column.
+    data = np.pad(data, ((0, 0), (0, data.shape[1] % 2), (0, data.shape[2] % 2), (0, 0)), mode="edge")
+    writer = imageio_ffmpeg.write_frames(path, (data.shape[2], data.shape[1]), fps=fps, macro_block_size=2,
+                                         quality=8, ffmpeg_log_level="error")
+    writer.send(None)
+    for frame in data:
+        writer.send(np.ascontiguousarray(frame))
+    writer.close()
+
+
+def _write_sequence(path, frames, fps, exposure, tonemap):
+    from refracta import io
+
+    for i, frame in enumerate(frames):
+        target = path.format(i)
+        folder = os.path.dirname(target)
+        if folder:
+            os.makedirs(folder, exist_ok=True)
+        io.write_image(target, frame, exposure=exposure, tonemap=tonemap)

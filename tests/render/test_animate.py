@@ -1,0 +1,191 @@
+"""Shimmer (issue 10): refracta.geometric_noise (a non-physical angle map: its rms, correlation,
+seeding and motion), rebuilding a field around advected turbulence, and refracta.animate (frames
+that change, GIF / MP4 / frame files, executors, bad input)."""
+
+import concurrent.futures
+import gc
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import _animate
+
+PIL_Image = pytest.importorskip("PIL.Image")
+
+# A 256 x 256 map holds ~(256 / (2.5 l))^2 ~ 420 independent patches at l = 5 pixels: the sample
+# rms of each component is within ~2 / sqrt(2 * 420) ~ 7 % (2 sigma) of the asked one.
+RMS_TOLERANCE = 0.1
+# The correlation at a lag of l, measured over the same map: exp(-1/2) = 0.607 within 0.08.
+CORRELATION_TOLERANCE = 0.08
+
+
+# -- 1. geometric noise (not physical) -----------------------------------------------------------
+
+def test_noise_map_has_the_asked_rms_and_correlation():
+    rms, ell = 2e-3, 5.0
+    angles = _animate.geometric_noise_map(256, 256, rms, ell, seed=4)
+    assert angles.shape == (256, 256, 2)
+    for c in range(2):
+        a = angles[:, :, c]
+        assert a.std() == pytest.approx(rms, rel=RMS_TOLERANCE)
+        lag = int(ell)
+        across = np.mean(a[:, lag:] * a[:, :-lag]) / a.var()
+        down = np.mean(a[lag:, :] * a[:-lag, :]) / a.var()
+        for value in (across, down):
+            assert value == pytest.approx(math.exp(-0.5), abs=CORRELATION_TOLERANCE)
+        assert abs(np.mean(a[:, 4 * lag:] * a[:, :-4 * lag]) / a.var()) < 0.1  # exp(-8): uncorrelated
+    assert abs(np.corrcoef(angles[:, :, 0].ravel(), angles[:, :, 1].ravel())[0, 1]) < 0.1
+
+
+def test_noise_map_is_seeded_and_moves_with_its_speed():
+    a = _animate.geometric_noise_map(40, 60, 1e-3, 3.0, seed=1)
+    np.testing.assert_array_equal(a, _animate.geometric_noise_map(40, 60, 1e-3, 3.0, seed=1))
+    assert np.abs(a - _animate.geometric_noise_map(40, 60, 1e-3, 3.0, seed=2)).max() > 1e-3
+    # After 0.5 s at (4, 6) pixels/s the pattern sits 2 pixels right and 3 down (exact: a phase shift).
+    b = _animate.geometric_noise_map(40, 60, 1e-3, 3.0, seed=1, time=0.5, speed=(4.0, 6.0))
+    np.testing.assert_allclose(b[3:, 2:], a[:-3, :-2], rtol=0, atol=1e-15)
+
+
+def test_noise_camera_turns_each_ray_by_its_angles():
+    camera = refracta.Camera((0, 1, 0), (10, 1, 0), vfov=10, width=8, height=6)
+    noisy = refracta.geometric_noise(camera, 1e-3, 2.0, seed=3)
+    angles = _animate.geometric_noise_map(6, 8, 1e-3, 2.0, seed=3)
+    for x, y in [(0, 0), (3, 2), (7, 5)]:
+        _, d0 = camera.ray(x + 0.5, y + 0.5)
+        _, d1 = noisy.ray(x + 0.5, y + 0.5)
+        # The turn's size (its direction depends on the camera's frame); the corners' rays, 5 deg
+        # off the axis, are turned in the image plane: within cos^2(5 deg) ~ 1 %.
+        assert np.arccos(np.clip(d0 @ d1, -1, 1)) == pytest.approx(np.hypot(*angles[y, x]), rel=1e-2)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(rms=-1.0), "rms must be"), (dict(correlation_pixels=0.0), "correlation_pixels must be"),
+    (dict(seed=-1), "seed must be"), (dict(speed=(1.0,)), "speed must be"), (dict(time=float("nan")), "time must be"),
+])
+def test_noise_bad_input(kwargs, message):
+    arguments = dict(rms=1e-3, correlation_pixels=2.0) | kwargs
+    with pytest.raises(ValueError, match=message):
+        _animate.geometric_noise_map(4, 4, **arguments)
+
+
+# -- 2. the air at time t ------------------------------------------------------------------------------
+
+def test_field_rebuilt_around_moved_turbulence_keeps_its_air():
+    air = refracta.Turbulence(1e-10, cells=16, spacing=0.05, depth=0.1, wind=(1.0, 2.0))
+    spots = [refracta.HotSpot(30.0, 1.0, 4.0, 6.0, depth=0.2)]
+    for field in (refracta.PhysicalAtmosphere(surface_dt=9.0, surface_depth=0.12, hot_spots=spots),
+                  refracta.LogisticProfile(n_hot=0.2, hot_spots=[refracta.HotSpot(3.0, 0.0, 2.0, 1.0)], turbulence=air)):
+        later = _animate.field_at_time(field, air, 0.5)
+        assert later.params == field.params and later.hot_spots == field.hot_spots
+        p = np.array([[30.0, 0.05, 1.0], [3.0, 0.3, 0.2], [100.0, 2.0, 0.0]])
+        moved = air.at_time(0.5).evaluate(p)[0]
+        calm = refracta.PhysicalAtmosphere if isinstance(field, refracta.PhysicalAtmosphere) else refracta.LogisticProfile
+        without = _animate.with_turbulence(field, None)
+        assert without.turbulence is None
+        np.testing.assert_allclose(later.ior(p), without.ior(p) + moved, rtol=0, atol=1e-15)
+        assert isinstance(without, calm)
+
+
+def test_fields_that_cannot_carry_turbulence_are_refused():
+    air = refracta.Turbulence(cells=16)
+    with pytest.raises(ValueError, match="PhysicalAtmosphere or LogisticProfile"):
+        _animate.with_turbulence(refracta.LinearSquaredProfile(), air)
+    # A LogisticProfile's height_only_part has its hot layer switched off: not a constructor's field.
+    part = refracta.LogisticProfile(hot_spots=[refracta.HotSpot(3.0, 0.0, 2.0, 1.0)]).height_only_part
+    with pytest.raises(ValueError, match="cannot be rebuilt"):
+        _animate.with_turbulence(part, air)
+
+
+# -- 3. animate ---------------------------------------------------------------------------------------
+
+def checker_wall():
+    """A wall of 10 cm black and white squares 10 m ahead, filling a 4 deg view (a square spans
+    ~1.1 pixels of 8.7 mrad), lit by a sun behind the camera."""
+    scene = refracta.Scene()
+    black, white = refracta.shading.Diffuse((0.03, 0.03, 0.03)), refracta.shading.Diffuse((0.8, 0.8, 0.8))
+    for i in range(24):
+        for j in range(12):
+            scene.add_box((10.0, 0.3 + 0.1 * (j - 5.5), 0.1 * (i - 11.5)), (0.05, 0.1, 0.1),
+                          material=white if (i + j) % 2 else black)
+    scene.add_light(refracta.lights.SunLight((-0.8, 0.5, 0.3), 2e4))  # ~1.3 W/m^2 from a 0.53 deg disc
+    camera = refracta.Camera((0.0, 0.3, 0.0), (10.0, 0.3, 0.0), vfov=4, width=16, height=8)
+    return scene, camera
+
+
+def strong_turbulence():
+    # cn2 1e-7 over 10 m of 5 cm cells turns rays by ~3 mrad rms, a third of a pixel here.
+    return refracta.Turbulence(1e-7, cells=16, spacing=0.05, depth=None, wind=(0.0, 2.0), seed=1)
+
+
+def test_animate_writes_a_gif_whose_frames_shimmer(tmp_path):
+    scene, camera = checker_wall()
+    field = refracta.PhysicalAtmosphere(surface_dt=0.0)
+    times = [0.0, 0.05, 0.1]
+    frames = refracta.animate(scene, camera, field, times, path=tmp_path / "shimmer.gif", turbulence=strong_turbulence(),
+                              progress=False, max_length=12.0)
+    assert frames.shape == (3, 8, 16, 3) and frames.dtype == np.float32
+    with PIL_Image.open(tmp_path / "shimmer.gif") as gif:
+        assert gif.n_frames == 3 and gif.size == (16, 8)
+        assert gif.info["duration"] == 50  # fps = 1 / 0.05 s
+    # The wind moves the pattern: a real share of the pixels change by a tenth of the wall's
+    # contrast between frames; and the calm air renders another picture.
+    contrast = frames[0].max() - frames[0].min()
+    changed = np.abs(frames[1] - frames[0]).max(axis=2) > 0.1 * contrast
+    assert contrast > 0.2 and changed.mean() > 0.1, (contrast, changed.mean())
+    still = refracta.render(scene, camera, field, progress=False, max_length=12.0)
+    assert np.abs(frames[0] - still).max() > 0.05
+
+
+def test_animate_on_an_executor_matches_in_process(tmp_path):
+    scene, camera = checker_wall()
+    field = refracta.PhysicalAtmosphere(surface_dt=0.0)
+    noise = dict(rms=3e-3, correlation_pixels=2.0, seed=5)
+    here = refracta.animate(scene, camera, field, [0.0, 0.2], noise=noise, progress=False, max_length=12.0)
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        there = refracta.animate(scene, camera, field, [0.0, 0.2], noise=noise, executor=pool, progress=False,
+                                 max_length=12.0)
+    np.testing.assert_array_equal(here, there)
+    assert np.abs(here[1] - here[0]).max() > 0.05  # the noise moved (10 pixels/s by default)
+
+
+def test_animate_writes_mp4_and_frame_files(tmp_path):
+    ffmpeg = pytest.importorskip("imageio_ffmpeg")
+    scene, camera = checker_wall()
+    camera = camera.resized(15, 7)  # odd sizes: padded for H.264
+    field = refracta.PhysicalAtmosphere(surface_dt=0.0)
+    noise = dict(rms=3e-3, correlation_pixels=2.0)
+    refracta.animate(scene, camera, field, [0.0, 0.1, 0.2, 0.3], path=tmp_path / "shimmer.mp4", noise=noise,
+                     progress=False, max_length=12.0)
+    assert ffmpeg.count_frames_and_secs(str(tmp_path / "shimmer.mp4")) == (4, pytest.approx(0.4))
+    with warnings.catch_warnings():  # imageio-ffmpeg's reader leaves its pipe to the collector
+        warnings.simplefilter("ignore", ResourceWarning)
+        reader = ffmpeg.read_frames(str(tmp_path / "shimmer.mp4"))
+        meta = next(reader)
+        reader.close()
+        del reader
+        gc.collect()
+    assert meta["size"] == (16, 8) and meta["fps"] == pytest.approx(10.0)
+    refracta.animate(scene, camera, field, [0.0, 0.1], path=str(tmp_path / "frames" / "f{:02d}.png"), noise=noise,
+                     progress=False, max_length=12.0)
+    assert sorted(p.name for p in (tmp_path / "frames").iterdir()) == ["f00.png", "f01.png"]
+
+
+def test_animate_bad_input(tmp_path):
+    scene, camera = checker_wall()
+    field = refracta.PhysicalAtmosphere(surface_dt=0.0)
+    air = refracta.Turbulence(cells=16)
+    with pytest.raises(ValueError, match="every frame is the same"):
+        refracta.animate(scene, camera, field, [0.0, 1.0], progress=False)
+    with pytest.raises(ValueError, match=r"must end in \.gif or \.mp4"):
+        refracta.animate(scene, camera, field, [0.0, 1.0], path=tmp_path / "x.avi", turbulence=air, progress=False)
+    with pytest.raises(ValueError, match="times must be"):
+        refracta.animate(scene, camera, field, [[0.0]], turbulence=air, progress=False)
+    with pytest.raises(ValueError, match="times do not increase"):
+        refracta.animate(scene, camera, field, [1.0, 0.0], turbulence=air, progress=False)
+    with pytest.raises(ValueError, match="PhysicalAtmosphere or LogisticProfile"):
+        refracta.animate(scene, camera, refracta.LinearSquaredProfile(), [0.0], turbulence=air, progress=False)
+    with pytest.raises(ValueError, match="unknown option"):
+        refracta.animate(scene, camera, field, [0.0], turbulence=air, progress=False, no_such_option=1)
