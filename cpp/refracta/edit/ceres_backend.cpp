@@ -1,5 +1,5 @@
 // The Ceres back-end: one residual block per pair, Levenberg-Marquardt over the free parameters
-// mapped to [0, 1] by their bounds (box constraints), an optional robust loss, every pair traced in
+// mapped to [0, 1] by their bounds (EditProblem::to_unit; box constraints), an optional robust loss, every pair traced in
 // parallel before each evaluation (PairBatch: results independent of the thread count), an
 // iteration callback for history, progress, Ctrl-C and the target cost.
 #include "refracta/edit/edit_settings.h"
@@ -46,27 +46,26 @@ class PairBatch : public ceres::EvaluationCallback {
     if (!new_evaluation_point && (jacobians_ || !evaluate_jacobians)) return;  // have what is asked
     const int m = problem_.num_free();
     std::vector<double> x(m);
-    for (int j = 0; j < m; ++j) x[j] = problem_.lower()[j] + unit_[j] * range(j);
+    for (int j = 0; j < m; ++j) x[j] = problem_.from_unit(j, unit_[j]);
     ok_ = problem_.evaluate(x, &residuals_, evaluate_jacobians ? &jacobian_ : nullptr);
     jacobians_ = evaluate_jacobians;
   }
 
   // Pair i's 3 residuals and, when asked, its 3 x m Jacobian with respect to the unit box
-  // (d/du = d/dx * (upper - lower)); false when the batch's evaluation failed.
+  // (d/du = d/dx * dx/du); false when the batch's evaluation failed.
   bool block(int i, double* residuals, double* jacobian) const {
     if (!ok_ || (jacobian && !jacobians_)) return false;
     const int m = problem_.num_free();
     std::copy_n(residuals_.data() + 3 * i, 3, residuals);
     if (jacobian) {
       for (int k = 0; k < 3; ++k) {
-        for (int j = 0; j < m; ++j) jacobian[k * m + j] = jacobian_[size_t(3 * i + k) * m + j] * range(j);
+        for (int j = 0; j < m; ++j) jacobian[k * m + j] = jacobian_[size_t(3 * i + k) * m + j] * problem_.dx_du(j, unit_[j]);
       }
     }
     return true;
   }
 
  private:
-  double range(int j) const { return problem_.upper()[j] - problem_.lower()[j]; }
   const EditProblem& problem_;
   const std::vector<double>& unit_;
   std::vector<double> residuals_, jacobian_;
@@ -110,7 +109,7 @@ BackendResult solve_with_ceres(const EditProblem& problem, const std::vector<dou
   const int m = problem.num_free();
   std::vector<double> unit(m);
   for (int j = 0; j < m; ++j) {
-    unit[j] = (x0[j] - problem.lower()[j]) / (problem.upper()[j] - problem.lower()[j]);
+    unit[j] = problem.to_unit(j, x0[j]);
   }
   PairBatch batch(problem, unit);
   ceres::Problem::Options problem_options;
@@ -157,7 +156,7 @@ BackendResult solve_with_ceres(const EditProblem& problem, const std::vector<dou
   out.x = x0;
   if (summary.IsSolutionUsable()) {
     for (int j = 0; j < m; ++j) {
-      out.x[j] = problem.lower()[j] + unit[j] * (problem.upper()[j] - problem.lower()[j]);
+      out.x[j] = problem.from_unit(j, unit[j]);
     }
   }
   return out;

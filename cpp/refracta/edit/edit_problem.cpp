@@ -12,6 +12,13 @@
 
 namespace refracta {
 
+namespace {
+
+// Positive bounds wider than this factor are searched in log space (edit_problem.h).
+constexpr double kLogScaleRatio = 100.0;
+
+}  // namespace
+
 EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const ProblemSpec& spec,
                          const std::atomic<bool>* cancel)
     : field_(std::move(field)), spec_(spec), pairs_(std::move(pairs)), options_(spec.pair),
@@ -58,6 +65,7 @@ EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const Pro
     start_.push_back(x);
     lower_.push_back(lo);
     upper_.push_back(hi);
+    log_scaled_.push_back(lo > 0.0 && hi >= kLogScaleRatio * lo);
   }
   if (free_.empty()) throw_invalid("no free parameters: name at least one in free");
   spec_.free = names;
@@ -120,6 +128,21 @@ int EditProblem::count_met(const std::vector<double>& residuals, double accept_a
 
 bool EditProblem::all_met(const std::vector<double>& residuals, double accept_angle) const {
   return count_met(residuals, accept_angle) == int(pairs_.size());
+}
+
+double EditProblem::to_unit(int j, double x) const {
+  if (log_scaled_[j]) return std::log(x / lower_[j]) / std::log(upper_[j] / lower_[j]);
+  return (x - lower_[j]) / (upper_[j] - lower_[j]);
+}
+
+double EditProblem::from_unit(int j, double u) const {
+  if (log_scaled_[j]) return std::clamp(lower_[j] * std::exp(u * std::log(upper_[j] / lower_[j])), lower_[j], upper_[j]);
+  return std::clamp(lower_[j] + u * (upper_[j] - lower_[j]), lower_[j], upper_[j]);
+}
+
+double EditProblem::dx_du(int j, double u) const {
+  if (log_scaled_[j]) return from_unit(j, u) * std::log(upper_[j] / lower_[j]);
+  return upper_[j] - lower_[j];
 }
 
 std::vector<double> EditProblem::full_values(const std::vector<double>& x) const {

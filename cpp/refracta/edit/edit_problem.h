@@ -64,6 +64,15 @@ class EditProblem {
   // How many pairs these residuals meet.
   int count_met(const std::vector<double>& residuals, double accept_angle) const;
 
+  // The unit box both back-ends and the global stage search: each free parameter mapped to [0, 1]
+  // by its bounds, linearly, or logarithmically where its bounds are positive and span a factor
+  // of 100 or more (widths, depths, radii: a step is then a fraction of the value, not of a range
+  // 2000 times the value, so a bound of 0.005..10 m does not make 1 mm steps invisible).
+  double to_unit(int j, double x) const;
+  double from_unit(int j, double u) const;
+  double dx_du(int j, double u) const;  // the map's slope
+  bool log_scaled(int j) const { return log_scaled_[j] != 0; }
+
   // Every parameter value with the free ones at x, and the field they make.
   std::vector<double> full_values(const std::vector<double>& x) const;
   FieldPtr field_at(const std::vector<double>& x) const;
@@ -79,6 +88,7 @@ class EditProblem {
   std::vector<double> values_;
   std::vector<int> free_;
   std::vector<double> start_, lower_, upper_;
+  std::vector<char> log_scaled_;
   std::unique_ptr<EvaluationContext> context_;
   std::vector<std::unique_ptr<ceres::CostFunction>> costs_;
 };

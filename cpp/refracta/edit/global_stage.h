@@ -21,8 +21,9 @@ struct DesignPoint {
   std::string label;      // where it comes from, for the stage report
 };
 
-// per_param scan points on each free parameter's axis (cell midpoints of its range) and as many
-// quasi-random points, half over the box and half within a tenth of each range of the start;
+// per_param scan points on each free parameter's axis (cell midpoints of its unit range,
+// EditProblem::to_unit), refined around each axis's lowest local minima, and per_param * m
+// quasi-random points, half over the unit box and half within a tenth of it of the start;
 // their costs, every point on its own thread (pairs in turn: each thread builds a model once per
 // point). Sorted by cost, lowest first. control.cancel stops it (throws Cancelled).
 std::vector<DesignPoint> evaluate_design(const EditProblem& problem, int per_param, WorkControl& control);

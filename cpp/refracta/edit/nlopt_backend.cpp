@@ -1,6 +1,6 @@
 // The nlopt back-end: any nlopt algorithm by name on the same residual blocks. The free
-// parameters are mapped to [0, 1] by their bounds, so derivative-free methods see a well-scaled
-// box; gradient-based ones get J^T r from the automatic (or numeric) derivatives.
+// parameters are mapped to [0, 1] by their bounds (EditProblem::to_unit, as Ceres sees them), so
+// derivative-free methods see a well-scaled box; gradient-based ones get J^T r from the automatic (or numeric) derivatives.
 #include "refracta/edit/edit_settings.h"
 
 #include <nlopt.hpp>
@@ -31,9 +31,7 @@ struct Objective {
 
   std::vector<double> to_params(const std::vector<double>& unit) const {
     std::vector<double> x(unit.size());
-    for (size_t i = 0; i < unit.size(); ++i) {
-      x[i] = problem.lower()[i] + std::clamp(unit[i], 0.0, 1.0) * (problem.upper()[i] - problem.lower()[i]);
-    }
+    for (size_t i = 0; i < unit.size(); ++i) x[i] = problem.from_unit(int(i), std::clamp(unit[i], 0.0, 1.0));
     return x;
   }
 
@@ -55,7 +53,7 @@ struct Objective {
         if (std::isfinite(cost)) {
           for (int k = 0; k < problem.num_residuals(); ++k) g += jacobian[size_t(k) * m + j] * r[k];
         }
-        grad[j] = g * (problem.upper()[j] - problem.lower()[j]);
+        grad[j] = g * problem.dx_du(j, std::clamp(unit[j], 0.0, 1.0));
       }
     }
     if (cost < best) best = cost, out.x = x;
@@ -89,7 +87,7 @@ BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& al
   Objective objective{problem, settings, control, out};
   std::vector<double> unit(m);
   for (int i = 0; i < m; ++i) {
-    unit[i] = (x0[i] - problem.lower()[i]) / (problem.upper()[i] - problem.lower()[i]);
+    unit[i] = problem.to_unit(i, x0[i]);
   }
   control.total = settings.max_evaluations;
   const std::string prefix = concat("nlopt ", algorithm, ": ");
