@@ -655,6 +655,14 @@ class RenderOptions:
     def chord(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def differentials(self) -> bool:
+        """
+        camera rays' footprints from ray differentials through the air (false: the ray cone)
+        """
+    @differentials.setter
+    def differentials(self, arg0: bool) -> None:
+        ...
+    @property
     def guard_band(self) -> float:
         """
         raster_march: extra raster view per side (fraction)
@@ -778,7 +786,7 @@ class RenderOptions:
     @property
     def texture_filter(self) -> bool:
         """
-        filter textures over ray-cone footprints
+        filter textures over each sample's footprint
         """
     @texture_filter.setter
     def texture_filter(self, arg0: bool) -> None:

@@ -130,7 +130,8 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str = N
     from refracta import edit
     from refracta.scene_file import with_atmosphere
 
-    scene, camera, field = refracta.load_scene(scene_path)
+    loaded = refracta.load_scene(scene_path)
+    scene, camera, field = loaded
     if field is None:
         raise ValueError(f"{scene_path}: has no [atmosphere] table to edit")
     pairs, options = edit.load_pairs(pairs_path, scene, camera)
@@ -138,7 +139,8 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str = N
         options["backend"] = backend
     result = edit.solve(field, camera, pairs, progress=True, **options)
     print(result.report())
-    output.write_text(with_atmosphere(Path(scene_path).read_text(), result.field))
+    # The solved field carries the file's turbulence (if any): written with its settings again.
+    output.write_text(with_atmosphere(Path(scene_path).read_text(), result.field, loaded.turbulence))
     print(f"wrote {output}")
     return 0 if result.success else 1
 

@@ -93,8 +93,10 @@ class PointPair:
         margin = _number(self.margin, "PointPair margin")
         if not margin >= 0.0:
             raise ValueError(f"PointPair margin must be >= 0 (got {self.margin!r})")
-        object.__setattr__(self, "destination", tuple(destination))
-        object.__setattr__(self, "source", tuple(source))
+        # Plain floats, not np.float64: the repr reads (1.0, 2.0) and the pair compares and
+        # serialises like the tuples it was given.
+        object.__setattr__(self, "destination", tuple(float(x) for x in destination))
+        object.__setattr__(self, "source", tuple(float(x) for x in source))
         object.__setattr__(self, "weight", weight)
         object.__setattr__(self, "margin", margin)
 

@@ -1,7 +1,7 @@
 """Ready-made mirage scenes and atmospheres, with values from ORACLES.md.
 
-Scenes: hot_road(), cold_sea(), fata_morgana() return an Example with .scene, .camera, .field
-(procedural geometry; nothing to download). Atmospheres for ray fans: ATMOSPHERES maps a name to
+Scenes: hot_road(), cold_sea(), fata_morgana(), hot_spot() and green_flash() return an Example
+with .scene, .camera, .field (procedural geometry; nothing to download). Atmospheres for ray fans: ATMOSPHERES maps a name to
 (field, eye height [m], elevations [deg], max length [m]).
 """
 
@@ -148,7 +148,45 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
     return Example("fata_morgana", scene, camera, field, 30500.0, fata_morgana.__doc__)
 
 
-EXAMPLES = {"hot_road": hot_road, "cold_sea": cold_sea, "fata_morgana": fata_morgana}
+def hot_spot(width: int = 640, height: int = 240) -> Example:
+    """An areal hot spot (refracta.HotSpot): the hot road's scene, its asphalt only 2 K warmer than
+    the air but for a patch 220 m across centred 330 m down the road, 16 K warmer (a compact
+    footprint: exactly zero outside it). The mirage -- the sky and the cars' lower halves mirrored
+    -- lies over the patch alone, and its edges follow the patch."""
+    example = hot_road(width, height)
+    spot = _core.HotSpot(330.0, 0.0, 110.0, 16.0, footprint="compact")
+    field = _core.PhysicalAtmosphere(surface_dt=2.0, surface_depth=0.1, hot_spots=[spot])
+    return Example("hot_spot", example.scene, example.camera, field, example.max_length, hot_spot.__doc__)
+
+
+# The setting sun of green_flash: radiance of the sun's disc [W/(m^2 sr)] as linear sRGB, reddened as
+# by ~40 air masses of Rayleigh extinction (its blue nearly gone, so that the top rim that
+# dispersion lifts is green rather than blue), and the Neckel-like linear limb darkening at 550 nm.
+SETTING_SUN_RADIANCE = (1.0e6, 0.45e6, 0.10e6)
+SETTING_SUN_LIMB_DARKENING = 0.6
+
+
+def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.8) -> Example:
+    """A green flash over a warm sea (an inferior-mirage profile): the sea 3 K warmer than the air,
+    the excess e-folding over 2 m, the standard atmosphere above to 86 km, a spherical Earth; the
+    eye 4 m above the water, looking at the setting sun. The sun's centre is `sun_elevation` [deg]
+    above the true horizon (-0.8: its upper rim about to set). Render spectrally
+    (refracta.render(..., spectral=True)): each wavelength is bent by its own air, blue and green
+    lifted most, so the last sliver of the flattened sun turns green; below it the mirage of the
+    warm sea squeezes the disc into an 'Etruscan vase' and cuts it off above the horizon."""
+    scene = _core.Scene()
+    scene.set_sky((0.02, 0.012, 0.01), (0.004, 0.006, 0.012))  # dusk: warm at the horizon, dark above
+    scene.set_sun(sun_direction(sun_elevation, 0.0), SETTING_SUN_RADIANCE, angular_diameter=0.53,
+                  limb_darkening=SETTING_SUN_LIMB_DARKENING)
+    scene.add_ground(0.0, 2.0e5, material=_sea())
+    base = _core.PhysicalAtmosphere(surface_dt=3.0, surface_depth=2.0)
+    field = _core.CurvedEarth(base)
+    look = np.radians(-0.05)
+    camera = _camera((0.0, 4.0, 0.0), (1000.0 * np.cos(look), 4.0 + 1000.0 * np.sin(look), 0.0), 0.7, width, height)
+    return Example("green_flash", scene, camera, field, 1.5e6, green_flash.__doc__)
+
+
+EXAMPLES = {"hot_road": hot_road, "cold_sea": cold_sea, "fata_morgana": fata_morgana, "hot_spot": hot_spot}
 
 
 def hot_road_atmosphere():

@@ -98,24 +98,35 @@ def ray_fan(
     return fig
 
 
-def edit_report(result, figsize=(12.0, 4.2)):
+def edit_report(result, figsize=(12.0, 4.2), figure=None):
     """An edit at a glance: each pair's light path before (dashed) and after (solid) the solve,
     seen from the side (distance from the eye vs height), with its source (x) and the eye; and
     the cost history on a log scale.
 
     Args:
         result: a refracta.edit.EditResult.
+        figsize: (width, height) [inches] of a new figure (ignored when `figure` is given).
+        figure: an empty matplotlib.figure.Figure to draw into, or None: a new pyplot figure (shown
+            inline in a notebook). A Figure made with ``matplotlib.figure.Figure()`` never touches
+            pyplot's global state, so it may be drawn and saved on any thread (the mirage editor
+            draws its ray fan on a worker thread this way).
 
     Returns:
-        A matplotlib Figure. Paths are traced by the library (EditResult.paths) with the options
+        The matplotlib Figure. Paths are traced by the library (EditResult.paths) with the options
         the solve used.
     """
-    import matplotlib.pyplot as plt
+    from matplotlib import colormaps
 
-    fig, (ax_paths, ax_cost) = plt.subplots(1, 2, figsize=figsize, gridspec_kw={"width_ratios": [3, 1.3]},
-                                           constrained_layout=True)
+    if figure is None:
+        import matplotlib.pyplot as plt
+
+        figure = plt.figure(figsize=figsize)
+    elif figure.axes:
+        raise ValueError(f"edit_report: figure must be empty (it has {len(figure.axes)} axes)")
+    figure.set_layout_engine("constrained")
+    ax_paths, ax_cost = figure.subplots(1, 2, gridspec_kw={"width_ratios": [3, 1.3]})
     eye = np.asarray(result.eye, dtype=float)
-    colours = plt.cm.tab10(np.arange(len(result.pairs)) % 10)
+    colours = colormaps["tab10"](np.arange(len(result.pairs)) % 10)
     for which, style in (("start", "--"), ("solved", "-")):
         for path, pair, colour in zip(result.paths(which), result.pairs, colours):
             points = path.sample(max(200, 2 * len(path)))
@@ -138,4 +149,4 @@ def edit_report(result, figsize=(12.0, 4.2)):
     ax_cost.set_ylabel("cost [m²]")
     ax_cost.set_title(f"{result.backend}: {'success' if result.success else 'failed'}")
     ax_cost.grid(True, which="both", alpha=0.3)
-    return fig
+    return figure

@@ -1,4 +1,4 @@
-"""Scenes as TOML files: refracta.load_scene(path) -> (scene, camera, field).
+"""Scenes as TOML files: refracta.load_scene(path) -> (scene, camera, field). The format::
 
     [camera]
     position = [0.0, 1.4, 0.0]          # [m]
@@ -12,6 +12,24 @@
     surface_dt = 10.0                   # any parameter of the model, by name
     # TemperatureProfile: heights = [...], temperatures = [...]
     curved_earth = false                # true (or a radius [m]): CurvedEarth around the model
+
+    [[atmosphere.hot_spots]]            # any number (PhysicalAtmosphere, LogisticProfile): HotSpot
+    x = 120.0                           # centre on the ground [m]
+    z = 0.0
+    radius = 6.0                        # [m] gaussian: 1 sigma; compact: the support
+    dt = 8.0                            # [K] (LogisticProfile: strength of its hot term, 1 = all)
+    depth = 0.1                         # [m] optional (PhysicalAtmosphere only; absent: surface_depth)
+    footprint = "gaussian"              # or "compact"; optional, default gaussian
+    # (the spots' numbers are the field's parameters hot_spot<i>_x, _z, _radius, _dt, _depth,
+    #  i counting the entries from 0)
+
+    [atmosphere.turbulence]             # optional (PhysicalAtmosphere, LogisticProfile): the
+    cn2 = 1e-10                         # settings of a refracta.Turbulence, which makes the same
+    seed = 3                            # pattern again from them (deterministic in the seed);
+    cells = 64                          # any left out take Turbulence's defaults: outer_scale
+    depth = 0.1                         # (inf), inner_scale, wind = [u, w], spacing, cells (256),
+                                        # depth (inf: uniform, Turbulence(depth=None)), yaw [rad],
+                                        # and time [s] (Turbulence.at_time; default 0)
 
     [sun]                               # optional
     direction = [-0.35, 0.45, 0.25]
@@ -61,16 +79,31 @@
 
 File names (obj, textures, environment) are relative to the TOML file. Errors raise ValueError naming the file, the line
 and the key; missing files raise refracta.IoError.
+
+Writing: camera_table(camera) and atmosphere_table(field, turbulence) give the [camera] and
+[atmosphere] tables load_scene reads back as the same camera and field; with_camera and
+with_atmosphere put them into a scene file's text in place of the file's own, keeping the rest.
+A field keeps only the TurbulenceLayer its turbulence made, not the settings (seed, wind, ...)
+that make it again: a field with turbulence is written with the refracta.Turbulence it came from,
+``atmosphere_table(field, turbulence=t)`` (a loaded file's is SceneFile.turbulence)::
+
+    loaded = refracta.load_scene("road.toml")
+    solved = refracta.edit.solve(loaded.field, loaded.camera, pairs).field
+    Path("solved.toml").write_text(with_atmosphere(Path("road.toml").read_text(), solved,
+                                                   turbulence=loaded.turbulence))
 """
 
 from __future__ import annotations
 
 import difflib
+import math
 import os
 import re
 import sys
 from pathlib import Path
-from typing import Any, NamedTuple, Optional
+from typing import Any, Optional
+
+import numpy as np
 
 from refracta import _core
 
@@ -125,12 +158,44 @@ ENVIRONMENT_KEYS = {
 }
 
 
-class SceneFile(NamedTuple):
-    """What a scene file describes; unpacks as (scene, camera, field)."""
+# [[atmosphere.hot_spots]] and [atmosphere.turbulence]: the models that take them, their keys.
+LOCAL_MODELS = {"PhysicalAtmosphere", "LogisticProfile"}
+HOT_SPOT_KEYS = {"x", "z", "radius", "dt", "depth", "footprint"}
+TURBULENCE_KEYS = {"cn2", "outer_scale", "inner_scale", "seed", "wind", "spacing", "cells", "depth", "yaw", "time"}
+_SPOT_PARAMETER = re.compile(r"hot_spot\d+_")  # the fields' parameter names of spot i
+# A table header on a line of its own: [name] or [[name]], a comment after it allowed.
+_HEADER = re.compile(r"^\s*\[\[?\s*([A-Za-z0-9_.\"-]+)\s*\]\]?\s*(#.*)?$")
 
-    scene: _core.Scene
-    camera: _core.Camera
-    field: Optional[_core.IndexField]
+
+class SceneFile(tuple):
+    """What a scene file describes; unpacks as (scene, camera, field), which are also attributes.
+
+    Attributes:
+        scene: the refracta.Scene; camera: the refracta.Camera; field: the atmosphere (an
+            IndexField) or None without an [atmosphere] table.
+        turbulence: the refracta.Turbulence of [atmosphere.turbulence] (``field.turbulence`` is its
+            ``layer``), or None. Pass it to atmosphere_table / with_atmosphere to write the field
+            (or one solved from it) again: the field keeps the layer, not the settings.
+    """
+
+    def __new__(cls, scene: _core.Scene, camera: _core.Camera, field: Optional[_core.IndexField],
+                turbulence=None):
+        self = super().__new__(cls, (scene, camera, field))
+        self.turbulence = turbulence
+        return self
+
+    # As a NamedTuple's: the names of the three unpacked values (turbulence is an attribute beside them).
+    _fields = ("scene", "camera", "field")
+
+    scene = property(lambda self: self[0])
+    camera = property(lambda self: self[1])
+    field = property(lambda self: self[2])
+
+    def __reduce__(self):
+        return (SceneFile, (self[0], self[1], self[2], self.turbulence))
+
+    def __repr__(self) -> str:
+        return f"SceneFile(scene={self[0]!r}, camera={self[1]!r}, field={self[2]!r}, turbulence={self.turbulence!r})"
 
 
 class _Locator:
@@ -143,7 +208,7 @@ class _Locator:
     def line_of(self, table: str, key: Optional[str] = None, index: Optional[int] = None) -> int:
         current, count, header_line = None, -1, 0
         for number, line in enumerate(self.lines, 1):
-            header = re.match(r"\s*\[\[?\s*([A-Za-z0-9_.]+)\s*\]\]?", line)
+            header = _HEADER.match(line)
             if header:
                 current = header.group(1)
                 if current == table:
@@ -160,6 +225,9 @@ class _Locator:
 
     def error(self, message: str, table: str, key: Optional[str] = None, index: Optional[int] = None) -> ValueError:
         line = self.line_of(table, key, index)
+        if not line and "." in table:  # a sub-table written inline: hot_spots = [{x = 1, ...}]
+            parent, _, child = table.rpartition(".")
+            line = self.line_of(parent, child)
         where = f"[{table}]" if index is None else f"[[{table}]] #{index + 1}"
         name = f"{where} {key}" if key else where
         return ValueError(f"{self.path}:{line}: {name}: {message}")
@@ -344,8 +412,120 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: "_Locator", ge
             raise where.error(str(error), "lights", _offending_key(str(error), entry), index) from None
 
 
+def _real(value: Any) -> float:
+    """A number (int or float; not a bool or a string) as a float."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise TypeError(f"must be a number (got {value!r})")
+    return float(value)
+
+
+def _whole(value: Any) -> int:
+    """A whole number (an int; not a bool, not 16.0)."""
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"must be a whole number (got {value!r})")
+    return value
+
+
+def _hot_spots(entries: Any, where: "_Locator", get) -> list:
+    """[[atmosphere.hot_spots]] -> a list of refracta.HotSpot."""
+    name = "atmosphere.hot_spots"
+    if not (isinstance(entries, list) and all(isinstance(e, dict) for e in entries)):
+        raise where.error("must be an array of tables ([[atmosphere.hot_spots]])", "atmosphere", "hot_spots")
+    spots = []
+    for index, entry in enumerate(entries):
+        _check_keys(entry, HOT_SPOT_KEYS, where, name, "a hot spot", index)
+        numbers = {key: get(entry, name, key, _real, required=True, index=index) for key in ("x", "z", "radius", "dt")}
+        depth = get(entry, name, "depth", _real, None, index=index)
+        footprint = get(entry, name, "footprint", str, "gaussian", index=index)
+        try:
+            spots.append(_core.HotSpot(**numbers, depth=depth, footprint=footprint))
+        except ValueError as error:
+            raise where.error(str(error), name, _offending_key(str(error), entry), index) from None
+    return spots
+
+
+def _turbulence(table: Any, where: "_Locator", get):
+    """[atmosphere.turbulence] -> the refracta.Turbulence its settings make (the same pattern for
+    the same settings: the noise is drawn from the seed)."""
+    from refracta.turbulence import Turbulence
+
+    name = "atmosphere.turbulence"
+    if not isinstance(table, dict):
+        raise where.error("must be a table ([atmosphere.turbulence])", "atmosphere", "turbulence")
+    _check_keys(table, TURBULENCE_KEYS, where, name, "[atmosphere.turbulence]")
+    converters = dict(cn2=_real, outer_scale=_real, inner_scale=_real, seed=_whole, wind=lambda v: _number_list(v, 2),
+                      spacing=_real, cells=_whole, depth=_real, yaw=_real)
+    settings = {key: get(table, name, key, convert) for key, convert in converters.items() if key in table}
+    if settings.get("depth") == math.inf:
+        settings["depth"] = None  # no envelope: uniform in height
+    time = get(table, name, "time", _real, 0.0)
+    try:
+        turbulence = Turbulence(**settings)
+        return turbulence.at_time(time) if time else turbulence
+    except ValueError as error:
+        raise where.error(str(error), name, _offending_key(str(error), table)) from None
+
+
+def _atmosphere(table: dict, where: "_Locator", get):
+    """[atmosphere] (with its hot spots and turbulence) -> (field, refracta.Turbulence or None)."""
+    atmosphere = dict(table)
+    model = atmosphere.pop("model", "PhysicalAtmosphere")
+    if model not in MODELS:
+        raise where.error(f"unknown model '{model}' (expected {', '.join(MODELS)})", "atmosphere", "model")
+    curved = atmosphere.pop("curved_earth", False)
+    if model == "TemperatureProfile":
+        allowed = {"heights", "temperatures", "pressure", "humidity", "wavelength"}
+    else:
+        allowed = set(dict(MODELS[model]().params))
+    if model in LOCAL_MODELS:
+        allowed |= {"hot_spots", "turbulence"}
+    else:
+        for key, what in (("hot_spots", "hot spots"), ("turbulence", "turbulence")):
+            if key in atmosphere:
+                raise where.error(f"{model} takes no {what} (PhysicalAtmosphere and LogisticProfile do)",
+                                  f"atmosphere.{key}", None, 0 if key == "hot_spots" else None)
+    spot_keys = sorted(k for k in atmosphere if _SPOT_PARAMETER.match(k))
+    if spot_keys:
+        raise where.error("a hot spot is an [[atmosphere.hot_spots]] entry (x, z, radius, dt, depth, footprint), "
+                          "not a parameter" + ("" if model in LOCAL_MODELS else f"; {model} takes none"),
+                          "atmosphere", spot_keys[0])
+    _check_keys(atmosphere, allowed, where, "atmosphere", f"a {model}")
+    spots = _hot_spots(atmosphere.pop("hot_spots"), where, get) if "hot_spots" in atmosphere else []
+    turbulence = _turbulence(atmosphere.pop("turbulence"), where, get) if "turbulence" in atmosphere else None
+    extra = {}
+    if spots:
+        extra["hot_spots"] = spots
+    if turbulence is not None:
+        extra["turbulence"] = turbulence.layer
+    if model == "TemperatureProfile" and not {"heights", "temperatures"} <= set(atmosphere):
+        raise where.error("TemperatureProfile needs heights and temperatures", "atmosphere")
+    try:
+        if model == "TemperatureProfile":
+            heights, temperatures = atmosphere.pop("heights"), atmosphere.pop("temperatures")
+            field = _core.TemperatureProfile(heights, temperatures, **atmosphere)
+        else:
+            field = MODELS[model](**atmosphere, **extra)
+    except (ValueError, TypeError) as error:
+        spot = re.search(r"hot_spots\[(\d+)\]", str(error))
+        if spot:  # the model refuses a spot: 'LogisticProfile: hot_spots[0] has depth 0.3; ...'
+            index = int(spot.group(1))
+            raise where.error(str(error), "atmosphere.hot_spots",
+                              _offending_key(str(error).replace(spot.group(0), ""), table["hot_spots"][index]),
+                              index) from None
+        key = next((k for k in atmosphere if k in str(error)), None)
+        raise where.error(str(error), "atmosphere", key) from None
+    if curved:
+        radius = 6371e3 if curved is True else float(curved)
+        try:
+            field = _core.CurvedEarth(field, radius)
+        except ValueError as error:
+            raise where.error(str(error), "atmosphere", "curved_earth") from None
+    return field, turbulence
+
+
 def load_scene(path) -> SceneFile:
-    """Read a TOML scene file (format in this module's docstring)."""
+    """Read a TOML scene file (format in this module's docstring): a SceneFile, which unpacks as
+    (scene, camera, field) and has the [atmosphere.turbulence]'s refracta.Turbulence as .turbulence."""
     path = Path(os.fspath(path))
     if not path.is_file():
         raise _core.IoError(f"no such scene file: '{path}'")
@@ -481,56 +661,100 @@ def load_scene(path) -> SceneFile:
         except ValueError as error:
             raise where.error(str(error), "objects", None, index) from None
 
-    field = None
+    field, turbulence = None, None
     if "atmosphere" in data:
-        atmosphere = dict(data["atmosphere"])
-        model = atmosphere.pop("model", "PhysicalAtmosphere")
-        if model not in MODELS:
-            raise where.error(f"unknown model '{model}' (expected {', '.join(MODELS)})", "atmosphere", "model")
-        curved = atmosphere.pop("curved_earth", False)
-        if model == "TemperatureProfile":
-            allowed = {"heights", "temperatures", "pressure", "humidity", "wavelength"}
-        else:
-            allowed = set(dict(MODELS[model]().params))
-        _check_keys(atmosphere, allowed, where, "atmosphere", f"a {model}")
-        try:
-            if model == "TemperatureProfile":
-                heights = atmosphere.pop("heights", None)
-                temperatures = atmosphere.pop("temperatures", None)
-                if heights is None or temperatures is None:
-                    raise where.error("TemperatureProfile needs heights and temperatures", "atmosphere")
-                field = _core.TemperatureProfile(heights, temperatures, **atmosphere)
-            else:
-                field = MODELS[model](**atmosphere)
-        except (ValueError, TypeError) as error:
-            key = next((k for k in atmosphere if k in str(error)), None)
-            raise where.error(str(error), "atmosphere", key) from None
-        if curved:
-            radius = 6371e3 if curved is True else float(curved)
-            try:
-                field = _core.CurvedEarth(field, radius)
-            except ValueError as error:
-                raise where.error(str(error), "atmosphere", "curved_earth") from None
-    return SceneFile(scene, camera, field)
+        field, turbulence = _atmosphere(data["atmosphere"], where, get)
+    return SceneFile(scene, camera, field, turbulence)
 
 
 def _toml_value(value) -> str:
+    """A TOML literal: booleans, whole numbers, strings, lists; every other number as a float
+    (repr: exact round trip; inf and nan are TOML too)."""
     if isinstance(value, bool):
         return "true" if value else "false"
-    if isinstance(value, (list, tuple)):
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, (list, tuple, np.ndarray)):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
     return repr(float(value))
 
 
-def atmosphere_table(field: _core.IndexField) -> str:
-    """The [atmosphere] table that load_scene reads back as `field` (every parameter written)."""
+def camera_table(camera: _core.Camera) -> str:
+    """The [camera] table that load_scene reads back as `camera` (position, look_at, up [m], vfov
+    [deg], size [pixels])."""
+    return "\n".join([
+        "[camera]",
+        f"position = {_toml_value([float(x) for x in camera.position])}",
+        f"look_at = {_toml_value([float(x) for x in camera.look_at])}",
+        f"up = {_toml_value([float(x) for x in camera.up])}",
+        f"vfov = {_toml_value(camera.vfov)}",
+        f"size = [{int(camera.width)}, {int(camera.height)}]",
+    ]) + "\n"
+
+
+def _same_layer(a: _core.TurbulenceLayer, b: _core.TurbulenceLayer) -> bool:
+    """Whether two TurbulenceLayers are the same turbulence: the same object, or (a pickled copy)
+    the same placement and grid, and the same values at a few points."""
+    if a is b:
+        return True
+    if (a.scale, a.depth, a.yaw, a.grid.shape, a.grid.spacing, a.grid.bound) != \
+            (b.scale, b.depth, b.yaw, b.grid.shape, b.grid.spacing, b.grid.bound) or \
+            not np.array_equal(a.offset, b.offset):
+        return False
+    # 16 points spread over a tile, low in the envelope: another seed differs at every one of them.
+    size = a.grid.shape[0] * a.grid.spacing
+    points = np.random.default_rng(0).uniform(0.0, 1.0, (16, 3)) * [size, 0.05 * size, size]
+    return np.array_equal(a.evaluate(points)[0], b.evaluate(points)[0])
+
+
+def _turbulence_lines(layer: Optional[_core.TurbulenceLayer], turbulence) -> list:
+    """The [atmosphere.turbulence] table of `turbulence` (a refracta.Turbulence) after checking that
+    it made `layer`, the field's (ValueError otherwise)."""
+    if layer is None and turbulence is None:
+        return []
+    if layer is None:
+        raise ValueError("atmosphere_table: turbulence was given but the field carries none")
+    if turbulence is None:
+        raise ValueError("atmosphere_table: the field carries turbulence, and a field keeps only its TurbulenceLayer, "
+                         "not the settings (seed, wind, ...) that make it: pass turbulence=the refracta.Turbulence "
+                         "whose layer it is (load_scene(...).turbulence for a field read from a file)")
+    if not _same_layer(layer, turbulence.layer):
+        raise ValueError("atmosphere_table: turbulence is not the refracta.Turbulence whose layer the field carries "
+                         "(another seed, grid, strength, depth, yaw or time)")
+    settings = [("cn2", turbulence.cn2), ("outer_scale", turbulence.outer_scale),
+                ("inner_scale", turbulence.inner_scale), ("seed", int(turbulence.seed)),
+                ("wind", list(turbulence.wind)), ("spacing", turbulence.spacing), ("cells", int(turbulence.cells)),
+                ("depth", math.inf if turbulence.depth is None else turbulence.depth), ("yaw", turbulence.yaw),
+                ("time", turbulence.time)]
+    return ["", "[atmosphere.turbulence]"] + [f"{name} = {_toml_value(value)}" for name, value in settings]
+
+
+def atmosphere_table(field: _core.IndexField, turbulence=None) -> str:
+    """The [atmosphere] table that load_scene reads back as `field`: every parameter, the hot spots
+    (their current values, field.hot_spots) as [[atmosphere.hot_spots]] entries, and the
+    turbulence as [atmosphere.turbulence].
+
+    Args:
+        field: PhysicalAtmosphere, LogisticProfile, LinearSquaredProfile or TemperatureProfile,
+            or a CurvedEarth around one.
+        turbulence: the refracta.Turbulence whose layer the field carries (field.turbulence), whose
+            settings are written; None for a field without turbulence.
+
+    Raises:
+        ValueError: another kind of field; a field with turbulence and no `turbulence` (or
+            another one than it carries); `turbulence` for a field without.
+    """
     curved = None
     if isinstance(field, _core.CurvedEarth):
         curved, field = field.radius, field.base
     if field.type_name not in MODELS:
         raise ValueError(f"{field.type_name} cannot be written to a scene file (expected one of {', '.join(MODELS)})")
+    layer = field.turbulence if field.type_name in LOCAL_MODELS else None
+    turbulence_lines = _turbulence_lines(layer, turbulence)
     lines = ["[atmosphere]", f'model = "{field.type_name}"']
-    params = dict(field.params)
+    params = {name: value for name, value in field.params.items() if not _SPOT_PARAMETER.match(name)}
     if isinstance(field, _core.TemperatureProfile):
         count = len(field.heights)
         lines.append(f"heights = {_toml_value(list(field.heights))}")
@@ -538,17 +762,45 @@ def atmosphere_table(field: _core.IndexField) -> str:
     lines += [f"{name} = {_toml_value(value)}" for name, value in params.items()]
     if curved is not None:
         lines.append(f"curved_earth = {_toml_value(curved)}")
-    return "\n".join(lines) + "\n"
+    for spot in (field.hot_spots if field.type_name in LOCAL_MODELS else []):
+        lines += ["", "[[atmosphere.hot_spots]]"] + [f"{name} = {_toml_value(getattr(spot, name))}"
+                                                      for name in ("x", "z", "radius", "dt")]
+        if spot.depth is not None:
+            lines.append(f"depth = {_toml_value(spot.depth)}")
+        lines.append(f"footprint = {_toml_value(spot.footprint)}")
+    return "\n".join(lines + turbulence_lines) + "\n"
 
 
-def with_atmosphere(text: str, field: _core.IndexField) -> str:
-    """A scene file's text with its [atmosphere] table replaced by `field` (appended if absent);
-    everything else, comments included, is kept."""
+def _with_table(text: str, name: str, table: str, first: bool) -> str:
+    """`text` (a scene file) with its table `name` and every sub-table of it ([name.*], [[name.*]])
+    replaced by `table`, at the place of the first of them; without them, `table` is put first
+    (`first`) or last. Everything else, comments included, is kept."""
     lines = text.splitlines(keepends=True)
-    header = re.compile(r"^\s*\[\[?\s*([A-Za-z0-9_.\"-]+)\s*\]\]?")
-    start = next((i for i, line in enumerate(lines) if (m := header.match(line)) and m.group(1) == "atmosphere"), None)
-    table = atmosphere_table(field)
-    if start is None:
+    starts = [i for i, line in enumerate(lines) if _HEADER.match(line)]
+    ends = starts[1:] + [len(lines)]
+    owned = [(start, end) for start, end in zip(starts, ends)
+             if (header := _HEADER.match(lines[start]).group(1)) == name or header.startswith(name + ".")]
+    if not owned:
+        if first:
+            return table + "\n" + text
         return text + ("" if text.endswith("\n") or not text else "\n") + "\n" + table
-    end = next((i for i in range(start + 1, len(lines)) if header.match(lines[i])), len(lines))
-    return "".join(lines[:start]) + table + "\n" + "".join(lines[end:]).lstrip("\n")
+    kept, previous = [], 0
+    for start, end in owned:
+        kept.append("".join(lines[previous:start]))
+        previous = end
+    rest = "".join(lines[previous:])
+    # The new table where the first old one was; the others' lines dropped (with the blank lines after them).
+    return kept[0] + table + "\n" + "".join(part.lstrip("\n") for part in kept[1:] + [rest])
+
+
+def with_atmosphere(text: str, field: _core.IndexField, turbulence=None) -> str:
+    """A scene file's text with its [atmosphere] table (its hot spots and turbulence included)
+    replaced by atmosphere_table(field, turbulence) (appended if absent); everything else,
+    comments included, is kept."""
+    return _with_table(text, "atmosphere", atmosphere_table(field, turbulence), first=False)
+
+
+def with_camera(text: str, camera: _core.Camera) -> str:
+    """A scene file's text with its [camera] table replaced by camera_table(camera) (put first if
+    absent); everything else, comments included, is kept."""
+    return _with_table(text, "camera", camera_table(camera), first=True)

@@ -58,3 +58,31 @@ def test_cli_renders_a_scene_file_with_path_tracing_and_spectral_colour(tmp_path
         assert cli.main(["render", str(scene_file), "-o", str(output), "--size", "48x16", *extra]) == 0
         image = refracta.io.read_image(output)
         assert image.shape[:2] == (16, 48) and np.all(np.isfinite(image)) and image.max() > 0.0
+
+
+def test_edit_report_draws_into_a_given_figure_outside_pyplot(hot_road):
+    """figure=matplotlib.figure.Figure(): the same drawing, and pyplot never knows of it (the
+    editor draws it on a worker thread)."""
+    from matplotlib.figure import Figure
+
+    from refracta.edit import PointPair, solve
+
+    eye = np.array([0.0, 1.4, 0.0])
+    pairs = []
+    for elevation in (-0.2, -0.12):
+        e = np.radians(elevation)
+        direction = np.array([np.cos(e), np.sin(e), 0.0])
+        path = refracta.trace_ray(hot_road, eye, direction, tol=1e-10, max_length=450.0, stop_height=0.0)
+        pairs.append(PointPair(eye + direction, path.point_at(400.0)[0]))
+    result = solve(hot_road.with_params(surface_dt=8.0), eye, pairs, free=["surface_dt"], ground=0.0)
+    open_figures = plt.get_fignums()
+    figure = plot.edit_report(result, figure=Figure(figsize=(6.0, 2.5)))
+    assert plt.get_fignums() == open_figures
+    paths_axis, cost_axis = figure.axes
+    assert len(paths_axis.lines) == 2 * len(pairs) + len(pairs) + 1  # before, after, sources, eye
+    assert len(cost_axis.lines[0].get_ydata()) == len(result.history)
+    with pytest.raises(ValueError, match="figure must be empty"):
+        plot.edit_report(result, figure=figure)
+    shown = plot.edit_report(result)  # without figure=: a pyplot figure, as notebooks show it
+    assert shown.number in plt.get_fignums()
+    plt.close(shown)

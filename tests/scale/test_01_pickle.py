@@ -208,7 +208,8 @@ def test_a_scene_renders_identically_in_another_process(texture, spawned_pool):
 def test_a_scene_file_round_trips():
     loaded = refracta.load_scene("tests/data/hot_road.toml")
     copy = round_trip(loaded)
-    assert copy._fields == loaded._fields
+    assert copy._fields == loaded._fields == ("scene", "camera", "field")
+    assert copy.turbulence is None and loaded.turbulence is None
     camera = loaded.camera.resized(16, 8)
     assert np.array_equal(scenes.render_quietly(copy.scene, camera, copy.field),
                           scenes.render_quietly(loaded.scene, camera, loaded.field))

@@ -194,3 +194,12 @@ def test_numeric_camera_fields_are_checked_by_name(make_model, road):
 def test_unknown_free_parameter_names_are_refused(make_model):
     with pytest.raises(ValueError, match="no_such_parameter"):
         make_model(free=["surface_dt", "no_such_parameter"])
+
+
+def test_pairs_hold_plain_floats_so_their_repr_reads_plainly(make_model, road):
+    model = make_model()
+    model.click(*CAR)  # the source comes from Camera.pick: numpy values
+    model.click(180.4, 66.0)
+    (pair,) = model.pairs
+    assert all(type(x) is float for x in pair.source + pair.destination)
+    assert "np.float64" not in repr(pair) and "destination=(180.4, 66.0)" in repr(pair)

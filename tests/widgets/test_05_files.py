@@ -11,8 +11,8 @@ import pytest
 import refracta
 from refracta import cli
 from refracta.edit import load_pairs
-from refracta.scene_file import with_atmosphere
-from refracta.widgets import EditorModel, files
+from refracta.scene_file import with_atmosphere, with_camera
+from refracta.widgets import EditorModel
 
 from .conftest import truth_source
 
@@ -91,7 +91,7 @@ def test_imported_pairs_and_scene_replace_the_editor_state_undoably(file_model, 
     assert (pair.weight, pair.margin, model.free) == (3.0, 1.0, ("surface_depth",))
     other = tmp_path / "other.toml"
     moved = refracta.Camera((0.0, 2.0, 0.0), (300.0, 0.62, 0.0), vfov=2.2, width=96, height=32)
-    other.write_text(files.with_camera((tmp_path / "start.toml").read_text(), moved))
+    other.write_text(with_camera((tmp_path / "start.toml").read_text(), moved))
     model.import_scene(other)
     np.testing.assert_array_equal(model.camera.position, (0.0, 2.0, 0.0))
     assert model.scene_text == other.read_text()

@@ -36,7 +36,9 @@ validate() reports every bad value at once.)doc")
                     "ray integrator for curved rays: None (stratified for height-only fields, rk45 otherwise), 'rk45', 'stratified'")
       .def_readwrite("table", &RenderOptions::use_table, "height-only fields: serve camera rays from one ElevationTable")
       .def_readwrite("tile", &RenderOptions::tile, "tile size [pixels] of the parallel loop")
-      .def_readwrite("texture_filter", &RenderOptions::texture_filter, "filter textures over ray-cone footprints")
+      .def_readwrite("texture_filter", &RenderOptions::texture_filter, "filter textures over each sample's footprint")
+      .def_readwrite("differentials", &RenderOptions::differentials,
+                     "camera rays' footprints from ray differentials through the air (false: the ray cone)")
       .def_property("march", [](const RenderOptions& o) { return trace_method_name(o.march); },
                     [](RenderOptions& o, const std::string& v) { o.march = parse_trace_method(v); },
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)")

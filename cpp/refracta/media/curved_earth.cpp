@@ -41,6 +41,11 @@ void CurvedEarth::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
   *grad = Vec3d(0.0, dn, 0.0);
 }
 
+double CurvedEarth::straight_above() const {
+  const double top = base_->uniform_above();
+  return std::isfinite(top) ? flat_height(top) : top;
+}
+
 Vec3d CurvedEarth::sky_direction(const Vec3d& p, const Vec3d& d) const {
   const double rho = std::hypot(p.x(), p.z());
   if (!(rho > 0.0)) return d;

@@ -46,6 +46,7 @@ class CurvedEarth : public IndexField {
   // e' there (the map is conformal): turned back by phi into the origin's frame.
   Vec3d sky_direction(const Vec3d& p, const Vec3d& d) const override;
   double earth_radius() const override { return radius_; }
+  double straight_above() const override;
 
   const FieldPtr& base() const { return base_; }
   double radius() const { return radius_; }

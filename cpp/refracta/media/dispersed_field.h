@@ -49,6 +49,7 @@ class DispersedField final : public IndexField {
   std::vector<LocalRegion> local_regions() const override { return base_->local_regions(); }
   Vec3d sky_direction(const Vec3d& p, const Vec3d& d) const override { return base_->sky_direction(p, d); }
   double earth_radius() const override { return base_->earth_radius(); }
+  double straight_above() const override { return base_->straight_above(); }
 
   const FieldPtr& base() const { return base_; }
   double scale() const { return scale_; }

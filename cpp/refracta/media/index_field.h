@@ -59,6 +59,10 @@ class IndexField {
   virtual Vec3d sky_direction(const Vec3d& /*p*/, const Vec3d& d) const { return d; }
   // The radius [m] of a spherical Earth these coordinates flatten (inf: flat).
   virtual double earth_radius() const { return std::numeric_limits<double>::infinity(); }
+  // Height-only fields: above this height [m] a ray goes straight in the world frame (its
+  // sky_direction stops changing): uniform_above(), or for a CurvedEarth its base's top in flat
+  // coordinates (+inf: no such height).
+  virtual double straight_above() const { return uniform_above(); }
 
   // evaluate, throwing NumericalError when n <= 0 or anything is not finite.
   void evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace refracta {
 
@@ -268,8 +269,11 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   double n_x, dn, sin_x;
   layered_->evaluate_height(x.y(), &n_x, &dn);
   const BouguerBranch branch(*layered_, n_x * cos_e);
-  // Below 0.57 deg of elevation the quadrature loses digits near a turn: trace instead.
-  constexpr double kMinSine = 1e-2;
+  // Below 0.57 deg of elevation the one-panel quadrature loses digits near a turn: trace instead.
+  // Over a spherical Earth the quadrature is adaptive (below), and level rays curve up in flat
+  // coordinates by only 1/R per metre (0.01 rad takes 64 km): there 0.057 deg.
+  const bool spherical = std::isfinite(layered_->earth_radius());
+  const double kMinSine = spherical ? 1e-3 : 1e-2;
   if (!branch.at(x.y(), kMinSine, &n_x, &dn, &sin_x)) return std::nullopt;
   // The height where the path has run `remaining` metres, by Newton on s(h) = remaining (ds/dh =
   // 1/sin e); the sky is seen along the direction there, as at the end of a traced path.
@@ -278,15 +282,27 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   // changes by more than 1 %. Otherwise every step integrates from x, and the quadrature's
   // nodes check that the ray stays clear of a turn all the way up.
   const bool cannot_turn = floors_ && branch.beta() < floors_->everywhere * std::sqrt(1.0 - kMinSine * kMinSine);
-  double h = x.y() + remaining * sin_x, n, sin_h, run, length;
+  const Vec3d across = cos_e > 0.0 ? Vec3d(t.x() / cos_e, 0.0, t.z() / cos_e) : Vec3d::Zero();
+  // Over a spherical Earth a ray that reaches the top of its air goes straight in the world frame
+  // from there: its sky is seen along its direction at the top, whatever the rest of its length
+  // (one adaptive integral instead of Newton's several).
+  const double top = layered_->straight_above();
+  double n, sin_h, run, length;
+  if (spherical && std::isfinite(top) && top > x.y() && branch.at(top, kMinSine, &n, &dn, &sin_h) &&
+      branch.integrate(x.y(), top, kMinSine, &run, &length, 1e-8) && length <= remaining) {
+    const double scale = cos_e > 0.0 ? std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h)) / cos_e : 0.0;
+    return Escape{Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized(),
+                  Vec3d(x.x() + run * across.x(), top, x.z() + run * across.z())};
+  }
+  double h = x.y() + remaining * sin_x;
   if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;  // the ray may turn below that height
   if (cannot_turn) {
     h = x.y() + remaining * 0.5 * (sin_x + sin_h);
     if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
   }
   // Over a spherical Earth (flat coordinates) the run sets the central angle that turns the exit
-  // into the world frame: integrated to 1e-9 (a metre in 1000 km, 0.03" of angle).
-  const double relative_tol = std::isfinite(layered_->earth_radius()) ? 1e-9 : 0.0;
+  // into the world frame: integrated to 1e-8 (0.01 m in 1000 km, 0.3 mas of angle).
+  const double relative_tol = spherical ? 1e-8 : 0.0;
   for (int it = 0; it < 6 && (!cannot_turn || std::abs(sin_h - sin_x) > 1e-2 * sin_x); ++it) {
     if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol)) return std::nullopt;
     const double step = (remaining - length) * sin_h;
@@ -298,7 +314,6 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol)) return std::nullopt;
   const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
-  const Vec3d across = cos_e > 0.0 ? Vec3d(t.x() / cos_e, 0.0, t.z() / cos_e) : Vec3d::Zero();
   return Escape{Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized(),
                 Vec3d(x.x() + run * across.x(), h, x.z() + run * across.z())};
 }
@@ -416,6 +431,71 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
     if (end.hit || end.handoff || !(end.direction.y() > 0.0) || !(last_height > ceiling_)) throw;
   }
   return end;
+}
+
+std::optional<Vec3d> Caster::meets_plane(const Vec3d& origin, const Vec3d& dir, const Vec3d& point, const Vec3d& normal,
+                                         double s_near) const {
+  const double s_lo = 0.5 * s_near, s_hi = 1.5 * s_near + 1.0;
+  const double offset = normal.dot(point);
+  std::optional<Vec3d> best;
+  double best_gap = std::numeric_limits<double>::infinity();
+  auto consider = [&](const RayNode<double>& a, const RayNode<double>& b) {
+    if (b.s < s_lo || a.s > s_hi) return;
+    const double fa = normal.dot(a.x) - offset, fb = normal.dot(b.x) - offset;
+    if ((fa > 0.0) == (fb > 0.0) && fa != 0.0) return;
+    const PathSegment<double> segment(a, b);
+    const double u = first_plane_crossing(segment, normal, offset);
+    if (!(u >= 0.0)) return;
+    const double s = a.s + u * (b.s - a.s);
+    if (std::abs(s - s_near) < best_gap) best_gap = std::abs(s - s_near), best = segment.position(u);
+  };
+  if (!field_) {
+    const double along = normal.dot(dir);
+    if (along == 0.0) return std::nullopt;
+    const double t = (offset - normal.dot(origin)) / along;
+    if (!(t >= s_lo && t <= s_hi)) return std::nullopt;
+    return Vec3d(origin + t * dir);
+  }
+  if (table_ && origin == eye_ && !legs_) {
+    const double e = std::asin(std::clamp(dir.y(), -1.0, 1.0));
+    const double horizontal = std::hypot(dir.x(), dir.z());
+    const double cx = horizontal > 0 ? dir.x() / horizontal : 1.0, cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
+    const ElevationTable::LazyPath plane = table_->lazy_path(e);
+    auto turned = [&](size_t k) {
+      RayNode<double> out = plane.node(k);
+      const double r = out.x.x(), vr = out.v.x();
+      out.x = Vec3d(eye_.x() + r * cx, out.x.y(), eye_.z() + r * cz);
+      out.v = Vec3d(vr * cx, out.v.y(), vr * cz);
+      return out;
+    };
+    RayNode<double> a = turned(0);
+    for (size_t k = 0; k + 1 < plane.size() && a.s <= s_hi; ++k) {
+      const RayNode<double> b = turned(k + 1);
+      consider(a, b);
+      a = b;
+    }
+    return best;
+  }
+  TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, s_hi);
+  if (!regions_.empty()) trace_options.step = std::min(options_.chord, 0.5 * smallest_scale(regions_));
+  trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
+    consider(a, b);
+    return a.s <= s_hi;
+  });
+  return best;
+}
+
+std::optional<std::array<Vec3d, 2>> Caster::footprint(const Vec3d& origin, const PathEnd& end,
+                                                      const std::array<std::array<Vec3d, 2>, 2>& neighbours) const {
+  if (!end.hit) return std::nullopt;
+  std::array<Vec3d, 2> axes;
+  for (int k = 0; k < 2; ++k) {
+    const auto p0 = meets_plane(origin, neighbours[k][0], end.hit->point, end.hit->normal, end.length);
+    const auto p1 = meets_plane(origin, neighbours[k][1], end.hit->point, end.hit->normal, end.length);
+    if (!p0 || !p1) return std::nullopt;
+    axes[k] = *p1 - *p0;
+  }
+  return axes;
 }
 
 // The table's path for the ray's elevation, turned to its azimuth about the eye, walked along

@@ -19,6 +19,7 @@
 #include "refracta/render/render_options.h"
 #include "refracta/scene/embree_scene.h"
 
+#include <array>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -49,6 +50,9 @@ struct PathEnd {
   // Legs of a cast through local regions: where this leg stopped (entering a region, or having
   // left them all) for the next to go on; unset at the path's true end.
   std::optional<Handoff> handoff;
+  // A camera ray's texture footprint at its hit: two vectors [m] on the hit's plane spanning where
+  // the paths of the sample's neighbours meet it (Caster::footprint); unset: the ray cone's.
+  std::optional<std::array<Vec3d, 2>> footprint;
 };
 
 class Caster {
@@ -77,6 +81,16 @@ class Caster {
   // Fields with local regions: use this (tabulated) height-only part outside them instead of the
   // field's own height_only_part().
   void use_layered(const IndexField* layered) { layered_ = layered; }
+
+  // Ray differentials through the curved air (Igehy 1999, "Tracing Ray Differentials", by finite
+  // differences of whole paths): where the paths launched from `origin` along each of
+  // `neighbours` (two pairs of directions: the sample's footprint is spanned by the differences
+  // of each pair's meeting points with the hit's plane) meet the plane of `end`'s hit, near its
+  // arc length. The same machinery as cast (the eye's table, or the integrator through the field),
+  // so a mirage's squeezed or stretched image gets its true footprint. nullopt where a neighbour's
+  // path misses the plane near the hit (silhouettes): the cone then.
+  std::optional<std::array<Vec3d, 2>> footprint(const Vec3d& origin, const PathEnd& end,
+                                                const std::array<std::array<Vec3d, 2>, 2>& neighbours) const;
 
   bool curved() const { return field_ != nullptr; }
   const IndexField* field() const { return field_; }
@@ -110,6 +124,10 @@ class Caster {
   bool segment_blocked(const RayNode<double>& a, const RayNode<double>& b, PathEnd* end, double sagitta = 0.0,
                        bool regions = true) const;
   bool pieces_blocked(const PathSegment<double>& segment, int pieces, PathEnd* end, bool regions = true) const;
+  // Where the path from origin along dir crosses the plane through `point` with `normal`, the
+  // crossing nearest arc length s_near; nullopt if none within [s_near / 2, 3 s_near / 2 + 1 m].
+  std::optional<Vec3d> meets_plane(const Vec3d& origin, const Vec3d& dir, const Vec3d& point, const Vec3d& normal,
+                                   double s_near) const;
   // Height-only fields: where a ray at x moving along v ends after `remaining` [m] of path and its
   // direction there, when it is above every object, rising, and cannot turn on the way (n stays
   // above its invariant n(h) cos e); nullopt otherwise.

@@ -21,7 +21,10 @@
 
 namespace refracta {
 
-// SampleRadiance: Spectrum(const Vec3d& dir, double pixel_angle, SampledWavelengths&, Sampler&, ScratchBuffer&).
+// SampleRadiance: Spectrum(const Vec2d& pixel, double spacing, double pixel_angle, SampledWavelengths&,
+// Sampler&, ScratchBuffer&): the sample's position (u, v) in pixel coordinates, the spacing of the
+// samples [pixels] (1 / strata: a sample stands for a spacing x spacing square), and its cone's
+// angle [rad] (0 without texture filtering).
 template <class SampleRadiance>
 Image render_film(const Camera& camera, const RenderOptions& options, WorkControl& control,
                   const SampleRadiance& radiance) {
@@ -48,7 +51,7 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
       }
       SampledWavelengths lambda =
           options.spectral ? SampledWavelengths::sample_uniform(sampler.uniform()) : SampledWavelengths::rgb();
-      const Spectrum L = radiance(camera.direction(x + du, y + dv), pixel_angle, lambda, sampler, scratch);
+      const Spectrum L = radiance(Vec2d(x + du, y + dv), 1.0 / strata, pixel_angle, lambda, sampler, scratch);
       const Vec3d rgb = to_linear_srgb(L, lambda);
       if (is_finite(rgb)) sum += rgb;  // a non-finite sample is dropped (the renderer counts them)
     }

@@ -45,7 +45,10 @@ class PathTracer : public Integrator {
              sqr(ior_here / n_top);
         break;
       }
-      SurfaceInteraction si = scene_.geometry.interaction(*end.hit, end.direction, pixel_angle * travelled);
+      // The camera ray's footprint from its differentials where the renderer gave them, else the cone.
+      SurfaceInteraction si = passes == 0 && first.footprint
+                                  ? scene_.geometry.interaction(*end.hit, end.direction, *first.footprint)
+                                  : scene_.geometry.interaction(*end.hit, end.direction, pixel_angle * travelled);
       if (caster_.curved()) {
         const double ior_hit = caster_.ior(si.p);
         beta *= sqr(ior_here / ior_hit);

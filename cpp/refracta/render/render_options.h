@@ -54,6 +54,10 @@ struct RenderOptions {
   // Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point
   // samples the finest level (aliases: only for references and tests).
   bool texture_filter = true;
+  // A camera ray's footprint on a textured surface from ray differentials through the air
+  // (Caster::footprint: the paths of its neighbours, as squeezed or stretched by a mirage); false:
+  // the ray cone (pixel angle x path length), as for every later bounce.
+  bool differentials = true;
 
   // raster_march (the original editor's method): the integrator marching each pixel's ray
   // against the depth buffer: 'rk4' with `step` [m] for at most `max_steps` steps (the

@@ -172,9 +172,20 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   // Dispersive air: a spectral render through a field that bends rays.
   const bool dispersive = options.spectral && caster.curved();
   const double reference = dispersive ? field_reference_wavelength(*field) : kDefaultFieldWavelength;
+  // A camera ray meeting a textured surface gets its footprint from its neighbours' paths (ray
+  // differentials through the air, Caster::footprint): half a sample's spacing either side.
+  auto with_footprint = [&](const Caster& c, const Vec2d& pixel, double spacing, PathEnd* first) {
+    if (!options.texture_filter || !options.differentials || !first->hit || !scene.geometry.has_uvs(first->hit->geometry)) {
+      return;
+    }
+    const double h = 0.5 * spacing;
+    first->footprint = c.footprint(eye, *first, {{{camera.direction(pixel.x() - h, pixel.y()), camera.direction(pixel.x() + h, pixel.y())},
+                                                  {camera.direction(pixel.x(), pixel.y() - h), camera.direction(pixel.x(), pixel.y() + h)}}});
+  };
   Image image = render_film(camera, options, control,
-                            [&](const Vec3d& dir, double pixel_angle, SampledWavelengths& lambda, Sampler& sampler,
-                                ScratchBuffer& scratch) {
+                            [&](const Vec2d& pixel, double spacing, double pixel_angle, SampledWavelengths& lambda,
+                                Sampler& sampler, ScratchBuffer& scratch) {
+                              const Vec3d dir = camera.direction(pixel.x(), pixel.y());
                               Spectrum L;
                               if (dispersive) {
                                 lambda.terminate_secondary();
@@ -182,11 +193,13 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                                 Caster hero_caster(scene.geometry, air.get(), options);
                                 if (floors) hero_caster.set_ior_floors(*floors);
                                 const std::unique_ptr<Integrator> hero = make_integrator(scene, hero_caster, options);
-                                const PathEnd first = hero_caster.cast(eye, dir, 0.0, camera.pixel_angle());
+                                PathEnd first = hero_caster.cast(eye, dir, 0.0, camera.pixel_angle());
+                                with_footprint(hero_caster, pixel, spacing, &first);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
                                 L = hero->li_after(eye, dir, first, pixel_angle, lambda, sampler, scratch);
                               } else {
-                                const PathEnd first = caster.cast(eye, dir, 0.0, camera.pixel_angle());
+                                PathEnd first = caster.cast(eye, dir, 0.0, camera.pixel_angle());
+                                with_footprint(caster, pixel, spacing, &first);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
                                 L = integrator->li_after(eye, dir, first, pixel_angle, lambda, sampler, scratch);
                               }

@@ -269,7 +269,16 @@ Mesh box_mesh(const Vec3d& centre, const Vec3d& size) {
   return mesh;
 }
 
+bool Scene::has_uvs(unsigned geometry) const {
+  return !sphere_sets_.at(geometry) && !meshes_.at(geometry).mesh.uvs.empty();
+}
+
 SurfaceInteraction Scene::interaction(const Hit& hit, const Vec3d& dir, double footprint) const {
+  const Frame across = Frame::from_z(dir.normalized());
+  return interaction(hit, dir, std::array<Vec3d, 2>{across.s * footprint, across.t * footprint});
+}
+
+SurfaceInteraction Scene::interaction(const Hit& hit, const Vec3d& dir, const std::array<Vec3d, 2>& footprint) const {
   SurfaceInteraction si;
   si.p = hit.point;
   si.t = hit.t;
@@ -318,20 +327,19 @@ SurfaceInteraction Scene::interaction(const Hit& hit, const Vec3d& dir, double f
   TextureLookup& at = si.texture;
   at.s = si.uv.x();
   at.t = 1.0 - si.uv.y();  // OIIO's t runs down the image, OBJ's v up
-  if (footprint > 0.0) {
+  if (footprint[0].squaredNorm() + footprint[1].squaredNorm() > 0.0) {
     // Footprint axes across the ray, projected along it onto the plane; then barycentric
     // offsets by the pseudo-inverse of the edge matrix, and uv offsets by the uv edges.
     Eigen::Matrix<double, 3, 2> edges;
     edges << e1, e2;
     const Vec3d n = e1.cross(e2);
     const Vec3d d = dir.normalized();
-    const Frame across = Frame::from_z(d);
-    const Vec3d axes[2] = {across.s * footprint, across.t * footprint};
     const Eigen::Matrix<double, 2, 3> to_bary = (edges.transpose() * edges).inverse() * edges.transpose();
     Eigen::Vector2d duv[2];
     for (int k = 0; k < 2; ++k) {
       const double along = n.dot(d);
-      const Vec3d on_plane = std::abs(along) > 1e-12 * n.norm() ? Vec3d(axes[k] - d * (n.dot(axes[k]) / along)) : axes[k];
+      const Vec3d& axis = footprint[k];
+      const Vec3d on_plane = std::abs(along) > 1e-12 * n.norm() ? Vec3d(axis - d * (n.dot(axis) / along)) : axis;
       duv[k] = uv_edges * (to_bary * on_plane);
     }
     // A grazing view stretches the footprint without bound: cap it at a few texture repeats.

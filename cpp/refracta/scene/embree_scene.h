@@ -78,6 +78,12 @@ class Scene {
   // Jacobian (Akenine-Moller et al. 2019, "Texture Level of Detail Strategies for Real-Time Ray
   // Tracing"); footprint 0 samples the finest level at the point.
   SurfaceInteraction interaction(const Hit& hit, const Vec3d& dir, double footprint) const;
+  // The same with the footprint given as two vectors [m] spanning it (a ray's differentials:
+  // where the paths of neighbouring samples meet the hit's plane, less the hit), projected along
+  // `dir` onto the triangle's plane as the cone's axes are.
+  SurfaceInteraction interaction(const Hit& hit, const Vec3d& dir, const std::array<Vec3d, 2>& footprint) const;
+  // Whether a hit's geometry has texture coordinates (a footprint matters there).
+  bool has_uvs(unsigned geometry) const;
   // The scene's image textures (materials refer to them by id).
   Textures& textures() { return *textures_; }
   const Textures& textures() const { return *textures_; }

@@ -1,10 +1,11 @@
 """refracta.widgets: the interactive mirage editor in Jupyter.
 
 ``MirageEditor(scene, camera, field, free=None)`` shows the render through the atmosphere
-(a quarter-resolution preview, then full resolution, rendered in the background), lets you click
-point pairs on it (a scene point, then where its mirage image should appear), move the camera,
-solve for the atmosphere in the background (progress, cancel, undo/redo) and save the solved
-scene (TOML) and the pairs (JSON, as ``refracta edit`` reads them). See
+(a quarter-resolution preview, then full resolution, rendered in the background) with the
+atmosphere's hot spots outlined on the ground, lets you click point pairs on it (a scene point,
+then where its mirage image should appear), move the camera, solve for the atmosphere in the
+background (progress, cancel, undo/redo) and save the solved scene (TOML) and the pairs (JSON,
+as ``refracta edit`` reads them). See
 ``notebooks/04_interactive_editor.ipynb``.
 
 Modules: ``model`` (EditorModel: state, gestures, undo/redo, background renders and solves; no

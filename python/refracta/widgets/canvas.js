@@ -3,7 +3,9 @@
 // pixel (i, j) centred at (i + 0.5, j + 0.5)), as refracta.Camera uses them.
 //
 // Model traits: image (PNG bytes), width/height (image pixels of the camera), scale (display
-// pixels per image pixel), markers ([{kind, pair, u, v, selected, met}]), interactive, cursor,
+// pixels per image pixel), markers ([{kind, pair, u, v, selected, met}]), spots (hot-spot outlines
+// [{spot, footprint, hot, centre: [u, v] | null, rings: [{kind, radius, points: [[u, v] | null]}]}],
+// drawn under the markers: 'radius' solid, 'reach' dashed; null points break the line), interactive, cursor,
 // level ('preview' | 'full'), generation (counts images; mirrored into data-* attributes so tests
 // and scripts can wait for a new image).
 // Messages to Python: {event: 'down' | 'move' | 'up', u, v, button, shift, scale} and
@@ -11,6 +13,7 @@
 
 const COLOURS = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                  "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"];  // matplotlib tab10, as plot.edit_report
+const SPOT_COLOURS = { hot: "#ff5722", cold: "#29b6f6" };  // warm and cold ground, apart from the pairs' tab10
 
 function render({ model, el }) {
   const canvas = document.createElement("canvas");
@@ -67,6 +70,42 @@ function render({ model, el }) {
     }
   }
 
+  function drawSpot(spot, ratio) {
+    const colour = spot.hot ? SPOT_COLOURS.hot : SPOT_COLOURS.cold;
+    for (const ring of spot.rings) {
+      context.beginPath();
+      let drawing = false;
+      for (const point of ring.points) {
+        if (point === null) { drawing = false; continue; }   // behind the camera: the line breaks
+        const [x, y] = toCanvas(point[0], point[1]);
+        if (drawing) context.lineTo(x, y); else context.moveTo(x, y);
+        drawing = true;
+      }
+      context.setLineDash(ring.kind === "reach" ? [5 * ratio, 4 * ratio] : []);
+      context.lineWidth = (ring.kind === "reach" ? 1.0 : 1.8) * ratio;
+      context.strokeStyle = "rgba(0, 0, 0, 0.5)";               // a dark halo, then the colour
+      context.lineWidth += 1.5 * ratio;
+      context.stroke();
+      context.lineWidth -= 1.5 * ratio;
+      context.strokeStyle = colour;
+      context.stroke();
+      context.setLineDash([]);
+    }
+    if (spot.centre) {
+      const [x, y] = toCanvas(spot.centre[0], spot.centre[1]);
+      const r = 4 * ratio;
+      context.beginPath();
+      context.moveTo(x - r, y); context.lineTo(x + r, y);
+      context.moveTo(x, y - r); context.lineTo(x, y + r);
+      context.lineWidth = 1.5 * ratio;
+      context.strokeStyle = colour;
+      context.stroke();
+      context.font = `bold ${11 * ratio}px sans-serif`;
+      context.fillStyle = colour;
+      context.fillText(`#${spot.spot}`, x + r + 2 * ratio, y - r);
+    }
+  }
+
   function draw() {
     const ratio = window.devicePixelRatio || 1;
     context.fillStyle = "#202020";
@@ -75,6 +114,7 @@ function render({ model, el }) {
       context.imageSmoothingEnabled = true;
       context.drawImage(bitmap, 0, 0, canvas.width, canvas.height);
     }
+    for (const spot of model.get("spots") || []) drawSpot(spot, ratio);
     const markers = model.get("markers") || [];
     const byPair = {};
     for (const marker of markers) {
@@ -161,6 +201,7 @@ function render({ model, el }) {
   canvas.addEventListener("contextmenu", noMenu);
   model.on("change:image", queueImage);
   model.on("change:markers", draw);
+  model.on("change:spots", draw);
   for (const name of ["width", "height", "scale", "cursor"]) model.on(`change:${name}`, resize);
   resize();
   queueImage();
@@ -168,6 +209,7 @@ function render({ model, el }) {
   return () => {
     model.off("change:image", queueImage);
     model.off("change:markers", draw);
+    model.off("change:spots", draw);
     for (const name of ["width", "height", "scale", "cursor"]) model.off(`change:${name}`, resize);
   };
 }

@@ -1,5 +1,6 @@
 """The editor's image canvas: an anywidget whose front end (canvas.js beside this file) draws the
-rendered PNG and the pairs' markers, and sends pointer events back in image pixels."""
+rendered PNG, the hot spots' outlines and the pairs' markers, and sends pointer events back in
+image pixels."""
 
 from __future__ import annotations
 
@@ -28,7 +29,8 @@ class ImageCanvas(anywidget.AnyWidget):
 
     Traits (synced with the browser): image (PNG bytes), width, height (the camera's image size:
     the coordinate space of markers and events), scale (display pixels per image pixel), markers
-    (see EditorModel.markers), interactive (False: no events), cursor (CSS), level ('preview' or
+    (see EditorModel.markers), spots (hot-spot outlines drawn under the markers, see
+    EditorModel.spot_outlines), interactive (False: no events), cursor (CSS), level ('preview' or
     'full') and generation (increases with each image; both mirrored into the canvas element's
     data-level and data-generation attributes).
     """
@@ -41,6 +43,7 @@ class ImageCanvas(anywidget.AnyWidget):
     height = traitlets.Int(1).tag(sync=True)
     scale = traitlets.Float(1.0).tag(sync=True)
     markers = traitlets.List().tag(sync=True)
+    spots = traitlets.List().tag(sync=True)
     interactive = traitlets.Bool(True).tag(sync=True)
     cursor = traitlets.Unicode("crosshair").tag(sync=True)
     level = traitlets.Unicode("").tag(sync=True)

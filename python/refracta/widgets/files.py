@@ -1,6 +1,7 @@
 """The mirage editor's files: the pairs as JSON in the format of `refracta edit --pairs`
 (refracta.edit.load_pairs reads it back) and the scene as TOML (refracta.load_scene reads it back)
-with the solved atmosphere (refracta.scene_file.with_atmosphere) and the editor's camera.
+with the solved atmosphere and the editor's camera (refracta.scene_file.with_atmosphere and
+with_camera).
 
 Pairs file::
 
@@ -15,15 +16,12 @@ pairs.json -o solved.toml``.
 from __future__ import annotations
 
 import json
-import re
 from typing import Optional, Sequence
 
-import numpy as np
-
 from refracta import _core
-from refracta.scene_file import with_atmosphere
+from refracta.scene_file import with_atmosphere, with_camera
 
-__all__ = ["camera_table", "pairs_json", "scene_toml", "with_camera"]
+__all__ = ["pairs_json", "scene_toml"]
 
 
 def pairs_json(pairs: Sequence, options: Optional[dict] = None) -> str:
@@ -43,46 +41,13 @@ def pairs_json(pairs: Sequence, options: Optional[dict] = None) -> str:
     return json.dumps(data, indent=2) + "\n"
 
 
-def _number(value: float) -> str:
-    return repr(float(value))
-
-
-def camera_table(camera: _core.Camera) -> str:
-    """The [camera] table that load_scene reads back as `camera`."""
-    def triple(v):
-        return "[" + ", ".join(_number(x) for x in np.asarray(v, dtype=float)) + "]"
-    return "\n".join([
-        "[camera]",
-        f"position = {triple(camera.position)}",
-        f"look_at = {triple(camera.look_at)}",
-        f"up = {triple(camera.up)}",
-        f"vfov = {_number(camera.vfov)}",
-        f"size = [{int(camera.width)}, {int(camera.height)}]",
-    ]) + "\n"
-
-
-_HEADER = re.compile(r"^\s*\[\[?\s*([A-Za-z0-9_.\"-]+)\s*\]\]?")
-
-
-def with_camera(text: str, camera: _core.Camera) -> str:
-    """A scene file's text with its [camera] table replaced by `camera` (put first if absent);
-    everything else, comments included, is kept. (The same table surgery as
-    scene_file.with_atmosphere, for the camera.)"""
-    lines = text.splitlines(keepends=True)
-    start = next((i for i, line in enumerate(lines) if (m := _HEADER.match(line)) and m.group(1) == "camera"), None)
-    table = camera_table(camera)
-    if start is None:
-        return table + "\n" + text
-    end = next((i for i in range(start + 1, len(lines)) if _HEADER.match(lines[i])), len(lines))
-    return "".join(lines[:start]) + table + "\n" + "".join(lines[end:]).lstrip("\n")
-
-
-def scene_toml(text: Optional[str], camera: _core.Camera, field: _core.IndexField) -> str:
-    """The scene file `text` with `camera` and `field` written into it. Without a file (the editor
-    was given Scene objects) only the camera and the atmosphere are written, under a comment
-    saying so: load_scene reads it, but it has no objects to render."""
+def scene_toml(text: Optional[str], camera: _core.Camera, field: _core.IndexField, turbulence=None) -> str:
+    """The scene file `text` with `camera` and `field` written into it (turbulence: the
+    refracta.Turbulence whose layer `field` carries, see refracta.scene_file.atmosphere_table).
+    Without a file (the editor was given Scene objects) only the camera and the atmosphere are
+    written, under a comment saying so: load_scene reads it, but it has no objects to render."""
     if text is None:
         text = ("# Written by refracta.widgets.MirageEditor from a Scene object: the camera and the\n"
                 "# solved atmosphere only (no objects). Start the editor from a scene file\n"
                 "# (MirageEditor.from_file) to keep the whole scene.\n")
-    return with_atmosphere(with_camera(text, camera), field)
+    return with_atmosphere(with_camera(text, camera), field, turbulence)

@@ -28,6 +28,10 @@ in its own slot when shown. Solving (slot 'solve') calls refracta.edit.solve wit
 free parameters and the solve options; its result becomes the atmosphere (undoable), and the ray
 fan of the pairs (refracta.plot.edit_report: paths before and after) is drawn as a PNG.
 
+Hot spots: an atmosphere with areal hot spots (refracta.HotSpot) shows each spot's footprint on the
+ground (spot_outlines); its parameters hot_spot<i>_x, _z, _radius, _dt (, _depth) are free
+parameters like any other (set_free), so a solve can move, resize and heat it.
+
 Observers registered with observe(callback) are called as callback(what) after each change, with
 what one of CHANGES, on the thread that made it (the caller's for events, a worker's for renders
 and solves).
@@ -51,8 +55,8 @@ from refracta._render import render
 from refracta.widgets import camera_moves, files
 from refracta.widgets.jobs import Job, JobRunner
 
-__all__ = ["CHANGES", "DisplayImage", "EditorModel", "GRAB_RADIUS", "MAX_HISTORY", "check_margin", "check_weight",
-           "make_pair", "unmet_pairs"]
+__all__ = ["CHANGES", "DisplayImage", "EditorModel", "GRAB_RADIUS", "MAX_HISTORY", "SPOT_SEGMENTS", "check_margin",
+           "check_weight", "ground_circle", "make_pair", "unmet_pairs"]
 
 log = logging.getLogger("refracta.widgets")
 
@@ -60,6 +64,8 @@ log = logging.getLogger("refracta.widgets")
 CHANGES = ("image", "straight", "pairs", "camera", "field", "free", "message", "progress", "result", "history",
            "busy", "mode", "fan")
 MAX_HISTORY = 100     # undo steps kept: each holds references to immutable objects, not copies
+SPOT_SEGMENTS = 96    # chords per drawn footprint circle: a spot seen at a grazing angle is an ellipse
+                      # flattened ~50x, whose ends 96 chords still round (each 3.75 deg of the circle)
 GRAB_RADIUS = 8.0     # [display pixels] a press this close to a marker drags it (about a fingertip)
 DEFAULT_DISPLAY = {"key": 0.18}  # Reinhard with the photographic key (middle grey), as `refracta demo`
                                  # shows the examples: their skies are in physical units
@@ -84,6 +90,7 @@ class _Snapshot:
     scene_text: Optional[str]
     camera: _core.Camera
     field: _core.IndexField
+    turbulence: object
     pairs: Tuple
     free: Optional[Tuple[str, ...]]
     result: object
@@ -127,6 +134,20 @@ def make_pair(destination, source, weight=1.0, margin=0.0):
     return PointPair(tuple(float(x) for x in destination), tuple(float(x) for x in source), weight, margin=margin)
 
 
+def ground_circle(camera: _core.Camera, centre_x: float, centre_z: float, radius: float,
+                  segments: int = SPOT_SEGMENTS) -> List[Optional[Tuple[float, float]]]:
+    """The circle of `radius` [m] about (centre_x, 0, centre_z) on the ground plane y = 0, as image
+    pixels (u, v) of `camera` (Camera.project: where the camera sees the ground without
+    atmosphere): segments + 1 points, the last the first again (a closed outline); None for a
+    point behind the camera (the outline breaks there)."""
+    angles = np.linspace(0.0, 2.0 * np.pi, segments + 1)
+    angles[-1] = 0.0  # exactly the first point: the outline closes
+    points = np.stack([centre_x + radius * np.cos(angles), np.zeros_like(angles),
+                       centre_z + radius * np.sin(angles)], axis=1)
+    projected = np.asarray(camera.project(points), dtype=float)
+    return [(float(u), float(v)) if depth > 0.0 else None for u, v, depth in projected]
+
+
 def unmet_pairs(result) -> List[int]:
     """Indices of the pairs an EditResult did not meet (its `met`: miss within margin)."""
     return [i for i, ok in enumerate(result.met) if not ok]
@@ -144,6 +165,8 @@ class EditorModel:
         render_options: further refracta.render keywords (spp, transport, ...).
         solve_options: further refracta.edit.solve keywords (backend, accept_angle, ...).
         scene_text: the TOML text the scene was loaded from (export keeps everything in it).
+        turbulence: the refracta.Turbulence whose layer `field` carries (field.turbulence), or None:
+            exports write its settings (a field keeps only the layer; refracta.scene_file).
         preview_scale: the preview renders 1/preview_scale of the width and height (4: a quarter).
         display: refracta.io.to_display keywords (default: Reinhard with key 0.18).
         autorender: render at once (False: only when render() is called; for tests).
@@ -155,7 +178,7 @@ class EditorModel:
     def __init__(self, scene: _core.Scene, camera: _core.Camera, field: _core.IndexField,
                  free: Optional[Sequence[str]] = None, *, ground: Optional[float] = None,
                  max_length: Optional[float] = None, render_options: Optional[dict] = None,
-                 solve_options: Optional[dict] = None, scene_text: Optional[str] = None,
+                 solve_options: Optional[dict] = None, scene_text: Optional[str] = None, turbulence=None,
                  preview_scale: int = 4, display: Optional[dict] = None, autorender: bool = True):
         if not isinstance(scene, _core.Scene):
             raise ValueError(f"scene must be a refracta.Scene (got {type(scene).__name__})")
@@ -168,6 +191,7 @@ class EditorModel:
         self._lock = threading.RLock()
         self._observers: List[Callable[[str], None]] = []
         self.scene, self.scene_text, self.camera, self.field = scene, scene_text, camera, field
+        self.turbulence = turbulence
         self.free: Optional[Tuple[str, ...]] = None
         self.set_free(free)
         self.ground = None if ground is None else _finite(ground, "ground")
@@ -221,8 +245,8 @@ class EditorModel:
 
     # ---------------------------------------------------------------- history
     def _snapshot(self, label: str) -> _Snapshot:
-        return _Snapshot(label, self.scene, self.scene_text, self.camera, self.field, self.pairs, self.free,
-                         self.result, self.fan_png)
+        return _Snapshot(label, self.scene, self.scene_text, self.camera, self.field, self.turbulence, self.pairs,
+                         self.free, self.result, self.fan_png)
 
     def _record(self, before: _Snapshot) -> None:
         """Push `before` (the state before an edit) on the undo stack; clears redo. Called with the
@@ -257,6 +281,7 @@ class EditorModel:
                 view_changed = camera_changed or state.field is not self.field
                 self.scene, self.scene_text, self.camera, self.field = (state.scene, state.scene_text, state.camera,
                                                                         state.field)
+                self.turbulence = state.turbulence
                 self.pairs, self.free, self.result, self.fan_png = state.pairs, state.free, state.result, state.fan_png
                 self.pending_source, self._drag = None, None
                 if self.selected is not None and self.selected >= len(self.pairs):
@@ -298,6 +323,32 @@ class EditorModel:
             uv = self._project(camera, pending)
             if uv is not None:
                 out.append({"kind": "pending", "pair": -1, "u": uv[0], "v": uv[1], "selected": True, "met": None})
+        return out
+
+    @property
+    def hot_spots(self) -> list:
+        """The atmosphere's hot spots with their current values (refracta.HotSpot, spot i's
+        parameters are hot_spot<i>_*); [] for an atmosphere without."""
+        return list(getattr(self.field, "hot_spots", None) or [])
+
+    def spot_outlines(self) -> List[dict]:
+        """The hot spots' footprints to draw over the image, in image pixels of the camera: each
+        spot's circles on the ground plane y = 0 (ground_circle: where the camera sees the ground
+        without atmosphere). Per spot: {'spot': index, 'footprint': 'gaussian'|'compact', 'hot': dt
+        > 0, 'centre': (u, v) or None (behind the camera), 'rings': [{'kind', 'radius' [m],
+        'points': [(u, v) or None, ...]}]} with rings 'radius' (gaussian: 1 sigma; compact: the
+        support, where the spot ends) and, for a gaussian, 'reach' (where its footprint falls
+        below 1e-6: HotSpot.reach)."""
+        with self._lock:
+            camera, spots = self.camera, self.hot_spots
+        out = []
+        for index, spot in enumerate(spots):
+            rings = [("radius", spot.radius)] + ([("reach", spot.reach)] if spot.footprint == "gaussian" else [])
+            out.append({"spot": index, "footprint": spot.footprint, "hot": spot.dt > 0.0,
+                        "centre": self._project(camera, (spot.x, 0.0, spot.z)),
+                        "rings": [{"kind": kind, "radius": float(radius),
+                                   "points": ground_circle(camera, spot.x, spot.z, radius)}
+                                  for kind, radius in rings]})
         return out
 
     @staticmethod
@@ -678,7 +729,7 @@ class EditorModel:
 
     def scene_toml(self) -> str:
         """The scene as TOML with the editor's camera and atmosphere (refracta.load_scene)."""
-        return files.scene_toml(self.scene_text, self.camera, self.field)
+        return files.scene_toml(self.scene_text, self.camera, self.field, self.turbulence)
 
     def export_pairs(self, path) -> Path:
         """Write pairs_json() to `path`; returns it. refracta.IoError if it cannot be written."""
@@ -719,13 +770,14 @@ class EditorModel:
         from refracta.scene_file import load_scene
 
         path = Path(path)
-        scene, camera, field = load_scene(path)
+        loaded = load_scene(path)
+        scene, camera, field = loaded
         text = path.read_text()
         with self._lock:
             before = self._snapshot(f"load scene {path.name}")
             self.scene, self.scene_text, self.camera = scene, text, camera
             if field is not None:
-                self.field = field
+                self.field, self.turbulence = field, loaded.turbulence
                 if self.free and any(n not in field.param_names for n in self.free):
                     self.free = None
             self.pending_source, self.selected = None, None
@@ -735,22 +787,16 @@ class EditorModel:
         self.render()
 
 
-def _fan_png(result) -> Optional[bytes]:
-    """refracta.plot.edit_report's figure (paths before and after, cost history) as PNG bytes."""
-    import matplotlib
+def _fan_png(result) -> bytes:
+    """refracta.plot.edit_report's figure (paths before and after, cost history) as PNG bytes.
+
+    Drawn into a matplotlib.figure.Figure, not a pyplot one: it is made on a solve's worker thread,
+    and a Figure outside pyplot shares no state with the notebook's figures or its backend."""
+    from matplotlib.figure import Figure
 
     from refracta import plot
 
-    backend_is_agg = matplotlib.get_backend().lower() in ("agg", "module://matplotlib_inline.backend_inline")
-    if not backend_is_agg:  # pyplot in a worker thread needs a non-interactive backend
-        return None
-    import matplotlib.pyplot as plt
-
-    figure = plot.edit_report(result, figsize=(9.0, 3.2))
-    try:
-        buffer = _io.BytesIO()
-        figure.savefig(buffer, format="png", dpi=80)
-        return buffer.getvalue()
-    finally:
-        plt.close(figure)
-
+    figure = plot.edit_report(result, figure=Figure(figsize=(9.0, 3.2)))
+    buffer = _io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=80)
+    return buffer.getvalue()

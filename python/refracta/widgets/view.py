@@ -48,7 +48,9 @@ class MirageEditor(w.VBox):
     (progress, Cancel); the Result tab shows the misses, the changed parameters and each pair's
     light path before and after. Undo/Redo cover pairs, camera, solves and loaded files. The Files
     tab saves and loads the scene (TOML, with the solved atmosphere and the camera) and the pairs
-    (JSON, the format of ``refracta edit --pairs``).
+    (JSON, the format of ``refracta edit --pairs``). An atmosphere with hot spots shows each spot's
+    footprint on the ground, numbered; the Hot spots tab lists them with toggles that make their
+    parameters (hot_spot<i>_x, ...) free in the next solve.
 
     Args:
         scene, camera, field: the refracta.Scene, the full-resolution refracta.Camera and the
@@ -57,8 +59,8 @@ class MirageEditor(w.VBox):
         ground: height [m] where the pairs' light paths end on the ground (None: none).
         max_length: [m] rays end after this length in renders (None: the renderer's default).
         scale: display pixels per image pixel (None: the image is shown DISPLAY_WIDTH wide).
-        **options: render_options, solve_options, scene_text, preview_scale, display (see
-            refracta.widgets.model.EditorModel).
+        **options: render_options, solve_options, scene_text, turbulence, preview_scale, display
+            (see refracta.widgets.model.EditorModel).
 
     Example::
 
@@ -81,7 +83,7 @@ class MirageEditor(w.VBox):
         super().__init__(children=[self._toolbar, self._message, self._images, self._tabs])
         self.add_class("refracta-editor")
         self.model.observe(self._changed)
-        for what in ("camera", "pairs", "result", "history", "busy", "mode", "message", "progress"):
+        for what in ("camera", "field", "pairs", "result", "history", "busy", "mode", "message", "progress"):
             self._changed(what)
         self.model.render()
 
@@ -90,10 +92,11 @@ class MirageEditor(w.VBox):
         """An editor for a scene file (refracta.load_scene): exports keep everything in the file."""
         from refracta.scene_file import load_scene
 
-        scene, camera, field = load_scene(path)
-        if field is None:
+        loaded = load_scene(path)
+        if loaded.field is None:
             raise ValueError(f"{path}: has no [atmosphere] table to edit")
-        return cls(scene, camera, field, free, scene_text=Path(path).read_text(), **kwargs)
+        return cls(loaded.scene, loaded.camera, loaded.field, free, scene_text=Path(path).read_text(),
+                   turbulence=loaded.turbulence, **kwargs)
 
     # ---------------------------------------------------------------- the Python API
     @property
@@ -213,7 +216,7 @@ class MirageEditor(w.VBox):
         self._message.add_class("refracta-message")
 
     def _build_tabs(self) -> None:
-        """Pairs, Camera, Result and Files."""
+        """Pairs, Camera, Result, Files and Hot spots."""
         model = self.model
         # Pairs tab
         self._pair_rows = w.VBox()
@@ -243,6 +246,15 @@ class MirageEditor(w.VBox):
         self._fan = w.Image(format="png", layout=w.Layout(max_width="100%"))
         result_tab = w.VBox([self._result, self._fan])
 
+        # Hot spots tab: the spots of the atmosphere, each with toggles for its free parameters
+        self._spot_rows = w.VBox()
+        self._spot_toggles = {}  # parameter name -> its ToggleButton in the spot list
+        spots_tab = w.VBox([self._spot_rows, w.HTML(
+            "Each spot's footprint is drawn on the ground in the image (where the camera sees the ground "
+            "without atmosphere): solid, the radius (gaussian: 1 sigma; compact: where it ends); dashed, "
+            "where a gaussian spot fades out. Toggle a parameter to let a solve change it (as in the "
+            "Pairs tab's free list).")])
+
         # Files tab
         self._scene_path = w.Text(value="edited_scene.toml", description="scene", layout=w.Layout(width="360px"))
         self._pairs_path = w.Text(value="pairs.json", description="pairs", layout=w.Layout(width="360px"))
@@ -255,8 +267,8 @@ class MirageEditor(w.VBox):
                    "for <code>refracta edit scene.toml --pairs pairs.json -o solved.toml</code>. "
                    "Paths are on the kernel's machine."),
         ])
-        self._tabs = w.Tab(children=[pairs_tab, camera_tab, result_tab, files_tab])
-        for index, title in enumerate(("Pairs", "Camera", "Result", "Files")):
+        self._tabs = w.Tab(children=[pairs_tab, camera_tab, result_tab, files_tab, spots_tab])
+        for index, title in enumerate(("Pairs", "Camera", "Result", "Files", "Hot spots")):
             self._tabs.set_title(index, title)
 
     # ---------------------------------------------------------------- events from the browser
@@ -327,6 +339,7 @@ class MirageEditor(w.VBox):
         for canvas in (self._canvas, self._straight):
             with canvas.hold_sync():
                 canvas.width, canvas.height, canvas.scale = camera.width, camera.height, scale
+        self._show_spot_outlines()
         self._syncing = True
         try:
             for fields, values in ((self._position, camera.position), (self._look_at, camera.look_at)):
@@ -428,12 +441,59 @@ class MirageEditor(w.VBox):
                 self._free.options = names
             finally:
                 self._syncing = False
+        self._show_spots()
         self._show_free()
         self._show_result()
 
     def _show_free(self) -> None:
-        if tuple(self._free.value) != tuple(self.model.free or ()):
-            self._free.value = tuple(self.model.free or ())
+        free = tuple(self.model.free or ())
+        syncing, self._syncing = self._syncing, True
+        try:
+            if tuple(self._free.value) != free:
+                self._free.value = free
+            for name, toggle in self._spot_toggles.items():
+                toggle.value = name in free
+        finally:
+            self._syncing = syncing
+
+    def _show_spot_outlines(self) -> None:
+        outlines = self.model.spot_outlines()
+        self._canvas.spots = outlines
+        self._straight.spots = outlines
+
+    def _show_spots(self) -> None:
+        """The spot list (values, units, free toggles) and the outlines on the images."""
+        self._show_spot_outlines()
+        field, free = self.model.field, set(self.model.free or ())
+        info = {p["name"]: p for p in field.param_info}
+        rows, self._spot_toggles = [], {}
+        for index, spot in enumerate(self.model.hot_spots):
+            prefix = f"hot_spot{index}_"
+            names = [n for n in field.param_names if n.startswith(prefix)]
+            values = ", ".join(f"{n[len(prefix):]} {field.params[n]:.4g} {info[n]['unit']}" for n in names)
+            colour = "#ff5722" if spot.dt > 0.0 else "#29b6f6"  # canvas.js's SPOT_COLOURS
+            label = w.HTML(f"<b style='color:{colour}'>#{index}</b> {spot.footprint}: {html.escape(values)}")
+            toggles = []
+            for name in names:
+                toggle = w.ToggleButton(description=name[len(prefix):], value=name in free,
+                                        tooltip=f"let a solve change {name}", layout=w.Layout(width="auto"))
+                toggle.observe(lambda change, name=name: self._toggle_free(name, change["new"]), names="value")
+                self._spot_toggles[name] = toggle
+                toggles.append(toggle)
+            rows.append(w.VBox([label, w.HBox([w.HTML("free:"), *toggles], layout=w.Layout(align_items="center"))]))
+        old = self._spot_rows.children
+        self._spot_rows.children = rows or [w.HTML(
+            f"This atmosphere ({html.escape(field.type_name)}) has no hot spots: give PhysicalAtmosphere or "
+            "LogisticProfile <code>hot_spots=[refracta.HotSpot(x, z, radius, dt)]</code>.")]
+        for row in old:
+            _close_tree(row)
+
+    def _toggle_free(self, name: str, on: bool) -> None:
+        """A spot parameter's free toggle: adds it to or removes it from the free parameters."""
+        if self._syncing:
+            return
+        free = set(self.model.free or ()) - {name} | ({name} if on else set())
+        self._guard(self.model.set_free, [n for n in self.model.field.param_names if n in free])
 
     def _show_message(self) -> None:
         colour = MESSAGE_COLOURS.get(self.model.message_kind, "#333")
