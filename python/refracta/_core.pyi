@@ -538,10 +538,12 @@ class Scene:
         the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular
         environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.
         """
-    def set_sun(self, direction: typing.Any, radiance: typing.Any, angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def set_sun(self, direction: typing.Any, radiance: typing.Any, angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, wavelengths: typing.Any = None) -> None:
         """
         The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter [deg],
         limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.
+        With wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.
+        refracta.spectrum.PhysicalSky(...).sun_radiance(wavelengths): the sun through the air's extinction).
         """
     @property
     def bounds(self) -> tuple[numpy.ndarray, numpy.ndarray]:

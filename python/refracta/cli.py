@@ -46,19 +46,22 @@ def _count(minimum: int):
 # lighting, specular chains followed).
 DEMO_SETTINGS = {
     "hot_road": dict(transport="path", spp=16),
+    "hot_spot": dict(transport="path", spp=16),
     "cold_sea": dict(transport="direct", spp=16),
     "fata_morgana": dict(transport="direct", spp=8),
 }
 # Reinhard's key per example (the log-average luminance maps to it): middle grey by day, darker at
 # sunset so the orange sky keeps its red channel below 1.
-DEMO_KEYS = {"hot_road": 0.18, "cold_sea": 0.08, "fata_morgana": 0.14}
+DEMO_KEYS = {"hot_road": 0.18, "hot_spot": 0.18, "cold_sea": 0.08, "fata_morgana": 0.14}
 
 
 def demo(out: Path, size=(480, 160)) -> int:
     """Each example scene without and with its atmosphere, side by side (`out`/<name>.png, tone
     mapped by Reinhard et al. 2002 with DEMO_KEYS[name] on the pair's joint log-average), the linear
-    renders (`out`/<name>.exr, through the atmosphere; <name>_straight.exr without) and the ray
-    fans (`out`/rays_<name>.png). Prints each image's render time."""
+    renders (`out`/<name>.exr, through the atmosphere; <name>_straight.exr without), the ray
+    fans (`out`/rays_<name>.png), a sunset with a green flash (`out`/green_flash.png) and the hot
+    road shimmering (`out`/shimmer.gif, physical turbulence; shimmer_noise.gif, geometric noise).
+    Prints each image's render time."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -103,8 +106,78 @@ def demo(out: Path, size=(480, 160)) -> int:
         figure.savefig(out / f"rays_{name}.png", dpi=110)
         plt.close(figure)
         print(f"wrote {out / ('rays_' + name + '.png')}")
+    scale = size[1] / 160  # the extras follow the asked size (the tests' 72x24 demo: a few seconds)
+    _demo_green_flash(out, size=max(16, round(64 * scale)))
+    _demo_shimmer(out, size=(max(24, round(96 * scale)), max(8, round(32 * scale))),
+                  noise_size=(max(32, round(320 * scale)), max(12, round(120 * scale))))
     print(f"demo: {time.perf_counter() - total:.1f} s")
     return 0
+
+
+# The green flash sequence (examples.green_flash): the sun's centre [deg] above the true horizon in
+# each frame, and the frames' fields of view [deg] -- the flattening setting sun whole, then the
+# last gleam at the fold of the warm sea's mirage (true -0.512 deg for the upper rim), where the
+# blue-green end of the spectrum, lifted most, is seen last.
+GREEN_FLASH_FRAMES = [(-0.45, 0.7), (-0.65, 0.7), (-0.74, 0.7), (-0.772, 0.08), (-0.774, 0.08), (-0.776, 0.08)]
+GREEN_FLASH_LOOK = {0.7: -0.05, 0.08: -0.02}  # [deg]: where each zoom looks (the fold is at -0.025)
+
+
+def _demo_green_flash(out: Path, size: int = 64, spp: int = 48) -> None:
+    """Sunset over a warm sea, spectral: out/green_flash.png, one exposure for every frame."""
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    import refracta
+    from refracta import examples
+
+    start = time.perf_counter()
+    frames = []
+    for elevation, vfov in GREEN_FLASH_FRAMES:
+        example = examples.green_flash(size, size, elevation)
+        look = np.radians(GREEN_FLASH_LOOK[vfov])
+        eye = example.camera.position
+        camera = refracta.Camera(eye, eye + [np.cos(look), np.sin(look), 0.0], vfov=vfov, width=size, height=size)
+        frames.append(refracta.render(example.scene, camera, example.field, max_length=example.max_length,
+                                      spectral=True, spp=spp, progress=False))
+    # One exposure for every frame (the whole disc's bright end near 1), gamma 2.2: the last gleam
+    # is as dim as it is.
+    exposure = 1.0 / np.percentile(frames[0].max(axis=2), 99.0)
+    figure, axes = plt.subplots(1, len(frames), figsize=(2.0 * len(frames), 2.6), constrained_layout=True)
+    for ax, frame, (elevation, vfov) in zip(axes, frames, GREEN_FLASH_FRAMES):
+        ax.imshow(np.clip(frame * exposure, 0.0, 1.0) ** (1 / 2.2))
+        ax.set_title(f"sun {elevation:+.3f} deg\n{vfov * 60:.0f}' field", fontsize=8)
+        ax.axis("off")
+    figure.suptitle("Sunset over a warm sea (spectral): flattening, the mirage's cut, the green flash", fontsize=9)
+    figure.savefig(out / "green_flash.png", dpi=110)
+    plt.close(figure)
+    print(f"wrote {out / 'green_flash.png'} ({len(frames)} frames {size}x{size}, spectral, {spp} spp: "
+          f"{time.perf_counter() - start:.1f} s)", flush=True)
+
+
+def _demo_shimmer(out: Path, size=(96, 32), noise_size=(320, 120)) -> None:
+    """The hot road shimmering: out/shimmer.gif (physical turbulence in the hot layer, carried by
+    the wind; `size` WxH) and out/shimmer_noise.gif (the geometric noise stand-in, not physical)."""
+    import numpy as np
+
+    import refracta
+    from refracta import examples
+
+    road = examples.hot_road(640, 240)
+    start = time.perf_counter()
+    # The mirage band, narrow and small: every ray there crosses ~300 m of turbulent layer, traced
+    # in steps of a few 10 cm cells (refracta.Turbulence: 128^3 cells of 10 cm, a 12.8 m tile).
+    camera = refracta.Camera(road.camera.position, road.camera.look_at, vfov=0.6, width=size[0], height=size[1])
+    air = refracta.Turbulence(cells=128, spacing=0.1, depth=0.1, seed=1)
+    refracta.animate(road.scene, camera, road.field, np.arange(6) * 0.15, out / "shimmer.gif", turbulence=air,
+                     progress=False, max_length=road.max_length)
+    print(f"wrote {out / 'shimmer.gif'} (6 frames {size[0]}x{size[1]} through refracta.Turbulence: "
+          f"{time.perf_counter() - start:.1f} s)", flush=True)
+    start = time.perf_counter()
+    refracta.animate(road.scene, road.camera.resized(*noise_size), road.field, np.arange(12) * 0.08,
+                     out / "shimmer_noise.gif", noise=dict(rms=4e-5, correlation_pixels=6.0, speed=(30.0, 0.0)),
+                     progress=False, max_length=road.max_length)
+    print(f"wrote {out / 'shimmer_noise.gif'} (12 frames {noise_size[0]}x{noise_size[1]}, geometric noise, "
+          f"not physical: {time.perf_counter() - start:.1f} s)", flush=True)
 
 
 def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exposure: float,

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from refracta import _core, shading
+from refracta import _core, shading, spectrum
 
 # Radiance unit of the example scenes. refracta.spectrum.PhysicalSky gives linear sRGB normalised
 # by the integral of the CIE y-bar curve (a mean spectral radiance, W/(m^2 sr nm)); times that
@@ -159,10 +159,7 @@ def hot_spot(width: int = 640, height: int = 240) -> Example:
     return Example("hot_spot", example.scene, example.camera, field, example.max_length, hot_spot.__doc__)
 
 
-# The setting sun of green_flash: radiance of the sun's disc [W/(m^2 sr)] as linear sRGB, reddened as
-# by ~40 air masses of Rayleigh extinction (its blue nearly gone, so that the top rim that
-# dispersion lifts is green rather than blue), and the Neckel-like linear limb darkening at 550 nm.
-SETTING_SUN_RADIANCE = (1.0e6, 0.45e6, 0.10e6)
+# The setting sun's linear limb darkening (Neckel-like, at 550 nm).
 SETTING_SUN_LIMB_DARKENING = 0.6
 
 
@@ -175,9 +172,16 @@ def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.8
     lifted most, so the last sliver of the flattened sun turns green; below it the mirage of the
     warm sea squeezes the disc into an 'Etruscan vase' and cuts it off above the horizon."""
     scene = _core.Scene()
-    scene.set_sky((0.02, 0.012, 0.01), (0.004, 0.006, 0.012))  # dusk: warm at the horizon, dark above
-    scene.set_sun(sun_direction(sun_elevation, 0.0), SETTING_SUN_RADIANCE, angular_diameter=0.53,
-                  limb_darkening=SETTING_SUN_LIMB_DARKENING)
+    # Sky and sun of a sun on the horizon (the light that reaches the eye runs within ~0.1 deg of
+    # the horizontal): the physical sky's Nishita sky, and its sun's spectrum through the air's
+    # horizontal column (~38 air masses of Rayleigh, aerosol and ozone extinction: at 450 nm 0.2 %
+    # of 700 nm's, at 550 nm 11 %) -- what leaves the last gleam green, not blue.
+    horizon_sun = sun_direction(0.0, 0.0)
+    set_physical_sky(scene, horizon_sun)
+    lam = np.arange(360.0, 831.0, 10.0)
+    sun = spectrum.PhysicalSky(horizon_sun).sun_radiance(lam, 0.53) * RADIANCE_SCALE
+    scene.set_sun(sun_direction(sun_elevation, 0.0), sun, angular_diameter=0.53,
+                  limb_darkening=SETTING_SUN_LIMB_DARKENING, wavelengths=lam)
     scene.add_ground(0.0, 2.0e5, material=_sea())
     base = _core.PhysicalAtmosphere(surface_dt=3.0, surface_depth=2.0)
     field = _core.CurvedEarth(base)

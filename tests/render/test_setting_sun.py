@@ -71,3 +71,33 @@ def test_dispersion_colours_the_rims():
     blue_over_red = lambda c: c[2] / max(c[0], 1e-12)  # noqa: E731
     assert blue_over_red(top_edge) > 1.2 * blue_over_red(top_inner)
     assert blue_over_red(bottom_edge) < blue_over_red(bottom_inner) / 1.2
+
+
+@pytest.mark.slow
+def test_the_last_gleam_over_a_warm_sea_is_green():
+    # examples.green_flash: the sea 3 K warmer than the air folds the image of the sky at 0.025 deg
+    # below the horizontal (true -0.512 deg): the sun sets into that fold, and as its rim reaches
+    # it the longer wavelengths go first (each wavelength's air lifts the sun by its own amount,
+    # blue-green most; the setting sun's own blue is extinguished by the horizontal air column:
+    # the physical sky's sun at the horizon, 0.2 % at 450 nm of 700 nm's). Its last gleam is green.
+    from refracta import examples
+
+    def colour(sun_elevation, vfov, look):
+        example = examples.green_flash(24, 24, sun_elevation)
+        eye = example.camera.position
+        camera = refracta.Camera(eye, eye + [np.cos(np.radians(look)), np.sin(np.radians(look)), 0.0], vfov=vfov,
+                                 width=24, height=24)
+        image = refracta.render(example.scene, camera, example.field, max_length=example.max_length, spectral=True,
+                                spp=16, progress=False)
+        lit = image.sum(axis=2) > 0.05 * image.sum(axis=2).max()
+        return image[lit].mean(axis=0)
+
+    def green_share(rgb):  # linear sRGB; a near-monochromatic gleam lies outside the gamut (R < 0)
+        return rgb[1] / np.abs(rgb).sum()
+
+    disc = colour(-0.65, 0.7, -0.05)
+    gleam = colour(-0.776, 0.08, -0.02)
+    assert disc[0] > disc[1] > disc[2]  # the setting sun: red (its blue extinguished by ~38 air masses)
+    assert green_share(disc) < 0.3
+    assert gleam[1] > gleam[0] and gleam[1] > gleam[2]  # its last gleam: green
+    assert green_share(gleam) > 0.6

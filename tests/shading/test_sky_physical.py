@@ -147,3 +147,35 @@ def test_bad_input_raises_value_error():
         spectrum.PhysicalSky([0.0, 1.0, 0.0], aerosol=-1.0, ground_albedo=2.0)
     with pytest.raises(ValueError, match="unit"):
         spectrum.PhysicalSky([0.0, 1.0, 0.0]).radiance(np.array([[0.0, 2.0, 0.0]]), [550.0])
+
+
+def test_a_sun_on_the_horizon_lights_a_scene_in_rgb_and_spectral():
+    # The horizontal column extinguishes 450 nm to ~0.2 % of 700 nm: the sun's spectrum lies
+    # outside the sRGB gamut (its blue < 0). Scene.set_physical_sky and set_sun(wavelengths=) take
+    # it; RGB rendering clips the negative channel, spectral rendering keeps the spectrum.
+    import refracta
+
+    sun = (1.0, 0.0, 0.0)
+    sky = spectrum.PhysicalSky(sun)
+    assert sky.sun_radiance_rgb()[2] < 0.0
+    lam = np.arange(360.0, 831.0, 10.0)
+    camera = refracta.Camera((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), vfov=0.3, width=8, height=8)
+    for setup in ("physical_sky", "set_sun"):
+        scene = refracta.Scene()
+        if setup == "physical_sky":
+            scene.set_physical_sky(sun)
+        else:
+            scene.set_sun(sun, sky.sun_radiance(lam), wavelengths=lam)
+        rgb = refracta.render(scene, camera, None, spp=4, progress=False)
+        centre = rgb[4, 4]
+        assert centre[2] == 0.0
+        expected = np.maximum(sky.sun_radiance_rgb(), 0.0)
+        if setup == "physical_sky":  # and the sky behind the disc
+            expected += np.maximum(sky.rgb_radiance(np.array([sun]))[0], 0.0)
+        np.testing.assert_allclose(centre[:2], expected[:2], rtol=1e-4)
+        colour = refracta.render(scene, camera, None, spp=64, spectral=True, progress=False)[4, 4]
+        # The Monte Carlo estimate of the spectrum's (unclipped) colour, within its noise.
+        np.testing.assert_allclose(colour[0], sky.sun_radiance_rgb()[0], rtol=0.1)
+        assert colour[2] < 0.0
+    with pytest.raises(ValueError, match="wavelengths"):
+        refracta.Scene().set_sun(sun, [1.0, 2.0], wavelengths=[500.0, 400.0])

@@ -468,15 +468,22 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            py::arg("ns") = 1.0, "Add a sphere (exact, not tessellated); emission makes it a spherical light.")
       .def("set_sun",
            [](RenderScene& s, const py::object& direction, const py::object& radiance, double angular_diameter,
-              double limb_darkening) {
-             auto sun = std::make_shared<SunLight>(to_point(direction, "direction"), illuminant_of(radiance, "radiance"),
-                                                   angular_diameter, limb_darkening);
+              double limb_darkening, const py::object& wavelengths) {
+             const Color colour = wavelengths.is_none()
+                                      ? illuminant_of(radiance, "radiance")
+                                      : Color::tabulated(to_values(wavelengths, "wavelengths"),
+                                                         to_values(radiance, "radiance"), Color::Kind::kIlluminant);
+             auto sun = std::make_shared<SunLight>(to_point(direction, "direction"), colour, angular_diameter,
+                                                   limb_darkening);
              s.remove_lights_if([](const Light& l) { return dynamic_cast<const SunLight*>(&l) != nullptr; });
              s.add_light(sun);
            },
            py::arg("direction"), py::arg("radiance"), py::arg("angular_diameter") = 0.53, py::arg("limb_darkening") = 0.0,
+           py::arg("wavelengths") = py::none(),
            "The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter [deg],\n"
-           "limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.")
+           "limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.\n"
+           "With wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.\n"
+           "refracta.spectrum.PhysicalSky(...).sun_radiance(wavelengths): the sun through the air's extinction).")
       .def("set_sky",
            [](RenderScene& s, const py::object& horizon, const py::object& zenith, std::optional<std::string> environment,
               double scale) {

@@ -153,7 +153,11 @@ double Color::evaluate(double lambda_nm) const {
 }
 
 Spectrum Color::sample(const SampledWavelengths& lambda) const {
-  if (!lambda.spectral) return Spectrum(rgb_.x(), rgb_.y(), rgb_.z(), 0.0);
+  if (!lambda.spectral) {
+    // A tabulated spectrum outside the sRGB gamut, clipped: negative light would subtract.
+    const Vec3d rgb = table_ ? Vec3d(rgb_.cwiseMax(0.0)) : rgb_;
+    return Spectrum(rgb.x(), rgb.y(), rgb.z(), 0.0);
+  }
   Spectrum s;
   for (int i = 0; i < kSpectrumSamples; ++i) s[i] = evaluate(lambda.lambda[i]);
   return s;

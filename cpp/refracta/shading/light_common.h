@@ -47,10 +47,12 @@ inline Vec3d check_rgb(const Vec3d& rgb, const char* what) {
   return rgb;
 }
 
-// A Color a light emits: an illuminant (RGB x D65 in spectral rendering) with a valid RGB.
+// A Color a light emits: an illuminant (RGB x D65 in spectral rendering) with a valid RGB. A
+// tabulated spectrum (checked >= 0 when made) may lie outside the sRGB gamut -- a low sun's
+// extinguished light has negative blue -- and RGB rendering clips it (Color::sample).
 inline const Color& check_emission(const Color& c, const char* what) {
   if (c.kind() != Color::Kind::kIlluminant) throw_invalid(what, " must be an illuminant Color (Color::illuminant, blackbody or a tabulated illuminant)");
-  check_rgb(c.rgb(), what);
+  if (!c.is_tabulated()) check_rgb(c.rgb(), what);
   return c;
 }
 

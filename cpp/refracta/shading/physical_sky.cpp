@@ -416,7 +416,8 @@ double PhysicalSkyLight::pdf_li(const LightSampleContext& /*ctx*/, const Vec3d& 
 
 Spectrum PhysicalSkyLight::Le(const Vec3d& dir, const SampledWavelengths& lambda) const {
   if (!lambda.spectral) {
-    const Vec3d c = sky_->rgb_radiance(dir);
+    // Clipped to the sRGB gamut, as Color::sample: a low sun's reddened sky has negative blue.
+    const Vec3d c = sky_->rgb_radiance(dir).cwiseMax(0.0);
     return Spectrum(c.x(), c.y(), c.z(), 0.0);
   }
   Spectrum s;
