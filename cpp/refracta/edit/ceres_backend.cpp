@@ -133,6 +133,9 @@ BackendResult solve_with_ceres(const EditProblem& problem, const std::vector<dou
   options.parameter_tolerance = settings.parameter_tolerance;
   options.gradient_tolerance = settings.gradient_tolerance;
   if (settings.max_time > 0.0) options.max_solver_time_in_seconds = settings.max_time;
+  // No projected line search after each step inside the unit box: it costs a Jacobian
+  // evaluation per iteration (half the solve); steps are projected onto the box all the same.
+  options.max_num_line_search_step_size_iterations = 0;
   options.num_threads = 1;  // the pairs run in parallel in PairBatch
   options.logging_type = ceres::SILENT;
   options.minimizer_progress_to_stdout = false;
