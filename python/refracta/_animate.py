@@ -178,13 +178,21 @@ def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: Union[
     if noise is not None:
         if not isinstance(noise, dict) or "time" in noise:
             raise ValueError(f"animate: noise must be a dict of geometric_noise keywords, without time (got {noise!r})")
-        geometric_noise_map(1, 1, **{k: v for k, v in noise.items()})  # checks the keywords before any work
+        unknown = sorted(set(noise) - {"rms", "correlation_pixels", "seed", "speed"})
+        if unknown:
+            raise ValueError(f"animate: noise takes rms, correlation_pixels, seed and speed (geometric_noise's "
+                             f"keywords), not {', '.join(map(repr, unknown))}")
+        geometric_noise_map(1, 1, **noise)  # checks the values before any work
     if turbulence is not None:
         with_turbulence(field, turbulence)  # checks the field before any work
     fps = _frame_rate(times, fps)
     if path is not None:
         path = os.fspath(path)
         _writer_for(path)  # an unknown format or a missing package fails before rendering
+        folder = os.path.dirname(os.path.abspath(path))
+        if "{" not in path and not os.path.isdir(folder):  # ... and so does a folder that is not there
+            # (frame files make theirs)
+            raise FileNotFoundError(f"animate: the folder of {path!r} does not exist ({folder})")
     settings = render_options(**options)
     outcomes = map_ordered(_render_frame, [(float(t),) for t in times], executor, progress, "rendering frames",
                            shared=(scene, camera, field, settings, turbulence, noise))

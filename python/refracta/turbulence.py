@@ -153,6 +153,14 @@ def _physical_memory() -> float:
         return 0.0
 
 
+
+def _readable(size: float) -> str:
+    """A byte count in the largest unit that keeps it >= 1 (kB, MB, GB: powers of 1000)."""
+    for unit, scale in (("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if size >= scale:
+            return f"{size / scale:.1f} {unit}"
+    return f"{size:.0f} bytes"
+
 class Turbulence:
     """A frozen-flow, periodic random refractive-index pattern with the von Karman spectrum.
 
@@ -180,8 +188,8 @@ class Turbulence:
     - depth [m] > 0 or None: the height envelope E(h) = e^(-h/depth) above the ground (so that the
       turbulence lives in the hot layer; rays above depth * ln(1e3), where E is 1e-3, are served as calm air), or
       None: uniform (every ray is then traced through it). Default 0.1 m, the examples' surface layer.
-    - max_bytes: refuse (ValueError) a grid whose FFT work arrays would need more (default: half
-      this machine's memory).
+    - max_bytes > 0: refuse (ValueError) a grid whose FFT work arrays would need more (default:
+      half this machine's memory; math.inf: no limit).
 
     The pattern: white noise filtered by sqrt(Phi_n) on the N^3 lattice of wavenumbers 2 pi i /
     (N spacing) (the k = 0 mode removed; the lowest modes carry Phi averaged over their cell), the
@@ -215,10 +223,13 @@ class Turbulence:
             raise ValueError(f"Turbulence: yaw must be finite (got {yaw!r})")
         self.time = 0.0
         needed = self.memory_needed(self.cells)
+        if max_bytes is not None and not float(max_bytes) > 0.0:  # NaN too
+            raise ValueError(f"Turbulence: max_bytes must be > 0 (math.inf: no limit; got {max_bytes!r})")
+        # Half of this machine by default (no limit where its memory cannot be read).
         limit = _physical_memory() / 2 if max_bytes is None else float(max_bytes)
         if limit > 0.0 and needed > limit:
-            raise ValueError(f"Turbulence: a {self.cells}^3 grid needs about {needed:.0f} bytes ({needed / 1e9:.1f} GB) "
-                             f"for its FFT work arrays, more than the limit of {limit:.0f} bytes ({limit / 1e9:.1f} GB"
+            raise ValueError(f"Turbulence: a {self.cells}^3 grid needs about {needed:.0f} bytes ({_readable(needed)}) "
+                             f"for its FFT work arrays, more than the limit of {limit:.0f} bytes ({_readable(limit)}"
                              f"{', half of this machine' if max_bytes is None else ''}); use fewer cells or "
                              f"raise max_bytes")
         start = _time.perf_counter()

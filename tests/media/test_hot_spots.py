@@ -35,6 +35,19 @@ def test_spot_parameters_are_named_and_read_back():
     assert refracta.PhysicalAtmosphere(surface_dt=10.0).height_only
 
 
+@pytest.mark.parametrize("model", [refracta.PhysicalAtmosphere, refracta.LogisticProfile])
+def test_a_spot_search_box_follows_the_spot_however_the_field_was_made(model):
+    # The bounds are centred on the spot (moves of 20 radii, radii 20-fold, dt down to a cold
+    # spot's): a field from with_params has the bounds of one made with those values.
+    made = model(hot_spots=[refracta.HotSpot(60.0, 5.0, 2.0, -0.5, footprint="compact")])
+    moved = model(hot_spots=[refracta.HotSpot(30.0, 0.0, 10.0, 1.0, footprint="compact")]).with_params(
+        hot_spot0_x=60.0, hot_spot0_z=5.0, hot_spot0_radius=2.0, hot_spot0_dt=-0.5)
+    assert moved.params == made.params
+    assert moved.bounds == made.bounds
+    assert moved.bounds["hot_spot0_radius"] == (0.1, 40.0) and moved.bounds["hot_spot0_dt"][0] <= -0.5
+    assert pickle.loads(pickle.dumps(moved)).bounds == made.bounds
+
+
 def test_temperature_excess_follows_the_footprint():
     # n depends on T alone at one height: n(T_column + dt e^(-h/d) F(r)) against the spot-free
     # air at that temperature (a spot-free field whose surface layer carries the same excess).

@@ -271,8 +271,14 @@ def test_a_grid_too_large_for_memory_is_refused_naming_its_size():
     assert needed > 8 * 4096 ** 3
     with pytest.raises(ValueError, match=rf"a 4096\^3 grid needs about {needed:.0f} bytes .* more than the limit"):
         refracta.Turbulence(cells=4096)
-    with pytest.raises(ValueError, match=r"a 64\^3 grid needs about \d+ bytes .* limit of 1000000 bytes"):
+    with pytest.raises(ValueError, match=r"a 64\^3 grid needs about \d+ bytes \(\d+\.\d MB\) .* limit of 1000000 bytes \(1.0 MB\)"):
         refracta.Turbulence(cells=64, max_bytes=1e6)
+
+
+@pytest.mark.parametrize("max_bytes", [0.0, -1.0, float("nan")])
+def test_a_limit_that_is_not_positive_is_refused_not_taken_for_none(max_bytes):
+    with pytest.raises(ValueError, match="max_bytes must be > 0"):
+        refracta.Turbulence(cells=16, max_bytes=max_bytes)
 
 
 def test_memory_needed_bounds_the_synthesis():

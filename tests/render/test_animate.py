@@ -189,3 +189,16 @@ def test_animate_bad_input(tmp_path):
         refracta.animate(scene, camera, refracta.LinearSquaredProfile(), [0.0], turbulence=air, progress=False)
     with pytest.raises(ValueError, match="unknown option"):
         refracta.animate(scene, camera, field, [0.0], turbulence=air, progress=False, no_such_option=1)
+    with pytest.raises(ValueError, match="noise takes rms, .* not 'foo'"):
+        refracta.animate(scene, camera, field, [0.0], noise=dict(rms=1e-4, correlation_pixels=3, foo=1), progress=False)
+
+
+def test_a_missing_folder_is_refused_before_any_frame_is_rendered(tmp_path, monkeypatch):
+    scene, camera = checker_wall()
+    rendered = []
+    monkeypatch.setattr(_animate, "_render_frame", lambda *args: rendered.append(args))
+    with pytest.raises(FileNotFoundError, match="does not exist"):
+        refracta.animate(scene, camera, refracta.PhysicalAtmosphere(surface_dt=0.0), [0.0, 0.1],
+                         path=tmp_path / "nowhere" / "x.gif", noise=dict(rms=1e-4, correlation_pixels=2.0),
+                         progress=False)
+    assert rendered == []

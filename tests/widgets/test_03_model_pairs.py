@@ -80,6 +80,17 @@ def test_a_press_on_a_marker_without_a_move_selects_it_and_changes_nothing(make_
     model.pointer_down(152.0, 71.0)
     model.pointer_up(152.0, 71.0)
     assert model.pairs is pairs and len(model._undo) == steps and model.selected == 0
+    assert "Pair 0's destination selected" in model.message and "Shift" in model.message  # the click is not lost unsaid
+
+
+def test_a_shift_click_next_to_a_marker_places_a_point_instead_of_grabbing_it(make_model):
+    model = make_model()
+    model.click(*CAR)
+    model.click(150.0, 70.0)
+    model.click(CAR[0] + 1.0, CAR[1], shift=True)  # on the car, a pixel from pair 0's source marker
+    assert not model.dragging and model.pending_source is not None and len(model.pairs) == 1
+    model.click(151.0, 70.0, shift=True)           # its destination a pixel from pair 0's
+    assert len(model.pairs) == 2 and model.pending_source is None
 
 
 def test_markers_are_grabbed_within_the_radius_in_display_pixels(make_model):

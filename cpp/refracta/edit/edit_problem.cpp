@@ -59,8 +59,9 @@ EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const Pro
     }
     const double x = values_[index];
     if (x < lo || x > hi) {
-      throw_invalid("the start value of '", s.name, "' (", x, " ", s.unit, ") lies outside its bounds [",
-                    lo, ", ", hi, "]; widen them with bounds={'", s.name, "': (lower, upper)}");
+      const std::string unit = s.unit.empty() || s.unit == "1" ? "" : " " + s.unit;  // "1": dimensionless
+      throw_invalid("the start value of '", s.name, "' (", x, unit, ") lies outside its bounds [", lo, ", ", hi,
+                    "]; widen them with bounds={'", s.name, "': (lower, upper)}");
     }
     start_.push_back(x);
     lower_.push_back(lo);

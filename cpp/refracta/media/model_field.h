@@ -11,6 +11,8 @@
 //   static Config height_only_config(const Config&);   the model without them: its parameters are
 //                                                       the first ones of the full model's
 //   std::vector<LocalRegion> local_regions() const;     where the two differ
+// and, if its fixed data follows its values (hot spots' search boxes are centred on the spots):
+//   static Config config_at(const Config&, const std::vector<double>& values);
 #pragma once
 
 #include "refracta/core/error.h"
@@ -19,6 +21,7 @@
 #include <memory>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace refracta {
 
@@ -33,6 +36,13 @@ template <class M, class = void>
 struct HasLocalFeatures : std::false_type {};
 template <class M>
 struct HasLocalFeatures<M, std::void_t<decltype(std::declval<const M&>().local_regions())>> : std::true_type {};
+// Whether a model declares static Config config_at(const Config&, const std::vector<double>&).
+template <class M, class = void>
+struct HasConfigAt : std::false_type {};
+template <class M>
+struct HasConfigAt<M, std::void_t<decltype(M::config_at(std::declval<const typename M::Config&>(),
+                                                        std::declval<const std::vector<double>&>()))>>
+    : std::true_type {};
 }  // namespace detail
 
 template <template <class> class Model>
@@ -42,7 +52,7 @@ class ModelField : public IndexField {
   using ModelType = Model<double>;
 
   ModelField(Config config, std::vector<double> values)
-      : config_(std::move(config)),
+      : config_(config_at(std::move(config), values)),
         specs_(Model<double>::param_specs(config_)),
         values_(checked(specs_, config_, std::move(values))),
         model_(config_, values_) {}
@@ -97,6 +107,14 @@ class ModelField : public IndexField {
   std::shared_ptr<const IndexField> make_with(const std::vector<double>& values) const { return make(config_, values); }
 
  private:
+  // The config as if the field had been made with these values, so that its bounds are the same
+  // whether it came from a constructor or from with_param_values.
+  static Config config_at(Config config, const std::vector<double>& values) {
+    if constexpr (detail::HasConfigAt<Model<double>>::value) {
+      if (values.size() == param_specs_for(config).size()) return Model<double>::config_at(config, values);
+    }
+    return config;
+  }
   static std::vector<double> checked(const std::vector<ParamSpec>& specs, const Config& config,
                                      std::vector<double> values) {
     if (values.size() != specs.size()) {

@@ -45,6 +45,11 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
     return specs;
   }
   static constexpr bool kSpotsHaveDepth = true;  // whether a spot's depth is a parameter
+  // The spots' search boxes are centred on their current values (hot_spot_param_specs).
+  static Config config_at(Config config, const std::vector<double>& values) {
+    config.hot_spots = hot_spots_from(config.hot_spots, values, kCount, kSpotsHaveDepth);
+    return config;
+  }
   static Config height_only_config(const Config&) { return {}; }
 
   static std::vector<ParamSpec> base_param_specs() {

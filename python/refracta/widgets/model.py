@@ -463,7 +463,8 @@ class EditorModel:
 
     def pointer_down(self, u: float, v: float, button: int = 0, shift: bool = False, scale: float = 1.0) -> None:
         """A press at pixel (u, v): button 0 primary, 2 secondary; scale: display pixels per image
-        pixel (markers are grabbed within GRAB_RADIUS display pixels)."""
+        pixel (markers are grabbed within GRAB_RADIUS display pixels; with shift in points mode
+        none is: the press places a point however close to a marker)."""
         u, v = _finite(u, "u"), _finite(v, "v")
         if self.mode == "camera":
             kind = "pan" if (button == 2 or shift) else "orbit"
@@ -475,12 +476,14 @@ class EditorModel:
                 self._notify("pairs")
                 self.say("Source dropped.")
             return
-        marker = self._nearest_marker(u, v, scale)
+        marker = None if shift else self._nearest_marker(u, v, scale)
         if marker is not None:
             self._drag = {"kind": marker["kind"], "pair": marker["pair"], "start": (u, v),
                           "marker": (marker["u"], marker["v"]),  # moves by the pointer's offset, no jump
                           "before": self._snapshot(f"move {marker['kind']} of pair {marker['pair']}"), "moved": False}
             self.select(marker["pair"])
+            self.say(f"Pair {marker['pair']}'s {marker['kind']} selected: drag it to move it. To place a point "
+                     "this close to a marker, hold Shift.")
             return
         if self.pending_source is None:
             point = self.camera.pick(self.scene, u, v)

@@ -42,7 +42,8 @@ class MirageEditor(w.VBox):
     Shows the render through `field` (a quarter-resolution preview first, then full resolution,
     rendered in the background) and, on demand, the straight view beside it. Mode *Points*: click
     a scene object (the source: Camera.pick, without atmosphere), then where its image should
-    appear (the destination); drag either marker to move it; the Pairs tab lists the pairs with
+    appear (the destination); drag either marker to move it (shift-click places a point even next
+    to a marker); the Pairs tab lists the pairs with
     their weight and margin. Mode *Camera*: drag to orbit, shift- or right-drag to pan, wheel to
     dolly; the Camera tab has the numbers. *Solve* runs refracta.edit.solve in the background
     (progress, Cancel); the Result tab shows the misses, the changed parameters and each pair's
@@ -186,7 +187,7 @@ class MirageEditor(w.VBox):
         self._images = w.HBox([w.VBox([w.HTML("<b>through the atmosphere</b>"), self._canvas]), self._straight_box],
                               layout=w.Layout(flex_flow="row wrap"))
         self._mode = w.ToggleButtons(options=[("Points", "points"), ("Camera", "camera")], value=model.mode,
-                                     tooltips=["click a source, then its destination; drag markers",
+                                     tooltips=["click a source, then its destination; drag markers; shift-click: a point by a marker",
                                                "drag: orbit; shift/right drag: pan; wheel: dolly"],
                                      style={"button_width": "70px"})
         self._mode.observe(lambda change: self._guard(model.set_mode, change["new"]), names="value")
