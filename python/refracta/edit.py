@@ -292,8 +292,9 @@ def solve(
             Free parameters on which no pair depends are held fixed and listed in
             result.insensitive.
         backend: 'ceres' or 'nlopt:<ALGORITHM>' (see NLOPT_ALGORITHMS; any nlopt name works).
-        strategy: 'auto' (default) -- a short local solve from `field` (quick_iterations); if it
-            does not meet every pair, a global stage (scans along each free parameter's axis and
+        strategy: 'auto' (default) -- a short local solve from `field` (quick_iterations), with
+            ceres continued while its cost still falls (LM closing in); if it does not meet
+            every pair, a global stage (scans along each free parameter's axis and
             quasi-random points over the bounds and near the start, costs in parallel on all
             cores) and local solves from its best points (at most local_starts) until one meets
             every pair; result.stages says what ran. 'local' -- the back-end from `field` only.

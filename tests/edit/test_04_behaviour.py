@@ -143,3 +143,20 @@ def test_an_error_raised_by_the_progress_callback_stops_the_solve():
     with pytest.raises(Stop):
         solve(refracta.LogisticProfile(), (0.0, 1.5, 0.0), [PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))],
               free="k_s", progress=progress)
+
+
+def test_auto_lets_a_solve_still_closing_in_finish_instead_of_going_global():
+    # LM needs 18 iterations here (benchmarks/bench_edit.py's 4-pair logistic case): its cost still
+    # falls steeply after the 15 quick ones, so 'auto' goes on from LM's trust region -- the same
+    # iterations as the plain local solve, and no global stage.
+    truth = refracta.LogisticProfile(k_s=11.0, h_ciso=1.2, n_inv=0.3, n_hot=0.2)
+    start = refracta.LogisticProfile(k_s=10.0, h_ciso=1.1, n_inv=0.25, n_hot=0.15)
+    eye = np.array([0.0, 1.5, 0.0])
+    pairs = pairs_from(truth, eye, np.linspace(-0.6, 0.8, 4), np.linspace(40.0, 60.0, 4))
+    common = dict(free=["k_s", "h_ciso", "n_inv", "n_hot"], target_cost=1e-12)
+    local = solve(start, eye, pairs, strategy="local", **common)
+    auto = solve(start, eye, pairs, **common)
+    assert local.iterations > 15 and local.success
+    assert auto.success and not any(stage.startswith("global") for stage in auto.stages), auto.stages
+    assert "continued (the cost still fell)" in auto.stages[1]
+    assert auto.iterations == local.iterations

@@ -150,6 +150,7 @@ BackendResult solve_with_ceres(const EditProblem& problem, const std::vector<dou
   if (control.cancel.load()) throw Cancelled();
 
   out.iterations = int(summary.iterations.size()) - 1;  // iteration 0 is the start
+  if (!summary.iterations.empty()) out.trust_region = summary.iterations.back().trust_region_radius;
   out.evaluations = summary.num_residual_evaluations;
   out.converged = summary.termination_type == ceres::CONVERGENCE ||
                   summary.termination_type == ceres::USER_SUCCESS;

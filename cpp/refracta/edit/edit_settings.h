@@ -13,13 +13,15 @@ namespace refracta {
 struct SolveSettings {
   // "ceres" (Levenberg-Marquardt) or "nlopt:<ALGORITHM>" with any nlopt algorithm name.
   std::string backend = "ceres";
-  // "auto": a short local solve from the start; if it does not meet every pair, the global stage
+  // "auto": a short local solve from the start (ceres: continued while its cost still falls,
+  // solve.cpp's kStillFalling); if it does not meet every pair, the global stage
   // (global_stage.h: axis scans through the start and quasi-random points of the free box, costs
   // in parallel) and local solves from its best points until one meets every pair. "local": the
   // back-end from the start only (the behaviour before strategies).
   std::string strategy = "auto";
-  // auto: iterations of the first local solve. Measured on benchmarks/bench_edit.py: every case
-  // that LM solves from its start at all is met within 15 iterations.
+  // auto: iterations of the first local solve (and of each continuation). Measured on
+  // benchmarks/bench_edit.py: LM meets, or is still closing in on, every case it solves from its
+  // start at all within 15 iterations.
   int quick_iterations = 15;
   // auto: points per free parameter of the global stage (scan points on its axis; as many again
   // quasi-random points, half over the box, half near the start).
@@ -78,6 +80,7 @@ struct BackendResult {
   int iterations = 0;
   int64_t evaluations = 0;
   bool converged = false;
+  double trust_region = 0.0;         // ceres: the radius at the end (a continued solve starts there); 0: none
   std::string message;
   std::string report;                // ceres: Solver::Summary::FullReport(); nlopt: the message
 };
