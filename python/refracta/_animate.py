@@ -17,6 +17,7 @@ from typing import Callable, Optional, Sequence, Union
 import numpy as np
 
 from refracta import _core
+from refracta._checks import finite_pair, is_seed
 from refracta._render import render_options
 from refracta._sweep import map_ordered
 
@@ -84,18 +85,16 @@ def geometric_noise_map(height: int, width: int, rms: float, correlation_pixels:
         problems.append(f"rms must be in [0, 0.1) rad (got {rms!r})")
     if not (isinstance(correlation_pixels, (int, float, np.floating)) and 0.0 < correlation_pixels < 1e4):
         problems.append(f"correlation_pixels must be in (0, 1e4) (got {correlation_pixels!r})")
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+    if not is_seed(seed):
         problems.append(f"seed must be a whole number >= 0 (got {seed!r})")
     if not (isinstance(time, (int, float, np.floating)) and math.isfinite(time)):
         problems.append(f"time must be a finite number of seconds (got {time!r})")
-    try:
-        vx, vy = (float(v) for v in speed)
-        if not (math.isfinite(vx) and math.isfinite(vy)):
-            raise ValueError
-    except (TypeError, ValueError):
+    velocity = finite_pair(speed)
+    if velocity is None:
         problems.append(f"speed must be (right, down) [pixels/s], finite (got {speed!r})")
     if problems:
         raise ValueError("geometric_noise: " + "; ".join(problems))
+    vx, vy = velocity
     pad = int(math.ceil(4.0 * correlation_pixels))
     ny, nx = _fft_size(height + pad), _fft_size(width + pad)
     rng = np.random.default_rng(seed)

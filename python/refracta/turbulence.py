@@ -30,6 +30,7 @@ from typing import Optional, Sequence, Tuple
 import numpy as np
 
 from refracta import _core
+from refracta._checks import finite_pair, is_seed
 
 __all__ = ["Turbulence", "SPECTRUM_CONSTANT", "INERTIAL_TOLERANCE", "von_karman_spectrum", "tilt_variance",
            "plane_wave_tilt_variance", "bessel_j1"]
@@ -519,13 +520,9 @@ def _validate(cn2, outer_scale, inner_scale, seed, wind, spacing, cells, size, d
         problems.append(f"outer_scale must be > 0 m or inf (got {outer_scale!r})")
     if not number(inner_scale) > 0 or math.isinf(number(inner_scale)):
         problems.append(f"inner_scale must be > 0 m and finite (got {inner_scale!r})")
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+    if not is_seed(seed):
         problems.append(f"seed must be a whole number >= 0 (got {seed!r})")
-    try:
-        u, w = (number(v) for v in wind)
-        if not (math.isfinite(u) and math.isfinite(w)):
-            raise ValueError
-    except (TypeError, ValueError):
+    if finite_pair(wind) is None:
         problems.append(f"wind must be (u, w) [m/s] along x and z, finite (got {wind!r})")
     if not number(spacing) > 0 or math.isinf(number(spacing)):
         problems.append(f"spacing must be > 0 m and finite (got {spacing!r})")

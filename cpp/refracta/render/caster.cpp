@@ -16,6 +16,28 @@ namespace refracta {
 
 namespace {
 
+// The eye's table path for a direction's elevation, turned about the vertical through the eye to
+// the direction's azimuth (a height-only field's paths differ by that turn alone).
+struct TurnedTablePath {
+  TurnedTablePath(const ElevationTable& table, const Vec3d& eye, const Vec3d& dir)
+      : plane(table.lazy_path(std::asin(std::clamp(dir.y(), -1.0, 1.0)))), eye(eye) {
+    const double horizontal = std::hypot(dir.x(), dir.z());
+    cx = horizontal > 0 ? dir.x() / horizontal : 1.0;
+    cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
+  }
+  RayNode<double> node(size_t k) const {
+    RayNode<double> out = plane.node(k);
+    const double r = out.x.x(), vr = out.v.x();
+    out.x = Vec3d(eye.x() + r * cx, out.x.y(), eye.z() + r * cz);
+    out.v = Vec3d(vr * cx, out.v.y(), vr * cz);
+    return out;
+  }
+
+  const ElevationTable::LazyPath plane;
+  const Vec3d eye;
+  double cx = 1.0, cz = 0.0;
+};
+
 constexpr double kFar = 1e7;  // [m] straight rays end here (Embree's float range, see embree_scene.cpp)
 
 // Point u in [lo, hi] of the segment on the plane through `on` with normal n (Newton).
@@ -169,6 +191,8 @@ PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length, d
   return end;
 }
 
+double Caster::step_in_regions() const { return std::min(options_.chord, 0.5 * smallest_scale(regions_)); }
+
 bool Caster::inside_region(const Vec3d& p) const {
   return std::any_of(regions_.begin(), regions_.end(), [&](const LocalRegion& r) { return r.contains(p); });
 }
@@ -220,7 +244,7 @@ PathEnd Caster::cast_in_regions(const Vec3d& origin, const Vec3d& dir, double ma
   end.direction = dir;
   TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
   trace_options.method = TraceMethod::kRk45;
-  trace_options.step = std::min(options_.chord, 0.5 * smallest_scale(regions_));
+  trace_options.step = step_in_regions();
   // A pixel may stray sagitta_pixels of its footprint; a leg that hands over when it leaves the
   // regions is held to the footprint where it starts (the path after it is the next leg's).
   const double per_metre = options_.sagitta_pixels * spread;
@@ -404,7 +428,7 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   const IndexField& air = legs_ ? *layered_ : *field_;  // legs outside the regions: the layered part
   TraceOptions trace_options = curved_trace_options(scene_, air, origin, options_, max_length);
   // Through local features rk45 steps at most half their scale (its error estimate cannot step over one).
-  if (!legs_ && !regions_.empty()) trace_options.step = std::min(options_.chord, 0.5 * smallest_scale(regions_));
+  if (!legs_ && !regions_.empty()) trace_options.step = step_in_regions();
   // A pixel's ray: an error of sagitta_pixels of its footprint (spread * s) is invisible. Any
   // ray: the chords already stray up to the sagitta from the path, so the integrator need not
   // be closer to it than that.
@@ -457,27 +481,17 @@ std::optional<Vec3d> Caster::meets_plane(const Vec3d& origin, const Vec3d& dir, 
     return Vec3d(origin + t * dir);
   }
   if (table_ && origin == eye_ && !legs_) {
-    const double e = std::asin(std::clamp(dir.y(), -1.0, 1.0));
-    const double horizontal = std::hypot(dir.x(), dir.z());
-    const double cx = horizontal > 0 ? dir.x() / horizontal : 1.0, cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
-    const ElevationTable::LazyPath plane = table_->lazy_path(e);
-    auto turned = [&](size_t k) {
-      RayNode<double> out = plane.node(k);
-      const double r = out.x.x(), vr = out.v.x();
-      out.x = Vec3d(eye_.x() + r * cx, out.x.y(), eye_.z() + r * cz);
-      out.v = Vec3d(vr * cx, out.v.y(), vr * cz);
-      return out;
-    };
-    RayNode<double> a = turned(0);
-    for (size_t k = 0; k + 1 < plane.size() && a.s <= s_hi; ++k) {
-      const RayNode<double> b = turned(k + 1);
+    const TurnedTablePath path(*table_, eye_, dir);
+    RayNode<double> a = path.node(0);
+    for (size_t k = 0; k + 1 < path.plane.size() && a.s <= s_hi; ++k) {
+      const RayNode<double> b = path.node(k + 1);
       consider(a, b);
       a = b;
     }
     return best;
   }
   TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, s_hi);
-  if (!regions_.empty()) trace_options.step = std::min(options_.chord, 0.5 * smallest_scale(regions_));
+  if (!regions_.empty()) trace_options.step = step_in_regions();
   trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
     consider(a, b);
     return a.s <= s_hi;
@@ -503,34 +517,25 @@ std::optional<std::array<Vec3d, 2>> Caster::footprint(const Vec3d& origin, const
 PathEnd Caster::cast_table(const Vec3d& dir) const {
   PathEnd end;
   end.direction = dir;
-  const double e = std::asin(std::clamp(dir.y(), -1.0, 1.0));
-  const double horizontal = std::hypot(dir.x(), dir.z());
-  const double cx = horizontal > 0 ? dir.x() / horizontal : 1.0, cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
-  const ElevationTable::LazyPath plane = table_->lazy_path(e);
-  auto turned = [&](size_t k) {
-    RayNode<double> out = plane.node(k);
-    const double r = out.x.x(), vr = out.v.x();
-    out.x = Vec3d(eye_.x() + r * cx, out.x.y(), eye_.z() + r * cz);
-    out.v = Vec3d(vr * cx, out.v.y(), vr * cz);
-    return out;
-  };
+  const TurnedTablePath path(*table_, eye_, dir);
+  const ElevationTable::LazyPath& plane = path.plane;
   const size_t entry = plane.template_entry();
   if (entry == ElevationTable::LazyPath::kExact) {
-    RayNode<double> a = turned(0);
+    RayNode<double> a = path.node(0);
     for (size_t k = 0; k + 1 < plane.size(); ++k) {
       // Nothing left to hit once the rest of the path stays above every object.
       if (plane.lowest_from(k) > ceiling_) break;
-      const RayNode<double> b = turned(k + 1);
+      const RayNode<double> b = path.node(k + 1);
       if (segment_blocked(a, b, &end)) return end;
       end.direction = b.v.normalized();
       end.length = b.s;
       a = b;
     }
   } else {
-    RayNode<double> a = turned(0);
+    RayNode<double> a = path.node(0);
     for (const PlannedChord& chord : plans_[entry]) {
       if (plane.lowest_from(chord.first) > ceiling_) break;
-      const RayNode<double> b = turned(chord.last);
+      const RayNode<double> b = path.node(chord.last);
       if (chord.pieces > 1) {
         if (pieces_blocked(PathSegment<double>(a, b), int(chord.pieces), &end)) return end;
       } else if (const Vec3d d = b.x - a.x; d.norm() > 0.0) {
@@ -543,7 +548,7 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
           // under the chord's hit need not be that one), else the one under the chord's hit.
           const double s_hit = a.s + (b.s - a.s) * std::min(hit->t / len, 1.0);
           auto side = [&](const RayNode<double>& node) { return hit->normal.dot(node.x - hit->point); };
-          RayNode<double> from = a, to = chord.last == chord.first + 1 ? b : turned(chord.first + 1);
+          RayNode<double> from = a, to = chord.last == chord.first + 1 ? b : path.node(chord.first + 1);
           RayNode<double> under = from, under_to = to;
           bool crossing = false;
           for (size_t k = chord.first;; ++k) {
@@ -554,7 +559,7 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
             }
             if (k + 2 > chord.last) break;
             from = to;
-            to = k + 2 == chord.last ? b : turned(k + 2);
+            to = k + 2 == chord.last ? b : path.node(k + 2);
           }
           if (!crossing) from = under, to = under_to;
           const PathSegment<double> seg(from, to);
@@ -572,7 +577,7 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
   }
   // The sky is seen along the path's last direction.
   if (plane.size() > 1) {
-    const RayNode<double> last = turned(plane.size() - 1);
+    const RayNode<double> last = path.node(plane.size() - 1);
     end.direction = last.v.normalized();
     end.end_point = last.x;
   }

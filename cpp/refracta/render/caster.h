@@ -114,6 +114,9 @@ class Caster {
   PathEnd cast_in_regions(const Vec3d& origin, const Vec3d& dir, double max_length, double spread, double s0,
                           bool exits) const;
   bool inside_region(const Vec3d& p) const;
+  // rk45's largest step through the regions: half their smallest scale (its error estimate cannot
+  // step over a feature), at most a chord.
+  double step_in_regions() const;
   // The chord p -> p + len d against the scene and, for fields with local regions, against the
   // regions' borders: fills end->hit, or end->handoff with `from` (the chord's start state) when a
   // region comes first; true when either stopped the path.
