@@ -76,7 +76,8 @@ class PointPair:
             for a pixel destination (converted at the source's distance). The cost is a dead zone,
             zero inside the margin and 1/2 weight (miss - margin)^2 outside, so less important
             points get larger margins; a pair is met once its miss is within its margin (plus
-            solve's accept_angle times its range).
+            solve's accept_angle times its range, or for a pixel destination solve's
+            pixel_tolerance, a tenth of the pixel's footprint at the source, if that is larger).
     """
 
     destination: Tuple[float, ...]
@@ -105,8 +106,13 @@ class PointPair:
         return len(self.destination) == 2
 
 
-def _pair_rays(eye_or_camera, pairs: Sequence[PointPair]):
-    """(pairs, eye, camera or None, origins, directions, sources, weights, margins [m]) of the pairs."""
+def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: Optional[float] = None):
+    """(pairs, eye, camera or None, origins, directions, sources, weights, margins [m], tolerances [m])
+    of the pairs.
+
+    pixel_tolerance [pixels]: a pixel destination's pair is met within this many pixels' footprint
+    at its source (default: the C++ default, _SolveSettings().pixel_tolerance); 3D destinations: 0.
+    """
     if isinstance(pairs, PointPair):
         pairs = [pairs]
     pairs = list(pairs)
@@ -132,10 +138,14 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair]):
     origins = np.tile(eye, (len(pairs), 1))
     sources = np.array([p.source for p in pairs])
     weights = np.array([p.weight for p in pairs])
-    # A pixel destination's margin is in pixels: the angle they subtend at the source's distance.
+    # A pixel destination's margin and tolerance are in pixels: their footprint at the source's
+    # distance (the angle they subtend times the range).
+    if pixel_tolerance is None:
+        pixel_tolerance = _core._SolveSettings().pixel_tolerance
     ranges = np.linalg.norm(sources - eye, axis=1)
-    margins = np.array([p.margin * (camera.pixel_angle * r if p.is_pixel else 1.0) for p, r in zip(pairs, ranges)])
-    return pairs, eye, camera, origins, np.array(directions), sources, weights, margins
+    footprints = np.array([camera.pixel_angle * r if p.is_pixel else 0.0 for p, r in zip(pairs, ranges)])
+    margins = np.array([p.margin * (f if p.is_pixel else 1.0) for p, f in zip(pairs, footprints)])
+    return pairs, eye, camera, origins, np.array(directions), sources, weights, margins, pixel_tolerance * footprints
 
 
 def _pair_options(integrator: str, tol: float, step: Optional[float], ground: Optional[float],
@@ -152,11 +162,16 @@ class EditResult:
     field: the solved field; start: the field it started from. cost / initial_cost: 1/2 sum of
     weight * (miss - margin)^2 over the pairs outside their margins [m^2]; distances: each pair's
     miss [m] after solving (initial_distances before); margins: each pair's margin [m] (pixel
-    margins converted at the source's distance); met: per pair, whether its miss is within its
-    margin plus accept_angle times its range. success: every pair met (strategy 'local': and the
+    margins converted at the source's distance); tolerances: each pair's met tolerance beyond its
+    margin [m] (pixel destinations: solve's pixel_tolerance of the pixel's footprint at the source;
+    3D destinations 0); met: per pair, whether its miss is within its margin plus the larger of
+    its tolerance and accept_angle times its range. success: every pair met (strategy 'local': and the
     back-end converged). strategy: 'auto' or 'local'; stages: what the strategy did, one line per
     stage (local solves, the global stage's design); solver_report: the back-end's own report of
-    the run that gave the result (Ceres' full summary). history: cost per iteration (ceres) or best
+    the run that gave the result (Ceres' full summary). stopped_by: the limit that cut the solve
+    short ('iteration limit', 'evaluation limit', 'time limit'; '' if none). condition, rank: of the
+    Jacobian in the free parameters' unit box at a result meeting every pair (else 0, 0); above
+    1e6 the message says the solution is not unique. history: cost per iteration (ceres) or best
     cost per evaluation (nlopt) of that run. free: the optimised parameters; insensitive: requested
     free parameters no pair depends on (held fixed). iterations, evaluations (cost evaluations,
     the global stage's design points included), pair_traces (traced pairs, derivative passes
@@ -187,17 +202,21 @@ class EditResult:
     starts: int = 1
     trace_options: Dict[str, object] = _dataclass_field(default_factory=dict)
     margins: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0))
+    tolerances: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0))
     met: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0, dtype=bool))
     strategy: str = "local"
     stages: List[str] = _dataclass_field(default_factory=list)
     solver_report: str = ""
+    stopped_by: str = ""
+    condition: float = 0.0
+    rank: int = 0
 
     def paths(self, which: str = "solved") -> List[_core.RayPath]:
         """Each pair's light path through the solved field ('solved') or the start ('start')."""
         if which not in ("solved", "start"):
             raise ValueError(f"which must be 'solved' or 'start' (got {which!r})")
         field = self.field if which == "solved" else self.start
-        _, _, _, origins, directions, sources, _, _ = _pair_rays(self.camera if self.camera is not None else self.eye, self.pairs)
+        _, _, _, origins, directions, sources, _, _, _ = _pair_rays(self.camera if self.camera is not None else self.eye, self.pairs)
         options = self.trace_options
         out = []
         for origin, direction, source in zip(origins, directions, sources):
@@ -235,6 +254,8 @@ class EditResult:
         if self.stages:
             lines.append(f"  strategy {self.strategy}:")
             lines += ["    " + stage for stage in self.stages]
+        if self.rank:
+            lines.append(f"  Jacobian at the result: rank {self.rank} of {len(self.free)}, condition {self.condition:.3g}")
         lines.append("  " + self.message)
         return "\n".join(lines)
 
@@ -267,10 +288,11 @@ def solve(
     loss_scale: float = 1.0,
     max_iterations: int = 200,
     max_evaluations: int = 3000,
-    max_time: Optional[float] = None,
+    time_limit: Optional[float] = None,
     target_cost: Optional[float] = None,
     trust_region: float = 0.1,
     accept_angle: float = 1e-6,
+    pixel_tolerance: Optional[float] = None,
     function_tolerance: float = 1e-14,
     parameter_tolerance: float = 1e-12,
     gradient_tolerance: float = 1e-16,
@@ -310,17 +332,27 @@ def solve(
         reach: paths are traced to ``reach * |source - eye| + 1`` m (and stop once past the source).
         loss, loss_scale: ceres robust loss ('huber', 'soft_l1', 'cauchy', 'arctan') on each
             pair's squared miss, quadratic below loss_scale [m].
-        max_iterations (ceres), max_evaluations (nlopt), max_time [s], target_cost [m^2] (stop
-            once reached), function/parameter/gradient_tolerance: stopping criteria.
+        max_iterations (LM iterations, ceres), max_evaluations (cost evaluations, each tracing
+            every pair: back-ends and the global stage's design points), time_limit [s] (0: none;
+            default 300, the C++ SolveSettings'): limits of the whole solve, shared by its stages
+            and its starts; a trace running at the time limit is interrupted. What stopped the
+            solve is named in result.stages and result.stopped_by. target_cost [m^2] (stop once
+            reached), function/parameter/gradient_tolerance: convergence criteria.
         trust_region: ceres' initial trust-region radius as a fraction of each free parameter's
             bound range (default 0.1: cautious first steps; narrow layers have flat regions a bold
             step lands in).
         accept_angle: a pair is met when its miss is at most its margin plus
             ``accept_angle * |source - eye|`` (accept_angle [rad]).
+        pixel_tolerance: a pair with a pixel destination is met when its miss is within its
+            margin plus this many pixels' footprint at its source (default 0.1 px, the C++
+            SolveSettings::pixel_tolerance), if that exceeds accept_angle times its range. It
+            judges the result only: the cost still pulls every pair onto its source.
         quick_iterations, design_per_param, local_starts: the 'auto' strategy's first local
             solve's iterations, design points per free parameter, local solves from the design
             (defaults: refracta's _core._SolveSettings()).
-        progress: True for a bar on stderr, or a callable progress(done, total).
+        progress: True for a bar on stderr, or a callable progress(done, total): done of total
+            is the largest fraction used of the iteration, evaluation and time limits (and, with
+            several starts, of the starts), reaching total when the solve ends.
 
     Returns:
         EditResult. Not converging, or an image no atmosphere within the bounds can make, is a
@@ -331,7 +363,6 @@ def solve(
             algorithm, bounds not containing the start. refracta.NumericalError: the start field
             cannot trace the pairs. KeyboardInterrupt on Ctrl-C.
     """
-    pairs, eye, camera, origins, directions, sources, weights, margins = _pair_rays(eye_or_camera, pairs)
     if not isinstance(field, _core.IndexField):
         raise ValueError(f"field must be an IndexField (got {type(field).__name__})")
     if isinstance(starts, bool) or int(starts) != starts or starts < 1:
@@ -358,7 +389,8 @@ def solve(
             setattr(settings, name, int(value))
     settings.max_iterations = int(max_iterations)
     settings.max_evaluations = int(max_evaluations)
-    settings.max_time = 0.0 if max_time is None else float(max_time)
+    if time_limit is not None:
+        settings.time_limit = _number(time_limit, "time_limit")
     settings.function_tolerance = function_tolerance
     settings.parameter_tolerance = parameter_tolerance
     settings.gradient_tolerance = gradient_tolerance
@@ -367,32 +399,72 @@ def solve(
     settings.loss = loss
     settings.loss_scale = loss_scale
     settings.accept_angle = accept_angle
+    if pixel_tolerance is not None:
+        settings.pixel_tolerance = _number(pixel_tolerance, "pixel_tolerance")
     settings.validate()
+    pairs, eye, camera, origins, directions, sources, weights, margins, tolerances = _pair_rays(
+        eye_or_camera, pairs, settings.pixel_tolerance)
     bounds = {k: (float(v[0]), float(v[1])) for k, v in (bounds or {}).items()}
     callback = ProgressBar(f"editing ({backend})") if progress is True else (progress or None)
+    # One budget for every start: each gets what the ones before it left (SolveSettings' limits).
+    budget = dict(max_iterations=settings.max_iterations, max_evaluations=settings.max_evaluations,
+                  time_limit=settings.time_limit)
+    began = _time.perf_counter()
 
-    def run(start_field):
-        return _core._solve_edit(start_field, origins, directions, sources, weights, margins, free or [], bounds,
-                                 derivatives, options, settings, callback)
+    def run(start_field, k):
+        def report(done, total):  # start k's progress as its share of the whole
+            callback(k * total + done, starts * total)
+
+        return _core._solve_edit(start_field, origins, directions, sources, weights, margins, tolerances, free or [],
+                                 bounds, derivatives, options, settings, report if callback is not None else None)
+
+    def left():
+        """The budget's first exhausted limit, or None; settings set to what is left."""
+        settings.max_iterations = budget["max_iterations"] - (used_iterations if backend == "ceres" else 0)
+        settings.max_evaluations = budget["max_evaluations"] - total_evaluations
+        if budget["time_limit"] > 0.0:
+            settings.time_limit = budget["time_limit"] - (_time.perf_counter() - began)
+            if settings.time_limit <= 0.0:
+                return "time limit"
+        if settings.max_evaluations < 1:
+            return "evaluation limit"
+        if settings.max_iterations < 1:
+            return "iteration limit"
+        return None
 
     initial = _core._pair_distances(field, origins, directions, sources, options)
-    best = first = run(field)
+    best = first = run(field, 0)
     total_time, total_evaluations, total_traces = best["time"], best["evaluations"], best["pair_traces"]
+    used_iterations = best["iterations"]
+    starts_run, stopped = 1, None
     if starts > 1:
         rng = np.random.default_rng(seed)
         box = field.bounds
         box.update(bounds)
-        for _ in range(starts - 1):
+        for k in range(1, starts):
             trial_start = field.with_params(**{n: float(rng.uniform(*box[n])) for n in best["free"]})
+            stopped = left()
+            if stopped:
+                break
             try:
-                trial = run(trial_start)
+                trial = run(trial_start, k)
             except _core.NumericalError:
                 continue  # this start cannot trace the pairs; try the next
+            starts_run += 1
             total_time += trial["time"]
             total_evaluations += trial["evaluations"]
             total_traces += trial["pair_traces"]
+            used_iterations += trial["iterations"]
+            stopped = trial["stopped_by"] or None
             if (trial["success"], -trial["cost"]) > (best["success"], -best["cost"]):
                 best = trial
+        if callback is not None:
+            callback(starts, starts)  # complete, also when the budget ended the starts early
+    stages = list(best["stages"])
+    if starts > 1:
+        stages.append(f"starts: {starts_run} of {starts} run" + (f"; stopped by the {stopped}" if stopped else ""))
+    elif best["stopped_by"]:
+        stopped = best["stopped_by"]
     names = field.param_names
     solved = field.with_params(**dict(zip(names, (float(v) for v in best["values"]))))
     return EditResult(
@@ -403,8 +475,9 @@ def solve(
         converged=best["converged"], message=best["message"], history=best["history"], free=best["free"],
         insensitive=best["insensitive"], backend=backend, derivatives=best["derivatives"], starts=int(starts),
         trace_options=dict(integrator=integrator, tol=tol, step=step, ground=ground, reach=reach),
-        margins=margins, met=np.asarray(best["met"], dtype=bool), strategy=best["strategy"],
-        stages=list(best["stages"]), solver_report=best["solver_report"],
+        margins=margins, tolerances=tolerances, met=np.asarray(best["met"], dtype=bool), strategy=best["strategy"],
+        stages=stages, solver_report=best["solver_report"], stopped_by=stopped or "",
+        condition=best["condition"], rank=best["rank"],
     )
 
 
@@ -412,7 +485,7 @@ def distances(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair]
               integrator: str = "rk45", tol: float = 1e-9, step: Optional[float] = None,
               ground: Optional[float] = None, reach: float = 1.5) -> np.ndarray:
     """Each pair's miss [m]: how far the path launched toward its destination passes its source."""
-    _, _, _, origins, directions, sources, _, _ = _pair_rays(eye_or_camera, pairs)
+    _, _, _, origins, directions, sources, _, _, _ = _pair_rays(eye_or_camera, pairs)
     return _core._pair_distances(field, origins, directions, sources,
                                  _pair_options(integrator, tol, step, ground, distance, reach))
 
@@ -423,7 +496,7 @@ def jacobian(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair],
              reach: float = 1.5) -> Tuple[np.ndarray, np.ndarray, List[str]]:
     """(residuals (3P,), Jacobian (3P, F), free names) at `field`: the weighted miss vectors an
     edit minimises and their derivatives in the free parameters (for sensitivity studies)."""
-    _, _, _, origins, directions, sources, weights, margins = _pair_rays(eye_or_camera, pairs)
+    _, _, _, origins, directions, sources, weights, margins, _ = _pair_rays(eye_or_camera, pairs)
     free = [free] if isinstance(free, str) else list(free or [])
     return _core._pair_jacobian(field, origins, directions, sources, weights, margins, free, derivatives,
                                 _pair_options(integrator, tol, step, ground, distance, reach))

@@ -12,7 +12,7 @@ namespace {
 
 std::vector<PointPair> make_pairs(const py::object& origins, const py::object& directions,
                                   const py::object& sources, const py::object& weights,
-                                  const py::object& margins = py::none()) {
+                                  const py::object& margins = py::none(), const py::object& tolerances = py::none()) {
   const std::vector<Vec3d> o = to_points(origins, "eye positions");
   const std::vector<Vec3d> d = to_points(directions, "destination directions");
   const std::vector<Vec3d> s = to_points(sources, "sources");
@@ -20,12 +20,15 @@ std::vector<PointPair> make_pairs(const py::object& origins, const py::object& d
       weights.is_none() ? std::vector<double>(o.size(), 1.0) : to_values(weights, "weights");
   const std::vector<double> margin =
       margins.is_none() ? std::vector<double>(o.size(), 0.0) : to_values(margins, "margins");
-  if (o.size() != d.size() || o.size() != s.size() || o.size() != w.size() || o.size() != margin.size()) {
-    throw_invalid("one eye, direction, source, weight and margin per pair (got ", o.size(), ", ", d.size(),
-                  ", ", s.size(), ", ", w.size(), ", ", margin.size(), ")");
+  const std::vector<double> tolerance =
+      tolerances.is_none() ? std::vector<double>(o.size(), 0.0) : to_values(tolerances, "tolerances");
+  if (o.size() != d.size() || o.size() != s.size() || o.size() != w.size() || o.size() != margin.size() ||
+      o.size() != tolerance.size()) {
+    throw_invalid("one eye, direction, source, weight, margin and tolerance per pair (got ", o.size(), ", ",
+                  d.size(), ", ", s.size(), ", ", w.size(), ", ", margin.size(), ", ", tolerance.size(), ")");
   }
   std::vector<PointPair> pairs(o.size());
-  for (size_t i = 0; i < o.size(); ++i) pairs[i] = {o[i], d[i], s[i], w[i], margin[i]};
+  for (size_t i = 0; i < o.size(); ++i) pairs[i] = {o[i], d[i], s[i], w[i], margin[i], tolerance[i]};
   return pairs;
 }
 
@@ -70,7 +73,7 @@ void bind_edit(py::module_& m) {
       .def_readwrite("local_starts", &SolveSettings::local_starts)
       .def_readwrite("max_iterations", &SolveSettings::max_iterations)
       .def_readwrite("max_evaluations", &SolveSettings::max_evaluations)
-      .def_readwrite("max_time", &SolveSettings::max_time)
+      .def_readwrite("time_limit", &SolveSettings::time_limit)
       .def_readwrite("function_tolerance", &SolveSettings::function_tolerance)
       .def_readwrite("parameter_tolerance", &SolveSettings::parameter_tolerance)
       .def_readwrite("gradient_tolerance", &SolveSettings::gradient_tolerance)
@@ -79,12 +82,14 @@ void bind_edit(py::module_& m) {
       .def_readwrite("loss", &SolveSettings::loss)
       .def_readwrite("loss_scale", &SolveSettings::loss_scale)
       .def_readwrite("accept_angle", &SolveSettings::accept_angle)
+      .def_readwrite("pixel_tolerance", &SolveSettings::pixel_tolerance)
       .def("validate", &SolveSettings::validate);
 
   m.def("_solve_edit",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
            const py::object& sources, const py::object& weights, const py::object& margins,
-           const std::vector<std::string>& free, const std::map<std::string, std::pair<double, double>>& bounds,
+           const py::object& tolerances, const std::vector<std::string>& free,
+           const std::map<std::string, std::pair<double, double>>& bounds,
            const std::string& derivatives, const PairOptions& pair_options, const SolveSettings& settings,
            const py::object& progress) {
           ProblemSpec spec;
@@ -92,7 +97,7 @@ void bind_edit(py::module_& m) {
           spec.bounds = bounds;
           spec.derivatives = parse_derivatives(derivatives, *checked(field));
           spec.pair = pair_options;
-          const std::vector<PointPair> pairs = make_pairs(origins, directions, sources, weights, margins);
+          const std::vector<PointPair> pairs = make_pairs(origins, directions, sources, weights, margins, tolerances);
           settings.validate();
           WorkControl control;
           SolveSummary s;
@@ -127,12 +132,15 @@ void bind_edit(py::module_& m) {
           out["met"] = std::vector<bool>(s.met.begin(), s.met.end());
           out["strategy"] = s.strategy;
           out["stages"] = s.stages;
+          out["stopped_by"] = s.stopped_by;
+          out["condition"] = s.condition;
+          out["rank"] = s.rank;
           out["solver_report"] = s.solver_report;
           return out;
         },
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"),
-        py::arg("weights"), py::arg("margins"), py::arg("free"), py::arg("bounds"), py::arg("derivatives"),
-        py::arg("pair_options"), py::arg("settings"), py::arg("progress"));
+        py::arg("weights"), py::arg("margins"), py::arg("tolerances"), py::arg("free"), py::arg("bounds"),
+        py::arg("derivatives"), py::arg("pair_options"), py::arg("settings"), py::arg("progress"));
 
   m.def("_pair_distances",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,

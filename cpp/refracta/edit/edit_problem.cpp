@@ -121,8 +121,8 @@ int EditProblem::count_met(const std::vector<double>& residuals, double accept_a
   for (size_t i = 0; i < pairs_.size(); ++i) {
     const double length = std::sqrt(std::pow(residuals[3 * i], 2) + std::pow(residuals[3 * i + 1], 2) +
                                     std::pow(residuals[3 * i + 2], 2));
-    // Beyond its margin the block is sqrt(weight) (miss - margin): met within accept_angle * range.
-    if (length <= std::sqrt(pairs_[i].weight) * accept_angle * pairs_[i].range()) ++met;
+    // Beyond its margin the block is sqrt(weight) (miss - margin): met within its met tolerance.
+    if (length <= std::sqrt(pairs_[i].weight) * pairs_[i].met_tolerance(accept_angle)) ++met;
   }
   return met;
 }

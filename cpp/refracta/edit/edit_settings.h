@@ -1,11 +1,17 @@
 // Options of an edit solve and the summary it returns (Ceres' Solver::Options / Summary style:
-// every field has a default and a meaning; validate() reports the first problem).
+// every field has a default and a meaning; validate() reports every problem).
 #pragma once
 
 #include "refracta/core/parallel.h"
 #include "refracta/edit/edit_problem.h"
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace refracta {
@@ -28,9 +34,20 @@ struct SolveSettings {
   int design_per_param = 16;
   // auto: local solves from the global stage's best points, at most.
   int local_starts = 4;
-  int max_iterations = 200;        // ceres: LM iterations
-  int max_evaluations = 3000;      // nlopt: cost evaluations
-  double max_time = 0.0;           // [s]; 0: no limit
+  // Limits of the whole solve: every stage (the first local solve, its continuations, the global
+  // stage's design points, the local solves from them) draws on one budget, and
+  // refracta.edit.solve(starts=) shares it between its starts. What stopped a stage is named in
+  // SolveSummary::stages.
+  int max_iterations = 200;        // LM iterations (ceres); nlopt counts evaluations instead
+  // Cost evaluations, each tracing every pair (ceres: residual and Jacobian passes; nlopt: every
+  // call of the objective; the global stage: every design point).
+  int max_evaluations = 3000;
+  // [s] wall-clock limit of the solve, set-up excluded; 0: none. A trace running when it expires is
+  // interrupted (EvaluationContext's flag, polled every step), so the solve returns within about
+  // one integrator step of it and reports the best point found. 300 s is generous: the slowest
+  // edit of benchmarks/bench_edit.py takes under a second, while a trial atmosphere that ducts a
+  // ray over a long path costs seconds per evaluation (issue 23: 7.7 M steps for 150 km).
+  double time_limit = 300.0;
   double function_tolerance = 1e-14;   // relative change of the cost that ends the solve
   double parameter_tolerance = 1e-12;  // relative change of the parameters that ends it
   double gradient_tolerance = 1e-16;   // ceres: max-norm of the projected gradient
@@ -45,9 +62,17 @@ struct SolveSettings {
   // loss_scale [m] is the miss where it starts to down-weight.
   std::string loss = "none";
   double loss_scale = 1.0;
-  // A pair is met when its miss is at most accept_angle * (eye-to-source distance) [rad]:
-  // 1e-6 rad is far below a pixel of any camera.
+  // A pair is met when its miss beyond its margin is at most accept_angle * (eye-to-source
+  // distance) [rad], or its tolerance if larger (PointPair::allowed_miss): 1e-6 rad is far below a
+  // pixel of any camera.
   double accept_angle = 1e-6;
+  // [pixels] a pair with a pixel destination is met when its miss is within its margin plus this
+  // fraction of the pixel's footprint at the source (the camera's pixel angle times the source's
+  // range; PointPair::tolerance), when that exceeds accept_angle times its range. A tenth of a
+  // pixel cannot be seen in the image, and it spares an edit from failing on a miss of 0.01 px
+  // (issue 23: 5.9 mm at 1.9 km). It judges the result only: the cost still pulls every pair onto
+  // its source. refracta.edit.solve converts it to metres per pair (C++ sees metres only).
+  double pixel_tolerance = 0.1;
 
   void validate() const;
 };
@@ -69,8 +94,74 @@ struct SolveSummary {
   std::vector<char> met;             // per pair: miss <= PointPair::allowed_miss(accept_angle)
   std::string message;
   std::string strategy;              // "auto" or "local"
-  std::vector<std::string> stages;   // what the strategy did, one line per stage
+  std::vector<std::string> stages;   // what the strategy did, one line per stage, and what stopped it
+  // What stopped the solve before its strategy finished: "" (nothing), "iteration limit",
+  // "evaluation limit", "time limit".
+  std::string stopped_by;
+  // The Jacobian of the residuals in the free parameters' unit box at a result that meets every
+  // pair (else 0 and 0): its singular
+  // values' ratio (largest / smallest; inf when rank-deficient) and numerical rank. A large
+  // condition number means the pairs fix some combination of the free parameters only weakly:
+  // other parameter values meet them as well (SolveSummary::message says so).
+  double condition = 0.0;
+  int rank = 0;
   std::string solver_report;         // the back-end's own report of the run that gave the result
+};
+
+// Why a back-end or stage stopped before it converged.
+enum class StopReason { kNone, kIterations, kEvaluations, kTimeLimit };
+const char* stop_reason_name(StopReason reason);  // "", "iteration limit", "evaluation limit", "time limit"
+
+// The one budget of a solve (SolveSettings' max_iterations, max_evaluations, time_limit), shared
+// by its stages, with its progress and stopping. A watcher thread raises interrupt() when the
+// caller cancels (WorkControl::cancel) or the time limit passes; traces poll it every step
+// (EditProblem's cancel flag), so neither waits for a long evaluation to end. Progress:
+// control.done of control.total = kProgressTotal is the largest fraction used of the three limits.
+class SolveBudget {
+ public:
+  static constexpr int64_t kProgressTotal = 1000;
+
+  SolveBudget(const SolveSettings& settings, WorkControl& control);
+  ~SolveBudget();  // stops the watcher
+  SolveBudget(const SolveBudget&) = delete;
+  SolveBudget& operator=(const SolveBudget&) = delete;
+
+  const std::atomic<bool>* interrupt() const { return &interrupt_; }
+  bool cancelled() const { return control_.cancel.load(); }
+  // Throws Cancelled once the caller has cancelled.
+  void check_cancelled() const;
+
+  void spend_iterations(int n);
+  void spend_evaluations(int64_t n);
+  int iterations_left() const { return std::max(0, max_iterations_ - iterations_.load()); }
+  int64_t evaluations_left() const { return std::max<int64_t>(0, max_evaluations_ - evaluations_.load()); }
+  int iterations_used() const { return iterations_.load(); }
+  int64_t evaluations_used() const { return evaluations_.load(); }
+  double seconds() const;
+  double seconds_left() const;  // +inf without a limit
+  // The first limit used up (time, evaluations, iterations), or kNone.
+  StopReason exhausted() const;
+  // After the time limit interrupted the work: lets the result be measured (the interrupt stays
+  // raised for a cancellation).
+  void resume_for_measurement();
+  // Progress complete (the solve has ended).
+  void finish();
+
+ private:
+  void update_progress();
+
+  WorkControl& control_;
+  const int max_iterations_;
+  const int64_t max_evaluations_;
+  const double time_limit_;
+  const std::chrono::steady_clock::time_point begin_;
+  std::atomic<int> iterations_{0};
+  std::atomic<int64_t> evaluations_{0};
+  std::atomic<bool> interrupt_{false}, timed_out_{false};
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::thread watcher_;
 };
 
 // What a back-end reports; solve() completes the summary.
@@ -80,17 +171,21 @@ struct BackendResult {
   int iterations = 0;
   int64_t evaluations = 0;
   bool converged = false;
+  StopReason stopped = StopReason::kNone;  // a limit of the call or of the solve's budget
   double trust_region = 0.0;         // ceres: the radius at the end (a continued solve starts there); 0: none
   std::string message;
   std::string report;                // ceres: Solver::Summary::FullReport(); nlopt: the message
 };
 
-// The back-ends, from free values x0 (inside the bounds).
+// The back-ends, from free values x0 (inside the bounds). settings' max_iterations and
+// max_evaluations bound this call (the strategy passes what is left of the budget, or less), and
+// the budget's time limit and interrupt stop it; every evaluation is spent from the budget. The
+// result is the best point evaluated when the back-end's own end point is not usable.
 BackendResult solve_with_ceres(const EditProblem& problem, const std::vector<double>& x0,
-                               const SolveSettings& settings, WorkControl& control);
+                               const SolveSettings& settings, SolveBudget& budget);
 BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& algorithm,
                                const std::vector<double>& x0, const SolveSettings& settings,
-                               WorkControl& control);
+                               SolveBudget& budget);
 // Throws std::invalid_argument for a name nlopt does not know.
 void check_nlopt_algorithm(const std::string& algorithm);
 

@@ -4,7 +4,9 @@
 #include "refracta/core/low_discrepancy.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <limits>
 
 namespace refracta {
 
@@ -21,15 +23,29 @@ constexpr int kRefineMinima = 2;
 constexpr int kRefinePoints = 8;
 constexpr int kRefineLevels = 3;
 
-void evaluate_points(const EditProblem& problem, std::vector<DesignPoint>* points, size_t from, WorkControl& control) {
-  const int64_t count = int64_t(points->size() - from);
+// Evaluates points[from...] in parallel, as many as the budget's evaluations allow, until its
+// interrupt (time limit, cancel) is raised; the rest keep cost +inf. Returns how many it evaluated.
+int64_t evaluate_points(const EditProblem& problem, std::vector<DesignPoint>* points, size_t from, SolveBudget& budget) {
+  const int64_t count = std::min<int64_t>(int64_t(points->size() - from), budget.evaluations_left());
+  for (size_t i = from; i < points->size(); ++i) (*points)[i].cost = std::numeric_limits<double>::infinity();
+  std::atomic<int64_t> evaluated{0};
   WorkControl local;
-  local.cancel = control.cancel.load();
   parallel_for_each(count, 1, local, [&](int64_t i) {
-    if (control.cancel.load(std::memory_order_relaxed)) throw Cancelled();
+    if (budget.interrupt()->load(std::memory_order_relaxed)) return;
     DesignPoint& p = (*points)[from + i];
-    p.cost = problem.cost(p.x, /*parallel=*/false);
+    std::vector<double> r;
+    p.cost = std::numeric_limits<double>::infinity();
+    if (problem.evaluate(p.x, &r, nullptr, /*parallel=*/false) && !budget.interrupt()->load(std::memory_order_relaxed)) {
+      p.cost = 0.0;
+      for (double v : r) p.cost += 0.5 * v * v;
+      p.vertical.resize(problem.pairs().size());
+      for (size_t k = 0; k < p.vertical.size(); ++k) p.vertical[k] = r[3 * k + 1];
+    }
+    evaluated.fetch_add(1);
+    budget.spend_evaluations(1);
   });
+  budget.check_cancelled();
+  return evaluated.load();
 }
 
 // Unit coordinates (sorted) and costs of one axis's scan: the indices of its lowest local minima.
@@ -49,7 +65,8 @@ std::vector<size_t> lowest_minima(const std::vector<std::pair<double, double>>& 
 
 }  // namespace
 
-std::vector<DesignPoint> evaluate_design(const EditProblem& problem, int per_param, WorkControl& control) {
+Design evaluate_design(const EditProblem& problem, int per_param, SolveBudget& budget) {
+  Design out;
   const int m = problem.num_free();
   const std::vector<std::string> names = problem.free_names();
   std::vector<DesignPoint> points;
@@ -74,7 +91,7 @@ std::vector<DesignPoint> evaluate_design(const EditProblem& problem, int per_par
     }
     points.push_back({x, 0.0, near ? "near the start" : "in the box"});
   }
-  evaluate_points(problem, &points, 0, control);
+  out.evaluated += evaluate_points(problem, &points, 0, budget);
 
   // 2. Each axis's profile refined around its lowest minima.
   std::vector<std::vector<std::pair<double, double>>> profiles(m);  // (u, cost) per axis
@@ -97,8 +114,8 @@ std::vector<DesignPoint> evaluate_design(const EditProblem& problem, int per_par
         }
       }
     }
-    if (points.size() == from) break;
-    evaluate_points(problem, &points, from, control);
+    if (points.size() == from || budget.evaluations_left() == 0 || budget.interrupt()->load()) break;
+    out.evaluated += evaluate_points(problem, &points, from, budget);
     for (size_t i = from; i < points.size(); ++i) {
       const int j = axis_of[i - from];
       profiles[j].push_back({problem.to_unit(j, points[i].x[j]), points[i].cost});
@@ -107,7 +124,10 @@ std::vector<DesignPoint> evaluate_design(const EditProblem& problem, int per_par
   }
   std::stable_sort(points.begin(), points.end(),
                    [](const DesignPoint& a, const DesignPoint& b) { return a.cost < b.cost; });
-  return points;
+  const StopReason stop = budget.exhausted();
+  if (stop == StopReason::kTimeLimit || stop == StopReason::kEvaluations) out.stopped = stop;
+  out.points = std::move(points);
+  return out;
 }
 
 std::vector<DesignPoint> spread_best(const EditProblem& problem, const std::vector<DesignPoint>& sorted, int count,

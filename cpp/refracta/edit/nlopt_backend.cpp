@@ -5,6 +5,7 @@
 
 #include <nlopt.hpp>
 
+#include <algorithm>
 #include <memory>
 
 #include <cmath>
@@ -24,7 +25,7 @@ namespace {
 struct Objective {
   const EditProblem& problem;
   const SolveSettings& settings;
-  WorkControl& control;
+  SolveBudget& budget;
   BackendResult& out;
   nlopt::opt* opt = nullptr;
   double best = std::numeric_limits<double>::infinity();
@@ -35,12 +36,32 @@ struct Objective {
     return x;
   }
 
+  // Stops nlopt once the caller cancels or a limit is reached: a composite algorithm's (MLSL,
+  // AUGLAG) local optimiser is a copy nlopt owns and keeps its own counters, so the limits are
+  // enforced here, where every evaluation of either passes; calls after the stop cost nothing.
+  bool stopping() {
+    if (budget.cancelled()) {
+      opt->force_stop();
+      return true;
+    }
+    StopReason stop = budget.exhausted();
+    if (stop == StopReason::kNone && out.evaluations >= settings.max_evaluations) stop = StopReason::kEvaluations;
+    if (stop == StopReason::kIterations) stop = StopReason::kNone;  // nlopt counts evaluations only
+    if (stop == StopReason::kNone) return false;
+    if (out.stopped == StopReason::kNone) out.stopped = stop;
+    opt->force_stop();
+    return true;
+  }
+
   double operator()(const std::vector<double>& unit, std::vector<double>& grad) {
-    if (control.cancel.load()) opt->force_stop();
+    if (stopping()) {
+      std::fill(grad.begin(), grad.end(), 0.0);
+      return std::isfinite(best) ? best : 1e300;
+    }
     const std::vector<double> x = to_params(unit);
     std::vector<double> r, jacobian;
     ++out.evaluations;
-    control.done = out.evaluations;
+    budget.spend_evaluations(1);
     double cost = std::numeric_limits<double>::infinity();
     if (problem.evaluate(x, &r, grad.empty() ? nullptr : &jacobian)) {
       cost = 0.0;
@@ -79,17 +100,16 @@ std::string result_name(nlopt::result result) {
 
 BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& algorithm,
                                const std::vector<double>& x0, const SolveSettings& settings,
-                               WorkControl& control) {
+                               SolveBudget& budget) {
   check_nlopt_algorithm(algorithm);
   const int m = problem.num_free();
   BackendResult out;
   out.x = x0;
-  Objective objective{problem, settings, control, out};
+  Objective objective{problem, settings, budget, out};
   std::vector<double> unit(m);
   for (int i = 0; i < m; ++i) {
     unit[i] = problem.to_unit(i, x0[i]);
   }
-  control.total = settings.max_evaluations;
   const std::string prefix = concat("nlopt ", algorithm, ": ");
   try {
     nlopt::opt opt(algorithm.c_str(), unsigned(m));
@@ -107,7 +127,8 @@ BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& al
     opt.set_ftol_rel(settings.function_tolerance);
     opt.set_xtol_rel(settings.parameter_tolerance);
     opt.set_maxeval(settings.max_evaluations);
-    if (settings.max_time > 0.0) opt.set_maxtime(settings.max_time);
+    const double seconds_left = budget.seconds_left();
+    if (std::isfinite(seconds_left)) opt.set_maxtime(std::max(1e-3, seconds_left));
     if (settings.target_cost > 0.0) opt.set_stopval(settings.target_cost);
     // MLSL and AUGLAG run a local optimiser that nlopt leaves unset (it then crashes): LD_LBFGS
     // for the gradient-based variants, LN_BOBYQA (bounded, derivative-free) for the others.
@@ -120,15 +141,20 @@ BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& al
       local->set_ftol_rel(settings.function_tolerance);
       local->set_xtol_rel(settings.parameter_tolerance);
       local->set_maxeval(settings.max_evaluations);
+      if (std::isfinite(seconds_left)) local->set_maxtime(std::max(1e-3, seconds_left));
       opt.set_local_optimizer(*local);
     }
     double minimum;
     const nlopt::result result = opt.optimize(unit, minimum);
-    out.converged = result > 0 && result != nlopt::MAXEVAL_REACHED && result != nlopt::MAXTIME_REACHED;
-    out.message = prefix + result_name(result);
+    if (result == nlopt::MAXEVAL_REACHED && out.stopped == StopReason::kNone) out.stopped = StopReason::kEvaluations;
+    if (result == nlopt::MAXTIME_REACHED && out.stopped == StopReason::kNone) out.stopped = StopReason::kTimeLimit;
+    out.converged = result > 0 && out.stopped == StopReason::kNone;
+    out.message = prefix + (out.stopped != StopReason::kNone ? concat("stopped by the ", stop_reason_name(out.stopped))
+                                                             : result_name(result));
   } catch (const nlopt::forced_stop&) {
-    if (control.cancel.load()) throw Cancelled();
-    out.message = prefix + "forced stop";
+    budget.check_cancelled();
+    out.message = prefix + (out.stopped != StopReason::kNone ? concat("stopped by the ", stop_reason_name(out.stopped))
+                                                             : std::string("forced stop"));
   } catch (const nlopt::roundoff_limited&) {
     out.converged = true;  // nlopt's own advice: the result is usually still useful
     out.message = prefix + "stopped by round-off (the cost cannot be reduced further)";
@@ -139,7 +165,7 @@ BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& al
   } catch (const std::runtime_error& error) {
     out.message = prefix + "failure: " + error.what();
   }
-  if (control.cancel.load()) throw Cancelled();
+  budget.check_cancelled();
   out.iterations = int(out.evaluations);
   out.report = concat(out.message, " after ", out.evaluations, " evaluations; best cost ", objective.best, " m^2");
   return out;

@@ -54,6 +54,9 @@ void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& opti
     if (!(p.margin >= 0.0) || !std::isfinite(p.margin)) {
       throw_invalid("pair ", i, ": margin must be >= 0 and finite (got ", p.margin, ")");
     }
+    if (!(p.tolerance >= 0.0) || !std::isfinite(p.tolerance)) {
+      throw_invalid("pair ", i, ": tolerance must be >= 0 and finite (got ", p.tolerance, ")");
+    }
     if (!(p.range() > 0.0)) throw_invalid("pair ", i, ": the source is at the eye");
     if (options.ground && p.origin.y() < *options.ground) {
       throw_invalid("pair ", i, ": the eye (height ", p.origin.y(), " m) is below the ground (",

@@ -6,6 +6,7 @@
 #include "refracta/core/math.h"
 #include "refracta/rays/trace_options.h"
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,11 +21,16 @@ struct PointPair {
   // A miss up to this distance [m] costs nothing (a dead zone: residual = miss (1 - margin/|miss|)
   // outside it, so the cost stays C1); less important points get larger margins.
   double margin = 0.0;
+  // [m] beyond the margin, a miss up to this counts as met (a pixel destination: a fraction of the
+  // pixel's footprint at the source, SolveSettings::pixel_tolerance); it leaves the cost alone.
+  double tolerance = 0.0;
 
   double range() const { return (source - origin).norm(); }  // [m]
-  // The largest miss [m] at which the pair counts as met: its margin plus accept_angle [rad]
-  // times its range (a tolerance far below a pixel).
-  double allowed_miss(double accept_angle) const { return margin + accept_angle * range(); }
+  // What a miss beyond the margin may be for the pair to count as met: the larger of its tolerance
+  // and accept_angle [rad] times its range (a tolerance far below a pixel) [m].
+  double met_tolerance(double accept_angle) const { return std::max(tolerance, accept_angle * range()); }
+  // The largest miss [m] at which the pair counts as met.
+  double allowed_miss(double accept_angle) const { return margin + met_tolerance(accept_angle); }
 };
 
 // How far a path passes from its source.

@@ -4,41 +4,51 @@
 
 #include "refracta/edit/global_stage.h"
 
-#include <chrono>
+#include <Eigen/SVD>
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace refracta {
 
 void SolveSettings::validate() const {
-  if (backend != "ceres" && backend.rfind("nlopt:", 0) != 0) {
-    throw_invalid("backend must be 'ceres' or 'nlopt:<ALGORITHM>' (got '", backend, "')");
+  std::vector<std::string> problems;
+  auto check = [&](bool ok, auto&&... parts) {
+    if (!ok) problems.push_back(concat(parts...));
+  };
+  const bool nlopt = backend.rfind("nlopt:", 0) == 0;
+  check(backend == "ceres" || nlopt, "backend must be 'ceres' or 'nlopt:<ALGORITHM>' (got '", backend, "')");
+  if (nlopt) {
+    try {
+      check_nlopt_algorithm(backend.substr(6));
+    } catch (const std::invalid_argument& error) {
+      problems.push_back(error.what());
+    }
   }
-  if (backend.rfind("nlopt:", 0) == 0) check_nlopt_algorithm(backend.substr(6));
-  if (strategy != "auto" && strategy != "local") {
-    throw_invalid("strategy must be 'auto' or 'local' (got '", strategy, "')");
-  }
-  if (max_iterations < 1) throw_invalid("max_iterations must be >= 1 (got ", max_iterations, ")");
-  if (max_evaluations < 1) throw_invalid("max_evaluations must be >= 1 (got ", max_evaluations, ")");
-  if (quick_iterations < 1) throw_invalid("quick_iterations must be >= 1 (got ", quick_iterations, ")");
-  if (design_per_param < 1) throw_invalid("design_per_param must be >= 1 (got ", design_per_param, ")");
-  if (local_starts < 1) throw_invalid("local_starts must be >= 1 (got ", local_starts, ")");
+  check(strategy == "auto" || strategy == "local", "strategy must be 'auto' or 'local' (got '", strategy, "')");
+  check(max_iterations >= 1, "max_iterations must be >= 1 (got ", max_iterations, ")");
+  check(max_evaluations >= 1, "max_evaluations must be >= 1 (got ", max_evaluations, ")");
+  check(quick_iterations >= 1, "quick_iterations must be >= 1 (got ", quick_iterations, ")");
+  check(design_per_param >= 1, "design_per_param must be >= 1 (got ", design_per_param, ")");
+  check(local_starts >= 1, "local_starts must be >= 1 (got ", local_starts, ")");
+  check(trust_region > 0.0 && std::isfinite(trust_region), "trust_region must be > 0 (got ", trust_region, ")");
   const std::pair<const char*, double> non_negative[] = {
-      {"max_time", max_time}, {"function_tolerance", function_tolerance},
+      {"time_limit", time_limit}, {"function_tolerance", function_tolerance},
       {"parameter_tolerance", parameter_tolerance}, {"gradient_tolerance", gradient_tolerance},
-      {"target_cost", target_cost}, {"accept_angle", accept_angle}};
-  if (!(trust_region > 0.0) || !std::isfinite(trust_region)) {
-    throw_invalid("trust_region must be > 0 (got ", trust_region, ")");
-  }
+      {"target_cost", target_cost}, {"accept_angle", accept_angle}, {"pixel_tolerance", pixel_tolerance}};
   for (const auto& [name, value] : non_negative) {
-    if (!(value >= 0.0) || !std::isfinite(value)) throw_invalid(name, " must be >= 0 (got ", value, ")");
+    check(value >= 0.0 && std::isfinite(value), name, " must be >= 0 and finite (got ", value, ")");
   }
-  if (loss != "none" && loss != "huber" && loss != "soft_l1" && loss != "cauchy" && loss != "arctan") {
-    throw_invalid("loss must be 'none', 'huber', 'soft_l1', 'cauchy' or 'arctan' (got '", loss, "')");
+  check(loss == "none" || loss == "huber" || loss == "soft_l1" || loss == "cauchy" || loss == "arctan",
+        "loss must be 'none', 'huber', 'soft_l1', 'cauchy' or 'arctan' (got '", loss, "')");
+  check(loss_scale > 0.0 && std::isfinite(loss_scale), "loss_scale must be > 0 (got ", loss_scale, ")");
+  check(loss == "none" || backend == "ceres", "a robust loss needs backend 'ceres'");
+  if (!problems.empty()) {
+    std::string all = problems.front();
+    for (size_t i = 1; i < problems.size(); ++i) all += "; " + problems[i];
+    throw_invalid(all);
   }
-  if (!(loss_scale > 0.0) || !std::isfinite(loss_scale)) {
-    throw_invalid("loss_scale must be > 0 (got ", loss_scale, ")");
-  }
-  if (loss != "none" && backend != "ceres") throw_invalid("a robust loss needs backend 'ceres'");
 }
 
 namespace {
@@ -96,10 +106,10 @@ std::vector<std::string> insensitive_params(const EditProblem& problem) {
   return out;
 }
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point begin) {
-  return std::chrono::duration<double>(Clock::now() - begin).count();
+std::string concat_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t i = 0; i < names.size(); ++i) out += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+  return out;
 }
 
 // One local solve and how it ended.
@@ -112,60 +122,72 @@ struct Attempt {
 
 class Strategy {
  public:
-  Strategy(const EditProblem& problem, const SolveSettings& settings, WorkControl& control, SolveSummary* out)
-      : problem_(problem), settings_(settings), control_(control), out_(out), begin_(Clock::now()) {}
+  Strategy(const EditProblem& problem, const SolveSettings& settings, SolveBudget& budget, SolveSummary* out)
+      : problem_(problem), settings_(settings), budget_(budget), out_(out) {}
 
   BackendResult run() {
-    if (settings_.strategy == "local") return local(problem_.start(), settings_).result;
+    if (settings_.strategy == "local") {
+      Attempt attempt = local(problem_.start(), remaining_settings());
+      if (attempt.result.stopped != StopReason::kNone) stage("local from the start", attempt);
+      return attempt.result;
+    }
     const int pairs = int(problem_.pairs().size());
 
     // 1. A short local solve from the start: most edits end here.
-    SolveSettings quick = settings_;
-    quick.max_iterations = std::min(settings_.max_iterations, settings_.quick_iterations);
-    quick.max_evaluations = std::min(settings_.max_evaluations, kNloptEvaluationsPerIteration * settings_.quick_iterations);
+    SolveSettings quick = remaining_settings();
+    quick.max_iterations = std::min(quick.max_iterations, settings_.quick_iterations);
+    quick.max_evaluations = std::min(quick.max_evaluations, kNloptEvaluationsPerIteration * settings_.quick_iterations);
     Attempt best = local(problem_.start(), quick);
     stage("local from the start", best);
     for (int extension = 0; extension < kQuickExtensions && !best.all_met && !best.result.converged &&
                             settings_.backend == "ceres" && still_falling(best.result.history) &&
-                            iterations_ + quick.max_iterations <= settings_.max_iterations && !out_of_time();
+                            budget_.iterations_left() >= quick.max_iterations && !stopped("going on locally");
          ++extension) {
       Attempt more = local(best.result.x, continuing(quick, best.result));
       stage("local, continued (the cost still fell)", more);
       if (!(more.cost <= best.cost)) break;
       best = std::move(more);
     }
-    if (best.all_met && !best.result.converged && !out_of_time()) {
+    if (best.all_met && !best.result.converged && !stopped("finishing the local solve")) {
       // Met but still converging (LM's last iterations gain digits quadratically): finish it.
       Attempt finished = local(best.result.x, continuing(remaining_settings(), best.result));
       stage("local, continued", finished);
       if (finished.all_met) best = std::move(finished);
     }
-    if (best.all_met || out_of_time()) return best.result;
+    if (best.all_met || stopped("the global stage")) return best.result;
 
     // 2. The global stage.
-    const auto design_begin = Clock::now();
+    const double design_begin = budget_.seconds();
     double longest = 0.0;
     for (const PointPair& pair : problem_.pairs()) longest = std::max(longest, pair.range());
     const auto coarse = problem_.with_tolerance(std::max(problem_.pair_options().tol, kDesignTolerance * longest));
-    std::vector<DesignPoint> design = evaluate_design(*coarse, settings_.design_per_param, control_);
-    evaluations_ += int64_t(design.size());
+    Design design = evaluate_design(*coarse, settings_.design_per_param, budget_);
     traces_ += coarse->context().pair_evaluations.load();
-    const int64_t failed = std::count_if(design.begin(), design.end(),
-                                         [](const DesignPoint& p) { return !std::isfinite(p.cost); });
-    std::string line = concat("global: ", design.size(), " design points (", settings_.design_per_param,
+    const int64_t failed = std::count_if(design.points.begin(), design.points.end(), [](const DesignPoint& p) {
+      return !std::isfinite(p.cost);
+    }) - (int64_t(design.points.size()) - design.evaluated);
+    std::string line = concat("global: ", design.evaluated, " of ", design.points.size(), " design points (",
+                              settings_.design_per_param,
                               " on each free parameter's axis, the rest quasi-random over the box and near the start) in ",
-                              seconds_since(design_begin), " s; lowest cost ", design.front().cost, " m^2 (",
-                              design.front().label, ")");
+                              budget_.seconds() - design_begin, " s; lowest cost ", design.points.front().cost, " m^2 (",
+                              design.points.front().label, ")");
     if (failed > 0) line += concat("; ", failed, " could not trace every pair");
+    if (design.stopped != StopReason::kNone) {
+      line += concat("; stopped by the ", stop_reason_name(design.stopped));
+      note_stop(design.stopped);
+    }
     out_->stages.push_back(line);
+    for (const DesignPoint& p : design.points) {
+      if (!p.vertical.empty()) sampled_.push_back(p.vertical);
+    }
 
     // 3. Local solves from the best points (the first solve's end competes with them), until one
     // meets every pair.
-    design.push_back({best.result.x, best.cost, "the end of the first local solve"});
-    std::stable_sort(design.begin(), design.end(),
+    design.points.push_back({best.result.x, best.cost, "the end of the first local solve", {}});
+    std::stable_sort(design.points.begin(), design.points.end(),
                      [](const DesignPoint& a, const DesignPoint& b) { return a.cost < b.cost; });
-    for (const DesignPoint& start : spread_best(problem_, design, settings_.local_starts, kStartSpacing)) {
-      if (out_of_time()) break;
+    for (const DesignPoint& start : spread_best(problem_, design.points, settings_.local_starts, kStartSpacing)) {
+      if (stopped("the local solves from the design")) break;
       Attempt attempt = local(start.x, remaining_settings());
       stage(concat("local from a design point (", start.label, ", cost ", start.cost, " m^2)"), attempt);
       if (std::make_pair(attempt.all_met, -attempt.cost) > std::make_pair(best.all_met, -best.cost)) {
@@ -180,8 +202,10 @@ class Strategy {
   }
 
   int iterations() const { return iterations_; }
-  int64_t evaluations() const { return evaluations_; }
   int64_t design_traces() const { return traces_; }
+  StopReason stopped_by() const { return stopped_by_; }
+  // Per sampled atmosphere of the global stage, each pair's vertical residual (global_stage.h).
+  const std::vector<std::vector<double>>& sampled() const { return sampled_; }
 
  private:
   // Settings that carry on from where `from` ended: LM's trust region as it had adapted it (a
@@ -191,13 +215,43 @@ class Strategy {
     return settings;
   }
 
+  // The settings with the limits of a call: what is left of the budget.
+  SolveSettings remaining_settings() const {
+    SolveSettings s = settings_;
+    s.max_iterations = std::max(1, budget_.iterations_left());
+    s.max_evaluations = int(std::max<int64_t>(1, std::min<int64_t>(settings_.max_evaluations, budget_.evaluations_left())));
+    return s;
+  }
+
+  void note_stop(StopReason reason) {
+    if (stopped_by_ == StopReason::kNone) stopped_by_ = reason;
+  }
+
+  // True (and said in the stages, once) when a limit of the budget leaves nothing for `next`.
+  bool stopped(const char* next) {
+    StopReason reason = budget_.exhausted();
+    if (reason == StopReason::kIterations && settings_.backend != "ceres") reason = StopReason::kNone;
+    if (reason == StopReason::kNone) return false;
+    if (!said_stop_) {
+      out_->stages.push_back(concat("stopped by the ", stop_reason_name(reason), " (", budget_.iterations_used(),
+                                    " iterations, ", budget_.evaluations_used(), " evaluations, ", budget_.seconds(),
+                                    " s) before ", next));
+      said_stop_ = true;
+    }
+    note_stop(reason);
+    return true;
+  }
+
   Attempt local(const std::vector<double>& x0, const SolveSettings& settings) {
     Attempt out;
     out.result = settings.backend == "ceres"
-                     ? solve_with_ceres(problem_, x0, settings, control_)
-                     : solve_with_nlopt(problem_, settings.backend.substr(6), x0, settings, control_);
+                     ? solve_with_ceres(problem_, x0, settings, budget_)
+                     : solve_with_nlopt(problem_, settings.backend.substr(6), x0, settings, budget_);
     iterations_ += out.result.iterations;
-    evaluations_ += out.result.evaluations;
+    note_stop(out.result.stopped);
+    // The time limit interrupted the traces: measure this result all the same (later stages see
+    // the limit and do not start).
+    if (budget_.exhausted() == StopReason::kTimeLimit) budget_.resume_for_measurement();
     std::vector<double> r;
     if (problem_.evaluate(out.result.x, &r)) {
       out.cost = 0.0;
@@ -209,35 +263,91 @@ class Strategy {
   }
 
   void stage(const std::string& what, const Attempt& attempt) {
-    out_->stages.push_back(concat(what, ": ", attempt.result.iterations, " iterations, cost ", attempt.cost,
-                                  " m^2, ", attempt.met, " of ", problem_.pairs().size(), " pairs met"));
-  }
-
-  bool out_of_time() const { return settings_.max_time > 0.0 && seconds_since(begin_) >= settings_.max_time; }
-
-  SolveSettings remaining_settings() const {
-    SolveSettings s = settings_;
-    if (s.max_time > 0.0) s.max_time = std::max(1e-3, s.max_time - seconds_since(begin_));
-    return s;
+    std::string line = concat(what, ": ", attempt.result.iterations, " iterations, cost ", attempt.cost, " m^2, ",
+                              attempt.met, " of ", problem_.pairs().size(), " pairs met");
+    if (attempt.result.stopped != StopReason::kNone) {
+      line += concat("; stopped by the ", stop_reason_name(attempt.result.stopped));
+    }
+    out_->stages.push_back(line);
   }
 
   const EditProblem& problem_;
   const SolveSettings& settings_;
-  WorkControl& control_;
+  SolveBudget& budget_;
   SolveSummary* out_;
-  Clock::time_point begin_;
   int iterations_ = 0;
-  int64_t evaluations_ = 0, traces_ = 0;
+  int64_t traces_ = 0;
+  StopReason stopped_by_ = StopReason::kNone;
+  bool said_stop_ = false;
+  std::vector<std::vector<double>> sampled_;
 };
+
+// The message explains this many unmet pairs at most.
+constexpr int kListedUnmet = 5;
+
+// Singular values of the Jacobian in the unit box below this fraction of the largest count as
+// zero for the rank: far below the derivatives' accuracy (automatic derivatives of traces to
+// 1e-9 m agree with central differences to ~1e-6, tests/edit/test_03) yet above round-off.
+constexpr double kRankTolerance = 1e-8;
+// A condition number above this flags the solution as not unique (other parameters meet the
+// pairs as well): a unit step along the weakest direction moves the misses by less than 1e-6 of
+// the strongest direction's effect, beneath the misses accept_angle allows.
+constexpr double kNonUniqueCondition = 1e6;
+
+// Condition number and rank of the Jacobian (unit box) at free values x; false if it failed.
+bool jacobian_condition(const EditProblem& problem, const std::vector<double>& x, double* condition, int* rank) {
+  std::vector<double> r, jacobian;
+  if (!problem.evaluate(x, &r, &jacobian)) return false;
+  const int rows = problem.num_residuals(), m = problem.num_free();
+  Eigen::MatrixXd J(rows, m);
+  for (int k = 0; k < rows; ++k) {
+    for (int j = 0; j < m; ++j) J(k, j) = jacobian[size_t(k) * m + j] * problem.dx_du(j, problem.to_unit(j, x[j]));
+  }
+  const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(J).singularValues();
+  const double largest = sigma.size() > 0 ? sigma(0) : 0.0;
+  *rank = 0;
+  for (int i = 0; i < sigma.size(); ++i) *rank += sigma(i) > kRankTolerance * largest;
+  *condition = *rank < m || largest == 0.0 ? std::numeric_limits<double>::infinity() : largest / sigma(m - 1);
+  return true;
+}
+
+// Why pair i is not met, from the side of its source its path passes at the result and at every
+// atmosphere the global stage sampled within the bounds.
+std::string why_unmet(const EditProblem& problem, const std::vector<double>& residuals,
+                      const std::vector<std::vector<double>>& sampled, size_t i) {
+  const double vertical = residuals[3 * i + 1] / std::sqrt(problem.pairs()[i].weight);
+  const char* side = vertical > 0.0 ? "above" : "below";
+  std::string out = concat("its path passes ", std::abs(vertical), " m ", side, " the source");
+  if (sampled.empty()) return out;
+  int above = 0, below = 0;
+  for (const auto& point : sampled) {
+    above += point[i] > 0.0;
+    below += point[i] < 0.0;
+  }
+  if (above == int(sampled.size()) || below == int(sampled.size())) {
+    out += concat(", and ", side, " it in all ", sampled.size(),
+                  " atmospheres the global stage sampled within the bounds: the destination lies ",
+                  vertical > 0.0 ? "above" : "below",
+                  " every image of the source these free parameters made (", vertical > 0.0 ? "lower" : "raise",
+                  " the destination, free another parameter or widen the bounds)");
+  } else {
+    out += concat(" (the sampled atmospheres sent it ", above, " times above and ", below,
+                  " times below the source: the destination is within reach, but not together with the other "
+                  "pairs, or the solve stopped early)");
+  }
+  return out;
+}
 
 }  // namespace
 
 SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pairs,
                         const ProblemSpec& spec, const SolveSettings& settings, WorkControl& control) {
   settings.validate();
-  auto problem = std::make_unique<EditProblem>(field, pairs, spec, &control.cancel);
+  SolveBudget budget(settings, control);
+  auto problem = std::make_unique<EditProblem>(field, pairs, spec, budget.interrupt());
   SolveSummary out;
   out.insensitive = insensitive_params(*problem);
+  budget.check_cancelled();
   if (!out.insensitive.empty() && out.insensitive.size() < size_t(problem->num_free())) {
     ProblemSpec reduced = spec;
     reduced.free.clear();
@@ -247,7 +357,7 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
       }
     }
     for (const auto& name : out.insensitive) reduced.bounds.erase(name);
-    problem = std::make_unique<EditProblem>(field, pairs, reduced, &control.cancel);
+    problem = std::make_unique<EditProblem>(field, pairs, reduced, budget.interrupt());
   } else if (!out.insensitive.empty()) {
     out.insensitive.clear();  // nothing depends on anything (e.g. all free params irrelevant):
                               // let the solver report it rather than remove every parameter
@@ -257,49 +367,78 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
   out.backend = settings.backend;
   out.strategy = settings.strategy;
   out.initial_cost = problem->cost(problem->start());
+  budget.check_cancelled();
+  if (!std::isfinite(out.initial_cost) && budget.exhausted() == StopReason::kTimeLimit) {
+    budget.resume_for_measurement();  // the time limit ran out while measuring the start
+    out.initial_cost = problem->cost(problem->start());
+  }
   if (!std::isfinite(out.initial_cost)) {
     const std::string why = problem->context().first_failure();
     throw_numerical("the start field cannot trace every pair: ", why.empty() ? "evaluation failed" : why);
   }
 
-  const auto begin = Clock::now();
-  Strategy strategy(*problem, settings, control, &out);
+  const double begin = budget.seconds();
+  Strategy strategy(*problem, settings, budget, &out);
   const BackendResult result = strategy.run();
-  out.time = seconds_since(begin);
+  if (budget.exhausted() == StopReason::kTimeLimit) budget.resume_for_measurement();
+  out.time = budget.seconds() - begin;
+  out.stopped_by = stop_reason_name(strategy.stopped_by());
 
   out.values = problem->full_values(result.x);
   out.history = result.history;
   out.iterations = strategy.iterations();
-  out.evaluations = strategy.evaluations();
+  out.evaluations = budget.evaluations_used();
   out.pair_traces = problem->context().pair_evaluations.load() + strategy.design_traces();
   out.converged = result.converged;
   out.solver_report = result.report;
-  out.cost = problem->cost(result.x);
+  std::vector<double> residuals;
+  out.cost = std::numeric_limits<double>::infinity();
+  if (problem->evaluate(result.x, &residuals)) {
+    out.cost = 0.0;
+    for (double v : residuals) out.cost += 0.5 * v * v;
+  }
   out.distances = problem->distances(result.x);
 
-  // Met: within the margin plus accept_angle times the range.
+  // Met: within the margin plus accept_angle times the range; why not, where not (the first
+  // kListedUnmet pairs: the report's table has every one).
   std::string unmet;
+  int unlisted = 0;
   out.met.assign(pairs.size(), 0);
   for (size_t i = 0; i < pairs.size(); ++i) {
     const double allowed = pairs[i].allowed_miss(settings.accept_angle);
     out.met[i] = out.distances[i] <= allowed;
-    if (!out.met[i]) {
-      unmet += concat(unmet.empty() ? "" : "; ", "pair ", i, " misses its source by ", out.distances[i],
-                      " m (allowed ", allowed, " m)");
+    if (out.met[i]) continue;
+    if (std::count(out.met.begin(), out.met.begin() + i, 0) >= kListedUnmet) {
+      ++unlisted;
+      continue;
     }
+    unmet += concat(unmet.empty() ? "" : "; ", "pair ", i, " misses its source by ", out.distances[i],
+                    " m (allowed ", allowed, " m)");
+    if (residuals.size() == 3 * pairs.size()) unmet += ": " + why_unmet(*problem, residuals, strategy.sampled(), i);
   }
+  if (unlisted > 0) unmet += concat("; and ", unlisted, " more pairs");
   // The default strategy succeeds when every pair is met, whatever stopped its last local solve;
   // a lone local solve must also have ended normally.
   out.success = unmet.empty() && (settings.strategy == "auto" || result.converged);
   out.message = result.message;
   while (!out.message.empty() && out.message.back() == '.') out.message.pop_back();
+  if (!out.stopped_by.empty()) out.message += concat(". The solve was stopped by the ", out.stopped_by);
   if (!unmet.empty()) {
     out.message += concat(". Not every pair is met: ", unmet,
                           ". No atmosphere with these free parameters within their bounds puts every "
                           "image where asked, or the solve stopped early");
   }
+  // At a solution the misses vanish and the Jacobian says which parameter combinations they fix
+  // (elsewhere it also carries the turning of the miss vectors, which says nothing about that).
+  if (unmet.empty() && jacobian_condition(*problem, result.x, &out.condition, &out.rank) &&
+      out.condition > kNonUniqueCondition) {
+    out.message += concat(". The solution is not unique: the pairs fix ", out.rank, " of the ", problem->num_free(),
+                          " free parameters' combinations (Jacobian rank ", out.rank, ", condition ", out.condition,
+                          "); other values of ", concat_names(out.free), " meet them as well");
+  }
   const std::string failure = problem->context().first_failure();
   if (!failure.empty()) out.message += concat(". Some trial parameters failed to trace: ", failure);
+  budget.finish();
   return out;
 }
 
