@@ -113,6 +113,14 @@ def tilt_variance(cn2: float, path_length: float, inner_scale: float = 0.0, oute
     filter [2 J1(kappa D/2) / (kappa D/2)]^2 of an aperture of diameter D [m] (l0 -> 0, L0 -> inf:
     2.838 C_n^2 L D^(-1/3); the issue's 2.91 is the phase-structure approximation, Z-tilt 3.041).
     By quadrature in log kappa (5e-5 relative)."""
+    problems = [f"{name} must be {rule} (got {value!r})" for name, value, rule, ok in (
+        ("cn2", cn2, ">= 0 and finite", lambda v: 0.0 <= v < math.inf),
+        ("path_length", path_length, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
+        ("inner_scale", inner_scale, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
+        ("outer_scale", outer_scale, "> 0 m (inf: none)", lambda v: v > 0.0),
+        ("aperture", aperture, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf)) if not ok(float(value))]
+    if problems:
+        raise ValueError("tilt_variance: " + "; ".join(problems))
     if not (inner_scale > 0.0 or aperture > 0.0):
         raise ValueError("tilt_variance: a point aperture needs inner_scale > 0 (the integral diverges without it)")
     scales = [s for s in (inner_scale, aperture) if s > 0.0]
@@ -372,7 +380,10 @@ class Turbulence:
 
     def separations_within(self, tolerance: float = INERTIAL_TOLERANCE) -> Tuple[float, float]:
         """The widest interval (r_min, r_max) [m] of separations up to half the tile in which the
-        ensemble structure_function is within `tolerance` of C_n^2 r^(2/3); (nan, nan) if none."""
+        ensemble structure_function is within `tolerance` (a relative error, > 0) of C_n^2 r^(2/3).
+        Raises ValueError when no separation is (the grid too coarse for its inner scale)."""
+        if not (0.0 < tolerance < math.inf):
+            raise ValueError(f"separations_within: tolerance must be > 0 and finite (got {tolerance!r})")
         r = np.geomspace(self.spacing, self.size / 2, 241)
         ratio = self._unit_structure_function(r) / r ** (2.0 / 3.0)
         inside = np.abs(ratio - 1.0) <= tolerance
@@ -384,6 +395,11 @@ class Turbulence:
                 if math.isnan(best[0]) or r[i - 1] / r[start] > best[1] / best[0]:
                     best = (float(r[start]), float(r[i - 1]))
                 start = None
+        if math.isnan(best[0]):
+            raise ValueError(f"Turbulence: no separation between one cell ({self.spacing:g} m) and half the tile "
+                             f"({self.size / 2:g} m) has a structure function within {tolerance:.0%} of "
+                             f"C_n^2 r^(2/3) (inner_scale {self.inner_scale:g} m, outer_scale "
+                             f"{self.outer_scale:g} m): use more or smaller cells")
         return best
 
     @property
@@ -391,7 +407,7 @@ class Turbulence:
         """(r_min, r_max) [m]: the separations the pattern resolves, where its ensemble structure
         function is C_n^2 r^(2/3) within INERTIAL_TOLERANCE (15 %). The defaults (256 cells, l0 below
         a cell, L0 = inf) give 0.39..5.6 m, x14; 128 cells x7, not a decade; a large inner scale
-        or a finite outer scale narrow it (l0 = 2 cells: x9 at 256). (nan, nan) when nowhere within."""
+        or a finite outer scale narrow it (l0 = 2 cells: x9 at 256). ValueError when nowhere within."""
         return self.separations_within(INERTIAL_TOLERANCE)
 
     def angle_of_arrival_variance(self, path_length: float, aperture: float = 0.0,

@@ -130,7 +130,8 @@ def test_inertial_range_of_the_grid_sizes():
     assert 3.0 < hi / lo < 10.0
     assert lo > 4 * small.spacing and hi <= small.size / 2
     coarse = uniform(cells=32, spacing=0.05, inner_scale=0.5)  # l0 = 10 cells: nowhere Kolmogorov
-    assert all(math.isnan(v) for v in coarse.inertial_range)
+    with pytest.raises(ValueError, match="no separation"):
+        coarse.inertial_range
 
 
 # -- 3. tiling, seeding, wind, envelope, fields -------------------------------------------------------

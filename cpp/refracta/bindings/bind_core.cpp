@@ -7,10 +7,25 @@
 namespace refracta {
 
 
+DoubleArray real_array(const py::handle& object, const char* what) {
+  py::array raw;
+  try {
+    raw = py::array::ensure(object);
+  } catch (const py::error_already_set&) {
+    raw = py::array();
+  }
+  if (!raw) throw_invalid(what, " must be an array of numbers");
+  const char kind = raw.dtype().kind();
+  if (kind != 'b' && kind != 'i' && kind != 'u' && kind != 'f') {
+    throw_invalid(what, " must hold real numbers (got dtype ", py::str(raw.dtype()).cast<std::string>(), ")");
+  }
+  return py::cast<DoubleArray>(raw);
+}
+
 std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single) {
   DoubleArray array;
   try {
-    array = py::cast<DoubleArray>(object);
+    array = real_array(object, what);
   } catch (const py::cast_error&) {
     throw_invalid(what, " must be an array of numbers with shape (N, 3) or (3,)");
   }
@@ -44,7 +59,7 @@ Vec3d to_point(const py::handle& object, const char* what) {
 std::vector<double> to_values(const py::handle& object, const char* what, bool* single) {
   DoubleArray array;
   try {
-    array = py::cast<DoubleArray>(object);
+    array = real_array(object, what);
   } catch (const py::cast_error&) {
     throw_invalid(what, " must be a number or an array of numbers");
   }
@@ -81,6 +96,13 @@ void bind_core(py::module_& m) {
   m.def("_shutdown_running_work", &shutdown_running_work, py::arg("timeout_seconds") = 10.0,
         py::call_guard<py::gil_scoped_release>());
   py::module_::import("atexit").attr("register")(m.attr("_shutdown_running_work"));
+  // Ctrl-C during a sweep on a thread pool (refracta._sweep.map_ordered): the signal reaches the
+  // main thread only, so it cancels the work of the pool's threads.
+  m.def("_cancel_thread_work", &cancel_thread_work, py::arg("thread_ids"),
+        "Cancels the refracta calls of the given Python threads (threading.get_ident()): those running "
+        "and those they start until _end_thread_cancel; returns how many were running.");
+  m.def("_end_thread_cancel", &end_thread_cancel, py::arg("thread_id"),
+        "Lets the thread's refracta calls run again after _cancel_thread_work.");
 }
 
 }  // namespace refracta

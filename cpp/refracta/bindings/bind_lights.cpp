@@ -25,7 +25,7 @@ namespace {
 Color illuminant_from(const py::handle& value, const char* what) {
   DoubleArray array;
   try {
-    array = py::cast<DoubleArray>(value);
+    array = real_array(value, what);
   } catch (const py::cast_error&) {
     throw_invalid(what, " must be a number or an RGB triple");
   }
@@ -44,7 +44,7 @@ Color illuminant_from(const py::handle& value, const char* what) {
 std::vector<Vec2d> to_samples(const py::handle& object, size_t count) {
   DoubleArray array;
   try {
-    array = py::cast<DoubleArray>(object);
+    array = real_array(object, "u");
   } catch (const py::cast_error&) {
     throw_invalid("u must be a float array of shape (N, 2)");
   }
@@ -160,7 +160,7 @@ Mat3d rotation_from(const py::object& object) {
   if (object.is_none()) return Mat3d::Identity();
   DoubleArray array;
   try {
-    array = py::cast<DoubleArray>(object);
+    array = real_array(object, "rotation");
   } catch (const py::cast_error&) {
     throw_invalid("rotation must be a number (degrees about +y) or a 3 x 3 matrix");
   }

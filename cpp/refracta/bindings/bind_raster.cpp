@@ -19,7 +19,7 @@ constexpr double kMaxMoment = 1.5;  // see _shadow_intensity
 DoubleArray as_matrix(const py::object& object, py::ssize_t columns, const char* what) {
   DoubleArray array;
   try {
-    array = py::cast<DoubleArray>(object);
+    array = real_array(object, what);
   } catch (const py::cast_error&) {
     throw_invalid(what, " must be an array of numbers");
   }
@@ -44,6 +44,7 @@ void bind_raster(py::module_& m) {
           WorkControl control;
           VisibilityBuffer buffer;
           RasterStats stats;
+          const Scene::ReadGuard reading(scene->geometry);
           run_interruptible(control, py::none(), [&] { buffer = rasterize(scene->geometry, view, control, tile, &stats); });
           const py::ssize_t h = buffer.height, w = buffer.width;
           py::array_t<float> depth({h, w}), barycentric({h, w, py::ssize_t(3)});

@@ -98,6 +98,7 @@ validate() reports every bad value at once.)doc")
           WorkControl control;
           Image image;
           RenderStats stats;
+          const Scene::ReadGuard reading(scene->geometry);
           run_interruptible(control, progress, [&] { image = render(*scene, camera, field, options, control, &stats); });
           py::dict counts;
           counts["samples"] = stats.samples;
@@ -157,6 +158,7 @@ validate() reports every bad value at once.)doc")
           WorkControl control;
           Image image;
           RasterRenderStats stats;
+          const Scene::ReadGuard reading(scene->geometry);
           run_interruptible(control, progress, [&] {
             image = render_raster(*scene, camera, options, control, &stats);
           });

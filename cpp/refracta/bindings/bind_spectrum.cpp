@@ -18,7 +18,7 @@ using spectral::Coefficients;
 DoubleArray as_array(const py::handle& object, const char* what, int ndim, py::ssize_t last = 0) {
   DoubleArray array;
   try {
-    array = py::cast<DoubleArray>(object);
+    array = real_array(object, what);
   } catch (const py::cast_error&) {
     throw_invalid(what, " must be a float array");
   }

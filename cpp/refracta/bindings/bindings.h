@@ -31,6 +31,9 @@ void bind_runtime(py::module_& m);
 // Moves the queued messages of Ceres (glog) to Python's logging; call with the GIL held.
 void emit_library_log();
 
+// Any array-like of real numbers (bool, integer or float dtype) as a C-contiguous double array;
+// ValueError naming `what` for complex, string or object data (numpy would cast those silently).
+DoubleArray real_array(const py::handle& object, const char* what);
 // (N, 3) or (3,) float array -> points; ValueError naming `what` for other shapes or NaN.
 std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single = nullptr);
 Vec3d to_point(const py::handle& object, const char* what);

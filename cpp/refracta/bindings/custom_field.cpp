@@ -24,7 +24,7 @@ CustomField::~CustomField() {
 
 DoubleArray CustomField::call_ior(const DoubleArray& points) const {
   const py::ssize_t count = points.shape(0);
-  DoubleArray out = py::cast<DoubleArray>((*ior_)(points));
+  DoubleArray out = real_array((*ior_)(points), "CustomField: ior(points)");
   if (!(out.size() == count && (out.ndim() == 1 || (out.ndim() == 2 && out.shape(1) == 1) ||
                                 (out.ndim() == 0 && count == 1)))) {
     throw_invalid("CustomField: ior returned ", out.size(), " values in ", out.ndim(),
@@ -44,7 +44,7 @@ DoubleArray CustomField::call_ior(const DoubleArray& points) const {
 
 DoubleArray CustomField::call_grad(const DoubleArray& points) const {
   const py::ssize_t count = points.shape(0);
-  DoubleArray out = py::cast<DoubleArray>((*grad_)(points));
+  DoubleArray out = real_array((*grad_)(points), "CustomField: grad_ior(points)");
   // Exactly (N, 3), or (3,) for one point: a (3, N) array has the same size but other meaning.
   if (!((out.ndim() == 2 && out.shape(0) == count && out.shape(1) == 3) ||
         (out.ndim() == 1 && count == 1 && out.shape(0) == 3))) {

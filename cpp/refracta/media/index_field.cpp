@@ -29,13 +29,14 @@ double lowest_ior_sampled(const IndexField& field, double lo, double hi, double 
   // Finest near the ground (h = 0, or the end of the range nearer it), where layers are thin.
   const double ground = std::clamp(0.0, lo, hi);
   for (double h = lo; h <= hi; h += std::max(1e-3, 1e-3 * std::abs(h - ground))) {
+    // Heights outside the modelled range are skipped (a ray reaching them fails there anyway);
+    // the modelled part beyond them still counts.
     try {
       field.evaluate_height(h, &n, &dn);
     } catch (const std::exception&) {
-      break;
+      continue;
     }
-    if (!(n > 0.0) || !std::isfinite(n)) break;
-    lowest = std::min(lowest, n);
+    if (n > 0.0 && std::isfinite(n)) lowest = std::min(lowest, n);
   }
   // Nothing evaluable (or an empty range): no bound at all, so no ray is taken for one that cannot turn.
   return std::isfinite(lowest) ? lowest - margin : 0.0;

@@ -76,7 +76,7 @@ using FieldPtr = std::shared_ptr<const IndexField>;
 // the ground (h = 0) with the spacing growing 0.1 % of the distance from it (about 2300 samples
 // per decade of height beyond 1 m), less `margin`: a bound unless a dip deeper than `margin` hides between samples (the
 // default, 1e-5, is a spike of ~10 K narrower than the spacing). Heights where the field throws
-// (outside its modelled range) end the scan there; 0 (no bound) if not even lo can be evaluated.
+// (outside its modelled range) are skipped; 0 (no bound) if no height can be evaluated.
 double lowest_ior_sampled(const IndexField& field, double lo, double hi, double margin = 1e-5);
 
 // The Config of a model with no fixed data besides its parameters. A model's Config is a type

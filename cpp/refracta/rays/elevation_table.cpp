@@ -133,8 +133,15 @@ ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& opti
   options_.validate();
   // Every height a path can reach, tabulated once (to 1e-12 in n: far below any tolerance).
   const double reach = options_.trace.max_length;
-  field_ = tabulate_heights(field_, std::max(options_.eye_height - reach, options_.trace.stop_height.value_or(-reach) - 1.0),
-                            options_.eye_height + reach);
+  const double lowest = std::max(options_.eye_height - reach, options_.trace.stop_height.value_or(-reach) - 1.0);
+  field_ = tabulate_heights(field_, lowest, options_.eye_height + reach);
+  // Rays that cannot turn are traced in whole panels (TraceOptions::ior_floor); sampling the
+  // tabulated field over the reach costs well under a millisecond.
+  if (!options_.trace.ior_floor) {
+    if (const double floor = lowest_ior_sampled(*field_, lowest, options_.eye_height + reach); floor > 0.0) {
+      options_.trace.ior_floor = floor;
+    }
+  }
   std::atomic<int64_t> evaluations{0};
   auto trace_all = [&](const std::vector<double>& e) {
     std::vector<Entry> out(e.size());
@@ -276,8 +283,13 @@ ElevationTable::LazyPath ElevationTable::lazy_path(double elevation) const {
   lazy.elevation_ = elevation;
   lazy.interval_ = interval(elevation);
   const size_t i = lazy.interval_;
-  if (exact_[i] && elevation != elevations_[i] && elevation != elevations_[i + 1]) {
-    lazy.exact_ = trace_entry(elevation).path;
+  if (exact_[i]) {
+    // An exact interval has no precomputed stencil: its ends are traced entries, inside is traced.
+    if (elevation == elevations_[i] || elevation == elevations_[i + 1]) {
+      lazy.exact_ = entries_[elevation == elevations_[i] ? i : i + 1].path;
+    } else {
+      lazy.exact_ = trace_entry(elevation).path;
+    }
     const auto& nodes = lazy.exact_->nodes();
     lazy.exact_lowest_.resize(nodes.size());
     double low = std::numeric_limits<double>::infinity();

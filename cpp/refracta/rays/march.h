@@ -81,7 +81,17 @@ class Rk45Stepper {
     for (int attempt = 0;; ++attempt) {
       const double hv = std::min(h_, remaining);
       double err_x, err_v;
-      RayNode<T> b = dormand_prince(field, a, T(hv), evals, &err_x, &err_v);
+      RayNode<T> b;
+      try {
+        b = dormand_prince(field, a, T(hv), evals, &err_x, &err_v);
+      } catch (const NumericalError&) {
+        // A trial step whose stages reach where the field is undefined (below its modelled range,
+        // beyond a stop height the step would have crossed) is too long, like one whose error is:
+        // shrink it. At the smallest step the path itself has got there.
+        if (hv <= kMinStep * max_length_ || attempt > 200) throw;
+        h_ = 0.2 * hv;
+        continue;
+      }
       const double carried = std::max(remaining - hv, 0.0) / value_of(b.n);
       const double allowed = tol_ * hv / max_length_;
       double error = (err_x + err_v * carried) / allowed;
@@ -180,7 +190,7 @@ TraceEnd<T> march(const Field& field, const Vec3<T>& x0, const Vec3<T>& t0,
       out.stop = TraceStop::kMaxLength;
       break;
     }
-    if (options.cancel && options.cancel->load(std::memory_order_relaxed)) throw Cancelled();
+    poll_cancel(options.cancel);  // and the flags in force on this thread (core/parallel.h)
     if (out.steps >= options.max_steps) {
       throw_numerical("ray needed more than max_steps = ", options.max_steps, " steps");
     }

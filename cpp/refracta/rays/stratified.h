@@ -59,6 +59,10 @@ class StratifiedTracer {
     // n0 - beta = n0 (1 - cos e0), written without cancellation.
     const double gap0 = n0 * sin_e0 * sin_e0 / (1.0 + cos_e0);
     launch_h_ = x0.y(), launch_gap_ = gap0, launch_slope_ = dn0;
+    // Below every n the path can meet (with the margin of an elevation of 0.57 deg at the floor,
+    // as the renderer's cannot-turn test), beta has no turning height: scan in whole panels.
+    constexpr double kClearOfTurning = 0.99995;  // sqrt(1 - 0.01^2)
+    scan_ = options_.ior_floor && beta_ < *options_.ior_floor * kClearOfTurning ? spacing_ : scan_step_;
     last_ = node(0.0, 0.0, x0.y(), n0, dn0, sin_e0);
     stopped_ = false;
 
@@ -84,6 +88,10 @@ class StratifiedTracer {
  private:
   // One evaluation of n(h), dn/dh.
   void eval(double h, double* n, double* dn) {
+    // Every unit of the tracer's work evaluates the field; a panel's refinement or a duct's scan
+    // can run long between nodes, so Ctrl-C is polled here (every 64 evaluations: a CustomField's
+    // take ~10 us each, a table's ~10 ns).
+    if ((out_.evaluations & 63) == 0) poll_cancel(options_.cancel);
     field_.evaluate_height(h, n, dn);
     ++out_.evaluations;
     if (!usable_ior(*n) || !std::isfinite(*dn)) {
@@ -106,7 +114,6 @@ class StratifiedTracer {
   bool done() const { return stopped_ || out_.stop != TraceStop::kMaxLength || reached_end_; }
 
   void emit(const RayNode<double>& next) {
-    if (options_.cancel && options_.cancel->load(std::memory_order_relaxed)) throw Cancelled();
     if (out_.steps >= options_.max_steps) {  // e.g. a long climb scanned metre by metre
       throw_numerical("stratified: the path needs more than max_steps = ", options_.max_steps, " nodes (at arc length ",
                       s_, " m of ", length_, " m, height ", next.x.y(), " m)");
@@ -299,7 +306,7 @@ class StratifiedTracer {
   // state for the next branch and returns true.
   bool branch(double* h_start, bool* turning_start, double* direction) {
     const double dir = *direction;
-    double h_prev = *h_start, delta = *turning_start ? 1e-4 : scan_step_;
+    double h_prev = *h_start, delta = *turning_start ? 1e-4 : scan_;
     bool from_turning = *turning_start;
     const double start_turning_gap = turning_gap_, start_turning_slope = turning_slope_;
     Variable plain;
@@ -367,7 +374,7 @@ class StratifiedTracer {
       from_turning = false;
       // Next scan step: approaching a turning point (n falling along the motion), aim 1.5x past
       // its linear prediction so it is bracketed; otherwise grow the step.
-      delta = std::min(scan_step_, 2.0 * delta);
+      delta = std::min(scan_, 2.0 * delta);
       if (dir * dn_next < 0.0) delta = std::min(delta, std::max(1.5 * gap_next / std::abs(dn_next), 1e-9));
     }
     return false;
@@ -376,6 +383,7 @@ class StratifiedTracer {
   const Field& field_;
   const TraceOptions& options_;
   double length_, spacing_, scan_step_;
+  double scan_ = 1.0;  // this path's scan step [m]: scan_step_, or spacing_ when it cannot turn
   Vec3d origin_, horizontal_;
   double beta_ = 0.0, s_ = 0.0, r_ = 0.0;
   double turning_gap_ = 0.0, turning_slope_ = 0.0;

@@ -46,6 +46,9 @@ void TraceOptions::validate() const {
     throw_invalid("stop_height must be finite (got ", *stop_height, ")");
   }
   if (max_steps <= 0) throw_invalid("max_steps must be > 0 (got ", max_steps, ")");
+  if (ior_floor && !(*ior_floor > 0.0 && std::isfinite(*ior_floor))) {
+    throw_invalid("ior_floor must be > 0 and finite (got ", *ior_floor, ")");
+  }
   // Refused before any work: a path that needs more than max_steps steps (rk4: max_length / step;
   // rk45: at least max_length / step when a largest step is given; stratified: at least
   // max_length / node spacing, default 100 m) would run for minutes and fill memory with nodes.

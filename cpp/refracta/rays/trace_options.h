@@ -26,6 +26,10 @@ struct TraceOptions {
   double max_length = 1000.0;           // arc length at which the path ends [m]
   std::optional<double> stop_height;    // the path ends where it descends through this height [m]
   int64_t max_steps = 10'000'000;       // a guard against runaway step-size collapse
+  // stratified: a lower bound of n over every height the path can reach (none: unknown). A ray
+  // whose invariant beta = n cos e stays clearly below it can never turn, so its heights are not
+  // scanned metre by metre for turning points (a path climbing 100 km: 70 000 nodes, else ~1 000).
+  std::optional<double> ior_floor;
   // Polled at every step: when set, the trace throws Cancelled (Ctrl-C in a long batch).
   const std::atomic<bool>* cancel = nullptr;
 

@@ -27,6 +27,9 @@ struct RenderOptions {
   double max_length = 5000.0; // curved rays end here and show the sky in their last direction [m]
   double chord = 1000.0;      // longest straight chord tested against the geometry [m]
   double sagitta = 1e-3;      // largest distance between a chord and the curved path [m]
+  // Embree intersects in single precision (hits uncertain by ~1e-7 of their distance, 0.1 mm at
+  // 1 km): a chord tolerance under a micrometre cannot be honoured, only paid for.
+  static constexpr double kSmallestSagitta = 1e-6;  // [m]
   // Camera rays may stray this fraction of a pixel's footprint (pixel angle x path length) from
   // their path when that is more than `sagitta`: what a pixel cannot resolve need not be traced.
   double sagitta_pixels = 0.25;

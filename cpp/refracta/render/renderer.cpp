@@ -42,7 +42,9 @@ void RenderOptions::validate() const {
   if (spp < 1) problem(concat("spp must be >= 1 (got ", spp, ")"));
   if (!(max_length > 0.0) || !std::isfinite(max_length)) problem(concat("max_length must be > 0 and finite (got ", max_length, ")"));
   if (!(chord > 0.0) || !std::isfinite(chord)) problem(concat("chord must be > 0 (got ", chord, ")"));
-  if (!(sagitta > 0.0) || !std::isfinite(sagitta)) problem(concat("sagitta must be > 0 (got ", sagitta, ")"));
+  if (!(sagitta >= kSmallestSagitta) || !std::isfinite(sagitta)) {
+    problem(concat("sagitta must be >= ", kSmallestSagitta, " m and finite (got ", sagitta, ")"));
+  }
   if (!(sagitta_pixels >= 0.0) || !std::isfinite(sagitta_pixels)) {
     problem(concat("sagitta_pixels must be >= 0 and finite (got ", sagitta_pixels, ")"));
   }

@@ -57,7 +57,16 @@ Camera Camera::framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& dire
 Vec3d Camera::direction(double u, double v) const {
   const double x = (2.0 * u / width_ - 1.0) * tan_half_ * width_ / height_;
   const double y = (1.0 - 2.0 * v / height_) * tan_half_;
-  const Vec3d d = (forward_ + x * right_ + y * up_).normalized();
+  // Pixels far outside the image: scaled by the largest component before normalising (its square
+  // would overflow), up to where 2u/width itself overflows.
+  const double scale = std::max({1.0, std::abs(x), std::abs(y)});
+  if (!std::isfinite(scale)) {
+    throw_invalid("Camera: pixel (", u, ", ", v, ") is too far outside the ", width_, "x", height_,
+                  " image to give a ray direction");
+  }
+  constexpr double kSquareSafe = 1e150;  // |x|^2 stays far below the double range
+  const Vec3d d = scale < kSquareSafe ? Vec3d((forward_ + x * right_ + y * up_).normalized())
+                                      : Vec3d((forward_ / scale + (x / scale) * right_ + (y / scale) * up_).normalized());
   if (!jitter_) return d;
   // Bilinear in the pixel-centre grid, held at the border.
   const double fu = std::clamp(u - 0.5, 0.0, width_ - 1.0), fv = std::clamp(v - 0.5, 0.0, height_ - 1.0);
@@ -96,6 +105,10 @@ const std::vector<float>& Camera::jitter() const {
 
 Vec3d Camera::project(const Vec3d& point) const {
   const Vec3d d = point - position_;
+  if (d.isZero(0.0)) {
+    throw_invalid("Camera.project: the point (", point.x(), ", ", point.y(), ", ", point.z(),
+                  ") is the camera's own position and has no image");
+  }
   const double depth = d.dot(forward_);
   const double x = d.dot(right_) / depth, y = d.dot(up_) / depth;
   const double u = 0.5 * width_ * (1.0 + x / (tan_half_ * width_ / height_));

@@ -66,6 +66,7 @@ Scene::Scene() : impl_(std::make_unique<Impl>()) {}
 Scene::~Scene() = default;
 
 unsigned Scene::add_mesh(const Mesh& mesh, int material) {
+  check_unchanging("add_mesh");
   const std::vector<Vec3d>& vertices = mesh.vertices;
   const std::vector<std::array<int, 3>>& triangles = mesh.triangles;
   if (material < 0) throw_invalid("add_mesh: material must be a material id (got ", material, ")");
@@ -108,10 +109,11 @@ unsigned Scene::add_mesh(const Mesh& mesh, int material) {
     for (int k = 0; k < 3; ++k) t[3 * i + k] = unsigned(triangles[i][k]);
   }
   rtcCommitGeometry(geometry);
-  const unsigned id = rtcAttachGeometry(impl_->scene, geometry);
+  // By id: Embree would hand out a removed geometry's id again; ours only grow.
+  const unsigned id = unsigned(materials_.size());
+  rtcAttachGeometryByID(impl_->scene, geometry, id);
   rtcReleaseGeometry(geometry);
   impl_->check();
-  if (id != materials_.size()) throw std::logic_error("Embree geometry ids out of order");
   materials_.push_back(material);
   meshes_.push_back({id, mesh});
   sphere_sets_.push_back(nullptr);
@@ -122,13 +124,11 @@ unsigned Scene::add_mesh(const Mesh& mesh, int material) {
 }
 
 unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector<double>& radii, int material) {
+  check_unchanging("add_spheres");
   if (material < 0) throw_invalid("add_spheres: material must be a material id (got ", material, ")");
   if (centres.empty() || centres.size() != radii.size()) {
     throw_invalid("add_spheres: needs as many radii as centres (", centres.size(), " vs ", radii.size(), ")");
   }
-  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
-                                                        4 * sizeof(float), centres.size()));
   for (size_t i = 0; i < centres.size(); ++i) {
     if (!is_finite(centres[i]) || centres[i].cwiseAbs().maxCoeff() > kMaxCoordinate) {
       throw_invalid("add_spheres: centres[", i, "] must be finite and within 1e7 m");
@@ -136,6 +136,16 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
     if (!(radii[i] > 0.0) || !std::isfinite(radii[i])) {
       throw_invalid("add_spheres: radii[", i, "] must be > 0 (got ", radii[i], ")");
     }
+    // The whole sphere within Embree's float range, as every mesh vertex is.
+    if (centres[i].cwiseAbs().maxCoeff() + radii[i] > kMaxCoordinate) {
+      throw_invalid("add_spheres: radii[", i, "] = ", radii[i], " m reaches beyond 1e7 m from the origin "
+                    "(scene coordinates are limited to 1e7 m, Embree's single precision)");
+    }
+  }
+  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                                        4 * sizeof(float), centres.size()));
+  for (size_t i = 0; i < centres.size(); ++i) {
     for (int k = 0; k < 3; ++k) v[4 * i + k] = float(centres[i][k]);
     v[4 * i + 3] = float(radii[i]);
   }
@@ -144,7 +154,8 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
     upper_ = upper_.cwiseMax(centres[i] + Vec3d::Constant(radii[i]));
   }
   rtcCommitGeometry(geometry);
-  const unsigned id = rtcAttachGeometry(impl_->scene, geometry);
+  const unsigned id = unsigned(materials_.size());
+  rtcAttachGeometryByID(impl_->scene, geometry, id);
   rtcReleaseGeometry(geometry);
   impl_->check();
   materials_.push_back(material);
@@ -159,6 +170,56 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
   meshes_.push_back(std::move(spheres));
   impl_->dirty = true;
   return id;
+}
+
+int Scene::add_texture(const std::string& path) {
+  check_unchanging("add_texture");
+  return textures_->add(path);
+}
+
+void Scene::check_unchanging(const char* change) const {
+  if (const int readers = readers_.load(); readers > 0) {
+    throw std::runtime_error(concat("Scene.", change, ": the scene is being rendered (", readers,
+                                    " render(s) running on other threads); change it after they return, "
+                                    "or build a second Scene"));
+  }
+}
+
+void Scene::check_geometry(unsigned geometry, const char* what) const {
+  if (geometry >= materials_.size()) throw_invalid(what, ": no geometry ", geometry, " (the scene has ", materials_.size(), ")");
+  if (removed(geometry)) throw_invalid(what, ": geometry ", geometry, " was removed");
+}
+
+void Scene::set_material(unsigned geometry, int material) {
+  check_unchanging("set_material");
+  check_geometry(geometry, "set_material");
+  if (material < 0) throw_invalid("set_material: material must be a material id (got ", material, ")");
+  materials_[geometry] = material;
+}
+
+void Scene::remove(unsigned geometry) {
+  check_unchanging("remove");
+  check_geometry(geometry, "remove");
+  rtcDetachGeometry(impl_->scene, geometry);
+  impl_->check();
+  impl_->dirty = true;  // the next query commits the scene without it
+  triangles_ -= sphere_sets_[geometry] ? 0 : meshes_[geometry].mesh.triangles.size();
+  meshes_[geometry].mesh = Mesh{};
+  sphere_sets_[geometry] = nullptr;
+  removed_.resize(materials_.size(), false);
+  removed_[geometry] = true;
+  // The bounds of what is left.
+  lower_ = Vec3d::Constant(std::numeric_limits<double>::infinity()), upper_ = -lower_;
+  for (unsigned g = 0; g < materials_.size(); ++g) {
+    if (const auto& spheres = sphere_sets_[g]) {
+      for (size_t i = 0; i < spheres->centres.size(); ++i) {
+        lower_ = lower_.cwiseMin(spheres->centres[i] - Vec3d::Constant(spheres->radii[i]));
+        upper_ = upper_.cwiseMax(spheres->centres[i] + Vec3d::Constant(spheres->radii[i]));
+      }
+    } else {
+      for (const auto& v : meshes_[g].mesh.vertices) lower_ = lower_.cwiseMin(v), upper_ = upper_.cwiseMax(v);
+    }
+  }
 }
 
 void Scene::commit() const {

@@ -8,6 +8,7 @@
 #include "refracta/scene/textures.h"
 
 #include <array>
+#include <atomic>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -53,14 +54,41 @@ class Scene {
   unsigned add_mesh(const Mesh& mesh, int material);
   unsigned add_spheres(const std::vector<Vec3d>& centres, const std::vector<double>& radii, int material);
 
+  // Registers an image texture (Textures::add) for this scene's materials; a change like add_mesh.
+  int add_texture(const std::string& path);
+
   // Builds the acceleration structure; called by the renderers (not thread-safe itself).
   void commit() const;
+
+  // Work that reads the scene without the GIL (a render on a worker thread) holds a ReadGuard;
+  // while one is held every change throws (check_unchanging), so a scene never changes under a
+  // running render. Renders may share a scene with each other.
+  class ReadGuard {
+   public:
+    explicit ReadGuard(const Scene& scene) : scene_(scene) { ++scene_.readers_; }
+    ~ReadGuard() { --scene_.readers_; }
+    ReadGuard(const ReadGuard&) = delete;
+    ReadGuard& operator=(const ReadGuard&) = delete;
+
+   private:
+    const Scene& scene_;
+  };
+  // Throws std::runtime_error (Python RuntimeError) naming `change` while a ReadGuard is held.
+  void check_unchanging(const char* change) const;
 
   // Closest hit along origin + t dir, t in (0, t_max]; dir must be unit. Throws on bad rays.
   std::optional<Hit> intersect(const Vec3d& origin, const Vec3d& dir, double t_max) const;
   bool occluded(const Vec3d& origin, const Vec3d& dir, double t_max) const;
 
   int material(unsigned geometry) const { return materials_.at(geometry); }
+  void set_material(unsigned geometry, int material);
+  // Removes a geometry: Embree detaches it and recommits before the next query; the other ids
+  // stay as they were (a removed id is never reused), its mesh becomes empty and the bounds
+  // shrink to what is left.
+  void remove(unsigned geometry);
+  bool removed(unsigned geometry) const { return geometry < removed_.size() && removed_[geometry]; }
+  // Throws ValueError naming `what` unless `geometry` is a geometry of the scene, not removed.
+  void check_geometry(unsigned geometry, const char* what) const;
   // Every geometry as triangles (spheres as 48 x 24 UV spheres), in geometry order.
   const std::vector<SceneMesh>& meshes() const { return meshes_; }
   // Whether a geometry is an exact sphere set (add_spheres) rather than a triangle mesh.
@@ -88,7 +116,7 @@ class Scene {
   Textures& textures() { return *textures_; }
   const Textures& textures() const { return *textures_; }
   const std::shared_ptr<Textures>& shared_textures() const { return textures_; }
-  size_t geometry_count() const { return materials_.size(); }
+  size_t geometry_count() const { return materials_.size(); }  // ids 0 .. count - 1, removed ones included
   size_t triangle_count() const { return triangles_; }
   // Lowest y of any geometry [m] (+inf for an empty scene).
   double lowest() const { return lower_.y(); }
@@ -102,9 +130,11 @@ class Scene {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  mutable std::atomic<int> readers_{0};
   std::vector<int> materials_;
   std::vector<SceneMesh> meshes_;
   std::vector<std::shared_ptr<const Spheres>> sphere_sets_;  // null for meshes
+  std::vector<bool> removed_;  // by geometry id (shorter: the rest not removed)
   std::shared_ptr<Textures> textures_ = std::make_shared<Textures>();
   size_t triangles_ = 0;
   Vec3d lower_ = Vec3d::Constant(std::numeric_limits<double>::infinity());

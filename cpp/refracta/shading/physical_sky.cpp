@@ -355,12 +355,22 @@ Vec3d PhysicalSky::sun_radiance_rgb(double angular_diameter_deg) const {
   return rgb_of_10nm(values.data());
 }
 
+// The sky's tables (ozone cross-sections, the sun's spectrum) cover the rendered range only.
+static void check_sky_wavelength(const char* what, double lambda_nm) {
+  if (!(lambda_nm >= kLambdaMin && lambda_nm <= kLambdaMax)) {
+    throw_invalid("PhysicalSky.", what, ": wavelength must be in [", kLambdaMin, ", ", kLambdaMax, "] nm (got ",
+                  lambda_nm, ")");
+  }
+}
+
 double PhysicalSky::rayleigh_optical_depth(double lambda_nm) const {
+  check_sky_wavelength("rayleigh_optical_depth", lambda_nm);
   const Vec3d p0(0.0, kEarthRadius + settings_.altitude, 0.0);
   return settings_.rayleigh_scale * beta_rayleigh(lambda_nm) * column_to_top(p0, Vec3d::UnitY(), 4096).r;
 }
 
 double PhysicalSky::optical_depth(double lambda_nm) const {
+  check_sky_wavelength("optical_depth", lambda_nm);
   const Vec3d p0(0.0, kEarthRadius + settings_.altitude, 0.0);
   const Column c = column_to_top(p0, Vec3d::UnitY(), 4096);
   return settings_.rayleigh_scale * beta_rayleigh(lambda_nm) * c.r + settings_.aerosol * kMieExtinction * c.m +
