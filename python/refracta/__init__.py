@@ -37,7 +37,7 @@ from refracta._core import (
     trace_ray,
 )
 from refracta import io, lights, shading, spectrum, testing
-from refracta._render import render
+from refracta._render import SceneWarning, render
 from refracta._raster_render import render_raster
 from refracta.scene_file import SceneFile, load_scene
 from refracta._rays import ElevationTable, RayBatch, trace_rays
@@ -81,6 +81,7 @@ __all__ = [
     "RenderOptions",
     "Scene",
     "SceneFile",
+    "SceneWarning",
     "SweepError",
     "SweepFailure",
     "SweepResult",

@@ -201,8 +201,10 @@ class LogisticProfile(IndexField):
     """
     def __getstate__(self) -> tuple[list[float], list[HotSpot], TurbulenceLayer, bool]:
         ...
-    def __init__(self, *args, **kwargs) -> None:
-        ...
+    def __init__(self, n_bg: float = 3.0, n_inv: float = 0.1, n_hot: float = 0.1, h_ciso: float = 1.0, a_bg: float = 1.0, a_inv: float = 1.0, a_hot: float = 1.0, k_s: float = 10.0, *, hot_spots: HotSpot | collections.abc.Sequence[HotSpot] | None = None, turbulence: typing.Any = None) -> None:
+        """
+        Parameters in the order above (positional or by name); see the class for units and bounds.
+        """
     def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
@@ -225,8 +227,10 @@ class LinearSquaredProfile(IndexField):
     """
     def __getstate__(self) -> tuple[list[float]]:
         ...
-    def __init__(self, *args, **kwargs) -> None:
-        ...
+    def __init__(self, n0: float = 1.000277, alpha: float = 0.0) -> None:
+        """
+        Parameters in the order above (positional or by name); see the class for units and bounds.
+        """
     def __setstate__(self, arg0: tuple) -> None:
         ...
 class PhysicalAtmosphere(IndexField):
@@ -254,8 +258,10 @@ class PhysicalAtmosphere(IndexField):
     """
     def __getstate__(self) -> tuple[list[float], list[HotSpot], TurbulenceLayer, bool]:
         ...
-    def __init__(self, *args, **kwargs) -> None:
-        ...
+    def __init__(self, t_ground: float = 288.15, lapse_rate: float = 0.0065, pressure: float = 101325.0, inversion_dt: float = 0.0, inversion_base: float = 100.0, inversion_thickness: float = 10.0, surface_dt: float = 0.0, surface_depth: float = 0.1, humidity: float = 0.0, wavelength: float = 550.0, *, hot_spots: HotSpot | collections.abc.Sequence[HotSpot] | None = None, turbulence: typing.Any = None) -> None:
+        """
+        Parameters in the order above (positional or by name); see the class for units and bounds.
+        """
     def __setstate__(self, arg0: tuple) -> None:
         ...
     def pressure(self, heights: typing.Any) -> typing.Any:
@@ -458,8 +464,8 @@ class Scene:
     def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: str | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
         Add a square ground of side `size` [m] at y = height, centred on the origin, facing up; an optional
-        texture repeats every texture_size [m] (u along +x, v along -z) and multiplies kd (or a
-        textured material's colour).
+        texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z) and
+        multiplies kd (or that material's colour).
         """
     def add_light(self, light: ...) -> int:
         """
@@ -473,7 +479,7 @@ class Scene:
         shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without
         material. Returns its id.
         """
-    def add_obj(self, path: str, offset: typing.Any = (0.0, 0.0, 0.0), scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, texture_dirs: typing.Any = (), missing_textures: str = 'error') -> list:
+    def add_obj(self, path: str, offset: typing.Any = (0.0, 0.0, 0.0), scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, texture_dirs: typing.Any = (), missing_textures: str = 'error', progress: typing.Any = True) -> list:
         """
         Add a Wavefront OBJ file with its MTL materials, scaled then offset.
         
@@ -486,6 +492,11 @@ class Scene:
         refracta.TextureNotFoundError (a refracta.IoError and a FileNotFoundError) naming it and the
         folders searched (``missing_textures='error'``), or, with
         ``missing_textures='warn'``, issues a UserWarning (Python's warnings) and its material uses Kd.
+        
+        Each texture is prepared once (MIP-mapped, linear) into the texture cache folder
+        ($REFRACTA_TEXTURE_CACHE, else refracta-textures in the temporary folder); a model with hundreds of
+        textures takes seconds the first time. progress: True shows a bar on stderr once preparing has
+        taken over a second, a callable gets progress(done, total) textures, False shows nothing.
         
         Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.
         """
@@ -509,13 +520,25 @@ class Scene:
         """
     def material(self, geometry: typing.SupportsInt | typing.SupportsIndex) -> ...:
         """
-        The material of a geometry (an id returned by add_*), as a refracta.shading object.
+        The material of a geometry (an id returned by add_*), as a refracta.shading object (a material
+        with a texture file: the scene's copy, its file registered here).
+        """
+    def remove(self, geometry: typing.SupportsInt | typing.SupportsIndex) -> None:
+        """
+        Remove a geometry (an id returned by add_*, e.g. an OBJ's terrain) and the area light it emits.
+        The other ids stay valid (a removed id is not reused; geometry_count still counts it); the
+        acceleration structure is rebuilt before the next render. Not while a render of this scene runs.
         """
     def set_environment(self, source: typing.Any, rotation: typing.Any = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
         The environment (replacing any sky): an RGB radiance (a constant environment), an equirectangular
         map file (EXR/HDR/PNG through OpenImageIO) or a float array (H, W, 3), times `scale`, turned by
         `rotation` (degrees about y, or a 3 x 3 matrix). Orientation: refracta.lights.EnvironmentLight.
+        """
+    def set_material(self, geometry: typing.SupportsInt | typing.SupportsIndex, material: typing.Any) -> None:
+        """
+        Give a geometry (an id returned by add_*, e.g. one part of add_obj) another refracta.shading material.
+        Its emission, if any, stays. Not while a render of this scene runs (RuntimeError).
         """
     def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, below_horizon: str = 'horizon') -> None:
         """
@@ -970,8 +993,12 @@ class Material:
 class Diffuse(Material):
     """
     Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b)
-    in [0, 1] (> 1 is refused: it would create energy); texture: a texture id of the
-    scene multiplying it (ignored by f/pdf/sample, which have no texture table).
+    in [0, 1] (> 1 is refused: it would create energy). texture: an image file (str or os.PathLike;
+    any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
+    multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
+    relative paths are from the working directory when the material is made. Each scene the material
+    is added to registers the file (prepared once into the texture cache). An int is the id of a
+    texture the scene already holds. f/pdf/sample evaluate the untextured colour.
     """
     def __getstate__(self) -> dict:
         ...
@@ -987,8 +1014,13 @@ class Diffuse(Material):
 class BlinnPhong(Material):
     """
     Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0, 1]
-    (numbers or (r, g, b)), ns >= 0; texture multiplies kd; alpha in [0, 1] is the raster opacity (MTL d).
-    Sampled by a mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact.
+    (numbers or (r, g, b)), ns >= 0; alpha in [0, 1] is the raster opacity (MTL d). Sampled by a
+    mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd. texture: an image file (str or os.PathLike;
+    any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
+    multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
+    relative paths are from the working directory when the material is made. Each scene the material
+    is added to registers the file (prepared once into the texture cache). An int is the id of a
+    texture the scene already holds. f/pdf/sample evaluate the untextured colour.
     """
     def __getstate__(self) -> dict:
         ...
@@ -1087,7 +1119,12 @@ class Plastic(Material):
     """
     Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of index
     ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX
-    (or alpha_u, alpha_v); texture multiplies the reflectance.
+    (or alpha_u, alpha_v). A texture multiplies the reflectance. texture: an image file (str or os.PathLike;
+    any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
+    multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
+    relative paths are from the working directory when the material is made. Each scene the material
+    is added to registers the file (prepared once into the texture cache). An int is the id of a
+    texture the scene already holds. f/pdf/sample evaluate the untextured colour.
     """
     def __getstate__(self) -> dict:
         ...
@@ -1104,7 +1141,12 @@ class Principled(Material):
     """
     Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and
     metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,
-    clearcoat, clearcoat_gloss, all in [0, 1]. texture multiplies base_color.
+    clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color. texture: an image file (str or os.PathLike;
+    any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
+    multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
+    relative paths are from the working directory when the material is made. Each scene the material
+    is added to registers the file (prepared once into the texture cache). An int is the id of a
+    texture the scene already holds. f/pdf/sample evaluate the untextured colour.
     """
     def __getstate__(self) -> dict:
         ...

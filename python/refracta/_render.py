@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import copy
+import math
+import warnings
 
 from typing import Callable, List, Optional, Tuple, Union
 
@@ -11,6 +13,49 @@ import numpy as np
 from refracta import _core
 from refracta._progress import ProgressBar
 from refracta._sweep import map_ordered
+
+class SceneWarning(UserWarning):
+    """A render whose scene is probably not what was meant: it has no light (the image is black),
+    or its ground is away from the field's height 0 (the air's layers sit above or below it).
+    Silence it with ``warnings.filterwarnings("ignore", category=refracta.SceneWarning)``."""
+
+
+# How far the lowest geometry may lie from the field's height 0 [m] before render() warns: a hot
+# road's surface layer e-folds over ~0.1 m (ORACLES.md's typical layer), so a ground 0.1 m off
+# already sits a whole e-folding above or below the air that makes the mirage.
+GROUND_TOLERANCE = 0.1
+# ... and only when the air between that ground and height 0 is layered: its mean |dn/dh| [1/m]
+# above ten times the standard atmosphere's near the ground (~3e-8 /m). Air that steep is a ground
+# layer the offset moves; calmer air looks the same a few metres up or down.
+LAYER_GRADIENT = 3e-7
+
+
+def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str) -> None:
+    """The SceneWarning hints of render(): a scene without any light or sky; and one whose lowest
+    geometry (taken as its ground) lies more than GROUND_TOLERANCE from height 0 of the field the
+    rays go through (every field, CurvedEarth's flattened heights too, puts the ground at y = 0)
+    with layered air in between (mean |dn/dh| > LAYER_GRADIENT below the camera)."""
+    if len(scene.lights) == 0:
+        warnings.warn("render: the scene has no light and no sky, so the image is black; add one with "
+                      "scene.set_sky(...), set_sun, set_physical_sky, set_environment, add_point_light or "
+                      "an emission= geometry", SceneWarning, stacklevel=3)
+    if field is None or method == "straight" or scene.geometry_count == 0:
+        return
+    lowest = float(scene.bounds[0][1])
+    if not (math.isfinite(lowest) and abs(lowest) > GROUND_TOLERANCE):
+        return
+    x, _, z = camera.position
+    try:
+        n = field.ior(np.array([[x, 0.0, z], [x, lowest, z]]))
+        layered = abs(float(n[0] - n[1])) / abs(lowest) > LAYER_GRADIENT
+    except (_core.NumericalError, ValueError):
+        layered = True  # no air there at all: the scene is surely misplaced
+    if layered:
+        warnings.warn(f"render: the scene's lowest geometry is at y = {lowest:g} m, but the field's ground is at "
+                      f"height 0, so its ground layer lies {'below' if lowest > 0 else 'above'} the scene's "
+                      "ground; move the scene (add_obj(offset=...), add_ground(height=0)) so its ground is at y = 0",
+                      SceneWarning, stacklevel=3)
+
 
 # Fields of _core.RenderOptions that render() exposes as keywords (their defaults live in C++).
 _OPTION_NAMES = tuple(name for name in dir(_core.RenderOptions) if not name.startswith("_") and name != "validate")
@@ -91,6 +136,12 @@ def render(
     tiles of near-equal size; tiles=n: square tiles of n pixels; None with an executor: 128-pixel
     tiles. Scene, camera and field are pickled to the workers (texture files by path: they must be
     readable there). progress then reports finished tiles; stats sums the tiles' counts.
+
+    Warns (refracta.SceneWarning) when the scene has no light and no sky (a black image), and when
+    a field is given (method not 'straight') and the scene's lowest geometry lies more than
+    GROUND_TOLERANCE = 0.1 m from the field's height 0, where its ground should be, with layered
+    air in between (mean |dn/dh| under the camera above LAYER_GRADIENT = 3e-7 /m, ten times the
+    standard atmosphere's: a hot road's or a cold sea's ground layer).
     """
     if "integrator" in options:
         raise ValueError("render: 'integrator' is now 'trace' (the ray integrator: 'rk45' or 'stratified')")
@@ -107,6 +158,7 @@ def render(
     if stats is not None and not isinstance(stats, dict):
         raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
     settings = render_options(method=method, transport=transport, spp=spp, seed=seed, **options)
+    _check_scene(scene, camera, field, method)
     if executor is not None or tiles is not None:
         image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)
     else:

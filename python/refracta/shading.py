@@ -19,7 +19,8 @@ names; Mitsuba 3's ``si.wi`` is refracta's ``wo``). Keywords of the three method
 (refraction scales radiance by (eta_i / eta_t)^2, importance not). Non-unit or NaN directions raise
 ValueError. Reflectances above 1 are refused (ValueError) because they would create energy.
 
-Materials (colours are a number or an (r, g, b) triple):
+Materials (colours are a number or an (r, g, b) triple; ``texture=`` an image file whose linear
+RGB multiplies the colour at the surface's uvs, registered in each scene the material joins):
 
 - ``Diffuse(reflectance=0.5, texture=None)``
 - ``BlinnPhong(kd=0.5, ks=0.0, ns=1.0, texture=None, alpha=1.0)``
@@ -28,9 +29,9 @@ Materials (colours are a number or an (r, g, b) triple):
 - ``Dielectric(ior=1.5 | 'bk7', sellmeier=None, priority=0)``
 - ``RoughDielectric(alpha, ior=1.5, sellmeier=None, priority=0, alpha_u=None, alpha_v=None)``
 - ``ThinDielectric(ior=1.5)``
-- ``Plastic(reflectance=0.5, ior=1.5, alpha=0.0)``: alpha = 0 smooth, > 0 rough (GGX)
+- ``Plastic(reflectance=0.5, ior=1.5, alpha=0.0, texture=None)``: alpha = 0 smooth, > 0 rough (GGX)
 - ``Principled(base_color=0.5, metallic=0, roughness=0.5, anisotropic=0, specular=0.5,
-  specular_tint=0, sheen=0, sheen_tint=0.5, clearcoat=0, clearcoat_gloss=1)``
+  specular_tint=0, sheen=0, sheen_tint=0.5, clearcoat=0, clearcoat_gloss=1, texture=None)``
 - ``ThinFilm(thickness, film_ior=1.33, eta=1.5, k=0.0, alpha=0.1)``: thin-film iridescence
   (thickness [nm]) over a GGX base of complex index eta + i k; alpha = 0 is a smooth mirror.
 

@@ -1,6 +1,7 @@
 // Python bindings of the refractive-index fields (cpp/refracta/media) and CustomField.
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/custom_field.h"
+#include "refracta/bindings/interruptible.h"
 #include "refracta/media/curved_earth.h"
 #include "refracta/media/fields.h"
 #include "refracta/media/hot_spot.h"
@@ -22,6 +23,20 @@ std::string param_table(const std::vector<ParamSpec>& specs) {
     out << "    " << s.name << " [" << s.unit << "] " << s.default_value << ", [" << s.lower << ", "
         << s.upper << "]: " << s.doc << "\n";
   }
+  return out.str();
+}
+
+// The signature line of a model's __init__, which takes *args and **kwargs (its parameters come
+// from the spec list): help() and the stubs show the real parameters instead.
+std::string init_signature(const char* name, const std::vector<ParamSpec>& specs, bool hot_spots) {
+  std::ostringstream out;
+  out << "__init__(self: refracta._core." << name;
+  for (const auto& s : specs) out << ", " << s.name << ": float = " << std::string(py::repr(py::float_(s.default_value)));
+  if (hot_spots) {
+    out << ", *, hot_spots: refracta._core.HotSpot | collections.abc.Sequence[refracta._core.HotSpot] | None = None"
+        << ", turbulence: object = None";
+  }
+  out << ") -> None\n\nParameters in the order above (positional or by name); see the class for units and bounds.";
   return out.str();
 }
 
@@ -188,6 +203,8 @@ py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m,
   using Config = typename Field::Config;
   const auto specs = Field::param_specs_for({});
   py::class_<Field, IndexField, std::shared_ptr<Field>> cls(m, name, (doc + param_table(specs)).c_str());
+  py::options signature_by_hand;  // the generated one would read (*args, **kwargs)
+  signature_by_hand.disable_function_signatures();
   cls.def(py::init([specs](const py::args& args, py::kwargs kwargs) {
     Config config{};
     std::vector<double> values = values_from(Field::model_name(), specs, default_values(specs), 0, args, [&] {
@@ -219,7 +236,8 @@ py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m,
       throw_invalid(Field::model_name(), " takes no turbulence");
     }
     return std::make_shared<Field>(config, values);
-  }));
+  }), init_signature(name, specs, HasHotSpots<Config>::value).c_str());
+  signature_by_hand.enable_function_signatures();
   if constexpr (HasHotSpots<Config>::value) {
     cls.def_property_readonly("hot_spots", [](const Field& f) {
       const size_t first = Field::param_specs_for(Config{}).size();
@@ -421,7 +439,13 @@ parameters t0, t1, ... (with pressure, humidity, wavelength).)doc");
                                  "length (", config.heights.size(), " vs ", values.size(), ")");
                  }
                  values.insert(values.end(), {pressure, humidity, wavelength});
-                 return std::make_shared<TemperatureProfile>(config, values);
+                 // Each level adds 16 hydrostatic nodes (~7 us): from ~10^5 levels on this takes
+                 // seconds, so it runs like any long call (GIL released, Ctrl-C stops it).
+                 std::shared_ptr<TemperatureProfile> field;
+                 WorkControl control;
+                 run_interruptible(control, py::none(),
+                                   [&] { field = std::make_shared<TemperatureProfile>(config, values); });
+                 return field;
                }),
                py::arg("heights"), py::arg("temperatures"), py::arg("pressure") = kStandardPressure,
                py::arg("humidity") = 0.0, py::arg("wavelength") = 550.0)

@@ -19,6 +19,8 @@
 #include "refracta/shading/sun_light.h"
 #include "refracta/shading/tonemap.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -43,7 +45,58 @@ int material_of(RenderScene& s, const py::object& material, const py::object& kd
     }
     return s.add_material(m);
   }
-  return s.add_material(std::make_shared<BlinnPhong>(to_rgb(kd, "kd"), to_rgb(ks, "ks"), ns, texture, alpha));
+  return s.add_material(std::make_shared<BlinnPhong>(TexturedReflectance(to_rgb(kd, "kd"), "kd", texture), to_rgb(ks, "ks"), ns, alpha));
+}
+
+// A geometry id from Python (negative ids name nothing).
+unsigned geometry_id(int geometry) {
+  if (geometry < 0) throw_invalid("geometry must be an id returned by add_* (got ", geometry, ")");
+  return unsigned(geometry);
+}
+
+// Progress of the textures an add_obj prepares: reports (done, total) distinct files to a
+// callable, or to a refracta._progress.ProgressBar (progress=True) once preparing has taken
+// kQuietSeconds: a model whose textures are cached, or has a few, loads without a bar.
+class TextureProgress {
+ public:
+  // Portland's 236 textures take ~11 s to prepare, a small model's few well under a second.
+  static constexpr double kQuietSeconds = 1.0;
+
+  TextureProgress(const std::vector<std::string>& paths, const py::object& progress)
+      : total_(std::set<std::string>(paths.begin(), paths.end()).size() - (std::count(paths.begin(), paths.end(), "") > 0)),
+        start_(std::chrono::steady_clock::now()) {
+    if (py::isinstance<py::bool_>(progress)) {
+      bar_ = progress.cast<bool>();
+    } else if (PyCallable_Check(progress.ptr())) {
+      callback_ = progress;
+    } else {
+      throw_invalid("progress must be True, False or a callable progress(done, total)");
+    }
+  }
+  // A texture was registered (the same file again counts once).
+  void added(const std::string& path) {
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // Ctrl-C between textures
+    if (!seen_.insert(path).second) return;
+    if (!callback_ && bar_ && std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > kQuietSeconds) {
+      callback_ = py::module_::import("refracta._progress").attr("ProgressBar")("preparing textures");
+    }
+    if (callback_) callback_(seen_.size(), total_);
+  }
+
+ private:
+  size_t total_;
+  std::chrono::steady_clock::time_point start_;
+  bool bar_ = false;
+  py::object callback_;
+  std::set<std::string> seen_;
+};
+
+// A textured material needs texture coordinates: refuse it on geometry without uvs, saying how.
+void check_uvs(const RenderScene& s, int material, bool has_uvs, const char* what) {
+  if (has_uvs || !s.material(material).textured()) return;
+  throw_invalid(what, ": ", s.material(material).describe(),
+                " has a texture but this geometry has no texture coordinates; give the mesh uvs= (add_mesh),"
+                " use add_ground (its texture_size sets the repeat) or an OBJ with vt lines, or drop the texture");
 }
 
 // An illuminant colour, its errors naming the argument.
@@ -333,7 +386,9 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
              }
              const int tex = texture ? s.geometry.textures().add(*texture) : -1;
              if (tex >= 0 && mesh.uvs.empty()) throw_invalid("add_mesh: a texture needs uvs");
-             const unsigned id = s.geometry.add_mesh(mesh, material_of(s, material, kd, ks, ns, tex, alpha));
+             const int material_id = material_of(s, material, kd, ks, ns, tex, alpha);
+             check_uvs(s, material_id, !mesh.uvs.empty(), "add_mesh");
+             const unsigned id = s.geometry.add_mesh(mesh, material_id);
              add_emission(s, id, emission, two_sided);
              return id;
            },
@@ -348,7 +403,7 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
            "material. Returns its id.")
       .def("add_obj",
            [](RenderScene& s, const std::string& path, const py::object& offset, double scale,
-              const py::object& texture_dirs, const std::string& missing_textures) {
+              const py::object& texture_dirs, const std::string& missing_textures, const py::object& progress) {
              const Vec3d shift = to_point(offset, "offset");
              if (!(scale > 0.0) || !std::isfinite(scale)) throw_invalid("scale must be > 0 (got ", scale, ")");
              if (missing_textures != "error" && missing_textures != "warn") {
@@ -356,12 +411,14 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
              }
              std::vector<MaterialMesh> parts = load_obj(path);
              const std::vector<std::string> textures = obj_texture_paths(parts, to_folders(texture_dirs), missing_textures == "warn");
+             TextureProgress preparing(textures, progress);
              py::list ids;
              for (size_t p = 0; p < parts.size(); ++p) {
                MaterialMesh& part = parts[p];
                for (auto& v : part.mesh.vertices) v = v * scale + shift;
                const MtlMaterial& mtl = part.material;
-               const int tex = textures[p].empty() ? -1 : s.geometry.textures().add(textures[p]);
+               const int tex = textures[p].empty() ? -1 : s.geometry.add_texture(textures[p]);
+               if (tex >= 0) preparing.added(textures[p]);
                MaterialPtr material;
                if ((mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7) && mtl.alpha < 1.0 && mtl.ni > 1.0) {
                  material = std::make_shared<Dielectric>(Ior(mtl.ni));  // MTL glass
@@ -369,9 +426,9 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
                  PrincipledParameters p;
                  p.roughness = mtl.pr >= 0.0 ? mtl.pr : 0.5;
                  p.metallic = mtl.pm >= 0.0 ? mtl.pm : 0.0;
-                 material = std::make_shared<Principled>(mtl.kd, p, tex);
+                 material = std::make_shared<Principled>(TexturedReflectance(mtl.kd, "Kd", tex), p);
                } else {
-                 material = std::make_shared<BlinnPhong>(mtl.kd, mtl.ks, mtl.ns, tex, mtl.alpha);
+                 material = std::make_shared<BlinnPhong>(TexturedReflectance(mtl.kd, "Kd", tex), mtl.ks, mtl.ns, mtl.alpha);
                }
                const unsigned id = s.geometry.add_mesh(part.mesh, s.add_material(material));
                if (mtl.ke.maxCoeff() > 0.0) {
@@ -383,6 +440,7 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc")
            },
            py::arg("path"), py::arg("offset") = py::make_tuple(0.0, 0.0, 0.0), py::arg("scale") = 1.0,
            py::kw_only(), py::arg("texture_dirs") = py::tuple(), py::arg("missing_textures") = "error",
+           py::arg("progress") = true,
            R"doc(Add a Wavefront OBJ file with its MTL materials, scaled then offset.
 
 Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with
@@ -395,20 +453,27 @@ refracta.TextureNotFoundError (a refracta.IoError and a FileNotFoundError) namin
 folders searched (``missing_textures='error'``), or, with
 ``missing_textures='warn'``, issues a UserWarning (Python's warnings) and its material uses Kd.
 
+Each texture is prepared once (MIP-mapped, linear) into the texture cache folder
+($REFRACTA_TEXTURE_CACHE, else refracta-textures in the temporary folder); a model with hundreds of
+textures takes seconds the first time. progress: True shows a bar on stderr once preparing has
+taken over a second, a callable gets progress(done, total) textures, False shows nothing.
+
 Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
       .def("add_ground",
            [](RenderScene& s, double height, double size, const py::object& material, const py::object& kd,
               const py::object& ks, double ns, std::optional<std::string> texture, double texture_size) {
              Mesh mesh = ground_mesh(height, 0.5 * size);
              int tex = -1;
-             if (texture) {
+             const bool textured_material = !material.is_none() && py::isinstance<Material>(material) &&
+                                            py::cast<const Material&>(material).textured();
+             if (texture || textured_material) {
                // float texture coordinates keep no fraction of a repeat beyond 2^23 repeats (1e40
                // repeats gave NaN pixels): at most 1e6 across the ground keeps 4 fractional bits.
                if (!(texture_size > 0.0) || !std::isfinite(texture_size) || !(0.5 * size / texture_size <= 1e6)) {
                  throw_invalid("texture_size must be > 0 and at least size / 2e6 = ", 0.5 * size / 1e6,
                                " m (got ", texture_size, ")");
                }
-               tex = s.geometry.textures().add(*texture);
+               if (texture) tex = s.geometry.add_texture(*texture);
                for (const auto& v : mesh.vertices) mesh.uvs.emplace_back(v.x() / texture_size, -v.z() / texture_size);
              }
              return s.geometry.add_mesh(mesh, material_of(s, material, kd, ks, ns, tex));
@@ -417,8 +482,8 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            py::arg("kd") = py::make_tuple(0.3, 0.3, 0.3), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
            py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("texture_size") = 1.0,
            "Add a square ground of side `size` [m] at y = height, centred on the origin, facing up; an optional\n"
-           "texture repeats every texture_size [m] (u along +x, v along -z) and multiplies kd (or a\n"
-           "textured material's colour).")
+           "texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z) and\n"
+           "multiplies kd (or that material's colour).")
       .def("add_billboard",
            [](RenderScene& s, const py::object& centre, double width, double height, const std::string& texture,
               const py::object& facing, const py::object& kd) {
@@ -433,7 +498,7 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
              mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
              mesh.uvs = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}};
              const int tex = s.geometry.textures().add(texture);
-             return s.geometry.add_mesh(mesh, s.add_material(std::make_shared<BlinnPhong>(to_rgb(kd, "kd"), Vec3d::Zero(), 1.0, tex)));
+             return s.geometry.add_mesh(mesh, s.add_material(std::make_shared<BlinnPhong>(TexturedReflectance(to_rgb(kd, "kd"), "kd", tex), Vec3d::Zero(), 1.0)));
            },
            py::arg("centre"), py::arg("width"), py::arg("height"), py::arg("texture"),
            py::arg("facing") = py::make_tuple(-1.0, 0.0, 0.0), py::arg("kd") = py::make_tuple(1.0, 1.0, 1.0),
@@ -444,7 +509,9 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            [](RenderScene& s, const py::object& centre, const py::object& size, const py::object& material,
               const py::object& emission, const py::object& kd, const py::object& ks, double ns, double alpha) {
              const Mesh mesh = box_mesh(to_point(centre, "centre"), to_point(size, "size"));
-             const unsigned id = s.geometry.add_mesh(mesh, material_of(s, material, kd, ks, ns, -1, alpha));
+             const int material_id = material_of(s, material, kd, ks, ns, -1, alpha);
+             check_uvs(s, material_id, false, "add_box");
+             const unsigned id = s.geometry.add_mesh(mesh, material_id);
              add_emission(s, id, emission, false);
              return id;
            },
@@ -457,7 +524,9 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            [](RenderScene& s, const py::object& centre, double radius, const py::object& material,
               const py::object& emission, const py::object& kd, const py::object& ks, double ns) {
              const Vec3d c = to_point(centre, "centre");
-             const unsigned id = s.geometry.add_spheres({c}, {radius}, material_of(s, material, kd, ks, ns));
+             const int material_id = material_of(s, material, kd, ks, ns);
+             check_uvs(s, material_id, false, "add_sphere");
+             const unsigned id = s.geometry.add_spheres({c}, {radius}, material_id);
              if (!emission.is_none()) {
                s.add_light(std::make_shared<SphereLight>(c, radius, illuminant_of(emission, "emission")), int(id));
              }
@@ -593,12 +662,39 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
           "exact; a ground counts at its full size). ValueError for an empty scene.")
       .def("material",
            [](const RenderScene& s, int geometry) {
-             if (geometry < 0 || size_t(geometry) >= s.geometry.geometry_count()) {
-               throw_invalid("material: no geometry ", geometry, " (the scene has ", s.geometry.geometry_count(), ")");
-             }
+             s.geometry.check_geometry(geometry_id(geometry), "material");
              return std::const_pointer_cast<Material>(s.material_ptr(s.geometry.material(unsigned(geometry))));
            },
-           py::arg("geometry"), "The material of a geometry (an id returned by add_*), as a refracta.shading object.")
+           py::arg("geometry"),
+           "The material of a geometry (an id returned by add_*), as a refracta.shading object (a material\n"
+           "with a texture file: the scene's copy, its file registered here).")
+      .def("set_material",
+           [](RenderScene& s, int geometry, const py::object& material) {
+             const unsigned g = geometry_id(geometry);
+             s.geometry.check_geometry(g, "set_material");
+             std::shared_ptr<Material> m;
+             try {
+               m = py::cast<std::shared_ptr<Material>>(material);
+             } catch (const py::cast_error&) {
+               throw_invalid("set_material: material must be a refracta.shading material (got ",
+                             std::string(py::str(py::type::of(material))), ")");
+             }
+             if (!m) throw_invalid("set_material: material must be a refracta.shading material (got None)");
+             if (m->textured() && !s.geometry.has_uvs(g)) {
+               throw_invalid("set_material: ", m->describe(), " has a texture but geometry ", g,
+                             " has no texture coordinates (uvs)");
+             }
+             s.set_material(g, m);
+           },
+           py::arg("geometry"), py::arg("material"),
+           "Give a geometry (an id returned by add_*, e.g. one part of add_obj) another refracta.shading material.\n"
+           "Its emission, if any, stays. Not while a render of this scene runs (RuntimeError).")
+      .def("remove",
+           [](RenderScene& s, int geometry) { s.remove(geometry_id(geometry)); },
+           py::arg("geometry"),
+           "Remove a geometry (an id returned by add_*, e.g. an OBJ's terrain) and the area light it emits.\n"
+           "The other ids stay valid (a removed id is not reused; geometry_count still counts it); the\n"
+           "acceleration structure is rebuilt before the next render. Not while a render of this scene runs.")
       .def("intersect",
            [](const RenderScene& s, const py::object& origin, const py::object& direction) -> py::object {
              const Vec3d d = to_point(direction, "direction");

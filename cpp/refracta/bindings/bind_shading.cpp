@@ -16,6 +16,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <filesystem>
 #include <optional>
 
 namespace refracta {
@@ -43,11 +44,27 @@ std::optional<Vec3d> to_optional_rgb(const py::object& value, const char* name) 
   return to_rgb(value, name);
 }
 
-int to_texture(const py::object& texture) {
-  if (texture.is_none()) return -1;
-  const int id = texture.cast<int>();
-  if (id < 0) throw_invalid("texture must be a texture id >= 0 or None (got ", id, ")");
-  return id;
+// A colour with its texture= argument (material_util.h's TexturedReflectance): None; an image
+// file (str or os.PathLike), made absolute from the working directory and registered in each
+// scene the material is added to; or the id of a texture a scene already holds.
+TexturedReflectance to_textured(const py::object& color, const char* name, const py::object& texture) {
+  const Vec3d rgb = to_rgb(color, name);
+  if (texture.is_none()) return TexturedReflectance(rgb, name);
+  if (py::isinstance<py::str>(texture) || py::hasattr(texture, "__fspath__")) {
+    const py::object path_object = py::module_::import("os").attr("fspath")(texture);
+    if (!py::isinstance<py::str>(path_object)) throw_invalid("texture must be a str path (got bytes)");
+    const std::string path = py::cast<std::string>(path_object);
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) throw IoError(concat("no such texture file: '", path, "'"));
+    return TexturedReflectance(rgb, name, -1, std::filesystem::absolute(path).string());
+  }
+  if (py::isinstance<py::int_>(texture) && !py::isinstance<py::bool_>(texture)) {
+    const int id = texture.cast<int>();
+    if (id < 0) throw_invalid("texture must be an image file, a scene texture id >= 0 or None (got ", id, ")");
+    return TexturedReflectance(rgb, name, id);
+  }
+  throw_invalid("texture must be an image file path (str or os.PathLike), a scene texture id >= 0 or None (got ",
+                std::string(py::str(py::type::of(texture).attr("__name__"))), ")");
 }
 
 Ior to_ior(const py::object& ior, const py::object& sellmeier) {
@@ -200,7 +217,10 @@ bool for_pairs(const Material& material, const py::object& wo_in, const py::obje
 // the C++ object; unpickling calls the Python constructor with them (its checks included).
 py::tuple rgb_tuple(const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); }
 py::object optional_rgb_tuple(const std::optional<Vec3d>& v) { return v ? py::object(rgb_tuple(*v)) : py::object(py::none()); }
-py::object texture_argument(int texture) { return texture >= 0 ? py::object(py::int_(texture)) : py::object(py::none()); }
+py::object texture_argument(const TexturedReflectance& r) {
+  if (!r.path().empty()) return py::str(r.path());
+  return r.texture() >= 0 ? py::object(py::int_(r.texture())) : py::object(py::none());
+}
 
 // ior= or sellmeier= as the constructors take them.
 void add_ior_arguments(py::dict& kwargs, const Ior& ior) {
@@ -219,6 +239,15 @@ void add_parameters(Class& cls, py::dict (*parameters)(const T&)) {
                             "The constructor's keyword arguments that rebuild this material (pickling uses them).");
   cls.def(py::pickle(parameters, [](const py::dict& kwargs) { return py::cast<std::shared_ptr<T>>(py::type::of<T>()(**kwargs)); }));
 }
+
+// The texture= argument of the materials with a textured reflectance.
+#define TEXTURE_DOC                                                                                          \
+  "texture: an image file (str or os.PathLike;\n"                                                          \
+  "any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],\n"  \
+  "multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);\n"     \
+  "relative paths are from the working directory when the material is made. Each scene the material\n"    \
+  "is added to registers the file (prepared once into the texture cache). An int is the id of a\n"       \
+  "texture the scene already holds. f/pdf/sample evaluate the untextured colour."
 
 const char* kEvalDoc =
     "wo, wi: unit directions in the local shading frame (z = shading normal), shape (N, 3) or (3,)\n"
@@ -345,28 +374,29 @@ void bind_shading(py::module_& m) {
 
   py::class_<Diffuse, Material, std::shared_ptr<Diffuse>> diffuse_class(m, "Diffuse",
                                                         "Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b)\n"
-                                                        "in [0, 1] (> 1 is refused: it would create energy); texture: a texture id of the\n"
-                                                        "scene multiplying it (ignored by f/pdf/sample, which have no texture table).");
+                                                        "in [0, 1] (> 1 is refused: it would create energy). " TEXTURE_DOC);
   diffuse_class
       .def(py::init([](const py::object& reflectance, const py::object& texture) {
-             return std::make_shared<Diffuse>(to_rgb(reflectance, "reflectance"), to_texture(texture));
+             return std::make_shared<Diffuse>(to_textured(reflectance, "reflectance", texture));
            }),
            py::arg("reflectance") = 0.5, py::arg("texture") = py::none());
-  add_parameters<Diffuse>(diffuse_class, [](const Diffuse& m) { return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance()), py::arg("texture") = texture_argument(m.texture())); });
+  add_parameters<Diffuse>(diffuse_class, [](const Diffuse& m) {
+    return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance().rgb()), py::arg("texture") = texture_argument(m.reflectance()));
+  });
 
   py::class_<BlinnPhong, Material, std::shared_ptr<BlinnPhong>> blinn_phong_class(
       m, "BlinnPhong",
       "Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0, 1]\n"
-      "(numbers or (r, g, b)), ns >= 0; texture multiplies kd; alpha in [0, 1] is the raster opacity (MTL d).\n"
-      "Sampled by a mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact.");
+      "(numbers or (r, g, b)), ns >= 0; alpha in [0, 1] is the raster opacity (MTL d). Sampled by a\n"
+      "mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd. " TEXTURE_DOC);
   blinn_phong_class
       .def(py::init([](const py::object& kd, const py::object& ks, double ns, const py::object& texture, double alpha) {
-             return std::make_shared<BlinnPhong>(to_rgb(kd, "kd"), to_rgb(ks, "ks"), ns, to_texture(texture), alpha);
+             return std::make_shared<BlinnPhong>(to_textured(kd, "kd", texture), to_rgb(ks, "ks"), ns, alpha);
            }),
            py::arg("kd") = 0.5, py::arg("ks") = 0.0, py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("alpha") = 1.0);
   add_parameters<BlinnPhong>(blinn_phong_class, [](const BlinnPhong& m) {
-    return py::dict(py::arg("kd") = rgb_tuple(m.kd()), py::arg("ks") = rgb_tuple(m.ks()), py::arg("ns") = m.ns(),
-                    py::arg("texture") = texture_argument(m.texture()), py::arg("alpha") = m.alpha());
+    return py::dict(py::arg("kd") = rgb_tuple(m.kd().rgb()), py::arg("ks") = rgb_tuple(m.ks()), py::arg("ns") = m.ns(),
+                    py::arg("texture") = texture_argument(m.kd()), py::arg("alpha") = m.alpha());
   });
 
   py::class_<Conductor, Material, std::shared_ptr<Conductor>> conductor_class(
@@ -451,25 +481,25 @@ void bind_shading(py::module_& m) {
       m, "Plastic",
       "Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of index\n"
       "ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX\n"
-      "(or alpha_u, alpha_v); texture multiplies the reflectance.");
+      "(or alpha_u, alpha_v). A texture multiplies the reflectance. " TEXTURE_DOC);
   plastic_class
       .def(py::init([](const py::object& reflectance, double ior, const py::object& alpha, const py::object& alpha_u,
                        const py::object& alpha_v, const py::object& texture) {
              const auto a = to_alphas(alpha, alpha_u, alpha_v, false, 0.0);
-             return std::make_shared<Plastic>(to_rgb(reflectance, "reflectance"), ior, a.first, a.second, to_texture(texture));
+             return std::make_shared<Plastic>(to_textured(reflectance, "reflectance", texture), ior, a.first, a.second);
            }),
            py::arg("reflectance") = 0.5, py::arg("ior") = 1.5, py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(),
            py::arg("alpha_v") = py::none(), py::arg("texture") = py::none());
   add_parameters<Plastic>(plastic_class, [](const Plastic& m) {
-    return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance()), py::arg("ior") = m.ior(), py::arg("alpha_u") = m.alpha_u(),
-                    py::arg("alpha_v") = m.alpha_v(), py::arg("texture") = texture_argument(m.texture()));
+    return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance().rgb()), py::arg("ior") = m.ior(), py::arg("alpha_u") = m.alpha_u(),
+                    py::arg("alpha_v") = m.alpha_v(), py::arg("texture") = texture_argument(m.reflectance()));
   });
 
   py::class_<Principled, Material, std::shared_ptr<Principled>> principled_class(
       m, "Principled",
       "Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and\n"
       "metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,\n"
-      "clearcoat, clearcoat_gloss, all in [0, 1]. texture multiplies base_color.");
+      "clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color. " TEXTURE_DOC);
   principled_class
       .def(py::init([](const py::object& base_color, double metallic, double roughness, double anisotropic, double specular,
                        double specular_tint, double sheen, double sheen_tint, double clearcoat, double clearcoat_gloss,
@@ -478,18 +508,18 @@ void bind_shading(py::module_& m) {
              p.metallic = metallic, p.roughness = roughness, p.anisotropic = anisotropic, p.specular = specular;
              p.specular_tint = specular_tint, p.sheen = sheen, p.sheen_tint = sheen_tint, p.clearcoat = clearcoat;
              p.clearcoat_gloss = clearcoat_gloss;
-             return std::make_shared<Principled>(to_rgb(base_color, "base_color"), p, to_texture(texture));
+             return std::make_shared<Principled>(to_textured(base_color, "base_color", texture), p);
            }),
            py::arg("base_color") = 0.5, py::arg("metallic") = 0.0, py::arg("roughness") = 0.5, py::arg("anisotropic") = 0.0,
            py::arg("specular") = 0.5, py::arg("specular_tint") = 0.0, py::arg("sheen") = 0.0, py::arg("sheen_tint") = 0.5,
            py::arg("clearcoat") = 0.0, py::arg("clearcoat_gloss") = 1.0, py::arg("texture") = py::none());
   add_parameters<Principled>(principled_class, [](const Principled& m) {
     const PrincipledParameters& p = m.parameters();
-    return py::dict(py::arg("base_color") = rgb_tuple(m.base_color()), py::arg("metallic") = p.metallic,
+    return py::dict(py::arg("base_color") = rgb_tuple(m.base_color().rgb()), py::arg("metallic") = p.metallic,
                     py::arg("roughness") = p.roughness, py::arg("anisotropic") = p.anisotropic, py::arg("specular") = p.specular,
                     py::arg("specular_tint") = p.specular_tint, py::arg("sheen") = p.sheen, py::arg("sheen_tint") = p.sheen_tint,
                     py::arg("clearcoat") = p.clearcoat, py::arg("clearcoat_gloss") = p.clearcoat_gloss,
-                    py::arg("texture") = texture_argument(m.texture()));
+                    py::arg("texture") = texture_argument(m.base_color()));
   });
 
   py::class_<ThinFilm, Material, std::shared_ptr<ThinFilm>> thin_film_class(

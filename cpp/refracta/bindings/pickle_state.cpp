@@ -117,7 +117,9 @@ py::tuple scene_state(const RenderScene& scene) {
     materials.append(py::cast(std::const_pointer_cast<Material>(scene.material_ptr(int(id)))));
   }
   for (unsigned g = 0; g < geometry.geometry_count(); ++g) {
-    if (const Scene::Spheres* spheres = geometry.spheres(g)) {
+    if (geometry.removed(g)) {  // kept as a place: the ids after it stay the same
+      parts.append(py::make_tuple("removed"));
+    } else if (const Scene::Spheres* spheres = geometry.spheres(g)) {
       parts.append(py::make_tuple("spheres", points_to_array(spheres->centres), values_to_array(spheres->radii),
                                   geometry.material(g)));
     } else {
@@ -153,6 +155,11 @@ std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state) {
     } else if (kind == "mesh") {
       check_size(part, 3, "Scene mesh");
       geometry.add_mesh(mesh_from_state(part[1]), py::cast<int>(part[2]));
+    } else if (kind == "removed") {  // Scene.remove'd: a stand-in removed again keeps the ids
+      Mesh stand_in;
+      stand_in.vertices = {Vec3d::Zero(), Vec3d::UnitX(), Vec3d::UnitZ()};
+      stand_in.triangles = {{0, 1, 2}};
+      geometry.remove(geometry.add_mesh(stand_in, 0));
     } else {
       throw_invalid("Scene: bad pickle state (geometry kind '", kind, "')");
     }

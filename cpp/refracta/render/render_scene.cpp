@@ -11,8 +11,27 @@ namespace refracta {
 
 int RenderScene::add_material(MaterialPtr material) {
   if (!material) throw_invalid("material must not be None");
+  if (MaterialPtr bound = material->with_textures(geometry.textures())) material = std::move(bound);
   materials_.push_back(std::move(material));
   return int(materials_.size() - 1);
+}
+
+void RenderScene::set_material(unsigned geometry_id, MaterialPtr material) {
+  geometry.check_geometry(geometry_id, "set_material");
+  geometry.set_material(geometry_id, add_material(std::move(material)));
+}
+
+void RenderScene::remove(unsigned geometry_id) {
+  geometry.check_geometry(geometry_id, "remove");
+  remove_lights_if_emitted_by(int(geometry_id));
+  geometry.remove(geometry_id);
+}
+
+void RenderScene::remove_lights_if_emitted_by(int geometry_id) {
+  std::vector<bool> drop(lights_.size());
+  for (size_t i = 0; i < lights_.size(); ++i) drop[i] = geometry_of_light_[i] == geometry_id;
+  size_t i = 0;
+  remove_lights_if([&](const Light&) { return drop[i++]; });
 }
 
 size_t RenderScene::add_light(LightPtr light, int emitter) {

@@ -16,8 +16,13 @@ class RenderScene {
  public:
   Scene geometry;
 
-  // Adds a material to the table; returns its id.
+  // Adds a material to the table (a copy with its texture files registered in the geometry's
+  // table when it names any: Material::with_textures); returns its id.
   int add_material(MaterialPtr material);
+  // Gives a geometry a new material (added to the table; the old entry stays, unused).
+  void set_material(unsigned geometry_id, MaterialPtr material);
+  // Removes a geometry (Scene::remove: other ids unchanged) and the area light it emits.
+  void remove(unsigned geometry_id);
   const Material& material(int id) const { return *materials_.at(size_t(id)); }
   const MaterialPtr& material_ptr(int id) const { return materials_.at(size_t(id)); }
   size_t material_count() const { return materials_.size(); }
@@ -51,6 +56,8 @@ class RenderScene {
   std::vector<int> light_of_geometry_;
   std::vector<int> geometry_of_light_;
   std::vector<std::pair<const Light*, double>> shadow_radius_;
+
+  void remove_lights_if_emitted_by(int geometry_id);
 };
 
 template <class Predicate>

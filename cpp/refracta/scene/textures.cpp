@@ -1,4 +1,4 @@
-// Textures: OIIO make_texture + TextureSystem.
+// Textures: OIIO make_texture into the texture cache folder + TextureSystem.
 #include "refracta/scene/textures.h"
 
 #include "refracta/core/error.h"
@@ -8,11 +8,16 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/texture.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <mutex>
+#include <vector>
 
 namespace refracta {
 
@@ -35,7 +40,40 @@ Textures::~Textures() = default;
 
 namespace {
 
-// The prepared copy of `path`: a tiled, MIP-mapped, linear half-float OpenEXR in the temp
+// Whether `folder` exists (made if missing) and this process may write there.
+bool usable_folder(const fs::path& folder) {
+  std::error_code error;
+  fs::create_directories(folder, error);
+  return fs::is_directory(folder, error) && ::access(folder.c_str(), W_OK | X_OK) == 0;
+}
+
+}  // namespace
+
+std::string texture_cache_folder() {
+  if (const char* chosen = std::getenv("REFRACTA_TEXTURE_CACHE"); chosen && *chosen) {
+    if (!usable_folder(chosen)) {
+      throw IoError(concat("REFRACTA_TEXTURE_CACHE='", chosen, "': the texture cache folder cannot be made or written"));
+    }
+    return chosen;
+  }
+  // The temporary folder ($TMPDIR); /tmp when TMPDIR names a folder that is missing or read-only
+  // (temp_directory_path throws then).
+  std::vector<fs::path> candidates;
+  std::error_code error;
+  const fs::path temp = fs::temp_directory_path(error);
+  if (!error) candidates.push_back(temp / "refracta-textures");
+  candidates.emplace_back("/tmp/refracta-textures");
+  std::string tried;
+  for (const fs::path& folder : candidates) {
+    if (usable_folder(folder)) return folder.string();
+    tried += concat(tried.empty() ? "'" : ", '", folder.string(), "'");
+  }
+  throw IoError(concat("no folder for the texture cache (tried ", tried, "): set REFRACTA_TEXTURE_CACHE to a writable folder"));
+}
+
+namespace {
+
+// The prepared copy of `path`: a tiled, MIP-mapped, linear half-float OpenEXR in the cache
 // folder, named by the source's path, size and time so an edited file is prepared again.
 std::string prepare(const std::string& path) {
   std::error_code error;
@@ -43,9 +81,7 @@ std::string prepare(const std::string& path) {
   if (error) throw IoError(concat("no such texture file: '", path, "'"));
   const auto time = fs::last_write_time(path, error).time_since_epoch().count();
   const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time));
-  const fs::path folder = fs::temp_directory_path() / "refracta-textures";
-  fs::create_directories(folder, error);
-  const fs::path prepared = folder / concat(std::hex, key, ".exr");
+  const fs::path prepared = fs::path(texture_cache_folder()) / concat(std::hex, key, ".exr");
   if (fs::exists(prepared)) return prepared.string();
 
   OIIO::ImageBuf source(path);
@@ -90,13 +126,20 @@ std::string prepare(const std::string& path) {
   config.attribute("tile_height", 64);
   config.attribute("compression", "zip");
   config.set_format(OIIO::TypeDesc::HALF);
-  // Written under a temporary name and renamed, so concurrent sessions never read a partial file.
-  const fs::path partial = prepared.string() + concat(".", std::hash<std::string>()(path), ".part.exr");
+  // Written under a name of this process and call, then renamed (atomic within the folder): a
+  // session never reads a partial file, and sessions preparing the same texture at once each
+  // write their own (the last rename wins; the copies are identical).
+  static std::atomic<unsigned> calls{0};
+  const fs::path partial = prepared.string() + concat(".", ::getpid(), "-", calls++, ".part.exr");
   if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, linear, partial.string(), config)) {
-    throw IoError(concat("cannot prepare texture '", path, "': ", OIIO::geterror()));
+    fs::remove(partial, error);
+    throw IoError(concat("cannot prepare texture '", path, "' in '", prepared.parent_path().string(), "': ", OIIO::geterror()));
   }
   fs::rename(partial, prepared, error);
-  if (error && !fs::exists(prepared)) throw IoError(concat("cannot store prepared texture for '", path, "'"));
+  if (error) {
+    fs::remove(partial, error);
+    throw IoError(concat("cannot store the prepared texture for '", path, "' in '", prepared.parent_path().string(), "'"));
+  }
   return prepared.string();
 }
 

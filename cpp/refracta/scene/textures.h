@@ -1,7 +1,8 @@
 // Image textures through OpenImageIO's TextureSystem: MIP-mapped, anisotropic filtering driven by
 // the footprint of a pixel on the surface. A texture file is prepared once by OIIO's
 // make_texture (linearised from sRGB when stored in 8 or 16 bits, MIP-mapped, tiled) into a
-// cache file; lookups then go through the shared TextureSystem. The only OIIO texture user.
+// cache file (texture_cache_folder(), written atomically); lookups then go through the shared
+// TextureSystem. The only OIIO texture user.
 #pragma once
 
 #include "refracta/core/math.h"
@@ -18,6 +19,12 @@ struct TextureLookup {
   double s = 0.0, t = 0.0;
   double dsdx = 0.0, dtdx = 0.0, dsdy = 0.0, dtdy = 0.0;
 };
+
+// The folder of prepared textures: $REFRACTA_TEXTURE_CACHE when set (made if missing; IoError
+// when it cannot be made or written), else refracta-textures in the temporary folder ($TMPDIR),
+// else /tmp/refracta-textures (TMPDIR naming a missing or read-only folder). Files there are
+// named by the source's absolute path, size and time; deleting them is always safe.
+std::string texture_cache_folder();
 
 class Textures {
  public:

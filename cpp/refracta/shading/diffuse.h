@@ -1,6 +1,7 @@
 // Lambertian reflection (shared/SHADING.md section 3): f = R / pi, sampled by a cosine-weighted
 // hemisphere (pdf = cos theta / pi, Malley's method), so every sample weighs R. Two-sided.
-//   Diffuse(reflectance = (0.5, 0.5, 0.5), texture = -1): an optional texture multiplies R.
+//   Diffuse(reflectance = (0.5, 0.5, 0.5), texture = none): an optional texture (a file path or a
+//   scene texture id, material_util.h's TexturedReflectance) multiplies R.
 #pragma once
 
 #include "refracta/shading/material_util.h"
@@ -29,21 +30,19 @@ class DiffuseBsdf final : public TwoSidedReflection<DiffuseBsdf> {
 
 class Diffuse final : public Material {
  public:
-  explicit Diffuse(const Vec3d& reflectance = Vec3d::Constant(0.5), int texture = -1)
-      : rgb_(reflectance), reflectance_(checked_reflectance(reflectance, "reflectance")), texture_(texture) {}
+  explicit Diffuse(const TexturedReflectance& reflectance) : reflectance_(reflectance) {}
   const Bsdf* bsdf(const SurfaceInteraction& si, const MaterialContext& context, ScratchBuffer& scratch) const override {
-    return scratch.make<DiffuseBsdf>(resolve_reflectance(reflectance_, texture_, si, context));
+    return scratch.make<DiffuseBsdf>(reflectance_.at(si, context));
   }
-  const Vec3d& reflectance() const { return rgb_; }
-  int texture() const { return texture_; }
+  MaterialPtr with_textures(Textures& textures) const override { return with_bound_texture(*this, &Diffuse::reflectance_, textures); }
+  bool textured() const override { return reflectance_.textured(); }
+  const TexturedReflectance& reflectance() const { return reflectance_; }
   std::string describe() const override {
-    return concat("Diffuse(reflectance=", describe_rgb(rgb_), texture_ >= 0 ? concat(", texture=", texture_) : "", ")");
+    return concat("Diffuse(reflectance=", describe_rgb(reflectance_.rgb()), reflectance_.describe_texture(), ")");
   }
 
  private:
-  Vec3d rgb_;
-  Color reflectance_;
-  int texture_;
+  TexturedReflectance reflectance_;
 };
 
 }  // namespace refracta

@@ -41,6 +41,12 @@ class Material {
   virtual double alpha() const { return 1.0; }
   // A short description for repr and errors, e.g. "Diffuse(reflectance=(0.5, 0.5, 0.5))".
   virtual std::string describe() const = 0;
+  // A copy whose texture files are registered in `textures` (a scene's table) and looked up there
+  // by id, or null when the material names no texture file. RenderScene::add_material calls it,
+  // so one material object can be added to several scenes.
+  virtual std::shared_ptr<const Material> with_textures(Textures& /*textures*/) const { return nullptr; }
+  // Whether a texture multiplies a colour of this material (its geometry then needs uvs).
+  virtual bool textured() const { return false; }
 };
 
 using MaterialPtr = std::shared_ptr<const Material>;

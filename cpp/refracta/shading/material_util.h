@@ -8,7 +8,10 @@
 #include "refracta/shading/material.h"
 
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 
 namespace refracta {
 
@@ -38,14 +41,64 @@ inline double checked_scalar(double value, const char* name, double lo, double h
   return value;
 }
 
-// A reflectance colour at a hit: the colour's spectrum times the texture's (linear RGB, upsampled
-// as a reflectance) when a texture id is set and the context has a texture table.
-inline Spectrum resolve_reflectance(const Color& color, int texture, const SurfaceInteraction& si, const MaterialContext& context) {
-  Spectrum value = color.sample(*context.lambda);
-  if (texture >= 0 && context.textures) {
-    value *= reflectance_spectrum(context.textures->lookup(texture, si.texture).cwiseMin(1.0).cwiseMax(0.0), *context.lambda);
+// A reflectance colour in [0, 1], optionally multiplied by an image texture: the one textured
+// reflectance of the materials (Diffuse, BlinnPhong's kd, Plastic, Principled's base colour). The
+// texture is either a file path, registered in a scene's texture table when the material is added
+// to the scene (bound_to, through Material::with_textures), or an id of that table as add_mesh's
+// texture= shorthand and OBJ map_Kd make it. Texels are linear RGB clamped to [0, 1].
+class TexturedReflectance {
+ public:
+  TexturedReflectance(const Vec3d& rgb, const char* name, int texture = -1, std::string path = {})
+      : rgb_(rgb), color_(checked_reflectance(rgb, name)), texture_(texture), path_(std::move(path)) {}
+
+  // The colour's spectrum times the texel's (upsampled as a reflectance), when a texture is bound
+  // and the context has a texture table (Material.f/pdf/sample evaluate without one: the colour).
+  Spectrum at(const SurfaceInteraction& si, const MaterialContext& context) const {
+    Spectrum value = color_.sample(*context.lambda);
+    if (const auto texel = texel_at(si, context)) value *= reflectance_spectrum(*texel, *context.lambda);
+    return value;
   }
-  return value;
+  // Linear RGB at a hit: the colour times the texel.
+  Vec3d rgb_at(const SurfaceInteraction& si, const MaterialContext& context) const {
+    const auto texel = texel_at(si, context);
+    return texel ? Vec3d(rgb_.cwiseProduct(*texel)) : rgb_;
+  }
+  // This reflectance with its texture file registered in `textures` (the file's id there).
+  TexturedReflectance bound_to(Textures& textures) const {
+    TexturedReflectance bound = *this;
+    bound.texture_ = textures.add(path_);
+    return bound;
+  }
+  const Vec3d& rgb() const { return rgb_; }
+  int texture() const { return texture_; }           // -1: none bound
+  const std::string& path() const { return path_; }  // "": given by id (or none)
+  bool textured() const { return texture_ >= 0 || !path_.empty(); }
+  // ", texture='albedo.png'", ", texture=3" or "" for describe().
+  std::string describe_texture() const {
+    if (!path_.empty()) return concat(", texture='", path_, "'");
+    return texture_ >= 0 ? concat(", texture=", texture_) : std::string();
+  }
+
+ private:
+  std::optional<Vec3d> texel_at(const SurfaceInteraction& si, const MaterialContext& context) const {
+    if (texture_ < 0 || !context.textures) return std::nullopt;
+    return context.textures->lookup(texture_, si.texture).cwiseMin(1.0).cwiseMax(0.0);
+  }
+
+  Vec3d rgb_;
+  Color color_;
+  int texture_;
+  std::string path_;
+};
+
+// Material::with_textures of a material whose `member` is its textured reflectance: a copy with
+// the texture file bound to `textures`, or null when the texture is not a file.
+template <class M>
+std::shared_ptr<const Material> with_bound_texture(const M& material, TexturedReflectance M::*member, Textures& textures) {
+  if ((material.*member).path().empty()) return nullptr;
+  auto copy = std::make_shared<M>(material);
+  copy.get()->*member = (material.*member).bound_to(textures);
+  return copy;
 }
 
 // The mean over the channels a path carries (RGB: r, g, b; spectral: the four wavelengths).

@@ -62,31 +62,32 @@ class BlinnPhongBsdf final : public TwoSidedReflection<BlinnPhongBsdf> {
 
 class BlinnPhong final : public Material {
  public:
-  BlinnPhong(const Vec3d& kd, const Vec3d& ks, double ns, int texture = -1, double alpha = 1.0)
-      : kd_rgb_(kd), ks_rgb_(ks), kd_(checked_reflectance(kd, "kd")), ks_(checked_reflectance(ks, "ks")),
-        ns_(checked_scalar(ns, "ns", 0.0, 1e7)), texture_(texture), alpha_(checked_scalar(alpha, "alpha", 0.0, 1.0)) {}
+  BlinnPhong(const TexturedReflectance& kd, const Vec3d& ks, double ns, double alpha = 1.0)
+      : kd_(kd), ks_rgb_(ks), ks_(checked_reflectance(ks, "ks")), ns_(checked_scalar(ns, "ns", 0.0, 1e7)),
+        alpha_(checked_scalar(alpha, "alpha", 0.0, 1.0)) {}
 
   const Bsdf* bsdf(const SurfaceInteraction& si, const MaterialContext& context, ScratchBuffer& scratch) const override {
-    const Spectrum kd = resolve_reflectance(kd_, texture_, si, context), ks = ks_.sample(*context.lambda);
+    const Spectrum kd = kd_.at(si, context), ks = ks_.sample(*context.lambda);
     const double md = channel_mean(kd, *context.lambda), ms = channel_mean(ks, *context.lambda);
     const double p_diffuse = md + ms > 0.0 ? md / (md + ms) : 1.0;
     return scratch.make<BlinnPhongBsdf>(kd, ks, ns_, p_diffuse);
   }
+  MaterialPtr with_textures(Textures& textures) const override { return with_bound_texture(*this, &BlinnPhong::kd_, textures); }
+  bool textured() const override { return kd_.textured(); }
   double alpha() const override { return alpha_; }
-  const Vec3d& kd() const { return kd_rgb_; }
+  const TexturedReflectance& kd() const { return kd_; }
   const Vec3d& ks() const { return ks_rgb_; }
   double ns() const { return ns_; }
-  int texture() const { return texture_; }
   std::string describe() const override {
-    return concat("BlinnPhong(kd=", describe_rgb(kd_rgb_), ", ks=", describe_rgb(ks_rgb_), ", ns=", ns_,
-                  texture_ >= 0 ? concat(", texture=", texture_) : "", alpha_ < 1.0 ? concat(", alpha=", alpha_) : "", ")");
+    return concat("BlinnPhong(kd=", describe_rgb(kd_.rgb()), ", ks=", describe_rgb(ks_rgb_), ", ns=", ns_, kd_.describe_texture(),
+                  alpha_ < 1.0 ? concat(", alpha=", alpha_) : "", ")");
   }
 
  private:
-  Vec3d kd_rgb_, ks_rgb_;
-  Color kd_, ks_;
+  TexturedReflectance kd_;
+  Vec3d ks_rgb_;
+  Color ks_;
   double ns_;
-  int texture_;
   double alpha_;
 };
 

@@ -84,37 +84,36 @@ class PlasticBsdf final : public TwoSidedReflection<PlasticBsdf> {
 class Plastic final : public Material {
  public:
   // alpha = 0: smooth coat; otherwise GGX roughness alpha_u, alpha_v (>= TrowbridgeReitz::kMinAlpha).
-  Plastic(const Vec3d& reflectance, double ior = 1.5, double alpha_u = 0.0, double alpha_v = 0.0, int texture = -1)
-      : rgb_(reflectance), reflectance_(checked_reflectance(reflectance, "reflectance")), ior_(ior), texture_(texture) {
+  Plastic(const TexturedReflectance& reflectance, double ior = 1.5, double alpha_u = 0.0, double alpha_v = 0.0)
+      : reflectance_(reflectance), ior_(ior) {
     const double au = checked_alpha_or_zero(alpha_u, "alpha_u"), av = checked_alpha_or_zero(alpha_v, "alpha_v");
     if ((au == 0.0) != (av == 0.0)) throw_invalid("alpha_u and alpha_v must both be 0 (smooth) or both > 0 (got ", alpha_u, ", ", alpha_v, ")");
     alpha_u_ = au, alpha_v_ = av;
   }
   const Bsdf* bsdf(const SurfaceInteraction& si, const MaterialContext& context, ScratchBuffer& scratch) const override {
-    const Spectrum r = resolve_reflectance(reflectance_, texture_, si, context);
+    const Spectrum r = reflectance_.at(si, context);
     const double eta = ior_.rgb_value() / context.eta_outside;
     const double specular_weight = 1.0 / (1.0 + channel_mean(r, *context.lambda));
     return scratch.make<PlasticBsdf>(r, eta, fresnel_diffuse_reflectance(1.0 / eta), specular_weight, alpha_u_, alpha_v_);
   }
   std::string describe() const override {
-    return concat("Plastic(reflectance=", describe_rgb(rgb_), ", ior=", ior_.describe(),
-                  alpha_u_ > 0.0 ? concat(", alpha_u=", alpha_u_, ", alpha_v=", alpha_v_) : "", ")");
+    return concat("Plastic(reflectance=", describe_rgb(reflectance_.rgb()), ", ior=", ior_.describe(),
+                  alpha_u_ > 0.0 ? concat(", alpha_u=", alpha_u_, ", alpha_v=", alpha_v_) : "", reflectance_.describe_texture(), ")");
   }
-  const Vec3d& reflectance() const { return rgb_; }
+  MaterialPtr with_textures(Textures& textures) const override { return with_bound_texture(*this, &Plastic::reflectance_, textures); }
+  bool textured() const override { return reflectance_.textured(); }
+  const TexturedReflectance& reflectance() const { return reflectance_; }
   double ior() const { return ior_.rgb_value(); }
   double alpha_u() const { return alpha_u_; }
   double alpha_v() const { return alpha_v_; }
-  int texture() const { return texture_; }
 
  private:
   static double checked_alpha_or_zero(double alpha, const char* name) {
     return alpha == 0.0 ? 0.0 : TrowbridgeReitz::checked_alpha(alpha, name);
   }
-  Vec3d rgb_;
-  Color reflectance_;
+  TexturedReflectance reflectance_;
   Ior ior_;
   double alpha_u_ = 0.0, alpha_v_ = 0.0;
-  int texture_;
 };
 
 }  // namespace refracta

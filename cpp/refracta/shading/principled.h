@@ -108,8 +108,7 @@ class PrincipledBsdf final : public TwoSidedReflection<PrincipledBsdf> {
 
 class Principled final : public Material {
  public:
-  Principled(const Vec3d& base_color, const PrincipledParameters& p, int texture = -1)
-      : base_rgb_(base_color), base_(checked_reflectance(base_color, "base_color")), p_(p), texture_(texture) {
+  Principled(const TexturedReflectance& base_color, const PrincipledParameters& p) : base_(base_color), p_(p) {
     checked_scalar(p.metallic, "metallic", 0.0, 1.0);
     checked_scalar(p.roughness, "roughness", 0.0, 1.0);
     checked_scalar(p.anisotropic, "anisotropic", 0.0, 1.0);
@@ -121,28 +120,26 @@ class Principled final : public Material {
     checked_scalar(p.clearcoat_gloss, "clearcoat_gloss", 0.0, 1.0);
   }
   const Bsdf* bsdf(const SurfaceInteraction& si, const MaterialContext& context, ScratchBuffer& scratch) const override {
-    Vec3d rgb = base_rgb_;
-    if (texture_ >= 0 && context.textures) rgb = rgb.cwiseProduct(context.textures->lookup(texture_, si.texture).cwiseMax(0.0).cwiseMin(1.0));
+    const Vec3d rgb = base_.rgb_at(si, context);
     const Spectrum base = reflectance_spectrum(rgb, *context.lambda);
     const double luminance = 0.3 * rgb.x() + 0.6 * rgb.y() + 0.1 * rgb.z();
     const Spectrum tint = luminance > 0.0 ? Spectrum(base / luminance) : Spectrum(Spectrum::Ones());
     return scratch.make<PrincipledBsdf>(base, tint, p_, *context.lambda);
   }
+  MaterialPtr with_textures(Textures& textures) const override { return with_bound_texture(*this, &Principled::base_, textures); }
+  bool textured() const override { return base_.textured(); }
   std::string describe() const override {
-    return concat("Principled(base_color=", describe_rgb(base_rgb_), ", metallic=", p_.metallic, ", roughness=", p_.roughness,
+    return concat("Principled(base_color=", describe_rgb(base_.rgb()), ", metallic=", p_.metallic, ", roughness=", p_.roughness,
                   ", anisotropic=", p_.anisotropic, ", specular=", p_.specular, ", specular_tint=", p_.specular_tint,
                   ", sheen=", p_.sheen, ", sheen_tint=", p_.sheen_tint, ", clearcoat=", p_.clearcoat,
-                  ", clearcoat_gloss=", p_.clearcoat_gloss, ")");
+                  ", clearcoat_gloss=", p_.clearcoat_gloss, base_.describe_texture(), ")");
   }
-  const Vec3d& base_color() const { return base_rgb_; }
+  const TexturedReflectance& base_color() const { return base_; }
   const PrincipledParameters& parameters() const { return p_; }
-  int texture() const { return texture_; }
 
  private:
-  Vec3d base_rgb_;
-  Color base_;
+  TexturedReflectance base_;
   PrincipledParameters p_;
-  int texture_;
 };
 
 }  // namespace refracta

@@ -1,0 +1,149 @@
+"""Issue 23 item 15: Scene.set_material and Scene.remove (an imported model's parts changed or
+dropped without editing its files), refracta.SceneWarning for a scene without light and for a
+ground away from the field's height 0, and the index models' real __init__ signatures."""
+
+import pickle
+import pydoc
+import warnings
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import shading
+
+SKY = (1.0, 1.0, 1.0)
+CAMERA = refracta.Camera((0.0, 1.0, 0.0), (10.0, 1.0, 0.0), (0, 1, 0), 30.0, 24, 16)
+
+
+def render(scene, field=None, **options):
+    return refracta.render(scene, CAMERA, field, method="straight", spp=2, progress=False, **options)
+
+
+def two_boxes(front=(0.8, 0.2, 0.2)):
+    """A red box in front of a grey one, on a ground at y = 0, under a white sky."""
+    scene = refracta.Scene()
+    scene.set_sky(SKY, SKY)
+    scene.add_ground(0.0, 200.0)
+    back = scene.add_box((20.0, 1.5, 0.0), (1.0, 3.0, 6.0), material=shading.Diffuse(0.5))
+    front_id = scene.add_box((10.0, 1.0, 0.0), (1.0, 2.0, 2.0), material=shading.Diffuse(front))
+    return scene, back, front_id
+
+
+def test_set_material_changes_the_render_as_building_it_so_would():
+    scene, _, front = two_boxes()
+    before = render(scene)
+    scene.set_material(front, shading.Diffuse((0.2, 0.2, 0.8)))
+    after = render(scene)
+    rebuilt, _, _ = two_boxes(front=(0.2, 0.2, 0.8))
+    np.testing.assert_array_equal(after, render(rebuilt))
+    assert before[8, 12, 0] > before[8, 12, 2] and after[8, 12, 2] > after[8, 12, 0]  # red, then blue
+    assert scene.material(front).parameters["reflectance"] == (0.2, 0.2, 0.8)
+
+
+def test_remove_drops_a_geometry_and_keeps_the_other_ids():
+    """Removing the front box shows the grey box behind it, exactly as a scene built without it
+    (Embree's structure is committed again); ids stay, a removed id is refused and not reused."""
+    scene, back, front = two_boxes()
+    count = scene.geometry_count
+    scene.remove(front)
+    without = refracta.Scene()
+    without.set_sky(SKY, SKY)
+    without.add_ground(0.0, 200.0)
+    without.add_box((20.0, 1.5, 0.0), (1.0, 3.0, 6.0), material=shading.Diffuse(0.5))
+    np.testing.assert_array_equal(render(scene), render(without))
+    assert scene.geometry_count == count
+    assert scene.material(back).parameters["reflectance"] == (0.5, 0.5, 0.5)
+    for call in (lambda: scene.remove(front), lambda: scene.material(front),
+                 lambda: scene.set_material(front, shading.Diffuse())):
+        with pytest.raises(ValueError, match=f"geometry {front} was removed"):
+            call()
+    with pytest.raises(ValueError, match="no geometry 99"):
+        scene.remove(99)
+    assert scene.add_sphere((5.0, 1.0, 3.0), 0.5) == count  # a new id, not the removed one
+    assert scene.intersect((0.0, 1.0, 0.0), (1.0, 0.0, 0.0))[2] == back
+
+
+def test_removing_an_emitter_removes_its_light_and_the_bounds_shrink():
+    scene = refracta.Scene()
+    scene.add_ground(0.0, 10.0)
+    lamp = scene.add_sphere((0.0, 50.0, 0.0), 1.0, emission=(5.0, 5.0, 5.0))
+    assert len(scene.lights) == 1 and scene.bounds[1][1] == pytest.approx(51.0)
+    scene.remove(lamp)
+    assert len(scene.lights) == 0 and scene.bounds[1][1] == pytest.approx(0.0)
+
+
+def test_a_scene_with_removed_geometry_pickles_with_its_ids():
+    scene, back, front = two_boxes()
+    scene.remove(back)
+    copy = pickle.loads(pickle.dumps(scene))
+    np.testing.assert_array_equal(render(copy), render(scene))
+    assert copy.material(front).parameters == scene.material(front).parameters
+    with pytest.raises(ValueError, match="was removed"):
+        copy.material(back)
+
+
+def test_set_material_refuses_a_texture_on_geometry_without_uvs(tmp_path):
+    refracta.io.write_image(tmp_path / "t.exr", np.ones((4, 4, 3), np.float32))
+    scene, _, front = two_boxes()
+    with pytest.raises(ValueError, match="no texture coordinates"):
+        scene.set_material(front, shading.Diffuse(texture=str(tmp_path / "t.exr")))
+    with pytest.raises(ValueError, match="refracta.shading material"):
+        scene.set_material(front, "red")
+
+
+def render_quietly(scene, field, method="curved"):
+    """Renders with every warning an error; returns the SceneWarnings raised (none expected)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        refracta.render(scene, CAMERA.resized(4, 3), field, method=method, progress=False, max_length=100.0)
+    return [w for w in caught if issubclass(w.category, refracta.SceneWarning)]
+
+
+def test_a_scene_without_light_warns_that_it_renders_black():
+    scene = refracta.Scene()
+    scene.add_ground(0.0, 100.0)
+    with pytest.warns(refracta.SceneWarning, match="no light and no sky.*set_sky"):
+        image = render(scene)
+    assert not image.any()
+    scene.set_sky(SKY, SKY)
+    assert render_quietly(scene, None) == []
+    emitter_only = refracta.Scene()
+    emitter_only.add_sphere((10.0, 1.0, 0.0), 1.0, emission=(1.0, 1.0, 1.0))
+    assert render_quietly(emitter_only, None) == []
+
+
+HOT_ROAD = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
+
+
+@pytest.mark.parametrize("height", [0.5, -1.5])
+def test_a_ground_away_from_the_fields_height_0_warns(height):
+    scene = refracta.Scene()
+    scene.set_sky(SKY, SKY)
+    scene.add_ground(height, 100.0)
+    with pytest.warns(refracta.SceneWarning, match=f"lowest geometry is at y = {height:g} m"):
+        refracta.render(scene, CAMERA.resized(4, 3), HOT_ROAD, progress=False, max_length=100.0)
+
+
+def test_no_ground_warning_where_it_does_not_apply():
+    """Ground at 0 (within GROUND_TOLERANCE), no field, straight rays, or air without a ground
+    layer (the standard atmosphere looks the same 1.5 m lower): no warning."""
+    at_zero = refracta.Scene()
+    at_zero.set_sky(SKY, SKY)
+    at_zero.add_ground(0.05, 100.0)
+    assert render_quietly(at_zero, HOT_ROAD) == []
+    low = refracta.Scene()
+    low.set_sky(SKY, SKY)
+    low.add_ground(-1.5, 100.0)
+    assert render_quietly(low, None) == []
+    assert render_quietly(low, HOT_ROAD, method="straight") == []
+    assert render_quietly(low, refracta.PhysicalAtmosphere()) == []
+
+
+@pytest.mark.parametrize("model, parameter", [(refracta.PhysicalAtmosphere, "surface_dt: float = 0.0"),
+                                              (refracta.LogisticProfile, "a_hot: float"),
+                                              (refracta.LinearSquaredProfile, "alpha: float")])
+def test_the_index_models_show_their_parameters_in_help(model, parameter):
+    text = pydoc.render_doc(model.__init__, renderer=pydoc.plaintext)
+    assert parameter in text and "*args" not in text
+    assert ("hot_spots" in text) == (model is not refracta.LinearSquaredProfile)
