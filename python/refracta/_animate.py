@@ -18,7 +18,7 @@ import numpy as np
 
 from refracta import _core
 from refracta._checks import finite_pair, is_seed
-from refracta._render import render_options
+from refracta._render import _check_scene, render_options
 from refracta._sweep import map_ordered
 
 __all__ = ["animate", "field_at_time", "geometric_noise", "geometric_noise_map"]
@@ -193,6 +193,7 @@ def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: Union[
             # (frame files make theirs)
             raise FileNotFoundError(f"animate: the folder of {path!r} does not exist ({folder})")
     settings = render_options(**options)
+    _check_scene(scene, camera, field, settings.method)  # render's SceneWarnings, once for all frames
     outcomes = map_ordered(_render_frame, [(float(t),) for t in times], executor, progress, "rendering frames",
                            shared=(scene, camera, field, settings, turbulence, noise))
     frames = np.empty((times.size, camera.height, camera.width, 3), dtype=np.float32)

@@ -113,6 +113,15 @@ def test_a_scene_without_light_warns_that_it_renders_black():
     assert render_quietly(emitter_only, None) == []
 
 
+def test_animate_warns_once_for_all_its_frames():
+    scene = refracta.Scene()
+    scene.add_ground(0.0, 100.0)
+    with pytest.warns(refracta.SceneWarning, match="no light") as record:
+        refracta.animate(scene, CAMERA.resized(4, 3), None, [0.0, 0.1, 0.2], noise={"rms": 1e-4, "correlation_pixels": 2.0},
+                         progress=False)
+    assert len([w for w in record if issubclass(w.category, refracta.SceneWarning)]) == 1
+
+
 HOT_ROAD = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
 
 
