@@ -11,6 +11,24 @@ from refracta import _core
 from refracta._progress import ProgressBar
 
 
+def without_refraction(field: Optional[_core.IndexField]) -> Optional[_core.IndexField]:
+    """The reference a render through `field` compares with: the same Earth, air that bends nothing.
+
+    None (straight rays over a flat Earth) for a flat-Earth field or None; for a CurvedEarth of
+    radius R, a CurvedEarth of the same R over uniform air (n = 1), so the "without the atmosphere"
+    image still hides what the Earth's bulge hides (a render with None would show a flat Earth)::
+
+        refracta.render(scene, camera, refracta.without_refraction(ship.field), ...)
+    """
+    if field is None:
+        return None
+    if not isinstance(field, _core.IndexField):
+        raise ValueError(f"without_refraction: field must be an IndexField or None (got {type(field).__name__})")
+    if isinstance(field, _core.CurvedEarth):
+        return _core.CurvedEarth(_core.LinearSquaredProfile(1.0, 0.0), field.radius)
+    return None
+
+
 @dataclass(frozen=True)
 class RayBatch:
     """Ends of a batch of traced rays.

@@ -76,9 +76,7 @@ def demo(out: Path, size=(480, 160)) -> int:
     for name, make in examples.EXAMPLES.items():
         example = make(*size)
         # The reference: no atmosphere, but the same (curved or flat) Earth.
-        reference_field = None
-        if isinstance(example.field, refracta.CurvedEarth):
-            reference_field = refracta.CurvedEarth(refracta.LinearSquaredProfile(1.0, 0.0), example.field.radius)
+        reference_field = refracta.without_refraction(example.field)
         settings = DEMO_SETTINGS.get(name, dict(transport="direct", spp=4))
         render = dict(progress=False, max_length=example.max_length, **settings)
         images = []

@@ -179,3 +179,23 @@ def test_turbulence_statistics_refuse_nan_and_negative_arguments():
     for tolerance in (-0.1, float("nan")):
         with pytest.raises(ValueError, match="tolerance must be > 0"):
             air.separations_within(tolerance)
+
+
+def test_the_reference_without_refraction_keeps_the_curved_earth():
+    # render(scene, camera, None) of a CurvedEarth scene showed a flat Earth: what the bulge hides
+    # appeared in the "without the atmosphere" image. The reference is the same Earth, uniform air.
+    assert refracta.without_refraction(None) is None
+    assert refracta.without_refraction(refracta.PhysicalAtmosphere()) is None
+    ship = refracta.examples.cold_sea(48, 16)
+    reference = refracta.without_refraction(ship.field)
+    assert isinstance(reference, refracta.CurvedEarth) and reference.radius == ship.field.radius
+    # A level ray over the sphere of radius R in uniform air rises above the surface by d^2 / (2R)
+    # in the flattened frame (to first order in d/R), and the straight render's flat ground would
+    # have it at the eye height.
+    eye, d = 5.0, 20e3
+    path = refracta.trace_ray(reference, [0, eye, 0], [1, 0, 0], max_length=d, method="stratified", tol=1e-6)
+    # Second-order terms of the flattening: (d/R)^2 relative, 1e-5 of d^2/2R here.
+    FLATTENING_ORDER = 1e-4
+    assert path.points[-1][1] - eye == pytest.approx(d * d / (2 * reference.radius), rel=FLATTENING_ORDER)
+    with pytest.raises(ValueError, match="must be an IndexField"):
+        refracta.without_refraction("air")

@@ -165,7 +165,7 @@ Mat3d rotation_from(const py::object& rotation) {
   }
   DoubleArray array;
   try {
-    array = py::cast<DoubleArray>(rotation);
+    array = real_array(rotation, "rotation");
   } catch (const py::cast_error&) {
     throw_invalid("rotation must be an angle about y [deg] or a 3 x 3 rotation matrix");
   }
@@ -182,7 +182,7 @@ Mat3d rotation_from(const py::object& rotation) {
 std::vector<Eigen::Vector2d> to_uvs(const py::object& object, size_t count) {
   DoubleArray array;
   try {
-    array = py::cast<DoubleArray>(object);
+    array = real_array(object, "uvs");
   } catch (const py::cast_error&) {
     throw_invalid("uvs must be a float array of shape (N, 2)");
   }

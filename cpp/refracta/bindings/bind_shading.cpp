@@ -30,7 +30,7 @@ Vec3d to_rgb(const py::handle& value, const char* name) {
   if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) return Vec3d::Constant(value.cast<double>());
   DoubleArray a;
   try {
-    a = py::cast<DoubleArray>(value);
+    a = real_array(value, name);
   } catch (const py::cast_error&) {
     throw_invalid(name, " must be a number or an (r, g, b) triple");
   }
@@ -127,7 +127,7 @@ struct Wavelengths {
 Wavelengths to_wavelengths(const py::object& object, size_t n) {
   Wavelengths w;
   if (object.is_none()) return w;
-  DoubleArray a = py::cast<DoubleArray>(object);
+  DoubleArray a = real_array(object, "wavelengths");
   const bool one = a.ndim() == 1 && a.shape(0) == 4;
   if (!(one || (a.ndim() == 2 && a.shape(1) == 4 && size_t(a.shape(0)) == n))) {
     throw_invalid("wavelengths must have shape (4,) or (N, 4) with N = ", n, " [nm]");
@@ -296,7 +296,7 @@ void bind_shading(py::module_& m) {
           [](const Material& material, const py::object& wo_in, const py::object& u_in, const py::object& wavelengths,
              double eta_outside, const std::string& mode) {
             const auto wo = to_directions(wo_in, "wo");
-            DoubleArray u = py::cast<DoubleArray>(u_in);
+            DoubleArray u = real_array(u_in, "u");
             if (!(u.ndim() == 2 && u.shape(1) == 3) && !(u.ndim() == 1 && u.shape(0) == 3)) throw_invalid("u must have shape (N, 3) or (3,)");
             const size_t nu = u.ndim() == 1 ? 1 : size_t(u.shape(0));
             for (py::ssize_t i = 0; i < u.size(); ++i) {
@@ -363,6 +363,9 @@ void bind_shading(py::module_& m) {
           [](const Material& material, std::optional<double> wavelength) {
             SampledWavelengths l = SampledWavelengths::rgb();
             if (wavelength) {
+              if (!(*wavelength >= kLambdaMin && *wavelength <= kLambdaMax)) {
+                throw_invalid("interior_ior: wavelength must be in [", kLambdaMin, ", ", kLambdaMax, "] nm (got ", *wavelength, ")");
+              }
               l = SampledWavelengths::sample_uniform(0.0);
               l.lambda[0] = *wavelength;
             }
@@ -612,7 +615,7 @@ void bind_shading(py::module_& m) {
       }, py::arg("w"), py::arg("m"))
       .def("sample_wm", [](const TrowbridgeReitz& d, const py::object& w_, const py::object& u_) {
         const auto w = to_directions(w_, "w");
-        DoubleArray u = py::cast<DoubleArray>(u_);
+        DoubleArray u = real_array(u_, "u");
         if (u.ndim() != 2 || u.shape(1) != 2) throw_invalid("u must have shape (N, 2)");
         const size_t n = broadcast(w.size(), size_t(u.shape(0)), "w and u");
         std::vector<Vec3d> out(n);

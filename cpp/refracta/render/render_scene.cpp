@@ -10,6 +10,7 @@
 namespace refracta {
 
 int RenderScene::add_material(MaterialPtr material) {
+  geometry.check_unchanging("add_material");
   if (!material) throw_invalid("material must not be None");
   if (MaterialPtr bound = material->with_textures(geometry.textures())) material = std::move(bound);
   materials_.push_back(std::move(material));
@@ -35,6 +36,7 @@ void RenderScene::remove_lights_if_emitted_by(int geometry_id) {
 }
 
 size_t RenderScene::add_light(LightPtr light, int emitter) {
+  geometry.check_unchanging("add_light");
   if (!light) throw_invalid("light must not be None");
   if (emitter >= 0) {
     if (size_t(emitter) >= geometry.geometry_count()) throw_invalid("add_light: no geometry ", emitter);
@@ -51,6 +53,7 @@ void RenderScene::remove_infinite_lights() {
 }
 
 void RenderScene::set_shadow_radius(size_t light, double radius) {
+  geometry.check_unchanging("set_shadow_radius");
   if (!(radius >= 0.0) || !std::isfinite(radius)) throw_invalid("radius must be >= 0 (got ", radius, ")");
   shadow_radius_.emplace_back(lights_.at(light).get(), radius);
 }

@@ -62,6 +62,7 @@ class RenderScene {
 
 template <class Predicate>
 void RenderScene::remove_lights_if(const Predicate& drop) {
+  geometry.check_unchanging("remove lights");
   std::vector<LightPtr> kept;
   std::vector<int> kept_geometry;
   for (size_t i = 0; i < lights_.size(); ++i) {

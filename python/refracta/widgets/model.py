@@ -52,6 +52,7 @@ import numpy as np
 from refracta import _core
 from refracta import io as _image_io
 from refracta._render import render
+from refracta._rays import without_refraction
 from refracta.widgets import camera_moves, files
 from refracta.widgets.jobs import Job, JobRunner
 
@@ -609,8 +610,10 @@ class EditorModel:
             self.runner.submit("render", curved_work, "rendering")
         if straight and self.show_straight:
             def straight_work(job: Job):
-                image = render(scene, camera, None, method="straight", progress=job.progress("straight view"),
-                               **options)
+                # The same Earth without the air's bending (a CurvedEarth still hides what its bulge hides).
+                reference = without_refraction(field)
+                image = render(scene, camera, reference, method="curved" if reference else "straight",
+                               progress=job.progress("straight view"), **options)
                 job.check()
                 self._publish(job, "straight", "full", image)
             self.runner.submit("straight", straight_work, "straight view")
