@@ -40,7 +40,7 @@ from refracta import io, lights, shading, spectrum, testing
 from refracta._render import SceneWarning, render
 from refracta._raster_render import render_raster
 from refracta.scene_file import SceneFile, load_scene
-from refracta._rays import ElevationTable, RayBatch, trace_rays
+from refracta._rays import ElevationTable, RayBatch, trace_rays, without_refraction
 from refracta._astronomy import astronomical_refraction
 from refracta._sweep import SweepError, SweepFailure, SweepResult, sweep
 from refracta.turbulence import Turbulence
@@ -107,4 +107,5 @@ __all__ = [
     "sweep",
     "trace_ray",
     "trace_rays",
+    "without_refraction",
 ]
