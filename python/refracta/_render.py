@@ -158,12 +158,12 @@ def render(
     if stats is not None and not isinstance(stats, dict):
         raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
     settings = render_options(method=method, transport=transport, spp=spp, seed=seed, **options)
-    _check_scene(scene, camera, field, method)
     if executor is not None or tiles is not None:
         image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)
     else:
         callback = ProgressBar("rendering") if progress is True else (progress or None)
         image, counts = _core._render(scene, camera, field, settings, callback)
+    _check_scene(scene, camera, field, method)  # with the image: a refused render needs no hint
     if stats is not None:
         stats.update(counts)
     return image

@@ -2,6 +2,7 @@
 bad input, Hypothesis settings (seeded, bounded) and number strategies reaching the edges."""
 
 import os
+import warnings
 
 import numpy as np
 from hypothesis import HealthCheck, settings
@@ -39,3 +40,17 @@ def calls(function, *args, **kwargs):
         return function(*args, **kwargs)
     except NAMED_ERRORS:
         return None
+
+
+def render_checking_scene_warnings(scene, camera, field, **options):
+    """calls(refracta.render, ...) asserting refracta.SceneWarning where it belongs: the no-light
+    hint exactly when an image came out of a scene without lights, the ground hint only through a
+    field. Any other warning still fails the test (pytest turns warnings into errors)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        image = calls(refracta.render, scene, camera, field, **options)
+    messages = [str(w.message) for w in caught if issubclass(w.category, refracta.SceneWarning)]
+    assert len(messages) == len(caught), [str(w.message) for w in caught]
+    assert any("no light" in m for m in messages) == (image is not None and len(scene.lights) == 0)
+    assert field is not None or not any("lowest geometry" in m for m in messages)
+    return image

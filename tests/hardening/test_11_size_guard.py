@@ -20,5 +20,6 @@ def test_a_camera_too_large_for_memory_is_refused_naming_the_bytes(render):
 def test_a_tile_of_that_camera_renders():
     # pixel_bounds: only the tile is allocated.
     camera = refracta.Camera([0, 1, 0], [1, 1, 0], width=100_000, height=100_000)
-    tile = refracta.render(refracta.Scene(), camera, None, progress=False, pixel_bounds=(0, 0, 4, 2))
+    with pytest.warns(refracta.SceneWarning, match="no light"):  # an empty scene: black, and said so
+        tile = refracta.render(refracta.Scene(), camera, None, progress=False, pixel_bounds=(0, 0, 4, 2))
     assert tile.shape == (2, 4, 3)

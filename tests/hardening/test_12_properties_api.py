@@ -12,7 +12,8 @@ import refracta
 from refracta import moments, oit, shading
 from refracta.edit import PointPair
 
-from tests.hardening.properties import FAST, FUZZ, anything, calls, edge, finite, ordinary, ordinary_vec3, vec3
+from tests.hardening.properties import (FAST, FUZZ, anything, calls, edge, finite, ordinary, ordinary_vec3,
+                                        render_checking_scene_warnings, vec3)
 
 MODELS = [refracta.PhysicalAtmosphere, refracta.LogisticProfile, refracta.LinearSquaredProfile]
 
@@ -135,8 +136,8 @@ def scenes(draw):
 def test_tiny_renders_are_finite_or_raise(scene, method, spp, transport):
     camera = refracta.Camera((0.0, 1.5, 0.0), (10.0, 1.0, 0.0), vfov=30.0, width=6, height=4)
     field = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
-    image = calls(refracta.render, scene, camera, field, method=method, spp=spp, transport=transport,
-                  max_length=200.0, progress=False)
+    image = render_checking_scene_warnings(scene, camera, field, method=method, spp=spp, transport=transport,
+                                           max_length=200.0, progress=False)
     if image is not None:
         assert image.shape == (4, 6, 3) and finite(image) and image.min() >= 0.0
 
