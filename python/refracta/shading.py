@@ -35,6 +35,10 @@ RGB multiplies the colour at the surface's uvs, registered in each scene the mat
 - ``ThinFilm(thickness, film_ior=1.33, eta=1.5, k=0.0, alpha=0.1)``: thin-film iridescence
   (thickness [nm]) over a GGX base of complex index eta + i k; alpha = 0 is a smooth mirror.
 
+Water: ``water_ior(wavelength_nm, temperature_c=20.0, salinity=0.0)`` (IAPWS R9-97 with Tanaka et
+al.'s density and Quan & Fry's salinity terms; n = 1.33335 at 589.3 nm and 20 C, relative to
+vacuum) gives a ``Dielectric`` its index, e.g. ``Dielectric(water_ior(550.0, 15.0, 35.0))``.
+
 Roughness ``alpha`` is the GGX parameter (>= 0; values below 1e-4 are raised to 1e-4).
 Measured BRDFs (MERL) are not provided: no MERL data set is installable from the registries.
 
@@ -65,6 +69,8 @@ from ._core import (
     fresnel_dielectric,
     fresnel_diffuse_reflectance,
     thin_film_reflectance,
+    water_density,
+    water_ior,
 )
 
 __all__ = [
@@ -85,4 +91,6 @@ __all__ = [
     "fresnel_conductor",
     "fresnel_diffuse_reflectance",
     "thin_film_reflectance",
+    "water_ior",
+    "water_density",
 ]

@@ -12,6 +12,7 @@
 #include "refracta/shading/plastic.h"
 #include "refracta/shading/principled.h"
 #include "refracta/shading/thin_film.h"
+#include "refracta/shading/water.h"
 
 #include <pybind11/stl.h>
 
@@ -542,6 +543,18 @@ void bind_shading(py::module_& m) {
     return py::dict(py::arg("thickness") = m.thickness(), py::arg("film_ior") = m.film_ior(), py::arg("eta") = rgb_tuple(m.eta()),
                     py::arg("k") = rgb_tuple(m.k()), py::arg("alpha_u") = m.alpha_u(), py::arg("alpha_v") = m.alpha_v());
   });
+
+  m.def("water_ior", py::vectorize([](double wavelength, double temperature_c, double salinity) {
+          return water_ior(wavelength, temperature_c, salinity);
+        }),
+        py::arg("wavelength_nm"), py::arg("temperature_c") = 20.0, py::arg("salinity") = 0.0,
+        "Refractive index of water relative to vacuum: pure water by IAPWS R9-97 at the density of\n"
+        "Tanaka et al. 2001 (atmospheric pressure), plus Quan & Fry 1995's salinity terms. wavelength_nm\n"
+        "in [200, 1100], temperature_c in [0, 40] deg C, salinity [g/kg] in [0, 40]. Vectorised.");
+  m.def("water_density", py::vectorize([](double temperature_c) { return water_density(temperature_c); }),
+        py::arg("temperature_c"),
+        "Density of air-free pure water at 101 325 Pa [kg/m^3] (Tanaka et al. 2001), temperature_c in\n"
+        "[0, 40] deg C. Vectorised.");
 
   // Fresnel and thin films, vectorised over numpy arrays.
   m.def(
