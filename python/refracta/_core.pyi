@@ -1489,6 +1489,10 @@ def _astronomical_refraction(field: IndexField, elevations: typing.Any, eye_heig
     """
     Refraction [rad] at apparent elevations [rad] (refracta.astronomical_refraction).
     """
+def _cancel_thread_work(thread_ids: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> int:
+    """
+    Cancels the refracta calls of the given Python threads (threading.get_ident()): those running and those they start until _end_thread_cancel; returns how many were running.
+    """
 def _canonical_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, bool]:
     ...
 def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, method: str, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, bias: typing.SupportsFloat | typing.SupportsIndex | None, z_range: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] | None, layers: typing.SupportsInt | typing.SupportsIndex | None, weight: str, storage: str) -> numpy.ndarray:
@@ -1498,6 +1502,10 @@ def _display(image: typing.Any, exposure: typing.SupportsFloat | typing.Supports
 def _emit_library_log() -> None:
     """
     Move queued Ceres (glog) messages to the Python logger 'refracta.ceres'.
+    """
+def _end_thread_cancel(thread_id: typing.SupportsInt | typing.SupportsIndex) -> None:
+    """
+    Lets the thread's refracta calls run again after _cancel_thread_work.
     """
 def _mboit_unorm16(b: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
     """

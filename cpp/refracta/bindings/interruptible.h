@@ -32,6 +32,7 @@ void run_interruptible(WorkControl& control, const py::object& progress, Work&& 
     py::gil_scoped_release release;
     std::thread worker([&] {
       try {
+        const CancelScope scope(control.cancel);  // deep work polls it (core/parallel.h)
         work();
       } catch (...) {
         error = std::current_exception();

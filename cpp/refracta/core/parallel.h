@@ -1,5 +1,10 @@
 // Parallel loops over oneTBB with a shared control block: a cancel flag the caller may set from
 // another thread (Ctrl-C in Python) and a counter of finished items for progress reports.
+//
+// Cancellation reaches deep work without being passed down: each thread keeps the chain of cancel
+// flags it works under (CancelScope: run_interruptible's, then each enclosing parallel_for_each's),
+// and anything that may run long -- a ray's integration steps, a pixel's samples, a table's levels
+// -- calls poll_cancel(), which throws Cancelled once any flag in the chain is set.
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -17,20 +22,68 @@ struct WorkControl {
   int64_t total = 0;
 };
 
-// Thrown out of a parallel loop whose control was cancelled.
+// Thrown out of work whose control was cancelled.
 class Cancelled : public std::runtime_error {
  public:
   Cancelled() : std::runtime_error("cancelled") {}
 };
 
-// Calls body(i) for i in [0, count) on the TBB pool, `grain` items per task at least.
+// Puts `flag` in force on this thread for the scope's lifetime, inside the chain `outer` (by
+// default the thread's current one). Scopes nest and unwind in stack order.
+class CancelScope {
+ public:
+  explicit CancelScope(const std::atomic<bool>& flag) : CancelScope(flag, innermost()) {}
+  CancelScope(const std::atomic<bool>& flag, const CancelScope* outer)
+      : flag_(&flag), outer_(outer), saved_(innermost()) {
+    innermost() = this;
+  }
+  ~CancelScope() { innermost() = saved_; }
+  CancelScope(const CancelScope&) = delete;
+  CancelScope& operator=(const CancelScope&) = delete;
+
+  // The innermost scope in force on this thread (null outside any).
+  static const CancelScope*& innermost() {
+    static thread_local const CancelScope* scope = nullptr;
+    return scope;
+  }
+  bool requested() const {
+    for (const CancelScope* s = this; s; s = s->outer_) {
+      if (s->flag_->load(std::memory_order_relaxed)) return true;
+    }
+    return false;
+  }
+
+ private:
+  const std::atomic<bool>* flag_;
+  const CancelScope* outer_;
+  const CancelScope* saved_;
+};
+
+// True once a cancel flag in force on this thread (or `extra`, when given) is set.
+inline bool cancel_requested(const std::atomic<bool>* extra = nullptr) {
+  if (extra && extra->load(std::memory_order_relaxed)) return true;
+  const CancelScope* scope = CancelScope::innermost();
+  return scope && scope->requested();
+}
+
+// Throws Cancelled once cancel_requested(extra). Cheap (a thread-local read and an atomic load
+// per enclosing scope): call it at every unit of work that can take a millisecond or more.
+inline void poll_cancel(const std::atomic<bool>* extra = nullptr) {
+  if (cancel_requested(extra)) throw Cancelled();
+}
+
+// Calls body(i) for i in [0, count) on the TBB pool, `grain` items per task at least. The body
+// runs under control.cancel and every flag in force on the calling thread: cancelling either
+// stops the loop (throws Cancelled) at the next item or the next poll_cancel() inside one.
 template <class Body>
 void parallel_for_each(int64_t count, int64_t grain, WorkControl& control, const Body& body) {
   control.total = count;
+  const CancelScope* outer = CancelScope::innermost();  // the caller's chain, alive while we block
   tbb::parallel_for(tbb::blocked_range<int64_t>(0, count, grain),
                     [&](const tbb::blocked_range<int64_t>& range) {
+                      const CancelScope scope(control.cancel, outer);
                       for (int64_t i = range.begin(); i != range.end(); ++i) {
-                        if (control.cancel.load(std::memory_order_relaxed)) throw Cancelled();
+                        if (scope.requested()) throw Cancelled();
                         body(i);
                         control.done.fetch_add(1, std::memory_order_relaxed);
                       }

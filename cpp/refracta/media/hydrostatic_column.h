@@ -9,6 +9,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/math.h"
+#include "refracta/core/parallel.h"
 #include "refracta/media/air.h"
 #include "refracta/media/index_field.h"
 
@@ -58,7 +59,12 @@ class HydrostaticColumn {
     using std::log;
     j_.resize(nodes_.size());
     inv_t_.resize(nodes_.size());
-    for (size_t i = 0; i < nodes_.size(); ++i) inv_t_[i] = integrand(temperature, nodes_[i]);
+    // A sounding of many levels gives millions of nodes (seconds of work): Ctrl-C is polled.
+    constexpr size_t kPollEvery = 4096;  // nodes (~0.1 ms of work) between polls
+    for (size_t i = 0; i < nodes_.size(); ++i) {
+      if (i % kPollEvery == 0) poll_cancel();
+      inv_t_[i] = integrand(temperature, nodes_[i]);
+    }
     // J from the lowest node, then shifted so that J(h_ref) = 0.
     j_[0] = T(0.0);
     static const double kX[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
@@ -66,6 +72,7 @@ class HydrostaticColumn {
     static const double kW[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
                                  0.3478548451374538};
     for (size_t i = 1; i < nodes_.size(); ++i) {
+      if (i % kPollEvery == 0) poll_cancel();
       const double a = nodes_[i - 1], b = nodes_[i], half = 0.5 * (b - a), mid = 0.5 * (a + b);
       T sum(0.0);
       for (int q = 0; q < 4; ++q) sum += kW[q] * integrand(temperature, mid + half * kX[q]);

@@ -28,9 +28,20 @@ class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileMod
   static constexpr const char* kTypeName = "TemperatureProfile";
   static constexpr double kBelow = 2000.0, kAbove = 20000.0;  // modelled margin [m]
 
+  // A radiosonde's 1 s data to 30 km has ~6000 levels; each level is a parameter and adds 16
+  // hydrostatic nodes (~7 us): 10^5 levels build in ~0.5 s, 10^7 would take minutes and gigabytes.
+  static constexpr size_t kMaxLevels = 100'000;
+  static void check_level_count(const Config& config) {
+    if (config.heights.size() > kMaxLevels) {
+      throw_invalid("TemperatureProfile: at most ", kMaxLevels, " levels (got ", config.heights.size(), ")");
+    }
+  }
+
   static std::vector<ParamSpec> param_specs(const Config& config) {
+    check_level_count(config);  // before allocating a spec per level
     std::vector<ParamSpec> specs;
     for (size_t i = 0; i < config.heights.size(); ++i) {
+      if (i % 4096 == 0) poll_cancel();  // millions of levels take seconds (TemperatureProfile's Ctrl-C)
       specs.push_back({"t" + std::to_string(i), kStandardGroundTemperature, 200.0, 340.0, "K",
                        "temperature at height " + std::to_string(config.heights[i]) + " m"});
     }
@@ -43,6 +54,7 @@ class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileMod
   static std::vector<std::string> gauge_params() { return {}; }
 
   static void validate(const Config& config, const std::vector<double>& v) {
+    check_level_count(config);
     const auto& h = config.heights;
     if (h.size() < 2) {
       throw_invalid("TemperatureProfile: needs at least 2 heights (got ", h.size(), ")");

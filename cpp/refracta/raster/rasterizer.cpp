@@ -172,6 +172,7 @@ VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkContr
   const int tiles_x = (view.width() + tile - 1) / tile, tiles_y = (view.height() + tile - 1) / tile;
   std::vector<std::vector<uint32_t>> bins(size_t(tiles_x) * tiles_y);
   for (size_t i = 0; i < screen.size(); ++i) {
+    if (i % 4096 == 0) poll_cancel();
     const ScreenTriangle& t = screen[i];
     const double umin = std::min({t.u[0], t.u[1], t.u[2]}), umax = std::max({t.u[0], t.u[1], t.u[2]});
     const double vmin = std::min({t.v[0], t.v[1], t.v[2]}), vmax = std::max({t.v[0], t.v[1], t.v[2]});
@@ -189,9 +190,14 @@ VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkContr
   out.width = view.width();
   out.height = view.height();
   const size_t pixels = size_t(out.width) * out.height;
+  // Filling a shadow map's buffers (8192^2 texels: 0.1-0.3 s each) polls Ctrl-C between them.
+  poll_cancel();
   out.depth.assign(pixels, std::numeric_limits<float>::infinity());
+  poll_cancel();
   out.geometry.assign(pixels, VisibilityBuffer::kNone);
+  poll_cancel();
   out.primitive.assign(pixels, VisibilityBuffer::kNone);
+  poll_cancel();
   out.b1.assign(pixels, 0.0f);
   out.b2.assign(pixels, 0.0f);
   if (fragments) {
@@ -206,6 +212,7 @@ VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkContr
     int64_t count = 0;
     // Opaque surfaces first: the z-buffer.
     for (uint32_t i : bins[b]) {
+      poll_cancel();  // a tile crossed by many triangles
       const ScreenTriangle& t = screen[i];
       if (t.transparent) continue;
       fill(t, view.perspective(), x0, y0, x1, y1, &count, [&](int x, int y, double depth, const Vec3d& bary) {

@@ -110,6 +110,7 @@ std::vector<Texel> filtered_moments(int n, int k, WorkControl& control, const De
       }
     }
     for (int y = 0; y < n; ++y) {
+      if (y % 256 == 0) poll_cancel();  // a block walks every row of the map
       Texel* dst = &out[size_t(y) * n + size_t(x0)];
       for (int x = 0; x < w; ++x) {
         Moments4 mean;

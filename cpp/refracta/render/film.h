@@ -40,7 +40,7 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
     Sampler sampler{Rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x))};
     Vec3d sum = Vec3d::Zero();
     for (int s = 0; s < options.spp; ++s) {
-      if ((s & 63) == 63 && control.cancel.load(std::memory_order_relaxed)) throw Cancelled();
+      poll_cancel();  // a sample through turbulence can take milliseconds (the ray's steps poll too)
       double du = 0.5, dv = 0.5;
       if (options.spp > 1 && s < stratified) {  // stratified jitter over a strata x strata grid
         du = ((s % strata) + sampler.uniform()) / strata;

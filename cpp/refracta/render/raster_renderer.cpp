@@ -152,6 +152,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     const Vec3d side = sun_frame.s, up = sun_frame.t;
     Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (int y = 0; y < buffer.height; ++y) {
+      poll_cancel();  // a serial pass over every pixel
       for (int x = 0; x < buffer.width; ++x) {
         const auto hit = surface_at(scene, buffer, x, y, eye);
         if (!hit || (hit->point - eye).norm() > options.shadow_distance) continue;

@@ -21,6 +21,7 @@ Image render_tiles(const PixelBounds& bounds, int tile, WorkControl& control, co
     const int x0 = bounds.x0 + int(index % tiles_x) * tile, y0 = bounds.y0 + int(index / tiles_x) * tile;
     for (int y = y0; y < std::min(y0 + tile, bounds.y1); ++y) {
       for (int x = x0; x < std::min(x0 + tile, bounds.x1); ++x) {
+        poll_cancel();  // one tile of slow pixels must not hold Ctrl-C up
         const Vec3d value = radiance(x, y);
         float* out = image.at(x - bounds.x0, y - bounds.y0);
         for (int c = 0; c < 3; ++c) out[c] = float(value[c]);
