@@ -24,10 +24,14 @@ from __future__ import annotations
 
 import concurrent.futures
 import itertools
+import os
+import threading
+import time
 import traceback
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
 
+from refracta import _core
 from refracta._progress import ProgressBar
 
 __all__ = ["SweepError", "SweepFailure", "SweepResult", "grid_points", "map_ordered", "sweep"]
@@ -147,8 +151,15 @@ def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, p
     (False, (exception, traceback text)). `shared`: arguments common to every call (a tiled render's
     scene), sent to each dask worker once (Client.scatter, broadcast) instead of with every task;
     they are lost if every worker holding them dies, so use it for short jobs over large data.
-    progress(done, total) after each finished call. Ctrl-C cancels the calls not yet started and
-    raises KeyboardInterrupt. The shared path of sweep, tiled renders and animation frames."""
+    progress(done, total) after each finished call. The shared path of sweep, tiled renders and
+    animation frames.
+
+    Ctrl-C (or any exception while waiting) stops the work before it is raised: calls not yet
+    started are cancelled; on a ThreadPoolExecutor the refracta calls running on its threads are
+    cancelled (they stop within the Ctrl-C bound, raising RuntimeError into futures nobody reads);
+    a ProcessPoolExecutor is shut down and its worker processes terminated (the executor cannot
+    be used again). Workers of a ProcessPoolExecutor also exit when the process that submitted
+    their work dies (they would otherwise render on as orphans)."""
     pool = as_executor(executor)
     if shared and callable(getattr(executor, "scatter", None)):  # a dask Client
         shared = tuple(executor.scatter(list(shared), broadcast=True, hash=False))
@@ -168,9 +179,16 @@ def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, p
                 callback(i + 1, total)
         return outcomes
     futures = {}
+    threads = _RunningThreads()
+    if isinstance(pool, concurrent.futures.ThreadPoolExecutor):
+        task, head = threads.call, (function,)
+    elif isinstance(pool, concurrent.futures.ProcessPoolExecutor):
+        task, head = _call_in_worker, (os.getpid(), function)
+    else:
+        task, head = function, ()
     try:
         for i, args in enumerate(arguments):
-            futures[pool.submit(function, *shared, *args)] = i
+            futures[pool.submit(task, *head, *shared, *args)] = i
         done = 0
         for future in concurrent.futures.as_completed(futures):
             i = futures[future]
@@ -184,10 +202,96 @@ def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, p
             if callback:
                 callback(done, total)
     except BaseException:
-        for future in futures:
-            future.cancel()
+        _stop(pool, futures, threads)
         raise
     return outcomes
+
+
+class _RunningThreads:
+    """The threads of a thread pool running one map_ordered's calls, so that Ctrl-C in the main
+    thread can cancel their refracta work: the calls running and any a task starts afterwards
+    (a task interrupted while still in Python would otherwise start its render after the cancel)."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._ids: Dict[int, int] = {}  # threading.get_ident() -> tasks running there
+        self._stopped = False
+
+    def call(self, function: Callable, *args) -> Any:
+        ident = threading.get_ident()
+        with self._lock:
+            if self._stopped:
+                raise concurrent.futures.CancelledError()
+            self._ids[ident] = self._ids.get(ident, 0) + 1
+        try:
+            return function(*args)
+        finally:
+            with self._lock:
+                self._ids[ident] -= 1
+                if not self._ids[ident]:
+                    del self._ids[ident]
+                    if self._stopped:
+                        _core._end_thread_cancel(ident)
+
+    def stop(self) -> None:
+        """Cancels the running tasks' refracta work and refuses tasks not yet started."""
+        with self._lock:
+            self._stopped = True
+            _core._cancel_thread_work(list(self._ids))
+
+
+def _stop(pool: concurrent.futures.Executor, futures, threads: _RunningThreads) -> None:
+    """Stops the work of an interrupted map_ordered: pending calls cancelled, running refracta
+    calls on pool threads cancelled, a process pool's workers terminated."""
+    for future in futures:
+        future.cancel()
+    if isinstance(pool, concurrent.futures.ThreadPoolExecutor):
+        threads.stop()
+    elif isinstance(pool, concurrent.futures.ProcessPoolExecutor):
+        processes = list((getattr(pool, "_processes", None) or {}).values())
+        pool.shutdown(wait=False, cancel_futures=True)
+        for process in processes:
+            process.terminate()
+        for process in processes:
+            process.join(_TERMINATE_WAIT)
+
+
+# [s] how long an interrupted map_ordered waits for each terminated worker process to be reaped:
+# SIGTERM ends it at once (the default action, even inside C++ work); this only bounds a stuck one.
+_TERMINATE_WAIT = 5.0
+# [s] how often a process-pool worker checks that the process that submitted its work is alive:
+# an orphan stops within this (its work is lost anyway: nobody is left to read it).
+_PARENT_POLL = 0.2
+_watching_parent = False
+
+
+def _call_in_worker(parent_pid: int, function: Callable, *args) -> Any:
+    """function(*args) in a ProcessPoolExecutor worker, which exits once `parent_pid` (the
+    submitting process) has died: a killed parent's workers would otherwise render on."""
+    global _watching_parent
+    if not _watching_parent:
+        _watching_parent = True
+        threading.Thread(target=_exit_with_parent, args=(parent_pid, os.getppid()), daemon=True,
+                         name="refracta-parent-watch").start()
+    return function(*args)
+
+
+def _exit_with_parent(parent_pid: int, first_ppid: int) -> None:
+    while True:
+        # Reparented (the parent, or a forkserver between us, died), or the submitter is gone.
+        if os.getppid() != first_ppid or not _alive(parent_pid):
+            os._exit(1)
+        time.sleep(_PARENT_POLL)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # alive, owned by someone else
+        return True
+    return True
 
 
 def sweep(function: Callable[..., Any], grid, executor=None, progress: ProgressArg = True,

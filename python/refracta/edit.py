@@ -516,11 +516,17 @@ def load_pairs(path, scene: Optional[_core.Scene] = None, camera: Optional[_core
     file and ValueError naming the file and the pair for anything malformed.
     """
     import json
+    import stat
     from pathlib import Path
 
     path = Path(path)
     try:
+        # Refused before opening: reading a FIFO (or a device) waits for a writer that may never come.
+        if not stat.S_ISREG(path.stat().st_mode):
+            raise _core.IoError(f"cannot read pairs file {path}: not a regular file")
         text = path.read_text()
+    except _core.IoError:
+        raise
     except OSError as error:
         raise _core.IoError(f"cannot read pairs file {path}: {error.strerror}") from None
     try:
