@@ -34,7 +34,7 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str) -
     """The SceneWarning hints of render(): a scene without any light or sky; and one whose lowest
     geometry (taken as its ground) lies more than GROUND_TOLERANCE from height 0 of the field the
     rays go through (every field, CurvedEarth's flattened heights too, puts the ground at y = 0)
-    with layered air in between (mean |dn/dh| > LAYER_GRADIENT below the camera)."""
+    with layered air in between (mean ``|dn/dh|`` > LAYER_GRADIENT below the camera)."""
     if len(scene.lights) == 0:
         warnings.warn("render: the scene has no light and no sky, so the image is black; add one with "
                       "scene.set_sky(...), set_sun, set_physical_sky, set_environment, add_point_light or "
@@ -140,7 +140,7 @@ def render(
     Warns (refracta.SceneWarning) when the scene has no light and no sky (a black image), and when
     a field is given (method not 'straight') and the scene's lowest geometry lies more than
     GROUND_TOLERANCE = 0.1 m from the field's height 0, where its ground should be, with layered
-    air in between (mean |dn/dh| under the camera above LAYER_GRADIENT = 3e-7 /m, ten times the
+    air in between (mean ``|dn/dh|`` under the camera above LAYER_GRADIENT = 3e-7 /m, ten times the
     standard atmosphere's: a hot road's or a cold sea's ground layer).
     """
     if "integrator" in options:
