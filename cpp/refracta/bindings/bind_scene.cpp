@@ -817,6 +817,24 @@ which the bounding sphere fills the narrower of the two fields of view.
     camera = refracta.Camera.framing(scene, width=800, height=450)
 
 scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc")
+      .def_static(
+          "photographic",
+          [](const py::object& position, const py::object& look_at, double focal_length_mm, const std::pair<double, double>& sensor_mm,
+             int width, int height, const py::object& up) {
+            return Camera::photographic(to_point(position, "position"), to_point(look_at, "look_at"), to_point(up, "up"),
+                                        focal_length_mm, sensor_mm.first, sensor_mm.second, width, height);
+          },
+          py::arg("position"), py::arg("look_at"), py::arg("focal_length_mm"),
+          py::arg("sensor_mm") = std::make_pair(36.0, 24.0), py::arg("width") = 960, py::arg("height") = 640,
+          py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
+          R"doc(A pinhole camera described by its lens and sensor: focal_length_mm on a sensor of
+sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the
+sensor's width when it is relatively wider than the sensor, else its height; vfov follows as
+2 atan(h / 2f). A 300 mm telephoto on full frame at 960 x 640 sees 4.58 deg vertically:
+
+    camera = refracta.Camera.photographic((0, 5, 0), (28000, 5, 0), 300.0, width=960, height=640)
+
+position, look_at [m]; up as for Camera.)doc")
       .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
            "The same view at another image size (vertical field of view kept).")
       .def_property_readonly("width", &Camera::width)

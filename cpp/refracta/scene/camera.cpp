@@ -34,6 +34,23 @@ Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, dou
   tan_half_ = std::tan(0.5 * degrees_to_radians(vfov_deg));
 }
 
+Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,
+                            double sensor_w_mm, double sensor_h_mm, int width, int height) {
+  auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  if (!positive(focal_length_mm)) {
+    throw_invalid("Camera.photographic: focal_length_mm must be > 0 and finite (got ", focal_length_mm, ")");
+  }
+  if (!positive(sensor_w_mm) || !positive(sensor_h_mm)) {
+    throw_invalid("Camera.photographic: sensor_mm must be two sides > 0 [mm] (got (", sensor_w_mm, ", ",
+                  sensor_h_mm, "))");
+  }
+  if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
+  const bool spans_width = double(width) * sensor_h_mm >= double(height) * sensor_w_mm;
+  const double image_h_mm = spans_width ? sensor_w_mm * height / width : sensor_h_mm;
+  const double vfov = 2.0 * std::atan(0.5 * image_h_mm / focal_length_mm) * 180.0 / kPi;
+  return Camera(position, look_at, up, vfov, width, height);
+}
+
 Camera Camera::framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& direction, const Vec3d& up,
                        double vfov_deg, int width, int height) {
   if (!is_finite(lower) || !is_finite(upper) || (upper - lower).minCoeff() < 0.0) {

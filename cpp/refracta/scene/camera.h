@@ -23,6 +23,14 @@ class Camera {
   static Camera framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& direction, const Vec3d& up,
                         double vfov_deg, int width, int height);
 
+  // A camera described as a photographer would: a lens of focal length f [mm] on a sensor of
+  // sensor_w x sensor_h [mm] (36 x 24: full frame). The image spans the sensor's width when it is
+  // relatively wider than the sensor, else its height (a crop of the other side, Blender's
+  // "auto" sensor fit): vfov = 2 atan(sensor_h' / 2f), sensor_h' = sensor_w H / W in the first
+  // case. Throws std::invalid_argument for a focal length or sensor side <= 0 or not finite.
+  static Camera photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,
+                             double sensor_w_mm, double sensor_h_mm, int width, int height);
+
   // Unit direction of the ray through pixel coordinates (u, v) (with the jitter, if any).
   Vec3d direction(double u, double v) const;
   // (u, v, depth) of a world point through the pinhole (the jitter ignored); depth [m] along
