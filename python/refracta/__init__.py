@@ -37,6 +37,7 @@ from refracta._core import (
     trace_ray,
 )
 from refracta import io, lights, shading, spectrum, testing
+from refracta._denoise import denoise
 from refracta._render import SceneWarning, render
 from refracta._raster_render import render_raster
 from refracta.scene_file import SceneFile, load_scene
@@ -91,6 +92,7 @@ __all__ = [
     "air_dispersion_scale",
     "animate",
     "astronomical_refraction",
+    "denoise",
     "dispersed_field",
     "field_reference_wavelength",
     "geometric_noise",
