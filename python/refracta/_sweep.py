@@ -156,7 +156,8 @@ def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, p
 
     Ctrl-C (or any exception while waiting) stops the work before it is raised: calls not yet
     started are cancelled; on a ThreadPoolExecutor the refracta calls running on its threads are
-    cancelled (they stop within the Ctrl-C bound, raising RuntimeError into futures nobody reads);
+    cancelled, and any refracta call those tasks start afterwards fails at once (RuntimeError into
+    futures nobody reads; Python code a task runs between refracta calls is not interrupted);
     a ProcessPoolExecutor is shut down and its worker processes terminated (the executor cannot
     be used again). Workers of a ProcessPoolExecutor also exit when the process that submitted
     their work dies (they would otherwise render on as orphans)."""
@@ -285,6 +286,15 @@ def _exit_with_parent(parent_pid: int, first_ppid: int) -> None:
 
 
 def _alive(pid: int) -> bool:
+    """False once pid has exited, including as a zombie not yet reaped (a killed parent whose own
+    parent waits for our pipes to close: a worker that started its task only after the kill)."""
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
+    except OSError:  # no /proc (macOS): signal 0 tells whether the pid exists
+        pass
     try:
         os.kill(pid, 0)
     except ProcessLookupError:

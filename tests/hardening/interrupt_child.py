@@ -1,6 +1,9 @@
 """Child process of test_01_ctrl_c.py: runs each named long operation in turn, printing
-`start <name>` just before the call and `stopped <name>` when KeyboardInterrupt ends it (or
-`finished <name>` if it ran to the end). Every operation would run for many seconds."""
+`start <name>` once the work is under way -- at the first call of its progress callback, which
+run_interruptible makes only after its C++ work has run for one polling period -- or just before
+the call for the operations without progress; then `stopped <name>` when KeyboardInterrupt ends
+it, or `finished <name>` if it ran to the end. Every operation is sized to run for minutes on an
+idle machine, so no machine can finish one before the signal arrives."""
 
 import sys
 
@@ -15,25 +18,52 @@ def road_field():
     return refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
 
 
+class Started:
+    """A progress callback announcing the work's start at its first call."""
+
+    def __init__(self, name):
+        self.name = name
+        self.announced = False
+
+    def __call__(self, done, total):
+        if not self.announced:
+            self.announced = True
+            announce(self.name)
+
+
+def announce(name):
+    print(f"start {name}", flush=True)
+
+
 def setup(name):
-    """A zero-argument callable doing the long work, with its inputs built beforehand."""
-    if name == "trace_rays":
-        e = np.radians(np.linspace(-0.5, 0.5, 200_000))
+    """(work, announces): a zero-argument callable doing the long work, with its inputs built
+    beforehand, and whether it prints `start` itself (through its progress callback)."""
+    started = Started(name)
+    if name == "trace_rays":  # 2 million rays: ~9 minutes on 2 idle cores (200 000 took 52 s)
+        e = np.radians(np.linspace(-0.5, 0.5, 2_000_000))
         directions = np.c_[np.cos(e), np.sin(e), 0 * e]
-        return lambda: refracta.trace_rays(road_field(), [0, 1.5, 0], directions, tol=1e-10, max_length=2000.0)
-    if name == "trace_ray":  # 9 million rk4 steps
-        return lambda: refracta.trace_ray(road_field(), [0, 1.5, 0], [1, 0, 0], method="rk4", step=1e-3,
-                                          max_length=9000.0)
+        return lambda: refracta.trace_rays(road_field(), [0, 1.5, 0], directions, tol=1e-10, max_length=2000.0,
+                                           progress=started), True
+    if name == "trace_ray":  # 9 million rk4 steps, each calling back into Python 4 times: minutes
+        field = refracta.CustomField(lambda p: 1.0 + 1e-6 * p[:, 1], lambda p: np.tile([0.0, 1e-6, 0.0], (len(p), 1)))
+        return lambda: refracta.trace_ray(field, [0, 1.5, 0], [1, 0, 0], method="rk4", step=1e-3,
+                                          max_length=9000.0), False
     if name.startswith("render_"):
         road = examples.hot_road(640, 240)
         method = name[len("render_"):]
         if method == "table":  # the eye's ElevationTable, rays climbing 10 000 km
-            return lambda: refracta.render(road.scene, road.camera, road.field, max_length=1e7, progress=False)
+            return lambda: refracta.render(road.scene, road.camera, road.field, max_length=1e7, spp=4096,
+                                           progress=started), True
         if method == "raster":
             return lambda: refracta.render_raster(road.scene, road.camera.resized(2560, 960), resolution=8192,
-                                                  kernel=33)
+                                                  kernel=33, progress=started), True
+        if method == "turbulent_path":  # one tile of slow pixels: rays through turbulence, path traced
+            air = refracta.Turbulence(1e-10, depth=0.1, seed=3, cells=64)
+            field = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1, turbulence=air)
+            return lambda: refracta.render(road.scene, road.camera, field, transport="path", spp=4096,
+                                           max_length=road.max_length, progress=started), True
         return lambda: refracta.render(road.scene, road.camera, road.field, method=method, spp=4096,
-                                       max_length=road.max_length, progress=False)
+                                       max_length=road.max_length, progress=started), True
     if name == "solve":
         truth = road_field()
         eye = np.array([0.0, 1.4, 0.0])
@@ -46,21 +76,22 @@ def setup(name):
         start = truth.with_params(surface_dt=3.0, surface_depth=0.5)
         return lambda: solve(start, eye, pairs, free=["surface_dt", "surface_depth"], backend="nlopt:GN_CRS2_LM",
                              ground=0.0, max_evaluations=10_000_000, max_iterations=10_000_000, starts=50,
-                             function_tolerance=0.0, parameter_tolerance=0.0)
+                             function_tolerance=0.0, parameter_tolerance=0.0, progress=started), True
     if name == "sweep":
         road = examples.hot_road(320, 120)
 
         def one(surface_dt):
             return refracta.render(road.scene, road.camera, road.field.with_params(surface_dt=surface_dt), spp=4096,
-                                   max_length=road.max_length, progress=False)
-        return lambda: refracta.sweep(one, {"surface_dt": [5.0, 10.0, 15.0]}, progress=False)
+                                   max_length=road.max_length, progress=started)
+        return lambda: refracta.sweep(one, {"surface_dt": [5.0, 10.0, 15.0]}, progress=False), True
     raise ValueError(f"unknown operation {name!r}")
 
 
 def main(names):
     for name in names:
-        work = setup(name)
-        print(f"start {name}", flush=True)
+        work, announces = setup(name)
+        if not announces:
+            announce(name)
         try:
             work()
         except KeyboardInterrupt:
