@@ -75,9 +75,10 @@ EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const Pro
 
 EditProblem::~EditProblem() = default;
 
-std::unique_ptr<EditProblem> EditProblem::with_tolerance(double tol) const {
+std::unique_ptr<EditProblem> EditProblem::with_tolerance(double tol, int64_t max_steps) const {
   ProblemSpec spec = spec_;
   spec.pair.tol = tol;
+  spec.pair.max_steps = std::min(spec.pair.max_steps, max_steps);
   return std::make_unique<EditProblem>(field_, pairs_, spec, context_->cancel);
 }
 

@@ -33,9 +33,9 @@ class EditProblem {
               const std::atomic<bool>* cancel);
   ~EditProblem();
 
-  // The same problem with pairs traced to `tol` [m] (the global stage ranks points by a coarser
-  // cost; its results never reach the user).
-  std::unique_ptr<EditProblem> with_tolerance(double tol) const;
+  // The same problem with pairs traced to `tol` [m] in at most `max_steps` steps each (the global
+  // stage ranks points by a coarser, bounded cost; its results never reach the user).
+  std::unique_ptr<EditProblem> with_tolerance(double tol, int64_t max_steps) const;
   const PairOptions& pair_options() const { return options_; }
 
   int num_free() const { return int(free_.size()); }

@@ -73,7 +73,7 @@ Design evaluate_design(const EditProblem& problem, int per_param, SolveBudget& b
   auto on_axis = [&](int j, double u, const std::string& label) {
     std::vector<double> x = problem.start();
     x[j] = problem.from_unit(j, std::clamp(u, 0.0, 1.0));
-    points.push_back({x, 0.0, label});
+    points.push_back({x, 0.0, label, {}});
   };
   // 1. Scans along each axis through the start, and quasi-random points.
   for (int j = 0; j < m; ++j) {
@@ -89,7 +89,7 @@ Design evaluate_design(const EditProblem& problem, int per_param, SolveBudget& b
       const double start = problem.to_unit(j, problem.start()[j]);
       x[j] = problem.from_unit(j, near ? std::clamp(start + (2.0 * u[j] - 1.0) * kNearFraction, 0.0, 1.0) : u[j]);
     }
-    points.push_back({x, 0.0, near ? "near the start" : "in the box"});
+    points.push_back({x, 0.0, near ? "near the start" : "in the box", {}});
   }
   out.evaluated += evaluate_points(problem, &points, 0, budget);
 

@@ -26,6 +26,7 @@ void PairOptions::validate() const {
   if (!(step >= 0.0) || !std::isfinite(step)) throw_invalid("step must be >= 0 (got ", step, ")");
   if (ground && !std::isfinite(*ground)) throw_invalid("ground must be finite (got ", *ground, ")");
   if (!(reach >= 1.0) || !std::isfinite(reach)) throw_invalid("reach must be >= 1 (got ", reach, ")");
+  if (max_steps < 1) throw_invalid("max_steps must be >= 1 (got ", max_steps, ")");
 }
 
 TraceOptions PairOptions::trace_options(const PointPair& pair) const {
@@ -36,6 +37,7 @@ TraceOptions PairOptions::trace_options(const PointPair& pair) const {
   // Below ~1e-13 of the path length a position tolerance asks for more than round-off allows.
   options.tol = std::max(tol, kRoundOffTolerance * options.max_length);
   options.stop_height = ground;
+  options.max_steps = max_steps;
   return options;
 }
 

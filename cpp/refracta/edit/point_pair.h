@@ -47,6 +47,8 @@ struct PairOptions {
   PairDistance distance = PairDistance::kContinuous;
   // The path is traced to reach x |source - eye| + 1 m, and stops early once it is past the source.
   double reach = 1.5;
+  // Steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails.
+  int64_t max_steps = 10'000'000;
 
   // Throws std::invalid_argument naming the bad field.
   void validate() const;

@@ -67,6 +67,13 @@ constexpr double kStartSpacing = 0.05;
 // points whose costs differ by orders of magnitude (1e-7 of 50 m is 5 um).
 constexpr double kDesignTolerance = 1e-7;
 
+// auto: the global stage's traces take at most this many steps; a design point needing more for
+// some pair ranks last (cost +inf). Only trial atmospheres that duct a ray over its whole range need
+// that many (issue 23: a 1 km pair at k_s = -300, 315 000; a 1e7 m pair, 10 million, 10 s a trace,
+// which made the design take minutes); ordinary pairs need hundreds to thousands (1e7 m of
+// straight-ish air: 12 000 at the solve's tolerance, fewer at the design's).
+constexpr int64_t kDesignMaxSteps = 100'000;
+
 // auto: a quick Ceres solve that ran out of iterations while its cost still fell at least this
 // many times over its last kRecentIterations goes on locally (up to kQuickExtensions more quick
 // solves) before the global stage: LM closing in on a minimum needs a few more iterations, far
@@ -160,7 +167,8 @@ class Strategy {
     const double design_begin = budget_.seconds();
     double longest = 0.0;
     for (const PointPair& pair : problem_.pairs()) longest = std::max(longest, pair.range());
-    const auto coarse = problem_.with_tolerance(std::max(problem_.pair_options().tol, kDesignTolerance * longest));
+    const auto coarse = problem_.with_tolerance(std::max(problem_.pair_options().tol, kDesignTolerance * longest),
+                                                kDesignMaxSteps);
     Design design = evaluate_design(*coarse, settings_.design_per_param, budget_);
     traces_ += coarse->context().pair_evaluations.load();
     const int64_t failed = std::count_if(design.points.begin(), design.points.end(), [](const DesignPoint& p) {
@@ -258,6 +266,7 @@ class Strategy {
       for (double v : r) out.cost += 0.5 * v * v;
       out.met = problem_.count_met(r, settings_.accept_angle);
       out.all_met = out.met == int(problem_.pairs().size());
+      out.result.residuals = std::move(r);  // the summary's cost: not traced again
     }
     return out;
   }
@@ -391,9 +400,9 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
   out.pair_traces = problem->context().pair_evaluations.load() + strategy.design_traces();
   out.converged = result.converged;
   out.solver_report = result.report;
-  std::vector<double> residuals;
+  std::vector<double> residuals = result.residuals;
   out.cost = std::numeric_limits<double>::infinity();
-  if (problem->evaluate(result.x, &residuals)) {
+  if (residuals.size() == size_t(problem->num_residuals()) || problem->evaluate(result.x, &residuals)) {
     out.cost = 0.0;
     for (double v : residuals) out.cost += 0.5 * v * v;
   }
