@@ -1,5 +1,6 @@
 // Python bindings of scenes, cameras, lights and image files (cpp/refracta/scene, shading).
 #include "refracta/bindings/bind_scene.h"
+#include "refracta/bindings/interruptible.h"
 #include "refracta/bindings/pickle_state.h"
 
 #include "refracta/scene/image_io.h"
@@ -279,10 +280,8 @@ void set_physical_sky(RenderScene& s, const PhysicalSkySettings& settings, doubl
   if (!(limb_darkening >= 0.0 && limb_darkening <= 1.0)) throw_invalid("limb_darkening must be in [0, 1] (got ", limb_darkening, ")");
   if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("scale must be >= 0 and finite (got ", scale, ")");
   std::shared_ptr<PhysicalSkyLight> sky;
-  {
-    py::gil_scoped_release release;  // the table: ~0.5 s over oneTBB
-    sky = std::make_shared<PhysicalSkyLight>(settings);
-  }
+  WorkControl control;  // the table: ~0.5 s over oneTBB, stopped by Ctrl-C
+  run_interruptible(control, py::none(), [&] { sky = std::make_shared<PhysicalSkyLight>(settings); });
   // The sun's disc radiance at the sky's 10 nm nodes (Color::tabulated interpolates to 1 nm).
   std::vector<double> lambda, radiance;
   for (int i = 0; i < PhysicalSky::kWavelengths; ++i) {

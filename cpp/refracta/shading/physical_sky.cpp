@@ -2,10 +2,9 @@
 #include "refracta/shading/physical_sky.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/parallel.h"
 #include "refracta/shading/spectral.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -228,10 +227,14 @@ PhysicalSky::PhysicalSky(const PhysicalSkySettings& settings) : settings_(settin
   // The table, one direction per task.
   table_.assign(size_t(kElevations) * kAzimuths * kWavelengths, 0.0f);
   rgb_.assign(size_t(kElevations) * kAzimuths, Vec3d::Zero());
-  tbb::parallel_for(tbb::blocked_range<int>(0, kElevations * kAzimuths), [&](const tbb::blocked_range<int>& range) {
+  // Under the caller's cancel flags (core/parallel.h): Ctrl-C stops the ~0.5 s build at the next cell.
+  WorkControl control;
+  constexpr int64_t kCellsPerTask = 16;
+  parallel_for_each(int64_t(kElevations) * kAzimuths, kCellsPerTask, control, [&](int64_t index) {
     std::array<double, kWavelengths> lambda, values;
     for (int w = 0; w < kWavelengths; ++w) lambda[w] = wavelength(w);
-    for (int cell = range.begin(); cell != range.end(); ++cell) {
+    {
+      const int cell = int(index);
       const int row = cell / kAzimuths, column = cell % kAzimuths;
       const Vec3d dir = xy_to_direction(Vec2d((column + 0.5) / kAzimuths, (row + 0.5) / kElevations));
       for (int w = 0; w < kWavelengths; ++w) {
