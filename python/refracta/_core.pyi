@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'HotSpot', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'air_dispersion_scale', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray']
+__all__: list[str] = ['AreaLight', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'HotSpot', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'air_dispersion_scale', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray', 'water_density', 'water_ior']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -597,6 +597,18 @@ class Camera:
             camera = refracta.Camera.framing(scene, width=800, height=450)
         
         scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].
+        """
+    @staticmethod
+    def photographic(position: typing.Any, look_at: typing.Any, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, up: typing.Any = (0.0, 1.0, 0.0)) -> Camera:
+        """
+        A pinhole camera described by its lens and sensor: focal_length_mm on a sensor of
+        sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the
+        sensor's width when it is relatively wider than the sensor, else its height; vfov follows as
+        2 atan(h / 2f). A 300 mm telephoto on full frame at 960 x 640 sees 4.58 deg vertically:
+        
+            camera = refracta.Camera.photographic((0, 5, 0), (28000, 5, 0), 300.0, width=960, height=640)
+        
+        position, look_at [m]; up as for Camera.
         """
     def __getstate__(self) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float], float, int, int, list[float]]:
         ...
@@ -1618,5 +1630,16 @@ def trace_ray(field: IndexField, origin: typing.Any, direction: typing.Any, meth
     path ends where it descends through this height (a ground). Raises ValueError for bad arguments
     (a path needing more than 10 million nodes is refused up front), refracta.NumericalError where n
     <= 0 or is not finite; Ctrl-C (KeyboardInterrupt) stops it.
+    """
+def water_density(temperature_c: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    Density of air-free pure water at 101 325 Pa [kg/m^3] (Tanaka et al. 2001), temperature_c in
+    [0, 40] deg C. Vectorised.
+    """
+def water_ior(wavelength_nm: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], temperature_c: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 20.0, salinity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 0.0) -> typing.Any:
+    """
+    Refractive index of water relative to vacuum: pure water by IAPWS R9-97 at the density of
+    Tanaka et al. 2001 (atmospheric pressure), plus Quan & Fry 1995's salinity terms. wavelength_nm
+    in [200, 1100], temperature_c in [0, 40] deg C, salinity [g/kg] in [0, 40]. Vectorised.
     """
 _stop_names: tuple = ('max_length', 'stop_height', 'stopped')
