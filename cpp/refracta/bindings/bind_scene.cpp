@@ -21,7 +21,6 @@
 #include "refracta/shading/tonemap.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -64,10 +63,12 @@ class TextureProgress {
   static constexpr double kQuietSeconds = 1.0;
 
   TextureProgress(const std::vector<std::string>& paths, const py::object& progress)
-      : total_(std::set<std::string>(paths.begin(), paths.end()).size() - (std::count(paths.begin(), paths.end(), "") > 0)),
-        start_(std::chrono::steady_clock::now()) {
+      : total_(std::set<std::string>(paths.begin(), paths.end()).size() - (std::count(paths.begin(), paths.end(), "") > 0)) {
     if (py::isinstance<py::bool_>(progress)) {
-      bar_ = progress.cast<bool>();
+      if (progress.cast<bool>()) {
+        callback_ = py::module_::import("refracta._progress")
+                        .attr("ProgressBar")("preparing textures", py::arg("quiet_seconds") = kQuietSeconds);
+      }
     } else if (PyCallable_Check(progress.ptr())) {
       callback_ = progress;
     } else {
@@ -78,16 +79,11 @@ class TextureProgress {
   void added(const std::string& path) {
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // Ctrl-C between textures
     if (!seen_.insert(path).second) return;
-    if (!callback_ && bar_ && std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > kQuietSeconds) {
-      callback_ = py::module_::import("refracta._progress").attr("ProgressBar")("preparing textures");
-    }
     if (callback_) callback_(seen_.size(), total_);
   }
 
  private:
   size_t total_;
-  std::chrono::steady_clock::time_point start_;
-  bool bar_ = false;
   py::object callback_;
   std::set<std::string> seen_;
 };
