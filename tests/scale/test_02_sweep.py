@@ -135,7 +135,9 @@ def started(done, total):
     global announced
     if not announced:
         announced = True
-        print(f"ready {os.getpid()}", flush=True)
+        # One write(2) below PIPE_BUF is atomic: the pool's two workers share this pipe and may
+        # announce at the same moment (print's buffered writes interleaved as "ready 7440ready").
+        os.write(1, f"ready {os.getpid()}\\n".encode())
 
 # Built once, before the sweep: a task is then a refracta call from its first instruction (Python
 # code a task runs before or between refracta calls is not interrupted on a thread pool).
@@ -168,7 +170,10 @@ def _start_sweep(tmp_path, kind):
     process = subprocess.Popen([sys.executable, str(script), kind], cwd=tmp_path, stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True)
     ready = process.stdout.readline().split()
-    assert ready[:1] == ["ready"], (ready, process.stderr.read() if process.poll() is not None else "")
+    if len(ready) != 2 or ready[0] != "ready" or not ready[1].isdigit():
+        process.kill()
+        _, stderr = process.communicate(timeout=HANG_GUARD)  # closes the pipes
+        pytest.fail(f"the sweep's child did not announce a render: {ready} {stderr}")
     return process, int(ready[1])
 
 
