@@ -219,15 +219,24 @@ Image array_to_image(const py::object& object) {
   return image;
 }
 
-// Exposure, tone mapping and transfer curve for display (shading/tonemap.h; alpha untouched).
+// The display arguments io.write_image and io.to_display pass through (None: DisplaySettings'
+// default), as DisplaySettings (shading/tonemap.h).
 // gamma: 'srgb', 'linear' or a number g in [1, 3] (p = l^(1/g)).
-void encode_for_display(Image& image, double exposure, const std::string& tonemap_name, const py::object& gamma,
-                        std::optional<double> key, std::optional<double> white) {
+struct DisplayArgs {
+  std::optional<double> exposure, ev100, iso, shutter, f_number, key, white;
+  std::optional<std::string> tonemap;
+  py::object gamma;
+};
+
+DisplaySettings display_settings(const DisplayArgs& args) {
   DisplaySettings settings;
-  settings.exposure = exposure;
-  settings.tonemap = parse_tonemap(tonemap_name);
-  settings.key = key;
-  settings.white = white;
+  settings.exposure = args.exposure;
+  settings.ev100 = args.ev100;
+  settings.iso = args.iso, settings.shutter = args.shutter, settings.f_number = args.f_number;
+  if (args.tonemap) settings.tonemap = parse_tonemap(*args.tonemap);
+  settings.key = args.key;
+  settings.white = args.white;
+  const py::object& gamma = args.gamma;
   if (py::isinstance<py::str>(gamma)) {
     const std::string name = py::cast<std::string>(gamma);
     if (name == "srgb") {
@@ -244,7 +253,8 @@ void encode_for_display(Image& image, double exposure, const std::string& tonema
       throw_invalid("gamma must be 'srgb', 'linear' or a number in [1, 3]");
     }
   }
-  tonemap_image(image, settings);
+  settings.validate();
+  return settings;
 }
 
 }  // namespace
@@ -769,15 +779,18 @@ map (height, width, 2) at the pixel centres, bilinear between them. Non-physical
           [](const Camera& c) {
             auto xyz = [](const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); };
             return py::make_tuple(xyz(c.position()), xyz(c.look_at()), xyz(c.up_hint()), c.vfov(), c.width(), c.height(),
-                                  c.jitter());
+                                  c.jitter(), c.aperture_diameter(), c.focus_distance());
           },
           [](const py::tuple& t) {
-            if (t.size() != 6 && t.size() != 7) throw_invalid("Camera: bad pickle state (", t.size(), " items)");
+            if (t.size() != 6 && t.size() != 7 && t.size() != 9) throw_invalid("Camera: bad pickle state (", t.size(), " items)");
             Camera camera(to_point(t[0], "position"), to_point(t[1], "look_at"), to_point(t[2], "up"), py::cast<double>(t[3]),
                           py::cast<int>(t[4]), py::cast<int>(t[5]));
             if (t.size() == 7) {
               auto angles = py::cast<std::vector<float>>(t[6]);
               if (!angles.empty()) camera = camera.jittered(std::move(angles));
+            }
+            if (t.size() == 9 && py::cast<double>(t[7]) > 0.0) {
+              camera = camera.with_lens(py::cast<double>(t[7]), py::cast<double>(t[8]));
             }
             return camera;
           }))
@@ -815,13 +828,16 @@ scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc")
       .def_static(
           "photographic",
           [](const py::object& position, const py::object& look_at, double focal_length_mm, const std::pair<double, double>& sensor_mm,
-             int width, int height, const py::object& up) {
+             int width, int height, const py::object& up, std::optional<double> f_number,
+             std::optional<double> focus_distance) {
             return Camera::photographic(to_point(position, "position"), to_point(look_at, "look_at"), to_point(up, "up"),
-                                        focal_length_mm, sensor_mm.first, sensor_mm.second, width, height);
+                                        focal_length_mm, sensor_mm.first, sensor_mm.second, width, height, f_number,
+                                        focus_distance);
           },
           py::arg("position"), py::arg("look_at"), py::arg("focal_length_mm"),
           py::arg("sensor_mm") = std::make_pair(36.0, 24.0), py::arg("width") = 960, py::arg("height") = 640,
-          py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
+          py::arg("up") = py::make_tuple(0.0, 1.0, 0.0), py::arg("f_number") = py::none(),
+          py::arg("focus_distance") = py::none(),
           R"doc(A pinhole camera described by its lens and sensor: focal_length_mm on a sensor of
 sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the
 sensor's width when it is relatively wider than the sensor, else its height; vfov follows as
@@ -829,7 +845,41 @@ sensor's width when it is relatively wider than the sensor, else its height; vfo
 
     camera = refracta.Camera.photographic((0, 5, 0), (28000, 5, 0), 300.0, width=960, height=640)
 
-position, look_at [m]; up as for Camera.)doc")
+position, look_at [m]; up as for Camera.
+
+Depth of field: with f_number N a thin lens of aperture diameter A = f / N, focused at
+focus_distance [m] (None: the distance to look_at); None: a pinhole, everything sharp. A point at
+depth d [m] then blurs to the thin-lens circle of confusion c = A f |d - d_f| / (d (d_f - f)) on
+the sensor; the image keeps the field of view of focus at infinity (no focus breathing, as
+Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm].
+Each pixel sample takes its own lens point; through a field those rays are traced from the lens
+(not served by the eye's table), which costs what table=False costs. Only the ray-traced methods
+('straight', 'curved') render it. f_number or focus_distance <= 0 or NaN: ValueError.)doc")
+      .def_static(
+          "eye_level",
+          [](const py::object& eye, const py::object& target, double eye_height, double focal_length_mm,
+             const std::pair<double, double>& sensor_mm, int width, int height, std::optional<double> f_number,
+             std::optional<double> focus_distance) {
+            return Camera::eye_level(to_point(eye, "eye"), to_point(target, "target"), eye_height, focal_length_mm,
+                                     sensor_mm.first, sensor_mm.second, width, height, f_number, focus_distance);
+          },
+          py::arg("eye"), py::arg("target"), py::arg("eye_height") = 1.6, py::arg("focal_length_mm") = 50.0,
+          py::arg("sensor_mm") = std::make_pair(36.0, 24.0), py::arg("width") = 960, py::arg("height") = 640,
+          py::arg("f_number") = py::none(), py::arg("focus_distance") = py::none(),
+          R"doc(A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the
+lens eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the
+horizontal direction of ``target``. Over flat ground the horizon runs through the image's centre
+row, where mirages are: a hot road's "wet" band and the inverted images under cars sit just below
+it (Camera.framing's 45 deg aerial view shows none of them). Over a curved Earth the sea horizon
+dips sqrt(2 h / R) below it (0.041 deg at 1.6 m). Lens, sensor, f_number and focus_distance as
+for Camera.photographic (focus by default at the target's horizontal distance):
+
+    camera = refracta.Camera.eye_level((0, 0, 0), (0, 0, -200), eye_height=1.6, focal_length_mm=200)
+)doc")
+      .def_property_readonly("aperture_diameter", &Camera::aperture_diameter,
+                             "The thin lens's aperture diameter [m] (f / N), 0 for a pinhole.")
+      .def_property_readonly("focus_distance", &Camera::focus_distance,
+                             "The depth [m] of the plane in focus, 0 for a pinhole.")
       .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
            "The same view at another image size (vertical field of view kept).")
       .def_property_readonly("width", &Camera::width)
@@ -842,30 +892,61 @@ position, look_at [m]; up as for Camera.)doc")
                       "), vfov=", c.vfov(), ", size=", c.width(), "x", c.height(), ")");
       });
 
+  // Display arguments after the image: exposure, tonemap, gamma, key, white, ev100, iso, shutter,
+  // f_number (io.py passes them through; None: the C++ default).
+  auto display_args = [](std::optional<double> exposure, std::optional<std::string> tonemap, const py::object& gamma,
+                         std::optional<double> key, std::optional<double> white, std::optional<double> ev100,
+                         std::optional<double> iso, std::optional<double> shutter, std::optional<double> f_number) {
+    return DisplayArgs{exposure, ev100, iso, shutter, f_number, key, white, std::move(tonemap),
+                       gamma.is_none() ? py::str("srgb") : gamma};
+  };
   m.def("_write_image",
-        [](const std::string& path, const py::object& array, double exposure, const std::string& tonemap_name,
-           const py::object& gamma, std::optional<double> key, std::optional<double> white) {
+        [display_args](const std::string& path, const py::object& array, std::optional<double> exposure,
+                       std::optional<std::string> tonemap, const py::object& gamma, std::optional<double> key,
+                       std::optional<double> white, std::optional<double> ev100, std::optional<double> iso,
+                       std::optional<double> shutter, std::optional<double> f_number) {
           Image image = array_to_image(array);
+          const DisplaySettings settings =
+              display_settings(display_args(exposure, tonemap, gamma, key, white, ev100, iso, shutter, f_number));
           if (is_float_format(path)) {
-            if (!(exposure > 0.0) || !std::isfinite(exposure)) throw_invalid("exposure must be > 0 (got ", exposure, ")");
-            for (float& v : image.pixels) v *= float(exposure);
+            // Linear files: the manual exposure only (1 without one; no automatic exposure).
+            const double c = manual_exposure(settings);
+            for (float& v : image.pixels) v *= float(c);
           } else {
-            encode_for_display(image, exposure, tonemap_name, gamma, key, white);
+            tonemap_image(image, settings);
           }
           py::gil_scoped_release release;
           write_image(path, image);
         },
-        py::arg("path"), py::arg("image"), py::arg("exposure"), py::arg("tonemap"), py::arg("gamma"),
-        py::arg("key") = py::none(), py::arg("white") = py::none());
+        py::arg("path"), py::arg("image"), py::arg("exposure") = py::none(), py::arg("tonemap") = py::none(),
+        py::arg("gamma") = py::none(), py::arg("key") = py::none(), py::arg("white") = py::none(),
+        py::arg("ev100") = py::none(), py::arg("iso") = py::none(), py::arg("shutter") = py::none(),
+        py::arg("f_number") = py::none());
   m.def("_display",
-        [](const py::object& array, double exposure, const std::string& tonemap_name, const py::object& gamma,
-           std::optional<double> key, std::optional<double> white) {
+        [display_args](const py::object& array, std::optional<double> exposure, std::optional<std::string> tonemap,
+                       const py::object& gamma, std::optional<double> key, std::optional<double> white,
+                       std::optional<double> ev100, std::optional<double> iso, std::optional<double> shutter,
+                       std::optional<double> f_number) {
           Image image = array_to_image(array);
-          encode_for_display(image, exposure, tonemap_name, gamma, key, white);
+          tonemap_image(image, display_settings(display_args(exposure, tonemap, gamma, key, white, ev100, iso, shutter, f_number)));
           return image_to_float32(image);
         },
-        py::arg("image"), py::arg("exposure"), py::arg("tonemap"), py::arg("gamma"), py::arg("key") = py::none(),
-        py::arg("white") = py::none());
+        py::arg("image"), py::arg("exposure") = py::none(), py::arg("tonemap") = py::none(), py::arg("gamma") = py::none(),
+        py::arg("key") = py::none(), py::arg("white") = py::none(), py::arg("ev100") = py::none(),
+        py::arg("iso") = py::none(), py::arg("shutter") = py::none(), py::arg("f_number") = py::none());
+  m.def("_display_exposure",
+        [display_args](const py::object& array, std::optional<double> exposure, std::optional<double> key,
+                       std::optional<double> ev100, std::optional<double> iso, std::optional<double> shutter,
+                       std::optional<double> f_number) {
+          const Image image = array_to_image(array);
+          return display_exposure(image, display_settings(display_args(exposure, std::nullopt, py::none(), key,
+                                                                       std::nullopt, ev100, iso, shutter, f_number)));
+        },
+        py::arg("image"), py::arg("exposure") = py::none(), py::arg("key") = py::none(), py::arg("ev100") = py::none(),
+        py::arg("iso") = py::none(), py::arg("shutter") = py::none(), py::arg("f_number") = py::none(),
+        "The exposure c the display settings give this image (io.exposure_of).");
+  m.def("_ev100", &ev100_of, py::arg("f_number"), py::arg("shutter"), py::arg("iso") = kDefaultIso,
+        "EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.");
   m.def("_read_image", [](const std::string& path) { return image_to_float32(read_image(path)); }, py::arg("path"));
 }
 

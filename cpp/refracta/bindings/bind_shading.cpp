@@ -2,6 +2,7 @@
 // vectorised evaluation (f, pdf, sample) in the local shading frame, Fresnel functions, the GGX
 // distribution and indices of refraction. Conventions: shared/SHADING.md section 0.
 #include "refracta/bindings/bindings.h"
+#include "refracta/shading/beckmann.h"
 #include "refracta/shading/conductor.h"
 #include "refracta/shading/dielectric.h"
 #include "refracta/shading/diffuse.h"
@@ -13,6 +14,7 @@
 #include "refracta/shading/principled.h"
 #include "refracta/shading/thin_film.h"
 #include "refracta/shading/water.h"
+#include "refracta/shading/water_surface.h"
 
 #include <pybind11/stl.h>
 
@@ -555,6 +557,94 @@ void bind_shading(py::module_& m) {
         py::arg("temperature_c"),
         "Density of air-free pure water at 101 325 Pa [kg/m^3] (Tanaka et al. 2001), temperature_c in\n"
         "[0, 40] deg C. Vectorised.");
+  m.def("water_absorption", py::vectorize([](double wavelength) { return water_absorption(wavelength); }),
+        py::arg("wavelength_nm"),
+        "Absorption coefficient of pure water [1/m] at wavelength_nm in [360, 830]: Pope & Fry 1997 (380-725 nm),\n"
+        "Smith & Baker 1981 below, Kou et al. 1993 above; linear between 5 nm nodes. Vectorised.");
+  m.def("water_backscattering", py::vectorize([](double wavelength, double salinity) { return water_backscattering(wavelength, salinity); }),
+        py::arg("wavelength_nm"), py::arg("salinity") = 0.0,
+        "Backscattering coefficient of pure (sea) water [1/m]: half of Morel 1974's molecular scattering\n"
+        "0.00222 (1 + 0.3 S / 37) (lambda / 500)^-4.32, salinity S [g/kg] in [0, 40]. Vectorised.");
+  m.def("water_body_reflectance",
+        py::vectorize([](double wavelength, double salinity) { return water_body_reflectance(wavelength, salinity); }),
+        py::arg("wavelength_nm"), py::arg("salinity") = 0.0,
+        "Irradiance reflectance just beneath the surface of deep pure (sea) water, R = 0.33 b_b / (a + b_b)\n"
+        "(Morel & Prieur 1977; Gordon et al. 1975), from water_absorption and water_backscattering. Vectorised.");
+  m.def("cox_munk_mean_square_slope", py::vectorize([](double wind_speed) { return cox_munk_mean_square_slope(wind_speed); }),
+        py::arg("wind_speed"),
+        "Total mean-square slope of a clean sea surface, 0.003 + 5.12e-3 U (Cox & Munk 1954), wind_speed U\n"
+        "[m/s] 12.5 m above the sea in [0, 30]. The Water material's Beckmann alpha^2. Vectorised.");
+
+  const WaterParameters water_defaults;
+  py::class_<Water, Material, std::shared_ptr<Water>> water_class(
+      m, "Water",
+      "The sea: a wind-roughened water surface over a deep water body (water_surface.h).\n\n"
+      "The interface is a Beckmann microfacet dielectric (Walter et al. 2007; Mitsuba 3's roughdielectric\n"
+      "with distribution='beckmann') whose alpha^2 is Cox & Munk 1954's total mean-square slope\n"
+      "0.003 + 5.12e-3 wind_speed (alpha = 0.17 at 5 m/s) and whose index is water_ior(lambda, temperature_c,\n"
+      "salinity): per wavelength in spectral rendering, at 630, 532 and 465 nm per RGB channel (directions\n"
+      "sampled at 550 nm). body=True (default): the deep water under it absorbs (Pope & Fry 1997) and\n"
+      "backscatters (Morel 1974) the light refracted in and returns R = 0.33 b_b / (a + b_b) of it as\n"
+      "isotropic light leaving through the interface, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fbar_int));\n"
+      "reflection-only and two-sided, nothing continues below. body=False: the bare interface, reflecting\n"
+      "and transmitting, bounding a medium of the water's index (priority for nested dielectrics).\n"
+      "Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open ocean).\n"
+      "wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.");
+  water_class
+      .def(py::init([](double wind_speed, double temperature_c, double salinity, bool body, int priority) {
+             WaterParameters p;
+             p.wind_speed = wind_speed, p.temperature_c = temperature_c, p.salinity = salinity, p.body = body, p.priority = priority;
+             return std::make_shared<Water>(p);
+           }),
+           py::arg("wind_speed") = water_defaults.wind_speed, py::arg("temperature_c") = water_defaults.temperature_c,
+           py::arg("salinity") = water_defaults.salinity, py::arg("body") = water_defaults.body,
+           py::arg("priority") = water_defaults.priority)
+      .def_property_readonly("wind_speed", [](const Water& w) { return w.parameters().wind_speed; }, "[m/s] 12.5 m above the sea")
+      .def_property_readonly("temperature_c", [](const Water& w) { return w.parameters().temperature_c; }, "[deg C]")
+      .def_property_readonly("salinity", [](const Water& w) { return w.parameters().salinity; }, "[g/kg]")
+      .def_property_readonly("body", [](const Water& w) { return w.parameters().body; }, "Whether a deep water body is under the surface.")
+      .def_property_readonly("mean_square_slope", &Water::mean_square_slope, "Cox & Munk's total sigma^2 = alpha^2.")
+      .def_property_readonly("alpha", &Water::alpha, "The Beckmann roughness alpha = sigma.")
+      .def("ior", [](const Water& w, const py::object& wavelength) {
+             bool single = false;
+             std::vector<double> l = to_values(wavelength, "wavelength_nm", &single);
+             for (double& x : l) {
+               if (!(x >= kLambdaMin && x <= kLambdaMax)) {
+                 throw_invalid("Water.ior: wavelength_nm must be in [", kLambdaMin, ", ", kLambdaMax, "] (got ", x, ")");
+               }
+               x = w.ior(x);
+             }
+             return single ? py::object(py::float_(l[0])) : py::object(values_to_array(l));
+           },
+           py::arg("wavelength_nm"), "The water's index relative to vacuum at wavelength_nm [nm] (a number or an array).");
+  add_parameters<Water>(water_class, [](const Water& w) {
+    const WaterParameters& p = w.parameters();
+    return py::dict(py::arg("wind_speed") = p.wind_speed, py::arg("temperature_c") = p.temperature_c, py::arg("salinity") = p.salinity,
+                    py::arg("body") = p.body, py::arg("priority") = p.priority);
+  });
+
+  py::class_<Beckmann>(m, "Beckmann",
+                       "The isotropic Beckmann microfacet distribution (beckmann.h): D, Lambda (exact, with erf), G1 and\n"
+                       "the height-correlated G. alpha^2 is the total mean-square slope. Directions: (N, 3) unit vectors.")
+      .def(py::init([](double alpha) { return Beckmann(TrowbridgeReitz::checked_alpha(alpha, "alpha")); }), py::arg("alpha"))
+      .def("D", [](const Beckmann& d, const py::object& m_) {
+        std::vector<double> out;
+        for (const Vec3d& m : to_directions(m_, "m")) out.push_back(d.D(m));
+        return values_to_array(out);
+      }, py::arg("m"))
+      .def("G1", [](const Beckmann& d, const py::object& w_) {
+        std::vector<double> out;
+        for (const Vec3d& w : to_directions(w_, "w")) out.push_back(d.G1(w));
+        return values_to_array(out);
+      }, py::arg("w"))
+      .def("G", [](const Beckmann& d, const py::object& wo_, const py::object& wi_) {
+        const auto wo = to_directions(wo_, "wo"), wi = to_directions(wi_, "wi");
+        const size_t n = broadcast(wo.size(), wi.size(), "wo and wi");
+        std::vector<double> out(n);
+        for (size_t i = 0; i < n; ++i) out[i] = d.G(wo[wo.size() == 1 ? 0 : i], wi[wi.size() == 1 ? 0 : i]);
+        return values_to_array(out);
+      }, py::arg("wo"), py::arg("wi"))
+      .def_property_readonly("alpha", &Beckmann::alpha);
 
   // Fresnel and thin films, vectorised over numpy arrays.
   m.def(

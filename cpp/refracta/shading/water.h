@@ -1,6 +1,9 @@
-// The refractive index of liquid water, for water surfaces (Dielectric / Water materials) and for
-// users comparing with measurements: pure water by the IAPWS formulation of 1997, its density at
-// atmospheric pressure by Tanaka et al. 2001, and the salinity increment of Quan & Fry 1995.
+// The optics of liquid water, for water surfaces (Dielectric / Water materials, water_surface.h)
+// and for users comparing with measurements: the refractive index of pure water by the IAPWS
+// formulation of 1997, its density at atmospheric pressure by Tanaka et al. 2001, and the salinity
+// increment of Quan & Fry 1995; the absorption and backscattering of pure (sea) water and the
+// irradiance reflectance of a deep body of it; the Cox & Munk 1954 slope statistics of the wind-
+// roughened sea surface.
 #pragma once
 
 namespace refracta {
@@ -28,5 +31,40 @@ double water_density(double temperature_c);
 //   air: the 3e-4 difference from vacuum in the increment is far below the fit's accuracy).
 // Throws std::invalid_argument naming the argument outside its range.
 double water_ior(double wavelength_nm, double temperature_c = 20.0, double salinity = 0.0);
+
+// Absorption coefficient of pure water [1/m] at a wavelength [nm] in [kLambdaMin, kLambdaMax]
+// (360-830 nm), linear between 5 nm nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of
+// pure water. II. Integrating cavity measurements", Applied Optics 36(33), 8710-8723) from 380 to
+// 725 nm; Smith & Baker 1981 ("Optical properties of the clearest natural waters (200-800 nm)",
+// Applied Optics 20(2), 177-184) below; Kou, Labrie & Chylek 1993 (Applied Optics 32(19)) above,
+// as NASA's ocean-colour processing joins them (0.00635 at 440 nm, 0.0565 at 550, 0.624 at 700).
+// The small temperature and salinity dependence of absorption is left out. Throws outside the range.
+double water_absorption(double wavelength_nm);
+
+// Backscattering coefficient of pure (sea) water [1/m]: half the molecular scattering
+// b_w(lambda) = b_w(500) (lambda / 500)^-4.32 of Morel 1974 ("Optical properties of pure water and
+// pure sea water", in Optical Aspects of Oceanography, Jerlov & Steemann Nielsen eds.), whose phase
+// function is symmetric front-to-back; b_w(500) = 0.00222 1/m for pure water, and sea water
+// (S = 35-39 g/kg) scatters 30 % more: b_w(500) = 0.00222 (1 + 0.3 S / 37). Zhang et al. 2009
+// (Optics Express 17(7)) derive the same lambda^-4.32 slope from fluctuation theory.
+double water_backscattering(double wavelength_nm, double salinity = 0.0);
+
+// Irradiance reflectance R = E_u / E_d just beneath the surface of an optically deep, homogeneous
+// water body: R = 0.33 b_b / (a + b_b) (Morel & Prieur 1977, "Analysis of variations in ocean
+// color", Limnology and Oceanography 22(4), R = 0.33 b_b / a; written with Gordon, Brown & Jacobs
+// 1975's variable X = b_b / (a + b_b), Applied Optics 14(2), so that R stays below 0.33 where
+// backscattering rivals absorption). Pure water of the given salinity: blue (0.13 at 420 nm),
+// 0.0054 at 550 nm, 4.4e-4 at 650 nm for S = 35). Throws outside 360-830 nm or 0-40 g/kg.
+double water_body_reflectance(double wavelength_nm, double salinity = 0.0);
+
+// Wind speeds the Cox-Munk statistics are used for [m/s]: they measured 1-14 m/s; beyond 30 m/s
+// foam and spray cover the sea, which they do not describe.
+constexpr double kWaterMaxWindSpeed = 30.0;
+
+// Total (upwind + crosswind) mean-square slope of a clean sea surface at wind speed U [m/s],
+// 12.5 m above the sea: sigma^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, "Measurement of the roughness
+// of the sea surface from photographs of the sun's glitter", JOSA 44(11), 838-850, eq. for
+// sigma_u^2 + sigma_c^2, +-0.004). U in [0, kWaterMaxWindSpeed]; throws naming wind_speed otherwise.
+double cox_munk_mean_square_slope(double wind_speed);
 
 }  // namespace refracta

@@ -1,0 +1,238 @@
+// The sea (or a lake): a wind-roughened water surface over a deep water body (shared/SHADING.md;
+// issue 19 section 2). Used through `shading.Water(...)`; built from the water optics of water.h.
+//
+// The interface. The sea surface's slopes are Gaussian with the total mean-square slope of Cox &
+// Munk 1954, sigma^2 = 0.003 + 5.12e-3 U (U [m/s] the wind 12.5 m above the sea; water.h), so
+// the interface is a Beckmann microfacet dielectric (beckmann.h) with alpha^2 = sigma^2 (alpha = 0.055
+// in a calm, 0.17 at 5 m/s, 0.23 at 10 m/s), in pbrt-v4's DielectricBxDF / Mitsuba 3's
+// roughdielectric form (Walter et al. 2007, eqs. 20-21; the formulas of dielectric.h's
+// RoughDielectricBsdf, there with GGX and one index):
+//   reflection     f_r = D(h) G(wo, wi) F(wo.h) / (4 |cos_o cos_i|),
+//   transmission   f_t = D(m) G (1 - F(wo.m)) |wi.m| |wo.m| / (|cos_i cos_o| (wi.m + wo.m / eta')^2) / eta'^2,
+// with the index of water_ior(lambda, temperature_c, salinity) over the outside medium's.
+//
+// The index per channel. Spectral rendering: each of the path's four wavelengths gets its own
+// index in every lobe's value, while the direction is sampled with the hero's (its pdf); Beckmann's
+// D > 0 everywhere, so the hero's density covers each wavelength's lobe except in slivers at the
+// edge of total internal reflection where every lobe's value goes to 0. Water's dispersion is
+// small beside its roughness (n = 1.343 at 400 nm, 1.331 at 700 nm: the refracted ray turns by
+// 0.5 degrees, the lobe is 5-13 degrees wide), so the wavelengths are kept (no hero-only
+// termination as for dispersive glass). RGB rendering likewise per channel, the index at 630,
+// 532 and 465 nm (thin_film.h's kRgbWavelengths), the direction sampled with the index at
+// Ior::kRgbWavelength (550 nm), which is also interior_ior().
+//
+// The water body (body = true, the default): light refracted into the water is either absorbed
+// or scattered back up by the water itself, which is optically deep. Its irradiance reflectance
+// just beneath the surface, R(lambda) = 0.33 b_b / (a + b_b) (water.h: Morel & Prieur 1977 with
+// Gordon et al. 1975's X; pure-water absorption of Pope & Fry 1997, backscatter of Morel 1974),
+// is returned as isotropic radiance and leaves through the interface, some of it reflected back
+// down again (the internal diffuse reflectance Fbar_int of the underside, summed as a series):
+//   f_body = (1 - F(cos_i)) (1 - F(cos_o)) R / (pi eta^2 (1 - R Fbar_int))
+// (Weidlich & Wilkie 2007's layer, refracta's Plastic with the water body as its base). The
+// in- and out-going transmittances are the flat interface's Fresnel ones, an approximation of the
+// rough interface's (Mitsuba's roughplastic tabulates the rough one); the term's albedo
+// (1 - F(cos_i)) R (1 - Fbar_int) / (1 - R Fbar_int) is below (1 - F(cos_i)) R, so reflection plus
+// body stays below 1 (tested: white furnace). Nothing continues below the surface: the material
+// is reflection-only, two-sided, and bounds no medium (interior_ior() is None). Left out: the
+// water's temperature and salinity in absorption, chlorophyll and dissolved matter (real seas are
+// greener and darker than pure water), the angular shape of the upwelling light (Q = pi),
+// foam, and the light of the sea floor.
+//
+// body = false: the bare interface, reflecting and transmitting (a pool, water over a floor, or
+// under water): a rough dielectric that bounds a medium of the water's index (nested dielectrics,
+// priority) without absorption in it.
+#pragma once
+
+#include "refracta/shading/beckmann.h"
+#include "refracta/shading/color.h"
+#include "refracta/shading/fresnel.h"
+#include "refracta/shading/ior.h"
+#include "refracta/shading/material_util.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace refracta {
+
+// The deep-water surface seen from above (two-sided by mirroring): Beckmann reflection plus the
+// water body's upwelling light. Values per channel (indices eta, body reflectance r, internal
+// diffuse reflectance fdr_int); sampling with eta_sampling.
+class WaterBodyBsdf final : public TwoSidedReflection<WaterBodyBsdf> {
+ public:
+  WaterBodyBsdf(const Spectrum& eta, double eta_sampling, const Beckmann& distribution, const Spectrum& r,
+                const Spectrum& fdr_internal, double body_albedo)
+      : eta_(eta), eta_sampling_(eta_sampling), distribution_(distribution), r_(r), fdr_internal_(fdr_internal),
+        body_albedo_(body_albedo) {}
+
+  Spectrum f_up(const Vec3d& wo, const Vec3d& wi, TransportMode) const {
+    Spectrum f = body(wo, wi);
+    const Vec3d h = (wo + wi).normalized();
+    const double base = distribution_.D(h) * distribution_.G(wo, wi) / (4.0 * wo.z() * wi.z());
+    for (int c = 0; c < kSpectrumSamples; ++c) f[c] += base * fresnel_dielectric(wo.dot(h), eta_[c]);
+    return f;
+  }
+  double pdf_up(const Vec3d& wo, const Vec3d& wi, TransportMode) const {
+    const double p = specular_probability(wo);
+    const Vec3d h = (wo + wi).normalized();
+    return (1.0 - p) * cosine_hemisphere_pdf(wi.z()) + p * distribution_.sampling_pdf(wo, h) / (4.0 * std::abs(wo.dot(h)));
+  }
+  std::optional<BsdfSample> sample_up(const Vec3d& wo, double uc, const Vec2d& u, TransportMode mode) const {
+    const bool specular = uc < specular_probability(wo);
+    BsdfSample s;
+    s.wi = specular ? reflect(wo, distribution_.sample_wm(wo, u)) : sample_cosine_hemisphere(u);
+    if (!(s.wi.z() > 0.0)) return std::nullopt;
+    s.pdf = pdf_up(wo, s.wi, mode);
+    if (!(s.pdf > 0.0)) return std::nullopt;
+    s.f = f_up(wo, s.wi, mode);
+    s.weight = s.f * s.wi.z() / s.pdf;
+    s.flags = kBsdfReflection | (specular ? kBsdfGlossy : kBsdfDiffuse);
+    return s;
+  }
+  unsigned flags() const override { return kBsdfReflection | kBsdfGlossy | kBsdfDiffuse; }
+
+ private:
+  Spectrum body(const Vec3d& wo, const Vec3d& wi) const {
+    Spectrum f;
+    for (int c = 0; c < kSpectrumSamples; ++c) {
+      const double t = (1.0 - fresnel_dielectric(wi.z(), eta_[c])) * (1.0 - fresnel_dielectric(wo.z(), eta_[c]));
+      f[c] = t * r_[c] / (kPi * eta_[c] * eta_[c] * (1.0 - r_[c] * fdr_internal_[c]));
+    }
+    return f;
+  }
+  // The glossy lobe in proportion to its albedo (~F(wo)) against the body's, each kept at least
+  // kMinLobeProbability so that neither lobe's support goes unsampled.
+  double specular_probability(const Vec3d& wo) const {
+    constexpr double kMinLobeProbability = 0.05;
+    const double F = fresnel_dielectric(wo.z(), eta_sampling_);
+    const double body = (1.0 - F) * body_albedo_;
+    return std::clamp(F / (F + body), kMinLobeProbability, 1.0 - kMinLobeProbability);
+  }
+  Spectrum eta_;
+  double eta_sampling_;
+  Beckmann distribution_;
+  Spectrum r_, fdr_internal_;
+  double body_albedo_;  // channel mean of R (1 - Fbar_int) / (1 - R Fbar_int): the body's albedo over 1 - F
+};
+
+// The bare interface (body = false): a Beckmann rough dielectric, values per channel.
+class WaterInterfaceBsdf final : public Bsdf {
+ public:
+  WaterInterfaceBsdf(const Spectrum& eta, double eta_sampling, const Beckmann& distribution)
+      : eta_(eta), eta_sampling_(eta_sampling), distribution_(distribution) {}
+
+  Spectrum f(const Vec3d& wo, const Vec3d& wi, TransportMode mode) const override {
+    Spectrum f = Spectrum::Zero();
+    const double cos_o = wo.z(), cos_i = wi.z();
+    if (cos_o * cos_i > 0.0) {  // reflection: the half vector does not depend on the index
+      double etap;
+      Vec3d h;
+      if (!half_vector(wo, wi, 1.0, &etap, &h)) return f;
+      const double base = distribution_.D(h) * distribution_.G(wo, wi) / std::abs(4.0 * cos_i * cos_o);
+      for (int c = 0; c < kSpectrumSamples; ++c) f[c] = base * fresnel_dielectric(wo.dot(h), eta_[c]);
+      return f;
+    }
+    for (int c = 0; c < kSpectrumSamples; ++c) f[c] = transmission(wo, wi, eta_[c], mode);
+    return f;
+  }
+
+  double pdf(const Vec3d& wo, const Vec3d& wi, TransportMode) const override {
+    double etap;
+    Vec3d m;
+    if (!half_vector(wo, wi, eta_sampling_, &etap, &m)) return 0.0;
+    const double r = fresnel_dielectric(wo.dot(m), eta_sampling_);
+    if (wo.z() * wi.z() > 0.0) return distribution_.sampling_pdf(wo, m) / (4.0 * std::abs(wo.dot(m))) * r;
+    return distribution_.sampling_pdf(wo, m) * std::abs(wi.dot(m)) / sqr(wi.dot(m) + wo.dot(m) / etap) * (1.0 - r);
+  }
+
+  std::optional<BsdfSample> sample(const Vec3d& wo, double uc, const Vec2d& u, TransportMode mode) const override {
+    if (wo.z() == 0.0) return std::nullopt;
+    const Vec3d m = distribution_.sample_wm(wo, u);
+    BsdfSample s;
+    if (uc < fresnel_dielectric(wo.dot(m), eta_sampling_)) {
+      s.wi = reflect(wo, m);
+      if (!same_hemisphere(wo, s.wi)) return std::nullopt;
+      s.flags = kBsdfReflection | kBsdfGlossy;
+    } else {
+      double etap;
+      if (!refract(wo, m, eta_sampling_, &etap, &s.wi) || same_hemisphere(wo, s.wi) || s.wi.z() == 0.0) return std::nullopt;
+      s.flags = kBsdfTransmission | kBsdfGlossy;
+      s.eta = etap;
+    }
+    s.pdf = pdf(wo, s.wi, mode);
+    if (!(s.pdf > 0.0)) return std::nullopt;
+    s.f = f(wo, s.wi, mode);
+    s.weight = s.f * std::abs(s.wi.z()) / s.pdf;
+    return s;
+  }
+  unsigned flags() const override { return kBsdfReflection | kBsdfTransmission | kBsdfGlossy; }
+
+ private:
+  static double sqr(double x) { return x * x; }
+  double transmission(const Vec3d& wo, const Vec3d& wi, double eta, TransportMode mode) const {
+    double etap;
+    Vec3d m;
+    if (!half_vector(wo, wi, eta, &etap, &m)) return 0.0;
+    const double F = fresnel_dielectric(wo.dot(m), eta);
+    const double denominator = sqr(wi.dot(m) + wo.dot(m) / etap) * wi.z() * wo.z();
+    double ft = distribution_.D(m) * (1.0 - F) * distribution_.G(wo, wi) * std::abs(wi.dot(m) * wo.dot(m) / denominator);
+    if (mode == TransportMode::kRadiance) ft /= etap * etap;
+    return ft;
+  }
+  // The generalised half vector for relative index eta (water over outside) on the normal's side;
+  // false for configurations no microfacet produces (as RoughDielectricBsdf::half_vector).
+  static bool half_vector(const Vec3d& wo, const Vec3d& wi, double eta, double* etap, Vec3d* m) {
+    const double cos_o = wo.z(), cos_i = wi.z();
+    if (cos_o == 0.0 || cos_i == 0.0) return false;
+    const bool reflection = cos_o * cos_i > 0.0;
+    *etap = reflection ? 1.0 : (cos_o > 0.0 ? eta : 1.0 / eta);
+    Vec3d h = wi * *etap + wo;
+    if (h.squaredNorm() == 0.0) return false;
+    h.normalize();
+    if (h.z() < 0.0) h = -h;
+    if (h.dot(wi) * cos_i < 0.0 || h.dot(wo) * cos_o < 0.0) return false;
+    *m = h;
+    return true;
+  }
+  Spectrum eta_;
+  double eta_sampling_;
+  Beckmann distribution_;
+};
+
+// The constructor's arguments, with their defaults (bound as the Python defaults).
+struct WaterParameters {
+  double wind_speed = 5.0;      // [m/s] 12.5 m above the sea: a gentle breeze (Beaufort 3); the ocean's mean is ~7
+  double temperature_c = 20.0;  // [deg C] a temperate sea's surface
+  double salinity = 35.0;       // [g/kg] the open ocean's mean
+  bool body = true;             // a deep water body under the surface (false: the bare interface)
+  int priority = 0;             // nested dielectrics (body = false only)
+};
+
+class Water final : public Material {
+ public:
+  // Validates every parameter (std::invalid_argument naming it) and tabulates the index, the
+  // internal diffuse reflectance and the body reflectance over 360-830 nm.
+  explicit Water(const WaterParameters& parameters = {});
+
+  const Bsdf* bsdf(const SurfaceInteraction& si, const MaterialContext& context, ScratchBuffer& scratch) const override;
+  std::optional<double> interior_ior(const SampledWavelengths& lambda) const override;
+  int priority() const override { return parameters_.priority; }
+  std::string describe() const override;
+
+  const WaterParameters& parameters() const { return parameters_; }
+  double mean_square_slope() const { return alpha_ * alpha_; }  // Cox-Munk sigma^2
+  double alpha() const { return alpha_; }                        // Beckmann alpha = sigma
+  // The water's index relative to vacuum at a wavelength [nm] in [kLambdaMin, kLambdaMax] (from the table).
+  double ior(double wavelength_nm) const { return interpolate(ior_table_, wavelength_nm); }
+
+ private:
+  static double interpolate(const std::vector<double>& table, double wavelength_nm);
+  WaterParameters parameters_;
+  double alpha_;
+  std::vector<double> ior_table_, fdr_table_;  // every 1 nm from kLambdaMin: index, Fbar_int (outside index 1)
+  Color body_reflectance_;                     // R(lambda) of water.h
+  Vec3d ior_rgb_, fdr_rgb_;                    // at kRgbWavelengths
+  double ior_sampling_rgb_;                    // at Ior::kRgbWavelength
+};
+
+}  // namespace refracta
