@@ -64,7 +64,8 @@
                                         # principled (base_color, metallic, roughness, anisotropic,
                                         # specular, specular_tint, sheen, sheen_tint, clearcoat,
                                         # clearcoat_gloss, texture), thin_film (thickness,
-                                        # film_ior, eta, k, alpha)
+                                        # film_ior, eta, k, alpha), water (wind_speed,
+                                        # temperature_c, salinity, body = true/false, priority)
 
     [[lights]]                          # any number (area lights: emission on objects)
     type = "point"                      # point (position, intensity [W/sr]),
@@ -141,6 +142,7 @@ MATERIAL_TYPES = {
     "principled": ("Principled", {"base_color", "metallic", "roughness", "anisotropic", "specular", "specular_tint",
                                   "sheen", "sheen_tint", "clearcoat", "clearcoat_gloss", "texture"}),
     "thin_film": ("ThinFilm", {"thickness", "film_ior", "eta", "k", "alpha"}),
+    "water": ("Water", {"wind_speed", "temperature_c", "salinity", "body", "priority"}),
 }
 LIGHT_KEYS = {
     "point": {"position", "intensity"},
@@ -318,6 +320,9 @@ def _materials(entries: list, where: "_Locator", get, path: Path) -> dict:
                 value = str(path.parent / value)
                 if not Path(value).is_file():
                     raise _core.IoError(f"{path}: [[materials]] #{index + 1} texture: no such file '{value}'")
+            elif key == "body":  # Water's deep water body: a TOML boolean
+                if not isinstance(value, bool):
+                    raise where.error(f"must be true or false (got {value!r})", "materials", key, index)
             elif not (number or numbers or (key in ("ior", "eta") and isinstance(value, str))):
                 raise where.error(f"must be a number or a list of numbers (got {value!r})", "materials", key, index)
             params[key] = value

@@ -19,6 +19,8 @@ MATERIALS = {
     "dielectric": (lambda: shading.Dielectric(1.5), True),
     "thin_dielectric": (lambda: shading.ThinDielectric(1.5), True),
     "conductor": (lambda: shading.Conductor(), False),
+    "water": (lambda: shading.Water(), False),
+    "water_interface": (lambda: shading.Water(12.0, temperature_c=5.0, salinity=0.0, body=False), True),
 }
 
 # Materials with a non-delta density (the chi-square test needs one).

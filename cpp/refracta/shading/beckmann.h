@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace refracta {
 
@@ -64,10 +65,16 @@ class Beckmann {
   double G1(const Vec3d& w) const { return 1.0 / (1.0 + lambda(w)); }
   double G(const Vec3d& wo, const Vec3d& wi) const { return 1.0 / (1.0 + lambda(wo) + lambda(wi)); }
 
-  // A microfacet normal (z > 0) for wo, from the GGX visible-normal proposal, and its density per
-  // solid angle of m.
-  Vec3d sample_wm(const Vec3d& wo, const Vec2d& u) const { return proposal_.sample_wm(wo, u); }
-  double sampling_pdf(const Vec3d& wo, const Vec3d& m) const { return proposal_.D_visible(wo, m); }
+  // A microfacet normal (z > 0) for wo from the GGX visible-normal proposal, or nullopt where
+  // Beckmann's D is 0 in double (tan^2 theta / alpha^2 > ~745: the proposal's tail beyond, e.g.,
+  // 82 degrees at alpha = 0.25, ~0.1 % of its samples), and the density per solid angle of m of
+  // the normals it returns (0 there too, so that pdf() is the density of what sample() produces).
+  std::optional<Vec3d> sample_wm(const Vec3d& wo, const Vec2d& u) const {
+    const Vec3d m = proposal_.sample_wm(wo, u);
+    if (D(m) == 0.0) return std::nullopt;
+    return m;
+  }
+  double sampling_pdf(const Vec3d& wo, const Vec3d& m) const { return D(m) > 0.0 ? proposal_.D_visible(wo, m) : 0.0; }
 
  private:
   double alpha_ = 0.1;

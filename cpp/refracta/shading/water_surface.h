@@ -80,7 +80,13 @@ class WaterBodyBsdf final : public TwoSidedReflection<WaterBodyBsdf> {
   std::optional<BsdfSample> sample_up(const Vec3d& wo, double uc, const Vec2d& u, TransportMode mode) const {
     const bool specular = uc < specular_probability(wo);
     BsdfSample s;
-    s.wi = specular ? reflect(wo, distribution_.sample_wm(wo, u)) : sample_cosine_hemisphere(u);
+    if (specular) {
+      const auto m = distribution_.sample_wm(wo, u);
+      if (!m) return std::nullopt;
+      s.wi = reflect(wo, *m);
+    } else {
+      s.wi = sample_cosine_hemisphere(u);
+    }
     if (!(s.wi.z() > 0.0)) return std::nullopt;
     s.pdf = pdf_up(wo, s.wi, mode);
     if (!(s.pdf > 0.0)) return std::nullopt;
@@ -147,7 +153,9 @@ class WaterInterfaceBsdf final : public Bsdf {
 
   std::optional<BsdfSample> sample(const Vec3d& wo, double uc, const Vec2d& u, TransportMode mode) const override {
     if (wo.z() == 0.0) return std::nullopt;
-    const Vec3d m = distribution_.sample_wm(wo, u);
+    const auto sampled = distribution_.sample_wm(wo, u);
+    if (!sampled) return std::nullopt;
+    const Vec3d& m = *sampled;
     BsdfSample s;
     if (uc < fresnel_dielectric(wo.dot(m), eta_sampling_)) {
       s.wi = reflect(wo, m);
