@@ -178,10 +178,14 @@ def _demo_shimmer(out: Path, size=(96, 32), noise_size=(320, 120)) -> None:
           f"not physical: {time.perf_counter() - start:.1f} s)", flush=True)
 
 
-def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exposure: float,
-                transport: str = "direct", max_depth=None, spectral: bool = False, tonemap: str = "reinhard",
-                key=None) -> int:
-    """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped)."""
+def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exposure=None,
+                transport: str = "direct", max_depth=None, spectral: bool = False, tonemap=None,
+                key=None, ev100=None) -> int:
+    """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped).
+
+    exposure, ev100, key, tonemap: as refracta.io.write_image (None: its defaults, automatic
+    exposure and the ACES curve).
+    """
     import refracta
 
     scene, camera, field = refracta.load_scene(scene_path)
@@ -190,7 +194,7 @@ def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exp
     start = time.perf_counter()
     image = refracta.render(scene, camera, field, method=method, transport=transport, spp=spp, max_depth=max_depth,
                             spectral=spectral, progress=True)
-    refracta.io.write_image(output, image, exposure=exposure, tonemap=tonemap, key=key)
+    refracta.io.write_image(output, image, exposure=exposure, tonemap=tonemap, key=key, ev100=ev100)
     print(f"wrote {output} ({camera.width}x{camera.height}, {method}, {transport}, {time.perf_counter() - start:.1f} s)")
     return 0
 
@@ -245,13 +249,19 @@ def _run(argv=None) -> int:
     render_parser.add_argument("--method", choices=["curved", "straight", "raster_march"], default="curved")
     render_parser.add_argument("--size", type=_size, default=None, help="WxH (default: the file's camera size)")
     render_parser.add_argument("--spp", type=_count(1), default=1, help="samples per pixel")
-    render_parser.add_argument("--exposure", type=float, default=1.0)
+    render_parser.add_argument("--exposure", type=float, default=None,
+                               help="manual exposure: a scale of the radiance (default: automatic, the image's "
+                                    "log-average luminance to --key)")
+    render_parser.add_argument("--ev100", type=float, default=None,
+                               help="manual exposure in EV100 (scale 1 / (1.2 2^EV100), Lagarde & de Rousiers 2014)")
     render_parser.add_argument("--transport", choices=["direct", "path"], default="direct", help="light transport")
     render_parser.add_argument("--max-depth", type=_count(0), default=None, help="scattering events per path")
     render_parser.add_argument("--spectral", action="store_true", help="hero-wavelength spectral rendering")
-    render_parser.add_argument("--tonemap", choices=["linear", "film", "reinhard"], default="reinhard",
-                               help="display curve for PNG/JPEG output")
-    render_parser.add_argument("--key", type=float, default=None, help="Reinhard's key (photographic operator)")
+    render_parser.add_argument("--tonemap", choices=["aces", "reinhard", "linear", "film"], default=None,
+                               help="display curve for PNG/JPEG output (default: aces, filmic)")
+    render_parser.add_argument("--key", type=float, default=None,
+                               help="automatic exposure's key: the log-average luminance shows as this grey "
+                                    "(default 0.18; overrides --exposure/--ev100)")
     edit_parser = commands.add_parser("edit", help="solve a scene's atmosphere for point pairs (JSON)")
     edit_parser.add_argument("scene", type=Path, help="scene file (.toml) with an [atmosphere] table")
     edit_parser.add_argument("--pairs", type=Path, required=True, help="pairs file (.json), see refracta.edit.load_pairs")
@@ -262,7 +272,7 @@ def _run(argv=None) -> int:
         return demo(args.out, args.size)
     if args.command == "render":
         return render_file(args.scene, args.output, args.method, args.size, args.spp, args.exposure, args.transport,
-                           args.max_depth, args.spectral, args.tonemap, args.key)
+                           args.max_depth, args.spectral, args.tonemap, args.key, args.ev100)
     if args.command == "edit":
         return edit_file(args.scene, args.pairs, args.output, args.backend)
     parser.error(f"unknown command {args.command}")

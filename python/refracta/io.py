@@ -1,15 +1,39 @@
 """Image files through OpenImageIO: EXR/HDR/TIFF stay linear float; PNG/JPEG are tone mapped.
 
-Display encoding (shared/SHADING.md section 8; C++ shading/tonemap.h), after the exposure c:
+Display encoding (shared/SHADING.md section 8; C++ shading/tonemap.h, where the math and the
+defaults live; this module passes its arguments through, None meaning "not given"):
 
-- ``tonemap='linear'``: l = min(c L, 1) per channel.
-- ``tonemap='film'``: the film response l = 1 - e^(-c L) per channel.
-- ``tonemap='reinhard'``: Reinhard et al. 2002, "Photographic Tone Reproduction for Digital
-  Images": on the luminance Lw (Y of linear sRGB) of c x the image, with ``key`` a the scaled
-  L = (a / Lw_bar) Lw, Lw_bar = exp(mean(ln(1e-6 + Lw))) the log-average over the image (eq. 1-2;
-  the exposure then cancels), without ``key`` L = c Lw; then Ld = L (1 + L / white^2) / (1 + L)
-  (eq. 4; ``white=None``: Ld = L / (1 + L), eq. 3); the colour is scaled by Ld / Lw (hue kept)
-  and each channel clamped to 1.
+Exposure c, the scale applied to the linear radiance first:
+
+- automatic, the default (no exposure argument): c = key / Lw_bar, Lw_bar = exp(mean(ln(1e-6 +
+  Lw))) the log-average luminance (Y of linear sRGB) of the image, key 0.18 (middle grey;
+  Reinhard et al. 2002, eq. 1-2). A render of any scene comes out with its average at middle
+  grey, whatever the light's units. ``key`` (e.g. 0.09 for a dusk, 0.36 for snow) sets the grey;
+  given, it overrides the manual settings below.
+- manual: ``exposure`` (c itself), or photographic units: ``ev100``, or a camera's ``shutter`` [s]
+  and ``f_number`` (with ``iso``, default 100): EV100 = log2(N^2 / t) - log2(ISO / 100) and
+  c = 1 / (1.2 x 2^EV100) (ISO 12232 saturation-based sensitivity; Lagarde & de Rousiers 2014,
+  "Moving Frostbite to Physically Based Rendering", eq. 51-53). Give at most one of the three.
+  Radiance stands in for luminance [cd/m^2]: refracta's sky and lights have arbitrary scale, so
+  EV100 is relative (a physical-sky midday scene is well exposed near EV100 = -3).
+
+Tone curve, ``tonemap``:
+
+- ``'aces'`` (default): filmic, the ACES RRT + sRGB ODT as fitted by Stephen Hill (BakingLab
+  ACES.hlsl, 2016; with three.js's 1/0.6 exposure boost, so middle grey shows at ~0.5), per
+  channel in the fit's working space: a toe in the shadows, a shoulder rolling highlights off to
+  white, bright colours desaturating as on film. The default because it looks like a photograph
+  where Reinhard's curve looks flat: measured on examples.hot_road() (480 x 160, automatic
+  exposure) the displayed luminance spans 0.01-0.91 (1st-99th percentile, median 0.51) against
+  Reinhard's 0.06-0.77 (median 0.43), whose sky never gets near white; on cold_sea() the orange
+  sunset sky shows at 0.60 against 0.48. Its price: hues of saturated highlights shift toward
+  white (a clear sky's pale blue goes greyer). OpenColorIO's ACES would be the reference, but
+  the OpenImageIO here (2.4 on OCIO 2.1) has no ACES config, only linear/sRGB/Rec709.
+- ``'reinhard'``: Reinhard et al. 2002, "Photographic Tone Reproduction for Digital Images": on
+  the luminance L = c Lw, Ld = L (1 + L / white^2) / (1 + L) (eq. 4; ``white=None``:
+  Ld = L / (1 + L), eq. 3); the colour is scaled by Ld / Lw (hue kept) and each channel clamped
+  to 1.
+- ``'linear'``: l = min(c L, 1) per channel; ``'film'``: the film response l = 1 - e^(-c L).
 - ``gamma='srgb'`` (the IEC 61966-2-1 curve), ``'linear'`` (none) or a number g in [1, 3]:
   p = l^(1/g).
 
@@ -24,19 +48,22 @@ import numpy as np
 
 from refracta import _core
 
-__all__ = ["read_image", "to_display", "write_image"]
+__all__ = ["ev100", "exposure_of", "read_image", "to_display", "write_image"]
 
 
-def write_image(path, image, exposure: float = 1.0, tonemap: str = "reinhard", gamma="srgb",
-                key: float | None = None, white: float | None = None) -> None:
+def write_image(path, image, exposure: float | None = None, tonemap: str | None = None, gamma="srgb",
+                key: float | None = None, white: float | None = None, *, ev100: float | None = None,
+                iso: float | None = None, shutter: float | None = None, f_number: float | None = None) -> None:
     """Write an (H, W, C) float image (C = 1..4; C = 2 and 4 carry alpha last).
 
-    Float formats (.exr, .hdr, .pfm, .tif) get the linear values times `exposure` (no tone
-    mapping). Others (.png, .jpg, ...) are encoded as to_display does (tonemap, key, white, gamma:
-    see the module docstring) and quantised to 8 bits. Raises refracta.IoError when the file
-    cannot be written, ValueError for a bad image or option.
+    Float formats (.exr, .hdr, .pfm, .tif) get the linear values times the manual exposure
+    (exposure, ev100 or shutter/f_number/iso; none: unchanged, never automatic). Others (.png,
+    .jpg, ...) are encoded as to_display does -- by default automatically exposed (log-average
+    to middle grey) and tone mapped by the ACES curve, see the module docstring -- and quantised to 8 bits.
+    Raises refracta.IoError when the file cannot be written, ValueError for a bad image or option.
     """
-    _core._write_image(os.fspath(path), np.asarray(image), exposure, tonemap, gamma, key, white)
+    _core._write_image(os.fspath(path), np.asarray(image), exposure, tonemap, gamma, key, white, ev100, iso, shutter,
+                       f_number)
 
 
 def read_image(path) -> np.ndarray:
@@ -44,14 +71,34 @@ def read_image(path) -> np.ndarray:
     return _core._read_image(os.fspath(path))
 
 
-def to_display(image, exposure: float = 1.0, tonemap: str = "reinhard", gamma="srgb",
-               key: float | None = None, white: float | None = None) -> np.ndarray:
+def to_display(image, exposure: float | None = None, tonemap: str | None = None, gamma="srgb",
+               key: float | None = None, white: float | None = None, *, ev100: float | None = None,
+               iso: float | None = None, shutter: float | None = None, f_number: float | None = None) -> np.ndarray:
     """The display values write_image would store in a PNG, as float32 (H, W, C) in [0, 1] (for imshow).
 
     image: (H, W) or (H, W, C) linear radiance, C = 1..4 (alpha, the 2nd of 2 or the 4th of 4,
-    passes unchanged). exposure c > 0 multiplies it first. tonemap: 'linear', 'film' or
-    'reinhard'; key (Reinhard's a, e.g. 0.18) scales the log-average luminance to it, None keeps
-    c L; white: Reinhard's L_white (None: infinite); gamma: 'srgb', 'linear' or g in [1, 3].
-    The defaults (Reinhard without key, sRGB) map c L = 1 to 0.5 before the curve.
+    passes unchanged). Exposure: automatic by default (the image's log-average luminance to
+    ``key``, 0.18), or manual: ``exposure`` c > 0 multiplying it, ``ev100``, or ``shutter`` [s]
+    and ``f_number`` (``iso`` 100 unless given); a ``key`` overrides the manual one. tonemap:
+    'aces' (default, filmic), 'reinhard', 'linear' or 'film'; white: Reinhard's L_white (None: infinite);
+    gamma: 'srgb', 'linear' or g in [1, 3]. See the module docstring for the formulas.
     """
-    return _core._display(np.asarray(image), exposure, tonemap, gamma, key, white)
+    return _core._display(np.asarray(image), exposure, tonemap, gamma, key, white, ev100, iso, shutter, f_number)
+
+
+def exposure_of(image, exposure: float | None = None, key: float | None = None, *, ev100: float | None = None,
+                iso: float | None = None, shutter: float | None = None, f_number: float | None = None) -> float:
+    """The exposure c (the scale of the radiance) to_display would apply to this image with these settings.
+
+    Automatic by default (0.18 / the log-average luminance); use it to give several images (the
+    frames of an animation, a with/without pair) one exposure: ``to_display(img, exposure=c)``.
+    """
+    return _core._display_exposure(np.asarray(image), exposure, key, ev100, iso, shutter, f_number)
+
+
+def ev100(f_number: float, shutter: float, iso: float = 100.0) -> float:
+    """EV100 = log2(N^2 / t) - log2(ISO / 100) of an f-number N, a shutter time t [s] and an ISO.
+
+    Sunny 16 (f/16, 1/100 s, ISO 100) is EV100 = 14.6. ValueError for values <= 0 or NaN.
+    """
+    return _core._ev100(f_number, shutter, iso)

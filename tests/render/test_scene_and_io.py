@@ -65,7 +65,8 @@ def test_image_files_round_trip(tmp_path):
     refracta.io.write_image(tmp_path / "a.exr", image)
     np.testing.assert_array_equal(refracta.io.read_image(tmp_path / "a.exr"), image)  # linear float kept
     flat = np.ones((2, 3, 3), np.float32)
-    refracta.io.write_image(tmp_path / "a.png", flat)  # Reinhard: 1 -> 0.5, sRGB: 0.7354 -> 188/255
+    # Reinhard at exposure 1: 1 -> 0.5, sRGB: 0.7354 -> 188/255.
+    refracta.io.write_image(tmp_path / "a.png", flat, exposure=1.0, tonemap="reinhard")
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "a.png"), 188 / 255, atol=0.6 / 255)
     refracta.io.write_image(tmp_path / "b.png", flat * 0.25, tonemap="linear", gamma="linear", exposure=2.0)
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "b.png"), 128 / 255, atol=0.6 / 255)
@@ -79,7 +80,7 @@ def test_image_file_errors(tmp_path):
     with pytest.raises(ValueError, match="finite"):
         refracta.io.write_image(tmp_path / "x.exr", np.full((2, 2, 3), np.nan))
     with pytest.raises(ValueError, match="tonemap"):
-        refracta.io.write_image(tmp_path / "x.png", np.zeros((2, 2, 3)), tonemap="aces")
+        refracta.io.write_image(tmp_path / "x.png", np.zeros((2, 2, 3)), tonemap="filmic")
     (tmp_path / "bad.png").write_text("not an image")
     with pytest.raises(refracta.IoError):
         refracta.io.read_image(tmp_path / "bad.png")

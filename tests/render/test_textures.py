@@ -79,7 +79,7 @@ def test_a_billboard_shows_its_picture_upright(tmp_path):
     picture = np.zeros((8, 8, 3), np.float32)
     picture[:4] = (0.0, 1.0, 0.0)  # top half green
     picture[4:] = (1.0, 1.0, 0.0)  # bottom half yellow
-    refracta.io.write_image(tmp_path / "ship.png", picture, tonemap="linear")
+    refracta.io.write_image(tmp_path / "ship.png", picture, tonemap="linear", exposure=1.0)
     scene = refracta.Scene()
     scene.set_sky(SKY, SKY)
     scene.add_billboard((50.0, 0.0, 0.0), 20.0, 10.0, str(tmp_path / "ship.png"))

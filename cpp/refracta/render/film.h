@@ -21,10 +21,12 @@
 
 namespace refracta {
 
-// SampleRadiance: Spectrum(const Vec2d& pixel, double spacing, double pixel_angle, SampledWavelengths&,
-// Sampler&, ScratchBuffer&): the sample's position (u, v) in pixel coordinates, the spacing of the
-// samples [pixels] (1 / strata: a sample stands for a spacing x spacing square), and its cone's
-// angle [rad] (0 without texture filtering).
+// SampleRadiance: Spectrum(const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle,
+// SampledWavelengths&, Sampler&, ScratchBuffer&): the sample's position (u, v) in pixel
+// coordinates, its point on a thin lens in [0, 1)^2 (Camera::lens_ray; (0.5, 0.5), the lens centre,
+// for a pinhole, which draws no number for it), the spacing of the samples [pixels] (1 / strata: a
+// sample stands for a spacing x spacing square), and its cone's angle [rad] (0 without texture
+// filtering).
 template <class SampleRadiance>
 Image render_film(const Camera& camera, const RenderOptions& options, WorkControl& control,
                   const SampleRadiance& radiance) {
@@ -34,6 +36,7 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
   const int stratified = options.spp / (strata * strata) * strata * strata;
   // Each sample's cone covers its share of the pixel.
   const double pixel_angle = options.texture_filter ? camera.pixel_angle() / strata : 0.0;
+  const bool thin_lens = camera.aperture_diameter() > 0.0;
   tbb::enumerable_thread_specific<ScratchBuffer> scratch_per_thread;
   return render_tiles(options.bounds_in(camera.width(), camera.height()), options.tile, control, [&](int x, int y) {
     ScratchBuffer& scratch = scratch_per_thread.local();
@@ -49,9 +52,13 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
         du = sampler.uniform();
         dv = sampler.uniform();
       }
+      // The lens point: independent uniform numbers from the pixel's own generator (so thread
+      // count and tiles change nothing), drawn only by a thin lens (pinhole renders unchanged).
+      Vec2d lens(0.5, 0.5);
+      if (thin_lens) lens = Vec2d(sampler.uniform(), sampler.uniform());
       SampledWavelengths lambda =
           options.spectral ? SampledWavelengths::sample_uniform(sampler.uniform()) : SampledWavelengths::rgb();
-      const Spectrum L = radiance(Vec2d(x + du, y + dv), 1.0 / strata, pixel_angle, lambda, sampler, scratch);
+      const Spectrum L = radiance(Vec2d(x + du, y + dv), lens, 1.0 / strata, pixel_angle, lambda, sampler, scratch);
       const Vec3d rgb = to_linear_srgb(L, lambda);
       if (is_finite(rgb)) sum += rgb;  // a non-finite sample is dropped (the renderer counts them)
     }

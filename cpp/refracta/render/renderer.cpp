@@ -107,7 +107,8 @@ std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera
                                           const RenderOptions& options, WorkControl& control) {
   if (!field || !field->height_only() || options.method != RenderMethod::kCurved || !options.use_table ||
       (options.max_length > kTableLongestPath && std::isfinite(field->earth_radius())) ||
-      options.spectral || (options.trace && *options.trace != TraceMethod::kStratified)) {
+      options.spectral || (options.trace && *options.trace != TraceMethod::kStratified) ||
+      camera.aperture_diameter() > 0.0) {  // a thin lens's rays leave the eye almost never
     return nullptr;
   }
   ElevationTableOptions table_options;
@@ -132,6 +133,10 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   options.bounds_in(camera.width(), camera.height());  // before any work
   scene.prepare();
   if (options.method == RenderMethod::kRasterMarch) {
+    if (camera.aperture_diameter() > 0.0) {
+      throw_invalid("method 'raster_march' renders through a pinhole: depth of field (a camera with an f_number) needs "
+                    "method 'straight' or 'curved'");
+    }
     return render_raster_march(scene, camera, exact_field, options, control, stats);
   }
   // Height-only air -- the field, or outside its local regions its height-only part -- is
@@ -170,24 +175,30 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   if (floors) caster.set_ior_floors(*floors);
   const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
   std::atomic<int64_t> chords{0}, invalid{0};
-  const Vec3d eye = camera.position();
   // Dispersive air: a spectral render through a field that bends rays.
   const bool dispersive = options.spectral && caster.curved();
   const double reference = dispersive ? field_reference_wavelength(*field) : kDefaultFieldWavelength;
   // A camera ray meeting a textured surface gets its footprint from its neighbours' paths (ray
   // differentials through the air, Caster::footprint): half a sample's spacing either side.
-  auto with_footprint = [&](const Caster& c, const Vec2d& pixel, double spacing, PathEnd* first) {
+  // Through a thin lens the neighbours' rays leave the same lens point.
+  auto with_footprint = [&](const Caster& c, const Vec3d& origin, const Vec2d& pixel, const Vec2d& lens,
+                            double spacing, PathEnd* first) {
     if (!options.texture_filter || !options.differentials || !first->hit || !scene.geometry.has_uvs(first->hit->geometry)) {
       return;
     }
     const double h = 0.5 * spacing;
-    first->footprint = c.footprint(eye, *first, {{{camera.direction(pixel.x() - h, pixel.y()), camera.direction(pixel.x() + h, pixel.y())},
-                                                  {camera.direction(pixel.x(), pixel.y() - h), camera.direction(pixel.x(), pixel.y() + h)}}});
+    auto dir_at = [&](double u, double v) { return camera.lens_ray(u, v, lens).direction; };
+    first->footprint = c.footprint(origin, *first, {{{dir_at(pixel.x() - h, pixel.y()), dir_at(pixel.x() + h, pixel.y())},
+                                                     {dir_at(pixel.x(), pixel.y() - h), dir_at(pixel.x(), pixel.y() + h)}}});
   };
+  // A thin lens's rays start off the eye (all but the lens centre's): the caster traces them
+  // exactly (the eye's table holds paths from the eye alone), see Camera::lens_ray.
   Image image = render_film(camera, options, control,
-                            [&](const Vec2d& pixel, double spacing, double pixel_angle, SampledWavelengths& lambda,
-                                Sampler& sampler, ScratchBuffer& scratch) {
-                              const Vec3d dir = camera.direction(pixel.x(), pixel.y());
+                            [&](const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle,
+                                SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch) {
+                              const Camera::LensRay ray = camera.lens_ray(pixel.x(), pixel.y(), lens);
+                              const Vec3d& origin = ray.origin;
+                              const Vec3d& dir = ray.direction;
                               Spectrum L;
                               if (dispersive) {
                                 lambda.terminate_secondary();
@@ -195,15 +206,15 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                                 Caster hero_caster(scene.geometry, air.get(), options);
                                 if (floors) hero_caster.set_ior_floors(*floors);
                                 const std::unique_ptr<Integrator> hero = make_integrator(scene, hero_caster, options);
-                                PathEnd first = hero_caster.cast(eye, dir, 0.0, camera.pixel_angle());
-                                with_footprint(hero_caster, pixel, spacing, &first);
+                                PathEnd first = hero_caster.cast(origin, dir, 0.0, camera.pixel_angle());
+                                with_footprint(hero_caster, origin, pixel, lens, spacing, &first);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
-                                L = hero->li_after(eye, dir, first, pixel_angle, lambda, sampler, scratch);
+                                L = hero->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch);
                               } else {
-                                PathEnd first = caster.cast(eye, dir, 0.0, camera.pixel_angle());
-                                with_footprint(caster, pixel, spacing, &first);
+                                PathEnd first = caster.cast(origin, dir, 0.0, camera.pixel_angle());
+                                with_footprint(caster, origin, pixel, lens, spacing, &first);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
-                                L = integrator->li_after(eye, dir, first, pixel_angle, lambda, sampler, scratch);
+                                L = integrator->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch);
                               }
                               if (!L.isFinite().all()) invalid.fetch_add(1, std::memory_order_relaxed);
                               return L;

@@ -1,7 +1,8 @@
-// Pinhole camera.
+// Pinhole and thin-lens camera (camera.h).
 #include "refracta/scene/camera.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/sampling.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,8 +36,15 @@ Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, dou
 }
 
 Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,
-                            double sensor_w_mm, double sensor_h_mm, int width, int height) {
+                            double sensor_w_mm, double sensor_h_mm, int width, int height,
+                            std::optional<double> f_number, std::optional<double> focus_distance) {
   auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  if (f_number && !positive(*f_number)) {
+    throw_invalid("Camera.photographic: f_number must be > 0 and finite (got ", *f_number, ")");
+  }
+  if (focus_distance && !positive(*focus_distance)) {
+    throw_invalid("Camera.photographic: focus_distance must be > 0 [m] and finite (got ", *focus_distance, ")");
+  }
   if (!positive(focal_length_mm)) {
     throw_invalid("Camera.photographic: focal_length_mm must be > 0 and finite (got ", focal_length_mm, ")");
   }
@@ -48,7 +56,49 @@ Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const V
   const bool spans_width = double(width) * sensor_h_mm >= double(height) * sensor_w_mm;
   const double image_h_mm = spans_width ? sensor_w_mm * height / width : sensor_h_mm;
   const double vfov = 2.0 * std::atan(0.5 * image_h_mm / focal_length_mm) * 180.0 / kPi;
-  return Camera(position, look_at, up, vfov, width, height);
+  Camera camera(position, look_at, up, vfov, width, height);
+  if (!f_number) return camera;
+  // The aperture's diameter A = f / N [m]; focus by default where the camera looks.
+  return camera.with_lens(1e-3 * focal_length_mm / *f_number, focus_distance.value_or((look_at - position).norm()));
+}
+
+Camera Camera::eye_level(const Vec3d& ground, const Vec3d& target, double eye_height, double focal_length_mm,
+                         double sensor_w_mm, double sensor_h_mm, int width, int height,
+                         std::optional<double> f_number, std::optional<double> focus_distance) {
+  if (!is_finite(ground)) throw_invalid("Camera.eye_level: eye must be finite");
+  if (!is_finite(target)) throw_invalid("Camera.eye_level: target must be finite");
+  if (!(eye_height > 0.0) || !std::isfinite(eye_height)) {
+    throw_invalid("Camera.eye_level: eye_height must be > 0 [m] and finite (got ", eye_height, ")");
+  }
+  const Vec3d position = ground + Vec3d(0.0, eye_height, 0.0);
+  // Level: the target's horizontal direction, at the eye's height.
+  const Vec3d level(target.x() - ground.x(), 0.0, target.z() - ground.z());
+  if (!(level.norm() > 0.0)) throw_invalid("Camera.eye_level: target must not be straight above or below the eye");
+  return photographic(position, position + level, Vec3d::UnitY(), focal_length_mm, sensor_w_mm, sensor_h_mm, width,
+                      height, f_number, focus_distance);
+}
+
+Camera Camera::with_lens(double aperture_diameter, double focus_distance) const {
+  if (!(aperture_diameter >= 0.0) || !std::isfinite(aperture_diameter)) {
+    throw_invalid("Camera: aperture diameter must be >= 0 [m] and finite (got ", aperture_diameter, ")");
+  }
+  if (!(focus_distance > 0.0) || !std::isfinite(focus_distance)) {
+    throw_invalid("Camera: focus_distance must be > 0 [m] and finite (got ", focus_distance, ")");
+  }
+  Camera out = *this;
+  out.lens_radius_ = 0.5 * aperture_diameter;
+  out.focus_distance_ = aperture_diameter > 0.0 ? focus_distance : 0.0;
+  return out;
+}
+
+Camera::LensRay Camera::lens_ray(double u, double v, const Vec2d& lens_u) const {
+  const Vec3d d = direction(u, v);
+  if (lens_radius_ == 0.0) return {position_, d};
+  // The pinhole ray meets the plane of focus at depth d_f; the lens point's ray goes there.
+  const Vec2d disc = lens_radius_ * sample_uniform_disk_concentric(lens_u);
+  const Vec3d offset = disc.x() * right_ + disc.y() * up_;
+  const Vec3d focus = (focus_distance_ / d.dot(forward_)) * d;  // from position_
+  return {position_ + offset, (focus - offset).normalized()};
 }
 
 Camera Camera::framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& direction, const Vec3d& up,

@@ -1,10 +1,19 @@
-// Pinhole camera. Pixel coordinates (u, v): u to the right, v down, pixel (i, j) covers
-// [i, i+1) x [j, j+1), its centre at (i + 0.5, j + 0.5). y is up in the world.
+// Pinhole or thin-lens camera. Pixel coordinates (u, v): u to the right, v down, pixel (i, j)
+// covers [i, i+1) x [j, j+1), its centre at (i + 0.5, j + 0.5). y is up in the world.
+//
+// Thin lens (with_lens, photographic with an f-number): the lens is a disc of diameter A
+// centred on position() in the plane of right() and up(); the ray of pixel (u, v) through lens
+// point p_l goes toward the point the pinhole ray meets on the plane of focus (depth d_f along
+// forward()), so that plane is sharp and a point at depth d spreads over a disc of angular
+// diameter A |d - d_f| / (d d_f) (pbrt-v4's PerspectiveCamera, Mitsuba 3's thinlens). The field
+// of view is the pinhole's (focus at infinity, no focus breathing, as Blender, Mitsuba and pbrt).
 #pragma once
 
 #include "refracta/core/math.h"
+#include "refracta/core/sampling.h"
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace refracta {
@@ -28,8 +37,38 @@ class Camera {
   // relatively wider than the sensor, else its height (a crop of the other side, Blender's
   // "auto" sensor fit): vfov = 2 atan(sensor_h' / 2f), sensor_h' = sensor_w H / W in the first
   // case. Throws std::invalid_argument for a focal length or sensor side <= 0 or not finite.
+  // f_number N given: a thin lens of aperture diameter A = f / N focused at focus_distance [m]
+  // (unset: |look_at - position|). Throws for an f-number or focus distance <= 0 or not finite.
   static Camera photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,
-                             double sensor_w_mm, double sensor_h_mm, int width, int height);
+                             double sensor_w_mm, double sensor_h_mm, int width, int height,
+                             std::optional<double> f_number = std::nullopt,
+                             std::optional<double> focus_distance = std::nullopt);
+
+  // A photographer standing at `ground` (the point under their feet [m]) with the lens
+  // eye_height [m] above it, looking horizontally -- at the horizon of a flat Earth, which then
+  // runs through the image's centre row -- toward `target` (its horizontal direction; the
+  // target's own height does not tilt the camera). Lens and sensor as photographic(); focus
+  // (with an f-number) at focus_distance, else at the target's horizontal distance. Throws for an
+  // eye height <= 0 or not finite, or a target straight above or below the eye.
+  static Camera eye_level(const Vec3d& ground, const Vec3d& target, double eye_height, double focal_length_mm,
+                          double sensor_w_mm, double sensor_h_mm, int width, int height,
+                          std::optional<double> f_number = std::nullopt,
+                          std::optional<double> focus_distance = std::nullopt);
+
+  // The same camera with a thin lens of aperture diameter [m] (0: a pinhole) focused at depth
+  // focus_distance [m] along forward(). Throws for a negative or non-finite diameter, or a focus
+  // distance <= 0 or not finite.
+  Camera with_lens(double aperture_diameter, double focus_distance) const;
+  double aperture_diameter() const { return 2.0 * lens_radius_; }  // [m], 0 for a pinhole
+  double focus_distance() const { return focus_distance_; }         // [m], 0 for a pinhole
+
+  // The ray of pixel coordinates (u, v) through the lens point lens_u in [0, 1)^2 (mapped to the
+  // disc by Shirley & Chiu's concentric map): its origin on the lens and its unit direction. A
+  // pinhole: position() and direction(u, v).
+  struct LensRay {
+    Vec3d origin, direction;
+  };
+  LensRay lens_ray(double u, double v, const Vec2d& lens_u) const;
 
   // Unit direction of the ray through pixel coordinates (u, v) (with the jitter, if any).
   Vec3d direction(double u, double v) const;
@@ -57,7 +96,11 @@ class Camera {
   int height() const { return height_; }
   double vfov() const { return vfov_; }
   // The same view at another image size (the vertical field of view is kept; no jitter).
-  Camera resized(int width, int height) const { return Camera(position_, look_at_, up_hint_, vfov_, width, height); }
+  Camera resized(int width, int height) const {
+    Camera out(position_, look_at_, up_hint_, vfov_, width, height);
+    out.lens_radius_ = lens_radius_, out.focus_distance_ = focus_distance_;
+    return out;
+  }
   // Angle subtended by one pixel at the image centre [rad].
   double pixel_angle() const;
 
@@ -65,6 +108,7 @@ class Camera {
   Vec3d position_, look_at_, up_hint_, forward_, right_, up_;
   double vfov_, tan_half_;
   int width_, height_;
+  double lens_radius_ = 0.0, focus_distance_ = 0.0;  // [m]; 0: a pinhole
   std::shared_ptr<const std::vector<float>> jitter_;  // (height, width, 2) angles [rad], or null
 };
 

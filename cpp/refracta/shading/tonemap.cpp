@@ -30,6 +30,29 @@ double luminance(const float* p, int colour, double exposure, double* scaled) {
   return weights.x() * scaled[0] + weights.y() * scaled[1] + weights.z() * scaled[2];
 }
 
+// Hill's ACES fit (tonemap.h): the RRT + ODT curve on the fit's working space.
+double rrt_and_odt_fit(double v) { return (v * (v + 0.0245786) - 0.000090537) / (v * (0.983729 * v + 0.4329510) + 0.238081); }
+constexpr double kAcesBoost = 1.0 / 0.6;  // three.js: middle grey 0.18 -> ~0.5 after sRGB encoding
+
+// ACES on a linear sRGB colour (colour == 3) or a grey (the matrices' rows sum to 1 within 1e-5).
+void aces(const double* scaled, int colour, double* out) {
+  static const double in[3][3] = {{0.59719, 0.35458, 0.04823}, {0.07600, 0.90834, 0.01566}, {0.02840, 0.13383, 0.83777}};
+  static const double back[3][3] = {{1.60475, -0.53108, -0.07367}, {-0.10208, 1.10813, -0.00605}, {-0.00327, -0.07276, 1.07602}};
+  if (colour == 1) {
+    out[0] = std::clamp(rrt_and_odt_fit(std::min(kAcesBoost * scaled[0], 1e150)), 0.0, 1.0);
+    return;
+  }
+  double fitted[3];
+  for (int r = 0; r < 3; ++r) {
+    // Huge inputs saturate at the curve's limit 1 / 0.983729 (v^2 would overflow).
+    const double v = std::min(kAcesBoost * (in[r][0] * scaled[0] + in[r][1] * scaled[1] + in[r][2] * scaled[2]), 1e150);
+    fitted[r] = rrt_and_odt_fit(v);
+  }
+  for (int r = 0; r < 3; ++r) {
+    out[r] = std::clamp(back[r][0] * fitted[0] + back[r][1] * fitted[1] + back[r][2] * fitted[2], 0.0, 1.0);
+  }
+}
+
 double transfer(double l, const DisplaySettings& s) {
   l = std::clamp(l, 0.0, 1.0);
   return s.transfer == Transfer::kSrgb ? double(srgb_encode(float(l))) : std::pow(l, 1.0 / s.gamma);
@@ -41,12 +64,65 @@ Tonemap parse_tonemap(const std::string& name) {
   if (name == "linear") return Tonemap::kLinear;
   if (name == "film") return Tonemap::kFilm;
   if (name == "reinhard") return Tonemap::kReinhard;
-  throw_invalid("tonemap must be 'linear', 'film' or 'reinhard' (got '", name, "')");
+  if (name == "aces") return Tonemap::kAces;
+  throw_invalid("tonemap must be 'linear', 'film', 'reinhard' or 'aces' (got '", name, "')");
+}
+
+double ev100_of(double f_number, double shutter_s, double iso) {
+  std::vector<std::string> problems;
+  auto positive = [&](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(concat(name, " must be > 0 and finite (got ", v, ")"));
+  };
+  positive(f_number, "f_number");
+  positive(shutter_s, "shutter");
+  positive(iso, "iso");
+  if (!problems.empty()) {
+    std::string message;
+    for (const auto& p : problems) message += (message.empty() ? "" : "; ") + p;
+    throw_invalid(message);
+  }
+  return std::log2(f_number * f_number / shutter_s) - std::log2(iso / 100.0);
+}
+
+double exposure_of_ev100(double ev100) {
+  if (!std::isfinite(ev100)) throw_invalid("ev100 must be finite (got ", ev100, ")");
+  return 1.0 / (1.2 * std::exp2(ev100));
+}
+
+double manual_exposure(const DisplaySettings& s) {
+  s.validate();
+  if (s.exposure) return *s.exposure;
+  if (s.ev100) return exposure_of_ev100(*s.ev100);
+  if (s.shutter) return exposure_of_ev100(ev100_of(*s.f_number, *s.shutter, s.iso.value_or(kDefaultIso)));
+  return 1.0;
+}
+
+double display_exposure(const Image& image, const DisplaySettings& s) {
+  const double manual = manual_exposure(s);
+  const bool is_manual = s.exposure || s.ev100 || s.shutter;
+  if (is_manual && !s.key) return manual;
+  // Automatic: (a / Lw_bar(c x image)) c, the manual c cancelling but for delta.
+  return s.key.value_or(kAutoKey) / log_average_luminance(image, manual) * manual;
 }
 
 void DisplaySettings::validate() const {
   std::vector<std::string> problems;
-  if (!(exposure > 0.0) || !std::isfinite(exposure)) problems.push_back(concat("exposure must be > 0 and finite (got ", exposure, ")"));
+  if (exposure && (!(*exposure > 0.0) || !std::isfinite(*exposure))) {
+    problems.push_back(concat("exposure must be > 0 and finite (got ", *exposure, ")"));
+  }
+  if (ev100 && !std::isfinite(*ev100)) problems.push_back(concat("ev100 must be finite (got ", *ev100, ")"));
+  auto positive = [&](const std::optional<double>& v, const char* name) {
+    if (v && (!(*v > 0.0) || !std::isfinite(*v))) problems.push_back(concat(name, " must be > 0 and finite (got ", *v, ")"));
+  };
+  positive(iso, "iso");
+  positive(shutter, "shutter");
+  positive(f_number, "f_number");
+  if ((iso || shutter || f_number) && !(shutter && f_number)) {
+    problems.push_back("a camera's exposure needs both shutter [s] and f_number (iso defaults to 100)");
+  }
+  if (int(exposure.has_value()) + int(ev100.has_value()) + int(shutter || f_number || iso) > 1) {
+    problems.push_back("give one manual exposure: exposure, ev100, or shutter and f_number (with iso)");
+  }
   if (key && (!(*key > 0.0) || !std::isfinite(*key))) problems.push_back(concat("key must be > 0 and finite (got ", *key, ")"));
   if (white && (!(*white > 0.0) || std::isnan(*white))) problems.push_back(concat("white must be > 0 (got ", *white, ")"));
   if (transfer == Transfer::kGamma && !(gamma >= 1.0 && gamma <= 3.0)) problems.push_back(concat("gamma must be in [1, 3] (got ", gamma, ")"));
@@ -69,14 +145,14 @@ void tonemap_image(Image& image, const DisplaySettings& s) {
   s.validate();
   const int colour = colour_channels(image.channels);
   const size_t count = size_t(image.width) * image.height;
-  // Reinhard eq. 2: the scale a / Lw_bar taking the log-average to the key.
-  double scale = 1.0;
-  if (s.tonemap == Tonemap::kReinhard && s.key) scale = *s.key / log_average_luminance(image, s.exposure);
+  // The exposure c, manual or automatic (Reinhard eq. 2: the scale a / Lw_bar taking the
+  // log-average to the key).
+  const double exposure = display_exposure(image, s);
   const double inv_white2 = s.white ? 1.0 / (*s.white * *s.white) : 0.0;
   double scaled[3];
   for (size_t i = 0; i < count; ++i) {
     float* p = &image.pixels[i * image.channels];
-    const double lw = luminance(p, colour, s.exposure, scaled);
+    const double lw = luminance(p, colour, exposure, scaled);
     double out[3];
     switch (s.tonemap) {
       case Tonemap::kLinear:
@@ -86,13 +162,16 @@ void tonemap_image(Image& image, const DisplaySettings& s) {
         for (int k = 0; k < colour; ++k) out[k] = -std::expm1(-scaled[k]);
         break;
       case Tonemap::kReinhard: {
-        const double l = std::min(scale * lw, kMaxScaled);
+        const double l = std::min(lw, kMaxScaled);
         // Eq. 4 as L/(1+L) * (1 + L/Lwhite^2): no inf/inf for huge L.
         const double ld = std::min(l / (1.0 + l) * (1.0 + l * inv_white2), 1.0);
         const double ratio = lw > 0.0 ? ld / lw : 0.0;
         for (int k = 0; k < colour; ++k) out[k] = std::min(scaled[k] * ratio, 1.0);
         break;
       }
+      case Tonemap::kAces:
+        aces(scaled, colour, out);
+        break;
     }
     for (int k = 0; k < colour; ++k) p[k] = float(transfer(out[k], s));
   }
@@ -103,6 +182,7 @@ float tonemap(float radiance, float exposure, Tonemap mode) {
   double y = x;
   if (mode == Tonemap::kFilm) y = -std::expm1(-x);
   if (mode == Tonemap::kReinhard) y = x / (1.0 + x);
+  if (mode == Tonemap::kAces) aces(&x, 1, &y);
   return float(std::clamp(y, 0.0, 1.0));
 }
 

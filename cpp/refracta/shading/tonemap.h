@@ -1,7 +1,29 @@
 // Film and tone mapping of linear HDR radiance to display values (shared/SHADING.md section 8):
 // linear l = min(c L, 1), film response l = 1 - e^(-c L), Reinhard et al. 2002 ("Photographic
-// Tone Reproduction for Digital Images", SIGGRAPH) and the transfer curve (sRGB or a gamma).
-// c is the exposure. Output stays linear in float files (EXR); this is for 8-bit display.
+// Tone Reproduction for Digital Images", SIGGRAPH), a filmic ACES curve, and the transfer curve
+// (sRGB or a gamma). Output stays linear in float files (EXR); this is for 8-bit display.
+//
+// The exposure c, in this order (display_exposure):
+// - manual: `exposure` (c itself), or photographic units: EV100, or a camera's ISO S, shutter
+//   time t [s] and f-number N with EV100 = log2(N^2 / t) - log2(S / 100), turned into
+//   c = 1 / (1.2 x 2^EV100): the saturation-based sensitivity of ISO 12232 (L_max = 78 / (S q)
+//   x N^2 / t, q = 0.65, so L_max = 1.2 x 2^EV100 at ISO 100 maps to 1), as in Lagarde & de
+//   Rousiers 2014, "Moving Frostbite to Physically Based Rendering 3.0", SIGGRAPH course, sec. 4.5.
+//   Radiance in refracta's units (W m^-2 sr^-1 per linear sRGB channel, the sky's and the
+//   lights' scale) stands in for luminance [cd/m^2]: EV100 is then relative, e.g. the physical
+//   sky's midday scene at EV100 ~ 0 is what a sunny-16 (EV100 15) photograph is of the real sky.
+// - automatic (no manual setting, or a `key` given): the log-average luminance of the image goes
+//   to the key a (Reinhard et al. 2002, eq. 1-2: c = a / Lw_bar, middle grey a = 0.18 by default,
+//   kAutoKey), whatever the manual exposure (it cancels).
+//
+// ACES (Tonemap::kAces): the ACES reference rendering and sRGB output transforms (RRT + ODT) as
+// fitted by Stephen Hill (BakingLab, ACES.hlsl, 2016): linear sRGB -> the fit's input matrix ->
+// (v (v + 0.0245786) - 0.000090537) / (v (0.983729 v + 0.4329510) + 0.238081) per channel -> its
+// output matrix, clamped; the input first scaled by 1 / 0.6 (three.js's ACESFilmicToneMapping) so
+// that middle grey 0.18 displays near 0.5 after the sRGB curve, as Reinhard's does. OpenColorIO
+// with an ACES config would be the reference, but the OpenImageIO here (2.4 over OCIO 2.1) has
+// no config with ACES (only its built-in linear/sRGB/Rec709 spaces) and OCIO 2.1 has no
+// built-in ACES config (those came with 2.2).
 #pragma once
 
 #include "refracta/core/image.h"
@@ -11,18 +33,26 @@
 
 namespace refracta {
 
-enum class Tonemap { kLinear, kFilm, kReinhard };
-Tonemap parse_tonemap(const std::string& name);  // "linear", "film", "reinhard"
+enum class Tonemap { kLinear, kFilm, kReinhard, kAces };
+Tonemap parse_tonemap(const std::string& name);  // "linear", "film", "reinhard", "aces"
+
+constexpr double kAutoKey = 0.18;  // automatic exposure's key: middle grey (Reinhard et al. 2002)
+constexpr double kDefaultIso = 100.0;  // ISO when shutter and f-number are given without one
 
 // The transfer curve after tone mapping: the IEC 61966-2-1 sRGB curve, or p = l^(1/gamma).
 enum class Transfer { kSrgb, kGamma };
 
 struct DisplaySettings {
-  double exposure = 1.0;              // c > 0, multiplies the radiance first
-  Tonemap tonemap = Tonemap::kLinear;
-  // Reinhard: the key a (eq. 2: L = (a / Lw_bar) Lw, Lw_bar = exp(mean ln(delta + Lw)) over the
-  // image, delta = kReinhardDelta); none: no log-average scaling, L = c Lw (the exposure sets the
-  // scale, as before this operator existed). Reinhard's middle grey is a = 0.18.
+  // Manual exposure, at most one of: c > 0 multiplying the radiance; EV100; a camera's shutter
+  // [s] and f_number (with iso, default kDefaultIso). None of them: automatic.
+  std::optional<double> exposure;
+  std::optional<double> ev100;
+  std::optional<double> iso, shutter, f_number;
+  // The default: ACES, a photographic film curve (io.py says why, with figures).
+  Tonemap tonemap = Tonemap::kAces;
+  // Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the
+  // image, delta = kReinhardDelta); given, it overrides any manual exposure; none: kAutoKey when
+  // there is no manual exposure, else none.
   std::optional<double> key;
   // Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
   // luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3).
@@ -36,6 +66,15 @@ struct DisplaySettings {
 
 constexpr double kReinhardDelta = 1e-6;  // Reinhard's small value keeping ln finite on black pixels
 
+// EV100 of a camera's settings: log2(N^2 / t) - log2(S / 100) (throws for values <= 0 or NaN).
+double ev100_of(double f_number, double shutter_s, double iso = kDefaultIso);
+// The exposure c of EV100: 1 / (1.2 x 2^EV100) (Lagarde & de Rousiers 2014, eq. 51-53).
+double exposure_of_ev100(double ev100);
+// The manual exposure c of the settings (1 when they give none; float files use it).
+double manual_exposure(const DisplaySettings& settings);
+// The exposure c the settings give this image (manual, or automatic from its log-average).
+double display_exposure(const Image& image, const DisplaySettings& settings);
+
 // The log-average luminance Lw_bar = exp(mean ln(delta + Lw)) of c x the image (luminance:
 // Y of linear sRGB, 0.2126 R + 0.7152 G + 0.0722 B normalised to sum 1; 1-2 channels: the first).
 double log_average_luminance(const Image& image, double exposure);
@@ -47,7 +86,7 @@ double log_average_luminance(const Image& image, double exposure);
 void tonemap_image(Image& image, const DisplaySettings& settings);
 
 // One value: x = exposure * radiance; linear: x, film: 1 - e^-x, Reinhard: x / (1 + x) (no
-// log-average); clamped to [0, 1].
+// log-average), ACES: Hill's fit of a grey x; clamped to [0, 1].
 float tonemap(float radiance, float exposure, Tonemap mode);
 // sRGB opto-electronic transfer (IEC 61966-2-1) of a linear value in [0, 1], and its inverse.
 float srgb_encode(float linear);
