@@ -39,3 +39,48 @@ def test_a_300_mm_telephoto_on_full_frame_sees_under_5_degrees():
 def test_impossible_lenses_and_sensors_are_refused(arguments, name):
     with pytest.raises(ValueError, match=name):
         refracta.Camera.photographic((0, 5, 0), (10, 5, 0), **arguments)
+
+
+# --- Camera.eye_level: a photographer's level view toward a target ---------------------------------
+
+def test_eye_level_stands_at_eye_height_and_puts_the_horizon_on_the_centre_row():
+    ground, target, height = (3.0, 0.5, -2.0), (103.0, 0.2, -2.0 - 100.0), 1.6
+    camera = refracta.Camera.eye_level(ground, target, eye_height=height, focal_length_mm=200.0, width=640,
+                                       height=240)
+    assert camera.position.tolist() == [3.0, 0.5 + height, -2.0]
+    # Points at eye height far away (a flat Earth's horizon), across the whole view: the centre row.
+    for azimuth_offset in (-2.0, 0.0, 2.5):  # [deg] about the target's direction, inside the 10.3 deg view
+        a = math.radians(45.0 + azimuth_offset)  # the target lies 45 deg from -z toward +x
+        far = (3.0 + 1e6 * math.sin(a), 0.5 + height, -2.0 - 1e6 * math.cos(a))
+        u, v, depth = camera.project(far)
+        assert depth > 0 and 0 <= u <= 640
+        assert v == pytest.approx(120.0, abs=ROUND_OFF)
+    # The target's direction is the centre column; a target below the eye images below the centre
+    # by f (eye - target height) / distance on the sensor.
+    u, v, depth = camera.project(target)
+    pitch = 36.0 / 640  # [mm]: 640 x 240 is relatively wider than the sensor
+    distance = math.hypot(100.0, 100.0)
+    assert u == pytest.approx(320.0, abs=ROUND_OFF)
+    assert depth == pytest.approx(distance, rel=1e-12)
+    assert v - 120.0 == pytest.approx(200.0 * (0.5 + height - 0.2) / distance / pitch, abs=ROUND_OFF)
+    assert camera.vfov == pytest.approx(refracta.Camera.photographic((0, 0, 0), (1, 0, 0), 200.0, width=640,
+                                                                     height=240).vfov, rel=1e-15)
+
+
+def test_eye_level_focuses_at_the_target_distance():
+    camera = refracta.Camera.eye_level((0, 0, 0), (30.0, 5.0, 40.0), focal_length_mm=85.0, f_number=1.8)
+    assert camera.focus_distance == pytest.approx(50.0, rel=1e-15)
+    assert camera.aperture_diameter == pytest.approx(0.085 / 1.8, rel=1e-15)
+    assert refracta.Camera.eye_level((0, 0, 0), (30.0, 5.0, 40.0), f_number=1.8, focus_distance=7.0).focus_distance == 7.0
+
+
+@pytest.mark.parametrize("arguments, name", [(dict(eye_height=0.0), "eye_height"),
+                                             (dict(eye_height=float("nan")), "eye_height"),
+                                             (dict(target=(0.0, 50.0, 0.0)), "target"),
+                                             (dict(focal_length_mm=-1.0), "focal_length_mm"),
+                                             (dict(f_number=0.0), "f_number")])
+def test_eye_level_refuses_impossible_views(arguments, name):
+    kwargs = dict(eye=(0.0, 0.0, 0.0), target=(0.0, 0.0, -100.0))
+    kwargs.update(arguments)
+    with pytest.raises(ValueError, match=name):
+        refracta.Camera.eye_level(**kwargs)
