@@ -13,10 +13,13 @@ Sections (one function each, each a dict in results/realism.json):
                          does to a hot-road path along a lattice axis
   shimmer_render         examples.hot_road(160, 60) with the default turbulence in its hot layer
                          (depth 0.1 m) against the calm air
+  water_render           examples.cold_sea with its sea plane a shading.Water (Cox-Munk Beckmann
+                         interface over the deep water body) against the Plastic it has, path
+                         traced, through the cold-sea air and straight (issue 19 section 2)
 
-    python benchmarks/bench_realism.py [--quick]     -> benchmarks/results/realism.json
+    python benchmarks/bench_realism.py [--quick] [--only SECTION]  -> benchmarks/results/realism.json
 (--quick: 320 x 180 hot spots, 128^3 only, fewer rays, a 64 x 24 frame: a smoke run, not the
-published numbers.)
+published numbers. --only SECTION: that section alone, merged into the existing results file.)
 """
 
 from __future__ import annotations
@@ -193,20 +196,63 @@ def hot_spot_render(width=1280, height=720, repeat=3) -> dict:
     return out
 
 
+def water_render(width=320, height=120, spp=8, repeat=2) -> dict:
+    """examples.cold_sea (sunset over a cold sea, physical sky, a ship) path traced at spp samples:
+    the sea plane as shading.Water() (5 m/s, 20 C, 35 g/kg; Beckmann interface, body term) against
+    the example's Plastic (GGX coat over a Lambertian base), through the looming air and straight
+    (field=None: the shading's share of the time is larger there). Same seeds, same scene otherwise."""
+    import refracta
+    from refracta import examples, shading
+
+    example = examples.cold_sea(width, height)
+    plastic = example.scene.material(0)  # the sea plane, the example's first geometry
+    out = {"size": [width, height], "spp": spp, "transport": "path", "plastic": repr(plastic),
+           "water": repr(shading.Water())}
+    for air, field in (("curved", example.field), ("straight", None)):
+        seconds = {}
+        for name, material in (("plastic", plastic), ("water", shading.Water())):
+            example.scene.set_material(0, material)
+            _, seconds[name] = timed(refracta.render, example.scene, example.camera, field, transport="path", spp=spp,
+                                     progress=False, max_length=example.max_length, repeat=repeat)
+        out[air] = {"plastic_seconds": seconds["plastic"], "water_seconds": seconds["water"],
+                    "water_over_plastic": seconds["water"] / seconds["plastic"]}
+        print(f"cold sea {width}x{height} {spp} spp path, {air}: plastic {seconds['plastic']:.2f} s, "
+              f"water {seconds['water']:.2f} s (x{seconds['water'] / seconds['plastic']:.2f})", flush=True)
+    example.scene.set_material(0, plastic)
+    return out
+
+
+# Sections that --only runs on their own (with their published arguments).
+SECTIONS = {"water_render": water_render}
+
+
 def main(quick: bool = False) -> dict:
     results = {"hot_spot_render": hot_spot_render(*((320, 180, 1) if quick else (1280, 720, 3))),
                "turbulence_generation": turbulence_generation((128,) if quick else (128, 256)),
                "structure_function": structure_function(cells=128 if quick else 256, seeds=2 if quick else 4),
                "angle_of_arrival": angle_of_arrival(seeds=2 if quick else 4, rays=500 if quick else 1500,
                                                     along_x_cells=128 if quick else 256),
-               "shimmer_render": shimmer_render(*((64, 24) if quick else (160, 60)))}
+               "shimmer_render": shimmer_render(*((64, 24) if quick else (160, 60))),
+               "water_render": water_render(*((64, 24, 2, 1) if quick else ()))}
     return results
 
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--only", choices=sorted(SECTIONS), help="run one section and merge it into the results file")
     args = parser.parse_args()
+    if args.only:
+        import json
+
+        from _common import RESULTS
+
+        previous = RESULTS / "realism.json"
+        payload = json.loads(previous.read_text()) if previous.exists() else {}
+        payload.pop("machine", None), payload.pop("date", None)
+        payload[args.only] = SECTIONS[args.only]()
+        print("->", write_results("realism", payload))
+        raise SystemExit(0)
     payload = main(args.quick)
     if args.quick:
         print("(--quick: not written)")
