@@ -14,8 +14,11 @@ Exposure c, the scale applied to the linear radiance first:
   and ``f_number`` (with ``iso``, default 100): EV100 = log2(N^2 / t) - log2(ISO / 100) and
   c = 1 / (1.2 x 2^EV100) (ISO 12232 saturation-based sensitivity; Lagarde & de Rousiers 2014,
   "Moving Frostbite to Physically Based Rendering", eq. 51-53). Give at most one of the three.
-  Radiance stands in for luminance [cd/m^2]: refracta's sky and lights have arbitrary scale, so
-  EV100 is relative (a physical-sky midday scene is well exposed near EV100 = -3).
+  These need the image in luminance: c = K / (1.2 x 2^EV100) with ``luminous_efficacy`` K
+  [cd/m^2 per image unit], default 683 (lm/W: radiance in W m^-2 sr^-1 whose Y is
+  photometrically weighted, the unit of refracta.examples, i.e. Scene.set_physical_sky(...,
+  scale=examples.RADIANCE_SCALE)). The sunlit hot_road example is then well exposed near sunny
+  16 (its automatic exposure is EV100 13.4; f/16, 1/100 s, ISO 100 is 14.6).
 
 Tone curve, ``tonemap``:
 
@@ -53,7 +56,8 @@ __all__ = ["ev100", "exposure_of", "read_image", "to_display", "write_image"]
 
 def write_image(path, image, exposure: float | None = None, tonemap: str | None = None, gamma="srgb",
                 key: float | None = None, white: float | None = None, *, ev100: float | None = None,
-                iso: float | None = None, shutter: float | None = None, f_number: float | None = None) -> None:
+                iso: float | None = None, shutter: float | None = None, f_number: float | None = None,
+                luminous_efficacy: float | None = None) -> None:
     """Write an (H, W, C) float image (C = 1..4; C = 2 and 4 carry alpha last).
 
     Float formats (.exr, .hdr, .pfm, .tif) get the linear values times the manual exposure
@@ -63,7 +67,7 @@ def write_image(path, image, exposure: float | None = None, tonemap: str | None 
     Raises refracta.IoError when the file cannot be written, ValueError for a bad image or option.
     """
     _core._write_image(os.fspath(path), np.asarray(image), exposure, tonemap, gamma, key, white, ev100, iso, shutter,
-                       f_number)
+                       f_number, luminous_efficacy)
 
 
 def read_image(path) -> np.ndarray:
@@ -73,27 +77,31 @@ def read_image(path) -> np.ndarray:
 
 def to_display(image, exposure: float | None = None, tonemap: str | None = None, gamma="srgb",
                key: float | None = None, white: float | None = None, *, ev100: float | None = None,
-               iso: float | None = None, shutter: float | None = None, f_number: float | None = None) -> np.ndarray:
+               iso: float | None = None, shutter: float | None = None, f_number: float | None = None,
+               luminous_efficacy: float | None = None) -> np.ndarray:
     """The display values write_image would store in a PNG, as float32 (H, W, C) in [0, 1] (for imshow).
 
     image: (H, W) or (H, W, C) linear radiance, C = 1..4 (alpha, the 2nd of 2 or the 4th of 4,
     passes unchanged). Exposure: automatic by default (the image's log-average luminance to
     ``key``, 0.18), or manual: ``exposure`` c > 0 multiplying it, ``ev100``, or ``shutter`` [s]
-    and ``f_number`` (``iso`` 100 unless given); a ``key`` overrides the manual one. tonemap:
+    and ``f_number`` (``iso`` 100 unless given; these two with ``luminous_efficacy`` K, the
+    luminance [cd/m^2] of a value of 1, default 683); a ``key`` overrides the manual one. tonemap:
     'aces' (default, filmic), 'reinhard', 'linear' or 'film'; white: Reinhard's L_white (None: infinite);
     gamma: 'srgb', 'linear' or g in [1, 3]. See the module docstring for the formulas.
     """
-    return _core._display(np.asarray(image), exposure, tonemap, gamma, key, white, ev100, iso, shutter, f_number)
+    return _core._display(np.asarray(image), exposure, tonemap, gamma, key, white, ev100, iso, shutter, f_number,
+                          luminous_efficacy)
 
 
 def exposure_of(image, exposure: float | None = None, key: float | None = None, *, ev100: float | None = None,
-                iso: float | None = None, shutter: float | None = None, f_number: float | None = None) -> float:
+                iso: float | None = None, shutter: float | None = None, f_number: float | None = None,
+                luminous_efficacy: float | None = None) -> float:
     """The exposure c (the scale of the radiance) to_display would apply to this image with these settings.
 
     Automatic by default (0.18 / the log-average luminance); use it to give several images (the
     frames of an animation, a with/without pair) one exposure: ``to_display(img, exposure=c)``.
     """
-    return _core._display_exposure(np.asarray(image), exposure, key, ev100, iso, shutter, f_number)
+    return _core._display_exposure(np.asarray(image), exposure, key, ev100, iso, shutter, f_number, luminous_efficacy)
 
 
 def ev100(f_number: float, shutter: float, iso: float = 100.0) -> float:

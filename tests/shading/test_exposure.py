@@ -37,11 +37,13 @@ def test_01_ev100_of_camera_settings():
 
 @pytest.mark.parametrize("ev", [-4.0, 0.0, 3.5, 15.0])
 def test_02_ev100_gives_the_saturation_based_exposure(ev):
-    # Lagarde & de Rousiers 2014: exposure = 1 / L_max, L_max = 1.2 x 2^EV100.
+    # Lagarde & de Rousiers 2014: exposure = 1 / L_max, L_max = 1.2 x 2^EV100 [cd/m^2]; an image
+    # value of 1 is 683 cd/m^2 by default (W m^-2 sr^-1 of photometric radiance), K if given.
     image = np.full((2, 3, 3), 0.7, np.float32)
-    assert io.exposure_of(image, ev100=ev) == pytest.approx(1.0 / (1.2 * 2.0**ev), rel=1e-15)
+    assert io.exposure_of(image, ev100=ev) == pytest.approx(683.0 / (1.2 * 2.0**ev), rel=1e-15)
+    assert io.exposure_of(image, ev100=ev, luminous_efficacy=1.0) == pytest.approx(1.0 / (1.2 * 2.0**ev), rel=1e-15)
     np.testing.assert_array_equal(io.to_display(image, ev100=ev),
-                                  io.to_display(image, exposure=1.0 / (1.2 * 2.0**ev)))
+                                  io.to_display(image, exposure=683.0 / (1.2 * 2.0**ev)))
 
 
 def test_03_camera_settings_are_their_ev100():
@@ -102,7 +104,7 @@ def test_08_float_files_take_the_manual_exposure_only(tmp_path):
     image = np.random.default_rng(8).uniform(0, 4, size=(3, 4, 3)).astype(np.float32)
     io.write_image(tmp_path / "auto.exr", image)   # no automatic exposure in linear files
     np.testing.assert_array_equal(io.read_image(tmp_path / "auto.exr"), image)
-    io.write_image(tmp_path / "ev.exr", image, ev100=0.0)
+    io.write_image(tmp_path / "ev.exr", image, ev100=0.0, luminous_efficacy=1.0)
     np.testing.assert_allclose(io.read_image(tmp_path / "ev.exr"), image / np.float32(1.2), rtol=1e-6)
     io.write_image(tmp_path / "auto.png", image)
     np.testing.assert_allclose(io.read_image(tmp_path / "auto.png"), io.to_display(image), atol=0.51 / 255)
@@ -116,7 +118,8 @@ def test_08_float_files_take_the_manual_exposure_only(tmp_path):
                                              (dict(shutter=0.01), "f_number"),
                                              (dict(exposure=2.0, ev100=3.0), "one manual exposure"),
                                              (dict(ev100=3.0, shutter=0.01, f_number=4.0), "one manual exposure"),
-                                             (dict(key=float("nan")), "key")])
+                                             (dict(key=float("nan")), "key"),
+                                             (dict(ev100=10.0, luminous_efficacy=0.0), "luminous_efficacy")])
 def test_09_bad_exposure_settings_are_refused_naming_them(arguments, name):
     image = np.ones((2, 2, 3), np.float32)
     with pytest.raises(ValueError, match=name):
@@ -140,3 +143,15 @@ def test_10_example_scenes_are_well_exposed_by_default():
         shown = io.to_display(image) @ LUMA
         assert 0.3 < np.median(shown) < 0.7, example.name
         assert np.mean(shown > 0.99) < 0.02 and np.mean(shown < 0.02) < 0.02, example.name
+
+
+def test_11_a_sunlit_example_is_well_exposed_near_sunny_16():
+    # The examples' unit is W m^-2 sr^-1 (photometric Y), 683 cd/m^2 each: their automatic
+    # exposure is a real camera's. Sunny 16 (f/16, 1/100 s, ISO 100: EV100 14.6) for a sunlit
+    # scene of dark asphalt: the automatic exposure within 2 stops of it (measured: EV100 13.3).
+    from refracta import examples
+
+    road = examples.hot_road(width=160, height=60)
+    image = refracta.render(road.scene, road.camera, road.field, max_length=road.max_length, progress=False)
+    automatic_ev100 = math.log2(683.0 / (1.2 * io.exposure_of(image)))
+    assert abs(automatic_ev100 - io.ev100(16.0, 1 / 100)) < 2.0

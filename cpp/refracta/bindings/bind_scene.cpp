@@ -226,6 +226,7 @@ struct DisplayArgs {
   std::optional<double> exposure, ev100, iso, shutter, f_number, key, white;
   std::optional<std::string> tonemap;
   py::object gamma;
+  std::optional<double> luminous_efficacy;
 };
 
 DisplaySettings display_settings(const DisplayArgs& args) {
@@ -233,6 +234,7 @@ DisplaySettings display_settings(const DisplayArgs& args) {
   settings.exposure = args.exposure;
   settings.ev100 = args.ev100;
   settings.iso = args.iso, settings.shutter = args.shutter, settings.f_number = args.f_number;
+  if (args.luminous_efficacy) settings.luminous_efficacy = *args.luminous_efficacy;
   if (args.tonemap) settings.tonemap = parse_tonemap(*args.tonemap);
   settings.key = args.key;
   settings.white = args.white;
@@ -893,21 +895,23 @@ for Camera.photographic (focus by default at the target's horizontal distance):
       });
 
   // Display arguments after the image: exposure, tonemap, gamma, key, white, ev100, iso, shutter,
-  // f_number (io.py passes them through; None: the C++ default).
+  // f_number, luminous_efficacy (io.py passes them through; None: the C++ default).
   auto display_args = [](std::optional<double> exposure, std::optional<std::string> tonemap, const py::object& gamma,
                          std::optional<double> key, std::optional<double> white, std::optional<double> ev100,
-                         std::optional<double> iso, std::optional<double> shutter, std::optional<double> f_number) {
+                         std::optional<double> iso, std::optional<double> shutter, std::optional<double> f_number,
+                         std::optional<double> luminous_efficacy) {
     return DisplayArgs{exposure, ev100, iso, shutter, f_number, key, white, std::move(tonemap),
-                       gamma.is_none() ? py::str("srgb") : gamma};
+                       gamma.is_none() ? py::str("srgb") : gamma, luminous_efficacy};
   };
   m.def("_write_image",
         [display_args](const std::string& path, const py::object& array, std::optional<double> exposure,
                        std::optional<std::string> tonemap, const py::object& gamma, std::optional<double> key,
                        std::optional<double> white, std::optional<double> ev100, std::optional<double> iso,
-                       std::optional<double> shutter, std::optional<double> f_number) {
+                       std::optional<double> shutter, std::optional<double> f_number,
+                       std::optional<double> luminous_efficacy) {
           Image image = array_to_image(array);
-          const DisplaySettings settings =
-              display_settings(display_args(exposure, tonemap, gamma, key, white, ev100, iso, shutter, f_number));
+          const DisplaySettings settings = display_settings(
+              display_args(exposure, tonemap, gamma, key, white, ev100, iso, shutter, f_number, luminous_efficacy));
           if (is_float_format(path)) {
             // Linear files: the manual exposure only (1 without one; no automatic exposure).
             const double c = manual_exposure(settings);
@@ -921,29 +925,33 @@ for Camera.photographic (focus by default at the target's horizontal distance):
         py::arg("path"), py::arg("image"), py::arg("exposure") = py::none(), py::arg("tonemap") = py::none(),
         py::arg("gamma") = py::none(), py::arg("key") = py::none(), py::arg("white") = py::none(),
         py::arg("ev100") = py::none(), py::arg("iso") = py::none(), py::arg("shutter") = py::none(),
-        py::arg("f_number") = py::none());
+        py::arg("f_number") = py::none(), py::arg("luminous_efficacy") = py::none());
   m.def("_display",
         [display_args](const py::object& array, std::optional<double> exposure, std::optional<std::string> tonemap,
                        const py::object& gamma, std::optional<double> key, std::optional<double> white,
                        std::optional<double> ev100, std::optional<double> iso, std::optional<double> shutter,
-                       std::optional<double> f_number) {
+                       std::optional<double> f_number, std::optional<double> luminous_efficacy) {
           Image image = array_to_image(array);
-          tonemap_image(image, display_settings(display_args(exposure, tonemap, gamma, key, white, ev100, iso, shutter, f_number)));
+          tonemap_image(image, display_settings(display_args(exposure, tonemap, gamma, key, white, ev100, iso, shutter,
+                                                             f_number, luminous_efficacy)));
           return image_to_float32(image);
         },
         py::arg("image"), py::arg("exposure") = py::none(), py::arg("tonemap") = py::none(), py::arg("gamma") = py::none(),
         py::arg("key") = py::none(), py::arg("white") = py::none(), py::arg("ev100") = py::none(),
-        py::arg("iso") = py::none(), py::arg("shutter") = py::none(), py::arg("f_number") = py::none());
+        py::arg("iso") = py::none(), py::arg("shutter") = py::none(), py::arg("f_number") = py::none(),
+        py::arg("luminous_efficacy") = py::none());
   m.def("_display_exposure",
         [display_args](const py::object& array, std::optional<double> exposure, std::optional<double> key,
                        std::optional<double> ev100, std::optional<double> iso, std::optional<double> shutter,
-                       std::optional<double> f_number) {
+                       std::optional<double> f_number, std::optional<double> luminous_efficacy) {
           const Image image = array_to_image(array);
           return display_exposure(image, display_settings(display_args(exposure, std::nullopt, py::none(), key,
-                                                                       std::nullopt, ev100, iso, shutter, f_number)));
+                                                                       std::nullopt, ev100, iso, shutter, f_number,
+                                                                       luminous_efficacy)));
         },
         py::arg("image"), py::arg("exposure") = py::none(), py::arg("key") = py::none(), py::arg("ev100") = py::none(),
         py::arg("iso") = py::none(), py::arg("shutter") = py::none(), py::arg("f_number") = py::none(),
+        py::arg("luminous_efficacy") = py::none(),
         "The exposure c the display settings give this image (io.exposure_of).");
   m.def("_ev100", &ev100_of, py::arg("f_number"), py::arg("shutter"), py::arg("iso") = kDefaultIso,
         "EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.");

@@ -84,16 +84,21 @@ double ev100_of(double f_number, double shutter_s, double iso) {
   return std::log2(f_number * f_number / shutter_s) - std::log2(iso / 100.0);
 }
 
-double exposure_of_ev100(double ev100) {
+double exposure_of_ev100(double ev100, double luminous_efficacy) {
   if (!std::isfinite(ev100)) throw_invalid("ev100 must be finite (got ", ev100, ")");
-  return 1.0 / (1.2 * std::exp2(ev100));
+  if (!(luminous_efficacy > 0.0) || !std::isfinite(luminous_efficacy)) {
+    throw_invalid("luminous_efficacy must be > 0 and finite (got ", luminous_efficacy, ")");
+  }
+  return luminous_efficacy / (1.2 * std::exp2(ev100));
 }
 
 double manual_exposure(const DisplaySettings& s) {
   s.validate();
   if (s.exposure) return *s.exposure;
-  if (s.ev100) return exposure_of_ev100(*s.ev100);
-  if (s.shutter) return exposure_of_ev100(ev100_of(*s.f_number, *s.shutter, s.iso.value_or(kDefaultIso)));
+  if (s.ev100) return exposure_of_ev100(*s.ev100, s.luminous_efficacy);
+  if (s.shutter) {
+    return exposure_of_ev100(ev100_of(*s.f_number, *s.shutter, s.iso.value_or(kDefaultIso)), s.luminous_efficacy);
+  }
   return 1.0;
 }
 
@@ -117,6 +122,7 @@ void DisplaySettings::validate() const {
   positive(iso, "iso");
   positive(shutter, "shutter");
   positive(f_number, "f_number");
+  positive(luminous_efficacy, "luminous_efficacy");
   if ((iso || shutter || f_number) && !(shutter && f_number)) {
     problems.push_back("a camera's exposure needs both shutter [s] and f_number (iso defaults to 100)");
   }

@@ -6,12 +6,14 @@
 // The exposure c, in this order (display_exposure):
 // - manual: `exposure` (c itself), or photographic units: EV100, or a camera's ISO S, shutter
 //   time t [s] and f-number N with EV100 = log2(N^2 / t) - log2(S / 100), turned into
-//   c = 1 / (1.2 x 2^EV100): the saturation-based sensitivity of ISO 12232 (L_max = 78 / (S q)
-//   x N^2 / t, q = 0.65, so L_max = 1.2 x 2^EV100 at ISO 100 maps to 1), as in Lagarde & de
-//   Rousiers 2014, "Moving Frostbite to Physically Based Rendering 3.0", SIGGRAPH course, sec. 4.5.
-//   Radiance in refracta's units (W m^-2 sr^-1 per linear sRGB channel, the sky's and the
-//   lights' scale) stands in for luminance [cd/m^2]: EV100 is then relative, e.g. the physical
-//   sky's midday scene at EV100 ~ 0 is what a sunny-16 (EV100 15) photograph is of the real sky.
+//   c = K / (1.2 x 2^EV100): the saturation-based sensitivity of ISO 12232 (L_max = 78 / (S q)
+//   x N^2 / t [cd/m^2], q = 0.65, so the luminance L_max = 1.2 x 2^EV100 at ISO 100 maps to 1),
+//   as in Lagarde & de Rousiers 2014, "Moving Frostbite to Physically Based Rendering 3.0",
+//   SIGGRAPH course, sec. 4.5, eq. 51-53. K [cd/m^2 per image unit] turns the image's values
+//   into luminance: 683 lm/W (kLuminousEfficacy) for radiance in W m^-2 sr^-1 whose Y is the
+//   photometrically weighted radiance -- refracta.examples' unit (the physical sky times
+//   106.857 nm, examples.RADIANCE_SCALE); a sunlit example is then well exposed near sunny 16
+//   (hot road: EV100 13.4 by the automatic exposure, sunny 16 is 14.6).
 // - automatic (no manual setting, or a `key` given): the log-average luminance of the image goes
 //   to the key a (Reinhard et al. 2002, eq. 1-2: c = a / Lw_bar, middle grey a = 0.18 by default,
 //   kAutoKey), whatever the manual exposure (it cancels).
@@ -38,6 +40,9 @@ Tonemap parse_tonemap(const std::string& name);  // "linear", "film", "reinhard"
 
 constexpr double kAutoKey = 0.18;  // automatic exposure's key: middle grey (Reinhard et al. 2002)
 constexpr double kDefaultIso = 100.0;  // ISO when shutter and f-number are given without one
+// Luminance [cd/m^2] per W m^-2 sr^-1 of photometrically weighted radiance: the SI definition of
+// the candela (683 lm/W at 540 THz) applied to Y.
+constexpr double kLuminousEfficacy = 683.0;
 
 // The transfer curve after tone mapping: the IEC 61966-2-1 sRGB curve, or p = l^(1/gamma).
 enum class Transfer { kSrgb, kGamma };
@@ -48,6 +53,8 @@ struct DisplaySettings {
   std::optional<double> exposure;
   std::optional<double> ev100;
   std::optional<double> iso, shutter, f_number;
+  // K: luminance [cd/m^2] of an image value of 1 (EV100 and camera settings only).
+  double luminous_efficacy = kLuminousEfficacy;
   // The default: ACES, a photographic film curve (io.py says why, with figures).
   Tonemap tonemap = Tonemap::kAces;
   // Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the
@@ -68,8 +75,9 @@ constexpr double kReinhardDelta = 1e-6;  // Reinhard's small value keeping ln fi
 
 // EV100 of a camera's settings: log2(N^2 / t) - log2(S / 100) (throws for values <= 0 or NaN).
 double ev100_of(double f_number, double shutter_s, double iso = kDefaultIso);
-// The exposure c of EV100: 1 / (1.2 x 2^EV100) (Lagarde & de Rousiers 2014, eq. 51-53).
-double exposure_of_ev100(double ev100);
+// The exposure c of EV100: K / (1.2 x 2^EV100) (Lagarde & de Rousiers 2014, eq. 51-53), K the
+// luminance [cd/m^2] of an image value of 1.
+double exposure_of_ev100(double ev100, double luminous_efficacy = kLuminousEfficacy);
 // The manual exposure c of the settings (1 when they give none; float files use it).
 double manual_exposure(const DisplaySettings& settings);
 // The exposure c the settings give this image (manual, or automatic from its log-average).
