@@ -199,25 +199,32 @@ def hot_spot_render(width=1280, height=720, repeat=3) -> dict:
 def water_render(width=320, height=120, spp=8, repeat=2) -> dict:
     """examples.cold_sea (sunset over a cold sea, physical sky, a ship) path traced at spp samples:
     the sea plane as shading.Water() (5 m/s, 20 C, 35 g/kg; Beckmann interface, body term) against
-    the example's Plastic (GGX coat over a Lambertian base), through the looming air and straight
-    (field=None: the shading's share of the time is larger there). Same seeds, same scene otherwise."""
+    the example's Plastic (GGX coat over a Lambertian base, alpha 0.25), and a Plastic as rough as the
+    water (alpha = Water().alpha = 0.17), which separates the narrower lobe's longer grazing paths
+    from the material's own cost; through the looming air and straight (field=None: the shading's
+    share of the time is larger there). Same seeds, same scene otherwise."""
     import refracta
     from refracta import examples, shading
 
     example = examples.cold_sea(width, height)
     plastic = example.scene.material(0)  # the sea plane, the example's first geometry
-    out = {"size": [width, height], "spp": spp, "transport": "path", "plastic": repr(plastic),
-           "water": repr(shading.Water())}
+    water = shading.Water()
+    materials = {"plastic": plastic, "water": water,
+                 "plastic_as_rough_as_water": shading.Plastic((0.01, 0.03, 0.04), ior=1.333, alpha=water.alpha)}
+    out = {"size": [width, height], "spp": spp, "transport": "path", **{k: repr(m) for k, m in materials.items()}}
     for air, field in (("curved", example.field), ("straight", None)):
         seconds = {}
-        for name, material in (("plastic", plastic), ("water", shading.Water())):
+        for name, material in materials.items():
             example.scene.set_material(0, material)
             _, seconds[name] = timed(refracta.render, example.scene, example.camera, field, transport="path", spp=spp,
                                      progress=False, max_length=example.max_length, repeat=repeat)
-        out[air] = {"plastic_seconds": seconds["plastic"], "water_seconds": seconds["water"],
-                    "water_over_plastic": seconds["water"] / seconds["plastic"]}
+        out[air] = {f"{name}_seconds": t for name, t in seconds.items()}
+        out[air]["water_over_plastic"] = seconds["water"] / seconds["plastic"]
+        out[air]["water_over_plastic_as_rough"] = seconds["water"] / seconds["plastic_as_rough_as_water"]
         print(f"cold sea {width}x{height} {spp} spp path, {air}: plastic {seconds['plastic']:.2f} s, "
-              f"water {seconds['water']:.2f} s (x{seconds['water'] / seconds['plastic']:.2f})", flush=True)
+              f"water {seconds['water']:.2f} s (x{out[air]['water_over_plastic']:.2f}), plastic as rough as the water "
+              f"{seconds['plastic_as_rough_as_water']:.2f} s (water x{out[air]['water_over_plastic_as_rough']:.2f})",
+              flush=True)
     example.scene.set_material(0, plastic)
     return out
 
