@@ -50,14 +50,15 @@ DEMO_SETTINGS = {
     "cold_sea": dict(transport="direct", spp=16),
     "fata_morgana": dict(transport="direct", spp=8),
 }
-# Reinhard's key per example (the log-average luminance maps to it): middle grey by day, darker at
-# sunset so the orange sky keeps its red channel below 1.
+# The automatic exposure's key per example (the log-average luminance maps to it; refracta.io):
+# middle grey by day, darker at sunset, as photographers underexpose a sunset to keep its colour.
 DEMO_KEYS = {"hot_road": 0.18, "hot_spot": 0.18, "cold_sea": 0.08, "fata_morgana": 0.14}
 
 
 def demo(out: Path, size=(480, 160)) -> int:
     """Each example scene without and with its atmosphere, side by side (`out`/<name>.png, tone
-    mapped by Reinhard et al. 2002 with DEMO_KEYS[name] on the pair's joint log-average), the linear
+    mapped by refracta.io's default ACES curve, exposed by DEMO_KEYS[name] on the pair's joint
+    log-average), the linear
     renders (`out`/<name>.exr, through the atmosphere; <name>_straight.exr without), the ray
     fans (`out`/rays_<name>.png), a sunset with a green flash (`out`/green_flash.png) and the hot
     road shimmering (`out`/shimmer.gif, physical turbulence; shimmer_noise.gif, geometric noise).

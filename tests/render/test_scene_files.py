@@ -88,6 +88,20 @@ def test_render_command_writes_the_image(tmp_path):
     assert image.shape == (16, 48, 3)
 
 
+def test_render_command_exposes_pngs_as_write_image_does(tmp_path):
+    # Automatic by default; --ev100 and --exposure are write_image's manual exposures (EXR: linear).
+    linear = tmp_path / "road.exr"
+    assert cli.main(["render", str(DATA / "hot_road.toml"), "-o", str(linear), "--size", "48x16"]) == 0
+    image = refracta.io.read_image(linear)
+    for extra, kwargs in (([], {}), (["--ev100", "12"], dict(ev100=12.0)), (["--exposure", "0.5"], dict(exposure=0.5)),
+                          (["--key", "0.09", "--tonemap", "reinhard"], dict(key=0.09, tonemap="reinhard"))):
+        output = tmp_path / "road.png"
+        assert cli.main(["render", str(DATA / "hot_road.toml"), "-o", str(output), "--size", "48x16", *extra]) == 0
+        # 8-bit quantisation: half a level.
+        np.testing.assert_allclose(refracta.io.read_image(output), refracta.io.to_display(image, **kwargs),
+                                   atol=0.51 / 255)
+
+
 def test_every_material_and_light_type_loads_and_renders_finite():
     scene, camera, field = refracta.load_scene(DATA / "materials_and_lights.toml")
     assert field is None
