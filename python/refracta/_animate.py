@@ -143,8 +143,8 @@ def _fft_size(n: int) -> int:
 
 def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: Union[None, str, os.PathLike] = None,
             fps: Optional[float] = None, turbulence=None, noise: Optional[dict] = None, executor=None,
-            progress: Union[bool, Callable[[int, int], None]] = True, exposure: float = 1.0,
-            tonemap: str = "reinhard", **options) -> np.ndarray:
+            progress: Union[bool, Callable[[int, int], None]] = True, exposure: Optional[float] = None,
+            tonemap: Optional[str] = None, **options) -> np.ndarray:
     """Render a shimmering mirage: one frame per time in `times` [s]; returns linear radiance,
     float32 (T, H, W, 3), and writes it to `path` if given.
 
@@ -158,8 +158,11 @@ def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: Union[
     path: '.gif' (Pillow; loops), '.mp4' (H.264 through imageio-ffmpeg, frames padded to even
     sizes), or a pattern with a '{}' field for the frame number ('frames/f{:03d}.exr': one file
     per frame through refracta.io.write_image: EXR linear, PNG tone mapped). GIF and MP4 frames are
-    tone mapped like refracta.io.to_display(frame, exposure, tonemap) (the same curve for every
-    frame: no flicker). fps: frames per second of the file (default: 1 / the median step of
+    tone mapped like refracta.io.to_display(frame, exposure, tonemap) with one exposure for every
+    frame (no flicker): `exposure`, or by default the automatic exposure of all the frames
+    together (refracta.io.exposure_of; tonemap None: io's default curve). Frame files get
+    write_image's defaults (PNG: each frame exposed automatically; EXR linear) unless `exposure`
+    is given. fps: frames per second of the file (default: 1 / the median step of
     `times`). executor: None renders the frames one after another here (each on every core); a
     concurrent.futures.Executor or a dask.distributed Client renders one frame per task (scene,
     camera, field and turbulence sent to each dask worker once). progress: a bar of frames on
@@ -250,9 +253,11 @@ def _writer_for(path: str):
 
 
 def _display_bytes(frames, exposure, tonemap) -> np.ndarray:
-    """uint8 (T, H, W, 3) display frames (refracta.io.to_display)."""
-    from refracta.io import to_display
+    """uint8 (T, H, W, 3) display frames (refracta.io.to_display), one exposure for all."""
+    from refracta.io import exposure_of, to_display
 
+    if exposure is None:  # the frames' joint log-average, stacked as one tall image
+        exposure = exposure_of(np.concatenate(list(frames), axis=0))
     return np.stack([np.round(to_display(f, exposure, tonemap) * 255.0).astype(np.uint8) for f in frames])
 
 

@@ -68,8 +68,7 @@ MAX_HISTORY = 100     # undo steps kept: each holds references to immutable obje
 SPOT_SEGMENTS = 96    # chords per drawn footprint circle: a spot seen at a grazing angle is an ellipse
                       # flattened ~50x, whose ends 96 chords still round (each 3.75 deg of the circle)
 GRAB_RADIUS = 8.0     # [display pixels] a press this close to a marker drags it (about a fingertip)
-DEFAULT_DISPLAY = {"key": 0.18}  # Reinhard with the photographic key (middle grey), as `refracta demo`
-                                 # shows the examples: their skies are in physical units
+DEFAULT_DISPLAY: dict = {}  # refracta.io.to_display's defaults: automatic exposure (key 0.18), ACES
 
 
 @dataclass(frozen=True)
@@ -169,7 +168,7 @@ class EditorModel:
         turbulence: the refracta.Turbulence whose layer `field` carries (field.turbulence), or None:
             exports write its settings (a field keeps only the layer; refracta.scene_file).
         preview_scale: the preview renders 1/preview_scale of the width and height (4: a quarter).
-        display: refracta.io.to_display keywords (default: Reinhard with key 0.18).
+        display: refracta.io.to_display keywords (default: none, its automatic exposure and ACES curve).
         autorender: render at once (False: only when render() is called; for tests).
 
     Raises:
