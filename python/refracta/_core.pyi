@@ -587,6 +587,19 @@ class Camera:
     (i + 0.5, j + 0.5).
     """
     @staticmethod
+    def eye_level(eye: typing.Any, target: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex = 1.6, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex = 50.0, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
+        """
+        A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the
+        lens eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the
+        horizontal direction of ``target``. Over flat ground the horizon runs through the image's centre
+        row, where mirages are: a hot road's "wet" band and the inverted images under cars sit just below
+        it (Camera.framing's 45 deg aerial view shows none of them). Over a curved Earth the sea horizon
+        dips sqrt(2 h / R) below it (0.041 deg at 1.6 m). Lens, sensor, f_number and focus_distance as
+        for Camera.photographic (focus by default at the target's horizontal distance):
+        
+            camera = refracta.Camera.eye_level((0, 0, 0), (0, 0, -200), eye_height=1.6, focal_length_mm=200)
+        """
+    @staticmethod
     def framing(scene_or_bounds: typing.Any, direction: typing.Any = (-1.0, -0.5, -1.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360, up: typing.Any = (0.0, 1.0, 0.0)) -> Camera:
         """
         A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
@@ -599,9 +612,9 @@ class Camera:
         scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].
         """
     @staticmethod
-    def photographic(position: typing.Any, look_at: typing.Any, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, up: typing.Any = (0.0, 1.0, 0.0)) -> Camera:
+    def photographic(position: typing.Any, look_at: typing.Any, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, up: typing.Any = (0.0, 1.0, 0.0), f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
         """
-        A pinhole camera described by its lens and sensor: focal_length_mm on a sensor of
+        A camera described by its lens and sensor: focal_length_mm on a sensor of
         sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the
         sensor's width when it is relatively wider than the sensor, else its height; vfov follows as
         2 atan(h / 2f). A 300 mm telephoto on full frame at 960 x 640 sees 4.58 deg vertically:
@@ -609,8 +622,17 @@ class Camera:
             camera = refracta.Camera.photographic((0, 5, 0), (28000, 5, 0), 300.0, width=960, height=640)
         
         position, look_at [m]; up as for Camera.
+        
+        Depth of field: with f_number N a thin lens of aperture diameter A = f / N, focused at
+        focus_distance [m] (None: the distance to look_at); None: a pinhole, everything sharp. A point at
+        depth d [m] then blurs to the thin-lens circle of confusion ``c = A f abs(d - d_f) / (d (d_f - f))``
+        on the sensor; the image keeps the field of view of focus at infinity (no focus breathing, as
+        Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm].
+        Each pixel sample takes its own lens point; through a field those rays are traced from the lens
+        (not served by the eye's table), which costs what table=False costs. Only the ray-traced methods
+        ('straight', 'curved') render it. f_number or focus_distance <= 0 or NaN: ValueError.
         """
-    def __getstate__(self) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float], float, int, int, list[float]]:
+    def __getstate__(self) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float], float, int, int, list[float], float, float]:
         ...
     def __init__(self, position: typing.Any, look_at: typing.Any, up: typing.Any = (0.0, 1.0, 0.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360) -> None:
         ...
@@ -639,6 +661,16 @@ class Camera:
     def resized(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> Camera:
         """
         The same view at another image size (vertical field of view kept).
+        """
+    @property
+    def aperture_diameter(self) -> float:
+        """
+        The thin lens's aperture diameter [m] (f / N), 0 for a pinhole.
+        """
+    @property
+    def focus_distance(self) -> float:
+        """
+        The depth [m] of the plane in focus, 0 for a pinhole.
         """
     @property
     def height(self) -> int:
@@ -1586,8 +1618,12 @@ def _canonical_bound(moments: collections.abc.Sequence[typing.SupportsFloat | ty
     ...
 def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, method: str, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, bias: typing.SupportsFloat | typing.SupportsIndex | None, z_range: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] | None, layers: typing.SupportsInt | typing.SupportsIndex | None, weight: str, storage: str) -> numpy.ndarray:
     ...
-def _display(image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: typing.Any, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None) -> numpy.typing.NDArray[numpy.float32]:
+def _display(image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> numpy.typing.NDArray[numpy.float32]:
     ...
+def _display_exposure(image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> float:
+    """
+    The exposure c the display settings give this image (io.exposure_of).
+    """
 def _emit_library_log() -> None:
     """
     Move queued Ceres (glog) messages to the Python logger 'refracta.ceres'.
@@ -1595,6 +1631,10 @@ def _emit_library_log() -> None:
 def _end_thread_cancel(thread_id: typing.SupportsInt | typing.SupportsIndex) -> None:
     """
     Lets the thread's refracta calls run again after _cancel_thread_work.
+    """
+def _ev100(f_number: typing.SupportsFloat | typing.SupportsIndex, shutter: typing.SupportsFloat | typing.SupportsIndex, iso: typing.SupportsFloat | typing.SupportsIndex = 100.0) -> float:
+    """
+    EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.
     """
 def _mboit_unorm16(b: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
     """
@@ -1650,7 +1690,7 @@ def _tabulate_heights(field: IndexField, lo: typing.SupportsFloat | typing.Suppo
     """
 def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, method: str, tol: typing.SupportsFloat | typing.SupportsIndex, step: typing.SupportsFloat | typing.SupportsIndex | None, max_length: typing.SupportsFloat | typing.SupportsIndex, stop_height: typing.SupportsFloat | typing.SupportsIndex | None, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
     ...
-def _write_image(path: str, image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex, tonemap: str, gamma: typing.Any, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
+def _write_image(path: str, image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
     ...
 def air_dispersion_scale(wavelength: typing.SupportsFloat | typing.SupportsIndex, reference: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> float:
     """
