@@ -840,7 +840,7 @@ scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc")
           py::arg("sensor_mm") = std::make_pair(36.0, 24.0), py::arg("width") = 960, py::arg("height") = 640,
           py::arg("up") = py::make_tuple(0.0, 1.0, 0.0), py::arg("f_number") = py::none(),
           py::arg("focus_distance") = py::none(),
-          R"doc(A pinhole camera described by its lens and sensor: focal_length_mm on a sensor of
+          R"doc(A camera described by its lens and sensor: focal_length_mm on a sensor of
 sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the
 sensor's width when it is relatively wider than the sensor, else its height; vfov follows as
 2 atan(h / 2f). A 300 mm telephoto on full frame at 960 x 640 sees 4.58 deg vertically:
@@ -851,8 +851,8 @@ position, look_at [m]; up as for Camera.
 
 Depth of field: with f_number N a thin lens of aperture diameter A = f / N, focused at
 focus_distance [m] (None: the distance to look_at); None: a pinhole, everything sharp. A point at
-depth d [m] then blurs to the thin-lens circle of confusion c = A f |d - d_f| / (d (d_f - f)) on
-the sensor; the image keeps the field of view of focus at infinity (no focus breathing, as
+depth d [m] then blurs to the thin-lens circle of confusion ``c = A f abs(d - d_f) / (d (d_f - f))``
+on the sensor; the image keeps the field of view of focus at infinity (no focus breathing, as
 Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm].
 Each pixel sample takes its own lens point; through a field those rays are traced from the lens
 (not served by the eye's table), which costs what table=False costs. Only the ray-traced methods
