@@ -7,7 +7,14 @@ radiance at the same azimuth, sampled over the whole sphere)): radiance(dirs (N,
 same per-nm normalisation as the renderer (Y = integral(L y)/integral(y)), sun_transmittance,
 sun_radiance(wavelengths, angular_diameter_deg=0.53), sun_radiance_rgb, solar_irradiance,
 rayleigh_optical_depth(wavelength), optical_depth, sample_li(u (N, 2)) -> (dirs, pdf, rgb),
-pdf_li(dirs) (per steradian), power() [W-like luminance, pi R^2 integral of Y], preprocess.
+pdf_li(dirs) (per steradian), power() [W-like luminance, pi R^2 integral of Y], preprocess;
+visibility [km] instead of aerosol sets the aerosol from Koschmieder's law (3.912 / V at 550 nm).
+
+AerialPerspective(sky, scale=1): the same air along a segment from a viewer at a to a point b:
+along(a, b, wavelength) -> (transmittance, in-scatter [W/(m^2 sr nm)]), along_rgb(a, b) -> the
+RGB pair renders apply, inscatter_reference (brute-force quadrature), sun_transmittance(height,
+elevation_deg, wavelength). Scene.set_physical_sky(aerial_perspective=True) applies it to every
+segment the renderers cast.
 
 Thin vectorised wrappers of refracta's C++ colour code (cpp/refracta/shading/color.h,
 spectral.h, physical_sky.h), the same functions spectral rendering uses. Conventions
@@ -37,8 +44,10 @@ import numpy as np
 from refracta import _core
 
 PhysicalSky = _core.PhysicalSky  # documented in C++ (physical_sky.h): see help(PhysicalSky)
+AerialPerspective = _core.AerialPerspective  # documented in C++ (aerial_perspective.h)
 
 __all__ = [
+    "AerialPerspective",
     "LAMBDA_MAX",
     "PhysicalSky",
     "LAMBDA_MIN",

@@ -585,7 +585,7 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
       .def("set_physical_sky",
            [](RenderScene& s, const py::object& sun_direction, double aerosol, double ozone_du, double ground_albedo,
               double sun_angular_diameter, double limb_darkening, double scale, double altitude,
-              const std::string& below_horizon) {
+              const std::string& below_horizon, bool aerial_perspective, const std::optional<double>& visibility) {
              PhysicalSkySettings settings;
              const Vec3d sun = to_point(sun_direction, "sun_direction");
              if (!(sun.norm() > 0.0)) throw_invalid("sun_direction must be non-zero (got (", sun.x(), ", ", sun.y(), ", ", sun.z(), "))");
@@ -593,11 +593,15 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
              settings.aerosol = aerosol, settings.ozone_du = ozone_du, settings.ground_albedo = ground_albedo;
              settings.altitude = altitude;
              settings.below_horizon = below_horizon_from(below_horizon);
+             if (visibility) set_visibility(&settings, *visibility);
              set_physical_sky(s, settings, sun_angular_diameter, limb_darkening, scale);
+             if (aerial_perspective && scale > 0.0) s.enable_aerial_perspective();
            },
-           py::arg("sun_direction"), py::arg("aerosol") = 1.0, py::arg("ozone_du") = 300.0, py::arg("ground_albedo") = 0.0,
+           py::arg("sun_direction"), py::arg("aerosol") = PhysicalSkySettings{}.aerosol,
+           py::arg("ozone_du") = PhysicalSkySettings{}.ozone_du, py::arg("ground_albedo") = PhysicalSkySettings{}.ground_albedo,
            py::arg("sun_angular_diameter") = 0.53, py::arg("limb_darkening") = 0.0, py::arg("scale") = 1.0,
-           py::arg("altitude") = 0.0, py::arg("below_horizon") = "horizon",
+           py::arg("altitude") = PhysicalSkySettings{}.altitude, py::arg("below_horizon") = "horizon",
+           py::arg("aerial_perspective") = true, py::arg("visibility") = py::none(),
            "The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's\n"
            "single scattering (Nishita et al. 1993) for the sun toward `sun_direction` (normalised, y up),\n"
            "`aerosol` (Mie density scale), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon\n"
@@ -609,7 +613,21 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            "toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral renders,\n"
            "its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times\n"
            "106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun\n"
-           "(e.g. an exposure). Builds the sky's table (~0.5 s).")
+           "(e.g. an exposure). Builds the sky's table (~0.5 s).\n"
+           "aerial_perspective (default True): the same air dims and lights every segment the renderers cast\n"
+           "(refracta.spectrum.AerialPerspective: transmittance and single-scattered sunlight), so distant\n"
+           "objects grey and blue into the sky; False keeps surfaces as seen through empty space.\n"
+           "visibility [km]: meteorological visibility at the ground (Koschmieder: extinction at 550 nm =\n"
+           "3.912 / V), setting the aerosol in its place (give one of them). The scene's y = 0 lies `altitude`\n"
+           "above the sky's sea level.")
+      .def_property_readonly(
+          "aerial_perspective",
+          [](const RenderScene& s) -> py::object {
+            const AerialPerspective* air = s.aerial_perspective();
+            if (!air) return py::none();
+            return py::cast(s.aerial_perspective_ptr());
+          },
+          "The scene's refracta.spectrum.AerialPerspective (set_physical_sky(aerial_perspective=True)), or None.")
       .def("set_environment",
            [](RenderScene& s, const py::object& source, const py::object& rotation, double scale) {
              s.remove_lights_if([](const Light& l) { return l.is_infinite() && !dynamic_cast<const SunLight*>(&l); });

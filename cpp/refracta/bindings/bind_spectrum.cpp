@@ -1,6 +1,7 @@
 // Python bindings of spectral colour (shading/color.h, spectral.h) and the physical sky: private
 // _core functions wrapped by python/refracta/spectrum.py (which documents and shapes them).
 #include "refracta/bindings/bindings.h"
+#include "refracta/shading/aerial_perspective.h"
 #include "refracta/shading/color.h"
 #include "refracta/shading/physical_sky.h"
 #include "refracta/shading/spectral.h"
@@ -245,17 +246,22 @@ BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same
 (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
 default). See cpp/refracta/shading/physical_sky.h.)doc")
       .def(py::init([](const py::object& sun, double aerosol, double ozone_du, double ground_albedo, double altitude,
-                       double rayleigh_scale, const std::string& below_horizon) {
+                       double rayleigh_scale, const std::string& below_horizon, const std::optional<double>& visibility) {
              PhysicalSkySettings s;
              s.sun_direction = to_point(sun, "sun_direction");
              s.aerosol = aerosol, s.ozone_du = ozone_du, s.ground_albedo = ground_albedo, s.altitude = altitude;
              s.rayleigh_scale = rayleigh_scale;
              s.below_horizon = below_horizon_from(below_horizon);
+             if (visibility) set_visibility(&s, *visibility);
              py::gil_scoped_release release;
              return std::make_shared<PhysicalSkyLight>(s);
            }),
-           py::arg("sun_direction"), py::arg("aerosol") = 1.0, py::arg("ozone_du") = 300.0, py::arg("ground_albedo") = 0.0,
-           py::arg("altitude") = 0.0, py::arg("rayleigh_scale") = 1.0, py::arg("below_horizon") = "ground")
+           py::arg("sun_direction"), py::arg("aerosol") = PhysicalSkySettings{}.aerosol,
+           py::arg("ozone_du") = PhysicalSkySettings{}.ozone_du, py::arg("ground_albedo") = PhysicalSkySettings{}.ground_albedo,
+           py::arg("altitude") = PhysicalSkySettings{}.altitude, py::arg("rayleigh_scale") = PhysicalSkySettings{}.rayleigh_scale,
+           py::arg("below_horizon") = "ground", py::arg("visibility") = py::none())
+      .def_property_readonly("aerosol", [](const PhysicalSkyLight& l) { return l.settings().aerosol; },
+                             "The Mie density scale (set from `visibility` when that was given).")
       .def("radiance",
            [](const PhysicalSkyLight& l, const py::object& dirs, const py::object& lambda_object, bool direct) {
              const std::vector<Vec3d> d = unit_directions(dirs);
@@ -357,6 +363,52 @@ default). See cpp/refracta/shading/physical_sky.h.)doc")
             py::gil_scoped_release release;
             return std::make_shared<PhysicalSkyLight>(s);
           }));
+
+  py::class_<AerialPerspective, std::shared_ptr<AerialPerspective>>(m, "AerialPerspective", R"doc(
+Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b`
+[m] (scene coordinates; y = 0 lies the sky's `altitude` above sea level), the transmittance T and
+the single-scattered sunlight S the air adds (the sky's coefficients, densities, phase functions,
+ozone and sun; multiple scattering left out, as in the sky): what arrives at a is T L(b) + S. The
+chord is integrated in pieces in closed form (cpp/refracta/shading/aerial_perspective.h).
+earth_radius: a CurvedEarth's radius when the scene is its flat frame (y is then the height above
+the curved ground), inf for a flat scene (the sky's planet touches y = 0 under the origin).
+Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to every segment.)doc")
+      .def(py::init([](const std::shared_ptr<PhysicalSkyLight>& sky, double scale) {
+             if (!sky) throw_invalid("sky must be a refracta.spectrum.PhysicalSky");
+             return std::make_shared<AerialPerspective>(PhysicalSky::shared(sky->settings()), scale);
+           }),
+           py::arg("sky"), py::arg("scale") = 1.0)
+      .def("along",
+           [](const AerialPerspective& air, const py::object& a, const py::object& b, double wavelength, double earth_radius) {
+             return air.along_at(to_point(a, "a"), to_point(b, "b"), AirFrame{earth_radius}, wavelength);
+           },
+           py::arg("a"), py::arg("b"), py::arg("wavelength"), py::arg("earth_radius") = AirFrame{}.earth_radius,
+           "(transmittance, in-scatter [W/(m^2 sr nm)] x scale) at one wavelength [nm] in [360, 830].")
+      .def("along_rgb",
+           [](const AerialPerspective& air, const py::object& a, const py::object& b, double earth_radius) {
+             const auto seg = air.along(to_point(a, "a"), to_point(b, "b"), AirFrame{earth_radius}, SampledWavelengths::rgb());
+             return py::make_tuple(points_to_array({Vec3d(seg.transmittance.head<3>().matrix())}).reshape({py::ssize_t(3)}),
+                                   points_to_array({Vec3d(seg.inscatter.head<3>().matrix())}).reshape({py::ssize_t(3)}));
+           },
+           py::arg("a"), py::arg("b"), py::arg("earth_radius") = AirFrame{}.earth_radius,
+           "(transmittance, in-scatter) as RGB renders apply them: linear sRGB, the sky's Le convention.")
+      .def("inscatter_reference",
+           [](const AerialPerspective& air, const py::object& a, const py::object& b, double wavelength, int steps,
+              double earth_radius) {
+             const Vec3d pa = to_point(a, "a"), pb = to_point(b, "b");
+             py::gil_scoped_release release;
+             return air.inscatter_reference(pa, pb, AirFrame{earth_radius}, wavelength, steps);
+           },
+           py::arg("a"), py::arg("b"), py::arg("wavelength"), py::arg("steps") = 4096,
+           py::arg("earth_radius") = AirFrame{}.earth_radius,
+           "The same in-scatter by brute force: `steps` midpoints on the chord, each point's sun column traced.")
+      .def("sun_transmittance",
+           [](const AerialPerspective& air, double height, double elevation_deg, double wavelength) {
+             return air.sun_transmittance(height, elevation_deg * kPi / 180.0, wavelength);
+           },
+           py::arg("height"), py::arg("elevation_deg"), py::arg("wavelength"),
+           "The sun's transmittance to `height` [m] above sea level where it stands `elevation_deg` above the local horizon.")
+      .def_property_readonly("scale", &AerialPerspective::scale);
 }
 
 }  // namespace refracta

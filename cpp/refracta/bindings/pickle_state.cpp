@@ -13,7 +13,7 @@ namespace refracta {
 namespace {
 
 // The version of the Scene state (bump when its layout changes; older states are refused).
-constexpr int kSceneStateVersion = 1;
+constexpr int kSceneStateVersion = 2;  // 2: aerial perspective
 
 void check_size(const py::tuple& t, size_t size, const char* what) {
   if (t.size() != size) throw_invalid(what, ": bad pickle state (", t.size(), " items, expected ", size, ")");
@@ -129,11 +129,11 @@ py::tuple scene_state(const RenderScene& scene) {
   for (size_t i = 0; i < scene.lights().size(); ++i) {
     lights.append(py::make_tuple(light_object(scene.lights()[i]), scene.emitter_of(i), scene.shadow_radius(i)));
   }
-  return py::make_tuple(kSceneStateVersion, textures, materials, parts, lights);
+  return py::make_tuple(kSceneStateVersion, textures, materials, parts, lights, scene.aerial_perspective() != nullptr);
 }
 
 std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state) {
-  check_size(state, 5, "Scene");
+  check_size(state, 6, "Scene");
   if (py::cast<int>(state[0]) != kSceneStateVersion) {
     throw_invalid("Scene: pickle state version ", py::cast<int>(state[0]), " (this refracta reads ", kSceneStateVersion, ")");
   }
@@ -171,6 +171,7 @@ std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state) {
     const double radius = py::cast<double>(entry[2]);
     if (radius > 0.0) scene->set_shadow_radius(index, radius);
   }
+  if (py::cast<bool>(state[5])) scene->enable_aerial_perspective();  // rebuilt from the physical sky light
   return scene;
 }
 

@@ -18,6 +18,7 @@
 #include "refracta/render/chord_plan.h"
 #include "refracta/render/render_options.h"
 #include "refracta/scene/embree_scene.h"
+#include "refracta/shading/aerial_perspective.h"
 
 #include <array>
 #include <optional>
@@ -99,6 +100,9 @@ class Caster {
   const IndexField* layered() const { return layered_; }
   const std::vector<LocalRegion>& regions() const { return regions_; }
   const Scene& scene() const { return scene_; }
+  // How scene points sit on the physical sky's planet for aerial perspective: a CurvedEarth's flat
+  // frame when the field has an Earth radius, else the flat scene.
+  AirFrame air_frame() const { return field_ ? AirFrame{field_->earth_radius()} : AirFrame{}; }
   // n of the air at p (1 without a field).
   double ior(const Vec3d& p) const;
 

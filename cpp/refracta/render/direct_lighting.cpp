@@ -129,6 +129,9 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
     if (length > 0.0 && caster_.occluded_straight(from, to_light / length, length * (1.0 - kShadowEpsilon))) {
       return Spectrum::Zero();
     }
+    if (const AerialPerspective* air = scene_.aerial_perspective()) {
+      L *= air->transmittance(si.p, ls->p_light, caster_.air_frame(), lambda);
+    }
   }
   if (!(L.maxCoeff() > 0.0)) return Spectrum::Zero();
   const double pdf = pick * light_pdf;

@@ -19,7 +19,12 @@ namespace refracta {
 class Integrator {
  public:
   Integrator(const RenderScene& scene, const Caster& caster, const RenderOptions& options)
-      : scene_(scene), caster_(caster), options_(options), lighting_(scene, caster, options) {}
+      : scene_(scene),
+        caster_(caster),
+        options_(options),
+        lighting_(scene, caster, options),
+        air_(scene.aerial_perspective()),
+        air_frame_(caster.air_frame()) {}
   virtual ~Integrator() = default;
 
   // Radiance [W/(m^2 sr)] (RGB or at lambda) arriving at `origin` along the ray leaving it in unit
@@ -38,6 +43,8 @@ class Integrator {
   const Caster& caster_;
   const RenderOptions& options_;
   DirectLighting lighting_;
+  const AerialPerspective* air_;  // null without aerial perspective
+  AirFrame air_frame_;
 };
 
 std::unique_ptr<Integrator> make_integrator(const RenderScene& scene, const Caster& caster, const RenderOptions& options);

@@ -49,6 +49,13 @@ class PathTracer : public Integrator {
       SurfaceInteraction si = passes == 0 && first.footprint
                                   ? scene_.geometry.interaction(*end.hit, end.direction, *first.footprint)
                                   : scene_.geometry.interaction(*end.hit, end.direction, pixel_angle * travelled);
+      // The air between: its in-scatter arrives, and it dims everything from the hit on. A path
+      // that escapes sees the sky, which already holds the air all the way out.
+      if (air_) {
+        const AerialPerspective::Segment air = air_->along(o, si.p, air_frame_, lambda);
+        L += beta * air.inscatter;
+        beta *= air.transmittance;
+      }
       if (caster_.curved()) {
         const double ior_hit = caster_.ior(si.p);
         beta *= sqr(ior_here / ior_hit);

@@ -2,6 +2,8 @@
 #include "refracta/render/render_scene.h"
 
 #include "refracta/core/error.h"
+#include "refracta/shading/physical_sky.h"
+#include "refracta/shading/scaled_light.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,6 +52,36 @@ size_t RenderScene::add_light(LightPtr light, int emitter) {
 
 void RenderScene::remove_infinite_lights() {
   remove_lights_if([](const Light& light) { return light.is_infinite(); });
+}
+
+void RenderScene::enable_aerial_perspective() {
+  geometry.check_unchanging("enable_aerial_perspective");
+  for (const LightPtr& light : lights_) {
+    double scale = 1.0;
+    const Light* inner = light.get();
+    if (const auto* scaled = dynamic_cast<const ScaledInfiniteLight*>(inner)) scale = scaled->scale(), inner = scaled->light().get();
+    if (const auto* sky = dynamic_cast<const PhysicalSkyLight*>(inner)) {
+      aerial_ = std::make_shared<AerialPerspective>(PhysicalSky::shared(sky->settings()), scale);
+      aerial_source_ = light.get();
+      return;
+    }
+  }
+  throw_invalid("aerial perspective needs the scene's physical sky (Scene.set_physical_sky with scale > 0)");
+}
+
+void RenderScene::disable_aerial_perspective() {
+  geometry.check_unchanging("disable_aerial_perspective");
+  aerial_.reset();
+  aerial_source_ = nullptr;
+}
+
+void RenderScene::forget_aerial_if_gone() {
+  if (!aerial_source_) return;
+  for (const LightPtr& light : lights_) {
+    if (light.get() == aerial_source_) return;
+  }
+  aerial_.reset();
+  aerial_source_ = nullptr;
 }
 
 void RenderScene::set_shadow_radius(size_t light, double radius) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "refracta/scene/embree_scene.h"
+#include "refracta/shading/aerial_perspective.h"
 #include "refracta/shading/light.h"
 #include "refracta/shading/material.h"
 
@@ -42,6 +43,16 @@ class RenderScene {
   template <class Predicate>
   void remove_lights_if(const Predicate& drop);
 
+  // Aerial perspective (aerial_perspective.h) from the scene's physical sky light (set_physical_sky,
+  // possibly scaled): every segment the renderers cast is then dimmed by the air and gains its
+  // in-scatter. Throws std::invalid_argument when the scene has no physical sky. It lasts while
+  // that light does (replacing the sky ends it).
+  void enable_aerial_perspective();
+  void disable_aerial_perspective();
+  // Null without aerial perspective.
+  const AerialPerspective* aerial_perspective() const { return aerial_.get(); }
+  const std::shared_ptr<AerialPerspective>& aerial_perspective_ptr() const { return aerial_; }
+
   // A spot light's disc radius [m] for render_raster's soft-shadow reference ('embree' shadows
   // of an area spot light: 64 stratified shadow rays), 0 for a point.
   void set_shadow_radius(size_t light, double radius);
@@ -56,6 +67,10 @@ class RenderScene {
   std::vector<int> light_of_geometry_;
   std::vector<int> geometry_of_light_;
   std::vector<std::pair<const Light*, double>> shadow_radius_;
+  std::shared_ptr<AerialPerspective> aerial_;
+  const Light* aerial_source_ = nullptr;  // the sky light aerial_ was made from
+
+  void forget_aerial_if_gone();
 
   void remove_lights_if_emitted_by(int geometry_id);
 };
@@ -76,6 +91,7 @@ void RenderScene::remove_lights_if(const Predicate& drop) {
   for (size_t i = 0; i < lights_.size(); ++i) {
     if (geometry_of_light_[i] >= 0) light_of_geometry_[size_t(geometry_of_light_[i])] = int(i);
   }
+  forget_aerial_if_gone();
 }
 
 }  // namespace refracta

@@ -3,8 +3,8 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/parallel.h"
+#include "refracta/shading/air_optics.h"
 #include "refracta/shading/spectral.h"
-
 
 #include <algorithm>
 #include <chrono>
@@ -17,96 +17,17 @@ namespace refracta {
 
 namespace {
 
-constexpr double kEarthRadius = 6371e3;           // [m]
-constexpr double kTop = 80e3;                     // [m] the atmosphere's top above the ground
-constexpr double kTopRadius = kEarthRadius + kTop;
-constexpr double kRayleighHeight = 8000.0;        // [m] scale height
-constexpr double kMieHeight = 1200.0;             // [m]
-constexpr double kRayleighDepth550 = 0.097;       // Bodhaine et al. 1999, sea level, 550 nm
-const double kRayleigh550 = kRayleighDepth550 / (kRayleighHeight * (1.0 - std::exp(-kTop / kRayleighHeight)));  // [1/m]
-constexpr double kMieScattering = 2.1e-5;         // [1/m] Bruneton & Neyret 2008
-constexpr double kMieExtinction = kMieScattering / 0.9;
-constexpr double kMieG = 0.76;
-constexpr double kDobsonUnit = 2.687e20;          // [molecules/m^2]
-constexpr double kOzonePeak = 25e3, kOzoneHalfWidth = 15e3;  // [m] the tent 10..25..40 km (integral 15 km)
+using namespace air_optics;
+
 constexpr double kSolarConstant = 1361.0;         // [W/m^2] Kopp & Lean 2011
 constexpr double kSunTemperature = 5778.0;        // [K]
 constexpr double kStefanBoltzmann = 5.670374419e-8;
-// Ozone absorption cross-sections [m^2] at 360, 370, ..., 830 nm: the IUP Bremen reference spectra
-// (Serdyuchenko et al. 2014, "High spectral resolution ozone absorption cross-sections - Part 2",
-// AMT 7; Gorshelev et al. 2014, Part 1) at 233 K, averaged over each 10 nm bin, as tabulated in
-// E. Bruneton's precomputed_atmospheric_scattering (2017) demo. Data, not code.
-constexpr double kOzoneCrossSection[PhysicalSky::kWavelengths] = {
-    1.18e-27,  2.182e-28, 2.818e-28, 6.636e-28, 1.527e-27, 2.763e-27, 5.52e-27,  8.451e-27,
-    1.582e-26, 2.316e-26, 3.669e-26, 4.924e-26, 7.752e-26, 9.016e-26, 1.48e-25,  1.602e-25,
-    2.139e-25, 2.755e-25, 3.091e-25, 3.5e-25,   4.266e-25, 4.672e-25, 4.398e-25, 4.701e-25,
-    5.019e-25, 4.305e-25, 3.74e-25,  3.215e-25, 2.662e-25, 2.238e-25, 1.852e-25, 1.473e-25,
-    1.209e-25, 9.423e-26, 7.455e-26, 6.566e-26, 5.105e-26, 4.15e-26,  4.228e-26, 3.237e-26,
-    2.451e-26, 2.801e-26, 2.534e-26, 1.624e-26, 1.465e-26, 2.078e-26, 1.383e-26, 7.105e-27};
-
 constexpr int kViewSteps = 64;  // midpoint samples along a view ray
-constexpr int kSunSteps = 48;   // along a sun ray (optical depth)
+constexpr int kSunSteps = kSunColumnSteps;  // along a sun ray (optical depth)
 
-// Linear interpolation on the 10 nm grid; 0 outside [360, 830].
-double lerp_10nm(const double* values, double lambda_nm) {
-  if (!(lambda_nm >= 360.0 && lambda_nm <= 830.0)) return 0.0;
-  const double x = (lambda_nm - 360.0) / 10.0;
-  const int i = std::min(int(x), PhysicalSky::kWavelengths - 2);
-  const double t = x - i;
-  return values[i] * (1.0 - t) + values[i + 1] * t;
-}
+double lerp_10nm(const double* values, double lambda_nm) { return lerp_nodes(values, lambda_nm); }
 
-// Densities relative to sea level (Rayleigh, Mie) and the ozone tent in [0, 1].
-struct Column {
-  double r = 0.0, m = 0.0, o = 0.0;  // [m] integrals of the relative densities along a path
-};
-
-Column densities(double h) {
-  return {std::exp(-h / kRayleighHeight), std::exp(-h / kMieHeight),
-          std::max(0.0, 1.0 - std::abs(h - kOzonePeak) / kOzoneHalfWidth)};
-}
-
-// Distance along unit d from p (inside the sphere of radius r) to its surface.
-double exit_distance(const Vec3d& p, const Vec3d& d, double r) {
-  const double b = p.dot(d), c = p.squaredNorm() - r * r;
-  return -b + std::sqrt(std::max(0.0, b * b - c));
-}
-
-bool hits_earth(const Vec3d& p, const Vec3d& d) {
-  const double b = p.dot(d), c = p.squaredNorm() - kEarthRadius * kEarthRadius;
-  const double disc = b * b - c;
-  return disc > 0.0 && -b - std::sqrt(disc) > 0.0;
-}
-
-// Column densities from p along d to the top: midpoint rule with nodes t = L s^2 (dense near p,
-// the path's low end for every ray leaving the ground upward).
-Column column_to_top(const Vec3d& p, const Vec3d& d, int steps) {
-  const double length = exit_distance(p, d, kTopRadius);
-  Column c;
-  for (int i = 0; i < steps; ++i) {
-    const double s = (i + 0.5) / steps, t = length * s * s, dt = length * 2.0 * s / steps;
-    const Column rho = densities((p + t * d).norm() - kEarthRadius);
-    c.r += rho.r * dt, c.m += rho.m * dt, c.o += rho.o * dt;
-  }
-  return c;
-}
-
-double rayleigh_phase(double mu) { return 3.0 / (16.0 * kPi) * (1.0 + mu * mu); }
-// Cornette & Shanks 1992.
-double mie_phase(double mu) {
-  const double g2 = kMieG * kMieG;
-  return 3.0 * (1.0 - g2) * (1.0 + mu * mu) /
-         (8.0 * kPi * (2.0 + g2) * std::pow(1.0 + g2 - 2.0 * kMieG * mu, 1.5));
-}
-
-double beta_rayleigh(double lambda_nm) { return kRayleigh550 * std::pow(550.0 / lambda_nm, 4.0); }
-
-// sRGB of a spectrum on the 10 nm grid (resampled to the CIE tables' 1 nm).
-Vec3d rgb_of_10nm(const double* values) {
-  std::vector<double> fine(spectral::kTableSamples);
-  for (int i = 0; i < spectral::kTableSamples; ++i) fine[i] = lerp_10nm(values, spectral::kTableMin + i);
-  return spectral::xyz_to_linear_srgb(spectral::xyz_of_radiance(fine));
-}
+Vec3d rgb_of_10nm(const double* values) { return rgb_of_nodes(values); }
 
 double luminance(const Vec3d& rgb) {
   return spectral::linear_srgb_to_xyz(rgb).y();
@@ -163,6 +84,30 @@ BelowHorizon below_horizon_from(const std::string& name) {
   if (name == "ground") return BelowHorizon::kGround;
   if (name == "horizon") return BelowHorizon::kHorizon;
   throw_invalid("below_horizon must be 'ground' or 'horizon' (got '", name, "')");
+}
+
+double aerosol_for_visibility(double visibility_km, const PhysicalSkySettings& settings) {
+  if (!(visibility_km > 0.0) || !std::isfinite(visibility_km)) {
+    throw_invalid("visibility must be > 0 km and finite (got ", visibility_km, ")");
+  }
+  constexpr double kKoschmieder = 3.912;  // -ln(0.02): the 2 % contrast threshold
+  const Column rho = densities(settings.altitude);
+  const double molecules = settings.rayleigh_scale * beta_rayleigh(550.0) * rho.r +
+                           lerp_nodes(kOzoneCrossSection, 550.0) * settings.ozone_du * kDobsonUnit / kOzoneHalfWidth * rho.o;
+  const double total = kKoschmieder / (visibility_km * 1e3);
+  if (!(total > molecules)) {
+    throw_invalid("visibility ", visibility_km, " km is beyond what the air's molecules alone allow here (",
+                  kKoschmieder / molecules / 1e3, " km)");
+  }
+  return (total - molecules) / (kMieExtinction * rho.m);
+}
+
+void set_visibility(PhysicalSkySettings* settings, double visibility_km) {
+  if (settings->aerosol != PhysicalSkySettings{}.aerosol) {
+    throw_invalid("give aerosol or visibility, not both (got aerosol ", settings->aerosol, " and visibility ",
+                  visibility_km, " km)");
+  }
+  settings->aerosol = aerosol_for_visibility(visibility_km, *settings);
 }
 
 // --- Directions ----------------------------------------------------------------------------------

@@ -62,6 +62,16 @@ struct PhysicalSkySettings {
   void validate() const;       // throws std::invalid_argument listing every problem
 };
 
+// The aerosol scale that gives meteorological visibility `visibility_km` at the ground (the
+// scene's y = 0, `altitude` up): Koschmieder's law, total extinction at 550 nm = 3.912 / V (a black
+// object's contrast against the horizon sky falls to 2 % at V), from the Rayleigh and ozone
+// extinction of `settings` there and the Mie rest. Throws std::invalid_argument for V <= 0, NaN, or
+// a V the air's molecules alone already limit (Rayleigh: ~320 km at sea level).
+double aerosol_for_visibility(double visibility_km, const PhysicalSkySettings& settings);
+// settings->aerosol from a visibility [km] (aerosol_for_visibility); throws std::invalid_argument
+// when the aerosol was also set (differs from its default): one or the other.
+void set_visibility(PhysicalSkySettings* settings, double visibility_km);
+
 class PhysicalSky {
  public:
   // Example: PhysicalSky sky({Vec3d(0.0, std::sin(0.5), std::cos(0.5)), 1.0});  // sun 28.6 deg up

@@ -1,0 +1,278 @@
+// Transmittance and single-scattered sunlight along a segment of air (aerial_perspective.h).
+#include "refracta/shading/aerial_perspective.h"
+
+#include "refracta/core/error.h"
+#include "refracta/core/parallel.h"
+#include "refracta/shading/spectral.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace refracta {
+
+using namespace air_optics;
+
+namespace {
+
+// The sun table: heights h = kTop u^2 on kHeights rows (fine near the ground); sun elevations on
+// kElevations columns t in [0, 1], t = 1/2 at the horizon, e = (pi/2) (2t - 1)^2 above it and
+// -kLowest (2t - 1)^2 below it (fine near the horizon, where the sun's light changes fastest).
+constexpr int kHeights = 65, kElevations = 1025;  // the relative optical depth's error: (de / 2e)^2, 0.02 % at 2 deg
+constexpr double kShadowed = 1e30;  // [m] a column where the planet hides the sun (e^-tau = 0)
+constexpr double kLowest = 12.0 * kPi / 180.0;  // below the horizon dip at 80 km (9 deg): dark beyond
+
+double elevation_to_t(double e) {
+  return e >= 0.0 ? 0.5 + 0.5 * std::sqrt(std::min(e, 0.5 * kPi) / (0.5 * kPi))
+                  : 0.5 - 0.5 * std::sqrt(std::min(-e, kLowest) / kLowest);
+}
+
+double t_to_elevation(double t) {
+  const double s = 2.0 * t - 1.0;
+  return s >= 0.0 ? 0.5 * kPi * s * s : -kLowest * s * s;
+}
+
+// The sun's column from height h where it stands e above the horizon (nullopt: below the planet's limb).
+std::optional<Column> sun_column(double h, double e, int steps) {
+  const Vec3d p(0.0, kEarthRadius + std::max(h, 0.0), 0.0), d(std::cos(e), std::sin(e), 0.0);
+  if (hits_earth(p, d)) return std::nullopt;
+  return column_to_top(p, d, steps);
+}
+
+}  // namespace
+
+AerialPerspective::AerialPerspective(std::shared_ptr<const PhysicalSky> sky, double scale)
+    : sky_(std::move(sky)), scale_(scale) {
+  if (!sky_) throw_invalid("AerialPerspective: no sky");
+  if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("AerialPerspective: scale must be >= 0 (got ", scale, ")");
+  const PhysicalSkySettings& s = sky_->settings();
+  air_ = {s.rayleigh_scale, s.aerosol, s.ozone_du};
+  altitude_ = s.altitude;
+  sun_ = s.sun_direction;
+  std::array<double, kNodes> lambda{};
+  for (int w = 0; w < kNodes; ++w) lambda[w] = node_wavelength(w);
+  nodes_ = bands_at(lambda.data(), kNodes);
+  std::array<double, kNodes> d65{};
+  for (int w = 0; w < kNodes; ++w) {
+    std::array<double, kNodes> unit{};
+    unit[w] = 1.0;
+    rgb_weight_[w] = rgb_of_nodes(unit.data());
+    d65[w] = spectral::d65_normalised(lambda[w]);
+    d65_weight_[w] = d65[w] * rgb_weight_[w];
+  }
+  rgb_of_d65_ = rgb_of_nodes(d65.data());
+  // The sun's columns over (height, elevation), one row of elevations per task (~0.1 s in all).
+  sun_columns_.assign(size_t(kHeights) * kElevations, Column{});
+  WorkControl control;
+  parallel_for_each(kHeights, 1, control, [&](int64_t i) {
+    const double u = double(i) / (kHeights - 1), h = kTop * u * u;
+    for (int j = 0; j < kElevations; ++j) {
+      const auto column = sun_column(h, t_to_elevation(double(j) / (kElevations - 1)), kSunColumnSteps);
+      sun_columns_[size_t(i) * kElevations + j] = column ? *column : Column{kShadowed, kShadowed, kShadowed};
+    }
+  });
+}
+
+AerialPerspective::Bands AerialPerspective::bands_at(const double* lambda_nm, int count) const {
+  Bands b;
+  b.count = count;
+  for (int i = 0; i < count; ++i) {
+    const double l = lambda_nm[i];
+    b.rayleigh[i] = air_.rayleigh_scale * beta_rayleigh(l);
+    b.ozone[i] = lerp_nodes(kOzoneCrossSection, l) * air_.ozone_peak_density();
+    b.irradiance[i] = PhysicalSky::solar_irradiance(l);
+  }
+  return b;
+}
+
+AerialPerspective::Located AerialPerspective::locate(const Vec3d& p, const AirFrame& frame) const {
+  if (std::isfinite(frame.earth_radius)) {
+    const double rho = std::hypot(p.x(), p.z());
+    const double phi = rho / frame.earth_radius;
+    const Vec3d up = rho > 0.0 ? Vec3d(std::sin(phi) * p.x() / rho, std::cos(phi), std::sin(phi) * p.z() / rho)
+                               : Vec3d(0.0, 1.0, 0.0);
+    return {altitude_ + p.y(), up};
+  }
+  const Vec3d q(p.x(), kEarthRadius + altitude_ + p.y(), p.z());
+  const double r = q.norm();
+  return {r - kEarthRadius, q / r};
+}
+
+AerialPerspective::TableCell AerialPerspective::cell(double height, double elevation) const {
+  const double h = std::clamp(height, 0.0, kTop);
+  const double u = std::sqrt(h / kTop) * (kHeights - 1);
+  const double t = elevation_to_t(elevation) * (kElevations - 1);
+  TableCell c;
+  c.h0 = std::min(int(u), kHeights - 2);
+  c.e0 = std::min(int(t), kElevations - 2);
+  // Linear in height between the rows (the columns' exponentials are near linear over a row;
+  // linear in u would bend them like sqrt(h) near the ground).
+  const double u0 = double(c.h0) / (kHeights - 1), u1 = double(c.h0 + 1) / (kHeights - 1);
+  const double row0 = kTop * u0 * u0, row1 = kTop * u1 * u1;
+  c.th = std::clamp((h - row0) / (row1 - row0), 0.0, 1.0);
+  c.te = t - c.e0;
+  return c;
+}
+
+Column AerialPerspective::sun_column_at(const TableCell& c) const {
+  auto at = [&](int i, int j) { return sun_columns_[size_t(i) * kElevations + j]; };
+  const double w00 = (1.0 - c.th) * (1.0 - c.te), w01 = (1.0 - c.th) * c.te, w10 = c.th * (1.0 - c.te), w11 = c.th * c.te;
+  const Column a = at(c.h0, c.e0), b = at(c.h0, c.e0 + 1), d = at(c.h0 + 1, c.e0), e = at(c.h0 + 1, c.e0 + 1);
+  return {w00 * a.r + w01 * b.r + w10 * d.r + w11 * e.r, w00 * a.m + w01 * b.m + w10 * d.m + w11 * e.m,
+          w00 * a.o + w01 * b.o + w10 * d.o + w11 * e.o};
+}
+
+double AerialPerspective::sun_at(const Column& column, const Bands& bands, int band) const {
+  return std::exp(-(bands.rayleigh[band] * column.r + air_.aerosol * kMieExtinction * column.m + bands.ozone[band] * column.o));
+}
+
+double AerialPerspective::sun_transmittance(double height, double elevation, double lambda_nm) const {
+  if (!(lambda_nm >= kLambdaMin && lambda_nm <= kLambdaMax)) {
+    throw_invalid("AerialPerspective.sun_transmittance: wavelength must be in [", kLambdaMin, ", ", kLambdaMax,
+                  "] nm (got ", lambda_nm, ")");
+  }
+  const Bands b = bands_at(&lambda_nm, 1);
+  return sun_at(sun_column_at(cell(height, elevation)), b, 0);
+}
+
+void AerialPerspective::integrate(const Vec3d& a, const Vec3d& b, const AirFrame& frame, const Bands& bands,
+                                  bool inscatter, double* T, double* S) const {
+  const int n = bands.count;
+  std::fill(T, T + n, 1.0);
+  std::fill(S, S + n, 0.0);
+  const Vec3d chord = b - a;
+  const double length = chord.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return;
+  const Vec3d dir = chord / length;
+  const Located start = locate(a, frame), end = locate(b, frame);
+  // A chord of the flat frame dips below the straight line between its ends' heights by up to
+  // rho^2 / 8R over the sky's sphere.
+  const double horizontal = std::hypot(chord.x(), chord.z());
+  const double sag = std::isfinite(frame.earth_radius) ? 0.0 : horizontal * horizontal / (8.0 * kEarthRadius);
+  const double span = std::abs(end.height - start.height) + sag;
+  const int pieces = std::clamp(int(std::ceil(std::max(span / kPieceHeight, length / kPieceLength))), 1, kMaxPieces);
+  const double mu = dir.dot(sun_), rayleigh_phase_mu = rayleigh_phase(mu), mie_phase_mu = mie_phase(mu);
+  const double mie_extinction = air_.aerosol * kMieExtinction, mie_scattering = air_.aerosol * kMieScattering;
+  const double piece = length / pieces;
+  // The sunlight at a piece's ends (sun_cell: its table coordinates), linear in between.
+  auto sun_cell_at = [&](const Located& x) {
+    return sun_column_at(cell(x.height, std::asin(std::clamp(x.up.dot(sun_), -1.0, 1.0))));
+  };
+  Column sun0{}, sun1{};
+  if (inscatter) sun0 = sun_cell_at(start);
+  double h0 = start.height;
+  for (int k = 0; k < pieces; ++k) {
+    const Located next = k + 1 == pieces ? end : locate(a + chord * (double(k + 1) / pieces), frame);
+    const Column c = column_along(h0, next.height, piece);
+    if (inscatter) sun1 = sun_cell_at(next);
+    for (int w = 0; w < n; ++w) {
+      const double tau = bands.rayleigh[w] * c.r + mie_extinction * c.m + bands.ozone[w] * c.o;
+      const double attenuation = std::exp(-tau);
+      if (inscatter) {
+        // The sun's transmittance along the piece (t in [0, 1]) taken as exponential between its
+        // ends, J(t) = J0 e^(kappa t), kappa = ln(J1 / J0) (the sun's optical depth is near linear
+        // along a piece), attenuated within the piece: integral of e^(-tau t) J(t) dt =
+        // J0 (1 - e^-x) / x, x = tau - kappa. Linear between the ends where the planet hides the sun at one.
+        const double j0 = sun_at(sun0, bands, w), j1 = sun_at(sun1, bands, w);
+        const double scattering = bands.rayleigh[w] * c.r * rayleigh_phase_mu + mie_scattering * c.m * mie_phase_mu;
+        double sunlight;
+        if (j0 > 1e-30 && j1 > 1e-30) {
+          const double x = tau - std::log(j1 / j0);
+          sunlight = j0 * (std::abs(x) < 1e-6 ? 1.0 - 0.5 * x : -std::expm1(-x) / x);
+        } else {
+          const double f1 = tau < 1e-4 ? 1.0 - 0.5 * tau : (1.0 - attenuation) / tau;
+          const double f2 = tau < 1e-3 ? 0.5 - tau / 3.0 + tau * tau / 8.0 : (1.0 - attenuation * (1.0 + tau)) / (tau * tau);
+          sunlight = j0 * f1 + (j1 - j0) * f2;
+        }
+        S[w] += T[w] * scattering * bands.irradiance[w] * sunlight;
+      }
+      T[w] *= attenuation;
+    }
+    h0 = next.height;
+    sun0 = sun1;
+  }
+  for (int w = 0; w < n; ++w) S[w] *= scale_;
+}
+
+AerialPerspective::Segment AerialPerspective::along(const Vec3d& a, const Vec3d& b, const AirFrame& frame,
+                                                    const SampledWavelengths& lambda) const {
+  Segment out;
+  if (lambda.spectral) {
+    std::array<double, kSpectrumSamples> l{}, T{}, S{};
+    for (int i = 0; i < kSpectrumSamples; ++i) l[i] = lambda.lambda[i];
+    integrate(a, b, frame, bands_at(l.data(), kSpectrumSamples), true, T.data(), S.data());
+    for (int i = 0; i < kSpectrumSamples; ++i) out.transmittance[i] = T[i], out.inscatter[i] = S[i];
+    return out;
+  }
+  std::array<double, kNodes> T{}, S{};
+  integrate(a, b, frame, nodes_, true, T.data(), S.data());
+  Vec3d rgb_s = Vec3d::Zero(), rgb_t = Vec3d::Zero();
+  for (int w = 0; w < kNodes; ++w) {
+    rgb_s += S[w] * rgb_weight_[w];
+    rgb_t += T[w] * d65_weight_[w];
+  }
+  rgb_t = rgb_t.cwiseQuotient(rgb_of_d65_).cwiseMax(0.0).cwiseMin(1.0);
+  // Clipped to the sRGB gamut like the sky's Le (PhysicalSkyLight::Le).
+  rgb_s = rgb_s.cwiseMax(0.0);
+  out.transmittance = Spectrum(rgb_t.x(), rgb_t.y(), rgb_t.z(), 1.0);
+  out.inscatter = Spectrum(rgb_s.x(), rgb_s.y(), rgb_s.z(), 0.0);
+  return out;
+}
+
+Spectrum AerialPerspective::transmittance(const Vec3d& a, const Vec3d& b, const AirFrame& frame,
+                                          const SampledWavelengths& lambda) const {
+  if (lambda.spectral) {
+    std::array<double, kSpectrumSamples> l{}, T{}, S{};
+    for (int i = 0; i < kSpectrumSamples; ++i) l[i] = lambda.lambda[i];
+    integrate(a, b, frame, bands_at(l.data(), kSpectrumSamples), false, T.data(), S.data());
+    return Spectrum(T[0], T[1], T[2], T[3]);
+  }
+  std::array<double, kNodes> T{}, S{};
+  integrate(a, b, frame, nodes_, false, T.data(), S.data());
+  Vec3d rgb_t = Vec3d::Zero();
+  for (int w = 0; w < kNodes; ++w) rgb_t += T[w] * d65_weight_[w];
+  rgb_t = rgb_t.cwiseQuotient(rgb_of_d65_).cwiseMax(0.0).cwiseMin(1.0);
+  return Spectrum(rgb_t.x(), rgb_t.y(), rgb_t.z(), 1.0);
+}
+
+std::pair<double, double> AerialPerspective::along_at(const Vec3d& a, const Vec3d& b, const AirFrame& frame,
+                                                      double lambda_nm) const {
+  if (!(lambda_nm >= kLambdaMin && lambda_nm <= kLambdaMax)) {
+    throw_invalid("AerialPerspective.along: wavelength must be in [", kLambdaMin, ", ", kLambdaMax, "] nm (got ",
+                  lambda_nm, ")");
+  }
+  double T = 1.0, S = 0.0;
+  integrate(a, b, frame, bands_at(&lambda_nm, 1), true, &T, &S);
+  return {T, S};
+}
+
+double AerialPerspective::inscatter_reference(const Vec3d& a, const Vec3d& b, const AirFrame& frame, double lambda_nm,
+                                              int steps) const {
+  if (!(lambda_nm >= kLambdaMin && lambda_nm <= kLambdaMax)) {
+    throw_invalid("AerialPerspective.inscatter_reference: wavelength must be in [", kLambdaMin, ", ", kLambdaMax,
+                  "] nm (got ", lambda_nm, ")");
+  }
+  if (steps < 1) throw_invalid("AerialPerspective.inscatter_reference: steps must be >= 1 (got ", steps, ")");
+  const Bands band = bands_at(&lambda_nm, 1);
+  const double sigma_ozone = lerp_nodes(kOzoneCrossSection, lambda_nm);
+  const Vec3d chord = b - a;
+  const double length = chord.norm(), ds = length / steps;
+  if (!(length > 0.0)) return 0.0;
+  const double mu = chord.normalized().dot(sun_);
+  double tau = 0.0, sum = 0.0;
+  for (int i = 0; i < steps; ++i) {
+    const Located x = locate(a + chord * ((i + 0.5) / steps), frame);
+    const Column rho = densities(x.height);
+    const double extinction = band.rayleigh[0] * rho.r + air_.aerosol * kMieExtinction * rho.m + band.ozone[0] * rho.o;
+    const double tau_x = tau + 0.5 * extinction * ds;
+    tau += extinction * ds;
+    const auto sun = sun_column(x.height, std::asin(std::clamp(x.up.dot(sun_), -1.0, 1.0)), 4 * kSunColumnSteps);
+    if (!sun) continue;
+    const double sun_t = std::exp(-air_.optical_depth(*sun, lambda_nm, sigma_ozone));
+    sum += (band.rayleigh[0] * rho.r * rayleigh_phase(mu) + air_.aerosol * kMieScattering * rho.m * mie_phase(mu)) *
+           std::exp(-tau_x) * sun_t * ds;
+  }
+  return sum * band.irradiance[0] * scale_;
+}
+
+}  // namespace refracta
