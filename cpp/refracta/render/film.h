@@ -18,8 +18,42 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <cmath>
+#include <cstdint>
 
 namespace refracta {
+
+namespace detail {
+
+// Element i of a pseudo-random permutation of [0, n) chosen by `seed` (Kensler 2013, "Correlated
+// Multi-Jittered Sampling", Pixar Technical Memo 13-01, permute(): an invertible hash of the bits
+// below n's highest, cycle-walked into [0, n)); as pbrt-v4's PermutationElement.
+inline uint32_t permutation_element(uint32_t i, uint32_t n, uint32_t seed) {
+  uint32_t w = n - 1;
+  w |= w >> 1, w |= w >> 2, w |= w >> 4, w |= w >> 8, w |= w >> 16;
+  do {
+    i ^= seed;
+    i *= 0xe170893d;
+    i ^= seed >> 16;
+    i ^= (i & w) >> 4;
+    i ^= seed >> 8;
+    i *= 0x0929eb3f;
+    i ^= seed >> 23;
+    i ^= (i & w) >> 1;
+    i *= 1 | seed >> 27;
+    i *= 0x6935fa69;
+    i ^= (i & w) >> 11;
+    i *= 0x74dcb303;
+    i ^= (i & w) >> 2;
+    i *= 0x9e501cc3;
+    i ^= (i & w) >> 2;
+    i *= 0xc860a3df;
+    i &= w;
+    i ^= i >> 5;
+  } while (i >= n);
+  return (i + seed) % n;
+}
+
+}  // namespace detail
 
 // SampleRadiance: Spectrum(const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle,
 // SampledWavelengths&, Sampler&, ScratchBuffer&): the sample's position (u, v) in pixel
@@ -42,6 +76,7 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
     ScratchBuffer& scratch = scratch_per_thread.local();
     Sampler sampler{Rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x))};
     Vec3d sum = Vec3d::Zero();
+    uint32_t pass_seed = 0;  // the lens cells' shuffle of the current pass over the grid
     for (int s = 0; s < options.spp; ++s) {
       poll_cancel();  // a sample through turbulence can take milliseconds (the ray's steps poll too)
       double du = 0.5, dv = 0.5;
@@ -52,10 +87,19 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
         du = sampler.uniform();
         dv = sampler.uniform();
       }
-      // The lens point: independent uniform numbers from the pixel's own generator (so thread
-      // count and tiles change nothing), drawn only by a thin lens (pinhole renders unchanged).
+      // The lens point, drawn only by a thin lens (pinhole renders unchanged) from the pixel's own
+      // generator (so thread count and tiles change nothing): stratified over the same
+      // strata x strata grid as the pixel, the cells shuffled per pass (pbrt-v4's
+      // StratifiedSampler: each dimension stratified, their pairing random), else uniform.
       Vec2d lens(0.5, 0.5);
-      if (thin_lens) lens = Vec2d(sampler.uniform(), sampler.uniform());
+      if (thin_lens && s < stratified) {
+        const int cells = strata * strata, k = s % cells;
+        if (k == 0) pass_seed = uint32_t(sampler.uniform() * 4294967296.0);
+        const int cell = int(detail::permutation_element(uint32_t(k), uint32_t(cells), pass_seed));
+        lens = Vec2d(((cell % strata) + sampler.uniform()) / strata, ((cell / strata) + sampler.uniform()) / strata);
+      } else if (thin_lens) {
+        lens = Vec2d(sampler.uniform(), sampler.uniform());
+      }
       SampledWavelengths lambda =
           options.spectral ? SampledWavelengths::sample_uniform(sampler.uniform()) : SampledWavelengths::rgb();
       const Spectrum L = radiance(Vec2d(x + du, y + dv), lens, 1.0 / strata, pixel_angle, lambda, sampler, scratch);
