@@ -89,7 +89,7 @@ def demo(out: Path, size=(480, 160)) -> int:
         refracta.io.write_image(out / f"{name}_straight.exr", images[0])
         refracta.io.write_image(out / f"{name}.exr", images[1])
         # One exposure for both (the log-average of the pair), so they compare.
-        both = refracta.io.to_display(np.concatenate(images, axis=0), key=DEMO_KEYS.get(name, 0.18))
+        both = refracta.io.to_display(np.concatenate(images, axis=0), key=DEMO_KEYS.get(name))
         displays = np.split(both, 2, axis=0)
         figure, axes = plt.subplots(2, 1, figsize=(9, 2 * 9 * size[1] / size[0] + 1.2), constrained_layout=True)
         for ax, display, label in zip(axes, displays, ("without the atmosphere", "through the atmosphere")):

@@ -104,9 +104,10 @@ def exposure_of(image, exposure: float | None = None, key: float | None = None, 
     return _core._display_exposure(np.asarray(image), exposure, key, ev100, iso, shutter, f_number, luminous_efficacy)
 
 
-def ev100(f_number: float, shutter: float, iso: float = 100.0) -> float:
-    """EV100 = log2(N^2 / t) - log2(ISO / 100) of an f-number N, a shutter time t [s] and an ISO.
+def ev100(f_number: float, shutter: float, iso: float | None = None) -> float:
+    """EV100 = log2(N^2 / t) - log2(ISO / 100) of an f-number N, a shutter time t [s] and an ISO
+    (None: 100).
 
     Sunny 16 (f/16, 1/100 s, ISO 100) is EV100 = 14.6. ValueError for values <= 0 or NaN.
     """
-    return _core._ev100(f_number, shutter, iso)
+    return _core._ev100(f_number, shutter) if iso is None else _core._ev100(f_number, shutter, iso)
