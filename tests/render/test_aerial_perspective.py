@@ -200,3 +200,8 @@ def test_bad_segments_are_refused(clear_air):
         clear_air.along((0, 0, 0), (100, 0, 0), 200.0)
     with pytest.raises(ValueError):
         clear_air.along((0, float("nan"), 0), (100, 0, 0), 550.0)
+
+
+def test_aerial_perspective_pickles(clear_air):
+    copy = pickle.loads(pickle.dumps(clear_air))
+    assert copy.along((0, 1.5, 0), (9000, 40, 300), 500.0) == clear_air.along((0, 1.5, 0), (9000, 40, 300), 500.0)

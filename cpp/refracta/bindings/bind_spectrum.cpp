@@ -51,6 +51,23 @@ Color::Kind parse_kind(const std::string& kind) {
   throw_invalid("kind must be 'reflectance', 'unbounded' or 'illuminant' (got '", kind, "')");
 }
 
+py::tuple sky_settings_state(const PhysicalSkySettings& s) {
+  return py::make_tuple(py::make_tuple(s.sun_direction.x(), s.sun_direction.y(), s.sun_direction.z()), s.aerosol,
+                        s.ozone_du, s.ground_albedo, s.altitude, s.rayleigh_scale, int(s.below_horizon));
+}
+
+PhysicalSkySettings sky_settings_from_state(const py::tuple& t) {
+  if (t.size() != 7) throw_invalid("PhysicalSky: bad pickle state (", t.size(), " items)");
+  PhysicalSkySettings s;
+  s.sun_direction = to_point(t[0], "sun_direction");
+  s.aerosol = py::cast<double>(t[1]), s.ozone_du = py::cast<double>(t[2]), s.ground_albedo = py::cast<double>(t[3]);
+  s.altitude = py::cast<double>(t[4]), s.rayleigh_scale = py::cast<double>(t[5]);
+  const int below = py::cast<int>(t[6]);
+  if (below != int(BelowHorizon::kGround) && below != int(BelowHorizon::kHorizon)) throw_invalid("PhysicalSky: bad pickle state");
+  s.below_horizon = BelowHorizon(below);
+  return s;
+}
+
 }  // namespace
 
 void bind_spectrum(py::module_& m) {
@@ -345,24 +362,12 @@ default). See cpp/refracta/shading/physical_sky.h.)doc")
       .def_property_readonly("build_seconds", [](const PhysicalSkyLight& l) { return l.sky().build_seconds(); })
       .def("__repr__", &PhysicalSkyLight::describe)
       // Pickled as its settings; unpickling rebuilds the sky's table (~0.5 s).
-      .def(py::pickle(
-          [](const PhysicalSkyLight& l) {
-            const PhysicalSkySettings& s = l.settings();
-            return py::make_tuple(py::make_tuple(s.sun_direction.x(), s.sun_direction.y(), s.sun_direction.z()), s.aerosol,
-                                  s.ozone_du, s.ground_albedo, s.altitude, s.rayleigh_scale, int(s.below_horizon));
-          },
-          [](const py::tuple& t) {
-            if (t.size() != 7) throw_invalid("PhysicalSky: bad pickle state (", t.size(), " items)");
-            PhysicalSkySettings s;
-            s.sun_direction = to_point(t[0], "sun_direction");
-            s.aerosol = py::cast<double>(t[1]), s.ozone_du = py::cast<double>(t[2]), s.ground_albedo = py::cast<double>(t[3]);
-            s.altitude = py::cast<double>(t[4]), s.rayleigh_scale = py::cast<double>(t[5]);
-            const int below = py::cast<int>(t[6]);
-            if (below != int(BelowHorizon::kGround) && below != int(BelowHorizon::kHorizon)) throw_invalid("PhysicalSky: bad pickle state");
-            s.below_horizon = BelowHorizon(below);
-            py::gil_scoped_release release;
-            return std::make_shared<PhysicalSkyLight>(s);
-          }));
+      .def(py::pickle([](const PhysicalSkyLight& l) { return sky_settings_state(l.settings()); },
+                      [](const py::tuple& t) {
+                        const PhysicalSkySettings s = sky_settings_from_state(t);
+                        py::gil_scoped_release release;
+                        return std::make_shared<PhysicalSkyLight>(s);
+                      }));
 
   py::class_<AerialPerspective, std::shared_ptr<AerialPerspective>>(m, "AerialPerspective", R"doc(
 Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b`
@@ -408,7 +413,17 @@ Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to 
            },
            py::arg("height"), py::arg("elevation_deg"), py::arg("wavelength"),
            "The sun's transmittance to `height` [m] above sea level where it stands `elevation_deg` above the local horizon.")
-      .def_property_readonly("scale", &AerialPerspective::scale);
+      .def_property_readonly("scale", &AerialPerspective::scale)
+      // Pickled as its sky's settings and scale; unpickling rebuilds the tables.
+      .def(py::pickle(
+          [](const AerialPerspective& air) { return py::make_tuple(sky_settings_state(air.sky().settings()), air.scale()); },
+          [](const py::tuple& t) {
+            if (t.size() != 2) throw_invalid("AerialPerspective: bad pickle state (", t.size(), " items)");
+            const PhysicalSkySettings s = sky_settings_from_state(py::cast<py::tuple>(t[0]));
+            const double scale = py::cast<double>(t[1]);
+            py::gil_scoped_release release;
+            return std::make_shared<AerialPerspective>(PhysicalSky::shared(s), scale);
+          }));
 }
 
 }  // namespace refracta
