@@ -176,10 +176,13 @@ def test_impossible_lens_settings_are_refused(arguments, name):
         refracta.Camera.photographic(EYE, LOOK, 50.0, **arguments)
 
 
-def test_raster_march_refuses_a_lens():
+def test_rasterizers_refuse_a_lens():
+    # They draw through a pinhole: a lens would be silently ignored.
     with pytest.raises(ValueError, match="raster_march"):
         refracta.render(plate_scene(3.0), lens_camera(2.0, 10.0, 16, 8), refracta.LogisticProfile(),
                         method="raster_march", progress=False)
+    with pytest.raises(ValueError, match="render_raster draws through a pinhole"):
+        refracta.render_raster(plate_scene(3.0), lens_camera(2.0, 10.0, 16, 8))
 
 
 # --- Mitsuba 3's thinlens sensor on the same scene -------------------------------------------------

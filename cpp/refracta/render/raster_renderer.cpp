@@ -78,6 +78,10 @@ bool spot_covers(const SpotLight& spot, const Vec3d& point) {
 Image render_raster(const RenderScene& render_scene, const Camera& camera, const RasterRenderOptions& options,
                     WorkControl& control, RasterRenderStats* stats) {
   options.validate();
+  if (camera.aperture_diameter() > 0.0) {
+    throw_invalid("render_raster draws through a pinhole: depth of field (a camera with an f_number) needs "
+                  "refracta.render with method 'straight' or 'curved'");
+  }
   // float32 RGB here and in the numpy copy handed to Python: 24 bytes per pixel at least.
   check_image_memory(camera.width(), camera.height(), 24.0, "render_raster");
   render_scene.prepare();
