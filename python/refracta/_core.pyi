@@ -1236,7 +1236,8 @@ class Water(Material):
     salinity): per wavelength in spectral rendering, at 630, 532 and 465 nm per RGB channel (directions
     sampled at 550 nm). body=True (default): the deep water under it absorbs (Pope & Fry 1997) and
     backscatters (Morel 1974) the light refracted in and returns R = 0.33 b_b / (a + b_b) of it as
-    isotropic light leaving through the interface, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fbar_int));
+    isotropic light leaving through the rough interface, T(cos_i) T(cos_o) R / (pi eta^2 (1 - R Fbar_int))
+    (T = transmittance(mu), Fbar_int = internal_reflectance());
     reflection-only and two-sided, nothing continues below. body=False: the bare interface, reflecting
     and transmitting, bounding a medium of the water's index (priority for nested dielectrics).
     Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open ocean).
@@ -1248,9 +1249,20 @@ class Water(Material):
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
+    def internal_reflectance(self, wavelength_nm: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> float:
+        """
+        Fbar_int = 1 - 2 int T(mu) mu dmu / eta^2: what of isotropic light under the rough surface is sent
+        back down (the flat surface's fresnel_diffuse_reflectance(1 / eta) when alpha -> 0).
+        """
     def ior(self, wavelength_nm: typing.Any) -> typing.Any:
         """
         The water's index relative to vacuum at wavelength_nm [nm] (a number or an array).
+        """
+    def transmittance(self, mu: typing.Any, wavelength_nm: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> typing.Any:
+        """
+        The rough interface's directional transmittance T(mu) from above (the share of the energy arriving at
+        cos theta = mu that crosses into the water), as the water body's term uses it, at the water's index
+        at wavelength_nm under vacuum. Tabulated (33 mu x 5 eta nodes).
         """
     @property
     def alpha(self) -> float:

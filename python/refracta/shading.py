@@ -56,10 +56,13 @@ vacuum) gives a ``Dielectric`` its index, e.g. ``Dielectric(water_ior(550.0, 15.
   Pope & Fry 1997, Smith & Baker 1981, Kou et al. 1993) and backscatters (``water_backscattering``:
   Morel 1974's b_w(500) (lambda / 500)^-4.32, half of it backward) the light refracted in, and
   returns the irradiance reflectance ``water_body_reflectance`` R = 0.33 b_b / (a + b_b) (Morel &
-  Prieur 1977, Gordon et al. 1975), isotropically, through the interface:
-  f_body = (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fbar_int)) (the Plastic layer with the water
-  as its base). Reflection-only, two-sided; no path continues under the surface. Left out:
-  chlorophyll and dissolved matter (real seas are greener and darker), foam, the sea floor.
+  Prieur 1977, Gordon et al. 1975), isotropically, through the same rough interface:
+  f_body = T(cos_i) T(cos_o) R / (pi eta^2 (1 - R Fbar_int)) (the Plastic layer with the water as its
+  base), T(mu) = ``Water.transmittance(mu)`` the rough interface's directional transmittance (its
+  transmission lobe integrated, tabulated) and Fbar_int = ``Water.internal_reflectance()`` =
+  1 - 2 int T mu dmu / eta^2. Energy: reflection + body <= reflection + T <= 1. Reflection-only,
+  two-sided; no path continues under the surface. Left out: chlorophyll and dissolved matter (real
+  seas are greener and darker), the upwelling light's angular shape, foam, the sea floor.
 - ``body=False``: the bare interface, which also transmits, bounding a medium of the water's index
   (nested dielectrics by ``priority``); nothing absorbs in it.
 

@@ -62,8 +62,8 @@ def test_04_body_term_closed_form_per_wavelength():
     body = deep.f(wo, wi, wavelengths=INTEGER_NM) - bare.f(wo, wi, wavelengths=INTEGER_NM)
     eta = shading.water_ior(INTEGER_NM, 10.0, 30.0)
     r = shading.water_body_reflectance(INTEGER_NM, 30.0)
-    fdr = np.array([shading.fresnel_diffuse_reflectance(1.0 / e) for e in eta])
-    t = (1 - shading.fresnel_dielectric(wi[:, 2:3], eta)) * (1 - shading.fresnel_dielectric(wo[:, 2:3], eta))
+    fdr = np.array([deep.internal_reflectance(x) for x in INTEGER_NM])
+    t = np.stack([deep.transmittance(wi[:, 2], x) * deep.transmittance(wo[:, 2], x) for x in INTEGER_NM], 1)
     np.testing.assert_allclose(body, t * r / (np.pi * eta**2 * (1 - r * fdr)), rtol=TABLE_TOLERANCE)
 
 

@@ -585,7 +585,8 @@ void bind_shading(py::module_& m) {
       "salinity): per wavelength in spectral rendering, at 630, 532 and 465 nm per RGB channel (directions\n"
       "sampled at 550 nm). body=True (default): the deep water under it absorbs (Pope & Fry 1997) and\n"
       "backscatters (Morel 1974) the light refracted in and returns R = 0.33 b_b / (a + b_b) of it as\n"
-      "isotropic light leaving through the interface, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fbar_int));\n"
+      "isotropic light leaving through the rough interface, T(cos_i) T(cos_o) R / (pi eta^2 (1 - R Fbar_int))\n"
+      "(T = transmittance(mu), Fbar_int = internal_reflectance());\n"
       "reflection-only and two-sided, nothing continues below. body=False: the bare interface, reflecting\n"
       "and transmitting, bounding a medium of the water's index (priority for nested dielectrics).\n"
       "Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open ocean).\n"
@@ -616,7 +617,33 @@ void bind_shading(py::module_& m) {
              }
              return single ? py::object(py::float_(l[0])) : py::object(values_to_array(l));
            },
-           py::arg("wavelength_nm"), "The water's index relative to vacuum at wavelength_nm [nm] (a number or an array).");
+           py::arg("wavelength_nm"), "The water's index relative to vacuum at wavelength_nm [nm] (a number or an array).")
+      .def("transmittance", [](const Water& w, const py::object& mu, double wavelength) {
+             if (!(wavelength >= kLambdaMin && wavelength <= kLambdaMax)) {
+               throw_invalid("Water.transmittance: wavelength_nm must be in [", kLambdaMin, ", ", kLambdaMax, "] (got ", wavelength, ")");
+             }
+             bool single = false;
+             std::vector<double> m = to_values(mu, "mu", &single);
+             for (double& x : m) {
+               if (!(std::abs(x) <= 1.0)) throw_invalid("Water.transmittance: mu must be in [-1, 1] (got ", x, ")");
+               x = w.transmittance()(x, w.ior(wavelength));
+             }
+             return single ? py::object(py::float_(m[0])) : py::object(values_to_array(m));
+           },
+           py::arg("mu"), py::arg("wavelength_nm") = Ior::kRgbWavelength,
+           "The rough interface's directional transmittance T(mu) from above (the share of the energy arriving at\n"
+           "cos theta = mu that crosses into the water), as the water body's term uses it, at the water's index\n"
+           "at wavelength_nm under vacuum. Tabulated (33 mu x 5 eta nodes).")
+      .def("internal_reflectance", [](const Water& w, double wavelength) {
+             if (!(wavelength >= kLambdaMin && wavelength <= kLambdaMax)) {
+               throw_invalid("Water.internal_reflectance: wavelength_nm must be in [", kLambdaMin, ", ", kLambdaMax, "] (got ", wavelength, ")");
+             }
+             const double eta = w.ior(wavelength);
+             return 1.0 - w.transmittance().hemispherical(eta) / (eta * eta);
+           },
+           py::arg("wavelength_nm") = Ior::kRgbWavelength,
+           "Fbar_int = 1 - 2 int T(mu) mu dmu / eta^2: what of isotropic light under the rough surface is sent\n"
+           "back down (the flat surface's fresnel_diffuse_reflectance(1 / eta) when alpha -> 0).");
   add_parameters<Water>(water_class, [](const Water& w) {
     const WaterParameters& p = w.parameters();
     return py::dict(py::arg("wind_speed") = p.wind_speed, py::arg("temperature_c") = p.temperature_c, py::arg("salinity") = p.salinity,

@@ -6,36 +6,99 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 
 namespace refracta {
 
 namespace {
 
-// Tables every 1 nm over [kLambdaMin, kLambdaMax]: linear interpolation of the index between
-// nodes errs by < 1e-8 (its second derivative is ~1e-7 per nm^2 in the visible).
+// The index every 1 nm over [kLambdaMin, kLambdaMax]: linear interpolation between nodes errs by
+// < 1e-8 (its second derivative is ~1e-7 per nm^2 in the visible).
 constexpr double kTableStep = 1.0;  // [nm]
 constexpr size_t kTableSize = size_t((kLambdaMax - kLambdaMin) / kTableStep) + 1;
 
+// The transmittance quadrature: midpoints of an n x n grid over the proposal's unit square.
+constexpr int kQuadrature = 64;
+
 }  // namespace
+
+RoughTransmittance::RoughTransmittance(const Beckmann& distribution) {
+  for (int k = 0; k < kEta; ++k) {
+    const double eta = kMinEta + (kMaxEta - kMinEta) * k / (kEta - 1);
+    const WaterInterfaceBsdf interface(Spectrum::Constant(eta), eta, distribution);
+    for (int j = 1; j < kMu; ++j) {  // mu = 0: grazing, masked entirely, T = 0
+      const double mu = mu_node(j);
+      const Vec3d wo(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu);
+      double sum = 0.0;
+      for (int a = 0; a < kQuadrature; ++a) {
+        for (int b = 0; b < kQuadrature; ++b) {
+          const auto m = distribution.sample_wm(wo, Vec2d((a + 0.5) / kQuadrature, (b + 0.5) / kQuadrature));
+          double etap;
+          Vec3d wi;
+          if (!m || !refract(wo, *m, eta, &etap, &wi) || !(wi.z() < 0.0)) continue;
+          // The density of wi when every proposed normal refracts (no lobe choice).
+          const double denominator = wi.dot(*m) + wo.dot(*m) / etap;
+          const double pdf = distribution.sampling_pdf(wo, *m) * std::abs(wi.dot(*m)) / (denominator * denominator);
+          if (pdf > 0.0) sum += interface.transmission(wo, wi, eta, TransportMode::kImportance) * std::abs(wi.z()) / pdf;
+        }
+      }
+      t_[k * kMu + j] = sum / (kQuadrature * kQuadrature);
+    }
+    double h = 0.0;  // 2 int T mu dmu, trapezoidal over the mu nodes
+    for (int j = 1; j < kMu; ++j) {
+      const double mu0 = mu_node(j - 1), mu1 = mu_node(j);
+      h += (t_[k * kMu + j - 1] * mu0 + t_[k * kMu + j] * mu1) * (mu1 - mu0);
+    }
+    hemispherical_[k] = h;
+  }
+}
+
+std::shared_ptr<const RoughTransmittance> RoughTransmittance::for_alpha(double alpha) {
+  static std::mutex mutex;
+  static std::map<double, std::shared_ptr<const RoughTransmittance>> tables;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& table = tables[alpha];
+  if (!table) table = std::make_shared<RoughTransmittance>(Beckmann(alpha));
+  return table;
+}
+
+double RoughTransmittance::eta_node(double eta, int* k) {
+  const double x = std::clamp((eta - kMinEta) / (kMaxEta - kMinEta) * (kEta - 1), 0.0, double(kEta - 1));
+  *k = std::min(int(x), kEta - 2);
+  return x - *k;
+}
+
+double RoughTransmittance::operator()(double mu, double eta) const {
+  int k;
+  const double we = eta_node(eta, &k);
+  const double x = std::sqrt(std::clamp(std::abs(mu), 0.0, 1.0)) * (kMu - 1);
+  const int j = std::min(int(x), kMu - 2);
+  const double wm = x - j;
+  auto at = [&](int kk) { return (1.0 - wm) * t_[kk * kMu + j] + wm * t_[kk * kMu + j + 1]; };
+  return (1.0 - we) * at(k) + we * at(k + 1);
+}
+
+double RoughTransmittance::hemispherical(double eta) const {
+  int k;
+  const double w = eta_node(eta, &k);
+  return (1.0 - w) * hemispherical_[k] + w * hemispherical_[k + 1];
+}
 
 Water::Water(const WaterParameters& parameters) : parameters_(parameters) {
   alpha_ = std::sqrt(cox_munk_mean_square_slope(parameters.wind_speed));  // checks wind_speed
   // water_ior checks temperature_c and salinity (naming them) on the first node.
   ior_table_.resize(kTableSize);
-  fdr_table_.resize(kTableSize);
   std::vector<double> lambda(kTableSize), r(kTableSize);
   for (size_t i = 0; i < kTableSize; ++i) {
     lambda[i] = kLambdaMin + double(i) * kTableStep;
     ior_table_[i] = water_ior(lambda[i], parameters.temperature_c, parameters.salinity);
-    fdr_table_[i] = fresnel_diffuse_reflectance(1.0 / ior_table_[i]);
     r[i] = water_body_reflectance(lambda[i], parameters.salinity);
   }
   body_reflectance_ = Color::tabulated(lambda, r, Color::Kind::kReflectance);
-  for (int c = 0; c < 3; ++c) {
-    ior_rgb_[c] = ior(kRgbWavelengths[c]);
-    fdr_rgb_[c] = interpolate(fdr_table_, kRgbWavelengths[c]);
-  }
+  for (int c = 0; c < 3; ++c) ior_rgb_[c] = ior(kRgbWavelengths[c]);
   ior_sampling_rgb_ = ior(Ior::kRgbWavelength);
+  transmittance_ = RoughTransmittance::for_alpha(alpha_);
 }
 
 double Water::interpolate(const std::vector<double>& table, double wavelength_nm) {
@@ -47,27 +110,24 @@ double Water::interpolate(const std::vector<double>& table, double wavelength_nm
 
 const Bsdf* Water::bsdf(const SurfaceInteraction&, const MaterialContext& context, ScratchBuffer& scratch) const {
   const SampledWavelengths& lambda = *context.lambda;
-  Spectrum eta, fdr;
+  Spectrum eta;
   double eta_sampling;
   if (lambda.spectral) {
-    for (int i = 0; i < kSpectrumSamples; ++i) {
-      eta[i] = ior(lambda.lambda[i]) / context.eta_outside;
-      fdr[i] = interpolate(fdr_table_, lambda.lambda[i]);
-    }
+    for (int i = 0; i < kSpectrumSamples; ++i) eta[i] = ior(lambda.lambda[i]) / context.eta_outside;
     eta_sampling = eta[0];
   } else {
     eta_sampling = ior_sampling_rgb_ / context.eta_outside;
     eta << ior_rgb_ / context.eta_outside, eta_sampling;  // channel 3 is unused
-    fdr << fdr_rgb_, fdr_rgb_.y();
   }
   const Beckmann distribution(alpha_);
   if (!parameters_.body) return scratch.make<WaterInterfaceBsdf>(eta, eta_sampling, distribution);
-  // The internal diffuse reflectance is the table's, for water under vacuum: the air's n - 1 ~ 3e-4
-  // changes it by < 1e-4.
+  // The rough interface's internal diffuse reflectance: what of isotropic light from below does not cross.
+  Spectrum fdr;
+  for (int c = 0; c < kSpectrumSamples; ++c) fdr[c] = 1.0 - transmittance_->hemispherical(eta[c]) / (eta[c] * eta[c]);
   // A saturated blue spectrum's linear sRGB can fall just below 0 in red: clamped.
   const Spectrum r = body_reflectance_.sample(lambda).max(0.0);
   const Spectrum body_albedo = r * (1.0 - fdr) / (1.0 - r * fdr);
-  return scratch.make<WaterBodyBsdf>(eta, eta_sampling, distribution, r, fdr, channel_mean(body_albedo, lambda));
+  return scratch.make<WaterBodyBsdf>(eta, eta_sampling, distribution, *transmittance_, r, fdr, channel_mean(body_albedo, lambda));
 }
 
 std::optional<double> Water::interior_ior(const SampledWavelengths& lambda) const {

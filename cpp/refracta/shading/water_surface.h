@@ -25,18 +25,23 @@
 // or scattered back up by the water itself, which is optically deep. Its irradiance reflectance
 // just beneath the surface, R(lambda) = 0.33 b_b / (a + b_b) (water.h: Morel & Prieur 1977 with
 // Gordon et al. 1975's X; pure-water absorption of Pope & Fry 1997, backscatter of Morel 1974),
-// is returned as isotropic radiance and leaves through the interface, some of it reflected back
-// down again (the internal diffuse reflectance Fbar_int of the underside, summed as a series):
-//   f_body = (1 - F(cos_i)) (1 - F(cos_o)) R / (pi eta^2 (1 - R Fbar_int))
-// (Weidlich & Wilkie 2007's layer, refracta's Plastic with the water body as its base). The
-// in- and out-going transmittances are the flat interface's Fresnel ones, an approximation of the
-// rough interface's (Mitsuba's roughplastic tabulates the rough one); the term's albedo
-// (1 - F(cos_i)) R (1 - Fbar_int) / (1 - R Fbar_int) is below (1 - F(cos_i)) R, so reflection plus
-// body stays below 1 (tested: white furnace). Nothing continues below the surface: the material
-// is reflection-only, two-sided, and bounds no medium (interior_ior() is None). Left out: the
-// water's temperature and salinity in absorption, chlorophyll and dissolved matter (real seas are
-// greener and darker than pure water), the angular shape of the upwelling light (Q = pi),
-// foam, and the light of the sea floor.
+// is returned as isotropic radiance (Q = pi) and leaves through the same rough interface, some of
+// it reflected back down again (summed as a series, Weidlich & Wilkie 2007's layer; refracta's
+// Plastic with the water body as its base):
+//   f_body = T(cos_i) T(cos_o) R / (pi eta^2 (1 - R Fbar_int)),
+//   Fbar_int = 1 - 2 int_0^1 T(mu) mu dmu / eta^2,
+// T(mu) the rough interface's directional transmittance from above (RoughTransmittance: the
+// integral of its transmission lobe, importance transport, tabulated per alpha over mu and eta;
+// the flat interface's 1 - F(mu) when alpha -> 0). Light from wi crossing into the water is
+// T(cos_i) of it; upwelling radiance L leaves toward wo as L T(cos_o) / eta^2 (the eta^2 law of
+// transmission); light from below that does not cross is taken as reflected back down (the
+// interface's masking loss from below, < 1 %, is kept in the water). Reciprocal, and the albedo
+// rho_r(wi) + T(cos_i) R (1 - Fbar_int) / (1 - R Fbar_int) <= rho_r(wi) + T(cos_i) <= 1: energy is
+// conserved because the rough dielectric's own reflection plus transmission is (tested: white
+// furnace). Nothing continues below the surface: the material is reflection-only, two-sided, and
+// bounds no medium (interior_ior() is None). Left out: the water's temperature and salinity in
+// absorption, chlorophyll and dissolved matter (real seas are greener and darker than pure
+// water), the angular shape of the upwelling light, foam, and the light of the sea floor.
 //
 // body = false: the bare interface, reflecting and transmitting (a pool, water over a floor, or
 // under water): a rough dielectric that bounds a medium of the water's index (nested dielectrics,
@@ -49,21 +54,48 @@
 #include "refracta/shading/ior.h"
 #include "refracta/shading/material_util.h"
 
+#include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace refracta {
 
+// The directional transmittance T(mu, eta) = int f_t(wo, wi) |cos theta_i| dwi of the Beckmann
+// interface of one alpha, light arriving from above at cos theta_o = mu (importance transport: the
+// fraction of the energy that crosses), eta the relative index. Tabulated at construction over
+// kMu x kEta nodes (each a 64 x 64 midpoint quadrature over the visible-normal proposal's unit
+// square), the mu nodes uniform in sqrt(mu) (T climbs from 0 at mu = 0 within mu ~ alpha / 10,
+// where masking lets go), bilinear between them; eta outside [kMinEta, kMaxEta] is clamped (water against air over
+// 360-830 nm, 0-40 C, 0-40 g/kg lies in 1.32-1.36). Shared by the materials of one alpha (for_alpha).
+class RoughTransmittance {
+ public:
+  static constexpr int kMu = 33, kEta = 5;
+  static constexpr double kMinEta = 1.31, kMaxEta = 1.37;
+  explicit RoughTransmittance(const Beckmann& distribution);
+  // The table of Beckmann(alpha), computed once per alpha and kept (a few kB each).
+  static std::shared_ptr<const RoughTransmittance> for_alpha(double alpha);
+  double operator()(double mu, double eta) const;
+  // 2 int_0^1 T(mu, eta) mu dmu: the share of diffuse light from above that crosses.
+  double hemispherical(double eta) const;
+
+ private:
+  static double eta_node(double eta, int* k);  // the lower node and the weight of the upper one
+  static double mu_node(int j) { return double(j * j) / double((kMu - 1) * (kMu - 1)); }
+  std::array<double, kMu * kEta> t_{};
+  std::array<double, kEta> hemispherical_{};
+};
+
 // The deep-water surface seen from above (two-sided by mirroring): Beckmann reflection plus the
 // water body's upwelling light. Values per channel (indices eta, body reflectance r, internal
-// diffuse reflectance fdr_int); sampling with eta_sampling.
+// diffuse reflectance fdr_int of the rough interface); sampling with eta_sampling.
 class WaterBodyBsdf final : public TwoSidedReflection<WaterBodyBsdf> {
  public:
-  WaterBodyBsdf(const Spectrum& eta, double eta_sampling, const Beckmann& distribution, const Spectrum& r,
-                const Spectrum& fdr_internal, double body_albedo)
-      : eta_(eta), eta_sampling_(eta_sampling), distribution_(distribution), r_(r), fdr_internal_(fdr_internal),
-        body_albedo_(body_albedo) {}
+  WaterBodyBsdf(const Spectrum& eta, double eta_sampling, const Beckmann& distribution, const RoughTransmittance& transmittance,
+                const Spectrum& r, const Spectrum& fdr_internal, double body_albedo)
+      : eta_(eta), eta_sampling_(eta_sampling), distribution_(distribution), transmittance_(&transmittance), r_(r),
+        fdr_internal_(fdr_internal), body_albedo_(body_albedo) {}
 
   Spectrum f_up(const Vec3d& wo, const Vec3d& wi, TransportMode) const {
     Spectrum f = body(wo, wi);
@@ -101,7 +133,7 @@ class WaterBodyBsdf final : public TwoSidedReflection<WaterBodyBsdf> {
   Spectrum body(const Vec3d& wo, const Vec3d& wi) const {
     Spectrum f;
     for (int c = 0; c < kSpectrumSamples; ++c) {
-      const double t = (1.0 - fresnel_dielectric(wi.z(), eta_[c])) * (1.0 - fresnel_dielectric(wo.z(), eta_[c]));
+      const double t = (*transmittance_)(wi.z(), eta_[c]) * (*transmittance_)(wo.z(), eta_[c]);
       f[c] = t * r_[c] / (kPi * eta_[c] * eta_[c] * (1.0 - r_[c] * fdr_internal_[c]));
     }
     return f;
@@ -117,8 +149,9 @@ class WaterBodyBsdf final : public TwoSidedReflection<WaterBodyBsdf> {
   Spectrum eta_;
   double eta_sampling_;
   Beckmann distribution_;
+  const RoughTransmittance* transmittance_;  // the material's
   Spectrum r_, fdr_internal_;
-  double body_albedo_;  // channel mean of R (1 - Fbar_int) / (1 - R Fbar_int): the body's albedo over 1 - F
+  double body_albedo_;  // channel mean of R (1 - Fbar_int) / (1 - R Fbar_int): the body's albedo over T(cos_o)
 };
 
 // The bare interface (body = false): a Beckmann rough dielectric, values per channel.
@@ -175,8 +208,7 @@ class WaterInterfaceBsdf final : public Bsdf {
   }
   unsigned flags() const override { return kBsdfReflection | kBsdfTransmission | kBsdfGlossy; }
 
- private:
-  static double sqr(double x) { return x * x; }
+  // The transmission lobe's f at one relative index (0 for pairs on one side).
   double transmission(const Vec3d& wo, const Vec3d& wi, double eta, TransportMode mode) const {
     double etap;
     Vec3d m;
@@ -187,6 +219,9 @@ class WaterInterfaceBsdf final : public Bsdf {
     if (mode == TransportMode::kRadiance) ft /= etap * etap;
     return ft;
   }
+
+ private:
+  static double sqr(double x) { return x * x; }
   // The generalised half vector for relative index eta (water over outside) on the normal's side;
   // false for configurations no microfacet produces (as RoughDielectricBsdf::half_vector).
   static bool half_vector(const Vec3d& wo, const Vec3d& wi, double eta, double* etap, Vec3d* m) {
@@ -218,8 +253,8 @@ struct WaterParameters {
 
 class Water final : public Material {
  public:
-  // Validates every parameter (std::invalid_argument naming it) and tabulates the index, the
-  // internal diffuse reflectance and the body reflectance over 360-830 nm.
+  // Validates every parameter (std::invalid_argument naming it) and tabulates the index and the
+  // body reflectance over 360-830 nm and the rough interface's transmittance.
   explicit Water(const WaterParameters& parameters = {});
 
   const Bsdf* bsdf(const SurfaceInteraction& si, const MaterialContext& context, ScratchBuffer& scratch) const override;
@@ -232,15 +267,17 @@ class Water final : public Material {
   double alpha() const { return alpha_; }                        // Beckmann alpha = sigma
   // The water's index relative to vacuum at a wavelength [nm] in [kLambdaMin, kLambdaMax] (from the table).
   double ior(double wavelength_nm) const { return interpolate(ior_table_, wavelength_nm); }
+  const RoughTransmittance& transmittance() const { return *transmittance_; }
 
  private:
   static double interpolate(const std::vector<double>& table, double wavelength_nm);
   WaterParameters parameters_;
   double alpha_;
-  std::vector<double> ior_table_, fdr_table_;  // every 1 nm from kLambdaMin: index, Fbar_int (outside index 1)
-  Color body_reflectance_;                     // R(lambda) of water.h
-  Vec3d ior_rgb_, fdr_rgb_;                    // at kRgbWavelengths
-  double ior_sampling_rgb_;                    // at Ior::kRgbWavelength
+  std::vector<double> ior_table_;  // every 1 nm from kLambdaMin
+  Color body_reflectance_;         // R(lambda) of water.h
+  Vec3d ior_rgb_;                  // at kRgbWavelengths
+  double ior_sampling_rgb_;        // at Ior::kRgbWavelength
+  std::shared_ptr<const RoughTransmittance> transmittance_;
 };
 
 }  // namespace refracta
