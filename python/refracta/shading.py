@@ -46,8 +46,8 @@ vacuum) gives a ``Dielectric`` its index, e.g. ``Dielectric(water_ior(550.0, 15.
 
 - The interface is a rough dielectric (Walter et al. 2007; pbrt-v4's DielectricBxDF, Mitsuba 3's
   ``roughdielectric``) with the Beckmann distribution D = exp(-tan^2 theta / alpha^2) /
-  (pi alpha^2 cos^4 theta), whose total mean-square slope is alpha^2 (Heitz 2014, JCGT 3(2),
-  section 5.2), set to Cox & Munk 1954's (JOSA 44(11), 838-850) clean-sea statistics
+  (pi alpha^2 cos^4 theta), whose slopes are Gaussian with total mean-square slope alpha^2 (Heitz
+  2014, JCGT 3(2): variance alpha^2 / 2 per axis), set to Cox & Munk 1954's (JOSA 44(11), 838-850) clean-sea statistics
   ``cox_munk_mean_square_slope(U) = 0.003 + 5.12e-3 U``: alpha = 0.055 in a calm, 0.17 at 5 m/s,
   0.23 at 10 m/s, so sun glitter widens with wind. Its index is ``water_ior(lambda, temperature_c,
   salinity)`` over the outside medium's: per wavelength in spectral rendering, at 630, 532 and

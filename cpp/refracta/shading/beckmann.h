@@ -7,7 +7,8 @@
 // In slope space (p, q) = (-m_x / m_z, -m_y / m_z) this is the isotropic Gaussian
 // P(p, q) = D(m) cos^4 theta_m = exp(-(p^2 + q^2) / alpha^2) / (pi alpha^2), whose variance per axis is
 // alpha^2 / 2: the TOTAL mean-square slope <p^2 + q^2> is alpha^2 (Heitz 2014, "Understanding the
-// Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2), section 5.2). So Cox & Munk's
+// Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2), its slope distribution of the
+// Beckmann surface; checked by quadrature in tests/shading/test_water_body.py). So Cox & Munk's
 // total sigma^2 = sigma_u^2 + sigma_c^2 gives alpha = sigma directly.
 //
 // Smith's Lambda(w) = (erf(a) - 1) / 2 + exp(-a^2) / (2 a sqrt(pi)), a = 1 / (alpha tan theta), exact
