@@ -6,6 +6,11 @@
     up = [0.0, 1.0, 0.0]                # optional
     vfov = 2.2                          # [deg]
     size = [640, 240]                   # width, height [pixels]
+    # or as a photographer (Camera.photographic), instead of vfov:
+    # focal_length_mm = 300.0           # on sensor_mm = [36.0, 24.0] (optional)
+    # f_number = 4.0                    # optional: thin-lens depth of field, focused at
+    # focus_distance = 250.0            # [m] (optional; default: the look_at distance)
+    # (with vfov: aperture_diameter [m] and focus_distance, Camera.with_lens)
 
     [atmosphere]                        # optional; no table = no atmosphere
     model = "PhysicalAtmosphere"        # or LogisticProfile, LinearSquaredProfile, TemperatureProfile
@@ -149,7 +154,8 @@ LIGHT_KEYS = {
     "spot": {"position", "direction", "angle", "intensity", "inner_angle"},
     "sun": {"direction", "radiance", "angular_diameter", "limb_darkening"},
 }
-CAMERA_KEYS = {"position", "look_at", "up", "vfov", "size"}
+CAMERA_KEYS = {"position", "look_at", "up", "vfov", "size", "focal_length_mm", "sensor_mm", "f_number",
+               "focus_distance", "aperture_diameter"}
 SUN_KEYS = {"direction", "radiance", "angular_diameter"}
 SKY_KEYS = {"horizon", "zenith", "environment", "scale"}
 ENVIRONMENT_KEYS = {
@@ -569,12 +575,39 @@ def load_scene(path) -> SceneFile:
     cam = data["camera"]
     _check_keys(cam, CAMERA_KEYS, where, "camera", "[camera]")
     size = get(cam, "camera", "size", _image_size, [640, 360])
+    # A field of view, or a lens on a sensor; a thin lens from either (f_number with the focal
+    # length, aperture_diameter with vfov).
+    for a, b in (("vfov", "focal_length_mm"), ("vfov", "f_number"), ("vfov", "sensor_mm"),
+                 ("focal_length_mm", "aperture_diameter")):
+        if a in cam and b in cam:
+            raise where.error(f"give {a} or {b}, not both", "camera", b)
+    for key, needs in (("f_number", "focal_length_mm"), ("sensor_mm", "focal_length_mm"),
+                       ("focus_distance", "f_number or aperture_diameter")):
+        if key in cam and not any(k in cam for k in needs.split(" or ")):
+            raise where.error(f"needs {needs}", "camera", key)
+    position = get(cam, "camera", "position", lambda v: _number_list(v, 3), required=True)
+    look_at = get(cam, "camera", "look_at", lambda v: _number_list(v, 3), required=True)
+    up = get(cam, "camera", "up", lambda v: _number_list(v, 3), [0.0, 1.0, 0.0])
+    lens = {key: get(cam, "camera", key, float) for key in ("f_number", "focus_distance") if key in cam}
+    if "sensor_mm" in cam:
+        lens["sensor_mm"] = tuple(get(cam, "camera", "sensor_mm", lambda v: _number_list(v, 2)))
+    focal_length = get(cam, "camera", "focal_length_mm", float)
+    vfov = get(cam, "camera", "vfov", float, 45.0)
+    aperture = get(cam, "camera", "aperture_diameter", float)
     try:
-        camera = _core.Camera(get(cam, "camera", "position", lambda v: _number_list(v, 3), required=True),
-                              get(cam, "camera", "look_at", lambda v: _number_list(v, 3), required=True),
-                              get(cam, "camera", "up", lambda v: _number_list(v, 3), [0.0, 1.0, 0.0]),
-                              get(cam, "camera", "vfov", float, 45.0), size[0], size[1])
+        if focal_length is not None:
+            camera = _core.Camera.photographic(position, look_at, focal_length, width=size[0], height=size[1], up=up,
+                                               **lens)
+        else:
+            camera = _core.Camera(position, look_at, up, vfov, size[0], size[1])
+            if aperture is not None:
+                if "focus_distance" not in lens:
+                    raise where.error("needs focus_distance", "camera", "aperture_diameter")
+                camera = camera.with_lens(aperture, lens["focus_distance"])
     except ValueError as error:
+        if str(error).startswith(str(path)):
+            raise
+        raise where.error(str(error), "camera") from None
         raise where.error(str(error), "camera") from None
 
     scene = _core.Scene()
@@ -688,15 +721,19 @@ def _toml_value(value) -> str:
 
 def camera_table(camera: _core.Camera) -> str:
     """The [camera] table that load_scene reads back as `camera` (position, look_at, up [m], vfov
-    [deg], size [pixels])."""
-    return "\n".join([
+    [deg], size [pixels]; a thin lens as aperture_diameter and focus_distance [m])."""
+    lines = [
         "[camera]",
         f"position = {_toml_value([float(x) for x in camera.position])}",
         f"look_at = {_toml_value([float(x) for x in camera.look_at])}",
         f"up = {_toml_value([float(x) for x in camera.up])}",
         f"vfov = {_toml_value(camera.vfov)}",
         f"size = [{int(camera.width)}, {int(camera.height)}]",
-    ]) + "\n"
+    ]
+    if camera.aperture_diameter > 0:
+        lines += [f"aperture_diameter = {_toml_value(camera.aperture_diameter)}",
+                  f"focus_distance = {_toml_value(camera.focus_distance)}"]
+    return "\n".join(lines) + "\n"
 
 
 def _same_layer(a: _core.TurbulenceLayer, b: _core.TurbulenceLayer) -> bool:

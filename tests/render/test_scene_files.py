@@ -167,3 +167,29 @@ LIGHT_CAMERA = CAMERA + "[environment]\ntype = 'constant'\nradiance = 0.1\n"
 def test_material_and_light_errors_name_file_line_and_key(tmp_path, text, message):
     with pytest.raises(ValueError, match=message):
         refracta.load_scene(write(tmp_path, text))
+
+
+def test_a_photographic_camera_with_a_lens_loads_and_round_trips(tmp_path):
+    text = ("[camera]\nposition = [0, 1.4, 0]\nlook_at = [200, 1.4, 0]\nsize = [96, 32]\nfocal_length_mm = 300.0\n"
+            "sensor_mm = [36.0, 24.0]\nf_number = 4.0\n")
+    camera = refracta.load_scene(write(tmp_path, text)).camera
+    same = refracta.Camera.photographic((0, 1.4, 0), (200, 1.4, 0), 300.0, width=96, height=32, f_number=4.0)
+    assert camera.vfov == same.vfov
+    assert camera.aperture_diameter == pytest.approx(0.075, rel=1e-15)   # f / N
+    assert camera.focus_distance == pytest.approx(200.0, rel=1e-15)      # the look_at distance
+    # camera_table writes the lens as aperture_diameter and focus_distance with the vfov.
+    again = refracta.load_scene(write(tmp_path, refracta.scene_file.camera_table(camera), "again.toml")).camera
+    assert (again.vfov, again.aperture_diameter, again.focus_distance) == (camera.vfov, camera.aperture_diameter,
+                                                                           camera.focus_distance)
+
+
+@pytest.mark.parametrize("extra, message", [
+    ("vfov = 10.0\nfocal_length_mm = 50.0\n", r"\[camera\] focal_length_mm: give vfov or focal_length_mm"),
+    ("f_number = 2.0\n", r"\[camera\] f_number: needs focal_length_mm"),
+    ("focal_length_mm = 50.0\nf_number = 0.0\n", r"\[camera\]: Camera.photographic: f_number must be > 0"),
+    ("aperture_diameter = 0.01\n", r"\[camera\] aperture_diameter: needs focus_distance"),
+    ("focus_distance = 5.0\n", r"\[camera\] focus_distance: needs f_number or aperture_diameter"),
+])
+def test_impossible_lenses_in_scene_files_are_refused_naming_the_key(tmp_path, extra, message):
+    with pytest.raises(ValueError, match=message):
+        refracta.load_scene(write(tmp_path, CAMERA + extra))

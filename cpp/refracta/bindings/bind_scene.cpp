@@ -896,6 +896,10 @@ for Camera.photographic (focus by default at the target's horizontal distance):
 
     camera = refracta.Camera.eye_level((0, 0, 0), (0, 0, -200), eye_height=1.6, focal_length_mm=200)
 )doc")
+      .def("with_lens", &Camera::with_lens, py::arg("aperture_diameter"), py::arg("focus_distance"),
+           "The same view through a thin lens of aperture_diameter [m] (0: a pinhole) focused on the plane at\n"
+           "depth focus_distance [m] (Camera.photographic's f_number gives f / N). ValueError for a negative\n"
+           "diameter or a focus distance <= 0.")
       .def_property_readonly("aperture_diameter", &Camera::aperture_diameter,
                              "The thin lens's aperture diameter [m] (f / N), 0 for a pinhole.")
       .def_property_readonly("focus_distance", &Camera::focus_distance,
