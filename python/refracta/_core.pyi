@@ -662,6 +662,12 @@ class Camera:
         """
         The same view at another image size (vertical field of view kept).
         """
+    def with_lens(self, aperture_diameter: typing.SupportsFloat | typing.SupportsIndex, focus_distance: typing.SupportsFloat | typing.SupportsIndex) -> Camera:
+        """
+        The same view through a thin lens of aperture_diameter [m] (0: a pinhole) focused on the plane at
+        depth focus_distance [m] (Camera.photographic's f_number gives f / N). ValueError for a negative
+        diameter or a focus distance <= 0.
+        """
     @property
     def aperture_diameter(self) -> float:
         """
