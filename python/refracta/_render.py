@@ -6,11 +6,11 @@ import copy
 import math
 import warnings
 
-from typing import Callable, List, Optional, Tuple, Union
+from typing import Callable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from refracta import _core
+from refracta import _core, _denoise
 from refracta._progress import ProgressBar
 from refracta._sweep import map_ordered
 
@@ -93,9 +93,20 @@ def render(
     stats: Optional[dict] = None,
     executor=None,
     tiles: Union[None, int, Tuple[int, int]] = None,
+    aovs: Optional[Sequence[str]] = None,
+    denoise: bool = False,
     **options,
-) -> np.ndarray:
-    """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3).
+):
+    """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3),
+    or with `aovs` the pair (image, {name: array}).
+
+    aovs: names of per-pixel outputs to return beside the image, each averaged over the pixel's
+    samples: 'albedo' -- (H, W, 3) the directional albedo (reflectance and transmittance, linear
+    sRGB in [0, 1]) of the first surface each sample's path meets that is not a perfect mirror or
+    glass; 'normal' -- (H, W, 3) its shading normal facing the path, world space (0 where the path
+    met no such surface). denoise: return the image denoised by Intel Open Image Denoise
+    (refracta.denoise) with those albedo and normal as its guides (rendered for it whether asked
+    for or not).
 
     method: 'curved' -- exact curved rays: every segment (camera ray, bounce, shadow ray toward a
     distant light) is the integrator's path (stratified for height-only fields, rk45 otherwise,
@@ -157,6 +168,11 @@ def render(
         raise ValueError(f"seed must be a whole number >= 0 (got {seed!r})")
     if stats is not None and not isinstance(stats, dict):
         raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
+    wanted = _aov_names(aovs)
+    if not isinstance(denoise, (bool, np.bool_)):
+        raise ValueError(f"denoise must be True or False (got {denoise!r})")
+    if denoise or wanted:
+        options["surface_aovs"] = True
     settings = render_options(method=method, transport=transport, spp=spp, seed=seed, **options)
     if executor is not None or tiles is not None:
         image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)
@@ -166,7 +182,31 @@ def render(
     _check_scene(scene, camera, field, method)  # with the image: a refused render needs no hint
     if stats is not None:
         stats.update(counts)
-    return image
+    outputs = {}
+    if settings.surface_aovs:
+        outputs = {"albedo": np.ascontiguousarray(image[..., 3:6]), "normal": np.ascontiguousarray(image[..., 6:9])}
+        image = np.ascontiguousarray(image[..., :3])
+    if denoise:
+        image = _denoise.denoise(image, outputs["albedo"], outputs["normal"])
+    return image if aovs is None else (image, {name: outputs[name] for name in wanted})
+
+
+# The per-pixel outputs render(aovs=...) knows, and what they are (render's docstring).
+AOV_NAMES = ("albedo", "normal")
+
+
+def _aov_names(aovs) -> List[str]:
+    if aovs is None:
+        return []
+    if isinstance(aovs, str):
+        raise ValueError(f"aovs must be a list of names, e.g. ['albedo', 'normal'] (got the string {aovs!r})")
+    names = list(aovs)
+    unknown = [name for name in names if name not in AOV_NAMES]
+    if unknown:
+        raise ValueError(f"render: unknown aovs {unknown} (known: {', '.join(AOV_NAMES)})")
+    if len(set(names)) != len(names):
+        raise ValueError(f"render: aovs names repeated ({names})")
+    return names
 
 
 # Tile side [pixels] when an executor is given without tiles: a few to a few tens of tasks for
@@ -220,7 +260,7 @@ def _render_tiled(scene, camera, field, settings, executor, tiles, progress):
     ox, oy = (region[0], region[1]) if region is not None else (0, 0)
     width = (region[2] - region[0]) if region is not None else camera.width
     height = (region[3] - region[1]) if region is not None else camera.height
-    image = np.empty((height, width, 3), dtype=np.float32)
+    image = np.empty((height, width, 9 if settings.surface_aovs else 3), dtype=np.float32)
     counts = {"samples": 0, "chords": 0, "invalid_samples": 0}
     for (x0, y0, x1, y1), (ok, value) in zip(bounds, outcomes):
         if not ok:

@@ -39,6 +39,8 @@ validate() reports every bad value at once.)doc")
       .def_readwrite("texture_filter", &RenderOptions::texture_filter, "filter textures over each sample's footprint")
       .def_readwrite("differentials", &RenderOptions::differentials,
                      "camera rays' footprints from ray differentials through the air (false: the ray cone)")
+      .def_readwrite("surface_aovs", &RenderOptions::surface_aovs,
+                     "also render the albedo and normal of the first non-specular hit: 9 channels (render's aovs, denoise)")
       .def_property("march", [](const RenderOptions& o) { return trace_method_name(o.march); },
                     [](RenderOptions& o, const std::string& v) { o.march = parse_trace_method(v); },
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)")
@@ -94,7 +96,7 @@ validate() reports every bad value at once.)doc")
           // Refused before anything is allocated (core/image.h): float32 RGB, and room for one copy
           // by the caller (the pixels themselves move into the returned array).
           const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
-          check_image_memory(bounds.width(), bounds.height(), 24.0, "render");
+          check_image_memory(bounds.width(), bounds.height(), options.surface_aovs ? 72.0 : 24.0, "render");
           WorkControl control;
           Image image;
           RenderStats stats;

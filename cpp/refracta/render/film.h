@@ -56,14 +56,16 @@ inline uint32_t permutation_element(uint32_t i, uint32_t n, uint32_t seed) {
 }  // namespace detail
 
 // SampleRadiance: Spectrum(const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle,
-// SampledWavelengths&, Sampler&, ScratchBuffer&): the sample's position (u, v) in pixel
+// SampledWavelengths&, Sampler&, ScratchBuffer&, SurfaceAovs*): the sample's position (u, v) in pixel
 // coordinates, its point on a thin lens in [0, 1)^2 (Camera::lens_ray; (0.5, 0.5), the lens centre,
 // for a pinhole, which draws no number for it), the spacing of the samples [pixels] (1 / strata: a
 // sample stands for a spacing x spacing square), and its cone's angle [rad] (0 without texture
-// filtering).
-template <class SampleRadiance>
+// filtering), and where to put the sample's surface AOVs (null without). kSurfaceAovs: 9 channels,
+// the radiance then the mean albedo and normal of the pixel's samples; else 3.
+template <bool kSurfaceAovs, class SampleRadiance>
 Image render_film(const Camera& camera, const RenderOptions& options, WorkControl& control,
                   const SampleRadiance& radiance) {
+  using PixelValue = Eigen::Matrix<double, kSurfaceAovs ? 9 : 3, 1>;
   // Whole passes over a strata x strata grid, the samples left over uniform over the pixel: every
   // sample is then uniform over the pixel (a partly filled grid would leave strata unsampled).
   const int strata = std::max(1, int(std::floor(std::sqrt(double(options.spp)) + 1e-9)));
@@ -76,6 +78,7 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
     ScratchBuffer& scratch = scratch_per_thread.local();
     Sampler sampler{Rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x))};
     Vec3d sum = Vec3d::Zero();
+    PixelValue value = PixelValue::Zero();
     uint32_t pass_seed = 0;  // the lens cells' shuffle of the current pass over the grid
     for (int s = 0; s < options.spp; ++s) {
       poll_cancel();  // a sample through turbulence can take milliseconds (the ray's steps poll too)
@@ -102,11 +105,18 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
       }
       SampledWavelengths lambda =
           options.spectral ? SampledWavelengths::sample_uniform(sampler.uniform()) : SampledWavelengths::rgb();
-      const Spectrum L = radiance(Vec2d(x + du, y + dv), lens, 1.0 / strata, pixel_angle, lambda, sampler, scratch);
+      SurfaceAovs aovs;
+      const Spectrum L = radiance(Vec2d(x + du, y + dv), lens, 1.0 / strata, pixel_angle, lambda, sampler, scratch,
+                                  kSurfaceAovs ? &aovs : nullptr);
       const Vec3d rgb = to_linear_srgb(L, lambda);
       if (is_finite(rgb)) sum += rgb;  // a non-finite sample is dropped (the renderer counts them)
+      if constexpr (kSurfaceAovs) {
+        value.template segment<3>(3) += aovs.albedo;
+        value.template segment<3>(6) += aovs.normal;
+      }
     }
-    return Vec3d(sum / options.spp);
+    value.template head<3>() = sum;
+    return PixelValue(value / options.spp);
   });
 }
 

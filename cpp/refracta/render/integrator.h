@@ -16,6 +16,15 @@
 
 namespace refracta {
 
+// What a camera sample's path met first that was not a perfect mirror or glass: the surface's
+// directional albedo toward the path (its reflectance and transmittance, linear sRGB, in [0, 1])
+// and its shading normal facing the path (world space); zero where the path met none. The
+// auxiliary features Intel Open Image Denoise takes beside the noisy image (its documentation:
+// albedo and normal of the first diffuse or glossy hit, following delta bounces).
+struct SurfaceAovs {
+  Vec3d albedo = Vec3d::Zero(), normal = Vec3d::Zero();
+};
+
 class Integrator {
  public:
   Integrator(const RenderScene& scene, const Caster& caster, const RenderOptions& options)
@@ -31,11 +40,13 @@ class Integrator {
   // direction `dir`; pixel_angle [rad] widens texture footprints with path length.
   Spectrum li(const Vec3d& origin, const Vec3d& dir, double pixel_angle, SampledWavelengths& lambda, Sampler& sampler,
               ScratchBuffer& scratch) const {
-    return li_after(origin, dir, caster_.cast(origin, dir), pixel_angle, lambda, sampler, scratch);
+    return li_after(origin, dir, caster_.cast(origin, dir), pixel_angle, lambda, sampler, scratch, nullptr);
   }
-  // The same, with the camera ray's end already found (raster_march finds it by marching).
+  // The same, with the camera ray's end already found (raster_march finds it by marching); fills
+  // `aovs` when given (without drawing from the sampler: the radiance is the same either way).
   virtual Spectrum li_after(const Vec3d& origin, const Vec3d& dir, const PathEnd& first, double pixel_angle,
-                            SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch) const = 0;
+                            SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch,
+                            SurfaceAovs* aovs) const = 0;
   const DirectLighting& lighting() const { return lighting_; }
 
  protected:

@@ -19,13 +19,26 @@ constexpr double kMaxSurvival = 0.95;
 
 double sqr(double x) { return x * x; }
 
+// The directional albedo of `bsdf` toward wo, in [0, 1]: the mean weight of 16 samples at fixed
+// stratified points (the path's sampler is not drawn from).
+Vec3d directional_albedo(const SurfaceBsdf& bsdf, const Vec3d& wo) {
+  constexpr int kSide = 4, kCount = kSide * kSide;
+  Spectrum sum = Spectrum::Zero();
+  for (int i = 0; i < kCount; ++i) {
+    const auto bs = bsdf.sample(wo, (i + 0.5) / kCount, Vec2d(((i % kSide) + 0.5) / kSide, ((i / kSide) + 0.5) / kSide));
+    if (bs && bs->weight.isFinite().all()) sum += bs->weight;
+  }
+  return (sum.head<3>() / kCount).max(0.0).min(1.0).matrix();
+}
+
 class PathTracer : public Integrator {
  public:
   PathTracer(const RenderScene& scene, const Caster& caster, const RenderOptions& options, bool direct_only)
       : Integrator(scene, caster, options), direct_only_(direct_only) {}
 
   Spectrum li_after(const Vec3d& origin, const Vec3d& dir, const PathEnd& first, double pixel_angle,
-                    SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch) const override {
+                    SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch,
+                    SurfaceAovs* aovs) const override {
     Spectrum L = Spectrum::Zero(), beta = Spectrum::Ones();
     Vec3d o = origin, d = dir;
     double ior_here = caster_.ior(o);
@@ -74,6 +87,10 @@ class PathTracer : public Integrator {
         continue;
       }
       const bool smooth = s.bsdf.bsdf->has_delta_only();
+      if (aovs && !smooth) {
+        record_surface(si, s, media, ior_here, lambda, scratch, aovs);
+        aovs = nullptr;  // the first non-specular hit only
+      }
       if (!smooth) L += beta * lighting_.sample_lights(si, s.bsdf, lambda, sampler);
       const double uc = sampler.uniform();
       const auto bs = s.bsdf.sample(si.wo, uc, sampler.uniform2());
@@ -106,6 +123,20 @@ class PathTracer : public Integrator {
   }
 
  private:
+  // The albedo (in RGB whatever the render's wavelengths) and the shading normal facing the path.
+  void record_surface(const SurfaceInteraction& si, const Scattering& s, const MediumStack& media, double ior_here,
+                      const SampledWavelengths& lambda, ScratchBuffer& scratch, SurfaceAovs* aovs) const {
+    Vec3d n = s.bsdf.frame.n;
+    aovs->normal = n.dot(si.wo) < 0.0 ? Vec3d(-n) : n;
+    if (!lambda.spectral) {
+      aovs->albedo = directional_albedo(s.bsdf, si.wo);
+      return;
+    }
+    SampledWavelengths rgb = SampledWavelengths::rgb();
+    const Scattering in_rgb = scattering_at(scene_, si, media, ior_here, rgb, scratch);
+    if (in_rgb.bsdf) aovs->albedo = directional_albedo(in_rgb.bsdf, si.wo);
+  }
+
   bool direct_only_;
 };
 

@@ -111,7 +111,8 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
       // Polled every 64 samples as in the film loop: a tile at 4096 spp took 1.7 s to see Ctrl-C.
       if ((s & 63) == 63 && control.cancel.load(std::memory_order_relaxed)) throw Cancelled();
       SampledWavelengths lambda = SampledWavelengths::rgb();
-      sum += integrator->li_after(eye, end.direction, end, pixel_angle, lambda, sampler, scratch_per_thread.local());
+      sum += integrator->li_after(eye, end.direction, end, pixel_angle, lambda, sampler, scratch_per_thread.local(),
+                                  nullptr);
     }
     return Vec3d((sum / options.spp).head<3>().matrix());
   });

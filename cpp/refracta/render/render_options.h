@@ -61,6 +61,10 @@ struct RenderOptions {
   // (Caster::footprint: the paths of its neighbours, as squeezed or stretched by a mirage); false:
   // the ray cone (pixel angle x path length), as for every later bounce.
   bool differentials = true;
+  // Also render the albedo and normal of each sample's first non-specular hit (averaged over the
+  // pixel's samples): the image then has 9 channels, radiance, albedo, normal (Intel Open Image
+  // Denoise's auxiliary features; renderer.h). 'straight' and 'curved' only.
+  bool surface_aovs = false;
 
   // raster_march (the original editor's method): the integrator marching each pixel's ray
   // against the depth buffer: 'rk4' with `step` [m] for at most `max_steps` steps (the

@@ -54,6 +54,7 @@ void RenderOptions::validate() const {
   if (march == TraceMethod::kStratified) problem("march must be 'rk4' or 'rk45'");
   if (!(step > 0.0) || !std::isfinite(step)) problem(concat("step must be > 0 (got ", step, ")"));
   if (max_steps < 1) problem(concat("max_steps must be >= 1 (got ", max_steps, ")"));
+  if (surface_aovs && method == RenderMethod::kRasterMarch) problem("surface_aovs needs method 'straight' or 'curved'");
   if (!(guard_band >= 0.0 && guard_band <= 2.0)) problem(concat("guard_band must be in [0, 2] (got ", guard_band, ")"));
   if (max_depth < 0) problem(concat("max_depth must be >= 0 (got ", max_depth, ")"));
   if (rr_depth < 1) problem(concat("rr_depth must be >= 1 (got ", rr_depth, ")"));
@@ -199,9 +200,8 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   // part by up to 0.26 px (480 px across 36 mm) at 260 m, for rays grazing the road near the
   // mirage's critical angle (-0.31 deg), where n changes over centimetres. Tracing costs what
   // table=False costs: hot road, 480 x 160, 4 spp: 3.7 s with a lens, 1.3 s pinhole with the table.
-  Image image = render_film(camera, options, control,
-                            [&](const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle,
-                                SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch) {
+  auto sample = [&](const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle,
+                                SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch, SurfaceAovs* aovs) {
                               const Camera::LensRay ray = camera.lens_ray(pixel.x(), pixel.y(), lens);
                               const Vec3d& origin = ray.origin;
                               const Vec3d& dir = ray.direction;
@@ -215,16 +215,18 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                                 PathEnd first = hero_caster.cast(origin, dir, 0.0, camera.pixel_angle());
                                 with_footprint(hero_caster, origin, pixel, lens, spacing, &first);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
-                                L = hero->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch);
+                                L = hero->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
                               } else {
                                 PathEnd first = caster.cast(origin, dir, 0.0, camera.pixel_angle());
                                 with_footprint(caster, origin, pixel, lens, spacing, &first);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
-                                L = integrator->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch);
+                                L = integrator->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
                               }
                               if (!L.isFinite().all()) invalid.fetch_add(1, std::memory_order_relaxed);
                               return L;
-                            });
+                            };
+  Image image = options.surface_aovs ? render_film<true>(camera, options, control, sample)
+                                     : render_film<false>(camera, options, control, sample);
   if (stats) {
     const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
     stats->samples = int64_t(bounds.width()) * bounds.height() * options.spp;

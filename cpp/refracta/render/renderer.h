@@ -20,7 +20,9 @@ struct RenderStats {
   int64_t invalid_samples = 0;  // samples whose radiance was not finite (dropped; should stay 0)
 };
 
-// Linear RGB radiance image (height, width, 3). field may be null (then 'curved' = 'straight').
+// Linear RGB radiance image (height, width, 3); with options.surface_aovs (height, width, 9):
+// radiance, then the albedo and the normal of the first non-specular hit (integrator.h
+// SurfaceAovs). field may be null (then 'curved' = 'straight').
 Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& field, const RenderOptions& options,
              WorkControl& control, RenderStats* stats = nullptr);
 

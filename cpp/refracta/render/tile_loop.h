@@ -8,23 +8,27 @@
 #include "refracta/render/pixel_bounds.h"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace refracta {
 
 // radiance(x, y) for every pixel of `bounds` (image coordinates) into an image of the bounds'
-// size, its pixel (0, 0) being the bounds' (x0, y0).
+// size, its pixel (0, 0) being the bounds' (x0, y0); as many channels as radiance returns values
+// (a fixed-size Eigen vector: Vec3d for RGB).
 template <class PixelRadiance>
 Image render_tiles(const PixelBounds& bounds, int tile, WorkControl& control, const PixelRadiance& radiance) {
-  Image image(bounds.width(), bounds.height(), 3);
+  using Value = decltype(radiance(0, 0));
+  constexpr int kChannels = std::decay_t<Value>::RowsAtCompileTime;
+  Image image(bounds.width(), bounds.height(), kChannels);
   const int tiles_x = (bounds.width() + tile - 1) / tile, tiles_y = (bounds.height() + tile - 1) / tile;
   parallel_for_each(int64_t(tiles_x) * tiles_y, 1, control, [&](int64_t index) {
     const int x0 = bounds.x0 + int(index % tiles_x) * tile, y0 = bounds.y0 + int(index / tiles_x) * tile;
     for (int y = y0; y < std::min(y0 + tile, bounds.y1); ++y) {
       for (int x = x0; x < std::min(x0 + tile, bounds.x1); ++x) {
         poll_cancel();  // one tile of slow pixels must not hold Ctrl-C up
-        const Vec3d value = radiance(x, y);
+        const auto value = radiance(x, y);
         float* out = image.at(x - bounds.x0, y - bounds.y0);
-        for (int c = 0; c < 3; ++c) out[c] = float(value[c]);
+        for (int c = 0; c < kChannels; ++c) out[c] = float(value[c]);
       }
     }
   });
