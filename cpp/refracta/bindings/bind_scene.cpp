@@ -736,7 +736,8 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
   py::class_<Camera>(m, "Camera", R"doc(
 Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
 vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at
-(i + 0.5, j + 0.5).)doc")
+(i + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=)
+or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)doc")
       .def(py::init([](const py::object& position, const py::object& look_at, const py::object& up, double vfov,
                        int width, int height) {
              return Camera(to_point(position, "position"), to_point(look_at, "look_at"), to_point(up, "up"), vfov,
@@ -913,7 +914,11 @@ for Camera.photographic (focus by default at the target's horizontal distance):
                              "The angle [rad] one pixel subtends at the image centre (vertical field of view / height).")
       .def("__repr__", [](const Camera& c) {
         return concat("Camera(position=(", c.position().x(), ", ", c.position().y(), ", ", c.position().z(),
-                      "), vfov=", c.vfov(), ", size=", c.width(), "x", c.height(), ")");
+                      "), vfov=", c.vfov(), ", size=", c.width(), "x", c.height(),
+                      c.aperture_diameter() > 0.0
+                          ? concat(", aperture_diameter=", c.aperture_diameter(), ", focus_distance=", c.focus_distance())
+                          : std::string(),
+                      ")");
       });
 
   // Display arguments after the image: exposure, tonemap, gamma, key, white, ev100, iso, shutter,
