@@ -584,7 +584,8 @@ class Camera:
     """
     Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
     vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at
-    (i + 0.5, j + 0.5).
+    (i + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=)
+    or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.
     """
     @staticmethod
     def eye_level(eye: typing.Any, target: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex = 1.6, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex = 50.0, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
