@@ -23,13 +23,17 @@ def _channels(name: str, array, shape=None, lo: float = 0.0, hi: float = np.inf)
     return np.ascontiguousarray(values, dtype=np.float32)
 
 
-def denoise(image, albedo=None, normal=None, *, quality: str = "high") -> np.ndarray:
+def denoise(image, albedo=None, normal=None, *, quality: str = "high", clean_aux: bool = True) -> np.ndarray:
     """A Monte Carlo render with its noise removed by Intel Open Image Denoise's ``RT`` filter.
 
     image: (H, W, 3) linear radiance (refracta.render's output; HDR, >= 0). albedo: the optional
     (H, W, 3) reflectance of the first non-specular surface each pixel sees, in [0, 1]; normal:
     its (H, W, 3) unit normal (needs albedo). Both sharpen edges and textures the noise would blur.
-    quality: 'high', 'balanced' or 'fast'. Returns float32 (H, W, 3).
+    quality: 'high', 'balanced' or 'fast'. clean_aux: the albedo and normal are noise-free, as
+    render(aovs=...) gives them (a fixed-sample directional albedo; only the pixel's own
+    antialiasing averages them), so Open Image Denoise trusts them fully (measured on the hot road,
+    160 x 60, 16 spp: relative MSE against 1024 spp 3.3x lower with False, 4.1x with True);
+    False for albedo and normal that carry Monte Carlo noise. Returns float32 (H, W, 3).
 
     Measured: a diffuse sphere and ground under the physical sky, 4 spp path traced, relative MSE
     against 256 spp falls about 15x (tests/render/test_denoise.py).
@@ -45,4 +49,7 @@ def denoise(image, albedo=None, normal=None, *, quality: str = "high") -> np.nda
         raise ValueError("denoise: normal needs albedo as well (Open Image Denoise uses them together)")
     if quality not in ("high", "balanced", "fast"):
         raise ValueError(f"denoise: quality must be 'high', 'balanced' or 'fast' (got {quality!r})")
-    return np.asarray(pyoidn.denoise(color, aux_albedo, aux_normal, hdr=True, quality=quality), dtype=np.float32)
+    if not isinstance(clean_aux, (bool, np.bool_)):
+        raise ValueError(f"denoise: clean_aux must be True or False (got {clean_aux!r})")
+    return np.asarray(pyoidn.denoise(color, aux_albedo, aux_normal, hdr=True, quality=quality,
+                                     clean_aux=bool(clean_aux) and aux_albedo is not None), dtype=np.float32)
