@@ -152,6 +152,7 @@ MATERIALS = {
     "Plastic": lambda d: shading.Plastic(d(anything), d(anything), d(anything)),
     "Principled": lambda d: shading.Principled(d(anything), d(anything), d(anything), d(anything)),
     "ThinFilm": lambda d: shading.ThinFilm(d(anything), d(anything), d(anything)),
+    "Water": lambda d: shading.Water(d(anything), d(anything), d(anything)),
 }
 
 

@@ -111,6 +111,8 @@ MATERIALS = [
     shading.Plastic(0.5),
     shading.Principled((0.6, 0.1, 0.1), metallic=0.5, roughness=0.3, anisotropic=0.4, clearcoat=1.0, sheen=0.2),
     shading.ThinFilm(420.0, film_ior=1.4, eta=1.2, k=2.0, alpha_u=0.05, alpha_v=0.2),
+    shading.Water(7.0, temperature_c=12.0, salinity=30.0),
+    shading.Water(3.0, body=False, priority=2),
 ]
 
 

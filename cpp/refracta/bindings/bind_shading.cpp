@@ -671,7 +671,12 @@ void bind_shading(py::module_& m) {
         for (size_t i = 0; i < n; ++i) out[i] = d.G(wo[wo.size() == 1 ? 0 : i], wi[wi.size() == 1 ? 0 : i]);
         return values_to_array(out);
       }, py::arg("wo"), py::arg("wi"))
-      .def_property_readonly("alpha", &Beckmann::alpha);
+      .def_property_readonly("alpha", &Beckmann::alpha)
+      .def(py::pickle([](const Beckmann& d) { return py::make_tuple(d.alpha()); },
+                      [](const py::tuple& t) {
+                        if (t.size() != 1) throw_invalid("Beckmann: bad pickle state");
+                        return Beckmann(TrowbridgeReitz::checked_alpha(py::cast<double>(t[0]), "alpha"));
+                      }));
 
   // Fresnel and thin films, vectorised over numpy arrays.
   m.def(
