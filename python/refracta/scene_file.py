@@ -81,7 +81,8 @@
     [environment]                       # optional, instead of [sky]
     type = "physical_sky"               # constant (radiance), map (file, rotation [deg about y],
     sun_direction = [-0.5, 0.6, 0.6]    # scale), gradient (horizon, zenith, scale), physical_sky
-    aerosol = 1.0                       # (sun_direction, aerosol, scale: also sets the sun)
+    aerosol = 1.0                       # (sun_direction, aerosol or visibility [km],
+                                        # aerial_perspective = true/false, scale: also sets the sun)
 
 File names (obj, textures, environment) are relative to the TOML file. Errors raise ValueError naming the file, the line
 and the key; missing files raise refracta.IoError.
@@ -162,7 +163,7 @@ ENVIRONMENT_KEYS = {
     "constant": {"radiance"},
     "map": {"file", "rotation", "scale"},
     "gradient": {"horizon", "zenith", "scale"},
-    "physical_sky": {"sun_direction", "aerosol", "scale"},
+    "physical_sky": {"sun_direction", "aerosol", "visibility", "aerial_perspective", "scale"},
 }
 
 
@@ -365,7 +366,6 @@ def _environment(scene: _core.Scene, table: dict, where: "_Locator", get, path: 
             scene.set_sky(horizon, get(table, "environment", "zenith", lambda v: _colour(v, "zenith"), horizon),
                           None, scale)
         else:
-            from refracta import examples
 
             def unit(value):
                 vector = _number_list(value, 3)
@@ -374,9 +374,19 @@ def _environment(scene: _core.Scene, table: dict, where: "_Locator", get, path: 
                     raise ValueError("must be a non-zero direction")
                 return [v / norm for v in vector]
 
-            examples.set_physical_sky(scene, get(table, "environment", "sun_direction", unit, required=True),
-                                      aerosol=get(table, "environment", "aerosol", positive, 1.0), scale=scale)
+            def flag(value):
+                if not isinstance(value, bool):
+                    raise ValueError("must be true or false")
+                return value
+
+            # Only the keys given reach set_physical_sky: its defaults stay C++'s.
+            given = {key: get(table, "environment", key, convert, None)
+                     for key, convert in (("aerosol", positive), ("visibility", positive), ("aerial_perspective", flag))}
+            scene.set_physical_sky(get(table, "environment", "sun_direction", unit, required=True), scale=scale,
+                                   below_horizon="horizon", **{k: v for k, v in given.items() if v is not None})
     except ValueError as error:
+        if str(error).startswith(str(where.path)):  # already located (a key's own check)
+            raise
         raise where.error(str(error), "environment", _offending_key(str(error), table)) from None
 
 

@@ -205,3 +205,32 @@ def test_bad_segments_are_refused(clear_air):
 def test_aerial_perspective_pickles(clear_air):
     copy = pickle.loads(pickle.dumps(clear_air))
     assert copy.along((0, 1.5, 0), (9000, 40, 300), 500.0) == clear_air.along((0, 1.5, 0), (9000, 40, 300), 500.0)
+
+
+SCENE_FILE = """
+[camera]
+position = [0, 1.5, 0]
+look_at = [100, 1.5, 0]
+vfov = 20
+size = [16, 8]
+[environment]
+type = "physical_sky"
+sun_direction = [0.3, 0.5, 0.2]
+"""
+
+
+@pytest.mark.parametrize("keys, aerial, error", [
+    ("visibility = 10.0\naerial_perspective = true\n", True, None),
+    ("", True, None),
+    ("aerial_perspective = false\n", False, None),
+    ("visibility = 10.0\naerosol = 3.0\n", None, r"s.toml:10: \[environment\] visibility: give aerosol or visibility"),
+    ("aerial_perspective = 1\n", None, r"s.toml:10: \[environment\] aerial_perspective: must be true or false$"),
+])
+def test_scene_files_set_the_air(tmp_path, keys, aerial, error):
+    path = tmp_path / "s.toml"
+    path.write_text(SCENE_FILE + keys)
+    if error:
+        with pytest.raises(ValueError, match=error):
+            refracta.load_scene(path)
+    else:
+        assert (refracta.load_scene(path).scene.aerial_perspective is not None) == aerial
