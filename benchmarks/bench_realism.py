@@ -16,6 +16,8 @@ Sections (one function each, each a dict in results/realism.json):
   water_render           examples.cold_sea with its sea plane a shading.Water (Cox-Munk Beckmann
                          interface over the deep water body) against the Plastic it has, path
                          traced, through the cold-sea air and straight (issue 19 section 2)
+  aerial_perspective_render  hot road and cold sea with and without aerial perspective (section 1)
+  denoise_quality        16-spp demo renders denoised, against a 1024-spp reference (section 4)
 
     python benchmarks/bench_realism.py [--quick] [--only SECTION]  -> benchmarks/results/realism.json
 (--quick: 320 x 180 hot spots, 128^3 only, fewer rays, a 64 x 24 frame: a smoke run, not the
@@ -26,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import pickle
 import time
 import tracemalloc
 
@@ -236,8 +239,83 @@ def water_render(width=320, height=120, spp=8, repeat=2) -> dict:
     return out
 
 
+def aerial_perspective_render(width=640, height=240, repeat=3) -> dict:
+    """The cost of aerial perspective (issue 19 section 1, goal: at most 1.5x): examples.hot_road
+    and examples.cold_sea rendered 'direct' at 1 spp with Scene.set_physical_sky's
+    aerial_perspective on and off (the same sky otherwise), through their fields. CPU seconds of
+    all threads (steadier than wall time on a shared machine), the best of `repeat` runs, the two
+    renders alternating."""
+    import refracta
+    from refracta import examples
+
+    out = {"size": [width, height], "spp": 1, "transport": "direct"}
+    for name in ("hot_road", "cold_sea"):
+        example = getattr(examples, name)(width, height)
+        air = example.scene.aerial_perspective
+        if air is None:
+            raise RuntimeError(f"examples.{name} has no aerial perspective to measure")
+        plain = pickle.loads(pickle.dumps(example.scene))  # the same scene without the air
+        plain.set_aerial_perspective(False)
+        cpu = {"with": float("inf"), "without": float("inf")}
+        for _ in range(repeat):
+            for key, scene in (("with", example.scene), ("without", plain)):
+                start = time.process_time()
+                refracta.render(scene, example.camera, example.field, progress=False, max_length=example.max_length)
+                cpu[key] = min(cpu[key], time.process_time() - start)
+        out[name] = {"with_cpu_seconds": cpu["with"], "without_cpu_seconds": cpu["without"],
+                     "ratio": cpu["with"] / cpu["without"], "goal": 1.5}
+        print(f"{name} {width}x{height}: aerial perspective {cpu['with']:.2f} CPU s, without {cpu['without']:.2f} "
+              f"(x{out[name]['ratio']:.2f}, goal <= 1.5)", flush=True)
+    return out
+
+
+def denoise_quality(width=320, height=120, spp=16, reference_spp=1024) -> dict:
+    """render(denoise=True) on the demo scenes (issue 19 section 4, goal: error at least 5x below
+    the noisy image's): the noisy image at `spp`, denoised with colour alone and with the albedo
+    and normal guides, against a `reference_spp` render of another seed ('direct', as the demo
+    renders). Relative MSE (squared error over reference^2 + 0.01) and mean FLIP (flip-evaluator,
+    HDR); the reference's own noise (spp / reference_spp of the noisy image's variance) bounds any
+    ratio."""
+    import flip_evaluator as flip
+
+    import refracta
+    from refracta import examples
+
+    def relative_mse(image, reference):
+        return float(np.mean((image - reference) ** 2 / (reference ** 2 + 1e-2)))
+
+    def flip_mean(image, reference):
+        return float(flip.evaluate(reference, image, "HDR", applyMagma=False)[1])
+
+    out = {"size": [width, height], "spp": spp, "reference_spp": reference_spp, "transport": "direct"}
+    for name in ("hot_road", "cold_sea"):
+        example = getattr(examples, name)(width, height)
+        options = dict(progress=False, max_length=example.max_length)
+        reference, reference_seconds = timed(refracta.render, example.scene, example.camera, example.field,
+                                             spp=reference_spp, seed=1, **options)
+        (noisy, aovs), noisy_seconds = timed(refracta.render, example.scene, example.camera, example.field,
+                                             spp=spp, aovs=["albedo", "normal"], **options)
+        alone, alone_seconds = timed(refracta.denoise, noisy)
+        guided, guided_seconds = timed(refracta.denoise, noisy, aovs["albedo"], aovs["normal"])
+        row = {"render_seconds": noisy_seconds, "reference_seconds": reference_seconds,
+               "denoise_seconds": guided_seconds, "colour_only_denoise_seconds": alone_seconds}
+        for label, image in (("noisy", noisy), ("colour_only", alone), ("guided", guided)):
+            row[f"{label}_relative_mse"] = relative_mse(image, reference)
+            row[f"{label}_flip"] = flip_mean(image, reference)
+        row["relative_mse_improvement"] = row["noisy_relative_mse"] / row["guided_relative_mse"]
+        row["flip_improvement"] = row["noisy_flip"] / row["guided_flip"]
+        out[name] = row
+        print(f"{name} {width}x{height} {spp} spp vs {reference_spp}: relMSE {row['noisy_relative_mse']:.2e} -> "
+              f"{row['guided_relative_mse']:.2e} (x{row['relative_mse_improvement']:.1f}; colour only "
+              f"{row['colour_only_relative_mse']:.2e}), FLIP {row['noisy_flip']:.4f} -> {row['guided_flip']:.4f} "
+              f"(x{row['flip_improvement']:.1f}), denoise {guided_seconds:.2f} s, render {noisy_seconds:.1f} s",
+              flush=True)
+    return out
+
+
 # Sections that --only runs on their own (with their published arguments).
-SECTIONS = {"water_render": water_render}
+SECTIONS = {"water_render": water_render, "aerial_perspective_render": aerial_perspective_render,
+            "denoise_quality": denoise_quality}
 
 
 def main(quick: bool = False) -> dict:
@@ -247,7 +325,9 @@ def main(quick: bool = False) -> dict:
                "angle_of_arrival": angle_of_arrival(seeds=2 if quick else 4, rays=500 if quick else 1500,
                                                     along_x_cells=128 if quick else 256),
                "shimmer_render": shimmer_render(*((64, 24) if quick else (160, 60))),
-               "water_render": water_render(*((64, 24, 2, 1) if quick else ()))}
+               "water_render": water_render(*((64, 24, 2, 1) if quick else ())),
+               "aerial_perspective_render": aerial_perspective_render(*((160, 60, 1) if quick else ())),
+               "denoise_quality": denoise_quality(*((96, 36, 4, 64) if quick else ()))}
     return results
 
 

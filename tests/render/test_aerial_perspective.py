@@ -234,3 +234,16 @@ def test_scene_files_set_the_air(tmp_path, keys, aerial, error):
             refracta.load_scene(path)
     else:
         assert (refracta.load_scene(path).scene.aerial_perspective is not None) == aerial
+
+
+def test_set_aerial_perspective_turns_the_air_off_and_on():
+    scene, camera = black_target_scene(4000.0)
+    scene.set_aerial_perspective(False)
+    assert scene.aerial_perspective is None
+    assert np.all(refracta.render(scene, camera, progress=False, max_length=1e5)[3, 2] == 0.0)
+    scene.set_aerial_perspective(True)
+    assert scene.aerial_perspective is not None
+    bare = refracta.Scene()
+    bare.set_sky((0.5, 0.6, 0.9))
+    with pytest.raises(ValueError, match="physical sky"):
+        bare.set_aerial_perspective(True)

@@ -628,6 +628,17 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
             return py::cast(s.aerial_perspective_ptr());
           },
           "The scene's refracta.spectrum.AerialPerspective (set_physical_sky(aerial_perspective=True)), or None.")
+      .def(
+          "set_aerial_perspective",
+          [](RenderScene& s, bool enabled) {
+            if (enabled) {
+              s.enable_aerial_perspective();
+            } else {
+              s.disable_aerial_perspective();
+            }
+          },
+          py::arg("enabled"),
+          "Turn aerial perspective on (from the scene's physical sky; ValueError without one) or off, keeping the sky.")
       .def("set_environment",
            [](RenderScene& s, const py::object& source, const py::object& rotation, double scale) {
              s.remove_lights_if([](const Light& l) { return l.is_infinite() && !dynamic_cast<const SunLight*>(&l); });
