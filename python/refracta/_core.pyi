@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AreaLight', 'Beckmann', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'HotSpot', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'Water', 'air_dispersion_scale', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
+__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'HotSpot', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'Water', 'air_dispersion_scale', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -529,6 +529,10 @@ class Scene:
         The other ids stay valid (a removed id is not reused; geometry_count still counts it); the
         acceleration structure is rebuilt before the next render. Not while a render of this scene runs.
         """
+    def set_aerial_perspective(self, enabled: bool) -> None:
+        """
+        Turn aerial perspective on (from the scene's physical sky; ValueError without one) or off, keeping the sky.
+        """
     def set_environment(self, source: typing.Any, rotation: typing.Any = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
         The environment (replacing any sky): an RGB radiance (a constant environment), an equirectangular
@@ -540,7 +544,7 @@ class Scene:
         Give a geometry (an id returned by add_*, e.g. one part of add_obj) another refracta.shading material.
         Its emission, if any, stays. Not while a render of this scene runs (RuntimeError).
         """
-    def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, below_horizon: str = 'horizon') -> None:
+    def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, below_horizon: str = 'horizon', aerial_perspective: bool = True, visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         """
         The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's
         single scattering (Nishita et al. 1993) for the sun toward `sun_direction` (normalised, y up),
@@ -554,6 +558,12 @@ class Scene:
         its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times
         106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun
         (e.g. an exposure). Builds the sky's table (~0.5 s).
+        aerial_perspective (default True): the same air dims and lights every segment the renderers cast
+        (refracta.spectrum.AerialPerspective: transmittance and single-scattered sunlight), so distant
+        objects grey and blue into the sky; False keeps surfaces as seen through empty space.
+        visibility [km]: meteorological visibility at the ground (Koschmieder: extinction at 550 nm =
+        3.912 / V), setting the aerosol in its place (give one of them). The scene's y = 0 lies `altitude`
+        above the sky's sea level.
         """
     def set_sky(self, horizon: typing.Any = None, zenith: typing.Any = None, environment: str | None = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
@@ -567,6 +577,11 @@ class Scene:
         limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.
         With wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.
         refracta.spectrum.PhysicalSky(...).sun_radiance(wavelengths): the sun through the air's extinction).
+        """
+    @property
+    def aerial_perspective(self) -> typing.Any:
+        """
+        The scene's refracta.spectrum.AerialPerspective (set_physical_sky(aerial_perspective=True)), or None.
         """
     @property
     def bounds(self) -> tuple[numpy.ndarray, numpy.ndarray]:
@@ -850,6 +865,14 @@ class RenderOptions:
         """
     @step.setter
     def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def surface_aovs(self) -> bool:
+        """
+        also render the albedo and normal of the first non-specular hit: 9 channels (render's aovs, denoise)
+        """
+    @surface_aovs.setter
+    def surface_aovs(self, arg0: bool) -> None:
         ...
     @property
     def table(self) -> bool:
@@ -1577,9 +1600,9 @@ class PhysicalSky:
     @staticmethod
     def solar_irradiance(wavelengths: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         ...
-    def __getstate__(self) -> tuple[tuple[float, float, float], float, float, float, float, float, int]:
+    def __getstate__(self) -> tuple:
         ...
-    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, below_horizon: str = 'ground') -> None:
+    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, below_horizon: str = 'ground', visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -1608,7 +1631,48 @@ class PhysicalSky:
     def sun_transmittance(self, wavelengths: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
+    def aerosol(self) -> float:
+        """
+        The Mie density scale (set from `visibility` when that was given).
+        """
+    @property
     def build_seconds(self) -> float:
+        ...
+class AerialPerspective:
+    """
+    Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b`
+    [m] (scene coordinates; y = 0 lies the sky's `altitude` above sea level), the transmittance T and
+    the single-scattered sunlight S the air adds (the sky's coefficients, densities, phase functions,
+    ozone and sun; multiple scattering left out, as in the sky): what arrives at a is T L(b) + S. The
+    chord is integrated in pieces in closed form (cpp/refracta/shading/aerial_perspective.h).
+    earth_radius: a CurvedEarth's radius when the scene is its flat frame (y is then the height above
+    the curved ground), inf for a flat scene (the sky's planet touches y = 0 under the origin).
+    Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to every segment.
+    """
+    def __getstate__(self) -> tuple[tuple, float]:
+        ...
+    def __init__(self, sky: PhysicalSky, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def along(self, a: typing.Any, b: typing.Any, wavelength: typing.SupportsFloat | typing.SupportsIndex, earth_radius: typing.SupportsFloat | typing.SupportsIndex = ...) -> tuple[float, float]:
+        """
+        (transmittance, in-scatter [W/(m^2 sr nm)] x scale) at one wavelength [nm] in [360, 830].
+        """
+    def along_rgb(self, a: typing.Any, b: typing.Any, earth_radius: typing.SupportsFloat | typing.SupportsIndex = ...) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """
+        (transmittance, in-scatter) as RGB renders apply them: linear sRGB, the sky's Le convention.
+        """
+    def inscatter_reference(self, a: typing.Any, b: typing.Any, wavelength: typing.SupportsFloat | typing.SupportsIndex, steps: typing.SupportsInt | typing.SupportsIndex = 4096, earth_radius: typing.SupportsFloat | typing.SupportsIndex = ...) -> float:
+        """
+        The same in-scatter by brute force: `steps` midpoints on the chord, each point's sun column traced.
+        """
+    def sun_transmittance(self, height: typing.SupportsFloat | typing.SupportsIndex, elevation_deg: typing.SupportsFloat | typing.SupportsIndex, wavelength: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        """
+        The sun's transmittance to `height` [m] above sea level where it stands `elevation_deg` above the local horizon.
+        """
+    @property
+    def scale(self) -> float:
         ...
 class DispersedField(IndexField):
     """
