@@ -994,6 +994,7 @@ for Camera.photographic (focus by default at the target's horizontal distance):
   m.def("_ev100", &ev100_of, py::arg("f_number"), py::arg("shutter"), py::arg("iso") = kDefaultIso,
         "EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.");
   m.def("_read_image", [](const std::string& path) { return image_to_float32(read_image(path)); }, py::arg("path"));
+  bind_ocean(m);  // OceanWaves and Scene.add_sea
 }
 
 }  // namespace refracta

@@ -590,22 +590,28 @@ void bind_shading(py::module_& m) {
       "reflection-only and two-sided, nothing continues below. body=False: the bare interface, reflecting\n"
       "and transmitting, bounding a medium of the water's index (priority for nested dielectrics).\n"
       "Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open ocean).\n"
+      "resolved_slope_variance: the mean-square slope a displaced wave mesh under it already resolves\n"
+      "(Scene.add_sea sets it): alpha^2 = Cox-Munk's total - it, so that resolved + unresolved = total.\n"
       "wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.");
   water_class
-      .def(py::init([](double wind_speed, double temperature_c, double salinity, bool body, int priority) {
+      .def(py::init([](double wind_speed, double temperature_c, double salinity, bool body, int priority, double resolved_slope_variance) {
              WaterParameters p;
              p.wind_speed = wind_speed, p.temperature_c = temperature_c, p.salinity = salinity, p.body = body, p.priority = priority;
+             p.resolved_slope_variance = resolved_slope_variance;
              return std::make_shared<Water>(p);
            }),
            py::arg("wind_speed") = water_defaults.wind_speed, py::arg("temperature_c") = water_defaults.temperature_c,
            py::arg("salinity") = water_defaults.salinity, py::arg("body") = water_defaults.body,
-           py::arg("priority") = water_defaults.priority)
+           py::arg("priority") = water_defaults.priority, py::arg("resolved_slope_variance") = water_defaults.resolved_slope_variance)
       .def_property_readonly("wind_speed", [](const Water& w) { return w.parameters().wind_speed; }, "[m/s] 12.5 m above the sea")
       .def_property_readonly("temperature_c", [](const Water& w) { return w.parameters().temperature_c; }, "[deg C]")
       .def_property_readonly("salinity", [](const Water& w) { return w.parameters().salinity; }, "[g/kg]")
       .def_property_readonly("body", [](const Water& w) { return w.parameters().body; }, "Whether a deep water body is under the surface.")
-      .def_property_readonly("mean_square_slope", &Water::mean_square_slope, "Cox & Munk's total sigma^2 = alpha^2.")
-      .def_property_readonly("alpha", &Water::alpha, "The Beckmann roughness alpha = sigma.")
+      .def_property_readonly("mean_square_slope", &Water::mean_square_slope, "Cox & Munk's total sigma^2.")
+      .def_property_readonly("resolved_slope_variance", [](const Water& w) { return w.parameters().resolved_slope_variance; },
+                             "The mean-square slope a displaced wave mesh already shows (Scene.add_sea); the microfacets keep\n"
+                             "alpha^2 = mean_square_slope - resolved_slope_variance.")
+      .def_property_readonly("alpha", &Water::alpha, "The Beckmann roughness alpha = sqrt(mean_square_slope - resolved_slope_variance).")
       .def("ior", [](const Water& w, const py::object& wavelength) {
              bool single = false;
              std::vector<double> l = to_values(wavelength, "wavelength_nm", &single);
@@ -647,7 +653,8 @@ void bind_shading(py::module_& m) {
   add_parameters<Water>(water_class, [](const Water& w) {
     const WaterParameters& p = w.parameters();
     return py::dict(py::arg("wind_speed") = p.wind_speed, py::arg("temperature_c") = p.temperature_c, py::arg("salinity") = p.salinity,
-                    py::arg("body") = p.body, py::arg("priority") = p.priority);
+                    py::arg("body") = p.body, py::arg("priority") = p.priority,
+                    py::arg("resolved_slope_variance") = p.resolved_slope_variance);
   });
 
   py::class_<Beckmann>(m, "Beckmann",

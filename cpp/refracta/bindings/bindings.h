@@ -20,6 +20,7 @@ void bind_media(py::module_& m);
 void bind_turbulence(py::module_& m);  // called by bind_media
 void bind_rays(py::module_& m);
 void bind_scene(py::module_& m);
+void bind_ocean(py::module_& m);  // called by bind_scene
 void bind_render(py::module_& m);
 void bind_raster(py::module_& m);
 void bind_edit(py::module_& m);

@@ -86,7 +86,14 @@ double RoughTransmittance::hemispherical(double eta) const {
 }
 
 Water::Water(const WaterParameters& parameters) : parameters_(parameters) {
-  alpha_ = std::sqrt(cox_munk_mean_square_slope(parameters.wind_speed));  // checks wind_speed
+  mean_square_slope_ = cox_munk_mean_square_slope(parameters.wind_speed);  // checks wind_speed
+  const double resolved = parameters.resolved_slope_variance;
+  if (!std::isfinite(resolved) || resolved < 0.0 || resolved > mean_square_slope_ - kMinUnresolvedSlopeVariance) {
+    throw_invalid("Water: resolved_slope_variance must be in [0, ", mean_square_slope_ - kMinUnresolvedSlopeVariance,
+                  "] (Cox-Munk's total ", mean_square_slope_, " at wind_speed ", parameters.wind_speed, " less ",
+                  kMinUnresolvedSlopeVariance, " kept by the microfacets) (got ", resolved, ")");
+  }
+  alpha_ = std::sqrt(mean_square_slope_ - resolved);
   // water_ior checks temperature_c and salinity (naming them) on the first node.
   ior_table_.resize(kTableSize);
   std::vector<double> lambda(kTableSize), r(kTableSize);
@@ -138,7 +145,8 @@ std::optional<double> Water::interior_ior(const SampledWavelengths& lambda) cons
 std::string Water::describe() const {
   const WaterParameters& p = parameters_;
   return concat("Water(wind_speed=", p.wind_speed, ", temperature_c=", p.temperature_c, ", salinity=", p.salinity,
-                p.body ? "" : ", body=False", p.priority ? concat(", priority=", p.priority) : "", ")");
+                p.body ? "" : ", body=False", p.priority ? concat(", priority=", p.priority) : "",
+                p.resolved_slope_variance > 0.0 ? concat(", resolved_slope_variance=", p.resolved_slope_variance) : "", ")");
 }
 
 }  // namespace refracta

@@ -4,7 +4,8 @@
 // The interface. The sea surface's slopes are Gaussian with the total mean-square slope of Cox &
 // Munk 1954, sigma^2 = 0.003 + 5.12e-3 U (U [m/s] the wind 12.5 m above the sea; water.h), so
 // the interface is a Beckmann microfacet dielectric (beckmann.h) with alpha^2 = sigma^2 (alpha = 0.055
-// in a calm, 0.17 at 5 m/s, 0.23 at 10 m/s), in pbrt-v4's DielectricBxDF / Mitsuba 3's
+// in a calm, 0.17 at 5 m/s, 0.23 at 10 m/s) — less the slopes a displaced wave mesh already
+// resolves (resolved_slope_variance; Scene.add_sea and scene/ocean_waves.h), in pbrt-v4's DielectricBxDF / Mitsuba 3's
 // roughdielectric form (Walter et al. 2007, eqs. 20-21; the formulas of dielectric.h's
 // RoughDielectricBsdf, there with GGX and one index):
 //   reflection     f_r = D(h) G(wo, wi) F(wo.h) / (4 |cos_o cos_i|),
@@ -249,6 +250,10 @@ struct WaterParameters {
   double salinity = 35.0;       // [g/kg] the open ocean's mean
   bool body = true;             // a deep water body under the surface (false: the bare interface)
   int priority = 0;             // nested dielectrics (body = false only)
+  // [-] the mean-square slope a displaced mesh under this material already shows (Scene.add_sea:
+  // the Tessendorf waves it resolves); the microfacets keep the rest, alpha^2 = sigma^2 - this, so
+  // that resolved + unresolved = Cox & Munk's total. In [0, sigma^2 - kMinUnresolvedSlopeVariance].
+  double resolved_slope_variance = 0.0;
 };
 
 class Water final : public Material {
@@ -263,8 +268,12 @@ class Water final : public Material {
   std::string describe() const override;
 
   const WaterParameters& parameters() const { return parameters_; }
-  double mean_square_slope() const { return alpha_ * alpha_; }  // Cox-Munk sigma^2
-  double alpha() const { return alpha_; }                        // Beckmann alpha = sigma
+  // The microfacets keep at least this mean-square slope (alpha >= 0.01): a Beckmann lobe narrower
+  // than that is a mirror in all but cost, and a mesh resolving all of Cox-Munk's slope is a
+  // setting error (a grid finer than the capillary waves), not a sea.
+  static constexpr double kMinUnresolvedSlopeVariance = 1e-4;
+  double mean_square_slope() const { return mean_square_slope_; }  // Cox-Munk's total sigma^2
+  double alpha() const { return alpha_; }  // Beckmann alpha = sqrt(sigma^2 - resolved_slope_variance)
   // The water's index relative to vacuum at a wavelength [nm] in [kLambdaMin, kLambdaMax] (from the table).
   double ior(double wavelength_nm) const { return interpolate(ior_table_, wavelength_nm); }
   const RoughTransmittance& transmittance() const { return *transmittance_; }
@@ -272,6 +281,7 @@ class Water final : public Material {
  private:
   static double interpolate(const std::vector<double>& table, double wavelength_nm);
   WaterParameters parameters_;
+  double mean_square_slope_;
   double alpha_;
   std::vector<double> ior_table_;  // every 1 nm from kLambdaMin
   Color body_reflectance_;         // R(lambda) of water.h
