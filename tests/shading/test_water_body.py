@@ -97,7 +97,8 @@ def test_06_beckmann_is_normalised_with_slope_variance_alpha_squared():
 def test_07_pickles_and_describes():
     water = shading.Water(7.5, 14.0, 31.0, body=False, priority=3)
     again = pickle.loads(pickle.dumps(water))
-    assert again.parameters == water.parameters == dict(wind_speed=7.5, temperature_c=14.0, salinity=31.0, body=False, priority=3)
+    assert again.parameters == water.parameters == dict(wind_speed=7.5, temperature_c=14.0, salinity=31.0, body=False, priority=3,
+                                                               resolved_slope_variance=0.0)
     assert repr(again) == "Water(wind_speed=7.5, temperature_c=14, salinity=31, body=False, priority=3)"
     assert again.priority == 3
 
