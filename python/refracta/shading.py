@@ -35,7 +35,8 @@ RGB multiplies the colour at the surface's uvs, registered in each scene the mat
 - ``ThinFilm(thickness, film_ior=1.33, eta=1.5, k=0.0, alpha=0.1)``: thin-film iridescence
   (thickness [nm]) over a GGX base of complex index eta + i k; alpha = 0 is a smooth mirror.
 
-- ``Water(wind_speed=5.0, temperature_c=20.0, salinity=35.0, body=True, priority=0)``: the sea, below.
+- ``Water(wind_speed=5.0, temperature_c=20.0, salinity=35.0, body=True, priority=0,
+  resolved_slope_variance=0.0)``: the sea, below.
 
 Water: ``water_ior(wavelength_nm, temperature_c=20.0, salinity=0.0)`` (IAPWS R9-97 with Tanaka et
 al.'s density and Quan & Fry's salinity terms; n = 1.33335 at 589.3 nm and 20 C, relative to
@@ -65,6 +66,11 @@ vacuum) gives a ``Dielectric`` its index, e.g. ``Dielectric(water_ior(550.0, 15.
   seas are greener and darker), the upwelling light's angular shape, foam, the sea floor.
 - ``body=False``: the bare interface, which also transmits, bounding a medium of the water's index
   (nested dielectrics by ``priority``); nothing absorbs in it.
+- Waves larger than a pixel are geometry: ``Scene.add_sea`` displaces the sea near the camera by a
+  ``refracta.OceanWaves`` field (Tessendorf 2001's FFT synthesis of the Phillips spectrum, scaled to
+  Pierson & Moskowitz 1964's significant wave height) and shades it with copies of the Water whose
+  ``resolved_slope_variance`` is the mean-square slope the mesh shows, so that the microfacets keep
+  alpha^2 = Cox & Munk's total - resolved and the two add up to Cox & Munk's total.
 
 ``Beckmann(alpha)`` exposes the distribution (D, G1, height-correlated G).
 
