@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'HotSpot', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'Water', 'air_dispersion_scale', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
+__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'HotSpot', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'OceanWaves', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'Water', 'air_dispersion_scale', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -504,6 +504,23 @@ class Scene:
         """
         Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns its index.
         """
+    def add_sea(self, waves: OceanWaves | None = None, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 200000.0, material: typing.Any = None, detail_radius: typing.SupportsFloat | typing.SupportsIndex = 50.0, centre: typing.Any = (0.0, 0.0)) -> list:
+        """
+        Add a sea at y = height with waves near `centre` (x, z) [m] (put it under the camera).
+        
+        Within detail_radius [m] of centre: the waves (an OceanWaves; default OceanWaves(wind_speed=the
+        material's)) tiled on a mesh of their nodes with shading normals from their slopes, faded to flat
+        over the outer 30 % of the radius; beyond it, a flat square of side `size` [m] centred on the
+        origin (as add_ground), cut around the waves' square and meeting it without a crack.
+        
+        material: default shading.Water(wind_speed=waves.wind_speed). With a Water (its wind_speed must
+        equal the waves'), the displaced part gets copies with resolved_slope_variance set to the
+        mean-square slope its mesh shows (the full waves, then each of 3 fade rings), so that resolved +
+        microfacet = Cox & Munk's total; the flat plane keeps the full Water. Any other material is used
+        as given everywhere.
+        
+        Returns the geometry ids: the displaced meshes (full waves, then fade rings), then the flat plane.
+        """
     def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, material: typing.Any = None, emission: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
         Add a sphere (exact, not tessellated); emission makes it a spherical light.
@@ -724,6 +741,113 @@ class Camera:
     @property
     def width(self) -> int:
         ...
+class OceanWaves:
+    """
+    A wind sea's waves on a periodic square patch (scene/ocean_waves.h): a height field synthesised by
+    FFT from the Phillips spectrum, as Tessendorf 2001 ("Simulating Ocean Water") does,
+    
+        Phi(k) = A exp(-1 / (k L_w)^2) / k^4 |k^.w^|^2 [m^4],   L_w = wind_speed^2 / g,
+    
+    with A = 2 (0.21 / 4)^2 / pi = 1.755e-3 fixed by the significant wave height of a fully developed
+    sea, H_s = 4 sigma_h = 0.21 U^2 / g (Pierson & Moskowitz 1964; Phillips 1957 for the k^-4 form).
+    Each mode is a complex normal with E|h~(k)|^2 = Phi(k) dk^2 (dk = 2 pi / patch_size), Hermitian so
+    the field is real; slopes by the FFT of i k h~ (exact on the nodes). Modes run up to the patch's
+    Nyquist wavenumber pi resolution / patch_size (shorter waves are the Water material's microfacets)
+    and down to 2 pi / patch_size (longer waves are missing). Deterministic from seed (each mode's
+    numbers depend only on seed and its integer wavenumber, so a finer resolution keeps the long
+    waves); time [s] moves the waves by deep-water dispersion w = sqrt(g k). No choppy displacement.
+    
+    wind_speed [m/s] in (0, 30] (12.5 m above the sea, as Water's); wind_direction (x, z) horizontal,
+    any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024]. Arrays are
+    indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).
+    """
+    phillips_a: typing.ClassVar[float] = 0.0017546832475881459
+    def __getstate__(self) -> tuple[float, tuple[float, float], float, int, int, float]:
+        ...
+    def __init__(self, wind_speed: typing.SupportsFloat | typing.SupportsIndex = 5.0, wind_direction: typing.Any = (1.0, 0.0), patch_size: typing.SupportsFloat | typing.SupportsIndex = 100.0, resolution: typing.SupportsInt | typing.SupportsIndex = 256, seed: typing.SupportsInt | typing.SupportsIndex = 0, time: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def heights(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (N, N) heights [m], [j, i].
+        """
+    def slopes(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (N, N, 2) (dh/dx, dh/dz), [j, i].
+        """
+    def spectrum(self, kx: typing.Any, kz: typing.Any) -> typing.Any:
+        """
+        Phi(k) [m^4] at wavenumbers kx, kz [rad/m] (vectorised).
+        """
+    @property
+    def expected_height_variance(self) -> float:
+        """
+        sum of Phi dk^2 over the synthesised modes [m^2]: the field's expected variance.
+        """
+    @property
+    def expected_slope_variance(self) -> float:
+        """
+        sum of k^2 Phi dk^2 over the synthesised modes: the expected mean-square slope.
+        """
+    @property
+    def height_variance(self) -> float:
+        """
+        This field's variance over the nodes [m^2].
+        """
+    @property
+    def patch_size(self) -> float:
+        """
+        [m]
+        """
+    @property
+    def resolution(self) -> int:
+        ...
+    @property
+    def seed(self) -> int:
+        ...
+    @property
+    def significant_wave_height(self) -> float:
+        """
+        Pierson-Moskowitz H_s = 0.21 U^2 / g [m] (the spectrum's 4 sigma_h)
+        """
+    @property
+    def slope_variance(self) -> float:
+        """
+        This field's mean of (dh/dx)^2 + (dh/dz)^2 over the nodes.
+        """
+    @property
+    def spacing(self) -> float:
+        """
+        patch_size / resolution [m]
+        """
+    @property
+    def spectrum_height_variance(self) -> float:
+        """
+        The whole spectrum's integral (H_s / 4)^2 [m^2].
+        """
+    @property
+    def time(self) -> float:
+        """
+        [s]
+        """
+    @property
+    def wind_direction(self) -> tuple[float, float]:
+        """
+        Unit (x, z).
+        """
+    @property
+    def wind_length(self) -> float:
+        """
+        L_w = U^2 / g [m]
+        """
+    @property
+    def wind_speed(self) -> float:
+        """
+        [m/s]
+        """
 class RenderOptions:
     """
     Options of refracta.render, with their defaults (defined once, here). Set any field by name;
@@ -1271,11 +1395,13 @@ class Water(Material):
     reflection-only and two-sided, nothing continues below. body=False: the bare interface, reflecting
     and transmitting, bounding a medium of the water's index (priority for nested dielectrics).
     Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open ocean).
+    resolved_slope_variance: the mean-square slope a displaced wave mesh under it already resolves
+    (Scene.add_sea sets it): alpha^2 = Cox-Munk's total - it, so that resolved + unresolved = total.
     wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, wind_speed: typing.SupportsFloat | typing.SupportsIndex = 5.0, temperature_c: typing.SupportsFloat | typing.SupportsIndex = 20.0, salinity: typing.SupportsFloat | typing.SupportsIndex = 35.0, body: bool = True, priority: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+    def __init__(self, wind_speed: typing.SupportsFloat | typing.SupportsIndex = 5.0, temperature_c: typing.SupportsFloat | typing.SupportsIndex = 20.0, salinity: typing.SupportsFloat | typing.SupportsIndex = 35.0, body: bool = True, priority: typing.SupportsInt | typing.SupportsIndex = 0, resolved_slope_variance: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -1297,7 +1423,7 @@ class Water(Material):
     @property
     def alpha(self) -> float:
         """
-        The Beckmann roughness alpha = sigma.
+        The Beckmann roughness alpha = sqrt(mean_square_slope - resolved_slope_variance).
         """
     @property
     def body(self) -> bool:
@@ -1307,12 +1433,18 @@ class Water(Material):
     @property
     def mean_square_slope(self) -> float:
         """
-        Cox & Munk's total sigma^2 = alpha^2.
+        Cox & Munk's total sigma^2.
         """
     @property
     def parameters(self) -> dict:
         """
         The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
+    @property
+    def resolved_slope_variance(self) -> float:
+        """
+        The mean-square slope a displaced wave mesh already shows (Scene.add_sea); the microfacets keep
+        alpha^2 = mean_square_slope - resolved_slope_variance.
         """
     @property
     def salinity(self) -> float:
