@@ -40,29 +40,46 @@ def _count(minimum: int):
     return parse
 
 
-# How the demo renders each example at its default size (480 x 160): transport, samples per
-# pixel. Measured on 2 cores (see demo's printout): the hot road path-traces; over the sea every
-# glossy reflection is another curved ray tens of km long, so those use 'direct' (first-bounce
-# lighting, specular chains followed).
+# How the demo renders each example at its default size (640 px wide): transport, samples per
+# pixel, each image denoised (render(denoise=True): Open Image Denoise with the albedo and normal
+# of the first hit). Over the sea every camera path is a curved ray 20-40 km long (~60-140 us a
+# sample on the shared 2-core machine), so those take one sample and lean on the denoiser; the
+# whole demo stays within 3 minutes on 2 cores (it prints its time).
 DEMO_SETTINGS = {
-    "hot_road": dict(transport="path", spp=16),
-    "hot_spot": dict(transport="path", spp=16),
-    "cold_sea": dict(transport="direct", spp=16),
-    "fata_morgana": dict(transport="direct", spp=8),
+    "hot_road": dict(transport="direct", spp=4),
+    "hot_spot": dict(transport="direct", spp=2),
+    "cold_sea": dict(transport="direct", spp=1),
+    "fata_morgana": dict(transport="direct", spp=1),
 }
 # The automatic exposure's key per example (the log-average luminance maps to it; refracta.io):
 # middle grey by day, darker at sunset, as photographers underexpose a sunset to keep its colour.
-DEMO_KEYS = {"hot_road": 0.18, "hot_spot": 0.18, "cold_sea": 0.08, "fata_morgana": 0.14}
+DEMO_KEYS = {"hot_road": 0.18, "hot_spot": 0.18, "cold_sea": 0.1, "fata_morgana": 0.14}
+# The hot spot's extra view: the camera walks this far [m] toward the patch; its "lake" stays on
+# the same stretch of road (it belongs to the ground), only nearer.
+HOT_SPOT_WALK = 200.0
 
 
-def demo(out: Path, size=(480, 160)) -> int:
-    """Each example scene without and with its atmosphere, side by side (`out`/<name>.png, tone
-    mapped by refracta.io's default ACES curve, exposed by DEMO_KEYS[name] on the pair's joint
-    log-average), the linear
+def _moved(camera, distance: float, width: int, height: int):
+    """The hot road's photographic camera carried `distance` [m] along +x (the road)."""
+    import numpy as np
+
+    import refracta
+    from refracta import examples
+
+    step = np.array([distance, 0.0, 0.0])
+    return refracta.Camera.photographic(np.asarray(camera.position) + step, np.asarray(camera.look_at) + step,
+                                        examples.HOT_ROAD_FOCAL_LENGTH, width=width, height=height)
+
+
+def demo(out: Path, size=None) -> int:
+    """Each example scene without and with its atmosphere, one above the other (`out`/<name>.png,
+    tone mapped by refracta.io's default ACES curve, exposed by DEMO_KEYS[name] on the pair's joint
+    log-average; the hot spot adds a third view, the camera HOT_SPOT_WALK m nearer), the linear
     renders (`out`/<name>.exr, through the atmosphere; <name>_straight.exr without), the ray
     fans (`out`/rays_<name>.png), a sunset with a green flash (`out`/green_flash.png) and the hot
     road shimmering (`out`/shimmer.gif, physical turbulence; shimmer_noise.gif, geometric noise).
-    Prints each image's render time."""
+    size: (width, height) for every example (None: each example's default, 640 px wide). Every
+    render is denoised. Prints each image's render time and the total."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -75,28 +92,38 @@ def demo(out: Path, size=(480, 160)) -> int:
     out.mkdir(parents=True, exist_ok=True)
     total = time.perf_counter()
     for name, make in examples.EXAMPLES.items():
-        example = make(*size)
+        example = make() if size is None else make(*size)
+        width, height = example.camera.width, example.camera.height
         # The reference: no atmosphere, but the same (curved or flat) Earth.
         reference_field = refracta.without_refraction(example.field)
         settings = DEMO_SETTINGS.get(name, dict(transport="direct", spp=4))
-        render = dict(progress=False, max_length=example.max_length, **settings)
+        render = dict(progress=False, max_length=example.max_length, denoise=True, **settings)
+        views = [(example.camera, reference_field, "without the atmosphere"),
+                 (example.camera, example.field, "through the atmosphere")]
+        if name == "hot_spot":
+            views.append((_moved(example.camera, HOT_SPOT_WALK, width, height), example.field,
+                          f"through the atmosphere, {HOT_SPOT_WALK:.0f} m nearer"))
         images = []
-        for field, label in ((reference_field, "without the atmosphere"), (example.field, "through the atmosphere")):
+        for camera, field, label in views:
             start = time.perf_counter()
-            images.append(refracta.render(example.scene, example.camera, field, **render))
-            print(f"{name}, {label}: {example.camera.width}x{example.camera.height}, {settings['transport']}, "
-                  f"{settings['spp']} spp: {time.perf_counter() - start:.1f} s", flush=True)
+            images.append(refracta.render(example.scene, camera, field, **render))
+            print(f"{name}, {label}: {width}x{height}, {settings['transport']}, {settings['spp']} spp, denoised: "
+                  f"{time.perf_counter() - start:.1f} s", flush=True)
         refracta.io.write_image(out / f"{name}_straight.exr", images[0])
         refracta.io.write_image(out / f"{name}.exr", images[1])
-        # One exposure for both (the log-average of the pair), so they compare.
+        # One exposure for all views (the log-average of them together), so they compare.
         both = refracta.io.to_display(np.concatenate(images, axis=0), key=DEMO_KEYS.get(name))
-        displays = np.split(both, 2, axis=0)
-        figure, axes = plt.subplots(2, 1, figsize=(9, 2 * 9 * size[1] / size[0] + 1.2), constrained_layout=True)
-        for ax, display, label in zip(axes, displays, ("without the atmosphere", "through the atmosphere")):
-            ax.imshow(display)
-            ax.set_title(f"{name}: {label}", fontsize=10)
+        displays = np.split(both, len(images), axis=0)
+        # One figure pixel per image pixel: the panels keep the renders' own resolution.
+        dpi = 100
+        figure, axes = plt.subplots(len(images), 1, figsize=(width / dpi, len(images) * (height / dpi + 0.3)), dpi=dpi)
+        for ax, display, (_, _, label) in zip(np.atleast_1d(axes), displays, views):
+            ax.imshow(display, interpolation="none")
+            ax.set_title(f"{name}: {label}", fontsize=9)
             ax.axis("off")
-        figure.savefig(out / f"{name}.png", dpi=110)
+        figure.subplots_adjust(left=0, right=1, bottom=0, top=1 - 0.3 / (height / dpi + 0.3) / len(images),
+                               hspace=0.3 / (height / dpi))
+        figure.savefig(out / f"{name}.png", dpi=dpi)
         plt.close(figure)
         print(f"wrote {out / (name + '.png')}, {name}.exr, {name}_straight.exr")
     for name, make in examples.ATMOSPHERES.items():
@@ -105,24 +132,26 @@ def demo(out: Path, size=(480, 160)) -> int:
         figure.savefig(out / f"rays_{name}.png", dpi=110)
         plt.close(figure)
         print(f"wrote {out / ('rays_' + name + '.png')}")
-    scale = size[1] / 160  # the extras follow the asked size (the tests' 72x24 demo: a few seconds)
-    _demo_green_flash(out, size=max(16, round(64 * scale)))
-    _demo_shimmer(out, size=(max(24, round(96 * scale)), max(8, round(32 * scale))),
+    scale = 1.0 if size is None else size[0] / 640  # the extras follow the asked size (the tests' small demo: seconds)
+    _demo_green_flash(out, size=max(16, round(GREEN_FLASH_SIZE * scale)))
+    _demo_shimmer(out, size=(max(24, round(64 * scale)), max(8, round(20 * scale))),
                   noise_size=(max(32, round(320 * scale)), max(12, round(120 * scale))))
     print(f"demo: {time.perf_counter() - total:.1f} s")
     return 0
 
 
 # The green flash sequence (examples.green_flash): the sun's centre [deg] above the true horizon in
-# each frame, and the frames' fields of view [deg] -- the flattening setting sun whole, then the
-# last gleam at the fold of the warm sea's mirage (true -0.512 deg for the upper rim), where the
-# blue-green end of the spectrum, lifted most, is seen last.
-GREEN_FLASH_FRAMES = [(-0.45, 0.7), (-0.65, 0.7), (-0.74, 0.7), (-0.772, 0.08), (-0.774, 0.08), (-0.776, 0.08)]
+# each frame, and the frames' fields of view [deg] -- the flattening setting sun whole, its lower
+# part cut off by the warm sea's mirage, then the last gleam at the fold of the mirage (true
+# -0.512 deg for the upper rim), where the blue-green end of the spectrum, lifted most, is seen last.
+GREEN_FLASH_FRAMES = [(-0.45, 0.7), (-0.74, 0.7), (-0.774, 0.08)]
 GREEN_FLASH_LOOK = {0.7: -0.05, 0.08: -0.02}  # [deg]: where each zoom looks (the fold is at -0.025)
+GREEN_FLASH_SIZE = 176  # [px] each frame: three side by side make a 528 px strip
 
 
-def _demo_green_flash(out: Path, size: int = 64, spp: int = 48) -> None:
-    """Sunset over a warm sea, spectral: out/green_flash.png, one exposure for every frame."""
+def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = 4) -> None:
+    """Sunset over a warm sea, spectral and denoised: out/green_flash.png, one exposure for every
+    frame, one figure pixel per rendered pixel."""
     import matplotlib.pyplot as plt
     import numpy as np
 
@@ -136,24 +165,36 @@ def _demo_green_flash(out: Path, size: int = 64, spp: int = 48) -> None:
         look = np.radians(GREEN_FLASH_LOOK[vfov])
         eye = example.camera.position
         camera = refracta.Camera(eye, eye + [np.cos(look), np.sin(look), 0.0], vfov=vfov, width=size, height=size)
-        frames.append(refracta.render(example.scene, camera, example.field, max_length=example.max_length,
-                                      spectral=True, spp=spp, progress=False))
+        # Spectral renders of the sun's edge leave the sRGB gamut (negative channels), which the
+        # denoiser refuses: clipped to the gamut's boundary first, as the display would.
+        image, aux = refracta.render(example.scene, camera, example.field, max_length=example.max_length,
+                                     spectral=True, spp=spp, progress=False, aovs=["albedo", "normal"])
+        frames.append(refracta.denoise(np.maximum(image, 0.0), aux["albedo"], aux["normal"]))
     # One exposure for every frame (the whole disc's bright end near 1), gamma 2.2: the last gleam
     # is as dim as it is.
     exposure = 1.0 / np.percentile(frames[0].max(axis=2), 99.0)
-    figure, axes = plt.subplots(1, len(frames), figsize=(2.0 * len(frames), 2.6), constrained_layout=True)
+    dpi, gap = 100, 0.08
+    figure, axes = plt.subplots(1, len(frames), figsize=(len(frames) * (size / dpi + gap), size / dpi + 0.7), dpi=dpi)
     for ax, frame, (elevation, vfov) in zip(axes, frames, GREEN_FLASH_FRAMES):
-        ax.imshow(np.clip(frame * exposure, 0.0, 1.0) ** (1 / 2.2))
-        ax.set_title(f"sun {elevation:+.3f} deg\n{vfov * 60:.0f}' field", fontsize=8)
+        ax.imshow(np.clip(frame * exposure, 0.0, 1.0) ** (1 / 2.2), interpolation="none")
+        ax.set_title(f"sun {elevation:+.3f} deg, {vfov * 60:.0f}' field", fontsize=7)
         ax.axis("off")
-    figure.suptitle("Sunset over a warm sea (spectral): flattening, the mirage's cut, the green flash", fontsize=9)
-    figure.savefig(out / "green_flash.png", dpi=110)
+    figure.suptitle("Sunset over a warm sea (spectral): flattening, the mirage's cut, the green flash", fontsize=8)
+    figure.subplots_adjust(left=0, right=1, bottom=0, top=size / (size + 70), wspace=gap * dpi / size)
+    figure.savefig(out / "green_flash.png", dpi=dpi)
     plt.close(figure)
-    print(f"wrote {out / 'green_flash.png'} ({len(frames)} frames {size}x{size}, spectral, {spp} spp: "
+    print(f"wrote {out / 'green_flash.png'} ({len(frames)} frames {size}x{size}, spectral, {spp} spp, denoised: "
           f"{time.perf_counter() - start:.1f} s)", flush=True)
 
 
-def _demo_shimmer(out: Path, size=(96, 32), noise_size=(320, 120)) -> None:
+# The turbulent rays end (and see the sky in their last direction) after 1.5 km, where the
+# shimmering band's rays have crossed the hot layer: every metre in it costs rk45 steps of a few
+# 10 cm cells (~9 ms a pixel-frame on the shared 2-core machine, so the GIF is small and short).
+SHIMMER_LENGTH = 1500.0  # [m]
+SHIMMER_FRAMES = 4
+
+
+def _demo_shimmer(out: Path, size=(64, 20), noise_size=(320, 120)) -> None:
     """The hot road shimmering: out/shimmer.gif (physical turbulence in the hot layer, carried by
     the wind; `size` WxH) and out/shimmer_noise.gif (the geometric noise stand-in, not physical)."""
     import numpy as np
@@ -161,15 +202,15 @@ def _demo_shimmer(out: Path, size=(96, 32), noise_size=(320, 120)) -> None:
     import refracta
     from refracta import examples
 
-    road = examples.hot_road(640, 240)
+    road = examples.hot_road()
     start = time.perf_counter()
     # The mirage band, narrow and small: every ray there crosses ~300 m of turbulent layer, traced
     # in steps of a few 10 cm cells (refracta.Turbulence: 128^3 cells of 10 cm, a 12.8 m tile).
     camera = refracta.Camera(road.camera.position, road.camera.look_at, vfov=0.6, width=size[0], height=size[1])
     air = refracta.Turbulence(cells=128, spacing=0.1, depth=0.1, seed=1)
-    refracta.animate(road.scene, camera, road.field, np.arange(6) * 0.15, out / "shimmer.gif", turbulence=air,
-                     progress=False, max_length=road.max_length)
-    print(f"wrote {out / 'shimmer.gif'} (6 frames {size[0]}x{size[1]} through refracta.Turbulence: "
+    refracta.animate(road.scene, camera, road.field, np.arange(SHIMMER_FRAMES) * 0.15, out / "shimmer.gif", turbulence=air,
+                     progress=False, max_length=SHIMMER_LENGTH)
+    print(f"wrote {out / 'shimmer.gif'} ({SHIMMER_FRAMES} frames {size[0]}x{size[1]} through refracta.Turbulence: "
           f"{time.perf_counter() - start:.1f} s)", flush=True)
     start = time.perf_counter()
     refracta.animate(road.scene, road.camera.resized(*noise_size), road.field, np.arange(12) * 0.08,
@@ -243,7 +284,8 @@ def _run(argv=None) -> int:
     commands = parser.add_subparsers(dest="command", required=True)
     demo_parser = commands.add_parser("demo", help="render the example mirages and ray fans")
     demo_parser.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
-    demo_parser.add_argument("--size", type=_size, default=(480, 160), help="image size WxH (default 480x160)")
+    demo_parser.add_argument("--size", type=_size, default=None,
+                             help="image size WxH (default: each example's own, 640 px wide)")
     render_parser = commands.add_parser("render", help="render a TOML scene file")
     render_parser.add_argument("scene", type=Path, help="scene file (.toml)")
     render_parser.add_argument("-o", "--output", type=Path, default=Path("out.exr"), help="image file (default out.exr)")

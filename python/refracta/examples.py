@@ -43,15 +43,21 @@ def sun_direction(elevation: float, azimuth: float) -> np.ndarray:
     return np.array([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)])
 
 
-def set_physical_sky(scene: _core.Scene, direction, aerosol: float = 1.0, scale: float = RADIANCE_SCALE) -> None:
+def set_physical_sky(scene: _core.Scene, direction, aerosol: float = 1.0, scale: float = RADIANCE_SCALE,
+                     visibility=None) -> None:
     """Light `scene` by Scene.set_physical_sky: a Nishita single-scattering sky and its sun disc
     (0.53 deg, coloured by extinction along the sun's path), both times `scale` (RADIANCE_SCALE:
     see above). direction: toward the sun (normalised), y up; aerosol: the Mie density scale.
     Below the horizon the sky continues from the horizon at each azimuth (below_horizon='horizon'):
     a path that ends at max_length still heading slightly down -- trapped in a duct over the sea, or
     not yet turned over the road -- would meet the water or the hot layer at a grazing angle and see
-    the horizon sky there, not a black ground."""
-    scene.set_physical_sky(direction, aerosol=aerosol, scale=scale, below_horizon="horizon")
+    the horizon sky there, not a black ground. Aerial perspective is on (the sky's own air greys
+    and blues distant objects); visibility [km]: the meteorological visibility that sets the
+    aerosol instead (None: `aerosol`)."""
+    if visibility is None:
+        scene.set_physical_sky(direction, aerosol=aerosol, scale=scale, below_horizon="horizon")
+    else:
+        scene.set_physical_sky(direction, scale=scale, below_horizon="horizon", visibility=visibility)
 
 
 # Materials (refracta.shading; shared/SHADING.md section 3). Indices of aluminium at ~650/550/450 nm
@@ -65,38 +71,62 @@ def _paint(colour):
 
 
 def _car(scene, x, z, colour, glass):
-    """A car of boxes along x: painted body, dark interior behind thin glass, black tyres."""
+    """A car of boxes along x: painted body, a cabin of windows (`glass`), black tyres."""
     scene.add_box((x, 0.75, z), (4.2, 1.1, 1.8), material=_paint(colour))
-    scene.add_box((x - 0.3, 1.55, z), (2.1, 0.48, 1.62), material=shading.Diffuse(0.0))  # unlit cabin
     scene.add_box((x - 0.3, 1.55, z), (2.2, 0.5, 1.7), material=glass)
     for dx in (-1.35, 1.35):
         for dz in (-0.92, 0.92):
             scene.add_box((x + dx, 0.32, z + dz), (0.64, 0.64, 0.1), material=shading.Diffuse(0.03))
 
 
-def hot_road(width: int = 640, height: int = 240) -> Example:
-    """Inferior mirage: cars on asphalt 10 K warmer than the air (e-folding 10 cm), eye at 1.4 m,
-    an afternoon sun 35 deg high behind the camera under a physical sky. Below the horizon
-    the sky's radiance and the cars' lower halves appear mirrored, like water on the road."""
+# The hot road's view: a 500 mm telephoto on full frame from a standing eye 1.5 m above the
+# asphalt, aimed 0.25 deg below the horizon. The mirage band lies between the horizon and the
+# critical depression theta_c = arccos(n(0)/n(h_eye)) below it (0.30 deg for 15 K: ORACLES.md);
+# a long lens makes it a large part of the frame (500 mm: 2.06 deg vertically at 2:1, so
+# ~14 % of the height; a 50 mm lens would show it as 1.5 %).
+HOT_ROAD_FOCAL_LENGTH = 500.0  # [mm]
+HOT_ROAD_EYE = 1.5  # [m]
+HOT_ROAD_TILT = 0.25  # [deg] below the horizon: the horizon 38 % from the top, the road below
+
+
+def hot_road(width: int = 640, height: int = 320) -> Example:
+    """Inferior mirage, the "wet road": a straight desert road whose asphalt is 15 K warmer than
+    the air (e-folding 10 cm: 1.5 K/cm at the surface, ORACLES.md), seen as a photographer does,
+    through a 500 mm lens from 1.5 m, toward an afternoon sun 30 deg high and 25 deg to the right
+    (out of frame), under a physical sky with desert haze (visibility 40 km). From ~300 m on the
+    road turns into a bright pool: the sky below the horizon, the lower halves of the cars and the
+    telegraph poles mirrored upside down; a distant ridge greyed by the air."""
     scene = _core.Scene()
-    set_physical_sky(scene, sun_direction(35.0, 180.0))
-    scene.add_ground(0.0, 20000.0, material=shading.Diffuse((0.05, 0.05, 0.055)))  # asphalt, albedo ~0.05
-    glass = shading.ThinDielectric(1.5)
-    colours = [(0.6, 0.04, 0.03), (0.05, 0.15, 0.55), (0.8, 0.8, 0.76), (0.05, 0.05, 0.05)]
-    for i, (x, z) in enumerate([(180.0, -1.8), (260.0, 1.7), (340.0, -1.6), (430.0, 2.0)]):
+    set_physical_sky(scene, sun_direction(30.0, 25.0), visibility=40.0)
+    scene.add_ground(0.0, 20000.0, material=shading.Diffuse((0.42, 0.34, 0.25)))  # desert sand
+    # The road: asphalt (albedo ~0.06) along +x, 8 m wide, its top 2 mm above the sand; a dashed
+    # centre line and edge lines of white paint 4 mm thick.
+    scene.add_box((2500.0, -0.024, 0.0), (5000.0, 0.052, 8.0), material=shading.Diffuse((0.06, 0.06, 0.065)))
+    paint = shading.Diffuse((0.7, 0.7, 0.65))
+    for x in np.arange(15.0, 2500.0, 12.0):
+        scene.add_box((x, 0.002, 0.0), (3.0, 0.004, 0.15), material=paint)
+    for z in (-3.7, 3.7):
+        scene.add_box((2500.0, 0.002, z), (5000.0, 0.004, 0.15), material=paint)
+    glass = shading.Plastic(reflectance=(0.01, 0.01, 0.012), ior=1.5, alpha=0.05)  # tinted windows
+    colours = [(0.6, 0.04, 0.03), (0.05, 0.15, 0.55), (0.8, 0.8, 0.76), (0.05, 0.05, 0.05), (0.7, 0.55, 0.1)]
+    for i, (x, z) in enumerate([(380.0, 1.9), (560.0, -1.8), (820.0, 1.8), (1150.0, -1.9), (1600.0, 1.9)]):
         _car(scene, x, z, colours[i], glass)
-    post = shading.RoughConductor(alpha=0.05, **ALUMINIUM)  # polished aluminium
-    for x in np.arange(120.0, 600.0, 60.0):  # lamp posts on both sides
-        for z in (-7.0, 7.0):
-            scene.add_box((x, 3.0, z), (0.2, 6.0, 0.2), material=post)
-    walls = [(0.55, 0.5, 0.45), (0.7, 0.62, 0.5), (0.45, 0.45, 0.48), (0.62, 0.42, 0.33)]
-    for i, x in enumerate(np.arange(700.0, 1100.0, 55.0)):  # distant buildings
-        h = 8.0 + 9.0 * ((i * 37) % 5) / 4
-        scene.add_box((x, h / 2, -35.0 - 10 * (i % 3)), (30.0, h, 12.0),
-                      material=shading.Diffuse(walls[i % len(walls)]))
-    field = _core.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
-    camera = _camera((0.0, 1.4, 0.0), (300.0, 1.4 - 300.0 * np.tan(np.radians(0.15)), 0.0), 2.2, width, height)
-    return Example("hot_road", scene, camera, field, 3000.0, hot_road.__doc__)
+    pole = shading.Diffuse((0.18, 0.13, 0.09))  # weathered wood: telegraph poles 8 m tall every 55 m
+    for x in np.arange(90.0, 3000.0, 55.0):
+        scene.add_box((x, 4.0, -8.0), (0.25, 8.0, 0.25), material=pole)
+        scene.add_box((x, 7.6, -8.0), (0.15, 0.15, 2.4), material=pole)
+    # A low ridge 9-10 km away, 10-50 m high (under 0.3 deg): its foot and the sky below its
+    # crest are what the mirage band mirrors.
+    rock = [(0.5, 0.32, 0.22), (0.46, 0.3, 0.22), (0.52, 0.36, 0.26)]
+    for i, z in enumerate(np.arange(-1200.0, 1200.0, 60.0)):
+        h = 10.0 + 25.0 * (0.5 + 0.5 * np.sin(z / 170.0)) + 15.0 * np.sin(z / 60.0 + 1.0) ** 2
+        scene.add_box((9000.0 + 300.0 * np.sin(z / 400.0), h / 2, z), (400.0, h, 60.0),
+                      material=shading.Diffuse(rock[i % 3]))
+    field = _core.PhysicalAtmosphere(surface_dt=15.0, surface_depth=0.1)
+    eye, look = HOT_ROAD_EYE, 1000.0
+    camera = _core.Camera.photographic((0.0, eye, 0.0), (look, eye - look * np.tan(np.radians(HOT_ROAD_TILT)), 0.0),
+                                       HOT_ROAD_FOCAL_LENGTH, width=width, height=height)
+    return Example("hot_road", scene, camera, field, 12000.0, hot_road.__doc__)
 
 
 def _ship(scene, x, z, scale=1.0):
@@ -109,52 +139,77 @@ def _ship(scene, x, z, scale=1.0):
                   material=shading.Plastic(reflectance=(0.6, 0.1, 0.06), alpha=0.3))
 
 
-def _sea():
-    """Sea water: a wind-roughened water surface (n = 1.333, GGX alpha 0.25) over a dark blue-green body (what it
-    scatters back from below, as a Lambertian base under the coat)."""
-    return shading.Plastic(reflectance=(0.01, 0.03, 0.04), ior=1.333, alpha=0.25)
+def _sea(wind_speed: float = 5.0, temperature_c: float = 10.0):
+    """Sea water: refracta.shading.Water, a Cox-Munk rough surface (Beckmann, alpha^2 = 0.003 +
+    5.12e-3 U) of water's own index over a deep, absorbing and back-scattering body (35 g/kg)."""
+    return shading.Water(wind_speed=wind_speed, temperature_c=temperature_c)
+
+
+def _coast(scene, distance, rng, half_width=2500.0, heights=(20.0, 90.0), spacing=140.0):
+    """A low coastline `distance` [m] away: hills, headlands and white houses as boxes 150 m
+    across every `spacing` [m]."""
+    land = [(0.3, 0.3, 0.2), (0.25, 0.28, 0.18), (0.55, 0.5, 0.4), (0.4, 0.33, 0.25), (0.8, 0.78, 0.72)]
+    for z in np.arange(-half_width, half_width, spacing):
+        h = float(rng.uniform(*heights))
+        scene.add_box((distance + float(rng.uniform(0.0, 400.0)), h / 2, z), (300.0, h, 150.0),
+                      material=shading.Diffuse(land[int(rng.integers(len(land)))]))
+
+
+# Clear polar air over a cold sea: 80 km of meteorological visibility leaves a coast 36 km away
+# 17 % of its contrast (Koschmieder, exp(-3.912 d / V)); 30 km would leave 1 %.
+COLD_SEA_VISIBILITY = 80.0  # [km]
+# Over the sea photographers use long lenses: 1000 mm on full frame sees 2.06 deg across, and at
+# 8:3 0.77 deg high -- the few tenths of a degree where looming and the superior mirage live.
+SEA_FOCAL_LENGTH = 1000.0  # [mm]
 
 
 def cold_sea(width: int = 640, height: int = 240) -> Example:
-    """Superior mirage (looming) over a cold sea on the curved Earth: warm air +7 K over the
-    lowest 50 m lifts a ship 28 km away, below the geometric horizon, into view; eye at 5 m.
-    Sunset: the sun 2.5 deg high, 25 deg right of the ship, reddened by its long path through the air."""
+    """Looming and a superior mirage over a cold sea on the curved Earth: warm air +7 K over the
+    lowest 50 m (stronger than the 0.13 K/m that bends rays with the Earth) lifts a freighter 28 km
+    away, below the geometric horizon of the 5 m eye, and a coast 36-40 km away into view,
+    stretched tall; over the coast's 110-125 m the inversion's upper part lays an inverted image
+    above an erect one. Evening: the sun 4 deg high just left of the view lays a glitter path on the
+    water (shading.Water, 4 m/s wind, 5 deg C); the clear polar air (visibility 80 km) greys the
+    distance. A 1000 mm lens."""
     scene = _core.Scene()
-    set_physical_sky(scene, sun_direction(2.5, 25.0))
-    scene.add_ground(0.0, 120000.0, material=_sea())
+    set_physical_sky(scene, sun_direction(4.0, -4.0), visibility=COLD_SEA_VISIBILITY)
+    scene.add_ground(0.0, 120000.0, material=_sea(4.0, 5.0))
     _ship(scene, 28000.0, -150.0)
+    _ship(scene, 19000.0, 260.0, scale=0.7)
+    _coast(scene, 36000.0, np.random.default_rng(11), heights=(40.0, 140.0))
     base = _core.PhysicalAtmosphere(t_ground=278.15, inversion_dt=7.0, inversion_base=0.0, inversion_thickness=50.0)
     field = _core.CurvedEarth(base)
-    camera = _camera((0.0, 5.0, 0.0), (28000.0, 12.0, 0.0), 0.3, width, height)
-    return Example("cold_sea", scene, camera, field, 29000.0, cold_sea.__doc__)
+    look = np.radians(0.1)
+    camera = _core.Camera.photographic((0.0, 5.0, 0.0), (30000.0, 5.0 + 30000.0 * np.tan(look), 0.0),
+                                       SEA_FOCAL_LENGTH, width=width, height=height)
+    return Example("cold_sea", scene, camera, field, 41000.0, cold_sea.__doc__)
 
 
 def fata_morgana(width: int = 640, height: int = 240) -> Example:
     """Fata Morgana: a sharp inversion just above the eye (+10 K between 12 and 20 m) over cold
-    water stretches and stacks a coastline 30 km away into towers and inverted copies; a late
-    afternoon sun 12 deg high to the left."""
+    water stacks a coastline 20 km away: its lower 16-43 m shown erect, above it the same
+    heights inverted, stretched into walls and towers; a late afternoon sun 12 deg high to the
+    left, clear air (visibility 80 km); a 1000 mm lens from 14 m (a ship's bridge)."""
     scene = _core.Scene()
-    set_physical_sky(scene, sun_direction(12.0, -120.0))
-    scene.add_ground(0.0, 140000.0, material=_sea())
-    rng = np.random.default_rng(7)
-    land = [(0.35, 0.3, 0.22), (0.3, 0.32, 0.2), (0.6, 0.55, 0.45), (0.5, 0.3, 0.22)]
-    for z in np.arange(-1500.0, 1500.0, 120.0):  # a low coastline of hills and houses
-        h = float(rng.uniform(6.0, 25.0))
-        colour = land[int(rng.integers(len(land)))]
-        scene.add_box((30000.0 + rng.uniform(0, 200), h / 2, z), (150.0, h, 130.0), material=shading.Diffuse(colour))
+    set_physical_sky(scene, sun_direction(12.0, -60.0), visibility=COLD_SEA_VISIBILITY)
+    scene.add_ground(0.0, 140000.0, material=_sea(6.0, 3.0))
+    _coast(scene, 20000.0, np.random.default_rng(7), half_width=1000.0, heights=(10.0, 45.0), spacing=230.0)
     base = _core.PhysicalAtmosphere(t_ground=276.15, inversion_dt=10.0, inversion_base=12.0, inversion_thickness=8.0)
     field = _core.CurvedEarth(base)
-    camera = _camera((0.0, 14.0, 0.0), (30000.0, 14.0, 0.0), 0.35, width, height)
-    return Example("fata_morgana", scene, camera, field, 30500.0, fata_morgana.__doc__)
+    look = np.radians(0.02)
+    camera = _core.Camera.photographic((0.0, 14.0, 0.0), (20000.0, 14.0 + 20000.0 * np.tan(look), 0.0),
+                                       SEA_FOCAL_LENGTH, width=width, height=height)
+    return Example("fata_morgana", scene, camera, field, 21000.0, fata_morgana.__doc__)
 
 
-def hot_spot(width: int = 640, height: int = 240) -> Example:
-    """An areal hot spot (refracta.HotSpot): the hot road's scene, its asphalt only 2 K warmer than
-    the air but for a patch 220 m across centred 330 m down the road, 16 K warmer (a compact
-    footprint: exactly zero outside it). The mirage -- the sky and the cars' lower halves mirrored
-    -- lies over the patch alone, and its edges follow the patch."""
+def hot_spot(width: int = 640, height: int = 320) -> Example:
+    """An areal hot spot (refracta.HotSpot): the hot road's scene and view, its asphalt and sand
+    only 2 K warmer than the air but for a patch centred 600 m down the road, 20 K warmer at its
+    centre (a compact footprint of radius 450 m: exactly zero outside it, above 10 K within 150 m). The "lake" -- the sky and the cars'
+    lower halves mirrored -- lies over the patch alone: it belongs to the ground, so it stays
+    there when the camera moves (the demo walks 200 m toward it)."""
     example = hot_road(width, height)
-    spot = _core.HotSpot(330.0, 0.0, 110.0, 16.0, footprint="compact")
+    spot = _core.HotSpot(600.0, 0.0, 450.0, 20.0, footprint="compact")
     field = _core.PhysicalAtmosphere(surface_dt=2.0, surface_depth=0.1, hot_spots=[spot])
     return Example("hot_spot", example.scene, example.camera, field, example.max_length, hot_spot.__doc__)
 

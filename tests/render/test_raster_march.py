@@ -32,8 +32,10 @@ def test_raster_march_agrees_with_curved_where_the_hit_is_in_view():
     renders are averaged over 8 seeds (pixel centres, Monte Carlo lighting). Above the horizon they
     differ only where a step size or a silhouette decides between neighbours; below it raster_march
     also shows each raster pixel's shading for the straight view, where the curved renderer shades
-    the surface for the bent ray that arrives: glossy car paint in the mirrored images differs
-    (measured: 1.5 % of pixels above the horizon, 5.6 % below)."""
+    the surface for the bent ray that arrives: glossy car paint in the mirrored images differs, and
+    the ridge's jagged skyline mirrored in the band (14 % of the height in the 500 mm view) is
+    decided per raster pixel (measured: 8.3 % of pixels in all, nearly all in the band's rows;
+    5.6 % in the former 2.2 deg view with a band of 3 %)."""
     example = examples.hot_road(160, 60)
     render = dict(progress=False, max_length=example.max_length)
     curved = np.mean([refracta.render(example.scene, example.camera, example.field, method="curved", seed=s, **render)
@@ -42,7 +44,7 @@ def test_raster_march_agrees_with_curved_where_the_hit_is_in_view():
                                        **render) for s in range(8)], axis=0)
     horizon = int(np.ceil(example.camera.project([1e6, example.camera.position[1], 0.0])[1]))
     assert differing(curved[:horizon], marched[:horizon]) < 0.03
-    assert differing(curved, marched) < 0.05
+    assert differing(curved, marched) < 0.10
     # The mirage itself: below the horizon, bright pixels are the mirrored sky (the road is dark).
     bright_curved = curved[horizon:].max(axis=2) > 0.5
     bright_marched = marched[horizon:].max(axis=2) > 0.5
@@ -51,23 +53,24 @@ def test_raster_march_agrees_with_curved_where_the_hit_is_in_view():
 
 
 def test_the_original_settings_see_no_farther_than_300_m():
-    """rk4 with 0.3 m steps for 1000 steps ends every path at 300 m: the buildings 700 m away
-    vanish (their pixels show the sky), an inherent limit of the original settings."""
+    """rk4 with 0.3 m steps for 1000 steps ends every path at 300 m: the ridge ~9 km away
+    vanishes (its pixels show the sky), an inherent limit of the original settings."""
     example = examples.hot_road(160, 60)
     camera = example.camera
-    x, y = 5, 15  # a distant building at the image's left edge
+    x, y = 12, 16  # the distant ridge (~8.6 km) near the image's left edge, sky next to it
     assert camera.pick(example.scene, x + 0.5, y + 0.5)[0] > 600.0
     marched = refracta.render(example.scene, camera, example.field, method="raster_march", march="rk4",
                               step=0.3, max_steps=1000, progress=False)
     curved = refracta.render(example.scene, camera, example.field, progress=False, max_length=example.max_length)
     full = refracta.render(example.scene, camera, example.field, method="raster_march", progress=False,
                            max_length=example.max_length)
-    # The sky along this row, from a column where nothing stands (the sky depends on elevation
-    # only; 5 m above the road the air bends rays by microradians).
+    # The sky along this row, from the next column where nothing stands (5 m above the road the
+    # air bends rays by microradians; toward the sun, 25 deg to the right, the sky brightens by
+    # ~0.1 % per column, so 0.3 % allows a few columns, far below the >10 % of the ridge itself).
     open_column = next(c for c in range(x + 1, camera.width) if camera.pick(example.scene, c + 0.5, y + 0.5) is None)
     sky = marched[y, open_column]
-    np.testing.assert_allclose(marched[y, x], sky, rtol=1e-3)
-    for image in (curved, full):  # the building, seen when the path may run to max_length
+    np.testing.assert_allclose(marched[y, x], sky, rtol=3e-3)
+    for image in (curved, full):  # the ridge, seen when the path may run to max_length
         assert np.abs(image[y, x] - sky).max() > 0.1 * sky.max()
 
 
