@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <memory>
 #include <string>
 
 namespace refracta {
@@ -135,82 +136,57 @@ double OceanWaves::spectrum(const Vec2d& k) const {
   return kPhillipsA * std::exp(-1.0 / (k2 * lw * lw)) / (k2 * k2) * cos_wind * cos_wind;
 }
 
-SeaMeshes sea_meshes(const OceanWaves& waves, const SeaLayout& layout) {
-  const double spacing = waves.spacing(), radius = layout.detail_radius, half = 0.5 * layout.size;
-  const Vec2d& c = layout.centre;
-  std::string problems;
-  auto problem = [&](const std::string& message) { problems += (problems.empty() ? "" : "; ") + message; };
-  if (!std::isfinite(layout.height)) problem(concat("height must be finite (got ", layout.height, ")"));
-  if (!c.allFinite()) problem(concat("centre must be a finite (x, z) (got (", c.x(), ", ", c.y(), "))"));
-  const double max_radius = 0.5 * std::sqrt(double(kMaxSeaCells)) * spacing - spacing;
-  if (!(radius > 0.0) || !(radius <= max_radius)) {
-    problem(concat("detail_radius must be > 0 and at most ", max_radius, " m (", kMaxSeaCells,
-                   " cells of the waves' spacing ", spacing, " m) (got ", radius, ")"));
-  }
-  if (!(layout.size > 0.0) || !std::isfinite(layout.size)) {
-    problem(concat("size must be finite and > 0 m (got ", layout.size, ")"));
-  } else if (problems.empty() && !(std::abs(c.x()) + radius + 2.0 * spacing < half && std::abs(c.y()) + radius + 2.0 * spacing < half)) {
-    problem(concat("size must exceed 2 (|centre| + detail_radius + 2 spacing) in x and z, ",
-                   2.0 * (c.cwiseAbs().maxCoeff() + radius + 2.0 * spacing), " m (got ", layout.size, ")"));
-  }
-  if (!problems.empty()) throw_invalid("add_sea: ", problems);
+namespace {
 
-  // The grid: the patch's nodes (waves anchored to the world, not to the centre) covering the
-  // square around the centre.
-  const long i0 = long(std::floor((c.x() - radius) / spacing)), i1 = long(std::ceil((c.x() + radius) / spacing));
-  const long j0 = long(std::floor((c.y() - radius) / spacing)), j1 = long(std::ceil((c.y() + radius) / spacing));
+long floor_div(long a, long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// A level of detail's nodes over [i0, i1] x [j0, j1] at `spacing`: each node's displaced position,
+// shading normal, squared slope and whether it is displaced at all.
+struct LevelNode {
+  double y = 0.0;
+  Vec2d slope = Vec2d::Zero();
+  bool displaced = false;
+};
+
+// Adds one level's triangles to `out`: each cell's two (counter-clockwise seen from above) to a
+// band by `band_of` their centroid's distance from the centre (-1 for the flat plane, which also
+// takes triangles with no displaced vertex); cells for which `skip(i, j)` holds are left out.
+template <class Node, class Band, class Skip>
+void add_level(long i0, long i1, long j0, long j1, double spacing, const Vec2d& centre, double height, Node node, Band band_of, Skip skip,
+               SeaMeshes& out, std::vector<double>& slope_sum, std::vector<long>& triangles) {
   const long ni = i1 - i0 + 1, nj = j1 - j0 + 1;
-  const double fade_start = (1.0 - kFadeFraction) * radius;
   std::vector<Vec3d> position(size_t(ni * nj)), normal(size_t(ni * nj));
-  std::vector<double> fade(size_t(ni * nj)), slope2(size_t(ni * nj));
+  std::vector<double> slope2(size_t(ni * nj));
+  std::vector<char> displaced(size_t(ni * nj));
   for (long j = 0; j < nj; ++j) {
     for (long i = 0; i < ni; ++i) {
-      const double x = double(i0 + i) * spacing, z = double(j0 + j) * spacing;
-      const Vec2d d(x - c.x(), z - c.y());
-      const double r = d.norm();
-      double dw;
-      const double w = smoothstep_fade(r, fade_start, radius, &dw);
-      const double h = waves.height(i0 + i, j0 + j);
-      // y = height + w(r) h(x, z): the slope of the product.
-      Vec2d s = w * waves.slope(i0 + i, j0 + j);
-      if (r > 0.0) s += h * dw * d / r;
+      const LevelNode n = node(i0 + i, j0 + j);
       const size_t v = size_t(j * ni + i);
-      position[v] = Vec3d(x, layout.height + w * h, z);
-      normal[v] = Vec3d(-s.x(), 1.0, -s.y()).normalized();
-      fade[v] = w;
-      slope2[v] = s.squaredNorm();
+      position[v] = Vec3d(double(i0 + i) * spacing, height + n.y, double(j0 + j) * spacing);
+      normal[v] = Vec3d(-n.slope.x(), 1.0, -n.slope.y()).normalized();
+      slope2[v] = n.slope.squaredNorm();
+      displaced[v] = n.displaced;
     }
   }
-
-  // Each cell's two triangles (counter-clockwise seen from above) to a band by their centroid's
-  // distance; triangles whose vertices are all undisplaced join the flat plane.
-  SeaMeshes out;
-  out.bands.resize(kFadeBands + 1);
-  out.band_slope_variance.assign(kFadeBands + 1, 0.0);
-  std::vector<std::vector<int>> remap(kFadeBands + 2, std::vector<int>(position.size(), -1));
-  std::vector<Mesh*> target(kFadeBands + 2);
-  for (int b = 0; b <= kFadeBands; ++b) target[size_t(b)] = &out.bands[size_t(b)];
-  target[kFadeBands + 1] = &out.flat;
-  std::vector<double> slope_sum(kFadeBands + 1, 0.0);
-  std::vector<long> triangles(kFadeBands + 1, 0);
+  const size_t bands = out.bands.size();
+  std::vector<std::vector<int>> remap(bands + 1, std::vector<int>(position.size(), -1));
   auto add_triangle = [&](size_t a, size_t b, size_t v) {
     const size_t corners[3] = {a, b, v};
-    int band = kFadeBands + 1;
-    if (fade[a] > 0.0 || fade[b] > 0.0 || fade[v] > 0.0) {
+    size_t band = bands;  // the flat plane
+    if (displaced[a] || displaced[b] || displaced[v]) {
       const Vec3d centroid = (position[a] + position[b] + position[v]) / 3.0;
-      const double r = Vec2d(centroid.x() - c.x(), centroid.z() - c.y()).norm();
-      band = r < fade_start ? 0 : std::min(kFadeBands, 1 + int((r - fade_start) / (radius - fade_start) * kFadeBands));
-      slope_sum[size_t(band)] += (slope2[a] + slope2[b] + slope2[v]) / 3.0;
-      ++triangles[size_t(band)];
+      band = size_t(band_of(Vec2d(centroid.x() - centre.x(), centroid.z() - centre.y()).norm()));
+      slope_sum[band] += (slope2[a] + slope2[b] + slope2[v]) / 3.0;
+      ++triangles[band];
     }
-    Mesh& mesh = *target[size_t(band)];
+    Mesh& mesh = band < bands ? out.bands[band] : out.flat;
     std::array<int, 3> t{};
     for (int k = 0; k < 3; ++k) {
-      int& id = remap[size_t(band)][corners[k]];
+      int& id = remap[band][corners[k]];
       if (id < 0) {
         id = int(mesh.vertices.size());
         mesh.vertices.push_back(position[corners[k]]);
-        if (band <= kFadeBands) mesh.normals.push_back(normal[corners[k]]);
+        if (band < bands) mesh.normals.push_back(normal[corners[k]]);
       }
       t[size_t(k)] = id;
     }
@@ -218,14 +194,134 @@ SeaMeshes sea_meshes(const OceanWaves& waves, const SeaLayout& layout) {
   };
   for (long j = 0; j + 1 < nj; ++j) {
     for (long i = 0; i + 1 < ni; ++i) {
+      if (skip(i0 + i, j0 + j)) continue;
       const size_t v00 = size_t(j * ni + i), v10 = v00 + 1, v01 = v00 + size_t(ni), v11 = v01 + 1;
       // (x, z) -> (x + 1, z + 1) -> (x + 1, z): up-facing (ground_mesh's winding).
       add_triangle(v00, v11, v10);
       add_triangle(v00, v01, v11);
     }
   }
-  for (int b = 0; b <= kFadeBands; ++b) {
-    if (triangles[size_t(b)] > 0) out.band_slope_variance[size_t(b)] = slope_sum[size_t(b)] / double(triangles[size_t(b)]);
+}
+
+// The band of a distance r in a level whose waves fade over [fade_start, radius]: `first` for the
+// full waves, then kFadeBands rings.
+int fade_band(double r, double fade_start, double radius, int first) {
+  if (r < fade_start) return first;
+  return first + std::min(kFadeBands, 1 + int((r - fade_start) / (radius - fade_start) * kFadeBands));
+}
+
+}  // namespace
+
+SeaMeshes sea_meshes(const OceanWaves& waves, const SeaLayout& layout) {
+  const double spacing = waves.spacing(), radius = layout.detail_radius, half = 0.5 * layout.size;
+  const Vec2d& c = layout.centre;
+  // The coarse level: the same sea at a quarter of the resolution (exactly the fine field's longer
+  // modes: the streams are per wavenumber), when that is a valid OceanWaves.
+  std::unique_ptr<OceanWaves> coarse;
+  if (waves.resolution() / kCoarseStep >= OceanWaves::kMinResolution) {
+    OceanWavesParameters p = waves.parameters();
+    p.resolution /= kCoarseStep;
+    coarse = std::make_unique<OceanWaves>(p);
+  }
+  const double coarse_spacing = kCoarseStep * spacing, coarse_radius = kCoarseRadius * radius;
+  const double outermost = coarse ? coarse_radius + coarse_spacing : radius + spacing;
+  std::string problems;
+  auto problem = [&](const std::string& message) { problems += (problems.empty() ? "" : "; ") + message; };
+  if (!std::isfinite(layout.height)) problem(concat("height must be finite (got ", layout.height, ")"));
+  if (!c.allFinite()) problem(concat("centre must be a finite (x, z) (got (", c.x(), ", ", c.y(), "))"));
+  const double max_radius = 0.5 * std::sqrt(double(kMaxSeaCells)) * spacing - kCoarseStep * spacing;
+  if (!(radius > 0.0) || !(radius <= max_radius)) {
+    problem(concat("detail_radius must be > 0 and at most ", max_radius, " m (", kMaxSeaCells,
+                   " cells of the waves' spacing ", spacing, " m) (got ", radius, ")"));
+  }
+  if (!(layout.size > 0.0) || !std::isfinite(layout.size)) {
+    problem(concat("size must be finite and > 0 m (got ", layout.size, ")"));
+  } else if (problems.empty() && !(c.cwiseAbs().maxCoeff() + outermost + spacing < half)) {
+    problem(concat("size must exceed 2 (|centre| + ", coarse ? "4 detail_radius + 5 spacing" : "detail_radius + 2 spacing",
+                   ") in x and z, ", 2.0 * (c.cwiseAbs().maxCoeff() + outermost + spacing), " m (got ", layout.size, ")"));
+  }
+  if (!problems.empty()) throw_invalid("add_sea: ", problems);
+
+  SeaMeshes out;
+  const int levels = coarse ? 2 : 1;
+  out.bands.resize(size_t(levels * (kFadeBands + 1)));
+  std::vector<double> slope_sum(out.bands.size(), 0.0);
+  std::vector<long> triangles(out.bands.size(), 0);
+
+  // The fine level: the patch's nodes (waves anchored to the world, not to the centre) covering
+  // the square around the centre, its border on coarse nodes. Within it the waves blend from the
+  // fine field h to the coarse one c (bilinear between coarse nodes; 0 without a coarse level):
+  // y = c + w (h - c), so that on its border (w = 0) it is linear along the coarse triangles' edges.
+  const long step = coarse ? kCoarseStep : 1;
+  auto outward = [&](double v, double sign) {  // the node index just beyond v, a multiple of step
+    const double n = v / (spacing * double(step));
+    return long(sign < 0 ? std::floor(n) : std::ceil(n)) * step;
+  };
+  const long i0 = outward(c.x() - radius, -1), i1 = outward(c.x() + radius, 1);
+  const long j0 = outward(c.y() - radius, -1), j1 = outward(c.y() + radius, 1);
+  const double fade_start = (1.0 - kFadeFraction) * radius;
+  auto coarse_at = [&](long i, long j, Vec2d* slope) {  // c and its slope at fine node (i, j)
+    if (!coarse) return *slope = Vec2d::Zero(), 0.0;
+    const long I = floor_div(i, kCoarseStep), J = floor_div(j, kCoarseStep);
+    const double a = double(i - I * kCoarseStep) / kCoarseStep, b = double(j - J * kCoarseStep) / kCoarseStep;
+    const double w[4] = {(1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b};
+    const long di[4] = {0, 1, 0, 1}, dj[4] = {0, 0, 1, 1};
+    double h = 0.0;
+    *slope = Vec2d::Zero();
+    for (int k = 0; k < 4; ++k) {
+      if (w[k] == 0.0) continue;
+      h += w[k] * coarse->height(I + di[k], J + dj[k]);
+      *slope += w[k] * coarse->slope(I + di[k], J + dj[k]);
+    }
+    return h;
+  };
+  auto fine_node = [&](long i, long j) {
+    const Vec2d d(double(i) * spacing - c.x(), double(j) * spacing - c.y());
+    const double r = d.norm();
+    double dw;
+    const double w = smoothstep_fade(r, fade_start, radius, &dw);
+    Vec2d coarse_slope;
+    const double ch = coarse_at(i, j, &coarse_slope);
+    const double h = waves.height(i, j);
+    LevelNode n;
+    n.y = ch + w * (h - ch);
+    n.slope = coarse_slope + w * (waves.slope(i, j) - coarse_slope);  // the product rule
+    if (r > 0.0) n.slope += (h - ch) * dw * d / r;
+    n.displaced = w > 0.0 || coarse;
+    return n;
+  };
+  add_level(i0, i1, j0, j1, spacing, c, layout.height, fine_node,
+            [&](double r) { return fade_band(r, fade_start, radius, 0); }, [](long, long) { return false; }, out, slope_sum, triangles);
+
+  // The coarse level around it, out to coarse_radius, fading to the flat sea.
+  double x0 = double(i0) * spacing, x1 = double(i1) * spacing, z0 = double(j0) * spacing, z1 = double(j1) * spacing;
+  if (coarse) {
+    const double coarse_fade_start = (1.0 - kFadeFraction) * coarse_radius;
+    const long hole_i0 = i0 / kCoarseStep, hole_i1 = i1 / kCoarseStep, hole_j0 = j0 / kCoarseStep, hole_j1 = j1 / kCoarseStep;
+    const long ci0 = long(std::floor((c.x() - coarse_radius) / coarse_spacing)), ci1 = long(std::ceil((c.x() + coarse_radius) / coarse_spacing));
+    const long cj0 = long(std::floor((c.y() - coarse_radius) / coarse_spacing)), cj1 = long(std::ceil((c.y() + coarse_radius) / coarse_spacing));
+    auto coarse_node = [&](long i, long j) {
+      const Vec2d d(double(i) * coarse_spacing - c.x(), double(j) * coarse_spacing - c.y());
+      const double r = d.norm();
+      double dw;
+      const double w = smoothstep_fade(r, coarse_fade_start, coarse_radius, &dw);
+      const double h = coarse->height(i, j);
+      LevelNode n;
+      n.y = w * h;
+      n.slope = w * coarse->slope(i, j);
+      if (r > 0.0) n.slope += h * dw * d / r;
+      n.displaced = w > 0.0;
+      return n;
+    };
+    add_level(ci0, ci1, cj0, cj1, coarse_spacing, c, layout.height, coarse_node,
+              [&](double r) { return fade_band(r, coarse_fade_start, coarse_radius, kFadeBands + 1); },
+              [&](long i, long j) { return i >= hole_i0 && i + 1 <= hole_i1 && j >= hole_j0 && j + 1 <= hole_j1; }, out, slope_sum,
+              triangles);
+    x0 = double(ci0) * coarse_spacing, x1 = double(ci1) * coarse_spacing, z0 = double(cj0) * coarse_spacing, z1 = double(cj1) * coarse_spacing;
+  }
+  out.band_slope_variance.assign(out.bands.size(), 0.0);
+  for (size_t b = 0; b < out.bands.size(); ++b) {
+    if (triangles[b] > 0) out.band_slope_variance[b] = slope_sum[b] / double(triangles[b]);
   }
 
   // The flat plane around the grid: nested squares from the grid's border out to the sea's edge,
@@ -233,7 +329,6 @@ SeaMeshes sea_meshes(const OceanWaves& waves, const SeaLayout& layout) {
   // slivers 100 km long and 100 m wide lost 13 % of grazing rays near the grid to Embree's float
   // precision.) The grid's border vertices lie on the first ring's straight inner edges at y =
   // height: a T-junction, closed to rounding.
-  const double x0 = double(i0) * spacing, x1 = double(i1) * spacing, z0 = double(j0) * spacing, z1 = double(j1) * spacing;
   const double y = layout.height;
   const Vec3d outer[4] = {{-half, y, -half}, {half, y, -half}, {half, y, half}, {-half, y, half}};
   const Vec3d inner[4] = {{x0, y, z0}, {x1, y, z0}, {x1, y, z1}, {x0, y, z1}};

@@ -108,36 +108,50 @@ class OceanWaves {
   double height_variance_ = 0.0, slope_variance_ = 0.0;
 };
 
-// Where a sea's displaced surface goes (Scene.add_sea): the waves tiled on a square grid of the
-// patch's nodes around `centre` (the camera's foot) out to detail_radius, the displacement faded
-// to 0 over the outer kFadeFraction of that radius (a smoothstep in the distance from centre), and
-// beyond it the flat plane y = height out to the square of side `size` centred on the origin (as
-// Scene.add_ground). The flat plane has the grid's square cut out and meets its border, where the
-// displacement is 0, along straight edges: no crack.
+// Where a sea's displaced surface goes (Scene.add_sea), in two levels of detail around `centre`
+// (the camera's foot):
+// - fine: the waves tiled on a square grid of the patch's nodes out to detail_radius; over its
+//   outer kFadeFraction (a smoothstep in the distance from centre) they blend into
+// - coarse: the same sea at a quarter of the resolution (OceanWaves' per-wavenumber streams make it
+//   exactly the fine field's longer modes: a low-pass, not a subsample), on nodes kCoarseStep
+//   times apart, out to kCoarseRadius detail_radius, fading to 0 over its outer kFadeFraction;
+// - beyond, the flat plane y = height out to the square of side `size` centred on the origin (as
+//   Scene.add_ground), in rings around the grids' square.
+// The fine grid's border lies on coarse nodes and there equals the coarse field interpolated
+// linearly along the coarse triangles' edges, and the coarse border is flat: no crack. Each level's
+// waves shorter than two of its cells are left to the microfacets (Scene.add_sea gives every band
+// the Water whose resolved_slope_variance is what its normals show): the statistical roughness
+// grows with distance as the resolved slopes fall. Without a coarse level (resolution < 32) the
+// fine waves fade to the flat plane directly.
 struct SeaLayout {
   double height = 0.0;         // [m] the mean sea level
   double size = 2.0e5;         // [m] the flat sea's side: 100 km each way reaches past a 2 m eye's horizon (5 km) and a ship's
-  // [m] Where the waves end. From a 2 m eye (640 px over 40 deg) a 0.39 m cell is a pixel tall at
-  // 27 m, a 20 m wave (5 m/s) ~15 pixels at 50 m; beyond, the Beckmann roughness alone.
+  // [m] Where the fine waves end. From a 2 m eye (640 px over 40 deg) a 0.39 m cell is a pixel tall
+  // at 27 m; beyond 50 m the coarse level's 1.56 m cells take over (a pixel at 55 m), out to 200 m.
   double detail_radius = 50.0;
   Vec2d centre{0.0, 0.0};      // [m] (x, z) of the detail's centre
 };
 
 struct SeaMeshes {
-  // kFadeBands + 1 displaced meshes (some may be empty): the full waves (band 0), then rings of the
-  // fade outward; each with vertex normals from the field's slopes (and the fade's gradient).
+  // Per level (fine, then coarse when present) kFadeBands + 1 displaced meshes (some may be
+  // empty): the level's full waves, then rings of its fade outward; vertex normals from the
+  // field's slopes (with the blend's and fade's gradients).
   std::vector<Mesh> bands;
   // Each band's mean-square slope as its shading normals show it, (n_x^2 + n_z^2) / n_y^2 averaged
-  // over its triangles' vertices (every triangle has the same projected area).
+  // over its triangles' vertices (a level's triangles all have the same projected area).
   std::vector<double> band_slope_variance;
-  Mesh flat;  // the far plane, with the grid's flat corners beyond detail_radius
+  Mesh flat;  // the far plane, with the grids' flat corners
 };
 
-// The displacement reaches 0 over the outer 30 % of detail_radius in 3 rings, each shaded with the
-// slope variance it shows (the smoothstep's weight varies by ~0.3 across a ring).
+// A level's waves fade over the outer 30 % of its radius in 3 rings, each shaded with the slope
+// variance it shows (the smoothstep's weight varies by ~0.3 across a ring).
 constexpr double kFadeFraction = 0.3;
 constexpr int kFadeBands = 3;
-// At most 2^20 grid cells (2M triangles, ~150 MB with Embree's copy): detail_radius / spacing <= 512.
+// The coarse level: nodes 4 fine cells apart (a quarter of the resolution), out to 4 detail_radius
+// (where its cells are as tall on screen as the fine ones at detail_radius).
+constexpr long kCoarseStep = 4;
+constexpr double kCoarseRadius = 4.0;
+// At most 2^20 cells per level (2M triangles, ~150 MB with Embree's copy): detail_radius / spacing <= 508.
 constexpr long kMaxSeaCells = 1L << 20;
 
 // The meshes of a sea; validates the layout (std::invalid_argument naming height, size,
