@@ -188,17 +188,21 @@ indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).)doc")
             R"doc(Add a sea at y = height with waves near `centre` (x, z) [m] (put it under the camera).
 
 Within detail_radius [m] of centre: the waves (an OceanWaves; default OceanWaves(wind_speed=the
-material's)) tiled on a mesh of their nodes with shading normals from their slopes, faded to flat
-over the outer 30 % of the radius; beyond it, a flat square of side `size` [m] centred on the
-origin (as add_ground), cut around the waves' square and meeting it without a crack.
+material's)) tiled on a mesh of their nodes with shading normals from their slopes; over the outer
+30 % of the radius they blend into a coarse level, the same sea at a quarter of the resolution
+(exactly its longer waves) on nodes 4 cells apart, which reaches 4 detail_radius and fades to flat
+over its outer 30 %; beyond, a flat square of side `size` [m] centred on the origin (as
+add_ground). The levels meet without a crack. (Waves with resolution < 32 have no coarse level.)
 
 material: default shading.Water(wind_speed=waves.wind_speed). With a Water (its wind_speed must
-equal the waves'), the displaced part gets copies with resolved_slope_variance set to the
-mean-square slope its mesh shows (the full waves, then each of 3 fade rings), so that resolved +
-microfacet = Cox & Munk's total; the flat plane keeps the full Water. Any other material is used
-as given everywhere.
+equal the waves'), every displaced band (per level the full waves, then 3 fade rings) gets a copy
+with resolved_slope_variance set to the mean-square slope its mesh's normals show, so that
+resolved + microfacet = Cox & Munk's total and the statistical roughness grows with distance as the
+resolved slopes fall; the flat plane keeps the full Water. Any other material is used as given
+everywhere.
 
-Returns the geometry ids: the displaced meshes (full waves, then fade rings), then the flat plane.)doc");
+Returns the geometry ids: the displaced meshes (fine full waves, its fade rings, coarse full waves,
+its fade rings; empty ones left out), then the flat plane.)doc");
 }
 
 }  // namespace refracta
