@@ -34,7 +34,7 @@ DISC_SAMPLE_TOLERANCE = 0.1
 
 
 def phillips(kx, kz, wind_speed, wind=(1.0, 0.0)):
-    """Tessendorf's eq. 24 with A from Pierson-Moskowitz."""
+    """The Phillips spectrum as Tessendorf 2001 writes it, with A from Pierson-Moskowitz."""
     lw = wind_speed**2 / G
     k2 = kx**2 + kz**2
     w = np.asarray(wind, float) / np.hypot(*wind)

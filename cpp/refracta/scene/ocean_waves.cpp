@@ -76,7 +76,7 @@ OceanWaves::OceanWaves(const OceanWavesParameters& parameters) : parameters_(par
   if (!problems.empty()) throw_invalid("OceanWaves: ", problems);
   wind_ = p.wind_direction.normalized();
 
-  // The modes: h~(k) and i k h~(k) (Tessendorf eqs. 25-26, 29).
+  // The modes: h~(k) and i k h~(k) (Tessendorf 2001, section 3.4).
   const size_t count = size_t(n) * size_t(n);
   const double dk = 2.0 * kPi / p.patch_size;
   std::vector<Complex> h(count), sx(count), sz(count);

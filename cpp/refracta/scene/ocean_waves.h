@@ -8,12 +8,12 @@
 //   h~(k, t) = [h0(k) exp(i w t) + conj(h0(-k)) exp(-i w t)] / sqrt(2),   w = sqrt(g k) (deep water),
 //   h0(k) = (xi_r + i xi_i) sqrt(Phi(k) dk^2 / 2),   xi ~ N(0, 1),  dk = 2 pi / L,
 // so that h is real (h~(-k) = conj h~(k)) and E|h~(k)|^2 = Phi(k) dk^2: the field's variance is
-// the spectrum summed over the patch's modes (Tessendorf's eq. 25 with his factor 1/sqrt(2) put
+// the spectrum summed over the patch's modes (Tessendorf's h0 and h~(k, t) with his factor 1/sqrt(2) put
 // on the sum of the two travelling halves, which keeps his h0 and makes Phi the two-sided spectrum
-// whose integral is the variance). Slopes by the same inverse FFT of i k h~ (his eq. 29): exact on
+// whose integral is the variance). Slopes by the same inverse FFT of i k h~ (his gradient): exact on
 // the nodes, not finite differences. Synthesised by Eigen's FFT (kissfft) rows then columns.
 //
-// The spectrum: Phillips 1957 as Tessendorf writes it (eq. 24),
+// The spectrum: Phillips 1957 as Tessendorf writes it (section 3.4),
 //   Phi(k) = A exp(-1 / (k L_w)^2) / k^4 |k^.w^|^2,   L_w = U^2 / g,
 // U [m/s] the wind speed, w^ its horizontal direction. Its integral over the plane is
 // A pi L_w^2 / 2 (substitute s = 1/k^2), and A is fixed by the significant wave height of a fully
