@@ -108,8 +108,8 @@ def hot_road(width: int = 640, height: int = 320) -> Example:
     for z in (-3.7, 3.7):
         scene.add_box((2500.0, 0.002, z), (5000.0, 0.004, 0.15), material=paint)
     glass = shading.Plastic(reflectance=(0.01, 0.01, 0.012), ior=1.5, alpha=0.05)  # tinted windows
-    colours = [(0.6, 0.04, 0.03), (0.05, 0.15, 0.55), (0.8, 0.8, 0.76), (0.05, 0.05, 0.05), (0.7, 0.55, 0.1)]
-    for i, (x, z) in enumerate([(380.0, 1.9), (560.0, -1.8), (820.0, 1.8), (1150.0, -1.9), (1600.0, 1.9)]):
+    colours = [(0.05, 0.15, 0.55), (0.6, 0.04, 0.03), (0.8, 0.8, 0.76), (0.05, 0.05, 0.05), (0.7, 0.55, 0.1)]
+    for i, (x, z) in enumerate([(260.0, 1.7), (380.0, -1.9), (560.0, 1.8), (820.0, -1.9), (1150.0, 1.9)]):
         _car(scene, x, z, colours[i], glass)
     pole = shading.Diffuse((0.18, 0.13, 0.09))  # weathered wood: telegraph poles 8 m tall every 55 m
     for x in np.arange(90.0, 3000.0, 55.0):
@@ -123,7 +123,7 @@ def hot_road(width: int = 640, height: int = 320) -> Example:
         scene.add_box((9000.0 + 300.0 * np.sin(z / 400.0), h / 2, z), (400.0, h, 60.0),
                       material=shading.Diffuse(rock[i % 3]))
     field = _core.PhysicalAtmosphere(surface_dt=15.0, surface_depth=0.1)
-    eye, look = HOT_ROAD_EYE, 1000.0
+    eye, look = HOT_ROAD_EYE, 300.0  # look_at on the line of sight 300 m out (a pinhole: only its direction counts)
     camera = _core.Camera.photographic((0.0, eye, 0.0), (look, eye - look * np.tan(np.radians(HOT_ROAD_TILT)), 0.0),
                                        HOT_ROAD_FOCAL_LENGTH, width=width, height=height)
     return Example("hot_road", scene, camera, field, 12000.0, hot_road.__doc__)
@@ -146,12 +146,12 @@ def _sea(wind_speed: float = 5.0, temperature_c: float = 10.0):
 
 
 def _coast(scene, distance, rng, half_width=2500.0, heights=(20.0, 90.0), spacing=140.0):
-    """A low coastline `distance` [m] away: hills, headlands and white houses as boxes 150 m
+    """A low coastline `distance` [m] away: hills, headlands and white houses as boxes 60-150 m
     across every `spacing` [m]."""
     land = [(0.3, 0.3, 0.2), (0.25, 0.28, 0.18), (0.55, 0.5, 0.4), (0.4, 0.33, 0.25), (0.8, 0.78, 0.72)]
     for z in np.arange(-half_width, half_width, spacing):
         h = float(rng.uniform(*heights))
-        scene.add_box((distance + float(rng.uniform(0.0, 400.0)), h / 2, z), (300.0, h, 150.0),
+        scene.add_box((distance + float(rng.uniform(0.0, 400.0)), h / 2, z), (300.0, h, float(rng.uniform(60.0, 150.0))),
                       material=shading.Diffuse(land[int(rng.integers(len(land)))]))
 
 
@@ -172,7 +172,7 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
     water (shading.Water, 4 m/s wind, 5 deg C); the clear polar air (visibility 80 km) greys the
     distance. A 1000 mm lens."""
     scene = _core.Scene()
-    set_physical_sky(scene, sun_direction(4.0, -4.0), visibility=COLD_SEA_VISIBILITY)
+    set_physical_sky(scene, sun_direction(3.0, -0.5), visibility=COLD_SEA_VISIBILITY)
     scene.add_ground(0.0, 120000.0, material=_sea(4.0, 5.0))
     _ship(scene, 28000.0, -150.0)
     _ship(scene, 19000.0, 260.0, scale=0.7)
@@ -188,12 +188,12 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
 def fata_morgana(width: int = 640, height: int = 240) -> Example:
     """Fata Morgana: a sharp inversion just above the eye (+10 K between 12 and 20 m) over cold
     water stacks a coastline 20 km away: its lower 16-43 m shown erect, above it the same
-    heights inverted, stretched into walls and towers; a late afternoon sun 12 deg high to the
-    left, clear air (visibility 80 km); a 1000 mm lens from 14 m (a ship's bridge)."""
+    heights inverted, stretched into walls and towers; an afternoon sun 15 deg high behind the
+    left shoulder, clear air (visibility 80 km); a 1000 mm lens from 14 m (a ship's bridge)."""
     scene = _core.Scene()
-    set_physical_sky(scene, sun_direction(12.0, -60.0), visibility=COLD_SEA_VISIBILITY)
+    set_physical_sky(scene, sun_direction(15.0, -140.0), visibility=COLD_SEA_VISIBILITY)
     scene.add_ground(0.0, 140000.0, material=_sea(6.0, 3.0))
-    _coast(scene, 20000.0, np.random.default_rng(7), half_width=1000.0, heights=(10.0, 45.0), spacing=230.0)
+    _coast(scene, 20000.0, np.random.default_rng(7), half_width=1000.0, heights=(10.0, 45.0), spacing=120.0)
     base = _core.PhysicalAtmosphere(t_ground=276.15, inversion_dt=10.0, inversion_base=12.0, inversion_thickness=8.0)
     field = _core.CurvedEarth(base)
     look = np.radians(0.02)
@@ -204,12 +204,12 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
 
 def hot_spot(width: int = 640, height: int = 320) -> Example:
     """An areal hot spot (refracta.HotSpot): the hot road's scene and view, its asphalt and sand
-    only 2 K warmer than the air but for a patch centred 600 m down the road, 20 K warmer at its
-    centre (a compact footprint of radius 450 m: exactly zero outside it, above 10 K within 150 m). The "lake" -- the sky and the cars'
+    only 2 K warmer than the air but for a patch centred 350 m down the road, 25 K warmer at its
+    centre (a compact footprint of radius 300 m: exactly zero outside it, above 11 K within 100 m). The "lake" -- the sky and the cars'
     lower halves mirrored -- lies over the patch alone: it belongs to the ground, so it stays
-    there when the camera moves (the demo walks 200 m toward it)."""
+    there when the camera moves (the demo walks 60 m toward it)."""
     example = hot_road(width, height)
-    spot = _core.HotSpot(600.0, 0.0, 450.0, 20.0, footprint="compact")
+    spot = _core.HotSpot(350.0, 0.0, 300.0, 25.0, footprint="compact")
     field = _core.PhysicalAtmosphere(surface_dt=2.0, surface_depth=0.1, hot_spots=[spot])
     return Example("hot_spot", example.scene, example.camera, field, example.max_length, hot_spot.__doc__)
 

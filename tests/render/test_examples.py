@@ -22,6 +22,20 @@ def test_each_example_renders_finite_and_lit_through_its_field(name):
         assert image.mean() > 0.0  # lit: not black
 
 
+# Issue 19: the demo scenes are photographs -- at least 640 px wide by default, lit by the physical
+# sky whose air greys the distance, through a long lens over the road and the sea.
+DEMO_WIDTH = 640  # [px]
+LONG_LENS_VFOV = 2.5  # [deg] vertical field of view of a >= 400 mm lens on full frame at 2:1 or wider
+
+
+@pytest.mark.parametrize("name", sorted(examples.EXAMPLES))
+def test_each_example_is_a_telephoto_photograph_with_aerial_perspective_by_default(name):
+    example = examples.EXAMPLES[name]()
+    assert example.camera.width >= DEMO_WIDTH
+    assert example.camera.vfov < LONG_LENS_VFOV
+    assert example.scene.aerial_perspective is not None
+
+
 # The wet road (issue 19): in the hot road's default view the rows below the horizon whose
 # open-road pixels show the sky (or the mirrored far scene) instead of the road -- their camera
 # rays turn above the hot asphalt and never meet it -- are at least a tenth of the image height.

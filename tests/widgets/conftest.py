@@ -8,7 +8,7 @@ import refracta
 from refracta import examples
 
 WIDTH, HEIGHT = 320, 120
-CAR = (180.4, 63.9)   # a pixel on the blue car, 258 m away (notebook 02's bottom source)
+CAR = (189.1, 59.8)   # a pixel on the blue car, 258 m away (notebook 02's bottom source)
 SKY = (160.0, 5.0)    # a pixel showing only sky: no scene point
 
 
