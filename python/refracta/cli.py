@@ -44,7 +44,8 @@ def _count(minimum: int):
 # pixel, each image denoised (render(denoise=True): Open Image Denoise with the albedo and normal
 # of the first hit). Over the sea every camera path is a curved ray 20-40 km long (~60-140 us a
 # sample on the shared 2-core machine), so those take one sample and lean on the denoiser; the
-# whole demo stays within 3 minutes on 2 cores (it prints its time).
+# whole demo took 68 s on 2 cores (152 s with another engineer's benchmark running; it prints its
+# time), within the 3 minutes it is allowed.
 DEMO_SETTINGS = {
     "hot_road": dict(transport="direct", spp=4),
     "hot_spot": dict(transport="direct", spp=1),  # three views
@@ -152,7 +153,7 @@ GREEN_FLASH_LOOK = {0.7: -0.05, 0.08: -0.02}  # [deg]: where each zoom looks (th
 GREEN_FLASH_SIZE = 176  # [px] each frame: three side by side make a 528 px strip
 
 
-def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = 3) -> None:
+def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = 6) -> None:
     """Sunset over a warm sea, spectral and denoised: out/green_flash.png, one exposure for every
     frame, one figure pixel per rendered pixel."""
     import matplotlib.pyplot as plt
@@ -169,10 +170,12 @@ def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = 3) -> 
         eye = example.camera.position
         camera = refracta.Camera(eye, eye + [np.cos(look), np.sin(look), 0.0], vfov=vfov, width=size, height=size)
         # Spectral renders of the sun's edge leave the sRGB gamut (negative channels), which the
-        # denoiser refuses: clipped to the gamut's boundary first, as the display would.
-        image, aux = refracta.render(example.scene, camera, example.field, max_length=example.max_length,
-                                     spectral=True, spp=spp, progress=False, aovs=["albedo", "normal"])
-        frames.append(refracta.denoise(np.maximum(image, 0.0), aux["albedo"], aux["normal"]))
+        # denoiser refuses: clipped to the gamut's boundary first, as the display would. No
+        # auxiliary images: the frames are the sun and sky seen directly (an emitter has no albedo;
+        # with the sea's albedo and normal beside it OIDN left the disc mottled).
+        image = refracta.render(example.scene, camera, example.field, max_length=example.max_length,
+                                spectral=True, spp=spp, progress=False)
+        frames.append(refracta.denoise(np.maximum(image, 0.0)))
     # One exposure for every frame (the whole disc's bright end near 1), gamma 2.2: the last gleam
     # is as dim as it is.
     exposure = 1.0 / np.percentile(frames[0].max(axis=2), 99.0)
