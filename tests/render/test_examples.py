@@ -45,6 +45,7 @@ BAND_FRACTION = 0.10  # the issue's figure for "clearly visible" (it was 3 % wit
 # (a property of the scene's physical sky, not a tuned number).
 MIRAGE_OVER_ROAD = 1.5  # the band at least 1.5x the asphalt's mean luminance
 ASPHALT = (0.3, 3.4)  # [m] |z| of the asphalt between the centre line and the edge lines
+OPEN_ROAD = 5000.0  # [m] the cars and poles stand nearer; the ridge is farther
 
 
 def luminance(rgb):
@@ -59,13 +60,14 @@ def _hot_road_band(example):
     horizon = camera.project(np.asarray(camera.position) + [1e7, 0.0, 0.0])[1]
     below = range(int(np.ceil(horizon)), camera.height)
 
-    def on_ground(point):  # the sand, the asphalt or its paint (tops within 4 mm of y = 0)
-        return point is not None and abs(point[1]) < 0.01
+    def open_ground(point):  # the sand, the asphalt or its paint (tops within 4 mm of y = 0), or the
+        return point is not None and (abs(point[1]) < 0.01 or point[0] > OPEN_ROAD)  # far ridge
 
     # Open columns: with straight rays every pixel below the horizon sees the ground, nothing
-    # standing on it (no car, pole or ridge).
+    # standing on it (no car or pole; the ridge 9 km away meets the rows nearest the horizon at
+    # fine resolutions, and is part of what the band mirrors).
     open_columns = [c for c in range(camera.width)
-                    if all(on_ground(camera.pick(example.scene, c + 0.5, v + 0.5)) for v in below)]
+                    if all(open_ground(camera.pick(example.scene, c + 0.5, v + 0.5)) for v in below)]
 
     def turns_above_road(c, v):
         origin, direction = camera.ray(c + 0.5, v + 0.5)
