@@ -167,8 +167,8 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
     """Looming and a superior mirage over a cold sea on the curved Earth: warm air +7 K over the
     lowest 50 m (stronger than the 0.13 K/m that bends rays with the Earth) lifts a freighter 28 km
     away, below the geometric horizon of the 5 m eye, and a coast 36-40 km away into view,
-    stretched tall; over the coast's 110-125 m the inversion's upper part lays an inverted image
-    above an erect one. Evening: the sun 4 deg high just left of the view lays a glitter path on the
+    stretched tall (its 110-125 m slice is also imaged inverted above the erect image, but
+    against the light the coast is a silhouette and its images merge into one towering wall). Evening: the sun 4 deg high just left of the view lays a glitter path on the
     water (shading.Water, 4 m/s wind, 5 deg C); the clear polar air (visibility 80 km) greys the
     distance. A 1000 mm lens."""
     scene = _core.Scene()
