@@ -168,9 +168,10 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
     lowest 50 m (stronger than the 0.13 K/m that bends rays with the Earth) lifts a freighter 28 km
     away, below the geometric horizon of the 5 m eye, and a coast 36-40 km away into view,
     stretched tall (its 110-125 m slice is also imaged inverted above the erect image, but
-    against the light the coast is a silhouette and its images merge into one towering wall). Evening: the sun 4 deg high just left of the view lays a glitter path on the
-    water (shading.Water, 4 m/s wind, 5 deg C); the clear polar air (visibility 80 km) greys the
-    distance. A 1000 mm lens."""
+    against the light the coast is a silhouette and its images merge into one towering wall).
+    Evening: the sun 3 deg high, 0.5 deg left of the view's centre (above the frame), lays a
+    glitter path on the water (shading.Water, 4 m/s wind, 5 deg C); the clear polar air
+    (visibility 80 km) greys the distance. A 1000 mm lens."""
     scene = _core.Scene()
     set_physical_sky(scene, sun_direction(3.0, -0.5), visibility=COLD_SEA_VISIBILITY)
     scene.add_ground(0.0, 120000.0, material=_sea(4.0, 5.0))
