@@ -214,8 +214,8 @@ def _demo_shimmer(out: Path, size=(48, 16), noise_size=(320, 120)) -> None:
     # in steps of a few 10 cm cells (refracta.Turbulence: 128^3 cells of 10 cm, a 12.8 m tile).
     camera = refracta.Camera(road.camera.position, road.camera.look_at, vfov=0.6, width=size[0], height=size[1])
     air = refracta.Turbulence(cells=128, spacing=0.1, depth=0.1, seed=1)
-    refracta.animate(road.scene, camera, road.field, np.arange(SHIMMER_FRAMES) * 0.15, out / "shimmer.gif", turbulence=air,
-                     progress=False, max_length=SHIMMER_LENGTH)
+    refracta.animate(road.scene, camera, road.field, np.arange(SHIMMER_FRAMES) * 0.15, out / "shimmer.gif",
+                     turbulence=air, progress=False, max_length=SHIMMER_LENGTH)
     print(f"wrote {out / 'shimmer.gif'} ({SHIMMER_FRAMES} frames {size[0]}x{size[1]} through refracta.Turbulence: "
           f"{time.perf_counter() - start:.1f} s)", flush=True)
     start = time.perf_counter()

@@ -151,8 +151,8 @@ def _coast(scene, distance, rng, half_width=2500.0, heights=(20.0, 90.0), spacin
     land = [(0.3, 0.3, 0.2), (0.25, 0.28, 0.18), (0.55, 0.5, 0.4), (0.4, 0.33, 0.25), (0.8, 0.78, 0.72)]
     for z in np.arange(-half_width, half_width, spacing):
         h = float(rng.uniform(*heights))
-        scene.add_box((distance + float(rng.uniform(0.0, 400.0)), h / 2, z), (300.0, h, float(rng.uniform(60.0, 150.0))),
-                      material=shading.Diffuse(land[int(rng.integers(len(land)))]))
+        x, width = distance + float(rng.uniform(0.0, 400.0)), float(rng.uniform(60.0, 150.0))
+        scene.add_box((x, h / 2, z), (300.0, h, width), material=shading.Diffuse(land[int(rng.integers(len(land)))]))
 
 
 # Clear polar air over a cold sea: 80 km of meteorological visibility leaves a coast 36 km away
@@ -206,9 +206,9 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
 def hot_spot(width: int = 640, height: int = 320) -> Example:
     """An areal hot spot (refracta.HotSpot): the hot road's scene and view, its asphalt and sand
     only 2 K warmer than the air but for a patch centred 350 m down the road, 25 K warmer at its
-    centre (a compact footprint of radius 300 m: exactly zero outside it, above 11 K within 100 m). The "lake" -- the sky and the cars'
-    lower halves mirrored -- lies over the patch alone: it belongs to the ground, so it stays
-    there when the camera moves (the demo walks 60 m toward it)."""
+    centre (a compact footprint of radius 300 m: exactly zero outside it, above 11 K within 100 m).
+    The "lake" -- the sky and the cars' lower halves mirrored -- lies over the patch alone: it
+    belongs to the ground, so it stays there when the camera moves (the demo walks 60 m toward it)."""
     example = hot_road(width, height)
     spot = _core.HotSpot(350.0, 0.0, 300.0, 25.0, footprint="compact")
     field = _core.PhysicalAtmosphere(surface_dt=2.0, surface_depth=0.1, hot_spots=[spot])
