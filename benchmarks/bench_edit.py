@@ -18,11 +18,13 @@
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
+from _common import write_results
 
 import refracta
 from refracta.edit import PointPair, distances, solve
-from _common import write_results
 
 TARGET_COST = 1e-12  # [m^2]: every miss around 1e-6 m
 BACKENDS = ["ceres", "nlopt:LN_BOBYQA", "nlopt:LN_NELDERMEAD", "nlopt:LD_LBFGS", "original"]
@@ -126,7 +128,7 @@ def main() -> dict:
             pairs = make_pairs(case["truth"], case["eye"], count, case["elevations"], case["distances"], case["ground"])
             for strategy in ("local", "auto"):
                 for backend in BACKENDS if strategy == "local" else ["ceres", "nlopt:LN_BOBYQA"]:
-                    row = best_of(lambda: run(case, backend, pairs, strategy))
+                    row = best_of(functools.partial(run, case, backend, pairs, strategy))
                     rows[f"{name}/{count}/{strategy}/{backend}"] = row
                     print(f"{name:18s} {count:2d} pairs  {strategy:5s} {backend:20s} {row['seconds'] * 1e3:8.2f} ms  "
                           f"target {'yes' if row['reached_target'] else 'NO '}  cost {row['final_cost_m2']:9.3g} m^2  "

@@ -23,12 +23,12 @@ import threading
 import time
 
 import numpy as np
+from _common import write_results
 
 import refracta
 from refracta import examples
 from refracta.widgets import EditorModel
 from refracta.widgets.canvas import png_bytes
-from _common import write_results
 
 SIZES = [(320, 120), (640, 240), (1280, 480)]
 REPEAT = 3
@@ -118,7 +118,8 @@ def solve_latencies(road) -> dict:
             for destination, source in pairs:
                 model.add_pair(destination, source)
             solved = threading.Event()
-            model.observe(lambda what, model=model: what == "result" and model.result is not None and solved.set())
+            model.observe(lambda what, model=model, solved=solved: what == "result" and model.result is not None
+                          and solved.set())
             clock = Clock(model)
             clock.reset()
             model.solve()

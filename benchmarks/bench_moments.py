@@ -20,10 +20,10 @@ fragment by render_raster (light_strata 8), which would swamp the compositing co
 from __future__ import annotations
 
 import numpy as np
+from _common import write_results
 
 import refracta
 from refracta import compare
-from _common import write_results
 
 KERNELS = (3, 5, 9, 15, 21, 31)
 METHODS = ("pcf", "vsm", "msm_hamburger", "msm_hausdorff")

@@ -16,9 +16,9 @@ from __future__ import annotations
 import argparse
 
 import numpy as np
+from _common import timed, write_results
 
 import refracta
-from _common import timed, write_results
 
 EYE_HEIGHT = 1.5
 LENGTH = 2000.0

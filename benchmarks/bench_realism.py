@@ -33,7 +33,6 @@ import time
 import tracemalloc
 
 import numpy as np
-
 from _common import timed, write_results
 
 
@@ -130,7 +129,7 @@ def angle_of_arrival(seeds=4, rays=1500, along_x_cells=256) -> dict:
                for L in (6.4, 300.0)}
     off_axis = road.angle_of_arrival_variance(300.0, direction=(1.0, 0.0, math.tan(math.radians(2.0))))
     seconds = (time.perf_counter() - start) / 3
-    for L, row in along_x.items():
+    for row in along_x.values():
         row["discrete_over_continuous"] = row["discrete"] / row["continuous_l0_one_cell"]
     print(f"along x through the {along_x_cells}^3 default grid: discrete / continuous at 6.4 m "
           f"{along_x['6.4']['discrete_over_continuous']:.2f}, at 300 m {along_x['300.0']['discrete_over_continuous']:.2f}; "

@@ -16,10 +16,10 @@ cluster pays the workers' imports, so each cluster mode runs once to warm up, th
 from __future__ import annotations
 
 import numpy as np
+from _common import timed, write_results
 
 import refracta
 from refracta import examples
-from _common import timed, write_results
 
 SURFACE_DT = [2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 14.0, 16.0]  # [K]
 SPP = 8

@@ -16,7 +16,6 @@ import argparse
 import time
 
 import numpy as np
-
 from _common import write_results
 
 EYE = (-6.0, 1.5, 0.3)

@@ -6,7 +6,7 @@ import pytest
 
 matplotlib.use("Agg")  # plots render off-screen in tests
 
-import refracta  # noqa: E402
+import refracta
 
 
 @pytest.fixture

@@ -12,6 +12,9 @@ and does not import matplotlib.
 
 import importlib as _importlib
 
+from refracta import io, lights, shading, spectrum, testing
+from refracta._animate import animate, geometric_noise
+from refracta._astronomy import astronomical_refraction
 from refracta._core import (
     Camera,
     CurvedEarth,
@@ -37,16 +40,13 @@ from refracta._core import (
     set_threads,
     trace_ray,
 )
-from refracta import io, lights, shading, spectrum, testing
 from refracta._denoise import denoise
-from refracta._render import SceneWarning, render
 from refracta._raster_render import render_raster
-from refracta.scene_file import SceneFile, load_scene
 from refracta._rays import ElevationTable, RayBatch, trace_rays, without_refraction
-from refracta._astronomy import astronomical_refraction
+from refracta._render import SceneWarning, render
 from refracta._sweep import SweepError, SweepFailure, SweepResult, sweep
+from refracta.scene_file import SceneFile, load_scene
 from refracta.turbulence import Turbulence
-from refracta._animate import animate, geometric_noise
 
 # The one place the version is written: pyproject.toml reads it (scikit-build-core's regex provider).
 __version__ = "0.1.0"

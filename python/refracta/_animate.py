@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import math
 import os
-from typing import Callable, Optional, Sequence, Union
+from collections.abc import Sequence
+from typing import Any, Callable
 
 import numpy as np
 
@@ -43,8 +44,9 @@ def with_turbulence(field, turbulence):
         raise ValueError(f"animate: the field must be a PhysicalAtmosphere or LogisticProfile to carry turbulence "
                          f"(got {type(field).__name__})")
     params = {name: value for name, value in field.params.items() if not name.startswith("hot_spot")}
-    spots = field.hot_spots
-    rebuilt = type(field)(**params, **({"hot_spots": spots} if spots else {}), turbulence=turbulence)
+    hot_spots = field.hot_spots
+    spots: dict[str, Any] = {"hot_spots": hot_spots} if hot_spots else {}
+    rebuilt = type(field)(**params, **spots, turbulence=turbulence)
     # The rebuilt air less its turbulence must be the original less its own.
     probes = np.array([[x, h, z] for h in _PROBE_HEIGHTS for x, z in ((0.0, 0.0), (37.0, -3.0))])
 
@@ -92,7 +94,7 @@ def geometric_noise_map(height: int, width: int, rms: float, correlation_pixels:
     velocity = finite_pair(speed)
     if velocity is None:
         problems.append(f"speed must be (right, down) [pixels/s], finite (got {speed!r})")
-    if problems:
+    if problems or velocity is None:  # velocity None is one of the problems
         raise ValueError("geometric_noise: " + "; ".join(problems))
     vx, vy = velocity
     pad = int(math.ceil(4.0 * correlation_pixels))
@@ -141,10 +143,10 @@ def _fft_size(n: int) -> int:
 
 # -- animation ----------------------------------------------------------------------------------
 
-def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: Union[None, str, os.PathLike] = None,
-            fps: Optional[float] = None, turbulence=None, noise: Optional[dict] = None, executor=None,
-            progress: Union[bool, Callable[[int, int], None]] = True, exposure: Optional[float] = None,
-            tonemap: Optional[str] = None, **options) -> np.ndarray:
+def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: None | str | os.PathLike = None,
+            fps: float | None = None, turbulence=None, noise: dict | None = None, executor=None,
+            progress: bool | Callable[[int, int], None] = True, exposure: float | None = None,
+            tonemap: str | None = None, **options) -> np.ndarray:
     """Render a shimmering mirage: one frame per time in `times` [s]; returns linear radiance,
     float32 (T, H, W, 3), and writes it to `path` if given.
 
@@ -217,7 +219,7 @@ def _render_frame(scene, camera, field, settings, turbulence, noise, t):
     return image
 
 
-def _frame_rate(times: np.ndarray, fps: Optional[float]) -> float:
+def _frame_rate(times: np.ndarray, fps: float | None) -> float:
     if fps is not None:
         if not (isinstance(fps, (int, float, np.floating)) and 0.0 < fps < 1e4):
             raise ValueError(f"animate: fps must be in (0, 1e4) (got {fps!r})")

@@ -4,8 +4,6 @@ stratified tracer that renders (cpp/refracta/rays/astronomical_refraction.h)."""
 
 from __future__ import annotations
 
-from typing import Optional, Union
-
 import numpy as np
 
 from refracta import _core
@@ -14,8 +12,8 @@ ARCMIN_PER_RADIAN = 180.0 * 60.0 / np.pi
 
 
 def astronomical_refraction(field: _core.IndexField, apparent_elevation_deg, eye_height: float = 0.0, *,
-                            wavelength: Optional[float] = None, top: Optional[float] = None,
-                            earth_radius: float = 6371e3, tol: float = 1e-7) -> Union[float, np.ndarray]:
+                            wavelength: float | None = None, top: float | None = None,
+                            earth_radius: float = 6371e3, tol: float = 1e-7) -> float | np.ndarray:
     """Refraction [arcmin] of a star seen at `apparent_elevation_deg` [deg, in [-90, 90]].
 
     The star's true elevation is the apparent one less the refraction. `field` is the air with

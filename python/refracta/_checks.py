@@ -4,17 +4,16 @@ its own arguments)."""
 from __future__ import annotations
 
 import math
-from typing import Optional, Tuple
 
 import numpy as np
 
 
 def is_seed(value) -> bool:
     """Whether `value` is a whole number >= 0 given as an integer (not a bool, not a float)."""
-    return not isinstance(value, bool) and isinstance(value, (int, np.integer)) and value >= 0
+    return not isinstance(value, bool) and isinstance(value, (int, np.integer)) and bool(value >= 0)
 
 
-def finite_pair(value) -> Optional[Tuple[float, float]]:
+def finite_pair(value) -> tuple[float, float] | None:
     """`value` as two finite floats, or None when it is not a pair of finite numbers."""
     try:
         a, b = (float(v) for v in value)

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from typing import Callable, Optional, Sequence, Union
+from collections.abc import Sequence
+from typing import Callable
 
 import numpy as np
 
@@ -45,17 +46,17 @@ def render_raster(
     resolution: int = 1024,
     kernel: int = 1,
     depth_range: str = "unit",
-    bias: Optional[float] = None,
-    bias_vector: Optional[Sequence[float]] = None,
+    bias: float | None = None,
+    bias_vector: Sequence[float] | None = None,
     storage: str = "fp32",
     depth_bias: float = 2e-4,
     normal_offset: float = 1.5,
     bleeding_reduction: float = 0.0,
     shadow_centre=None,
-    shadow_half_size: Optional[float] = None,
-    shadow_distance: Optional[float] = None,
+    shadow_half_size: float | None = None,
+    shadow_distance: float | None = None,
     output: str = "radiance",
-    transparency: Optional[str] = None,
+    transparency: str | None = None,
     moments: int = 4,
     kind: str = "power",
     beta: float = 0.25,
@@ -63,8 +64,8 @@ def render_raster(
     weight: str = "eq7",
     shadow_light: int = -1,
     oit_storage: str = "fp32",
-    stats: Optional[dict] = None,
-    progress: Union[bool, Callable[[int, int], None]] = False,
+    stats: dict | None = None,
+    progress: bool | Callable[[int, int], None] = False,
 ) -> np.ndarray:
     """Render `scene` from `camera` by rasterization, the lights' shadows from shadow maps.
 

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Callable, Iterator, Optional, Union
+from typing import Callable
 
 import numpy as np
 
@@ -11,7 +12,7 @@ from refracta import _core
 from refracta._progress import ProgressBar
 
 
-def without_refraction(field: Optional[_core.IndexField]) -> Optional[_core.IndexField]:
+def without_refraction(field: _core.IndexField | None) -> _core.IndexField | None:
     """The reference a render through `field` compares with: the same Earth, air that bends nothing.
 
     None (straight rays over a flat Earth) for a flat-Earth field or None; for a CurvedEarth of
@@ -62,10 +63,10 @@ def trace_rays(
     directions,
     method: str = "rk45",
     tol: float = 1e-6,
-    step: Optional[float] = None,
+    step: float | None = None,
     max_length: float = 1000.0,
-    stop_height: Optional[float] = None,
-    progress: Union[bool, Callable[[int, int], None]] = False,
+    stop_height: float | None = None,
+    progress: bool | Callable[[int, int], None] = False,
 ) -> RayBatch:
     """Trace many curved rays in parallel (oneTBB, GIL released; Ctrl-C stops it).
 
@@ -116,10 +117,10 @@ class ElevationTable:
         max_elevation: float,
         tol: float = 1e-3,
         max_length: float = 1000.0,
-        stop_height: Optional[float] = None,
-        step: Optional[float] = None,
-        trace_tol: Optional[float] = None,
-        progress: Union[bool, Callable[[int, int], None]] = False,
+        stop_height: float | None = None,
+        step: float | None = None,
+        trace_tol: float | None = None,
+        progress: bool | Callable[[int, int], None] = False,
     ):
         callback = ProgressBar("elevation table") if progress is True else (progress or None)
         # What pickling rebuilds the table from (the build is deterministic: the copy is identical).

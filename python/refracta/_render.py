@@ -5,14 +5,15 @@ from __future__ import annotations
 import copy
 import math
 import warnings
-
-from typing import Callable, List, Optional, Sequence, Tuple, Union
+from collections.abc import Sequence
+from typing import Callable
 
 import numpy as np
 
 from refracta import _core, _denoise
 from refracta._progress import ProgressBar
 from refracta._sweep import map_ordered
+
 
 class SceneWarning(UserWarning):
     """A render whose scene is probably not what was meant: it has no light (the image is black),
@@ -82,18 +83,18 @@ def render_options(**options) -> _core.RenderOptions:
 def render(
     scene: _core.Scene,
     camera: _core.Camera,
-    field: Optional[_core.IndexField] = None,
+    field: _core.IndexField | None = None,
     method: str = "curved",
     transport: str = "direct",
     spp: int = 1,
-    max_depth: Optional[int] = None,
+    max_depth: int | None = None,
     spectral: bool = False,
     seed: int = 0,
-    progress: Union[bool, Callable[[int, int], None]] = True,
-    stats: Optional[dict] = None,
+    progress: bool | Callable[[int, int], None] = True,
+    stats: dict | None = None,
     executor=None,
-    tiles: Union[None, int, Tuple[int, int]] = None,
-    aovs: Optional[Sequence[str]] = None,
+    tiles: None | int | tuple[int, int] = None,
+    aovs: Sequence[str] | None = None,
     denoise: bool = False,
     **options,
 ):
@@ -178,7 +179,9 @@ def render(
         image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)
     else:
         callback = ProgressBar("rendering") if progress is True else (progress or None)
-        image, counts = _core._render(scene, camera, field, settings, callback)
+        # The binding takes None (no atmosphere: straight rays) through its shared_ptr argument, which
+        # pybind11's signature, and so the generated stub, cannot mark as optional.
+        image, counts = _core._render(scene, camera, field, settings, callback)  # type: ignore[arg-type]
     _check_scene(scene, camera, field, method)  # with the image: a refused render needs no hint
     if stats is not None:
         stats.update(counts)
@@ -201,7 +204,7 @@ def render(
 AOV_NAMES = ("albedo", "normal")
 
 
-def _aov_names(aovs) -> List[str]:
+def _aov_names(aovs) -> list[str]:
     if aovs is None:
         return []
     if isinstance(aovs, str):
@@ -220,15 +223,17 @@ def _aov_names(aovs) -> List[str]:
 _DEFAULT_TILE = 128
 
 
-def tile_bounds(width: int, height: int, tiles: Union[None, int, Tuple[int, int]],
-                region: Optional[Tuple[int, int, int, int]] = None) -> List[Tuple[int, int, int, int]]:
+def tile_bounds(width: int, height: int, tiles: None | int | tuple[int, int],
+                region: tuple[int, int, int, int] | None = None) -> list[tuple[int, int, int, int]]:
     """Pixel bounds (x0, y0, x1, y1) of the tiles of a width x height image (or of `region`), row
     by row from the top left: tiles=(nx, ny) near-equal tiles, tiles=n squares of n pixels."""
     x0, y0, x1, y1 = region if region is not None else (0, 0, width, height)
     w, h = x1 - x0, y1 - y0
     if tiles is None:
         tiles = _DEFAULT_TILE
-    if isinstance(tiles, (int, np.integer)) and not isinstance(tiles, bool):
+    if isinstance(tiles, bool):
+        raise ValueError(f"tiles must be a tile size or (nx, ny) (got {tiles!r})")
+    if isinstance(tiles, (int, np.integer)):
         if tiles < 1:
             raise ValueError(f"tiles must be a tile size >= 1 or (nx, ny) (got {tiles!r})")
         xs = list(range(x0, x1, int(tiles))) + [x1]

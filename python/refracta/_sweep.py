@@ -28,8 +28,9 @@ import os
 import threading
 import time
 import traceback
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Union
 
 from refracta import _core
 from refracta._progress import ProgressBar
@@ -44,7 +45,7 @@ class SweepFailure:
     """A point whose call raised: its position in grid order, its parameters and the error."""
 
     index: int
-    point: Dict[str, Any]
+    point: dict[str, Any]
     error: BaseException
     traceback: str
 
@@ -60,7 +61,7 @@ class SweepResult(list):
         failures: one SweepFailure per failed point (empty when all succeeded).
     """
 
-    def __init__(self, results: Iterable[Any], points: Sequence[Dict[str, Any]], failures: Sequence[SweepFailure]):
+    def __init__(self, results: Iterable[Any], points: Sequence[dict[str, Any]], failures: Sequence[SweepFailure]):
         super().__init__(results)
         self.points = list(points)
         self.failures = list(failures)
@@ -93,7 +94,7 @@ class SweepError(RuntimeError):
         return (SweepError, (self.failures, self.results))
 
 
-def grid_points(grid: Union[Mapping[str, Sequence[Any]], Sequence[Mapping[str, Any]]]) -> List[Dict[str, Any]]:
+def grid_points(grid: Mapping[str, Sequence[Any]] | Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
     """The points of a grid, in sweep order.
 
     A dict of lists is the cartesian product in the dict's key order, the last key varying fastest
@@ -121,7 +122,7 @@ def grid_points(grid: Union[Mapping[str, Sequence[Any]], Sequence[Mapping[str, A
     return points
 
 
-def as_executor(executor) -> Optional[concurrent.futures.Executor]:
+def as_executor(executor) -> concurrent.futures.Executor | None:
     """A concurrent.futures.Executor for `executor`: None stays None (in-process), a
     dask.distributed Client gives its get_executor(pure=False) (every task runs; futures are
     concurrent.futures futures), an Executor is returned as is."""
@@ -134,7 +135,7 @@ def as_executor(executor) -> Optional[concurrent.futures.Executor]:
     )
 
 
-def _progress_callback(progress: ProgressArg, label: str) -> Optional[Callable[[int, int], None]]:
+def _progress_callback(progress: ProgressArg, label: str) -> Callable[[int, int], None] | None:
     if progress is True:
         return ProgressBar(label)
     if progress is False or progress is None:
@@ -145,7 +146,7 @@ def _progress_callback(progress: ProgressArg, label: str) -> Optional[Callable[[
 
 
 def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, progress: ProgressArg = False,
-                label: str = "sweep", shared: tuple = ()) -> List[tuple]:
+                label: str = "sweep", shared: tuple = ()) -> list[tuple]:
     """Calls function(*shared, *args) for each tuple of `arguments` on `executor` (as_executor's
     kinds); returns one (ok, value) per call in the order of `arguments`: (True, result) or
     (False, (exception, traceback text)). `shared`: arguments common to every call (a tiled render's
@@ -167,7 +168,7 @@ def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, p
     shared = tuple(shared)
     callback = _progress_callback(progress, label)
     total = len(arguments)
-    outcomes: List[Optional[tuple]] = [None] * total
+    outcomes: dict[int, tuple] = {}  # by call index, filled as the calls finish
     if callback:
         callback(0, total)
     if pool is None:
@@ -178,9 +179,11 @@ def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, p
                 outcomes[i] = (False, (error, traceback.format_exc()))
             if callback:
                 callback(i + 1, total)
-        return outcomes
+        return [outcomes[i] for i in range(total)]
     futures = {}
     threads = _RunningThreads()
+    task: Callable[..., Any]
+    head: tuple[Any, ...]
     if isinstance(pool, concurrent.futures.ThreadPoolExecutor):
         task, head = threads.call, (function,)
     elif isinstance(pool, concurrent.futures.ProcessPoolExecutor):
@@ -193,19 +196,19 @@ def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, p
         done = 0
         for future in concurrent.futures.as_completed(futures):
             i = futures[future]
-            error = future.exception()
-            if error is None:
+            failure = future.exception()
+            if failure is None:
                 outcomes[i] = (True, future.result())
             else:
-                text = "".join(traceback.format_exception(type(error), error, error.__traceback__))
-                outcomes[i] = (False, (error, text))
+                text = "".join(traceback.format_exception(type(failure), failure, failure.__traceback__))
+                outcomes[i] = (False, (failure, text))
             done += 1
             if callback:
                 callback(done, total)
     except BaseException:
         _stop(pool, futures, threads)
         raise
-    return outcomes
+    return [outcomes[i] for i in range(total)]
 
 
 class _RunningThreads:
@@ -215,7 +218,7 @@ class _RunningThreads:
 
     def __init__(self):
         self._lock = threading.Lock()
-        self._ids: Dict[int, int] = {}  # threading.get_ident() -> tasks running there
+        self._ids: dict[int, int] = {}  # threading.get_ident() -> tasks running there
         self._stopped = False
 
     def call(self, function: Callable, *args) -> Any:
@@ -352,6 +355,6 @@ def sweep(function: Callable[..., Any], grid, executor=None, progress: ProgressA
     return result
 
 
-def _call_with(function: Callable[..., Any], point: Dict[str, Any]) -> Any:
+def _call_with(function: Callable[..., Any], point: dict[str, Any]) -> Any:
     """function(**point): a module-level function, so that it pickles for process pools."""
     return function(**point)

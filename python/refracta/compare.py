@@ -10,7 +10,8 @@ OIT method and compares with the exact (sorted) composite.
 
 from __future__ import annotations
 
-from typing import Dict, List, Optional, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -42,7 +43,7 @@ def shadows(scene: _core.Scene, camera: _core.Camera,
     kernels = [int(k) for k in kernels]
     if not methods or not kernels:
         raise ValueError("methods and kernels must not be empty")
-    references: Dict[tuple, np.ndarray] = {}
+    references: dict[tuple, np.ndarray] = {}
 
     def reference(name: str, kernel: int) -> np.ndarray:
         key = (name, kernel if name == "pcf" else 1)
@@ -50,7 +51,7 @@ def shadows(scene: _core.Scene, camera: _core.Camera,
             references[key] = render_raster(scene, camera, shadows=name, kernel=key[1], output="shadow", **options)
         return references[key]
 
-    rows: List[dict] = []
+    rows: list[dict] = []
     images = {}
     for kernel in kernels:
         for method in methods:
@@ -76,7 +77,7 @@ def shadows(scene: _core.Scene, camera: _core.Camera,
 
 
 #: Transparency methods of compare.transparency: name -> render_raster keyword arguments.
-TRANSPARENCY_METHODS = {
+TRANSPARENCY_METHODS: dict[str, dict[str, Any]] = {
     "peel 2": dict(transparency="peel", layers=2),
     "peel 4": dict(transparency="peel", layers=4),
     "wboit eq7": dict(transparency="wboit", weight="eq7"),
@@ -127,6 +128,7 @@ def transparency(scene: _core.Scene, camera: _core.Camera, methods: Sequence[str
     fig = None
     if figure:
         import matplotlib.pyplot as plt
+
         from refracta.io import to_display
 
         fig, axes = plt.subplots(1, len(methods) + 1, figsize=(2.8 * (len(methods) + 1), 2.6), constrained_layout=True)

@@ -29,8 +29,10 @@ Units: metres (scene units for LogisticProfile); cost is 1/2 sum weight * miss^2
 from __future__ import annotations
 
 import time as _time
-from dataclasses import dataclass, field as _dataclass_field
-from typing import Callable, Dict, List, Optional, Sequence, Tuple, Union
+from collections.abc import Sequence
+from dataclasses import dataclass
+from dataclasses import field as _dataclass_field
+from typing import Any, Callable
 
 import numpy as np
 
@@ -80,8 +82,8 @@ class PointPair:
             pixel_tolerance, a tenth of the pixel's footprint at the source, if that is larger).
     """
 
-    destination: Tuple[float, ...]
-    source: Tuple[float, float, float]
+    destination: tuple[float, ...]
+    source: tuple[float, float, float]
     weight: float = 1.0
     margin: float = 0.0
 
@@ -106,7 +108,7 @@ class PointPair:
         return len(self.destination) == 2
 
 
-def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: Optional[float] = None):
+def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float | None = None):
     """(pairs, eye, camera or None, origins, directions, sources, weights, margins [m], tolerances [m])
     of the pairs.
 
@@ -143,12 +145,13 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: Optio
     if pixel_tolerance is None:
         pixel_tolerance = _core._SolveSettings().pixel_tolerance
     ranges = np.linalg.norm(sources - eye, axis=1)
-    footprints = np.array([camera.pixel_angle * r if p.is_pixel else 0.0 for p, r in zip(pairs, ranges)])
+    pixel_angle = camera.pixel_angle if camera is not None else 0.0  # a pixel pair has a camera (checked above)
+    footprints = np.array([pixel_angle * r if p.is_pixel else 0.0 for p, r in zip(pairs, ranges)])
     margins = np.array([p.margin * (f if p.is_pixel else 1.0) for p, f in zip(pairs, footprints)])
     return pairs, eye, camera, origins, np.array(directions), sources, weights, margins, pixel_tolerance * footprints
 
 
-def _pair_options(integrator: str, tol: float, step: Optional[float], ground: Optional[float],
+def _pair_options(integrator: str, tol: float, step: float | None, ground: float | None,
                   distance: str, reach: float):
     if integrator not in ("rk45", "rk4"):
         raise ValueError(f"integrator must be 'rk45' or 'rk4' (got {integrator!r})")
@@ -180,9 +183,9 @@ class EditResult:
 
     field: _core.IndexField
     start: _core.IndexField
-    pairs: List[PointPair]
+    pairs: list[PointPair]
     eye: np.ndarray
-    camera: Optional[_core.Camera]
+    camera: _core.Camera | None
     cost: float
     initial_cost: float
     distances: np.ndarray
@@ -195,23 +198,23 @@ class EditResult:
     converged: bool
     message: str
     history: np.ndarray
-    free: List[str]
-    insensitive: List[str]
+    free: list[str]
+    insensitive: list[str]
     backend: str
     derivatives: str
     starts: int = 1
-    trace_options: Dict[str, object] = _dataclass_field(default_factory=dict)
+    trace_options: dict[str, Any] = _dataclass_field(default_factory=dict)
     margins: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0))
     tolerances: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0))
     met: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0, dtype=bool))
     strategy: str = "local"
-    stages: List[str] = _dataclass_field(default_factory=list)
+    stages: list[str] = _dataclass_field(default_factory=list)
     solver_report: str = ""
     stopped_by: str = ""
     condition: float = 0.0
     rank: int = 0
 
-    def paths(self, which: str = "solved") -> List[_core.RayPath]:
+    def paths(self, which: str = "solved") -> list[_core.RayPath]:
         """Each pair's light path through the solved field ('solved') or the start ('start')."""
         if which not in ("solved", "start"):
             raise ValueError(f"which must be 'solved' or 'start' (got {which!r})")
@@ -270,36 +273,36 @@ def solve(
     field: _core.IndexField,
     eye_or_camera,
     pairs: Sequence[PointPair],
-    free: Optional[Sequence[str]] = None,
+    free: Sequence[str] | None = None,
     backend: str = "ceres",
     *,
     strategy: str = "auto",
-    bounds: Optional[Dict[str, Tuple[float, float]]] = None,
+    bounds: dict[str, tuple[float, float]] | None = None,
     starts: int = 1,
     seed: int = 0,
     derivatives: str = "auto",
     distance: str = "continuous",
     integrator: str = "rk45",
     tol: float = 1e-9,
-    step: Optional[float] = None,
-    ground: Optional[float] = None,
+    step: float | None = None,
+    ground: float | None = None,
     reach: float = 1.5,
     loss: str = "none",
     loss_scale: float = 1.0,
     max_iterations: int = 200,
     max_evaluations: int = 3000,
-    time_limit: Optional[float] = None,
-    target_cost: Optional[float] = None,
+    time_limit: float | None = None,
+    target_cost: float | None = None,
     trust_region: float = 0.1,
     accept_angle: float = 1e-6,
-    pixel_tolerance: Optional[float] = None,
+    pixel_tolerance: float | None = None,
     function_tolerance: float = 1e-14,
     parameter_tolerance: float = 1e-12,
     gradient_tolerance: float = 1e-16,
-    progress: Union[bool, Callable[[int, int], None]] = False,
-    quick_iterations: Optional[int] = None,
-    design_per_param: Optional[int] = None,
-    local_starts: Optional[int] = None,
+    progress: bool | Callable[[int, int], None] = False,
+    quick_iterations: int | None = None,
+    design_per_param: int | None = None,
+    local_starts: int | None = None,
 ) -> EditResult:
     """Solve for the parameters of `field` that make each pair's light path pass its source.
 
@@ -413,7 +416,8 @@ def solve(
 
     def run(start_field, k):
         def report(done, total):  # start k's progress as its share of the whole
-            callback(k * total + done, starts * total)
+            if callback is not None:
+                callback(k * total + done, starts * total)
 
         return _core._solve_edit(start_field, origins, directions, sources, weights, margins, tolerances, free or [],
                                  bounds, derivatives, options, settings, report if callback is not None else None)
@@ -468,7 +472,7 @@ def solve(
     names = field.param_names
     solved = field.with_params(**dict(zip(names, (float(v) for v in best["values"]))))
     return EditResult(
-        field=solved, start=field, pairs=pairs, eye=np.asarray(eye), camera=camera, cost=best["cost"],
+        field=solved, start=field, pairs=list(pairs), eye=np.asarray(eye), camera=camera, cost=best["cost"],
         initial_cost=first["initial_cost"],
         distances=best["distances"], initial_distances=initial, iterations=best["iterations"],
         evaluations=total_evaluations, pair_traces=total_traces, time=total_time, success=best["success"],
@@ -482,18 +486,18 @@ def solve(
 
 
 def distances(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], *, distance: str = "continuous",
-              integrator: str = "rk45", tol: float = 1e-9, step: Optional[float] = None,
-              ground: Optional[float] = None, reach: float = 1.5) -> np.ndarray:
+              integrator: str = "rk45", tol: float = 1e-9, step: float | None = None,
+              ground: float | None = None, reach: float = 1.5) -> np.ndarray:
     """Each pair's miss [m]: how far the path launched toward its destination passes its source."""
     _, _, _, origins, directions, sources, _, _, _ = _pair_rays(eye_or_camera, pairs)
     return _core._pair_distances(field, origins, directions, sources,
                                  _pair_options(integrator, tol, step, ground, distance, reach))
 
 
-def jacobian(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], free: Optional[Sequence[str]] = None,
+def jacobian(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], free: Sequence[str] | None = None,
              *, derivatives: str = "auto", distance: str = "continuous", integrator: str = "rk45", tol: float = 1e-9,
-             step: Optional[float] = None, ground: Optional[float] = None,
-             reach: float = 1.5) -> Tuple[np.ndarray, np.ndarray, List[str]]:
+             step: float | None = None, ground: float | None = None,
+             reach: float = 1.5) -> tuple[np.ndarray, np.ndarray, list[str]]:
     """(residuals (3P,), Jacobian (3P, F), free names) at `field`: the weighted miss vectors an
     edit minimises and their derivatives in the free parameters (for sensitivity studies)."""
     _, _, _, origins, directions, sources, weights, margins, _ = _pair_rays(eye_or_camera, pairs)
@@ -502,7 +506,7 @@ def jacobian(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair],
                                 _pair_options(integrator, tol, step, ground, distance, reach))
 
 
-def load_pairs(path, scene: Optional[_core.Scene] = None, camera: Optional[_core.Camera] = None) -> Tuple[List[PointPair], dict]:
+def load_pairs(path, scene: _core.Scene | None = None, camera: _core.Camera | None = None) -> tuple[list[PointPair], dict]:
     """Point pairs from a JSON file, and the solve options it carries.
 
     Format::

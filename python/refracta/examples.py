@@ -60,11 +60,6 @@ def set_physical_sky(scene: _core.Scene, direction, aerosol: float = 1.0, scale:
         scene.set_physical_sky(direction, scale=scale, below_horizon="horizon", visibility=visibility)
 
 
-# Materials (refracta.shading; shared/SHADING.md section 3). Indices of aluminium at ~650/550/450 nm
-# (Rakic 1995, as tabulated by refractiveindex.info).
-ALUMINIUM = dict(eta=(1.50, 0.96, 0.62), k=(7.60, 6.69, 5.30))
-
-
 def _paint(colour):
     """Metallic car paint: a Burley principled base under a clear coat."""
     return shading.Principled(base_color=colour, metallic=0.75, roughness=0.35, clearcoat=1.0, clearcoat_gloss=0.9)
@@ -126,7 +121,7 @@ def hot_road(width: int = 640, height: int = 320) -> Example:
     eye, look = HOT_ROAD_EYE, 300.0  # look_at on the line of sight 300 m out (a pinhole: only its direction counts)
     camera = _core.Camera.photographic((0.0, eye, 0.0), (look, eye - look * np.tan(np.radians(HOT_ROAD_TILT)), 0.0),
                                        HOT_ROAD_FOCAL_LENGTH, width=width, height=height)
-    return Example("hot_road", scene, camera, field, 12000.0, hot_road.__doc__)
+    return Example("hot_road", scene, camera, field, 12000.0, hot_road.__doc__ or "")  # None under python -OO
 
 
 def _ship(scene, x, z, scale=1.0):
@@ -183,7 +178,7 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
     look = np.radians(0.1)
     camera = _core.Camera.photographic((0.0, 5.0, 0.0), (30000.0, 5.0 + 30000.0 * np.tan(look), 0.0),
                                        SEA_FOCAL_LENGTH, width=width, height=height)
-    return Example("cold_sea", scene, camera, field, 41000.0, cold_sea.__doc__)
+    return Example("cold_sea", scene, camera, field, 41000.0, cold_sea.__doc__ or "")
 
 
 def fata_morgana(width: int = 640, height: int = 240) -> Example:
@@ -200,7 +195,7 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
     look = np.radians(0.02)
     camera = _core.Camera.photographic((0.0, 14.0, 0.0), (20000.0, 14.0 + 20000.0 * np.tan(look), 0.0),
                                        SEA_FOCAL_LENGTH, width=width, height=height)
-    return Example("fata_morgana", scene, camera, field, 21000.0, fata_morgana.__doc__)
+    return Example("fata_morgana", scene, camera, field, 21000.0, fata_morgana.__doc__ or "")
 
 
 def hot_spot(width: int = 640, height: int = 320) -> Example:
@@ -212,7 +207,7 @@ def hot_spot(width: int = 640, height: int = 320) -> Example:
     example = hot_road(width, height)
     spot = _core.HotSpot(350.0, 0.0, 300.0, 25.0, footprint="compact")
     field = _core.PhysicalAtmosphere(surface_dt=2.0, surface_depth=0.1, hot_spots=[spot])
-    return Example("hot_spot", example.scene, example.camera, field, example.max_length, hot_spot.__doc__)
+    return Example("hot_spot", example.scene, example.camera, field, example.max_length, hot_spot.__doc__ or "")
 
 
 # The setting sun's linear limb darkening (Neckel-like, at 550 nm).
@@ -243,7 +238,7 @@ def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.8
     field = _core.CurvedEarth(base)
     look = np.radians(-0.05)
     camera = _camera((0.0, 4.0, 0.0), (1000.0 * np.cos(look), 4.0 + 1000.0 * np.sin(look), 0.0), 0.7, width, height)
-    return Example("green_flash", scene, camera, field, 1.5e6, green_flash.__doc__)
+    return Example("green_flash", scene, camera, field, 1.5e6, green_flash.__doc__ or "")
 
 
 EXAMPLES = {"hot_road": hot_road, "cold_sea": cold_sea, "fata_morgana": fata_morgana, "hot_spot": hot_spot}

@@ -11,7 +11,7 @@ filtered depth distribution in front of z_f, a lower bound of PCF) from its powe
 
 from __future__ import annotations
 
-from typing import Optional, Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -43,7 +43,7 @@ def quantize(moments, depth_range: str = "unit", inverse: bool = False) -> np.nd
 
 
 def shadow_intensity(moments, z_f, method: str = "hamburger", depth_range: str = "unit",
-                     bias: Optional[float] = None, bias_vector: Optional[Sequence[float]] = None,
+                     bias: float | None = None, bias_vector: Sequence[float] | None = None,
                      storage: str = "fp64") -> np.ndarray:
     """Shadow intensity in [0, 1] from (..., 4) moments at receiver depths (...).
 

@@ -12,16 +12,14 @@ fp32 biases.
 
 from __future__ import annotations
 
-from typing import Optional, Tuple
-
 import numpy as np
 
 from refracta import _core
 
 
 def composite(depths, alphas, colors, background=(0.0, 0.0, 0.0), method: str = "exact", moments: int = 4,
-              kind: str = "power", beta: float = 0.25, bias: Optional[float] = None,
-              z_range: Optional[Tuple[float, float]] = None, layers: Optional[int] = None,
+              kind: str = "power", beta: float = 0.25, bias: float | None = None,
+              z_range: tuple[float, float] | None = None, layers: int | None = None,
               weight: str = "eq7", storage: str = "fp32") -> np.ndarray:
     """The pixel's colour after compositing its fragments over `background`. storage: MBOIT's
     moments in 'fp32' or the 16-bit ROV variant 'unorm16' (re-quantised after every fragment, in

@@ -6,7 +6,7 @@ re-computed in Python.
 
 from __future__ import annotations
 
-from typing import Optional, Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -24,10 +24,10 @@ def ray_fan(
     eye_height: float,
     elevations: Sequence[float],
     max_length: float,
-    ground: Optional[float] = 0.0,
-    method: Optional[str] = None,
+    ground: float | None = 0.0,
+    method: str | None = None,
     tol: float = 1e-6,
-    title: Optional[str] = None,
+    title: str | None = None,
     figsize=(11.0, 4.2),
 ):
     """Rays from one eye in their vertical plane, beside the temperature and index profiles.
@@ -48,22 +48,23 @@ def ray_fan(
     import matplotlib.pyplot as plt
     from matplotlib import cm, colors
 
-    elevations = np.atleast_1d(np.asarray(elevations, dtype=float))
-    if elevations.size == 0 or not np.all(np.isfinite(elevations)):
+    angles = np.atleast_1d(np.asarray(elevations, dtype=float))  # [deg]
+    if angles.size == 0 or not np.all(np.isfinite(angles)):
         raise ValueError("elevations must be a non-empty list of finite angles in degrees")
     if not np.isfinite(eye_height) or (ground is not None and eye_height < ground):
         raise ValueError(f"eye_height must be finite and above the ground (got {eye_height})")
     method = method or ("stratified" if field.height_only else "rk45")
 
-    has_temperature = hasattr(field, "temperature")
+    temperature = getattr(field, "temperature", None)  # the models with a temperature profile
+    has_temperature = temperature is not None
     fig, axes = plt.subplots(1, 3 if has_temperature else 2, figsize=figsize,
                              gridspec_kw={"width_ratios": [4, 1, 1] if has_temperature else [4, 1]},
                              sharey=True, constrained_layout=True)
     ax_rays = axes[0]
-    norm = colors.Normalize(elevations.min(), elevations.max() if np.ptp(elevations) > 0 else elevations.min() + 1)
+    norm = colors.Normalize(angles.min(), angles.max() if np.ptp(angles) > 0 else angles.min() + 1)
     cmap = cm.viridis
     low, high = eye_height, eye_height
-    for elevation in elevations:
+    for elevation in angles:
         e = np.radians(elevation)
         path = _core.trace_ray(field, [0.0, eye_height, 0.0], [np.cos(e), np.sin(e), 0.0], method=method,
                                tol=tol, max_length=max_length, stop_height=ground)
@@ -89,9 +90,9 @@ def ray_fan(
     ax_index.plot((field.ior(points) - 1.0) * 1e6, heights, color="tab:blue")
     ax_index.set_xlabel("(n - 1) x 1e6")
     ax_index.set_title("index")
-    if has_temperature:
+    if temperature is not None:
         ax_t = axes[1]
-        ax_t.plot(field.temperature(heights) - 273.15, heights, color="tab:red")
+        ax_t.plot(temperature(heights) - 273.15, heights, color="tab:red")
         ax_t.set_xlabel("T [°C]")
         ax_t.set_title("temperature")
     ax_rays.set_ylim(low - margin, high + margin)
@@ -128,7 +129,7 @@ def edit_report(result, figsize=(12.0, 4.2), figure=None):
     eye = np.asarray(result.eye, dtype=float)
     colours = colormaps["tab10"](np.arange(len(result.pairs)) % 10)
     for which, style in (("start", "--"), ("solved", "-")):
-        for path, pair, colour in zip(result.paths(which), result.pairs, colours):
+        for path, colour in zip(result.paths(which), colours):
             points = path.sample(max(200, 2 * len(path)))
             along = np.hypot(points[:, 0] - eye[0], points[:, 2] - eye[2])
             ax_paths.plot(along, points[:, 1], style, color=colour, lw=1.0 if which == "start" else 1.6,

@@ -108,11 +108,14 @@ import os
 import re
 import sys
 from pathlib import Path
-from typing import Any, Optional
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from refracta import _core
+
+if TYPE_CHECKING:
+    from refracta.turbulence import Turbulence
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -187,8 +190,10 @@ class SceneFile(tuple):
             (or one solved from it) again: the field keeps the layer, not the settings.
     """
 
-    def __new__(cls, scene: _core.Scene, camera: _core.Camera, field: Optional[_core.IndexField],
-                turbulence=None):
+    turbulence: Turbulence | None
+
+    def __new__(cls, scene: _core.Scene, camera: _core.Camera, field: _core.IndexField | None,
+                turbulence: Turbulence | None = None):
         self = super().__new__(cls, (scene, camera, field))
         self.turbulence = turbulence
         return self
@@ -214,7 +219,7 @@ class _Locator:
         self.path = path
         self.lines = text.splitlines()
 
-    def line_of(self, table: str, key: Optional[str] = None, index: Optional[int] = None) -> int:
+    def line_of(self, table: str, key: str | None = None, index: int | None = None) -> int:
         current, count, header_line = None, -1, 0
         for number, line in enumerate(self.lines, 1):
             header = _HEADER.match(line)
@@ -232,7 +237,7 @@ class _Locator:
                 header_line = number  # a top-level key where a table belongs: camera = 5
         return header_line
 
-    def error(self, message: str, table: str, key: Optional[str] = None, index: Optional[int] = None) -> ValueError:
+    def error(self, message: str, table: str, key: str | None = None, index: int | None = None) -> ValueError:
         line = self.line_of(table, key, index)
         if not line and "." in table:  # a sub-table written inline: hot_spots = [{x = 1, ...}]
             parent, _, child = table.rpartition(".")
@@ -249,7 +254,7 @@ def _unknown_key_message(key: str, allowed, what: str) -> str:
     return f"unknown key for {what} ({hint}expected {', '.join(sorted(allowed))})"
 
 
-def _check_keys(table: dict, allowed, where: "_Locator", name: str, what: str, index: Optional[int] = None) -> None:
+def _check_keys(table: dict, allowed, where: _Locator, name: str, what: str, index: int | None = None) -> None:
     """ValueError naming file, line and the first key of `table` not in `allowed`."""
     extra = sorted(set(table) - set(allowed))
     if extra:
@@ -289,7 +294,7 @@ def _boolean(value: Any) -> bool:
     return value
 
 
-def _offending_key(message: str, keys) -> Optional[str]:
+def _offending_key(message: str, keys) -> str | None:
     """The parameter a constructor's error message names: a whole-word match first, then the
     longest key the message contains (alpha -> 'alpha_u must be ...')."""
     words = set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", message))
@@ -300,7 +305,7 @@ def _offending_key(message: str, keys) -> Optional[str]:
     return contained[0] if contained else None
 
 
-def _materials(entries: list, where: "_Locator", get, path: Path) -> dict:
+def _materials(entries: list, where: _Locator, get, path: Path) -> dict:
     """[[materials]] -> {name: refracta.shading material}."""
     from refracta import shading
 
@@ -340,7 +345,7 @@ def _materials(entries: list, where: "_Locator", get, path: Path) -> dict:
     return materials
 
 
-def _environment(scene: _core.Scene, table: dict, where: "_Locator", get, path: Path) -> None:
+def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Path) -> None:
     """[environment]: constant, map, gradient or physical_sky."""
     kind = get(table, "environment", "type", str, required=True)
     if kind not in ENVIRONMENT_KEYS:
@@ -390,7 +395,7 @@ def _environment(scene: _core.Scene, table: dict, where: "_Locator", get, path: 
         raise where.error(str(error), "environment", _offending_key(str(error), table)) from None
 
 
-def _lights(scene: _core.Scene, entries: list, data: dict, where: "_Locator", get) -> None:
+def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get) -> None:
     """[[lights]]: point, spot and sun lights (area lights are objects with emission)."""
     from refracta import lights
 
@@ -447,7 +452,7 @@ def _whole(value: Any) -> int:
     return value
 
 
-def _hot_spots(entries: Any, where: "_Locator", get) -> list:
+def _hot_spots(entries: Any, where: _Locator, get) -> list:
     """[[atmosphere.hot_spots]] -> a list of refracta.HotSpot."""
     name = "atmosphere.hot_spots"
     if not (isinstance(entries, list) and all(isinstance(e, dict) for e in entries)):
@@ -465,7 +470,7 @@ def _hot_spots(entries: Any, where: "_Locator", get) -> list:
     return spots
 
 
-def _turbulence(table: Any, where: "_Locator", get):
+def _turbulence(table: Any, where: _Locator, get):
     """[atmosphere.turbulence] -> the refracta.Turbulence its settings make (the same pattern for
     the same settings: the noise is drawn from the seed)."""
     from refracta.turbulence import Turbulence
@@ -487,7 +492,7 @@ def _turbulence(table: Any, where: "_Locator", get):
         raise where.error(str(error), name, _offending_key(str(error), table)) from None
 
 
-def _atmosphere(table: dict, where: "_Locator", get):
+def _atmosphere(table: dict, where: _Locator, get):
     """[atmosphere] (with its hot spots and turbulence) -> (field, refracta.Turbulence or None)."""
     atmosphere = dict(table)
     model = atmosphere.pop("model", "PhysicalAtmosphere")
@@ -520,6 +525,7 @@ def _atmosphere(table: dict, where: "_Locator", get):
         extra["turbulence"] = turbulence.layer
     if model == "TemperatureProfile" and not {"heights", "temperatures"} <= set(atmosphere):
         raise where.error("TemperatureProfile needs heights and temperatures", "atmosphere")
+    field: _core.IndexField
     try:
         if model == "TemperatureProfile":
             heights, temperatures = atmosphere.pop("heights"), atmosphere.pop("temperatures")
@@ -533,8 +539,8 @@ def _atmosphere(table: dict, where: "_Locator", get):
             raise where.error(str(error), "atmosphere.hot_spots",
                               _offending_key(str(error).replace(spot.group(0), ""), table["hot_spots"][index]),
                               index) from None
-        key = next((k for k in atmosphere if k in str(error)), None)
-        raise where.error(str(error), "atmosphere", key) from None
+        offending = next((k for k in atmosphere if k in str(error)), None)
+        raise where.error(str(error), "atmosphere", offending) from None
     if curved:
         radius = 6371e3 if curved is True else float(curved)
         try:
@@ -618,7 +624,6 @@ def load_scene(path) -> SceneFile:
         if str(error).startswith(str(path)):
             raise
         raise where.error(str(error), "camera") from None
-        raise where.error(str(error), "camera") from None
 
     scene = _core.Scene()
     materials = _materials(data.get("materials", []), where, get, path)
@@ -684,10 +689,11 @@ def load_scene(path) -> SceneFile:
                                  get(obj, "objects", "size", float, 20000.0, index=index), **material,
                                  texture=texture, texture_size=get(obj, "objects", "texture_size", float, 1.0, index=index))
             elif kind == "billboard":
+                image = get(obj, "objects", "texture", str, required=True, index=index)
                 scene.add_billboard(get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
                                     get(obj, "objects", "width", float, required=True, index=index),
                                     get(obj, "objects", "height", float, required=True, index=index),
-                                    get(obj, "objects", "texture", str, required=True, index=index) and texture,
+                                    str(path.parent / image) if image else "",
                                     get(obj, "objects", "facing", lambda v: _number_list(v, 3), [-1.0, 0.0, 0.0],
                                         index=index), kd=material["kd"])
             elif kind == "box":
@@ -761,7 +767,7 @@ def _same_layer(a: _core.TurbulenceLayer, b: _core.TurbulenceLayer) -> bool:
     return np.array_equal(a.evaluate(points)[0], b.evaluate(points)[0])
 
 
-def _turbulence_lines(layer: Optional[_core.TurbulenceLayer], turbulence) -> list:
+def _turbulence_lines(layer: _core.TurbulenceLayer | None, turbulence) -> list:
     """The [atmosphere.turbulence] table of `turbulence` (a refracta.Turbulence) after checking that
     it made `layer`, the field's (ValueError otherwise)."""
     if layer is None and turbulence is None:
@@ -803,7 +809,8 @@ def atmosphere_table(field: _core.IndexField, turbulence=None) -> str:
         curved, field = field.radius, field.base
     if field.type_name not in MODELS:
         raise ValueError(f"{field.type_name} cannot be written to a scene file (expected one of {', '.join(MODELS)})")
-    layer = field.turbulence if field.type_name in LOCAL_MODELS else None
+    local = field if isinstance(field, (_core.PhysicalAtmosphere, _core.LogisticProfile)) else None
+    layer = local.turbulence if local is not None else None
     turbulence_lines = _turbulence_lines(layer, turbulence)
     lines = ["[atmosphere]", f'model = "{field.type_name}"']
     params = {name: value for name, value in field.params.items() if not _SPOT_PARAMETER.match(name)}
@@ -814,7 +821,7 @@ def atmosphere_table(field: _core.IndexField, turbulence=None) -> str:
     lines += [f"{name} = {_toml_value(value)}" for name, value in params.items()]
     if curved is not None:
         lines.append(f"curved_earth = {_toml_value(curved)}")
-    for spot in (field.hot_spots if field.type_name in LOCAL_MODELS else []):
+    for spot in local.hot_spots if local is not None else []:
         lines += ["", "[[atmosphere.hot_spots]]"] + [f"{name} = {_toml_value(getattr(spot, name))}"
                                                       for name in ("x", "z", "radius", "dt")]
         if spot.depth is not None:
@@ -828,10 +835,11 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
     replaced by `table`, at the place of the first of them; without them, `table` is put first
     (`first`) or last. Everything else, comments included, is kept."""
     lines = text.splitlines(keepends=True)
-    starts = [i for i, line in enumerate(lines) if _HEADER.match(line)]
+    headers = {i: match.group(1) for i, line in enumerate(lines) if (match := _HEADER.match(line))}
+    starts = list(headers)
     ends = starts[1:] + [len(lines)]
     owned = [(start, end) for start, end in zip(starts, ends)
-             if (header := _HEADER.match(lines[start]).group(1)) == name or header.startswith(name + ".")]
+             if headers[start] == name or headers[start].startswith(name + ".")]
     if not owned:
         if first:
             return table + "\n" + text

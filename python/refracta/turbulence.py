@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 import os
 import time as _time
-from typing import Optional, Sequence, Tuple
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -220,8 +220,8 @@ class Turbulence:
 
     def __init__(self, cn2: float = DEFAULT_CN2, outer_scale: float = math.inf, inner_scale: float = 0.005,
                  seed: int = 0, wind: Sequence[float] = (0.0, 2.0), spacing: float = DEFAULT_SPACING,
-                 cells: Optional[int] = None, size: Optional[float] = None, depth: Optional[float] = 0.1,
-                 max_bytes: Optional[float] = None, yaw: float = DEFAULT_YAW):
+                 cells: int | None = None, size: float | None = None, depth: float | None = 0.1,
+                 max_bytes: float | None = None, yaw: float = DEFAULT_YAW):
         self.cells = _validate(cn2, outer_scale, inner_scale, seed, wind, spacing, cells, size, depth)
         self.cn2, self.outer_scale, self.inner_scale = float(cn2), float(outer_scale), float(inner_scale)
         self.seed, self.spacing = int(seed), float(spacing)
@@ -245,7 +245,7 @@ class Turbulence:
         self.grid = _core.TurbulenceGrid(self._synthesise(), self.spacing)
         self.generation_seconds = _time.perf_counter() - start
         self.layer = self._make_layer()
-        self._statistics = None
+        self._statistics: tuple[np.ndarray, np.ndarray, float] | None = None  # (k, weights, total), when asked
 
     # -- the pattern -----------------------------------------------------------------------------
 
@@ -324,7 +324,7 @@ class Turbulence:
         return _core.TurbulenceLayer(self.grid, math.sqrt(self.cn2), offset,
                                      math.inf if self.depth is None else self.depth, self.yaw)
 
-    def at_time(self, t: float) -> "Turbulence":
+    def at_time(self, t: float) -> Turbulence:
         """The same pattern carried by the wind to time t [s]: offset (u t, 0, w t), the grid shared."""
         t = float(t)
         if not math.isfinite(t):
@@ -335,7 +335,7 @@ class Turbulence:
         moved.layer = moved._make_layer()
         return moved
 
-    def evaluate(self, points) -> Tuple[np.ndarray, np.ndarray]:
+    def evaluate(self, points) -> tuple[np.ndarray, np.ndarray]:
         """(delta_n (N,), its gradient (N, 3) [1/m]) at points (N, 3) [m] (the layer's, envelope included)."""
         return self.layer.evaluate(points)
 
@@ -378,7 +378,7 @@ class Turbulence:
             out[i] = 2.0 * (total - np.dot(weights, np.sinc(kappa * value / math.pi)))
         return out
 
-    def separations_within(self, tolerance: float = INERTIAL_TOLERANCE) -> Tuple[float, float]:
+    def separations_within(self, tolerance: float = INERTIAL_TOLERANCE) -> tuple[float, float]:
         """The widest interval (r_min, r_max) [m] of separations up to half the tile in which the
         ensemble structure_function is within `tolerance` (a relative error, > 0) of C_n^2 r^(2/3).
         Raises ValueError when no separation is (the grid too coarse for its inner scale)."""
@@ -403,7 +403,7 @@ class Turbulence:
         return best
 
     @property
-    def inertial_range(self) -> Tuple[float, float]:
+    def inertial_range(self) -> tuple[float, float]:
         """(r_min, r_max) [m]: the separations the pattern resolves, where its ensemble structure
         function is C_n^2 r^(2/3) within INERTIAL_TOLERANCE (15 %). The defaults (256 cells, l0 below
         a cell, L0 = inf) give 0.39..5.6 m, x14; 128 cells x7, not a decade; a large inner scale
@@ -431,7 +431,7 @@ class Turbulence:
         mean, square = self._tilt_sums(path_length, aperture, direction)
         return math.sqrt(square) / mean if mean > 0 else 0.0
 
-    def _tilt_sums(self, path_length, aperture, direction) -> Tuple[float, float]:
+    def _tilt_sums(self, path_length, aperture, direction) -> tuple[float, float]:
         """(angle_of_arrival_variance, the variance of one realisation's position average about it)."""
         t = np.asarray(direction, dtype=np.float64)
         if t.shape != (3,) or not np.all(np.isfinite(t)) or not np.linalg.norm(t) > 0:

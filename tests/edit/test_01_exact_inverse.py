@@ -1,7 +1,6 @@
 """The editing oracle of ORACLES.md: for n^2 = n0^2 + alpha y one pair fixes alpha in closed form,
 alpha = 4 n(y0)^2 (h - y0 - t0 D) / (D^2 (1 + t0^2))."""
 
-import numpy as np
 import pytest
 
 import refracta

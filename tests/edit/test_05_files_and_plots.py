@@ -7,10 +7,8 @@ import pytest
 
 import refracta
 from refracta import cli, plot
-from refracta.edit import PointPair, load_pairs, solve
+from refracta.edit import load_pairs, solve
 from refracta.scene_file import atmosphere_table, with_atmosphere
-
-from .conftest import pairs_from
 
 DATA = __import__("pathlib").Path(__file__).parent.parent / "data"
 

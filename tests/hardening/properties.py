@@ -1,7 +1,6 @@
 """Shared pieces of the property-based suites (test_12, test_13): the errors refracta may raise for
 bad input, Hypothesis settings (seeded, bounded) and number strategies reaching the edges."""
 
-import os
 import warnings
 
 import numpy as np

@@ -11,9 +11,18 @@ from hypothesis import strategies as st
 import refracta
 from refracta import moments, oit, shading
 from refracta.edit import PointPair
-
-from tests.hardening.properties import (FAST, FUZZ, anything, calls, edge, finite, ordinary, ordinary_vec3,
-                                        render_checking_scene_warnings, vec3)
+from tests.hardening.properties import (
+    FAST,
+    FUZZ,
+    anything,
+    calls,
+    edge,
+    finite,
+    ordinary,
+    ordinary_vec3,
+    render_checking_scene_warnings,
+    vec3,
+)
 
 MODELS = [refracta.PhysicalAtmosphere, refracta.LogisticProfile, refracta.LinearSquaredProfile]
 

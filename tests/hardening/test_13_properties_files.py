@@ -9,7 +9,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import refracta
-
 from tests.hardening.properties import FAST, FUZZ, calls, finite, render_checking_scene_warnings
 
 NUMBERS = st.one_of(st.floats(-10, 10).map(repr), st.sampled_from(

@@ -15,7 +15,6 @@ from hypothesis import strategies as st
 
 import refracta
 from refracta import lights, shading
-
 from tests.hardening.properties import FAST, NAMED_ERRORS, calls, edge, finite, ordinary, vec3
 
 # Below this share of examples that ran to a result (not a named error), the strategies are

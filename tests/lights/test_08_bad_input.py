@@ -3,8 +3,16 @@
 import numpy as np
 import pytest
 
-from refracta.lights import (AreaLight, ConstantEnvironment, EnvironmentLight, LightSampler, PointLight, SphereLight,
-                             SpotLight, SunLight)
+from refracta.lights import (
+    AreaLight,
+    ConstantEnvironment,
+    EnvironmentLight,
+    LightSampler,
+    PointLight,
+    SphereLight,
+    SpotLight,
+    SunLight,
+)
 
 NAN = float("nan")
 TRI_V, TRI_T = [[0, 1, 0], [1, 1, 0], [0, 1, 1]], [[0, 1, 2]]

@@ -131,7 +131,7 @@ def test_inertial_range_of_the_grid_sizes():
     assert lo > 4 * small.spacing and hi <= small.size / 2
     coarse = uniform(cells=32, spacing=0.05, inner_scale=0.5)  # l0 = 10 cells: nowhere Kolmogorov
     with pytest.raises(ValueError, match="no separation"):
-        coarse.inertial_range
+        _ = coarse.inertial_range
 
 
 # -- 3. tiling, seeding, wind, envelope, fields -------------------------------------------------------

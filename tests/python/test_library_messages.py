@@ -56,7 +56,7 @@ def run_isolated(code: str, tmp_path):
 
 def test_ceres_glog_lines_reach_python_logging_not_stderr(tmp_path):
     stdout, stderr = run_isolated(CERES_SOLVE, tmp_path)
-    message, logged = eval(stdout)  # noqa: S307 - our own repr
+    message, logged = eval(stdout)  # our own repr
     # The precondition: this solve makes Ceres log (if it ever stops failing, find another).
     assert "Residual and Jacobian evaluation failed" in message
     assert stderr == ""
@@ -71,7 +71,7 @@ def test_ceres_messages_are_silent_without_logging_configuration(tmp_path):
     code = code.replace('logging.getLogger("refracta").setLevel(logging.DEBUG)', "")
     stdout, stderr = run_isolated(code, tmp_path)
     assert stderr == ""
-    assert "Residual and Jacobian evaluation failed" in eval(stdout)[0]  # noqa: S307
+    assert "Residual and Jacobian evaluation failed" in eval(stdout)[0]
 
 
 def test_png_texture_with_an_icc_profile_prints_nothing(tmp_path):
@@ -96,5 +96,5 @@ def test_png_texture_with_an_icc_profile_prints_nothing(tmp_path):
     """
     stdout, stderr = run_isolated(code, tmp_path)
     assert stderr == ""
-    assert np.allclose(eval(stdout), [200 / 255, 120 / 255, 40 / 255], rtol=0, atol=TEXEL_TOL)  # noqa: S307
+    assert np.allclose(eval(stdout), [200 / 255, 120 / 255, 40 / 255], rtol=0, atol=TEXEL_TOL)
     assert list((tmp_path / "tmp" / "refracta-textures").glob("*.exr")), "the texture was not prepared here"

@@ -52,7 +52,7 @@ def test_three_atoms_with_the_receiver_on_one_are_recovered_exactly():
     # With <= n + 1 atoms and z_f on one of them the canonical representation is the distribution.
     depths, weights = np.array([0.15, 0.4, 0.8]), np.array([0.5, 0.2, 0.3])
     b = M.power_moments(depths, weights)
-    for i, z in enumerate(depths):
+    for z in depths:
         expected = weights[depths < z].sum()
         assert M.shadow_intensity(b, z, "canonical", bias=0.0) == pytest.approx(expected, abs=1e-9)
         assert M.shadow_intensity(b, z, "hamburger", bias=0.0) == pytest.approx(expected, abs=1e-9)

@@ -5,7 +5,6 @@ import numpy as np
 import pytest
 
 import refracta
-from refracta import compare
 
 KD = 0.5
 HEIGHT = 5.0

@@ -30,17 +30,22 @@ def test_closest_point_on_a_parabola():
     field = refracta.LinearSquaredProfile(n0=n0, alpha=alpha)
     path = refracta.trace_ray(field, [0, y0, 0], [1, 0, 0], tol=1e-11, max_length=1000.0)
     beta = np.sqrt(n0**2 + alpha * y0)
-    y = lambda x: y0 + alpha * x**2 / (4 * beta**2)  # noqa: E731
+
+    def y(x):
+        return y0 + alpha * x**2 / (4 * beta**2)
+
+    def dist(x, q):
+        return np.hypot(np.hypot(x - q[0], y(x) - q[1]), q[2])
+
     for q in (np.array([400.0, 30.0, 0.0]), np.array([700.0, 10.0, 3.0]), np.array([123.0, 2.0, 0.0])):
         # Reference: minimise the distance to the closed-form curve (golden section in x).
         lo, hi = 0.0, 999.0
-        dist = lambda x: np.hypot(np.hypot(x - q[0], y(x) - q[1]), q[2])  # noqa: E731
         for _ in range(200):
             a, b = lo + 0.382 * (hi - lo), lo + 0.618 * (hi - lo)
-            lo, hi = (lo, b) if dist(a) < dist(b) else (a, hi)
+            lo, hi = (lo, b) if dist(a, q) < dist(b, q) else (a, hi)
         x_ref = 0.5 * (lo + hi)
         point, distance, _ = path.closest_point(q)
-        assert distance == pytest.approx(dist(x_ref), abs=QUERY_TOLERANCE)
+        assert distance == pytest.approx(dist(x_ref, q), abs=QUERY_TOLERANCE)
         np.testing.assert_allclose(point, [x_ref, y(x_ref), 0.0], atol=1e-6)  # along-track is flat
 
 

@@ -5,7 +5,6 @@ light that renders its radiance."""
 import numpy as np
 
 import refracta
-from refracta import shading
 
 OBJ = """mtllib parts.mtl
 v 0 0 0

@@ -111,7 +111,7 @@ def test_a_single_folder_is_accepted_as_texture_dirs(city):
 def test_scene_bounds_are_the_box_around_every_geometry():
     scene = refracta.Scene()
     with pytest.raises(ValueError, match="empty"):
-        scene.bounds
+        _ = scene.bounds
     scene.add_box((1.0, 2.0, 3.0), (2.0, 4.0, 6.0))
     scene.add_sphere((10.0, 0.0, 0.0), 1.0)  # exact: centre +- radius
     lower, upper = scene.bounds

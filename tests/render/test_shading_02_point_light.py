@@ -14,7 +14,7 @@ from .shading_scenes import floor_points, quad_mesh
 # float32 film and Embree's float hit points (~1e-7 relative in r^2 and cos): 2e-6 relative.
 DETERMINISTIC = 2e-6
 R = (0.6, 0.3, 0.9)
-I = (5.0, 2.0, 7.0)
+INTENSITY = (5.0, 2.0, 7.0)  # I [W/sr] per channel
 LIGHT = np.array([0.3, 1.2, -0.2])
 
 
@@ -22,7 +22,7 @@ LIGHT = np.array([0.3, 1.2, -0.2])
 def test_lambertian_plane_under_a_point_light(transport):
     scene = refracta.Scene()
     scene.add_mesh(*quad_mesh(5.0), material=Diffuse(R))
-    scene.add_point_light(LIGHT, I)
+    scene.add_point_light(LIGHT, INTENSITY)
     camera = refracta.Camera([0.0, 0.8, 3.0], [0.0, 0.0, 0.0], vfov=50, width=24, height=16)
     image = refracta.render(scene, camera, None, transport=transport, spp=1, max_depth=1, progress=False)
     expected = np.zeros_like(image, dtype=float)
@@ -33,6 +33,6 @@ def test_lambertian_plane_under_a_point_light(transport):
             if hit[0]:
                 r = LIGHT - points[0]
                 r2 = r @ r
-                expected[j, i] = np.array(R) / np.pi * np.array(I) * (r[1] / np.sqrt(r2)) / r2
+                expected[j, i] = np.array(R) / np.pi * np.array(INTENSITY) * (r[1] / np.sqrt(r2)) / r2
     assert (expected[..., 0] > 0).mean() > 0.4
     np.testing.assert_allclose(image, expected, rtol=DETERMINISTIC, atol=1e-9)

@@ -10,7 +10,6 @@ water's lower face then separates water from glass, not water from air (which wo
 internally reflect at 45 degrees)."""
 
 import numpy as np
-import pytest
 
 import refracta
 from refracta.shading import Dielectric

@@ -60,7 +60,10 @@ def shoot(field, origin, elevation, distance, toward=1.0):
 def solve_connection(field, a, b):
     """Launch elevation [rad] of the curved path from a to b (same z), by the secant method."""
     distance = b[0] - a[0]
-    miss = lambda e: shoot(field, a, e, distance)[0][0][1] - b[1]
+
+    def miss(e):
+        return shoot(field, a, e, distance)[0][0][1] - b[1]
+
     e0 = np.arctan2(b[1] - a[1], distance)
     x0, x1 = e0, e0 - 1e-4
     f0, f1 = miss(x0), miss(x1)

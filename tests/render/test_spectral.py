@@ -231,7 +231,7 @@ def test_spectral_render_shows_the_mirage_colour_fringe():
     # at each wavelength (PhysicalAtmosphere(wavelength=...), not the wrapper), measured in the render.
     field = hot_road()
     lam = np.arange(360.0, 831.0, 1.0)
-    theta_c = np.array([critical_depression_bouguer(field.with_params(wavelength=l)) for l in lam])
+    theta_c = np.array([critical_depression_bouguer(field.with_params(wavelength=wl)) for wl in lam])
     weights = channel_weights(lam)
     height, width, pixel = 48, 8, 2.5e-6  # rows, columns, pixel angle [rad]
     centre = 0.5 * (theta_c[lam == 450.0][0] + theta_c[lam == 650.0][0])

@@ -13,7 +13,6 @@ import pytest
 import refracta
 from refracta import lights, shading
 from refracta.edit import PointPair, solve
-
 from tests.scale import scenes
 
 POINTS = np.array([[0.0, 0.01, 0.0], [3.0, 0.3, -2.0], [50.0, 1.7, 4.0], [-20.0, 40.0, 7.0]])

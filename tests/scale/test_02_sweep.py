@@ -15,7 +15,6 @@ import pytest
 import refracta
 from refracta import SweepError, sweep
 from refracta._sweep import grid_points
-
 from tests.scale import scenes
 
 

@@ -7,9 +7,7 @@ import concurrent.futures
 import numpy as np
 import pytest
 
-import refracta
 from refracta._render import tile_bounds
-
 from tests.scale import scenes
 
 

@@ -12,7 +12,6 @@ import numpy as np
 import pytest
 
 import refracta
-
 from tests.scale import scenes
 
 distributed = pytest.importorskip("distributed")

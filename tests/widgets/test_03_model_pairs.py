@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from refracta.widgets import model as editor_model
 from refracta.widgets import camera_moves
+from refracta.widgets import model as editor_model
 
 from .conftest import CAR, SKY
 

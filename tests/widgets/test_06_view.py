@@ -6,9 +6,9 @@ import pytest
 
 pytest.importorskip("anywidget", reason="the editor's view needs anywidget (pip install refracta[widgets])")
 
-from refracta.widgets import MirageEditor  # noqa: E402
+from refracta.widgets import MirageEditor
 
-from .conftest import CAR, SKY, truth_source  # noqa: E402
+from .conftest import CAR, SKY, truth_source
 
 WAIT = 120.0  # [s] bound on waiting for background work
 

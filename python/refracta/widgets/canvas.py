@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import io
 from pathlib import Path
-from typing import Callable, Optional
+from typing import Callable
 
 import anywidget
 import numpy as np
@@ -42,14 +42,14 @@ class ImageCanvas(anywidget.AnyWidget):
     width = traitlets.Int(1).tag(sync=True)
     height = traitlets.Int(1).tag(sync=True)
     scale = traitlets.Float(1.0).tag(sync=True)
-    markers = traitlets.List().tag(sync=True)
-    spots = traitlets.List().tag(sync=True)
+    markers: traitlets.List[dict] = traitlets.List().tag(sync=True)
+    spots: traitlets.List[dict] = traitlets.List().tag(sync=True)
     interactive = traitlets.Bool(True).tag(sync=True)
     cursor = traitlets.Unicode("crosshair").tag(sync=True)
     level = traitlets.Unicode("").tag(sync=True)
     generation = traitlets.Int(0).tag(sync=True)
 
-    def __init__(self, on_pointer: Optional[Callable[[dict], None]] = None, **kwargs):
+    def __init__(self, on_pointer: Callable[[dict], None] | None = None, **kwargs):
         super().__init__(**kwargs)
         self._on_pointer = on_pointer
         self.on_msg(self._handle_message)

@@ -16,7 +16,7 @@ pairs.json -o solved.toml``.
 from __future__ import annotations
 
 import json
-from typing import Optional, Sequence
+from collections.abc import Sequence
 
 from refracta import _core
 from refracta.scene_file import with_atmosphere, with_camera
@@ -24,7 +24,7 @@ from refracta.scene_file import with_atmosphere, with_camera
 __all__ = ["pairs_json", "scene_toml"]
 
 
-def pairs_json(pairs: Sequence, options: Optional[dict] = None) -> str:
+def pairs_json(pairs: Sequence, options: dict | None = None) -> str:
     """The pairs (refracta.edit.PointPair) and solve options as the JSON text load_pairs reads.
 
     options: solve() keywords to store beside the pairs (free, ground, backend, ...); entries that
@@ -41,7 +41,7 @@ def pairs_json(pairs: Sequence, options: Optional[dict] = None) -> str:
     return json.dumps(data, indent=2) + "\n"
 
 
-def scene_toml(text: Optional[str], camera: _core.Camera, field: _core.IndexField, turbulence=None) -> str:
+def scene_toml(text: str | None, camera: _core.Camera, field: _core.IndexField, turbulence=None) -> str:
     """The scene file `text` with `camera` and `field` written into it (turbulence: the
     refracta.Turbulence whose layer `field` carries, see refracta.scene_file.atmosphere_table).
     Without a file (the editor was given Scene objects) only the camera and the atmosphere are

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Callable, Dict, Optional
+from typing import Callable
 
 __all__ = ["Cancelled", "Job", "JobRunner"]
 
@@ -44,12 +44,12 @@ class Job:
         result: what work returned (state 'done'); error: the exception it raised ('failed').
     """
 
-    def __init__(self, runner: "JobRunner", slot: str, work: Callable, label: str,
-                 on_done: Optional[Callable] = None, on_error: Optional[Callable] = None):
+    def __init__(self, runner: JobRunner, slot: str, work: Callable, label: str,
+                 on_done: Callable | None = None, on_error: Callable | None = None):
         self.slot, self.label = slot, label
         self.state = "pending"
         self.result = None
-        self.error: Optional[BaseException] = None
+        self.error: BaseException | None = None
         self._runner = runner
         self._work, self._on_done, self._on_error = work, on_done, on_error
         self._cancelled = threading.Event()
@@ -69,7 +69,7 @@ class Job:
         if self._cancelled.is_set():
             raise Cancelled(f"{self.label}: cancelled")
 
-    def progress(self, label: Optional[str] = None, start: float = 0.0, end: float = 1.0) -> Callable[[int, int], None]:
+    def progress(self, label: str | None = None, start: float = 0.0, end: float = 1.0) -> Callable[[int, int], None]:
         """A progress(done, total) callable for render/solve: raises Cancelled once the job is
         cancelled, otherwise reports `label` and the overall fraction start + (end - start) *
         done / total to the runner's on_progress (at most every PROGRESS_INTERVAL seconds, and
@@ -89,7 +89,7 @@ class Job:
             self._last_report = now
             self._runner._progress(self, label, fraction)
 
-    def wait(self, timeout: Optional[float] = None) -> bool:
+    def wait(self, timeout: float | None = None) -> bool:
         """Block until the job has finished (done, cancelled or failed); False on timeout."""
         return self._finished.wait(timeout)
 
@@ -104,13 +104,13 @@ class Job:
                 self._on_done(self.result)
         except Cancelled:
             self.state = "cancelled"
-        except Exception as error:  # noqa: BLE001 -- reported to the view, never a traceback in a thread
+        except Exception as error:  # reported to the view, never a traceback in a thread
             self.state, self.error = "failed", error
             handler = self._on_error or self._runner.on_error
             if handler is not None:
                 try:
                     handler(error)
-                except Exception:  # noqa: BLE001 -- a broken handler must not kill the worker
+                except Exception:  # a broken handler must not kill the worker
                     pass
         finally:
             self._finished.set()
@@ -121,9 +121,9 @@ class Job:
 
 class _Slot:
     def __init__(self):
-        self.pending: Optional[Job] = None
-        self.running: Optional[Job] = None
-        self.thread: Optional[threading.Thread] = None
+        self.pending: Job | None = None
+        self.running: Job | None = None
+        self.thread: threading.Thread | None = None
 
 
 class JobRunner:
@@ -139,18 +139,18 @@ class JobRunner:
         on_finished: on_finished(job) after each job that ran ends, whatever its state.
     """
 
-    def __init__(self, on_progress: Optional[Callable] = None, on_error: Optional[Callable] = None,
-                 on_finished: Optional[Callable] = None):
+    def __init__(self, on_progress: Callable | None = None, on_error: Callable | None = None,
+                 on_finished: Callable | None = None):
         self.on_progress = on_progress
         self.on_error = on_error
         self.on_finished = on_finished
-        self._slots: Dict[str, _Slot] = {}
+        self._slots: dict[str, _Slot] = {}
         self._lock = threading.Condition()
         self._closed = False
         self._finishing = 0
 
-    def submit(self, slot: str, work: Callable, label: str = "", on_done: Optional[Callable] = None,
-               on_error: Optional[Callable] = None) -> Job:
+    def submit(self, slot: str, work: Callable, label: str = "", on_done: Callable | None = None,
+               on_error: Callable | None = None) -> Job:
         """Queue work(job) on `slot`, superseding the slot's running and pending jobs; returns the Job."""
         job = Job(self, slot, work, label or slot, on_done, on_error)
         with self._lock:
@@ -171,7 +171,7 @@ class JobRunner:
             self._lock.notify_all()
         return job
 
-    def cancel(self, slot: Optional[str] = None) -> None:
+    def cancel(self, slot: str | None = None) -> None:
         """Cancel the running and pending jobs of `slot` (None: of every slot)."""
         with self._lock:
             for name, state in self._slots.items():
@@ -186,19 +186,19 @@ class JobRunner:
                     state.pending = None
             self._lock.notify_all()
 
-    def busy(self, slot: Optional[str] = None) -> bool:
+    def busy(self, slot: str | None = None) -> bool:
         """Whether `slot` (None: any slot) has a job running or pending."""
         with self._lock:
             return any((state.running is not None or state.pending is not None)
                        for name, state in self._slots.items() if slot is None or name == slot)
 
-    def running(self, slot: str) -> Optional[Job]:
+    def running(self, slot: str) -> Job | None:
         """The job `slot` is running, or None."""
         with self._lock:
             state = self._slots.get(slot)
             return None if state is None else state.running
 
-    def wait(self, timeout: Optional[float] = None) -> bool:
+    def wait(self, timeout: float | None = None) -> bool:
         """Block until no slot has work (a job's on_done may queue more; that is waited for too).
         Returns False if `timeout` [s] passed first."""
         deadline = None if timeout is None else time.monotonic() + timeout
@@ -245,7 +245,7 @@ class JobRunner:
             try:
                 if self.on_finished is not None:
                     self.on_finished(job)
-            except Exception:  # noqa: BLE001 -- a broken handler must not kill the worker
+            except Exception:  # a broken handler must not kill the worker
                 pass
             finally:
                 with self._lock:

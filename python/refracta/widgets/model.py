@@ -43,18 +43,23 @@ import io as _io
 import logging
 import math
 import threading
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Dict, List, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Callable, cast
 
 import numpy as np
 
 from refracta import _core
 from refracta import io as _image_io
-from refracta._render import render
 from refracta._rays import without_refraction
+from refracta._render import render
 from refracta.widgets import camera_moves, files
 from refracta.widgets.jobs import Job, JobRunner
+
+if TYPE_CHECKING:
+    from refracta.edit import EditResult
+    from refracta.turbulence import Turbulence
 
 __all__ = ["CHANGES", "DisplayImage", "EditorModel", "GRAB_RADIUS", "MAX_HISTORY", "SPOT_SEGMENTS", "check_margin",
            "check_weight", "ground_circle", "make_pair", "unmet_pairs"]
@@ -87,14 +92,14 @@ class _Snapshot:
 
     label: str
     scene: _core.Scene
-    scene_text: Optional[str]
+    scene_text: str | None
     camera: _core.Camera
     field: _core.IndexField
-    turbulence: object
-    pairs: Tuple
-    free: Optional[Tuple[str, ...]]
-    result: object
-    fan_png: Optional[bytes]
+    turbulence: Turbulence | None
+    pairs: tuple
+    free: tuple[str, ...] | None
+    result: EditResult | None
+    fan_png: bytes | None
 
 
 def _finite(value, name: str) -> float:
@@ -131,11 +136,13 @@ def make_pair(destination, source, weight=1.0, margin=0.0):
     from refracta.edit import PointPair
 
     weight, margin = check_weight(weight), check_margin(margin)
-    return PointPair(tuple(float(x) for x in destination), tuple(float(x) for x in source), weight, margin=margin)
+    # PointPair checks that the source has three values.
+    point = cast("tuple[float, float, float]", tuple(float(x) for x in source))
+    return PointPair(tuple(float(x) for x in destination), point, weight, margin=margin)
 
 
 def ground_circle(camera: _core.Camera, centre_x: float, centre_z: float, radius: float,
-                  segments: int = SPOT_SEGMENTS) -> List[Optional[Tuple[float, float]]]:
+                  segments: int = SPOT_SEGMENTS) -> list[tuple[float, float] | None]:
     """The circle of `radius` [m] about (centre_x, 0, centre_z) on the ground plane y = 0, as image
     pixels (u, v) of `camera` (Camera.project: where the camera sees the ground without
     atmosphere): segments + 1 points, the last the first again (a closed outline); None for a
@@ -148,7 +155,7 @@ def ground_circle(camera: _core.Camera, centre_x: float, centre_z: float, radius
     return [(float(u), float(v)) if depth > 0.0 else None for u, v, depth in projected]
 
 
-def unmet_pairs(result) -> List[int]:
+def unmet_pairs(result) -> list[int]:
     """Indices of the pairs an EditResult did not meet (its `met`: miss within margin)."""
     return [i for i, ok in enumerate(result.met) if not ok]
 
@@ -176,10 +183,10 @@ class EditorModel:
     """
 
     def __init__(self, scene: _core.Scene, camera: _core.Camera, field: _core.IndexField,
-                 free: Optional[Sequence[str]] = None, *, ground: Optional[float] = None,
-                 max_length: Optional[float] = None, render_options: Optional[dict] = None,
-                 solve_options: Optional[dict] = None, scene_text: Optional[str] = None, turbulence=None,
-                 preview_scale: int = 4, display: Optional[dict] = None, autorender: bool = True):
+                 free: Sequence[str] | None = None, *, ground: float | None = None,
+                 max_length: float | None = None, render_options: dict | None = None,
+                 solve_options: dict | None = None, scene_text: str | None = None, turbulence: Turbulence | None = None,
+                 preview_scale: int = 4, display: dict | None = None, autorender: bool = True):
         if not isinstance(scene, _core.Scene):
             raise ValueError(f"scene must be a refracta.Scene (got {type(scene).__name__})")
         if not isinstance(camera, _core.Camera):
@@ -189,10 +196,10 @@ class EditorModel:
         if isinstance(preview_scale, bool) or int(preview_scale) != preview_scale or preview_scale < 1:
             raise ValueError(f"preview_scale must be a whole number >= 1 (got {preview_scale!r})")
         self._lock = threading.RLock()
-        self._observers: List[Callable[[str], None]] = []
+        self._observers: list[Callable[[str], None]] = []
         self.scene, self.scene_text, self.camera, self.field = scene, scene_text, camera, field
         self.turbulence = turbulence
-        self.free: Optional[Tuple[str, ...]] = None
+        self.free: tuple[str, ...] | None = None
         self.set_free(free)
         self.ground = None if ground is None else _finite(ground, "ground")
         self.render_options = dict(render_options or {})
@@ -207,19 +214,19 @@ class EditorModel:
                 raise ValueError(f"solve_options: pass {reserved!r} as the editor's own argument")
         self.preview_scale = int(preview_scale)
         self.display = dict(DEFAULT_DISPLAY if display is None else display)
-        self.pairs: Tuple = ()
-        self.pending_source: Optional[np.ndarray] = None  # a source waiting for its destination [m]
-        self.selected: Optional[int] = None
+        self.pairs: tuple = ()
+        self.pending_source: np.ndarray | None = None  # a source waiting for its destination [m]
+        self.selected: int | None = None
         self.mode = "points"
         self.show_straight = False
-        self.result = None  # the last EditResult applied
-        self.fan_png: Optional[bytes] = None  # its ray fan (refracta.plot.edit_report) as PNG
+        self.result: EditResult | None = None  # the last EditResult applied
+        self.fan_png: bytes | None = None  # its ray fan (refracta.plot.edit_report) as PNG
         self.message, self.message_kind = "", "info"
-        self.images: Dict[str, Optional[DisplayImage]] = {"curved": None, "straight": None}
-        self.progress: Dict[str, Tuple[str, float]] = {}
-        self._undo: List[_Snapshot] = []
-        self._redo: List[_Snapshot] = []
-        self._drag: Optional[dict] = None
+        self.images: dict[str, DisplayImage | None] = {"curved": None, "straight": None}
+        self.progress: dict[str, tuple[str, float]] = {}
+        self._undo: list[_Snapshot] = []
+        self._redo: list[_Snapshot] = []
+        self._drag: dict | None = None
         self.runner = JobRunner(on_progress=self._on_progress, on_error=self._on_job_error,
                                 on_finished=self._on_job_finished)
         if autorender:
@@ -235,7 +242,7 @@ class EditorModel:
             for callback in list(self._observers):
                 try:
                     callback(what)
-                except Exception:  # noqa: BLE001 -- a view's failure must not break the model
+                except Exception:  # a view's failure must not break the model
                     log.exception("refracta.widgets: observer failed on %r", what)
 
     def say(self, message: str, kind: str = "info") -> None:
@@ -272,7 +279,7 @@ class EditorModel:
         """Restore the state the last undo left; False if none."""
         return self._step(self._redo, self._undo, "redo", "Redid")
 
-    def _step(self, source: List[_Snapshot], target: List[_Snapshot], action: str, verb: str) -> bool:
+    def _step(self, source: list[_Snapshot], target: list[_Snapshot], action: str, verb: str) -> bool:
         with self._lock:
             state = source.pop() if source else None
             if state is not None:
@@ -303,7 +310,7 @@ class EditorModel:
         result = self.result
         return result is not None and tuple(result.pairs) == self.pairs
 
-    def markers(self, scale: float = 1.0) -> List[dict]:
+    def markers(self, scale: float = 1.0) -> list[dict]:
         """What to draw over the image, in image pixels: per pair its source (projected by the camera,
         without atmosphere) and destination, and a source waiting for its destination. Each marker:
         {'kind': 'source'|'destination'|'pending', 'pair': index or -1, 'u', 'v', 'selected', 'met'
@@ -331,7 +338,7 @@ class EditorModel:
         parameters are hot_spot<i>_*); [] for an atmosphere without."""
         return list(getattr(self.field, "hot_spots", None) or [])
 
-    def spot_outlines(self) -> List[dict]:
+    def spot_outlines(self) -> list[dict]:
         """The hot spots' footprints to draw over the image, in image pixels of the camera: each
         spot's circles on the ground plane y = 0 (ground_circle: where the camera sees the ground
         without atmosphere). Per spot: {'spot': index, 'footprint': 'gaussian'|'compact', 'hot': dt
@@ -352,7 +359,7 @@ class EditorModel:
         return out
 
     @staticmethod
-    def _project(camera, point) -> Optional[Tuple[float, float]]:
+    def _project(camera, point) -> tuple[float, float] | None:
         u, v, depth = np.asarray(camera.project(np.asarray(point, dtype=float)[None, :]), dtype=float)[0]
         return (float(u), float(v)) if depth > 0.0 else None
 
@@ -413,7 +420,7 @@ class EditorModel:
             self._record(before)
         self._notify("pairs", "history")
 
-    def select(self, index: Optional[int]) -> None:
+    def select(self, index: int | None) -> None:
         """Highlight pair `index` (None: none)."""
         if index is not None:
             self._check_index(index)
@@ -429,7 +436,7 @@ class EditorModel:
             self._record(before)
         self._notify("pairs", "history")
 
-    def set_free(self, free: Optional[Sequence[str]]) -> None:
+    def set_free(self, free: Sequence[str] | None) -> None:
         """The parameters a solve may change (None or empty: solve()'s default). ValueError naming
         unknown names."""
         if isinstance(free, str):
@@ -450,7 +457,7 @@ class EditorModel:
         self.mode, self._drag = mode, None
         self._notify("mode")
 
-    def _nearest_marker(self, u: float, v: float, scale: float) -> Optional[dict]:
+    def _nearest_marker(self, u: float, v: float, scale: float) -> dict | None:
         radius = GRAB_RADIUS / max(scale, 1e-9)
         best, best_distance = None, radius
         for marker in self.markers():
@@ -526,7 +533,7 @@ class EditorModel:
             self._replace_pair(index, drag["before"].label, record=False, source=point)
         drag["moved"] = True
 
-    def pointer_up(self, u: Optional[float] = None, v: Optional[float] = None) -> None:
+    def pointer_up(self, u: float | None = None, v: float | None = None) -> None:
         """The button was released (at (u, v), if given): ends a drag, one undo step per drag."""
         if u is not None and v is not None:
             self.pointer_move(u, v)
@@ -647,11 +654,7 @@ class EditorModel:
         """Whether a render or solve is running or queued."""
         return self.runner.busy()
 
-    @property
-    def solving(self) -> bool:
-        return self.runner.busy("solve")
-
-    def wait(self, timeout: Optional[float] = None) -> bool:
+    def wait(self, timeout: float | None = None) -> bool:
         """Block until every render and solve has finished; False if `timeout` [s] passed first."""
         return self.runner.wait(timeout)
 
@@ -664,7 +667,7 @@ class EditorModel:
         self.runner.close()
 
     # ---------------------------------------------------------------- solving
-    def solve(self) -> Optional[Job]:
+    def solve(self) -> Job | None:
         """Solve for the atmosphere that meets the pairs, in the background (a solve still running
         is superseded). Returns the Job, or None (with a message) when there are no pairs."""
         from refracta import edit
@@ -712,7 +715,7 @@ class EditorModel:
         self._notify("busy")
         return job
 
-    def changed_parameters(self) -> List[Tuple[str, float, float, str]]:
+    def changed_parameters(self) -> list[tuple[str, float, float, str]]:
         """(name, start, solved, unit) of the last solve's free parameters."""
         result = self.result
         if result is None:
@@ -723,7 +726,8 @@ class EditorModel:
 
     # ---------------------------------------------------------------- files
     def _solve_file_options(self) -> dict:
-        options = {k: v for k, v in self.solve_options.items() if isinstance(v, (str, int, float, bool, list))}
+        options: dict[str, object] = {k: v for k, v in self.solve_options.items()
+                                      if isinstance(v, (str, int, float, bool, list))}
         options["free"] = list(self.free) if self.free else None
         options["ground"] = self.ground
         return options

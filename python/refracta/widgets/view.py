@@ -12,8 +12,8 @@ from __future__ import annotations
 import html
 import logging
 import threading
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Optional, Sequence
 
 import ipywidgets as w
 import numpy as np
@@ -72,13 +72,13 @@ class MirageEditor(w.VBox):
     """
 
     def __init__(self, scene: _core.Scene, camera: _core.Camera, field: _core.IndexField,
-                 free: Optional[Sequence[str]] = None, *, ground: Optional[float] = None,
-                 max_length: Optional[float] = None, scale: Optional[float] = None, **options):
+                 free: Sequence[str] | None = None, *, ground: float | None = None,
+                 max_length: float | None = None, scale: float | None = None, **options):
         self.model = EditorModel(scene, camera, field, free, ground=ground, max_length=max_length,
                                  autorender=False, **options)
         self._scale = float(scale) if scale is not None else None
         self._syncing = False
-        self._listed = None
+        self._listed: tuple | None = None  # (pairs, selected, result) the pair list shows
         self._view_lock = threading.RLock()
         self._build()
         super().__init__(children=[self._toolbar, self._message, self._images, self._tabs])
@@ -89,7 +89,7 @@ class MirageEditor(w.VBox):
         self.model.render()
 
     @classmethod
-    def from_file(cls, path, free: Optional[Sequence[str]] = None, **kwargs) -> "MirageEditor":
+    def from_file(cls, path, free: Sequence[str] | None = None, **kwargs) -> MirageEditor:
         """An editor for a scene file (refracta.load_scene): exports keep everything in the file."""
         from refracta.scene_file import load_scene
 
@@ -132,7 +132,7 @@ class MirageEditor(w.VBox):
             return self.model.result
         return None
 
-    def wait(self, timeout: Optional[float] = None) -> bool:
+    def wait(self, timeout: float | None = None) -> bool:
         """Block until the renders and the solve have finished; False if `timeout` [s] passed."""
         return self.model.wait(timeout)
 
@@ -249,7 +249,7 @@ class MirageEditor(w.VBox):
 
         # Hot spots tab: the spots of the atmosphere, each with toggles for its free parameters
         self._spot_rows = w.VBox()
-        self._spot_toggles = {}  # parameter name -> its ToggleButton in the spot list
+        self._spot_toggles: dict[str, w.ToggleButton] = {}  # parameter name -> its ToggleButton in the spot list
         spots_tab = w.VBox([self._spot_rows, w.HTML(
             "Each spot's footprint is drawn on the ground in the image (where the camera sees the ground "
             "without atmosphere): solid, the radius (gaussian: 1 sigma; compact: where it ends); dashed, "
@@ -279,7 +279,7 @@ class MirageEditor(w.VBox):
             return function(*args)
         except USER_ERRORS as error:
             self.model.say(str(error), "error")
-        except Exception as error:  # noqa: BLE001 -- a bug: logged, and said in the editor
+        except Exception as error:  # a bug: logged, and said in the editor
             log.exception("refracta.widgets: handler failed")
             self.model.say(f"Internal error ({type(error).__name__}): {error}", "error")
         return None
@@ -373,7 +373,7 @@ class MirageEditor(w.VBox):
         source = ", ".join(f"{x:.2f}" for x in pair.source)
         miss = ""
         result = model.result
-        if model.result_matches_pairs:
+        if result is not None and model.result_matches_pairs:
             from refracta.widgets.model import unmet_pairs
 
             unmet = index in unmet_pairs(result)
@@ -403,6 +403,7 @@ class MirageEditor(w.VBox):
         if index >= len(self.model.pairs):
             return
         current = getattr(self.model.pairs[index], name)
+        value: float | str
         try:
             value = float(text)
         except ValueError:
