@@ -97,7 +97,8 @@ def oit_ratio_rows(size: int = 1024, layers: int = 32, methods=OIT_RATIO_METHODS
         rows.append({"method": method, "seconds": seconds, "over_exact": seconds / exact, "image": [size, size],
                      "fragments_per_pixel": layers})
     for row in rows:
-        print(f"{size}^2 x {layers} fragments  {row['method']:8s} {row['seconds']:7.2f} s  {row['over_exact']:5.2f}x exact")
+        print(f"{size}^2 x {layers} fragments  {row['method']:8s} {row['seconds']:7.2f} s  "
+              f"{row['over_exact']:5.2f}x exact")
     return rows
 
 

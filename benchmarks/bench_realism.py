@@ -132,7 +132,8 @@ def angle_of_arrival(seeds=4, rays=1500, along_x_cells=256) -> dict:
     for row in along_x.values():
         row["discrete_over_continuous"] = row["discrete"] / row["continuous_l0_one_cell"]
     print(f"along x through the {along_x_cells}^3 default grid: discrete / continuous at 6.4 m "
-          f"{along_x['6.4']['discrete_over_continuous']:.2f}, at 300 m {along_x['300.0']['discrete_over_continuous']:.2f}; "
+          f"{along_x['6.4']['discrete_over_continuous']:.2f}, "
+          f"at 300 m {along_x['300.0']['discrete_over_continuous']:.2f}; "
           f"2 deg off the axis at 300 m {off_axis / along_x['300.0']['continuous_l0_one_cell']:.2f} "
           f"({seconds:.1f} s per expectation)")
     return {"setup": {"cn2": cn2, "path_m": length, "cells": 64, "spacing_m": spacing, "seeds": seeds, "rays": rays,

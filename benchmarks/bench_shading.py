@@ -95,7 +95,8 @@ def main(size: int, spp: int) -> dict:
     rows["refracta_path_spectral"] = {"seconds": t_spectral, "paths_per_second": paths / t_spectral,
                                       "mean": float(spectral.mean())}
     for name, row in rows.items():
-        print(f"{name:24s} {row['seconds']:7.2f} s  {row['paths_per_second'] / 1e6:6.2f} M paths/s  mean {row['mean']:.4f}")
+        print(f"{name:24s} {row['seconds']:7.2f} s  {row['paths_per_second'] / 1e6:6.2f} M paths/s  "
+              f"mean {row['mean']:.4f}")
     # The physical sky's table (SHADING.md asks ~1-2 s to build; a timing goal, so here, not in a test).
     sky_build = refracta.spectrum.PhysicalSky((0.0, 0.5, 0.8)).build_seconds
     print(f"physical sky build {sky_build:.2f} s")

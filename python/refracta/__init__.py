@@ -2,8 +2,9 @@
 
 Fields (n(x) and grad n): LogisticProfile, PhysicalAtmosphere, TemperatureProfile,
 LinearSquaredProfile, CustomField. Rays: trace_ray (one RayPath), trace_rays (a batch, in
-parallel), ElevationTable. Images: Scene, Camera, render, refracta.io. Shading: refracta.shading (BSDFs), refracta.lights,
-refracta.spectrum (spectral colour), refracta.testing (chi-square sampler tests). Plots: refracta.plot. Units: metres, kelvin, pascal, nanometres; y is up.
+parallel), ElevationTable. Images: Scene, Camera, render, refracta.io. Shading: refracta.shading
+(BSDFs), refracta.lights, refracta.spectrum (spectral colour), refracta.testing (chi-square
+sampler tests). Plots: refracta.plot. Units: metres, kelvin, pascal, nanometres; y is up.
 
 Submodules not imported here (edit, examples, plot, compare, moments, oit, raster, cli, widgets:
 the interactive editor in Jupyter) load on first use (PEP 562), so ``import refracta`` stays cheap

@@ -116,11 +116,12 @@ def render(
     fields serve camera rays from one ElevationTable for the eye (table=False traces each pixel, as
     paths over 150 km over a CurvedEarth always are; trace='rk45' forces rk45); rays end after
     `max_length` [m] and see the sky in their last direction (over a CurvedEarth turned into the
-    world frame by the central angle: a sun or sky far beyond the horizon is where it should be). 'straight' -- ray casting without atmosphere (the reference); with field=None both
-    are straight. 'raster_march' -- the original editor's method: the scene rasterized from the
-    camera (with `guard_band`), each pixel's curved ray marched ('rk45' to `tol`, or march='rk4'
-    with `step` [m] for at most `max_steps` steps: the original's 0.3 m x 1000) until a step lands
-    behind the depth buffer; that raster pixel's colour is shown.
+    world frame by the central angle: a sun or sky far beyond the horizon is where it should be).
+    'straight' -- ray casting without atmosphere (the reference); with field=None both are straight.
+    'raster_march' -- the original editor's method: the scene rasterized from the camera (with
+    `guard_band`), each pixel's curved ray marched ('rk45' to `tol`, or march='rk4' with `step` [m]
+    for at most `max_steps` steps: the original's 0.3 m x 1000) until a step lands behind the depth
+    buffer; that raster pixel's colour is shown.
 
     transport: 'direct' -- emitters seen directly and direct lighting (next-event estimation and
     BSDF sampling, power-heuristic MIS) at the first non-specular surface, mirror and glass chains

@@ -131,7 +131,8 @@ def as_executor(executor) -> concurrent.futures.Executor | None:
     if callable(getattr(executor, "get_executor", None)):
         return executor.get_executor(pure=False)
     raise ValueError(
-        f"executor must be None, a concurrent.futures.Executor or a dask.distributed Client (got {type(executor).__name__})"
+        "executor must be None, a concurrent.futures.Executor or a dask.distributed Client "
+        f"(got {type(executor).__name__})"
     )
 
 

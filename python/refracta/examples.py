@@ -1,8 +1,8 @@
 """Ready-made mirage scenes and atmospheres, with values from ORACLES.md.
 
 Scenes: hot_road(), cold_sea(), fata_morgana(), hot_spot() and green_flash() return an Example
-with .scene, .camera, .field (procedural geometry; nothing to download). Atmospheres for ray fans: ATMOSPHERES maps a name to
-(field, eye height [m], elevations [deg], max length [m]).
+with .scene, .camera, .field (procedural geometry; nothing to download). Atmospheres for ray fans:
+ATMOSPHERES maps a name to (field, eye height [m], elevations [deg], max length [m]).
 """
 
 from __future__ import annotations

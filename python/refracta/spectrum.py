@@ -2,7 +2,8 @@
 
 PhysicalSky(sun_direction, aerosol=1, ozone_du=300, ground_albedo=0, altitude=0,
 rayleigh_scale=1, below_horizon='ground' (the Lambertian ground) or 'horizon' (the horizon's
-radiance at the same azimuth, sampled over the whole sphere)): radiance(dirs (N, 3) unit, wavelengths (M,)) -> (N, M) [W/(m^2 sr nm)]
+radiance at the same azimuth, sampled over the whole sphere)): radiance(dirs (N, 3) unit,
+wavelengths (M,)) -> (N, M) [W/(m^2 sr nm)]
 (direct=True integrates without the table), rgb_radiance(dirs) -> (N, 3) linear sRGB in the
 same per-nm normalisation as the renderer (Y = integral(L y)/integral(y)), sun_transmittance,
 sun_radiance(wavelengths, angular_diameter_deg=0.53), sun_radiance_rgb, solar_irradiance,

@@ -100,7 +100,8 @@ def test_thin_film_limits():
     assert shading.thin_film_reflectance(1.0, 1.0, n2, n3, 0.0, lam / (4 * n2), lam) == pytest.approx(0.0, abs=1e-14)
     # A half-wave layer is absent at normal incidence.
     assert shading.thin_film_reflectance(1.0, 1.0, 1.33, 1.5, 0.0, lam / (2 * 1.33), lam) == pytest.approx(0.04, abs=1e-12)
-    # Normal incidence closed form (Born & Wolf 1.6 eq. 57): R = (r12^2 + r23^2 + 2 r12 r23 cos d) / (1 + r12^2 r23^2 + 2 r12 r23 cos d).
+    # Normal incidence closed form (Born & Wolf 1.6 eq. 57):
+    # R = (r12^2 + r23^2 + 2 r12 r23 cos d) / (1 + r12^2 r23^2 + 2 r12 r23 cos d).
     n2, d = 1.33, 380.0
     r12, r23 = (1 - n2) / (1 + n2), (n2 - 1.5) / (n2 + 1.5)
     delta = 4 * np.pi * n2 * d / lam
