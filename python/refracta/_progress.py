@@ -1,37 +1,55 @@
-"""A minimal text progress bar for long C++ work (called with (done, total) about every 50 ms)."""
+"""The progress bar of long C++ work (``progress=True``): a callback progress(done, total), called
+about every 50 ms, that draws through tqdm -- ``tqdm.auto``: a widget in Jupyter, a text bar on
+stderr in a terminal."""
 
 from __future__ import annotations
 
-import sys
 import time
+
+import tqdm.auto
+import tqdm.std
+
+
+# The calls come every 50 ms, so tqdm's monitor thread (which wakes a bar whose updates stall) has
+# nothing to do: no thread of its own beside the work's.
+class _Widget(tqdm.auto.tqdm):
+    monitor_interval = 0
+
+
+class _Text(tqdm.std.tqdm):
+    monitor_interval = 0
 
 
 class ProgressBar:
-    """Writes ``label [#####-----] 52% 1.3 s`` to stderr, redrawn in place; a newline when done.
+    """A progress(done, total) callback drawing ``label: 52%|#####     | 80k/153k [00:01<00:01, ...]``.
 
-    quiet_seconds: draw nothing until the work has run this long (work that ends sooner leaves no
-    trace), e.g. a model whose textures are already prepared."""
+    The bar is made at the first call (when the total is known) and closed when done reaches total.
+    stream: draw a text bar into this file instead (tqdm's ``file``); by default tqdm.auto chooses
+    a Jupyter widget or stderr. quiet_seconds: draw nothing until the work has run this long, from
+    this object's creation (tqdm's ``delay``): work that ends sooner leaves no trace, e.g. a model
+    whose textures are already prepared."""
 
-    def __init__(self, label: str, width: int = 30, stream=None, quiet_seconds: float = 0.0):
+    def __init__(self, label: str, stream=None, quiet_seconds: float = 0.0):
         self.label = label
-        self.width = width
-        self.stream = stream or sys.stderr
+        self.stream = stream
         self.quiet_seconds = quiet_seconds
-        self.start = time.perf_counter()
+        self.start = time.monotonic()
+        self.bar: tqdm.std.tqdm | None = None
         self.finished = False
 
     def __call__(self, done: int, total: int) -> None:
         if self.finished:
             return
-        if time.perf_counter() - self.start < self.quiet_seconds:
-            self.finished = done >= total  # ended within the quiet period: no bar at all
-            return
-        fraction = 1.0 if total <= 0 else min(done / total, 1.0)
-        filled = int(round(fraction * self.width))
-        elapsed = time.perf_counter() - self.start
-        bar = "#" * filled + "-" * (self.width - filled)
-        self.stream.write(f"\r{self.label} [{bar}] {fraction:4.0%} {elapsed:.1f} s")
+        if self.bar is None:
+            # The quiet period counts from this object's creation, not from the first call.
+            delay = max(0.0, self.quiet_seconds - (time.monotonic() - self.start))
+            if self.stream is None:
+                self.bar = _Widget(total=total, desc=self.label, unit_scale=total >= 1000, delay=delay)
+            else:
+                self.bar = _Text(total=total, desc=self.label, unit_scale=total >= 1000, delay=delay, file=self.stream)
+        if self.bar.total != total:
+            self.bar.total = total
+        self.bar.update(done - self.bar.n)
         if done >= total:
-            self.stream.write("\n")
+            self.bar.close()
             self.finished = True
-        self.stream.flush()
