@@ -46,6 +46,7 @@ def test_analytic_gradient_matches_central_differences(name):
     analytic = field.grad_ior(points)
     numeric = central_gradient(field, points, step)
     scale = np.abs(analytic[:, 1]).max()
+    # GRADIENT_RTOL (derived above); 1e-15 absolute where the gradient is 0.
     np.testing.assert_allclose(analytic, numeric, rtol=0, atol=GRADIENT_RTOL * scale + 1e-15)
     assert np.all(analytic[:, [0, 2]] == 0.0)
     assert field.height_only
@@ -56,6 +57,7 @@ def test_logistic_profile_matches_the_editor_formula():
     field = refracta.LogisticProfile(**params)
     h = np.linspace(-5, 20, 51)
     points = np.stack([np.zeros_like(h), h, np.zeros_like(h)], axis=1)
+    # The same logistic formula in numpy and C++: double rounding.
     np.testing.assert_allclose(field.ior(points), logistic_reference(h, **params), rtol=1e-15, atol=1e-15)
 
 
@@ -73,6 +75,7 @@ def test_logistic_common_amplitude_scale_is_a_gauge_freedom():
     field = refracta.LogisticProfile()
     scaled = field.with_params(n_bg=3 * 7.5, n_inv=0.1 * 7.5, n_hot=0.1 * 7.5)
     points = np.stack([np.zeros(9), np.linspace(-2, 6, 9), np.zeros(9)], axis=1)
+    # The gauge scaling is exact up to double rounding.
     np.testing.assert_allclose(scaled.ior(points), field.ior(points), rtol=1e-15)
     assert field.gauge_params == ["n_bg"]
 
@@ -80,6 +83,7 @@ def test_logistic_common_amplitude_scale_is_a_gauge_freedom():
 def test_linear_squared_profile_formula():
     field = refracta.LinearSquaredProfile(1.0002, 3e-5)
     y = np.array([-2.0, 0.0, 7.0])
+    # The same closed form in numpy and C++: double rounding.
     np.testing.assert_allclose(field.ior(np.stack([0 * y, y, 0 * y], 1)), np.sqrt(1.0002**2 + 3e-5 * y), rtol=1e-15)
 
 
@@ -92,6 +96,7 @@ def test_temperature_profile_reproduces_a_physical_atmosphere():
     points = np.stack([0 * probe, probe, 0 * probe], 1)
     # pchip on a 7.5 mm / 25 cm grid: temperatures to ~1e-4 K -> n to ~1e-10.
     np.testing.assert_allclose(sounding.temperature(probe), physical.temperature(probe), atol=2e-3)
+    # 30x the ~1e-10 the pchip temperature error gives n (comment above).
     np.testing.assert_allclose(sounding.ior(points), physical.ior(points), atol=3e-9)
 
 
@@ -111,10 +116,12 @@ def test_custom_field_reproduces_a_builtin_model():
         height_only=True,
     )
     points = np.array([[0, 1.5, 0], [3, 20, -1]], dtype=float)
+    # The same closed form in numpy and C++: double rounding.
     np.testing.assert_allclose(custom.ior(points), builtin.ior(points), rtol=1e-15)
     for method in ("rk45", "stratified"):
         a = refracta.trace_ray(builtin, [0, 1.5, 0], [1, -0.002, 0.3], method=method, max_length=300)
         b = refracta.trace_ray(custom, [0, 1.5, 0], [1, -0.002, 0.3], method=method, max_length=300)
+        # Identical n and gradient, so the same steps: only rounding in the callback's arithmetic.
         np.testing.assert_allclose(b.points, a.points, rtol=0, atol=1e-12)
 
 
@@ -123,7 +130,7 @@ def test_parameters_bounds_and_with_params():
     assert field.params["surface_dt"] == 4.0 and field.params["t_ground"] == 288.15
     assert field.param_names[0] == "t_ground" and len(field.param_names) == 10
     low, high = field.bounds["surface_depth"]
-    assert 0 < low < 0.1 < high
+    assert 0 < low < 0.1 < high  # the bounds enclose the default depth 0.1 m (any positive lower bound)
     hotter = field.with_params(surface_dt=9.0)
     assert isinstance(hotter, refracta.PhysicalAtmosphere)
     assert hotter.params["surface_dt"] == 9.0 and field.params["surface_dt"] == 4.0
