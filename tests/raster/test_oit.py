@@ -21,6 +21,7 @@ def test_exact_is_front_to_back_compositing():
     # Front to back: green (1 m), blue (2 m), red (3 m).
     expected = 0.25 * np.array([0, 1, 0]) + 0.75 * 0.8 * np.array([0, 0, 1]) + 0.75 * 0.2 * 0.5 * np.array([1, 0, 0])
     expected = expected + 0.75 * 0.2 * 0.5 * np.array([0.1, 0.2, 0.3])
+    # A few products of exact inputs in double: rounding.
     np.testing.assert_allclose(oit.composite(depths, alphas, colors, (0.1, 0.2, 0.3)), expected, atol=1e-15)
 
 
@@ -29,11 +30,12 @@ def test_peeling_with_enough_layers_is_exact_and_fewer_drop_the_farthest(rng):
     exact = oit.composite(depths, alphas, colors, method="exact")
     np.testing.assert_array_equal(oit.composite(depths, alphas, colors, method="peel", layers=6), exact)
     near = np.argsort(depths)[:3]
+    # The same compositing arithmetic on the same 3 layers: rounding.
     np.testing.assert_allclose(oit.composite(depths, alphas, colors, method="peel", layers=3),
                                oit.composite(depths[near], alphas[near], colors[near]), atol=1e-15)
 
 
-VARIANTS = [("power", 4), ("power", 6), ("power", 8), ("trig", 2), ("trig", 3), ("trig", 4)]
+VARIANTS = [("power", 4), ("power", 6), ("power", 8), ("trigonometric", 2), ("trigonometric", 3), ("trigonometric", 4)]
 
 
 @pytest.mark.parametrize("kind, moments", VARIANTS)
@@ -42,6 +44,7 @@ def test_mboit_is_order_independent(rng, kind, moments):
     reference = oit.composite(depths, alphas, colors, method="mboit", moments=moments, kind=kind)
     for order in itertools.islice(itertools.permutations(range(5)), 0, 120, 7):
         order = list(order)
+        # Order independence: the moments are sums, in double, whose order only changes rounding.
         np.testing.assert_allclose(oit.composite(depths[order], alphas[order], colors[order], method="mboit",
                                                  moments=moments, kind=kind), reference, atol=1e-12)
 
@@ -51,6 +54,7 @@ def test_mboit_total_transmittance_is_exact(rng, kind, moments):
     depths, alphas, _ = random_pixel(rng, 7)
     black = np.zeros((7, 3))
     result = oit.composite(depths, alphas, black, (1.0, 1.0, 1.0), method="mboit", moments=moments, kind=kind)
+    # Black layers: the moments' total transmittance is exact up to double rounding.
     np.testing.assert_allclose(result, np.prod(1 - alphas), rtol=1e-12)
 
 
@@ -66,11 +70,12 @@ def test_mboit_is_exact_for_up_to_n_plus_one_fragments_with_beta_zero(rng, momen
 @pytest.mark.parametrize("kind, moments", VARIANTS)
 def test_a_single_fragment_is_exact_for_any_beta(kind, moments):
     for beta in (0.0, 0.25, 1.0):
+        # One layer: MBOIT's closed form, rounding only.
         np.testing.assert_allclose(oit.composite([4.0], [0.6], [[0.9, 0.5, 0.1]], (0, 0, 1), method="mboit", beta=beta,
                                                  kind=kind, moments=moments), [0.54, 0.3, 0.06 + 0.4], atol=1e-12)
 
 
-@pytest.mark.parametrize("kind, counts", [("power", (4, 6, 8)), ("trig", (2, 3, 4))])
+@pytest.mark.parametrize("kind, counts", [("power", (4, 6, 8)), ("trigonometric", (2, 3, 4))])
 def test_mboit_error_falls_with_more_moments(rng, kind, counts):
     errors = {m: [] for m in counts}
     for _ in range(200):
@@ -88,18 +93,19 @@ def test_wboit_is_exact_for_one_fragment_and_keeps_coverage(rng):
     depths, alphas, colors = random_pixel(rng, 5)
     for weight in ("eq7", "eq9"):
         result = oit.composite(depths, alphas, np.zeros((5, 3)), (1, 1, 1), method="wboit", weight=weight)
+        # Black layers: WBOIT's total transmittance is the exact product, rounding only.
         np.testing.assert_allclose(result, np.prod(1 - alphas), rtol=1e-12)
 
 
 @pytest.mark.parametrize("method", ["exact", "wboit", "mboit", "mboit_trig"])
 def test_degenerate_pixels_never_give_nan(method):
-    kind = "trig" if method == "mboit_trig" else "power"
+    kind = "trigonometric" if method == "mboit_trig" else "power"
     method = "mboit" if method == "mboit_trig" else method
     cases = [([], [], np.zeros((0, 3))), ([5.0] * 4, [0.5] * 4, np.ones((4, 3))), ([2.0, 3.0], [1.0, 1.0], np.ones((2, 3))),
              ([2.0, 3.0], [0.0, 0.0], np.ones((2, 3)))]
     for depths, alphas, colors in cases:
         result = oit.composite(depths, alphas, colors, (0.5, 0.5, 0.5), method=method, kind=kind,
-                               moments=3 if kind == "trig" else 4)
+                               moments=3 if kind == "trigonometric" else 4)
         assert np.all(np.isfinite(result)), (depths, alphas)
 
 
@@ -111,8 +117,8 @@ def test_degenerate_pixels_never_give_nan(method):
         (dict(depths=[-1.0]), r"depths\[0\] must be > 0"),
         (dict(method="mboit", moments=5), "moments must be 4, 6 or 8"),
         (dict(method="sorted"), "method must be"),
-        (dict(method="mboit", kind="complex"), "kind must be 'power' or 'trig'"),
-        (dict(method="mboit", kind="trig", moments=6), "trigonometric moments must be 2, 3 or 4"),
+        (dict(method="mboit", kind="complex"), "kind='complex': basis must be 'power' or 'trigonometric'"),
+        (dict(method="mboit", basis="trigonometric", moments=6), "trigonometric moments must be 2, 3 or 4"),
         (dict(method="peel"), "needs layers"),
         (dict(colors=[[1, 0, 0], [0, 1, 0]]), "same fragments"),
     ],
@@ -178,4 +184,13 @@ def test_a_clear_fragment_changes_nothing_even_first(rng, kind, moments):
         with_clear = oit.composite(np.r_[0.5 * depths.min(), depths], np.r_[0.0, alphas], np.r_[[[1, 1, 1]], colors],
                                    (0.2, 0.3, 0.4), **options)
         plain = oit.composite(depths, alphas, colors, (0.2, 0.3, 0.4), **options)
+        # A clear (alpha 0) fragment adds zeros: rounding only.
         np.testing.assert_allclose(with_clear, plain, atol=1e-12)
+
+
+def test_the_old_trig_spelling_still_works_with_a_warning():
+    depths, alphas, colors = [2.0, 5.0, 9.0], [0.5, 0.3, 0.6], [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    with pytest.warns(DeprecationWarning, match="trigonometric"):
+        legacy = oit.composite(depths, alphas, colors, method="mboit", moments=3, kind="trig")
+    np.testing.assert_array_equal(legacy, oit.composite(depths, alphas, colors, method="mboit", moments=3,
+                                                        basis="trigonometric"))

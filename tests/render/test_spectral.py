@@ -59,6 +59,7 @@ def test_coloured_diffuse_agrees_between_rgb_and_spectral(albedo):
     # itself, up to the round trip, as the RGB render gives exactly.
     scene, camera = ground_scene(albedo, environment=(0.9, 0.9, 0.9)), downward_camera(16)
     rgb = refracta.render(scene, camera, None, spp=4, progress=False).reshape(-1, 3)
+    # The RGB path's white furnace: float32 pixels, a few ulps.
     np.testing.assert_allclose(rgb, np.broadcast_to(0.9 * np.array(albedo), rgb.shape), rtol=1e-6)
     spectral = refracta.render(scene, camera, None, spp=32, spectral=True, seed=3, progress=False).reshape(-1, 3)
     mean, error = spectral.mean(axis=0), std_error(spectral)
@@ -98,6 +99,7 @@ def test_physical_sky_sun_is_the_extinguished_solar_spectrum():
     lam = np.arange(360.0, 831.0, 10.0)
     expected = spectrum.spectrum_to_rgb(lam, sky.sun_radiance(lam))
     direction = np.array([[np.cos(e), np.sin(e), 0.0]])
+    # The same spectrum integrated by C++ and numpy: float rounding of the sun's radiance.
     np.testing.assert_allclose(suns[0].Le(direction)[0], expected, rtol=1e-6)
     # The sun below the horizon leaves only the sky.
     scene.set_physical_sky((1.0, -0.2, 0.0))
@@ -170,7 +172,9 @@ def test_dispersion_scale_is_the_ciddor_k_ratio():
     # ORACLES.md: K = 7.978e-5 (450 nm), 7.901e-5 (550), 7.858e-5 (650) K/hPa; (n - 1) rises 1.5 %
     # from 650 to 450 nm. K is quoted to 4 digits: 1e-4 relative.
     assert _core.air_dispersion_scale(450.0) == pytest.approx(7.978 / 7.901, rel=1e-4)
+    # K quoted to 4 digits (comment above).
     assert _core.air_dispersion_scale(650.0) == pytest.approx(7.858 / 7.901, rel=1e-4)
+    # 1.015 to 4 digits: 1e-3 is two units of its last digit.
     assert _core.air_dispersion_scale(450.0, 650.0) == pytest.approx(1.015, abs=1e-3)
     assert _core.air_dispersion_scale(550.0) == 1.0
     with pytest.raises(ValueError, match="wavelength"):
@@ -187,10 +191,12 @@ def test_dispersed_field_is_the_field_at_that_wavelength():
         direct = field.with_params(wavelength=wavelength)
         # n itself is rounded to 2.2e-16 (one ulp of 1): 1.3e-12 of the 1.7e-4 left at 5 km.
         np.testing.assert_allclose(wrapped.ior(points) - 1.0, direct.ior(points) - 1.0, rtol=1e-12, atol=2.3e-16)
+        # As n above: 1e-12 relative; 1e-20 where a gradient component is 0.
         np.testing.assert_allclose(wrapped.grad_ior(points), direct.grad_ior(points), rtol=1e-12, atol=1e-20)
         assert wrapped.height_only
         earth = _core.dispersed_field(refracta.CurvedEarth(field), wavelength)
         assert earth.type_name == "CurvedEarth"
+        # The same field wrapped twice: double rounding.
         np.testing.assert_allclose(earth.ior(points), refracta.CurvedEarth(direct).ior(points), rtol=1e-15)
     assert _core.field_reference_wavelength(field.with_params(wavelength=600.0)) == 600.0
     assert _core.field_reference_wavelength(refracta.LogisticProfile()) == 550.0
@@ -208,6 +214,7 @@ def test_mirage_boundary_moves_with_wavelength_as_the_k_ratio_predicts():
     # theta_c ~ sqrt(2 dn): the ratio is sqrt(K(450)/K(650)) to the small-angle approximation
     # (theta_c^2 / 12 relative, 2e-6 here).
     ratio = np.sqrt(_core.air_dispersion_scale(450.0, 650.0))
+    # 5x the small-angle error theta_c^2 / 12 = 2e-6 (comment above).
     assert traced[450.0] / traced[650.0] == pytest.approx(ratio, rel=1e-5)
     assert traced[450.0] - traced[650.0] > 3e-5  # blue reaches 0.19 arcmin lower (measured 3.26e-5 rad)
 
@@ -253,14 +260,17 @@ def test_spectral_render_shows_the_mirage_colour_fringe():
     assert np.all(np.abs(measured - predicted) <= SIGMAS * error + 1e-6), (measured, predicted, error)
     # Blue's boundary lies lower than red's by about theta_c(450) - theta_c(650).
     assert predicted[2] - predicted[0] > 2e-5
+    # The predicted gap (about theta_c(450) - theta_c(650)) exceeds 2e-5 rad.
     assert measured[2] - measured[0] > 2e-5, measured
     # The rim: between red's and blue's critical depressions the pixels are blue, not red.
     rim = (edges[:-1] > theta_c[lam == 650.0][0]) & (edges[1:] < theta_c[lam == 450.0][0])
     assert rim.sum() >= 6
+    # Pure blue minus red on the rim is ~1; 0.5 tells blue from a grey edge.
     assert rows[rim, 2].mean() - rows[rim, 0].mean() > 0.5, rows[rim]
     # RGB rendering does not disperse: the three channels share one boundary (theta_c at 550 nm).
     rgb = refracta.render(scene, camera, field, spp=4, **options).mean(axis=1)
     rgb_edges = edges[0] + edge_integrals(rgb, edges)
+    # One boundary for all channels: the same rays, so equal up to float sums (< 1e-7 rad).
     assert np.ptp(rgb_edges) < 1e-7
     assert rgb_edges[0] == pytest.approx(critical_depression_bouguer(field), abs=pixel)
 
