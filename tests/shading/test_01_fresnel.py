@@ -25,13 +25,14 @@ def test_dielectric_values_of_the_table():
 def test_brewster_angle_and_total_internal_reflection():
     # At Brewster's angle r_p = 0, so F = r_s^2 / 2 with r_s = cos(theta_i + theta_t) ... checked via the closed form.
     brewster = np.arctan(1.5)
+    # The literal's last digit (arctan 1.5 = 56.30993 deg).
     assert np.degrees(brewster) == pytest.approx(56.3099, abs=1e-4)
     ci = np.cos(brewster)
     ct = np.sqrt(1 - (1 - ci**2) / 1.5**2)
     r_s = (ci - 1.5 * ct) / (ci + 1.5 * ct)
     assert shading.fresnel_dielectric(ci, 1.5) == pytest.approx(0.5 * r_s**2, abs=FORMULA_TOLERANCE)
     critical = np.degrees(np.arcsin(1 / 1.5))
-    assert critical == pytest.approx(41.8103, abs=1e-4)
+    assert critical == pytest.approx(41.8103, abs=1e-4)  # the literal's last digit (arcsin(1/1.5) = 41.81031 deg)
     inside = -np.cos(np.radians([critical + 0.01, 60.0, 89.0]))
     np.testing.assert_array_equal(shading.fresnel_dielectric(inside, 1.5), 1.0)
     assert shading.fresnel_dielectric(-np.cos(np.radians(30.0)), 1.5) == pytest.approx(0.055190, abs=TABLE_TOLERANCE)
@@ -74,6 +75,7 @@ def conductor_closed_form(cos_i, eta, k):
 @pytest.mark.parametrize("eta, k", [(0.2, 3.9), (1.1, 2.1), (2.9, 3.1), (0.05, 0.5)])
 def test_conductor_against_the_closed_form(eta, k):
     cos = np.cos(np.radians([0.0, 20.0, 45.0, 70.0, 85.0, 89.9]))
+    # The same complex closed form, rearranged in C++: double rounding.
     np.testing.assert_allclose(shading.fresnel_conductor(cos, eta, k), conductor_closed_form(cos, eta, k), rtol=1e-10)
 
 
@@ -92,11 +94,14 @@ def test_thin_film_limits():
     # No film (d = 0) and an index-matched film are the base's own Fresnel reflectance.
     for eta, k in [(1.5, 0.0), (0.2, 3.9)]:
         base = shading.fresnel_conductor(cos, eta, k)
+        # A zero-thickness film is the bare interface: rounding only.
         np.testing.assert_allclose(shading.thin_film_reflectance(cos, 1.0, 1.38, eta, k, 0.0, 550.0), base, atol=1e-12)
+        # A film of the ambient index is the bare interface: rounding only.
         np.testing.assert_allclose(shading.thin_film_reflectance(cos, 1.0, 1.0, eta, k, 300.0, 550.0), base, atol=1e-12)
     # A quarter-wave coating of index sqrt(n3) is a perfect antireflection layer at normal incidence.
     n3, lam = 1.9, 550.0
     n2 = np.sqrt(n3)
+    # Exactly 0 in exact arithmetic: double rounding.
     assert shading.thin_film_reflectance(1.0, 1.0, n2, n3, 0.0, lam / (4 * n2), lam) == pytest.approx(0.0, abs=1e-14)
     # A half-wave layer is absent at normal incidence.
     assert shading.thin_film_reflectance(1.0, 1.0, 1.33, 1.5, 0.0, lam / (2 * 1.33), lam) == pytest.approx(0.04, abs=1e-12)
@@ -106,4 +111,5 @@ def test_thin_film_limits():
     r12, r23 = (1 - n2) / (1 + n2), (n2 - 1.5) / (n2 + 1.5)
     delta = 4 * np.pi * n2 * d / lam
     expected = (r12**2 + r23**2 + 2 * r12 * r23 * np.cos(delta)) / (1 + r12**2 * r23**2 + 2 * r12 * r23 * np.cos(delta))
+    # Airy's closed form in double on both sides: rounding.
     assert shading.thin_film_reflectance(1.0, 1.0, n2, 1.5, 0.0, d, lam) == pytest.approx(expected, abs=1e-12)

@@ -29,6 +29,7 @@ def test_sample_weight_is_f_cos_over_pdf(name, theta):
     wi = s["wi"][ok]
     f, pdf = material.f(wo, wi), material.pdf(wo, wi)
     np.testing.assert_allclose(s["pdf"][ok], pdf, rtol=EVAL_TOLERANCE)
+    # EVAL_TOLERANCE; 1e-300 only so that exact zeros compare.
     np.testing.assert_allclose(s["f"][ok], f, rtol=EVAL_TOLERANCE, atol=1e-300)
     np.testing.assert_allclose(s["weight"][ok], f * np.abs(wi[:, 2:3]) / pdf[:, None], rtol=EVAL_TOLERANCE)
 
@@ -60,6 +61,7 @@ def test_reflection_is_reciprocal(name):
     a[:, 2], b[:, 2] = np.abs(a[:, 2]) + 0.05, np.abs(b[:, 2]) + 0.05
     a /= np.linalg.norm(a, axis=1, keepdims=True)
     b /= np.linalg.norm(b, axis=1, keepdims=True)
+    # Reciprocity is exact algebra: double rounding; 1e-300 lets zeros compare.
     np.testing.assert_allclose(material.f(a, b), material.f(b, a), rtol=1e-10, atol=1e-300)
 
 
@@ -77,5 +79,7 @@ def test_transmission_eta_squared_relation(ior):
     down /= np.linalg.norm(down, axis=1, keepdims=True)
     f_ud, f_du = material.f(up, down)[:, 0], material.f(down, up)[:, 0]
     assert np.count_nonzero(f_ud) > 50
+    # As above (the 1/eta^2 radiance scaling is exact algebra).
     np.testing.assert_allclose(f_ud / 1.0**2, f_du / ior**2, rtol=1e-10, atol=1e-300)
+    # As above.
     np.testing.assert_allclose(material.f(up, down, mode="importance"), material.f(down, up), rtol=1e-10, atol=1e-300)
