@@ -20,9 +20,9 @@ def test_closest_point_on_a_straight_path_is_the_perpendicular_foot():
         s_foot = np.clip((q - origin) @ t, 0.0, 100.0)
         foot = origin + s_foot * t
         point, distance, s = path.closest_point(q)
-        np.testing.assert_allclose(point, foot, atol=1e-12)
-        assert distance == pytest.approx(np.linalg.norm(q - foot), abs=1e-12)
-        assert s == pytest.approx(s_foot, abs=1e-12)
+        np.testing.assert_allclose(point, foot, atol=1e-12)  # a straight path of 100 m: double rounding
+        assert distance == pytest.approx(np.linalg.norm(q - foot), abs=1e-12)  # as above
+        assert s == pytest.approx(s_foot, abs=1e-12)  # as above
 
 
 def test_closest_point_on_a_parabola():
@@ -60,6 +60,7 @@ def test_crossings_of_a_height_on_a_turning_ray():
     roots = np.sort(np.roots([a, t0, y0 - level]).real)
     crossings = path.at_height(level)
     assert crossings.shape == (2, 3)
+    # The crossing is solved to machine precision (comment at the top).
     np.testing.assert_allclose(crossings[:, 1], level, atol=1e-12)
     np.testing.assert_allclose(crossings[:, 0], roots, atol=1e-6)  # x from y at slope 1e-3: 1e-9/1e-3
     assert path.at_height(5.0).shape == (0, 3)
@@ -71,8 +72,10 @@ def test_point_at_interpolates_between_nodes():
     beta = np.sqrt(1.0003**2 + 4e-6 * 2) / np.sqrt(1 + 0.002**2)
     for s in np.linspace(0, 800, 37):
         point, tangent = path.point_at(s)
+        # QUERY_TOLERANCE's 1e-9: the path traced to 1e-11 m, the Hermite query exact.
         assert point[1] == pytest.approx(2 + 0.002 * point[0] + 4e-6 * point[0] ** 2 / (4 * beta**2), abs=1e-9)
         slope = 0.002 + 4e-6 * point[0] / (2 * beta**2)
+        # As above, for the unit tangent.
         np.testing.assert_allclose(tangent, np.array([1, slope, 0]) / np.hypot(1, slope), atol=1e-9)
     with pytest.raises(ValueError, match="s must be in"):
         path.point_at(900.0)

@@ -85,6 +85,7 @@ def test_below_the_horizon_is_the_lambertian_ground():
     sky = spectrum.PhysicalSky(sun, ground_albedo=albedo)
     lam = np.array([450.0, 550.0])
     expected = albedo / np.pi * spectrum.PhysicalSky.solar_irradiance(lam) * sky.sun_transmittance(lam) * sun[1]
+    # The same product in C++ and numpy: rounding.
     np.testing.assert_allclose(sky.radiance(unit(-30.0)[None], lam)[0], expected, rtol=1e-12)
     assert np.all(spectrum.PhysicalSky(sun).radiance(unit(-30.0)[None], lam) == 0.0)
 
@@ -107,6 +108,7 @@ def test_light_sampling_matches_its_pdf(sky):
     centres = np.stack([np.cos(e) * np.cos(2 * np.pi * xx), np.sin(e), np.cos(e) * np.sin(2 * np.pi * xx)], -1)
     jac = 2 * np.pi**2 * yy * np.cos(e) / (nx * ny)
     p_cell = sky.pdf_li(centres.reshape(-1, 3)).reshape(ny, nx) * jac
+    # A normalised pdf summed over a fine grid with the exact Jacobian: rounding of many terms.
     assert p_cell.sum() == pytest.approx(1.0, rel=1e-9)
     p_bin = p_cell.reshape(ny // group, group, nx // group, group).sum(axis=(1, 3)).ravel()
     n = 200_000
@@ -127,8 +129,9 @@ def test_sample_li_pdf_equals_pdf_li_and_radiance(sky):
     u = np.random.default_rng(6).random((2000, 2))
     dirs, pdf, rgb = sky.sample_li(u)
     assert np.all(dirs[:, 1] >= 0.0) and np.all(pdf > 0)
+    # The pdf of the sampled direction recomputed: the inverse mapping's rounding.
     np.testing.assert_allclose(sky.pdf_li(dirs), pdf, rtol=1e-9)
-    np.testing.assert_allclose(sky.rgb_radiance(dirs), rgb, rtol=1e-12)
+    np.testing.assert_allclose(sky.rgb_radiance(dirs), rgb, rtol=1e-12)  # the same radiance lookup: rounding
     assert np.all(sky.pdf_li(np.array([unit(-10.0)])) == 0.0)
 
 
@@ -136,6 +139,7 @@ def test_power_scales_with_the_scene_disc(sky):
     sky.preprocess([0, 0, 0], 1.0)
     p1 = sky.power()
     sky.preprocess([0, 0, 0], 10.0)
+    # Power scales exactly with the square of the radius (10x): rounding.
     assert sky.power() == pytest.approx(100.0 * p1, rel=1e-12) and p1 > 0
     sky.preprocess([0, 0, 0], 1.0)
 
@@ -172,6 +176,7 @@ def test_a_sun_on_the_horizon_lights_a_scene_in_rgb_and_spectral():
         expected = np.maximum(sky.sun_radiance_rgb(), 0.0)
         if setup == "physical_sky":  # and the sky behind the disc
             expected += np.maximum(sky.rgb_radiance(np.array([sun]))[0], 0.0)
+        # The disc's uniform radiance through float32 pixels and the RGB path's rounding.
         np.testing.assert_allclose(centre[:2], expected[:2], rtol=1e-4)
         colour = refracta.render(scene, camera, None, spp=64, spectral=True, progress=False)[4, 4]
         # The Monte Carlo estimate of the spectrum's (unclipped) colour, within its noise.

@@ -35,6 +35,7 @@ def test_cie_tables_match_colour_science():
     rng = np.random.default_rng(1)
     lam = np.sort(rng.choice(LAM_1NM, 20, replace=False))
     cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
+    # TABLE_TOLERANCE; 1e-15 absolute where the CMFs are 0.
     np.testing.assert_allclose(spectrum.cie_xyz(lam), cmfs[lam], rtol=TABLE_TOLERANCE, atol=1e-15)
     lam_d65 = np.sort(rng.choice(np.arange(360.0, 781.0), 20, replace=False))
     reference = colour.SDS_ILLUMINANTS["D65"].copy().align(colour.SpectralShape(360, 780, 1))[lam_d65]
@@ -49,6 +50,7 @@ def test_xyz_to_srgb_matrix_is_iec_61966():
 
 def test_white_reflectance_under_d65_illuminant_is_srgb_white_by_quadrature():
     emission = spectrum.rgb_to_spectrum([1.0, 1.0, 1.0], LAM_1NM, kind="illuminant")
+    # The same D65 table and normalisation: rounding.
     np.testing.assert_allclose(emission, spectrum.d65(LAM_1NM, normalised=True), rtol=1e-12)
     white = spectrum.rgb_to_spectrum([1.0, 1.0, 1.0], LAM_1NM)  # reflectance 1
     assert np.all(white == 1.0)
@@ -73,7 +75,7 @@ def test_white_by_the_hero_wavelength_monte_carlo_estimate():
 def test_hero_wavelengths_rotate_over_the_whole_range():
     u = np.linspace(0.0, 1.0, 4001, endpoint=False)
     lam, pdf = spectrum.sample_wavelengths(u)
-    assert lam.min() >= 360.0 and lam.max() <= 830.0
+    assert lam.min() >= 360.0 and lam.max() <= 830.0  # the sampled domain, 360-830 nm, exactly
     np.testing.assert_allclose(pdf, 1.0 / 470.0)
     gaps = np.diff(np.sort(lam, axis=1), axis=1)  # the four are a quarter of the range apart
     np.testing.assert_allclose(gaps, 470.0 / 4, atol=1e-9)
@@ -139,9 +141,11 @@ def test_blackbody_planck_and_d65_chromaticity():
     h, c, k = 6.62607015e-34, 299792458.0, 1.380649e-23
     lam = 500e-9
     expected = 2 * h * c**2 / lam**5 / np.expm1(h * c / (lam * k * 5778.0)) * 1e-9
+    # Planck's law in double on both sides: rounding.
     assert spectrum.blackbody(5778.0, 500.0) == pytest.approx(expected, rel=1e-12)
     s = spectrum.blackbody(6504.0, LAM_1NM, luminance=1.0)
     xyz = np.linalg.solve(srgb_matrix(), spectrum.spectrum_to_rgb(LAM_1NM, s))
+    # Luminance=1 by construction; the 1 nm quadrature and the 3x3 solve round.
     assert xyz[1] == pytest.approx(1.0, rel=1e-9)
     xy_bb = xyz[:2] / xyz.sum()
     d65_xyz = np.linalg.solve(srgb_matrix(), spectrum.spectrum_to_rgb(LAM_1NM, spectrum.d65(LAM_1NM)))
@@ -151,6 +155,7 @@ def test_blackbody_planck_and_d65_chromaticity():
     shape = colour.SpectralShape(360, 830, 1)
     cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"].copy().align(shape)
     reference = colour.XYZ_to_xy(colour.sd_to_XYZ(colour.sd_blackbody(6504.0, shape), cmfs, method="Integration"))
+    # The 1 nm tables' 6 significant digits, integrated two ways.
     np.testing.assert_allclose(xy_bb, reference, atol=1e-5)
 
 
