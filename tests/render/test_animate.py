@@ -43,9 +43,11 @@ def test_noise_map_has_the_asked_rms_and_correlation():
 def test_noise_map_is_seeded_and_moves_with_its_speed():
     a = _animate.geometric_noise_map(40, 60, 1e-3, 3.0, seed=1)
     np.testing.assert_array_equal(a, _animate.geometric_noise_map(40, 60, 1e-3, 3.0, seed=1))
+    # The map's scale is 1e-3: another seed's differs by several times it somewhere.
     assert np.abs(a - _animate.geometric_noise_map(40, 60, 1e-3, 3.0, seed=2)).max() > 1e-3
     # After 0.5 s at (4, 6) pixels/s the pattern sits 2 pixels right and 3 down (exact: a phase shift).
     b = _animate.geometric_noise_map(40, 60, 1e-3, 3.0, seed=1, time=0.5, speed=(4.0, 6.0))
+    # An exact phase shift of values ~1e-3: rounding only.
     np.testing.assert_allclose(b[3:, 2:], a[:-3, :-2], rtol=0, atol=1e-15)
 
 
@@ -85,6 +87,7 @@ def test_field_rebuilt_around_moved_turbulence_keeps_its_air():
         calm = refracta.PhysicalAtmosphere if isinstance(field, refracta.PhysicalAtmosphere) else refracta.LogisticProfile
         without = _animate.with_turbulence(field, None)
         assert without.turbulence is None
+        # The same sum n + dn in double: ulps of n ~ 1.
         np.testing.assert_allclose(later.ior(p), without.ior(p) + moved, rtol=0, atol=1e-15)
         assert isinstance(without, calm)
 
@@ -134,8 +137,10 @@ def test_animate_writes_a_gif_whose_frames_shimmer(tmp_path):
     # contrast between frames; and the calm air renders another picture.
     contrast = frames[0].max() - frames[0].min()
     changed = np.abs(frames[1] - frames[0]).max(axis=2) > 0.1 * contrast
+    # Shares argued in the comment above (strong turbulence, 3 frames 50 ms apart).
     assert contrast > 0.2 and changed.mean() > 0.1, (contrast, changed.mean())
     still = refracta.render(scene, camera, field, progress=False, max_length=12.0)
+    # The calm render differs by a quarter of the wall's contrast (> 0.2) somewhere.
     assert np.abs(frames[0] - still).max() > 0.05
 
 

@@ -28,6 +28,7 @@ def test_an_object_images_at_focal_length_times_its_angle(focal, sensor, size):
 
 def test_a_300_mm_telephoto_on_full_frame_sees_under_5_degrees():
     camera = refracta.Camera.photographic((0, 5, 0), (28000, 5, 0), 300.0, width=960, height=640)
+    # The same atan in double: rounding.
     assert camera.vfov == pytest.approx(2 * math.degrees(math.atan(12.0 / 300.0)), rel=1e-12)
 
 
@@ -61,16 +62,18 @@ def test_eye_level_stands_at_eye_height_and_puts_the_horizon_on_the_centre_row()
     pitch = 36.0 / 640  # [mm]: 640 x 240 is relatively wider than the sensor
     distance = math.hypot(100.0, 100.0)
     assert u == pytest.approx(320.0, abs=ROUND_OFF)
-    assert depth == pytest.approx(distance, rel=1e-12)
+    assert depth == pytest.approx(distance, rel=1e-12)  # hypot in double: rounding
     assert v - 120.0 == pytest.approx(200.0 * (0.5 + height - 0.2) / distance / pitch, abs=ROUND_OFF)
+    # The same computation twice: rounding.
     assert camera.vfov == pytest.approx(refracta.Camera.photographic((0, 0, 0), (1, 0, 0), 200.0, width=640,
                                                                      height=240).vfov, rel=1e-15)
 
 
 def test_eye_level_focuses_at_the_target_distance():
     camera = refracta.Camera.eye_level((0, 0, 0), (30.0, 5.0, 40.0), focal_length_mm=85.0, f_number=1.8)
+    # the level distance hypot(30, 40) = 50: double rounding.
     assert camera.focus_distance == pytest.approx(50.0, rel=1e-15)
-    assert camera.aperture_diameter == pytest.approx(0.085 / 1.8, rel=1e-15)
+    assert camera.aperture_diameter == pytest.approx(0.085 / 1.8, rel=1e-15)  # 0.085 / 1.8 in double: rounding
     assert refracta.Camera.eye_level((0, 0, 0), (30.0, 5.0, 40.0), f_number=1.8, focus_distance=7.0).focus_distance == 7.0
 
 

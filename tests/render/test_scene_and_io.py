@@ -10,11 +10,13 @@ def test_camera_ray_and_project_are_inverse():
     camera = refracta.Camera([1, 2, 3], [10, 1, -2], vfov=40, width=200, height=100)
     for u, v in [(0.5, 0.5), (100, 50), (199.5, 10.25)]:
         origin, direction = camera.ray(u, v)
+        # Project(ray) round trip in double: 1e-9 of a pixel.
         np.testing.assert_allclose(camera.project(origin + 7.0 * direction)[:2], [u, v], atol=1e-9)
     # The image centre looks at look_at; vfov spans the height.
     np.testing.assert_allclose(camera.project([10, 1, -2])[:2], [100, 50], atol=1e-9)
     top = camera.ray(100, 0)[1]
     bottom = camera.ray(100, 100)[1]
+    # The vfov's two edge rays in double: arccos rounding.
     assert np.degrees(np.arccos(top @ bottom)) == pytest.approx(40.0, abs=1e-9)
 
 
@@ -22,6 +24,7 @@ def test_pick_returns_the_visible_point():
     scene = refracta.Scene()
     scene.add_box([10, 0, 0], [2, 2, 2])
     camera = refracta.Camera([0, 0, 0], [10, 0, 0], width=11, height=11)
+    # Embree's float32 hit distance at 9 m: ~1e-6 relative.
     np.testing.assert_allclose(camera.pick(scene, 5.5, 5.5), [9, 0, 0], atol=1e-5)
     assert camera.pick(scene, 0, 0) is None
 
@@ -67,8 +70,10 @@ def test_image_files_round_trip(tmp_path):
     flat = np.ones((2, 3, 3), np.float32)
     # Reinhard at exposure 1: 1 -> 0.5, sRGB: 0.7354 -> 188/255.
     refracta.io.write_image(tmp_path / "a.png", flat, exposure=1.0, tonemap="reinhard")
+    # 8-bit PNG: half a level, plus float slack.
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "a.png"), 188 / 255, atol=0.6 / 255)
     refracta.io.write_image(tmp_path / "b.png", flat * 0.25, tonemap="linear", gamma="linear", exposure=2.0)
+    # 8-bit PNG: half a level, plus float slack.
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "b.png"), 128 / 255, atol=0.6 / 255)
 
 

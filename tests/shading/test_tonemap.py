@@ -53,7 +53,7 @@ def test_reinhard_log_average_of_a_constant_image_is_the_key(luminance):
     lw = exposure * luminance
     scaled = key * lw / (REINHARD_DELTA + lw)  # L = a exactly, up to delta
     assert scaled == pytest.approx(key, rel=REINHARD_DELTA / lw * 1.01)
-    np.testing.assert_allclose(out, scaled / (1 + scaled), rtol=1e-6)
+    np.testing.assert_allclose(out, scaled / (1 + scaled), rtol=1e-6)  # float32 output: a few ulps
 
 
 def test_reinhard_log_average_of_two_levels():
@@ -62,6 +62,7 @@ def test_reinhard_log_average_of_two_levels():
     image[1] = 100.0
     lbar = np.exp(np.mean(np.log(REINHARD_DELTA + image)))
     scaled = 0.18 / lbar * image
+    # Float32 output: a few ulps.
     np.testing.assert_allclose(display(image, tonemap="reinhard", key=0.18), scaled / (1 + scaled), rtol=1e-6)
 
 
@@ -85,8 +86,9 @@ def test_gamma_and_srgb_curves_invert():
     x = np.linspace(0.0, 1.0, 101, dtype=np.float32)[None, :]
     for g in (1.0, 1.7, 2.2, 3.0):
         p = display(x, tonemap="linear", gamma=g, exposure=1.0)[0, :, 0]
-        np.testing.assert_allclose(p.astype(float) ** g, x[0], atol=1e-6)
+        np.testing.assert_allclose(p.astype(float) ** g, x[0], atol=1e-6)  # float32 output raised to g: a few ulps
     p = display(x, tonemap="linear", gamma="srgb", exposure=1.0)[0, :, 0]
+    # Float32 output through the sRGB decode: a few ulps.
     np.testing.assert_allclose(srgb_decode(p.astype(float)), x[0], atol=1e-6)
 
 
@@ -105,6 +107,7 @@ def test_alpha_is_untouched_and_png_matches_to_display(tmp_path):
     out = refracta.io.to_display(image, tonemap="reinhard", key=0.18)
     np.testing.assert_array_equal(out[..., 3], image[..., 3])
     refracta.io.write_image(tmp_path / "a.png", image[..., :3], tonemap="reinhard", key=0.18)
+    # 8-bit PNG: half a level, plus float slack.
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "a.png"), out[..., :3], atol=0.51 / 255)
     refracta.io.write_image(tmp_path / "a.exr", image, exposure=2.0, tonemap="reinhard", key=0.18)
     np.testing.assert_array_equal(refracta.io.read_image(tmp_path / "a.exr"), 2.0 * image)  # EXR stays linear
