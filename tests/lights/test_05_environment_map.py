@@ -65,6 +65,7 @@ def test_single_bright_texel_is_seen_and_sampled_where_the_mapping_says(rng, row
     image[row, column] = [10.0, 20.0, 30.0]
     light = EnvironmentLight(image, scale=2.0)
     predicted = mitsuba_direction((column + 0.5) / w, row / (h - 1))
+    # The texel's own value at its centre direction: mapping round trip in double.
     np.testing.assert_allclose(light.Le(predicted[None])[0], [20.0, 40.0, 60.0], rtol=1e-9)
     # Every sample lies in the four bilinear patches around the texel.
     n = 2000
@@ -137,6 +138,7 @@ def test_environment_pdf_matches_pdf_li_and_Le(rng):
     wi, L, pdf, distance = light.sample_li(points, None, rng.random((n, 2)))
     assert np.all(pdf > 0) and np.all(np.isinf(distance))
     np.testing.assert_allclose(light.pdf_li(points, None, wi), pdf, rtol=PDF_CONSISTENCY)
+    # The same bilinear lookup for the sampled direction: rounding; 1e-12 where the map is 0.
     np.testing.assert_allclose(light.Le(wi), L, rtol=1e-9, atol=1e-12)
 
 

@@ -8,8 +8,8 @@ from refracta.lights import ConstantEnvironment
 
 from .conftest import CHI2_SIGNIFICANCE, cone_chi2
 
-PDF_CONSISTENCY = 1e-9
-EXACT = 1e-12
+PDF_CONSISTENCY = 1e-9  # sample_li's pdf and pdf_li of the same direction: the same formula on the same numbers
+EXACT = 1e-12  # closed forms in double on both sides: rounding
 MC_SIGMAS = 4.0  # 4 standard errors: a 6e-5 false-alarm rate
 # Midpoint rule of a smooth (cosine) or constant density over 10 x 12 bins, 8 x 8 sub-cells.
 PDF_INTEGRAL = 1e-3

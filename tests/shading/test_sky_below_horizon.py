@@ -71,6 +71,7 @@ def test_sample_li_pdf_equals_pdf_li_below_the_horizon(sky):
     assert below.mean() > 0.3  # the lower hemisphere shows the bright horizon (its share: the test below)
     assert np.all(pdf > 0.0)
     np.testing.assert_allclose(sky.pdf_li(dirs), pdf, rtol=PDF_ROUND_TRIP)
+    # The same radiance lookup for the sampled direction: rounding.
     np.testing.assert_allclose(sky.rgb_radiance(dirs), rgb, rtol=1e-12)
     # pdf_li below the horizon is positive wherever the radiance is.
     assert np.all(sky.pdf_li(unit(BELOW, 90.0)) > 0.0)
@@ -94,6 +95,7 @@ def test_whole_sphere_sampling_matches_its_pdf(sky):
     e = np.pi / 2 * s * np.abs(s)
     centres = np.stack([np.cos(e) * np.cos(2 * np.pi * xx), np.sin(e), np.cos(e) * np.sin(2 * np.pi * xx)], -1)
     p_cell = sky.pdf_li(centres.reshape(-1, 3)).reshape(nt, nx) * 4 * np.pi**2 * np.abs(s) * np.cos(e) / (nx * nt)
+    # A normalised pdf summed over a fine grid with the exact Jacobian: rounding of many terms.
     assert p_cell.sum() == pytest.approx(1.0, rel=1e-9)
     p_bin = p_cell.reshape(nt // group, group, nx // group, group).sum(axis=(1, 3)).ravel()
     n = 200_000
@@ -141,12 +143,14 @@ def test_scene_set_physical_sky_continues_the_horizon_by_default():
     for azimuth in AZIMUTHS:
         np.testing.assert_array_equal(light.Le(unit(BELOW, azimuth)), np.repeat(light.Le(unit(0.0, azimuth)[None]), len(BELOW), 0))
     reference = spectrum.PhysicalSky(SUN, below_horizon="horizon")
+    # The horizon's radiance mirrored below it, times 2: rounding.
     np.testing.assert_allclose(light.Le(unit(BELOW, 37.0)), 2.0 * reference.rgb_radiance(unit(BELOW, 37.0)), rtol=1e-12)
     n = 2000
     points, u = np.zeros((n, 3)), np.random.default_rng(14).random((n, 2))
     wi, L, pdf, _ = light.sample_li(points, None, u)
     assert (wi[:, 1] < 0).any() and np.all(pdf > 0)
     np.testing.assert_allclose(light.pdf_li(points, None, wi), pdf, rtol=PDF_ROUND_TRIP)
+    # The same radiance lookup for the sampled direction: rounding.
     np.testing.assert_allclose(light.Le(wi), L, rtol=1e-12)
     # 'ground' keeps the Lambertian ground (black with albedo 0).
     scene.set_physical_sky(SUN, scale=2.0, below_horizon="ground")
