@@ -92,6 +92,7 @@ def test_each_textured_colour_is_the_colour_times_the_texel(tmp_path, cls, key, 
     texture = str(uniform_texture(tmp_path / "albedo.exr"))
     textured = render(quad_scene(cls(**{key: colour}, texture=texture, **extra)))
     reference = render(quad_scene(cls(**{key: scaled(colour)}, **extra)))
+    # RENDER_RTOL; 1e-7 absolute for black pixels (float32).
     np.testing.assert_allclose(textured, reference, rtol=RENDER_RTOL, atol=1e-7)
 
 
@@ -103,8 +104,8 @@ def test_each_material_shows_the_texture_where_its_uvs_say(tmp_path, cls, key, c
     image = render(quad_scene(cls(**{key: 1.0}, texture=texture, **extra), sun=False))
     red = render(quad_scene(cls(**{key: (1.0, 0.0, 0.0)}, **extra), sun=False))
     blue = render(quad_scene(cls(**{key: (0.0, 0.0, 1.0)}, **extra), sun=False))
-    np.testing.assert_allclose(image[:, 12], red[:, 12], rtol=RENDER_RTOL, atol=1e-7)
-    np.testing.assert_allclose(image[:, 28], blue[:, 28], rtol=RENDER_RTOL, atol=1e-7)
+    np.testing.assert_allclose(image[:, 12], red[:, 12], rtol=RENDER_RTOL, atol=1e-7)  # as above
+    np.testing.assert_allclose(image[:, 28], blue[:, 28], rtol=RENDER_RTOL, atol=1e-7)  # as above
 
 
 def test_one_material_serves_scenes_with_different_texture_tables(tmp_path):

@@ -87,7 +87,9 @@ def test_03b_tabulated_transmittance_is_the_interface_s(wind):
     # 1.4e-4 apart at mu = 0.8), its internal reflectance nearly the flat one's (6.1e-4 apart).
     calm = shading.Water(0.0)
     n = calm.ior(550.0)
+    # 1.4e-4 measured (comment above).
     assert calm.transmittance(0.8) == pytest.approx(1 - shading.fresnel_dielectric(0.8, n), abs=1e-3)
+    # 6.1e-4 measured (comment above).
     assert calm.internal_reflectance() == pytest.approx(shading.fresnel_diffuse_reflectance(1 / n), abs=2e-3)
 
 
@@ -101,4 +103,5 @@ def test_04_deep_water_transmits_nothing():
             wi = s["wi"][s["valid"]]
             assert np.all(np.sign(wi[:, 2]) == (-1 if below else 1))
     assert water.interior_ior() is None
+    # The body's index at 550 nm, 20 C, 35 psu from the same formula: rounding.
     assert shading.Water(body=False).interior_ior() == pytest.approx(shading.water_ior(550.0, 20.0, 35.0), abs=1e-8)

@@ -86,12 +86,14 @@ def test_03_field_variance_matches_the_spectrum(quantity):
         else:
             ratios.append(waves.slope_variance / waves.expected_slope_variance)
             s = waves.slopes()
+            # The same mean of squares computed in C++ and numpy: rounding.
             assert np.mean(s[..., 0] ** 2 + s[..., 1] ** 2) == pytest.approx(waves.slope_variance, rel=1e-12)
     p, k2 = mode_powers(waves)
     if quantity == "slope":
         p = k2 * p
     relative_sigma = np.sqrt(2 * (p**2).sum()) / p.sum()  # 3.5 % for heights, 0.8 % for slopes
     assert np.mean(ratios) == pytest.approx(1.0, abs=SIGMAS * relative_sigma / np.sqrt(len(SEEDS)))
+    # The same variance computed in C++ and numpy: rounding.
     assert np.var(waves.heights()) == pytest.approx(waves.height_variance, rel=1e-12)
 
 
@@ -138,6 +140,7 @@ def test_05_seeded_deterministic_and_finer_grids_keep_the_long_waves():
     # numpy's forward FFT / N^2 recovers h~(k) (the field is the unscaled inverse transform).
     coarse_modes, fine_modes = np.fft.fft2(a.heights()) / 256**2, np.fft.fft2(fine.heights()) / 512**2
     kept = np.r_[0:128, -127:0]
+    # The coarse grid holds exactly the fine grid's longer modes: FFT rounding.
     np.testing.assert_allclose(fine_modes[np.ix_(kept, kept)], coarse_modes[np.ix_(kept, kept)], atol=1e-15)
     moved = refracta.OceanWaves(seed=3, time=2.0)
     assert moved.height_variance == pytest.approx(a.height_variance, rel=0.3)  # the same sea, dispersed
