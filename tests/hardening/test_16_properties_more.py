@@ -40,7 +40,7 @@ def check_light_sampling(light, points, normals, u) -> bool:
     wi, L, pdf, distance = sample
     assert finite(wi) and finite(L) and np.all(L >= 0) and finite(pdf) and np.all(pdf >= 0)
     reached = pdf > 0
-    assert np.allclose(np.linalg.norm(wi[reached], axis=1), 1.0, atol=1e-9)
+    assert np.allclose(np.linalg.norm(wi[reached], axis=1), 1.0, atol=1e-9)  # unit vectors in double: rounding
     assert np.all(distance[reached] > 0)
     return True
 
@@ -97,7 +97,7 @@ def test_the_physical_sky_is_finite_for_any_sun_or_raises():
         dirs, pdf, rgb = sky.sample_li(np.array(u))
         assert finite(dirs) and finite(pdf) and np.all(pdf >= 0) and finite(rgb) and np.all(rgb >= 0)
         sampled = pdf > 0
-        assert np.allclose(np.linalg.norm(dirs[sampled], axis=1), 1.0, atol=1e-9)
+        assert np.allclose(np.linalg.norm(dirs[sampled], axis=1), 1.0, atol=1e-9)  # unit vectors in double: rounding
         outcomes.append(True)
 
     prop()

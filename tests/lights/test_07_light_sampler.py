@@ -8,7 +8,7 @@ from refracta.lights import AreaLight, ConstantEnvironment, LightSampler, PointL
 
 from .conftest import CHI2_SIGNIFICANCE
 
-EXACT = 1e-12
+EXACT = 1e-12  # closed forms in double on both sides: rounding
 
 
 def lights():
@@ -25,6 +25,7 @@ def test_sampler_picks_in_proportion_to_power(rng):
     sampler = LightSampler(ls)
     power = np.array([light.power for light in ls])
     expected = power / power.sum()
+    # Power / total in double on both sides: rounding.
     np.testing.assert_allclose([sampler.pmf(i) for i in range(len(ls))], expected, rtol=1e-12)
     index, probability = sampler.sample(rng.random(100_000))
     np.testing.assert_allclose(probability, expected[index], rtol=EXACT)

@@ -100,8 +100,8 @@ def test_the_plane_in_focus_is_as_sharp_as_through_a_pinhole():
 
 def test_focus_defaults_to_the_look_at_distance_and_aperture_is_f_over_n():
     camera = refracta.Camera.photographic(EYE, (0.0, 1.0, -7.5), 50.0, f_number=2.8)
-    assert camera.focus_distance == pytest.approx(7.5, rel=1e-15)
-    assert camera.aperture_diameter == pytest.approx(0.05 / 2.8, rel=1e-15)
+    assert camera.focus_distance == pytest.approx(7.5, rel=1e-15)  # the look-at distance in double: rounding
+    assert camera.aperture_diameter == pytest.approx(0.05 / 2.8, rel=1e-15)  # 0.05 / 2.8 in double: rounding
     pinhole = refracta.Camera.photographic(EYE, (0.0, 1.0, -7.5), 50.0)
     assert pinhole.aperture_diameter == 0.0 and pinhole.focus_distance == 0.0
 

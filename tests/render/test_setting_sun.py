@@ -45,8 +45,9 @@ def test_the_rendered_disc_is_squashed_as_refraction_says():
     # Edges to the pixel (one pixel = 1'): the lowest and highest lit rows' centres lie within
     # half a pixel inside the limbs.
     half_pixel = 0.5 / 60.0
+    # Half a pixel (comment above); 1e-6 deg for rounding.
     assert elevation(rows.max() + 0.5) == pytest.approx(LOWER_LIMB, abs=half_pixel + 1e-6)
-    assert elevation(rows.min() + 0.5) == pytest.approx(upper, abs=half_pixel + 1e-6)
+    assert elevation(rows.min() + 0.5) == pytest.approx(upper, abs=half_pixel + 1e-6)  # as above
     assert columns.size == pytest.approx(31.8, abs=1.0)  # the width is not refracted
 
 

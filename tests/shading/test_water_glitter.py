@@ -34,8 +34,9 @@ SUN_DIAMETER = 0.53  # [deg]
 def test_01_cox_munk_slopes_and_alpha():
     for u in WINDS:
         water = shading.Water(u)
+        # The same linear formula in double: rounding.
         assert water.mean_square_slope == pytest.approx(0.003 + 5.12e-3 * u, rel=1e-12)
-        assert water.alpha == pytest.approx(np.sqrt(0.003 + 5.12e-3 * u), rel=1e-12)
+        assert water.alpha == pytest.approx(np.sqrt(0.003 + 5.12e-3 * u), rel=1e-12)  # as above
     np.testing.assert_allclose(shading.cox_munk_mean_square_slope(np.array(WINDS)), 0.003 + 5.12e-3 * np.array(WINDS))
 
 
