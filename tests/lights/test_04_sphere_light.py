@@ -12,7 +12,7 @@ from .conftest import CHI2_SIGNIFICANCE, cone_chi2
 PDF_CONSISTENCY = 1e-9
 # Points on the sphere: |p - c| = r up to the cone geometry's rounding.
 ON_SPHERE = 1e-9
-EXACT = 1e-12
+EXACT = 1e-12  # closed forms in double on both sides: rounding
 MC_SIGMAS = 4.0  # 4 standard errors: a 6e-5 false-alarm rate
 # The pdf is constant in the cone, so the midpoint integral is exact to rounding.
 PDF_INTEGRAL = 1e-9

@@ -90,6 +90,7 @@ def test_the_guard_band_widens_the_view_around_the_same_pixels():
     ox, oy = wide.offset
     assert (ox, oy) == (24, 16)
     assert wide.depth.shape == (64 + 2 * oy, 96 + 2 * ox)
+    # Float32 depth buffers, the wider frustum's different rounding: 1e-6.
     np.testing.assert_allclose(wide.depth[oy:oy + 64, ox:ox + 96], plain.depth, rtol=1e-6)
 
 

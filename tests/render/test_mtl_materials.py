@@ -80,5 +80,6 @@ def test_ke_makes_an_area_light_of_that_radiance(tmp_path):
     (tmp_path / "lamp.obj").write_text("mtllib parts.mtl\nv 0 0 -2\nv 1 0 -2\nv 1 1 -2\nusemtl lamp\nf 1 2 3\n")
     scene_lamp_only.add_obj(str(tmp_path / "lamp.obj"))
     image = refracta.render(scene_lamp_only, camera, progress=False, max_depth=0)
+    # The emission seen directly through float32 pixels.
     np.testing.assert_allclose(image[1, 1], (2.0, 3.0, 4.0), rtol=1e-6)
     assert len(scene.lights) == 1

@@ -81,7 +81,7 @@ def test_lossless_glass_renders_the_furnace(shape):
     # describe, so the glass pixels are tested together: their mean over each seed's image.
     images = renders(scene, camera, transport="path", spp=16, max_depth=64)
     glass = images.std(0) > 0
-    assert glass.mean() > 0.2
+    assert glass.mean() > 0.2  # the glass box covers a fifth of the view at least: the test is not vacuous
     means = images[:, glass].mean(1)
     assert abs(means.mean() - 1.0) <= MEAN_SIGMAS * means.std(ddof=1) / np.sqrt(SEEDS), means
 

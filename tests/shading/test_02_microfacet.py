@@ -40,6 +40,7 @@ def test_height_correlated_masking_is_bounded_by_g1():
     g, g1o, g1i = d.G(wo, wi)[0], d.G1(wo)[0], d.G1(wi)[0]
     # Heitz 2014: G1(wo) G1(wi) <= G2 <= min(G1(wo), G1(wi)) for uncorrelated heights vs full correlation.
     assert g1o * g1i <= g <= min(g1o, g1i)
+    # Exactly 1 at normal incidence in exact arithmetic: rounding.
     assert d.G1(direction(0.0))[0] == pytest.approx(1.0, abs=1e-15)
 
 
