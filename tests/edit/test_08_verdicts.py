@@ -32,7 +32,7 @@ def test_a_pixel_pair_missed_by_a_hundredth_of_a_pixel_is_met():
     common = dict(free="alpha", bounds={"alpha": STRAIGHT_BOUNDS}, strategy="local")
     result = solve(refracta.LinearSquaredProfile(), camera, [pair], **common)
     assert result.met[0] and result.success, result.message
-    # The same product in double (and float camera fields): 1e-6.
+    # The same product computed in C++: rounding, 1e-6 with margin.
     assert result.tolerances[0] == pytest.approx(0.1 * camera.pixel_angle * RANGE, rel=1e-6)
     strict = solve(refracta.LinearSquaredProfile(), camera, [pair], pixel_tolerance=0.0, **common)
     assert not strict.met[0]
