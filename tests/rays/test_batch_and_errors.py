@@ -50,12 +50,18 @@ def test_progress_callback_reports_completion():
 def test_interrupt_stops_a_long_batch_promptly():
     slow = refracta.CustomField(lambda p: 1 + 1e-4 * p[:, 1], lambda p: np.tile([0.0, 1e-4, 0.0], (len(p), 1)))
 
+    calls = []
+
     def interrupt(done, total):
+        calls.append((done, total))
         raise KeyboardInterrupt
 
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(KeyboardInterrupt):  # 2e8 rk4 steps calling Python: hours if not stopped
         refracta.trace_rays(slow, [0, 1, 0], np.tile([1.0, 0.01, 0.0], (20000, 1)), method="rk4", step=0.01,
                             max_length=100, progress=interrupt)
+    # Raised from the first periodic call, while the rays were being traced (the call after the
+    # last ray, (20000, 20000), would raise it too, but only once the work had run to its end).
+    assert len(calls) == 1 and calls[0][0] < calls[0][1]
 
 
 def test_elevation_table_matches_exact_traces(hot_road):
