@@ -32,6 +32,7 @@ def test_to_display_of_huge_radiance_is_white_and_png_writes_white(tmp_path):
         display = refracta.io.to_display(image, exposure=10.0, tonemap=tonemap)
         np.testing.assert_allclose(display, 1.0, atol=1e-6)  # saturated white in float32: a few ulps of 1
     refracta.io.write_image(tmp_path / "white.png", image, exposure=10.0)
+    # Default rtol 1e-7: saturated white is exactly 255/255 in the PNG.
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "white.png"), 1.0)
 
 

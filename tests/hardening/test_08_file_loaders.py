@@ -56,6 +56,7 @@ def test_legal_mtl_forms_still_load(tmp_path):
     (tmp_path / "m.obj").write_text("mtllib m.mtl\nv 0 0 0\nv 1 0 0 # x\nv 0 1 0\nusemtl a\nf 1 2 3\n")
     scene = refracta.Scene()
     (geometry,) = scene.add_obj(str(tmp_path / "m.obj"))
+    # Default rtol 1e-7: the MTL's Kd parsed to double, rounding only.
     np.testing.assert_allclose(scene.material(geometry).parameters["kd"], [0.8, 0.1, 0.1])
 
 

@@ -93,7 +93,7 @@ def test_area_light_pdf_matches_pdf_li(rng):
     np.testing.assert_allclose(light.pdf_li(points[ok], None, wi[ok], p_light[ok], n_light[ok]), pdf[ok], rtol=PDF_CONSISTENCY)
     # The normal's orientation does not change the density.
     np.testing.assert_allclose(light.pdf_li(points[ok], None, wi[ok], p_light[ok], -n_light[ok]), pdf[ok], rtol=PDF_CONSISTENCY)
-    np.testing.assert_allclose(L[ok], 3.0)
+    np.testing.assert_allclose(L[ok], 3.0)  # default rtol 1e-7: the constant radiance as given, rounding only
 
 
 def test_one_sided_light_is_dark_from_behind_and_two_sided_is_not(rng):
@@ -103,7 +103,7 @@ def test_one_sided_light_is_dark_from_behind_and_two_sided_is_not(rng):
     u = rng.random((500, 2))
     assert np.all(one.sample_li(above, None, u)[2] == 0)
     _, L, pdf, _ = two.sample_li(above, None, u)
-    assert np.all(pdf > 0) and np.allclose(L, 3.0)
+    assert np.all(pdf > 0) and np.allclose(L, 3.0)  # numpy's default 1e-5/1e-8: the constant radiance as given
     down, up = np.array([[0.0, -1.0, 0.0]]), np.array([[0.0, 1.0, 0.0]])
     p = np.array([[0.0, HEIGHT, 0.0]])
     assert one.L(p, down, down)[0, 0] == 3.0 and one.L(p, down, up)[0, 0] == 0.0

@@ -46,8 +46,8 @@ def test_sphere_samples_lie_on_the_visible_cap_and_pdfs_agree(rng):
     outward = (hit - CENTRE) / RADIUS
     assert np.all(np.sum(outward * -wi, axis=1) > -1e-9)  # on the side facing the point
     np.testing.assert_allclose(light.pdf_li(points, None, wi, hit, outward), pdf, rtol=PDF_CONSISTENCY)
-    np.testing.assert_allclose(L, np.tile([1.0, 2.0, 3.0], (n, 1)))
-    np.testing.assert_allclose(light.L(hit, outward, -wi), L)
+    np.testing.assert_allclose(L, np.tile([1.0, 2.0, 3.0], (n, 1)))  # default rtol 1e-7: the constant radiance as given
+    np.testing.assert_allclose(light.L(hit, outward, -wi), L)  # default rtol 1e-7: the same radiance by two calls
     assert np.all(light.L(hit, outward, wi)[np.sum(outward * wi, axis=1) < 0] == 0)
 
 

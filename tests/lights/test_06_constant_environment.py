@@ -45,6 +45,7 @@ def test_constant_environment_irradiance_is_pi_L(rng, sampling):
     estimate, error = values.mean(axis=0), values.std(axis=0) / np.sqrt(n)
     exact = np.pi * np.array(radiance)
     assert np.all(np.abs(estimate - exact) <= MC_SIGMAS * error + 1e-9 * exact), (estimate, exact, error)
+    # Default rtol 1e-7: the constant radiance as given.
     np.testing.assert_allclose(light.Le(wi[:5]), np.tile(radiance, (5, 1)))
 
 

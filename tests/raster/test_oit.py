@@ -89,6 +89,7 @@ def test_mboit_error_falls_with_more_moments(rng, kind, counts):
 
 
 def test_wboit_is_exact_for_one_fragment_and_keeps_coverage(rng):
+    # Default rtol 1e-7: one fragment's closed form, rounding only.
     np.testing.assert_allclose(oit.composite([10.0], [0.4], [[1, 0, 0]], (0, 0, 1), method="wboit"), [0.4, 0, 0.6])
     depths, alphas, colors = random_pixel(rng, 5)
     for weight in ("eq7", "eq9"):

@@ -68,8 +68,10 @@ def test_removing_an_emitter_removes_its_light_and_the_bounds_shrink():
     scene = refracta.Scene()
     scene.add_ground(0.0, 10.0)
     lamp = scene.add_sphere((0.0, 50.0, 0.0), 1.0, emission=(5.0, 5.0, 5.0))
+    # Default rel 1e-6: the sphere's top, 50 + 1 m, from float bounds.
     assert len(scene.lights) == 1 and scene.bounds[1][1] == pytest.approx(51.0)
     scene.remove(lamp)
+    # Default abs 1e-12 at 0: the ground's top, exactly 0.
     assert len(scene.lights) == 0 and scene.bounds[1][1] == pytest.approx(0.0)
 
 

@@ -164,6 +164,7 @@ def test_animate_writes_mp4_and_frame_files(tmp_path):
     noise = dict(rms=3e-3, correlation_pixels=2.0)
     refracta.animate(scene, camera, field, [0.0, 0.1, 0.2, 0.3], path=tmp_path / "shimmer.mp4", noise=noise,
                      progress=False, max_length=12.0)
+    # Default rel 1e-6: 4 frames at 10 fps is 0.4 s as the container stores it.
     assert ffmpeg.count_frames_and_secs(str(tmp_path / "shimmer.mp4")) == (4, pytest.approx(0.4))
     with warnings.catch_warnings():  # imageio-ffmpeg's reader leaves its pipe to the collector
         warnings.simplefilter("ignore", ResourceWarning)
@@ -172,6 +173,7 @@ def test_animate_writes_mp4_and_frame_files(tmp_path):
         reader.close()
         del reader
         gc.collect()
+    # Default rel 1e-6: the container's frame rate, 10 exactly up to its rational.
     assert meta["size"] == (16, 8) and meta["fps"] == pytest.approx(10.0)
     refracta.animate(scene, camera, field, [0.0, 0.1], path=str(tmp_path / "frames" / "f{:02d}.png"), noise=noise,
                      progress=False, max_length=12.0)

@@ -67,6 +67,7 @@ def test_white_by_the_hero_wavelength_monte_carlo_estimate():
     np.testing.assert_allclose(mean, 1.0, atol=MC_SIGMAS * err.max() + WHITE_TOLERANCE)
     # Terminated secondaries: the hero alone, weighted by 4, estimates the same white.
     lam_t, pdf_t = spectrum.sample_wavelengths(u, terminate_secondary=True)
+    # Numpy's default 1e-5/1e-8: a constant pdf, rounding only.
     assert np.all(pdf_t[:, 1:] == 0.0) and np.allclose(pdf_t[:, 0], 1.0 / 470.0 / 4.0)
     rgb_t = spectrum.to_linear_srgb(radiance, lam_t, pdf_t)
     np.testing.assert_allclose(rgb_t.mean(0), 1.0, atol=MC_SIGMAS * rgb_t.std(0).max() / np.sqrt(n) + WHITE_TOLERANCE)

@@ -26,7 +26,7 @@ def test_orbit_keeps_the_look_at_point_its_distance_and_the_lens(camera, du, dv)
     np.testing.assert_allclose(moved.look_at, camera.look_at, rtol=0, atol=GEOMETRY_TOL)
     assert distance(moved) == pytest.approx(distance(camera), rel=GEOMETRY_TOL)
     assert (moved.vfov, moved.width, moved.height) == (camera.vfov, camera.width, camera.height)
-    assert not np.allclose(moved.position, camera.position)
+    assert not np.allclose(moved.position, camera.position)  # a move of metres: far beyond numpy's default 1e-5/1e-8
 
 
 def test_dragging_right_carries_the_eye_left_and_dragging_down_lifts_it(camera):
@@ -65,7 +65,9 @@ def test_pan_keeps_a_point_at_the_look_at_distance_under_the_pointer(camera, du,
 
 
 def test_dolly_scales_the_distance_and_never_reaches_the_look_at_point(camera):
+    # Default rel 1e-6: one multiplication of the distance.
     assert distance(camera_moves.dolly(camera, 1.0)) == pytest.approx(camera_moves.DOLLY_STEP * distance(camera))
+    # Default rel 1e-6: two divisions of the distance.
     assert distance(camera_moves.dolly(camera, -2.0)) == pytest.approx(distance(camera) / camera_moves.DOLLY_STEP ** 2)
     close = camera_moves.dolly(camera, 1e6)
     assert distance(close) >= camera_moves.MIN_DISTANCE * (1 - ANGLE_TOL)

@@ -108,6 +108,7 @@ def test_camera_mode_drag_and_numeric_fields_move_the_camera(editor, road):
     canvas_event(editor, "down", u=100.0, v=60.0, button=0, shift=False, scale=1.0)
     canvas_event(editor, "move", u=120.0, v=60.0)
     canvas_event(editor, "up", u=120.0, v=60.0)
+    # Default rel 1e-6: the field shows the camera's coordinate (a float widget).
     assert editor._position[2].value == pytest.approx(float(editor.camera.position[2]))
     assert editor.camera.position[2] != road.camera.position[2]
     editor._position[1].value = 3.0
