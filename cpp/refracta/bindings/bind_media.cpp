@@ -169,12 +169,12 @@ std::vector<HotSpot> hot_spots_from_python(const char* model, const py::handle& 
   if (object.is_none()) return spots;
   if (py::isinstance<HotSpot>(object)) return hot_spots_from_python(model, py::make_tuple(object), with_depth, default_depth);
   if (!py::isinstance<py::sequence>(object) || py::isinstance<py::str>(object)) {
-    throw_invalid(model, ": hot_spots must be a HotSpot or a list of them (got ", std::string(py::str(object.get_type())), ")");
+    throw_invalid(model, ": hot_spots must be a HotSpot or a list of them (got ", std::string(py::str(py::type::handle_of(object))), ")");
   }
   for (const py::handle& item : object) {
     if (!py::isinstance<HotSpot>(item)) {
       throw_invalid(model, ": hot_spots[", spots.size(), "] must be a refracta.HotSpot (got ",
-                    std::string(py::str(item.get_type())), ")");
+                    std::string(py::str(py::type::handle_of(item))), ")");
     }
     HotSpot spot = py::cast<HotSpot>(item);
     if (!with_depth && !std::isnan(spot.depth)) {
@@ -192,7 +192,7 @@ std::shared_ptr<const Turbulence> turbulence_from_python(const char* model, py::
   if (object.is_none()) return nullptr;
   if (py::hasattr(object, "layer") && !py::isinstance<Turbulence>(object)) object = object.attr("layer");
   if (!py::isinstance<Turbulence>(object)) {
-    throw_invalid(model, ": turbulence must be a refracta.Turbulence (got ", std::string(py::str(object.get_type())), ")");
+    throw_invalid(model, ": turbulence must be a refracta.Turbulence (got ", std::string(py::str(py::type::handle_of(object))), ")");
   }
   return py::cast<std::shared_ptr<Turbulence>>(object);
 }

@@ -194,12 +194,6 @@ std::vector<Eigen::Vector2d> to_uvs(const py::object& object, size_t count) {
   return out;
 }
 
-DoubleArray image_to_array(const Image& image) {
-  DoubleArray out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(image.channels)});
-  std::copy(image.pixels.begin(), image.pixels.end(), out.mutable_data());
-  return out;
-}
-
 Image array_to_image(const py::object& object) {
   py::array_t<float, py::array::c_style | py::array::forcecast> array;
   try {

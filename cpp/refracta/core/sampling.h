@@ -42,20 +42,6 @@ inline Vec3d sample_uniform_sphere(const Vec2d& u) {
 }
 inline double uniform_sphere_pdf() { return 1.0 / (4.0 * kPi); }
 
-inline Vec3d sample_uniform_hemisphere(const Vec2d& u) {
-  const double z = u.x(), r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * u.y();
-  return Vec3d(r * std::cos(phi), r * std::sin(phi), z);
-}
-inline double uniform_hemisphere_pdf() { return 1.0 / (2.0 * kPi); }
-
-// A uniform direction in the cone about +z with cos(half angle) = cos_max; pdf = 1/(2 pi (1 - cos_max)).
-inline Vec3d sample_uniform_cone(const Vec2d& u, double cos_max) {
-  const double cos_theta = (1.0 - u.x()) + u.x() * cos_max;
-  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta)), phi = 2.0 * kPi * u.y();
-  return Vec3d(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
-}
-inline double uniform_cone_pdf(double cos_max) { return 1.0 / (2.0 * kPi * (1.0 - cos_max)); }
-
 // Barycentric weights (b0, b1, b2) of a uniform point on a triangle (Heitz 2019's
 // low-distortion map, pbrt-v4 SampleUniformTriangle).
 inline Vec3d sample_uniform_triangle(const Vec2d& u) {

@@ -71,7 +71,6 @@ class EditProblem {
   double to_unit(int j, double x) const;
   double from_unit(int j, double u) const;
   double dx_du(int j, double u) const;  // the map's slope
-  bool log_scaled(int j) const { return log_scaled_[j] != 0; }
 
   // Every parameter value with the free ones at x, and the field they make.
   std::vector<double> full_values(const std::vector<double>& x) const;

@@ -27,11 +27,6 @@ class EvaluationContext {
     std::lock_guard<std::mutex> lock(mutex_);
     return failure_;
   }
-  // Forgets the recorded failure (after a stage whose failures are expected and reported apart).
-  void clear_failure() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    failure_.clear();
-  }
 
   // Runs body(); any exception becomes `false` (recorded unless it is a cancellation), because
   // exceptions must not cross Ceres' or nlopt's C frames.

@@ -79,7 +79,10 @@ constexpr StandardLayer kStandardLayers[] = {
     {11000.0, 0.0}, {20000.0, 0.001}, {32000.0, 0.0028}, {47000.0, 0.0}, {51000.0, -0.0028}, {71000.0, -0.002}};
 constexpr double kStandardTop = 84852.0;  // [m'], 86 km geometric
 
-inline double geopotential_height(double h) { return kGeopotentialRadius * h / (kGeopotentialRadius + h); }
+template <class T>
+T geopotential_height(const T& h) {
+  return T(kGeopotentialRadius) * h / (T(kGeopotentialRadius) + h);
+}
 inline double geometric_height(double geopotential) {
   return kGeopotentialRadius * geopotential / (kGeopotentialRadius - geopotential);
 }
@@ -94,7 +97,7 @@ T gravity_ratio(const T& h) {
 // temperature [K] and tropospheric lapse rate [K/m']; above 86 km it stays at the top's value.
 template <class T>
 void standard_temperature(const T& h, const T& ground, const T& lapse, T* temperature, T* slope) {
-  const T geopotential = T(kGeopotentialRadius) * h / (T(kGeopotentialRadius) + h);
+  const T geopotential = geopotential_height(h);
   const double hv = value_of(geopotential);
   if (hv <= kTropopause) {
     *temperature = ground - lapse * geopotential;

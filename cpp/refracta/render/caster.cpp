@@ -210,12 +210,11 @@ PathEnd Caster::cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_l
   bool in_regions = inside_region(origin);
   for (int leg = 0;; ++leg) {
     const bool last = leg + 1 >= kMaxLegs;
-    PathEnd part;
-    if (last || in_regions) {
-      part = cast_in_regions(x, d, max_length - s, spread, s, !last);
-    } else {
-      part = leg == 0 && from_eye ? cast_table(d) : cast_traced(x, d, max_length - s, spread);
-    }
+    // Initialised in one expression: GCC 12 reads a default-constructed PathEnd's empty optionals
+    // as used uninitialised when it is assigned later (-Wuninitialized under -Werror).
+    PathEnd part = last || in_regions     ? cast_in_regions(x, d, max_length - s, spread, s, !last)
+                   : leg == 0 && from_eye ? cast_table(d)
+                                          : cast_traced(x, d, max_length - s, spread);
     chords += part.chords;
     if (!part.handoff || !(part.handoff->s < max_length - s)) {
       part.length += s;
@@ -542,12 +541,12 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
         const double len = d.norm();
         if (chord_blocked(a.x, d / len, len, Handoff{a.x, a.v.normalized(), a.s}, &end)) {
           if (end.handoff) return end;
-          const auto hit = end.hit;
+          const Hit hit = *end.hit;  // set: chord_blocked returned true without a handoff
           // Refine on the segment of the path that crosses the hit's tangent plane: the first
           // whose nodes lie on both sides of it (the chord strays from the path, so the segment
           // under the chord's hit need not be that one), else the one under the chord's hit.
-          const double s_hit = a.s + (b.s - a.s) * std::min(hit->t / len, 1.0);
-          auto side = [&](const RayNode<double>& node) { return hit->normal.dot(node.x - hit->point); };
+          const double s_hit = a.s + (b.s - a.s) * std::min(hit.t / len, 1.0);
+          auto side = [&](const RayNode<double>& node) { return hit.normal.dot(node.x - hit.point); };
           RayNode<double> from = a, to = chord.last == chord.first + 1 ? b : path.node(chord.first + 1);
           RayNode<double> under = from, under_to = to;
           bool crossing = false;
@@ -564,9 +563,9 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
           if (!crossing) from = under, to = under_to;
           const PathSegment<double> seg(from, to);
           const double u0 = seg.length() > 0.0 ? std::clamp((s_hit - from.s) / seg.length(), 0.0, 1.0) : 0.0;
-          const double u = crossing ? refine_on_plane(seg, hit->normal, hit->point, u0, 0.0, 1.0)
-                                    : refine_on_plane(seg, hit->normal, hit->point, u0, -0.5, 1.5);
-          end_at(seg, u, *hit, &end);
+          const double u = crossing ? refine_on_plane(seg, hit.normal, hit.point, u0, 0.0, 1.0)
+                                    : refine_on_plane(seg, hit.normal, hit.point, u0, -0.5, 1.5);
+          end_at(seg, u, hit, &end);
           return end;
         }
       }

@@ -48,7 +48,6 @@ class DirectLighting {
   Spectrum emitted(const SurfaceInteraction& si, const SurfaceInteraction* from, double bsdf_pdf, bool specular,
                    const SampledWavelengths& lambda) const;
 
-  bool has_lights() const { return !scene_.lights().empty(); }
   // n of the air where a distant path from p toward `exit` leaves the modelled range (the straight
   // estimate of its end height, within the field's range), n(p) without a height-only field.
   double distant_ior(const Vec3d& p, const Vec3d& exit) const;
@@ -68,7 +67,6 @@ class DirectLighting {
   PiecewiseConstant1D select_;  // light choice in proportion to power
   bool pre_bend_ = false;
   bool all_lights_ = false;
-  double ior_top_ = 1.0;        // n where distant paths leave the modelled air
 };
 
 }  // namespace refracta

@@ -117,7 +117,6 @@ unsigned Scene::add_mesh(const Mesh& mesh, int material) {
   materials_.push_back(material);
   meshes_.push_back({id, mesh});
   sphere_sets_.push_back(nullptr);
-  triangles_ += triangles.size();
   for (const auto& v : vertices) lower_ = lower_.cwiseMin(v), upper_ = upper_.cwiseMax(v);
   impl_->dirty = true;
   return id;
@@ -203,7 +202,6 @@ void Scene::remove(unsigned geometry) {
   rtcDetachGeometry(impl_->scene, geometry);
   impl_->check();
   impl_->dirty = true;  // the next query commits the scene without it
-  triangles_ -= sphere_sets_[geometry] ? 0 : meshes_[geometry].mesh.triangles.size();
   meshes_[geometry].mesh = Mesh{};
   sphere_sets_[geometry] = nullptr;
   removed_.resize(materials_.size(), false);

@@ -115,9 +115,7 @@ class Scene {
   // The scene's image textures (materials refer to them by id).
   Textures& textures() { return *textures_; }
   const Textures& textures() const { return *textures_; }
-  const std::shared_ptr<Textures>& shared_textures() const { return textures_; }
   size_t geometry_count() const { return materials_.size(); }  // ids 0 .. count - 1, removed ones included
-  size_t triangle_count() const { return triangles_; }
   // Lowest y of any geometry [m] (+inf for an empty scene).
   double lowest() const { return lower_.y(); }
   // Highest y of any geometry [m] (-inf for an empty scene).
@@ -136,7 +134,6 @@ class Scene {
   std::vector<std::shared_ptr<const Spheres>> sphere_sets_;  // null for meshes
   std::vector<bool> removed_;  // by geometry id (shorter: the rest not removed)
   std::shared_ptr<Textures> textures_ = std::make_shared<Textures>();
-  size_t triangles_ = 0;
   Vec3d lower_ = Vec3d::Constant(std::numeric_limits<double>::infinity());
   Vec3d upper_ = Vec3d::Constant(-std::numeric_limits<double>::infinity());
 };

@@ -45,7 +45,6 @@ class AreaLight final : public Light {
   std::string describe() const override;
 
   const Mesh& mesh() const { return *mesh_; }
-  const std::shared_ptr<const Mesh>& shared_mesh() const { return mesh_; }
   // The front normal of a triangle (unit; zero for a zero-area triangle).
   const Vec3d& normal(size_t triangle) const { return normals_.at(triangle); }
   double area() const { return area_; }
