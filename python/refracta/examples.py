@@ -8,6 +8,7 @@ ATMOSPHERES maps a name to (field, eye height [m], elevations [deg], max length 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -124,14 +125,147 @@ def hot_road(width: int = 640, height: int = 320) -> Example:
     return Example("hot_road", scene, camera, field, 12000.0, hot_road.__doc__ or "")  # None under python -OO
 
 
+def _fbm(rng, x, z, scale, octaves=5, gain=0.5):
+    """Fractal value noise (sum of `octaves` octaves, each twice the frequency and `gain` times the
+    amplitude of the last) at points (x, z) [m], features of `scale` [m] in the first octave; values
+    roughly in [-1, 1]. Each octave: random values on a square lattice, interpolated by smoothstep."""
+    total, amplitude, norm = np.zeros(np.broadcast(x, z).shape), 1.0, 0.0
+    for octave in range(octaves):
+        cell = scale / 2.0**octave
+        u, v = (x - x.min()) / cell, (z - z.min()) / cell
+        i, j = np.floor(u).astype(int), np.floor(v).astype(int)
+        lattice = rng.uniform(-1.0, 1.0, (int(i.max()) + 2, int(j.max()) + 2))
+        fu, fv = u - i, v - j
+        fu, fv = fu * fu * (3 - 2 * fu), fv * fv * (3 - 2 * fv)
+        top = lattice[i, j] * (1 - fv) + lattice[i, j + 1] * fv
+        bottom = lattice[i + 1, j] * (1 - fv) + lattice[i + 1, j + 1] * fv
+        total = total + amplitude * (top * (1 - fu) + bottom * fu)
+        norm += amplitude
+        amplitude *= gain
+    return total / norm
+
+
+def _smoothstep(t):
+    t = np.clip(t, 0.0, 1.0)
+    return t * t * (3.0 - 2.0 * t)
+
+
+# Rock, tundra, shingle and snow of a northern coast (diffuse albedos; Kokaly et al. 2017, USGS
+# spectral library: dark basalt ~0.1, lichen tundra ~0.15-0.2, old snow ~0.8).
+COAST_COLOURS = {"rock": (0.11, 0.1, 0.09), "tundra": (0.2, 0.18, 0.11), "shingle": (0.3, 0.28, 0.25),
+                 "snow": (0.8, 0.82, 0.86)}
+
+
+def _coast_texture(name, colours):
+    """Write the (rows, columns, 3) linear albedo `colours` as a float EXR texture (kept linear)
+    under the temporary folder, once per content, and return its path."""
+    import hashlib
+    import os
+    import tempfile
+
+    from refracta import io
+
+    colours = np.ascontiguousarray(colours, dtype=np.float32)
+    folder = os.path.join(tempfile.gettempdir(), "refracta_examples")
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, f"{name}_{hashlib.sha1(colours.tobytes()).hexdigest()[:16]}.exr")
+    if not os.path.exists(path):
+        partial = f"{path}.{os.getpid()}.exr"  # written whole, then renamed: safe for parallel builders
+        io.write_image(partial, colours)
+        os.replace(partial, path)
+    return path
+
+
+def _coast(scene, distance, rng, z_range, peak, depth=3000.0, cell=(20.0, 5.0), tip=None, snow_line=None,
+           rise=600.0, inlets=False, name="coast"):
+    """A coastline `distance` [m] away (+x) over z in z_range [m]: one height-field mesh of fractal
+    noise (_fbm) -- hills up to ~`peak` [m] rising over `rise` [m] from a shore that wanders by a few
+    hundred metres into bays and headlands, the sea bed sloping away below it -- on `cell` (dx, dz)
+    [m] nodes, smooth-shaded. tip: z [m] past which the land sinks into the sea over 300 m (a
+    headland). inlets: valleys down to the sea cut the land into headlands every few hundred m.
+    Its albedo, a texture over the mesh: rock where steep, shingle at the waterline, snow above
+    `snow_line` [m] where gentle (None: none), tundra elsewhere, blended smoothly. Returns the
+    nodes' x [m], z [m] and heights (len(x), len(z)) [m]."""
+    x = np.arange(distance - 500.0, distance + depth, cell[0])
+    z = np.arange(z_range[0], z_range[1] + cell[1], cell[1])
+    X, Z = np.meshgrid(x, z, indexing="ij")
+    shore = distance + 260.0 * _fbm(rng, np.zeros_like(z), z, 700.0, octaves=4)
+    inland = X - shore[None, :]
+    relief = np.clip(0.55 + 0.9 * _fbm(rng, X, Z, 1200.0, octaves=6), 0.05, None)
+    height = peak * relief ** 1.4 * _smoothstep(inland / rise) + 6.0 * _smoothstep(inland / 40.0)
+    if inlets:
+        height = height * _smoothstep((_fbm(rng, np.zeros_like(Z), Z, 260.0, octaves=3) + 0.05) / 0.2)
+    if tip is not None:
+        height = height * _smoothstep((tip + 300.0 - Z) / 300.0) - 8.0 * _smoothstep((Z - tip) / 300.0)
+    height = np.where(inland < 0.0, np.minimum(height, 0.04 * inland), height)  # the sea bed: 4 % down
+    nx, nz = X.shape
+    vertices = np.stack([X, height, Z], axis=-1).reshape(-1, 3)
+    gx, gz = np.gradient(height, cell[0], cell[1])
+    normals = np.stack([-gx, np.ones_like(height), -gz], axis=-1)
+    normals /= np.linalg.norm(normals, axis=-1, keepdims=True)
+    index = np.arange(nx * nz).reshape(nx, nz)
+    a, b, c, d = index[:-1, :-1], index[1:, :-1], index[1:, 1:], index[:-1, 1:]
+    # Counter-clockwise seen from above (+y): x then z is clockwise, so (a, d, c) and (a, c, b).
+    triangles = np.concatenate([np.stack([a, d, c], -1).reshape(-1, 3), np.stack([a, c, b], -1).reshape(-1, 3)])
+    triangles = triangles[height.reshape(-1)[triangles].max(axis=1) > -2.0]  # the sea bed out of sight
+    # The albedo at every node, blended by weights in [0, 1].
+    slope = np.hypot(gx, gz)
+    speckle = _fbm(rng, X, Z, 120.0, octaves=4)  # patchy snow and outcrops
+    colour = {k: np.array(v) for k, v in COAST_COLOURS.items()}
+    rock = _smoothstep((slope + 0.3 * speckle - 0.3) / 0.25)[..., None]
+    albedo = colour["tundra"] * (1 - rock) + colour["rock"] * rock
+    if snow_line is not None:
+        snow = (_smoothstep((height + 50.0 * speckle - snow_line) / 25.0) * (1 - _smoothstep((slope - 0.35) / 0.2)))
+        albedo = albedo * (1 - snow[..., None]) + colour["snow"] * snow[..., None]
+    wet = (1 - _smoothstep((height - 1.0) / 4.0))[..., None]
+    albedo = albedo * (1 - wet) + colour["shingle"] * wet
+    # uvs: u along z, v along x; the texture's first row is v = 1 (the far side).
+    uvs = np.stack([(Z - z[0]) / (z[-1] - z[0]), (X - x[0]) / (x[-1] - x[0])], axis=-1).reshape(-1, 2)
+    texture = _coast_texture(name, albedo[::-1])
+    scene.add_mesh(vertices, triangles, material=shading.Diffuse(1.0, texture=texture),
+                   normals=normals.reshape(-1, 3), uvs=uvs)
+    return x, z, height
+
+
+def _houses(scene, coast, rng, count, size=(9.0, 7.0, 12.0), ground=1.0):
+    """`count` white houses with dark roofs on the land of `coast` (the (x, z, height) _coast
+    returns): each at a random z where the land rises above `ground` [m], on its first node there
+    along x (the seaward edge: a village along the shore)."""
+    x, z, height = coast
+    walls, roof = shading.Diffuse((0.78, 0.76, 0.7)), shading.Diffuse((0.12, 0.08, 0.07))
+    columns = rng.choice(np.flatnonzero(height.max(axis=0) > ground + 4.0), size=count, replace=False)
+    for j in columns:
+        i = int(np.argmax(height[:, j] > ground)) + 1
+        base = float(height[i, j])
+        scene.add_box((x[i] + size[0] / 2, base + size[1] / 2 - 1.0, z[j]), (size[0], size[1] + 2.0, size[2]),
+                      material=walls)
+        scene.add_box((x[i] + size[0] / 2, base + size[1] + 1.0, z[j]), (size[0] + 1.0, 2.0, size[2] + 1.0),
+                      material=roof)
+
+
+SHIP_HEIGHT = 28.0  # [m] _ship's funnel top above the waterline at scale 1 (its length 110 m)
+SHIP_HULL = 8.0  # [m] the top of its hull at scale 1 (the superstructure, funnel and masts stand above)
+
+
 def _ship(scene, x, z, scale=1.0):
-    """A freighter of boxes: dark hull (painted steel), white superstructure, red funnel."""
+    """A freighter broadside on (its length along z): a dark hull (painted steel) with a raised
+    forecastle, a white superstructure aft, a red funnel, two masts and a deck cargo of boxes."""
+    s = scale
     hull = shading.Principled(base_color=(0.05, 0.06, 0.08), roughness=0.5)
-    scene.add_box((x, 4.0 * scale, z), (18.0 * scale, 8.0 * scale, 110.0 * scale), material=hull)
-    scene.add_box((x, 12.0 * scale, z + 20 * scale), (14.0 * scale, 8.0 * scale, 30.0 * scale),
-                  material=shading.Plastic(reflectance=(0.8, 0.8, 0.76), alpha=0.3))
-    scene.add_box((x, 21.0 * scale, z + 25 * scale), (4.0 * scale, 10.0 * scale, 4.0 * scale),
+    white = shading.Plastic(reflectance=(0.8, 0.8, 0.76), alpha=0.3)
+    scene.add_box((x, SHIP_HULL / 2 * s, z), (18.0 * s, SHIP_HULL * s, 110.0 * s), material=hull)
+    scene.add_box((x, 9.0 * s, z - 46.0 * s), (16.0 * s, 2.0 * s, 18.0 * s), material=hull)  # forecastle
+    scene.add_box((x, 13.0 * s, z + 38.0 * s), (14.0 * s, 10.0 * s, 22.0 * s), material=white)
+    scene.add_box((x, 19.0 * s, z + 38.0 * s), (12.0 * s, 2.5 * s, 26.0 * s), material=white)  # bridge wings
+    scene.add_box((x, (SHIP_HEIGHT - 5.0) * s, z + 44.0 * s), (4.5 * s, 10.0 * s, 4.5 * s),
                   material=shading.Plastic(reflectance=(0.6, 0.1, 0.06), alpha=0.3))
+    mast = shading.Diffuse((0.5, 0.48, 0.45))
+    for dz, top in ((-44.0, 24.0), (-5.0, 22.0)):
+        scene.add_box((x, (8.0 + top) / 2 * s, z + dz * s), (0.8 * s, (top - 8.0) * s, 0.8 * s), material=mast)
+    cargo = [(0.55, 0.12, 0.08), (0.1, 0.25, 0.45), (0.45, 0.4, 0.1)]
+    for i, dz in enumerate((-30.0, -18.0, 8.0, 20.0)):
+        scene.add_box((x, 10.0 * s, z + dz * s), (14.0 * s, 4.0 * s, 10.0 * s),
+                      material=shading.Diffuse(cargo[i % 3]))
 
 
 def _sea(wind_speed: float = 5.0, temperature_c: float = 10.0):
@@ -140,56 +274,68 @@ def _sea(wind_speed: float = 5.0, temperature_c: float = 10.0):
     return shading.Water(wind_speed=wind_speed, temperature_c=temperature_c)
 
 
-def _coast(scene, distance, rng, half_width=2500.0, heights=(20.0, 90.0), spacing=140.0):
-    """A low coastline `distance` [m] away: hills, headlands and white houses as boxes 60-150 m
-    across every `spacing` [m]."""
-    land = [(0.3, 0.3, 0.2), (0.25, 0.28, 0.18), (0.55, 0.5, 0.4), (0.4, 0.33, 0.25), (0.8, 0.78, 0.72)]
-    for z in np.arange(-half_width, half_width, spacing):
-        h = float(rng.uniform(*heights))
-        x, width = distance + float(rng.uniform(0.0, 400.0)), float(rng.uniform(60.0, 150.0))
-        scene.add_box((x, h / 2, z), (300.0, h, width), material=shading.Diffuse(land[int(rng.integers(len(land)))]))
-
-
-# Clear polar air over a cold sea: 80 km of meteorological visibility leaves a coast 36 km away
-# 17 % of its contrast (Koschmieder, exp(-3.912 d / V)); 30 km would leave 1 %.
+# Clear polar air over a cold sea: 80 km of meteorological visibility leaves a coast 30 km away
+# 23 % of its contrast (Koschmieder, exp(-3.912 d / V)); 30 km would leave 2 %.
 COLD_SEA_VISIBILITY = 80.0  # [km]
 # Over the sea photographers use long lenses: 1000 mm on full frame sees 2.06 deg across, and at
 # 8:3 0.77 deg high -- the few tenths of a degree where looming and the superior mirage live.
 SEA_FOCAL_LENGTH = 1000.0  # [mm]
+# The cold sea's inversion: +10 K between 20 and 30 m over water at 5 deg C (1 K/m: the strong
+# Arctic inversions that show ships' inverted images; Lehn 1979, Wegener 1918). The eye at 5 m is
+# under it; rays rising 0.0-0.1 deg are bent back down by it and meet a ship 20 km away from above.
+COLD_SEA_INVERSION: dict[str, Any] = dict(
+    t_ground=278.15, inversion_dt=10.0, inversion_base=20.0, inversion_thickness=10.0
+)
+COLD_SEA_EYE = 5.0  # [m]
+COLD_SEA_SHIP = (20000.0, 220.0)  # [m] (x, z) of the freighter, against the open horizon
+COLD_SEA_COAST = 30000.0  # [m]
 
 
 def cold_sea(width: int = 640, height: int = 240) -> Example:
-    """Looming and a superior mirage over a cold sea on the curved Earth: warm air +7 K over the
-    lowest 50 m (stronger than the 0.13 K/m that bends rays with the Earth) lifts a freighter 28 km
-    away, below the geometric horizon of the 5 m eye, and a coast 36-40 km away into view,
-    stretched tall (its 110-125 m slice is also imaged inverted above the erect image, but
-    against the light the coast is a silhouette and its images merge into one towering wall).
-    Evening: the sun 3 deg high, 0.5 deg left of the view's centre (above the frame), lays a
-    glitter path on the water (shading.Water, 4 m/s wind, 5 deg C); the clear polar air
-    (visibility 80 km) greys the distance. A 1000 mm lens."""
+    """A superior mirage over a cold sea on the curved Earth: a sharp inversion (+10 K between 20 and
+    30 m, COLD_SEA_INVERSION) over water at 5 deg C. A freighter 20 km away, hull-down to the 5 m
+    eye, shows its upper part erect and above it its whole image upside down, stretched, against
+    the bright horizon sky; a smaller ship 13 km away shows erect, inverted and erect again; the
+    foot of a snow-patched coast 30 km away (a fractal height field) is drawn out into a thin
+    inverted strip and its hills loom above the horizon. Afternoon: the sun 12 deg high behind
+    the camera's left shoulder lights the ships and the coast; the clear polar air (visibility
+    80 km) greys the distance; the sea is shading.Water (Cox-Munk, 4 m/s wind, 5 deg C: at these
+    ranges one pixel spans 10-60 m of sea, many waves, so the microfacet statistics are the
+    resolved picture). A 1000 mm lens."""
     scene = _core.Scene()
-    set_physical_sky(scene, sun_direction(3.0, -0.5), visibility=COLD_SEA_VISIBILITY)
+    set_physical_sky(scene, sun_direction(12.0, -150.0), visibility=COLD_SEA_VISIBILITY)
     scene.add_ground(0.0, 120000.0, material=_sea(4.0, 5.0))
-    _ship(scene, 28000.0, -150.0)
-    _ship(scene, 19000.0, 260.0, scale=0.7)
-    _coast(scene, 36000.0, np.random.default_rng(11), heights=(40.0, 140.0))
-    base = _core.PhysicalAtmosphere(t_ground=278.15, inversion_dt=7.0, inversion_base=0.0, inversion_thickness=50.0)
-    field = _core.CurvedEarth(base)
+    _ship(scene, *COLD_SEA_SHIP)
+    _ship(scene, 13000.0, -120.0, scale=0.7)
+    _coast(scene, COLD_SEA_COAST, np.random.default_rng(11), (-1500.0, 400.0), peak=170.0, tip=-150.0,
+           snow_line=110.0, name="cold_sea_coast")
+    field = _core.CurvedEarth(_core.PhysicalAtmosphere(**COLD_SEA_INVERSION))
     look = np.radians(0.1)
-    camera = _core.Camera.photographic((0.0, 5.0, 0.0), (30000.0, 5.0 + 30000.0 * np.tan(look), 0.0),
+    eye = COLD_SEA_EYE
+    camera = _core.Camera.photographic((0.0, eye, 0.0), (30000.0, eye + 30000.0 * np.tan(look), 0.0),
                                        SEA_FOCAL_LENGTH, width=width, height=height)
     return Example("cold_sea", scene, camera, field, 41000.0, cold_sea.__doc__ or "")
 
 
+# Arctic air after a cold front: 150 km visibility leaves the coast 20 km away 59 % of its contrast.
+FATA_MORGANA_VISIBILITY = 150.0  # [km]
+
+
 def fata_morgana(width: int = 640, height: int = 240) -> Example:
     """Fata Morgana: a sharp inversion just above the eye (+10 K between 12 and 20 m) over cold
-    water stacks a coastline 20 km away: its lower 16-43 m shown erect, above it the same
-    heights inverted, stretched into walls and towers; an afternoon sun 15 deg high behind the
-    left shoulder, clear air (visibility 80 km); a 1000 mm lens from 14 m (a ship's bridge)."""
+    water stacks a coast 20 km away (a fractal height field cut by inlets, cliffs and a village of
+    white houses along the shore): the lowest ~10 m of the shore shown erect and above them the
+    same heights upside down, each stretched about six-fold into walls and towers (an inlet
+    becomes an oval of sky); above them a band of mirrored sea and the hill tops. An afternoon sun
+    15 deg high behind the left shoulder, clear Arctic air (visibility 150 km); a 1000 mm lens
+    from 14 m (a ship's bridge)."""
     scene = _core.Scene()
-    set_physical_sky(scene, sun_direction(15.0, -140.0), visibility=COLD_SEA_VISIBILITY)
+    set_physical_sky(scene, sun_direction(15.0, -140.0), visibility=FATA_MORGANA_VISIBILITY)
     scene.add_ground(0.0, 140000.0, material=_sea(6.0, 3.0))
-    _coast(scene, 20000.0, np.random.default_rng(7), half_width=1000.0, heights=(10.0, 45.0), spacing=120.0)
+    rng = np.random.default_rng(7)
+    coast = _coast(scene, 20000.0, rng, (-700.0, 700.0), peak=70.0, rise=60.0, cell=(10.0, 4.0), inlets=True,
+                   name="fata_morgana_coast")
+    _houses(scene, coast, rng, 14)
     base = _core.PhysicalAtmosphere(t_ground=276.15, inversion_dt=10.0, inversion_base=12.0, inversion_thickness=8.0)
     field = _core.CurvedEarth(base)
     look = np.radians(0.02)

@@ -108,3 +108,142 @@ def test_hot_road_default_view_shows_a_wet_road_band_of_a_tenth_of_its_height():
                and ASPHALT[0] < abs(p[2]) < ASPHALT[1]]
     assert len(asphalt) > camera.width
     assert mirage > MIRAGE_OVER_ROAD * np.mean(asphalt), (mirage, np.mean(asphalt))
+
+
+def _crossing_height(path, x):
+    """The height [m] at which a traced path first reaches the plane at `x` [m] (None if it ends
+    before: at the sea or at max_length), linear between its nodes."""
+    points = np.asarray(path.points)
+    beyond = np.flatnonzero(points[:, 0] >= x)
+    if not len(beyond) or beyond[0] == 0:
+        return None
+    a, b = points[beyond[0] - 1], points[beyond[0]]
+    return float(a[1] + (x - a[0]) / (b[0] - a[0]) * (b[1] - a[1]))
+
+
+def _column_heights(example, field, column, x):
+    """Per image row (top first) of `column`: the height at which the camera ray, traced through
+    `field` (rk45, the sea at height 0 stopping it), reaches the plane at x."""
+    camera = example.camera
+    heights = []
+    for v in range(camera.height):
+        origin, direction = camera.ray(column + 0.5, v + 0.5)
+        path = refracta.trace_ray(field, origin, direction, max_length=example.max_length,
+                                  stop_height=0.0)
+        heights.append(_crossing_height(path, x))
+    return heights
+
+
+def _images(heights, top):
+    """The runs of consecutive rows whose rays meet the plane between heights 0 and `top`, each as
+    (rows, 'erect' or 'inverted'): erect where the height met rises from one row to the one above
+    it, inverted where it falls (a row's orientation is that of the step to the row above)."""
+    runs = []
+    for v in range(1, len(heights)):
+        below, above = heights[v], heights[v - 1]
+        if below is None or above is None or not (0.0 <= below <= top and 0.0 <= above <= top):
+            continue
+        kind = "erect" if above > below else "inverted"
+        if runs and runs[-1][1] == kind and runs[-1][0][-1] == v - 1:
+            runs[-1][0].append(v)
+        else:
+            runs.append(([v], kind))
+    return runs
+
+
+# The superior mirage (issue 19): cold_sea's freighter, hull-down 20 km away, is seen erect and
+# above it upside down. Camera rays through the column of the ship, traced through the inversion,
+# meet the ship's plane at heights that rise row by row (the erect image), then fall (the
+# inverted image above it); without the atmosphere they only rise.
+SEA_VIEW = (160, 60)  # the default 640 x 240 at a quarter: the same lens and aspect, the same angles
+INVERTED_SPAN = 2 / 3  # the inverted image shows at least 2/3 of the ship's height: the ship, not a sliver
+# Rows of a 60-row view are 0.77/60 = 0.013 deg apart; at 20 km the inverted rays' heights change
+# by ~2 m a row there (the profile's dh/de), so a run's span is sampled to within a row's step.
+
+
+def test_cold_sea_shows_the_freighter_erect_and_upside_down_above_it_against_the_sky():
+    example = examples.cold_sea(*SEA_VIEW)
+    assert example.camera.vfov == pytest.approx(examples.cold_sea().camera.vfov, rel=1e-12)
+    camera, field = example.camera, example.field
+    x, z = examples.COLD_SEA_SHIP
+    column = int(camera.project([x, examples.SHIP_HEIGHT / 2, z])[0])
+    heights = _column_heights(example, field, column, x)
+    runs = _images(heights, examples.SHIP_HEIGHT)
+    erect = [rows for rows, kind in runs if kind == "erect"]
+    inverted = [rows for rows, kind in runs if kind == "inverted"]
+    assert erect and inverted, runs
+    # The (largest) inverted image lies above an erect one (smaller rows are higher in the image) ...
+    image = max(inverted, key=len)
+    assert any(rows[0] >= image[-1] for rows in erect), runs
+    # ... and shows most of the ship upside down, from near its top down toward its waterline.
+    seen = [heights[v] for v in image] + [heights[image[0] - 1]]
+    assert max(seen) - min(seen) >= INVERTED_SPAN * examples.SHIP_HEIGHT, seen
+    # Against the sky: beside the ship, in a column through the open horizon (past the ship's
+    # stern and the coast's headland), the rays of the inverted image's lower rows -- the
+    # superstructure and funnel upside down -- meet nothing and run to max_length, where they see
+    # the sky. At least half of its rows: the inverted hull at its top borders the band of sea
+    # the inversion lifts into view (those rays come down onto the water 20-30 km out).
+    stern = camera.project([x, examples.SHIP_HEIGHT / 2, z + 0.5 * 110.0 + 40.0])[0]
+    open_column = int(np.ceil(stern))
+    assert open_column < camera.width
+
+    def sees_sky(v):
+        origin, direction = camera.ray(open_column + 0.5, v + 0.5)
+        path = refracta.trace_ray(field, origin, direction, max_length=example.max_length, stop_height=0.0)
+        return path.stop == "max_length"
+
+    against_sky = [v for v in image if sees_sky(v)]
+    assert len(against_sky) >= len(image) / 2, (image, against_sky)
+    assert against_sky == image[len(image) - len(against_sky):], (image, against_sky)  # its lower part
+    assert min(heights[v] for v in against_sky) > examples.SHIP_HULL  # above the hull: the superstructure
+    # Without the atmosphere the same column shows the ship (what the bulge leaves of it) erect only.
+    straight = _images(_column_heights(example, refracta.without_refraction(field), column, x), examples.SHIP_HEIGHT)
+    assert all(kind == "erect" for _, kind in straight), straight
+
+
+# Fata Morgana (issue 19): the sharp inversion just above the eye stacks the coast 20 km away --
+# its foot erect, and above it the same heights again upside down -- in every column.
+FATA_MORGANA_FACE = 19500.0  # [m] a plane just before the coast's shore (20 km, wandering by ~150 m)
+COAST_FOOT = 30.0  # [m] the heights of the shore the test follows (the inversion's base is 12 m)
+
+
+def test_fata_morgana_stacks_the_coast_erect_and_inverted():
+    example = examples.fata_morgana(*SEA_VIEW)
+    assert example.camera.vfov == pytest.approx(examples.fata_morgana().camera.vfov, rel=1e-12)
+    heights = _column_heights(example, example.field, example.camera.width // 2, FATA_MORGANA_FACE)
+    kinds = [kind for _, kind in _images(heights, COAST_FOOT)]
+    assert kinds[-2:] == ["inverted", "erect"], kinds  # from the bottom up: erect, then inverted above it
+    straight = _column_heights(example, refracta.without_refraction(example.field), example.camera.width // 2,
+                               FATA_MORGANA_FACE)
+    assert [kind for _, kind in _images(straight, COAST_FOOT)] in ([], ["erect"])
+
+
+# The green flash (issue 19): frames of at least 512 px, and the sky around the setting sun shown,
+# not black. The disc is ~3e5 times as bright as the sky beside it (38 air masses dim the sun and
+# the single-scattered aureole more), beyond any one exposure: the demo exposes for the sky and
+# maps the luminance by Reinhard's curve with the hue kept, so the disc clips to its own colour.
+GREEN_FLASH_MIN_SIZE = 512  # [px] each frame
+VISIBLE = 0.1  # displayed (sRGB) value: ~1 % of white in linear light, a dark tone clearly above black
+NOT_WHITE = 0.7  # the clipped disc keeps its hue: its blue below 0.7 of its red (white: equal)
+
+
+def test_green_flash_frames_are_large_and_show_the_sky_around_the_red_disc():
+    from refracta import cli
+
+    assert cli.GREEN_FLASH_SIZE >= GREEN_FLASH_MIN_SIZE
+    elevation, vfov = cli.GREEN_FLASH_FRAMES[0]
+    size = 32  # the first frame's view (the whole flattened disc) at a few pixels
+    example = examples.green_flash(size, size, elevation)
+    look, eye = np.radians(cli.GREEN_FLASH_LOOK[vfov]), example.camera.position
+    camera = refracta.Camera(eye, eye + [np.cos(look), np.sin(look), 0.0], vfov=vfov, width=size, height=size)
+    image = refracta.render(example.scene, camera, example.field, max_length=example.max_length, spectral=True,
+                            spp=4, progress=False)
+    shown = cli.green_flash_display([np.maximum(image, 0.0)])[0]
+    # The sky: pixels above the horizon whose radiance is far below the disc's (its corners).
+    horizon = camera.project(np.asarray(eye) + [1e7, 0.0, 0.0])[1]
+    lum = luminance(image)
+    sky = (np.arange(size)[:, None] + 0.5 < horizon) & (lum < 1e-3 * lum.max())
+    assert sky.sum() >= size, sky.sum()
+    assert np.median(luminance(shown)[sky]) > VISIBLE
+    disc = shown[np.unravel_index(np.argmax(lum), lum.shape)]
+    assert disc[0] >= disc[1] >= disc[2] and disc[2] < NOT_WHITE * disc[0], disc
