@@ -1,4 +1,5 @@
-"""Every long operation stops within 1 s of Ctrl-C (DESIGN.md: "stops promptly on Ctrl-C"; issues 13, 22, 23).
+"""Every long operation stops promptly on Ctrl-C (DESIGN.md; issues 13, 22, 23): within a second on
+a machine that is not overloaded, and within LATENCY_BOUND (2 s) on a busy one.
 
 One child process (interrupt_child.py) runs each operation in turn; it prints `start <name>` once
 the work is under way (its progress callback's first call), the test sends it SIGINT
@@ -6,8 +7,9 @@ WORK_BEFORE_SIGNAL later and measures the time until the child reports the Keybo
 Every operation would run for minutes, so a slow or busy machine cannot finish it first: the
 only property asserted is the latency. C++ work polls its cancel flags at every pixel, sample,
 ray step (every 64 field evaluations in the stratified tracer) and optimiser evaluation, and the
-waiting thread checks for signals every 50 ms; measured latencies are 0.01-0.1 s on 2 cores with
-two CPU burners beside them, so 1 s leaves a margin of 10x."""
+waiting thread checks for signals every 50 ms. Measured latencies: 0.01-0.1 s on 2 idle cores;
+with two CPU burners beside the test and other engineers' builds (load average 13 on 2 cores)
+0.03-0.57 s (trace_rays' 2e6 rays the slowest)."""
 
 import os
 import signal
@@ -21,7 +23,9 @@ import pytest
 
 import refracta
 
-LATENCY_BOUND = 1.0        # [s] the property asserted
+# [s] the property asserted: 3.5x the worst latency measured at load average 13 on 2 cores (0.57 s),
+# so a CI machine that busy passes, while work that stopped polling (minutes here) still fails.
+LATENCY_BOUND = 2.0
 WORK_BEFORE_SIGNAL = 0.5   # [s] after the work has started; every operation would run for minutes more
 HANG_GUARD = 60.0          # [s] a bound against a hang of the whole child, not a timing assertion
 
@@ -31,7 +35,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.mark.slow
-def test_every_long_operation_stops_within_a_second_of_ctrl_c():
+def test_every_long_operation_stops_promptly_on_ctrl_c():
     latencies = {}
     with subprocess.Popen([sys.executable, "-m", "tests.hardening.interrupt_child", *OPERATIONS], cwd=ROOT,
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as child:
@@ -55,12 +59,12 @@ def test_every_long_operation_stops_within_a_second_of_ctrl_c():
 # SIGINT before the waiting loop's first check (interruptible.h polls every 50 ms): CPython's C
 # handler only marks the signal as tripped, and the mark stays until the main thread's next
 # PyErr_CheckSignals, which the loop's first check is, so an early signal is late by at most
-# that first period (measured 0.003-0.09 s, with two CPU burners too), never lost.
+# that first period (measured 0.003-0.09 s idle, up to 0.15 s at load average 13), never lost.
 EARLY_TRIALS = 15  # printed by earliest_interrupt_child: 4 renders, 5 first evaluations, 6 sweeps
 
 
 @pytest.mark.slow
-def test_ctrl_c_at_the_earliest_moment_of_a_call_still_stops_it_within_a_second():
+def test_ctrl_c_at_the_earliest_moment_of_a_call_still_stops_it_promptly():
     child = subprocess.run([sys.executable, "-m", "tests.hardening.earliest_interrupt_child"], cwd=ROOT,
                            capture_output=True, text=True, timeout=HANG_GUARD)
     assert child.returncode == 0, child.stderr

