@@ -44,3 +44,7 @@ _._show_mode
 # Attributes the tests set on third-party objects, read by that library.
 _.sh_frame  # mitsuba SurfaceInteraction3f.sh_frame (tests/shading/*mitsuba*.py)
 _.binary_location  # selenium ChromeOptions.binary_location (tests/widgets/test_07_browser.py)
+
+# Read by tqdm on the bar's class when a bar is made: 0 turns its monitor thread off
+# (refracta._progress: the progress calls come every 50 ms).
+_.monitor_interval
