@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'Dielectric', 'Diffuse', 'DispersedField', 'EnvironmentLight', 'HotSpot', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'NumericalError', 'OceanWaves', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RayPath', 'RenderOptions', 'RoughConductor', 'RoughDielectric', 'Scene', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'Water', 'air_dispersion_scale', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'thin_film_reflectance', 'trace_ray', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
+__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW', 'Dielectric', 'Diffuse', 'DispersedField', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MomentShadowSettings', 'NumericalError', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -56,6 +56,121 @@ class HotSpot:
     @property
     def z(self) -> float:
         ...
+class TurbulenceSettings:
+    """
+    The settings of refracta.Turbulence, with their defaults (defined once, here; see
+    media/turbulence_synthesis.h for their reasons). validate() reports every bad value at once, and a
+    grid too large for max_bytes. Pickles through its fields.
+    """
+    @staticmethod
+    def from_fields(**kwargs) -> TurbulenceSettings:
+        """
+        Settings with the given fields set (the rest at their defaults), validated.
+        """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def cell_count(self) -> int:
+        """
+        N: cells, or from size and spacing, or 256.
+        """
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field.
+        """
+    @property
+    def cells(self) -> int | None:
+        """
+        N: the grid is N^3 (None: from size, else 256)
+        """
+    @cells.setter
+    def cells(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def cn2(self) -> float:
+        """
+        C_n^2 [m^(-2/3)] at the ground (>= 0)
+        """
+    @cn2.setter
+    def cn2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def depth(self) -> float | None:
+        """
+        [m] the envelope e^(-h/depth); None: uniform
+        """
+    @depth.setter
+    def depth(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def inner_scale(self) -> float:
+        """
+        inner scale l0 [m]: cutoff kappa_m = 5.92 / l0
+        """
+    @inner_scale.setter
+    def inner_scale(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_bytes(self) -> float | None:
+        """
+        refuse a grid whose FFT work arrays need more [bytes] (None: half this machine; inf: no limit)
+        """
+    @max_bytes.setter
+    def max_bytes(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def outer_scale(self) -> float:
+        """
+        von Karman outer scale L0 [m] (inf: the tile)
+        """
+    @outer_scale.setter
+    def outer_scale(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        """
+        the random pattern (same seed and grid, same pattern)
+        """
+    @seed.setter
+    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def size(self) -> float | None:
+        """
+        [m] the tile, cells = ceil(size / spacing) (None: from cells)
+        """
+    @size.setter
+    def size(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def spacing(self) -> float:
+        """
+        the grid's cell [m]
+        """
+    @spacing.setter
+    def spacing(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def wind(self) -> tuple[float, float]:
+        """
+        (u, w) [m/s] along x and z: at_time(t) shifts the pattern by (u t, 0, w t)
+        """
+    @wind.setter
+    def wind(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def yaw(self) -> float:
+        """
+        [rad] the lattice's turn about the vertical
+        """
+    @yaw.setter
+    def yaw(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class TurbulenceGrid:
     """
     A periodic uniform cubic B-spline over a 3-D grid: TurbulenceGrid(coefficients (nx, ny, nz) float32,
@@ -92,6 +207,11 @@ class TurbulenceLayer:
     e^(-h/depth) above the ground (none for depth = inf), the lattice turned by yaw [rad] about the
     vertical. Made by refracta.Turbulence (its `layer`).
     """
+    @staticmethod
+    def of(settings: TurbulenceSettings, grid: TurbulenceGrid, time: typing.SupportsFloat | typing.SupportsIndex) -> TurbulenceLayer:
+        """
+        The layer of `settings` over `grid`: scaled by sqrt(cn2), carried by the wind to time [s].
+        """
     def __getstate__(self) -> tuple[TurbulenceGrid, float, tuple[float, float, float], float, float]:
         ...
     def __init__(self, grid: TurbulenceGrid, scale: typing.SupportsFloat | typing.SupportsIndex, offset: typing.Any, depth: typing.SupportsFloat | typing.SupportsIndex, yaw: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
@@ -119,6 +239,13 @@ class TurbulenceLayer:
         """
         The lattice's turn about the vertical [rad].
         """
+class _TurbulenceSpectrum:
+    def __init__(self, cells: typing.SupportsInt | typing.SupportsIndex, spacing: typing.SupportsFloat | typing.SupportsIndex, inner_scale: typing.SupportsFloat | typing.SupportsIndex, outer_scale: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def variances(self, i: typing.SupportsInt | typing.SupportsIndex, j: typing.Any, k: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        sigma^2 at lattice indices (i, j[a], k[b]) as a (len(j), len(k)) array (C_n^2 = 1).
+        """
 class IndexField:
     """
     A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres, y up.
@@ -142,6 +269,10 @@ class IndexField:
     def with_params(self, **kwargs) -> IndexField:
         """
         A new field of the same model with the given parameters changed.
+        """
+    def with_turbulence(self, turbulence: typing.Any) -> IndexField:
+        """
+        The same air (parameters, hot spots) with `turbulence` (a refracta.Turbulence, a TurbulenceLayer, or None: calm) in place of its own; PhysicalAtmosphere and LogisticProfile (ValueError for other fields).
         """
     @property
     def bounds(self) -> dict:
@@ -415,8 +546,139 @@ class RayPath:
     @property
     def stop(self) -> str:
         ...
+class TraceOptions:
+    """
+    Options of refracta.trace_ray and trace_rays, with their defaults (defined once, here). Set any
+    field by name; validate() reports every bad value at once. Pickles through its fields.
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field.
+        """
+    @property
+    def ior_floor(self) -> float | None:
+        """
+        stratified: a lower bound of n over every height the path can reach (None: unknown)
+        """
+    @ior_floor.setter
+    def ior_floor(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def max_length(self) -> float:
+        """
+        [m] arc length at which the path ends
+        """
+    @max_length.setter
+    def max_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_steps(self) -> int:
+        """
+        a guard against runaway paths: a path needing more steps is refused up front
+        """
+    @max_steps.setter
+    def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def step(self) -> float:
+        """
+        [m] rk4: the fixed step (0: 0.3 m, the original editor's); rk45: the largest step (0: none); stratified: the largest node spacing (0: 100 m)
+        """
+    @step.setter
+    def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def stop_height(self) -> float | None:
+        """
+        [m] the path ends where it descends through this height (a ground); None: no ground
+        """
+    @stop_height.setter
+    def stop_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def tol(self) -> float:
+        """
+        [m] rk45 and stratified: target error of positions along the path
+        """
+    @tol.setter
+    def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def trace(self) -> str:
+        """
+        the integrator: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path), 'rk4' (fixed step `step`), or 'stratified' (height-only fields: exact paths from n(h) cos(e) = const by quadrature to tol; `step` is the largest node spacing)
+        """
+    @trace.setter
+    def trace(self, arg1: str) -> None:
+        ...
+class ElevationTableOptions:
+    """
+    Options of refracta.ElevationTable beside its eye height and elevation range, with their
+    defaults (defined once, here). `trace` holds the exact traces' TraceOptions (their integrator is
+    always 'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field.
+        """
+    @property
+    def initial_rays(self) -> int:
+        """
+        exact traces before refining
+        """
+    @initial_rays.setter
+    def initial_rays(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_rays(self) -> int:
+        """
+        beyond this many exact traces, unresolved intervals are traced exactly per query
+        """
+    @max_rays.setter
+    def max_rays(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tol(self) -> float:
+        """
+        [m] interpolation tolerance along the whole path
+        """
+    @tol.setter
+    def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def trace(self) -> TraceOptions:
+        """
+        TraceOptions of the exact traces (max_length, stop_height, step)
+        """
+    @trace.setter
+    def trace(self, arg0: TraceOptions) -> None:
+        ...
+    @property
+    def trace_tol(self) -> float | None:
+        """
+        [m] the exact traces' tolerance (None: tol)
+        """
+    @trace_tol.setter
+    def trace_tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
 class _ElevationTable:
-    def __init__(self, field: IndexField, eye_height: typing.SupportsFloat | typing.SupportsIndex, min_elevation: typing.SupportsFloat | typing.SupportsIndex, max_elevation: typing.SupportsFloat | typing.SupportsIndex, tol: typing.SupportsFloat | typing.SupportsIndex, max_length: typing.SupportsFloat | typing.SupportsIndex, stop_height: typing.SupportsFloat | typing.SupportsIndex | None, step: typing.SupportsFloat | typing.SupportsIndex | None, trace_tol: typing.SupportsFloat | typing.SupportsIndex | None, progress: typing.Any) -> None:
+    def __init__(self, field: IndexField, eye_height: typing.SupportsFloat | typing.SupportsIndex, min_elevation: typing.SupportsFloat | typing.SupportsIndex, max_elevation: typing.SupportsFloat | typing.SupportsIndex, options: typing.Any, progress: typing.Any, **kwargs) -> None:
         ...
     def ends(self, elevations: typing.Any, azimuths: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         ...
@@ -428,6 +690,9 @@ class _ElevationTable:
         ...
     @property
     def exact_intervals(self) -> int:
+        ...
+    @property
+    def options(self) -> ElevationTableOptions:
         ...
     @property
     def size(self) -> int:
@@ -456,12 +721,12 @@ class Scene:
         `centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the
         -x side), upright.
         """
-    def add_box(self, centre: typing.Any, size: typing.Any, material: typing.Any = None, emission: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_box(self, centre: typing.Any, size: typing.Any, material: typing.Any = None, emission: typing.Any = None, *, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
         Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]; alpha < 1: transparent in
         render_raster.
         """
-    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: str | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, texture: str | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
         Add a square ground of side `size` [m] at y = height, centred on the origin, facing up; an optional
         texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z) and
@@ -471,7 +736,7 @@ class Scene:
         """
         Add any refracta.lights light (not area lights of geometry: use emission=). Returns its index.
         """
-    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, material: typing.Any = None, emission: typing.Any = None, two_sided: bool = False, normals: typing.Any = None, uvs: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: str | None = None, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, material: typing.Any = None, emission: typing.Any = None, two_sided: bool = False, normals: typing.Any = None, *, uvs: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: str | None = None, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
         Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);
         optional per-vertex normals (N, 3) (shading normals, interpolated) and uvs (N, 2) texture
@@ -479,7 +744,7 @@ class Scene:
         shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without
         material. Returns its id.
         """
-    def add_obj(self, path: str, offset: typing.Any = (0.0, 0.0, 0.0), scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, texture_dirs: typing.Any = (), missing_textures: str = 'error', progress: typing.Any = True) -> list:
+    def add_obj(self, path: str, offset: typing.Any = (0.0, 0.0, 0.0), scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, texture_dirs: typing.Any = (), missing_textures: str = 'error', progress: typing.Any = True) -> list[int]:
         """
         Add a Wavefront OBJ file with its MTL materials, scaled then offset.
         
@@ -525,7 +790,7 @@ class Scene:
         Returns the geometry ids: the displaced meshes (fine full waves, its fade rings, coarse full waves,
         its fade rings; empty ones left out), then the flat plane.
         """
-    def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, material: typing.Any = None, emission: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, material: typing.Any = None, emission: typing.Any = None, *, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
         Add a sphere (exact, not tessellated); emission makes it a spherical light.
         """
@@ -565,7 +830,7 @@ class Scene:
         Give a geometry (an id returned by add_*, e.g. one part of add_obj) another refracta.shading material.
         Its emission, if any, stays. Not while a render of this scene runs (RuntimeError).
         """
-    def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, below_horizon: str = 'horizon', aerial_perspective: bool = True, visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
+    def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, below_horizon: str = 'horizon', aerial_perspective: bool = True, visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         """
         The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's
         single scattering (Nishita et al. 1993) for the sun toward `sun_direction` (normalised, y up),
@@ -605,7 +870,7 @@ class Scene:
         The scene's refracta.spectrum.AerialPerspective (set_physical_sky(aerial_perspective=True)), or None.
         """
     @property
-    def bounds(self) -> tuple[numpy.ndarray, numpy.ndarray]:
+    def bounds(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
         (lower, upper): corners (3,) [m] of the axis-aligned box around every geometry (spheres
         exact; a ground counts at its full size). ValueError for an empty scene.
@@ -624,7 +889,7 @@ class Camera:
     or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.
     """
     @staticmethod
-    def eye_level(eye: typing.Any, target: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex = 1.6, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex = 50.0, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
+    def eye_level(eye: typing.Any, target: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex = 1.6, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex = 50.0, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), *, width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
         """
         A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the
         lens eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the
@@ -649,7 +914,7 @@ class Camera:
         scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].
         """
     @staticmethod
-    def photographic(position: typing.Any, look_at: typing.Any, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, up: typing.Any = (0.0, 1.0, 0.0), f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
+    def photographic(position: typing.Any, look_at: typing.Any, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, *, up: typing.Any = (0.0, 1.0, 0.0), f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
         """
         A camera described by its lens and sensor: focal_length_mm on a sensor of
         sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the
@@ -669,7 +934,7 @@ class Camera:
         (not served by the eye's table), which costs what table=False costs. Only the ray-traced methods
         ('straight', 'curved') render it. f_number or focus_distance <= 0 or NaN: ValueError.
         """
-    def __getstate__(self) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float], float, int, int, list[float], float, float]:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, position: typing.Any, look_at: typing.Any, up: typing.Any = (0.0, 1.0, 0.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360) -> None:
         ...
@@ -691,7 +956,7 @@ class Camera:
         """
         (u, v, depth) per point (N, 3); depth [m] along the view axis, <= 0 behind.
         """
-    def ray(self, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.ndarray, numpy.ndarray]:
+    def ray(self, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
         (origin, unit direction) of the ray through pixel coordinates (u, v).
         """
@@ -724,7 +989,7 @@ class Camera:
         The angle map (height, width, 2) [rad] of a jittered camera, or None.
         """
     @property
-    def look_at(self) -> numpy.ndarray:
+    def look_at(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
     def pixel_angle(self) -> float:
@@ -732,10 +997,10 @@ class Camera:
         The angle [rad] one pixel subtends at the image centre (vertical field of view / height).
         """
     @property
-    def position(self) -> numpy.ndarray:
+    def position(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
-    def up(self) -> numpy.ndarray:
+    def up(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         The up vector given to the constructor.
         """
@@ -852,6 +1117,436 @@ class OceanWaves:
         """
         [m/s]
         """
+class MomentShadowSettings:
+    """
+    How a moment shadow map keeps its four power moments and biases them (shared/MOMENTS.md 2-3):
+    depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT
+    2017); storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation
+    transforms); bias (alpha) and bias_vector (b*): None means the published value for the depth
+    range and storage (published_bias, published_bias_vector).
+    """
+    @staticmethod
+    def published_bias(depth_range: str, storage: str) -> float:
+        """
+        3e-6 (unit) / 3e-7 (signed) for fp32 and fp64; 3e-5 / 6e-5 for unorm16 (MOMENTS.md 2.5)
+        """
+    @staticmethod
+    def published_bias_vector(depth_range: str) -> typing.Any:
+        """
+        (0.5, 0.5, 0.5, 0.5) for unit depths, (0, 0.375, 0, 0.375) for signed ones
+        """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field (nested options included).
+        """
+    @property
+    def bias(self) -> float | None:
+        """
+        alpha, the weight of bias_vector in [0, 1); None: published_bias(depth_range, storage)
+        """
+    @bias.setter
+    def bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def bias_vector(self) -> typing.Any:
+        """
+        b*, the 4 moments biased toward; None: published_bias_vector(depth_range)
+        """
+    @bias_vector.setter
+    def bias_vector(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def depth_range(self) -> str:
+        """
+        'unit' ([0, 1]) or 'signed' ([-1, 1])
+        """
+    @depth_range.setter
+    def depth_range(self, arg1: str) -> None:
+        ...
+    @property
+    def storage(self) -> str:
+        """
+        'fp64', 'fp32' or 'unorm16': how a GPU would keep the moments
+        """
+    @storage.setter
+    def storage(self, arg1: str) -> None:
+        ...
+class ShadowMapOptions:
+    """
+    The shadow maps of render_raster (an orthographic map for the sun, a perspective one per spot light):
+    method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm_hamburger',
+    'msm_hausdorff' (four moments box-filtered kernel x kernel, read through `moments`).
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field (nested options included).
+        """
+    @property
+    def bleeding_reduction(self) -> float:
+        """
+        VSM light-bleeding reduction (Lauritzen) in [0, 1): less light than this becomes none
+        """
+    @bleeding_reduction.setter
+    def bleeding_reduction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def depth_bias(self) -> float:
+        """
+        hard / pcf: compare against z - depth_bias (normalised depth)
+        """
+    @depth_bias.setter
+    def depth_bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def kernel(self) -> int:
+        """
+        k x k filter (odd) of PCF and of the moment map
+        """
+    @kernel.setter
+    def kernel(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def method(self) -> str:
+        """
+        'hard', 'pcf', 'vsm', 'msm_hamburger' or 'msm_hausdorff'
+        """
+    @method.setter
+    def method(self, arg1: str) -> None:
+        ...
+    @property
+    def moments(self) -> MomentShadowSettings:
+        """
+        MomentShadowSettings of the moment methods (vsm, msm_*): depth range, storage, bias
+        """
+    @moments.setter
+    def moments(self, arg0: MomentShadowSettings) -> None:
+        ...
+    @property
+    def normal_offset(self) -> float:
+        """
+        receivers are moved this many texels along their normal
+        """
+    @normal_offset.setter
+    def normal_offset(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def resolution(self) -> int:
+        """
+        texels per side, in [2, 8192]
+        """
+    @resolution.setter
+    def resolution(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class MboitSettings:
+    """
+    Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4):
+    basis 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias
+    None: the published value for the basis, moment count and storage; storage 'fp32' or 'unorm16'
+    (the 16-bit ROV variant, re-quantised after every fragment); log-depth warp over [z_near, z_far]
+    [m] (z_far <= z_near: the fragments' own range, in render_raster the frame's).
+    """
+    @staticmethod
+    def published_bias(basis: str, moments: typing.SupportsInt | typing.SupportsIndex, storage: str) -> float:
+        """
+        fp32: 5e-7 / 5e-6 / 5e-5 (4 / 6 / 8 power moments); unorm16: 6e-5 / 5e-5 / 5e-4; trigonometric: 4e-4 (2), 2e-4
+        """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field (nested options included).
+        """
+    @property
+    def basis(self) -> str:
+        """
+        'power' or 'trigonometric'
+        """
+    @basis.setter
+    def basis(self, arg1: str) -> None:
+        ...
+    @property
+    def beta(self) -> float:
+        """
+        overestimation in [0, 1]: the share of a fragment's own layer in front
+        """
+    @beta.setter
+    def beta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def bias(self) -> float | None:
+        """
+        alpha, the weight of the bias vector; None: the published value
+        """
+    @bias.setter
+    def bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def moments(self) -> int:
+        """
+        4, 6 or 8 power moments; 2, 3 or 4 trigonometric
+        """
+    @moments.setter
+    def moments(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def storage(self) -> str:
+        """
+        'fp32' or 'unorm16'
+        """
+    @storage.setter
+    def storage(self, arg1: str) -> None:
+        ...
+    @property
+    def z_far(self) -> float:
+        """
+        [m] far end of the log-depth warp (<= z_near: fitted)
+        """
+    @z_far.setter
+    def z_far(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def z_near(self) -> float:
+        """
+        [m] near end of the log-depth warp
+        """
+    @z_near.setter
+    def z_near(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class OitSettings:
+    """
+    How surfaces with alpha < 1 are composited: method 'exact' (sorted: depth peeling with enough
+    layers), 'peel' (the `layers` nearest), 'wboit' (McGuire & Bavoil, JCGT 2013, depth weight 'eq7' or
+    'eq9') or 'mboit' (moment-based, settings in `mboit`).
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def bytes_per_pixel(self, fragments_per_pixel: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        """
+        Bytes per pixel a GPU would keep for this method at this mean fragment count.
+        """
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field (nested options included).
+        """
+    @property
+    def layers(self) -> int:
+        """
+        peel: layers kept
+        """
+    @layers.setter
+    def layers(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def mboit(self) -> MboitSettings:
+        """
+        MboitSettings (method 'mboit')
+        """
+    @mboit.setter
+    def mboit(self, arg0: MboitSettings) -> None:
+        ...
+    @property
+    def method(self) -> str:
+        """
+        'exact', 'peel', 'wboit' or 'mboit'
+        """
+    @method.setter
+    def method(self, arg1: str) -> None:
+        ...
+    @property
+    def weight(self) -> str:
+        """
+        wboit: 'eq7' or 'eq9'
+        """
+    @weight.setter
+    def weight(self, arg1: str) -> None:
+        ...
+class RasterRenderOptions:
+    """
+    Options of refracta.render_raster, with their defaults (defined once, here). Set any field by
+    name, nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
+    validate() reports every bad value at once.
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field (nested options included).
+        """
+    @property
+    def light_strata(self) -> int:
+        """
+        stratified samples per axis of each light other than the sun and spots (1 .. 64)
+        """
+    @light_strata.setter
+    def light_strata(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def output(self) -> str:
+        """
+        'radiance' (linear RGB) or 'shadow' ((shadow intensity, 1, 0) where shadow_light reaches the surface)
+        """
+    @output.setter
+    def output(self, arg1: str) -> None:
+        ...
+    @property
+    def shadow_centre(self) -> typing.Any:
+        """
+        [m] centre of the sun's map; None: fitted to the visible points within shadow_distance
+        """
+    @shadow_centre.setter
+    def shadow_centre(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def shadow_distance(self) -> float:
+        """
+        [m] the sun's map covers the visible points closer than this to the camera
+        """
+    @shadow_distance.setter
+    def shadow_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def shadow_half_size(self) -> float | None:
+        """
+        [m] half the side of the sun's map; None: fitted to the visible points
+        """
+    @shadow_half_size.setter
+    def shadow_half_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def shadow_light(self) -> int:
+        """
+        output 'shadow': -1 the sun, k >= 0 the scene's spot light k
+        """
+    @shadow_light.setter
+    def shadow_light(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def shadow_map(self) -> ShadowMapOptions:
+        """
+        ShadowMapOptions of the sun's and spot lights' maps
+        """
+    @shadow_map.setter
+    def shadow_map(self, arg0: ShadowMapOptions) -> None:
+        ...
+    @property
+    def shadows(self) -> str:
+        """
+        'map' (shadow maps: shadow_map), 'embree' (shadow rays: the reference) or 'none'
+        """
+    @shadows.setter
+    def shadows(self, arg1: str) -> None:
+        ...
+    @property
+    def spots(self) -> list[int] | None:
+        """
+        indices of the spot lights that shine (in the scene's order of spot lights); None: all
+        """
+    @spots.setter
+    def spots(self, arg0: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None) -> None:
+        ...
+    @property
+    def tile(self) -> int:
+        """
+        tile size [pixels] of the parallel loop
+        """
+    @tile.setter
+    def tile(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def transparency(self) -> OitSettings:
+        """
+        OitSettings compositing surfaces with alpha < 1 over the opaque ones; None: every surface opaque
+        """
+    @transparency.setter
+    def transparency(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def use_sun(self) -> bool:
+        """
+        the scene's sun shines
+        """
+    @use_sun.setter
+    def use_sun(self, arg0: bool) -> None:
+        ...
+class RasterRenderStats:
+    """
+    What render_raster measured (read-only).
+    """
+    def __getstate__(self) -> tuple[float, float, int, int, float]:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    @property
+    def bytes_per_texel(self) -> int:
+        """
+        what the shadow method reads per texel
+        """
+    @property
+    def oit_bytes_per_pixel(self) -> float:
+        """
+        what the transparency method keeps per pixel (mean)
+        """
+    @property
+    def seconds(self) -> float:
+        """
+        [s] the whole render
+        """
+    @property
+    def shadow_build_seconds(self) -> float:
+        """
+        [s] rasterizing, filtering and storing the shadow maps
+        """
+    @property
+    def transparent_fragments(self) -> int:
+        """
+        transparent fragments in front of the opaque surfaces
+        """
 class RenderOptions:
     """
     Options of refracta.render, with their defaults (defined once, here). Set any field by name;
@@ -863,6 +1558,10 @@ class RenderOptions:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
+    def bounds_in(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> tuple[int, int, int, int]:
+        """
+        (x0, y0, x1, y1) of the pixels rendered in a width x height image (pixel_bounds, checked, or the whole)
+        """
     def validate(self) -> None:
         ...
     @property
@@ -1050,101 +1749,463 @@ class RenderOptions:
     @transport.setter
     def transport(self, arg1: str) -> None:
         ...
-class _PairOptions:
-    def __init__(self, method: str, tol: typing.SupportsFloat | typing.SupportsIndex, step: typing.SupportsFloat | typing.SupportsIndex | None, ground: typing.SupportsFloat | typing.SupportsIndex | None, distance: str, reach: typing.SupportsFloat | typing.SupportsIndex) -> None:
+class RenderStats:
+    """
+    What refracta.render counted (read-only; tiles add up with +).
+    """
+    def __add__(self, arg0: RenderStats) -> RenderStats:
         ...
-class _SolveSettings:
-    backend: str
-    loss: str
-    strategy: str
+    def __getstate__(self) -> tuple[int, int, int]:
+        ...
     def __init__(self) -> None:
+        """
+        All counts 0.
+        """
+    def __repr__(self) -> str:
         ...
-    def validate(self) -> None:
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
-    def accept_angle(self) -> float:
+    def chords(self) -> int:
+        """
+        Embree queries along camera paths (straight rays count one each)
+        """
+    @property
+    def invalid_samples(self) -> int:
+        """
+        samples whose radiance was not finite (dropped; should stay 0)
+        """
+    @property
+    def samples(self) -> int:
+        """
+        camera samples traced
+        """
+class SolveSettings:
+    """
+    Settings of refracta.edit.solve, with their defaults (defined once, in C++'s SolveSettings). Set any
+    field by name, or pass them to solve() as keywords; validate() reports every bad value at once.
+    """
+    def __getstate__(self) -> dict:
         ...
+    def __init__(self) -> None:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field.
+        """
+    @property
+    def accept_angle(self) -> float:
+        """
+        [rad] a pair is met within its margin plus this times its range (or its tolerance)
+        """
     @accept_angle.setter
     def accept_angle(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def design_per_param(self) -> int:
+    def backend(self) -> str:
+        """
+        'ceres' (Levenberg-Marquardt, automatic derivatives) or 'nlopt:<ALGORITHM>' (any nlopt name)
+        """
+    @backend.setter
+    def backend(self, arg1: str) -> None:
         ...
+    @property
+    def design_per_param(self) -> int:
+        """
+        auto: global-stage points per free parameter
+        """
     @design_per_param.setter
     def design_per_param(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def function_tolerance(self) -> float:
-        ...
+        """
+        relative cost change that ends a solve
+        """
     @function_tolerance.setter
     def function_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def gradient_tolerance(self) -> float:
-        ...
+        """
+        ceres: max-norm of the projected gradient
+        """
     @gradient_tolerance.setter
     def gradient_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def local_starts(self) -> int:
-        ...
+        """
+        auto: local solves from the global stage, at most
+        """
     @local_starts.setter
     def local_starts(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
-    def loss_scale(self) -> float:
+    def loss(self) -> str:
+        """
+        ceres robust loss on each pair's squared miss: 'none', 'huber', 'soft_l1', 'cauchy', 'arctan'
+        """
+    @loss.setter
+    def loss(self, arg1: str) -> None:
         ...
+    @property
+    def loss_scale(self) -> float:
+        """
+        [m] the miss where the robust loss starts to down-weight
+        """
     @loss_scale.setter
     def loss_scale(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def max_evaluations(self) -> int:
-        ...
+        """
+        cost evaluations of the whole solve (each traces every pair)
+        """
     @max_evaluations.setter
     def max_evaluations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def max_iterations(self) -> int:
-        ...
+        """
+        LM iterations of the whole solve (ceres)
+        """
     @max_iterations.setter
     def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def parameter_tolerance(self) -> float:
-        ...
+        """
+        relative parameter change that ends a solve
+        """
     @parameter_tolerance.setter
     def parameter_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def pixel_tolerance(self) -> float:
-        ...
+        """
+        [pixels] a pixel destination is met within this fraction of the pixel's footprint at the source
+        """
     @pixel_tolerance.setter
     def pixel_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def quick_iterations(self) -> int:
-        ...
+        """
+        auto: iterations of the first local solve
+        """
     @quick_iterations.setter
     def quick_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
-    def target_cost(self) -> float:
+    def seed(self) -> int:
+        """
+        seed of the random starts
+        """
+    @seed.setter
+    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+    @property
+    def starts(self) -> int:
+        """
+        starts of the strategy: the field as given, then uniform random in the bounds (one budget)
+        """
+    @starts.setter
+    def starts(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def strategy(self) -> str:
+        """
+        'auto' (a short local solve; if not every pair is met, the global stage and local solves from its best points) or 'local' (the back-end from the start only)
+        """
+    @strategy.setter
+    def strategy(self, arg1: str) -> None:
+        ...
+    @property
+    def target_cost(self) -> float:
+        """
+        [m^2] stop once the cost is at most this (0: never early)
+        """
     @target_cost.setter
     def target_cost(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def time_limit(self) -> float:
-        ...
+        """
+        [s] wall-clock limit of the whole solve; 0: none
+        """
     @time_limit.setter
     def time_limit(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def trust_region(self) -> float:
-        ...
+        """
+        ceres: initial trust-region radius in the free parameters' unit box
+        """
     @trust_region.setter
     def trust_region(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class PairOptions:
+    """
+    How an edit's pairs are traced and measured (refracta.edit.solve, distances, jacobian and
+    EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
+    PairOptions). validate() reports every bad value at once.
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self) -> None:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field.
+        """
+    @property
+    def distance(self) -> str:
+        """
+        'continuous' (closest approach of the continuous path) or 'vertex' (nearest integrator node)
+        """
+    @distance.setter
+    def distance(self, arg1: str) -> None:
+        ...
+    @property
+    def max_steps(self) -> int:
+        """
+        integration steps a trace may take
+        """
+    @max_steps.setter
+    def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def reach(self) -> float:
+        """
+        paths are traced to reach * |source - eye| + 1 m
+        """
+    @reach.setter
+    def reach(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def step(self) -> float:
+        """
+        [m] rk4 step (0: 0.3, the original editor's)
+        """
+    @step.setter
+    def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def stop_height(self) -> float | None:
+        """
+        [m] paths end where they descend through it (None: no ground)
+        """
+    @stop_height.setter
+    def stop_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def tol(self) -> float:
+        """
+        [m] rk45 target position error (at least 1e-13 per metre of path)
+        """
+    @tol.setter
+    def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def trace(self) -> str:
+        """
+        the ray integrator: 'rk45' (to tol) or 'rk4' (fixed step); 'stratified' has no derivatives
+        """
+    @trace.setter
+    def trace(self, arg1: str) -> None:
+        ...
+class SolveSummary:
+    """
+    What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields).
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def backend(self) -> typing.Any:
+        """
+        'ceres' or 'nlopt:<ALGORITHM>'
+        """
+    @property
+    def condition(self) -> typing.Any:
+        """
+        the Jacobian's condition number at a result meeting every pair (else 0)
+        """
+    @property
+    def converged(self) -> typing.Any:
+        """
+        the back-end ended normally
+        """
+    @property
+    def cost(self) -> typing.Any:
+        """
+        [m^2] the same at the result
+        """
+    @property
+    def derivatives(self) -> typing.Any:
+        """
+        'automatic' or 'numeric'
+        """
+    @property
+    def distances(self) -> typing.Any:
+        """
+        [m] each pair's miss at the result
+        """
+    @property
+    def evaluations(self) -> typing.Any:
+        """
+        cost evaluations of the whole solve
+        """
+    @property
+    def free(self) -> typing.Any:
+        """
+        the parameters that were optimised
+        """
+    @property
+    def history(self) -> typing.Any:
+        """
+        cost per iteration (ceres) or best cost per evaluation (nlopt)
+        """
+    @property
+    def initial_cost(self) -> typing.Any:
+        """
+        [m^2] 1/2 sum weight * (miss - margin)^2 at the start
+        """
+    @property
+    def insensitive(self) -> typing.Any:
+        """
+        requested free, but no pair depends on them: held fixed
+        """
+    @property
+    def iterations(self) -> typing.Any:
+        """
+        iterations of the start that gave the result
+        """
+    @property
+    def message(self) -> typing.Any:
+        """
+        what happened, and why a pair is not met
+        """
+    @property
+    def met(self) -> typing.Any:
+        """
+        per pair: its miss is within its margin plus its met tolerance
+        """
+    @property
+    def pair_traces(self) -> typing.Any:
+        """
+        traced pairs, derivative passes included
+        """
+    @property
+    def rank(self) -> typing.Any:
+        """
+        its numerical rank (else 0)
+        """
+    @property
+    def solver_report(self) -> typing.Any:
+        """
+        the back-end's own report of the run that gave the result
+        """
+    @property
+    def stages(self) -> typing.Any:
+        """
+        what the strategy did, one line per stage
+        """
+    @property
+    def starts(self) -> typing.Any:
+        """
+        starts asked for
+        """
+    @property
+    def stopped_by(self) -> typing.Any:
+        """
+        'iteration limit', 'evaluation limit', 'time limit' or ''
+        """
+    @property
+    def strategy(self) -> typing.Any:
+        """
+        'auto' or 'local'
+        """
+    @property
+    def success(self) -> typing.Any:
+        """
+        every pair met (strategy 'local': and converged)
+        """
+    @property
+    def time(self) -> typing.Any:
+        """
+        [s] solving, set-up excluded
+        """
+    @property
+    def values(self) -> typing.Any:
+        """
+        every parameter of the solved field, in param_names order
+        """
+class BsdfSample:
+    """
+    What Material.sample returns, one row per sample (read-only arrays): wi (N, 3), weight (N, C),
+    f (N, C), pdf (N,), flags (N,) uint32, is_delta (N,), eta (N,), valid (N,), terminated (N,);
+    C = 3 (RGB) or 4 (spectral). See Material.sample. s['wi'] (the former dict) still works
+    and iteration over the names are deprecated (DeprecationWarning).
+    """
+    fields: typing.ClassVar[tuple] = ('wi', 'weight', 'f', 'pdf', 'flags', 'is_delta', 'eta', 'valid', 'terminated')
+    def __getitem__(self, key: str) -> typing.Any:
+        ...
+    def __iter__(self) -> collections.abc.Iterator:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def eta(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The relative index crossed (N,), 1 for reflection.
+        """
+    @property
+    def f(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The BSDF value (N, C) [1/sr] (delta lobes: as weight's numerator).
+        """
+    @property
+    def flags(self) -> numpy.typing.NDArray[numpy.uint32]:
+        """
+        1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular (N,).
+        """
+    @property
+    def is_delta(self) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        Whether a delta lobe was sampled (N,).
+        """
+    @property
+    def pdf(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Density (N,) [1/sr] (delta lobes: the lobe's selection probability).
+        """
+    @property
+    def terminated(self) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        True where a dispersive refraction kept the hero wavelength only (N,).
+        """
+    @property
+    def valid(self) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        False where no direction was produced (N,).
+        """
+    @property
+    def weight(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        f |cos theta_i| / pdf (N, C) (delta lobes: albedo / probability).
+        """
+    @property
+    def wi(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Sampled unit directions (N, 3), 0 where invalid.
+        """
 class Material:
     """
     A surface material (shading/material.h): builds a BSDF at a hit. Evaluate it in
@@ -1177,10 +2238,10 @@ class Material:
         wavelengths: None for RGB rendering, or (4,) / (N, 4) hero wavelengths [nm] for spectral.
         eta_outside: index of the medium on the normal's side; mode: 'radiance' or 'importance'.
         """
-    def sample(self, wo: typing.Any, u: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> dict:
+    def sample(self, wo: typing.Any, u: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> BsdfSample:
         """
         Sample incident directions for wo (N, 3) from uniform numbers u (N, 3) in [0, 1): u[:, 0] picks
-        the lobe, u[:, 1:] the direction. Returns a dict of arrays: wi (N, 3) (0 where invalid),
+        the lobe, u[:, 1:] the direction. Returns a BsdfSample of arrays: wi (N, 3) (0 where invalid),
         weight (N, C) = ``f |cos theta_i| / pdf`` (delta lobes: the lobe's albedo over its probability),
         f (N, C), pdf (N,) (delta lobes: the lobe's selection probability), flags (N,) uint32
         (1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular/delta), is_delta (N,),
@@ -1197,6 +2258,55 @@ class Material:
     def priority(self) -> int:
         """
         Nested-dielectric priority (larger wins).
+        """
+class Dielectric(Material):
+    """
+    Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
+    (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3), C in
+    um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction). priority: nested
+    dielectrics (larger wins).
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
+class RoughDielectric(Material):
+    """
+    Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, alpha: typing.Any = None, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0, alpha_u: typing.Any = None, alpha_v: typing.Any = None) -> None:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
+class ThinDielectric(Material):
+    """
+    A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through
+    (no offset, no medium inside: interior_ior is None). ior as for Dielectric.
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None) -> None:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
         """
 class Diffuse(Material):
     """
@@ -1274,55 +2384,6 @@ class RoughConductor(Material):
         """
         The constructor's keyword arguments that rebuild this material (pickling uses them).
         """
-class Dielectric(Material):
-    """
-    Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
-    (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3), C in
-    um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction). priority: nested
-    dielectrics (larger wins).
-    """
-    def __getstate__(self) -> dict:
-        ...
-    def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
-        ...
-    def __setstate__(self, arg0: dict) -> None:
-        ...
-    @property
-    def parameters(self) -> dict:
-        """
-        The constructor's keyword arguments that rebuild this material (pickling uses them).
-        """
-class RoughDielectric(Material):
-    """
-    Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.
-    """
-    def __getstate__(self) -> dict:
-        ...
-    def __init__(self, alpha: typing.Any = None, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0, alpha_u: typing.Any = None, alpha_v: typing.Any = None) -> None:
-        ...
-    def __setstate__(self, arg0: dict) -> None:
-        ...
-    @property
-    def parameters(self) -> dict:
-        """
-        The constructor's keyword arguments that rebuild this material (pickling uses them).
-        """
-class ThinDielectric(Material):
-    """
-    A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through
-    (no offset, no medium inside: interior_ior is None). ior as for Dielectric.
-    """
-    def __getstate__(self) -> dict:
-        ...
-    def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None) -> None:
-        ...
-    def __setstate__(self, arg0: dict) -> None:
-        ...
-    @property
-    def parameters(self) -> dict:
-        """
-        The constructor's keyword arguments that rebuild this material (pickling uses them).
-        """
 class Plastic(Material):
     """
     Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of index
@@ -1358,7 +2419,7 @@ class Principled(Material):
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, base_color: typing.Any = 0.5, metallic: typing.SupportsFloat | typing.SupportsIndex = 0.0, roughness: typing.SupportsFloat | typing.SupportsIndex = 0.5, anisotropic: typing.SupportsFloat | typing.SupportsIndex = 0.0, specular: typing.SupportsFloat | typing.SupportsIndex = 0.5, specular_tint: typing.SupportsFloat | typing.SupportsIndex = 0.0, sheen: typing.SupportsFloat | typing.SupportsIndex = 0.0, sheen_tint: typing.SupportsFloat | typing.SupportsIndex = 0.5, clearcoat: typing.SupportsFloat | typing.SupportsIndex = 0.0, clearcoat_gloss: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: typing.Any = None) -> None:
+    def __init__(self, base_color: typing.Any = 0.5, metallic: typing.SupportsFloat | typing.SupportsIndex = 0.0, roughness: typing.SupportsFloat | typing.SupportsIndex = 0.5, anisotropic: typing.SupportsFloat | typing.SupportsIndex = 0.0, specular: typing.SupportsFloat | typing.SupportsIndex = 0.5, specular_tint: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, sheen: typing.SupportsFloat | typing.SupportsIndex = 0.0, sheen_tint: typing.SupportsFloat | typing.SupportsIndex = 0.5, clearcoat: typing.SupportsFloat | typing.SupportsIndex = 0.0, clearcoat_gloss: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: typing.Any = None) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -1375,7 +2436,7 @@ class ThinFilm(Material):
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, thickness: typing.SupportsFloat | typing.SupportsIndex, film_ior: typing.SupportsFloat | typing.SupportsIndex = 1.33, eta: typing.Any = 1.5, k: typing.Any = 0.0, alpha: typing.Any = None, alpha_u: typing.Any = None, alpha_v: typing.Any = None) -> None:
+    def __init__(self, thickness: typing.SupportsFloat | typing.SupportsIndex, film_ior: typing.SupportsFloat | typing.SupportsIndex = 1.33, eta: typing.Any = 1.5, k: typing.Any = 0.0, alpha: typing.Any = None, *, alpha_u: typing.Any = None, alpha_v: typing.Any = None) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -1576,6 +2637,24 @@ class Light:
         """
         'delta_position' (point, spot), 'area' (meshes, spheres) or 'infinite' (sun, environments).
         """
+class LightSampler:
+    """
+    Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it after preprocess() of infinite lights.
+    """
+    def __getstate__(self) -> tuple[list[Light], int]:
+        ...
+    def __init__(self, lights: collections.abc.Sequence[Light], strategy: str = 'power') -> None:
+        ...
+    def __len__(self) -> int:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def pmf(self, index: typing.SupportsInt | typing.SupportsIndex) -> float:
+        ...
+    def sample(self, u: typing.Any) -> tuple[numpy.typing.NDArray[numpy.int64], numpy.typing.NDArray[numpy.float64]]:
+        """
+        (index (N,) int, probability (N,)) for u (N,) in [0, 1).
+        """
 class PointLight(Light):
     """
     A point light: intensity [W/sr] (number or RGB) from position [m]; E = I cos(theta)/r^2, power 4 pi I.
@@ -1587,7 +2666,7 @@ class PointLight(Light):
     def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
-    def position(self) -> typing.Any:
+    def position(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
 class SpotLight(Light):
     """
@@ -1616,10 +2695,10 @@ class SunLight(Light):
     def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
-    def direction(self) -> typing.Any:
+    def direction(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
-    def irradiance(self) -> typing.Any:
+    def irradiance(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         RGB irradiance [W/m^2] on a surface facing the sun.
         """
@@ -1638,7 +2717,7 @@ class AreaLight(Light):
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
-    def normal(self, triangle: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
+    def normal(self, triangle: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
         """
         The front normal of a triangle (unit; 0 for a zero-area one).
         """
@@ -1704,24 +2783,6 @@ class ConstantEnvironment(Light):
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
-class LightSampler:
-    """
-    Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it after preprocess() of infinite lights.
-    """
-    def __getstate__(self) -> tuple[list[Light], int]:
-        ...
-    def __init__(self, lights: collections.abc.Sequence[Light], strategy: str = 'power') -> None:
-        ...
-    def __len__(self) -> int:
-        ...
-    def __setstate__(self, arg0: tuple) -> None:
-        ...
-    def pmf(self, index: typing.SupportsInt | typing.SupportsIndex) -> float:
-        ...
-    def sample(self, u: typing.Any) -> tuple[numpy.typing.NDArray[numpy.int64], numpy.typing.NDArray[numpy.float64]]:
-        """
-        (index (N,) int, probability (N,)) for u (N,) in [0, 1).
-        """
 class PhysicalSky:
     """
     A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
@@ -1839,11 +2900,11 @@ def _cancel_thread_work(thread_ids: collections.abc.Sequence[typing.SupportsInt 
     """
 def _canonical_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, bool]:
     ...
-def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, method: str, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, bias: typing.SupportsFloat | typing.SupportsIndex | None, z_range: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] | None, layers: typing.SupportsInt | typing.SupportsIndex | None, weight: str, storage: str) -> numpy.ndarray:
+def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, settings: OitSettings) -> numpy.ndarray:
     ...
-def _display(image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> numpy.typing.NDArray[numpy.float32]:
+def _display(image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> numpy.typing.NDArray[numpy.float32]:
     ...
-def _display_exposure(image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> float:
+def _display_exposure(image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> float:
     """
     The exposure c the display settings give this image (io.exposure_of).
     """
@@ -1863,27 +2924,33 @@ def _mboit_unorm16(b: collections.abc.Sequence[typing.SupportsFloat | typing.Sup
     """
     6 or 8 normalised power moments after MBOIT's 16-bit storage (transform, rounding, inverse).
     """
-def _pair_distances(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, options: _PairOptions) -> numpy.typing.NDArray[numpy.float64]:
+def _pair_distances(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, options: PairOptions) -> numpy.typing.NDArray[numpy.float64]:
     ...
-def _pair_jacobian(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, weights: typing.Any, margins: typing.Any, free: collections.abc.Sequence[str], derivatives: str, options: _PairOptions) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], list[str]]:
+def _pair_jacobian(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, *, weights: typing.Any, margins: typing.Any, free: collections.abc.Sequence[str], derivatives: str, options: PairOptions) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], list[str]]:
     ...
+def _pair_paths(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, options: PairOptions) -> list[RayPath]:
+    """
+    Each pair's path, traced by PairOptions' rule for it (what its miss is measured on).
+    """
 def _power_moment_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
     ...
-def _quantize_moments(moments: typing.Any, signed: bool, inverse: bool) -> numpy.typing.NDArray[numpy.float64]:
+def _quantize_moments(moments: typing.Any, depth_range: str, inverse: bool) -> numpy.typing.NDArray[numpy.float64]:
     ...
-def _rasterize(scene: Scene, camera: Camera, guard_band: typing.SupportsFloat | typing.SupportsIndex, tile: typing.SupportsInt | typing.SupportsIndex) -> dict:
+def _rasterize(scene: Scene, camera: Camera, guard_band: typing.SupportsFloat | typing.SupportsIndex, tile: typing.SupportsInt | typing.SupportsIndex | None) -> dict:
     ...
 def _read_image(path: str) -> numpy.typing.NDArray[numpy.float32]:
     ...
-def _render(scene: Scene, camera: Camera, field: IndexField, options: RenderOptions, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], dict]:
+def _render(scene: Scene, camera: Camera, field: IndexField, options: RenderOptions, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], RenderStats]:
     ...
-def _render_raster(scene: Scene, camera: Camera, shadows: str, resolution: typing.SupportsInt | typing.SupportsIndex, kernel: typing.SupportsInt | typing.SupportsIndex, signed_depth: bool, bias: typing.SupportsFloat | typing.SupportsIndex | None, bias_vector: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, storage: str, depth_bias: typing.SupportsFloat | typing.SupportsIndex, normal_offset: typing.SupportsFloat | typing.SupportsIndex, bleeding_reduction: typing.SupportsFloat | typing.SupportsIndex, shadow_centre: typing.Any, shadow_half_size: typing.SupportsFloat | typing.SupportsIndex | None, shadow_distance: typing.SupportsFloat | typing.SupportsIndex | None, output_shadow: bool, transparency: str | None, moments: typing.SupportsInt | typing.SupportsIndex, kind: str, beta: typing.SupportsFloat | typing.SupportsIndex, layers: typing.SupportsInt | typing.SupportsIndex, weight: str, shadow_light: typing.SupportsInt | typing.SupportsIndex, use_sun: bool, spots: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None, oit_storage: str, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], dict]:
-    ...
-def _shadow_intensity(moments: typing.Any, z_f: typing.Any, method: str, signed: bool, bias: typing.SupportsFloat | typing.SupportsIndex | None, bias_vector: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, storage: str) -> numpy.typing.NDArray[numpy.float64]:
+def _render_raster(scene: Scene, camera: Camera, options: RasterRenderOptions, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], RasterRenderStats]:
+    """
+    (image, RasterRenderStats) of refracta.render_raster.
+    """
+def _shadow_intensity(moments: typing.Any, z_f: typing.Any, method: str, settings: MomentShadowSettings) -> numpy.typing.NDArray[numpy.float64]:
     ...
 def _shutdown_running_work(timeout_seconds: typing.SupportsFloat | typing.SupportsIndex = 10.0) -> None:
     ...
-def _solve_edit(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, weights: typing.Any, margins: typing.Any, tolerances: typing.Any, free: collections.abc.Sequence[str], bounds: collections.abc.Mapping[str, tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]], derivatives: str, pair_options: _PairOptions, settings: _SolveSettings, progress: typing.Any) -> dict:
+def _solve_edit(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, *, weights: typing.Any, margins: typing.Any, tolerances: typing.Any, free: collections.abc.Sequence[str], bounds: collections.abc.Mapping[str, tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]], derivatives: str, pair_options: PairOptions, settings: SolveSettings, progress: typing.Any) -> SolveSummary:
     ...
 def _spectrum_blackbody(temperature: typing.SupportsFloat | typing.SupportsIndex, wavelengths: typing.Any, luminance: typing.SupportsFloat | typing.SupportsIndex | None) -> numpy.typing.NDArray[numpy.float64]:
     ...
@@ -1911,14 +2978,18 @@ def _tabulate_heights(field: IndexField, lo: typing.SupportsFloat | typing.Suppo
     """
     A height-only field tabulated over [lo, hi] m (cubic Hermite to 1e-12 in n); other fields unchanged.
     """
-def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, method: str, tol: typing.SupportsFloat | typing.SupportsIndex, step: typing.SupportsFloat | typing.SupportsIndex | None, max_length: typing.SupportsFloat | typing.SupportsIndex, stop_height: typing.SupportsFloat | typing.SupportsIndex | None, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, options: typing.Any, progress: typing.Any, **kwargs) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
     ...
-def _write_image(path: str, image: typing.Any, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
+def _write_image(path: str, image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
     ...
 def air_dispersion_scale(wavelength: typing.SupportsFloat | typing.SupportsIndex, reference: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> float:
     """
     K(wavelength)/K(reference) of dry air (Birch & Downs 1993 Edlen formula at 101325 Pa, 288.15 K):
     the factor of n - 1 from the reference wavelength to `wavelength` [nm], both in [230, 2000].
+    """
+def bessel_j1(x: typing.Any) -> numpy.ndarray:
+    """
+    The Bessel function J1 (std::cyl_bessel_j), element by element.
     """
 def cox_munk_mean_square_slope(wind_speed: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
@@ -1959,22 +3030,36 @@ def set_threads(n: typing.SupportsInt | typing.SupportsIndex | None) -> None:
     Embree's BVH builds) to n threads; n = None or 0 restores the default, every core. Results do
     not depend on it: every parallel loop writes each item's result to its own slot.
     """
-def thin_film_reflectance(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], thickness: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], wavelength: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+def synthesise_turbulence(settings: TurbulenceSettings, progress: typing.Any = None) -> TurbulenceGrid:
+    """
+    The spline coefficients of the pattern for C_n^2 = 1 (a TurbulenceGrid); GIL released, Ctrl-C stops it.
+    """
+def thin_film_reflectance(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], *, thickness: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], wavelength: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
     Airy reflectance of a film (index n2, thickness [nm]) between n1 and a base eta + i k at a wavelength [nm]. Vectorised.
     """
-def trace_ray(field: IndexField, origin: typing.Any, direction: typing.Any, method: str = 'rk45', tol: typing.SupportsFloat | typing.SupportsIndex = 1e-06, step: typing.SupportsFloat | typing.SupportsIndex | None = None, max_length: typing.SupportsFloat | typing.SupportsIndex = 1000.0, stop_height: typing.SupportsFloat | typing.SupportsIndex | None = None) -> RayPath:
+def trace_ray(field: IndexField, origin: typing.Any, direction: typing.Any, options: typing.Any = None, **kwargs) -> RayPath:
     """
     Trace one curved ray through `field` and return its RayPath.
     
     The ray equations dx/ds = v/n, dv/ds = grad n are launched with ``v0 = n(origin) * direction / |direction|``.
-    method: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path),
-    'rk4' (fixed step `step`, default 0.3 m, the original editor's), or 'stratified' (height-only
-    fields: exact paths from n(h) cos(e) = const by quadrature to `tol`; `step` is the largest node
-    spacing, default 100 m). max_length [m]: arc length at which the path ends. stop_height [m]: the
-    path ends where it descends through this height (a ground). Raises ValueError for bad arguments
-    (a path needing more than 10 million nodes is refused up front), refracta.NumericalError where n
-    <= 0 or is not finite; Ctrl-C (KeyboardInterrupt) stops it.
+    options: a refracta.TraceOptions, or None for its defaults; any of its fields may also be given
+    as keywords (trace, tol, step, max_length, stop_height, max_steps, ior_floor), e.g.
+    ``trace_ray(field, o, d, trace='rk4', step=0.1)``; ``method=`` is the deprecated name of
+    ``trace=``. Raises ValueError for bad arguments (a path needing more than max_steps nodes is
+    refused up front), refracta.NumericalError where n <= 0 or is not finite; Ctrl-C
+    (KeyboardInterrupt) stops it.
+    """
+def turbulence_memory_needed(cells: typing.SupportsInt | typing.SupportsIndex) -> float:
+    """
+    Bytes the synthesis of a cells^3 grid holds at its peak (a bound).
+    """
+def von_karman_spectrum(kappa: typing.Any, cn2: typing.SupportsFloat | typing.SupportsIndex = 1.0, inner_scale: typing.SupportsFloat | typing.SupportsIndex = 0.0, outer_scale: typing.SupportsFloat | typing.SupportsIndex = ...) -> numpy.ndarray:
+    """
+    The von Karman spectrum with a Gaussian inner cutoff, Phi_n(kappa) [m^3]:
+    0.033005 C_n^2 (kappa^2 + kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0,
+    kappa_m = 5.92 / l0 (Andrews & Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale
+    l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at kappa = 0).
     """
 def water_absorption(wavelength_nm: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
@@ -2002,4 +3087,7 @@ def water_ior(wavelength_nm: typing.Annotated[numpy.typing.ArrayLike, numpy.floa
     Tanaka et al. 2001 (atmospheric pressure), plus Quan & Fry 1995's salinity terms. wavelength_nm
     in [200, 1100], temperature_c in [0, 40] deg C, salinity [g/kg] in [0, 40]. Vectorised.
     """
+DEFAULT_TURBULENCE_YAW: float = 0.5535743588970453
+INNER_SCALE_FACTOR: float = 5.92
+SPECTRUM_CONSTANT: float = 0.03300539063636137
 _stop_names: tuple = ('max_length', 'stop_height', 'stopped')

@@ -59,19 +59,26 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str) -
 
 
 # Fields of _core.RenderOptions that render() exposes as keywords (their defaults live in C++).
-_OPTION_NAMES = tuple(name for name in dir(_core.RenderOptions) if not name.startswith("_") and name != "validate")
+_OPTION_NAMES = tuple(name for name in dir(_core.RenderOptions)
+                      if not name.startswith("_") and isinstance(getattr(_core.RenderOptions, name), property))
+# Fields whose None is a value of its own (not "the default"): trace None picks the integrator
+# per field, pixel_bounds None is the whole image.
+_NONE_FIELDS = ("trace", "pixel_bounds")
+# Whole-number fields (a float equal to a whole number is taken as it).
+_WHOLE_FIELDS = ("spp", "max_depth", "rr_depth", "max_steps", "tile", "seed")
 
 
 def render_options(**options) -> _core.RenderOptions:
-    """A _core.RenderOptions with the given fields set (unknown names raise ValueError)."""
+    """A _core.RenderOptions with the given fields set (unknown names raise ValueError; a None
+    value leaves the field at its C++ default), validated by RenderOptions.validate."""
     result = _core.RenderOptions()
     for name, value in options.items():
         if name not in _OPTION_NAMES:
             raise ValueError(f"render: unknown option {name!r} (options: {', '.join(sorted(_OPTION_NAMES))})")
-        if name in ("spp", "max_depth", "rr_depth", "max_steps", "tile", "seed"):
-            if isinstance(value, bool) or int(value) != value or value < 0:
-                raise ValueError(f"{name} must be a whole number (got {value!r})")
-            value = int(value)
+        if value is None and name not in _NONE_FIELDS:
+            continue
+        if name in _WHOLE_FIELDS and isinstance(value, (float, np.floating)) and float(value).is_integer():
+            value = int(value)  # 4.0 is 4 (the binding's int fields refuse floats)
         try:
             setattr(result, name, value)
         except TypeError as error:
@@ -84,14 +91,15 @@ def render(
     scene: _core.Scene,
     camera: _core.Camera,
     field: _core.IndexField | None = None,
-    method: str = "curved",
-    transport: str = "direct",
-    spp: int = 1,
+    method: str | None = None,
+    transport: str | None = None,
+    spp: int | None = None,
     max_depth: int | None = None,
-    spectral: bool = False,
-    seed: int = 0,
+    spectral: bool | None = None,
+    seed: int | None = None,
     progress: bool | Callable[[int, int], None] = True,
     stats: dict | None = None,
+    return_stats: bool = False,
     executor=None,
     tiles: None | int | tuple[int, int] = None,
     aovs: Sequence[str] | None = None,
@@ -99,7 +107,11 @@ def render(
     **options,
 ):
     """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3),
-    or with `aovs` the pair (image, {name: array}).
+    or with `aovs` the pair (image, {name: array}); with return_stats=True, the same followed by a
+    refracta.RenderStats (samples, chords: Embree queries along camera paths, invalid_samples).
+    method, transport, spp, max_depth, spectral, seed and the further keywords are fields of
+    refracta.RenderOptions; None (or left out) keeps its default, defined there (method 'curved',
+    transport 'direct', 1 spp, seed 0, RGB).
 
     aovs: names of per-pixel outputs to return beside the image, each averaged over the pixel's
     samples: 'albedo' -- (H, W, 3) the directional albedo (reflectance and transmittance, linear
@@ -134,8 +146,8 @@ def render(
     refracta.dispersed_field(field, hero) (no eye table: about 1.7x the RGB cost on the hot road).
     spp: samples per pixel (1: pixel centres; more: stratified jitter), seeded by `seed` per pixel
     (independent of the thread count). Textures are filtered over each sample's ray-cone footprint
-    (texture_filter=False point-samples them). stats: a dict to fill with counts ('samples',
-    'chords': Embree queries along camera paths, 'invalid_samples'). progress: a bar on stderr
+    (texture_filter=False point-samples them). stats: deprecated (a dict to fill with the counts
+    of RenderStats); pass return_stats=True. progress: a bar on stderr
     (True), a callable progress(done, total), or False. Runs on all cores with the GIL released;
     Ctrl-C stops it. Further keywords: any field of refracta.RenderOptions (max_length, chord,
     sagitta, tol, trace, table, tile, texture_filter, march, step, max_steps, guard_band, rr_depth,
@@ -158,24 +170,18 @@ def render(
     """
     if "integrator" in options:
         raise ValueError("render: 'integrator' is now 'trace' (the ray integrator: 'rk45' or 'stratified')")
-    if max_depth is not None:
-        options["max_depth"] = max_depth
-    if isinstance(spectral, (bool, np.bool_)):
-        options["spectral"] = bool(spectral)
-    else:
-        raise ValueError(f"spectral must be True or False (got {spectral!r})")
-    if isinstance(spp, bool) or int(spp) != spp or spp < 1:
-        raise ValueError(f"spp must be a whole number >= 1 (got {spp!r})")
-    if isinstance(seed, bool) or int(seed) != seed or seed < 0:
-        raise ValueError(f"seed must be a whole number >= 0 (got {seed!r})")
-    if stats is not None and not isinstance(stats, dict):
-        raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
+    if stats is not None:
+        if not isinstance(stats, dict):
+            raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
+        warnings.warn("render(stats=dict) is deprecated: pass return_stats=True and read the returned RenderStats",
+                      DeprecationWarning, stacklevel=2)
     wanted = _aov_names(aovs)
     if not isinstance(denoise, (bool, np.bool_)):
         raise ValueError(f"denoise must be True or False (got {denoise!r})")
     if denoise or wanted:
         options["surface_aovs"] = True
-    settings = render_options(method=method, transport=transport, spp=spp, seed=seed, **options)
+    settings = render_options(method=method, transport=transport, spp=spp, max_depth=max_depth, spectral=spectral,
+                              seed=seed, **options)
     if executor is not None or tiles is not None:
         image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)
     else:
@@ -183,9 +189,9 @@ def render(
         # The binding takes None (no atmosphere: straight rays) through its shared_ptr argument, which
         # pybind11's signature, and so the generated stub, cannot mark as optional.
         image, counts = _core._render(scene, camera, field, settings, callback)  # type: ignore[arg-type]
-    _check_scene(scene, camera, field, method)  # with the image: a refused render needs no hint
+    _check_scene(scene, camera, field, settings.method)  # with the image: a refused render needs no hint
     if stats is not None:
-        stats.update(counts)
+        stats.update({name: getattr(counts, name) for name in ("samples", "chords", "invalid_samples")})
     outputs = {}
     if settings.surface_aovs:
         outputs = {"albedo": np.ascontiguousarray(image[..., 3:6]), "normal": np.ascontiguousarray(image[..., 6:9])}
@@ -198,7 +204,10 @@ def render(
         untouched = ~np.any(outputs["normal"], axis=2)
         clean[untouched] = image[untouched]
         image = clean
-    return image if aovs is None else (image, {name: outputs[name] for name in wanted})
+    result = image if aovs is None else (image, {name: outputs[name] for name in wanted})
+    if return_stats:
+        return (*result, counts) if aovs is not None else (image, counts)
+    return result
 
 
 # The per-pixel outputs render(aovs=...) knows, and what they are (render's docstring).
@@ -260,11 +269,8 @@ def _render_tile(scene, camera, field, settings, bounds):
 
 def _render_tiled(scene, camera, field, settings, executor, tiles, progress):
     region = settings.pixel_bounds
-    if region is not None:  # check it against the camera before sending work
-        x0, y0, x1, y1 = region
-        if not (0 <= x0 < x1 <= camera.width and 0 <= y0 < y1 <= camera.height):
-            raise ValueError(f"pixel_bounds {region} must be a non-empty rectangle inside the "
-                             f"{camera.width} x {camera.height} image")
+    if region is not None:  # checked against the camera (RenderOptions.bounds_in) before sending work
+        settings.bounds_in(camera.width, camera.height)
     bounds = tile_bounds(camera.width, camera.height, tiles, region)
     # Scene, camera, field and options reach each dask worker once (map_ordered's `shared`).
     outcomes = map_ordered(_render_tile, [(b,) for b in bounds], executor, progress, "rendering tiles",
@@ -273,12 +279,11 @@ def _render_tiled(scene, camera, field, settings, executor, tiles, progress):
     width = (region[2] - region[0]) if region is not None else camera.width
     height = (region[3] - region[1]) if region is not None else camera.height
     image = np.empty((height, width, 9 if settings.surface_aovs else 3), dtype=np.float32)
-    counts = {"samples": 0, "chords": 0, "invalid_samples": 0}
+    counts = _core.RenderStats()
     for (x0, y0, x1, y1), (ok, value) in zip(bounds, outcomes):
         if not ok:
             raise value[0]
         tile, tile_counts = value
         image[y0 - oy:y1 - oy, x0 - ox:x1 - ox] = tile
-        for name in counts:
-            counts[name] += tile_counts[name]
+        counts = counts + tile_counts
     return image, counts

@@ -55,8 +55,8 @@ def shadows(scene: _core.Scene, camera: _core.Camera,
     images = {}
     for kernel in kernels:
         for method in methods:
-            counts: dict = {}
-            image = render_raster(scene, camera, shadows=method, kernel=kernel, output="shadow", stats=counts, **options)
+            image, counts = render_raster(scene, camera, shadows=method, kernel=kernel, output="shadow",
+                                          return_stats=True, **options)
             ref_name = _reference_of(method, kernel)
             truth = reference(ref_name, kernel)
             valid = (image[..., 1] > 0) & (truth[..., 1] > 0)
@@ -69,7 +69,7 @@ def shadows(scene: _core.Scene, camera: _core.Camera,
                 "light_leak": float(np.mean(error[finite] < -LEAK_THRESHOLD)) if finite.any() else 0.0,
                 "over_shadow": float(np.mean(error[finite] > LEAK_THRESHOLD)) if finite.any() else 0.0,
                 "nan_count": int(np.count_nonzero(~np.isfinite(image[..., 0]))),
-                "bits_per_texel": 8 * counts["bytes_per_texel"], "seconds": counts["seconds"],
+                "bits_per_texel": 8 * counts.bytes_per_texel, "seconds": counts.seconds,
             })
             images[(method, kernel)] = (image, truth)
     fig = _figure(images, methods, max(kernels)) if figure else None
@@ -85,13 +85,13 @@ TRANSPARENCY_METHODS: dict[str, dict[str, Any]] = {
     "mboit 4": dict(transparency="mboit", moments=4),
     "mboit 6": dict(transparency="mboit", moments=6),
     "mboit 8": dict(transparency="mboit", moments=8),
-    "mboit trig 2": dict(transparency="mboit", moments=2, kind="trig"),
-    "mboit trig 3": dict(transparency="mboit", moments=3, kind="trig"),
-    "mboit trig 4": dict(transparency="mboit", moments=4, kind="trig"),
+    "mboit trig 2": dict(transparency="mboit", moments=2, basis="trigonometric"),
+    "mboit trig 3": dict(transparency="mboit", moments=3, basis="trigonometric"),
+    "mboit trig 4": dict(transparency="mboit", moments=4, basis="trigonometric"),
     "mboit 4 unorm16": dict(transparency="mboit", moments=4, oit_storage="unorm16"),
     "mboit 6 unorm16": dict(transparency="mboit", moments=6, oit_storage="unorm16"),
     "mboit 8 unorm16": dict(transparency="mboit", moments=8, oit_storage="unorm16"),
-    "mboit trig 3 unorm16": dict(transparency="mboit", moments=3, kind="trig", oit_storage="unorm16"),
+    "mboit trig 3 unorm16": dict(transparency="mboit", moments=3, basis="trigonometric", oit_storage="unorm16"),
 }
 
 
@@ -107,24 +107,22 @@ def transparency(scene: _core.Scene, camera: _core.Camera, methods: Sequence[str
     unknown = [m for m in methods if m not in TRANSPARENCY_METHODS]
     if unknown:
         raise ValueError(f"unknown transparency methods {unknown} (expected some of {list(TRANSPARENCY_METHODS)})")
-    counts: dict = {}
-    exact = render_raster(scene, camera, transparency="exact", stats=counts, **options)
+    exact, counts = render_raster(scene, camera, transparency="exact", return_stats=True, **options)
     opaque = render_raster(scene, camera, transparency=None, **options)
     covered = np.abs(exact - opaque).max(axis=2) > 0  # pixels whose colour transparency changes
     scale = np.maximum(exact.max(axis=2), 1e-6)
     rows, images = [], {}
     for method in methods:
-        stats: dict = {}
-        image = render_raster(scene, camera, stats=stats, **TRANSPARENCY_METHODS[method], **options)
+        image, stats = render_raster(scene, camera, return_stats=True, **TRANSPARENCY_METHODS[method], **options)
         error = (np.abs(image - exact).max(axis=2) / scale)[covered]
         finite = error[np.isfinite(error)] if error.size else np.zeros(1)
         rows.append({"method": method, "mean_error": float(finite.mean()) if finite.size else 0.0,
                      "p99_error": float(np.quantile(finite, 0.99)) if finite.size else 0.0,
                      "nan_count": int(np.count_nonzero(~np.isfinite(image))),
-                     "bytes_per_pixel": stats["oit_bytes_per_pixel"], "seconds": stats["seconds"]})
+                     "bytes_per_pixel": stats.oit_bytes_per_pixel, "seconds": stats.seconds})
         images[method] = image
     rows.insert(0, {"method": "exact", "mean_error": 0.0, "p99_error": 0.0, "nan_count": 0,
-                    "bytes_per_pixel": counts["oit_bytes_per_pixel"], "seconds": counts["seconds"]})
+                    "bytes_per_pixel": counts.oit_bytes_per_pixel, "seconds": counts.seconds})
     fig = None
     if figure:
         import matplotlib.pyplot as plt

@@ -1,16 +1,19 @@
 """Moment shadow mapping, one texel at a time (shared/MOMENTS.md 2-3).
 
-shadow_intensity(moments, z_f, method='hamburger'|'hausdorff'|'vsm'|'canonical',
-depth_range='unit'|'signed', bias=None, bias_vector=None): the shadow intensity (mass of the
-filtered depth distribution in front of z_f, a lower bound of PCF) from its power moments
-(b1, b2, b3, b4), vectorised over leading axes. Depths are in [0, 1] ('unit', I3D 2015) or
-[-1, 1] ('signed', JCGT 2017). Default biases are the fp32 values: unit 3e-6 toward
-(0.5, 0.5, 0.5, 0.5), signed 3e-7 toward (0, 0.375, 0, 0.375). 'canonical' is the generic kernel
-(any moment count) used as a cross-check of the closed forms.
+shadow_intensity(moments, z_f, method='msm_hamburger'|'msm_hausdorff'|'vsm'|'canonical',
+depth_range='unit'|'signed', bias=None, bias_vector=None, storage='fp64'): the shadow intensity
+(mass of the filtered depth distribution in front of z_f, a lower bound of PCF) from its power
+moments (b1, b2, b3, b4), vectorised over leading axes. Depths are in [0, 1] ('unit', I3D 2015) or
+[-1, 1] ('signed', JCGT 2017). bias and bias_vector default (None) to the published values of
+refracta.MomentShadowSettings for the depth range and storage: fp64 / fp32 3e-6 toward
+(0.5, 0.5, 0.5, 0.5) (unit) and 3e-7 toward (0, 0.375, 0, 0.375) (signed); unorm16 3e-5 / 6e-5.
+'canonical' is the generic kernel (any moment count) used as a cross-check of the closed forms.
+The 4MSMs' old names 'hamburger' and 'hausdorff' still work, with a DeprecationWarning.
 """
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -35,22 +38,28 @@ def power_moments(depths, weights=None, count: int = 4) -> np.ndarray:
 def quantize(moments, depth_range: str = "unit", inverse: bool = False) -> np.ndarray:
     """The optimised quantisation transform (unit: I3D 2015 dense; signed: JCGT 2017 Theta*_4) of
     (..., 4) moments, or its inverse. Moments of any depth in range map into [0, 1]^4."""
-    if depth_range not in ("unit", "signed"):
-        raise ValueError(f"depth_range must be 'unit' or 'signed' (got {depth_range!r})")
     moments = np.asarray(moments, dtype=np.float64)
     flat = np.ascontiguousarray(moments.reshape(-1, 4))
-    return _core._quantize_moments(flat, depth_range == "signed", inverse).reshape(moments.shape)
+    return _core._quantize_moments(flat, depth_range, inverse).reshape(moments.shape)
 
 
-def shadow_intensity(moments, z_f, method: str = "hamburger", depth_range: str = "unit",
+# The 4MSMs' names before they matched render_raster's (kept one release, with a DeprecationWarning).
+_OLD_METHODS = {"hamburger": "msm_hamburger", "hausdorff": "msm_hausdorff"}
+
+
+def shadow_intensity(moments, z_f, method: str = "msm_hamburger", depth_range: str = "unit",
                      bias: float | None = None, bias_vector: Sequence[float] | None = None,
                      storage: str = "fp64") -> np.ndarray:
     """Shadow intensity in [0, 1] from (..., 4) moments at receiver depths (...).
 
     storage emulates how the moments were kept: 'fp64', 'fp32', or 'unorm16' (quantised through
-    the optimised transform, as RGBA16_UNORM on a GPU; use a larger bias, e.g. 3e-5 / 6e-5)."""
-    if depth_range not in ("unit", "signed"):
-        raise ValueError(f"depth_range must be 'unit' or 'signed' (got {depth_range!r})")
+    the optimised transform, as RGBA16_UNORM on a GPU, with the larger published bias)."""
+    if method in _OLD_METHODS:
+        warnings.warn(f"shadow_intensity: method {method!r} is now {_OLD_METHODS[method]!r}", DeprecationWarning,
+                      stacklevel=2)
+        method = _OLD_METHODS[method]
+    settings = _core.MomentShadowSettings(depth_range=depth_range, storage=storage, bias=bias,
+                                          bias_vector=None if bias_vector is None else list(bias_vector))
     moments = np.asarray(moments, dtype=np.float64)
     if moments.shape[-1:] != (4,):
         raise ValueError(f"moments must have shape (..., 4) (got {moments.shape})")
@@ -58,6 +67,5 @@ def shadow_intensity(moments, z_f, method: str = "hamburger", depth_range: str =
     shape = np.broadcast_shapes(moments.shape[:-1], z_f.shape)
     flat_b = np.broadcast_to(moments, shape + (4,)).reshape(-1, 4)
     flat_z = np.broadcast_to(z_f, shape).reshape(-1)
-    out = _core._shadow_intensity(np.ascontiguousarray(flat_b), np.ascontiguousarray(flat_z), method,
-                                  depth_range == "signed", bias, None if bias_vector is None else list(bias_vector), storage)
+    out = _core._shadow_intensity(np.ascontiguousarray(flat_b), np.ascontiguousarray(flat_z), method, settings)
     return out.reshape(shape)

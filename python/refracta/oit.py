@@ -1,30 +1,62 @@
 """Order-independent transparency for one pixel's fragments (shared/MOMENTS.md 4).
 
 composite(depths, alphas, colors, background=(0, 0, 0), method='exact'|'peel'|'wboit'|'mboit',
-moments=4, kind='power', beta=0.25, bias=None, z_range=None, layers=None, weight='eq7') -> RGB.
-depths are view depths (> 0), alphas in [0, 1], colors (K, 3) linear RGB (not premultiplied).
+*, options=None, **fields) -> RGB. depths are view depths (> 0), alphas in [0, 1], colors (K, 3)
+linear RGB (not premultiplied). The settings are a refracta.OitSettings (`options`, or its C++
+defaults) changed by keywords: layers, weight ('eq7' / 'eq9'), and MBOIT's moments, basis ('power'
+or 'trigonometric'; kind is its old name), beta, bias (None: the published value), storage ('fp32'
+or 'unorm16'), z_range (near, far) [m] (default: the fragments' range).
 'exact' sorts (= depth peeling with enough layers); 'peel' keeps the `layers` nearest; 'wboit' is
-McGuire & Bavoil 2013 with weight 'eq7' or 'eq9'; 'mboit' is moment-based OIT with 4, 6 or 8 power
-moments (kind='power') or 2, 3 or 4 trigonometric moments (kind='trig', wrapping zone pi/10), a log
-depth warp over z_range (default: the fragments' range), overestimation beta and the published
-fp32 biases.
+McGuire & Bavoil 2013; 'mboit' is moment-based OIT with power moments or trigonometric ones
+(wrapping zone pi/10) and a log depth warp.
 """
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 
 from refracta import _core
+from refracta._raster_render import assign
+
+# composite's keywords that name a field of OitSettings.mboit (others are OitSettings' own).
+_MBOIT_KEYWORDS = {"moments": "moments", "basis": "basis", "kind": "basis", "beta": "beta", "bias": "bias",
+                   "storage": "storage"}
 
 
-def composite(depths, alphas, colors, background=(0.0, 0.0, 0.0), method: str = "exact", moments: int = 4,
-              kind: str = "power", beta: float = 0.25, bias: float | None = None,
-              z_range: tuple[float, float] | None = None, layers: int | None = None,
-              weight: str = "eq7", storage: str = "fp32") -> np.ndarray:
-    """The pixel's colour after compositing its fragments over `background`. storage: MBOIT's
-    moments in 'fp32' or the 16-bit ROV variant 'unorm16' (re-quantised after every fragment, in
-    the given order; 4 power moments or trigonometric ones)."""
+def oit_settings(method: str, options: _core.OitSettings | None = None, **fields) -> _core.OitSettings:
+    """A validated copy of `options` (None: the defaults) with `method` and `fields` set."""
+    if options is not None and not isinstance(options, _core.OitSettings):
+        raise ValueError(f"composite: options must be a refracta.OitSettings or None (got {type(options).__name__})")
+    settings = _core.OitSettings() if options is None else copy.deepcopy(options)
+    assign(settings, ("method",), method, "method", "composite")
+    for keyword, value in fields.items():
+        if value is None:
+            continue
+        if keyword == "z_range":
+            near, far = value
+            if not (near > 0 and far > near):
+                raise ValueError("composite: z_range must be (near, far) with 0 < near < far")
+            settings.mboit.z_near, settings.mboit.z_far = float(near), float(far)
+        elif keyword in _MBOIT_KEYWORDS:
+            assign(settings, ("mboit", _MBOIT_KEYWORDS[keyword]), value, keyword, "composite")
+        elif keyword in ("layers", "weight"):
+            assign(settings, (keyword,), value, keyword, "composite")
+        else:
+            raise ValueError(f"composite: unknown option {keyword!r} (layers, weight, z_range, "
+                             f"{', '.join(_MBOIT_KEYWORDS)})")
+    settings.validate()
+    return settings
+
+
+def composite(depths, alphas, colors, background=(0.0, 0.0, 0.0), method: str = "exact", *,
+              options: _core.OitSettings | None = None, **fields) -> np.ndarray:
+    """The pixel's colour after compositing its fragments over `background` (see the module's
+    docstring for the keywords). 'peel' needs `layers` (here or in options)."""
+    if method == "peel" and fields.get("layers") is None and options is None:
+        raise ValueError("composite: method 'peel' needs layers")
+    settings = oit_settings(method, options, **fields)
     colors = np.asarray(colors, dtype=np.float64).reshape(-1, 3)
     return _core._composite(np.asarray(depths, np.float64).ravel(), np.asarray(alphas, np.float64).ravel(),
-                            colors, np.asarray(background, np.float64), method, int(moments), kind, float(beta),
-                            bias, z_range, layers, weight, storage)
+                            colors, np.asarray(background, np.float64), settings)

@@ -33,8 +33,10 @@ class RasterBuffers:
     fragments: int
 
 
-def rasterize(scene: _core.Scene, camera: _core.Camera, guard_band: float = 0.0, tile: int = 32) -> RasterBuffers:
-    """Rasterize `scene` from `camera` (its image widened by guard_band on each side)."""
-    if isinstance(tile, bool) or int(tile) != tile or tile < 1:
+def rasterize(scene: _core.Scene, camera: _core.Camera, guard_band: float = 0.0,
+              tile: int | None = None) -> RasterBuffers:
+    """Rasterize `scene` from `camera` (its image widened by guard_band on each side, as a fraction
+    of it; 0: none) in square tiles of `tile` pixels (None: the renderers' own, 32)."""
+    if isinstance(tile, bool) or (tile is not None and int(tile) != tile):
         raise ValueError(f"tile must be a whole number >= 1 (got {tile!r})")
-    return RasterBuffers(**_core._rasterize(scene, camera, float(guard_band), int(tile)))
+    return RasterBuffers(**_core._rasterize(scene, camera, float(guard_band), None if tile is None else int(tile)))

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+import refracta
 from refracta import moments as M
 
 # Closed forms and the generic kernel agree to round-off of a 3x3 solve with moments in [0, 1].
@@ -24,8 +25,8 @@ def test_bounds_are_ordered_vsm_hamburger_hausdorff_pcf(rng, depth_range):
     b, z_f, pcf = random_texels(rng, signed=depth_range == "signed")
     alpha = 3e-6 if depth_range == "unit" else 3e-7
     vsm = M.shadow_intensity(b, z_f, "vsm", depth_range)
-    hamburger = M.shadow_intensity(b, z_f, "hamburger", depth_range)
-    hausdorff = M.shadow_intensity(b, z_f, "hausdorff", depth_range)
+    hamburger = M.shadow_intensity(b, z_f, "msm_hamburger", depth_range)
+    hausdorff = M.shadow_intensity(b, z_f, "msm_hausdorff", depth_range)
     tol = 1e-9
     assert np.all(vsm <= hamburger + tol)
     assert np.all(hamburger <= hausdorff + tol)
@@ -36,14 +37,14 @@ def test_bounds_are_ordered_vsm_hamburger_hausdorff_pcf(rng, depth_range):
 
 def test_generic_kernel_matches_the_closed_form(rng):
     b, z_f, _ = random_texels(rng)
-    np.testing.assert_allclose(M.shadow_intensity(b, z_f, "canonical"), M.shadow_intensity(b, z_f, "hamburger"),
+    np.testing.assert_allclose(M.shadow_intensity(b, z_f, "canonical"), M.shadow_intensity(b, z_f, "msm_hamburger"),
                                atol=KERNEL_AGREEMENT)
 
 
 def test_shadow_intensity_never_decreases_with_receiver_depth(rng):
     b, _, _ = random_texels(rng, count=50)
     z = np.linspace(0.0, 1.0, 201)
-    for method in ("vsm", "hamburger", "hausdorff"):
+    for method in ("vsm", "msm_hamburger", "msm_hausdorff"):
         s = M.shadow_intensity(b[:, None, :], z[None, :], method)
         assert np.all(np.diff(s, axis=1) >= -1e-9), method
 
@@ -55,7 +56,7 @@ def test_three_atoms_with_the_receiver_on_one_are_recovered_exactly():
     for z in depths:
         expected = weights[depths < z].sum()
         assert M.shadow_intensity(b, z, "canonical", bias=0.0) == pytest.approx(expected, abs=1e-9)
-        assert M.shadow_intensity(b, z, "hamburger", bias=0.0) == pytest.approx(expected, abs=1e-9)
+        assert M.shadow_intensity(b, z, "msm_hamburger", bias=0.0) == pytest.approx(expected, abs=1e-9)
 
 
 def test_filtering_commutes_with_the_moment_map(rng):
@@ -67,7 +68,7 @@ def test_filtering_commutes_with_the_moment_map(rng):
     np.testing.assert_allclose(joint, filtered, atol=1e-15)
 
 
-@pytest.mark.parametrize("method", ["vsm", "hamburger", "hausdorff", "canonical"])
+@pytest.mark.parametrize("method", ["vsm", "msm_hamburger", "msm_hausdorff", "canonical"])
 def test_degenerate_texels_never_give_nan(method):
     cases = [M.power_moments(np.full(4, 0.5)), M.power_moments(np.zeros(4)), M.power_moments(np.ones(4)),
              M.power_moments(np.array([0.0, 1.0]))]
@@ -100,7 +101,29 @@ def test_quantization_transforms_stay_in_the_unit_cube_and_round_trip(rng, depth
 
 def test_unorm16_storage_needs_its_larger_bias(rng):
     b, z_f, pcf = random_texels(rng)
-    s = M.shadow_intensity(b, z_f, "hamburger", storage="unorm16", bias=3e-5)
+    s = M.shadow_intensity(b, z_f, "msm_hamburger", storage="unorm16", bias=3e-5)
     assert np.all(np.isfinite(s))
     assert np.all(s <= pcf + 3e-5 / 2 + 2e-3)  # 16-bit rounding moves the bound by ~1e-3
-    assert np.abs(s - M.shadow_intensity(b, z_f, "hamburger", bias=3e-5)).mean() < 5e-3
+    assert np.abs(s - M.shadow_intensity(b, z_f, "msm_hamburger", bias=3e-5)).mean() < 5e-3
+
+
+def test_the_old_method_names_still_work_with_a_warning(rng):
+    b, z_f, _ = random_texels(rng)
+    for old, new in (("hamburger", "msm_hamburger"), ("hausdorff", "msm_hausdorff")):
+        with pytest.warns(DeprecationWarning, match=new):
+            legacy = M.shadow_intensity(b, z_f, old)
+        np.testing.assert_array_equal(legacy, M.shadow_intensity(b, z_f, new))
+
+
+@pytest.mark.parametrize("depth_range", ["unit", "signed"])
+@pytest.mark.parametrize("storage", ["fp64", "fp32", "unorm16"])
+def test_no_bias_means_the_published_one_for_the_storage(rng, depth_range, storage):
+    # MomentShadowSettings.bias None: published_bias(depth_range, storage), the value render_raster's
+    # shadow maps use too (one rule, in C++).
+    b, z_f, _ = random_texels(rng, signed=depth_range == "signed")
+    published = refracta.MomentShadowSettings.published_bias(depth_range, storage)
+    assert published == {("unit", "unorm16"): 3e-5, ("signed", "unorm16"): 6e-5,
+                         ("unit", "fp32"): 3e-6, ("signed", "fp32"): 3e-7,
+                         ("unit", "fp64"): 3e-6, ("signed", "fp64"): 3e-7}[(depth_range, storage)]
+    np.testing.assert_array_equal(M.shadow_intensity(b, z_f, depth_range=depth_range, storage=storage),
+                                  M.shadow_intensity(b, z_f, depth_range=depth_range, storage=storage, bias=published))

@@ -66,12 +66,14 @@ def test_total_transmittance_is_the_product_of_one_minus_alpha(method):
 
 def test_an_opaque_render_ignores_alpha_and_stats_count_fragments():
     scene = glass_scene()
-    stats = {}
-    refracta.render_raster(scene, CAMERA, shadows="embree", transparency="exact", stats=stats)
-    assert stats["transparent_fragments"] > 0 and stats["oit_bytes_per_pixel"] > 0
-    opaque_stats = {}
-    refracta.render_raster(scene, CAMERA, shadows="embree", stats=opaque_stats)
-    assert opaque_stats["transparent_fragments"] == 0
+    _, stats = refracta.render_raster(scene, CAMERA, shadows="embree", transparency="exact", return_stats=True)
+    assert stats.transparent_fragments > 0 and stats.oit_bytes_per_pixel > 0
+    _, opaque_stats = refracta.render_raster(scene, CAMERA, shadows="embree", return_stats=True)
+    assert opaque_stats.transparent_fragments == 0
+    legacy = {}
+    with pytest.warns(DeprecationWarning, match="return_stats"):
+        refracta.render_raster(scene, CAMERA, shadows="embree", stats=legacy)
+    assert legacy["transparent_fragments"] == 0 and legacy["seconds"] > 0
 
 
 @pytest.mark.parametrize("kwargs, match", [
@@ -90,7 +92,7 @@ def test_alpha_outside_0_1_is_rejected():
         refracta.Scene().add_box((0, 0, 0), (1, 1, 1), alpha=1.5)
 
 
-@pytest.mark.parametrize("moments, kind", [(4, "power"), (6, "power"), (8, "power"), (3, "trig")])
+@pytest.mark.parametrize("moments, kind", [(4, "power"), (6, "power"), (8, "power"), (3, "trigonometric")])
 def test_16_bit_rov_mboit_stays_close_to_fp32(moments, kind):
     """MOMENTS.md 4.5: b0 in fp32, normalised moments re-quantised to 16 bits after every fragment.
     Rounding makes it (slightly) order dependent; its error against the sorted composite stays that
@@ -105,10 +107,9 @@ def test_16_bit_rov_mboit_stays_close_to_fp32(moments, kind):
     assert np.abs(unorm16 - exact).mean() < np.abs(fp32 - exact).mean() + 1e-4 * scale
     assert np.abs(unorm16 - fp32).max() < 0.05 * scale
     assert np.abs(reordered - unorm16).max() < 5e-3 * scale  # rounding order: a few per mille
-    stats = {}
-    refracta.render_raster(scene, CAMERA, oit_storage="unorm16", stats=stats, **args)
-    per_moment = 2 * (2 * moments if kind == "trig" else moments)
-    assert stats["oit_bytes_per_pixel"] == 4 + per_moment + 8
+    _, stats = refracta.render_raster(scene, CAMERA, oit_storage="unorm16", return_stats=True, **args)
+    per_moment = 2 * (2 * moments if kind == "trigonometric" else moments)
+    assert stats.oit_bytes_per_pixel == 4 + per_moment + 8
 
 
 @pytest.mark.parametrize("count", [6, 8])

@@ -88,12 +88,20 @@ def test_bad_options_raise_value_error(kwargs, match):
 
 def test_render_counts_its_chords():
     example = examples.hot_road(32, 12)
-    straight, curved = {}, {}
-    refracta.render(example.scene, example.camera, None, method="straight", progress=False, stats=straight)
-    refracta.render(example.scene, example.camera, example.field, progress=False, max_length=example.max_length,
-                    stats=curved)
-    assert straight["samples"] == 32 * 12 and straight["chords"] == 32 * 12  # one straight ray per pixel
-    assert straight["invalid_samples"] == 0 and curved["invalid_samples"] == 0
-    assert curved["samples"] == 32 * 12 and curved["chords"] > 2 * curved["samples"]
+    _, straight = refracta.render(example.scene, example.camera, None, method="straight", progress=False,
+                                  return_stats=True)
+    _, curved = refracta.render(example.scene, example.camera, example.field, progress=False,
+                                max_length=example.max_length, return_stats=True)
+    assert straight.samples == 32 * 12 and straight.chords == 32 * 12  # one straight ray per pixel
+    assert straight.invalid_samples == 0 and curved.invalid_samples == 0
+    assert curved.samples == 32 * 12 and curved.chords > 2 * curved.samples
     with pytest.raises(ValueError, match="stats"):
         refracta.render(example.scene, example.camera, None, progress=False, stats=[])
+
+
+def test_the_stats_dict_still_works_for_one_release_with_a_warning():
+    example = examples.hot_road(16, 6)
+    stats = {}
+    with pytest.warns(DeprecationWarning, match="return_stats"):
+        image = refracta.render(example.scene, example.camera, None, method="straight", progress=False, stats=stats)
+    assert image.shape == (6, 16, 3) and stats == {"samples": 16 * 6, "chords": 16 * 6, "invalid_samples": 0}

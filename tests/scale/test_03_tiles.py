@@ -30,12 +30,11 @@ CASES = [
 @pytest.mark.parametrize("case", CASES, ids=lambda c: "-".join(str(v) for v in c.values()))
 def test_tiles_assemble_to_the_local_render_bit_for_bit(setup, case):
     scene, camera, field = setup
-    stats, tiled_stats = {}, {}
-    local = scenes.render_quietly(scene, camera, field, stats=stats, **case)
-    tiled = scenes.render_quietly(scene, camera, field, tiles=(3, 2), stats=tiled_stats, **case)
+    local, stats = scenes.render_quietly(scene, camera, field, return_stats=True, **case)
+    tiled, tiled_stats = scenes.render_quietly(scene, camera, field, tiles=(3, 2), return_stats=True, **case)
     assert tiled.dtype == np.float32 and tiled.shape == local.shape
     assert np.array_equal(tiled, local)
-    assert tiled_stats["samples"] == stats["samples"] == camera.width * camera.height * case["spp"]
+    assert tiled_stats.samples == stats.samples == camera.width * camera.height * case["spp"]
 
 
 def test_pixel_bounds_render_is_the_same_part_of_the_image(setup):

@@ -98,11 +98,10 @@ def test_a_render_split_across_workers_equals_the_local_render(client, texture):
     scene, camera, field = scenes.every_kind_scene(texture, "environment"), scenes.camera(), scenes.hot_road()
     for transport in ("direct", "path"):
         local = scenes.render_quietly(scene, camera, field, transport=transport, spp=4)
-        stats = {}
-        split = refracta.render(scene, camera, field, transport=transport, spp=4, executor=client, tiles=(2, 2),
-                                progress=False, stats=stats)
+        split, stats = refracta.render(scene, camera, field, transport=transport, spp=4, executor=client,
+                                       tiles=(2, 2), progress=False, return_stats=True)
         assert np.array_equal(split, local)
-        assert stats["samples"] == camera.width * camera.height * 4
+        assert stats.samples == camera.width * camera.height * 4
 
 
 def cold_only(surface_dt):

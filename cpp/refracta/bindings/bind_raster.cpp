@@ -1,4 +1,5 @@
 // Python bindings of the moment math and per-pixel OIT (cpp/refracta/raster).
+#include "refracta/bindings/bind_raster_options.h"
 #include "refracta/bindings/bind_scene.h"
 #include "refracta/bindings/interruptible.h"
 #include "refracta/raster/moment_shadow.h"
@@ -35,17 +36,19 @@ DoubleArray as_matrix(const py::object& object, py::ssize_t columns, const char*
 }  // namespace
 
 void bind_raster(py::module_& m) {
+  bind_raster_options(m);
   m.def("_mboit_unorm16", [](const std::vector<double>& b) { return stored_mboit_unorm16(b); }, py::arg("b"),
         "6 or 8 normalised power moments after MBOIT's 16-bit storage (transform, rounding, inverse).");
   m.def("_rasterize",
-        [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, double guard_band, int tile) {
+        [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, double guard_band, std::optional<int> tile) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
+          if (tile && *tile < 1) throw_invalid("tile must be a whole number >= 1 (got ", *tile, ")");
           const RasterView view = RasterView::from_camera(camera, guard_band);
           WorkControl control;
           VisibilityBuffer buffer;
           RasterStats stats;
           const Scene::ReadGuard reading(scene->geometry);
-          run_interruptible(control, py::none(), [&] { buffer = rasterize(scene->geometry, view, control, tile, &stats); });
+          run_interruptible(control, py::none(), [&] { buffer = rasterize(scene->geometry, view, control, tile.value_or(kRasterTile), &stats); });
           const py::ssize_t h = buffer.height, w = buffer.width;
           py::array_t<float> depth({h, w}), barycentric({h, w, py::ssize_t(3)});
           py::array_t<int64_t> geometry({h, w}), primitive({h, w});
@@ -71,9 +74,10 @@ void bind_raster(py::module_& m) {
         py::arg("scene"), py::arg("camera"), py::arg("guard_band"), py::arg("tile"));
 
   m.def("_shadow_intensity",
-        [](const py::object& moments, const py::object& depths, const std::string& method, bool is_signed,
-           std::optional<double> bias, std::optional<std::vector<double>> bias_vector, const std::string& storage_name) {
-          const MomentStorage storage = parse_moment_storage(storage_name);
+        [](const py::object& moments, const py::object& depths, const std::string& method,
+           const MomentShadowSettings& settings) {
+          const MomentShadowMethod parsed = parse_moment_shadow_method(method);
+          settings.validate();
           const DoubleArray b = as_matrix(moments, 4, "moments");
           const std::vector<double> z = to_values(depths, "z_f");
           if (py::ssize_t(z.size()) != b.shape(0)) throw_invalid("moments and z_f must have the same length");
@@ -85,25 +89,16 @@ void bind_raster(py::module_& m) {
                             b.data()[i], ")");
             }
           }
-          MomentShadowSettings settings = MomentShadowSettings::defaults(is_signed);  // fp32 biases, as documented
-          settings.method = parse_moment_shadow_method(method);
-          settings.storage = storage;
-          if (bias) settings.bias = *bias;
-          if (bias_vector) {
-            if (bias_vector->size() != 4) throw_invalid("bias_vector must have 4 entries (got ", bias_vector->size(), ")");
-            std::copy(bias_vector->begin(), bias_vector->end(), settings.bias_vector.begin());
-          }
-          settings.validate();
           std::vector<double> out(z.size());
           for (size_t i = 0; i < z.size(); ++i) {
-            out[i] = moment_shadow({b.at(i, 0), b.at(i, 1), b.at(i, 2), b.at(i, 3)}, z[i], settings);
+            out[i] = moment_shadow({b.at(i, 0), b.at(i, 1), b.at(i, 2), b.at(i, 3)}, z[i], parsed, settings);
           }
           return values_to_array(out);
         },
-        py::arg("moments"), py::arg("z_f"), py::arg("method"), py::arg("signed"), py::arg("bias"), py::arg("bias_vector"),
-        py::arg("storage"));
+        py::arg("moments"), py::arg("z_f"), py::arg("method"), py::arg("settings"));
   m.def("_quantize_moments",
-        [](const py::object& moments, bool is_signed, bool inverse) {
+        [](const py::object& moments, const std::string& depth_range, bool inverse) {
+          const bool is_signed = parse_depth_range(depth_range) == DepthRange::kSigned;
           const DoubleArray b = as_matrix(moments, 4, "moments");
           DoubleArray out({b.shape(0), py::ssize_t(4)});
           for (py::ssize_t i = 0; i < b.shape(0); ++i) {
@@ -113,7 +108,7 @@ void bind_raster(py::module_& m) {
           }
           return out;
         },
-        py::arg("moments"), py::arg("signed"), py::arg("inverse"));
+        py::arg("moments"), py::arg("depth_range"), py::arg("inverse"));
 
   m.def("_canonical_bound",
         [](const std::vector<double>& b, double z_f) {
@@ -140,9 +135,7 @@ void bind_raster(py::module_& m) {
 
   m.def("_composite",
         [](const py::object& depths, const py::object& alphas, const py::object& colors, const py::object& background,
-           const std::string& method, int moments, const std::string& kind, double beta, std::optional<double> bias,
-           std::optional<std::pair<double, double>> z_range, std::optional<int> layers, const std::string& weight,
-           const std::string& storage) {
+           const OitSettings& settings) {
           const std::vector<double> z = to_values(depths, "depths"), a = to_values(alphas, "alphas");
           const std::vector<Vec3d> c = z.empty() ? std::vector<Vec3d>{} : to_points(colors, "colors");
           if (a.size() != z.size() || c.size() != z.size()) {
@@ -153,31 +146,11 @@ void bind_raster(py::module_& m) {
           for (size_t i = 0; i < z.size(); ++i) fragments.push_back({z[i], a[i], c[i]});
           validate_fragments(fragments);
           const Vec3d bg = to_point(background, "background");
-          OitSettings settings;
-          settings.method = parse_oit_method(method);
-          if (settings.method == OitMethod::kPeel && !layers) throw_invalid("method 'peel' needs layers");
-          if (layers) settings.layers = *layers;
-          settings.weight = weight;
-          if (kind != "power" && kind != "trig") throw_invalid("kind must be 'power' or 'trig' (got '", kind, "')");
-          settings.mboit.trigonometric = kind == "trig";
-          settings.mboit.moments = moments;
-          settings.mboit.beta = beta;
-          if (storage != "fp32" && storage != "unorm16") throw_invalid("storage must be 'fp32' or 'unorm16' (got '", storage, "')");
-          settings.mboit.unorm16 = storage == "unorm16";
-          if (bias) settings.mboit.bias = *bias;
-          if (z_range) {
-            if (!(z_range->first > 0.0 && z_range->second > z_range->first)) {
-              throw_invalid("z_range must be (near, far) with 0 < near < far");
-            }
-            settings.mboit.z_near = z_range->first, settings.mboit.z_far = z_range->second;
-          }
-          if (settings.method == OitMethod::kMboit) settings.validate();
+          settings.validate();
           const Vec3d out = composite(fragments, bg, settings);
           return points_to_array({out}).reshape({py::ssize_t(3)});
         },
-        py::arg("depths"), py::arg("alphas"), py::arg("colors"), py::arg("background"), py::arg("method"),
-        py::arg("moments"), py::arg("kind"), py::arg("beta"), py::arg("bias"), py::arg("z_range"), py::arg("layers"),
-        py::arg("weight"), py::arg("storage"));
+        py::arg("depths"), py::arg("alphas"), py::arg("colors"), py::arg("background"), py::arg("settings"));
 }
 
 }  // namespace refracta

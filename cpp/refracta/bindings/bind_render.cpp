@@ -1,6 +1,7 @@
 // Python binding of the renderers (cpp/refracta/render).
 #include "refracta/bindings/bind_scene.h"
 #include "refracta/bindings/interruptible.h"
+#include "refracta/bindings/options_binding.h"
 #include "refracta/render/raster_renderer.h"
 #include "refracta/render/renderer.h"
 
@@ -10,10 +11,10 @@
 namespace refracta {
 
 void bind_render(py::module_& m) {
-  py::class_<RenderOptions>(m, "RenderOptions", R"doc(
+  py::class_<RenderOptions> render_options(m, "RenderOptions", R"doc(
 Options of refracta.render, with their defaults (defined once, here). Set any field by name;
-validate() reports every bad value at once.)doc")
-      .def(py::init<>())
+validate() reports every bad value at once.)doc");
+  render_options.def(py::init<>())
       .def_property("method", [](const RenderOptions& o) { return o.method == RenderMethod::kStraight ? "straight" : o.method == RenderMethod::kCurved ? "curved" : "raster_march"; },
                     [](RenderOptions& o, const std::string& v) { o.method = parse_render_method(v); },
                     "'curved' (exact curved rays), 'straight' (no refraction) or 'raster_march' (the original editor's method)")
@@ -70,23 +71,38 @@ validate() reports every bad value at once.)doc")
                     "None (the whole image) or (x0, y0, x1, y1): render only pixels [x0, x1) x [y0, y1), each exactly as\n"
                     "in the whole image (distributed tiles); the image returned has that size")
       .def("validate", &RenderOptions::validate)
-      // Pickled as its fields by name and rebuilt through them (the defaults stay C++'s).
-      .def(py::pickle(
-          [](const py::object& self) {
-            py::dict state;
-            const py::object type = py::type::of(self);
-            const py::object property = py::module_::import("builtins").attr("property");
-            for (const py::handle name : py::module_::import("builtins").attr("dir")(type)) {
-              const std::string key = py::cast<std::string>(name);
-              if (key.rfind("_", 0) != 0 && py::isinstance(type.attr(name), property)) state[name] = self.attr(name);
-            }
-            return state;
+      .def(
+          "bounds_in",
+          [](const RenderOptions& o, int width, int height) {
+            const PixelBounds b = o.bounds_in(width, height);
+            return py::make_tuple(b.x0, b.y0, b.x1, b.y1);
           },
-          [](const py::dict& state) {
-            py::object options = py::cast(RenderOptions());
-            for (const auto& item : state) options.attr(item.first) = item.second;
-            return py::cast<RenderOptions>(options);
-          }));
+          py::arg("width"), py::arg("height"),
+          "(x0, y0, x1, y1) of the pixels rendered in a width x height image (pixel_bounds, checked, or the whole)");
+  // Pickled as its fields by name and rebuilt through them (the defaults stay C++'s).
+  def_options_pickle<RenderOptions>(render_options);
+
+  py::class_<RenderStats>(m, "RenderStats", "What refracta.render counted (read-only; tiles add up with +).")
+      .def(py::init<>(), "All counts 0.")
+      .def_readonly("samples", &RenderStats::samples, "camera samples traced")
+      .def_readonly("chords", &RenderStats::chords, "Embree queries along camera paths (straight rays count one each)")
+      .def_readonly("invalid_samples", &RenderStats::invalid_samples,
+                    "samples whose radiance was not finite (dropped; should stay 0)")
+      .def("__add__",
+           [](const RenderStats& a, const RenderStats& b) {
+             RenderStats sum;
+             sum.samples = a.samples + b.samples, sum.chords = a.chords + b.chords;
+             sum.invalid_samples = a.invalid_samples + b.invalid_samples;
+             return sum;
+           })
+      .def("__repr__", [](const py::object& self) { return "RenderStats(" + options_repr(self) + ")"; })
+      .def(py::pickle([](const RenderStats& s) { return py::make_tuple(s.samples, s.chords, s.invalid_samples); },
+                      [](const py::tuple& t) {
+                        RenderStats s;
+                        s.samples = t[0].cast<int64_t>(), s.chords = t[1].cast<int64_t>();
+                        s.invalid_samples = t[2].cast<int64_t>();
+                        return s;
+                      }));
 
   m.def("_render",
         [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::shared_ptr<IndexField>& field,
@@ -102,82 +118,24 @@ validate() reports every bad value at once.)doc")
           RenderStats stats;
           const Scene::ReadGuard reading(scene->geometry);
           run_interruptible(control, progress, [&] { image = render(*scene, camera, field, options, control, &stats); });
-          py::dict counts;
-          counts["samples"] = stats.samples;
-          counts["chords"] = stats.chords;
-          counts["invalid_samples"] = stats.invalid_samples;
-          return py::make_tuple(image_to_float32(std::move(image)), counts);
+          return py::make_tuple(image_to_float32(std::move(image)), stats);
         },
         py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("options"), py::arg("progress"));
 
   m.def("_render_raster",
-        [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const std::string& shadows, int resolution,
-           int kernel, bool signed_depth, std::optional<double> bias, std::optional<std::vector<double>> bias_vector,
-           const std::string& storage, double depth_bias, double normal_offset, double bleeding_reduction,
-           const py::object& shadow_centre, std::optional<double> shadow_half_size, std::optional<double> shadow_distance,
-           bool output_shadow, std::optional<std::string> transparency, int oit_moments, const std::string& oit_kind,
-           double beta, int layers, const std::string& weight, int shadow_light, bool use_sun,
-           std::optional<std::vector<int>> spots, const std::string& oit_storage, const py::object& progress) {
+        [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const RasterRenderOptions& options,
+           const py::object& progress) {
           if (!scene) throw_invalid("scene must be a refracta.Scene");
-          RasterRenderOptions options;
-          if (transparency) {
-            OitSettings oit;
-            oit.method = parse_oit_method(*transparency);
-            if (oit_kind != "power" && oit_kind != "trig") throw_invalid("kind must be 'power' or 'trig' (got '", oit_kind, "')");
-            oit.mboit.trigonometric = oit_kind == "trig";
-            oit.mboit.moments = oit_moments;
-            oit.mboit.beta = beta;
-            if (oit_storage != "fp32" && oit_storage != "unorm16") {
-              throw_invalid("oit_storage must be 'fp32' or 'unorm16' (got '", oit_storage, "')");
-            }
-            oit.mboit.unorm16 = oit_storage == "unorm16";
-            oit.layers = layers;
-            oit.weight = weight;
-            options.transparency = oit;
-          }
-          options.shadows = shadows;
-          if (shadows != "embree" && shadows != "none") parse_shadow_method(shadows);
-          ShadowMapOptions& map = options.shadow_map;
-          map.resolution = resolution;
-          map.kernel = kernel;
-          map.moments = MomentShadowSettings::defaults(signed_depth, parse_moment_storage(storage));
-          if (bias) map.moments.bias = *bias;
-          if (bias_vector) {
-            if (bias_vector->size() != 4) throw_invalid("bias_vector must have 4 entries (got ", bias_vector->size(), ")");
-            std::copy(bias_vector->begin(), bias_vector->end(), map.moments.bias_vector.begin());
-          }
-          map.depth_bias = depth_bias;
-          map.normal_offset = normal_offset;
-          map.bleeding_reduction = bleeding_reduction;
-          if (!shadow_centre.is_none()) options.shadow_centre = to_point(shadow_centre, "shadow_centre");
-          options.shadow_half_size = shadow_half_size;
-          if (shadow_distance) options.shadow_distance = *shadow_distance;
-          options.output_shadow = output_shadow;
-          options.shadow_light = shadow_light;
-          options.use_sun = use_sun;
-          options.spots = spots;
           options.validate();
           WorkControl control;
           Image image;
           RasterRenderStats stats;
           const Scene::ReadGuard reading(scene->geometry);
-          run_interruptible(control, progress, [&] {
-            image = render_raster(*scene, camera, options, control, &stats);
-          });
-          py::dict counts;
-          counts["seconds"] = stats.seconds;
-          counts["shadow_build_seconds"] = stats.shadow_build_seconds;
-          counts["bytes_per_texel"] = stats.bytes_per_texel;
-          counts["transparent_fragments"] = stats.transparent_fragments;
-          counts["oit_bytes_per_pixel"] = stats.oit_bytes_per_pixel;
-          return py::make_tuple(image_to_float32(std::move(image)), counts);
+          run_interruptible(control, progress, [&] { image = render_raster(*scene, camera, options, control, &stats); });
+          return py::make_tuple(image_to_float32(std::move(image)), stats);
         },
-        py::arg("scene"), py::arg("camera"), py::arg("shadows"), py::arg("resolution"), py::arg("kernel"),
-        py::arg("signed_depth"), py::arg("bias"), py::arg("bias_vector"), py::arg("storage"), py::arg("depth_bias"),
-        py::arg("normal_offset"), py::arg("bleeding_reduction"), py::arg("shadow_centre"), py::arg("shadow_half_size"),
-        py::arg("shadow_distance"), py::arg("output_shadow"), py::arg("transparency"), py::arg("moments"),
-        py::arg("kind"), py::arg("beta"), py::arg("layers"), py::arg("weight"), py::arg("shadow_light"),
-        py::arg("use_sun"), py::arg("spots"), py::arg("oit_storage"), py::arg("progress"));
+        py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress"),
+        "(image, RasterRenderStats) of refracta.render_raster.");
 }
 
 }  // namespace refracta

@@ -1,48 +1,64 @@
 // moment_shadow: storage, bias, method.
 #include "refracta/raster/moment_shadow.h"
 
-#include "refracta/core/error.h"
-
 #include <cmath>
 
 namespace refracta {
 
 MomentShadowMethod parse_moment_shadow_method(const std::string& name) {
-  if (name == "hamburger") return MomentShadowMethod::kHamburger;
-  if (name == "hausdorff") return MomentShadowMethod::kHausdorff;
+  if (name == "msm_hamburger") return MomentShadowMethod::kHamburger;
+  if (name == "msm_hausdorff") return MomentShadowMethod::kHausdorff;
   if (name == "vsm") return MomentShadowMethod::kVsm;
   if (name == "canonical") return MomentShadowMethod::kCanonical;
-  throw_invalid("method must be 'hamburger', 'hausdorff', 'vsm' or 'canonical' (got '", name, "')");
+  throw_invalid("method must be 'msm_hamburger', 'msm_hausdorff', 'vsm' or 'canonical' (got '", name, "')");
 }
 
-MomentShadowSettings MomentShadowSettings::defaults(bool signed_depth, MomentStorage storage) {
-  MomentShadowSettings s;
-  s.signed_depth = signed_depth;
-  s.storage = storage;
-  if (storage == MomentStorage::kUnorm16) {
-    s.bias = signed_depth ? 6e-5 : 3e-5;
-  } else {
-    s.bias = signed_depth ? 3e-7 : 3e-6;
+const char* moment_shadow_method_name(MomentShadowMethod method) {
+  switch (method) {
+    case MomentShadowMethod::kHamburger: return "msm_hamburger";
+    case MomentShadowMethod::kHausdorff: return "msm_hausdorff";
+    case MomentShadowMethod::kVsm: return "vsm";
+    case MomentShadowMethod::kCanonical: return "canonical";
   }
-  s.bias_vector = signed_depth ? Moments4{0.0, 0.375, 0.0, 0.375} : Moments4{0.5, 0.5, 0.5, 0.5};
-  return s;
+  return "?";
+}
+
+double MomentShadowSettings::published_bias(DepthRange range, Storage storage) {
+  const bool is_signed = range == DepthRange::kSigned;
+  if (storage == Storage::kUnorm16) return is_signed ? 6e-5 : 3e-5;
+  return is_signed ? 3e-7 : 3e-6;
+}
+
+Moments4 MomentShadowSettings::published_bias_vector(DepthRange range) {
+  return range == DepthRange::kSigned ? Moments4{0.0, 0.375, 0.0, 0.375} : Moments4{0.5, 0.5, 0.5, 0.5};
+}
+
+void MomentShadowSettings::check(Problems& problems) const {
+  if (bias) problems.check(*bias >= 0.0 && *bias < 1.0, "bias must be in [0, 1) (got ", *bias, ")");
+  if (bias_vector) {
+    bool finite = true;
+    for (double v : *bias_vector) finite = finite && std::isfinite(v);
+    problems.check(finite, "bias_vector must be finite");
+  }
 }
 
 void MomentShadowSettings::validate() const {
-  if (!(bias >= 0.0 && bias < 1.0)) throw_invalid("bias must be in [0, 1) (got ", bias, ")");
-  for (double v : bias_vector) {
-    if (!std::isfinite(v)) throw_invalid("bias_vector must be finite");
-  }
+  Problems problems("MomentShadowSettings");
+  check(problems);
+  problems.throw_if_any();
 }
 
-double moment_shadow(const Moments4& b, double z_f, const MomentShadowSettings& settings) {
-  const Moments4 read = stored_moments(b, settings.storage, settings.signed_depth);
+double moment_shadow(const Moments4& b, double z_f, MomentShadowMethod method, const MomentShadowSettings& settings) {
+  const bool is_signed = settings.depth_range == DepthRange::kSigned;
+  const Moments4 read = stored_moments(b, settings.storage, is_signed);
+  const double alpha = settings.bias_or_published();
+  const Moments4 target = settings.bias_vector_or_published();
   // (1 - alpha) b + alpha b* (bias_moments, without allocating: this runs once per lookup).
   std::array<double, 4> c;
-  for (int j = 0; j < 4; ++j) c[j] = (1.0 - settings.bias) * read[j] + settings.bias * settings.bias_vector[j];
-  switch (settings.method) {
+  for (int j = 0; j < 4; ++j) c[j] = (1.0 - alpha) * read[j] + alpha * target[j];
+  switch (method) {
     case MomentShadowMethod::kHamburger: return hamburger_4msm(c, z_f);
-    case MomentShadowMethod::kHausdorff: return hausdorff_4msm(c, z_f, settings.signed_depth ? -1.0 : 0.0, 1.0);
+    case MomentShadowMethod::kHausdorff: return hausdorff_4msm(c, z_f, is_signed ? -1.0 : 0.0, 1.0);
     case MomentShadowMethod::kVsm: return vsm_shadow(c[0], c[1], z_f, 1e-12);
     case MomentShadowMethod::kCanonical: {
       const MomentBound bound = canonical_bound({1.0, c[0], c[1], c[2], c[3]}, z_f);

@@ -4,31 +4,46 @@
 // by refracta.moments.shadow_intensity alike.
 #pragma once
 
+#include "refracta/core/error.h"
 #include "refracta/raster/moments.h"
 #include "refracta/raster/quantization.h"
 
+#include <optional>
 #include <string>
 
 namespace refracta {
 
+// How a shadow intensity is read from four moments. Python spells the 4MSMs as render_raster
+// does: "msm_hamburger", "msm_hausdorff" (refracta.moments accepts the old "hamburger",
+// "hausdorff" with a DeprecationWarning).
 enum class MomentShadowMethod { kHamburger, kHausdorff, kVsm, kCanonical };
-MomentShadowMethod parse_moment_shadow_method(const std::string& name);  // "hamburger", "hausdorff", "vsm", "canonical"
+MomentShadowMethod parse_moment_shadow_method(const std::string& name);  // "msm_hamburger", "msm_hausdorff", "vsm", "canonical"
+const char* moment_shadow_method_name(MomentShadowMethod method);
 
+// How the moments are kept and biased (the method is the caller's: the shadow map's, or
+// moments.shadow_intensity's argument).
 struct MomentShadowSettings {
-  MomentShadowMethod method = MomentShadowMethod::kHamburger;
-  bool signed_depth = false;   // depths in [-1, 1] (JCGT 2017) instead of [0, 1] (I3D 2015)
-  double bias = 3e-6;          // alpha, the weight of the bias vector (3e-6 unit / 3e-7 signed for fp32)
-  Moments4 bias_vector{0.5, 0.5, 0.5, 0.5};  // (0, 0.375, 0, 0.375) for signed depths
-  MomentStorage storage = MomentStorage::kFp64;
+  DepthRange depth_range = DepthRange::kUnit;  // [0, 1] (I3D 2015) or [-1, 1] (JCGT 2017)
+  Storage storage = Storage::kFp32;            // how a GPU would keep them (the shadow maps' default)
+  // alpha, the weight of the bias vector; unset: published_bias(depth_range, storage).
+  std::optional<double> bias;
+  // b*, the moments biased toward; unset: published_bias_vector(depth_range).
+  std::optional<Moments4> bias_vector;
 
-  // The published defaults for a depth range: bias 3e-6 toward 0.5 (unit), 3e-7 toward
-  // (0, 0.375, 0, 0.375) (signed); storage unorm16 needs ~10x more (3e-5 / 6e-5, MOMENTS.md 2.5).
-  static MomentShadowSettings defaults(bool signed_depth, MomentStorage storage = MomentStorage::kFp32);
-  void validate() const;  // throws std::invalid_argument naming the bad field
+  // The published strengths: 3e-6 (unit) / 3e-7 (signed) for fp32 and fp64 (Peters & Klein 2015
+  // sec. 5; Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5 (MOMENTS.md 2.5).
+  static double published_bias(DepthRange range, Storage storage);
+  // (0.5, 0.5, 0.5, 0.5) for unit depths, (0, 0.375, 0, 0.375) for signed ones.
+  static Moments4 published_bias_vector(DepthRange range);
+  double bias_or_published() const { return bias ? *bias : published_bias(depth_range, storage); }
+  Moments4 bias_vector_or_published() const { return bias_vector ? *bias_vector : published_bias_vector(depth_range); }
+
+  void check(Problems& problems) const;  // adds every bad field
+  void validate() const;                 // throws std::invalid_argument listing them all
 };
 
 // Shadow intensity in [0, 1] (the mass of the filtered depth distribution in front of z_f) from
 // b_1..b_4 as they were filtered (before storage).
-double moment_shadow(const Moments4& b, double z_f, const MomentShadowSettings& settings);
+double moment_shadow(const Moments4& b, double z_f, MomentShadowMethod method, const MomentShadowSettings& settings);
 
 }  // namespace refracta

@@ -49,13 +49,12 @@ Vec3d composite_exact(std::vector<Fragment> fragments, const Vec3d& background) 
   return composite_peeled(std::move(fragments), background, std::max(count, 1));
 }
 
-Vec3d composite_wboit(const std::vector<Fragment>& fragments, const Vec3d& background, const std::string& weight) {
-  if (weight != "eq7" && weight != "eq9") throw_invalid("weight must be 'eq7' or 'eq9' (got '", weight, "')");
+Vec3d composite_wboit(const std::vector<Fragment>& fragments, const Vec3d& background, WboitWeight weight) {
   Vec3d accum = Vec3d::Zero();
   double accum_alpha = 0.0, revealage = 1.0;
   for (const Fragment& f : fragments) {
     const double z = std::abs(f.depth);
-    const double raw = weight == "eq7" ? 10.0 / (1e-5 + std::pow(z / 5.0, 2) + std::pow(z / 200.0, 6))
+    const double raw = weight == WboitWeight::kEq7 ? 10.0 / (1e-5 + std::pow(z / 5.0, 2) + std::pow(z / 200.0, 6))
                                        : 0.03 / (1e-5 + std::pow(z / 200.0, 4));
     const double w = f.alpha * std::clamp(raw, 1e-2, 3e3);
     accum += f.colour * f.alpha * w;
@@ -66,15 +65,15 @@ Vec3d composite_wboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   return average * (1.0 - revealage) + background * revealage;
 }
 
-Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& background, const MbOitOptions& options) {
+Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& background, const MboitSettings& options) {
   // Published fp32 bias vectors and strengths (MOMENTS.md 4.4).
   static const std::vector<double> kBias4 = {0, 0.375, 0, 0.375};
   static const std::vector<double> kBias6 = {0, 0.48, 0, 0.451, 0, 0.45};
   static const std::vector<double> kBias8 = {0, 0.75, 0, 0.676667, 0, 0.63, 0, 0.600303};
+  options.validate();
   const int m = options.moments;
-  if (options.trigonometric && (m < 2 || m > 4)) throw_invalid("trigonometric moments must be 2, 3 or 4 (got ", m, ")");
-  if (!options.trigonometric && m != 4 && m != 6 && m != 8) throw_invalid("moments must be 4, 6 or 8 (got ", m, ")");
-  if (!(options.beta >= 0.0 && options.beta <= 1.0)) throw_invalid("beta must be in [0, 1] (got ", options.beta, ")");
+  const bool trigonometric = options.basis == MomentBasis::kTrigonometric;
+  const bool unorm16 = options.storage == Storage::kUnorm16;
   // 16-bit bias vectors (MOMENTS.md 4.4); strengths: 6e-5 for 4 moments (the Unity HDRP port),
   // and for 6 / 8 moments 10x the fp32 values (no published 16-bit figure; measured to keep the
   // error of tests/raster at fp32's).
@@ -82,11 +81,9 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   static const std::vector<double> kBias6Unorm16 = {0, 0.5566, 0, 0.489, 0, 0.47869382};
   static const std::vector<double> kBias8Unorm16 = {0, 0.424749, 0, 0.224078, 0, 0.153692, 0, 0.129004};
   const std::vector<double>& target =
-      options.unorm16 ? (m == 6 ? kBias6Unorm16 : (m == 8 ? kBias8Unorm16 : kBias4Unorm16))
-                      : (m == 6 ? kBias6 : (m == 8 ? kBias8 : kBias4));
-  const double alpha_bias = options.bias >= 0.0 ? options.bias
-                            : options.unorm16   ? (m == 4 ? 6e-5 : (m == 6 ? 5e-5 : 5e-4))
-                                                : (m == 4 ? 5e-7 : (m == 6 ? 5e-6 : 5e-5));
+      unorm16 ? (m == 6 ? kBias6Unorm16 : (m == 8 ? kBias8Unorm16 : kBias4Unorm16))
+              : (m == 6 ? kBias6 : (m == 8 ? kBias8 : kBias4));
+  const double alpha_bias = options.bias_or_published();
   if (fragments.empty()) return background;
   // Log depth warp to [-1, 1] over the given or the fragments' range (MOMENTS.md 4.2).
   double z_near = options.z_near, z_far = options.z_far;
@@ -99,7 +96,7 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   auto warp = [&](double z) {
     return std::clamp((std::log(std::clamp(z, z_near, z_far)) - log_near) / log_range, 0.0, 1.0) * 2.0 - 1.0;
   };
-  if (options.trigonometric) {
+  if (trigonometric) {
     // Depths fill [0, 2 pi - theta] of the circle (MOMENTS.md 4.2); bias scales toward uniform.
     const double kWrap = kPi / 10.0;
     auto angle = [&](double z) { return (warp(z) + 1.0) * (kPi - kWrap / 2.0); };
@@ -110,7 +107,7 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
       if (!(a > 0.0)) continue;  // nothing to add (and total + a would be 0 for a first such fragment)
       for (int j = 1; j <= m; ++j) {
         c[j] = (c[j] * total + a * std::polar(1.0, j * angle(f.depth))) / (total + a);
-        if (options.unorm16) {  // stored as c/2 + 1/2 in 16 bits, per component
+        if (unorm16) {  // stored as c/2 + 1/2 in 16 bits, per component
           auto q = [](double v) { return (std::round(std::clamp(0.5 * v + 0.5, 0.0, 1.0) * 65535.0) / 65535.0 - 0.5) * 2.0; };
           c[j] = {q(c[j].real()), q(c[j].imag())};
         }
@@ -119,7 +116,7 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
     }
     const double total_transmittance = std::exp(-total);
     if (total < 0.00100050033) return background * total_transmittance;
-    const double trig_bias = options.bias >= 0.0 ? options.bias : (m == 2 ? 4e-4 : 2e-4);
+    const double trig_bias = alpha_bias;
     for (int j = 1; j <= m; ++j) c[j] *= (1.0 - trig_bias);
     c[0] = 1.0;
     Vec3d accum = Vec3d::Zero();
@@ -146,7 +143,7 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   for (size_t i = 0; i < fragments.size(); ++i) {
     const double a = -std::log(1.0 - std::min(fragments[i].alpha, 0.999));
     const double z = warped[i] = warp(fragments[i].depth);
-    if (!options.unorm16) {
+    if (!unorm16) {
       double power = z;
       for (int j = 1; j <= m; ++j, power *= z) b[j] += a * power;
       total += a;
@@ -157,7 +154,7 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
     for (int j = 1; j <= m; ++j, power *= z) b[j] = (b[j] * total + a * power) / (total + a);
     total += a;
     if (m == 4) {
-      const Moments4 stored = stored_moments({b[1], b[2], b[3], b[4]}, MomentStorage::kUnorm16, true);
+      const Moments4 stored = stored_moments({b[1], b[2], b[3], b[4]}, Storage::kUnorm16, true);
       for (int j = 1; j <= 4; ++j) b[j] = stored[j - 1];
     } else {
       const std::vector<double> stored = stored_mboit_unorm16(std::vector<double>(b.begin() + 1, b.begin() + m + 1));
@@ -166,7 +163,7 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   }
   const double total_transmittance = std::exp(-total);
   if (total < 0.00100050033) return background * total_transmittance + Vec3d::Zero();  // < 0.1 % covered
-  if (!options.unorm16) {
+  if (!unorm16) {
     for (int j = 1; j <= m; ++j) b[j] /= total;
   }
   // Bias (1 - alpha) b + alpha b*, and the Hankel matrix factorised once for all the pixel's
@@ -199,22 +196,67 @@ OitMethod parse_oit_method(const std::string& name) {
   throw_invalid("method must be 'exact', 'peel', 'wboit' or 'mboit' (got '", name, "')");
 }
 
+const char* oit_method_name(OitMethod method) {
+  switch (method) {
+    case OitMethod::kExact: return "exact";
+    case OitMethod::kPeel: return "peel";
+    case OitMethod::kWboit: return "wboit";
+    case OitMethod::kMboit: return "mboit";
+  }
+  return "?";
+}
+
+MomentBasis parse_moment_basis(const std::string& name) {
+  if (name == "power") return MomentBasis::kPower;
+  if (name == "trigonometric") return MomentBasis::kTrigonometric;
+  throw_invalid("basis must be 'power' or 'trigonometric' (got '", name, "')");
+}
+
+const char* moment_basis_name(MomentBasis basis) { return basis == MomentBasis::kTrigonometric ? "trigonometric" : "power"; }
+
+WboitWeight parse_wboit_weight(const std::string& name) {
+  if (name == "eq7") return WboitWeight::kEq7;
+  if (name == "eq9") return WboitWeight::kEq9;
+  throw_invalid("weight must be 'eq7' or 'eq9' (got '", name, "')");
+}
+
+const char* wboit_weight_name(WboitWeight weight) { return weight == WboitWeight::kEq9 ? "eq9" : "eq7"; }
+
+double MboitSettings::published_bias(MomentBasis basis, int moments, Storage storage) {
+  if (basis == MomentBasis::kTrigonometric) return moments == 2 ? 4e-4 : 2e-4;
+  if (storage == Storage::kUnorm16) return moments == 4 ? 6e-5 : (moments == 6 ? 5e-5 : 5e-4);
+  return moments == 4 ? 5e-7 : (moments == 6 ? 5e-6 : 5e-5);
+}
+
+void MboitSettings::check(Problems& problems) const {
+  const int m = moments;
+  if (basis == MomentBasis::kTrigonometric) {
+    problems.check(m >= 2 && m <= 4, "trigonometric moments must be 2, 3 or 4 (got ", m, ")");
+  } else {
+    problems.check(m == 4 || m == 6 || m == 8, "power moments must be 4, 6 or 8 (got ", m, ")");
+  }
+  problems.check(beta >= 0.0 && beta <= 1.0, "beta must be in [0, 1] (got ", beta, ")");
+  if (bias) problems.check(*bias >= 0.0 && *bias < 1.0, "bias must be in [0, 1) (got ", *bias, ")");
+  problems.check(storage != Storage::kFp64, "storage must be 'fp32' or 'unorm16' (got 'fp64')");
+  problems.check(std::isfinite(z_near) && std::isfinite(z_far), "z_near and z_far must be finite");
+  if (z_far > z_near) problems.check(z_near > 0.0, "z_range must be (near, far) with 0 < near < far");
+}
+
+void MboitSettings::validate() const {
+  Problems problems("MboitSettings");
+  check(problems);
+  problems.throw_if_any();
+}
+
+void OitSettings::check(Problems& problems) const {
+  if (method == OitMethod::kPeel) problems.check(layers >= 1, "layers must be >= 1 (got ", layers, ")");
+  if (method == OitMethod::kMboit) mboit.check(problems);
+}
+
 void OitSettings::validate() const {
-  if (method == OitMethod::kPeel && layers < 1) throw_invalid("layers must be >= 1 (got ", layers, ")");
-  if (method == OitMethod::kWboit && weight != "eq7" && weight != "eq9") {
-    throw_invalid("weight must be 'eq7' or 'eq9' (got '", weight, "')");
-  }
-  if (method == OitMethod::kMboit) {
-    const int m = mboit.moments;
-    if (mboit.trigonometric ? (m < 2 || m > 4) : (m != 4 && m != 6 && m != 8)) {
-      throw_invalid(mboit.trigonometric ? "trigonometric moments must be 2, 3 or 4" : "power moments must be 4, 6 or 8",
-                    " (got ", m, ")");
-    }
-    if (!(mboit.beta >= 0.0 && mboit.beta <= 1.0)) throw_invalid("beta must be in [0, 1] (got ", mboit.beta, ")");
-    if (mboit.z_far > mboit.z_near && !(mboit.z_near > 0.0)) {
-      throw_invalid("z_range must be (near, far) with 0 < near < far");
-    }
-  }
+  Problems problems("OitSettings");
+  check(problems);
+  problems.throw_if_any();
 }
 
 double OitSettings::bytes_per_pixel(double fragments_per_pixel) const {
@@ -223,7 +265,9 @@ double OitSettings::bytes_per_pixel(double fragments_per_pixel) const {
     case OitMethod::kPeel: return 12.0 * layers;
     case OitMethod::kWboit: return 10.0;
     case OitMethod::kMboit:
-      return 4.0 + (mboit.unorm16 ? 2.0 : 4.0) * (mboit.trigonometric ? 2 * mboit.moments : mboit.moments) + 8.0;
+      return 4.0 + (mboit.storage == Storage::kUnorm16 ? 2.0 : 4.0) *
+                       (mboit.basis == MomentBasis::kTrigonometric ? 2 * mboit.moments : mboit.moments) +
+             8.0;
   }
   return 0.0;
 }

@@ -4,8 +4,11 @@
 // moments (Muenstermann et al., I3D 2018; MOMENTS.md 4).
 #pragma once
 
+#include "refracta/core/error.h"
 #include "refracta/core/math.h"
+#include "refracta/raster/quantization.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,38 +20,58 @@ struct Fragment {
   Vec3d colour;  // linear RGB, not premultiplied
 };
 
-struct MbOitOptions {
-  bool trigonometric = false;   // power moments (4, 6, 8) or trigonometric ones (2, 3, 4 complex)
+// MBOIT's moments: powers of the warped depth, or trigonometric (Fourier) ones on a circle.
+enum class MomentBasis { kPower, kTrigonometric };
+MomentBasis parse_moment_basis(const std::string& name);  // "power", "trigonometric"
+const char* moment_basis_name(MomentBasis basis);
+
+// WBOIT's depth weight: McGuire & Bavoil (JCGT 2013) equation 7 or 9.
+enum class WboitWeight { kEq7, kEq9 };
+WboitWeight parse_wboit_weight(const std::string& name);  // "eq7", "eq9"
+const char* wboit_weight_name(WboitWeight weight);
+
+struct MboitSettings {
+  MomentBasis basis = MomentBasis::kPower;
   int moments = 4;              // 4, 6 or 8 power moments; 2, 3 or 4 trigonometric
   double beta = 0.25;           // overestimation: the share of the fragment's own layer in front
-  double bias = -1.0;           // < 0: the published fp32 value for the moment count
-  double z_near = 0.0, z_far = 0.0;  // log-warp range; z_far <= z_near: the fragments' own range
-  // fp32 (emulated in double), or the 16-bit ROV variant (MOMENTS.md 4.5): b0 in fp32 and the
-  // normalised moments re-quantised to 16 bits after every fragment, in list order (4 power
-  // moments through Theta*_4, 6 and 8 through the MBOIT matrices (stored_mboit_unorm16),
-  // trigonometric ones as c/2 + 1/2).
-  bool unorm16 = false;
+  // alpha, the weight of the bias vector; unset: the published value for the basis, the moment
+  // count and the storage (MOMENTS.md 4.4; published_bias).
+  std::optional<double> bias;
+  double z_near = 0.0, z_far = 0.0;  // log-warp range [m]; z_far <= z_near: the fragments' own range
+  // fp32 (emulated in double), or unorm16, the 16-bit ROV variant (MOMENTS.md 4.5): b0 in fp32
+  // and the normalised moments re-quantised to 16 bits after every fragment, in list order (4
+  // power moments through Theta*_4, 6 and 8 through the MBOIT matrices (stored_mboit_unorm16),
+  // trigonometric ones as c/2 + 1/2). fp64 is refused (no GPU keeps it).
+  Storage storage = Storage::kFp32;
+
+  // fp32: 5e-7 / 5e-6 / 5e-5 for 4 / 6 / 8 power moments; unorm16: 6e-5 (the Unity HDRP port),
+  // 5e-5, 5e-4; trigonometric: 4e-4 for 2 moments, 2e-4 for 3 and 4.
+  static double published_bias(MomentBasis basis, int moments, Storage storage);
+  double bias_or_published() const { return bias ? *bias : published_bias(basis, moments, storage); }
+  void check(Problems& problems) const;  // adds every bad field
+  void validate() const;                 // throws std::invalid_argument listing them all
 };
 
 Vec3d composite_exact(std::vector<Fragment> fragments, const Vec3d& background);
 Vec3d composite_peeled(std::vector<Fragment> fragments, const Vec3d& background, int layers);
-// weight: "eq7" or "eq9" of McGuire & Bavoil.
-Vec3d composite_wboit(const std::vector<Fragment>& fragments, const Vec3d& background, const std::string& weight);
-Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& background, const MbOitOptions& options);
+Vec3d composite_wboit(const std::vector<Fragment>& fragments, const Vec3d& background, WboitWeight weight);
+Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& background, const MboitSettings& options);
 
 void validate_fragments(const std::vector<Fragment>& fragments);  // throws std::invalid_argument
 
 enum class OitMethod { kExact, kPeel, kWboit, kMboit };
 OitMethod parse_oit_method(const std::string& name);  // "exact", "peel", "wboit", "mboit"
+const char* oit_method_name(OitMethod method);
 
 // One OIT configuration: the method and its settings.
 struct OitSettings {
   OitMethod method = OitMethod::kMboit;
   int layers = 4;               // peel
-  std::string weight = "eq7";   // wboit
-  MbOitOptions mboit;
+  WboitWeight weight = WboitWeight::kEq7;  // wboit
+  MboitSettings mboit;
 
-  void validate() const;        // throws std::invalid_argument naming the bad field
+  void check(Problems& problems) const;  // adds every bad field (of the method's settings)
+  void validate() const;                 // throws std::invalid_argument listing them all
   // Bytes per pixel a GPU would keep: sorted lists 20 per fragment (depth, alpha, RGB fp32);
   // peeling 12 per layer (RGBA16F + depth fp32); WBOIT 10 (RGBA16F + R16F); MBOIT b0 in fp32 and
   // the moments in fp32 or 16 bits, plus the RGBA16F accumulation.

@@ -10,12 +10,29 @@
 
 namespace refracta {
 
-MomentStorage parse_moment_storage(const std::string& name) {
-  if (name == "fp64") return MomentStorage::kFp64;
-  if (name == "fp32") return MomentStorage::kFp32;
-  if (name == "unorm16") return MomentStorage::kUnorm16;
+Storage parse_storage(const std::string& name) {
+  if (name == "fp64") return Storage::kFp64;
+  if (name == "fp32") return Storage::kFp32;
+  if (name == "unorm16") return Storage::kUnorm16;
   throw_invalid("storage must be 'fp64', 'fp32' or 'unorm16' (got '", name, "')");
 }
+
+const char* storage_name(Storage storage) {
+  switch (storage) {
+    case Storage::kFp64: return "fp64";
+    case Storage::kFp32: return "fp32";
+    case Storage::kUnorm16: return "unorm16";
+  }
+  return "?";
+}
+
+DepthRange parse_depth_range(const std::string& name) {
+  if (name == "unit") return DepthRange::kUnit;
+  if (name == "signed") return DepthRange::kSigned;
+  throw_invalid("depth_range must be 'unit' or 'signed' (got '", name, "')");
+}
+
+const char* depth_range_name(DepthRange range) { return range == DepthRange::kSigned ? "signed" : "unit"; }
 
 namespace {
 
@@ -59,11 +76,11 @@ Moments4 inverse_quantization_transform(const Moments4& q, bool signed_depth) {
   return b;
 }
 
-Moments4 stored_moments(const Moments4& b, MomentStorage storage, bool signed_depth) {
+Moments4 stored_moments(const Moments4& b, Storage storage, bool signed_depth) {
   Moments4 out = b;
-  if (storage == MomentStorage::kFp32) {
+  if (storage == Storage::kFp32) {
     for (double& v : out) v = double(float(v));
-  } else if (storage == MomentStorage::kUnorm16) {
+  } else if (storage == Storage::kUnorm16) {
     Moments4 q = quantization_transform(b, signed_depth);
     for (double& v : q) v = std::round(std::clamp(v, 0.0, 1.0) * 65535.0) / 65535.0;
     out = inverse_quantization_transform(q, signed_depth);

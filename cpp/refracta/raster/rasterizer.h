@@ -51,11 +51,15 @@ struct RasterStats {
   int64_t fragments = 0;        // pixels that passed the edge test (before the depth test)
 };
 
+// Tile side [pixels] of the binning: 32 x 32 keeps a tile's depth and id rows in L1/L2 while
+// leaving enough tiles to balance over the threads.
+constexpr int kRasterTile = 32;
+
 // Draws every mesh of the scene. Degenerate triangles are skipped; no back-face culling.
 // With `transparent` (per geometry id) and `fragments`, the flagged geometries are drawn after the
 // opaque ones, per tile, into fragment lists where they lie in front of the opaque surface (the
 // same culling for every compositing method) instead of into the buffer.
-VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkControl& control, int tile = 32,
+VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkControl& control, int tile = kRasterTile,
                            RasterStats* stats = nullptr, const std::vector<bool>* transparent = nullptr,
                            FragmentLists* fragments = nullptr);
 

@@ -15,9 +15,9 @@ ShadowMethod parse_shadow_method(const std::string& name) {
   if (name == "hard") return ShadowMethod::kHard;
   if (name == "pcf") return ShadowMethod::kPcf;
   if (name == "vsm") return ShadowMethod::kVsm;
-  if (name == "hamburger") return ShadowMethod::kHamburger;
-  if (name == "hausdorff") return ShadowMethod::kHausdorff;
-  throw_invalid("shadow method must be 'hard', 'pcf', 'vsm', 'hamburger' or 'hausdorff' (got '", name, "')");
+  if (name == "msm_hamburger") return ShadowMethod::kHamburger;
+  if (name == "msm_hausdorff") return ShadowMethod::kHausdorff;
+  throw_invalid("shadow method must be 'hard', 'pcf', 'vsm', 'msm_hamburger' or 'msm_hausdorff' (got '", name, "')");
 }
 
 const char* shadow_method_name(ShadowMethod method) {
@@ -25,8 +25,8 @@ const char* shadow_method_name(ShadowMethod method) {
     case ShadowMethod::kHard: return "hard";
     case ShadowMethod::kPcf: return "pcf";
     case ShadowMethod::kVsm: return "vsm";
-    case ShadowMethod::kHamburger: return "hamburger";
-    case ShadowMethod::kHausdorff: return "hausdorff";
+    case ShadowMethod::kHamburger: return "msm_hamburger";
+    case ShadowMethod::kHausdorff: return "msm_hausdorff";
   }
   return "?";
 }
@@ -39,24 +39,33 @@ bool uses_moments(ShadowMethod m) {
 
 }  // namespace
 
-void ShadowMapOptions::validate() const {
+void ShadowMapOptions::check(Problems& problems) const {
   // Peak memory at 8192^2 texels: 2.4 GB for moment maps (fp64: four doubles per texel, 2 GiB,
   // written once by the one-pass filter, plus the depth buffer; fp32 and unorm16 half / a quarter), 1.3 GB while rasterizing (20 bytes per texel); measured
   // with tests/hardening/test_05_raster_memory.py (before: 5.5 GB, the rows and the filtered
   // copy both held, and the whole visibility buffer kept).
-  if (resolution < 2 || resolution > 8192) throw_invalid("resolution must be in [2, 8192] (got ", resolution, ")");
-  check_image_memory(resolution, resolution, uses_moments(method) ? 36.0 : 20.0, "shadow map");
-  if (kernel < 1 || kernel % 2 == 0 || kernel > resolution) {
-    throw_invalid("kernel must be an odd size >= 1 and <= resolution (got ", kernel, ")");
+  const bool resolution_ok = resolution >= 2 && resolution <= 8192;
+  problems.check(resolution_ok, "resolution must be in [2, 8192] (got ", resolution, ")");
+  problems.check(kernel >= 1 && kernel % 2 == 1 && kernel <= resolution,
+                 "kernel must be an odd size >= 1 and <= resolution (got ", kernel, ")");
+  moments.check(problems);
+  problems.check(depth_bias >= 0.0 && std::isfinite(depth_bias), "depth_bias must be >= 0 (got ", depth_bias, ")");
+  problems.check(normal_offset >= 0.0 && std::isfinite(normal_offset), "normal_offset must be >= 0 (got ", normal_offset, ")");
+  problems.check(bleeding_reduction >= 0.0 && bleeding_reduction < 1.0,
+                 "bleeding_reduction must be in [0, 1) (got ", bleeding_reduction, ")");
+  if (resolution_ok) {
+    try {
+      check_image_memory(resolution, resolution, uses_moments(method) ? 36.0 : 20.0, "shadow map");
+    } catch (const std::invalid_argument& error) {
+      problems.add(error.what());
+    }
   }
-  moments.validate();
-  if (!(depth_bias >= 0.0) || !std::isfinite(depth_bias)) throw_invalid("depth_bias must be >= 0 (got ", depth_bias, ")");
-  if (!(normal_offset >= 0.0) || !std::isfinite(normal_offset)) {
-    throw_invalid("normal_offset must be >= 0 (got ", normal_offset, ")");
-  }
-  if (!(bleeding_reduction >= 0.0 && bleeding_reduction < 1.0)) {
-    throw_invalid("bleeding_reduction must be in [0, 1) (got ", bleeding_reduction, ")");
-  }
+}
+
+void ShadowMapOptions::validate() const {
+  Problems problems("ShadowMapOptions");
+  check(problems);
+  problems.throw_if_any();
 }
 
 namespace {
@@ -98,7 +107,7 @@ std::vector<Texel> filtered_moments(int n, int k, WorkControl& control, const De
       for (int i = 0; i < w; ++i) {
         sums[i] = s;
         if (i + 1 == w) break;
-        for (int j = 0; j < 4; ++j) s[j] += power[size_t(i + k)][j] - power[size_t(i)][j];
+        for (int j = 0; j < 4; ++j) s[j] += power[size_t(i) + size_t(k)][j] - power[size_t(i)][j];
       }
     };
     // The ring holds rows y - r .. y + r (slot = row mod k, rows above 0 clamped to row 0).
@@ -175,8 +184,8 @@ void ShadowMap::build(const Scene& scene, WorkControl& control) {
   near_ -= margin, far_ += margin;
 
   if (uses_moments(options_.method)) {
-    const MomentStorage storage = options_.moments.storage;
-    const bool signed_depth = options_.moments.signed_depth;
+    const Storage storage = options_.moments.storage;
+    const bool signed_depth = options_.moments.depth_range == DepthRange::kSigned;
     // normalised(d), and 1 (the far end) where nothing is drawn, as depth_at.
     const double inv_range = 1.0 / (far_ - near_), near = near_;
     auto depth_row = [&](int y, int x0, int count, double* z) {
@@ -187,9 +196,9 @@ void ShadowMap::build(const Scene& scene, WorkControl& control) {
       }
     };
     const int k = options_.kernel;
-    if (storage == MomentStorage::kFp64) {
+    if (storage == Storage::kFp64) {
       moments_ = filtered_moments<Moments4>(n, k, control, depth_row, [](const Moments4& b) { return b; });
-    } else if (storage == MomentStorage::kFp32) {
+    } else if (storage == Storage::kFp32) {
       moments_fp32_ = filtered_moments<std::array<float, 4>>(n, k, control, depth_row, [](const Moments4& b) {
         return std::array<float, 4>{float(b[0]), float(b[1]), float(b[2]), float(b[3])};
       });
@@ -208,7 +217,7 @@ void ShadowMap::build(const Scene& scene, WorkControl& control) {
 
 double ShadowMap::normalised(double depth) const {
   const double z = (depth - near_) / (far_ - near_);
-  return options_.moments.signed_depth ? 2.0 * z - 1.0 : z;
+  return options_.moments.depth_range == DepthRange::kSigned ? 2.0 * z - 1.0 : z;
 }
 
 double ShadowMap::depth_at(int x, int y) const {
@@ -219,9 +228,9 @@ double ShadowMap::depth_at(int x, int y) const {
 int ShadowMap::bytes_per_texel() const {
   if (!uses_moments(options_.method)) return 4;
   switch (options_.moments.storage) {
-    case MomentStorage::kFp64: return 32;
-    case MomentStorage::kFp32: return 16;
-    case MomentStorage::kUnorm16: return 8;
+    case Storage::kFp64: return 32;
+    case Storage::kFp32: return 16;
+    case Storage::kUnorm16: return 8;
   }
   return 0;
 }
@@ -242,7 +251,7 @@ double ShadowMap::shadow(const Vec3d& point, const Vec3d& normal) const {
     // extended to it (depth slopes from its normal in the light's frame), so a sloped receiver
     // does not shadow itself over a wide kernel.
     const Vec3d nl = view_.to_view(normal) - view_.to_view(Vec3d::Zero());  // the normal in the light's frame
-    const double scale = texel / (far_ - near_) * (options_.moments.signed_depth ? 2.0 : 1.0);
+    const double scale = texel / (far_ - near_) * (options_.moments.depth_range == DepthRange::kSigned ? 2.0 : 1.0);
     const double nz = std::max(std::abs(nl.z()), 0.05) * (nl.z() < 0 ? -1.0 : 1.0);
     const double slope_x = -nl.x() / nz * scale, slope_y = nl.y() / nz * scale;  // per texel (v down)
     const int cx = int(u), cy = int(v), r = options_.method == ShadowMethod::kPcf ? options_.kernel / 2 : 0;
@@ -269,19 +278,20 @@ double ShadowMap::shadow(const Vec3d& point, const Vec3d& normal) const {
     }
   };
   switch (options_.moments.storage) {
-    case MomentStorage::kFp64: bilinear(moments_, 1.0); break;
-    case MomentStorage::kFp32: bilinear(moments_fp32_, 1.0); break;
-    case MomentStorage::kUnorm16:
+    case Storage::kFp64: bilinear(moments_, 1.0); break;
+    case Storage::kFp32: bilinear(moments_fp32_, 1.0); break;
+    case Storage::kUnorm16:
       bilinear(moments_unorm16_, 1.0 / 65535.0);
-      b = inverse_quantization_transform(b, options_.moments.signed_depth);
+      b = inverse_quantization_transform(b, options_.moments.depth_range == DepthRange::kSigned);
       break;
   }
   MomentShadowSettings settings = options_.moments;
-  settings.storage = MomentStorage::kFp64;  // already stored at build time
-  settings.method = options_.method == ShadowMethod::kVsm         ? MomentShadowMethod::kVsm
-                    : options_.method == ShadowMethod::kHausdorff ? MomentShadowMethod::kHausdorff
-                                                                  : MomentShadowMethod::kHamburger;
-  double s = moment_shadow(b, z, settings);
+  settings.bias = options_.moments.bias_or_published();  // the published value for the storage kept
+  settings.storage = Storage::kFp64;                     // already stored at build time
+  const MomentShadowMethod method = options_.method == ShadowMethod::kVsm         ? MomentShadowMethod::kVsm
+                                    : options_.method == ShadowMethod::kHausdorff ? MomentShadowMethod::kHausdorff
+                                                                                  : MomentShadowMethod::kHamburger;
+  double s = moment_shadow(b, z, method, settings);
   if (options_.method == ShadowMethod::kVsm && options_.bleeding_reduction > 0.0) {
     const double lit = std::clamp((1.0 - s - options_.bleeding_reduction) / (1.0 - options_.bleeding_reduction), 0.0, 1.0);
     s = 1.0 - lit;

@@ -23,20 +23,21 @@
 namespace refracta {
 
 enum class ShadowMethod { kHard, kPcf, kVsm, kHamburger, kHausdorff };
-ShadowMethod parse_shadow_method(const std::string& name);  // "hard", "pcf", "vsm", "hamburger", "hausdorff"
+ShadowMethod parse_shadow_method(const std::string& name);  // "hard", "pcf", "vsm", "msm_hamburger", "msm_hausdorff"
 const char* shadow_method_name(ShadowMethod method);
 
 struct ShadowMapOptions {
   ShadowMethod method = ShadowMethod::kHamburger;
   int resolution = 1024;     // texels per side
   int kernel = 1;            // k x k filter (odd) of PCF and of the moment map
-  MomentShadowSettings moments = MomentShadowSettings::defaults(false);  // moment methods
+  MomentShadowSettings moments;  // moment methods: depth range, storage, bias
   double depth_bias = 2e-4;  // hard / pcf: compare against z - depth_bias (normalised depth)
   double normal_offset = 1.5;  // receivers are moved this many texels along their normal
   // VSM light-bleeding reduction (Lauritzen): intensities below this amount of light become 0.
   double bleeding_reduction = 0.0;
 
-  void validate() const;  // throws std::invalid_argument naming the bad field
+  void check(Problems& problems) const;  // adds every bad field
+  void validate() const;                 // throws std::invalid_argument listing them all
 };
 
 class ShadowMap {

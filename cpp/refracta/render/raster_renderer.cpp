@@ -23,17 +23,48 @@
 
 namespace refracta {
 
-void RasterRenderOptions::validate() const {
-  if (shadows != "embree" && shadows != "none") shadow_map.validate();
-  if (shadow_half_size && (!(*shadow_half_size > 0.0) || !std::isfinite(*shadow_half_size))) {
-    throw_invalid("shadow_half_size must be > 0 (got ", *shadow_half_size, ")");
+ShadowSource parse_shadow_source(const std::string& name) {
+  if (name == "map") return ShadowSource::kMap;
+  if (name == "embree") return ShadowSource::kEmbree;
+  if (name == "none") return ShadowSource::kNone;
+  throw_invalid("shadows must be 'map', 'embree' or 'none' (got '", name, "')");
+}
+
+const char* shadow_source_name(ShadowSource source) {
+  switch (source) {
+    case ShadowSource::kMap: return "map";
+    case ShadowSource::kEmbree: return "embree";
+    case ShadowSource::kNone: return "none";
   }
-  if (shadow_centre && !is_finite(*shadow_centre)) throw_invalid("shadow_centre must be finite");
-  if (!(shadow_distance > 0.0)) throw_invalid("shadow_distance must be > 0 (got ", shadow_distance, ")");
-  if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
-  if (transparency) transparency->validate();
-  if (shadow_light < -1) throw_invalid("shadow_light must be -1 (the sun) or a spot light index (got ", shadow_light, ")");
-  if (light_strata < 1 || light_strata > 64) throw_invalid("light_strata must be in [1, 64] (got ", light_strata, ")");
+  return "?";
+}
+
+RasterOutput parse_raster_output(const std::string& name) {
+  if (name == "radiance") return RasterOutput::kRadiance;
+  if (name == "shadow") return RasterOutput::kShadow;
+  throw_invalid("output must be 'radiance' or 'shadow' (got '", name, "')");
+}
+
+const char* raster_output_name(RasterOutput output) { return output == RasterOutput::kShadow ? "shadow" : "radiance"; }
+
+void RasterRenderOptions::check(Problems& problems) const {
+  if (shadows == ShadowSource::kMap) shadow_map.check(problems);
+  if (shadow_half_size) {
+    problems.check(*shadow_half_size > 0.0 && std::isfinite(*shadow_half_size), "shadow_half_size must be > 0 (got ",
+                   *shadow_half_size, ")");
+  }
+  if (shadow_centre) problems.check(is_finite(*shadow_centre), "shadow_centre must be finite");
+  problems.check(shadow_distance > 0.0, "shadow_distance must be > 0 (got ", shadow_distance, ")");
+  problems.check(tile >= 1, "tile must be >= 1 (got ", tile, ")");
+  if (transparency) transparency->check(problems);
+  problems.check(shadow_light >= -1, "shadow_light must be -1 (the sun) or a spot light index (got ", shadow_light, ")");
+  problems.check(light_strata >= 1 && light_strata <= 64, "light_strata must be in [1, 64] (got ", light_strata, ")");
+}
+
+void RasterRenderOptions::validate() const {
+  Problems problems("RasterRenderOptions");
+  check(problems);
+  problems.throw_if_any();
 }
 
 namespace {
@@ -127,7 +158,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   }
   FragmentLists fragments;
   const VisibilityBuffer buffer =
-      rasterize(scene, view, control, 32, nullptr, any_transparent ? &transparent : nullptr, any_transparent ? &fragments : nullptr);
+      rasterize(scene, view, control, kRasterTile, nullptr, any_transparent ? &transparent : nullptr, any_transparent ? &fragments : nullptr);
   const Vec3d eye = camera.position();
   OitSettings oit = options.transparency.value_or(OitSettings{});
   if (any_transparent && oit.method == OitMethod::kMboit && !(oit.mboit.z_far > oit.mboit.z_near)) {
@@ -141,15 +172,15 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   if (options.shadow_light >= int(spots.size())) {
     throw_invalid("shadow_light ", options.shadow_light, " is not a spot light of the scene (it has ", spots.size(), ")");
   }
-  if (options.output_shadow && options.shadow_light < 0 && !sun) throw_invalid("output_shadow: the scene has no sun");
-  const bool mapped = options.shadows != "embree" && options.shadows != "none";
-  const bool shadows_on = options.shadows != "none";
-  ShadowMapOptions map_options = options.shadow_map;
-  if (mapped) map_options.method = parse_shadow_method(options.shadows);
+  const bool output_shadow = options.output == RasterOutput::kShadow;
+  if (output_shadow && options.shadow_light < 0 && !sun) throw_invalid("output 'shadow': the scene has no sun");
+  const bool mapped = options.shadows == ShadowSource::kMap;
+  const bool shadows_on = options.shadows != ShadowSource::kNone;
+  const ShadowMapOptions& map_options = options.shadow_map;
   // The sun's map (when the sun shines or its shadow is asked for) covers, seen from the sun, the
   // visible points within shadow_distance.
   std::unique_ptr<ShadowMap> map;
-  const bool sun_needed = sun_on || (options.output_shadow && options.shadow_light < 0);
+  const bool sun_needed = sun_on || (output_shadow && options.shadow_light < 0);
   if (mapped && sun_needed) {
     const Vec3d along = -sun_direction;
     const Frame sun_frame = Frame::from_z(along);
@@ -263,7 +294,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   Image image = render_tiles(camera.width(), camera.height(), options.tile, control, [&](int x, int y) {
     const auto hit = surface_at(scene, buffer, x, y, eye);
     const Vec3d dir = camera.direction(x + 0.5, y + 0.5);
-    if (options.output_shadow) {  // (shadow intensity, 1) where the light reaches the surface, else (0, 0)
+    if (output_shadow) {  // (shadow intensity, 1) where the light reaches the surface, else (0, 0)
       if (!hit) return Vec3d::Zero().eval();
       if (options.shadow_light < 0) {
         if (hit->normal.dot(sun_direction) <= 0.0) return Vec3d::Zero().eval();

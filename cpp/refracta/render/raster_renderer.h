@@ -16,20 +16,28 @@
 
 namespace refracta {
 
+// Where render_raster's shadows come from: shadow maps (shadow_map's method and settings), Embree
+// shadow rays (the reference), or nowhere (every light unoccluded).
+enum class ShadowSource { kMap, kEmbree, kNone };
+ShadowSource parse_shadow_source(const std::string& name);  // "map", "embree", "none"
+const char* shadow_source_name(ShadowSource source);
+
+// What render_raster's pixels hold: linear RGB radiance, or (shadow intensity, 1, 0) where the
+// light (shadow_light) reaches the surface and (0, 0, 0) elsewhere (what compare.shadows measures).
+enum class RasterOutput { kRadiance, kShadow };
+RasterOutput parse_raster_output(const std::string& name);  // "radiance", "shadow"
+const char* raster_output_name(RasterOutput output);
+
 struct RasterRenderOptions {
-  // "embree" (shadow rays: the reference), "none", or a ShadowMap method ("hard", "pcf", "vsm",
-  // "hamburger", "hausdorff") with shadow_map's settings (method is taken from here).
-  std::string shadows = "hamburger";
-  ShadowMapOptions shadow_map;
+  ShadowSource shadows = ShadowSource::kMap;
+  ShadowMapOptions shadow_map;  // the sun's and the spot lights' maps (shadows = map)
   // The region the map covers: by default fitted, seen from the sun, to the visible points
   // closer than shadow_distance [m] to the camera.
   std::optional<Vec3d> shadow_centre;
   std::optional<double> shadow_half_size;
   double shadow_distance = std::numeric_limits<double>::infinity();
-  // Instead of radiance, each pixel's (shadow intensity, 1, 0) where the surface faces the sun
-  // and (0, 0, 0) elsewhere: what compare.shadows measures.
-  bool output_shadow = false;
-  int shadow_light = -1;  // output_shadow: -1 the sun, k >= 0 the scene's spot light k
+  RasterOutput output = RasterOutput::kRadiance;
+  int shadow_light = -1;  // output shadow: -1 the sun, k >= 0 the scene's spot light k
   // The scene's lights to use: the sun, and the spot lights listed (all when not given; spot k is
   // the k-th spot light in the scene's order). Other lights (point, area, environment) shade
   // with Embree shadow rays.
@@ -44,7 +52,8 @@ struct RasterRenderOptions {
   // sky, area lights), deterministic per pixel.
   int light_strata = 8;
 
-  void validate() const;
+  void check(Problems& problems) const;  // adds every bad field, the nested options' included
+  void validate() const;                 // throws std::invalid_argument listing them all
 };
 
 struct RasterRenderStats {
