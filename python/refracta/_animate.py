@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from typing import Any, Callable
+from typing import Callable
 
 import numpy as np
 
@@ -24,40 +24,19 @@ from refracta._sweep import map_ordered
 
 __all__ = ["animate", "field_at_time", "geometric_noise", "geometric_noise_map"]
 
-# The fields that carry turbulence (their constructors take turbulence=).
-_TURBULENT_FIELDS = (_core.PhysicalAtmosphere, _core.LogisticProfile)
-# Heights [m] at which a rebuilt field is checked against the original (a field the constructor
-# cannot reproduce, e.g. a LogisticProfile.height_only_part with its hot layer switched off).
-_PROBE_HEIGHTS = (0.0, 0.05, 0.3, 1.5, 10.0, 100.0)
-# |n - n'| allowed between the original and the rebuilt field at the probes: both evaluate the
-# same model from the same parameters, so only round-off separates them.
-_REBUILD_TOLERANCE = 1e-13
-
-
 # -- the physical shimmer: the air at time t ----------------------------------------------------
 
 def with_turbulence(field, turbulence):
-    """The same air as `field` (a PhysicalAtmosphere or LogisticProfile: its parameters and hot
-    spots) with `turbulence` (a refracta.Turbulence, a TurbulenceLayer or None: calm) in place of
-    its own. Raises ValueError for other fields, or one its constructor cannot rebuild."""
-    if not isinstance(field, _TURBULENT_FIELDS):
+    """The same air as `field` (a PhysicalAtmosphere or LogisticProfile: its parameters, hot spots
+    and fixed data) with `turbulence` (a refracta.Turbulence, a TurbulenceLayer or None: calm) in
+    place of its own: ``field.with_turbulence(turbulence)``. Raises ValueError for other fields."""
+    if not isinstance(field, _core.IndexField):
         raise ValueError(f"animate: the field must be a PhysicalAtmosphere or LogisticProfile to carry turbulence "
                          f"(got {type(field).__name__})")
-    params = {name: value for name, value in field.params.items() if not name.startswith("hot_spot")}
-    hot_spots = field.hot_spots
-    spots: dict[str, Any] = {"hot_spots": hot_spots} if hot_spots else {}
-    rebuilt = type(field)(**params, **spots, turbulence=turbulence)
-    # The rebuilt air less its turbulence must be the original less its own.
-    probes = np.array([[x, h, z] for h in _PROBE_HEIGHTS for x, z in ((0.0, 0.0), (37.0, -3.0))])
-
-    def calm(f):
-        layer = f.turbulence
-        return f.ior(probes) - (layer.evaluate(probes)[0] if layer is not None else 0.0)
-
-    if rebuilt.params != field.params or np.max(np.abs(calm(rebuilt) - calm(field))) > _REBUILD_TOLERANCE:
-        raise ValueError(f"animate: this {type(field).__name__} cannot be rebuilt from its parameters and hot spots "
-                         "(is it a height_only_part?); give the full field")
-    return rebuilt
+    try:
+        return field.with_turbulence(turbulence)
+    except ValueError as error:
+        raise ValueError(f"animate: {error}") from None
 
 
 def field_at_time(field, turbulence, t: float):

@@ -9,7 +9,6 @@ from typing import Callable
 import numpy as np
 
 from refracta import _core
-from refracta._progress import ProgressBar
 
 
 def without_refraction(field: _core.IndexField | None) -> _core.IndexField | None:
@@ -61,17 +60,16 @@ def trace_rays(
     field: _core.IndexField,
     origins,
     directions,
-    method: str = "rk45",
-    tol: float = 1e-6,
-    step: float | None = None,
-    max_length: float = 1000.0,
-    stop_height: float | None = None,
+    options: _core.TraceOptions | None = None,
+    *,
     progress: bool | Callable[[int, int], None] = False,
+    **fields,
 ) -> RayBatch:
     """Trace many curved rays in parallel (oneTBB, GIL released; Ctrl-C stops it).
 
     origins: (3,) or (N, 3); directions: (N, 3) or (3,) -- a single row is broadcast against
-    the other. Options as in :func:`refracta.trace_ray`. progress: True for a bar on stderr, or
+    the other. options: a :class:`refracta.TraceOptions` (None: its defaults), and any of its
+    fields as keywords, as in :func:`refracta.trace_ray`. progress: True for a bar on stderr, or
     a callable ``progress(done, total)`` called about every 50 ms.
     """
     origins = np.asarray(origins, dtype=np.float64)
@@ -86,10 +84,8 @@ def trace_rays(
         raise ValueError(
             f"origins and directions must have matching shapes (N, 3); got {origins.shape} and {directions.shape}"
         )
-    callback = ProgressBar("tracing rays") if progress is True else (progress or None)
     points, dirs, lengths, stops, evaluations = _core._trace_batch(
-        field, np.ascontiguousarray(origins), np.ascontiguousarray(directions), method, tol, step,
-        max_length, stop_height, callback,
+        field, np.ascontiguousarray(origins), np.ascontiguousarray(directions), options, progress, **fields
     )
     names = np.array(_core._stop_names)
     return RayBatch(points, dirs, lengths, names[stops.astype(np.int64)], evaluations.astype(np.int64))
@@ -100,13 +96,16 @@ class ElevationTable:
 
     Every ray launched with the same elevation from the same height follows the same path in its
     vertical plane, so the table traces a few hundred to a few thousand elevations exactly
-    (method 'stratified') and serves any number of rays, at any azimuth, by interpolation. It
+    (trace 'stratified') and serves any number of rays, at any azimuth, by interpolation. It
     refines until the interpolation error is below ``tol`` [m] along the whole path, never
     interpolates between rays of different kind (one reaching the ground, one turning), and traces
     queries exactly where such an edge could not be resolved.
 
-    The eye is at (0, eye_height, 0); elevations and azimuths are in degrees, azimuth measured from
-    +x toward +z. Pickles as its arguments (the table is rebuilt where it is unpickled).
+    ``ElevationTable(field, eye_height, min_elevation, max_elevation, options=None, progress=False,
+    **fields)``: the eye is at (0, eye_height, 0); elevations and azimuths are in degrees, azimuth
+    measured from +x toward +z. options: a :class:`refracta.ElevationTableOptions` (None: its
+    defaults); any of its fields, or of its ``trace`` options (max_length, stop_height, step), may
+    be given as keywords. Pickles as its arguments (the table is rebuilt where it is unpickled).
     """
 
     def __init__(
@@ -115,23 +114,26 @@ class ElevationTable:
         eye_height: float,
         min_elevation: float,
         max_elevation: float,
-        tol: float = 1e-3,
-        max_length: float = 1000.0,
-        stop_height: float | None = None,
-        step: float | None = None,
-        trace_tol: float | None = None,
+        options: _core.ElevationTableOptions | None = None,
+        *,
         progress: bool | Callable[[int, int], None] = False,
+        **fields,
     ):
-        callback = ProgressBar("elevation table") if progress is True else (progress or None)
+        self._table = _core._ElevationTable(field, eye_height, min_elevation, max_elevation, options, progress, **fields)
         # What pickling rebuilds the table from (the build is deterministic: the copy is identical).
-        self._arguments = (field, eye_height, min_elevation, max_elevation, tol, max_length, stop_height, step, trace_tol)
-        self._table = _core._ElevationTable(
-            field, eye_height, min_elevation, max_elevation, tol, max_length, stop_height, step,
-            trace_tol, callback,
-        )
+        self._arguments = (field, eye_height, min_elevation, max_elevation, self._table.options)
         self.field = field
         self.eye_height = eye_height
-        self.tol = tol
+
+    @property
+    def options(self) -> _core.ElevationTableOptions:
+        """The options the table was built with (a copy)."""
+        return self._table.options
+
+    @property
+    def tol(self) -> float:
+        """The interpolation tolerance [m]."""
+        return self._table.options.tol
 
     @property
     def size(self) -> int:

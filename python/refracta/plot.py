@@ -66,7 +66,7 @@ def ray_fan(
     low, high = eye_height, eye_height
     for elevation in angles:
         e = np.radians(elevation)
-        path = _core.trace_ray(field, [0.0, eye_height, 0.0], [np.cos(e), np.sin(e), 0.0], method=method,
+        path = _core.trace_ray(field, [0.0, eye_height, 0.0], [np.cos(e), np.sin(e), 0.0], trace=method,
                                tol=tol, max_length=max_length, stop_height=ground)
         points = path.sample(max(200, 2 * len(path)))
         low, high = min(low, points[:, 1].min()), max(high, points[:, 1].max())

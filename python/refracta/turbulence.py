@@ -1,8 +1,8 @@
 """refracta.Turbulence: optical turbulence as a frozen-flow von Karman index fluctuation (issue 10).
 
-The Python half of media/turbulence.h: a periodic (tileable) random pattern delta_n(x) with the
-von Karman spectrum, synthesised by FFT on an N^3 grid and handed to the C++ TurbulenceGrid as the
-coefficients of a cubic B-spline that passes through the synthesised samples; the fields add it
+A periodic (tileable) random pattern delta_n(x) with the von Karman spectrum, synthesised in C++
+(media/turbulence_synthesis.h: FFT on an N^3 grid, prefiltered into the coefficients of a cubic
+B-spline that passes through the synthesised samples, _core.synthesise_turbulence); the fields add it
 (``PhysicalAtmosphere(..., turbulence=t)``, ``LogisticProfile(..., turbulence=t)``), carried by
 the wind (``t.at_time(seconds)``) under an optional height envelope. Beside it: the ensemble
 statistics of the pattern actually synthesised (structure function, inertial range, angle of
@@ -23,14 +23,12 @@ Example::
 from __future__ import annotations
 
 import math
-import os
 import time as _time
 from collections.abc import Sequence
 
 import numpy as np
 
 from refracta import _core
-from refracta._checks import finite_pair, is_seed
 
 __all__ = ["Turbulence", "SPECTRUM_CONSTANT", "INERTIAL_TOLERANCE", "von_karman_spectrum", "tilt_variance",
            "plane_wave_tilt_variance", "bessel_j1"]
@@ -38,62 +36,18 @@ __all__ = ["Turbulence", "SPECTRUM_CONSTANT", "INERTIAL_TOLERANCE", "von_karman_
 # Phi_n(kappa) = 0.033005 C_n^2 (kappa^2 + kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2): the
 # constant 5 / (18 pi Gamma(1/3)) makes D_n(r) = C_n^2 r^(2/3) in the inertial range (Andrews &
 # Phillips, "Laser Beam Propagation through Random Media", 2nd ed. 2005, eq. 3.27 with 3.20).
-SPECTRUM_CONSTANT = 5.0 / (18.0 * math.pi * math.gamma(1.0 / 3.0))
-# kappa_m = 5.92 / l0: the Tatarskii inner-scale cutoff in Andrews & Phillips' convention (eq. 3.27).
-INNER_SCALE_FACTOR = 5.92
+# The spectrum and its constants are C++'s (media/turbulence_synthesis.h).
+SPECTRUM_CONSTANT = _core.SPECTRUM_CONSTANT
+INNER_SCALE_FACTOR = _core.INNER_SCALE_FACTOR  # kappa_m = 5.92 / l0 (Andrews & Phillips eq. 3.27)
+von_karman_spectrum = _core.von_karman_spectrum
+bessel_j1 = _core.bessel_j1
+# The lattice's default turn about the vertical, atan(1 / golden ratio) [rad] (TurbulenceSettings.yaw).
+DEFAULT_YAW = _core.DEFAULT_TURBULENCE_YAW
 # The inertial range is where the ensemble D(r) of the synthesised grid is within 15 % of
 # C_n^2 r^(2/3): the issue asks 20 %, and realisations scatter about the ensemble -- the mean of 4
 # realisations of 256^3 stays within 20 % across this range; one alone strays by up to 25 % at
 # r_max, where a tile holds few eddies (tests/media/test_turbulence.py, bench_realism.py).
 INERTIAL_TOLERANCE = 0.15
-# Lattice modes with every index within this many of 0 carry the spectrum averaged over their cell
-# of wavenumber space (8^3 midpoints) instead of its value at the lattice point: the spectrum
-# varies by orders of magnitude across the lowest cells, and the point value loses much of their
-# variance (the ensemble D at a quarter of the tile rises from 0.90 to 0.95 C_n^2 r^(2/3) at N = 256).
-_CELL_AVERAGED = 4
-_CELL_SAMPLES = 8
-# The hot-road defaults (see Turbulence).
-DEFAULT_CN2 = 1e-10
-DEFAULT_SPACING = 0.05
-DEFAULT_CELLS = 256
-# The lattice turned about the vertical by atan(1 / golden ratio) (31.7 deg): a periodic tile
-# repeats along a ray running along a lattice axis (its modes then add up coherently, the
-# variance growing as L^2 beyond the tile); a level ray along x or z -- the usual lines of
-# sight -- then crosses the tile with slope 1 / golden ratio, whose rational approximations
-# (Fibonacci ratios) are the worst of any number (Hurwitz), so it comes back near an earlier
-# crossing as rarely as a straight line can.
-DEFAULT_YAW = math.atan(0.5 * (math.sqrt(5.0) - 1.0))
-
-
-def von_karman_spectrum(kappa, cn2: float = 1.0, inner_scale: float = 0.0, outer_scale: float = math.inf):
-    """The von Karman spectrum with a Gaussian inner cutoff, Phi_n(kappa) [m^3]:
-    0.033005 C_n^2 (kappa^2 + kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0,
-    kappa_m = 5.92 / l0 (Andrews & Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale
-    l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at kappa = 0)."""
-    kappa = np.asarray(kappa, dtype=np.float64)
-    kappa0 = 0.0 if math.isinf(outer_scale) else 2.0 * math.pi / outer_scale
-    with np.errstate(divide="ignore"):
-        phi = SPECTRUM_CONSTANT * cn2 * (kappa * kappa + kappa0 * kappa0) ** (-11.0 / 6.0)
-    if inner_scale > 0.0:
-        phi = phi * np.exp(-(kappa * inner_scale / INNER_SCALE_FACTOR) ** 2)
-    return phi
-
-
-def bessel_j1(x):
-    """The Bessel function J1 (Abramowitz & Stegun 9.4.4 and 9.4.6: absolute error < 1e-7), numpy only."""
-    x = np.asarray(x, dtype=np.float64)
-    ax = np.abs(x)
-    small = ax <= 3.0
-    t = (np.where(small, ax, 3.0) / 3.0) ** 2
-    series = ax * (0.5 + t * (-0.56249985 + t * (0.21093573 + t * (-0.03954289 + t * (0.00443319
-                   + t * (-0.00031761 + t * 0.00001109))))))
-    u = 3.0 / np.where(small, 3.0, ax)
-    f1 = 0.79788456 + u * (0.00000156 + u * (0.01659667 + u * (0.00017105 + u * (-0.00249511
-                     + u * (0.00113653 - u * 0.00020033)))))
-    theta1 = ax - 2.35619449 + u * (0.12499612 + u * (0.00005650 + u * (-0.00637879 + u * (0.00074348
-                     + u * (0.00079824 - u * 0.00029166)))))
-    large = f1 * np.cos(theta1) / np.sqrt(np.where(small, 1.0, ax))
-    return np.sign(x) * np.where(small, series, large)
 
 
 def _disc_filter(kappa, aperture: float):
@@ -154,58 +108,37 @@ def plane_wave_tilt_variance(cn2: float, path_length: float, aperture: float) ->
     return 2.91 * cn2 * path_length * aperture ** (-1.0 / 3.0)
 
 
-def _physical_memory() -> float:
-    """This machine's memory [bytes] (0 if unknown)."""
-    try:
-        return float(os.sysconf("SC_PHYS_PAGES")) * float(os.sysconf("SC_PAGE_SIZE"))
-    except (ValueError, OSError, AttributeError):
-        return 0.0
-
-
-
-def _readable(size: float) -> str:
-    """A byte count in the largest unit that keeps it >= 1 (kB, MB, GB: powers of 1000)."""
-    for unit, scale in (("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
-        if size >= scale:
-            return f"{size / scale:.1f} {unit}"
-    return f"{size:.0f} bytes"
-
 class Turbulence:
     """A frozen-flow, periodic random refractive-index pattern with the von Karman spectrum.
 
-    ``Turbulence(cn2, outer_scale, inner_scale, seed, wind, spacing, cells | size, depth)``:
+    ``Turbulence(cn2=None, **settings)``: the fields of :class:`refracta.TurbulenceSettings` as
+    keywords (cn2 also first), every one unset at its C++ default (media/turbulence_synthesis.h,
+    where each default's reason is written); every bad value is reported at once (ValueError):
 
     - cn2 [m^(-2/3)] >= 0: the structure constant C_n^2 (at the ground when depth is given: the
-      pattern is weighted by E(h), so C_n^2(h) = cn2 E(h)^2). Default 1e-10: within centimetres of
-      sun-heated asphalt (C_n^2 ~ 1e-13..1e-12 at 1-2 m in daytime, Andrews & Phillips 2005
-      ch. 12, rising as h^(-4/3) toward the ground in free convection, Wyngaard et al. 1971).
+      pattern is weighted by E(h), so C_n^2(h) = cn2 E(h)^2); default 1e-10, near hot asphalt.
     - outer_scale L0 [m] > 0 or inf (default): the von Karman outer scale. With inf the periodic
       tile (cells * spacing) is the outer scale, which keeps the widest inertial range.
-    - inner_scale l0 [m] > 0: the Gaussian cutoff kappa_m = 5.92 / l0. Default 5 mm (near hot
-      ground). A grid resolves nothing below ~2 cells: below that the grid's own cutoff rules and
-      l0 changes little (it is still in the spectrum the statistics below use).
-    - seed: the random pattern (same seed and grid, same pattern).
+    - inner_scale l0 [m] > 0: the Gaussian cutoff kappa_m = 5.92 / l0 (default 5 mm). A grid
+      resolves nothing below ~2 cells: below that the grid's own cutoff rules and l0 changes little
+      (it is still in the spectrum the statistics below use).
+    - seed: the random pattern (same seed and grid, same pattern). The white noise is drawn in C++
+      (refracta::Rng per slab): the same seed gives the same pattern on every machine and thread
+      count, but not the pattern numpy drew before the synthesis moved to C++.
     - wind (u, w) [m/s] along x and z: ``at_time(t)`` shifts the pattern by (u t, 0, w t) (Taylor's
-      frozen flow). Default (0, 2): a light breeze across the examples' line of sight (+x); a wind
-      along the line of sight slides the pattern along the rays and shimmers far less.
-    - spacing [m] > 0: the grid's cell. Default 5 cm: the renderer steps half a cell through the
-      turbulent layer, so the cost of a pixel grows as path length / spacing (benchmarks/bench_realism.py).
+      frozen flow); default (0, 2), across the examples' line of sight (+x). A wind along the line of
+      sight slides the pattern along the rays and shimmers far less.
+    - spacing [m] > 0: the grid's cell (default 5 cm): the renderer steps half a cell through the
+      turbulent layer, so the cost of a pixel grows as path length / spacing.
     - cells N (default 256) or size [m] (cells = ceil(size / spacing)): the grid is N^3, one
       period N * spacing wide in x, y and z. N = 256 reaches an inertial range over a decade
       (x14 within 15 %: see inertial_range); N = 128 does not (x7); the float32 coefficients take
-      4 N^3 bytes (64 MB at 256), the synthesis about 12 bytes per cell (memory_needed; 1.9 s at 256).
-    - depth [m] > 0 or None: the height envelope E(h) = e^(-h/depth) above the ground (so that the
-      turbulence lives in the hot layer; rays above depth * ln(1e3), where E is 1e-3, are served as calm air), or
-      None: uniform (every ray is then traced through it). Default 0.1 m, the examples' surface layer.
+      4 N^3 bytes (64 MB at 256), the synthesis about 12 bytes per cell (memory_needed; ~3 s at 256
+      on 2 cores).
+    - depth [m] > 0 or None: the height envelope E(h) = e^(-h/depth) above the ground (rays above
+      depth * ln(1e3), where E is 1e-3, are served as calm air), or None: uniform. Default 0.1 m.
     - max_bytes > 0: refuse (ValueError) a grid whose FFT work arrays would need more (default:
       half this machine's memory; math.inf: no limit).
-
-    The pattern: white noise filtered by sqrt(Phi_n) on the N^3 lattice of wavenumbers 2 pi i /
-    (N spacing) (the k = 0 mode removed; the lowest modes carry Phi averaged over their cell), the
-    spectrum divided by the cubic B-spline's response so that the spline through the coefficients
-    passes through the synthesised samples (Unser, Aldroubi & Eden 1991, "Fast B-spline
-    transforms", eq. 10), synthesised for C_n^2 = 1 and scaled by sqrt(cn2) in the layer.
-
     - yaw [rad]: the lattice's turn about the vertical (default DEFAULT_YAW, 31.7 deg). A tile
       shorter than a ray's path repeats along it: along a lattice axis the same modes add up
       coherently and the angle-of-arrival variance grows as L^2 beyond the tile (8x the continuous
@@ -214,37 +147,33 @@ class Turbulence:
       nothing below ~3 cells) over one tile, 0.67x over 300 m -- the lowest modes, a tile long,
       still add up partly. angle_of_arrival_variance(L, direction=...) gives the realised figure.
 
-    Attributes: layer (the TurbulenceLayer fields take), grid, time, generation_seconds, and every
-    argument above.
+    The pattern (C++, _core.synthesise_turbulence): white noise filtered by sqrt(Phi_n) on the N^3
+    lattice of wavenumbers 2 pi i / (N spacing) (the k = 0 mode removed; the lowest modes carry Phi
+    averaged over their cell), divided by the cubic B-spline's response so that the spline through
+    the coefficients passes through the synthesised samples (Unser, Aldroubi & Eden 1991, "Fast
+    B-spline transforms", eq. 10), synthesised for C_n^2 = 1 and scaled by sqrt(cn2) in the layer.
+
+    Attributes: settings (the TurbulenceSettings), layer (the TurbulenceLayer fields take), grid,
+    time, generation_seconds, and every setting above.
     """
 
-    def __init__(self, cn2: float = DEFAULT_CN2, outer_scale: float = math.inf, inner_scale: float = 0.005,
-                 seed: int = 0, wind: Sequence[float] = (0.0, 2.0), spacing: float = DEFAULT_SPACING,
-                 cells: int | None = None, size: float | None = None, depth: float | None = 0.1,
-                 max_bytes: float | None = None, yaw: float = DEFAULT_YAW):
-        self.cells = _validate(cn2, outer_scale, inner_scale, seed, wind, spacing, cells, size, depth)
-        self.cn2, self.outer_scale, self.inner_scale = float(cn2), float(outer_scale), float(inner_scale)
-        self.seed, self.spacing = int(seed), float(spacing)
-        self.depth = None if depth is None else float(depth)
-        self.wind = (float(wind[0]), float(wind[1]))
-        self.yaw = float(yaw)
-        if not math.isfinite(self.yaw):
-            raise ValueError(f"Turbulence: yaw must be finite (got {yaw!r})")
-        self.time = 0.0
-        needed = self.memory_needed(self.cells)
-        if max_bytes is not None and not float(max_bytes) > 0.0:  # NaN too
-            raise ValueError(f"Turbulence: max_bytes must be > 0 (math.inf: no limit; got {max_bytes!r})")
-        # Half of this machine by default (no limit where its memory cannot be read).
-        limit = _physical_memory() / 2 if max_bytes is None else float(max_bytes)
-        if limit > 0.0 and needed > limit:
-            raise ValueError(f"Turbulence: a {self.cells}^3 grid needs about {needed:.0f} bytes ({_readable(needed)}) "
-                             f"for its FFT work arrays, more than the limit of {limit:.0f} bytes ({_readable(limit)}"
-                             f"{', half of this machine' if max_bytes is None else ''}); use fewer cells or "
-                             f"raise max_bytes")
+    def __init__(self, cn2: float | None = None, **settings):
+        if cn2 is not None:
+            settings["cn2"] = cn2
+        checked = _core.TurbulenceSettings.from_fields(**settings)
         start = _time.perf_counter()
-        self.grid = _core.TurbulenceGrid(self._synthesise(), self.spacing)
+        grid = _core.synthesise_turbulence(checked)
+        self._place(checked, grid, 0.0)
         self.generation_seconds = _time.perf_counter() - start
-        self.layer = self._make_layer()
+
+    def _place(self, settings: _core.TurbulenceSettings, grid: _core.TurbulenceGrid, time: float) -> None:
+        """Sets the attributes from the settings, the grid and the time."""
+        self.settings, self.grid, self.time = settings, grid, float(time)
+        self.cn2, self.outer_scale, self.inner_scale = settings.cn2, settings.outer_scale, settings.inner_scale
+        self.seed, self.spacing, self.cells = settings.seed, settings.spacing, settings.cell_count()
+        self.depth, self.wind, self.yaw = settings.depth, settings.wind, settings.yaw
+        self.layer = _core.TurbulenceLayer.of(settings, grid, self.time)
+        self._spectrum: _core._TurbulenceSpectrum | None = None  # the statistics' mode variances, when asked
         self._statistics: tuple[np.ndarray, np.ndarray, float] | None = None  # (k, weights, total), when asked
 
     # -- the pattern -----------------------------------------------------------------------------
@@ -256,83 +185,25 @@ class Turbulence:
 
     @staticmethod
     def memory_needed(cells: int) -> float:
-        """Bytes the synthesis of a cells^3 grid holds at its peak: the float32 noise (whose buffer
-        then takes the coefficients), its complex64 half spectrum, and the copy C++ keeps (3 x 4
-        bytes per cell; the FFTs run one slab at a time), and 16 MB of tables and slabs."""
-        n = float(cells)
-        return 4.0 * n ** 3 + 8.0 * n * n * (n // 2 + 1) + 4.0 * n ** 3 + 16e6
+        """Bytes the synthesis of a cells^3 grid holds at its peak, a bound (C++,
+        _core.turbulence_memory_needed): the float32 noise (whose buffer then becomes the
+        coefficients), its complex64 half spectrum, a copy of the coefficients, and 16 MB of tables
+        and per-thread rows."""
+        return _core.turbulence_memory_needed(cells)
 
-    def _synthesise(self) -> np.ndarray:
-        """The spline coefficients of the pattern for C_n^2 = 1, float32 (N, N, N) [m^(1/3)]."""
-        n = self.cells
-        field = np.empty((n, n, n), dtype=np.float32)
-        np.random.default_rng(self.seed).standard_normal(dtype=np.float32, out=field)
-        # White noise filtered by sqrt(N^3 Phi dkappa^3) (⟨|W_k|^2⟩ = N^3 for the unnormalised
-        # transform of unit white noise; Hermitian by construction), divided by the spline's
-        # response. Slab by slab, so that the work arrays stay the noise and its half spectrum.
-        spectrum = np.empty((n, n, n // 2 + 1), dtype=np.complex64)
-        for i in range(n):
-            spectrum[i] = np.fft.fft(np.fft.rfft(field[i], axis=1), axis=0)
-        for j in range(n):
-            spectrum[:, j] = np.fft.fft(spectrum[:, j], axis=0)
-        index, kz_index = _signed(np.arange(n), n), np.arange(n // 2 + 1)
-        response = _spline_response(index, n)[:, None] * _spline_response(kz_index, n)[None, :]
-        for i in range(n):
-            sigma2 = self._mode_variance(index[i], index[:, None], kz_index[None, :])
-            spectrum[i] *= (np.sqrt(n ** 3 * sigma2) / (_spline_response(index[i], n) * response)).astype(np.float32)
-        for j in range(n):
-            spectrum[:, j] = np.fft.ifft(spectrum[:, j], axis=0)
-        for i in range(n):
-            field[i] = np.fft.irfft(np.fft.ifft(spectrum[i], axis=0), n=n, axis=1)
-        return field
-
-    def _mode_variance(self, i, j, k) -> np.ndarray:
-        """The variance sigma^2 [m^(2/3) for C_n^2 = 1] of the samples' Fourier mode at integer
-        lattice indices (i, j, k) (broadcast): Phi_n(|kappa|) dkappa^3, the lowest modes Phi_n
-        averaged over their cell, 0 at kappa = 0."""
-        dk = 2.0 * math.pi / self.size
-        i, j, k = np.broadcast_arrays(np.asarray(i), np.asarray(j), np.asarray(k))
-        kappa = dk * np.sqrt(i * i + j * j + k * k, dtype=np.float64)
-        with np.errstate(divide="ignore"):
-            sigma2 = von_karman_spectrum(kappa, 1.0, self.inner_scale, self.outer_scale) * dk ** 3
-        low = (np.abs(i) <= _CELL_AVERAGED) & (np.abs(j) <= _CELL_AVERAGED) & (np.abs(k) <= _CELL_AVERAGED)
-        if low.any():
-            table = self._cell_averages()
-            sigma2 = np.where(low, table[np.clip(i, -_CELL_AVERAGED, _CELL_AVERAGED) + _CELL_AVERAGED,
-                                         np.clip(j, -_CELL_AVERAGED, _CELL_AVERAGED) + _CELL_AVERAGED,
-                                         np.clip(k, -_CELL_AVERAGED, _CELL_AVERAGED) + _CELL_AVERAGED], sigma2)
-        return sigma2
-
-    def _cell_averages(self) -> np.ndarray:
-        """Phi_n dkappa^3 averaged over the cells of the lowest lattice modes (midpoint rule), (2M+1)^3."""
-        if getattr(self, "_cells_table", None) is None:
-            dk = 2.0 * math.pi / self.size
-            m = _CELL_AVERAGED
-            offsets = (np.arange(_CELL_SAMPLES) + 0.5) / _CELL_SAMPLES - 0.5
-            index = np.arange(-m, m + 1)
-            grid = (index[:, None] + offsets[None, :]).ravel()  # every cell's midpoints along one axis
-            kx, ky, kz = np.meshgrid(grid, grid, grid, indexing="ij", sparse=True)
-            phi = von_karman_spectrum(dk * np.sqrt(kx * kx + ky * ky + kz * kz), 1.0, self.inner_scale, self.outer_scale)
-            s, w = _CELL_SAMPLES, 2 * m + 1
-            table = phi.reshape(w, s, w, s, w, s).mean(axis=(1, 3, 5)) * dk ** 3
-            table[m, m, m] = 0.0  # the mean: no structure
-            self._cells_table = table
-        return self._cells_table
-
-    def _make_layer(self) -> _core.TurbulenceLayer:
-        offset = (self.wind[0] * self.time, 0.0, self.wind[1] * self.time)
-        return _core.TurbulenceLayer(self.grid, math.sqrt(self.cn2), offset,
-                                     math.inf if self.depth is None else self.depth, self.yaw)
+    def _mode_variance(self, i: int, j, k) -> np.ndarray:
+        """The variance sigma^2 [m^(2/3) for C_n^2 = 1] of the samples' Fourier modes at lattice
+        indices (i, j[a], k[b]), (len(j), len(k)) (C++'s TurbulenceSpectrum, the synthesis' own)."""
+        if self._spectrum is None:
+            self._spectrum = _core._TurbulenceSpectrum(self.cells, self.spacing, self.inner_scale, self.outer_scale)
+        return self._spectrum.variances(int(i), np.ravel(j), np.ravel(k))
 
     def at_time(self, t: float) -> Turbulence:
         """The same pattern carried by the wind to time t [s]: offset (u t, 0, w t), the grid shared."""
-        t = float(t)
-        if not math.isfinite(t):
-            raise ValueError(f"Turbulence.at_time: t must be finite (got {t})")
         moved = object.__new__(Turbulence)
         moved.__dict__.update(self.__dict__)
-        moved.time = t
-        moved.layer = moved._make_layer()
+        moved.time = float(t)
+        moved.layer = _core.TurbulenceLayer.of(self.settings, self.grid, moved.time)
         return moved
 
     def evaluate(self, points) -> tuple[np.ndarray, np.ndarray]:
@@ -471,11 +342,7 @@ class Turbulence:
     # -- pickling and printing ------------------------------------------------------------------
 
     def __reduce__(self):
-        return (_restore, (self._settings(), self.grid, self.time))
-
-    def _settings(self) -> dict:
-        return dict(cn2=self.cn2, outer_scale=self.outer_scale, inner_scale=self.inner_scale, seed=self.seed,
-                    wind=self.wind, spacing=self.spacing, cells=self.cells, depth=self.depth, yaw=self.yaw)
+        return (_restore, (self.settings, self.grid, self.time))
 
     def __repr__(self) -> str:
         depth = "uniform" if self.depth is None else f"depth={self.depth:g} m"
@@ -484,13 +351,11 @@ class Turbulence:
                 f"wind={self.wind} m/s, t={self.time:g} s, seed={self.seed})")
 
 
-def _restore(settings: dict, grid, time: float) -> Turbulence:
+def _restore(settings: _core.TurbulenceSettings, grid, time: float) -> Turbulence:
     """A Turbulence from its pickled settings and grid (no new synthesis)."""
     restored = object.__new__(Turbulence)
-    restored.__dict__.update(settings)
-    restored.grid, restored.time, restored._statistics = grid, time, None
+    restored._place(settings, grid, time)
     restored.generation_seconds = 0.0
-    restored.layer = restored._make_layer()
     return restored
 
 
@@ -518,45 +383,3 @@ def _axis_images(n: int):
         return np.sinc(j / n) ** 4 / response  # np.sinc(x) = sin(pi x) / (pi x), x = omega / 2 pi
 
     return index, [index, image], [weight(index), np.where(index == 0, 0.0, weight(image))]
-
-
-def _validate(cn2, outer_scale, inner_scale, seed, wind, spacing, cells, size, depth) -> int:
-    """Every problem with Turbulence's arguments in one ValueError; returns the number of cells."""
-    problems = []
-
-    def number(value):
-        try:
-            return float(value)
-        except (TypeError, ValueError):
-            return math.nan
-
-    if not number(cn2) >= 0 or math.isinf(number(cn2)):
-        problems.append(f"cn2 must be >= 0 m^(-2/3) and finite (got {cn2!r})")
-    if not number(outer_scale) > 0:
-        problems.append(f"outer_scale must be > 0 m or inf (got {outer_scale!r})")
-    if not number(inner_scale) > 0 or math.isinf(number(inner_scale)):
-        problems.append(f"inner_scale must be > 0 m and finite (got {inner_scale!r})")
-    if not is_seed(seed):
-        problems.append(f"seed must be a whole number >= 0 (got {seed!r})")
-    if finite_pair(wind) is None:
-        problems.append(f"wind must be (u, w) [m/s] along x and z, finite (got {wind!r})")
-    if not number(spacing) > 0 or math.isinf(number(spacing)):
-        problems.append(f"spacing must be > 0 m and finite (got {spacing!r})")
-    if depth is not None and (not number(depth) > 0 or math.isinf(number(depth))):
-        problems.append(f"depth must be > 0 m or None (uniform) (got {depth!r})")
-    count = DEFAULT_CELLS
-    if cells is not None and size is not None:
-        problems.append(f"give cells or size, not both (got cells={cells!r}, size={size!r})")
-    elif cells is not None:
-        if isinstance(cells, bool) or not isinstance(cells, (int, np.integer)) or cells < 8:
-            problems.append(f"cells must be a whole number >= 8 (got {cells!r})")
-        else:
-            count = int(cells)
-    elif size is not None:
-        if not number(size) > 0 or math.isinf(number(size)):
-            problems.append(f"size must be > 0 m and finite (got {size!r})")
-        elif number(spacing) > 0:
-            count = max(8, math.ceil(number(size) / number(spacing) - 1e-9))
-    if problems:
-        raise ValueError("Turbulence: " + "; ".join(problems))
-    return count

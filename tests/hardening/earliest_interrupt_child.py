@@ -105,7 +105,7 @@ def first_evaluation_trial():
     field = refracta.CustomField(ior, lambda p: np.tile([0.0, 1e-4, 0.0], (len(p), 1)))
     directions = np.tile([1.0, 0.01, 0.0], (20_000, 1))  # 1e6 rk4 steps each: hours
     try:
-        refracta.trace_rays(field, [0, 1, 0], directions, method="rk4", step=0.01, max_length=1e4,
+        refracta.trace_rays(field, [0, 1, 0], directions, trace="rk4", step=0.01, max_length=1e4,
                             progress=lambda done, total: polls.append(done))
     except KeyboardInterrupt:
         latency = time.monotonic() - sender.sent

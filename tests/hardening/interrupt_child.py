@@ -54,7 +54,7 @@ def setup(name):
             return 1.0 + 1e-6 * points[:, 1]
 
         field = refracta.CustomField(ior, lambda p: np.tile([0.0, 1e-6, 0.0], (len(p), 1)))
-        return lambda: refracta.trace_ray(field, [0, 1.5, 0], [1, 0, 0], method="rk4", step=1e-3,
+        return lambda: refracta.trace_ray(field, [0, 1.5, 0], [1, 0, 0], trace="rk4", step=1e-3,
                                           max_length=9000.0)
     if name.startswith("render_"):
         road = examples.hot_road(640, 240)

@@ -15,9 +15,9 @@ ROAD = dict(surface_dt=10.0, surface_depth=0.1)
 def test_stratified_paths_beyond_the_step_limit_are_refused_up_front(options):
     field = refracta.PhysicalAtmosphere(**ROAD)
     with pytest.raises(ValueError, match=r"stratified with step .* needs more than 10000000 steps"):
-        refracta.trace_ray(field, [0, 1.5, 0], [1, 0, 0], method="stratified", **options)
+        refracta.trace_ray(field, [0, 1.5, 0], [1, 0, 0], trace="stratified", **options)
     with pytest.raises(ValueError, match="needs more than 10000000 steps"):
-        refracta.trace_rays(field, [0, 1.5, 0], [[1, 0, 0]], method="stratified", **options)
+        refracta.trace_rays(field, [0, 1.5, 0], [[1, 0, 0]], trace="stratified", **options)
 
 
 def test_rk45_with_a_tiny_largest_step_names_the_step_not_a_singular_field():

@@ -21,7 +21,7 @@ def test_unusable_indices_from_a_custom_field_raise_numerical_error(n):
         field.ior([[0.0, 1.0, 0.0]])
     for method in ("stratified", "rk45", "rk4"):
         with pytest.raises(refracta.NumericalError):
-            refracta.trace_ray(field, [0, 1, 0], [1, 0.1, 0], method=method, max_length=10.0)
+            refracta.trace_ray(field, [0, 1, 0], [1, 0.1, 0], trace=method, max_length=10.0)
 
 
 def test_a_transposed_gradient_is_refused():
@@ -47,7 +47,7 @@ def test_extreme_but_usable_indices_trace_like_n_of_one(n0):
         return refracta.CustomField(lambda p: scale * (1 + 1e-4 * p[:, 1]),
                                     lambda p: np.tile([0.0, 1e-4 * scale, 0.0], (len(p), 1)), height_only=True)
     for method in ("stratified", "rk45"):
-        a = refracta.trace_ray(field(n0), [0, 1, 0], [1, 0.1, 0], method=method, max_length=100.0)
-        b = refracta.trace_ray(field(1.0), [0, 1, 0], [1, 0.1, 0], method=method, max_length=100.0)
+        a = refracta.trace_ray(field(n0), [0, 1, 0], [1, 0.1, 0], trace=method, max_length=100.0)
+        b = refracta.trace_ray(field(1.0), [0, 1, 0], [1, 0.1, 0], trace=method, max_length=100.0)
         assert np.isfinite(a.points).all()
         np.testing.assert_allclose(a.points[-1], b.points[-1], atol=1e-6)

@@ -24,8 +24,8 @@ def test_above_the_top_the_air_is_uniform_at_its_top_state():
 def test_a_climbing_ray_leaves_straight_with_bouguers_invariant():
     field = refracta.PhysicalAtmosphere(**ROAD)
     eye, t0 = np.array([0.0, 1.5, 0.0]), np.array([1.0, 0.3, 0.0]) / np.hypot(1.0, 0.3)
-    stratified = refracta.trace_ray(field, eye, t0, method="stratified", max_length=1e6)
-    rk45 = refracta.trace_ray(field, eye, t0, method="rk45", max_length=1e6)
+    stratified = refracta.trace_ray(field, eye, t0, trace="stratified", max_length=1e6)
+    rk45 = refracta.trace_ray(field, eye, t0, trace="rk45", max_length=1e6)
     # Two independent integrators of the same ray agree (both to tol 1e-6 m; 1e-5 m allowed).
     np.testing.assert_allclose(stratified.points[-1], rk45.points[-1], atol=1e-5)
     # n(h) cos e = n(eye) cos e0 (Bouguer) holds at the end, where n is the top's.

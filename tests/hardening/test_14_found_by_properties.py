@@ -14,8 +14,8 @@ def test_a_tolerance_below_position_round_off_is_refused(method):
     # "height -nan m is outside the modelled range"; stratified split 1 m into 10 million nodes.
     field = refracta.PhysicalAtmosphere()
     with pytest.raises(ValueError, match=rf"{method}: tol must be at least 1e-15 x max_length = 1e-12 m"):
-        refracta.trace_ray(field, [0, 1, 0], [1, 0.1, 0], method=method, tol=1e-300, max_length=1000.0)
-    path = refracta.trace_ray(field, [0, 1, 0], [1, 0.1, 0], method=method, tol=1e-12, max_length=1000.0)
+        refracta.trace_ray(field, [0, 1, 0], [1, 0.1, 0], trace=method, tol=1e-300, max_length=1000.0)
+    path = refracta.trace_ray(field, [0, 1, 0], [1, 0.1, 0], trace=method, tol=1e-12, max_length=1000.0)
     assert np.isfinite(path.points).all()
 
 

@@ -104,7 +104,7 @@ def test_an_eye_table_for_rays_climbing_100_km_is_built_in_whole_panels():
     # Against a direct rk45 trace at an elevation between the table's entries.
     e = np.radians(44.123)
     ends, _, _ = table.ends(np.array([44.123]), np.array([0.0]))
-    exact = refracta.trace_ray(field, [0, 1.5, 0], [np.cos(e), np.sin(e), 0], method="rk45", tol=1e-6,
+    exact = refracta.trace_ray(field, [0, 1.5, 0], [np.cos(e), np.sin(e), 0], trace="rk45", tol=1e-6,
                                max_length=100e3)
     # The table's tolerance (1e-3 m) plus its per-metre angular part (none here) and rk45's 1e-6 m.
     TABLE_TOLERANCE = 1e-3 + 1e-6  # [m]
@@ -119,7 +119,7 @@ def test_rk45_shrinks_a_trial_step_that_reaches_below_the_modelled_range():
                                                              inversion_thickness=6))
     e = np.radians(-0.03)
     paths = {m: refracta.trace_ray(field, [0, 4, 0], [np.cos(e), np.sin(e), 0], max_length=24000, stop_height=0.0,
-                                   method=m) for m in ("rk45", "stratified")}
+                                   trace=m) for m in ("rk45", "stratified")}
     assert {p.stop for p in paths.values()} == {"max_length"}
     # Both trace to their default tolerance of 1e-6 m over the path.
     BOTH_TOLERANCES = 2e-6  # [m]
@@ -127,7 +127,7 @@ def test_rk45_shrinks_a_trial_step_that_reaches_below_the_modelled_range():
     # The same ray told about a ground it does reach stops there.
     steep = np.radians(-0.3)
     path = refracta.trace_ray(field, [0, 4, 0], [np.cos(steep), np.sin(steep), 0], max_length=24000,
-                              stop_height=0.0, method="rk45")
+                              stop_height=0.0, trace="rk45")
     assert path.stop == "stop_height" and path.points[-1][1] == pytest.approx(0.0, abs=1e-9)
 
 
@@ -193,7 +193,7 @@ def test_the_reference_without_refraction_keeps_the_curved_earth():
     # in the flattened frame (to first order in d/R), and the straight render's flat ground would
     # have it at the eye height.
     eye, d = 5.0, 20e3
-    path = refracta.trace_ray(reference, [0, eye, 0], [1, 0, 0], max_length=d, method="stratified", tol=1e-6)
+    path = refracta.trace_ray(reference, [0, eye, 0], [1, 0, 0], max_length=d, trace="stratified", tol=1e-6)
     # Second-order terms of the flattening: (d/R)^2 relative, 1e-5 of d^2/2R here.
     FLATTENING_ORDER = 1e-4
     assert path.points[-1][1] - eye == pytest.approx(d * d / (2 * reference.radius), rel=FLATTENING_ORDER)

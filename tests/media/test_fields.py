@@ -119,8 +119,8 @@ def test_custom_field_reproduces_a_builtin_model():
     # The same closed form in numpy and C++: double rounding.
     np.testing.assert_allclose(custom.ior(points), builtin.ior(points), rtol=1e-15)
     for method in ("rk45", "stratified"):
-        a = refracta.trace_ray(builtin, [0, 1.5, 0], [1, -0.002, 0.3], method=method, max_length=300)
-        b = refracta.trace_ray(custom, [0, 1.5, 0], [1, -0.002, 0.3], method=method, max_length=300)
+        a = refracta.trace_ray(builtin, [0, 1.5, 0], [1, -0.002, 0.3], trace=method, max_length=300)
+        b = refracta.trace_ray(custom, [0, 1.5, 0], [1, -0.002, 0.3], trace=method, max_length=300)
         # Identical n and gradient, so the same steps: only rounding in the callback's arithmetic.
         np.testing.assert_allclose(b.points, a.points, rtol=0, atol=1e-12)
 
@@ -189,4 +189,4 @@ def test_custom_field_with_wrong_output_shape_is_reported():
         refracta.trace_ray(field, [0, 1, 0], [1, 0, 0], max_length=10)
     assert not field.height_only
     with pytest.raises(ValueError, match="height only"):
-        refracta.trace_ray(field, [0, 1, 0], [1, 0, 0], method="stratified", max_length=10)
+        refracta.trace_ray(field, [0, 1, 0], [1, 0, 0], trace="stratified", max_length=10)

@@ -53,7 +53,7 @@ def test_trace_rays_is_bit_identical_with_one_and_two_threads(threads, hot_road)
     e = np.radians(np.linspace(-0.5, 0.3, 257))
     directions = np.c_[np.cos(e), np.sin(e), 0 * e]
     for method in ("rk45", "stratified"):
-        one, two = threads(lambda method=method: refracta.trace_rays(hot_road, [0, 1.5, 0], directions, method=method,
+        one, two = threads(lambda method=method: refracta.trace_rays(hot_road, [0, 1.5, 0], directions, trace=method,
                                                         max_length=800.0, stop_height=0.0, progress=False))
         for a, b in zip(one, two):
             assert np.array_equal(a, b), method

@@ -57,7 +57,7 @@ def test_interrupt_stops_a_long_batch_promptly():
         raise KeyboardInterrupt
 
     with pytest.raises(KeyboardInterrupt):  # 2e8 rk4 steps calling Python: hours if not stopped
-        refracta.trace_rays(slow, [0, 1, 0], np.tile([1.0, 0.01, 0.0], (20000, 1)), method="rk4", step=0.01,
+        refracta.trace_rays(slow, [0, 1, 0], np.tile([1.0, 0.01, 0.0], (20000, 1)), trace="rk4", step=0.01,
                             max_length=100, progress=interrupt)
     # Raised from the first periodic call, while the rays were being traced (the call after the
     # last ray, (20000, 20000), would raise it too, but only once the work had run to its end).
@@ -68,7 +68,7 @@ def test_elevation_table_matches_exact_traces(hot_road):
     table = refracta.ElevationTable(hot_road, 1.5, -1.0, 1.0, tol=1e-4, max_length=1500, stop_height=0.0)
     elevations = np.linspace(-1.0, 1.0, 301)
     ends = table.ends(elevations, azimuths=30.0)
-    exact = refracta.trace_rays(hot_road, [0, 1.5, 0], [direction(e, 30.0) for e in elevations], method="stratified",
+    exact = refracta.trace_rays(hot_road, [0, 1.5, 0], [direction(e, 30.0) for e in elevations], trace="stratified",
                                 tol=1e-8, max_length=1500, stop_height=0.0)
     errors = np.linalg.norm(ends.end_points - exact.end_points, axis=1)
     assert errors.max() <= 1e-4
@@ -89,7 +89,7 @@ def test_elevation_table_matches_exact_traces(hot_road):
         (dict(tol=float("nan")), ValueError, "tol must be > 0"),
         (dict(step=-1.0), ValueError, "step must be > 0"),
         (dict(max_length=-5.0), ValueError, "max_length must be > 0"),
-        (dict(method="euler"), ValueError, "method must be 'rk4', 'rk45' or 'stratified'"),
+        (dict(trace="euler"), ValueError, "trace must be 'rk4', 'rk45' or 'stratified'"),
         (dict(stop_height=3.0), ValueError, "below stop_height"),
     ],
 )
@@ -104,7 +104,7 @@ def test_reaching_an_undefined_index_raises_numerical_error():
     field = refracta.LinearSquaredProfile(n0=1.0, alpha=-0.01)  # n^2 = 1 - 0.01 y: n -> 0 at y = 100
     for method in ("rk4", "rk45", "stratified"):
         with pytest.raises(refracta.NumericalError, match="must be finite and > 0|singular"):
-            refracta.trace_ray(field, [0, 0, 0], [0, 1, 0], method=method, max_length=500)
+            refracta.trace_ray(field, [0, 0, 0], [0, 1, 0], trace=method, max_length=500)
     with pytest.raises(refracta.NumericalError):
         refracta.trace_rays(field, [0, 0, 0], [[0, 1, 0], [1, 0, 0]], max_length=500)
 
@@ -118,3 +118,43 @@ def test_python_exceptions_in_a_custom_field_propagate():
         refracta.trace_ray(field, [0, 0, 0], [1, 0, 0])
     with pytest.raises(ZeroDivisionError):
         refracta.trace_rays(field, [0, 0, 0], [[1, 0, 0]] * 4)
+
+
+def test_every_problem_with_the_options_is_listed_at_once():
+    with pytest.raises(ValueError, match=r"tol must be > 0 .*; step must be > 0.*; max_length must be > 0"):
+        refracta.trace_ray(refracta.PhysicalAtmosphere(), [0, 1.5, 0], [1, 0, 0], tol=0.0, step=-1.0, max_length=-5.0)
+    with pytest.raises(ValueError, match="unknown option 'tolerance'"):
+        refracta.trace_rays(refracta.PhysicalAtmosphere(), [0, 1.5, 0], [[1, 0, 0]], tolerance=1e-3)
+
+
+def test_options_objects_and_keywords_are_the_same_call(hot_road):
+    options = refracta.TraceOptions()
+    options.trace, options.max_length, options.stop_height = "stratified", 500.0, 0.0
+    by_object = refracta.trace_ray(hot_road, [0, 1.5, 0], direction(-0.3), options)
+    by_keywords = refracta.trace_ray(hot_road, [0, 1.5, 0], direction(-0.3), trace="stratified", max_length=500.0,
+                                     stop_height=0.0)
+    np.testing.assert_array_equal(by_object.points, by_keywords.points)
+    # Keywords override the object's fields; the object itself is not changed.
+    shorter = refracta.trace_rays(hot_road, [0, 1.5, 0], [direction(0.1)], options, max_length=100.0)
+    assert shorter.lengths[0] == 100.0 and options.max_length == 500.0
+
+
+def test_method_is_a_deprecated_name_of_trace(hot_road):
+    with pytest.warns(DeprecationWarning, match="method= is deprecated"):
+        old = refracta.trace_ray(hot_road, [0, 1.5, 0], direction(-0.3), method="rk4", max_length=50.0)
+    new = refracta.trace_ray(hot_road, [0, 1.5, 0], direction(-0.3), trace="rk4", max_length=50.0)
+    np.testing.assert_array_equal(old.points, new.points)
+    with pytest.raises(ValueError, match="not both"):
+        refracta.trace_rays(hot_road, [0, 1.5, 0], [direction(0.0)], method="rk4", trace="rk45")
+
+
+def test_python_signatures_write_no_numeric_default():
+    """The defaults live in the C++ options (TraceOptions, ElevationTableOptions, TurbulenceSettings)."""
+    import inspect
+    import numbers
+
+    for function in (refracta.trace_rays, refracta.ElevationTable.__init__, refracta.Turbulence.__init__):
+        defaults = {name: p.default for name, p in inspect.signature(function).parameters.items()
+                    if isinstance(p.default, numbers.Number) and not isinstance(p.default, bool)}
+        assert not defaults, (function, defaults)
+

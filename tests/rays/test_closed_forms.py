@@ -37,7 +37,7 @@ def sample_path(path, count=200):
 def test_parabola_in_n_squared_linear_field(method, options, elevation):
     n0, alpha, y0 = 1.000277, 6.0033e-6, 1.5
     field = refracta.LinearSquaredProfile(n0=n0, alpha=alpha)
-    path = refracta.trace_ray(field, [0, y0, 0], direction(elevation), method=method, max_length=1000.0, **options)
+    path = refracta.trace_ray(field, [0, y0, 0], direction(elevation), trace=method, max_length=1000.0, **options)
     t0 = np.tan(np.radians(elevation))
     beta = np.sqrt(n0**2 + alpha * y0) * np.cos(np.radians(elevation))
     for points in (path.points, sample_path(path)):
@@ -63,7 +63,7 @@ def test_parabola_editing_oracle():
 def test_catenary_in_linear_index_field(method):
     n0, g, y0, elevation = 1.0003, 2e-5, 5.0, -0.4
     field = height_field(lambda y: n0 + g * y, lambda y: np.full_like(y, g))
-    path = refracta.trace_ray(field, [0, y0, 0], direction(elevation), method=method, tol=1e-11, max_length=500)
+    path = refracta.trace_ray(field, [0, y0, 0], direction(elevation), trace=method, tol=1e-11, max_length=500)
     beta = (n0 + g * y0) * np.cos(np.radians(elevation))
     x0 = -(beta / g) * np.arcsinh(np.tan(np.radians(elevation)))
     x, y = sample_path(path).T[:2]
@@ -74,7 +74,7 @@ def test_catenary_in_linear_index_field(method):
 def test_log_cosine_in_exponential_field(method):
     n0, scale, y0, elevation = 1.0003, 3000.0, 2.0, 1.5
     field = height_field(lambda y: n0 * np.exp(-y / scale), lambda y: -n0 / scale * np.exp(-y / scale))
-    path = refracta.trace_ray(field, [0, y0, 0], direction(elevation), method=method, tol=1e-11, max_length=500)
+    path = refracta.trace_ray(field, [0, y0, 0], direction(elevation), trace=method, tol=1e-11, max_length=500)
     beta = n0 * np.exp(-y0 / scale) * np.cos(np.radians(elevation))
     y_top = -scale * np.log(beta / n0)
     x0 = scale * np.arctan(np.tan(np.radians(elevation)))
@@ -86,7 +86,7 @@ def test_log_cosine_in_exponential_field(method):
 def test_circle_in_reciprocal_linear_field(method):
     a, c, y0, elevation = 1.0, 1e-4, 3.0, -1.0
     field = height_field(lambda y: 1 / (a - c * y), lambda y: c / (a - c * y) ** 2)
-    path = refracta.trace_ray(field, [0, y0, 0], direction(elevation), method=method, tol=1e-11, max_length=500)
+    path = refracta.trace_ray(field, [0, y0, 0], direction(elevation), trace=method, tol=1e-11, max_length=500)
     n_start = 1 / (a - c * y0)
     radius = 1 / (n_start * np.cos(np.radians(elevation)) * c)
     # The centre lies on the normal toward increasing n (up), a radius from the start.
@@ -101,7 +101,7 @@ def test_uniform_field_gives_straight_lines():
     field = refracta.LinearSquaredProfile(n0=1.33, alpha=0.0)
     t = direction(12.0, 40.0)
     for method in ("rk4", "rk45", "stratified"):
-        path = refracta.trace_ray(field, [1, 2, 3], t, method=method, max_length=250)
+        path = refracta.trace_ray(field, [1, 2, 3], t, trace=method, max_length=250)
         expected = np.array([1, 2, 3]) + np.outer(path.arc_length, t)
         np.testing.assert_allclose(path.points, expected, rtol=0, atol=1e-11)
         np.testing.assert_allclose(path.directions, np.broadcast_to(t, path.directions.shape), atol=1e-14)

@@ -11,7 +11,7 @@ EYE = 1.5
 
 
 def reaches_ground(field, depression_deg, method):
-    path = refracta.trace_ray(field, [0, EYE, 0], direction(-depression_deg), method=method, tol=1e-10,
+    path = refracta.trace_ray(field, [0, EYE, 0], direction(-depression_deg), trace=method, tol=1e-10,
                               max_length=3000.0, stop_height=0.0)
     return path.stop == "stop_height"
 

@@ -64,7 +64,7 @@ def test_a_traced_ray_lands_on_the_pixel_that_shows_its_colour(hot_road):
     checked = 0
     for v in range(camera.height):
         origin, direction = camera.ray(4.5, v + 0.5)
-        path = refracta.trace_ray(hot_road, origin, direction, method="stratified", tol=1e-6, max_length=400,
+        path = refracta.trace_ray(hot_road, origin, direction, trace="stratified", tol=1e-6, max_length=400,
                                   stop_height=0.0)
         crossing = path.crossings([1, 0, 0], 300.0)
         if path.stop == "stop_height" and not crossing:

@@ -158,7 +158,7 @@ def critical_depression_traced(field):
     """The depression below which rays from the eye reach the ground, by bisection on trace_ray."""
     def reaches_ground(depression):
         path = refracta.trace_ray(field, (0.0, EYE, 0.0), (np.cos(depression), -np.sin(depression), 0.0),
-                                  method="stratified", tol=1e-8, max_length=3000.0, stop_height=0.0)
+                                  trace="stratified", tol=1e-8, max_length=3000.0, stop_height=0.0)
         return path.stop == "stop_height"
     lo, hi = 1e-3, 1e-2
     assert not reaches_ground(lo) and reaches_ground(hi)

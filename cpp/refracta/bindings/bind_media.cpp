@@ -91,7 +91,7 @@ std::string field_repr(const IndexField& field) {
   std::ostringstream out;
   out.precision(8);
   out << field.type_name() << "(";
-  const auto specs = field.param_specs();
+  const auto& specs = field.param_specs();
   const auto values = field.param_values();
   for (size_t i = 0; i < specs.size(); ++i) out << (i ? ", " : "") << specs[i].name << "=" << values[i];
   out << ")";
@@ -205,7 +205,7 @@ py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m,
   py::class_<Field, IndexField, std::shared_ptr<Field>> cls(m, name, (doc + param_table(specs)).c_str());
   py::options signature_by_hand;  // the generated one would read (*args, **kwargs)
   signature_by_hand.disable_function_signatures();
-  cls.def(py::init([specs](const py::args& args, py::kwargs kwargs) {
+  cls.def(py::init([specs](const py::args& args, const py::kwargs& kwargs) {
     Config config{};
     std::vector<double> values = values_from(Field::model_name(), specs, default_values(specs), 0, args, [&] {
       py::kwargs rest;
@@ -356,6 +356,13 @@ Raises refracta.NumericalError where n <= 0 or is not finite.)doc")
                              [](const IndexField& f) { return std::const_pointer_cast<IndexField>(f.height_only_part()); },
                              "A field that depends on height alone except in local regions (hot spots): the height-only "
                              "field that holds outside them; None for other fields.")
+      .def("with_turbulence",
+           [](const IndexField& f, const py::object& turbulence) {
+             return std::const_pointer_cast<IndexField>(f.with_turbulence(turbulence_from_python(f.type_name().c_str(), turbulence)));
+           },
+           py::arg("turbulence"),
+           "The same air (parameters, hot spots) with `turbulence` (a refracta.Turbulence, a TurbulenceLayer, or None: "
+           "calm) in place of its own; PhysicalAtmosphere and LogisticProfile (ValueError for other fields).")
       .def_property_readonly("local_regions", [](const IndexField& f) {
         py::list out;
         for (const LocalRegion& r : f.local_regions()) {

@@ -1,6 +1,7 @@
 // Python bindings of the ray integrators (cpp/refracta/rays): trace_ray, the batch tracer, RayPath.
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/interruptible.h"
+#include "refracta/bindings/options_binding.h"
 #include "refracta/rays/astronomical_refraction.h"
 #include "refracta/rays/elevation_table.h"
 #include "refracta/rays/trace.h"
@@ -11,19 +12,33 @@ namespace refracta {
 
 namespace {
 
-TraceOptions make_options(const std::string& method, double tol, std::optional<double> step,
-                          double max_length, std::optional<double> stop_height) {
-  TraceOptions options;
-  options.method = parse_trace_method(method);
-  options.tol = tol;
-  if (step) {
-    if (!(*step > 0.0) || !std::isfinite(*step)) throw_invalid("step must be > 0 (got ", *step, ")");
-    options.step = *step;
+// `method` was the integrator's name before `trace` (README, notebooks): still accepted for one
+// release, with a DeprecationWarning.
+py::dict trace_fields(const py::kwargs& fields, const char* owner, int stacklevel) {
+  py::dict out;
+  for (const auto& item : fields) out[item.first] = item.second;
+  if (out.contains("method")) {
+    if (out.contains("trace")) throw_invalid(owner, ": give trace, not both trace and its old name method");
+    if (PyErr_WarnEx(PyExc_DeprecationWarning,
+                     concat(owner, ": method= is deprecated; the integrator is called trace= (TraceOptions.trace)").c_str(),
+                     stacklevel) < 0) {
+      throw py::error_already_set();
+    }
+    out["trace"] = out.attr("pop")("method");
   }
-  options.max_length = max_length;
-  options.stop_height = stop_height;
-  options.validate();
-  return options;
+  return out;
+}
+
+// stacklevel: of the DeprecationWarning (1: the caller of the bound function).
+TraceOptions trace_options_from(const py::object& options, const py::kwargs& fields, const char* owner, int stacklevel) {
+  return options_from<TraceOptions>(options, trace_fields(fields, owner, stacklevel), owner);
+}
+
+// progress: True for a bar on stderr, else None / False or a callable progress(done, total).
+py::object progress_callback(const py::object& progress, const char* label) {
+  if (progress.is_none() || (py::isinstance<py::bool_>(progress) && !py::cast<bool>(progress))) return py::none();
+  if (py::isinstance<py::bool_>(progress)) return py::module_::import("refracta._progress").attr("ProgressBar")(label);
+  return progress;
 }
 
 const IndexField& checked_field(const std::shared_ptr<IndexField>& field) {
@@ -45,9 +60,7 @@ DoubleArray node_values(const RayPath& path, Get get) {
   return values_to_array(out);
 }
 
-}  // namespace
-
-void bind_rays(py::module_& m) {
+void bind_ray_path(py::module_& m) {
   py::class_<RayPath, std::shared_ptr<RayPath>>(m, "RayPath", R"doc(
 A traced light path. Arrays are per node (the integrator's steps; the path between nodes is the
 quintic Hermite interpolant of positions, tangents and curvatures, accurate to O(step^6)).
@@ -138,34 +151,76 @@ ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max
                       trace_stop_name(p.stop()), "')");
       });
 
+}
+
+void bind_trace_options(py::module_& m) {
+  py::class_<TraceOptions> options(m, "TraceOptions", R"doc(
+Options of refracta.trace_ray and trace_rays, with their defaults (defined once, here). Set any
+field by name; validate() reports every bad value at once. Pickles through its fields.)doc");
+  options.def(py::init<>())
+      .def_property(
+          "trace", [](const TraceOptions& o) { return trace_method_name(o.trace); },
+          [](TraceOptions& o, const std::string& v) { o.trace = parse_trace_method(v); },
+          "the integrator: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path), "
+          "'rk4' (fixed step `step`), or 'stratified' (height-only fields: exact paths from n(h) cos(e) = const by "
+          "quadrature to tol; `step` is the largest node spacing)")
+      .def_readwrite("tol", &TraceOptions::tol, "[m] rk45 and stratified: target error of positions along the path")
+      .def_readwrite("step", &TraceOptions::step,
+                     concat("[m] rk4: the fixed step (0: ", kRk4DefaultStep, " m, the original editor's); rk45: the "
+                            "largest step (0: none); stratified: the largest node spacing (0: ",
+                            kStratifiedDefaultSpacing, " m)")
+                         .c_str())
+      .def_readwrite("max_length", &TraceOptions::max_length, "[m] arc length at which the path ends")
+      .def_readwrite("stop_height", &TraceOptions::stop_height,
+                     "[m] the path ends where it descends through this height (a ground); None: no ground")
+      .def_readwrite("max_steps", &TraceOptions::max_steps,
+                     "a guard against runaway paths: a path needing more steps is refused up front")
+      .def_readwrite("ior_floor", &TraceOptions::ior_floor,
+                     "stratified: a lower bound of n over every height the path can reach (None: unknown)")
+      .def("validate", &TraceOptions::validate, "Raises ValueError listing every bad field.")
+      .def("__repr__", [](const py::object& self) { return "TraceOptions(" + options_repr(self) + ")"; });
+  def_options_pickle<TraceOptions>(options);
+
+  py::class_<ElevationTableOptions> table(m, "ElevationTableOptions", R"doc(
+Options of refracta.ElevationTable beside its eye height and elevation range, with their
+defaults (defined once, here). `trace` holds the exact traces' TraceOptions (their integrator is
+always 'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.)doc");
+  table.def(py::init<>())
+      .def_readwrite("tol", &ElevationTableOptions::tol, "[m] interpolation tolerance along the whole path")
+      .def_readwrite("trace_tol", &ElevationTableOptions::trace_tol, "[m] the exact traces' tolerance (None: tol)")
+      .def_readwrite("initial_rays", &ElevationTableOptions::initial_rays, "exact traces before refining")
+      .def_readwrite("max_rays", &ElevationTableOptions::max_rays,
+                     "beyond this many exact traces, unresolved intervals are traced exactly per query")
+      .def_readwrite("trace", &ElevationTableOptions::trace, "TraceOptions of the exact traces (max_length, stop_height, step)")
+      .def("validate", &ElevationTableOptions::validate, "Raises ValueError listing every bad field.")
+      .def("__repr__", [](const py::object& self) { return "ElevationTableOptions(" + options_repr(self) + ")"; });
+  def_options_pickle<ElevationTableOptions>(table);
+}
+
+void bind_tracing(py::module_& m) {
   m.def("trace_ray",
         [](const std::shared_ptr<IndexField>& field, const py::object& origin, const py::object& direction,
-           const std::string& method, double tol, std::optional<double> step, double max_length,
-           std::optional<double> stop_height) {
+           const py::object& options, const py::kwargs& fields) {
           const IndexField& f = checked_field(field);
-          const TraceOptions options = make_options(method, tol, step, max_length, stop_height);
+          TraceOptions cancellable = trace_options_from(options, fields, "trace_ray", 1);
           const Vec3d o = to_point(origin, "origin"), d = to_point(direction, "direction");
           // On a worker thread with the GIL released, like the batch: Ctrl-C stops a long path.
           WorkControl control;
-          TraceOptions cancellable = options;
           cancellable.cancel = &control.cancel;
           std::shared_ptr<RayPath> path;
           run_interruptible(control, py::none(), [&] { path = std::make_shared<RayPath>(trace_path(f, o, d, cancellable)); });
           return path;
         },
-        py::arg("field"), py::arg("origin"), py::arg("direction"), py::arg("method") = "rk45",
-        py::arg("tol") = 1e-6, py::arg("step") = py::none(), py::arg("max_length") = 1000.0,
-        py::arg("stop_height") = py::none(), R"doc(
+        py::arg("field"), py::arg("origin"), py::arg("direction"), py::arg("options") = py::none(), R"doc(
 Trace one curved ray through `field` and return its RayPath.
 
 The ray equations dx/ds = v/n, dv/ds = grad n are launched with ``v0 = n(origin) * direction / |direction|``.
-method: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path),
-'rk4' (fixed step `step`, default 0.3 m, the original editor's), or 'stratified' (height-only
-fields: exact paths from n(h) cos(e) = const by quadrature to `tol`; `step` is the largest node
-spacing, default 100 m). max_length [m]: arc length at which the path ends. stop_height [m]: the
-path ends where it descends through this height (a ground). Raises ValueError for bad arguments
-(a path needing more than 10 million nodes is refused up front), refracta.NumericalError where n
-<= 0 or is not finite; Ctrl-C (KeyboardInterrupt) stops it.)doc");
+options: a refracta.TraceOptions, or None for its defaults; any of its fields may also be given
+as keywords (trace, tol, step, max_length, stop_height, max_steps, ior_floor), e.g.
+``trace_ray(field, o, d, trace='rk4', step=0.1)``; ``method=`` is the deprecated name of
+``trace=``. Raises ValueError for bad arguments (a path needing more than max_steps nodes is
+refused up front), refracta.NumericalError where n <= 0 or is not finite; Ctrl-C
+(KeyboardInterrupt) stops it.)doc");
 
   m.def("_astronomical_refraction",
         [](const std::shared_ptr<IndexField>& field, const py::object& elevations, double eye_height, double top,
@@ -191,48 +246,46 @@ path ends where it descends through this height (a ground). Raises ValueError fo
 
   m.def("_trace_batch",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
-           const std::string& method, double tol, std::optional<double> step, double max_length,
-           std::optional<double> stop_height, const py::object& progress) {
+           const py::object& options, const py::object& progress, const py::kwargs& fields) {
           const IndexField& f = checked_field(field);
-          const TraceOptions options = make_options(method, tol, step, max_length, stop_height);
+          const TraceOptions checked = trace_options_from(options, fields, "trace_rays", 2);
           const std::vector<Vec3d> o = to_points(origins, "origins");
           const std::vector<Vec3d> d = to_points(directions, "directions");
           WorkControl control;
           control.total = int64_t(o.size());
           RayBatchEnds ends;
-          run_interruptible(control, progress, [&] { ends = trace_batch(f, o, d, options, control); });
+          run_interruptible(control, progress_callback(progress, "tracing rays"),
+                            [&] { ends = trace_batch(f, o, d, checked, control); });
           std::vector<double> stops(ends.stops.begin(), ends.stops.end());
           std::vector<double> evaluations(ends.evaluations.begin(), ends.evaluations.end());
           return py::make_tuple(points_to_array(ends.points), points_to_array(ends.directions),
                                 values_to_array(ends.lengths), values_to_array(stops),
                                 values_to_array(evaluations));
         },
-        py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("method"),
-        py::arg("tol"), py::arg("step"), py::arg("max_length"), py::arg("stop_height"),
-        py::arg("progress"));
+        py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("options"), py::arg("progress"));
+  m.attr("_stop_names") = py::make_tuple(trace_stop_name(TraceStop::kMaxLength),
+                                         trace_stop_name(TraceStop::kStopHeight),
+                                         trace_stop_name(TraceStop::kVisitor));
+}
+
+void bind_elevation_table(py::module_& m) {
   py::class_<ElevationTable, std::shared_ptr<ElevationTable>>(m, "_ElevationTable")
-      .def(py::init([](const std::shared_ptr<IndexField>& field, double eye_height, double min_deg,
-                       double max_deg, double tol, double max_length, std::optional<double> stop_height,
-                       std::optional<double> step, std::optional<double> trace_tol, const py::object& progress) {
+      .def(py::init([](const std::shared_ptr<IndexField>& field, double eye_height, double min_elevation,
+                       double max_elevation, const py::object& options, const py::object& progress,
+                       const py::kwargs& fields) {
              checked_field(field);
-             ElevationTableOptions options;
-             options.eye_height = eye_height;
-             options.min_elevation = degrees_to_radians(min_deg);
-             options.max_elevation = degrees_to_radians(max_deg);
-             options.tol = tol;
-             options.trace = make_options("stratified", trace_tol ? *trace_tol : tol, step,
-                                          max_length, stop_height);
-             options.validate();
+             ElevationTableOptions checked = options_from<ElevationTableOptions>(options, fields, "ElevationTable", "trace");
+             checked.eye_height = eye_height;
+             checked.min_elevation = degrees_to_radians(min_elevation);
+             checked.max_elevation = degrees_to_radians(max_elevation);
              WorkControl control;
              std::shared_ptr<ElevationTable> table;
-             run_interruptible(control, progress, [&] {
-               table = std::make_shared<ElevationTable>(field, options, control);
-             });
+             run_interruptible(control, progress_callback(progress, "elevation table"),
+                               [&] { table = std::make_shared<ElevationTable>(field, checked, control); });
              return table;
            }),
            py::arg("field"), py::arg("eye_height"), py::arg("min_elevation"), py::arg("max_elevation"),
-           py::arg("tol"), py::arg("max_length"), py::arg("stop_height"), py::arg("step"),
-           py::arg("trace_tol"), py::arg("progress"))
+           py::arg("options"), py::arg("progress"))
       .def("ends",
            [](const ElevationTable& table, const py::object& elevations, const py::object& azimuths) {
              const std::vector<double> e = to_values(elevations, "elevations");
@@ -247,18 +300,23 @@ path ends where it descends through this height (a ground). Raises ValueError fo
                py::gil_scoped_release release;
                WorkControl control;
                parallel_for_each(int64_t(e.size()), 64, control, [&](int64_t i) {
-                 const PlaneState p = table.end(degrees_to_radians(e[i]));
-                 const double ca = std::cos(degrees_to_radians(a[i])), sa = std::sin(degrees_to_radians(a[i]));
-                 points[i] = Vec3d(p.r * ca, p.h, p.r * sa);
-                 directions[i] = Vec3d(p.cos_e * ca, p.sin_e, p.cos_e * sa);
-                 lengths[i] = p.s;
-                 stops[i] = double(int(p.stop));
+                 const TableRayEnd end = table.end(degrees_to_radians(e[i]), degrees_to_radians(a[i]));
+                 points[i] = end.point;
+                 directions[i] = end.direction;
+                 lengths[i] = end.length;
+                 stops[i] = double(int(end.stop));
                });
              }
              return py::make_tuple(points_to_array(points), points_to_array(directions),
                                    values_to_array(lengths), values_to_array(stops));
            },
            py::arg("elevations"), py::arg("azimuths"))
+      .def_property_readonly("options", [](const ElevationTable& t) {
+        ElevationTableOptions options = t.options();
+        options.trace.cancel = nullptr;
+        options.trace.ior_floor.reset();  // found by the table from its field
+        return options;
+      })
       .def_property_readonly("size", &ElevationTable::size)
       .def_property_readonly("evaluations", &ElevationTable::evaluations)
       .def_property_readonly("exact_intervals", &ElevationTable::exact_intervals)
@@ -267,10 +325,15 @@ path ends where it descends through this height (a ground). Raises ValueError fo
         for (double e : t.elevations()) deg.push_back(e * 180.0 / kPi);
         return values_to_array(deg);
       });
+}
 
-  m.attr("_stop_names") = py::make_tuple(trace_stop_name(TraceStop::kMaxLength),
-                                         trace_stop_name(TraceStop::kStopHeight),
-                                         trace_stop_name(TraceStop::kVisitor));
+}  // namespace
+
+void bind_rays(py::module_& m) {
+  bind_ray_path(m);
+  bind_trace_options(m);
+  bind_tracing(m);
+  bind_elevation_table(m);
 }
 
 }  // namespace refracta

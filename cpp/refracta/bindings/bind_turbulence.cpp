@@ -1,7 +1,13 @@
-// Python bindings of optical turbulence (media/turbulence.h): the grid refracta.Turbulence builds
-// and the layer the fields add. The spectrum and its synthesis live in python/refracta/turbulence.py.
+// Python bindings of optical turbulence (media/turbulence.h, media/turbulence_synthesis.h): the
+// settings, the synthesis, the grid and the layer the fields add. refracta.Turbulence
+// (python/refracta/turbulence.py) holds them with the ensemble statistics of the pattern.
 #include "refracta/bindings/bindings.h"
+#include "refracta/bindings/interruptible.h"
+#include "refracta/bindings/options_binding.h"
 #include "refracta/media/turbulence.h"
+#include "refracta/media/turbulence_synthesis.h"
+
+#include <cmath>
 
 namespace refracta {
 
@@ -25,9 +31,111 @@ py::array coefficients_of(const TurbulenceGrid& grid) {
   return out;
 }
 
+std::array<double, 2> wind_from(const py::object& value) {
+  std::vector<double> pair;
+  try {
+    if (!py::isinstance<py::str>(value)) pair = py::cast<std::vector<double>>(value);
+  } catch (const py::cast_error&) {
+  }
+  if (pair.size() != 2) {
+    throw_invalid("Turbulence: wind must be (u, w) [m/s] along x and z, finite (got ", std::string(py::repr(value)), ")");
+  }
+  return {pair[0], pair[1]};
+}
+
+// A function of one real array, element by element, as an array of the same shape.
+template <class F>
+py::array elementwise(const py::object& x, const char* what, F f) {
+  const DoubleArray in = real_array(x, what);
+  DoubleArray out(std::vector<py::ssize_t>(in.shape(), in.shape() + in.ndim()));
+  const double* a = in.data();
+  double* b = out.mutable_data();
+  for (py::ssize_t i = 0; i < in.size(); ++i) b[i] = f(a[i]);
+  return std::move(out);
+}
+
+void bind_settings(py::module_& m) {
+  py::class_<TurbulenceSettings> settings(m, "TurbulenceSettings", R"doc(
+The settings of refracta.Turbulence, with their defaults (defined once, here; see
+media/turbulence_synthesis.h for their reasons). validate() reports every bad value at once, and a
+grid too large for max_bytes. Pickles through its fields.)doc");
+  settings.def(py::init<>())
+      .def_readwrite("cn2", &TurbulenceSettings::cn2, "C_n^2 [m^(-2/3)] at the ground (>= 0)")
+      .def_readwrite("outer_scale", &TurbulenceSettings::outer_scale, "von Karman outer scale L0 [m] (inf: the tile)")
+      .def_readwrite("inner_scale", &TurbulenceSettings::inner_scale, "inner scale l0 [m]: cutoff kappa_m = 5.92 / l0")
+      .def_readwrite("seed", &TurbulenceSettings::seed, "the random pattern (same seed and grid, same pattern)")
+      .def_property(
+          "wind", [](const TurbulenceSettings& s) { return py::make_tuple(s.wind[0], s.wind[1]); },
+          [](TurbulenceSettings& s, const py::object& v) { s.wind = wind_from(v); },
+          "(u, w) [m/s] along x and z: at_time(t) shifts the pattern by (u t, 0, w t)")
+      .def_readwrite("spacing", &TurbulenceSettings::spacing, "the grid's cell [m]")
+      .def_readwrite("cells", &TurbulenceSettings::cells, "N: the grid is N^3 (None: from size, else 256)")
+      .def_readwrite("size", &TurbulenceSettings::size, "[m] the tile, cells = ceil(size / spacing) (None: from cells)")
+      .def_readwrite("depth", &TurbulenceSettings::depth, "[m] the envelope e^(-h/depth); None: uniform")
+      .def_readwrite("max_bytes", &TurbulenceSettings::max_bytes,
+                     "refuse a grid whose FFT work arrays need more [bytes] (None: half this machine; inf: no limit)")
+      .def_readwrite("yaw", &TurbulenceSettings::yaw, "[rad] the lattice's turn about the vertical")
+      .def("cell_count", &TurbulenceSettings::cell_count, "N: cells, or from size and spacing, or 256.")
+      .def("validate", &TurbulenceSettings::validate, "Raises ValueError listing every bad field.")
+      .def_static(
+          "from_fields", [](const py::kwargs& fields) { return options_from<TurbulenceSettings>(py::none(), fields, "Turbulence"); },
+          "Settings with the given fields set (the rest at their defaults), validated.")
+      .def("__repr__", [](const py::object& self) { return "TurbulenceSettings(" + options_repr(self) + ")"; });
+  def_options_pickle<TurbulenceSettings>(settings);
+
+}
+
+void bind_synthesis(py::module_& m) {
+  m.def("synthesise_turbulence",
+        [](const TurbulenceSettings& settings, const py::object& progress) {
+          std::shared_ptr<TurbulenceGrid> grid;
+          WorkControl control;
+          run_interruptible(control, progress, [&] { grid = synthesise_turbulence(settings, control); });
+          return grid;
+        },
+        py::arg("settings"), py::arg("progress") = py::none(),
+        "The spline coefficients of the pattern for C_n^2 = 1 (a TurbulenceGrid); GIL released, Ctrl-C stops it.");
+  m.def("turbulence_memory_needed", &turbulence_memory_needed, py::arg("cells"),
+        "Bytes the synthesis of a cells^3 grid holds at its peak (a bound).");
+  m.def("von_karman_spectrum",
+        [](const py::object& kappa, double cn2, double inner_scale, double outer_scale) {
+          return elementwise(kappa, "kappa", [&](double k) { return von_karman_spectrum(k, cn2, inner_scale, outer_scale); });
+        },
+        py::arg("kappa"), py::arg("cn2") = 1.0, py::arg("inner_scale") = 0.0,
+        py::arg("outer_scale") = std::numeric_limits<double>::infinity(), R"doc(
+The von Karman spectrum with a Gaussian inner cutoff, Phi_n(kappa) [m^3]:
+0.033005 C_n^2 (kappa^2 + kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0,
+kappa_m = 5.92 / l0 (Andrews & Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale
+l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at kappa = 0).)doc");
+  m.def("bessel_j1",
+        [](const py::object& x) { return elementwise(x, "x", [](double v) { return std::cyl_bessel_j(1.0, std::abs(v)) * (v < 0 ? -1.0 : 1.0); }); },
+        py::arg("x"), "The Bessel function J1 (std::cyl_bessel_j), element by element.");
+  m.attr("SPECTRUM_CONSTANT") = von_karman_constant();
+  m.attr("INNER_SCALE_FACTOR") = kInnerScaleFactor;
+  m.attr("DEFAULT_TURBULENCE_YAW") = default_turbulence_yaw();
+
+  py::class_<TurbulenceSpectrum>(m, "_TurbulenceSpectrum")
+      .def(py::init<int64_t, double, double, double>(), py::arg("cells"), py::arg("spacing"), py::arg("inner_scale"),
+           py::arg("outer_scale"))
+      .def("variances",
+           [](const TurbulenceSpectrum& s, int64_t i, const py::object& j, const py::object& k) {
+             const std::vector<double> jv = to_values(j, "j"), kv = to_values(k, "k");
+             DoubleArray out({py::ssize_t(jv.size()), py::ssize_t(kv.size())});
+             double* d = out.mutable_data();
+             for (double a : jv) {
+               for (double b : kv) *d++ = s.mode_variance(i, int64_t(a), int64_t(b));
+             }
+             return out;
+           },
+           py::arg("i"), py::arg("j"), py::arg("k"),
+           "sigma^2 at lattice indices (i, j[a], k[b]) as a (len(j), len(k)) array (C_n^2 = 1).");
+}
+
 }  // namespace
 
 void bind_turbulence(py::module_& m) {
+  bind_settings(m);
+
   py::class_<TurbulenceGrid, std::shared_ptr<TurbulenceGrid>>(m, "TurbulenceGrid", R"doc(
 A periodic uniform cubic B-spline over a 3-D grid: TurbulenceGrid(coefficients (nx, ny, nz) float32,
 spacing [m]); axis 0 is x, 1 is y (up), 2 is z. Built by refracta.Turbulence; evaluate(points) gives
@@ -74,6 +182,13 @@ vertical. Made by refracta.Turbulence (its `layer`).)doc")
              return layer;
            }),
            py::arg("grid"), py::arg("scale"), py::arg("offset"), py::arg("depth"), py::arg("yaw") = 0.0)
+      .def_static(
+          "of",
+          [](const TurbulenceSettings& settings, std::shared_ptr<TurbulenceGrid> grid, double time) {
+            return turbulence_layer(settings, std::move(grid), time);
+          },
+          py::arg("settings"), py::arg("grid"), py::arg("time"),
+                  "The layer of `settings` over `grid`: scaled by sqrt(cn2), carried by the wind to time [s].")
       .def_readonly("yaw", &Turbulence::yaw, "The lattice's turn about the vertical [rad].")
       .def_property_readonly("grid", [](const Turbulence& t) { return std::const_pointer_cast<TurbulenceGrid>(t.grid); })
       .def_readonly("scale", &Turbulence::scale)
@@ -103,6 +218,7 @@ vertical. Made by refracta.Turbulence (its `layer`).)doc")
             layer.set_yaw(py::cast<double>(s[4]));
             return layer;
           }));
+  bind_synthesis(m);
 }
 
 }  // namespace refracta

@@ -77,7 +77,7 @@ PairMiss<T> pair_miss(const Field& field, const PointPair& pair, const PairOptio
 
   TraceEnd<T> end;
   if (options.method == TraceMethod::kRk4) {
-    Rk4Stepper<T, Field> stepper(options.step > 0.0 ? options.step : 0.3);
+    Rk4Stepper<T, Field> stepper(options.step > 0.0 ? options.step : kRk4DefaultStep);
     end = march(field, x0, t0, trace, stepper, visit);
   } else {
     Rk45Stepper<T, Field> stepper(trace.tol, trace.max_length, trace.max_length);

@@ -31,7 +31,7 @@ void PairOptions::validate() const {
 
 TraceOptions PairOptions::trace_options(const PointPair& pair) const {
   TraceOptions options;
-  options.method = method;
+  options.trace = method;
   options.step = step;
   options.max_length = reach * pair.range() + 1.0;
   // Below ~1e-13 of the path length a position tolerance asks for more than round-off allows.

@@ -32,12 +32,10 @@ struct FlattenedModel {
 // Returns false for other fields.
 template <class Visit>
 bool visit_templated_model(const IndexField& field, Visit&& visit) {
-  const IndexField* base = &field;
-  bool curved = false;
-  if (const auto* earth = dynamic_cast<const CurvedEarth*>(&field)) {
-    base = earth->base().get();
-    curved = true;
-  }
+  // A decorator (CurvedEarth, whose radius is then the last parameter) around the model.
+  const FieldPtr inner = field.decorated();
+  const IndexField* base = inner ? inner.get() : &field;
+  const bool curved = std::isfinite(field.earth_radius());
   if (const auto* m = dynamic_cast<const ModelField<LogisticModel>*>(base)) {
     visit(ModelTag<LogisticModel>{}, m->config(), curved);
   } else if (const auto* m = dynamic_cast<const ModelField<LinearSquaredModel>*>(base)) {

@@ -59,6 +59,10 @@ Vec3d CurvedEarth::sky_direction(const Vec3d& p, const Vec3d& d) const {
   return (across + (c * along + s * up) * out + (c * up - s * along) * Vec3d::UnitY()).normalized();
 }
 
+std::shared_ptr<const IndexField> CurvedEarth::with_base(std::shared_ptr<const IndexField> base) const {
+  return std::make_shared<CurvedEarth>(std::move(base), radius_);
+}
+
 std::vector<double> CurvedEarth::param_values() const {
   std::vector<double> values = base_->param_values();
   values.push_back(radius_);

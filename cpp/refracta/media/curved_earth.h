@@ -48,6 +48,10 @@ class CurvedEarth : public IndexField {
   double earth_radius() const override { return radius_; }
   double straight_above() const override;
 
+  std::shared_ptr<const IndexField> decorated() const override { return base_; }
+  std::shared_ptr<const IndexField> with_base(std::shared_ptr<const IndexField> base) const override;
+  double base_height(double y) const override { return true_height(y); }
+
   const FieldPtr& base() const { return base_; }
   double radius() const { return radius_; }
   double true_height(double flat_y) const;   // h from y'

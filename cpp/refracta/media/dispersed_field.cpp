@@ -3,7 +3,6 @@
 
 #include "refracta/core/error.h"
 #include "refracta/media/air.h"
-#include "refracta/media/curved_earth.h"
 
 #include <cmath>
 
@@ -61,9 +60,9 @@ std::shared_ptr<const IndexField> DispersedField::with_param_values(const std::v
 FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, double reference_nm) {
   if (!field) throw_invalid("dispersed_field: field must be a field (got None)");
   if (reference_nm <= 0.0) reference_nm = field_reference_wavelength(*field);
-  if (const auto* earth = dynamic_cast<const CurvedEarth*>(field.get())) {
-    const FieldPtr base = dispersed_field(earth->base(), wavelength_nm, reference_nm);
-    return base == earth->base() ? field : std::make_shared<CurvedEarth>(base, earth->radius());
+  if (const FieldPtr inner = field->decorated()) {  // disperse the air inside CurvedEarth
+    const FieldPtr base = dispersed_field(inner, wavelength_nm, reference_nm);
+    return base == inner ? field : field->with_base(base);
   }
   const double scale = air_dispersion_scale(wavelength_nm, reference_nm);
   if (scale == 1.0) return field;

@@ -11,6 +11,17 @@
 
 namespace refracta {
 
+// By value, as the virtual's signature (the overrides keep the pointer); this default only refuses.
+std::shared_ptr<const IndexField> IndexField::with_base(
+    std::shared_ptr<const IndexField> /*base*/) const {  // NOLINT(performance-unnecessary-value-param)
+  throw std::logic_error(type_name() + " decorates no field: with_base is for decorators (decorated() != null)");
+}
+
+std::shared_ptr<const IndexField> IndexField::with_turbulence(
+    std::shared_ptr<const Turbulence> /*turbulence*/) const {  // NOLINT(performance-unnecessary-value-param)
+  throw_invalid("the field must be a PhysicalAtmosphere or LogisticProfile to carry turbulence (got ", type_name(), ")");
+}
+
 void IndexField::evaluate_height(double, double*, double*) const {
   throw std::logic_error(type_name() + " is not a height-only field");
 }

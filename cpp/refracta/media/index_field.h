@@ -13,6 +13,8 @@
 
 namespace refracta {
 
+struct Turbulence;  // media/turbulence.h
+
 // One named model parameter. [lower, upper] is the box an optimiser searches by default;
 // construction checks physical validity only (model's validate), not this box.
 struct ParamSpec {
@@ -63,6 +65,20 @@ class IndexField {
   // sky_direction stops changing): uniform_above(), or for a CurvedEarth its base's top in flat
   // coordinates (+inf: no such height).
   virtual double straight_above() const { return uniform_above(); }
+
+  // Decorators -- fields that transform another (CurvedEarth) -- are taken apart and rebuilt only
+  // through these three, so a function that must reach the air itself (dispersion, tabulation,
+  // the autodiff dispatch) needs no type switch. decorated(): the field wrapped, null for others.
+  virtual std::shared_ptr<const IndexField> decorated() const { return nullptr; }
+  // The same decoration around another base; throws std::logic_error for fields that decorate none.
+  virtual std::shared_ptr<const IndexField> with_base(std::shared_ptr<const IndexField> base) const;
+  // Height y [m] of this field in decorated()'s coordinates (y itself for others).
+  virtual double base_height(double y) const { return y; }
+
+  // The same air with `turbulence` in place of its own (null: calm air). Throws
+  // std::invalid_argument for fields that cannot carry turbulence (model_field.h: those whose
+  // Config has one).
+  virtual std::shared_ptr<const IndexField> with_turbulence(std::shared_ptr<const Turbulence> turbulence) const;
 
   // evaluate, throwing NumericalError when n <= 0 or anything is not finite.
   void evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const;

@@ -39,6 +39,12 @@ struct HasLocalFeatures<M, std::void_t<decltype(std::declval<const M&>().local_r
 // Whether a model declares static Config config_at(const Config&, const std::vector<double>&).
 template <class M, class = void>
 struct HasConfigAt : std::false_type {};
+// Whether a model's Config carries turbulence (a std::shared_ptr<const Turbulence> turbulence).
+template <class C, class = void>
+struct HasTurbulence : std::false_type {};
+template <class C>
+struct HasTurbulence<C, std::void_t<decltype(std::declval<C&>().turbulence = std::shared_ptr<const Turbulence>())>>
+    : std::true_type {};
 template <class M>
 struct HasConfigAt<M, std::void_t<decltype(M::config_at(std::declval<const typename M::Config&>(),
                                                         std::declval<const std::vector<double>&>()))>>
@@ -94,6 +100,16 @@ class ModelField : public IndexField {
   double uniform_above() const override {
     if constexpr (detail::HasUniformAbove<Model<double>>::value) return model_.uniform_above();
     return IndexField::uniform_above();
+  }
+
+  std::shared_ptr<const IndexField> with_turbulence(std::shared_ptr<const Turbulence> turbulence) const override {
+    if constexpr (detail::HasTurbulence<Config>::value) {
+      Config config = config_;
+      config.turbulence = std::move(turbulence);
+      return make(config, values_);
+    } else {
+      return IndexField::with_turbulence(std::move(turbulence));
+    }
   }
 
   const Config& config() const { return config_; }

@@ -2,7 +2,6 @@
 #include "refracta/media/tabulated_height_field.h"
 
 #include "refracta/core/error.h"
-#include "refracta/media/curved_earth.h"
 
 #include <algorithm>
 #include <cmath>
@@ -155,9 +154,8 @@ std::shared_ptr<const IndexField> TabulatedHeightField::with_param_values(const 
 
 FieldPtr tabulate_heights(const FieldPtr& field, double lo, double hi) {
   if (!field || !field->height_only()) return field;
-  if (const auto* earth = dynamic_cast<const CurvedEarth*>(field.get())) {
-    const FieldPtr base = tabulate_heights(earth->base(), earth->true_height(lo), earth->true_height(hi));
-    return std::make_shared<CurvedEarth>(base, earth->radius());
+  if (const FieldPtr inner = field->decorated()) {  // tabulate the air inside CurvedEarth
+    return field->with_base(tabulate_heights(inner, field->base_height(lo), field->base_height(hi)));
   }
   if (dynamic_cast<const TabulatedHeightField*>(field.get())) return field;
   return std::make_shared<TabulatedHeightField>(field, lo, hi);

@@ -11,21 +11,19 @@
 namespace refracta {
 
 void AstronomicalRefractionOptions::validate() const {
-  if (!std::isfinite(eye_height) || !(eye_height >= 0.0)) {
-    throw_invalid("astronomical_refraction: eye_height must be >= 0 m and finite (got ", eye_height, ")");
-  }
-  if (!std::isfinite(top) || top < 0.0) throw_invalid("astronomical_refraction: top must be >= 0 m (got ", top, ")");
-  if (!(earth_radius > 0.0) || !std::isfinite(earth_radius)) {
-    throw_invalid("astronomical_refraction: earth_radius must be > 0 m (got ", earth_radius, ")");
-  }
-  if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("astronomical_refraction: tol must be > 0 m (got ", tol, ")");
+  Problems problems("astronomical_refraction");
+  problems.check(std::isfinite(eye_height) && eye_height >= 0.0, "eye_height must be >= 0 m and finite (got ", eye_height, ")");
+  problems.check(std::isfinite(top) && top >= 0.0, "top must be >= 0 m (got ", top, ")");
+  problems.check(earth_radius > 0.0 && std::isfinite(earth_radius), "earth_radius must be > 0 m (got ", earth_radius, ")");
+  problems.check(tol > 0.0 && std::isfinite(tol), "tol must be > 0 m (got ", tol, ")");
+  problems.throw_if_any();
 }
 
 double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
                                const AstronomicalRefractionOptions& options) {
   options.validate();
   if (!field) throw_invalid("astronomical_refraction: field must be a field (got None)");
-  if (dynamic_cast<const CurvedEarth*>(field.get())) {
+  if (std::isfinite(field->earth_radius())) {
     throw_invalid("astronomical_refraction: give the air itself (true heights), not a CurvedEarth: the Earth's "
                   "curvature is applied here (earth_radius)");
   }
@@ -46,7 +44,7 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
   const double y_eye = earth.flat_height(options.eye_height), y_top = earth.flat_height(top);
 
   TraceOptions trace_options;
-  trace_options.method = TraceMethod::kStratified;
+  trace_options.trace = TraceMethod::kStratified;
   trace_options.tol = options.tol;
   // The longest way out: tangent to the ground to the top's sphere and a little more.
   const double r_top = options.earth_radius + top;

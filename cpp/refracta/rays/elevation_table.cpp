@@ -12,26 +12,29 @@
 namespace refracta {
 
 void ElevationTableOptions::validate() const {
-  trace.validate();
-  if (!std::isfinite(eye_height)) throw_invalid("eye_height must be finite (got ", eye_height, ")");
+  Problems problems("ElevationTable");
+  trace.check(problems);
+  problems.check(std::isfinite(eye_height), "eye_height must be finite (got ", eye_height, ")");
   const double limit = 0.5 * kPi;
-  if (!(min_elevation >= -limit && max_elevation <= limit && min_elevation < max_elevation)) {
-    throw_invalid("elevations must satisfy -90 deg <= min_elevation < max_elevation <= 90 deg (got ",
-                  min_elevation * 180 / kPi, ", ", max_elevation * 180 / kPi, ")");
+  problems.check(min_elevation >= -limit && max_elevation <= limit && min_elevation < max_elevation,
+                 "elevations must satisfy -90 deg <= min_elevation < max_elevation <= 90 deg (got ",
+                 min_elevation * 180 / kPi, ", ", max_elevation * 180 / kPi, ")");
+  problems.check(tol > 0.0 && std::isfinite(tol), "tol must be > 0 (got ", tol, ")");
+  if (trace_tol) problems.check(*trace_tol > 0.0 && std::isfinite(*trace_tol), "trace_tol must be > 0 (got ", *trace_tol, ")");
+  problems.check(initial_rays >= 2, "initial_rays must be >= 2 (got ", initial_rays, ")");
+  problems.check(min_spacing > 0.0, "min_spacing must be > 0 (got ", min_spacing, ")");
+  problems.check(angular_tol >= 0.0, "angular_tol must be >= 0 (got ", angular_tol, ")");
+  problems.check(max_rays >= initial_rays, "max_rays must be >= initial_rays (got ", max_rays, ")");
+  if (trace.stop_height) {
+    problems.check(!(eye_height < *trace.stop_height), "eye_height ", eye_height, " m is below stop_height ",
+                   *trace.stop_height, " m");
   }
-  if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
-  if (initial_rays < 2) throw_invalid("initial_rays must be >= 2 (got ", initial_rays, ")");
-  if (!(min_spacing > 0.0)) throw_invalid("min_spacing must be > 0 (got ", min_spacing, ")");
-  if (!(angular_tol >= 0.0)) throw_invalid("angular_tol must be >= 0 (got ", angular_tol, ")");
-  if (max_rays < initial_rays) throw_invalid("max_rays must be >= initial_rays (got ", max_rays, ")");
-  if (trace.stop_height && eye_height < *trace.stop_height) {
-    throw_invalid("eye_height ", eye_height, " m is below stop_height ", *trace.stop_height, " m");
-  }
+  problems.throw_if_any();
 }
 
 ElevationTable::Entry ElevationTable::trace_entry(double elevation, const std::atomic<bool>* cancel) const {
   TraceOptions trace = options_.trace;
-  trace.method = TraceMethod::kStratified;
+  trace.trace = TraceMethod::kStratified;
   trace.cancel = cancel;
   Entry entry;
   entry.path = std::make_shared<RayPath>(trace_path(
@@ -129,7 +132,8 @@ ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& opti
     throw_invalid("ElevationTable needs a field that depends on height only; ", field_->type_name(),
                   " does not");
   }
-  options_.trace.method = TraceMethod::kStratified;
+  options_.trace.trace = TraceMethod::kStratified;
+  options_.trace.tol = options_.trace_tol.value_or(options_.tol);
   options_.validate();
   // Every height a path can reach, tabulated once (to 1e-12 in n: far below any tolerance).
   const double reach = options_.trace.max_length;
@@ -349,6 +353,12 @@ RayPath ElevationTable::path(double elevation) const {
 
 PlaneState ElevationTable::end(double elevation) const {
   return at(elevation, std::numeric_limits<double>::infinity());
+}
+
+TableRayEnd ElevationTable::end(double elevation, double azimuth) const {
+  const PlaneState p = end(elevation);
+  const double ca = std::cos(azimuth), sa = std::sin(azimuth);
+  return {Vec3d(p.r * ca, p.h, p.r * sa), Vec3d(p.cos_e * ca, p.sin_e, p.cos_e * sa), p.s, p.stop};
 }
 
 }  // namespace refracta

@@ -15,6 +15,7 @@
 
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace refracta {
@@ -28,9 +29,21 @@ struct ElevationTableOptions {
   int64_t max_rays = 200000;        // beyond this many exact traces, unresolved intervals stay exact
   int initial_rays = 65;
   double min_spacing = 1e-7;        // [rad]
-  TraceOptions trace;               // method is forced to stratified
+  // The exact traces: trace is forced to stratified, and their tol is trace_tol, or the table's
+  // tol when unset (the traces then as accurate as the interpolation asks).
+  TraceOptions trace;
+  std::optional<double> trace_tol;  // [m]
 
+  // Throws std::invalid_argument listing every bad field (refracta::Problems).
   void validate() const;
+};
+
+// A ray's end in 3-D: the plane state turned to `azimuth` [rad] about the vertical through the eye
+// (measured from +x toward +z).
+struct TableRayEnd {
+  Vec3d point, direction;
+  double length;
+  TraceStop stop;
 };
 
 // A point of a path in its vertical plane: horizontal distance r, height h, arc length s and the
@@ -47,6 +60,8 @@ class ElevationTable {
 
   // End of the path launched at `elevation` [rad].
   PlaneState end(double elevation) const;
+  // The same end at `azimuth` [rad] from +x toward +z, in 3-D.
+  TableRayEnd end(double elevation, double azimuth) const;
   // Point at arc length s [m] (clamped to the path's length) of the path launched at `elevation`.
   PlaneState at(double elevation, double s) const;
   // The whole path launched at `elevation`, in the vertical plane z = 0 with the eye at

@@ -42,7 +42,7 @@ class StratifiedTracer {
  public:
   StratifiedTracer(const Field& field, const TraceOptions& options)
       : field_(field), options_(options), length_(options.max_length),
-        spacing_(options.step > 0.0 ? options.step : 100.0),
+        spacing_(options.stratified_spacing()),
         scan_step_(std::min(1.0, spacing_)), uniform_above_(field.uniform_above()) {}
 
   template <class Visitor>

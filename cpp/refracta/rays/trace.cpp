@@ -19,7 +19,7 @@ void validate_ray(const IndexField& field, const Vec3d& origin, const Vec3d& dir
     throw_invalid("direction must be finite and non-zero (got (", direction.x(), ", ",
                   direction.y(), ", ", direction.z(), "))");
   }
-  if (options.method == TraceMethod::kStratified && !field.height_only()) {
+  if (options.trace == TraceMethod::kStratified && !field.height_only()) {
     throw_invalid("method 'stratified' needs a field that depends on height only; ",
                   field.type_name(), " does not (use 'rk45')");
   }
@@ -34,9 +34,9 @@ TraceEnd<double> trace(const IndexField& field, const Vec3d& origin, const Vec3d
                        const TraceOptions& options, const SegmentVisitor& visit) {
   validate_ray(field, origin, direction, options);
   const Vec3d t0 = direction.normalized();
-  switch (options.method) {
+  switch (options.trace) {
     case TraceMethod::kRk4: {
-      Rk4Stepper<double, IndexField> stepper(options.step > 0 ? options.step : 0.3);
+      Rk4Stepper<double, IndexField> stepper(options.rk4_step());
       return march(field, origin, t0, options, stepper, visit);
     }
     case TraceMethod::kRk45: {

@@ -1,6 +1,7 @@
 // Options and results shared by every ray integrator.
 #pragma once
 
+#include "refracta/core/error.h"
 #include "refracta/rays/ray_node.h"
 
 #include <atomic>
@@ -15,13 +16,19 @@ enum class TraceMethod { kRk4, kRk45, kStratified };
 TraceMethod parse_trace_method(const std::string& name);  // "rk4", "rk45", "stratified"
 const char* trace_method_name(TraceMethod method);
 
+// rk4's fixed step when none is given [m]: the original editor's.
+constexpr double kRk4DefaultStep = 0.3;
+// stratified: the largest distance between path nodes when no step is given [m].
+constexpr double kStratifiedDefaultSpacing = 100.0;
+
 struct TraceOptions {
-  TraceMethod method = TraceMethod::kRk45;
+  // The ray integrator (one name across the library: RenderOptions::trace, PairOptions' too).
+  TraceMethod trace = TraceMethod::kRk45;
   // rk45 and stratified: target error of positions along the path [m].
   double tol = 1e-6;
-  // rk4: the fixed step [m] (default 0.3, the original editor's). rk45: the largest step
-  // (default: no limit). stratified: the largest distance between path nodes (default 100 m).
-  // 0 selects the default.
+  // rk4: the fixed step [m] (default kRk4DefaultStep). rk45: the largest step (default: no
+  // limit). stratified: the largest distance between path nodes (default
+  // kStratifiedDefaultSpacing). 0 selects the default.
   double step = 0.0;
   double max_length = 1000.0;           // arc length at which the path ends [m]
   std::optional<double> stop_height;    // the path ends where it descends through this height [m]
@@ -33,8 +40,14 @@ struct TraceOptions {
   // Polled at every step: when set, the trace throws Cancelled (Ctrl-C in a long batch).
   const std::atomic<bool>* cancel = nullptr;
 
-  // Throws std::invalid_argument naming the bad field.
+  // rk4's step and stratified's node spacing, the defaults applied.
+  double rk4_step() const { return step > 0.0 ? step : kRk4DefaultStep; }
+  double stratified_spacing() const { return step > 0.0 ? step : kStratifiedDefaultSpacing; }
+
+  // Throws std::invalid_argument listing every bad field (refracta::Problems).
   void validate() const;
+  // The same problems, added to a collector (options nested in others').
+  void check(Problems& problems) const;
 };
 
 enum class TraceStop { kMaxLength, kStopHeight, kVisitor };

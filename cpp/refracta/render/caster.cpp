@@ -67,7 +67,7 @@ void end_at(const PathSegment<double>& seg, double u, const Hit& hit, PathEnd* e
 TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, const Vec3d& origin,
                                   const RenderOptions& options, double max_length) {
   TraceOptions trace_options;
-  trace_options.method = options.trace ? *options.trace
+  trace_options.trace = options.trace ? *options.trace
                                        : (field.height_only() ? TraceMethod::kStratified : TraceMethod::kRk45);
   trace_options.tol = options.tol;
   trace_options.max_length = max_length;
@@ -242,7 +242,7 @@ PathEnd Caster::cast_in_regions(const Vec3d& origin, const Vec3d& dir, double ma
   PathEnd end;
   end.direction = dir;
   TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
-  trace_options.method = TraceMethod::kRk45;
+  trace_options.trace = TraceMethod::kRk45;
   trace_options.step = step_in_regions();
   // A pixel may stray sagitta_pixels of its footprint; a leg that hands over when it leaves the
   // regions is held to the footprint where it starts (the path after it is the next leg's).

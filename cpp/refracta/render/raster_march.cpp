@@ -128,7 +128,7 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
   };
 
   TraceOptions trace_options;
-  trace_options.method = options.march;
+  trace_options.trace = options.march;
   trace_options.step = options.march == TraceMethod::kRk4 ? options.step : 0.0;
   trace_options.tol = options.tol;
   trace_options.max_length =

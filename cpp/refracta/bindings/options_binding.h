@@ -1,0 +1,51 @@
+// Options classes across the boundary: pickled through their public fields, and filled from
+// keywords. The defaults stay in the C++ struct initialisers; the binding only names fields.
+#pragma once
+
+#include "refracta/bindings/bindings.h"
+
+#include <string>
+
+namespace refracta {
+
+// The public fields of a bound options object (its properties not starting with '_'), by name.
+py::dict options_fields(const py::object& self);
+
+// "name=value, ..." of those fields (for __repr__).
+std::string options_repr(const py::object& self);
+
+// Sets each keyword on `options` (a bound options object), in order. A keyword that is not one of
+// its fields goes to the nested options object `nested` (its attribute of that name, e.g. an
+// ElevationTableOptions' `trace`) when that has it; any other name raises ValueError naming
+// `owner` and listing the fields. A value the field refuses (wrong type) raises ValueError too.
+void set_options_fields(const py::object& options, const py::dict& fields, const char* owner,
+                        const char* nested = nullptr);
+
+// A copy of `options` (an Options, or None for the defaults) with `fields` set, validated.
+template <class Options>
+Options options_from(const py::object& options, const py::dict& fields, const char* owner,
+                     const char* nested = nullptr) {
+  if (!options.is_none() && !py::isinstance<Options>(options)) {
+    throw_invalid(owner, ": options must be a refracta.", py::cast<std::string>(py::type::of<Options>().attr("__name__")),
+                  " or None (got ", py::cast<std::string>(py::str(py::type::handle_of(options).attr("__name__"))), ")");
+  }
+  py::object copy = py::cast(options.is_none() ? Options() : py::cast<Options>(options));
+  set_options_fields(copy, fields, owner, nested);
+  Options out = py::cast<Options>(copy);
+  out.validate();
+  return out;
+}
+
+// Pickling through the fields: the state is options_fields(self); unpickling sets them on a
+// default-constructed object (so a field added later keeps its default).
+template <class Options, class Class>
+void def_options_pickle(Class& cls) {
+  cls.def(py::pickle([](const py::object& self) { return options_fields(self); },
+                     [](const py::dict& state) {
+                       py::object options = py::cast(Options());
+                       for (const auto& item : state) options.attr(item.first) = item.second;
+                       return py::cast<Options>(options);
+                     }));
+}
+
+}  // namespace refracta

@@ -1,0 +1,235 @@
+// FFT synthesis of a turbulence grid (turbulence_synthesis.h), on Eigen's FFT module (kissfft).
+#include "refracta/media/turbulence_synthesis.h"
+
+#include "refracta/core/image.h"
+#include "refracta/core/math.h"
+#include "refracta/core/rng.h"
+
+#include <unsupported/Eigen/FFT>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+
+namespace refracta {
+
+namespace {
+
+using Complex = std::complex<float>;
+
+constexpr int64_t kDefaultCells = 256;
+constexpr int64_t kMinCells = 8;
+
+// A byte count in the largest unit that keeps it >= 1 (kB, MB, GB: powers of 1000).
+std::string readable_bytes(double size) {
+  char text[64];
+  if (size >= 1e9) std::snprintf(text, sizeof text, "%.1f GB", size / 1e9);
+  else if (size >= 1e6) std::snprintf(text, sizeof text, "%.1f MB", size / 1e6);
+  else if (size >= 1e3) std::snprintf(text, sizeof text, "%.1f kB", size / 1e3);
+  else std::snprintf(text, sizeof text, "%.0f bytes", size);
+  return text;
+}
+
+std::string whole_bytes(double size) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.0f", size);
+  return text;
+}
+
+// Lattice index of FFT bin i of n: 0..n/2-1, then -n/2..-1 (numpy.fft.fftfreq(n, 1/n)).
+int64_t signed_index(int64_t i, int64_t n) { return i < (n + 1) / 2 ? i : i - n; }
+
+// H(omega) = (4 + 2 cos omega) / 6 at omega = 2 pi index / n: the spectrum of the cubic B-spline's
+// samples (Unser et al. 1991), by which the coefficients' spectrum is divided.
+double spline_response(int64_t index, int64_t n) { return (4.0 + 2.0 * std::cos(2.0 * kPi * double(index) / double(n))) / 6.0; }
+
+// A standard normal pair from one stream (Box-Muller).
+std::pair<double, double> normal_pair(Rng& rng) {
+  const double u1 = 1.0 - rng.uniform(), u2 = rng.uniform();  // u1 in (0, 1]
+  const double r = std::sqrt(-2.0 * std::log(u1));
+  return {r * std::cos(2.0 * kPi * u2), r * std::sin(2.0 * kPi * u2)};
+}
+
+}  // namespace
+
+double von_karman_constant() { return 5.0 / (18.0 * kPi * std::tgamma(1.0 / 3.0)); }
+
+double default_turbulence_yaw() { return std::atan(0.5 * (std::sqrt(5.0) - 1.0)); }
+
+double von_karman_spectrum(double kappa, double cn2, double inner_scale, double outer_scale) {
+  const double kappa0 = std::isinf(outer_scale) ? 0.0 : 2.0 * kPi / outer_scale;
+  double phi = von_karman_constant() * cn2 * std::pow(kappa * kappa + kappa0 * kappa0, -11.0 / 6.0);
+  if (inner_scale > 0.0) {
+    const double x = kappa * inner_scale / kInnerScaleFactor;
+    phi *= std::exp(-x * x);
+  }
+  return phi;
+}
+
+int TurbulenceSettings::cell_count() const {
+  if (cells) return int(*cells);
+  if (size) return int(std::max<double>(kMinCells, std::ceil(*size / spacing - 1e-9)));
+  return int(kDefaultCells);
+}
+
+void TurbulenceSettings::validate() const {
+  Problems problems("Turbulence");
+  problems.check(cn2 >= 0.0 && std::isfinite(cn2), "cn2 must be >= 0 m^(-2/3) and finite (got ", cn2, ")");
+  problems.check(outer_scale > 0.0, "outer_scale must be > 0 m or inf (got ", outer_scale, ")");
+  problems.check(inner_scale > 0.0 && std::isfinite(inner_scale), "inner_scale must be > 0 m and finite (got ", inner_scale, ")");
+  problems.check(seed >= 0, "seed must be a whole number >= 0 (got ", seed, ")");
+  problems.check(std::isfinite(wind[0]) && std::isfinite(wind[1]), "wind must be (u, w) [m/s] along x and z, finite (got (",
+                 wind[0], ", ", wind[1], "))");
+  problems.check(spacing > 0.0 && std::isfinite(spacing), "spacing must be > 0 m and finite (got ", spacing, ")");
+  if (depth) problems.check(*depth > 0.0 && std::isfinite(*depth), "depth must be > 0 m or None (uniform) (got ", *depth, ")");
+  if (cells && size) {
+    problems.add("give cells or size, not both (got cells=", *cells, ", size=", *size, ")");
+  } else if (cells) {
+    problems.check(*cells >= kMinCells, "cells must be a whole number >= ", kMinCells, " (got ", *cells, ")");
+  } else if (size) {
+    problems.check(*size > 0.0 && std::isfinite(*size), "size must be > 0 m and finite (got ", *size, ")");
+  }
+  if (max_bytes) problems.check(*max_bytes > 0.0, "max_bytes must be > 0 (math.inf: no limit; got ", *max_bytes, ")");
+  problems.check(std::isfinite(yaw), "yaw must be finite (got ", yaw, ")");
+  problems.throw_if_any();
+  // Refused before anything is allocated. Half of this machine by default (no limit where its
+  // memory cannot be read).
+  const int n = cell_count();
+  const double needed = turbulence_memory_needed(n);
+  const double limit = max_bytes ? *max_bytes : physical_memory_bytes() / 2.0;
+  if (limit > 0.0 && needed > limit) {
+    throw_invalid("Turbulence: a ", n, "^3 grid needs about ", whole_bytes(needed), " bytes (", readable_bytes(needed),
+                  ") for its FFT work arrays, more than the limit of ", whole_bytes(limit), " bytes (",
+                  readable_bytes(limit), max_bytes ? "" : ", half of this machine",
+                  "); use fewer cells or raise max_bytes");
+  }
+}
+
+double turbulence_memory_needed(int64_t cells) {
+  const double n = double(cells);
+  return 4.0 * n * n * n + 8.0 * n * n * double(cells / 2 + 1) + 4.0 * n * n * n + 16e6;
+}
+
+TurbulenceSpectrum::TurbulenceSpectrum(int64_t cells, double spacing, double inner_scale, double outer_scale)
+    : cells_(cells), dk_(2.0 * kPi / (double(cells) * spacing)), inner_scale_(inner_scale), outer_scale_(outer_scale) {
+  constexpr int m = kCellAveraged, s = kCellSamples, w = 2 * m + 1;
+  cell_table_.assign(size_t(w) * w * w, 0.0);
+  double offsets[s];
+  for (int q = 0; q < s; ++q) offsets[q] = (q + 0.5) / s - 0.5;
+  const double volume = dk_ * dk_ * dk_;
+  for (int a = 0; a < w; ++a) {
+    for (int b = 0; b < w; ++b) {
+      for (int c = 0; c < w; ++c) {
+        if (a == m && b == m && c == m) continue;  // the mean: no structure
+        double sum = 0.0;
+        for (int qa = 0; qa < s; ++qa) {
+          const double x = a - m + offsets[qa];
+          for (int qb = 0; qb < s; ++qb) {
+            const double y = b - m + offsets[qb];
+            for (int qc = 0; qc < s; ++qc) {
+              const double z = c - m + offsets[qc];
+              sum += von_karman_spectrum(dk_ * std::sqrt(x * x + y * y + z * z), 1.0, inner_scale_, outer_scale_);
+            }
+          }
+        }
+        cell_table_[(size_t(a) * w + b) * w + c] = sum / (s * s * s) * volume;
+      }
+    }
+  }
+}
+
+double TurbulenceSpectrum::mode_variance(int64_t i, int64_t j, int64_t k) const {
+  constexpr int m = kCellAveraged, w = 2 * m + 1;
+  if (std::abs(i) <= m && std::abs(j) <= m && std::abs(k) <= m) {
+    return cell_table_[(size_t(i + m) * w + size_t(j + m)) * w + size_t(k + m)];
+  }
+  return von_karman_spectrum(dk_ * std::sqrt(double(i * i + j * j + k * k)), 1.0, inner_scale_, outer_scale_) *
+         dk_ * dk_ * dk_;
+}
+
+std::shared_ptr<TurbulenceGrid> synthesise_turbulence(const TurbulenceSettings& settings, WorkControl& control) {
+  settings.validate();
+  const int64_t n = settings.cell_count(), h = n / 2 + 1;
+  const TurbulenceSpectrum spectrum(n, settings.spacing, settings.inner_scale, settings.outer_scale);
+  std::vector<float> field(size_t(n * n * n));
+  std::vector<Complex> half(size_t(n * n * h));  // (i, j, kz): the half spectrum
+  auto at = [&](int64_t i, int64_t j, int64_t kz) -> Complex& { return half[size_t((i * n + j) * h + kz)]; };
+  control.total = 3 * n;  // three passes over slabs
+  control.done = 0;
+  auto stage = [&](const auto& body) {
+    WorkControl pass;
+    parallel_for_each(n, 1, pass, body);
+    control.done += n;
+  };
+
+  // White noise, slab by slab (x index i); its transform along z (real, half) and along y.
+  stage([&](int64_t i) {
+    Eigen::FFT<float> fft;
+    fft.SetFlag(Eigen::FFT<float>::HalfSpectrum);
+    Rng rng(uint64_t(settings.seed), uint64_t(i));
+    float* slab = field.data() + size_t(i * n * n);
+    for (int64_t q = 0; q < n * n; q += 2) {
+      const auto [a, b] = normal_pair(rng);
+      slab[q] = float(a);
+      if (q + 1 < n * n) slab[q + 1] = float(b);
+    }
+    for (int64_t j = 0; j < n; ++j) fft.fwd(&at(i, j, 0), slab + j * n, n);
+    std::vector<Complex> in(static_cast<size_t>(n)), out(static_cast<size_t>(n));
+    for (int64_t kz = 0; kz < h; ++kz) {
+      for (int64_t j = 0; j < n; ++j) in[size_t(j)] = at(i, j, kz);
+      fft.fwd(out.data(), in.data(), n);
+      for (int64_t j = 0; j < n; ++j) at(i, j, kz) = out[size_t(j)];
+    }
+  });
+  // Along x: transform, filter by sqrt(N^3 sigma^2) (<|W_k|^2> = N^3 for the unnormalised
+  // transform of unit white noise; Hermitian by construction) over the spline's response, back.
+  stage([&](int64_t j) {
+    Eigen::FFT<float> fft;
+    std::vector<Complex> in(static_cast<size_t>(n)), out(static_cast<size_t>(n));
+    const int64_t sj = signed_index(j, n);
+    const double volume = double(n) * double(n) * double(n);
+    for (int64_t kz = 0; kz < h; ++kz) {
+      for (int64_t i = 0; i < n; ++i) in[size_t(i)] = at(i, j, kz);
+      fft.fwd(out.data(), in.data(), n);
+      const double response = spline_response(sj, n) * spline_response(kz, n);
+      for (int64_t i = 0; i < n; ++i) {
+        const int64_t si = signed_index(i, n);
+        const double gain = std::sqrt(volume * spectrum.mode_variance(si, sj, kz)) / (spline_response(si, n) * response);
+        out[size_t(i)] *= float(gain);
+      }
+      fft.inv(in.data(), out.data(), n);
+      for (int64_t i = 0; i < n; ++i) at(i, j, kz) = in[size_t(i)];
+    }
+  });
+  // Back along y and z, into the noise's buffer.
+  stage([&](int64_t i) {
+    Eigen::FFT<float> fft;
+    fft.SetFlag(Eigen::FFT<float>::HalfSpectrum);
+    std::vector<Complex> in(static_cast<size_t>(n)), out(static_cast<size_t>(n));
+    for (int64_t kz = 0; kz < h; ++kz) {
+      for (int64_t j = 0; j < n; ++j) in[size_t(j)] = at(i, j, kz);
+      fft.inv(out.data(), in.data(), n);
+      for (int64_t j = 0; j < n; ++j) at(i, j, kz) = out[size_t(j)];
+    }
+    float* slab = field.data() + size_t(i * n * n);
+    for (int64_t j = 0; j < n; ++j) fft.inv(slab + j * n, &at(i, j, 0), n);
+  });
+  half = std::vector<Complex>();
+  const int count = int(n);
+  return std::make_shared<TurbulenceGrid>(std::move(field), std::array<int, 3>{count, count, count}, settings.spacing);
+}
+
+Turbulence turbulence_layer(const TurbulenceSettings& settings, std::shared_ptr<const TurbulenceGrid> grid, double time) {
+  if (!grid) throw_invalid("Turbulence: no grid");
+  if (!std::isfinite(time)) throw_invalid("Turbulence.at_time: t must be finite (got ", time, ")");
+  Turbulence layer;
+  layer.grid = std::move(grid);
+  layer.scale = std::sqrt(settings.cn2);
+  layer.offset = Vec3d(settings.wind[0] * time, 0.0, settings.wind[1] * time);
+  layer.depth = settings.depth ? *settings.depth : std::numeric_limits<double>::infinity();
+  layer.set_yaw(settings.yaw);
+  return layer;
+}
+
+}  // namespace refracta
