@@ -205,6 +205,13 @@ def test_aerosol_and_visibility_are_one_or_the_other():
 def test_bad_segments_are_refused(clear_air):
     with pytest.raises(ValueError, match="wavelength"):
         clear_air.along((0, 0, 0), (100, 0, 0), 200.0)
+    for radius in (0.0, -6.371e6, float("nan")):
+        with pytest.raises(ValueError, match="earth_radius"):
+            clear_air.along((0, 0, 0), (100, 0, 0), 550.0, earth_radius=radius)
+        with pytest.raises(ValueError, match="earth_radius"):
+            clear_air.along_rgb((0, 0, 0), (100, 0, 0), earth_radius=radius)
+        with pytest.raises(ValueError, match="earth_radius"):
+            clear_air.inscatter_reference((0, 0, 0), (100, 0, 0), 550.0, steps=8, earth_radius=radius)
     with pytest.raises(ValueError):
         clear_air.along((0, float("nan"), 0), (100, 0, 0), 550.0)
 

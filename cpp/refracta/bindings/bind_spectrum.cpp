@@ -391,7 +391,9 @@ Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to 
            "(transmittance, in-scatter [W/(m^2 sr nm)] x scale) at one wavelength [nm] in [360, 830].")
       .def("along_rgb",
            [](const AerialPerspective& air, const py::object& a, const py::object& b, double earth_radius) {
-             const auto seg = air.along(to_point(a, "a"), to_point(b, "b"), AirFrame{earth_radius}, SampledWavelengths::rgb());
+             const AirFrame frame{earth_radius};
+             frame.validate();
+             const auto seg = air.along(to_point(a, "a"), to_point(b, "b"), frame, SampledWavelengths::rgb());
              return py::make_tuple(points_to_array({Vec3d(seg.transmittance.head<3>().matrix())}).reshape({py::ssize_t(3)}),
                                    points_to_array({Vec3d(seg.inscatter.head<3>().matrix())}).reshape({py::ssize_t(3)}));
            },

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace refracta {
 
@@ -38,5 +40,40 @@ template <class... Parts>
 [[noreturn]] void throw_numerical(const Parts&... parts) {
   throw NumericalError(concat(parts...));
 }
+
+// Collects every problem of a set of options, so one ValueError lists them all:
+//   Problems problems("RenderOptions");
+//   problems.check(spp >= 1, "spp must be >= 1 (got ", spp, ")");
+//   problems.throw_if_any();   // "RenderOptions: spp must be >= 1 (got 0); tol must be > 0 (got nan)"
+class Problems {
+ public:
+  explicit Problems(std::string owner) : owner_(std::move(owner)) {}
+
+  template <class... Parts>
+  void add(const Parts&... parts) {
+    list_.push_back(concat(parts...));
+  }
+
+  // Records the message when the condition does not hold; NaN comparisons are false, so write
+  // conditions as what must hold (`x > 0`), and NaN is reported.
+  template <class... Parts>
+  void check(bool holds, const Parts&... parts) {
+    if (!holds) add(parts...);
+  }
+
+  bool empty() const { return list_.empty(); }
+  const std::vector<std::string>& list() const { return list_; }
+
+  void throw_if_any() const {
+    if (list_.empty()) return;
+    std::string message = owner_ + ": ";
+    for (std::size_t i = 0; i < list_.size(); ++i) message += (i ? "; " : "") + list_[i];
+    throw std::invalid_argument(message);
+  }
+
+ private:
+  std::string owner_;
+  std::vector<std::string> list_;
+};
 
 }  // namespace refracta

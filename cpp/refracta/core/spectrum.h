@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include "refracta/core/error.h"
+
 namespace refracta {
 
 using Spectrum = Eigen::Array4d;
@@ -13,6 +15,14 @@ using Spectrum = Eigen::Array4d;
 constexpr int kSpectrumSamples = 4;
 constexpr double kLambdaMin = 360.0;  // [nm] the sampled range of spectral rendering
 constexpr double kLambdaMax = 830.0;  // [nm]
+
+// lambda_nm itself; throws (ValueError) naming `what` unless it lies in the rendered range.
+inline double checked_wavelength(double lambda_nm, const char* what) {
+  if (!(lambda_nm >= kLambdaMin && lambda_nm <= kLambdaMax)) {
+    throw_invalid(what, " must be in [", kLambdaMin, ", ", kLambdaMax, "] nm (got ", lambda_nm, ")");
+  }
+  return lambda_nm;
+}
 
 struct SampledWavelengths {
   bool spectral = false;

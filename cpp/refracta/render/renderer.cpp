@@ -37,33 +37,32 @@ Transport parse_transport(const std::string& name) {
 }
 
 void RenderOptions::validate() const {
-  std::string problems;
-  auto problem = [&](const std::string& text) { problems += (problems.empty() ? "" : "; ") + text; };
-  if (spp < 1) problem(concat("spp must be >= 1 (got ", spp, ")"));
-  if (!(max_length > 0.0) || !std::isfinite(max_length)) problem(concat("max_length must be > 0 and finite (got ", max_length, ")"));
-  if (!(chord > 0.0) || !std::isfinite(chord)) problem(concat("chord must be > 0 (got ", chord, ")"));
+  Problems problems("RenderOptions");
+  if (spp < 1) problems.add("spp must be >= 1 (got ", spp, ")");
+  if (!(max_length > 0.0) || !std::isfinite(max_length)) problems.add("max_length must be > 0 and finite (got ", max_length, ")");
+  if (!(chord > 0.0) || !std::isfinite(chord)) problems.add("chord must be > 0 (got ", chord, ")");
   if (!(sagitta >= kSmallestSagitta) || !std::isfinite(sagitta)) {
-    problem(concat("sagitta must be >= ", kSmallestSagitta, " m and finite (got ", sagitta, ")"));
+    problems.add("sagitta must be >= ", kSmallestSagitta, " m and finite (got ", sagitta, ")");
   }
   if (!(sagitta_pixels >= 0.0) || !std::isfinite(sagitta_pixels)) {
-    problem(concat("sagitta_pixels must be >= 0 and finite (got ", sagitta_pixels, ")"));
+    problems.add("sagitta_pixels must be >= 0 and finite (got ", sagitta_pixels, ")");
   }
-  if (!(tol > 0.0) || !std::isfinite(tol)) problem(concat("tol must be > 0 (got ", tol, ")"));
-  if (tile < 1) problem(concat("tile must be >= 1 (got ", tile, ")"));
-  if (trace && *trace == TraceMethod::kRk4) problem("trace must be 'rk45' or 'stratified' for rendering");
-  if (march == TraceMethod::kStratified) problem("march must be 'rk4' or 'rk45'");
-  if (!(step > 0.0) || !std::isfinite(step)) problem(concat("step must be > 0 (got ", step, ")"));
-  if (max_steps < 1) problem(concat("max_steps must be >= 1 (got ", max_steps, ")"));
-  if (surface_aovs && method == RenderMethod::kRasterMarch) problem("surface_aovs needs method 'straight' or 'curved'");
-  if (!(guard_band >= 0.0 && guard_band <= 2.0)) problem(concat("guard_band must be in [0, 2] (got ", guard_band, ")"));
-  if (max_depth < 0) problem(concat("max_depth must be >= 0 (got ", max_depth, ")"));
-  if (rr_depth < 1) problem(concat("rr_depth must be >= 1 (got ", rr_depth, ")"));
+  if (!(tol > 0.0) || !std::isfinite(tol)) problems.add("tol must be > 0 (got ", tol, ")");
+  if (tile < 1) problems.add("tile must be >= 1 (got ", tile, ")");
+  if (trace && *trace == TraceMethod::kRk4) problems.add("trace must be 'rk45' or 'stratified' for rendering");
+  if (march == TraceMethod::kStratified) problems.add("march must be 'rk4' or 'rk45'");
+  if (!(step > 0.0) || !std::isfinite(step)) problems.add("step must be > 0 (got ", step, ")");
+  if (max_steps < 1) problems.add("max_steps must be >= 1 (got ", max_steps, ")");
+  if (surface_aovs && method == RenderMethod::kRasterMarch) problems.add("surface_aovs needs method 'straight' or 'curved'");
+  if (!(guard_band >= 0.0 && guard_band <= 2.0)) problems.add("guard_band must be in [0, 2] (got ", guard_band, ")");
+  if (max_depth < 0) problems.add("max_depth must be >= 0 (got ", max_depth, ")");
+  if (rr_depth < 1) problems.add("rr_depth must be >= 1 (got ", rr_depth, ")");
   if (pixel_bounds && !(pixel_bounds->x0 >= 0 && pixel_bounds->y0 >= 0 && pixel_bounds->x1 > pixel_bounds->x0 &&
                         pixel_bounds->y1 > pixel_bounds->y0)) {
-    problem(concat("pixel_bounds (x0, y0, x1, y1) must have 0 <= x0 < x1 and 0 <= y0 < y1 (got (", pixel_bounds->x0, ", ",
-                   pixel_bounds->y0, ", ", pixel_bounds->x1, ", ", pixel_bounds->y1, "))"));
+    problems.add("pixel_bounds (x0, y0, x1, y1) must have 0 <= x0 < x1 and 0 <= y0 < y1 (got (", pixel_bounds->x0, ", ",
+                   pixel_bounds->y0, ", ", pixel_bounds->x1, ", ", pixel_bounds->y1, "))");
   }
-  if (!problems.empty()) throw std::invalid_argument("RenderOptions: " + problems);
+  problems.throw_if_any();
 }
 
 PixelBounds RenderOptions::bounds_in(int width, int height) const {

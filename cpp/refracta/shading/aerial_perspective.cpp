@@ -127,10 +127,7 @@ double AerialPerspective::sun_at(const Column& column, const Bands& bands, int b
 }
 
 double AerialPerspective::sun_transmittance(double height, double elevation, double lambda_nm) const {
-  if (!(lambda_nm >= kLambdaMin && lambda_nm <= kLambdaMax)) {
-    throw_invalid("AerialPerspective.sun_transmittance: wavelength must be in [", kLambdaMin, ", ", kLambdaMax,
-                  "] nm (got ", lambda_nm, ")");
-  }
+  checked_wavelength(lambda_nm, "AerialPerspective.sun_transmittance: wavelength");
   const Bands b = bands_at(&lambda_nm, 1);
   return sun_at(sun_column_at(cell(height, elevation)), b, 0);
 }
@@ -194,27 +191,37 @@ void AerialPerspective::integrate(const Vec3d& a, const Vec3d& b, const AirFrame
   for (int w = 0; w < n; ++w) S[w] *= scale_;
 }
 
+AerialPerspective::Bands AerialPerspective::bands_of(const SampledWavelengths& lambda) const {
+  std::array<double, kSpectrumSamples> l{};
+  for (int i = 0; i < kSpectrumSamples; ++i) l[i] = lambda.lambda[i];
+  return bands_at(l.data(), kSpectrumSamples);
+}
+
+// The D65-weighted projection: a grey transmittance stays grey, and white light through the air
+// keeps the colour the spectral render gives it.
+Spectrum AerialPerspective::rgb_transmittance(const double* T) const {
+  Vec3d rgb = Vec3d::Zero();
+  for (int w = 0; w < kNodes; ++w) rgb += T[w] * d65_weight_[w];
+  rgb = rgb.cwiseQuotient(rgb_of_d65_).cwiseMax(0.0).cwiseMin(1.0);
+  return Spectrum(rgb.x(), rgb.y(), rgb.z(), 1.0);
+}
+
 AerialPerspective::Segment AerialPerspective::along(const Vec3d& a, const Vec3d& b, const AirFrame& frame,
                                                     const SampledWavelengths& lambda) const {
   Segment out;
   if (lambda.spectral) {
-    std::array<double, kSpectrumSamples> l{}, T{}, S{};
-    for (int i = 0; i < kSpectrumSamples; ++i) l[i] = lambda.lambda[i];
-    integrate(a, b, frame, bands_at(l.data(), kSpectrumSamples), true, T.data(), S.data());
+    std::array<double, kSpectrumSamples> T{}, S{};
+    integrate(a, b, frame, bands_of(lambda), true, T.data(), S.data());
     for (int i = 0; i < kSpectrumSamples; ++i) out.transmittance[i] = T[i], out.inscatter[i] = S[i];
     return out;
   }
   std::array<double, kNodes> T{}, S{};
   integrate(a, b, frame, nodes_, true, T.data(), S.data());
-  Vec3d rgb_s = Vec3d::Zero(), rgb_t = Vec3d::Zero();
-  for (int w = 0; w < kNodes; ++w) {
-    rgb_s += S[w] * rgb_weight_[w];
-    rgb_t += T[w] * d65_weight_[w];
-  }
-  rgb_t = rgb_t.cwiseQuotient(rgb_of_d65_).cwiseMax(0.0).cwiseMin(1.0);
+  Vec3d rgb_s = Vec3d::Zero();
+  for (int w = 0; w < kNodes; ++w) rgb_s += S[w] * rgb_weight_[w];
   // Clipped to the sRGB gamut like the sky's Le (PhysicalSkyLight::Le).
   rgb_s = rgb_s.cwiseMax(0.0);
-  out.transmittance = Spectrum(rgb_t.x(), rgb_t.y(), rgb_t.z(), 1.0);
+  out.transmittance = rgb_transmittance(T.data());
   out.inscatter = Spectrum(rgb_s.x(), rgb_s.y(), rgb_s.z(), 0.0);
   return out;
 }
@@ -222,25 +229,23 @@ AerialPerspective::Segment AerialPerspective::along(const Vec3d& a, const Vec3d&
 Spectrum AerialPerspective::transmittance(const Vec3d& a, const Vec3d& b, const AirFrame& frame,
                                           const SampledWavelengths& lambda) const {
   if (lambda.spectral) {
-    std::array<double, kSpectrumSamples> l{}, T{}, S{};
-    for (int i = 0; i < kSpectrumSamples; ++i) l[i] = lambda.lambda[i];
-    integrate(a, b, frame, bands_at(l.data(), kSpectrumSamples), false, T.data(), S.data());
+    std::array<double, kSpectrumSamples> T{}, S{};
+    integrate(a, b, frame, bands_of(lambda), false, T.data(), S.data());
     return Spectrum(T[0], T[1], T[2], T[3]);
   }
   std::array<double, kNodes> T{}, S{};
   integrate(a, b, frame, nodes_, false, T.data(), S.data());
-  Vec3d rgb_t = Vec3d::Zero();
-  for (int w = 0; w < kNodes; ++w) rgb_t += T[w] * d65_weight_[w];
-  rgb_t = rgb_t.cwiseQuotient(rgb_of_d65_).cwiseMax(0.0).cwiseMin(1.0);
-  return Spectrum(rgb_t.x(), rgb_t.y(), rgb_t.z(), 1.0);
+  return rgb_transmittance(T.data());
+}
+
+void AirFrame::validate() const {
+  if (!(earth_radius > 0.0)) throw_invalid("earth_radius must be > 0 [m] (infinity: a flat scene) (got ", earth_radius, ")");
 }
 
 std::pair<double, double> AerialPerspective::along_at(const Vec3d& a, const Vec3d& b, const AirFrame& frame,
                                                       double lambda_nm) const {
-  if (!(lambda_nm >= kLambdaMin && lambda_nm <= kLambdaMax)) {
-    throw_invalid("AerialPerspective.along: wavelength must be in [", kLambdaMin, ", ", kLambdaMax, "] nm (got ",
-                  lambda_nm, ")");
-  }
+  frame.validate();
+  checked_wavelength(lambda_nm, "AerialPerspective.along: wavelength");
   double T = 1.0, S = 0.0;
   integrate(a, b, frame, bands_at(&lambda_nm, 1), true, &T, &S);
   return {T, S};
@@ -248,10 +253,8 @@ std::pair<double, double> AerialPerspective::along_at(const Vec3d& a, const Vec3
 
 double AerialPerspective::inscatter_reference(const Vec3d& a, const Vec3d& b, const AirFrame& frame, double lambda_nm,
                                               int steps) const {
-  if (!(lambda_nm >= kLambdaMin && lambda_nm <= kLambdaMax)) {
-    throw_invalid("AerialPerspective.inscatter_reference: wavelength must be in [", kLambdaMin, ", ", kLambdaMax,
-                  "] nm (got ", lambda_nm, ")");
-  }
+  frame.validate();
+  checked_wavelength(lambda_nm, "AerialPerspective.inscatter_reference: wavelength");
   if (steps < 1) throw_invalid("AerialPerspective.inscatter_reference: steps must be >= 1 (got ", steps, ")");
   const Bands band = bands_at(&lambda_nm, 1);
   const double sigma_ozone = lerp_nodes(kOzoneCrossSection, lambda_nm);

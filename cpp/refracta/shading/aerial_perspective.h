@@ -41,6 +41,9 @@ namespace refracta {
 //   ground, and the local vertical at horizontal distance rho is tilted by rho / earth_radius.
 struct AirFrame {
   double earth_radius = std::numeric_limits<double>::infinity();
+
+  // Throws (ValueError) unless earth_radius > 0; infinity is the flat scene's frame.
+  void validate() const;
 };
 
 class AerialPerspective {
@@ -91,6 +94,8 @@ class AerialPerspective {
   };
   Bands bands_at(const double* lambda_nm, int count) const;
   // Integrates the chord a -> b over `bands`: transmittance T and in-scatter S (x scale) per band.
+  Bands bands_of(const SampledWavelengths& lambda) const;
+  Spectrum rgb_transmittance(const double* transmittance_at_nodes) const;
   void integrate(const Vec3d& a, const Vec3d& b, const AirFrame& frame, const Bands& bands, bool inscatter, double* T,
                  double* S) const;
   // Table coordinates of a (height, sun elevation).

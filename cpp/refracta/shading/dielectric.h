@@ -22,6 +22,7 @@
 #include "refracta/shading/ior.h"
 #include "refracta/shading/material_util.h"
 #include "refracta/shading/microfacet.h"
+#include "refracta/shading/rough_dielectric.h"
 
 namespace refracta {
 
@@ -66,79 +67,6 @@ class DielectricBsdf final : public Bsdf {
   double eta_;
   Spectrum eta_spectrum_;
   SampledWavelengths* lambda_;
-};
-
-class RoughDielectricBsdf final : public Bsdf {
- public:
-  RoughDielectricBsdf(double eta, const TrowbridgeReitz& distribution) : eta_(eta), distribution_(distribution) {}
-
-  Spectrum f(const Vec3d& wo, const Vec3d& wi, TransportMode mode) const override {
-    double etap;
-    Vec3d m;
-    if (!half_vector(wo, wi, &etap, &m)) return Spectrum::Zero();
-    const double F = fresnel_dielectric(wo.dot(m), eta_);
-    const double cos_o = wo.z(), cos_i = wi.z();
-    if (cos_o * cos_i > 0.0) {
-      return Spectrum::Constant(distribution_.D(m) * distribution_.G(wo, wi) * F / std::abs(4.0 * cos_i * cos_o));
-    }
-    const double denominator = sqr(wi.dot(m) + wo.dot(m) / etap) * cos_i * cos_o;
-    double ft = distribution_.D(m) * (1.0 - F) * distribution_.G(wo, wi) * std::abs(wi.dot(m) * wo.dot(m) / denominator);
-    if (mode == TransportMode::kRadiance) ft /= etap * etap;
-    return Spectrum::Constant(ft);
-  }
-
-  double pdf(const Vec3d& wo, const Vec3d& wi, TransportMode) const override {
-    double etap;
-    Vec3d m;
-    if (!half_vector(wo, wi, &etap, &m)) return 0.0;
-    const double r = fresnel_dielectric(wo.dot(m), eta_), t = 1.0 - r;
-    if (wo.z() * wi.z() > 0.0) return distribution_.D_visible(wo, m) / (4.0 * std::abs(wo.dot(m))) * r;
-    const double denominator = sqr(wi.dot(m) + wo.dot(m) / etap);
-    return distribution_.D_visible(wo, m) * std::abs(wi.dot(m)) / denominator * t;
-  }
-
-  std::optional<BsdfSample> sample(const Vec3d& wo, double uc, const Vec2d& u, TransportMode mode) const override {
-    if (wo.z() == 0.0) return std::nullopt;
-    const Vec3d m = distribution_.sample_wm(wo, u);
-    const double r = fresnel_dielectric(wo.dot(m), eta_);
-    BsdfSample s;
-    if (uc < r) {
-      s.wi = reflect(wo, m);
-      if (!same_hemisphere(wo, s.wi)) return std::nullopt;
-      s.flags = kBsdfReflection | kBsdfGlossy;
-    } else {
-      double etap;
-      if (!refract(wo, m, eta_, &etap, &s.wi) || same_hemisphere(wo, s.wi) || s.wi.z() == 0.0) return std::nullopt;
-      s.flags = kBsdfTransmission | kBsdfGlossy;
-      s.eta = etap;
-    }
-    s.pdf = pdf(wo, s.wi, mode);
-    if (!(s.pdf > 0.0)) return std::nullopt;
-    s.f = f(wo, s.wi, mode);
-    s.weight = s.f * std::abs(s.wi.z()) / s.pdf;
-    return s;
-  }
-  unsigned flags() const override { return kBsdfReflection | kBsdfTransmission | kBsdfGlossy; }
-
- private:
-  static double sqr(double x) { return x * x; }
-  // The generalised half vector on the normal's side; false for configurations no microfacet
-  // produces (grazing directions, back-facing microfacets).
-  bool half_vector(const Vec3d& wo, const Vec3d& wi, double* etap, Vec3d* m) const {
-    const double cos_o = wo.z(), cos_i = wi.z();
-    if (cos_o == 0.0 || cos_i == 0.0) return false;
-    const bool reflection = cos_o * cos_i > 0.0;
-    *etap = reflection ? 1.0 : (cos_o > 0.0 ? eta_ : 1.0 / eta_);
-    Vec3d h = wi * *etap + wo;
-    if (h.squaredNorm() == 0.0) return false;
-    h.normalize();
-    if (h.z() < 0.0) h = -h;
-    if (h.dot(wi) * cos_i < 0.0 || h.dot(wo) * cos_o < 0.0) return false;
-    *m = h;
-    return true;
-  }
-  double eta_;
-  TrowbridgeReitz distribution_;
 };
 
 class ThinDielectricBsdf final : public Bsdf {
@@ -204,7 +132,8 @@ class RoughDielectric final : public Material {
         ior_(ior), priority_(priority) {}
   const Bsdf* bsdf(const SurfaceInteraction&, const MaterialContext& context, ScratchBuffer& scratch) const override {
     if (ior_.dispersive() && context.lambda->spectral) context.lambda->terminate_secondary();
-    return scratch.make<RoughDielectricBsdf>(*interior_ior(*context.lambda) / context.eta_outside, TrowbridgeReitz(alpha_u_, alpha_v_));
+    const double eta = *interior_ior(*context.lambda) / context.eta_outside;
+    return scratch.make<RoughDielectricLobe<TrowbridgeReitz>>(Spectrum::Constant(eta), eta, TrowbridgeReitz(alpha_u_, alpha_v_));
   }
   std::optional<double> interior_ior(const SampledWavelengths& lambda) const override {
     return lambda.spectral ? ior_.at(lambda.hero()) : ior_.rgb_value();

@@ -73,6 +73,8 @@ class TrowbridgeReitz {
 
   // The distribution of normals visible from w, D_w(m) = G1(w) |w.m| D(m) / |cos theta_w|; it is
   // the density (per solid angle of m) of sample_wm(w, u).
+  // The density of sample_wm (the rough dielectric lobe's name for it, as Beckmann's).
+  double sampling_pdf(const Vec3d& w, const Vec3d& m) const { return D_visible(w, m); }
   double D_visible(const Vec3d& w, const Vec3d& m) const {
     const double cos_w = std::abs(w.z());
     if (!(cos_w > 0.0)) return 0.0;

@@ -8,6 +8,7 @@
 // (The raster pipeline's shading/blinn_phong.h evaluates the same f from scene/material.h.)
 #pragma once
 
+#include "refracta/shading/fresnel.h"
 #include "refracta/shading/material_util.h"
 
 namespace refracta {
