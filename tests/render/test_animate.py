@@ -96,10 +96,24 @@ def test_fields_that_cannot_carry_turbulence_are_refused():
     air = refracta.Turbulence(cells=16)
     with pytest.raises(ValueError, match="PhysicalAtmosphere or LogisticProfile"):
         _animate.with_turbulence(refracta.LinearSquaredProfile(), air)
-    # A LogisticProfile's height_only_part has its hot layer switched off: not a constructor's field.
+    with pytest.raises(ValueError, match="PhysicalAtmosphere or LogisticProfile"):
+        _animate.with_turbulence(refracta.CurvedEarth(refracta.PhysicalAtmosphere()), air)
+
+
+def test_a_height_only_part_keeps_its_fixed_data_under_turbulence():
+    # A LogisticProfile's height_only_part has its hot layer switched off: not a constructor's
+    # field. The rebuild from params by reflection refused it ("cannot be rebuilt"); the model's
+    # own with_turbulence keeps its fixed data, so its air less the turbulence is the part's.
+    air = refracta.Turbulence(1e-10, cells=16, spacing=0.05, depth=0.1)
     part = refracta.LogisticProfile(hot_spots=[refracta.HotSpot(3.0, 0.0, 2.0, 1.0)]).height_only_part
-    with pytest.raises(ValueError, match="cannot be rebuilt"):
-        _animate.with_turbulence(part, air)
+    stirred = _animate.with_turbulence(part, air)
+    p = np.array([[3.0, 0.02, 0.0], [3.0, 0.3, 0.2], [100.0, 2.0, 0.0]])
+    assert stirred.params == part.params and not stirred.height_only
+    # The same sum n + dn in double: ulps of n ~ 1.
+    np.testing.assert_allclose(stirred.ior(p), part.ior(p) + air.evaluate(p)[0], rtol=0, atol=1e-15)
+    # Not the constructor's field: that one has the hot layer (4.5e-4 in n at 2 cm, measured).
+    rebuilt = refracta.LogisticProfile(**part.params, turbulence=air)
+    assert np.max(np.abs(stirred.ior(p) - rebuilt.ior(p))) > 1e-4  # far above the 1e-15 round-off
 
 
 # -- 3. animate ---------------------------------------------------------------------------------------
