@@ -78,9 +78,8 @@ def best_seconds(scene, camera, repeats: int, **options) -> float:
     """The shortest of `repeats` render_raster times (single runs on 2 busy cores scatter by ~30 %)."""
     best = None
     for _ in range(repeats):
-        counts: dict = {}
-        refracta.render_raster(scene, camera, shadows="none", stats=counts, **options)
-        best = counts["seconds"] if best is None else min(best, counts["seconds"])
+        _, counts = refracta.render_raster(scene, camera, shadows="none", return_stats=True, **options)
+        best = counts.seconds if best is None else min(best, counts.seconds)
     return best
 
 
@@ -112,13 +111,13 @@ def main(oit_size: int = 256) -> dict:
             row["storage"] = storage
             best = None
             for _ in range(3):  # the best of three: single runs on 2 busy cores scatter by ~30 %
-                counts = {}
-                refracta.render_raster(scene, camera, shadows=row["method"], kernel=row["kernel"], resolution=1024,
-                                       storage=storage, output="shadow", stats=counts)
-                if best is None or counts["seconds"] < best["seconds"]:
+                _, counts = refracta.render_raster(scene, camera, shadows=row["method"], kernel=row["kernel"],
+                                                   resolution=1024, storage=storage, output="shadow",
+                                                   return_stats=True)
+                if best is None or counts.seconds < best.seconds:
                     best = counts
-            row["build_seconds"] = best["shadow_build_seconds"]
-            row["lookup_seconds"] = best["seconds"] - best["shadow_build_seconds"]
+            row["build_seconds"] = best.shadow_build_seconds
+            row["lookup_seconds"] = best.seconds - best.shadow_build_seconds
             rows.append(row)
             print(f"{storage:8s} {row['method']:14s} {row['kernel']:3d}  build {row['build_seconds']:.3f} s  "
                   f"lookups {row['lookup_seconds']:.3f} s  mean error {row['mean_error']:.4f}  p99 {row['p99_error']:.3f}")

@@ -156,18 +156,18 @@ def shimmer_render(width=160, height=60) -> dict:
                                      max_length=road.max_length, repeat=3)
     air = refracta.Turbulence(depth=0.1)
     field = refracta.PhysicalAtmosphere(**road.field.params, turbulence=air)
-    stats = {}
     start = time.perf_counter()
-    image = refracta.render(road.scene, road.camera, field, progress=False, max_length=road.max_length, stats=stats)
+    image, stats = refracta.render(road.scene, road.camera, field, progress=False, max_length=road.max_length,
+                                   return_stats=True)
     seconds = time.perf_counter() - start
     difference = float(np.mean(np.abs(image - calm_image)) / np.mean(calm_image))
     changed = float(np.mean(np.abs(image - calm_image).max(axis=2) > 0.05 * calm_image.max()))
     print(f"hot_road {width}x{height}: calm {calm_seconds:.3f} s, with turbulence {seconds:.1f} s "
-          f"(x{seconds / calm_seconds:.0f}), chords/pixel {stats['chords'] / stats['samples']:.0f}, "
+          f"(x{seconds / calm_seconds:.0f}), chords/pixel {stats.chords / stats.samples:.0f}, "
           f"mean |change| {difference:.3f} of the mean, pixels changed > 5% of the peak: {changed:.2f}")
     return {"size": [width, height], "turbulence": repr(air), "calm_seconds": calm_seconds,
             "turbulent_seconds": seconds, "slowdown": seconds / calm_seconds,
-            "chords_per_pixel": stats["chords"] / stats["samples"], "mean_relative_change": difference,
+            "chords_per_pixel": stats.chords / stats.samples, "mean_relative_change": difference,
             "fraction_of_pixels_changed": changed}
 
 
@@ -187,10 +187,9 @@ def hot_spot_render(width=1280, height=720, repeat=3) -> dict:
                   **base, hot_spots=[refracta.HotSpot(330.0, 0.0, 45.0, 16.0, footprint="gaussian")])}
     out = {"size": [width, height], "spp": 1, "transport": "direct"}
     for name, field in fields.items():
-        stats = {}
-        _, seconds = timed(refracta.render, example.scene, example.camera, field, progress=False,
-                           max_length=example.max_length, repeat=repeat, stats=stats)
-        out[name] = {"seconds": seconds, "chords_per_sample": stats["chords"] / max(stats["samples"], 1)}
+        (_, stats), seconds = timed(refracta.render, example.scene, example.camera, field, progress=False,
+                                    max_length=example.max_length, repeat=repeat, return_stats=True)
+        out[name] = {"seconds": seconds, "chords_per_sample": stats.chords / max(stats.samples, 1)}
     for name in ("compact", "gaussian"):
         out[f"{name}_over_height_only"] = out[name]["seconds"] / out["height_only"]["seconds"]
     print(f"hot spot {width}x{height}: height-only {out['height_only']['seconds']:.2f} s, "

@@ -42,16 +42,16 @@ def run_one(name: str, width: int, height: int) -> dict:
         width, height = FOUR_K
     example = examples.hot_road(width, height)
     field = None if name == "straight" else example.field
-    counts = {}
     before_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
     start = time.perf_counter()
-    image = refracta.render(example.scene, example.camera, field, progress=False, max_length=example.max_length,
-                            stats=counts, **METHODS.get(name, METHODS["curved_table"]))
+    image, counts = refracta.render(example.scene, example.camera, field, progress=False,
+                                    max_length=example.max_length, return_stats=True,
+                                    **METHODS.get(name, METHODS["curved_table"]))
     seconds = time.perf_counter() - start
     return {"seconds": seconds, "peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
             "peak_before_render_mb": before_mb, "image_mb": image.nbytes / 2**20, "size": [width, height],
             "mean_radiance": float(image.mean()), "us_per_pixel": 1e6 * seconds / (width * height),
-            "chords_per_pixel": counts["chords"] / counts["samples"] if counts.get("chords") else None}
+            "chords_per_pixel": counts.chords / counts.samples if counts.chords else None}
 
 
 def main(width: int, height: int) -> dict:
