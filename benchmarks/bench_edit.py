@@ -63,14 +63,14 @@ def best_of(run):
 
 
 def run(case, backend, pairs, strategy):
-    common = dict(free=case["free"], ground=case["ground"], target_cost=TARGET_COST, max_evaluations=3000,
+    common = dict(free=case["free"], stop_height=case["ground"], target_cost=TARGET_COST, max_evaluations=3000,
                   strategy=strategy)
     if backend == "original":
         result = solve(case["start"], case["eye"], pairs, backend="nlopt:LN_BOBYQA", distance="vertex",
-                       integrator="rk4", step=0.3, **common)
+                       trace="rk4", step=0.3, **common)
     else:
         result = solve(case["start"], case["eye"], pairs, backend=backend, **common)
-    misses = distances(result.field, case["eye"], pairs, ground=case["ground"])
+    misses = distances(result.field, case["eye"], pairs, stop_height=case["ground"])
     cost = float(0.5 * np.sum(misses**2))
     return {"seconds": result.time, "reached_target": cost <= TARGET_COST, "final_cost_m2": cost,
             "max_miss_m": float(misses.max()), "evaluations": int(result.evaluations),

@@ -2028,122 +2028,122 @@ class SolveSummary:
     def __setstate__(self, arg0: dict) -> None:
         ...
     @property
-    def backend(self) -> typing.Any:
+    def backend(self) -> str:
         """
         'ceres' or 'nlopt:<ALGORITHM>'
         """
     @property
-    def condition(self) -> typing.Any:
+    def condition(self) -> float:
         """
         the Jacobian's condition number at a result meeting every pair (else 0)
         """
     @property
-    def converged(self) -> typing.Any:
+    def converged(self) -> bool:
         """
         the back-end ended normally
         """
     @property
-    def cost(self) -> typing.Any:
+    def cost(self) -> float:
         """
         [m^2] the same at the result
         """
     @property
-    def derivatives(self) -> typing.Any:
+    def derivatives(self) -> str:
         """
         'automatic' or 'numeric'
         """
     @property
-    def distances(self) -> typing.Any:
+    def distances(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         [m] each pair's miss at the result
         """
     @property
-    def evaluations(self) -> typing.Any:
+    def evaluations(self) -> int:
         """
         cost evaluations of the whole solve
         """
     @property
-    def free(self) -> typing.Any:
+    def free(self) -> list[str]:
         """
         the parameters that were optimised
         """
     @property
-    def history(self) -> typing.Any:
+    def history(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         cost per iteration (ceres) or best cost per evaluation (nlopt)
         """
     @property
-    def initial_cost(self) -> typing.Any:
+    def initial_cost(self) -> float:
         """
         [m^2] 1/2 sum weight * (miss - margin)^2 at the start
         """
     @property
-    def insensitive(self) -> typing.Any:
+    def insensitive(self) -> list[str]:
         """
         requested free, but no pair depends on them: held fixed
         """
     @property
-    def iterations(self) -> typing.Any:
+    def iterations(self) -> int:
         """
         iterations of the start that gave the result
         """
     @property
-    def message(self) -> typing.Any:
+    def message(self) -> str:
         """
         what happened, and why a pair is not met
         """
     @property
-    def met(self) -> typing.Any:
+    def met(self) -> numpy.typing.NDArray[numpy.bool]:
         """
         per pair: its miss is within its margin plus its met tolerance
         """
     @property
-    def pair_traces(self) -> typing.Any:
+    def pair_traces(self) -> int:
         """
         traced pairs, derivative passes included
         """
     @property
-    def rank(self) -> typing.Any:
+    def rank(self) -> int:
         """
         its numerical rank (else 0)
         """
     @property
-    def solver_report(self) -> typing.Any:
+    def solver_report(self) -> str:
         """
         the back-end's own report of the run that gave the result
         """
     @property
-    def stages(self) -> typing.Any:
+    def stages(self) -> list[str]:
         """
         what the strategy did, one line per stage
         """
     @property
-    def starts(self) -> typing.Any:
+    def starts(self) -> int:
         """
         starts asked for
         """
     @property
-    def stopped_by(self) -> typing.Any:
+    def stopped_by(self) -> str:
         """
         'iteration limit', 'evaluation limit', 'time limit' or ''
         """
     @property
-    def strategy(self) -> typing.Any:
+    def strategy(self) -> str:
         """
         'auto' or 'local'
         """
     @property
-    def success(self) -> typing.Any:
+    def success(self) -> bool:
         """
         every pair met (strategy 'local': and converged)
         """
     @property
-    def time(self) -> typing.Any:
+    def time(self) -> float:
         """
         [s] solving, set-up excluded
         """
     @property
-    def values(self) -> typing.Any:
+    def values(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         every parameter of the solved field, in param_names order
         """

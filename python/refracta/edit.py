@@ -28,18 +28,22 @@ Units: metres (scene units for LogisticProfile); cost is 1/2 sum weight * miss^2
 
 from __future__ import annotations
 
-import time as _time
 from collections.abc import Sequence
 from dataclasses import dataclass
-from dataclasses import field as _dataclass_field
 from typing import Any, Callable
 
 import numpy as np
 
-from refracta import _core
+from refracta import _core, _options
 from refracta._progress import ProgressBar
 
-__all__ = ["EditResult", "PointPair", "distances", "jacobian", "load_pairs", "solve", "NLOPT_ALGORITHMS"]
+# The options and summary of a solve, bound from C++ (edit_settings.h, point_pair.h).
+SolveSettings = _core.SolveSettings
+PairOptions = _core.PairOptions
+SolveSummary = _core.SolveSummary
+
+__all__ = ["EditResult", "PairOptions", "PointPair", "SolveSettings", "SolveSummary", "distances", "jacobian",
+           "load_pairs", "solve", "NLOPT_ALGORITHMS"]
 
 #: nlopt algorithms known to work on edits (any other nlopt name is accepted too).
 NLOPT_ALGORITHMS = ("LN_BOBYQA", "LN_NELDERMEAD", "LN_SBPLX", "LN_COBYLA", "GN_DIRECT_L", "LD_LBFGS", "LD_MMA")
@@ -113,7 +117,7 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float
     of the pairs.
 
     pixel_tolerance [pixels]: a pixel destination's pair is met within this many pixels' footprint
-    at its source (default: the C++ default, _SolveSettings().pixel_tolerance); 3D destinations: 0.
+    at its source (default: the C++ default, SolveSettings().pixel_tolerance); 3D destinations: 0.
     """
     if isinstance(pairs, PointPair):
         pairs = [pairs]
@@ -143,7 +147,7 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float
     # A pixel destination's margin and tolerance are in pixels: their footprint at the source's
     # distance (the angle they subtend times the range).
     if pixel_tolerance is None:
-        pixel_tolerance = _core._SolveSettings().pixel_tolerance
+        pixel_tolerance = _core.SolveSettings().pixel_tolerance
     ranges = np.linalg.norm(sources - eye, axis=1)
     pixel_angle = camera.pixel_angle if camera is not None else 0.0  # a pixel pair has a camera (checked above)
     footprints = np.array([pixel_angle * r if p.is_pixel else 0.0 for p, r in zip(pairs, ranges)])
@@ -151,11 +155,20 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float
     return pairs, eye, camera, origins, np.array(directions), sources, weights, margins, pixel_tolerance * footprints
 
 
-def _pair_options(integrator: str, tol: float, step: float | None, ground: float | None,
-                  distance: str, reach: float):
-    if integrator not in ("rk45", "rk4"):
-        raise ValueError(f"integrator must be 'rk45' or 'rk4' (got {integrator!r})")
-    return _core._PairOptions(integrator, tol, step, ground, distance, reach)
+# Deprecated keyword spellings (one release): the ray integrator is `trace`, the ground `stop_height`,
+# as in refracta.trace_ray and refracta.render.
+_RENAMED = {"integrator": "trace", "ground": "stop_height"}
+
+
+def _pair_options(where: str, given: _core.PairOptions | None, options: dict) -> _core.PairOptions:
+    """PairOptions from `given` (None: the defaults) and PairOptions fields as keywords (deprecated
+    spellings renamed with a warning; any other keyword raises TypeError)."""
+    options = _options.renamed(dict(options), _RENAMED, where, stacklevel=4)
+    return _options.build(_core.PairOptions, given, where=where, **options)
+
+
+# Fields of EditResult read from its SolveSummary (documented on EditResult and _core.SolveSummary).
+_SUMMARY_FIELDS = frozenset(_options.fields(_core.SolveSummary)) - {"values"}
 
 
 @dataclass
@@ -170,15 +183,17 @@ class EditResult:
     3D destinations 0); met: per pair, whether its miss is within its margin plus the larger of
     its tolerance and accept_angle times its range. success: every pair met (strategy 'local': and the
     back-end converged). strategy: 'auto' or 'local'; stages: what the strategy did, one line per
-    stage (local solves, the global stage's design); solver_report: the back-end's own report of
-    the run that gave the result (Ceres' full summary). stopped_by: the limit that cut the solve
-    short ('iteration limit', 'evaluation limit', 'time limit'; '' if none). condition, rank: of the
-    Jacobian in the free parameters' unit box at a result meeting every pair (else 0, 0); above
-    1e6 the message says the solution is not unique. history: cost per iteration (ceres) or best
-    cost per evaluation (nlopt) of that run. free: the optimised parameters; insensitive: requested
-    free parameters no pair depends on (held fixed). iterations, evaluations (cost evaluations,
-    the global stage's design points included), pair_traces (traced pairs, derivative passes
-    included), time [s] (solving only).
+    stage (local solves, the global stage's design; several starts: then 'starts: k of n run');
+    solver_report: the back-end's own report of the run that gave the result (Ceres' full summary).
+    stopped_by: the limit that cut the solve short ('iteration limit', 'evaluation limit', 'time
+    limit'; '' if none). condition, rank: of the Jacobian in the free parameters' unit box at a
+    result meeting every pair (else 0, 0); above 1e6 the message says the solution is not unique.
+    history: cost per iteration (ceres) or best cost per evaluation (nlopt) of that run. free: the
+    optimised parameters; insensitive: requested free parameters no pair depends on (held fixed).
+    iterations (of the start that gave the result), evaluations (cost evaluations, the global
+    stage's design points and every start included), pair_traces (traced pairs, derivative passes
+    included), time [s] (solving only), starts, backend, derivatives. These are read from
+    `summary` (a _core.SolveSummary); `settings` and `pair_options` are what the solve ran with.
     """
 
     field: _core.IndexField
@@ -186,47 +201,33 @@ class EditResult:
     pairs: list[PointPair]
     eye: np.ndarray
     camera: _core.Camera | None
-    cost: float
-    initial_cost: float
-    distances: np.ndarray
     initial_distances: np.ndarray
-    iterations: int
-    evaluations: int
-    pair_traces: int
-    time: float
-    success: bool
-    converged: bool
-    message: str
-    history: np.ndarray
-    free: list[str]
-    insensitive: list[str]
-    backend: str
-    derivatives: str
-    starts: int = 1
-    trace_options: dict[str, Any] = _dataclass_field(default_factory=dict)
-    margins: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0))
-    tolerances: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0))
-    met: np.ndarray = _dataclass_field(default_factory=lambda: np.zeros(0, dtype=bool))
-    strategy: str = "local"
-    stages: list[str] = _dataclass_field(default_factory=list)
-    solver_report: str = ""
-    stopped_by: str = ""
-    condition: float = 0.0
-    rank: int = 0
+    margins: np.ndarray
+    tolerances: np.ndarray
+    summary: _core.SolveSummary
+    settings: _core.SolveSettings
+    pair_options: _core.PairOptions
+
+    def __getattr__(self, name: str) -> Any:
+        # Only reached for names that are not attributes: the summary's fields (not while
+        # unpickling, before `summary` is set).
+        summary = self.__dict__.get("summary")
+        if name not in _SUMMARY_FIELDS or summary is None:
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        return getattr(summary, name)
+
+    def __dir__(self) -> list[str]:
+        return sorted(set(super().__dir__()) | _SUMMARY_FIELDS)
 
     def paths(self, which: str = "solved") -> list[_core.RayPath]:
-        """Each pair's light path through the solved field ('solved') or the start ('start')."""
+        """Each pair's light path through the solved field ('solved') or the start ('start'),
+        traced by the rule its miss is measured with (PairOptions in C++)."""
         if which not in ("solved", "start"):
             raise ValueError(f"which must be 'solved' or 'start' (got {which!r})")
         field = self.field if which == "solved" else self.start
-        _, _, _, origins, directions, sources, _, _, _ = _pair_rays(self.camera if self.camera is not None else self.eye, self.pairs)
-        options = self.trace_options
-        out = []
-        for origin, direction, source in zip(origins, directions, sources):
-            length = options["reach"] * float(np.linalg.norm(source - origin)) + 1.0
-            out.append(_core.trace_ray(field, origin, direction, method=options["integrator"], tol=options["tol"],
-                                       step=options["step"], max_length=length, stop_height=options["ground"]))
-        return out
+        eye_or_camera = self.camera if self.camera is not None else self.eye
+        _, _, _, origins, directions, sources, _, _, _ = _pair_rays(eye_or_camera, self.pairs)
+        return _core._pair_paths(field, origins, directions, sources, self.pair_options)
 
     def report(self) -> str:
         """A readable summary: outcome, costs, per-pair distances, parameters before and after."""
@@ -243,7 +244,8 @@ class EditResult:
         for i, pair in enumerate(self.pairs):
             distance = float(np.linalg.norm(np.asarray(pair.source) - self.eye))
             lines.append(f"  {i:4d}  {pair.weight:6.3g}  {self.initial_distances[i]:15.4g}  "
-                         f"{self.distances[i]:14.4g}  {margins[i]:10.4g}  {'yes' if met[i] else 'NO ':3s}  {distance:9.4g}")
+                         f"{self.distances[i]:14.4g}  {margins[i]:10.4g}  {'yes' if met[i] else 'NO ':3s}  "
+                         f"{distance:9.4g}")
         info = {p["name"]: p for p in self.start.param_info}
         start, solved = self.start.params, self.field.params
         lines.append("  parameter            start          solved         unit")
@@ -258,7 +260,8 @@ class EditResult:
             lines.append(f"  strategy {self.strategy}:")
             lines += ["    " + stage for stage in self.stages]
         if self.rank:
-            lines.append(f"  Jacobian at the result: rank {self.rank} of {len(self.free)}, condition {self.condition:.3g}")
+            lines.append(f"  Jacobian at the result: rank {self.rank} of {len(self.free)}, "
+                         f"condition {self.condition:.3g}")
         lines.append("  " + self.message)
         return "\n".join(lines)
 
@@ -274,88 +277,55 @@ def solve(
     eye_or_camera,
     pairs: Sequence[PointPair],
     free: Sequence[str] | None = None,
-    backend: str = "ceres",
+    backend: str | None = None,
     *,
-    strategy: str = "auto",
+    settings: _core.SolveSettings | None = None,
+    pair_options: _core.PairOptions | None = None,
     bounds: dict[str, tuple[float, float]] | None = None,
-    starts: int = 1,
-    seed: int = 0,
     derivatives: str = "auto",
-    distance: str = "continuous",
-    integrator: str = "rk45",
-    tol: float = 1e-9,
-    step: float | None = None,
-    ground: float | None = None,
-    reach: float = 1.5,
-    loss: str = "none",
-    loss_scale: float = 1.0,
-    max_iterations: int = 200,
-    max_evaluations: int = 3000,
-    time_limit: float | None = None,
-    target_cost: float | None = None,
-    trust_region: float = 0.1,
-    accept_angle: float = 1e-6,
-    pixel_tolerance: float | None = None,
-    function_tolerance: float = 1e-14,
-    parameter_tolerance: float = 1e-12,
-    gradient_tolerance: float = 1e-16,
     progress: bool | Callable[[int, int], None] = False,
-    quick_iterations: int | None = None,
-    design_per_param: int | None = None,
-    local_starts: int | None = None,
+    **options: Any,
 ) -> EditResult:
     """Solve for the parameters of `field` that make each pair's light path pass its source.
 
     Args:
-        field: any IndexField. Built-in models (LogisticProfile, PhysicalAtmosphere,
-            TemperatureProfile, LinearSquaredProfile, and CurvedEarth over them) get automatic
-            derivatives; other fields (CustomField) central differences.
-        eye_or_camera: a Camera (pixel destinations allowed) or the eye position (3,) [m].
+        field: any IndexField (PhysicalAtmosphere, LogisticProfile, LinearSquaredProfile, ...);
+            CurvedEarth-wrapped fields edit the wrapped model's parameters.
+        eye_or_camera: the eye position (x, y, z) [m], or a Camera (needed for pixel
+            destinations; its position is the eye).
         pairs: PointPairs.
-        free: names of the parameters to optimise; default every parameter except the model's
+        free: names of the parameters to optimise; default: every parameter except the model's
             gauge ones (LogisticProfile's n_bg: a common scale of the amplitudes changes nothing).
             Free parameters on which no pair depends are held fixed and listed in
             result.insensitive.
-        backend: 'ceres' or 'nlopt:<ALGORITHM>' (see NLOPT_ALGORITHMS; any nlopt name works).
-        strategy: 'auto' (default) -- a short local solve from `field` (quick_iterations), with
-            ceres continued while its cost still falls (LM closing in); if it does not meet
-            every pair, a global stage (scans along each free parameter's axis and
-            quasi-random points over the bounds and near the start, costs in parallel on all
-            cores) and local solves from its best points (at most local_starts) until one meets
-            every pair; result.stages says what ran. 'local' -- the back-end from `field` only.
+        backend: 'ceres' or 'nlopt:<ALGORITHM>' (see NLOPT_ALGORITHMS; any nlopt name works);
+            a SolveSettings field, also accepted here by position.
+        settings: a refracta.SolveSettings (copied); keywords below override its fields.
+        pair_options: a refracta.PairOptions (copied); keywords override its fields.
         bounds: {name: (lower, upper)} overriding the model's search box.
-        starts: number of starts; the first is `field`, the others uniform in the bounds (seeded by
-            `seed`); the best result is returned with times and evaluations summed.
         derivatives: 'auto', 'automatic' (ceres::Jet) or 'numeric' (central differences).
-        distance: 'continuous' (closest approach of the continuous path) or 'vertex' (nearest
-            integrator node, the original editor's piecewise-constant measure).
-        integrator, tol, step: 'rk45' to `tol` [m] (default 1e-9) or 'rk4' with `step` [m]
-            (default 0.3, the original's).
-        ground: height [m] where paths end on the ground (default: none).
-        reach: paths are traced to ``reach * |source - eye| + 1`` m (and stop once past the source).
-        loss, loss_scale: ceres robust loss ('huber', 'soft_l1', 'cauchy', 'arctan') on each
-            pair's squared miss, quadratic below loss_scale [m].
-        max_iterations (LM iterations, ceres), max_evaluations (cost evaluations, each tracing
-            every pair: back-ends and the global stage's design points), time_limit [s] (0: none;
-            default 300, the C++ SolveSettings'): limits of the whole solve, shared by its stages
-            and its starts; a trace running at the time limit is interrupted. What stopped the
-            solve is named in result.stages and result.stopped_by. target_cost [m^2] (stop once
-            reached), function/parameter/gradient_tolerance: convergence criteria.
-        trust_region: ceres' initial trust-region radius as a fraction of each free parameter's
-            bound range (default 0.1: cautious first steps; narrow layers have flat regions a bold
-            step lands in).
-        accept_angle: a pair is met when its miss is at most its margin plus
-            ``accept_angle * |source - eye|`` (accept_angle [rad]).
-        pixel_tolerance: a pair with a pixel destination is met when its miss is within its
-            margin plus this many pixels' footprint at its source (default 0.1 px, the C++
-            SolveSettings::pixel_tolerance), if that exceeds accept_angle times its range. It
-            judges the result only: the cost still pulls every pair onto its source.
-        quick_iterations, design_per_param, local_starts: the 'auto' strategy's first local
-            solve's iterations, design points per free parameter, local solves from the design
-            (defaults: refracta's _core._SolveSettings()).
         progress: True for a bar on stderr, or a callable progress(done, total): done of total
-            is the largest fraction used of the iteration, evaluation and time limits (and, with
-            several starts, of the starts), reaching total when the solve ends.
+            is the largest fraction used of the iteration, evaluation and time limits (shared by
+            every start), reaching total when the solve ends.
+        **options: any field of refracta.SolveSettings or refracta.PairOptions by name; their
+            defaults are the C++ structs' (``help(refracta.SolveSettings)``). SolveSettings:
+            strategy ('auto': a short local solve from `field`, quick_iterations, continued while
+            LM's cost still falls; if it does not meet every pair, a global stage -- scans along
+            each free parameter's axis and quasi-random points over the bounds and near the
+            start, costs in parallel -- and local solves from its best points, at most
+            local_starts, until one meets every pair; 'local': the back-end from `field` only),
+            starts and seed (the strategy from `field`, then from uniform random points in the
+            bounds; the best result is kept), max_iterations, max_evaluations, time_limit [s]
+            (limits of the whole solve, shared by its stages and starts; a trace running at the
+            time limit is interrupted; result.stopped_by names what stopped it), target_cost,
+            function/parameter/gradient_tolerance, trust_region (ceres' first radius in the unit
+            box), loss and loss_scale (ceres robust loss: 'huber', 'soft_l1', 'cauchy',
+            'arctan'), accept_angle [rad] and pixel_tolerance [pixels] (when a pair counts as
+            met). PairOptions: trace ('rk45' to `tol` [m], or 'rk4' with `step` [m]),
+            stop_height [m] (paths end on the ground there; default none), distance
+            ('continuous' closest approach, or 'vertex': the nearest integrator node, the
+            original editor's measure), reach (paths are traced to ``reach * |source - eye| + 1``
+            m), max_steps. Deprecated spellings: integrator= (trace), ground= (stop_height).
 
     Returns:
         EditResult. Not converging, or an image no atmosphere within the bounds can make, is a
@@ -363,150 +333,67 @@ def solve(
 
     Raises:
         ValueError: bad pairs (NaN, pixel without camera), unknown parameter names or nlopt
-            algorithm, bounds not containing the start. refracta.NumericalError: the start field
-            cannot trace the pairs. KeyboardInterrupt on Ctrl-C.
+            algorithm, bounds not containing the start, bad option values (every one listed).
+        TypeError: a keyword that is no option. refracta.NumericalError: the start field cannot
+            trace the pairs. KeyboardInterrupt on Ctrl-C.
     """
+    where = "refracta.edit.solve"
+    options = _options.renamed(dict(options), _RENAMED, where)
+    if backend is not None:
+        options["backend"] = backend
+    settings_keywords, pair_keywords = _options.split(options, _core.SolveSettings, _core.PairOptions)
+    _options.unknown(options, where, _options.fields(_core.SolveSettings) + _options.fields(_core.PairOptions))
     if not isinstance(field, _core.IndexField):
         raise ValueError(f"field must be an IndexField (got {type(field).__name__})")
-    if isinstance(starts, bool) or int(starts) != starts or starts < 1:
-        raise ValueError(f"starts must be a whole number >= 1 (got {starts!r})")
     if free is not None:
-        if isinstance(free, str):
-            free = [free]
-        free = list(free)
+        free = [free] if isinstance(free, str) else list(free)
         if not free:
             raise ValueError("free is empty: name at least one parameter (or pass None for the default)")
         unknown = [n for n in free if n not in field.param_names]
         if unknown:
             raise ValueError(f"unknown parameter(s) {unknown} for {field.type_name}; "
                              f"valid names: {field.param_names}")
-    options = _pair_options(integrator, tol, step, ground, distance, reach)
-    settings = _core._SolveSettings()
-    settings.backend = backend
-    settings.strategy = strategy
-    for name, value in (("quick_iterations", quick_iterations), ("design_per_param", design_per_param),
-                        ("local_starts", local_starts)):
-        if value is not None:
-            if isinstance(value, bool) or int(value) != value:
-                raise ValueError(f"{name} must be a whole number (got {value!r})")
-            setattr(settings, name, int(value))
-    settings.max_iterations = int(max_iterations)
-    settings.max_evaluations = int(max_evaluations)
-    if time_limit is not None:
-        settings.time_limit = _number(time_limit, "time_limit")
-    settings.function_tolerance = function_tolerance
-    settings.parameter_tolerance = parameter_tolerance
-    settings.gradient_tolerance = gradient_tolerance
-    settings.target_cost = 0.0 if target_cost is None else float(target_cost)
-    settings.trust_region = float(trust_region)
-    settings.loss = loss
-    settings.loss_scale = loss_scale
-    settings.accept_angle = accept_angle
-    if pixel_tolerance is not None:
-        settings.pixel_tolerance = _number(pixel_tolerance, "pixel_tolerance")
-    settings.validate()
+    settings = _options.build(_core.SolveSettings, settings, where=where, **settings_keywords)
+    pair_options = _options.build(_core.PairOptions, pair_options, where=where, **pair_keywords)
     pairs, eye, camera, origins, directions, sources, weights, margins, tolerances = _pair_rays(
         eye_or_camera, pairs, settings.pixel_tolerance)
     bounds = {k: (float(v[0]), float(v[1])) for k, v in (bounds or {}).items()}
-    callback = ProgressBar(f"editing ({backend})") if progress is True else (progress or None)
-    # One budget for every start: each gets what the ones before it left (SolveSettings' limits).
-    budget = dict(max_iterations=settings.max_iterations, max_evaluations=settings.max_evaluations,
-                  time_limit=settings.time_limit)
-    began = _time.perf_counter()
-
-    def run(start_field, k):
-        def report(done, total):  # start k's progress as its share of the whole
-            if callback is not None:
-                callback(k * total + done, starts * total)
-
-        return _core._solve_edit(start_field, origins, directions, sources, weights, margins, tolerances, free or [],
-                                 bounds, derivatives, options, settings, report if callback is not None else None)
-
-    def left():
-        """The budget's first exhausted limit, or None; settings set to what is left."""
-        settings.max_iterations = budget["max_iterations"] - (used_iterations if backend == "ceres" else 0)
-        settings.max_evaluations = budget["max_evaluations"] - total_evaluations
-        if budget["time_limit"] > 0.0:
-            settings.time_limit = budget["time_limit"] - (_time.perf_counter() - began)
-            if settings.time_limit <= 0.0:
-                return "time limit"
-        if settings.max_evaluations < 1:
-            return "evaluation limit"
-        if settings.max_iterations < 1:
-            return "iteration limit"
-        return None
-
-    initial = _core._pair_distances(field, origins, directions, sources, options)
-    best = first = run(field, 0)
-    total_time, total_evaluations, total_traces = best["time"], best["evaluations"], best["pair_traces"]
-    used_iterations = best["iterations"]
-    starts_run, stopped = 1, None
-    if starts > 1:
-        rng = np.random.default_rng(seed)
-        box = field.bounds
-        box.update(bounds)
-        for k in range(1, starts):
-            trial_start = field.with_params(**{n: float(rng.uniform(*box[n])) for n in best["free"]})
-            stopped = left()
-            if stopped:
-                break
-            try:
-                trial = run(trial_start, k)
-            except _core.NumericalError:
-                continue  # this start cannot trace the pairs; try the next
-            starts_run += 1
-            total_time += trial["time"]
-            total_evaluations += trial["evaluations"]
-            total_traces += trial["pair_traces"]
-            used_iterations += trial["iterations"]
-            stopped = trial["stopped_by"] or None
-            if (trial["success"], -trial["cost"]) > (best["success"], -best["cost"]):
-                best = trial
-        if callback is not None:
-            callback(starts, starts)  # complete, also when the budget ended the starts early
-    stages = list(best["stages"])
-    if starts > 1:
-        stages.append(f"starts: {starts_run} of {starts} run" + (f"; stopped by the {stopped}" if stopped else ""))
-    elif best["stopped_by"]:
-        stopped = best["stopped_by"]
-    names = field.param_names
-    solved = field.with_params(**dict(zip(names, (float(v) for v in best["values"]))))
-    return EditResult(
-        field=solved, start=field, pairs=list(pairs), eye=np.asarray(eye), camera=camera, cost=best["cost"],
-        initial_cost=first["initial_cost"],
-        distances=best["distances"], initial_distances=initial, iterations=best["iterations"],
-        evaluations=total_evaluations, pair_traces=total_traces, time=total_time, success=best["success"],
-        converged=best["converged"], message=best["message"], history=best["history"], free=best["free"],
-        insensitive=best["insensitive"], backend=backend, derivatives=best["derivatives"], starts=int(starts),
-        trace_options=dict(integrator=integrator, tol=tol, step=step, ground=ground, reach=reach),
-        margins=margins, tolerances=tolerances, met=np.asarray(best["met"], dtype=bool), strategy=best["strategy"],
-        stages=stages, solver_report=best["solver_report"], stopped_by=stopped or "",
-        condition=best["condition"], rank=best["rank"],
-    )
+    callback = ProgressBar(f"editing ({settings.backend})") if progress is True else (progress or None)
+    initial = _core._pair_distances(field, origins, directions, sources, pair_options)
+    summary = _core._solve_edit(field, origins, directions, sources, weights=weights, margins=margins,
+                                tolerances=tolerances, free=free or [], bounds=bounds, derivatives=derivatives,
+                                pair_options=pair_options, settings=settings, progress=callback)
+    solved = field.with_params(**dict(zip(field.param_names, (float(v) for v in summary.values))))
+    return EditResult(field=solved, start=field, pairs=list(pairs), eye=np.asarray(eye), camera=camera,
+                      initial_distances=initial, margins=margins, tolerances=tolerances, summary=summary,
+                      settings=settings, pair_options=pair_options)
 
 
-def distances(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], *, distance: str = "continuous",
-              integrator: str = "rk45", tol: float = 1e-9, step: float | None = None,
-              ground: float | None = None, reach: float = 1.5) -> np.ndarray:
-    """Each pair's miss [m]: how far the path launched toward its destination passes its source."""
+def distances(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], *,
+              pair_options: _core.PairOptions | None = None, **options: Any) -> np.ndarray:
+    """Each pair's miss [m]: how far the path launched toward its destination passes its source.
+    pair_options / **options: a refracta.PairOptions and its fields by name (trace, tol, step,
+    stop_height, distance, reach, max_steps), as solve() takes them."""
+    pair_options = _pair_options("refracta.edit.distances", pair_options, options)
     _, _, _, origins, directions, sources, _, _, _ = _pair_rays(eye_or_camera, pairs)
-    return _core._pair_distances(field, origins, directions, sources,
-                                 _pair_options(integrator, tol, step, ground, distance, reach))
+    return _core._pair_distances(field, origins, directions, sources, pair_options)
 
 
 def jacobian(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], free: Sequence[str] | None = None,
-             *, derivatives: str = "auto", distance: str = "continuous", integrator: str = "rk45", tol: float = 1e-9,
-             step: float | None = None, ground: float | None = None,
-             reach: float = 1.5) -> tuple[np.ndarray, np.ndarray, list[str]]:
+             *, derivatives: str = "auto", pair_options: _core.PairOptions | None = None,
+             **options: Any) -> tuple[np.ndarray, np.ndarray, list[str]]:
     """(residuals (3P,), Jacobian (3P, F), free names) at `field`: the weighted miss vectors an
-    edit minimises and their derivatives in the free parameters (for sensitivity studies)."""
+    edit minimises and their derivatives in the free parameters (for sensitivity studies).
+    pair_options / **options: as distances()."""
+    pair_options = _pair_options("refracta.edit.jacobian", pair_options, options)
     _, _, _, origins, directions, sources, weights, margins, _ = _pair_rays(eye_or_camera, pairs)
     free = [free] if isinstance(free, str) else list(free or [])
-    return _core._pair_jacobian(field, origins, directions, sources, weights, margins, free, derivatives,
-                                _pair_options(integrator, tol, step, ground, distance, reach))
+    return _core._pair_jacobian(field, origins, directions, sources, weights=weights, margins=margins, free=free,
+                                derivatives=derivatives, options=pair_options)
 
 
-def load_pairs(path, scene: _core.Scene | None = None, camera: _core.Camera | None = None) -> tuple[list[PointPair], dict]:
+def load_pairs(path, scene: _core.Scene | None = None,
+               camera: _core.Camera | None = None) -> tuple[list[PointPair], dict]:
     """Point pairs from a JSON file, and the solve options it carries.
 
     Format::
@@ -516,8 +403,9 @@ def load_pairs(path, scene: _core.Scene | None = None, camera: _core.Camera | No
          "free": ["surface_dt"], "backend": "ceres", "ground": 0.0}      # optional solve() options
 
     A source given as a pixel is the scene point the camera sees there without atmosphere
-    (camera.pick), so `scene` and `camera` are needed for it. Raises refracta.IoError for a missing
-    file and ValueError naming the file and the pair for anything malformed.
+    (camera.pick), so `scene` and `camera` are needed for it. The file's "ground" (the format's
+    name for it) is returned as solve()'s stop_height. Raises refracta.IoError for a missing file
+    and ValueError naming the file and the pair for anything malformed.
     """
     import json
     import stat
@@ -559,5 +447,9 @@ def load_pairs(path, scene: _core.Scene | None = None, camera: _core.Camera | No
             pairs.append(PointPair(entry["destination"], source, entry.get("weight", 1.0), entry.get("margin", 0.0)))
         except ValueError as error:
             raise ValueError(f"{where}: {error}") from None
-    options = {k: v for k, v in data.items() if k != "pairs"}
+    options = {_FILE_KEYS.get(k, k): v for k, v in data.items() if k != "pairs"}
     return pairs, options
+
+
+# Keys of a pairs file whose solve() keyword is named otherwise.
+_FILE_KEYS = {"ground": "stop_height"}

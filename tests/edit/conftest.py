@@ -11,7 +11,7 @@ TRUTH_REL_TOL = 1e-13  # trace tolerance of the generating paths per metre of pa
                        # asserted misses, above round-off
 
 
-def pairs_from(field, eye, elevations_deg, distances, ground=None):
+def pairs_from(field, eye, elevations_deg, distances, stop_height=None):
     """One pair per (elevation, arc length): destination 1 m ahead along the launch direction."""
     eye = np.asarray(eye, dtype=float)
     pairs = []
@@ -20,7 +20,7 @@ def pairs_from(field, eye, elevations_deg, distances, ground=None):
         direction = np.array([np.cos(e), np.sin(e), 0.0])
         path = refracta.trace_ray(field, eye, direction, tol=max(1e-11, TRUTH_REL_TOL * distance),
                                   max_length=distance + 10.0,
-                                  stop_height=ground)
+                                  stop_height=stop_height)
         source, _ = path.point_at(distance)
         pairs.append(PointPair(destination=eye + direction, source=source))
     return pairs
@@ -31,4 +31,4 @@ def road_pairs():
     """Four rays over a hot road (10 K, 0.1 m), eye 1.4 m, all turning above the asphalt."""
     truth = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
     eye = (0.0, 1.4, 0.0)
-    return truth, eye, pairs_from(truth, eye, [-0.22, -0.2, -0.12, 0.05], [400.0, 500.0, 600.0, 300.0], ground=0.0)
+    return truth, eye, pairs_from(truth, eye, [-0.22, -0.2, -0.12, 0.05], [400.0, 500.0, 600.0, 300.0], stop_height=0.0)

@@ -17,7 +17,7 @@ PARAM_REL = 1e-6   # identifiable parameters: misses of 1e-6 m over hundreds of 
 def test_hot_road_recovered(road_pairs, backend):
     truth, eye, pairs = road_pairs
     start = refracta.PhysicalAtmosphere(surface_dt=7.0, surface_depth=0.13)
-    result = solve(start, eye, pairs, free=["surface_dt", "surface_depth"], backend=backend, ground=0.0)
+    result = solve(start, eye, pairs, free=["surface_dt", "surface_depth"], backend=backend, stop_height=0.0)
     assert result.success, result.message
     assert np.max(result.distances) < MISS
     for name in ("surface_dt", "surface_depth"):
@@ -71,7 +71,7 @@ def test_a_camera_pixel_destination_is_met_by_the_rendered_ray():
     truth = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
     source, _ = refracta.trace_ray(truth, origin, direction, tol=1e-10, max_length=500.0, stop_height=0.0).point_at(450.0)
     result = solve(truth.with_params(surface_dt=8.0), camera, [PointPair(pixel, source)], free=["surface_dt"],
-                   ground=0.0)
+                   stop_height=0.0)
     assert result.success, result.message
     assert result.field.params["surface_dt"] == pytest.approx(10.0, rel=1e-7)
     path = refracta.trace_ray(result.field, origin, direction, tol=1e-10, max_length=700.0, stop_height=0.0)
@@ -100,6 +100,6 @@ def test_composite_nlopt_algorithms_run_with_a_local_optimiser(road_pairs, algor
     truth, eye, pairs = road_pairs
     start = refracta.PhysicalAtmosphere(surface_dt=7.0, surface_depth=0.13)
     result = solve(start, eye, pairs, free=["surface_dt", "surface_depth"], backend=f"nlopt:{algorithm}",
-                   ground=0.0, max_evaluations=400)
+                   stop_height=0.0, max_evaluations=400)
     assert result.cost < result.initial_cost, result.message  # it ran and improved
     assert np.all(np.isfinite(result.distances))

@@ -42,9 +42,10 @@ def test_the_logistic_gauge_amplitude_is_fixed_by_default():
 def test_parameters_no_pair_depends_on_are_reported_and_kept():
     """An inversion layer at 100-110 m cannot touch rays that stay below 2 m."""
     truth = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
-    pairs = pairs_from(truth, (0.0, 1.4, 0.0), [-0.2, -0.12], [500.0, 600.0], ground=0.0)
+    pairs = pairs_from(truth, (0.0, 1.4, 0.0), [-0.2, -0.12], [500.0, 600.0], stop_height=0.0)
     start = truth.with_params(surface_dt=8.0)
-    result = solve(start, (0.0, 1.4, 0.0), pairs, free=["surface_dt", "inversion_dt", "inversion_base"], ground=0.0)
+    result = solve(start, (0.0, 1.4, 0.0), pairs, free=["surface_dt", "inversion_dt", "inversion_base"],
+                   stop_height=0.0)
     assert set(result.insensitive) == {"inversion_dt", "inversion_base"}
     assert result.free == ["surface_dt"]
     assert result.field.params["inversion_base"] == start.params["inversion_base"]
@@ -65,7 +66,7 @@ def test_multistart_keeps_the_best_of_its_starts():
 
 def test_the_report_names_the_outcome_and_the_parameters(road_pairs):
     truth, eye, pairs = road_pairs
-    result = solve(truth.with_params(surface_dt=8.0), eye, pairs, free=["surface_dt"], ground=0.0)
+    result = solve(truth.with_params(surface_dt=8.0), eye, pairs, free=["surface_dt"], stop_height=0.0)
     text = str(result)
     assert "success" in text and "surface_dt" in text and "ceres" in text
     assert "EditResult(success=True" in repr(result)
@@ -78,7 +79,7 @@ def test_vertex_distance_never_beats_the_continuous_one():
     field = refracta.LogisticProfile()
     pairs = [PointPair((1.0, 1.5, 0.0), (50.0 + 0.07 * k, 1.9, 0.0)) for k in range(5)]
     continuous = distances(field, (0.0, 1.5, 0.0), pairs)
-    vertex = distances(field, (0.0, 1.5, 0.0), pairs, distance="vertex", integrator="rk4", step=0.3)
+    vertex = distances(field, (0.0, 1.5, 0.0), pairs, distance="vertex", trace="rk4", step=0.3)
     assert np.all(vertex >= continuous - 1e-9)
     assert np.max(vertex - continuous) > 1e-4
 
@@ -93,7 +94,7 @@ def test_vertex_distance_never_beats_the_continuous_one():
     (dict(free=[]), "free is empty"),
     (dict(bounds={"k_s": (20.0, 30.0)}, free=["k_s"]), "outside its bounds"),
     (dict(loss="huber", backend="nlopt:LN_BOBYQA"), "robust loss"),
-    (dict(integrator="stratified"), "integrator"),
+    (dict(trace="stratified"), "trace"),
 ])
 def test_bad_input_raises_value_error(kwargs, match):
     args = dict(field=refracta.LogisticProfile(), eye_or_camera=(0.0, 1.5, 0.0),

@@ -79,7 +79,7 @@ def test_a_pixel_source_is_picked_from_the_scene(tmp_path):
 
 def test_edit_report_draws_paths_and_history(road_pairs):
     truth, eye, pairs = road_pairs
-    result = solve(truth.with_params(surface_dt=8.0), eye, pairs, free=["surface_dt"], ground=0.0)
+    result = solve(truth.with_params(surface_dt=8.0), eye, pairs, free=["surface_dt"], stop_height=0.0)
     figure = plot.edit_report(result)
     paths_axis, cost_axis = figure.axes
     assert len(paths_axis.lines) == 2 * len(pairs) + len(pairs) + 1  # before, after, sources, eye

@@ -30,7 +30,7 @@ def test_hidden_hot_spot_centre_and_radius_are_recovered(footprint):
     rays = [(-3.0, -0.3, 200.0), (-1.5, -0.25, 220.0), (0.0, -0.3, 190.0), (1.5, -0.28, 210.0), (3.0, -0.3, 200.0),
             (0.7, -0.2, 250.0)]
     pairs = pairs_around(truth, eye, rays)
-    result = solve(start, eye, pairs, free=["hot_spot0_x", "hot_spot0_z", "hot_spot0_radius"], ground=0.0)
+    result = solve(start, eye, pairs, free=["hot_spot0_x", "hot_spot0_z", "hot_spot0_radius"], stop_height=0.0)
     assert result.success, result.message
     assert result.derivatives == "automatic"
     for name, value in (("hot_spot0_x", 150.0), ("hot_spot0_z", 3.0), ("hot_spot0_radius", 8.0)):
@@ -46,6 +46,6 @@ def test_a_spot_moves_a_mirage_sideways():
     eye = np.array([0.0, 1.0, 0.0])
     pairs = pairs_around(truth, eye, [(1.0, -0.3, 150.0), (1.3, -0.32, 140.0)])
     start = truth.with_params(hot_spot0_z=-1.0)
-    result = solve(start, eye, pairs, free=["hot_spot0_z"], ground=0.0)
+    result = solve(start, eye, pairs, free=["hot_spot0_z"], stop_height=0.0)
     assert result.success, result.message
     assert result.field.params["hot_spot0_z"] == pytest.approx(2.0, rel=SPOT_REL)

@@ -37,7 +37,7 @@ for e, d in zip([-0.22, -0.1, 0.05], [250.0, 400.0, 650.0]):
     direction = np.array([np.cos(np.radians(e)), np.sin(np.radians(e)), 0.0])
     path = refracta.trace_ray(truth, eye, direction, tol=1e-11, max_length=d + 10.0, stop_height=0.0)
     pairs.append(PointPair(eye + direction, path.point_at(d)[0]))
-result = solve(truth.with_params(humidity=1.0), eye, pairs, free=["humidity", "surface_dt"], ground=0.0,
+result = solve(truth.with_params(humidity=1.0), eye, pairs, free=["humidity", "surface_dt"], stop_height=0.0,
                derivatives="numeric", max_iterations=3)
 logged = [(r.name, r.levelname, r.getMessage()) for r in records]
 sys.stdout.write(repr((result.message, logged)))

@@ -79,7 +79,7 @@ def test_edit_report_draws_into_a_given_figure_outside_pyplot(hot_road):
         direction = np.array([np.cos(e), np.sin(e), 0.0])
         path = refracta.trace_ray(hot_road, eye, direction, tol=1e-10, max_length=450.0, stop_height=0.0)
         pairs.append(PointPair(eye + direction, path.point_at(400.0)[0]))
-    result = solve(hot_road.with_params(surface_dt=8.0), eye, pairs, free=["surface_dt"], ground=0.0)
+    result = solve(hot_road.with_params(surface_dt=8.0), eye, pairs, free=["surface_dt"], stop_height=0.0)
     open_figures = plt.get_fignums()
     figure = plot.edit_report(result, figure=Figure(figsize=(6.0, 2.5)))
     assert plt.get_fignums() == open_figures

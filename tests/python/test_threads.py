@@ -75,7 +75,7 @@ def test_solve_is_identical_with_one_and_two_threads(threads):
         direction = np.array([np.cos(np.radians(elevation)), np.sin(np.radians(elevation)), 0.0])
         path = refracta.trace_ray(truth, eye, direction, tol=1e-11, max_length=distance + 10.0, stop_height=0.0)
         pairs.append(PointPair(eye + direction, path.point_at(distance)[0]))
-    one, two = threads(lambda: solve(start, eye, pairs, free=["surface_dt", "surface_depth"], ground=0.0))
+    one, two = threads(lambda: solve(start, eye, pairs, free=["surface_dt", "surface_depth"], stop_height=0.0))
     assert one.success and two.success
     assert one.field.params == two.field.params
     assert one.iterations == two.iterations and one.cost == two.cost

@@ -1,9 +1,12 @@
-// Python bindings of editing (cpp/refracta/edit): the option structs, the solve and the pair
-// measures. refracta.edit (Python) builds pairs from cameras and wraps the result.
+// Python bindings of editing (cpp/refracta/edit): SolveSettings and PairOptions (options, pickled
+// through their fields), SolveSummary (a read-only result), the solve, the pair measures and the
+// pairs' paths. refracta.edit (Python) builds pairs from cameras and wraps the result.
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/interruptible.h"
+#include "refracta/bindings/options_binding.h"
 #include "refracta/edit/solve.h"
 
+#include <functional>
 #include <optional>
 
 namespace refracta {
@@ -11,17 +14,16 @@ namespace refracta {
 namespace {
 
 std::vector<PointPair> make_pairs(const py::object& origins, const py::object& directions,
-                                  const py::object& sources, const py::object& weights,
+                                  const py::object& sources, const py::object& weights = py::none(),
                                   const py::object& margins = py::none(), const py::object& tolerances = py::none()) {
   const std::vector<Vec3d> o = to_points(origins, "eye positions");
   const std::vector<Vec3d> d = to_points(directions, "destination directions");
   const std::vector<Vec3d> s = to_points(sources, "sources");
-  const std::vector<double> w =
-      weights.is_none() ? std::vector<double>(o.size(), 1.0) : to_values(weights, "weights");
-  const std::vector<double> margin =
-      margins.is_none() ? std::vector<double>(o.size(), 0.0) : to_values(margins, "margins");
-  const std::vector<double> tolerance =
-      tolerances.is_none() ? std::vector<double>(o.size(), 0.0) : to_values(tolerances, "tolerances");
+  auto per_pair = [&](const py::object& values, double otherwise, const char* what) {
+    return values.is_none() ? std::vector<double>(o.size(), otherwise) : to_values(values, what);
+  };
+  const std::vector<double> w = per_pair(weights, 1.0, "weights"), margin = per_pair(margins, 0.0, "margins"),
+                            tolerance = per_pair(tolerances, 0.0, "tolerances");
   if (o.size() != d.size() || o.size() != s.size() || o.size() != w.size() || o.size() != margin.size() ||
       o.size() != tolerance.size()) {
     throw_invalid("one eye, direction, source, weight, margin and tolerance per pair (got ", o.size(), ", ",
@@ -44,63 +46,183 @@ Derivatives parse_derivatives(const std::string& name, const IndexField& field) 
   throw_invalid("derivatives must be 'auto', 'automatic' or 'numeric' (got '", name, "')");
 }
 
+ProblemSpec make_spec(const std::shared_ptr<IndexField>& field, const std::vector<std::string>& free,
+                      const std::string& derivatives, const PairOptions& options) {
+  ProblemSpec spec;
+  spec.free = free;
+  spec.derivatives = parse_derivatives(derivatives, *checked(field));
+  spec.pair = options;
+  return spec;
+}
+
+void bind_solve_settings(py::module_& m) {
+  using S = SolveSettings;
+  py::class_<S> cls(m, "SolveSettings", R"doc(
+Settings of refracta.edit.solve, with their defaults (defined once, in C++'s SolveSettings). Set any
+field by name, or pass them to solve() as keywords; validate() reports every bad value at once.)doc");
+  cls.def(py::init<>())
+      .def_property("backend", &backend_name, [](S& s, const std::string& v) { parse_backend(v, &s); },
+                    "'ceres' (Levenberg-Marquardt, automatic derivatives) or 'nlopt:<ALGORITHM>' (any nlopt name)")
+      .def_property("strategy", [](const S& s) { return strategy_name(s.strategy); },
+                    [](S& s, const std::string& v) { s.strategy = parse_strategy(v); },
+                    "'auto' (a short local solve; if not every pair is met, the global stage and local solves from "
+                    "its best points) or 'local' (the back-end from the start only)")
+      .def_readwrite("quick_iterations", &S::quick_iterations, "auto: iterations of the first local solve")
+      .def_readwrite("design_per_param", &S::design_per_param, "auto: global-stage points per free parameter")
+      .def_readwrite("local_starts", &S::local_starts, "auto: local solves from the global stage, at most")
+      .def_readwrite("max_iterations", &S::max_iterations, "LM iterations of the whole solve (ceres)")
+      .def_readwrite("max_evaluations", &S::max_evaluations,
+                     "cost evaluations of the whole solve (each traces every pair)")
+      .def_readwrite("time_limit", &S::time_limit, "[s] wall-clock limit of the whole solve; 0: none")
+      .def_readwrite("function_tolerance", &S::function_tolerance, "relative cost change that ends a solve")
+      .def_readwrite("parameter_tolerance", &S::parameter_tolerance, "relative parameter change that ends a solve")
+      .def_readwrite("gradient_tolerance", &S::gradient_tolerance, "ceres: max-norm of the projected gradient")
+      .def_readwrite("target_cost", &S::target_cost, "[m^2] stop once the cost is at most this (0: never early)")
+      .def_readwrite("trust_region", &S::trust_region,
+                     "ceres: initial trust-region radius in the free parameters' unit box")
+      .def_property("loss", [](const S& s) { return loss_name(s.loss); },
+                    [](S& s, const std::string& v) { s.loss = parse_loss(v); },
+                    "ceres robust loss on each pair's squared miss: 'none', 'huber', 'soft_l1', 'cauchy', 'arctan'")
+      .def_readwrite("loss_scale", &S::loss_scale, "[m] the miss where the robust loss starts to down-weight")
+      .def_readwrite("accept_angle", &S::accept_angle,
+                     "[rad] a pair is met within its margin plus this times its range (or its tolerance)")
+      .def_readwrite("pixel_tolerance", &S::pixel_tolerance,
+                     "[pixels] a pixel destination is met within this fraction of the pixel's footprint at the source")
+      .def_readwrite("starts", &S::starts,
+                     "starts of the strategy: the field as given, then uniform random in the bounds (one budget)")
+      .def_readwrite("seed", &S::seed, "seed of the random starts")
+      .def("validate", &S::validate, "Raises ValueError listing every bad field.");
+  def_options_pickle<S>(cls);
+}
+
+void bind_pair_options(py::module_& m) {
+  using P = PairOptions;
+  py::class_<P> cls(m, "PairOptions", R"doc(
+How an edit's pairs are traced and measured (refracta.edit.solve, distances, jacobian and
+EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
+PairOptions). validate() reports every bad value at once.)doc");
+  cls.def(py::init<>())
+      .def_property("trace", [](const P& o) { return trace_method_name(o.trace); },
+                    [](P& o, const std::string& v) { o.trace = parse_trace_method(v); },
+                    "the ray integrator: 'rk45' (to tol) or 'rk4' (fixed step); 'stratified' has no derivatives")
+      .def_readwrite("tol", &P::tol, "[m] rk45 target position error (at least 1e-13 per metre of path)")
+      .def_readwrite("step", &P::step, "[m] rk4 step (0: 0.3, the original editor's)")
+      .def_readwrite("stop_height", &P::stop_height, "[m] paths end where they descend through it (None: no ground)")
+      .def_property("distance", [](const P& o) { return pair_distance_name(o.distance); },
+                    [](P& o, const std::string& v) { o.distance = parse_pair_distance(v); },
+                    "'continuous' (closest approach of the continuous path) or 'vertex' (nearest integrator node)")
+      .def_readwrite("reach", &P::reach, "paths are traced to reach * |source - eye| + 1 m")
+      .def_readwrite("max_steps", &P::max_steps, "integration steps a trace may take")
+      .def("validate", &P::validate, "Raises ValueError listing every bad field.");
+  def_options_pickle<P>(cls);
+}
+
+// SolveSummary's fields: each bound read-only (typed, for the stubs), read as Python sees it and
+// set from that (unpickling).
+struct SummaryField {
+  const char* name;
+  std::function<void(py::class_<SolveSummary>&)> bind;
+  std::function<py::object(const SolveSummary&)> get;
+  std::function<void(SolveSummary&, const py::handle&)> set;
+};
+
+template <class T>
+SummaryField plain(const char* name, T SolveSummary::*member, const char* doc) {
+  return {name, [=](py::class_<SolveSummary>& cls) { cls.def_readonly(name, member, doc); },
+          [member](const SolveSummary& s) { return py::cast(s.*member); },
+          [member](SolveSummary& s, const py::handle& v) { s.*member = py::cast<T>(v); }};
+}
+
+SummaryField array(const char* name, std::vector<double> SolveSummary::*member, const char* doc) {
+  auto get = [member](const SolveSummary& s) { return values_to_array(s.*member); };
+  return {name, [=](py::class_<SolveSummary>& cls) { cls.def_property_readonly(name, get, doc); },
+          [get](const SolveSummary& s) -> py::object { return get(s); },
+          [member](SolveSummary& s, const py::handle& v) { s.*member = py::cast<std::vector<double>>(v); }};
+}
+
+py::array_t<bool> met_array(const SolveSummary& s) {
+  py::array_t<bool> out(py::ssize_t(s.met.size()));
+  std::copy(s.met.begin(), s.met.end(), out.mutable_data());
+  return out;
+}
+
+const std::vector<SummaryField>& summary_fields() {
+  using S = SolveSummary;
+  static const std::vector<SummaryField> fields = {
+      array("values", &S::values, "every parameter of the solved field, in param_names order"),
+      plain("free", &S::free, "the parameters that were optimised"),
+      plain("insensitive", &S::insensitive, "requested free, but no pair depends on them: held fixed"),
+      plain("backend", &S::backend, "'ceres' or 'nlopt:<ALGORITHM>'"),
+      plain("derivatives", &S::derivatives, "'automatic' or 'numeric'"),
+      plain("initial_cost", &S::initial_cost, "[m^2] 1/2 sum weight * (miss - margin)^2 at the start"),
+      plain("cost", &S::cost, "[m^2] the same at the result"),
+      array("distances", &S::distances, "[m] each pair's miss at the result"),
+      array("history", &S::history, "cost per iteration (ceres) or best cost per evaluation (nlopt)"),
+      plain("iterations", &S::iterations, "iterations of the start that gave the result"),
+      plain("evaluations", &S::evaluations, "cost evaluations of the whole solve"),
+      plain("pair_traces", &S::pair_traces, "traced pairs, derivative passes included"),
+      plain("time", &S::time, "[s] solving, set-up excluded"),
+      plain("converged", &S::converged, "the back-end ended normally"),
+      plain("success", &S::success, "every pair met (strategy 'local': and converged)"),
+      {"met",
+       [](py::class_<S>& cls) {
+         cls.def_property_readonly("met", &met_array, "per pair: its miss is within its margin plus its met tolerance");
+       },
+       [](const S& s) -> py::object { return met_array(s); },
+       [](S& s, const py::handle& v) {
+         const auto met = py::cast<std::vector<bool>>(v);
+         s.met.assign(met.begin(), met.end());
+       }},
+      plain("message", &S::message, "what happened, and why a pair is not met"),
+      plain("strategy", &S::strategy, "'auto' or 'local'"),
+      plain("starts", &S::starts, "starts asked for"),
+      plain("stages", &S::stages, "what the strategy did, one line per stage"),
+      plain("stopped_by", &S::stopped_by, "'iteration limit', 'evaluation limit', 'time limit' or ''"),
+      plain("condition", &S::condition, "the Jacobian's condition number at a result meeting every pair (else 0)"),
+      plain("rank", &S::rank, "its numerical rank (else 0)"),
+      plain("solver_report", &S::solver_report, "the back-end's own report of the run that gave the result"),
+  };
+  return fields;
+}
+
+void bind_solve_summary(py::module_& m) {
+  py::class_<SolveSummary> cls(m, "SolveSummary", R"doc(
+What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields).)doc");
+  for (const SummaryField& field : summary_fields()) field.bind(cls);
+  cls.def(py::pickle(
+      [](const SolveSummary& s) {
+        py::dict state;
+        for (const SummaryField& field : summary_fields()) state[field.name] = field.get(s);
+        return state;
+      },
+      [](const py::dict& state) {
+        SolveSummary s;
+        for (const SummaryField& field : summary_fields()) {
+          if (state.contains(field.name)) field.set(s, state[field.name]);
+        }
+        return s;
+      }));
+}
+
 }  // namespace
 
 void bind_edit(py::module_& m) {
-  py::class_<PairOptions>(m, "_PairOptions")
-      .def(py::init([](const std::string& method, double tol, std::optional<double> step,
-                       std::optional<double> ground, const std::string& distance, double reach) {
-             PairOptions o;
-             o.method = parse_trace_method(method);
-             o.tol = tol;
-             o.step = step.value_or(0.0);
-             if (step && !(*step > 0.0)) throw_invalid("step must be > 0 (got ", *step, ")");
-             o.ground = ground;
-             o.distance = parse_pair_distance(distance);
-             o.reach = reach;
-             o.validate();
-             return o;
-           }),
-           py::arg("method"), py::arg("tol"), py::arg("step"), py::arg("ground"), py::arg("distance"),
-           py::arg("reach"));
-
-  py::class_<SolveSettings>(m, "_SolveSettings")
-      .def(py::init<>())
-      .def_readwrite("backend", &SolveSettings::backend)
-      .def_readwrite("strategy", &SolveSettings::strategy)
-      .def_readwrite("quick_iterations", &SolveSettings::quick_iterations)
-      .def_readwrite("design_per_param", &SolveSettings::design_per_param)
-      .def_readwrite("local_starts", &SolveSettings::local_starts)
-      .def_readwrite("max_iterations", &SolveSettings::max_iterations)
-      .def_readwrite("max_evaluations", &SolveSettings::max_evaluations)
-      .def_readwrite("time_limit", &SolveSettings::time_limit)
-      .def_readwrite("function_tolerance", &SolveSettings::function_tolerance)
-      .def_readwrite("parameter_tolerance", &SolveSettings::parameter_tolerance)
-      .def_readwrite("gradient_tolerance", &SolveSettings::gradient_tolerance)
-      .def_readwrite("target_cost", &SolveSettings::target_cost)
-      .def_readwrite("trust_region", &SolveSettings::trust_region)
-      .def_readwrite("loss", &SolveSettings::loss)
-      .def_readwrite("loss_scale", &SolveSettings::loss_scale)
-      .def_readwrite("accept_angle", &SolveSettings::accept_angle)
-      .def_readwrite("pixel_tolerance", &SolveSettings::pixel_tolerance)
-      .def("validate", &SolveSettings::validate);
+  bind_solve_settings(m);
+  bind_pair_options(m);
+  bind_solve_summary(m);
 
   m.def("_solve_edit",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
            const py::object& sources, const py::object& weights, const py::object& margins,
            const py::object& tolerances, const std::vector<std::string>& free,
-           const std::map<std::string, std::pair<double, double>>& bounds,
-           const std::string& derivatives, const PairOptions& pair_options, const SolveSettings& settings,
-           const py::object& progress) {
-          ProblemSpec spec;
-          spec.free = free;
+           const std::map<std::string, std::pair<double, double>>& bounds, const std::string& derivatives,
+           const PairOptions& pair_options, const SolveSettings& settings, const py::object& progress) {
+          ProblemSpec spec = make_spec(field, free, derivatives, pair_options);
           spec.bounds = bounds;
-          spec.derivatives = parse_derivatives(derivatives, *checked(field));
-          spec.pair = pair_options;
           const std::vector<PointPair> pairs = make_pairs(origins, directions, sources, weights, margins, tolerances);
           settings.validate();
           WorkControl control;
-          SolveSummary s;
+          SolveSummary summary;
           // Ceres' messages reach Python's logging however the solve ends (a logging error is
           // dropped rather than thrown from a destructor).
           struct EmitLibraryLog {
@@ -111,34 +233,10 @@ void bind_edit(py::module_& m) {
               }
             }
           } emit_log;
-          run_interruptible(control, progress, [&] { s = solve_edit(field, pairs, spec, settings, control); });
-          py::dict out;
-          out["values"] = values_to_array(s.values);
-          out["free"] = s.free;
-          out["insensitive"] = s.insensitive;
-          out["backend"] = s.backend;
-          out["derivatives"] = s.derivatives;
-          out["initial_cost"] = s.initial_cost;
-          out["cost"] = s.cost;
-          out["distances"] = values_to_array(s.distances);
-          out["history"] = values_to_array(s.history);
-          out["iterations"] = s.iterations;
-          out["evaluations"] = s.evaluations;
-          out["pair_traces"] = s.pair_traces;
-          out["time"] = s.time;
-          out["converged"] = s.converged;
-          out["success"] = s.success;
-          out["message"] = s.message;
-          out["met"] = std::vector<bool>(s.met.begin(), s.met.end());
-          out["strategy"] = s.strategy;
-          out["stages"] = s.stages;
-          out["stopped_by"] = s.stopped_by;
-          out["condition"] = s.condition;
-          out["rank"] = s.rank;
-          out["solver_report"] = s.solver_report;
-          return out;
+          run_interruptible(control, progress, [&] { summary = solve_edit(field, pairs, spec, settings, control); });
+          return summary;
         },
-        py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"),
+        py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"), py::kw_only(),
         py::arg("weights"), py::arg("margins"), py::arg("tolerances"), py::arg("free"), py::arg("bounds"),
         py::arg("derivatives"), py::arg("pair_options"), py::arg("settings"), py::arg("progress"));
 
@@ -146,7 +244,7 @@ void bind_edit(py::module_& m) {
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
            const py::object& sources, const PairOptions& options) {
           const FieldPtr f = checked(field);
-          const auto pairs = make_pairs(origins, directions, sources, py::none());
+          const auto pairs = make_pairs(origins, directions, sources);
           std::vector<double> d;
           {
             py::gil_scoped_release release;
@@ -156,14 +254,26 @@ void bind_edit(py::module_& m) {
         },
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"), py::arg("options"));
 
+  m.def("_pair_paths",
+        [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
+           const py::object& sources, const PairOptions& options) {
+          const FieldPtr f = checked(field);
+          const auto pairs = make_pairs(origins, directions, sources);
+          WorkControl control;
+          std::vector<RayPath> paths;
+          run_interruptible(control, py::none(), [&] { paths = pair_paths(*f, pairs, options, control); });
+          std::vector<std::shared_ptr<RayPath>> out;
+          for (RayPath& path : paths) out.push_back(std::make_shared<RayPath>(std::move(path)));
+          return out;
+        },
+        py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"), py::arg("options"),
+        "Each pair's path, traced by PairOptions' rule for it (what its miss is measured on).");
+
   m.def("_pair_jacobian",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
            const py::object& sources, const py::object& weights, const py::object& margins,
            const std::vector<std::string>& free, const std::string& derivatives, const PairOptions& options) {
-          ProblemSpec spec;
-          spec.free = free;
-          spec.derivatives = parse_derivatives(derivatives, *checked(field));
-          spec.pair = options;
+          ProblemSpec spec = make_spec(field, free, derivatives, options);
           // Bounds are irrelevant here: open them so any start is accepted.
           for (const auto& name : free) spec.bounds[name] = {-1e300, 1e300};
           EditProblem problem(field, make_pairs(origins, directions, sources, weights, margins), spec, nullptr);
@@ -180,7 +290,7 @@ void bind_edit(py::module_& m) {
           std::copy(jacobian.begin(), jacobian.end(), jac.mutable_data());
           return py::make_tuple(residuals, jac, problem.free_names());
         },
-        py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"),
+        py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"), py::kw_only(),
         py::arg("weights"), py::arg("margins"), py::arg("free"), py::arg("derivatives"), py::arg("options"));
 }
 

@@ -125,10 +125,13 @@ class UnitBoxCost : public ceres::CostFunction {
 ceres::LossFunction* make_loss(const SolveSettings& settings) {
   // Ceres' losses act on the squared residual norm s; scale a makes them quadratic for s << a^2.
   const double a = settings.loss_scale;
-  if (settings.loss == "huber") return new ceres::HuberLoss(a);
-  if (settings.loss == "soft_l1") return new ceres::SoftLOneLoss(a);
-  if (settings.loss == "cauchy") return new ceres::CauchyLoss(a);
-  if (settings.loss == "arctan") return new ceres::ArctanLoss(a);
+  switch (settings.loss) {
+    case RobustLoss::kHuber: return new ceres::HuberLoss(a);
+    case RobustLoss::kSoftL1: return new ceres::SoftLOneLoss(a);
+    case RobustLoss::kCauchy: return new ceres::CauchyLoss(a);
+    case RobustLoss::kArctan: return new ceres::ArctanLoss(a);
+    case RobustLoss::kNone: break;
+  }
   return nullptr;
 }
 

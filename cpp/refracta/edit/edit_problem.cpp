@@ -3,12 +3,14 @@
 
 #include "refracta/core/parallel.h"
 #include "refracta/edit/pair_miss.h"
+#include "refracta/rays/trace.h"
 
 #include <ceres/cost_function.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace refracta {
 
@@ -166,6 +168,19 @@ std::vector<double> pair_distances(const IndexField& field, const std::vector<Po
   parallel_for_each(int64_t(pairs.size()), 1, control, [&](int64_t i) {
     out[i] = pair_miss<double>(field, pairs[i], options).distance;
   });
+  return out;
+}
+
+std::vector<RayPath> pair_paths(const IndexField& field, const std::vector<PointPair>& pairs,
+                                const PairOptions& options, WorkControl& control) {
+  options.validate();
+  validate_pairs(pairs, options);
+  std::vector<std::optional<RayPath>> paths(pairs.size());
+  parallel_for_each(int64_t(pairs.size()), 1, control, [&](int64_t i) {
+    paths[i] = trace_path(field, pairs[i].origin, pairs[i].direction, options.trace_options(pairs[i]));
+  });
+  std::vector<RayPath> out;
+  for (auto& path : paths) out.push_back(std::move(*path));
   return out;
 }
 

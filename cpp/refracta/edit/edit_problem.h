@@ -2,7 +2,9 @@
 // Parameters the backends see are the free ones only; the rest stay at the start values.
 #pragma once
 
+#include "refracta/core/parallel.h"
 #include "refracta/edit/pair_cost.h"
+#include "refracta/rays/ray_path.h"
 
 #include <map>
 #include <memory>
@@ -15,6 +17,12 @@ namespace refracta {
 // Throws std::invalid_argument for bad pairs or options.
 std::vector<double> pair_distances(const IndexField& field, const std::vector<PointPair>& pairs,
                                    const PairOptions& options);
+
+// Each pair's whole path through `field`, traced by the rule its miss is measured with
+// (PairOptions::trace_options), pairs in parallel: what a plot of an edit draws. control.cancel
+// stops it (throws Cancelled).
+std::vector<RayPath> pair_paths(const IndexField& field, const std::vector<PointPair>& pairs,
+                                const PairOptions& options, WorkControl& control);
 
 struct ProblemSpec {
   // Names of the free parameters; empty: every parameter except the model's gauge ones.

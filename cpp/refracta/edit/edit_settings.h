@@ -16,15 +16,24 @@
 
 namespace refracta {
 
+// The back-end that minimises the cost: Ceres' Levenberg-Marquardt, or an nlopt algorithm.
+enum class SolveBackend { kCeres, kNlopt };
+// "auto" (a local solve, then the global stage and local solves from its best points) or "local".
+enum class SolveStrategy { kAuto, kLocal };
+// Ceres' robust losses on each pair's squared miss (none: plain least squares).
+enum class RobustLoss { kNone, kHuber, kSoftL1, kCauchy, kArctan };
+
 struct SolveSettings {
-  // "ceres" (Levenberg-Marquardt) or "nlopt:<ALGORITHM>" with any nlopt algorithm name.
-  std::string backend = "ceres";
+  // Python spells the back-end "ceres" or "nlopt:<ALGORITHM>" (any nlopt algorithm name,
+  // nlopt_algorithm; checked by validate()).
+  SolveBackend backend = SolveBackend::kCeres;
+  std::string nlopt_algorithm;
   // "auto": a short local solve from the start (ceres: continued while its cost still falls,
   // solve.cpp's kStillFalling); if it does not meet every pair, the global stage
   // (global_stage.h: axis scans through the start and quasi-random points of the free box, costs
   // in parallel) and local solves from its best points until one meets every pair. "local": the
   // back-end from the start only (the behaviour before strategies).
-  std::string strategy = "auto";
+  SolveStrategy strategy = SolveStrategy::kAuto;
   // auto: iterations of the first local solve (and of each continuation). Measured on
   // benchmarks/bench_edit.py: LM meets, or is still closing in on, every case it solves from its
   // start at all within 15 iterations.
@@ -35,9 +44,8 @@ struct SolveSettings {
   // auto: local solves from the global stage's best points, at most.
   int local_starts = 4;
   // Limits of the whole solve: every stage (the first local solve, its continuations, the global
-  // stage's design points, the local solves from them) draws on one budget, and
-  // refracta.edit.solve(starts=) shares it between its starts. What stopped a stage is named in
-  // SolveSummary::stages.
+  // stage's design points, the local solves from them, and every start) draws on one budget. What
+  // stopped a stage is named in SolveSummary::stages.
   int max_iterations = 200;        // LM iterations (ceres); nlopt counts evaluations instead
   // Cost evaluations, each tracing every pair (ceres: residual and Jacobian passes; nlopt: every
   // call of the objective; the global stage: every design point).
@@ -60,9 +68,9 @@ struct SolveSettings {
   // step lands in; measured on benchmarks/bench_edit.py: 1e4 (Ceres' default) fails the 16-pair
   // logistic case, 0.1 solves every case.
   double trust_region = 0.1;
-  // Ceres robust loss on each pair's squared miss: "none", "huber", "soft_l1", "cauchy", "arctan";
-  // loss_scale [m] is the miss where it starts to down-weight.
-  std::string loss = "none";
+  // Ceres robust loss on each pair's squared miss (Python: "none", "huber", "soft_l1", "cauchy",
+  // "arctan"); loss_scale [m] is the miss where it starts to down-weight.
+  RobustLoss loss = RobustLoss::kNone;
   double loss_scale = 1.0;
   // A pair is met when its miss beyond its margin is at most accept_angle * (eye-to-source
   // distance) [rad], or its tolerance if larger (PointPair::allowed_miss): 1e-6 rad is far below a
@@ -75,9 +83,25 @@ struct SolveSettings {
   // (issue 23: 5.9 mm at 1.9 km). It judges the result only: the cost still pulls every pair onto
   // its source. refracta.edit.solve converts it to metres per pair (C++ sees metres only).
   double pixel_tolerance = 0.1;
+  // Starts of the whole strategy: the first from the field as given, the others uniformly random
+  // within the free parameters' bounds (seeded by `seed`); the best result is kept (every pair
+  // met first, then the lowest cost). All starts share the budget above; a start whose field
+  // cannot trace every pair is skipped.
+  int starts = 1;
+  uint64_t seed = 0;
 
+  // Throws std::invalid_argument listing every bad field.
   void validate() const;
 };
+
+// "ceres" or "nlopt:<ALGORITHM>"; parse_backend sets backend and nlopt_algorithm (throws
+// std::invalid_argument for another spelling; the algorithm name is checked by validate()).
+std::string backend_name(const SolveSettings& settings);
+void parse_backend(const std::string& name, SolveSettings* settings);
+const char* strategy_name(SolveStrategy strategy);    // "auto", "local"
+SolveStrategy parse_strategy(const std::string& name);
+const char* loss_name(RobustLoss loss);               // "none", "huber", "soft_l1", "cauchy", "arctan"
+RobustLoss parse_loss(const std::string& name);
 
 struct SolveSummary {
   std::vector<double> values;        // every parameter of the solved field
@@ -87,16 +111,19 @@ struct SolveSummary {
   double initial_cost = 0.0, cost = 0.0;   // 1/2 sum of weight * miss^2 [m^2]
   std::vector<double> distances;     // per pair, unweighted [m]
   std::vector<double> history;       // cost per iteration (ceres) or best cost per evaluation (nlopt)
-  int iterations = 0;
-  int64_t evaluations = 0;           // cost evaluations (each traces every pair)
-  int64_t pair_traces = 0;           // traced pairs, derivative passes included
-  double time = 0.0;                 // [s] solving, set-up excluded
+  int iterations = 0;                // of the start that gave the result
+  int64_t evaluations = 0;           // cost evaluations (each traces every pair), every start's
+  int64_t pair_traces = 0;           // traced pairs, derivative passes included, every start's
+  double time = 0.0;                 // [s] solving, set-up excluded, every start's
   bool converged = false;            // the back-end ended normally
   bool success = false;              // every pair met (and, for the local strategy, converged)
   std::vector<char> met;             // per pair: miss <= PointPair::allowed_miss(accept_angle)
   std::string message;
   std::string strategy;              // "auto" or "local"
-  std::vector<std::string> stages;   // what the strategy did, one line per stage, and what stopped it
+  int starts = 1;                    // starts asked for (SolveSettings::starts)
+  // What the strategy did, one line per stage, and what stopped it (several starts: the best
+  // start's stages, then a line "starts: k of n run").
+  std::vector<std::string> stages;
   // What stopped the solve before its strategy finished: "" (nothing), "iteration limit",
   // "evaluation limit", "time limit".
   std::string stopped_by;

@@ -76,7 +76,7 @@ PairMiss<T> pair_miss(const Field& field, const PointPair& pair, const PairOptio
   };
 
   TraceEnd<T> end;
-  if (options.method == TraceMethod::kRk4) {
+  if (options.trace == TraceMethod::kRk4) {
     Rk4Stepper<T, Field> stepper(options.step > 0.0 ? options.step : kRk4DefaultStep);
     end = march(field, x0, t0, trace, stepper, visit);
   } else {

@@ -18,25 +18,31 @@ PairDistance parse_pair_distance(const std::string& name) {
   throw_invalid("distance must be 'continuous' or 'vertex' (got '", name, "')");
 }
 
+const char* pair_distance_name(PairDistance distance) {
+  return distance == PairDistance::kContinuous ? "continuous" : "vertex";
+}
+
 void PairOptions::validate() const {
-  if (method == TraceMethod::kStratified) {
-    throw_invalid("editing traces with 'rk45' or 'rk4' (the stratified tracer has no derivatives)");
-  }
-  if (!(tol > 0.0) || !std::isfinite(tol)) throw_invalid("tol must be > 0 (got ", tol, ")");
-  if (!(step >= 0.0) || !std::isfinite(step)) throw_invalid("step must be >= 0 (got ", step, ")");
-  if (ground && !std::isfinite(*ground)) throw_invalid("ground must be finite (got ", *ground, ")");
-  if (!(reach >= 1.0) || !std::isfinite(reach)) throw_invalid("reach must be >= 1 (got ", reach, ")");
-  if (max_steps < 1) throw_invalid("max_steps must be >= 1 (got ", max_steps, ")");
+  Problems problems("PairOptions");
+  problems.check(trace != TraceMethod::kStratified,
+                 "trace must be 'rk45' or 'rk4' (got 'stratified': the stratified tracer has no derivatives)");
+  problems.check(tol > 0.0 && std::isfinite(tol), "tol must be > 0 (got ", tol, ")");
+  problems.check(step >= 0.0 && std::isfinite(step), "step must be >= 0 (got ", step, ")");
+  problems.check(!stop_height || std::isfinite(*stop_height), "stop_height must be finite (got ",
+                 stop_height.value_or(0.0), ")");
+  problems.check(reach >= 1.0 && std::isfinite(reach), "reach must be >= 1 (got ", reach, ")");
+  problems.check(max_steps >= 1, "max_steps must be >= 1 (got ", max_steps, ")");
+  problems.throw_if_any();
 }
 
 TraceOptions PairOptions::trace_options(const PointPair& pair) const {
   TraceOptions options;
-  options.trace = method;
+  options.trace = trace;
   options.step = step;
   options.max_length = reach * pair.range() + 1.0;
   // Below ~1e-13 of the path length a position tolerance asks for more than round-off allows.
   options.tol = std::max(tol, kRoundOffTolerance * options.max_length);
-  options.stop_height = ground;
+  options.stop_height = stop_height;
   options.max_steps = max_steps;
   return options;
 }
@@ -60,9 +66,9 @@ void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& opti
       throw_invalid("pair ", i, ": tolerance must be >= 0 and finite (got ", p.tolerance, ")");
     }
     if (!(p.range() > 0.0)) throw_invalid("pair ", i, ": the source is at the eye");
-    if (options.ground && p.origin.y() < *options.ground) {
-      throw_invalid("pair ", i, ": the eye (height ", p.origin.y(), " m) is below the ground (",
-                    *options.ground, " m)");
+    if (options.stop_height && p.origin.y() < *options.stop_height) {
+      throw_invalid("pair ", i, ": the eye (height ", p.origin.y(), " m) is below the ground (stop_height ",
+                    *options.stop_height, " m)");
     }
   }
 }

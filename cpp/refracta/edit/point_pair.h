@@ -40,22 +40,24 @@ struct PointPair {
 enum class PairDistance { kContinuous, kVertex };
 
 struct PairOptions {
-  TraceMethod method = TraceMethod::kRk45;  // rk45 or rk4 (stratified has no derivatives)
+  TraceMethod trace = TraceMethod::kRk45;   // the ray integrator: rk45 or rk4 (stratified has no derivatives)
   double tol = 1e-9;   // rk45 target position error [m] (at least 1e-13 per metre of path)
   double step = 0.0;                        // rk4 step [m] (0: 0.3, the original's)
-  std::optional<double> ground;             // paths end where they descend through it [m]
+  std::optional<double> stop_height;        // paths end where they descend through it (a ground) [m]
   PairDistance distance = PairDistance::kContinuous;
   // The path is traced to reach x |source - eye| + 1 m, and stops early once it is past the source.
   double reach = 1.5;
   // Steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails.
   int64_t max_steps = 10'000'000;
 
-  // Throws std::invalid_argument naming the bad field.
+  // Throws std::invalid_argument listing every bad field.
   void validate() const;
+  // How `pair`'s path is traced: the one rule every measure of the pair, and its drawn path, use.
   TraceOptions trace_options(const PointPair& pair) const;
 };
 
 PairDistance parse_pair_distance(const std::string& name);  // "continuous", "vertex"
+const char* pair_distance_name(PairDistance distance);
 
 // Throws std::invalid_argument naming the pair and the bad value (NaN, zero direction,
 // weight <= 0, margin < 0, source at the eye, eye below the ground).

@@ -1,7 +1,9 @@
 // solve_edit: validation, the insensitive-parameter check, the strategy (a local solve, or the
-// default: local, then the global stage and local solves from its best points), the measured result.
+// default: local, then the global stage and local solves from its best points), the measured
+// result; with several starts, the strategy from each, the best result kept.
 #include "refracta/edit/solve.h"
 
+#include "refracta/core/rng.h"
 #include "refracta/edit/global_stage.h"
 
 #include <Eigen/SVD>
@@ -9,47 +11,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 namespace refracta {
-
-void SolveSettings::validate() const {
-  std::vector<std::string> problems;
-  auto check = [&](bool ok, auto&&... parts) {
-    if (!ok) problems.push_back(concat(parts...));
-  };
-  const bool nlopt = backend.rfind("nlopt:", 0) == 0;
-  check(backend == "ceres" || nlopt, "backend must be 'ceres' or 'nlopt:<ALGORITHM>' (got '", backend, "')");
-  if (nlopt) {
-    try {
-      check_nlopt_algorithm(backend.substr(6));
-    } catch (const std::invalid_argument& error) {
-      problems.push_back(error.what());
-    }
-  }
-  check(strategy == "auto" || strategy == "local", "strategy must be 'auto' or 'local' (got '", strategy, "')");
-  check(max_iterations >= 1, "max_iterations must be >= 1 (got ", max_iterations, ")");
-  check(max_evaluations >= 1, "max_evaluations must be >= 1 (got ", max_evaluations, ")");
-  check(quick_iterations >= 1, "quick_iterations must be >= 1 (got ", quick_iterations, ")");
-  check(design_per_param >= 1, "design_per_param must be >= 1 (got ", design_per_param, ")");
-  check(local_starts >= 1, "local_starts must be >= 1 (got ", local_starts, ")");
-  check(trust_region > 0.0 && std::isfinite(trust_region), "trust_region must be > 0 (got ", trust_region, ")");
-  const std::pair<const char*, double> non_negative[] = {
-      {"time_limit", time_limit}, {"function_tolerance", function_tolerance},
-      {"parameter_tolerance", parameter_tolerance}, {"gradient_tolerance", gradient_tolerance},
-      {"target_cost", target_cost}, {"accept_angle", accept_angle}, {"pixel_tolerance", pixel_tolerance}};
-  for (const auto& [name, value] : non_negative) {
-    check(value >= 0.0 && std::isfinite(value), name, " must be >= 0 and finite (got ", value, ")");
-  }
-  check(loss == "none" || loss == "huber" || loss == "soft_l1" || loss == "cauchy" || loss == "arctan",
-        "loss must be 'none', 'huber', 'soft_l1', 'cauchy' or 'arctan' (got '", loss, "')");
-  check(loss_scale > 0.0 && std::isfinite(loss_scale), "loss_scale must be > 0 (got ", loss_scale, ")");
-  check(loss == "none" || backend == "ceres", "a robust loss needs backend 'ceres'");
-  if (!problems.empty()) {
-    std::string all = problems.front();
-    for (size_t i = 1; i < problems.size(); ++i) all += "; " + problems[i];
-    throw_invalid(all);
-  }
-}
 
 namespace {
 
@@ -133,7 +98,7 @@ class Strategy {
       : problem_(problem), settings_(settings), budget_(budget), out_(out) {}
 
   BackendResult run() {
-    if (settings_.strategy == "local") {
+    if (settings_.strategy == SolveStrategy::kLocal) {
       Attempt attempt = local(problem_.start(), remaining_settings());
       if (attempt.result.stopped != StopReason::kNone) stage("local from the start", attempt);
       return attempt.result;
@@ -147,7 +112,7 @@ class Strategy {
     Attempt best = local(problem_.start(), quick);
     stage("local from the start", best);
     for (int extension = 0; extension < kQuickExtensions && !best.all_met && !best.result.converged &&
-                            settings_.backend == "ceres" && still_falling(best.result.history) &&
+                            settings_.backend == SolveBackend::kCeres && still_falling(best.result.history) &&
                             budget_.iterations_left() >= quick.max_iterations && !stopped("going on locally");
          ++extension) {
       Attempt more = local(best.result.x, continuing(quick, best.result));
@@ -238,7 +203,7 @@ class Strategy {
   // True (and said in the stages, once) when a limit of the budget leaves nothing for `next`.
   bool stopped(const char* next) {
     StopReason reason = budget_.exhausted();
-    if (reason == StopReason::kIterations && settings_.backend != "ceres") reason = StopReason::kNone;
+    if (reason == StopReason::kIterations && settings_.backend != SolveBackend::kCeres) reason = StopReason::kNone;
     if (reason == StopReason::kNone) return false;
     if (!said_stop_) {
       out_->stages.push_back(concat("stopped by the ", stop_reason_name(reason), " (", budget_.iterations_used(),
@@ -252,9 +217,9 @@ class Strategy {
 
   Attempt local(const std::vector<double>& x0, const SolveSettings& settings) {
     Attempt out;
-    out.result = settings.backend == "ceres"
+    out.result = settings.backend == SolveBackend::kCeres
                      ? solve_with_ceres(problem_, x0, settings, budget_)
-                     : solve_with_nlopt(problem_, settings.backend.substr(6), x0, settings, budget_);
+                     : solve_with_nlopt(problem_, settings.nlopt_algorithm, x0, settings, budget_);
     iterations_ += out.result.iterations;
     note_stop(out.result.stopped);
     // The time limit interrupted the traces: measure this result all the same (later stages see
@@ -347,12 +312,11 @@ std::string why_unmet(const EditProblem& problem, const std::vector<double>& res
   return out;
 }
 
-}  // namespace
-
-SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pairs,
-                        const ProblemSpec& spec, const SolveSettings& settings, WorkControl& control) {
-  settings.validate();
-  SolveBudget budget(settings, control);
+// The strategy from one start (`field`'s values), drawing on the solve's budget: the
+// insensitive-parameter check, the strategy, the measured result. Throws NumericalError when the
+// start cannot trace every pair.
+SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pairs, const ProblemSpec& spec,
+                        const SolveSettings& settings, SolveBudget& budget) {
   auto problem = std::make_unique<EditProblem>(field, pairs, spec, budget.interrupt());
   SolveSummary out;
   out.insensitive = insensitive_params(*problem);
@@ -373,8 +337,9 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
   }
   out.free = problem->free_names();
   out.derivatives = derivatives_name(problem->derivatives());
-  out.backend = settings.backend;
-  out.strategy = settings.strategy;
+  out.backend = backend_name(settings);
+  out.strategy = strategy_name(settings.strategy);
+  out.starts = settings.starts;
   out.initial_cost = problem->cost(problem->start());
   budget.check_cancelled();
   if (!std::isfinite(out.initial_cost) && budget.exhausted() == StopReason::kTimeLimit) {
@@ -428,7 +393,7 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
   if (unlisted > 0) unmet += concat("; and ", unlisted, " more pairs");
   // The default strategy succeeds when every pair is met, whatever stopped its last local solve;
   // a lone local solve must also have ended normally.
-  out.success = unmet.empty() && (settings.strategy == "auto" || result.converged);
+  out.success = unmet.empty() && (settings.strategy == SolveStrategy::kAuto || result.converged);
   out.message = result.message;
   while (!out.message.empty() && out.message.back() == '.') out.message.pop_back();
   if (!out.stopped_by.empty()) out.message += concat(". The solve was stopped by the ", out.stopped_by);
@@ -447,8 +412,77 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
   }
   const std::string failure = problem->context().first_failure();
   if (!failure.empty()) out.message += concat(". Some trial parameters failed to trace: ", failure);
-  budget.finish();
   return out;
+}
+
+// Start k (>= 1) of a multi-start solve: `field` with each of `free`'s parameters drawn uniformly
+// within its bounds (spec.bounds, else the model's), from the seed's stream k.
+FieldPtr random_start(const FieldPtr& field, const std::vector<std::string>& free, const ProblemSpec& spec,
+                      uint64_t seed, int k) {
+  Rng rng(seed, uint64_t(k));
+  std::vector<double> values = field->param_values();
+  for (const std::string& name : free) {
+    const size_t index = field->param_index(name);
+    const ParamSpec& param = field->param_specs()[index];
+    auto [lower, upper] = std::make_pair(param.lower, param.upper);
+    if (auto it = spec.bounds.find(name); it != spec.bounds.end()) std::tie(lower, upper) = it->second;
+    values[index] = lower + rng.uniform() * (upper - lower);
+  }
+  return field->with_param_values(values);
+}
+
+}  // namespace
+
+SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pairs,
+                        const ProblemSpec& spec, const SolveSettings& settings, WorkControl& control) {
+  settings.validate();
+  SolveBudget budget(settings, control);
+  SolveSummary best = solve_from(field, pairs, spec, settings, budget);
+  if (settings.starts == 1) {
+    budget.finish();
+    return best;
+  }
+  // Further starts share what the ones before them left of the budget; the best result is kept
+  // (every pair met first, then the lowest cost), with every start's evaluations, traces and time.
+  const double initial_cost = best.initial_cost;
+  int64_t pair_traces = best.pair_traces;
+  double time = best.time;
+  int run = 1, best_start = 0;
+  std::string stopped = best.stopped_by;
+  for (int k = 1; k < settings.starts; ++k) {
+    const FieldPtr start = random_start(field, best.free, spec, settings.seed, k);
+    StopReason reason = budget.exhausted();
+    if (reason == StopReason::kIterations && settings.backend != SolveBackend::kCeres) reason = StopReason::kNone;
+    if (reason != StopReason::kNone) {
+      stopped = stop_reason_name(reason);
+      break;
+    }
+    SolveSummary trial;
+    try {
+      trial = solve_from(start, pairs, spec, settings, budget);
+    } catch (const NumericalError&) {
+      continue;  // this start cannot trace every pair: try the next
+    }
+    ++run;
+    pair_traces += trial.pair_traces;
+    time += trial.time;
+    stopped = trial.stopped_by;
+    if (std::make_pair(trial.success, -trial.cost) > std::make_pair(best.success, -best.cost)) {
+      best = std::move(trial);
+      best_start = k;
+    }
+  }
+  best.initial_cost = initial_cost;
+  best.pair_traces = pair_traces;
+  best.time = time;
+  best.evaluations = budget.evaluations_used();
+  best.stopped_by = stopped;
+  // The stages above are the best start's ("from the start": from that start's point).
+  best.stages.push_back(concat("starts: ", run, " of ", settings.starts, " run",
+                               stopped.empty() ? "" : "; stopped by the " + stopped, "; the result is start ",
+                               best_start, best_start == 0 ? " (the field given)" : " (random within the bounds)"));
+  budget.finish();
+  return best;
 }
 
 }  // namespace refracta

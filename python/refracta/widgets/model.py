@@ -209,7 +209,7 @@ class EditorModel:
             if reserved in self.render_options:
                 raise ValueError(f"render_options: {reserved!r} is the editor's to choose")
         self.solve_options = dict(solve_options or {})
-        for reserved in ("free", "ground", "progress"):
+        for reserved in ("free", "ground", "stop_height", "progress"):
             if reserved in self.solve_options:
                 raise ValueError(f"solve_options: pass {reserved!r} as the editor's own argument")
         self.preview_scale = int(preview_scale)
@@ -679,7 +679,7 @@ class EditorModel:
             self.say("Add at least one pair first: click a scene point, then where its image should appear.", "error")
             return None
         if self.ground is not None:
-            options["ground"] = self.ground
+            options["stop_height"] = self.ground
 
         def work(job: Job):
             result = edit.solve(field, camera, list(pairs), free=list(free) if free else None,
@@ -766,8 +766,8 @@ class EditorModel:
         pairs, options = load_pairs(path, self.scene, self.camera)
         if "free" in options:
             self.set_free(options.pop("free"))
-        if "ground" in options:
-            ground = options.pop("ground")
+        if "stop_height" in options:  # the file's "ground"
+            ground = options.pop("stop_height")
             self.ground = None if ground is None else _finite(ground, "ground")
         self.solve_options.update(options)
         self.set_pairs(pairs, label=f"load pairs from {Path(path).name}")
