@@ -66,8 +66,9 @@ def write_image(path, image, exposure: float | None = None, tonemap: str | None 
     to middle grey) and tone mapped by the ACES curve, see the module docstring -- and quantised to 8 bits.
     Raises refracta.IoError when the file cannot be written, ValueError for a bad image or option.
     """
-    _core._write_image(os.fspath(path), np.asarray(image), exposure, tonemap, gamma, key, white, ev100, iso, shutter,
-                       f_number, luminous_efficacy)
+    _core._write_image(os.fspath(path), np.asarray(image), exposure=exposure, tonemap=tonemap, gamma=gamma, key=key,
+                       white=white, ev100=ev100, iso=iso, shutter=shutter, f_number=f_number,
+                       luminous_efficacy=luminous_efficacy)
 
 
 def read_image(path) -> np.ndarray:
@@ -89,8 +90,8 @@ def to_display(image, exposure: float | None = None, tonemap: str | None = None,
     'aces' (default, filmic), 'reinhard', 'linear' or 'film'; white: Reinhard's L_white (None: infinite);
     gamma: 'srgb', 'linear' or g in [1, 3]. See the module docstring for the formulas.
     """
-    return _core._display(np.asarray(image), exposure, tonemap, gamma, key, white, ev100, iso, shutter, f_number,
-                          luminous_efficacy)
+    return _core._display(np.asarray(image), exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white,
+                          ev100=ev100, iso=iso, shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
 
 
 def exposure_of(image, exposure: float | None = None, key: float | None = None, *, ev100: float | None = None,
@@ -101,7 +102,8 @@ def exposure_of(image, exposure: float | None = None, key: float | None = None, 
     Automatic by default (0.18 / the log-average luminance); use it to give several images (the
     frames of an animation, a with/without pair) one exposure: ``to_display(img, exposure=c)``.
     """
-    return _core._display_exposure(np.asarray(image), exposure, key, ev100, iso, shutter, f_number, luminous_efficacy)
+    return _core._display_exposure(np.asarray(image), exposure=exposure, key=key, ev100=ev100, iso=iso, shutter=shutter,
+                                   f_number=f_number, luminous_efficacy=luminous_efficacy)
 
 
 def ev100(f_number: float, shutter: float, iso: float | None = None) -> float:

@@ -7,10 +7,11 @@ surface tangent along which ``alpha_u`` acts) with float64 unit directions of sh
 - ``f(wo, wi)`` -> (N, 3) linear RGB BSDF values without the cosine [1/sr] (delta lobes give 0);
 - ``pdf(wo, wi)`` -> (N,) density [1/sr] of ``sample`` producing wi, lobe probabilities included;
 - ``sample(wo, u)`` with u (N, 3) uniform in [0, 1) (u[:, 0] picks the lobe, u[:, 1:] the
-  direction) -> dict of arrays ``wi`` (N, 3), ``weight`` (N, 3) = ``f |cos theta_i| / pdf`` (delta
-  lobes: albedo over the lobe's probability), ``f``, ``pdf`` (N,), ``flags`` (N,) (1 reflection,
-  2 transmission, 4 diffuse, 8 glossy, 16 specular), ``is_delta``, ``eta`` (relative index
-  crossed, 1 for reflection), ``valid`` (False where no direction came out), ``terminated``.
+  direction) -> a ``BsdfSample`` of read-only arrays ``wi`` (N, 3), ``weight`` (N, 3) =
+  ``f |cos theta_i| / pdf`` (delta lobes: albedo over the lobe's probability), ``f``, ``pdf`` (N,),
+  ``flags`` (N,) (1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular), ``is_delta``,
+  ``eta`` (relative index crossed, 1 for reflection), ``valid`` (False where no direction came
+  out), ``terminated`` (``s["wi"]``, the former dict's access, is deprecated).
 
 ``wo`` points toward the viewer and ``wi`` toward the light, both away from the surface (pbrt-v4's
 names; Mitsuba 3's ``si.wi`` is refracta's ``wo``). Keywords of the three methods:
@@ -89,6 +90,7 @@ Example::
 from ._core import (
     Beckmann,
     BlinnPhong,
+    BsdfSample,
     Conductor,
     Dielectric,
     Diffuse,
@@ -116,6 +118,7 @@ from ._core import (
 
 __all__ = [
     "Material",
+    "BsdfSample",
     "Diffuse",
     "BlinnPhong",
     "Conductor",

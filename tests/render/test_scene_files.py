@@ -36,7 +36,7 @@ def test_obj_materials_come_from_the_mtl_file():
     canvas = refracta.shading.BlinnPhong(kd=(0.8, 0.6, 0.2), ks=(0.1, 0.1, 0.1), ns=20)
     rng = np.random.default_rng(1)
     samples = canvas.sample(np.tile([0.0, 0.0, 1.0], (200000, 1)), rng.random((200000, 3)))
-    albedo = np.where(samples["valid"][:, None], samples["weight"], 0.0).mean(axis=0)
+    albedo = np.where(samples.valid[:, None], samples.weight, 0.0).mean(axis=0)
     assert albedo[0] > 0.8  # the specular lobe adds to Kd
     np.testing.assert_allclose(image[4, 4], albedo, atol=0.02)
 

@@ -132,8 +132,8 @@ def test_materials_round_trip_with_the_same_bsdf(material, rng):
     assert np.array_equal(copy.f(wo, wi, wavelengths=lam), material.f(wo, wi, wavelengths=lam))
     assert np.array_equal(copy.pdf(wo, wi), material.pdf(wo, wi))
     a, b = copy.sample(wo, u), material.sample(wo, u)
-    for key in a:
-        assert np.array_equal(a[key], b[key]), key
+    for key in a.fields:
+        assert np.array_equal(getattr(a, key), getattr(b, key)), key
 
 
 def test_ior_round_trip():

@@ -95,16 +95,20 @@ def test_thin_film_limits():
     for eta, k in [(1.5, 0.0), (0.2, 3.9)]:
         base = shading.fresnel_conductor(cos, eta, k)
         # A zero-thickness film is the bare interface: rounding only.
-        np.testing.assert_allclose(shading.thin_film_reflectance(cos, 1.0, 1.38, eta, k, 0.0, 550.0), base, atol=1e-12)
+        film = shading.thin_film_reflectance(cos, 1.0, 1.38, eta, k, thickness=0.0, wavelength=550.0)
+        np.testing.assert_allclose(film, base, atol=1e-12)
         # A film of the ambient index is the bare interface: rounding only.
-        np.testing.assert_allclose(shading.thin_film_reflectance(cos, 1.0, 1.0, eta, k, 300.0, 550.0), base, atol=1e-12)
+        film = shading.thin_film_reflectance(cos, 1.0, 1.0, eta, k, thickness=300.0, wavelength=550.0)
+        np.testing.assert_allclose(film, base, atol=1e-12)
     # A quarter-wave coating of index sqrt(n3) is a perfect antireflection layer at normal incidence.
     n3, lam = 1.9, 550.0
     n2 = np.sqrt(n3)
     # Exactly 0 in exact arithmetic: double rounding.
-    assert shading.thin_film_reflectance(1.0, 1.0, n2, n3, 0.0, lam / (4 * n2), lam) == pytest.approx(0.0, abs=1e-14)
+    quarter_wave = shading.thin_film_reflectance(1.0, 1.0, n2, n3, 0.0, thickness=lam / (4 * n2), wavelength=lam)
+    assert quarter_wave == pytest.approx(0.0, abs=1e-14)
     # A half-wave layer is absent at normal incidence.
-    assert shading.thin_film_reflectance(1.0, 1.0, 1.33, 1.5, 0.0, lam / (2 * 1.33), lam) == pytest.approx(0.04, abs=1e-12)
+    half_wave = shading.thin_film_reflectance(1.0, 1.0, 1.33, 1.5, 0.0, thickness=lam / (2 * 1.33), wavelength=lam)
+    assert half_wave == pytest.approx(0.04, abs=1e-12)
     # Normal incidence closed form (Born & Wolf 1.6 eq. 57):
     # R = (r12^2 + r23^2 + 2 r12 r23 cos d) / (1 + r12^2 r23^2 + 2 r12 r23 cos d).
     n2, d = 1.33, 380.0
@@ -112,4 +116,4 @@ def test_thin_film_limits():
     delta = 4 * np.pi * n2 * d / lam
     expected = (r12**2 + r23**2 + 2 * r12 * r23 * np.cos(delta)) / (1 + r12**2 * r23**2 + 2 * r12 * r23 * np.cos(delta))
     # Airy's closed form in double on both sides: rounding.
-    assert shading.thin_film_reflectance(1.0, 1.0, n2, 1.5, 0.0, d, lam) == pytest.approx(expected, abs=1e-12)
+    assert shading.thin_film_reflectance(1.0, 1.0, n2, 1.5, 0.0, thickness=d, wavelength=lam) == pytest.approx(expected, abs=1e-12)

@@ -24,14 +24,14 @@ def test_sample_weight_is_f_cos_over_pdf(name, theta):
     below = MATERIALS[name][1] and theta > 50
     wo = direction(theta, 40.0, below)
     s = material.sample(np.tile(wo, (4000, 1)), rng.random((4000, 3)))
-    ok = s["valid"] & ~s["is_delta"]
+    ok = s.valid & ~s.is_delta
     assert ok.mean() > 0.3  # smooth plastic at grazing picks its delta lobe about half the time
-    wi = s["wi"][ok]
+    wi = s.wi[ok]
     f, pdf = material.f(wo, wi), material.pdf(wo, wi)
-    np.testing.assert_allclose(s["pdf"][ok], pdf, rtol=EVAL_TOLERANCE)
+    np.testing.assert_allclose(s.pdf[ok], pdf, rtol=EVAL_TOLERANCE)
     # EVAL_TOLERANCE; 1e-300 only so that exact zeros compare.
-    np.testing.assert_allclose(s["f"][ok], f, rtol=EVAL_TOLERANCE, atol=1e-300)
-    np.testing.assert_allclose(s["weight"][ok], f * np.abs(wi[:, 2:3]) / pdf[:, None], rtol=EVAL_TOLERANCE)
+    np.testing.assert_allclose(s.f[ok], f, rtol=EVAL_TOLERANCE, atol=1e-300)
+    np.testing.assert_allclose(s.weight[ok], f * np.abs(wi[:, 2:3]) / pdf[:, None], rtol=EVAL_TOLERANCE)
 
 
 @pytest.mark.parametrize("name", SAMPLED)

@@ -31,7 +31,7 @@ EXTRA = {
 
 def albedo(material, wo, mode="importance", seed=5):
     u = np.random.default_rng(seed).random((SAMPLES, 3))
-    w = material.sample(np.tile(wo, (SAMPLES, 1)), u, mode=mode)["weight"]
+    w = material.sample(np.tile(wo, (SAMPLES, 1)), u, mode=mode).weight
     return w.mean(0), w.std(0) / np.sqrt(SAMPLES)
 
 

@@ -98,12 +98,12 @@ def test_smooth_dielectric_probabilities():
         si.wi = mi.Vector3f(*wo)
         bs, _ = bsdf.sample(mi.BSDFContext(), si, 0.0, mi.Point2f(0.5, 0.5))
         ours = shading.Dielectric(1.5).sample(wo, [0.0, 0.5, 0.5])
-        assert ours["pdf"][0] == pytest.approx(bs.pdf, rel=FLOAT32_TOLERANCE)
+        assert ours.pdf[0] == pytest.approx(bs.pdf, rel=FLOAT32_TOLERANCE)
         bs_t, w_t = bsdf.sample(mi.BSDFContext(), si, 0.9999, mi.Point2f(0.5, 0.5))
         ours_t = shading.Dielectric(1.5).sample(wo, [0.9999, 0.5, 0.5])
         # Mitsuba computes in float32: ~1e-7 per component, 1e-6 with margin.
-        np.testing.assert_allclose(ours_t["wi"][0], [bs_t.wo[0], bs_t.wo[1], bs_t.wo[2]], atol=1e-6)
-        assert ours_t["weight"][0, 0] == pytest.approx(w_t[0], rel=FLOAT32_TOLERANCE)  # both 1 / eta^2 in radiance
+        np.testing.assert_allclose(ours_t.wi[0], [bs_t.wo[0], bs_t.wo[1], bs_t.wo[2]], atol=1e-6)
+        assert ours_t.weight[0, 0] == pytest.approx(w_t[0], rel=FLOAT32_TOLERANCE)  # both 1 / eta^2 in radiance
 
 
 def test_plastic():

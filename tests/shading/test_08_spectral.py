@@ -24,14 +24,14 @@ def test_dispersive_refraction_keeps_the_hero():
     wo = direction(50.0, 0.0)
     s = glass.sample(wo, [0.999, 0.5, 0.5], wavelengths=LAMBDA)
     n = shading.Ior("bk7").at(LAMBDA[0])
-    assert s["terminated"][0] and s["eta"][0] == pytest.approx(n)
-    sin_t = np.hypot(s["wi"][0, 0], s["wi"][0, 1])
+    assert s.terminated[0] and s.eta[0] == pytest.approx(n)
+    sin_t = np.hypot(s.wi[0, 0], s.wi[0, 1])
     assert sin_t == pytest.approx(np.sin(np.radians(50.0)) / n, rel=1e-12)  # Snell at the hero wavelength
-    np.testing.assert_allclose(s["weight"][0], [1 / n**2, 0, 0, 0], rtol=1e-12)
+    np.testing.assert_allclose(s.weight[0], [1 / n**2, 0, 0, 0], rtol=1e-12)
     r = glass.sample(wo, [0.0, 0.5, 0.5], wavelengths=LAMBDA)
-    assert not r["terminated"][0]
+    assert not r.terminated[0]
     fr = shading.fresnel_dielectric(wo[2], shading.Ior("bk7").at(LAMBDA))
-    np.testing.assert_allclose(r["weight"][0], fr / fr[0], rtol=1e-12)  # each wavelength's F over the hero's
+    np.testing.assert_allclose(r.weight[0], fr / fr[0], rtol=1e-12)  # each wavelength's F over the hero's
 
 
 def test_spectral_rough_conductor_sampling_chi2():

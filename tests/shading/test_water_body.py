@@ -80,7 +80,7 @@ def test_05_index_per_wavelength_and_channel():
     np.testing.assert_allclose(f / f[1], f0 / f0[1], rtol=1e-9)  # Schlick's F0 ratios in double on both sides: rounding
     # Spectral: per wavelength likewise, no wavelength terminated (the rough lobe covers dispersion).
     s = bare.sample(np.array([0.0, 0.6, 0.8]), np.array([0.99, 0.3, 0.6]), wavelengths=INTEGER_NM)
-    assert s["valid"][0] and not s["terminated"][0] and np.all(s["weight"][0] > 0)
+    assert s.valid[0] and not s.terminated[0] and np.all(s.weight[0] > 0)
 
 
 def test_06_beckmann_is_normalised_with_slope_variance_alpha_squared():

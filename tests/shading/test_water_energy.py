@@ -26,7 +26,7 @@ TRANSMITTANCE_TOLERANCE = 2e-3  # the table's quadrature and interpolation (see 
 def albedo(material, wo, wavelengths=None, seed=5):
     u = np.random.default_rng(seed).random((SAMPLES, 3))
     s = material.sample(np.tile(wo, (SAMPLES, 1)), u, mode="importance", wavelengths=wavelengths)
-    w = s["weight"]
+    w = s.weight
     return w.mean(0), w.std(0) / np.sqrt(SAMPLES), s
 
 
@@ -49,8 +49,8 @@ def test_02_interface_reflects_and_transmits_nearly_everything_in_light_wind(win
     for theta in (0.0, 30.0, 60.0):
         mean, err, s = albedo(water, direction(theta))
         assert mean[1] > 0.99 - NOISE_SIGMAS * err[1]
-        transmitted = (s["flags"] & 2) > 0
-        reflected = s["weight"][~transmitted & s["valid"], 1].sum() / SAMPLES
+        transmitted = (s.flags & 2) > 0
+        reflected = s.weight[~transmitted & s.valid, 1].sum() / SAMPLES
         flat = shading.fresnel_dielectric(np.cos(np.radians(theta)), water.ior(550.0))
         assert reflected == pytest.approx(flat, abs=0.2 * flat + NOISE_SIGMAS * err[1])  # the flat surface's F, roughly
 
@@ -80,7 +80,7 @@ def test_03b_tabulated_transmittance_is_the_interface_s(wind):
     for mu in (1.0, 0.5, 0.1, 0.02):
         wo = np.array([np.sqrt(1 - mu * mu), 0.0, mu])
         mean, err, s = albedo(bare, wo)
-        transmitted = np.where((s["flags"] & 2) > 0, s["weight"][:, 1], 0.0)
+        transmitted = np.where((s.flags & 2) > 0, s.weight[:, 1], 0.0)
         estimate, noise = transmitted.mean(), transmitted.std() / np.sqrt(SAMPLES)
         assert bare.transmittance(mu, 532.0) == pytest.approx(estimate, abs=NOISE_SIGMAS * noise + TRANSMITTANCE_TOLERANCE)
     # A calm sea's (alpha = 0.055) is nearly the flat surface's 1 - F away from grazing (measured
@@ -99,8 +99,8 @@ def test_04_deep_water_transmits_nothing():
     for theta in THETAS:
         for below in (False, True):
             _, _, s = albedo(water, direction(theta, below=below))
-            assert not np.any(s["flags"][s["valid"]] & 2)
-            wi = s["wi"][s["valid"]]
+            assert not np.any(s.flags[s.valid] & 2)
+            wi = s.wi[s.valid]
             assert np.all(np.sign(wi[:, 2]) == (-1 if below else 1))
     assert water.interior_ior() is None
     # The body's index at 550 nm, 20 C, 35 psu from the same formula: rounding.

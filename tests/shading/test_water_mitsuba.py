@@ -82,7 +82,7 @@ def lobe_pairs(water, below=False, n=240, seed=7):
     wo[:, 2] = (np.abs(wo[:, 2]) + 0.1) * (-1 if below else 1)
     wo /= np.linalg.norm(wo, axis=1, keepdims=True)
     s = water.sample(wo, rng.random((n, 3)))
-    return wo[s["valid"]], s["wi"][s["valid"]]
+    return wo[s.valid], s.wi[s.valid]
 
 
 @pytest.mark.parametrize("wind", WINDS)
@@ -126,10 +126,10 @@ def mitsuba_albedo(bsdf, wo, channel, seed=3):
 def refracta_albedo(water, wo, channel, corrected, samples=200_000, seed=4):
     u = np.random.default_rng(seed).random((samples, 3))
     s = water.sample(np.tile(wo, (samples, 1)), u)
-    w = s["weight"][:, channel].copy()
+    w = s.weight[:, channel].copy()
     if corrected:
-        v = s["valid"]
-        w[v] *= masking_correction(water, np.tile(wo, (v.sum(), 1)), s["wi"][v])
+        v = s.valid
+        w[v] *= masking_correction(water, np.tile(wo, (v.sum(), 1)), s.wi[v])
     return w.mean(), w.std() / np.sqrt(samples)
 
 

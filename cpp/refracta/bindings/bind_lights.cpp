@@ -3,7 +3,7 @@
 // RGB rendering, for tests and users' own integrators.
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/pickle_state.h"
-#include "refracta/scene/image_io.h"
+#include "refracta/shading/sky_presets.h"  // environment_from_file
 
 #include "refracta/shading/area_light.h"
 #include "refracta/shading/constant_environment.h"
@@ -21,65 +21,11 @@ namespace refracta {
 
 namespace {
 
-// A scalar (grey) or an RGB triple, finite and >= 0, as an illuminant Color.
-Color illuminant_from(const py::handle& value, const char* what) {
-  DoubleArray array;
-  try {
-    array = real_array(value, what);
-  } catch (const py::cast_error&) {
-    throw_invalid(what, " must be a number or an RGB triple");
-  }
-  Vec3d rgb;
-  if (array.ndim() == 0 || (array.ndim() == 1 && array.shape(0) == 1)) {
-    rgb.setConstant(array.data()[0]);
-  } else if (array.ndim() == 1 && array.shape(0) == 3) {
-    rgb = Vec3d(array.data()[0], array.data()[1], array.data()[2]);
-  } else {
-    throw_invalid(what, " must be a number or an RGB triple of shape (3,)");
-  }
-  return Color::illuminant(detail::check_rgb(rgb, what));
-}
-
-// (N, 2) sample numbers in [0, 1).
-std::vector<Vec2d> to_samples(const py::handle& object, size_t count) {
-  DoubleArray array;
-  try {
-    array = real_array(object, "u");
-  } catch (const py::cast_error&) {
-    throw_invalid("u must be a float array of shape (N, 2)");
-  }
-  if (array.ndim() != 2 || array.shape(1) != 2 || size_t(array.shape(0)) != count) {
-    throw_invalid("u must have shape (", count, ", 2): one pair per point");
-  }
-  std::vector<Vec2d> u(count);
-  for (size_t i = 0; i < count; ++i) {
-    u[i] = Vec2d(array.at(i, 0), array.at(i, 1));
-    if (!(u[i].x() >= 0.0 && u[i].x() < 1.0 && u[i].y() >= 0.0 && u[i].y() < 1.0)) {
-      throw_invalid("u[", i, "] must be in [0, 1) (got (", u[i].x(), ", ", u[i].y(), "))");
-    }
-  }
-  return u;
-}
-
-// (N, 3) unit vectors (tolerance for float input), or zero rows where allowed.
-std::vector<Vec3d> to_units(const py::handle& object, const char* what, size_t count, bool zero_ok) {
-  std::vector<Vec3d> v = to_points(object, what);
-  if (v.size() != count) throw_invalid(what, " must have shape (", count, ", 3) (got ", v.size(), " rows)");
-  for (size_t i = 0; i < count; ++i) {
-    const double len = v[i].norm();
-    if (zero_ok && len == 0.0) continue;
-    if (!(std::abs(len - 1.0) <= 1e-6)) {
-      throw_invalid(what, "[", i, "] must be a unit vector", zero_ok ? " or zero" : "", " (got length ", len, ")");
-    }
-  }
-  return v;
-}
-
 std::vector<LightSampleContext> contexts(const py::object& points, const py::object& normals) {
   std::vector<Vec3d> p = to_points(points, "points");
   std::vector<LightSampleContext> ctx(p.size());
   std::vector<Vec3d> n;
-  if (!normals.is_none()) n = to_units(normals, "normals", p.size(), true);
+  if (!normals.is_none()) n = to_unit_vectors(normals, "normals", p.size(), true);
   for (size_t i = 0; i < p.size(); ++i) {
     ctx[i].p = p[i];
     if (!n.empty()) ctx[i].n = n[i];
@@ -98,13 +44,13 @@ DoubleArray rgb_array(const std::vector<Spectrum>& values) {
 
 py::tuple sample_li(const Light& light, const py::object& points, const py::object& normals, const py::object& u_object) {
   const std::vector<LightSampleContext> ctx = contexts(points, normals);
-  const std::vector<Vec2d> u = to_samples(u_object, ctx.size());
+  const Samples u = to_samples(u_object, "u", 2, ctx.size());
   const SampledWavelengths lambda = SampledWavelengths::rgb();
   std::vector<Vec3d> wi(ctx.size(), Vec3d::Zero());
   std::vector<Spectrum> L(ctx.size(), Spectrum::Zero());
   std::vector<double> pdf(ctx.size(), 0.0), distance(ctx.size(), 0.0);
   for (size_t i = 0; i < ctx.size(); ++i) {
-    if (auto s = light.sample_li(ctx[i], u[i], lambda)) {
+    if (auto s = light.sample_li(ctx[i], u.pair(i), lambda)) {
       wi[i] = s->wi, L[i] = s->L, pdf[i] = s->pdf, distance[i] = s->distance;
     }
   }
@@ -114,21 +60,20 @@ py::tuple sample_li(const Light& light, const py::object& points, const py::obje
 py::array pdf_li(const Light& light, const py::object& points, const py::object& normals, const py::object& wi_object,
                  const py::object& p_light_object, const py::object& n_light_object) {
   const std::vector<LightSampleContext> ctx = contexts(points, normals);
-  const std::vector<Vec3d> wi = to_units(wi_object, "wi", ctx.size(), false);
+  const std::vector<Vec3d> wi = to_unit_vectors(wi_object, "wi", ctx.size());
   std::vector<Vec3d> p_light(ctx.size(), Vec3d::Zero()), n_light(ctx.size(), Vec3d::Zero());
   if (!p_light_object.is_none()) {
     p_light = to_points(p_light_object, "p_light");
     if (p_light.size() != ctx.size()) throw_invalid("p_light must have shape (", ctx.size(), ", 3)");
   }
-  if (!n_light_object.is_none()) n_light = to_units(n_light_object, "n_light", ctx.size(), true);
+  if (!n_light_object.is_none()) n_light = to_unit_vectors(n_light_object, "n_light", ctx.size(), true);
   std::vector<double> pdf(ctx.size());
   for (size_t i = 0; i < ctx.size(); ++i) pdf[i] = light.pdf_li(ctx[i], wi[i], p_light[i], n_light[i]);
   return values_to_array(pdf);
 }
 
 py::array Le(const Light& light, const py::object& dirs_object) {
-  std::vector<Vec3d> dirs = to_points(dirs_object, "dirs");
-  dirs = to_units(dirs_object, "dirs", dirs.size(), false);
+  const std::vector<Vec3d> dirs = to_unit_vectors(dirs_object, "dirs");
   const SampledWavelengths lambda = SampledWavelengths::rgb();
   std::vector<Spectrum> out(dirs.size());
   for (size_t i = 0; i < dirs.size(); ++i) out[i] = light.Le(dirs[i], lambda);
@@ -139,7 +84,7 @@ py::array L(const Light& light, const py::object& points_object, const py::objec
   const std::vector<Vec3d> p = to_points(points_object, "points");
   const std::vector<Vec3d> n = to_points(normals_object, "normals");
   if (n.size() != p.size()) throw_invalid("normals must have shape (", p.size(), ", 3)");
-  const std::vector<Vec3d> w = to_units(dirs_object, "dirs", p.size(), false);
+  const std::vector<Vec3d> w = to_unit_vectors(dirs_object, "dirs", p.size());
   const SampledWavelengths lambda = SampledWavelengths::rgb();
   std::vector<Spectrum> out(p.size());
   for (size_t i = 0; i < p.size(); ++i) out[i] = light.L(p[i], n[i], w[i], lambda);
@@ -156,37 +101,6 @@ const char* type_name(LightType t) {
   return "unknown";
 }
 
-Mat3d rotation_from(const py::object& object) {
-  if (object.is_none()) return Mat3d::Identity();
-  DoubleArray array;
-  try {
-    array = real_array(object, "rotation");
-  } catch (const py::cast_error&) {
-    throw_invalid("rotation must be a number (degrees about +y) or a 3 x 3 matrix");
-  }
-  if (array.ndim() == 0) return EnvironmentLight::rotation_about_y(array.data()[0]);
-  if (array.ndim() != 2 || array.shape(0) != 3 || array.shape(1) != 3) throw_invalid("rotation must be a number (degrees about +y) or of shape (3, 3)");
-  Mat3d r;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) r(i, j) = array.at(i, j);
-  }
-  return r;
-}
-
-Image image_from(const py::object& object) {
-  py::array_t<float, py::array::c_style | py::array::forcecast> array;
-  try {
-    array = py::cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(object);
-  } catch (const py::cast_error&) {
-    throw_invalid("EnvironmentLight: image must be a float array of shape (H, W, 3)");
-  }
-  if (array.ndim() == 2) array = array.reshape({array.shape(0), array.shape(1), py::ssize_t(1)});
-  if (array.ndim() != 3) throw_invalid("EnvironmentLight: image must have shape (H, W), (H, W, 1), (H, W, 3) or (H, W, 4) (got ", array.ndim(), " dimensions)");
-  Image image(int(array.shape(1)), int(array.shape(0)), int(array.shape(2)));
-  std::copy(array.data(), array.data() + array.size(), image.pixels.begin());
-  return image;
-}
-
 // Pickle states: each light as its C++ constructor's arguments, colours by color_state (a
 // tabulated colour, e.g. set_physical_sky's sun, keeps its spectrum), rebuilt by that constructor.
 py::tuple xyz(const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); }
@@ -195,12 +109,171 @@ void check_state(const py::tuple& t, size_t size, const char* light) {
   if (t.size() != size) throw_invalid(light, ": bad pickle state (", t.size(), " items, expected ", size, ")");
 }
 
-DoubleArray matrix_array(const Mat3d& r) {
-  DoubleArray out({py::ssize_t(3), py::ssize_t(3)});
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) out.mutable_at(i, j) = r(i, j);
-  }
-  return out;
+// The lights a point, a disc or a surface emits: point, spot, sun, area, sphere.
+void bind_finite_lights(py::module_& m) {
+  py::class_<PointLight, Light, std::shared_ptr<PointLight>>(m, "PointLight",
+      "A point light: intensity [W/sr] (number or RGB) from position [m]; E = I cos(theta)/r^2, power 4 pi I.")
+      .def(py::init([](const py::object& position, const py::object& intensity) {
+             return std::make_shared<PointLight>(to_point(position, "PointLight: position"), to_illuminant(intensity, "PointLight: intensity"));
+           }),
+           py::arg("position"), py::arg("intensity"))
+      .def_property_readonly("position", [](const PointLight& l) { return vector_to_array(l.position()); })
+      .def(py::pickle([](const PointLight& l) { return py::make_tuple(xyz(l.position()), color_state(l.intensity())); },
+                      [](const py::tuple& t) {
+                        check_state(t, 2, "PointLight");
+                        return std::make_shared<PointLight>(to_point(t[0], "position"), color_from_state(t[1]));
+                      }));
+
+  py::class_<SpotLight, Light, std::shared_ptr<SpotLight>>(m, "SpotLight",
+      "A spot light at position [m] shining along direction into a cone of full angle [deg] with intensity [W/sr]; "
+      "hard edge by default, a smoothstep falloff from inner_angle [deg] out to angle when inner_angle < angle.")
+      .def(py::init([](const py::object& position, const py::object& direction, double angle, const py::object& intensity,
+                       const py::object& inner_angle) {
+             return std::make_shared<SpotLight>(to_point(position, "SpotLight: position"), to_point(direction, "SpotLight: direction"), angle,
+                                                to_illuminant(intensity, "SpotLight: intensity"),
+                                                inner_angle.is_none() ? -1.0 : py::cast<double>(inner_angle));
+           }),
+           py::arg("position"), py::arg("direction"), py::arg("angle"), py::arg("intensity"), py::arg("inner_angle") = py::none())
+      .def_property_readonly("angle", &SpotLight::angle)
+      .def_property_readonly("inner_angle", &SpotLight::inner_angle)
+      .def(py::pickle(
+          [](const SpotLight& l) {
+            return py::make_tuple(xyz(l.position()), xyz(l.given_direction()), l.angle(), color_state(l.intensity()), l.inner_angle());
+          },
+          [](const py::tuple& t) {
+            check_state(t, 5, "SpotLight");
+            return std::make_shared<SpotLight>(to_point(t[0], "position"), to_point(t[1], "direction"), py::cast<double>(t[2]),
+                                               color_from_state(t[3]), py::cast<double>(t[4]));
+          }));
+
+  py::class_<SunLight, Light, std::shared_ptr<SunLight>>(m, "SunLight",
+      "The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] over the disc, angular_diameter "
+      "[deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).")
+      .def(py::init([](const py::object& direction, const py::object& radiance, double angular_diameter, double limb_darkening) {
+             return std::make_shared<SunLight>(to_point(direction, "SunLight: direction"), to_illuminant(radiance, "SunLight: radiance"),
+                                               angular_diameter, limb_darkening);
+           }),
+           py::arg("direction"), py::arg("radiance"), py::arg("angular_diameter") = 0.53, py::arg("limb_darkening") = 0.0)
+      .def_property_readonly("solid_angle", &SunLight::solid_angle, "Of the disc [sr].")
+      .def_property_readonly("direction", [](const SunLight& l) { return vector_to_array(l.direction()); })
+      .def_property_readonly("irradiance", [](const SunLight& l) { return vector_to_array(l.irradiance_rgb()); },
+          "RGB irradiance [W/m^2] on a surface facing the sun.")
+      .def(py::pickle(
+          [](const SunLight& l) {
+            return py::make_tuple(xyz(l.given_direction()), color_state(l.radiance()), l.angular_diameter(), l.limb_darkening());
+          },
+          [](const py::tuple& t) {
+            check_state(t, 4, "SunLight");
+            return std::make_shared<SunLight>(to_point(t[0], "direction"), color_from_state(t[1]), py::cast<double>(t[2]),
+                                              py::cast<double>(t[3]));
+          }));
+
+  py::class_<AreaLight, Light, std::shared_ptr<AreaLight>>(m, "AreaLight",
+      "An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) int, emission radiance [W/(m^2 sr)] from "
+      "the counter-clockwise front ((v1 - v0) x (v2 - v0)) or both sides.")
+      .def(py::init([](const py::object& vertices, const py::object& triangles, const py::object& emission, bool two_sided) {
+             Mesh mesh;
+             mesh.vertices = to_points(vertices, "AreaLight: vertices");
+             mesh.triangles = to_triangles(triangles, "AreaLight: triangles", mesh.vertices.size());
+             return std::make_shared<AreaLight>(std::move(mesh), to_illuminant(emission, "AreaLight: emission"), two_sided);
+           }),
+           py::arg("vertices"), py::arg("triangles"), py::arg("emission"), py::arg("two_sided") = false)
+      .def_property_readonly("area", &AreaLight::area, "Total area [m^2] (zero-area triangles count 0).")
+      .def_property_readonly("two_sided", &AreaLight::two_sided)
+      .def("normal", [](const AreaLight& l, size_t t) {
+             if (t >= l.mesh().triangles.size()) throw_invalid("triangle must be < ", l.mesh().triangles.size(), " (got ", t, ")");
+             return vector_to_array(l.normal(t));
+           }, py::arg("triangle"), "The front normal of a triangle (unit; 0 for a zero-area one).")
+      .def(py::pickle([](const AreaLight& l) { return py::make_tuple(mesh_state(l.mesh()), color_state(l.emission()), l.two_sided()); },
+                      [](const py::tuple& t) {
+                        check_state(t, 3, "AreaLight");
+                        return std::make_shared<AreaLight>(mesh_from_state(t[0]), color_from_state(t[1]), py::cast<bool>(t[2]));
+                      }));
+
+  py::class_<SphereLight, Light, std::shared_ptr<SphereLight>>(m, "SphereLight",
+      "An emissive sphere: centre [m], radius [m], emission radiance [W/(m^2 sr)] outward; power 4 pi^2 r^2 L.")
+      .def(py::init([](const py::object& centre, double radius, const py::object& emission) {
+             return std::make_shared<SphereLight>(to_point(centre, "SphereLight: centre"), radius, to_illuminant(emission, "SphereLight: emission"));
+           }),
+           py::arg("centre"), py::arg("radius"), py::arg("emission"))
+      .def_property_readonly("radius", &SphereLight::radius)
+      .def(py::pickle([](const SphereLight& l) { return py::make_tuple(xyz(l.centre()), l.radius(), color_state(l.emission())); },
+                      [](const py::tuple& t) {
+                        check_state(t, 3, "SphereLight");
+                        return std::make_shared<SphereLight>(to_point(t[0], "centre"), py::cast<double>(t[1]), color_from_state(t[2]));
+                      }));
+
+}
+
+// The lights at infinity: environment maps and the constant environment.
+void bind_environment_lights(py::module_& m) {
+  py::class_<EnvironmentLight, Light, std::shared_ptr<EnvironmentLight>>(m, "EnvironmentLight",
+      "An equirectangular environment map (H, W, 3) float linear RGB, rows top (up, +y) to bottom, times scale; "
+      "rotation: degrees about +y or a 3 x 3 map-to-world rotation. Mitsuba 3's envmap orientation: "
+      "u = atan2(d.x, -d.z)/(2 pi) wrapped to [0, 1), v = acos(d.y)/pi (d in the map's frame); column i at "
+      "u = (i + 1/2)/W, row j at v = j/(H - 1), bilinear.")
+      .def(py::init([](const py::object& image, double scale, const py::object& rotation) {
+             return std::make_shared<EnvironmentLight>(to_image(image, "EnvironmentLight: image"), scale, to_rotation(rotation, "rotation"));
+           }),
+           py::arg("image"), py::arg("scale") = 1.0, py::arg("rotation") = py::none())
+      .def("direction_to_uv", [](const EnvironmentLight& l, const py::object& dirs) {
+             const std::vector<Vec3d> d = to_points(dirs, "dirs");
+             DoubleArray out({py::ssize_t(d.size()), py::ssize_t(2)});
+             for (size_t i = 0; i < d.size(); ++i) {
+               const Vec2d uv = l.direction_to_uv(d[i].normalized());
+               out.mutable_at(i, 0) = uv.x(), out.mutable_at(i, 1) = uv.y();
+             }
+             return out;
+           }, py::arg("dirs"), "(u, v) (N, 2) of directions (N, 3) (normalised here).")
+      .def("uv_to_direction", [](const EnvironmentLight& l, const DoubleArray& uv) {
+             if (uv.ndim() != 2 || uv.shape(1) != 2) throw_invalid("uv must have shape (N, 2)");
+             std::vector<Vec3d> d(uv.shape(0));
+             for (size_t i = 0; i < d.size(); ++i) {
+               if (!std::isfinite(uv.at(i, 0)) || !std::isfinite(uv.at(i, 1))) throw_invalid("uv must be finite");
+               d[i] = l.uv_to_direction(Vec2d(uv.at(i, 0), uv.at(i, 1)));
+             }
+             return points_to_array(d);
+           }, py::arg("uv"), "World directions (N, 3) of (u, v) (N, 2).")
+      .def_static("rotation_about_y", [](double degrees) { return matrix_to_array(EnvironmentLight::rotation_about_y(degrees)); },
+          py::arg("degrees"),
+          "The 3 x 3 rotation about +y by degrees (right-handed: +x turns toward -z).")
+      .def_property_readonly("scale", &EnvironmentLight::scale)
+      .def_property_readonly("rotation", [](const EnvironmentLight& l) { return matrix_to_array(l.rotation()); },
+          "The 3 x 3 rotation, map frame -> world.")
+      .def(py::pickle(
+          [](const EnvironmentLight& l) -> py::tuple {
+            // A map read from a file travels as its path (the file must be readable where it is unpickled).
+            if (!l.source().empty()) return py::make_tuple(l.source(), l.scale(), matrix_to_array(l.rotation()));
+            py::array_t<float> image({py::ssize_t(l.height()), py::ssize_t(l.width()), py::ssize_t(3)});
+            float* p = image.mutable_data();
+            for (const Vec3d& texel : l.texels()) {
+              for (int k = 0; k < 3; ++k) *p++ = float(texel[k]);  // exact: the texels came from floats
+            }
+            return py::make_tuple(image, l.scale(), matrix_to_array(l.rotation()));
+          },
+          [](const py::tuple& t) {
+            check_state(t, 3, "EnvironmentLight");
+            if (py::isinstance<py::str>(t[0])) {
+              return environment_from_file(py::cast<std::string>(t[0]), py::cast<double>(t[1]), to_rotation(t[2], "rotation"));
+            }
+            return std::make_shared<EnvironmentLight>(to_image(t[0], "EnvironmentLight: image"), py::cast<double>(t[1]), to_rotation(t[2], "rotation"));
+          }));
+
+  py::class_<ConstantEnvironment, Light, std::shared_ptr<ConstantEnvironment>>(m, "ConstantEnvironment",
+      "Uniform radiance [W/(m^2 sr)] from every direction; sampling 'cosine' (about the point's normal, when given) "
+      "or 'uniform' (the sphere). Irradiance pi L.")
+      .def(py::init([](const py::object& radiance, const std::string& sampling) {
+             if (sampling != "cosine" && sampling != "uniform") throw_invalid("ConstantEnvironment: sampling must be 'cosine' or 'uniform' (got '", sampling, "')");
+             return std::make_shared<ConstantEnvironment>(to_illuminant(radiance, "ConstantEnvironment: radiance"),
+                 sampling == "cosine" ? ConstantEnvironment::Sampling::kCosine : ConstantEnvironment::Sampling::kUniform);
+           }),
+           py::arg("radiance"), py::arg("sampling") = "cosine")
+      .def(py::pickle([](const ConstantEnvironment& l) { return py::make_tuple(color_state(l.radiance()), int(l.sampling())); },
+                      [](const py::tuple& t) {
+                        check_state(t, 2, "ConstantEnvironment");
+                        return std::make_shared<ConstantEnvironment>(color_from_state(t[0]), ConstantEnvironment::Sampling(py::cast<int>(t[1])));
+                      }));
+
 }
 
 }  // namespace
@@ -232,194 +305,6 @@ void bind_lights(py::module_& m) {
           "Area lights: RGB radiance (N, 3) leaving points (N, 3) with the light's front normals (N, 3) toward unit dirs (N, 3).")
       .def("__repr__", &Light::describe);
 
-  py::class_<PointLight, Light, std::shared_ptr<PointLight>>(m, "PointLight",
-      "A point light: intensity [W/sr] (number or RGB) from position [m]; E = I cos(theta)/r^2, power 4 pi I.")
-      .def(py::init([](const py::object& position, const py::object& intensity) {
-             return std::make_shared<PointLight>(to_point(position, "PointLight: position"), illuminant_from(intensity, "PointLight: intensity"));
-           }),
-           py::arg("position"), py::arg("intensity"))
-      .def_property_readonly("position", [](const PointLight& l) { return points_to_array({l.position()}).attr("reshape")(3); })
-      .def(py::pickle([](const PointLight& l) { return py::make_tuple(xyz(l.position()), color_state(l.intensity())); },
-                      [](const py::tuple& t) {
-                        check_state(t, 2, "PointLight");
-                        return std::make_shared<PointLight>(to_point(t[0], "position"), color_from_state(t[1]));
-                      }));
-
-  py::class_<SpotLight, Light, std::shared_ptr<SpotLight>>(m, "SpotLight",
-      "A spot light at position [m] shining along direction into a cone of full angle [deg] with intensity [W/sr]; "
-      "hard edge by default, a smoothstep falloff from inner_angle [deg] out to angle when inner_angle < angle.")
-      .def(py::init([](const py::object& position, const py::object& direction, double angle, const py::object& intensity,
-                       const py::object& inner_angle) {
-             return std::make_shared<SpotLight>(to_point(position, "SpotLight: position"), to_point(direction, "SpotLight: direction"), angle,
-                                                illuminant_from(intensity, "SpotLight: intensity"),
-                                                inner_angle.is_none() ? -1.0 : py::cast<double>(inner_angle));
-           }),
-           py::arg("position"), py::arg("direction"), py::arg("angle"), py::arg("intensity"), py::arg("inner_angle") = py::none())
-      .def_property_readonly("angle", &SpotLight::angle)
-      .def_property_readonly("inner_angle", &SpotLight::inner_angle)
-      .def(py::pickle(
-          [](const SpotLight& l) {
-            return py::make_tuple(xyz(l.position()), xyz(l.given_direction()), l.angle(), color_state(l.intensity()), l.inner_angle());
-          },
-          [](const py::tuple& t) {
-            check_state(t, 5, "SpotLight");
-            return std::make_shared<SpotLight>(to_point(t[0], "position"), to_point(t[1], "direction"), py::cast<double>(t[2]),
-                                               color_from_state(t[3]), py::cast<double>(t[4]));
-          }));
-
-  py::class_<SunLight, Light, std::shared_ptr<SunLight>>(m, "SunLight",
-      "The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] over the disc, angular_diameter "
-      "[deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).")
-      .def(py::init([](const py::object& direction, const py::object& radiance, double angular_diameter, double limb_darkening) {
-             return std::make_shared<SunLight>(to_point(direction, "SunLight: direction"), illuminant_from(radiance, "SunLight: radiance"),
-                                               angular_diameter, limb_darkening);
-           }),
-           py::arg("direction"), py::arg("radiance"), py::arg("angular_diameter") = 0.53, py::arg("limb_darkening") = 0.0)
-      .def_property_readonly("solid_angle", &SunLight::solid_angle, "Of the disc [sr].")
-      .def_property_readonly("direction", [](const SunLight& l) { return points_to_array({l.direction()}).attr("reshape")(3); })
-      .def_property_readonly("irradiance", [](const SunLight& l) { return points_to_array({l.irradiance_rgb()}).attr("reshape")(3); },
-          "RGB irradiance [W/m^2] on a surface facing the sun.")
-      .def(py::pickle(
-          [](const SunLight& l) {
-            return py::make_tuple(xyz(l.given_direction()), color_state(l.radiance()), l.angular_diameter(), l.limb_darkening());
-          },
-          [](const py::tuple& t) {
-            check_state(t, 4, "SunLight");
-            return std::make_shared<SunLight>(to_point(t[0], "direction"), color_from_state(t[1]), py::cast<double>(t[2]),
-                                              py::cast<double>(t[3]));
-          }));
-
-  py::class_<AreaLight, Light, std::shared_ptr<AreaLight>>(m, "AreaLight",
-      "An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) int, emission radiance [W/(m^2 sr)] from "
-      "the counter-clockwise front ((v1 - v0) x (v2 - v0)) or both sides.")
-      .def(py::init([](const py::object& vertices, const py::object& triangles, const py::object& emission, bool two_sided) {
-             Mesh mesh;
-             mesh.vertices = to_points(vertices, "AreaLight: vertices");
-             py::array_t<long long, py::array::c_style | py::array::forcecast> tri;
-             try {
-               tri = py::cast<py::array_t<long long, py::array::c_style | py::array::forcecast>>(triangles);
-             } catch (const py::cast_error&) {
-               throw_invalid("AreaLight: triangles must be an integer array of shape (T, 3)");
-             }
-             if (tri.ndim() != 2 || tri.shape(1) != 3) throw_invalid("AreaLight: triangles must have shape (T, 3)");
-             for (py::ssize_t t = 0; t < tri.shape(0); ++t) {
-               std::array<int, 3> ids;
-               for (int k = 0; k < 3; ++k) {
-                 const long long id = tri.at(t, k);
-                 if (id < 0 || id >= (long long)mesh.vertices.size()) throw_invalid("AreaLight: triangles[", t, "] indexes vertex ", id, " of ", mesh.vertices.size());
-                 ids[k] = int(id);
-               }
-               mesh.triangles.push_back(ids);
-             }
-             return std::make_shared<AreaLight>(std::move(mesh), illuminant_from(emission, "AreaLight: emission"), two_sided);
-           }),
-           py::arg("vertices"), py::arg("triangles"), py::arg("emission"), py::arg("two_sided") = false)
-      .def_property_readonly("area", &AreaLight::area, "Total area [m^2] (zero-area triangles count 0).")
-      .def_property_readonly("two_sided", &AreaLight::two_sided)
-      .def("normal", [](const AreaLight& l, size_t t) {
-             if (t >= l.mesh().triangles.size()) throw_invalid("triangle must be < ", l.mesh().triangles.size(), " (got ", t, ")");
-             return points_to_array({l.normal(t)}).attr("reshape")(3);
-           }, py::arg("triangle"), "The front normal of a triangle (unit; 0 for a zero-area one).")
-      .def(py::pickle([](const AreaLight& l) { return py::make_tuple(mesh_state(l.mesh()), color_state(l.emission()), l.two_sided()); },
-                      [](const py::tuple& t) {
-                        check_state(t, 3, "AreaLight");
-                        return std::make_shared<AreaLight>(mesh_from_state(t[0]), color_from_state(t[1]), py::cast<bool>(t[2]));
-                      }));
-
-  py::class_<SphereLight, Light, std::shared_ptr<SphereLight>>(m, "SphereLight",
-      "An emissive sphere: centre [m], radius [m], emission radiance [W/(m^2 sr)] outward; power 4 pi^2 r^2 L.")
-      .def(py::init([](const py::object& centre, double radius, const py::object& emission) {
-             return std::make_shared<SphereLight>(to_point(centre, "SphereLight: centre"), radius, illuminant_from(emission, "SphereLight: emission"));
-           }),
-           py::arg("centre"), py::arg("radius"), py::arg("emission"))
-      .def_property_readonly("radius", &SphereLight::radius)
-      .def(py::pickle([](const SphereLight& l) { return py::make_tuple(xyz(l.centre()), l.radius(), color_state(l.emission())); },
-                      [](const py::tuple& t) {
-                        check_state(t, 3, "SphereLight");
-                        return std::make_shared<SphereLight>(to_point(t[0], "centre"), py::cast<double>(t[1]), color_from_state(t[2]));
-                      }));
-
-  py::class_<EnvironmentLight, Light, std::shared_ptr<EnvironmentLight>>(m, "EnvironmentLight",
-      "An equirectangular environment map (H, W, 3) float linear RGB, rows top (up, +y) to bottom, times scale; "
-      "rotation: degrees about +y or a 3 x 3 map-to-world rotation. Mitsuba 3's envmap orientation: "
-      "u = atan2(d.x, -d.z)/(2 pi) wrapped to [0, 1), v = acos(d.y)/pi (d in the map's frame); column i at "
-      "u = (i + 1/2)/W, row j at v = j/(H - 1), bilinear.")
-      .def(py::init([](const py::object& image, double scale, const py::object& rotation) {
-             return std::make_shared<EnvironmentLight>(image_from(image), scale, rotation_from(rotation));
-           }),
-           py::arg("image"), py::arg("scale") = 1.0, py::arg("rotation") = py::none())
-      .def("direction_to_uv", [](const EnvironmentLight& l, const py::object& dirs) {
-             const std::vector<Vec3d> d = to_points(dirs, "dirs");
-             DoubleArray out({py::ssize_t(d.size()), py::ssize_t(2)});
-             for (size_t i = 0; i < d.size(); ++i) {
-               const Vec2d uv = l.direction_to_uv(d[i].normalized());
-               out.mutable_at(i, 0) = uv.x(), out.mutable_at(i, 1) = uv.y();
-             }
-             return out;
-           }, py::arg("dirs"), "(u, v) (N, 2) of directions (N, 3) (normalised here).")
-      .def("uv_to_direction", [](const EnvironmentLight& l, const DoubleArray& uv) {
-             if (uv.ndim() != 2 || uv.shape(1) != 2) throw_invalid("uv must have shape (N, 2)");
-             std::vector<Vec3d> d(uv.shape(0));
-             for (size_t i = 0; i < d.size(); ++i) {
-               if (!std::isfinite(uv.at(i, 0)) || !std::isfinite(uv.at(i, 1))) throw_invalid("uv must be finite");
-               d[i] = l.uv_to_direction(Vec2d(uv.at(i, 0), uv.at(i, 1)));
-             }
-             return points_to_array(d);
-           }, py::arg("uv"), "World directions (N, 3) of (u, v) (N, 2).")
-      .def_static("rotation_about_y", [](double degrees) {
-             const Mat3d r = EnvironmentLight::rotation_about_y(degrees);
-             DoubleArray out({py::ssize_t(3), py::ssize_t(3)});
-             for (int i = 0; i < 3; ++i) {
-               for (int j = 0; j < 3; ++j) out.mutable_at(i, j) = r(i, j);
-             }
-             return out;
-           }, py::arg("degrees"),
-          "The 3 x 3 rotation about +y by degrees (right-handed: +x turns toward -z).")
-      .def_property_readonly("scale", &EnvironmentLight::scale)
-      .def_property_readonly("rotation", [](const EnvironmentLight& l) {
-             DoubleArray out({py::ssize_t(3), py::ssize_t(3)});
-             for (int i = 0; i < 3; ++i) {
-               for (int j = 0; j < 3; ++j) out.mutable_at(i, j) = l.rotation()(i, j);
-             }
-             return out;
-           }, "The 3 x 3 rotation, map frame -> world.")
-      .def(py::pickle(
-          [](const EnvironmentLight& l) -> py::tuple {
-            // A map read from a file travels as its path (the file must be readable where it is unpickled).
-            if (!l.source().empty()) return py::make_tuple(l.source(), l.scale(), matrix_array(l.rotation()));
-            py::array_t<float> image({py::ssize_t(l.height()), py::ssize_t(l.width()), py::ssize_t(3)});
-            float* p = image.mutable_data();
-            for (const Vec3d& texel : l.texels()) {
-              for (int k = 0; k < 3; ++k) *p++ = float(texel[k]);  // exact: the texels came from floats
-            }
-            return py::make_tuple(image, l.scale(), matrix_array(l.rotation()));
-          },
-          [](const py::tuple& t) {
-            check_state(t, 3, "EnvironmentLight");
-            if (py::isinstance<py::str>(t[0])) {
-              const std::string path = py::cast<std::string>(t[0]);
-              auto light = std::make_shared<EnvironmentLight>(read_image(path), py::cast<double>(t[1]), rotation_from(t[2]));
-              light->set_source(path);
-              return light;
-            }
-            return std::make_shared<EnvironmentLight>(image_from(t[0]), py::cast<double>(t[1]), rotation_from(t[2]));
-          }));
-
-  py::class_<ConstantEnvironment, Light, std::shared_ptr<ConstantEnvironment>>(m, "ConstantEnvironment",
-      "Uniform radiance [W/(m^2 sr)] from every direction; sampling 'cosine' (about the point's normal, when given) "
-      "or 'uniform' (the sphere). Irradiance pi L.")
-      .def(py::init([](const py::object& radiance, const std::string& sampling) {
-             if (sampling != "cosine" && sampling != "uniform") throw_invalid("ConstantEnvironment: sampling must be 'cosine' or 'uniform' (got '", sampling, "')");
-             return std::make_shared<ConstantEnvironment>(illuminant_from(radiance, "ConstantEnvironment: radiance"),
-                 sampling == "cosine" ? ConstantEnvironment::Sampling::kCosine : ConstantEnvironment::Sampling::kUniform);
-           }),
-           py::arg("radiance"), py::arg("sampling") = "cosine")
-      .def(py::pickle([](const ConstantEnvironment& l) { return py::make_tuple(color_state(l.radiance()), int(l.sampling())); },
-                      [](const py::tuple& t) {
-                        check_state(t, 2, "ConstantEnvironment");
-                        return std::make_shared<ConstantEnvironment>(color_from_state(t[0]), ConstantEnvironment::Sampling(py::cast<int>(t[1])));
-                      }));
-
   py::class_<LightSampler>(m, "LightSampler",
       "Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it after "
       "preprocess() of infinite lights.")
@@ -429,12 +314,11 @@ void bind_lights(py::module_& m) {
            }),
            py::arg("lights"), py::arg("strategy") = "power")
       .def("sample", [](const LightSampler& s, const py::object& u_object) {
-             const std::vector<double> u = to_values(u_object, "u");
-             py::array_t<long long> index(py::ssize_t(u.size()));
-             std::vector<double> p(u.size());
-             for (size_t i = 0; i < u.size(); ++i) {
-               if (!(u[i] >= 0.0 && u[i] < 1.0)) throw_invalid("u[", i, "] must be in [0, 1) (got ", u[i], ")");
-               const auto chosen = s.sample(u[i]);
+             const Samples u = to_samples(u_object, "u", 1);
+             py::array_t<long long> index(py::ssize_t(u.rows));
+             std::vector<double> p(u.rows);
+             for (size_t i = 0; i < u.rows; ++i) {
+               const auto chosen = s.sample(u.values[i]);
                if (!chosen) throw_invalid("LightSampler: no lights to sample");
                index.mutable_at(i) = (long long)chosen->index, p[i] = chosen->probability;
              }
@@ -450,6 +334,8 @@ void bind_lights(py::module_& m) {
                         }
                         return LightSampler(py::cast<std::vector<LightPtr>>(t[0]), LightSampler::Strategy(strategy));
                       }));
+  bind_finite_lights(m);
+  bind_environment_lights(m);
 }
 
 }  // namespace refracta

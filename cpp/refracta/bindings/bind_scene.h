@@ -1,4 +1,5 @@
-// What the scene and render bindings share: the Python-side scene (geometry + lights).
+// What the scene, camera, image and render bindings share: the Python-side scene (geometry +
+// lights) and float32 images.
 #pragma once
 
 #include "refracta/bindings/bindings.h"
@@ -7,9 +8,16 @@
 #include "refracta/render/render_scene.h"
 #include "refracta/scene/embree_scene.h"
 
+#include <memory>
+
 namespace refracta {
 
 py::array_t<float> image_to_float32(const Image& image);
 py::array_t<float> image_to_float32(Image&& image);  // without copying the pixels
+
+// Called by bind_scene.
+void bind_scene_lights(py::class_<RenderScene, std::shared_ptr<RenderScene>>& scene);  // bind_scene_lights.cpp
+void bind_camera(py::module_& m);                                                     // bind_camera.cpp
+void bind_image_io(py::module_& m);                                                   // bind_image_io.cpp
 
 }  // namespace refracta

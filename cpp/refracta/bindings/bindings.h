@@ -1,6 +1,7 @@
-// Shared declarations of the binding files, and numpy <-> Eigen conversions.
+// Shared declarations of the binding files (conversions: convert.h).
 #pragma once
 
+#include "refracta/bindings/convert.h"  // the converters every binding uses
 #include "refracta/core/error.h"
 #include "refracta/core/math.h"
 
@@ -11,9 +12,6 @@
 #include <vector>
 
 namespace refracta {
-
-namespace py = pybind11;
-using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 void bind_core(py::module_& m);
 void bind_media(py::module_& m);
@@ -32,16 +30,5 @@ void bind_runtime(py::module_& m);
 // Moves the queued messages of Ceres (glog) to Python's logging; call with the GIL held.
 void emit_library_log();
 
-// Any array-like of real numbers (bool, integer or float dtype) as a C-contiguous double array;
-// ValueError naming `what` for complex, string or object data (numpy would cast those silently).
-DoubleArray real_array(const py::handle& object, const char* what);
-// (N, 3) or (3,) float array -> points; ValueError naming `what` for other shapes or NaN.
-std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single = nullptr);
-Vec3d to_point(const py::handle& object, const char* what);
-// (N,) or scalar float array -> values.
-std::vector<double> to_values(const py::handle& object, const char* what, bool* single = nullptr);
-
-DoubleArray points_to_array(const std::vector<Vec3d>& points);
-DoubleArray values_to_array(const std::vector<double>& values);
 
 }  // namespace refracta

@@ -4,6 +4,8 @@
 #include "refracta/core/error.h"
 #include "refracta/shading/physical_sky.h"
 #include "refracta/shading/scaled_light.h"
+#include "refracta/shading/spot_light.h"
+#include "refracta/shading/sun_light.h"
 
 #include <algorithm>
 #include <cmath>
@@ -52,6 +54,31 @@ size_t RenderScene::add_light(LightPtr light, int emitter) {
 
 void RenderScene::remove_infinite_lights() {
   remove_lights_if([](const Light& light) { return light.is_infinite(); });
+}
+
+const SunLight* RenderScene::sun() const {
+  for (const LightPtr& light : lights_) {
+    if (const auto* sun = dynamic_cast<const SunLight*>(light.get())) return sun;
+  }
+  return nullptr;
+}
+
+std::vector<const SpotLight*> RenderScene::spots() const {
+  std::vector<const SpotLight*> out;
+  for (const LightPtr& light : lights_) {
+    if (const auto* spot = dynamic_cast<const SpotLight*>(light.get())) out.push_back(spot);
+  }
+  return out;
+}
+
+void RenderScene::set_sun(LightPtr sun) {
+  remove_lights_if([](const Light& light) { return dynamic_cast<const SunLight*>(&light) != nullptr; });
+  if (sun) add_light(std::move(sun));
+}
+
+void RenderScene::set_sky(LightPtr sky) {
+  remove_lights_if([](const Light& light) { return light.is_infinite() && !dynamic_cast<const SunLight*>(&light); });
+  if (sky) add_light(std::move(sky));
 }
 
 void RenderScene::enable_aerial_perspective() {

@@ -13,6 +13,9 @@
 
 namespace refracta {
 
+class SpotLight;
+class SunLight;
+
 class RenderScene {
  public:
   Scene geometry;
@@ -39,6 +42,16 @@ class RenderScene {
   }
   // Removes every infinite light (set_environment / set_sky / set_physical_sky replace them).
   void remove_infinite_lights();
+
+  // The lights by role (render_scene.cpp is the one place that tells them apart by type):
+  // the sun (the first SunLight) or null, and the spot lights in the order they were added
+  // (render_raster's `lights=` numbers them so).
+  const SunLight* sun() const;
+  std::vector<const SpotLight*> spots() const;
+  // Replaces the sun (null: none), keeping the sky.
+  void set_sun(LightPtr sun);
+  // Replaces every infinite light but the sun (the sky or environment; null: none).
+  void set_sky(LightPtr sky);
   // Removes lights for which `drop` is true (keeps area-light links consistent).
   template <class Predicate>
   void remove_lights_if(const Predicate& drop);

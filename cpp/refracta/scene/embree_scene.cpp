@@ -316,6 +316,17 @@ Mesh ground_mesh(double height, double half_size) {
   return mesh;
 }
 
+Mesh ground_mesh(double height, double half_size, double texture_size) {
+  // float texture coordinates keep no fraction of a repeat beyond 2^23 repeats (1e40 repeats gave
+  // NaN pixels): at most 1e6 across the ground keeps 4 fractional bits.
+  if (!(texture_size > 0.0) || !std::isfinite(texture_size) || !(half_size / texture_size <= 1e6)) {
+    throw_invalid("texture_size must be > 0 and at least size / 2e6 = ", half_size / 1e6, " m (got ", texture_size, ")");
+  }
+  Mesh mesh = ground_mesh(height, half_size);
+  for (const auto& v : mesh.vertices) mesh.uvs.emplace_back(v.x() / texture_size, -v.z() / texture_size);
+  return mesh;
+}
+
 Mesh box_mesh(const Vec3d& centre, const Vec3d& size) {
   if (!is_finite(centre) || !(size.minCoeff() > 0.0)) throw_invalid("box: size must be > 0 and centre finite");
   Mesh mesh;
@@ -325,6 +336,19 @@ Mesh box_mesh(const Vec3d& centre, const Vec3d& size) {
   }
   mesh.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                     {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return mesh;
+}
+
+Mesh billboard_mesh(const Vec3d& centre, double width, double height, const Vec3d& facing) {
+  Vec3d across(facing.z(), 0.0, -facing.x());  // horizontal, perpendicular to facing
+  if (!(across.norm() > 0.0)) throw_invalid("facing must have a horizontal component");
+  if (!(width > 0.0) || !(height > 0.0)) throw_invalid("width and height must be > 0");
+  across = across.normalized() * (0.5 * width);
+  const Vec3d up(0.0, 0.5 * height, 0.0);
+  Mesh mesh;
+  mesh.vertices = {centre - across - up, centre + across - up, centre + across + up, centre - across + up};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.uvs = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}};
   return mesh;
 }
 

@@ -140,7 +140,12 @@ class Scene {
 
 // Shapes a mirage scene needs, as triangle meshes.
 Mesh ground_mesh(double height, double half_size);                 // a square at y = height
+// The same with texture coordinates repeating every texture_size [m] (u along +x, v along -z).
+Mesh ground_mesh(double height, double half_size, double texture_size);
 Mesh box_mesh(const Vec3d& centre, const Vec3d& size);             // axis-aligned box
+// An upright rectangle width x height [m] centred at `centre`, its front (counter-clockwise, uvs
+// (0, 0) bottom left to (1, 1) top right) toward the horizontal part of `facing`: a photo in the scene.
+Mesh billboard_mesh(const Vec3d& centre, double width, double height, const Vec3d& facing);
 Mesh sphere_mesh(const Vec3d& centre, double radius, int segments, int rings);  // a UV sphere
 
 }  // namespace refracta

@@ -111,31 +111,25 @@ double display_exposure(const Image& image, const DisplaySettings& s) {
 }
 
 void DisplaySettings::validate() const {
-  std::vector<std::string> problems;
-  if (exposure && (!(*exposure > 0.0) || !std::isfinite(*exposure))) {
-    problems.push_back(concat("exposure must be > 0 and finite (got ", *exposure, ")"));
-  }
-  if (ev100 && !std::isfinite(*ev100)) problems.push_back(concat("ev100 must be finite (got ", *ev100, ")"));
+  Problems problems("display settings");
+  problems.check(!exposure || (*exposure > 0.0 && std::isfinite(*exposure)), "exposure must be > 0 and finite (got ",
+                 exposure.value_or(0.0), ")");
+  problems.check(!ev100 || std::isfinite(*ev100), "ev100 must be finite (got ", ev100.value_or(0.0), ")");
   auto positive = [&](const std::optional<double>& v, const char* name) {
-    if (v && (!(*v > 0.0) || !std::isfinite(*v))) problems.push_back(concat(name, " must be > 0 and finite (got ", *v, ")"));
+    problems.check(!v || (*v > 0.0 && std::isfinite(*v)), name, " must be > 0 and finite (got ", v.value_or(0.0), ")");
   };
   positive(iso, "iso");
   positive(shutter, "shutter");
   positive(f_number, "f_number");
   positive(luminous_efficacy, "luminous_efficacy");
-  if ((iso || shutter || f_number) && !(shutter && f_number)) {
-    problems.push_back("a camera's exposure needs both shutter [s] and f_number (iso defaults to 100)");
-  }
-  if (int(exposure.has_value()) + int(ev100.has_value()) + int(shutter || f_number || iso) > 1) {
-    problems.push_back("give one manual exposure: exposure, ev100, or shutter and f_number (with iso)");
-  }
-  if (key && (!(*key > 0.0) || !std::isfinite(*key))) problems.push_back(concat("key must be > 0 and finite (got ", *key, ")"));
-  if (white && (!(*white > 0.0) || std::isnan(*white))) problems.push_back(concat("white must be > 0 (got ", *white, ")"));
-  if (transfer == Transfer::kGamma && !(gamma >= 1.0 && gamma <= 3.0)) problems.push_back(concat("gamma must be in [1, 3] (got ", gamma, ")"));
-  if (problems.empty()) return;
-  std::string message;
-  for (const auto& p : problems) message += (message.empty() ? "" : "; ") + p;
-  throw_invalid(message);
+  problems.check(!(iso || shutter || f_number) || (shutter && f_number),
+                 "a camera's exposure needs both shutter [s] and f_number (iso defaults to 100)");
+  problems.check(int(exposure.has_value()) + int(ev100.has_value()) + int(shutter || f_number || iso) <= 1,
+                 "give one manual exposure: exposure, ev100, or shutter and f_number (with iso)");
+  problems.check(!key || (*key > 0.0 && std::isfinite(*key)), "key must be > 0 and finite (got ", key.value_or(0.0), ")");
+  problems.check(!white || *white > 0.0, "white must be > 0 (got ", white.value_or(0.0), ")");
+  problems.check(transfer != Transfer::kGamma || (gamma >= 1.0 && gamma <= 3.0), "gamma must be in [1, 3] (got ", gamma, ")");
+  problems.throw_if_any();
 }
 
 double log_average_luminance(const Image& image, double exposure) {

@@ -230,7 +230,7 @@ def test_bsdf(
 
     def sample(u):
         s = material.sample(np.broadcast_to(wo, u.shape).copy(), u, **eval_kwargs)
-        return s["wi"], s["valid"] & ~s["is_delta"]
+        return s.wi, s.valid & ~s.is_delta
 
     def pdf(wi):
         return material.pdf(wo, wi, **eval_kwargs)

@@ -1,0 +1,211 @@
+// Python bindings of the camera (scene/camera.h): pinhole, thin lens, the photographer's
+// constructors and the geometric jitter.
+#include "refracta/bindings/bind_scene.h"
+
+#include <cmath>
+#include <utility>
+
+namespace refracta {
+
+namespace {
+
+using Sensor = std::pair<double, double>;  // (width, height) [mm]
+
+// Camera.framing's first argument: a Scene (its bounds) or (lower, upper) corners.
+std::pair<Vec3d, Vec3d> bounds_of(const py::object& scene_or_bounds) {
+  py::object bounds = scene_or_bounds;
+  if (py::isinstance<RenderScene>(scene_or_bounds)) bounds = scene_or_bounds.attr("bounds");
+  if (!py::isinstance<py::sequence>(bounds) || py::isinstance<py::str>(bounds)) {
+    throw_invalid("Camera.framing: give a Scene or its bounds (lower, upper)");
+  }
+  if (py::len(bounds) != 2) throw_invalid("Camera.framing: bounds must be (lower, upper)");
+  return {to_point(bounds[py::int_(0)], "bounds[0]"), to_point(bounds[py::int_(1)], "bounds[1]")};
+}
+
+void check_pixel(double u, double v) {
+  if (!std::isfinite(u) || !std::isfinite(v)) throw_invalid("u and v must be finite");
+}
+
+// Pickled as its constructor's arguments (and jitter, and lens): the copy's rays are bit-identical.
+py::tuple camera_state(const Camera& c) {
+  auto xyz = [](const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); };
+  return py::make_tuple(xyz(c.position()), xyz(c.look_at()), xyz(c.up_hint()), c.vfov(), c.width(), c.height(),
+                        c.jitter(), c.aperture_diameter(), c.focus_distance());
+}
+
+Camera camera_from_state(const py::tuple& t) {
+  if (t.size() != 6 && t.size() != 7 && t.size() != 9) throw_invalid("Camera: bad pickle state (", t.size(), " items)");
+  Camera camera(to_point(t[0], "position"), to_point(t[1], "look_at"), to_point(t[2], "up"), py::cast<double>(t[3]),
+                py::cast<int>(t[4]), py::cast<int>(t[5]));
+  if (t.size() >= 7) {
+    auto angles = py::cast<std::vector<float>>(t[6]);
+    if (!angles.empty()) camera = camera.jittered(std::move(angles));
+  }
+  if (t.size() == 9 && py::cast<double>(t[7]) > 0.0) camera = camera.with_lens(py::cast<double>(t[7]), py::cast<double>(t[8]));
+  return camera;
+}
+
+Camera jittered(const Camera& c, const py::object& angles) {
+  using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+  const FloatArray map = py::cast<FloatArray>(angles);
+  if (map.ndim() != 3 || map.shape(0) != c.height() || map.shape(1) != c.width() || map.shape(2) != 2) {
+    throw_invalid("Camera.jittered: angles must have shape (height, width, 2) = (", c.height(), ", ", c.width(), ", 2)");
+  }
+  return c.jittered(std::vector<float>(map.data(), map.data() + map.size()));
+}
+
+py::object jitter_array(const Camera& c) {
+  if (c.jitter().empty()) return py::none();
+  py::array_t<float> out({py::ssize_t(c.height()), py::ssize_t(c.width()), py::ssize_t(2)});
+  std::copy(c.jitter().begin(), c.jitter().end(), out.mutable_data());
+  return std::move(out);
+}
+
+std::string camera_repr(const Camera& c) {
+  const std::string lens = c.aperture_diameter() > 0.0
+                               ? concat(", aperture_diameter=", c.aperture_diameter(), ", focus_distance=", c.focus_distance())
+                               : std::string();
+  return concat("Camera(position=(", c.position().x(), ", ", c.position().y(), ", ", c.position().z(), "), vfov=",
+                c.vfov(), ", size=", c.width(), "x", c.height(), lens, ")");
+}
+
+// The photographer's constructors: framing, photographic, eye_level.
+void bind_camera_constructors(py::class_<Camera>& camera) {
+  camera.def_static(
+      "framing",
+      [](const py::object& scene_or_bounds, const py::object& direction, double vfov, int width, int height,
+         const py::object& up) {
+        const auto [lower, upper] = bounds_of(scene_or_bounds);
+        return Camera::framing(lower, upper, to_point(direction, "direction"), to_point(up, "up"), vfov, width, height);
+      },
+      py::arg("scene_or_bounds"), py::arg("direction") = py::make_tuple(-1.0, -0.5, -1.0), py::arg("vfov") = 45.0,
+      py::arg("width") = 640, py::arg("height") = 360, py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
+      R"doc(A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
+onto the box from its +x, +y, +z side) at the centre of the scene's bounds, from the distance at
+which the bounding sphere fills the narrower of the two fields of view.
+
+    scene.add_obj("city.obj", texture_dirs=["textures"])
+    camera = refracta.Camera.framing(scene, width=800, height=450)
+
+scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc");
+  camera.def_static(
+      "photographic",
+      [](const py::object& position, const py::object& look_at, double focal_length_mm, const Sensor& sensor_mm,
+         int width, int height, const py::object& up, std::optional<double> f_number, std::optional<double> focus_distance) {
+        return Camera::photographic(to_point(position, "position"), to_point(look_at, "look_at"), to_point(up, "up"),
+                                    focal_length_mm, sensor_mm.first, sensor_mm.second, width, height, f_number,
+                                    focus_distance);
+      },
+      py::arg("position"), py::arg("look_at"), py::arg("focal_length_mm"), py::arg("sensor_mm") = Sensor(36.0, 24.0),
+      py::arg("width") = 960, py::arg("height") = 640, py::kw_only(), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
+      py::arg("f_number") = py::none(), py::arg("focus_distance") = py::none(),
+      R"doc(A camera described by its lens and sensor: focal_length_mm on a sensor of
+sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the
+sensor's width when it is relatively wider than the sensor, else its height; vfov follows as
+2 atan(h / 2f). A 300 mm telephoto on full frame at 960 x 640 sees 4.58 deg vertically:
+
+    camera = refracta.Camera.photographic((0, 5, 0), (28000, 5, 0), 300.0, width=960, height=640)
+
+position, look_at [m]; up as for Camera.
+
+Depth of field: with f_number N a thin lens of aperture diameter A = f / N, focused at
+focus_distance [m] (None: the distance to look_at); None: a pinhole, everything sharp. A point at
+depth d [m] then blurs to the thin-lens circle of confusion ``c = A f abs(d - d_f) / (d (d_f - f))``
+on the sensor; the image keeps the field of view of focus at infinity (no focus breathing, as
+Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm].
+Each pixel sample takes its own lens point; through a field those rays are traced from the lens
+(not served by the eye's table), which costs what table=False costs. Only the ray-traced methods
+('straight', 'curved') render it. f_number or focus_distance <= 0 or NaN: ValueError.)doc");
+  camera.def_static(
+      "eye_level",
+      [](const py::object& eye, const py::object& target, double eye_height, double focal_length_mm,
+         const Sensor& sensor_mm, int width, int height, std::optional<double> f_number,
+         std::optional<double> focus_distance) {
+        return Camera::eye_level(to_point(eye, "eye"), to_point(target, "target"), eye_height, focal_length_mm,
+                                 sensor_mm.first, sensor_mm.second, width, height, f_number, focus_distance);
+      },
+      py::arg("eye"), py::arg("target"), py::arg("eye_height") = 1.6, py::arg("focal_length_mm") = 50.0,
+      py::arg("sensor_mm") = Sensor(36.0, 24.0), py::kw_only(), py::arg("width") = 960, py::arg("height") = 640,
+      py::arg("f_number") = py::none(), py::arg("focus_distance") = py::none(),
+      R"doc(A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the
+lens eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the
+horizontal direction of ``target``. Over flat ground the horizon runs through the image's centre
+row, where mirages are: a hot road's "wet" band and the inverted images under cars sit just below
+it (Camera.framing's 45 deg aerial view shows none of them). Over a curved Earth the sea horizon
+dips sqrt(2 h / R) below it (0.041 deg at 1.6 m). Lens, sensor, f_number and focus_distance as
+for Camera.photographic (focus by default at the target's horizontal distance):
+
+    camera = refracta.Camera.eye_level((0, 0, 0), (0, 0, -200), eye_height=1.6, focal_length_mm=200)
+)doc");
+}
+
+}  // namespace
+
+void bind_camera(py::module_& m) {
+  py::class_<Camera> camera(m, "Camera", R"doc(
+Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
+vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at
+(i + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=)
+or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)doc");
+  camera
+      .def(py::init([](const py::object& position, const py::object& look_at, const py::object& up, double vfov,
+                       int width, int height) {
+             return Camera(to_point(position, "position"), to_point(look_at, "look_at"), to_point(up, "up"), vfov,
+                           width, height);
+           }),
+           py::arg("position"), py::arg("look_at"), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
+           py::arg("vfov") = 45.0, py::arg("width") = 640, py::arg("height") = 360)
+      .def(
+          "ray",
+          [](const Camera& c, double u, double v) {
+            check_pixel(u, v);
+            return py::make_tuple(vector_to_array(c.position()), vector_to_array(c.direction(u, v)));
+          },
+          py::arg("u"), py::arg("v"), "(origin, unit direction) of the ray through pixel coordinates (u, v).")
+      .def(
+          "project",
+          [](const Camera& c, const py::object& points) {
+            bool single = false;
+            std::vector<Vec3d> p = to_points(points, "points", &single);
+            for (auto& x : p) x = c.project(x);
+            return single ? py::object(vector_to_array(p[0])) : py::object(points_to_array(p));
+          },
+          py::arg("points"), "(u, v, depth) per point (N, 3); depth [m] along the view axis, <= 0 behind.")
+      .def(
+          "pick",
+          [](const Camera& c, const RenderScene& s, double u, double v) -> py::object {
+            check_pixel(u, v);
+            const auto hit = s.geometry.intersect(c.position(), c.direction(u, v), 1e7);
+            return hit ? py::object(vector_to_array(hit->point)) : py::object(py::none());
+          },
+          py::arg("scene"), py::arg("u"), py::arg("v"),
+          "The scene point seen at pixel (u, v) without atmosphere (straight ray), or None.")
+      .def_property_readonly("position", [](const Camera& c) { return vector_to_array(c.position()); })
+      .def_property_readonly("look_at", [](const Camera& c) { return vector_to_array(c.look_at()); })
+      .def_property_readonly("up", [](const Camera& c) { return vector_to_array(c.up_hint()); },
+                             "The up vector given to the constructor.")
+      .def("jittered", &jittered, py::arg("angles"), R"doc(
+The same camera with every ray turned by small angles [rad] toward the image's right and up: a
+map (height, width, 2) at the pixel centres, bilinear between them. Non-physical "geometric noise"
+(the follow-up editor's cheap shimmer); project() ignores it.)doc")
+      .def_property_readonly("jitter", &jitter_array, "The angle map (height, width, 2) [rad] of a jittered camera, or None.")
+      .def(py::pickle(&camera_state, &camera_from_state))
+      .def("with_lens", &Camera::with_lens, py::arg("aperture_diameter"), py::arg("focus_distance"),
+           "The same view through a thin lens of aperture_diameter [m] (0: a pinhole) focused on the plane at\n"
+           "depth focus_distance [m] (Camera.photographic's f_number gives f / N). ValueError for a negative\n"
+           "diameter or a focus distance <= 0.")
+      .def_property_readonly("aperture_diameter", &Camera::aperture_diameter,
+                             "The thin lens's aperture diameter [m] (f / N), 0 for a pinhole.")
+      .def_property_readonly("focus_distance", &Camera::focus_distance, "The depth [m] of the plane in focus, 0 for a pinhole.")
+      .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
+           "The same view at another image size (vertical field of view kept).")
+      .def_property_readonly("width", &Camera::width)
+      .def_property_readonly("height", &Camera::height)
+      .def_property_readonly("vfov", &Camera::vfov)
+      .def_property_readonly("pixel_angle", &Camera::pixel_angle,
+                             "The angle [rad] one pixel subtends at the image centre (vertical field of view / height).")
+      .def("__repr__", &camera_repr);
+  bind_camera_constructors(camera);
+}
+
+}  // namespace refracta

@@ -1,0 +1,175 @@
+// Python bindings of a scene's lights (render/render_scene.h): the sun, the skies
+// (shading/sky_presets.h), environments and added lights.
+#include "refracta/bindings/bind_scene.h"
+#include "refracta/bindings/interruptible.h"
+
+#include "refracta/shading/constant_environment.h"
+#include "refracta/shading/point_light.h"
+#include "refracta/shading/sky_presets.h"
+#include "refracta/shading/spot_light.h"
+#include "refracta/shading/sun_light.h"
+
+#include <optional>
+
+namespace refracta {
+
+namespace {
+
+using SceneClass = py::class_<RenderScene, std::shared_ptr<RenderScene>>;
+
+// The sun's colour: an RGB radiance, or with wavelengths (M,) [nm] a spectrum (M,) [W/(m^2 sr nm)].
+Color sun_colour(const py::object& radiance, const py::object& wavelengths) {
+  if (wavelengths.is_none()) return to_illuminant(radiance, "radiance");
+  return Color::tabulated(to_values(wavelengths, "wavelengths"), to_values(radiance, "radiance"), Color::Kind::kIlluminant);
+}
+
+// set_physical_sky's keywords as PhysicalSkySettings.
+PhysicalSkySettings sky_settings(const py::object& sun_direction, double aerosol, double ozone_du, double ground_albedo,
+                                 double altitude, const std::string& below_horizon, const std::optional<double>& visibility) {
+  PhysicalSkySettings settings;
+  const Vec3d sun = to_point(sun_direction, "sun_direction");
+  if (!(sun.norm() > 0.0)) throw_invalid("sun_direction must be non-zero (got (", sun.x(), ", ", sun.y(), ", ", sun.z(), "))");
+  settings.sun_direction = sun.normalized();
+  settings.aerosol = aerosol, settings.ozone_du = ozone_du, settings.ground_albedo = ground_albedo;
+  settings.altitude = altitude;
+  settings.below_horizon = below_horizon_from(below_horizon);
+  if (visibility) set_visibility(&settings, *visibility);
+  return settings;
+}
+
+// The physical sky's table, built with Ctrl-C able to stop it (~0.5 s over oneTBB).
+std::shared_ptr<PhysicalSkyLight> build_sky_interruptibly(const PhysicalSkySettings& settings) {
+  std::shared_ptr<PhysicalSkyLight> sky;
+  WorkControl control;
+  run_interruptible(control, py::none(), [&] { sky = std::make_shared<PhysicalSkyLight>(settings); });
+  return sky;
+}
+
+// set_environment's source: a map file, an image array (H, W, 3), or an RGB radiance.
+LightPtr environment_of(const py::object& source, const py::object& rotation, double scale) {
+  if (py::isinstance<py::str>(source)) return environment_from_file(py::cast<std::string>(source), scale, to_rotation(rotation, "rotation"));
+  if (py::isinstance<py::array>(source) && py::cast<py::array>(source).ndim() >= 2) {
+    return std::make_shared<EnvironmentLight>(to_image(source, "image"), scale, to_rotation(rotation, "rotation"));
+  }
+  return std::make_shared<ConstantEnvironment>(Color::illuminant(to_rgb(source, "radiance") * scale));
+}
+
+void bind_sun_and_sky(SceneClass& scene) {
+  const SunDisc sun;  // the disc's defaults
+  scene
+      .def("set_sun",
+           [](RenderScene& s, const py::object& direction, const py::object& radiance, double angular_diameter,
+              double limb_darkening, const py::object& wavelengths) {
+             s.set_sun(std::make_shared<SunLight>(to_point(direction, "direction"), sun_colour(radiance, wavelengths),
+                                                  angular_diameter, limb_darkening));
+           },
+           py::arg("direction"), py::arg("radiance"), py::arg("angular_diameter") = sun.angular_diameter,
+           py::arg("limb_darkening") = sun.limb_darkening, py::arg("wavelengths") = py::none(),
+           "The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter [deg],\n"
+           "limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.\n"
+           "With wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.\n"
+           "refracta.spectrum.PhysicalSky(...).sun_radiance(wavelengths): the sun through the air's extinction).")
+      .def("set_sky",
+           [](RenderScene& s, const py::object& horizon, const py::object& zenith, std::optional<std::string> environment,
+              double scale) {
+             if (environment) return s.set_sky(environment_from_file(*environment, scale));
+             const Vec3d h = horizon.is_none() ? kDefaultSkyColour : to_rgb(horizon, "horizon");
+             s.set_sky(gradient_sky(h, zenith.is_none() ? h : to_rgb(zenith, "zenith"), scale));
+           },
+           py::arg("horizon") = py::none(), py::arg("zenith") = py::none(), py::arg("environment") = py::none(),
+           py::arg("scale") = 1.0,
+           "A sky (replacing any environment): radiance toward the horizon (and below) and straight up, linear in\n"
+           "the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular\n"
+           "environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.")
+      .def("set_physical_sky",
+           [](RenderScene& s, const py::object& sun_direction, double aerosol, double ozone_du, double ground_albedo,
+              double sun_angular_diameter, double limb_darkening, double scale, double altitude,
+              const std::string& below_horizon, bool aerial_perspective, const std::optional<double>& visibility) {
+             const PhysicalSkySettings settings =
+                 sky_settings(sun_direction, aerosol, ozone_du, ground_albedo, altitude, below_horizon, visibility);
+             const SkyAndSun lights = physical_sky_with_sun(settings, SunDisc{sun_angular_diameter, limb_darkening}, scale,
+                                                            &build_sky_interruptibly);
+             s.remove_infinite_lights();
+             for (const LightPtr& light : {lights.sky, lights.sun}) {
+               if (light) s.add_light(light);
+             }
+             if (aerial_perspective && scale > 0.0) s.enable_aerial_perspective();
+           },
+           py::arg("sun_direction"), py::arg("aerosol") = PhysicalSkySettings{}.aerosol,
+           py::arg("ozone_du") = PhysicalSkySettings{}.ozone_du, py::arg("ground_albedo") = PhysicalSkySettings{}.ground_albedo,
+           py::arg("sun_angular_diameter") = sun.angular_diameter, py::arg("limb_darkening") = sun.limb_darkening,
+           py::kw_only(), py::arg("scale") = 1.0, py::arg("altitude") = PhysicalSkySettings{}.altitude,
+           py::arg("below_horizon") = "horizon", py::arg("aerial_perspective") = true, py::arg("visibility") = py::none(),
+           "The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's\n"
+           "single scattering (Nishita et al. 1993) for the sun toward `sun_direction` (normalised, y up),\n"
+           "`aerosol` (Mie density scale), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon\n"
+           "`below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth (Scene.set_sky's\n"
+           "convention: the ground is geometry, and a ray ending its max_length still heading slightly down sees\n"
+           "the horizon sky, importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of\n"
+           "`ground_albedo` (which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter` [deg]\n"
+           "with linear limb darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction (reddened\n"
+           "toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral renders,\n"
+           "its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times\n"
+           "106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun\n"
+           "(e.g. an exposure). Builds the sky's table (~0.5 s).\n"
+           "aerial_perspective (default True): the same air dims and lights every segment the renderers cast\n"
+           "(refracta.spectrum.AerialPerspective: transmittance and single-scattered sunlight), so distant\n"
+           "objects grey and blue into the sky; False keeps surfaces as seen through empty space.\n"
+           "visibility [km]: meteorological visibility at the ground (Koschmieder: extinction at 550 nm =\n"
+           "3.912 / V), setting the aerosol in its place (give one of them). The scene's y = 0 lies `altitude`\n"
+           "above the sky's sea level.")
+      .def_property_readonly(
+          "aerial_perspective",
+          [](const RenderScene& s) { return s.aerial_perspective() ? py::cast(s.aerial_perspective_ptr()) : py::none(); },
+          "The scene's refracta.spectrum.AerialPerspective (set_physical_sky(aerial_perspective=True)), or None.")
+      .def(
+          "set_aerial_perspective",
+          [](RenderScene& s, bool enabled) { enabled ? s.enable_aerial_perspective() : s.disable_aerial_perspective(); },
+          py::arg("enabled"),
+          "Turn aerial perspective on (from the scene's physical sky; ValueError without one) or off, keeping the sky.")
+      .def("set_environment",
+           [](RenderScene& s, const py::object& source, const py::object& rotation, double scale) {
+             s.set_sky(environment_of(source, rotation, scale));
+           },
+           py::arg("source"), py::arg("rotation") = py::none(), py::arg("scale") = 1.0,
+           "The environment (replacing any sky): an RGB radiance (a constant environment), an equirectangular\n"
+           "map file (EXR/HDR/PNG through OpenImageIO) or a float array (H, W, 3), times `scale`, turned by\n"
+           "`rotation` (degrees about y, or a 3 x 3 matrix). Orientation: refracta.lights.EnvironmentLight.");
+}
+
+}  // namespace
+
+void bind_scene_lights(SceneClass& scene) {
+  bind_sun_and_sky(scene);
+  scene
+      .def("add_light",
+           [](RenderScene& s, const std::shared_ptr<Light>& light) {
+             if (!light) throw_invalid("light must be a refracta.lights light");
+             return s.add_light(light);
+           },
+           py::arg("light"), "Add any refracta.lights light (not area lights of geometry: use emission=). Returns its index.")
+      .def("add_point_light",
+           [](RenderScene& s, const py::object& position, const py::object& intensity) {
+             return s.add_light(std::make_shared<PointLight>(to_point(position, "position"), to_illuminant(intensity, "intensity")));
+           },
+           py::arg("position"), py::arg("intensity"),
+           "Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns its index.")
+      .def("add_spot_light",
+           [](RenderScene& s, const py::object& position, const py::object& direction, double angle,
+              const py::object& intensity, double radius) {
+             if (!(angle > 0.0 && angle <= 170.0)) throw_invalid("spot light angle must be in (0, 170] deg (got ", angle, ")");
+             if (!(radius >= 0.0) || !std::isfinite(radius)) throw_invalid("spot light radius must be >= 0 (got ", radius, ")");
+             const size_t index = s.add_light(std::make_shared<SpotLight>(
+                 to_point(position, "position"), to_point(direction, "direction"), angle, to_illuminant(intensity, "intensity")));
+             if (radius > 0.0) s.set_shadow_radius(index, radius);
+             return s.spots().size() - 1;
+           },
+           py::arg("position"), py::arg("direction"), py::arg("angle") = 60.0,
+           py::arg("intensity") = py::make_tuple(100.0, 100.0, 100.0), py::arg("radius") = 0.0,
+           "Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] with\n"
+           "`intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives render_raster's 'embree'\n"
+           "reference soft shadows of a disc that size. Returns its index among the spot lights.")
+      .def_property_readonly("lights", [](const RenderScene& s) { return s.lights(); });
+}
+
+}  // namespace refracta

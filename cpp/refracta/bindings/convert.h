@@ -1,0 +1,81 @@
+// Python -> C++ conversions of the bindings: one rule per kind of input, each raising ValueError
+// naming the argument (`what`). Every bind_*.cpp converts its arguments through these, so "a
+// colour" or "a unit vector" means the same thing in every function that takes one.
+#pragma once
+
+#include "refracta/core/image.h"
+#include "refracta/core/math.h"
+#include "refracta/core/sampling.h"
+#include "refracta/shading/color.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace refracta {
+
+namespace py = pybind11;
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// Any row count (the count argument of the converters below).
+inline constexpr size_t kAnyCount = size_t(-1);
+// Directions must be unit to this tolerance: float64 normalisation gives ~1e-16, float32 input
+// ~1e-7; a direction off by more was not normalised.
+inline constexpr double kUnitTolerance = 1e-6;
+
+// Any array-like of real numbers (bool, integer or float dtype) as a C-contiguous double array;
+// ValueError naming `what` for complex, string or object data (numpy would cast those silently).
+DoubleArray real_array(const py::handle& object, const char* what);
+
+// Points: (N, 3) or (3,), finite. `single` is set when the input was one point (3,).
+std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single = nullptr);
+// Exactly one point (3,).
+Vec3d to_point(const py::handle& object, const char* what);
+// Numbers: a scalar or (N,), finite.
+std::vector<double> to_values(const py::handle& object, const char* what, bool* single = nullptr);
+
+// Unit vectors: points (N, 3) or (3,) of length 1 within kUnitTolerance; with `zero_ok` a row may
+// be 0 (no normal). `count` (kAnyCount: any) is the number of rows required.
+std::vector<Vec3d> to_unit_vectors(const py::handle& object, const char* what, size_t count = kAnyCount,
+                                   bool zero_ok = false, bool* single = nullptr);
+
+// A colour: a number (grey) or three (r, g, b), finite. Its range is the library's to check
+// (reflectances in [0, 1], illuminants >= 0).
+Vec3d to_rgb(const py::handle& value, const char* what);
+std::optional<Vec3d> to_optional_rgb(const py::object& value, const char* what);  // None: nullopt
+// An emitted colour: a colour each of whose channels is >= 0, as an illuminant (RGB x D65).
+Color to_illuminant(const py::handle& value, const char* what);
+
+// Uniform sample numbers, each in [0, 1) (the half-open range every sampler in the library is
+// written for): rows of `dims` numbers, (N, dims) or one row (dims,); for dims = 1, (N,) or a
+// scalar. `count` (kAnyCount: any) is the number of rows required.
+struct Samples {
+  int dims = 1;
+  size_t rows = 0;
+  bool single = false;  // one row given
+  std::vector<double> values;
+  const double* row(size_t i) const { return values.data() + size_t(dims) * i; }
+  Vec2d pair(size_t i) const { return Vec2d(row(i)[0], row(i)[1]); }
+};
+Samples to_samples(const py::handle& object, const char* what, int dims, size_t count = kAnyCount);
+
+// Triangles (M, 3) of vertex indices, each in [0, vertex_count).
+std::vector<std::array<int, 3>> to_triangles(const py::handle& object, const char* what, size_t vertex_count);
+// Texture coordinates (count, 2), finite.
+std::vector<Vec2d> to_uvs(const py::handle& object, const char* what, size_t count);
+// An image: a float array (H, W) or (H, W, C), C in 1..4, finite.
+Image to_image(const py::handle& object, const char* what);
+// A rotation: None (identity), an angle [deg] about +y, or a 3 x 3 matrix.
+Eigen::Matrix3d to_rotation(const py::handle& object, const char* what);
+
+// C++ -> numpy.
+DoubleArray points_to_array(const std::vector<Vec3d>& points);
+DoubleArray values_to_array(const std::vector<double>& values);
+DoubleArray vector_to_array(const Vec3d& v);  // shape (3,)
+DoubleArray matrix_to_array(const Eigen::Matrix3d& m);  // shape (3, 3)
+
+}  // namespace refracta

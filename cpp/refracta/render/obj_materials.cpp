@@ -1,0 +1,90 @@
+// OBJ files into a RenderScene (obj_materials.h): the MTL policy and the texture search.
+#include "refracta/render/obj_materials.h"
+
+#include "refracta/scene/obj_loader.h"
+#include "refracta/scene/texture_search.h"
+#include "refracta/shading/area_light.h"
+#include "refracta/shading/dielectric.h"
+#include "refracta/shading/phong.h"
+#include "refracta/shading/principled.h"
+
+#include <cmath>
+#include <set>
+
+namespace refracta {
+
+MaterialPtr material_from_mtl(const MtlMaterial& mtl, int texture) {
+  const bool glass = mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7;
+  if (glass && mtl.alpha < 1.0 && mtl.ni > 1.0) return std::make_shared<Dielectric>(Ior(mtl.ni));
+  if (mtl.pr >= 0.0 || mtl.pm >= 0.0) {  // the PBR extension: Pr, Pm
+    PrincipledParameters p;
+    if (mtl.pr >= 0.0) p.roughness = mtl.pr;
+    if (mtl.pm >= 0.0) p.metallic = mtl.pm;
+    return std::make_shared<Principled>(TexturedReflectance(mtl.kd, "Kd", texture), p);
+  }
+  return std::make_shared<BlinnPhong>(TexturedReflectance(mtl.kd, "Kd", texture), mtl.ks, mtl.ns, mtl.alpha);
+}
+
+void ObjOptions::validate() const {
+  Problems problems("add_obj");
+  problems.check(is_finite(offset), "offset must be finite (got (", offset.x(), ", ", offset.y(), ", ", offset.z(), "))");
+  problems.check(scale > 0.0 && std::isfinite(scale), "scale must be > 0 (got ", scale, ")");
+  problems.check(missing_textures == MissingTextures::kError || bool(warn),
+                 "missing_textures 'warn' needs a warn callback");
+  problems.throw_if_any();
+}
+
+namespace {
+
+// The texture file of each part ("" for none): map_Kd searched by find_texture. A texture found
+// nowhere throws TextureNotFound, or with kWarn warns (once per name) and gives "" (Kd stays).
+std::vector<std::string> texture_paths(const std::vector<MaterialMesh>& parts, const ObjOptions& options) {
+  std::vector<std::string> out;
+  std::set<std::string> warned;
+  for (const MaterialMesh& part : parts) {
+    const MtlMaterial& mtl = part.material;
+    std::vector<std::string> searched;
+    const auto found = mtl.texture_name.empty()
+                           ? std::optional<std::string>("")
+                           : find_texture(mtl.texture_name, mtl.folder, options.texture_dirs, &searched);
+    if (found) {
+      out.push_back(*found);
+      continue;
+    }
+    std::string folders;
+    for (const auto& folder : searched) folders += concat(folders.empty() ? "" : ", ", "'", folder, "'");
+    const std::string message =
+        concat("texture '", mtl.texture_name, "' of material '", mtl.name, "' not found in ", folders);
+    if (options.missing_textures == MissingTextures::kError) throw TextureNotFound(message);
+    if (warned.insert(mtl.texture_name).second) options.warn(message + "; its material uses Kd");
+    out.emplace_back();
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const ObjOptions& options) {
+  options.validate();
+  std::vector<MaterialMesh> parts = load_obj(path);
+  const std::vector<std::string> textures = texture_paths(parts, options);
+  std::set<std::string> distinct(textures.begin(), textures.end()), registered;
+  distinct.erase("");
+  std::vector<unsigned> ids;
+  for (size_t p = 0; p < parts.size(); ++p) {
+    MaterialMesh& part = parts[p];
+    for (auto& v : part.mesh.vertices) v = v * options.scale + options.offset;
+    const int texture = textures[p].empty() ? -1 : scene.geometry.add_texture(textures[p]);
+    if (texture >= 0 && registered.insert(textures[p]).second && options.progress) {
+      options.progress(registered.size(), distinct.size());
+    }
+    const unsigned id = scene.geometry.add_mesh(part.mesh, scene.add_material(material_from_mtl(part.material, texture)));
+    if (part.material.ke.maxCoeff() > 0.0) {
+      scene.add_light(std::make_shared<AreaLight>(part.mesh, Color::illuminant(part.material.ke), false), int(id));
+    }
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+}  // namespace refracta

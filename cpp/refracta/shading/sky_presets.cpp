@@ -1,0 +1,83 @@
+// Ready-made skies (sky_presets.h).
+#include "refracta/shading/sky_presets.h"
+
+#include "refracta/core/error.h"
+#include "refracta/scene/image_io.h"
+#include "refracta/shading/constant_environment.h"
+#include "refracta/shading/environment_light.h"
+#include "refracta/shading/scaled_light.h"
+#include "refracta/shading/sun_light.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+namespace refracta {
+
+Image gradient_sky_image(const Vec3d& horizon, const Vec3d& zenith) {
+  // 256 rows resolve the blend to < 0.4 % of its range per row; azimuth needs no resolution.
+  constexpr int kRows = 256, kColumns = 4;
+  Image image(kColumns, kRows, 3);
+  for (int y = 0; y < kRows; ++y) {
+    const double theta = kPi * (y + 0.5) / kRows;  // from the zenith
+    const double t = std::clamp(std::cos(theta), 0.0, 1.0);
+    const Vec3d c = (1.0 - t) * horizon + t * zenith;
+    for (int x = 0; x < kColumns; ++x) {
+      for (int k = 0; k < 3; ++k) image.at(x, y)[k] = float(c[k]);
+    }
+  }
+  return image;
+}
+
+LightPtr gradient_sky(const Vec3d& horizon, const Vec3d& zenith, double scale) {
+  if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("scale must be >= 0 (got ", scale, ")");
+  if (zenith == horizon) {  // a constant sky, sampled by cosine
+    if (!(horizon.maxCoeff() > 0.0)) return nullptr;
+    const Vec3d radiance = horizon * scale;
+    if (!(radiance.minCoeff() >= 0.0)) {
+      throw_invalid("horizon must be finite and >= 0 per channel (got (", radiance.x(), ", ", radiance.y(), ", ",
+                    radiance.z(), "))");
+    }
+    return std::make_shared<ConstantEnvironment>(Color::illuminant(radiance));
+  }
+  if (!(horizon.maxCoeff() > 0.0 || zenith.maxCoeff() > 0.0)) return nullptr;
+  return std::make_shared<EnvironmentLight>(gradient_sky_image(horizon, zenith), scale);
+}
+
+void SunDisc::validate() const {
+  Problems problems("set_physical_sky");
+  problems.check(angular_diameter > 0.0 && angular_diameter < 180.0,
+                 "sun_angular_diameter must be in (0, 180) deg (got ", angular_diameter, ")");
+  problems.check(limb_darkening >= 0.0 && limb_darkening <= 1.0, "limb_darkening must be in [0, 1] (got ",
+                 limb_darkening, ")");
+  problems.throw_if_any();
+}
+
+SkyAndSun physical_sky_with_sun(const PhysicalSkySettings& settings, const SunDisc& disc, double scale,
+                                const SkyBuilder& build) {
+  settings.validate();
+  disc.validate();
+  if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("scale must be >= 0 and finite (got ", scale, ")");
+  const std::shared_ptr<PhysicalSkyLight> sky = build ? build(settings) : std::make_shared<PhysicalSkyLight>(settings);
+  std::vector<double> lambda, radiance;
+  for (int i = 0; i < PhysicalSky::kWavelengths; ++i) {
+    lambda.push_back(PhysicalSky::wavelength(i));
+    radiance.push_back(scale * sky->sky().sun_radiance(lambda.back(), disc.angular_diameter));
+  }
+  const Color sun_colour = Color::tabulated(lambda, radiance, Color::Kind::kIlluminant);
+  SkyAndSun out;
+  if (scale > 0.0) out.sky = scale == 1.0 ? LightPtr(sky) : std::make_shared<ScaledInfiniteLight>(sky, scale);
+  if (!sun_colour.is_black() && sun_colour.rgb().maxCoeff() > 0.0) {
+    out.sun = std::make_shared<SunLight>(settings.sun_direction, sun_colour, disc.angular_diameter, disc.limb_darkening);
+  }
+  return out;
+}
+
+std::shared_ptr<EnvironmentLight> environment_from_file(const std::string& path, double scale, const Mat3d& rotation) {
+  auto light = std::make_shared<EnvironmentLight>(read_image(path), scale, rotation);
+  light->set_source(std::filesystem::absolute(path).string());
+  return light;
+}
+
+}  // namespace refracta
