@@ -48,7 +48,7 @@ def test_exported_pairs_read_back_with_weight_margin_and_options(file_model, tmp
     path = model.export_pairs(tmp_path / "pairs.json")
     pairs, options = load_pairs(path)
     assert pairs == list(model.pairs)
-    assert options == {"free": ["surface_dt"], "ground": 0.0}
+    assert options == {"free": ["surface_dt"], "stop_height": 0.0}  # the file's "ground", as solve() names it
     assert json.loads(path.read_text())["pairs"][0]["margin"] == 0.75
 
 
