@@ -3,7 +3,7 @@ PYTHON ?= python3
 PYTEST_ARGS ?=
 SOURCES := $(shell find cpp python -name '*.h' -o -name '*.cpp' 2>/dev/null) CMakeLists.txt pyproject.toml
 
-.PHONY: install demo test bench stubs docs clean
+.PHONY: install demo test lint bench stubs docs clean
 install: .install.stamp
 
 # Debian packages first, then the package itself (editable) into the current Python.
@@ -19,8 +19,26 @@ install: .install.stamp
 demo: install
 	$(PYTHON) -m refracta demo --out out
 
+# The suite, then the static checks (`make lint`); either failing fails `make test` (and so CI),
+# after both have run.
 test: install
-	$(PYTHON) -m pytest --nbmake tests notebooks $(PYTEST_ARGS)
+	@status=0; \
+	$(PYTHON) -m pytest --nbmake tests notebooks $(PYTEST_ARGS) || status=1; \
+	$(MAKE) --no-print-directory lint || status=1; \
+	exit $$status
+
+# Static checks, each run even when one before it fails (configurations in pyproject.toml,
+# .clang-tidy and .ci/vulture_whitelist.py). C++ warnings are errors in the build itself
+# (CMakeLists.txt, REFRACTA_WERROR), so `install` has already checked them.
+LINT_PYTHON := python tests benchmarks
+lint: install
+	@status=0; \
+	echo "== ruff check"; $(PYTHON) -m ruff check $(LINT_PYTHON) || status=1; \
+	echo "== ruff format --check"; $(PYTHON) -m ruff format --check $(LINT_PYTHON) || status=1; \
+	echo "== mypy"; $(PYTHON) -m mypy || status=1; \
+	echo "== vulture (dead code)"; $(PYTHON) -m vulture || status=1; \
+	echo "== clang-tidy"; bash .ci/clang-tidy || status=1; \
+	exit $$status
 
 bench: install
 	$(PYTHON) benchmarks/run_all.py

@@ -24,7 +24,7 @@ namespace refracta {
 struct NodeRun {
   double from, to, step;
 };
-inline std::vector<double> make_nodes(double lo, double hi, std::vector<NodeRun> runs,
+inline std::vector<double> make_nodes(double lo, double hi, const std::vector<NodeRun>& runs,
                                       const std::vector<double>& extra = {}) {
   std::vector<double> nodes;
   for (double h : extra) {

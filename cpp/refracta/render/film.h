@@ -99,7 +99,8 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
         const int cells = strata * strata, k = s % cells;
         if (k == 0) pass_seed = uint32_t(sampler.uniform() * 4294967296.0);
         const int cell = int(detail::permutation_element(uint32_t(k), uint32_t(cells), pass_seed));
-        lens = Vec2d(((cell % strata) + sampler.uniform()) / strata, ((cell / strata) + sampler.uniform()) / strata);
+        const int column = cell % strata, row = cell / strata;  // the stratum's place in the strata x strata grid
+        lens = Vec2d((column + sampler.uniform()) / strata, (row + sampler.uniform()) / strata);
       } else if (thin_lens) {
         lens = Vec2d(sampler.uniform(), sampler.uniform());
       }

@@ -25,7 +25,8 @@ Vec3d directional_albedo(const SurfaceBsdf& bsdf, const Vec3d& wo) {
   constexpr int kSide = 4, kCount = kSide * kSide;
   Spectrum sum = Spectrum::Zero();
   for (int i = 0; i < kCount; ++i) {
-    const auto bs = bsdf.sample(wo, (i + 0.5) / kCount, Vec2d(((i % kSide) + 0.5) / kSide, ((i / kSide) + 0.5) / kSide));
+    const int column = i % kSide, row = i / kSide;  // the sample's cell in the kSide x kSide grid
+    const auto bs = bsdf.sample(wo, (i + 0.5) / kCount, Vec2d((column + 0.5) / kSide, (row + 0.5) / kSide));
     if (bs && bs->weight.isFinite().all()) sum += bs->weight;
   }
   return (sum.head<3>() / kCount).max(0.0).min(1.0).matrix();

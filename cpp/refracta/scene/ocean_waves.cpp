@@ -244,7 +244,7 @@ SeaMeshes sea_meshes(const OceanWaves& waves, const SeaLayout& layout) {
 
   SeaMeshes out;
   const int levels = coarse ? 2 : 1;
-  out.bands.resize(size_t(levels * (kFadeBands + 1)));
+  out.bands.resize(size_t(levels) * size_t(kFadeBands + 1));
   std::vector<double> slope_sum(out.bands.size(), 0.0);
   std::vector<long> triangles(out.bands.size(), 0);
 

@@ -113,7 +113,7 @@ std::string prepare(const std::string& path) {
   // 8- and 16-bit images store sRGB-encoded colour: filter in linear light.
   const OIIO::TypeDesc stored = source.spec().format;
   OIIO::ImageBuf linear = source;
-  if (stored == OIIO::TypeDesc::UINT8 || stored == OIIO::TypeDesc::UINT16) {
+  if (stored.basetype == OIIO::TypeDesc::UINT8 || stored.basetype == OIIO::TypeDesc::UINT16) {
     linear = OIIO::ImageBufAlgo::colorconvert(source, "sRGB", "linear");
     if (linear.has_error()) throw IoError(concat("texture '", path, "': ", linear.geterror()));
   }
