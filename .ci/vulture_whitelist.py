@@ -24,6 +24,13 @@ _.generation_seconds  # refracta.Turbulence: documented attribute, the pattern's
 # Developer tool: reproduces the table measurements cited in cpp/refracta/shading/color.cpp.
 _._measure_table
 
+# Fields of bound C++ option classes that Python only writes (C++ reads them: the render, the
+# solve, validate()); add a field here when a new option is set from Python and never read there.
+_.z_near  # MboitSettings: the depth range's near end [m] (refracta.oit.composite's z_range)
+_.z_far  # MboitSettings: its far end [m]
+_.trust_region  # SolveSettings, set by tests/edit/test_09_options.py for validate() to refuse
+_.loss_scale  # SolveSettings, likewise
+
 # Traits synced to the browser: refracta/widgets/canvas.js reads them, Python only writes them.
 _.interactive  # MirageCanvas: whether clicks and drags are taken
 _.cursor  # MirageCanvas: the pointer over the image
