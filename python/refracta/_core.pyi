@@ -1982,7 +1982,7 @@ class PairOptions:
     @property
     def reach(self) -> float:
         """
-        paths are traced to reach * |source - eye| + 1 m
+        paths are traced to reach times the eye-to-source distance, plus 1 m
         """
     @reach.setter
     def reach(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:

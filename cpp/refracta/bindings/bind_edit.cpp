@@ -111,7 +111,7 @@ PairOptions). validate() reports every bad value at once.)doc");
       .def_property("distance", [](const P& o) { return pair_distance_name(o.distance); },
                     [](P& o, const std::string& v) { o.distance = parse_pair_distance(v); },
                     "'continuous' (closest approach of the continuous path) or 'vertex' (nearest integrator node)")
-      .def_readwrite("reach", &P::reach, "paths are traced to reach * |source - eye| + 1 m")
+      .def_readwrite("reach", &P::reach, "paths are traced to reach times the eye-to-source distance, plus 1 m")
       .def_readwrite("max_steps", &P::max_steps, "integration steps a trace may take")
       .def("validate", &P::validate, "Raises ValueError listing every bad field.");
   def_options_pickle<P>(cls);
