@@ -372,7 +372,7 @@ def solve(
 def distances(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], *,
               pair_options: _core.PairOptions | None = None, **options: Any) -> np.ndarray:
     """Each pair's miss [m]: how far the path launched toward its destination passes its source.
-    pair_options / **options: a refracta.PairOptions and its fields by name (trace, tol, step,
+    pair_options, ``**options``: a refracta.PairOptions and its fields by name (trace, tol, step,
     stop_height, distance, reach, max_steps), as solve() takes them."""
     pair_options = _pair_options("refracta.edit.distances", pair_options, options)
     _, _, _, origins, directions, sources, _, _, _ = _pair_rays(eye_or_camera, pairs)
@@ -384,7 +384,7 @@ def jacobian(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair],
              **options: Any) -> tuple[np.ndarray, np.ndarray, list[str]]:
     """(residuals (3P,), Jacobian (3P, F), free names) at `field`: the weighted miss vectors an
     edit minimises and their derivatives in the free parameters (for sensitivity studies).
-    pair_options / **options: as distances()."""
+    pair_options, ``**options``: as distances()."""
     pair_options = _pair_options("refracta.edit.jacobian", pair_options, options)
     _, _, _, origins, directions, sources, weights, margins, _ = _pair_rays(eye_or_camera, pairs)
     free = [free] if isinstance(free, str) else list(free or [])
