@@ -119,7 +119,9 @@ class ElevationTable:
         progress: bool | Callable[[int, int], None] = False,
         **fields,
     ):
-        self._table = _core._ElevationTable(field, eye_height, min_elevation, max_elevation, options, progress, **fields)
+        self._table = _core._ElevationTable(
+            field, eye_height, min_elevation, max_elevation, options, progress, **fields
+        )
         # What pickling rebuilds the table from (the build is deterministic: the copy is identical).
         self._arguments = (field, eye_height, min_elevation, max_elevation, self._table.options)
         self.field = field

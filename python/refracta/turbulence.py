@@ -41,8 +41,6 @@ SPECTRUM_CONSTANT = _core.SPECTRUM_CONSTANT
 INNER_SCALE_FACTOR = _core.INNER_SCALE_FACTOR  # kappa_m = 5.92 / l0 (Andrews & Phillips eq. 3.27)
 von_karman_spectrum = _core.von_karman_spectrum
 bessel_j1 = _core.bessel_j1
-# The lattice's default turn about the vertical, atan(1 / golden ratio) [rad] (TurbulenceSettings.yaw).
-DEFAULT_YAW = _core.DEFAULT_TURBULENCE_YAW
 # The inertial range is where the ensemble D(r) of the synthesised grid is within 15 % of
 # C_n^2 r^(2/3): the issue asks 20 %, and realisations scatter about the ensemble -- the mean of 4
 # realisations of 256^3 stays within 20 % across this range; one alone strays by up to 25 % at
@@ -139,10 +137,11 @@ class Turbulence:
       depth * ln(1e3), where E is 1e-3, are served as calm air), or None: uniform. Default 0.1 m.
     - max_bytes > 0: refuse (ValueError) a grid whose FFT work arrays would need more (default:
       half this machine's memory; math.inf: no limit).
-    - yaw [rad]: the lattice's turn about the vertical (default DEFAULT_YAW, 31.7 deg). A tile
-      shorter than a ray's path repeats along it: along a lattice axis the same modes add up
-      coherently and the angle-of-arrival variance grows as L^2 beyond the tile (8x the continuous
-      spectrum's over 300 m at the defaults); turned, a level line of sight along x crosses the
+    - yaw [rad]: the lattice's turn about the vertical (default atan(1 / golden ratio), 31.7 deg,
+      _core.DEFAULT_TURBULENCE_YAW: see media/turbulence_synthesis.h for why). A tile shorter than
+      a ray's path repeats along it: along a lattice axis the same modes add up coherently and
+      the angle-of-arrival variance grows as L^2 beyond the tile (8x the continuous spectrum's
+      over 300 m at the defaults); turned, a level line of sight along x crosses the
       tile quasi-periodically: 0.33x the continuous spectrum's (l0 = 5 mm; the grid resolves
       nothing below ~3 cells) over one tile, 0.67x over 300 m -- the lowest modes, a tile long,
       still add up partly. angle_of_arrival_variance(L, direction=...) gives the realised figure.

@@ -72,7 +72,7 @@ def check_trace(model, params, origin, direction, method, tol, step, max_length,
     field = calls(model, **params)
     if field is None:
         return
-    path = calls(refracta.trace_ray, field, origin, direction, method=method, tol=tol, step=step,
+    path = calls(refracta.trace_ray, field, origin, direction, trace=method, tol=tol, step=step,
                  max_length=max_length, stop_height=stop_height)
     if path is None:
         return

@@ -137,6 +137,9 @@ def test_options_objects_and_keywords_are_the_same_call(hot_road):
     # Keywords override the object's fields; the object itself is not changed.
     shorter = refracta.trace_rays(hot_road, [0, 1.5, 0], [direction(0.1)], options, max_length=100.0)
     assert shorter.lengths[0] == 100.0 and options.max_length == 500.0
+    # None leaves a field that takes no None at its default, as before (step=None: the default).
+    unset = refracta.trace_ray(hot_road, [0, 1.5, 0], direction(-0.3), options, step=None)
+    np.testing.assert_array_equal(unset.points, by_object.points)
 
 
 def test_method_is_a_deprecated_name_of_trace(hot_road):

@@ -54,6 +54,7 @@ void set_options_fields(const py::object& options, const py::dict& fields, const
       target.attr(name.c_str()) = item.second;
     } catch (const py::error_already_set& error) {
       if (!error.matches(PyExc_TypeError)) throw;
+      if (item.second.is_none()) continue;  // None for a field that takes none: left unset (its default)
       const std::string type = py::cast<std::string>(py::type::handle_of(target).attr("__name__"));
       throw_invalid(owner, ": option ", name, "=", py::cast<std::string>(py::repr(item.second)),
                     " has the wrong type for ", type, ".", name, " (see help(refracta.", type, "))");

@@ -17,7 +17,9 @@ std::string options_repr(const py::object& self);
 // Sets each keyword on `options` (a bound options object), in order. A keyword that is not one of
 // its fields goes to the nested options object `nested` (its attribute of that name, e.g. an
 // ElevationTableOptions' `trace`) when that has it; any other name raises ValueError naming
-// `owner` and listing the fields. A value the field refuses (wrong type) raises ValueError too.
+// `owner` and listing the fields. A value the field refuses (wrong type) raises ValueError too,
+// except None, which leaves a field that takes no None at its value (python/refracta/_options.py's
+// rule: public signatures write x=None for "unset").
 void set_options_fields(const py::object& options, const py::dict& fields, const char* owner,
                         const char* nested = nullptr);
 

@@ -108,7 +108,8 @@ void TurbulenceSettings::validate() const {
 
 double turbulence_memory_needed(int64_t cells) {
   const double n = double(cells);
-  return 4.0 * n * n * n + 8.0 * n * n * double(cells / 2 + 1) + 4.0 * n * n * n + 16e6;
+  const int64_t half = cells / 2 + 1;  // the half spectrum's length along z (whole division)
+  return 4.0 * n * n * n + 8.0 * n * n * double(half) + 4.0 * n * n * n + 16e6;
 }
 
 TurbulenceSpectrum::TurbulenceSpectrum(int64_t cells, double spacing, double inner_scale, double outer_scale)
