@@ -32,7 +32,7 @@ def main(rays: int = 10_000) -> dict:
     origin = np.array([0.0, EYE_HEIGHT, 0.0])
     common = dict(max_length=LENGTH, stop_height=0.0)
 
-    reference, t_ref = timed(refracta.trace_rays, field, origin, directions, method="stratified", tol=1e-9, **common)
+    reference, t_ref = timed(refracta.trace_rays, field, origin, directions, trace="stratified", tol=1e-9, **common)
 
     def error_of(batch):
         err = np.linalg.norm(batch.end_points - reference.end_points, axis=1)
@@ -40,13 +40,13 @@ def main(rays: int = 10_000) -> dict:
                 "median_error_m": float(np.median(err))}
 
     rows = {}
-    rk4, t = timed(refracta.trace_rays, field, origin, directions, method="rk4", step=0.3, **common)
+    rk4, t = timed(refracta.trace_rays, field, origin, directions, trace="rk4", step=0.3, **common)
     rows["rk4_step_0.3m"] = {"seconds": t, "us_per_ray": 1e6 * t / rays,
                              "evaluations_per_ray": float(rk4.evaluations.mean()), **error_of(rk4)}
-    rk45, t = timed(refracta.trace_rays, field, origin, directions, method="rk45", tol=1e-3, **common)
+    rk45, t = timed(refracta.trace_rays, field, origin, directions, trace="rk45", tol=1e-3, **common)
     rows["rk45_tol_1mm"] = {"seconds": t, "us_per_ray": 1e6 * t / rays,
                             "evaluations_per_ray": float(rk45.evaluations.mean()), **error_of(rk45)}
-    strat, t = timed(refracta.trace_rays, field, origin, directions, method="stratified", tol=1e-3, **common)
+    strat, t = timed(refracta.trace_rays, field, origin, directions, trace="stratified", tol=1e-3, **common)
     rows["stratified_tol_1mm"] = {"seconds": t, "us_per_ray": 1e6 * t / rays,
                                   "evaluations_per_ray": float(strat.evaluations.mean()), **error_of(strat)}
 
@@ -54,7 +54,7 @@ def main(rays: int = 10_000) -> dict:
     table_probe = refracta.ElevationTable(field, EYE_HEIGHT, -1.0, 1.0, tol=1e-3, **common)
     table_error = error_of(table_probe.ends(elevations))["max_error_m"]
     for tol in (1e-4, 3e-5, 1e-5, 3e-6, 1e-6, 1e-7):
-        batch, t = timed(refracta.trace_rays, field, origin, directions, method="rk45", tol=tol, **common)
+        batch, t = timed(refracta.trace_rays, field, origin, directions, trace="rk45", tol=tol, **common)
         if error_of(batch)["max_error_m"] <= table_error:
             break
     rows["rk45_at_table_error"] = {"tol": tol, "seconds": t, "us_per_ray": 1e6 * t / rays,
