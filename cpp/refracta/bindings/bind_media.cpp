@@ -335,11 +335,8 @@ _radius, _dt (, _depth), so refracta.edit.solve can move, resize and heat them.)
           }));
 }
 
-}  // namespace
-
-void bind_media(py::module_& m) {
-  bind_hot_spot(m);
-  bind_turbulence(m);
+// The interface every field shares: n, its gradient, parameters, regions, turbulence.
+void bind_index_field(py::module_& m) {
   py::class_<IndexField, std::shared_ptr<IndexField>>(m, "IndexField", R"doc(
 A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres, y up.
 
@@ -404,6 +401,14 @@ Raises refracta.NumericalError where n <= 0 or is not finite.)doc")
            },
            "A new field of the same model with the given parameters changed.")
       .def("__repr__", &field_repr);
+}
+
+}  // namespace
+
+void bind_media(py::module_& m) {
+  bind_hot_spot(m);
+  bind_turbulence(m);
+  bind_index_field(m);
 
   bind_model<LogisticProfile>(m, "LogisticProfile", R"doc(
 The original mirage editor's height profile (Choi 2017), in scene units::
