@@ -54,10 +54,21 @@ from refracta import _core
 __all__ = ["ev100", "exposure_of", "read_image", "to_display", "write_image"]
 
 
-def write_image(path, image, exposure: float | None = None, tonemap: str | None = None, gamma="srgb",
-                key: float | None = None, white: float | None = None, *, ev100: float | None = None,
-                iso: float | None = None, shutter: float | None = None, f_number: float | None = None,
-                luminous_efficacy: float | None = None) -> None:
+def write_image(
+    path,
+    image,
+    exposure: float | None = None,
+    tonemap: str | None = None,
+    gamma="srgb",
+    key: float | None = None,
+    white: float | None = None,
+    *,
+    ev100: float | None = None,
+    iso: float | None = None,
+    shutter: float | None = None,
+    f_number: float | None = None,
+    luminous_efficacy: float | None = None,
+) -> None:
     """Write an (H, W, C) float image (C = 1..4; C = 2 and 4 carry alpha last).
 
     Float formats (.exr, .hdr, .pfm, .tif) get the linear values times the manual exposure
@@ -66,9 +77,20 @@ def write_image(path, image, exposure: float | None = None, tonemap: str | None 
     to middle grey) and tone mapped by the ACES curve, see the module docstring -- and quantised to 8 bits.
     Raises refracta.IoError when the file cannot be written, ValueError for a bad image or option.
     """
-    _core._write_image(os.fspath(path), np.asarray(image), exposure=exposure, tonemap=tonemap, gamma=gamma, key=key,
-                       white=white, ev100=ev100, iso=iso, shutter=shutter, f_number=f_number,
-                       luminous_efficacy=luminous_efficacy)
+    _core._write_image(
+        os.fspath(path),
+        np.asarray(image),
+        exposure=exposure,
+        tonemap=tonemap,
+        gamma=gamma,
+        key=key,
+        white=white,
+        ev100=ev100,
+        iso=iso,
+        shutter=shutter,
+        f_number=f_number,
+        luminous_efficacy=luminous_efficacy,
+    )
 
 
 def read_image(path) -> np.ndarray:
@@ -76,10 +98,20 @@ def read_image(path) -> np.ndarray:
     return _core._read_image(os.fspath(path))
 
 
-def to_display(image, exposure: float | None = None, tonemap: str | None = None, gamma="srgb",
-               key: float | None = None, white: float | None = None, *, ev100: float | None = None,
-               iso: float | None = None, shutter: float | None = None, f_number: float | None = None,
-               luminous_efficacy: float | None = None) -> np.ndarray:
+def to_display(
+    image,
+    exposure: float | None = None,
+    tonemap: str | None = None,
+    gamma="srgb",
+    key: float | None = None,
+    white: float | None = None,
+    *,
+    ev100: float | None = None,
+    iso: float | None = None,
+    shutter: float | None = None,
+    f_number: float | None = None,
+    luminous_efficacy: float | None = None,
+) -> np.ndarray:
     """The display values write_image would store in a PNG, as float32 (H, W, C) in [0, 1] (for imshow).
 
     image: (H, W) or (H, W, C) linear radiance, C = 1..4 (alpha, the 2nd of 2 or the 4th of 4,
@@ -90,20 +122,47 @@ def to_display(image, exposure: float | None = None, tonemap: str | None = None,
     'aces' (default, filmic), 'reinhard', 'linear' or 'film'; white: Reinhard's L_white (None: infinite);
     gamma: 'srgb', 'linear' or g in [1, 3]. See the module docstring for the formulas.
     """
-    return _core._display(np.asarray(image), exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white,
-                          ev100=ev100, iso=iso, shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
+    return _core._display(
+        np.asarray(image),
+        exposure=exposure,
+        tonemap=tonemap,
+        gamma=gamma,
+        key=key,
+        white=white,
+        ev100=ev100,
+        iso=iso,
+        shutter=shutter,
+        f_number=f_number,
+        luminous_efficacy=luminous_efficacy,
+    )
 
 
-def exposure_of(image, exposure: float | None = None, key: float | None = None, *, ev100: float | None = None,
-                iso: float | None = None, shutter: float | None = None, f_number: float | None = None,
-                luminous_efficacy: float | None = None) -> float:
+def exposure_of(
+    image,
+    exposure: float | None = None,
+    key: float | None = None,
+    *,
+    ev100: float | None = None,
+    iso: float | None = None,
+    shutter: float | None = None,
+    f_number: float | None = None,
+    luminous_efficacy: float | None = None,
+) -> float:
     """The exposure c (the scale of the radiance) to_display would apply to this image with these settings.
 
     Automatic by default (0.18 / the log-average luminance); use it to give several images (the
     frames of an animation, a with/without pair) one exposure: ``to_display(img, exposure=c)``.
     """
-    return _core._display_exposure(np.asarray(image), exposure=exposure, key=key, ev100=ev100, iso=iso, shutter=shutter,
-                                   f_number=f_number, luminous_efficacy=luminous_efficacy)
+    return _core._display_exposure(
+        np.asarray(image),
+        exposure=exposure,
+        key=key,
+        ev100=ev100,
+        iso=iso,
+        shutter=shutter,
+        f_number=f_number,
+        luminous_efficacy=luminous_efficacy,
+    )
 
 
 def ev100(f_number: float, shutter: float, iso: float | None = None) -> float:

@@ -1,6 +1,8 @@
 """One rule per kind of input across the bindings (bindings/convert.h): a colour is a number or three
 in every function that takes one, a unit vector has one tolerance, sample numbers lie in [0, 1)."""
 
+import pickle
+
 import numpy as np
 import pytest
 
@@ -32,11 +34,14 @@ def test_a_grey_kd_is_the_grey_triple_as_in_shading():
     np.testing.assert_array_equal(grey.f(wo, wi), shading.BlinnPhong(0.5).f(wo, wi))
 
 
-@pytest.mark.parametrize("make", [
-    lambda s: s.add_point_light([0, 1, 0], [1.0, 2.0]),
-    lambda s: s.add_box([0, 0, 0], [1, 1, 1], kd=[0.1, 0.2, 0.3, 0.4]),
-    lambda s: s.add_sphere([0, 0, 0], 1.0, emission=-1.0),
-])
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda s: s.add_point_light([0, 1, 0], [1.0, 2.0]),
+        lambda s: s.add_box([0, 0, 0], [1, 1, 1], kd=[0.1, 0.2, 0.3, 0.4]),
+        lambda s: s.add_sphere([0, 0, 0], 1.0, emission=-1.0),
+    ],
+)
 def test_bad_colours_raise_value_errors_naming_the_argument(make):
     with pytest.raises(ValueError, match="intensity|kd|emission"):
         make(refracta.Scene())
@@ -83,6 +88,9 @@ def test_bsdf_sample_is_a_read_only_class_and_the_dict_access_is_deprecated():
         assert list(s) == list(s.fields)
     with pytest.raises(KeyError):
         s["nothing"]
+    copy = pickle.loads(pickle.dumps(s))
+    for key in s.fields:
+        np.testing.assert_array_equal(getattr(copy, key), getattr(s, key))
 
 
 def test_more_than_six_arguments_are_keyword_only():

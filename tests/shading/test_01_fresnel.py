@@ -55,8 +55,9 @@ def test_hemispherical_reflectance():
 def test_conductor_with_k_zero_is_the_dielectric():
     cos = np.linspace(0.0, 1.0, 101)
     for eta in (1.2, 1.5, 3.0):
-        np.testing.assert_allclose(shading.fresnel_conductor(cos, eta, 0.0), shading.fresnel_dielectric(cos, eta),
-                                   atol=FORMULA_TOLERANCE)
+        np.testing.assert_allclose(
+            shading.fresnel_conductor(cos, eta, 0.0), shading.fresnel_dielectric(cos, eta), atol=FORMULA_TOLERANCE
+        )
 
 
 def conductor_closed_form(cos_i, eta, k):
@@ -116,4 +117,5 @@ def test_thin_film_limits():
     delta = 4 * np.pi * n2 * d / lam
     expected = (r12**2 + r23**2 + 2 * r12 * r23 * np.cos(delta)) / (1 + r12**2 * r23**2 + 2 * r12 * r23 * np.cos(delta))
     # Airy's closed form in double on both sides: rounding.
-    assert shading.thin_film_reflectance(1.0, 1.0, n2, 1.5, 0.0, thickness=d, wavelength=lam) == pytest.approx(expected, abs=1e-12)
+    airy = shading.thin_film_reflectance(1.0, 1.0, n2, 1.5, 0.0, thickness=d, wavelength=lam)
+    assert airy == pytest.approx(expected, abs=1e-12)

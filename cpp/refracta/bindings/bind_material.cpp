@@ -210,6 +210,18 @@ void bind_bsdf_sample(py::module_& m) {
                     "True where a dispersive refraction kept the hero wavelength only (N,).")
       .def_property_readonly_static("fields", [](const py::object&) { return sample_fields(); },
                                     "The names of the fields, in order.")
+      .def(py::pickle(  // through the fields, in order
+          [](const BsdfSamples& s) {
+            return py::make_tuple(s.wi, s.weight, s.f, s.pdf, s.flags, s.is_delta, s.eta, s.valid, s.terminated);
+          },
+          [](const py::tuple& t) {
+            if (t.size() != std::size(kSampleFields)) throw_invalid("BsdfSample: bad pickle state (", t.size(), " items)");
+            return BsdfSamples{t[0].cast<DoubleArray>(),          t[1].cast<DoubleArray>(),
+                               t[2].cast<DoubleArray>(),          t[3].cast<py::array_t<double>>(),
+                               t[6].cast<py::array_t<double>>(),  t[4].cast<py::array_t<unsigned>>(),
+                               t[5].cast<py::array_t<bool>>(),    t[7].cast<py::array_t<bool>>(),
+                               t[8].cast<py::array_t<bool>>()};
+          }))
       .def("__getitem__", &sample_field, py::arg("key"))
       .def("__iter__", [](const py::object&) {
         warn_dict_use(" iteration", "BsdfSample.fields");
