@@ -1152,7 +1152,7 @@ class MomentShadowSettings:
     @property
     def bias(self) -> float | None:
         """
-        alpha, the weight of bias_vector in [0, 1); None: published_bias(depth_range, storage)
+        the weight of bias_vector (Peters & Klein's alpha) in [0, 1); None: published_bias(depth_range, storage)
         """
     @bias.setter
     def bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1303,7 +1303,7 @@ class MboitSettings:
     @property
     def bias(self) -> float | None:
         """
-        alpha, the weight of the bias vector; None: the published value
+        the weight of the bias vector in [0, 1), None for the published value (published_bias)
         """
     @bias.setter
     def bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:

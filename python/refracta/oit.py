@@ -1,7 +1,7 @@
 """Order-independent transparency for one pixel's fragments (shared/MOMENTS.md 4).
 
-composite(depths, alphas, colors, background=(0, 0, 0), method='exact'|'peel'|'wboit'|'mboit',
-*, options=None, **fields) -> RGB. depths are view depths (> 0), alphas in [0, 1], colors (K, 3)
+``composite(depths, alphas, colors, background=(0, 0, 0), method, *, options=None, **fields)`` -> RGB,
+method 'exact', 'peel', 'wboit' or 'mboit'. depths are view depths (> 0), alphas in [0, 1], colors (K, 3)
 linear RGB (not premultiplied). The settings are a refracta.OitSettings (`options`, or its C++
 defaults) changed by keywords: layers, weight ('eq7' / 'eq9'), and MBOIT's moments, basis ('power'
 or 'trigonometric'; kind is its old name), beta, bias (None: the published value), storage ('fp32'

@@ -51,7 +51,7 @@ range and storage (published_bias, published_bias_vector).)doc");
   def_choice(cls, "storage", &MomentShadowSettings::storage, parse_storage, storage_name,
              "'fp64', 'fp32' or 'unorm16': how a GPU would keep the moments");
   cls.def_readwrite("bias", &MomentShadowSettings::bias,
-                    "alpha, the weight of bias_vector in [0, 1); None: published_bias(depth_range, storage)")
+                    "the weight of bias_vector (Peters & Klein's alpha) in [0, 1); None: published_bias(depth_range, storage)")
       .def_property(
           "bias_vector", [](const MomentShadowSettings& s) { return optional_array(s.bias_vector); },
           [](MomentShadowSettings& s, const py::object& v) {
@@ -111,7 +111,7 @@ None: the published value for the basis, moment count and storage; storage 'fp32
              "'power' or 'trigonometric'");
   mboit.def_readwrite("moments", &MboitSettings::moments, "4, 6 or 8 power moments; 2, 3 or 4 trigonometric")
       .def_readwrite("beta", &MboitSettings::beta, "overestimation in [0, 1]: the share of a fragment's own layer in front")
-      .def_readwrite("bias", &MboitSettings::bias, "alpha, the weight of the bias vector; None: the published value")
+      .def_readwrite("bias", &MboitSettings::bias, "the weight of the bias vector in [0, 1), None for the published value (published_bias)")
       .def_readwrite("z_near", &MboitSettings::z_near, "[m] near end of the log-depth warp")
       .def_readwrite("z_far", &MboitSettings::z_far, "[m] far end of the log-depth warp (<= z_near: fitted)")
       .def_static(
