@@ -57,6 +57,7 @@ def test_the_physical_sky_brings_its_sun_and_scale_multiplies_both():
         assert sum(isinstance(light, lights.SunLight) for light in scene.lights) == 1
     sun_one = next(light for light in one.lights if isinstance(light, lights.SunLight))
     sun_two = next(light for light in two.lights if isinstance(light, lights.SunLight))
+    # The direction is normalised once in double precision: a few ulps.
     np.testing.assert_allclose(sun_one.direction, np.array([0.0, 0.5, -1.0]) / np.sqrt(1.25), rtol=1e-15)
     # The sun's spectrum is scaled before it is turned into RGB: the same linear map, rounding only.
     np.testing.assert_allclose(sun_two.irradiance, 2.0 * sun_one.irradiance, rtol=1e-12)

@@ -86,6 +86,7 @@ def test_bk7_sellmeier():
     np.testing.assert_allclose(bk7.at([587.6, 486.1, 656.3]), [1.516798, 1.522379, 1.514321], atol=SELLMEIER_TOLERANCE)
     assert shading.Ior(1.33).at(400.0) == 1.33
     assert shading.Dielectric("bk7").interior_ior(587.6) == pytest.approx(1.516798, abs=SELLMEIER_TOLERANCE)
+    # The same Sellmeier formula evaluated twice: bit-identical up to approx's 1e-6 default.
     assert shading.Dielectric("bk7").interior_ior() == pytest.approx(bk7.at(550.0))
     assert shading.ThinDielectric(1.5).interior_ior() is None
 
@@ -97,18 +98,22 @@ def test_thin_film_limits():
         base = shading.fresnel_conductor(cos, eta, k)
         # A zero-thickness film is the bare interface: rounding only.
         film = shading.thin_film_reflectance(cos, 1.0, 1.38, eta, k, thickness=0.0, wavelength=550.0)
+        # A zero-thickness film: rounding only.
         np.testing.assert_allclose(film, base, atol=1e-12)
         # A film of the ambient index is the bare interface: rounding only.
         film = shading.thin_film_reflectance(cos, 1.0, 1.0, eta, k, thickness=300.0, wavelength=550.0)
+        # A film of the ambient index: rounding only.
         np.testing.assert_allclose(film, base, atol=1e-12)
     # A quarter-wave coating of index sqrt(n3) is a perfect antireflection layer at normal incidence.
     n3, lam = 1.9, 550.0
     n2 = np.sqrt(n3)
     # Exactly 0 in exact arithmetic: double rounding.
     quarter_wave = shading.thin_film_reflectance(1.0, 1.0, n2, n3, 0.0, thickness=lam / (4 * n2), wavelength=lam)
+    # Exactly 0 in exact arithmetic: double rounding.
     assert quarter_wave == pytest.approx(0.0, abs=1e-14)
     # A half-wave layer is absent at normal incidence.
     half_wave = shading.thin_film_reflectance(1.0, 1.0, 1.33, 1.5, 0.0, thickness=lam / (2 * 1.33), wavelength=lam)
+    # A half-wave layer in exact arithmetic: double rounding.
     assert half_wave == pytest.approx(0.04, abs=1e-12)
     # Normal incidence closed form (Born & Wolf 1.6 eq. 57):
     # R = (r12^2 + r23^2 + 2 r12 r23 cos d) / (1 + r12^2 r23^2 + 2 r12 r23 cos d).
@@ -118,4 +123,5 @@ def test_thin_film_limits():
     expected = (r12**2 + r23**2 + 2 * r12 * r23 * np.cos(delta)) / (1 + r12**2 * r23**2 + 2 * r12 * r23 * np.cos(delta))
     # Airy's closed form in double on both sides: rounding.
     airy = shading.thin_film_reflectance(1.0, 1.0, n2, 1.5, 0.0, thickness=d, wavelength=lam)
+    # Airy's closed form in double on both sides: rounding.
     assert airy == pytest.approx(expected, abs=1e-12)
