@@ -34,8 +34,10 @@ REPEAT = 3  # timings: the best of this many runs (the machine is shared)
 def make_pairs(truth, eye, count, elevations, distances_m, ground):
     eye = np.asarray(eye, dtype=float)
     pairs = []
-    for e, d in zip(np.linspace(*elevations, count) if count > 1 else [np.mean(elevations)],
-                    np.linspace(*distances_m, count) if count > 1 else [np.mean(distances_m)]):
+    for e, d in zip(
+        np.linspace(*elevations, count) if count > 1 else [np.mean(elevations)],
+        np.linspace(*distances_m, count) if count > 1 else [np.mean(distances_m)],
+    ):
         direction = np.array([np.cos(np.radians(e)), np.sin(np.radians(e)), 0.0])
         path = refracta.trace_ray(truth, eye, direction, tol=1e-11, max_length=d + 10.0, stop_height=ground)
         pairs.append(PointPair(eye + direction, path.point_at(d)[0]))
@@ -46,13 +48,21 @@ CASES = {
     "LogisticProfile": dict(
         truth=refracta.LogisticProfile(k_s=11.0, h_ciso=1.2, n_inv=0.3, n_hot=0.2),
         start=refracta.LogisticProfile(k_s=10.0, h_ciso=1.1, n_inv=0.25, n_hot=0.15),
-        eye=(0.0, 1.5, 0.0), elevations=(-0.6, 0.8), distances=(40.0, 60.0), ground=None,
-        free=["k_s", "h_ciso", "n_inv", "n_hot"]),
+        eye=(0.0, 1.5, 0.0),
+        elevations=(-0.6, 0.8),
+        distances=(40.0, 60.0),
+        ground=None,
+        free=["k_s", "h_ciso", "n_inv", "n_hot"],
+    ),
     "PhysicalAtmosphere": dict(
         truth=refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1),
         start=refracta.PhysicalAtmosphere(surface_dt=7.0, surface_depth=0.13, t_ground=292.0),
-        eye=(0.0, 1.4, 0.0), elevations=(-0.22, 0.05), distances=(250.0, 650.0), ground=0.0,
-        free=["surface_dt", "surface_depth", "t_ground"]),
+        eye=(0.0, 1.4, 0.0),
+        elevations=(-0.22, 0.05),
+        distances=(250.0, 650.0),
+        ground=0.0,
+        free=["surface_dt", "surface_depth", "t_ground"],
+    ),
 }
 
 
@@ -63,18 +73,33 @@ def best_of(run):
 
 
 def run(case, backend, pairs, strategy):
-    common = dict(free=case["free"], stop_height=case["ground"], target_cost=TARGET_COST, max_evaluations=3000,
-                  strategy=strategy)
+    common = dict(
+        free=case["free"], stop_height=case["ground"], target_cost=TARGET_COST, max_evaluations=3000, strategy=strategy
+    )
     if backend == "original":
-        result = solve(case["start"], case["eye"], pairs, backend="nlopt:LN_BOBYQA", distance="vertex",
-                       trace="rk4", step=0.3, **common)
+        result = solve(
+            case["start"],
+            case["eye"],
+            pairs,
+            backend="nlopt:LN_BOBYQA",
+            distance="vertex",
+            trace="rk4",
+            step=0.3,
+            **common,
+        )
     else:
         result = solve(case["start"], case["eye"], pairs, backend=backend, **common)
     misses = distances(result.field, case["eye"], pairs, stop_height=case["ground"])
     cost = float(0.5 * np.sum(misses**2))
-    return {"seconds": result.time, "reached_target": cost <= TARGET_COST, "final_cost_m2": cost,
-            "max_miss_m": float(misses.max()), "evaluations": int(result.evaluations),
-            "pair_traces": int(result.pair_traces), "iterations": int(result.iterations)}
+    return {
+        "seconds": result.time,
+        "reached_target": cost <= TARGET_COST,
+        "final_cost_m2": cost,
+        "max_miss_m": float(misses.max()),
+        "evaluations": int(result.evaluations),
+        "pair_traces": int(result.pair_traces),
+        "iterations": int(result.iterations),
+    }
 
 
 def original_experiment() -> dict:
@@ -89,10 +114,16 @@ def original_experiment() -> dict:
     rows = {}
     for name, kwargs in [("default", {}), ("local", dict(strategy="local"))]:
         result = min((solve(start, eye, pairs, **kwargs) for _ in range(REPEAT)), key=lambda r: r.time)
-        rows[name] = {"seconds": result.time, "summed_miss_m": float(np.sum(result.distances)),
-                      "success": bool(result.success), "stages": result.stages}
-        print(f"original experiment, {name:8s}: summed miss {rows[name]['summed_miss_m']:.3g} m in "
-              f"{result.time:.3f} s, success {result.success}")
+        rows[name] = {
+            "seconds": result.time,
+            "summed_miss_m": float(np.sum(result.distances)),
+            "success": bool(result.success),
+            "stages": result.stages,
+        }
+        print(
+            f"original experiment, {name:8s}: summed miss {rows[name]['summed_miss_m']:.3g} m in "
+            f"{result.time:.3f} s, success {result.success}"
+        )
     rows["goal_met"] = bool(rows["default"]["summed_miss_m"] < 1e-4 and rows["default"]["seconds"] < 2.0)
     return rows
 
@@ -103,20 +134,40 @@ def random_edits() -> dict:
     eye, start = np.array([0.0, 1.5, 0.0]), refracta.LogisticProfile()
     rows = []
     for trial in range(12):
-        truth = refracta.LogisticProfile(h_ciso=rng.uniform(-1, 8), n_inv=rng.uniform(-0.5, 0.5),
-                                         n_hot=rng.uniform(-0.3, 0.3), k_s=rng.uniform(5, 15), a_inv=rng.uniform(0.3, 3))
+        truth = refracta.LogisticProfile(
+            h_ciso=rng.uniform(-1, 8),
+            n_inv=rng.uniform(-0.5, 0.5),
+            n_hot=rng.uniform(-0.3, 0.3),
+            k_s=rng.uniform(5, 15),
+            a_inv=rng.uniform(0.3, 3),
+        )
         count = [1, 4, 16][trial % 3]
-        pairs = make_pairs(truth, eye, count, (-6.0, 4.0) if count > 1 else (-3.0, -3.0),
-                           (40.0, 60.0) if count > 1 else (50.0, 50.0), None)
+        pairs = make_pairs(
+            truth,
+            eye,
+            count,
+            (-6.0, 4.0) if count > 1 else (-3.0, -3.0),
+            (40.0, 60.0) if count > 1 else (50.0, 50.0),
+            None,
+        )
         result = solve(start, eye, pairs)
-        rows.append({"pairs": count, "success": bool(result.success), "seconds": result.time,
-                     "summed_miss_m": float(np.sum(result.distances))})
+        rows.append(
+            {
+                "pairs": count,
+                "success": bool(result.success),
+                "seconds": result.time,
+                "summed_miss_m": float(np.sum(result.distances)),
+            }
+        )
         print(f"random edit {trial:2d}: {count:2d} pairs, success {result.success}, {result.time:.2f} s")
     summary = {}
     for count in (1, 4, 16):
         chosen = [r for r in rows if r["pairs"] == count]
-        summary[f"{count}_pairs"] = {"solved": sum(r["success"] for r in chosen), "of": len(chosen),
-                                     "mean_seconds": float(np.mean([r["seconds"] for r in chosen]))}
+        summary[f"{count}_pairs"] = {
+            "solved": sum(r["success"] for r in chosen),
+            "of": len(chosen),
+            "mean_seconds": float(np.mean([r["seconds"] for r in chosen])),
+        }
     return {"cases": rows, "summary": summary}
 
 
@@ -130,9 +181,11 @@ def main() -> dict:
                 for backend in BACKENDS if strategy == "local" else ["ceres", "nlopt:LN_BOBYQA"]:
                     row = best_of(functools.partial(run, case, backend, pairs, strategy))
                     rows[f"{name}/{count}/{strategy}/{backend}"] = row
-                    print(f"{name:18s} {count:2d} pairs  {strategy:5s} {backend:20s} {row['seconds'] * 1e3:8.2f} ms  "
-                          f"target {'yes' if row['reached_target'] else 'NO '}  cost {row['final_cost_m2']:9.3g} m^2  "
-                          f"evals {row['evaluations']:5d}")
+                    print(
+                        f"{name:18s} {count:2d} pairs  {strategy:5s} {backend:20s} {row['seconds'] * 1e3:8.2f} ms  "
+                        f"target {'yes' if row['reached_target'] else 'NO '}  cost {row['final_cost_m2']:9.3g} m^2  "
+                        f"evals {row['evaluations']:5d}"
+                    )
     goals = {}
     for name in CASES:
         ceres, bobyqa = rows[f"{name}/4/local/ceres"], rows[f"{name}/4/local/nlopt:LN_BOBYQA"]
@@ -144,11 +197,18 @@ def main() -> dict:
             "speedup_goal_met": bool(ceres["reached_target"] and speedup >= 10.0),
             "cost_ratio_original_over_ceres": original_row["final_cost_m2"] / max(ceres["final_cost_m2"], 1e-300),
         }
-        print(f"{name}: ceres {speedup:.1f}x faster than LN_BOBYQA on 4 pairs; original's final cost "
-              f"{original_row['final_cost_m2']:.3g} vs ceres {ceres['final_cost_m2']:.3g} m^2")
+        print(
+            f"{name}: ceres {speedup:.1f}x faster than LN_BOBYQA on 4 pairs; original's final cost "
+            f"{original_row['final_cost_m2']:.3g} vs ceres {ceres['final_cost_m2']:.3g} m^2"
+        )
     random = random_edits()
-    payload = {"target_cost_m2": TARGET_COST, "original_experiment": original, "rows": rows, "goals": goals,
-               "random_edits": random}
+    payload = {
+        "target_cost_m2": TARGET_COST,
+        "original_experiment": original,
+        "rows": rows,
+        "goals": goals,
+        "random_edits": random,
+    }
     print(f"wrote {write_results('edit', payload)}")
     return payload
 

@@ -49,6 +49,7 @@ class Clock:
                 with self.changed:
                     self.events.append((model.images["curved"].level, model.camera, time.perf_counter() - self.start))
                     self.changed.notify_all()
+
         return seen
 
     def reset(self):
@@ -86,8 +87,13 @@ def render_latencies(road) -> dict:
         png_bytes(model.images["curved"].pixels)
         png.append(time.perf_counter() - start)
     model.close()
-    return {"preview_s": min(preview), "full_s": min(full), "supersede_s": min(supersede), "png_s": min(png),
-            "preview_goal_met": min(preview) <= PREVIEW_GOAL}
+    return {
+        "preview_s": min(preview),
+        "full_s": min(full),
+        "supersede_s": min(supersede),
+        "png_s": min(png),
+        "preview_goal_met": min(preview) <= PREVIEW_GOAL,
+    }
 
 
 def truth_pairs(road, count):
@@ -103,9 +109,10 @@ def truth_pairs(road, count):
 def solve_latencies(road) -> dict:
     camera, scene = road.camera, road.scene
     cases = {
-        "notebook02": (["surface_dt", "surface_depth"],
-                       [((180.4, 64.06), camera.pick(scene, 180.4, 63.9)),
-                        ((180.4, 55.92), camera.pick(scene, 180.4, 55.9))]),
+        "notebook02": (
+            ["surface_dt", "surface_depth"],
+            [((180.4, 64.06), camera.pick(scene, 180.4, 63.9)), ((180.4, 55.92), camera.pick(scene, 180.4, 55.9))],
+        ),
         "truth3": (["surface_dt"], truth_pairs(road, 3)),
         "truth4_2free": (["surface_dt", "surface_depth"], truth_pairs(road, 4)),
     }
@@ -113,13 +120,15 @@ def solve_latencies(road) -> dict:
     for name, (free, pairs) in cases.items():
         times, to_image, solver, success = [], [], [], None
         for _ in range(REPEAT):
-            model = EditorModel(scene, camera, road.field, free, ground=0.0, max_length=road.max_length,
-                                autorender=False)
+            model = EditorModel(
+                scene, camera, road.field, free, ground=0.0, max_length=road.max_length, autorender=False
+            )
             for destination, source in pairs:
                 model.add_pair(destination, source)
             solved = threading.Event()
-            model.observe(lambda what, model=model, solved=solved: what == "result" and model.result is not None
-                          and solved.set())
+            model.observe(
+                lambda what, model=model, solved=solved: what == "result" and model.result is not None and solved.set()
+            )
             clock = Clock(model)
             clock.reset()
             model.solve()
@@ -130,8 +139,14 @@ def solve_latencies(road) -> dict:
             success = bool(model.result.success)
             solver.append(model.result.time)
             model.close()
-        rows[name] = {"pairs": len(pairs), "free": free, "solve_s": min(times), "solver_s": min(solver),
-                      "solve_to_image_s": min(to_image), "success": success}
+        rows[name] = {
+            "pairs": len(pairs),
+            "free": free,
+            "solve_s": min(times),
+            "solver_s": min(solver),
+            "solve_to_image_s": min(to_image),
+            "success": success,
+        }
     return rows
 
 
@@ -141,13 +156,17 @@ def main() -> dict:
         road = examples.hot_road(width, height)
         row = render_latencies(road)
         renders[f"{width}x{height}"] = row
-        print(f"hot road {width}x{height}: preview {row['preview_s']:.3f} s, full {row['full_s']:.3f} s, "
-              f"camera move -> preview {row['supersede_s']:.3f} s, PNG {row['png_s'] * 1e3:.1f} ms")
+        print(
+            f"hot road {width}x{height}: preview {row['preview_s']:.3f} s, full {row['full_s']:.3f} s, "
+            f"camera move -> preview {row['supersede_s']:.3f} s, PNG {row['png_s'] * 1e3:.1f} ms"
+        )
     solves = solve_latencies(examples.hot_road(320, 120))
     for name, row in solves.items():
-        print(f"solve {name}: {row['pairs']} pairs, free {row['free']}: {row['solve_s']:.3f} s "
-              f"(the solver {row['solver_s']:.3f} s) "
-              f"(image after it {row['solve_to_image_s']:.3f} s), success {row['success']}")
+        print(
+            f"solve {name}: {row['pairs']} pairs, free {row['free']}: {row['solve_s']:.3f} s "
+            f"(the solver {row['solver_s']:.3f} s) "
+            f"(image after it {row['solve_to_image_s']:.3f} s), success {row['success']}"
+        )
     payload = {"renders": renders, "solves": solves, "preview_goal_s": PREVIEW_GOAL, "repeat": REPEAT}
     print(f"wrote {write_results('editor', payload)}")
     return payload

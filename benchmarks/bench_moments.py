@@ -36,7 +36,9 @@ def scene_and_camera():
     scene.add_ground(0.0, 200.0)
     for i in range(6):
         for j in range(4):
-            scene.add_box((4.0 + 5.0 * i, 0.5 + 0.4 * ((i + j) % 4), -8.0 + 5.0 * j), (1.5, 1.0 + 0.8 * ((i + j) % 4), 1.5))
+            scene.add_box(
+                (4.0 + 5.0 * i, 0.5 + 0.4 * ((i + j) % 4), -8.0 + 5.0 * j), (1.5, 1.0 + 0.8 * ((i + j) % 4), 1.5)
+            )
     camera = refracta.Camera((-6, 12, -18), (14, 0, 0), (0, 1, 0), 50, 512, 320)
     return scene, camera
 
@@ -51,7 +53,9 @@ def glass_stack(layers: int, size: int):
     for i in range(layers):
         x0, ty, tz = 8.0 + 2.0 * i, rng.uniform(-0.15, 0.15), rng.uniform(-0.15, 0.15)
         corners = [(x0 + ty * y + tz * z, y, z) for y, z in ((-60, -60), (60, -60), (60, 60), (-60, 60))]
-        scene.add_mesh(corners, [[0, 1, 2], [0, 2, 3]], kd=tuple(rng.uniform(0.1, 0.9, 3)), alpha=float(rng.uniform(0.1, 0.5)))
+        scene.add_mesh(
+            corners, [[0, 1, 2], [0, 2, 3]], kd=tuple(rng.uniform(0.1, 0.9, 3)), alpha=float(rng.uniform(0.1, 0.5))
+        )
     camera = refracta.Camera((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0, 1, 0), 40, size, size)
     return scene, camera
 
@@ -60,17 +64,34 @@ def transparency_rows(size: int) -> list:
     rows = []
     for layers in (8, 32):
         scene, camera = glass_stack(layers, size)
-        table, _ = compare.transparency(scene, camera, methods=("peel 4", "wboit eq7", "mboit 4", "mboit 6", "mboit 8",
-                                                                 "mboit trig 2", "mboit trig 3", "mboit trig 4",
-                                                                 "mboit 4 unorm16", "mboit 6 unorm16", "mboit 8 unorm16",
-                                                                 "mboit trig 3 unorm16"),
-                                        figure=False, shadows="none")
+        table, _ = compare.transparency(
+            scene,
+            camera,
+            methods=(
+                "peel 4",
+                "wboit eq7",
+                "mboit 4",
+                "mboit 6",
+                "mboit 8",
+                "mboit trig 2",
+                "mboit trig 3",
+                "mboit trig 4",
+                "mboit 4 unorm16",
+                "mboit 6 unorm16",
+                "mboit 8 unorm16",
+                "mboit trig 3 unorm16",
+            ),
+            figure=False,
+            shadows="none",
+        )
         for row in table:
             row["fragments_per_pixel"] = layers
             row["image"] = [size, size]
             rows.append(row)
-            print(f"{layers:2d} fragments  {row['method']:14s} {row['seconds']:7.3f} s  "
-                  f"{row['bytes_per_pixel']:6.1f} B/px  mean error {row['mean_error']:.4f}  p99 {row['p99_error']:.4f}")
+            print(
+                f"{layers:2d} fragments  {row['method']:14s} {row['seconds']:7.3f} s  "
+                f"{row['bytes_per_pixel']:6.1f} B/px  mean error {row['mean_error']:.4f}  p99 {row['p99_error']:.4f}"
+            )
     return rows
 
 
@@ -90,14 +111,25 @@ def oit_ratio_rows(size: int = 1024, layers: int = 32, methods=OIT_RATIO_METHODS
     """Exact composite and MBOIT at size^2 x `layers` fragments: time and time / exact."""
     scene, camera = glass_stack(layers, size)
     exact = best_seconds(scene, camera, repeats, transparency="exact")
-    rows = [{"method": "exact", "seconds": exact, "over_exact": 1.0, "image": [size, size], "fragments_per_pixel": layers}]
+    rows = [
+        {"method": "exact", "seconds": exact, "over_exact": 1.0, "image": [size, size], "fragments_per_pixel": layers}
+    ]
     for method in methods:
         seconds = best_seconds(scene, camera, repeats, **compare.TRANSPARENCY_METHODS[method])
-        rows.append({"method": method, "seconds": seconds, "over_exact": seconds / exact, "image": [size, size],
-                     "fragments_per_pixel": layers})
+        rows.append(
+            {
+                "method": method,
+                "seconds": seconds,
+                "over_exact": seconds / exact,
+                "image": [size, size],
+                "fragments_per_pixel": layers,
+            }
+        )
     for row in rows:
-        print(f"{size}^2 x {layers} fragments  {row['method']:8s} {row['seconds']:7.2f} s  "
-              f"{row['over_exact']:5.2f}x exact")
+        print(
+            f"{size}^2 x {layers} fragments  {row['method']:8s} {row['seconds']:7.2f} s  "
+            f"{row['over_exact']:5.2f}x exact"
+        )
     return rows
 
 
@@ -105,22 +137,32 @@ def main(oit_size: int = 256) -> dict:
     scene, camera = scene_and_camera()
     rows = []
     for storage in ("fp32", "unorm16"):
-        table, _ = compare.shadows(scene, camera, methods=METHODS, kernels=KERNELS, figure=False, resolution=1024,
-                                   storage=storage)
+        table, _ = compare.shadows(
+            scene, camera, methods=METHODS, kernels=KERNELS, figure=False, resolution=1024, storage=storage
+        )
         for row in table:
             row["storage"] = storage
             best = None
             for _ in range(3):  # the best of three: single runs on 2 busy cores scatter by ~30 %
-                _, counts = refracta.render_raster(scene, camera, shadows=row["method"], kernel=row["kernel"],
-                                                   resolution=1024, storage=storage, output="shadow",
-                                                   return_stats=True)
+                _, counts = refracta.render_raster(
+                    scene,
+                    camera,
+                    shadows=row["method"],
+                    kernel=row["kernel"],
+                    resolution=1024,
+                    storage=storage,
+                    output="shadow",
+                    return_stats=True,
+                )
                 if best is None or counts.seconds < best.seconds:
                     best = counts
             row["build_seconds"] = best.shadow_build_seconds
             row["lookup_seconds"] = best.seconds - best.shadow_build_seconds
             rows.append(row)
-            print(f"{storage:8s} {row['method']:14s} {row['kernel']:3d}  build {row['build_seconds']:.3f} s  "
-                  f"lookups {row['lookup_seconds']:.3f} s  mean error {row['mean_error']:.4f}  p99 {row['p99_error']:.3f}")
+            print(
+                f"{storage:8s} {row['method']:14s} {row['kernel']:3d}  build {row['build_seconds']:.3f} s  "
+                f"lookups {row['lookup_seconds']:.3f} s  mean error {row['mean_error']:.4f}  p99 {row['p99_error']:.3f}"
+            )
     fp32 = [r for r in rows if r["storage"] == "fp32"]
     total = {(r["method"], r["kernel"]): r["build_seconds"] + r["lookup_seconds"] for r in fp32}
     msm = [total[("msm_hamburger", k)] for k in KERNELS]
@@ -128,18 +170,26 @@ def main(oit_size: int = 256) -> dict:
     ratio = {r["method"]: r["over_exact"] for r in oit_rows}
     goals = {
         "msm_cost_ratio_31_over_3": msm[-1] / msm[0],
-        "msm_over_pcf_per_kernel": {method: {str(k): total[(method, k)] / total[("pcf", k)] for k in KERNELS}
-                                    for method in ("msm_hamburger", "msm_hausdorff")},
-        "msm_below_pcf_from_9x9": all(total[(m, k)] < total[("pcf", k)] for m in ("msm_hamburger", "msm_hausdorff")
-                                      for k in KERNELS if k >= 9),
+        "msm_over_pcf_per_kernel": {
+            method: {str(k): total[(method, k)] / total[("pcf", k)] for k in KERNELS}
+            for method in ("msm_hamburger", "msm_hausdorff")
+        },
+        "msm_below_pcf_from_9x9": all(
+            total[(m, k)] < total[("pcf", k)] for m in ("msm_hamburger", "msm_hausdorff") for k in KERNELS if k >= 9
+        ),
         "mboit4_over_exact_1024_32": ratio["mboit 4"],
         "mboit6_over_exact_1024_32": ratio["mboit 6"],
         "mboit8_over_exact_1024_32": ratio["mboit 8"],
         "mboit4_at_most_1.5x_exact": ratio["mboit 4"] <= 1.5,
     }
     print(goals)
-    payload = {"setup": {"shadow_map": 1024, "image": [camera.width, camera.height], "kernels": KERNELS},
-               "rows": rows, "goals": goals, "transparency": transparency_rows(oit_size), "oit_1024": oit_rows}
+    payload = {
+        "setup": {"shadow_map": 1024, "image": [camera.width, camera.height], "kernels": KERNELS},
+        "rows": rows,
+        "goals": goals,
+        "transparency": transparency_rows(oit_size),
+        "oit_1024": oit_rows,
+    }
     print(f"wrote {write_results('moments', payload)}")
     return payload
 
@@ -149,8 +199,11 @@ if __name__ == "__main__":
 
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--oit-size", type=int, default=256, help="transparency image size (default 256)")
-    parser.add_argument("--oit-ratio", action="store_true",
-                        help="only time MBOIT 4 against the exact composite at 1024^2 x 32 fragments (no JSON)")
+    parser.add_argument(
+        "--oit-ratio",
+        action="store_true",
+        help="only time MBOIT 4 against the exact composite at 1024^2 x 32 fragments (no JSON)",
+    )
     args = parser.parse_args()
     if args.oit_ratio:
         oit_ratio_rows(methods=("mboit 4",))

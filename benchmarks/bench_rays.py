@@ -36,19 +36,34 @@ def main(rays: int = 10_000) -> dict:
 
     def error_of(batch):
         err = np.linalg.norm(batch.end_points - reference.end_points, axis=1)
-        return {"max_error_m": float(err.max()), "p99_error_m": float(np.quantile(err, 0.99)),
-                "median_error_m": float(np.median(err))}
+        return {
+            "max_error_m": float(err.max()),
+            "p99_error_m": float(np.quantile(err, 0.99)),
+            "median_error_m": float(np.median(err)),
+        }
 
     rows = {}
     rk4, t = timed(refracta.trace_rays, field, origin, directions, trace="rk4", step=0.3, **common)
-    rows["rk4_step_0.3m"] = {"seconds": t, "us_per_ray": 1e6 * t / rays,
-                             "evaluations_per_ray": float(rk4.evaluations.mean()), **error_of(rk4)}
+    rows["rk4_step_0.3m"] = {
+        "seconds": t,
+        "us_per_ray": 1e6 * t / rays,
+        "evaluations_per_ray": float(rk4.evaluations.mean()),
+        **error_of(rk4),
+    }
     rk45, t = timed(refracta.trace_rays, field, origin, directions, trace="rk45", tol=1e-3, **common)
-    rows["rk45_tol_1mm"] = {"seconds": t, "us_per_ray": 1e6 * t / rays,
-                            "evaluations_per_ray": float(rk45.evaluations.mean()), **error_of(rk45)}
+    rows["rk45_tol_1mm"] = {
+        "seconds": t,
+        "us_per_ray": 1e6 * t / rays,
+        "evaluations_per_ray": float(rk45.evaluations.mean()),
+        **error_of(rk45),
+    }
     strat, t = timed(refracta.trace_rays, field, origin, directions, trace="stratified", tol=1e-3, **common)
-    rows["stratified_tol_1mm"] = {"seconds": t, "us_per_ray": 1e6 * t / rays,
-                                  "evaluations_per_ray": float(strat.evaluations.mean()), **error_of(strat)}
+    rows["stratified_tol_1mm"] = {
+        "seconds": t,
+        "us_per_ray": 1e6 * t / rays,
+        "evaluations_per_ray": float(strat.evaluations.mean()),
+        **error_of(strat),
+    }
 
     # rk45 at equal error: the loosest tolerance whose worst end-point error is within the table's.
     table_probe = refracta.ElevationTable(field, EYE_HEIGHT, -1.0, 1.0, tol=1e-3, **common)
@@ -57,26 +72,44 @@ def main(rays: int = 10_000) -> dict:
         batch, t = timed(refracta.trace_rays, field, origin, directions, trace="rk45", tol=tol, **common)
         if error_of(batch)["max_error_m"] <= table_error:
             break
-    rows["rk45_at_table_error"] = {"tol": tol, "seconds": t, "us_per_ray": 1e6 * t / rays,
-                                   "evaluations_per_ray": float(batch.evaluations.mean()), **error_of(batch)}
+    rows["rk45_at_table_error"] = {
+        "tol": tol,
+        "seconds": t,
+        "us_per_ray": 1e6 * t / rays,
+        "evaluations_per_ray": float(batch.evaluations.mean()),
+        **error_of(batch),
+    }
 
     table, t_build = timed(refracta.ElevationTable, field, EYE_HEIGHT, -1.0, 1.0, tol=1e-3, **common)
     ends, t_query = timed(table.ends, elevations)
     t_table = t_build + t_query
     rows["elevation_table_tol_1mm"] = {
-        "seconds": t_table, "build_seconds": t_build, "query_seconds": t_query,
-        "us_per_ray": 1e6 * t_table / rays, "evaluations_per_ray": table.evaluations / rays,
-        "traced_elevations": table.size, "exact_intervals": table.exact_intervals, **error_of(ends)}
+        "seconds": t_table,
+        "build_seconds": t_build,
+        "query_seconds": t_query,
+        "us_per_ray": 1e6 * t_table / rays,
+        "evaluations_per_ray": table.evaluations / rays,
+        "traced_elevations": table.size,
+        "exact_intervals": table.exact_intervals,
+        **error_of(ends),
+    }
 
     result = {
-        "setup": {"rays": rays, "eye_height_m": EYE_HEIGHT, "length_m": LENGTH, "elevations_deg": [-1.0, 1.0],
-                  "field": repr(field), "reference": "stratified, tol 1e-9 m", "reference_seconds": t_ref},
+        "setup": {
+            "rays": rays,
+            "eye_height_m": EYE_HEIGHT,
+            "length_m": LENGTH,
+            "elevations_deg": [-1.0, 1.0],
+            "field": repr(field),
+            "reference": "stratified, tol 1e-9 m",
+            "reference_seconds": t_ref,
+        },
         "methods": rows,
         "ratios": {
             "rk4_over_rk45_time": rows["rk4_step_0.3m"]["seconds"] / rows["rk45_tol_1mm"]["seconds"],
             "rk45_over_table_time": rows["rk45_tol_1mm"]["seconds"] / rows["elevation_table_tol_1mm"]["seconds"],
-            "rk45_at_equal_error_over_table_time":
-                rows["rk45_at_table_error"]["seconds"] / rows["elevation_table_tol_1mm"]["seconds"],
+            "rk45_at_equal_error_over_table_time": rows["rk45_at_table_error"]["seconds"]
+            / rows["elevation_table_tol_1mm"]["seconds"],
         },
         "goals": {"rk45_10x_faster_than_rk4": None, "table_50x_faster_than_rk45": None},
     }
@@ -92,6 +125,8 @@ if __name__ == "__main__":
     result = main(args.rays)
     path = write_results("rays", result)
     for name, row in result["methods"].items():
-        print(f"{name:26s} {row['us_per_ray']:10.1f} us/ray  {row['evaluations_per_ray']:9.0f} evals/ray  "
-              f"max err {row['max_error_m']:.2e} m  p99 {row['p99_error_m']:.2e} m")
+        print(
+            f"{name:26s} {row['us_per_ray']:10.1f} us/ray  {row['evaluations_per_ray']:9.0f} evals/ray  "
+            f"max err {row['max_error_m']:.2e} m  p99 {row['p99_error_m']:.2e} m"
+        )
     print("ratios", result["ratios"], "->", path)

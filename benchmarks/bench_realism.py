@@ -49,13 +49,22 @@ def turbulence_generation(sizes=(128, 256)) -> dict:
         r_min, r_max = air.inertial_range
         statistics_seconds = time.perf_counter() - start
         rows[str(cells)] = {
-            "cells": cells, "spacing_m": air.spacing, "tile_m": air.size, "seconds": seconds,
-            "python_peak_mb": peak / 1e6, "coefficients_mb": 4 * cells ** 3 / 1e6,
+            "cells": cells,
+            "spacing_m": air.spacing,
+            "tile_m": air.size,
+            "seconds": seconds,
+            "python_peak_mb": peak / 1e6,
+            "coefficients_mb": 4 * cells**3 / 1e6,
             "memory_needed_mb": air.memory_needed(cells) / 1e6,
-            "inertial_range_m": [r_min, r_max], "inertial_range_cells": [r_min / air.spacing, r_max / air.spacing],
-            "inertial_width": r_max / r_min, "statistics_seconds": statistics_seconds}
-        print(f"{cells}^3: {seconds:.2f} s, python peak {peak / 1e6:.0f} MB (+ {4 * cells ** 3 / 1e6:.0f} MB in C++), "
-              f"inertial range {r_min:.3f}-{r_max:.3f} m (x{r_max / r_min:.1f}), statistics {statistics_seconds:.1f} s")
+            "inertial_range_m": [r_min, r_max],
+            "inertial_range_cells": [r_min / air.spacing, r_max / air.spacing],
+            "inertial_width": r_max / r_min,
+            "statistics_seconds": statistics_seconds,
+        }
+        print(
+            f"{cells}^3: {seconds:.2f} s, python peak {peak / 1e6:.0f} MB (+ {4 * cells**3 / 1e6:.0f} MB in C++), "
+            f"inertial range {r_min:.3f}-{r_max:.3f} m (x{r_max / r_min:.1f}), statistics {statistics_seconds:.1f} s"
+        )
     return rows
 
 
@@ -82,10 +91,15 @@ def structure_function(cells=256, seeds=4, pairs=40_000) -> dict:
     mean = np.mean(per_seed, axis=0)
     ensemble = first.structure_function(r) / kolmogorov
     print("D / (Cn2 r^2/3) over the inertial range:", np.round(mean, 3), " ensemble:", np.round(ensemble, 3))
-    return {"cells": cells, "r_m": r.tolist(), "measured_mean_ratio": mean.tolist(),
-            "measured_ratio_per_seed": [p.tolist() for p in per_seed], "ensemble_ratio": ensemble.tolist(),
-            "worst_mean_ratio_error": float(np.max(np.abs(mean - 1))),
-            "within_20_percent": bool(np.all(np.abs(mean - 1) <= 0.2))}
+    return {
+        "cells": cells,
+        "r_m": r.tolist(),
+        "measured_mean_ratio": mean.tolist(),
+        "measured_ratio_per_seed": [p.tolist() for p in per_seed],
+        "ensemble_ratio": ensemble.tolist(),
+        "worst_mean_ratio_error": float(np.max(np.abs(mean - 1))),
+        "within_20_percent": bool(np.all(np.abs(mean - 1) <= 0.2)),
+    }
 
 
 def angle_of_arrival(seeds=4, rays=1500, along_x_cells=256) -> dict:
@@ -110,41 +124,62 @@ def angle_of_arrival(seeds=4, rays=1500, along_x_cells=256) -> dict:
         measured.append(0.5 * (np.mean((turn @ e1) ** 2) + np.mean((turn @ e2) ** 2)))
         expected.append(air.angle_of_arrival_variance(length, direction=t))
     scatter = air.angle_of_arrival_scatter(length, direction=t)
-    sigma = math.sqrt(scatter ** 2 + 1.0 / rays) / math.sqrt(seeds)
+    sigma = math.sqrt(scatter**2 + 1.0 / rays) / math.sqrt(seeds)
     ratio = float(np.mean(measured) / np.mean(expected))
     closed = {
         "point_l0_5mm": tb.tilt_variance(cn2, length, inner_scale=0.005),
         "point_l0_one_cell": tb.tilt_variance(cn2, length, inner_scale=spacing),
         "point_l0_two_cells": tb.tilt_variance(cn2, length, inner_scale=2 * spacing),
         "g_tilt_aperture_one_cell": tb.tilt_variance(cn2, length, aperture=spacing),
-        "plane_wave_2.91_aperture_one_cell": tb.plane_wave_tilt_variance(cn2, length, spacing)}
-    print(f"angle of arrival: measured {np.mean(measured):.3e} rad^2, expected {np.mean(expected):.3e} "
-          f"(ratio {ratio:.3f} +- {sigma:.3f}); closed forms {', '.join(f'{k} {v:.3e}' for k, v in closed.items())}")
+        "plane_wave_2.91_aperture_one_cell": tb.plane_wave_tilt_variance(cn2, length, spacing),
+    }
+    print(
+        f"angle of arrival: measured {np.mean(measured):.3e} rad^2, expected {np.mean(expected):.3e} "
+        f"(ratio {ratio:.3f} +- {sigma:.3f}); closed forms {', '.join(f'{k} {v:.3e}' for k, v in closed.items())}"
+    )
     # A hot-road path: 300 m along +x (a lattice axis) through the default grid, against the
     # continuous spectrum: the 12.8 m tile repeats along the path and its modes add coherently.
     road = refracta.Turbulence(cells=along_x_cells, depth=None)
     start = time.perf_counter()
-    along_x = {str(L): {"discrete": road.angle_of_arrival_variance(L),
-                        "continuous_l0_one_cell": tb.tilt_variance(road.cn2, L, inner_scale=road.spacing)}
-               for L in (6.4, 300.0)}
+    along_x = {
+        str(L): {
+            "discrete": road.angle_of_arrival_variance(L),
+            "continuous_l0_one_cell": tb.tilt_variance(road.cn2, L, inner_scale=road.spacing),
+        }
+        for L in (6.4, 300.0)
+    }
     off_axis = road.angle_of_arrival_variance(300.0, direction=(1.0, 0.0, math.tan(math.radians(2.0))))
     seconds = (time.perf_counter() - start) / 3
     for row in along_x.values():
         row["discrete_over_continuous"] = row["discrete"] / row["continuous_l0_one_cell"]
-    print(f"along x through the {along_x_cells}^3 default grid: discrete / continuous at 6.4 m "
-          f"{along_x['6.4']['discrete_over_continuous']:.2f}, "
-          f"at 300 m {along_x['300.0']['discrete_over_continuous']:.2f}; "
-          f"2 deg off the axis at 300 m {off_axis / along_x['300.0']['continuous_l0_one_cell']:.2f} "
-          f"({seconds:.1f} s per expectation)")
-    return {"setup": {"cn2": cn2, "path_m": length, "cells": 64, "spacing_m": spacing, "seeds": seeds, "rays": rays,
-                      "direction": t.tolist()},
-            "measured_rad2": float(np.mean(measured)), "expected_rad2": float(np.mean(expected)),
-            "measured_over_expected": ratio, "standard_deviation_of_ratio": sigma,
-            "realisation_scatter": scatter, "per_seed_measured": [float(m) for m in measured],
-            "continuous_closed_forms_rad2": closed,
-            "hot_road_path_along_x": along_x,
-            "hot_road_path_2deg_off_axis_over_continuous": off_axis / along_x["300.0"]["continuous_l0_one_cell"],
-            "expectation_seconds_256": seconds}
+    print(
+        f"along x through the {along_x_cells}^3 default grid: discrete / continuous at 6.4 m "
+        f"{along_x['6.4']['discrete_over_continuous']:.2f}, "
+        f"at 300 m {along_x['300.0']['discrete_over_continuous']:.2f}; "
+        f"2 deg off the axis at 300 m {off_axis / along_x['300.0']['continuous_l0_one_cell']:.2f} "
+        f"({seconds:.1f} s per expectation)"
+    )
+    return {
+        "setup": {
+            "cn2": cn2,
+            "path_m": length,
+            "cells": 64,
+            "spacing_m": spacing,
+            "seeds": seeds,
+            "rays": rays,
+            "direction": t.tolist(),
+        },
+        "measured_rad2": float(np.mean(measured)),
+        "expected_rad2": float(np.mean(expected)),
+        "measured_over_expected": ratio,
+        "standard_deviation_of_ratio": sigma,
+        "realisation_scatter": scatter,
+        "per_seed_measured": [float(m) for m in measured],
+        "continuous_closed_forms_rad2": closed,
+        "hot_road_path_along_x": along_x,
+        "hot_road_path_2deg_off_axis_over_continuous": off_axis / along_x["300.0"]["continuous_l0_one_cell"],
+        "expectation_seconds_256": seconds,
+    }
 
 
 def shimmer_render(width=160, height=60) -> dict:
@@ -152,23 +187,33 @@ def shimmer_render(width=160, height=60) -> dict:
     from refracta import examples
 
     road = examples.hot_road(width, height)
-    calm_image, calm_seconds = timed(refracta.render, road.scene, road.camera, road.field, progress=False,
-                                     max_length=road.max_length, repeat=3)
+    calm_image, calm_seconds = timed(
+        refracta.render, road.scene, road.camera, road.field, progress=False, max_length=road.max_length, repeat=3
+    )
     air = refracta.Turbulence(depth=0.1)
     field = refracta.PhysicalAtmosphere(**road.field.params, turbulence=air)
     start = time.perf_counter()
-    image, stats = refracta.render(road.scene, road.camera, field, progress=False, max_length=road.max_length,
-                                   return_stats=True)
+    image, stats = refracta.render(
+        road.scene, road.camera, field, progress=False, max_length=road.max_length, return_stats=True
+    )
     seconds = time.perf_counter() - start
     difference = float(np.mean(np.abs(image - calm_image)) / np.mean(calm_image))
     changed = float(np.mean(np.abs(image - calm_image).max(axis=2) > 0.05 * calm_image.max()))
-    print(f"hot_road {width}x{height}: calm {calm_seconds:.3f} s, with turbulence {seconds:.1f} s "
-          f"(x{seconds / calm_seconds:.0f}), chords/pixel {stats.chords / stats.samples:.0f}, "
-          f"mean |change| {difference:.3f} of the mean, pixels changed > 5% of the peak: {changed:.2f}")
-    return {"size": [width, height], "turbulence": repr(air), "calm_seconds": calm_seconds,
-            "turbulent_seconds": seconds, "slowdown": seconds / calm_seconds,
-            "chords_per_pixel": stats.chords / stats.samples, "mean_relative_change": difference,
-            "fraction_of_pixels_changed": changed}
+    print(
+        f"hot_road {width}x{height}: calm {calm_seconds:.3f} s, with turbulence {seconds:.1f} s "
+        f"(x{seconds / calm_seconds:.0f}), chords/pixel {stats.chords / stats.samples:.0f}, "
+        f"mean |change| {difference:.3f} of the mean, pixels changed > 5% of the peak: {changed:.2f}"
+    )
+    return {
+        "size": [width, height],
+        "turbulence": repr(air),
+        "calm_seconds": calm_seconds,
+        "turbulent_seconds": seconds,
+        "slowdown": seconds / calm_seconds,
+        "chords_per_pixel": stats.chords / stats.samples,
+        "mean_relative_change": difference,
+        "fraction_of_pixels_changed": changed,
+    }
 
 
 def hot_spot_render(width=1280, height=720, repeat=3) -> dict:
@@ -181,20 +226,34 @@ def hot_spot_render(width=1280, height=720, repeat=3) -> dict:
 
     example = examples.hot_spot(width, height)
     base = dict(surface_dt=2.0, surface_depth=0.1)
-    fields = {"height_only": refracta.PhysicalAtmosphere(**base),
-              "compact": example.field,
-              "gaussian": refracta.PhysicalAtmosphere(
-                  **base, hot_spots=[refracta.HotSpot(330.0, 0.0, 45.0, 16.0, footprint="gaussian")])}
+    fields = {
+        "height_only": refracta.PhysicalAtmosphere(**base),
+        "compact": example.field,
+        "gaussian": refracta.PhysicalAtmosphere(
+            **base, hot_spots=[refracta.HotSpot(330.0, 0.0, 45.0, 16.0, footprint="gaussian")]
+        ),
+    }
     out = {"size": [width, height], "spp": 1, "transport": "direct"}
     for name, field in fields.items():
-        (_, stats), seconds = timed(refracta.render, example.scene, example.camera, field, progress=False,
-                                    max_length=example.max_length, repeat=repeat, return_stats=True)
+        (_, stats), seconds = timed(
+            refracta.render,
+            example.scene,
+            example.camera,
+            field,
+            progress=False,
+            max_length=example.max_length,
+            repeat=repeat,
+            return_stats=True,
+        )
         out[name] = {"seconds": seconds, "chords_per_sample": stats.chords / max(stats.samples, 1)}
     for name in ("compact", "gaussian"):
         out[f"{name}_over_height_only"] = out[name]["seconds"] / out["height_only"]["seconds"]
-    print(f"hot spot {width}x{height}: height-only {out['height_only']['seconds']:.2f} s, "
-          f"compact x{out['compact_over_height_only']:.2f} (goal <= 3), "
-          f"gaussian x{out['gaussian_over_height_only']:.2f} (goal <= 10)", flush=True)
+    print(
+        f"hot spot {width}x{height}: height-only {out['height_only']['seconds']:.2f} s, "
+        f"compact x{out['compact_over_height_only']:.2f} (goal <= 3), "
+        f"gaussian x{out['gaussian_over_height_only']:.2f} (goal <= 10)",
+        flush=True,
+    )
     return out
 
 
@@ -212,8 +271,11 @@ def water_render(width=320, height=120, spp=8, repeat=2) -> dict:
     example = examples.cold_sea(width, height)
     plastic = example.scene.material(0)  # the sea plane, the example's first geometry
     water = shading.Water()
-    materials = {"plastic": plastic, "water": water,
-                 "plastic_as_rough_as_water": shading.Plastic((0.01, 0.03, 0.04), ior=1.333, alpha=water.alpha)}
+    materials = {
+        "plastic": plastic,
+        "water": water,
+        "plastic_as_rough_as_water": shading.Plastic((0.01, 0.03, 0.04), ior=1.333, alpha=water.alpha),
+    }
     out = {"size": [width, height], "spp": spp, "transport": "path", **{k: repr(m) for k, m in materials.items()}}
     for air, field in (("curved", example.field), ("straight", None)):
         seconds, cpu = {}, {}
@@ -222,18 +284,28 @@ def water_render(width=320, height=120, spp=8, repeat=2) -> dict:
             cpu[name] = float("inf")
             for _ in range(repeat):  # CPU time of all threads: steadier than wall time on a shared machine
                 start = time.process_time()
-                _, wall = timed(refracta.render, example.scene, example.camera, field, transport="path", spp=spp,
-                                progress=False, max_length=example.max_length)
+                _, wall = timed(
+                    refracta.render,
+                    example.scene,
+                    example.camera,
+                    field,
+                    transport="path",
+                    spp=spp,
+                    progress=False,
+                    max_length=example.max_length,
+                )
                 cpu[name] = min(cpu[name], time.process_time() - start)
                 seconds[name] = min(seconds.get(name, float("inf")), wall)
         out[air] = {f"{name}_seconds": t for name, t in seconds.items()}
         out[air].update({f"{name}_cpu_seconds": t for name, t in cpu.items()})
         out[air]["water_over_plastic"] = cpu["water"] / cpu["plastic"]
         out[air]["water_over_plastic_as_rough"] = cpu["water"] / cpu["plastic_as_rough_as_water"]
-        print(f"cold sea {width}x{height} {spp} spp path, {air} (CPU s): plastic {cpu['plastic']:.2f}, "
-              f"water {cpu['water']:.2f} (x{out[air]['water_over_plastic']:.2f}), plastic as rough as the water "
-              f"{cpu['plastic_as_rough_as_water']:.2f} (water x{out[air]['water_over_plastic_as_rough']:.2f})",
-              flush=True)
+        print(
+            f"cold sea {width}x{height} {spp} spp path, {air} (CPU s): plastic {cpu['plastic']:.2f}, "
+            f"water {cpu['water']:.2f} (x{out[air]['water_over_plastic']:.2f}), plastic as rough as the water "
+            f"{cpu['plastic_as_rough_as_water']:.2f} (water x{out[air]['water_over_plastic_as_rough']:.2f})",
+            flush=True,
+        )
     example.scene.set_material(0, plastic)
     return out
 
@@ -261,10 +333,17 @@ def aerial_perspective_render(width=640, height=240, repeat=3) -> dict:
                 start = time.process_time()
                 refracta.render(scene, example.camera, example.field, progress=False, max_length=example.max_length)
                 cpu[key] = min(cpu[key], time.process_time() - start)
-        out[name] = {"with_cpu_seconds": cpu["with"], "without_cpu_seconds": cpu["without"],
-                     "ratio": cpu["with"] / cpu["without"], "goal": 1.5}
-        print(f"{name} {width}x{height}: aerial perspective {cpu['with']:.2f} CPU s, without {cpu['without']:.2f} "
-              f"(x{out[name]['ratio']:.2f}, goal <= 1.5)", flush=True)
+        out[name] = {
+            "with_cpu_seconds": cpu["with"],
+            "without_cpu_seconds": cpu["without"],
+            "ratio": cpu["with"] / cpu["without"],
+            "goal": 1.5,
+        }
+        print(
+            f"{name} {width}x{height}: aerial perspective {cpu['with']:.2f} CPU s, without {cpu['without']:.2f} "
+            f"(x{out[name]['ratio']:.2f}, goal <= 1.5)",
+            flush=True,
+        )
     return out
 
 
@@ -282,7 +361,7 @@ def denoise_quality(width=320, height=120, spp=16, reference_spp=512, names=("ho
     from refracta import examples
 
     def relative_mse(image, reference):
-        return float(np.mean((image - reference) ** 2 / (reference ** 2 + 1e-2)))
+        return float(np.mean((image - reference) ** 2 / (reference**2 + 1e-2)))
 
     def flip_mean(image, reference):
         return float(flip.evaluate(reference, image, "HDR", applyMagma=False)[1])
@@ -291,44 +370,58 @@ def denoise_quality(width=320, height=120, spp=16, reference_spp=512, names=("ho
     for name in names:
         example = getattr(examples, name)(width, height)
         options = dict(progress=False, max_length=example.max_length)
-        reference, reference_seconds = timed(refracta.render, example.scene, example.camera, example.field,
-                                             spp=reference_spp, seed=1, **options)
-        (noisy, aovs), noisy_seconds = timed(refracta.render, example.scene, example.camera, example.field,
-                                             spp=spp, aovs=["albedo", "normal"], **options)
+        reference, reference_seconds = timed(
+            refracta.render, example.scene, example.camera, example.field, spp=reference_spp, seed=1, **options
+        )
+        (noisy, aovs), noisy_seconds = timed(
+            refracta.render, example.scene, example.camera, example.field, spp=spp, aovs=["albedo", "normal"], **options
+        )
         alone, alone_seconds = timed(refracta.denoise, noisy)
         _, guided_seconds = timed(refracta.denoise, noisy, aovs["albedo"], aovs["normal"])
         guided = refracta.render(example.scene, example.camera, example.field, spp=spp, denoise=True, **options)
-        row = {"render_seconds": noisy_seconds, "reference_seconds": reference_seconds,
-               "denoise_seconds": guided_seconds, "colour_only_denoise_seconds": alone_seconds}
+        row = {
+            "render_seconds": noisy_seconds,
+            "reference_seconds": reference_seconds,
+            "denoise_seconds": guided_seconds,
+            "colour_only_denoise_seconds": alone_seconds,
+        }
         for label, image in (("noisy", noisy), ("colour_only", alone), ("guided", guided)):
             row[f"{label}_relative_mse"] = relative_mse(image, reference)
             row[f"{label}_flip"] = flip_mean(image, reference)
         row["relative_mse_improvement"] = row["noisy_relative_mse"] / row["guided_relative_mse"]
         row["flip_improvement"] = row["noisy_flip"] / row["guided_flip"]
         out[name] = row
-        print(f"{name} {width}x{height} {spp} spp vs {reference_spp}: relMSE {row['noisy_relative_mse']:.2e} -> "
-              f"{row['guided_relative_mse']:.2e} (x{row['relative_mse_improvement']:.1f}; colour only "
-              f"{row['colour_only_relative_mse']:.2e}), FLIP {row['noisy_flip']:.4f} -> {row['guided_flip']:.4f} "
-              f"(x{row['flip_improvement']:.1f}), denoise {guided_seconds:.2f} s, render {noisy_seconds:.1f} s",
-              flush=True)
+        print(
+            f"{name} {width}x{height} {spp} spp vs {reference_spp}: relMSE {row['noisy_relative_mse']:.2e} -> "
+            f"{row['guided_relative_mse']:.2e} (x{row['relative_mse_improvement']:.1f}; colour only "
+            f"{row['colour_only_relative_mse']:.2e}), FLIP {row['noisy_flip']:.4f} -> {row['guided_flip']:.4f} "
+            f"(x{row['flip_improvement']:.1f}), denoise {guided_seconds:.2f} s, render {noisy_seconds:.1f} s",
+            flush=True,
+        )
     return out
 
 
 # Sections that --only runs on their own (with their published arguments).
-SECTIONS = {"water_render": water_render, "aerial_perspective_render": aerial_perspective_render,
-            "denoise_quality": denoise_quality}
+SECTIONS = {
+    "water_render": water_render,
+    "aerial_perspective_render": aerial_perspective_render,
+    "denoise_quality": denoise_quality,
+}
 
 
 def main(quick: bool = False) -> dict:
-    results = {"hot_spot_render": hot_spot_render(*((320, 180, 1) if quick else (1280, 720, 3))),
-               "turbulence_generation": turbulence_generation((128,) if quick else (128, 256)),
-               "structure_function": structure_function(cells=128 if quick else 256, seeds=2 if quick else 4),
-               "angle_of_arrival": angle_of_arrival(seeds=2 if quick else 4, rays=500 if quick else 1500,
-                                                    along_x_cells=128 if quick else 256),
-               "shimmer_render": shimmer_render(*((64, 24) if quick else (160, 60))),
-               "water_render": water_render(*((64, 24, 2, 1) if quick else ())),
-               "aerial_perspective_render": aerial_perspective_render(*((160, 60, 1) if quick else ())),
-               "denoise_quality": denoise_quality(*((96, 36, 4, 64) if quick else ()))}
+    results = {
+        "hot_spot_render": hot_spot_render(*((320, 180, 1) if quick else (1280, 720, 3))),
+        "turbulence_generation": turbulence_generation((128,) if quick else (128, 256)),
+        "structure_function": structure_function(cells=128 if quick else 256, seeds=2 if quick else 4),
+        "angle_of_arrival": angle_of_arrival(
+            seeds=2 if quick else 4, rays=500 if quick else 1500, along_x_cells=128 if quick else 256
+        ),
+        "shimmer_render": shimmer_render(*((64, 24) if quick else (160, 60))),
+        "water_render": water_render(*((64, 24, 2, 1) if quick else ())),
+        "aerial_perspective_render": aerial_perspective_render(*((160, 60, 1) if quick else ())),
+        "denoise_quality": denoise_quality(*((96, 36, 4, 64) if quick else ())),
+    }
     return results
 
 

@@ -44,37 +44,63 @@ def run_one(name: str, width: int, height: int) -> dict:
     field = None if name == "straight" else example.field
     before_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
     start = time.perf_counter()
-    image, counts = refracta.render(example.scene, example.camera, field, progress=False,
-                                    max_length=example.max_length, return_stats=True,
-                                    **METHODS.get(name, METHODS["curved_table"]))
+    image, counts = refracta.render(
+        example.scene,
+        example.camera,
+        field,
+        progress=False,
+        max_length=example.max_length,
+        return_stats=True,
+        **METHODS.get(name, METHODS["curved_table"]),
+    )
     seconds = time.perf_counter() - start
-    return {"seconds": seconds, "peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
-            "peak_before_render_mb": before_mb, "image_mb": image.nbytes / 2**20, "size": [width, height],
-            "mean_radiance": float(image.mean()), "us_per_pixel": 1e6 * seconds / (width * height),
-            "chords_per_pixel": counts.chords / counts.samples if counts.chords else None}
+    return {
+        "seconds": seconds,
+        "peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
+        "peak_before_render_mb": before_mb,
+        "image_mb": image.nbytes / 2**20,
+        "size": [width, height],
+        "mean_radiance": float(image.mean()),
+        "us_per_pixel": 1e6 * seconds / (width * height),
+        "chords_per_pixel": counts.chords / counts.samples if counts.chords else None,
+    }
 
 
 def main(width: int, height: int) -> dict:
     rows = {}
     for name in [*METHODS, "curved_table_4k"]:
-        output = subprocess.run([sys.executable, __file__, "--one", name, "--size", f"{width}x{height}"],
-                                check=True, capture_output=True, text=True).stdout
+        output = subprocess.run(
+            [sys.executable, __file__, "--one", name, "--size", f"{width}x{height}"],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout
         rows[name] = json.loads(output.strip().splitlines()[-1])
-        print(f"{name:24s} {rows[name]['seconds']:8.2f} s  {rows[name]['us_per_pixel']:7.2f} us/pixel  "
-              f"peak {rows[name]['peak_rss_mb']:.0f} MB  chords/pixel {rows[name]['chords_per_pixel']}")
+        print(
+            f"{name:24s} {rows[name]['seconds']:8.2f} s  {rows[name]['us_per_pixel']:7.2f} us/pixel  "
+            f"peak {rows[name]['peak_rss_mb']:.0f} MB  chords/pixel {rows[name]['chords_per_pixel']}"
+        )
     four_k = rows["curved_table_4k"]
-    ratios = {"curved_table_over_straight": rows["curved_table"]["seconds"] / rows["straight"]["seconds"],
-              "rk45_per_pixel_over_straight": rows["curved_rk45_per_pixel"]["seconds"] / rows["straight"]["seconds"],
-              "rk45_per_pixel_over_table": rows["curved_rk45_per_pixel"]["seconds"] / rows["curved_table"]["seconds"],
-              "curved_4k_memory_growth_over_image": (four_k["peak_rss_mb"] - four_k["peak_before_render_mb"]) / four_k["image_mb"],
-              "raster_march_original_over_curved_table":
-                  rows["raster_march_original"]["seconds"] / rows["curved_table"]["seconds"]}
+    ratios = {
+        "curved_table_over_straight": rows["curved_table"]["seconds"] / rows["straight"]["seconds"],
+        "rk45_per_pixel_over_straight": rows["curved_rk45_per_pixel"]["seconds"] / rows["straight"]["seconds"],
+        "rk45_per_pixel_over_table": rows["curved_rk45_per_pixel"]["seconds"] / rows["curved_table"]["seconds"],
+        "curved_4k_memory_growth_over_image": (four_k["peak_rss_mb"] - four_k["peak_before_render_mb"])
+        / four_k["image_mb"],
+        "raster_march_original_over_curved_table": rows["raster_march_original"]["seconds"]
+        / rows["curved_table"]["seconds"],
+    }
     print("ratios", ratios)
-    return {"setup": {"scene": "examples.hot_road", "size": [width, height], "spp": 1}, "methods": rows,
-            "ratios": ratios, "goals": {"curved_within_3x_of_straight": ratios["curved_table_over_straight"] <= 3,
-                                        "rk45_per_pixel_within_20x_of_straight": ratios["rk45_per_pixel_over_straight"] <= 20,
-                                        "curved_50x_faster_than_original_raster_march":
-                                            ratios["raster_march_original_over_curved_table"] >= 50}}
+    return {
+        "setup": {"scene": "examples.hot_road", "size": [width, height], "spp": 1},
+        "methods": rows,
+        "ratios": ratios,
+        "goals": {
+            "curved_within_3x_of_straight": ratios["curved_table_over_straight"] <= 3,
+            "rk45_per_pixel_within_20x_of_straight": ratios["rk45_per_pixel_over_straight"] <= 20,
+            "curved_50x_faster_than_original_raster_march": ratios["raster_march_original_over_curved_table"] >= 50,
+        },
+    }
 
 
 if __name__ == "__main__":

@@ -27,8 +27,14 @@ SPP = 8
 
 def road_render(surface_dt, width=320, height=120):
     road = examples.hot_road(width, height)
-    return refracta.render(road.scene, road.camera, road.field.with_params(surface_dt=surface_dt), spp=SPP,
-                           progress=False, max_length=road.max_length)
+    return refracta.render(
+        road.scene,
+        road.camera,
+        road.field.with_params(surface_dt=surface_dt),
+        spp=SPP,
+        progress=False,
+        max_length=road.max_length,
+    )
 
 
 def main():
@@ -42,8 +48,10 @@ def main():
     refracta.set_threads(None)
     assert all(np.array_equal(a, b) for a, b in zip(one_thread, reference))
 
-    with LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None) as cluster, \
-            Client(cluster) as client:
+    with (
+        LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None) as cluster,
+        Client(cluster) as client,
+    ):
         for label, threads in (("dask_2_workers_1_thread_s", 1), ("dask_2_workers_tbb_all_cores_s", None)):
             client.run(refracta.set_threads, threads)
             refracta.sweep(road_render, grid, executor=client, progress=False)  # warm-up: imports, first tables

@@ -26,13 +26,16 @@ __all__ = ["animate", "field_at_time", "geometric_noise", "geometric_noise_map"]
 
 # -- the physical shimmer: the air at time t ----------------------------------------------------
 
+
 def with_turbulence(field, turbulence):
     """The same air as `field` (a PhysicalAtmosphere or LogisticProfile: its parameters, hot spots
     and fixed data) with `turbulence` (a refracta.Turbulence, a TurbulenceLayer or None: calm) in
     place of its own: ``field.with_turbulence(turbulence)``. Raises ValueError for other fields."""
     if not isinstance(field, _core.IndexField):
-        raise ValueError(f"animate: the field must be a PhysicalAtmosphere or LogisticProfile to carry turbulence "
-                         f"(got {type(field).__name__})")
+        raise ValueError(
+            f"animate: the field must be a PhysicalAtmosphere or LogisticProfile to carry turbulence "
+            f"(got {type(field).__name__})"
+        )
     try:
         return field.with_turbulence(turbulence)
     except ValueError as error:
@@ -46,8 +49,16 @@ def field_at_time(field, turbulence, t: float):
 
 # -- the cheap shimmer: a random angle map (not physical) ----------------------------------------
 
-def geometric_noise_map(height: int, width: int, rms: float, correlation_pixels: float, seed: int = 0,
-                        time: float = 0.0, speed: Sequence[float] = (10.0, 0.0)) -> np.ndarray:
+
+def geometric_noise_map(
+    height: int,
+    width: int,
+    rms: float,
+    correlation_pixels: float,
+    seed: int = 0,
+    time: float = 0.0,
+    speed: Sequence[float] = (10.0, 0.0),
+) -> np.ndarray:
     """A seeded random map of small angles [rad], float64 (height, width, 2) (toward the image's
     right and up), for Camera.jittered: NOT PHYSICAL -- the follow-up editor's "geometric noise to
     rays", a stand-in for turbulence when tracing it costs too much.
@@ -59,8 +70,14 @@ def geometric_noise_map(height: int, width: int, rms: float, correlation_pixels:
     the pattern translated by speed * time (exact, sub-pixel: a phase shift of its spectrum).
     """
     problems = []
-    if isinstance(height, bool) or not isinstance(height, (int, np.integer)) or height < 1 or \
-            isinstance(width, bool) or not isinstance(width, (int, np.integer)) or width < 1:
+    if (
+        isinstance(height, bool)
+        or not isinstance(height, (int, np.integer))
+        or height < 1
+        or isinstance(width, bool)
+        or not isinstance(width, (int, np.integer))
+        or width < 1
+    ):
         problems.append(f"height and width must be whole numbers >= 1 (got {height!r}, {width!r})")
     if not (isinstance(rms, (int, float, np.floating)) and 0.0 <= rms < 0.1):
         problems.append(f"rms must be in [0, 0.1) rad (got {rms!r})")
@@ -82,9 +99,11 @@ def geometric_noise_map(height: int, width: int, rms: float, correlation_pixels:
     ky = 2.0 * math.pi * np.fft.fftfreq(ny)[:, None]
     kx = 2.0 * math.pi * np.fft.rfftfreq(nx)[None, :]
     # Unit-variance white noise filtered by sqrt(N P_k), sum_k P_k = 1 over the full spectrum.
-    power = np.exp(-0.5 * (kx * kx + ky * ky) * correlation_pixels ** 2)
-    full = np.exp(-0.5 * (2.0 * math.pi * np.fft.fftfreq(nx)) ** 2 * correlation_pixels ** 2).sum() * \
-        np.exp(-0.5 * (2.0 * math.pi * np.fft.fftfreq(ny)) ** 2 * correlation_pixels ** 2).sum()
+    power = np.exp(-0.5 * (kx * kx + ky * ky) * correlation_pixels**2)
+    full = (
+        np.exp(-0.5 * (2.0 * math.pi * np.fft.fftfreq(nx)) ** 2 * correlation_pixels**2).sum()
+        * np.exp(-0.5 * (2.0 * math.pi * np.fft.fftfreq(ny)) ** 2 * correlation_pixels**2).sum()
+    )
     gain = np.sqrt(nx * ny * power / full) * np.exp(-1j * (kx * vx + ky * vy) * time)
     out = np.empty((height, width, 2))
     for c in range(2):
@@ -94,14 +113,19 @@ def geometric_noise_map(height: int, width: int, rms: float, correlation_pixels:
     return out
 
 
-def geometric_noise(camera: _core.Camera, rms: float, correlation_pixels: float, seed: int = 0,
-                    time: float = 0.0, speed: Sequence[float] = (10.0, 0.0)) -> _core.Camera:
+def geometric_noise(
+    camera: _core.Camera,
+    rms: float,
+    correlation_pixels: float,
+    seed: int = 0,
+    time: float = 0.0,
+    speed: Sequence[float] = (10.0, 0.0),
+) -> _core.Camera:
     """`camera` with every ray turned by geometric_noise_map(camera.height, camera.width, rms,
     correlation_pixels, seed, time, speed) -- NOT PHYSICAL: a seeded per-pixel angular jitter [rad]
     with a Gaussian spectrum (the follow-up editor's cheap shimmer; refracta.Turbulence is the
     physical one). Camera.project ignores the jitter."""
-    return camera.jittered(geometric_noise_map(camera.height, camera.width, rms, correlation_pixels, seed, time,
-                                               speed))
+    return camera.jittered(geometric_noise_map(camera.height, camera.width, rms, correlation_pixels, seed, time, speed))
 
 
 def _fft_size(n: int) -> int:
@@ -122,10 +146,22 @@ def _fft_size(n: int) -> int:
 
 # -- animation ----------------------------------------------------------------------------------
 
-def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: None | str | os.PathLike = None,
-            fps: float | None = None, turbulence=None, noise: dict | None = None, executor=None,
-            progress: bool | Callable[[int, int], None] = True, exposure: float | None = None,
-            tonemap: str | None = None, **options) -> np.ndarray:
+
+def animate(
+    scene: _core.Scene,
+    camera: _core.Camera,
+    field,
+    times,
+    path: None | str | os.PathLike = None,
+    fps: float | None = None,
+    turbulence=None,
+    noise: dict | None = None,
+    executor=None,
+    progress: bool | Callable[[int, int], None] = True,
+    exposure: float | None = None,
+    tonemap: str | None = None,
+    **options,
+) -> np.ndarray:
     """Render a shimmering mirage: one frame per time in `times` [s]; returns linear radiance,
     float32 (T, H, W, 3), and writes it to `path` if given.
 
@@ -154,8 +190,10 @@ def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: None |
     if times.ndim != 1 or times.size < 1 or not np.all(np.isfinite(times)):
         raise ValueError(f"animate: times must be a non-empty 1-D array of finite seconds (got shape {times.shape})")
     if turbulence is None and noise is None:
-        raise ValueError("animate: give turbulence= (a refracta.Turbulence carried by its wind) or noise= "
-                         "(geometric_noise keywords): without either every frame is the same")
+        raise ValueError(
+            "animate: give turbulence= (a refracta.Turbulence carried by its wind) or noise= "
+            "(geometric_noise keywords): without either every frame is the same"
+        )
     if turbulence is not None and not hasattr(turbulence, "at_time"):
         raise ValueError(f"animate: turbulence must be a refracta.Turbulence (got {type(turbulence).__name__})")
     if noise is not None:
@@ -163,8 +201,10 @@ def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: None |
             raise ValueError(f"animate: noise must be a dict of geometric_noise keywords, without time (got {noise!r})")
         unknown = sorted(set(noise) - {"rms", "correlation_pixels", "seed", "speed"})
         if unknown:
-            raise ValueError(f"animate: noise takes rms, correlation_pixels, seed and speed (geometric_noise's "
-                             f"keywords), not {', '.join(map(repr, unknown))}")
+            raise ValueError(
+                f"animate: noise takes rms, correlation_pixels, seed and speed (geometric_noise's "
+                f"keywords), not {', '.join(map(repr, unknown))}"
+            )
         geometric_noise_map(1, 1, **noise)  # checks the values before any work
     if turbulence is not None:
         with_turbulence(field, turbulence)  # checks the field before any work
@@ -178,8 +218,14 @@ def animate(scene: _core.Scene, camera: _core.Camera, field, times, path: None |
             raise FileNotFoundError(f"animate: the folder of {path!r} does not exist ({folder})")
     settings = render_options(**options)
     _check_scene(scene, camera, field, settings.method)  # render's SceneWarnings, once for all frames
-    outcomes = map_ordered(_render_frame, [(float(t),) for t in times], executor, progress, "rendering frames",
-                           shared=(scene, camera, field, settings, turbulence, noise))
+    outcomes = map_ordered(
+        _render_frame,
+        [(float(t),) for t in times],
+        executor,
+        progress,
+        "rendering frames",
+        shared=(scene, camera, field, settings, turbulence, noise),
+    )
     frames = np.empty((times.size, camera.height, camera.width, 3), dtype=np.float32)
     for i, (ok, value) in enumerate(outcomes):
         if not ok:
@@ -228,7 +274,9 @@ def _writer_for(path: str):
         try:
             import imageio_ffmpeg  # noqa: F401
         except ImportError:
-            raise ImportError("animate: writing an MP4 needs imageio-ffmpeg (pip install 'refracta[animation]')") from None
+            raise ImportError(
+                "animate: writing an MP4 needs imageio-ffmpeg (pip install 'refracta[animation]')"
+            ) from None
         return _write_mp4
     raise ValueError(f"animate: path must end in .gif or .mp4, or hold a '{{}}' field for frame files (got {path!r})")
 
@@ -255,8 +303,9 @@ def _write_mp4(path, frames, fps, exposure, tonemap):
     data = _display_bytes(frames, exposure, tonemap)
     # H.264 in yuv420p needs even sizes: repeat the last row / column.
     data = np.pad(data, ((0, 0), (0, data.shape[1] % 2), (0, data.shape[2] % 2), (0, 0)), mode="edge")
-    writer = imageio_ffmpeg.write_frames(path, (data.shape[2], data.shape[1]), fps=fps, macro_block_size=2,
-                                         quality=8, ffmpeg_log_level="error")
+    writer = imageio_ffmpeg.write_frames(
+        path, (data.shape[2], data.shape[1]), fps=fps, macro_block_size=2, quality=8, ffmpeg_log_level="error"
+    )
     writer.send(None)
     for frame in data:
         writer.send(np.ascontiguousarray(frame))

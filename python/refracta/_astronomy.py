@@ -11,9 +11,16 @@ from refracta import _core
 ARCMIN_PER_RADIAN = 180.0 * 60.0 / np.pi
 
 
-def astronomical_refraction(field: _core.IndexField, apparent_elevation_deg, eye_height: float = 0.0, *,
-                            wavelength: float | None = None, top: float | None = None,
-                            earth_radius: float = 6371e3, tol: float = 1e-7) -> float | np.ndarray:
+def astronomical_refraction(
+    field: _core.IndexField,
+    apparent_elevation_deg,
+    eye_height: float = 0.0,
+    *,
+    wavelength: float | None = None,
+    top: float | None = None,
+    earth_radius: float = 6371e3,
+    tol: float = 1e-7,
+) -> float | np.ndarray:
     """Refraction [arcmin] of a star seen at `apparent_elevation_deg` [deg, in [-90, 90]].
 
     The star's true elevation is the apparent one less the refraction. `field` is the air with
@@ -40,7 +47,13 @@ def astronomical_refraction(field: _core.IndexField, apparent_elevation_deg, eye
         raise ValueError(f"apparent elevation must be in [-90, 90] deg (got {bad:g})")
     if wavelength is not None:
         field = _core.dispersed_field(field, float(wavelength))
-    radians = _core._astronomical_refraction(field, np.radians(elevations).ravel(), float(eye_height),
-                                             0.0 if top is None else float(top), float(earth_radius), float(tol))
+    radians = _core._astronomical_refraction(
+        field,
+        np.radians(elevations).ravel(),
+        float(eye_height),
+        0.0 if top is None else float(top),
+        float(earth_radius),
+        float(tol),
+    )
     out = radians.reshape(elevations.shape) * ARCMIN_PER_RADIAN
     return float(out) if out.ndim == 0 else out

@@ -49,5 +49,14 @@ def denoise(image, albedo=None, normal=None, *, quality: str = "high", clean_aux
         raise ValueError(f"denoise: quality must be 'high', 'balanced' or 'fast' (got {quality!r})")
     if not isinstance(clean_aux, (bool, np.bool_)):
         raise ValueError(f"denoise: clean_aux must be True or False (got {clean_aux!r})")
-    return np.asarray(pyoidn.denoise(color, aux_albedo, aux_normal, hdr=True, quality=quality,
-                                     clean_aux=bool(clean_aux) and aux_albedo is not None), dtype=np.float32)
+    return np.asarray(
+        pyoidn.denoise(
+            color,
+            aux_albedo,
+            aux_normal,
+            hdr=True,
+            quality=quality,
+            clean_aux=bool(clean_aux) and aux_albedo is not None,
+        ),
+        dtype=np.float32,
+    )

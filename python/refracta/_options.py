@@ -35,12 +35,20 @@ def _set(options: Any, name: str, value: Any, owner: str) -> None:
         pass
     current = getattr(options, name)
     # A whole number given as a float (max_iterations=200.0) sets an integer field; 2.5 does not.
-    if (isinstance(current, int) and not isinstance(current, bool) and isinstance(value, numbers.Real)
-            and not isinstance(value, bool) and float(value).is_integer()):
+    if (
+        isinstance(current, int)
+        and not isinstance(current, bool)
+        and isinstance(value, numbers.Real)
+        and not isinstance(value, bool)
+        and float(value).is_integer()
+    ):
         setattr(options, name, int(float(value)))
         return
-    kind = "a whole number" if isinstance(current, int) and not isinstance(current, bool) else (
-        "True or False" if isinstance(current, bool) else f"a {type(current).__name__}")
+    kind = (
+        "a whole number"
+        if isinstance(current, int) and not isinstance(current, bool)
+        else ("True or False" if isinstance(current, bool) else f"a {type(current).__name__}")
+    )
     raise ValueError(f"{owner}: {name} must be {kind} (got {value!r})") from None
 
 
@@ -62,8 +70,10 @@ def build(cls: type[T], options: T | None = None, *, where: str | None = None, *
     valid = fields(cls)
     unknown = [name for name in kw if name not in valid]
     if unknown:
-        raise TypeError(f"{owner}: unknown keyword{'s' if len(unknown) > 1 else ''} "
-                        f"{', '.join(repr(n) for n in unknown)} (valid: {', '.join(valid)})")
+        raise TypeError(
+            f"{owner}: unknown keyword{'s' if len(unknown) > 1 else ''} "
+            f"{', '.join(repr(n) for n in unknown)} (valid: {', '.join(valid)})"
+        )
     for name, value in kw.items():
         if value is None and getattr(result, name) is not None:
             try:
@@ -103,5 +113,7 @@ def unknown(kw: Iterable[str], where: str, valid: Iterable[str]) -> None:
     """TypeError naming keywords no options class took, listing the valid ones."""
     names = list(kw)
     if names:
-        raise TypeError(f"{where}: unknown keyword{'s' if len(names) > 1 else ''} "
-                        f"{', '.join(repr(n) for n in names)} (valid: {', '.join(sorted(valid))})")
+        raise TypeError(
+            f"{where}: unknown keyword{'s' if len(names) > 1 else ''} "
+            f"{', '.join(repr(n) for n in names)} (valid: {', '.join(sorted(valid))})"
+        )

@@ -51,8 +51,9 @@ def assign(options, path: tuple[str, ...], value, keyword: str, owner: str) -> N
     field = path[-1]
     if isinstance(value, str) and (field, value) in _DEPRECATED_VALUES:
         new = _DEPRECATED_VALUES[(field, value)]
-        warnings.warn(f"{owner}: {keyword}={value!r} is deprecated; write {keyword}={new!r}", DeprecationWarning,
-                      stacklevel=4)
+        warnings.warn(
+            f"{owner}: {keyword}={value!r} is deprecated; write {keyword}={new!r}", DeprecationWarning, stacklevel=4
+        )
         value = new
     try:
         setattr(target, field, value)
@@ -90,8 +91,9 @@ def raster_render_options(options=None, lights=None, shadows=None, transparency=
     elif isinstance(options, _core.RasterRenderOptions):
         result = copy.deepcopy(options)  # through its fields (pickling): the caller's stays as it is
     else:
-        raise ValueError(f"render_raster: options must be a refracta.RasterRenderOptions or None "
-                         f"(got {type(options).__name__})")
+        raise ValueError(
+            f"render_raster: options must be a refracta.RasterRenderOptions or None (got {type(options).__name__})"
+        )
     if lights is not None:
         result.use_sun, result.spots = _select_lights(lights)
     if shadows is not None:
@@ -101,8 +103,9 @@ def raster_render_options(options=None, lights=None, shadows=None, transparency=
             try:
                 result.shadow_map.method = shadows
             except (TypeError, ValueError) as error:
-                raise ValueError("render_raster: shadows must be 'embree', 'none' or a ShadowMapOptions.method "
-                                 f"({error})") from None
+                raise ValueError(
+                    f"render_raster: shadows must be 'embree', 'none' or a ShadowMapOptions.method ({error})"
+                ) from None
             result.shadows = "map"
     if isinstance(transparency, _core.OitSettings):
         result.transparency = transparency
@@ -115,8 +118,10 @@ def raster_render_options(options=None, lights=None, shadows=None, transparency=
             continue
         path = _KEYWORDS.get(keyword, (keyword,))
         if len(path) == 1 and not isinstance(getattr(type(result), keyword, None), property):
-            raise ValueError(f"render_raster: unknown option {keyword!r} (keywords: lights, shadows, transparency, "
-                             f"{', '.join(_KEYWORDS)}, and any field of refracta.RasterRenderOptions)")
+            raise ValueError(
+                f"render_raster: unknown option {keyword!r} (keywords: lights, shadows, transparency, "
+                f"{', '.join(_KEYWORDS)}, and any field of refracta.RasterRenderOptions)"
+            )
         assign(result, path, value, keyword, "render_raster")
     result.validate()
     return result
@@ -175,8 +180,11 @@ def render_raster(
     if stats is not None:
         if not isinstance(stats, dict):
             raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
-        warnings.warn("render_raster(stats=dict) is deprecated: pass return_stats=True and read the returned "
-                      "RasterRenderStats", DeprecationWarning, stacklevel=2)
+        warnings.warn(
+            "render_raster(stats=dict) is deprecated: pass return_stats=True and read the returned RasterRenderStats",
+            DeprecationWarning,
+            stacklevel=2,
+        )
     callback = ProgressBar("rasterizing") if progress is True else (progress or None)
     image, counts = _core._render_raster(scene, camera, settings, callback)
     if stats is not None:

@@ -37,9 +37,13 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str) -
     rays go through (every field, CurvedEarth's flattened heights too, puts the ground at y = 0)
     with layered air in between (mean ``|dn/dh|`` > LAYER_GRADIENT below the camera)."""
     if len(scene.lights) == 0:
-        warnings.warn("render: the scene has no light and no sky, so the image is black; add one with "
-                      "scene.set_sky(...), set_sun, set_physical_sky, set_environment, add_point_light or "
-                      "an emission= geometry", SceneWarning, stacklevel=3)
+        warnings.warn(
+            "render: the scene has no light and no sky, so the image is black; add one with "
+            "scene.set_sky(...), set_sun, set_physical_sky, set_environment, add_point_light or "
+            "an emission= geometry",
+            SceneWarning,
+            stacklevel=3,
+        )
     if field is None or method == "straight" or scene.geometry_count == 0:
         return
     lowest = float(scene.bounds[0][1])
@@ -52,15 +56,21 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str) -
     except (_core.NumericalError, ValueError):
         layered = True  # no air there at all: the scene is surely misplaced
     if layered:
-        warnings.warn(f"render: the scene's lowest geometry is at y = {lowest:g} m, but the field's ground is at "
-                      f"height 0, so its ground layer lies {'below' if lowest > 0 else 'above'} the scene's "
-                      "ground; move the scene (add_obj(offset=...), add_ground(height=0)) so its ground is at y = 0",
-                      SceneWarning, stacklevel=3)
+        warnings.warn(
+            f"render: the scene's lowest geometry is at y = {lowest:g} m, but the field's ground is at "
+            f"height 0, so its ground layer lies {'below' if lowest > 0 else 'above'} the scene's "
+            "ground; move the scene (add_obj(offset=...), add_ground(height=0)) so its ground is at y = 0",
+            SceneWarning,
+            stacklevel=3,
+        )
 
 
 # Fields of _core.RenderOptions that render() exposes as keywords (their defaults live in C++).
-_OPTION_NAMES = tuple(name for name in dir(_core.RenderOptions)
-                      if not name.startswith("_") and isinstance(getattr(_core.RenderOptions, name), property))
+_OPTION_NAMES = tuple(
+    name
+    for name in dir(_core.RenderOptions)
+    if not name.startswith("_") and isinstance(getattr(_core.RenderOptions, name), property)
+)
 # Fields whose None is a value of its own (not "the default"): trace None picks the integrator
 # per field, pixel_bounds None is the whole image.
 _NONE_FIELDS = ("trace", "pixel_bounds")
@@ -173,15 +183,19 @@ def render(
     if stats is not None:
         if not isinstance(stats, dict):
             raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
-        warnings.warn("render(stats=dict) is deprecated: pass return_stats=True and read the returned RenderStats",
-                      DeprecationWarning, stacklevel=2)
+        warnings.warn(
+            "render(stats=dict) is deprecated: pass return_stats=True and read the returned RenderStats",
+            DeprecationWarning,
+            stacklevel=2,
+        )
     wanted = _aov_names(aovs)
     if not isinstance(denoise, (bool, np.bool_)):
         raise ValueError(f"denoise must be True or False (got {denoise!r})")
     if denoise or wanted:
         options["surface_aovs"] = True
-    settings = render_options(method=method, transport=transport, spp=spp, max_depth=max_depth, spectral=spectral,
-                              seed=seed, **options)
+    settings = render_options(
+        method=method, transport=transport, spp=spp, max_depth=max_depth, spectral=spectral, seed=seed, **options
+    )
     if executor is not None or tiles is not None:
         image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)
     else:
@@ -233,8 +247,9 @@ def _aov_names(aovs) -> list[str]:
 _DEFAULT_TILE = 128
 
 
-def tile_bounds(width: int, height: int, tiles: None | int | tuple[int, int],
-                region: tuple[int, int, int, int] | None = None) -> list[tuple[int, int, int, int]]:
+def tile_bounds(
+    width: int, height: int, tiles: None | int | tuple[int, int], region: tuple[int, int, int, int] | None = None
+) -> list[tuple[int, int, int, int]]:
     """Pixel bounds (x0, y0, x1, y1) of the tiles of a width x height image (or of `region`), row
     by row from the top left: tiles=(nx, ny) near-equal tiles, tiles=n squares of n pixels."""
     x0, y0, x1, y1 = region if region is not None else (0, 0, width, height)
@@ -273,8 +288,14 @@ def _render_tiled(scene, camera, field, settings, executor, tiles, progress):
         settings.bounds_in(camera.width, camera.height)
     bounds = tile_bounds(camera.width, camera.height, tiles, region)
     # Scene, camera, field and options reach each dask worker once (map_ordered's `shared`).
-    outcomes = map_ordered(_render_tile, [(b,) for b in bounds], executor, progress, "rendering tiles",
-                           shared=(scene, camera, field, settings))
+    outcomes = map_ordered(
+        _render_tile,
+        [(b,) for b in bounds],
+        executor,
+        progress,
+        "rendering tiles",
+        shared=(scene, camera, field, settings),
+    )
     ox, oy = (region[0], region[1]) if region is not None else (0, 0)
     width = (region[2] - region[0]) if region is not None else camera.width
     height = (region[3] - region[1]) if region is not None else camera.height
@@ -284,6 +305,6 @@ def _render_tiled(scene, camera, field, settings, executor, tiles, progress):
         if not ok:
             raise value[0]
         tile, tile_counts = value
-        image[y0 - oy:y1 - oy, x0 - ox:x1 - ox] = tile
+        image[y0 - oy : y1 - oy, x0 - ox : x1 - ox] = tile
         counts = counts + tile_counts
     return image, counts

@@ -146,8 +146,14 @@ def _progress_callback(progress: ProgressArg, label: str) -> Callable[[int, int]
     return progress
 
 
-def map_ordered(function: Callable, arguments: Sequence[tuple], executor=None, progress: ProgressArg = False,
-                label: str = "sweep", shared: tuple = ()) -> list[tuple]:
+def map_ordered(
+    function: Callable,
+    arguments: Sequence[tuple],
+    executor=None,
+    progress: ProgressArg = False,
+    label: str = "sweep",
+    shared: tuple = (),
+) -> list[tuple]:
     """Calls function(*shared, *args) for each tuple of `arguments` on `executor` (as_executor's
     kinds); returns one (ok, value) per call in the order of `arguments`: (True, result) or
     (False, (exception, traceback text)). `shared`: arguments common to every call (a tiled render's
@@ -276,8 +282,9 @@ def _call_in_worker(parent_pid: int, function: Callable, *args) -> Any:
     global _watching_parent
     if not _watching_parent:
         _watching_parent = True
-        threading.Thread(target=_exit_with_parent, args=(parent_pid, os.getppid()), daemon=True,
-                         name="refracta-parent-watch").start()
+        threading.Thread(
+            target=_exit_with_parent, args=(parent_pid, os.getppid()), daemon=True, name="refracta-parent-watch"
+        ).start()
     return function(*args)
 
 
@@ -308,8 +315,9 @@ def _alive(pid: int) -> bool:
     return True
 
 
-def sweep(function: Callable[..., Any], grid, executor=None, progress: ProgressArg = True,
-          errors: str = "raise") -> SweepResult:
+def sweep(
+    function: Callable[..., Any], grid, executor=None, progress: ProgressArg = True, errors: str = "raise"
+) -> SweepResult:
     """Run ``function(**point)`` for every point of `grid`; results in grid order.
 
     grid: a dict of lists (the cartesian product, last key fastest: see grid_points) or a list of

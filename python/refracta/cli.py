@@ -30,6 +30,7 @@ class _Parser(argparse.ArgumentParser):
 
 def _count(minimum: int):
     """argparse type: a whole number >= minimum."""
+
     def parse(text: str) -> int:
         try:
             value = int(text)
@@ -38,6 +39,7 @@ def _count(minimum: int):
         if value < minimum:
             raise argparse.ArgumentTypeError(f"must be >= {minimum} (got {value})")
         return value
+
     return parse
 
 
@@ -73,8 +75,13 @@ def _moved(camera, distance: float, width: int, height: int):
     from refracta import examples
 
     step = np.array([distance, 0.0, 0.0])
-    return refracta.Camera.photographic(np.asarray(camera.position) + step, np.asarray(camera.look_at) + step,
-                                        examples.HOT_ROAD_FOCAL_LENGTH, width=width, height=height)
+    return refracta.Camera.photographic(
+        np.asarray(camera.position) + step,
+        np.asarray(camera.look_at) + step,
+        examples.HOT_ROAD_FOCAL_LENGTH,
+        width=width,
+        height=height,
+    )
 
 
 def demo(out: Path, size=None) -> int:
@@ -104,17 +111,27 @@ def demo(out: Path, size=None) -> int:
         reference_field = refracta.without_refraction(example.field)
         settings = DEMO_SETTINGS.get(name, dict(transport="direct", spp=4))
         render = dict(progress=False, max_length=example.max_length, denoise=True, **settings)
-        views = [(example.camera, reference_field, "without the atmosphere"),
-                 (example.camera, example.field, "through the atmosphere")]
+        views = [
+            (example.camera, reference_field, "without the atmosphere"),
+            (example.camera, example.field, "through the atmosphere"),
+        ]
         if name == "hot_spot":
-            views.append((_moved(example.camera, HOT_SPOT_WALK, width, height), example.field,
-                          f"through the atmosphere, {HOT_SPOT_WALK:.0f} m nearer"))
+            views.append(
+                (
+                    _moved(example.camera, HOT_SPOT_WALK, width, height),
+                    example.field,
+                    f"through the atmosphere, {HOT_SPOT_WALK:.0f} m nearer",
+                )
+            )
         images = []
         for camera, field, label in views:
             start = time.perf_counter()
             images.append(refracta.render(example.scene, camera, field, **render))
-            print(f"{name}, {label}: {width}x{height}, {settings['transport']}, {settings['spp']} spp, denoised: "
-                  f"{time.perf_counter() - start:.1f} s", flush=True)
+            print(
+                f"{name}, {label}: {width}x{height}, {settings['transport']}, {settings['spp']} spp, denoised: "
+                f"{time.perf_counter() - start:.1f} s",
+                flush=True,
+            )
         refracta.io.write_image(out / f"{name}_straight.exr", images[0])
         refracta.io.write_image(out / f"{name}.exr", images[1])
         # One exposure for all views (the log-average of them together), so they compare.
@@ -127,8 +144,9 @@ def demo(out: Path, size=None) -> int:
             ax.imshow(display, interpolation="none")
             ax.set_title(f"{name}: {label}", fontsize=9)
             ax.axis("off")
-        figure.subplots_adjust(left=0, right=1, bottom=0, top=1 - 0.3 / (height / dpi + 0.3) / len(images),
-                               hspace=0.3 / (height / dpi))
+        figure.subplots_adjust(
+            left=0, right=1, bottom=0, top=1 - 0.3 / (height / dpi + 0.3) / len(images), hspace=0.3 / (height / dpi)
+        )
         figure.savefig(out / f"{name}.png", dpi=dpi)
         plt.close(figure)
         print(f"wrote {out / (name + '.png')}, {name}.exr, {name}_straight.exr")
@@ -140,8 +158,11 @@ def demo(out: Path, size=None) -> int:
         print(f"wrote {out / ('rays_' + name + '.png')}")
     scale = 1.0 if size is None else size[0] / 640  # the extras follow the asked size (the tests' small demo: seconds)
     _demo_green_flash(out, size=max(16, round(GREEN_FLASH_SIZE * scale)))
-    _demo_shimmer(out, size=(max(24, round(48 * scale)), max(8, round(16 * scale))),
-                  noise_size=(max(32, round(320 * scale)), max(12, round(120 * scale))))
+    _demo_shimmer(
+        out,
+        size=(max(24, round(48 * scale)), max(8, round(16 * scale))),
+        noise_size=(max(32, round(320 * scale)), max(12, round(120 * scale))),
+    )
     print(f"demo: {time.perf_counter() - total:.1f} s")
     return 0
 
@@ -198,8 +219,9 @@ def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_
         # denoiser refuses: clipped to the gamut's boundary first, as the display would. No
         # auxiliary images: the frames are the sun and sky seen directly (an emitter has no albedo;
         # with the sea's albedo and normal beside it OIDN left the disc mottled).
-        image = refracta.render(example.scene, camera, example.field, max_length=example.max_length,
-                                spectral=True, spp=spp, progress=False)
+        image = refracta.render(
+            example.scene, camera, example.field, max_length=example.max_length, spectral=True, spp=spp, progress=False
+        )
         frames.append(refracta.denoise(np.maximum(image, 0.0)))
     shown = green_flash_display(frames)
     dpi, gap = 100, 0.08
@@ -212,8 +234,11 @@ def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_
     figure.subplots_adjust(left=0, right=1, bottom=0, top=size / (size + 70), wspace=gap * dpi / size)
     figure.savefig(out / "green_flash.png", dpi=dpi)
     plt.close(figure)
-    print(f"wrote {out / 'green_flash.png'} ({len(frames)} frames {size}x{size}, spectral, {spp} spp, denoised: "
-          f"{time.perf_counter() - start:.1f} s)", flush=True)
+    print(
+        f"wrote {out / 'green_flash.png'} ({len(frames)} frames {size}x{size}, spectral, {spp} spp, denoised: "
+        f"{time.perf_counter() - start:.1f} s)",
+        flush=True,
+    )
 
 
 # The turbulent rays end (and see the sky in their last direction) after 1.5 km, where the
@@ -237,21 +262,53 @@ def _demo_shimmer(out: Path, size=(48, 16), noise_size=(320, 120)) -> None:
     # in steps of a few 10 cm cells (refracta.Turbulence: 128^3 cells of 10 cm, a 12.8 m tile).
     camera = refracta.Camera(road.camera.position, road.camera.look_at, vfov=0.6, width=size[0], height=size[1])
     air = refracta.Turbulence(cells=128, spacing=0.1, depth=0.1, seed=1)
-    refracta.animate(road.scene, camera, road.field, np.arange(SHIMMER_FRAMES) * 0.15, out / "shimmer.gif",
-                     turbulence=air, progress=False, max_length=SHIMMER_LENGTH)
-    print(f"wrote {out / 'shimmer.gif'} ({SHIMMER_FRAMES} frames {size[0]}x{size[1]} through refracta.Turbulence: "
-          f"{time.perf_counter() - start:.1f} s)", flush=True)
+    refracta.animate(
+        road.scene,
+        camera,
+        road.field,
+        np.arange(SHIMMER_FRAMES) * 0.15,
+        out / "shimmer.gif",
+        turbulence=air,
+        progress=False,
+        max_length=SHIMMER_LENGTH,
+    )
+    print(
+        f"wrote {out / 'shimmer.gif'} ({SHIMMER_FRAMES} frames {size[0]}x{size[1]} through refracta.Turbulence: "
+        f"{time.perf_counter() - start:.1f} s)",
+        flush=True,
+    )
     start = time.perf_counter()
-    refracta.animate(road.scene, road.camera.resized(*noise_size), road.field, np.arange(12) * 0.08,
-                     out / "shimmer_noise.gif", noise=dict(rms=4e-5, correlation_pixels=6.0, speed=(30.0, 0.0)),
-                     progress=False, max_length=road.max_length)
-    print(f"wrote {out / 'shimmer_noise.gif'} (12 frames {noise_size[0]}x{noise_size[1]}, geometric noise, "
-          f"not physical: {time.perf_counter() - start:.1f} s)", flush=True)
+    refracta.animate(
+        road.scene,
+        road.camera.resized(*noise_size),
+        road.field,
+        np.arange(12) * 0.08,
+        out / "shimmer_noise.gif",
+        noise=dict(rms=4e-5, correlation_pixels=6.0, speed=(30.0, 0.0)),
+        progress=False,
+        max_length=road.max_length,
+    )
+    print(
+        f"wrote {out / 'shimmer_noise.gif'} (12 frames {noise_size[0]}x{noise_size[1]}, geometric noise, "
+        f"not physical: {time.perf_counter() - start:.1f} s)",
+        flush=True,
+    )
 
 
-def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exposure=None,
-                transport: str = "direct", max_depth=None, spectral: bool = False, tonemap=None,
-                key=None, ev100=None) -> int:
+def render_file(
+    scene_path: Path,
+    output: Path,
+    method: str,
+    size,
+    spp: int,
+    exposure=None,
+    transport: str = "direct",
+    max_depth=None,
+    spectral: bool = False,
+    tonemap=None,
+    key=None,
+    ev100=None,
+) -> int:
     """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped).
 
     exposure, ev100, key, tonemap: as refracta.io.write_image (None: its defaults, automatic
@@ -263,10 +320,21 @@ def render_file(scene_path: Path, output: Path, method: str, size, spp: int, exp
     if size is not None:
         camera = camera.resized(*size)
     start = time.perf_counter()
-    image = refracta.render(scene, camera, field, method=method, transport=transport, spp=spp, max_depth=max_depth,
-                            spectral=spectral, progress=True)
+    image = refracta.render(
+        scene,
+        camera,
+        field,
+        method=method,
+        transport=transport,
+        spp=spp,
+        max_depth=max_depth,
+        spectral=spectral,
+        progress=True,
+    )
     refracta.io.write_image(output, image, exposure=exposure, tonemap=tonemap, key=key, ev100=ev100)
-    print(f"wrote {output} ({camera.width}x{camera.height}, {method}, {transport}, {time.perf_counter() - start:.1f} s)")
+    print(
+        f"wrote {output} ({camera.width}x{camera.height}, {method}, {transport}, {time.perf_counter() - start:.1f} s)"
+    )
     return 0
 
 
@@ -313,38 +381,71 @@ def _run(argv=None) -> int:
     commands = parser.add_subparsers(dest="command", required=True)
     demo_parser = commands.add_parser("demo", help="render the example mirages and ray fans")
     demo_parser.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
-    demo_parser.add_argument("--size", type=_size, default=None,
-                             help="image size WxH (default: each example's own, 640 px wide)")
+    demo_parser.add_argument(
+        "--size", type=_size, default=None, help="image size WxH (default: each example's own, 640 px wide)"
+    )
     render_parser = commands.add_parser("render", help="render a TOML scene file")
     render_parser.add_argument("scene", type=Path, help="scene file (.toml)")
-    render_parser.add_argument("-o", "--output", type=Path, default=Path("out.exr"), help="image file (default out.exr)")
+    render_parser.add_argument(
+        "-o", "--output", type=Path, default=Path("out.exr"), help="image file (default out.exr)"
+    )
     render_parser.add_argument("--method", choices=["curved", "straight", "raster_march"], default="curved")
     render_parser.add_argument("--size", type=_size, default=None, help="WxH (default: the file's camera size)")
     render_parser.add_argument("--spp", type=_count(1), default=1, help="samples per pixel")
-    render_parser.add_argument("--exposure", type=float, default=None,
-                               help="manual exposure: a scale of the radiance (default: automatic, the image's "
-                                    "log-average luminance to --key)")
-    render_parser.add_argument("--ev100", type=float, default=None,
-                               help="manual exposure in EV100 (scale 1 / (1.2 2^EV100), Lagarde & de Rousiers 2014)")
+    render_parser.add_argument(
+        "--exposure",
+        type=float,
+        default=None,
+        help="manual exposure: a scale of the radiance (default: automatic, the image's "
+        "log-average luminance to --key)",
+    )
+    render_parser.add_argument(
+        "--ev100",
+        type=float,
+        default=None,
+        help="manual exposure in EV100 (scale 1 / (1.2 2^EV100), Lagarde & de Rousiers 2014)",
+    )
     render_parser.add_argument("--transport", choices=["direct", "path"], default="direct", help="light transport")
     render_parser.add_argument("--max-depth", type=_count(0), default=None, help="scattering events per path")
     render_parser.add_argument("--spectral", action="store_true", help="hero-wavelength spectral rendering")
-    render_parser.add_argument("--tonemap", choices=["aces", "reinhard", "linear", "film"], default=None,
-                               help="display curve for PNG/JPEG output (default: aces, filmic)")
-    render_parser.add_argument("--key", type=float, default=None,
-                               help="automatic exposure's key: the log-average luminance shows as this grey "
-                                    "(default 0.18; overrides --exposure/--ev100)")
+    render_parser.add_argument(
+        "--tonemap",
+        choices=["aces", "reinhard", "linear", "film"],
+        default=None,
+        help="display curve for PNG/JPEG output (default: aces, filmic)",
+    )
+    render_parser.add_argument(
+        "--key",
+        type=float,
+        default=None,
+        help="automatic exposure's key: the log-average luminance shows as this grey "
+        "(default 0.18; overrides --exposure/--ev100)",
+    )
     edit_parser = commands.add_parser("edit", help="solve a scene's atmosphere for point pairs (JSON)")
     edit_parser.add_argument("scene", type=Path, help="scene file (.toml) with an [atmosphere] table")
-    edit_parser.add_argument("--pairs", type=Path, required=True, help="pairs file (.json), see refracta.edit.load_pairs")
+    edit_parser.add_argument(
+        "--pairs", type=Path, required=True, help="pairs file (.json), see refracta.edit.load_pairs"
+    )
     edit_parser.add_argument("-o", "--output", type=Path, required=True, help="scene file to write (.toml)")
     edit_parser.add_argument("--backend", default=None, help="ceres (default) or nlopt:<ALGORITHM>")
     args = parser.parse_args(argv)
     if args.command == "demo":
         return demo(args.out, args.size)
     if args.command == "render":
-        return render_file(args.scene, args.output, args.method, args.size, args.spp, args.exposure, args.transport,
-                           args.max_depth, args.spectral, args.tonemap, args.key, args.ev100)
+        return render_file(
+            args.scene,
+            args.output,
+            args.method,
+            args.size,
+            args.spp,
+            args.exposure,
+            args.transport,
+            args.max_depth,
+            args.spectral,
+            args.tonemap,
+            args.key,
+            args.ev100,
+        )
     if args.command == "edit":
         return edit_file(args.scene, args.pairs, args.output, args.backend)
     parser.error(f"unknown command {args.command}")

@@ -29,9 +29,14 @@ def _reference_of(method: str, kernel: int) -> str:
     return "embree" if kernel == 1 or method in ("hard", "pcf", "embree") else "pcf"
 
 
-def shadows(scene: _core.Scene, camera: _core.Camera,
-            methods: Sequence[str] = ("hard", "pcf", "vsm", "msm_hamburger", "msm_hausdorff"),
-            kernels: Sequence[int] = (1, 5, 9), figure: bool = True, **options):
+def shadows(
+    scene: _core.Scene,
+    camera: _core.Camera,
+    methods: Sequence[str] = ("hard", "pcf", "vsm", "msm_hamburger", "msm_hausdorff"),
+    kernels: Sequence[int] = (1, 5, 9),
+    figure: bool = True,
+    **options,
+):
     """Each (method, kernel) against its reference.
 
     options go to render_raster (resolution, depth_range, storage, bias, ...). Returns (rows,
@@ -55,22 +60,29 @@ def shadows(scene: _core.Scene, camera: _core.Camera,
     images = {}
     for kernel in kernels:
         for method in methods:
-            image, counts = render_raster(scene, camera, shadows=method, kernel=kernel, output="shadow",
-                                          return_stats=True, **options)
+            image, counts = render_raster(
+                scene, camera, shadows=method, kernel=kernel, output="shadow", return_stats=True, **options
+            )
             ref_name = _reference_of(method, kernel)
             truth = reference(ref_name, kernel)
             valid = (image[..., 1] > 0) & (truth[..., 1] > 0)
             error = image[..., 0][valid] - truth[..., 0][valid]
             finite = np.isfinite(error)
             abs_error = np.abs(error[finite]) if finite.any() else np.zeros(1)
-            rows.append({
-                "method": method, "kernel": kernel, "reference": ref_name if ref_name == "embree" else f"pcf {kernel}x{kernel}",
-                "mean_error": float(abs_error.mean()), "p99_error": float(np.quantile(abs_error, 0.99)),
-                "light_leak": float(np.mean(error[finite] < -LEAK_THRESHOLD)) if finite.any() else 0.0,
-                "over_shadow": float(np.mean(error[finite] > LEAK_THRESHOLD)) if finite.any() else 0.0,
-                "nan_count": int(np.count_nonzero(~np.isfinite(image[..., 0]))),
-                "bits_per_texel": 8 * counts.bytes_per_texel, "seconds": counts.seconds,
-            })
+            rows.append(
+                {
+                    "method": method,
+                    "kernel": kernel,
+                    "reference": ref_name if ref_name == "embree" else f"pcf {kernel}x{kernel}",
+                    "mean_error": float(abs_error.mean()),
+                    "p99_error": float(np.quantile(abs_error, 0.99)),
+                    "light_leak": float(np.mean(error[finite] < -LEAK_THRESHOLD)) if finite.any() else 0.0,
+                    "over_shadow": float(np.mean(error[finite] > LEAK_THRESHOLD)) if finite.any() else 0.0,
+                    "nan_count": int(np.count_nonzero(~np.isfinite(image[..., 0]))),
+                    "bits_per_texel": 8 * counts.bytes_per_texel,
+                    "seconds": counts.seconds,
+                }
+            )
             images[(method, kernel)] = (image, truth)
     fig = _figure(images, methods, max(kernels)) if figure else None
     return rows, fig
@@ -95,8 +107,13 @@ TRANSPARENCY_METHODS: dict[str, dict[str, Any]] = {
 }
 
 
-def transparency(scene: _core.Scene, camera: _core.Camera, methods: Sequence[str] = tuple(TRANSPARENCY_METHODS),
-                 figure: bool = True, **options):
+def transparency(
+    scene: _core.Scene,
+    camera: _core.Camera,
+    methods: Sequence[str] = tuple(TRANSPARENCY_METHODS),
+    figure: bool = True,
+    **options,
+):
     """Each transparency method against the exact (sorted) composite of the same fragments.
 
     methods: names of TRANSPARENCY_METHODS. options go to render_raster (shadows, ...). Returns
@@ -116,13 +133,28 @@ def transparency(scene: _core.Scene, camera: _core.Camera, methods: Sequence[str
         image, stats = render_raster(scene, camera, return_stats=True, **TRANSPARENCY_METHODS[method], **options)
         error = (np.abs(image - exact).max(axis=2) / scale)[covered]
         finite = error[np.isfinite(error)] if error.size else np.zeros(1)
-        rows.append({"method": method, "mean_error": float(finite.mean()) if finite.size else 0.0,
-                     "p99_error": float(np.quantile(finite, 0.99)) if finite.size else 0.0,
-                     "nan_count": int(np.count_nonzero(~np.isfinite(image))),
-                     "bytes_per_pixel": stats.oit_bytes_per_pixel, "seconds": stats.seconds})
+        rows.append(
+            {
+                "method": method,
+                "mean_error": float(finite.mean()) if finite.size else 0.0,
+                "p99_error": float(np.quantile(finite, 0.99)) if finite.size else 0.0,
+                "nan_count": int(np.count_nonzero(~np.isfinite(image))),
+                "bytes_per_pixel": stats.oit_bytes_per_pixel,
+                "seconds": stats.seconds,
+            }
+        )
         images[method] = image
-    rows.insert(0, {"method": "exact", "mean_error": 0.0, "p99_error": 0.0, "nan_count": 0,
-                    "bytes_per_pixel": counts.oit_bytes_per_pixel, "seconds": counts.seconds})
+    rows.insert(
+        0,
+        {
+            "method": "exact",
+            "mean_error": 0.0,
+            "p99_error": 0.0,
+            "nan_count": 0,
+            "bytes_per_pixel": counts.oit_bytes_per_pixel,
+            "seconds": counts.seconds,
+        },
+    )
     fig = None
     if figure:
         import matplotlib.pyplot as plt
@@ -143,8 +175,7 @@ def transparency(scene: _core.Scene, camera: _core.Camera, methods: Sequence[str
 def _figure(images, methods, kernel):
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(2, len(methods), figsize=(3.2 * len(methods), 4.6), squeeze=False,
-                             constrained_layout=True)
+    fig, axes = plt.subplots(2, len(methods), figsize=(3.2 * len(methods), 4.6), squeeze=False, constrained_layout=True)
     for column, method in enumerate(methods):
         image, truth = images[(method, kernel)]
         axes[0, column].imshow(image[..., 0], cmap="gray_r", vmin=0, vmax=1)
@@ -163,14 +194,20 @@ def format_table(rows: Sequence[dict]) -> str:
     if rows and "kernel" not in rows[0]:
         lines = [f"{'method':14s} {'mean':>8s} {'p99':>8s} {'NaN':>4s} {'bytes/px':>9s} {'time [s]':>8s}"]
         for r in rows:
-            lines.append(f"{r['method']:14s} {r['mean_error']:8.4f} {r['p99_error']:8.4f} {r['nan_count']:4d} "
-                         f"{r['bytes_per_pixel']:9.1f} {r['seconds']:8.3f}")
+            lines.append(
+                f"{r['method']:14s} {r['mean_error']:8.4f} {r['p99_error']:8.4f} {r['nan_count']:4d} "
+                f"{r['bytes_per_pixel']:9.1f} {r['seconds']:8.3f}"
+            )
         return "\n".join(lines)
-    header = f"{'method':14s} {'kernel':>6s} {'reference':>10s} {'mean':>8s} {'p99':>8s} {'leak':>7s} " \
-             f"{'over':>7s} {'NaN':>4s} {'bits':>5s} {'time [s]':>8s}"
+    header = (
+        f"{'method':14s} {'kernel':>6s} {'reference':>10s} {'mean':>8s} {'p99':>8s} {'leak':>7s} "
+        f"{'over':>7s} {'NaN':>4s} {'bits':>5s} {'time [s]':>8s}"
+    )
     lines = [header]
     for r in rows:
-        lines.append(f"{r['method']:14s} {r['kernel']:6d} {r['reference']:>10s} {r['mean_error']:8.4f} "
-                     f"{r['p99_error']:8.4f} {r['light_leak']:7.4f} {r['over_shadow']:7.4f} {r['nan_count']:4d} "
-                     f"{r['bits_per_texel']:5d} {r['seconds']:8.3f}")
+        lines.append(
+            f"{r['method']:14s} {r['kernel']:6d} {r['reference']:>10s} {r['mean_error']:8.4f} "
+            f"{r['p99_error']:8.4f} {r['light_leak']:7.4f} {r['over_shadow']:7.4f} {r['nan_count']:4d} "
+            f"{r['bits_per_texel']:5d} {r['seconds']:8.3f}"
+        )
     return "\n".join(lines)

@@ -42,8 +42,18 @@ SolveSettings = _core.SolveSettings
 PairOptions = _core.PairOptions
 SolveSummary = _core.SolveSummary
 
-__all__ = ["EditResult", "PairOptions", "PointPair", "SolveSettings", "SolveSummary", "distances", "jacobian",
-           "load_pairs", "solve", "NLOPT_ALGORITHMS"]
+__all__ = [
+    "EditResult",
+    "PairOptions",
+    "PointPair",
+    "SolveSettings",
+    "SolveSummary",
+    "distances",
+    "jacobian",
+    "load_pairs",
+    "solve",
+    "NLOPT_ALGORITHMS",
+]
 
 #: nlopt algorithms known to work on edits (any other nlopt name is accepted too).
 NLOPT_ALGORITHMS = ("LN_BOBYQA", "LN_NELDERMEAD", "LN_SBPLX", "LN_COBYLA", "GN_DIRECT_L", "LD_LBFGS", "LD_MMA")
@@ -133,8 +143,10 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float
     for i, pair in enumerate(pairs):
         if pair.is_pixel:
             if camera is None:
-                raise ValueError(f"pairs[{i}] gives a pixel destination {pair.destination}; pass a Camera "
-                                 "as eye_or_camera (or give the destination as a 3D point)")
+                raise ValueError(
+                    f"pairs[{i}] gives a pixel destination {pair.destination}; pass a Camera "
+                    "as eye_or_camera (or give the destination as a 3D point)"
+                )
             directions.append(camera.ray(*pair.destination)[1])
         else:
             direction = np.asarray(pair.destination) - eye
@@ -243,9 +255,11 @@ class EditResult:
         met = self.met if len(self.met) == len(self.pairs) else np.zeros(len(self.pairs), dtype=bool)
         for i, pair in enumerate(self.pairs):
             distance = float(np.linalg.norm(np.asarray(pair.source) - self.eye))
-            lines.append(f"  {i:4d}  {pair.weight:6.3g}  {self.initial_distances[i]:15.4g}  "
-                         f"{self.distances[i]:14.4g}  {margins[i]:10.4g}  {'yes' if met[i] else 'NO ':3s}  "
-                         f"{distance:9.4g}")
+            lines.append(
+                f"  {i:4d}  {pair.weight:6.3g}  {self.initial_distances[i]:15.4g}  "
+                f"{self.distances[i]:14.4g}  {margins[i]:10.4g}  {'yes' if met[i] else 'NO ':3s}  "
+                f"{distance:9.4g}"
+            )
         info = {p["name"]: p for p in self.start.param_info}
         start, solved = self.start.params, self.field.params
         lines.append("  parameter            start          solved         unit")
@@ -260,16 +274,19 @@ class EditResult:
             lines.append(f"  strategy {self.strategy}:")
             lines += ["    " + stage for stage in self.stages]
         if self.rank:
-            lines.append(f"  Jacobian at the result: rank {self.rank} of {len(self.free)}, "
-                         f"condition {self.condition:.3g}")
+            lines.append(
+                f"  Jacobian at the result: rank {self.rank} of {len(self.free)}, condition {self.condition:.3g}"
+            )
         lines.append("  " + self.message)
         return "\n".join(lines)
 
     __str__ = report
 
     def __repr__(self) -> str:
-        return (f"EditResult(success={self.success}, cost={self.cost:.3g}, max miss={np.max(self.distances):.3g} m, "
-                f"backend={self.backend!r}, iterations={self.iterations}, time={self.time:.3g} s)")
+        return (
+            f"EditResult(success={self.success}, cost={self.cost:.3g}, max miss={np.max(self.distances):.3g} m, "
+            f"backend={self.backend!r}, iterations={self.iterations}, time={self.time:.3g} s)"
+        )
 
 
 def solve(
@@ -351,26 +368,54 @@ def solve(
             raise ValueError("free is empty: name at least one parameter (or pass None for the default)")
         unknown = [n for n in free if n not in field.param_names]
         if unknown:
-            raise ValueError(f"unknown parameter(s) {unknown} for {field.type_name}; "
-                             f"valid names: {field.param_names}")
+            raise ValueError(f"unknown parameter(s) {unknown} for {field.type_name}; valid names: {field.param_names}")
     settings = _options.build(_core.SolveSettings, settings, where=where, **settings_keywords)
     pair_options = _options.build(_core.PairOptions, pair_options, where=where, **pair_keywords)
     pairs, eye, camera, origins, directions, sources, weights, margins, tolerances = _pair_rays(
-        eye_or_camera, pairs, settings.pixel_tolerance)
+        eye_or_camera, pairs, settings.pixel_tolerance
+    )
     bounds = {k: (float(v[0]), float(v[1])) for k, v in (bounds or {}).items()}
     callback = ProgressBar(f"editing ({settings.backend})") if progress is True else (progress or None)
     initial = _core._pair_distances(field, origins, directions, sources, pair_options)
-    summary = _core._solve_edit(field, origins, directions, sources, weights=weights, margins=margins,
-                                tolerances=tolerances, free=free or [], bounds=bounds, derivatives=derivatives,
-                                pair_options=pair_options, settings=settings, progress=callback)
+    summary = _core._solve_edit(
+        field,
+        origins,
+        directions,
+        sources,
+        weights=weights,
+        margins=margins,
+        tolerances=tolerances,
+        free=free or [],
+        bounds=bounds,
+        derivatives=derivatives,
+        pair_options=pair_options,
+        settings=settings,
+        progress=callback,
+    )
     solved = field.with_params(**dict(zip(field.param_names, (float(v) for v in summary.values))))
-    return EditResult(field=solved, start=field, pairs=list(pairs), eye=np.asarray(eye), camera=camera,
-                      initial_distances=initial, margins=margins, tolerances=tolerances, summary=summary,
-                      settings=settings, pair_options=pair_options)
+    return EditResult(
+        field=solved,
+        start=field,
+        pairs=list(pairs),
+        eye=np.asarray(eye),
+        camera=camera,
+        initial_distances=initial,
+        margins=margins,
+        tolerances=tolerances,
+        summary=summary,
+        settings=settings,
+        pair_options=pair_options,
+    )
 
 
-def distances(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], *,
-              pair_options: _core.PairOptions | None = None, **options: Any) -> np.ndarray:
+def distances(
+    field: _core.IndexField,
+    eye_or_camera,
+    pairs: Sequence[PointPair],
+    *,
+    pair_options: _core.PairOptions | None = None,
+    **options: Any,
+) -> np.ndarray:
     """Each pair's miss [m]: how far the path launched toward its destination passes its source.
     pair_options, ``**options``: a refracta.PairOptions and its fields by name (trace, tol, step,
     stop_height, distance, reach, max_steps), as solve() takes them."""
@@ -379,21 +424,38 @@ def distances(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair]
     return _core._pair_distances(field, origins, directions, sources, pair_options)
 
 
-def jacobian(field: _core.IndexField, eye_or_camera, pairs: Sequence[PointPair], free: Sequence[str] | None = None,
-             *, derivatives: str = "auto", pair_options: _core.PairOptions | None = None,
-             **options: Any) -> tuple[np.ndarray, np.ndarray, list[str]]:
+def jacobian(
+    field: _core.IndexField,
+    eye_or_camera,
+    pairs: Sequence[PointPair],
+    free: Sequence[str] | None = None,
+    *,
+    derivatives: str = "auto",
+    pair_options: _core.PairOptions | None = None,
+    **options: Any,
+) -> tuple[np.ndarray, np.ndarray, list[str]]:
     """(residuals (3P,), Jacobian (3P, F), free names) at `field`: the weighted miss vectors an
     edit minimises and their derivatives in the free parameters (for sensitivity studies).
     pair_options, ``**options``: as distances()."""
     pair_options = _pair_options("refracta.edit.jacobian", pair_options, options)
     _, _, _, origins, directions, sources, weights, margins, _ = _pair_rays(eye_or_camera, pairs)
     free = [free] if isinstance(free, str) else list(free or [])
-    return _core._pair_jacobian(field, origins, directions, sources, weights=weights, margins=margins, free=free,
-                                derivatives=derivatives, options=pair_options)
+    return _core._pair_jacobian(
+        field,
+        origins,
+        directions,
+        sources,
+        weights=weights,
+        margins=margins,
+        free=free,
+        derivatives=derivatives,
+        options=pair_options,
+    )
 
 
-def load_pairs(path, scene: _core.Scene | None = None,
-               camera: _core.Camera | None = None) -> tuple[list[PointPair], dict]:
+def load_pairs(
+    path, scene: _core.Scene | None = None, camera: _core.Camera | None = None
+) -> tuple[list[PointPair], dict]:
     """Point pairs from a JSON file, and the solve options it carries.
 
     Format::

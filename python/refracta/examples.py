@@ -44,8 +44,9 @@ def sun_direction(elevation: float, azimuth: float) -> np.ndarray:
     return np.array([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)])
 
 
-def set_physical_sky(scene: _core.Scene, direction, aerosol: float = 1.0, scale: float = RADIANCE_SCALE,
-                     visibility=None) -> None:
+def set_physical_sky(
+    scene: _core.Scene, direction, aerosol: float = 1.0, scale: float = RADIANCE_SCALE, visibility=None
+) -> None:
     """Light `scene` by Scene.set_physical_sky: a Nishita single-scattering sky and its sun disc
     (0.53 deg, coloured by extinction along the sun's path), both times `scale` (RADIANCE_SCALE:
     see above). direction: toward the sun (normalised), y up; aerosol: the Mie density scale.
@@ -116,12 +117,18 @@ def hot_road(width: int = 640, height: int = 320) -> Example:
     rock = [(0.5, 0.32, 0.22), (0.46, 0.3, 0.22), (0.52, 0.36, 0.26)]
     for i, z in enumerate(np.arange(-1200.0, 1200.0, 60.0)):
         h = 10.0 + 25.0 * (0.5 + 0.5 * np.sin(z / 170.0)) + 15.0 * np.sin(z / 60.0 + 1.0) ** 2
-        scene.add_box((9000.0 + 300.0 * np.sin(z / 400.0), h / 2, z), (400.0, h, 60.0),
-                      material=shading.Diffuse(rock[i % 3]))
+        scene.add_box(
+            (9000.0 + 300.0 * np.sin(z / 400.0), h / 2, z), (400.0, h, 60.0), material=shading.Diffuse(rock[i % 3])
+        )
     field = _core.PhysicalAtmosphere(surface_dt=15.0, surface_depth=0.1)
     eye, look = HOT_ROAD_EYE, 300.0  # look_at on the line of sight 300 m out (a pinhole: only its direction counts)
-    camera = _core.Camera.photographic((0.0, eye, 0.0), (look, eye - look * np.tan(np.radians(HOT_ROAD_TILT)), 0.0),
-                                       HOT_ROAD_FOCAL_LENGTH, width=width, height=height)
+    camera = _core.Camera.photographic(
+        (0.0, eye, 0.0),
+        (look, eye - look * np.tan(np.radians(HOT_ROAD_TILT)), 0.0),
+        HOT_ROAD_FOCAL_LENGTH,
+        width=width,
+        height=height,
+    )
     return Example("hot_road", scene, camera, field, 12000.0, hot_road.__doc__ or "")  # None under python -OO
 
 
@@ -152,8 +159,12 @@ def _smoothstep(t):
 
 # Rock, tundra, shingle and snow of a northern coast (diffuse albedos; Kokaly et al. 2017, USGS
 # spectral library: dark basalt ~0.1, lichen tundra ~0.15-0.2, old snow ~0.8).
-COAST_COLOURS = {"rock": (0.11, 0.1, 0.09), "tundra": (0.2, 0.18, 0.11), "shingle": (0.3, 0.28, 0.25),
-                 "snow": (0.8, 0.82, 0.86)}
+COAST_COLOURS = {
+    "rock": (0.11, 0.1, 0.09),
+    "tundra": (0.2, 0.18, 0.11),
+    "shingle": (0.3, 0.28, 0.25),
+    "snow": (0.8, 0.82, 0.86),
+}
 
 
 def _coast_texture(name, colours):
@@ -176,8 +187,20 @@ def _coast_texture(name, colours):
     return path
 
 
-def _coast(scene, distance, rng, z_range, peak, depth=3000.0, cell=(20.0, 5.0), tip=None, snow_line=None,
-           rise=600.0, inlets=False, name="coast"):
+def _coast(
+    scene,
+    distance,
+    rng,
+    z_range,
+    peak,
+    depth=3000.0,
+    cell=(20.0, 5.0),
+    tip=None,
+    snow_line=None,
+    rise=600.0,
+    inlets=False,
+    name="coast",
+):
     """A coastline `distance` [m] away (+x) over z in z_range [m]: one height-field mesh of fractal
     noise (_fbm) -- hills up to ~`peak` [m] rising over `rise` [m] from a shore that wanders by a few
     hundred metres into bays and headlands, the sea bed sloping away below it -- on `cell` (dx, dz)
@@ -192,7 +215,7 @@ def _coast(scene, distance, rng, z_range, peak, depth=3000.0, cell=(20.0, 5.0), 
     shore = distance + 260.0 * _fbm(rng, np.zeros_like(z), z, 700.0, octaves=4)
     inland = X - shore[None, :]
     relief = np.clip(0.55 + 0.9 * _fbm(rng, X, Z, 1200.0, octaves=6), 0.05, None)
-    height = peak * relief ** 1.4 * _smoothstep(inland / rise) + 6.0 * _smoothstep(inland / 40.0)
+    height = peak * relief**1.4 * _smoothstep(inland / rise) + 6.0 * _smoothstep(inland / 40.0)
     if inlets:
         height = height * _smoothstep((_fbm(rng, np.zeros_like(Z), Z, 260.0, octaves=3) + 0.05) / 0.2)
     if tip is not None:
@@ -215,15 +238,16 @@ def _coast(scene, distance, rng, z_range, peak, depth=3000.0, cell=(20.0, 5.0), 
     rock = _smoothstep((slope + 0.3 * speckle - 0.3) / 0.25)[..., None]
     albedo = colour["tundra"] * (1 - rock) + colour["rock"] * rock
     if snow_line is not None:
-        snow = (_smoothstep((height + 50.0 * speckle - snow_line) / 25.0) * (1 - _smoothstep((slope - 0.35) / 0.2)))
+        snow = _smoothstep((height + 50.0 * speckle - snow_line) / 25.0) * (1 - _smoothstep((slope - 0.35) / 0.2))
         albedo = albedo * (1 - snow[..., None]) + colour["snow"] * snow[..., None]
     wet = (1 - _smoothstep((height - 1.0) / 4.0))[..., None]
     albedo = albedo * (1 - wet) + colour["shingle"] * wet
     # uvs: u along z, v along x; the texture's first row is v = 1 (the far side).
     uvs = np.stack([(Z - z[0]) / (z[-1] - z[0]), (X - x[0]) / (x[-1] - x[0])], axis=-1).reshape(-1, 2)
     texture = _coast_texture(name, albedo[::-1])
-    scene.add_mesh(vertices, triangles, material=shading.Diffuse(1.0, texture=texture),
-                   normals=normals.reshape(-1, 3), uvs=uvs)
+    scene.add_mesh(
+        vertices, triangles, material=shading.Diffuse(1.0, texture=texture), normals=normals.reshape(-1, 3), uvs=uvs
+    )
     return x, z, height
 
 
@@ -237,10 +261,12 @@ def _houses(scene, coast, rng, count, size=(9.0, 7.0, 12.0), ground=1.0):
     for j in columns:
         i = int(np.argmax(height[:, j] > ground)) + 1
         base = float(height[i, j])
-        scene.add_box((x[i] + size[0] / 2, base + size[1] / 2 - 1.0, z[j]), (size[0], size[1] + 2.0, size[2]),
-                      material=walls)
-        scene.add_box((x[i] + size[0] / 2, base + size[1] + 1.0, z[j]), (size[0] + 1.0, 2.0, size[2] + 1.0),
-                      material=roof)
+        scene.add_box(
+            (x[i] + size[0] / 2, base + size[1] / 2 - 1.0, z[j]), (size[0], size[1] + 2.0, size[2]), material=walls
+        )
+        scene.add_box(
+            (x[i] + size[0] / 2, base + size[1] + 1.0, z[j]), (size[0] + 1.0, 2.0, size[2] + 1.0), material=roof
+        )
 
 
 SHIP_HEIGHT = 28.0  # [m] _ship's funnel top above the waterline at scale 1 (its length 110 m)
@@ -257,15 +283,17 @@ def _ship(scene, x, z, scale=1.0):
     scene.add_box((x, 9.0 * s, z - 46.0 * s), (16.0 * s, 2.0 * s, 18.0 * s), material=hull)  # forecastle
     scene.add_box((x, 13.0 * s, z + 38.0 * s), (14.0 * s, 10.0 * s, 22.0 * s), material=white)
     scene.add_box((x, 19.0 * s, z + 38.0 * s), (12.0 * s, 2.5 * s, 26.0 * s), material=white)  # bridge wings
-    scene.add_box((x, (SHIP_HEIGHT - 5.0) * s, z + 44.0 * s), (4.5 * s, 10.0 * s, 4.5 * s),
-                  material=shading.Plastic(reflectance=(0.6, 0.1, 0.06), alpha=0.3))
+    scene.add_box(
+        (x, (SHIP_HEIGHT - 5.0) * s, z + 44.0 * s),
+        (4.5 * s, 10.0 * s, 4.5 * s),
+        material=shading.Plastic(reflectance=(0.6, 0.1, 0.06), alpha=0.3),
+    )
     mast = shading.Diffuse((0.5, 0.48, 0.45))
     for dz, top in ((-44.0, 24.0), (-5.0, 22.0)):
         scene.add_box((x, (8.0 + top) / 2 * s, z + dz * s), (0.8 * s, (top - 8.0) * s, 0.8 * s), material=mast)
     cargo = [(0.55, 0.12, 0.08), (0.1, 0.25, 0.45), (0.45, 0.4, 0.1)]
     for i, dz in enumerate((-30.0, -18.0, 8.0, 20.0)):
-        scene.add_box((x, 10.0 * s, z + dz * s), (14.0 * s, 4.0 * s, 10.0 * s),
-                      material=shading.Diffuse(cargo[i % 3]))
+        scene.add_box((x, 10.0 * s, z + dz * s), (14.0 * s, 4.0 * s, 10.0 * s), material=shading.Diffuse(cargo[i % 3]))
 
 
 def _sea(wind_speed: float = 5.0, temperature_c: float = 10.0):
@@ -307,13 +335,22 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
     scene.add_ground(0.0, 120000.0, material=_sea(4.0, 5.0))
     _ship(scene, *COLD_SEA_SHIP)
     _ship(scene, 13000.0, -120.0, scale=0.7)
-    _coast(scene, COLD_SEA_COAST, np.random.default_rng(11), (-1500.0, 400.0), peak=170.0, tip=-150.0,
-           snow_line=110.0, name="cold_sea_coast")
+    _coast(
+        scene,
+        COLD_SEA_COAST,
+        np.random.default_rng(11),
+        (-1500.0, 400.0),
+        peak=170.0,
+        tip=-150.0,
+        snow_line=110.0,
+        name="cold_sea_coast",
+    )
     field = _core.CurvedEarth(_core.PhysicalAtmosphere(**COLD_SEA_INVERSION))
     look = np.radians(0.1)
     eye = COLD_SEA_EYE
-    camera = _core.Camera.photographic((0.0, eye, 0.0), (30000.0, eye + 30000.0 * np.tan(look), 0.0),
-                                       SEA_FOCAL_LENGTH, width=width, height=height)
+    camera = _core.Camera.photographic(
+        (0.0, eye, 0.0), (30000.0, eye + 30000.0 * np.tan(look), 0.0), SEA_FOCAL_LENGTH, width=width, height=height
+    )
     return Example("cold_sea", scene, camera, field, 41000.0, cold_sea.__doc__ or "")
 
 
@@ -333,14 +370,24 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
     set_physical_sky(scene, sun_direction(15.0, -140.0), visibility=FATA_MORGANA_VISIBILITY)
     scene.add_ground(0.0, 140000.0, material=_sea(6.0, 3.0))
     rng = np.random.default_rng(7)
-    coast = _coast(scene, 20000.0, rng, (-700.0, 700.0), peak=70.0, rise=60.0, cell=(10.0, 4.0), inlets=True,
-                   name="fata_morgana_coast")
+    coast = _coast(
+        scene,
+        20000.0,
+        rng,
+        (-700.0, 700.0),
+        peak=70.0,
+        rise=60.0,
+        cell=(10.0, 4.0),
+        inlets=True,
+        name="fata_morgana_coast",
+    )
     _houses(scene, coast, rng, 14)
     base = _core.PhysicalAtmosphere(t_ground=276.15, inversion_dt=10.0, inversion_base=12.0, inversion_thickness=8.0)
     field = _core.CurvedEarth(base)
     look = np.radians(0.02)
-    camera = _core.Camera.photographic((0.0, 14.0, 0.0), (20000.0, 14.0 + 20000.0 * np.tan(look), 0.0),
-                                       SEA_FOCAL_LENGTH, width=width, height=height)
+    camera = _core.Camera.photographic(
+        (0.0, 14.0, 0.0), (20000.0, 14.0 + 20000.0 * np.tan(look), 0.0), SEA_FOCAL_LENGTH, width=width, height=height
+    )
     return Example("fata_morgana", scene, camera, field, 21000.0, fata_morgana.__doc__ or "")
 
 
@@ -377,8 +424,13 @@ def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.8
     set_physical_sky(scene, horizon_sun)
     lam = np.arange(360.0, 831.0, 10.0)
     sun = spectrum.PhysicalSky(horizon_sun).sun_radiance(lam, 0.53) * RADIANCE_SCALE
-    scene.set_sun(sun_direction(sun_elevation, 0.0), sun, angular_diameter=0.53,
-                  limb_darkening=SETTING_SUN_LIMB_DARKENING, wavelengths=lam)
+    scene.set_sun(
+        sun_direction(sun_elevation, 0.0),
+        sun,
+        angular_diameter=0.53,
+        limb_darkening=SETTING_SUN_LIMB_DARKENING,
+        wavelengths=lam,
+    )
     scene.add_ground(0.0, 2.0e5, material=_sea())
     base = _core.PhysicalAtmosphere(surface_dt=3.0, surface_depth=2.0)
     field = _core.CurvedEarth(base)
@@ -398,8 +450,14 @@ def hot_road_atmosphere():
 
 def cold_sea_atmosphere():
     """Superior mirage: cold water under a warm inversion (+8 K over 10-30 m); eye at 10 m."""
-    field = _core.PhysicalAtmosphere(t_ground=278.15, surface_dt=-4.0, surface_depth=3.0,
-                                     inversion_dt=8.0, inversion_base=10.0, inversion_thickness=20.0)
+    field = _core.PhysicalAtmosphere(
+        t_ground=278.15,
+        surface_dt=-4.0,
+        surface_depth=3.0,
+        inversion_dt=8.0,
+        inversion_base=10.0,
+        inversion_thickness=20.0,
+    )
     return field, 10.0, np.linspace(-0.3, 0.5, 17), 20000.0
 
 

@@ -30,8 +30,10 @@ def power_moments(depths, weights=None, count: int = 4) -> np.ndarray:
     with np.errstate(over="ignore"):
         moments = np.stack([np.sum(weights * depths**j, axis=-1) for j in range(1, count + 1)], axis=-1)
     if not np.all(np.isfinite(moments)):
-        raise ValueError(f"power_moments: the moments of these depths overflow (largest |z| = "
-                         f"{np.max(np.abs(depths)):g}; depths belong in [-1, 1])")
+        raise ValueError(
+            f"power_moments: the moments of these depths overflow (largest |z| = "
+            f"{np.max(np.abs(depths)):g}; depths belong in [-1, 1])"
+        )
     return moments
 
 
@@ -47,19 +49,30 @@ def quantize(moments, depth_range: str = "unit", inverse: bool = False) -> np.nd
 _OLD_METHODS = {"hamburger": "msm_hamburger", "hausdorff": "msm_hausdorff"}
 
 
-def shadow_intensity(moments, z_f, method: str = "msm_hamburger", depth_range: str = "unit",
-                     bias: float | None = None, bias_vector: Sequence[float] | None = None,
-                     storage: str = "fp64") -> np.ndarray:
+def shadow_intensity(
+    moments,
+    z_f,
+    method: str = "msm_hamburger",
+    depth_range: str = "unit",
+    bias: float | None = None,
+    bias_vector: Sequence[float] | None = None,
+    storage: str = "fp64",
+) -> np.ndarray:
     """Shadow intensity in [0, 1] from (..., 4) moments at receiver depths (...).
 
     storage emulates how the moments were kept: 'fp64', 'fp32', or 'unorm16' (quantised through
     the optimised transform, as RGBA16_UNORM on a GPU, with the larger published bias)."""
     if method in _OLD_METHODS:
-        warnings.warn(f"shadow_intensity: method {method!r} is now {_OLD_METHODS[method]!r}", DeprecationWarning,
-                      stacklevel=2)
+        warnings.warn(
+            f"shadow_intensity: method {method!r} is now {_OLD_METHODS[method]!r}", DeprecationWarning, stacklevel=2
+        )
         method = _OLD_METHODS[method]
-    settings = _core.MomentShadowSettings(depth_range=depth_range, storage=storage, bias=bias,
-                                          bias_vector=None if bias_vector is None else list(bias_vector))
+    settings = _core.MomentShadowSettings(
+        depth_range=depth_range,
+        storage=storage,
+        bias=bias,
+        bias_vector=None if bias_vector is None else list(bias_vector),
+    )
     moments = np.asarray(moments, dtype=np.float64)
     if moments.shape[-1:] != (4,):
         raise ValueError(f"moments must have shape (..., 4) (got {moments.shape})")

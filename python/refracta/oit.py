@@ -21,8 +21,14 @@ from refracta import _core
 from refracta._raster_render import assign
 
 # composite's keywords that name a field of OitSettings.mboit (others are OitSettings' own).
-_MBOIT_KEYWORDS = {"moments": "moments", "basis": "basis", "kind": "basis", "beta": "beta", "bias": "bias",
-                   "storage": "storage"}
+_MBOIT_KEYWORDS = {
+    "moments": "moments",
+    "basis": "basis",
+    "kind": "basis",
+    "beta": "beta",
+    "bias": "bias",
+    "storage": "storage",
+}
 
 
 def oit_settings(method: str, options: _core.OitSettings | None = None, **fields) -> _core.OitSettings:
@@ -44,19 +50,33 @@ def oit_settings(method: str, options: _core.OitSettings | None = None, **fields
         elif keyword in ("layers", "weight"):
             assign(settings, (keyword,), value, keyword, "composite")
         else:
-            raise ValueError(f"composite: unknown option {keyword!r} (layers, weight, z_range, "
-                             f"{', '.join(_MBOIT_KEYWORDS)})")
+            raise ValueError(
+                f"composite: unknown option {keyword!r} (layers, weight, z_range, {', '.join(_MBOIT_KEYWORDS)})"
+            )
     settings.validate()
     return settings
 
 
-def composite(depths, alphas, colors, background=(0.0, 0.0, 0.0), method: str = "exact", *,
-              options: _core.OitSettings | None = None, **fields) -> np.ndarray:
+def composite(
+    depths,
+    alphas,
+    colors,
+    background=(0.0, 0.0, 0.0),
+    method: str = "exact",
+    *,
+    options: _core.OitSettings | None = None,
+    **fields,
+) -> np.ndarray:
     """The pixel's colour after compositing its fragments over `background` (see the module's
     docstring for the keywords). 'peel' needs `layers` (here or in options)."""
     if method == "peel" and fields.get("layers") is None and options is None:
         raise ValueError("composite: method 'peel' needs layers")
     settings = oit_settings(method, options, **fields)
     colors = np.asarray(colors, dtype=np.float64).reshape(-1, 3)
-    return _core._composite(np.asarray(depths, np.float64).ravel(), np.asarray(alphas, np.float64).ravel(),
-                            colors, np.asarray(background, np.float64), settings)
+    return _core._composite(
+        np.asarray(depths, np.float64).ravel(),
+        np.asarray(alphas, np.float64).ravel(),
+        colors,
+        np.asarray(background, np.float64),
+        settings,
+    )

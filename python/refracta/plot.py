@@ -57,21 +57,38 @@ def ray_fan(
 
     temperature = getattr(field, "temperature", None)  # the models with a temperature profile
     has_temperature = temperature is not None
-    fig, axes = plt.subplots(1, 3 if has_temperature else 2, figsize=figsize,
-                             gridspec_kw={"width_ratios": [4, 1, 1] if has_temperature else [4, 1]},
-                             sharey=True, constrained_layout=True)
+    fig, axes = plt.subplots(
+        1,
+        3 if has_temperature else 2,
+        figsize=figsize,
+        gridspec_kw={"width_ratios": [4, 1, 1] if has_temperature else [4, 1]},
+        sharey=True,
+        constrained_layout=True,
+    )
     ax_rays = axes[0]
     norm = colors.Normalize(angles.min(), angles.max() if np.ptp(angles) > 0 else angles.min() + 1)
     cmap = cm.viridis
     low, high = eye_height, eye_height
     for elevation in angles:
         e = np.radians(elevation)
-        path = _core.trace_ray(field, [0.0, eye_height, 0.0], [np.cos(e), np.sin(e), 0.0], trace=method,
-                               tol=tol, max_length=max_length, stop_height=ground)
+        path = _core.trace_ray(
+            field,
+            [0.0, eye_height, 0.0],
+            [np.cos(e), np.sin(e), 0.0],
+            trace=method,
+            tol=tol,
+            max_length=max_length,
+            stop_height=ground,
+        )
         points = path.sample(max(200, 2 * len(path)))
         low, high = min(low, points[:, 1].min()), max(high, points[:, 1].max())
-        ax_rays.plot(points[:, 0], points[:, 1], color=cmap(norm(elevation)), lw=1.0,
-                     ls="--" if path.stop == "stop_height" else "-")
+        ax_rays.plot(
+            points[:, 0],
+            points[:, 1],
+            color=cmap(norm(elevation)),
+            lw=1.0,
+            ls="--" if path.stop == "stop_height" else "-",
+        )
     if ground is not None:
         ax_rays.axhline(ground, color="0.35", lw=1.5)
         low = min(low, ground)
@@ -132,12 +149,25 @@ def edit_report(result, figsize=(12.0, 4.2), figure=None):
         for path, colour in zip(result.paths(which), colours):
             points = path.sample(max(200, 2 * len(path)))
             along = np.hypot(points[:, 0] - eye[0], points[:, 2] - eye[2])
-            ax_paths.plot(along, points[:, 1], style, color=colour, lw=1.0 if which == "start" else 1.6,
-                          alpha=0.6 if which == "start" else 1.0)
+            ax_paths.plot(
+                along,
+                points[:, 1],
+                style,
+                color=colour,
+                lw=1.0 if which == "start" else 1.6,
+                alpha=0.6 if which == "start" else 1.0,
+            )
     for i, (pair, colour) in enumerate(zip(result.pairs, colours)):
         source = np.asarray(pair.source)
-        ax_paths.plot(np.hypot(source[0] - eye[0], source[2] - eye[2]), source[1], "x", color=colour, ms=9, mew=2,
-                      label=f"pair {i}: miss {result.initial_distances[i]:.2g} -> {result.distances[i]:.2g} m")
+        ax_paths.plot(
+            np.hypot(source[0] - eye[0], source[2] - eye[2]),
+            source[1],
+            "x",
+            color=colour,
+            ms=9,
+            mew=2,
+            label=f"pair {i}: miss {result.initial_distances[i]:.2g} -> {result.distances[i]:.2g} m",
+        )
     ax_paths.plot([0.0], [eye[1]], "o", color="crimson", ms=5, label="eye")
     ax_paths.set_xlabel("distance from the eye [m]")
     ax_paths.set_ylabel("height [m]")

@@ -33,8 +33,9 @@ class RasterBuffers:
     fragments: int
 
 
-def rasterize(scene: _core.Scene, camera: _core.Camera, guard_band: float = 0.0,
-              tile: int | None = None) -> RasterBuffers:
+def rasterize(
+    scene: _core.Scene, camera: _core.Camera, guard_band: float = 0.0, tile: int | None = None
+) -> RasterBuffers:
     """Rasterize `scene` from `camera` (its image widened by guard_band on each side, as a fraction
     of it; 0: none) in square tiles of `tile` pixels (None: the renderers' own, 32)."""
     if isinstance(tile, bool) or (tile is not None and int(tile) != tile):

@@ -148,8 +148,22 @@ MATERIAL_TYPES = {
     "rough_dielectric": ("RoughDielectric", {"alpha", "alpha_u", "alpha_v", "ior", "sellmeier", "priority"}),
     "thin_dielectric": ("ThinDielectric", {"ior"}),
     "plastic": ("Plastic", {"reflectance", "ior", "alpha"}),
-    "principled": ("Principled", {"base_color", "metallic", "roughness", "anisotropic", "specular", "specular_tint",
-                                  "sheen", "sheen_tint", "clearcoat", "clearcoat_gloss", "texture"}),
+    "principled": (
+        "Principled",
+        {
+            "base_color",
+            "metallic",
+            "roughness",
+            "anisotropic",
+            "specular",
+            "specular_tint",
+            "sheen",
+            "sheen_tint",
+            "clearcoat",
+            "clearcoat_gloss",
+            "texture",
+        },
+    ),
     "thin_film": ("ThinFilm", {"thickness", "film_ior", "eta", "k", "alpha"}),
     "water": ("Water", {"wind_speed", "temperature_c", "salinity", "body", "priority"}),
 }
@@ -158,8 +172,18 @@ LIGHT_KEYS = {
     "spot": {"position", "direction", "angle", "intensity", "inner_angle"},
     "sun": {"direction", "radiance", "angular_diameter", "limb_darkening"},
 }
-CAMERA_KEYS = {"position", "look_at", "up", "vfov", "size", "focal_length_mm", "sensor_mm", "f_number",
-               "focus_distance", "aperture_diameter"}
+CAMERA_KEYS = {
+    "position",
+    "look_at",
+    "up",
+    "vfov",
+    "size",
+    "focal_length_mm",
+    "sensor_mm",
+    "f_number",
+    "focus_distance",
+    "aperture_diameter",
+}
 SUN_KEYS = {"direction", "radiance", "angular_diameter"}
 SKY_KEYS = {"horizon", "zenith", "environment", "scale"}
 ENVIRONMENT_KEYS = {
@@ -192,8 +216,13 @@ class SceneFile(tuple):
 
     turbulence: Turbulence | None
 
-    def __new__(cls, scene: _core.Scene, camera: _core.Camera, field: _core.IndexField | None,
-                turbulence: Turbulence | None = None):
+    def __new__(
+        cls,
+        scene: _core.Scene,
+        camera: _core.Camera,
+        field: _core.IndexField | None,
+        turbulence: Turbulence | None = None,
+    ):
         self = super().__new__(cls, (scene, camera, field))
         self.turbulence = turbulence
         return self
@@ -263,8 +292,11 @@ def _check_keys(table: dict, allowed, where: _Locator, name: str, what: str, ind
 
 def _image_size(value: Any) -> list:
     """[width, height]: two whole numbers >= 1 (32.7 is refused, not truncated)."""
-    if not isinstance(value, list) or len(value) != 2 or not all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+    if (
+        not isinstance(value, list)
+        or len(value) != 2
+        or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
+    ):
         raise TypeError("must be a list of 2 numbers [width, height]")
     if not all(v == v and abs(v) != float("inf") and float(v).is_integer() and v >= 1 for v in value):
         raise ValueError(f"must be two whole numbers of pixels >= 1 (got {value})")
@@ -272,8 +304,11 @@ def _image_size(value: Any) -> list:
 
 
 def _number_list(value: Any, length: int) -> list:
-    if not isinstance(value, list) or len(value) != length or not all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+    if (
+        not isinstance(value, list)
+        or len(value) != length
+        or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
+    ):
         raise TypeError(f"must be a list of {length} numbers")
     return [float(v) for v in value]
 
@@ -314,8 +349,9 @@ def _materials(entries: list, where: _Locator, get, path: Path) -> dict:
         name = get(entry, "materials", "name", str, required=True, index=index)
         kind = get(entry, "materials", "type", str, required=True, index=index)
         if kind not in MATERIAL_TYPES:
-            raise where.error(f"unknown material type '{kind}' (expected {', '.join(MATERIAL_TYPES)})",
-                              "materials", "type", index)
+            raise where.error(
+                f"unknown material type '{kind}' (expected {', '.join(MATERIAL_TYPES)})", "materials", "type", index
+            )
         if name in materials:
             raise where.error(f"material '{name}' is defined twice", "materials", "name", index)
         class_name, keys = MATERIAL_TYPES[kind]
@@ -324,8 +360,11 @@ def _materials(entries: list, where: _Locator, get, path: Path) -> dict:
         for key in sorted(set(entry) & keys):
             value = entry[key]
             number = isinstance(value, (int, float)) and not isinstance(value, bool)
-            numbers = isinstance(value, list) and value and all(
-                isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
+            numbers = (
+                isinstance(value, list)
+                and value
+                and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
+            )
             if key == "texture":
                 if not isinstance(value, str):
                     raise where.error("must be a file name", "materials", key, index)
@@ -341,7 +380,9 @@ def _materials(entries: list, where: _Locator, get, path: Path) -> dict:
         try:
             materials[name] = getattr(shading, class_name)(**params)
         except (ValueError, TypeError) as error:
-            raise where.error(str(error).splitlines()[0], "materials", _offending_key(str(error), params), index) from None
+            raise where.error(
+                str(error).splitlines()[0], "materials", _offending_key(str(error), params), index
+            ) from None
     return materials
 
 
@@ -349,8 +390,9 @@ def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Pa
     """[environment]: constant, map, gradient or physical_sky."""
     kind = get(table, "environment", "type", str, required=True)
     if kind not in ENVIRONMENT_KEYS:
-        raise where.error(f"unknown environment type '{kind}' (expected {', '.join(ENVIRONMENT_KEYS)})",
-                          "environment", "type")
+        raise where.error(
+            f"unknown environment type '{kind}' (expected {', '.join(ENVIRONMENT_KEYS)})", "environment", "type"
+        )
     _check_keys(table, ENVIRONMENT_KEYS[kind] | {"type"}, where, "environment", f"a {kind} environment")
 
     def positive(value):
@@ -362,14 +404,17 @@ def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Pa
     scale = get(table, "environment", "scale", positive, 1.0)
     try:
         if kind == "constant":
-            scene.set_environment(get(table, "environment", "radiance", lambda v: _colour(v, "radiance"), required=True))
+            scene.set_environment(
+                get(table, "environment", "radiance", lambda v: _colour(v, "radiance"), required=True)
+            )
         elif kind == "map":
             file = get(table, "environment", "file", str, required=True)
             scene.set_environment(str(path.parent / file), get(table, "environment", "rotation", float, None), scale)
         elif kind == "gradient":
             horizon = get(table, "environment", "horizon", lambda v: _colour(v, "horizon"), required=True)
-            scene.set_sky(horizon, get(table, "environment", "zenith", lambda v: _colour(v, "zenith"), horizon),
-                          None, scale)
+            scene.set_sky(
+                horizon, get(table, "environment", "zenith", lambda v: _colour(v, "zenith"), horizon), None, scale
+            )
         else:
 
             def unit(value):
@@ -385,10 +430,16 @@ def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Pa
                 return value
 
             # Only the keys given reach set_physical_sky: its defaults stay C++'s.
-            given = {key: get(table, "environment", key, convert, None)
-                     for key, convert in (("aerosol", positive), ("visibility", positive), ("aerial_perspective", flag))}
-            scene.set_physical_sky(get(table, "environment", "sun_direction", unit, required=True), scale=scale,
-                                   below_horizon="horizon", **{k: v for k, v in given.items() if v is not None})
+            given = {
+                key: get(table, "environment", key, convert, None)
+                for key, convert in (("aerosol", positive), ("visibility", positive), ("aerial_perspective", flag))
+            }
+            scene.set_physical_sky(
+                get(table, "environment", "sun_direction", unit, required=True),
+                scale=scale,
+                below_horizon="horizon",
+                **{k: v for k, v in given.items() if v is not None},
+            )
     except ValueError as error:
         if str(error).startswith(str(where.path)):  # already located (a key's own check)
             raise
@@ -405,20 +456,26 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get)
         if kind == "area":
             raise where.error("area lights are objects with emission = [r, g, b]", "lights", "type", index)
         if kind not in LIGHT_KEYS:
-            raise where.error(f"unknown light type '{kind}' (expected {', '.join(LIGHT_KEYS)}; area lights: "
-                              "objects with emission)", "lights", "type", index)
+            raise where.error(
+                f"unknown light type '{kind}' (expected {', '.join(LIGHT_KEYS)}; area lights: objects with emission)",
+                "lights",
+                "type",
+                index,
+            )
         _check_keys(entry, LIGHT_KEYS[kind] | {"type"}, where, "lights", f"a {kind} light", index)
         try:
             if kind == "point":
-                scene.add_point_light(get(entry, "lights", "position", vector, required=True, index=index),
-                                      get(entry, "lights", "intensity", lambda v: _colour(v, "intensity"),
-                                          required=True, index=index))
+                scene.add_point_light(
+                    get(entry, "lights", "position", vector, required=True, index=index),
+                    get(entry, "lights", "intensity", lambda v: _colour(v, "intensity"), required=True, index=index),
+                )
             elif kind == "spot":
                 position = get(entry, "lights", "position", vector, required=True, index=index)
                 direction = get(entry, "lights", "direction", vector, required=True, index=index)
                 angle = get(entry, "lights", "angle", float, 60.0, index=index)
-                intensity = get(entry, "lights", "intensity", lambda v: _colour(v, "intensity"), required=True,
-                                index=index)
+                intensity = get(
+                    entry, "lights", "intensity", lambda v: _colour(v, "intensity"), required=True, index=index
+                )
                 inner = get(entry, "lights", "inner_angle", float, None, index=index)
                 if inner is None:
                     scene.add_spot_light(position, direction, angle, intensity)
@@ -427,11 +484,12 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get)
             else:
                 if "sun" in data or data.get("environment", {}).get("type") == "physical_sky":
                     raise where.error("a second sun ([sun] or the physical sky has one)", "lights", "type", index)
-                scene.set_sun(get(entry, "lights", "direction", vector, required=True, index=index),
-                              get(entry, "lights", "radiance", lambda v: _colour(v, "radiance"), required=True,
-                                  index=index),
-                              get(entry, "lights", "angular_diameter", float, 0.53, index=index),
-                              get(entry, "lights", "limb_darkening", float, 0.0, index=index))
+                scene.set_sun(
+                    get(entry, "lights", "direction", vector, required=True, index=index),
+                    get(entry, "lights", "radiance", lambda v: _colour(v, "radiance"), required=True, index=index),
+                    get(entry, "lights", "angular_diameter", float, 0.53, index=index),
+                    get(entry, "lights", "limb_darkening", float, 0.0, index=index),
+                )
         except ValueError as error:
             if str(error).startswith(str(where.path)):
                 raise
@@ -479,8 +537,17 @@ def _turbulence(table: Any, where: _Locator, get):
     if not isinstance(table, dict):
         raise where.error("must be a table ([atmosphere.turbulence])", "atmosphere", "turbulence")
     _check_keys(table, TURBULENCE_KEYS, where, name, "[atmosphere.turbulence]")
-    converters = dict(cn2=_real, outer_scale=_real, inner_scale=_real, seed=_whole, wind=lambda v: _number_list(v, 2),
-                      spacing=_real, cells=_whole, depth=_real, yaw=_real)
+    converters = dict(
+        cn2=_real,
+        outer_scale=_real,
+        inner_scale=_real,
+        seed=_whole,
+        wind=lambda v: _number_list(v, 2),
+        spacing=_real,
+        cells=_whole,
+        depth=_real,
+        yaw=_real,
+    )
     settings = {key: get(table, name, key, convert) for key, convert in converters.items() if key in table}
     if settings.get("depth") == math.inf:
         settings["depth"] = None  # no envelope: uniform in height
@@ -508,13 +575,20 @@ def _atmosphere(table: dict, where: _Locator, get):
     else:
         for key, what in (("hot_spots", "hot spots"), ("turbulence", "turbulence")):
             if key in atmosphere:
-                raise where.error(f"{model} takes no {what} (PhysicalAtmosphere and LogisticProfile do)",
-                                  f"atmosphere.{key}", None, 0 if key == "hot_spots" else None)
+                raise where.error(
+                    f"{model} takes no {what} (PhysicalAtmosphere and LogisticProfile do)",
+                    f"atmosphere.{key}",
+                    None,
+                    0 if key == "hot_spots" else None,
+                )
     spot_keys = sorted(k for k in atmosphere if _SPOT_PARAMETER.match(k))
     if spot_keys:
-        raise where.error("a hot spot is an [[atmosphere.hot_spots]] entry (x, z, radius, dt, depth, footprint), "
-                          "not a parameter" + ("" if model in LOCAL_MODELS else f"; {model} takes none"),
-                          "atmosphere", spot_keys[0])
+        raise where.error(
+            "a hot spot is an [[atmosphere.hot_spots]] entry (x, z, radius, dt, depth, footprint), "
+            "not a parameter" + ("" if model in LOCAL_MODELS else f"; {model} takes none"),
+            "atmosphere",
+            spot_keys[0],
+        )
     _check_keys(atmosphere, allowed, where, "atmosphere", f"a {model}")
     spots = _hot_spots(atmosphere.pop("hot_spots"), where, get) if "hot_spots" in atmosphere else []
     turbulence = _turbulence(atmosphere.pop("turbulence"), where, get) if "turbulence" in atmosphere else None
@@ -536,9 +610,12 @@ def _atmosphere(table: dict, where: _Locator, get):
         spot = re.search(r"hot_spots\[(\d+)\]", str(error))
         if spot:  # the model refuses a spot: 'LogisticProfile: hot_spots[0] has depth 0.3; ...'
             index = int(spot.group(1))
-            raise where.error(str(error), "atmosphere.hot_spots",
-                              _offending_key(str(error).replace(spot.group(0), ""), table["hot_spots"][index]),
-                              index) from None
+            raise where.error(
+                str(error),
+                "atmosphere.hot_spots",
+                _offending_key(str(error).replace(spot.group(0), ""), table["hot_spots"][index]),
+                index,
+            ) from None
         offending = next((k for k in atmosphere if k in str(error)), None)
         raise where.error(str(error), "atmosphere", offending) from None
     if curved:
@@ -593,12 +670,19 @@ def load_scene(path) -> SceneFile:
     size = get(cam, "camera", "size", _image_size, [640, 360])
     # A field of view, or a lens on a sensor; a thin lens from either (f_number with the focal
     # length, aperture_diameter with vfov).
-    for a, b in (("vfov", "focal_length_mm"), ("vfov", "f_number"), ("vfov", "sensor_mm"),
-                 ("focal_length_mm", "aperture_diameter")):
+    for a, b in (
+        ("vfov", "focal_length_mm"),
+        ("vfov", "f_number"),
+        ("vfov", "sensor_mm"),
+        ("focal_length_mm", "aperture_diameter"),
+    ):
         if a in cam and b in cam:
             raise where.error(f"give {a} or {b}, not both", "camera", b)
-    for key, needs in (("f_number", "focal_length_mm"), ("sensor_mm", "focal_length_mm"),
-                       ("focus_distance", "f_number or aperture_diameter")):
+    for key, needs in (
+        ("f_number", "focal_length_mm"),
+        ("sensor_mm", "focal_length_mm"),
+        ("focus_distance", "f_number or aperture_diameter"),
+    ):
         if key in cam and not any(k in cam for k in needs.split(" or ")):
             raise where.error(f"needs {needs}", "camera", key)
     position = get(cam, "camera", "position", lambda v: _number_list(v, 3), required=True)
@@ -612,8 +696,9 @@ def load_scene(path) -> SceneFile:
     aperture = get(cam, "camera", "aperture_diameter", float)
     try:
         if focal_length is not None:
-            camera = _core.Camera.photographic(position, look_at, focal_length, width=size[0], height=size[1], up=up,
-                                               **lens)
+            camera = _core.Camera.photographic(
+                position, look_at, focal_length, width=size[0], height=size[1], up=up, **lens
+            )
         else:
             camera = _core.Camera(position, look_at, up, vfov, size[0], size[1])
             if aperture is not None:
@@ -637,9 +722,11 @@ def load_scene(path) -> SceneFile:
         sun = data["sun"]
         _check_keys(sun, SUN_KEYS, where, "sun", "[sun]")
         try:
-            scene.set_sun(get(sun, "sun", "direction", lambda v: _number_list(v, 3), required=True),
-                          get(sun, "sun", "radiance", lambda v: _number_list(v, 3), required=True),
-                          get(sun, "sun", "angular_diameter", float, 0.53))
+            scene.set_sun(
+                get(sun, "sun", "direction", lambda v: _number_list(v, 3), required=True),
+                get(sun, "sun", "radiance", lambda v: _number_list(v, 3), required=True),
+                get(sun, "sun", "angular_diameter", float, 0.53),
+            )
         except ValueError as error:
             raise where.error(str(error), "sun") from None
     if "sky" in data:
@@ -648,9 +735,12 @@ def load_scene(path) -> SceneFile:
         environment = get(sky, "sky", "environment", str, None)
         horizon = get(sky, "sky", "horizon", lambda v: _number_list(v, 3), required=environment is None)
         try:
-            scene.set_sky(horizon, get(sky, "sky", "zenith", lambda v: _number_list(v, 3), horizon),
-                          None if environment is None else str(path.parent / environment),
-                          get(sky, "sky", "scale", float, 1.0))
+            scene.set_sky(
+                horizon,
+                get(sky, "sky", "zenith", lambda v: _number_list(v, 3), horizon),
+                None if environment is None else str(path.parent / environment),
+                get(sky, "sky", "scale", float, 1.0),
+            )
         except ValueError as error:
             raise where.error(str(error), "sky") from None
 
@@ -660,14 +750,25 @@ def load_scene(path) -> SceneFile:
         kind = get(obj, "objects", "type", str, required=True, index=index)
         if kind not in OBJECT_KEYS:
             raise where.error(f"unknown type '{kind}' (expected {', '.join(OBJECT_KEYS)})", "objects", "type", index)
-        allowed = OBJECT_KEYS[kind] | {"type"} | (MATERIAL_KEYS if kind in ("ground", "box", "sphere", "mesh") else
-                                                  {"kd"} if kind == "billboard" else set())
+        allowed = (
+            OBJECT_KEYS[kind]
+            | {"type"}
+            | (
+                MATERIAL_KEYS
+                if kind in ("ground", "box", "sphere", "mesh")
+                else {"kd"}
+                if kind == "billboard"
+                else set()
+            )
+        )
         allowed |= {"emission"} if kind in EMITTERS else set()
         allowed |= {"two_sided"} if kind == "mesh" else set()
         _check_keys(obj, allowed, where, "objects", f"a {kind}", index)
-        material = dict(kd=get(obj, "objects", "kd", lambda v: _number_list(v, 3), [0.5, 0.5, 0.5], index=index),
-                        ks=get(obj, "objects", "ks", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
-                        ns=get(obj, "objects", "ns", float, 1.0, index=index))
+        material = dict(
+            kd=get(obj, "objects", "kd", lambda v: _number_list(v, 3), [0.5, 0.5, 0.5], index=index),
+            ks=get(obj, "objects", "ks", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
+            ns=get(obj, "objects", "ns", float, 1.0, index=index),
+        )
         if "material" in obj:
             name = get(obj, "objects", "material", str, index=index)
             if name not in materials:
@@ -685,33 +786,50 @@ def load_scene(path) -> SceneFile:
         texture = None if texture is None else str(path.parent / texture)
         try:
             if kind == "ground":
-                scene.add_ground(get(obj, "objects", "height", float, 0.0, index=index),
-                                 get(obj, "objects", "size", float, 20000.0, index=index), **material,
-                                 texture=texture, texture_size=get(obj, "objects", "texture_size", float, 1.0, index=index))
+                scene.add_ground(
+                    get(obj, "objects", "height", float, 0.0, index=index),
+                    get(obj, "objects", "size", float, 20000.0, index=index),
+                    **material,
+                    texture=texture,
+                    texture_size=get(obj, "objects", "texture_size", float, 1.0, index=index),
+                )
             elif kind == "billboard":
                 image = get(obj, "objects", "texture", str, required=True, index=index)
-                scene.add_billboard(get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
-                                    get(obj, "objects", "width", float, required=True, index=index),
-                                    get(obj, "objects", "height", float, required=True, index=index),
-                                    str(path.parent / image) if image else "",
-                                    get(obj, "objects", "facing", lambda v: _number_list(v, 3), [-1.0, 0.0, 0.0],
-                                        index=index), kd=material["kd"])
+                scene.add_billboard(
+                    get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
+                    get(obj, "objects", "width", float, required=True, index=index),
+                    get(obj, "objects", "height", float, required=True, index=index),
+                    str(path.parent / image) if image else "",
+                    get(obj, "objects", "facing", lambda v: _number_list(v, 3), [-1.0, 0.0, 0.0], index=index),
+                    kd=material["kd"],
+                )
             elif kind == "box":
-                scene.add_box(get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
-                              get(obj, "objects", "size", lambda v: _number_list(v, 3), required=True, index=index),
-                              **material)
+                scene.add_box(
+                    get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
+                    get(obj, "objects", "size", lambda v: _number_list(v, 3), required=True, index=index),
+                    **material,
+                )
             elif kind == "sphere":
-                scene.add_sphere(get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
-                                 get(obj, "objects", "radius", float, required=True, index=index), **material)
+                scene.add_sphere(
+                    get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
+                    get(obj, "objects", "radius", float, required=True, index=index),
+                    **material,
+                )
             elif kind == "obj":
                 file = get(obj, "objects", "file", str, required=True, index=index)
-                scene.add_obj(str(path.parent / file),
-                              get(obj, "objects", "offset", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
-                              get(obj, "objects", "scale", float, 1.0, index=index))
+                scene.add_obj(
+                    str(path.parent / file),
+                    get(obj, "objects", "offset", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
+                    get(obj, "objects", "scale", float, 1.0, index=index),
+                )
             else:
-                scene.add_mesh(get(obj, "objects", "vertices", list, required=True, index=index),
-                               get(obj, "objects", "triangles", list, required=True, index=index), **material,
-                               uvs=get(obj, "objects", "uvs", list, None, index=index), texture=texture)
+                scene.add_mesh(
+                    get(obj, "objects", "vertices", list, required=True, index=index),
+                    get(obj, "objects", "triangles", list, required=True, index=index),
+                    **material,
+                    uvs=get(obj, "objects", "uvs", list, None, index=index),
+                    texture=texture,
+                )
         except ValueError as error:
             raise where.error(str(error), "objects", None, index) from None
 
@@ -747,8 +865,10 @@ def camera_table(camera: _core.Camera) -> str:
         f"size = [{int(camera.width)}, {int(camera.height)}]",
     ]
     if camera.aperture_diameter > 0:
-        lines += [f"aperture_diameter = {_toml_value(camera.aperture_diameter)}",
-                  f"focus_distance = {_toml_value(camera.focus_distance)}"]
+        lines += [
+            f"aperture_diameter = {_toml_value(camera.aperture_diameter)}",
+            f"focus_distance = {_toml_value(camera.focus_distance)}",
+        ]
     return "\n".join(lines) + "\n"
 
 
@@ -757,9 +877,14 @@ def _same_layer(a: _core.TurbulenceLayer, b: _core.TurbulenceLayer) -> bool:
     the same placement and grid, and the same values at a few points."""
     if a is b:
         return True
-    if (a.scale, a.depth, a.yaw, a.grid.shape, a.grid.spacing, a.grid.bound) != \
-            (b.scale, b.depth, b.yaw, b.grid.shape, b.grid.spacing, b.grid.bound) or \
-            not np.array_equal(a.offset, b.offset):
+    if (a.scale, a.depth, a.yaw, a.grid.shape, a.grid.spacing, a.grid.bound) != (
+        b.scale,
+        b.depth,
+        b.yaw,
+        b.grid.shape,
+        b.grid.spacing,
+        b.grid.bound,
+    ) or not np.array_equal(a.offset, b.offset):
         return False
     # 16 points spread over a tile, low in the envelope: another seed differs at every one of them.
     size = a.grid.shape[0] * a.grid.spacing
@@ -775,17 +900,28 @@ def _turbulence_lines(layer: _core.TurbulenceLayer | None, turbulence) -> list:
     if layer is None:
         raise ValueError("atmosphere_table: turbulence was given but the field carries none")
     if turbulence is None:
-        raise ValueError("atmosphere_table: the field carries turbulence, and a field keeps only its TurbulenceLayer, "
-                         "not the settings (seed, wind, ...) that make it: pass turbulence=the refracta.Turbulence "
-                         "whose layer it is (load_scene(...).turbulence for a field read from a file)")
+        raise ValueError(
+            "atmosphere_table: the field carries turbulence, and a field keeps only its TurbulenceLayer, "
+            "not the settings (seed, wind, ...) that make it: pass turbulence=the refracta.Turbulence "
+            "whose layer it is (load_scene(...).turbulence for a field read from a file)"
+        )
     if not _same_layer(layer, turbulence.layer):
-        raise ValueError("atmosphere_table: turbulence is not the refracta.Turbulence whose layer the field carries "
-                         "(another seed, grid, strength, depth, yaw or time)")
-    settings = [("cn2", turbulence.cn2), ("outer_scale", turbulence.outer_scale),
-                ("inner_scale", turbulence.inner_scale), ("seed", int(turbulence.seed)),
-                ("wind", list(turbulence.wind)), ("spacing", turbulence.spacing), ("cells", int(turbulence.cells)),
-                ("depth", math.inf if turbulence.depth is None else turbulence.depth), ("yaw", turbulence.yaw),
-                ("time", turbulence.time)]
+        raise ValueError(
+            "atmosphere_table: turbulence is not the refracta.Turbulence whose layer the field carries "
+            "(another seed, grid, strength, depth, yaw or time)"
+        )
+    settings = [
+        ("cn2", turbulence.cn2),
+        ("outer_scale", turbulence.outer_scale),
+        ("inner_scale", turbulence.inner_scale),
+        ("seed", int(turbulence.seed)),
+        ("wind", list(turbulence.wind)),
+        ("spacing", turbulence.spacing),
+        ("cells", int(turbulence.cells)),
+        ("depth", math.inf if turbulence.depth is None else turbulence.depth),
+        ("yaw", turbulence.yaw),
+        ("time", turbulence.time),
+    ]
     return ["", "[atmosphere.turbulence]"] + [f"{name} = {_toml_value(value)}" for name, value in settings]
 
 
@@ -822,8 +958,9 @@ def atmosphere_table(field: _core.IndexField, turbulence=None) -> str:
     if curved is not None:
         lines.append(f"curved_earth = {_toml_value(curved)}")
     for spot in local.hot_spots if local is not None else []:
-        lines += ["", "[[atmosphere.hot_spots]]"] + [f"{name} = {_toml_value(getattr(spot, name))}"
-                                                      for name in ("x", "z", "radius", "dt")]
+        lines += ["", "[[atmosphere.hot_spots]]"] + [
+            f"{name} = {_toml_value(getattr(spot, name))}" for name in ("x", "z", "radius", "dt")
+        ]
         if spot.depth is not None:
             lines.append(f"depth = {_toml_value(spot.depth)}")
         lines.append(f"footprint = {_toml_value(spot.footprint)}")
@@ -838,8 +975,11 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
     headers = {i: match.group(1) for i, line in enumerate(lines) if (match := _HEADER.match(line))}
     starts = list(headers)
     ends = starts[1:] + [len(lines)]
-    owned = [(start, end) for start, end in zip(starts, ends)
-             if headers[start] == name or headers[start].startswith(name + ".")]
+    owned = [
+        (start, end)
+        for start, end in zip(starts, ends)
+        if headers[start] == name or headers[start].startswith(name + ".")
+    ]
     if not owned:
         if first:
             return table + "\n" + text

@@ -183,13 +183,15 @@ def to_linear_srgb(radiance, wavelengths, pdf) -> np.ndarray:
     return _core._spectrum_to_linear_srgb(*arrays)
 
 
-def _measure_table(resolution: int, quadrature_step_nm: int = 5, polish_steps: int = 2, samples: int = 20000,
-                   seed: int = 7) -> dict:
+def _measure_table(
+    resolution: int, quadrature_step_nm: int = 5, polish_steps: int = 2, samples: int = 20000, seed: int = 7
+) -> dict:
     """Build an RGB -> coefficient table and measure it (the numbers behind color.cpp's choice).
 
     Returns build_seconds, max_error and mean_error of the round trip RGB -> spectrum -> RGB over
     `samples` uniform random colours, lookup_seconds per lookup and the worst fit residual
     (CIELAB Delta E) over the table's nodes.
     """
-    return _core._spectrum_measure_table(int(resolution), int(quadrature_step_nm), int(polish_steps),
-                                         int(samples), int(seed))
+    return _core._spectrum_measure_table(
+        int(resolution), int(quadrature_step_nm), int(polish_steps), int(samples), int(seed)
+    )

@@ -30,8 +30,15 @@ import numpy as np
 
 from refracta import _core
 
-__all__ = ["Turbulence", "SPECTRUM_CONSTANT", "INERTIAL_TOLERANCE", "von_karman_spectrum", "tilt_variance",
-           "plane_wave_tilt_variance", "bessel_j1"]
+__all__ = [
+    "Turbulence",
+    "SPECTRUM_CONSTANT",
+    "INERTIAL_TOLERANCE",
+    "von_karman_spectrum",
+    "tilt_variance",
+    "plane_wave_tilt_variance",
+    "bessel_j1",
+]
 
 # Phi_n(kappa) = 0.033005 C_n^2 (kappa^2 + kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2): the
 # constant 5 / (18 pi Gamma(1/3)) makes D_n(r) = C_n^2 r^(2/3) in the inertial range (Andrews &
@@ -56,8 +63,9 @@ def _disc_filter(kappa, aperture: float):
     return ratio * ratio
 
 
-def tilt_variance(cn2: float, path_length: float, inner_scale: float = 0.0, outer_scale: float = math.inf,
-                  aperture: float = 0.0) -> float:
+def tilt_variance(
+    cn2: float, path_length: float, inner_scale: float = 0.0, outer_scale: float = math.inf, aperture: float = 0.0
+) -> float:
     """Angle-of-arrival variance [rad^2] per axis of the continuous spectrum, geometric optics:
     <alpha^2> = 2 pi^2 L int kappa^3 Phi_n(kappa) F(kappa) dkappa (Andrews & Phillips 2005, ch. 6:
     a straight path much longer than the correlation length), F = 1 for a point aperture
@@ -65,12 +73,17 @@ def tilt_variance(cn2: float, path_length: float, inner_scale: float = 0.0, oute
     filter [2 J1(kappa D/2) / (kappa D/2)]^2 of an aperture of diameter D [m] (l0 -> 0, L0 -> inf:
     2.838 C_n^2 L D^(-1/3); the issue's 2.91 is the phase-structure approximation, Z-tilt 3.041).
     By quadrature in log kappa (5e-5 relative)."""
-    problems = [f"{name} must be {rule} (got {value!r})" for name, value, rule, ok in (
-        ("cn2", cn2, ">= 0 and finite", lambda v: 0.0 <= v < math.inf),
-        ("path_length", path_length, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
-        ("inner_scale", inner_scale, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
-        ("outer_scale", outer_scale, "> 0 m (inf: none)", lambda v: v > 0.0),
-        ("aperture", aperture, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf)) if not ok(float(value))]
+    problems = [
+        f"{name} must be {rule} (got {value!r})"
+        for name, value, rule, ok in (
+            ("cn2", cn2, ">= 0 and finite", lambda v: 0.0 <= v < math.inf),
+            ("path_length", path_length, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
+            ("inner_scale", inner_scale, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
+            ("outer_scale", outer_scale, "> 0 m (inf: none)", lambda v: v > 0.0),
+            ("aperture", aperture, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
+        )
+        if not ok(float(value))
+    ]
     if problems:
         raise ValueError("tilt_variance: " + "; ".join(problems))
     if not (inner_scale > 0.0 or aperture > 0.0):
@@ -82,7 +95,7 @@ def tilt_variance(cn2: float, path_length: float, inner_scale: float = 0.0, oute
     log_kappa = np.linspace(math.log(lo), math.log(hi), 200_001)
     kappa = np.exp(log_kappa)
     # kappa^3 Phi dkappa = kappa^4 Phi dln(kappa)
-    integrand = kappa ** 4 * von_karman_spectrum(kappa, 1.0, inner_scale, outer_scale)
+    integrand = kappa**4 * von_karman_spectrum(kappa, 1.0, inner_scale, outer_scale)
     if aperture > 0.0:
         integrand = integrand * _disc_filter(kappa, aperture)
     # Below lo every filter is 1: int_0^lo kappa^3 Phi = 0.033 * 3 lo^(1/3) (Kolmogorov; 1 % of the
@@ -90,9 +103,9 @@ def tilt_variance(cn2: float, path_length: float, inner_scale: float = 0.0, oute
     if math.isinf(outer_scale):
         below = 3.0 * lo ** (1.0 / 3.0)
     else:
-        below = lo ** 4 / 4.0 * (2.0 * math.pi / outer_scale) ** (-11.0 / 3.0)
+        below = lo**4 / 4.0 * (2.0 * math.pi / outer_scale) ** (-11.0 / 3.0)
     total = _trapezoid(integrand, log_kappa) + SPECTRUM_CONSTANT * below
-    return float(2.0 * math.pi ** 2 * path_length * cn2 * total)
+    return float(2.0 * math.pi**2 * path_length * cn2 * total)
 
 
 def _trapezoid(y, x) -> float:
@@ -266,10 +279,12 @@ class Turbulence:
                     best = (float(r[start]), float(r[i - 1]))
                 start = None
         if math.isnan(best[0]):
-            raise ValueError(f"Turbulence: no separation between one cell ({self.spacing:g} m) and half the tile "
-                             f"({self.size / 2:g} m) has a structure function within {tolerance:.0%} of "
-                             f"C_n^2 r^(2/3) (inner_scale {self.inner_scale:g} m, outer_scale "
-                             f"{self.outer_scale:g} m): use more or smaller cells")
+            raise ValueError(
+                f"Turbulence: no separation between one cell ({self.spacing:g} m) and half the tile "
+                f"({self.size / 2:g} m) has a structure function within {tolerance:.0%} of "
+                f"C_n^2 r^(2/3) (inner_scale {self.inner_scale:g} m, outer_scale "
+                f"{self.outer_scale:g} m): use more or smaller cells"
+            )
         return best
 
     @property
@@ -280,8 +295,9 @@ class Turbulence:
         or a finite outer scale narrow it (l0 = 2 cells: x9 at 256). ValueError when nowhere within."""
         return self.separations_within(INERTIAL_TOLERANCE)
 
-    def angle_of_arrival_variance(self, path_length: float, aperture: float = 0.0,
-                                  direction: Sequence[float] = (1.0, 0.0, 0.0)) -> float:
+    def angle_of_arrival_variance(
+        self, path_length: float, aperture: float = 0.0, direction: Sequence[float] = (1.0, 0.0, 0.0)
+    ) -> float:
         """Expected variance [rad^2] per transverse axis of the direction of a ray after a straight
         path of `path_length` [m] along `direction` through the pattern (no envelope), from a random
         start point: ``(1/2) C_n^2 sum_k sigma_k^2 |kappa'_perp|^2 |int_0^L e^(i kappa'.t s) ds|^2``
@@ -291,8 +307,9 @@ class Turbulence:
         continuous spectrum). Sums 8 N^3 modes (a few seconds at N = 256)."""
         return self._tilt_sums(path_length, aperture, direction)[0]
 
-    def angle_of_arrival_scatter(self, path_length: float, aperture: float = 0.0,
-                                 direction: Sequence[float] = (1.0, 0.0, 0.0)) -> float:
+    def angle_of_arrival_scatter(
+        self, path_length: float, aperture: float = 0.0, direction: Sequence[float] = (1.0, 0.0, 0.0)
+    ) -> float:
         """The relative standard deviation of one realisation's angle-of-arrival variance (averaged
         over every start point in the tile) about angle_of_arrival_variance: each Fourier mode's
         power is sigma_k^2 times an Exp(1) variable, so a path that sees few modes (long,
@@ -345,9 +362,11 @@ class Turbulence:
 
     def __repr__(self) -> str:
         depth = "uniform" if self.depth is None else f"depth={self.depth:g} m"
-        return (f"Turbulence(cn2={self.cn2:g} m^-2/3, L0={self.outer_scale:g} m, l0={self.inner_scale:g} m, "
-                f"{self.cells}^3 cells of {self.spacing:g} m (tile {self.size:g} m), {depth}, "
-                f"wind={self.wind} m/s, t={self.time:g} s, seed={self.seed})")
+        return (
+            f"Turbulence(cn2={self.cn2:g} m^-2/3, L0={self.outer_scale:g} m, l0={self.inner_scale:g} m, "
+            f"{self.cells}^3 cells of {self.spacing:g} m (tile {self.size:g} m), {depth}, "
+            f"wind={self.wind} m/s, t={self.time:g} s, seed={self.seed})"
+        )
 
 
 def _restore(settings: _core.TurbulenceSettings, grid, time: float) -> Turbulence:

@@ -8,7 +8,7 @@ import refracta
 from refracta.edit import PointPair
 
 TRUTH_REL_TOL = 1e-13  # trace tolerance of the generating paths per metre of path: far below the
-                       # asserted misses, above round-off
+# asserted misses, above round-off
 
 
 def pairs_from(field, eye, elevations_deg, distances, stop_height=None):
@@ -18,9 +18,14 @@ def pairs_from(field, eye, elevations_deg, distances, stop_height=None):
     for elevation, distance in zip(elevations_deg, distances):
         e = np.radians(elevation)
         direction = np.array([np.cos(e), np.sin(e), 0.0])
-        path = refracta.trace_ray(field, eye, direction, tol=max(1e-11, TRUTH_REL_TOL * distance),
-                                  max_length=distance + 10.0,
-                                  stop_height=stop_height)
+        path = refracta.trace_ray(
+            field,
+            eye,
+            direction,
+            tol=max(1e-11, TRUTH_REL_TOL * distance),
+            max_length=distance + 10.0,
+            stop_height=stop_height,
+        )
         source, _ = path.point_at(distance)
         pairs.append(PointPair(destination=eye + direction, source=source))
     return pairs

@@ -22,8 +22,9 @@ def exact_alpha(n0, y0, t0, D, h):
 def test_one_pair_gives_the_closed_form_alpha(backend, t0, h):
     n0, y0, D = 1.000277, 1.5, 1000.0
     pair = PointPair(destination=(1.0, y0 + t0, 0.0), source=(D, h, 0.0))
-    result = solve(refracta.LinearSquaredProfile(n0=n0), (0.0, y0, 0.0), [pair], free=["alpha"],
-                   backend=backend, tol=1e-11)
+    result = solve(
+        refracta.LinearSquaredProfile(n0=n0), (0.0, y0, 0.0), [pair], free=["alpha"], backend=backend, tol=1e-11
+    )
     expected = exact_alpha(n0, y0, t0, D, h)
     assert result.success, result.message
     assert abs(result.field.params["alpha"] - expected) < ALPHA_REL * abs(expected)
@@ -32,6 +33,11 @@ def test_one_pair_gives_the_closed_form_alpha(backend, t0, h):
 
 def test_the_oracle_example_value():
     """ORACLES.md: n0 = 1.000277, y0 = 1.5 m, D = 1000 m, t0 = 0, h = 3.0 m -> alpha = 6.0033e-6."""
-    result = solve(refracta.LinearSquaredProfile(), (0.0, 1.5, 0.0),
-                   [PointPair((1.0, 1.5, 0.0), (1000.0, 3.0, 0.0))], free="alpha", tol=1e-11)
+    result = solve(
+        refracta.LinearSquaredProfile(),
+        (0.0, 1.5, 0.0),
+        [PointPair((1.0, 1.5, 0.0), (1000.0, 3.0, 0.0))],
+        free="alpha",
+        tol=1e-11,
+    )
     assert result.field.params["alpha"] == pytest.approx(6.0033e-6, abs=1e-10)  # quoted to 5 digits

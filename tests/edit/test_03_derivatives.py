@@ -14,17 +14,43 @@ from .conftest import pairs_from
 JACOBIAN_REL = 2e-5
 
 CASES = {
-    "logistic": (refracta.LogisticProfile(k_s=11.0, h_ciso=1.2), (0.0, 1.5, 0.0), [-0.5, 0.3], [50.0, 40.0],
-                 ["k_s", "h_ciso", "n_inv", "a_inv", "n_hot", "a_hot"]),
-    "physical": (refracta.PhysicalAtmosphere(surface_dt=8.0, surface_depth=0.12), (0.0, 1.4, 0.0), [-0.22, -0.1],
-                 [400.0, 300.0], ["surface_dt", "surface_depth", "t_ground", "lapse_rate", "pressure"]),
-    "sounding": (refracta.TemperatureProfile([0.0, 5.0, 20.0, 60.0], [283.0, 286.0, 289.0, 288.5]), (0.0, 10.0, 0.0),
-                 [-0.2, 0.05], [2000.0, 1500.0], ["t0", "t1", "t2", "pressure"]),
-    "linear_squared": (refracta.LinearSquaredProfile(alpha=5e-6), (0.0, 1.5, 0.0), [0.0, -0.05], [800.0, 900.0],
-                       ["alpha", "n0"]),
-    "curved_earth": (refracta.CurvedEarth(refracta.PhysicalAtmosphere(inversion_dt=5.0, inversion_base=0.0,
-                                                                      inversion_thickness=40.0)),
-                     (0.0, 5.0, 0.0), [0.01, -0.01], [20000.0, 15000.0], ["inversion_dt", "inversion_thickness"]),
+    "logistic": (
+        refracta.LogisticProfile(k_s=11.0, h_ciso=1.2),
+        (0.0, 1.5, 0.0),
+        [-0.5, 0.3],
+        [50.0, 40.0],
+        ["k_s", "h_ciso", "n_inv", "a_inv", "n_hot", "a_hot"],
+    ),
+    "physical": (
+        refracta.PhysicalAtmosphere(surface_dt=8.0, surface_depth=0.12),
+        (0.0, 1.4, 0.0),
+        [-0.22, -0.1],
+        [400.0, 300.0],
+        ["surface_dt", "surface_depth", "t_ground", "lapse_rate", "pressure"],
+    ),
+    "sounding": (
+        refracta.TemperatureProfile([0.0, 5.0, 20.0, 60.0], [283.0, 286.0, 289.0, 288.5]),
+        (0.0, 10.0, 0.0),
+        [-0.2, 0.05],
+        [2000.0, 1500.0],
+        ["t0", "t1", "t2", "pressure"],
+    ),
+    "linear_squared": (
+        refracta.LinearSquaredProfile(alpha=5e-6),
+        (0.0, 1.5, 0.0),
+        [0.0, -0.05],
+        [800.0, 900.0],
+        ["alpha", "n0"],
+    ),
+    "curved_earth": (
+        refracta.CurvedEarth(
+            refracta.PhysicalAtmosphere(inversion_dt=5.0, inversion_base=0.0, inversion_thickness=40.0)
+        ),
+        (0.0, 5.0, 0.0),
+        [0.01, -0.01],
+        [20000.0, 15000.0],
+        ["inversion_dt", "inversion_thickness"],
+    ),
 }
 
 
@@ -32,8 +58,10 @@ CASES = {
 def test_jacobian_matches_central_differences(case):
     field, eye, elevations, distances, free = CASES[case]
     # Sources 2 cm off the generating paths, so that the misses are not zero.
-    pairs = [PointPair(p.destination, np.asarray(p.source) + (0.0, 0.02, 0.0))
-             for p in pairs_from(field, eye, elevations, distances)]
+    pairs = [
+        PointPair(p.destination, np.asarray(p.source) + (0.0, 0.02, 0.0))
+        for p in pairs_from(field, eye, elevations, distances)
+    ]
     residuals, automatic, names = jacobian(field, eye, pairs, free=free, derivatives="automatic")
     residuals_numeric, numeric, _ = jacobian(field, eye, pairs, free=free, derivatives="numeric")
     assert names == free

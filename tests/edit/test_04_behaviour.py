@@ -12,8 +12,12 @@ from .conftest import pairs_from
 
 def test_an_impossible_request_fails_with_a_message():
     """An image 600 m above the horizon at 1 km needs alpha = 2.4e-3, outside its bounds (+-1e-3)."""
-    result = solve(refracta.LinearSquaredProfile(), (0.0, 1.5, 0.0), [PointPair((1.0, 1.5, 0.0), (1000.0, 600.0, 0.0))],
-                   free="alpha")
+    result = solve(
+        refracta.LinearSquaredProfile(),
+        (0.0, 1.5, 0.0),
+        [PointPair((1.0, 1.5, 0.0), (1000.0, 600.0, 0.0))],
+        free="alpha",
+    )
     assert not result.success
     assert "pair 0 misses its source" in result.message
     assert result.distances[0] > 1.0
@@ -44,8 +48,9 @@ def test_parameters_no_pair_depends_on_are_reported_and_kept():
     truth = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
     pairs = pairs_from(truth, (0.0, 1.4, 0.0), [-0.2, -0.12], [500.0, 600.0], stop_height=0.0)
     start = truth.with_params(surface_dt=8.0)
-    result = solve(start, (0.0, 1.4, 0.0), pairs, free=["surface_dt", "inversion_dt", "inversion_base"],
-                   stop_height=0.0)
+    result = solve(
+        start, (0.0, 1.4, 0.0), pairs, free=["surface_dt", "inversion_dt", "inversion_base"], stop_height=0.0
+    )
     assert set(result.insensitive) == {"inversion_dt", "inversion_base"}
     assert result.free == ["surface_dt"]
     assert result.field.params["inversion_base"] == start.params["inversion_base"]
@@ -84,32 +89,41 @@ def test_vertex_distance_never_beats_the_continuous_one():
     assert np.max(vertex - continuous) > 1e-4
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(pairs=[]), "pairs is empty"),
-    (dict(pairs=[PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))], free=["nope"]), "unknown parameter"),
-    (dict(backend="nlopt:LN_NOPE"), "unknown nlopt algorithm"),
-    (dict(backend="scipy"), "backend must be"),
-    (dict(pairs=[PointPair((10.0, 20.0), (50.0, 2.0, 0.0))]), "pixel destination"),
-    (dict(eye_or_camera=(0.0, np.nan, 0.0)), "eye_or_camera"),
-    (dict(free=[]), "free is empty"),
-    (dict(bounds={"k_s": (20.0, 30.0)}, free=["k_s"]), "outside its bounds"),
-    (dict(loss="huber", backend="nlopt:LN_BOBYQA"), "robust loss"),
-    (dict(trace="stratified"), "trace"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(pairs=[]), "pairs is empty"),
+        (dict(pairs=[PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))], free=["nope"]), "unknown parameter"),
+        (dict(backend="nlopt:LN_NOPE"), "unknown nlopt algorithm"),
+        (dict(backend="scipy"), "backend must be"),
+        (dict(pairs=[PointPair((10.0, 20.0), (50.0, 2.0, 0.0))]), "pixel destination"),
+        (dict(eye_or_camera=(0.0, np.nan, 0.0)), "eye_or_camera"),
+        (dict(free=[]), "free is empty"),
+        (dict(bounds={"k_s": (20.0, 30.0)}, free=["k_s"]), "outside its bounds"),
+        (dict(loss="huber", backend="nlopt:LN_BOBYQA"), "robust loss"),
+        (dict(trace="stratified"), "trace"),
+    ],
+)
 def test_bad_input_raises_value_error(kwargs, match):
-    args = dict(field=refracta.LogisticProfile(), eye_or_camera=(0.0, 1.5, 0.0),
-                pairs=[PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))])
+    args = dict(
+        field=refracta.LogisticProfile(),
+        eye_or_camera=(0.0, 1.5, 0.0),
+        pairs=[PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))],
+    )
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         solve(**args)
 
 
-@pytest.mark.parametrize("destination, source, weight", [
-    ((np.nan, 1.0, 0.0), (1.0, 1.0, 1.0), 1.0),
-    ((1.0, 1.0, 0.0), (1.0, np.inf, 1.0), 1.0),
-    ((1.0, 1.0, 0.0), (1.0, 1.0), 1.0),
-    ((1.0, 1.0, 0.0), (1.0, 1.0, 1.0), 0.0),
-])
+@pytest.mark.parametrize(
+    "destination, source, weight",
+    [
+        ((np.nan, 1.0, 0.0), (1.0, 1.0, 1.0), 1.0),
+        ((1.0, 1.0, 0.0), (1.0, np.inf, 1.0), 1.0),
+        ((1.0, 1.0, 0.0), (1.0, 1.0), 1.0),
+        ((1.0, 1.0, 0.0), (1.0, 1.0, 1.0), 0.0),
+    ],
+)
 def test_bad_point_pairs_raise_value_error(destination, source, weight):
     with pytest.raises(ValueError, match="PointPair"):
         PointPair(destination, source, weight)
@@ -142,8 +156,13 @@ def test_an_error_raised_by_the_progress_callback_stops_the_solve():
         raise Stop()
 
     with pytest.raises(Stop):
-        solve(refracta.LogisticProfile(), (0.0, 1.5, 0.0), [PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))],
-              free="k_s", progress=progress)
+        solve(
+            refracta.LogisticProfile(),
+            (0.0, 1.5, 0.0),
+            [PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))],
+            free="k_s",
+            progress=progress,
+        )
 
 
 def test_auto_lets_a_solve_still_closing_in_finish_instead_of_going_global():

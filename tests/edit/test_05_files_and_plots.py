@@ -22,12 +22,15 @@ def _assets(tmp_path):
         shutil.copy(DATA / name, tmp_path / name)
 
 
-@pytest.mark.parametrize("field", [
-    refracta.PhysicalAtmosphere(surface_dt=7.5, humidity=0.3),
-    refracta.LogisticProfile(k_s=12.0),
-    refracta.TemperatureProfile([0.0, 10.0, 50.0], [280.0, 284.0, 283.0]),
-    refracta.CurvedEarth(refracta.PhysicalAtmosphere(inversion_dt=4.0), 6.4e6),
-])
+@pytest.mark.parametrize(
+    "field",
+    [
+        refracta.PhysicalAtmosphere(surface_dt=7.5, humidity=0.3),
+        refracta.LogisticProfile(k_s=12.0),
+        refracta.TemperatureProfile([0.0, 10.0, 50.0], [280.0, 284.0, 283.0]),
+        refracta.CurvedEarth(refracta.PhysicalAtmosphere(inversion_dt=4.0), 6.4e6),
+    ],
+)
 def test_a_written_atmosphere_reads_back_identically(tmp_path, field):
     path = tmp_path / "scene.toml"
     path.write_text(with_atmosphere((DATA / "hot_road.toml").read_text(), field))
@@ -43,8 +46,9 @@ def test_cli_edit_writes_the_solved_scene(tmp_path):
     entries = []
     for v in (16.5, 16.9, 17.2):
         origin, direction = camera.ray(48.0, v)
-        source, _ = refracta.trace_ray(truth, origin, direction, tol=1e-10, max_length=400.0,
-                                       stop_height=0.0).point_at(350.0)
+        source, _ = refracta.trace_ray(truth, origin, direction, tol=1e-10, max_length=400.0, stop_height=0.0).point_at(
+            350.0
+        )
         entries.append({"destination": [48.0, v], "source": list(source)})
     pairs_path = tmp_path / "pairs.json"
     pairs_path.write_text(json.dumps({"pairs": entries, "free": ["surface_dt"], "ground": 0.0}))

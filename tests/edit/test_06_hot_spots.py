@@ -23,12 +23,22 @@ def pairs_around(truth, eye, rays):
 @pytest.mark.parametrize("footprint", ["gaussian", "compact"])
 def test_hidden_hot_spot_centre_and_radius_are_recovered(footprint):
     road = dict(surface_dt=10.0, surface_depth=0.1)
-    truth = refracta.PhysicalAtmosphere(**road, hot_spots=[refracta.HotSpot(150.0, 3.0, 8.0, 15.0, footprint=footprint)])
-    start = refracta.PhysicalAtmosphere(**road, hot_spots=[refracta.HotSpot(143.0, -2.0, 6.0, 15.0, footprint=footprint)])
+    truth = refracta.PhysicalAtmosphere(
+        **road, hot_spots=[refracta.HotSpot(150.0, 3.0, 8.0, 15.0, footprint=footprint)]
+    )
+    start = refracta.PhysicalAtmosphere(
+        **road, hot_spots=[refracta.HotSpot(143.0, -2.0, 6.0, 15.0, footprint=footprint)]
+    )
     eye = np.array([0.0, 1.4, 0.0])
     # Rays grazing the road beyond the eye's mirage line, fanned across the spot.
-    rays = [(-3.0, -0.3, 200.0), (-1.5, -0.25, 220.0), (0.0, -0.3, 190.0), (1.5, -0.28, 210.0), (3.0, -0.3, 200.0),
-            (0.7, -0.2, 250.0)]
+    rays = [
+        (-3.0, -0.3, 200.0),
+        (-1.5, -0.25, 220.0),
+        (0.0, -0.3, 190.0),
+        (1.5, -0.28, 210.0),
+        (3.0, -0.3, 200.0),
+        (0.7, -0.2, 250.0),
+    ]
     pairs = pairs_around(truth, eye, rays)
     result = solve(start, eye, pairs, free=["hot_spot0_x", "hot_spot0_z", "hot_spot0_radius"], stop_height=0.0)
     assert result.success, result.message

@@ -39,8 +39,12 @@ def report(result):
 
 def run(code: str) -> dict:
     """Runs SETUP + code in a fresh interpreter; the JSON line it prints last."""
-    done = subprocess.run([sys.executable, "-c", SETUP + textwrap.dedent(code)], capture_output=True, text=True,
-                          timeout=SUBPROCESS_TIMEOUT)
+    done = subprocess.run(
+        [sys.executable, "-c", SETUP + textwrap.dedent(code)],
+        capture_output=True,
+        text=True,
+        timeout=SUBPROCESS_TIMEOUT,
+    )
     assert done.returncode == 0, done.stderr[-3000:]
     return json.loads(done.stdout.strip().splitlines()[-1])
 
@@ -93,8 +97,10 @@ def test_two_hundred_pairs_stop_at_five_iterations():
     """)
     assert result["iterations"] <= 5
     assert result["stopped_by"] == "iteration limit"
-    assert any(stage.startswith("stopped by the iteration limit") and stage.endswith("before the global stage")
-               for stage in result["stages"]), result["stages"]
+    assert any(
+        stage.startswith("stopped by the iteration limit") and stage.endswith("before the global stage")
+        for stage in result["stages"]
+    ), result["stages"]
 
 
 @pytest.mark.slow
@@ -143,20 +149,33 @@ def test_three_threads_solve_at_once_as_one_alone():
 
 def test_progress_rises_to_its_total():
     calls = []
-    solve(refracta.LinearSquaredProfile(), (0.0, 1.5, 0.0), [PointPair((1.0, 1.5, 0.0), (1000.0, 600.0, 0.0))],
-          free="alpha", progress=lambda done, total: calls.append((done, total)))
+    solve(
+        refracta.LinearSquaredProfile(),
+        (0.0, 1.5, 0.0),
+        [PointPair((1.0, 1.5, 0.0), (1000.0, 600.0, 0.0))],
+        free="alpha",
+        progress=lambda done, total: calls.append((done, total)),
+    )
     done = [d for d, _ in calls]
     assert done == sorted(done)
     assert calls[-1][0] == calls[-1][1] > 0
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(time_limit=-1.0), "time_limit"),
-    (dict(time_limit=float("inf")), "time_limit"),
-    (dict(pixel_tolerance=-0.5), "pixel_tolerance"),
-    (dict(max_iterations=0, time_limit=-1.0), "max_iterations must be >= 1.*time_limit"),  # every problem at once
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(time_limit=-1.0), "time_limit"),
+        (dict(time_limit=float("inf")), "time_limit"),
+        (dict(pixel_tolerance=-0.5), "pixel_tolerance"),
+        (dict(max_iterations=0, time_limit=-1.0), "max_iterations must be >= 1.*time_limit"),  # every problem at once
+    ],
+)
 def test_bad_limits_raise_value_error_naming_them(kwargs, match):
     with pytest.raises(ValueError, match=match):
-        solve(refracta.LogisticProfile(), (0.0, 1.5, 0.0), [PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))],
-              free="k_s", **kwargs)
+        solve(
+            refracta.LogisticProfile(),
+            (0.0, 1.5, 0.0),
+            [PointPair((1.0, 1.5, 0.0), (50.0, 2.0, 0.0))],
+            free="k_s",
+            **kwargs,
+        )

@@ -49,8 +49,12 @@ def test_the_pixel_tolerance_leaves_the_solution_alone():
 def test_an_unreachable_destination_says_the_image_cannot_be_put_there():
     """An image 600 m above the horizon at 1 km needs alpha = 2.4e-3, outside its bounds (+-1e-3):
     every atmosphere in the bounds sends the path below the source."""
-    result = solve(refracta.LinearSquaredProfile(), (0.0, 1.5, 0.0), [PointPair((1.0, 1.5, 0.0), (1000.0, 600.0, 0.0))],
-                   free="alpha")
+    result = solve(
+        refracta.LinearSquaredProfile(),
+        (0.0, 1.5, 0.0),
+        [PointPair((1.0, 1.5, 0.0), (1000.0, 600.0, 0.0))],
+        free="alpha",
+    )
     assert not result.success
     assert "its path passes" in result.message and "m below the source, and below it in all" in result.message
     assert "the destination lies below every image of the source these free parameters made" in result.message
@@ -58,8 +62,12 @@ def test_an_unreachable_destination_says_the_image_cannot_be_put_there():
 
 def test_one_pair_cannot_fix_two_parameters_and_the_result_says_so():
     # The issue's default case: a pair fixes one combination of k_s and h_ciso.
-    result = solve(refracta.LogisticProfile(), (0.0, 1.5, 0.0), [PointPair((1000.0, 1.2, 0.0), (1000.0, 3.0, 0.0))],
-                   free=["k_s", "h_ciso"])
+    result = solve(
+        refracta.LogisticProfile(),
+        (0.0, 1.5, 0.0),
+        [PointPair((1000.0, 1.2, 0.0), (1000.0, 3.0, 0.0))],
+        free=["k_s", "h_ciso"],
+    )
     assert result.success
     assert result.rank == 1
     assert "The solution is not unique" in result.message

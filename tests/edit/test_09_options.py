@@ -44,8 +44,11 @@ def test_string_enums_are_parsed_when_set():
     settings = SolveSettings()
     settings.backend = "nlopt:LN_BOBYQA"
     assert settings.backend == "nlopt:LN_BOBYQA"
-    for name, value, match in (("backend", "scipy", "backend must be"), ("strategy", "global", "strategy must be"),
-                               ("loss", "l2", "loss must be")):
+    for name, value, match in (
+        ("backend", "scipy", "backend must be"),
+        ("strategy", "global", "strategy must be"),
+        ("loss", "l2", "loss must be"),
+    ):
         with pytest.raises(ValueError, match=match):
             setattr(settings, name, value)
 
@@ -116,10 +119,20 @@ def test_paths_are_traced_by_the_cpp_rule_with_its_round_off_floor():
 
 def test_random_starts_run_in_cpp_on_one_budget():
     eye = (0.0, 1.5, 0.0)
-    pairs = [PointPair((1.0, 1.5 + 0.01 * k, 0.0), truth_point) for k, truth_point in enumerate(
-        [(50.0, 1.2, 0.0), (50.0, 1.9, 0.0)])]
-    result = solve(refracta.LogisticProfile(), eye, pairs, free=["k_s", "h_ciso"], starts=3, seed=4,
-                   max_evaluations=60, strategy="local")
+    pairs = [
+        PointPair((1.0, 1.5 + 0.01 * k, 0.0), truth_point)
+        for k, truth_point in enumerate([(50.0, 1.2, 0.0), (50.0, 1.9, 0.0)])
+    ]
+    result = solve(
+        refracta.LogisticProfile(),
+        eye,
+        pairs,
+        free=["k_s", "h_ciso"],
+        starts=3,
+        seed=4,
+        max_evaluations=60,
+        strategy="local",
+    )
     assert result.starts == 3 and result.stages[-1].startswith("starts: ")
     # The three starts need 68 evaluations unbounded (measured), each well under 60: only a budget
     # they share runs out. The evaluation running when it does is finished (+1: test_07's "within
@@ -127,8 +140,16 @@ def test_random_starts_run_in_cpp_on_one_budget():
     assert result.stopped_by == "evaluation limit" and "stopped by the evaluation limit" in result.stages[-1]
     assert result.evaluations <= 60 + 1
     assert result.stages[-1].endswith("the result is start 0 (the field given)")  # the start the result came from
-    again = solve(refracta.LogisticProfile(), eye, pairs, free=["k_s", "h_ciso"], starts=3, seed=4,
-                  max_evaluations=60, strategy="local")
+    again = solve(
+        refracta.LogisticProfile(),
+        eye,
+        pairs,
+        free=["k_s", "h_ciso"],
+        starts=3,
+        seed=4,
+        max_evaluations=60,
+        strategy="local",
+    )
     assert again.field.params == result.field.params  # seeded: the same random starts
 
 

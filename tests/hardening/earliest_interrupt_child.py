@@ -37,8 +37,14 @@ FIRST_EVALUATION_TRIALS = 5
 
 def render_road(surface_dt=10.0):
     """A module-level task, so that a process pool's workers can import it."""
-    return refracta.render(ROAD.scene, ROAD.camera, ROAD.field.with_params(surface_dt=surface_dt), spp=UNBOUNDED_SPP,
-                           progress=False, max_length=ROAD.max_length)
+    return refracta.render(
+        ROAD.scene,
+        ROAD.camera,
+        ROAD.field.with_params(surface_dt=surface_dt),
+        spp=UNBOUNDED_SPP,
+        progress=False,
+        max_length=ROAD.max_length,
+    )
 
 
 class Sender:
@@ -55,6 +61,7 @@ class Sender:
         def run():
             time.sleep(delay)
             self.send()
+
         return threading.Thread(target=run, daemon=True)
 
 
@@ -74,8 +81,11 @@ def report(label, call, delay, polled=lambda: 0):
 
 def sweep_on(kind, delay):
     if kind == "serial":
-        report(f"sweep_serial@{delay * 1000:g}", lambda: refracta.sweep(render_road, {"surface_dt": [5.0, 15.0]},
-                                                                       progress=False), delay)
+        report(
+            f"sweep_serial@{delay * 1000:g}",
+            lambda: refracta.sweep(render_road, {"surface_dt": [5.0, 15.0]}, progress=False),
+            delay,
+        )
         return
     # The pool exists before the signal can come: Ctrl-C while a pool is being built is Python's
     # concurrent.futures' business, not refracta's.
@@ -84,9 +94,11 @@ def sweep_on(kind, delay):
     else:
         executor = concurrent.futures.ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("spawn"))
     with executor:
-        report(f"sweep_{kind}@{delay * 1000:g}",
-               lambda: refracta.sweep(render_road, {"surface_dt": [5.0, 15.0]}, executor=executor, progress=False),
-               delay)
+        report(
+            f"sweep_{kind}@{delay * 1000:g}",
+            lambda: refracta.sweep(render_road, {"surface_dt": [5.0, 15.0]}, executor=executor, progress=False),
+            delay,
+        )
 
 
 def first_evaluation_trial():
@@ -105,8 +117,15 @@ def first_evaluation_trial():
     field = refracta.CustomField(ior, lambda p: np.tile([0.0, 1e-4, 0.0], (len(p), 1)))
     directions = np.tile([1.0, 0.01, 0.0], (20_000, 1))  # 1e6 rk4 steps each: hours
     try:
-        refracta.trace_rays(field, [0, 1, 0], directions, trace="rk4", step=0.01, max_length=1e4,
-                            progress=lambda done, total: polls.append(done))
+        refracta.trace_rays(
+            field,
+            [0, 1, 0],
+            directions,
+            trace="rk4",
+            step=0.01,
+            max_length=1e4,
+            progress=lambda done, total: polls.append(done),
+        )
     except KeyboardInterrupt:
         latency = time.monotonic() - sender.sent
         print(f"stopped trace_rays_first_evaluation {latency:.4f} {int(polled[0])}", flush=True)

@@ -45,8 +45,9 @@ def setup(name):
     if name == "trace_rays":  # 2 million rays: ~9 minutes on 2 idle cores (200 000 took 52 s)
         e = np.radians(np.linspace(-0.5, 0.5, 2_000_000))
         directions = np.c_[np.cos(e), np.sin(e), 0 * e]
-        return lambda: refracta.trace_rays(road_field(), [0, 1.5, 0], directions, tol=1e-10, max_length=2000.0,
-                                           progress=started)
+        return lambda: refracta.trace_rays(
+            road_field(), [0, 1.5, 0], directions, tol=1e-10, max_length=2000.0, progress=started
+        )
     if name == "trace_ray":  # 9 million rk4 steps, each calling back into Python 4 times: minutes
         # No progress callback: the field's first evaluation, made by the C++ work, announces it.
         def ior(points):
@@ -54,24 +55,39 @@ def setup(name):
             return 1.0 + 1e-6 * points[:, 1]
 
         field = refracta.CustomField(ior, lambda p: np.tile([0.0, 1e-6, 0.0], (len(p), 1)))
-        return lambda: refracta.trace_ray(field, [0, 1.5, 0], [1, 0, 0], trace="rk4", step=1e-3,
-                                          max_length=9000.0)
+        return lambda: refracta.trace_ray(field, [0, 1.5, 0], [1, 0, 0], trace="rk4", step=1e-3, max_length=9000.0)
     if name.startswith("render_"):
         road = examples.hot_road(640, 240)
-        method = name[len("render_"):]
+        method = name[len("render_") :]
         if method == "table":  # the eye's ElevationTable, rays climbing 10 000 km
-            return lambda: refracta.render(road.scene, road.camera, road.field, max_length=1e7, spp=UNBOUNDED_SPP,
-                                           progress=started)
+            return lambda: refracta.render(
+                road.scene, road.camera, road.field, max_length=1e7, spp=UNBOUNDED_SPP, progress=started
+            )
         if method == "raster":  # one frame of a 8192 shadow map and 2560x960 pixels: 98 s on 2 cores
-            return lambda: refracta.render_raster(road.scene, road.camera.resized(2560, 960), resolution=8192,
-                                                  kernel=33, progress=started)
+            return lambda: refracta.render_raster(
+                road.scene, road.camera.resized(2560, 960), resolution=8192, kernel=33, progress=started
+            )
         if method == "turbulent_path":  # one tile of slow pixels: rays through turbulence, path traced
             air = refracta.Turbulence(1e-10, depth=0.1, seed=3, cells=64)
             field = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1, turbulence=air)
-            return lambda: refracta.render(road.scene, road.camera, field, transport="path", spp=UNBOUNDED_SPP,
-                                           max_length=road.max_length, progress=started)
-        return lambda: refracta.render(road.scene, road.camera, road.field, method=method, spp=UNBOUNDED_SPP,
-                                       max_length=road.max_length, progress=started)
+            return lambda: refracta.render(
+                road.scene,
+                road.camera,
+                field,
+                transport="path",
+                spp=UNBOUNDED_SPP,
+                max_length=road.max_length,
+                progress=started,
+            )
+        return lambda: refracta.render(
+            road.scene,
+            road.camera,
+            road.field,
+            method=method,
+            spp=UNBOUNDED_SPP,
+            max_length=road.max_length,
+            progress=started,
+        )
     if name == "solve":
         truth = road_field()
         eye = np.array([0.0, 1.4, 0.0])
@@ -83,15 +99,33 @@ def setup(name):
             source, _ = path.point_at(distance)
             pairs.append(PointPair(destination=eye + direction, source=source))
         start = truth.with_params(surface_dt=3.0, surface_depth=0.5)
-        return lambda: solve(start, eye, pairs, free=["surface_dt", "surface_depth"], backend="nlopt:GN_CRS2_LM",
-                             ground=0.0, max_evaluations=10_000_000, max_iterations=10_000_000, starts=50,
-                             function_tolerance=0.0, parameter_tolerance=0.0, progress=started)
+        return lambda: solve(
+            start,
+            eye,
+            pairs,
+            free=["surface_dt", "surface_depth"],
+            backend="nlopt:GN_CRS2_LM",
+            ground=0.0,
+            max_evaluations=10_000_000,
+            max_iterations=10_000_000,
+            starts=50,
+            function_tolerance=0.0,
+            parameter_tolerance=0.0,
+            progress=started,
+        )
     if name == "sweep":
         road = examples.hot_road(320, 120)
 
         def one(surface_dt):
-            return refracta.render(road.scene, road.camera, road.field.with_params(surface_dt=surface_dt),
-                                   spp=UNBOUNDED_SPP, max_length=road.max_length, progress=started)
+            return refracta.render(
+                road.scene,
+                road.camera,
+                road.field.with_params(surface_dt=surface_dt),
+                spp=UNBOUNDED_SPP,
+                max_length=road.max_length,
+                progress=started,
+            )
+
         return lambda: refracta.sweep(one, {"surface_dt": [5.0, 10.0, 15.0]}, progress=False)
     raise ValueError(f"unknown operation {name!r}")
 

@@ -17,8 +17,13 @@ NAMED_ERRORS = (ValueError, refracta.NumericalError, refracta.IoError, FileNotFo
 # (the machine is shared) but few examples: the fast budget keeps each suite to seconds; the
 # `fuzz` marker's budget is eight times larger (images: three times, each makes a MIP-mapped
 # texture) and still runs in `make test`; the whole suite takes about a minute on 2 cores.
-FAST = settings(derandomize=True, deadline=None, max_examples=50, database=None,
-                suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+FAST = settings(
+    derandomize=True,
+    deadline=None,
+    max_examples=50,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
+)
 FUZZ = settings(FAST, max_examples=400)
 
 # Floats from everywhere: ordinary magnitudes, the edges of double, zero and the non-finite.

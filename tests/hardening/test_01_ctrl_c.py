@@ -26,19 +26,34 @@ import refracta
 # [s] the property asserted: 3.5x the worst latency measured at load average 13 on 2 cores (0.57 s),
 # so a CI machine that busy passes, while work that stopped polling (minutes here) still fails.
 LATENCY_BOUND = 2.0
-WORK_BEFORE_SIGNAL = 0.5   # [s] after the work has started; every operation would run for minutes more
-HANG_GUARD = 60.0          # [s] a bound against a hang of the whole child, not a timing assertion
+WORK_BEFORE_SIGNAL = 0.5  # [s] after the work has started; every operation would run for minutes more
+HANG_GUARD = 60.0  # [s] a bound against a hang of the whole child, not a timing assertion
 
-OPERATIONS = ["trace_rays", "trace_ray", "render_straight", "render_curved",
-              "render_raster_march", "render_table", "render_raster", "render_turbulent_path", "solve", "sweep"]
+OPERATIONS = [
+    "trace_rays",
+    "trace_ray",
+    "render_straight",
+    "render_curved",
+    "render_raster_march",
+    "render_table",
+    "render_raster",
+    "render_turbulent_path",
+    "solve",
+    "sweep",
+]
 ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.mark.slow
 def test_every_long_operation_stops_promptly_on_ctrl_c():
     latencies = {}
-    with subprocess.Popen([sys.executable, "-m", "tests.hardening.interrupt_child", *OPERATIONS], cwd=ROOT,
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as child:
+    with subprocess.Popen(
+        [sys.executable, "-m", "tests.hardening.interrupt_child", *OPERATIONS],
+        cwd=ROOT,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    ) as child:
         try:
             for name in OPERATIONS:
                 assert child.stdout.readline().strip() == f"start {name}"
@@ -65,8 +80,13 @@ EARLY_TRIALS = 15  # printed by earliest_interrupt_child: 4 renders, 5 first eva
 
 @pytest.mark.slow
 def test_ctrl_c_at_the_earliest_moment_of_a_call_still_stops_it_promptly():
-    child = subprocess.run([sys.executable, "-m", "tests.hardening.earliest_interrupt_child"], cwd=ROOT,
-                           capture_output=True, text=True, timeout=HANG_GUARD)
+    child = subprocess.run(
+        [sys.executable, "-m", "tests.hardening.earliest_interrupt_child"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=HANG_GUARD,
+    )
     assert child.returncode == 0, child.stderr
     trials = [line.split() for line in child.stdout.splitlines()]
     assert len(trials) == EARLY_TRIALS, child.stdout

@@ -41,17 +41,20 @@ print("exiting", flush=True)
 
 @pytest.mark.parametrize("kind", ["render", "trace_rays", "custom_field"])
 def test_exit_while_a_daemon_thread_works_is_clean(kind):
-    result = subprocess.run([sys.executable, "-c", _CHILD.format(kind=kind)], capture_output=True, text=True,
-                            timeout=HANG_GUARD)
+    result = subprocess.run(
+        [sys.executable, "-c", _CHILD.format(kind=kind)], capture_output=True, text=True, timeout=HANG_GUARD
+    )
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "exiting"
     assert "terminate" not in result.stderr and "FATAL" not in result.stderr, result.stderr
 
 
 def test_calls_after_the_exit_hook_raise_instead_of_running():
-    code = ("import refracta, refracta._core as c\nc._shutdown_running_work(1.0)\n"
-            "try:\n    refracta.trace_ray(refracta.PhysicalAtmosphere(), [0, 1, 0], [1, 0, 0])\n"
-            "except RuntimeError as e:\n    print(e)\n")
+    code = (
+        "import refracta, refracta._core as c\nc._shutdown_running_work(1.0)\n"
+        "try:\n    refracta.trace_ray(refracta.PhysicalAtmosphere(), [0, 1, 0], [1, 0, 0])\n"
+        "except RuntimeError as e:\n    print(e)\n"
+    )
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=HANG_GUARD)
     assert result.returncode == 0, result.stderr
     assert "shutting down" in result.stdout

@@ -38,6 +38,7 @@ def test_a_small_requested_step_within_the_limit_traces_the_same_path():
 
 def test_height_only_renders_with_an_impossible_max_length_are_refused_not_hung():
     from refracta import examples
+
     road = examples.hot_road(16, 8)
     with pytest.raises(ValueError, match="needs more than 10000000 steps for max_length 1e\\+30 m"):
         refracta.render(road.scene, road.camera, road.field, max_length=1e30, progress=False)

@@ -44,8 +44,12 @@ def test_extreme_but_usable_indices_trace_like_n_of_one(n0):
     # The ray equations depend on n only through grad n / n: n0 (1 + 1e-4 y) bends exactly as
     # 1 + 1e-4 y does, whatever n0 (a scale invariance), so the paths agree to the trace tolerance.
     def field(scale):
-        return refracta.CustomField(lambda p: scale * (1 + 1e-4 * p[:, 1]),
-                                    lambda p: np.tile([0.0, 1e-4 * scale, 0.0], (len(p), 1)), height_only=True)
+        return refracta.CustomField(
+            lambda p: scale * (1 + 1e-4 * p[:, 1]),
+            lambda p: np.tile([0.0, 1e-4 * scale, 0.0], (len(p), 1)),
+            height_only=True,
+        )
+
     for method in ("stratified", "rk45"):
         a = refracta.trace_ray(field(n0), [0, 1, 0], [1, 0.1, 0], trace=method, max_length=100.0)
         b = refracta.trace_ray(field(1.0), [0, 1, 0], [1, 0.1, 0], trace=method, max_length=100.0)

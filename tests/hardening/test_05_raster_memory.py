@@ -25,8 +25,9 @@ print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024 / 1e9)
 @pytest.mark.slow
 @pytest.mark.parametrize("shadows", ["msm_hamburger", "hard"])
 def test_an_8192_shadow_map_peaks_below_its_documented_memory(shadows):
-    result = subprocess.run([sys.executable, "-c", _CHILD.format(shadows=shadows)], capture_output=True, text=True,
-                            timeout=HANG_GUARD)
+    result = subprocess.run(
+        [sys.executable, "-c", _CHILD.format(shadows=shadows)], capture_output=True, text=True, timeout=HANG_GUARD
+    )
     assert result.returncode == 0, result.stderr
     peak = float(result.stdout.strip().splitlines()[-1])
     assert peak < PEAK_BOUND_GB, f"{shadows}: peak RSS {peak:.2f} GB"

@@ -52,8 +52,9 @@ def test_a_render_of_the_sky_past_the_top_is_finite_and_independent_of_max_lengt
     eye = np.asarray(road.camera.position)
     up = np.radians(20.0)
     camera = refracta.Camera(eye, eye + [np.cos(up), np.sin(up), 0.0], vfov=10, width=16, height=8)
-    images = [refracta.render(road.scene, camera, road.field, max_length=length, progress=False)
-              for length in (4e5, 1e6)]
+    images = [
+        refracta.render(road.scene, camera, road.field, max_length=length, progress=False) for length in (4e5, 1e6)
+    ]
     assert np.isfinite(images[0]).all() and images[0].min() > 0.0
     np.testing.assert_allclose(images[0], images[1], rtol=1e-6)
 
@@ -67,8 +68,12 @@ def test_a_billboard_without_ground_renders_alike_by_both_methods(tmp_path):
     scene.set_sky([0.8, 0.8, 0.8], [0.3, 0.4, 0.9])
     scene.add_billboard([50, 1, 0], 4, 2, str(texture))
     camera = refracta.Camera([0, 1.5, 0], [50, 1, 0], vfov=40, width=32, height=16)
-    images = [refracta.render(scene, camera, refracta.PhysicalAtmosphere(**ROAD), method=method, max_length=1e5,
-                              progress=False) for method in ("raster_march", "curved")]
+    images = [
+        refracta.render(
+            scene, camera, refracta.PhysicalAtmosphere(**ROAD), method=method, max_length=1e5, progress=False
+        )
+        for method in ("raster_march", "curved")
+    ]
     for image in images:
         assert np.isfinite(image).all() and image.min() > 0.0
     # 0.01: the two methods' sky directions differ by the march's step and the table's tolerance.

@@ -33,8 +33,10 @@ def test_add_obj_refuses_a_fifo(fifo, tmp_path):
         refracta.Scene().add_obj(str(tmp_path / "a.obj"))
 
 
-@pytest.mark.parametrize("line, token", [("v nan 0 0", "nan"), ("v 1e999 0 0", "1e999"), ("v 0 0x 0", "0x"),
-                                         ("vn 0 abc 1", "abc"), ("vt 0.5 --1", "--1")])
+@pytest.mark.parametrize(
+    "line, token",
+    [("v nan 0 0", "nan"), ("v 1e999 0 0", "1e999"), ("v 0 0x 0", "0x"), ("vn 0 abc 1", "abc"), ("vt 0.5 --1", "--1")],
+)
 def test_unparsable_obj_numbers_name_file_line_and_token(tmp_path, line, token):
     path = tmp_path / "bad.obj"
     path.write_text(f"# triangle\nv 0 0 0\n{line}\nv 1 0 0\nv 0 1 0\nf 1 3 4\n")
@@ -51,8 +53,9 @@ def test_unparsable_mtl_numbers_name_file_line_and_token(tmp_path):
 
 def test_legal_mtl_forms_still_load(tmp_path):
     # Comments, "d -halo", "Kd xyz", "Kd spectral" are MTL syntax, not bad numbers.
-    (tmp_path / "m.mtl").write_text("newmtl a\nKd 0.8 0.1 0.1\nd -halo 1.0\nKs xyz 0.1 0.1 0.1\n"
-                                    "Ka spectral ident.rfl 1.0\nNs 10\nillum 2\n")
+    (tmp_path / "m.mtl").write_text(
+        "newmtl a\nKd 0.8 0.1 0.1\nd -halo 1.0\nKs xyz 0.1 0.1 0.1\nKa spectral ident.rfl 1.0\nNs 10\nillum 2\n"
+    )
     (tmp_path / "m.obj").write_text("mtllib m.mtl\nv 0 0 0\nv 1 0 0 # x\nv 0 1 0\nusemtl a\nf 1 2 3\n")
     scene = refracta.Scene()
     (geometry,) = scene.add_obj(str(tmp_path / "m.obj"))

@@ -16,17 +16,32 @@ def load(tmp_path, text):
     return refracta.load_scene(path)
 
 
-@pytest.mark.parametrize("text, line, key, suggestion", [
-    (CAMERA + "vfovv = 3\n", 4, r"\[camera\] vfovv", "vfov"),
-    (CAMERA + "[sun]\ndirection = [0, 1, 0]\nradiance = [1, 1, 1]\nangular_diameterr = 1\n", 7,
-     r"\[sun\] angular_diameterr", "angular_diameter"),
-    (CAMERA + "[sky]\nhorizn = [1, 1, 1]\n", 5, r"\[sky\] horizn", "horizon"),
-    (CAMERA + "[atmosphere]\nsurface_dtt = 3\n", 5, r"\[atmosphere\] surface_dtt", "surface_dt"),
-    (CAMERA + '[[materials]]\nname = "a"\ntype = "diffuse"\nreflectanse = 0.5\n', 7,
-     r"\[\[materials\]\] #1 reflectanse", "reflectance"),
-    (CAMERA + '[[objects]]\ntype = "sphere"\ncentre = [5, 1, 0]\nradius = 1\nkdd = 0.5\n', 8,
-     r"\[\[objects\]\] #1 kdd", "kd"),
-])
+@pytest.mark.parametrize(
+    "text, line, key, suggestion",
+    [
+        (CAMERA + "vfovv = 3\n", 4, r"\[camera\] vfovv", "vfov"),
+        (
+            CAMERA + "[sun]\ndirection = [0, 1, 0]\nradiance = [1, 1, 1]\nangular_diameterr = 1\n",
+            7,
+            r"\[sun\] angular_diameterr",
+            "angular_diameter",
+        ),
+        (CAMERA + "[sky]\nhorizn = [1, 1, 1]\n", 5, r"\[sky\] horizn", "horizon"),
+        (CAMERA + "[atmosphere]\nsurface_dtt = 3\n", 5, r"\[atmosphere\] surface_dtt", "surface_dt"),
+        (
+            CAMERA + '[[materials]]\nname = "a"\ntype = "diffuse"\nreflectanse = 0.5\n',
+            7,
+            r"\[\[materials\]\] #1 reflectanse",
+            "reflectance",
+        ),
+        (
+            CAMERA + '[[objects]]\ntype = "sphere"\ncentre = [5, 1, 0]\nradius = 1\nkdd = 0.5\n',
+            8,
+            r"\[\[objects\]\] #1 kdd",
+            "kd",
+        ),
+    ],
+)
 def test_unknown_keys_name_file_line_and_the_likely_key(tmp_path, text, line, key, suggestion):
     with pytest.raises(ValueError, match=rf"scene.toml:{line}: .*{key}: unknown key .*did you mean {suggestion}\?"):
         load(tmp_path, text)

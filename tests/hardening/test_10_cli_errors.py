@@ -11,18 +11,26 @@ DATA = Path(__file__).resolve().parents[1] / "data"
 
 
 def refracta_cli(*args, cwd):
-    return subprocess.run([sys.executable, "-m", "refracta", *args], capture_output=True, text=True, cwd=cwd,
-                          timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "refracta", *args], capture_output=True, text=True, cwd=cwd, timeout=120
+    )
 
 
-@pytest.mark.parametrize("args, message, code", [
-    (["render", "missing.toml"], "refracta: error: no such scene file: 'missing.toml'", 1),
-    (["render", str(DATA / "hot_road.toml"), "--spp", "0"], "refracta render: error: argument --spp: must be >= 1", 2),
-    (["render", str(DATA / "hot_road.toml"), "--size", "0x4"], "refracta render: error: argument --size", 2),
-    (["render", "bad.toml"], "refracta: error: ", 1),
-    (["edit", str(DATA / "hot_road.toml"), "--pairs", "nopairs.json", "-o", "x.toml"], "refracta: error: ", 1),
-    ([], "refracta: error: the following arguments are required: command", 2),
-])
+@pytest.mark.parametrize(
+    "args, message, code",
+    [
+        (["render", "missing.toml"], "refracta: error: no such scene file: 'missing.toml'", 1),
+        (
+            ["render", str(DATA / "hot_road.toml"), "--spp", "0"],
+            "refracta render: error: argument --spp: must be >= 1",
+            2,
+        ),
+        (["render", str(DATA / "hot_road.toml"), "--size", "0x4"], "refracta render: error: argument --size", 2),
+        (["render", "bad.toml"], "refracta: error: ", 1),
+        (["edit", str(DATA / "hot_road.toml"), "--pairs", "nopairs.json", "-o", "x.toml"], "refracta: error: ", 1),
+        ([], "refracta: error: the following arguments are required: command", 2),
+    ],
+)
 def test_user_errors_print_one_line_and_exit_non_zero(tmp_path, args, message, code):
     (tmp_path / "bad.toml").write_text("[camera]\nposition = [0, 1, 0]\nlook_at = [1, 1, 0]\nvfovv = 3\n")
     result = refracta_cli(*args, cwd=tmp_path)

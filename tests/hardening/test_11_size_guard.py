@@ -6,10 +6,15 @@ import pytest
 import refracta
 
 
-@pytest.mark.parametrize("render", [lambda s, c: refracta.render(s, c, None, progress=False),
-                                    lambda s, c: refracta.render(s, c, refracta.PhysicalAtmosphere(), progress=False),
-                                    lambda s, c: refracta.render_raster(s, c)],
-                         ids=["straight", "curved", "raster"])
+@pytest.mark.parametrize(
+    "render",
+    [
+        lambda s, c: refracta.render(s, c, None, progress=False),
+        lambda s, c: refracta.render(s, c, refracta.PhysicalAtmosphere(), progress=False),
+        lambda s, c: refracta.render_raster(s, c),
+    ],
+    ids=["straight", "curved", "raster"],
+)
 def test_a_camera_too_large_for_memory_is_refused_naming_the_bytes(render):
     camera = refracta.Camera([0, 1, 0], [1, 1, 0], width=100_000, height=100_000)
     # 24 bytes per pixel at least: float32 RGB in C++ and its numpy copy.

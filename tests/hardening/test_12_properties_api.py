@@ -72,8 +72,17 @@ def check_trace(model, params, origin, direction, method, tol, step, max_length,
     field = calls(model, **params)
     if field is None:
         return
-    path = calls(refracta.trace_ray, field, origin, direction, trace=method, tol=tol, step=step,
-                 max_length=max_length, stop_height=stop_height)
+    path = calls(
+        refracta.trace_ray,
+        field,
+        origin,
+        direction,
+        trace=method,
+        tol=tol,
+        step=step,
+        max_length=max_length,
+        stop_height=stop_height,
+    )
     if path is None:
         return
     assert finite(path.points) and finite(path.directions) and finite(path.arc_length)
@@ -81,10 +90,16 @@ def check_trace(model, params, origin, direction, method, tol, step, max_length,
     assert path.stop in ("max_length", "stop_height")
 
 
-traces = dict(field=fields(), origin=st.tuples(ordinary, st.one_of(st.floats(-50, 3000), edge), ordinary),
-              direction=vec3, method=st.sampled_from(["rk45", "rk4", "stratified"]),
-              tol=st.one_of(st.floats(1e-6, 1.0), edge), step=st.one_of(st.none(), st.floats(0.5, 100.0), edge),
-              max_length=st.one_of(st.floats(1.0, 2000.0), edge), stop_height=st.one_of(st.none(), st.floats(-10, 10)))
+traces = dict(
+    field=fields(),
+    origin=st.tuples(ordinary, st.one_of(st.floats(-50, 3000), edge), ordinary),
+    direction=vec3,
+    method=st.sampled_from(["rk45", "rk4", "stratified"]),
+    tol=st.one_of(st.floats(1e-6, 1.0), edge),
+    step=st.one_of(st.none(), st.floats(0.5, 100.0), edge),
+    max_length=st.one_of(st.floats(1.0, 2000.0), edge),
+    stop_height=st.one_of(st.none(), st.floats(-10, 10)),
+)
 
 
 @FAST
@@ -101,8 +116,16 @@ def test_rays_fuzz(field, origin, direction, method, tol, step, max_length, stop
 
 
 @FAST
-@given(vec3, vec3, vec3, st.one_of(st.floats(0.01, 179.0), edge), st.integers(-2, 64), st.integers(-2, 64),
-       st.tuples(st.floats(-1e6, 1e6), st.floats(-1e6, 1e6)), ordinary_vec3)
+@given(
+    vec3,
+    vec3,
+    vec3,
+    st.one_of(st.floats(0.01, 179.0), edge),
+    st.integers(-2, 64),
+    st.integers(-2, 64),
+    st.tuples(st.floats(-1e6, 1e6), st.floats(-1e6, 1e6)),
+    ordinary_vec3,
+)
 def test_cameras_give_unit_rays_or_raise(position, look_at, up, vfov, width, height, uv, point):
     camera = calls(refracta.Camera, position, look_at, up, vfov, width, height)
     if camera is None:
@@ -140,13 +163,18 @@ def scenes(draw):
 
 
 @FAST
-@given(scenes(), st.sampled_from(["straight", "curved", "raster_march"]), st.integers(1, 4),
-       st.sampled_from(["direct", "path"]))
+@given(
+    scenes(),
+    st.sampled_from(["straight", "curved", "raster_march"]),
+    st.integers(1, 4),
+    st.sampled_from(["direct", "path"]),
+)
 def test_tiny_renders_are_finite_or_raise(scene, method, spp, transport):
     camera = refracta.Camera((0.0, 1.5, 0.0), (10.0, 1.0, 0.0), vfov=30.0, width=6, height=4)
     field = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
-    image = render_checking_scene_warnings(scene, camera, field, method=method, spp=spp, transport=transport,
-                                           max_length=200.0, progress=False)
+    image = render_checking_scene_warnings(
+        scene, camera, field, method=method, spp=spp, transport=transport, max_length=200.0, progress=False
+    )
     if image is not None:
         assert image.shape == (4, 6, 3) and finite(image) and image.min() >= 0.0
 
@@ -189,9 +217,13 @@ def test_point_pairs_are_valid_or_raise(destination, source, weight):
 
 
 @FAST
-@given(st.lists(st.one_of(st.floats(-2, 2), edge), min_size=4, max_size=4), st.one_of(st.floats(-1, 1), edge),
-       st.sampled_from(["msm_hamburger", "msm_hausdorff", "vsm"]), st.sampled_from(["unit", "signed"]),
-       st.sampled_from(["fp64", "fp32", "unorm16"]))
+@given(
+    st.lists(st.one_of(st.floats(-2, 2), edge), min_size=4, max_size=4),
+    st.one_of(st.floats(-1, 1), edge),
+    st.sampled_from(["msm_hamburger", "msm_hausdorff", "vsm"]),
+    st.sampled_from(["unit", "signed"]),
+    st.sampled_from(["fp64", "fp32", "unorm16"]),
+)
 def test_moment_shadows_are_in_the_unit_interval_or_raise(b, z, method, depth_range, storage):
     s = calls(moments.shadow_intensity, np.array(b), z, method=method, depth_range=depth_range, storage=storage)
     if s is not None:
@@ -202,9 +234,19 @@ def test_moment_shadows_are_in_the_unit_interval_or_raise(b, z, method, depth_ra
 
 
 @FAST
-@given(st.lists(st.tuples(st.one_of(st.floats(0.01, 100), edge), st.one_of(st.floats(0, 1), edge),
-                          st.tuples(*[st.one_of(st.floats(0, 1), edge)] * 3)), min_size=0, max_size=6),
-       st.sampled_from(["exact", "peel", "wboit", "mboit"]), st.sampled_from([4, 6, 8]))
+@given(
+    st.lists(
+        st.tuples(
+            st.one_of(st.floats(0.01, 100), edge),
+            st.one_of(st.floats(0, 1), edge),
+            st.tuples(*[st.one_of(st.floats(0, 1), edge)] * 3),
+        ),
+        min_size=0,
+        max_size=6,
+    ),
+    st.sampled_from(["exact", "peel", "wboit", "mboit"]),
+    st.sampled_from([4, 6, 8]),
+)
 def test_transparency_composites_are_finite_or_raise(fragments, method, count):
     depths = np.array([f[0] for f in fragments], dtype=float)
     alphas = np.array([f[1] for f in fragments], dtype=float)

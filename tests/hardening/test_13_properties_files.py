@@ -11,10 +11,16 @@ from hypothesis import strategies as st
 import refracta
 from tests.hardening.properties import FAST, FUZZ, calls, finite, render_checking_scene_warnings
 
-NUMBERS = st.one_of(st.floats(-10, 10).map(repr), st.sampled_from(
-    ["nan", "inf", "-inf", "1e999", "abc", "", "0x1p3", "1e-400", "--1", "1.2.3", "+5", ".5", "1e", "9" * 400]))
-INDICES = st.one_of(st.integers(-6, 8).map(str), st.sampled_from(["0", "99999999999", "-99999999999", "a", "1//",
-                                                                 "1/2/3/4", "1/a", "", "2147483648"]))
+NUMBERS = st.one_of(
+    st.floats(-10, 10).map(repr),
+    st.sampled_from(
+        ["nan", "inf", "-inf", "1e999", "abc", "", "0x1p3", "1e-400", "--1", "1.2.3", "+5", ".5", "1e", "9" * 400]
+    ),
+)
+INDICES = st.one_of(
+    st.integers(-6, 8).map(str),
+    st.sampled_from(["0", "99999999999", "-99999999999", "a", "1//", "1/2/3/4", "1/a", "", "2147483648"]),
+)
 
 
 @st.composite
@@ -27,8 +33,9 @@ def obj_text(draw):
         elif kind == "vt":
             lines.append(" ".join([kind] + draw(st.lists(NUMBERS, min_size=0, max_size=3))))
         elif kind == "f":
-            corners = draw(st.lists(st.tuples(INDICES, st.sampled_from(["", "/1", "//1", "/1/1", "/9/9"])),
-                                    min_size=0, max_size=5))
+            corners = draw(
+                st.lists(st.tuples(INDICES, st.sampled_from(["", "/1", "//1", "/1/1", "/9/9"])), min_size=0, max_size=5)
+            )
             lines.append("f " + " ".join(i + rest for i, rest in corners))
         elif kind == "usemtl":
             lines.append("usemtl " + draw(st.sampled_from(["a", "missing", ""])))
@@ -79,12 +86,58 @@ def test_malformed_obj_and_mtl_fuzz(tmp_path_factory, obj, mtl):
     check_obj(tmp_path_factory.mktemp("obj"), obj, mtl)
 
 
-TOML_VALUES = st.sampled_from(["1", "-1", "0", "1e400", "inf", "nan", '"x"', "true", "[]", "[1, 2]", "[1, 2, 3]",
-                               "[inf, 1, 2]", "[0, 0, 0]", "[1e308, -1e308, 0]", "[640.5, 2]", "[2, 2]",
-                               "{ a = 1 }", '"ground"', '"box"', '"sphere"', '"obj"', '"mesh"', '"PhysicalAtmosphere"'])
+TOML_VALUES = st.sampled_from(
+    [
+        "1",
+        "-1",
+        "0",
+        "1e400",
+        "inf",
+        "nan",
+        '"x"',
+        "true",
+        "[]",
+        "[1, 2]",
+        "[1, 2, 3]",
+        "[inf, 1, 2]",
+        "[0, 0, 0]",
+        "[1e308, -1e308, 0]",
+        "[640.5, 2]",
+        "[2, 2]",
+        "{ a = 1 }",
+        '"ground"',
+        '"box"',
+        '"sphere"',
+        '"obj"',
+        '"mesh"',
+        '"PhysicalAtmosphere"',
+    ]
+)
 TABLES = ["camera", "sun", "sky", "atmosphere", "environment", "[objects]", "[lights]", "[materials]", "bogus"]
-KEYS = ["position", "look_at", "up", "vfov", "size", "direction", "radiance", "horizon", "zenith", "model", "type",
-        "centre", "radius", "height", "file", "surface_dt", "name", "kd", "vertices", "triangles", "scale", "vfovv"]
+KEYS = [
+    "position",
+    "look_at",
+    "up",
+    "vfov",
+    "size",
+    "direction",
+    "radiance",
+    "horizon",
+    "zenith",
+    "model",
+    "type",
+    "centre",
+    "radius",
+    "height",
+    "file",
+    "surface_dt",
+    "name",
+    "kd",
+    "vertices",
+    "triangles",
+    "scale",
+    "vfovv",
+]
 
 
 @st.composite
@@ -147,7 +200,7 @@ def damaged(draw, data: bytes):
         where = draw(st.integers(0, len(data) - 1))
         data[where] = draw(st.integers(0, 255))
     if draw(st.booleans()):
-        data = data[:draw(st.integers(0, len(data)))]
+        data = data[: draw(st.integers(0, len(data)))]
     if draw(st.booleans()):  # a header claiming a huge size
         data = data.replace(b"3 4", draw(st.sampled_from([b"99999999 99999999", b"-3 4", b"0 0", b"3 40000"])))
     return bytes(data)

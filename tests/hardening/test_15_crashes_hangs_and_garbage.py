@@ -22,8 +22,12 @@ HANG_GUARD = 120.0  # [s]
 
 def run_child(code: str) -> str:
     """Runs `code` in a fresh interpreter and returns its stdout; fails on a crash or a hang."""
-    child = subprocess.run([sys.executable, "-W", "ignore", "-c", textwrap.dedent(code)], capture_output=True,
-                           text=True, timeout=HANG_GUARD)
+    child = subprocess.run(
+        [sys.executable, "-W", "ignore", "-c", textwrap.dedent(code)],
+        capture_output=True,
+        text=True,
+        timeout=HANG_GUARD,
+    )
     assert child.returncode == 0, f"exit {child.returncode}: {child.stderr[-2000:]}"
     return child.stdout
 
@@ -66,9 +70,11 @@ def test_changing_a_scene_while_it_renders_raises_instead_of_corrupting_it():
         if started.is_set():
             return
         started.set()
-        for change in (lambda: road.scene.add_point_light((5, 2, 0), (10, 10, 10)),
-                       lambda: road.scene.set_physical_sky((-0.3, 0.25, 0.2)),
-                       lambda: road.scene.add_sphere((20, 1, 0), 1.0)):
+        for change in (
+            lambda: road.scene.add_point_light((5, 2, 0), (10, 10, 10)),
+            lambda: road.scene.set_physical_sky((-0.3, 0.25, 0.2)),
+            lambda: road.scene.add_sphere((20, 1, 0), 1.0),
+        ):
             try:
                 change()
             except RuntimeError as error:
@@ -104,8 +110,7 @@ def test_an_eye_table_for_rays_climbing_100_km_is_built_in_whole_panels():
     # Against a direct rk45 trace at an elevation between the table's entries.
     e = np.radians(44.123)
     ends, _, _ = table.ends(np.array([44.123]), np.array([0.0]))
-    exact = refracta.trace_ray(field, [0, 1.5, 0], [np.cos(e), np.sin(e), 0], trace="rk45", tol=1e-6,
-                               max_length=100e3)
+    exact = refracta.trace_ray(field, [0, 1.5, 0], [np.cos(e), np.sin(e), 0], trace="rk45", tol=1e-6, max_length=100e3)
     # The table's tolerance (1e-3 m) plus its per-metre angular part (none here) and rk45's 1e-6 m.
     TABLE_TOLERANCE = 1e-3 + 1e-6  # [m]
     assert np.abs(ends[0] - exact.points[-1]).max() <= TABLE_TOLERANCE
@@ -115,19 +120,23 @@ def test_rk45_shrinks_a_trial_step_that_reaches_below_the_modelled_range():
     # trace_ray over a CurvedEarth with stop_height=0 raised "height -1081.6 m is below the
     # modelled range": the first trial step (24 km long) put its stages there. A ducted ray at
     # -0.03 deg stays above the surface; rk45 and the exact stratified integral must agree.
-    field = refracta.CurvedEarth(refracta.PhysicalAtmosphere(t_ground=276.15, inversion_dt=10, inversion_base=8,
-                                                             inversion_thickness=6))
+    field = refracta.CurvedEarth(
+        refracta.PhysicalAtmosphere(t_ground=276.15, inversion_dt=10, inversion_base=8, inversion_thickness=6)
+    )
     e = np.radians(-0.03)
-    paths = {m: refracta.trace_ray(field, [0, 4, 0], [np.cos(e), np.sin(e), 0], max_length=24000, stop_height=0.0,
-                                   trace=m) for m in ("rk45", "stratified")}
+    paths = {
+        m: refracta.trace_ray(field, [0, 4, 0], [np.cos(e), np.sin(e), 0], max_length=24000, stop_height=0.0, trace=m)
+        for m in ("rk45", "stratified")
+    }
     assert {p.stop for p in paths.values()} == {"max_length"}
     # Both trace to their default tolerance of 1e-6 m over the path.
     BOTH_TOLERANCES = 2e-6  # [m]
     assert np.abs(paths["rk45"].points[-1] - paths["stratified"].points[-1]).max() <= BOTH_TOLERANCES
     # The same ray told about a ground it does reach stops there.
     steep = np.radians(-0.3)
-    path = refracta.trace_ray(field, [0, 4, 0], [np.cos(steep), np.sin(steep), 0], max_length=24000,
-                              stop_height=0.0, trace="rk45")
+    path = refracta.trace_ray(
+        field, [0, 4, 0], [np.cos(steep), np.sin(steep), 0], max_length=24000, stop_height=0.0, trace="rk45"
+    )
     assert path.stop == "stop_height" and path.points[-1][1] == pytest.approx(0.0, abs=1e-9)
 
 
@@ -162,8 +171,9 @@ def test_sky_optical_depths_refuse_wavelengths_outside_their_tables(wavelength):
             getattr(sky, name)(wavelength)
 
 
-@pytest.mark.parametrize("points", [np.array([[0, 1 + 1j, 0]]), np.array([["0", "1", "0"]]),
-                                    np.array([[0, None, 0]], dtype=object)])
+@pytest.mark.parametrize(
+    "points", [np.array([[0, 1 + 1j, 0]]), np.array([["0", "1", "0"]]), np.array([[0, None, 0]], dtype=object)]
+)
 def test_index_fields_refuse_non_real_points(points):
     with pytest.raises(ValueError, match="must hold real numbers"):
         refracta.PhysicalAtmosphere().ior(points)
@@ -171,6 +181,7 @@ def test_index_fields_refuse_non_real_points(points):
 
 def test_turbulence_statistics_refuse_nan_and_negative_arguments():
     from refracta import turbulence as tb
+
     with pytest.raises(ValueError, match="cn2 must be"):
         tb.tilt_variance(float("nan"), 100.0, inner_scale=0.005)
     with pytest.raises(ValueError, match="path_length must be"):

@@ -22,13 +22,18 @@ from tests.hardening.properties import FAST, NAMED_ERRORS, calls, edge, finite, 
 MIN_ACCEPTED = 0.2
 # Each sky builds its radiance table (~0.3 s): fewer examples than FAST's 50.
 SKY = settings(FAST, max_examples=12)
+
+
 def mostly(valid, other):
     """`valid` four times in five, else `other` (the edges): most examples reach the code."""
     return st.integers(0, 4).flatmap(lambda k: other if k == 0 else valid)
 
 
-unit = st.tuples(*[st.floats(-1, 1)] * 3).filter(lambda v: np.linalg.norm(v) > 1e-3).map(
-    lambda v: tuple(np.asarray(v) / np.linalg.norm(v)))
+unit = (
+    st.tuples(*[st.floats(-1, 1)] * 3)
+    .filter(lambda v: np.linalg.norm(v) > 1e-3)
+    .map(lambda v: tuple(np.asarray(v) / np.linalg.norm(v)))
+)
 unit_interval = st.floats(0.0, 1.0, exclude_max=True)
 radiance = st.one_of(st.floats(0.0, 1e4), st.tuples(*[st.floats(0.0, 1e4)] * 3), edge)
 
@@ -55,8 +60,9 @@ def any_light(draw):
     if kind == "point":
         return calls(lights.PointLight, position, draw(radiance))
     if kind == "spot":
-        return calls(lights.SpotLight, position, draw(vec3), draw(st.one_of(st.floats(1.0, 179.0), edge)),
-                     draw(radiance))
+        return calls(
+            lights.SpotLight, position, draw(vec3), draw(st.one_of(st.floats(1.0, 179.0), edge)), draw(radiance)
+        )
     return calls(lights.SunLight, draw(vec3), draw(radiance), draw(st.one_of(st.floats(0.01, 10.0), edge)))
 
 
@@ -64,8 +70,11 @@ def test_lights_sample_unit_directions_and_finite_radiance_or_raise():
     outcomes = []
 
     @FAST
-    @given(any_light(), st.lists(st.tuples(ordinary, ordinary, ordinary), min_size=1, max_size=3),
-           st.lists(st.tuples(unit_interval, unit_interval), min_size=1, max_size=3))
+    @given(
+        any_light(),
+        st.lists(st.tuples(ordinary, ordinary, ordinary), min_size=1, max_size=3),
+        st.lists(st.tuples(unit_interval, unit_interval), min_size=1, max_size=3),
+    )
     def prop(light, points, u):
         if light is None:
             outcomes.append(False)
@@ -81,10 +90,13 @@ def test_the_physical_sky_is_finite_for_any_sun_or_raises():
     outcomes = []
 
     @SKY
-    @given(mostly(st.tuples(st.floats(-1, 1), st.floats(0.05, 1), st.floats(-1, 1)), vec3),
-           mostly(st.floats(0.0, 10.0), edge), mostly(st.floats(0.0, 600.0), edge),
-           st.lists(st.tuples(unit_interval, unit_interval), min_size=1, max_size=4),
-           st.one_of(st.floats(360.0, 830.0), edge))
+    @given(
+        mostly(st.tuples(st.floats(-1, 1), st.floats(0.05, 1), st.floats(-1, 1)), vec3),
+        mostly(st.floats(0.0, 10.0), edge),
+        mostly(st.floats(0.0, 600.0), edge),
+        st.lists(st.tuples(unit_interval, unit_interval), min_size=1, max_size=4),
+        st.one_of(st.floats(360.0, 830.0), edge),
+    )
     def prop(sun, aerosol, ozone, u, wavelength):
         scene = refracta.Scene()
         if calls(scene.set_physical_sky, sun, aerosol=aerosol, ozone_du=ozone) is None and not scene.lights:
@@ -110,9 +122,13 @@ def test_textured_materials_shade_finite_or_raise(tmp_path_factory):
     outcomes = []
 
     @FAST
-    @given(st.sampled_from(["Diffuse", "BlinnPhong", "Principled"]), mostly(st.floats(0.0, 1.0), edge),
-           st.sampled_from([str(texture), str(texture), str(texture) + ".missing", ""]), mostly(unit, vec3),
-           mostly(unit, vec3))
+    @given(
+        st.sampled_from(["Diffuse", "BlinnPhong", "Principled"]),
+        mostly(st.floats(0.0, 1.0), edge),
+        st.sampled_from([str(texture), str(texture), str(texture) + ".missing", ""]),
+        mostly(unit, vec3),
+        mostly(unit, vec3),
+    )
     def prop(name, value, path, wo, wi):
         material = calls(getattr(shading, name), value, texture=path)
         if material is None:
@@ -140,8 +156,11 @@ def test_changes_during_a_render_raise_and_never_corrupt_the_scene():
     @given(st.lists(st.sampled_from(["light", "sphere", "sky", "sun", "material"]), min_size=1, max_size=4))
     def prop(changes):
         errors = []
-        worker = threading.Thread(target=lambda: refracta.render(scene, camera, refracta.PhysicalAtmosphere(),
-                                                                 transport="path", spp=2, progress=False))
+        worker = threading.Thread(
+            target=lambda: refracta.render(
+                scene, camera, refracta.PhysicalAtmosphere(), transport="path", spp=2, progress=False
+            )
+        )
         worker.start()
         for change in changes:
             try:
@@ -175,8 +194,11 @@ def test_the_editor_model_takes_any_click_or_says_why():
     outcomes = []
 
     @FAST
-    @given(st.lists(st.tuples(st.one_of(st.floats(-50, 80), edge), st.one_of(st.floats(-50, 60), edge)),
-                    min_size=1, max_size=4))
+    @given(
+        st.lists(
+            st.tuples(st.one_of(st.floats(-50, 80), edge), st.one_of(st.floats(-50, 60), edge)), min_size=1, max_size=4
+        )
+    )
     def prop(clicks):
         for u, v in clicks:
             try:
@@ -199,7 +221,12 @@ def test_the_cli_refuses_special_files_quickly(tmp_path):
     scene.write_text('[camera]\nposition = [0, 1.5, 0]\nlook_at = [100, 1.5, 0]\n[atmosphere]\nmodel = "physical"\n')
     for args in (["edit", str(scene), "--pairs", str(fifo)], ["render", str(fifo)], ["edit", "/dev/zero"]):
         # A hang is what this guards against; 60 s is far above the ~1 s start-up of the CLI.
-        child = subprocess.run([sys.executable, "-m", "refracta", *args], capture_output=True, text=True, timeout=60,
-                               stdin=subprocess.DEVNULL)
+        child = subprocess.run(
+            [sys.executable, "-m", "refracta", *args],
+            capture_output=True,
+            text=True,
+            timeout=60,
+            stdin=subprocess.DEVNULL,
+        )
         assert child.returncode != 0, args
         assert "Traceback" not in child.stderr, child.stderr[-1500:]

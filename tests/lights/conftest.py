@@ -72,7 +72,9 @@ def cone_chi2(light, point, normal, axis, cos_min, count, rng, n_theta=10, n_phi
     p_light = n_light = None
     if hit is not None:
         p_light, n_light = hit(dirs)
-    dens = light.pdf_li(np.tile(point, (m, 1)), None if normal is None else np.tile(normal, (m, 1)), dirs, p_light, n_light)
+    dens = light.pdf_li(
+        np.tile(point, (m, 1)), None if normal is None else np.tile(normal, (m, 1)), dirs, p_light, n_light
+    )
     d_omega = (1.0 - cos_min) * (1.0 / (n_theta * sub)) * (2 * np.pi / (n_phi * sub))
     cell = (dens * d_omega).reshape(n_theta, sub, n_phi, sub).sum(axis=(1, 3))
     _, p_value, _ = chi2_test(observed, cell * count)

@@ -90,9 +90,13 @@ def test_area_light_pdf_matches_pdf_li(rng):
     wi, L, pdf, distance = light.sample_li(points, None, rng.random((n, 2)))
     ok = pdf > 0
     p_light, n_light = points + wi * distance[:, None], np.tile([0.0, -1.0, 0.0], (n, 1))
-    np.testing.assert_allclose(light.pdf_li(points[ok], None, wi[ok], p_light[ok], n_light[ok]), pdf[ok], rtol=PDF_CONSISTENCY)
+    np.testing.assert_allclose(
+        light.pdf_li(points[ok], None, wi[ok], p_light[ok], n_light[ok]), pdf[ok], rtol=PDF_CONSISTENCY
+    )
     # The normal's orientation does not change the density.
-    np.testing.assert_allclose(light.pdf_li(points[ok], None, wi[ok], p_light[ok], -n_light[ok]), pdf[ok], rtol=PDF_CONSISTENCY)
+    np.testing.assert_allclose(
+        light.pdf_li(points[ok], None, wi[ok], p_light[ok], -n_light[ok]), pdf[ok], rtol=PDF_CONSISTENCY
+    )
     np.testing.assert_allclose(L[ok], 3.0)  # default rtol 1e-7: the constant radiance as given, rounding only
 
 
@@ -111,9 +115,14 @@ def test_one_sided_light_is_dark_from_behind_and_two_sided_is_not(rng):
     np.testing.assert_allclose(one.normal(0), [0, -1, 0], atol=EXACT)
 
 
-@pytest.mark.parametrize("point, normal", [((0.0, 0.0, 0.0), (0.0, 1.0, 0.0)),
-                                           ((1.5, 0.3, -0.8), (0.0, 1.0, 0.0)),
-                                           ((0.5, 1.0, 0.5), (0.3 / 1.044030650891055, 1 / 1.044030650891055, 0.0))])
+@pytest.mark.parametrize(
+    "point, normal",
+    [
+        ((0.0, 0.0, 0.0), (0.0, 1.0, 0.0)),
+        ((1.5, 0.3, -0.8), (0.0, 1.0, 0.0)),
+        ((0.5, 1.0, 0.5), (0.3 / 1.044030650891055, 1 / 1.044030650891055, 0.0)),
+    ],
+)
 def test_area_light_irradiance_matches_the_polygon_formula(rng, point, normal):
     radiance = 5.0
     light, _, _ = square_light(radiance)

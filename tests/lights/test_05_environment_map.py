@@ -89,8 +89,14 @@ def test_Le_matches_mitsuba3_envmap(rng, rotation):
     light = EnvironmentLight(image, scale=1.7, rotation=rotation)
     to_world = np.eye(4)
     to_world[:3, :3] = light.rotation
-    emitter = mi.load_dict({"type": "envmap", "bitmap": mi.Bitmap(image), "scale": 1.7,
-                            "to_world": mi.ScalarTransform4f(to_world.tolist())})
+    emitter = mi.load_dict(
+        {
+            "type": "envmap",
+            "bitmap": mi.Bitmap(image),
+            "scale": 1.7,
+            "to_world": mi.ScalarTransform4f(to_world.tolist()),
+        }
+    )
     dirs = random_dirs(rng, 300)
     ours = light.Le(dirs)
     theirs = np.empty_like(ours)

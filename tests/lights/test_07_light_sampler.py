@@ -16,8 +16,13 @@ def lights():
     sun.preprocess([0, 0, 0], 10.0)
     sky = ConstantEnvironment(0.1)
     sky.preprocess([0, 0, 0], 10.0)
-    return [PointLight([0, 3, 0], 10.0), SphereLight([1, 2, 0], 0.5, 4.0),
-            AreaLight([[0, 1, 0], [1, 1, 0], [0, 1, 1]], [[0, 1, 2]], 7.0), sun, sky]
+    return [
+        PointLight([0, 3, 0], 10.0),
+        SphereLight([1, 2, 0], 0.5, 4.0),
+        AreaLight([[0, 1, 0], [1, 1, 0], [0, 1, 1]], [[0, 1, 2]], 7.0),
+        sun,
+        sky,
+    ]
 
 
 def test_sampler_picks_in_proportion_to_power(rng):

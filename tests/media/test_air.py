@@ -57,8 +57,12 @@ def test_standard_atmosphere_temperature_and_pressure():
 # U.S. Standard Atmosphere 1976 (NOAA-S/T 76-1562), its layer bases: geopotential height [m'],
 # temperature [K], pressure [Pa] as tabulated (7 digits), up to the 86 km top (84 852 m').
 USSA_1976_BASES = [
-    (11000.0, 216.65, 22632.06), (20000.0, 216.65, 5474.889), (32000.0, 228.65, 868.0187),
-    (47000.0, 270.65, 110.9063), (51000.0, 270.65, 66.93887), (71000.0, 214.65, 3.956420),
+    (11000.0, 216.65, 22632.06),
+    (20000.0, 216.65, 5474.889),
+    (32000.0, 228.65, 868.0187),
+    (47000.0, 270.65, 110.9063),
+    (51000.0, 270.65, 66.93887),
+    (71000.0, 214.65, 3.956420),
     (84852.0, 186.946, 0.3733836),
 ]
 # The tables round to 7 significant digits (relative 5e-7); refracta's table of ln P integrates
@@ -81,19 +85,24 @@ def test_hydrostatic_pressure_through_an_inversion_layer():
     # Isothermal column: the same hydrostatic integration, 1e-10 relative (tighter than the lapse case).
     np.testing.assert_allclose(air.pressure(h), 101325.0 * np.exp(-G * geopotential(h) / (R_D * 270.0)), rtol=1e-10)
 
+
 # The column's table of ln P against an independent adaptive quadrature of the hydrostatic law: the
 # table is built to 1e-12 (hydrostatic_column.h), the reference converges to ~1e-13.
 COLUMN_ACCURACY = 1e-11
 
 
-@pytest.mark.parametrize("layers", [
-    dict(inversion_dt=8.0, inversion_base=20.0, inversion_thickness=15.0),
-    dict(surface_dt=10.0, surface_depth=0.1),
-    dict(surface_dt=-5.0, surface_depth=3.0, inversion_dt=6.0, inversion_base=10.0, inversion_thickness=2.0),
-])
+@pytest.mark.parametrize(
+    "layers",
+    [
+        dict(inversion_dt=8.0, inversion_base=20.0, inversion_thickness=15.0),
+        dict(surface_dt=10.0, surface_depth=0.1),
+        dict(surface_dt=-5.0, surface_depth=3.0, inversion_dt=6.0, inversion_base=10.0, inversion_thickness=2.0),
+    ],
+)
 def test_hydrostatic_pressure_matches_an_independent_quadrature(layers):
     # ln P(h) = ln P0 - (g0 / R_d) integral of (R0 / (R0 + z))^2 / T(z) dz over [0, h].
     from scipy.integrate import quad
+
     air = refracta.PhysicalAtmosphere(**layers)
     integrand = lambda z: (R0 / (R0 + z)) ** 2 / air.temperature(z)  # noqa: E731
     edges = np.concatenate([np.linspace(0.0, 4.0, 161), np.linspace(5.0, 60.0, 12)])
@@ -107,8 +116,9 @@ def test_hydrostatic_pressure_matches_an_independent_quadrature(layers):
 @pytest.mark.parametrize("height", [0.05, 1.0, 22.0, 27.5, 31.0, 300.0])
 def test_vertical_index_gradient_follows_the_hydrostatic_law(height):
     # dn/dh = -((n - 1)/T)(dT/dh + g/R_d) (ORACLES.md), inside a hot surface layer and an inversion.
-    air = refracta.PhysicalAtmosphere(surface_dt=8.0, surface_depth=0.2, inversion_dt=6.0,
-                                      inversion_base=20.0, inversion_thickness=10.0)
+    air = refracta.PhysicalAtmosphere(
+        surface_dt=8.0, surface_depth=0.2, inversion_dt=6.0, inversion_base=20.0, inversion_thickness=10.0
+    )
     step = 1e-4
     dt_dh = (air.temperature(height + step) - air.temperature(height - step)) / (2 * step)
     n = air.ior([0.0, height, 0.0])

@@ -13,8 +13,15 @@ def smallest_depression_reaching_the_sea(field, eye, length=60000.0):
     lo, hi = 0.0, 0.02
     for _ in range(48):
         mid = 0.5 * (lo + hi)
-        path = refracta.trace_ray(field, [0, field.flat_height(eye), 0], [np.cos(mid), -np.sin(mid), 0],
-                                  trace="stratified", tol=1e-9, max_length=length, stop_height=0.0)
+        path = refracta.trace_ray(
+            field,
+            [0, field.flat_height(eye), 0],
+            [np.cos(mid), -np.sin(mid), 0],
+            trace="stratified",
+            tol=1e-9,
+            max_length=length,
+            stop_height=0.0,
+        )
         lo, hi = (lo, mid) if path.stop == "stop_height" else (mid, hi)
     return 0.5 * (lo + hi)
 

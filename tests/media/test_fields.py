@@ -27,14 +27,24 @@ def logistic_reference(h, n_bg, n_inv, n_hot, h_ciso, a_bg, a_inv, a_hot, k_s):
 
 FIELDS = {
     "logistic": (refracta.LogisticProfile(), 1e-5),
-    "logistic_custom": (refracta.LogisticProfile(n_bg=2, n_inv=-0.5, n_hot=0.7, h_ciso=3, a_bg=0.5,
-                                                 a_inv=2, a_hot=0.3, k_s=-20), 1e-5),
+    "logistic_custom": (
+        refracta.LogisticProfile(n_bg=2, n_inv=-0.5, n_hot=0.7, h_ciso=3, a_bg=0.5, a_inv=2, a_hot=0.3, k_s=-20),
+        1e-5,
+    ),
     "linear_squared": (refracta.LinearSquaredProfile(n0=1.0003, alpha=2e-5), 1e-3),
     "hot_road": (refracta.PhysicalAtmosphere(surface_dt=12.0, surface_depth=0.08), 1e-5),
-    "inversion": (refracta.PhysicalAtmosphere(inversion_dt=5, inversion_base=10, inversion_thickness=20,
-                                              humidity=0.6, wavelength=470.0), 1e-2),
-    "sounding": (refracta.TemperatureProfile([0.0, 0.05, 0.2, 1.0, 5.0, 30.0],
-                                             [305.0, 297.0, 292.0, 290.0, 289.5, 291.0], humidity=0.3), 1e-6),
+    "inversion": (
+        refracta.PhysicalAtmosphere(
+            inversion_dt=5, inversion_base=10, inversion_thickness=20, humidity=0.6, wavelength=470.0
+        ),
+        1e-2,
+    ),
+    "sounding": (
+        refracta.TemperatureProfile(
+            [0.0, 0.05, 0.2, 1.0, 5.0, 30.0], [305.0, 297.0, 292.0, 290.0, 289.5, 291.0], humidity=0.3
+        ),
+        1e-6,
+    ),
 }
 
 
@@ -88,8 +98,9 @@ def test_linear_squared_profile_formula():
 
 
 def test_temperature_profile_reproduces_a_physical_atmosphere():
-    physical = refracta.PhysicalAtmosphere(surface_dt=6.0, surface_depth=0.3, inversion_dt=3,
-                                           inversion_base=40, inversion_thickness=30)
+    physical = refracta.PhysicalAtmosphere(
+        surface_dt=6.0, surface_depth=0.3, inversion_dt=3, inversion_base=40, inversion_thickness=30
+    )
     heights = np.concatenate([np.linspace(0.0, 3.0, 400), np.linspace(3.05, 150.0, 600)])
     sounding = refracta.TemperatureProfile(heights, physical.temperature(heights))
     probe = np.array([0.013, 0.21, 0.77, 2.2, 12.0, 45.0, 55.0, 120.0])

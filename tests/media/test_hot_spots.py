@@ -15,13 +15,15 @@ GRADIENT_ABSOLUTE = 1e-11  # round-off 1e-16 / 1e-4 = 1e-12 (comment above), wit
 
 
 def road(*spots, **params):
-    return refracta.PhysicalAtmosphere(surface_dt=params.pop("surface_dt", 10.0), surface_depth=0.1,
-                                       hot_spots=list(spots), **params)
+    return refracta.PhysicalAtmosphere(
+        surface_dt=params.pop("surface_dt", 10.0), surface_depth=0.1, hot_spots=list(spots), **params
+    )
 
 
 def test_spot_parameters_are_named_and_read_back():
-    field = road(refracta.HotSpot(100.0, -3.0, 8.0, 15.0, footprint="compact"),
-                 refracta.HotSpot(40.0, 5.0, 2.0, -4.0, depth=0.3))
+    field = road(
+        refracta.HotSpot(100.0, -3.0, 8.0, 15.0, footprint="compact"), refracta.HotSpot(40.0, 5.0, 2.0, -4.0, depth=0.3)
+    )
     names = field.param_names
     assert names[-10:] == [f"hot_spot{i}_{k}" for i in (0, 1) for k in ("x", "z", "radius", "dt", "depth")]
     assert field.params["hot_spot1_depth"] == 0.3
@@ -41,7 +43,8 @@ def test_a_spot_search_box_follows_the_spot_however_the_field_was_made(model):
     # spot's): a field from with_params has the bounds of one made with those values.
     made = model(hot_spots=[refracta.HotSpot(60.0, 5.0, 2.0, -0.5, footprint="compact")])
     moved = model(hot_spots=[refracta.HotSpot(30.0, 0.0, 10.0, 1.0, footprint="compact")]).with_params(
-        hot_spot0_x=60.0, hot_spot0_z=5.0, hot_spot0_radius=2.0, hot_spot0_dt=-0.5)
+        hot_spot0_x=60.0, hot_spot0_z=5.0, hot_spot0_radius=2.0, hot_spot0_dt=-0.5
+    )
     assert moved.params == made.params
     assert moved.bounds == made.bounds
     assert moved.bounds["hot_spot0_radius"] == (0.1, 40.0) and moved.bounds["hot_spot0_dt"][0] <= -0.5
@@ -55,7 +58,7 @@ def test_temperature_excess_follows_the_footprint():
     field = road(spot, surface_dt=0.0)
     h = 0.1
     for r in (0.0, 2.0, 5.0, 9.0):
-        F = np.exp(-r**2 / (2 * 25.0))
+        F = np.exp(-(r**2) / (2 * 25.0))
         # Same excess at this height from a surface layer: dt_s e^(-h/0.2) = 6 F e^(-h/0.2).
         layered = refracta.PhysicalAtmosphere(surface_dt=6.0 * F, surface_depth=0.2)
         # The layer also lowers its column's pressure at h (by ~2e-7: hydrostatic), the spot does
@@ -98,8 +101,10 @@ def test_regions_bound_where_the_field_differs_from_its_height_only_part():
 @pytest.mark.parametrize("model", ["physical", "logistic"])
 def test_gradient_matches_central_differences(footprint, model):
     if model == "physical":
-        field = road(refracta.HotSpot(1.0, -0.5, 2.0, 12.0, depth=0.15, footprint=footprint),
-                     refracta.HotSpot(-1.0, 1.0, 1.5, -5.0, footprint=footprint))
+        field = road(
+            refracta.HotSpot(1.0, -0.5, 2.0, 12.0, depth=0.15, footprint=footprint),
+            refracta.HotSpot(-1.0, 1.0, 1.5, -5.0, footprint=footprint),
+        )
     else:
         field = refracta.LogisticProfile(hot_spots=[refracta.HotSpot(1.0, -0.5, 2.0, 0.8, footprint=footprint)])
     rng = np.random.default_rng(4)
@@ -147,7 +152,7 @@ def test_level_ray_turns_away_from_a_gaussian_spot(offset):
     sideways = np.arctan2(direction[2], direction[0])
     n = field.height_only_part.ior(start)
     delta = (n - 1) * dt * np.exp(-h / depth) / T
-    expected = delta / n * np.sqrt(2 * np.pi) * offset / rho * np.exp(-offset**2 / (2 * rho**2))
+    expected = delta / n * np.sqrt(2 * np.pi) * offset / rho * np.exp(-(offset**2) / (2 * rho**2))
     if offset == 0.0:
         assert abs(sideways) < 1e-15  # through the centre: stays in its vertical plane
         assert np.max(np.abs(path.points[:, 2])) < 1e-12
@@ -156,16 +161,19 @@ def test_level_ray_turns_away_from_a_gaussian_spot(offset):
         assert sideways == pytest.approx(expected, rel=DEFLECTION_FIRST_ORDER)
 
 
-@pytest.mark.parametrize("bad, match", [
-    (dict(radius=0.0), "radius must be > 0"),
-    (dict(radius=-1.0), "radius must be > 0"),
-    (dict(depth=0.0), "depth must be > 0"),
-    (dict(depth=-0.1), "depth must be > 0"),
-    (dict(x=float("nan")), "x must be finite"),
-    (dict(z=float("inf")), "z must be finite"),
-    (dict(dt=float("nan")), "dt must be finite"),
-    (dict(footprint="square"), "footprint must be 'gaussian' or 'compact'"),
-])
+@pytest.mark.parametrize(
+    "bad, match",
+    [
+        (dict(radius=0.0), "radius must be > 0"),
+        (dict(radius=-1.0), "radius must be > 0"),
+        (dict(depth=0.0), "depth must be > 0"),
+        (dict(depth=-0.1), "depth must be > 0"),
+        (dict(x=float("nan")), "x must be finite"),
+        (dict(z=float("inf")), "z must be finite"),
+        (dict(dt=float("nan")), "dt must be finite"),
+        (dict(footprint="square"), "footprint must be 'gaussian' or 'compact'"),
+    ],
+)
 def test_bad_hot_spots_are_refused(bad, match):
     args = dict(x=0.0, z=0.0, radius=1.0, dt=5.0)
     args.update(bad)

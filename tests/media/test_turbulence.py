@@ -41,6 +41,7 @@ def measured_structure_function(layer, r, pairs, rng, size):
 
 # -- 1. the spectrum and the closed forms ----------------------------------------------------------
 
+
 def test_spectrum_constant_gives_kolmogorov_structure_function():
     # D(r) = 8 pi int kappa^2 Phi(kappa) (1 - sin(kappa r) / (kappa r)) dkappa = C_n^2 r^(2/3)
     # for l0 -> 0, L0 -> inf exactly when the constant is 5 / (18 pi Gamma(1/3)).
@@ -65,13 +66,19 @@ def test_point_tilt_variance_is_the_hypergeometric_closed_form(outer_scale):
     cn2, length, l0 = 2e-13, 150.0, 0.004
     value = tb.tilt_variance(cn2, length, inner_scale=l0, outer_scale=outer_scale)
     if np.isinf(outer_scale):
-        expected = math.pi ** 2 * tb.SPECTRUM_CONSTANT * math.gamma(1 / 6) * (5.92 / l0) ** (1 / 3) * cn2 * length
+        expected = math.pi**2 * tb.SPECTRUM_CONSTANT * math.gamma(1 / 6) * (5.92 / l0) ** (1 / 3) * cn2 * length
         # Half a unit in the last of 3.280's four digits.
         assert expected / (cn2 * length * l0 ** (-1 / 3)) == pytest.approx(3.280, abs=5e-4)
     else:
         kappa0, kappa_m = 2 * math.pi / outer_scale, 5.92 / l0
-        expected = (math.pi ** 2 * tb.SPECTRUM_CONSTANT * cn2 * length * kappa0 ** (1 / 3)
-                    * scipy_special.hyperu(2, 7 / 6, (kappa0 / kappa_m) ** 2))
+        expected = (
+            math.pi**2
+            * tb.SPECTRUM_CONSTANT
+            * cn2
+            * length
+            * kappa0 ** (1 / 3)
+            * scipy_special.hyperu(2, 7 / 6, (kappa0 / kappa_m) ** 2)
+        )
     assert value == pytest.approx(expected, rel=QUADRATURE_TOLERANCE)
 
 
@@ -86,6 +93,7 @@ def test_aperture_tilt_variance_constants():
 
 
 # -- 2. the realised pattern against C_n^2 r^(2/3) and the ensemble ----------------------------------
+
 
 @pytest.mark.slow
 def test_realised_structure_function_is_kolmogorov_over_a_decade():
@@ -136,6 +144,7 @@ def test_inertial_range_of_the_grid_sizes():
 
 
 # -- 3. tiling, seeding, wind, envelope, fields -------------------------------------------------------
+
 
 def test_pattern_tiles_with_the_period_of_the_grid():
     # Periodic along the lattice's axes, which are turned by yaw about the vertical: x' = (cos, 0,
@@ -189,9 +198,10 @@ def test_envelope_weights_the_pattern_with_height():
 def test_fields_add_the_pattern_to_their_air():
     air = refracta.Turbulence(1e-10, cells=16, spacing=0.05, depth=0.2, seed=4)
     p = np.random.default_rng(5).uniform([0, 0, 0], [3, 0.5, 3], (30, 3))
-    for calm, stirred in [(refracta.PhysicalAtmosphere(surface_dt=8.0),
-                           refracta.PhysicalAtmosphere(surface_dt=8.0, turbulence=air)),
-                          (refracta.LogisticProfile(), refracta.LogisticProfile(turbulence=air))]:
+    for calm, stirred in [
+        (refracta.PhysicalAtmosphere(surface_dt=8.0), refracta.PhysicalAtmosphere(surface_dt=8.0, turbulence=air)),
+        (refracta.LogisticProfile(), refracta.LogisticProfile(turbulence=air)),
+    ]:
         dn, grad = air.evaluate(p)
         # n ~ 1 minus n ~ 1: a few ulps of 1 (2.2e-16 each).
         np.testing.assert_allclose(stirred.ior(p) - calm.ior(p), dn, rtol=0, atol=1e-15)
@@ -201,6 +211,7 @@ def test_fields_add_the_pattern_to_their_air():
 
 
 # -- 4. angle of arrival ----------------------------------------------------------------------------
+
 
 @pytest.mark.slow
 def test_angle_of_arrival_of_traced_rays_matches_the_realisations_expectation():
@@ -228,7 +239,7 @@ def test_angle_of_arrival_of_traced_rays_matches_the_realisations_expectation():
         measured = 0.5 * (np.mean((turn @ e1) ** 2) + np.mean((turn @ e2) ** 2))
         ratios.append(measured / air.angle_of_arrival_variance(length, direction=t))
     scatter = air.angle_of_arrival_scatter(length, direction=t)
-    sigma = math.sqrt(scatter ** 2 + 1.0 / rays) / math.sqrt(seeds)
+    sigma = math.sqrt(scatter**2 + 1.0 / rays) / math.sqrt(seeds)
     assert abs(np.mean(ratios) - 1.0) <= 3.5 * sigma, (ratios, sigma)
 
 
@@ -241,7 +252,9 @@ def test_angle_of_arrival_grows_with_path_length_and_shrinks_with_aperture():
     # Along a lattice axis a path longer than the tile sees the same modes again: the variance
     # grows as L^2, not L (the tiling's artefact the docs warn of).
     axis = (math.cos(air.yaw), 0.0, math.sin(air.yaw))
-    along_axis = air.angle_of_arrival_variance(16.0, direction=axis) / air.angle_of_arrival_variance(1.6, direction=axis)
+    along_axis = air.angle_of_arrival_variance(16.0, direction=axis) / air.angle_of_arrival_variance(
+        1.6, direction=axis
+    )
     assert along_axis == pytest.approx(100.0, rel=1e-3)  # 1.6 m is one tile, 16 m ten: L^2 exactly, up to rounding
     # The lattice turned by yaw: a level ray along x crosses 10 tiles quasi-periodically, its
     # variance growing far slower than L^2 (measured 18.9x; L: 10x, the lowest modes partly coherent).
@@ -251,20 +264,24 @@ def test_angle_of_arrival_grows_with_path_length_and_shrinks_with_aperture():
 
 # -- 5. bad input, memory, pickling -------------------------------------------------------------------
 
-@pytest.mark.parametrize("kwargs, message", [
-    (dict(cn2=-1e-14), "cn2 must be >= 0"),
-    (dict(cn2=float("nan")), "cn2 must be >= 0"),
-    (dict(outer_scale=0.0), "outer_scale must be > 0"),
-    (dict(inner_scale=-0.01), "inner_scale must be > 0"),
-    (dict(inner_scale=float("nan")), "inner_scale must be > 0"),
-    (dict(spacing=0.0), "spacing must be > 0"),
-    (dict(depth=-1.0), "depth must be > 0"),
-    (dict(seed=-3), "seed must be a whole number"),
-    (dict(wind=(1.0, float("inf"))), "wind must be"),
-    (dict(wind=3.0), "wind must be"),
-    (dict(cells=4), "cells must be a whole number >= 8"),
-    (dict(cells=16, size=2.0), "give cells or size, not both"),
-])
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(cn2=-1e-14), "cn2 must be >= 0"),
+        (dict(cn2=float("nan")), "cn2 must be >= 0"),
+        (dict(outer_scale=0.0), "outer_scale must be > 0"),
+        (dict(inner_scale=-0.01), "inner_scale must be > 0"),
+        (dict(inner_scale=float("nan")), "inner_scale must be > 0"),
+        (dict(spacing=0.0), "spacing must be > 0"),
+        (dict(depth=-1.0), "depth must be > 0"),
+        (dict(seed=-3), "seed must be a whole number"),
+        (dict(wind=(1.0, float("inf"))), "wind must be"),
+        (dict(wind=3.0), "wind must be"),
+        (dict(cells=4), "cells must be a whole number >= 8"),
+        (dict(cells=16, size=2.0), "give cells or size, not both"),
+    ],
+)
 def test_bad_arguments_raise_value_error_naming_them(kwargs, message):
     with pytest.raises(ValueError, match=message):
         refracta.Turbulence(**kwargs)
@@ -277,10 +294,12 @@ def test_every_problem_is_reported_at_once():
 
 def test_a_grid_too_large_for_memory_is_refused_naming_its_size():
     needed = refracta.Turbulence.memory_needed(4096)
-    assert needed > 8 * 4096 ** 3
+    assert needed > 8 * 4096**3
     with pytest.raises(ValueError, match=rf"a 4096\^3 grid needs about {needed:.0f} bytes .* more than the limit"):
         refracta.Turbulence(cells=4096)
-    with pytest.raises(ValueError, match=r"a 64\^3 grid needs about \d+ bytes \(\d+\.\d MB\) .* limit of 1000000 bytes \(1.0 MB\)"):
+    with pytest.raises(
+        ValueError, match=r"a 64\^3 grid needs about \d+ bytes \(\d+\.\d MB\) .* limit of 1000000 bytes \(1.0 MB\)"
+    ):
         refracta.Turbulence(cells=64, max_bytes=1e6)
 
 

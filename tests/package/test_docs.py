@@ -12,8 +12,23 @@ DOCS = pathlib.Path(__file__).resolve().parents[2] / "python" / "docs"
 
 @pytest.mark.slow
 def test_sphinx_builds_the_docs_without_warnings(tmp_path):
-    out = subprocess.run([sys.executable, "-m", "sphinx", "-E", "-W", "--keep-going", "-q", "-b", "html",
-                          str(DOCS), str(tmp_path / "html")], capture_output=True, text=True)
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "sphinx",
+            "-E",
+            "-W",
+            "--keep-going",
+            "-q",
+            "-b",
+            "html",
+            str(DOCS),
+            str(tmp_path / "html"),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert out.returncode == 0, out.stderr
     index = (tmp_path / "html" / "index.html").read_text()
     assert "refracta" in index

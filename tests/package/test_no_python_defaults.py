@@ -36,8 +36,7 @@ def numeric(value) -> bool:
 @pytest.mark.parametrize("function, mirrored, inputs", MIRRORS, ids=lambda v: getattr(v, "__qualname__", ""))
 def test_no_numeric_default_in_the_signature(function, mirrored, inputs):
     signature = inspect.signature(function)
-    written = {p.name: p.default for p in signature.parameters.values()
-               if p.name not in inputs and numeric(p.default)}
+    written = {p.name: p.default for p in signature.parameters.values() if p.name not in inputs and numeric(p.default)}
     assert written == {}, f"{function.__qualname__} writes defaults that belong to C++: {written}"
 
 
@@ -49,12 +48,16 @@ def test_the_check_itself_sees_a_numeric_default():
     assert flagged == ["spp", "speed"]
 
 
-@pytest.mark.parametrize("function, mirrored, inputs", [m for m in MIRRORS if m[1] is not None],
-                         ids=lambda v: getattr(v, "__qualname__", ""))
+@pytest.mark.parametrize(
+    "function, mirrored, inputs", [m for m in MIRRORS if m[1] is not None], ids=lambda v: getattr(v, "__qualname__", "")
+)
 def test_the_mirrored_class_has_documented_fields(function, mirrored, inputs):
     # The class the keywords go to carries the defaults and their documentation.
-    fields = [name for name in dir(mirrored) if isinstance(getattr(mirrored, name, None), property)
-              and not name.startswith("_")]
+    fields = [
+        name
+        for name in dir(mirrored)
+        if isinstance(getattr(mirrored, name, None), property) and not name.startswith("_")
+    ]
     assert fields, mirrored
     for name in fields:
         assert getattr(mirrored, name).__doc__, f"{mirrored.__name__}.{name} has no docstring"

@@ -111,8 +111,15 @@ def venv(dist, tmp_path_factory):
 def test_sdist_holds_the_sources_and_no_build_products(dist):
     with tarfile.open(dist[0]) as archive:
         names = {name.split("/", 1)[1] for name in archive.getnames() if "/" in name}
-    for needed in ("pyproject.toml", "CMakeLists.txt", "LICENSE", "README.md", "cpp/refracta/bindings/module.cpp",
-                   "python/refracta/__init__.py", "python/refracta/_core.pyi"):
+    for needed in (
+        "pyproject.toml",
+        "CMakeLists.txt",
+        "LICENSE",
+        "README.md",
+        "cpp/refracta/bindings/module.cpp",
+        "python/refracta/__init__.py",
+        "python/refracta/_core.pyi",
+    ):
         assert needed in names, needed
     assert not [n for n in names if n.startswith(("build/", "out/")) or n.endswith(".so")]
 

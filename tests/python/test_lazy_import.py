@@ -4,8 +4,22 @@ import json
 import subprocess
 import sys
 
-SUBMODULES = ["cli", "compare", "edit", "examples", "io", "lights", "moments", "oit", "plot", "raster",
-              "scene_file", "shading", "spectrum", "testing"]
+SUBMODULES = [
+    "cli",
+    "compare",
+    "edit",
+    "examples",
+    "io",
+    "lights",
+    "moments",
+    "oit",
+    "plot",
+    "raster",
+    "scene_file",
+    "shading",
+    "spectrum",
+    "testing",
+]
 
 
 def run_python(code: str) -> dict:
@@ -18,7 +32,8 @@ def test_import_refracta_does_not_import_matplotlib_or_the_heavy_submodules():
     result = run_python(
         "import json, sys, refracta\n"
         "print(json.dumps(sorted(m for m in sys.modules if m == 'matplotlib' or m.startswith(('matplotlib.', "
-        "'refracta.edit', 'refracta.plot', 'refracta.compare', 'refracta.examples', 'refracta.cli')))))")
+        "'refracta.edit', 'refracta.plot', 'refracta.compare', 'refracta.examples', 'refracta.cli')))))"
+    )
     assert result == []
 
 
@@ -28,7 +43,8 @@ def test_every_submodule_is_an_attribute_after_import_refracta():
         f"names = {SUBMODULES!r}\n"
         "listed = set(dir(refracta))\n"
         "print(json.dumps({n: [isinstance(getattr(refracta, n), types.ModuleType),"
-        " getattr(refracta, n).__name__, n in listed] for n in names}))")
+        " getattr(refracta, n).__name__, n in listed] for n in names}))"
+    )
     for name in SUBMODULES:
         assert result[name] == [True, f"refracta.{name}", True], name
 
@@ -40,5 +56,6 @@ def test_unknown_attribute_raises_attribute_error():
         "    refracta.no_such_module\n"
         "    print(json.dumps('no error'))\n"
         "except AttributeError as error:\n"
-        "    print(json.dumps(str(error)))")
+        "    print(json.dumps(str(error)))"
+    )
     assert "no_such_module" in result

@@ -48,8 +48,14 @@ def run_isolated(code: str, tmp_path):
     """(stdout, stderr) of `code` in a fresh interpreter, run in tmp_path with its own empty
     temporary folder tmp_path/tmp (where glog would put log files, and textures are prepared)."""
     (tmp_path / "tmp").mkdir(exist_ok=True)
-    out = subprocess.run([sys.executable, "-c", textwrap.dedent(code)], cwd=tmp_path, capture_output=True,
-                         text=True, timeout=300, env={**os.environ, "TMPDIR": str(tmp_path / "tmp")})
+    out = subprocess.run(
+        [sys.executable, "-c", textwrap.dedent(code)],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={**os.environ, "TMPDIR": str(tmp_path / "tmp")},
+    )
     assert out.returncode == 0, out.stderr
     return out.stdout, out.stderr
 
@@ -76,6 +82,7 @@ def test_ceres_messages_are_silent_without_logging_configuration(tmp_path):
 
 def test_png_texture_with_an_icc_profile_prints_nothing(tmp_path):
     from PIL import Image, ImageCms  # Pillow: a dependency of matplotlib
+
     profile = ImageCms.ImageCmsProfile(ImageCms.createProfile("sRGB")).tobytes()
     texture = tmp_path / "icc.png"
     Image.new("RGB", (8, 8), (200, 120, 40)).save(texture, icc_profile=profile)

@@ -44,8 +44,16 @@ def test_ray_fan_rejects_bad_input(hot_road):
 def test_demo_writes_the_renders_and_ray_fans(tmp_path):
     assert cli.main(["demo", "--out", str(tmp_path), "--size", "72x24"]) == 0
     written = sorted(p.name for p in tmp_path.glob("*.png"))
-    assert written == ["cold_sea.png", "fata_morgana.png", "green_flash.png", "hot_road.png", "hot_spot.png",
-                       "rays_cold_sea.png", "rays_editor.png", "rays_hot_road.png"]
+    assert written == [
+        "cold_sea.png",
+        "fata_morgana.png",
+        "green_flash.png",
+        "hot_road.png",
+        "hot_spot.png",
+        "rays_cold_sea.png",
+        "rays_editor.png",
+        "rays_hot_road.png",
+    ]
     assert all((tmp_path / name).stat().st_size > 5_000 for name in written)
     from PIL import Image  # (Pillow: matplotlib's dependency, which animate writes GIFs with)
 

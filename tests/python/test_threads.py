@@ -12,6 +12,7 @@ from refracta.edit import PointPair, solve
 @pytest.fixture
 def threads():
     """Calls fn() with 1 and then 2 threads; restores the default (every core) afterwards."""
+
     def with_threads(fn):
         results = []
         for n in (1, 2):
@@ -19,12 +20,14 @@ def threads():
             assert refracta.get_threads() == n
             results.append(fn())
         return results
+
     yield with_threads
     refracta.set_threads(None)
 
 
 def test_set_threads_none_or_zero_restores_every_core():
     import os
+
     cores = len(os.sched_getaffinity(0))
     refracta.set_threads(1)
     assert refracta.get_threads() == 1
@@ -43,8 +46,9 @@ def test_set_threads_rejects_negative():
 @pytest.mark.slow
 def test_curved_render_is_bit_identical_with_one_and_two_threads(threads):
     road = examples.hot_road(48, 20)
-    one, two = threads(lambda: refracta.render(road.scene, road.camera, road.field, max_length=road.max_length,
-                                                spp=2, progress=False))
+    one, two = threads(
+        lambda: refracta.render(road.scene, road.camera, road.field, max_length=road.max_length, spp=2, progress=False)
+    )
     assert np.array_equal(one, two)
     assert np.isfinite(one).all() and one.max() > 0.0
 
@@ -53,16 +57,20 @@ def test_trace_rays_is_bit_identical_with_one_and_two_threads(threads, hot_road)
     e = np.radians(np.linspace(-0.5, 0.3, 257))
     directions = np.c_[np.cos(e), np.sin(e), 0 * e]
     for method in ("rk45", "stratified"):
-        one, two = threads(lambda method=method: refracta.trace_rays(hot_road, [0, 1.5, 0], directions, trace=method,
-                                                        max_length=800.0, stop_height=0.0, progress=False))
+        one, two = threads(
+            lambda method=method: refracta.trace_rays(
+                hot_road, [0, 1.5, 0], directions, trace=method, max_length=800.0, stop_height=0.0, progress=False
+            )
+        )
         for a, b in zip(one, two):
             assert np.array_equal(a, b), method
 
 
 def test_render_raster_is_bit_identical_with_one_and_two_threads(threads):
     road = examples.hot_road(64, 24)
-    one, two = threads(lambda: refracta.render_raster(road.scene, road.camera, shadows="msm_hamburger",
-                                                       resolution=256, progress=False))
+    one, two = threads(
+        lambda: refracta.render_raster(road.scene, road.camera, shadows="msm_hamburger", resolution=256, progress=False)
+    )
     assert np.array_equal(one, two)
 
 

@@ -37,8 +37,9 @@ def test_bounds_are_ordered_vsm_hamburger_hausdorff_pcf(rng, depth_range):
 
 def test_generic_kernel_matches_the_closed_form(rng):
     b, z_f, _ = random_texels(rng)
-    np.testing.assert_allclose(M.shadow_intensity(b, z_f, "canonical"), M.shadow_intensity(b, z_f, "msm_hamburger"),
-                               atol=KERNEL_AGREEMENT)
+    np.testing.assert_allclose(
+        M.shadow_intensity(b, z_f, "canonical"), M.shadow_intensity(b, z_f, "msm_hamburger"), atol=KERNEL_AGREEMENT
+    )
 
 
 def test_shadow_intensity_never_decreases_with_receiver_depth(rng):
@@ -70,8 +71,12 @@ def test_filtering_commutes_with_the_moment_map(rng):
 
 @pytest.mark.parametrize("method", ["vsm", "msm_hamburger", "msm_hausdorff", "canonical"])
 def test_degenerate_texels_never_give_nan(method):
-    cases = [M.power_moments(np.full(4, 0.5)), M.power_moments(np.zeros(4)), M.power_moments(np.ones(4)),
-             M.power_moments(np.array([0.0, 1.0]))]
+    cases = [
+        M.power_moments(np.full(4, 0.5)),
+        M.power_moments(np.zeros(4)),
+        M.power_moments(np.ones(4)),
+        M.power_moments(np.array([0.0, 1.0])),
+    ]
     for b in cases:
         for bias in (None, 0.0):
             s = M.shadow_intensity(b, np.linspace(0, 1, 11), method, bias=bias)
@@ -122,8 +127,18 @@ def test_no_bias_means_the_published_one_for_the_storage(rng, depth_range, stora
     # shadow maps use too (one rule, in C++).
     b, z_f, _ = random_texels(rng, signed=depth_range == "signed")
     published = refracta.MomentShadowSettings.published_bias(depth_range, storage)
-    assert published == {("unit", "unorm16"): 3e-5, ("signed", "unorm16"): 6e-5,
-                         ("unit", "fp32"): 3e-6, ("signed", "fp32"): 3e-7,
-                         ("unit", "fp64"): 3e-6, ("signed", "fp64"): 3e-7}[(depth_range, storage)]
-    np.testing.assert_array_equal(M.shadow_intensity(b, z_f, depth_range=depth_range, storage=storage),
-                                  M.shadow_intensity(b, z_f, depth_range=depth_range, storage=storage, bias=published))
+    assert (
+        published
+        == {
+            ("unit", "unorm16"): 3e-5,
+            ("signed", "unorm16"): 6e-5,
+            ("unit", "fp32"): 3e-6,
+            ("signed", "fp32"): 3e-7,
+            ("unit", "fp64"): 3e-6,
+            ("signed", "fp64"): 3e-7,
+        }[(depth_range, storage)]
+    )
+    np.testing.assert_array_equal(
+        M.shadow_intensity(b, z_f, depth_range=depth_range, storage=storage),
+        M.shadow_intensity(b, z_f, depth_range=depth_range, storage=storage, bias=published),
+    )

@@ -31,8 +31,11 @@ def test_peeling_with_enough_layers_is_exact_and_fewer_drop_the_farthest(rng):
     np.testing.assert_array_equal(oit.composite(depths, alphas, colors, method="peel", layers=6), exact)
     near = np.argsort(depths)[:3]
     # The same compositing arithmetic on the same 3 layers: rounding.
-    np.testing.assert_allclose(oit.composite(depths, alphas, colors, method="peel", layers=3),
-                               oit.composite(depths[near], alphas[near], colors[near]), atol=1e-15)
+    np.testing.assert_allclose(
+        oit.composite(depths, alphas, colors, method="peel", layers=3),
+        oit.composite(depths[near], alphas[near], colors[near]),
+        atol=1e-15,
+    )
 
 
 VARIANTS = [("power", 4), ("power", 6), ("power", 8), ("trigonometric", 2), ("trigonometric", 3), ("trigonometric", 4)]
@@ -45,8 +48,11 @@ def test_mboit_is_order_independent(rng, kind, moments):
     for order in itertools.islice(itertools.permutations(range(5)), 0, 120, 7):
         order = list(order)
         # Order independence: the moments are sums, in double, whose order only changes rounding.
-        np.testing.assert_allclose(oit.composite(depths[order], alphas[order], colors[order], method="mboit",
-                                                 moments=moments, kind=kind), reference, atol=1e-12)
+        np.testing.assert_allclose(
+            oit.composite(depths[order], alphas[order], colors[order], method="mboit", moments=moments, kind=kind),
+            reference,
+            atol=1e-12,
+        )
 
 
 @pytest.mark.parametrize("kind, moments", VARIANTS)
@@ -71,8 +77,13 @@ def test_mboit_is_exact_for_up_to_n_plus_one_fragments_with_beta_zero(rng, momen
 def test_a_single_fragment_is_exact_for_any_beta(kind, moments):
     for beta in (0.0, 0.25, 1.0):
         # One layer: MBOIT's closed form, rounding only.
-        np.testing.assert_allclose(oit.composite([4.0], [0.6], [[0.9, 0.5, 0.1]], (0, 0, 1), method="mboit", beta=beta,
-                                                 kind=kind, moments=moments), [0.54, 0.3, 0.06 + 0.4], atol=1e-12)
+        np.testing.assert_allclose(
+            oit.composite(
+                [4.0], [0.6], [[0.9, 0.5, 0.1]], (0, 0, 1), method="mboit", beta=beta, kind=kind, moments=moments
+            ),
+            [0.54, 0.3, 0.06 + 0.4],
+            atol=1e-12,
+        )
 
 
 @pytest.mark.parametrize("kind, counts", [("power", (4, 6, 8)), ("trigonometric", (2, 3, 4))])
@@ -102,11 +113,22 @@ def test_wboit_is_exact_for_one_fragment_and_keeps_coverage(rng):
 def test_degenerate_pixels_never_give_nan(method):
     kind = "trigonometric" if method == "mboit_trig" else "power"
     method = "mboit" if method == "mboit_trig" else method
-    cases = [([], [], np.zeros((0, 3))), ([5.0] * 4, [0.5] * 4, np.ones((4, 3))), ([2.0, 3.0], [1.0, 1.0], np.ones((2, 3))),
-             ([2.0, 3.0], [0.0, 0.0], np.ones((2, 3)))]
+    cases = [
+        ([], [], np.zeros((0, 3))),
+        ([5.0] * 4, [0.5] * 4, np.ones((4, 3))),
+        ([2.0, 3.0], [1.0, 1.0], np.ones((2, 3))),
+        ([2.0, 3.0], [0.0, 0.0], np.ones((2, 3))),
+    ]
     for depths, alphas, colors in cases:
-        result = oit.composite(depths, alphas, colors, (0.5, 0.5, 0.5), method=method, kind=kind,
-                               moments=3 if kind == "trigonometric" else 4)
+        result = oit.composite(
+            depths,
+            alphas,
+            colors,
+            (0.5, 0.5, 0.5),
+            method=method,
+            kind=kind,
+            moments=3 if kind == "trigonometric" else 4,
+        )
         assert np.all(np.isfinite(result)), (depths, alphas)
 
 
@@ -137,8 +159,11 @@ def test_bad_arguments_raise(kwargs, message):
 # (2.8e-5 in w0 alone, 8 moments, atoms 1e-4 apart) is the Vandermonde solve's, which clamps a
 # negative weight to 0 where the Christoffel number 1 / K(z, z) stays positive.
 FAST_BOUND_TOLERANCE = 1e-5
-FP32_BIAS = {4: ([0, .375, 0, .375], 5e-7), 6: ([0, .48, 0, .451, 0, .45], 5e-6),
-             8: ([0, .75, 0, .676667, 0, .63, 0, .600303], 5e-5)}
+FP32_BIAS = {
+    4: ([0, 0.375, 0, 0.375], 5e-7),
+    6: ([0, 0.48, 0, 0.451, 0, 0.45], 5e-6),
+    8: ([0, 0.75, 0, 0.676667, 0, 0.63, 0, 0.600303], 5e-5),
+}
 
 
 @pytest.mark.parametrize("moments", [4, 6, 8])
@@ -153,7 +178,7 @@ def test_per_pixel_fast_bound_equals_the_general_solver(rng, moments):
             atoms = atoms[0] + rng.normal(0.0, 1e-4, count)
         weights = rng.uniform(0.01, 1.0, count)
         weights /= weights.sum()
-        b = np.array([np.sum(weights * atoms ** j) for j in range(moments + 1)])
+        b = np.array([np.sum(weights * atoms**j) for j in range(moments + 1)])
         b[1:] = (1 - strength) * b[1:] + strength * np.array(target)
         queries = np.concatenate([rng.uniform(-1.0, 1.0, 12), atoms, atoms + 1e-6])
         lower, at_query, fallback = _core._power_moment_bound(list(b), queries)
@@ -168,7 +193,7 @@ def test_per_pixel_fast_bound_equals_the_general_solver(rng, moments):
 def test_fast_bound_falls_back_like_the_general_solver_on_a_singular_hankel_matrix(moments):
     from refracta import _core
 
-    b = [0.3 ** j for j in range(moments + 1)]  # one atom at 0.3, unbiased: rank-1 Hankel matrix
+    b = [0.3**j for j in range(moments + 1)]  # one atom at 0.3, unbiased: rank-1 Hankel matrix
     lower, at_query, fallback = _core._power_moment_bound(b, [0.1, 0.3, 0.7])
     assert np.all(fallback == 1.0) and np.all(lower == 0.0) and np.all(at_query == 1.0)
     assert all(_core._canonical_bound(b, z)[2] for z in (0.1, 0.3, 0.7))
@@ -182,8 +207,13 @@ def test_a_clear_fragment_changes_nothing_even_first(rng, kind, moments):
     storages = ["fp32", "unorm16"] if kind == "power" or moments == 3 else ["fp32"]
     for storage in storages:
         options = dict(method="mboit", moments=moments, kind=kind, storage=storage, z_range=(0.5, 60.0))
-        with_clear = oit.composite(np.r_[0.5 * depths.min(), depths], np.r_[0.0, alphas], np.r_[[[1, 1, 1]], colors],
-                                   (0.2, 0.3, 0.4), **options)
+        with_clear = oit.composite(
+            np.r_[0.5 * depths.min(), depths],
+            np.r_[0.0, alphas],
+            np.r_[[[1, 1, 1]], colors],
+            (0.2, 0.3, 0.4),
+            **options,
+        )
         plain = oit.composite(depths, alphas, colors, (0.2, 0.3, 0.4), **options)
         # A clear (alpha 0) fragment adds zeros: rounding only.
         np.testing.assert_allclose(with_clear, plain, atol=1e-12)
@@ -193,5 +223,6 @@ def test_the_old_trig_spelling_still_works_with_a_warning():
     depths, alphas, colors = [2.0, 5.0, 9.0], [0.5, 0.3, 0.6], [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
     with pytest.warns(DeprecationWarning, match="trigonometric"):
         legacy = oit.composite(depths, alphas, colors, method="mboit", moments=3, kind="trig")
-    np.testing.assert_array_equal(legacy, oit.composite(depths, alphas, colors, method="mboit", moments=3,
-                                                        basis="trigonometric"))
+    np.testing.assert_array_equal(
+        legacy, oit.composite(depths, alphas, colors, method="mboit", moments=3, basis="trigonometric")
+    )

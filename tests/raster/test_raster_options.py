@@ -45,8 +45,12 @@ def test_validate_lists_every_problem_of_the_nested_options():
     options.transparency.mboit.beta = -1.0
     with pytest.raises(ValueError) as error:
         options.validate()
-    for problem in ("tile must be >= 1", "kernel must be an odd size", "bias must be in [0, 1)",
-                    "beta must be in [0, 1]"):
+    for problem in (
+        "tile must be >= 1",
+        "kernel must be an odd size",
+        "bias must be in [0, 1)",
+        "beta must be in [0, 1]",
+    ):
         assert problem in str(error.value)
 
 
@@ -62,8 +66,17 @@ def test_unset_biases_are_the_published_ones():
 
 def test_flat_keywords_set_the_nested_fields_of_a_copy():
     given = refracta.RasterRenderOptions()
-    options = raster_render_options(given, lights="sun", shadows="pcf", resolution=512, kernel=3, storage="unorm16",
-                                    transparency="peel", layers=2, output="shadow")
+    options = raster_render_options(
+        given,
+        lights="sun",
+        shadows="pcf",
+        resolution=512,
+        kernel=3,
+        storage="unorm16",
+        transparency="peel",
+        layers=2,
+        output="shadow",
+    )
     assert (options.shadows, options.shadow_map.method, options.shadow_map.resolution) == ("map", "pcf", 512)
     assert options.shadow_map.kernel == 3 and options.shadow_map.moments.storage == "unorm16"
     assert options.transparency.method == "peel" and options.transparency.layers == 2
@@ -82,12 +95,15 @@ def test_options_and_keywords_render_the_same_image():
     assert pickle.loads(pickle.dumps(stats)).bytes_per_texel == 16
 
 
-@pytest.mark.parametrize("keywords, message", [
-    (dict(moments=6), "transparency is None"),
-    (dict(resolution=512.5), "resolution"),
-    (dict(options="pcf"), "options must be a refracta.RasterRenderOptions"),
-    (dict(colour="red"), "unknown option 'colour'"),
-])
+@pytest.mark.parametrize(
+    "keywords, message",
+    [
+        (dict(moments=6), "transparency is None"),
+        (dict(resolution=512.5), "resolution"),
+        (dict(options="pcf"), "options must be a refracta.RasterRenderOptions"),
+        (dict(colour="red"), "unknown option 'colour'"),
+    ],
+)
 def test_bad_keywords_name_themselves(keywords, message):
     with pytest.raises(ValueError, match=message):
         refracta.render_raster(lit_box(), CAMERA, **keywords)

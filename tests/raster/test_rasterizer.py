@@ -74,8 +74,9 @@ def test_shared_edges_are_drawn_exactly_once():
     scene = refracta.Scene()
     # An orthographic-like square 10 m ahead filling the middle of a 60 deg, 40 x 40 camera.
     half = 10.0 * np.tan(np.radians(30.0)) * 0.5
-    scene.add_mesh([[10.0, -half, -half], [10.0, -half, half], [10.0, half, half], [10.0, half, -half]],
-                   [[0, 1, 2], [0, 2, 3]])
+    scene.add_mesh(
+        [[10.0, -half, -half], [10.0, -half, half], [10.0, half, half], [10.0, half, -half]], [[0, 1, 2], [0, 2, 3]]
+    )
     camera = refracta.Camera((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0, 1, 0), 60.0, 40, 40)
     buffers = rasterize(scene, camera)
     covered = buffers.geometry >= 0
@@ -91,7 +92,7 @@ def test_the_guard_band_widens_the_view_around_the_same_pixels():
     assert (ox, oy) == (24, 16)
     assert wide.depth.shape == (64 + 2 * oy, 96 + 2 * ox)
     # Float32 depth buffers, the wider frustum's different rounding: 1e-6.
-    np.testing.assert_allclose(wide.depth[oy:oy + 64, ox:ox + 96], plain.depth, rtol=1e-6)
+    np.testing.assert_allclose(wide.depth[oy : oy + 64, ox : ox + 96], plain.depth, rtol=1e-6)
 
 
 def test_an_empty_scene_draws_nothing():

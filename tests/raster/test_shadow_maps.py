@@ -47,8 +47,16 @@ def test_radiance_with_shadow_rays_equals_the_straight_renderer():
     noise (the difference between two such means), and the image means agree."""
     scene = boxes_in_sun()
     rasterized = refracta.render_raster(scene, CAMERA, shadows="embree")
-    traced = [np.mean([refracta.render(scene, CAMERA, None, method="straight", progress=False, seed=first + k)
-                       for k in range(64)], axis=0) for first in (0, 1000)]
+    traced = [
+        np.mean(
+            [
+                refracta.render(scene, CAMERA, None, method="straight", progress=False, seed=first + k)
+                for k in range(64)
+            ],
+            axis=0,
+        )
+        for first in (0, 1000)
+    ]
     scale = traced[0].max(axis=2) + 1e-6
     difference = np.abs(rasterized - traced[0]).max(axis=2) / scale
     noise = np.abs(traced[1] - traced[0]).max(axis=2) / scale
@@ -59,8 +67,14 @@ def test_radiance_with_shadow_rays_equals_the_straight_renderer():
 
 @pytest.mark.parametrize("kernel", [5, 9])
 def test_filtered_moments_approach_pcf_with_the_same_kernel(kernel):
-    rows, _ = compare.shadows(boxes_in_sun(), CAMERA, methods=("vsm", "msm_hamburger", "msm_hausdorff"),
-                              kernels=(kernel,), figure=False, **MAP)
+    rows, _ = compare.shadows(
+        boxes_in_sun(),
+        CAMERA,
+        methods=("vsm", "msm_hamburger", "msm_hausdorff"),
+        kernels=(kernel,),
+        figure=False,
+        **MAP,
+    )
     errors = {r["method"]: r for r in rows}
     for r in rows:
         assert r["reference"] == f"pcf {kernel}x{kernel}" and r["nan_count"] == 0
@@ -91,8 +105,9 @@ def test_storage_and_depth_range_change_little(storage, depth_range):
 
 
 def test_compare_reports_bits_and_times():
-    rows, fig = compare.shadows(boxes_in_sun(), CAMERA, methods=("hard", "msm_hamburger"), kernels=(1, 3),
-                                storage="unorm16", **MAP)
+    rows, fig = compare.shadows(
+        boxes_in_sun(), CAMERA, methods=("hard", "msm_hamburger"), kernels=(1, 3), storage="unorm16", **MAP
+    )
     bits = {(r["method"], r["kernel"]): r["bits_per_texel"] for r in rows}
     assert bits[("hard", 1)] == 32 and bits[("msm_hamburger", 3)] == 64
     assert all(r["seconds"] > 0 for r in rows)
@@ -100,14 +115,17 @@ def test_compare_reports_bits_and_times():
     assert "msm_hamburger" in compare.format_table(rows)
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(kernel=4), "kernel"),
-    (dict(resolution=1), "resolution"),
-    (dict(shadows="pcss"), "shadows must be"),
-    (dict(storage="fp16"), "storage"),
-    (dict(depth_range="half"), "depth_range"),
-    (dict(bias=1.5), "bias"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(kernel=4), "kernel"),
+        (dict(resolution=1), "resolution"),
+        (dict(shadows="pcss"), "shadows must be"),
+        (dict(storage="fp16"), "storage"),
+        (dict(depth_range="half"), "depth_range"),
+        (dict(bias=1.5), "bias"),
+    ],
+)
 def test_bad_shadow_options_raise_value_error(kwargs, match):
     args = dict(shadows="msm_hamburger")
     args.update(kwargs)

@@ -12,12 +12,13 @@ HEIGHT = 5.0
 
 def lamp_scene(radius=0.0, occluder=True):
     scene = refracta.Scene()
-    scene.set_sky((0.0, 0.0, 0.0))                    # no sky light, no sun: the lamp alone
+    scene.set_sky((0.0, 0.0, 0.0))  # no sky light, no sun: the lamp alone
     scene.set_sun((0, 1, 0), (0.0, 0.0, 0.0))
     scene.add_ground(0.0, 100.0, kd=(KD, KD, KD))
     if occluder:  # lit from the side, its shadow falls beside it where the camera sees it
-        scene.add_spot_light((3.0, HEIGHT, 0.0), (-3.0, -HEIGHT, 0.0), angle=100.0,
-                             intensity=(200.0, 200.0, 200.0), radius=radius)
+        scene.add_spot_light(
+            (3.0, HEIGHT, 0.0), (-3.0, -HEIGHT, 0.0), angle=100.0, intensity=(200.0, 200.0, 200.0), radius=radius
+        )
         scene.add_box((1.5, 1.5, 0.0), (1.0, 0.4, 1.0))
     else:
         scene.add_spot_light((0.0, HEIGHT, 0.0), (0.0, -1.0, 0.0), angle=100.0, intensity=(200.0, 200.0, 200.0))
@@ -34,7 +35,7 @@ def test_ground_radiance_follows_the_inverse_square_law():
     for x, z in [(0.3, 0.2), (2.0, 1.0), (3.5, -1.5)]:
         u, v, _ = CAMERA.project([x, 0.0, z])
         origin, direction = CAMERA.ray(int(u) + 0.5, int(v) + 0.5)
-        point = origin + direction * (-origin[1] / direction[1])      # the pixel centre's ground point
+        point = origin + direction * (-origin[1] / direction[1])  # the pixel centre's ground point
         d2 = point[0] ** 2 + HEIGHT**2 + point[2] ** 2
         expected = KD / np.pi * 200.0 * (HEIGHT / np.sqrt(d2)) / d2
         # Float32 film and Embree's float hit point: ~1e-7 relative each, 1e-5 with margin.
@@ -69,17 +70,24 @@ def test_an_area_light_casts_a_penumbra_that_filtered_moments_follow():
     assert np.any(shadow == 1.0) and np.any((shadow > 0.05) & (shadow < 0.95))
     errors = {}
     for method, kernel in (("hard", 1), ("msm_hamburger", 15)):
-        image = refracta.render_raster(scene, CAMERA, shadows=method, kernel=kernel, output="shadow", shadow_light=0,
-                                       resolution=512)
+        image = refracta.render_raster(
+            scene, CAMERA, shadows=method, kernel=kernel, output="shadow", shadow_light=0, resolution=512
+        )
         valid = (soft[..., 1] > 0) & (image[..., 1] > 0)
         errors[method] = np.abs(image[..., 0] - soft[..., 0])[valid].mean()
     assert errors["msm_hamburger"] < errors["hard"]
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(angle=0.0), "angle"), (dict(angle=200.0), "angle"), (dict(radius=-1.0), "radius"),
-    (dict(direction=(0, 0, 0)), "direction"), (dict(intensity=(1, -1, 1)), "intensity"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(angle=0.0), "angle"),
+        (dict(angle=200.0), "angle"),
+        (dict(radius=-1.0), "radius"),
+        (dict(direction=(0, 0, 0)), "direction"),
+        (dict(intensity=(1, -1, 1)), "intensity"),
+    ],
+)
 def test_bad_spot_lights_raise_value_error(kwargs, match):
     args = dict(position=(0, 5, 0), direction=(0, -1, 0))
     args.update(kwargs)

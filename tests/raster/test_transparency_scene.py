@@ -24,8 +24,9 @@ def glass_scene(slabs=SLABS, alpha=0.5, wall=True):
 
 
 def test_error_falls_with_more_moments():
-    rows, _ = compare.transparency(glass_scene(), CAMERA, methods=("wboit eq7", "mboit 4", "mboit 6", "mboit 8"),
-                                   figure=False, shadows="embree")
+    rows, _ = compare.transparency(
+        glass_scene(), CAMERA, methods=("wboit eq7", "mboit 4", "mboit 6", "mboit 8"), figure=False, shadows="embree"
+    )
     error = {r["method"]: r["mean_error"] for r in rows}
     assert error["mboit 8"] < error["mboit 6"] < error["mboit 4"] < error["wboit eq7"]
     assert all(r["nan_count"] == 0 for r in rows)
@@ -46,7 +47,9 @@ def test_mboit_is_exact_for_up_to_n_plus_one_fragments_with_beta_zero():
 
 def test_compositing_does_not_depend_on_submission_order():
     forward = refracta.render_raster(glass_scene(SLABS), CAMERA, shadows="embree", transparency="mboit", moments=6)
-    backward = refracta.render_raster(glass_scene(SLABS[::-1]), CAMERA, shadows="embree", transparency="mboit", moments=6)
+    backward = refracta.render_raster(
+        glass_scene(SLABS[::-1]), CAMERA, shadows="embree", transparency="mboit", moments=6
+    )
     np.testing.assert_allclose(forward, backward, rtol=1e-6, atol=1e-7)
 
 
@@ -76,12 +79,15 @@ def test_an_opaque_render_ignores_alpha_and_stats_count_fragments():
     assert legacy["transparent_fragments"] == 0 and legacy["seconds"] > 0
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(transparency="sorted"), "method must be"),
-    (dict(transparency="mboit", moments=5), "power moments"),
-    (dict(transparency="mboit", kind="exp"), "kind"),
-    (dict(transparency="wboit", weight="eq8"), "weight"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(transparency="sorted"), "method must be"),
+        (dict(transparency="mboit", moments=5), "power moments"),
+        (dict(transparency="mboit", kind="exp"), "kind"),
+        (dict(transparency="wboit", weight="eq8"), "weight"),
+    ],
+)
 def test_bad_transparency_options_raise_value_error(kwargs, match):
     with pytest.raises(ValueError, match=match):
         refracta.render_raster(glass_scene(), CAMERA, shadows="embree", **kwargs)
@@ -117,6 +123,7 @@ def test_16_bit_mboit_transforms_keep_every_valid_moment_vector_in_range(count, 
     """The 6- and 8-moment quantisation maps moments of any distribution on [-1, 1] into [0, 1]
     (else rounding would clamp): the 16-bit round trip then costs only the rounding, < 2e-3."""
     from refracta import _core
+
     for _ in range(300):
         k = rng.integers(1, 6)
         z, w = rng.uniform(-1, 1, k), rng.dirichlet(np.ones(k))

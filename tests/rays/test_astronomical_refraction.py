@@ -79,11 +79,13 @@ def test_blue_is_lifted_more_than_red():
 def test_setting_sun_is_squashed_to_27_arcmin():
     # A 32' sun whose lower limb touches the apparent horizon: its upper limb is lifted 5' less.
     from scipy.optimize import brentq
+
     air = refracta.PhysicalAtmosphere()
     true_lower = -refracta.astronomical_refraction(air, 0.0) / 60.0  # [deg]
     true_upper = true_lower + 32.0 / 60.0
-    apparent_upper = brentq(lambda e: e - refracta.astronomical_refraction(air, e) / 60.0 - true_upper, 0.0, 1.0,
-                            xtol=1e-10)
+    apparent_upper = brentq(
+        lambda e: e - refracta.astronomical_refraction(air, e) / 60.0 - true_upper, 0.0, 1.0, xtol=1e-10
+    )
     assert apparent_upper * 60.0 == pytest.approx(27.1, abs=0.1)  # the published 27.1' to its last digit
 
 
@@ -95,12 +97,15 @@ def test_higher_eye_sees_below_the_horizontal():
     assert below > level > 30.0  # larger than the horizontal's, which is about 33' (> 30' any standard air gives)
 
 
-@pytest.mark.parametrize("args, match", [
-    (dict(apparent_elevation_deg=91.0), r"in \[-90, 90\] deg"),
-    (dict(apparent_elevation_deg=float("nan")), "finite"),
-    (dict(apparent_elevation_deg=-1.0), "meets the ground"),
-    (dict(apparent_elevation_deg=5.0, eye_height=-1.0), "eye_height must be >= 0"),
-])
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (dict(apparent_elevation_deg=91.0), r"in \[-90, 90\] deg"),
+        (dict(apparent_elevation_deg=float("nan")), "finite"),
+        (dict(apparent_elevation_deg=-1.0), "meets the ground"),
+        (dict(apparent_elevation_deg=5.0, eye_height=-1.0), "eye_height must be >= 0"),
+    ],
+)
 def test_bad_input_is_refused(args, match):
     with pytest.raises(ValueError, match=match):
         refracta.astronomical_refraction(refracta.PhysicalAtmosphere(), **args)

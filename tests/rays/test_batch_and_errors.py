@@ -31,8 +31,9 @@ def test_batch_broadcasts_one_origin_or_one_direction():
 
 
 def test_batch_with_a_python_field_runs_in_parallel_threads():
-    field = refracta.CustomField(lambda p: 1 + 1e-4 * p[:, 1],
-                                 lambda p: np.tile([0.0, 1e-4, 0.0], (len(p), 1)), height_only=True)
+    field = refracta.CustomField(
+        lambda p: 1 + 1e-4 * p[:, 1], lambda p: np.tile([0.0, 1e-4, 0.0], (len(p), 1)), height_only=True
+    )
     reference = refracta.LinearSquaredProfile(n0=1.0, alpha=2e-4)  # n^2 = 1 + 2e-4 y ~ (1 + 1e-4 y)^2
     batch = refracta.trace_rays(field, [0, 1, 0], [direction(e) for e in (-1, 0, 1, 2)], max_length=20)
     assert np.all(np.isfinite(batch.end_points))
@@ -42,8 +43,13 @@ def test_batch_with_a_python_field_runs_in_parallel_threads():
 
 def test_progress_callback_reports_completion():
     calls = []
-    refracta.trace_rays(refracta.LogisticProfile(), [0, 1, 0], [direction(e) for e in np.linspace(-5, 5, 50)],
-                        max_length=20, progress=lambda done, total: calls.append((done, total)))
+    refracta.trace_rays(
+        refracta.LogisticProfile(),
+        [0, 1, 0],
+        [direction(e) for e in np.linspace(-5, 5, 50)],
+        max_length=20,
+        progress=lambda done, total: calls.append((done, total)),
+    )
     assert calls[-1] == (50, 50)
 
 
@@ -57,8 +63,15 @@ def test_interrupt_stops_a_long_batch_promptly():
         raise KeyboardInterrupt
 
     with pytest.raises(KeyboardInterrupt):  # 2e8 rk4 steps calling Python: hours if not stopped
-        refracta.trace_rays(slow, [0, 1, 0], np.tile([1.0, 0.01, 0.0], (20000, 1)), trace="rk4", step=0.01,
-                            max_length=100, progress=interrupt)
+        refracta.trace_rays(
+            slow,
+            [0, 1, 0],
+            np.tile([1.0, 0.01, 0.0], (20000, 1)),
+            trace="rk4",
+            step=0.01,
+            max_length=100,
+            progress=interrupt,
+        )
     # Raised from the first periodic call, while the rays were being traced (the call after the
     # last ray, (20000, 20000), would raise it too, but only once the work had run to its end).
     assert len(calls) == 1 and calls[0][0] < calls[0][1]
@@ -68,8 +81,15 @@ def test_elevation_table_matches_exact_traces(hot_road):
     table = refracta.ElevationTable(hot_road, 1.5, -1.0, 1.0, tol=1e-4, max_length=1500, stop_height=0.0)
     elevations = np.linspace(-1.0, 1.0, 301)
     ends = table.ends(elevations, azimuths=30.0)
-    exact = refracta.trace_rays(hot_road, [0, 1.5, 0], [direction(e, 30.0) for e in elevations], trace="stratified",
-                                tol=1e-8, max_length=1500, stop_height=0.0)
+    exact = refracta.trace_rays(
+        hot_road,
+        [0, 1.5, 0],
+        [direction(e, 30.0) for e in elevations],
+        trace="stratified",
+        tol=1e-8,
+        max_length=1500,
+        stop_height=0.0,
+    )
     errors = np.linalg.norm(ends.end_points - exact.end_points, axis=1)
     assert errors.max() <= 1e-4
     assert np.array_equal(ends.stops, exact.stops)
@@ -131,8 +151,9 @@ def test_options_objects_and_keywords_are_the_same_call(hot_road):
     options = refracta.TraceOptions()
     options.trace, options.max_length, options.stop_height = "stratified", 500.0, 0.0
     by_object = refracta.trace_ray(hot_road, [0, 1.5, 0], direction(-0.3), options)
-    by_keywords = refracta.trace_ray(hot_road, [0, 1.5, 0], direction(-0.3), trace="stratified", max_length=500.0,
-                                     stop_height=0.0)
+    by_keywords = refracta.trace_ray(
+        hot_road, [0, 1.5, 0], direction(-0.3), trace="stratified", max_length=500.0, stop_height=0.0
+    )
     np.testing.assert_array_equal(by_object.points, by_keywords.points)
     # Keywords override the object's fields; the object itself is not changed.
     shorter = refracta.trace_rays(hot_road, [0, 1.5, 0], [direction(0.1)], options, max_length=100.0)
@@ -157,7 +178,9 @@ def test_python_signatures_write_no_numeric_default():
     import numbers
 
     for function in (refracta.trace_rays, refracta.ElevationTable.__init__, refracta.Turbulence.__init__):
-        defaults = {name: p.default for name, p in inspect.signature(function).parameters.items()
-                    if isinstance(p.default, numbers.Number) and not isinstance(p.default, bool)}
+        defaults = {
+            name: p.default
+            for name, p in inspect.signature(function).parameters.items()
+            if isinstance(p.default, numbers.Number) and not isinstance(p.default, bool)
+        }
         assert not defaults, (function, defaults)
-

@@ -55,7 +55,7 @@ def test_parabola_editing_oracle():
     assert alpha == pytest.approx(6.0033e-6, rel=1e-4)
     field = refracta.LinearSquaredProfile(n0=n0, alpha=alpha)
     path = refracta.trace_ray(field, [0, y0, 0], [1, 0, 0], tol=1e-11, max_length=1100)
-    (point, s, _), = path.crossings([1, 0, 0], distance)
+    ((point, s, _),) = path.crossings([1, 0, 0], distance)
     assert point[1] == pytest.approx(h, abs=PARABOLA_TOLERANCE)
 
 
@@ -67,7 +67,9 @@ def test_catenary_in_linear_index_field(method):
     beta = (n0 + g * y0) * np.cos(np.radians(elevation))
     x0 = -(beta / g) * np.arcsinh(np.tan(np.radians(elevation)))
     x, y = sample_path(path).T[:2]
-    np.testing.assert_allclose(y + n0 / g, (beta / g) * np.cosh(g * (x - x0) / beta), rtol=0, atol=CLOSED_FORM_TOLERANCE)
+    np.testing.assert_allclose(
+        y + n0 / g, (beta / g) * np.cosh(g * (x - x0) / beta), rtol=0, atol=CLOSED_FORM_TOLERANCE
+    )
 
 
 @pytest.mark.parametrize("method", ["rk45", "stratified"])

@@ -18,8 +18,9 @@ def test_launch_vector_is_n_times_the_unit_direction(hot_road):
 
 @pytest.mark.parametrize("method", ["rk4", "rk45"])
 def test_ray_vector_length_equals_the_index(hot_road, method):
-    path = refracta.trace_ray(hot_road, [0, 1.5, 0], direction(-0.2), trace=method, tol=1e-9, step=0.05,
-                              max_length=1000, stop_height=0.0)
+    path = refracta.trace_ray(
+        hot_road, [0, 1.5, 0], direction(-0.2), trace=method, tol=1e-9, step=0.05, max_length=1000, stop_height=0.0
+    )
     # |v| = n is not built in: the integrator carries v and n separately. Drift stays at the
     # integration error (1e-9 in direction ~ 1e-9 in |v|).
     np.testing.assert_allclose(np.linalg.norm(path.ray_vectors, axis=1), path.ior, rtol=0, atol=2e-9)
@@ -27,8 +28,9 @@ def test_ray_vector_length_equals_the_index(hot_road, method):
 
 @pytest.mark.parametrize("method", ["rk4", "rk45"])
 def test_bouguer_invariant_is_conserved(hot_road, method):
-    path = refracta.trace_ray(hot_road, [0, 1.5, 0], direction(-0.245), trace=method, tol=1e-10, step=0.05,
-                              max_length=1000, stop_height=0.0)
+    path = refracta.trace_ray(
+        hot_road, [0, 1.5, 0], direction(-0.245), trace=method, tol=1e-10, step=0.05, max_length=1000, stop_height=0.0
+    )
     cos_e = np.hypot(path.directions[:, 0], path.directions[:, 2])
     beta = path.ior * cos_e
     # 1e-10: the integrators' direction error; the invariant spans the hot layer where n changes 3e-5.
@@ -67,8 +69,10 @@ def test_rk4_converges_with_fourth_order():
     field = refracta.LinearSquaredProfile(n0=1.0, alpha=0.05)  # strong: rays curve with radius ~40 m
     kwargs = dict(origin=[0, 1, 0], direction=direction(10.0), max_length=100.0)
     reference = refracta.trace_ray(field, trace="rk45", tol=1e-13, **kwargs).points[-1]
-    errors = [np.linalg.norm(refracta.trace_ray(field, trace="rk4", step=h, **kwargs).points[-1] - reference)
-              for h in (2.0, 1.0, 0.5)]
+    errors = [
+        np.linalg.norm(refracta.trace_ray(field, trace="rk4", step=h, **kwargs).points[-1] - reference)
+        for h in (2.0, 1.0, 0.5)
+    ]
     orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert errors[-1] > 1e-11  # above round-off, so the order is measurable
     assert np.all((orders >= 3.7) & (orders <= 4.3)), orders
@@ -78,10 +82,12 @@ def test_rk4_converges_with_fourth_order():
 def test_rk45_meets_its_tolerance(hot_road, tol):
     elevations = np.linspace(-0.24, 1.0, 25)  # rays that turn above the road or climb: all reach 2 km
     directions = np.array([direction(e) for e in elevations])
-    reference = refracta.trace_rays(hot_road, [0, 1.5, 0], directions, trace="stratified", tol=1e-10,
-                                    max_length=2000, stop_height=0.0)
-    batch = refracta.trace_rays(hot_road, [0, 1.5, 0], directions, trace="rk45", tol=tol, max_length=2000,
-                                stop_height=0.0)
+    reference = refracta.trace_rays(
+        hot_road, [0, 1.5, 0], directions, trace="stratified", tol=1e-10, max_length=2000, stop_height=0.0
+    )
+    batch = refracta.trace_rays(
+        hot_road, [0, 1.5, 0], directions, trace="rk45", tol=tol, max_length=2000, stop_height=0.0
+    )
     assert np.all(reference.stops == "max_length")
     errors = np.linalg.norm(batch.end_points - reference.end_points, axis=1)
     assert errors.max() <= tol, errors.max()

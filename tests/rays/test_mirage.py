@@ -11,8 +11,9 @@ EYE = 1.5
 
 
 def reaches_ground(field, depression_deg, method):
-    path = refracta.trace_ray(field, [0, EYE, 0], direction(-depression_deg), trace=method, tol=1e-10,
-                              max_length=3000.0, stop_height=0.0)
+    path = refracta.trace_ray(
+        field, [0, EYE, 0], direction(-depression_deg), trace=method, tol=1e-10, max_length=3000.0, stop_height=0.0
+    )
     return path.stop == "stop_height"
 
 
@@ -43,15 +44,14 @@ def test_tangent_point_and_hidden_height_for_n_squared_linear():
     theta_c = np.arccos(n0 / np.sqrt(n0**2 + alpha * EYE))
     assert theta_c == pytest.approx(np.sqrt(2 * g * EYE), rel=1e-4)  # small-angle form
     # The critical ray touches the ground at x* = sqrt(2 h_e / G) and then hides (G/2)(D - x*)^2.
-    path = refracta.trace_ray(field, [0, EYE, 0], [np.cos(theta_c), -np.sin(theta_c), 0], tol=1e-11,
-                              max_length=2500.0)
+    path = refracta.trace_ray(field, [0, EYE, 0], [np.cos(theta_c), -np.sin(theta_c), 0], tol=1e-11, max_length=2500.0)
     samples = np.array([path.point_at(s)[0] for s in np.linspace(0.0, 1200.0, 24001)])  # 5 cm apart
     lowest = samples[np.argmin(samples[:, 1])]
     x_star = np.sqrt(2 * EYE / g)
     assert lowest[0] == pytest.approx(x_star, rel=2e-3)  # small-angle form vs the exact vertex
     assert abs(lowest[1]) < 1e-8  # touches the ground: G/2 (5 cm)^2 ~ 1e-8 between samples
     for distance in (1200.0, 2000.0):
-        (point, _, _), = path.crossings([1, 0, 0], distance)
+        ((point, _, _),) = path.crossings([1, 0, 0], distance)
         # Exact parabola with its vertex on the ground: beta = n(h_e) cos(theta_c) = n0, so
         # y = alpha (x - x_v)^2 / (4 n0^2) with x_v = 2 n0^2 tan(theta_c) / alpha.
         x_exact = 2 * n0**2 * np.tan(theta_c) / alpha

@@ -70,7 +70,9 @@ def box_mesh(lo, hi, inward=False):
     """An axis-aligned box [lo, hi] (3,) as (vertices (8, 3), triangles (12, 3)), every triangle's
     counter-clockwise front facing out of the box (inward=True: into it)."""
     lo, hi = np.asarray(lo, float), np.asarray(hi, float)
-    corners = np.array([[(lo, hi)[x][0], (lo, hi)[y][1], (lo, hi)[z][2]] for x in (0, 1) for y in (0, 1) for z in (0, 1)])
+    corners = np.array(
+        [[(lo, hi)[x][0], (lo, hi)[y][1], (lo, hi)[z][2]] for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    )
     centre = 0.5 * (lo + hi)
     triangles = []
     for axis in range(3):
@@ -92,10 +94,10 @@ def box_mesh(lo, hi, inward=False):
 def fresnel_dielectric(cos_i, eta):
     """Unpolarised Fresnel reflectance (Born & Wolf; SHADING.md section 1), eta = eta_t / eta_i,
     cos_i > 0 on the incident side; 1 under total internal reflection."""
-    sin2_t = (1.0 - cos_i ** 2) / eta ** 2
+    sin2_t = (1.0 - cos_i**2) / eta**2
     if sin2_t >= 1.0:
         return 1.0
     cos_t = np.sqrt(1.0 - sin2_t)
     rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
     rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
-    return 0.5 * (rs ** 2 + rp ** 2)
+    return 0.5 * (rs**2 + rp**2)

@@ -54,8 +54,11 @@ def test_remove_drops_a_geometry_and_keeps_the_other_ids():
     np.testing.assert_array_equal(render(scene), render(without))
     assert scene.geometry_count == count
     assert scene.material(back).parameters["reflectance"] == (0.5, 0.5, 0.5)
-    for call in (lambda: scene.remove(front), lambda: scene.material(front),
-                 lambda: scene.set_material(front, shading.Diffuse())):
+    for call in (
+        lambda: scene.remove(front),
+        lambda: scene.material(front),
+        lambda: scene.set_material(front, shading.Diffuse()),
+    ):
         with pytest.raises(ValueError, match=f"geometry {front} was removed"):
             call()
     with pytest.raises(ValueError, match="no geometry 99"):
@@ -119,8 +122,14 @@ def test_animate_warns_once_for_all_its_frames():
     scene = refracta.Scene()
     scene.add_ground(0.0, 100.0)
     with pytest.warns(refracta.SceneWarning, match="no light") as record:
-        refracta.animate(scene, CAMERA.resized(4, 3), None, [0.0, 0.1, 0.2], noise={"rms": 1e-4, "correlation_pixels": 2.0},
-                         progress=False)
+        refracta.animate(
+            scene,
+            CAMERA.resized(4, 3),
+            None,
+            [0.0, 0.1, 0.2],
+            noise={"rms": 1e-4, "correlation_pixels": 2.0},
+            progress=False,
+        )
     assert len([w for w in record if issubclass(w.category, refracta.SceneWarning)]) == 1
 
 
@@ -151,9 +160,14 @@ def test_no_ground_warning_where_it_does_not_apply():
     assert render_quietly(low, refracta.PhysicalAtmosphere()) == []
 
 
-@pytest.mark.parametrize("model, parameter", [(refracta.PhysicalAtmosphere, "surface_dt: float = 0.0"),
-                                              (refracta.LogisticProfile, "a_hot: float"),
-                                              (refracta.LinearSquaredProfile, "alpha: float")])
+@pytest.mark.parametrize(
+    "model, parameter",
+    [
+        (refracta.PhysicalAtmosphere, "surface_dt: float = 0.0"),
+        (refracta.LogisticProfile, "a_hot: float"),
+        (refracta.LinearSquaredProfile, "alpha: float"),
+    ],
+)
 def test_the_index_models_show_their_parameters_in_help(model, parameter):
     text = pydoc.render_doc(model.__init__, renderer=pydoc.plaintext)
     assert parameter in text and "*args" not in text

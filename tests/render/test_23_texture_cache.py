@@ -65,8 +65,16 @@ def test_two_processes_preparing_the_same_texture_both_succeed(tmp_path, rng):
     cache = tmp_path / "cache"
     env = dict(os.environ, REFRACTA_TEXTURE_CACHE=str(cache))
     start = time.time() + 3.0  # both are importing refracta by then
-    children = [subprocess.Popen([sys.executable, "-c", CHILD, str(texture), str(start)], env=env,
-                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for _ in range(2)]
+    children = [
+        subprocess.Popen(
+            [sys.executable, "-c", CHILD, str(texture), str(start)],
+            env=env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        for _ in range(2)
+    ]
     outputs = [child.communicate(timeout=300) for child in children]
     for child, (out, err) in zip(children, outputs):
         assert child.returncode == 0, err
@@ -110,8 +118,16 @@ def write_model(folder, textures):
         mtl += [f"newmtl m{i}", "Kd 1 1 1", f"map_Kd t{i}.exr"]
     mtl += ["newmtl again", "Kd 1 1 1", "map_Kd t0.exr"]
     for i, name in enumerate([f"m{i}" for i in range(textures)] + ["again"]):
-        obj += [f"v {i} 0 0", f"v {i} 0 1", f"v {i} 1 1", "vt 0 0", "vt 1 0", "vt 1 1", f"usemtl {name}",
-                f"f {3 * i + 1}/{3 * i + 1} {3 * i + 2}/{3 * i + 2} {3 * i + 3}/{3 * i + 3}"]
+        obj += [
+            f"v {i} 0 0",
+            f"v {i} 0 1",
+            f"v {i} 1 1",
+            "vt 0 0",
+            "vt 1 0",
+            "vt 1 1",
+            f"usemtl {name}",
+            f"f {3 * i + 1}/{3 * i + 1} {3 * i + 2}/{3 * i + 2} {3 * i + 3}/{3 * i + 3}",
+        ]
     (folder / "model.mtl").write_text("\n".join(mtl) + "\n")
     (folder / "model.obj").write_text("\n".join(obj) + "\n")
     return folder / "model.obj"

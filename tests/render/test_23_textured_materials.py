@@ -119,8 +119,12 @@ def test_one_material_serves_scenes_with_different_texture_tables(tmp_path):
     second.add_billboard((-1e5, 0.0, 0.0), 1.0, 1.0, other)  # id 0 of this table, far behind the camera
     second.set_sky(SKY, SKY)
     second.set_sun((-1.0, 0.6, 0.3), (3.0, 3.0, 3.0))
-    second.add_mesh([(10, -1, -2), (10, -1, 2), (10, 1, 2), (10, 1, -2)], [(0, 1, 2), (0, 2, 3)],
-                    material=material, uvs=[(0, 0), (1, 0), (1, 1), (0, 1)])
+    second.add_mesh(
+        [(10, -1, -2), (10, -1, 2), (10, 1, 2), (10, 1, -2)],
+        [(0, 1, 2), (0, 2, 3)],
+        material=material,
+        uvs=[(0, 0), (1, 0), (1, 1), (0, 1)],
+    )
     np.testing.assert_array_equal(render(first), render(second))
     assert second.material(1).parameters["texture"] == texture
 

@@ -56,15 +56,18 @@ def test_a_black_target_loses_contrast_against_the_horizon_sky_as_koschmieder_sa
     assert contrast == pytest.approx(math.exp(-KOSCHMIEDER * distance / 2000.0), abs=0.02)
 
 
-@pytest.mark.parametrize("case", [
-    # (a, b, sun elevation [deg], earth radius): horizontal, slant up a mountain, down to the sea
-    # from a cliff, a low sun, and a CurvedEarth's flat frame.
-    ((0, 1.5, 0), (28000, 1.5, 0), 30.0, math.inf),
-    ((0, 1.5, 0), (6000, 2500, 3000), 30.0, math.inf),
-    ((0, 300, 0), (2000, 0, -500), 10.0, math.inf),
-    ((0, 5, 0), (28000, 10, 2000), 2.0, math.inf),
-    ((0, 5, 0), (28000, 10, 2000), 2.0, 6371e3),
-])
+@pytest.mark.parametrize(
+    "case",
+    [
+        # (a, b, sun elevation [deg], earth radius): horizontal, slant up a mountain, down to the sea
+        # from a cliff, a low sun, and a CurvedEarth's flat frame.
+        ((0, 1.5, 0), (28000, 1.5, 0), 30.0, math.inf),
+        ((0, 1.5, 0), (6000, 2500, 3000), 30.0, math.inf),
+        ((0, 300, 0), (2000, 0, -500), 10.0, math.inf),
+        ((0, 5, 0), (28000, 10, 2000), 2.0, math.inf),
+        ((0, 5, 0), (28000, 10, 2000), 2.0, 6371e3),
+    ],
+)
 def test_in_scatter_matches_a_brute_force_quadrature(case):
     # The closed-form pieces against 20 000 midpoints with every point's sun column traced; the
     # pieces assume the sunlight (sun transmittance, table-interpolated) constant along each piece
@@ -98,8 +101,9 @@ def test_the_sun_reaching_a_point_is_the_sky_model_s():
     air = spectrum.AerialPerspective(sky)
     for wavelength in (400.0, 550.0, 700.0):
         # The table's interpolation against the sky's own column: 0.2 %.
-        assert air.sun_transmittance(0.0, 8.0, wavelength) == pytest.approx(sky.sun_transmittance([wavelength])[0],
-                                                                            rel=2e-3)
+        assert air.sun_transmittance(0.0, 8.0, wavelength) == pytest.approx(
+            sky.sun_transmittance([wavelength])[0], rel=2e-3
+        )
     assert air.sun_transmittance(0.0, -3.0, 550.0) == 0.0  # below the horizon at the ground
     assert air.sun_transmittance(3000.0, 5.0, 550.0) > air.sun_transmittance(0.0, 5.0, 550.0)
 
@@ -107,8 +111,9 @@ def test_the_sun_reaching_a_point_is_the_sky_model_s():
 def black_target_scene(distance, aerial=True, visibility=10.0):
     """A black wall `distance` m away across the view's left half, the horizon sky on the right."""
     scene = refracta.Scene()
-    scene.set_physical_sky(sun_at(30.0, 120.0), below_horizon="horizon", aerial_perspective=aerial,
-                           visibility=visibility)
+    scene.set_physical_sky(
+        sun_at(30.0, 120.0), below_horizon="horizon", aerial_perspective=aerial, visibility=visibility
+    )
     scene.add_box((distance, 0.0, -200.0), (1.0, 200.0, 400.0), material=shading.Diffuse(0.0))
     camera = refracta.Camera((0.0, 1.5, 0.0), (distance, 1.5, 0.0), vfov=0.5, width=16, height=8)
     return scene, camera
@@ -157,6 +162,7 @@ def test_a_finite_light_is_seen_through_the_air_both_ways():
         scene.add_point_light((0.0, 1.5, 3000.0), (1e9, 1e9, 1e9))
         camera = refracta.Camera((0.0, 1.5, 0.0), (2000.0, 1.5, 0.0), vfov=0.1, width=4, height=4)
         return scene, refracta.render(scene, camera, progress=False, max_length=1e5)[2, 2]
+
     scene, with_air = plate(True)
     _, without = plate(False)
     air = scene.aerial_perspective
@@ -171,8 +177,10 @@ def test_pickled_scene_keeps_its_air():
     scene, camera = black_target_scene(4000.0)
     copy = pickle.loads(pickle.dumps(scene))
     assert copy.aerial_perspective is not None
-    np.testing.assert_array_equal(refracta.render(copy, camera, progress=False, max_length=1e5),
-                                  refracta.render(scene, camera, progress=False, max_length=1e5))
+    np.testing.assert_array_equal(
+        refracta.render(copy, camera, progress=False, max_length=1e5),
+        refracta.render(scene, camera, progress=False, max_length=1e5),
+    )
 
 
 def test_replacing_the_sky_ends_the_air():
@@ -181,13 +189,16 @@ def test_replacing_the_sky_ends_the_air():
     assert scene.aerial_perspective is None
 
 
-@pytest.mark.parametrize("visibility, message", [
-    (0.0, "visibility must be > 0"),
-    (-3.0, "visibility must be > 0"),
-    (float("nan"), "visibility must be > 0"),
-    (float("inf"), "visibility must be > 0"),
-    (1000.0, "beyond what the air's molecules"),
-])
+@pytest.mark.parametrize(
+    "visibility, message",
+    [
+        (0.0, "visibility must be > 0"),
+        (-3.0, "visibility must be > 0"),
+        (float("nan"), "visibility must be > 0"),
+        (float("inf"), "visibility must be > 0"),
+        (1000.0, "beyond what the air's molecules"),
+    ],
+)
 def test_bad_visibility_is_refused(visibility, message):
     with pytest.raises(ValueError, match=message):
         refracta.Scene().set_physical_sky(sun_at(30.0), visibility=visibility)
@@ -233,13 +244,20 @@ sun_direction = [0.3, 0.5, 0.2]
 """
 
 
-@pytest.mark.parametrize("keys, aerial, error", [
-    ("visibility = 10.0\naerial_perspective = true\n", True, None),
-    ("", True, None),
-    ("aerial_perspective = false\n", False, None),
-    ("visibility = 10.0\naerosol = 3.0\n", None, r"s.toml:10: \[environment\] visibility: give aerosol or visibility"),
-    ("aerial_perspective = 1\n", None, r"s.toml:10: \[environment\] aerial_perspective: must be true or false$"),
-])
+@pytest.mark.parametrize(
+    "keys, aerial, error",
+    [
+        ("visibility = 10.0\naerial_perspective = true\n", True, None),
+        ("", True, None),
+        ("aerial_perspective = false\n", False, None),
+        (
+            "visibility = 10.0\naerosol = 3.0\n",
+            None,
+            r"s.toml:10: \[environment\] visibility: give aerosol or visibility",
+        ),
+        ("aerial_perspective = 1\n", None, r"s.toml:10: \[environment\] aerial_perspective: must be true or false$"),
+    ],
+)
 def test_scene_files_set_the_air(tmp_path, keys, aerial, error):
     path = tmp_path / "s.toml"
     path.write_text(SCENE_FILE + keys)

@@ -24,6 +24,7 @@ CORRELATION_TOLERANCE = 0.08
 
 # -- 1. geometric noise (not physical) -----------------------------------------------------------
 
+
 def test_noise_map_has_the_asked_rms_and_correlation():
     rms, ell = 2e-3, 5.0
     angles = _animate.geometric_noise_map(256, 256, rms, ell, seed=4)
@@ -36,7 +37,7 @@ def test_noise_map_has_the_asked_rms_and_correlation():
         down = np.mean(a[lag:, :] * a[:-lag, :]) / a.var()
         for value in (across, down):
             assert value == pytest.approx(math.exp(-0.5), abs=CORRELATION_TOLERANCE)
-        assert abs(np.mean(a[:, 4 * lag:] * a[:, :-4 * lag]) / a.var()) < 0.1  # exp(-8): uncorrelated
+        assert abs(np.mean(a[:, 4 * lag :] * a[:, : -4 * lag]) / a.var()) < 0.1  # exp(-8): uncorrelated
     assert abs(np.corrcoef(angles[:, :, 0].ravel(), angles[:, :, 1].ravel())[0, 1]) < 0.1
 
 
@@ -63,10 +64,16 @@ def test_noise_camera_turns_each_ray_by_its_angles():
         assert np.arccos(np.clip(d0 @ d1, -1, 1)) == pytest.approx(np.hypot(*angles[y, x]), rel=1e-2)
 
 
-@pytest.mark.parametrize("kwargs, message", [
-    (dict(rms=-1.0), "rms must be"), (dict(correlation_pixels=0.0), "correlation_pixels must be"),
-    (dict(seed=-1), "seed must be"), (dict(speed=(1.0,)), "speed must be"), (dict(time=float("nan")), "time must be"),
-])
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(rms=-1.0), "rms must be"),
+        (dict(correlation_pixels=0.0), "correlation_pixels must be"),
+        (dict(seed=-1), "seed must be"),
+        (dict(speed=(1.0,)), "speed must be"),
+        (dict(time=float("nan")), "time must be"),
+    ],
+)
 def test_noise_bad_input(kwargs, message):
     arguments = dict(rms=1e-3, correlation_pixels=2.0) | kwargs
     with pytest.raises(ValueError, match=message):
@@ -75,16 +82,21 @@ def test_noise_bad_input(kwargs, message):
 
 # -- 2. the air at time t ------------------------------------------------------------------------------
 
+
 def test_field_rebuilt_around_moved_turbulence_keeps_its_air():
     air = refracta.Turbulence(1e-10, cells=16, spacing=0.05, depth=0.1, wind=(1.0, 2.0))
     spots = [refracta.HotSpot(30.0, 1.0, 4.0, 6.0, depth=0.2)]
-    for field in (refracta.PhysicalAtmosphere(surface_dt=9.0, surface_depth=0.12, hot_spots=spots),
-                  refracta.LogisticProfile(n_hot=0.2, hot_spots=[refracta.HotSpot(3.0, 0.0, 2.0, 1.0)], turbulence=air)):
+    for field in (
+        refracta.PhysicalAtmosphere(surface_dt=9.0, surface_depth=0.12, hot_spots=spots),
+        refracta.LogisticProfile(n_hot=0.2, hot_spots=[refracta.HotSpot(3.0, 0.0, 2.0, 1.0)], turbulence=air),
+    ):
         later = _animate.field_at_time(field, air, 0.5)
         assert later.params == field.params and later.hot_spots == field.hot_spots
         p = np.array([[30.0, 0.05, 1.0], [3.0, 0.3, 0.2], [100.0, 2.0, 0.0]])
         moved = air.at_time(0.5).evaluate(p)[0]
-        calm = refracta.PhysicalAtmosphere if isinstance(field, refracta.PhysicalAtmosphere) else refracta.LogisticProfile
+        calm = (
+            refracta.PhysicalAtmosphere if isinstance(field, refracta.PhysicalAtmosphere) else refracta.LogisticProfile
+        )
         without = _animate.with_turbulence(field, None)
         assert without.turbulence is None
         # The same sum n + dn in double: ulps of n ~ 1.
@@ -118,6 +130,7 @@ def test_a_height_only_part_keeps_its_fixed_data_under_turbulence():
 
 # -- 3. animate ---------------------------------------------------------------------------------------
 
+
 def checker_wall():
     """A wall of 10 cm black and white squares 10 m ahead, filling a 4 deg view (a square spans
     ~1.1 pixels of 8.7 mrad), lit by a sun behind the camera."""
@@ -125,8 +138,11 @@ def checker_wall():
     black, white = refracta.shading.Diffuse((0.03, 0.03, 0.03)), refracta.shading.Diffuse((0.8, 0.8, 0.8))
     for i in range(24):
         for j in range(12):
-            scene.add_box((10.0, 0.3 + 0.1 * (j - 5.5), 0.1 * (i - 11.5)), (0.05, 0.1, 0.1),
-                          material=white if (i + j) % 2 else black)
+            scene.add_box(
+                (10.0, 0.3 + 0.1 * (j - 5.5), 0.1 * (i - 11.5)),
+                (0.05, 0.1, 0.1),
+                material=white if (i + j) % 2 else black,
+            )
     scene.add_light(refracta.lights.SunLight((-0.8, 0.5, 0.3), 2e4))  # ~1.3 W/m^2 from a 0.53 deg disc
     camera = refracta.Camera((0.0, 0.3, 0.0), (10.0, 0.3, 0.0), vfov=4, width=16, height=8)
     return scene, camera
@@ -141,8 +157,16 @@ def test_animate_writes_a_gif_whose_frames_shimmer(tmp_path):
     scene, camera = checker_wall()
     field = refracta.PhysicalAtmosphere(surface_dt=0.0)
     times = [0.0, 0.05, 0.1]
-    frames = refracta.animate(scene, camera, field, times, path=tmp_path / "shimmer.gif", turbulence=strong_turbulence(),
-                              progress=False, max_length=12.0)
+    frames = refracta.animate(
+        scene,
+        camera,
+        field,
+        times,
+        path=tmp_path / "shimmer.gif",
+        turbulence=strong_turbulence(),
+        progress=False,
+        max_length=12.0,
+    )
     assert frames.shape == (3, 8, 16, 3) and frames.dtype == np.float32
     with PIL_Image.open(tmp_path / "shimmer.gif") as gif:
         assert gif.n_frames == 3 and gif.size == (16, 8)
@@ -164,8 +188,9 @@ def test_animate_on_an_executor_matches_in_process(tmp_path):
     noise = dict(rms=3e-3, correlation_pixels=2.0, seed=5)
     here = refracta.animate(scene, camera, field, [0.0, 0.2], noise=noise, progress=False, max_length=12.0)
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
-        there = refracta.animate(scene, camera, field, [0.0, 0.2], noise=noise, executor=pool, progress=False,
-                                 max_length=12.0)
+        there = refracta.animate(
+            scene, camera, field, [0.0, 0.2], noise=noise, executor=pool, progress=False, max_length=12.0
+        )
     np.testing.assert_array_equal(here, there)
     assert np.abs(here[1] - here[0]).max() > 0.05  # the noise moved (10 pixels/s by default)
 
@@ -176,8 +201,16 @@ def test_animate_writes_mp4_and_frame_files(tmp_path):
     camera = camera.resized(15, 7)  # odd sizes: padded for H.264
     field = refracta.PhysicalAtmosphere(surface_dt=0.0)
     noise = dict(rms=3e-3, correlation_pixels=2.0)
-    refracta.animate(scene, camera, field, [0.0, 0.1, 0.2, 0.3], path=tmp_path / "shimmer.mp4", noise=noise,
-                     progress=False, max_length=12.0)
+    refracta.animate(
+        scene,
+        camera,
+        field,
+        [0.0, 0.1, 0.2, 0.3],
+        path=tmp_path / "shimmer.mp4",
+        noise=noise,
+        progress=False,
+        max_length=12.0,
+    )
     # Default rel 1e-6: 4 frames at 10 fps is 0.4 s as the container stores it.
     assert ffmpeg.count_frames_and_secs(str(tmp_path / "shimmer.mp4")) == (4, pytest.approx(0.4))
     with warnings.catch_warnings():  # imageio-ffmpeg's reader leaves its pipe to the collector
@@ -189,8 +222,16 @@ def test_animate_writes_mp4_and_frame_files(tmp_path):
         gc.collect()
     # Default rel 1e-6: the container's frame rate, 10 exactly up to its rational.
     assert meta["size"] == (16, 8) and meta["fps"] == pytest.approx(10.0)
-    refracta.animate(scene, camera, field, [0.0, 0.1], path=str(tmp_path / "frames" / "f{:02d}.png"), noise=noise,
-                     progress=False, max_length=12.0)
+    refracta.animate(
+        scene,
+        camera,
+        field,
+        [0.0, 0.1],
+        path=str(tmp_path / "frames" / "f{:02d}.png"),
+        noise=noise,
+        progress=False,
+        max_length=12.0,
+    )
     assert sorted(p.name for p in (tmp_path / "frames").iterdir()) == ["f00.png", "f01.png"]
 
 
@@ -219,7 +260,13 @@ def test_a_missing_folder_is_refused_before_any_frame_is_rendered(tmp_path, monk
     rendered = []
     monkeypatch.setattr(_animate, "_render_frame", lambda *args: rendered.append(args))
     with pytest.raises(FileNotFoundError, match="does not exist"):
-        refracta.animate(scene, camera, refracta.PhysicalAtmosphere(surface_dt=0.0), [0.0, 0.1],
-                         path=tmp_path / "nowhere" / "x.gif", noise=dict(rms=1e-4, correlation_pixels=2.0),
-                         progress=False)
+        refracta.animate(
+            scene,
+            camera,
+            refracta.PhysicalAtmosphere(surface_dt=0.0),
+            [0.0, 0.1],
+            path=tmp_path / "nowhere" / "x.gif",
+            noise=dict(rms=1e-4, correlation_pixels=2.0),
+            progress=False,
+        )
     assert rendered == []

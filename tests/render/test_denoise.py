@@ -19,7 +19,7 @@ MEAN_DRIFT = 0.02
 def relative_mse(image, reference):
     # Relative to the reference's square, with a floor so dark pixels do not dominate (as Mitsuba's
     # and Intel's relMSE).
-    return float(np.mean((image - reference) ** 2 / (reference ** 2 + 1e-2)))
+    return float(np.mean((image - reference) ** 2 / (reference**2 + 1e-2)))
 
 
 @pytest.fixture(scope="module")
@@ -72,10 +72,12 @@ ROAD_SPP, ROAD_REFERENCE_SPP = 16, 256
 @pytest.fixture(scope="module")
 def road():
     from refracta import examples
+
     example = examples.hot_road(128, 48)
     options = dict(progress=False, max_length=example.max_length, transport="path")
-    noisy, aovs = refracta.render(example.scene, example.camera, example.field, spp=ROAD_SPP,
-                                  aovs=["albedo", "normal"], **options)
+    noisy, aovs = refracta.render(
+        example.scene, example.camera, example.field, spp=ROAD_SPP, aovs=["albedo", "normal"], **options
+    )
     denoised = refracta.render(example.scene, example.camera, example.field, spp=ROAD_SPP, denoise=True, **options)
     reference = refracta.render(example.scene, example.camera, example.field, spp=ROAD_REFERENCE_SPP, seed=5, **options)
     return noisy, aovs, denoised, reference

@@ -22,8 +22,8 @@ from scipy.optimize import minimize_scalar
 import refracta
 
 WIDTH, HEIGHT = 320, 48
-FOCAL = 100.0     # [mm]
-SENSOR = 36.0     # [mm], the width the image spans (320 x 48 is relatively wider than 3:2)
+FOCAL = 100.0  # [mm]
+SENSOR = 36.0  # [mm], the width the image spans (320 x 48 is relatively wider than 3:2)
 EYE, LOOK = (0.0, 1.0, 0.0), (0.0, 1.0, -10.0)
 SPP = 256
 # The fitted blur radius against the thin-lens one: the 256 independent lens samples per pixel,
@@ -45,13 +45,14 @@ def plate_scene(depth):
 
 
 def lens_camera(f_number=None, focus=None, width=WIDTH, height=HEIGHT):
-    return refracta.Camera.photographic(EYE, LOOK, FOCAL, width=width, height=height, f_number=f_number,
-                                        focus_distance=focus)
+    return refracta.Camera.photographic(
+        EYE, LOOK, FOCAL, width=width, height=height, f_number=f_number, focus_distance=focus
+    )
 
 
 def thin_lens_coc_pixels(f_number, focus, depth):
     """The circle of confusion c = A f |d - d_f| / (d (d_f - f)) [mm] in pixels of the unbreathing image."""
-    f = FOCAL * 1e-3                       # [m]
+    f = FOCAL * 1e-3  # [m]
     aperture = f / f_number
     coc_mm = aperture * FOCAL * abs(depth - focus) / (depth * (focus - f))
     pitch = SENSOR / WIDTH
@@ -76,17 +77,27 @@ def model_profile(radius, columns):
 def fitted_radius(image):
     profile = image[:, :, 1].mean(axis=0)
     columns = np.arange(WIDTH, dtype=float)
-    result = minimize_scalar(lambda r: np.sum((model_profile(r, columns) - profile) ** 2), bounds=(0.01, 60.0),
-                             method="bounded", options={"xatol": 1e-4})
+    result = minimize_scalar(
+        lambda r: np.sum((model_profile(r, columns) - profile) ** 2),
+        bounds=(0.01, 60.0),
+        method="bounded",
+        options={"xatol": 1e-4},
+    )
     return result.x
 
 
-@pytest.mark.parametrize("f_number, focus, depth", [(2.0, 10.0, 3.0),     # in front of focus
-                                                    (2.0, 10.0, 40.0),    # behind it
-                                                    (5.6, 4.0, 1.5)])     # stopped down, close up
+@pytest.mark.parametrize(
+    "f_number, focus, depth",
+    [
+        (2.0, 10.0, 3.0),  # in front of focus
+        (2.0, 10.0, 40.0),  # behind it
+        (5.6, 4.0, 1.5),
+    ],
+)  # stopped down, close up
 def test_blur_of_an_edge_is_the_thin_lens_circle_of_confusion(f_number, focus, depth):
-    image = refracta.render(plate_scene(depth), lens_camera(f_number, focus), None, method="straight", spp=SPP,
-                            progress=False)
+    image = refracta.render(
+        plate_scene(depth), lens_camera(f_number, focus), None, method="straight", spp=SPP, progress=False
+    )
     expected = 0.5 * thin_lens_coc_pixels(f_number, focus, depth)
     assert fitted_radius(image) == pytest.approx(expected, rel=RADIUS_REL)
 
@@ -125,7 +136,9 @@ def test_lens_renders_do_not_depend_on_the_thread_count():
         single = refracta.render(scene, camera, None, method="straight", spp=9, progress=False)
     finally:
         refracta.set_threads(threads)
-    np.testing.assert_array_equal(single, refracta.render(scene, camera, None, method="straight", spp=9, progress=False))
+    np.testing.assert_array_equal(
+        single, refracta.render(scene, camera, None, method="straight", spp=9, progress=False)
+    )
 
 
 def test_stratified_lens_samples_cover_the_lens():
@@ -161,16 +174,23 @@ def test_pickled_lens_camera_renders_the_same():
     copy = pickle.loads(pickle.dumps(camera))
     assert copy.aperture_diameter == camera.aperture_diameter and copy.focus_distance == camera.focus_distance
     scene = plate_scene(3.0)
-    np.testing.assert_array_equal(refracta.render(scene, camera, None, method="straight", spp=4, progress=False),
-                                  refracta.render(scene, copy, None, method="straight", spp=4, progress=False))
+    np.testing.assert_array_equal(
+        refracta.render(scene, camera, None, method="straight", spp=4, progress=False),
+        refracta.render(scene, copy, None, method="straight", spp=4, progress=False),
+    )
 
 
-@pytest.mark.parametrize("arguments, name", [(dict(f_number=0.0), "f_number"),
-                                             (dict(f_number=-2.0), "f_number"),
-                                             (dict(f_number=float("nan")), "f_number"),
-                                             (dict(f_number=2.0, focus_distance=0.0), "focus_distance"),
-                                             (dict(f_number=2.0, focus_distance=float("nan")), "focus_distance"),
-                                             (dict(f_number=2.0, focus_distance=-3.0), "focus_distance")])
+@pytest.mark.parametrize(
+    "arguments, name",
+    [
+        (dict(f_number=0.0), "f_number"),
+        (dict(f_number=-2.0), "f_number"),
+        (dict(f_number=float("nan")), "f_number"),
+        (dict(f_number=2.0, focus_distance=0.0), "focus_distance"),
+        (dict(f_number=2.0, focus_distance=float("nan")), "focus_distance"),
+        (dict(f_number=2.0, focus_distance=-3.0), "focus_distance"),
+    ],
+)
 def test_impossible_lens_settings_are_refused(arguments, name):
     with pytest.raises(ValueError, match=name):
         refracta.Camera.photographic(EYE, LOOK, 50.0, **arguments)
@@ -179,8 +199,13 @@ def test_impossible_lens_settings_are_refused(arguments, name):
 def test_rasterizers_refuse_a_lens():
     # They draw through a pinhole: a lens would be silently ignored.
     with pytest.raises(ValueError, match="raster_march"):
-        refracta.render(plate_scene(3.0), lens_camera(2.0, 10.0, 16, 8), refracta.LogisticProfile(),
-                        method="raster_march", progress=False)
+        refracta.render(
+            plate_scene(3.0),
+            lens_camera(2.0, 10.0, 16, 8),
+            refracta.LogisticProfile(),
+            method="raster_march",
+            progress=False,
+        )
     with pytest.raises(ValueError, match="render_raster draws through a pinhole"):
         refracta.render_raster(plate_scene(3.0), lens_camera(2.0, 10.0, 16, 8))
 
@@ -201,21 +226,35 @@ def test_blur_matches_mitsuba_thinlens():
     f_number, focus, depth = 2.0, 10.0, 3.0
     camera = lens_camera(f_number, focus)
     aperture = FOCAL * 1e-3 / f_number
-    scene = mi.load_dict({
-        "type": "scene",
-        "integrator": {"type": "path", "max_depth": 2},
-        "sensor": {"type": "thinlens", "fov": camera.vfov, "fov_axis": "y", "aperture_radius": aperture / 2,
-                   "focus_distance": focus,
-                   "to_world": mi.ScalarTransform4f().look_at(origin=EYE, target=LOOK, up=(0, 1, 0)),
-                   "film": {"type": "hdrfilm", "width": WIDTH, "height": HEIGHT, "rfilter": {"type": "box"},
-                            "pixel_format": "rgb"},
-                   "sampler": {"type": "independent", "sample_count": SPP}},
-        "light": {"type": "constant", "radiance": {"type": "rgb", "value": [1.0, 1.0, 1.0]}},
-        # The plate: a rectangle [-1, 1]^2 scaled to 10 x 10 m, centred at (-5, 1, -depth), facing +z.
-        "plate": {"type": "rectangle",
-                  "to_world": mi.ScalarTransform4f().translate((-5.0, 1.0, -depth)).scale((5.0, 5.0, 1.0)),
-                  "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.0, 0.0, 0.0]}}},
-    })
+    scene = mi.load_dict(
+        {
+            "type": "scene",
+            "integrator": {"type": "path", "max_depth": 2},
+            "sensor": {
+                "type": "thinlens",
+                "fov": camera.vfov,
+                "fov_axis": "y",
+                "aperture_radius": aperture / 2,
+                "focus_distance": focus,
+                "to_world": mi.ScalarTransform4f().look_at(origin=EYE, target=LOOK, up=(0, 1, 0)),
+                "film": {
+                    "type": "hdrfilm",
+                    "width": WIDTH,
+                    "height": HEIGHT,
+                    "rfilter": {"type": "box"},
+                    "pixel_format": "rgb",
+                },
+                "sampler": {"type": "independent", "sample_count": SPP},
+            },
+            "light": {"type": "constant", "radiance": {"type": "rgb", "value": [1.0, 1.0, 1.0]}},
+            # The plate: a rectangle [-1, 1]^2 scaled to 10 x 10 m, centred at (-5, 1, -depth), facing +z.
+            "plate": {
+                "type": "rectangle",
+                "to_world": mi.ScalarTransform4f().translate((-5.0, 1.0, -depth)).scale((5.0, 5.0, 1.0)),
+                "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.0, 0.0, 0.0]}},
+            },
+        }
+    )
     theirs = np.array(mi.render(scene, seed=1))
     ours = refracta.render(plate_scene(depth), camera, None, method="straight", spp=SPP, progress=False)
     assert fitted_radius(ours) == pytest.approx(fitted_radius(theirs), rel=MITSUBA_RADIUS_REL)

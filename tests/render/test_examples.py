@@ -15,8 +15,15 @@ def test_each_example_renders_finite_and_lit_through_its_field(name):
     example = examples.EXAMPLES[name](WIDTH, HEIGHT)
     assert example.name == name and example.description
     for transport in ("direct", "path"):
-        image = refracta.render(example.scene, example.camera, example.field, transport=transport, spp=1,
-                                max_length=example.max_length, progress=False)
+        image = refracta.render(
+            example.scene,
+            example.camera,
+            example.field,
+            transport=transport,
+            spp=1,
+            max_length=example.max_length,
+            progress=False,
+        )
         assert image.shape == (HEIGHT, WIDTH, 3)
         assert np.all(np.isfinite(image)) and image.min() >= 0.0
         assert image.mean() > 0.0  # lit: not black
@@ -66,8 +73,9 @@ def _hot_road_band(example):
     # Open columns: with straight rays every pixel below the horizon sees the ground, nothing
     # standing on it (no car or pole; the ridge 9 km away meets the rows nearest the horizon at
     # fine resolutions, and is part of what the band mirrors).
-    open_columns = [c for c in range(camera.width)
-                    if all(open_ground(camera.pick(example.scene, c + 0.5, v + 0.5)) for v in below)]
+    open_columns = [
+        c for c in range(camera.width) if all(open_ground(camera.pick(example.scene, c + 0.5, v + 0.5)) for v in below)
+    ]
 
     def turns_above_road(c, v):
         origin, direction = camera.ray(c + 0.5, v + 0.5)
@@ -103,9 +111,14 @@ def test_hot_road_default_view_shows_a_wet_road_band_of_a_tenth_of_its_height():
     render = dict(transport="direct", spp=2, max_length=example.max_length, progress=False)
     image = luminance(refracta.render(example.scene, camera, field, **render))
     mirage = image[band][:, open_columns].mean()
-    asphalt = [image[v, c] for v in range(band[-1] + 3, camera.height) for c in range(camera.width)
-               if (p := camera.pick(example.scene, c + 0.5, v + 0.5)) is not None and abs(p[1]) < 0.01
-               and ASPHALT[0] < abs(p[2]) < ASPHALT[1]]
+    asphalt = [
+        image[v, c]
+        for v in range(band[-1] + 3, camera.height)
+        for c in range(camera.width)
+        if (p := camera.pick(example.scene, c + 0.5, v + 0.5)) is not None
+        and abs(p[1]) < 0.01
+        and ASPHALT[0] < abs(p[2]) < ASPHALT[1]
+    ]
     assert len(asphalt) > camera.width
     assert mirage > MIRAGE_OVER_ROAD * np.mean(asphalt), (mirage, np.mean(asphalt))
 
@@ -128,8 +141,7 @@ def _column_heights(example, field, column, x):
     heights = []
     for v in range(camera.height):
         origin, direction = camera.ray(column + 0.5, v + 0.5)
-        path = refracta.trace_ray(field, origin, direction, max_length=example.max_length,
-                                  stop_height=0.0)
+        path = refracta.trace_ray(field, origin, direction, max_length=example.max_length, stop_height=0.0)
         heights.append(_crossing_height(path, x))
     return heights
 
@@ -194,7 +206,7 @@ def test_cold_sea_shows_the_freighter_erect_and_upside_down_above_it_against_the
 
     against_sky = [v for v in image if sees_sky(v)]
     assert len(against_sky) >= len(image) / 2, (image, against_sky)
-    assert against_sky == image[len(image) - len(against_sky):], (image, against_sky)  # its lower part
+    assert against_sky == image[len(image) - len(against_sky) :], (image, against_sky)  # its lower part
     assert min(heights[v] for v in against_sky) > examples.SHIP_HULL  # above the hull: the superstructure
     # Without the atmosphere the same column shows the ship (what the bulge leaves of it) erect only.
     straight = _images(_column_heights(example, refracta.without_refraction(field), column, x), examples.SHIP_HEIGHT)
@@ -213,8 +225,9 @@ def test_fata_morgana_stacks_the_coast_erect_and_inverted():
     heights = _column_heights(example, example.field, example.camera.width // 2, FATA_MORGANA_FACE)
     kinds = [kind for _, kind in _images(heights, COAST_FOOT)]
     assert kinds[-2:] == ["inverted", "erect"], kinds  # from the bottom up: erect, then inverted above it
-    straight = _column_heights(example, refracta.without_refraction(example.field), example.camera.width // 2,
-                               FATA_MORGANA_FACE)
+    straight = _column_heights(
+        example, refracta.without_refraction(example.field), example.camera.width // 2, FATA_MORGANA_FACE
+    )
     assert [kind for _, kind in _images(straight, COAST_FOOT)] in ([], ["erect"])
 
 
@@ -236,8 +249,9 @@ def test_green_flash_frames_are_large_and_show_the_sky_around_the_red_disc():
     example = examples.green_flash(size, size, elevation)
     look, eye = np.radians(cli.GREEN_FLASH_LOOK[vfov]), example.camera.position
     camera = refracta.Camera(eye, eye + [np.cos(look), np.sin(look), 0.0], vfov=vfov, width=size, height=size)
-    image = refracta.render(example.scene, camera, example.field, max_length=example.max_length, spectral=True,
-                            spp=4, progress=False)
+    image = refracta.render(
+        example.scene, camera, example.field, max_length=example.max_length, spectral=True, spp=4, progress=False
+    )
     shown = cli.green_flash_display([np.maximum(image, 0.0)])[0]
     # The sky: pixels above the horizon whose radiance is far below the disc's (its corners).
     horizon = camera.project(np.asarray(eye) + [1e7, 0.0, 0.0])[1]

@@ -25,19 +25,34 @@ def test_fast_render_matches_strict_per_pixel_rk45(name):
     example = getattr(examples, name)(160, 60)
     common = dict(max_length=example.max_length, progress=False)
     fast = luminance(refracta.render(example.scene, example.camera, example.field, **common))
-    strict = luminance(refracta.render(example.scene, example.camera, example.field, trace="rk45", table=False,
-                                       sagitta_pixels=0.0, tol=1e-5, sagitta=1e-4, **common))
+    strict = luminance(
+        refracta.render(
+            example.scene,
+            example.camera,
+            example.field,
+            trace="rk45",
+            table=False,
+            sagitta_pixels=0.0,
+            tol=1e-5,
+            sagitta=1e-4,
+            **common,
+        )
+    )
     assert abs(fast.mean() - strict.mean()) <= 2e-4 * strict.mean()
     off = np.abs(fast - strict) > 0.02 * np.maximum(strict, 1e-3)
     # The table and sagitta paths vs strict rk45 flip < 1.5 % of pixels (edges).
     assert off.mean() < 0.015, f"{off.sum()} of {off.size} pixels differ by more than 2 %"
 
 
-@pytest.mark.parametrize("field", [
-    refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1),
-    refracta.PhysicalAtmosphere(t_ground=278.15, inversion_dt=7.0, inversion_base=10.0, inversion_thickness=20.0),
-    refracta.LogisticProfile(),
-], ids=["hot_road", "inversion", "logistic"])
+@pytest.mark.parametrize(
+    "field",
+    [
+        refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1),
+        refracta.PhysicalAtmosphere(t_ground=278.15, inversion_dt=7.0, inversion_base=10.0, inversion_thickness=20.0),
+        refracta.LogisticProfile(),
+    ],
+    ids=["hot_road", "inversion", "logistic"],
+)
 def test_tabulated_air_matches_the_field(field):
     table = _core._tabulate_heights(field, -1.0, 3000.0)
     rng = np.random.default_rng(7)

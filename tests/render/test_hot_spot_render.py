@@ -26,19 +26,26 @@ def road_with(spot):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("spot", [
-    refracta.HotSpot(400.0, 0.0, 150.0, 15.0, footprint="compact"),   # a patch of hot asphalt 300 m long
-    refracta.HotSpot(350.0, 0.0, 40.0, 20.0, footprint="gaussian"),
-    refracta.HotSpot(150.0, 0.0, 8.0, 15.0, footprint="gaussian"),    # small: every column crosses its region
-], ids=["compact", "gaussian", "small"])
+@pytest.mark.parametrize(
+    "spot",
+    [
+        refracta.HotSpot(400.0, 0.0, 150.0, 15.0, footprint="compact"),  # a patch of hot asphalt 300 m long
+        refracta.HotSpot(350.0, 0.0, 40.0, 20.0, footprint="gaussian"),
+        refracta.HotSpot(150.0, 0.0, 8.0, 15.0, footprint="gaussian"),  # small: every column crosses its region
+    ],
+    ids=["compact", "gaussian", "small"],
+)
 def test_hot_spot_render_matches_strict_per_pixel_rk45(spot):
     # Over otherwise standard air the spot alone makes the mirage.
     example = examples.hot_road(160, 60)
     field = refracta.PhysicalAtmosphere(hot_spots=[spot])
     common = dict(max_length=example.max_length, progress=False)
     fast = luminance(refracta.render(example.scene, example.camera, field, **common))
-    strict = luminance(refracta.render(example.scene, example.camera, field, trace="rk45", sagitta_pixels=0.0,
-                                       tol=1e-5, sagitta=1e-4, **common))
+    strict = luminance(
+        refracta.render(
+            example.scene, example.camera, field, trace="rk45", sagitta_pixels=0.0, tol=1e-5, sagitta=1e-4, **common
+        )
+    )
     assert abs(fast.mean() - strict.mean()) <= 5e-3 * strict.mean()
     off = np.abs(fast - strict) > 0.02 * np.maximum(strict, 1e-3)
     # The fast renderer's table and sagitta vs strict rk45 flip < 1.5 % of pixels (edges).
@@ -76,8 +83,9 @@ def test_spot_changes_only_the_columns_whose_rays_cross_it():
     # A column's rays lie in vertical planes through the eye (the height-only air bends them
     # there): column u's plane passes the spot's centre at lateral offset 120 tan(azimuth).
     camera = example.camera
-    azimuths = np.array([np.arctan2(camera.ray(u + 0.5, 30.0)[1][2], camera.ray(u + 0.5, 30.0)[1][0])
-                         for u in range(camera.width)])
+    azimuths = np.array(
+        [np.arctan2(camera.ray(u + 0.5, 30.0)[1][2], camera.ray(u + 0.5, 30.0)[1][0]) for u in range(camera.width)]
+    )
     offsets = np.abs(120.0 * np.tan(azimuths))
     # The column's rays span its pixel: half a pixel's footprint of slack.
     slack = 0.5 * 120.0 * camera.pixel_angle

@@ -22,6 +22,7 @@ def test_target_beyond_the_horizon_looms_only_with_an_inversion():
     standard = refracta.CurvedEarth(refracta.PhysicalAtmosphere(t_ground=278.15))
     # Warm air over a cold sea: +12 K over the lowest 40 m (superior mirage, ORACLES.md).
     inversion = refracta.CurvedEarth(
-        refracta.PhysicalAtmosphere(t_ground=278.15, inversion_dt=12.0, inversion_base=0.0, inversion_thickness=40.0))
+        refracta.PhysicalAtmosphere(t_ground=278.15, inversion_dt=12.0, inversion_base=0.0, inversion_thickness=40.0)
+    )
     assert target_pixels(standard) == 0
     assert target_pixels(inversion) >= 4

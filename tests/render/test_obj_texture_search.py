@@ -25,7 +25,8 @@ def write_model(folder, map_kd="facade.png", kd="1 1 1"):
         "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\n"
         "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
         "usemtl facade\n"
-        "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+        "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"
+    )
     return folder / "model.obj"
 
 

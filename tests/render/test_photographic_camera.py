@@ -10,18 +10,19 @@ import refracta
 ROUND_OFF = 1e-9  # [px] projection through the camera's double-precision frame
 
 
-@pytest.mark.parametrize("focal, sensor, size", [(50.0, (36.0, 24.0), (960, 640)), (300.0, (36.0, 24.0), (1920, 1080)),
-                                                 (24.0, (23.5, 15.6), (600, 800))])
+@pytest.mark.parametrize(
+    "focal, sensor, size",
+    [(50.0, (36.0, 24.0), (960, 640)), (300.0, (36.0, 24.0), (1920, 1080)), (24.0, (23.5, 15.6), (600, 800))],
+)
 def test_an_object_images_at_focal_length_times_its_angle(focal, sensor, size):
     width, height = size
-    camera = refracta.Camera.photographic((0, 5, 0), (1000, 5, 0), focal, sensor_mm=sensor, width=width,
-                                          height=height)
+    camera = refracta.Camera.photographic((0, 5, 0), (1000, 5, 0), focal, sensor_mm=sensor, width=width, height=height)
     # The image spans the sensor's width if relatively wider, else its height: the pixel pitch [mm].
     pitch = sensor[0] / width if width * sensor[1] >= height * sensor[0] else sensor[1] / height
     distance, offset = 1000.0, 7.0  # [m]: a point 7 m to the right of and above the axis at 1 km
-    right = camera.project((distance, 5, offset))       # +z is the image's right here
+    right = camera.project((distance, 5, offset))  # +z is the image's right here
     up = camera.project((distance, 5 + offset, 0))
-    expected = focal * offset / distance / pitch          # [px] on the sensor
+    expected = focal * offset / distance / pitch  # [px] on the sensor
     assert right[0] - width / 2 == pytest.approx(expected, abs=ROUND_OFF)
     assert height / 2 - up[1] == pytest.approx(expected, abs=ROUND_OFF)
 
@@ -32,11 +33,16 @@ def test_a_300_mm_telephoto_on_full_frame_sees_under_5_degrees():
     assert camera.vfov == pytest.approx(2 * math.degrees(math.atan(12.0 / 300.0)), rel=1e-12)
 
 
-@pytest.mark.parametrize("arguments, name", [(dict(focal_length_mm=0.0), "focal_length_mm"),
-                                             (dict(focal_length_mm=float("nan")), "focal_length_mm"),
-                                             (dict(focal_length_mm=-50.0), "focal_length_mm"),
-                                             (dict(focal_length_mm=50.0, sensor_mm=(0.0, 24.0)), "sensor_mm"),
-                                             (dict(focal_length_mm=50.0, sensor_mm=(36.0, float("inf"))), "sensor_mm")])
+@pytest.mark.parametrize(
+    "arguments, name",
+    [
+        (dict(focal_length_mm=0.0), "focal_length_mm"),
+        (dict(focal_length_mm=float("nan")), "focal_length_mm"),
+        (dict(focal_length_mm=-50.0), "focal_length_mm"),
+        (dict(focal_length_mm=50.0, sensor_mm=(0.0, 24.0)), "sensor_mm"),
+        (dict(focal_length_mm=50.0, sensor_mm=(36.0, float("inf"))), "sensor_mm"),
+    ],
+)
 def test_impossible_lenses_and_sensors_are_refused(arguments, name):
     with pytest.raises(ValueError, match=name):
         refracta.Camera.photographic((0, 5, 0), (10, 5, 0), **arguments)
@@ -44,10 +50,10 @@ def test_impossible_lenses_and_sensors_are_refused(arguments, name):
 
 # --- Camera.eye_level: a photographer's level view toward a target ---------------------------------
 
+
 def test_eye_level_stands_at_eye_height_and_puts_the_horizon_on_the_centre_row():
     ground, target, height = (3.0, 0.5, -2.0), (103.0, 0.2, -2.0 - 100.0), 1.6
-    camera = refracta.Camera.eye_level(ground, target, eye_height=height, focal_length_mm=200.0, width=640,
-                                       height=240)
+    camera = refracta.Camera.eye_level(ground, target, eye_height=height, focal_length_mm=200.0, width=640, height=240)
     assert camera.position.tolist() == [3.0, 0.5 + height, -2.0]
     # Points at eye height far away (a flat Earth's horizon), across the whole view: the centre row.
     for azimuth_offset in (-2.0, 0.0, 2.5):  # [deg] about the target's direction, inside the 10.3 deg view
@@ -65,8 +71,9 @@ def test_eye_level_stands_at_eye_height_and_puts_the_horizon_on_the_centre_row()
     assert depth == pytest.approx(distance, rel=1e-12)  # hypot in double: rounding
     assert v - 120.0 == pytest.approx(200.0 * (0.5 + height - 0.2) / distance / pitch, abs=ROUND_OFF)
     # The same computation twice: rounding.
-    assert camera.vfov == pytest.approx(refracta.Camera.photographic((0, 0, 0), (1, 0, 0), 200.0, width=640,
-                                                                     height=240).vfov, rel=1e-15)
+    assert camera.vfov == pytest.approx(
+        refracta.Camera.photographic((0, 0, 0), (1, 0, 0), 200.0, width=640, height=240).vfov, rel=1e-15
+    )
 
 
 def test_eye_level_focuses_at_the_target_distance():
@@ -74,14 +81,21 @@ def test_eye_level_focuses_at_the_target_distance():
     # the level distance hypot(30, 40) = 50: double rounding.
     assert camera.focus_distance == pytest.approx(50.0, rel=1e-15)
     assert camera.aperture_diameter == pytest.approx(0.085 / 1.8, rel=1e-15)  # 0.085 / 1.8 in double: rounding
-    assert refracta.Camera.eye_level((0, 0, 0), (30.0, 5.0, 40.0), f_number=1.8, focus_distance=7.0).focus_distance == 7.0
+    assert (
+        refracta.Camera.eye_level((0, 0, 0), (30.0, 5.0, 40.0), f_number=1.8, focus_distance=7.0).focus_distance == 7.0
+    )
 
 
-@pytest.mark.parametrize("arguments, name", [(dict(eye_height=0.0), "eye_height"),
-                                             (dict(eye_height=float("nan")), "eye_height"),
-                                             (dict(target=(0.0, 50.0, 0.0)), "target"),
-                                             (dict(focal_length_mm=-1.0), "focal_length_mm"),
-                                             (dict(f_number=0.0), "f_number")])
+@pytest.mark.parametrize(
+    "arguments, name",
+    [
+        (dict(eye_height=0.0), "eye_height"),
+        (dict(eye_height=float("nan")), "eye_height"),
+        (dict(target=(0.0, 50.0, 0.0)), "target"),
+        (dict(focal_length_mm=-1.0), "focal_length_mm"),
+        (dict(f_number=0.0), "f_number"),
+    ],
+)
 def test_eye_level_refuses_impossible_views(arguments, name):
     kwargs = dict(eye=(0.0, 0.0, 0.0), target=(0.0, 0.0, -100.0))
     kwargs.update(arguments)

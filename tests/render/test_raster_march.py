@@ -38,10 +38,20 @@ def test_raster_march_agrees_with_curved_where_the_hit_is_in_view():
     5.6 % in the former 2.2 deg view with a band of 3 %)."""
     example = examples.hot_road(160, 60)
     render = dict(progress=False, max_length=example.max_length)
-    curved = np.mean([refracta.render(example.scene, example.camera, example.field, method="curved", seed=s, **render)
-                      for s in range(8)], axis=0)
-    marched = np.mean([refracta.render(example.scene, example.camera, example.field, method="raster_march", seed=s,
-                                       **render) for s in range(8)], axis=0)
+    curved = np.mean(
+        [
+            refracta.render(example.scene, example.camera, example.field, method="curved", seed=s, **render)
+            for s in range(8)
+        ],
+        axis=0,
+    )
+    marched = np.mean(
+        [
+            refracta.render(example.scene, example.camera, example.field, method="raster_march", seed=s, **render)
+            for s in range(8)
+        ],
+        axis=0,
+    )
     horizon = int(np.ceil(example.camera.project([1e6, example.camera.position[1], 0.0])[1]))
     assert differing(curved[:horizon], marched[:horizon]) < 0.03
     assert differing(curved, marched) < 0.10
@@ -59,11 +69,20 @@ def test_the_original_settings_see_no_farther_than_300_m():
     camera = example.camera
     x, y = 12, 16  # the distant ridge (~8.6 km) near the image's left edge, sky next to it
     assert camera.pick(example.scene, x + 0.5, y + 0.5)[0] > 600.0
-    marched = refracta.render(example.scene, camera, example.field, method="raster_march", march="rk4",
-                              step=0.3, max_steps=1000, progress=False)
+    marched = refracta.render(
+        example.scene,
+        camera,
+        example.field,
+        method="raster_march",
+        march="rk4",
+        step=0.3,
+        max_steps=1000,
+        progress=False,
+    )
     curved = refracta.render(example.scene, camera, example.field, progress=False, max_length=example.max_length)
-    full = refracta.render(example.scene, camera, example.field, method="raster_march", progress=False,
-                           max_length=example.max_length)
+    full = refracta.render(
+        example.scene, camera, example.field, method="raster_march", progress=False, max_length=example.max_length
+    )
     # The sky along this row, from the next column where nothing stands (5 m above the road the
     # air bends rays by microradians; toward the sun, 25 deg to the right, the sky brightens by
     # ~0.1 % per column, so 0.3 % allows a few columns, far below the >10 % of the ridge itself).
@@ -74,12 +93,15 @@ def test_the_original_settings_see_no_farther_than_300_m():
         assert np.abs(image[y, x] - sky).max() > 0.1 * sky.max()
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(guard_band=-0.1), "guard_band"),
-    (dict(march="stratified"), "march"),
-    (dict(max_steps=0), "max_steps"),
-    (dict(step=0.0), "step"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(guard_band=-0.1), "guard_band"),
+        (dict(march="stratified"), "march"),
+        (dict(max_steps=0), "max_steps"),
+        (dict(step=0.0), "step"),
+    ],
+)
 def test_bad_options_raise_value_error(kwargs, match):
     example = examples.hot_road(16, 8)
     with pytest.raises(ValueError, match=match):
@@ -88,10 +110,12 @@ def test_bad_options_raise_value_error(kwargs, match):
 
 def test_render_counts_its_chords():
     example = examples.hot_road(32, 12)
-    _, straight = refracta.render(example.scene, example.camera, None, method="straight", progress=False,
-                                  return_stats=True)
-    _, curved = refracta.render(example.scene, example.camera, example.field, progress=False,
-                                max_length=example.max_length, return_stats=True)
+    _, straight = refracta.render(
+        example.scene, example.camera, None, method="straight", progress=False, return_stats=True
+    )
+    _, curved = refracta.render(
+        example.scene, example.camera, example.field, progress=False, max_length=example.max_length, return_stats=True
+    )
     assert straight.samples == 32 * 12 and straight.chords == 32 * 12  # one straight ray per pixel
     assert straight.invalid_samples == 0 and curved.invalid_samples == 0
     assert curved.samples == 32 * 12 and curved.chords > 2 * curved.samples

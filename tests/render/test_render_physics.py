@@ -30,7 +30,9 @@ def pixel_depressions(camera, column):
 
 
 def test_sky_ground_boundary_lies_at_the_critical_depression(hot_road):
-    camera = refracta.Camera([0, EYE, 0], [1000, EYE - 1000 * np.tan(np.radians(0.3)), 0], vfov=1.2, width=24, height=96)
+    camera = refracta.Camera(
+        [0, EYE, 0], [1000, EYE - 1000 * np.tan(np.radians(0.3)), 0], vfov=1.2, width=24, height=96
+    )
     image = refracta.render(flat_scene(), camera, hot_road, progress=False)
     n_ground, n_eye = hot_road.ior(np.array([[0, 0, 0], [0, EYE, 0]], dtype=float))
     theta_c = np.degrees(np.arccos(n_ground / n_eye))
@@ -64,8 +66,9 @@ def test_a_traced_ray_lands_on_the_pixel_that_shows_its_colour(hot_road):
     checked = 0
     for v in range(camera.height):
         origin, direction = camera.ray(4.5, v + 0.5)
-        path = refracta.trace_ray(hot_road, origin, direction, trace="stratified", tol=1e-6, max_length=400,
-                                  stop_height=0.0)
+        path = refracta.trace_ray(
+            hot_road, origin, direction, trace="stratified", tol=1e-6, max_length=400, stop_height=0.0
+        )
         crossing = path.crossings([1, 0, 0], 300.0)
         if path.stop == "stop_height" and not crossing:
             continue  # reaches the road before the wall

@@ -56,12 +56,18 @@ CAMERA = "[camera]\nposition = [0, 1, 0]\nlook_at = [10, 1, 0]\nsize = [8, 4]\n"
         ("[camera\nposition = [0, 1, 0]\n", r"scene.toml: malformed TOML: .*line 1"),
         (CAMERA + "[atmosphere]\nmodel = 'Fog'\n", r"scene.toml:6: \[atmosphere\] model: unknown model 'Fog'"),
         (CAMERA + "[atmosphere]\nsurface_dt = 5\nsurface_depth = -1\n", r"scene.toml:7: \[atmosphere\] surface_depth"),
-        (CAMERA + "[[objects]]\ntype = 'box'\ncentre = [1, 2]\nsize = [1, 1, 1]\n",
-         r"scene.toml:7: \[\[objects\]\] #1 centre: must be a list of 3 numbers"),
-        (CAMERA + "[[objects]]\ntype = 'ground'\n[[objects]]\ntype = 'cone'\n",
-         r"scene.toml:8: \[\[objects\]\] #2 type: unknown type 'cone'"),
-        (CAMERA + "[[objects]]\ntype = 'sphere'\ncentre = [1, 2, 3]\nradius = 1\ncolour = [1, 0, 0]\n",
-         r"scene.toml:9: \[\[objects\]\] #1 colour: unknown key"),
+        (
+            CAMERA + "[[objects]]\ntype = 'box'\ncentre = [1, 2]\nsize = [1, 1, 1]\n",
+            r"scene.toml:7: \[\[objects\]\] #1 centre: must be a list of 3 numbers",
+        ),
+        (
+            CAMERA + "[[objects]]\ntype = 'ground'\n[[objects]]\ntype = 'cone'\n",
+            r"scene.toml:8: \[\[objects\]\] #2 type: unknown type 'cone'",
+        ),
+        (
+            CAMERA + "[[objects]]\ntype = 'sphere'\ncentre = [1, 2, 3]\nradius = 1\ncolour = [1, 0, 0]\n",
+            r"scene.toml:9: \[\[objects\]\] #1 colour: unknown key",
+        ),
         ("[camera]\nposition = [0, 1, 0]\nlook_at = [0, 1, 0]\n", r"scene.toml:1: \[camera\]: .*look_at must differ"),
         ("[camera]\nlook_at = [1, 1, 0]\n", r"scene.toml:1: \[camera\] position: missing"),
     ],
@@ -94,13 +100,18 @@ def test_render_command_exposes_pngs_as_write_image_does(tmp_path):
     linear = tmp_path / "road.exr"
     assert cli.main(["render", str(DATA / "hot_road.toml"), "-o", str(linear), "--size", "48x16"]) == 0
     image = refracta.io.read_image(linear)
-    for extra, kwargs in (([], {}), (["--ev100", "12"], dict(ev100=12.0)), (["--exposure", "0.5"], dict(exposure=0.5)),
-                          (["--key", "0.09", "--tonemap", "reinhard"], dict(key=0.09, tonemap="reinhard"))):
+    for extra, kwargs in (
+        ([], {}),
+        (["--ev100", "12"], dict(ev100=12.0)),
+        (["--exposure", "0.5"], dict(exposure=0.5)),
+        (["--key", "0.09", "--tonemap", "reinhard"], dict(key=0.09, tonemap="reinhard")),
+    ):
         output = tmp_path / "road.png"
         assert cli.main(["render", str(DATA / "hot_road.toml"), "-o", str(output), "--size", "48x16", *extra]) == 0
         # 8-bit quantisation: half a level.
-        np.testing.assert_allclose(refracta.io.read_image(output), refracta.io.to_display(image, **kwargs),
-                                   atol=0.51 / 255)
+        np.testing.assert_allclose(
+            refracta.io.read_image(output), refracta.io.to_display(image, **kwargs), atol=0.51 / 255
+        )
 
 
 def test_every_material_and_light_type_loads_and_renders_finite():
@@ -108,8 +119,9 @@ def test_every_material_and_light_type_loads_and_renders_finite():
     assert field is None
     # The physical sky (Scene.set_physical_sky through refracta.examples.set_physical_sky; scaled, so
     # a plain Light whose repr names it) and its sun, point, spot, the emissive panel (AreaLight) and sphere.
-    kinds = sorted("PhysicalSkyLight" if "PhysicalSkyLight" in repr(light) else type(light).__name__
-                   for light in scene.lights)
+    kinds = sorted(
+        "PhysicalSkyLight" if "PhysicalSkyLight" in repr(light) else type(light).__name__ for light in scene.lights
+    )
     assert kinds == ["AreaLight", "PhysicalSkyLight", "PointLight", "SphereLight", "SpotLight", "SunLight"]
     assert scene.geometry_count == 12  # ground, panel, 10 objects with the ten material types
     for transport in ("direct", "path"):
@@ -120,16 +132,19 @@ def test_every_material_and_light_type_loads_and_renders_finite():
 
 def test_materials_are_shared_by_name(tmp_path):
     """An object naming a material renders as the same material given in Python."""
-    text = (CAMERA + "[environment]\ntype = 'constant'\nradiance = 1.0\n"
-            "[[materials]]\nname = 'red'\ntype = 'diffuse'\nreflectance = [0.8, 0.1, 0.1]\n"
-            "[[objects]]\ntype = 'sphere'\ncentre = [10, 1, 0]\nradius = 3\nmaterial = 'red'\n")
+    text = (
+        CAMERA + "[environment]\ntype = 'constant'\nradiance = 1.0\n"
+        "[[materials]]\nname = 'red'\ntype = 'diffuse'\nreflectance = [0.8, 0.1, 0.1]\n"
+        "[[objects]]\ntype = 'sphere'\ncentre = [10, 1, 0]\nradius = 3\nmaterial = 'red'\n"
+    )
     scene, camera, _ = refracta.load_scene(write(tmp_path, text))
     reference = refracta.Scene()
     reference.set_environment((1.0, 1.0, 1.0))
     reference.add_sphere([10, 1, 0], 3.0, material=refracta.shading.Diffuse((0.8, 0.1, 0.1)))
     options = dict(transport="path", spp=4, seed=2, progress=False)
-    np.testing.assert_array_equal(refracta.render(scene, camera, **options),
-                                  refracta.render(reference, camera, **options))
+    np.testing.assert_array_equal(
+        refracta.render(scene, camera, **options), refracta.render(reference, camera, **options)
+    )
 
 
 LIGHT_CAMERA = CAMERA + "[environment]\ntype = 'constant'\nradiance = 0.1\n"
@@ -138,31 +153,58 @@ LIGHT_CAMERA = CAMERA + "[environment]\ntype = 'constant'\nradiance = 0.1\n"
 @pytest.mark.parametrize(
     "text, message",
     [
-        (CAMERA + "[[materials]]\nname = 'x'\ntype = 'velvet'\n",
-         r"scene.toml:7: \[\[materials\]\] #1 type: unknown material type 'velvet'"),
-        (CAMERA + "[[materials]]\nname = 'paint'\ntype = 'diffuse'\n[[objects]]\ntype = 'box'\n"
-         "centre = [5, 1, 0]\nsize = [1, 1, 1]\nmaterial = 'pain'\n",
-         r"scene.toml:12: \[\[objects\]\] #1 material: unknown material 'pain' \(materials: paint\)"),
-        (CAMERA + "[[materials]]\nname = 'metal'\ntype = 'rough_conductor'\n\nalpha = -0.1\n",
-         r"scene.toml:9: \[\[materials\]\] #1 alpha: alpha_u must be finite and >= 0 \(got -0.1\)"),
-        (CAMERA + "[[materials]]\nname = 'paint'\ntype = 'principled'\nroughness = -0.2\n",
-         r"scene.toml:8: \[\[materials\]\] #1 roughness: roughness must be in \[0, 1\]"),
-        (CAMERA + "[[materials]]\nname = 'glass'\ntype = 'dielectric'\niro = 1.5\n",
-         r"scene.toml:8: \[\[materials\]\] #1 iro: unknown key for a dielectric material"),
-        (CAMERA + "[[materials]]\nname = 'a'\ntype = 'diffuse'\nreflectance = 'red'\n",
-         r"scene.toml:8: \[\[materials\]\] #1 reflectance: must be a number or a list of numbers"),
-        (LIGHT_CAMERA + "[[lights]]\ntype = 'laser'\n", r"scene.toml:9: \[\[lights\]\] #1 type: unknown light type 'laser'"),
-        (LIGHT_CAMERA + "[[lights]]\ntype = 'point'\nposition = [0, 1, 0]\nintensity = -1\n",
-         r"scene.toml:11: \[\[lights\]\] #1 intensity: intensity must be finite and >= 0"),
-        (LIGHT_CAMERA + "[[lights]]\ntype = 'spot'\nposition = [0, 1, 0]\ndirection = [1, 0, 0]\nintensity = 1\n"
-         "cone = 30\n", r"scene.toml:13: \[\[lights\]\] #1 cone: unknown key for a spot light"),
+        (
+            CAMERA + "[[materials]]\nname = 'x'\ntype = 'velvet'\n",
+            r"scene.toml:7: \[\[materials\]\] #1 type: unknown material type 'velvet'",
+        ),
+        (
+            CAMERA + "[[materials]]\nname = 'paint'\ntype = 'diffuse'\n[[objects]]\ntype = 'box'\n"
+            "centre = [5, 1, 0]\nsize = [1, 1, 1]\nmaterial = 'pain'\n",
+            r"scene.toml:12: \[\[objects\]\] #1 material: unknown material 'pain' \(materials: paint\)",
+        ),
+        (
+            CAMERA + "[[materials]]\nname = 'metal'\ntype = 'rough_conductor'\n\nalpha = -0.1\n",
+            r"scene.toml:9: \[\[materials\]\] #1 alpha: alpha_u must be finite and >= 0 \(got -0.1\)",
+        ),
+        (
+            CAMERA + "[[materials]]\nname = 'paint'\ntype = 'principled'\nroughness = -0.2\n",
+            r"scene.toml:8: \[\[materials\]\] #1 roughness: roughness must be in \[0, 1\]",
+        ),
+        (
+            CAMERA + "[[materials]]\nname = 'glass'\ntype = 'dielectric'\niro = 1.5\n",
+            r"scene.toml:8: \[\[materials\]\] #1 iro: unknown key for a dielectric material",
+        ),
+        (
+            CAMERA + "[[materials]]\nname = 'a'\ntype = 'diffuse'\nreflectance = 'red'\n",
+            r"scene.toml:8: \[\[materials\]\] #1 reflectance: must be a number or a list of numbers",
+        ),
+        (
+            LIGHT_CAMERA + "[[lights]]\ntype = 'laser'\n",
+            r"scene.toml:9: \[\[lights\]\] #1 type: unknown light type 'laser'",
+        ),
+        (
+            LIGHT_CAMERA + "[[lights]]\ntype = 'point'\nposition = [0, 1, 0]\nintensity = -1\n",
+            r"scene.toml:11: \[\[lights\]\] #1 intensity: intensity must be finite and >= 0",
+        ),
+        (
+            LIGHT_CAMERA + "[[lights]]\ntype = 'spot'\nposition = [0, 1, 0]\ndirection = [1, 0, 0]\nintensity = 1\n"
+            "cone = 30\n",
+            r"scene.toml:13: \[\[lights\]\] #1 cone: unknown key for a spot light",
+        ),
         (CAMERA + "[environment]\ntype = 'fog'\n", r"scene.toml:6: \[environment\] type: unknown environment type"),
-        (CAMERA + "[environment]\ntype = 'physical_sky'\nsun_direction = [0, 0, 0]\n",
-         r"scene.toml:7: \[environment\] sun_direction: must be a non-zero direction"),
-        (CAMERA + "[environment]\ntype = 'physical_sky'\nsun_direction = [0, 1, 0]\n[sun]\ndirection = [0, 1, 0]\n"
-         "radiance = 1\n", r"scene.toml:8: \[sun\]: the physical sky sets its own sun"),
-        (CAMERA + "[[objects]]\ntype = 'ground'\nemission = [1, 1, 1]\n",
-         r"scene.toml:7: \[\[objects\]\] #1 emission: unknown key for a ground"),
+        (
+            CAMERA + "[environment]\ntype = 'physical_sky'\nsun_direction = [0, 0, 0]\n",
+            r"scene.toml:7: \[environment\] sun_direction: must be a non-zero direction",
+        ),
+        (
+            CAMERA + "[environment]\ntype = 'physical_sky'\nsun_direction = [0, 1, 0]\n[sun]\ndirection = [0, 1, 0]\n"
+            "radiance = 1\n",
+            r"scene.toml:8: \[sun\]: the physical sky sets its own sun",
+        ),
+        (
+            CAMERA + "[[objects]]\ntype = 'ground'\nemission = [1, 1, 1]\n",
+            r"scene.toml:7: \[\[objects\]\] #1 emission: unknown key for a ground",
+        ),
     ],
 )
 def test_material_and_light_errors_name_file_line_and_key(tmp_path, text, message):
@@ -171,26 +213,34 @@ def test_material_and_light_errors_name_file_line_and_key(tmp_path, text, messag
 
 
 def test_a_photographic_camera_with_a_lens_loads_and_round_trips(tmp_path):
-    text = ("[camera]\nposition = [0, 1.4, 0]\nlook_at = [200, 1.4, 0]\nsize = [96, 32]\nfocal_length_mm = 300.0\n"
-            "sensor_mm = [36.0, 24.0]\nf_number = 4.0\n")
+    text = (
+        "[camera]\nposition = [0, 1.4, 0]\nlook_at = [200, 1.4, 0]\nsize = [96, 32]\nfocal_length_mm = 300.0\n"
+        "sensor_mm = [36.0, 24.0]\nf_number = 4.0\n"
+    )
     camera = refracta.load_scene(write(tmp_path, text)).camera
     same = refracta.Camera.photographic((0, 1.4, 0), (200, 1.4, 0), 300.0, width=96, height=32, f_number=4.0)
     assert camera.vfov == same.vfov
-    assert camera.aperture_diameter == pytest.approx(0.075, rel=1e-15)   # f / N
-    assert camera.focus_distance == pytest.approx(200.0, rel=1e-15)      # the look_at distance
+    assert camera.aperture_diameter == pytest.approx(0.075, rel=1e-15)  # f / N
+    assert camera.focus_distance == pytest.approx(200.0, rel=1e-15)  # the look_at distance
     # camera_table writes the lens as aperture_diameter and focus_distance with the vfov.
     again = refracta.load_scene(write(tmp_path, refracta.scene_file.camera_table(camera), "again.toml")).camera
-    assert (again.vfov, again.aperture_diameter, again.focus_distance) == (camera.vfov, camera.aperture_diameter,
-                                                                           camera.focus_distance)
+    assert (again.vfov, again.aperture_diameter, again.focus_distance) == (
+        camera.vfov,
+        camera.aperture_diameter,
+        camera.focus_distance,
+    )
 
 
-@pytest.mark.parametrize("extra, message", [
-    ("vfov = 10.0\nfocal_length_mm = 50.0\n", r"\[camera\] focal_length_mm: give vfov or focal_length_mm"),
-    ("f_number = 2.0\n", r"\[camera\] f_number: needs focal_length_mm"),
-    ("focal_length_mm = 50.0\nf_number = 0.0\n", r"\[camera\]: Camera.photographic: f_number must be > 0"),
-    ("aperture_diameter = 0.01\n", r"\[camera\] aperture_diameter: needs focus_distance"),
-    ("focus_distance = 5.0\n", r"\[camera\] focus_distance: needs f_number or aperture_diameter"),
-])
+@pytest.mark.parametrize(
+    "extra, message",
+    [
+        ("vfov = 10.0\nfocal_length_mm = 50.0\n", r"\[camera\] focal_length_mm: give vfov or focal_length_mm"),
+        ("f_number = 2.0\n", r"\[camera\] f_number: needs focal_length_mm"),
+        ("focal_length_mm = 50.0\nf_number = 0.0\n", r"\[camera\]: Camera.photographic: f_number must be > 0"),
+        ("aperture_diameter = 0.01\n", r"\[camera\] aperture_diameter: needs focus_distance"),
+        ("focus_distance = 5.0\n", r"\[camera\] focus_distance: needs f_number or aperture_diameter"),
+    ],
+)
 def test_impossible_lenses_in_scene_files_are_refused_naming_the_key(tmp_path, extra, message):
     with pytest.raises(ValueError, match=message):
         refracta.load_scene(write(tmp_path, CAMERA + extra))

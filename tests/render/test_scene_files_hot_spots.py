@@ -41,11 +41,20 @@ def read_back(tmp_path, text):
     return refracta.load_scene(path)
 
 
-@pytest.mark.parametrize("field", [
-    refracta.PhysicalAtmosphere(**ROAD, hot_spots=[refracta.HotSpot(120.0, -2.0, 6.0, 8.0, depth=0.25),
-                                                   refracta.HotSpot(200.0, 3.0, 4.0, -3.0, footprint="compact")]),
-    refracta.LogisticProfile(k_s=12.0, hot_spots=[refracta.HotSpot(40.0, 1.0, 3.0, 0.6, footprint="compact")]),
-], ids=["physical-two-spots", "logistic-one-spot"])
+@pytest.mark.parametrize(
+    "field",
+    [
+        refracta.PhysicalAtmosphere(
+            **ROAD,
+            hot_spots=[
+                refracta.HotSpot(120.0, -2.0, 6.0, 8.0, depth=0.25),
+                refracta.HotSpot(200.0, 3.0, 4.0, -3.0, footprint="compact"),
+            ],
+        ),
+        refracta.LogisticProfile(k_s=12.0, hot_spots=[refracta.HotSpot(40.0, 1.0, 3.0, 0.6, footprint="compact")]),
+    ],
+    ids=["physical-two-spots", "logistic-one-spot"],
+)
 def test_hot_spots_read_back_as_the_same_field(tmp_path, road_text, field):
     loaded = read_back(tmp_path, with_atmosphere(road_text, field)).field
     assert loaded.hot_spots == field.hot_spots  # centre, radius, dt, depth and footprint
@@ -65,8 +74,9 @@ def test_spots_are_written_as_entries_with_their_current_values(road_text):
 
 def test_turbulence_reads_back_as_the_same_pattern(tmp_path, road_text):
     air = refracta.Turbulence(1e-10, seed=5, cells=CELLS, wind=(0.5, 2.0), depth=0.2).at_time(0.7)
-    field = refracta.PhysicalAtmosphere(**ROAD, hot_spots=[refracta.HotSpot(120.0, 0.0, 6.0, 8.0)],
-                                        turbulence=air.layer)
+    field = refracta.PhysicalAtmosphere(
+        **ROAD, hot_spots=[refracta.HotSpot(120.0, 0.0, 6.0, 8.0)], turbulence=air.layer
+    )
     loaded = read_back(tmp_path, with_atmosphere(road_text, field, turbulence=air))
     # A new Turbulence, synthesised again from the settings: the same noise from the same seed.
     assert loaded.turbulence is not air
@@ -105,11 +115,12 @@ def test_a_field_with_turbulence_needs_the_turbulence_it_carries():
 
 def test_rewriting_replaces_every_sub_table_and_keeps_the_rest(tmp_path, road_text):
     air = refracta.Turbulence(1e-10, seed=5, cells=CELLS)
-    spotted = refracta.PhysicalAtmosphere(**ROAD, hot_spots=[refracta.HotSpot(120.0, 0.0, 6.0, 8.0)] * 2,
-                                          turbulence=air.layer)
+    spotted = refracta.PhysicalAtmosphere(
+        **ROAD, hot_spots=[refracta.HotSpot(120.0, 0.0, 6.0, 8.0)] * 2, turbulence=air.layer
+    )
     text = with_atmosphere(road_text, spotted, air)
     # TOML lets a sub-table stand away from its parent: the turbulence moved below [sky].
-    turbulence = text[text.index("[atmosphere.turbulence]"):text.index("[sun]")]
+    turbulence = text[text.index("[atmosphere.turbulence]") : text.index("[sun]")]
     text = text.replace(turbulence, "").replace("[[objects]]", turbulence + "[[objects]]", 1)
     assert read_back(tmp_path, text).turbulence.seed == 5
     plain = refracta.PhysicalAtmosphere(surface_dt=4.0)
@@ -147,34 +158,72 @@ def test_a_scene_file_unpacks_as_three_and_pickles_with_its_turbulence(tmp_path,
 SPOT = "[atmosphere]\nsurface_dt = 5\n\n[[atmosphere.hot_spots]]\nx = 50\nz = 0\nradius = 3\ndt = 4\n"
 
 
-@pytest.mark.parametrize("text, message", [
-    (CAMERA + SPOT.replace("radius = 3\n", ""), r":8: \[\[atmosphere.hot_spots\]\] #1 radius: missing"),
-    (CAMERA + SPOT.replace("radius = 3", "radius = 0"),
-     r":11: \[\[atmosphere.hot_spots\]\] #1 radius: HotSpot: radius must be > 0 m \(got 0\)"),
-    (CAMERA + SPOT + "\n[[atmosphere.hot_spots]]\nx = 9\nz = 0\nradius = -2\ndt = 1\n",
-     r":17: \[\[atmosphere.hot_spots\]\] #2 radius: HotSpot: radius must be > 0 m"),
-    (CAMERA + SPOT + "footprint = 'square'\n",
-     r":13: \[\[atmosphere.hot_spots\]\] #1 footprint: HotSpot: footprint must be 'gaussian' or 'compact'"),
-    (CAMERA + SPOT + "radious = 4\n",
-     r":13: \[\[atmosphere.hot_spots\]\] #1 radious: unknown key for a hot spot \(did you mean radius\?"),
-    (CAMERA + SPOT.replace("x = 50", "x = '50'"), r":9: \[\[atmosphere.hot_spots\]\] #1 x: must be a number"),
-    (CAMERA + SPOT.replace("surface_dt = 5", "model = 'LogisticProfile'") + "depth = 0.2\n",
-     r":13: \[\[atmosphere.hot_spots\]\] #1 depth: LogisticProfile: hot_spots\[0\] has depth 0.2"),
-    (CAMERA + "[atmosphere]\nmodel = 'LinearSquaredProfile'\n\n[[atmosphere.hot_spots]]\nx = 1\n",
-     r":8: \[\[atmosphere.hot_spots\]\] #1: LinearSquaredProfile takes no hot spots"),
-    (CAMERA + "[atmosphere]\nhot_spot0_x = 50\n",
-     r":6: \[atmosphere\] hot_spot0_x: a hot spot is an \[\[atmosphere.hot_spots\]\] entry"),
-    (CAMERA + "[atmosphere]\nhot_spots = [{x = 1, z = 2, radius = 3, dt = 4, width = 1}]\n",
-     r":6: \[\[atmosphere.hot_spots\]\] #1 width: unknown key for a hot spot"),
-    (CAMERA + "[atmosphere]\n\n[atmosphere.turbulence]\ncells = 16\nseeed = 3\n",
-     r":9: \[atmosphere.turbulence\] seeed: unknown key for \[atmosphere.turbulence\] \(did you mean seed\?"),
-    (CAMERA + "[atmosphere]\n\n[atmosphere.turbulence]\ncells = 16\ncn2 = -1e-10\n",
-     r":9: \[atmosphere.turbulence\] cn2: Turbulence: cn2 must be >= 0"),
-    (CAMERA + "[atmosphere]\n\n[atmosphere.turbulence]\ncells = 16.5\n",
-     r":8: \[atmosphere.turbulence\] cells: must be a whole number"),
-], ids=["missing-radius", "zero-radius", "negative-radius-second-entry", "unknown-footprint", "unknown-key",
-        "string-number", "logistic-depth", "model-without-spots", "parameter-name-as-key", "inline-unknown-key",
-        "turbulence-unknown-key", "turbulence-bad-value", "turbulence-fractional-cells"])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        (CAMERA + SPOT.replace("radius = 3\n", ""), r":8: \[\[atmosphere.hot_spots\]\] #1 radius: missing"),
+        (
+            CAMERA + SPOT.replace("radius = 3", "radius = 0"),
+            r":11: \[\[atmosphere.hot_spots\]\] #1 radius: HotSpot: radius must be > 0 m \(got 0\)",
+        ),
+        (
+            CAMERA + SPOT + "\n[[atmosphere.hot_spots]]\nx = 9\nz = 0\nradius = -2\ndt = 1\n",
+            r":17: \[\[atmosphere.hot_spots\]\] #2 radius: HotSpot: radius must be > 0 m",
+        ),
+        (
+            CAMERA + SPOT + "footprint = 'square'\n",
+            r":13: \[\[atmosphere.hot_spots\]\] #1 footprint: HotSpot: footprint must be 'gaussian' or 'compact'",
+        ),
+        (
+            CAMERA + SPOT + "radious = 4\n",
+            r":13: \[\[atmosphere.hot_spots\]\] #1 radious: unknown key for a hot spot \(did you mean radius\?",
+        ),
+        (CAMERA + SPOT.replace("x = 50", "x = '50'"), r":9: \[\[atmosphere.hot_spots\]\] #1 x: must be a number"),
+        (
+            CAMERA + SPOT.replace("surface_dt = 5", "model = 'LogisticProfile'") + "depth = 0.2\n",
+            r":13: \[\[atmosphere.hot_spots\]\] #1 depth: LogisticProfile: hot_spots\[0\] has depth 0.2",
+        ),
+        (
+            CAMERA + "[atmosphere]\nmodel = 'LinearSquaredProfile'\n\n[[atmosphere.hot_spots]]\nx = 1\n",
+            r":8: \[\[atmosphere.hot_spots\]\] #1: LinearSquaredProfile takes no hot spots",
+        ),
+        (
+            CAMERA + "[atmosphere]\nhot_spot0_x = 50\n",
+            r":6: \[atmosphere\] hot_spot0_x: a hot spot is an \[\[atmosphere.hot_spots\]\] entry",
+        ),
+        (
+            CAMERA + "[atmosphere]\nhot_spots = [{x = 1, z = 2, radius = 3, dt = 4, width = 1}]\n",
+            r":6: \[\[atmosphere.hot_spots\]\] #1 width: unknown key for a hot spot",
+        ),
+        (
+            CAMERA + "[atmosphere]\n\n[atmosphere.turbulence]\ncells = 16\nseeed = 3\n",
+            r":9: \[atmosphere.turbulence\] seeed: unknown key for \[atmosphere.turbulence\] \(did you mean seed\?",
+        ),
+        (
+            CAMERA + "[atmosphere]\n\n[atmosphere.turbulence]\ncells = 16\ncn2 = -1e-10\n",
+            r":9: \[atmosphere.turbulence\] cn2: Turbulence: cn2 must be >= 0",
+        ),
+        (
+            CAMERA + "[atmosphere]\n\n[atmosphere.turbulence]\ncells = 16.5\n",
+            r":8: \[atmosphere.turbulence\] cells: must be a whole number",
+        ),
+    ],
+    ids=[
+        "missing-radius",
+        "zero-radius",
+        "negative-radius-second-entry",
+        "unknown-footprint",
+        "unknown-key",
+        "string-number",
+        "logistic-depth",
+        "model-without-spots",
+        "parameter-name-as-key",
+        "inline-unknown-key",
+        "turbulence-unknown-key",
+        "turbulence-bad-value",
+        "turbulence-fractional-cells",
+    ],
+)
 def test_malformed_spots_and_turbulence_name_file_line_and_key(tmp_path, text, message):
     with pytest.raises(ValueError, match=r"scene.toml" + message):
         read_back(tmp_path, text)
@@ -212,8 +261,15 @@ def test_the_command_line_edit_keeps_the_file_turbulence(tmp_path, road_text):
     origin, direction = camera.ray(48.0, 18.0)
     source = refracta.trace_ray(start, origin, direction, tol=1e-10, max_length=100.0).point_at(80.0)[0]
     pairs_path = tmp_path / "pairs.json"
-    pairs_path.write_text(json.dumps({"pairs": [{"destination": [48.0, 18.0], "source": [float(x) for x in source]}],
-                                      "free": ["surface_dt"], "ground": 0.0}))
+    pairs_path.write_text(
+        json.dumps(
+            {
+                "pairs": [{"destination": [48.0, 18.0], "source": [float(x) for x in source]}],
+                "free": ["surface_dt"],
+                "ground": 0.0,
+            }
+        )
+    )
     out = tmp_path / "solved.toml"
     assert cli.main(["edit", str(start_path), "--pairs", str(pairs_path), "-o", str(out)]) == 0
     solved = refracta.load_scene(out)

@@ -8,8 +8,8 @@ import pytest
 
 import refracta
 
-EYE = 1.0          # [m] above the sea
-LOWER_LIMB = 0.1   # [deg] apparent elevation of the disc's lower limb
+EYE = 1.0  # [m] above the sea
+LOWER_LIMB = 0.1  # [deg] apparent elevation of the disc's lower limb
 AIR = refracta.PhysicalAtmosphere()
 
 
@@ -25,9 +25,14 @@ def sun_scene(lower_limb=LOWER_LIMB):
 
 def expected_upper_limb(true_centre):
     from scipy.optimize import brentq
+
     true_upper = true_centre + 0.265
-    return brentq(lambda e: e - refracta.astronomical_refraction(AIR, e, eye_height=EYE) / 60.0 - true_upper,
-                  LOWER_LIMB, LOWER_LIMB + 1.0, xtol=1e-9)
+    return brentq(
+        lambda e: e - refracta.astronomical_refraction(AIR, e, eye_height=EYE) / 60.0 - true_upper,
+        LOWER_LIMB,
+        LOWER_LIMB + 1.0,
+        xtol=1e-9,
+    )
 
 
 def test_the_rendered_disc_is_squashed_as_refraction_says():
@@ -37,8 +42,9 @@ def test_the_rendered_disc_is_squashed_as_refraction_says():
     # 1' per pixel: the camera's rows span apparent elevations around the disc.
     middle = np.radians(0.5 * (LOWER_LIMB + upper))
     camera = refracta.Camera([0, EYE, 0], [np.cos(middle), EYE + np.sin(middle), 0], vfov=1.0, width=80, height=60)
-    image = refracta.render(scene, camera, refracta.CurvedEarth(AIR), max_length=1.5e6, transport="path", max_depth=0,
-                            progress=False)
+    image = refracta.render(
+        scene, camera, refracta.CurvedEarth(AIR), max_length=1.5e6, transport="path", max_depth=0, progress=False
+    )
     lit = image[..., 1] > 0
     rows, columns = np.nonzero(lit.any(axis=1))[0], np.nonzero(lit.any(axis=0))[0]
     elevation = lambda v: np.degrees(np.arcsin(camera.ray(40.0, v)[1][1]))  # noqa: E731
@@ -61,12 +67,21 @@ def test_dispersion_colours_the_rims():
     for limb in (upper, LOWER_LIMB):
         look = np.radians(limb)
         camera = refracta.Camera([0, EYE, 0], [np.cos(look), EYE + np.sin(look), 0], vfov=4.0 / 60, width=8, height=40)
-        image = refracta.render(scene, camera, refracta.CurvedEarth(AIR), max_length=1.5e6, transport="path",
-                                max_depth=0, spectral=True, spp=32, progress=False)
+        image = refracta.render(
+            scene,
+            camera,
+            refracta.CurvedEarth(AIR),
+            max_length=1.5e6,
+            transport="path",
+            max_depth=0,
+            spectral=True,
+            spp=32,
+            progress=False,
+        )
         column = image[:, :, :].mean(axis=1)
         lit = np.nonzero(column.sum(axis=1) > 0.05 * column.sum(axis=1).max())[0]
-        edge = lit.min() if limb == upper else lit.max()          # the outermost lit row
-        inner = lit.max() if limb == upper else lit.min()         # the disc side of the crop
+        edge = lit.min() if limb == upper else lit.max()  # the outermost lit row
+        inner = lit.max() if limb == upper else lit.min()  # the disc side of the crop
         colours.append((column[edge], column[inner]))
     (top_edge, top_inner), (bottom_edge, bottom_inner) = colours
     blue_over_red = lambda c: c[2] / max(c[0], 1e-12)  # noqa: E731
@@ -86,10 +101,12 @@ def test_the_last_gleam_over_a_warm_sea_is_green():
     def colour(sun_elevation, vfov, look):
         example = examples.green_flash(24, 24, sun_elevation)
         eye = example.camera.position
-        camera = refracta.Camera(eye, eye + [np.cos(np.radians(look)), np.sin(np.radians(look)), 0.0], vfov=vfov,
-                                 width=24, height=24)
-        image = refracta.render(example.scene, camera, example.field, max_length=example.max_length, spectral=True,
-                                spp=16, progress=False)
+        camera = refracta.Camera(
+            eye, eye + [np.cos(np.radians(look)), np.sin(np.radians(look)), 0.0], vfov=vfov, width=24, height=24
+        )
+        image = refracta.render(
+            example.scene, camera, example.field, max_length=example.max_length, spectral=True, spp=16, progress=False
+        )
         lit = image.sum(axis=2) > 0.05 * image.sum(axis=2).max()
         return image[lit].mean(axis=0)
 

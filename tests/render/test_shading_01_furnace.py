@@ -16,7 +16,7 @@ from refracta.shading import Dielectric, Diffuse
 from .shading_scenes import box_mesh, check_against
 
 EXACT = 1e-5  # float32 film: cosine-sampled constant sky against a Lambertian is zero-variance
-SEEDS = 16    # per-pixel standard errors from 16 seeds (Student-t bound, shading_scenes.check_against)
+SEEDS = 16  # per-pixel standard errors from 16 seeds (Student-t bound, shading_scenes.check_against)
 MEAN_SIGMAS = 4.0  # the image mean's relative error, in its standard errors
 
 
@@ -25,8 +25,9 @@ def sphere_camera(size=12):
 
 
 def renders(scene, camera, seeds=SEEDS, **options):
-    return np.array([refracta.render(scene, camera, None, seed=s, progress=False, **options)[..., 0]
-                     for s in range(seeds)])
+    return np.array(
+        [refracta.render(scene, camera, None, seed=s, progress=False, **options)[..., 0] for s in range(seeds)]
+    )
 
 
 def assert_unbiased(images, expected, mask):
@@ -91,17 +92,20 @@ def inward_cube(half):
     return box_mesh([-half] * 3, [half] * 3, inward=True)
 
 
-@pytest.mark.parametrize("transport,reflectance,depth", [
-    ("direct", 0.5, 1), ("path", 0.5, 1), ("path", 0.5, 3), ("path", 0.5, 60), ("path", 0.8, 80)])
+@pytest.mark.parametrize(
+    "transport,reflectance,depth",
+    [("direct", 0.5, 1), ("path", 0.5, 1), ("path", 0.5, 3), ("path", 0.5, 60), ("path", 0.8, 80)],
+)
 def test_emissive_enclosure_radiance_is_the_truncated_series(transport, reflectance, depth):
     le = 1.0
     scene = refracta.Scene()
     scene.add_mesh(*inward_cube(1.0), material=Diffuse(reflectance), emission=(le, le, le))
     camera = refracta.Camera([0.1, 0.2, 0.3], [0.5, -0.4, -1.0], vfov=90, width=12, height=12)
     images = renders(scene, camera, transport=transport, spp=8, max_depth=depth)
-    expected = le * sum(reflectance ** k for k in range(depth + 1))
-    worst, bound, relative, relative_stderr = check_against(images, np.full(images.shape[1:], expected),
-                                                            np.ones(images.shape[1:], bool))
+    expected = le * sum(reflectance**k for k in range(depth + 1))
+    worst, bound, relative, relative_stderr = check_against(
+        images, np.full(images.shape[1:], expected), np.ones(images.shape[1:], bool)
+    )
     # Without Russian roulette (depth below rr_depth = 3) every pixel's estimate is near-normal;
     # with it, rare survivors weighted 1/q make single pixels heavy-tailed (one in 144 reached
     # z = 6.8 against the 6.7 bound): there the image mean over all pixels and seeds carries the test.

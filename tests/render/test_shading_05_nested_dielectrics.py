@@ -34,8 +34,11 @@ def transmission(layers):
 
 
 def render_stack(scene, interfaces):
-    scene.add_mesh(np.array([[-200, -6, -200], [200, -6, -200], [200, -6, 200], [-200, -6, 200.0]]),
-                   np.array([[0, 2, 1], [0, 3, 2]]), emission=(1.0, 1.0, 1.0))
+    scene.add_mesh(
+        np.array([[-200, -6, -200], [200, -6, -200], [200, -6, 200], [-200, -6, 200.0]]),
+        np.array([[0, 2, 1], [0, 3, 2]]),
+        emission=(1.0, 1.0, 1.0),
+    )
     d = np.array([np.sin(np.radians(INCIDENCE)), -np.cos(np.radians(INCIDENCE)), 0.0])
     camera = refracta.Camera(-30.0 * d, [0.0, 0.0, 0.0], vfov=0.5, width=16, height=16)
     image = refracta.render(scene, camera, None, transport="direct", spp=SPP, max_depth=interfaces, progress=False)
@@ -68,8 +71,11 @@ def test_half_filled_glass_with_water_overlapping_its_wall():
     outer_v, outer_t = box_mesh([-W, -3, -W], [W, 3, W])
     inner_v, inner_t = box_mesh([-W + 1, -1, -W + 1], [W - 1, 1, W - 1], inward=True)
     scene = refracta.Scene()
-    scene.add_mesh(np.vstack([outer_v, inner_v]), np.vstack([outer_t, inner_t + len(outer_v)]),
-                   material=Dielectric(GLASS, priority=1))
+    scene.add_mesh(
+        np.vstack([outer_v, inner_v]),
+        np.vstack([outer_t, inner_t + len(outer_v)]),
+        material=Dielectric(GLASS, priority=1),
+    )
     scene.add_mesh(*box_mesh([-W + 1, -1.2, -W + 1], [W - 1, 0, W - 1]), material=Dielectric(WATER, priority=2))
     mean, stderr = render_stack(scene, 5)
     check(mean, stderr, [1.0, GLASS, 1.0, WATER, GLASS, 1.0])

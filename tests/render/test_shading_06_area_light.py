@@ -18,10 +18,10 @@ from refracta.shading import Diffuse
 from .shading_scenes import check_against, floor_points, pixel_grid_mean, quad_mesh
 
 SEEDS = 16  # independent 16-spp renders: their spread gives each pixel's standard error; the
-            # bound is Student's t (15 dof) at a Bonferroni-corrected 1e-3 false alarm (~4.9 sigma)
-SUBPIXELS = 6       # closed form averaged over a 6 x 6 grid per pixel (the render jitters over
-                    # the pixel); the grid's quadrature error is below 1e-3 relative here
-QUADRATURE = 2e-3   # relative allowance for that pixel quadrature
+# bound is Student's t (15 dof) at a Bonferroni-corrected 1e-3 false alarm (~4.9 sigma)
+SUBPIXELS = 6  # closed form averaged over a 6 x 6 grid per pixel (the render jitters over
+# the pixel); the grid's quadrature error is below 1e-3 relative here
+QUADRATURE = 2e-3  # relative allowance for that pixel quadrature
 MEAN_SIGMAS = 4.0  # the whole image's relative error, in its standard errors (from the seeds' sums)
 R = 0.6
 LE = 3.0
@@ -54,6 +54,7 @@ def scene_and_camera(half, height):
 def expected_image(camera, quad):
     def radiance(points):
         return R / np.pi * polygon_irradiance(points, np.array([0.0, 1.0, 0.0]), quad, LE)
+
     return pixel_grid_mean(camera, SUBPIXELS, lambda o, d: floor_points(o, d, 6.0), radiance)
 
 
@@ -62,8 +63,14 @@ def expected_image(camera, quad):
 def test_floor_under_a_quad_light_matches_the_polygon_formula(transport, half, height):
     scene, camera, quad = scene_and_camera(half, height)
     expected, on_floor = expected_image(camera, quad)
-    renders = np.array([refracta.render(scene, camera, None, transport=transport, spp=16, max_depth=1, seed=seed,
-                                        progress=False)[..., 0] for seed in range(SEEDS)])
+    renders = np.array(
+        [
+            refracta.render(scene, camera, None, transport=transport, spp=16, max_depth=1, seed=seed, progress=False)[
+                ..., 0
+            ]
+            for seed in range(SEEDS)
+        ]
+    )
     mask = on_floor & (expected > 1e-3 * expected.max())
     worst, bound, relative, relative_stderr = check_against(renders, expected, mask, QUADRATURE * expected)
     assert worst <= bound, (worst, bound)

@@ -26,8 +26,8 @@ mi = pytest.importorskip("mitsuba")
 
 SIZE = 64
 TILE = 8
-SEEDS = 12          # independent renders per renderer: each tile's standard error from their spread
-MEAN_SIGMAS = 4.0   # whole-image relative difference, in its standard errors (~6e-5 false alarm)
+SEEDS = 12  # independent renders per renderer: each tile's standard error from their spread
+MEAN_SIGMAS = 4.0  # whole-image relative difference, in its standard errors (~6e-5 false alarm)
 # Mitsuba's scalar_rgb variant is float32 throughout (ray origins offset by float epsilons, the
 # film accumulated in float): 1e-4 relative on a tile or image mean is below any noise here.
 FLOAT32 = 1e-4
@@ -38,7 +38,7 @@ CENTROID_PIXELS = 0.1
 EYE = (-6.0, 1.5, 0.3)
 TARGET = (0.0, 0.8, 0.0)
 VFOV = 40.0
-FLOOR = (0.5, 20.0)          # reflectance, side [m]
+FLOOR = (0.5, 20.0)  # reflectance, side [m]
 SPHERE = ((0.0, 1.0, 0.0), 1.0)
 LIGHT = ((2.0, 5.0, 1.0), 60.0)
 
@@ -61,11 +61,20 @@ def mitsuba_scene(objects, max_depth, spp, size=SIZE):
     scene = {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": max_depth + 1},
-        "sensor": {"type": "perspective", "fov": VFOV, "fov_axis": "y",
-                   "to_world": mi.ScalarTransform4f().look_at(origin=EYE, target=TARGET, up=(0, 1, 0)),
-                   "film": {"type": "hdrfilm", "width": size, "height": size, "rfilter": {"type": "box"},
-                            "pixel_format": "rgb"},
-                   "sampler": {"type": "independent", "sample_count": spp}},
+        "sensor": {
+            "type": "perspective",
+            "fov": VFOV,
+            "fov_axis": "y",
+            "to_world": mi.ScalarTransform4f().look_at(origin=EYE, target=TARGET, up=(0, 1, 0)),
+            "film": {
+                "type": "hdrfilm",
+                "width": size,
+                "height": size,
+                "rfilter": {"type": "box"},
+                "pixel_format": "rgb",
+            },
+            "sampler": {"type": "independent", "sample_count": spp},
+        },
     }
     scene.update(objects)
     return mi.load_dict(scene)
@@ -73,8 +82,11 @@ def mitsuba_scene(objects, max_depth, spp, size=SIZE):
 
 def mitsuba_floor():
     half = FLOOR[1] / 2
-    return {"type": "rectangle", "to_world": mi.ScalarTransform4f().rotate((1, 0, 0), -90).scale((half, half, 1)),
-            "bsdf": {"type": "diffuse", "reflectance": rgb(FLOOR[0])}}
+    return {
+        "type": "rectangle",
+        "to_world": mi.ScalarTransform4f().rotate((1, 0, 0), -90).scale((half, half, 1)),
+        "bsdf": {"type": "diffuse", "reflectance": rgb(FLOOR[0])},
+    }
 
 
 def test_image_orientation():
@@ -86,8 +98,21 @@ def test_image_orientation():
     scene = refracta.Scene()
     scene.add_sphere(centre, 0.4, emission=(1, 1, 1))
     ours = refracta.render(scene, cam, None, spp=16, max_depth=0, progress=False)[..., 0]
-    theirs = mi.render(mitsuba_scene({"ball": {"type": "sphere", "center": list(centre), "radius": 0.4,
-                                               "emitter": {"type": "area", "radiance": rgb(1.0)}}}, 0, 16, 48))
+    theirs = mi.render(
+        mitsuba_scene(
+            {
+                "ball": {
+                    "type": "sphere",
+                    "center": list(centre),
+                    "radius": 0.4,
+                    "emitter": {"type": "area", "radiance": rgb(1.0)},
+                }
+            },
+            0,
+            16,
+            48,
+        )
+    )
     theirs = np.array(theirs)[..., 0]
     projected = cam.project(np.array([centre]))[0]
     assert projected[0] > 0.6 * 48 and projected[1] < 0.4 * 48  # right of centre, above it (v down)
@@ -107,10 +132,16 @@ def diffuse_point_light():
     scene.add_ground(0.0, FLOOR[1], material=Diffuse(FLOOR[0]))
     scene.add_sphere(SPHERE[0], SPHERE[1], material=Diffuse(0.6))
     scene.add_point_light(LIGHT[0], (LIGHT[1],) * 3)
-    objects = {"floor": mitsuba_floor(),
-               "ball": {"type": "sphere", "center": list(SPHERE[0]), "radius": SPHERE[1],
-                        "bsdf": {"type": "diffuse", "reflectance": rgb(0.6)}},
-               "light": {"type": "point", "position": list(LIGHT[0]), "intensity": rgb(LIGHT[1])}}
+    objects = {
+        "floor": mitsuba_floor(),
+        "ball": {
+            "type": "sphere",
+            "center": list(SPHERE[0]),
+            "radius": SPHERE[1],
+            "bsdf": {"type": "diffuse", "reflectance": rgb(0.6)},
+        },
+        "light": {"type": "point", "position": list(LIGHT[0]), "intensity": rgb(LIGHT[1])},
+    }
     return scene, objects, 3
 
 
@@ -120,10 +151,16 @@ def glass_environment():
     scene.add_ground(0.0, FLOOR[1], material=Diffuse(FLOOR[0]))
     scene.add_sphere(SPHERE[0], SPHERE[1], material=Dielectric(1.5))
     scene.set_environment((1.0, 1.0, 1.0))
-    objects = {"floor": mitsuba_floor(),
-               "ball": {"type": "sphere", "center": list(SPHERE[0]), "radius": SPHERE[1],
-                        "bsdf": {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0}},
-               "sky": {"type": "constant", "radiance": rgb(1.0)}}
+    objects = {
+        "floor": mitsuba_floor(),
+        "ball": {
+            "type": "sphere",
+            "center": list(SPHERE[0]),
+            "radius": SPHERE[1],
+            "bsdf": {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0},
+        },
+        "sky": {"type": "constant", "radiance": rgb(1.0)},
+    }
     return scene, objects, 8
 
 
@@ -139,12 +176,17 @@ def rough_metal():
     scene.add_sphere(SPHERE[0], SPHERE[1], material=RoughConductor(alpha=ALPHA))
     scene.add_point_light(LIGHT[0], (LIGHT[1],) * 3)
     scene.set_environment((0.3, 0.3, 0.3))
-    objects = {"floor": mitsuba_floor(),
-               "ball": {"type": "sphere", "center": list(SPHERE[0]), "radius": SPHERE[1],
-                        "bsdf": {"type": "roughconductor", "distribution": "ggx", "alpha": ALPHA,
-                                 "material": "none"}},
-               "light": {"type": "point", "position": list(LIGHT[0]), "intensity": rgb(LIGHT[1])},
-               "sky": {"type": "constant", "radiance": rgb(0.3)}}
+    objects = {
+        "floor": mitsuba_floor(),
+        "ball": {
+            "type": "sphere",
+            "center": list(SPHERE[0]),
+            "radius": SPHERE[1],
+            "bsdf": {"type": "roughconductor", "distribution": "ggx", "alpha": ALPHA, "material": "none"},
+        },
+        "light": {"type": "point", "position": list(LIGHT[0]), "intensity": rgb(LIGHT[1])},
+        "sky": {"type": "constant", "radiance": rgb(0.3)},
+    }
     return scene, objects, 3
 
 
@@ -159,9 +201,11 @@ SEPARABLE_G = 1e-2
 # third of row 5 of 6) -- a bias of up to 4% on tiles crossing the floor's edge, z 36 against
 # Mitsuba. Reported to the lead (render/film.h); these comparisons use square counts.
 SPP = 36
-SCENES = {"diffuse_point_light": (diffuse_point_light, SPP, FLOAT32),
-          "glass_environment": (glass_environment, SPP, FLOAT32),
-          "rough_metal": (rough_metal, SPP, SEPARABLE_G)}
+SCENES = {
+    "diffuse_point_light": (diffuse_point_light, SPP, FLOAT32),
+    "glass_environment": (glass_environment, SPP, FLOAT32),
+    "rough_metal": (rough_metal, SPP, SEPARABLE_G),
+}
 
 
 def tile_means(image):
@@ -199,14 +243,31 @@ def test_matches_mitsuba(name):
     build, spp, allowance = SCENES[name]
     scene, objects, max_depth = build()
     cam = camera()
-    ours = np.array([tile_means(refracta.render(scene, cam, None, transport="path", spp=spp, max_depth=max_depth,
-                                                seed=seed, progress=False, max_length=200.0))
-                     for seed in range(SEEDS)])
+    ours = np.array(
+        [
+            tile_means(
+                refracta.render(
+                    scene,
+                    cam,
+                    None,
+                    transport="path",
+                    spp=spp,
+                    max_depth=max_depth,
+                    seed=seed,
+                    progress=False,
+                    max_length=200.0,
+                )
+            )
+            for seed in range(SEEDS)
+        ]
+    )
     reference = mitsuba_scene(objects, max_depth, spp)
     theirs = np.array([tile_means(mi.render(reference, seed=seed)) for seed in range(SEEDS)])
     assert theirs.mean() > 0.02  # a lit image, not an empty one
     worst, bound, relative, relative_se = compare(ours, theirs, allowance)
-    print(f"{name}: worst tile z {worst:.2f} (bound {bound:.2f}), image mean relative difference "
-          f"{relative:.2e} +- {relative_se:.2e}")
+    print(
+        f"{name}: worst tile z {worst:.2f} (bound {bound:.2f}), image mean relative difference "
+        f"{relative:.2e} +- {relative_se:.2e}"
+    )
     assert worst <= bound, (worst, bound)
     assert relative <= MEAN_SIGMAS * relative_se + allowance, (relative, relative_se)

@@ -26,11 +26,11 @@ from refracta.shading import Dielectric
 from .shading_scenes import box_mesh, fresnel_dielectric
 
 ETA = 1.5
-DISTANCE = 50.0    # camera distance [m]
-VIEW = 0.04        # field of view width at the slab [m]
-SIZE = 64          # pixels per side: pixel = VIEW / SIZE = 0.625 mm
-SPP = 64           # an 8 x 8 stratified grid per pixel (a perfect square: see test_shading_07)
-Z_EMITTER = 0.8    # the emitter plane behind the slab's centre [m]
+DISTANCE = 50.0  # camera distance [m]
+VIEW = 0.04  # field of view width at the slab [m]
+SIZE = 64  # pixels per side: pixel = VIEW / SIZE = 0.625 mm
+SPP = 64  # an 8 x 8 stratified grid per pixel (a perfect square: see test_shading_07)
+Z_EMITTER = 0.8  # the emitter plane behind the slab's centre [m]
 LE = 1.0
 PIXEL = VIEW / SIZE
 # Sub-pixel edge from area fractions averaged over SIZE rows: each edge pixel's fraction has the
@@ -107,9 +107,11 @@ def test_slab_displacement(thickness, theta_deg):
     x, plateau = edge_x(render(scene(thickness, theta_deg), cam), cam)
     base, _ = edge_x(render(scene(), camera(0.2 * VIEW)), camera(0.2 * VIEW))
     shift = x - base
-    print(f"t {thickness} m theta {theta_deg}: shift {shift * 1e3:.4f} mm, formula {expected * 1e3:.4f} mm, "
-          f"difference {(shift - expected) / PIXEL:+.4f} pixel")
-    assert abs(shift - expected) < EDGE_PIXELS * PIXEL, ((shift - expected) / PIXEL)
+    print(
+        f"t {thickness} m theta {theta_deg}: shift {shift * 1e3:.4f} mm, formula {expected * 1e3:.4f} mm, "
+        f"difference {(shift - expected) / PIXEL:+.4f} pixel"
+    )
+    assert abs(shift - expected) < EDGE_PIXELS * PIXEL, (shift - expected) / PIXEL
     # sanity: the edge moved by several pixels, so the test would see a missing refraction
     assert expected > 5 * PIXEL
     transmit = (1.0 - fresnel_dielectric(np.cos(np.radians(theta_deg)), ETA)) ** 2
@@ -118,8 +120,14 @@ def test_slab_displacement(thickness, theta_deg):
 
 def test_glass_seen_from_afar_transmits():
     """The plateau through a 2 cm slab at normal incidence, camera 500 m away, is (1 - F(0))^2."""
-    cam = refracta.Camera([-0.2 * VIEW, 0.0, 500.0], [-0.2 * VIEW, 0.0, 0.0], (0, 1, 0),
-                          np.degrees(2.0 * np.arctan(VIEW / 2.0 / 500.0)), SIZE, SIZE)
+    cam = refracta.Camera(
+        [-0.2 * VIEW, 0.0, 500.0],
+        [-0.2 * VIEW, 0.0, 0.0],
+        (0, 1, 0),
+        np.degrees(2.0 * np.arctan(VIEW / 2.0 / 500.0)),
+        SIZE,
+        SIZE,
+    )
     image = np.asarray(render(scene(0.02, 0.0), cam), float).mean(-1)
     transmit = (1.0 - fresnel_dielectric(1.0, ETA)) ** 2
     assert image[:, :10].mean() == pytest.approx(LE * transmit, rel=0.02)  # binomial noise ~0.3%

@@ -27,31 +27,38 @@ import pytest
 
 import refracta
 
-ROAD = dict(surface_dt=10.0, surface_depth=0.1)   # the header's hot road: 10 K, 10 cm e-folding
-TRACE_TOL = 1e-10      # rk45 position tolerance [m]: far below the 1e-6 m deviations measured
-HIT_TOL = 1e-11        # the shot's miss at the lamp [m] when the secant stops
+ROAD = dict(surface_dt=10.0, surface_depth=0.1)  # the header's hot road: 10 K, 10 cm e-folding
+TRACE_TOL = 1e-10  # rk45 position tolerance [m]: far below the 1e-6 m deviations measured
+HIT_TOL = 1e-11  # the shot's miss at the lamp [m] when the secant stops
 HEADER_SAGITTA = 1.25e-3  # direct_lighting.h: "a 10 m connection ... deviates 1.25 mm"
-SAMPLES = 2001         # points along each solved path for the distance and the gradient maximum
+SAMPLES = 2001  # points along each solved path for the distance and the gradient maximum
 # The bounds use the gradient's maximum over SAMPLES points of the path: sampling misses at most
 # ~1e-6 of a smooth maximum; the traced path's own error is TRACE_TOL. 1e-3 relative covers both.
 SAMPLED_MAX = 1e-3
-D_ELEVATION = 1e-6     # [rad] central-difference step of dh/de (truncation ~1e-12 relative)
+D_ELEVATION = 1e-6  # [rad] central-difference step of dh/de (truncation ~1e-12 relative)
 # The paraxial estimate of the tube factor drops terms of order (D^2 |n''| / 6)^2 relative to the
 # factor itself (<= 0.1 here) and n''' D^3 variations of the path height: 20% of the factor.
 PARAXIAL = 0.2
-NO_FIELD = 1e-6        # the tube formula against I / r^2 without the road layer (lapse rate only)
+NO_FIELD = 1e-6  # the tube formula against I / r^2 without the road layer (lapse rate only)
 
 # (height of A [m], height of the lamp [m], horizontal distance [m])
-CASES = [(0.01, 0.01, 10.0), (0.05, 0.05, 10.0), (0.02, 0.3, 10.0), (0.1, 1.5, 10.0),
-         (0.05, 0.05, 30.0), (0.1, 1.5, 30.0)]
+CASES = [
+    (0.01, 0.01, 10.0),
+    (0.05, 0.05, 10.0),
+    (0.02, 0.3, 10.0),
+    (0.1, 1.5, 10.0),
+    (0.05, 0.05, 30.0),
+    (0.1, 1.5, 30.0),
+]
 
 
 def shoot(field, origin, elevation, distance, toward=1.0):
     """The curved ray from origin (3,) at `elevation` [rad] toward +x (toward=1) or -x: (its
     crossing (point, s, direction) of the vertical plane `distance` [m] away, the RayPath)."""
     direction = np.array([toward * np.cos(elevation), np.sin(elevation), 0.0])
-    path = refracta.trace_ray(field, origin, direction, tol=TRACE_TOL,
-                              max_length=1.01 * distance / np.cos(elevation) + 0.01)
+    path = refracta.trace_ray(
+        field, origin, direction, tol=TRACE_TOL, max_length=1.01 * distance / np.cos(elevation) + 0.01
+    )
     crossings = path.crossings([1.0, 0.0, 0.0], origin[0] + toward * distance)
     assert len(crossings) == 1, crossings
     return crossings[0], path
@@ -85,7 +92,7 @@ def tube_irradiance(field, a, b, arrival):
     dh_de = (up - down) / (2.0 * D_ELEVATION)
     (_, _, direction_at_a), _ = shoot(field, b, e_b, distance, toward=-1.0)
     e_a = np.arctan2(-direction_at_a[1], -direction_at_a[0])
-    r2 = distance ** 2 + (b[1] - a[1]) ** 2
+    r2 = distance**2 + (b[1] - a[1]) ** 2
     return np.cos(e_b) / (np.cos(e_a) * distance * abs(dh_de)) * r2
 
 
@@ -127,12 +134,14 @@ def test_straight_connection_error(h_a, h_b, distance):
     expected_tube = 1.0 + paraxial_tube(field, points, distance)
     # a receiver facing up (the road, a floor) at a: cos factor from the arrival elevation
     cos_change = np.sin(e) / np.sin(straight) - 1.0 if h_b != h_a else float("nan")
-    print(f"A {h_a} m, lamp {h_b} m, {distance} m: angle {angle:.3e} rad ({np.degrees(angle) * 3600:.1f}\"; "
-          f"bound {g * chord / 2:.3e}), deviation {deviation * 1e3:.4f} mm (bound {g * chord ** 2 / 8 * 1e3:.4f}), "
-          f"min height {points[:, 1].min():.4f} m, 1/r^2 change {-2 * length_change:.1e}, "
-          f"tube E r^2/I - 1 = {tube - 1:+.3e} (paraxial {expected_tube - 1:+.3e}), "
-          f"cos (up-facing) change {cos_change:+.2e}")
-    assert deviation <= g * chord ** 2 / 8 * (1 + SAMPLED_MAX)
+    print(
+        f'A {h_a} m, lamp {h_b} m, {distance} m: angle {angle:.3e} rad ({np.degrees(angle) * 3600:.1f}"; '
+        f"bound {g * chord / 2:.3e}), deviation {deviation * 1e3:.4f} mm (bound {g * chord**2 / 8 * 1e3:.4f}), "
+        f"min height {points[:, 1].min():.4f} m, 1/r^2 change {-2 * length_change:.1e}, "
+        f"tube E r^2/I - 1 = {tube - 1:+.3e} (paraxial {expected_tube - 1:+.3e}), "
+        f"cos (up-facing) change {cos_change:+.2e}"
+    )
+    assert deviation <= g * chord**2 / 8 * (1 + SAMPLED_MAX)
     assert angle <= g * chord / 2 * (1 + SAMPLED_MAX)
     if distance <= 10.0:
         assert deviation <= HEADER_SAGITTA  # the header's figure for a 10 m connection

@@ -116,9 +116,18 @@ def test_a_low_sun_turns_the_ground_orange():
     assert ratios[5.0] > 1.15 * ratios[60.0], ratios
 
 
-@pytest.mark.parametrize("bad", [dict(sun_direction=(0.0, 0.0, 0.0)), dict(aerosol=-1.0),
-                                 dict(ground_albedo=2.0), dict(sun_angular_diameter=0.0),
-                                 dict(limb_darkening=1.5), dict(scale=-1.0), dict(scale=float("nan"))])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        dict(sun_direction=(0.0, 0.0, 0.0)),
+        dict(aerosol=-1.0),
+        dict(ground_albedo=2.0),
+        dict(sun_angular_diameter=0.0),
+        dict(limb_darkening=1.5),
+        dict(scale=-1.0),
+        dict(scale=float("nan")),
+    ],
+)
 def test_set_physical_sky_rejects_bad_input(bad):
     arguments = dict(sun_direction=(0.0, 1.0, 0.0))
     arguments.update(bad)
@@ -156,10 +165,19 @@ def critical_depression_bouguer(field):
 
 def critical_depression_traced(field):
     """The depression below which rays from the eye reach the ground, by bisection on trace_ray."""
+
     def reaches_ground(depression):
-        path = refracta.trace_ray(field, (0.0, EYE, 0.0), (np.cos(depression), -np.sin(depression), 0.0),
-                                  trace="stratified", tol=1e-8, max_length=3000.0, stop_height=0.0)
+        path = refracta.trace_ray(
+            field,
+            (0.0, EYE, 0.0),
+            (np.cos(depression), -np.sin(depression), 0.0),
+            trace="stratified",
+            tol=1e-8,
+            max_length=3000.0,
+            stop_height=0.0,
+        )
         return path.stop == "stop_height"
+
     lo, hi = 1e-3, 1e-2
     assert not reaches_ground(lo) and reaches_ground(hi)
     while hi - lo > 1e-13:
@@ -242,8 +260,14 @@ def test_spectral_render_shows_the_mirage_colour_fringe():
     weights = channel_weights(lam)
     height, width, pixel = 48, 8, 2.5e-6  # rows, columns, pixel angle [rad]
     centre = 0.5 * (theta_c[lam == 450.0][0] + theta_c[lam == 650.0][0])
-    camera = refracta.Camera((0.0, EYE, 0.0), (1000.0 * np.cos(centre), EYE - 1000.0 * np.sin(centre), 0.0),
-                             (0.0, 1.0, 0.0), np.degrees(height * pixel), width, height)
+    camera = refracta.Camera(
+        (0.0, EYE, 0.0),
+        (1000.0 * np.cos(centre), EYE - 1000.0 * np.sin(centre), 0.0),
+        (0.0, 1.0, 0.0),
+        np.degrees(height * pixel),
+        width,
+        height,
+    )
     edges = np.array([-np.arcsin(camera.ray(width / 2, v)[1][1]) for v in range(height + 1)])
     assert edges[0] < theta_c.min() and edges[-1] > theta_c.max()  # the whole fringe is in view
     scene = refracta.Scene()
@@ -294,13 +318,13 @@ def refract(d, normal, eta):
     """Snell's law in vector form: d (..., 3) unit, normal toward the incident side, eta = n_i/n_t.
     Returns the refracted direction and the unpolarised Fresnel transmittance (Hecht 4.42-4.43)."""
     cos_i = -(d * normal).sum(axis=-1)
-    sin2_t = eta ** 2 * (1.0 - cos_i ** 2)
+    sin2_t = eta**2 * (1.0 - cos_i**2)
     assert np.all(sin2_t < 1.0), "no total internal reflection on the test's paths"
     cos_t = np.sqrt(1.0 - sin2_t)
     t = eta[..., None] * d + (eta * cos_i - cos_t)[..., None] * normal
     rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
     rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
-    return t, 1.0 - 0.5 * (rs ** 2 + rp ** 2)
+    return t, 1.0 - 0.5 * (rs**2 + rp**2)
 
 
 def prism_mesh(half_length=3.0):
@@ -370,13 +394,15 @@ def test_bk7_prism_spreads_a_white_edge_into_its_spectrum():
     us = np.array([(x + f) for x in range(width) for f in (0.25, 0.75)])
     dirs = np.array([[camera.ray(u, v)[1] for u in us] for v in vs])
     y, z, transmittance = trace(eye, dirs, lam)
-    lit = ((y < edge_y) & (y > edge_y - wall_height) & (np.abs(z) < wall_half_width)) * transmittance  # (rows, columns, L)
+    lit = (
+        (y < edge_y) & (y > edge_y - wall_height) & (np.abs(z) < wall_half_width)
+    ) * transmittance  # (rows, columns, L)
     predicted_rows = (lit @ weights).mean(axis=1).reshape(height, sub, 3).mean(axis=1)
     edges = np.array([np.arcsin(camera.ray(width / 2, v)[1][1]) for v in range(height + 1)])
     step = np.abs(np.diff(edges))[:, None]
     rows = image.mean(axis=1)
     measured, predicted = (rows * step).sum(axis=0), (predicted_rows * step).sum(axis=0)
-    error = np.sqrt((std_error(np.transpose(image, (1, 0, 2))) ** 2 * step ** 2).sum(axis=0))
+    error = np.sqrt((std_error(np.transpose(image, (1, 0, 2))) ** 2 * step**2).sum(axis=0))
     quadrature = step.max() / sub / 2  # midpoint rule of each wavelength's step across a pixel
     assert np.all(np.abs(measured - predicted) <= SIGMAS * error + quadrature), (measured, predicted, error)
     # The spectrum is spread: blue deviates most, so its lit region reaches higher in the image.

@@ -37,7 +37,11 @@ def test_differentials_filter_a_mirage_closer_to_the_reference_than_the_cone(mir
     common = dict(max_length=1000.0, progress=False)
     reference = refracta.render(scene, camera, field, spp=144, texture_filter=False, **common)
     errors = {}
-    for name, options in [("differentials", {}), ("cone", dict(differentials=False)), ("point", dict(texture_filter=False))]:
+    for name, options in [
+        ("differentials", {}),
+        ("cone", dict(differentials=False)),
+        ("point", dict(texture_filter=False)),
+    ]:
         image = refracta.render(scene, camera, field, **options, **common)
         errors[name] = float(np.abs(image - reference).mean())
     # Measured: differentials 0.035, cone 0.056, point sampling 0.043 (the reference's own noise,

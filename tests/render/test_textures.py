@@ -20,8 +20,9 @@ def write_checkerboard(path, checks=8, pixels_per_check=8):
 def checkerboard_scene(tmp_path):
     scene = refracta.Scene()
     scene.set_sky(SKY, SKY)  # no sun: a ground point's radiance is texture x kd x 1
-    scene.add_ground(0.0, 4000.0, kd=(1.0, 1.0, 1.0), texture=str(write_checkerboard(tmp_path / "checks.png")),
-                     texture_size=8.0)  # 1 m checks
+    scene.add_ground(
+        0.0, 4000.0, kd=(1.0, 1.0, 1.0), texture=str(write_checkerboard(tmp_path / "checks.png")), texture_size=8.0
+    )  # 1 m checks
     return scene
 
 
@@ -66,7 +67,8 @@ def test_obj_diffuse_maps_are_applied(tmp_path):
     (tmp_path / "sign.mtl").write_text("newmtl sign\nKd 1 1 1\nmap_Kd sign.png\n")
     (tmp_path / "sign.obj").write_text(
         "mtllib sign.mtl\nv 10 -1 -2\nv 10 -1 2\nv 10 1 2\nv 10 1 -2\n"
-        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl sign\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl sign\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"
+    )
     scene = refracta.Scene()
     scene.set_sky(SKY, SKY)
     scene.add_obj(str(tmp_path / "sign.obj"))
@@ -122,8 +124,9 @@ def test_missing_textures_raise_io_error_naming_the_file(tmp_path):
     with pytest.raises(refracta.IoError, match="nosky.exr"):
         scene.set_sky(environment=str(tmp_path / "nosky.exr"))
     (tmp_path / "a.mtl").write_text("newmtl a\nKd 1 1 1\nmap_Kd gone.png\n")
-    (tmp_path / "a.obj").write_text("mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
-                                    "usemtl a\nf 1/1 2/2 3/3\n")
+    (tmp_path / "a.obj").write_text(
+        "mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n"
+    )
     with pytest.raises(refracta.IoError, match="gone.png"):
         scene.add_obj(str(tmp_path / "a.obj"))
 

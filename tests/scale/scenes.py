@@ -39,8 +39,16 @@ def every_kind_scene(texture: str, sky: str) -> refracta.Scene:
     vertices = np.array([[8, 0, -2], [8, 0, 2], [8, 3, 2], [8, 3, -2]], float)
     uvs = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
     normals = np.array([[-1, 0.1, 0], [-1, 0, 0.1], [-1, 0, 0], [-1, -0.1, 0]], float)
-    scene.add_mesh(vertices, [[0, 2, 1], [0, 3, 2]], uvs=uvs, normals=normals, kd=(0.6, 0.5, 0.4), ks=(0.2, 0.2, 0.2),
-                   ns=30.0, texture=texture)
+    scene.add_mesh(
+        vertices,
+        [[0, 2, 1], [0, 3, 2]],
+        uvs=uvs,
+        normals=normals,
+        kd=(0.6, 0.5, 0.4),
+        ks=(0.2, 0.2, 0.2),
+        ns=30.0,
+        texture=texture,
+    )
     materials = [
         shading.Diffuse((0.7, 0.2, 0.1)),
         shading.BlinnPhong(0.3, (0.4, 0.4, 0.2), 50.0, alpha=0.8),

@@ -39,7 +39,9 @@ def fields():
     return {
         "logistic": refracta.LogisticProfile(n_inv=0.2, h_ciso=3.0, a_hot=0.7),
         "physical": road,
-        "sounding": refracta.TemperatureProfile([0.0, 2.0, 30.0, 300.0], [305.0, 296.0, 292.0, 290.0], pressure=100500.0),
+        "sounding": refracta.TemperatureProfile(
+            [0.0, 2.0, 30.0, 300.0], [305.0, 296.0, 292.0, 290.0], pressure=100500.0
+        ),
         "linear_squared": refracta.LinearSquaredProfile(alpha=6e-6),
         "curved_earth": refracta.CurvedEarth(road, radius=6.4e6),
         "dispersed": refracta.DispersedField(road, 1.01),
@@ -76,7 +78,9 @@ def test_fields_evaluate_identically_in_another_process(spawned_pool):
 
 
 def test_camera_round_trip_gives_the_same_rays():
-    camera = refracta.Camera((1e3, 1.7, -3.0), (1e3 + 250.0, 1.1, 40.0), up=(0.1, 1.0, 0.0), vfov=17.0, width=33, height=21)
+    camera = refracta.Camera(
+        (1e3, 1.7, -3.0), (1e3 + 250.0, 1.1, 40.0), up=(0.1, 1.0, 0.0), vfov=17.0, width=33, height=21
+    )
     copy = round_trip(camera)
     for attribute in ("position", "look_at", "up"):
         assert np.array_equal(getattr(copy, attribute), getattr(camera, attribute))
@@ -212,8 +216,9 @@ def test_a_scene_file_round_trips():
     assert copy._fields == loaded._fields == ("scene", "camera", "field")
     assert copy.turbulence is None and loaded.turbulence is None
     camera = loaded.camera.resized(16, 8)
-    assert np.array_equal(scenes.render_quietly(copy.scene, camera, copy.field),
-                          scenes.render_quietly(loaded.scene, camera, loaded.field))
+    assert np.array_equal(
+        scenes.render_quietly(copy.scene, camera, copy.field), scenes.render_quietly(loaded.scene, camera, loaded.field)
+    )
 
 
 def test_ray_paths_batches_and_tables_round_trip(hot_road):
@@ -228,7 +233,9 @@ def test_ray_paths_batches_and_tables_round_trip(hot_road):
 
     batch = refracta.trace_rays(hot_road, [0, 1.5, 0], [[1, -0.003, 0], [1, 0.001, 0]], max_length=500.0)
     batch_copy = round_trip(batch)
-    for a, b in zip((batch_copy.end_points, batch_copy.lengths, batch_copy.stops), (batch.end_points, batch.lengths, batch.stops)):
+    for a, b in zip(
+        (batch_copy.end_points, batch_copy.lengths, batch_copy.stops), (batch.end_points, batch.lengths, batch.stops)
+    ):
         assert np.array_equal(a, b)
 
     table = refracta.ElevationTable(hot_road, 1.5, -1.0, 0.5, max_length=600.0)
@@ -286,8 +293,10 @@ def test_an_environment_map_file_travels_as_its_path(tmp_path):
     data = pickle.dumps(scene)
     assert str(path).encode() in data and len(data) < image.nbytes / 10
     camera = scenes.camera()
-    assert np.array_equal(scenes.render_quietly(pickle.loads(data), camera, None, spp=2),
-                          scenes.render_quietly(scene, camera, None, spp=2))
+    assert np.array_equal(
+        scenes.render_quietly(pickle.loads(data), camera, None, spp=2),
+        scenes.render_quietly(scene, camera, None, spp=2),
+    )
 
 
 def test_an_obj_scene_with_textures_in_a_sibling_folder_round_trips(tmp_path):
@@ -300,7 +309,8 @@ def test_an_obj_scene_with_textures_in_a_sibling_folder_round_trips(tmp_path):
     (tmp_path / "model" / "wall.mtl").write_text("newmtl brick\nKd 0.9 0.8 0.7\nmap_Kd brick.exr\n")
     (tmp_path / "model" / "wall.obj").write_text(
         "mtllib wall.mtl\nv 8 0 -2\nv 8 0 2\nv 8 3 2\nv 8 3 -2\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-        "usemtl brick\nf 1/1 3/3 2/2\nf 1/1 4/4 3/3\n")
+        "usemtl brick\nf 1/1 3/3 2/2\nf 1/1 4/4 3/3\n"
+    )
     scene = refracta.Scene()
     scene.add_obj(str(tmp_path / "model" / "wall.obj"), texture_dirs=[str(tmp_path / "textures")])
     scene.set_environment((0.5, 0.5, 0.5))
@@ -322,13 +332,25 @@ def test_every_public_class_pickles():
     and every class refracta exports pickles or is one of the compiled ones."""
     import inspect
 
-    compiled = {name: obj for name, obj in vars(refracta._core).items()
-                if inspect.isclass(obj) and not name.startswith("_") and not issubclass(obj, BaseException)}
+    compiled = {
+        name: obj
+        for name, obj in vars(refracta._core).items()
+        if inspect.isclass(obj) and not name.startswith("_") and not issubclass(obj, BaseException)
+    }
     missing = [name for name, obj in compiled.items() if name not in ABSTRACT and "__setstate__" not in vars(obj)]
     assert not missing, f"classes without pickling: {missing}"
     exported = [getattr(refracta, name) for name in refracta.__all__]
-    python_classes = [obj for obj in exported if inspect.isclass(obj) and obj.__module__ != "refracta._core"
-                      and not issubclass(obj, BaseException)]
-    assert {c.__name__ for c in python_classes} >= {"RayBatch", "ElevationTable", "SceneFile", "SweepResult", "SweepFailure"}
+    python_classes = [
+        obj
+        for obj in exported
+        if inspect.isclass(obj) and obj.__module__ != "refracta._core" and not issubclass(obj, BaseException)
+    ]
+    assert {c.__name__ for c in python_classes} >= {
+        "RayBatch",
+        "ElevationTable",
+        "SceneFile",
+        "SweepResult",
+        "SweepFailure",
+    }
     for cls in python_classes:  # each is a dataclass, NamedTuple or defines __reduce__
-        assert (hasattr(cls, "__dataclass_fields__") or hasattr(cls, "_fields") or "__reduce__" in vars(cls)), cls
+        assert hasattr(cls, "__dataclass_fields__") or hasattr(cls, "_fields") or "__reduce__" in vars(cls), cls

@@ -33,8 +33,14 @@ def fails_when_hot(surface_dt, eye):
 
 def test_a_dict_grid_is_the_cartesian_product_with_the_last_key_fastest():
     points = grid_points({"a": [1, 2], "b": ["x", "y", "z"]})
-    assert points == [{"a": 1, "b": "x"}, {"a": 1, "b": "y"}, {"a": 1, "b": "z"},
-                      {"a": 2, "b": "x"}, {"a": 2, "b": "y"}, {"a": 2, "b": "z"}]
+    assert points == [
+        {"a": 1, "b": "x"},
+        {"a": 1, "b": "y"},
+        {"a": 1, "b": "z"},
+        {"a": 2, "b": "x"},
+        {"a": 2, "b": "y"},
+        {"a": 2, "b": "z"},
+    ]
     assert grid_points([{"a": 3}, {"a": 1, "b": 2}]) == [{"a": 3}, {"a": 1, "b": 2}]
 
 
@@ -62,7 +68,9 @@ def test_pools_give_the_serial_results(pool):
 
 def test_failed_points_are_reported_with_their_parameters_and_the_rest_kept():
     grid = {"surface_dt": [5.0, 10.0, 3.0, 12.0], "eye": [2.0]}
-    with pytest.raises(SweepError, match=r"2 of 4 sweep points failed: point 1 \{'surface_dt': 10.0, 'eye': 2.0\}") as caught:
+    with pytest.raises(
+        SweepError, match=r"2 of 4 sweep points failed: point 1 \{'surface_dt': 10.0, 'eye': 2.0\}"
+    ) as caught:
         sweep(fails_when_hot, grid, progress=False)
     error = caught.value
     assert [f.index for f in error.failures] == [1, 3]
@@ -99,14 +107,17 @@ def render_road(surface_dt):
     return refracta.render(scene, camera, field, progress=False, max_length=400.0)
 
 
-@pytest.mark.parametrize("bad, message", [
-    (dict(function=5, grid={"a": [1]}), "callable"),
-    (dict(function=fails_when_hot, grid={"a": 3}), "list of values"),
-    (dict(function=fails_when_hot, grid=[1, 2]), "dict of parameter names"),
-    (dict(function=fails_when_hot, grid={"a": [1]}, errors="ignore"), "errors must be"),
-    (dict(function=fails_when_hot, grid={"a": [1]}, executor="cluster"), "executor must be"),
-    (dict(function=fails_when_hot, grid={"a": [1]}, progress=3), "progress must be"),
-])
+@pytest.mark.parametrize(
+    "bad, message",
+    [
+        (dict(function=5, grid={"a": [1]}), "callable"),
+        (dict(function=fails_when_hot, grid={"a": 3}), "list of values"),
+        (dict(function=fails_when_hot, grid=[1, 2]), "dict of parameter names"),
+        (dict(function=fails_when_hot, grid={"a": [1]}, errors="ignore"), "errors must be"),
+        (dict(function=fails_when_hot, grid={"a": [1]}, executor="cluster"), "executor must be"),
+        (dict(function=fails_when_hot, grid={"a": [1]}, progress=3), "progress must be"),
+    ],
+)
 def test_bad_arguments_raise_value_errors(bad, message):
     with pytest.raises(ValueError, match=message):
         sweep(**bad)
@@ -121,7 +132,7 @@ def test_bad_arguments_raise_value_errors(bad, message):
 # second when the machine is not overloaded (serial and thread-pool sweeps: 0.0001-0.15 s measured
 # with two CPU burners beside them).
 LATENCY_BOUND = 2.0
-HANG_GUARD = 60.0     # [s] a bound against a hung child, not a timing assertion
+HANG_GUARD = 60.0  # [s] a bound against a hung child, not a timing assertion
 # [s] a bound against orphaned workers rendering on; they check for their parent every 0.2 s
 # (_sweep._PARENT_POLL), so this is a hang guard rather than a timing assertion.
 ORPHAN_GUARD = 10.0
@@ -169,8 +180,9 @@ if __name__ == "__main__":
 def _start_sweep(tmp_path, kind):
     script = tmp_path / "interrupted_sweep.py"  # a file, so that spawned workers can import it
     script.write_text(_INTERRUPTED_SWEEP)
-    process = subprocess.Popen([sys.executable, str(script), kind], cwd=tmp_path, stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, text=True)
+    process = subprocess.Popen(
+        [sys.executable, str(script), kind], cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
     ready = process.stdout.readline().split()
     if len(ready) != 2 or ready[0] != "ready" or not ready[1].isdigit():
         process.kill()

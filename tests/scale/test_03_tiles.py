@@ -55,7 +55,9 @@ def test_tiles_of_a_thread_pool_and_of_a_region(setup):
     local = scenes.render_quietly(scene, camera, field, spp=2)
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
         tiled = scenes.render_quietly(scene, camera, field, spp=2, executor=pool, tiles=5)
-        region = scenes.render_quietly(scene, camera, field, spp=2, executor=pool, tiles=(2, 2), pixel_bounds=(4, 2, 20, 15))
+        region = scenes.render_quietly(
+            scene, camera, field, spp=2, executor=pool, tiles=(2, 2), pixel_bounds=(4, 2, 20, 15)
+        )
     assert np.array_equal(tiled, local) and np.array_equal(region, local[2:15, 4:20])
 
 
@@ -67,9 +69,19 @@ def test_tile_bounds_cover_the_image_once():
         assert (cover == 1).all(), tiles
 
 
-@pytest.mark.parametrize("bad", [dict(pixel_bounds=(0, 0, 25, 16)), dict(pixel_bounds=(3, 3, 3, 5)),
-                                 dict(pixel_bounds=(1, 2, 3)), dict(tiles=(0, 2)), dict(tiles=(25, 1)),
-                                 dict(tiles=0), dict(tiles="4x4"), dict(tiles=(1.5, 2))])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        dict(pixel_bounds=(0, 0, 25, 16)),
+        dict(pixel_bounds=(3, 3, 3, 5)),
+        dict(pixel_bounds=(1, 2, 3)),
+        dict(tiles=(0, 2)),
+        dict(tiles=(25, 1)),
+        dict(tiles=0),
+        dict(tiles="4x4"),
+        dict(tiles=(1.5, 2)),
+    ],
+)
 def test_bad_bounds_and_tiles_raise_value_errors(setup, bad):
     scene, camera, field = setup
     with pytest.raises(ValueError):

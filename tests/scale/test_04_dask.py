@@ -71,8 +71,11 @@ def test_a_sweep_on_the_cluster_equals_the_serial_sweep(client, texture):
 def test_a_worker_killed_mid_sweep_loses_nothing(client, texture, tmp_path):
     grid = dict(GRID, texture=[texture], folder=[str(tmp_path)])
     outcome = {}
-    sweeping = threading.Thread(target=lambda: outcome.update(result=refracta.sweep(
-        watched_render, grid, executor=client, progress=False, errors="keep")))
+    sweeping = threading.Thread(
+        target=lambda: outcome.update(
+            result=refracta.sweep(watched_render, grid, executor=client, progress=False, errors="keep")
+        )
+    )
     sweeping.start()
     deadline = time.monotonic() + START_WAIT
     while not list(tmp_path.glob("started-10-1-*")) and time.monotonic() < deadline:
@@ -98,8 +101,17 @@ def test_a_render_split_across_workers_equals_the_local_render(client, texture):
     scene, camera, field = scenes.every_kind_scene(texture, "environment"), scenes.camera(), scenes.hot_road()
     for transport in ("direct", "path"):
         local = scenes.render_quietly(scene, camera, field, transport=transport, spp=4)
-        split, stats = refracta.render(scene, camera, field, transport=transport, spp=4, executor=client,
-                                       tiles=(2, 2), progress=False, return_stats=True)
+        split, stats = refracta.render(
+            scene,
+            camera,
+            field,
+            transport=transport,
+            spp=4,
+            executor=client,
+            tiles=(2, 2),
+            progress=False,
+            return_stats=True,
+        )
         assert np.array_equal(split, local)
         assert stats.samples == camera.width * camera.height * 4
 
@@ -111,7 +123,9 @@ def cold_only(surface_dt):
 
 
 def test_a_failing_point_on_a_worker_is_reported_with_its_parameters(client):
-    with pytest.raises(refracta.SweepError, match=r"1 of 3 sweep points failed: point 2 \{'surface_dt': 12.0\}") as caught:
+    with pytest.raises(
+        refracta.SweepError, match=r"1 of 3 sweep points failed: point 2 \{'surface_dt': 12.0\}"
+    ) as caught:
         refracta.sweep(cold_only, {"surface_dt": [2.0, 6.0, 12.0]}, executor=client, progress=False)
     failure = caught.value.failures[0]
     assert isinstance(failure.error, ValueError) and "no table for 12.0 K" in failure.traceback
@@ -127,7 +141,8 @@ def test_a_scattered_scene_in_the_grid_reaches_the_workers(client, texture):
     """The documented way to send a large object once: scatter it and put the future in the grid."""
     scene = scenes.every_kind_scene(texture, "constant")
     future = client.scatter(scene, broadcast=True)
-    remote = refracta.sweep(render_scene, {"scene": [future], "surface_dt": [3.0, 12.0]}, executor=client,
-                            progress=False)
+    remote = refracta.sweep(
+        render_scene, {"scene": [future], "surface_dt": [3.0, 12.0]}, executor=client, progress=False
+    )
     for image, dt in zip(remote, [3.0, 12.0]):
         assert np.array_equal(image, render_scene(scene, dt))

@@ -13,8 +13,14 @@ MATERIALS = {
     "rough_dielectric_aniso": (lambda: shading.RoughDielectric(alpha_u=0.15, alpha_v=0.4, ior=1.33), True),
     "plastic": (lambda: shading.Plastic((0.6, 0.3, 0.1)), False),
     "rough_plastic": (lambda: shading.Plastic((0.6, 0.3, 0.1), alpha=0.2), False),
-    "principled": (lambda: shading.Principled((0.8, 0.4, 0.2), roughness=0.5, clearcoat=1.0, clearcoat_gloss=0.3, sheen=0.5), False),
-    "principled_aniso": (lambda: shading.Principled((0.8, 0.4, 0.2), metallic=0.7, roughness=0.6, anisotropic=0.8), False),
+    "principled": (
+        lambda: shading.Principled((0.8, 0.4, 0.2), roughness=0.5, clearcoat=1.0, clearcoat_gloss=0.3, sheen=0.5),
+        False,
+    ),
+    "principled_aniso": (
+        lambda: shading.Principled((0.8, 0.4, 0.2), metallic=0.7, roughness=0.6, anisotropic=0.8),
+        False,
+    ),
     "thin_film": (lambda: shading.ThinFilm(400.0, 1.33, eta=1.5, alpha=0.25), False),
     "dielectric": (lambda: shading.Dielectric(1.5), True),
     "thin_dielectric": (lambda: shading.ThinDielectric(1.5), True),

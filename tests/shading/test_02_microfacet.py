@@ -49,7 +49,12 @@ def test_height_correlated_masking_is_bounded_by_g1():
 def test_visible_normal_sampling_chi2(ax, ay, theta):
     d = TrowbridgeReitz(ax, ay)
     wo = direction(theta, 35.0)
-    result = chi2.test_sampler(lambda u: (d.sample_wm(wo, u[:, 1:]), np.ones(len(u), bool)),
-                               lambda m: d.D_visible(wo, m) * (m @ wo > 0) * (m[:, 2] > 0), samples=200_000, seed=7,
-                               significance=0.01, test_count=6)
+    result = chi2.test_sampler(
+        lambda u: (d.sample_wm(wo, u[:, 1:]), np.ones(len(u), bool)),
+        lambda m: d.D_visible(wo, m) * (m @ wo > 0) * (m[:, 2] > 0),
+        samples=200_000,
+        seed=7,
+        significance=0.01,
+        test_count=6,
+    )
     assert result.passed, result

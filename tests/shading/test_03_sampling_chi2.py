@@ -12,7 +12,12 @@ from .conftest import direction
 from .materials import MATERIALS, SAMPLED
 
 ANGLES = [10.0, 60.0, 85.0]
-CASES = [(name, theta, below) for name in SAMPLED for theta in ANGLES for below in ((False, True) if MATERIALS[name][1] else (False,))]
+CASES = [
+    (name, theta, below)
+    for name in SAMPLED
+    for theta in ANGLES
+    for below in ((False, True) if MATERIALS[name][1] else (False,))
+]
 SIGNIFICANCE = 0.01  # family-wise, Sidak-corrected over every case below
 SAMPLES = 200_000
 
@@ -20,8 +25,14 @@ SAMPLES = 200_000
 @pytest.mark.parametrize("name, theta, below", CASES)
 def test_sampling_matches_pdf(name, theta, below):
     material = MATERIALS[name][0]()
-    result = chi2.test_bsdf(material, direction(theta, 30.0, below), samples=SAMPLES, seed=11,
-                            significance=SIGNIFICANCE, test_count=len(CASES))
+    result = chi2.test_bsdf(
+        material,
+        direction(theta, 30.0, below),
+        samples=SAMPLES,
+        seed=11,
+        significance=SIGNIFICANCE,
+        test_count=len(CASES),
+    )
     assert result.passed, (result, result.message)
     # The density's integral matches the fraction of directions produced (binomial noise, 5 sigma + quadrature).
     noise = 5 * math.sqrt(result.produced * (1 - result.produced) / SAMPLES) + 2e-3
@@ -63,7 +74,7 @@ def test_sidak_correction_and_arguments():
     from refracta.shading import Diffuse
 
     r = chi2.test_bsdf(Diffuse(0.5), [0.0, 0.0, 1.0], samples=20_000, seed=2, significance=0.05, test_count=10)
-    assert r.significance == pytest.approx(1 - 0.95 ** 0.1)  # default rel 1e-6: Sidak's closed form in double
+    assert r.significance == pytest.approx(1 - 0.95**0.1)  # default rel 1e-6: Sidak's closed form in double
     with pytest.raises(ValueError, match="wo"):
         chi2.test_bsdf(Diffuse(0.5), [0.0, 0.0, 2.0])
     with pytest.raises(ValueError, match="significance"):

@@ -44,8 +44,16 @@ def test_albedo_is_at_most_one(name):
         assert np.all(mean <= 1.0 + NOISE_SIGMAS * err + 1e-12), (theta, mean, err)
 
 
-@pytest.mark.parametrize("make", [lambda: shading.Diffuse(1.0), lambda: shading.Conductor(), lambda: shading.Dielectric(1.5),
-                                  lambda: shading.ThinDielectric(1.5), lambda: shading.Plastic(1.0)])
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: shading.Diffuse(1.0),
+        lambda: shading.Conductor(),
+        lambda: shading.Dielectric(1.5),
+        lambda: shading.ThinDielectric(1.5),
+        lambda: shading.Plastic(1.0),
+    ],
+)
 def test_lossless_materials_return_everything(make):
     material = make()
     for theta in THETAS:
@@ -73,8 +81,19 @@ def test_rough_mirror_loses_energy_with_roughness():
         assert all(a > b for a, b in zip(values, values[1:])), values
 
 
-@pytest.mark.parametrize("name", ["diffuse", "blinn_phong", "rough_conductor", "rough_conductor_aniso", "rough_dielectric",
-                                  "rough_plastic", "principled", "thin_film"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "diffuse",
+        "blinn_phong",
+        "rough_conductor",
+        "rough_conductor_aniso",
+        "rough_dielectric",
+        "rough_plastic",
+        "principled",
+        "thin_film",
+    ],
+)
 def test_albedo_matches_quadrature_of_f_cos(name):
     material = MATERIALS[name][0]()
     d, w = sphere_grid(600, 1200)
@@ -89,7 +108,9 @@ def test_blinn_phong_normal_incidence_albedo_closed_form():
     # wo = n: h is halfway, cos theta_h = cos(theta_i / 2); 1-D quadrature of the specular lobe.
     ns = 1.0
     t = (np.arange(200_000) + 0.5) * (np.pi / 2) / 200_000
-    lobe = np.sum((ns + 8) / (8 * np.pi) * np.cos(t / 2) ** ns * np.cos(t) * np.sin(t)) * 2 * np.pi * (np.pi / 2) / 200_000
+    lobe = (
+        np.sum((ns + 8) / (8 * np.pi) * np.cos(t / 2) ** ns * np.cos(t) * np.sin(t)) * 2 * np.pi * (np.pi / 2) / 200_000
+    )
     mean, err = albedo(shading.BlinnPhong(0.0, 1.0, ns), direction(0.0))
     assert mean[0] == pytest.approx(lobe, abs=NOISE_SIGMAS * err[0])
     assert lobe > 1.0  # the approximate normalisation: measured 1.022

@@ -84,7 +84,9 @@ def test_rough_conductor(au, av, eta, k):
 def test_rough_dielectric(transmit):
     wo, wi = pairs(transmit=transmit)
     ours = shading.RoughDielectric(alpha=0.3, ior=1.5).f(wo, wi) * np.abs(wi[:, 2:3])
-    theirs = mitsuba_eval({"type": "roughdielectric", "distribution": "ggx", "alpha": 0.3, "int_ior": 1.5, "ext_ior": 1.0}, wo, wi)
+    theirs = mitsuba_eval(
+        {"type": "roughdielectric", "distribution": "ggx", "alpha": 0.3, "int_ior": 1.5, "ext_ior": 1.0}, wo, wi
+    )
     assert max_relative(ours * separable_over_correlated(0.3, 0.3, wo, wi), theirs) < FLOAT32_TOLERANCE
 
 
@@ -110,14 +112,33 @@ def test_plastic():
     # Mitsuba's nonlinear=True is Weidlich & Wilkie's R / (1 - R Fbar_int) (its default divides by 1 - Fbar_int).
     wo, wi = pairs()
     ours = shading.Plastic((0.6, 0.3, 0.1)).f(wo, wi) * wi[:, 2:3]
-    theirs = mitsuba_eval({"type": "plastic", "diffuse_reflectance": rgb((0.6, 0.3, 0.1)), "int_ior": 1.5, "ext_ior": 1.0,
-                           "nonlinear": True}, wo, wi)
+    theirs = mitsuba_eval(
+        {
+            "type": "plastic",
+            "diffuse_reflectance": rgb((0.6, 0.3, 0.1)),
+            "int_ior": 1.5,
+            "ext_ior": 1.0,
+            "nonlinear": True,
+        },
+        wo,
+        wi,
+    )
     assert max_relative(ours, theirs) < FIT_TOLERANCE
 
 
 def test_rough_plastic_specular_part():
     wo, wi = pairs()
     ours = shading.Plastic(0.0, alpha=0.2).f(wo, wi) * wi[:, 2:3]
-    theirs = mitsuba_eval({"type": "roughplastic", "distribution": "ggx", "alpha": 0.2, "diffuse_reflectance": rgb((0, 0, 0)),
-                           "int_ior": 1.5, "ext_ior": 1.0}, wo, wi)
+    theirs = mitsuba_eval(
+        {
+            "type": "roughplastic",
+            "distribution": "ggx",
+            "alpha": 0.2,
+            "diffuse_reflectance": rgb((0, 0, 0)),
+            "int_ior": 1.5,
+            "ext_ior": 1.0,
+        },
+        wo,
+        wi,
+    )
     assert max_relative(ours * separable_over_correlated(0.2, 0.2, wo, wi), theirs) < FLOAT32_TOLERANCE

@@ -46,19 +46,22 @@ def test_02_ev100_gives_the_saturation_based_exposure(ev):
     assert io.exposure_of(image, ev100=ev) == pytest.approx(683.0 / (1.2 * 2.0**ev), rel=1e-15)
     # Double closed form on both sides: a few ulps.
     assert io.exposure_of(image, ev100=ev, luminous_efficacy=1.0) == pytest.approx(1.0 / (1.2 * 2.0**ev), rel=1e-15)
-    np.testing.assert_array_equal(io.to_display(image, ev100=ev),
-                                  io.to_display(image, exposure=683.0 / (1.2 * 2.0**ev)))
+    np.testing.assert_array_equal(
+        io.to_display(image, ev100=ev), io.to_display(image, exposure=683.0 / (1.2 * 2.0**ev))
+    )
 
 
 def test_03_camera_settings_are_their_ev100():
     image = np.random.default_rng(3).uniform(0, 2, size=(4, 5, 3)).astype(np.float32)
     ev = io.ev100(8.0, 1 / 250, iso=200)
     # The same EV100 reached two ways in double: a few ulps.
-    assert io.exposure_of(image, f_number=8.0, shutter=1 / 250, iso=200) == pytest.approx(io.exposure_of(image, ev100=ev),
-                                                                                         rel=1e-15)
+    assert io.exposure_of(image, f_number=8.0, shutter=1 / 250, iso=200) == pytest.approx(
+        io.exposure_of(image, ev100=ev), rel=1e-15
+    )
     # A stop more light (half the f-number squared... twice the time) is twice the exposure.
     assert io.exposure_of(image, f_number=8.0, shutter=1 / 125) == pytest.approx(
-        2 * io.exposure_of(image, f_number=8.0, shutter=1 / 250), rel=1e-12)
+        2 * io.exposure_of(image, f_number=8.0, shutter=1 / 250), rel=1e-12
+    )
 
 
 @pytest.mark.parametrize("luminance", [0.01, 1.0, 5000.0])
@@ -67,8 +70,9 @@ def test_04_automatic_exposure_is_the_default_and_puts_the_log_average_at_middle
     assert io.exposure_of(image) == pytest.approx(0.18 / luminance, rel=DELTA_REL)
     # Any brightness displays the same, ACES of middle grey (exactly: of 0.18 L / (L + delta)).
     scaled = 0.18 * luminance / (luminance + 1e-6)
-    np.testing.assert_allclose(io.to_display(image, gamma="linear")[0, 0], aces_reference([scaled] * 3),
-                               atol=FLOAT_TOLERANCE)
+    np.testing.assert_allclose(
+        io.to_display(image, gamma="linear")[0, 0], aces_reference([scaled] * 3), atol=FLOAT_TOLERANCE
+    )
     np.testing.assert_array_equal(io.to_display(image), io.to_display(image, key=0.18))
 
 
@@ -94,8 +98,9 @@ def test_06_a_key_overrides_a_manual_exposure_and_manual_overrides_automatic():
 
 
 def test_07_aces_is_hills_fit():
-    rgb = np.array([[[0.0, 0.0, 0.0], [0.18, 0.18, 0.18], [0.8, 0.4, 0.1], [5.0, 1.0, 0.2], [100.0, 100.0, 100.0]]],
-                   np.float32)
+    rgb = np.array(
+        [[[0.0, 0.0, 0.0], [0.18, 0.18, 0.18], [0.8, 0.4, 0.1], [5.0, 1.0, 0.2], [100.0, 100.0, 100.0]]], np.float32
+    )
     out = io.to_display(rgb, exposure=1.0, tonemap="aces", gamma="linear")
     np.testing.assert_allclose(out[0], aces_reference(rgb[0].astype(float)), atol=1e-6)  # float32 output
     # Middle grey displays at ~0.5 after the sRGB curve (the 1/0.6 boost), huge values at white.
@@ -103,13 +108,16 @@ def test_07_aces_is_hills_fit():
     assert 0.45 < grey < 0.55  # middle grey after ACES and sRGB is ~0.5 (Hill's fit); 0.05 off is another curve
     assert io.to_display(rgb[:, 4:5], exposure=1.0, tonemap="aces", gamma="linear")[0, 0, 0] == 1.0
     # Grey images take the same curve on their one channel.
-    np.testing.assert_allclose(io.to_display(rgb[..., :1], exposure=1.0, tonemap="aces", gamma="linear")[0, :, 0],
-                               aces_reference(np.repeat(rgb[0, :, :1], 3, axis=1).astype(float))[:, 0], atol=2e-5)
+    np.testing.assert_allclose(
+        io.to_display(rgb[..., :1], exposure=1.0, tonemap="aces", gamma="linear")[0, :, 0],
+        aces_reference(np.repeat(rgb[0, :, :1], 3, axis=1).astype(float))[:, 0],
+        atol=2e-5,
+    )
 
 
 def test_08_float_files_take_the_manual_exposure_only(tmp_path):
     image = np.random.default_rng(8).uniform(0, 4, size=(3, 4, 3)).astype(np.float32)
-    io.write_image(tmp_path / "auto.exr", image)   # no automatic exposure in linear files
+    io.write_image(tmp_path / "auto.exr", image)  # no automatic exposure in linear files
     np.testing.assert_array_equal(io.read_image(tmp_path / "auto.exr"), image)
     io.write_image(tmp_path / "ev.exr", image, ev100=0.0, luminous_efficacy=1.0)
     # EXR stores float32: a few ulps of 1 after the division.
@@ -119,16 +127,21 @@ def test_08_float_files_take_the_manual_exposure_only(tmp_path):
     np.testing.assert_allclose(io.read_image(tmp_path / "auto.png"), io.to_display(image), atol=0.51 / 255)
 
 
-@pytest.mark.parametrize("arguments, name", [(dict(ev100=float("nan")), "ev100"),
-                                             (dict(exposure=-1.0), "exposure"),
-                                             (dict(shutter=0.0, f_number=8.0), "shutter"),
-                                             (dict(shutter=0.01, f_number=-8.0), "f_number"),
-                                             (dict(shutter=0.01, f_number=8.0, iso=0.0), "iso"),
-                                             (dict(shutter=0.01), "f_number"),
-                                             (dict(exposure=2.0, ev100=3.0), "one manual exposure"),
-                                             (dict(ev100=3.0, shutter=0.01, f_number=4.0), "one manual exposure"),
-                                             (dict(key=float("nan")), "key"),
-                                             (dict(ev100=10.0, luminous_efficacy=0.0), "luminous_efficacy")])
+@pytest.mark.parametrize(
+    "arguments, name",
+    [
+        (dict(ev100=float("nan")), "ev100"),
+        (dict(exposure=-1.0), "exposure"),
+        (dict(shutter=0.0, f_number=8.0), "shutter"),
+        (dict(shutter=0.01, f_number=-8.0), "f_number"),
+        (dict(shutter=0.01, f_number=8.0, iso=0.0), "iso"),
+        (dict(shutter=0.01), "f_number"),
+        (dict(exposure=2.0, ev100=3.0), "one manual exposure"),
+        (dict(ev100=3.0, shutter=0.01, f_number=4.0), "one manual exposure"),
+        (dict(key=float("nan")), "key"),
+        (dict(ev100=10.0, luminous_efficacy=0.0), "luminous_efficacy"),
+    ],
+)
 def test_09_bad_exposure_settings_are_refused_naming_them(arguments, name):
     image = np.ones((2, 2, 3), np.float32)
     with pytest.raises(ValueError, match=name):
@@ -147,8 +160,9 @@ def test_10_example_scenes_are_well_exposed_by_default():
     from refracta import examples
 
     for example in (examples.hot_road(width=160, height=60), examples.cold_sea(width=160, height=60)):
-        image = refracta.render(example.scene, example.camera, example.field, max_length=example.max_length,
-                                progress=False)
+        image = refracta.render(
+            example.scene, example.camera, example.field, max_length=example.max_length, progress=False
+        )
         shown = io.to_display(image) @ LUMA
         assert 0.3 < np.median(shown) < 0.7, example.name  # the bounds argued in the comment above
         # The bounds argued in the comment above.

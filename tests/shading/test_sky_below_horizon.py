@@ -101,7 +101,9 @@ def test_whole_sphere_sampling_matches_its_pdf(sky):
     n = 200_000
     dirs, _, _ = sky.sample_li(np.random.default_rng(12).random((n, 2)))
     x, t = t_of(dirs)
-    bins = (np.minimum((t * nt).astype(int), nt - 1) // group) * (nx // group) + np.minimum((x * nx).astype(int), nx - 1) // group
+    bins = (np.minimum((t * nt).astype(int), nt - 1) // group) * (nx // group) + np.minimum(
+        (x * nx).astype(int), nx - 1
+    ) // group
     observed = np.bincount(bins, minlength=p_bin.size)
     expected = n * p_bin
     keep = expected >= 5
@@ -125,7 +127,11 @@ def test_sampling_integrates_the_radiance_over_the_sphere(sky):
     a = (np.arange(na) + 0.5) / na * 360.0
     y = sky.rgb_radiance(unit(np.degrees(e)[:, None], a[None, :]).reshape(-1, 3)).reshape(ne, na, 3) @ LUMINANCE
     quadrature = np.sum(y * np.cos(e)[:, None]) * (np.pi / ne) * (2 * np.pi / na)
-    assert abs(estimate - quadrature) <= SIGMAS * error + QUADRATURE_TOLERANCE * quadrature, (estimate, error, quadrature)
+    assert abs(estimate - quadrature) <= SIGMAS * error + QUADRATURE_TOLERANCE * quadrature, (
+        estimate,
+        error,
+        quadrature,
+    )
     # The share of samples below the horizon is the lower hemisphere's share of the integral
     # (pdf proportional to Y(Le); measured 0.71), within binomial noise and the cells' piecewise constancy.
     lower = np.sum((y * np.cos(e)[:, None])[e < 0]) * (np.pi / ne) * (2 * np.pi / na) / quadrature
@@ -141,7 +147,9 @@ def test_scene_set_physical_sky_continues_the_horizon_by_default():
     light = next(light for light in scene.lights if "PhysicalSkyLight" in repr(light))
     assert "below_horizon=horizon" in repr(light)
     for azimuth in AZIMUTHS:
-        np.testing.assert_array_equal(light.Le(unit(BELOW, azimuth)), np.repeat(light.Le(unit(0.0, azimuth)[None]), len(BELOW), 0))
+        np.testing.assert_array_equal(
+            light.Le(unit(BELOW, azimuth)), np.repeat(light.Le(unit(0.0, azimuth)[None]), len(BELOW), 0)
+        )
     reference = spectrum.PhysicalSky(SUN, below_horizon="horizon")
     # The horizon's radiance mirrored below it, times 2: rounding.
     np.testing.assert_allclose(light.Le(unit(BELOW, 37.0)), 2.0 * reference.rgb_radiance(unit(BELOW, 37.0)), rtol=1e-12)

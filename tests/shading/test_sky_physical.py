@@ -114,12 +114,17 @@ def test_light_sampling_matches_its_pdf(sky):
     n = 200_000
     dirs, pdf, _ = sky.sample_li(np.random.default_rng(3).random((n, 2)))
     x, y = xy_of(dirs)
-    bins = np.minimum((y * ny).astype(int) // group, ny // group - 1) * (nx // group) + np.minimum((x * nx).astype(int) // group, nx // group - 1)
+    bins = np.minimum((y * ny).astype(int) // group, ny // group - 1) * (nx // group) + np.minimum(
+        (x * nx).astype(int) // group, nx // group - 1
+    )
     observed = np.bincount(bins, minlength=p_bin.size)
     expected = n * p_bin
     keep = expected >= 5
     statistic = np.sum((observed[keep] - expected[keep]) ** 2 / expected[keep]) + (
-        (observed[~keep].sum() - expected[~keep].sum()) ** 2 / max(expected[~keep].sum(), 1e-300) if (~keep).any() else 0.0)
+        (observed[~keep].sum() - expected[~keep].sum()) ** 2 / max(expected[~keep].sum(), 1e-300)
+        if (~keep).any()
+        else 0.0
+    )
     dof = keep.sum() + (1 if (~keep).any() else 0) - 1
     p_value = chi2.chi2_survival(statistic, int(dof))
     assert p_value > CHI2_SIGNIFICANCE, (statistic, dof, p_value)

@@ -88,8 +88,20 @@ def test_hero_wavelengths_rotate_over_the_whole_range():
 
 def in_gamut_colours():
     rng = np.random.default_rng(3)
-    special = [[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0], [0, 1, 1], [1, 0, 1], [0.5, 0.5, 0.5],
-               [0.18, 0.18, 0.18], [0.0, 0.0, 0.0], [1, 1, 1], [0.9, 0.9, 0.9], [0.02, 0.03, 0.01]]
+    special = [
+        [1, 0, 0],
+        [0, 1, 0],
+        [0, 0, 1],
+        [1, 1, 0],
+        [0, 1, 1],
+        [1, 0, 1],
+        [0.5, 0.5, 0.5],
+        [0.18, 0.18, 0.18],
+        [0.0, 0.0, 0.0],
+        [1, 1, 1],
+        [0.9, 0.9, 0.9],
+        [0.02, 0.03, 0.01],
+    ]
     return np.vstack([special, rng.uniform(size=(300, 3))])
 
 
@@ -116,11 +128,11 @@ def test_unbounded_and_illuminant_scale():
     rgb = np.array([4.0, 2.0, 0.5])
     s = spectrum.rgb_to_spectrum(rgb, LAM_1NM, kind="unbounded")
     assert s.max() <= 2.0 * rgb.max() + 1e-12  # scale 2 max(rgb) times a sigmoid in [0, 1]
-    np.testing.assert_allclose(spectrum.spectrum_to_rgb(LAM_1NM, s, kind="unbounded"), rgb,
-                               rtol=ROUND_TRIP_TOLERANCE)
+    np.testing.assert_allclose(spectrum.spectrum_to_rgb(LAM_1NM, s, kind="unbounded"), rgb, rtol=ROUND_TRIP_TOLERANCE)
     emission = spectrum.rgb_to_spectrum(rgb, LAM_1NM, kind="illuminant")
-    np.testing.assert_allclose(spectrum.spectrum_to_rgb(LAM_1NM, emission), rgb,
-                               rtol=ROUND_TRIP_TOLERANCE + WHITE_TOLERANCE)
+    np.testing.assert_allclose(
+        spectrum.spectrum_to_rgb(LAM_1NM, emission), rgb, rtol=ROUND_TRIP_TOLERANCE + WHITE_TOLERANCE
+    )
 
 
 def test_tabulated_spectrum_rgb_matches_colour_science():
@@ -131,8 +143,10 @@ def test_tabulated_spectrum_rgb_matches_colour_science():
     shape = colour.SpectralShape(360, 830, 1)
     sd = colour.SpectralDistribution(dict(zip(lam, values))).interpolate(shape, interpolator=colour.LinearInterpolator)
     illuminant = colour.SpectralDistribution(dict(zip(LAM_1NM, spectrum.d65(LAM_1NM))))
-    xyz = colour.sd_to_XYZ(sd, colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"], illuminant,
-                           method="Integration") / 100.0
+    xyz = (
+        colour.sd_to_XYZ(sd, colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"], illuminant, method="Integration")
+        / 100.0
+    )
     # colour-science sums 1 nm samples (no half weights at the ends): ~1e-6 difference.
     np.testing.assert_allclose(rgb, srgb_matrix() @ xyz, atol=1e-5)
 

@@ -26,10 +26,12 @@ def srgb_decode(v):
 def test_linear_and_film_closed_forms():
     x = np.array([[0.0, 0.1, 0.5, 1.0, 2.0, 10.0]], np.float32)
     for c in (0.5, 1.0, 3.0):
-        np.testing.assert_allclose(display(x, exposure=c, tonemap="linear")[..., 0], np.minimum(c * x, 1.0),
-                                   atol=FLOAT_TOLERANCE)
-        np.testing.assert_allclose(display(x, exposure=c, tonemap="film")[..., 0], 1.0 - np.exp(-c * x),
-                                   atol=FLOAT_TOLERANCE)
+        np.testing.assert_allclose(
+            display(x, exposure=c, tonemap="linear")[..., 0], np.minimum(c * x, 1.0), atol=FLOAT_TOLERANCE
+        )
+        np.testing.assert_allclose(
+            display(x, exposure=c, tonemap="film")[..., 0], 1.0 - np.exp(-c * x), atol=FLOAT_TOLERANCE
+        )
 
 
 def test_reinhard_closed_forms_on_grey():
@@ -39,8 +41,9 @@ def test_reinhard_closed_forms_on_grey():
     np.testing.assert_allclose(display(x, tonemap="reinhard", exposure=1.0)[..., 0], x / (1 + x), atol=FLOAT_TOLERANCE)
     w = 3.0
     expected = np.minimum(x * (1 + x / w**2) / (1 + x), 1.0)
-    np.testing.assert_allclose(display(x, tonemap="reinhard", white=w, exposure=1.0)[..., 0], expected,
-                               atol=FLOAT_TOLERANCE)
+    np.testing.assert_allclose(
+        display(x, tonemap="reinhard", white=w, exposure=1.0)[..., 0], expected, atol=FLOAT_TOLERANCE
+    )
     assert display(x, tonemap="reinhard", white=w, exposure=1.0)[0, 3, 0] == pytest.approx(1.0)  # L = W maps to white
 
 

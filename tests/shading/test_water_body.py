@@ -18,8 +18,18 @@ EXACT = 1e-12  # table nodes and closed forms evaluated the same way in C++ and 
 # second derivative (~1e-7 per nm^2 in the visible) bounds the error by ~1e-8.
 TABLE_TOLERANCE = 1e-7
 # Pope & Fry 1997, Table 3 (and Smith & Baker 1981 at 360 nm) [1/m].
-POPE_FRY = {360.0: 0.0379, 380.0: 0.01137, 400.0: 0.00663, 440.0: 0.00635, 500.0: 0.0204, 550.0: 0.0565,
-            600.0: 0.2224, 650.0: 0.340, 700.0: 0.624, 725.0: 1.489}
+POPE_FRY = {
+    360.0: 0.0379,
+    380.0: 0.01137,
+    400.0: 0.00663,
+    440.0: 0.00635,
+    500.0: 0.0204,
+    550.0: 0.0565,
+    600.0: 0.2224,
+    650.0: 0.340,
+    700.0: 0.624,
+    725.0: 1.489,
+}
 INTEGER_NM = np.array([450.0, 500.0, 550.0, 600.0])  # the 1 nm tables are exact at integer wavelengths
 SIGMAS = 5.0
 
@@ -34,7 +44,9 @@ def test_01_absorption_is_pope_and_fry():
 def test_02_backscattering_follows_morel():
     # Morel 1974: b_w(500) = 0.00222 1/m for pure water, half backward; lambda^-4.32; sea water +30 %.
     assert shading.water_backscattering(500.0) == pytest.approx(0.00111, rel=EXACT)
-    assert shading.water_backscattering(400.0) / shading.water_backscattering(500.0) == pytest.approx(0.8 ** -4.32, rel=EXACT)
+    assert shading.water_backscattering(400.0) / shading.water_backscattering(500.0) == pytest.approx(
+        0.8**-4.32, rel=EXACT
+    )
     assert shading.water_backscattering(500.0, 37.0) == pytest.approx(1.3 * 0.00111, rel=EXACT)
 
 
@@ -53,7 +65,10 @@ def test_03_body_reflectance_and_the_colour_of_the_sea():
 
 
 def test_04_body_term_closed_form_per_wavelength():
-    deep, bare = shading.Water(3.0, temperature_c=10.0, salinity=30.0), shading.Water(3.0, temperature_c=10.0, salinity=30.0, body=False)
+    deep, bare = (
+        shading.Water(3.0, temperature_c=10.0, salinity=30.0),
+        shading.Water(3.0, temperature_c=10.0, salinity=30.0, body=False),
+    )
     rng = np.random.default_rng(2)
     wo, wi = rng.normal(size=(50, 3)), rng.normal(size=(50, 3))
     wo[:, 2], wi[:, 2] = np.abs(wo[:, 2]) + 0.05, np.abs(wi[:, 2]) + 0.05
@@ -97,19 +112,30 @@ def test_06_beckmann_is_normalised_with_slope_variance_alpha_squared():
 def test_07_pickles_and_describes():
     water = shading.Water(7.5, 14.0, 31.0, body=False, priority=3)
     again = pickle.loads(pickle.dumps(water))
-    assert again.parameters == water.parameters == dict(wind_speed=7.5, temperature_c=14.0, salinity=31.0, body=False, priority=3,
-                                                               resolved_slope_variance=0.0)
+    assert (
+        again.parameters
+        == water.parameters
+        == dict(wind_speed=7.5, temperature_c=14.0, salinity=31.0, body=False, priority=3, resolved_slope_variance=0.0)
+    )
     assert repr(again) == "Water(wind_speed=7.5, temperature_c=14, salinity=31, body=False, priority=3)"
     assert again.priority == 3
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    (dict(wind_speed=-1.0), "wind_speed"), (dict(wind_speed=float("nan")), "wind_speed"),
-    (dict(wind_speed=31.0), "wind_speed"), (dict(wind_speed=float("inf")), "wind_speed"),
-    (dict(salinity=-0.1), "salinity"), (dict(salinity=float("nan")), "salinity"), (dict(salinity=41.0), "salinity"),
-    (dict(temperature_c=-2.0), "temperature_c"), (dict(temperature_c=41.0), "temperature_c"),
-    (dict(temperature_c=float("nan")), "temperature_c"),
-])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(wind_speed=-1.0), "wind_speed"),
+        (dict(wind_speed=float("nan")), "wind_speed"),
+        (dict(wind_speed=31.0), "wind_speed"),
+        (dict(wind_speed=float("inf")), "wind_speed"),
+        (dict(salinity=-0.1), "salinity"),
+        (dict(salinity=float("nan")), "salinity"),
+        (dict(salinity=41.0), "salinity"),
+        (dict(temperature_c=-2.0), "temperature_c"),
+        (dict(temperature_c=41.0), "temperature_c"),
+        (dict(temperature_c=float("nan")), "temperature_c"),
+    ],
+)
 def test_08_bad_input_names_the_argument(kwargs, name):
     with pytest.raises(ValueError, match=name):
         shading.Water(**kwargs)
@@ -133,8 +159,10 @@ CAMERA = "[camera]\nposition = [0, 10, 0]\nlook_at = [10, 0, 0]\nsize = [8, 4]\n
 
 def test_10_scene_files_take_water(tmp_path):
     path = tmp_path / "sea.toml"
-    path.write_text(CAMERA + "[[materials]]\nname = 'sea'\ntype = 'water'\nwind_speed = 8.0\nsalinity = 30\n"
-                    "body = false\n[[objects]]\ntype = 'ground'\nmaterial = 'sea'\n")
+    path.write_text(
+        CAMERA + "[[materials]]\nname = 'sea'\ntype = 'water'\nwind_speed = 8.0\nsalinity = 30\n"
+        "body = false\n[[objects]]\ntype = 'ground'\nmaterial = 'sea'\n"
+    )
     scene, _, _ = refracta.load_scene(path)
     assert repr(scene.material(0)) == "Water(wind_speed=8, temperature_c=20, salinity=30, body=False)"  # the ground
     path.write_text(CAMERA + "[[materials]]\nname = 'sea'\ntype = 'water'\nbody = 1\n")

@@ -82,7 +82,9 @@ def test_03b_tabulated_transmittance_is_the_interface_s(wind):
         mean, err, s = albedo(bare, wo)
         transmitted = np.where((s.flags & 2) > 0, s.weight[:, 1], 0.0)
         estimate, noise = transmitted.mean(), transmitted.std() / np.sqrt(SAMPLES)
-        assert bare.transmittance(mu, 532.0) == pytest.approx(estimate, abs=NOISE_SIGMAS * noise + TRANSMITTANCE_TOLERANCE)
+        assert bare.transmittance(mu, 532.0) == pytest.approx(
+            estimate, abs=NOISE_SIGMAS * noise + TRANSMITTANCE_TOLERANCE
+        )
     # A calm sea's (alpha = 0.055) is nearly the flat surface's 1 - F away from grazing (measured
     # 1.4e-4 apart at mu = 0.8), its internal reflectance nearly the flat one's (6.1e-4 apart).
     calm = shading.Water(0.0)

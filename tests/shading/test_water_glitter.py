@@ -125,18 +125,36 @@ def test_05_mitsuba_renders_the_same_glitter(wind):
     size = 96
     water = shading.Water(wind, body=False)
     irradiance = SUN_RADIANCE * np.pi * np.radians(SUN_DIAMETER / 2) ** 2
-    scene = mi.load_dict({
-        "type": "scene",
-        "integrator": {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0},
-        "sensor": {"type": "perspective", "fov": 100.0, "fov_axis": "y",
-                   "to_world": mi.ScalarTransform4f().look_at(origin=[0, 10, 0], target=[0, 0, 0], up=[0, 0, 1]),
-                   "film": {"type": "hdrfilm", "width": size, "height": size, "rfilter": {"type": "box"}},
-                   "sampler": {"type": "independent", "sample_count": 4}},
-        "sea": {"type": "rectangle", "to_world": mi.ScalarTransform4f().rotate([1, 0, 0], -90).scale(1000.0),
-                "bsdf": {"type": "roughdielectric", "distribution": "beckmann", "alpha": water.alpha,
-                         "int_ior": float(water.ior(532.0)), "ext_ior": 1.0}},
-        "sun": {"type": "directional", "direction": [0, -1, 0], "irradiance": {"type": "rgb", "value": [irradiance] * 3}},
-    })
+    scene = mi.load_dict(
+        {
+            "type": "scene",
+            "integrator": {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0},
+            "sensor": {
+                "type": "perspective",
+                "fov": 100.0,
+                "fov_axis": "y",
+                "to_world": mi.ScalarTransform4f().look_at(origin=[0, 10, 0], target=[0, 0, 0], up=[0, 0, 1]),
+                "film": {"type": "hdrfilm", "width": size, "height": size, "rfilter": {"type": "box"}},
+                "sampler": {"type": "independent", "sample_count": 4},
+            },
+            "sea": {
+                "type": "rectangle",
+                "to_world": mi.ScalarTransform4f().rotate([1, 0, 0], -90).scale(1000.0),
+                "bsdf": {
+                    "type": "roughdielectric",
+                    "distribution": "beckmann",
+                    "alpha": water.alpha,
+                    "int_ior": float(water.ior(532.0)),
+                    "ext_ior": 1.0,
+                },
+            },
+            "sun": {
+                "type": "directional",
+                "direction": [0, -1, 0],
+                "irradiance": {"type": "rgb", "value": [irradiance] * 3},
+            },
+        }
+    )
     theirs = np.array(mi.render(scene))[..., 1]
     ours = render_glitter(wind, size)[0].reshape(size, size)
     assert theirs.sum() == pytest.approx(ours.sum(), rel=MITSUBA_TOTAL_TOLERANCE)

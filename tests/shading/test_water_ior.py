@@ -48,10 +48,18 @@ def test_sea_water_adds_quan_and_frys_salinity_terms():
     assert half - pure == pytest.approx((sea - pure) / 2, rel=1e-12)  # linear in S by construction: rounding
 
 
-@pytest.mark.parametrize("arguments, name", [((100.0,), "wavelength"), ((float("nan"),), "wavelength"),
-                                             ((550.0, -5.0), "temperature_c"), ((550.0, 60.0), "temperature_c"),
-                                             ((550.0, float("nan")), "temperature_c"),
-                                             ((550.0, 20.0, -1.0), "salinity"), ((550.0, 20.0, float("nan")), "salinity")])
+@pytest.mark.parametrize(
+    "arguments, name",
+    [
+        ((100.0,), "wavelength"),
+        ((float("nan"),), "wavelength"),
+        ((550.0, -5.0), "temperature_c"),
+        ((550.0, 60.0), "temperature_c"),
+        ((550.0, float("nan")), "temperature_c"),
+        ((550.0, 20.0, -1.0), "salinity"),
+        ((550.0, 20.0, float("nan")), "salinity"),
+    ],
+)
 def test_values_outside_the_formulas_ranges_are_refused(arguments, name):
     with pytest.raises(ValueError, match=name):
         shading.water_ior(*arguments)

@@ -39,8 +39,15 @@ def scalar_rgb():
 
 
 def mitsuba_bsdf(water, channel):
-    return mi.load_dict({"type": "roughdielectric", "distribution": "beckmann", "alpha": water.alpha,
-                         "int_ior": float(water.ior(RGB_NM[channel])), "ext_ior": 1.0})
+    return mi.load_dict(
+        {
+            "type": "roughdielectric",
+            "distribution": "beckmann",
+            "alpha": water.alpha,
+            "int_ior": float(water.ior(RGB_NM[channel])),
+            "ext_ior": 1.0,
+        }
+    )
 
 
 def local_interaction():

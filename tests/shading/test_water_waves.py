@@ -55,9 +55,13 @@ def test_01_spectrum_is_phillips_scaled_by_pierson_moskowitz():
     waves = refracta.OceanWaves(wind_speed=7.0, wind_direction=(1.0, 2.0))
     assert refracta.OceanWaves.phillips_a == pytest.approx(PHILLIPS_A, rel=FORMULA_TOLERANCE)
     assert waves.significant_wave_height == pytest.approx(0.21 * 49.0 / G, rel=FORMULA_TOLERANCE)
-    assert waves.spectrum_height_variance == pytest.approx((waves.significant_wave_height / 4) ** 2, rel=FORMULA_TOLERANCE)
+    assert waves.spectrum_height_variance == pytest.approx(
+        (waves.significant_wave_height / 4) ** 2, rel=FORMULA_TOLERANCE
+    )
     k = np.random.default_rng(0).uniform(-3.0, 3.0, (2, 200))
-    np.testing.assert_allclose(waves.spectrum(k[0], k[1]), phillips(k[0], k[1], 7.0, (1.0, 2.0)), rtol=FORMULA_TOLERANCE)
+    np.testing.assert_allclose(
+        waves.spectrum(k[0], k[1]), phillips(k[0], k[1], 7.0, (1.0, 2.0)), rtol=FORMULA_TOLERANCE
+    )
     p, k2 = mode_powers(waves)
     assert waves.expected_height_variance == pytest.approx(p.sum(), rel=1e-10)  # summation order
     assert waves.expected_slope_variance == pytest.approx((k2 * p).sum(), rel=1e-10)
@@ -102,7 +106,9 @@ def test_04_slopes_are_the_heights_derivatives_and_the_patch_tiles_without_a_sea
         waves = refracta.OceanWaves(seed=seed, wind_direction=(1.0, 1.0))
         h, s, d = waves.heights(), waves.slopes(), waves.spacing
         for axis, component in ((1, 0), (0, 1)):  # [j, i]: x along axis 1
-            difference = (np.roll(h, -1, axis) - h) / d - 0.5 * (s[..., component] + np.roll(s[..., component], -1, axis))
+            difference = (np.roll(h, -1, axis) - h) / d - 0.5 * (
+                s[..., component] + np.roll(s[..., component], -1, axis)
+            )
             inside = np.sqrt(np.mean(np.take(difference, range(h.shape[axis] - 1), axis) ** 2))
             wrap = np.sqrt(np.mean(np.take(difference, [-1], axis) ** 2))
             assert wrap / inside == pytest.approx(1.0, abs=SEAM_RATIO_TOLERANCE)
@@ -126,9 +132,14 @@ def test_04b_the_levels_meet_without_a_crack():
     scene = refracta.Scene()
     scene.add_sea()
     rng = np.random.default_rng(2)
-    distance = np.concatenate([rng.uniform(40.0, 60.0, 2000), rng.uniform(150.0, 260.0, 2000), rng.uniform(260.0, 5000.0, 1000)])
+    distance = np.concatenate(
+        [rng.uniform(40.0, 60.0, 2000), rng.uniform(150.0, 260.0, 2000), rng.uniform(260.0, 5000.0, 1000)]
+    )
     azimuth = rng.uniform(-np.pi, np.pi, distance.size)
-    misses = sum(scene.intersect((0.0, 2.0, 0.0), (d * np.cos(a), -2.0, d * np.sin(a))) is None for d, a in zip(distance, azimuth))
+    misses = sum(
+        scene.intersect((0.0, 2.0, 0.0), (d * np.cos(a), -2.0, d * np.sin(a))) is None
+        for d, a in zip(distance, azimuth)
+    )
     assert misses == 0
 
 
@@ -191,7 +202,9 @@ def close_sea(waves: bool):
     else:
         scene.add_ground(0.0, 2e5, material=shading.Water())
     look = np.radians(-1.0)
-    camera = refracta.Camera.photographic((0, 2, 0), (100 * np.cos(look), 2 + 100 * np.sin(look), 0), 28.0, width=192, height=128)
+    camera = refracta.Camera.photographic(
+        (0, 2, 0), (100 * np.cos(look), 2 + 100 * np.sin(look), 0), 28.0, width=192, height=128
+    )
     return refracta.render(scene, camera, None, spp=4, progress=False)
 
 
@@ -227,11 +240,18 @@ def test_07_a_close_sea_shows_its_waves_near_the_camera():
 
 def test_08_bad_inputs_name_the_argument():
     cases = [
-        (dict(resolution=100), "resolution"), (dict(resolution=2048), "resolution"), (dict(resolution=4), "resolution"),
-        (dict(patch_size=0.0), "patch_size"), (dict(patch_size=float("nan")), "patch_size"),
-        (dict(wind_speed=0.0), "wind_speed"), (dict(wind_speed=31.0), "wind_speed"), (dict(wind_speed=float("inf")), "wind_speed"),
-        (dict(wind_direction=(0.0, 0.0)), "wind_direction"), (dict(wind_direction=(1.0, 2.0, 3.0)), "wind_direction"),
-        (dict(seed=-1), "seed"), (dict(time=float("inf")), "time"),
+        (dict(resolution=100), "resolution"),
+        (dict(resolution=2048), "resolution"),
+        (dict(resolution=4), "resolution"),
+        (dict(patch_size=0.0), "patch_size"),
+        (dict(patch_size=float("nan")), "patch_size"),
+        (dict(wind_speed=0.0), "wind_speed"),
+        (dict(wind_speed=31.0), "wind_speed"),
+        (dict(wind_speed=float("inf")), "wind_speed"),
+        (dict(wind_direction=(0.0, 0.0)), "wind_direction"),
+        (dict(wind_direction=(1.0, 2.0, 3.0)), "wind_direction"),
+        (dict(seed=-1), "seed"),
+        (dict(time=float("inf")), "time"),
     ]
     for kwargs, name in cases:
         with pytest.raises(ValueError, match=name):
@@ -239,12 +259,17 @@ def test_08_bad_inputs_name_the_argument():
     with pytest.raises(ValueError, match="patch_size.*resolution|resolution.*patch_size"):  # every problem reported
         refracta.OceanWaves(patch_size=-1.0, resolution=3)
     scene = refracta.Scene()
-    for kwargs, name in [(dict(detail_radius=1e4), "detail_radius"), (dict(detail_radius=0.0), "detail_radius"),
-                         (dict(size=80.0), "size"), (dict(centre=(float("nan"), 0.0)), "centre"),
-                         (dict(height=float("inf")), "height"), (dict(centre=(1.0, 2.0, 3.0)), "centre"),
-                         (dict(material=shading.Water(wind_speed=8.0)), "wind_speed"),
-                         (dict(material=shading.Water(resolved_slope_variance=0.01)), "resolved_slope_variance"),
-                         (dict(material="water"), "material")]:
+    for kwargs, name in [
+        (dict(detail_radius=1e4), "detail_radius"),
+        (dict(detail_radius=0.0), "detail_radius"),
+        (dict(size=80.0), "size"),
+        (dict(centre=(float("nan"), 0.0)), "centre"),
+        (dict(height=float("inf")), "height"),
+        (dict(centre=(1.0, 2.0, 3.0)), "centre"),
+        (dict(material=shading.Water(wind_speed=8.0)), "wind_speed"),
+        (dict(material=shading.Water(resolved_slope_variance=0.01)), "resolved_slope_variance"),
+        (dict(material="water"), "material"),
+    ]:
         with pytest.raises(ValueError, match=name):
             scene.add_sea(refracta.OceanWaves(), **kwargs) if "wind_speed" in name else scene.add_sea(**kwargs)
     for bad in (-1e-3, 0.0287, float("nan")):

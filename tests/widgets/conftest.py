@@ -8,8 +8,8 @@ import refracta
 from refracta import examples
 
 WIDTH, HEIGHT = 320, 120
-CAR = (189.1, 59.8)   # a pixel on the blue car, 258 m away (notebook 02's bottom source)
-SKY = (160.0, 5.0)    # a pixel showing only sky: no scene point
+CAR = (189.1, 59.8)  # a pixel on the blue car, 258 m away (notebook 02's bottom source)
+SKY = (160.0, 5.0)  # a pixel showing only sky: no scene point
 
 
 @pytest.fixture(scope="session")
@@ -34,6 +34,7 @@ def make_model(road):
         model = EditorModel(road.scene, road.camera, road.field, **kwargs)
         made.append(model)
         return model
+
     yield make
     for model in made:
         model.close()

@@ -7,8 +7,8 @@ import refracta
 from refracta.widgets import camera_moves
 
 GEOMETRY_TOL = 1e-9  # [m] relative to distances of ~300 m: round-off of a few rotations
-PIXEL_TOL = 1e-6     # [pixels] projection round-off
-ANGLE_TOL = 1e-9     # relative / [deg]: angles from arccos of rotated unit vectors, round-off
+PIXEL_TOL = 1e-6  # [pixels] projection round-off
+ANGLE_TOL = 1e-9  # relative / [deg]: angles from arccos of rotated unit vectors, round-off
 
 
 @pytest.fixture
@@ -60,28 +60,34 @@ def test_pan_keeps_a_point_at_the_look_at_distance_under_the_pointer(camera, du,
     u, v, depth = moved.project(np.asarray([camera.look_at]))[0]
     assert (u, v) == pytest.approx((camera.width / 2 + du, camera.height / 2 + dv), abs=PIXEL_TOL)
     # the look-at point moved with the eye
-    np.testing.assert_allclose(np.asarray(moved.look_at) - np.asarray(camera.look_at),
-                               np.asarray(moved.position) - np.asarray(camera.position), atol=GEOMETRY_TOL)
+    np.testing.assert_allclose(
+        np.asarray(moved.look_at) - np.asarray(camera.look_at),
+        np.asarray(moved.position) - np.asarray(camera.position),
+        atol=GEOMETRY_TOL,
+    )
 
 
 def test_dolly_scales_the_distance_and_never_reaches_the_look_at_point(camera):
     # Default rel 1e-6: one multiplication of the distance.
     assert distance(camera_moves.dolly(camera, 1.0)) == pytest.approx(camera_moves.DOLLY_STEP * distance(camera))
     # Default rel 1e-6: two divisions of the distance.
-    assert distance(camera_moves.dolly(camera, -2.0)) == pytest.approx(distance(camera) / camera_moves.DOLLY_STEP ** 2)
+    assert distance(camera_moves.dolly(camera, -2.0)) == pytest.approx(distance(camera) / camera_moves.DOLLY_STEP**2)
     close = camera_moves.dolly(camera, 1e6)
     assert distance(close) >= camera_moves.MIN_DISTANCE * (1 - ANGLE_TOL)
     forward, _, _ = camera_moves.frame(close)
     np.testing.assert_allclose(forward, camera_moves.frame(camera)[0], atol=ANGLE_TOL)  # same view direction
 
 
-@pytest.mark.parametrize("change, name", [
-    (dict(position=(np.nan, 1.0, 0.0)), "position"),
-    (dict(look_at=(0.0, 1.4, 0.0)), "look_at"),
-    (dict(look_at=(0.0, 50.0, 0.0)), "up vector"),
-    (dict(vfov=0.0), "vfov"),
-    (dict(vfov=float("nan")), "vfov"),
-])
+@pytest.mark.parametrize(
+    "change, name",
+    [
+        (dict(position=(np.nan, 1.0, 0.0)), "position"),
+        (dict(look_at=(0.0, 1.4, 0.0)), "look_at"),
+        (dict(look_at=(0.0, 50.0, 0.0)), "up vector"),
+        (dict(vfov=0.0), "vfov"),
+        (dict(vfov=float("nan")), "vfov"),
+    ],
+)
 def test_a_bad_pose_raises_value_error_naming_the_field(camera, change, name):
     with pytest.raises(ValueError, match=name):
         camera_moves.with_pose(camera, **change)

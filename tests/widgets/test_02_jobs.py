@@ -20,6 +20,7 @@ def runner():
 
 def looping_work(started: threading.Event, log: list):
     """Work that reports progress until cancelled, as refracta.render's callable sees it."""
+
     def work(job):
         started.set()
         report = job.progress("looping")
@@ -28,6 +29,7 @@ def looping_work(started: threading.Event, log: list):
             threading.Event().wait(0.001)
         log.append("finished")
         return "finished"
+
     return work
 
 
@@ -71,9 +73,11 @@ def test_cancel_stops_a_real_render_through_its_progress_callable(runner, road):
         def spy(done, total):
             reported.set()
             progress(done, total)
+
         image = refracta.render(road.scene, camera, road.field, max_length=road.max_length, progress=spy)
         returned.append(image)
         return image
+
     job = runner.submit("render", work)
     assert reported.wait(WAIT)
     runner.cancel("render")
@@ -87,6 +91,7 @@ def test_a_failing_job_is_reported_to_on_error_not_raised_in_its_thread(runner):
 
     def work(job):
         raise ValueError("bad input")
+
     job = runner.submit("solve", work)
     assert runner.wait(WAIT)
     assert job.state == "failed" and isinstance(job.error, ValueError)

@@ -12,7 +12,7 @@ from refracta.widgets import model as editor_model
 from .conftest import CAR, SKY
 
 PIXEL_TOL = 1e-6  # [pixels] a picked point projects back to its pixel within round-off
-PICK_TOL = 1e-9   # relative: a drag from that projection picks (to round-off) the point under the pointer
+PICK_TOL = 1e-9  # relative: a drag from that projection picks (to round-off) the point under the pointer
 GEOMETRY_TOL = 1e-9  # [m] the same camera move computed twice
 
 
@@ -89,7 +89,7 @@ def test_a_shift_click_next_to_a_marker_places_a_point_instead_of_grabbing_it(ma
     model.click(150.0, 70.0)
     model.click(CAR[0] + 1.0, CAR[1], shift=True)  # on the car, a pixel from pair 0's source marker
     assert not model.dragging and model.pending_source is not None and len(model.pairs) == 1
-    model.click(151.0, 70.0, shift=True)           # its destination a pixel from pair 0's
+    model.click(151.0, 70.0, shift=True)  # its destination a pixel from pair 0's
     assert len(model.pairs) == 2 and model.pending_source is None
 
 
@@ -118,13 +118,16 @@ def test_dragging_a_source_picks_the_point_under_the_pointer(make_model, road):
     model.pointer_up()
 
 
-@pytest.mark.parametrize("setter, value, name", [
-    ("set_weight", float("nan"), "pair 0 weight"),
-    ("set_weight", 0.0, "pair 0 weight"),
-    ("set_weight", "heavy", "pair 0 weight"),
-    ("set_margin", -1.0, "pair 0 margin"),
-    ("set_margin", math.inf, "pair 0 margin"),
-])
+@pytest.mark.parametrize(
+    "setter, value, name",
+    [
+        ("set_weight", float("nan"), "pair 0 weight"),
+        ("set_weight", 0.0, "pair 0 weight"),
+        ("set_weight", "heavy", "pair 0 weight"),
+        ("set_margin", -1.0, "pair 0 margin"),
+        ("set_margin", math.inf, "pair 0 margin"),
+    ],
+)
 def test_a_bad_weight_or_margin_raises_value_error_naming_it(make_model, setter, value, name):
     model = make_model()
     model.add_pair((150.0, 70.0), (258.0, 0.4, 1.7))

@@ -11,18 +11,21 @@ from refracta import edit
 
 from .conftest import CAR, truth_source
 
-WAIT = 120.0             # [s] bound on waiting for background work (a hang fails instead of blocking)
+WAIT = 120.0  # [s] bound on waiting for background work (a hang fails instead of blocking)
 TRUTH_SURFACE_DT = 16.0  # [K] the atmosphere that meets the generated pairs exactly
-RECOVERY_TOL = 1e-6      # [K] surface_dt recovered from exact pairs: the solve's misses are ~1e-7 m
-IMAGE_CHANGE = 1e-3      # mean |difference| of display values in [0, 1] that counts as a new image
-                         # (the hotter road moves the mirage band by pixels: measured ~1e-2)
+RECOVERY_TOL = 1e-6  # [K] surface_dt recovered from exact pairs: the solve's misses are ~1e-7 m
+IMAGE_CHANGE = 1e-3  # mean |difference| of display values in [0, 1] that counts as a new image
+# (the hotter road moves the mirage band by pixels: measured ~1e-2)
 
 
 def record_images(model):
     """A list that collects (level, shape) of each image the model shows."""
     shown = []
-    model.observe(lambda what: what == "image" and shown.append(
-        (model.images["curved"].level, model.images["curved"].pixels.shape)))
+    model.observe(
+        lambda what: (
+            what == "image" and shown.append((model.images["curved"].level, model.images["curved"].pixels.shape))
+        )
+    )
     return shown
 
 
@@ -30,8 +33,10 @@ def test_the_quarter_resolution_preview_comes_before_the_full_image(make_model, 
     model = make_model(autorender=True)
     shown = record_images(model)
     assert model.wait(WAIT)
-    assert shown[-2:] == [("preview", (road.camera.height // 4, road.camera.width // 4, 3)),
-                          ("full", (road.camera.height, road.camera.width, 3))]
+    assert shown[-2:] == [
+        ("preview", (road.camera.height // 4, road.camera.width // 4, 3)),
+        ("full", (road.camera.height, road.camera.width, 3)),
+    ]
     expected = refracta.render(road.scene, road.camera, road.field, max_length=road.max_length, progress=False)
     np.testing.assert_array_equal(model.images["curved"].linear, expected)  # the same render, same bits
 
@@ -51,8 +56,9 @@ def test_the_straight_view_renders_without_atmosphere_on_demand(make_model, road
     model = make_model()
     model.set_show_straight(True)
     assert model.wait(WAIT)
-    expected = refracta.render(road.scene, road.camera, None, method="straight", max_length=road.max_length,
-                               progress=False)
+    expected = refracta.render(
+        road.scene, road.camera, None, method="straight", max_length=road.max_length, progress=False
+    )
     np.testing.assert_array_equal(model.images["straight"].linear, expected)
 
 
@@ -117,7 +123,9 @@ def test_cancel_stops_the_solve_and_changes_nothing(reachable, road, monkeypatch
             started.set()
             release.wait(WAIT)
             progress(done, total)
+
         return real_solve(*args, progress=held, **kwargs)
+
     monkeypatch.setattr(edit, "solve", held_solve)
     model = reachable
     model.solve()

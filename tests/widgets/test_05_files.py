@@ -35,8 +35,7 @@ def scene_file(tmp_path):
 def file_model(scene_file):
     path, _ = scene_file
     scene, camera, field = refracta.load_scene(path)
-    model = EditorModel(scene, camera, field, ["surface_dt"], ground=0.0, scene_text=path.read_text(),
-                        autorender=False)
+    model = EditorModel(scene, camera, field, ["surface_dt"], ground=0.0, scene_text=path.read_text(), autorender=False)
     yield model
     model.close()
 
@@ -82,9 +81,15 @@ def test_the_command_line_solves_the_exported_files_as_the_editor_did(file_model
 def test_imported_pairs_and_scene_replace_the_editor_state_undoably(file_model, tmp_path):
     model = file_model
     pairs_path = tmp_path / "pairs.json"
-    pairs_path.write_text(json.dumps({"pairs": [{"destination": [48, 16], "source": {"pixel": [60, 18]},
-                                                 "weight": 3.0, "margin": 1.0}],
-                                      "free": ["surface_depth"], "ground": 0.0}))
+    pairs_path.write_text(
+        json.dumps(
+            {
+                "pairs": [{"destination": [48, 16], "source": {"pixel": [60, 18]}, "weight": 3.0, "margin": 1.0}],
+                "free": ["surface_depth"],
+                "ground": 0.0,
+            }
+        )
+    )
     model.import_pairs(pairs_path)
     (pair,) = model.pairs
     np.testing.assert_array_equal(pair.source, model.camera.pick(model.scene, 60, 18))

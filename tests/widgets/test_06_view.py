@@ -15,8 +15,9 @@ WAIT = 120.0  # [s] bound on waiting for background work
 
 @pytest.fixture
 def editor(road):
-    editor = MirageEditor(road.scene, road.camera, road.field, free=["surface_dt"], ground=0.0,
-                          max_length=road.max_length)
+    editor = MirageEditor(
+        road.scene, road.camera, road.field, free=["surface_dt"], ground=0.0, max_length=road.max_length
+    )
     yield editor
     editor.close()
 
@@ -58,8 +59,9 @@ def pair_fields(editor, index=0):
     return row.children[1], row.children[2]  # weight, margin (Text)
 
 
-@pytest.mark.parametrize("which, text, name", [(0, "nan", "pair 0 weight"), (1, "-1", "pair 0 margin"),
-                                               (0, "heavy", "pair 0 weight")])
+@pytest.mark.parametrize(
+    "which, text, name", [(0, "nan", "pair 0 weight"), (1, "-1", "pair 0 margin"), (0, "heavy", "pair 0 weight")]
+)
 def test_a_bad_weight_or_margin_typed_in_the_list_is_named_and_undone(editor, which, text, name):
     editor.add_pair((180.4, 66.0), (258.0, 0.4, 1.7))
     field = pair_fields(editor)[which]

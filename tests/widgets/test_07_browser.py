@@ -23,14 +23,14 @@ pytestmark = pytest.mark.slow
 
 CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"  # Debian's chromium, chromium-driver
 DESTINATION = (189.1, 62.0)  # where the car bottom's mirage image should appear: below the mirror line,
-                             # reachable with surface_dt and surface_depth (60 K, 0.21 m)
+# reachable with surface_dt and surface_depth (60 K, 0.21 m)
 SERVER_START = 60.0  # [s] bounds on waiting (a hang fails the test instead of blocking the suite)
-PAGE_LOAD = 90.0     # [s] the page runs the notebook: import, the example's sky table, the first render
-SOLVE = 60.0         # [s] the solve and the render after it
+PAGE_LOAD = 90.0  # [s] the page runs the notebook: import, the example's sky table, the first render
+SOLVE = 60.0  # [s] the solve and the render after it
 IMAGE_CHANGE = 0.01  # mean |difference| of screenshot values in [0, 1] over the canvas, markers masked,
-                     # that counts as a new image (measured ~0.05 for this edit)
-MARKER_MASK = 12.0   # [image pixels] around the pair's markers left out of the comparison (their
-                     # drawing may change with the solve: met or not)
+# that counts as a new image (measured ~0.05 for this edit)
+MARKER_MASK = 12.0  # [image pixels] around the pair's markers left out of the comparison (their
+# drawing may change with the solve: met or not)
 
 NOTEBOOK_SOURCE = f"""\
 import refracta
@@ -61,8 +61,13 @@ def voila_url(tmp_path):
     port = free_port()
     env = dict(os.environ, JUPYTER_RUNTIME_DIR=str(tmp_path / "runtime"), JUPYTER_DATA_DIR=str(tmp_path / "data"))
     log = open(tmp_path / "voila.log", "w")
-    server = subprocess.Popen([sys.executable, "-m", "voila", str(notebook), "--no-browser", f"--port={port}",
-                               "--Voila.ip=127.0.0.1"], cwd=tmp_path, env=env, stdout=log, stderr=subprocess.STDOUT)
+    server = subprocess.Popen(
+        [sys.executable, "-m", "voila", str(notebook), "--no-browser", f"--port={port}", "--Voila.ip=127.0.0.1"],
+        cwd=tmp_path,
+        env=env,
+        stdout=log,
+        stderr=subprocess.STDOUT,
+    )
     try:
         deadline = time.monotonic() + SERVER_START
         while True:
@@ -95,8 +100,14 @@ def browser(monkeypatch):
     monkeypatch.setenv("SE_OFFLINE", "true")  # Selenium Manager must never try to download a driver
     options = webdriver.ChromeOptions()
     options.binary_location = CHROMIUM
-    for argument in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                     "--window-size=1400,1000", "--force-device-scale-factor=1"):
+    for argument in (
+        "--headless=new",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-dev-shm-usage",
+        "--window-size=1400,1000",
+        "--force-device-scale-factor=1",
+    ):
         options.add_argument(argument)
     driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
     yield driver
@@ -119,7 +130,8 @@ def test_a_click_adds_a_pair_and_a_solve_shows_the_new_image(voila_url, browser,
 
     browser.get(voila_url)
     canvas = WebDriverWait(browser, PAGE_LOAD).until(
-        lambda d: d.find_element(By.CSS_SELECTOR, "canvas.refracta-canvas[data-level='full']"))
+        lambda d: d.find_element(By.CSS_SELECTOR, "canvas.refracta-canvas[data-level='full']")
+    )
     pair_count = browser.find_element(By.CSS_SELECTOR, ".refracta-pair-count")
     message = browser.find_element(By.CSS_SELECTOR, ".refracta-message")
     assert pair_count.text == "0 pairs"
@@ -142,11 +154,14 @@ def test_a_click_adds_a_pair_and_a_solve_shows_the_new_image(voila_url, browser,
     WebDriverWait(browser, SOLVE).until(lambda d: not message.text.startswith(("Pair 0 added", "Solving")))
     assert "Solved: every pair met" in message.text
     WebDriverWait(browser, SOLVE).until(  # the render after the solve: its preview, then the full image
-        lambda d: int(canvas.get_attribute("data-generation")) >= generation + 2
-        and canvas.get_attribute("data-level") == "full")
+        lambda d: (
+            int(canvas.get_attribute("data-generation")) >= generation + 2
+            and canvas.get_attribute("data-level") == "full"
+        )
+    )
     after = screenshot(canvas, tmp_path / "after.png")
     assert before.shape == after.shape
-    rows, columns = np.mgrid[0:before.shape[0], 0:before.shape[1]]
+    rows, columns = np.mgrid[0 : before.shape[0], 0 : before.shape[1]]
     u, v = (columns + 0.5) * WIDTH / before.shape[1], (rows + 0.5) * HEIGHT / before.shape[0]
     away = np.ones(before.shape[:2], dtype=bool)
     for mu, mv in (CAR, DESTINATION):

@@ -9,14 +9,14 @@ import refracta
 from refracta.widgets import EditorModel
 from refracta.widgets.model import SPOT_SEGMENTS, ground_circle
 
-WAIT = 120.0       # [s] bound on waiting for a background solve
+WAIT = 120.0  # [s] bound on waiting for a background solve
 GROUND_TOL = 1e-9  # [m] a drawn point's pixel ray meets the ground on the circle: project and ray are
-                   # inverse to round-off (measured 5e-14 m at 150 m, where rays graze the road at 0.5 deg)
-SPOT_REL = 1e-6    # a spot's centre solved from exact pairs (misses < 1e-12 m pin it far tighter)
+# inverse to round-off (measured 5e-14 m at 150 m, where rays graze the road at 0.5 deg)
+SPOT_REL = 1e-6  # a spot's centre solved from exact pairs (misses < 1e-12 m pin it far tighter)
 TRUTH_X, START_X = 150.0, 140.0  # [m] the spot that makes the pairs, and where the editor's starts
 SMALL = (160, 60)  # the solve's camera: the road's at half the resolution (a quarter of the pixels to render)
 PAIR_PIXELS = [(70.0, 33.0), (80.0, 33.5), (90.0, 33.0), (75.0, 34.0), (85.0, 34.5), (80.0, 35.0)]
-                   # rays over the spot that reach the road 250-330 m out
+# rays over the spot that reach the road 250-330 m out
 
 
 def spotted(road, x=TRUTH_X, cold=True):
@@ -42,9 +42,9 @@ def make_spot_model(road):
     made = []
 
     def make(field, camera=road.camera):
-        made.append(EditorModel(road.scene, camera, field, ground=0.0, max_length=road.max_length,
-                                autorender=False))
+        made.append(EditorModel(road.scene, camera, field, ground=0.0, max_length=road.max_length, autorender=False))
         return made[-1]
+
     yield make
     for model in made:
         model.close()
@@ -62,14 +62,16 @@ def test_each_outline_is_the_spot_circle_on_the_ground_as_the_camera_sees_it(spo
         # gaussian: 1 sigma and where it fades below 1e-6; compact: its support only
         expected = [("radius", spot.radius)] + ([("reach", spot.reach)] if spot.footprint == "gaussian" else [])
         assert [(ring["kind"], ring["radius"]) for ring in outline["rings"]] == expected
-        np.testing.assert_allclose(ground_point(road.camera, *outline["centre"]), [spot.x, 0.0, spot.z],
-                                   atol=GROUND_TOL)
+        np.testing.assert_allclose(
+            ground_point(road.camera, *outline["centre"]), [spot.x, 0.0, spot.z], atol=GROUND_TOL
+        )
         for ring in outline["rings"]:
             points = ring["points"]
             assert len(points) == SPOT_SEGMENTS + 1 and points[-1] == points[0]  # closed
             ground = np.array([ground_point(road.camera, u, v) for u, v in points])
-            np.testing.assert_allclose(np.hypot(ground[:, 0] - spot.x, ground[:, 2] - spot.z), ring["radius"],
-                                       atol=GROUND_TOL)
+            np.testing.assert_allclose(
+                np.hypot(ground[:, 0] - spot.x, ground[:, 2] - spot.z), ring["radius"], atol=GROUND_TOL
+            )
 
 
 def test_the_part_of_a_circle_behind_the_camera_is_left_out(road):
@@ -112,8 +114,9 @@ def test_a_solve_with_a_free_spot_centre_moves_it_and_its_outline(make_spot_mode
 
 def test_the_exported_scene_keeps_the_spots_and_the_turbulence(road, tmp_path):
     air = refracta.Turbulence(1e-10, seed=4, cells=16, depth=0.01)  # a thin layer: the render on import is cheap
-    field = refracta.PhysicalAtmosphere(**road.field.params, hot_spots=[refracta.HotSpot(150.0, 0.0, 8.0, 15.0)],
-                                        turbulence=air.layer)
+    field = refracta.PhysicalAtmosphere(
+        **road.field.params, hot_spots=[refracta.HotSpot(150.0, 0.0, 8.0, 15.0)], turbulence=air.layer
+    )
     model = EditorModel(road.scene, road.camera, field, turbulence=air, autorender=False)
     try:
         loaded = refracta.load_scene(model.export_scene(tmp_path / "scene.toml"))
@@ -131,8 +134,9 @@ def test_the_view_lists_the_spots_and_their_toggles_free_their_parameters(road):
     pytest.importorskip("anywidget", reason="the editor's view needs anywidget (pip install refracta[widgets])")
     from refracta.widgets import MirageEditor
 
-    editor = MirageEditor(road.scene, road.camera, spotted(road), free=["surface_dt"], ground=0.0,
-                          max_length=road.max_length)
+    editor = MirageEditor(
+        road.scene, road.camera, spotted(road), free=["surface_dt"], ground=0.0, max_length=road.max_length
+    )
     try:
         assert editor._canvas.spots == editor.model.spot_outlines()
         assert editor._straight.spots == editor._canvas.spots

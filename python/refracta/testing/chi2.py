@@ -178,8 +178,14 @@ def test_sampler(
     # One more cell: the samples the density does not cover (failed or delta).
     obs = np.append(observed.reshape(-1), samples - len(directions))
     exp = np.append(expected.reshape(-1), max(0.0, samples - expected.sum()))
-    fail = dict(observed=observed, expected=expected, samples=samples, produced=len(directions) / samples,
-                pdf_integral=float(integral.sum()), significance=level)
+    fail = dict(
+        observed=observed,
+        expected=expected,
+        samples=samples,
+        produced=len(directions) / samples,
+        pdf_integral=float(integral.sum()),
+        significance=level,
+    )
     # Pearson's statistic with low-expectation cells pooled (Mitsuba's chi2 pooling).
     order = np.argsort(exp)
     statistic, dof = 0.0, 0
@@ -187,8 +193,14 @@ def test_sampler(
     for i in order:
         if exp[i] == 0.0:
             if obs[i] > samples * _ZERO_CELL_FRACTION:
-                return Result(0.0, math.inf, 0, False,
-                              message=f"{int(obs[i])} samples in a cell of zero density (cell {i})", **fail)
+                return Result(
+                    0.0,
+                    math.inf,
+                    0,
+                    False,
+                    message=f"{int(obs[i])} samples in a cell of zero density (cell {i})",
+                    **fail,
+                )
             pooled_obs += obs[i]
         elif exp[i] < min_expected or (0.0 < pooled_exp < min_expected):
             pooled_obs += obs[i]
@@ -235,5 +247,14 @@ def test_bsdf(
     def pdf(wi):
         return material.pdf(wo, wi, **eval_kwargs)
 
-    return test_sampler(sample, pdf, samples=samples, seed=seed, significance=significance, test_count=test_count,
-                        res_theta=res_theta, res_phi=res_phi, integration_order=integration_order)
+    return test_sampler(
+        sample,
+        pdf,
+        samples=samples,
+        seed=seed,
+        significance=significance,
+        test_count=test_count,
+        res_theta=res_theta,
+        res_phi=res_phi,
+        integration_order=integration_order,
+    )

@@ -24,12 +24,12 @@ from refracta import _core
 __all__ = ["DOLLY_STEP", "ORBIT_PER_HEIGHT", "POLE_MARGIN_DEG", "dolly", "frame", "orbit", "pan", "with_pose"]
 
 ORBIT_PER_HEIGHT = 1.0  # turn per image height dragged, in vertical fields of view: the point moves
-                        # with the pointer near the middle of the image
-DOLLY_STEP = 0.9        # distance kept per wheel step: ten steps bring the eye about 3x closer
-POLE_MARGIN_DEG = 1.0   # orbits stop this far from looking straight along the up vector, where
-                        # the view's right vector is undefined
-MIN_DISTANCE = 1e-6     # [m] the eye stays at least this far from the look-at point (Camera needs
-                        # a view direction)
+# with the pointer near the middle of the image
+DOLLY_STEP = 0.9  # distance kept per wheel step: ten steps bring the eye about 3x closer
+POLE_MARGIN_DEG = 1.0  # orbits stop this far from looking straight along the up vector, where
+# the view's right vector is undefined
+MIN_DISTANCE = 1e-6  # [m] the eye stays at least this far from the look-at point (Camera needs
+# a view direction)
 
 
 def frame(camera: _core.Camera):

@@ -31,9 +31,14 @@ def pairs_json(pairs: Sequence, options: dict | None = None) -> str:
     are None are left out (solve's defaults apply)."""
     entries = []
     for pair in pairs:
-        entries.append({"destination": [float(x) for x in pair.destination],
-                        "source": [float(x) for x in pair.source],
-                        "weight": float(pair.weight), "margin": float(pair.margin)})
+        entries.append(
+            {
+                "destination": [float(x) for x in pair.destination],
+                "source": [float(x) for x in pair.source],
+                "weight": float(pair.weight),
+                "margin": float(pair.margin),
+            }
+        )
     data = {"pairs": entries}
     for name, value in (options or {}).items():
         if value is not None:
@@ -47,7 +52,9 @@ def scene_toml(text: str | None, camera: _core.Camera, field: _core.IndexField, 
     Without a file (the editor was given Scene objects) only the camera and the atmosphere are
     written, under a comment saying so: load_scene reads it, but it has no objects to render."""
     if text is None:
-        text = ("# Written by refracta.widgets.MirageEditor from a Scene object: the camera and the\n"
-                "# solved atmosphere only (no objects). Start the editor from a scene file\n"
-                "# (MirageEditor.from_file) to keep the whole scene.\n")
+        text = (
+            "# Written by refracta.widgets.MirageEditor from a Scene object: the camera and the\n"
+            "# solved atmosphere only (no objects). Start the editor from a scene file\n"
+            "# (MirageEditor.from_file) to keep the whole scene.\n"
+        )
     return with_atmosphere(with_camera(text, camera), field, turbulence)

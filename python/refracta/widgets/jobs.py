@@ -28,7 +28,7 @@ from typing import Callable
 __all__ = ["Cancelled", "Job", "JobRunner"]
 
 PROGRESS_INTERVAL = 0.1  # [s] at most ten progress reports per second reach the view: each one is a
-                         # message to the browser
+# message to the browser
 
 
 class Cancelled(Exception):
@@ -44,8 +44,15 @@ class Job:
         result: what work returned (state 'done'); error: the exception it raised ('failed').
     """
 
-    def __init__(self, runner: JobRunner, slot: str, work: Callable, label: str,
-                 on_done: Callable | None = None, on_error: Callable | None = None):
+    def __init__(
+        self,
+        runner: JobRunner,
+        slot: str,
+        work: Callable,
+        label: str,
+        on_done: Callable | None = None,
+        on_error: Callable | None = None,
+    ):
         self.slot, self.label = slot, label
         self.state = "pending"
         self.result = None
@@ -78,8 +85,10 @@ class Job:
 
         def report(done: int, total: int) -> None:
             self.check()
-            self.report(label, start + (end - start) * (min(done / total, 1.0) if total > 0 else 1.0),
-                        force=done >= total)
+            self.report(
+                label, start + (end - start) * (min(done / total, 1.0) if total > 0 else 1.0), force=done >= total
+            )
+
         return report
 
     def report(self, label: str, fraction: float, force: bool = False) -> None:
@@ -139,8 +148,9 @@ class JobRunner:
         on_finished: on_finished(job) after each job that ran ends, whatever its state.
     """
 
-    def __init__(self, on_progress: Callable | None = None, on_error: Callable | None = None,
-                 on_finished: Callable | None = None):
+    def __init__(
+        self, on_progress: Callable | None = None, on_error: Callable | None = None, on_finished: Callable | None = None
+    ):
         self.on_progress = on_progress
         self.on_error = on_error
         self.on_finished = on_finished
@@ -149,8 +159,14 @@ class JobRunner:
         self._closed = False
         self._finishing = 0
 
-    def submit(self, slot: str, work: Callable, label: str = "", on_done: Callable | None = None,
-               on_error: Callable | None = None) -> Job:
+    def submit(
+        self,
+        slot: str,
+        work: Callable,
+        label: str = "",
+        on_done: Callable | None = None,
+        on_error: Callable | None = None,
+    ) -> Job:
         """Queue work(job) on `slot`, superseding the slot's running and pending jobs; returns the Job."""
         job = Job(self, slot, work, label or slot, on_done, on_error)
         with self._lock:
@@ -165,8 +181,7 @@ class JobRunner:
                 state.pending._finished.set()
             state.pending = job
             if state.thread is None:
-                state.thread = threading.Thread(target=self._worker, args=(slot,), name=f"refracta-{slot}",
-                                                daemon=True)
+                state.thread = threading.Thread(target=self._worker, args=(slot,), name=f"refracta-{slot}", daemon=True)
                 state.thread.start()
             self._lock.notify_all()
         return job
@@ -189,8 +204,11 @@ class JobRunner:
     def busy(self, slot: str | None = None) -> bool:
         """Whether `slot` (None: any slot) has a job running or pending."""
         with self._lock:
-            return any((state.running is not None or state.pending is not None)
-                       for name, state in self._slots.items() if slot is None or name == slot)
+            return any(
+                (state.running is not None or state.pending is not None)
+                for name, state in self._slots.items()
+                if slot is None or name == slot
+            )
 
     def running(self, slot: str) -> Job | None:
         """The job `slot` is running, or None."""
@@ -203,8 +221,9 @@ class JobRunner:
         Returns False if `timeout` [s] passed first."""
         deadline = None if timeout is None else time.monotonic() + timeout
         with self._lock:
-            while self._finishing or any(state.running is not None or state.pending is not None
-                                         for state in self._slots.values()):
+            while self._finishing or any(
+                state.running is not None or state.pending is not None for state in self._slots.values()
+            ):
                 remaining = None if deadline is None else deadline - time.monotonic()
                 if remaining is not None and remaining <= 0.0:
                     return False

@@ -61,18 +61,42 @@ if TYPE_CHECKING:
     from refracta.edit import EditResult
     from refracta.turbulence import Turbulence
 
-__all__ = ["CHANGES", "DisplayImage", "EditorModel", "GRAB_RADIUS", "MAX_HISTORY", "SPOT_SEGMENTS", "check_margin",
-           "check_weight", "ground_circle", "make_pair", "unmet_pairs"]
+__all__ = [
+    "CHANGES",
+    "DisplayImage",
+    "EditorModel",
+    "GRAB_RADIUS",
+    "MAX_HISTORY",
+    "SPOT_SEGMENTS",
+    "check_margin",
+    "check_weight",
+    "ground_circle",
+    "make_pair",
+    "unmet_pairs",
+]
 
 log = logging.getLogger("refracta.widgets")
 
 #: What observers are told changed.
-CHANGES = ("image", "straight", "pairs", "camera", "field", "free", "message", "progress", "result", "history",
-           "busy", "mode", "fan")
-MAX_HISTORY = 100     # undo steps kept: each holds references to immutable objects, not copies
-SPOT_SEGMENTS = 96    # chords per drawn footprint circle: a spot seen at a grazing angle is an ellipse
-                      # flattened ~50x, whose ends 96 chords still round (each 3.75 deg of the circle)
-GRAB_RADIUS = 8.0     # [display pixels] a press this close to a marker drags it (about a fingertip)
+CHANGES = (
+    "image",
+    "straight",
+    "pairs",
+    "camera",
+    "field",
+    "free",
+    "message",
+    "progress",
+    "result",
+    "history",
+    "busy",
+    "mode",
+    "fan",
+)
+MAX_HISTORY = 100  # undo steps kept: each holds references to immutable objects, not copies
+SPOT_SEGMENTS = 96  # chords per drawn footprint circle: a spot seen at a grazing angle is an ellipse
+# flattened ~50x, whose ends 96 chords still round (each 3.75 deg of the circle)
+GRAB_RADIUS = 8.0  # [display pixels] a press this close to a marker drags it (about a fingertip)
 DEFAULT_DISPLAY: dict = {}  # refracta.io.to_display's defaults: automatic exposure (key 0.18), ACES
 
 
@@ -141,16 +165,18 @@ def make_pair(destination, source, weight=1.0, margin=0.0):
     return PointPair(tuple(float(x) for x in destination), point, weight, margin=margin)
 
 
-def ground_circle(camera: _core.Camera, centre_x: float, centre_z: float, radius: float,
-                  segments: int = SPOT_SEGMENTS) -> list[tuple[float, float] | None]:
+def ground_circle(
+    camera: _core.Camera, centre_x: float, centre_z: float, radius: float, segments: int = SPOT_SEGMENTS
+) -> list[tuple[float, float] | None]:
     """The circle of `radius` [m] about (centre_x, 0, centre_z) on the ground plane y = 0, as image
     pixels (u, v) of `camera` (Camera.project: where the camera sees the ground without
     atmosphere): segments + 1 points, the last the first again (a closed outline); None for a
     point behind the camera (the outline breaks there)."""
     angles = np.linspace(0.0, 2.0 * np.pi, segments + 1)
     angles[-1] = 0.0  # exactly the first point: the outline closes
-    points = np.stack([centre_x + radius * np.cos(angles), np.zeros_like(angles),
-                       centre_z + radius * np.sin(angles)], axis=1)
+    points = np.stack(
+        [centre_x + radius * np.cos(angles), np.zeros_like(angles), centre_z + radius * np.sin(angles)], axis=1
+    )
     projected = np.asarray(camera.project(points), dtype=float)
     return [(float(u), float(v)) if depth > 0.0 else None for u, v, depth in projected]
 
@@ -182,11 +208,23 @@ class EditorModel:
         ValueError: wrong types, unknown free parameter names, preview_scale < 1.
     """
 
-    def __init__(self, scene: _core.Scene, camera: _core.Camera, field: _core.IndexField,
-                 free: Sequence[str] | None = None, *, ground: float | None = None,
-                 max_length: float | None = None, render_options: dict | None = None,
-                 solve_options: dict | None = None, scene_text: str | None = None, turbulence: Turbulence | None = None,
-                 preview_scale: int = 4, display: dict | None = None, autorender: bool = True):
+    def __init__(
+        self,
+        scene: _core.Scene,
+        camera: _core.Camera,
+        field: _core.IndexField,
+        free: Sequence[str] | None = None,
+        *,
+        ground: float | None = None,
+        max_length: float | None = None,
+        render_options: dict | None = None,
+        solve_options: dict | None = None,
+        scene_text: str | None = None,
+        turbulence: Turbulence | None = None,
+        preview_scale: int = 4,
+        display: dict | None = None,
+        autorender: bool = True,
+    ):
         if not isinstance(scene, _core.Scene):
             raise ValueError(f"scene must be a refracta.Scene (got {type(scene).__name__})")
         if not isinstance(camera, _core.Camera):
@@ -227,8 +265,9 @@ class EditorModel:
         self._undo: list[_Snapshot] = []
         self._redo: list[_Snapshot] = []
         self._drag: dict | None = None
-        self.runner = JobRunner(on_progress=self._on_progress, on_error=self._on_job_error,
-                                on_finished=self._on_job_finished)
+        self.runner = JobRunner(
+            on_progress=self._on_progress, on_error=self._on_job_error, on_finished=self._on_job_finished
+        )
         if autorender:
             self.render()
 
@@ -252,8 +291,18 @@ class EditorModel:
 
     # ---------------------------------------------------------------- history
     def _snapshot(self, label: str) -> _Snapshot:
-        return _Snapshot(label, self.scene, self.scene_text, self.camera, self.field, self.turbulence, self.pairs,
-                         self.free, self.result, self.fan_png)
+        return _Snapshot(
+            label,
+            self.scene,
+            self.scene_text,
+            self.camera,
+            self.field,
+            self.turbulence,
+            self.pairs,
+            self.free,
+            self.result,
+            self.fan_png,
+        )
 
     def _record(self, before: _Snapshot) -> None:
         """Push `before` (the state before an edit) on the undo stack; clears redo. Called with the
@@ -286,8 +335,12 @@ class EditorModel:
                 target.append(self._snapshot(state.label))
                 camera_changed = state.camera is not self.camera or state.scene is not self.scene
                 view_changed = camera_changed or state.field is not self.field
-                self.scene, self.scene_text, self.camera, self.field = (state.scene, state.scene_text, state.camera,
-                                                                        state.field)
+                self.scene, self.scene_text, self.camera, self.field = (
+                    state.scene,
+                    state.scene_text,
+                    state.camera,
+                    state.field,
+                )
                 self.turbulence = state.turbulence
                 self.pairs, self.free, self.result, self.fan_png = state.pairs, state.free, state.result, state.fan_png
                 self.pending_source, self._drag = None, None
@@ -322,8 +375,10 @@ class EditorModel:
         out = []
         for i, pair in enumerate(pairs):
             met = None if unmet is None else i not in unmet
-            for kind, uv in (("source", self._project(camera, pair.source)),
-                             ("destination", self._destination_pixel(camera, pair))):
+            for kind, uv in (
+                ("source", self._project(camera, pair.source)),
+                ("destination", self._destination_pixel(camera, pair)),
+            ):
                 if uv is not None:
                     out.append({"kind": kind, "pair": i, "u": uv[0], "v": uv[1], "selected": i == selected, "met": met})
         if pending is not None:
@@ -351,11 +406,18 @@ class EditorModel:
         out = []
         for index, spot in enumerate(spots):
             rings = [("radius", spot.radius)] + ([("reach", spot.reach)] if spot.footprint == "gaussian" else [])
-            out.append({"spot": index, "footprint": spot.footprint, "hot": spot.dt > 0.0,
-                        "centre": self._project(camera, (spot.x, 0.0, spot.z)),
-                        "rings": [{"kind": kind, "radius": float(radius),
-                                   "points": ground_circle(camera, spot.x, spot.z, radius)}
-                                  for kind, radius in rings]})
+            out.append(
+                {
+                    "spot": index,
+                    "footprint": spot.footprint,
+                    "hot": spot.dt > 0.0,
+                    "centre": self._project(camera, (spot.x, 0.0, spot.z)),
+                    "rings": [
+                        {"kind": kind, "radius": float(radius), "points": ground_circle(camera, spot.x, spot.z, radius)}
+                        for kind, radius in rings
+                    ],
+                }
+            )
         return out
 
     @staticmethod
@@ -385,12 +447,11 @@ class EditorModel:
         with self._lock:
             self._check_index(index)
             old = self.pairs[index]
-            values = dict(destination=old.destination, source=old.source, weight=old.weight,
-                          margin=old.margin)
+            values = dict(destination=old.destination, source=old.source, weight=old.weight, margin=old.margin)
             values.update(changes)
             new = make_pair(values["destination"], values["source"], values["weight"], values["margin"])
             before = self._snapshot(label)
-            self.pairs = self.pairs[:index] + (new,) + self.pairs[index + 1:]
+            self.pairs = self.pairs[:index] + (new,) + self.pairs[index + 1 :]
             if record:
                 self._record(before)
         self._notify("pairs", "history")
@@ -414,7 +475,7 @@ class EditorModel:
         with self._lock:
             self._check_index(index)
             before = self._snapshot(f"delete pair {index}")
-            self.pairs = self.pairs[:index] + self.pairs[index + 1:]
+            self.pairs = self.pairs[:index] + self.pairs[index + 1 :]
             if self.selected is not None:
                 self.selected = None if self.selected == index else self.selected - (self.selected > index)
             self._record(before)
@@ -444,8 +505,10 @@ class EditorModel:
         free = tuple(free or ())
         unknown = [name for name in free if name not in self.field.param_names]
         if unknown:
-            raise ValueError(f"free: unknown parameter(s) {unknown} of {self.field.type_name}; "
-                             f"valid names: {list(self.field.param_names)}")
+            raise ValueError(
+                f"free: unknown parameter(s) {unknown} of {self.field.type_name}; "
+                f"valid names: {list(self.field.param_names)}"
+            )
         self.free = free or None
         self._notify("free")
 
@@ -485,23 +548,34 @@ class EditorModel:
             return
         marker = None if shift else self._nearest_marker(u, v, scale)
         if marker is not None:
-            self._drag = {"kind": marker["kind"], "pair": marker["pair"], "start": (u, v),
-                          "marker": (marker["u"], marker["v"]),  # moves by the pointer's offset, no jump
-                          "before": self._snapshot(f"move {marker['kind']} of pair {marker['pair']}"), "moved": False}
+            self._drag = {
+                "kind": marker["kind"],
+                "pair": marker["pair"],
+                "start": (u, v),
+                "marker": (marker["u"], marker["v"]),  # moves by the pointer's offset, no jump
+                "before": self._snapshot(f"move {marker['kind']} of pair {marker['pair']}"),
+                "moved": False,
+            }
             self.select(marker["pair"])
-            self.say(f"Pair {marker['pair']}'s {marker['kind']} selected: drag it to move it. To place a point "
-                     "this close to a marker, hold Shift.")
+            self.say(
+                f"Pair {marker['pair']}'s {marker['kind']} selected: drag it to move it. To place a point "
+                "this close to a marker, hold Shift."
+            )
             return
         if self.pending_source is None:
             point = self.camera.pick(self.scene, u, v)
             if point is None:
-                self.say(f"Nothing at pixel ({u:.1f}, {v:.1f}) to be a source (sky, or beyond the scene): "
-                         "click an object.", "error")
+                self.say(
+                    f"Nothing at pixel ({u:.1f}, {v:.1f}) to be a source (sky, or beyond the scene): click an object.",
+                    "error",
+                )
                 return
             self.pending_source = np.asarray(point, dtype=float)
             self._notify("pairs")
-            self.say(f"Source at ({point[0]:.2f}, {point[1]:.2f}, {point[2]:.2f}) m; now click where its "
-                     "mirage image should appear.")
+            self.say(
+                f"Source at ({point[0]:.2f}, {point[1]:.2f}, {point[2]:.2f}) m; now click where its "
+                "mirage image should appear."
+            )
             return
         source, self.pending_source = self.pending_source, None
         index = self.add_pair((u, v), source)
@@ -527,8 +601,9 @@ class EditorModel:
         else:
             point = self.camera.pick(self.scene, mu, mv)
             if point is None:
-                self.say(f"Nothing at pixel ({mu:.1f}, {mv:.1f}) to be a source; the source stays where it was.",
-                         "error")
+                self.say(
+                    f"Nothing at pixel ({mu:.1f}, {mv:.1f}) to be a source; the source stays where it was.", "error"
+                )
                 return
             self._replace_pair(index, drag["before"].label, record=False, source=point)
         drag["moved"] = True
@@ -602,9 +677,18 @@ class EditorModel:
             scene, camera, field = self.scene, self.camera, self.field
             options = dict(self.render_options)
         if curved:
-            previews = [] if self.preview_scale == 1 else [
-                ("preview", camera.resized(max(1, camera.width // self.preview_scale),
-                                           max(1, camera.height // self.preview_scale)))]
+            previews = (
+                []
+                if self.preview_scale == 1
+                else [
+                    (
+                        "preview",
+                        camera.resized(
+                            max(1, camera.width // self.preview_scale), max(1, camera.height // self.preview_scale)
+                        ),
+                    )
+                ]
+            )
             stages = previews + [("full", camera)]
 
             def curved_work(job: Job):
@@ -613,15 +697,24 @@ class EditorModel:
                     image = render(scene, view, field, method="curved", progress=progress, **options)
                     job.check()
                     self._publish(job, "curved", level, image)
+
             self.runner.submit("render", curved_work, "rendering")
         if straight and self.show_straight:
+
             def straight_work(job: Job):
                 # The same Earth without the air's bending (a CurvedEarth still hides what its bulge hides).
                 reference = without_refraction(field)
-                image = render(scene, camera, reference, method="curved" if reference else "straight",
-                               progress=job.progress("straight view"), **options)
+                image = render(
+                    scene,
+                    camera,
+                    reference,
+                    method="curved" if reference else "straight",
+                    progress=job.progress("straight view"),
+                    **options,
+                )
                 job.check()
                 self._publish(job, "straight", "full", image)
+
             self.runner.submit("straight", straight_work, "straight view")
         self._notify("busy")
 
@@ -682,8 +775,14 @@ class EditorModel:
             options["stop_height"] = self.ground
 
         def work(job: Job):
-            result = edit.solve(field, camera, list(pairs), free=list(free) if free else None,
-                                progress=job.progress("solving"), **options)
+            result = edit.solve(
+                field,
+                camera,
+                list(pairs),
+                free=list(free) if free else None,
+                progress=job.progress("solving"),
+                **options,
+            )
             job.check()
             return result
 
@@ -697,8 +796,10 @@ class EditorModel:
             if result.success:
                 self.say(f"Solved: every pair met ({result.iterations} iterations, {result.time:.2g} s).", "success")
             elif unmet:
-                self.say(f"Not every image can be put there: pair(s) {', '.join(map(str, unmet))} missed. "
-                         + result.message, "error")
+                self.say(
+                    f"Not every image can be put there: pair(s) {', '.join(map(str, unmet))} missed. " + result.message,
+                    "error",
+                )
             else:
                 self.say("Solve stopped: " + result.message, "error")
             self.render(straight=False)
@@ -721,13 +822,16 @@ class EditorModel:
         if result is None:
             return []
         info = {p["name"]: p for p in result.start.param_info}
-        return [(name, float(result.start.params[name]), float(result.field.params[name]), info[name]["unit"])
-                for name in result.free]
+        return [
+            (name, float(result.start.params[name]), float(result.field.params[name]), info[name]["unit"])
+            for name in result.free
+        ]
 
     # ---------------------------------------------------------------- files
     def _solve_file_options(self) -> dict:
-        options: dict[str, object] = {k: v for k, v in self.solve_options.items()
-                                      if isinstance(v, (str, int, float, bool, list))}
+        options: dict[str, object] = {
+            k: v for k, v in self.solve_options.items() if isinstance(v, (str, int, float, bool, list))
+        }
         options["free"] = list(self.free) if self.free else None
         options["ground"] = self.ground
         return options

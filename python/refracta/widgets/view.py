@@ -27,9 +27,9 @@ __all__ = ["MirageEditor"]
 log = logging.getLogger("refracta.widgets")
 
 DISPLAY_WIDTH = 720  # [display pixels] the image is shown at least this wide (small renders scaled up)
-MAX_SCALE = 4.0      # ... but never more than this many display pixels per image pixel
-BESIDE = 0.6         # with the straight view shown, both images at this fraction of that size: two
-                     # 720-pixel images side by side fit a notebook ~900 pixels wide
+MAX_SCALE = 4.0  # ... but never more than this many display pixels per image pixel
+BESIDE = 0.6  # with the straight view shown, both images at this fraction of that size: two
+# 720-pixel images side by side fit a notebook ~900 pixels wide
 USER_ERRORS = (ValueError, OSError, _core.NumericalError)  # shown as a message (IoError is an OSError)
 MESSAGE_COLOURS = {"info": "#333", "success": "#1a7f37", "error": "#c62828"}
 TABLE_STYLE = "style='border-spacing: 14px 1px'"
@@ -71,11 +71,21 @@ class MirageEditor(w.VBox):
         editor                          # in a notebook cell: shows it
     """
 
-    def __init__(self, scene: _core.Scene, camera: _core.Camera, field: _core.IndexField,
-                 free: Sequence[str] | None = None, *, ground: float | None = None,
-                 max_length: float | None = None, scale: float | None = None, **options):
-        self.model = EditorModel(scene, camera, field, free, ground=ground, max_length=max_length,
-                                 autorender=False, **options)
+    def __init__(
+        self,
+        scene: _core.Scene,
+        camera: _core.Camera,
+        field: _core.IndexField,
+        free: Sequence[str] | None = None,
+        *,
+        ground: float | None = None,
+        max_length: float | None = None,
+        scale: float | None = None,
+        **options,
+    ):
+        self.model = EditorModel(
+            scene, camera, field, free, ground=ground, max_length=max_length, autorender=False, **options
+        )
         self._scale = float(scale) if scale is not None else None
         self._syncing = False
         self._listed: tuple | None = None  # (pairs, selected, result) the pair list shows
@@ -96,8 +106,15 @@ class MirageEditor(w.VBox):
         loaded = load_scene(path)
         if loaded.field is None:
             raise ValueError(f"{path}: has no [atmosphere] table to edit")
-        return cls(loaded.scene, loaded.camera, loaded.field, free, scene_text=Path(path).read_text(),
-                   turbulence=loaded.turbulence, **kwargs)
+        return cls(
+            loaded.scene,
+            loaded.camera,
+            loaded.field,
+            free,
+            scene_text=Path(path).read_text(),
+            turbulence=loaded.turbulence,
+            **kwargs,
+        )
 
     # ---------------------------------------------------------------- the Python API
     @property
@@ -168,8 +185,9 @@ class MirageEditor(w.VBox):
 
     # ---------------------------------------------------------------- building the controls
     def _button(self, description: str, handler, tooltip: str = "", icon: str = "", style: str = "") -> w.Button:
-        button = w.Button(description=description, tooltip=tooltip, icon=icon, button_style=style,
-                          layout=w.Layout(width="auto"))
+        button = w.Button(
+            description=description, tooltip=tooltip, icon=icon, button_style=style, layout=w.Layout(width="auto")
+        )
         button.on_click(lambda _b: self._guard(handler))
         return button
 
@@ -182,37 +200,51 @@ class MirageEditor(w.VBox):
         model = self.model
         self._canvas = ImageCanvas(on_pointer=lambda message: self._guard(self._pointer, message))
         self._straight = ImageCanvas(interactive=False, cursor="default")
-        self._straight_box = w.VBox([w.HTML("<b>straight (no atmosphere)</b>"), self._straight],
-                                    layout=w.Layout(display="none"))
-        self._images = w.HBox([w.VBox([w.HTML("<b>through the atmosphere</b>"), self._canvas]), self._straight_box],
-                              layout=w.Layout(flex_flow="row wrap"))
-        self._mode = w.ToggleButtons(options=[("Points", "points"), ("Camera", "camera")], value=model.mode,
-                                     tooltips=["click a source, then its destination; drag markers; shift-click: a point by a marker",
-                                               "drag: orbit; shift/right drag: pan; wheel: dolly"],
-                                     style={"button_width": "70px"})
+        self._straight_box = w.VBox(
+            [w.HTML("<b>straight (no atmosphere)</b>"), self._straight], layout=w.Layout(display="none")
+        )
+        self._images = w.HBox(
+            [w.VBox([w.HTML("<b>through the atmosphere</b>"), self._canvas]), self._straight_box],
+            layout=w.Layout(flex_flow="row wrap"),
+        )
+        self._mode = w.ToggleButtons(
+            options=[("Points", "points"), ("Camera", "camera")],
+            value=model.mode,
+            tooltips=[
+                "click a source, then its destination; drag markers; shift-click: a point by a marker",
+                "drag: orbit; shift/right drag: pan; wheel: dolly",
+            ],
+            style={"button_width": "70px"},
+        )
         self._mode.observe(lambda change: self._guard(model.set_mode, change["new"]), names="value")
-        self._straight_toggle = w.ToggleButton(description="Straight view", value=False,
-                                               tooltip="render the scene without atmosphere beside the image")
+        self._straight_toggle = w.ToggleButton(
+            description="Straight view", value=False, tooltip="render the scene without atmosphere beside the image"
+        )
         self._straight_toggle.observe(lambda change: self._guard(model.set_show_straight, change["new"]), names="value")
         self._undo = self._button("Undo", model.undo, icon="undo")
         self._redo = self._button("Redo", model.redo, icon="repeat")
-        self._solve = self._button("Solve", model.solve, "solve for the atmosphere that meets the pairs",
-                                   style="primary")
+        self._solve = self._button(
+            "Solve", model.solve, "solve for the atmosphere that meets the pairs", style="primary"
+        )
         self._cancel = self._button("Cancel", model.cancel, "stop the solve and renders", style="warning")
-        self._render_progress = w.FloatProgress(min=0.0, max=1.0, description="render",
-                                                layout=w.Layout(width="210px"))
-        self._solve_progress = w.FloatProgress(min=0.0, max=1.0, description="solve",
-                                               layout=w.Layout(width="210px"))
+        self._render_progress = w.FloatProgress(min=0.0, max=1.0, description="render", layout=w.Layout(width="210px"))
+        self._solve_progress = w.FloatProgress(min=0.0, max=1.0, description="solve", layout=w.Layout(width="210px"))
         self._render_status = w.HTML()
         self._render_status.add_class("refracta-render-status")
         self._pair_count = w.HTML()
         self._pair_count.add_class("refracta-pair-count")
-        self._toolbar = w.VBox([
-            w.HBox([self._mode, self._straight_toggle, self._undo, self._redo, self._solve, self._cancel],
-                   layout=w.Layout(flex_flow="row wrap")),
-            w.HBox([self._render_progress, self._solve_progress, self._render_status, self._pair_count],
-                   layout=w.Layout(flex_flow="row wrap", align_items="center")),
-        ])
+        self._toolbar = w.VBox(
+            [
+                w.HBox(
+                    [self._mode, self._straight_toggle, self._undo, self._redo, self._solve, self._cancel],
+                    layout=w.Layout(flex_flow="row wrap"),
+                ),
+                w.HBox(
+                    [self._render_progress, self._solve_progress, self._render_status, self._pair_count],
+                    layout=w.Layout(flex_flow="row wrap", align_items="center"),
+                ),
+            ]
+        )
         self._message = w.HTML()
         self._message.add_class("refracta-message")
 
@@ -222,24 +254,37 @@ class MirageEditor(w.VBox):
         # Pairs tab
         self._pair_rows = w.VBox()
         names = list(model.field.param_names)
-        self._free = w.SelectMultiple(options=names, value=tuple(model.free or ()), rows=min(6, len(names)),
-                                      description="free", tooltip="parameters a solve may change (none: the default)")
-        self._free.observe(lambda change: None if self._syncing else self._guard(model.set_free, change["new"]),
-                           names="value")
+        self._free = w.SelectMultiple(
+            options=names,
+            value=tuple(model.free or ()),
+            rows=min(6, len(names)),
+            description="free",
+            tooltip="parameters a solve may change (none: the default)",
+        )
+        self._free.observe(
+            lambda change: None if self._syncing else self._guard(model.set_free, change["new"]), names="value"
+        )
         pairs_tab = w.VBox([self._pair_rows, self._free])
 
         # Camera tab
         def number(description):
-            field = w.FloatText(description=description, layout=w.Layout(width="190px"),
-                                style={"description_width": "60px"})
+            field = w.FloatText(
+                description=description, layout=w.Layout(width="190px"), style={"description_width": "60px"}
+            )
             field.observe(lambda _change: self._camera_typed(), names="value")
             return field
+
         self._position = [number(f"eye {axis}") for axis in "xyz"]
         self._look_at = [number(f"look {axis}") for axis in "xyz"]
         self._vfov = number("vfov [°]")
-        camera_tab = w.VBox([w.HBox(self._position), w.HBox(self._look_at), self._vfov,
-                             w.HTML("Camera mode: drag to orbit, shift- or right-drag to pan, wheel to dolly. "
-                                    "Positions in metres.")])
+        camera_tab = w.VBox(
+            [
+                w.HBox(self._position),
+                w.HBox(self._look_at),
+                self._vfov,
+                w.HTML("Camera mode: drag to orbit, shift- or right-drag to pan, wheel to dolly. Positions in metres."),
+            ]
+        )
 
         # Result tab
         self._result = w.HTML("No solve yet.")
@@ -250,24 +295,44 @@ class MirageEditor(w.VBox):
         # Hot spots tab: the spots of the atmosphere, each with toggles for its free parameters
         self._spot_rows = w.VBox()
         self._spot_toggles: dict[str, w.ToggleButton] = {}  # parameter name -> its ToggleButton in the spot list
-        spots_tab = w.VBox([self._spot_rows, w.HTML(
-            "Each spot's footprint is drawn on the ground in the image (where the camera sees the ground "
-            "without atmosphere): solid, the radius (gaussian: 1 sigma; compact: where it ends); dashed, "
-            "where a gaussian spot fades out. Toggle a parameter to let a solve change it (as in the "
-            "Pairs tab's free list).")])
+        spots_tab = w.VBox(
+            [
+                self._spot_rows,
+                w.HTML(
+                    "Each spot's footprint is drawn on the ground in the image (where the camera sees the ground "
+                    "without atmosphere): solid, the radius (gaussian: 1 sigma; compact: where it ends); dashed, "
+                    "where a gaussian spot fades out. Toggle a parameter to let a solve change it (as in the "
+                    "Pairs tab's free list)."
+                ),
+            ]
+        )
 
         # Files tab
         self._scene_path = w.Text(value="edited_scene.toml", description="scene", layout=w.Layout(width="360px"))
         self._pairs_path = w.Text(value="pairs.json", description="pairs", layout=w.Layout(width="360px"))
-        files_tab = w.VBox([
-            w.HBox([self._scene_path, self._button("Save", lambda: model.export_scene(self._scene_path.value)),
-                    self._button("Load", lambda: model.import_scene(self._scene_path.value))]),
-            w.HBox([self._pairs_path, self._button("Save", lambda: model.export_pairs(self._pairs_path.value)),
-                    self._button("Load", lambda: model.import_pairs(self._pairs_path.value))]),
-            w.HTML("Scene: TOML with the editor's camera and atmosphere (refracta.load_scene). Pairs: JSON "
-                   "for <code>refracta edit scene.toml --pairs pairs.json -o solved.toml</code>. "
-                   "Paths are on the kernel's machine."),
-        ])
+        files_tab = w.VBox(
+            [
+                w.HBox(
+                    [
+                        self._scene_path,
+                        self._button("Save", lambda: model.export_scene(self._scene_path.value)),
+                        self._button("Load", lambda: model.import_scene(self._scene_path.value)),
+                    ]
+                ),
+                w.HBox(
+                    [
+                        self._pairs_path,
+                        self._button("Save", lambda: model.export_pairs(self._pairs_path.value)),
+                        self._button("Load", lambda: model.import_pairs(self._pairs_path.value)),
+                    ]
+                ),
+                w.HTML(
+                    "Scene: TOML with the editor's camera and atmosphere (refracta.load_scene). Pairs: JSON "
+                    "for <code>refracta edit scene.toml --pairs pairs.json -o solved.toml</code>. "
+                    "Paths are on the kernel's machine."
+                ),
+            ]
+        )
         self._tabs = w.Tab(children=[pairs_tab, camera_tab, result_tab, files_tab, spots_tab])
         for index, title in enumerate(("Pairs", "Camera", "Result", "Files", "Hot spots")):
             self._tabs.set_title(index, title)
@@ -289,8 +354,13 @@ class MirageEditor(w.VBox):
         if event == "wheel":
             self.model.wheel(message.get("steps", 0.0))
         elif event == "down":
-            self.model.pointer_down(message["u"], message["v"], int(message.get("button", 0)),
-                                    bool(message.get("shift", False)), float(message.get("scale", 1.0)))
+            self.model.pointer_down(
+                message["u"],
+                message["v"],
+                int(message.get("button", 0)),
+                bool(message.get("shift", False)),
+                float(message.get("scale", 1.0)),
+            )
         elif event == "move":
             self.model.pointer_move(message["u"], message["v"])
         elif event == "up":
@@ -302,8 +372,11 @@ class MirageEditor(w.VBox):
         camera = self.model.camera
         position = [f.value for f in self._position]
         look_at = [f.value for f in self._look_at]
-        if (np.array_equal(position, camera.position) and np.array_equal(look_at, camera.look_at)
-                and self._vfov.value == camera.vfov):
+        if (
+            np.array_equal(position, camera.position)
+            and np.array_equal(look_at, camera.look_at)
+            and self._vfov.value == camera.vfov
+        ):
             return
         self._guard(self.model.set_camera, position, look_at, self._vfov.value)
 
@@ -363,7 +436,8 @@ class MirageEditor(w.VBox):
         self._listed = listed
         old = self._pair_rows.children
         self._pair_rows.children = [self._pair_row(i, pair) for i, pair in enumerate(pairs)] or [
-            w.HTML("No pairs yet: in Points mode click a scene object, then where its mirage image should appear.")]
+            w.HTML("No pairs yet: in Points mode click a scene object, then where its mirage image should appear.")
+        ]
         for row in old:
             _close_tree(row)
 
@@ -378,24 +452,36 @@ class MirageEditor(w.VBox):
 
             unmet = index in unmet_pairs(result)
             verdict = ("not met", "#c62828") if unmet else ("met", "#1a7f37")
-            miss = (f"miss {result.initial_distances[index]:.3g} → {result.distances[index]:.3g} m "
-                    f"<span style='color:{verdict[1]}'>{verdict[0]}</span>")
+            miss = (
+                f"miss {result.initial_distances[index]:.3g} → {result.distances[index]:.3g} m "
+                f"<span style='color:{verdict[1]}'>{verdict[0]}</span>"
+            )
         selected = "font-weight:bold;" if index == model.selected else ""
-        label = w.HTML(f"<span style='{selected}'>#{index}</span> destination ({destination}) px "
-                       f"← source ({source}) m")
-        weight = w.Text(value=f"{pair.weight:g}", description="weight", continuous_update=False,
-                        layout=w.Layout(width="150px"), style={"description_width": "50px"})
-        margin = w.Text(value=f"{pair.margin:g}", description="margin", continuous_update=False,
-                        tooltip="the pair is met once its miss is within this [pixels]",
-                        layout=w.Layout(width="150px"), style={"description_width": "50px"})
-        weight.observe(lambda change: self._edit_pair(model.set_weight, index, change["new"], weight, "weight"),
-                       names="value")
-        margin.observe(lambda change: self._edit_pair(model.set_margin, index, change["new"], margin, "margin"),
-                       names="value")
+        label = w.HTML(f"<span style='{selected}'>#{index}</span> destination ({destination}) px ← source ({source}) m")
+        weight = w.Text(
+            value=f"{pair.weight:g}",
+            description="weight",
+            continuous_update=False,
+            layout=w.Layout(width="150px"),
+            style={"description_width": "50px"},
+        )
+        margin = w.Text(
+            value=f"{pair.margin:g}",
+            description="margin",
+            continuous_update=False,
+            tooltip="the pair is met once its miss is within this [pixels]",
+            layout=w.Layout(width="150px"),
+            style={"description_width": "50px"},
+        )
+        weight.observe(
+            lambda change: self._edit_pair(model.set_weight, index, change["new"], weight, "weight"), names="value"
+        )
+        margin.observe(
+            lambda change: self._edit_pair(model.set_margin, index, change["new"], margin, "margin"), names="value"
+        )
         delete = self._button("", lambda: model.delete_pair(index), f"delete pair {index}", icon="trash")
         select = self._button("", lambda: model.select(index), f"highlight pair {index}", icon="crosshairs")
-        return w.HBox([label, weight, margin, select, delete, w.HTML(miss)],
-                      layout=w.Layout(align_items="center"))
+        return w.HBox([label, weight, margin, select, delete, w.HTML(miss)], layout=w.Layout(align_items="center"))
 
     def _edit_pair(self, setter, index: int, text: str, field: w.Text, name: str) -> None:
         """A weight or margin typed into the list: parsed and checked by the model; a bad value is
@@ -420,17 +506,22 @@ class MirageEditor(w.VBox):
         if result is None:
             self._result.value = "No solve yet."
             return
-        rows = "".join(f"<tr><td>{html.escape(name)}</td><td>{start:.6g}</td><td>{solved:.6g}</td>"
-                       f"<td>{html.escape(unit)}</td></tr>"
-                       for name, start, solved, unit in self.model.changed_parameters())
-        misses = "".join(f"<tr><td>#{i}</td><td>{a:.3g}</td><td>{b:.3g}</td></tr>"
-                         for i, (a, b) in enumerate(zip(result.initial_distances, result.distances)))
+        rows = "".join(
+            f"<tr><td>{html.escape(name)}</td><td>{start:.6g}</td><td>{solved:.6g}</td>"
+            f"<td>{html.escape(unit)}</td></tr>"
+            for name, start, solved, unit in self.model.changed_parameters()
+        )
+        misses = "".join(
+            f"<tr><td>#{i}</td><td>{a:.3g}</td><td>{b:.3g}</td></tr>"
+            for i, (a, b) in enumerate(zip(result.initial_distances, result.distances))
+        )
         verdict = "success" if result.success else "not every pair met"
         self._result.value = (
             f"<b>{html.escape(result.field.type_name)}: {verdict}</b> — {result.iterations} iterations, "
             f"{result.time:.3g} s<br><small>{html.escape(result.message)}</small>"
             f"<table {TABLE_STYLE}><tr><th>parameter</th><th>start</th><th>solved</th><th>unit</th></tr>{rows}</table>"
-            f"<table {TABLE_STYLE}><tr><th>pair</th><th>miss before [m]</th><th>after [m]</th></tr>{misses}</table>")
+            f"<table {TABLE_STYLE}><tr><th>pair</th><th>miss before [m]</th><th>after [m]</th></tr>{misses}</table>"
+        )
 
     def _show_fan(self) -> None:
         self._fan.value = self.model.fan_png or b""
@@ -472,21 +563,28 @@ class MirageEditor(w.VBox):
         for index, spot in enumerate(self.model.hot_spots):
             prefix = f"hot_spot{index}_"
             names = [n for n in field.param_names if n.startswith(prefix)]
-            values = ", ".join(f"{n[len(prefix):]} {field.params[n]:.4g} {info[n]['unit']}" for n in names)
+            values = ", ".join(f"{n[len(prefix) :]} {field.params[n]:.4g} {info[n]['unit']}" for n in names)
             colour = "#ff5722" if spot.dt > 0.0 else "#29b6f6"  # canvas.js's SPOT_COLOURS
             label = w.HTML(f"<b style='color:{colour}'>#{index}</b> {spot.footprint}: {html.escape(values)}")
             toggles = []
             for name in names:
-                toggle = w.ToggleButton(description=name[len(prefix):], value=name in free,
-                                        tooltip=f"let a solve change {name}", layout=w.Layout(width="auto"))
+                toggle = w.ToggleButton(
+                    description=name[len(prefix) :],
+                    value=name in free,
+                    tooltip=f"let a solve change {name}",
+                    layout=w.Layout(width="auto"),
+                )
                 toggle.observe(lambda change, name=name: self._toggle_free(name, change["new"]), names="value")
                 self._spot_toggles[name] = toggle
                 toggles.append(toggle)
             rows.append(w.VBox([label, w.HBox([w.HTML("free:"), *toggles], layout=w.Layout(align_items="center"))]))
         old = self._spot_rows.children
-        self._spot_rows.children = rows or [w.HTML(
-            f"This atmosphere ({html.escape(field.type_name)}) has no hot spots: give PhysicalAtmosphere or "
-            "LogisticProfile <code>hot_spots=[refracta.HotSpot(x, z, radius, dt)]</code>.")]
+        self._spot_rows.children = rows or [
+            w.HTML(
+                f"This atmosphere ({html.escape(field.type_name)}) has no hot spots: give PhysicalAtmosphere or "
+                "LogisticProfile <code>hot_spots=[refracta.HotSpot(x, z, radius, dt)]</code>."
+            )
+        ]
         for row in old:
             _close_tree(row)
 
