@@ -2203,7 +2203,7 @@ class BsdfSample:
     @property
     def weight(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        f |cos theta_i| / pdf (N, C) (delta lobes: albedo / probability).
+        ``f |cos theta_i| / pdf`` (N, C) (delta lobes: albedo / probability).
         """
     @property
     def wi(self) -> numpy.typing.NDArray[numpy.float64]:

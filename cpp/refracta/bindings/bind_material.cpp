@@ -199,7 +199,7 @@ void bind_bsdf_sample(py::module_& m) {
                           "C = 3 (RGB) or 4 (spectral). See Material.sample. s['wi'] (the former dict) still works\n"
                           "and iteration over the names are deprecated (DeprecationWarning).")
       .def_readonly("wi", &BsdfSamples::wi, "Sampled unit directions (N, 3), 0 where invalid.")
-      .def_readonly("weight", &BsdfSamples::weight, "f |cos theta_i| / pdf (N, C) (delta lobes: albedo / probability).")
+      .def_readonly("weight", &BsdfSamples::weight, "``f |cos theta_i| / pdf`` (N, C) (delta lobes: albedo / probability).")
       .def_readonly("f", &BsdfSamples::f, "The BSDF value (N, C) [1/sr] (delta lobes: as weight's numerator).")
       .def_readonly("pdf", &BsdfSamples::pdf, "Density (N,) [1/sr] (delta lobes: the lobe's selection probability).")
       .def_readonly("flags", &BsdfSamples::flags, "1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular (N,).")

@@ -84,24 +84,17 @@ void bind_water(py::module_& m) {
       .def("ior", [](const Water& w, const py::object& wavelength) {
              bool single = false;
              std::vector<double> l = to_values(wavelength, "wavelength_nm", &single);
-             for (double& x : l) {
-               if (!(x >= kLambdaMin && x <= kLambdaMax)) {
-                 throw_invalid("Water.ior: wavelength_nm must be in [", kLambdaMin, ", ", kLambdaMax, "] (got ", x, ")");
-               }
-               x = w.ior(x);
-             }
+             for (double& x : l) x = w.ior(checked_wavelength(x, "Water.ior: wavelength_nm"));
              return single ? py::object(py::float_(l[0])) : py::object(values_to_array(l));
            },
            py::arg("wavelength_nm"), "The water's index relative to vacuum at wavelength_nm [nm] (a number or an array).")
       .def("transmittance", [](const Water& w, const py::object& mu, double wavelength) {
-             if (!(wavelength >= kLambdaMin && wavelength <= kLambdaMax)) {
-               throw_invalid("Water.transmittance: wavelength_nm must be in [", kLambdaMin, ", ", kLambdaMax, "] (got ", wavelength, ")");
-             }
+             const double eta = w.ior(checked_wavelength(wavelength, "Water.transmittance: wavelength_nm"));
              bool single = false;
              std::vector<double> m = to_values(mu, "mu", &single);
              for (double& x : m) {
                if (!(std::abs(x) <= 1.0)) throw_invalid("Water.transmittance: mu must be in [-1, 1] (got ", x, ")");
-               x = w.transmittance()(x, w.ior(wavelength));
+               x = w.transmittance()(x, eta);
              }
              return single ? py::object(py::float_(m[0])) : py::object(values_to_array(m));
            },
@@ -110,10 +103,7 @@ void bind_water(py::module_& m) {
            "cos theta = mu that crosses into the water), as the water body's term uses it, at the water's index\n"
            "at wavelength_nm under vacuum. Tabulated (33 mu x 5 eta nodes).")
       .def("internal_reflectance", [](const Water& w, double wavelength) {
-             if (!(wavelength >= kLambdaMin && wavelength <= kLambdaMax)) {
-               throw_invalid("Water.internal_reflectance: wavelength_nm must be in [", kLambdaMin, ", ", kLambdaMax, "] (got ", wavelength, ")");
-             }
-             const double eta = w.ior(wavelength);
+             const double eta = w.ior(checked_wavelength(wavelength, "Water.internal_reflectance: wavelength_nm"));
              return 1.0 - w.transmittance().hemispherical(eta) / (eta * eta);
            },
            py::arg("wavelength_nm") = Ior::kRgbWavelength,

@@ -70,7 +70,7 @@ struct RenderOptions {
   // against the depth buffer: 'rk4' with `step` [m] for at most `max_steps` steps (the
   // original: 0.3 m, 1000 steps), or 'rk45' to `tol` over max_length.
   TraceMethod march = TraceMethod::kRk45;
-  double step = 0.3;
+  double step = kRk4DefaultStep;
   int max_steps = 1000;
   // Extra raster view on each side, as a fraction of the image size: rays that bend out of the
   // camera's view can still find geometry there. What is in no raster pixel cannot appear.
