@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 import refracta
 from refracta import lights, shading
-from tests.hardening.properties import FAST, NAMED_ERRORS, calls, edge, finite, ordinary, vec3
+from tests.hardening.properties import FAST, NAMED_ERRORS, calls, edge, finite, ordinary, ordinary_vec3, vec3
 
 # Below this share of examples that ran to a result (not a named error), the strategies are
 # exploring nothing but rejections: the properties would hold vacuously.
@@ -35,7 +35,11 @@ unit = (
     .map(lambda v: tuple(np.asarray(v) / np.linalg.norm(v)))
 )
 unit_interval = st.floats(0.0, 1.0, exclude_max=True)
-radiance = st.one_of(st.floats(0.0, 1e4), st.tuples(*[st.floats(0.0, 1e4)] * 3), edge)
+# Mostly valid arguments, the edges one time in five: with `anything` everywhere most lights were
+# refused, and whether MIN_ACCEPTED of them ran depended on the derandomized seed (the test's
+# source text: reformatting it once left 1 of 50 running).
+radiance = mostly(st.one_of(st.floats(0.0, 1e4), st.tuples(*[st.floats(0.0, 1e4)] * 3)), edge)
+direction = mostly(ordinary_vec3.filter(lambda v: np.linalg.norm(v) > 1e-3), vec3)
 
 
 def check_light_sampling(light, points, normals, u) -> bool:
@@ -61,9 +65,9 @@ def any_light(draw):
         return calls(lights.PointLight, position, draw(radiance))
     if kind == "spot":
         return calls(
-            lights.SpotLight, position, draw(vec3), draw(st.one_of(st.floats(1.0, 179.0), edge)), draw(radiance)
+            lights.SpotLight, position, draw(direction), draw(mostly(st.floats(1.0, 179.0), edge)), draw(radiance)
         )
-    return calls(lights.SunLight, draw(vec3), draw(radiance), draw(st.one_of(st.floats(0.01, 10.0), edge)))
+    return calls(lights.SunLight, draw(direction), draw(radiance), draw(mostly(st.floats(0.01, 10.0), edge)))
 
 
 def test_lights_sample_unit_directions_and_finite_radiance_or_raise():
@@ -125,7 +129,9 @@ def test_textured_materials_shade_finite_or_raise(tmp_path_factory):
     @given(
         st.sampled_from(["Diffuse", "BlinnPhong", "Principled"]),
         mostly(st.floats(0.0, 1.0), edge),
-        st.sampled_from([str(texture), str(texture), str(texture) + ".missing", ""]),
+        # Mostly the real texture: the bad paths raise, and at least MIN_ACCEPTED of the examples
+        # must reach f (with half the paths bad that held only by luck: 9 of 50 ran once).
+        st.sampled_from([str(texture)] * 6 + [str(texture) + ".missing", ""]),
         mostly(unit, vec3),
         mostly(unit, vec3),
     )

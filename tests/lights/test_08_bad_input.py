@@ -34,6 +34,8 @@ TRI_V, TRI_T = [[0, 1, 0], [1, 1, 0], [0, 1, 1]], [[0, 1, 2]]
         (lambda: SunLight([0, 1, 0], -1.0), "radiance"),
         (lambda: SunLight([0, 1, 0], 1.0, angular_diameter=0.0), "angular_diameter"),
         (lambda: SunLight([0, 1, 0], 1.0, angular_diameter=NAN), "angular_diameter"),
+        # A disc whose solid angle underflows (its sampling density would be inf).
+        (lambda: SunLight([0, 1, 0], 1.0, angular_diameter=1e-300), "angular_diameter"),
         (lambda: SunLight([0, 1, 0], 1.0, limb_darkening=1.5), "limb_darkening"),
         (lambda: AreaLight([[0, 0, 0], [1, 0, 0], [2, 0, 0]], TRI_T, 1.0), "area"),
         (lambda: AreaLight(TRI_V, [[0, 1, 5]], 1.0), "triangles"),

@@ -47,8 +47,9 @@ LightPtr gradient_sky(const Vec3d& horizon, const Vec3d& zenith, double scale) {
 
 void SunDisc::validate() const {
   Problems problems("set_physical_sky");
-  problems.check(angular_diameter > 0.0 && angular_diameter < 180.0,
-                 "sun_angular_diameter must be in (0, 180) deg (got ", angular_diameter, ")");
+  problems.check(angular_diameter >= SunLight::kMinAngularDiameter && angular_diameter < 180.0,
+                 "sun_angular_diameter must be in [", SunLight::kMinAngularDiameter, ", 180) deg (got ",
+                 angular_diameter, ")");
   problems.check(limb_darkening >= 0.0 && limb_darkening <= 1.0, "limb_darkening must be in [0, 1] (got ",
                  limb_darkening, ")");
   problems.throw_if_any();

@@ -16,8 +16,9 @@ SunLight::SunLight(const Vec3d& direction, const Color& radiance, double angular
   frame_ = Frame::from_z(detail::check_direction(direction, "SunLight: direction"));
   given_direction_ = direction;
   detail::check_emission(radiance, "SunLight: radiance");
-  if (!std::isfinite(angular_diameter) || !(angular_diameter > 0.0) || !(angular_diameter < 180.0)) {
-    throw_invalid("SunLight: angular_diameter must be in (0, 180) degrees (got ", angular_diameter, ")");
+  if (!(angular_diameter >= kMinAngularDiameter && angular_diameter < 180.0)) {
+    throw_invalid("SunLight: angular_diameter must be in [", kMinAngularDiameter, ", 180) degrees (got ",
+                  angular_diameter, ")");
   }
   if (!(limb_darkening >= 0.0 && limb_darkening <= 1.0)) {
     throw_invalid("SunLight: limb_darkening must be in [0, 1] (got ", limb_darkening, ")");

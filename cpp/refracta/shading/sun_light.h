@@ -29,8 +29,13 @@ namespace refracta {
 
 class SunLight final : public Light {
  public:
-  // direction toward the sun (non-zero; normalised); angular_diameter [deg] in (0, 180);
-  // limb_darkening u in [0, 1].
+  // [deg] The smallest disc: its solid angle (4e-12 sr) keeps the sampling density 1 / solid
+  // angle finite with room to spare (a 1e-300 deg disc's underflows to 0: pdf inf). The sun seen
+  // from Neptune is 0.018 deg; a smaller source is a point and wants no disc.
+  static constexpr double kMinAngularDiameter = 1e-4;
+
+  // direction toward the sun (non-zero; normalised); angular_diameter [deg] in
+  // [kMinAngularDiameter, 180); limb_darkening u in [0, 1].
   SunLight(const Vec3d& direction, const Color& radiance, double angular_diameter = 0.53,
            double limb_darkening = 0.0);
 
