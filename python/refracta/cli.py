@@ -298,11 +298,11 @@ def _demo_shimmer(out: Path, size=(48, 16), noise_size=(320, 120)) -> None:
 def render_file(
     scene_path: Path,
     output: Path,
-    method: str,
+    method: str | None,
     size,
-    spp: int,
+    spp: int | None,
     exposure=None,
-    transport: str = "direct",
+    transport: str | None = None,
     max_depth=None,
     spectral: bool = False,
     tonemap=None,
@@ -312,7 +312,7 @@ def render_file(
     """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped).
 
     exposure, ev100, key, tonemap: as refracta.io.write_image (None: its defaults, automatic
-    exposure and the ACES curve).
+    exposure and the ACES curve). method, spp, transport, max_depth: None keeps RenderOptions' own.
     """
     import refracta
 
@@ -332,6 +332,8 @@ def render_file(
         progress=True,
     )
     refracta.io.write_image(output, image, exposure=exposure, tonemap=tonemap, key=key, ev100=ev100)
+    defaults = refracta.RenderOptions()
+    method, transport = method or defaults.method, transport or defaults.transport
     print(
         f"wrote {output} ({camera.width}x{camera.height}, {method}, {transport}, {time.perf_counter() - start:.1f} s)"
     )
@@ -389,9 +391,13 @@ def _run(argv=None) -> int:
     render_parser.add_argument(
         "-o", "--output", type=Path, default=Path("out.exr"), help="image file (default out.exr)"
     )
-    render_parser.add_argument("--method", choices=["curved", "straight", "raster_march"], default="curved")
+    render_parser.add_argument(
+        "--method", choices=["curved", "straight", "raster_march"], default=None, help="default: RenderOptions'"
+    )
     render_parser.add_argument("--size", type=_size, default=None, help="WxH (default: the file's camera size)")
-    render_parser.add_argument("--spp", type=_count(1), default=1, help="samples per pixel")
+    render_parser.add_argument(
+        "--spp", type=_count(1), default=None, help="samples per pixel (default: RenderOptions')"
+    )
     render_parser.add_argument(
         "--exposure",
         type=float,
@@ -405,7 +411,9 @@ def _run(argv=None) -> int:
         default=None,
         help="manual exposure in EV100 (scale 1 / (1.2 2^EV100), Lagarde & de Rousiers 2014)",
     )
-    render_parser.add_argument("--transport", choices=["direct", "path"], default="direct", help="light transport")
+    render_parser.add_argument(
+        "--transport", choices=["direct", "path"], default=None, help="light transport (default: RenderOptions')"
+    )
     render_parser.add_argument("--max-depth", type=_count(0), default=None, help="scattering events per path")
     render_parser.add_argument("--spectral", action="store_true", help="hero-wavelength spectral rendering")
     render_parser.add_argument(
