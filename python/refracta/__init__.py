@@ -6,7 +6,7 @@ parallel), ElevationTable. Images: Scene, Camera, render, refracta.io. Shading: 
 (BSDFs), refracta.lights, refracta.spectrum (spectral colour), refracta.testing (chi-square
 sampler tests). Plots: refracta.plot. Units: metres, kelvin, pascal, nanometres; y is up.
 
-Submodules not imported here (edit, examples, plot, compare, moments, oit, raster, cli, widgets:
+Submodules not imported here (edit, examples, geo, plot, compare, moments, oit, raster, cli, widgets:
 the interactive editor in Jupyter) load on first use (PEP 562), so ``import refracta`` stays cheap
 and does not import matplotlib.
 """
@@ -51,6 +51,7 @@ from refracta._core import (
     trace_ray,
 )
 from refracta._denoise import denoise
+from refracta._geo_camera import geographic_camera as _geographic_camera
 from refracta._raster_render import render_raster
 from refracta._rays import ElevationTable, RayBatch, trace_rays, without_refraction
 from refracta._render import SceneWarning, render
@@ -62,7 +63,10 @@ from refracta.turbulence import Turbulence
 __version__ = "0.1.0"
 
 # Submodules loaded on first attribute access (PEP 562): refracta.edit, refracta.plot, ...
-_LAZY_SUBMODULES = ("cli", "compare", "edit", "examples", "moments", "oit", "plot", "raster", "widgets")
+_LAZY_SUBMODULES = ("cli", "compare", "edit", "examples", "geo", "moments", "oit", "plot", "raster", "widgets")
+
+# Camera.geographic (issue 20): a Python static method on the bound class (refracta.geo's LocalFrame).
+Camera.geographic = staticmethod(_geographic_camera)  # type: ignore[method-assign]
 
 
 def __getattr__(name):

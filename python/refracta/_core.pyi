@@ -914,6 +914,28 @@ class Camera:
         scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].
         """
     @staticmethod
+    def geographic(lat, lon, height, azimuth, elevation, *, vfov = None, focal_length_mm = None, sensor_mm = None, image_width = None, image_height = None, roll = 0.0, earth_radius = None) -> Camera:
+        """
+        A camera at latitude ``lat``, longitude ``lon`` [deg], ``height`` [m] above the WGS84
+            ellipsoid (the eye's height: the ground's height plus the eye above it), looking at ``azimuth``
+            [deg clockwise from north] and ``elevation`` [deg above the horizontal].
+        
+            It sits at the origin of ``refracta.geo.LocalFrame(lat, lon, earth_radius=earth_radius)``, at
+            scene position (0, R ln(1 + height / R), 0): build the rest of the scene with that frame
+            (``to_scene``) and give the same R to CurvedEarth. Give exactly one of vfov [deg] (the vertical
+            field of view) or focal_length_mm with sensor_mm = (width, height) [mm] (Camera.photographic's
+            lens and sensor; None: its full-frame default). image_width, image_height [pixels]: the image's
+            size (None: the bound constructor's default; named so as not to clash with the eye's height).
+            roll [deg]: the camera turned clockwise about its view direction as seen from behind (the
+            image's right side dips), 0 level. earth_radius as for LocalFrame (None: sqrt(M N) at lat).
+            For a camera elsewhere in an existing frame use ``LocalFrame.camera``. Example::
+        
+                R = refracta.geo.radius_of_curvature(47.0, 120.0)
+                camera = refracta.Camera.geographic(47.0, 8.0, 450.0, 120.0, 0.0, focal_length_mm=300.0,
+                                                    image_width=960, image_height=640, earth_radius=R)
+            
+        """
+    @staticmethod
     def photographic(position: typing.Any, look_at: typing.Any, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, *, up: typing.Any = (0.0, 1.0, 0.0), f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
         """
         A camera described by its lens and sensor: focal_length_mm on a sensor of

@@ -1,0 +1,283 @@
+"""refracta.geo: places on the real Earth (WGS84, through pyproj) and the scene frame around an observer.
+
+Conventions (issue 20, shared by refracta.geo, the terrain loader and the per-pixel readouts):
+
+- Angles in degrees, distances and heights in metres. Latitude in [-90, 90] (outside, or NaN:
+  ValueError naming the argument); longitude any finite value (wrapped by pyproj).
+- Azimuth: degrees clockwise from north (0 north, 90 east). Elevation: degrees above the local
+  horizontal.
+- Scene frame of an observer at (lat0, lon0): x east, y up, z SOUTH (right-handed; north is -z), so
+  a horizontal direction at azimuth a is (sin a, 0, -cos a).
+- Horizontal placement: azimuthal equidistant about the origin (PROJ ``+proj=aeqd`` on WGS84): a
+  point at geodesic distance d and forward azimuth a from the origin lands at x = d sin a,
+  z = -d cos a -- CurvedEarth's flat frame, x' = R phi along every azimuth.
+- Vertical placement: a height h [m] above the ellipsoid (taken as sea level: the geoid's
+  undulation, up to about 100 m, is not applied -- give every height above the same surface) lands
+  at CurvedEarth's flat height y' = R ln(1 + h / R) (CurvedEarth.flat_height, the conformal
+  Earth-flattening transform), R the Earth radius of the scene's CurvedEarth field. For a
+  flat-Earth scene (no CurvedEarth) pass ``earth_radius=math.inf``: then y = h.
+- The Earth radius for CurvedEarth: the radius of curvature of the ellipsoid along the view azimuth
+  (Euler's formula, :func:`radius_of_curvature`), e.g.
+  ``CurvedEarth(base, radius=geo.radius_of_curvature(lat0, azimuth))``.
+
+Geodesics are pyproj's (Karney's algorithm, accurate to nanometres): :func:`inverse` and
+:func:`forward` are ``pyproj.Geod(ellps="WGS84").inv`` / ``.fwd`` with checked arguments.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pyproj
+
+from refracta import _core
+
+__all__ = ["LocalFrame", "forward", "inverse", "principal_radii", "radius_of_curvature"]
+
+_GEOD = pyproj.Geod(ellps="WGS84")
+# Geographic coordinates on the WGS84 ellipsoid itself (no datum shift between the two CRSs).
+_LONLAT = pyproj.CRS.from_proj4("+proj=longlat +ellps=WGS84 +no_defs")
+
+
+def _checked(value, name: str, low: float = -math.inf, high: float = math.inf) -> np.ndarray:
+    """value as a float64 array, every element finite and in [low, high], else ValueError naming it."""
+    try:
+        array = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"{name} must be a number or an array of numbers (got {value!r})") from error
+    bad = ~np.isfinite(array) | (array < low) | (array > high)
+    if np.any(bad):
+        where = float(array[bad].flat[0])
+        span = f" in [{low:g}, {high:g}]" if math.isfinite(low) or math.isfinite(high) else ""
+        raise ValueError(f"{name} must be finite{span} (got {where!r})")
+    return array
+
+
+def _latitude(value, name: str) -> np.ndarray:
+    return _checked(value, name, -90.0, 90.0)
+
+
+def _scalar_or_array(array: np.ndarray):
+    """A 0-d result as a Python float, else the array."""
+    return float(array) if np.ndim(array) == 0 else array
+
+
+def inverse(lat1, lon1, lat2, lon2):
+    """The geodesic between two points on the WGS84 ellipsoid (pyproj ``Geod.inv``).
+
+    lat1, lon1, lat2, lon2 [deg] (arrays broadcast). Returns (distance [m], forward azimuth at point 1
+    [deg], back azimuth at point 2 [deg], i.e. the azimuth from point 2 back toward point 1), azimuths
+    clockwise from north in (-180, 180]. At a pole, azimuths are measured from the meridian of the
+    longitude given there. Latitudes outside [-90, 90] or non-finite values: ValueError.
+    """
+    la1, lo1 = _latitude(lat1, "lat1"), _checked(lon1, "lon1")
+    la2, lo2 = _latitude(lat2, "lat2"), _checked(lon2, "lon2")
+    la1, lo1, la2, lo2 = np.broadcast_arrays(la1, lo1, la2, lo2)
+    az12, az21, dist = _GEOD.inv(lo1, la1, lo2, la2)
+    return _scalar_or_array(np.asarray(dist)), _scalar_or_array(np.asarray(az12)), _scalar_or_array(np.asarray(az21))
+
+
+def forward(lat, lon, azimuth, distance):
+    """The point reached along the geodesic from (lat, lon) at ``azimuth`` after ``distance``.
+
+    lat, lon, azimuth [deg], distance [m] (>= 0; arrays broadcast), pyproj ``Geod.fwd``. Returns
+    (lat2, lon2 [deg], back azimuth at the end point [deg]). From a pole the azimuth is measured from
+    the meridian of ``lon``. Bad input (latitude outside [-90, 90], negative or non-finite): ValueError.
+    """
+    la, lo = _latitude(lat, "lat"), _checked(lon, "lon")
+    az, d = _checked(azimuth, "azimuth"), _checked(distance, "distance", 0.0)
+    la, lo, az, d = np.broadcast_arrays(la, lo, az, d)
+    lon2, lat2, back = _GEOD.fwd(lo, la, az, d)
+    return _scalar_or_array(np.asarray(lat2)), _scalar_or_array(np.asarray(lon2)), _scalar_or_array(np.asarray(back))
+
+
+def principal_radii(lat):
+    """(M, N) [m] at geodetic latitude ``lat`` [deg] on WGS84: the meridional radius of curvature
+    M = a (1 - e^2) / (1 - e^2 sin^2 lat)^(3/2) and the prime-vertical one N = a / sqrt(1 - e^2 sin^2 lat)
+    (a the semi-major axis, e^2 the first eccentricity squared, from pyproj's ellipsoid)."""
+    s = np.sin(np.radians(_latitude(lat, "lat")))
+    w2 = 1.0 - _GEOD.es * s * s
+    m = _GEOD.a * (1.0 - _GEOD.es) / w2**1.5
+    n = _GEOD.a / np.sqrt(w2)
+    return _scalar_or_array(m), _scalar_or_array(n)
+
+
+def radius_of_curvature(lat, azimuth):
+    """The radius of curvature [m] of the WGS84 ellipsoid's normal section along ``azimuth`` [deg] at
+    latitude ``lat`` [deg] (Euler's formula): 1/R = cos^2(azimuth)/M + sin^2(azimuth)/N, with M and N
+    from :func:`principal_radii`. The Earth radius to give CurvedEarth for a view along that azimuth
+    (6335.4 km north-south at the equator, 6378.1 km east-west; 6399.6 km at the poles)."""
+    m, n = principal_radii(lat)
+    a = np.radians(_checked(azimuth, "azimuth"))
+    return _scalar_or_array(1.0 / (np.cos(a) ** 2 / m + np.sin(a) ** 2 / n))
+
+
+def _flattening(earth_radius) -> tuple[float, Any]:
+    """(R, a CurvedEarth whose flat_height / true_height map heights) for LocalFrame's earth_radius:
+    None -> sqrt(M N) is filled in by the caller; a CurvedEarth -> itself; inf -> (inf, None): flat."""
+    if isinstance(earth_radius, _core.CurvedEarth):
+        return float(earth_radius.radius), earth_radius
+    try:
+        radius = float(earth_radius)
+    except (TypeError, ValueError) as error:
+        raise ValueError(
+            f"earth_radius must be a number [m], math.inf or a CurvedEarth (got {earth_radius!r})"
+        ) from error
+    if radius == math.inf:
+        return radius, None
+    if not (radius > 0.0 and math.isfinite(radius)):
+        raise ValueError(f"earth_radius must be > 0 [m] (got {radius!r})")
+    # Any height-only base serves: only the mapping of heights (which depends on R alone) is used.
+    return radius, _core.CurvedEarth(_core.PhysicalAtmosphere(), radius)
+
+
+class LocalFrame:
+    """The scene frame around an observer at (lat, lon) on WGS84 (see the module's conventions).
+
+    lat, lon [deg]: the origin (not at a pole: north, and so the frame's -z, is undefined there).
+    height [m]: the height of the ground at the origin above the ellipsoid (``origin_ground``
+    places it); scene heights are always measured from the ellipsoid (y = 0 is sea level).
+    earth_radius: the R of the flat heights y' = R ln(1 + h / R) -- a number [m], the scene's
+    CurvedEarth field (its radius), ``math.inf`` for a flat-Earth scene (y = h), or None: the
+    Gaussian mean radius sqrt(M N) at lat (the mean of Euler's radius over all azimuths). For a
+    scene viewed along one azimuth give ``geo.radius_of_curvature(lat, azimuth)`` and the same R to
+    CurvedEarth.
+
+    Horizontal positions are PROJ's azimuthal equidistant projection about (lat, lon) on WGS84
+    (``+proj=aeqd``): exact geodesic distance and azimuth from the origin, to nanometres over
+    thousands of km (it is singular at the antipode).
+    """
+
+    def __init__(self, lat, lon, height=0.0, earth_radius=None):
+        self.lat = float(_checked(lat, "lat", -90.0, 90.0))
+        if abs(self.lat) == 90.0:
+            raise ValueError(
+                f"lat must not be a pole (got {self.lat!r}): north, and so the scene's -z, is undefined there"
+            )
+        self.lon = float(_checked(lon, "lon"))
+        self.height = float(_checked(height, "height"))
+        if earth_radius is None:
+            m, n = principal_radii(self.lat)
+            earth_radius = math.sqrt(m * n)
+        self.earth_radius, self._curved = _flattening(earth_radius)
+        aeqd = pyproj.CRS.from_proj4(
+            f"+proj=aeqd +lat_0={self.lat!r} +lon_0={self.lon!r} +ellps=WGS84 +units=m +no_defs"
+        )
+        self._to_plane = pyproj.Transformer.from_crs(_LONLAT, aeqd, always_xy=True)
+        self._to_lonlat = pyproj.Transformer.from_crs(aeqd, _LONLAT, always_xy=True)
+
+    def __repr__(self) -> str:
+        where = f"lat={self.lat!r}, lon={self.lon!r}, height={self.height!r}"
+        return f"LocalFrame({where}, earth_radius={self.earth_radius!r})"
+
+    def flat_height(self, height):
+        """Scene y [m] of heights [m] above the ellipsoid: CurvedEarth.flat_height (or y = h when flat)."""
+        h = _checked(height, "height")
+        if self._curved is None:
+            return _scalar_or_array(h)
+        return _scalar_or_array(np.asarray(self._curved.flat_height(h), dtype=np.float64))
+
+    def true_height(self, y):
+        """Height [m] above the ellipsoid of scene heights y [m]: CurvedEarth.true_height (or h = y when flat)."""
+        flat = _checked(y, "y")
+        if self._curved is None:
+            return _scalar_or_array(flat)
+        return _scalar_or_array(np.asarray(self._curved.true_height(flat), dtype=np.float64))
+
+    def to_scene(self, lat, lon, height) -> np.ndarray:
+        """Scene points (..., 3) float64 [m] of geographic points (lat, lon [deg], height [m] above the
+        ellipsoid; arrays broadcast): x east and z south of the origin by the azimuthal equidistant
+        projection, y the flat height (module conventions)."""
+        la, lo = _latitude(lat, "lat"), _checked(lon, "lon")
+        h = _checked(height, "height")
+        la, lo, h = np.broadcast_arrays(la, lo, h)
+        east, north = self._to_plane.transform(lo, la, errcheck=True)
+        y = np.asarray(self.flat_height(h), dtype=np.float64)
+        return np.stack([np.asarray(east, dtype=np.float64), np.broadcast_to(y, la.shape), -np.asarray(north)], axis=-1)
+
+    def to_geographic(self, points):
+        """(lat [deg], lon [deg], height [m] above the ellipsoid) of scene points (..., 3): the inverse of
+        to_scene (a round trip is exact to well under a millimetre). Longitudes in [-180, 180]."""
+        p = _checked(points, "points")
+        if p.ndim == 0 or p.shape[-1] != 3:
+            raise ValueError(f"points must have shape (..., 3) (got {p.shape})")
+        lon, lat = self._to_lonlat.transform(p[..., 0], -p[..., 2], errcheck=True)
+        return _scalar_or_array(np.asarray(lat)), _scalar_or_array(np.asarray(lon)), self.true_height(p[..., 1])
+
+    @staticmethod
+    def direction(azimuth, elevation) -> np.ndarray:
+        """Unit scene vector(s) (..., 3) at ``azimuth`` (clockwise from north) and ``elevation`` [deg]
+        at the origin: (cos e sin a, sin e, -cos e cos a). Away from the origin, CurvedEarth's flat
+        frame keeps y as the local vertical and (sin a, 0, -cos a) as the direction of the geodesic of
+        that azimuth from the origin."""
+        a = np.radians(_checked(azimuth, "azimuth"))
+        e = np.radians(_checked(elevation, "elevation", -90.0, 90.0))
+        a, e = np.broadcast_arrays(a, e)
+        return np.stack([np.cos(e) * np.sin(a), np.sin(e), -np.cos(e) * np.cos(a)], axis=-1)
+
+    def origin_ground(self) -> np.ndarray:
+        """The scene point (3,) of the ground at the origin: (0, flat height of ``height``, 0)."""
+        return np.array([0.0, self.flat_height(self.height), 0.0])
+
+    def camera(
+        self,
+        height,
+        azimuth,
+        elevation,
+        *,
+        vfov=None,
+        focal_length_mm=None,
+        sensor_mm=None,
+        image_width=None,
+        image_height=None,
+        roll=0.0,
+        position=None,
+    ) -> _core.Camera:
+        """A camera in this frame, ``height`` [m] above the ellipsoid (the eye, not the ground) over the
+        origin (or over ``position`` = (lat, lon) elsewhere in the frame), looking at ``azimuth``
+        (clockwise from north) and ``elevation`` [deg] (in the scene's frame: away from the origin
+        the local vertical of CurvedEarth's flat frame is still y).
+
+        Give exactly one of vfov [deg] (vertical field of view; Camera(...)) or focal_length_mm with
+        sensor_mm = (width, height) [mm] (Camera.photographic's lens and sensor; None: its full-frame
+        default). image_width, image_height [pixels]: the image (None: the bound constructor's
+        default). roll [deg]: the camera turned clockwise about its view direction as seen from
+        behind it (the image's right side dips: a level horizon in view then rises to the right of
+        the image), 0 level. ValueError when both or neither of vfov and focal_length_mm are
+        given, or for a non-finite angle.
+        """
+        if (vfov is None) == (focal_length_mm is None):
+            raise ValueError("give exactly one of vfov and focal_length_mm")
+        a = float(_checked(azimuth, "azimuth"))
+        e = float(_checked(elevation, "elevation", -90.0, 90.0))
+        r = math.radians(float(_checked(roll, "roll")))
+        if position is None:
+            eye = np.array([0.0, self.flat_height(height), 0.0])
+        else:
+            if len(position) != 2:
+                raise ValueError(f"position must be (lat, lon) (got {position!r})")
+            eye = self.to_scene(position[0], position[1], height)
+        forward_ = self.direction(a, e)
+        # The unrolled camera's up: the view direction turned 90 deg up in its vertical plane.
+        sa, ca, se, ce = (
+            math.sin(math.radians(a)),
+            math.cos(math.radians(a)),
+            math.sin(math.radians(e)),
+            math.cos(math.radians(e)),
+        )
+        up0 = np.array([-se * sa, ce, se * ca])
+        right = np.cross(forward_, up0)
+        up = math.cos(r) * up0 + math.sin(r) * right
+        size: dict[str, Any] = {}
+        if image_width is not None:
+            size["width"] = int(image_width)
+        if image_height is not None:
+            size["height"] = int(image_height)
+        look_at = eye + forward_
+        if vfov is not None:
+            return _core.Camera(eye, look_at, up=up, vfov=float(vfov), **size)
+        if sensor_mm is not None:
+            size["sensor_mm"] = tuple(sensor_mm)
+        return _core.Camera.photographic(eye, look_at, float(focal_length_mm), up=up, **size)
