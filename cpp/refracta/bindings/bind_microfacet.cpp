@@ -56,68 +56,64 @@ void bind_fresnel(py::module_& m) {
       "Airy reflectance of a film (index n2, thickness [nm]) between n1 and a base eta + i k at a wavelength [nm]. Vectorised.");
 }
 
+// f at each of the (N, 3) unit vectors `a`: an (N,) array.
+template <class F>
+DoubleArray per_direction(const py::object& a, const char* a_name, const F& f) {
+  std::vector<double> out;
+  for (const Vec3d& v : to_unit_vectors(a, a_name)) out.push_back(f(v));
+  return values_to_array(out);
+}
+
+// f at each pair of (N, 3) unit vectors a and b, one of them possibly a single vector (broadcast).
+template <class F>
+DoubleArray per_direction_pair(const py::object& a, const char* a_name, const py::object& b, const char* b_name,
+                               const F& f) {
+  const auto va = to_unit_vectors(a, a_name), vb = to_unit_vectors(b, b_name);
+  const size_t n = broadcast(va.size(), vb.size(), concat(a_name, " and ", b_name).c_str());
+  std::vector<double> out(n);
+  for (size_t i = 0; i < n; ++i) out[i] = f(va[va.size() == 1 ? 0 : i], vb[vb.size() == 1 ? 0 : i]);
+  return values_to_array(out);
+}
+
+// The methods every microfacet distribution has: D(m), G1(w) and the height-correlated G(wo, wi).
+template <class Distribution>
+void def_masking(py::class_<Distribution>& cls) {
+  cls.def("D", [](const Distribution& d, const py::object& m) {
+       return per_direction(m, "m", [&](const Vec3d& v) { return d.D(v); });
+     }, py::arg("m"))
+      .def("G1", [](const Distribution& d, const py::object& w) {
+        return per_direction(w, "w", [&](const Vec3d& v) { return d.G1(v); });
+      }, py::arg("w"))
+      .def("G", [](const Distribution& d, const py::object& wo, const py::object& wi) {
+        return per_direction_pair(wo, "wo", wi, "wi", [&](const Vec3d& o, const Vec3d& i) { return d.G(o, i); });
+      }, py::arg("wo"), py::arg("wi"));
+}
+
 }  // namespace
 
 void bind_microfacet(py::module_& m) {
   bind_fresnel(m);
-  py::class_<Beckmann>(m, "Beckmann",
+  py::class_<Beckmann> beckmann(m, "Beckmann",
                        "The isotropic Beckmann microfacet distribution (beckmann.h): D, Lambda (exact, with erf), G1 and\n"
-                       "the height-correlated G. alpha^2 is the total mean-square slope. Directions: (N, 3) unit vectors.")
-      .def(py::init([](double alpha) { return Beckmann(TrowbridgeReitz::checked_alpha(alpha, "alpha")); }), py::arg("alpha"))
-      .def("D", [](const Beckmann& d, const py::object& m_) {
-        std::vector<double> out;
-        for (const Vec3d& m : to_unit_vectors(m_, "m")) out.push_back(d.D(m));
-        return values_to_array(out);
-      }, py::arg("m"))
-      .def("G1", [](const Beckmann& d, const py::object& w_) {
-        std::vector<double> out;
-        for (const Vec3d& w : to_unit_vectors(w_, "w")) out.push_back(d.G1(w));
-        return values_to_array(out);
-      }, py::arg("w"))
-      .def("G", [](const Beckmann& d, const py::object& wo_, const py::object& wi_) {
-        const auto wo = to_unit_vectors(wo_, "wo"), wi = to_unit_vectors(wi_, "wi");
-        const size_t n = broadcast(wo.size(), wi.size(), "wo and wi");
-        std::vector<double> out(n);
-        for (size_t i = 0; i < n; ++i) out[i] = d.G(wo[wo.size() == 1 ? 0 : i], wi[wi.size() == 1 ? 0 : i]);
-        return values_to_array(out);
-      }, py::arg("wo"), py::arg("wi"))
+                       "the height-correlated G. alpha^2 is the total mean-square slope. Directions: (N, 3) unit vectors.");
+  beckmann.def(py::init([](double alpha) { return Beckmann(TrowbridgeReitz::checked_alpha(alpha, "alpha")); }), py::arg("alpha"))
       .def_property_readonly("alpha", &Beckmann::alpha)
       .def(py::pickle([](const Beckmann& d) { return py::make_tuple(d.alpha()); },
                       [](const py::tuple& t) {
                         if (t.size() != 1) throw_invalid("Beckmann: bad pickle state");
                         return Beckmann(TrowbridgeReitz::checked_alpha(py::cast<double>(t[0]), "alpha"));
                       }));
+  def_masking(beckmann);
 
-  py::class_<TrowbridgeReitz>(m, "TrowbridgeReitz",
+  py::class_<TrowbridgeReitz> ggx(m, "TrowbridgeReitz",
                               "The GGX microfacet distribution (microfacet.h): D, Lambda, G1, height-correlated G, the\n"
-                              "visible-normal density and sampler. Directions: (N, 3) unit vectors in the local frame.")
-      .def(py::init([](double alpha_x, double alpha_y) {
+                              "visible-normal density and sampler. Directions: (N, 3) unit vectors in the local frame.");
+  ggx.def(py::init([](double alpha_x, double alpha_y) {
              return TrowbridgeReitz(TrowbridgeReitz::checked_alpha(alpha_x, "alpha_x"), TrowbridgeReitz::checked_alpha(alpha_y, "alpha_y"));
            }),
            py::arg("alpha_x"), py::arg("alpha_y"))
-      .def("D", [](const TrowbridgeReitz& d, const py::object& m_) {
-        std::vector<double> out;
-        for (const Vec3d& m : to_unit_vectors(m_, "m")) out.push_back(d.D(m));
-        return values_to_array(out);
-      }, py::arg("m"))
-      .def("G1", [](const TrowbridgeReitz& d, const py::object& w_) {
-        std::vector<double> out;
-        for (const Vec3d& w : to_unit_vectors(w_, "w")) out.push_back(d.G1(w));
-        return values_to_array(out);
-      }, py::arg("w"))
-      .def("G", [](const TrowbridgeReitz& d, const py::object& wo_, const py::object& wi_) {
-        const auto wo = to_unit_vectors(wo_, "wo"), wi = to_unit_vectors(wi_, "wi");
-        const size_t n = broadcast(wo.size(), wi.size(), "wo and wi");
-        std::vector<double> out(n);
-        for (size_t i = 0; i < n; ++i) out[i] = d.G(wo[wo.size() == 1 ? 0 : i], wi[wi.size() == 1 ? 0 : i]);
-        return values_to_array(out);
-      }, py::arg("wo"), py::arg("wi"))
-      .def("D_visible", [](const TrowbridgeReitz& d, const py::object& w_, const py::object& m_) {
-        const auto w = to_unit_vectors(w_, "w"), m = to_unit_vectors(m_, "m");
-        const size_t n = broadcast(w.size(), m.size(), "w and m");
-        std::vector<double> out(n);
-        for (size_t i = 0; i < n; ++i) out[i] = d.D_visible(w[w.size() == 1 ? 0 : i], m[m.size() == 1 ? 0 : i]);
-        return values_to_array(out);
+      .def("D_visible", [](const TrowbridgeReitz& d, const py::object& w, const py::object& m) {
+        return per_direction_pair(w, "w", m, "m", [&](const Vec3d& a, const Vec3d& b) { return d.D_visible(a, b); });
       }, py::arg("w"), py::arg("m"))
       .def("sample_wm", [](const TrowbridgeReitz& d, const py::object& w_, const py::object& u_) {
         const auto w = to_unit_vectors(w_, "w");
@@ -135,6 +131,7 @@ void bind_microfacet(py::module_& m) {
                         return TrowbridgeReitz(TrowbridgeReitz::checked_alpha(py::cast<double>(t[0]), "alpha_x"),
                                                TrowbridgeReitz::checked_alpha(py::cast<double>(t[1]), "alpha_y"));
                       }));
+  def_masking(ggx);
 
   py::class_<Ior>(m, "Ior", "An index of refraction: constant or Sellmeier (C in um^2).")
       .def(py::init([](const py::object& ior, const py::object& sellmeier) { return to_ior(ior, sellmeier); }),
