@@ -54,6 +54,7 @@ from refracta._denoise import denoise
 from refracta._geo_camera import geographic_camera as _geographic_camera
 from refracta._raster_render import render_raster
 from refracta._rays import ElevationTable, RayBatch, trace_rays, without_refraction
+from refracta._refraction_coefficient import RefractionCoefficient, refraction_coefficient
 from refracta._render import SceneWarning, render
 from refracta._sweep import SweepError, SweepFailure, SweepResult, sweep
 from refracta.scene_file import SceneFile, load_scene
@@ -101,6 +102,7 @@ __all__ = [
     "RasterRenderStats",
     "RayBatch",
     "RayPath",
+    "RefractionCoefficient",
     "RenderOptions",
     "RenderStats",
     "Scene",
@@ -130,6 +132,7 @@ __all__ = [
     "testing",
     "load_scene",
     "render",
+    "refraction_coefficient",
     "render_raster",
     "sweep",
     "trace_ray",

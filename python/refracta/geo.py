@@ -177,14 +177,17 @@ class LocalFrame:
         h = _checked(height, "height")
         if self._curved is None:
             return _scalar_or_array(h)
-        return _scalar_or_array(np.asarray(self._curved.flat_height(h), dtype=np.float64))
+        # The binding maps scalars and 1-D arrays: any shape goes through flat.
+        return _scalar_or_array(np.asarray(self._curved.flat_height(h.ravel()), dtype=np.float64).reshape(h.shape))
 
     def true_height(self, y):
         """Height [m] above the ellipsoid of scene heights y [m]: CurvedEarth.true_height (or h = y when flat)."""
         flat = _checked(y, "y")
         if self._curved is None:
             return _scalar_or_array(flat)
-        return _scalar_or_array(np.asarray(self._curved.true_height(flat), dtype=np.float64))
+        return _scalar_or_array(
+            np.asarray(self._curved.true_height(flat.ravel()), dtype=np.float64).reshape(flat.shape)
+        )
 
     def to_scene(self, lat, lon, height) -> np.ndarray:
         """Scene points (..., 3) float64 [m] of geographic points (lat, lon [deg], height [m] above the

@@ -1,0 +1,252 @@
+"""refracta.refraction_coefficient (issue 20): the surveyors' coefficient of refraction k of a traced
+ray, and the drop and hidden height of a distant target with and without refraction.
+
+Surveyors and the curvature calculators (Bislin, Metabunk) model terrestrial refraction as a ray of
+constant curvature k / R over an Earth of radius R: a sight line leaving the eye horizontally is
+(1 - k) d^2 / (2R) above the eye's height at distance d, as if the Earth's radius were R / (1 - k)
+(Bomford, Geodesy, 4th ed., sec. 3.2; Hirt et al. 2010, J. Geophys. Res. 115, D21102). Here the ray
+is traced through the actual air by refracta's integrator (refracta.trace_ray over CurvedEarth's
+flat frame, exact in the ray's vertical plane) and k is the value that reproduces its height.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from refracta import _core
+
+# Bisection on the launch elevation [rad]: 2^-60 of a bracket below 1 rad is under 1e-18 rad, far
+# below what moves a ray's height at 1000 km by a nanometre.
+_BISECTIONS = 60
+
+
+@dataclass(frozen=True)
+class RefractionCoefficient:
+    """The result of :func:`refracta.refraction_coefficient`. Lengths in metres, angles in degrees.
+
+    Attributes:
+        k: the coefficient of refraction: a ray leaving the eye horizontally is
+            ``eye_height + (1 - k) distance**2 / (2 earth_radius)`` above the surface at ``distance``
+            (0 without air; about 0.17 in the U.S. Standard Atmosphere near sea level; 1 where the
+            ray follows the Earth's curve; above 1 in ducts).
+        earth_radius: R [m] of the curved Earth the ray was traced over.
+        eye_height: the eye's height above the surface [m].
+        distance: the distance along the surface [m] at which everything is measured.
+        drop_straight: how far the surface at ``distance`` lies below the eye's horizontal straight
+            sight line, less the eye's height: ``(R + eye_height) (1 / cos(distance / R) - 1)``
+            (about distance^2 / (2R)).
+        drop_refracted: the same for the traced horizontal ray: its height at ``distance`` less the
+            eye's height (``(1 - k) distance^2 / (2R)`` by the definition of k).
+        hidden_height_straight: how much of a target at ``distance`` the Earth's bulge hides from the
+            eye along straight lines (0 within the geometric horizon).
+        hidden_height_refracted: the same through the air: the height at ``distance`` of the lowest
+            traced ray that passes over the surface all the way (the ray grazing the horizon), 0
+            when the surface at ``distance`` is in view. With several rays over the same point
+            (mirages) it is that of the transition from the sky downward.
+        target_height: the target's height above the surface [m], or None when none was given.
+        true_elevation: the target's elevation [deg] from the eye along a straight line, or None.
+        apparent_elevation: the launch elevation [deg] of the traced ray that reaches the target
+            (where it is seen), or None when no target was given or it is hidden
+            (``target_height < hidden_height_refracted``). apparent minus true elevation is about
+            k distance / (2R) [rad] for a ray of constant curvature.
+    """
+
+    k: float
+    earth_radius: float
+    eye_height: float
+    distance: float
+    drop_straight: float
+    drop_refracted: float
+    hidden_height_straight: float
+    hidden_height_refracted: float
+    target_height: float | None
+    true_elevation: float | None
+    apparent_elevation: float | None
+
+
+def _finite(value, name: str, low: float) -> float:
+    try:
+        number = float(value)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"{name} must be a number (got {value!r})") from error
+    if not (math.isfinite(number) and number >= low):
+        raise ValueError(f"{name} must be finite and >= {low:g} [m] (got {number!r})")
+    return number
+
+
+def _curved_earth(field, earth_radius) -> _core.CurvedEarth:
+    if not isinstance(field, _core.IndexField):
+        raise ValueError(f"field must be an IndexField (got {type(field).__name__})")
+    if not field.height_only:
+        raise ValueError(f"field must depend on height only (a {field.type_name} does not)")
+    if isinstance(field, _core.CurvedEarth):
+        if earth_radius is not None and float(earth_radius) != field.radius:
+            raise ValueError(
+                f"earth_radius {earth_radius!r} differs from the CurvedEarth field's radius {field.radius!r}: give one"
+            )
+        return field
+    if earth_radius is None:
+        return _core.CurvedEarth(field)  # CurvedEarth's own default radius (C++)
+    return _core.CurvedEarth(field, _finite(earth_radius, "earth_radius", 0.0))
+
+
+class _Tracer:
+    """Rays from the eye along -z in CurvedEarth's flat frame, read where they cross x' = distance."""
+
+    def __init__(self, curved: _core.CurvedEarth, eye_height: float, distance: float, fields: dict):
+        for name in ("max_length", "stop_height"):
+            if name in fields:
+                raise ValueError(f"refraction_coefficient sets {name} itself: do not pass it")
+        self.curved, self.distance, self.fields = curved, distance, fields
+        self.eye = (0.0, float(curved.flat_height(eye_height)), 0.0)
+
+    def height_at_distance(self, elevation: float, ground: bool) -> float | None:
+        """True height [m] at ``distance`` of the ray launched at ``elevation`` [rad], or None when
+        (with ``ground``) it meets the surface first."""
+        # The flat frame's path to x' = distance is at most about distance / cos(elevation) long
+        # (the ray's bending changes its slope by a few mrad over 100 km): half again as long is ample.
+        reach = 1.5 * self.distance / max(math.cos(elevation), 1e-3) + 10.0
+        stop = {"stop_height": 0.0} if ground else {}
+        path = _core.trace_ray(
+            self.curved,
+            self.eye,
+            (0.0, math.sin(elevation), -math.cos(elevation)),
+            max_length=reach,
+            **stop,
+            **self.fields,
+        )
+        crossings = path.crossings((0.0, 0.0, -1.0), self.distance)
+        if not crossings:
+            if ground and path.stop == "stop_height":
+                return None
+            raise _core.NumericalError(
+                f"refraction_coefficient: the ray at {math.degrees(elevation):g} deg did not reach "
+                f"{self.distance:g} m within {reach:g} m of path (it turned back)"
+            )
+        return float(self.curved.true_height(crossings[0][0][1]))
+
+
+def _hidden_height(tracer: _Tracer) -> tuple[float, float]:
+    """(hidden height [m], the launch elevation [rad] of the limiting ray): bisection between a ray
+    that meets the surface before ``distance`` and one above it that clears it."""
+    high = 0.0
+    while tracer.height_at_distance(high, ground=True) is None:
+        high = 2.0 * high + 1e-3
+        if high > 1.5:
+            raise _core.NumericalError("refraction_coefficient: no ray from the eye clears the surface")
+    low = -1e-3
+    while tracer.height_at_distance(low, ground=True) is not None:
+        low = 2.0 * low
+        if low < -1.5:  # even steep rays reach `distance` first: the surface there is in view
+            return 0.0, low
+    for _ in range(_BISECTIONS):
+        middle = 0.5 * (low + high)
+        if tracer.height_at_distance(middle, ground=True) is None:
+            low = middle
+        else:
+            high = middle
+    height = tracer.height_at_distance(high, ground=True)
+    assert height is not None  # `high` clears by the loop's invariant
+    return max(height, 0.0), high
+
+
+def _apparent_elevation(tracer: _Tracer, target: float, low: float, low_height: float) -> float:
+    """Launch elevation [rad] of a ray reaching ``target`` [m] at ``distance``, by bisection above the
+    limiting ray ``low`` (whose height there is ``low_height`` <= target)."""
+    high = max(low, 0.0) + 1e-3
+    while True:
+        reached = tracer.height_at_distance(high, ground=True)
+        if reached is not None and reached >= target:
+            break
+        high = 2.0 * high
+        if high > 1.5:
+            raise _core.NumericalError(f"refraction_coefficient: no ray reaches the target at {target:g} m")
+    if low_height >= target:
+        return low
+    for _ in range(_BISECTIONS):
+        middle = 0.5 * (low + high)
+        reached = tracer.height_at_distance(middle, ground=True)
+        if reached is None or reached < target:
+            low = middle
+        else:
+            high = middle
+    return 0.5 * (low + high)
+
+
+def refraction_coefficient(
+    field: _core.IndexField,
+    eye_height,
+    distance,
+    *,
+    target_height=None,
+    earth_radius=None,
+    **fields,
+) -> RefractionCoefficient:
+    """The coefficient of refraction k of ``field`` seen from ``eye_height`` [m] over ``distance`` [m]
+    (along the surface), and the drop and hidden height of a target there with and without the air.
+
+    k is the value for which the surveyors' formula reproduces the traced height of a ray leaving
+    the eye horizontally: at ``distance`` it is ``eye_height + (1 - k) distance**2 / (2R)`` above the
+    surface. For a uniform gradient near the ground k = -R (dn/dh) / n: 503 P / T^2 (0.0343 + dT/dh)
+    with P [hPa], T [K], dT/dh [K/m] (about 0.17 in the standard atmosphere; 1 at
+    dT/dh = +0.11 K/m, where the ray follows the Earth).
+
+    field: a CurvedEarth (R is its radius) or a height-only field of true heights (PhysicalAtmosphere,
+    TemperatureProfile, ...), which is put over a curved Earth, ``CurvedEarth(field, earth_radius)``
+    (None: CurvedEarth's default radius) -- a flat-Earth field has no drop or horizon of its own,
+    so its air is measured over the curved Earth it stands for. eye_height >= 0 and distance > 0
+    [m]: true heights above the surface and distance along it. target_height [m] (optional): a
+    target's height above the surface at ``distance``: its true and apparent elevations are returned
+    too. Further keywords go to refracta.trace_ray (``trace``, default 'stratified', ``tol``,
+    ``step``, ...; max_length and stop_height are set here): every ray is refracta.trace_ray's.
+    The horizontal ray is traced through the field's formula even below the surface (a ducted
+    ray, k > 1, may reach it).
+
+    Returns a :class:`RefractionCoefficient`. ValueError for a field that is not height-only, a
+    negative or non-finite height, a distance <= 0 or beyond a quarter of the Earth's circumference
+    (R pi / 2), or an earth_radius that contradicts a CurvedEarth's; refracta.NumericalError where
+    no ray reaches the distance.
+    """
+    curved = _curved_earth(field, earth_radius)
+    radius = float(curved.radius)
+    h0 = _finite(eye_height, "eye_height", 0.0)
+    d = _finite(distance, "distance", 0.0)
+    if not 0.0 < d < 0.5 * math.pi * radius:
+        raise ValueError(f"distance must be in (0, R pi / 2) = (0, {0.5 * math.pi * radius:g}) m (got {d!r})")
+    target = None if target_height is None else _finite(target_height, "target_height", 0.0)
+    # 'stratified' (exact paths from n cos e = const) by default: it finds a grazing ray's lowest
+    # point exactly, where rk45's nodes can step over a dip of centimetres below the surface.
+    tracer = _Tracer(curved, h0, d, {"trace": "stratified", **fields})
+
+    level = tracer.height_at_distance(0.0, ground=False)
+    assert level is not None  # without a ground the ray always has a height there
+    drop_refracted = level - h0
+    k = 1.0 - 2.0 * radius * drop_refracted / (d * d)
+
+    phi = d / radius
+    drop_straight = (radius + h0) * (1.0 / math.cos(phi) - 1.0)
+    horizon = math.acos(radius / (radius + h0))  # the geometric horizon's angle at the centre
+    hidden_straight = radius / math.cos(phi - horizon) - radius if phi > horizon else 0.0
+    hidden_refracted, limit = _hidden_height(tracer)
+
+    true_elevation = apparent_elevation = None
+    if target is not None:
+        # Straight line from the eye (radius R + h0) to the target (R + target, at angle phi).
+        far = radius + target
+        true_elevation = math.degrees(math.atan2(far * math.cos(phi) - (radius + h0), far * math.sin(phi)))
+        if target >= hidden_refracted:
+            apparent_elevation = math.degrees(_apparent_elevation(tracer, target, limit, hidden_refracted))
+    return RefractionCoefficient(
+        k=k,
+        earth_radius=radius,
+        eye_height=h0,
+        distance=d,
+        drop_straight=drop_straight,
+        drop_refracted=drop_refracted,
+        hidden_height_straight=hidden_straight,
+        hidden_height_refracted=hidden_refracted,
+        target_height=target,
+        true_elevation=true_elevation,
+        apparent_elevation=apparent_elevation,
+    )

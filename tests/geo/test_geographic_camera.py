@@ -1,0 +1,71 @@
+"""Camera.geographic and LocalFrame.camera (issue 20): where the camera stands and looks."""
+
+import math
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import geo
+
+
+@pytest.mark.parametrize("azimuth, elevation", [(0.0, 0.0), (120.0, 0.0), (250.0, -3.5), (45.0, 30.0), (10.0, 90.0)])
+def test_it_looks_along_the_stated_azimuth_and_elevation(azimuth, elevation):
+    camera = refracta.Camera.geographic(
+        46.5, 7.9, 1850.0, azimuth, elevation, vfov=10.0, image_width=64, image_height=48
+    )
+    frame = geo.LocalFrame(46.5, 7.9)
+    origin, forward = camera.ray(32.0, 24.0)  # the image centre: the view axis
+    np.testing.assert_allclose(forward, frame.direction(azimuth, elevation), atol=1e-12)  # rounding of unit vectors
+    np.testing.assert_allclose(origin, [0.0, frame.flat_height(1850.0), 0.0], atol=1e-9)  # rounding only
+    assert (camera.width, camera.height, camera.vfov) == (64, 48, 10.0)
+
+
+def test_vfov_from_the_focal_length_is_camera_photographics():
+    camera = refracta.Camera.geographic(
+        47.0, 8.0, 450.0, 120.0, 0.0, focal_length_mm=300.0, sensor_mm=(23.5, 15.6), image_width=960, image_height=640
+    )
+    reference = refracta.Camera.photographic((0, 0, 0), (1, 0, 0), 300.0, (23.5, 15.6), 960, 640)
+    assert camera.vfov == reference.vfov
+    assert camera.vfov == pytest.approx(2 * math.degrees(math.atan(15.6 / 600.0)), rel=1e-12)  # rounding only
+    # Without a sensor: Camera.photographic's own default (full frame).
+    default = refracta.Camera.geographic(47.0, 8.0, 450.0, 120.0, 0.0, focal_length_mm=300.0)
+    assert default.vfov == refracta.Camera.photographic((0, 0, 0), (1, 0, 0), 300.0).vfov
+
+
+def test_roll_dips_the_right_side():
+    level = refracta.Camera.geographic(47.0, 8.0, 10.0, 200.0, 0.0, vfov=20.0, image_width=40, image_height=20)
+    rolled = refracta.Camera.geographic(
+        47.0, 8.0, 10.0, 200.0, 0.0, vfov=20.0, image_width=40, image_height=20, roll=5.0
+    )
+    # A level camera's middle row is horizontal; rolled clockwise (seen from behind), its right end
+    # looks lower than its left, by the roll angle across the row's half-width.
+    left, right = level.ray(0.0, 10.0)[1], level.ray(40.0, 10.0)[1]
+    assert left[1] == pytest.approx(0.0, abs=1e-12) and right[1] == pytest.approx(0.0, abs=1e-12)  # rounding
+    left, right = rolled.ray(0.0, 10.0)[1], rolled.ray(40.0, 10.0)[1]
+    assert right[1] < 0.0 < left[1]
+    half_width = math.atan(math.tan(math.radians(10.0)) * 2.0)  # the half-width's angle (40 / 20 of the half-height)
+    assert math.degrees(math.asin(right[1])) == pytest.approx(
+        -math.degrees(math.asin(math.sin(half_width) * math.sin(math.radians(5.0)))), rel=1e-9
+    )  # rounding
+    np.testing.assert_allclose(rolled.ray(20.0, 10.0)[1], level.ray(20.0, 10.0)[1], atol=1e-12)  # the axis stays
+
+
+def test_frame_camera_elsewhere_in_the_frame():
+    frame = geo.LocalFrame(47.0, 8.0, earth_radius=geo.radius_of_curvature(47.0, 90.0))
+    camera = frame.camera(700.0, 270.0, -1.0, vfov=5.0, position=(47.2, 8.3))
+    np.testing.assert_allclose(camera.position, frame.to_scene(47.2, 8.3, 700.0), atol=1e-9)  # rounding only
+    np.testing.assert_allclose(camera.ray(320.0, 180.0)[1], frame.direction(270.0, -1.0), atol=1e-12)  # rounding
+
+
+def test_bad_camera_arguments():
+    with pytest.raises(ValueError, match="exactly one of vfov and focal_length_mm"):
+        refracta.Camera.geographic(47.0, 8.0, 10.0, 0.0, 0.0)
+    with pytest.raises(ValueError, match="exactly one of vfov and focal_length_mm"):
+        refracta.Camera.geographic(47.0, 8.0, 10.0, 0.0, 0.0, vfov=5.0, focal_length_mm=50.0)
+    with pytest.raises(ValueError, match="lat"):
+        refracta.Camera.geographic(90.0, 8.0, 10.0, 0.0, 0.0, vfov=5.0)
+    with pytest.raises(ValueError, match="elevation"):
+        refracta.Camera.geographic(47.0, 8.0, 10.0, 0.0, 95.0, vfov=5.0)
+    with pytest.raises(ValueError, match="roll"):
+        refracta.Camera.geographic(47.0, 8.0, 10.0, 0.0, 0.0, vfov=5.0, roll=math.nan)

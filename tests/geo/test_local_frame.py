@@ -1,0 +1,107 @@
+"""refracta.geo.LocalFrame: the scene frame around an observer (issue 20's conventions): azimuthal
+equidistant on WGS84 horizontally, CurvedEarth's flat heights vertically."""
+
+import math
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import geo
+
+# Origins: the Alps, the antimeridian (Fiji), the far south.
+ORIGINS = [(47.0, 8.0), (-17.0, 179.8), (-75.0, -60.0)]
+
+
+def points_around(lat0, lon0):
+    """Points at 1 m, 30 km, 150 km and 900 km in several directions, heights from sea level to 4 km."""
+    distances = np.array([1.0, 3e4, 1.5e5, 9e5, 3e4, 1.5e5])
+    azimuths = np.array([10.0, 95.0, 181.0, 260.0, 300.0, 45.0])
+    heights = np.array([0.0, 12.5, 4000.0, 300.0, 1.6, 2500.0])
+    lat, lon, _ = geo.forward(lat0, lon0, azimuths, distances)
+    return lat, lon, heights, distances, azimuths
+
+
+@pytest.mark.parametrize("lat0, lon0", ORIGINS)
+def test_horizontal_placement_is_geodesic_distance_and_azimuth(lat0, lon0):
+    frame = geo.LocalFrame(lat0, lon0)
+    lat, lon, heights, distances, azimuths = points_around(lat0, lon0)
+    p = frame.to_scene(lat, lon, heights)
+    assert p.shape == (6, 3) and p.dtype == np.float64
+    # The azimuthal equidistant projection keeps geodesic distance and azimuth from its centre
+    # (PROJ's ellipsoidal aeqd solves the geodesic): x = d sin a, z = -d cos a.
+    # 1 mm over 1000 km; 10 nm absolute: rounding of the degrees (an ulp of 47 deg is 1 nm)
+    np.testing.assert_allclose(np.hypot(p[:, 0], p[:, 2]), distances, rtol=1e-9, atol=1e-8)
+    scene_azimuth = np.degrees(np.arctan2(p[:, 0], -p[:, 2]))
+    np.testing.assert_allclose(
+        np.remainder(scene_azimuth - azimuths + 180.0, 360.0) - 180.0, 0.0, atol=1e-7
+    )  # 1e-7 deg: 1.6 mm at 900 km
+    # ... and the same as geo.inverse from the origin.
+    d, a, _ = geo.inverse(lat0, lon0, lat, lon)
+    # as above: 1 mm over 1000 km, rounding of the degrees
+    np.testing.assert_allclose(np.hypot(p[:, 0], p[:, 2]), d, rtol=1e-9, atol=1e-8)
+
+
+@pytest.mark.parametrize("lat0, lon0", ORIGINS)
+def test_round_trip_is_below_a_millimetre(lat0, lon0):
+    frame = geo.LocalFrame(lat0, lon0, earth_radius=geo.radius_of_curvature(lat0, 30.0))
+    lat, lon, heights, _, _ = points_around(lat0, lon0)
+    p = frame.to_scene(lat, lon, heights)
+    lat2, lon2, h2 = frame.to_geographic(p)
+    d, _, _ = geo.inverse(lat, lon, lat2, lon2)
+    assert np.max(d) < 1e-3  # the issue's round-trip bound [m]
+    np.testing.assert_allclose(h2, heights, atol=1e-6)  # 1 um: log1p / expm1 round trip at 4 km
+    again = frame.to_scene(lat2, lon2, h2)
+    np.testing.assert_allclose(again, p, atol=1e-3)  # the issue's round-trip bound [m]
+    # Arrays of any shape broadcast: a (2, 3) grid of points against one height.
+    grid = frame.to_scene(lat.reshape(2, 3), lon.reshape(2, 3), 10.0)
+    assert grid.shape == (2, 3, 3)
+
+
+def test_heights_are_curved_earths_flat_heights():
+    radius = geo.radius_of_curvature(47.0, 120.0)
+    earth = refracta.CurvedEarth(refracta.PhysicalAtmosphere(), radius)
+    heights = np.array([0.0, 2.0, 100.0, 4478.0])
+    by_radius = geo.LocalFrame(47.0, 8.0, earth_radius=radius).to_scene(47.0, 8.0, heights)
+    by_field = geo.LocalFrame(47.0, 8.0, earth_radius=earth).to_scene(47.0, 8.0, heights)
+    np.testing.assert_array_equal(by_radius[:, 1], earth.flat_height(heights))
+    np.testing.assert_array_equal(by_field[:, 1], earth.flat_height(heights))
+    # y' = R ln(1 + h / R) is h - h^2 / (2R) to first order: 1.57 m lower at 4478 m.
+    assert heights[-1] - by_radius[-1, 1] == pytest.approx(
+        heights[-1] ** 2 / (2 * radius), rel=1e-3
+    )  # the h^3/(3R^2) term
+    # Over a flat Earth (no CurvedEarth) the height is the scene's y.
+    flat = geo.LocalFrame(47.0, 8.0, earth_radius=math.inf)
+    np.testing.assert_array_equal(flat.to_scene(47.0, 8.0, heights)[:, 1], heights)
+    np.testing.assert_array_equal(flat.to_geographic(flat.to_scene(47.0, 8.0, heights))[2], heights)
+
+
+def test_default_earth_radius_is_the_gaussian_mean_of_eulers():
+    frame = geo.LocalFrame(47.0, 8.0, height=430.0)
+    m, n = geo.principal_radii(47.0)
+    assert frame.earth_radius == pytest.approx(math.sqrt(m * n), rel=1e-15)  # rounding only
+    # sqrt(M N) is the mean over azimuths of Euler's radius.
+    mean = np.mean(geo.radius_of_curvature(47.0, np.arange(0.0, 360.0, 1.0)))
+    assert frame.earth_radius == pytest.approx(mean, rel=1e-12)  # a 360-point mean of a smooth periodic function
+    np.testing.assert_allclose(frame.origin_ground(), [0.0, frame.flat_height(430.0), 0.0], rtol=0, atol=0)
+
+
+def test_directions_follow_the_azimuth_convention():
+    d = geo.LocalFrame.direction([0.0, 90.0, 180.0, 270.0, 30.0], [0.0, 0.0, 0.0, 0.0, 90.0])
+    np.testing.assert_allclose(d[:4], [[0, 0, -1], [1, 0, 0], [0, 0, 1], [-1, 0, 0]], atol=1e-15)  # cos(90 deg) ~ 6e-17
+    np.testing.assert_allclose(d[4], [0, 1, 0], atol=1e-15)  # cos(90 deg) ~ 6e-17
+    np.testing.assert_allclose(np.linalg.norm(geo.LocalFrame.direction(123.0, -4.0)), 1.0, rtol=1e-15)  # rounding
+
+
+def test_bad_points_are_value_errors():
+    frame = geo.LocalFrame(47.0, 8.0)
+    with pytest.raises(ValueError, match="lat"):
+        frame.to_scene(95.0, 8.0, 0.0)
+    with pytest.raises(ValueError, match="height"):
+        frame.to_scene(47.0, 8.0, math.nan)
+    with pytest.raises(ValueError, match="points"):
+        frame.to_geographic([1.0, 2.0])
+    with pytest.raises(ValueError, match="earth_radius"):
+        geo.LocalFrame(47.0, 8.0, earth_radius=-1.0)
+    with pytest.raises(ValueError, match="height"):  # below the Earth's centre: no flat height
+        frame.to_scene(47.0, 8.0, -2e7)
