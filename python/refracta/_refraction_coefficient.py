@@ -16,9 +16,11 @@ from dataclasses import dataclass
 
 from refracta import _core
 
-# Bisection on the launch elevation [rad]: 2^-60 of a bracket below 1 rad is under 1e-18 rad, far
-# below what moves a ray's height at 1000 km by a nanometre.
-_BISECTIONS = 60
+# The searches on the launch elevation stop when their bracket moves the ray's height at the
+# target's distance by less than this [m]: a tenth of trace_ray's default tol (1e-6 m).
+_HEIGHT_TOL = 1e-7
+# The steepest launch the searches try [rad] (89.9 deg).
+_STEEPEST = math.radians(89.9)
 
 
 @dataclass(frozen=True)
@@ -129,18 +131,19 @@ class _Tracer:
 
 def _hidden_height(tracer: _Tracer) -> tuple[float, float]:
     """(hidden height [m], the launch elevation [rad] of the limiting ray): bisection between a ray
-    that meets the surface before ``distance`` and one above it that clears it."""
-    high = 0.0
+    that meets the surface before ``distance`` and one above it that clears it, until the bracket
+    moves the height at ``distance`` by under _HEIGHT_TOL (it moves it by at most d per radian)."""
+    high, step = 0.0, 1e-3
     while tracer.height_at_distance(high, ground=True) is None:
-        high = 2.0 * high + 1e-3
-        if high > 1.5:
+        if high >= _STEEPEST:
             raise _core.NumericalError("refraction_coefficient: no ray from the eye clears the surface")
-    low = -1e-3
+        high, step = min(high + step, _STEEPEST), 2.0 * step
+    low, step = -1e-3, 1e-3
     while tracer.height_at_distance(low, ground=True) is not None:
-        low = 2.0 * low
-        if low < -1.5:  # even steep rays reach `distance` first: the surface there is in view
+        if low <= -_STEEPEST:  # even steep rays reach `distance` first: the surface there is in view
             return 0.0, low
-    for _ in range(_BISECTIONS):
+        low, step = max(low - step, -_STEEPEST), 2.0 * step
+    while (high - low) * tracer.distance > _HEIGHT_TOL:
         middle = 0.5 * (low + high)
         if tracer.height_at_distance(middle, ground=True) is None:
             low = middle
@@ -151,27 +154,45 @@ def _hidden_height(tracer: _Tracer) -> tuple[float, float]:
     return max(height, 0.0), high
 
 
-def _apparent_elevation(tracer: _Tracer, target: float, low: float, low_height: float) -> float:
-    """Launch elevation [rad] of a ray reaching ``target`` [m] at ``distance``, by bisection above the
-    limiting ray ``low`` (whose height there is ``low_height`` <= target)."""
-    high = max(low, 0.0) + 1e-3
+def _apparent_elevation(tracer: _Tracer, target: float, low: float, low_height: float, guess: float) -> float:
+    """Launch elevation [rad] of a ray reaching ``target`` [m] at ``distance``: above the limiting ray
+    ``low`` (whose height there is ``low_height`` <= target), from ``guess`` (the straight line's
+    elevation) upward to a bracket, then regula falsi (Illinois) with bisection where a ray in the
+    bracket meets the ground, until the height is within _HEIGHT_TOL of the target."""
+    if low_height >= target:
+        return low
+    high, step = max(guess, low), 1e-3
     while True:
         reached = tracer.height_at_distance(high, ground=True)
         if reached is not None and reached >= target:
             break
-        high = 2.0 * high
-        if high > 1.5:
+        if reached is not None:
+            low, low_height = high, reached
+        if high >= _STEEPEST:
             raise _core.NumericalError(f"refraction_coefficient: no ray reaches the target at {target:g} m")
-    if low_height >= target:
-        return low
-    for _ in range(_BISECTIONS):
-        middle = 0.5 * (low + high)
+        high, step = min(high + step, _STEEPEST), 2.0 * step
+    high_height, side = reached, 0
+    while True:
+        middle = low + (target - low_height) * (high - low) / (high_height - low_height)
+        if not low < middle < high:
+            middle = 0.5 * (low + high)
         reached = tracer.height_at_distance(middle, ground=True)
-        if reached is None or reached < target:
-            low = middle
+        if reached is None:  # a ray in the bracket meets the ground (a mirage's layer): bisect
+            low, low_height, side = middle, -math.inf, 0
+            continue
+        if abs(reached - target) < _HEIGHT_TOL or (high - low) * tracer.distance < _HEIGHT_TOL:
+            return middle
+        # Illinois: halve the stale end's height so the bracket closes from both sides.
+        if reached < target:
+            low, low_height = middle, reached
+            if side == -1:
+                high_height = target + 0.5 * (high_height - target)
+            side = -1
         else:
-            high = middle
-    return 0.5 * (low + high)
+            high, high_height = middle, reached
+            if side == 1:
+                low_height = target + 0.5 * (low_height - target)
+            side = 1
 
 
 def refraction_coefficient(
@@ -236,7 +257,8 @@ def refraction_coefficient(
         far = radius + target
         true_elevation = math.degrees(math.atan2(far * math.cos(phi) - (radius + h0), far * math.sin(phi)))
         if target >= hidden_refracted:
-            apparent_elevation = math.degrees(_apparent_elevation(tracer, target, limit, hidden_refracted))
+            guess = math.radians(true_elevation)
+            apparent_elevation = math.degrees(_apparent_elevation(tracer, target, limit, hidden_refracted, guess))
     return RefractionCoefficient(
         k=k,
         earth_radius=radius,

@@ -220,6 +220,18 @@ class LocalFrame:
         a, e = np.broadcast_arrays(a, e)
         return np.stack([np.cos(e) * np.sin(a), np.sin(e), -np.cos(e) * np.cos(a)], axis=-1)
 
+    def _frame_azimuth(self, lat: float, lon: float, azimuth: float) -> float:
+        """The frame's azimuth [deg] of the geodesic leaving (lat, lon) at the local ``azimuth``: its
+        first metre projected (this includes the meridians' convergence, about 0.9 deg 100 km east
+        of the origin at 47 deg, and the projection's small distortion)."""
+        lat2, lon2, _ = forward(lat, lon, azimuth, 1.0)
+        start, end = self.to_scene([lat, lat2], [lon, lon2], 0.0)
+        return math.degrees(math.atan2(end[0] - start[0], start[2] - end[2]))
+
+    def __reduce__(self):
+        # The mapping of heights depends on R alone: a frame made from a CurvedEarth pickles as its radius.
+        return LocalFrame, (self.lat, self.lon, self.height, self.earth_radius)
+
     def origin_ground(self) -> np.ndarray:
         """The scene point (3,) of the ground at the origin: (0, flat height of ``height``, 0)."""
         return np.array([0.0, self.flat_height(self.height), 0.0])
@@ -240,8 +252,9 @@ class LocalFrame:
     ) -> _core.Camera:
         """A camera in this frame, ``height`` [m] above the ellipsoid (the eye, not the ground) over the
         origin (or over ``position`` = (lat, lon) elsewhere in the frame), looking at ``azimuth``
-        (clockwise from north) and ``elevation`` [deg] (in the scene's frame: away from the origin
-        the local vertical of CurvedEarth's flat frame is still y).
+        (clockwise from the local north there: a compass bearing, turned into the frame's by
+        projecting the geodesic that leaves at it) and ``elevation`` [deg] above the horizontal
+        (CurvedEarth's flat frame keeps y as the local vertical everywhere).
 
         Give exactly one of vfov [deg] (vertical field of view; Camera(...)) or focal_length_mm with
         sensor_mm = (width, height) [mm] (Camera.photographic's lens and sensor; None: its full-frame
@@ -262,6 +275,7 @@ class LocalFrame:
             if len(position) != 2:
                 raise ValueError(f"position must be (lat, lon) (got {position!r})")
             eye = self.to_scene(position[0], position[1], height)
+            a = self._frame_azimuth(float(position[0]), float(position[1]), a)
         forward_ = self.direction(a, e)
         # The unrolled camera's up: the view direction turned 90 deg up in its vertical plane.
         sa, ca, se, ce = (

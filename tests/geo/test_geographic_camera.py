@@ -1,6 +1,7 @@
 """Camera.geographic and LocalFrame.camera (issue 20): where the camera stands and looks."""
 
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -51,11 +52,34 @@ def test_roll_dips_the_right_side():
     np.testing.assert_allclose(rolled.ray(20.0, 10.0)[1], level.ray(20.0, 10.0)[1], atol=1e-12)  # the axis stays
 
 
-def test_frame_camera_elsewhere_in_the_frame():
+def test_frame_camera_elsewhere_in_the_frame_takes_the_local_compass_bearing():
     frame = geo.LocalFrame(47.0, 8.0, earth_radius=geo.radius_of_curvature(47.0, 90.0))
-    camera = frame.camera(700.0, 270.0, -1.0, vfov=5.0, position=(47.2, 8.3))
-    np.testing.assert_allclose(camera.position, frame.to_scene(47.2, 8.3, 700.0), atol=1e-9)  # rounding only
-    np.testing.assert_allclose(camera.ray(320.0, 180.0)[1], frame.direction(270.0, -1.0), atol=1e-12)  # rounding
+    # A camera 100 km east of the origin aimed by compass at a summit 20 km from it.
+    here, summit = (47.0, 9.3), (47.1, 9.5)
+    _, bearing, _ = geo.inverse(*here, *summit)
+    camera = frame.camera(700.0, bearing, 0.0, vfov=5.0, position=here)
+    np.testing.assert_allclose(camera.position, frame.to_scene(*here, 700.0), atol=1e-9)  # rounding only
+    forward = camera.ray(320.0, 180.0)[1]
+    towards = frame.to_scene(*summit, 700.0) - camera.position
+    frame_bearing = math.degrees(math.atan2(towards[0], -towards[2]))
+    # The local bearing is not the frame's: the meridians converge by about 1 deg here.
+    assert abs(frame_bearing - bearing) > 0.5
+    # Level, and along the projected geodesic: it bends off the straight line to the summit in the
+    # frame by the projection's distortion, under 1e-4 rad over 20 km this close to the origin.
+    assert forward[1] == pytest.approx(0.0, abs=1e-12)  # rounding of a level direction
+    assert math.degrees(math.atan2(forward[0], -forward[2])) == pytest.approx(
+        frame_bearing, abs=6e-3
+    )  # 1e-4 rad: aeqd's distortion
+    # At the origin the bearing is the frame's azimuth.
+    at_origin = frame.camera(700.0, 270.0, -1.0, vfov=5.0)
+    np.testing.assert_allclose(at_origin.ray(320.0, 180.0)[1], frame.direction(270.0, -1.0), atol=1e-12)  # rounding
+
+
+def test_frames_pickle():
+    frame = geo.LocalFrame(47.0, 8.0, 430.0, earth_radius=refracta.CurvedEarth(refracta.PhysicalAtmosphere(), 6.4e6))
+    copy = pickle.loads(pickle.dumps(frame))
+    assert repr(copy) == repr(frame)
+    np.testing.assert_array_equal(copy.to_scene(47.3, 8.2, 1000.0), frame.to_scene(47.3, 8.2, 1000.0))
 
 
 def test_bad_camera_arguments():

@@ -112,3 +112,12 @@ def test_bad_arguments(kwargs, match):
     arguments = {"field": refracta.PhysicalAtmosphere(), "eye_height": 2.0, "distance": 1000.0, **kwargs}
     with pytest.raises(ValueError, match=match):
         refracta.refraction_coefficient(**arguments)
+
+
+def test_from_the_ground_the_hidden_height_is_the_horizontal_rays():
+    # An eye on the surface sees no farther than its horizontal ray: what that ray passes over at
+    # the distance is hidden, with the air (drop_refracted) and without it (drop_straight).
+    result = refracta.refraction_coefficient(refracta.PhysicalAtmosphere(), 0.0, 20000.0, target_height=40.0)
+    assert result.hidden_height_refracted == pytest.approx(result.drop_refracted, abs=1e-6)  # the tracer's tol
+    assert result.hidden_height_straight == pytest.approx(result.drop_straight, rel=1e-9)  # two forms of one formula
+    assert result.apparent_elevation > result.true_elevation > 0.0
