@@ -25,23 +25,30 @@ def geographic_camera(
     ellipsoid (the eye's height: the ground's height plus the eye above it), looking at ``azimuth``
     [deg clockwise from north] and ``elevation`` [deg above the horizontal].
 
-    It sits at the origin of ``refracta.geo.LocalFrame(lat, lon, earth_radius=earth_radius)``, at
-    scene position (0, R ln(1 + height / R), 0): build the rest of the scene with that frame
-    (``to_scene``) and give the same R to CurvedEarth. Give exactly one of vfov [deg] (the vertical
-    field of view) or focal_length_mm with sensor_mm = (width, height) [mm] (Camera.photographic's
-    lens and sensor; None: its full-frame default). image_width, image_height [pixels]: the image's
-    size (None: the bound constructor's default; named so as not to clash with the eye's height).
-    roll [deg]: the camera turned clockwise about its view direction as seen from behind (the
-    image's right side dips), 0 level. earth_radius as for LocalFrame (None: sqrt(M N) at lat).
-    For a camera elsewhere in an existing frame use ``LocalFrame.camera``. Example::
+    It sits at the origin of ``refracta.geo.LocalFrame(lat, lon, earth_radius=R)``, at scene
+    position (0, R ln(1 + height / R), 0): build the rest of the scene with that frame
+    (``to_scene``) and give the same R to CurvedEarth. earth_radius: R [m] (or a CurvedEarth, or
+    math.inf for a flat-Earth scene); None: the ellipsoid's radius of curvature along
+    ``azimuth``, ``geo.radius_of_curvature(lat, azimuth)`` (issue 20's convention for a
+    geographic scene).
+
+    Give exactly one of vfov [deg] (the vertical field of view) or focal_length_mm with sensor_mm
+    = (width, height) [mm] (Camera.photographic's lens and sensor; None: its full-frame default).
+    image_width, image_height [pixels]: the image's size (None: the bound constructor's default;
+    named so as not to clash with the eye's height). roll [deg]: the camera turned clockwise about
+    its view direction as seen from behind (the image's right side dips), 0 level. For a camera
+    elsewhere in an existing frame use ``LocalFrame.camera``. Example::
 
         R = refracta.geo.radius_of_curvature(47.0, 120.0)
         camera = refracta.Camera.geographic(47.0, 8.0, 450.0, 120.0, 0.0, focal_length_mm=300.0,
                                             image_width=960, image_height=640, earth_radius=R)
+        air = refracta.CurvedEarth(refracta.PhysicalAtmosphere(), radius=R)
     """
-    from refracta.geo import LocalFrame  # here: pyproj loads on first use, not with refracta
+    from refracta import geo  # here: pyproj loads on first use, not with refracta
 
-    frame = LocalFrame(lat, lon, earth_radius=earth_radius)
+    if earth_radius is None:
+        earth_radius = geo.radius_of_curvature(lat, azimuth)
+    frame = geo.LocalFrame(lat, lon, earth_radius=earth_radius)
     return frame.camera(
         height,
         azimuth,

@@ -15,7 +15,8 @@ def test_it_looks_along_the_stated_azimuth_and_elevation(azimuth, elevation):
     camera = refracta.Camera.geographic(
         46.5, 7.9, 1850.0, azimuth, elevation, vfov=10.0, image_width=64, image_height=48
     )
-    frame = geo.LocalFrame(46.5, 7.9)
+    # By default the camera's frame flattens the Earth with the radius of curvature along its view.
+    frame = geo.LocalFrame(46.5, 7.9, earth_radius=geo.radius_of_curvature(46.5, azimuth))
     origin, forward = camera.ray(32.0, 24.0)  # the image centre: the view axis
     np.testing.assert_allclose(forward, frame.direction(azimuth, elevation), atol=1e-12)  # rounding of unit vectors
     np.testing.assert_allclose(origin, [0.0, frame.flat_height(1850.0), 0.0], atol=1e-9)  # rounding only
