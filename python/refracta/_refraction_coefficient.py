@@ -30,8 +30,9 @@ class RefractionCoefficient:
     Attributes:
         k: the coefficient of refraction: a ray leaving the eye horizontally is
             ``eye_height + (1 - k) distance**2 / (2 earth_radius)`` above the surface at ``distance``
-            (0 without air; about 0.17 in the U.S. Standard Atmosphere near sea level; 1 where the
-            ray follows the Earth's curve; above 1 in ducts).
+            (about 0.17 in the U.S. Standard Atmosphere near sea level; 1 where the ray follows the
+            Earth's curve; above 1 in ducts; without air the formula's own truncation,
+            -(eye_height / R + 5 distance^2 / (12 R^2)), -1e-5 at 30 km).
         earth_radius: R [m] of the curved Earth the ray was traced over.
         eye_height: the eye's height above the surface [m].
         distance: the distance along the surface [m] at which everything is measured.
@@ -44,14 +45,17 @@ class RefractionCoefficient:
             eye along straight lines (0 within the geometric horizon).
         hidden_height_refracted: the same through the air: the height at ``distance`` of the lowest
             traced ray that passes over the surface all the way (the ray grazing the horizon), 0
-            when the surface at ``distance`` is in view. With several rays over the same point
-            (mirages) it is that of the transition from the sky downward.
+            when the surface at ``distance`` is in view (to the tracer's tolerance). In a mirage,
+            where rays meeting the ground and rays clearing it alternate with the launch
+            elevation, it is one such transition near the horizontal (the bisection's); use an
+            ElevationTable for the whole fan.
         target_height: the target's height above the surface [m], or None when none was given.
         true_elevation: the target's elevation [deg] from the eye along a straight line, or None.
         apparent_elevation: the launch elevation [deg] of the traced ray that reaches the target
             (where it is seen), or None when no target was given or it is hidden
             (``target_height < hidden_height_refracted``). apparent minus true elevation is about
-            k distance / (2R) [rad] for a ray of constant curvature.
+            k distance / (2R) [rad] for a ray of constant curvature. Where a mirage shows the
+            target more than once, one of its images (the search's).
     """
 
     k: float
