@@ -9,6 +9,7 @@ SUBMODULES = [
     "compare",
     "edit",
     "examples",
+    "geo",
     "io",
     "lights",
     "moments",
@@ -28,11 +29,12 @@ def run_python(code: str) -> dict:
     return json.loads(out.stdout)
 
 
-def test_import_refracta_does_not_import_matplotlib_or_the_heavy_submodules():
+def test_import_refracta_does_not_import_matplotlib_pyproj_or_the_heavy_submodules():
     result = run_python(
         "import json, sys, refracta\n"
-        "print(json.dumps(sorted(m for m in sys.modules if m == 'matplotlib' or m.startswith(('matplotlib.', "
-        "'refracta.edit', 'refracta.plot', 'refracta.compare', 'refracta.examples', 'refracta.cli')))))"
+        "print(json.dumps(sorted(m for m in sys.modules if m in ('matplotlib', 'pyproj') or m.startswith(("
+        "'matplotlib.', 'pyproj.', 'refracta.edit', 'refracta.plot', 'refracta.compare', 'refracta.examples', "
+        "'refracta.cli', 'refracta.geo')))))"
     )
     assert result == []
 
