@@ -13,7 +13,7 @@ and does not import matplotlib.
 
 import importlib as _importlib
 
-from refracta import io, lights, shading, spectrum, testing
+from refracta import io, lights, shading, spectrum, terrain, testing
 from refracta._animate import animate, geometric_noise
 from refracta._astronomy import astronomical_refraction
 from refracta._core import (
@@ -129,6 +129,7 @@ __all__ = [
     "lights",
     "shading",
     "spectrum",
+    "terrain",
     "testing",
     "load_scene",
     "render",

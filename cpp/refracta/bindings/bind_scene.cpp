@@ -323,6 +323,7 @@ counter-clockwise front unless two_sided). Units: metres, y up.)doc");
   bind_camera(m);
   bind_image_io(m);
   bind_ocean(m);  // OceanWaves and Scene.add_sea
+  bind_terrain(m);  // Scene._add_terrain_grid (refracta.terrain: Scene.add_terrain)
 }
 
 }  // namespace refracta

@@ -19,5 +19,6 @@ py::array_t<float> image_to_float32(Image&& image);  // without copying the pixe
 void bind_scene_lights(py::class_<RenderScene, std::shared_ptr<RenderScene>>& scene);  // bind_scene_lights.cpp
 void bind_camera(py::module_& m);                                                     // bind_camera.cpp
 void bind_image_io(py::module_& m);                                                   // bind_image_io.cpp
+void bind_terrain(py::module_& m);                                                    // bind_terrain.cpp (Scene._add_terrain_grid)
 
 }  // namespace refracta

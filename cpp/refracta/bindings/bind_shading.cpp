@@ -124,6 +124,7 @@ void bind_shading(py::module_& m) {
   bind_materials(m);
   bind_water(m);
   bind_microfacet(m);
+  bind_terrain_shading(m);
 }
 
 }  // namespace refracta

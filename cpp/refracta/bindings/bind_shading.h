@@ -15,6 +15,7 @@ namespace refracta {
 void bind_material_base(py::module_& m);  // Material, BsdfSample (bind_material.cpp)
 void bind_materials(py::module_& m);      // Diffuse ... ThinFilm (bind_materials.cpp)
 void bind_microfacet(py::module_& m);     // Beckmann, TrowbridgeReitz, Fresnel, Ior (bind_microfacet.cpp)
+void bind_terrain_shading(py::module_& m);  // TerrainShading (bind_terrain.cpp)
 
 // A colour with its texture= argument (material_util.h's TexturedReflectance): None; an image
 // file (str or os.PathLike), made absolute from the working directory and registered in each

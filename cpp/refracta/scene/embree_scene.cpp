@@ -1,4 +1,4 @@
-// Embree 3 scene: triangle meshes and spheres, checked single-ray queries.
+// Embree 3 scene: triangle meshes, spheres and terrain grids, checked single-ray queries.
 #include "refracta/scene/embree_scene.h"
 
 #include "refracta/core/error.h"
@@ -171,6 +171,39 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
   return id;
 }
 
+unsigned Scene::add_terrain(std::shared_ptr<const TerrainGrid> terrain, int material) {
+  check_unchanging("add_terrain");
+  if (material < 0) throw_invalid("add_terrain: material must be a material id (got ", material, ")");
+  if (!terrain) throw_invalid("add_terrain: no terrain grid");
+  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_GRID);
+  // Shared: the grid's own floats (with their padding) are Embree's vertex buffer.
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, terrain->vertex_buffer(), 0,
+                             3 * sizeof(float), terrain->vertex_count());
+  const std::vector<TerrainPatch>& patches = terrain->patches();
+  auto* grids = static_cast<RTCGrid*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(RTCGrid), patches.size()));
+  for (size_t i = 0; i < patches.size(); ++i) {
+    const TerrainPatch& p = patches[i];
+    grids[i].startVertexID = unsigned(size_t(p.row) * size_t(terrain->cols()) + p.col);
+    grids[i].stride = unsigned(terrain->cols());
+    grids[i].width = p.cols;
+    grids[i].height = p.rows;
+  }
+  rtcCommitGeometry(geometry);
+  const unsigned id = unsigned(materials_.size());
+  rtcAttachGeometryByID(impl_->scene, geometry, id);
+  rtcReleaseGeometry(geometry);
+  impl_->check();
+  materials_.push_back(material);
+  meshes_.push_back({id, {}});
+  sphere_sets_.push_back(nullptr);
+  terrains_.resize(materials_.size());
+  lower_ = lower_.cwiseMin(terrain->lower()), upper_ = upper_.cwiseMax(terrain->upper());
+  terrains_[id] = std::move(terrain);
+  impl_->dirty = true;
+  return id;
+}
+
 int Scene::add_texture(const std::string& path) {
   check_unchanging("add_texture");
   return textures_->add(path);
@@ -204,6 +237,7 @@ void Scene::remove(unsigned geometry) {
   impl_->dirty = true;  // the next query commits the scene without it
   meshes_[geometry].mesh = Mesh{};
   sphere_sets_[geometry] = nullptr;
+  if (geometry < terrains_.size()) terrains_[geometry] = nullptr;
   removed_.resize(materials_.size(), false);
   removed_[geometry] = true;
   // The bounds of what is left.
@@ -214,6 +248,8 @@ void Scene::remove(unsigned geometry) {
         lower_ = lower_.cwiseMin(spheres->centres[i] - Vec3d::Constant(spheres->radii[i]));
         upper_ = upper_.cwiseMax(spheres->centres[i] + Vec3d::Constant(spheres->radii[i]));
       }
+    } else if (const TerrainGrid* grid = terrain(g)) {
+      lower_ = lower_.cwiseMin(grid->lower()), upper_ = upper_.cwiseMax(grid->upper());
     } else {
       for (const auto& v : meshes_[g].mesh.vertices) lower_ = lower_.cwiseMin(v), upper_ = upper_.cwiseMax(v);
     }
@@ -241,6 +277,53 @@ void fill_ray(RTCRay& ray, const Vec3d& origin, const Vec3d& dir, double t_max) 
   ray.flags = 0;
 }
 
+// Float hits are within ~1e-6 relative of the double solution; farther means a grazing or
+// degenerate case where the float answer is kept.
+constexpr double kRefineWindow = 1e-4;
+
+// A terrain hit: Embree's patch and grid coordinates (u, v) give the cell; the ray is re-solved in
+// double against the cell's two triangles (Moller & Trumbore 1997), as mesh hits are below, and
+// the triangle whose barycentric weights are least outside [0, 1] is the one met.
+void terrain_hit(const TerrainGrid& grid, const Vec3d& origin, const Vec3d& dir, unsigned patch, double u, double v,
+                 Hit* hit) {
+  const auto [row, col] = grid.cell_of(patch, u, v);
+  const TerrainPatch& p = grid.patches()[patch];
+  // Fractions across the cell from Embree's own coordinates: the fallback when both triangles
+  // lie along the ray.
+  const double fc = std::clamp(u * (p.cols - 1) - (col - int(p.col)), 0.0, 1.0);
+  const double fr = std::clamp(v * (p.rows - 1) - (row - int(p.row)), 0.0, 1.0);
+  int best = fc + fr <= 1.0 ? 0 : 1;
+  double b1 = best == 0 ? fr : 1.0 - fr, b2 = best == 0 ? fc : 1.0 - fc, t = hit->t;
+  double least_outside = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 2; ++k) {
+    const auto tri = grid.triangle(row, col, k);
+    const Vec3d p0 = grid.position(tri[0][0], tri[0][1]);
+    const Vec3d e1 = grid.position(tri[1][0], tri[1][1]) - p0, e2 = grid.position(tri[2][0], tri[2][1]) - p0;
+    const Vec3d pv = dir.cross(e2);
+    const double det = e1.dot(pv);
+    if (!(std::abs(det) > 1e-300)) continue;
+    const Vec3d tv = origin - p0, qv = tv.cross(e1);
+    const double c1 = tv.dot(pv) / det, c2 = dir.dot(qv) / det, ct = e2.dot(qv) / det;
+    const double outside = std::max(0.0, -c1) + std::max(0.0, -c2) + std::max(0.0, c1 + c2 - 1.0);
+    if (outside < least_outside) least_outside = outside, best = k, b1 = c1, b2 = c2, t = ct;
+  }
+  if (t > 0.0 && std::abs(t - hit->t) <= kRefineWindow * (1.0 + hit->t)) hit->t = t;  // not at grazing
+  b1 = std::clamp(b1, 0.0, 1.0), b2 = std::clamp(b2, 0.0, 1.0);
+  if (b1 + b2 > 1.0) {
+    const double sum = b1 + b2;
+    b1 /= sum, b2 /= sum;
+  }
+  const auto tri = grid.triangle(row, col, best);
+  const Vec3d p0 = grid.position(tri[0][0], tri[0][1]);
+  const Vec3d normal =
+      (grid.position(tri[1][0], tri[1][1]) - p0).cross(grid.position(tri[2][0], tri[2][1]) - p0).normalized();
+  hit->point = origin + hit->t * dir;
+  hit->front_face = normal.dot(dir) < 0.0;  // the front is up (terrain.h)
+  hit->normal = hit->front_face ? normal : Vec3d(-normal);
+  hit->primitive = unsigned(2 * (size_t(row) * size_t(grid.cols() - 1) + size_t(col)) + size_t(best));
+  hit->b1 = b1, hit->b2 = b2;
+}
+
 }  // namespace
 
 std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, double t_max) const {
@@ -256,9 +339,11 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   Hit hit;
   hit.t = query.ray.tfar;
-  // Float hits are within ~1e-6 relative of the double solution; farther means a grazing or
-  // degenerate case where the float answer is kept.
-  constexpr double kRefineWindow = 1e-4;
+  if (const TerrainGrid* grid = terrain(query.hit.geomID)) {
+    terrain_hit(*grid, origin, dir, query.hit.primID, query.hit.u, query.hit.v, &hit);
+    hit.geometry = query.hit.geomID;
+    return hit;
+  }
   // The hit re-solved in double against the primitive: Embree's float t carries an error of
   // about 6e-8 of the distance, which beyond a few hundred metres exceeds the offsets that keep
   // secondary rays off the surface (a glass seen from 1 km lost all its transmission).
@@ -353,8 +438,66 @@ Mesh billboard_mesh(const Vec3d& centre, double width, double height, const Vec3
 }
 
 bool Scene::has_uvs(unsigned geometry) const {
+  if (terrain(geometry)) return true;  // an affine map of the grid's (column, row)
   return !sphere_sets_.at(geometry) && !meshes_.at(geometry).mesh.uvs.empty();
 }
+
+namespace {
+
+// The shading part of a hit on triangle p (barycentric weights b1, b2 of p[1], p[2]): the
+// interpolated shading normal (when normals are given; a zero one counts for nothing), uv, dp/du
+// and the texture footprint (Scene::interaction). si's point and geometric normal are set.
+void triangle_surface(const std::array<Vec3d, 3>& p, const std::array<Vec3d, 3>* normals,
+                      const std::array<Eigen::Vector2d, 3>* uvs, double b1, double b2, const Vec3d& dir,
+                      const std::array<Vec3d, 2>& footprint, SurfaceInteraction* out) {
+  SurfaceInteraction& si = *out;
+  const double b0 = 1.0 - b1 - b2;
+  const Vec3d& p0 = p[0];
+  const Vec3d e1 = p[1] - p0, e2 = p[2] - p0;
+  if (normals) {
+    Vec3d ns = b0 * (*normals)[0] + b1 * (*normals)[1] + b2 * (*normals)[2];
+    if (ns.norm() > 1e-12) {
+      ns.normalize();
+      si.ns = ns.dot(si.n) < 0.0 ? Vec3d(-ns) : ns;  // on the geometric normal's side
+    }
+  }
+  si.dpdu = e1.norm() > 0.0 ? Vec3d(e1.normalized()) : Vec3d::UnitX();
+  if (!uvs) return;
+  const std::array<Eigen::Vector2d, 3>& uv = *uvs;
+  si.uv = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
+  Eigen::Matrix2d uv_edges;
+  uv_edges << uv[1] - uv[0], uv[2] - uv[0];
+  // dp/du from the uv parametrisation when it is not degenerate.
+  if (std::abs(uv_edges.determinant()) > 1e-300) {
+    const Eigen::Matrix2d inverse = uv_edges.inverse();
+    const Vec3d dpdu = e1 * inverse(0, 0) + e2 * inverse(1, 0);
+    if (is_finite(dpdu) && dpdu.norm() > 0.0) si.dpdu = dpdu.normalized();
+  }
+  TextureLookup& at = si.texture;
+  at.s = si.uv.x();
+  at.t = 1.0 - si.uv.y();  // OIIO's t runs down the image, OBJ's v up
+  if (footprint[0].squaredNorm() + footprint[1].squaredNorm() > 0.0) {
+    // Footprint axes across the ray, projected along it onto the plane; then barycentric
+    // offsets by the pseudo-inverse of the edge matrix, and uv offsets by the uv edges.
+    Eigen::Matrix<double, 3, 2> edges;
+    edges << e1, e2;
+    const Vec3d n = e1.cross(e2);
+    const Vec3d d = dir.normalized();
+    const Eigen::Matrix<double, 2, 3> to_bary = (edges.transpose() * edges).inverse() * edges.transpose();
+    Eigen::Vector2d duv[2];
+    for (int k = 0; k < 2; ++k) {
+      const double along = n.dot(d);
+      const Vec3d& axis = footprint[k];
+      const Vec3d on_plane = std::abs(along) > 1e-12 * n.norm() ? Vec3d(axis - d * (n.dot(axis) / along)) : axis;
+      duv[k] = uv_edges * (to_bary * on_plane);
+    }
+    // A grazing view stretches the footprint without bound: cap it at a few texture repeats.
+    at.dsdx = std::clamp(duv[0].x(), -4.0, 4.0), at.dtdx = std::clamp(-duv[0].y(), -4.0, 4.0);
+    at.dsdy = std::clamp(duv[1].x(), -4.0, 4.0), at.dtdy = std::clamp(-duv[1].y(), -4.0, 4.0);
+  }
+}
+
+}  // namespace
 
 SurfaceInteraction Scene::interaction(const Hit& hit, const Vec3d& dir, double footprint) const {
   const Frame across = Frame::from_z(dir.normalized());
@@ -384,51 +527,30 @@ SurfaceInteraction Scene::interaction(const Hit& hit, const Vec3d& dir, const st
     si.texture.s = si.uv.x(), si.texture.t = 1.0 - si.uv.y();
     return si;
   }
+  if (const TerrainGrid* grid = terrain(hit.geometry)) {
+    // The hit's triangle of its cell (Hit's primitive), normals and uvs from the grid.
+    const size_t cell = hit.primitive / 2;
+    const int row = int(cell / size_t(grid->cols() - 1)), col = int(cell % size_t(grid->cols() - 1));
+    const auto tri = grid->triangle(row, col, int(hit.primitive % 2));
+    std::array<Vec3d, 3> p, normals;
+    std::array<Eigen::Vector2d, 3> uvs;
+    for (int k = 0; k < 3; ++k) {
+      p[k] = grid->position(tri[k][0], tri[k][1]);
+      normals[k] = grid->normal(tri[k][0], tri[k][1]);
+      uvs[k] = grid->uv(tri[k][0], tri[k][1]);
+    }
+    triangle_surface(p, &normals, &uvs, hit.b1, hit.b2, dir, footprint, &si);
+    return si;
+  }
   const Mesh& mesh = meshes_.at(hit.geometry).mesh;
   const auto& tri = mesh.triangles.at(hit.primitive);
-  const double b0 = 1.0 - hit.b1 - hit.b2;
-  const Vec3d& p0 = mesh.vertices[tri[0]];
-  const Vec3d e1 = mesh.vertices[tri[1]] - p0, e2 = mesh.vertices[tri[2]] - p0;
-  if (!mesh.normals.empty()) {
-    Vec3d ns = b0 * mesh.normals[tri[0]] + hit.b1 * mesh.normals[tri[1]] + hit.b2 * mesh.normals[tri[2]];
-    if (ns.norm() > 1e-12) {
-      ns.normalize();
-      si.ns = ns.dot(si.n) < 0.0 ? Vec3d(-ns) : ns;  // on the geometric normal's side
-    }
-  }
-  si.dpdu = e1.norm() > 0.0 ? Vec3d(e1.normalized()) : Vec3d::UnitX();
-  if (mesh.uvs.empty()) return si;
-  si.uv = b0 * mesh.uvs[tri[0]] + hit.b1 * mesh.uvs[tri[1]] + hit.b2 * mesh.uvs[tri[2]];
-  Eigen::Matrix2d uv_edges;
-  uv_edges << mesh.uvs[tri[1]] - mesh.uvs[tri[0]], mesh.uvs[tri[2]] - mesh.uvs[tri[0]];
-  // dp/du from the uv parametrisation when it is not degenerate.
-  if (std::abs(uv_edges.determinant()) > 1e-300) {
-    const Eigen::Matrix2d inverse = uv_edges.inverse();
-    const Vec3d dpdu = e1 * inverse(0, 0) + e2 * inverse(1, 0);
-    if (is_finite(dpdu) && dpdu.norm() > 0.0) si.dpdu = dpdu.normalized();
-  }
-  TextureLookup& at = si.texture;
-  at.s = si.uv.x();
-  at.t = 1.0 - si.uv.y();  // OIIO's t runs down the image, OBJ's v up
-  if (footprint[0].squaredNorm() + footprint[1].squaredNorm() > 0.0) {
-    // Footprint axes across the ray, projected along it onto the plane; then barycentric
-    // offsets by the pseudo-inverse of the edge matrix, and uv offsets by the uv edges.
-    Eigen::Matrix<double, 3, 2> edges;
-    edges << e1, e2;
-    const Vec3d n = e1.cross(e2);
-    const Vec3d d = dir.normalized();
-    const Eigen::Matrix<double, 2, 3> to_bary = (edges.transpose() * edges).inverse() * edges.transpose();
-    Eigen::Vector2d duv[2];
-    for (int k = 0; k < 2; ++k) {
-      const double along = n.dot(d);
-      const Vec3d& axis = footprint[k];
-      const Vec3d on_plane = std::abs(along) > 1e-12 * n.norm() ? Vec3d(axis - d * (n.dot(axis) / along)) : axis;
-      duv[k] = uv_edges * (to_bary * on_plane);
-    }
-    // A grazing view stretches the footprint without bound: cap it at a few texture repeats.
-    at.dsdx = std::clamp(duv[0].x(), -4.0, 4.0), at.dtdx = std::clamp(-duv[0].y(), -4.0, 4.0);
-    at.dsdy = std::clamp(duv[1].x(), -4.0, 4.0), at.dtdy = std::clamp(-duv[1].y(), -4.0, 4.0);
-  }
+  const std::array<Vec3d, 3> p{mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]};
+  std::array<Vec3d, 3> normals;
+  std::array<Eigen::Vector2d, 3> uvs;
+  if (!mesh.normals.empty()) normals = {mesh.normals[tri[0]], mesh.normals[tri[1]], mesh.normals[tri[2]]};
+  if (!mesh.uvs.empty()) uvs = {mesh.uvs[tri[0]], mesh.uvs[tri[1]], mesh.uvs[tri[2]]};
+  triangle_surface(p, mesh.normals.empty() ? nullptr : &normals, mesh.uvs.empty() ? nullptr : &uvs, hit.b1, hit.b2, dir,
+                   footprint, &si);
   return si;
 }
 

@@ -5,6 +5,7 @@
 
 #include "refracta/core/math.h"
 #include "refracta/scene/surface_interaction.h"
+#include "refracta/scene/terrain.h"
 #include "refracta/scene/textures.h"
 
 #include <array>
@@ -53,6 +54,11 @@ class Scene {
   // layer's material table (checked there).
   unsigned add_mesh(const Mesh& mesh, int material);
   unsigned add_spheres(const std::vector<Vec3d>& centres, const std::vector<double>& radii, int material);
+  // A terrain grid as Embree grid geometry (its vertex buffer shared, not copied). Its entry in
+  // meshes() is empty: the rasterizer does not draw terrain. A hit's primitive is
+  // 2 * (row * (cols - 1) + col) + k for triangle k of cell (row, col) (TerrainGrid::triangle),
+  // b1 and b2 that triangle's barycentric weights.
+  unsigned add_terrain(std::shared_ptr<const TerrainGrid> terrain, int material);
 
   // Registers an image texture (Textures::add) for this scene's materials; a change like add_mesh.
   int add_texture(const std::string& path);
@@ -91,6 +97,10 @@ class Scene {
   void check_geometry(unsigned geometry, const char* what) const;
   // Every geometry as triangles (spheres as 48 x 24 UV spheres), in geometry order.
   const std::vector<SceneMesh>& meshes() const { return meshes_; }
+  // A terrain's grid (null for every other geometry).
+  const TerrainGrid* terrain(unsigned geometry) const {
+    return geometry < terrains_.size() ? terrains_[geometry].get() : nullptr;
+  }
   // Whether a geometry is an exact sphere set (add_spheres) rather than a triangle mesh.
   bool is_spheres(unsigned geometry) const { return sphere_sets_.at(geometry) != nullptr; }
   struct Spheres {
@@ -132,6 +142,7 @@ class Scene {
   std::vector<int> materials_;
   std::vector<SceneMesh> meshes_;
   std::vector<std::shared_ptr<const Spheres>> sphere_sets_;  // null for meshes
+  std::vector<std::shared_ptr<const TerrainGrid>> terrains_;  // by geometry id (shorter: the rest are not terrain)
   std::vector<bool> removed_;  // by geometry id (shorter: the rest not removed)
   std::shared_ptr<Textures> textures_ = std::make_shared<Textures>();
   Vec3d lower_ = Vec3d::Constant(std::numeric_limits<double>::infinity());

@@ -1,0 +1,90 @@
+// Python bindings of terrain (scene/terrain.h, shading/terrain_shading.h): the array-only
+// Scene._add_terrain_grid that refracta.terrain.add_terrain (the public Scene.add_terrain) calls
+// after reading files and placing samples, and the TerrainShading material.
+#include "refracta/bindings/bind_scene.h"
+#include "refracta/bindings/bind_shading.h"
+
+#include "refracta/scene/terrain.h"
+#include "refracta/shading/terrain_shading.h"
+
+#include <memory>
+#include <vector>
+
+namespace refracta {
+
+void bind_terrain(py::module_& m) {
+  auto scene = py::reinterpret_borrow<py::class_<RenderScene, std::shared_ptr<RenderScene>>>(m.attr("Scene"));
+  scene.def(
+      "_add_terrain_grid",
+      [](RenderScene& s, const py::array_t<float, py::array::c_style | py::array::forcecast>& positions,
+         const py::object& material, const py::array_t<double, py::array::c_style | py::array::forcecast>& uv_from_index) {
+        if (positions.ndim() != 3 || positions.shape(2) != 3) {
+          throw_invalid("add_terrain: positions must be a (rows, cols, 3) array (got ndim ", positions.ndim(), ")");
+        }
+        if (uv_from_index.ndim() != 2 || uv_from_index.shape(0) != 2 || uv_from_index.shape(1) != 3) {
+          throw_invalid("add_terrain: uv_from_index must be a (2, 3) array");
+        }
+        std::shared_ptr<Material> m;
+        try {
+          m = py::cast<std::shared_ptr<Material>>(material);
+        } catch (const py::cast_error&) {
+          throw_invalid("add_terrain: material must be a refracta.shading material (got ", std::string(py::str(py::type::of(material))), ")");
+        }
+        if (!m) throw_invalid("add_terrain: material must be a refracta.shading material (got None)");
+        const int rows = int(positions.shape(0)), cols = int(positions.shape(1));
+        Eigen::Matrix<double, 2, 3> uv;
+        for (int i = 0; i < 2; ++i) {
+          for (int j = 0; j < 3; ++j) uv(i, j) = uv_from_index.at(i, j);
+        }
+        std::shared_ptr<const TerrainGrid> grid;
+        {
+          const float* data = positions.data();
+          std::vector<float> copy(data, data + positions.size());
+          py::gil_scoped_release release;
+          grid = std::make_shared<const TerrainGrid>(rows, cols, std::move(copy), uv);
+        }
+        return s.geometry.add_terrain(grid, s.add_material(m));
+      },
+      py::arg("positions"), py::arg("material"), py::arg("uv_from_index"),
+      "Terrain as Embree grid geometry (private: use Scene.add_terrain). positions: (rows, cols, 3) [m]\n"
+      "float32, row-major, rows along +z and columns along +x so the front is up; a sample with a NaN\n"
+      "coordinate is a hole. uv_from_index (2, 3): (u, v) = A (col, row, 1). Returns the geometry id.");
+}
+
+void bind_terrain_shading(py::module_& m) {
+  const TerrainShadingParameters d;
+  py::class_<TerrainShading, Material, std::shared_ptr<TerrainShading>> terrain(m, "TerrainShading", R"doc(
+Terrain coloured by elevation, slope and snow line (shading/terrain_shading.h), the default of
+Scene.add_terrain: Lambertian, its reflectance ``vegetation`` below ``tree_line`` [m], ``rock``
+above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above
+``snow_line`` [m] on slopes under 55 deg (snow slides off steeper ones); the covers blend over
+100 m of height and 5 deg of slope. Heights are true heights above sea level: with
+``earth_radius`` R > 0 (the scene's CurvedEarth radius) the scene's y is the flat height
+y' = R ln(1 + h/R) and h = R (exp(y'/R) - 1); 0 means a flat Earth (h = y). The slope is the
+shading normal's angle from +y (the Earth-flattening map is conformal: it keeps angles).
+Colours are linear RGB albedos in [0, 1]: conifer forest ~0.08, rock 0.2-0.3, old snow ~0.8.)doc");
+  terrain
+      .def(py::init([](double snow_line, double tree_line, double rock_slope, double earth_radius, const py::object& vegetation,
+                       const py::object& rock, const py::object& snow) {
+             TerrainShadingParameters p;
+             p.snow_line = snow_line, p.tree_line = tree_line, p.rock_slope = rock_slope, p.earth_radius = earth_radius;
+             p.vegetation = to_rgb(vegetation, "vegetation"), p.rock = to_rgb(rock, "rock"), p.snow = to_rgb(snow, "snow");
+             return std::make_shared<TerrainShading>(p);
+           }),
+           py::arg("snow_line") = d.snow_line, py::arg("tree_line") = d.tree_line, py::arg("rock_slope") = d.rock_slope,
+           py::arg("earth_radius") = d.earth_radius, py::arg("vegetation") = rgb_tuple(d.vegetation),
+           py::arg("rock") = rgb_tuple(d.rock), py::arg("snow") = rgb_tuple(d.snow))
+      .def(
+          "reflectance",
+          [](const TerrainShading& t, double height, double slope) { return rgb_tuple(t.reflectance(height, slope)); },
+          py::arg("height"), py::arg("slope"),
+          "The linear RGB albedo at true height `height` [m] on ground sloping `slope` [deg].");
+  add_parameters<TerrainShading>(terrain, [](const TerrainShading& t) {
+    const TerrainShadingParameters& p = t.parameters();
+    return py::dict(py::arg("snow_line") = p.snow_line, py::arg("tree_line") = p.tree_line, py::arg("rock_slope") = p.rock_slope,
+                    py::arg("earth_radius") = p.earth_radius, py::arg("vegetation") = rgb_tuple(p.vegetation),
+                    py::arg("rock") = rgb_tuple(p.rock), py::arg("snow") = rgb_tuple(p.snow));
+  });
+}
+
+}  // namespace refracta

@@ -1,0 +1,420 @@
+"""refracta.terrain: terrain from elevation data -- ``Scene.add_terrain`` (issue 20, section 1).
+
+Reading elevation files is I/O, so it lives here; the geometry is C++ (scene/terrain.h): Embree
+grid geometry, one float3 vertex per sample (12 bytes), smooth normals from the neighbouring
+samples, holes (NaN samples, SRTM voids) left out cell by cell. A 3601 x 3601 SRTM tile loads and
+renders within 1 GB (benchmarks/bench_terrain.py measures it).
+
+Two forms of :func:`add_terrain` (bound as ``Scene.add_terrain``):
+
+- an array of heights [m], (rows, cols): rows along +z, columns along +x, element [0, 0] at scene
+  (x0, z0) = ``origin``, samples ``spacing`` = (dx, dz) [m] apart. With ``earth_radius`` R (the
+  radius of the scene's :class:`refracta.CurvedEarth`), the array lies on the curved Earth:
+  x and z are distances along the Earth's surface (CurvedEarth's flat frame) and a height h above
+  the sea-level sphere lands at y = R ln(1 + h / R), exactly where CurvedEarth puts the ground;
+  without it y = h (a flat Earth).
+- elevation files in a geographic scene: an SRTM ``.hgt`` tile (big-endian int16, 1201 x 1201 or
+  3601 x 3601 samples, the name giving its south-west corner, e.g. ``N46E007.hgt``; -32768 marks a
+  void), a GeoTIFF (read with tifffile: ModelTiepoint + ModelPixelScale and its GeoKeys; geographic
+  WGS84 (EPSG:4326) or a projected CRS with an EPSG code, through pyproj; GDAL_NODATA samples are
+  holes), or a list of such files (one grid each; neighbouring SRTM tiles share their edge samples,
+  so they meet without a seam). Each sample goes to ``frame.to_scene(lat, lon, h)``
+  (:class:`refracta.geo.LocalFrame`: azimuthal equidistant about the observer, flat heights with
+  ``frame.earth_radius`` -- give the scene's CurvedEarth the same radius).
+
+Colour: ``material=None`` gives :class:`refracta.shading.TerrainShading` (vegetation low, rock above
+the tree line and on steep slopes, snow above the snow line), told the Earth radius so that it
+reads true heights; ``orthophoto=`` an image draped over the terrain (a GeoTIFF placed by its
+georeference in the file forms; in the array form any image, stretched over the grid: its left
+edge along column 0, its top edge along row 0, the -z side: north up in a geographic scene); a material of your
+own may use the terrain's uvs the same way. ``water_level`` [m] adds a water surface (default
+:class:`refracta.shading.Water`) over the terrain's extent at that true height: samples below it
+are under water.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from refracta import _core
+
+__all__ = ["Elevation", "TerrainGeometry", "add_terrain", "read_elevation"]
+
+# SRTM's marker of a void sample (NASA SRTM Data Product Specification).
+_SRTM_VOID = -32768
+# Samples a side of the two SRTM tile sizes: 3 and 1 arc-second spacing over one degree.
+_SRTM_SIZES = (1201, 3601)
+# Rows placed per call of LocalFrame.to_scene: bounds the float64 temporaries of a 3601 x 3601 tile
+# (~90 MB of them per 256 rows x 3601 columns x ~12 arrays would be far more for the whole tile).
+_ROWS_PER_CHUNK = 256
+# GeoTIFF tags and GeoKeys (GeoTIFF 1.1, OGC 19-008r4).
+_TAG_PIXEL_SCALE, _TAG_TIEPOINT, _TAG_TRANSFORM, _TAG_NODATA = 33550, 33922, 34264, 42113
+_KEY_MODEL_TYPE, _KEY_RASTER_TYPE, _KEY_GEOGRAPHIC_TYPE, _KEY_PROJECTED_TYPE = 1024, 1025, 2048, 3072
+_MODEL_PROJECTED, _MODEL_GEOGRAPHIC = 1, 2
+_RASTER_PIXEL_IS_POINT = 2
+_EPSG_WGS84 = 4326
+
+
+class TerrainGeometry(NamedTuple):
+    """What :func:`add_terrain` added: the terrain's geometry ids (one per grid: one for an array or
+    a file, one per tile of a list) and the water surface's id (None without ``water_level``)."""
+
+    terrain: list[int]
+    water: int | None
+
+
+@dataclass
+class Elevation:
+    """Heights [m] on a regular geographic or projected grid, as :func:`read_elevation` returns them.
+
+    heights: (rows, cols) float64, NaN at voids; row 0 is the northern (top) edge. Sample (r, c) lies
+    at x = x0 + c * dx, y = y0 - r * dy in the CRS ``epsg`` (x = longitude, y = latitude [deg] for
+    EPSG:4326; easting, northing [m] for a projected CRS)."""
+
+    heights: np.ndarray
+    x0: float
+    y0: float
+    dx: float
+    dy: float
+    epsg: int
+
+    def coordinates(self, rows: slice) -> tuple[np.ndarray, np.ndarray]:
+        """(lat, lon) [deg] of the samples in ``rows``, each (n, cols)."""
+        r = np.arange(self.heights.shape[0], dtype=np.float64)[rows][:, None]
+        c = np.arange(self.heights.shape[1], dtype=np.float64)[None, :]
+        x, y = np.broadcast_arrays(self.x0 + c * self.dx, self.y0 - r * self.dy)
+        if self.epsg == _EPSG_WGS84:
+            lat, lon = y, x
+        else:
+            import pyproj
+
+            to_lonlat = pyproj.Transformer.from_crs(self.epsg, _EPSG_WGS84, always_xy=True)
+            lon, lat = to_lonlat.transform(x, y, errcheck=True)
+        lat, lon = np.asarray(lat, dtype=np.float64), np.asarray(lon, dtype=np.float64)
+        if not (np.all(np.abs(lat) <= 90.0)):
+            raise ValueError(f"elevation grid: latitudes outside [-90, 90] deg (from {lat.min()} to {lat.max()})")
+        return lat, lon
+
+
+def _missing(path: str) -> None:
+    if not os.path.exists(path):
+        raise FileNotFoundError(f"add_terrain: no such elevation file: {path!r}")
+
+
+def _read_hgt(path: str) -> Elevation:
+    """An SRTM .hgt tile: big-endian int16, n x n samples, n in (1201, 3601), named by its SW corner."""
+    name = os.path.basename(path)
+    match = re.fullmatch(r"([NS])(\d{2})([EW])(\d{3})\.hgt", name, flags=re.IGNORECASE)
+    if not match:
+        raise ValueError(f"add_terrain: {name!r} is not an SRTM tile name like N46E007.hgt (the name gives its corner)")
+    lat = int(match[2]) * (1 if match[1].upper() == "N" else -1)
+    lon = int(match[4]) * (1 if match[3].upper() == "E" else -1)
+    if not (-90 <= lat <= 89) or not (-180 <= lon <= 179):
+        raise ValueError(f"add_terrain: {name!r}: corner latitude {lat} must be in [-90, 89], longitude in [-180, 179]")
+    size = os.path.getsize(path)
+    n = next((n for n in _SRTM_SIZES if size == 2 * n * n), None)
+    if n is None:
+        raise ValueError(
+            f"add_terrain: {name!r} is not SRTM elevation data: {size} bytes, not 2 x 1201^2 or 2 x 3601^2"
+        )
+    raw = np.fromfile(path, dtype=">i2").reshape(n, n)
+    heights = raw.astype(np.float64)
+    heights[raw == _SRTM_VOID] = np.nan
+    step = 1.0 / (n - 1)
+    return Elevation(heights, float(lon), float(lat + 1), step, step, _EPSG_WGS84)
+
+
+def _read_geotiff(path: str) -> Elevation:
+    """A single-band GeoTIFF with ModelPixelScale + ModelTiepoint (north up) and its GeoKeys."""
+    import tifffile
+
+    try:
+        with tifffile.TiffFile(path) as tif:
+            page = tif.pages.first
+            tags = {tag.code: tag.value for tag in page.tags.values()}
+            data = page.asarray()
+    except (tifffile.TiffFileError, ValueError) as error:
+        raise ValueError(f"add_terrain: {path!r} is not a TIFF file ({error})") from None
+    if data.ndim == 3 and data.shape[-1] == 1:
+        data = data[..., 0]
+    if data.ndim != 2 or not (np.issubdtype(data.dtype, np.integer) or np.issubdtype(data.dtype, np.floating)):
+        raise ValueError(
+            f"add_terrain: {path!r} is not elevation data: a single band of numbers is needed "
+            f"(got shape {data.shape}, dtype {data.dtype})"
+        )
+    if _TAG_TRANSFORM in tags:
+        raise ValueError(f"add_terrain: {path!r}: a rotated or sheared grid (ModelTransformation) is not supported")
+    if _TAG_PIXEL_SCALE not in tags or _TAG_TIEPOINT not in tags or 34735 not in tags:
+        raise ValueError(
+            f"add_terrain: {path!r} has no georeference (GeoTIFF ModelPixelScale, ModelTiepoint and GeoKeys are needed)"
+        )
+    keys = _geokeys(tags[34735])
+    model = keys.get(_KEY_MODEL_TYPE)
+    if model == _MODEL_GEOGRAPHIC:
+        epsg = keys.get(_KEY_GEOGRAPHIC_TYPE, _EPSG_WGS84)
+        if epsg != _EPSG_WGS84:
+            raise ValueError(f"add_terrain: {path!r}: geographic CRS EPSG:{epsg}; only WGS84 (EPSG:4326) is supported")
+    elif model == _MODEL_PROJECTED and keys.get(_KEY_PROJECTED_TYPE) not in (None, 32767):
+        epsg = int(keys[_KEY_PROJECTED_TYPE])
+    else:
+        raise ValueError(f"add_terrain: {path!r}: its GeoKeys name no EPSG geographic or projected CRS (model {model})")
+    sx, sy = float(tags[_TAG_PIXEL_SCALE][0]), float(tags[_TAG_PIXEL_SCALE][1])
+    i, j, _, x, y, _ = (float(v) for v in tags[_TAG_TIEPOINT][:6])
+    if not (sx > 0.0 and sy > 0.0) or not all(math.isfinite(v) for v in (x, y, i, j)):
+        raise ValueError(f"add_terrain: {path!r}: pixel scale ({sx}, {sy}) must be > 0 and the tiepoint finite")
+    # Pixel-is-area: the tiepoint is a pixel's corner and the sample lies at its centre.
+    centre = 0.0 if keys.get(_KEY_RASTER_TYPE) == _RASTER_PIXEL_IS_POINT else 0.5
+    heights = data.astype(np.float64)
+    nodata = tags.get(_TAG_NODATA)
+    if nodata is not None:
+        try:
+            heights[heights == float(str(nodata).strip().rstrip("\x00"))] = np.nan
+        except ValueError:
+            raise ValueError(f"add_terrain: {path!r}: GDAL_NODATA {nodata!r} is not a number") from None
+    x0, y0 = x + (centre - i) * sx, y - (centre - j) * sy
+    if epsg == _EPSG_WGS84:
+        top, bottom = y0, y0 - (data.shape[0] - 1) * sy
+        if not (-90.0 <= bottom <= top <= 90.0):
+            raise ValueError(f"add_terrain: {path!r}: latitudes {bottom} to {top} deg are outside [-90, 90]")
+    return Elevation(heights, x0, y0, sx, sy, epsg)
+
+
+def _geokeys(directory) -> dict[int, Any]:
+    """GeoKeyDirectory: (version, revision, minor, count) then count entries (key, location, count,
+    value); short values only (location 0), which is where the CRS codes live."""
+    d = [int(v) for v in directory]
+    return {d[k]: d[k + 3] for k in range(4, 4 + 4 * d[3], 4) if d[k + 1] == 0}
+
+
+def read_elevation(path: str | os.PathLike) -> Elevation:
+    """Read an elevation file (an SRTM ``.hgt`` tile or a GeoTIFF) into an :class:`Elevation`.
+
+    FileNotFoundError for a missing file; ValueError for files that are not elevation data, have
+    no georeference, or whose latitudes fall outside [-90, 90] deg."""
+    path = os.fspath(path)
+    _missing(path)
+    if path.lower().endswith(".hgt"):
+        return _read_hgt(path)
+    if path.lower().endswith((".tif", ".tiff")):
+        return _read_geotiff(path)
+    raise ValueError(f"add_terrain: {path!r}: elevation files are SRTM .hgt tiles or GeoTIFFs (.tif, .tiff)")
+
+
+def _orthophoto_uv(orthophoto: str, grid: Elevation) -> np.ndarray:
+    """(2, 3): (u, v) of the orthophoto at a sample's (col, row, 1)."""
+    photo = _read_geotiff_frame(orthophoto)
+    if photo.epsg != grid.epsg:
+        raise ValueError(
+            f"add_terrain: orthophoto {orthophoto!r} is in EPSG:{photo.epsg}, the elevation in EPSG:{grid.epsg}: "
+            "give both in the same CRS"
+        )
+    width, height = photo.heights.shape[1], photo.heights.shape[0]
+    # Texture coordinates from the image's left and top edges (its pixels' corners):
+    # s = (x - left) / (width dx), t = (top - y) / (height dy); v = 1 - t.
+    left, top = photo.x0 - 0.5 * photo.dx, photo.y0 + 0.5 * photo.dy
+    su = 1.0 / (width * photo.dx)
+    st = 1.0 / (height * photo.dy)
+    return np.array(
+        [
+            [grid.dx * su, 0.0, (grid.x0 - left) * su],
+            [0.0, grid.dy * st, 1.0 - (top - grid.y0) * st],
+        ]
+    )
+
+
+def _read_geotiff_frame(path: str) -> Elevation:
+    """An orthophoto's georeference (its pixels as an Elevation's grid; the values unused)."""
+    import tifffile
+
+    _missing(path)
+    with tifffile.TiffFile(path) as tif:
+        page = tif.pages.first
+        tags = {tag.code: tag.value for tag in page.tags.values()}
+        shape = page.shape
+    if _TAG_PIXEL_SCALE not in tags or _TAG_TIEPOINT not in tags or 34735 not in tags:
+        raise ValueError(f"add_terrain: orthophoto {path!r} has no georeference (a GeoTIFF is needed)")
+    keys = _geokeys(tags[34735])
+    epsg = keys.get(_KEY_GEOGRAPHIC_TYPE, _EPSG_WGS84) if keys.get(_KEY_MODEL_TYPE) == _MODEL_GEOGRAPHIC else None
+    if epsg is None:
+        epsg = int(keys.get(_KEY_PROJECTED_TYPE, 0))
+    sx, sy = float(tags[_TAG_PIXEL_SCALE][0]), float(tags[_TAG_PIXEL_SCALE][1])
+    i, j, _, x, y, _ = (float(v) for v in tags[_TAG_TIEPOINT][:6])
+    centre = 0.0 if keys.get(_KEY_RASTER_TYPE) == _RASTER_PIXEL_IS_POINT else 0.5
+    return Elevation(np.empty((shape[0], shape[1], 0)), x + (centre - i) * sx, y - (centre - j) * sy, sx, sy, epsg)
+
+
+def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
+    """(rows, cols, 3) float32 scene positions of the array form (NaN rows at NaN heights)."""
+    try:
+        h = np.asarray(heights, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError("add_terrain: heights must be a (rows, cols) array of numbers [m]") from None
+    if h.ndim != 2 or h.shape[0] < 2 or h.shape[1] < 2:
+        raise ValueError(
+            f"add_terrain: heights must be a (rows, cols) array with rows, cols >= 2 (got shape {h.shape})"
+        )
+    if np.isinf(h).any():
+        raise ValueError("add_terrain: heights must be finite (NaN marks a hole; got an infinity)")
+    if np.isnan(h).all():
+        raise ValueError("add_terrain: heights are all NaN (holes): nothing to add")
+    x0, z0 = _pair(origin, "origin", positive=False)
+    dx, dz = _pair(spacing, "spacing", positive=True)
+    if earth_radius is None:
+        y = h
+    else:
+        r = float(earth_radius)
+        if not (r > 0.0 and math.isfinite(r)):
+            raise ValueError(f"add_terrain: earth_radius must be > 0 [m] (got {earth_radius!r})")
+        if np.nanmin(h) <= -r:
+            raise ValueError("add_terrain: heights must be above -earth_radius")
+        y = _flat_height(np.where(np.isnan(h), 0.0, h), r)
+        y[np.isnan(h)] = np.nan
+    rows, cols = h.shape
+    positions = np.empty((rows, cols, 3), dtype=np.float32)
+    positions[..., 0] = (x0 + dx * np.arange(cols))[None, :]
+    positions[..., 1] = y
+    positions[..., 2] = (z0 + dz * np.arange(rows))[:, None]
+    return positions
+
+
+def _flat_height(h: np.ndarray, radius: float) -> np.ndarray:
+    """CurvedEarth's flat heights y' = R ln(1 + h / R) of true heights h [m] (its C++ map, any shape)."""
+    # The base field only makes a CurvedEarth to ask; flat_height depends on the radius alone.
+    earth = _core.CurvedEarth(_core.PhysicalAtmosphere(), radius=radius)
+    return np.asarray(earth.flat_height(h.ravel()), dtype=np.float64).reshape(h.shape)
+
+
+def _pair(value, name: str, positive: bool) -> tuple[float, float]:
+    try:
+        a, b = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"add_terrain: {name} must be two numbers [m] (got {value!r})") from None
+    if not (math.isfinite(a) and math.isfinite(b)):
+        raise ValueError(f"add_terrain: {name} must be finite (got {value!r})")
+    if positive and not (a > 0.0 and b > 0.0):
+        raise ValueError(f"add_terrain: {name} must be > 0 in both directions (got {value!r})")
+    return a, b
+
+
+def _geographic_positions(grid: Elevation, frame) -> np.ndarray:
+    """(rows, cols, 3) float32: each sample through frame.to_scene, a band of rows at a time."""
+    rows, cols = grid.heights.shape
+    positions = np.empty((rows, cols, 3), dtype=np.float32)
+    for start in range(0, rows, _ROWS_PER_CHUNK):
+        band = slice(start, min(rows, start + _ROWS_PER_CHUNK))
+        lat, lon = grid.coordinates(band)
+        h = grid.heights[band]
+        holes = np.isnan(h)
+        positions[band] = frame.to_scene(lat, lon, np.where(holes, 0.0, h))
+        positions[band][holes] = np.nan
+    return positions
+
+
+def _water(scene, material, level: float, earth_radius: float | None, lower, upper) -> int:
+    """A rectangle at the flat height of ``level`` over the terrain's extent (x, z)."""
+    if not math.isfinite(level):
+        raise ValueError(f"add_terrain: water_level must be finite [m] (got {level!r})")
+    y = level
+    if earth_radius is not None and math.isfinite(earth_radius):
+        y = float(_flat_height(np.array([level]), earth_radius)[0])
+    x0, z0, x1, z1 = lower[0], lower[1], upper[0], upper[1]
+    vertices = np.array([[x0, y, z0], [x1, y, z0], [x1, y, z1], [x0, y, z1]], dtype=np.float64)
+    return scene.add_mesh(vertices, np.array([[0, 2, 1], [0, 3, 2]]), material=material)
+
+
+def add_terrain(
+    self,
+    heights,
+    origin=None,
+    spacing=None,
+    material=None,
+    *,
+    frame=None,
+    earth_radius=None,
+    orthophoto=None,
+    water_level=None,
+    water=None,
+) -> TerrainGeometry:
+    """Add terrain from elevation data to the Scene ``self`` (bound as ``Scene.add_terrain``); see the
+    module's docstring.
+
+    heights: a (rows, cols) array of heights [m] (NaN: a hole), with ``origin`` (x0, z0) [m] and
+    ``spacing`` (dx, dz) [m] > 0 (rows along +z, columns along +x) and, for a curved Earth,
+    ``earth_radius`` [m]; or the path of an SRTM .hgt tile or a GeoTIFF, or a list of them, with
+    ``frame`` a :class:`refracta.geo.LocalFrame` placing them.
+    material: a refracta.shading material, or None for TerrainShading (elevation, slope, snow line).
+    orthophoto: an image file draped over the terrain (a georeferenced GeoTIFF for the file forms).
+    water_level: a true height [m]: a water surface (``water``, default refracta.shading.Water)
+    over the terrain's extent at that height.
+    Returns a :class:`TerrainGeometry` (the geometry ids). Bad input raises ValueError naming the
+    argument; a missing file FileNotFoundError.
+    """
+    from refracta import shading
+
+    # The grids: positions and, for orthophotos, the uv map of each.
+    grids: list[tuple[np.ndarray, Elevation | None]] = []
+    if isinstance(heights, (str, os.PathLike)) or (
+        isinstance(heights, Sequence) and len(heights) > 0 and all(isinstance(p, (str, os.PathLike)) for p in heights)
+    ):
+        if origin is not None or spacing is not None or earth_radius is not None:
+            raise ValueError(
+                "add_terrain: origin, spacing and earth_radius belong to the array form; files are placed by frame"
+            )
+        if frame is None or not hasattr(frame, "to_scene"):
+            raise ValueError("add_terrain: elevation files need frame=refracta.geo.LocalFrame(lat, lon) to place them")
+        paths = [heights] if isinstance(heights, (str, os.PathLike)) else list(heights)
+        for path in paths:
+            grid = read_elevation(path)
+            if np.isnan(grid.heights).all():
+                raise ValueError(f"add_terrain: {os.fspath(path)!r} holds only voids: nothing to add")
+            grids.append((_geographic_positions(grid, frame), grid))
+            del grid  # the float64 heights go before the next tile is read
+        radius = float(frame.earth_radius)
+    else:
+        if frame is not None:
+            raise ValueError("add_terrain: frame places elevation files; an array is placed by origin and spacing")
+        if origin is None or spacing is None:
+            raise ValueError("add_terrain: an array of heights needs origin=(x0, z0) and spacing=(dx, dz) [m]")
+        grids.append((_array_positions(heights, origin, spacing, earth_radius), None))
+        radius = math.inf if earth_radius is None else float(earth_radius)
+
+    if material is None:
+        if orthophoto is not None:
+            material = shading.Diffuse(1.0, texture=os.fspath(orthophoto))
+        else:
+            material = shading.TerrainShading(earth_radius=radius if math.isfinite(radius) else 0.0)
+    elif orthophoto is not None:
+        raise ValueError(
+            "add_terrain: give material or orthophoto, not both (a textured material uses the terrain's uvs)"
+        )
+    if orthophoto is not None:
+        _missing(os.fspath(orthophoto))
+
+    ids = []
+    lower, upper = np.full(3, np.inf), np.full(3, -np.inf)
+    for positions, placed in grids:
+        rows, cols = positions.shape[:2]
+        if orthophoto is not None and placed is not None:
+            uv = _orthophoto_uv(os.fspath(orthophoto), placed)
+        else:  # the image over the grid: u along the columns, its top edge along row 0 (v = 1)
+            uv = np.array([[1.0 / (cols - 1), 0.0, 0.0], [0.0, -1.0 / (rows - 1), 1.0]])
+        ids.append(self._add_terrain_grid(positions, material, uv))
+        lower = np.fmin(lower, np.nanmin(positions.reshape(-1, 3), axis=0))
+        upper = np.fmax(upper, np.nanmax(positions.reshape(-1, 3), axis=0))
+    water_id = None
+    if water_level is not None:
+        water_material = shading.Water() if water is None else water
+        water_id = _water(self, water_material, float(water_level), radius, lower[[0, 2]], upper[[0, 2]])
+    elif water is not None:
+        raise ValueError("add_terrain: water= is the material of the water_level surface; give water_level")
+    return TerrainGeometry(ids, water_id)
+
+
+_core.Scene.add_terrain = add_terrain  # type: ignore[method-assign]
