@@ -23,6 +23,14 @@ Example::
     print(result)            # the report: costs, distances, parameters before and after
     solved = result.field
 
+Matching a photograph: with a Camera as eye_or_camera, ``free`` may also name the camera's
+CAMERA_PARAMETERS -- ``camera_yaw``, ``camera_pitch``, ``camera_roll`` (degrees about the camera's own
+up, right and forward: offsets from the camera given; positive yaw turns the view right, positive
+pitch up, positive roll turns the camera's up toward its right) and ``camera_vfov`` (its vertical
+field of view [deg]) -- and the pairs' pixel destinations then follow the solved camera
+(result.camera). Their default bounds: yaw within half the horizontal field of view, pitch half the
+vertical one, roll 15 deg, vfov a factor of 2 either way (C++'s CameraRig).
+
 Units: metres (scene units for LogisticProfile); cost is 1/2 sum weight * miss^2 [m^2].
 """
 
@@ -42,7 +50,11 @@ SolveSettings = _core.SolveSettings
 PairOptions = _core.PairOptions
 SolveSummary = _core.SolveSummary
 
+#: The camera's parameters solve() can free beside the field's (C++'s CameraRig::names()).
+CAMERA_PARAMETERS: tuple[str, ...] = tuple(_core.EDIT_CAMERA_PARAMETERS)
+
 __all__ = [
+    "CAMERA_PARAMETERS",
     "EditResult",
     "PairOptions",
     "PointPair",
@@ -120,6 +132,11 @@ class PointPair:
     @property
     def is_pixel(self) -> bool:
         return len(self.destination) == 2
+
+
+def _pair_pixels(pairs: Sequence[PointPair]) -> np.ndarray:
+    """(N, 2): each pair's destination pixel (u, v), NaN for a 3D destination."""
+    return np.array([p.destination if p.is_pixel else (np.nan, np.nan) for p in pairs], dtype=float).reshape(-1, 2)
 
 
 def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float | None = None):
@@ -206,6 +223,9 @@ class EditResult:
     stage's design points and every start included), pair_traces (traced pairs, derivative passes
     included), time [s] (solving only), starts, backend, derivatives. These are read from
     `summary` (a _core.SolveSummary); `settings` and `pair_options` are what the solve ran with.
+    camera: the solved camera when camera parameters were free (summary.camera; camera_values: their
+    values, yaw/pitch/roll offsets and vfov [deg]), else the camera given (None for an eye point);
+    start_camera: the camera given.
     """
 
     field: _core.IndexField
@@ -219,6 +239,7 @@ class EditResult:
     summary: _core.SolveSummary
     settings: _core.SolveSettings
     pair_options: _core.PairOptions
+    start_camera: _core.Camera | None = None
 
     def __getattr__(self, name: str) -> Any:
         # Only reached for names that are not attributes: the summary's fields (not while
@@ -237,7 +258,8 @@ class EditResult:
         if which not in ("solved", "start"):
             raise ValueError(f"which must be 'solved' or 'start' (got {which!r})")
         field = self.field if which == "solved" else self.start
-        eye_or_camera = self.camera if self.camera is not None else self.eye
+        camera = self.camera if which == "solved" or self.start_camera is None else self.start_camera
+        eye_or_camera = camera if camera is not None else self.eye
         _, _, _, origins, directions, sources, _, _, _ = _pair_rays(eye_or_camera, self.pairs)
         return _core._pair_paths(field, origins, directions, sources, self.pair_options)
 
@@ -262,6 +284,11 @@ class EditResult:
             )
         info = {p["name"]: p for p in self.start.param_info}
         start, solved = self.start.params, self.field.params
+        if len(self.camera_values) == len(CAMERA_PARAMETERS) and self.start_camera is not None:
+            start_vfov = self.start_camera.vfov
+            start |= dict(zip(CAMERA_PARAMETERS, (0.0, 0.0, 0.0, start_vfov)))
+            solved |= dict(zip(CAMERA_PARAMETERS, (float(v) for v in self.camera_values)))
+            info |= {name: {"unit": "deg"} for name in CAMERA_PARAMETERS}
         lines.append("  parameter            start          solved         unit")
         for name in self.free:
             lines.append(f"  {name:18s} {start[name]:14.8g} {solved[name]:14.8g}  {info[name]['unit']}")
@@ -313,13 +340,15 @@ def solve(
         pairs: PointPairs.
         free: names of the parameters to optimise; default: every parameter except the model's
             gauge ones (LogisticProfile's n_bg: a common scale of the amplitudes changes nothing).
+            With a Camera, also CAMERA_PARAMETERS (module docstring): the pairs' pixel
+            destinations then follow the solved camera, result.camera.
             Free parameters on which no pair depends are held fixed and listed in
             result.insensitive.
         backend: 'ceres' or 'nlopt:<ALGORITHM>' (see NLOPT_ALGORITHMS; any nlopt name works);
             a SolveSettings field, also accepted here by position.
         settings: a refracta.SolveSettings (copied); keywords below override its fields.
         pair_options: a refracta.PairOptions (copied); keywords override its fields.
-        bounds: {name: (lower, upper)} overriding the model's search box.
+        bounds: {name: (lower, upper)} overriding the model's (or the camera's) search box.
         derivatives: 'auto', 'automatic' (ceres::Jet) or 'numeric' (central differences).
         progress: True for a bar on stderr, or a callable progress(done, total): done of total
             is the largest fraction used of the iteration, evaluation and time limits (shared by
@@ -366,9 +395,15 @@ def solve(
         free = [free] if isinstance(free, str) else list(free)
         if not free:
             raise ValueError("free is empty: name at least one parameter (or pass None for the default)")
-        unknown = [n for n in free if n not in field.param_names]
+        valid = list(field.param_names) + list(CAMERA_PARAMETERS)
+        unknown = [n for n in free if n not in valid]
         if unknown:
-            raise ValueError(f"unknown parameter(s) {unknown} for {field.type_name}; valid names: {field.param_names}")
+            raise ValueError(f"unknown parameter(s) {unknown} for {field.type_name}; valid names: {valid}")
+        if not isinstance(eye_or_camera, _core.Camera) and any(n in CAMERA_PARAMETERS for n in free):
+            raise ValueError(
+                f"free names camera parameters {[n for n in free if n in CAMERA_PARAMETERS]}: pass a Camera as "
+                "eye_or_camera (the camera whose pixels the destinations are)"
+            )
     settings = _options.build(_core.SolveSettings, settings, where=where, **settings_keywords)
     pair_options = _options.build(_core.PairOptions, pair_options, where=where, **pair_keywords)
     pairs, eye, camera, origins, directions, sources, weights, margins, tolerances = _pair_rays(
@@ -391,6 +426,8 @@ def solve(
         pair_options=pair_options,
         settings=settings,
         progress=callback,
+        camera=camera,
+        pixels=_pair_pixels(pairs),
     )
     solved = field.with_params(**dict(zip(field.param_names, (float(v) for v in summary.values))))
     return EditResult(
@@ -398,13 +435,14 @@ def solve(
         start=field,
         pairs=list(pairs),
         eye=np.asarray(eye),
-        camera=camera,
+        camera=summary.camera if summary.camera is not None else camera,
         initial_distances=initial,
         margins=margins,
         tolerances=tolerances,
         summary=summary,
         settings=settings,
         pair_options=pair_options,
+        start_camera=camera,
     )
 
 
@@ -435,10 +473,11 @@ def jacobian(
     **options: Any,
 ) -> tuple[np.ndarray, np.ndarray, list[str]]:
     """(residuals (3P,), Jacobian (3P, F), free names) at `field`: the weighted miss vectors an
-    edit minimises and their derivatives in the free parameters (for sensitivity studies).
-    pair_options, ``**options``: as distances()."""
+    edit minimises and their derivatives in the free parameters (for sensitivity studies; with a
+    Camera, free may name CAMERA_PARAMETERS too, derivatives per degree). pair_options,
+    ``**options``: as distances()."""
     pair_options = _pair_options("refracta.edit.jacobian", pair_options, options)
-    _, _, _, origins, directions, sources, weights, margins, _ = _pair_rays(eye_or_camera, pairs)
+    pairs, _, camera, origins, directions, sources, weights, margins, _ = _pair_rays(eye_or_camera, pairs)
     free = [free] if isinstance(free, str) else list(free or [])
     return _core._pair_jacobian(
         field,
@@ -450,6 +489,8 @@ def jacobian(
         free=free,
         derivatives=derivatives,
         options=pair_options,
+        camera=camera,
+        pixels=_pair_pixels(pairs),
     )
 
 

@@ -13,9 +13,12 @@ namespace refracta {
 
 namespace {
 
+// pixels: per pair, its destination pixel (u, v) of the edit's camera, or NaN for a 3D destination
+// (None: no pixels).
 std::vector<PointPair> make_pairs(const py::object& origins, const py::object& directions,
                                   const py::object& sources, const py::object& weights = py::none(),
-                                  const py::object& margins = py::none(), const py::object& tolerances = py::none()) {
+                                  const py::object& margins = py::none(), const py::object& tolerances = py::none(),
+                                  const py::object& pixels = py::none()) {
   const std::vector<Vec3d> o = to_points(origins, "eye positions");
   const std::vector<Vec3d> d = to_points(directions, "destination directions");
   const std::vector<Vec3d> s = to_points(sources, "sources");
@@ -30,7 +33,18 @@ std::vector<PointPair> make_pairs(const py::object& origins, const py::object& d
                   d.size(), ", ", s.size(), ", ", w.size(), ", ", margin.size(), ", ", tolerance.size(), ")");
   }
   std::vector<PointPair> pairs(o.size());
-  for (size_t i = 0; i < o.size(); ++i) pairs[i] = {o[i], d[i], s[i], w[i], margin[i], tolerance[i]};
+  for (size_t i = 0; i < o.size(); ++i) pairs[i] = {o[i], d[i], s[i], w[i], margin[i], tolerance[i], std::nullopt};
+  if (!pixels.is_none()) {
+    const auto uv = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(pixels);
+    if (uv.ndim() != 2 || uv.shape(1) != 2 || size_t(uv.shape(0)) != o.size()) {
+      throw_invalid("pixels must be an (N, 2) array, one (u, v) or NaN row per pair (got ", uv.ndim(), " dimensions, ",
+                    uv.ndim() > 0 ? uv.shape(0) : 0, " rows for ", o.size(), " pairs)");
+    }
+    for (size_t i = 0; i < o.size(); ++i) {
+      const double u = uv.at(py::ssize_t(i), 0), v = uv.at(py::ssize_t(i), 1);
+      if (!std::isnan(u) || !std::isnan(v)) pairs[i].pixel = Eigen::Vector2d(u, v);
+    }
+  }
   return pairs;
 }
 
@@ -47,9 +61,11 @@ Derivatives parse_derivatives(const std::string& name, const IndexField& field) 
 }
 
 ProblemSpec make_spec(const std::shared_ptr<IndexField>& field, const std::vector<std::string>& free,
-                      const std::string& derivatives, const PairOptions& options) {
+                      const std::string& derivatives, const PairOptions& options,
+                      const std::optional<Camera>& camera) {
   ProblemSpec spec;
   spec.free = free;
+  spec.camera = camera;
   spec.derivatives = parse_derivatives(derivatives, *checked(field));
   spec.pair = options;
   return spec;
@@ -150,6 +166,10 @@ const std::vector<SummaryField>& summary_fields() {
   using S = SolveSummary;
   static const std::vector<SummaryField> fields = {
       array("values", &S::values, "every parameter of the solved field, in param_names order"),
+      array("camera_values", &S::camera_values,
+            "with camera parameters free: camera_yaw, camera_pitch, camera_roll (offsets from the start camera) "
+            "and camera_vfov [deg] at the result; else empty"),
+      plain("camera", &S::camera, "with camera parameters free: the solved Camera; else None"),
       plain("free", &S::free, "the parameters that were optimised"),
       plain("insensitive", &S::insensitive, "requested free, but no pair depends on them: held fixed"),
       plain("backend", &S::backend, "'ceres' or 'nlopt:<ALGORITHM>'"),
@@ -211,15 +231,21 @@ void bind_edit(py::module_& m) {
   bind_pair_options(m);
   bind_solve_summary(m);
 
+  py::tuple camera_names(CameraRig::kCount);
+  for (int k = 0; k < CameraRig::kCount; ++k) camera_names[k] = CameraRig::names()[k];
+  m.attr("EDIT_CAMERA_PARAMETERS") = camera_names;
+
   m.def("_solve_edit",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
            const py::object& sources, const py::object& weights, const py::object& margins,
            const py::object& tolerances, const std::vector<std::string>& free,
            const std::map<std::string, std::pair<double, double>>& bounds, const std::string& derivatives,
-           const PairOptions& pair_options, const SolveSettings& settings, const py::object& progress) {
-          ProblemSpec spec = make_spec(field, free, derivatives, pair_options);
+           const PairOptions& pair_options, const SolveSettings& settings, const py::object& progress,
+           const std::optional<Camera>& camera, const py::object& pixels) {
+          ProblemSpec spec = make_spec(field, free, derivatives, pair_options, camera);
           spec.bounds = bounds;
-          const std::vector<PointPair> pairs = make_pairs(origins, directions, sources, weights, margins, tolerances);
+          const std::vector<PointPair> pairs =
+              make_pairs(origins, directions, sources, weights, margins, tolerances, pixels);
           settings.validate();
           WorkControl control;
           SolveSummary summary;
@@ -238,7 +264,8 @@ void bind_edit(py::module_& m) {
         },
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"), py::kw_only(),
         py::arg("weights"), py::arg("margins"), py::arg("tolerances"), py::arg("free"), py::arg("bounds"),
-        py::arg("derivatives"), py::arg("pair_options"), py::arg("settings"), py::arg("progress"));
+        py::arg("derivatives"), py::arg("pair_options"), py::arg("settings"), py::arg("progress"),
+        py::arg("camera") = py::none(), py::arg("pixels") = py::none());
 
   m.def("_pair_distances",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
@@ -272,11 +299,20 @@ void bind_edit(py::module_& m) {
   m.def("_pair_jacobian",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
            const py::object& sources, const py::object& weights, const py::object& margins,
-           const std::vector<std::string>& free, const std::string& derivatives, const PairOptions& options) {
-          ProblemSpec spec = make_spec(field, free, derivatives, options);
-          // Bounds are irrelevant here: open them so any start is accepted.
-          for (const auto& name : free) spec.bounds[name] = {-1e300, 1e300};
-          EditProblem problem(field, make_pairs(origins, directions, sources, weights, margins), spec, nullptr);
+           const std::vector<std::string>& free, const std::string& derivatives, const PairOptions& options,
+           const std::optional<Camera>& camera, const py::object& pixels) {
+          ProblemSpec spec = make_spec(field, free, derivatives, options, camera);
+          // Bounds are irrelevant here: open them so any start is accepted (camera parameters: as
+          // wide as their map allows).
+          for (const auto& name : free) {
+            if (const int k = CameraRig::index_of(name); k >= 0) {
+              spec.bounds[name] = CameraRig::widest_bounds(k);
+            } else {
+              spec.bounds[name] = {-1e300, 1e300};
+            }
+          }
+          EditProblem problem(field, make_pairs(origins, directions, sources, weights, margins, py::none(), pixels),
+                              spec, nullptr);
           std::vector<double> r, jacobian;
           bool ok;
           {
@@ -291,7 +327,8 @@ void bind_edit(py::module_& m) {
           return py::make_tuple(residuals, jac, problem.free_names());
         },
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"), py::kw_only(),
-        py::arg("weights"), py::arg("margins"), py::arg("free"), py::arg("derivatives"), py::arg("options"));
+        py::arg("weights"), py::arg("margins"), py::arg("free"), py::arg("derivatives"), py::arg("options"),
+        py::arg("camera") = py::none(), py::arg("pixels") = py::none());
 }
 
 }  // namespace refracta

@@ -19,6 +19,16 @@ namespace {
 // Positive bounds wider than this factor are searched in log space (edit_problem.h).
 constexpr double kLogScaleRatio = 100.0;
 
+// "'a', 'b', 'c'" (quoted) or "a, b, c".
+std::string concat_names(const std::vector<std::string>& names, bool only_camera) {
+  std::string out;
+  for (const auto& name : names) {
+    if (only_camera && CameraRig::index_of(name) < 0) continue;
+    out += (out.empty() ? "" : ", ") + (only_camera ? "'" + name + "'" : name);
+  }
+  return out;
+}
+
 }  // namespace
 
 EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const ProblemSpec& spec,
@@ -30,6 +40,7 @@ EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const Pro
   validate_pairs(pairs_, options_);
   context_->cancel = cancel;
   values_ = field_->param_values();
+  field_count_ = values_.size();
   const auto& specs = field_->param_specs();
 
   std::vector<std::string> names = spec.free;
@@ -39,31 +50,59 @@ EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const Pro
       if (std::find(gauge.begin(), gauge.end(), s.name) == gauge.end()) names.push_back(s.name);
     }
   }
+  const bool camera_free = std::any_of(names.begin(), names.end(), [](const std::string& name) {
+    return CameraRig::index_of(name) >= 0;
+  });
+  if (camera_free) {
+    if (!spec.camera) {
+      throw_invalid("camera parameters (", concat_names(names, true),
+                    ") need the camera whose pixels the destinations are: pass a Camera as eye_or_camera");
+    }
+    rig_ = std::make_shared<const CameraRig>(*spec.camera);
+    for (double v : rig_->start_values()) values_.push_back(v);
+  }
+  // Index into values_ of a parameter name; throws listing every valid name.
+  auto index_of = [&](const std::string& name) -> int {
+    if (const int k = CameraRig::index_of(name); k >= 0) return int(field_count_) + k;
+    for (size_t i = 0; i < specs.size(); ++i) {
+      if (specs[i].name == name) return int(i);
+    }
+    std::vector<std::string> valid;
+    for (const auto& s : specs) valid.push_back(s.name);
+    for (const char* c : CameraRig::names()) valid.emplace_back(c);
+    throw_invalid("unknown parameter '", name, "' of ", field_->type_name(), "; valid names: ",
+                  concat_names(valid, false));
+  };
   for (const auto& name : names) {
-    const int index = int(field_->param_index(name));  // throws, listing the valid names
+    const int index = index_of(name);
     if (std::find(free_.begin(), free_.end(), index) != free_.end()) {
       throw_invalid("free parameter '", name, "' is listed twice");
     }
     free_.push_back(index);
   }
   for (const auto& [name, box] : spec.bounds) {
-    field_->param_index(name);
+    index_of(name);
     if (std::find(names.begin(), names.end(), name) == names.end()) {
       throw_invalid("bounds given for '", name, "', which is not a free parameter");
     }
   }
   for (int index : free_) {
-    const ParamSpec& s = specs[index];
-    double lo = s.lower, hi = s.upper;
-    if (auto it = spec.bounds.find(s.name); it != spec.bounds.end()) std::tie(lo, hi) = it->second;
+    const bool camera = index >= int(field_count_);
+    const int k = index - int(field_count_);
+    const std::string name = camera ? std::string(CameraRig::names()[k]) : specs[index].name;
+    double lo, hi;
+    std::tie(lo, hi) = camera ? rig_->default_bounds(k) : std::make_pair(specs[index].lower, specs[index].upper);
+    if (auto it = spec.bounds.find(name); it != spec.bounds.end()) std::tie(lo, hi) = it->second;
+    if (camera) CameraRig::check_bounds(k, lo, hi);
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
-      throw_invalid("bounds of '", s.name, "' must be finite with lower < upper (got [", lo, ", ", hi, "])");
+      throw_invalid("bounds of '", name, "' must be finite with lower < upper (got [", lo, ", ", hi, "])");
     }
     const double x = values_[index];
     if (x < lo || x > hi) {
-      const std::string unit = s.unit.empty() || s.unit == "1" ? "" : " " + s.unit;  // "1": dimensionless
-      throw_invalid("the start value of '", s.name, "' (", x, unit, ") lies outside its bounds [", lo, ", ", hi,
-                    "]; widen them with bounds={'", s.name, "': (lower, upper)}");
+      const std::string& raw = camera ? std::string("deg") : specs[index].unit;
+      const std::string unit = raw.empty() || raw == "1" ? "" : " " + raw;  // "1": dimensionless
+      throw_invalid("the start value of '", name, "' (", x, unit, ") lies outside its bounds [", lo, ", ", hi,
+                    "]; widen them with bounds={'", name, "': (lower, upper)}");
     }
     start_.push_back(x);
     lower_.push_back(lo);
@@ -72,7 +111,7 @@ EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const Pro
   }
   if (free_.empty()) throw_invalid("no free parameters: name at least one in free");
   spec_.free = names;
-  costs_ = make_pair_costs(field_, values_, free_, pairs_, options_, derivatives_, context_.get());
+  costs_ = make_pair_costs(field_, values_, free_, pairs_, options_, derivatives_, rig_, context_.get());
 }
 
 EditProblem::~EditProblem() = default;
@@ -86,7 +125,10 @@ std::unique_ptr<EditProblem> EditProblem::with_tolerance(double tol, int64_t max
 
 std::vector<std::string> EditProblem::free_names() const {
   std::vector<std::string> names;
-  for (int index : free_) names.push_back(field_->param_specs()[index].name);
+  for (int index : free_) {
+    names.push_back(index >= int(field_count_) ? std::string(CameraRig::names()[index - field_count_])
+                                               : field_->param_specs()[index].name);
+  }
   return names;
 }
 
@@ -152,7 +194,20 @@ double EditProblem::dx_du(int j, double u) const {
 std::vector<double> EditProblem::full_values(const std::vector<double>& x) const {
   std::vector<double> full = values_;
   for (size_t i = 0; i < free_.size(); ++i) full[free_[i]] = x[i];
+  full.resize(field_count_);
   return full;
+}
+
+std::vector<double> EditProblem::camera_values(const std::vector<double>& x) const {
+  if (!rig_) return {};
+  std::vector<double> full = values_;
+  for (size_t i = 0; i < free_.size(); ++i) full[free_[i]] = x[i];
+  return std::vector<double>(full.begin() + field_count_, full.end());
+}
+
+std::optional<Camera> EditProblem::camera_at(const std::vector<double>& x) const {
+  if (!rig_) return std::nullopt;
+  return rig_->camera(camera_values(x).data());
 }
 
 FieldPtr EditProblem::field_at(const std::vector<double>& x) const {
@@ -184,8 +239,18 @@ std::vector<RayPath> pair_paths(const IndexField& field, const std::vector<Point
   return out;
 }
 
+std::vector<PointPair> EditProblem::pairs_at(const std::vector<double>& x) const {
+  std::vector<PointPair> out = pairs_;
+  if (!rig_) return out;
+  const std::vector<double> camera = camera_values(x);
+  for (PointPair& pair : out) {
+    if (pair.pixel) pair.direction = rig_->direction<double>((*pair.pixel)[0], (*pair.pixel)[1], camera.data());
+  }
+  return out;
+}
+
 std::vector<double> EditProblem::distances(const std::vector<double>& x) const {
-  return pair_distances(*field_at(x), pairs_, options_);
+  return pair_distances(*field_at(x), pairs_at(x), options_);
 }
 
 }  // namespace refracta

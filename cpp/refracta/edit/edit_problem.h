@@ -8,6 +8,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -25,18 +26,22 @@ std::vector<RayPath> pair_paths(const IndexField& field, const std::vector<Point
                                 const PairOptions& options, WorkControl& control);
 
 struct ProblemSpec {
-  // Names of the free parameters; empty: every parameter except the model's gauge ones.
+  // Names of the free parameters (the field's, and with a camera CameraRig::names()); empty:
+  // every parameter of the field except the model's gauge ones.
   std::vector<std::string> free;
   // Bounds overriding the model's search box, by parameter name.
   std::map<std::string, std::pair<double, double>> bounds;
   Derivatives derivatives = Derivatives::kAutomatic;
   PairOptions pair;
+  // The camera whose pixels the pairs' pixel destinations are (CameraRig): needed for the camera
+  // parameters; without them free it changes nothing.
+  std::optional<Camera> camera;
 };
 
 class EditProblem {
  public:
-  // Throws std::invalid_argument for unknown names, empty or inverted bounds, a start outside
-  // the bounds, or bad pairs.
+  // Throws std::invalid_argument for unknown names (listing the valid ones), empty or inverted
+  // bounds, a start outside the bounds, bad pairs, or camera parameters without a camera.
   EditProblem(FieldPtr field, std::vector<PointPair> pairs, const ProblemSpec& spec,
               const std::atomic<bool>* cancel);
   ~EditProblem();
@@ -80,10 +85,18 @@ class EditProblem {
   double from_unit(int j, double u) const;
   double dx_du(int j, double u) const;  // the map's slope
 
-  // Every parameter value with the free ones at x, and the field they make.
+  // Every parameter value of the field with the free ones at x, and the field they make.
   std::vector<double> full_values(const std::vector<double>& x) const;
+  // The camera parameters (CameraRig::names() order) with the free ones at x, and the camera they
+  // make; empty / none without a camera rig.
+  std::vector<double> camera_values(const std::vector<double>& x) const;
+  std::optional<Camera> camera_at(const std::vector<double>& x) const;
+  // Whether a camera rig is present (ProblemSpec::camera was given and some camera name is free).
+  bool has_camera() const { return rig_ != nullptr; }
   FieldPtr field_at(const std::vector<double>& x) const;
-  // Unweighted distance of each pair's path from its source [m] for the field at x.
+  // The pairs launched as at x: pixel destinations along the camera's rays at x.
+  std::vector<PointPair> pairs_at(const std::vector<double>& x) const;
+  // Unweighted distance of each pair's path from its source [m] for the field (and camera) at x.
   std::vector<double> distances(const std::vector<double>& x) const;
 
  private:
@@ -92,7 +105,9 @@ class EditProblem {
   std::vector<PointPair> pairs_;
   PairOptions options_;
   Derivatives derivatives_;
-  std::vector<double> values_;
+  std::vector<double> values_;  // the field's, then the rig's (if any)
+  size_t field_count_ = 0;
+  std::shared_ptr<const CameraRig> rig_;
   std::vector<int> free_;
   std::vector<double> start_, lower_, upper_;
   std::vector<char> log_scaled_;

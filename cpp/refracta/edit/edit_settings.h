@@ -10,6 +10,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -105,6 +106,10 @@ RobustLoss parse_loss(const std::string& name);
 
 struct SolveSummary {
   std::vector<double> values;        // every parameter of the solved field
+  // With camera parameters free: every camera parameter at the result (CameraRig::names() order:
+  // yaw, pitch, roll offsets and vfov [deg]) and the solved camera; else empty and none.
+  std::vector<double> camera_values;
+  std::optional<Camera> camera;
   std::vector<std::string> free;     // the parameters that were optimised
   std::vector<std::string> insensitive;  // requested free, but no pair depends on them: held fixed
   std::string backend, derivatives;

@@ -36,18 +36,29 @@ void write_residuals(const PairMiss<T>& miss, const PointPair& pair, T* residual
   for (int k = 0; k < 3; ++k) residuals[k] = miss.miss[k] * factor;
 }
 
-// Shared by both kinds: the pair, its options and the full parameter vector.
+// Shared by both kinds: the pair, its options, the full parameter vector and the camera rig.
 struct PairCostBase {
   std::vector<double> values;
   std::vector<int> free;
   PointPair pair;
   PairOptions options;
+  std::shared_ptr<const CameraRig> rig;
   EvaluationContext* context;
 
+  // The field's parameter values with the block's free ones in place; *direction: the launch
+  // direction (the rig's ray through the pair's pixel, at the block's camera values).
   template <class T>
-  std::vector<T> full_values(const T* block) const {
+  std::vector<T> field_values(const T* block, Vec3<T>* direction) const {
     std::vector<T> full(values.begin(), values.end());
     for (size_t i = 0; i < free.size(); ++i) full[free[i]] = block[i];
+    if (rig) {
+      const size_t field_count = full.size() - CameraRig::kCount;
+      *direction = pair.pixel ? rig->direction<T>((*pair.pixel)[0], (*pair.pixel)[1], full.data() + field_count)
+                              : Vec3<T>(pair.direction.normalized().cast<T>());
+      full.resize(field_count);
+    } else {
+      *direction = pair.direction.normalized().cast<T>();
+    }
     return full;
   }
   template <class T>
@@ -110,7 +121,8 @@ struct ModelPairCost : PairCostBase {
   template <class T>
   bool operator()(T const* const* parameters, T* residuals) const {
     return context->guarded([&] {
-      std::vector<T> full = full_values(parameters[0]);
+      Vec3<T> direction;
+      std::vector<T> full = field_values(parameters[0], &direction);
       std::vector<double> plain(full.size());
       for (size_t i = 0; i < full.size(); ++i) plain[i] = value_of(full[i]);
       T radius(0.0);
@@ -125,9 +137,9 @@ struct ModelPairCost : PairCostBase {
       PairMiss<T> miss;
       if (curved) {
         const FlattenedModel<typename Tag::template Model<T>, T> flat{model, radius};
-        miss = pair_miss<T>(flat, pair, options, context->cancel);
+        miss = pair_miss_along<T>(flat, pair, direction, options, context->cancel);
       } else {
-        miss = pair_miss<T>(model, pair, options, context->cancel);
+        miss = pair_miss_along<T>(model, pair, direction, options, context->cancel);
       }
       record(miss);
       write_residuals(miss, pair, residuals);
@@ -142,8 +154,9 @@ struct FieldPairCost : PairCostBase {
 
   bool operator()(double const* const* parameters, double* residuals) const {
     return context->guarded([&] {
-      const FieldPtr at = field->with_param_values(full_values(parameters[0]));
-      const PairMiss<double> miss = pair_miss<double>(*at, pair, options, context->cancel);
+      Vec3d direction;
+      const FieldPtr at = field->with_param_values(field_values(parameters[0], &direction));
+      const PairMiss<double> miss = pair_miss_along<double>(*at, pair, direction, options, context->cancel);
       record(miss);
       write_residuals(miss, pair, residuals);
     });
@@ -170,7 +183,7 @@ bool has_templated_model(const IndexField& field) {
 std::vector<std::unique_ptr<ceres::CostFunction>> make_pair_costs(
     const FieldPtr& field, const std::vector<double>& values, const std::vector<int>& free,
     const std::vector<PointPair>& pairs, const PairOptions& options, Derivatives derivatives,
-    EvaluationContext* context) {
+    std::shared_ptr<const CameraRig> rig, EvaluationContext* context) {
   if (derivatives == Derivatives::kAutomatic && !has_templated_model(*field)) {
     throw_invalid("automatic derivatives need a field built from a templated model; ",
                   field->type_name(), " has none (use derivatives='numeric')");
@@ -179,7 +192,7 @@ std::vector<std::unique_ptr<ceres::CostFunction>> make_pair_costs(
   std::vector<std::unique_ptr<ceres::CostFunction>> costs;
   std::shared_ptr<void> cache;  // one ModelCache for all pairs
   for (const PointPair& pair : pairs) {
-    PairCostBase base{values, free, pair, options, context};
+    PairCostBase base{values, free, pair, options, rig, context};
     if (derivatives == Derivatives::kAutomatic) {
       visit_templated_model(*field, [&](auto tag, const auto& config, bool curved) {
         using Tag = decltype(tag);

@@ -5,6 +5,7 @@
 // when the field has a templated model, central differences otherwise.
 #pragma once
 
+#include "refracta/edit/camera_rig.h"
 #include "refracta/edit/evaluation_context.h"
 #include "refracta/edit/point_pair.h"
 #include "refracta/media/index_field.h"
@@ -24,11 +25,13 @@ const char* derivatives_name(Derivatives derivatives);  // "automatic", "numeric
 // True when the field can be differentiated automatically.
 bool has_templated_model(const IndexField& field);
 
-// values: every parameter of the field (the fixed ones stay at these values); free: indices of
-// the parameters in the block. context must outlive the cost functions.
+// values: every parameter of the field, then, with a camera rig, its CameraRig::kCount values (the
+// fixed ones stay at these values); free: indices into values of the parameters in the block.
+// Pairs with a pixel launch along the rig's ray through it; the others along their direction.
+// context must outlive the cost functions.
 std::vector<std::unique_ptr<ceres::CostFunction>> make_pair_costs(
     const FieldPtr& field, const std::vector<double>& values, const std::vector<int>& free,
     const std::vector<PointPair>& pairs, const PairOptions& options, Derivatives derivatives,
-    EvaluationContext* context);
+    std::shared_ptr<const CameraRig> rig, EvaluationContext* context);
 
 }  // namespace refracta

@@ -43,15 +43,16 @@ struct PastSource {
 
 }  // namespace detail
 
-// Traces the pair's path through `field` (anything with evaluate(Vec3<T>, T*, Vec3<T>*)) and
+// Traces the pair's path through `field` (anything with evaluate(Vec3<T>, T*, Vec3<T>*)) from the
+// eye along `direction` (unit; the pair's own, or a solved camera's ray through its pixel) and
 // measures its miss. cancel, when given, is polled every step (throws Cancelled).
 template <class T, class Field>
-PairMiss<T> pair_miss(const Field& field, const PointPair& pair, const PairOptions& options,
-                      const std::atomic<bool>* cancel = nullptr) {
+PairMiss<T> pair_miss_along(const Field& field, const PointPair& pair, const Vec3<T>& direction,
+                            const PairOptions& options, const std::atomic<bool>* cancel = nullptr) {
   TraceOptions trace = options.trace_options(pair);
   trace.cancel = cancel;
   const Vec3<T> x0 = pair.origin.cast<T>();
-  const Vec3<T> t0 = pair.direction.normalized().cast<T>();
+  const Vec3<T>& t0 = direction;
   const Vec3<T> p = pair.source.cast<T>();
   const detail::PastSource past(pair);
 
@@ -105,6 +106,13 @@ PairMiss<T> pair_miss(const Field& field, const PointPair& pair, const PairOptio
   out.distance = best;
   out.evaluations = end.evaluations;
   return out;
+}
+
+// The miss of the pair's path launched along its own direction.
+template <class T, class Field>
+PairMiss<T> pair_miss(const Field& field, const PointPair& pair, const PairOptions& options,
+                      const std::atomic<bool>* cancel = nullptr) {
+  return pair_miss_along<T>(field, pair, Vec3<T>(pair.direction.normalized().cast<T>()), options, cancel);
 }
 
 }  // namespace refracta

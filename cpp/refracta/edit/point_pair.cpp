@@ -65,6 +65,7 @@ void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& opti
     if (!(p.tolerance >= 0.0) || !std::isfinite(p.tolerance)) {
       throw_invalid("pair ", i, ": tolerance must be >= 0 and finite (got ", p.tolerance, ")");
     }
+    if (p.pixel && !p.pixel->allFinite()) throw_invalid("pair ", i, ": the destination pixel is not finite");
     if (!(p.range() > 0.0)) throw_invalid("pair ", i, ": the source is at the eye");
     if (options.stop_height && p.origin.y() < *options.stop_height) {
       throw_invalid("pair ", i, ": the eye (height ", p.origin.y(), " m) is below the ground (stop_height ",

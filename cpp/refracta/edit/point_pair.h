@@ -24,6 +24,10 @@ struct PointPair {
   // [m] beyond the margin, a miss up to this counts as met (a pixel destination: a fraction of the
   // pixel's footprint at the source, SolveSettings::pixel_tolerance); it leaves the cost alone.
   double tolerance = 0.0;
+  // A pixel (u, v) of the edit's camera (ProblemSpec::camera) the destination is: when camera
+  // parameters are free the launch direction follows the camera (CameraRig); direction is then
+  // the start camera's ray through it. Unset: a 3D destination, whose direction is fixed.
+  std::optional<Eigen::Vector2d> pixel;
 
   double range() const { return (source - origin).norm(); }  // [m]
   // What a miss beyond the margin may be for the pair to count as met: the larger of its tolerance
@@ -60,7 +64,7 @@ PairDistance parse_pair_distance(const std::string& name);  // "continuous", "ve
 const char* pair_distance_name(PairDistance distance);
 
 // Throws std::invalid_argument naming the pair and the bad value (NaN, zero direction,
-// weight <= 0, margin < 0, source at the eye, eye below the ground).
+// weight <= 0, margin < 0, source at the eye, eye below the ground, a non-finite pixel).
 void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& options);
 
 }  // namespace refracta

@@ -359,6 +359,8 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
   out.stopped_by = stop_reason_name(strategy.stopped_by());
 
   out.values = problem->full_values(result.x);
+  out.camera_values = problem->camera_values(result.x);
+  out.camera = problem->camera_at(result.x);
   out.history = result.history;
   out.iterations = strategy.iterations();
   out.evaluations = budget.evaluations_used();
@@ -416,12 +418,14 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
 }
 
 // Start k (>= 1) of a multi-start solve: `field` with each of `free`'s parameters drawn uniformly
-// within its bounds (spec.bounds, else the model's), from the seed's stream k.
+// within its bounds (spec.bounds, else the model's), from the seed's stream k. Camera parameters
+// start at the camera given (a photograph's camera is known to a few degrees; the field is not).
 FieldPtr random_start(const FieldPtr& field, const std::vector<std::string>& free, const ProblemSpec& spec,
                       uint64_t seed, int k) {
   Rng rng(seed, uint64_t(k));
   std::vector<double> values = field->param_values();
   for (const std::string& name : free) {
+    if (CameraRig::index_of(name) >= 0) continue;
     const size_t index = field->param_index(name);
     const ParamSpec& param = field->param_specs()[index];
     auto [lower, upper] = std::make_pair(param.lower, param.upper);
