@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW', 'Dielectric', 'Diffuse', 'DispersedField', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MomentShadowSettings', 'NumericalError', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
+__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW', 'Dielectric', 'Diffuse', 'DispersedField', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MomentShadowSettings', 'NumericalError', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -715,6 +715,12 @@ class Scene:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def _add_terrain_grid(self, positions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], material: typing.Any, uv_from_index: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> int:
+        """
+        Terrain as Embree grid geometry (private: use Scene.add_terrain). positions: (rows, cols, 3) [m]
+        float32, row-major, rows along +z and columns along +x so the front is up; a sample with a NaN
+        coordinate is a hole. uv_from_index (2, 3): (u, v) = A (col, row, 1). Returns the geometry id.
+        """
     def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: str, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = (1.0, 1.0, 1.0)) -> int:
         """
         Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at
@@ -799,6 +805,23 @@ class Scene:
         Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] with
         `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives render_raster's 'embree'
         reference soft shadows of a disc that size. Returns its index among the spot lights.
+        """
+    def add_terrain(self, heights, origin = None, spacing = None, material = None, *, frame = None, earth_radius = None, orthophoto = None, water_level = None, water = None) -> TerrainGeometry:
+        """
+        Add terrain from elevation data to the Scene ``self`` (bound as ``Scene.add_terrain``); see the
+            module's docstring.
+        
+            heights: a (rows, cols) array of heights [m] (NaN: a hole), with ``origin`` (x0, z0) [m] and
+            ``spacing`` (dx, dz) [m] > 0 (rows along +z, columns along +x) and, for a curved Earth,
+            ``earth_radius`` [m]; or the path of an SRTM .hgt tile or a GeoTIFF, or a list of them, with
+            ``frame`` a :class:`refracta.geo.LocalFrame` placing them.
+            material: a refracta.shading material, or None for TerrainShading (elevation, slope, snow line).
+            orthophoto: an image file draped over the terrain (a georeferenced GeoTIFF for the file forms).
+            water_level: a true height [m]: a water surface (``water``, default refracta.shading.Water)
+            over the terrain's extent at that height.
+            Returns a :class:`TerrainGeometry` (the geometry ids). Bad input raises ValueError naming the
+            argument; a missing file FileNotFoundError.
+            
         """
     def intersect(self, origin: typing.Any, direction: typing.Any) -> typing.Any:
         """
@@ -1579,6 +1602,7 @@ class RenderOptions:
     Options of refracta.render, with their defaults (defined once, here). Set any field by name;
     validate() reports every bad value at once.
     """
+    animation_turbulence_trace: typing.ClassVar[str] = 'perturbed'
     def __getstate__(self) -> dict:
         ...
     def __init__(self) -> None:
@@ -1663,6 +1687,14 @@ class RenderOptions:
         """
     @pixel_bounds.setter
     def pixel_bounds(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def readouts(self) -> bool:
+        """
+        also render the per-pixel readouts after those 9 channels: 19 (render's aovs 'distance', ...)
+        """
+    @readouts.setter
+    def readouts(self, arg0: bool) -> None:
         ...
     @property
     def rr_depth(self) -> int:
@@ -1775,6 +1807,15 @@ class RenderOptions:
         """
     @transport.setter
     def transport(self, arg1: str) -> None:
+        ...
+    @property
+    def turbulence_trace(self) -> str:
+        """
+        camera rays through turbulence: 'strict' (the full field, rk45) or 'perturbed' (deviations from
+        the calm rays of the eye's table in steps of the turbulence's cells; strict where not small)
+        """
+    @turbulence_trace.setter
+    def turbulence_trace(self, arg1: str) -> None:
         ...
 class RenderStats:
     """
@@ -2633,6 +2674,33 @@ class Ior:
     @property
     def dispersive(self) -> bool:
         ...
+class TerrainShading(Material):
+    """
+    Terrain coloured by elevation, slope and snow line (shading/terrain_shading.h), the default of
+    Scene.add_terrain: Lambertian, its reflectance ``vegetation`` below ``tree_line`` [m], ``rock``
+    above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above
+    ``snow_line`` [m] on slopes under 55 deg (snow slides off steeper ones); the covers blend over
+    100 m of height and 5 deg of slope. Heights are true heights above sea level: with
+    ``earth_radius`` R > 0 (the scene's CurvedEarth radius) the scene's y is the flat height
+    y' = R ln(1 + h/R) and h = R (exp(y'/R) - 1); 0 means a flat Earth (h = y). The slope is the
+    shading normal's angle from +y (the Earth-flattening map is conformal: it keeps angles).
+    Colours are linear RGB albedos in [0, 1]: conifer forest ~0.08, rock 0.2-0.3, old snow ~0.8.
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, snow_line: typing.SupportsFloat | typing.SupportsIndex = 3000.0, tree_line: typing.SupportsFloat | typing.SupportsIndex = 2000.0, rock_slope: typing.SupportsFloat | typing.SupportsIndex = 35.0, earth_radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, vegetation: typing.Any = (0.06, 0.09, 0.04), rock: typing.Any = (0.25, 0.23, 0.21), snow: typing.Any = (0.8, 0.8, 0.83)) -> None:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def reflectance(self, height: typing.SupportsFloat | typing.SupportsIndex, slope: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
+        """
+        The linear RGB albedo at true height `height` [m] on ground sloping `slope` [deg].
+        """
+    @property
+    def parameters(self) -> dict:
+        """
+        The constructor's keyword arguments that rebuild this material (pickling uses them).
+        """
 class Light:
     """
     A light (shared/SHADING.md section 5). Methods evaluate RGB rendering, vectorised over N points.
@@ -2941,6 +3009,10 @@ def _cancel_thread_work(thread_ids: collections.abc.Sequence[typing.SupportsInt 
     """
 def _canonical_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, bool]:
     ...
+def _channel_names(path: str) -> list[str]:
+    """
+    The channel names of an image file (OIIO's).
+    """
 def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, settings: OitSettings) -> numpy.ndarray:
     ...
 def _display(image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> numpy.typing.NDArray[numpy.float32]:
@@ -2964,6 +3036,10 @@ def _ev100(f_number: typing.SupportsFloat | typing.SupportsIndex, shutter: typin
 def _mboit_unorm16(b: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
     """
     6 or 8 normalised power moments after MBOIT's 16-bit storage (transform, rounding, inverse).
+    """
+def _mirage_images(true_elevation: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], object_id: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.int32]:
+    """
+    Mirage multiplicity per pixel (render's aovs 'images'; render/readouts.h mirage_images): (H, W) int32.
     """
 def _pair_distances(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, options: PairOptions) -> numpy.typing.NDArray[numpy.float64]:
     ...
@@ -3023,6 +3099,10 @@ def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any,
     ...
 def _write_image(path: str, image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
     ...
+def _write_image_channels(path: str, image: typing.Any, names: collections.abc.Sequence[str]) -> None:
+    """
+    Write (H, W, C) float pixels as they are to a float file (EXR) with one name per channel (io.write_layers).
+    """
 def air_dispersion_scale(wavelength: typing.SupportsFloat | typing.SupportsIndex, reference: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> float:
     """
     K(wavelength)/K(reference) of dry air (Birch & Downs 1993 Edlen formula at 101325 Pa, 288.15 K):
