@@ -114,6 +114,7 @@ def render(
     tiles: None | int | tuple[int, int] = None,
     aovs: Sequence[str] | None = None,
     denoise: bool = False,
+    frame=None,
     **options,
 ):
     """Render `scene` from `camera` through `field`; returns linear HDR radiance, float32 (H, W, 3),
@@ -127,7 +128,36 @@ def render(
     samples: 'albedo' -- (H, W, 3) the directional albedo (reflectance and transmittance, linear
     sRGB in [0, 1]) of the first surface each sample's path meets that is not a perfect mirror or
     glass; 'normal' -- (H, W, 3) its shading normal facing the path, world space (0 where the path
-    met no such surface). denoise: return the image denoised by Intel Open Image Denoise
+    met no such surface). Readouts (Python's view of cpp/refracta/render/readouts.h; float32 but
+    where said): of the NEAREST hit among the pixel's samples (the sample of least path length, so
+    a foreground and a background never blend into a point in the air; bit-identical for any
+    thread count) -- 'distance' (H, W) the path length along the curved camera path to it [m], inf
+    where no sample met anything; 'position' (H, W, 3) the hit point in scene coordinates [m]
+    (over a CurvedEarth its flat frame), NaN where none; 'object_id' (H, W) int32 the id of the
+    geometry met (as Scene.add_* returned), -1 where none; 'geographic' (H, W, 3) float64 latitude,
+    longitude [deg] and height [m] of that point through ``frame.to_geographic`` (frame: the
+    scene's refracta.geo.LocalFrame, required with it), NaN where none; 'true_elevation' (H, W)
+    [deg] of that point seen from the eye along a straight line in the TRUE geometry: over a
+    CurvedEarth both points are mapped from the flat frame back onto the sphere (azimuthal
+    equidistant about the scene origin, height h = R (exp(y'/R) - 1)) and the chord's angle is
+    taken against the eye's local horizontal; on a flat Earth, the scene's straight line;
+    'hidden_height' (H, W, 2) [m] how much of the vertical through that point the Earth's bulge
+    hides from the eye: channel 0 without refraction, the true height where the eye's tangent to
+    the sphere crosses it, R (sec(theta - theta0) - 1) for a central angle theta beyond the
+    horizon's theta0 = acos(R / (R + h_eye)) (about (d - sqrt(2 R h_eye))^2 / (2R) at ground
+    distance d), 0 nearer and on a flat Earth; channel 1 with refraction, the true height there
+    of the grazing ray -- the lowest ray from the eye that stays above the ground (y' = 0) for
+    max_length of path, found by bisection on its elevation through the field's height-only air
+    and traced exactly -- 0 up to where it touches the ground, NaN beyond its reach or where every
+    ray meets the ground (a duct); 'images' (H, W) int32 the mirage multiplicity: along the pixel's
+    column, rows meeting the same object are cut into monotone branches of true elevation (a
+    turning row belongs to both branches it joins); the count of branches on the pixel's object
+    whose range of true elevations holds the pixel's (how many times the column shows that line of
+    sight to the object: 1 unmiraged, 2 or 3 in a mirage), 0 where none. Averaged over the
+    samples: 'apparent_elevation' and 'apparent_azimuth' (H, W) [deg] of the mean of the samples'
+    camera-ray directions at the eye: elevation above the horizontal plane (y), azimuth clockwise
+    from north (-z) in [0, 360) (refracta.geo's conventions). Not with method 'raster_march'.
+    denoise: return the image denoised by Intel Open Image Denoise
     (refracta.denoise) with those albedo and normal as its guides (rendered for it whether asked
     for or not); pixels where no sample met such a surface (the sky) keep their noise-free values.
 
@@ -191,8 +221,15 @@ def render(
     wanted = _aov_names(aovs)
     if not isinstance(denoise, (bool, np.bool_)):
         raise ValueError(f"denoise must be True or False (got {denoise!r})")
+    if "geographic" in wanted and not callable(getattr(frame, "to_geographic", None)):
+        raise ValueError(
+            "render: aovs 'geographic' needs frame=, the scene's refracta.geo.LocalFrame (its to_geographic maps "
+            f"scene points to latitude, longitude and height; got frame={frame!r})"
+        )
     if denoise or wanted:
         options["surface_aovs"] = True
+    if any(name in READOUT_NAMES for name in wanted):
+        options["readouts"] = True
     settings = render_options(
         method=method, transport=transport, spp=spp, max_depth=max_depth, spectral=spectral, seed=seed, **options
     )
@@ -207,8 +244,10 @@ def render(
     if stats is not None:
         stats.update({name: getattr(counts, name) for name in ("samples", "chords", "invalid_samples")})
     outputs = {}
-    if settings.surface_aovs:
+    if settings.surface_aovs or settings.readouts:
         outputs = {"albedo": np.ascontiguousarray(image[..., 3:6]), "normal": np.ascontiguousarray(image[..., 6:9])}
+        if settings.readouts:
+            outputs.update(_readouts(image[..., 9:], wanted, frame))
         image = np.ascontiguousarray(image[..., :3])
     if denoise:
         clean = _denoise.denoise(image, outputs["albedo"], outputs["normal"])
@@ -224,8 +263,45 @@ def render(
     return result
 
 
+# The per-pixel readouts render(aovs=...) knows (render's docstring; cpp/refracta/render/readouts.h).
+READOUT_NAMES = (
+    "distance",
+    "position",
+    "object_id",
+    "geographic",
+    "apparent_elevation",
+    "apparent_azimuth",
+    "true_elevation",
+    "hidden_height",
+    "images",
+)
 # The per-pixel outputs render(aovs=...) knows, and what they are (render's docstring).
-AOV_NAMES = ("albedo", "normal")
+AOV_NAMES = ("albedo", "normal", *READOUT_NAMES)
+
+
+def _readouts(channels: np.ndarray, wanted: list[str], frame) -> dict[str, np.ndarray]:
+    """The readouts from the render's channels after the 9 of radiance, albedo and normal (their
+    order: readouts.h ReadoutChannel); 'images' and 'geographic' are worked out from them."""
+    out = {
+        "distance": channels[..., 0],
+        "position": channels[..., 1:4],
+        "object_id": channels[..., 4].astype(np.int32),
+        "apparent_elevation": channels[..., 5],
+        "apparent_azimuth": channels[..., 6],
+        "true_elevation": channels[..., 7],
+        "hidden_height": channels[..., 8:10],
+    }
+    out = {name: np.ascontiguousarray(value) for name, value in out.items()}
+    if "images" in wanted:
+        out["images"] = _core._mirage_images(out["true_elevation"], out["object_id"])
+    if "geographic" in wanted:
+        geographic = np.full(out["position"].shape, np.nan)
+        met = out["object_id"] >= 0
+        if np.any(met):
+            lat, lon, height = frame.to_geographic(out["position"][met].astype(np.float64))
+            geographic[met] = np.stack([np.asarray(lat), np.asarray(lon), np.asarray(height)], axis=-1)
+        out["geographic"] = geographic
+    return out
 
 
 def _aov_names(aovs) -> list[str]:
@@ -236,7 +312,7 @@ def _aov_names(aovs) -> list[str]:
     names = list(aovs)
     unknown = [name for name in names if name not in AOV_NAMES]
     if unknown:
-        raise ValueError(f"render: unknown aovs {unknown} (known: {', '.join(AOV_NAMES)})")
+        raise ValueError(f"render: unknown aovs {unknown} (valid names: {', '.join(AOV_NAMES)})")
     if len(set(names)) != len(names):
         raise ValueError(f"render: aovs names repeated ({names})")
     return names
@@ -299,12 +375,14 @@ def _render_tiled(scene, camera, field, settings, executor, tiles, progress):
     ox, oy = (region[0], region[1]) if region is not None else (0, 0)
     width = (region[2] - region[0]) if region is not None else camera.width
     height = (region[3] - region[1]) if region is not None else camera.height
-    image = np.empty((height, width, 9 if settings.surface_aovs else 3), dtype=np.float32)
+    image = None  # as many channels as the tiles have (renderer.h's layouts)
     counts = _core.RenderStats()
     for (x0, y0, x1, y1), (ok, value) in zip(bounds, outcomes):
         if not ok:
             raise value[0]
         tile, tile_counts = value
+        if image is None:
+            image = np.empty((height, width, tile.shape[2]), dtype=np.float32)
         image[y0 - oy : y1 - oy, x0 - ox : x1 - ox] = tile
         counts = counts + tile_counts
     return image, counts

@@ -295,6 +295,19 @@ def _demo_shimmer(out: Path, size=(48, 16), noise_size=(320, 120)) -> None:
     )
 
 
+# EXR channel names of the readouts with more than one channel that are not X, Y, Z (io.write_layers).
+_LAYER_CHANNELS = {
+    "albedo": ("R", "G", "B"),
+    "hidden_height": ("geometric", "refracted"),
+    "geographic": ("lat", "lon", "height"),
+}
+
+
+def _aov_list(text: str) -> list[str]:
+    """--aovs distance,position,...: the names, checked by render (a bad one lists the valid names)."""
+    return [name.strip() for name in text.split(",") if name.strip()]
+
+
 def render_file(
     scene_path: Path,
     output: Path,
@@ -308,11 +321,16 @@ def render_file(
     tonemap=None,
     key=None,
     ev100=None,
+    aovs=None,
 ) -> int:
     """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped).
 
     exposure, ev100, key, tonemap: as refracta.io.write_image (None: its defaults, automatic
     exposure and the ACES curve). method, spp, transport, max_depth: None keeps RenderOptions' own.
+    aovs: names of render's per-pixel outputs (refracta.render's aovs: distance, position, ...),
+    written after R, G, B as layers of the EXR (refracta.io.write_layers: distance.Y, position.X,
+    ...; hidden_height.geometric and .refracted; geographic.lat, .lon, .height); the output must
+    then be an EXR.
     """
     import refracta
 
@@ -320,7 +338,9 @@ def render_file(
     if size is not None:
         camera = camera.resized(*size)
     start = time.perf_counter()
-    image = refracta.render(
+    if aovs and Path(output).suffix.lower() != ".exr":
+        raise ValueError(f"--aovs writes EXR layers: the output must be a .exr file (got {output})")
+    result = refracta.render(
         scene,
         camera,
         field,
@@ -330,8 +350,15 @@ def render_file(
         max_depth=max_depth,
         spectral=spectral,
         progress=True,
+        aovs=aovs or None,
     )
-    refracta.io.write_image(output, image, exposure=exposure, tonemap=tonemap, key=key, ev100=ev100)
+    if aovs:
+        image, layers = result
+        if exposure is not None or ev100 is not None:  # as write_image does for float files: manual only
+            image = image * refracta.io.exposure_of(image, exposure=exposure, ev100=ev100)
+        refracta.io.write_layers(output, image, layers, suffixes=_LAYER_CHANNELS)
+    else:
+        refracta.io.write_image(output, result, exposure=exposure, tonemap=tonemap, key=key, ev100=ev100)
     defaults = refracta.RenderOptions()
     method, transport = method or defaults.method, transport or defaults.transport
     print(
@@ -429,6 +456,14 @@ def _run(argv=None) -> int:
         help="automatic exposure's key: the log-average luminance shows as this grey "
         "(default 0.18; overrides --exposure/--ev100)",
     )
+    render_parser.add_argument(
+        "--aovs",
+        type=_aov_list,
+        default=None,
+        help="per-pixel readouts written as EXR layers, comma-separated: distance, position, object_id, "
+        "apparent_elevation, apparent_azimuth, true_elevation, hidden_height, images, albedo, normal "
+        "(refracta.render's aovs)",
+    )
     edit_parser = commands.add_parser("edit", help="solve a scene's atmosphere for point pairs (JSON)")
     edit_parser.add_argument("scene", type=Path, help="scene file (.toml) with an [atmosphere] table")
     edit_parser.add_argument(
@@ -453,6 +488,7 @@ def _run(argv=None) -> int:
             args.tonemap,
             args.key,
             args.ev100,
+            args.aovs,
         )
     if args.command == "edit":
         return edit_file(args.scene, args.pairs, args.output, args.backend)

@@ -51,7 +51,7 @@ import numpy as np
 
 from refracta import _core
 
-__all__ = ["ev100", "exposure_of", "read_image", "to_display", "write_image"]
+__all__ = ["channel_names", "ev100", "exposure_of", "read_image", "to_display", "write_image", "write_layers"]
 
 
 def write_image(
@@ -91,6 +91,47 @@ def write_image(
         f_number=f_number,
         luminous_efficacy=luminous_efficacy,
     )
+
+
+# Channel suffixes of a layer in write_layers, by its number of channels (EXR's layer.channel names).
+_LAYER_SUFFIXES = {1: ("Y",), 2: ("X", "Y"), 3: ("X", "Y", "Z"), 4: ("X", "Y", "Z", "W")}
+
+
+def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> None:
+    """Write a linear float image with extra named layers to a float file (EXR): the image's
+    channels as R, G, B (A), then each layer's as ``name.Y`` (one channel), ``name.X``,
+    ``name.Y``, ``name.Z`` (two to four; e.g. position.X), or the names ``suffixes[name]`` gives
+    (e.g. {"hidden_height": ("geometric", "refracted")}). Layers are (H, W) or (H, W, C) arrays of
+    the image's size, stored as float32 as they are (inf and NaN kept; integers as floats). Raises
+    ValueError for a bad layer or a non-float format, refracta.IoError when the file cannot be
+    written."""
+    base = np.asarray(image, dtype=np.float32)
+    if base.ndim == 2:
+        base = base[..., None]
+    if base.ndim != 3 or not 1 <= base.shape[2] <= 4:
+        raise ValueError(f"write_layers: image must be (H, W) or (H, W, 1..4) (got shape {base.shape})")
+    names = list(("R", "G", "B", "A")[: base.shape[2]]) if base.shape[2] >= 3 else ["Y", "A"][: base.shape[2]]
+    planes = [base]
+    for name, layer in layers.items():
+        values = np.asarray(layer, dtype=np.float32)
+        if values.ndim == 2:
+            values = values[..., None]
+        if values.ndim != 3 or values.shape[:2] != base.shape[:2]:
+            raise ValueError(
+                f"write_layers: layer {name!r} must be (H, W) or (H, W, C) of the image's {base.shape[:2]} "
+                f"(got shape {np.shape(layer)})"
+            )
+        own = (suffixes or {}).get(name) or _LAYER_SUFFIXES.get(values.shape[2])
+        if own is None or len(own) != values.shape[2]:
+            raise ValueError(f"write_layers: layer {name!r} has {values.shape[2]} channels; give its channel names")
+        names += [f"{name}.{suffix}" for suffix in own]
+        planes.append(values)
+    _core._write_image_channels(os.fspath(path), np.ascontiguousarray(np.concatenate(planes, axis=2)), names)
+
+
+def channel_names(path) -> list[str]:
+    """The channel names of an image file, as OpenImageIO reads them (an EXR's layer.channel)."""
+    return list(_core._channel_names(os.fspath(path)))
 
 
 def read_image(path) -> np.ndarray:

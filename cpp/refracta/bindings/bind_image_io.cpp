@@ -103,6 +103,28 @@ void bind_image_io(py::module_& m) {
   m.def("_ev100", &ev100_of, py::arg("f_number"), py::arg("shutter"), py::arg("iso") = kDefaultIso,
         "EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.");
   m.def("_read_image", [](const std::string& path) { return image_to_float32(read_image(path)); }, py::arg("path"));
+  m.def(
+      "_write_image_channels",
+      [](const std::string& path, const py::object& image, const std::vector<std::string>& names) {
+        // Any channel count, inf and NaN kept (readouts: no hit is inf distance, a NaN position).
+        using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+        FloatArray array;
+        try {
+          array = py::cast<FloatArray>(image);
+        } catch (const py::cast_error&) {
+          throw_invalid("image must be a float array of shape (H, W, C)");
+        }
+        if (array.ndim() != 3 || array.shape(0) < 1 || array.shape(1) < 1 || array.shape(2) < 1) {
+          throw_invalid("image must have shape (H, W, C) (got ", array.ndim(), " dimensions)");
+        }
+        Image pixels(int(array.shape(1)), int(array.shape(0)), int(array.shape(2)));
+        std::copy(array.data(), array.data() + array.size(), pixels.pixels.begin());
+        py::gil_scoped_release release;
+        write_image_channels(path, pixels, names);
+      },
+      py::arg("path"), py::arg("image"), py::arg("names"),
+      "Write (H, W, C) float pixels as they are to a float file (EXR) with one name per channel (io.write_layers).");
+  m.def("_channel_names", &read_channel_names, py::arg("path"), "The channel names of an image file (OIIO's).");
 }
 
 }  // namespace refracta

@@ -3,6 +3,7 @@
 #include "refracta/bindings/interruptible.h"
 #include "refracta/bindings/options_binding.h"
 #include "refracta/render/raster_renderer.h"
+#include "refracta/render/readouts.h"
 #include "refracta/render/renderer.h"
 
 #include <optional>
@@ -42,6 +43,8 @@ validate() reports every bad value at once.)doc");
                      "camera rays' footprints from ray differentials through the air (false: the ray cone)")
       .def_readwrite("surface_aovs", &RenderOptions::surface_aovs,
                      "also render the albedo and normal of the first non-specular hit: 9 channels (render's aovs, denoise)")
+      .def_readwrite("readouts", &RenderOptions::readouts,
+                     "also render the per-pixel readouts after those 9 channels: 19 (render's aovs 'distance', ...)")
       .def_property("march", [](const RenderOptions& o) { return trace_method_name(o.march); },
                     [](RenderOptions& o, const std::string& v) { o.march = parse_trace_method(v); },
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)")
@@ -112,7 +115,7 @@ validate() reports every bad value at once.)doc");
           // Refused before anything is allocated (core/image.h): float32 RGB, and room for one copy
           // by the caller (the pixels themselves move into the returned array).
           const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
-          check_image_memory(bounds.width(), bounds.height(), options.surface_aovs ? 72.0 : 24.0, "render");
+          check_image_memory(bounds.width(), bounds.height(), options.readouts ? 152.0 : options.surface_aovs ? 72.0 : 24.0, "render");
           WorkControl control;
           Image image;
           RenderStats stats;
@@ -121,6 +124,24 @@ validate() reports every bad value at once.)doc");
           return py::make_tuple(image_to_float32(std::move(image)), stats);
         },
         py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("options"), py::arg("progress"));
+
+  m.def("_mirage_images",
+        [](const py::array_t<float, py::array::c_style | py::array::forcecast>& true_elevation,
+           const py::array_t<float, py::array::c_style | py::array::forcecast>& object_id) {
+          if (true_elevation.ndim() != 2 || object_id.ndim() != 2 || true_elevation.shape(0) != object_id.shape(0) ||
+              true_elevation.shape(1) != object_id.shape(1)) {
+            throw_invalid("_mirage_images: true_elevation and object_id must be (H, W) arrays of one shape");
+          }
+          const int height = int(true_elevation.shape(0)), width = int(true_elevation.shape(1));
+          const std::vector<float> elevations(true_elevation.data(), true_elevation.data() + true_elevation.size());
+          const std::vector<float> ids(object_id.data(), object_id.data() + object_id.size());
+          const std::vector<int> images = mirage_images(elevations, ids, width, height);
+          py::array_t<int32_t> out({py::ssize_t(height), py::ssize_t(width)});
+          std::copy(images.begin(), images.end(), out.mutable_data());
+          return out;
+        },
+        py::arg("true_elevation"), py::arg("object_id"),
+        "Mirage multiplicity per pixel (render's aovs 'images'; render/readouts.h mirage_images): (H, W) int32.");
 
   m.def("_render_raster",
         [](const std::shared_ptr<RenderScene>& scene, const Camera& camera, const RasterRenderOptions& options,

@@ -10,6 +10,7 @@
 #include "refracta/core/scratch.h"
 #include "refracta/core/spectrum.h"
 #include "refracta/render/integrator.h"
+#include "refracta/render/readouts.h"
 #include "refracta/render/render_options.h"
 #include "refracta/render/tile_loop.h"
 #include "refracta/scene/camera.h"
@@ -19,6 +20,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace refracta {
 
@@ -60,12 +62,21 @@ inline uint32_t permutation_element(uint32_t i, uint32_t n, uint32_t seed) {
 // coordinates, its point on a thin lens in [0, 1)^2 (Camera::lens_ray; (0.5, 0.5), the lens centre,
 // for a pinhole, which draws no number for it), the spacing of the samples [pixels] (1 / strata: a
 // sample stands for a spacing x spacing square), and its cone's angle [rad] (0 without texture
-// filtering), and where to put the sample's surface AOVs (null without). kSurfaceAovs: 9 channels,
-// the radiance then the mean albedo and normal of the pixel's samples; else 3.
-template <bool kSurfaceAovs, class SampleRadiance>
+// filtering), and where to put the sample's surface AOVs (null without). kRadiance: 3 channels;
+// kSurface: 9, the radiance then the mean albedo and normal of the pixel's samples; kReadouts:
+// those 9 and the kReadoutChannels of readouts.h -- of the nearest hit among the pixel's samples
+// (the first sample of the least path length: never a blend of a foreground and a background)
+// its distance, position and object id, and through `geometry` its true elevation and hidden
+// heights; the apparent elevation and azimuth of the mean of the samples' directions at the eye.
+enum class FilmLayout { kRadiance, kSurface, kReadouts };
+
+template <FilmLayout kLayout, class SampleRadiance>
 Image render_film(const Camera& camera, const RenderOptions& options, WorkControl& control,
-                  const SampleRadiance& radiance) {
-  using PixelValue = Eigen::Matrix<double, kSurfaceAovs ? 9 : 3, 1>;
+                  const SampleRadiance& radiance, const ReadoutGeometry* geometry = nullptr) {
+  constexpr bool kSurfaceAovs = kLayout != FilmLayout::kRadiance;
+  constexpr bool kReadouts = kLayout == FilmLayout::kReadouts;
+  constexpr int kChannels = kReadouts ? kSurfaceChannels + kReadoutChannels : kSurfaceAovs ? kSurfaceChannels : 3;
+  using PixelValue = Eigen::Matrix<double, kChannels, 1>;
   // Whole passes over a strata x strata grid, the samples left over uniform over the pixel: every
   // sample is then uniform over the pixel (a partly filled grid would leave strata unsampled).
   const int strata = std::max(1, int(std::floor(std::sqrt(double(options.spp)) + 1e-9)));
@@ -79,6 +90,8 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
     Sampler sampler{Rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x))};
     Vec3d sum = Vec3d::Zero();
     PixelValue value = PixelValue::Zero();
+    Vec3d directions = Vec3d::Zero();  // readouts: the sum of the samples' directions at the eye
+    SurfaceAovs nearest;               // readouts: the sample whose hit is nearest (no hit: none)
     uint32_t pass_seed = 0;  // the lens cells' shuffle of the current pass over the grid
     for (int s = 0; s < options.spp; ++s) {
       poll_cancel();  // a sample through turbulence can take milliseconds (the ray's steps poll too)
@@ -115,9 +128,26 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
         value.template segment<3>(3) += aovs.albedo;
         value.template segment<3>(6) += aovs.normal;
       }
+      if constexpr (kReadouts) {
+        directions += aovs.eye_direction;
+        if (aovs.hit && (!nearest.hit || aovs.distance < nearest.distance)) nearest = aovs;
+      }
     }
     value.template head<3>() = sum;
-    return PixelValue(value / options.spp);
+    value /= options.spp;
+    if constexpr (kReadouts) {
+      auto out = value.template tail<kReadoutChannels>();
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      const Vec3d position = nearest.hit ? nearest.hit->point : Vec3d::Constant(nan);
+      out[kReadoutDistance] = nearest.hit ? nearest.distance : std::numeric_limits<double>::infinity();
+      out.template segment<3>(kReadoutPosition) = position;
+      out[kReadoutObject] = nearest.hit ? double(nearest.hit->geometry) : -1.0;
+      out.template segment<2>(kReadoutApparentElevation) = apparent_angles(directions);
+      out[kReadoutTrueElevation] = geometry->true_elevation(position);
+      out[kReadoutHiddenHeight] = geometry->hidden_geometric(position);
+      out[kReadoutHiddenHeight + 1] = geometry->hidden_refracted(position);
+    }
+    return value;
   });
 }
 

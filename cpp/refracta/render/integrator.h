@@ -13,6 +13,7 @@
 #include "refracta/render/render_scene.h"
 
 #include <memory>
+#include <optional>
 
 namespace refracta {
 
@@ -21,8 +22,13 @@ namespace refracta {
 // and its shading normal facing the path (world space); zero where the path met none. The
 // auxiliary features Intel Open Image Denoise takes beside the noisy image (its documentation:
 // albedo and normal of the first diffuse or glossy hit, following delta bounces).
+// With RenderOptions::readouts the renderer also records the camera ray itself (readouts.h): its
+// direction at the eye and its first hit, whatever the surface (the integrator leaves these).
 struct SurfaceAovs {
   Vec3d albedo = Vec3d::Zero(), normal = Vec3d::Zero();
+  Vec3d eye_direction = Vec3d::Zero();  // unit camera ray direction at the eye
+  std::optional<Hit> hit;               // the camera path's first hit (none: it saw the sky)
+  double distance = 0.0;                // the camera path's length to that hit [m]
 };
 
 class Integrator {

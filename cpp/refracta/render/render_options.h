@@ -65,6 +65,10 @@ struct RenderOptions {
   // pixel's samples): the image then has 9 channels, radiance, albedo, normal (Intel Open Image
   // Denoise's auxiliary features; renderer.h). 'straight' and 'curved' only.
   bool surface_aovs = false;
+  // Also render the per-pixel readouts (readouts.h: distance, position, object id, apparent and
+  // true elevation, apparent azimuth, hidden heights) after those 9 channels: 19 in all.
+  // Implies surface_aovs. 'straight' and 'curved' only.
+  bool readouts = false;
 
   // raster_march (the original editor's method): the integrator marching each pixel's ray
   // against the depth buffer: 'rk4' with `step` [m] for at most `max_steps` steps (the

@@ -17,6 +17,7 @@
 #include "refracta/render/caster.h"
 #include "refracta/render/film.h"
 #include "refracta/render/integrator.h"
+#include "refracta/render/readouts.h"
 
 #include <atomic>
 #include <cmath>
@@ -54,6 +55,7 @@ void RenderOptions::validate() const {
   if (!(step > 0.0) || !std::isfinite(step)) problems.add("step must be > 0 (got ", step, ")");
   if (max_steps < 1) problems.add("max_steps must be >= 1 (got ", max_steps, ")");
   if (surface_aovs && method == RenderMethod::kRasterMarch) problems.add("surface_aovs needs method 'straight' or 'curved'");
+  if (readouts && method == RenderMethod::kRasterMarch) problems.add("readouts need method 'straight' or 'curved'");
   if (!(guard_band >= 0.0 && guard_band <= 2.0)) problems.add("guard_band must be in [0, 2] (got ", guard_band, ")");
   if (max_depth < 0) problems.add("max_depth must be >= 0 (got ", max_depth, ")");
   if (rr_depth < 1) problems.add("rr_depth must be >= 1 (got ", rr_depth, ")");
@@ -199,6 +201,13 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   // part by up to 0.26 px (480 px across 36 mm) at 260 m, for rays grazing the road near the
   // mirage's critical angle (-0.31 deg), where n changes over centimetres. Tracing costs what
   // table=False costs: hot road, 480 x 160, 4 spp: 3.7 s with a lens, 1.3 s pinhole with the table.
+  // Readouts (readouts.h): the camera ray's direction at the eye and its first hit.
+  auto record_camera_ray = [](const Vec3d& dir, const PathEnd& first, SurfaceAovs* aovs) {
+    if (!aovs) return;
+    aovs->eye_direction = dir;
+    aovs->hit = first.hit;
+    aovs->distance = first.length;
+  };
   auto sample = [&](const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle,
                                 SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch, SurfaceAovs* aovs) {
                               const Camera::LensRay ray = camera.lens_ray(pixel.x(), pixel.y(), lens);
@@ -213,19 +222,28 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                                 const std::unique_ptr<Integrator> hero = make_integrator(scene, hero_caster, options);
                                 PathEnd first = hero_caster.cast(origin, dir, 0.0, camera.pixel_angle());
                                 with_footprint(hero_caster, origin, pixel, lens, spacing, &first);
+                                record_camera_ray(dir, first, aovs);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
                                 L = hero->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
                               } else {
                                 PathEnd first = caster.cast(origin, dir, 0.0, camera.pixel_angle());
                                 with_footprint(caster, origin, pixel, lens, spacing, &first);
+                                record_camera_ray(dir, first, aovs);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
                                 L = integrator->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
                               }
                               if (!L.isFinite().all()) invalid.fetch_add(1, std::memory_order_relaxed);
                               return L;
                             };
-  Image image = options.surface_aovs ? render_film<true>(camera, options, control, sample)
-                                     : render_film<false>(camera, options, control, sample);
+  Image image;
+  if (options.readouts) {
+    const ReadoutGeometry geometry(camera.position(), exact_field.get(), options.max_length);
+    image = render_film<FilmLayout::kReadouts>(camera, options, control, sample, &geometry);
+  } else if (options.surface_aovs) {
+    image = render_film<FilmLayout::kSurface>(camera, options, control, sample);
+  } else {
+    image = render_film<FilmLayout::kRadiance>(camera, options, control, sample);
+  }
   if (stats) {
     const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
     stats->samples = int64_t(bounds.width()) * bounds.height() * options.spp;

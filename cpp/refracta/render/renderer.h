@@ -22,7 +22,8 @@ struct RenderStats {
 
 // Linear RGB radiance image (height, width, 3); with options.surface_aovs (height, width, 9):
 // radiance, then the albedo and the normal of the first non-specular hit (integrator.h
-// SurfaceAovs). field may be null (then 'curved' = 'straight').
+// SurfaceAovs); with options.readouts (height, width, 19): those and the readouts (readouts.h).
+// field may be null (then 'curved' = 'straight').
 Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& field, const RenderOptions& options,
              WorkControl& control, RenderStats* stats = nullptr);
 

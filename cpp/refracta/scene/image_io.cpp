@@ -39,6 +39,33 @@ void write_image(const std::string& path, const Image& image) {
   if (!out->close()) throw IoError(concat("cannot write '", path, "': ", out->geterror()));
 }
 
+void write_image_channels(const std::string& path, const Image& image, const std::vector<std::string>& names) {
+  if (image.width < 1 || image.height < 1) throw_invalid("write_image_channels: the image is empty");
+  if (int(names.size()) != image.channels) {
+    throw_invalid("write_image_channels: ", names.size(), " channel names for ", image.channels, " channels");
+  }
+  if (!is_float_format(path)) throw_invalid("write_image_channels: '", path, "' must be a float format (.exr)");
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw IoError(concat("cannot write '", path, "': ", OIIO::geterror()));
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = names;
+  spec.alpha_channel = -1;  // no channel is alpha: readouts are not premultiplied by anything
+  if (!out->open(path, spec)) throw IoError(concat("cannot write '", path, "': ", out->geterror()));
+  if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) {
+    throw IoError(concat("cannot write '", path, "': ", out->geterror()));
+  }
+  if (!out->close()) throw IoError(concat("cannot write '", path, "': ", out->geterror()));
+}
+
+std::vector<std::string> read_channel_names(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw IoError(concat("no such image file: '", path, "'"));
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw IoError(concat("cannot read '", path, "': ", OIIO::geterror()));
+  std::vector<std::string> names = in->spec().channelnames;
+  in->close();
+  return names;
+}
+
 Image read_image(const std::string& path) {
   if (!std::filesystem::exists(path)) throw IoError(concat("no such image file: '", path, "'"));
   // OIIO's readers spin on a FIFO or a device such as /dev/zero: refuse them before opening.

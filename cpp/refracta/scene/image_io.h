@@ -4,6 +4,7 @@
 #include "refracta/core/image.h"
 
 #include <string>
+#include <vector>
 
 namespace refracta {
 
@@ -14,5 +15,10 @@ bool is_float_format(const std::string& path);
 void write_image(const std::string& path, const Image& image);
 // Any format OIIO reads, as float in the file's channel count. Throws IoError.
 Image read_image(const std::string& path);
+// A float file (EXR: layers by channel name, e.g. "R", "G", "B", "distance.Y", "position.X") with
+// one name per channel, the pixels as they are. Throws IoError, std::invalid_argument.
+void write_image_channels(const std::string& path, const Image& image, const std::vector<std::string>& names);
+// The channel names of an image file (OIIO's). Throws IoError.
+std::vector<std::string> read_channel_names(const std::string& path);
 
 }  // namespace refracta
