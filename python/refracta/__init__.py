@@ -6,7 +6,7 @@ parallel), ElevationTable. Images: Scene, Camera, render, refracta.io. Shading: 
 (BSDFs), refracta.lights, refracta.spectrum (spectral colour), refracta.testing (chi-square
 sampler tests). Plots: refracta.plot. Units: metres, kelvin, pascal, nanometres; y is up.
 
-Submodules not imported here (edit, examples, geo, plot, compare, moments, oit, raster, cli, widgets:
+Submodules not imported here (edit, examples, geo, photo, plot, compare, moments, oit, raster, cli, widgets:
 the interactive editor in Jupyter) load on first use (PEP 562), so ``import refracta`` stays cheap
 and does not import matplotlib.
 """
@@ -64,7 +64,19 @@ from refracta.turbulence import Turbulence
 __version__ = "0.1.0"
 
 # Submodules loaded on first attribute access (PEP 562): refracta.edit, refracta.plot, ...
-_LAZY_SUBMODULES = ("cli", "compare", "edit", "examples", "geo", "moments", "oit", "plot", "raster", "widgets")
+_LAZY_SUBMODULES = (
+    "cli",
+    "compare",
+    "edit",
+    "examples",
+    "geo",
+    "moments",
+    "oit",
+    "photo",
+    "plot",
+    "raster",
+    "widgets",
+)
 
 # Camera.geographic (issue 20): a Python static method on the bound class (refracta.geo's LocalFrame).
 Camera.geographic = staticmethod(_geographic_camera)  # type: ignore[method-assign]

@@ -1,0 +1,83 @@
+"""refracta.photo.overlay on a tiny synthetic pair: a render of one box (rows 3-5, columns 2-6 of a
+8 x 10 image) over a grey photograph, with and without its readouts."""
+
+import numpy as np
+import pytest
+
+from refracta import photo
+
+H, W = 8, 10
+BOX = (slice(3, 6), slice(2, 7))
+GREY = 0.5
+RED = (1.0, 0.0, 0.0)
+
+
+def _pair():
+    picture = np.full((H, W, 3), GREY, dtype=np.float32)
+    render = np.zeros((H, W, 3), dtype=np.float32)
+    render[BOX] = 1.0
+    inside = np.zeros((H, W), dtype=bool)
+    inside[BOX] = True
+    readouts = {
+        "object_id": np.where(inside, 0, -1).astype(np.float32),
+        "distance": np.where(inside, 100.0, np.inf).astype(np.float32),
+    }
+    return picture, render, inside, readouts
+
+
+def _expected_edges(inside):
+    """The box's boundary on both sides: pixels with a 4-neighbour on the other side."""
+    edges = np.zeros_like(inside)
+    for axis in (0, 1):
+        differs = np.diff(inside, axis=axis)
+        if axis == 0:
+            edges[1:] |= differs
+            edges[:-1] |= differs
+        else:
+            edges[:, 1:] |= differs
+            edges[:, :-1] |= differs
+    return edges
+
+
+@pytest.mark.parametrize("readout", ["object_id", "distance"])
+def test_edges_of_a_known_box_land_on_its_boundary(readout):
+    picture, render, inside, readouts = _pair()
+    result = photo.overlay(picture, (render, {readout: readouts[readout]}), mode="edges", color=RED)
+    expected = _expected_edges(inside)
+    assert expected.sum() == (3 * 5 - 1 * 3) + 2 * (3 + 5)  # 12 on the box's rim, 16 just outside it
+    np.testing.assert_array_equal(result.edges, expected)
+    np.testing.assert_array_equal(result.skyline, [-1, -1, 3, 3, 3, 3, 3, -1, -1, -1])
+    np.testing.assert_array_equal(result.image[expected], np.tile(RED, (expected.sum(), 1)))
+    np.testing.assert_array_equal(result.image[~expected], picture[~expected])  # the photograph elsewhere
+
+
+def test_blend_and_difference_mix_the_display_values():
+    picture, render, inside, readouts = _pair()
+    blend = photo.overlay(picture, render, mode="blend", aovs=readouts, alpha=0.25, linear=False)
+    plain = ~blend.edges
+    mixed = 0.75 * picture[plain] + 0.25 * render[plain]
+    np.testing.assert_allclose(blend.image[plain], mixed, rtol=0, atol=1e-7)  # float32 round-off of the mix
+    difference = photo.overlay(picture, render, mode="difference", linear=False)
+    np.testing.assert_allclose(difference.image, np.abs(picture - render), rtol=0, atol=0)
+    # Without readouts the edges are the render's luminance steps (here the same boundary) and there is no skyline.
+    assert difference.skyline is None
+    np.testing.assert_array_equal(difference.edges, _expected_edges(inside))
+
+
+def test_the_figure_shows_the_image():
+    picture, render, _, readouts = _pair()
+    result = photo.overlay(photo.Photo(picture, linear=False), (render, readouts), mode="edges")
+    shown = result.figure.axes[0].get_images()[0].get_array()
+    np.testing.assert_array_equal(np.asarray(shown), result.image)
+
+
+def test_bad_input_is_refused():
+    picture, render, _, readouts = _pair()
+    with pytest.raises(ValueError, match="mode must be one of .*blend.*difference.*edges"):
+        photo.overlay(picture, render, mode="sum")
+    with pytest.raises(ValueError, match="the render is 5x8 pixels but the photograph 10x8"):
+        photo.overlay(picture, render[:, :5])
+    with pytest.raises(ValueError, match="readout 'distance' has shape"):
+        photo.overlay(picture, render, aovs={"distance": readouts["distance"][:4]})
+    with pytest.raises(ValueError, match="alpha must be in"):
+        photo.overlay(picture, render, alpha=2.0)
