@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import html
 import logging
+import os
 import threading
 from collections.abc import Sequence
 from pathlib import Path
@@ -60,6 +61,7 @@ class MirageEditor(w.VBox):
         ground: height [m] where the pairs' light paths end on the ground (None: none).
         max_length: [m] rays end after this length in renders (None: the renderer's default).
         scale: display pixels per image pixel (None: the image is shown DISPLAY_WIDTH wide).
+        background: a photograph to click on (see set_background), or None.
         **options: render_options, solve_options, scene_text, turbulence, preview_scale, display
             (see refracta.widgets.model.EditorModel).
 
@@ -81,8 +83,11 @@ class MirageEditor(w.VBox):
         ground: float | None = None,
         max_length: float | None = None,
         scale: float | None = None,
+        background=None,
         **options,
     ):
+        self._background: np.ndarray | None = None  # display values (H, W, 3) of the photograph
+        self._background_mode = "edges"
         self.model = EditorModel(
             scene, camera, field, free, ground=ground, max_length=max_length, autorender=False, **options
         )
@@ -96,6 +101,8 @@ class MirageEditor(w.VBox):
         self.model.observe(self._changed)
         for what in ("camera", "field", "pairs", "result", "history", "busy", "mode", "message", "progress"):
             self._changed(what)
+        if background is not None:
+            self.set_background(background)
         self.model.render()
 
     @classmethod
@@ -393,10 +400,63 @@ class MirageEditor(w.VBox):
             scale = max(min(1.0, scale), BESIDE * scale)
         return float(scale)
 
+    # ---------------------------------------------------------------- a photograph as the background
+    def set_background(self, photo=None, mode: str = "edges") -> None:
+        """Show a photograph as the image to click on (matching a photograph, refracta.photo).
+
+        photo: a refracta.photo.Photo, a path (refracta.photo.load) or an (H, W[, C]) array of display
+        values in [0, 1]; None shows the render alone again. Its pixels are taken as the camera's
+        (the same aspect within 1 %; resampled to the render's size, nearest pixel), so a click
+        places a destination on the photograph's pixel. mode: how the render shows on it --
+        'edges' (the render's edges drawn on the photograph, refracta.photo.overlay), 'blend'
+        (half and half) or 'photo' (the photograph alone). Raises ValueError for another aspect or
+        mode.
+        """
+        from refracta import photo as _photo
+
+        if mode not in ("edges", "blend", "photo"):
+            raise ValueError(f"mode must be 'edges', 'blend' or 'photo' (got {mode!r})")
+        if photo is None:
+            self._background = None
+        else:
+            if isinstance(photo, (str, os.PathLike)):
+                photo = _photo.load(photo)
+            if not isinstance(photo, _photo.Photo):
+                photo = _photo.Photo(np.asarray(photo, dtype=np.float32), linear=False)
+            shown = photo.display()
+            camera = self.model.camera
+            aspect, wanted = shown.shape[1] / shown.shape[0], camera.width / camera.height
+            if abs(aspect / wanted - 1.0) > 0.01:
+                raise ValueError(
+                    f"the photograph is {shown.shape[1]}x{shown.shape[0]} pixels, not the camera's aspect "
+                    f"({camera.width}x{camera.height}): crop it, or make the camera with Photo.camera"
+                )
+            self._background = shown
+        self._background_mode = mode
+        with self._view_lock:
+            self._show_image()
+
+    def _on_background(self, pixels: np.ndarray) -> np.ndarray:
+        """The render's uint8 (H, W, 3) pixels on the background photograph (as they are without one)."""
+        if self._background is None:
+            return pixels
+        from refracta import photo as _photo
+
+        height, width = pixels.shape[:2]
+        rows = ((np.arange(height) + 0.5) * self._background.shape[0] / height).astype(int)
+        columns = ((np.arange(width) + 0.5) * self._background.shape[1] / width).astype(int)
+        background = self._background[rows[:, None], columns[None, :]]
+        if self._background_mode == "photo":
+            shown = background
+        else:
+            render = pixels.astype(np.float32) / 255.0
+            shown = _photo.overlay(background, render, mode=self._background_mode, linear=False).image
+        return (np.clip(shown, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+
     def _show_image(self) -> None:
         image = self.model.images["curved"]
         if image is not None:
-            self._canvas.show(image.pixels, image.level)
+            self._canvas.show(self._on_background(image.pixels), image.level)
             height, width = image.pixels.shape[:2]
             self._render_status.value = f"image: {image.level} ({width}×{height})"
 
