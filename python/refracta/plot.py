@@ -181,3 +181,23 @@ def edit_report(result, figsize=(12.0, 4.2), figure=None):
     ax_cost.set_title(f"{result.backend}: {'success' if result.success else 'failed'}")
     ax_cost.grid(True, which="both", alpha=0.3)
     return figure
+
+
+def readouts_figure(image, aovs: dict, exposure: float | None = None, figsize=(9.0, 4.0)):
+    """A matplotlib figure of a render's image whose status bar, as the pointer moves over it, shows
+    the readouts at that pixel (render(aovs=[...])'s second result; the text of
+    refracta.widgets.readout_text, through the axes' format_coord). Needs an interactive backend
+    (``%matplotlib widget`` with ipympl, Qt, Tk); in plain Jupyter use
+    refracta.widgets.show_readouts, which hovers in the browser. exposure: as refracta.io.to_display
+    (None: automatic)."""
+    import matplotlib.pyplot as plt
+
+    from refracta import io
+    from refracta._readout_text import readout_text
+
+    figure, axes = plt.subplots(figsize=figsize)
+    axes.imshow(io.to_display(np.asarray(image)[..., :3], exposure=exposure), interpolation="nearest")
+    # imshow puts pixel (i, j)'s centre at (i, j): the image point is (x + 0.5, y + 0.5).
+    axes.format_coord = lambda x, y: readout_text(aovs, x + 0.5, y + 0.5).replace("\n", "; ")  # type: ignore[method-assign]
+    axes.set_axis_off()
+    return figure

@@ -305,3 +305,23 @@ def test_cli_writes_readouts_as_exr_layers(tmp_path):
     _, out = refracta.render(scene, camera.resized(24, 8), field, aovs=["distance"], progress=False)
     assert np.array_equal(pixels[..., names.index("distance.Y")], out["distance"])  # the layer is the readout, inf kept
     assert cli.main(["render", str(scene_file), "-o", str(tmp_path / "x.png"), "--aovs", "distance"]) == 1
+
+
+def test_geographic_of_a_target_placed_by_latitude_and_longitude():
+    """A 1 m ball placed 5 km east by geo.forward and LocalFrame.to_scene: the geographic readout of
+    every pixel on it lies within the ball's radius of its centre (geodesic distance, height)."""
+    from refracta import geo
+
+    frame = geo.LocalFrame(60.0, 10.0, earth_radius=np.inf)  # a flat-Earth scene: y is the height
+    lat, lon, _ = geo.forward(60.0, 10.0, 90.0, 5000.0)
+    centre = frame.to_scene(lat, lon, 20.0)
+    scene = refracta.Scene()
+    scene.set_sky((1.0, 1.0, 1.0))
+    scene.add_sphere(centre, 1.0)
+    camera = refracta.Camera((0.0, 5.0, 0.0), centre, (0, 1, 0), 0.04, 9, 9)
+    _, out = refracta.render(scene, camera, None, method="straight", aovs=["geographic"], frame=frame, progress=False)
+    met = np.isfinite(out["geographic"][..., 0])
+    assert met.sum() > 20
+    for hit_lat, hit_lon, height in out["geographic"][met]:
+        distance, _, _ = geo.inverse(hit_lat, hit_lon, lat, lon)
+        assert np.hypot(distance, height - 20.0) < 1.0 + 1e-3  # on the ball (float32 positions: 4e-4 m at 5 km)

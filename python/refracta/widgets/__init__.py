@@ -12,12 +12,13 @@ Modules: ``model`` (EditorModel: state, gestures, undo/redo, background renders 
 user interface, testable without a browser), ``jobs`` (the background runner: a newer request
 cancels the older one), ``camera_moves`` (orbit, pan, dolly), ``files`` (the pairs and scene
 files), ``canvas`` and ``view`` (the ipywidgets / anywidget front end: ``pip install
-refracta[widgets]``).
+refracta[widgets]``), ``readouts`` (``show_readouts(image, aovs)``: hovering over a render shows
+its per-pixel readouts, render(aovs=[...])).
 """
 
 from refracta.widgets.model import EditorModel
 
-__all__ = ["EditorModel", "MirageEditor"]
+__all__ = ["EditorModel", "MirageEditor", "ReadoutViewer", "readout_text", "show_readouts"]
 
 
 def __getattr__(name):
@@ -26,4 +27,12 @@ def __getattr__(name):
         from refracta.widgets.view import MirageEditor
 
         return MirageEditor
+    if name in ("ReadoutViewer", "show_readouts"):
+        from refracta.widgets import readouts
+
+        return getattr(readouts, name)
+    if name == "readout_text":
+        from refracta._readout_text import readout_text
+
+        return readout_text
     raise AttributeError(f"module 'refracta.widgets' has no attribute {name!r}")

@@ -1,0 +1,57 @@
+"""The text of render's per-pixel readouts at one pixel (refracta.widgets.show_readouts shows it
+under the pointer, refracta.plot.readouts_figure in matplotlib's status bar)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+# How each readout is shown: its channels' labels, unit and decimals (names as render's aovs).
+_FORMATS: dict[str, tuple[tuple[str, ...], str, int]] = {
+    "distance": (("",), "m", 2),
+    "position": (("x", "y", "z"), "m", 2),
+    "object_id": (("",), "", 0),
+    "geographic": (("lat", "lon", "height"), "deg, deg, m", 6),
+    "apparent_elevation": (("",), "deg", 5),
+    "apparent_azimuth": (("",), "deg", 5),
+    "true_elevation": (("",), "deg", 5),
+    "hidden_height": (("geometric", "refracted"), "m", 3),
+    "images": (("",), "", 0),
+    "albedo": (("r", "g", "b"), "", 3),
+    "normal": (("x", "y", "z"), "", 3),
+}
+
+
+def _format(name: str, channels: int) -> tuple[tuple[str, ...], str, int]:
+    labels, unit, digits = _FORMATS.get(name, (tuple(str(c) for c in range(channels)), "", 4))
+    return (labels if len(labels) == channels else tuple(str(c) for c in range(channels))), unit, digits
+
+
+def _planes(aovs: dict) -> list[tuple[str, np.ndarray]]:
+    planes = []
+    for name, values in aovs.items():
+        array = np.asarray(values, dtype=np.float64)
+        planes.append((name, array[..., None] if array.ndim == 2 else array))
+    return planes
+
+
+def readout_text(aovs: dict, u: float, v: float) -> str:
+    """The readouts at image point (u, v) (pixels: u right, v down; pixel (i, j) covers
+    [i, i + 1) x [j, j + 1)) as lines 'name: value unit'; 'none' where the pixel met nothing."""
+    planes = _planes(aovs)
+    height, width = planes[0][1].shape[:2] if planes else (1, 1)
+    i, j = min(max(int(np.floor(u)), 0), width - 1), min(max(int(np.floor(v)), 0), height - 1)
+    lines = [f"pixel ({i}, {j})"]
+    for name, array in planes:
+        labels, unit, digits = _format(name, array.shape[2])
+        parts = []
+        for label, value in zip(labels, array[j, i]):
+            text = (
+                "none"
+                if np.isnan(value)
+                else ("inf" if value > 0 else "-inf")
+                if np.isinf(value)
+                else f"{value:.{digits}f}"
+            )
+            parts.append(f"{label} {text}" if label else text)
+        lines.append(f"{name}: {', '.join(parts)}" + (f" {unit}" if unit else ""))
+    return "\n".join(lines)
