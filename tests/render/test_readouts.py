@@ -325,3 +325,40 @@ def test_geographic_of_a_target_placed_by_latitude_and_longitude():
     for hit_lat, hit_lon, height in out["geographic"][met]:
         distance, _, _ = geo.inverse(hit_lat, hit_lon, lat, lon)
         assert np.hypot(distance, height - 20.0) < 1.0 + 1e-3  # on the ball (float32 positions: 4e-4 m at 5 km)
+
+
+def test_a_ridge_from_elevation_data_against_refraction_coefficient():
+    """Issue 20's check: a synthetic ridge (a Gaussian, 200 m high, 30 km away, as elevation data)
+    seen from 10 m over a curved Earth in a standard atmosphere. Its crest's apparent elevation is
+    where refracta.refraction_coefficient's exact trace puts a 200 m target at 30 km; each hit's
+    true elevation and hidden heights (without and with the air) are what it computes for that hit
+    (its own tracing, independent of the renderer's); apparent - true is k d / (2R)."""
+    d, peak, eye = 30000.0, 200.0, 10.0
+    field = refracta.CurvedEarth(refracta.PhysicalAtmosphere(), R)
+    x, z = np.arange(d - 1000.0, d + 1001.0, 20.0), np.arange(-500.0, 501.0, 20.0)
+    heights = np.repeat(peak * np.exp(-0.5 * ((x - d) / 300.0) ** 2)[None, :], z.size, axis=0)
+    scene = refracta.Scene()
+    scene.set_sky((1.0, 1.0, 1.0))
+    scene.add_ground(0.0, 3 * d)
+    scene.add_terrain(heights, origin=(x[0], z[0]), spacing=(20.0, 20.0), earth_radius=R)
+    crest = refracta.refraction_coefficient(field, eye, d, target_height=peak)
+    aim = np.radians(crest.apparent_elevation)
+    camera = refracta.Camera((0.0, eye, 0.0), (d, eye + d * np.tan(aim), 0.0), (0, 1, 0), 0.05, 1, 50)
+    names = ["object_id", "apparent_elevation", "true_elevation", "hidden_height", "position"]
+    _, out = refracta.render(scene, camera, field, aovs=names, progress=False, max_length=1.5 * d)
+    rows = np.flatnonzero(out["object_id"][:, 0] >= 1)  # the terrain (the sea is id 0)
+    top = rows[0]
+    # The crest's silhouette lies in the top terrain row: within a pixel (0.001 deg) of the trace.
+    assert abs(out["apparent_elevation"][top, 0] - crest.apparent_elevation) < camera.vfov / camera.height
+    for row in rows[:: max(1, rows.size // 4)]:
+        px, py, pz = out["position"][row, 0].astype(np.float64)
+        ground, height = np.hypot(px, pz), R * np.expm1(py / R)  # along the surface; true height
+        expected = refracta.refraction_coefficient(field, eye, ground, target_height=height)
+        assert out["true_elevation"][row, 0] == pytest.approx(expected.true_elevation, abs=1e-6)  # float32 degrees
+        hidden = out["hidden_height"][row, 0]
+        assert hidden[0] == pytest.approx(expected.hidden_height_straight, abs=1e-3)  # float32 positions (mm)
+        assert hidden[1] == pytest.approx(expected.hidden_height_refracted, abs=1e-3)  # and both traces' tolerances
+        # apparent - true = k d / (2R): the surveyors' small-angle form, to 2 % (k is the horizontal
+        # ray's, this sight line climbs 0.23 deg through slightly different air)
+        lift = np.radians(out["apparent_elevation"][row, 0] - out["true_elevation"][row, 0])
+        assert lift == pytest.approx(expected.k * ground / (2 * R), rel=0.02)
