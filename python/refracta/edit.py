@@ -263,6 +263,17 @@ class EditResult:
         _, _, _, origins, directions, sources, _, _, _ = _pair_rays(eye_or_camera, self.pairs)
         return _core._pair_paths(field, origins, directions, sources, self.pair_options)
 
+    def parameter_changes(self) -> list[tuple[str, float, float, str]]:
+        """(name, start, solved, unit) of each free parameter: the field's, and the camera's
+        (CAMERA_PARAMETERS: yaw, pitch, roll offsets from start_camera and vfov, in deg)."""
+        info = {p["name"]: p["unit"] for p in self.start.param_info}
+        start, solved = dict(self.start.params), dict(self.field.params)
+        if len(self.camera_values) == len(CAMERA_PARAMETERS) and self.start_camera is not None:
+            start |= dict(zip(CAMERA_PARAMETERS, (0.0, 0.0, 0.0, self.start_camera.vfov)))
+            solved |= dict(zip(CAMERA_PARAMETERS, (float(v) for v in self.camera_values)))
+            info |= dict.fromkeys(CAMERA_PARAMETERS, "deg")
+        return [(name, float(start[name]), float(solved[name]), info[name]) for name in self.free]
+
     def report(self) -> str:
         """A readable summary: outcome, costs, per-pair distances, parameters before and after."""
         verdict = "success" if self.success else "FAILED"
@@ -282,16 +293,10 @@ class EditResult:
                 f"{self.distances[i]:14.4g}  {margins[i]:10.4g}  {'yes' if met[i] else 'NO ':3s}  "
                 f"{distance:9.4g}"
             )
-        info = {p["name"]: p for p in self.start.param_info}
-        start, solved = self.start.params, self.field.params
-        if len(self.camera_values) == len(CAMERA_PARAMETERS) and self.start_camera is not None:
-            start_vfov = self.start_camera.vfov
-            start |= dict(zip(CAMERA_PARAMETERS, (0.0, 0.0, 0.0, start_vfov)))
-            solved |= dict(zip(CAMERA_PARAMETERS, (float(v) for v in self.camera_values)))
-            info |= {name: {"unit": "deg"} for name in CAMERA_PARAMETERS}
         lines.append("  parameter            start          solved         unit")
-        for name in self.free:
-            lines.append(f"  {name:18s} {start[name]:14.8g} {solved[name]:14.8g}  {info[name]['unit']}")
+        for name, before, after, unit in self.parameter_changes():
+            lines.append(f"  {name:18s} {before:14.8g} {after:14.8g}  {unit}")
+        start = self.start.params
         fixed = [n for n in start if n not in self.free]
         if fixed:
             lines.append("  held fixed: " + ", ".join(fixed))

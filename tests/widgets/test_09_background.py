@@ -12,7 +12,7 @@ from PIL import Image
 
 from refracta.widgets import MirageEditor
 
-from .conftest import CAR, HEIGHT, WIDTH
+from .conftest import CAR, HEIGHT, WIDTH, truth_source
 
 WAIT = 120.0  # [s] bound on waiting for background work
 QUANTUM = 1  # [8-bit levels] the canvas PNG holds display values rounded to 8 bits
@@ -68,3 +68,33 @@ def test_the_photograph_is_the_image_to_click_on(road):
         np.testing.assert_array_equal(_canvas_pixels(editor), editor.model.images["curved"].pixels)
     finally:
         editor.close()
+
+
+HIDDEN_PITCH = 0.05  # [deg] how far the photograph's camera was tilted up from the editor's
+PITCH_TOL = 1e-6  # [deg] exact pairs: the solve's misses of ~1e-7 m at 300 m are ~1e-8 deg
+
+
+@pytest.mark.slow  # ~3.5 s: the solve, then the render of the solved view
+def test_a_solve_with_the_camera_free_moves_the_editor_camera(make_model, road):
+    """Pairs from a photograph whose camera was tilted: the editor solves the tilt with the air,
+    adopts the solved camera, and undo brings the start camera back."""
+    from ..edit.test_10_camera import _turn
+
+    turn = _turn(road.camera, 0.0, HIDDEN_PITCH, 0.0)
+    position = np.asarray(road.camera.position)
+    hidden = type(road.camera)(
+        position, position + 100.0 * turn((0, 0, 1)), turn((0, 1, 0)), road.camera.vfov, WIDTH, HEIGHT
+    )
+    truth = road.field.with_params(surface_dt=road.field.params["surface_dt"] + 2.0)
+    model = make_model(free=["surface_dt", "camera_pitch"])
+    for u, v, distance in ((160.0, 61.9, 350.0), (100.0, 63.4, 300.0), (220.0, 64.5, 250.0), (160.0, 50.0, 300.0)):
+        model.add_pair((u, v), truth_source(truth, hidden, u, v, distance))
+    model.solve()
+    assert model.wait(WAIT)
+    assert model.result.success, model.result.message
+    assert model.camera is model.result.camera
+    changes = {name: (start, solved, unit) for name, start, solved, unit in model.changed_parameters()}
+    assert changes["camera_pitch"][0] == 0.0 and changes["camera_pitch"][2] == "deg"
+    assert changes["camera_pitch"][1] == pytest.approx(HIDDEN_PITCH, abs=PITCH_TOL)
+    model.undo()
+    assert model.camera is road.camera

@@ -165,6 +165,13 @@ def make_pair(destination, source, weight=1.0, margin=0.0):
     return PointPair(tuple(float(x) for x in destination), point, weight, margin=margin)
 
 
+def _camera_names() -> tuple[str, ...]:
+    """The camera parameters a solve may free beside the field's (refracta.edit.CAMERA_PARAMETERS)."""
+    from refracta.edit import CAMERA_PARAMETERS
+
+    return CAMERA_PARAMETERS
+
+
 def ground_circle(
     camera: _core.Camera, centre_x: float, centre_z: float, radius: float, segments: int = SPOT_SEGMENTS
 ) -> list[tuple[float, float] | None]:
@@ -503,12 +510,10 @@ class EditorModel:
         if isinstance(free, str):
             free = [free]
         free = tuple(free or ())
-        unknown = [name for name in free if name not in self.field.param_names]
+        valid = list(self.field.param_names) + list(_camera_names())
+        unknown = [name for name in free if name not in valid]
         if unknown:
-            raise ValueError(
-                f"free: unknown parameter(s) {unknown} of {self.field.type_name}; "
-                f"valid names: {list(self.field.param_names)}"
-            )
+            raise ValueError(f"free: unknown parameter(s) {unknown} of {self.field.type_name}; valid names: {valid}")
         self.free = free or None
         self._notify("free")
 
@@ -790,8 +795,10 @@ class EditorModel:
             with self._lock:
                 before = self._snapshot("solve")
                 self.field, self.result, self.fan_png = result.field, result, None
+                if result.summary.camera is not None:  # camera parameters were free: the solved camera
+                    self.camera = result.camera
                 self._record(before)
-            self._notify("field", "result", "fan", "pairs", "history")
+            self._notify("field", "result", "fan", "pairs", "history", "camera")
             unmet = unmet_pairs(result)
             if result.success:
                 self.say(f"Solved: every pair met ({result.iterations} iterations, {result.time:.2g} s).", "success")
@@ -802,7 +809,7 @@ class EditorModel:
                 )
             else:
                 self.say("Solve stopped: " + result.message, "error")
-            self.render(straight=False)
+            self.render(straight=result.summary.camera is not None)  # a solved camera changes both views
             # The ray fan last (matplotlib: ~0.3 s), while the new image renders.
             fan = _fan_png(result)
             with self._lock:
@@ -821,11 +828,7 @@ class EditorModel:
         result = self.result
         if result is None:
             return []
-        info = {p["name"]: p for p in result.start.param_info}
-        return [
-            (name, float(result.start.params[name]), float(result.field.params[name]), info[name]["unit"])
-            for name in result.free
-        ]
+        return result.parameter_changes()
 
     # ---------------------------------------------------------------- files
     def _solve_file_options(self) -> dict:
@@ -891,7 +894,7 @@ class EditorModel:
             self.scene, self.scene_text, self.camera = scene, text, camera
             if field is not None:
                 self.field, self.turbulence = field, loaded.turbulence
-                if self.free and any(n not in field.param_names for n in self.free):
+                if self.free and any(n not in field.param_names and n not in _camera_names() for n in self.free):
                     self.free = None
             self.pending_source, self.selected = None, None
             self._record(before)
