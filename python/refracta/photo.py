@@ -367,7 +367,7 @@ def overlay(
             shown through refracta.io.to_display), or the ``(image, {name: array})`` pair
             ``render(..., aovs=[...])`` returns. Same size as the photograph.
         mode: 'blend' (photograph and render mixed, (1 - alpha) photo + alpha render, with the
-            render's edges and skyline in `color`), 'difference' (|photo - render| per channel,
+            render's edges and skyline in `color`), 'difference' (the absolute difference per channel,
             nothing drawn) or 'edges' (the photograph with the render's edges and skyline in
             `color`).
         aovs: readouts of the render ({name: (H, W) array}); 'object_id' (-1: no surface) gives
