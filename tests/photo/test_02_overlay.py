@@ -81,3 +81,24 @@ def test_bad_input_is_refused():
         photo.overlay(picture, render, aovs={"distance": readouts["distance"][:4]})
     with pytest.raises(ValueError, match="alpha must be in"):
         photo.overlay(picture, render, alpha=2.0)
+
+
+def test_edges_of_a_rendered_box_land_on_its_projection():
+    """A real render with readouts: a 2 m cube whose front face, 20 m from the eye, spans exactly
+    8 x 8 pixels of 0.25 m (tan(vfov / 2) = 0.2 over 32 rows), its edges on pixel boundaries, so
+    every sample of a pixel sees the same thing and the expected edges are exact."""
+    import refracta
+
+    scene = refracta.Scene()
+    scene.set_sky((0.2, 0.3, 0.5))
+    scene.add_box((0.0, 1.0, -21.0), (2.0, 2.0, 2.0))
+    vfov = float(np.degrees(2.0 * np.arctan(0.2)))
+    camera = refracta.Camera((0.0, 1.0, 0.0), (0.0, 1.0, -21.0), (0.0, 1.0, 0.0), vfov, 48, 32)
+    rendered = refracta.render(scene, camera, None, spp=2, progress=False, aovs=["object_id", "distance"])
+    inside = np.zeros((32, 48), dtype=bool)
+    inside[12:20, 20:28] = True  # rows 16 -+ 4, columns 24 -+ 4
+    expected = _expected_edges(inside)
+    for readout in ("object_id", "distance"):
+        result = photo.overlay(np.full((32, 48, 3), GREY), (rendered[0], {readout: rendered[1][readout]}), mode="edges")
+        np.testing.assert_array_equal(result.edges, expected)
+        np.testing.assert_array_equal(result.skyline, np.where((np.arange(48) >= 20) & (np.arange(48) < 28), 12, -1))
