@@ -151,3 +151,26 @@ def test_camera_parameters_need_a_camera_and_valid_names(photograph_pairs):
     jittered = _nominal_camera().jittered(np.zeros((H, W, 2), dtype=np.float32))
     with pytest.raises(ValueError, match="jittered camera"):
         solve(air, jittered, photograph_pairs, free=["camera_pitch"])
+
+
+def test_the_solved_camera_and_air_render_the_photograph(photograph_pairs):
+    """The photograph rendered (small: 120 x 60 of the same view) with the hidden camera and air, a
+    box at each pair's source, is rendered again by the solved camera and air -- and not by the
+    start's."""
+    scene = refracta.Scene()
+    scene.set_sky((0.3, 0.4, 0.6), (0.1, 0.2, 0.5))
+    for pair in photograph_pairs:
+        size = 0.004 * np.linalg.norm(np.asarray(pair.source) - EYE)  # [m] ~0.23 deg: two pixels across
+        scene.add_box(tuple(pair.source), (size, size, size))
+
+    def picture(camera, air):
+        options = dict(spp=1, progress=False, max_length=30000.0)
+        return refracta.render(scene, camera.resized(120, 60), air, **options)
+
+    photograph = picture(_hidden_camera(), _air(HIDDEN_INVERSION_DT))
+    start_camera, start_air = _nominal_camera(), _air(START_INVERSION_DT)
+    result = solve(start_air, start_camera, photograph_pairs, free=["inversion_dt", *CAMERA_PARAMETERS])
+    # The same samples through rays that differ by ~1e-12 deg: the same pixels, to float round-off.
+    np.testing.assert_allclose(picture(result.camera, result.field), photograph, rtol=0.0, atol=1e-6)
+    moved = np.abs(picture(start_camera, start_air) - photograph).max(axis=2) > 0.1  # a box against the sky
+    assert moved.sum() >= 10  # the start shows the boxes elsewhere (measured: 58 pixels differ)
