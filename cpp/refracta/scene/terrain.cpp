@@ -114,7 +114,9 @@ Vec3d TerrainGrid::normal(int row, int col) const {
   };
   const Vec3d along_rows = difference(row - 1, col, row + 1, col);  // +z for the array form
   const Vec3d along_cols = difference(row, col - 1, row, col + 1);  // +x
-  return along_rows.cross(along_cols);                              // z x x = +y: up
+  const Vec3d n = along_rows.cross(along_cols);                     // z x x = +y: up
+  const double length = n.norm();
+  return length > 0.0 ? Vec3d(n / length) : n;  // unit, so interpolation weighs each corner alike
 }
 
 }  // namespace refracta

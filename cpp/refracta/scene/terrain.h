@@ -63,7 +63,7 @@ class TerrainGrid {
   // seen from above; the two share the diagonal (row + 1, col) -- (row, col + 1), as Embree's
   // quads (v0 v1 v3, v2 v3 v1) do.
   std::array<std::array<int, 2>, 3> triangle(int row, int col, int k) const;
-  // The smooth shading normal at a sample: the cross product of the central differences along the
+  // The smooth unit shading normal at a sample: the cross product of the central differences along the
   // rows and the columns (one-sided beside a hole or an edge); zero when a sample has no neighbour.
   Vec3d normal(int row, int col) const;
 
