@@ -69,9 +69,21 @@ def test_35mm_equivalent_is_read_on_the_full_frame_diagonal(tmp_path):
     assert picture.vfov(sensor_mm=(6.4, 4.8)) == pytest.approx(math.degrees(2 * math.atan(4.8 / 16.0)), abs=ANGLE_TOL)
 
 
+def test_a_float_photograph_is_linear_and_shown_through_the_tone_curve(tmp_path):
+    radiance = np.full((4, 6, 3), 2.0, dtype=np.float32)
+    refracta.io.write_image(tmp_path / "p.exr", radiance)
+    picture = photo.load(tmp_path / "p.exr")
+    assert picture.linear and picture.exif == photo.Exif()  # an EXR carries no EXIF here
+    np.testing.assert_array_equal(picture.image, radiance)
+    np.testing.assert_array_equal(picture.display(), refracta.io.to_display(radiance))
+
+
 def test_bad_input_raises_clear_errors(tmp_path):
     with pytest.raises(refracta.IoError, match="no such file"):
         photo.load(tmp_path / "missing.jpg")
+    (tmp_path / "text.jpg").write_text("not an image")
+    with pytest.raises(refracta.IoError, match="text.jpg"):
+        photo.load(tmp_path / "text.jpg")
     no_focal = photo.load(_write_jpeg(tmp_path / "n.jpg"))
     with pytest.raises(ValueError, match="gives no focal length"):
         no_focal.vfov()
