@@ -247,7 +247,7 @@ def render(
     if settings.surface_aovs or settings.readouts:
         outputs = {"albedo": np.ascontiguousarray(image[..., 3:6]), "normal": np.ascontiguousarray(image[..., 6:9])}
         if settings.readouts:
-            outputs.update(_readouts(image[..., 9:], wanted, frame))
+            outputs.update(_readouts(image, wanted, frame))
         image = np.ascontiguousarray(image[..., :3])
     if denoise:
         clean = _denoise.denoise(image, outputs["albedo"], outputs["normal"])
@@ -279,19 +279,13 @@ READOUT_NAMES = (
 AOV_NAMES = ("albedo", "normal", *READOUT_NAMES)
 
 
-def _readouts(channels: np.ndarray, wanted: list[str], frame) -> dict[str, np.ndarray]:
-    """The readouts from the render's channels after the 9 of radiance, albedo and normal (their
-    order: readouts.h ReadoutChannel); 'images' and 'geographic' are worked out from them."""
-    out = {
-        "distance": channels[..., 0],
-        "position": channels[..., 1:4],
-        "object_id": channels[..., 4].astype(np.int32),
-        "apparent_elevation": channels[..., 5],
-        "apparent_azimuth": channels[..., 6],
-        "true_elevation": channels[..., 7],
-        "hidden_height": channels[..., 8:10],
-    }
-    out = {name: np.ascontiguousarray(value) for name, value in out.items()}
+def _readouts(image: np.ndarray, wanted: list[str], frame) -> dict[str, np.ndarray]:
+    """The readouts from the render's channels (where each lies: _core._READOUT_CHANNELS, from
+    readouts.h); 'images' and 'geographic' are worked out from them."""
+    out = {}
+    for name, (first, count) in _core._READOUT_CHANNELS.items():
+        values = image[..., first] if count == 1 else image[..., first : first + count]
+        out[name] = np.ascontiguousarray(values.astype(np.int32) if name == "object_id" else values)
     if "images" in wanted:
         out["images"] = _core._mirage_images(out["true_elevation"], out["object_id"])
     if "geographic" in wanted:

@@ -125,6 +125,19 @@ validate() reports every bad value at once.)doc");
         },
         py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("options"), py::arg("progress"));
 
+  // Where each readout lies among the render's channels (readouts.h ReadoutChannel): name -> (first, count).
+  py::dict readout_channels;
+  const std::pair<const char*, std::pair<int, int>> channels[] = {
+      {"distance", {kReadoutDistance, 1}},
+      {"position", {kReadoutPosition, 3}},
+      {"object_id", {kReadoutObject, 1}},
+      {"apparent_elevation", {kReadoutApparentElevation, 1}},
+      {"apparent_azimuth", {kReadoutApparentAzimuth, 1}},
+      {"true_elevation", {kReadoutTrueElevation, 1}},
+      {"hidden_height", {kReadoutHiddenHeight, 2}}};
+  for (const auto& [name, at] : channels) readout_channels[name] = py::make_tuple(kSurfaceChannels + at.first, at.second);
+  m.attr("_READOUT_CHANNELS") = readout_channels;
+
   m.def("_mirage_images",
         [](const py::array_t<float, py::array::c_style | py::array::forcecast>& true_elevation,
            const py::array_t<float, py::array::c_style | py::array::forcecast>& object_id) {

@@ -31,6 +31,7 @@ enum ReadoutChannel : int {
   kReadoutHiddenHeight = 8,       // hidden height at the hit's vertical: geometric, then refracted [m]
   kReadoutChannels = 10
 };
+static_assert(kReadoutHiddenHeight + 2 == kReadoutChannels, "the hidden heights are the last two channels");
 constexpr int kSurfaceChannels = 9;  // radiance, albedo, normal
 
 // Apparent elevation and azimuth [deg] of a scene direction (need not be unit).
