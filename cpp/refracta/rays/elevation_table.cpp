@@ -32,9 +32,10 @@ void ElevationTableOptions::validate() const {
   problems.throw_if_any();
 }
 
-ElevationTable::Entry ElevationTable::trace_entry(double elevation, const std::atomic<bool>* cancel) const {
+ElevationTable::Entry ElevationTable::trace_entry(double elevation, const std::atomic<bool>* cancel, double tol) const {
   TraceOptions trace = options_.trace;
   trace.trace = TraceMethod::kStratified;
+  trace.tol = std::max(trace.tol, tol);
   trace.cancel = cancel;
   Entry entry;
   entry.path = std::make_shared<RayPath>(trace_path(
@@ -281,7 +282,7 @@ RayNode<double> ElevationTable::node_of(const PlaneState& p) const {
   return node;
 }
 
-ElevationTable::LazyPath ElevationTable::lazy_path(double elevation) const {
+ElevationTable::LazyPath ElevationTable::lazy_path(double elevation, double tol) const {
   LazyPath lazy;
   lazy.table_ = this;
   lazy.elevation_ = elevation;
@@ -292,7 +293,7 @@ ElevationTable::LazyPath ElevationTable::lazy_path(double elevation) const {
     if (elevation == elevations_[i] || elevation == elevations_[i + 1]) {
       lazy.exact_ = entries_[elevation == elevations_[i] ? i : i + 1].path;
     } else {
-      lazy.exact_ = trace_entry(elevation).path;
+      lazy.exact_ = trace_entry(elevation, nullptr, tol).path;
     }
     const auto& nodes = lazy.exact_->nodes();
     lazy.exact_lowest_.resize(nodes.size());

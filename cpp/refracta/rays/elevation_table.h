@@ -94,7 +94,9 @@ class ElevationTable {
     size_t count_ = 0;
     double length_ = 0.0;
   };
-  LazyPath lazy_path(double elevation) const;
+  // tol [m] > the table's: a path inside an exact interval is traced to it instead (a camera ray
+  // that may stray a fraction of its pixel's footprint, as a ray traced per pixel does).
+  LazyPath lazy_path(double elevation, double tol = 0.0) const;
 
   size_t size() const { return entries_.size(); }
   // The path traced at elevations()[i].
@@ -120,7 +122,8 @@ class ElevationTable {
   };
   void precompute_stencils();
   // cancel: polled at every step of the trace (the constructor's Ctrl-C), or none.
-  Entry trace_entry(double elevation, const std::atomic<bool>* cancel = nullptr) const;
+  // tol: the trace's tolerance when larger than the table's (lazy_path).
+  Entry trace_entry(double elevation, const std::atomic<bool>* cancel = nullptr, double tol = 0.0) const;
   static PlaneState state_of(const RayPath& path, double s);
   // Interpolated state at `elevation` inside interval i of (elevations, entries), at the given
   // fraction of the interpolated length: cubic through four neighbours of one kind, else linear.

@@ -36,7 +36,7 @@ constexpr int kMaxHalvings = 30;
 }  // namespace
 
 bool BouguerBranch::integrate(double ha, double hb, double min_sine, double* run, double* length,
-                              double relative_tol) const {
+                              double relative_tol, double absolute_tol) const {
   // One 8-point Gauss-Legendre panel.
   auto panel = [&](double a, double b, double* r, double* l) {
     const double mid = 0.5 * (a + b), half = 0.5 * std::abs(b - a);
@@ -64,9 +64,10 @@ bool BouguerBranch::integrate(double ha, double hb, double min_sine, double* run
         const double m = 0.5 * (a + b);
         double r1, l1, r2, l2;
         if (!panel(a, m, &r1, &l1) || !panel(m, b, &r2, &l2)) return false;
-        const double share = std::abs(b - a) / width * relative_tol;
-        if (depth >= kMaxHalvings || (std::abs(r1 + r2 - whole_run) <= share * total_run &&
-                                      std::abs(l1 + l2 - whole_length) <= share * total_length)) {
+        const double fraction = std::abs(b - a) / width, share = fraction * relative_tol;
+        const double absolute = fraction * absolute_tol;
+        if (depth >= kMaxHalvings || (std::abs(r1 + r2 - whole_run) <= std::max(share * total_run, absolute) &&
+                                      std::abs(l1 + l2 - whole_length) <= std::max(share * total_length, absolute))) {
           *r = r1 + r2, *l = l1 + l2;
           return true;
         }

@@ -23,7 +23,10 @@ class BouguerBranch {
   // below min_sine at a node. relative_tol > 0: panels are halved until two halves agree with
   // their whole to that fraction of the run and length (a spherical Earth's escapes need the
   // run to metres over thousands of kilometres: it sets the central angle); 0: one panel.
-  bool integrate(double ha, double hb, double min_sine, double* run, double* length, double relative_tol = 0.0) const;
+  // absolute_tol [m]: halving also stops where the halves agree to that (shared out by width):
+  // the larger of the two tolerances holds.
+  bool integrate(double ha, double hb, double min_sine, double* run, double* length, double relative_tol = 0.0,
+                 double absolute_tol = 0.0) const;
 
   // The same with what a caller needs to trust one straight chord over the stretch, given sin e
   // at both ends: `error` estimates the quadrature's error in run and length [m] by its

@@ -19,8 +19,9 @@ namespace {
 // The eye's table path for a direction's elevation, turned about the vertical through the eye to
 // the direction's azimuth (a height-only field's paths differ by that turn alone).
 struct TurnedTablePath {
-  TurnedTablePath(const ElevationTable& table, const Vec3d& eye, const Vec3d& dir)
-      : plane(table.lazy_path(std::asin(std::clamp(dir.y(), -1.0, 1.0)))), eye(eye) {
+  // tol: lazy_path's (a path inside an exact interval is traced to it).
+  TurnedTablePath(const ElevationTable& table, const Vec3d& eye, const Vec3d& dir, double tol)
+      : plane(table.lazy_path(std::asin(std::clamp(dir.y(), -1.0, 1.0)), tol)), eye(eye) {
     const double horizontal = std::hypot(dir.x(), dir.z());
     cx = horizontal > 0 ? dir.x() / horizontal : 1.0;
     cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
@@ -163,6 +164,9 @@ Caster::Caster(const Scene& scene, const IndexField* field, const RenderOptions&
 void Caster::use_table(const ElevationTable* table, const Vec3d& eye, double pixel_angle) {
   table_ = table;
   eye_ = eye;
+  // A camera ray inside an exact interval is traced as cast_traced traces one: to a quarter of
+  // its pixel's footprint at the path's end, or the sagitta.
+  exact_tol_ = std::max(options_.sagitta, options_.sagitta_pixels * pixel_angle * options_.max_length);
   // Half the allowed stray for the plan: a pixel's path interpolates its entry's, and may bend a
   // little more between the same nodes.
   const double sagitta = options_.sagitta, per_metre = options_.sagitta_pixels * pixel_angle;
@@ -184,6 +188,7 @@ double Caster::ior(const Vec3d& p) const {
 PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const {
   if (!field_) return cast_straight(origin, dir, max_length > 0.0 ? max_length : kFar);
   const bool from_eye = table_ && origin == eye_ && max_length <= 0.0;
+  if (!(spread > 0.0)) spread = secondary_spread_;
   const double length = max_length > 0.0 ? max_length : options_.max_length;
   PathEnd end = legs_ ? cast_in_legs(origin, dir, length, spread, from_eye)
                       : from_eye ? cast_table(dir) : cast_traced(origin, dir, length, spread);
@@ -283,7 +288,8 @@ PathEnd Caster::cast_straight(const Vec3d& origin, const Vec3d& dir, double max_
   return end;
 }
 
-std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec3d& v, double remaining) const {
+std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec3d& v, double remaining,
+                                                       double spread) const {
   if (!layered_ || !(x.y() > ceiling_) || !(v.y() > 0.0) || !(remaining > 0.0)) {
     return std::nullopt;
   }
@@ -310,9 +316,12 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   // from there: its sky is seen along its direction at the top, whatever the rest of its length
   // (one adaptive integral instead of Newton's several).
   const double top = layered_->straight_above();
+  // A ray that stands for a pixel (spread) may leave turned by sagitta_pixels of it: its run, to
+  // that angle times the Earth's radius (over a flat Earth the run turns nothing: unused).
+  const double run_tol = spherical ? options_.sagitta_pixels * spread * layered_->earth_radius() : 0.0;
   double n, sin_h, run, length;
   if (spherical && std::isfinite(top) && top > x.y() && branch.at(top, kMinSine, &n, &dn, &sin_h) &&
-      branch.integrate(x.y(), top, kMinSine, &run, &length, 1e-8) && length <= remaining) {
+      branch.integrate(x.y(), top, kMinSine, &run, &length, 1e-8, run_tol) && length <= remaining) {
     const double scale = cos_e > 0.0 ? std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h)) / cos_e : 0.0;
     return Escape{Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized(),
                   Vec3d(x.x() + run * across.x(), top, x.z() + run * across.z())};
@@ -327,21 +336,22 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   // into the world frame: integrated to 1e-8 (0.01 m in 1000 km, 0.3 mas of angle).
   const double relative_tol = spherical ? 1e-8 : 0.0;
   for (int it = 0; it < 6 && (!cannot_turn || std::abs(sin_h - sin_x) > 1e-2 * sin_x); ++it) {
-    if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol)) return std::nullopt;
+    if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol, run_tol)) return std::nullopt;
     const double step = (remaining - length) * sin_h;
     h += step;
     if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
     // A step that moves n by less than 1e-12 turns the exit direction by < 1e-10 rad.
     if (std::abs(step * dn) < 1e-12) break;
   }
-  if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol)) return std::nullopt;
+  if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol, run_tol)) return std::nullopt;
   const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
   return Escape{Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized(),
                 Vec3d(x.x() + run * across.x(), h, x.z() + run * across.z())};
 }
 
-std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length) const {
+std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length,
+                                             double spread) const {
   // sin e >= 0.01 (0.57 deg) at every height among the objects: the ray cannot turn there, and
   // the stretches' error estimate splits them where 1/sin e varies too fast for 8 points.
   constexpr double kMinSine = 0.01;
@@ -363,8 +373,9 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   };
   // Stretches of height as long as one straight chord stays within the sagitta of the path
   // (its bend and the quadrature's error bounded, BouguerBranch::Stretch): one stretch for a
-  // steep ray through a thin hot layer, more where the ray bends.
-  const double tolerance = options_.sagitta;
+  // steep ray through a thin hot layer, more where the ray bends. A ray that stands for a pixel
+  // (spread) may stray sagitta_pixels of its footprint at the chord's start, as traced paths do.
+  const double per_metre = options_.sagitta_pixels * spread;
   PathEnd end;
   end.direction = t;
   double h = origin.y(), s = 0.0, run = 0.0, sin_e = std::abs(t.y()), n = n0, dn = dn0;
@@ -377,6 +388,7 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
     if (!branch.at(h + up * step, kMinSine, &n, &dn, &sin_b)) return std::nullopt;
     if (!branch.integrate(h, sin_e, h + up * step, sin_b, kMinSine, &stretch)) return std::nullopt;
     const double chord = std::hypot(stretch.run, step);
+    const double tolerance = std::max(options_.sagitta, per_metre * s);
     const bool straight = stretch.error <= 0.1 * tolerance && 0.25 * chord * stretch.turning <= tolerance &&
                           chord <= options_.chord;
     if (!straight && step > 1e-6) {
@@ -404,7 +416,8 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   }
   end.end_point = a;
   if (up < 0.0) return end;  // below everything: the path ends there, as a traced one at its stop height
-  const auto exit = escape_direction(a + Vec3d(0.0, 1e-9 * (1.0 + std::abs(a.y())), 0.0), n * end.direction, max_length - s);
+  const auto exit =
+      escape_direction(a + Vec3d(0.0, 1e-9 * (1.0 + std::abs(a.y())), 0.0), n * end.direction, max_length - s, spread);
   if (!exit) return std::nullopt;
   end.direction = exit->direction;
   end.end_point = exit->point;
@@ -417,13 +430,13 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   // A rising ray above every object that cannot turn never comes back: the invariant gives the
   // direction it leaves along, without tracing.
   end.end_point = origin;
-  if (const auto exit = escape_direction(origin, dir, max_length)) {
+  if (const auto exit = escape_direction(origin, dir, max_length, spread)) {
     end.direction = exit->direction;
     end.end_point = exit->point;
     return end;
   }
   // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
-  if (auto monotone = cast_monotone(origin, dir, max_length)) return *monotone;
+  if (auto monotone = cast_monotone(origin, dir, max_length, spread)) return *monotone;
   const IndexField& air = legs_ ? *layered_ : *field_;  // legs outside the regions: the layered part
   TraceOptions trace_options = curved_trace_options(scene_, air, origin, options_, max_length);
   // Through local features rk45 steps at most half their scale (its error estimate cannot step over one).
@@ -441,7 +454,7 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
       end.length = b.s;
       end.end_point = b.x;
       last_height = b.x.y();
-      if (const auto exit = escape_direction(b.x, b.v, max_length - b.s)) {
+      if (const auto exit = escape_direction(b.x, b.v, max_length - b.s, spread)) {
         end.direction = exit->direction;
         end.end_point = exit->point;
         return false;
@@ -480,7 +493,9 @@ std::optional<Vec3d> Caster::meets_plane(const Vec3d& origin, const Vec3d& dir, 
     return Vec3d(origin + t * dir);
   }
   if (table_ && origin == eye_ && !legs_) {
-    const TurnedTablePath path(*table_, eye_, dir);
+    // The neighbours' meeting points a tenth as far from their paths as a camera ray may stray
+    // (they are half a pixel apart: the footprint within ~10 %).
+    const TurnedTablePath path(*table_, eye_, dir, 0.1 * exact_tol_);
     RayNode<double> a = path.node(0);
     for (size_t k = 0; k + 1 < path.plane.size() && a.s <= s_hi; ++k) {
       const RayNode<double> b = path.node(k + 1);
@@ -516,7 +531,7 @@ std::optional<std::array<Vec3d, 2>> Caster::footprint(const Vec3d& origin, const
 PathEnd Caster::cast_table(const Vec3d& dir) const {
   PathEnd end;
   end.direction = dir;
-  const TurnedTablePath path(*table_, eye_, dir);
+  const TurnedTablePath path(*table_, eye_, dir, exact_tol_);
   const ElevationTable::LazyPath& plane = path.plane;
   const size_t entry = plane.template_entry();
   if (entry == ElevationTable::LazyPath::kExact) {

@@ -20,6 +20,7 @@
 #include "refracta/scene/embree_scene.h"
 #include "refracta/shading/aerial_perspective.h"
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <utility>
@@ -68,6 +69,13 @@ class Caster {
   // Height-only fields: lower bounds of n (render_ior_floors); rays whose invariant n cos e lies
   // below one cannot turn where it holds (cast_monotone among the objects, escape_direction above).
   void set_ior_floors(const IorFloors& floors) { floors_ = floors; }
+  // Rays cast without a spread of their own (shadow and bounce rays) stand for at least a pixel
+  // of this angle [rad] (the camera's): their paths may stray sagitta_pixels * spread * s too.
+  // A mirror's reflection widens a pixel's cone as the camera ray would have, never narrows it
+  // (flat or convex; s counts from the bounce, not the eye); a shadow ray toward a distant light
+  // decides a penumbra as wide as the light's disc (the sun: 9.3e-3 rad per metre from the
+  // blocker), 40-4000x a quarter pixel's stray (camera pixels span 1e-5 to 1e-3 rad).
+  void set_secondary_spread(double pixel_angle) { secondary_spread_ = std::max(pixel_angle, 0.0); }
 
   // The end of the path from origin along unit dir, at most max_length [m] long
   // (max_length <= 0: options.max_length for curved paths, the straight limit otherwise).
@@ -137,15 +145,17 @@ class Caster {
                                    double s_near) const;
   // Height-only fields: where a ray at x moving along v ends after `remaining` [m] of path and its
   // direction there, when it is above every object, rising, and cannot turn on the way (n stays
-  // above its invariant n(h) cos e); nullopt otherwise.
+  // above its invariant n(h) cos e); nullopt otherwise. spread: as cast's; over a spherical Earth
+  // the run (which turns the exit by run / R) is integrated to sagitta_pixels * spread * R.
   struct Escape {
     Vec3d direction, point;
   };
-  std::optional<Escape> escape_direction(const Vec3d& x, const Vec3d& v, double remaining) const;
+  std::optional<Escape> escape_direction(const Vec3d& x, const Vec3d& v, double remaining, double spread) const;
   // Height-only fields with an ior floor: a ray so steep that it cannot turn at any height it
   // can reach, cut into chords from Bouguer's invariant (bouguer_branch.h) up past every object
   // (then out of the air) or down below them; nullopt where that does not apply (trace it).
-  std::optional<PathEnd> cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length) const;
+  // spread: as cast's (the chords' tolerance grows with the arc length from origin).
+  std::optional<PathEnd> cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const;
 
   const Scene& scene_;
   const IndexField* field_;
@@ -158,7 +168,9 @@ class Caster {
   const ElevationTable* table_ = nullptr;
   Vec3d eye_ = Vec3d::Zero();
   std::optional<IorFloors> floors_;
+  double secondary_spread_ = 0.0;   // set_secondary_spread
   std::vector<ChordPlan> plans_;  // per table entry
+  double exact_tol_ = 0.0;        // [m] camera rays inside the table's exact intervals are traced to this
 };
 
 // The trace options of curved render rays from origin through field.

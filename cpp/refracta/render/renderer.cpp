@@ -175,6 +175,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   if (layered && !field->height_only()) caster.use_layered(layered.get());
   if (table) caster.use_table(table.get(), camera.position(), camera.pixel_angle());
   if (floors) caster.set_ior_floors(*floors);
+  caster.set_secondary_spread(camera.pixel_angle());  // shadow and bounce rays' tolerance (caster.h)
   const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
   std::atomic<int64_t> chords{0}, invalid{0};
   // Dispersive air: a spectral render through a field that bends rays.
@@ -219,6 +220,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                                 const FieldPtr air = dispersed_field(field, lambda.hero(), reference);
                                 Caster hero_caster(scene.geometry, air.get(), options);
                                 if (floors) hero_caster.set_ior_floors(*floors);
+                                hero_caster.set_secondary_spread(camera.pixel_angle());
                                 const std::unique_ptr<Integrator> hero = make_integrator(scene, hero_caster, options);
                                 PathEnd first = hero_caster.cast(origin, dir, 0.0, camera.pixel_angle());
                                 with_footprint(hero_caster, origin, pixel, lens, spacing, &first);
