@@ -67,7 +67,7 @@ def terrain_setup(path: str, width: int, height: int):
     eye = np.array([0.0, frame.flat_height(EYE_HEIGHT), 0.0])
     north = np.array([0.0, np.tan(np.radians(2.0)), -1.0])  # 2 deg up, toward the tile
     camera = refracta.Camera(eye, eye + north, vfov=20.0, width=width, height=height)
-    return scene, camera, field, 200000.0, load
+    return scene, camera, field, 150000.0, load  # the tile's far edge is 139 km away
 
 
 def memory_child(path: str, width: int, height: int) -> None:

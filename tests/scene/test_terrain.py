@@ -335,3 +335,17 @@ def test_bad_input_raises_clear_errors(tmp_path):
     with pytest.raises(ValueError, match="N46E007.hgt"):
         scene.add_terrain(tmp_path / "somewhere.hgt", frame=geo.LocalFrame(46, 7))
     assert scene.geometry_count == 0
+
+
+def test_a_terrain_scene_pickles_with_its_holes():
+    import pickle
+
+    heights = np.arange(20.0).reshape(4, 5)
+    heights[1, 2] = np.nan
+    scene = refracta.Scene()
+    scene.add_terrain(heights, origin=(0.0, 0.0), spacing=(1.0, 1.0))
+    copy = pickle.loads(pickle.dumps(scene))
+    for x, z in ((0.5, 0.5), (2.5, 1.5), (3.5, 2.5), (1.2, 2.7)):
+        assert vertical_hit(copy, x, z) == vertical_hit(scene, x, z)
+    assert vertical_hit(copy, 2.5, 1.5) is None  # beside the hole
+    assert isinstance(copy.material(0), shading.TerrainShading)

@@ -5,6 +5,7 @@
 #include "refracta/shading/scaled_light.h"
 #include "refracta/shading/spectral.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -122,6 +123,16 @@ py::tuple scene_state(const RenderScene& scene) {
     } else if (const Scene::Spheres* spheres = geometry.spheres(g)) {
       parts.append(py::make_tuple("spheres", points_to_array(spheres->centres), values_to_array(spheres->radii),
                                   geometry.material(g)));
+    } else if (const TerrainGrid* grid = geometry.terrain(g)) {
+      // Positions (rows, cols, 3) float32 with NaN at holes, and the uv map (2, 3).
+      py::array_t<float> positions({py::ssize_t(grid->rows()), py::ssize_t(grid->cols()), py::ssize_t(3)});
+      const std::vector<float> values = grid->positions_with_holes();
+      std::copy(values.begin(), values.end(), positions.mutable_data());
+      py::array_t<double> uv({py::ssize_t(2), py::ssize_t(3)});
+      for (int i = 0; i < 2; ++i) {
+        for (int j = 0; j < 3; ++j) uv.mutable_at(i, j) = grid->uv_from_index()(i, j);
+      }
+      parts.append(py::make_tuple("terrain", positions, uv, geometry.material(g)));
     } else {
       parts.append(py::make_tuple("mesh", mesh_state(geometry.meshes().at(g).mesh), geometry.material(g)));
     }
@@ -155,6 +166,21 @@ std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state) {
     } else if (kind == "mesh") {
       check_size(part, 3, "Scene mesh");
       geometry.add_mesh(mesh_from_state(part[1]), py::cast<int>(part[2]));
+    } else if (kind == "terrain") {
+      check_size(part, 4, "Scene terrain");
+      const auto positions = py::cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(part[1]);
+      const auto uv = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(part[2]);
+      if (positions.ndim() != 3 || positions.shape(2) != 3 || uv.ndim() != 2 || uv.shape(0) != 2 || uv.shape(1) != 3) {
+        throw_invalid("Scene: bad pickle state (terrain)");
+      }
+      Eigen::Matrix<double, 2, 3> uv_from_index;
+      for (int i = 0; i < 2; ++i) {
+        for (int j = 0; j < 3; ++j) uv_from_index(i, j) = uv.at(i, j);
+      }
+      std::vector<float> values(positions.data(), positions.data() + positions.size());
+      geometry.add_terrain(std::make_shared<const TerrainGrid>(int(positions.shape(0)), int(positions.shape(1)),
+                                                               std::move(values), uv_from_index),
+                           py::cast<int>(part[3]));
     } else if (kind == "removed") {  // Scene.remove'd: a stand-in removed again keeps the ids
       Mesh stand_in;
       stand_in.vertices = {Vec3d::Zero(), Vec3d::UnitX(), Vec3d::UnitZ()};
