@@ -1602,7 +1602,6 @@ class RenderOptions:
     Options of refracta.render, with their defaults (defined once, here). Set any field by name;
     validate() reports every bad value at once.
     """
-    animation_turbulence_trace: typing.ClassVar[str] = 'perturbed'
     def __getstate__(self) -> dict:
         ...
     def __init__(self) -> None:
@@ -1807,6 +1806,14 @@ class RenderOptions:
         """
     @transport.setter
     def transport(self, arg1: str) -> None:
+        ...
+    @property
+    def turbulence_step(self) -> float:
+        """
+        turbulence_trace 'perturbed': the step through the layer in the turbulence's cells
+        """
+    @turbulence_step.setter
+    def turbulence_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def turbulence_trace(self) -> str:

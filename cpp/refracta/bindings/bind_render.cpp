@@ -36,6 +36,12 @@ validate() reports every bad value at once.)doc");
       .def_property("trace", [](const RenderOptions& o) -> py::object { if (o.trace) return py::str(trace_method_name(*o.trace)); return py::none(); },
                     [](RenderOptions& o, const py::object& v) { o.trace = v.is_none() ? std::nullopt : std::optional<TraceMethod>(parse_trace_method(py::cast<std::string>(v))); },
                     "ray integrator for curved rays: None (stratified for height-only fields, rk45 otherwise), 'rk45', 'stratified'")
+      .def_property("turbulence_trace", [](const RenderOptions& o) { return turbulence_trace_name(o.turbulence_trace); },
+                    [](RenderOptions& o, const std::string& v) { o.turbulence_trace = parse_turbulence_trace(v); },
+                    "camera rays through turbulence: 'strict' (the full field, rk45) or 'perturbed' (deviations from\n"
+                    "the calm rays of the eye's table in steps of the turbulence's cells; strict where not small)")
+      .def_readwrite("turbulence_step", &RenderOptions::turbulence_step,
+                     "turbulence_trace 'perturbed': the step through the layer in the turbulence's cells")
       .def_readwrite("table", &RenderOptions::use_table, "height-only fields: serve camera rays from one ElevationTable")
       .def_readwrite("tile", &RenderOptions::tile, "tile size [pixels] of the parallel loop")
       .def_readwrite("texture_filter", &RenderOptions::texture_filter, "filter textures over each sample's footprint")

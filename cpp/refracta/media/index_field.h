@@ -79,6 +79,8 @@ class IndexField {
   // std::invalid_argument for fields that cannot carry turbulence (model_field.h: those whose
   // Config has one).
   virtual std::shared_ptr<const IndexField> with_turbulence(std::shared_ptr<const Turbulence> turbulence) const;
+  // The turbulence this air carries (null: calm, or a field that cannot carry one).
+  virtual std::shared_ptr<const Turbulence> turbulence() const { return nullptr; }
 
   // evaluate, throwing NumericalError when n <= 0 or anything is not finite.
   void evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const;

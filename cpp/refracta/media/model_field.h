@@ -112,6 +112,14 @@ class ModelField : public IndexField {
     }
   }
 
+  std::shared_ptr<const Turbulence> turbulence() const override {
+    if constexpr (detail::HasTurbulence<Config>::value) {
+      return config_.turbulence;
+    } else {
+      return IndexField::turbulence();
+    }
+  }
+
   const Config& config() const { return config_; }
   const Model<double>& model() const { return model_; }
 

@@ -17,6 +17,7 @@
 #include "refracta/render/caster.h"
 #include "refracta/render/film.h"
 #include "refracta/render/integrator.h"
+#include "refracta/render/shimmer_cast.h"
 #include "refracta/render/readouts.h"
 
 #include <atomic>
@@ -57,6 +58,9 @@ void RenderOptions::validate() const {
   if (surface_aovs && method == RenderMethod::kRasterMarch) problems.add("surface_aovs needs method 'straight' or 'curved'");
   if (readouts && method == RenderMethod::kRasterMarch) problems.add("readouts need method 'straight' or 'curved'");
   if (!(guard_band >= 0.0 && guard_band <= 2.0)) problems.add("guard_band must be in [0, 2] (got ", guard_band, ")");
+  if (!(turbulence_step > 0.0 && turbulence_step <= 16.0)) {
+    problems.add("turbulence_step must be in (0, 16] cells (got ", turbulence_step, ")");
+  }
   if (max_depth < 0) problems.add("max_depth must be >= 0 (got ", max_depth, ")");
   if (rr_depth < 1) problems.add("rr_depth must be >= 1 (got ", rr_depth, ")");
   if (pixel_bounds && !(pixel_bounds->x0 >= 0 && pixel_bounds->y0 >= 0 && pixel_bounds->x1 > pixel_bounds->x0 &&
@@ -177,6 +181,11 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   if (floors) caster.set_ior_floors(*floors);
   caster.set_secondary_spread(camera.pixel_angle());  // shadow and bounce rays' tolerance (caster.h)
   const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
+  // Camera rays through turbulence as deviations from the calm rays (options.turbulence_trace).
+  const std::unique_ptr<ShimmerCaster> shimmer =
+      field ? ShimmerCaster::make(scene.geometry, *field, layered, table.get(), camera.position(), camera.pixel_angle(),
+                                  floors, options)
+            : nullptr;
   std::atomic<int64_t> chords{0}, invalid{0};
   // Dispersive air: a spectral render through a field that bends rays.
   const bool dispersive = options.spectral && caster.curved();
@@ -228,8 +237,9 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
                                 L = hero->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
                               } else {
-                                PathEnd first = caster.cast(origin, dir, 0.0, camera.pixel_angle());
-                                with_footprint(caster, origin, pixel, lens, spacing, &first);
+                                PathEnd first = shimmer ? shimmer->cast(caster, origin, dir, camera.pixel_angle())
+                                                        : caster.cast(origin, dir, 0.0, camera.pixel_angle());
+                                with_footprint(shimmer ? shimmer->calm() : caster, origin, pixel, lens, spacing, &first);
                                 record_camera_ray(dir, first, aovs);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
                                 L = integrator->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);

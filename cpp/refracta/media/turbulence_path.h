@@ -1,0 +1,50 @@
+// A ray through turbulent air followed as its deviation from the calm ray (issue 21): the air is
+// a height-only calm part n0(h) plus a turbulence layer delta_n(x) (turbulence.h); the calm ray
+// x0(s), v0(s) (v = n t) is known (the eye's ElevationTable), and the turbulent ray is
+//   x(s) = x0(s) + dx(s),  v(s) = v0(s) + dv(s),
+// the ray equations dx/ds = v/|v|, dv/ds = grad n (Born & Wolf ch. 3.2) becoming
+//   d(dx)/ds = t(v0 + dv) - t0,
+//   d(dv)/ds = grad delta_n(x0 + dx) + [n0'(y0 + dy) - n0'(y0)] y^,
+// where t(v) = v / |v|. Nothing is linearised: the turbulence is evaluated where the ray is, not
+// on the calm path, and the calm air's pull on the deviation is its gradient's difference. What
+// makes it cheap is the step: the calm path's strong bending (a mirage's) is in x0, so the
+// deviation needs steps only as fine as the turbulence's cells, with one evaluation each, where
+// the full ray under rk45's error control through the same air takes many more (bench_realism).
+// To first order (a weak perturbation) dv(s) is the transverse gradient integrated along the calm
+// path -- the geometric-optics angle of arrival whose variance Tatarskii gives ("Wave Propagation
+// in a Turbulent Medium", 1961, ch. 6; Andrews & Phillips 2005 eq. 8.68) -- and dx its lever
+// arm's integral.
+#pragma once
+
+#include "refracta/core/math.h"
+#include "refracta/media/index_field.h"
+#include "refracta/media/turbulence.h"
+
+namespace refracta {
+
+// The calm ray at one arc length: position, unit tangent, n0 and dn0/dh there.
+struct CalmPoint {
+  Vec3d x = Vec3d::Zero();
+  Vec3d t = Vec3d::UnitX();
+  double n = 1.0, dn_dh = 0.0;
+};
+
+// The calm point of a height-only field at x along unit t.
+CalmPoint calm_point(const IndexField& calm, const Vec3d& x, const Vec3d& t);
+
+// The turbulent ray's offset from the calm ray.
+struct RayDeviation {
+  Vec3d dx = Vec3d::Zero();  // x - x0 [m]
+  Vec3d dv = Vec3d::Zero();  // v - v0 (v = n t)
+
+  // The turbulent ray's unit tangent where the calm ray is at `at`.
+  Vec3d tangent(const CalmPoint& at) const { return (at.n * at.t + dv).normalized(); }
+};
+
+// One step of `step` [m] of arc length (position Verlet: drift half, kick, drift half; one
+// evaluation of the turbulence and two of the calm air's height profile), from calm point a over
+// mid to b (b's n: mid's). `calm` is height-only.
+void advance_deviation(const Turbulence& turbulence, const IndexField& calm, const CalmPoint& a, const CalmPoint& mid,
+                         const CalmPoint& b, double step, RayDeviation* deviation);
+
+}  // namespace refracta

@@ -1,0 +1,249 @@
+// Camera rays through a turbulent layer as deviations from the calm rays (shimmer_cast.h).
+#include "refracta/render/shimmer_cast.h"
+
+#include "refracta/core/error.h"
+#include "refracta/media/turbulence_path.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace refracta {
+
+TurbulenceTrace parse_turbulence_trace(const std::string& name) {
+  if (name == "strict") return TurbulenceTrace::kStrict;
+  if (name == "perturbed") return TurbulenceTrace::kPerturbed;
+  throw_invalid("turbulence_trace must be 'strict' or 'perturbed' (got '", name, "')");
+}
+
+const char* turbulence_trace_name(TurbulenceTrace method) {
+  return method == TurbulenceTrace::kStrict ? "strict" : "perturbed";
+}
+
+namespace {
+
+// The eye's table path for a direction's elevation, turned about the vertical through the eye to
+// its azimuth (the caster's own walk does the same: a height-only field's paths differ by that turn).
+struct EyePath {
+  EyePath(const ElevationTable& table, const Vec3d& eye, const Vec3d& dir)
+      : plane(table.lazy_path(std::asin(std::clamp(dir.y(), -1.0, 1.0)))), eye(eye) {
+    const double horizontal = std::hypot(dir.x(), dir.z());
+    cx = horizontal > 0 ? dir.x() / horizontal : 1.0;
+    cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
+  }
+  RayNode<double> node(size_t k) const {
+    RayNode<double> out = plane.node(k);
+    const double r = out.x.x(), vr = out.v.x(), gr = out.grad.x();
+    out.x = Vec3d(eye.x() + r * cx, out.x.y(), eye.z() + r * cz);
+    out.v = Vec3d(vr * cx, out.v.y(), vr * cz);
+    out.grad = Vec3d(gr * cx, out.grad.y(), gr * cz);
+    return out;
+  }
+
+  const ElevationTable::LazyPath plane;
+  const Vec3d eye;
+  double cx = 1.0, cz = 0.0;
+};
+
+// A point of the turbulent path: position, unit tangent, arc length.
+struct PathPoint {
+  Vec3d x, t;
+  double s;
+};
+
+// Where the cubic Hermite path between p and q crosses the plane through `on` with `normal`, as a
+// fraction of the way (bisection: the ends lie on either side).
+double plane_crossing(const PathPoint& p, const PathPoint& q, const Vec3d& normal, const Vec3d& on) {
+  const double h = q.s - p.s;
+  auto side = [&](double u) {
+    const double u2 = u * u, u3 = u2 * u;
+    const Vec3d x = (2 * u3 - 3 * u2 + 1) * p.x + (u3 - 2 * u2 + u) * h * p.t + (-2 * u3 + 3 * u2) * q.x +
+                    (u3 - u2) * h * q.t;
+    return normal.dot(x - on);
+  };
+  double lo = 0.0, hi = 1.0;
+  const bool below = side(lo) <= 0.0;
+  for (int it = 0; it < 40; ++it) {  // 2^-40 of a step: far below any tolerance
+    const double mid = 0.5 * (lo + hi);
+    ((side(mid) <= 0.0) == below ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+ShimmerCaster::ShimmerCaster(const Scene& scene, FieldPtr layered, std::shared_ptr<const Turbulence> turbulence,
+                             const ElevationTable* table, const Vec3d& eye, double pixel_angle,
+                             const RenderOptions& options)
+    : scene_(scene),
+      layered_(std::move(layered)),
+      turbulence_(std::move(turbulence)),
+      table_(table),
+      eye_(eye),
+      options_(options),
+      calm_(scene, layered_.get(), options),
+      top_(turbulence_->region().top),
+      step_(options.turbulence_step * turbulence_->grid->spacing()) {
+  calm_.use_table(table, eye, pixel_angle);
+}
+
+std::unique_ptr<ShimmerCaster> ShimmerCaster::make(const Scene& scene, const IndexField& field, const FieldPtr& layered,
+                                                   const ElevationTable* table, const Vec3d& eye, double pixel_angle,
+                                                   const std::optional<IorFloors>& floors,
+                                                   const RenderOptions& options) {
+  if (options.turbulence_trace != TurbulenceTrace::kPerturbed || !table || !layered || !layered->height_only() ||
+      options.spectral || options.method != RenderMethod::kCurved) {
+    return nullptr;
+  }
+  std::shared_ptr<const Turbulence> turbulence = field.turbulence();
+  // Hot spots besides the turbulence: the calm part is not the height-only air (strict).
+  if (!turbulence || !field.with_turbulence(nullptr)->height_only()) return nullptr;
+  auto caster = std::make_unique<ShimmerCaster>(scene, layered, std::move(turbulence), table, eye, pixel_angle, options);
+  if (floors) caster->calm_.set_ior_floors(*floors);
+  return caster;
+}
+
+PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec3d& dir, double spread) const {
+  if (origin != eye_) return strict.cast(origin, dir, 0.0, spread);
+  const EyePath path(*table_, eye_, dir);
+  const size_t count = path.plane.size();
+  // The first segment of the calm path that may dip into the layer (its nodes, less the most a
+  // path of that curvature bulges below its chord, at or under the layer's top).
+  size_t first = count;
+  auto dips = [&](const RayNode<double>& a, const RayNode<double>& b) {
+    const double len = b.s - a.s;
+    const double bulge = 0.125 * std::max(a.curvature().norm(), b.curvature().norm()) * len * len;
+    return std::min(a.x.y(), b.x.y()) - bulge <= top_;
+  };
+  if (count >= 2) {
+    RayNode<double> a = path.node(0);
+    for (size_t k = 0; k + 1 < count && path.plane.lowest_from(k) <= top_; ++k) {
+      const RayNode<double> b = path.node(k + 1);
+      if (dips(a, b)) {
+        first = k;
+        break;
+      }
+      a = b;
+    }
+  }
+  // Never in the layer: the calm path is the turbulent one.
+  if (first == count) return calm_.cast(origin, dir, 0.0, spread);
+
+  PathEnd end;
+  end.direction = dir;
+  // Chords along the turbulent path, each within the pixel's tolerance of it (Caster::cast's).
+  const double per_metre = options_.sagitta_pixels * spread;
+  auto tolerance = [&](double s) { return std::max(options_.sagitta, per_metre * s); };
+  std::vector<PathPoint> run;  // the points since the current chord's start
+  run.reserve(64);
+  // Tests the chord from run[0] to run[last]; on a hit, ends the path where the turbulent path
+  // crosses the hit's tangent plane (between the points of the run), and returns true.
+  auto test = [&](size_t last) {
+    const PathPoint& a = run.front();
+    const Vec3d d = run[last].x - a.x;
+    const double len = d.norm();
+    if (!(len > 0.0)) return false;
+    ++end.chords;
+    const auto hit = scene_.intersect(a.x, d / len, len * (1.0 + 1e-6) + 1e-6);
+    if (!hit) return false;
+    Hit refined = *hit;
+    auto side = [&](const PathPoint& p) { return hit->normal.dot(p.x - hit->point) <= 0.0; };
+    const double f = std::min(hit->t / len, 1.0);
+    end.direction = ((1.0 - f) * a.t + f * run[last].t).normalized();
+    end.length = a.s + f * (run[last].s - a.s);
+    for (size_t i = 0; i < last; ++i) {
+      if (side(run[i]) != side(run[i + 1])) {
+        const double u = plane_crossing(run[i], run[i + 1], hit->normal, hit->point);
+        const PathPoint& p = run[i];
+        const PathPoint& q = run[i + 1];
+        const double h = q.s - p.s, u2 = u * u, u3 = u2 * u;
+        refined.point = (2 * u3 - 3 * u2 + 1) * p.x + (u3 - 2 * u2 + u) * h * p.t + (-2 * u3 + 3 * u2) * q.x +
+                        (u3 - u2) * h * q.t;
+        end.direction = ((1.0 - u) * p.t + u * q.t).normalized();
+        end.length = p.s + u * h;
+        break;
+      }
+    }
+    end.hit = refined;
+    return true;
+  };
+  // Adds a point; tests the chords it closes (the longest run of points whose chord keeps within
+  // the tolerance: a quarter of its length times its ends' turn, twice a circular arc's sagitta).
+  auto add = [&](const PathPoint& p) {
+    run.push_back(p);
+    while (run.size() >= 2) {
+      const PathPoint& a = run.front();
+      const double len = (p.x - a.x).norm();
+      if (0.25 * len * (p.t - a.t).norm() <= tolerance(a.s) && len <= options_.chord) return false;
+      const size_t last = run.size() > 2 ? run.size() - 2 : 1;
+      if (test(last)) return true;
+      run.erase(run.begin(), run.begin() + std::ptrdiff_t(last));
+      if (run.size() == 1) return false;
+    }
+    return false;
+  };
+
+  RayNode<double> a = path.node(0);
+  run.push_back({a.x, a.v.normalized(), a.s});
+  // Before the layer: the calm path's nodes.
+  for (size_t k = 0; k < first; ++k) {
+    const RayNode<double> b = path.node(k + 1);
+    if (add({b.x, b.v.normalized(), b.s})) return end;
+    a = b;
+  }
+  const Turbulence& turbulence = *turbulence_;
+  const IndexField& calm = *layered_;
+  RayDeviation deviation;
+  PathPoint at = run.back();
+  try {
+    for (size_t k = first; k + 1 < count; ++k) {
+      if (k > first && path.plane.lowest_from(k) > top_) {
+        // Above the layer for good: the calm air from the deviated state.
+        if (run.size() >= 2 && test(run.size() - 1)) return end;
+        const double remaining = options_.max_length - at.s;
+        if (!(remaining > 0.0)) break;
+        PathEnd rest = calm_.cast(at.x, at.t, remaining, spread);
+        rest.length += at.s;
+        rest.chords += end.chords;
+        return rest;
+      }
+      const RayNode<double> b = path.node(k + 1);
+      const PathSegment<double> segment(a, b);
+      const double len = b.s - a.s;
+      // Through the layer a step per cell; between dips one step (the calm gradient's change at
+      // the deviated height is negligible there, and constant forces Verlet integrates exactly).
+      const int steps = dips(a, b) ? std::max(1, int(std::ceil(len / step_))) : 1;
+      CalmPoint from;
+      from.x = a.x;
+      from.t = a.v.normalized();
+      for (int i = 0; i < steps; ++i) {
+        const double um = (i + 0.5) / steps, u1 = double(i + 1) / steps;
+        const CalmPoint mid = calm_point(calm, segment.position(um), segment.velocity(um).normalized());
+        CalmPoint to;
+        to.x = segment.position(u1);
+        to.t = segment.velocity(u1).normalized();
+        from.n = to.n = mid.n;
+        advance_deviation(turbulence, calm, from, mid, to, len / steps, &deviation);
+        const Vec3d turned = deviation.tangent(to);
+        // The small-perturbation criterion (shimmer_cast.h): otherwise the strict trace.
+        if (!((turned - to.t).norm() <= kLargeDeviation) || !is_finite(deviation.dx)) {
+          return strict.cast(origin, dir, 0.0, spread);
+        }
+        at = {to.x + deviation.dx, turned, a.s + u1 * len};
+        if (add(at)) return end;
+        from = to;
+      }
+      a = b;
+    }
+  } catch (const NumericalError&) {
+    // The deviated ray left the calm air's modelled heights: the strict trace says what it sees.
+    return strict.cast(origin, dir, 0.0, spread);
+  }
+  if (run.size() >= 2 && test(run.size() - 1)) return end;
+  end.direction = layered_->sky_direction(at.x, at.t);
+  end.end_point = at.x;
+  end.length = at.s;
+  return end;
+}
+
+}  // namespace refracta

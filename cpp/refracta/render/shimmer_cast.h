@@ -1,0 +1,66 @@
+// Camera rays through a turbulent layer at video rates (issue 21, RenderOptions::turbulence_trace
+// 'perturbed'): the turbulent ray followed as its deviation from the calm ray the eye's
+// ElevationTable already holds (media/turbulence_path.h), in fixed steps of the turbulence's
+// cells, its chords tested against the scene as it goes; where the calm path leaves the layer for
+// good, the calm air's caster takes over from the deviated state (above the layer the air is the
+// calm air exactly). Rays that never reach the layer are the calm caster's, exactly as the strict
+// caster's legs give them.
+//
+// The small-perturbation criterion: nothing is linearised, but the deviation is followed in fixed
+// steps with no error control, along the calm path, whose table was refined for the calm ray's
+// geometry. That is sound while the turbulence perturbs the calm ray rather than replaces it: it
+// falls back to the strict trace (the whole ray, rk45 under error control through the full field)
+// when the turbulent ray's direction departs from the calm ray's by more than
+// kLargeDeviation = 5 mrad -- comparable with a hot road mirage's whole bending (its critical
+// angle, 0.31 deg = 5.4 mrad, examples.hot_road): a deflection that large decides which branch
+// (direct or mirrored) the ray takes, so it is not a perturbation of the calm path. Tatarskii's
+// geometric-optics angle-of-arrival variance (Tatarskii 1961 ch. 6; Andrews & Phillips 2005 eq.
+// 8.68: <a^2> = 2.91 C_n^2 L l0^(-1/3) per axis for a plane wave) puts the default hot-road
+// turbulence (C_n^2 = 1e-10 at the ground, 300 m, cells 5 cm) at ~0.5 mrad: the fast path
+// serves its rays, a turbulence 100 times stronger falls back (tests/render/test_shimmer.py).
+#pragma once
+
+#include "refracta/media/index_field.h"
+#include "refracta/media/turbulence.h"
+#include "refracta/rays/elevation_table.h"
+#include "refracta/render/caster.h"
+#include "refracta/render/render_options.h"
+
+#include <memory>
+#include <optional>
+
+namespace refracta {
+
+// Fall back to the strict trace beyond this angle between the turbulent and the calm ray [rad] (above).
+constexpr double kLargeDeviation = 5e-3;
+
+class ShimmerCaster {
+ public:
+  // Null unless options.turbulence_trace is 'perturbed' and the fast path applies: a field carrying
+  // turbulence whose calm part (the field without it) is `layered` (height-only: no hot spots),
+  // camera rays served by the eye's `table`. Keeps references to its arguments.
+  static std::unique_ptr<ShimmerCaster> make(const Scene& scene, const IndexField& field, const FieldPtr& layered,
+                                             const ElevationTable* table, const Vec3d& eye, double pixel_angle,
+                                             const std::optional<IorFloors>& floors, const RenderOptions& options);
+
+  // The end of the camera ray from origin along unit dir (spread: the pixel's angle, as
+  // Caster::cast); `strict` casts the rays the fast path hands back.
+  PathEnd cast(const Caster& strict, const Vec3d& origin, const Vec3d& dir, double spread) const;
+  // The calm air's caster (footprints of camera rays: their neighbours' calm paths).
+  const Caster& calm() const { return calm_; }
+
+  ShimmerCaster(const Scene& scene, FieldPtr layered, std::shared_ptr<const Turbulence> turbulence,
+                const ElevationTable* table, const Vec3d& eye, double pixel_angle, const RenderOptions& options);
+
+ private:
+  const Scene& scene_;
+  FieldPtr layered_;
+  std::shared_ptr<const Turbulence> turbulence_;
+  const ElevationTable* table_;
+  Vec3d eye_;
+  const RenderOptions& options_;
+  Caster calm_;
+  double top_, step_;
+};
+
+}  // namespace refracta

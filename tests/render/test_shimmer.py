@@ -1,0 +1,86 @@
+"""Camera rays through turbulence followed as deviations from the calm rays (issue 21,
+RenderOptions.turbulence_trace 'perturbed', render/shimmer_cast.h) against the strict trace
+(rk45 through the full field), on a few rows of the hot road through a small turbulence grid
+(64^3 cells of 5 cm: synthesised in a fraction of a second)."""
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import examples
+
+WIDTH, HEIGHT = 48, 18
+ROWS = (10, 12)  # the road from ~150 m on: rays in the hot layer for tens of metres
+
+
+@pytest.fixture(scope="module")
+def road():
+    return examples.hot_road(WIDTH, HEIGHT)
+
+
+def turbulent(road, cn2):
+    air = refracta.Turbulence(cn2, cells=64, depth=0.1)
+    return refracta.PhysicalAtmosphere(**road.field.params, turbulence=air)
+
+
+def render(road, field, **options):
+    return refracta.render(
+        road.scene,
+        road.camera,
+        field,
+        progress=False,
+        max_length=road.max_length,
+        pixel_bounds=(0, ROWS[0], WIDTH, ROWS[1]),
+        **options,
+    )
+
+
+def test_turbulence_trace_option():
+    assert refracta.RenderOptions().turbulence_trace == "strict"
+    with pytest.raises(ValueError, match="turbulence_trace"):
+        refracta.RenderOptions().turbulence_trace = "fast"
+    options = refracta.RenderOptions()
+    options.turbulence_step = 0.0
+    with pytest.raises(ValueError, match="turbulence_step"):
+        options.validate()
+
+
+def test_calm_air_is_the_calm_render(road):
+    # Without turbulence the option changes nothing: the caster is the calm one.
+    assert np.array_equal(render(road, road.field, turbulence_trace="perturbed"), render(road, road.field))
+
+
+@pytest.mark.slow
+def test_perturbed_against_strict(road):
+    calm = render(road, road.field)
+    field = turbulent(road, 1e-10)
+    strict = render(road, field)
+    fast = render(road, field, turbulence_trace="perturbed")
+    effect = np.abs(strict - calm).mean()
+    error = np.abs(fast - strict).mean()
+    assert effect > 0.0
+    # Issue 21's goal is 10 %; measured on these rows: see the README's shimmer table (not met).
+    assert error <= 0.5 * effect  # tolerance: the measured 0.2-0.4 and margin for the realisation
+
+
+@pytest.mark.slow
+def test_fallback_fires_where_the_perturbation_is_large(road):
+    # 1e-6: a turbulence 10^4 times the default's C_n^2 turns these rays by ~50 mrad (Tatarskii's
+    # 2.91 C_n^2 L l0^(-1/3) at L ~ 100 m), beyond kLargeDeviation (5 mrad) within metres of the
+    # layer's top: every ray that enters the layer is traced strictly, so the images agree bit for bit.
+    field = turbulent(road, 1e-6)
+    assert np.array_equal(render(road, field, turbulence_trace="perturbed"), render(road, field))
+
+
+def test_bit_identical_across_threads_and_tiles(road):
+    field = turbulent(road, 1e-10)
+    images = []
+    try:
+        for n in (1, 2):
+            refracta.set_threads(n)
+            images.append(render(road, field, turbulence_trace="perturbed"))
+    finally:
+        refracta.set_threads(None)
+    images.append(render(road, field, turbulence_trace="perturbed", tile=4))
+    assert np.array_equal(images[0], images[1])
+    assert np.array_equal(images[0], images[2])
