@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 namespace refracta {
@@ -85,10 +86,54 @@ std::pair<double, double> render_heights(const Scene& scene, const Vec3d& eye, c
 IorFloors render_ior_floors(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options) {
   const auto [lo, hi] = render_heights(scene, eye, options);
   const double top = std::max(scene.highest(), eye.y());
+  // lowest_ior_sampled's samples (and its margin) among the objects, kept with their heights.
+  constexpr double kMargin = 1e-5;
+  auto profile = std::make_shared<IorFloors::Profile>();
+  const double ground = std::clamp(0.0, lo, top);
+  for (double h = lo; h <= top; h += std::max(1e-3, 1e-3 * std::abs(h - ground))) {
+    double n, dn;
+    try {
+      field.evaluate_height(h, &n, &dn);
+    } catch (const std::exception&) {
+      continue;
+    }
+    if (!(n > 0.0) || !std::isfinite(n)) continue;
+    profile->heights.push_back(h);
+    profile->below.push_back(n - kMargin);
+  }
+  const size_t count = profile->heights.size();
+  profile->above = profile->below;
+  for (size_t i = 1; i < count; ++i) profile->below[i] = std::min(profile->below[i], profile->below[i - 1]);
+  for (size_t i = count; i-- > 1;) profile->above[i - 1] = std::min(profile->above[i - 1], profile->above[i]);
   IorFloors floors;
-  floors.objects = lowest_ior_sampled(field, lo, top);
-  floors.everywhere = std::min(floors.objects, lowest_ior_sampled(field, top, hi));
+  floors.objects = count > 0 ? profile->below.back() : 0.0;  // nothing evaluable: no bound (lowest_ior_sampled's 0)
+  floors.everywhere = std::min(floors.objects, lowest_ior_sampled(field, top, hi, kMargin));
+  if (count >= 2) floors.profile = std::move(profile);  // else nothing to tell heights apart
   return floors;
+}
+
+double IorFloors::objects_from(double h, bool rising) const {
+  if (!profile) return objects;
+  const std::vector<double>& heights = profile->heights;
+  // The samples either side of h both count: the air between them is bounded by neither alone.
+  const size_t above_h = size_t(std::lower_bound(heights.begin(), heights.end(), h) - heights.begin());
+  if (rising) return above_h == 0 ? profile->above.front() : profile->above[above_h - 1];
+  return above_h >= heights.size() ? profile->below.back() : profile->below[above_h];
+}
+
+void IorFloors::merge(const IorFloors& other) {
+  objects = std::min(objects, other.objects);
+  everywhere = std::min(everywhere, other.everywhere);
+  if (!profile || !other.profile || profile->heights != other.profile->heights) {
+    profile.reset();  // not sampled alike: the overall floors alone
+    return;
+  }
+  auto merged = std::make_shared<IorFloors::Profile>(*profile);
+  for (size_t i = 0; i < merged->heights.size(); ++i) {
+    merged->below[i] = std::min(merged->below[i], other.profile->below[i]);
+    merged->above[i] = std::min(merged->above[i], other.profile->above[i]);
+  }
+  profile = std::move(merged);
 }
 
 bool Caster::chord_blocked(const Vec3d& p, const Vec3d& d, double len, const Handoff& from, PathEnd* end,
@@ -361,7 +406,10 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   double n0, dn0;
   layered_->evaluate_height(origin.y(), &n0, &dn0);
   const double beta = n0 * cos_e0;
-  if (!(beta < floors_->objects * std::sqrt(1.0 - kMinSine * kMinSine))) return std::nullopt;
+  // The least n the ray can meet among the objects: above its start when it rises, below when it falls.
+  if (!(beta < floors_->objects_from(origin.y(), t.y() > 0.0) * std::sqrt(1.0 - kMinSine * kMinSine))) {
+    return std::nullopt;
+  }
   const BouguerBranch branch(*layered_, beta);
   const double up = t.y() > 0.0 ? 1.0 : -1.0;
   // Rising: up to the highest object, then out of the air; falling: down to the stop height.

@@ -22,15 +22,28 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
 
 namespace refracta {
 
-// Lower bounds of a height-only field's n: among the scene's objects, and everywhere a ray goes.
+// Lower bounds of a height-only field's n: among the scene's objects, and everywhere a ray goes;
+// and over the objects' heights sampled (render_ior_floors): the least n at and below each
+// sampled height and at and above it, so that a ray rising from h (falling to below the objects)
+// is held to the air it can meet, not to the least n anywhere among the objects (a hot road's
+// surface, a hill top's thin air).
 struct IorFloors {
   double objects, everywhere;
+  struct Profile {
+    std::vector<double> heights, below, above;  // ascending [m]; least n at and below / above each
+  };
+  std::shared_ptr<const Profile> profile;  // null: `objects` for every ray
+  // The least n between h and the top of the objects (rising), or the bottom and h (falling).
+  double objects_from(double h, bool rising) const;
+  // The lower of both floors (a spectral render's ends of the dispersion range).
+  void merge(const IorFloors& other);
 };
 
 // A state of a path where one leg of a cast hands over to the next (fields with local regions).

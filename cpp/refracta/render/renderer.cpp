@@ -167,10 +167,8 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     if (options.spectral) {
       const double reference = field_reference_wavelength(*layered);
       for (double wavelength : {kLambdaMin, kLambdaMax}) {
-        const IorFloors at = render_ior_floors(scene.geometry, *dispersed_field(layered, wavelength, reference),
-                                               camera.position(), options);
-        floors->objects = std::min(floors->objects, at.objects);
-        floors->everywhere = std::min(floors->everywhere, at.everywhere);
+        floors->merge(render_ior_floors(scene.geometry, *dispersed_field(layered, wavelength, reference),
+                                        camera.position(), options));
       }
     }
   }
