@@ -13,6 +13,8 @@ Sections (one function each, each a dict in results/realism.json):
                          does to a hot-road path along a lattice axis
   shimmer_render         examples.hot_road(160, 60) with the default turbulence in its hot layer
                          (depth 0.1 m) against the calm air
+  shimmer_fast           the same through turbulence_trace 'perturbed' (issue 21 goal 1): its
+                         cost beside the calm frame's, its image against the strict trace's
   water_render           examples.cold_sea with its sea plane a shading.Water (Cox-Munk Beckmann
                          interface over the deep water body) against the Plastic it has, path
                          traced, through the cold-sea air and straight (issue 19 section 2)
@@ -216,6 +218,63 @@ def shimmer_render(width=160, height=60) -> dict:
     }
 
 
+def shimmer_fast(timing=(160, 60), accuracy=(48, 18), frames=48) -> dict:
+    """Issue 21 goal 1: RenderOptions.turbulence_trace 'perturbed' (camera rays followed as
+    deviations from the calm rays, render/shimmer_cast.h) on the hot road through the default
+    turbulence (depth 0.1 m). Timing: calm, perturbed (and the frames-long animation it implies)
+    side by side at `timing`; accuracy: mean |perturbed - strict| over mean |strict - calm| at
+    `accuracy` (the strict rk45 trace being the reference), per row as well. Goals: a frame at
+    most 3x calm at 640x240, 48 frames in 2 minutes on 2 cores, accuracy at most 0.1."""
+    import refracta
+    from refracta import examples
+
+    air = refracta.Turbulence(depth=0.1)
+
+    def frame(size, field, **options):
+        road = examples.hot_road(*size)
+        start = time.perf_counter()
+        image = refracta.render(
+            road.scene, road.camera, field(road), progress=False, max_length=road.max_length, **options
+        )
+        return image, time.perf_counter() - start
+
+    calm = lambda road: road.field  # noqa: E731
+    turbulent = lambda road: refracta.PhysicalAtmosphere(**road.field.params, turbulence=air)  # noqa: E731
+    # Side by side, alternating, so that the shared machine's load drifts into both alike.
+    calm_seconds, fast_seconds = [], []
+    for _ in range(2):
+        calm_seconds.append(frame(timing, calm)[1])
+        fast_seconds.append(frame(timing, turbulent, turbulence_trace="perturbed")[1])
+    ratio = [f / c for f, c in zip(fast_seconds, calm_seconds)]
+    calm_image, _ = frame(accuracy, calm)
+    fast_image, fast_small = frame(accuracy, turbulent, turbulence_trace="perturbed")
+    strict_image, strict_small = frame(accuracy, turbulent)
+    effect = np.abs(strict_image - calm_image)
+    error = np.abs(fast_image - strict_image)
+    rows = [float(e.mean() / m.mean()) if m.mean() > 0 else 0.0 for e, m in zip(error, effect)]
+    out = {
+        "timing_size": list(timing),
+        "calm_seconds": calm_seconds,
+        "perturbed_seconds": fast_seconds,
+        "perturbed_over_calm": ratio,
+        "goal_perturbed_over_calm_at_640x240": 3.0,
+        f"{frames}_frames_seconds_estimate": frames * min(fast_seconds),
+        "accuracy_size": list(accuracy),
+        "strict_seconds": strict_small,
+        "perturbed_seconds_accuracy_size": fast_small,
+        "error_over_effect": float(error.mean() / effect.mean()),
+        "error_over_effect_per_row": rows,
+        "goal_error_over_effect": 0.1,
+    }
+    print(
+        f"shimmer fast path {timing[0]}x{timing[1]}: calm {min(calm_seconds):.2f} s, perturbed "
+        f"{min(fast_seconds):.1f} s (x{min(ratio):.0f}; goal x3 at 640x240); {accuracy[0]}x{accuracy[1]}: strict "
+        f"{strict_small:.1f} s, perturbed {fast_small:.2f} s, |perturbed - strict| / |strict - calm| "
+        f"{out['error_over_effect']:.3f} (goal 0.1)"
+    )
+    return out
+
+
 def hot_spot_render(width=1280, height=720, repeat=3) -> dict:
     """examples.hot_spot's camera and scene (the hot road) through the height-only road (2 K) with
     one spot 16 K hotter, 330 m down the road: compact (Wendland, R = 110 m) and gaussian (sigma =
@@ -406,6 +465,7 @@ SECTIONS = {
     "water_render": water_render,
     "aerial_perspective_render": aerial_perspective_render,
     "denoise_quality": denoise_quality,
+    "shimmer_fast": shimmer_fast,
 }
 
 
@@ -418,6 +478,7 @@ def main(quick: bool = False) -> dict:
             seeds=2 if quick else 4, rays=500 if quick else 1500, along_x_cells=128 if quick else 256
         ),
         "shimmer_render": shimmer_render(*((64, 24) if quick else (160, 60))),
+        "shimmer_fast": shimmer_fast(*(((64, 24), (32, 12)) if quick else ())),
         "water_render": water_render(*((64, 24, 2, 1) if quick else ())),
         "aerial_perspective_render": aerial_perspective_render(*((160, 60, 1) if quick else ())),
         "denoise_quality": denoise_quality(*((96, 36, 4, 64) if quick else ())),

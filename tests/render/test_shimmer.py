@@ -23,14 +23,14 @@ def turbulent(road, cn2):
     return refracta.PhysicalAtmosphere(**road.field.params, turbulence=air)
 
 
-def render(road, field, **options):
+def render(road, field, columns=(0, WIDTH), **options):
     return refracta.render(
         road.scene,
         road.camera,
         field,
         progress=False,
         max_length=road.max_length,
-        pixel_bounds=(0, ROWS[0], WIDTH, ROWS[1]),
+        pixel_bounds=(columns[0], ROWS[0], columns[1], ROWS[1]),
         **options,
     )
 
@@ -39,10 +39,13 @@ def test_turbulence_trace_option():
     assert refracta.RenderOptions().turbulence_trace == "strict"
     with pytest.raises(ValueError, match="turbulence_trace"):
         refracta.RenderOptions().turbulence_trace = "fast"
-    options = refracta.RenderOptions()
-    options.turbulence_step = 0.0
     with pytest.raises(ValueError, match="turbulence_step"):
-        options.validate()
+        refracta.render(
+            refracta.Scene(),
+            refracta.Camera((0, 1, 0), (1, 1, 0), (0, 1, 0), 30.0, 4, 2),
+            turbulence_step=0.0,
+            progress=False,
+        )
 
 
 def test_calm_air_is_the_calm_render(road):
@@ -59,8 +62,9 @@ def test_perturbed_against_strict(road):
     effect = np.abs(strict - calm).mean()
     error = np.abs(fast - strict).mean()
     assert effect > 0.0
-    # Issue 21's goal is 10 %; measured on these rows: see the README's shimmer table (not met).
-    assert error <= 0.5 * effect  # tolerance: the measured 0.2-0.4 and margin for the realisation
+    # Issue 21's goal: 10 % of the turbulence's own effect. On these road rows the perturbed path
+    # meets it (measured 0.03-0.08 per row); in the mirage band it does not yet (README).
+    assert error <= 0.1 * effect  # tolerance: the goal itself
 
 
 @pytest.mark.slow
@@ -69,7 +73,12 @@ def test_fallback_fires_where_the_perturbation_is_large(road):
     # 2.91 C_n^2 L l0^(-1/3) at L ~ 100 m), beyond kLargeDeviation (5 mrad) within metres of the
     # layer's top: every ray that enters the layer is traced strictly, so the images agree bit for bit.
     field = turbulent(road, 1e-6)
-    assert np.array_equal(render(road, field, turbulence_trace="perturbed"), render(road, field))
+    columns = (20, 26)  # a few pixels: the strict trace through so strong a turbulence is slow
+    perturbed = render(road, field, columns, turbulence_trace="perturbed")
+    assert np.array_equal(perturbed, render(road, field, columns))
+    # ... where at the default's C_n^2 the same pixels take the fast path (not the strict image).
+    field = turbulent(road, 1e-10)
+    assert not np.array_equal(render(road, field, columns, turbulence_trace="perturbed"), render(road, field, columns))
 
 
 def test_bit_identical_across_threads_and_tiles(road):

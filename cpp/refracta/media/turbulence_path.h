@@ -12,8 +12,8 @@
 // the full ray under rk45's error control through the same air takes many more (bench_realism).
 // To first order (a weak perturbation) dv(s) is the transverse gradient integrated along the calm
 // path -- the geometric-optics angle of arrival whose variance Tatarskii gives ("Wave Propagation
-// in a Turbulent Medium", 1961, ch. 6; Andrews & Phillips 2005 eq. 8.68) -- and dx its lever
-// arm's integral.
+// in a Turbulent Medium", 1961, ch. 6; Andrews & Phillips 2005 ch. 6) -- and dx its lever arm's
+// integral.
 #pragma once
 
 #include "refracta/core/math.h"

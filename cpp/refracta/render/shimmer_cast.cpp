@@ -131,9 +131,15 @@ PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec
 
   PathEnd end;
   end.direction = dir;
-  // Chords along the turbulent path, each within the pixel's tolerance of it (Caster::cast's).
+  // Chords along the turbulent path, each within the pixel's tolerance of it (Caster::cast's),
+  // but within `sagitta` in the layer: there a grazing ray passes the road by millimetres, and the
+  // strict trace's chords are its rk45 steps (at most half the layer's scale, 0.2 m, bent by the
+  // tolerance of its error control); at the pixel's tolerance (11 cm at 300 m for 48 pixels across
+  // the hot road) the chord over a mirage ray's vertex passed above the road where the path meets it.
   const double per_metre = options_.sagitta_pixels * spread;
-  auto tolerance = [&](double s) { return std::max(options_.sagitta, per_metre * s); };
+  auto tolerance = [&](const PathPoint& from) {
+    return from.x.y() < top_ ? options_.sagitta : std::max(options_.sagitta, per_metre * from.s);
+  };
   std::vector<PathPoint> run;  // the points since the current chord's start
   run.reserve(64);
   // Tests the chord from run[0] to run[last]; on a hit, ends the path where the turbulent path
@@ -174,7 +180,7 @@ PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec
     while (run.size() >= 2) {
       const PathPoint& a = run.front();
       const double len = (p.x - a.x).norm();
-      if (0.25 * len * (p.t - a.t).norm() <= tolerance(a.s) && len <= options_.chord) return false;
+      if (0.25 * len * (p.t - a.t).norm() <= tolerance(a) && len <= options_.chord) return false;
       const size_t last = run.size() > 2 ? run.size() - 2 : 1;
       if (test(last)) return true;
       run.erase(run.begin(), run.begin() + std::ptrdiff_t(last));

@@ -1,5 +1,5 @@
-// Camera rays through a turbulent layer at video rates (issue 21, RenderOptions::turbulence_trace
-// 'perturbed'): the turbulent ray followed as its deviation from the calm ray the eye's
+// Camera rays through a turbulent layer, faster (issue 21 goal 1, RenderOptions::turbulence_trace
+// 'perturbed'; its goals are not yet met: README, bench_realism.py shimmer_fast): the turbulent ray followed as its deviation from the calm ray the eye's
 // ElevationTable already holds (media/turbulence_path.h), in fixed steps of the turbulence's
 // cells, its chords tested against the scene as it goes; where the calm path leaves the layer for
 // good, the calm air's caster takes over from the deviated state (above the layer the air is the
@@ -14,10 +14,11 @@
 // kLargeDeviation = 5 mrad -- comparable with a hot road mirage's whole bending (its critical
 // angle, 0.31 deg = 5.4 mrad, examples.hot_road): a deflection that large decides which branch
 // (direct or mirrored) the ray takes, so it is not a perturbation of the calm path. Tatarskii's
-// geometric-optics angle-of-arrival variance (Tatarskii 1961 ch. 6; Andrews & Phillips 2005 eq.
-// 8.68: <a^2> = 2.91 C_n^2 L l0^(-1/3) per axis for a plane wave) puts the default hot-road
-// turbulence (C_n^2 = 1e-10 at the ground, 300 m, cells 5 cm) at ~0.5 mrad: the fast path
-// serves its rays, a turbulence 100 times stronger falls back (tests/render/test_shimmer.py).
+// geometric-optics angle-of-arrival variance ("Wave Propagation in a Turbulent Medium", 1961,
+// ch. 6; for a point aperture 3.28 C_n^2 L l0^(-1/3) per axis, Andrews & Phillips 2005 ch. 6,
+// refracta.turbulence.tilt_variance) puts the default hot-road turbulence (C_n^2 <= 1e-10, 300 m,
+// l0 one 5 cm cell) at <= 0.5 mrad: the fast path serves its rays; one of C_n^2 = 1e-6 (~50 mrad)
+// falls back (tests/render/test_shimmer.py).
 #pragma once
 
 #include "refracta/media/index_field.h"
