@@ -1,7 +1,8 @@
 """Ready-made mirage scenes and atmospheres, with values from ORACLES.md.
 
 Scenes: hot_road(), cold_sea(), fata_morgana(), hot_spot() and green_flash() return an Example
-with .scene, .camera, .field (procedural geometry; nothing to download). Atmospheres for ray fans:
+with .scene, .camera, .field (procedural geometry; nothing to download); real_place() a geographic
+one (terrain from a shipped, synthetic elevation file; .frame its refracta.geo.LocalFrame). Atmospheres for ray fans:
 ATMOSPHERES maps a name to (field, eye height [m], elevations [deg], max length [m]).
 """
 
@@ -31,6 +32,7 @@ class Example:
     field: _core.IndexField
     max_length: float
     description: str
+    frame: Any = None  # a geographic scene's refracta.geo.LocalFrame (render(..., frame=) for "geographic")
 
 
 def _camera(position, look_at, vfov, width, height):
@@ -437,6 +439,70 @@ def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.8
     look = np.radians(-0.05)
     camera = _camera((0.0, 4.0, 0.0), (1000.0 * np.cos(look), 4.0 + 1000.0 * np.sin(look), 0.0), 0.7, width, height)
     return Example("green_flash", scene, camera, field, 1.5e6, green_flash.__doc__ or "")
+
+
+# A real place (issue 20): Teide seen from Gran Canaria across ~93 km of the Atlantic. The observer
+# stands on the cliffs above Puerto de las Nieves, Agaete (28.0975 N, 15.7125 W), 30 m above the sea,
+# and looks at Teide's summit (REAL_PLACE_SUMMITS). The elevation file is SYNTHETIC (shipped in
+# refracta/data with the script that makes it; nothing downloaded): an island shaped after Tenerife
+# around the real summits' positions and heights -- not the real topography.
+REAL_PLACE_OBSERVER = (28.0975, -15.7125)  # [deg] (lat, lon)
+REAL_PLACE_EYE = 30.0  # [m] above the sea
+REAL_PLACE_SUMMITS = {"Teide": (28.2724, -16.6425, 3715.0), "Pico Viejo": (28.2567, -16.6622, 3135.0)}
+REAL_PLACE_FOCAL_LENGTH = 300.0  # [mm] on full frame
+REAL_PLACE_TILT = 0.95  # [deg] the camera's elevation: the sea horizon near the bottom, the summit high
+# Canary air on a clear winter morning after rain: 220 km of visibility leaves the island 93 km away
+# exp(-3.912 x 93 / 220) = 19 % of its contrast (Koschmieder) -- faint and bluish, as photographed.
+REAL_PLACE_VISIBILITY = 300.0  # [km]
+REAL_PLACE_SUN = (110.0, 35.0)  # [deg] (azimuth, elevation): mid-morning, behind the left shoulder
+
+
+def real_place_elevation_path() -> str:
+    """The path of real_place's synthetic elevation GeoTIFF (refracta/data/tenerife_synthetic.tif,
+    made by refracta/data/make_tenerife.py)."""
+    import os
+
+    return os.path.join(os.path.dirname(__file__), "data", "tenerife_synthetic.tif")
+
+
+def real_place(width: int = 640, height: int = 320, field=None) -> Example:
+    """A real place: Teide (3715 m) on Tenerife seen across ~93 km of sea from the cliffs of Agaete,
+    Gran Canaria (REAL_PLACE_OBSERVER), 30 m up, through a 400 mm lens. The terrain is an elevation
+    file placed by refracta.geo.LocalFrame (Scene.add_terrain, TerrainShading with a winter snow line);
+    its relief is SYNTHETIC (refracta/data/make_tenerife.py: an island shaped after Tenerife around
+    the real summits), the positions of observer and summits real. The Earth is curved
+    (CurvedEarth, the radius of curvature along the view azimuth, Euler) under the standard
+    atmosphere (k about 0.17): the island's lower ~400 m lie hidden behind the sea's bulge. A
+    physical sky with a mid-morning sun behind the left shoulder; 220 km visibility greys and
+    blues the island. field: another height-only field (true heights) for the air, put over the
+    same Earth (None: PhysicalAtmosphere(), the standard atmosphere)."""
+    from refracta import geo, terrain
+
+    lat, lon = REAL_PLACE_OBSERVER
+    s_lat, s_lon, _ = REAL_PLACE_SUMMITS["Teide"]
+    distance, azimuth, _ = geo.inverse(lat, lon, s_lat, s_lon)
+    radius = geo.radius_of_curvature(lat, azimuth)
+    frame = geo.LocalFrame(lat, lon, earth_radius=radius)
+    scene = _core.Scene()
+    set_physical_sky(scene, frame.direction(*REAL_PLACE_SUN), visibility=REAL_PLACE_VISIBILITY)
+    scene.add_ground(0.0, 2.6 * distance, material=_sea(6.0, 19.0))  # the Atlantic off the Canaries
+    terrain.add_terrain(
+        scene,
+        real_place_elevation_path(),
+        frame=frame,
+        material=shading.TerrainShading(snow_line=2600.0, tree_line=2000.0, earth_radius=radius),
+    )
+    base = _core.PhysicalAtmosphere() if field is None else field
+    camera = frame.camera(
+        REAL_PLACE_EYE,
+        azimuth % 360.0,
+        REAL_PLACE_TILT,
+        focal_length_mm=REAL_PLACE_FOCAL_LENGTH,
+        image_width=width,
+        image_height=height,
+    )
+    field = _core.CurvedEarth(base, radius)
+    return Example("real_place", scene, camera, field, 1.25 * distance, real_place.__doc__ or "", frame)
 
 
 EXAMPLES = {"hot_road": hot_road, "cold_sea": cold_sea, "fata_morgana": fata_morgana, "hot_spot": hot_spot}
