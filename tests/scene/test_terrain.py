@@ -154,7 +154,8 @@ def test_a_ray_grazing_a_ridge_100_km_away_meets_it_where_the_exact_trace_does()
     straight = traced_hits(refracta.without_refraction(field), camera, xs, flat)
     assert exact.any() and not exact.all()
     assert abs(int(exact.sum()) - int(straight.sum())) > 10
-    # The boundary row may differ by one: the render samples anywhere in the pixel, the trace its centre.
+    # Both take the pixel centre (1 spp); the boundary row may still differ by one where its ray
+    # passes the crest within the float32 vertices' ~1 cm or the caster's 1 mm chord sagitta.
     assert abs(int(rendered.sum()) - int(exact.sum())) <= 1
 
 

@@ -23,6 +23,10 @@ TerrainGrid::TerrainGrid(int rows, int cols, std::vector<float> positions, const
     : rows_(rows), cols_(cols), vertices_(std::move(positions)), uv_from_index_(uv_from_index) {
   if (rows < 2 || cols < 2) throw_invalid("add_terrain: a terrain needs at least 2 x 2 samples (got ", rows, " x ", cols, ")");
   const size_t n = size_t(rows) * size_t(cols);
+  // Embree's grid start index and the hit's primitive (2 per cell) are 32-bit.
+  if (2 * n >= size_t(std::numeric_limits<uint32_t>::max())) {
+    throw_invalid("add_terrain: ", rows, " x ", cols, " samples are more than one grid holds (2^31); split it into tiles");
+  }
   if (vertices_.size() != 3 * n) {
     throw_invalid("add_terrain: positions must hold 3 * rows * cols = ", 3 * n, " floats (got ", vertices_.size(), ")");
   }
