@@ -329,17 +329,23 @@ def render_file(
     exposure and the ACES curve). method, spp, transport, max_depth: None keeps RenderOptions' own.
     aovs: names of render's per-pixel outputs (refracta.render's aovs: distance, position, ...),
     written after R, G, B as layers of the EXR (refracta.io.write_layers: distance.Y, position.X,
-    ...; hidden_height.geometric and .refracted; geographic.lat, .lon, .height); the output must
-    then be an EXR.
+    ...; hidden_height.geometric and .refracted; geographic.lat, .lon, .height, which needs the
+    scene file's [geographic] table); the output must then be an EXR.
     """
     import refracta
 
-    scene, camera, field = refracta.load_scene(scene_path)
+    loaded = refracta.load_scene(scene_path)
+    scene, camera, field = loaded
     if size is not None:
         camera = camera.resized(*size)
     start = time.perf_counter()
     if aovs and Path(output).suffix.lower() != ".exr":
         raise ValueError(f"--aovs writes EXR layers: the output must be a .exr file (got {output})")
+    if aovs and "geographic" in aovs and loaded.frame is None:
+        raise ValueError(
+            f"--aovs geographic needs the scene's place on the Earth: add a [geographic] table "
+            f"(lat, lon [deg] of the scene's origin) to {scene_path}"
+        )
     result = refracta.render(
         scene,
         camera,
@@ -351,6 +357,7 @@ def render_file(
         spectral=spectral,
         progress=True,
         aovs=aovs or None,
+        frame=loaded.frame,
     )
     if aovs:
         image, layers = result

@@ -72,6 +72,13 @@
                                         # film_ior, eta, k, alpha), water (wind_speed,
                                         # temperature_c, salinity, body = true/false, priority)
 
+    [geographic]                        # optional: the scene's origin on the WGS84 Earth
+    lat = 28.0975                       # [deg] in (-90, 90) (not a pole) and lon [deg]: the
+    lon = -15.7125                      # refracta.geo.LocalFrame of SceneFile.frame (x east, y up,
+                                        # z south); its Earth radius is the [atmosphere]'s
+                                        # CurvedEarth's (a flat Earth without one): render(...,
+                                        # frame=) for aovs 'geographic' (refracta render --aovs)
+
     [[lights]]                          # any number (area lights: emission on objects)
     type = "point"                      # point (position, intensity [W/sr]),
     position = [0.0, 5.0, 0.0]          # spot (position, direction, angle [deg], intensity,
@@ -115,6 +122,7 @@ import numpy as np
 from refracta import _core
 
 if TYPE_CHECKING:
+    from refracta.geo import LocalFrame
     from refracta.turbulence import Turbulence
 
 if sys.version_info >= (3, 11):
@@ -197,6 +205,7 @@ ENVIRONMENT_KEYS = {
 # [[atmosphere.hot_spots]] and [atmosphere.turbulence]: the models that take them, their keys.
 LOCAL_MODELS = {"PhysicalAtmosphere", "LogisticProfile"}
 HOT_SPOT_KEYS = {"x", "z", "radius", "dt", "depth", "footprint"}
+GEOGRAPHIC_KEYS = {"lat", "lon"}
 TURBULENCE_KEYS = {"cn2", "outer_scale", "inner_scale", "seed", "wind", "spacing", "cells", "depth", "yaw", "time"}
 _SPOT_PARAMETER = re.compile(r"hot_spot\d+_")  # the fields' parameter names of spot i
 # A table header on a line of its own: [name] or [[name]], a comment after it allowed.
@@ -212,9 +221,13 @@ class SceneFile(tuple):
         turbulence: the refracta.Turbulence of [atmosphere.turbulence] (``field.turbulence`` is its
             ``layer``), or None. Pass it to atmosphere_table / with_atmosphere to write the field
             (or one solved from it) again: the field keeps the layer, not the settings.
+        frame: the refracta.geo.LocalFrame of the [geographic] table (its Earth radius the
+            field's CurvedEarth's, math.inf without one), or None. ``render(..., frame=)`` takes it
+            for the 'geographic' readout.
     """
 
     turbulence: Turbulence | None
+    frame: LocalFrame | None
 
     def __new__(
         cls,
@@ -222,9 +235,11 @@ class SceneFile(tuple):
         camera: _core.Camera,
         field: _core.IndexField | None,
         turbulence: Turbulence | None = None,
+        frame: LocalFrame | None = None,
     ):
         self = super().__new__(cls, (scene, camera, field))
         self.turbulence = turbulence
+        self.frame = frame
         return self
 
     # As a NamedTuple's: the names of the three unpacked values (turbulence is an attribute beside them).
@@ -235,10 +250,13 @@ class SceneFile(tuple):
     field = property(lambda self: self[2])
 
     def __reduce__(self):
-        return (SceneFile, (self[0], self[1], self[2], self.turbulence))
+        return (SceneFile, (self[0], self[1], self[2], self.turbulence, self.frame))
 
     def __repr__(self) -> str:
-        return f"SceneFile(scene={self[0]!r}, camera={self[1]!r}, field={self[2]!r}, turbulence={self.turbulence!r})"
+        return (
+            f"SceneFile(scene={self[0]!r}, camera={self[1]!r}, field={self[2]!r}, "
+            f"turbulence={self.turbulence!r}, frame={self.frame!r})"
+        )
 
 
 class _Locator:
@@ -652,14 +670,14 @@ def load_scene(path) -> SceneFile:
                 raise
             raise where.error(str(error), name, key, index) from None
 
-    tables = ("camera", "atmosphere", "sun", "sky", "environment", "materials", "lights", "objects")
+    tables = ("camera", "atmosphere", "geographic", "sun", "sky", "environment", "materials", "lights", "objects")
     unknown = set(data) - set(tables)
     if unknown:
         raise where.error(f"unknown table (expected {', '.join(tables)})", sorted(unknown)[0])
     for name in ("materials", "lights", "objects"):
         if name in data and not (isinstance(data[name], list) and all(isinstance(e, dict) for e in data[name])):
             raise where.error("must be an array of tables ([[" + name + "]])", name)
-    for name in ("camera", "atmosphere", "sun", "sky", "environment"):
+    for name in ("camera", "atmosphere", "geographic", "sun", "sky", "environment"):
         if name in data and not isinstance(data[name], dict):
             raise where.error("must be a table ([" + name + "])", name)
     if "camera" not in data:
@@ -836,7 +854,31 @@ def load_scene(path) -> SceneFile:
     field, turbulence = None, None
     if "atmosphere" in data:
         field, turbulence = _atmosphere(data["atmosphere"], where, get)
-    return SceneFile(scene, camera, field, turbulence)
+    frame = _geographic(data["geographic"], field, where, get) if "geographic" in data else None
+    return SceneFile(scene, camera, field, turbulence, frame)
+
+
+def _geographic(table: dict, field, where: _Locator, get) -> LocalFrame:
+    """The [geographic] table's refracta.geo.LocalFrame: the origin (lat, lon) [deg], the Earth
+    radius of the field's CurvedEarth (math.inf, a flat Earth, without one)."""
+    from refracta import geo
+
+    _check_keys(table, GEOGRAPHIC_KEYS, where, "geographic", "[geographic]")
+
+    def degrees(value: Any) -> float:
+        number = _real(value)
+        if not math.isfinite(number):
+            raise ValueError(f"must be a finite number of degrees (got {value!r})")
+        return number
+
+    lat = get(table, "geographic", "lat", degrees, required=True)
+    lon = get(table, "geographic", "lon", degrees, required=True)
+    if not -90.0 < lat < 90.0:
+        raise where.error(f"must be in (-90, 90) deg, not a pole (got {lat!r})", "geographic", "lat")
+    if not -180.0 <= lon <= 180.0:
+        raise where.error(f"must be in [-180, 180] deg (got {lon!r})", "geographic", "lon")
+    radius = field.radius if isinstance(field, _core.CurvedEarth) else math.inf
+    return geo.LocalFrame(lat, lon, earth_radius=radius)
 
 
 def _toml_value(value) -> str:

@@ -72,9 +72,8 @@ def test_summit_readouts_agree_with_geodesy_and_refraction_coefficient():
     assert abs(refracted - k.hidden_height_refracted) < 0.05  # [m] float32 readout of ~336 m (measured 1e-4)
     assert 0.15 < k.k < 0.19  # the standard atmosphere's k near the sea (~0.17: 503 P/T^2 (0.0343 - 0.0065))
     # The surveyors' formula with that k: hidden = (d - sqrt(2 R' h))^2 / (2 R'), R' = R / (1 - k).
-    # Within 1 %: k is the horizontal ray's, the grazing ray dips below it into slightly different
-    # air (measured 0.17 %).
     effective = k.earth_radius / (1.0 - k.k)
     surveyors = (ground - np.sqrt(2.0 * effective * eye)) ** 2 / (2.0 * effective)
+    # 1 %: k is the horizontal ray's; the grazing ray dips below it into other air (measured 0.17 %)
     assert refracted == pytest.approx(surveyors, rel=0.01)
     assert geometric > refracted  # the air lifts the island into view
