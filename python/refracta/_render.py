@@ -31,6 +31,26 @@ GROUND_TOLERANCE = 0.1
 LAYER_GRADIENT = 3e-7
 
 
+def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) -> None:
+    """The hint for a scene whose every object lies beyond the rays' reach: the nearest point of its
+    bounding box is farther from the camera than max_length, so every ray stops in the air and the
+    image shows only the sky (terrain or a coast tens of kilometres away with the default reach)."""
+    if scene.geometry_count == 0:
+        return
+    lower, upper = (np.asarray(corner, dtype=float) for corner in scene.bounds)
+    eye = np.asarray(camera.position, dtype=float)
+    nearest = float(np.linalg.norm(eye - np.clip(eye, lower, upper)))
+    farthest = float(np.linalg.norm(np.maximum(abs(lower - eye), abs(upper - eye))))
+    if math.isfinite(nearest) and nearest > max_length:
+        warnings.warn(
+            f"render: the nearest of the scene's geometry is {nearest:.6g} m from the camera, beyond the "
+            f"rays' reach max_length = {max_length:g} m, so the image shows only the sky; pass a larger "
+            f"max_length= (its farthest point is {farthest:.6g} m away; a curved ray is a little longer)",
+            SceneWarning,
+            stacklevel=3,
+        )
+
+
 def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str) -> None:
     """The SceneWarning hints of render(): a scene without any light or sky; and one whose lowest
     geometry (taken as its ground) lies more than GROUND_TOLERANCE from height 0 of the field the
@@ -206,7 +226,8 @@ def render(
     a field is given (method not 'straight') and the scene's lowest geometry lies more than
     GROUND_TOLERANCE = 0.1 m from the field's height 0, where its ground should be, with layered
     air in between (mean ``|dn/dh|`` under the camera above LAYER_GRADIENT = 3e-7 /m, ten times the
-    standard atmosphere's: a hot road's or a cold sea's ground layer).
+    standard atmosphere's: a hot road's or a cold sea's ground layer); and when curved rays' max_length
+    falls short of the nearest of the scene's geometry (the image then shows only sky).
     """
     if "integrator" in options:
         raise ValueError("render: 'integrator' is now 'trace' (the ray integrator: 'rk45' or 'stratified')")
@@ -241,6 +262,8 @@ def render(
         # pybind11's signature, and so the generated stub, cannot mark as optional.
         image, counts = _core._render(scene, camera, field, settings, callback)  # type: ignore[arg-type]
     _check_scene(scene, camera, field, settings.method)  # with the image: a refused render needs no hint
+    if field is not None and settings.method != "straight":  # straight rays have no max_length
+        _check_reach(scene, camera, settings.max_length)
     if stats is not None:
         stats.update({name: getattr(counts, name) for name in ("samples", "chords", "invalid_samples")})
     outputs = {}

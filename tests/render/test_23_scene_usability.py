@@ -172,3 +172,21 @@ def test_the_index_models_show_their_parameters_in_help(model, parameter):
     text = pydoc.render_doc(model.__init__, renderer=pydoc.plaintext)
     assert parameter in text and "*args" not in text
     assert ("hot_spots" in text) == (model is not refracta.LinearSquaredProfile)
+
+
+def test_geometry_beyond_the_rays_reach_warns_and_a_longer_reach_sees_it():
+    """A box 300 m away with max_length 100 m: curved rays stop in the air and the image is sky, so
+    render() says so; with max_length 400 m the same render sees the box and does not warn."""
+    scene = refracta.Scene()
+    scene.set_sky(SKY, SKY)
+    scene.add_box((300.0, 10.0, 0.0), (20.0, 20.0, 20.0), kd=(0.8, 0.2, 0.1))  # resting on y = 0
+    camera = refracta.Camera((0.0, 1.0, 0.0), (300.0, 1.0, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
+    with pytest.warns(refracta.SceneWarning, match="290 m from the camera, beyond the rays' reach max_length = 100 m"):
+        short = refracta.render(scene, camera, HOT_ROAD, progress=False, max_length=100.0)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        long = refracta.render(scene, camera, HOT_ROAD, progress=False, max_length=400.0)
+    assert not [w for w in caught if issubclass(w.category, refracta.SceneWarning)]
+    sky, box = short[1, 2], long[1, 2]
+    assert box[0] > box[2] and not sky[0] > sky[2]  # the box's red (kd 0.8, 0.2, 0.1) only when reached
+    assert render_quietly(scene, HOT_ROAD, method="straight") == []  # straight rays have no reach
