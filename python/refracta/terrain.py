@@ -354,7 +354,8 @@ def add_terrain(
     water_level: a true height [m]: a water surface (``water``, default refracta.shading.Water)
     over the terrain's extent at that height.
     Returns a :class:`TerrainGeometry` (the geometry ids). Bad input raises ValueError naming the
-    argument; a missing file FileNotFoundError.
+    argument; a missing file FileNotFoundError. Terrain is traced (refracta.render); render_raster
+    draws only triangle meshes and does not show it.
     """
     from refracta import shading
 

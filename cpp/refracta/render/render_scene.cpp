@@ -126,11 +126,10 @@ double RenderScene::shadow_radius(size_t light) const {
 
 void RenderScene::prepare() const {
   geometry.commit();
-  // The bounding sphere of the geometry (infinite lights' power through it).
-  Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const auto& part : geometry.meshes()) {
-    for (const auto& v : part.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-  }
+  // The bounding sphere of the geometry (infinite lights' power through it): the scene's box,
+  // which also holds terrain grids (they have no triangles in meshes()).
+  const Vec3d& lo = geometry.lower();
+  const Vec3d& hi = geometry.upper();
   Vec3d centre = Vec3d::Zero();
   double radius = 1.0;
   if (lo.x() <= hi.x()) centre = 0.5 * (lo + hi), radius = std::max(0.5 * (hi - lo).norm(), 1e-3);
