@@ -26,6 +26,7 @@ DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, c
   // as well, which the invariant alone does not give; they launch along the sample (unbiased: the
   // light is evaluated along the exit, in the world frame).
   pre_bend_ = caster.curved() && caster.layered() != nullptr && !std::isfinite(caster.layered()->earth_radius());
+  spherical_ = caster.curved() && caster.field() != nullptr && std::isfinite(caster.field()->earth_radius());
   all_lights_ = options.transport == Transport::kDirect;
 }
 
@@ -74,6 +75,13 @@ double DirectLighting::exit_jacobian(const Vec3d& p, const Vec3d& launch) const 
   return sqr(n_p / n_top) * launch.y() / sin_exit;
 }
 
+Eigen::Matrix3d DirectLighting::to_world_frame(const Vec3d& p) const {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  if (!spherical_) return rotation;
+  for (int axis = 0; axis < 3; ++axis) rotation.col(axis) = caster_.field()->sky_direction(p, Vec3d::Unit(axis));
+  return rotation;
+}
+
 Spectrum DirectLighting::sample_lights(const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
                                        const SampledWavelengths& lambda, Sampler& sampler) const {
   const size_t count = scene_.lights().size();
@@ -96,6 +104,11 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
   LightSampleContext ctx;
   ctx.p = si.p;
   ctx.n = si.n_toward_wo();
+  // A distant light is sampled in the world frame; over a spherical Earth the sample is then turned
+  // into p's frame (a rotation: its density is unchanged).
+  const bool turned = spherical_ && light.is_infinite();
+  const Eigen::Matrix3d to_world = turned ? to_world_frame(si.p) : Eigen::Matrix3d::Identity();
+  if (turned) ctx.n = to_world * ctx.n;
   const auto ls = light.sample_li(ctx, u_light, lambda);
   if (!ls || !(ls->pdf > 0.0) || !(ls->L.maxCoeff() > 0.0)) return Spectrum::Zero();
   double light_pdf = ls->pdf;
@@ -103,7 +116,7 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
   Vec3d wi = ls->wi;
   double jacobian = 1.0;
   // Launch the curved shadow ray toward a distant light so that it leaves along the sample.
-  if (light.is_infinite()) wi = launch_toward(si.p, ls->wi, &jacobian);
+  if (light.is_infinite()) wi = launch_toward(si.p, turned ? Vec3d(to_world.transpose() * ls->wi) : ls->wi, &jacobian);
   light_pdf *= jacobian;
   // The BSDF first: a shadow ray (through curved air, the expensive part) only where it counts.
   const Spectrum f = bsdf.f(si.wo, wi) * std::abs(wi.dot(bsdf.frame.n));
@@ -154,7 +167,7 @@ Spectrum DirectLighting::escaped(const PathEnd& end, const Vec3d& launch_dir, co
     }
     LightSampleContext ctx;
     ctx.p = from->p;
-    ctx.n = from->n_toward_wo();
+    ctx.n = spherical_ ? Vec3d(to_world_frame(from->p) * from->n_toward_wo()) : from->n_toward_wo();
     const double light_pdf = pick_probability(i) * lights[i]->pdf_li(ctx, end.direction, Vec3d::Zero(), Vec3d::Zero()) *
                              exit_jacobian(from->p, launch_dir);
     L += Le * power_heuristic(1, bsdf_pdf, 1, light_pdf);

@@ -14,7 +14,9 @@
 // shared/SHADING.md section 6), with the Jacobian of that map in the density; other fields
 // (and a spherical Earth, whose paths also turn by their central angle) launch along the sampled
 // direction (unbiased: the light is evaluated where the path does leave; a sun near the horizon
-// is then met by fewer samples).
+// is then met by fewer samples) -- over a spherical Earth the sampled direction turned into the
+// point's own frame first, so that a path without air leaves exactly along it (else a sun 0.53 deg
+// wide is missed beyond ~30 km, where the central angle exceeds its radius).
 #pragma once
 
 #include "refracta/core/rng.h"
@@ -59,6 +61,10 @@ class DirectLighting {
   // Pre-bending in height-only fields: the launch direction at p whose curved path leaves along
   // `exit`, and the density factor |d omega_exit / d omega_launch|.
   Vec3d launch_toward(const Vec3d& p, const Vec3d& exit, double* jacobian) const;
+  // Over a spherical Earth in flat coordinates (CurvedEarth) the frame at p is the origin's turned
+  // by the central angle (IndexField::sky_direction): the rotation taking p's frame to the world
+  // frame distant lights are given in (identity elsewhere).
+  Eigen::Matrix3d to_world_frame(const Vec3d& p) const;
   double exit_jacobian(const Vec3d& p, const Vec3d& launch) const;
 
   const RenderScene& scene_;
@@ -66,6 +72,7 @@ class DirectLighting {
   const RenderOptions& options_;
   PiecewiseConstant1D select_;  // light choice in proportion to power
   bool pre_bend_ = false;
+  bool spherical_ = false;  // CurvedEarth: distant lights are turned into each point's frame
   bool all_lights_ = false;
 };
 
