@@ -142,6 +142,11 @@ def _read_geotiff(path: str) -> Elevation:
             data = page.asarray()
     except (tifffile.TiffFileError, ValueError) as error:
         raise ValueError(f"add_terrain: {path!r} is not a TIFF file ({error})") from None
+    except (KeyError, ImportError, NotImplementedError) as error:  # tifffile without the file's codec
+        raise ValueError(
+            f"add_terrain: {path!r}: its compression cannot be decoded here ({error!r}); "
+            "compressed GeoTIFFs are read through the imagecodecs package"
+        ) from None
     if data.ndim == 3 and data.shape[-1] == 1:
         data = data[..., 0]
     if data.ndim != 2 or not (np.issubdtype(data.dtype, np.integer) or np.issubdtype(data.dtype, np.floating)):

@@ -202,7 +202,9 @@ def test_neighbouring_tiles_share_their_edge(tmp_path):
         assert vertical_hit(scene, seam[0] + dx, seam[2]) == pytest.approx(100.0, abs=1e-3)  # float32
 
 
-def write_geotiff(path, data, tiepoint, scale, model=2, epsg=4326, raster=1, nodata=None, georeference=True):
+def write_geotiff(
+    path, data, tiepoint, scale, model=2, epsg=4326, raster=1, nodata=None, georeference=True, compression=None
+):
     import tifffile
 
     extratags = []
@@ -216,8 +218,19 @@ def write_geotiff(path, data, tiepoint, scale, model=2, epsg=4326, raster=1, nod
         ]
     if nodata is not None:
         extratags.append((42113, "s", 0, str(nodata), False))
-    tifffile.imwrite(path, data, extratags=extratags)
+    tifffile.imwrite(path, data, extratags=extratags, compression=compression)
     return path
+
+
+@pytest.mark.parametrize("compression", ["lzw", "zlib"])
+def test_compressed_geotiffs_read_as_the_uncompressed_one(tmp_path, compression):
+    """Elevation downloads (SRTM/Copernicus GeoTIFFs) are LZW- or Deflate-compressed: read through
+    imagecodecs, they give the same samples as the uncompressed file."""
+    data = (100.0 + np.arange(12 * 15).reshape(12, 15)).astype(np.float32)
+    plain = terrain.read_elevation(write_geotiff(tmp_path / "plain.tif", data, (7.0, 46.0), (0.001, 0.001)))
+    packed = write_geotiff(tmp_path / "packed.tif", data, (7.0, 46.0), (0.001, 0.001), compression=compression)
+    read = terrain.read_elevation(packed)
+    assert np.array_equal(read.heights, plain.heights) and np.array_equal(read.heights, data)
 
 
 def test_a_geographic_geotiff_is_placed_like_the_same_samples_given_by_latitude(tmp_path):
