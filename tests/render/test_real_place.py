@@ -55,14 +55,17 @@ def test_summit_readouts_agree_with_geodesy_and_refraction_coefficient():
     neighbours = [(i, j) for i, j in neighbours if 0 <= i < SIZE and 0 <= j < SIZE and hit[i, j]]
     footprint = max(geo.inverse(g[r, c, 0], g[r, c, 1], g[i, j, 0], g[i, j, 1])[0] for i, j in neighbours)
     assert apart[r, c] <= footprint
-    # The distance readout is the path length in CurvedEarth's flat frame: along the ground the
-    # geodesic (aeqd: x' = R phi), up the flat heights. Equal within the pixel's footprint along
-    # the line of sight (the readout's step to the neighbours); the curved path is longer than
-    # the straight one by ~d^3 c^2 / 24 < 1 m.
+    # The distance readout is the path's true length: the straight chord between the eye and the
+    # hit on the sphere (radius R + h, central angle = geodesic / R). Equal within the pixel's
+    # footprint along the line of sight (the readout's step to the neighbours); the curved path is
+    # longer than the chord by ~d^3 c^2 / 24 < 1 m. (The flat frame's own length, hypot(ground,
+    # flat rise), is 28 m shorter here: lengths there are scaled by R / r.)
     ground, _, _ = geo.inverse(lat0, lon0, g[r, c, 0], g[r, c, 1])
-    rise = example.frame.flat_height(g[r, c, 2]) - example.frame.flat_height(eye)
+    radius = example.frame.earth_radius
+    r0, r1, angle = radius + eye, radius + float(g[r, c, 2]), ground / radius
+    chord = np.sqrt(r0**2 + r1**2 - 2.0 * r0 * r1 * np.cos(angle))
     along = max(abs(distance[i, j] - distance[r, c]) for i, j in neighbours)
-    assert abs(distance[r, c] - np.hypot(ground, rise)) <= along
+    assert abs(distance[r, c] - chord) <= along
     # The readouts against refraction_coefficient's exact traces for a target at the hit.
     k = refracta.refraction_coefficient(example.field, eye, ground, target_height=g[r, c, 2])
     assert abs(aovs["true_elevation"][r, c] - k.true_elevation) < 1e-4  # [deg] float32 readout of ~1.84 deg

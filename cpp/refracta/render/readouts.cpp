@@ -27,6 +27,11 @@ TraceOptions grazing_options(double max_length) {
 
 }  // namespace
 
+double true_path_length(double length, double y_start, double y_end, double earth_radius) {
+  if (!std::isfinite(earth_radius) || !std::isfinite(length)) return length;
+  return length * 0.5 * (std::exp(y_start / earth_radius) + std::exp(y_end / earth_radius));
+}
+
 Vec2d apparent_angles(const Vec3d& direction) {
   const Vec3d d = direction.normalized();
   double azimuth = std::atan2(d.x(), -d.z()) * kDegrees;

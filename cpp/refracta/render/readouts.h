@@ -37,6 +37,13 @@ constexpr int kSurfaceChannels = 9;  // radiance, albedo, normal
 // Apparent elevation and azimuth [deg] of a scene direction (need not be unit).
 Vec2d apparent_angles(const Vec3d& direction);
 
+// The true length [m] of a camera path whose length in the scene's coordinates is `length`, from
+// height y_start to y_end [m]: over a CurvedEarth of radius earth_radius the flat frame scales
+// lengths by r / R = e^(y'/R) (the conformal map's scale), taken here as the mean of its values at
+// the two ends -- exact for a path whose height changes linearly along it; a ray's sag below that
+// chord (d^2 / 8R ~ 170 m over 93 km) is second order, ~2e-5 of the length. Unchanged on a flat Earth.
+double true_path_length(double length, double y_start, double y_end, double earth_radius);
+
 // The derived readouts of one hit, for one render: true elevation and hidden heights.
 class ReadoutGeometry {
  public:

@@ -22,6 +22,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 namespace refracta {
 
@@ -210,11 +211,12 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   // mirage's critical angle (-0.31 deg), where n changes over centimetres. Tracing costs what
   // table=False costs: hot road, 480 x 160, 4 spp: 3.7 s with a lens, 1.3 s pinhole with the table.
   // Readouts (readouts.h): the camera ray's direction at the eye and its first hit.
-  auto record_camera_ray = [](const Vec3d& dir, const PathEnd& first, SurfaceAovs* aovs) {
+  const double earth_radius = field ? field->earth_radius() : std::numeric_limits<double>::infinity();
+  auto record_camera_ray = [earth_radius](const Vec3d& origin, const Vec3d& dir, const PathEnd& first, SurfaceAovs* aovs) {
     if (!aovs) return;
     aovs->eye_direction = dir;
     aovs->hit = first.hit;
-    aovs->distance = first.length;
+    aovs->distance = first.hit ? true_path_length(first.length, origin.y(), first.hit->point.y(), earth_radius) : first.length;
   };
   auto sample = [&](const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle,
                                 SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch, SurfaceAovs* aovs) {
@@ -231,14 +233,14 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                                 const std::unique_ptr<Integrator> hero = make_integrator(scene, hero_caster, options);
                                 PathEnd first = hero_caster.cast(origin, dir, 0.0, camera.pixel_angle());
                                 with_footprint(hero_caster, origin, pixel, lens, spacing, &first);
-                                record_camera_ray(dir, first, aovs);
+                                record_camera_ray(origin, dir, first, aovs);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
                                 L = hero->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
                               } else {
                                 PathEnd first = shimmer ? shimmer->cast(caster, origin, dir, camera.pixel_angle())
                                                         : caster.cast(origin, dir, 0.0, camera.pixel_angle());
                                 with_footprint(shimmer ? shimmer->calm() : caster, origin, pixel, lens, spacing, &first);
-                                record_camera_ray(dir, first, aovs);
+                                record_camera_ray(origin, dir, first, aovs);
                                 chords.fetch_add(first.chords, std::memory_order_relaxed);
                                 L = integrator->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
                               }
