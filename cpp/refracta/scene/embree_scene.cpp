@@ -53,6 +53,15 @@ struct Scene::Impl {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
   }
+  // Commits `geometry`, attaches it under `id` and releases our reference. By id: Embree would
+  // hand out a removed geometry's id again; ours only grow.
+  unsigned attach(RTCGeometry geometry, unsigned id) {
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometryByID(scene, geometry, id);
+    rtcReleaseGeometry(geometry);
+    check();
+    return id;
+  }
   void check() {
     if (!error.empty()) {
       const std::string message = "Embree: " + error;
@@ -108,12 +117,7 @@ unsigned Scene::add_mesh(const Mesh& mesh, int material) {
   for (size_t i = 0; i < triangles.size(); ++i) {
     for (int k = 0; k < 3; ++k) t[3 * i + k] = unsigned(triangles[i][k]);
   }
-  rtcCommitGeometry(geometry);
-  // By id: Embree would hand out a removed geometry's id again; ours only grow.
-  const unsigned id = unsigned(materials_.size());
-  rtcAttachGeometryByID(impl_->scene, geometry, id);
-  rtcReleaseGeometry(geometry);
-  impl_->check();
+  const unsigned id = impl_->attach(geometry, unsigned(materials_.size()));
   materials_.push_back(material);
   meshes_.push_back({id, mesh});
   sphere_sets_.push_back(nullptr);
@@ -152,11 +156,7 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
     lower_ = lower_.cwiseMin(centres[i] - Vec3d::Constant(radii[i]));
     upper_ = upper_.cwiseMax(centres[i] + Vec3d::Constant(radii[i]));
   }
-  rtcCommitGeometry(geometry);
-  const unsigned id = unsigned(materials_.size());
-  rtcAttachGeometryByID(impl_->scene, geometry, id);
-  rtcReleaseGeometry(geometry);
-  impl_->check();
+  const unsigned id = impl_->attach(geometry, unsigned(materials_.size()));
   materials_.push_back(material);
   sphere_sets_.push_back(std::make_shared<const Spheres>(Spheres{centres, radii}));
   SceneMesh spheres{id, {}};
@@ -189,11 +189,7 @@ unsigned Scene::add_terrain(std::shared_ptr<const TerrainGrid> terrain, int mate
     grids[i].width = p.cols;
     grids[i].height = p.rows;
   }
-  rtcCommitGeometry(geometry);
-  const unsigned id = unsigned(materials_.size());
-  rtcAttachGeometryByID(impl_->scene, geometry, id);
-  rtcReleaseGeometry(geometry);
-  impl_->check();
+  const unsigned id = impl_->attach(geometry, unsigned(materials_.size()));
   materials_.push_back(material);
   meshes_.push_back({id, {}});
   sphere_sets_.push_back(nullptr);
