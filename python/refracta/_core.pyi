@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW', 'Dielectric', 'Diffuse', 'DispersedField', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MomentShadowSettings', 'NumericalError', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
+__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW_DEG', 'Dielectric', 'Diffuse', 'DispersedField', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MomentShadowSettings', 'NumericalError', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -25,7 +25,7 @@ class HotSpot:
     __hash__: typing.ClassVar[None] = None
     def __eq__(self, arg0: HotSpot) -> bool:
         ...
-    def __getstate__(self) -> tuple[float, float, float, float, float, int]:
+    def __getstate__(self) -> typing.Any:
         ...
     def __init__(self, x: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex, radius: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, depth: typing.SupportsFloat | typing.SupportsIndex | None = None, footprint: str = 'gaussian') -> None:
         ...
@@ -164,12 +164,12 @@ class TurbulenceSettings:
     def wind(self, arg1: typing.Any) -> None:
         ...
     @property
-    def yaw(self) -> float:
+    def yaw_deg(self) -> float:
         """
-        [rad] the lattice's turn about the vertical
+        [deg] the lattice's turn about the vertical
         """
-    @yaw.setter
-    def yaw(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    @yaw_deg.setter
+    def yaw_deg(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class TurbulenceGrid:
     """
@@ -177,13 +177,13 @@ class TurbulenceGrid:
     spacing [m]); axis 0 is x, 1 is y (up), 2 is z. Built by refracta.Turbulence; evaluate(points) gives
     the spline's values and gradients (for tests and plots).
     """
-    def __getstate__(self) -> tuple[numpy.ndarray, float]:
+    def __getstate__(self) -> typing.Any:
         ...
     def __init__(self, coefficients: typing.Any, spacing: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
-    def evaluate(self, points: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+    def evaluate(self, points: typing.Any) -> tuple:
         """
         (values (N,), gradients (N, 3) [1/m]) at points (N, 3) [m].
         """
@@ -205,20 +205,21 @@ class TurbulenceLayer:
     """
     A TurbulenceGrid placed in the air: delta_n = scale * E(h) * grid(R_yaw (p - offset)), E(h) =
     e^(-h/depth) above the ground (none for depth = inf), the lattice turned by yaw [rad] about the
-    vertical. Made by refracta.Turbulence (its `layer`).
+    vertical (the layer's internal unit: refracta.Turbulence takes yaw_deg [deg]). Made by
+    refracta.Turbulence (its `layer`).
     """
     @staticmethod
     def of(settings: TurbulenceSettings, grid: TurbulenceGrid, time: typing.SupportsFloat | typing.SupportsIndex) -> TurbulenceLayer:
         """
         The layer of `settings` over `grid`: scaled by sqrt(cn2), carried by the wind to time [s].
         """
-    def __getstate__(self) -> tuple[TurbulenceGrid, float, tuple[float, float, float], float, float]:
+    def __getstate__(self) -> typing.Any:
         ...
     def __init__(self, grid: TurbulenceGrid, scale: typing.SupportsFloat | typing.SupportsIndex, offset: typing.Any, depth: typing.SupportsFloat | typing.SupportsIndex, yaw: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
-    def evaluate(self, points: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+    def evaluate(self, points: typing.Any) -> tuple:
         """
         (delta_n (N,), its gradient (N, 3) [1/m]) at points (N, 3) [m].
         """
@@ -229,7 +230,7 @@ class TurbulenceLayer:
     def grid(self) -> TurbulenceGrid:
         ...
     @property
-    def offset(self) -> numpy.ndarray:
+    def offset(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
     def scale(self) -> float:
@@ -242,7 +243,7 @@ class TurbulenceLayer:
 class _TurbulenceSpectrum:
     def __init__(self, cells: typing.SupportsInt | typing.SupportsIndex, spacing: typing.SupportsFloat | typing.SupportsIndex, inner_scale: typing.SupportsFloat | typing.SupportsIndex, outer_scale: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
-    def variances(self, i: typing.SupportsInt | typing.SupportsIndex, j: typing.Any, k: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def variances(self, i: typing.SupportsInt | typing.SupportsIndex, j: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], k: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
         sigma^2 at lattice indices (i, j[a], k[b]) as a (len(j), len(k)) array (C_n^2 = 1).
         """
@@ -330,7 +331,7 @@ class LogisticProfile(IndexField):
         a_hot [1] 1, [0.01, 100]: hot-spot width (logistic width 0.3 a_hot)
         k_s [1] 10, [-300, 300]: overall strength: n - 1 reaches 0.003 k_s
     """
-    def __getstate__(self) -> tuple[list[float], list[HotSpot], TurbulenceLayer, bool]:
+    def __getstate__(self) -> typing.Any:
         ...
     def __init__(self, n_bg: float = 3.0, n_inv: float = 0.1, n_hot: float = 0.1, h_ciso: float = 1.0, a_bg: float = 1.0, a_inv: float = 1.0, a_hot: float = 1.0, k_s: float = 10.0, *, hot_spots: HotSpot | collections.abc.Sequence[HotSpot] | None = None, turbulence: typing.Any = None) -> None:
         """
@@ -356,7 +357,7 @@ class LinearSquaredProfile(IndexField):
         n0 [1] 1.00028, [0.5, 3]: index at y = 0
         alpha [1/m] 0, [-0.001, 0.001]: d(n^2)/dy
     """
-    def __getstate__(self) -> tuple[list[float]]:
+    def __getstate__(self) -> typing.Any:
         ...
     def __init__(self, n0: float = 1.000277, alpha: float = 0.0) -> None:
         """
@@ -387,7 +388,7 @@ class PhysicalAtmosphere(IndexField):
         humidity [1] 0, [0, 1]: relative humidity
         wavelength [nm] 550, [380, 780]: vacuum wavelength
     """
-    def __getstate__(self) -> tuple[list[float], list[HotSpot], TurbulenceLayer, bool]:
+    def __getstate__(self) -> typing.Any:
         ...
     def __init__(self, t_ground: float = 288.15, lapse_rate: float = 0.0065, pressure: float = 101325.0, inversion_dt: float = 0.0, inversion_base: float = 100.0, inversion_thickness: float = 10.0, surface_dt: float = 0.0, surface_depth: float = 0.1, humidity: float = 0.0, wavelength: float = 550.0, *, hot_spots: HotSpot | collections.abc.Sequence[HotSpot] | None = None, turbulence: typing.Any = None) -> None:
         """
@@ -420,7 +421,7 @@ class TemperatureProfile(IndexField):
     at the lowest height; n from the same air formula as PhysicalAtmosphere. The temperatures are the
     parameters t0, t1, ... (with pressure, humidity, wavelength).
     """
-    def __getstate__(self) -> tuple[list[float], list[float]]:
+    def __getstate__(self) -> typing.Any:
         ...
     def __init__(self, heights: typing.Any, temperatures: typing.Any, pressure: typing.SupportsFloat | typing.SupportsIndex = 101325.0, humidity: typing.SupportsFloat | typing.SupportsIndex = 0.0, wavelength: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> None:
         ...
@@ -445,7 +446,7 @@ class CurvedEarth(IndexField):
     true_height(y') and flat_height(h) convert. Use it for anything seen over kilometres (horizons,
     looming, Fata Morgana).
     """
-    def __getstate__(self) -> tuple[IndexField, float]:
+    def __getstate__(self) -> typing.Any:
         ...
     def __init__(self, base: IndexField, radius: typing.SupportsFloat | typing.SupportsIndex = 6371000.0) -> None:
         ...
@@ -471,7 +472,7 @@ class CustomField(IndexField):
     vectorised. height_only=True promises n depends on y alone (enables method='stratified').
     Slow: the integrators call back into Python at every evaluation.
     """
-    def __getstate__(self) -> tuple[typing.Any, typing.Any, bool]:
+    def __getstate__(self) -> typing.Any:
         ...
     def __init__(self, ior: typing.Any, grad_ior: typing.Any, height_only: bool = False) -> None:
         ...
@@ -492,27 +493,27 @@ class RayPath:
     ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max_length',
     'stop_height'); evaluations: field evaluations used.
     """
-    def __getstate__(self) -> tuple[numpy.typing.NDArray[numpy.float64], int, int]:
+    def __getstate__(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 11]"], int, int]:
         ...
     def __len__(self) -> int:
         ...
     def __repr__(self) -> str:
         ...
-    def __setstate__(self, arg0: tuple) -> None:
+    def __setstate__(self, arg0: tuple[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 11]"], typing.SupportsInt | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex]) -> None:
         ...
     def at_height(self, y: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
         """
         Every point where the path crosses height y [m], in path order, (K, 3).
         """
-    def closest_point(self, q: typing.Any) -> tuple[numpy.ndarray, float, float]:
+    def closest_point(self, q: typing.Any) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float]:
         """
         (point, distance, s): the point of the continuous path closest to q, its distance [m] and its arc length [m].
         """
-    def crossings(self, normal: typing.Any, offset: typing.SupportsFloat | typing.SupportsIndex) -> list:
+    def crossings(self, normal: typing.Any, offset: typing.SupportsFloat | typing.SupportsIndex) -> list[tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]]:
         """
         Crossings of the plane normal . x = offset: a list of (point, s, unit direction).
         """
-    def point_at(self, s: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.ndarray, numpy.ndarray]:
+    def point_at(self, s: typing.SupportsFloat | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
         """
         (point, unit tangent) at arc length s [m] on the continuous path.
         """
@@ -680,23 +681,45 @@ class ElevationTableOptions:
 class _ElevationTable:
     def __init__(self, field: IndexField, eye_height: typing.SupportsFloat | typing.SupportsIndex, min_elevation: typing.SupportsFloat | typing.SupportsIndex, max_elevation: typing.SupportsFloat | typing.SupportsIndex, options: typing.Any, progress: typing.Any, **kwargs) -> None:
         ...
-    def ends(self, elevations: typing.Any, azimuths: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
-        ...
+    def _ends(self, elevations: typing.Any, azimuths: typing.Any) -> tuple:
+        """
+        (points, directions, lengths, stops, evaluations) [deg].
+        """
     @property
     def elevations(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        The traced elevations [deg].
+        """
     @property
     def evaluations(self) -> int:
-        ...
+        """
+        Field evaluations spent building the table.
+        """
     @property
     def exact_intervals(self) -> int:
-        ...
+        """
+        Elevation intervals where queries are traced exactly (unresolved kind changes).
+        """
+    @property
+    def eye_height(self) -> float:
+        """
+        [m]
+        """
     @property
     def options(self) -> ElevationTableOptions:
-        ...
+        """
+        The options the table was built with (a copy).
+        """
     @property
     def size(self) -> int:
-        ...
+        """
+        Number of exactly traced elevations.
+        """
+    @property
+    def tol(self) -> float:
+        """
+        The interpolation tolerance [m].
+        """
 class TextureNotFoundError(IoError, FileNotFoundError):
     """
     A texture an MTL file names is in none of the folders searched (a refracta.IoError and a FileNotFoundError).
@@ -775,7 +798,7 @@ class Scene:
         """
         Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns its index.
         """
-    def add_sea(self, waves: OceanWaves | None = None, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 200000.0, material: typing.Any = None, detail_radius: typing.SupportsFloat | typing.SupportsIndex = 50.0, centre: typing.Any = (0.0, 0.0)) -> list:
+    def add_sea(self, waves: OceanWaves | None = None, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 200000.0, material: typing.Any = None, detail_radius: typing.SupportsFloat | typing.SupportsIndex = 50.0, centre: typing.Any = (0.0, 0.0)) -> list[int]:
         """
         Add a sea at y = height with waves near `centre` (x, z) [m] (put it under the camera).
         
@@ -1680,13 +1703,13 @@ class RenderOptions:
     def method(self, arg1: str) -> None:
         ...
     @property
-    def pixel_bounds(self) -> typing.Any:
+    def pixel_bounds(self) -> tuple[int, int, int, int] | None:
         """
         None (the whole image) or (x0, y0, x1, y1): render only pixels [x0, x1) x [y0, y1), each exactly as
         in the whole image (distributed tiles); the image returned has that size
         """
     @pixel_bounds.setter
-    def pixel_bounds(self, arg1: typing.Any) -> None:
+    def pixel_bounds(self, arg1: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None) -> None:
         ...
     @property
     def readouts(self) -> bool:
@@ -1793,12 +1816,12 @@ class RenderOptions:
     def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def trace(self) -> typing.Any:
+    def trace(self) -> str | None:
         """
         ray integrator for curved rays: None (stratified for height-only fields, rk45 otherwise), 'rk45', 'stratified'
         """
     @trace.setter
-    def trace(self, arg1: typing.Any) -> None:
+    def trace(self, arg1: str | None) -> None:
         ...
     @property
     def transport(self) -> str:
@@ -1839,7 +1862,7 @@ class RenderStats:
         """
     def __repr__(self) -> str:
         ...
-    def __setstate__(self, arg0: tuple) -> None:
+    def __setstate__(self, arg0: tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex]) -> None:
         ...
     @property
     def chords(self) -> int:
@@ -2243,56 +2266,56 @@ class BsdfSample:
     fields: typing.ClassVar[tuple] = ('wi', 'weight', 'f', 'pdf', 'flags', 'is_delta', 'eta', 'valid', 'terminated')
     def __getitem__(self, key: str) -> typing.Any:
         ...
-    def __getstate__(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.uint32], numpy.typing.NDArray[numpy.bool], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.bool], numpy.typing.NDArray[numpy.bool]]:
+    def __getstate__(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.uint32], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]]:
         ...
     def __iter__(self) -> collections.abc.Iterator:
         ...
     def __repr__(self) -> str:
         ...
-    def __setstate__(self, arg0: tuple) -> None:
+    def __setstate__(self, arg0: tuple[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 3]"], typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], typing.Annotated[numpy.typing.ArrayLike, numpy.uint32, "[m, 1]"], typing.Annotated[numpy.typing.ArrayLike, numpy.bool, "[m, 1]"], typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], typing.Annotated[numpy.typing.ArrayLike, numpy.bool, "[m, 1]"], typing.Annotated[numpy.typing.ArrayLike, numpy.bool, "[m, 1]"]]) -> None:
         ...
     @property
-    def eta(self) -> numpy.typing.NDArray[numpy.float64]:
+    def eta(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         The relative index crossed (N,), 1 for reflection.
         """
     @property
-    def f(self) -> numpy.typing.NDArray[numpy.float64]:
+    def f(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
         The BSDF value (N, C) [1/sr] (delta lobes: as weight's numerator).
         """
     @property
-    def flags(self) -> numpy.typing.NDArray[numpy.uint32]:
+    def flags(self) -> typing.Annotated[numpy.typing.NDArray[numpy.uint32], "[m, 1]"]:
         """
         1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular (N,).
         """
     @property
-    def is_delta(self) -> numpy.typing.NDArray[numpy.bool]:
+    def is_delta(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         """
         Whether a delta lobe was sampled (N,).
         """
     @property
-    def pdf(self) -> numpy.typing.NDArray[numpy.float64]:
+    def pdf(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         Density (N,) [1/sr] (delta lobes: the lobe's selection probability).
         """
     @property
-    def terminated(self) -> numpy.typing.NDArray[numpy.bool]:
+    def terminated(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         """
         True where a dispersive refraction kept the hero wavelength only (N,).
         """
     @property
-    def valid(self) -> numpy.typing.NDArray[numpy.bool]:
+    def valid(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         """
         False where no direction was produced (N,).
         """
     @property
-    def weight(self) -> numpy.typing.NDArray[numpy.float64]:
+    def weight(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
         ``f |cos theta_i| / pdf`` (N, C) (delta lobes: albedo / probability).
         """
     @property
-    def wi(self) -> numpy.typing.NDArray[numpy.float64]:
+    def wi(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
         Sampled unit directions (N, 3), 0 where invalid.
         """
@@ -2305,7 +2328,7 @@ class Material:
         ...
     def describe(self) -> str:
         ...
-    def f(self, wo: typing.Any, wi: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> numpy.typing.NDArray[numpy.float64]:
+    def f(self, wo: typing.Any, wi: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
         The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per
         wavelength. Delta lobes give 0.
@@ -2319,7 +2342,7 @@ class Material:
         Index of refraction of the medium a dielectric bounds, at the given wavelength [nm] (None: RGB
         rendering's 550 nm), or None for materials that bound no medium.
         """
-    def pdf(self, wo: typing.Any, wi: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> numpy.typing.NDArray[numpy.float64]:
+    def pdf(self, wo: typing.Any, wi: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         Density [1/sr] with which sample(wo, u) produces wi: (N,). It includes the lobe
         selection probabilities; delta lobes contribute 0.
@@ -2373,7 +2396,7 @@ class RoughDielectric(Material):
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, alpha: typing.Any = None, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0, alpha_u: typing.Any = None, alpha_v: typing.Any = None) -> None:
+    def __init__(self, alpha: typing.SupportsFloat | typing.SupportsIndex | None = None, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0, alpha_u: typing.SupportsFloat | typing.SupportsIndex | None = None, alpha_v: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -2465,7 +2488,7 @@ class RoughConductor(Material):
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, alpha: typing.Any = None, alpha_u: typing.Any = None, alpha_v: typing.Any = None, eta: typing.Any = None, k: typing.Any = None) -> None:
+    def __init__(self, alpha: typing.SupportsFloat | typing.SupportsIndex | None = None, alpha_u: typing.SupportsFloat | typing.SupportsIndex | None = None, alpha_v: typing.SupportsFloat | typing.SupportsIndex | None = None, eta: typing.Any = None, k: typing.Any = None) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -2487,7 +2510,7 @@ class Plastic(Material):
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, reflectance: typing.Any = 0.5, ior: typing.SupportsFloat | typing.SupportsIndex = 1.5, alpha: typing.Any = None, alpha_u: typing.Any = None, alpha_v: typing.Any = None, texture: typing.Any = None) -> None:
+    def __init__(self, reflectance: typing.Any = 0.5, ior: typing.SupportsFloat | typing.SupportsIndex = 1.5, alpha: typing.SupportsFloat | typing.SupportsIndex | None = None, alpha_u: typing.SupportsFloat | typing.SupportsIndex | None = None, alpha_v: typing.SupportsFloat | typing.SupportsIndex | None = None, texture: typing.Any = None) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -2526,7 +2549,7 @@ class ThinFilm(Material):
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, thickness: typing.SupportsFloat | typing.SupportsIndex, film_ior: typing.SupportsFloat | typing.SupportsIndex = 1.33, eta: typing.Any = 1.5, k: typing.Any = 0.0, alpha: typing.Any = None, *, alpha_u: typing.Any = None, alpha_v: typing.Any = None) -> None:
+    def __init__(self, thickness: typing.SupportsFloat | typing.SupportsIndex, film_ior: typing.SupportsFloat | typing.SupportsIndex = 1.33, eta: typing.Any = 1.5, k: typing.Any = 0.0, alpha: typing.SupportsFloat | typing.SupportsIndex | None = None, *, alpha_u: typing.SupportsFloat | typing.SupportsIndex | None = None, alpha_v: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -2621,17 +2644,17 @@ class Beckmann:
     The isotropic Beckmann microfacet distribution (beckmann.h): D, Lambda (exact, with erf), G1 and
     the height-correlated G. alpha^2 is the total mean-square slope. Directions: (N, 3) unit vectors.
     """
-    def D(self, m: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def D(self, m: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
-    def G(self, wo: typing.Any, wi: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def G(self, wo: typing.Any, wi: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
-    def G1(self, w: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def G1(self, w: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
     def __getstate__(self) -> tuple[float]:
         ...
     def __init__(self, alpha: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
-    def __setstate__(self, arg0: tuple) -> None:
+    def __setstate__(self, arg0: tuple[typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
     @property
     def alpha(self) -> float:
@@ -2641,21 +2664,21 @@ class TrowbridgeReitz:
     The GGX microfacet distribution (microfacet.h): D, Lambda, G1, height-correlated G, the
     visible-normal density and sampler. Directions: (N, 3) unit vectors in the local frame.
     """
-    def D(self, m: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def D(self, m: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
-    def D_visible(self, w: typing.Any, m: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def D_visible(self, w: typing.Any, m: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
-    def G(self, wo: typing.Any, wi: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def G(self, wo: typing.Any, wi: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
-    def G1(self, w: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def G1(self, w: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
     def __getstate__(self) -> tuple[float, float]:
         ...
     def __init__(self, alpha_x: typing.SupportsFloat | typing.SupportsIndex, alpha_y: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
-    def __setstate__(self, arg0: tuple) -> None:
+    def __setstate__(self, arg0: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
-    def sample_wm(self, w: typing.Any, u: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def sample_wm(self, w: typing.Any, u: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
     @property
     def alpha_x(self) -> float:
@@ -2713,17 +2736,17 @@ class Light:
     """
     A light (shared/SHADING.md section 5). Methods evaluate RGB rendering, vectorised over N points.
     """
-    def L(self, points: typing.Any, normals: typing.Any, dirs: typing.Any) -> numpy.ndarray:
+    def L(self, points: typing.Any, normals: typing.Any, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
         Area lights: RGB radiance (N, 3) leaving points (N, 3) with the light's front normals (N, 3) toward unit dirs (N, 3).
         """
-    def Le(self, dirs: typing.Any) -> numpy.ndarray:
+    def Le(self, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
         Infinite lights: RGB radiance (N, 3) seen looking along unit dirs (N, 3); 0 for others.
         """
     def __repr__(self) -> str:
         ...
-    def pdf_li(self, points: typing.Any, normals: typing.Any, wi: typing.Any, p_light: typing.Any = None, n_light: typing.Any = None) -> numpy.ndarray:
+    def pdf_li(self, points: typing.Any, normals: typing.Any, wi: typing.Any, p_light: typing.Any = None, n_light: typing.Any = None) -> numpy.typing.NDArray[numpy.float64]:
         """
         The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3).
         """
@@ -2731,7 +2754,7 @@ class Light:
         """
         Tells the light the scene's bounding sphere (centre [m], radius [m]).
         """
-    def sample_li(self, points: typing.Any, normals: typing.Any, u: typing.Any) -> tuple:
+    def sample_li(self, points: typing.Any, normals: typing.Any, u: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
         Samples a direction toward the light from each point.
         
@@ -2912,37 +2935,37 @@ class PhysicalSky:
     default). See cpp/refracta/shading/physical_sky.h.
     """
     @staticmethod
-    def solar_irradiance(wavelengths: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def solar_irradiance(wavelengths: typing.Any) -> typing.Any:
         ...
-    def __getstate__(self) -> tuple:
+    def __getstate__(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float, float, float, float, int]:
         ...
-    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, below_horizon: str = 'ground', visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
+    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, below_horizon: str = 'ground', visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         ...
     def __repr__(self) -> str:
         ...
-    def __setstate__(self, arg0: tuple) -> None:
+    def __setstate__(self, arg0: tuple[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex]) -> None:
         ...
     def optical_depth(self, wavelength: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
-    def pdf_li(self, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def pdf_li(self, dirs: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
     def power(self) -> float:
         ...
     def preprocess(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
-    def radiance(self, dirs: typing.Any, wavelengths: typing.Any, direct: bool = False) -> numpy.typing.NDArray[numpy.float64]:
+    def radiance(self, dirs: typing.Any, wavelengths: typing.Any, direct: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         ...
     def rayleigh_optical_depth(self, wavelength: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
-    def rgb_radiance(self, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def rgb_radiance(self, dirs: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
-    def sample_li(self, u: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+    def sample_li(self, u: typing.Any) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]]:
         ...
-    def sun_radiance(self, wavelengths: typing.Any, angular_diameter_deg: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> numpy.typing.NDArray[numpy.float64]:
+    def sun_radiance(self, wavelengths: typing.Any, angular_diameter_deg: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> typing.Any:
         ...
-    def sun_radiance_rgb(self, angular_diameter_deg: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> numpy.ndarray:
+    def sun_radiance_rgb(self, angular_diameter_deg: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         ...
-    def sun_transmittance(self, wavelengths: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def sun_transmittance(self, wavelengths: typing.Any) -> typing.Any:
         ...
     @property
     def aerosol(self) -> float:
@@ -2963,17 +2986,17 @@ class AerialPerspective:
     the curved ground), inf for a flat scene (the sky's planet touches y = 0 under the origin).
     Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to every segment.
     """
-    def __getstate__(self) -> tuple[tuple, float]:
+    def __getstate__(self) -> tuple[tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float, float, float, float, int], float]:
         ...
     def __init__(self, sky: PhysicalSky, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         ...
-    def __setstate__(self, arg0: tuple) -> None:
+    def __setstate__(self, arg0: tuple[tuple[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex], typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
     def along(self, a: typing.Any, b: typing.Any, wavelength: typing.SupportsFloat | typing.SupportsIndex, earth_radius: typing.SupportsFloat | typing.SupportsIndex = ...) -> tuple[float, float]:
         """
         (transmittance, in-scatter [W/(m^2 sr nm)] x scale) at one wavelength [nm] in [360, 830].
         """
-    def along_rgb(self, a: typing.Any, b: typing.Any, earth_radius: typing.SupportsFloat | typing.SupportsIndex = ...) -> tuple[numpy.ndarray, numpy.ndarray]:
+    def along_rgb(self, a: typing.Any, b: typing.Any, earth_radius: typing.SupportsFloat | typing.SupportsIndex = ...) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
         """
         (transmittance, in-scatter) as RGB renders apply them: linear sRGB, the sky's Le convention.
         """
@@ -3011,18 +3034,26 @@ def _astronomical_refraction(field: IndexField, elevations: typing.Any, eye_heig
     """
     Refraction [rad] at apparent elevations [rad] (refracta.astronomical_refraction).
     """
+def _build_options(cls: type, options: typing.Any, owner: str, fields: dict) -> typing.Any:
+    """
+    A validated copy of options (a cls, or None) with fields set: refracta._options.build's rule.
+    """
 def _cancel_thread_work(thread_ids: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> int:
     """
     Cancels the refracta calls of the given Python threads (threading.get_ident()): those running and those they start until _end_thread_cancel; returns how many were running.
     """
 def _canonical_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, bool]:
-    ...
+    """
+    (lower, at_query, fallback) of the canonical bound.
+    """
 def _channel_names(path: str) -> list[str]:
     """
     The channel names of an image file (OIIO's).
     """
-def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, settings: OitSettings) -> numpy.ndarray:
-    ...
+def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, settings: OitSettings) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    One pixel's fragments composited over the background.
+    """
 def _display(image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> numpy.typing.NDArray[numpy.float32]:
     ...
 def _display_exposure(image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> float:
@@ -3045,24 +3076,30 @@ def _mboit_unorm16(b: collections.abc.Sequence[typing.SupportsFloat | typing.Sup
     """
     6 or 8 normalised power moments after MBOIT's 16-bit storage (transform, rounding, inverse).
     """
-def _mirage_images(true_elevation: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], object_id: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.int32]:
+def _mirage_images(true_elevation: typing.Annotated[numpy.typing.ArrayLike, numpy.float32, "[m, n]"], object_id: typing.Annotated[numpy.typing.ArrayLike, numpy.float32, "[m, n]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, n]"]:
     """
     Mirage multiplicity per pixel (render's aovs 'images'; render/readouts.h mirage_images): (H, W) int32.
     """
 def _pair_distances(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, options: PairOptions) -> numpy.typing.NDArray[numpy.float64]:
     ...
-def _pair_jacobian(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, *, weights: typing.Any, margins: typing.Any, free: collections.abc.Sequence[str], derivatives: str, options: PairOptions, camera: Camera | None = None, pixels: typing.Any = None) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], list[str]]:
+def _pair_jacobian(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, *, weights: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, margins: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, free: collections.abc.Sequence[str], derivatives: str, options: PairOptions, camera: Camera | None = None, pixels: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 2]"] | None = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], list[str]]:
     ...
 def _pair_paths(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, options: PairOptions) -> list[RayPath]:
     """
     Each pair's path, traced by PairOptions' rule for it (what its miss is measured on).
     """
-def _power_moment_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
-    ...
-def _quantize_moments(moments: typing.Any, depth_range: str, inverse: bool) -> numpy.typing.NDArray[numpy.float64]:
-    ...
-def _rasterize(scene: Scene, camera: Camera, guard_band: typing.SupportsFloat | typing.SupportsIndex, tile: typing.SupportsInt | typing.SupportsIndex | None) -> dict:
-    ...
+def _power_moment_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
+    """
+    MBOIT's per-pixel fast path: (lower, at_query, fallback) at every z_f.
+    """
+def _quantize_moments(moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 4]"], depth_range: str, inverse: bool) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 4]"]:
+    """
+    The optimised quantisation transform of (N, 4) moments, or its inverse.
+    """
+def _rasterize(scene: Scene, camera: Camera, guard_band: typing.SupportsFloat | typing.SupportsIndex, tile: typing.SupportsInt | typing.SupportsIndex | None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float32], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.float32], "[m, n]"], tuple[int, int], int, int, int]:
+    """
+    (depth, geometry, primitive, barycentric (H * W, 3), offset, triangles, screen triangles, fragments).
+    """
 def _read_image(path: str) -> numpy.typing.NDArray[numpy.float32]:
     ...
 def _render(scene: Scene, camera: Camera, field: IndexField, options: RenderOptions, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], RenderStats]:
@@ -3071,39 +3108,63 @@ def _render_raster(scene: Scene, camera: Camera, options: RasterRenderOptions, p
     """
     (image, RasterRenderStats) of refracta.render_raster.
     """
-def _shadow_intensity(moments: typing.Any, z_f: typing.Any, method: str, settings: MomentShadowSettings) -> numpy.typing.NDArray[numpy.float64]:
-    ...
+def _shadow_intensity(moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 4]"], z_f: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], method: str, settings: MomentShadowSettings) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    Shadow intensities of (N, 4) moments at N receiver depths.
+    """
 def _shutdown_running_work(timeout_seconds: typing.SupportsFloat | typing.SupportsIndex = 10.0) -> None:
     ...
-def _solve_edit(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, *, weights: typing.Any, margins: typing.Any, tolerances: typing.Any, free: collections.abc.Sequence[str], bounds: collections.abc.Mapping[str, tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]], derivatives: str, pair_options: PairOptions, settings: SolveSettings, progress: typing.Any, camera: Camera | None = None, pixels: typing.Any = None) -> SolveSummary:
+def _solve_edit(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, *, weights: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, margins: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, tolerances: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None, free: collections.abc.Sequence[str], bounds: collections.abc.Mapping[str, tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]], derivatives: str, pair_options: PairOptions, settings: SolveSettings, progress: typing.Any, camera: Camera | None = None, pixels: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 2]"] | None = None) -> SolveSummary:
     ...
-def _spectrum_blackbody(temperature: typing.SupportsFloat | typing.SupportsIndex, wavelengths: typing.Any, luminance: typing.SupportsFloat | typing.SupportsIndex | None) -> numpy.typing.NDArray[numpy.float64]:
-    ...
-def _spectrum_cie_xyz(wavelengths: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
-    ...
+def _spectrum_blackbody(temperature: typing.SupportsFloat | typing.SupportsIndex, wavelengths: typing.Any, luminance: typing.SupportsFloat | typing.SupportsIndex | None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    Planck's law (spectrum.py).
+    """
+def _spectrum_cie_xyz(wavelengths: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    """
+    The CIE 1931 functions (spectrum.py).
+    """
 def _spectrum_cie_y_integral() -> float:
-    ...
-def _spectrum_coefficients(rgb: typing.Any, method: str) -> numpy.typing.NDArray[numpy.float64]:
-    ...
-def _spectrum_d65(wavelengths: typing.Any, normalised: bool) -> numpy.typing.NDArray[numpy.float64]:
-    ...
+    """
+    integral y (spectrum.py).
+    """
+def _spectrum_coefficients(rgb: typing.Any, method: str) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 4]"]:
+    """
+    Rows of (c0, c1, c2, residual) (spectrum.py).
+    """
+def _spectrum_d65(wavelengths: typing.Any, normalised: bool) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    D65 (spectrum.py).
+    """
 def _spectrum_measure_table(resolution: typing.SupportsInt | typing.SupportsIndex, quadrature_step_nm: typing.SupportsInt | typing.SupportsIndex, polish_steps: typing.SupportsInt | typing.SupportsIndex, samples: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex) -> dict:
-    ...
-def _spectrum_rgb_to_spectrum(rgb: typing.Any, wavelengths: typing.Any, kind: str, method: str) -> numpy.typing.NDArray[numpy.float64]:
-    ...
-def _spectrum_sample_wavelengths(u: typing.Any, terminate: bool) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
-    ...
-def _spectrum_tabulated_to_rgb(wavelengths: typing.Any, values: typing.Any, kind: str) -> numpy.ndarray:
-    ...
-def _spectrum_to_linear_srgb(radiance: typing.Any, wavelengths: typing.Any, pdf: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
-    ...
-def _spectrum_xyz_to_linear_srgb(xyz: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
-    ...
+    """
+    Builds and measures a coefficient table (spectrum.py).
+    """
+def _spectrum_rgb_to_spectrum(rgb: typing.Any, wavelengths: typing.Any, kind: str, method: str) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+    """
+    Rows of spectra (spectrum.py).
+    """
+def _spectrum_sample_wavelengths(u: typing.Any, terminate: bool) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 4]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 4]"]]:
+    """
+    Hero wavelengths and pdfs (spectrum.py).
+    """
+def _spectrum_tabulated_to_rgb(wavelengths: typing.Any, values: typing.Any, kind: str) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    """
+    RGB of a tabulated spectrum (spectrum.py).
+    """
+def _spectrum_to_linear_srgb(radiance: typing.Any, wavelengths: typing.Any, pdf: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    """
+    The spectral estimate's RGB (spectrum.py).
+    """
+def _spectrum_xyz_to_linear_srgb(xyz: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    """
+    XYZ rows to linear sRGB (spectrum.py).
+    """
 def _tabulate_heights(field: IndexField, lo: typing.SupportsFloat | typing.SupportsIndex, hi: typing.SupportsFloat | typing.SupportsIndex) -> IndexField:
     """
     A height-only field tabulated over [lo, hi] m (cubic Hermite to 1e-12 in n); other fields unchanged.
     """
-def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, options: typing.Any, progress: typing.Any, **kwargs) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, options: typing.Any, progress: typing.Any, **kwargs) -> tuple:
     ...
 def _write_image(path: str, image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
     ...
@@ -3216,7 +3277,7 @@ def water_ior(wavelength_nm: typing.Annotated[numpy.typing.ArrayLike, numpy.floa
     Tanaka et al. 2001 (atmospheric pressure), plus Quan & Fry 1995's salinity terms. wavelength_nm
     in [200, 1100], temperature_c in [0, 40] deg C, salinity [g/kg] in [0, 40]. Vectorised.
     """
-DEFAULT_TURBULENCE_YAW: float = 0.5535743588970453
+DEFAULT_TURBULENCE_YAW_DEG: float = 31.71747441146101
 EDIT_CAMERA_PARAMETERS: tuple = ('camera_yaw', 'camera_pitch', 'camera_roll', 'camera_vfov')
 INNER_SCALE_FACTOR: float = 5.92
 SPECTRUM_CONSTANT: float = 0.03300539063636137

@@ -22,10 +22,6 @@ std::pair<Vec3d, Vec3d> bounds_of(const py::object& scene_or_bounds) {
   return {to_point(bounds[py::int_(0)], "bounds[0]"), to_point(bounds[py::int_(1)], "bounds[1]")};
 }
 
-void check_pixel(double u, double v) {
-  if (!std::isfinite(u) || !std::isfinite(v)) throw_invalid("u and v must be finite");
-}
-
 // Pickled as its constructor's arguments (and jitter, and lens): the copy's rays are bit-identical.
 py::tuple camera_state(const Camera& c) {
   auto xyz = [](const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); };
@@ -33,16 +29,12 @@ py::tuple camera_state(const Camera& c) {
                         c.jitter(), c.aperture_diameter(), c.focus_distance());
 }
 
-Camera camera_from_state(const py::tuple& t) {
+Camera camera_from_state(const py::tuple& t) {  // 6 items (no jitter), 7 (no lens) or 9
   if (t.size() != 6 && t.size() != 7 && t.size() != 9) throw_invalid("Camera: bad pickle state (", t.size(), " items)");
-  Camera camera(to_point(t[0], "position"), to_point(t[1], "look_at"), to_point(t[2], "up"), py::cast<double>(t[3]),
-                py::cast<int>(t[4]), py::cast<int>(t[5]));
-  if (t.size() >= 7) {
-    auto angles = py::cast<std::vector<float>>(t[6]);
-    if (!angles.empty()) camera = camera.jittered(std::move(angles));
-  }
-  if (t.size() == 9 && py::cast<double>(t[7]) > 0.0) camera = camera.with_lens(py::cast<double>(t[7]), py::cast<double>(t[8]));
-  return camera;
+  const std::vector<float> jitter = t.size() >= 7 ? py::cast<std::vector<float>>(t[6]) : std::vector<float>();
+  const auto lens = [&t](size_t i) { return t.size() == 9 ? py::cast<double>(t[i]) : 0.0; };
+  return Camera::restore(to_point(t[0], "position"), to_point(t[1], "look_at"), to_point(t[2], "up"), py::cast<double>(t[3]),
+                         py::cast<int>(t[4]), py::cast<int>(t[5]), jitter, lens(7), lens(8));
 }
 
 Camera jittered(const Camera& c, const py::object& angles) {
@@ -56,17 +48,7 @@ Camera jittered(const Camera& c, const py::object& angles) {
 
 py::object jitter_array(const Camera& c) {
   if (c.jitter().empty()) return py::none();
-  py::array_t<float> out({py::ssize_t(c.height()), py::ssize_t(c.width()), py::ssize_t(2)});
-  std::copy(c.jitter().begin(), c.jitter().end(), out.mutable_data());
-  return std::move(out);
-}
-
-std::string camera_repr(const Camera& c) {
-  const std::string lens = c.aperture_diameter() > 0.0
-                               ? concat(", aperture_diameter=", c.aperture_diameter(), ", focus_distance=", c.focus_distance())
-                               : std::string();
-  return concat("Camera(position=(", c.position().x(), ", ", c.position().y(), ", ", c.position().z(), "), vfov=",
-                c.vfov(), ", size=", c.width(), "x", c.height(), lens, ")");
+  return py::array_t<float>({py::ssize_t(c.height()), py::ssize_t(c.width()), py::ssize_t(2)}, c.jitter().data());
 }
 
 // The photographer's constructors: framing, photographic, eye_level.
@@ -158,8 +140,7 @@ or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)
       .def(
           "ray",
           [](const Camera& c, double u, double v) {
-            check_pixel(u, v);
-            return py::make_tuple(vector_to_array(c.position()), vector_to_array(c.direction(u, v)));
+            return py::make_tuple(vector_to_array(c.position()), vector_to_array(c.pixel_direction(u, v)));
           },
           py::arg("u"), py::arg("v"), "(origin, unit direction) of the ray through pixel coordinates (u, v).")
       .def(
@@ -174,8 +155,7 @@ or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)
       .def(
           "pick",
           [](const Camera& c, const RenderScene& s, double u, double v) -> py::object {
-            check_pixel(u, v);
-            const auto hit = s.geometry.intersect(c.position(), c.direction(u, v), 1e7);
+            const auto hit = s.geometry.intersect(c.position(), c.pixel_direction(u, v), 1e7);
             return hit ? py::object(vector_to_array(hit->point)) : py::object(py::none());
           },
           py::arg("scene"), py::arg("u"), py::arg("v"),
@@ -204,7 +184,7 @@ map (height, width, 2) at the pixel centres, bilinear between them. Non-physical
       .def_property_readonly("vfov", &Camera::vfov)
       .def_property_readonly("pixel_angle", &Camera::pixel_angle,
                              "The angle [rad] one pixel subtends at the image centre (vertical field of view / height).")
-      .def("__repr__", &camera_repr);
+      .def("__repr__", &Camera::describe);
   bind_camera_constructors(camera);
 }
 

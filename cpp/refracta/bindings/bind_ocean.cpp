@@ -1,9 +1,9 @@
 // Python bindings of the wind sea's waves (scene/ocean_waves.h): refracta.OceanWaves and
 // Scene.add_sea, which pairs the displaced mesh with Water materials that keep the slopes it does
 // not resolve (shading/water_surface.h). Called by bind_scene, after Scene is bound.
-#include "refracta/bindings/bindings.h"
+#include "refracta/bindings/bind_scene.h"
 
-#include "refracta/render/render_scene.h"
+#include "refracta/render/scene_building.h"
 #include "refracta/scene/ocean_waves.h"
 #include "refracta/shading/water_surface.h"
 
@@ -20,74 +20,20 @@ Vec2d to_vec2(const py::handle& value, const char* what) {
   return {v[0], v[1]};
 }
 
-py::array_t<double> grid_array(const OceanWaves& waves, int components) {
-  const int n = waves.resolution();
-  py::array_t<double> out(components == 1 ? std::vector<py::ssize_t>{n, n} : std::vector<py::ssize_t>{n, n, components});
-  double* data = out.mutable_data();
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      if (components == 1) {
-        *data++ = waves.height(i, j);
-      } else {
-        const Vec2d s = waves.slope(i, j);
-        *data++ = s.x(), *data++ = s.y();
-      }
-    }
-  }
-  return out;
+// OceanWaves(...): the parameters, checked by OceanWaves (the seed's sign here: it is unsigned there).
+std::shared_ptr<OceanWaves> make_waves(double wind_speed, const py::handle& wind_direction, double patch_size,
+                                       int resolution, long long seed, double time) {
+  if (seed < 0) throw_invalid("OceanWaves: seed must be >= 0 (got ", seed, ")");
+  const OceanWavesParameters p{wind_speed, to_vec2(wind_direction, "wind_direction"), patch_size, resolution,
+                               uint64_t(seed), time};
+  return std::make_shared<OceanWaves>(p);
 }
 
-// Scene.add_sea: the meshes, and each displaced band's material.
-py::list add_sea(RenderScene& s, const std::shared_ptr<OceanWaves>& given_waves, const SeaLayout& layout,
-                 const py::object& material_object) {
-  MaterialPtr material;
-  if (!material_object.is_none()) {
-    try {
-      material = py::cast<MaterialPtr>(material_object);
-    } catch (const py::cast_error&) {
-      throw_invalid("material must be a refracta.shading material (got ", std::string(py::str(py::type::of(material_object))), ")");
-    }
-  }
-  std::shared_ptr<const Water> water = std::dynamic_pointer_cast<const Water>(material);
-  std::shared_ptr<OceanWaves> waves = given_waves;
-  if (!waves) {
-    OceanWavesParameters p;
-    p.wind_speed = water ? water->parameters().wind_speed : WaterParameters{}.wind_speed;
-    waves = std::make_shared<OceanWaves>(p);
-  } else if (water && water->parameters().wind_speed != waves->parameters().wind_speed) {
-    throw_invalid("add_sea: wind_speed of the waves (", waves->parameters().wind_speed, " m/s) and of the Water material (",
-                  water->parameters().wind_speed, " m/s) must agree");
-  }
-  if (!material) {
-    WaterParameters p;
-    p.wind_speed = waves->parameters().wind_speed;
-    water = std::make_shared<Water>(p);
-    material = water;
-  }
-  if (water && water->parameters().resolved_slope_variance != 0.0) {
-    throw_invalid("add_sea: the material's resolved_slope_variance must be 0 (add_sea sets it per band; got ",
-                  water->parameters().resolved_slope_variance, ")");
-  }
-  const SeaMeshes meshes = sea_meshes(*waves, layout);
-  py::list ids;
-  for (size_t b = 0; b < meshes.bands.size(); ++b) {
-    if (meshes.bands[b].triangles.empty()) continue;
-    MaterialPtr band_material = material;
-    if (water) {  // the microfacets keep what the band's shading normals do not show
-      WaterParameters p = water->parameters();
-      p.resolved_slope_variance = meshes.band_slope_variance[b];
-      const double most = water->mean_square_slope() - Water::kMinUnresolvedSlopeVariance;
-      if (p.resolved_slope_variance > most) {
-        throw_invalid("add_sea: the waves resolve a mean-square slope of ", p.resolved_slope_variance,
-                      ", more than the Water's Cox-Munk total ", water->mean_square_slope(),
-                      " allows: lower the waves' resolution or raise their patch_size");
-      }
-      band_material = std::make_shared<Water>(p);
-    }
-    ids.append(s.geometry.add_mesh(meshes.bands[b], s.add_material(band_material)));
-  }
-  ids.append(s.geometry.add_mesh(meshes.flat, s.add_material(material)));
-  return ids;
+// A field over the nodes as an array (N, N) or, with two components per node, (N, N, 2).
+py::array_t<double> grid_array(const OceanWaves& waves, const std::vector<double>& values, py::ssize_t components) {
+  const py::ssize_t n = waves.resolution();
+  if (components == 1) return py::array_t<double>({n, n}, values.data());
+  return py::array_t<double>({n, n, components}, values.data());
 }
 
 }  // namespace
@@ -113,25 +59,18 @@ waves); time [s] moves the waves by deep-water dispersion w = sqrt(g k). No chop
 wind_speed [m/s] in (0, 30] (12.5 m above the sea, as Water's); wind_direction (x, z) horizontal,
 any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024]. Arrays are
 indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).)doc")
-      .def(py::init([](double wind_speed, const py::object& wind_direction, double patch_size, int resolution, long long seed,
-                       double time) {
-             if (seed < 0) throw_invalid("OceanWaves: seed must be >= 0 (got ", seed, ")");
-             OceanWavesParameters p;
-             p.wind_speed = wind_speed, p.wind_direction = to_vec2(wind_direction, "wind_direction");
-             p.patch_size = patch_size, p.resolution = resolution, p.seed = uint64_t(seed), p.time = time;
-             return std::make_shared<OceanWaves>(p);
-           }),
+      .def(py::init(&make_waves),
            py::arg("wind_speed") = default_wind,
            py::arg("wind_direction") = py::make_tuple(defaults.wind_direction.x(), defaults.wind_direction.y()),
            py::arg("patch_size") = defaults.patch_size, py::arg("resolution") = defaults.resolution,
            py::arg("seed") = defaults.seed, py::arg("time") = defaults.time)
-      .def_property_readonly("wind_speed", [](const OceanWaves& w) { return w.parameters().wind_speed; }, "[m/s]")
+      .def_property_readonly("wind_speed", &OceanWaves::wind_speed, "[m/s]")
       .def_property_readonly("wind_direction", [](const OceanWaves& w) { return py::make_tuple(w.wind_direction().x(), w.wind_direction().y()); },
                              "Unit (x, z).")
-      .def_property_readonly("patch_size", [](const OceanWaves& w) { return w.parameters().patch_size; }, "[m]")
+      .def_property_readonly("patch_size", &OceanWaves::patch_size, "[m]")
       .def_property_readonly("resolution", &OceanWaves::resolution)
-      .def_property_readonly("seed", [](const OceanWaves& w) { return w.parameters().seed; })
-      .def_property_readonly("time", [](const OceanWaves& w) { return w.parameters().time; }, "[s]")
+      .def_property_readonly("seed", &OceanWaves::seed)
+      .def_property_readonly("time", &OceanWaves::time, "[s]")
       .def_property_readonly("spacing", &OceanWaves::spacing, "patch_size / resolution [m]")
       .def_property_readonly("wind_length", &OceanWaves::wind_length, "L_w = U^2 / g [m]")
       .def_property_readonly("significant_wave_height", &OceanWaves::significant_wave_height,
@@ -151,25 +90,17 @@ indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).)doc")
       .def_property_readonly("height_variance", &OceanWaves::height_variance, "This field's variance over the nodes [m^2].")
       .def_property_readonly("slope_variance", &OceanWaves::slope_variance,
                              "This field's mean of (dh/dx)^2 + (dh/dz)^2 over the nodes.")
-      .def("heights", [](const OceanWaves& w) { return grid_array(w, 1); }, "(N, N) heights [m], [j, i].")
-      .def("slopes", [](const OceanWaves& w) { return grid_array(w, 2); }, "(N, N, 2) (dh/dx, dh/dz), [j, i].")
-      .def("__repr__", [](const OceanWaves& w) {
-        const OceanWavesParameters& p = w.parameters();
-        return concat("OceanWaves(wind_speed=", p.wind_speed, ", wind_direction=(", p.wind_direction.x(), ", ", p.wind_direction.y(),
-                      "), patch_size=", p.patch_size, ", resolution=", p.resolution, ", seed=", p.seed, ", time=", p.time, ")");
-      })
+      .def("heights", [](const OceanWaves& w) { return grid_array(w, w.heights(), 1); }, "(N, N) heights [m], [j, i].")
+      .def("slopes", [](const OceanWaves& w) { return grid_array(w, w.slopes(), 2); }, "(N, N, 2) (dh/dx, dh/dz), [j, i].")
+      .def("__repr__", &OceanWaves::describe)
       .def(py::pickle(
           [](const OceanWaves& w) {
-            const OceanWavesParameters& p = w.parameters();
-            return py::make_tuple(p.wind_speed, py::make_tuple(p.wind_direction.x(), p.wind_direction.y()), p.patch_size,
-                                  p.resolution, p.seed, p.time);
+            return py::make_tuple(w.wind_speed(), py::make_tuple(w.parameters().wind_direction.x(), w.parameters().wind_direction.y()),
+                                  w.patch_size(), w.resolution(), w.seed(), w.time());
           },
           [](const py::tuple& t) {
             if (t.size() != 6) throw_invalid("OceanWaves: bad pickle state");
-            OceanWavesParameters p;
-            p.wind_speed = t[0].cast<double>(), p.wind_direction = to_vec2(t[1], "wind_direction");
-            p.patch_size = t[2].cast<double>(), p.resolution = t[3].cast<int>(), p.seed = t[4].cast<uint64_t>(), p.time = t[5].cast<double>();
-            return std::make_shared<OceanWaves>(p);
+            return make_waves(t[0].cast<double>(), t[1], t[2].cast<double>(), t[3].cast<int>(), t[4].cast<long long>(), t[5].cast<double>());
           }));
 
   const SeaLayout layout_defaults;
@@ -177,10 +108,8 @@ indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).)doc")
   scene.def("add_sea",
             [](RenderScene& s, const std::optional<std::shared_ptr<OceanWaves>>& waves, double height, double size,
                const py::object& material, double detail_radius, const py::object& centre) {
-              SeaLayout layout;
-              layout.height = height, layout.size = size, layout.detail_radius = detail_radius;
-              layout.centre = to_vec2(centre, "centre");
-              return add_sea(s, waves.value_or(nullptr), layout, material);
+              const SeaLayout layout{height, size, detail_radius, to_vec2(centre, "centre")};
+              return add_sea(s, waves.value_or(nullptr), layout, material.is_none() ? nullptr : to_material(material, ""));
             },
             py::arg("waves") = py::none(), py::arg("height") = layout_defaults.height, py::arg("size") = layout_defaults.size,
             py::arg("material") = py::none(), py::arg("detail_radius") = layout_defaults.detail_radius,

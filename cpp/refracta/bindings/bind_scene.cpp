@@ -4,18 +4,14 @@
 #include "refracta/bindings/pickle_state.h"
 
 #include "refracta/render/obj_materials.h"
-#include "refracta/shading/area_light.h"
+#include "refracta/render/scene_building.h"
 #include "refracta/shading/phong.h"
-#include "refracta/shading/sphere_light.h"
 
 #include <cmath>
 #include <optional>
 
 namespace refracta {
 
-namespace {
-
-// A refracta.shading material given as `material=` (what: the function, for the message).
 std::shared_ptr<Material> to_material(const py::object& material, const char* what) {
   std::shared_ptr<Material> m;
   try {
@@ -27,6 +23,8 @@ std::shared_ptr<Material> to_material(const py::object& material, const char* wh
   return m;
 }
 
+namespace {
+
 // The material of an add_* call: `material` when given, else the Blinn-Phong shorthand (kd, ks,
 // ns, a kd texture, alpha), as the MTL files and the early API have it.
 int material_of(RenderScene& s, const py::object& material, const py::object& kd, const py::object& ks, double ns,
@@ -36,29 +34,10 @@ int material_of(RenderScene& s, const py::object& material, const py::object& kd
                                                      to_rgb(ks, "ks"), ns, alpha));
 }
 
-// A geometry id from Python (negative ids name nothing).
-unsigned geometry_id(int geometry) {
-  if (geometry < 0) throw_invalid("geometry must be an id returned by add_* (got ", geometry, ")");
-  return unsigned(geometry);
-}
-
-// A textured material needs texture coordinates: refuse it on geometry without uvs, saying how.
-void check_uvs(const RenderScene& s, int material, bool has_uvs, const char* what) {
-  if (has_uvs || !s.material(material).textured()) return;
-  throw_invalid(what, ": ", s.material(material).describe(),
-                " has a texture but this geometry has no texture coordinates; give the mesh uvs= (add_mesh),"
-                " use add_ground (its texture_size sets the repeat) or an OBJ with vt lines, or drop the texture");
-}
-
-// Adds a mesh with its material and, with emission (RGB radiance [W/(m^2 sr)] or None), its area light.
-unsigned add_surface(RenderScene& s, const Mesh& mesh, int material, const py::object& emission, bool two_sided,
-                     const char* what) {
-  check_uvs(s, material, !mesh.uvs.empty(), what);
-  const unsigned id = s.geometry.add_mesh(mesh, material);
-  if (!emission.is_none()) {
-    s.add_light(std::make_shared<AreaLight>(mesh, to_illuminant(emission, "emission"), two_sided), int(id));
-  }
-  return id;
+// emission= (RGB radiance [W/(m^2 sr)]) or None.
+std::optional<Color> emission_of(const py::object& emission) {
+  if (emission.is_none()) return std::nullopt;
+  return to_illuminant(emission, "emission");
 }
 
 // add_mesh's arrays: vertices (N, 3), triangles (M, 3), optional normals (N, 3) (normalised) and uvs (N, 2).
@@ -69,11 +48,7 @@ Mesh mesh_from(const py::object& vertices, const py::object& triangles, const py
   if (!uvs.is_none()) mesh.uvs = to_uvs(uvs, "uvs", mesh.vertices.size());
   if (!normals.is_none()) {  // shading normals, of any length but 0
     mesh.normals = to_points(normals, "normals");
-    if (mesh.normals.size() != mesh.vertices.size()) throw_invalid("normals must have one entry per vertex");
-    for (Vec3d& n : mesh.normals) {
-      if (!(n.norm() > 0.0)) throw_invalid("normals must be non-zero");
-      n.normalize();
-    }
+    normalise_normals(mesh);
   }
   return mesh;
 }
@@ -144,10 +119,7 @@ ObjOptions obj_options(const py::object& offset, double scale, const py::object&
   ObjOptions options;
   options.offset = to_point(offset, "offset"), options.scale = scale;
   options.texture_dirs = to_folders(texture_dirs);
-  if (missing_textures != "error" && missing_textures != "warn") {
-    throw_invalid("missing_textures must be 'error' or 'warn' (got '", missing_textures, "')");
-  }
-  options.missing_textures = missing_textures == "warn" ? MissingTextures::kWarn : MissingTextures::kError;
+  options.missing_textures = missing_textures_from(missing_textures);
   options.warn = [](const std::string& message) {
     if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();  // warnings as errors
   };
@@ -169,7 +141,8 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
              const Mesh mesh = mesh_from(vertices, triangles, normals, uvs);
              const int tex = texture ? s.geometry.textures().add(*texture) : -1;
              if (tex >= 0 && mesh.uvs.empty()) throw_invalid("add_mesh: a texture needs uvs");
-             return add_surface(s, mesh, material_of(s, material, kd, ks, ns, tex, alpha), emission, two_sided, "add_mesh");
+             const int material_id = material_of(s, material, kd, ks, ns, tex, alpha);
+             return add_surface(s, mesh, material_id, emission_of(emission), two_sided, "add_mesh");
            },
            py::arg("vertices"), py::arg("triangles"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
            py::arg("two_sided") = false, py::arg("normals") = py::none(), py::kw_only(), py::arg("uvs") = py::none(),
@@ -235,7 +208,7 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            [](RenderScene& s, const py::object& centre, const py::object& size, const py::object& material,
               const py::object& emission, const py::object& kd, const py::object& ks, double ns, double alpha) {
              const Mesh mesh = box_mesh(to_point(centre, "centre"), to_point(size, "size"));
-             return add_surface(s, mesh, material_of(s, material, kd, ks, ns, -1, alpha), emission, false, "add_box");
+             return add_surface(s, mesh, material_of(s, material, kd, ks, ns, -1, alpha), emission_of(emission), false, "add_box");
            },
            py::arg("centre"), py::arg("size"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
            py::kw_only(), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
@@ -245,12 +218,7 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
       .def("add_sphere",
            [](RenderScene& s, const py::object& centre, double radius, const py::object& material,
               const py::object& emission, const py::object& kd, const py::object& ks, double ns) {
-             const Vec3d c = to_point(centre, "centre");
-             const int material_id = material_of(s, material, kd, ks, ns);
-             check_uvs(s, material_id, false, "add_sphere");
-             const unsigned id = s.geometry.add_spheres({c}, {radius}, material_id);
-             if (!emission.is_none()) s.add_light(std::make_shared<SphereLight>(c, radius, to_illuminant(emission, "emission")), int(id));
-             return id;
+             return add_sphere(s, to_point(centre, "centre"), radius, material_of(s, material, kd, ks, ns), emission_of(emission));
            },
            py::arg("centre"), py::arg("radius"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
            py::kw_only(), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
@@ -277,13 +245,7 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
            "with a texture file: the scene's copy, its file registered here).")
       .def("set_material",
            [](RenderScene& s, int geometry, const py::object& given) {
-             const unsigned g = geometry_id(geometry);
-             s.geometry.check_geometry(g, "set_material");
-             const std::shared_ptr<Material> material = to_material(given, "set_material: ");
-             if (material->textured() && !s.geometry.has_uvs(g)) {
-               throw_invalid("set_material: ", material->describe(), " has a texture but geometry ", g, " has no texture coordinates (uvs)");
-             }
-             s.set_material(g, material);
+             set_geometry_material(s, geometry, to_material(given, "set_material: "));
            },
            py::arg("geometry"), py::arg("material"),
            "Give a geometry (an id returned by add_*, e.g. one part of add_obj) another refracta.shading material.\n"
@@ -294,9 +256,7 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
            "acceleration structure is rebuilt before the next render. Not while a render of this scene runs.")
       .def("intersect",
            [](const RenderScene& s, const py::object& origin, const py::object& direction) -> py::object {
-             const Vec3d d = to_point(direction, "direction");
-             if (d.norm() == 0.0) throw_invalid("direction must be non-zero");
-             const auto hit = s.geometry.intersect(to_point(origin, "origin"), d.normalized(), 1e7);
+             const auto hit = intersect_ray(s, to_point(origin, "origin"), to_point(direction, "direction"));
              if (!hit) return py::none();
              return py::make_tuple(vector_to_array(hit->point), hit->t, hit->geometry);
            },

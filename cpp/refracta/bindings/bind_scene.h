@@ -15,6 +15,9 @@ namespace refracta {
 py::array_t<float> image_to_float32(const Image& image);
 py::array_t<float> image_to_float32(Image&& image);  // without copying the pixels
 
+// A refracta.shading material given as `material=` (ValueError prefixed by what, e.g. "add_terrain: ").
+std::shared_ptr<Material> to_material(const py::object& material, const char* what);  // bind_scene.cpp
+
 // Called by bind_scene.
 void bind_scene_lights(py::class_<RenderScene, std::shared_ptr<RenderScene>>& scene);  // bind_scene_lights.cpp
 void bind_camera(py::module_& m);                                                     // bind_camera.cpp

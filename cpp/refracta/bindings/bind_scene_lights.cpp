@@ -2,11 +2,11 @@
 // (shading/sky_presets.h), environments and added lights.
 #include "refracta/bindings/bind_scene.h"
 #include "refracta/bindings/interruptible.h"
+#include "refracta/render/scene_building.h"
 
 #include "refracta/shading/constant_environment.h"
 #include "refracta/shading/point_light.h"
 #include "refracta/shading/sky_presets.h"
-#include "refracta/shading/spot_light.h"
 #include "refracta/shading/sun_light.h"
 
 #include <optional>
@@ -21,20 +21,6 @@ using SceneClass = py::class_<RenderScene, std::shared_ptr<RenderScene>>;
 Color sun_colour(const py::object& radiance, const py::object& wavelengths) {
   if (wavelengths.is_none()) return to_illuminant(radiance, "radiance");
   return Color::tabulated(to_values(wavelengths, "wavelengths"), to_values(radiance, "radiance"), Color::Kind::kIlluminant);
-}
-
-// set_physical_sky's keywords as PhysicalSkySettings.
-PhysicalSkySettings sky_settings(const py::object& sun_direction, double aerosol, double ozone_du, double ground_albedo,
-                                 double altitude, const std::string& below_horizon, const std::optional<double>& visibility) {
-  PhysicalSkySettings settings;
-  const Vec3d sun = to_point(sun_direction, "sun_direction");
-  if (!(sun.norm() > 0.0)) throw_invalid("sun_direction must be non-zero (got (", sun.x(), ", ", sun.y(), ", ", sun.z(), "))");
-  settings.sun_direction = sun.normalized();
-  settings.aerosol = aerosol, settings.ozone_du = ozone_du, settings.ground_albedo = ground_albedo;
-  settings.altitude = altitude;
-  settings.below_horizon = below_horizon_from(below_horizon);
-  if (visibility) set_visibility(&settings, *visibility);
-  return settings;
 }
 
 // The physical sky's table, built with Ctrl-C able to stop it (~0.5 s over oneTBB).
@@ -85,15 +71,10 @@ void bind_sun_and_sky(SceneClass& scene) {
            [](RenderScene& s, const py::object& sun_direction, double aerosol, double ozone_du, double ground_albedo,
               double sun_angular_diameter, double limb_darkening, double scale, double altitude,
               const std::string& below_horizon, bool aerial_perspective, const std::optional<double>& visibility) {
-             const PhysicalSkySettings settings =
-                 sky_settings(sun_direction, aerosol, ozone_du, ground_albedo, altitude, below_horizon, visibility);
-             const SkyAndSun lights = physical_sky_with_sun(settings, SunDisc{sun_angular_diameter, limb_darkening}, scale,
-                                                            &build_sky_interruptibly);
-             s.remove_infinite_lights();
-             for (const LightPtr& light : {lights.sky, lights.sun}) {
-               if (light) s.add_light(light);
-             }
-             if (aerial_perspective && scale > 0.0) s.enable_aerial_perspective();
+             const PhysicalSkySettings settings = physical_sky_settings(to_point(sun_direction, "sun_direction"), aerosol,
+                                                                        ozone_du, ground_albedo, altitude, below_horizon, visibility);
+             const SunDisc sun{sun_angular_diameter, limb_darkening};
+             set_physical_sky(s, settings, sun, scale, aerial_perspective, &build_sky_interruptibly);
            },
            py::arg("sun_direction"), py::arg("aerosol") = PhysicalSkySettings{}.aerosol,
            py::arg("ozone_du") = PhysicalSkySettings{}.ozone_du, py::arg("ground_albedo") = PhysicalSkySettings{}.ground_albedo,
@@ -157,12 +138,8 @@ void bind_scene_lights(SceneClass& scene) {
       .def("add_spot_light",
            [](RenderScene& s, const py::object& position, const py::object& direction, double angle,
               const py::object& intensity, double radius) {
-             if (!(angle > 0.0 && angle <= 170.0)) throw_invalid("spot light angle must be in (0, 170] deg (got ", angle, ")");
-             if (!(radius >= 0.0) || !std::isfinite(radius)) throw_invalid("spot light radius must be >= 0 (got ", radius, ")");
-             const size_t index = s.add_light(std::make_shared<SpotLight>(
-                 to_point(position, "position"), to_point(direction, "direction"), angle, to_illuminant(intensity, "intensity")));
-             if (radius > 0.0) s.set_shadow_radius(index, radius);
-             return s.spots().size() - 1;
+             return add_spot_light(s, to_point(position, "position"), to_point(direction, "direction"), angle,
+                                   to_illuminant(intensity, "intensity"), radius);
            },
            py::arg("position"), py::arg("direction"), py::arg("angle") = 60.0,
            py::arg("intensity") = py::make_tuple(100.0, 100.0, 100.0), py::arg("radius") = 0.0,

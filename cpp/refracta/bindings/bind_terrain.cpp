@@ -18,32 +18,16 @@ void bind_terrain(py::module_& m) {
       "_add_terrain_grid",
       [](RenderScene& s, const py::array_t<float, py::array::c_style | py::array::forcecast>& positions,
          const py::object& material, const py::array_t<double, py::array::c_style | py::array::forcecast>& uv_from_index) {
-        if (positions.ndim() != 3 || positions.shape(2) != 3) {
-          throw_invalid("add_terrain: positions must be a (rows, cols, 3) array (got ndim ", positions.ndim(), ")");
-        }
-        if (uv_from_index.ndim() != 2 || uv_from_index.shape(0) != 2 || uv_from_index.shape(1) != 3) {
-          throw_invalid("add_terrain: uv_from_index must be a (2, 3) array");
-        }
-        std::shared_ptr<Material> m;
-        try {
-          m = py::cast<std::shared_ptr<Material>>(material);
-        } catch (const py::cast_error&) {
-          throw_invalid("add_terrain: material must be a refracta.shading material (got ", std::string(py::str(py::type::of(material))), ")");
-        }
-        if (!m) throw_invalid("add_terrain: material must be a refracta.shading material (got None)");
-        const int rows = int(positions.shape(0)), cols = int(positions.shape(1));
-        Eigen::Matrix<double, 2, 3> uv;
-        for (int i = 0; i < 2; ++i) {
-          for (int j = 0; j < 3; ++j) uv(i, j) = uv_from_index.at(i, j);
-        }
+        const std::shared_ptr<Material> terrain_material = to_material(material, "add_terrain: ");
+        std::vector<float> values(positions.data(), positions.data() + positions.size());
         std::shared_ptr<const TerrainGrid> grid;
         {
-          const float* data = positions.data();
-          std::vector<float> copy(data, data + positions.size());
-          py::gil_scoped_release release;
-          grid = std::make_shared<const TerrainGrid>(rows, cols, std::move(copy), uv);
+          py::gil_scoped_release release;  // building the grid takes seconds for a large tile
+          grid = terrain_grid({positions.shape(), positions.shape() + positions.ndim()}, std::move(values),
+                              {uv_from_index.shape(), uv_from_index.shape() + uv_from_index.ndim()},
+                              {uv_from_index.data(), uv_from_index.data() + uv_from_index.size()});
         }
-        return s.geometry.add_terrain(grid, s.add_material(m));
+        return s.geometry.add_terrain(grid, s.add_material(terrain_material));
       },
       py::arg("positions"), py::arg("material"), py::arg("uv_from_index"),
       "Terrain as Embree grid geometry (private: use Scene.add_terrain). positions: (rows, cols, 3) [m]\n"

@@ -152,6 +152,27 @@ Vec3d Camera::direction(double u, double v) const {
   return (d + angle[0] * side.normalized() + angle[1] * rise.normalized()).normalized();
 }
 
+Vec3d Camera::pixel_direction(double u, double v) const {
+  if (!std::isfinite(u) || !std::isfinite(v)) throw_invalid("u and v must be finite");
+  return direction(u, v);
+}
+
+Camera Camera::restore(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
+                       int height, std::vector<float> jitter, double aperture_diameter, double focus_distance) {
+  Camera camera(position, look_at, up, vfov_deg, width, height);
+  if (!jitter.empty()) camera = camera.jittered(std::move(jitter));
+  if (aperture_diameter > 0.0) camera = camera.with_lens(aperture_diameter, focus_distance);
+  return camera;
+}
+
+std::string Camera::describe() const {
+  const std::string lens = aperture_diameter() > 0.0
+                               ? concat(", aperture_diameter=", aperture_diameter(), ", focus_distance=", focus_distance_)
+                               : std::string();
+  return concat("Camera(position=(", position_.x(), ", ", position_.y(), ", ", position_.z(), "), vfov=", vfov_,
+                ", size=", width_, "x", height_, lens, ")");
+}
+
 Camera Camera::jittered(std::vector<float> angles) const {
   if (angles.size() != size_t(width_) * height_ * 2) {
     throw_invalid("Camera.jittered: the angle map must be (height, width, 2) = (", height_, ", ", width_,

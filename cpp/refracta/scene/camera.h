@@ -14,6 +14,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace refracta {
@@ -72,6 +73,8 @@ class Camera {
 
   // Unit direction of the ray through pixel coordinates (u, v) (with the jitter, if any).
   Vec3d direction(double u, double v) const;
+  // direction(u, v) of pixel coordinates given by a caller (ValueError unless both are finite).
+  Vec3d pixel_direction(double u, double v) const;
   // (u, v, depth) of a world point through the pinhole (the jitter ignored); depth [m] along
   // the view axis, <= 0 behind the camera.
   Vec3d project(const Vec3d& point) const;
@@ -103,6 +106,13 @@ class Camera {
   }
   // Angle subtended by one pixel at the image centre [rad].
   double pixel_angle() const;
+
+  // A camera from its pickled parts: the constructor's arguments, the jitter map (empty: none) and
+  // the lens (aperture_diameter 0: a pinhole); its rays are bit-identical to the original's.
+  static Camera restore(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
+                        int height, std::vector<float> jitter, double aperture_diameter, double focus_distance);
+  // "Camera(position=(x, y, z), vfov=..., size=WxH[, aperture_diameter=..., focus_distance=...])".
+  std::string describe() const;
 
  private:
   Vec3d position_, look_at_, up_hint_, forward_, right_, up_;

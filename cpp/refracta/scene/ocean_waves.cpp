@@ -352,4 +352,20 @@ SeaMeshes sea_meshes(const OceanWaves& waves, const SeaLayout& layout) {
   return out;
 }
 
+std::vector<double> OceanWaves::slopes() const {
+  std::vector<double> out(2 * slope_x_.size());
+  for (size_t n = 0; n < slope_x_.size(); ++n) {
+    out[2 * n] = slope_x_[n];
+    out[2 * n + 1] = slope_z_[n];
+  }
+  return out;
+}
+
+std::string OceanWaves::describe() const {
+  const OceanWavesParameters& p = parameters_;
+  return concat("OceanWaves(wind_speed=", p.wind_speed, ", wind_direction=(", p.wind_direction.x(), ", ",
+                p.wind_direction.y(), "), patch_size=", p.patch_size, ", resolution=", p.resolution, ", seed=", p.seed,
+                ", time=", p.time, ")");
+}
+
 }  // namespace refracta

@@ -40,6 +40,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace refracta {
@@ -72,7 +73,11 @@ class OceanWaves {
   explicit OceanWaves(const OceanWavesParameters& parameters);
 
   const OceanWavesParameters& parameters() const { return parameters_; }
+  double wind_speed() const { return parameters_.wind_speed; }  // [m/s]
+  double patch_size() const { return parameters_.patch_size; }  // [m]
   int resolution() const { return parameters_.resolution; }
+  uint64_t seed() const { return parameters_.seed; }
+  double time() const { return parameters_.time; }  // [s]
   double spacing() const { return parameters_.patch_size / parameters_.resolution; }  // [m] between nodes
   Vec2d wind_direction() const { return wind_; }                                     // unit
   double wind_length() const;            // L_w = U^2 / g [m]
@@ -91,6 +96,11 @@ class OceanWaves {
 
   // At node (i, j), x = i spacing, z = j spacing, any integers (periodic): h [m] and (dh/dx, dh/dz).
   double height(long i, long j) const { return height_[index(i, j)]; }
+  // Every node's height [m] (resolution^2, row j then column i) and slopes (dh/dx, dh/dz) interleaved.
+  const std::vector<double>& heights() const { return height_; }
+  std::vector<double> slopes() const;
+  // "OceanWaves(wind_speed=..., ...)": the parameters as Python's constructor takes them.
+  std::string describe() const;
   Vec2d slope(long i, long j) const {
     const size_t n = index(i, j);
     return {slope_x_[n], slope_z_[n]};

@@ -123,4 +123,17 @@ Vec3d TerrainGrid::normal(int row, int col) const {
   return length > 0.0 ? Vec3d(n / length) : n;  // unit, so interpolation weighs each corner alike
 }
 
+std::shared_ptr<const TerrainGrid> terrain_grid(const std::vector<size_t>& shape, std::vector<float> positions,
+                                                const std::vector<size_t>& uv_shape,
+                                                const std::vector<double>& uv_from_index) {
+  if (shape.size() != 3 || shape[2] != 3) {
+    throw_invalid("add_terrain: positions must be a (rows, cols, 3) array (got ndim ", shape.size(), ")");
+  }
+  if (uv_shape.size() != 2 || uv_shape[0] != 2 || uv_shape[1] != 3) {
+    throw_invalid("add_terrain: uv_from_index must be a (2, 3) array");
+  }
+  const Eigen::Map<const Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> uv(uv_from_index.data());
+  return std::make_shared<const TerrainGrid>(int(shape[0]), int(shape[1]), std::move(positions), uv);
+}
+
 }  // namespace refracta

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace refracta {
@@ -75,5 +76,11 @@ class TerrainGrid {
   Eigen::Matrix<double, 2, 3> uv_from_index_;
   Vec3d lower_, upper_;
 };
+
+// The grid Scene._add_terrain_grid builds from arrays: positions of shape (rows, cols, 3) and
+// uv_from_index of shape (2, 3), both row-major. ValueError for other shapes.
+std::shared_ptr<const TerrainGrid> terrain_grid(const std::vector<size_t>& shape, std::vector<float> positions,
+                                                const std::vector<size_t>& uv_shape,
+                                                const std::vector<double>& uv_from_index);
 
 }  // namespace refracta

@@ -1,10 +1,18 @@
 // The constant environment (constant_environment.h).
 #include "refracta/shading/constant_environment.h"
 
+#include "refracta/core/error.h"
 #include "refracta/core/frame.h"
 #include "refracta/shading/light_common.h"
 
 namespace refracta {
+
+ConstantEnvironment::Sampling ConstantEnvironment::sampling_from(const std::string& name) {
+  if (name != "cosine" && name != "uniform") {
+    throw_invalid("ConstantEnvironment: sampling must be 'cosine' or 'uniform' (got '", name, "')");
+  }
+  return name == "cosine" ? Sampling::kCosine : Sampling::kUniform;
+}
 
 ConstantEnvironment::ConstantEnvironment(const Color& radiance, Sampling sampling)
     : radiance_(radiance), sampling_(sampling) {

@@ -16,6 +16,8 @@ namespace refracta {
 class ConstantEnvironment final : public Light {
  public:
   enum class Sampling { kCosine, kUniform };
+  // 'cosine' or 'uniform' (ValueError otherwise).
+  static Sampling sampling_from(const std::string& name);
   explicit ConstantEnvironment(const Color& radiance, Sampling sampling = Sampling::kCosine);
 
   LightType type() const override { return LightType::kInfinite; }

@@ -7,6 +7,13 @@
 
 namespace refracta {
 
+LightSampler::Strategy LightSampler::strategy_from(const std::string& name) {
+  if (name != "power" && name != "uniform") {
+    throw_invalid("LightSampler: strategy must be 'power' or 'uniform' (got '", name, "')");
+  }
+  return name == "power" ? Strategy::kPower : Strategy::kUniform;
+}
+
 LightSampler::LightSampler(std::vector<LightPtr> lights, Strategy strategy)
     : lights_(std::move(lights)), strategy_(strategy) {
   std::vector<double> weights(lights_.size(), 1.0);

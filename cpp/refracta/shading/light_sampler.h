@@ -12,6 +12,7 @@
 #include "refracta/shading/light.h"
 
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace refracta {
@@ -24,6 +25,8 @@ struct SampledLight {
 class LightSampler {
  public:
   enum class Strategy { kPower, kUniform };
+  // 'power' or 'uniform' (ValueError otherwise).
+  static Strategy strategy_from(const std::string& name);
   // lights must not hold null pointers (throws std::invalid_argument).
   explicit LightSampler(std::vector<LightPtr> lights, Strategy strategy = Strategy::kPower);
 

@@ -1,0 +1,150 @@
+#include "refracta/render/scene_building.h"
+
+#include "refracta/core/error.h"
+#include "refracta/shading/area_light.h"
+#include "refracta/shading/sphere_light.h"
+#include "refracta/shading/spot_light.h"
+#include "refracta/shading/water_surface.h"
+
+#include <cmath>
+
+namespace refracta {
+
+unsigned geometry_id(int geometry) {
+  if (geometry < 0) throw_invalid("geometry must be an id returned by add_* (got ", geometry, ")");
+  return unsigned(geometry);
+}
+
+void check_uvs(const RenderScene& scene, int material, bool has_uvs, const char* what) {
+  if (has_uvs || !scene.material(material).textured()) return;
+  throw_invalid(what, ": ", scene.material(material).describe(),
+                " has a texture but this geometry has no texture coordinates; give the mesh uvs= (add_mesh),"
+                " use add_ground (its texture_size sets the repeat) or an OBJ with vt lines, or drop the texture");
+}
+
+void normalise_normals(Mesh& mesh) {
+  if (mesh.normals.size() != mesh.vertices.size()) throw_invalid("normals must have one entry per vertex");
+  for (Vec3d& n : mesh.normals) {
+    if (!(n.norm() > 0.0)) throw_invalid("normals must be non-zero");
+    n.normalize();
+  }
+}
+
+MissingTextures missing_textures_from(const std::string& name) {
+  if (name != "error" && name != "warn") throw_invalid("missing_textures must be 'error' or 'warn' (got '", name, "')");
+  return name == "warn" ? MissingTextures::kWarn : MissingTextures::kError;
+}
+
+unsigned add_surface(RenderScene& scene, const Mesh& mesh, int material, const std::optional<Color>& emission,
+                     bool two_sided, const char* what) {
+  check_uvs(scene, material, !mesh.uvs.empty(), what);
+  const unsigned id = scene.geometry.add_mesh(mesh, material);
+  if (emission) scene.add_light(std::make_shared<AreaLight>(mesh, *emission, two_sided), int(id));
+  return id;
+}
+
+unsigned add_sphere(RenderScene& scene, const Vec3d& centre, double radius, int material,
+                    const std::optional<Color>& emission) {
+  check_uvs(scene, material, false, "add_sphere");
+  const unsigned id = scene.geometry.add_spheres({centre}, {radius}, material);
+  if (emission) scene.add_light(std::make_shared<SphereLight>(centre, radius, *emission), int(id));
+  return id;
+}
+
+void set_geometry_material(RenderScene& scene, int geometry, const MaterialPtr& material) {
+  const unsigned g = geometry_id(geometry);
+  scene.geometry.check_geometry(g, "set_material");
+  if (material->textured() && !scene.geometry.has_uvs(g)) {
+    throw_invalid("set_material: ", material->describe(), " has a texture but geometry ", g,
+                  " has no texture coordinates (uvs)");
+  }
+  scene.set_material(g, material);
+}
+
+std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction) {
+  if (direction.norm() == 0.0) throw_invalid("direction must be non-zero");
+  constexpr double kFar = 1e7;  // [m] past any scene's far side (Camera.pick's reach too)
+  return scene.geometry.intersect(origin, direction.normalized(), kFar);
+}
+
+size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,
+                      const Color& intensity, double radius) {
+  if (!(angle > 0.0 && angle <= 170.0)) throw_invalid("spot light angle must be in (0, 170] deg (got ", angle, ")");
+  if (!(radius >= 0.0) || !std::isfinite(radius)) throw_invalid("spot light radius must be >= 0 (got ", radius, ")");
+  const size_t index = scene.add_light(std::make_shared<SpotLight>(position, direction, angle, intensity));
+  if (radius > 0.0) scene.set_shadow_radius(index, radius);
+  return scene.spots().size() - 1;
+}
+
+PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, double aerosol, double ozone_du,
+                                          double ground_albedo, double altitude, const std::string& below_horizon,
+                                          const std::optional<double>& visibility) {
+  const Vec3d& sun = sun_direction;
+  if (!(sun.norm() > 0.0)) {
+    throw_invalid("sun_direction must be non-zero (got (", sun.x(), ", ", sun.y(), ", ", sun.z(), "))");
+  }
+  PhysicalSkySettings settings;
+  settings.sun_direction = sun.normalized();
+  settings.aerosol = aerosol;
+  settings.ozone_du = ozone_du;
+  settings.ground_albedo = ground_albedo;
+  settings.altitude = altitude;
+  settings.below_horizon = below_horizon_from(below_horizon);
+  if (visibility) set_visibility(&settings, *visibility);
+  return settings;
+}
+
+void set_physical_sky(RenderScene& scene, const PhysicalSkySettings& settings, const SunDisc& sun, double scale,
+                      bool aerial_perspective, const SkyBuilder& build_sky) {
+  const SkyAndSun lights = physical_sky_with_sun(settings, sun, scale, build_sky);
+  scene.remove_infinite_lights();
+  for (const LightPtr& light : {lights.sky, lights.sun}) {
+    if (light) scene.add_light(light);
+  }
+  if (aerial_perspective && scale > 0.0) scene.enable_aerial_perspective();
+}
+
+std::vector<unsigned> add_sea(RenderScene& scene, std::shared_ptr<OceanWaves> waves, const SeaLayout& layout,
+                              MaterialPtr material) {
+  std::shared_ptr<const Water> water = std::dynamic_pointer_cast<const Water>(material);
+  if (!waves) {
+    OceanWavesParameters p;
+    p.wind_speed = water ? water->parameters().wind_speed : WaterParameters{}.wind_speed;
+    waves = std::make_shared<OceanWaves>(p);
+  } else if (water && water->parameters().wind_speed != waves->parameters().wind_speed) {
+    throw_invalid("add_sea: wind_speed of the waves (", waves->parameters().wind_speed,
+                  " m/s) and of the Water material (", water->parameters().wind_speed, " m/s) must agree");
+  }
+  if (!material) {
+    WaterParameters p;
+    p.wind_speed = waves->parameters().wind_speed;
+    water = std::make_shared<Water>(p);
+    material = water;
+  }
+  if (water && water->parameters().resolved_slope_variance != 0.0) {
+    throw_invalid("add_sea: the material's resolved_slope_variance must be 0 (add_sea sets it per band; got ",
+                  water->parameters().resolved_slope_variance, ")");
+  }
+  const SeaMeshes meshes = sea_meshes(*waves, layout);
+  std::vector<unsigned> ids;
+  for (size_t b = 0; b < meshes.bands.size(); ++b) {
+    if (meshes.bands[b].triangles.empty()) continue;
+    MaterialPtr band_material = material;
+    if (water) {  // the microfacets keep what the band's shading normals do not show
+      WaterParameters p = water->parameters();
+      p.resolved_slope_variance = meshes.band_slope_variance[b];
+      const double most = water->mean_square_slope() - Water::kMinUnresolvedSlopeVariance;
+      if (p.resolved_slope_variance > most) {
+        throw_invalid("add_sea: the waves resolve a mean-square slope of ", p.resolved_slope_variance,
+                      ", more than the Water's Cox-Munk total ", water->mean_square_slope(),
+                      " allows: lower the waves' resolution or raise their patch_size");
+      }
+      band_material = std::make_shared<Water>(p);
+    }
+    ids.push_back(scene.geometry.add_mesh(meshes.bands[b], scene.add_material(band_material)));
+  }
+  ids.push_back(scene.geometry.add_mesh(meshes.flat, scene.add_material(material)));
+  return ids;
+}
+
+}  // namespace refracta
