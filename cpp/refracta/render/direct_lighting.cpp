@@ -15,8 +15,9 @@ double sqr(double x) { return x * x; }
 
 }  // namespace
 
-DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options)
-    : scene_(scene), caster_(caster), options_(options) {
+DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options,
+                               const LightVisibility* visibility)
+    : scene_(scene), caster_(caster), options_(options), visibility_(visibility ? *visibility : *this) {
   std::vector<double> power;
   for (const auto& light : scene.lights()) power.push_back(std::max(light->power(), 0.0));
   if (!power.empty()) select_ = PiecewiseConstant1D(power);
@@ -88,18 +89,23 @@ Spectrum DirectLighting::sample_lights(const SurfaceInteraction& si, const Surfa
   if (count == 0) return Spectrum::Zero();
   if (all_lights_) {
     Spectrum sum = Spectrum::Zero();
-    for (size_t i = 0; i < count; ++i) sum += sample_one(i, 1.0, si, bsdf, lambda, sampler.uniform2());
+    for (size_t i = 0; i < count; ++i) sum += sample_one(i, 1.0, si, bsdf, lambda, sampler.uniform2(), true);
     return sum;
   }
   size_t index;
   select_.sample(sampler.uniform(), nullptr, &index);
   const double pick = pick_probability(index);
   if (!(pick > 0.0)) return Spectrum::Zero();
-  return sample_one(index, pick, si, bsdf, lambda, sampler.uniform2());
+  return sample_one(index, pick, si, bsdf, lambda, sampler.uniform2(), true);
+}
+
+Spectrum DirectLighting::sample_light(size_t index, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
+                                      const SampledWavelengths& lambda, const Vec2d& u) const {
+  return sample_one(index, 1.0, si, bsdf, lambda, u, false);
 }
 
 Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
-                                    const SampledWavelengths& lambda, const Vec2d& u_light) const {
+                                    const SampledWavelengths& lambda, const Vec2d& u_light, bool mis) const {
   const Light& light = *scene_.lights()[index];
   LightSampleContext ctx;
   ctx.p = si.p;
@@ -112,45 +118,49 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
   const auto ls = light.sample_li(ctx, u_light, lambda);
   if (!ls || !(ls->pdf > 0.0) || !(ls->L.maxCoeff() > 0.0)) return Spectrum::Zero();
   double light_pdf = ls->pdf;
-  Spectrum L = ls->L;
   Vec3d wi = ls->wi;
   double jacobian = 1.0;
   // Launch the curved shadow ray toward a distant light so that it leaves along the sample.
   if (light.is_infinite()) wi = launch_toward(si.p, turned ? Vec3d(to_world.transpose() * ls->wi) : ls->wi, &jacobian);
   light_pdf *= jacobian;
-  // The BSDF first: a shadow ray (through curved air, the expensive part) only where it counts.
+  // The BSDF first: a shadow test (through curved air, the expensive part) only where it counts.
   const Spectrum f = bsdf.f(si.wo, wi) * std::abs(wi.dot(bsdf.frame.n));
   if (!(f.maxCoeff() > 0.0)) return Spectrum::Zero();
-  if (light.is_infinite()) {
+  const Spectrum L = visibility_.arriving(index, si, wi, *ls, lambda);
+  if (!(L.maxCoeff() > 0.0)) return Spectrum::Zero();
+  const double pdf = pick * light_pdf;
+  if (!mis || light.is_delta()) return f * L / pdf;
+  const double weight = power_heuristic(1, pdf, 1, bsdf.pdf(si.wo, wi));
+  return f * L * (weight / pdf);
+}
+
+Spectrum DirectLighting::arriving(size_t light, const SurfaceInteraction& si, const Vec3d& wi, const LightLiSample& ls,
+                                  const SampledWavelengths& lambda) const {
+  const Light& source = *scene_.lights()[light];
+  if (source.is_infinite()) {
     if (caster_.curved()) {
       const PathEnd end = caster_.cast(si.offset_toward(wi), wi);
       if (end.hit) return Spectrum::Zero();
-      L = light.Le(end.direction, lambda);  // along the exit direction
-      L *= sqr(caster_.ior(si.p) / distant_ior(si.p, end.direction));  // basic radiance L / n^2 is conserved (Ament et al. 2014)
-    } else if (caster_.scene().occluded(si.offset_toward(wi), wi, 1e7)) {
-      return Spectrum::Zero();
+      // Along the exit direction; basic radiance L / n^2 is conserved (Ament et al. 2014).
+      return source.Le(end.direction, lambda) * sqr(caster_.ior(si.p) / distant_ior(si.p, end.direction));
     }
-  } else {
-    // Aim the shadow ray from the offset point at the light point itself: a ray parallel to wi
-    // from the offset origin would meet the light's surface up to offset / cos short of
-    // |p_light - from| and count the light as its own blocker (a Diffuse floor 1 m under a quad
-    // light lost 21% of its irradiance, most of it at grazing angles). Stop short of the light by
-    // kShadowEpsilon of the length (float hit precision at grazing incidence).
-    const Vec3d from = si.offset_toward(wi);
-    const Vec3d to_light = ls->p_light - from;
-    const double length = to_light.norm();
-    if (length > 0.0 && caster_.occluded_straight(from, to_light / length, length * (1.0 - kShadowEpsilon))) {
-      return Spectrum::Zero();
-    }
-    if (const AerialPerspective* air = scene_.aerial_perspective()) {
-      L *= air->transmittance(si.p, ls->p_light, caster_.air_frame(), lambda);
-    }
+    return caster_.scene().occluded(si.offset_toward(wi), wi, 1e7) ? Spectrum::Zero() : ls.L;
   }
-  if (!(L.maxCoeff() > 0.0)) return Spectrum::Zero();
-  const double pdf = pick * light_pdf;
-  if (light.is_delta()) return f * L / pdf;
-  const double weight = power_heuristic(1, pdf, 1, bsdf.pdf(si.wo, wi));
-  return f * L * (weight / pdf);
+  // Aim the shadow ray from the offset point at the light point itself: a ray parallel to wi
+  // from the offset origin would meet the light's surface up to offset / cos short of
+  // |p_light - from| and count the light as its own blocker (a Diffuse floor 1 m under a quad
+  // light lost 21% of its irradiance, most of it at grazing angles). Stop short of the light by
+  // kShadowEpsilon of the length (float hit precision at grazing incidence).
+  const Vec3d from = si.offset_toward(wi);
+  const Vec3d to_light = ls.p_light - from;
+  const double length = to_light.norm();
+  if (length > 0.0 && caster_.occluded_straight(from, to_light / length, length * (1.0 - kShadowEpsilon))) {
+    return Spectrum::Zero();
+  }
+  if (const AerialPerspective* air = scene_.aerial_perspective()) {
+    return ls.L * air->transmittance(si.p, ls.p_light, caster_.air_frame(), lambda);
+  }
+  return ls.L;
 }
 
 Spectrum DirectLighting::escaped(const PathEnd& end, const Vec3d& launch_dir, const SurfaceInteraction* from,

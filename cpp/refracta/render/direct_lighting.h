@@ -23,6 +23,7 @@
 #include "refracta/core/sampling.h"
 #include "refracta/core/spectrum.h"
 #include "refracta/render/caster.h"
+#include "refracta/render/light_visibility.h"
 #include "refracta/render/render_options.h"
 #include "refracta/render/render_scene.h"
 #include "refracta/shading/bsdf.h"
@@ -32,15 +33,33 @@
 
 namespace refracta {
 
-class DirectLighting {
+// The light evaluation, and (as a LightVisibility) the ray renderers' shadow rays through the
+// caster; another visibility (render_raster's shadow maps) may stand in for them.
+class DirectLighting : public LightVisibility {
  public:
-  DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options);
+  // visibility: how light samples are tested (kept by reference, must outlive this); null: this
+  // object's own shadow rays (arriving below).
+  DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options,
+                 const LightVisibility* visibility = nullptr);
+  DirectLighting(const DirectLighting&) = delete;  // it may be its own visibility: not copied
+  DirectLighting& operator=(const DirectLighting&) = delete;
 
   // NEE at si with `bsdf`: f L |cos| / pdf of light samples, MIS-weighted against BSDF sampling
   // for non-delta lights. 'path' samples one light chosen in proportion to power; 'direct' one
   // sample of every light (less noise where a few lights matter, as a sun and its sky).
   Spectrum sample_lights(const SurfaceInteraction& si, const SurfaceBsdf& bsdf, const SampledWavelengths& lambda,
                          Sampler& sampler) const;
+  // One sample (u) of light `index` at si: f L |cos| / pdf, every light taken with certainty and
+  // without MIS, for a renderer that evaluates each light by its own samples and never meets
+  // lights by BSDF sampling (render_raster).
+  Spectrum sample_light(size_t index, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
+                        const SampledWavelengths& lambda, const Vec2d& u) const;
+
+  // The shadow rays: toward a distant light a curved (or straight) ray through the caster, the
+  // light seen along its exit direction; to a finite light a straight segment, dimmed by the
+  // aerial perspective.
+  Spectrum arriving(size_t light, const SurfaceInteraction& si, const Vec3d& wi, const LightLiSample& ls,
+                    const SampledWavelengths& lambda) const override;
 
   // Radiance of the infinite lights seen at the end of an escaped path, MIS-weighted against
   // light sampling from `from` (bsdf_pdf: density of the launch direction; specular: no MIS).
@@ -56,8 +75,9 @@ class DirectLighting {
 
  private:
   double pick_probability(size_t light) const { return all_lights_ ? 1.0 : select_.cell_probability(light); }
+  // mis: weighted against BSDF sampling (power heuristic) unless the light is delta.
   Spectrum sample_one(size_t index, double pick, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
-                      const SampledWavelengths& lambda, const Vec2d& u) const;
+                      const SampledWavelengths& lambda, const Vec2d& u, bool mis) const;
   // Pre-bending in height-only fields: the launch direction at p whose curved path leaves along
   // `exit`, and the density factor |d omega_exit / d omega_launch|.
   Vec3d launch_toward(const Vec3d& p, const Vec3d& exit, double* jacobian) const;
@@ -70,6 +90,7 @@ class DirectLighting {
   const RenderScene& scene_;
   const Caster& caster_;
   const RenderOptions& options_;
+  const LightVisibility& visibility_;
   PiecewiseConstant1D select_;  // light choice in proportion to power
   bool pre_bend_ = false;
   bool spherical_ = false;  // CurvedEarth: distant lights are turned into each point's frame
