@@ -1,19 +1,24 @@
 """Options objects from keywords: one rule for every public function that takes a bound C++
-options class (its defaults live in the C++ struct initialisers; Python writes none).
+options class (its defaults live in the C++ struct initialisers; Python writes none). The rule is
+C++'s (bindings/options_binding.h, set_options_fields), the one trace_ray, trace_rays,
+ElevationTable and render_raster use:
 
     settings = build(_core.SolveSettings, max_iterations=40)           # from the defaults
     settings = build(_core.SolveSettings, given, time_limit=10.0)      # a copy of `given`, changed
 
-A keyword that is not a field raises TypeError naming it and listing the fields; a value of the
-wrong type raises ValueError naming the field; validate() runs last and lists every bad value.
+A keyword that is not a field raises ValueError naming the caller and listing the fields; None
+leaves a field that takes no None at its default; a float equal to a whole number sets an integer
+field (2.5 raises "must be a whole number"); a value of the wrong type raises ValueError naming
+the field; validate() runs last and lists every bad value.
 """
 
 from __future__ import annotations
 
-import numbers
 import warnings
 from collections.abc import Iterable, Mapping
 from typing import Any, TypeVar
+
+from refracta import _core
 
 T = TypeVar("T")
 
@@ -23,67 +28,11 @@ def fields(cls: type) -> tuple[str, ...]:
     return tuple(name for name in dir(cls) if not name.startswith("_") and isinstance(getattr(cls, name), property))
 
 
-def _owner(cls: type, where: str | None) -> str:
-    return where or cls.__name__
-
-
-def _set(options: Any, name: str, value: Any, owner: str) -> None:
-    try:
-        setattr(options, name, value)
-        return
-    except TypeError:
-        pass
-    current = getattr(options, name)
-    # A whole number given as a float (max_iterations=200.0) sets an integer field; 2.5 does not.
-    if (
-        isinstance(current, int)
-        and not isinstance(current, bool)
-        and isinstance(value, numbers.Real)
-        and not isinstance(value, bool)
-        and float(value).is_integer()
-    ):
-        setattr(options, name, int(float(value)))
-        return
-    kind = (
-        "a whole number"
-        if isinstance(current, int) and not isinstance(current, bool)
-        else ("True or False" if isinstance(current, bool) else f"a {type(current).__name__}")
-    )
-    raise ValueError(f"{owner}: {name} must be {kind} (got {value!r})") from None
-
-
 def build(cls: type[T], options: T | None = None, *, where: str | None = None, **kw: Any) -> T:
     """A `cls` (a bound options class) from `options` (copied; None: the defaults) with the
-    keywords set, validated. `where` names the caller in messages (default: the class name).
-
-    None for a field that does not take None leaves it at its value (the default): the keyword
-    was left unset, as public signatures write `x=None`."""
-    owner = _owner(cls, where)
-    if options is None:
-        result = cls()
-    elif isinstance(options, cls):
-        result = cls()
-        for name in fields(cls):
-            setattr(result, name, getattr(options, name))
-    else:
-        raise TypeError(f"{owner}: expected a refracta.{cls.__name__} (got {type(options).__name__})")
-    valid = fields(cls)
-    unknown = [name for name in kw if name not in valid]
-    if unknown:
-        raise TypeError(
-            f"{owner}: unknown keyword{'s' if len(unknown) > 1 else ''} "
-            f"{', '.join(repr(n) for n in unknown)} (valid: {', '.join(valid)})"
-        )
-    for name, value in kw.items():
-        if value is None and getattr(result, name) is not None:
-            try:
-                setattr(result, name, None)
-            except TypeError:
-                continue  # left at its default
-            continue
-        _set(result, name, value, owner)
-    result.validate()  # type: ignore[attr-defined]
-    return result
+    keywords set, validated (C++'s rule, above). `where` names the caller in messages (default:
+    the class name)."""
+    return _core._build_options(cls, options, where or cls.__name__, kw)
 
 
 def split(kw: dict[str, Any], *classes: type) -> list[dict[str, Any]]:
@@ -110,10 +59,10 @@ def renamed(kw: dict[str, Any], aliases: Mapping[str, str], where: str, stacklev
 
 
 def unknown(kw: Iterable[str], where: str, valid: Iterable[str]) -> None:
-    """TypeError naming keywords no options class took, listing the valid ones."""
+    """ValueError naming keywords no options class took, listing the valid ones (as build's)."""
     names = list(kw)
     if names:
-        raise TypeError(
-            f"{where}: unknown keyword{'s' if len(names) > 1 else ''} "
-            f"{', '.join(repr(n) for n in names)} (valid: {', '.join(sorted(valid))})"
+        raise ValueError(
+            f"{where}: unknown option{'s' if len(names) > 1 else ''} "
+            f"{', '.join(repr(n) for n in names)} (options: {', '.join(sorted(valid))})"
         )

@@ -84,14 +84,20 @@ def trace_rays(
         raise ValueError(
             f"origins and directions must have matching shapes (N, 3); got {origins.shape} and {directions.shape}"
         )
-    points, dirs, lengths, stops, evaluations = _core._trace_batch(
-        field, np.ascontiguousarray(origins), np.ascontiguousarray(directions), options, progress, **fields
+    return _batch(
+        *_core._trace_batch(
+            field, np.ascontiguousarray(origins), np.ascontiguousarray(directions), options, progress, **fields
+        )
     )
+
+
+def _batch(points, directions, lengths, stops, evaluations) -> RayBatch:
+    """A RayBatch of the C++ batch's arrays (stops as TraceStop numbers)."""
     names = np.array(_core._stop_names)
-    return RayBatch(points, dirs, lengths, names[stops.astype(np.int64)], evaluations.astype(np.int64))
+    return RayBatch(points, directions, lengths, names[stops.astype(np.int64)], evaluations.astype(np.int64))
 
 
-class ElevationTable:
+class ElevationTable(_core._ElevationTable):
     """Paths by launch elevation from one eye height in a height-only field.
 
     Every ray launched with the same elevation from the same height follows the same path in its
@@ -103,9 +109,11 @@ class ElevationTable:
 
     ``ElevationTable(field, eye_height, min_elevation, max_elevation, options=None, progress=False,
     **fields)``: the eye is at (0, eye_height, 0); elevations and azimuths are in degrees, azimuth
-    measured from +x toward +z. options: a :class:`refracta.ElevationTableOptions` (None: its
-    defaults); any of its fields, or of its ``trace`` options (max_length, stop_height, step), may
-    be given as keywords. Pickles as its arguments (the table is rebuilt where it is unpickled).
+    measured from +x toward +z (the C++ table's radians are converted once, in its binding).
+    options: a :class:`refracta.ElevationTableOptions` (None: its defaults); any of its fields, or
+    of its ``trace`` options (max_length, stop_height, step), may be given as keywords. Its
+    properties (options, tol, eye_height, size, evaluations, exact_intervals, elevations [deg]) are
+    the C++ table's. Pickles as its arguments (the table is rebuilt where it is unpickled).
     """
 
     def __init__(
@@ -119,51 +127,15 @@ class ElevationTable:
         progress: bool | Callable[[int, int], None] = False,
         **fields,
     ):
-        self._table = _core._ElevationTable(
-            field, eye_height, min_elevation, max_elevation, options, progress, **fields
-        )
+        super().__init__(field, eye_height, min_elevation, max_elevation, options, progress, **fields)
         # What pickling rebuilds the table from (the build is deterministic: the copy is identical).
-        self._arguments = (field, eye_height, min_elevation, max_elevation, self._table.options)
+        self._arguments = (field, eye_height, min_elevation, max_elevation, self.options)
         self.field = field
-        self.eye_height = eye_height
-
-    @property
-    def options(self) -> _core.ElevationTableOptions:
-        """The options the table was built with (a copy)."""
-        return self._table.options
-
-    @property
-    def tol(self) -> float:
-        """The interpolation tolerance [m]."""
-        return self._table.options.tol
-
-    @property
-    def size(self) -> int:
-        """Number of exactly traced elevations."""
-        return self._table.size
-
-    @property
-    def evaluations(self) -> int:
-        """Field evaluations spent building the table."""
-        return self._table.evaluations
-
-    @property
-    def exact_intervals(self) -> int:
-        """Elevation intervals where queries are traced exactly (unresolved kind changes)."""
-        return self._table.exact_intervals
-
-    @property
-    def elevations(self) -> np.ndarray:
-        """The traced elevations [deg]."""
-        return self._table.elevations
 
     def ends(self, elevations, azimuths=0.0) -> RayBatch:
         """Ends of the rays launched at ``elevations`` [deg] (and ``azimuths`` [deg])."""
-        points, dirs, lengths, stops = self._table.ends(
-            np.asarray(elevations, dtype=np.float64).ravel(), np.asarray(azimuths, dtype=np.float64).ravel()
-        )
-        names = np.array(_core._stop_names)
-        return RayBatch(points, dirs, lengths, names[stops.astype(np.int64)], np.zeros(len(lengths), np.int64))
+        flat = (np.asarray(values, dtype=np.float64).ravel() for values in (elevations, azimuths))
+        return _batch(*self._ends(*flat))
 
     def __reduce__(self):
         """Pickled as its constructor's arguments; unpickling rebuilds the same table."""

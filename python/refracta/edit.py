@@ -36,6 +36,7 @@ Units: metres (scene units for LogisticProfile); cost is 1/2 sum weight * miss^2
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Callable
@@ -508,12 +509,13 @@ def load_pairs(
 
         {"pairs": [{"destination": [u, v] or [x, y, z], "source": [x, y, z] or {"pixel": [u, v]},
                     "weight": 1.0, "margin": 0.0}, ...],
-         "free": ["surface_dt"], "backend": "ceres", "ground": 0.0}      # optional solve() options
+         "free": ["surface_dt"], "backend": "ceres", "stop_height": 0.0}  # optional solve() options
 
     A source given as a pixel is the scene point the camera sees there without atmosphere
-    (camera.pick), so `scene` and `camera` are needed for it. The file's "ground" (the format's
-    name for it) is returned as solve()'s stop_height. Raises refracta.IoError for a missing file
-    and ValueError naming the file and the pair for anything malformed.
+    (camera.pick), so `scene` and `camera` are needed for it. The key "ground" is the deprecated
+    spelling of "stop_height" (read for one release, with a DeprecationWarning). Raises
+    refracta.IoError for a missing file and ValueError naming the file and the pair for anything
+    malformed.
     """
     import json
     import stat
@@ -555,9 +557,12 @@ def load_pairs(
             pairs.append(PointPair(entry["destination"], source, entry.get("weight", 1.0), entry.get("margin", 0.0)))
         except ValueError as error:
             raise ValueError(f"{where}: {error}") from None
-    options = {_FILE_KEYS.get(k, k): v for k, v in data.items() if k != "pairs"}
+    options = {k: v for k, v in data.items() if k != "pairs"}
+    if "ground" in options:
+        if "stop_height" in options:
+            raise ValueError(f'{path}: give "stop_height" only ("ground" is its deprecated spelling)')
+        warnings.warn(
+            f'{path}: the key "ground" is deprecated; call it "stop_height"', DeprecationWarning, stacklevel=2
+        )
+        options["stop_height"] = options.pop("ground")
     return pairs, options
-
-
-# Keys of a pairs file whose solve() keyword is named otherwise.
-_FILE_KEYS = {"ground": "stop_height"}

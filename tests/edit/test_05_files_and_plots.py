@@ -51,7 +51,7 @@ def test_cli_edit_writes_the_solved_scene(tmp_path):
         )
         entries.append({"destination": [48.0, v], "source": list(source)})
     pairs_path = tmp_path / "pairs.json"
-    pairs_path.write_text(json.dumps({"pairs": entries, "free": ["surface_dt"], "ground": 0.0}))
+    pairs_path.write_text(json.dumps({"pairs": entries, "free": ["surface_dt"], "stop_height": 0.0}))
     start_scene = tmp_path / "start.toml"
     start_scene.write_text(with_atmosphere((DATA / "hot_road.toml").read_text(), truth.with_params(surface_dt=6.0)))
     out = tmp_path / "solved.toml"

@@ -63,7 +63,7 @@ def test_options_pickle_through_their_fields():
 
 
 def test_build_names_unknown_keywords_and_bad_values():
-    with pytest.raises(TypeError, match=r"unknown keyword 'max_iteration' \(valid: .*max_iterations"):
+    with pytest.raises(ValueError, match=r"unknown option 'max_iteration' \(options: .*max_iterations"):
         _options.build(SolveSettings, max_iteration=3)
     with pytest.raises(ValueError, match="max_iterations must be a whole number"):
         _options.build(SolveSettings, max_iterations=2.5)
@@ -73,7 +73,7 @@ def test_build_names_unknown_keywords_and_bad_values():
 
 
 def test_solve_refuses_an_unknown_keyword_naming_it():
-    with pytest.raises(TypeError, match="unknown keyword 'max_iteration'"):
+    with pytest.raises(ValueError, match="unknown option 'max_iteration'"):
         solve(refracta.LinearSquaredProfile(), EYE, [PAIR], free="alpha", max_iteration=3)
 
 
@@ -162,3 +162,16 @@ def test_the_result_forwards_the_summary_and_pickles():
     copy = pickle.loads(pickle.dumps(result))
     assert copy.stages == result.stages and np.array_equal(copy.history, result.history)
     assert copy.settings.max_iterations == result.settings.max_iterations
+
+
+def test_one_keyword_rule_for_the_bindings_and_python():
+    """_options.build is the bindings' rule (options_from): unknown names, whole numbers given as
+    floats and a wrong options class raise ValueError naming the caller, for every options class."""
+    field = refracta.PhysicalAtmosphere()
+    with pytest.raises(ValueError, match="trace_rays: max_steps must be a whole number"):
+        refracta.trace_rays(field, [0, 1.5, 0], [[1, 0, 0]], max_steps=2.5)
+    assert _options.build(refracta.TraceOptions, max_steps=1000.0).max_steps == 1000
+    with pytest.raises(ValueError, match=r"PairOptions: unknown option 'tolerance' \(options: .*tol"):
+        _options.build(PairOptions, tolerance=1e-3)
+    with pytest.raises(ValueError, match="options must be a refracta.PairOptions or None"):
+        _options.build(PairOptions, SolveSettings())

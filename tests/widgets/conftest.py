@@ -28,7 +28,7 @@ def make_model(road):
 
     def make(**kwargs):
         kwargs.setdefault("free", ["surface_dt"])
-        kwargs.setdefault("ground", 0.0)
+        kwargs.setdefault("stop_height", 0.0)
         kwargs.setdefault("max_length", road.max_length)
         kwargs.setdefault("autorender", False)
         model = EditorModel(road.scene, road.camera, road.field, **kwargs)

@@ -35,7 +35,9 @@ def scene_file(tmp_path):
 def file_model(scene_file):
     path, _ = scene_file
     scene, camera, field = refracta.load_scene(path)
-    model = EditorModel(scene, camera, field, ["surface_dt"], ground=0.0, scene_text=path.read_text(), autorender=False)
+    model = EditorModel(
+        scene, camera, field, ["surface_dt"], stop_height=0.0, scene_text=path.read_text(), autorender=False
+    )
     yield model
     model.close()
 
@@ -47,7 +49,7 @@ def test_exported_pairs_read_back_with_weight_margin_and_options(file_model, tmp
     path = model.export_pairs(tmp_path / "pairs.json")
     pairs, options = load_pairs(path)
     assert pairs == list(model.pairs)
-    assert options == {"free": ["surface_dt"], "stop_height": 0.0}  # the file's "ground", as solve() names it
+    assert options == {"free": ["surface_dt"], "stop_height": 0.0}
     assert json.loads(path.read_text())["pairs"][0]["margin"] == 0.75
 
 
@@ -86,7 +88,7 @@ def test_imported_pairs_and_scene_replace_the_editor_state_undoably(file_model, 
             {
                 "pairs": [{"destination": [48, 16], "source": {"pixel": [60, 18]}, "weight": 3.0, "margin": 1.0}],
                 "free": ["surface_depth"],
-                "ground": 0.0,
+                "stop_height": 0.0,
             }
         )
     )
@@ -124,3 +126,21 @@ def test_file_errors_name_the_file(file_model, tmp_path):
         file_model.import_pairs(bad)
     with pytest.raises(refracta.IoError, match="no_such_folder"):
         file_model.export_pairs(tmp_path / "no_such_folder" / "pairs.json")
+
+
+def test_ground_is_the_deprecated_spelling_of_stop_height(make_model, tmp_path):
+    """Issue 22 item 3: stop_height is the name; ground= and the pairs file's "ground" still work for
+    one release, each with a DeprecationWarning naming the new name."""
+    with pytest.warns(DeprecationWarning, match="ground= is deprecated; call it stop_height="):
+        model = make_model(stop_height=None, ground=-1.0)
+    assert model.stop_height == -1.0
+    with pytest.raises(ValueError, match="pass stop_height= only"):
+        make_model(ground=-1.0)  # make_model gives stop_height=0.0 as well
+    pairs_path = tmp_path / "old.json"
+    pairs_path.write_text(json.dumps({"pairs": [{"destination": [1, 2, 3], "source": [4, 5, 6]}], "ground": 0.5}))
+    with pytest.warns(DeprecationWarning, match='"ground" is deprecated; call it "stop_height"'):
+        _, options = load_pairs(pairs_path)
+    assert options == {"stop_height": 0.5}
+    pairs_path.write_text(json.dumps({"pairs": [], "ground": 0.5, "stop_height": 0.5}))
+    with pytest.raises(ValueError, match='give "stop_height" only'):
+        load_pairs(pairs_path)

@@ -16,7 +16,7 @@ WAIT = 120.0  # [s] bound on waiting for background work
 @pytest.fixture
 def editor(road):
     editor = MirageEditor(
-        road.scene, road.camera, road.field, free=["surface_dt"], ground=0.0, max_length=road.max_length
+        road.scene, road.camera, road.field, free=["surface_dt"], stop_height=0.0, max_length=road.max_length
     )
     yield editor
     editor.close()
@@ -155,7 +155,7 @@ def test_an_editor_from_a_scene_file_exports_the_whole_file(tmp_path):
     data = Path(__file__).resolve().parent.parent / "data"
     for name in ("hot_road.toml", "tent.obj", "tent.mtl"):
         shutil.copy(data / name, tmp_path / name)
-    editor = MirageEditor.from_file(tmp_path / "hot_road.toml", free=["surface_dt"], ground=0.0)
+    editor = MirageEditor.from_file(tmp_path / "hot_road.toml", free=["surface_dt"], stop_height=0.0)
     try:
         editor.model.wheel(1.0)
         path = editor.export_scene(tmp_path / "edited.toml")

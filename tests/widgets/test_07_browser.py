@@ -38,7 +38,7 @@ from refracta import examples
 from refracta.widgets import MirageEditor
 
 road = examples.hot_road({WIDTH}, {HEIGHT})
-editor = MirageEditor(road.scene, road.camera, road.field, free=["surface_dt", "surface_depth"], ground=0.0,
+editor = MirageEditor(road.scene, road.camera, road.field, free=["surface_dt", "surface_depth"], stop_height=0.0,
                       max_length=road.max_length)
 editor
 """

@@ -42,7 +42,9 @@ def make_spot_model(road):
     made = []
 
     def make(field, camera=road.camera):
-        made.append(EditorModel(road.scene, camera, field, ground=0.0, max_length=road.max_length, autorender=False))
+        made.append(
+            EditorModel(road.scene, camera, field, stop_height=0.0, max_length=road.max_length, autorender=False)
+        )
         return made[-1]
 
     yield make
@@ -135,7 +137,7 @@ def test_the_view_lists_the_spots_and_their_toggles_free_their_parameters(road):
     from refracta.widgets import MirageEditor
 
     editor = MirageEditor(
-        road.scene, road.camera, spotted(road), free=["surface_dt"], ground=0.0, max_length=road.max_length
+        road.scene, road.camera, spotted(road), free=["surface_dt"], stop_height=0.0, max_length=road.max_length
     )
     try:
         assert editor._canvas.spots == editor.model.spot_outlines()

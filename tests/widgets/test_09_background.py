@@ -38,7 +38,7 @@ def test_the_photograph_is_the_image_to_click_on(road):
         road.camera,
         road.field,
         free=["surface_dt"],
-        ground=0.0,
+        stop_height=0.0,
         max_length=road.max_length,
         background=photograph,
     )

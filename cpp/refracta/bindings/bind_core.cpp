@@ -1,8 +1,8 @@
-// Exceptions shared by all bindings (the array conversions: convert.cpp).
+// Exceptions, running work and the options rule shared by all bindings (the array conversions:
+// convert.cpp).
 #include "refracta/bindings/bindings.h"
+#include "refracta/bindings/options_binding.h"
 #include "refracta/bindings/running_work.h"
-
-#include <cmath>
 
 namespace refracta {
 
@@ -20,6 +20,13 @@ void bind_core(py::module_& m) {
   m.def("_cancel_thread_work", &cancel_thread_work, py::arg("thread_ids"),
         "Cancels the refracta calls of the given Python threads (threading.get_ident()): those running "
         "and those they start until _end_thread_cancel; returns how many were running.");
+  m.def(
+      "_build_options",
+      [](const py::type& cls, const py::object& options, const std::string& owner, const py::dict& fields) {
+        return build_options(cls, options, fields, owner.c_str());
+      },
+      py::arg("cls"), py::arg("options"), py::arg("owner"), py::arg("fields"),
+      "A validated copy of options (a cls, or None) with fields set: refracta._options.build's rule.");
   m.def("_end_thread_cancel", &end_thread_cancel, py::arg("thread_id"),
         "Lets the thread's refracta calls run again after _cancel_thread_work.");
 }

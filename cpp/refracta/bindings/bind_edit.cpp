@@ -6,6 +6,8 @@
 #include "refracta/bindings/options_binding.h"
 #include "refracta/edit/solve.h"
 
+#include <pybind11/eigen.h>
+
 #include <functional>
 #include <optional>
 
@@ -13,51 +15,20 @@ namespace refracta {
 
 namespace {
 
-// pixels: per pair, its destination pixel (u, v) of the edit's camera, or NaN for a 3D destination
-// (None: no pixels).
-std::vector<PointPair> make_pairs(const py::object& origins, const py::object& directions,
-                                  const py::object& sources, const py::object& weights = py::none(),
-                                  const py::object& margins = py::none(), const py::object& tolerances = py::none(),
-                                  const py::object& pixels = py::none()) {
-  const std::vector<Vec3d> o = to_points(origins, "eye positions");
-  const std::vector<Vec3d> d = to_points(directions, "destination directions");
-  const std::vector<Vec3d> s = to_points(sources, "sources");
-  auto per_pair = [&](const py::object& values, double otherwise, const char* what) {
-    return values.is_none() ? std::vector<double>(o.size(), otherwise) : to_values(values, what);
-  };
-  const std::vector<double> w = per_pair(weights, 1.0, "weights"), margin = per_pair(margins, 0.0, "margins"),
-                            tolerance = per_pair(tolerances, 0.0, "tolerances");
-  if (o.size() != d.size() || o.size() != s.size() || o.size() != w.size() || o.size() != margin.size() ||
-      o.size() != tolerance.size()) {
-    throw_invalid("one eye, direction, source, weight, margin and tolerance per pair (got ", o.size(), ", ",
-                  d.size(), ", ", s.size(), ", ", w.size(), ", ", margin.size(), ", ", tolerance.size(), ")");
-  }
-  std::vector<PointPair> pairs(o.size());
-  for (size_t i = 0; i < o.size(); ++i) pairs[i] = {o[i], d[i], s[i], w[i], margin[i], tolerance[i], std::nullopt};
-  if (!pixels.is_none()) {
-    const auto uv = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(pixels);
-    if (uv.ndim() != 2 || uv.shape(1) != 2 || size_t(uv.shape(0)) != o.size()) {
-      throw_invalid("pixels must be an (N, 2) array, one (u, v) or NaN row per pair (got ", uv.ndim(), " dimensions, ",
-                    uv.ndim() > 0 ? uv.shape(0) : 0, " rows for ", o.size(), " pairs)");
-    }
-    for (size_t i = 0; i < o.size(); ++i) {
-      const double u = uv.at(py::ssize_t(i), 0), v = uv.at(py::ssize_t(i), 1);
-      if (!std::isnan(u) || !std::isnan(v)) pairs[i].pixel = Eigen::Vector2d(u, v);
-    }
-  }
-  return pairs;
+using Values = std::optional<std::vector<double>>;  // per pair (None: the library's default)
+
+std::vector<PointPair> make_pairs(const py::object& origins, const py::object& directions, const py::object& sources,
+                                  const Values& weights = {}, const Values& margins = {},
+                                  const Values& tolerances = {}, const std::optional<PixelRows>& pixels = {}) {
+  return make_point_pairs(to_points(origins, "eye positions"), to_points(directions, "destination directions"),
+                          to_points(sources, "sources"), weights.value_or(std::vector<double>()),
+                          margins.value_or(std::vector<double>()), tolerances.value_or(std::vector<double>()),
+                          pixels.value_or(PixelRows()));
 }
 
 FieldPtr checked(const std::shared_ptr<IndexField>& field) {
   if (!field) throw_invalid("field must be an IndexField (got None)");
   return field;
-}
-
-Derivatives parse_derivatives(const std::string& name, const IndexField& field) {
-  if (name == "automatic") return Derivatives::kAutomatic;
-  if (name == "numeric") return Derivatives::kNumeric;
-  if (name == "auto") return has_templated_model(field) ? Derivatives::kAutomatic : Derivatives::kNumeric;
-  throw_invalid("derivatives must be 'auto', 'automatic' or 'numeric' (got '", name, "')");
 }
 
 ProblemSpec make_spec(const std::shared_ptr<IndexField>& field, const std::vector<std::string>& free,
@@ -237,11 +208,10 @@ void bind_edit(py::module_& m) {
 
   m.def("_solve_edit",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
-           const py::object& sources, const py::object& weights, const py::object& margins,
-           const py::object& tolerances, const std::vector<std::string>& free,
-           const std::map<std::string, std::pair<double, double>>& bounds, const std::string& derivatives,
-           const PairOptions& pair_options, const SolveSettings& settings, const py::object& progress,
-           const std::optional<Camera>& camera, const py::object& pixels) {
+           const py::object& sources, const Values& weights, const Values& margins, const Values& tolerances,
+           const std::vector<std::string>& free, const std::map<std::string, std::pair<double, double>>& bounds,
+           const std::string& derivatives, const PairOptions& pair_options, const SolveSettings& settings,
+           const py::object& progress, const std::optional<Camera>& camera, const std::optional<PixelRows>& pixels) {
           ProblemSpec spec = make_spec(field, free, derivatives, pair_options, camera);
           spec.bounds = bounds;
           const std::vector<PointPair> pairs =
@@ -296,39 +266,21 @@ void bind_edit(py::module_& m) {
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"), py::arg("options"),
         "Each pair's path, traced by PairOptions' rule for it (what its miss is measured on).");
 
-  m.def("_pair_jacobian",
-        [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
-           const py::object& sources, const py::object& weights, const py::object& margins,
-           const std::vector<std::string>& free, const std::string& derivatives, const PairOptions& options,
-           const std::optional<Camera>& camera, const py::object& pixels) {
-          ProblemSpec spec = make_spec(field, free, derivatives, options, camera);
-          // Bounds are irrelevant here: open them so any start is accepted (camera parameters: as
-          // wide as their map allows).
-          for (const auto& name : free) {
-            if (const int k = CameraRig::index_of(name); k >= 0) {
-              spec.bounds[name] = CameraRig::widest_bounds(k);
-            } else {
-              spec.bounds[name] = {-1e300, 1e300};
-            }
-          }
-          EditProblem problem(field, make_pairs(origins, directions, sources, weights, margins, py::none(), pixels),
-                              spec, nullptr);
-          std::vector<double> r, jacobian;
-          bool ok;
-          {
-            py::gil_scoped_release release;
-            ok = problem.evaluate(problem.start(), &r, &jacobian);
-          }
-          if (!ok) throw_numerical("evaluation failed: ", problem.context().first_failure());
-          const py::ssize_t rows = problem.num_residuals(), cols = problem.num_free();
-          DoubleArray residuals(rows), jac({rows, cols});
-          std::copy(r.begin(), r.end(), residuals.mutable_data());
-          std::copy(jacobian.begin(), jacobian.end(), jac.mutable_data());
-          return py::make_tuple(residuals, jac, problem.free_names());
-        },
-        py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"), py::kw_only(),
-        py::arg("weights"), py::arg("margins"), py::arg("free"), py::arg("derivatives"), py::arg("options"),
-        py::arg("camera") = py::none(), py::arg("pixels") = py::none());
+  m.def(
+      "_pair_jacobian",
+      [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
+         const py::object& sources, const Values& weights, const Values& margins, const std::vector<std::string>& free,
+         const std::string& derivatives, const PairOptions& options, const std::optional<Camera>& camera,
+         const std::optional<PixelRows>& pixels) {
+        const ProblemSpec spec = make_spec(field, free, derivatives, options, camera);
+        std::vector<PointPair> pairs = make_pairs(origins, directions, sources, weights, margins, {}, pixels);
+        py::gil_scoped_release release;  // the tuple below holds C++ values: converted after the GIL is back
+        const PairJacobian out = pair_jacobian(field, std::move(pairs), spec);
+        return std::make_tuple(out.residuals, out.jacobian, out.free);
+      },
+      py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"), py::kw_only(),
+      py::arg("weights"), py::arg("margins"), py::arg("free"), py::arg("derivatives"), py::arg("options"),
+      py::arg("camera") = py::none(), py::arg("pixels") = py::none());
 }
 
 }  // namespace refracta

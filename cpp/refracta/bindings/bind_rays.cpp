@@ -6,6 +6,8 @@
 #include "refracta/rays/elevation_table.h"
 #include "refracta/rays/trace.h"
 
+#include <pybind11/eigen.h>
+
 #include <optional>
 
 namespace refracta {
@@ -46,18 +48,11 @@ const IndexField& checked_field(const std::shared_ptr<IndexField>& field) {
   return *field;
 }
 
-template <class Get>
-DoubleArray node_vectors(const RayPath& path, Get get) {
-  std::vector<Vec3d> out;
-  for (const auto& node : path.nodes()) out.push_back(get(node));
-  return points_to_array(out);
-}
-
-template <class Get>
-DoubleArray node_values(const RayPath& path, Get get) {
-  std::vector<double> out;
-  for (const auto& node : path.nodes()) out.push_back(get(node));
-  return values_to_array(out);
+// A batch's ends as numpy arrays (points, directions, lengths, stops, evaluations); _rays.py
+// makes the RayBatch.
+py::tuple ends_tuple(const RayBatchEnds& ends) {
+  return py::make_tuple(points_to_array(ends.points), points_to_array(ends.directions), values_to_array(ends.lengths),
+                        py::array(py::cast(ends.stops)), py::array(py::cast(ends.evaluations)));
 }
 
 void bind_ray_path(py::module_& m) {
@@ -68,84 +63,52 @@ quintic Hermite interpolant of positions, tangents and curvatures, accurate to O
 points (N,3) [m]; directions (N,3) unit tangents; arc_length (N,) [m]; ior (N,) n at each node;
 ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max_length',
 'stop_height'); evaluations: field evaluations used.)doc")
-      .def_property_readonly("points", [](const RayPath& p) { return node_vectors(p, [](const RayNode<double>& n) { return n.x; }); })
-      .def_property_readonly("directions", [](const RayPath& p) {
-        return node_vectors(p, [](const RayNode<double>& n) { return Vec3d(n.v.normalized()); });
-      })
-      .def_property_readonly("ray_vectors", [](const RayPath& p) { return node_vectors(p, [](const RayNode<double>& n) { return n.v; }); })
-      .def_property_readonly("arc_length", [](const RayPath& p) { return node_values(p, [](const RayNode<double>& n) { return n.s; }); })
-      .def_property_readonly("ior", [](const RayPath& p) { return node_values(p, [](const RayNode<double>& n) { return n.n; }); })
+      .def_property_readonly("points", [](const RayPath& p) { return points_to_array(p.points()); })
+      .def_property_readonly("directions", [](const RayPath& p) { return points_to_array(p.directions()); })
+      .def_property_readonly("ray_vectors", [](const RayPath& p) { return points_to_array(p.ray_vectors()); })
+      .def_property_readonly("arc_length", [](const RayPath& p) { return values_to_array(p.arc_lengths()); })
+      .def_property_readonly("ior", [](const RayPath& p) { return values_to_array(p.iors()); })
       .def_property_readonly("length", &RayPath::length, "Arc length of the whole path [m].")
       .def_property_readonly("stop", [](const RayPath& p) { return std::string(trace_stop_name(p.stop())); })
       .def_property_readonly("evaluations", &RayPath::evaluations)
       .def("__len__", [](const RayPath& p) { return p.nodes().size(); })
-      // Pickled as its nodes (s, x, v, n, grad n: 11 numbers each, (N, 11) float64), stop and
-      // evaluation count; the copy answers every query exactly as the original.
-      .def(py::pickle(
-          [](const RayPath& p) {
-            DoubleArray nodes({py::ssize_t(p.nodes().size()), py::ssize_t(11)});
-            double* d = nodes.mutable_data();
-            for (const auto& n : p.nodes()) {
-              const double row[11] = {n.s, n.x.x(), n.x.y(), n.x.z(), n.v.x(), n.v.y(), n.v.z(), n.n, n.grad.x(), n.grad.y(), n.grad.z()};
-              d = std::copy(row, row + 11, d);
-            }
-            return py::make_tuple(nodes, int(p.stop()), p.evaluations());
+      // Pickled as its nodes (s, x, v, n, grad n: (N, 11) float64), stop and evaluation count; the
+      // copy answers every query exactly as the original.
+      .def(py::pickle([](const RayPath& p) { return std::make_tuple(p.packed(), int(p.stop()), p.evaluations()); },
+                      [](const std::tuple<RayPath::PackedNodes, int, int64_t>& state) {
+                        const auto& [nodes, stop, evaluations] = state;
+                        return std::make_shared<RayPath>(RayPath::unpacked(nodes, stop, evaluations));
+                      }))
+      .def(
+          "point_at",
+          [](const RayPath& p, double s) {
+            Vec3d direction;
+            const Vec3d x = p.point_at(s, &direction);
+            return std::make_tuple(x, direction);
           },
-          [](const py::tuple& state) {
-            if (state.size() != 3) throw_invalid("RayPath: bad pickle state");
-            const DoubleArray nodes = py::cast<DoubleArray>(state[0]);
-            if (nodes.ndim() != 2 || nodes.shape(1) != 11 || nodes.shape(0) < 1) throw_invalid("RayPath: bad pickle state (nodes)");
-            const int stop = py::cast<int>(state[1]);
-            if (stop < 0 || stop > int(TraceStop::kVisitor)) throw_invalid("RayPath: bad pickle state (stop ", stop, ")");
-            std::vector<RayNode<double>> out(size_t(nodes.shape(0)));
-            for (size_t i = 0; i < out.size(); ++i) {
-              const double* r = nodes.data() + 11 * i;
-              out[i] = RayNode<double>{r[0], Vec3d(r[1], r[2], r[3]), Vec3d(r[4], r[5], r[6]), r[7], Vec3d(r[8], r[9], r[10])};
-            }
-            return std::make_shared<RayPath>(std::move(out), TraceStop(stop), py::cast<int64_t>(state[2]));
-          }))
-      .def("point_at",
-           [](const RayPath& p, double s) {
-             Vec3d direction;
-             const Vec3d x = p.point_at(s, &direction);
-             return py::make_tuple(points_to_array({x}).reshape({py::ssize_t(3)}),
-                                   points_to_array({direction}).reshape({py::ssize_t(3)}));
-           },
-           py::arg("s"), "(point, unit tangent) at arc length s [m] on the continuous path.")
-      .def("sample",
-           [](const RayPath& p, int count) {
-             if (count < 2) throw_invalid("count must be >= 2 (got ", count, ")");
-             std::vector<Vec3d> points(count);
-             for (int i = 0; i < count; ++i) points[i] = p.point_at(p.length() * i / (count - 1));
-             return points_to_array(points);
-           },
-           py::arg("count") = 200, "count points (count, 3) evenly spaced in arc length on the continuous path.")
-      .def("closest_point",
-           [](const RayPath& p, const py::object& q) {
-             const ClosestPoint c = p.closest_point(to_point(q, "q"));
-             return py::make_tuple(points_to_array({c.point}).reshape({py::ssize_t(3)}), c.distance, c.s);
-           },
-           py::arg("q"),
-           "(point, distance, s): the point of the continuous path closest to q, its distance [m] "
-           "and its arc length [m].")
-      .def("at_height",
-           [](const RayPath& p, double y) {
-             std::vector<Vec3d> points;
-             for (const auto& c : p.crossings(Vec3d(0, 1, 0), y)) points.push_back(c.point);
-             return points_to_array(points);
-           },
-           py::arg("y"), "Every point where the path crosses height y [m], in path order, (K, 3).")
-      .def("crossings",
-           [](const RayPath& p, const py::object& normal, double offset) {
-             py::list out;
-             for (const auto& c : p.crossings(to_point(normal, "normal"), offset)) {
-               out.append(py::make_tuple(points_to_array({c.point}).reshape({py::ssize_t(3)}), c.s,
-                                         points_to_array({c.direction}).reshape({py::ssize_t(3)})));
-             }
-             return out;
-           },
-           py::arg("normal"), py::arg("offset"),
-           "Crossings of the plane normal . x = offset: a list of (point, s, unit direction).")
+          py::arg("s"), "(point, unit tangent) at arc length s [m] on the continuous path.")
+      .def("sample", [](const RayPath& p, int count) { return points_to_array(p.sample(count)); }, py::arg("count") = 200,
+           "count points (count, 3) evenly spaced in arc length on the continuous path.")
+      .def(
+          "closest_point",
+          [](const RayPath& p, const py::object& q) {
+            const ClosestPoint c = p.closest_point(to_point(q, "q"));
+            return std::make_tuple(c.point, c.distance, c.s);
+          },
+          py::arg("q"),
+          "(point, distance, s): the point of the continuous path closest to q, its distance [m] "
+          "and its arc length [m].")
+      .def("at_height", [](const RayPath& p, double y) { return points_to_array(p.at_height(y)); }, py::arg("y"),
+           "Every point where the path crosses height y [m], in path order, (K, 3).")
+      .def(
+          "crossings",
+          [](const RayPath& p, const py::object& normal, double offset) {
+            std::vector<std::tuple<Vec3d, double, Vec3d>> out;
+            for (const auto& c : p.crossings(to_point(normal, "normal"), offset)) out.emplace_back(c.point, c.s, c.direction);
+            return out;
+          },
+          py::arg("normal"), py::arg("offset"),
+          "Crossings of the plane normal . x = offset: a list of (point, s, unit direction).")
       .def("__repr__", [](const RayPath& p) {
         return concat("RayPath(nodes=", p.nodes().size(), ", length=", p.length(), " m, stop='",
                       trace_stop_name(p.stop()), "')");
@@ -222,27 +185,19 @@ as keywords (trace, tol, step, max_length, stop_height, max_steps, ior_floor), e
 refused up front), refracta.NumericalError where n <= 0 or is not finite; Ctrl-C
 (KeyboardInterrupt) stops it.)doc");
 
-  m.def("_astronomical_refraction",
-        [](const std::shared_ptr<IndexField>& field, const py::object& elevations, double eye_height, double top,
-           double earth_radius, double tol) {
-          const FieldPtr f = field;
-          AstronomicalRefractionOptions options;
-          options.eye_height = eye_height;
-          options.top = top;
-          options.earth_radius = earth_radius;
-          options.tol = tol;
-          options.validate();
-          const std::vector<double> e = to_values(elevations, "apparent elevations");
-          std::vector<double> out(e.size());
-          WorkControl control;
-          run_interruptible(control, py::none(), [&] {
-            parallel_for_each(int64_t(e.size()), 1, control,
-                              [&](int64_t i) { out[i] = astronomical_refraction(f, e[i], options); });
-          });
-          return values_to_array(out);
-        },
-        py::arg("field"), py::arg("elevations"), py::arg("eye_height"), py::arg("top"), py::arg("earth_radius"),
-        py::arg("tol"), "Refraction [rad] at apparent elevations [rad] (refracta.astronomical_refraction).");
+  m.def(
+      "_astronomical_refraction",
+      [](const std::shared_ptr<IndexField>& field, const py::object& elevations, double eye_height, double top,
+         double earth_radius, double tol) {
+        const AstronomicalRefractionOptions options{eye_height, top, earth_radius, tol};
+        const std::vector<double> e = to_values(elevations, "apparent elevations");
+        WorkControl control;
+        std::vector<double> out;
+        run_interruptible(control, py::none(), [&] { out = astronomical_refraction(field, e, options, control); });
+        return values_to_array(out);
+      },
+      py::arg("field"), py::arg("elevations"), py::arg("eye_height"), py::arg("top"), py::arg("earth_radius"),
+      py::arg("tol"), "Refraction [rad] at apparent elevations [rad] (refracta.astronomical_refraction).");
 
   m.def("_trace_batch",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
@@ -256,11 +211,7 @@ refused up front), refracta.NumericalError where n <= 0 or is not finite; Ctrl-C
           RayBatchEnds ends;
           run_interruptible(control, progress_callback(progress, "tracing rays"),
                             [&] { ends = trace_batch(f, o, d, checked, control); });
-          std::vector<double> stops(ends.stops.begin(), ends.stops.end());
-          std::vector<double> evaluations(ends.evaluations.begin(), ends.evaluations.end());
-          return py::make_tuple(points_to_array(ends.points), points_to_array(ends.directions),
-                                values_to_array(ends.lengths), values_to_array(stops),
-                                values_to_array(evaluations));
+          return ends_tuple(ends);
         },
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("options"), py::arg("progress"));
   m.attr("_stop_names") = py::make_tuple(trace_stop_name(TraceStop::kMaxLength),
@@ -268,6 +219,18 @@ refused up front), refracta.NumericalError where n <= 0 or is not finite; Ctrl-C
                                          trace_stop_name(TraceStop::kVisitor));
 }
 
+std::vector<double> radians(std::vector<double> values) {
+  for (double& value : values) value = degrees_to_radians(value);
+  return values;
+}
+
+std::vector<double> degrees(std::vector<double> values) {
+  for (double& value : values) value = value * 180.0 / kPi;
+  return values;
+}
+
+// The Python class ElevationTable (python/refracta/_rays.py) derives from this one: its unit for
+// elevations and azimuths is the degree, converted here, the library's being the radian.
 void bind_elevation_table(py::module_& m) {
   py::class_<ElevationTable, std::shared_ptr<ElevationTable>>(m, "_ElevationTable")
       .def(py::init([](const std::shared_ptr<IndexField>& field, double eye_height, double min_elevation,
@@ -286,45 +249,35 @@ void bind_elevation_table(py::module_& m) {
            }),
            py::arg("field"), py::arg("eye_height"), py::arg("min_elevation"), py::arg("max_elevation"),
            py::arg("options"), py::arg("progress"))
-      .def("ends",
-           [](const ElevationTable& table, const py::object& elevations, const py::object& azimuths) {
-             const std::vector<double> e = to_values(elevations, "elevations");
-             std::vector<double> a = to_values(azimuths, "azimuths");
-             if (a.size() == 1 && e.size() != 1) a.assign(e.size(), a[0]);
-             if (a.size() != e.size()) {
-               throw_invalid("azimuths must be one value or one per elevation (", a.size(), " vs ", e.size(), ")");
-             }
-             std::vector<Vec3d> points(e.size()), directions(e.size());
-             std::vector<double> lengths(e.size()), stops(e.size());
-             {
-               py::gil_scoped_release release;
-               WorkControl control;
-               parallel_for_each(int64_t(e.size()), 64, control, [&](int64_t i) {
-                 const TableRayEnd end = table.end(degrees_to_radians(e[i]), degrees_to_radians(a[i]));
-                 points[i] = end.point;
-                 directions[i] = end.direction;
-                 lengths[i] = end.length;
-                 stops[i] = double(int(end.stop));
-               });
-             }
-             return py::make_tuple(points_to_array(points), points_to_array(directions),
-                                   values_to_array(lengths), values_to_array(stops));
-           },
-           py::arg("elevations"), py::arg("azimuths"))
-      .def_property_readonly("options", [](const ElevationTable& t) {
-        ElevationTableOptions options = t.options();
-        options.trace.cancel = nullptr;
-        options.trace.ior_floor.reset();  // found by the table from its field
-        return options;
-      })
-      .def_property_readonly("size", &ElevationTable::size)
-      .def_property_readonly("evaluations", &ElevationTable::evaluations)
-      .def_property_readonly("exact_intervals", &ElevationTable::exact_intervals)
-      .def_property_readonly("elevations", [](const ElevationTable& t) {
-        std::vector<double> deg;
-        for (double e : t.elevations()) deg.push_back(e * 180.0 / kPi);
-        return values_to_array(deg);
-      });
+      .def(
+          "_ends",
+          [](const ElevationTable& table, const py::object& elevations, const py::object& azimuths) {
+            const std::vector<double> e = radians(to_values(elevations, "elevations"));
+            const std::vector<double> a = radians(to_values(azimuths, "azimuths"));
+            WorkControl control;
+            RayBatchEnds ends;
+            run_interruptible(control, py::none(), [&] { ends = table.ends(e, a, control); });
+            return ends_tuple(ends);
+          },
+          py::arg("elevations"), py::arg("azimuths"), "(points, directions, lengths, stops, evaluations) [deg].")
+      .def_property_readonly(
+          "options",
+          [](const ElevationTable& t) {
+            ElevationTableOptions options = t.options();
+            options.trace.cancel = nullptr;
+            options.trace.ior_floor.reset();  // found by the table from its field
+            return options;
+          },
+          "The options the table was built with (a copy).")
+      .def_property_readonly("tol", [](const ElevationTable& t) { return t.options().tol; }, "The interpolation tolerance [m].")
+      .def_property_readonly("eye_height", [](const ElevationTable& t) { return t.options().eye_height; }, "[m]")
+      .def_property_readonly("size", &ElevationTable::size, "Number of exactly traced elevations.")
+      .def_property_readonly("evaluations", &ElevationTable::evaluations, "Field evaluations spent building the table.")
+      .def_property_readonly("exact_intervals", &ElevationTable::exact_intervals,
+                             "Elevation intervals where queries are traced exactly (unresolved kind changes).")
+      .def_property_readonly(
+          "elevations", [](const ElevationTable& t) { return values_to_array(degrees(t.elevations())); },
+          "The traced elevations [deg].");
 }
 
 }  // namespace

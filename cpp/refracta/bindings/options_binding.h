@@ -14,23 +14,30 @@ py::dict options_fields(const py::object& self);
 // "name=value, ..." of those fields (for __repr__).
 std::string options_repr(const py::object& self);
 
-// Sets each keyword on `options` (a bound options object), in order. A keyword that is not one of
-// its fields goes to the nested options object `nested` (its attribute of that name, e.g. an
-// ElevationTableOptions' `trace`) when that has it; any other name raises ValueError naming
-// `owner` and listing the fields. A value the field refuses (wrong type) raises ValueError too,
-// except None, which leaves a field that takes no None at its value (python/refracta/_options.py's
-// rule: public signatures write x=None for "unset").
+// The package's one keyword -> options rule (options_from below, and refracta._options.build for
+// Python callers): sets each keyword on `options` (a bound options object), in order. A keyword
+// that is not one of its fields goes to the nested options object `nested` (its attribute of that
+// name, e.g. an ElevationTableOptions' `trace`) when that has it; any other name raises ValueError
+// naming `owner` and listing the fields. None leaves a field that takes no None at its value
+// (public signatures write x=None for "unset"); a float equal to a whole number sets an integer
+// field (40.0 is 40; 2.5 raises "must be a whole number"); any other value the field refuses
+// raises ValueError naming the field.
 void set_options_fields(const py::object& options, const py::dict& fields, const char* owner,
                         const char* nested = nullptr);
 
+// A copy of `options` (an instance of the bound options class `cls`, or None for its defaults)
+// with `fields` set by set_options_fields, validated: options_from for a class known only in
+// Python (bound as _core._build_options).
+py::object build_options(const py::type& cls, const py::object& options, const py::dict& fields, const char* owner);
+
 // A copy of `options` (an Options, or None for the defaults) with `fields` set, validated.
+// ValueError unless `options` is None or an instance of `cls`.
+void check_options_type(const py::handle& cls, const py::object& options, const char* owner);
+
 template <class Options>
 Options options_from(const py::object& options, const py::dict& fields, const char* owner,
                      const char* nested = nullptr) {
-  if (!options.is_none() && !py::isinstance<Options>(options)) {
-    throw_invalid(owner, ": options must be a refracta.", py::cast<std::string>(py::type::of<Options>().attr("__name__")),
-                  " or None (got ", py::cast<std::string>(py::str(py::type::handle_of(options).attr("__name__"))), ")");
-  }
+  check_options_type(py::type::of<Options>(), options, owner);
   py::object copy = py::cast(options.is_none() ? Options() : py::cast<Options>(options));
   set_options_fields(copy, fields, owner, nested);
   Options out = py::cast<Options>(copy);

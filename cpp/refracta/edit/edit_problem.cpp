@@ -253,4 +253,21 @@ std::vector<double> EditProblem::distances(const std::vector<double>& x) const {
   return pair_distances(*field_at(x), pairs_at(x), options_);
 }
 
+PairJacobian pair_jacobian(const FieldPtr& field, std::vector<PointPair> pairs, ProblemSpec spec) {
+  for (const auto& name : spec.free) {
+    const int k = CameraRig::index_of(name);
+    spec.bounds[name] = k >= 0 ? CameraRig::widest_bounds(k) : std::pair<double, double>(-1e300, 1e300);
+  }
+  const EditProblem problem(field, std::move(pairs), spec, nullptr);
+  std::vector<double> r, jacobian;
+  if (!problem.evaluate(problem.start(), &r, &jacobian)) {
+    throw_numerical("evaluation failed: ", problem.context().first_failure());
+  }
+  PairJacobian out;
+  out.residuals = Eigen::Map<const Eigen::VectorXd>(r.data(), Eigen::Index(r.size()));
+  out.jacobian = Eigen::Map<const decltype(out.jacobian)>(jacobian.data(), problem.num_residuals(), problem.num_free());
+  out.free = problem.free_names();
+  return out;
+}
+
 }  // namespace refracta

@@ -115,4 +115,14 @@ class EditProblem {
   std::vector<std::unique_ptr<ceres::CostFunction>> costs_;
 };
 
+// The weighted residuals (3 per pair) and their Jacobian in the free parameters at the spec's
+// start, for sensitivity studies: the spec's bounds are opened (camera parameters as wide as
+// their map allows) so any start is accepted. Throws NumericalError when an evaluation fails.
+struct PairJacobian {
+  Eigen::VectorXd residuals;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jacobian;  // (3 pairs, free)
+  std::vector<std::string> free;
+};
+PairJacobian pair_jacobian(const FieldPtr& field, std::vector<PointPair> pairs, ProblemSpec spec);
+
 }  // namespace refracta

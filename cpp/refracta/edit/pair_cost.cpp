@@ -180,6 +180,13 @@ bool has_templated_model(const IndexField& field) {
   return visit_templated_model(field, [](auto, const auto&, bool) {});
 }
 
+Derivatives parse_derivatives(const std::string& name, const IndexField& field) {
+  if (name == "automatic") return Derivatives::kAutomatic;
+  if (name == "numeric") return Derivatives::kNumeric;
+  if (name == "auto") return has_templated_model(field) ? Derivatives::kAutomatic : Derivatives::kNumeric;
+  throw_invalid("derivatives must be 'auto', 'automatic' or 'numeric' (got '", name, "')");
+}
+
 std::vector<std::unique_ptr<ceres::CostFunction>> make_pair_costs(
     const FieldPtr& field, const std::vector<double>& values, const std::vector<int>& free,
     const std::vector<PointPair>& pairs, const PairOptions& options, Derivatives derivatives,

@@ -11,6 +11,7 @@
 #include "refracta/media/index_field.h"
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace ceres {
@@ -24,6 +25,8 @@ const char* derivatives_name(Derivatives derivatives);  // "automatic", "numeric
 
 // True when the field can be differentiated automatically.
 bool has_templated_model(const IndexField& field);
+// "automatic", "numeric", or "auto" (automatic when `field` has a templated model, else numeric).
+Derivatives parse_derivatives(const std::string& name, const IndexField& field);
 
 // values: every parameter of the field, then, with a camera rig, its CameraRig::kCount values (the
 // fixed ones stay at these values); free: indices into values of the parameters in the block.

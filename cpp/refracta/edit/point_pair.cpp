@@ -74,4 +74,31 @@ void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& opti
   }
 }
 
+std::vector<PointPair> make_point_pairs(const std::vector<Vec3d>& origins, const std::vector<Vec3d>& directions,
+                                        const std::vector<Vec3d>& sources, std::vector<double> weights,
+                                        std::vector<double> margins, std::vector<double> tolerances,
+                                        const PixelRows& pixels) {
+  const size_t n = origins.size();
+  if (weights.empty()) weights.assign(n, 1.0);
+  if (margins.empty()) margins.assign(n, 0.0);
+  if (tolerances.empty()) tolerances.assign(n, 0.0);
+  if (directions.size() != n || sources.size() != n || weights.size() != n || margins.size() != n ||
+      tolerances.size() != n) {
+    throw_invalid("one eye, direction, source, weight, margin and tolerance per pair (got ", n, ", ",
+                  directions.size(), ", ", sources.size(), ", ", weights.size(), ", ", margins.size(), ", ",
+                  tolerances.size(), ")");
+  }
+  if (pixels.rows() != 0 && size_t(pixels.rows()) != n) {
+    throw_invalid("pixels must be one (u, v) or NaN row per pair (got ", pixels.rows(), " rows for ", n, " pairs)");
+  }
+  std::vector<PointPair> pairs(n);
+  for (size_t i = 0; i < n; ++i) {
+    pairs[i] = {origins[i], directions[i], sources[i], weights[i], margins[i], tolerances[i], std::nullopt};
+    if (pixels.rows() == 0) continue;
+    const Eigen::Vector2d uv = pixels.row(Eigen::Index(i)).transpose();
+    if (!uv.array().isNaN().all()) pairs[i].pixel = uv;
+  }
+  return pairs;
+}
+
 }  // namespace refracta

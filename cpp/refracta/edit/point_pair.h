@@ -67,4 +67,13 @@ const char* pair_distance_name(PairDistance distance);
 // weight <= 0, margin < 0, source at the eye, eye below the ground, a non-finite pixel).
 void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& options);
 
+// Pairs from per-pair arrays (the Python boundary's shape): weights, margins and tolerances empty
+// for 1, 0 and 0; pixels no rows for none, else one (u, v) per pair, NaN for a 3D destination.
+// Throws std::invalid_argument when the counts differ.
+using PixelRows = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;
+std::vector<PointPair> make_point_pairs(const std::vector<Vec3d>& origins, const std::vector<Vec3d>& directions,
+                                        const std::vector<Vec3d>& sources, std::vector<double> weights = {},
+                                        std::vector<double> margins = {}, std::vector<double> tolerances = {},
+                                        const PixelRows& pixels = PixelRows());
+
 }  // namespace refracta

@@ -79,4 +79,14 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
   return apparent_elevation - (elevation_at_top - central_angle);
 }
 
+std::vector<double> astronomical_refraction(const FieldPtr& field, const std::vector<double>& apparent_elevations,
+                                            const AstronomicalRefractionOptions& options, WorkControl& control) {
+  options.validate();
+  std::vector<double> out(apparent_elevations.size());
+  parallel_for_each(int64_t(out.size()), 1, control, [&](int64_t i) {
+    out[size_t(i)] = astronomical_refraction(field, apparent_elevations[size_t(i)], options);
+  });
+  return out;
+}
+
 }  // namespace refracta

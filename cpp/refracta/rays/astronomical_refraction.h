@@ -10,7 +10,10 @@
 // (tests/rays/test_astronomical_refraction.py).
 #pragma once
 
+#include "refracta/core/parallel.h"
 #include "refracta/media/index_field.h"
+
+#include <vector>
 
 namespace refracta {
 
@@ -31,5 +34,8 @@ struct AstronomicalRefractionOptions {
 // or a ray that meets the ground (h = 0) before it leaves the air.
 double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
                                const AstronomicalRefractionOptions& options);
+// The same at many apparent elevations [rad], in parallel; options validated first.
+std::vector<double> astronomical_refraction(const FieldPtr& field, const std::vector<double>& apparent_elevations,
+                                            const AstronomicalRefractionOptions& options, WorkControl& control);
 
 }  // namespace refracta

@@ -362,4 +362,23 @@ TableRayEnd ElevationTable::end(double elevation, double azimuth) const {
   return {Vec3d(p.r * ca, p.h, p.r * sa), Vec3d(p.cos_e * ca, p.sin_e, p.cos_e * sa), p.s, p.stop};
 }
 
+RayBatchEnds ElevationTable::ends(const std::vector<double>& elevations, std::vector<double> azimuths,
+                                  WorkControl& control) const {
+  const size_t count = elevations.size();
+  if (azimuths.size() == 1 && count != 1) azimuths.assign(count, azimuths[0]);
+  if (azimuths.size() != count) {
+    throw_invalid("azimuths must be one value or one per elevation (", azimuths.size(), " vs ", count, ")");
+  }
+  RayBatchEnds out{std::vector<Vec3d>(count), std::vector<Vec3d>(count), std::vector<double>(count),
+                   std::vector<int>(count), std::vector<int64_t>(count, 0)};
+  parallel_for_each(int64_t(count), 64, control, [&](int64_t i) {
+    const TableRayEnd e = end(elevations[size_t(i)], azimuths[size_t(i)]);
+    out.points[size_t(i)] = e.point;
+    out.directions[size_t(i)] = e.direction;
+    out.lengths[size_t(i)] = e.length;
+    out.stops[size_t(i)] = int(e.stop);
+  });
+  return out;
+}
+
 }  // namespace refracta

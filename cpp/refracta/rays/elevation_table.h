@@ -11,6 +11,7 @@
 #include "refracta/core/parallel.h"
 #include "refracta/media/index_field.h"
 #include "refracta/rays/ray_path.h"
+#include "refracta/rays/trace.h"
 #include "refracta/rays/trace_options.h"
 
 #include <atomic>
@@ -62,6 +63,9 @@ class ElevationTable {
   PlaneState end(double elevation) const;
   // The same end at `azimuth` [rad] from +x toward +z, in 3-D.
   TableRayEnd end(double elevation, double azimuth) const;
+  // The ends of many rays [rad] in parallel: azimuths one per elevation, or one for all (no
+  // field evaluations: `evaluations` are 0). Throws std::invalid_argument for mismatched counts.
+  RayBatchEnds ends(const std::vector<double>& elevations, std::vector<double> azimuths, WorkControl& control) const;
   // Point at arc length s [m] (clamped to the path's length) of the path launched at `elevation`.
   PlaneState at(double elevation, double s) const;
   // The whole path launched at `elevation`, in the vertical plane z = 0 with the eye at

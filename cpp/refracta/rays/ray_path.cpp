@@ -93,4 +93,70 @@ std::vector<Crossing> RayPath::crossings(const Vec3d& normal, double offset) con
   return out;
 }
 
+std::vector<Vec3d> RayPath::at_height(double y) const {
+  std::vector<Vec3d> out;
+  for (const Crossing& c : crossings(Vec3d::UnitY(), y)) out.push_back(c.point);
+  return out;
+}
+
+std::vector<Vec3d> RayPath::sample(int count) const {
+  if (count < 2) throw_invalid("count must be >= 2 (got ", count, ")");
+  std::vector<Vec3d> out(static_cast<size_t>(count));
+  for (int i = 0; i < count; ++i) out[size_t(i)] = point_at(length() * i / (count - 1));
+  return out;
+}
+
+namespace {
+
+template <class Get>
+auto per_node(const std::vector<RayNode<double>>& nodes, Get get) {
+  std::vector<decltype(get(nodes[0]))> out;
+  out.reserve(nodes.size());
+  for (const auto& node : nodes) out.push_back(get(node));
+  return out;
+}
+
+}  // namespace
+
+std::vector<Vec3d> RayPath::points() const {
+  return per_node(nodes_, [](const RayNode<double>& n) { return n.x; });
+}
+
+std::vector<Vec3d> RayPath::directions() const {
+  return per_node(nodes_, [](const RayNode<double>& n) { return Vec3d(n.v.normalized()); });
+}
+
+std::vector<Vec3d> RayPath::ray_vectors() const {
+  return per_node(nodes_, [](const RayNode<double>& n) { return n.v; });
+}
+
+std::vector<double> RayPath::arc_lengths() const {
+  return per_node(nodes_, [](const RayNode<double>& n) { return n.s; });
+}
+
+std::vector<double> RayPath::iors() const {
+  return per_node(nodes_, [](const RayNode<double>& n) { return n.n; });
+}
+
+RayPath::PackedNodes RayPath::packed() const {
+  PackedNodes out(Eigen::Index(nodes_.size()), 11);
+  for (size_t i = 0; i < nodes_.size(); ++i) {
+    const RayNode<double>& n = nodes_[i];
+    out.row(Eigen::Index(i)) << n.s, n.x.transpose(), n.v.transpose(), n.n, n.grad.transpose();
+  }
+  return out;
+}
+
+RayPath RayPath::unpacked(const PackedNodes& rows, int stop, int64_t evaluations) {
+  if (rows.rows() < 1) throw_invalid("RayPath: bad pickle state (nodes)");
+  if (stop < 0 || stop > int(TraceStop::kVisitor)) throw_invalid("RayPath: bad pickle state (stop ", stop, ")");
+  std::vector<RayNode<double>> nodes(size_t(rows.rows()));
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const auto r = rows.row(Eigen::Index(i));
+    nodes[i] = RayNode<double>{r(0), r.segment<3>(1).transpose(), r.segment<3>(4).transpose(), r(7),
+                               r.segment<3>(8).transpose()};
+  }
+  return RayPath(std::move(nodes), TraceStop(stop), evaluations);
+}
+
 }  // namespace refracta

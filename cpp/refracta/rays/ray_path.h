@@ -35,6 +35,23 @@ class RayPath {
   ClosestPoint closest_point(const Vec3d& q) const;
   // Every crossing of the plane normal . x = offset, in path order.
   std::vector<Crossing> crossings(const Vec3d& normal, double offset) const;
+  // Every point where the path crosses height y [m] (the plane +y . x = y), in path order.
+  std::vector<Vec3d> at_height(double y) const;
+  // count >= 2 points evenly spaced in arc length on the continuous path.
+  std::vector<Vec3d> sample(int count) const;
+
+  // Per node: positions x, unit tangents v / |v|, ray vectors v, arc lengths s, indices n.
+  std::vector<Vec3d> points() const;
+  std::vector<Vec3d> directions() const;
+  std::vector<Vec3d> ray_vectors() const;
+  std::vector<double> arc_lengths() const;
+  std::vector<double> iors() const;
+
+  // The nodes as rows (s, x, v, n, grad n): what a copy is rebuilt from exactly (pickling);
+  // unpacked() refuses no rows or a bad stop reason.
+  using PackedNodes = Eigen::Matrix<double, Eigen::Dynamic, 11, Eigen::RowMajor>;
+  PackedNodes packed() const;
+  static RayPath unpacked(const PackedNodes& rows, int stop, int64_t evaluations);
 
  private:
   size_t segment_index(double s) const;

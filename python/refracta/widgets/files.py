@@ -6,7 +6,7 @@ with_camera).
 Pairs file::
 
     {"pairs": [{"destination": [u, v], "source": [x, y, z], "weight": 1.0, "margin": 0.0}, ...],
-     "free": ["surface_dt"], "ground": 0.0}        # solve() options, as `refracta edit` passes them
+     "free": ["surface_dt"], "stop_height": 0.0}   # solve() options, as `refracta edit` passes them
 
 Destinations are pixels of the scene file's camera, so the scene is written with the editor's
 camera: together the two files reproduce the edit with ``refracta edit scene.toml --pairs
@@ -27,7 +27,7 @@ __all__ = ["pairs_json", "scene_toml"]
 def pairs_json(pairs: Sequence, options: dict | None = None) -> str:
     """The pairs (refracta.edit.PointPair) and solve options as the JSON text load_pairs reads.
 
-    options: solve() keywords to store beside the pairs (free, ground, backend, ...); entries that
+    options: solve() keywords to store beside the pairs (free, stop_height, backend, ...); entries that
     are None are left out (solve's defaults apply)."""
     entries = []
     for pair in pairs:

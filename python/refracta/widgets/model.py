@@ -43,6 +43,7 @@ import io as _io
 import logging
 import math
 import threading
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -172,6 +173,16 @@ def _camera_names() -> tuple[str, ...]:
     return CAMERA_PARAMETERS
 
 
+def _deprecated_ground(ground: float | None, stop_height: float | None, where: str) -> float | None:
+    """stop_height, or the deprecated ground= (one release) with a DeprecationWarning naming it."""
+    if ground is None:
+        return stop_height
+    if stop_height is not None:
+        raise ValueError(f"{where}: pass stop_height= only (ground= is its deprecated spelling)")
+    warnings.warn(f"{where}: ground= is deprecated; call it stop_height=", DeprecationWarning, stacklevel=3)
+    return ground
+
+
 def ground_circle(
     camera: _core.Camera, centre_x: float, centre_z: float, radius: float, segments: int = SPOT_SEGMENTS
 ) -> list[tuple[float, float] | None]:
@@ -200,7 +211,8 @@ class EditorModel:
         scene, camera, field: what to edit: a refracta.Scene, the full-resolution refracta.Camera
             and the atmosphere (an IndexField with parameters, e.g. PhysicalAtmosphere).
         free: names of the field parameters a solve may change (None: solve()'s default).
-        ground: height [m] where the pairs' paths end on the ground (solve's ground; None: none).
+        stop_height: height [m] where the pairs' paths end on the ground (solve's stop_height;
+            None: none). ground= is its deprecated spelling (one release, with a DeprecationWarning).
         max_length: [m] rays end after this length in renders (None: RenderOptions' default).
         render_options: further refracta.render keywords (spp, transport, ...).
         solve_options: further refracta.edit.solve keywords (backend, accept_angle, ...).
@@ -222,7 +234,7 @@ class EditorModel:
         field: _core.IndexField,
         free: Sequence[str] | None = None,
         *,
-        ground: float | None = None,
+        stop_height: float | None = None,
         max_length: float | None = None,
         render_options: dict | None = None,
         solve_options: dict | None = None,
@@ -231,7 +243,9 @@ class EditorModel:
         preview_scale: int = 4,
         display: dict | None = None,
         autorender: bool = True,
+        ground: float | None = None,
     ):
+        stop_height = _deprecated_ground(ground, stop_height, "refracta.widgets")
         if not isinstance(scene, _core.Scene):
             raise ValueError(f"scene must be a refracta.Scene (got {type(scene).__name__})")
         if not isinstance(camera, _core.Camera):
@@ -246,7 +260,7 @@ class EditorModel:
         self.turbulence = turbulence
         self.free: tuple[str, ...] | None = None
         self.set_free(free)
-        self.ground = None if ground is None else _finite(ground, "ground")
+        self.stop_height = None if stop_height is None else _finite(stop_height, "stop_height")
         self.render_options = dict(render_options or {})
         if max_length is not None:
             self.render_options["max_length"] = _finite(max_length, "max_length")
@@ -776,8 +790,8 @@ class EditorModel:
         if not pairs:
             self.say("Add at least one pair first: click a scene point, then where its image should appear.", "error")
             return None
-        if self.ground is not None:
-            options["stop_height"] = self.ground
+        if self.stop_height is not None:
+            options["stop_height"] = self.stop_height
 
         def work(job: Job):
             result = edit.solve(
@@ -836,7 +850,7 @@ class EditorModel:
             k: v for k, v in self.solve_options.items() if isinstance(v, (str, int, float, bool, list))
         }
         options["free"] = list(self.free) if self.free else None
-        options["ground"] = self.ground
+        options["stop_height"] = self.stop_height
         return options
 
     def pairs_json(self) -> str:
@@ -866,16 +880,16 @@ class EditorModel:
 
     def import_pairs(self, path) -> None:
         """Replace the pairs by those of a pairs file (sources given as pixels are picked with the
-        editor's camera); its 'free' and 'ground' become the editor's. Undoable. Raises what
+        editor's camera); its 'free' and 'stop_height' become the editor's. Undoable. Raises what
         refracta.edit.load_pairs raises (IoError, ValueError naming the file and pair)."""
         from refracta.edit import load_pairs
 
         pairs, options = load_pairs(path, self.scene, self.camera)
         if "free" in options:
             self.set_free(options.pop("free"))
-        if "stop_height" in options:  # the file's "ground"
-            ground = options.pop("stop_height")
-            self.ground = None if ground is None else _finite(ground, "ground")
+        if "stop_height" in options:
+            stop_height = options.pop("stop_height")
+            self.stop_height = None if stop_height is None else _finite(stop_height, "stop_height")
         self.solve_options.update(options)
         self.set_pairs(pairs, label=f"load pairs from {Path(path).name}")
         self.say(f"Loaded {len(pairs)} pair(s) from {path}.", "success")

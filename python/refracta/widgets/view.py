@@ -58,7 +58,8 @@ class MirageEditor(w.VBox):
         scene, camera, field: the refracta.Scene, the full-resolution refracta.Camera and the
             atmosphere to edit.
         free: the parameters a solve may change (None: refracta.edit.solve's default).
-        ground: height [m] where the pairs' light paths end on the ground (None: none).
+        stop_height: height [m] where the pairs' light paths end on the ground (None: none);
+            ground= is its deprecated spelling (one release, with a DeprecationWarning).
         max_length: [m] rays end after this length in renders (None: the renderer's default).
         scale: display pixels per image pixel (None: the image is shown DISPLAY_WIDTH wide).
         background: a photograph to click on (see set_background), or None.
@@ -69,7 +70,7 @@ class MirageEditor(w.VBox):
 
         road = refracta.examples.hot_road(320, 120)
         editor = MirageEditor(road.scene, road.camera, road.field, free=["surface_dt", "surface_depth"],
-                              ground=0.0, max_length=road.max_length)
+                              stop_height=0.0, max_length=road.max_length)
         editor                          # in a notebook cell: shows it
     """
 
@@ -80,7 +81,7 @@ class MirageEditor(w.VBox):
         field: _core.IndexField,
         free: Sequence[str] | None = None,
         *,
-        ground: float | None = None,
+        stop_height: float | None = None,
         max_length: float | None = None,
         scale: float | None = None,
         background=None,
@@ -89,7 +90,7 @@ class MirageEditor(w.VBox):
         self._background: np.ndarray | None = None  # display values (H, W, 3) of the photograph
         self._background_mode = "edges"
         self.model = EditorModel(
-            scene, camera, field, free, ground=ground, max_length=max_length, autorender=False, **options
+            scene, camera, field, free, stop_height=stop_height, max_length=max_length, autorender=False, **options
         )
         self._scale = float(scale) if scale is not None else None
         self._syncing = False
