@@ -25,7 +25,7 @@ class HotSpot:
     __hash__: typing.ClassVar[None] = None
     def __eq__(self, arg0: HotSpot) -> bool:
         ...
-    def __getstate__(self) -> typing.Any:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, x: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex, radius: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, depth: typing.SupportsFloat | typing.SupportsIndex | None = None, footprint: str = 'gaussian') -> None:
         ...
@@ -177,13 +177,13 @@ class TurbulenceGrid:
     spacing [m]); axis 0 is x, 1 is y (up), 2 is z. Built by refracta.Turbulence; evaluate(points) gives
     the spline's values and gradients (for tests and plots).
     """
-    def __getstate__(self) -> typing.Any:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, coefficients: typing.Any, spacing: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
-    def evaluate(self, points: typing.Any) -> tuple:
+    def evaluate(self, points: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
         (values (N,), gradients (N, 3) [1/m]) at points (N, 3) [m].
         """
@@ -213,13 +213,13 @@ class TurbulenceLayer:
         """
         The layer of `settings` over `grid`: scaled by sqrt(cn2), carried by the wind to time [s].
         """
-    def __getstate__(self) -> typing.Any:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, grid: TurbulenceGrid, scale: typing.SupportsFloat | typing.SupportsIndex, offset: typing.Any, depth: typing.SupportsFloat | typing.SupportsIndex, yaw: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
-    def evaluate(self, points: typing.Any) -> tuple:
+    def evaluate(self, points: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
         (delta_n (N,), its gradient (N, 3) [1/m]) at points (N, 3) [m].
         """
@@ -331,7 +331,7 @@ class LogisticProfile(IndexField):
         a_hot [1] 1, [0.01, 100]: hot-spot width (logistic width 0.3 a_hot)
         k_s [1] 10, [-300, 300]: overall strength: n - 1 reaches 0.003 k_s
     """
-    def __getstate__(self) -> typing.Any:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, n_bg: float = 3.0, n_inv: float = 0.1, n_hot: float = 0.1, h_ciso: float = 1.0, a_bg: float = 1.0, a_inv: float = 1.0, a_hot: float = 1.0, k_s: float = 10.0, *, hot_spots: HotSpot | collections.abc.Sequence[HotSpot] | None = None, turbulence: typing.Any = None) -> None:
         """
@@ -357,7 +357,7 @@ class LinearSquaredProfile(IndexField):
         n0 [1] 1.00028, [0.5, 3]: index at y = 0
         alpha [1/m] 0, [-0.001, 0.001]: d(n^2)/dy
     """
-    def __getstate__(self) -> typing.Any:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, n0: float = 1.000277, alpha: float = 0.0) -> None:
         """
@@ -388,7 +388,7 @@ class PhysicalAtmosphere(IndexField):
         humidity [1] 0, [0, 1]: relative humidity
         wavelength [nm] 550, [380, 780]: vacuum wavelength
     """
-    def __getstate__(self) -> typing.Any:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, t_ground: float = 288.15, lapse_rate: float = 0.0065, pressure: float = 101325.0, inversion_dt: float = 0.0, inversion_base: float = 100.0, inversion_thickness: float = 10.0, surface_dt: float = 0.0, surface_depth: float = 0.1, humidity: float = 0.0, wavelength: float = 550.0, *, hot_spots: HotSpot | collections.abc.Sequence[HotSpot] | None = None, turbulence: typing.Any = None) -> None:
         """
@@ -421,7 +421,7 @@ class TemperatureProfile(IndexField):
     at the lowest height; n from the same air formula as PhysicalAtmosphere. The temperatures are the
     parameters t0, t1, ... (with pressure, humidity, wavelength).
     """
-    def __getstate__(self) -> typing.Any:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, heights: typing.Any, temperatures: typing.Any, pressure: typing.SupportsFloat | typing.SupportsIndex = 101325.0, humidity: typing.SupportsFloat | typing.SupportsIndex = 0.0, wavelength: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> None:
         ...
@@ -446,7 +446,7 @@ class CurvedEarth(IndexField):
     true_height(y') and flat_height(h) convert. Use it for anything seen over kilometres (horizons,
     looming, Fata Morgana).
     """
-    def __getstate__(self) -> typing.Any:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, base: IndexField, radius: typing.SupportsFloat | typing.SupportsIndex = 6371000.0) -> None:
         ...
@@ -472,7 +472,7 @@ class CustomField(IndexField):
     vectorised. height_only=True promises n depends on y alone (enables method='stratified').
     Slow: the integrators call back into Python at every evaluation.
     """
-    def __getstate__(self) -> typing.Any:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, ior: typing.Any, grad_ior: typing.Any, height_only: bool = False) -> None:
         ...

@@ -189,3 +189,18 @@ def test_a_sun_on_the_horizon_lights_a_scene_in_rgb_and_spectral():
         assert colour[2] < 0.0
     with pytest.raises(ValueError, match="wavelengths"):
         refracta.Scene().set_sun(sun, [1.0, 2.0], wavelengths=[500.0, 400.0])
+
+
+def test_pickle_state_round_trips_and_refuses_a_bad_below_horizon():
+    import pickle
+
+    sky = spectrum.PhysicalSky([0.0, 0.6, 0.8], aerosol=2.0, below_horizon="horizon")
+    copy = pickle.loads(pickle.dumps(sky))
+    assert repr(copy) == repr(sky)
+    np.testing.assert_array_equal(
+        copy.rgb_radiance(np.array([[0.0, 1.0, 0.0]])), sky.rgb_radiance(np.array([[0.0, 1.0, 0.0]]))
+    )
+    state = sky.__getstate__()
+    bad = spectrum.PhysicalSky.__new__(spectrum.PhysicalSky)
+    with pytest.raises(ValueError, match="below_horizon"):
+        bad.__setstate__((*state[:6], 7))

@@ -187,3 +187,20 @@ def test_bad_input_raises_value_error():
         spectrum.spectrum_to_rgb([500.0, 400.0], [1.0, 1.0])
     with pytest.raises(ValueError, match="kind"):
         spectrum.rgb_to_spectrum([0.5, 0.5, 0.5], LAM_1NM, kind="paint")
+
+
+def test_batch_functions_check_their_names_ranges_and_shapes():
+    # The checks of shading/spectrum_batch.cpp, reached through the wrappers.
+    with pytest.raises(ValueError, match="method must be 'fit' or 'table' \\(got 'paint'\\)"):
+        spectrum.rgb_to_spectrum([0.5, 0.5, 0.5], LAM_1NM, method="paint")
+    with pytest.raises(ValueError, match="method='table' serves reflectances only"):
+        spectrum.rgb_to_spectrum([0.5, 0.5, 0.5], LAM_1NM, kind="unbounded", method="table")
+    with pytest.raises(ValueError, match=r"rgb must be in \[0, 1\] for a reflectance \(got 1.5\)"):
+        spectrum.rgb_to_spectrum([1.5, 0.5, 0.5], LAM_1NM, method="table")
+    with pytest.raises(ValueError, match=r"u must be in \[0, 1\) \(got 1"):
+        spectrum.sample_wavelengths([0.5, 1.0])
+    lam, pdf = spectrum.sample_wavelengths([0.1, 0.2, 0.3])
+    with pytest.raises(ValueError, match="same shape"):
+        spectrum.to_linear_srgb(np.ones((2, 4)), lam, pdf)
+    with pytest.raises(ValueError, match="radiance must have shape"):
+        spectrum.to_linear_srgb(np.ones((3, 3)), lam, pdf)

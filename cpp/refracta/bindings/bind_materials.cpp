@@ -36,36 +36,9 @@ TexturedReflectance to_textured(const py::object& color, const char* name, const
 }
 
 Ior to_ior(const py::object& ior, const py::object& sellmeier) {
-  if (!sellmeier.is_none()) {
-    const std::vector<double> c = sellmeier.cast<std::vector<double>>();
-    if (c.size() != 6) throw_invalid("sellmeier must be (B1, B2, B3, C1, C2, C3) with C in um^2 (got ", c.size(), " values)");
-    return Ior::sellmeier({c[0], c[1], c[2]}, {c[3], c[4], c[5]});
-  }
-  if (py::isinstance<py::str>(ior)) {
-    const std::string name = ior.cast<std::string>();
-    if (name == "bk7" || name == "BK7") return Ior::bk7();
-    throw_invalid("ior must be a number, 'bk7' or given by sellmeier= (got '", name, "')");
-  }
-  return Ior(ior.cast<double>());
+  if (!sellmeier.is_none()) return Ior::sellmeier(sellmeier.cast<std::vector<double>>());
+  return py::isinstance<py::str>(ior) ? Ior::named(ior.cast<std::string>()) : Ior(ior.cast<double>());
 }
-
-// (alpha) or (alpha_u, alpha_v): exactly one form.
-std::pair<double, double> to_alphas(const py::object& alpha, const py::object& alpha_u, const py::object& alpha_v, bool required,
-                                    double fallback) {
-  const bool has_alpha = !alpha.is_none(), has_uv = !alpha_u.is_none() || !alpha_v.is_none();
-  if (has_alpha && has_uv) throw_invalid("give either alpha or alpha_u and alpha_v, not both");
-  if (has_uv) {
-    if (alpha_u.is_none() || alpha_v.is_none()) throw_invalid("alpha_u and alpha_v must be given together");
-    return {alpha_u.cast<double>(), alpha_v.cast<double>()};
-  }
-  if (!has_alpha) {
-    if (required) throw_invalid("alpha (or alpha_u and alpha_v) is required");
-    return {fallback, fallback};
-  }
-  const double a = alpha.cast<double>();
-  return {a, a};
-}
-
 
 py::tuple rgb_tuple(const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); }
 py::object optional_rgb_tuple(const std::optional<Vec3d>& v) { return v ? py::object(rgb_tuple(*v)) : py::object(py::none()); }
@@ -74,17 +47,12 @@ py::object texture_argument(const TexturedReflectance& r) {
   return r.texture() >= 0 ? py::object(py::int_(r.texture())) : py::object(py::none());
 }
 
-// ior= or sellmeier= as the constructors take them.
-void add_ior_arguments(py::dict& kwargs, const Ior& ior) {
-  if (ior.dispersive()) {
-    const auto& b = ior.sellmeier_b();
-    const auto& c = ior.sellmeier_c();
-    kwargs["sellmeier"] = py::make_tuple(b[0], b[1], b[2], c[0], c[1], c[2]);
-  } else {
-    kwargs["ior"] = ior.rgb_value();
-  }
+py::dict ior_arguments(const Ior& ior) {
+  if (!ior.dispersive()) return py::dict(py::arg("ior") = ior.rgb_value());
+  const auto& b = ior.sellmeier_b();
+  const auto& c = ior.sellmeier_c();
+  return py::dict(py::arg("sellmeier") = py::make_tuple(b[0], b[1], b[2], c[0], c[1], c[2]));
 }
-
 
 namespace {
 
@@ -102,8 +70,8 @@ void bind_dielectrics(py::module_& m) {
            }),
            py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0);
   add_parameters<Dielectric>(dielectric_class, [](const Dielectric& m) {
-    py::dict kwargs(py::arg("priority") = m.priority());
-    add_ior_arguments(kwargs, m.ior());
+    py::dict kwargs = ior_arguments(m.ior());
+    kwargs["priority"] = m.priority();
     return kwargs;
   });
 
@@ -111,16 +79,16 @@ void bind_dielectrics(py::module_& m) {
       m, "RoughDielectric",
       "Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.");
   rough_dielectric_class
-      .def(py::init([](const py::object& alpha, const py::object& ior, const py::object& sellmeier, int priority,
-                       const py::object& alpha_u, const py::object& alpha_v) {
-             const auto a = to_alphas(alpha, alpha_u, alpha_v, true, 0.0);
+      .def(py::init([](std::optional<double> alpha, const py::object& ior, const py::object& sellmeier, int priority,
+                       std::optional<double> alpha_u, std::optional<double> alpha_v) {
+             const auto a = alphas_from(alpha, alpha_u, alpha_v, true, 0.0);
              return std::make_shared<RoughDielectric>(a.first, a.second, to_ior(ior, sellmeier), priority);
            }),
            py::arg("alpha") = py::none(), py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0,
            py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
   add_parameters<RoughDielectric>(rough_dielectric_class, [](const RoughDielectric& m) {
-    py::dict kwargs(py::arg("alpha_u") = m.alpha_u(), py::arg("alpha_v") = m.alpha_v(), py::arg("priority") = m.priority());
-    add_ior_arguments(kwargs, m.ior());
+    py::dict kwargs = ior_arguments(m.ior());
+    kwargs["alpha_u"] = m.alpha_u(), kwargs["alpha_v"] = m.alpha_v(), kwargs["priority"] = m.priority();
     return kwargs;
   });
 
@@ -131,11 +99,7 @@ void bind_dielectrics(py::module_& m) {
   thin_dielectric_class
       .def(py::init([](const py::object& ior, const py::object& sellmeier) { return std::make_shared<ThinDielectric>(to_ior(ior, sellmeier)); }),
            py::arg("ior") = 1.5, py::arg("sellmeier") = py::none());
-  add_parameters<ThinDielectric>(thin_dielectric_class, [](const ThinDielectric& m) {
-    py::dict kwargs;
-    add_ior_arguments(kwargs, m.ior());
-    return kwargs;
-  });
+  add_parameters<ThinDielectric>(thin_dielectric_class, [](const ThinDielectric& m) { return ior_arguments(m.ior()); });
 }
 
 }  // namespace
@@ -189,9 +153,9 @@ void bind_materials(py::module_& m) {
       ">= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F = 1),\n"
       "visible-normal sampling.");
   rough_conductor_class
-      .def(py::init([](const py::object& alpha, const py::object& alpha_u, const py::object& alpha_v, const py::object& eta,
-                       const py::object& k) {
-             const auto a = to_alphas(alpha, alpha_u, alpha_v, true, 0.0);
+      .def(py::init([](std::optional<double> alpha, std::optional<double> alpha_u, std::optional<double> alpha_v,
+                       const py::object& eta, const py::object& k) {
+             const auto a = alphas_from(alpha, alpha_u, alpha_v, true, 0.0);
              return std::make_shared<RoughConductor>(a.first, a.second, to_optional_rgb(eta, "eta"), to_optional_rgb(k, "k"));
            }),
            py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none(),
@@ -207,9 +171,9 @@ void bind_materials(py::module_& m) {
       "ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX\n"
       "(or alpha_u, alpha_v). A texture multiplies the reflectance. " TEXTURE_DOC);
   plastic_class
-      .def(py::init([](const py::object& reflectance, double ior, const py::object& alpha, const py::object& alpha_u,
-                       const py::object& alpha_v, const py::object& texture) {
-             const auto a = to_alphas(alpha, alpha_u, alpha_v, false, 0.0);
+      .def(py::init([](const py::object& reflectance, double ior, std::optional<double> alpha, std::optional<double> alpha_u,
+                       std::optional<double> alpha_v, const py::object& texture) {
+             const auto a = alphas_from(alpha, alpha_u, alpha_v, false, 0.0);
              return std::make_shared<Plastic>(to_textured(reflectance, "reflectance", texture), ior, a.first, a.second);
            }),
            py::arg("reflectance") = 0.5, py::arg("ior") = 1.5, py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(),
@@ -228,10 +192,8 @@ void bind_materials(py::module_& m) {
       .def(py::init([](const py::object& base_color, double metallic, double roughness, double anisotropic, double specular,
                        double specular_tint, double sheen, double sheen_tint, double clearcoat, double clearcoat_gloss,
                        const py::object& texture) {
-             PrincipledParameters p;
-             p.metallic = metallic, p.roughness = roughness, p.anisotropic = anisotropic, p.specular = specular;
-             p.specular_tint = specular_tint, p.sheen = sheen, p.sheen_tint = sheen_tint, p.clearcoat = clearcoat;
-             p.clearcoat_gloss = clearcoat_gloss;
+             const PrincipledParameters p{metallic, roughness, anisotropic, specular, specular_tint,
+                                          sheen,    sheen_tint, clearcoat,  clearcoat_gloss};
              return std::make_shared<Principled>(to_textured(base_color, "base_color", texture), p);
            }),
            py::arg("base_color") = 0.5, py::arg("metallic") = kPrincipled.metallic, py::arg("roughness") = kPrincipled.roughness,
@@ -254,9 +216,9 @@ void bind_materials(py::module_& m) {
       "of complex index eta + i k, with GGX roughness alpha (or alpha_u, alpha_v; 0 = smooth mirror). The\n"
       "Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.");
   thin_film_class
-      .def(py::init([](double thickness, double film_ior, const py::object& eta, const py::object& k, const py::object& alpha,
-                       const py::object& alpha_u, const py::object& alpha_v) {
-             const auto a = to_alphas(alpha, alpha_u, alpha_v, false, 0.1);
+      .def(py::init([](double thickness, double film_ior, const py::object& eta, const py::object& k, std::optional<double> alpha,
+                       std::optional<double> alpha_u, std::optional<double> alpha_v) {
+             const auto a = alphas_from(alpha, alpha_u, alpha_v, false, 0.1);
              return std::make_shared<ThinFilm>(thickness, film_ior, to_rgb(eta, "eta"), to_rgb(k, "k"), a.first, a.second);
            }),
            py::arg("thickness"), py::arg("film_ior") = 1.33, py::arg("eta") = 1.5, py::arg("k") = 0.0, py::arg("alpha") = py::none(),

@@ -4,42 +4,36 @@
 // sea water here (water.h, water_surface.h).
 #include "refracta/bindings/bind_shading.h"
 
-#include "refracta/shading/spectral.h"
 #include "refracta/shading/water.h"
 #include "refracta/shading/water_surface.h"
-
-#include <cmath>
 
 namespace refracta {
 
 namespace {
 
 void bind_water(py::module_& m) {
-  m.def("water_ior", py::vectorize([](double wavelength, double temperature_c, double salinity) {
-          return water_ior(wavelength, temperature_c, salinity);
-        }),
+  m.def("water_ior", py::vectorize(&water_ior),
         py::arg("wavelength_nm"), py::arg("temperature_c") = 20.0, py::arg("salinity") = 0.0,
         "Refractive index of water relative to vacuum: pure water by IAPWS R9-97 at the density of\n"
         "Tanaka et al. 2001 (atmospheric pressure), plus Quan & Fry 1995's salinity terms. wavelength_nm\n"
         "in [200, 1100], temperature_c in [0, 40] deg C, salinity [g/kg] in [0, 40]. Vectorised.");
-  m.def("water_density", py::vectorize([](double temperature_c) { return water_density(temperature_c); }),
+  m.def("water_density", py::vectorize(&water_density),
         py::arg("temperature_c"),
         "Density of air-free pure water at 101 325 Pa [kg/m^3] (Tanaka et al. 2001), temperature_c in\n"
         "[0, 40] deg C. Vectorised.");
-  m.def("water_absorption", py::vectorize([](double wavelength) { return water_absorption(wavelength); }),
+  m.def("water_absorption", py::vectorize(&water_absorption),
         py::arg("wavelength_nm"),
         "Absorption coefficient of pure water [1/m] at wavelength_nm in [360, 830]: Pope & Fry 1997 (380-725 nm),\n"
         "Smith & Baker 1981 below, Kou et al. 1993 above; linear between 5 nm nodes. Vectorised.");
-  m.def("water_backscattering", py::vectorize([](double wavelength, double salinity) { return water_backscattering(wavelength, salinity); }),
+  m.def("water_backscattering", py::vectorize(&water_backscattering),
         py::arg("wavelength_nm"), py::arg("salinity") = 0.0,
         "Backscattering coefficient of pure (sea) water [1/m]: half of Morel 1974's molecular scattering\n"
         "0.00222 (1 + 0.3 S / 37) (lambda / 500)^-4.32, salinity S [g/kg] in [0, 40]. Vectorised.");
-  m.def("water_body_reflectance",
-        py::vectorize([](double wavelength, double salinity) { return water_body_reflectance(wavelength, salinity); }),
+  m.def("water_body_reflectance", py::vectorize(&water_body_reflectance),
         py::arg("wavelength_nm"), py::arg("salinity") = 0.0,
         "Irradiance reflectance just beneath the surface of deep pure (sea) water, R = 0.33 b_b / (a + b_b)\n"
         "(Morel & Prieur 1977; Gordon et al. 1975), from water_absorption and water_backscattering. Vectorised.");
-  m.def("cox_munk_mean_square_slope", py::vectorize([](double wind_speed) { return cox_munk_mean_square_slope(wind_speed); }),
+  m.def("cox_munk_mean_square_slope", py::vectorize(&cox_munk_mean_square_slope),
         py::arg("wind_speed"),
         "Total mean-square slope of a clean sea surface, 0.003 + 5.12e-3 U (Cox & Munk 1954), wind_speed U\n"
         "[m/s] 12.5 m above the sea in [0, 30]. The Water material's Beckmann alpha^2. Vectorised.");
@@ -64,10 +58,8 @@ void bind_water(py::module_& m) {
       "wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.");
   water_class
       .def(py::init([](double wind_speed, double temperature_c, double salinity, bool body, int priority, double resolved_slope_variance) {
-             WaterParameters p;
-             p.wind_speed = wind_speed, p.temperature_c = temperature_c, p.salinity = salinity, p.body = body, p.priority = priority;
-             p.resolved_slope_variance = resolved_slope_variance;
-             return std::make_shared<Water>(p);
+             return std::make_shared<Water>(
+                 WaterParameters{wind_speed, temperature_c, salinity, body, priority, resolved_slope_variance});
            }),
            py::arg("wind_speed") = water_defaults.wind_speed, py::arg("temperature_c") = water_defaults.temperature_c,
            py::arg("salinity") = water_defaults.salinity, py::arg("body") = water_defaults.body,
@@ -82,30 +74,17 @@ void bind_water(py::module_& m) {
                              "alpha^2 = mean_square_slope - resolved_slope_variance.")
       .def_property_readonly("alpha", &Water::alpha, "The Beckmann roughness alpha = sqrt(mean_square_slope - resolved_slope_variance).")
       .def("ior", [](const Water& w, const py::object& wavelength) {
-             bool single = false;
-             std::vector<double> l = to_values(wavelength, "wavelength_nm", &single);
-             for (double& x : l) x = w.ior(checked_wavelength(x, "Water.ior: wavelength_nm"));
-             return single ? py::object(py::float_(l[0])) : py::object(values_to_array(l));
+             return per_value(wavelength, "wavelength_nm", [&](double x) { return w.ior(checked_wavelength(x, "Water.ior: wavelength_nm")); });
            },
            py::arg("wavelength_nm"), "The water's index relative to vacuum at wavelength_nm [nm] (a number or an array).")
       .def("transmittance", [](const Water& w, const py::object& mu, double wavelength) {
-             const double eta = w.ior(checked_wavelength(wavelength, "Water.transmittance: wavelength_nm"));
-             bool single = false;
-             std::vector<double> m = to_values(mu, "mu", &single);
-             for (double& x : m) {
-               if (!(std::abs(x) <= 1.0)) throw_invalid("Water.transmittance: mu must be in [-1, 1] (got ", x, ")");
-               x = w.transmittance()(x, eta);
-             }
-             return single ? py::object(py::float_(m[0])) : py::object(values_to_array(m));
+             return per_value(mu, "mu", [&](double x) { return w.transmittance(x, wavelength); });
            },
            py::arg("mu"), py::arg("wavelength_nm") = Ior::kRgbWavelength,
            "The rough interface's directional transmittance T(mu) from above (the share of the energy arriving at\n"
            "cos theta = mu that crosses into the water), as the water body's term uses it, at the water's index\n"
            "at wavelength_nm under vacuum. Tabulated (33 mu x 5 eta nodes).")
-      .def("internal_reflectance", [](const Water& w, double wavelength) {
-             const double eta = w.ior(checked_wavelength(wavelength, "Water.internal_reflectance: wavelength_nm"));
-             return 1.0 - w.transmittance().hemispherical(eta) / (eta * eta);
-           },
+      .def("internal_reflectance", py::overload_cast<double>(&Water::internal_reflectance, py::const_),
            py::arg("wavelength_nm") = Ior::kRgbWavelength,
            "Fbar_int = 1 - 2 int T(mu) mu dmu / eta^2: what of isotropic light under the rough surface is sent\n"
            "back down (the flat surface's fresnel_diffuse_reflectance(1 / eta) when alpha -> 0).");
@@ -118,6 +97,21 @@ void bind_water(py::module_& m) {
 }
 
 }  // namespace
+
+RowMatrixX4d to_rows4(const py::handle& object, const char* what) {
+  const DoubleArray a = real_array(object, what);
+  if (!((a.ndim() == 1 && a.shape(0) == 4) || (a.ndim() == 2 && a.shape(1) == 4))) {
+    throw_invalid(what, " must have shape (4,) or (N, 4)");
+  }
+  const RowMatrixX4d rows = Eigen::Map<const RowMatrixX4d>(a.data(), a.size() / 4, 4);
+  if (!rows.allFinite()) throw_invalid(what, " must be finite");
+  return rows;
+}
+
+RowMatrixXd to_sample_rows(const py::handle& object, const char* what, int dims) {
+  const Samples s = to_samples(object, what, dims);
+  return Eigen::Map<const RowMatrixXd>(s.values.data(), Eigen::Index(s.rows), dims);
+}
 
 void bind_shading(py::module_& m) {
   bind_material_base(m);

@@ -1,14 +1,14 @@
 // What the shading bindings share (bind_shading.cpp, bind_material.cpp, bind_materials.cpp,
-// bind_microfacet.cpp): the materials' argument conversions and their pickling through the
-// constructor's keyword arguments.
+// bind_microfacet.cpp, bind_spectrum.cpp): the argument conversions of materials and spectra, and
+// the materials' pickling through the constructor's keyword arguments.
 #pragma once
 
 #include "refracta/bindings/bindings.h"
 #include "refracta/shading/ior.h"
 #include "refracta/shading/material_util.h"
+#include "refracta/shading/spectrum_batch.h"
 
 #include <optional>
-#include <utility>
 
 namespace refracta {
 
@@ -21,20 +21,28 @@ void bind_terrain_shading(py::module_& m);  // TerrainShading (bind_terrain.cpp)
 // file (str or os.PathLike), made absolute from the working directory and registered in each
 // scene the material is added to; or the id of a texture a scene already holds.
 TexturedReflectance to_textured(const py::object& color, const char* name, const py::object& texture);
-// ior= (a number or 'bk7') or sellmeier= (B1, B2, B3, C1, C2, C3), C in um^2.
+// ior= (a number or a glass's name, Ior::named) or sellmeier= (B1, B2, B3, C1, C2, C3), C in um^2.
 Ior to_ior(const py::object& ior, const py::object& sellmeier);
-// (alpha) or (alpha_u, alpha_v): exactly one form; neither: `fallback` unless required.
-std::pair<double, double> to_alphas(const py::object& alpha, const py::object& alpha_u, const py::object& alpha_v,
-                                    bool required, double fallback);
-// Row counts a and b broadcast (one of them may be 1).
-size_t broadcast(size_t a, size_t b, const char* what);
+// Rows of four finite numbers, (N, 4) or one row (4,): wavelengths [nm], spectral samples.
+RowMatrixX4d to_rows4(const py::handle& object, const char* what);
+// Rows of `dims` sample numbers in [0, 1) (convert.h's to_samples): (N, dims).
+RowMatrixXd to_sample_rows(const py::handle& object, const char* what, int dims);
+
+// f at each of the numbers `object` holds (convert.h's to_values): a float for a scalar, else (N,).
+template <class F>
+py::object per_value(const py::handle& object, const char* what, const F& f) {
+  bool single = false;
+  std::vector<double> values = to_values(object, what, &single);
+  for (double& x : values) x = f(x);
+  return single ? py::object(py::float_(values[0])) : py::object(values_to_array(values));
+}
 
 // Pickling and `parameters` of a material: its constructor's keyword arguments, read back from
 // the C++ object; unpickling calls the Python constructor with them (its checks included).
 py::tuple rgb_tuple(const Vec3d& v);
 py::object optional_rgb_tuple(const std::optional<Vec3d>& v);
 py::object texture_argument(const TexturedReflectance& r);
-void add_ior_arguments(py::dict& kwargs, const Ior& ior);  // ior= or sellmeier=
+py::dict ior_arguments(const Ior& ior);  // {ior: n} or {sellmeier: (B1, B2, B3, C1, C2, C3)}
 
 template <class T, class Class>
 void add_parameters(Class& cls, py::dict (*parameters)(const T&)) {

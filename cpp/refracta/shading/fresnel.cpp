@@ -50,4 +50,31 @@ double fresnel_diffuse_reflectance(double eta) {
   return sum;
 }
 
+namespace {
+
+double checked_eta(double eta) {
+  if (!(eta > 0.0) || !std::isfinite(eta)) throw_invalid("eta must be finite and > 0 (got ", eta, ")");
+  return eta;
+}
+
+double checked_cos_i(double cos_i) {
+  if (!(std::abs(cos_i) <= 1.0)) throw_invalid("cos_i must be in [-1, 1] (got ", cos_i, ")");
+  return cos_i;
+}
+
+}  // namespace
+
+double checked_fresnel_dielectric(double cos_i, double eta) {
+  checked_eta(eta);
+  return fresnel_dielectric(checked_cos_i(cos_i), eta);
+}
+
+double checked_fresnel_conductor(double cos_i, double eta, double k) {
+  checked_eta(eta);
+  if (!(k >= 0.0) || !std::isfinite(k)) throw_invalid("k must be finite and >= 0 (got ", k, ")");
+  return fresnel_complex(checked_cos_i(cos_i), std::complex<double>(eta, k));
+}
+
+double checked_fresnel_diffuse_reflectance(double eta) { return fresnel_diffuse_reflectance(checked_eta(eta)); }
+
 }  // namespace refracta

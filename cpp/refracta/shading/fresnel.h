@@ -55,6 +55,12 @@ inline Spectrum fresnel_complex(double cos_i, const Spectrum& eta, const Spectru
 // eta < 1 (F = 1 below it) with a square-root substitution above it; error < 1e-9.
 double fresnel_diffuse_reflectance(double eta);
 
+// The same with their arguments checked (std::invalid_argument naming the argument): eta finite
+// and > 0, k finite and >= 0, cos_i in [-1, 1]. The Python functions of refracta.shading.
+double checked_fresnel_dielectric(double cos_i, double eta);
+double checked_fresnel_conductor(double cos_i, double eta, double k);
+double checked_fresnel_diffuse_reflectance(double eta);
+
 // Mirror reflection of w about the unit normal n.
 inline Vec3d reflect(const Vec3d& w, const Vec3d& n) { return -w + 2.0 * w.dot(n) * n; }
 

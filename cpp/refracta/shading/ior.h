@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace refracta {
 
@@ -39,6 +40,16 @@ class Ior {
   }
   // Schott N-BK7 (Schott data sheet coefficients).
   static Ior bk7() { return sellmeier({1.03961212, 0.231792344, 1.01046945}, {0.00600069867, 0.0200179144, 103.560653}); }
+  // A glass by name: 'bk7' (or 'BK7').
+  static Ior named(const std::string& name) {
+    if (name == "bk7" || name == "BK7") return bk7();
+    throw_invalid("ior must be a number, 'bk7' or given by sellmeier= (got '", name, "')");
+  }
+  // Sellmeier's coefficients as one list (B1, B2, B3, C1, C2, C3), C in um^2.
+  static Ior sellmeier(const std::vector<double>& c) {
+    if (c.size() != 6) throw_invalid("sellmeier must be (B1, B2, B3, C1, C2, C3) with C in um^2 (got ", c.size(), " values)");
+    return sellmeier({c[0], c[1], c[2]}, {c[3], c[4], c[5]});
+  }
 
   // n at a wavelength [nm].
   double at(double lambda_nm) const {

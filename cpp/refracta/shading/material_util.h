@@ -36,6 +36,19 @@ inline Color checked_unbounded(const Vec3d& rgb, const char* name, bool positive
   return Color::unbounded(rgb);
 }
 
+// A microfacet roughness given as alpha or as (alpha_u, alpha_v): exactly one form; neither:
+// (fallback, fallback) unless `required`. The materials check the values themselves.
+inline std::pair<double, double> alphas_from(std::optional<double> alpha, std::optional<double> alpha_u,
+                                             std::optional<double> alpha_v, bool required, double fallback) {
+  if (alpha && (alpha_u || alpha_v)) throw_invalid("give either alpha or alpha_u and alpha_v, not both");
+  if (alpha_u || alpha_v) {
+    if (!alpha_u || !alpha_v) throw_invalid("alpha_u and alpha_v must be given together");
+    return {*alpha_u, *alpha_v};
+  }
+  if (!alpha && required) throw_invalid("alpha (or alpha_u and alpha_v) is required");
+  return alpha ? std::make_pair(*alpha, *alpha) : std::make_pair(fallback, fallback);
+}
+
 inline double checked_scalar(double value, const char* name, double lo, double hi) {
   if (!std::isfinite(value) || value < lo || value > hi) throw_invalid(name, " must be in [", lo, ", ", hi, "] (got ", value, ")");
   return value;

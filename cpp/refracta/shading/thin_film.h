@@ -42,6 +42,16 @@ inline double thin_film_reflectance(double cos_1, double n1, double n2, std::com
   return 0.5 * (std::norm(rs) + std::norm(rp));
 }
 
+// The same with its arguments checked (std::invalid_argument), for Python: n1, n2, eta and the
+// wavelength > 0, k and thickness >= 0, the base's index eta + i k.
+inline double checked_thin_film_reflectance(double cos_1, double n1, double n2, double eta, double k, double thickness,
+                                            double lambda_nm) {
+  if (!(n1 > 0.0 && n2 > 0.0 && eta > 0.0 && k >= 0.0 && thickness >= 0.0 && lambda_nm > 0.0)) {
+    throw_invalid("thin_film_reflectance needs n1, n2, eta, wavelength > 0 and k, thickness >= 0");
+  }
+  return thin_film_reflectance(cos_1, n1, n2, {eta, k}, thickness, lambda_nm);
+}
+
 struct ThinFilmFresnel {
   double n1 = 1.0, n2 = 1.33, thickness = 500.0;
   Spectrum eta = Spectrum::Constant(1.5), k = Spectrum::Zero(), lambda = Spectrum::Zero();

@@ -137,6 +137,17 @@ const Bsdf* Water::bsdf(const SurfaceInteraction&, const MaterialContext& contex
   return scratch.make<WaterBodyBsdf>(eta, eta_sampling, distribution, *transmittance_, r, fdr, channel_mean(body_albedo, lambda));
 }
 
+double Water::transmittance(double mu, double wavelength_nm) const {
+  const double eta = ior(checked_wavelength(wavelength_nm, "Water.transmittance: wavelength_nm"));
+  if (!(std::abs(mu) <= 1.0)) throw_invalid("Water.transmittance: mu must be in [-1, 1] (got ", mu, ")");
+  return (*transmittance_)(mu, eta);
+}
+
+double Water::internal_reflectance(double wavelength_nm) const {
+  const double eta = ior(checked_wavelength(wavelength_nm, "Water.internal_reflectance: wavelength_nm"));
+  return 1.0 - transmittance_->hemispherical(eta) / (eta * eta);
+}
+
 std::optional<double> Water::interior_ior(const SampledWavelengths& lambda) const {
   if (parameters_.body) return std::nullopt;  // reflection-only: no path enters the body
   return lambda.spectral ? ior(lambda.hero()) : ior_sampling_rgb_;

@@ -193,6 +193,12 @@ class Water final : public Material {
   // The water's index relative to vacuum at a wavelength [nm] in [kLambdaMin, kLambdaMax] (from the table).
   double ior(double wavelength_nm) const { return interpolate(ior_table_, wavelength_nm); }
   const RoughTransmittance& transmittance() const { return *transmittance_; }
+  // The rough interface's directional transmittance T(mu) from above at the water's index at
+  // wavelength_nm under vacuum, mu in [-1, 1] (std::invalid_argument naming them otherwise).
+  double transmittance(double mu, double wavelength_nm) const;
+  // Fbar_int = 1 - 2 int T(mu) mu dmu / eta^2: what of isotropic light under the rough surface is
+  // sent back down, at wavelength_nm.
+  double internal_reflectance(double wavelength_nm) const;
 
  private:
   static double interpolate(const std::vector<double>& table, double wavelength_nm);

@@ -1,0 +1,60 @@
+// A material's BSDF evaluated over many directions at once, in the local shading frame (z = the
+// shading normal; shared/SHADING.md section 0), at a neutral surface point (no textures: the
+// constant colours): what Material.f, pdf and sample expose to Python and the tests use.
+//
+// wo, wi: unit directions, one side may be a single row (broadcast). wavelengths: none (RGB
+// rendering), one row or one per row of four hero wavelengths [nm] in [kLambdaMin, kLambdaMax];
+// each spectral row builds the BSDF afresh (a dispersive dielectric may terminate them).
+#pragma once
+
+#include "refracta/shading/material.h"
+#include "refracta/shading/spectrum_batch.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace refracta {
+
+TransportMode transport_mode_from(const std::string& name);  // 'radiance' or 'importance'
+
+// How to evaluate: hero wavelengths (empty: RGB), the index outside (on the normal's side), the mode.
+struct BsdfQuery {
+  std::optional<RowMatrixX4d> wavelengths;
+  double eta_outside = 1.0;
+  TransportMode mode = TransportMode::kRadiance;
+};
+
+// f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB or (N, 4) per wavelength; delta lobes 0.
+RowMatrixXd bsdf_f(const Material& material, const std::vector<Vec3d>& wo, const std::vector<Vec3d>& wi,
+                   const BsdfQuery& query);
+// The density [1/sr] with which sampling wo gives wi (lobe selection included; delta lobes 0): (N,).
+Eigen::VectorXd bsdf_pdf(const Material& material, const std::vector<Vec3d>& wo, const std::vector<Vec3d>& wi,
+                         const BsdfQuery& query);
+
+// Samples of BsdfSample's fields (bsdf.h), a row each; C = 3 (RGB) or 4 (spectral) columns.
+struct BsdfSamples {
+  using Flags = Eigen::Matrix<uint32_t, Eigen::Dynamic, 1>;
+  using Bools = Eigen::Matrix<bool, Eigen::Dynamic, 1>;
+  RowMatrixX3d wi;        // 0 where invalid
+  RowMatrixXd weight, f;  // (N, C)
+  Eigen::VectorXd pdf;
+  Flags flags;
+  Bools is_delta;
+  Eigen::VectorXd eta;    // 1 for reflection and where invalid
+  Bools valid, terminated;
+  // The fields in this order (pickling); BsdfSamples{fields...} rebuilds it.
+  auto fields() const { return std::make_tuple(wi, weight, f, pdf, flags, is_delta, eta, valid, terminated); }
+};
+// Sample incident directions for wo from u (rows of three numbers in [0, 1): the lobe, then the
+// direction; (N, 3)); wo or u may be a single row.
+BsdfSamples bsdf_sample(const Material& material, const std::vector<Vec3d>& wo, const RowMatrixXd& u,
+                        const BsdfQuery& query);
+
+// The index of the medium a dielectric bounds at a wavelength [nm] in [kLambdaMin, kLambdaMax]
+// (none: RGB rendering's), or none for a material bounding no medium.
+std::optional<double> interior_ior_at(const Material& material, std::optional<double> wavelength_nm);
+
+}  // namespace refracta

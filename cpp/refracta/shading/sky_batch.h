@@ -1,0 +1,42 @@
+// The physical sky over many directions and wavelengths at once (what refracta.spectrum's
+// PhysicalSky and AerialPerspective expose), and the sky's settings as a flat tuple (pickling).
+#pragma once
+
+#include "refracta/shading/aerial_perspective.h"
+#include "refracta/shading/physical_sky.h"
+#include "refracta/shading/spectrum_batch.h"
+
+#include <optional>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace refracta {
+
+// The settings of PhysicalSky's constructor: visibility [km], when given, sets the aerosol by
+// Koschmieder's law (set_visibility); below_horizon is 'ground' or 'horizon'.
+PhysicalSkySettings sky_settings(const Vec3d& sun_direction, double aerosol, double ozone_du, double ground_albedo,
+                                 double altitude, double rayleigh_scale, const std::string& below_horizon,
+                                 std::optional<double> visibility);
+
+// (sun_direction, aerosol, ozone_du, ground_albedo, altitude, rayleigh_scale, below_horizon as int).
+using PhysicalSkyState = std::tuple<Vec3d, double, double, double, double, double, int>;
+PhysicalSkyState sky_state(const PhysicalSkySettings& settings);
+PhysicalSkySettings sky_settings_from_state(const PhysicalSkyState& state);  // throws for a bad below_horizon
+
+// Radiance [W/(m^2 sr nm)] in each unit direction at each wavelength: (directions, wavelengths);
+// direct: integrated without the table.
+RowMatrixXd sky_radiance(const PhysicalSky& sky, const std::vector<Vec3d>& dirs, const std::vector<double>& lambda_nm,
+                         bool direct);
+RowMatrixX3d sky_rgb_radiance(const PhysicalSky& sky, const std::vector<Vec3d>& dirs);  // linear sRGB
+// sample_li at each row (u1, u2) of u with RGB wavelengths: (directions, pdf [1/sr], RGB radiance), 0 where
+// nothing was sampled.
+std::tuple<RowMatrixX3d, Eigen::VectorXd, RowMatrixX3d> sample_sky(const PhysicalSkyLight& sky,
+                                                                    const RowMatrixXd& u);
+Eigen::VectorXd sky_pdf(const PhysicalSkyLight& sky, const std::vector<Vec3d>& dirs);  // [1/sr]
+
+// (transmittance, in-scatter) of the air from a to b as RGB renders apply them (linear sRGB).
+std::pair<Vec3d, Vec3d> along_rgb(const AerialPerspective& air, const Vec3d& a, const Vec3d& b, double earth_radius);
+
+}  // namespace refracta
