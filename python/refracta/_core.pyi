@@ -1084,6 +1084,67 @@ class Camera:
     @property
     def width(self) -> int:
         ...
+class _DisplayNames:
+    """
+    refracta.io's display keywords (see refracta.io.to_display).
+    """
+    tonemap: str | None
+    def __init__(self) -> None:
+        ...
+    @property
+    def ev100(self) -> float | None:
+        ...
+    @ev100.setter
+    def ev100(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def exposure(self) -> float | None:
+        ...
+    @exposure.setter
+    def exposure(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def f_number(self) -> float | None:
+        ...
+    @f_number.setter
+    def f_number(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def gamma(self) -> str | float:
+        ...
+    @gamma.setter
+    def gamma(self, arg0: str | typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def iso(self) -> float | None:
+        ...
+    @iso.setter
+    def iso(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def key(self) -> float | None:
+        ...
+    @key.setter
+    def key(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def luminous_efficacy(self) -> float | None:
+        ...
+    @luminous_efficacy.setter
+    def luminous_efficacy(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def shutter(self) -> float | None:
+        ...
+    @shutter.setter
+    def shutter(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def white(self) -> float | None:
+        ...
+    @white.setter
+    def white(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
 class OceanWaves:
     """
     A wind sea's waves on a periodic square patch (scene/ocean_waves.h): a height field synthesised by
@@ -2719,7 +2780,7 @@ class TerrainShading(Material):
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, snow_line: typing.SupportsFloat | typing.SupportsIndex = 3000.0, tree_line: typing.SupportsFloat | typing.SupportsIndex = 2000.0, rock_slope: typing.SupportsFloat | typing.SupportsIndex = 35.0, earth_radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, vegetation: typing.Any = (0.06, 0.09, 0.04), rock: typing.Any = (0.25, 0.23, 0.21), snow: typing.Any = (0.8, 0.8, 0.83)) -> None:
+    def __init__(self, snow_line: typing.SupportsFloat | typing.SupportsIndex = 3000.0, tree_line: typing.SupportsFloat | typing.SupportsIndex = 2000.0, rock_slope: typing.SupportsFloat | typing.SupportsIndex = 35.0, earth_radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, vegetation: typing.Any = (0.06, 0.09, 0.04), rock: typing.Any = (0.25, 0.23, 0.21), snow: typing.Any = (0.8, 0.8, 0.83)) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -3054,9 +3115,11 @@ def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, backg
     """
     One pixel's fragments composited over the background.
     """
-def _display(image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> numpy.typing.NDArray[numpy.float32]:
-    ...
-def _display_exposure(image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> float:
+def _display(image: typing.Any, **kwargs) -> numpy.typing.NDArray[numpy.float32]:
+    """
+    Display values of an image (refracta.io.to_display; keywords: _DisplayNames).
+    """
+def _display_exposure(image: typing.Any, **kwargs) -> float:
     """
     The exposure c the display settings give this image (io.exposure_of).
     """
@@ -3166,8 +3229,10 @@ def _tabulate_heights(field: IndexField, lo: typing.SupportsFloat | typing.Suppo
     """
 def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, options: typing.Any, progress: typing.Any, **kwargs) -> tuple:
     ...
-def _write_image(path: str, image: typing.Any, *, exposure: typing.SupportsFloat | typing.SupportsIndex | None = None, tonemap: str | None = None, gamma: typing.Any = None, key: typing.SupportsFloat | typing.SupportsIndex | None = None, white: typing.SupportsFloat | typing.SupportsIndex | None = None, ev100: typing.SupportsFloat | typing.SupportsIndex | None = None, iso: typing.SupportsFloat | typing.SupportsIndex | None = None, shutter: typing.SupportsFloat | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, luminous_efficacy: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
-    ...
+def _write_image(path: str, image: typing.Any, **kwargs) -> None:
+    """
+    Write an image as refracta.io.write_image (display keywords: _DisplayNames).
+    """
 def _write_image_channels(path: str, image: typing.Any, names: collections.abc.Sequence[str]) -> None:
     """
     Write (H, W, C) float pixels as they are to a float file (EXR) with one name per channel (io.write_layers).

@@ -416,3 +416,26 @@ def test_bk7_prism_spreads_a_white_edge_into_its_spectrum():
     assert np.all(np.abs(bottom.mean(axis=0) - lit_full) <= SIGMAS * std_error(bottom)), (bottom.mean(axis=0), lit_full)
     centroid = measured / lit_full  # edge integrals as angles below the top of the image
     assert centroid[2] - centroid[0] == pytest.approx(spread, rel=PRISM_FIRST_ORDER), (centroid, spread)
+
+
+def test_dispersive_render_does_not_depend_on_threads_tiles_or_bounds():
+    # Each worker thread keeps one caster and integrator whose air it retunes to every sample's
+    # hero wavelength (render/hero_casters.h): which thread renders a sample must change nothing.
+    scene = refracta.Scene()
+    scene.add_ground(0.0, 4000.0, material=shading.Diffuse((0.3, 0.5, 0.2)))
+    scene.add_box((80.0, 1.0, 0.0), (4.0, 2.0, 4.0), kd=(0.8, 0.2, 0.1))
+    scene.set_environment((1.0, 1.0, 1.0))
+    camera = refracta.Camera((0.0, EYE, 0.0), (100.0, EYE - 0.3, 0.0), vfov=1.5, width=24, height=12)
+    options = dict(spectral=True, spp=4, max_length=1000.0, progress=False)
+    whole = refracta.render(scene, camera, hot_road(), **options)
+    threads = refracta.get_threads()
+    try:
+        refracta.set_threads(1)
+        single = refracta.render(scene, camera, hot_road(), **options)
+    finally:
+        refracta.set_threads(threads)
+    tiled = refracta.render(scene, camera, hot_road(), tile=5, **options)
+    part = refracta.render(scene, camera, hot_road(), pixel_bounds=(6, 2, 20, 10), **options)
+    np.testing.assert_array_equal(whole, single)
+    np.testing.assert_array_equal(whole, tiled)
+    np.testing.assert_array_equal(whole[2:10, 6:20], part)

@@ -31,21 +31,29 @@ double field_reference_wavelength(const IndexField& field) {
   return kDefaultFieldWavelength;
 }
 
-DispersedField::DispersedField(FieldPtr base, double scale) : base_(std::move(base)), scale_(scale) {
+DispersedField::DispersedField(FieldPtr base, double scale)
+    : DispersedField(std::move(base), std::make_shared<const double>(scale)) {
+  if (!(scale > 0.0) || !std::isfinite(scale)) throw_invalid("DispersedField: scale must be > 0 and finite (got ", scale, ")");
+}
+
+DispersedField::DispersedField(FieldPtr base, std::shared_ptr<const double> scale)
+    : base_(std::move(base)), scale_(std::move(scale)) {
   if (!base_) throw_invalid("DispersedField: base must be a field (got None)");
-  if (!(scale_ > 0.0) || !std::isfinite(scale_)) throw_invalid("DispersedField: scale must be > 0 and finite (got ", scale_, ")");
+  if (!scale_) throw_invalid("DispersedField: scale must be given");
 }
 
 void DispersedField::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
   base_->evaluate(p, n, grad);
-  *n = 1.0 + scale_ * (*n - 1.0);
-  *grad *= scale_;
+  const double scale = *scale_;
+  *n = 1.0 + scale * (*n - 1.0);
+  *grad *= scale;
 }
 
 void DispersedField::evaluate_height(double h, double* n, double* dn_dh) const {
   base_->evaluate_height(h, n, dn_dh);
-  *n = 1.0 + scale_ * (*n - 1.0);
-  *dn_dh *= scale_;
+  const double scale = *scale_;
+  *n = 1.0 + scale * (*n - 1.0);
+  *dn_dh *= scale;
 }
 
 FieldPtr DispersedField::height_only_part() const {
@@ -54,7 +62,7 @@ FieldPtr DispersedField::height_only_part() const {
 }
 
 std::shared_ptr<const IndexField> DispersedField::with_param_values(const std::vector<double>& values) const {
-  return std::make_shared<DispersedField>(base_->with_param_values(values), scale_);
+  return std::make_shared<DispersedField>(base_->with_param_values(values), scale());  // the scale now
 }
 
 FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, double reference_nm) {
@@ -66,6 +74,12 @@ FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, double ref
   }
   const double scale = air_dispersion_scale(wavelength_nm, reference_nm);
   if (scale == 1.0) return field;
+  return std::make_shared<DispersedField>(field, scale);
+}
+
+FieldPtr tunable_dispersed_field(const FieldPtr& field, const std::shared_ptr<const double>& scale) {
+  if (!field) throw_invalid("tunable_dispersed_field: field must be a field (got None)");
+  if (const FieldPtr inner = field->decorated()) return field->with_base(tunable_dispersed_field(inner, scale));
   return std::make_shared<DispersedField>(field, scale);
 }
 

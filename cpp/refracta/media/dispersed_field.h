@@ -34,6 +34,11 @@ class DispersedField final : public IndexField {
  public:
   // base non-null; scale > 0 and finite.
   DispersedField(FieldPtr base, double scale);
+  // The scale read from `scale` at every evaluation, so that its owner can retune the field (and
+  // its height_only_part, which shares it) to another wavelength without rebuilding anything: a
+  // spectral render's air for one worker thread, set to each sample's hero wavelength
+  // (render/hero_casters.h). The owner sets it > 0 and finite, and never while the field is in use.
+  DispersedField(FieldPtr base, std::shared_ptr<const double> scale);
 
   std::string type_name() const override { return "DispersedField"; }
   void evaluate(const Vec3d& p, double* n, Vec3d* grad) const override;
@@ -52,16 +57,20 @@ class DispersedField final : public IndexField {
   double straight_above() const override { return base_->straight_above(); }
 
   const FieldPtr& base() const { return base_; }
-  double scale() const { return scale_; }
+  double scale() const { return *scale_; }
 
  private:
   FieldPtr base_;
-  double scale_;
+  std::shared_ptr<const double> scale_;
 };
 
 // The field at `wavelength_nm` [nm]: a DispersedField by air_dispersion_scale(wavelength,
 // reference) (reference <= 0: field_reference_wavelength(*field)); CurvedEarth through its base;
 // the field itself when the scale is 1.
 FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, double reference_nm = 0.0);
+
+// The field dispersed by the scale `scale` points to, retuned whenever its owner changes it (the
+// DispersedField constructor above): CurvedEarth through its base, as dispersed_field.
+FieldPtr tunable_dispersed_field(const FieldPtr& field, const std::shared_ptr<const double>& scale);
 
 }  // namespace refracta

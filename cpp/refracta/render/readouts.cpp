@@ -148,21 +148,35 @@ double ReadoutGeometry::hidden_refracted(const Vec3d& point) const {
   return std::max(0.0, true_height(y));
 }
 
-std::vector<int> mirage_images(const std::vector<float>& true_elevation, const std::vector<float>& object_id, int width,
-                               int height) {
-  if (width < 0 || height < 0 || true_elevation.size() != size_t(width) * size_t(height) ||
-      object_id.size() != true_elevation.size()) {
-    throw_invalid("mirage_images: true_elevation and object_id must both be height x width (", height, " x ", width,
-                  "; got ", true_elevation.size(), " and ", object_id.size(), " values)");
+std::vector<std::pair<std::string, std::pair<int, int>>> readout_channels() {
+  const std::pair<const char*, std::pair<int, int>> layout[] = {
+      {"distance", {kReadoutDistance, 1}},
+      {"position", {kReadoutPosition, 3}},
+      {"object_id", {kReadoutObject, 1}},
+      {"apparent_elevation", {kReadoutApparentElevation, 1}},
+      {"apparent_azimuth", {kReadoutApparentAzimuth, 1}},
+      {"true_elevation", {kReadoutTrueElevation, 1}},
+      {"hidden_height", {kReadoutHiddenHeight, 2}}};
+  std::vector<std::pair<std::string, std::pair<int, int>>> out;
+  for (const auto& [name, at] : layout) out.push_back({name, {kSurfaceChannels + at.first, at.second}});
+  return out;
+}
+
+CountImage mirage_images(const FloatImage& true_elevation, const FloatImage& object_id) {
+  if (true_elevation.rows() != object_id.rows() || true_elevation.cols() != object_id.cols()) {
+    throw_invalid("mirage_images: true_elevation and object_id must be (H, W) arrays of one shape (got ",
+                  true_elevation.rows(), " x ", true_elevation.cols(), " and ", object_id.rows(), " x ", object_id.cols(),
+                  ")");
   }
-  std::vector<int> images(true_elevation.size(), 0);
+  const int height = int(true_elevation.rows()), width = int(true_elevation.cols());
+  CountImage images = CountImage::Zero(height, width);
   struct Branch {
     float object, lo, hi;
   };
   std::vector<Branch> branches;
   for (int x = 0; x < width; ++x) {
-    auto value = [&](int y) { return true_elevation[size_t(y) * width + x]; };
-    auto object = [&](int y) { return object_id[size_t(y) * width + x]; };
+    auto value = [&](int y) { return true_elevation(y, x); };
+    auto object = [&](int y) { return object_id(y, x); };
     auto valid = [&](int y) { return object(y) >= 0.0f && std::isfinite(value(y)); };
     branches.clear();
     int y = 0;
@@ -194,7 +208,7 @@ std::vector<int> mirage_images(const std::vector<float>& true_elevation, const s
       if (!valid(row)) continue;
       int count = 0;
       for (const Branch& b : branches) count += b.object == object(row) && b.lo <= value(row) && value(row) <= b.hi;
-      images[size_t(row) * width + x] = count;
+      images(row, x) = count;
     }
   }
   return images;

@@ -16,6 +16,8 @@
 #include "refracta/media/index_field.h"
 
 #include <limits>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace refracta {
@@ -92,8 +94,13 @@ class ReadoutGeometry {
 // it joins). A point seen at true elevation c has as many images as branches on the same object,
 // in the same column, whose range of true elevations holds c (the transfer characteristic
 // apparent -> true elevation has that many branches at c). 0 where the pixel met nothing.
-// true_elevation and object_id are width x height, row-major.
-std::vector<int> mirage_images(const std::vector<float>& true_elevation, const std::vector<float>& object_id, int width,
-                               int height);
+// true_elevation and object_id: (H, W) images of one shape (else std::invalid_argument).
+using FloatImage = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using CountImage = Eigen::Matrix<int32_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+CountImage mirage_images(const FloatImage& true_elevation, const FloatImage& object_id);
+
+// Where each readout lies among a render's channels with readouts: (name, (first channel, count)),
+// in channel order.
+std::vector<std::pair<std::string, std::pair<int, int>>> readout_channels();
 
 }  // namespace refracta

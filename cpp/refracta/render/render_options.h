@@ -7,11 +7,13 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace refracta {
 
 enum class RenderMethod { kStraight, kCurved, kRasterMarch };
 RenderMethod parse_render_method(const std::string& name);  // "straight", "curved", "raster_march"
+const char* render_method_name(RenderMethod method);
 
 // Light transport (render/integrator.h): 'direct' -- emitters seen directly and direct lighting
 // at the first non-specular surface (next-event estimation with MIS), following mirror and glass
@@ -19,6 +21,7 @@ RenderMethod parse_render_method(const std::string& name);  // "straight", "curv
 // roulette, max_depth scattering events.
 enum class Transport { kDirect, kPath };
 Transport parse_transport(const std::string& name);  // "direct", "path"
+const char* transport_name(Transport transport);
 
 // Camera rays through a turbulent layer (render/shimmer_cast.h): 'strict' -- the full field's
 // path under rk45's error control; 'perturbed' -- the turbulent ray followed as its deviation from
@@ -27,6 +30,9 @@ Transport parse_transport(const std::string& name);  // "direct", "path"
 enum class TurbulenceTrace { kStrict, kPerturbed };
 TurbulenceTrace parse_turbulence_trace(const std::string& name);  // "strict", "perturbed"
 const char* turbulence_trace_name(TurbulenceTrace method);
+
+// PixelBounds from (x0, y0, x1, y1) (any other count: std::invalid_argument); pixel_bounds' setter.
+PixelBounds pixel_bounds_from(const std::vector<int>& corners);
 
 struct RenderOptions {
   RenderMethod method = RenderMethod::kCurved;

@@ -2,12 +2,10 @@
 // caster, the integrator, the film loop.
 //
 // Spectral rendering through a field ('curved'): the air disperses (media/dispersed_field.h), so
-// each sample's rays -- camera ray, bounces, shadow rays -- bend through the field at its hero
-// wavelength, n - 1 scaled by K(hero)/K(reference), and the secondary wavelengths are terminated
-// (the path is the hero's alone; Wilkie et al. 2014, section 4). Every sample then gets its own
-// caster and integrator over the dispersed field at its exact hero wavelength, and its camera
-// ray is traced (the eye's ElevationTable holds one wavelength): that costs what table=False
-// costs in RGB (the table's saving on camera rays), no interpolation error in wavelength.
+// each sample's rays bend through the field at its exact hero wavelength, cast and shaded by its
+// thread's caster and integrator retuned to it (hero_casters.h). Its camera ray is traced (the
+// eye's ElevationTable holds one wavelength): that costs what table=False costs in RGB (the
+// table's saving on camera rays), no interpolation error in wavelength.
 #include "refracta/render/renderer.h"
 
 #include "refracta/core/error.h"
@@ -16,6 +14,7 @@
 #include "refracta/rays/elevation_table.h"
 #include "refracta/render/caster.h"
 #include "refracta/render/film.h"
+#include "refracta/render/hero_casters.h"
 #include "refracta/render/integrator.h"
 #include "refracta/render/shimmer_cast.h"
 #include "refracta/render/readouts.h"
@@ -31,6 +30,21 @@ RenderMethod parse_render_method(const std::string& name) {
   if (name == "curved") return RenderMethod::kCurved;
   if (name == "raster_march") return RenderMethod::kRasterMarch;
   throw_invalid("method must be 'straight', 'curved' or 'raster_march' (got '", name, "')");
+}
+
+const char* render_method_name(RenderMethod method) {
+  return method == RenderMethod::kStraight ? "straight" : method == RenderMethod::kCurved ? "curved" : "raster_march";
+}
+
+const char* transport_name(Transport transport) { return transport == Transport::kDirect ? "direct" : "path"; }
+
+PixelBounds pixel_bounds_from(const std::vector<int>& corners) {
+  if (corners.size() != 4) throw_invalid("pixel_bounds must be (x0, y0, x1, y1) (got ", corners.size(), " values)");
+  return PixelBounds{corners[0], corners[1], corners[2], corners[3]};
+}
+
+RenderStats operator+(const RenderStats& a, const RenderStats& b) {
+  return RenderStats{a.samples + b.samples, a.chords + b.chords, a.invalid_samples + b.invalid_samples};
 }
 
 Transport parse_transport(const std::string& name) {
@@ -137,7 +151,10 @@ std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera
 Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exact_field, const RenderOptions& options,
              WorkControl& control, RenderStats* stats) {
   options.validate();
-  options.bounds_in(camera.width(), camera.height());  // before any work
+  const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());  // before any work
+  // float32 channels, and room for one copy by the caller (the pixels themselves move out).
+  check_image_memory(bounds.width(), bounds.height(), options.readouts ? 152.0 : options.surface_aovs ? 72.0 : 24.0,
+                     "render");
   scene.prepare();
   if (options.method == RenderMethod::kRasterMarch) {
     if (camera.aperture_diameter() > 0.0) {
@@ -188,7 +205,6 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   std::atomic<int64_t> chords{0}, invalid{0};
   // Dispersive air: a spectral render through a field that bends rays.
   const bool dispersive = options.spectral && caster.curved();
-  const double reference = dispersive ? field_reference_wavelength(*field) : kDefaultFieldWavelength;
   // A camera ray meeting a textured surface gets its footprint from its neighbours' paths (ray
   // differentials through the air, Caster::footprint): half a sample's spacing either side.
   // Through a thin lens the neighbours' rays leave the same lens point.
@@ -218,35 +234,33 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     aovs->hit = first.hit;
     aovs->distance = first.hit ? true_path_length(first.length, origin.y(), first.hit->point.y(), earth_radius) : first.length;
   };
-  auto sample = [&](const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle,
-                                SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch, SurfaceAovs* aovs) {
-                              const Camera::LensRay ray = camera.lens_ray(pixel.x(), pixel.y(), lens);
-                              const Vec3d& origin = ray.origin;
-                              const Vec3d& dir = ray.direction;
-                              Spectrum L;
-                              if (dispersive) {
-                                lambda.terminate_secondary();
-                                const FieldPtr air = dispersed_field(field, lambda.hero(), reference);
-                                Caster hero_caster(scene.geometry, air.get(), options);
-                                if (floors) hero_caster.set_ior_floors(*floors);
-                                hero_caster.set_secondary_spread(camera.pixel_angle());
-                                const std::unique_ptr<Integrator> hero = make_integrator(scene, hero_caster, options);
-                                PathEnd first = hero_caster.cast(origin, dir, 0.0, camera.pixel_angle());
-                                with_footprint(hero_caster, origin, pixel, lens, spacing, &first);
-                                record_camera_ray(origin, dir, first, aovs);
-                                chords.fetch_add(first.chords, std::memory_order_relaxed);
-                                L = hero->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
-                              } else {
-                                PathEnd first = shimmer ? shimmer->cast(caster, origin, dir, camera.pixel_angle())
-                                                        : caster.cast(origin, dir, 0.0, camera.pixel_angle());
-                                with_footprint(shimmer ? shimmer->calm() : caster, origin, pixel, lens, spacing, &first);
-                                record_camera_ray(origin, dir, first, aovs);
-                                chords.fetch_add(first.chords, std::memory_order_relaxed);
-                                L = integrator->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
-                              }
-                              if (!L.isFinite().all()) invalid.fetch_add(1, std::memory_order_relaxed);
-                              return L;
-                            };
+  // Dispersive air: one caster and integrator per thread, retuned to each sample's hero (hero_casters.h).
+  const std::unique_ptr<HeroCasters> heroes =
+      dispersive ? std::make_unique<HeroCasters>(scene, field, options, floors, camera.pixel_angle()) : nullptr;
+  auto sample = [&](const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle, SampledWavelengths& lambda,
+                    Sampler& sampler, ScratchBuffer& scratch, SurfaceAovs* aovs) {
+    const Camera::LensRay ray = camera.lens_ray(pixel.x(), pixel.y(), lens);
+    const Vec3d& origin = ray.origin;
+    const Vec3d& dir = ray.direction;
+    const Caster* cast_by = &caster;
+    const Integrator* shade_by = integrator.get();
+    if (heroes) {
+      lambda.terminate_secondary();
+      const HeroCasters::Hero hero = heroes->for_wavelength(lambda.hero());
+      cast_by = &hero.caster;
+      shade_by = &hero.integrator;
+    }
+    // Turbulence's perturbed camera rays follow the calm air's table: not a dispersed one.
+    const ShimmerCaster* shimmering = heroes ? nullptr : shimmer.get();
+    PathEnd first = shimmering ? shimmering->cast(caster, origin, dir, camera.pixel_angle())
+                               : cast_by->cast(origin, dir, 0.0, camera.pixel_angle());
+    with_footprint(shimmering ? shimmering->calm() : *cast_by, origin, pixel, lens, spacing, &first);
+    record_camera_ray(origin, dir, first, aovs);
+    chords.fetch_add(first.chords, std::memory_order_relaxed);
+    const Spectrum L = shade_by->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
+    if (!L.isFinite().all()) invalid.fetch_add(1, std::memory_order_relaxed);
+    return L;
+  };
   Image image;
   if (options.readouts) {
     const ReadoutGeometry geometry(camera.position(), exact_field.get(), options.max_length);
@@ -257,7 +271,6 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     image = render_film<FilmLayout::kRadiance>(camera, options, control, sample);
   }
   if (stats) {
-    const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
     stats->samples = int64_t(bounds.width()) * bounds.height() * options.spp;
     stats->chords = chords.load();
     stats->invalid_samples = invalid.load();

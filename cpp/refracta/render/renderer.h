@@ -19,11 +19,14 @@ struct RenderStats {
   int64_t chords = 0;           // Embree queries along camera paths (straight rays count one each)
   int64_t invalid_samples = 0;  // samples whose radiance was not finite (dropped; should stay 0)
 };
+// The counts of two renders (tiles of one image) added.
+RenderStats operator+(const RenderStats& a, const RenderStats& b);
 
 // Linear RGB radiance image (height, width, 3); with options.surface_aovs (height, width, 9):
 // radiance, then the albedo and the normal of the first non-specular hit (integrator.h
 // SurfaceAovs); with options.readouts (height, width, 19): those and the readouts (readouts.h).
-// field may be null (then 'curved' = 'straight').
+// field may be null (then 'curved' = 'straight'). Refuses (ValueError) bad options and, before
+// anything is allocated, an image that would not fit in memory (core/image.h).
 Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& field, const RenderOptions& options,
              WorkControl& control, RenderStats* stats = nullptr);
 
