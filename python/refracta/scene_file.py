@@ -33,8 +33,9 @@
     seed = 3                            # pattern again from them (deterministic in the seed);
     cells = 64                          # any left out take Turbulence's defaults: outer_scale
     depth = 0.1                         # (inf), inner_scale, wind = [u, w], spacing, cells (256),
-                                        # depth (inf: uniform, Turbulence(depth=None)), yaw [rad],
-                                        # and time [s] (Turbulence.at_time; default 0)
+                                        # depth (inf: uniform, Turbulence(depth=None)), yaw_deg
+                                        # [deg] (yaw [rad]: deprecated), and time [s]
+                                        # (Turbulence.at_time; default 0)
 
     [sun]                               # optional
     direction = [-0.35, 0.45, 0.25]
@@ -114,6 +115,7 @@ import math
 import os
 import re
 import sys
+import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -206,7 +208,20 @@ ENVIRONMENT_KEYS = {
 LOCAL_MODELS = {"PhysicalAtmosphere", "LogisticProfile"}
 HOT_SPOT_KEYS = {"x", "z", "radius", "dt", "depth", "footprint"}
 GEOGRAPHIC_KEYS = {"lat", "lon"}
-TURBULENCE_KEYS = {"cn2", "outer_scale", "inner_scale", "seed", "wind", "spacing", "cells", "depth", "yaw", "time"}
+# yaw [rad]: the deprecated spelling of yaw_deg, read for one release with a DeprecationWarning.
+TURBULENCE_KEYS = {
+    "cn2",
+    "outer_scale",
+    "inner_scale",
+    "seed",
+    "wind",
+    "spacing",
+    "cells",
+    "depth",
+    "yaw_deg",
+    "yaw",
+    "time",
+}
 _SPOT_PARAMETER = re.compile(r"hot_spot\d+_")  # the fields' parameter names of spot i
 # A table header on a line of its own: [name] or [[name]], a comment after it allowed.
 _HEADER = re.compile(r"^\s*\[\[?\s*([A-Za-z0-9_.\"-]+)\s*\]\]?\s*(#.*)?$")
@@ -564,9 +579,19 @@ def _turbulence(table: Any, where: _Locator, get):
         spacing=_real,
         cells=_whole,
         depth=_real,
+        yaw_deg=_real,
         yaw=_real,
     )
     settings = {key: get(table, name, key, convert) for key, convert in converters.items() if key in table}
+    if "yaw" in settings:
+        warnings.warn(
+            f"{where.path}: [atmosphere.turbulence] yaw [rad] is deprecated; write yaw_deg [deg]",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        if "yaw_deg" in settings:
+            raise where.error("give yaw_deg or the deprecated yaw, not both", name, "yaw")
+        settings["yaw_deg"] = math.degrees(settings.pop("yaw"))
     if settings.get("depth") == math.inf:
         settings["depth"] = None  # no envelope: uniform in height
     time = get(table, name, "time", _real, 0.0)
@@ -961,7 +986,7 @@ def _turbulence_lines(layer: _core.TurbulenceLayer | None, turbulence) -> list:
         ("spacing", turbulence.spacing),
         ("cells", int(turbulence.cells)),
         ("depth", math.inf if turbulence.depth is None else turbulence.depth),
-        ("yaw", turbulence.yaw),
+        ("yaw_deg", turbulence.yaw_deg),
         ("time", turbulence.time),
     ]
     return ["", "[atmosphere.turbulence]"] + [f"{name} = {_toml_value(value)}" for name, value in settings]

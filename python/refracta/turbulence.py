@@ -8,8 +8,8 @@ the wind (``t.at_time(seconds)``) under an optional height envelope. Beside it: 
 statistics of the pattern actually synthesised (structure function, inertial range, angle of
 arrival) and the continuous spectrum's closed forms they are compared with.
 
-Units: metres, seconds; C_n^2 in m^(-2/3); wavenumbers in rad/m; angles in radians. Axes as the
-fields': x and z horizontal, y up.
+Units: metres, seconds; C_n^2 in m^(-2/3); wavenumbers in rad/m; angles given in degrees (yaw_deg)
+as everywhere in refracta's Python API. Axes as the fields': x and z horizontal, y up.
 
 Example::
 
@@ -23,7 +23,9 @@ Example::
 from __future__ import annotations
 
 import math
+import numbers
 import time as _time
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -150,8 +152,9 @@ class Turbulence:
       depth * ln(1e3), where E is 1e-3, are served as calm air), or None: uniform. Default 0.1 m.
     - max_bytes > 0: refuse (ValueError) a grid whose FFT work arrays would need more (default:
       half this machine's memory; math.inf: no limit).
-    - yaw [rad]: the lattice's turn about the vertical (default atan(1 / golden ratio), 31.7 deg,
-      _core.DEFAULT_TURBULENCE_YAW: see media/turbulence_synthesis.h for why). A tile shorter than
+    - yaw_deg [deg]: the lattice's turn about the vertical (default atan(1 / golden ratio), 31.7 deg,
+      _core.DEFAULT_TURBULENCE_YAW_DEG: see media/turbulence_synthesis.h for why). ``yaw=`` [rad],
+      its former spelling, still works for one release with a DeprecationWarning. A tile shorter than
       a ray's path repeats along it: along a lattice axis the same modes add up coherently and
       the angle-of-arrival variance grows as L^2 beyond the tile (8x the continuous spectrum's
       over 300 m at the defaults); turned, a level line of sight along x crosses the
@@ -166,12 +169,14 @@ class Turbulence:
     B-spline transforms", eq. 10), synthesised for C_n^2 = 1 and scaled by sqrt(cn2) in the layer.
 
     Attributes: settings (the TurbulenceSettings), layer (the TurbulenceLayer fields take), grid,
-    time, generation_seconds, and every setting above.
+    time, generation_seconds, every setting above, and yaw: yaw_deg in radians (the layer's unit).
     """
 
     def __init__(self, cn2: float | None = None, **settings):
         if cn2 is not None:
             settings["cn2"] = cn2
+        if "yaw" in settings:
+            _deprecated_yaw(settings)
         checked = _core.TurbulenceSettings.from_fields(**settings)
         start = _time.perf_counter()
         grid = _core.synthesise_turbulence(checked)
@@ -183,8 +188,9 @@ class Turbulence:
         self.settings, self.grid, self.time = settings, grid, float(time)
         self.cn2, self.outer_scale, self.inner_scale = settings.cn2, settings.outer_scale, settings.inner_scale
         self.seed, self.spacing, self.cells = settings.seed, settings.spacing, settings.cell_count()
-        self.depth, self.wind, self.yaw = settings.depth, settings.wind, settings.yaw
+        self.depth, self.wind, self.yaw_deg = settings.depth, settings.wind, settings.yaw_deg
         self.layer = _core.TurbulenceLayer.of(settings, grid, self.time)
+        self.yaw = self.layer.yaw  # [rad]: yaw_deg converted once, in C++ (turbulence_layer)
         self._spectrum: _core._TurbulenceSpectrum | None = None  # the statistics' mode variances, when asked
         self._statistics: tuple[np.ndarray, np.ndarray, float] | None = None  # (k, weights, total), when asked
 
@@ -208,7 +214,7 @@ class Turbulence:
         indices (i, j[a], k[b]), (len(j), len(k)) (C++'s TurbulenceSpectrum, the synthesis' own)."""
         if self._spectrum is None:
             self._spectrum = _core._TurbulenceSpectrum(self.cells, self.spacing, self.inner_scale, self.outer_scale)
-        return self._spectrum.variances(int(i), np.ravel(j), np.ravel(k))
+        return self._spectrum.variances(int(i), np.ravel(j).tolist(), np.ravel(k).tolist())
 
     def at_time(self, t: float) -> Turbulence:
         """The same pattern carried by the wind to time t [s]: offset (u t, 0, w t), the grid shared."""
@@ -367,6 +373,20 @@ class Turbulence:
             f"{self.cells}^3 cells of {self.spacing:g} m (tile {self.size:g} m), {depth}, "
             f"wind={self.wind} m/s, t={self.time:g} s, seed={self.seed})"
         )
+
+
+def _deprecated_yaw(settings: dict) -> None:
+    """Turbulence(yaw=radians), the former spelling: warns and sets yaw_deg (in place)."""
+    warnings.warn(
+        "Turbulence(yaw=...) [rad] is deprecated; give yaw_deg=... [deg] (as every angle in refracta)",
+        DeprecationWarning,
+        stacklevel=3,
+    )
+    if "yaw_deg" in settings:
+        raise ValueError("Turbulence: give yaw_deg or the deprecated yaw, not both")
+    yaw = settings.pop("yaw")
+    # A value that is no number goes on as it is, and the settings name it.
+    settings["yaw_deg"] = math.degrees(yaw) if isinstance(yaw, numbers.Real) else yaw
 
 
 def _restore(settings: _core.TurbulenceSettings, grid, time: float) -> Turbulence:

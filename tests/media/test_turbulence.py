@@ -341,3 +341,68 @@ def test_turbulence_and_its_fields_pickle():
     field = refracta.PhysicalAtmosphere(surface_dt=10.0, turbulence=air)
     again = pickle.loads(pickle.dumps(field))
     np.testing.assert_array_equal(again.ior(p), field.ior(p))
+
+
+# -- 6. the lattice's yaw in degrees; the layer's own checks --------------------------------------------
+
+
+def test_yaw_is_given_in_degrees_and_the_layer_turns_by_its_radians():
+    air = uniform(cells=16, yaw_deg=30.0)
+    assert air.yaw_deg == 30.0 and air.yaw == math.radians(30.0)  # converted once, as math.radians does
+    assert air.layer.yaw == air.yaw
+    default = uniform(cells=16)
+    # The default, atan(1 / golden ratio) as C++ computes it, survives degrees -> radians to the last
+    # bit: the same pattern as when the setting was in radians (0.5535743588970453).
+    assert default.yaw == math.atan(0.5 * (math.sqrt(5.0) - 1.0)) == 0.5535743588970453
+    assert default.yaw_deg == refracta._core.DEFAULT_TURBULENCE_YAW_DEG
+    # Turned by 90 deg the lattice's x axis is the world's z: the pattern at (x, y, z) is the
+    # unturned one's at (z, y, -x).
+    straight, turned = uniform(cells=16, yaw_deg=0.0), uniform(cells=16, yaw_deg=90.0)
+    p = np.random.default_rng(2).uniform(-3, 3, (30, 3))
+    lattice = np.stack([p[:, 2], p[:, 1], -p[:, 0]], axis=1)
+    # cos(pi/2) is 6e-17, not 0: the positions differ by that times |p| (3 m), the values by it
+    # times the pattern's slope (O(1) per m here).
+    np.testing.assert_allclose(turned.evaluate(p)[0], straight.evaluate(lattice)[0], rtol=0, atol=1e-12)
+
+
+def test_yaw_in_radians_is_deprecated_and_gives_the_same_turbulence():
+    with pytest.warns(DeprecationWarning, match="yaw_deg"):
+        old = uniform(cells=16, yaw=0.3)
+    new = uniform(cells=16, yaw_deg=math.degrees(0.3))
+    assert old.yaw_deg == new.yaw_deg and old.layer.yaw == new.layer.yaw
+    p = np.random.default_rng(3).uniform(0, 16, (20, 3))
+    np.testing.assert_array_equal(old.evaluate(p)[0], new.evaluate(p)[0])
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match="not both"):
+        uniform(cells=16, yaw=0.3, yaw_deg=10.0)
+    with pytest.raises(ValueError, match="yaw_deg must be finite"):
+        uniform(cells=16, yaw_deg=float("inf"))
+
+
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        (dict(grid=None), "grid must be a TurbulenceGrid"),
+        (dict(scale=float("nan")), "scale must be finite"),
+        (dict(depth=0.0), "depth must be > 0 m"),
+        (dict(yaw=float("inf")), "yaw must be finite"),
+        (dict(offset=(0.0, 1.0)), "offset"),
+    ],
+)
+def test_a_layer_checks_its_numbers(change, message):
+    grid = uniform(cells=8).grid
+    args = dict(grid=grid, scale=1.0, offset=(0.0, 0.0, 0.0), depth=math.inf, yaw=0.0) | change
+    with pytest.raises(ValueError, match=message):
+        refracta._core.TurbulenceLayer(**args)
+
+
+def test_a_layer_pickles_and_evaluates_as_the_spline_turned_and_shifted():
+    grid = uniform(cells=8).grid
+    layer = refracta._core.TurbulenceLayer(grid, 2.0, (0.5, 0.0, -1.0), math.inf, 0.0)
+    p = np.random.default_rng(4).uniform(0, 8, (10, 3))
+    values, grads = layer.evaluate(p)
+    spline, spline_grads = grid.evaluate(p - [0.5, 0.0, -1.0])
+    np.testing.assert_array_equal(values, 2.0 * spline)  # no envelope, no turn: scale * the spline
+    np.testing.assert_array_equal(grads, 2.0 * spline_grads)
+    copy = pickle.loads(pickle.dumps(layer))
+    np.testing.assert_array_equal(copy.evaluate(p)[0], values)
+    assert (copy.scale, copy.depth, copy.yaw) == (2.0, math.inf, 0.0) and list(copy.offset) == [0.5, 0.0, -1.0]

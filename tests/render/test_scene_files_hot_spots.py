@@ -113,6 +113,19 @@ def test_a_field_with_turbulence_needs_the_turbulence_it_carries():
     assert atmosphere_table(pickle.loads(pickle.dumps(field)), air) == atmosphere_table(field, air)
 
 
+def test_turbulence_yaw_is_written_in_degrees_and_the_old_radians_key_still_reads(tmp_path):
+    air = refracta.Turbulence(1e-10, seed=5, cells=CELLS, yaw_deg=20.0)
+    table = atmosphere_table(refracta.PhysicalAtmosphere(**ROAD, turbulence=air.layer), air)
+    assert "yaw_deg = 20.0" in table and "\nyaw =" not in table
+    base = CAMERA + "[atmosphere]\n\n[atmosphere.turbulence]\ncells = 16\nseed = 5\n"
+    with pytest.warns(DeprecationWarning, match="yaw_deg"):
+        old = read_back(tmp_path, base + "yaw = 0.3\n").turbulence
+    new = read_back(tmp_path, base + f"yaw_deg = {float(np.degrees(0.3))!r}\n").turbulence
+    assert old.yaw_deg == new.yaw_deg and old.layer.yaw == new.layer.yaw
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match=r":10: .*yaw: give yaw_deg or"):
+        read_back(tmp_path, base + "yaw = 0.3\nyaw_deg = 10.0\n")
+
+
 def test_rewriting_replaces_every_sub_table_and_keeps_the_rest(tmp_path, road_text):
     air = refracta.Turbulence(1e-10, seed=5, cells=CELLS)
     spotted = refracta.PhysicalAtmosphere(

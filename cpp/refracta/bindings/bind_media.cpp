@@ -1,29 +1,83 @@
 // Python bindings of the refractive-index fields (cpp/refracta/media) and CustomField.
-#include "refracta/bindings/bindings.h"
+#include "refracta/bindings/bind_media.h"
 #include "refracta/bindings/custom_field.h"
 #include "refracta/bindings/interruptible.h"
 #include "refracta/media/curved_earth.h"
-#include "refracta/media/fields.h"
-#include "refracta/media/hot_spot.h"
+#include "refracta/media/model_args.h"
 #include "refracta/media/tabulated_height_field.h"
 
+#include <pybind11/operators.h>
+
+#include <cmath>
 #include <optional>
-#include <set>
-#include <type_traits>
 #include <sstream>
+#include <tuple>
 
 namespace refracta {
 
 namespace {
 
-std::string param_table(const std::vector<ParamSpec>& specs) {
-  std::ostringstream out;
-  out << "\n\nParameters (name [unit] default, optimiser bounds: meaning):\n";
-  for (const auto& s : specs) {
-    out << "    " << s.name << " [" << s.unit << "] " << s.default_value << ", [" << s.lower << ", "
-        << s.upper << "]: " << s.doc << "\n";
+// Keyword values as numbers, in order (nullopt where one is not a number: the library names it).
+NamedValues named_values(const py::dict& kwargs) {
+  NamedValues out;
+  for (const auto& [key, value] : kwargs) {
+    std::optional<double> number;
+    try {
+      number = py::cast<double>(value);
+    } catch (const py::cast_error&) {
+    }
+    out.emplace_back(py::cast<std::string>(key), number);
   }
-  return out.str();
+  return out;
+}
+
+std::string type_name_of(const py::handle& object) { return py::str(py::type::handle_of(object)); }
+
+// turbulence=: a refracta.Turbulence (its `layer`), a TurbulenceLayer, or None.
+std::shared_ptr<const Turbulence> turbulence_from_python(const char* model, py::object object) {
+  if (object.is_none()) return nullptr;
+  if (py::hasattr(object, "layer") && !py::isinstance<Turbulence>(object)) object = object.attr("layer");
+  if (!py::isinstance<Turbulence>(object)) {
+    throw_invalid(model, ": turbulence must be a refracta.Turbulence (got ", type_name_of(object), ")");
+  }
+  return py::cast<std::shared_ptr<Turbulence>>(object);
+}
+
+// hot_spots=: a HotSpot or a sequence of them.
+std::vector<HotSpot> hot_spots_from_python(const char* model, const py::handle& object) {
+  if (object.is_none()) return {};
+  if (py::isinstance<HotSpot>(object)) return {py::cast<HotSpot>(object)};
+  if (!py::isinstance<py::sequence>(object) || py::isinstance<py::str>(object)) {
+    throw_invalid(model, ": hot_spots must be a HotSpot or a list of them (got ", type_name_of(object), ")");
+  }
+  std::vector<HotSpot> spots;
+  for (const py::handle& item : object) {
+    if (!py::isinstance<HotSpot>(item)) {
+      throw_invalid(model, ": hot_spots[", spots.size(), "] must be a refracta.HotSpot (got ", type_name_of(item), ")");
+    }
+    spots.push_back(py::cast<HotSpot>(item));
+  }
+  return spots;
+}
+
+// A model's constructor arguments: parameters by position or name, hot_spots= and turbulence=.
+template <class Field>
+std::shared_ptr<Field> model_from_python(const py::args& args, const py::kwargs& kwargs) {
+  ModelArgs model{py::cast<std::vector<double>>(args), {}, std::nullopt, std::nullopt};
+  py::dict params;
+  constexpr bool spots = HasHotSpots<typename Field::Config>::value;  // else the library refuses them
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = py::cast<std::string>(key);
+    if (name == "hot_spots") {
+      model.hot_spots = spots ? hot_spots_from_python(Field::model_name(), value) : std::vector<HotSpot>();
+    } else if (name == "turbulence") {
+      model.turbulence = spots ? turbulence_from_python(Field::model_name(), py::reinterpret_borrow<py::object>(value)) : nullptr;
+    } else {
+      params[key] = value;
+    }
+  }
+  model.named = named_values(params);
+  return make_model<Field>(model);
 }
 
 // The signature line of a model's __init__, which takes *args and **kwargs (its parameters come
@@ -40,245 +94,77 @@ std::string init_signature(const char* name, const std::vector<ParamSpec>& specs
   return out.str();
 }
 
-// Parameter values from positional arguments (in order) and keywords (by name) over defaults.
-std::vector<double> values_from(const std::string& type, const std::vector<ParamSpec>& specs,
-                                std::vector<double> values, size_t first, const py::args& args,
-                                const py::kwargs& kwargs) {
-  if (args.size() > specs.size() - first) {
-    throw_invalid(type, " takes at most ", specs.size() - first, " positional parameters (got ",
-                  args.size(), ")");
+template <class Field>
+py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m, const char* name, const char* doc) {
+  using Config = typename Field::Config;
+  const auto specs = Field::param_specs_for({});
+  py::class_<Field, IndexField, std::shared_ptr<Field>> cls(m, name, (doc + param_table(specs)).c_str());
+  py::options signature_by_hand;  // the generated one would read (*args, **kwargs)
+  signature_by_hand.disable_function_signatures();
+  cls.def(py::init(&model_from_python<Field>), init_signature(name, specs, HasHotSpots<Config>()).c_str());
+  signature_by_hand.enable_function_signatures();
+  if constexpr (HasHotSpots<Config>::value) {
+    cls.def_property_readonly("hot_spots", &model_hot_spots<Field>,
+                              "The hot spots with their current parameter values (a list of HotSpot).");
+    cls.def_property_readonly("turbulence", [](const Field& f) { return unconst(f.config().turbulence); },
+                              "The TurbulenceLayer this air carries (None: calm).");
+    // Pickled as its parameter values, hot spots as made and turbulence, rebuilt (and validated)
+    // by the model.
+    using State = std::tuple<std::vector<double>, std::vector<HotSpot>, std::shared_ptr<Turbulence>, bool>;
+    def_tuple_pickle<State>(
+        cls, Field::model_name(),
+        [](const Field& f) {
+          const ModelState s = model_state(f);
+          return State(s.values, s.hot_spots, unconst(s.turbulence), s.hot_layer_off);
+        },
+        [](std::vector<double> values, std::vector<HotSpot> spots, std::shared_ptr<Turbulence> turbulence, bool off) {
+          return model_from_state<Field>({std::move(values), std::move(spots), std::move(turbulence), off});
+        });
+  } else {
+    // Pickled as its parameter values, rebuilt (and validated) by the model's constructor.
+    def_tuple_pickle<std::tuple<std::vector<double>>>(
+        cls, Field::model_name(), [](const Field& f) { return std::make_tuple(f.param_values()); },
+        [](std::vector<double> values) { return std::make_shared<Field>(Config{}, std::move(values)); });
   }
-  std::set<std::string> given;
-  for (size_t i = 0; i < args.size(); ++i) {
-    values[first + i] = py::cast<double>(args[i]);
-    given.insert(specs[first + i].name);
-  }
-  for (const auto& item : kwargs) {
-    const std::string name = py::cast<std::string>(item.first);
-    size_t index = specs.size();
-    for (size_t i = 0; i < specs.size(); ++i) {
-      if (specs[i].name == name) index = i;
-    }
-    if (index == specs.size() || index < first) {
-      std::string names;
-      for (size_t i = first; i < specs.size(); ++i) names += (i > first ? ", " : "") + specs[i].name;
-      throw_invalid(type, ": unknown parameter '", name, "' (parameters: ", names, ")");
-    }
-    if (given.count(name)) throw_invalid(type, ": parameter '", name, "' given twice");
-    try {
-      values[index] = py::cast<double>(item.second);
-    } catch (const py::cast_error&) {
-      throw_invalid(type, ": ", name, " must be a number");
-    }
-  }
-  return values;
+  return cls;
 }
 
-FieldPtr with_params(const IndexField& field, const py::kwargs& kwargs) {
-  std::vector<double> values = field.param_values();
-  for (const auto& item : kwargs) {
-    const size_t index = field.param_index(py::cast<std::string>(item.first));
-    try {
-      values[index] = py::cast<double>(item.second);
-    } catch (const py::cast_error&) {
-      throw_invalid(field.type_name(), ": ", py::cast<std::string>(item.first), " must be a number");
-    }
-  }
-  return field.with_param_values(values);
+// A method of one height [m] over a scalar (-> float) or an (N,) array (-> array) of them.
+template <class T, double (T::*method)(double) const>
+py::object per_height(const T& self, const py::object& heights) {
+  bool single = false;
+  std::vector<double> h = to_values(heights, "heights", &single);
+  for (double& value : h) value = (self.*method)(value);
+  return single ? py::object(py::float_(h[0])) : py::object(values_to_array(h));
 }
 
-std::string field_repr(const IndexField& field) {
-  std::ostringstream out;
-  out.precision(8);
-  out << field.type_name() << "(";
-  const auto& specs = field.param_specs();
-  const auto values = field.param_values();
-  for (size_t i = 0; i < specs.size(); ++i) out << (i ? ", " : "") << specs[i].name << "=" << values[i];
-  out << ")";
-  return out.str();
+template <class Field, class Class>
+void add_air_column(Class& cls) {
+  cls.def("temperature", &per_height<Field, &Field::temperature>, py::arg("heights"),
+          "Air temperature [K] at the given heights [m] (scalar or 1-D array).");
+  cls.def("pressure", &per_height<Field, &Field::pressure>, py::arg("heights"),
+          "Hydrostatic pressure [Pa] at the given heights [m].");
 }
 
+// ior and grad_ior: a CustomField calls its Python functions once for all points.
 py::object ior_of(const IndexField& field, const py::object& points) {
   bool single = false;
   const std::vector<Vec3d> p = to_points(points, "points", &single);
-  if (auto custom = dynamic_cast<const CustomField*>(&field)) {
-    const DoubleArray values = custom->call_ior(points_to_array(p));
-    return single ? py::object(py::float_(values.at(0))) : py::object(values);
-  }
-  std::vector<double> n(p.size());
-  Vec3d grad;
-  for (size_t i = 0; i < p.size(); ++i) field.evaluate_checked(p[i], &n[i], &grad);
+  const auto* custom = dynamic_cast<const CustomField*>(&field);
+  const std::vector<double> n = custom ? custom->call_ior(p) : ior_at(field, p);
   return single ? py::object(py::float_(n[0])) : py::object(values_to_array(n));
 }
 
 py::object grad_of(const IndexField& field, const py::object& points) {
   bool single = false;
   const std::vector<Vec3d> p = to_points(points, "points", &single);
-  DoubleArray out;
-  if (auto custom = dynamic_cast<const CustomField*>(&field)) {
-    out = custom->call_grad(points_to_array(p));
-  } else {
-    std::vector<Vec3d> grad(p.size());
-    double n;
-    for (size_t i = 0; i < p.size(); ++i) field.evaluate_checked(p[i], &n, &grad[i]);
-    out = points_to_array(grad);
-  }
+  const auto* custom = dynamic_cast<const CustomField*>(&field);
+  DoubleArray out = points_to_array(custom ? custom->call_grad(p) : grad_ior_at(field, p));
   return single ? py::object(out.reshape({py::ssize_t(3)})) : py::object(out);
 }
 
-template <class Getter>
-py::object per_height(const py::object& heights, Getter get) {
-  bool single = false;
-  const std::vector<double> h = to_values(heights, "heights", &single);
-  std::vector<double> out(h.size());
-  for (size_t i = 0; i < h.size(); ++i) out[i] = get(h[i]);
-  return single ? py::object(py::float_(out[0])) : py::object(values_to_array(out));
-}
-
-template <class Field, class Class>
-void add_air_column(Class& cls) {
-  cls.def("temperature",
-          [](const Field& f, const py::object& h) {
-            return per_height(h, [&](double x) { return f.temperature(x); });
-          },
-          py::arg("heights"), "Air temperature [K] at the given heights [m] (scalar or 1-D array).")
-      .def("pressure",
-           [](const Field& f, const py::object& h) {
-             return per_height(h, [&](double x) { return f.pressure(x); });
-           },
-           py::arg("heights"), "Hydrostatic pressure [Pa] at the given heights [m].");
-}
-
-// Whether a model's Config carries hot spots.
-template <class Config, class = void>
-struct HasHotSpots : std::false_type {};
-template <class Config>
-struct HasHotSpots<Config, std::void_t<decltype(std::declval<Config&>().hot_spots)>> : std::true_type {};
-
-// Whether a model's Config can switch its hot layer off (LogisticProfile's height-only part).
-template <class Config, class = void>
-struct HasHotLayerOff : std::false_type {};
-template <class Config>
-struct HasHotLayerOff<Config, std::void_t<decltype(std::declval<Config&>().hot_layer_off)>> : std::true_type {};
-
-// The hot spots given to a field's constructor: a HotSpot or a sequence of them. PhysicalAtmosphere
-// takes a spot without depth as deep as its surface layer; LogisticProfile's spots have no depth.
-std::vector<HotSpot> hot_spots_from_python(const char* model, const py::handle& object, bool with_depth,
-                                           double default_depth) {
-  std::vector<HotSpot> spots;
-  if (object.is_none()) return spots;
-  if (py::isinstance<HotSpot>(object)) return hot_spots_from_python(model, py::make_tuple(object), with_depth, default_depth);
-  if (!py::isinstance<py::sequence>(object) || py::isinstance<py::str>(object)) {
-    throw_invalid(model, ": hot_spots must be a HotSpot or a list of them (got ", std::string(py::str(py::type::handle_of(object))), ")");
-  }
-  for (const py::handle& item : object) {
-    if (!py::isinstance<HotSpot>(item)) {
-      throw_invalid(model, ": hot_spots[", spots.size(), "] must be a refracta.HotSpot (got ",
-                    std::string(py::str(py::type::handle_of(item))), ")");
-    }
-    HotSpot spot = py::cast<HotSpot>(item);
-    if (!with_depth && !std::isnan(spot.depth)) {
-      throw_invalid(model, ": hot_spots[", spots.size(), "] has depth ", spot.depth,
-                    "; a LogisticProfile spot takes its vertical width from a_hot (leave depth None)");
-    }
-    if (with_depth && std::isnan(spot.depth)) spot.depth = default_depth;
-    spots.push_back(spot);
-  }
-  return spots;
-}
-
-// turbulence=: a refracta.Turbulence (its `layer`), a TurbulenceLayer, or None.
-std::shared_ptr<const Turbulence> turbulence_from_python(const char* model, py::object object) {
-  if (object.is_none()) return nullptr;
-  if (py::hasattr(object, "layer") && !py::isinstance<Turbulence>(object)) object = object.attr("layer");
-  if (!py::isinstance<Turbulence>(object)) {
-    throw_invalid(model, ": turbulence must be a refracta.Turbulence (got ", std::string(py::str(py::type::handle_of(object))), ")");
-  }
-  return py::cast<std::shared_ptr<Turbulence>>(object);
-}
-
-template <class Field>
-py::class_<Field, IndexField, std::shared_ptr<Field>> bind_model(py::module_& m, const char* name,
-                                                                 const std::string& doc) {
-  using Config = typename Field::Config;
-  const auto specs = Field::param_specs_for({});
-  py::class_<Field, IndexField, std::shared_ptr<Field>> cls(m, name, (doc + param_table(specs)).c_str());
-  py::options signature_by_hand;  // the generated one would read (*args, **kwargs)
-  signature_by_hand.disable_function_signatures();
-  cls.def(py::init([specs](const py::args& args, const py::kwargs& kwargs) {
-    Config config{};
-    std::vector<double> values = values_from(Field::model_name(), specs, default_values(specs), 0, args, [&] {
-      py::kwargs rest;
-      for (const auto& item : kwargs) {
-        const std::string key = py::cast<std::string>(item.first);
-        if (key != "hot_spots" && key != "turbulence") rest[item.first] = item.second;
-      }
-      return rest;
-    }());
-    if constexpr (HasHotSpots<Config>::value) {
-      if (kwargs.contains("hot_spots")) {
-        constexpr bool with_depth = Field::ModelType::kSpotsHaveDepth;
-        double depth = 0.0;
-        for (size_t i = 0; i < specs.size(); ++i) {
-          if (specs[i].name == "surface_depth") depth = values[i];
-        }
-        config.hot_spots = hot_spots_from_python(Field::model_name(), kwargs["hot_spots"], with_depth, depth);
-        for (const ParamSpec& spec : Field::param_specs_for(config)) {
-          if (spec.name.rfind("hot_spot", 0) == 0) values.push_back(spec.default_value);
-        }
-      }
-    } else if (kwargs.contains("hot_spots")) {
-      throw_invalid(Field::model_name(), " takes no hot_spots");
-    }
-    if constexpr (HasHotSpots<Config>::value) {
-      if (kwargs.contains("turbulence")) config.turbulence = turbulence_from_python(Field::model_name(), kwargs["turbulence"]);
-    } else if (kwargs.contains("turbulence")) {
-      throw_invalid(Field::model_name(), " takes no turbulence");
-    }
-    return std::make_shared<Field>(config, values);
-  }), init_signature(name, specs, HasHotSpots<Config>::value).c_str());
-  signature_by_hand.enable_function_signatures();
-  if constexpr (HasHotSpots<Config>::value) {
-    cls.def_property_readonly("hot_spots", [](const Field& f) {
-      const size_t first = Field::param_specs_for(Config{}).size();
-      constexpr bool with_depth = Field::ModelType::kSpotsHaveDepth;
-      std::vector<HotSpot> spots = hot_spots_from(f.config().hot_spots, f.param_values(), first, with_depth);
-      if (!with_depth) {
-        for (HotSpot& spot : spots) spot.depth = std::nan("");
-      }
-      return spots;
-    }, "The hot spots with their current parameter values (a list of HotSpot).");
-    cls.def_property_readonly("turbulence", [](const Field& f) { return std::const_pointer_cast<Turbulence>(f.config().turbulence); },
-                              "The TurbulenceLayer this air carries (None: calm).");
-    // Pickled as its parameter values, hot spots as made and turbulence, rebuilt (and validated)
-    // by the model.
-    cls.def(py::pickle([](const Field& f) {
-                         bool layer_off = false;
-                         if constexpr (HasHotLayerOff<Config>::value) layer_off = f.config().hot_layer_off;
-                         return py::make_tuple(f.param_values(), f.config().hot_spots,
-                                               std::const_pointer_cast<Turbulence>(f.config().turbulence), layer_off);
-                       },
-                       [](const py::tuple& state) {
-                         if (state.size() != 4) throw_invalid(Field::model_name(), ": bad pickle state");
-                         Config config{};
-                         config.hot_spots = py::cast<std::vector<HotSpot>>(state[1]);
-                         if (!state[2].is_none()) config.turbulence = py::cast<std::shared_ptr<Turbulence>>(state[2]);
-                         if constexpr (HasHotLayerOff<Config>::value) config.hot_layer_off = py::cast<bool>(state[3]);
-                         return std::make_shared<Field>(config, py::cast<std::vector<double>>(state[0]));
-                       }));
-  } else {
-    // Pickled as its parameter values, rebuilt (and validated) by the model's constructor.
-    cls.def(py::pickle([](const Field& f) { return py::make_tuple(f.param_values()); },
-                       [](const py::tuple& state) {
-                         if (state.size() != 1) throw_invalid(Field::model_name(), ": bad pickle state");
-                         return std::make_shared<Field>(Config{}, py::cast<std::vector<double>>(state[0]));
-                       }));
-  }
-  return cls;
-}
-
 void bind_hot_spot(py::module_& m) {
-  py::class_<HotSpot>(m, "HotSpot", R"doc(
+  py::class_<HotSpot> cls(m, "HotSpot", R"doc(
 An areal hot (dt > 0) or cold (dt < 0) patch of ground centred at (x, z) [m]: the air above it is
 warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre, with footprint
 'gaussian' F = exp(-r^2 / (2 radius^2)) or 'compact' F = (1 - r/R)^4 (4 r/R + 1) for r < R = radius
@@ -286,24 +172,9 @@ warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre
 (dt [K]; depth [m], None: the atmosphere's surface_depth) or LogisticProfile(hot_spots=[...])
 (dt: strength of the profile's hot-spot term there, 1 = the whole term; depth must be None: the
 term's width is a_hot). The fields expose each spot's numbers as parameters hot_spot<i>_x, _z,
-_radius, _dt (, _depth), so refracta.edit.solve can move, resize and heat them.)doc")
-      .def(py::init([](double x, double z, double radius, double dt, std::optional<double> depth,
-                       const std::string& footprint) {
-             HotSpot s;
-             s.x = x, s.z = z, s.radius = radius, s.dt = dt, s.depth = depth.value_or(std::nan(""));
-             s.footprint = parse_footprint(footprint);
-             const std::pair<const char*, double> finite[] = {{"x", x}, {"z", z}, {"radius", radius}, {"dt", dt}};
-             for (const auto& [what, value] : finite) {
-               if (!std::isfinite(value)) throw_invalid("HotSpot: ", what, " must be finite (got ", value, ")");
-             }
-             if (!(radius > 0.0)) throw_invalid("HotSpot: radius must be > 0 m (got ", radius, ")");
-             if (depth && !(*depth > 0.0 && std::isfinite(*depth))) {
-               throw_invalid("HotSpot: depth must be > 0 m and finite (got ", *depth, ")");
-             }
-             return s;
-           }),
-           py::arg("x"), py::arg("z"), py::arg("radius"), py::arg("dt"), py::arg("depth") = py::none(),
-           py::arg("footprint") = "gaussian")
+_radius, _dt (, _depth), so refracta.edit.solve can move, resize and heat them.)doc");
+  cls.def(py::init(&make_hot_spot), py::arg("x"), py::arg("z"), py::arg("radius"), py::arg("dt"),
+          py::arg("depth") = py::none(), py::arg("footprint") = "gaussian")
       .def_readonly("x", &HotSpot::x)
       .def_readonly("z", &HotSpot::z)
       .def_readonly("radius", &HotSpot::radius)
@@ -314,25 +185,14 @@ _radius, _dt (, _depth), so refracta.edit.solve can move, resize and heat them.)
       .def_property_readonly("footprint", [](const HotSpot& s) { return std::string(footprint_name(s.footprint)); })
       .def_property_readonly("reach", &HotSpot::reach,
                              "Distance [m] beyond which the footprint is below 1e-6 (compact: exactly 0).")
-      .def("__eq__", [](const HotSpot& a, const HotSpot& b) {
-        return a.x == b.x && a.z == b.z && a.radius == b.radius && a.dt == b.dt && a.footprint == b.footprint &&
-               (a.depth == b.depth || (std::isnan(a.depth) && std::isnan(b.depth)));
-      })
-      .def("__repr__", [](const HotSpot& s) {
-        return concat("HotSpot(x=", s.x, ", z=", s.z, ", radius=", s.radius, ", dt=", s.dt, ", depth=",
-                      std::isnan(s.depth) ? std::string("None") : concat(s.depth), ", footprint='",
-                      footprint_name(s.footprint), "')");
-      })
-      .def(py::pickle(
-          [](const HotSpot& s) { return py::make_tuple(s.x, s.z, s.radius, s.dt, s.depth, int(s.footprint)); },
-          [](const py::tuple& t) {
-            if (t.size() != 6) throw_invalid("HotSpot: bad pickle state");
-            HotSpot s;
-            s.x = py::cast<double>(t[0]), s.z = py::cast<double>(t[1]), s.radius = py::cast<double>(t[2]);
-            s.dt = py::cast<double>(t[3]), s.depth = py::cast<double>(t[4]);
-            s.footprint = Footprint(py::cast<int>(t[5]));
-            return s;
-          }));
+      .def(py::self == py::self)  // NOLINT(misc-redundant-expression): pybind11's operator binding
+      .def("__repr__", &hot_spot_repr);
+  using State = std::tuple<double, double, double, double, double, int>;
+  def_tuple_pickle<State>(
+      cls, "HotSpot", [](const HotSpot& s) { return State(s.x, s.z, s.radius, s.dt, s.depth, int(s.footprint)); },
+      [](double x, double z, double radius, double dt, double depth, int footprint) {
+        return HotSpot{x, z, radius, dt, depth, Footprint(footprint)};
+      });
 }
 
 // The interface every field shares: n, its gradient, parameters, regions, turbulence.
@@ -349,13 +209,12 @@ Raises refracta.NumericalError where n <= 0 or is not finite.)doc")
       .def("grad_ior", &grad_of, py::arg("points"), "Gradient of n [1/m] at points (N, 3) -> (N, 3).")
       .def_property_readonly("type_name", &IndexField::type_name)
       .def_property_readonly("height_only", &IndexField::height_only)
-      .def_property_readonly("height_only_part",
-                             [](const IndexField& f) { return std::const_pointer_cast<IndexField>(f.height_only_part()); },
+      .def_property_readonly("height_only_part", [](const IndexField& f) { return unconst(f.height_only_part()); },
                              "A field that depends on height alone except in local regions (hot spots): the height-only "
                              "field that holds outside them; None for other fields.")
       .def("with_turbulence",
            [](const IndexField& f, const py::object& turbulence) {
-             return std::const_pointer_cast<IndexField>(f.with_turbulence(turbulence_from_python(f.type_name().c_str(), turbulence)));
+             return unconst(f.with_turbulence(turbulence_from_python(f.type_name().c_str(), turbulence)));
            },
            py::arg("turbulence"),
            "The same air (parameters, hot spots) with `turbulence` (a refracta.Turbulence, a TurbulenceLayer, or None: "
@@ -363,42 +222,24 @@ Raises refracta.NumericalError where n <= 0 or is not finite.)doc")
       .def_property_readonly("local_regions", [](const IndexField& f) {
         py::list out;
         for (const LocalRegion& r : f.local_regions()) {
-          out.append(py::dict(py::arg("x") = r.x, py::arg("z") = r.z, py::arg("radius") = r.radius, py::arg("top") = r.top,
-                              py::arg("scale") = r.scale));
+          out.append(py::dict(py::arg("x") = r.x, py::arg("z") = r.z, py::arg("radius") = r.radius,
+                              py::arg("top") = r.top, py::arg("scale") = r.scale));
         }
         return out;
       }, "Where the field differs from height_only_part: vertical cylinders (x, z, radius [m]) below `top` [m]; `scale` [m]: the feature's horizontal size.")
-      .def_property_readonly("param_names", [](const IndexField& f) {
-        std::vector<std::string> names;
-        for (const auto& s : f.param_specs()) names.push_back(s.name);
-        return names;
-      })
-      .def_property_readonly("params", [](const IndexField& f) {
-        py::dict out;
-        const auto values = f.param_values();
-        const auto& specs = f.param_specs();
-        for (size_t i = 0; i < specs.size(); ++i) out[py::str(specs[i].name)] = values[i];
-        return out;
-      })
-      .def_property_readonly("bounds", [](const IndexField& f) {
-        py::dict out;
-        for (const auto& s : f.param_specs()) out[py::str(s.name)] = py::make_tuple(s.lower, s.upper);
-        return out;
-      })
+      .def_property_readonly("param_names", &param_names)
+      .def_property_readonly("params", [](const IndexField& f) { return py::dict(py::cast(named_param_values(f))); })
+      .def_property_readonly("bounds", [](const IndexField& f) { return py::dict(py::cast(param_bounds(f))); })
       .def_property_readonly("param_info", [](const IndexField& f) {
         py::list out;
         for (const auto& s : f.param_specs()) {
-          out.append(py::dict(py::arg("name") = s.name, py::arg("default") = s.default_value,
-                              py::arg("lower") = s.lower, py::arg("upper") = s.upper,
+          out.append(py::dict(py::arg("name") = s.name, py::arg("default") = s.default_value, py::arg("lower") = s.lower, py::arg("upper") = s.upper,
                               py::arg("unit") = s.unit, py::arg("doc") = s.doc));
         }
         return out;
       }, "One dict per parameter: name, default, lower, upper, unit, doc.")
       .def_property_readonly("gauge_params", &IndexField::gauge_params)
-      .def("with_params",
-           [](const IndexField& f, const py::kwargs& kw) {
-             return std::const_pointer_cast<IndexField>(with_params(f, kw));
-           },
+      .def("with_params", [](const IndexField& f, const py::kwargs& kw) { return unconst(with_params(f, named_values(kw))); },
            "A new field of the same model with the given parameters changed.")
       .def("__repr__", &field_repr);
 }
@@ -444,80 +285,64 @@ at the lowest height; n from the same air formula as PhysicalAtmosphere. The tem
 parameters t0, t1, ... (with pressure, humidity, wavelength).)doc");
   sounding.def(py::init([](const py::object& heights, const py::object& temperatures, double pressure,
                            double humidity, double wavelength) {
-                 TemperatureProfile::Config config{to_values(heights, "heights")};
-                 std::vector<double> values = to_values(temperatures, "temperatures");
-                 if (values.size() != config.heights.size()) {
-                   throw_invalid("TemperatureProfile: heights and temperatures must have the same "
-                                 "length (", config.heights.size(), " vs ", values.size(), ")");
-                 }
-                 values.insert(values.end(), {pressure, humidity, wavelength});
+                 const std::vector<double> h = to_values(heights, "heights"), t = to_values(temperatures, "temperatures");
                  // Each level adds 16 hydrostatic nodes (~7 us): from ~10^5 levels on this takes
                  // seconds, so it runs like any long call (GIL released, Ctrl-C stops it).
                  std::shared_ptr<TemperatureProfile> field;
                  WorkControl control;
                  run_interruptible(control, py::none(),
-                                   [&] { field = std::make_shared<TemperatureProfile>(config, values); });
+                                   [&] { field = make_temperature_profile(h, t, pressure, humidity, wavelength); });
                  return field;
                }),
                py::arg("heights"), py::arg("temperatures"), py::arg("pressure") = kStandardPressure,
                py::arg("humidity") = 0.0, py::arg("wavelength") = 550.0)
-      .def_property_readonly("heights", [](const TemperatureProfile& f) { return values_to_array(f.config().heights); })
-      .def(py::pickle(
-          [](const TemperatureProfile& f) { return py::make_tuple(f.config().heights, f.param_values()); },
-          [](const py::tuple& state) {
-            if (state.size() != 2) throw_invalid("TemperatureProfile: bad pickle state");
-            return std::make_shared<TemperatureProfile>(TemperatureProfile::Config{py::cast<std::vector<double>>(state[0])},
-                                                        py::cast<std::vector<double>>(state[1]));
-          }));
+      .def_property_readonly("heights", [](const TemperatureProfile& f) { return values_to_array(f.config().heights); });
+  using Sounding = std::tuple<std::vector<double>, std::vector<double>>;
+  def_tuple_pickle<Sounding>(
+      sounding, "TemperatureProfile", [](const TemperatureProfile& f) { return Sounding(f.config().heights, f.param_values()); },
+      [](std::vector<double> heights, std::vector<double> values) {
+        return std::make_shared<TemperatureProfile>(TemperatureProfile::Config{std::move(heights)}, std::move(values));
+      });
   add_air_column<TemperatureProfile>(sounding);
 
-  py::class_<CurvedEarth, IndexField, std::shared_ptr<CurvedEarth>>(m, "CurvedEarth", R"doc(
+  py::class_<CurvedEarth, IndexField, std::shared_ptr<CurvedEarth>> curved(m, "CurvedEarth", R"doc(
 A height-only atmosphere over a spherical Earth, in flat coordinates (conformal Earth-flattening
 transform): x' = distance along the surface, y' = R ln(r/R), n' = n(h) e^(y'/R). Exact for rays in
 their vertical plane; scene heights y' differ from true heights by h^2/(2R) (0.8 mm at 100 m):
 true_height(y') and flat_height(h) convert. Use it for anything seen over kilometres (horizons,
-looming, Fata Morgana).)doc")
-      .def(py::init([](const std::shared_ptr<IndexField>& base, double radius) {
-             return std::make_shared<CurvedEarth>(base, radius);
-           }),
-           py::arg("base"), py::arg("radius") = kEarthRadius)
-      .def_property_readonly("base", [](const CurvedEarth& f) { return std::const_pointer_cast<IndexField>(f.base()); })
+looming, Fata Morgana).)doc");
+  auto make_curved = [](std::shared_ptr<IndexField> base, double radius) { return std::make_shared<CurvedEarth>(base, radius); };
+  curved.def(py::init(make_curved), py::arg("base"), py::arg("radius") = kEarthRadius)
+      .def_property_readonly("base", [](const CurvedEarth& f) { return unconst(f.base()); })
       .def_property_readonly("radius", &CurvedEarth::radius)
-      .def("true_height", [](const CurvedEarth& f, const py::object& y) {
-             return per_height(y, [&](double v) { return f.true_height(v); });
-           }, py::arg("y"), "True height h [m] of flat-frame heights y'.")
-      .def("flat_height", [](const CurvedEarth& f, const py::object& h) {
-             return per_height(h, [&](double v) { return f.flat_height(v); });
-           }, py::arg("h"), "Flat-frame height y' of true heights h [m].")
-      .def(py::pickle(
-          [](const CurvedEarth& f) { return py::make_tuple(std::const_pointer_cast<IndexField>(f.base()), f.radius()); },
-          [](const py::tuple& state) {
-            if (state.size() != 2) throw_invalid("CurvedEarth: bad pickle state");
-            return std::make_shared<CurvedEarth>(py::cast<std::shared_ptr<IndexField>>(state[0]), py::cast<double>(state[1]));
-          }));
+      .def("true_height", &per_height<CurvedEarth, &CurvedEarth::true_height>, py::arg("y"),
+           "True height h [m] of flat-frame heights y'.")
+      .def("flat_height", &per_height<CurvedEarth, &CurvedEarth::flat_height>, py::arg("h"),
+           "Flat-frame height y' of true heights h [m].");
+  using Decorated = std::tuple<std::shared_ptr<IndexField>, double>;
+  def_tuple_pickle<Decorated>(
+      curved, "CurvedEarth", [](const CurvedEarth& f) { return Decorated(unconst(f.base()), f.radius()); }, make_curved);
 
-  py::class_<CustomField, IndexField, std::shared_ptr<CustomField>>(m, "CustomField", R"doc(
+  py::class_<CustomField, IndexField, std::shared_ptr<CustomField>> custom(m, "CustomField", R"doc(
 A field written in Python: ior(points (N,3)) -> (N,) and grad_ior(points (N,3)) -> (N,3), both
 vectorised. height_only=True promises n depends on y alone (enables method='stratified').
-Slow: the integrators call back into Python at every evaluation.)doc")
-      .def(py::init<py::object, py::object, bool>(), py::arg("ior"), py::arg("grad_ior"),
-           py::arg("height_only") = false)
+Slow: the integrators call back into Python at every evaluation.)doc");
+  custom.def(py::init<py::object, py::object, bool>(), py::arg("ior"), py::arg("grad_ior"), py::arg("height_only") = false)
       .def_property_readonly("ior_function", &CustomField::ior_function)
-      .def_property_readonly("grad_function", &CustomField::grad_function)
-      // Pickled as its callables: this works when they pickle (module-level functions with
-      // pickle; lambdas and closures with cloudpickle, as dask uses), else the pickler's error.
-      .def(py::pickle(
-          [](const CustomField& f) { return py::make_tuple(f.ior_function(), f.grad_function(), f.height_only()); },
-          [](const py::tuple& state) {
-            if (state.size() != 3) throw_invalid("CustomField: bad pickle state");
-            return std::make_shared<CustomField>(state[0], state[1], py::cast<bool>(state[2]));
-          }));
+      .def_property_readonly("grad_function", &CustomField::grad_function);
+  // Pickled as its callables: this works when they pickle (module-level functions with
+  // pickle; lambdas and closures with cloudpickle, as dask uses), else the pickler's error.
+  using Callables = std::tuple<py::object, py::object, bool>;
+  def_tuple_pickle<Callables>(
+      custom, "CustomField",
+      [](const CustomField& f) { return Callables(f.ior_function(), f.grad_function(), f.height_only()); },
+      [](py::object ior, py::object grad, bool height_only) { return std::make_shared<CustomField>(ior, grad, height_only); });
   // Tests: the tabulation renders and ElevationTables trace through (media/tabulated_height_field.h).
   m.def(
       "_tabulate_heights",
       [](const std::shared_ptr<IndexField>& field, double lo, double hi) {
         if (!field) throw_invalid("_tabulate_heights: field must be a field (got None)");
-        return std::const_pointer_cast<IndexField>(tabulate_heights(field, lo, hi));
+        return unconst(tabulate_heights(field, lo, hi));
       },
       py::arg("field"), py::arg("lo"), py::arg("hi"),
       "A height-only field tabulated over [lo, hi] m (cubic Hermite to 1e-12 in n); other fields unchanged.");

@@ -1,11 +1,13 @@
 // Python bindings of optical turbulence (media/turbulence.h, media/turbulence_synthesis.h): the
 // settings, the synthesis, the grid and the layer the fields add. refracta.Turbulence
 // (python/refracta/turbulence.py) holds them with the ensemble statistics of the pattern.
-#include "refracta/bindings/bindings.h"
+#include "refracta/bindings/bind_media.h"
 #include "refracta/bindings/interruptible.h"
 #include "refracta/bindings/options_binding.h"
 #include "refracta/media/turbulence.h"
 #include "refracta/media/turbulence_synthesis.h"
+
+#include <pybind11/eigen.h>
 
 #include <cmath>
 
@@ -48,10 +50,20 @@ template <class F>
 py::array elementwise(const py::object& x, const char* what, F f) {
   const DoubleArray in = real_array(x, what);
   DoubleArray out(std::vector<py::ssize_t>(in.shape(), in.shape() + in.ndim()));
-  const double* a = in.data();
-  double* b = out.mutable_data();
-  for (py::ssize_t i = 0; i < in.size(); ++i) b[i] = f(a[i]);
+  std::transform(in.data(), in.data() + in.size(), out.mutable_data(), f);
   return std::move(out);
+}
+
+// evaluate(points) of a grid or a layer: (values (N,), gradients (N, 3)).
+template <class Source>
+std::tuple<DoubleArray, DoubleArray> evaluate_points(const Source& source, const py::object& points) {
+  const std::vector<Vec3d> p = to_points(points, "points");
+  PointValues out;
+  {
+    py::gil_scoped_release release;
+    out = evaluate_at(source, p);
+  }
+  return {values_to_array(out.values), points_to_array(out.gradients)};
 }
 
 void bind_settings(py::module_& m) {
@@ -74,7 +86,7 @@ grid too large for max_bytes. Pickles through its fields.)doc");
       .def_readwrite("depth", &TurbulenceSettings::depth, "[m] the envelope e^(-h/depth); None: uniform")
       .def_readwrite("max_bytes", &TurbulenceSettings::max_bytes,
                      "refuse a grid whose FFT work arrays need more [bytes] (None: half this machine; inf: no limit)")
-      .def_readwrite("yaw", &TurbulenceSettings::yaw, "[rad] the lattice's turn about the vertical")
+      .def_readwrite("yaw_deg", &TurbulenceSettings::yaw_deg, "[deg] the lattice's turn about the vertical")
       .def("cell_count", &TurbulenceSettings::cell_count, "N: cells, or from size and spacing, or 256.")
       .def("validate", &TurbulenceSettings::validate, "Raises ValueError listing every bad field.")
       .def_static(
@@ -82,7 +94,6 @@ grid too large for max_bytes. Pickles through its fields.)doc");
           "Settings with the given fields set (the rest at their defaults), validated.")
       .def("__repr__", [](const py::object& self) { return "TurbulenceSettings(" + options_repr(self) + ")"; });
   def_options_pickle<TurbulenceSettings>(settings);
-
 }
 
 void bind_synthesis(py::module_& m) {
@@ -112,22 +123,12 @@ l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at 
         py::arg("x"), "The Bessel function J1 (std::cyl_bessel_j), element by element.");
   m.attr("SPECTRUM_CONSTANT") = von_karman_constant();
   m.attr("INNER_SCALE_FACTOR") = kInnerScaleFactor;
-  m.attr("DEFAULT_TURBULENCE_YAW") = default_turbulence_yaw();
+  m.attr("DEFAULT_TURBULENCE_YAW_DEG") = default_turbulence_yaw_deg();
 
   py::class_<TurbulenceSpectrum>(m, "_TurbulenceSpectrum")
       .def(py::init<int64_t, double, double, double>(), py::arg("cells"), py::arg("spacing"), py::arg("inner_scale"),
            py::arg("outer_scale"))
-      .def("variances",
-           [](const TurbulenceSpectrum& s, int64_t i, const py::object& j, const py::object& k) {
-             const std::vector<double> jv = to_values(j, "j"), kv = to_values(k, "k");
-             DoubleArray out({py::ssize_t(jv.size()), py::ssize_t(kv.size())});
-             double* d = out.mutable_data();
-             for (double a : jv) {
-               for (double b : kv) *d++ = s.mode_variance(i, int64_t(a), int64_t(b));
-             }
-             return out;
-           },
-           py::arg("i"), py::arg("j"), py::arg("k"),
+      .def("variances", &TurbulenceSpectrum::mode_variances, py::arg("i"), py::arg("j"), py::arg("k"),
            "sigma^2 at lattice indices (i, j[a], k[b]) as a (len(j), len(k)) array (C_n^2 = 1).");
 }
 
@@ -136,88 +137,51 @@ l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at 
 void bind_turbulence(py::module_& m) {
   bind_settings(m);
 
-  py::class_<TurbulenceGrid, std::shared_ptr<TurbulenceGrid>>(m, "TurbulenceGrid", R"doc(
+  py::class_<TurbulenceGrid, std::shared_ptr<TurbulenceGrid>> grid(m, "TurbulenceGrid", R"doc(
 A periodic uniform cubic B-spline over a 3-D grid: TurbulenceGrid(coefficients (nx, ny, nz) float32,
 spacing [m]); axis 0 is x, 1 is y (up), 2 is z. Built by refracta.Turbulence; evaluate(points) gives
-the spline's values and gradients (for tests and plots).)doc")
-      .def(py::init(&grid_from), py::arg("coefficients"), py::arg("spacing"))
+the spline's values and gradients (for tests and plots).)doc");
+  grid.def(py::init(&grid_from), py::arg("coefficients"), py::arg("spacing"))
       .def_property_readonly("shape", [](const TurbulenceGrid& g) { return py::make_tuple(g.shape()[0], g.shape()[1], g.shape()[2]); })
       .def_property_readonly("spacing", &TurbulenceGrid::spacing)
       .def_property_readonly("bound", &TurbulenceGrid::bound, "max |coefficient|: a bound of |values|.")
       .def_property_readonly("coefficients", &coefficients_of)
-      .def("evaluate",
-           [](const TurbulenceGrid& g, const py::object& points) {
-             const std::vector<Vec3d> p = to_points(points, "points");
-             std::vector<double> values(p.size());
-             std::vector<Vec3d> grads(p.size());
-             {
-               py::gil_scoped_release release;
-               for (size_t i = 0; i < p.size(); ++i) g.evaluate(p[i], &values[i], &grads[i]);
-             }
-             return py::make_tuple(values_to_array(values), points_to_array(grads));
-           },
-           py::arg("points"), "(values (N,), gradients (N, 3) [1/m]) at points (N, 3) [m].")
-      .def(py::pickle([](const TurbulenceGrid& g) { return py::make_tuple(coefficients_of(g), g.spacing()); },
-                      [](const py::tuple& t) {
-                        if (t.size() != 2) throw_invalid("TurbulenceGrid: bad pickle state");
-                        return grid_from(t[0], py::cast<double>(t[1]));
-                      }));
+      .def("evaluate", &evaluate_points<TurbulenceGrid>, py::arg("points"),
+           "(values (N,), gradients (N, 3) [1/m]) at points (N, 3) [m].");
+  def_tuple_pickle<std::tuple<py::array, double>>(
+      grid, "TurbulenceGrid", [](const TurbulenceGrid& g) { return std::make_tuple(coefficients_of(g), g.spacing()); },
+      &grid_from);
 
-  py::class_<Turbulence, std::shared_ptr<Turbulence>>(m, "TurbulenceLayer", R"doc(
+  py::class_<Turbulence, std::shared_ptr<Turbulence>> layer(m, "TurbulenceLayer", R"doc(
 A TurbulenceGrid placed in the air: delta_n = scale * E(h) * grid(R_yaw (p - offset)), E(h) =
 e^(-h/depth) above the ground (none for depth = inf), the lattice turned by yaw [rad] about the
-vertical. Made by refracta.Turbulence (its `layer`).)doc")
-      .def(py::init([](std::shared_ptr<TurbulenceGrid> grid, double scale, const py::object& offset, double depth,
-                       double yaw) {
-             if (!grid) throw_invalid("TurbulenceLayer: grid must be a TurbulenceGrid (got None)");
-             if (!std::isfinite(scale)) throw_invalid("TurbulenceLayer: scale must be finite (got ", scale, ")");
-             if (!(depth > 0.0)) throw_invalid("TurbulenceLayer: depth must be > 0 m (got ", depth, ")");
-             if (!std::isfinite(yaw)) throw_invalid("TurbulenceLayer: yaw must be finite (got ", yaw, ")");
-             Turbulence layer;
-             layer.grid = std::move(grid);
-             layer.scale = scale;
-             layer.offset = to_point(offset, "offset");
-             layer.depth = depth;
-             layer.set_yaw(yaw);
-             return layer;
-           }),
-           py::arg("grid"), py::arg("scale"), py::arg("offset"), py::arg("depth"), py::arg("yaw") = 0.0)
+vertical (the layer's internal unit: refracta.Turbulence takes yaw_deg [deg]). Made by
+refracta.Turbulence (its `layer`).)doc");
+  auto make_layer = [](std::shared_ptr<TurbulenceGrid> grid, double scale, const py::object& offset, double depth,
+                       double yaw) { return make_turbulence_layer(grid, scale, to_point(offset, "offset"), depth, yaw); };
+  layer.def(py::init(make_layer), py::arg("grid"), py::arg("scale"), py::arg("offset"), py::arg("depth"), py::arg("yaw") = 0.0)
       .def_static(
           "of",
           [](const TurbulenceSettings& settings, std::shared_ptr<TurbulenceGrid> grid, double time) {
             return turbulence_layer(settings, std::move(grid), time);
           },
           py::arg("settings"), py::arg("grid"), py::arg("time"),
-                  "The layer of `settings` over `grid`: scaled by sqrt(cn2), carried by the wind to time [s].")
+          "The layer of `settings` over `grid`: scaled by sqrt(cn2), carried by the wind to time [s].")
       .def_readonly("yaw", &Turbulence::yaw, "The lattice's turn about the vertical [rad].")
-      .def_property_readonly("grid", [](const Turbulence& t) { return std::const_pointer_cast<TurbulenceGrid>(t.grid); })
+      .def_property_readonly("grid", [](const Turbulence& t) { return unconst(t.grid); })
       .def_readonly("scale", &Turbulence::scale)
-      .def_property_readonly("offset", [](const Turbulence& t) { return points_to_array({t.offset}).reshape({py::ssize_t(3)}); })
+      .def_property_readonly("offset", [](const Turbulence& t) { return vector_to_array(t.offset); })
       .def_readonly("depth", &Turbulence::depth)
-      .def("evaluate",
-           [](const Turbulence& t, const py::object& points) {
-             const std::vector<Vec3d> p = to_points(points, "points");
-             std::vector<double> values(p.size());
-             std::vector<Vec3d> grads(p.size());
-             for (size_t i = 0; i < p.size(); ++i) t.evaluate(p[i], &values[i], &grads[i]);
-             return py::make_tuple(values_to_array(values), points_to_array(grads));
-           },
-           py::arg("points"), "(delta_n (N,), its gradient (N, 3) [1/m]) at points (N, 3) [m].")
-      .def(py::pickle(
-          [](const Turbulence& t) {
-            return py::make_tuple(std::const_pointer_cast<TurbulenceGrid>(t.grid), t.scale,
-                                  py::make_tuple(t.offset.x(), t.offset.y(), t.offset.z()), t.depth, t.yaw);
-          },
-          [](const py::tuple& s) {
-            if (s.size() != 5) throw_invalid("TurbulenceLayer: bad pickle state");
-            Turbulence layer;
-            layer.grid = py::cast<std::shared_ptr<TurbulenceGrid>>(s[0]);
-            layer.scale = py::cast<double>(s[1]);
-            layer.offset = to_point(s[2], "offset");
-            layer.depth = py::cast<double>(s[3]);
-            layer.set_yaw(py::cast<double>(s[4]));
-            return layer;
-          }));
+      .def("evaluate", &evaluate_points<Turbulence>, py::arg("points"),
+           "(delta_n (N,), its gradient (N, 3) [1/m]) at points (N, 3) [m].");
+  using Offset = std::tuple<double, double, double>;
+  using State = std::tuple<std::shared_ptr<TurbulenceGrid>, double, Offset, double, double>;
+  def_tuple_pickle<State>(
+      layer, "TurbulenceLayer",
+      [](const Turbulence& t) { return State(unconst(t.grid), t.scale, Offset(t.offset.x(), t.offset.y(), t.offset.z()), t.depth, t.yaw); },
+      [make_layer](std::shared_ptr<TurbulenceGrid> grid, double scale, Offset offset, double depth, double yaw) {
+        return make_layer(std::move(grid), scale, py::cast(offset), depth, yaw);
+      });
   bind_synthesis(m);
 }
 

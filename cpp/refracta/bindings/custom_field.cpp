@@ -3,7 +3,6 @@
 
 #include "refracta/bindings/running_work.h"
 #include "refracta/core/parallel.h"
-#include "refracta/media/ior_range.h"
 
 namespace refracta {
 
@@ -22,56 +21,39 @@ CustomField::~CustomField() {
   delete grad_;
 }
 
-DoubleArray CustomField::call_ior(const DoubleArray& points) const {
-  const py::ssize_t count = points.shape(0);
-  DoubleArray out = real_array((*ior_)(points), "CustomField: ior(points)");
+std::vector<double> CustomField::call_ior(const std::vector<Vec3d>& points) const {
+  const py::ssize_t count = py::ssize_t(points.size());
+  DoubleArray out = real_array((*ior_)(points_to_array(points)), "CustomField: ior(points)");
   if (!(out.size() == count && (out.ndim() == 1 || (out.ndim() == 2 && out.shape(1) == 1) ||
                                 (out.ndim() == 0 && count == 1)))) {
     throw_invalid("CustomField: ior returned ", out.size(), " values in ", out.ndim(),
                   " dimensions for ", count, " points; expected shape (", count, ",)");
   }
-  out = out.reshape({count});
-  const double* n = out.data();
-  const double* p = points.data();
-  for (py::ssize_t i = 0; i < count; ++i) {
-    if (!usable_ior(n[i])) {
-      throw_numerical("CustomField: ior returned n = ", n[i], " at (", p[3 * i], ", ", p[3 * i + 1], ", ",
-                      p[3 * i + 2], ") m; n must be finite and > 0 (in [", kMinIor, ", ", kMaxIor, "])");
-    }
-  }
-  return out;
+  std::vector<double> n(out.data(), out.data() + count);
+  check_returned_iors("CustomField: ior", n, points);
+  return n;
 }
 
-DoubleArray CustomField::call_grad(const DoubleArray& points) const {
-  const py::ssize_t count = points.shape(0);
-  DoubleArray out = real_array((*grad_)(points), "CustomField: grad_ior(points)");
+std::vector<Vec3d> CustomField::call_grad(const std::vector<Vec3d>& points) const {
+  const py::ssize_t count = py::ssize_t(points.size());
+  DoubleArray out = real_array((*grad_)(points_to_array(points)), "CustomField: grad_ior(points)");
   // Exactly (N, 3), or (3,) for one point: a (3, N) array has the same size but other meaning.
   if (!((out.ndim() == 2 && out.shape(0) == count && out.shape(1) == 3) ||
         (out.ndim() == 1 && count == 1 && out.shape(0) == 3))) {
     throw_invalid("CustomField: grad_ior returned ", out.size(), " values in ", out.ndim(),
                   " dimensions for ", count, " points; expected shape (", count, ", 3)");
   }
-  out = out.reshape({count, py::ssize_t(3)});
-  const double* g = out.data();
-  const double* p = points.data();
-  for (py::ssize_t i = 0; i < 3 * count; ++i) {
-    if (!std::isfinite(g[i])) {
-      const py::ssize_t k = i / 3;
-      throw_numerical("CustomField: grad_ior returned (", g[3 * k], ", ", g[3 * k + 1], ", ", g[3 * k + 2],
-                      ") at (", p[3 * k], ", ", p[3 * k + 1], ", ", p[3 * k + 2], ") m; it must be finite");
-    }
-  }
-  return out;
+  std::vector<Vec3d> grads(points.size());
+  for (size_t i = 0; i < grads.size(); ++i) grads[i] = Vec3d(out.data() + 3 * i);
+  check_returned_grads("CustomField: grad_ior", grads, points);
+  return grads;
 }
 
 void CustomField::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
   if (python_is_shutting_down()) throw Cancelled();  // never call into an exiting interpreter
   py::gil_scoped_acquire acquire;
-  DoubleArray point({py::ssize_t(1), py::ssize_t(3)});
-  std::copy(p.data(), p.data() + 3, point.mutable_data());
-  *n = call_ior(point).at(0);
-  const DoubleArray g = call_grad(point);
-  *grad = Vec3d(g.at(0, 0), g.at(0, 1), g.at(0, 2));
+  *n = call_ior({p})[0];
+  *grad = call_grad({p})[0];
 }
 
 void CustomField::evaluate_height(double h, double* n, double* dn_dh) const {

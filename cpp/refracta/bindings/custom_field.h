@@ -21,9 +21,9 @@ class CustomField : public IndexField {
   std::vector<double> param_values() const override { return {}; }
   std::shared_ptr<const IndexField> with_param_values(const std::vector<double>& values) const override;
 
-  // Vectorised calls with shape checks (one Python call for all points).
-  DoubleArray call_ior(const DoubleArray& points) const;
-  DoubleArray call_grad(const DoubleArray& points) const;
+  // Vectorised calls with shape and value checks (one Python call for all points).
+  std::vector<double> call_ior(const std::vector<Vec3d>& points) const;
+  std::vector<Vec3d> call_grad(const std::vector<Vec3d>& points) const;
 
   const py::object& ior_function() const { return *ior_; }
   const py::object& grad_function() const { return *grad_; }

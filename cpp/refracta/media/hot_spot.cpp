@@ -2,6 +2,7 @@
 #include "refracta/media/hot_spot.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace refracta {
 
@@ -13,6 +14,33 @@ Footprint parse_footprint(const std::string& name) {
 
 const char* footprint_name(Footprint footprint) {
   return footprint == Footprint::kCompact ? "compact" : "gaussian";
+}
+
+bool HotSpot::operator==(const HotSpot& o) const {
+  return x == o.x && z == o.z && radius == o.radius && dt == o.dt && footprint == o.footprint &&
+         (depth == o.depth || (std::isnan(depth) && std::isnan(o.depth)));
+}
+
+HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optional<double> depth,
+                      const std::string& footprint) {
+  HotSpot s;
+  s.x = x, s.z = z, s.radius = radius, s.dt = dt, s.depth = depth.value_or(std::nan(""));
+  s.footprint = parse_footprint(footprint);
+  const std::pair<const char*, double> finite[] = {{"x", x}, {"z", z}, {"radius", radius}, {"dt", dt}};
+  for (const auto& [what, value] : finite) {
+    if (!std::isfinite(value)) throw_invalid("HotSpot: ", what, " must be finite (got ", value, ")");
+  }
+  if (!(radius > 0.0)) throw_invalid("HotSpot: radius must be > 0 m (got ", radius, ")");
+  if (depth && !(*depth > 0.0 && std::isfinite(*depth))) {
+    throw_invalid("HotSpot: depth must be > 0 m and finite (got ", *depth, ")");
+  }
+  return s;
+}
+
+std::string hot_spot_repr(const HotSpot& s) {
+  return concat("HotSpot(x=", s.x, ", z=", s.z, ", radius=", s.radius, ", dt=", s.dt, ", depth=",
+                std::isnan(s.depth) ? std::string("None") : concat(s.depth), ", footprint='", footprint_name(s.footprint),
+                "')");
 }
 
 std::vector<ParamSpec> hot_spot_param_specs(const std::vector<HotSpot>& spots, bool with_depth,

@@ -15,6 +15,7 @@
 #include "refracta/media/local_region.h"
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,7 +38,16 @@ struct HotSpot {
   double reach() const {
     return footprint == Footprint::kCompact ? radius : radius * std::sqrt(-2.0 * std::log(kNegligibleFeature));
   }
+  // Equal numbers and footprint (a NaN depth equals a NaN depth: both "none").
+  bool operator==(const HotSpot& other) const;
 };
+
+// A spot from its numbers, checked: x, z, radius, dt finite, radius > 0, depth > 0 and finite or
+// none (nullopt: NaN), footprint "gaussian" or "compact"; std::invalid_argument naming the field.
+HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optional<double> depth,
+                      const std::string& footprint);
+// "HotSpot(x=..., z=..., radius=..., dt=..., depth=... or None, footprint='...')".
+std::string hot_spot_repr(const HotSpot& spot);
 
 // The parameter specs of the spots, appended after a model's own: names hot_spot<i>_<field>, the
 // search box around the position and size each spot was made with.

@@ -35,6 +35,40 @@ void IndexField::evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const 
   }
 }
 
+std::vector<double> ior_at(const IndexField& field, const std::vector<Vec3d>& points) {
+  std::vector<double> n(points.size());
+  Vec3d grad;
+  for (size_t i = 0; i < points.size(); ++i) field.evaluate_checked(points[i], &n[i], &grad);
+  return n;
+}
+
+std::vector<Vec3d> grad_ior_at(const IndexField& field, const std::vector<Vec3d>& points) {
+  std::vector<Vec3d> grad(points.size());
+  double n;
+  for (size_t i = 0; i < points.size(); ++i) field.evaluate_checked(points[i], &n, &grad[i]);
+  return grad;
+}
+
+void check_returned_iors(const std::string& who, const std::vector<double>& n, const std::vector<Vec3d>& points) {
+  for (size_t i = 0; i < n.size(); ++i) {
+    if (!usable_ior(n[i])) {
+      const Vec3d& p = points[i];
+      throw_numerical(who, " returned n = ", n[i], " at (", p.x(), ", ", p.y(), ", ", p.z(),
+                      ") m; n must be finite and > 0 (in [", kMinIor, ", ", kMaxIor, "])");
+    }
+  }
+}
+
+void check_returned_grads(const std::string& who, const std::vector<Vec3d>& grads, const std::vector<Vec3d>& points) {
+  for (size_t i = 0; i < grads.size(); ++i) {
+    if (!is_finite(grads[i])) {
+      const Vec3d &g = grads[i], &p = points[i];
+      throw_numerical(who, " returned (", g.x(), ", ", g.y(), ", ", g.z(), ") at (", p.x(), ", ", p.y(), ", ", p.z(),
+                      ") m; it must be finite");
+    }
+  }
+}
+
 double lowest_ior_sampled(const IndexField& field, double lo, double hi, double margin) {
   double lowest = std::numeric_limits<double>::infinity(), n, dn;
   // Finest near the ground (h = 0, or the end of the range nearer it), where layers are thin.

@@ -90,6 +90,15 @@ class IndexField {
 
 using FieldPtr = std::shared_ptr<const IndexField>;
 
+// n and grad n [1/m] at each point [m] (evaluate_checked: NumericalError where n is not usable).
+std::vector<double> ior_at(const IndexField& field, const std::vector<Vec3d>& points);
+std::vector<Vec3d> grad_ior_at(const IndexField& field, const std::vector<Vec3d>& points);
+// Checks values a field's code outside the library returned at points [m] (CustomField's Python
+// callables): NumericalError naming `who` ("CustomField: ior") and the first point where n is not
+// usable (ior_range.h) or a gradient is not finite.
+void check_returned_iors(const std::string& who, const std::vector<double>& n, const std::vector<Vec3d>& points);
+void check_returned_grads(const std::string& who, const std::vector<Vec3d>& grads, const std::vector<Vec3d>& points);
+
 // The least n of a height-only field over heights [lo, hi] [m], sampled every millimetre near
 // the ground (h = 0) with the spacing growing 0.1 % of the distance from it (about 2300 samples
 // per decade of height beyond 1 m), less `margin`: a bound unless a dip deeper than `margin` hides between samples (the

@@ -40,6 +40,21 @@ TurbulenceGrid::TurbulenceGrid(std::vector<float> coefficients, std::array<int, 
   }
 }
 
+Turbulence make_turbulence_layer(std::shared_ptr<const TurbulenceGrid> grid, double scale, const Vec3d& offset,
+                                 double depth, double yaw) {
+  if (!grid) throw_invalid("TurbulenceLayer: grid must be a TurbulenceGrid (got None)");
+  if (!std::isfinite(scale)) throw_invalid("TurbulenceLayer: scale must be finite (got ", scale, ")");
+  if (!(depth > 0.0)) throw_invalid("TurbulenceLayer: depth must be > 0 m (got ", depth, ")");
+  if (!std::isfinite(yaw)) throw_invalid("TurbulenceLayer: yaw must be finite (got ", yaw, ")");
+  Turbulence layer;
+  layer.grid = std::move(grid);
+  layer.scale = scale;
+  layer.offset = offset;
+  layer.depth = depth;
+  layer.set_yaw(yaw);
+  return layer;
+}
+
 void TurbulenceGrid::evaluate(const Vec3d& p, double* value, Vec3d* grad) const {
   // Cell and fraction per axis; coefficients i - 1 .. i + 2 (periodic) weigh on [i, i + 1).
   double w[3][4], dw[3][4];

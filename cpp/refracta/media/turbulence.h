@@ -110,4 +110,22 @@ struct Turbulence {
   }
 };
 
+// A layer from its numbers, checked (std::invalid_argument naming the field): a grid, a finite
+// scale, depth > 0 [m] (inf: no envelope), a finite yaw [rad].
+Turbulence make_turbulence_layer(std::shared_ptr<const TurbulenceGrid> grid, double scale, const Vec3d& offset,
+                                 double depth, double yaw);
+
+// Values and gradients [1/m] at many points [m] of anything with evaluate(p, &value, &grad) (a
+// TurbulenceGrid, a Turbulence).
+struct PointValues {
+  std::vector<double> values;
+  std::vector<Vec3d> gradients;
+};
+template <class Source>
+PointValues evaluate_at(const Source& source, const std::vector<Vec3d>& points) {
+  PointValues out{std::vector<double>(points.size()), std::vector<Vec3d>(points.size())};
+  for (size_t i = 0; i < points.size(); ++i) source.evaluate(points[i], &out.values[i], &out.gradients[i]);
+  return out;
+}
+
 }  // namespace refracta

@@ -55,7 +55,7 @@ std::pair<double, double> normal_pair(Rng& rng) {
 
 double von_karman_constant() { return 5.0 / (18.0 * kPi * std::tgamma(1.0 / 3.0)); }
 
-double default_turbulence_yaw() { return std::atan(0.5 * (std::sqrt(5.0) - 1.0)); }
+double default_turbulence_yaw_deg() { return std::atan(0.5 * (std::sqrt(5.0) - 1.0)) * 180.0 / kPi; }
 
 double von_karman_spectrum(double kappa, double cn2, double inner_scale, double outer_scale) {
   const double kappa0 = std::isinf(outer_scale) ? 0.0 : 2.0 * kPi / outer_scale;
@@ -91,7 +91,7 @@ void TurbulenceSettings::validate() const {
     problems.check(*size > 0.0 && std::isfinite(*size), "size must be > 0 m and finite (got ", *size, ")");
   }
   if (max_bytes) problems.check(*max_bytes > 0.0, "max_bytes must be > 0 (math.inf: no limit; got ", *max_bytes, ")");
-  problems.check(std::isfinite(yaw), "yaw must be finite (got ", yaw, ")");
+  problems.check(std::isfinite(yaw_deg), "yaw_deg must be finite (got ", yaw_deg, ")");
   problems.throw_if_any();
   // Refused before anything is allocated. Half of this machine by default (no limit where its
   // memory cannot be read).
@@ -147,6 +147,15 @@ double TurbulenceSpectrum::mode_variance(int64_t i, int64_t j, int64_t k) const 
   }
   return von_karman_spectrum(dk_ * std::sqrt(double(i * i + j * j + k * k)), 1.0, inner_scale_, outer_scale_) *
          dk_ * dk_ * dk_;
+}
+
+Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> TurbulenceSpectrum::mode_variances(
+    int64_t i, const std::vector<int64_t>& j, const std::vector<int64_t>& k) const {
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> out(j.size(), k.size());
+  for (size_t a = 0; a < j.size(); ++a) {
+    for (size_t b = 0; b < k.size(); ++b) out(Eigen::Index(a), Eigen::Index(b)) = mode_variance(i, j[a], k[b]);
+  }
+  return out;
 }
 
 std::shared_ptr<TurbulenceGrid> synthesise_turbulence(const TurbulenceSettings& settings, WorkControl& control) {
@@ -229,7 +238,7 @@ Turbulence turbulence_layer(const TurbulenceSettings& settings, std::shared_ptr<
   layer.scale = std::sqrt(settings.cn2);
   layer.offset = Vec3d(settings.wind[0] * time, 0.0, settings.wind[1] * time);
   layer.depth = settings.depth ? *settings.depth : std::numeric_limits<double>::infinity();
-  layer.set_yaw(settings.yaw);
+  layer.set_yaw(degrees_to_radians(settings.yaw_deg));
   return layer;
 }
 

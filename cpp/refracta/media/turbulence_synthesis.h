@@ -42,8 +42,8 @@ double von_karman_spectrum(double kappa, double cn2, double inner_scale, double 
 // growing as L^2 beyond the tile); a level ray along x or z -- the usual lines of sight -- then
 // crosses the tile with slope 1 / golden ratio, whose rational approximations (Fibonacci ratios)
 // are the worst of any number (Hurwitz), so it comes back near an earlier crossing as rarely as a
-// straight line can. [rad]
-double default_turbulence_yaw();
+// straight line can. [deg] (31.717...; its radians are atan(1 / golden ratio) exactly)
+double default_turbulence_yaw_deg();
 
 // The settings of a turbulence pattern and its placement, with the hot road's defaults.
 struct TurbulenceSettings {
@@ -72,8 +72,9 @@ struct TurbulenceSettings {
   std::optional<double> depth = 0.1;
   // The largest FFT work arrays allowed [bytes]; unset: half this machine's memory (inf: no limit).
   std::optional<double> max_bytes;
-  // The lattice's turn about the vertical [rad] (default_turbulence_yaw()).
-  double yaw = default_turbulence_yaw();
+  // The lattice's turn about the vertical [deg], as every angle users give (default_turbulence_yaw_deg());
+  // turbulence_layer turns it into the layer's radians, the one conversion.
+  double yaw_deg = default_turbulence_yaw_deg();
 
   // N: cells, or from size and spacing, or 256.
   int cell_count() const;
@@ -96,6 +97,9 @@ class TurbulenceSpectrum {
   TurbulenceSpectrum(int64_t cells, double spacing, double inner_scale, double outer_scale);
   // At signed lattice indices (i, j, k).
   double mode_variance(int64_t i, int64_t j, int64_t k) const;
+  // At (i, j[a], k[b]) for every a and b: a (j.size(), k.size()) matrix.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> mode_variances(
+      int64_t i, const std::vector<int64_t>& j, const std::vector<int64_t>& k) const;
   int64_t cells() const { return cells_; }
 
   static constexpr int kCellAveraged = 4;
