@@ -56,7 +56,7 @@ Colours are linear RGB albedos in [0, 1]: conifer forest ~0.08, rock 0.2-0.3, ol
              return std::make_shared<TerrainShading>(p);
            }),
            py::arg("snow_line") = d.snow_line, py::arg("tree_line") = d.tree_line, py::arg("rock_slope") = d.rock_slope,
-           py::arg("earth_radius") = d.earth_radius, py::arg("vegetation") = rgb_tuple(d.vegetation),
+           py::arg("earth_radius") = d.earth_radius, py::kw_only(), py::arg("vegetation") = rgb_tuple(d.vegetation),
            py::arg("rock") = rgb_tuple(d.rock), py::arg("snow") = rgb_tuple(d.snow))
       .def(
           "reflectance",
