@@ -1,5 +1,5 @@
 // Python bindings of the materials (shading/*.h): one class per BSDF, each pickled through its
-// constructor's keyword arguments (bind_shading.h's add_parameters).
+// constructor's keyword arguments (bind_shading.h's def_material).
 #include "refracta/bindings/bind_shading.h"
 
 #include "refracta/core/error.h"
@@ -47,59 +47,53 @@ py::object texture_argument(const TexturedReflectance& r) {
   return r.texture() >= 0 ? py::object(py::int_(r.texture())) : py::object(py::none());
 }
 
-py::dict ior_arguments(const Ior& ior) {
-  if (!ior.dispersive()) return py::dict(py::arg("ior") = ior.rgb_value());
+py::dict with_ior(py::dict kwargs, const Ior& ior) {
   const auto& b = ior.sellmeier_b();
   const auto& c = ior.sellmeier_c();
-  return py::dict(py::arg("sellmeier") = py::make_tuple(b[0], b[1], b[2], c[0], c[1], c[2]));
+  if (ior.dispersive()) {
+    kwargs["sellmeier"] = py::make_tuple(b[0], b[1], b[2], c[0], c[1], c[2]);
+  } else {
+    kwargs["ior"] = ior.rgb_value();
+  }
+  return kwargs;
 }
 
 namespace {
 
 // Glass: smooth, rough and thin.
 void bind_dielectrics(py::module_& m) {
-  py::class_<Dielectric, Material, std::shared_ptr<Dielectric>> dielectric_class(
-      m, "Dielectric",
+  def_material<Dielectric>(m, "Dielectric",
       "Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by\n"
       "(eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3), C in\n"
       "um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction). priority: nested\n"
-      "dielectrics (larger wins).");
-  dielectric_class
-      .def(py::init([](const py::object& ior, const py::object& sellmeier, int priority) {
-             return std::make_shared<Dielectric>(to_ior(ior, sellmeier), priority);
-           }),
-           py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0);
-  add_parameters<Dielectric>(dielectric_class, [](const Dielectric& m) {
-    py::dict kwargs = ior_arguments(m.ior());
-    kwargs["priority"] = m.priority();
-    return kwargs;
-  });
+      "dielectrics (larger wins).",
+      py::init([](const py::object& ior, const py::object& sellmeier, int priority) {
+        return std::make_shared<Dielectric>(to_ior(ior, sellmeier), priority);
+      }),
+      [](const Dielectric& m) { return with_ior(py::dict(py::arg("priority") = m.priority()), m.ior()); },
+      py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0);
 
-  py::class_<RoughDielectric, Material, std::shared_ptr<RoughDielectric>> rough_dielectric_class(
-      m, "RoughDielectric",
-      "Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.");
-  rough_dielectric_class
-      .def(py::init([](std::optional<double> alpha, const py::object& ior, const py::object& sellmeier, int priority,
-                       std::optional<double> alpha_u, std::optional<double> alpha_v) {
-             const auto a = alphas_from(alpha, alpha_u, alpha_v, true, 0.0);
-             return std::make_shared<RoughDielectric>(a.first, a.second, to_ior(ior, sellmeier), priority);
-           }),
-           py::arg("alpha") = py::none(), py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0,
-           py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
-  add_parameters<RoughDielectric>(rough_dielectric_class, [](const RoughDielectric& m) {
-    py::dict kwargs = ior_arguments(m.ior());
-    kwargs["alpha_u"] = m.alpha_u(), kwargs["alpha_v"] = m.alpha_v(), kwargs["priority"] = m.priority();
-    return kwargs;
-  });
+  def_material<RoughDielectric>(m, "RoughDielectric",
+      "Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.",
+      py::init([](std::optional<double> alpha, const py::object& ior, const py::object& sellmeier, int priority,
+                  std::optional<double> alpha_u, std::optional<double> alpha_v) {
+        const auto a = alphas_from(alpha, alpha_u, alpha_v, true, 0.0);
+        return std::make_shared<RoughDielectric>(a.first, a.second, to_ior(ior, sellmeier), priority);
+      }),
+      [](const RoughDielectric& m) {
+        return with_ior(py::dict(py::arg("alpha_u") = m.alpha_u(), py::arg("alpha_v") = m.alpha_v(),
+                                 py::arg("priority") = m.priority()),
+                        m.ior());
+      },
+      py::arg("alpha") = py::none(), py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0,
+      py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
 
-  py::class_<ThinDielectric, Material, std::shared_ptr<ThinDielectric>> thin_dielectric_class(
-      m, "ThinDielectric",
+  def_material<ThinDielectric>(m, "ThinDielectric",
       "A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through\n"
-      "(no offset, no medium inside: interior_ior is None). ior as for Dielectric.");
-  thin_dielectric_class
-      .def(py::init([](const py::object& ior, const py::object& sellmeier) { return std::make_shared<ThinDielectric>(to_ior(ior, sellmeier)); }),
-           py::arg("ior") = 1.5, py::arg("sellmeier") = py::none());
-  add_parameters<ThinDielectric>(thin_dielectric_class, [](const ThinDielectric& m) { return ior_arguments(m.ior()); });
+      "(no offset, no medium inside: interior_ior is None). ior as for Dielectric.",
+      py::init([](const py::object& ior, const py::object& sellmeier) { return std::make_shared<ThinDielectric>(to_ior(ior, sellmeier)); }),
+      [](const ThinDielectric& m) { return with_ior(py::dict(), m.ior()); },
+      py::arg("ior") = 1.5, py::arg("sellmeier") = py::none());
 }
 
 }  // namespace
@@ -107,126 +101,113 @@ void bind_dielectrics(py::module_& m) {
 void bind_materials(py::module_& m) {
   bind_dielectrics(m);
   const PrincipledParameters kPrincipled;  // Principled's defaults
-  py::class_<Diffuse, Material, std::shared_ptr<Diffuse>> diffuse_class(m, "Diffuse",
-                                                        "Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b)\n"
-                                                        "in [0, 1] (> 1 is refused: it would create energy). " TEXTURE_DOC);
-  diffuse_class
-      .def(py::init([](const py::object& reflectance, const py::object& texture) {
-             return std::make_shared<Diffuse>(to_textured(reflectance, "reflectance", texture));
-           }),
-           py::arg("reflectance") = 0.5, py::arg("texture") = py::none());
-  add_parameters<Diffuse>(diffuse_class, [](const Diffuse& m) {
-    return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance().rgb()), py::arg("texture") = texture_argument(m.reflectance()));
-  });
+  def_material<Diffuse>(m, "Diffuse",
+      "Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b)\n"
+      "in [0, 1] (> 1 is refused: it would create energy). " TEXTURE_DOC,
+      py::init([](const py::object& reflectance, const py::object& texture) {
+        return std::make_shared<Diffuse>(to_textured(reflectance, "reflectance", texture));
+      }),
+      [](const Diffuse& m) {
+        return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance().rgb()), py::arg("texture") = texture_argument(m.reflectance()));
+  },
+      py::arg("reflectance") = 0.5, py::arg("texture") = py::none());
 
-  py::class_<BlinnPhong, Material, std::shared_ptr<BlinnPhong>> blinn_phong_class(
-      m, "BlinnPhong",
+  def_material<BlinnPhong>(m, "BlinnPhong",
       "Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0, 1]\n"
       "(numbers or (r, g, b)), ns >= 0; alpha in [0, 1] is the raster opacity (MTL d). Sampled by a\n"
-      "mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd. " TEXTURE_DOC);
-  blinn_phong_class
-      .def(py::init([](const py::object& kd, const py::object& ks, double ns, const py::object& texture, double alpha) {
-             return std::make_shared<BlinnPhong>(to_textured(kd, "kd", texture), to_rgb(ks, "ks"), ns, alpha);
-           }),
-           py::arg("kd") = 0.5, py::arg("ks") = 0.0, py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("alpha") = 1.0);
-  add_parameters<BlinnPhong>(blinn_phong_class, [](const BlinnPhong& m) {
-    return py::dict(py::arg("kd") = rgb_tuple(m.kd().rgb()), py::arg("ks") = rgb_tuple(m.ks()), py::arg("ns") = m.ns(),
+      "mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd. " TEXTURE_DOC,
+      py::init([](const py::object& kd, const py::object& ks, double ns, const py::object& texture, double alpha) {
+        return std::make_shared<BlinnPhong>(to_textured(kd, "kd", texture), to_rgb(ks, "ks"), ns, alpha);
+      }),
+      [](const BlinnPhong& m) {
+        return py::dict(py::arg("kd") = rgb_tuple(m.kd().rgb()), py::arg("ks") = rgb_tuple(m.ks()), py::arg("ns") = m.ns(),
                     py::arg("texture") = texture_argument(m.kd()), py::arg("alpha") = m.alpha());
-  });
+  },
+      py::arg("kd") = 0.5, py::arg("ks") = 0.0, py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("alpha") = 1.0);
 
-  py::class_<Conductor, Material, std::shared_ptr<Conductor>> conductor_class(
-      m, "Conductor",
+  def_material<Conductor>(m, "Conductor",
       "A smooth metal mirror with the exact complex Fresnel reflectance of eta + i k (numbers or (r, g, b),\n"
-      "relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.");
-  conductor_class
-      .def(py::init([](const py::object& eta, const py::object& k) {
-             return std::make_shared<Conductor>(to_optional_rgb(eta, "eta"), to_optional_rgb(k, "k"));
-           }),
-           py::arg("eta") = py::none(), py::arg("k") = py::none());
-  add_parameters<Conductor>(conductor_class, [](const Conductor& m) {
-    return py::dict(py::arg("eta") = optional_rgb_tuple(m.index().eta()), py::arg("k") = optional_rgb_tuple(m.index().k()));
-  });
+      "relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.",
+      py::init([](const py::object& eta, const py::object& k) {
+        return std::make_shared<Conductor>(to_optional_rgb(eta, "eta"), to_optional_rgb(k, "k"));
+      }),
+      [](const Conductor& m) {
+        return py::dict(py::arg("eta") = optional_rgb_tuple(m.index().eta()), py::arg("k") = optional_rgb_tuple(m.index().k()));
+  },
+      py::arg("eta") = py::none(), py::arg("k") = py::none());
 
-  py::class_<RoughConductor, Material, std::shared_ptr<RoughConductor>> rough_conductor_class(
-      m, "RoughConductor",
+  def_material<RoughConductor>(m, "RoughConductor",
       "A rough metal: GGX microfacets (alpha, or alpha_u along the tangent and alpha_v along the bitangent;\n"
       ">= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F = 1),\n"
-      "visible-normal sampling.");
-  rough_conductor_class
-      .def(py::init([](std::optional<double> alpha, std::optional<double> alpha_u, std::optional<double> alpha_v,
+      "visible-normal sampling.",
+      py::init([](std::optional<double> alpha, std::optional<double> alpha_u, std::optional<double> alpha_v,
                        const py::object& eta, const py::object& k) {
-             const auto a = alphas_from(alpha, alpha_u, alpha_v, true, 0.0);
-             return std::make_shared<RoughConductor>(a.first, a.second, to_optional_rgb(eta, "eta"), to_optional_rgb(k, "k"));
-           }),
-           py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none(),
-           py::arg("eta") = py::none(), py::arg("k") = py::none());
-  add_parameters<RoughConductor>(rough_conductor_class, [](const RoughConductor& m) {
-    return py::dict(py::arg("alpha_u") = m.alpha_u(), py::arg("alpha_v") = m.alpha_v(),
+        const auto a = alphas_from(alpha, alpha_u, alpha_v, true, 0.0);
+        return std::make_shared<RoughConductor>(a.first, a.second, to_optional_rgb(eta, "eta"), to_optional_rgb(k, "k"));
+      }),
+      [](const RoughConductor& m) {
+        return py::dict(py::arg("alpha_u") = m.alpha_u(), py::arg("alpha_v") = m.alpha_v(),
                     py::arg("eta") = optional_rgb_tuple(m.index().eta()), py::arg("k") = optional_rgb_tuple(m.index().k()));
-  });
+  },
+      py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none(),
+           py::arg("eta") = py::none(), py::arg("k") = py::none());
 
-  py::class_<Plastic, Material, std::shared_ptr<Plastic>> plastic_class(
-      m, "Plastic",
+  def_material<Plastic>(m, "Plastic",
       "Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of index\n"
       "ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX\n"
-      "(or alpha_u, alpha_v). A texture multiplies the reflectance. " TEXTURE_DOC);
-  plastic_class
-      .def(py::init([](const py::object& reflectance, double ior, std::optional<double> alpha, std::optional<double> alpha_u,
-                       std::optional<double> alpha_v, const py::object& texture) {
-             const auto a = alphas_from(alpha, alpha_u, alpha_v, false, 0.0);
-             return std::make_shared<Plastic>(to_textured(reflectance, "reflectance", texture), ior, a.first, a.second);
-           }),
-           py::arg("reflectance") = 0.5, py::arg("ior") = 1.5, py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(),
-           py::arg("alpha_v") = py::none(), py::arg("texture") = py::none());
-  add_parameters<Plastic>(plastic_class, [](const Plastic& m) {
-    return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance().rgb()), py::arg("ior") = m.ior(), py::arg("alpha_u") = m.alpha_u(),
+      "(or alpha_u, alpha_v). A texture multiplies the reflectance. " TEXTURE_DOC,
+      py::init([](const py::object& reflectance, double ior, std::optional<double> alpha, std::optional<double> alpha_u,
+                  std::optional<double> alpha_v, const py::object& texture) {
+        const auto a = alphas_from(alpha, alpha_u, alpha_v, false, 0.0);
+        return std::make_shared<Plastic>(to_textured(reflectance, "reflectance", texture), ior, a.first, a.second);
+      }),
+      [](const Plastic& m) {
+        return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance().rgb()), py::arg("ior") = m.ior(), py::arg("alpha_u") = m.alpha_u(),
                     py::arg("alpha_v") = m.alpha_v(), py::arg("texture") = texture_argument(m.reflectance()));
-  });
+  },
+      py::arg("reflectance") = 0.5, py::arg("ior") = 1.5, py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(),
+           py::arg("alpha_v") = py::none(), py::arg("texture") = py::none());
 
-  py::class_<Principled, Material, std::shared_ptr<Principled>> principled_class(
-      m, "Principled",
+  def_material<Principled>(m, "Principled",
       "Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and\n"
       "metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,\n"
-      "clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color. " TEXTURE_DOC);
-  principled_class
-      .def(py::init([](const py::object& base_color, double metallic, double roughness, double anisotropic, double specular,
+      "clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color. " TEXTURE_DOC,
+      py::init([](const py::object& base_color, double metallic, double roughness, double anisotropic, double specular,
                        double specular_tint, double sheen, double sheen_tint, double clearcoat, double clearcoat_gloss,
                        const py::object& texture) {
-             const PrincipledParameters p{metallic, roughness, anisotropic, specular, specular_tint,
+        const PrincipledParameters p{metallic, roughness, anisotropic, specular, specular_tint,
                                           sheen,    sheen_tint, clearcoat,  clearcoat_gloss};
-             return std::make_shared<Principled>(to_textured(base_color, "base_color", texture), p);
-           }),
-           py::arg("base_color") = 0.5, py::arg("metallic") = kPrincipled.metallic, py::arg("roughness") = kPrincipled.roughness,
-           py::arg("anisotropic") = kPrincipled.anisotropic, py::arg("specular") = kPrincipled.specular,
-           py::arg("specular_tint") = kPrincipled.specular_tint, py::kw_only(), py::arg("sheen") = kPrincipled.sheen,
-           py::arg("sheen_tint") = kPrincipled.sheen_tint, py::arg("clearcoat") = kPrincipled.clearcoat,
-           py::arg("clearcoat_gloss") = kPrincipled.clearcoat_gloss, py::arg("texture") = py::none());
-  add_parameters<Principled>(principled_class, [](const Principled& m) {
-    const PrincipledParameters& p = m.parameters();
-    return py::dict(py::arg("base_color") = rgb_tuple(m.base_color().rgb()), py::arg("metallic") = p.metallic,
+        return std::make_shared<Principled>(to_textured(base_color, "base_color", texture), p);
+      }),
+      [](const Principled& m) {
+        const PrincipledParameters& p = m.parameters();
+        return py::dict(py::arg("base_color") = rgb_tuple(m.base_color().rgb()), py::arg("metallic") = p.metallic,
                     py::arg("roughness") = p.roughness, py::arg("anisotropic") = p.anisotropic, py::arg("specular") = p.specular,
                     py::arg("specular_tint") = p.specular_tint, py::arg("sheen") = p.sheen, py::arg("sheen_tint") = p.sheen_tint,
                     py::arg("clearcoat") = p.clearcoat, py::arg("clearcoat_gloss") = p.clearcoat_gloss,
                     py::arg("texture") = texture_argument(m.base_color()));
-  });
+  },
+      py::arg("base_color") = 0.5, py::arg("metallic") = kPrincipled.metallic, py::arg("roughness") = kPrincipled.roughness,
+           py::arg("anisotropic") = kPrincipled.anisotropic, py::arg("specular") = kPrincipled.specular,
+           py::arg("specular_tint") = kPrincipled.specular_tint, py::kw_only(), py::arg("sheen") = kPrincipled.sheen,
+           py::arg("sheen_tint") = kPrincipled.sheen_tint, py::arg("clearcoat") = kPrincipled.clearcoat,
+           py::arg("clearcoat_gloss") = kPrincipled.clearcoat_gloss, py::arg("texture") = py::none());
 
-  py::class_<ThinFilm, Material, std::shared_ptr<ThinFilm>> thin_film_class(
-      m, "ThinFilm",
+  def_material<ThinFilm>(m, "ThinFilm",
       "Thin-film iridescence (Belcour & Barla 2017): a film of thickness [nm] and index film_ior on a base\n"
       "of complex index eta + i k, with GGX roughness alpha (or alpha_u, alpha_v; 0 = smooth mirror). The\n"
-      "Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.");
-  thin_film_class
-      .def(py::init([](double thickness, double film_ior, const py::object& eta, const py::object& k, std::optional<double> alpha,
-                       std::optional<double> alpha_u, std::optional<double> alpha_v) {
-             const auto a = alphas_from(alpha, alpha_u, alpha_v, false, 0.1);
-             return std::make_shared<ThinFilm>(thickness, film_ior, to_rgb(eta, "eta"), to_rgb(k, "k"), a.first, a.second);
-           }),
-           py::arg("thickness"), py::arg("film_ior") = 1.33, py::arg("eta") = 1.5, py::arg("k") = 0.0, py::arg("alpha") = py::none(),
-           py::kw_only(), py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
-  add_parameters<ThinFilm>(thin_film_class, [](const ThinFilm& m) {
-    return py::dict(py::arg("thickness") = m.thickness(), py::arg("film_ior") = m.film_ior(), py::arg("eta") = rgb_tuple(m.eta()),
+      "Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.",
+      py::init([](double thickness, double film_ior, const py::object& eta, const py::object& k, std::optional<double> alpha,
+                  std::optional<double> alpha_u, std::optional<double> alpha_v) {
+        const auto a = alphas_from(alpha, alpha_u, alpha_v, false, 0.1);
+        return std::make_shared<ThinFilm>(thickness, film_ior, to_rgb(eta, "eta"), to_rgb(k, "k"), a.first, a.second);
+      }),
+      [](const ThinFilm& m) {
+        return py::dict(py::arg("thickness") = m.thickness(), py::arg("film_ior") = m.film_ior(), py::arg("eta") = rgb_tuple(m.eta()),
                     py::arg("k") = rgb_tuple(m.k()), py::arg("alpha_u") = m.alpha_u(), py::arg("alpha_v") = m.alpha_v());
-  });
+  },
+      py::arg("thickness"), py::arg("film_ior") = 1.33, py::arg("eta") = 1.5, py::arg("k") = 0.0, py::arg("alpha") = py::none(),
+           py::kw_only(), py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
 
 }
 

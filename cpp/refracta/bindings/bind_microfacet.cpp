@@ -50,7 +50,9 @@ void bind_microfacet(py::module_& m) {
   beckmann.def(py::init([](double alpha) { return Beckmann(TrowbridgeReitz::checked_alpha(alpha, "alpha")); }), py::arg("alpha"))
       .def_property_readonly("alpha", &Beckmann::alpha)
       .def(py::pickle([](const Beckmann& d) { return std::make_tuple(d.alpha()); },
-                      [](std::tuple<double> t) { return Beckmann(TrowbridgeReitz::checked_alpha(std::get<0>(t), "alpha")); }));
+                      [](std::tuple<double> t) {
+                        return Beckmann(TrowbridgeReitz::checked_alpha(std::get<0>(t), "alpha"));
+                      }));
   def_masking(beckmann);
 
   py::class_<TrowbridgeReitz> ggx(m, "TrowbridgeReitz",
@@ -77,11 +79,13 @@ void bind_microfacet(py::module_& m) {
 
   py::class_<Ior>(m, "Ior", "An index of refraction: constant or Sellmeier (C in um^2).")
       .def(py::init(&to_ior), py::arg("ior") = 1.5, py::arg("sellmeier") = py::none())
-      .def("at", [](const Ior& ior, const py::object& wavelength) { return per_value(wavelength, "wavelength", [&](double x) { return ior.at(x); }); },
-           py::arg("wavelength"), "n at wavelength(s) [nm].")
+      .def("at", [](const Ior& ior, const py::object& wavelength) {
+             return per_value(wavelength, "wavelength", [&](double x) { return ior.at(x); });
+           }, py::arg("wavelength"), "n at wavelength(s) [nm].")
       .def_property_readonly("dispersive", &Ior::dispersive)
       .def("__repr__", [](const Ior& ior) { return concat("Ior(", ior.describe(), ")"); })
-      .def(py::pickle(&ior_arguments, [](const py::dict& kwargs) { return py::cast<Ior>(py::type::of<Ior>()(**kwargs)); }));
+      .def(py::pickle([](const Ior& ior) { return with_ior(py::dict(), ior); },
+                      [](const py::dict& kwargs) { return py::cast<Ior>(py::type::of<Ior>()(**kwargs)); }));
 }
 
 }  // namespace refracta

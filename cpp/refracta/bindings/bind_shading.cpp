@@ -12,35 +12,31 @@ namespace refracta {
 namespace {
 
 void bind_water(py::module_& m) {
-  m.def("water_ior", py::vectorize(&water_ior),
-        py::arg("wavelength_nm"), py::arg("temperature_c") = 20.0, py::arg("salinity") = 0.0,
+  m.def("water_ior", py::vectorize(&water_ior), py::arg("wavelength_nm"), py::arg("temperature_c") = 20.0,
+        py::arg("salinity") = 0.0,
         "Refractive index of water relative to vacuum: pure water by IAPWS R9-97 at the density of\n"
         "Tanaka et al. 2001 (atmospheric pressure), plus Quan & Fry 1995's salinity terms. wavelength_nm\n"
         "in [200, 1100], temperature_c in [0, 40] deg C, salinity [g/kg] in [0, 40]. Vectorised.");
-  m.def("water_density", py::vectorize(&water_density),
-        py::arg("temperature_c"),
+  m.def("water_density", py::vectorize(&water_density), py::arg("temperature_c"),
         "Density of air-free pure water at 101 325 Pa [kg/m^3] (Tanaka et al. 2001), temperature_c in\n"
         "[0, 40] deg C. Vectorised.");
-  m.def("water_absorption", py::vectorize(&water_absorption),
-        py::arg("wavelength_nm"),
+  m.def("water_absorption", py::vectorize(&water_absorption), py::arg("wavelength_nm"),
         "Absorption coefficient of pure water [1/m] at wavelength_nm in [360, 830]: Pope & Fry 1997 (380-725 nm),\n"
         "Smith & Baker 1981 below, Kou et al. 1993 above; linear between 5 nm nodes. Vectorised.");
-  m.def("water_backscattering", py::vectorize(&water_backscattering),
-        py::arg("wavelength_nm"), py::arg("salinity") = 0.0,
+  m.def("water_backscattering", py::vectorize(&water_backscattering), py::arg("wavelength_nm"),
+        py::arg("salinity") = 0.0,
         "Backscattering coefficient of pure (sea) water [1/m]: half of Morel 1974's molecular scattering\n"
         "0.00222 (1 + 0.3 S / 37) (lambda / 500)^-4.32, salinity S [g/kg] in [0, 40]. Vectorised.");
-  m.def("water_body_reflectance", py::vectorize(&water_body_reflectance),
-        py::arg("wavelength_nm"), py::arg("salinity") = 0.0,
+  m.def("water_body_reflectance", py::vectorize(&water_body_reflectance), py::arg("wavelength_nm"),
+        py::arg("salinity") = 0.0,
         "Irradiance reflectance just beneath the surface of deep pure (sea) water, R = 0.33 b_b / (a + b_b)\n"
         "(Morel & Prieur 1977; Gordon et al. 1975), from water_absorption and water_backscattering. Vectorised.");
-  m.def("cox_munk_mean_square_slope", py::vectorize(&cox_munk_mean_square_slope),
-        py::arg("wind_speed"),
+  m.def("cox_munk_mean_square_slope", py::vectorize(&cox_munk_mean_square_slope), py::arg("wind_speed"),
         "Total mean-square slope of a clean sea surface, 0.003 + 5.12e-3 U (Cox & Munk 1954), wind_speed U\n"
         "[m/s] 12.5 m above the sea in [0, 30]. The Water material's Beckmann alpha^2. Vectorised.");
 
   const WaterParameters water_defaults;
-  py::class_<Water, Material, std::shared_ptr<Water>> water_class(
-      m, "Water",
+  def_material<Water>(m, "Water",
       "The sea: a wind-roughened water surface over a deep water body (water_surface.h).\n\n"
       "The interface is a Beckmann microfacet dielectric (Walter et al. 2007; Mitsuba 3's roughdielectric\n"
       "with distribution='beckmann') whose alpha^2 is Cox & Munk 1954's total mean-square slope\n"
@@ -55,13 +51,17 @@ void bind_water(py::module_& m) {
       "Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open ocean).\n"
       "resolved_slope_variance: the mean-square slope a displaced wave mesh under it already resolves\n"
       "(Scene.add_sea sets it): alpha^2 = Cox-Munk's total - it, so that resolved + unresolved = total.\n"
-      "wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.");
-  water_class
-      .def(py::init([](double wind_speed, double temperature_c, double salinity, bool body, int priority, double resolved_slope_variance) {
-             return std::make_shared<Water>(
-                 WaterParameters{wind_speed, temperature_c, salinity, body, priority, resolved_slope_variance});
-           }),
-           py::arg("wind_speed") = water_defaults.wind_speed, py::arg("temperature_c") = water_defaults.temperature_c,
+      "wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.",
+      py::init([](double wind_speed, double temperature_c, double salinity, bool body, int priority, double resolved) {
+        return std::make_shared<Water>(WaterParameters{wind_speed, temperature_c, salinity, body, priority, resolved});
+      }),
+      [](const Water& w) {
+        const WaterParameters& p = w.parameters();
+        return py::dict(py::arg("wind_speed") = p.wind_speed, py::arg("temperature_c") = p.temperature_c,
+                        py::arg("salinity") = p.salinity, py::arg("body") = p.body, py::arg("priority") = p.priority,
+                        py::arg("resolved_slope_variance") = p.resolved_slope_variance);
+      },
+      py::arg("wind_speed") = water_defaults.wind_speed, py::arg("temperature_c") = water_defaults.temperature_c,
            py::arg("salinity") = water_defaults.salinity, py::arg("body") = water_defaults.body,
            py::arg("priority") = water_defaults.priority, py::arg("resolved_slope_variance") = water_defaults.resolved_slope_variance)
       .def_property_readonly("wind_speed", [](const Water& w) { return w.parameters().wind_speed; }, "[m/s] 12.5 m above the sea")
@@ -74,7 +74,8 @@ void bind_water(py::module_& m) {
                              "alpha^2 = mean_square_slope - resolved_slope_variance.")
       .def_property_readonly("alpha", &Water::alpha, "The Beckmann roughness alpha = sqrt(mean_square_slope - resolved_slope_variance).")
       .def("ior", [](const Water& w, const py::object& wavelength) {
-             return per_value(wavelength, "wavelength_nm", [&](double x) { return w.ior(checked_wavelength(x, "Water.ior: wavelength_nm")); });
+             return per_value(wavelength, "wavelength_nm",
+                              [&](double x) { return w.ior(checked_wavelength(x, "Water.ior: wavelength_nm")); });
            },
            py::arg("wavelength_nm"), "The water's index relative to vacuum at wavelength_nm [nm] (a number or an array).")
       .def("transmittance", [](const Water& w, const py::object& mu, double wavelength) {
@@ -84,16 +85,10 @@ void bind_water(py::module_& m) {
            "The rough interface's directional transmittance T(mu) from above (the share of the energy arriving at\n"
            "cos theta = mu that crosses into the water), as the water body's term uses it, at the water's index\n"
            "at wavelength_nm under vacuum. Tabulated (33 mu x 5 eta nodes).")
-      .def("internal_reflectance", py::overload_cast<double>(&Water::internal_reflectance, py::const_),
+      .def("internal_reflectance", &Water::internal_reflectance,
            py::arg("wavelength_nm") = Ior::kRgbWavelength,
            "Fbar_int = 1 - 2 int T(mu) mu dmu / eta^2: what of isotropic light under the rough surface is sent\n"
            "back down (the flat surface's fresnel_diffuse_reflectance(1 / eta) when alpha -> 0).");
-  add_parameters<Water>(water_class, [](const Water& w) {
-    const WaterParameters& p = w.parameters();
-    return py::dict(py::arg("wind_speed") = p.wind_speed, py::arg("temperature_c") = p.temperature_c, py::arg("salinity") = p.salinity,
-                    py::arg("body") = p.body, py::arg("priority") = p.priority,
-                    py::arg("resolved_slope_variance") = p.resolved_slope_variance);
-  });
 }
 
 }  // namespace

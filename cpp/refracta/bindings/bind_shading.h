@@ -8,7 +8,9 @@
 #include "refracta/shading/material_util.h"
 #include "refracta/shading/spectrum_batch.h"
 
+#include <memory>
 #include <optional>
+#include <utility>
 
 namespace refracta {
 
@@ -42,13 +44,23 @@ py::object per_value(const py::handle& object, const char* what, const F& f) {
 py::tuple rgb_tuple(const Vec3d& v);
 py::object optional_rgb_tuple(const std::optional<Vec3d>& v);
 py::object texture_argument(const TexturedReflectance& r);
-py::dict ior_arguments(const Ior& ior);  // {ior: n} or {sellmeier: (B1, B2, B3, C1, C2, C3)}
+py::dict with_ior(py::dict kwargs, const Ior& ior);  // kwargs and ior=n or sellmeier=(B1, B2, B3, C1, C2, C3)
 
 template <class T, class Class>
 void add_parameters(Class& cls, py::dict (*parameters)(const T&)) {
   cls.def_property_readonly("parameters", parameters,
                             "The constructor's keyword arguments that rebuild this material (pickling uses them).");
   cls.def(py::pickle(parameters, [](const py::dict& kwargs) { return py::cast<std::shared_ptr<T>>(py::type::of<T>()(**kwargs)); }));
+}
+
+// A material class T in one call: its constructor (py::init(...) and its arguments) and add_parameters.
+template <class T, class Init, class... Args>
+py::class_<T, Material, std::shared_ptr<T>> def_material(py::module_& m, const char* name, const char* doc, Init&& init,
+                                                         py::dict (*parameters)(const T&), const Args&... args) {
+  py::class_<T, Material, std::shared_ptr<T>> cls(m, name, doc);
+  cls.def(std::forward<Init>(init), args...);
+  add_parameters<T>(cls, parameters);
+  return cls;
 }
 
 // The texture= argument of the materials with a textured reflectance.

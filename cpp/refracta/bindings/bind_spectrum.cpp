@@ -88,8 +88,8 @@ BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same
 default). See cpp/refracta/shading/physical_sky.h.)doc")
       .def(py::init([](const py::object& sun, double aerosol, double ozone_du, double ground_albedo, double altitude,
                        double rayleigh_scale, const std::string& below_horizon, std::optional<double> visibility) {
-             const PhysicalSkySettings s = sky_settings(to_point(sun, "sun_direction"), aerosol, ozone_du, ground_albedo,
-                                                        altitude, rayleigh_scale, below_horizon, visibility);
+             const PhysicalSkySettings s = sky_settings(to_point(sun, "sun_direction"), aerosol, ozone_du,
+                                                        ground_albedo, altitude, rayleigh_scale, below_horizon, visibility);
              py::gil_scoped_release release;
              return std::make_shared<PhysicalSkyLight>(s);
            }),
@@ -122,15 +122,19 @@ default). See cpp/refracta/shading/physical_sky.h.)doc")
       .def("sun_radiance_rgb", [](const PhysicalSkyLight& l, double d) { return l.sky().sun_radiance_rgb(d); },
            py::arg("angular_diameter_deg") = 0.53)
       .def_static("solar_irradiance",
-                  [](const py::object& lambda) { return per_value(lambda, "wavelengths", &PhysicalSky::solar_irradiance); },
+                  [](const py::object& lambda) {
+                    return per_value(lambda, "wavelengths", &PhysicalSky::solar_irradiance);
+                  },
                   py::arg("wavelengths"))
       .def("rayleigh_optical_depth", [](const PhysicalSkyLight& l, double x) { return l.sky().rayleigh_optical_depth(x); },
            py::arg("wavelength"))
       .def("optical_depth", [](const PhysicalSkyLight& l, double x) { return l.sky().optical_depth(x); },
            py::arg("wavelength"))
-      .def("sample_li", [](const PhysicalSkyLight& l, const py::object& u) { return sample_sky(l, to_sample_rows(u, "u", 2)); },
+      .def("sample_li",
+           [](const PhysicalSkyLight& l, const py::object& u) { return sample_sky(l, to_sample_rows(u, "u", 2)); },
            py::arg("u"))
-      .def("pdf_li", [](const PhysicalSkyLight& l, const py::object& dirs) { return sky_pdf(l, to_unit_vectors(dirs, "dirs")); },
+      .def("pdf_li",
+           [](const PhysicalSkyLight& l, const py::object& dirs) { return sky_pdf(l, to_unit_vectors(dirs, "dirs")); },
            py::arg("dirs"))
       .def("power", &PhysicalSkyLight::power)
       .def("preprocess", [](PhysicalSkyLight& l, const py::object& c, double r) { l.preprocess(to_point(c, "centre"), r); },
@@ -191,7 +195,9 @@ Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to 
            "The sun's transmittance to `height` [m] above sea level where it stands `elevation_deg` above the local horizon.")
       .def_property_readonly("scale", &AerialPerspective::scale)
       // Pickled as its sky's settings and scale; unpickling rebuilds the tables.
-      .def(py::pickle([](const AerialPerspective& air) { return std::make_pair(sky_state(air.sky().settings()), air.scale()); },
+      .def(py::pickle([](const AerialPerspective& air) {
+                        return std::make_pair(sky_state(air.sky().settings()), air.scale());
+                      },
                       [](const std::pair<PhysicalSkyState, double>& state) {
                         const PhysicalSkySettings s = sky_settings_from_state(state.first);
                         py::gil_scoped_release release;

@@ -25,10 +25,10 @@ class Evaluator {
     }
     if (!query.wavelengths) return;
     const RowMatrixX4d& w = *query.wavelengths;
-    if (w.rows() != 1 && size_t(w.rows()) != n) throw_invalid("wavelengths must have shape (4,) or (N, 4) with N = ", n, " [nm]");
-    for (double l : w.reshaped()) {
-      if (!(l >= kLambdaMin && l <= kLambdaMax)) throw_invalid("wavelengths must be in [", kLambdaMin, ", ", kLambdaMax, "] nm (got ", l, ")");
+    if (w.rows() != 1 && size_t(w.rows()) != n) {
+      throw_invalid("wavelengths must have shape (4,) or (N, 4) with N = ", n, " [nm]");
     }
+    for (double l : w.reshaped()) checked_wavelength(l, "wavelengths");
   }
   bool spectral() const { return query_.wavelengths.has_value(); }
   int channels() const { return spectral() ? 4 : 3; }
@@ -132,11 +132,8 @@ BsdfSamples bsdf_sample(const Material& material, const std::vector<Vec3d>& wo, 
 std::optional<double> interior_ior_at(const Material& material, std::optional<double> wavelength_nm) {
   SampledWavelengths lambda = SampledWavelengths::rgb();
   if (wavelength_nm) {
-    if (!(*wavelength_nm >= kLambdaMin && *wavelength_nm <= kLambdaMax)) {
-      throw_invalid("interior_ior: wavelength must be in [", kLambdaMin, ", ", kLambdaMax, "] nm (got ", *wavelength_nm, ")");
-    }
     lambda = SampledWavelengths::sample_uniform(0.0);
-    lambda.lambda[0] = *wavelength_nm;
+    lambda.lambda[0] = checked_wavelength(*wavelength_nm, "interior_ior: wavelength");
   }
   return material.interior_ior(lambda);
 }

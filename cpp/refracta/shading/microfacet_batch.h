@@ -29,7 +29,8 @@ inline Eigen::VectorXd visible_normal_density(const TrowbridgeReitz& d, const st
 }
 
 // A visible normal sampled for each w from each row (u1, u2) of u (either may be one row): (N, 3).
-inline RowMatrixX3d sample_visible_normals(const TrowbridgeReitz& d, const std::vector<Vec3d>& w, const RowMatrixXd& u) {
+inline RowMatrixX3d sample_visible_normals(const TrowbridgeReitz& d, const std::vector<Vec3d>& w,
+                                           const RowMatrixXd& u) {
   if (u.cols() != 2) throw_invalid("u must have shape (N, 2) (got ", u.cols(), " columns)");
   RowMatrixX3d out(broadcast(w.size(), size_t(u.rows()), "w and u"), 3);
   for (Eigen::Index i = 0; i < out.rows(); ++i) {
