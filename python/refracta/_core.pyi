@@ -1655,7 +1655,7 @@ class RasterRenderStats:
         ...
     def __repr__(self) -> str:
         ...
-    def __setstate__(self, arg0: tuple) -> None:
+    def __setstate__(self, arg0: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
     @property
     def bytes_per_texel(self) -> int:
@@ -3079,7 +3079,7 @@ class DispersedField(IndexField):
     base's. Spectral renders through a field build these per sample (each hero wavelength); build
     one with dispersed_field(field, wavelength).
     """
-    def __getstate__(self) -> tuple[IndexField, float]:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, base: IndexField, scale: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...

@@ -40,4 +40,7 @@ def rasterize(
     of it; 0: none) in square tiles of `tile` pixels (None: the renderers' own, 32)."""
     if isinstance(tile, bool) or (tile is not None and int(tile) != tile):
         raise ValueError(f"tile must be a whole number >= 1 (got {tile!r})")
-    return RasterBuffers(**_core._rasterize(scene, camera, float(guard_band), None if tile is None else int(tile)))
+    depth, geometry, primitive, barycentric, offset, *counts = _core._rasterize(
+        scene, camera, float(guard_band), None if tile is None else int(tile)
+    )
+    return RasterBuffers(depth, geometry, primitive, barycentric.reshape(depth.shape + (3,)), tuple(offset), *counts)

@@ -142,3 +142,13 @@ def test_no_bias_means_the_published_one_for_the_storage(rng, depth_range, stora
         M.shadow_intensity(b, z_f, depth_range=depth_range, storage=storage),
         M.shadow_intensity(b, z_f, depth_range=depth_range, storage=storage, bias=published),
     )
+
+
+def test_array_checks_moved_into_the_library_name_their_argument():
+    """raster/moment_arrays.cpp: receiver depths must be finite; the fast MBOIT bound takes 4, 6 or 8 moments."""
+    with pytest.raises(ValueError, match="z_f must be finite"):
+        M.shadow_intensity([0.5, 0.3, 0.2, 0.1], np.nan)
+    from refracta import _core
+
+    with pytest.raises(ValueError, match="m = 4, 6 or 8"):
+        _core._power_moment_bound([1.0, 0.5, 0.3], [0.5])
