@@ -89,3 +89,23 @@ def test_light_batches_refuse_mismatched_rows():
     with pytest.raises(ValueError, match="no lights to sample"):
         lights.LightSampler([]).sample(np.array([0.5]))
     assert light.type == "delta_position" and environment.type == "infinite"
+
+
+def test_area_normal_empty_bounds_and_an_array_map_through_pickle():
+    area = lights.AreaLight(TRIANGLE, [[0, 2, 1]], 1.0)
+    np.testing.assert_array_equal(area.normal(0), [0.0, 1.0, 0.0])  # (v1 - v0) x (v2 - v0) of vertices 0, 2, 1: up
+    with pytest.raises(ValueError, match=r"triangle must be < 1 \(got 1\)"):
+        area.normal(1)
+    with pytest.raises(ValueError, match="Scene.bounds: the scene is empty"):
+        _ = refracta.Scene().bounds
+    texels = np.random.default_rng(1).uniform(0.0, 2.0, (4, 8, 3)).astype(np.float32)
+    environment = pickle.loads(pickle.dumps(lights.EnvironmentLight(texels, scale=2.0)))
+    uv = np.array([[0.3, 0.4], [0.8, 0.9]])
+    np.testing.assert_array_equal(  # the float texels travel exactly
+        environment.Le(environment.uv_to_direction(uv)),
+        lights.EnvironmentLight(texels, scale=2.0).Le(environment.uv_to_direction(uv)),
+    )
+    camera = refracta.Camera([0, 1, 0], [0, 1, -10])
+    assert camera.project(np.array([[0.0, 1.0, -5.0], [0.0, 1.0, 5.0]])).shape == (2, 3)
+    # On the view axis: the image centre at depth 5 m, to the rounding of a few double operations.
+    np.testing.assert_allclose(camera.project([0.0, 1.0, -5.0]), [320.0, 180.0, 5.0], rtol=1e-12)

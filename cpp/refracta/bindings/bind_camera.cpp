@@ -147,8 +147,7 @@ or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)
           "project",
           [](const Camera& c, const py::object& points) {
             bool single = false;
-            std::vector<Vec3d> p = to_points(points, "points", &single);
-            for (auto& x : p) x = c.project(x);
+            const std::vector<Vec3d> p = c.project(to_points(points, "points", &single));
             return single ? py::object(vector_to_array(p[0])) : py::object(points_to_array(p));
           },
           py::arg("points"), "(u, v, depth) per point (N, 3); depth [m] along the view axis, <= 0 behind.")

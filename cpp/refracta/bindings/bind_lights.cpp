@@ -1,7 +1,7 @@
 // Python bindings of the lights (cpp/refracta/shading/*_light.h, light_sampler.h): each light a
 // class under _core deriving from _core.Light, with vectorised sample_li / pdf_li / Le / L in
 // RGB rendering (shading/light_batch.h), for tests and users' own integrators.
-#include "refracta/bindings/bindings.h"
+#include "refracta/bindings/bind_scene.h"  // image_to_float32
 #include "refracta/bindings/pickle_state.h"
 #include "refracta/shading/sky_presets.h"  // environment_from_file
 
@@ -111,10 +111,7 @@ void bind_finite_lights(py::module_& m) {
            py::arg("vertices"), py::arg("triangles"), py::arg("emission"), py::arg("two_sided") = false)
       .def_property_readonly("area", &AreaLight::area, "Total area [m^2] (zero-area triangles count 0).")
       .def_property_readonly("two_sided", &AreaLight::two_sided)
-      .def("normal", [](const AreaLight& l, size_t t) {
-             if (t >= l.mesh().triangles.size()) throw_invalid("triangle must be < ", l.mesh().triangles.size(), " (got ", t, ")");
-             return vector_to_array(l.normal(t));
-           }, py::arg("triangle"), "The front normal of a triangle (unit; 0 for a zero-area one).");
+      .def("normal", [](const AreaLight& l, size_t t) { return vector_to_array(area_light_normal(l, t)); }, py::arg("triangle"), "The front normal of a triangle (unit; 0 for a zero-area one).");
   def_state_pickle(
       area, "AreaLight", 3,
       [](const AreaLight& l) { return py::make_tuple(mesh_state(l.mesh()), color_state(l.emission()), l.two_sided()); },
@@ -171,12 +168,7 @@ void bind_environment_lights(py::module_& m) {
       [](const EnvironmentLight& l) -> py::tuple {
         // A map read from a file travels as its path (the file must be readable where it is unpickled).
         if (!l.source().empty()) return py::make_tuple(l.source(), l.scale(), matrix_to_array(l.rotation()));
-        py::array_t<float> image({py::ssize_t(l.height()), py::ssize_t(l.width()), py::ssize_t(3)});
-        float* p = image.mutable_data();
-        for (const Vec3d& texel : l.texels()) {
-          for (int k = 0; k < 3; ++k) *p++ = float(texel[k]);  // exact: the texels came from floats
-        }
-        return py::make_tuple(image, l.scale(), matrix_to_array(l.rotation()));
+        return py::make_tuple(image_to_float32(l.image()), l.scale(), matrix_to_array(l.rotation()));
       },
       [](const py::tuple& t) {
         const Eigen::Matrix3d rotation = to_rotation(t[2], "rotation");

@@ -230,8 +230,8 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
       .def_property_readonly(
           "bounds",
           [](const RenderScene& s) {
-            if (s.geometry.geometry_count() == 0) throw_invalid("Scene.bounds: the scene is empty");
-            return py::make_tuple(vector_to_array(s.geometry.lower()), vector_to_array(s.geometry.upper()));
+            const auto [lower, upper] = scene_bounds(s);
+            return py::make_tuple(vector_to_array(lower), vector_to_array(upper));
           },
           "(lower, upper): corners (3,) [m] of the axis-aligned box around every geometry (spheres\n"
           "exact; a ground counts at its full size). ValueError for an empty scene.")

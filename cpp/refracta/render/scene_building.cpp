@@ -61,6 +61,11 @@ void set_geometry_material(RenderScene& scene, int geometry, const MaterialPtr& 
   scene.set_material(g, material);
 }
 
+std::pair<Vec3d, Vec3d> scene_bounds(const RenderScene& scene) {
+  if (scene.geometry.geometry_count() == 0) throw_invalid("Scene.bounds: the scene is empty");
+  return {scene.geometry.lower(), scene.geometry.upper()};
+}
+
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction) {
   if (direction.norm() == 0.0) throw_invalid("direction must be non-zero");
   constexpr double kFar = 1e7;  // [m] past any scene's far side (Camera.pick's reach too)

@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace refracta {
@@ -40,6 +41,9 @@ unsigned add_sphere(RenderScene& scene, const Vec3d& centre, double radius, int 
 
 // Gives a geometry another material (its emission stays); a textured one needs the geometry's uvs.
 void set_geometry_material(RenderScene& scene, int geometry, const MaterialPtr& material);
+
+// The corners (lower, upper) of the box around every geometry (ValueError for an empty scene).
+std::pair<Vec3d, Vec3d> scene_bounds(const RenderScene& scene);
 
 // The first hit of a straight ray from origin along a non-zero direction (normalised here).
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction);

@@ -152,6 +152,11 @@ Vec3d Camera::direction(double u, double v) const {
   return (d + angle[0] * side.normalized() + angle[1] * rise.normalized()).normalized();
 }
 
+std::vector<Vec3d> Camera::project(std::vector<Vec3d> points) const {
+  for (Vec3d& p : points) p = project(p);
+  return points;
+}
+
 Vec3d Camera::pixel_direction(double u, double v) const {
   if (!std::isfinite(u) || !std::isfinite(v)) throw_invalid("u and v must be finite");
   return direction(u, v);

@@ -78,6 +78,7 @@ class Camera {
   // (u, v, depth) of a world point through the pinhole (the jitter ignored); depth [m] along
   // the view axis, <= 0 behind the camera.
   Vec3d project(const Vec3d& point) const;
+  std::vector<Vec3d> project(std::vector<Vec3d> points) const;  // each point's (u, v, depth)
 
   // The same camera with every ray turned by small angles [rad] toward right() and up(): a map
   // (height, width, 2) at the pixel centres, interpolated bilinearly between them (held at the

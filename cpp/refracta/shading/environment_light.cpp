@@ -155,4 +155,12 @@ std::string EnvironmentLight::describe() const {
   return concat("EnvironmentLight(", width_, " x ", height_, " texels, scale=", scale_, ")");
 }
 
+Image EnvironmentLight::image() const {
+  Image out(width_, height_, 3);
+  for (size_t i = 0; i < texels_.size(); ++i) {
+    for (int k = 0; k < 3; ++k) out.pixels[3 * i + size_t(k)] = float(texels_[i][k]);
+  }
+  return out;
+}
+
 }  // namespace refracta

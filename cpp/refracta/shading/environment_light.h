@@ -65,6 +65,7 @@ class EnvironmentLight final : public Light {
   static Mat3d rotation_about_y(double degrees);
 
   int width() const { return width_; }
+  Image image() const;  // the texels as a float image (exact: they came from floats)
   const std::vector<Vec3d>& texels() const { return texels_; }  // RGB, row-major, top row first, unscaled
   // The image file the map was read from ("" for an array): pickling then refers to the file.
   const std::string& source() const { return source_; }

@@ -82,6 +82,12 @@ std::vector<Vec3d> L_rgb(const Light& light, const std::vector<Vec3d>& points, c
   return out;
 }
 
+Vec3d area_light_normal(const AreaLight& light, size_t triangle) {
+  const size_t count = light.mesh().triangles.size();
+  if (triangle >= count) throw_invalid("triangle must be < ", count, " (got ", triangle, ")");
+  return light.normal(triangle);
+}
+
 std::vector<Vec2d> directions_to_uv(const EnvironmentLight& light, const std::vector<Vec3d>& dirs) {
   std::vector<Vec2d> uv(dirs.size());
   for (size_t i = 0; i < dirs.size(); ++i) uv[i] = light.direction_to_uv(dirs[i].normalized());

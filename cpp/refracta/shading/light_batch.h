@@ -3,6 +3,7 @@
 // for tests and users' own integrators. Row i of every result belongs to row i of the inputs.
 #pragma once
 
+#include "refracta/shading/area_light.h"
 #include "refracta/shading/environment_light.h"
 #include "refracta/shading/light.h"
 #include "refracta/shading/light_sampler.h"
@@ -38,6 +39,9 @@ std::vector<Vec3d> Le_rgb(const Light& light, const std::vector<Vec3d>& dirs);
 // L leaving each point with the light's front normal toward each unit direction (area lights), RGB.
 std::vector<Vec3d> L_rgb(const Light& light, const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals,
                          const std::vector<Vec3d>& dirs);
+
+// An area light's front normal of a triangle (ValueError for an index past its triangles).
+Vec3d area_light_normal(const AreaLight& light, size_t triangle);
 
 // An environment map's (u, v) of directions (normalised here), and the directions of (u, v) (finite).
 std::vector<Vec2d> directions_to_uv(const EnvironmentLight& light, const std::vector<Vec3d>& dirs);
