@@ -60,7 +60,9 @@ class Clock:
 
 
 def render_latencies(road) -> dict:
-    model = EditorModel(road.scene, road.camera, road.field, ground=0.0, max_length=road.max_length, autorender=False)
+    model = EditorModel(
+        road.scene, road.camera, road.field, stop_height=0.0, max_length=road.max_length, autorender=False
+    )
     clock = Clock(model)
     model.render()  # warm-up: the eye's elevation table, caches
     model.wait()
@@ -121,7 +123,7 @@ def solve_latencies(road) -> dict:
         times, to_image, solver, success = [], [], [], None
         for _ in range(REPEAT):
             model = EditorModel(
-                scene, camera, road.field, free, ground=0.0, max_length=road.max_length, autorender=False
+                scene, camera, road.field, free, stop_height=0.0, max_length=road.max_length, autorender=False
             )
             for destination, source in pairs:
                 model.add_pair(destination, source)

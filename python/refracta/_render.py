@@ -10,7 +10,7 @@ from typing import Callable
 
 import numpy as np
 
-from refracta import _core, _denoise
+from refracta import _core, _denoise, _options
 from refracta._progress import ProgressBar
 from refracta._sweep import map_ordered
 
@@ -85,36 +85,11 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str) -
         )
 
 
-# Fields of _core.RenderOptions that render() exposes as keywords (their defaults live in C++).
-_OPTION_NAMES = tuple(
-    name
-    for name in dir(_core.RenderOptions)
-    if not name.startswith("_") and isinstance(getattr(_core.RenderOptions, name), property)
-)
-# Fields whose None is a value of its own (not "the default"): trace None picks the integrator
-# per field, pixel_bounds None is the whole image.
-_NONE_FIELDS = ("trace", "pixel_bounds")
-# Whole-number fields (a float equal to a whole number is taken as it).
-_WHOLE_FIELDS = ("spp", "max_depth", "rr_depth", "max_steps", "tile", "seed")
-
-
 def render_options(**options) -> _core.RenderOptions:
-    """A _core.RenderOptions with the given fields set (unknown names raise ValueError; a None
-    value leaves the field at its C++ default), validated by RenderOptions.validate."""
-    result = _core.RenderOptions()
-    for name, value in options.items():
-        if name not in _OPTION_NAMES:
-            raise ValueError(f"render: unknown option {name!r} (options: {', '.join(sorted(_OPTION_NAMES))})")
-        if value is None and name not in _NONE_FIELDS:
-            continue
-        if name in _WHOLE_FIELDS and isinstance(value, (float, np.floating)) and float(value).is_integer():
-            value = int(value)  # 4.0 is 4 (the binding's int fields refuse floats)
-        try:
-            setattr(result, name, value)
-        except TypeError as error:
-            raise ValueError(f"render: option {name}={value!r}: {error}") from None
-    result.validate()
-    return result
+    """A _core.RenderOptions with the given fields set, validated by RenderOptions.validate: the
+    package's one keyword rule (refracta._options.build; unknown names raise ValueError, a None
+    value leaves a field that takes no None at its C++ default, 4.0 is 4 for a whole-number field)."""
+    return _options.build(_core.RenderOptions, where="render", **options)
 
 
 def render(

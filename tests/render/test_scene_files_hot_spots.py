@@ -253,7 +253,7 @@ def test_the_command_line_edit_moves_a_hot_spot(tmp_path, road_text):
         path = refracta.trace_ray(truth, origin, direction, tol=1e-10, max_length=400.0, stop_height=0.0)
         entries.append({"destination": [u, v], "source": [float(x) for x in path.point_at(200.0)[0]]})
     pairs_path = tmp_path / "pairs.json"
-    pairs_path.write_text(json.dumps({"pairs": entries, "free": ["hot_spot0_x"], "ground": 0.0}))
+    pairs_path.write_text(json.dumps({"pairs": entries, "free": ["hot_spot0_x"], "stop_height": 0.0}))
     start_path = tmp_path / "start.toml"
     start_path.write_text(with_atmosphere(road_text, truth.with_params(hot_spot0_x=140.0)))
     out = tmp_path / "solved.toml"
@@ -279,7 +279,7 @@ def test_the_command_line_edit_keeps_the_file_turbulence(tmp_path, road_text):
             {
                 "pairs": [{"destination": [48.0, 18.0], "source": [float(x) for x in source]}],
                 "free": ["surface_dt"],
-                "ground": 0.0,
+                "stop_height": 0.0,
             }
         )
     )

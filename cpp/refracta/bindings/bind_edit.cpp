@@ -2,6 +2,7 @@
 // through their fields), SolveSummary (a read-only result), the solve, the pair measures and the
 // pairs' paths. refracta.edit (Python) builds pairs from cameras and wraps the result.
 #include "refracta/bindings/bindings.h"
+#include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/interruptible.h"
 #include "refracta/bindings/options_binding.h"
 #include "refracta/edit/solve.h"
@@ -50,10 +51,6 @@ field by name, or pass them to solve() as keywords; validate() reports every bad
   cls.def(py::init<>())
       .def_property("backend", &backend_name, [](S& s, const std::string& v) { parse_backend(v, &s); },
                     "'ceres' (Levenberg-Marquardt, automatic derivatives) or 'nlopt:<ALGORITHM>' (any nlopt name)")
-      .def_property("strategy", [](const S& s) { return strategy_name(s.strategy); },
-                    [](S& s, const std::string& v) { s.strategy = parse_strategy(v); },
-                    "'auto' (a short local solve; if not every pair is met, the global stage and local solves from "
-                    "its best points) or 'local' (the back-end from the start only)")
       .def_readwrite("quick_iterations", &S::quick_iterations, "auto: iterations of the first local solve")
       .def_readwrite("design_per_param", &S::design_per_param, "auto: global-stage points per free parameter")
       .def_readwrite("local_starts", &S::local_starts, "auto: local solves from the global stage, at most")
@@ -67,9 +64,6 @@ field by name, or pass them to solve() as keywords; validate() reports every bad
       .def_readwrite("target_cost", &S::target_cost, "[m^2] stop once the cost is at most this (0: never early)")
       .def_readwrite("trust_region", &S::trust_region,
                      "ceres: initial trust-region radius in the free parameters' unit box")
-      .def_property("loss", [](const S& s) { return loss_name(s.loss); },
-                    [](S& s, const std::string& v) { s.loss = parse_loss(v); },
-                    "ceres robust loss on each pair's squared miss: 'none', 'huber', 'soft_l1', 'cauchy', 'arctan'")
       .def_readwrite("loss_scale", &S::loss_scale, "[m] the miss where the robust loss starts to down-weight")
       .def_readwrite("accept_angle", &S::accept_angle,
                      "[rad] a pair is met within its margin plus this times its range (or its tolerance)")
@@ -79,6 +73,11 @@ field by name, or pass them to solve() as keywords; validate() reports every bad
                      "starts of the strategy: the field as given, then uniform random in the bounds (one budget)")
       .def_readwrite("seed", &S::seed, "seed of the random starts")
       .def("validate", &S::validate, "Raises ValueError listing every bad field.");
+  def_enum_property(cls, "strategy", &S::strategy, &strategy_name, &parse_strategy,
+                    "'auto' (a short local solve; if not every pair is met, the global stage and local solves from "
+                    "its best points) or 'local' (the back-end from the start only)");
+  def_enum_property(cls, "loss", &S::loss, &loss_name, &parse_loss,
+                    "ceres robust loss on each pair's squared miss: 'none', 'huber', 'soft_l1', 'cauchy', 'arctan'");
   def_options_pickle<S>(cls);
 }
 
@@ -89,18 +88,16 @@ How an edit's pairs are traced and measured (refracta.edit.solve, distances, jac
 EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
 PairOptions). validate() reports every bad value at once.)doc");
   cls.def(py::init<>())
-      .def_property("trace", [](const P& o) { return trace_method_name(o.trace); },
-                    [](P& o, const std::string& v) { o.trace = parse_trace_method(v); },
-                    "the ray integrator: 'rk45' (to tol) or 'rk4' (fixed step); 'stratified' has no derivatives")
       .def_readwrite("tol", &P::tol, "[m] rk45 target position error (at least 1e-13 per metre of path)")
       .def_readwrite("step", &P::step, "[m] rk4 step (0: 0.3, the original editor's)")
       .def_readwrite("stop_height", &P::stop_height, "[m] paths end where they descend through it (None: no ground)")
-      .def_property("distance", [](const P& o) { return pair_distance_name(o.distance); },
-                    [](P& o, const std::string& v) { o.distance = parse_pair_distance(v); },
-                    "'continuous' (closest approach of the continuous path) or 'vertex' (nearest integrator node)")
       .def_readwrite("reach", &P::reach, "paths are traced to reach times the eye-to-source distance, plus 1 m")
       .def_readwrite("max_steps", &P::max_steps, "integration steps a trace may take")
       .def("validate", &P::validate, "Raises ValueError listing every bad field.");
+  def_enum_property(cls, "trace", &P::trace, &trace_method_name, &parse_trace_method,
+                    "the ray integrator: 'rk45' (to tol) or 'rk4' (fixed step); 'stratified' has no derivatives");
+  def_enum_property(cls, "distance", &P::distance, &pair_distance_name, &parse_pair_distance,
+                    "'continuous' (closest approach of the continuous path) or 'vertex' (nearest integrator node)");
   def_options_pickle<P>(cls);
 }
 

@@ -1,11 +1,11 @@
 // Python bindings of image files and the display pipeline (scene/image_io.h, shading/display.h):
 // what refracta.io wraps.
 #include "refracta/bindings/bind_scene.h"
+#include "refracta/bindings/options_binding.h"
 
 #include "refracta/scene/image_io.h"
 #include "refracta/shading/display.h"
 
-#include <optional>
 #include <string>
 
 namespace refracta {
@@ -26,28 +26,12 @@ py::array_t<float> image_to_float32(Image&& image) {
 
 namespace {
 
-using Number = std::optional<double>;
-
-// gamma: 'srgb', 'linear' or a number (None: 'srgb').
-std::variant<std::string, double> to_gamma(const py::object& gamma) {
-  if (gamma.is_none()) return std::string("srgb");
-  if (py::isinstance<py::str>(gamma)) return py::cast<std::string>(gamma);
-  try {
-    return py::cast<double>(gamma);
-  } catch (const py::cast_error&) {
-    throw_invalid("gamma must be 'srgb', 'linear' or a number in [1, 3]");
-  }
-}
-
-// The display keywords every function below takes after the image, in this order.
-DisplayNames display_names(Number exposure, std::optional<std::string> tonemap, const py::object& gamma, Number key,
-                           Number white, Number ev100, Number iso, Number shutter, Number f_number,
-                           Number luminous_efficacy) {
-  DisplayNames names;
-  names.exposure = exposure, names.tonemap = std::move(tonemap), names.gamma = to_gamma(gamma);
-  names.key = key, names.white = white, names.ev100 = ev100;
-  names.iso = iso, names.shutter = shutter, names.f_number = f_number, names.luminous_efficacy = luminous_efficacy;
-  return names;
+// The display keywords of refracta.io (None or absent: DisplaySettings' default), set on a
+// DisplayNames by the package's one keyword rule (options_binding.h); validated by display_settings.
+DisplaySettings display_from(const py::kwargs& keywords) {
+  py::object names = py::cast(DisplayNames());
+  set_options_fields(names, keywords, "refracta.io");
+  return display_settings(py::cast<DisplayNames>(names));
 }
 
 // Writes `image` to `path`: float formats linear times the manual exposure (1 without one; never
@@ -66,40 +50,38 @@ void write_display_image(const std::string& path, Image image, const DisplaySett
 }  // namespace
 
 void bind_image_io(py::module_& m) {
-  // The display keywords (io.py passes them through; None: DisplaySettings' default).
-  const auto kw = [](const char* name) { return py::arg(name) = py::none(); };
+  py::class_<DisplayNames>(m, "_DisplayNames", "refracta.io's display keywords (see refracta.io.to_display).")
+      .def(py::init<>())
+      .def_readwrite("exposure", &DisplayNames::exposure)
+      .def_readwrite("tonemap", &DisplayNames::tonemap)
+      .def_readwrite("gamma", &DisplayNames::gamma)
+      .def_readwrite("key", &DisplayNames::key)
+      .def_readwrite("white", &DisplayNames::white)
+      .def_readwrite("ev100", &DisplayNames::ev100)
+      .def_readwrite("iso", &DisplayNames::iso)
+      .def_readwrite("shutter", &DisplayNames::shutter)
+      .def_readwrite("f_number", &DisplayNames::f_number)
+      .def_readwrite("luminous_efficacy", &DisplayNames::luminous_efficacy);
   m.def(
       "_write_image",
-      [](const std::string& path, const py::object& image, Number exposure, std::optional<std::string> tonemap,
-         const py::object& gamma, Number key, Number white, Number ev100, Number iso, Number shutter, Number f_number,
-         Number luminous_efficacy) {
-        const DisplayNames names = display_names(exposure, std::move(tonemap), gamma, key, white, ev100, iso, shutter,
-                                                 f_number, luminous_efficacy);
-        write_display_image(path, to_image(image, "image"), display_settings(names));
+      [](const std::string& path, const py::object& image, const py::kwargs& display) {
+        write_display_image(path, to_image(image, "image"), display_from(display));
       },
-      py::arg("path"), py::arg("image"), py::kw_only(), kw("exposure"), kw("tonemap"), kw("gamma"), kw("key"),
-      kw("white"), kw("ev100"), kw("iso"), kw("shutter"), kw("f_number"), kw("luminous_efficacy"));
+      py::arg("path"), py::arg("image"), "Write an image as refracta.io.write_image (display keywords: _DisplayNames).");
   m.def(
       "_display",
-      [](const py::object& image, Number exposure, std::optional<std::string> tonemap, const py::object& gamma, Number key,
-         Number white, Number ev100, Number iso, Number shutter, Number f_number, Number luminous_efficacy) {
+      [](const py::object& image, const py::kwargs& display) {
         Image pixels = to_image(image, "image");
-        tonemap_image(pixels, display_settings(display_names(exposure, std::move(tonemap), gamma, key, white, ev100, iso,
-                                                             shutter, f_number, luminous_efficacy)));
+        tonemap_image(pixels, display_from(display));
         return image_to_float32(std::move(pixels));
       },
-      py::arg("image"), py::kw_only(), kw("exposure"), kw("tonemap"), kw("gamma"), kw("key"), kw("white"), kw("ev100"),
-      kw("iso"), kw("shutter"), kw("f_number"), kw("luminous_efficacy"));
+      py::arg("image"), "Display values of an image (refracta.io.to_display; keywords: _DisplayNames).");
   m.def(
       "_display_exposure",
-      [](const py::object& image, Number exposure, Number key, Number ev100, Number iso, Number shutter,
-         Number f_number, Number luminous_efficacy) {
-        const DisplayNames names = display_names(exposure, std::nullopt, py::none(), key, std::nullopt, ev100, iso,
-                                                 shutter, f_number, luminous_efficacy);
-        return display_exposure(to_image(image, "image"), display_settings(names));
+      [](const py::object& image, const py::kwargs& display) {
+        return display_exposure(to_image(image, "image"), display_from(display));
       },
-      py::arg("image"), py::kw_only(), kw("exposure"), kw("key"), kw("ev100"), kw("iso"), kw("shutter"),
-      kw("f_number"), kw("luminous_efficacy"), "The exposure c the display settings give this image (io.exposure_of).");
+      py::arg("image"), "The exposure c the display settings give this image (io.exposure_of).");
   m.def("_ev100", &ev100_of, py::arg("f_number"), py::arg("shutter"), py::arg("iso") = kDefaultIso,
         "EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.");
   m.def("_read_image", [](const std::string& path) { return image_to_float32(read_image(path)); }, py::arg("path"));

@@ -1,5 +1,6 @@
 // Python bindings of the ray integrators (cpp/refracta/rays): trace_ray, the batch tracer, RayPath.
 #include "refracta/bindings/bindings.h"
+#include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/interruptible.h"
 #include "refracta/bindings/options_binding.h"
 #include "refracta/rays/astronomical_refraction.h"
@@ -120,13 +121,10 @@ void bind_trace_options(py::module_& m) {
   py::class_<TraceOptions> options(m, "TraceOptions", R"doc(
 Options of refracta.trace_ray and trace_rays, with their defaults (defined once, here). Set any
 field by name; validate() reports every bad value at once. Pickles through its fields.)doc");
-  options.def(py::init<>())
-      .def_property(
-          "trace", [](const TraceOptions& o) { return trace_method_name(o.trace); },
-          [](TraceOptions& o, const std::string& v) { o.trace = parse_trace_method(v); },
-          "the integrator: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path), "
-          "'rk4' (fixed step `step`), or 'stratified' (height-only fields: exact paths from n(h) cos(e) = const by "
-          "quadrature to tol; `step` is the largest node spacing)")
+  def_enum_property(options.def(py::init<>()), "trace", &TraceOptions::trace, &trace_method_name, &parse_trace_method,
+                    "the integrator: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the "
+                    "path), 'rk4' (fixed step `step`), or 'stratified' (height-only fields: exact paths from "
+                    "n(h) cos(e) = const by quadrature to tol; `step` is the largest node spacing)")
       .def_readwrite("tol", &TraceOptions::tol, "[m] rk45 and stratified: target error of positions along the path")
       .def_readwrite("step", &TraceOptions::step,
                      concat("[m] rk4: the fixed step (0: ", kRk4DefaultStep, " m, the original editor's); rk45: the "

@@ -217,40 +217,25 @@ Eigen::Matrix3d to_rotation(const py::handle& object, const char* what) {
   if (array.ndim() != 2 || array.shape(0) != 3 || array.shape(1) != 3) {
     throw_invalid(what, " must be an angle about +y [deg] or of shape (3, 3) (got ", shape_of(array), ")");
   }
-  Eigen::Matrix3d m;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) m(i, j) = array.at(i, j);
-  }
-  return m;
+  return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(array.data());
 }
 
+// Vec3d is three packed doubles (no padding), so a vector of them is an (N, 3) row-major block.
+static_assert(sizeof(Vec3d) == 3 * sizeof(double));
+
 DoubleArray points_to_array(const std::vector<Vec3d>& points) {
-  DoubleArray out({py::ssize_t(points.size()), py::ssize_t(3)});
-  double* data = out.mutable_data();
-  for (size_t i = 0; i < points.size(); ++i) {
-    for (int k = 0; k < 3; ++k) data[3 * i + k] = points[i][k];
-  }
-  return out;
+  return DoubleArray({py::ssize_t(points.size()), py::ssize_t(3)}, points.empty() ? nullptr : points[0].data());
 }
 
 DoubleArray values_to_array(const std::vector<double>& values) {
-  DoubleArray out(py::ssize_t(values.size()));
-  std::copy(values.begin(), values.end(), out.mutable_data());
-  return out;
+  return DoubleArray(py::ssize_t(values.size()), values.data());
 }
 
-DoubleArray vector_to_array(const Vec3d& v) {
-  DoubleArray out(py::ssize_t(3));
-  for (int k = 0; k < 3; ++k) out.mutable_at(k) = v[k];
-  return out;
-}
+DoubleArray vector_to_array(const Vec3d& v) { return DoubleArray(py::ssize_t(3), v.data()); }
 
 DoubleArray matrix_to_array(const Eigen::Matrix3d& m) {
-  DoubleArray out({py::ssize_t(3), py::ssize_t(3)});
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) out.mutable_at(i, j) = m(i, j);
-  }
-  return out;
+  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> rows = m;
+  return DoubleArray({py::ssize_t(3), py::ssize_t(3)}, rows.data());
 }
 
 }  // namespace refracta

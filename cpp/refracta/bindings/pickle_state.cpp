@@ -73,19 +73,13 @@ Color color_from_state(const py::handle& object) {
 }
 
 py::tuple mesh_state(const Mesh& mesh) {
-  py::array_t<int64_t> triangles({py::ssize_t(mesh.triangles.size()), py::ssize_t(3)});
-  int64_t* t = triangles.mutable_data();
-  for (const auto& tri : mesh.triangles) {
-    for (int k = 0; k < 3; ++k) *t++ = tri[k];
-  }
+  static_assert(sizeof(Vec2d) == 2 * sizeof(double) && sizeof(mesh.triangles[0]) == 3 * sizeof(int));
+  const py::array_t<int> triangles({py::ssize_t(mesh.triangles.size()), py::ssize_t(3)},
+                                   mesh.triangles.empty() ? nullptr : mesh.triangles[0].data());
   py::object uvs = py::none(), normals = py::none();
-  if (!mesh.uvs.empty()) {
-    DoubleArray a({py::ssize_t(mesh.uvs.size()), py::ssize_t(2)});
-    for (size_t i = 0; i < mesh.uvs.size(); ++i) a.mutable_at(i, 0) = mesh.uvs[i].x(), a.mutable_at(i, 1) = mesh.uvs[i].y();
-    uvs = a;
-  }
+  if (!mesh.uvs.empty()) uvs = DoubleArray({py::ssize_t(mesh.uvs.size()), py::ssize_t(2)}, mesh.uvs[0].data());
   if (!mesh.normals.empty()) normals = points_to_array(mesh.normals);
-  return py::make_tuple(points_to_array(mesh.vertices), triangles, uvs, normals);
+  return py::make_tuple(points_to_array(mesh.vertices), triangles.attr("astype")("int64"), uvs, normals);
 }
 
 Mesh mesh_from_state(const py::handle& object) {
@@ -93,16 +87,8 @@ Mesh mesh_from_state(const py::handle& object) {
   check_size(t, 4, "Mesh");
   Mesh mesh;
   if (py::len(t[0]) > 0) mesh.vertices = to_points(t[0], "vertices");
-  const auto triangles = py::cast<py::array_t<int64_t, py::array::c_style | py::array::forcecast>>(t[1]);
-  if (triangles.ndim() != 2 || (triangles.shape(0) > 0 && triangles.shape(1) != 3)) throw_invalid("Mesh: bad pickle state (triangles)");
-  for (py::ssize_t i = 0; i < triangles.shape(0); ++i) {
-    mesh.triangles.push_back({int(triangles.at(i, 0)), int(triangles.at(i, 1)), int(triangles.at(i, 2))});
-  }
-  if (!t[2].is_none()) {
-    const DoubleArray uvs = py::cast<DoubleArray>(t[2]);
-    if (uvs.ndim() != 2 || uvs.shape(1) != 2) throw_invalid("Mesh: bad pickle state (uvs)");
-    for (py::ssize_t i = 0; i < uvs.shape(0); ++i) mesh.uvs.emplace_back(uvs.at(i, 0), uvs.at(i, 1));
-  }
+  mesh.triangles = to_triangles(t[1], "Mesh triangles", mesh.vertices.size());
+  if (!t[2].is_none()) mesh.uvs = to_uvs(t[2], "Mesh uvs", mesh.vertices.size());
   if (!t[3].is_none()) mesh.normals = to_points(t[3], "normals");
   return mesh;
 }
