@@ -190,7 +190,7 @@ Derivatives parse_derivatives(const std::string& name, const IndexField& field) 
 std::vector<std::unique_ptr<ceres::CostFunction>> make_pair_costs(
     const FieldPtr& field, const std::vector<double>& values, const std::vector<int>& free,
     const std::vector<PointPair>& pairs, const PairOptions& options, Derivatives derivatives,
-    std::shared_ptr<const CameraRig> rig, EvaluationContext* context) {
+    const std::shared_ptr<const CameraRig>& rig, EvaluationContext* context) {
   if (derivatives == Derivatives::kAutomatic && !has_templated_model(*field)) {
     throw_invalid("automatic derivatives need a field built from a templated model; ",
                   field->type_name(), " has none (use derivatives='numeric')");

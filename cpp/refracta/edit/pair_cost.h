@@ -35,6 +35,6 @@ Derivatives parse_derivatives(const std::string& name, const IndexField& field);
 std::vector<std::unique_ptr<ceres::CostFunction>> make_pair_costs(
     const FieldPtr& field, const std::vector<double>& values, const std::vector<int>& free,
     const std::vector<PointPair>& pairs, const PairOptions& options, Derivatives derivatives,
-    std::shared_ptr<const CameraRig> rig, EvaluationContext* context);
+    const std::shared_ptr<const CameraRig>& rig, EvaluationContext* context);
 
 }  // namespace refracta
