@@ -419,8 +419,8 @@ def test_bk7_prism_spreads_a_white_edge_into_its_spectrum():
 
 
 def test_dispersive_render_does_not_depend_on_threads_tiles_or_bounds():
-    # Each worker thread keeps one caster and integrator whose air it retunes to every sample's
-    # hero wavelength (render/hero_casters.h): which thread renders a sample must change nothing.
+    # A pool of casters and integrators, each retuned to the hero wavelength of the sample that holds
+    # it (render/hero_casters.h): which caster or thread serves a sample must change nothing.
     scene = refracta.Scene()
     scene.add_ground(0.0, 4000.0, material=shading.Diffuse((0.3, 0.5, 0.2)))
     scene.add_box((80.0, 1.0, 0.0), (4.0, 2.0, 4.0), kd=(0.8, 0.2, 0.1))

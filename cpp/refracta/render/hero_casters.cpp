@@ -1,14 +1,14 @@
-// One caster and one integrator per thread for spectral renders through dispersive air (hero_casters.h).
+// A pool of casters and integrators for spectral renders through dispersive air (hero_casters.h).
 #include "refracta/render/hero_casters.h"
 
 #include "refracta/media/dispersed_field.h"
 
 namespace refracta {
 
-// A thread's dispersed air, its caster and integrator: built once, never moved (the integrator
-// holds the caster by reference, the caster the air).
-struct HeroCasters::PerThread {
-  PerThread(const HeroCasters& owner)
+// A dispersed air, its caster and integrator: built once, never moved (the integrator holds the
+// caster by reference, the caster the air).
+struct HeroCasters::Hero {
+  explicit Hero(const HeroCasters& owner)
       : scale(std::make_shared<double>(1.0)),
         air(tunable_dispersed_field(owner.field_, scale)),
         caster(owner.scene_.geometry, air.get(), owner.options_) {
@@ -34,11 +34,24 @@ HeroCasters::HeroCasters(const RenderScene& scene, FieldPtr field, const RenderO
 
 HeroCasters::~HeroCasters() = default;
 
-HeroCasters::Hero HeroCasters::for_wavelength(double wavelength_nm) const {
-  std::unique_ptr<PerThread>& mine = threads_.local();
-  if (!mine) mine = std::make_unique<PerThread>(*this);
-  *mine->scale = air_dispersion_scale(wavelength_nm, reference_);
-  return Hero{mine->caster, *mine->integrator};
+HeroCasters::Lease HeroCasters::for_wavelength(double wavelength_nm) const {
+  const double scale = air_dispersion_scale(wavelength_nm, reference_);
+  std::unique_ptr<Hero> hero;
+  if (!idle_.try_pop(hero)) hero = std::make_unique<Hero>(*this);
+  *hero->scale = scale;
+  return Lease(*this, std::move(hero));
 }
+
+HeroCasters::Lease::Lease(const HeroCasters& pool, std::unique_ptr<Hero> hero) : pool_(pool), hero_(std::move(hero)) {}
+
+HeroCasters::Lease::Lease(Lease&& other) noexcept : pool_(other.pool_), hero_(std::move(other.hero_)) {}
+
+HeroCasters::Lease::~Lease() {
+  if (hero_) pool_.idle_.push(std::move(hero_));  // (a lease moved from holds none)
+}
+
+const Caster& HeroCasters::Lease::caster() const { return hero_->caster; }
+
+const Integrator& HeroCasters::Lease::integrator() const { return *hero_->integrator; }
 
 }  // namespace refracta

@@ -3,15 +3,15 @@
 // K(hero) / K(reference) (media/dispersed_field.h), and the secondary wavelengths are terminated
 // (the path is the hero's alone; Wilkie et al. 2014, section 4).
 //
-// One caster and one integrator per worker thread serve every sample that thread renders: built
-// on its first sample over a DispersedField whose scale the thread retunes to each sample's hero
-// wavelength (for_wavelength). The air is then exactly what dispersed_field(field, hero) builds
-// -- the same n and grad n, bit for bit -- without building a field, a caster and an integrator
-// per sample. Per thread rather than one per render: the integrators ask their caster for n and
-// for the layered air (Caster::ior, Caster::layered, in direct_lighting.cpp and
-// path_integrator.cpp) without a wavelength, so a caster shared by every thread would need the
-// wavelength passed through each of those calls. A sample runs on one thread from start to end
-// (no sample spawns parallel work), so a thread's air cannot change under a sample.
+// A small pool of casters and integrators, one per sample in flight (as many as the render's
+// threads), serves every sample: each is built once over a DispersedField whose scale a sample
+// retunes to its hero wavelength while it holds that caster (for_wavelength's lease). The air is
+// then exactly what dispersed_field(field, hero) builds -- the same n and grad n, bit for bit --
+// without building a field, a caster and an integrator per sample; which caster of the pool a
+// sample gets changes nothing. One per sample in flight rather than one per render: the
+// integrators ask their caster for n and for the layered air (Caster::ior, Caster::layered, in
+// direct_lighting.cpp and path_integrator.cpp) without a wavelength, so a caster shared by
+// concurrent samples would need the wavelength passed through each of those calls.
 #pragma once
 
 #include "refracta/media/index_field.h"
@@ -20,7 +20,7 @@
 #include "refracta/render/render_options.h"
 #include "refracta/render/render_scene.h"
 
-#include <tbb/enumerable_thread_specific.h>
+#include <tbb/concurrent_queue.h>
 
 #include <memory>
 #include <optional>
@@ -36,22 +36,35 @@ class HeroCasters {
               double spread);
   ~HeroCasters();
 
-  struct Hero {
-    const Caster& caster;
-    const Integrator& integrator;
+ private:
+  struct Hero;  // one dispersed air, its caster and integrator (hero_casters.cpp)
+
+ public:
+  // A caster and integrator of the pool, held by one sample until the lease ends.
+  class Lease {
+   public:
+    Lease(const HeroCasters& pool, std::unique_ptr<Hero> hero);
+    Lease(Lease&& other) noexcept;
+    Lease& operator=(const Lease&) = delete;
+    ~Lease();
+    const Caster& caster() const;
+    const Integrator& integrator() const;
+
+   private:
+    const HeroCasters& pool_;
+    std::unique_ptr<Hero> hero_;
   };
-  // The calling thread's caster and integrator, their air retuned to `wavelength_nm` [nm].
-  Hero for_wavelength(double wavelength_nm) const;
+  // A caster and integrator nobody else holds, their air retuned to `wavelength_nm` [nm].
+  Lease for_wavelength(double wavelength_nm) const;
 
  private:
-  struct PerThread;
   const RenderScene& scene_;
   FieldPtr field_;
   const RenderOptions& options_;
   std::optional<IorFloors> floors_;
   double spread_;
   double reference_;  // the field's reference wavelength [nm]
-  mutable tbb::enumerable_thread_specific<std::unique_ptr<PerThread>> threads_;
+  mutable tbb::concurrent_queue<std::unique_ptr<Hero>> idle_;  // built and not held
 };
 
 }  // namespace refracta

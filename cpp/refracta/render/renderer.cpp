@@ -2,8 +2,8 @@
 // caster, the integrator, the film loop.
 //
 // Spectral rendering through a field ('curved'): the air disperses (media/dispersed_field.h), so
-// each sample's rays bend through the field at its exact hero wavelength, cast and shaded by its
-// thread's caster and integrator retuned to it (hero_casters.h). Its camera ray is traced (the
+// each sample's rays bend through the field at its exact hero wavelength, cast and shaded by a
+// caster and integrator of a pool retuned to it (hero_casters.h). Its camera ray is traced (the
 // eye's ElevationTable holds one wavelength): that costs what table=False costs in RGB (the
 // table's saving on camera rays), no interpolation error in wavelength.
 #include "refracta/render/renderer.h"
@@ -234,7 +234,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     aovs->hit = first.hit;
     aovs->distance = first.hit ? true_path_length(first.length, origin.y(), first.hit->point.y(), earth_radius) : first.length;
   };
-  // Dispersive air: one caster and integrator per thread, retuned to each sample's hero (hero_casters.h).
+  // Dispersive air: a pool of casters and integrators, one retuned to each sample's hero (hero_casters.h).
   const std::unique_ptr<HeroCasters> heroes =
       dispersive ? std::make_unique<HeroCasters>(scene, field, options, floors, camera.pixel_angle()) : nullptr;
   auto sample = [&](const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle, SampledWavelengths& lambda,
@@ -242,14 +242,11 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     const Camera::LensRay ray = camera.lens_ray(pixel.x(), pixel.y(), lens);
     const Vec3d& origin = ray.origin;
     const Vec3d& dir = ray.direction;
-    const Caster* cast_by = &caster;
-    const Integrator* shade_by = integrator.get();
-    if (heroes) {
-      lambda.terminate_secondary();
-      const HeroCasters::Hero hero = heroes->for_wavelength(lambda.hero());
-      cast_by = &hero.caster;
-      shade_by = &hero.integrator;
-    }
+    if (heroes) lambda.terminate_secondary();
+    const std::optional<HeroCasters::Lease> hero =
+        heroes ? std::optional<HeroCasters::Lease>(std::in_place, heroes->for_wavelength(lambda.hero())) : std::nullopt;
+    const Caster* cast_by = hero ? &hero->caster() : &caster;
+    const Integrator* shade_by = hero ? &hero->integrator() : integrator.get();
     // Turbulence's perturbed camera rays follow the calm air's table: not a dispersed one.
     const ShimmerCaster* shimmering = heroes ? nullptr : shimmer.get();
     PathEnd first = shimmering ? shimmering->cast(caster, origin, dir, camera.pixel_angle())
