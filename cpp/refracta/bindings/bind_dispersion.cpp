@@ -1,27 +1,24 @@
 // Python bindings of the air's dispersion (media/dispersed_field.h).
-#include "refracta/bindings/bindings.h"
+#include "refracta/bindings/bind_media.h"
 #include "refracta/media/dispersed_field.h"
 
 namespace refracta {
 
 void bind_dispersion(py::module_& m) {
-  py::class_<DispersedField, IndexField, std::shared_ptr<DispersedField>>(m, "DispersedField", R"doc(
+  py::class_<DispersedField, IndexField, std::shared_ptr<DispersedField>> cls(m, "DispersedField", R"doc(
 A field at another wavelength: n' = 1 + scale (n - 1), grad n' = scale grad n, height-only as its
 base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
 base's. Spectral renders through a field build these per sample (each hero wavelength); build
-one with dispersed_field(field, wavelength).)doc")
-      .def(py::init([](const std::shared_ptr<IndexField>& base, double scale) {
-             return std::make_shared<DispersedField>(base, scale);
-           }),
-           py::arg("base"), py::arg("scale"))
-      .def_property_readonly("base", [](const DispersedField& f) { return std::const_pointer_cast<IndexField>(f.base()); })
-      .def_property_readonly("scale", &DispersedField::scale)
-      .def(py::pickle(
-          [](const DispersedField& f) { return py::make_tuple(std::const_pointer_cast<IndexField>(f.base()), f.scale()); },
-          [](const py::tuple& state) {
-            if (state.size() != 2) throw_invalid("DispersedField: bad pickle state");
-            return std::make_shared<DispersedField>(py::cast<std::shared_ptr<IndexField>>(state[0]), py::cast<double>(state[1]));
-          }));
+one with dispersed_field(field, wavelength).)doc");
+  auto make = [](std::shared_ptr<IndexField> base, double scale) {
+    return std::make_shared<DispersedField>(base, scale);
+  };
+  cls.def(py::init(make), py::arg("base"), py::arg("scale"))
+      .def_property_readonly("base", [](const DispersedField& f) { return unconst(f.base()); })
+      .def_property_readonly("scale", &DispersedField::scale);
+  using State = std::tuple<std::shared_ptr<IndexField>, double>;
+  def_tuple_pickle<State>(
+      cls, "DispersedField", [](const DispersedField& f) { return State(unconst(f.base()), f.scale()); }, make);
 
   m.def("air_dispersion_scale", &air_dispersion_scale, py::arg("wavelength"), py::arg("reference") = kDefaultFieldWavelength,
         "K(wavelength)/K(reference) of dry air (Birch & Downs 1993 Edlen formula at 101325 Pa, 288.15 K):\n"
@@ -31,7 +28,7 @@ one with dispersed_field(field, wavelength).)doc")
         "TemperatureProfile, CurvedEarth over them), else 550.");
   m.def("dispersed_field",
         [](const std::shared_ptr<IndexField>& field, double wavelength, std::optional<double> reference) {
-          return std::const_pointer_cast<IndexField>(dispersed_field(field, wavelength, reference ? *reference : 0.0));
+          return unconst(dispersed_field(field, wavelength, reference ? *reference : 0.0));
         },
         py::arg("field"), py::arg("wavelength"), py::arg("reference") = py::none(),
         "The field at `wavelength` [nm] (dry-air dispersion, n - 1 scaled by air_dispersion_scale from\n"

@@ -17,17 +17,18 @@ namespace refracta {
 
 namespace {
 
-// Keyword values as numbers, in order (nullopt where one is not a number: the library names it).
-NamedValues named_values(const py::dict& kwargs) {
-  NamedValues out;
-  for (const auto& [key, value] : kwargs) {
-    std::optional<double> number;
-    try {
-      number = py::cast<double>(value);
-    } catch (const py::cast_error&) {
-    }
-    out.emplace_back(py::cast<std::string>(key), number);
+// A keyword's value as a number (nullopt where it is not one: the library names it).
+std::optional<double> number_of(const py::handle& value) {
+  try {
+    return py::cast<double>(value);
+  } catch (const py::cast_error&) {
+    return std::nullopt;
   }
+}
+
+NamedValues named_values(const py::kwargs& kwargs) {
+  NamedValues out;
+  for (const auto& [key, value] : kwargs) out.emplace_back(py::cast<std::string>(key), number_of(value));
   return out;
 }
 
@@ -64,19 +65,18 @@ std::vector<HotSpot> hot_spots_from_python(const char* model, const py::handle& 
 template <class Field>
 std::shared_ptr<Field> model_from_python(const py::args& args, const py::kwargs& kwargs) {
   ModelArgs model{py::cast<std::vector<double>>(args), {}, std::nullopt, std::nullopt};
-  py::dict params;
   constexpr bool spots = HasHotSpots<typename Field::Config>::value;  // else the library refuses them
   for (const auto& [key, value] : kwargs) {
     const std::string name = py::cast<std::string>(key);
     if (name == "hot_spots") {
       model.hot_spots = spots ? hot_spots_from_python(Field::model_name(), value) : std::vector<HotSpot>();
     } else if (name == "turbulence") {
-      model.turbulence = spots ? turbulence_from_python(Field::model_name(), py::reinterpret_borrow<py::object>(value)) : nullptr;
+      const auto object = py::reinterpret_borrow<py::object>(value);
+      model.turbulence = spots ? turbulence_from_python(Field::model_name(), object) : nullptr;
     } else {
-      params[key] = value;
+      model.named.emplace_back(name, number_of(value));
     }
   }
-  model.named = named_values(params);
   return make_model<Field>(model);
 }
 
@@ -146,20 +146,16 @@ void add_air_column(Class& cls) {
           "Hydrostatic pressure [Pa] at the given heights [m].");
 }
 
-// ior and grad_ior: a CustomField calls its Python functions once for all points.
+// ior and grad_ior: n (float) and grad n (3,) for one point, (N,) and (N, 3) for (N, 3).
 py::object ior_of(const IndexField& field, const py::object& points) {
   bool single = false;
-  const std::vector<Vec3d> p = to_points(points, "points", &single);
-  const auto* custom = dynamic_cast<const CustomField*>(&field);
-  const std::vector<double> n = custom ? custom->call_ior(p) : ior_at(field, p);
+  const std::vector<double> n = field.ior_at(to_points(points, "points", &single));
   return single ? py::object(py::float_(n[0])) : py::object(values_to_array(n));
 }
 
 py::object grad_of(const IndexField& field, const py::object& points) {
   bool single = false;
-  const std::vector<Vec3d> p = to_points(points, "points", &single);
-  const auto* custom = dynamic_cast<const CustomField*>(&field);
-  DoubleArray out = points_to_array(custom ? custom->call_grad(p) : grad_ior_at(field, p));
+  DoubleArray out = points_to_array(field.grad_ior_at(to_points(points, "points", &single)));
   return single ? py::object(out.reshape({py::ssize_t(3)})) : py::object(out);
 }
 
@@ -233,13 +229,15 @@ Raises refracta.NumericalError where n <= 0 or is not finite.)doc")
       .def_property_readonly("param_info", [](const IndexField& f) {
         py::list out;
         for (const auto& s : f.param_specs()) {
-          out.append(py::dict(py::arg("name") = s.name, py::arg("default") = s.default_value, py::arg("lower") = s.lower, py::arg("upper") = s.upper,
+          out.append(py::dict(py::arg("name") = s.name, py::arg("default") = s.default_value,
+                              py::arg("lower") = s.lower, py::arg("upper") = s.upper,
                               py::arg("unit") = s.unit, py::arg("doc") = s.doc));
         }
         return out;
       }, "One dict per parameter: name, default, lower, upper, unit, doc.")
       .def_property_readonly("gauge_params", &IndexField::gauge_params)
-      .def("with_params", [](const IndexField& f, const py::kwargs& kw) { return unconst(with_params(f, named_values(kw))); },
+      .def("with_params",
+           [](const IndexField& f, const py::kwargs& kw) { return unconst(with_params(f, named_values(kw))); },
            "A new field of the same model with the given parameters changed.")
       .def("__repr__", &field_repr);
 }
@@ -285,7 +283,8 @@ at the lowest height; n from the same air formula as PhysicalAtmosphere. The tem
 parameters t0, t1, ... (with pressure, humidity, wavelength).)doc");
   sounding.def(py::init([](const py::object& heights, const py::object& temperatures, double pressure,
                            double humidity, double wavelength) {
-                 const std::vector<double> h = to_values(heights, "heights"), t = to_values(temperatures, "temperatures");
+                 const std::vector<double> h = to_values(heights, "heights");
+                 const std::vector<double> t = to_values(temperatures, "temperatures");
                  // Each level adds 16 hydrostatic nodes (~7 us): from ~10^5 levels on this takes
                  // seconds, so it runs like any long call (GIL released, Ctrl-C stops it).
                  std::shared_ptr<TemperatureProfile> field;
@@ -296,10 +295,12 @@ parameters t0, t1, ... (with pressure, humidity, wavelength).)doc");
                }),
                py::arg("heights"), py::arg("temperatures"), py::arg("pressure") = kStandardPressure,
                py::arg("humidity") = 0.0, py::arg("wavelength") = 550.0)
-      .def_property_readonly("heights", [](const TemperatureProfile& f) { return values_to_array(f.config().heights); });
+      .def_property_readonly("heights",
+                             [](const TemperatureProfile& f) { return values_to_array(f.config().heights); });
   using Sounding = std::tuple<std::vector<double>, std::vector<double>>;
   def_tuple_pickle<Sounding>(
-      sounding, "TemperatureProfile", [](const TemperatureProfile& f) { return Sounding(f.config().heights, f.param_values()); },
+      sounding, "TemperatureProfile",
+      [](const TemperatureProfile& f) { return Sounding(f.config().heights, f.param_values()); },
       [](std::vector<double> heights, std::vector<double> values) {
         return std::make_shared<TemperatureProfile>(TemperatureProfile::Config{std::move(heights)}, std::move(values));
       });
@@ -311,7 +312,9 @@ transform): x' = distance along the surface, y' = R ln(r/R), n' = n(h) e^(y'/R).
 their vertical plane; scene heights y' differ from true heights by h^2/(2R) (0.8 mm at 100 m):
 true_height(y') and flat_height(h) convert. Use it for anything seen over kilometres (horizons,
 looming, Fata Morgana).)doc");
-  auto make_curved = [](std::shared_ptr<IndexField> base, double radius) { return std::make_shared<CurvedEarth>(base, radius); };
+  auto make_curved = [](std::shared_ptr<IndexField> base, double radius) {
+    return std::make_shared<CurvedEarth>(base, radius);
+  };
   curved.def(py::init(make_curved), py::arg("base"), py::arg("radius") = kEarthRadius)
       .def_property_readonly("base", [](const CurvedEarth& f) { return unconst(f.base()); })
       .def_property_readonly("radius", &CurvedEarth::radius)
@@ -321,13 +324,16 @@ looming, Fata Morgana).)doc");
            "Flat-frame height y' of true heights h [m].");
   using Decorated = std::tuple<std::shared_ptr<IndexField>, double>;
   def_tuple_pickle<Decorated>(
-      curved, "CurvedEarth", [](const CurvedEarth& f) { return Decorated(unconst(f.base()), f.radius()); }, make_curved);
+      curved, "CurvedEarth", [](const CurvedEarth& f) { return Decorated(unconst(f.base()), f.radius()); },
+      make_curved);
 
   py::class_<CustomField, IndexField, std::shared_ptr<CustomField>> custom(m, "CustomField", R"doc(
 A field written in Python: ior(points (N,3)) -> (N,) and grad_ior(points (N,3)) -> (N,3), both
 vectorised. height_only=True promises n depends on y alone (enables method='stratified').
 Slow: the integrators call back into Python at every evaluation.)doc");
-  custom.def(py::init<py::object, py::object, bool>(), py::arg("ior"), py::arg("grad_ior"), py::arg("height_only") = false)
+  custom
+      .def(py::init<py::object, py::object, bool>(), py::arg("ior"), py::arg("grad_ior"),
+           py::arg("height_only") = false)
       .def_property_readonly("ior_function", &CustomField::ior_function)
       .def_property_readonly("grad_function", &CustomField::grad_function);
   // Pickled as its callables: this works when they pickle (module-level functions with
@@ -336,7 +342,9 @@ Slow: the integrators call back into Python at every evaluation.)doc");
   def_tuple_pickle<Callables>(
       custom, "CustomField",
       [](const CustomField& f) { return Callables(f.ior_function(), f.grad_function(), f.height_only()); },
-      [](py::object ior, py::object grad, bool height_only) { return std::make_shared<CustomField>(ior, grad, height_only); });
+      [](py::object ior, py::object grad, bool height_only) {
+        return std::make_shared<CustomField>(ior, grad, height_only);
+      });
   // Tests: the tabulation renders and ElevationTables trace through (media/tabulated_height_field.h).
   m.def(
       "_tabulate_heights",

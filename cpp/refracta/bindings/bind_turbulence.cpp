@@ -158,8 +158,12 @@ e^(-h/depth) above the ground (none for depth = inf), the lattice turned by yaw 
 vertical (the layer's internal unit: refracta.Turbulence takes yaw_deg [deg]). Made by
 refracta.Turbulence (its `layer`).)doc");
   auto make_layer = [](std::shared_ptr<TurbulenceGrid> grid, double scale, const py::object& offset, double depth,
-                       double yaw) { return make_turbulence_layer(grid, scale, to_point(offset, "offset"), depth, yaw); };
-  layer.def(py::init(make_layer), py::arg("grid"), py::arg("scale"), py::arg("offset"), py::arg("depth"), py::arg("yaw") = 0.0)
+                       double yaw) {
+    return make_turbulence_layer(grid, scale, to_point(offset, "offset"), depth, yaw);
+  };
+  layer
+      .def(py::init(make_layer), py::arg("grid"), py::arg("scale"), py::arg("offset"), py::arg("depth"),
+           py::arg("yaw") = 0.0)
       .def_static(
           "of",
           [](const TurbulenceSettings& settings, std::shared_ptr<TurbulenceGrid> grid, double time) {
@@ -178,7 +182,9 @@ refracta.Turbulence (its `layer`).)doc");
   using State = std::tuple<std::shared_ptr<TurbulenceGrid>, double, Offset, double, double>;
   def_tuple_pickle<State>(
       layer, "TurbulenceLayer",
-      [](const Turbulence& t) { return State(unconst(t.grid), t.scale, Offset(t.offset.x(), t.offset.y(), t.offset.z()), t.depth, t.yaw); },
+      [](const Turbulence& t) {
+        return State(unconst(t.grid), t.scale, Offset(t.offset.x(), t.offset.y(), t.offset.z()), t.depth, t.yaw);
+      },
       [make_layer](std::shared_ptr<TurbulenceGrid> grid, double scale, Offset offset, double depth, double yaw) {
         return make_layer(std::move(grid), scale, py::cast(offset), depth, yaw);
       });

@@ -21,7 +21,7 @@ CustomField::~CustomField() {
   delete grad_;
 }
 
-std::vector<double> CustomField::call_ior(const std::vector<Vec3d>& points) const {
+std::vector<double> CustomField::ior_at(const std::vector<Vec3d>& points) const {
   const py::ssize_t count = py::ssize_t(points.size());
   DoubleArray out = real_array((*ior_)(points_to_array(points)), "CustomField: ior(points)");
   if (!(out.size() == count && (out.ndim() == 1 || (out.ndim() == 2 && out.shape(1) == 1) ||
@@ -34,7 +34,7 @@ std::vector<double> CustomField::call_ior(const std::vector<Vec3d>& points) cons
   return n;
 }
 
-std::vector<Vec3d> CustomField::call_grad(const std::vector<Vec3d>& points) const {
+std::vector<Vec3d> CustomField::grad_ior_at(const std::vector<Vec3d>& points) const {
   const py::ssize_t count = py::ssize_t(points.size());
   DoubleArray out = real_array((*grad_)(points_to_array(points)), "CustomField: grad_ior(points)");
   // Exactly (N, 3), or (3,) for one point: a (3, N) array has the same size but other meaning.
@@ -52,8 +52,8 @@ std::vector<Vec3d> CustomField::call_grad(const std::vector<Vec3d>& points) cons
 void CustomField::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
   if (python_is_shutting_down()) throw Cancelled();  // never call into an exiting interpreter
   py::gil_scoped_acquire acquire;
-  *n = call_ior({p})[0];
-  *grad = call_grad({p})[0];
+  *n = ior_at({p})[0];
+  *grad = grad_ior_at({p})[0];
 }
 
 void CustomField::evaluate_height(double h, double* n, double* dn_dh) const {

@@ -22,8 +22,8 @@ class CustomField : public IndexField {
   std::shared_ptr<const IndexField> with_param_values(const std::vector<double>& values) const override;
 
   // Vectorised calls with shape and value checks (one Python call for all points).
-  std::vector<double> call_ior(const std::vector<Vec3d>& points) const;
-  std::vector<Vec3d> call_grad(const std::vector<Vec3d>& points) const;
+  std::vector<double> ior_at(const std::vector<Vec3d>& points) const override;
+  std::vector<Vec3d> grad_ior_at(const std::vector<Vec3d>& points) const override;
 
   const py::object& ior_function() const { return *ior_; }
   const py::object& grad_function() const { return *grad_; }

@@ -39,8 +39,8 @@ HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optiona
 
 std::string hot_spot_repr(const HotSpot& s) {
   return concat("HotSpot(x=", s.x, ", z=", s.z, ", radius=", s.radius, ", dt=", s.dt, ", depth=",
-                std::isnan(s.depth) ? std::string("None") : concat(s.depth), ", footprint='", footprint_name(s.footprint),
-                "')");
+                std::isnan(s.depth) ? std::string("None") : concat(s.depth), ", footprint='",
+                footprint_name(s.footprint), "')");
 }
 
 std::vector<ParamSpec> hot_spot_param_specs(const std::vector<HotSpot>& spots, bool with_depth,

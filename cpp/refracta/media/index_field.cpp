@@ -35,17 +35,17 @@ void IndexField::evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const 
   }
 }
 
-std::vector<double> ior_at(const IndexField& field, const std::vector<Vec3d>& points) {
+std::vector<double> IndexField::ior_at(const std::vector<Vec3d>& points) const {
   std::vector<double> n(points.size());
   Vec3d grad;
-  for (size_t i = 0; i < points.size(); ++i) field.evaluate_checked(points[i], &n[i], &grad);
+  for (size_t i = 0; i < points.size(); ++i) evaluate_checked(points[i], &n[i], &grad);
   return n;
 }
 
-std::vector<Vec3d> grad_ior_at(const IndexField& field, const std::vector<Vec3d>& points) {
+std::vector<Vec3d> IndexField::grad_ior_at(const std::vector<Vec3d>& points) const {
   std::vector<Vec3d> grad(points.size());
   double n;
-  for (size_t i = 0; i < points.size(); ++i) field.evaluate_checked(points[i], &n, &grad[i]);
+  for (size_t i = 0; i < points.size(); ++i) evaluate_checked(points[i], &n, &grad[i]);
   return grad;
 }
 

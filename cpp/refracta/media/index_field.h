@@ -84,15 +84,16 @@ class IndexField {
 
   // evaluate, throwing NumericalError when n <= 0 or anything is not finite.
   void evaluate_checked(const Vec3d& p, double* n, Vec3d* grad) const;
+  // n and grad n [1/m] at each point [m], checked as evaluate_checked. A field whose evaluation has a
+  // fixed cost per call (CustomField: a call into Python) evaluates all points at once.
+  virtual std::vector<double> ior_at(const std::vector<Vec3d>& points) const;
+  virtual std::vector<Vec3d> grad_ior_at(const std::vector<Vec3d>& points) const;
   // Index of a parameter by name; throws std::invalid_argument listing the valid names.
   size_t param_index(const std::string& name) const;
 };
 
 using FieldPtr = std::shared_ptr<const IndexField>;
 
-// n and grad n [1/m] at each point [m] (evaluate_checked: NumericalError where n is not usable).
-std::vector<double> ior_at(const IndexField& field, const std::vector<Vec3d>& points);
-std::vector<Vec3d> grad_ior_at(const IndexField& field, const std::vector<Vec3d>& points);
 // Checks values a field's code outside the library returned at points [m] (CustomField's Python
 // callables): NumericalError naming `who` ("CustomField: ior") and the first point where n is not
 // usable (ior_range.h) or a gradient is not finite.

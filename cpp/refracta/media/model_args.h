@@ -88,7 +88,8 @@ std::shared_ptr<Field> make_model(const ModelArgs& args) {
       for (size_t i = 0; i < specs.size(); ++i) {
         if (specs[i].name == "surface_depth") depth = values[i];
       }
-      config.hot_spots = spots_for_model(Field::model_name(), *args.hot_spots, Field::ModelType::kSpotsHaveDepth, depth);
+      constexpr bool with_depth = Field::ModelType::kSpotsHaveDepth;
+      config.hot_spots = spots_for_model(Field::model_name(), *args.hot_spots, with_depth, depth);
       for (const ParamSpec& spec : Field::param_specs_for(config)) {
         if (spec.name.rfind("hot_spot", 0) == 0) values.push_back(spec.default_value);
       }
