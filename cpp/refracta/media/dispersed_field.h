@@ -36,7 +36,7 @@ class DispersedField final : public IndexField {
   DispersedField(FieldPtr base, double scale);
   // The scale read from `scale` at every evaluation, so that its owner can retune the field (and
   // its height_only_part, which shares it) to another wavelength without rebuilding anything: a
-  // spectral render's air for one worker thread, set to each sample's hero wavelength
+  // spectral render's pooled air, set to the hero wavelength of the sample that holds it
   // (render/hero_casters.h). The owner sets it > 0 and finite, and never while the field is in use.
   DispersedField(FieldPtr base, std::shared_ptr<const double> scale);
 
