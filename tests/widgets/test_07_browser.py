@@ -145,8 +145,9 @@ def test_a_click_adds_a_pair_and_a_solve_shows_the_new_image(voila_url, browser,
     click(*CAR)
     WebDriverWait(browser, SOLVE).until(lambda d: "now click where" in message.text)
     click(*DESTINATION)
-    WebDriverWait(browser, SOLVE).until(lambda d: pair_count.text == "1 pair")
-    assert "Pair 0 added" in message.text
+    # The count and the message are two widget updates that reach the page one after the other:
+    # wait for both (asserting the message after the count raced on a busy machine).
+    WebDriverWait(browser, SOLVE).until(lambda d: pair_count.text == "1 pair" and "Pair 0 added" in message.text)
 
     before = screenshot(canvas, tmp_path / "before.png")
     generation = int(canvas.get_attribute("data-generation"))
