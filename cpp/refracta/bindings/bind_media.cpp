@@ -64,7 +64,12 @@ std::vector<HotSpot> hot_spots_from_python(const char* model, const py::handle& 
 // A model's constructor arguments: parameters by position or name, hot_spots= and turbulence=.
 template <class Field>
 std::shared_ptr<Field> model_from_python(const py::args& args, const py::kwargs& kwargs) {
-  ModelArgs model{py::cast<std::vector<double>>(args), {}, std::nullopt, std::nullopt};
+  ModelArgs model;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::optional<double> value = number_of(args[i]);
+    if (!value) throw_invalid(Field::model_name(), ": positional parameter ", i + 1, " must be a number");
+    model.positional.push_back(*value);
+  }
   constexpr bool spots = HasHotSpots<typename Field::Config>::value;  // else the library refuses them
   for (const auto& [key, value] : kwargs) {
     const std::string name = py::cast<std::string>(key);
