@@ -154,7 +154,7 @@ or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)
       .def(
           "pick",
           [](const Camera& c, const RenderScene& s, double u, double v) -> py::object {
-            const auto hit = s.geometry.intersect(c.position(), c.pixel_direction(u, v), 1e7);
+            const auto hit = s.geometry.intersect(c.position(), c.pixel_direction(u, v), kSceneReach);
             return hit ? py::object(vector_to_array(hit->point)) : py::object(py::none());
           },
           py::arg("scene"), py::arg("u"), py::arg("v"),

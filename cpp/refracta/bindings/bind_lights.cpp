@@ -30,15 +30,6 @@ std::vector<LightSampleContext> contexts(const py::object& points, const py::obj
 // tabulated colour, e.g. set_physical_sky's sun, keeps its spectrum), rebuilt by that constructor.
 py::tuple xyz(const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); }
 
-// Pickling through a state of `size` items: `state` makes it; `make` rebuilds from it once its size is checked.
-template <class Class, class State, class Make>
-void def_state_pickle(Class& cls, const char* name, size_t size, State state, Make make) {
-  cls.def(py::pickle(state, [name, size, make](const py::tuple& t) {
-    if (t.size() != size) throw_invalid(name, ": bad pickle state (", t.size(), " items, expected ", size, ")");
-    return make(t);
-  }));
-}
-
 // The lights a point, a disc or a surface emits: point, spot, sun, area, sphere.
 void bind_finite_lights(py::module_& m) {
   py::class_<PointLight, Light, std::shared_ptr<PointLight>> point(m, "PointLight",

@@ -8,6 +8,8 @@
 #include "refracta/shading/color.h"
 
 #include <memory>
+#include <tuple>
+#include <utility>
 
 namespace refracta {
 
@@ -26,5 +28,24 @@ Mesh mesh_from_state(const py::handle& state);
 // unpickled (a shared file system), as environment maps read from files (EnvironmentLight's pickle).
 py::tuple scene_state(const RenderScene& scene);
 std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state);
+
+// Pickling through a tuple of `size` items: `state` makes it from the object; `make` rebuilds the
+// object from it once its size is checked (another size raises ValueError "<name>: bad pickle state").
+template <class Class, class State, class Make>
+void def_state_pickle(Class& cls, const char* name, size_t size, State state, Make make) {
+  cls.def(py::pickle(state, [name, size, make](const py::tuple& t) {
+    if (t.size() != size) throw_invalid(name, ": bad pickle state (", t.size(), " items, expected ", size, ")");
+    return make(t);
+  }));
+}
+
+// The same through a std::tuple of C++ values (`TypedState`): `state` gives it, `make` takes its elements.
+template <class TypedState, class Class, class Get, class Make>
+void def_tuple_pickle(Class& cls, const char* name, Get state, Make make) {
+  def_state_pickle(
+      cls, name, std::tuple_size_v<TypedState>,
+      [state](const typename Class::type& self) { return py::tuple(py::cast(TypedState(state(self)))); },
+      [make](const py::tuple& t) { return std::apply(make, py::cast<TypedState>(t)); });
+}
 
 }  // namespace refracta

@@ -34,6 +34,8 @@ inline bool is_finite(const Vec3<T>& v) {
          std::isfinite(value_of(v.z()));
 }
 
+inline double sqr(double x) { return x * x; }
+
 inline double degrees_to_radians(double deg) { return deg * kPi / 180.0; }
 
 }  // namespace refracta

@@ -40,7 +40,6 @@ struct TurnedTablePath {
   double cx = 1.0, cz = 0.0;
 };
 
-constexpr double kFar = 1e7;  // [m] straight rays end here (Embree's float range, see embree_scene.cpp)
 
 // Point u in [lo, hi] of the segment on the plane through `on` with normal n (Newton).
 double refine_on_plane(const PathSegment<double>& seg, const Vec3d& n, const Vec3d& on, double u, double lo,
@@ -231,7 +230,7 @@ double Caster::ior(const Vec3d& p) const {
 }
 
 PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const {
-  if (!field_) return cast_straight(origin, dir, max_length > 0.0 ? max_length : kFar);
+  if (!field_) return cast_straight(origin, dir, max_length > 0.0 ? max_length : kSceneReach);
   const bool from_eye = table_ && origin == eye_ && max_length <= 0.0;
   if (!(spread > 0.0)) spread = secondary_spread_;
   const double length = max_length > 0.0 ? max_length : options_.max_length;
@@ -327,7 +326,7 @@ bool Caster::occluded_straight(const Vec3d& origin, const Vec3d& dir, double dis
 PathEnd Caster::cast_straight(const Vec3d& origin, const Vec3d& dir, double max_length) const {
   PathEnd end;
   end.direction = dir;
-  end.hit = scene_.intersect(origin, dir, std::min(max_length, kFar));
+  end.hit = scene_.intersect(origin, dir, std::min(max_length, kSceneReach));
   end.chords = 1;
   if (end.hit) end.length = end.hit->t;
   return end;

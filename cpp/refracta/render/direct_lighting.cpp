@@ -11,8 +11,6 @@ namespace {
 constexpr double kMinBendSine = 1e-3;     // below this exit elevation the map's Jacobian is singular: no pre-bend
 constexpr double kShadowEpsilon = 1e-4;  // shadow rays to finite lights end this fraction short (pbrt's ShadowEpsilon)
 
-double sqr(double x) { return x * x; }
-
 }  // namespace
 
 DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options,
@@ -144,7 +142,7 @@ Spectrum DirectLighting::arriving(size_t light, const SurfaceInteraction& si, co
       // Along the exit direction; basic radiance L / n^2 is conserved (Ament et al. 2014).
       return source.Le(end.direction, lambda) * sqr(caster_.ior(si.p) / distant_ior(si.p, end.direction));
     }
-    return caster_.scene().occluded(si.offset_toward(wi), wi, 1e7) ? Spectrum::Zero() : ls.L;
+    return caster_.scene().occluded(si.offset_toward(wi), wi, kSceneReach) ? Spectrum::Zero() : ls.L;
   }
   // Aim the shadow ray from the offset point at the light point itself: a ray parallel to wi
   // from the offset origin would meet the light's surface up to offset / cos short of

@@ -17,8 +17,6 @@ namespace {
 
 constexpr double kMaxSurvival = 0.95;
 
-double sqr(double x) { return x * x; }
-
 // The directional albedo of `bsdf` toward wo, in [0, 1]: the mean weight of 16 samples at fixed
 // stratified points (the path's sampler is not drawn from).
 Vec3d directional_albedo(const SurfaceBsdf& bsdf, const Vec3d& wo) {

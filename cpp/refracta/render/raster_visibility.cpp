@@ -14,7 +14,6 @@ namespace refracta {
 
 namespace {
 
-constexpr double kFar = 1e7;  // [m] the sun's reference shadow rays end here (as DirectLighting's)
 
 // p moved off its surface along n, as SurfaceInteraction::offset_toward moves it (float Embree).
 Vec3d offset_point(const Vec3d& p, const Vec3d& n) { return p + n * (1e-5 + 2e-6 * p.cwiseAbs().maxCoeff()); }
@@ -147,7 +146,7 @@ double RasterVisibility::shadow(size_t light, const Vec3d& p, const Vec3d& n) co
   if (source_ == ShadowSource::kNone) return 0.0;
   if (source_ == ShadowSource::kMap) return maps_[light]->shadow(p, n);
   if (const SpotLight* spot = spot_[light]) return spot_occlusion(scene_.geometry, p, n, *spot, radius_[light]);
-  return scene_.geometry.occluded(offset_point(p, n), sun_direction_, kFar) ? 1.0 : 0.0;
+  return scene_.geometry.occluded(offset_point(p, n), sun_direction_, kSceneReach) ? 1.0 : 0.0;
 }
 
 Spectrum RasterVisibility::arriving(size_t light, const SurfaceInteraction& si, const Vec3d& wi,

@@ -68,8 +68,7 @@ std::pair<Vec3d, Vec3d> scene_bounds(const RenderScene& scene) {
 
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction) {
   if (direction.norm() == 0.0) throw_invalid("direction must be non-zero");
-  constexpr double kFar = 1e7;  // [m] past any scene's far side (Camera.pick's reach too)
-  return scene.geometry.intersect(origin, direction.normalized(), kFar);
+  return scene.geometry.intersect(origin, direction.normalized(), kSceneReach);
 }
 
 size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,

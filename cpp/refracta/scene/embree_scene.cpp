@@ -16,11 +16,8 @@ namespace refracta {
 
 namespace {
 
-// Embree works in float; beyond this a coordinate loses metre precision and Embree may assert.
-constexpr double kMaxCoordinate = 1e7;
-
 void check_ray(const Vec3d& origin, const Vec3d& dir, double t_max) {
-  if (!is_finite(origin) || origin.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+  if (!is_finite(origin) || origin.cwiseAbs().maxCoeff() > kSceneReach) {
     throw_numerical("ray origin (", origin.x(), ", ", origin.y(), ", ", origin.z(),
                     ") is not finite or beyond 1e7 m");
   }
@@ -95,7 +92,7 @@ unsigned Scene::add_mesh(const Mesh& mesh, int material) {
     }
   }
   for (size_t i = 0; i < vertices.size(); ++i) {
-    if (!is_finite(vertices[i]) || vertices[i].cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    if (!is_finite(vertices[i]) || vertices[i].cwiseAbs().maxCoeff() > kSceneReach) {
       throw_invalid("add_mesh: vertices[", i, "] must be finite and within 1e7 m");
     }
   }
@@ -133,14 +130,14 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
     throw_invalid("add_spheres: needs as many radii as centres (", centres.size(), " vs ", radii.size(), ")");
   }
   for (size_t i = 0; i < centres.size(); ++i) {
-    if (!is_finite(centres[i]) || centres[i].cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    if (!is_finite(centres[i]) || centres[i].cwiseAbs().maxCoeff() > kSceneReach) {
       throw_invalid("add_spheres: centres[", i, "] must be finite and within 1e7 m");
     }
     if (!(radii[i] > 0.0) || !std::isfinite(radii[i])) {
       throw_invalid("add_spheres: radii[", i, "] must be > 0 (got ", radii[i], ")");
     }
     // The whole sphere within Embree's float range, as every mesh vertex is.
-    if (centres[i].cwiseAbs().maxCoeff() + radii[i] > kMaxCoordinate) {
+    if (centres[i].cwiseAbs().maxCoeff() + radii[i] > kSceneReach) {
       throw_invalid("add_spheres: radii[", i, "] = ", radii[i], " m reaches beyond 1e7 m from the origin "
                     "(scene coordinates are limited to 1e7 m, Embree's single precision)");
     }

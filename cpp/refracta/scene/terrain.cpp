@@ -2,6 +2,7 @@
 #include "refracta/scene/terrain.h"
 
 #include "refracta/core/error.h"
+#include "refracta/scene/embree_scene.h"  // kSceneReach
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +12,6 @@ namespace refracta {
 
 namespace {
 
-// Embree works in float; beyond this a coordinate loses metre precision (as embree_scene.cpp's
-// kMaxCoordinate for meshes).
-constexpr double kMaxTerrainCoordinate = 1e7;
 // Floats of padding after the last vertex: Embree reads vertices with 16-byte loads.
 constexpr size_t kVertexPadding = 4;
 
@@ -38,7 +36,7 @@ TerrainGrid::TerrainGrid(int rows, int cols, std::vector<float> positions, const
   for (size_t i = 0; i < n; ++i) {
     const Vec3d p(vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2]);
     if (!is_finite(p)) continue;
-    if (p.cwiseAbs().maxCoeff() > kMaxTerrainCoordinate) {
+    if (p.cwiseAbs().maxCoeff() > kSceneReach) {
       throw_invalid("add_terrain: sample (row ", i / size_t(cols), ", column ", i % size_t(cols), ") at (", p.x(), ", ", p.y(),
                     ", ", p.z(), ") is beyond 1e7 m from the origin (Embree's single precision)");
     }

@@ -9,7 +9,7 @@ namespace refracta {
 namespace {
 // Directions sampled at the cone's rim are re-measured with rounding of order 1e-16 / (1 -
 // cos theta_max) relative: accepted as inside.
-constexpr double kRimSlack = 1e-9;
+constexpr double kSphereRimSlack = 1e-9;
 }  // namespace
 
 SphereLight::SphereLight(const Vec3d& centre, double radius, const Color& emission)
@@ -83,7 +83,7 @@ double SphereLight::pdf_li(const LightSampleContext& ctx, const Vec3d& wi, const
   const double d = std::sqrt(d2);
   const double sin2_max = r2 / d2;
   const double one_minus_cos_max = sin2_max / (1.0 + std::sqrt(std::max(0.0, 1.0 - sin2_max)));
-  if (!(detail::one_minus_cos(wi, to_centre / d) <= one_minus_cos_max * (1.0 + kRimSlack))) return 0.0;
+  if (!(detail::one_minus_cos(wi, to_centre / d) <= one_minus_cos_max * (1.0 + kSphereRimSlack))) return 0.0;
   const double pdf = 1.0 / (2.0 * kPi * one_minus_cos_max);
   return std::isfinite(pdf) ? pdf : 0.0;
 }

@@ -8,7 +8,7 @@ namespace refracta {
 namespace {
 // A direction sampled at the disc's rim is re-measured with rounding of ~1e-16 / (1 - cos alpha)
 // relative (1e-11 for the sun): accept it as inside the disc.
-constexpr double kRimSlack = 1e-9;
+constexpr double kSunRimSlack = 1e-9;
 }  // namespace
 
 SunLight::SunLight(const Vec3d& direction, const Color& radiance, double angular_diameter, double limb_darkening)
@@ -35,7 +35,7 @@ double SunLight::profile(double t) const {
 
 double SunLight::disc_fraction(const Vec3d& dir) const {
   const double t = detail::one_minus_cos(dir, frame_.n) / one_minus_cos_max_;
-  if (!(t <= 1.0 + kRimSlack)) return -1.0;
+  if (!(t <= 1.0 + kSunRimSlack)) return -1.0;
   return std::min(t, 1.0);
 }
 
