@@ -6,11 +6,22 @@ re-computed in Python.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
 
 from refracta import _core
+
+_UNSET = object()  # a deprecated keyword not given
+
+
+def _renamed(old: str, old_value: object, new: str, value):
+    """`value`, or the deprecated keyword `old`'s value (one release) with a DeprecationWarning."""
+    if old_value is _UNSET:
+        return value
+    warnings.warn(f"ray_fan: {old}= is deprecated; call it {new}=", DeprecationWarning, stacklevel=3)
+    return old_value
 
 
 def _profile_heights(field, low: float, high: float, count: int = 400) -> np.ndarray:
@@ -24,22 +35,27 @@ def ray_fan(
     eye_height: float,
     elevations: Sequence[float],
     max_length: float,
-    ground: float | None = 0.0,
-    method: str | None = None,
-    tol: float = 1e-6,
+    stop_height: float | None = 0.0,
+    trace: str | None = None,
+    tol: float | None = None,
     title: str | None = None,
     figsize=(11.0, 4.2),
+    *,
+    ground: object = _UNSET,
+    method: object = _UNSET,
 ):
     """Rays from one eye in their vertical plane, beside the temperature and index profiles.
 
     Args:
-        field: any IndexField (height-only fields are traced exactly with method 'stratified').
+        field: any IndexField (height-only fields are traced exactly with trace='stratified').
         eye_height: height of the eye [m] (scene units for LogisticProfile).
         elevations: launch elevations [deg], negative below the horizon.
         max_length: arc length of each ray [m].
-        ground: height where rays end on the ground [m], or None for no ground.
-        method: integrator; default 'stratified' for height-only fields, else 'rk45'.
-        tol: integrator tolerance [m].
+        stop_height: height where rays end on the ground [m], or None for no ground.
+        trace: integrator; default 'stratified' for height-only fields, else 'rk45'.
+        tol: integrator tolerance [m] (None: TraceOptions' default).
+        ground, method: the deprecated spellings of stop_height and trace (one release, with a
+            DeprecationWarning).
 
     Returns:
         A matplotlib Figure. The ray panel's vertical scale is exaggerated (its own y range);
@@ -51,9 +67,11 @@ def ray_fan(
     angles = np.atleast_1d(np.asarray(elevations, dtype=float))  # [deg]
     if angles.size == 0 or not np.all(np.isfinite(angles)):
         raise ValueError("elevations must be a non-empty list of finite angles in degrees")
-    if not np.isfinite(eye_height) or (ground is not None and eye_height < ground):
+    stop_height = _renamed("ground", ground, "stop_height", stop_height)
+    trace = _renamed("method", method, "trace", trace)
+    if not np.isfinite(eye_height) or (stop_height is not None and eye_height < stop_height):
         raise ValueError(f"eye_height must be finite and above the ground (got {eye_height})")
-    method = method or ("stratified" if field.height_only else "rk45")
+    trace = trace or ("stratified" if field.height_only else "rk45")
 
     temperature = getattr(field, "temperature", None)  # the models with a temperature profile
     has_temperature = temperature is not None
@@ -75,10 +93,10 @@ def ray_fan(
             field,
             [0.0, eye_height, 0.0],
             [np.cos(e), np.sin(e), 0.0],
-            trace=method,
+            trace=trace,
             tol=tol,
             max_length=max_length,
-            stop_height=ground,
+            stop_height=stop_height,
         )
         points = path.sample(max(200, 2 * len(path)))
         low, high = min(low, points[:, 1].min()), max(high, points[:, 1].max())
@@ -89,9 +107,9 @@ def ray_fan(
             lw=1.0,
             ls="--" if path.stop == "stop_height" else "-",
         )
-    if ground is not None:
-        ax_rays.axhline(ground, color="0.35", lw=1.5)
-        low = min(low, ground)
+    if stop_height is not None:
+        ax_rays.axhline(stop_height, color="0.35", lw=1.5)
+        low = min(low, stop_height)
     ax_rays.plot([0.0], [eye_height], "o", color="crimson", ms=5, label="eye")
     ax_rays.set_xlabel("distance [m]")
     ax_rays.set_ylabel("height [m] (vertical scale exaggerated)")

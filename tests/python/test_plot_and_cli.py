@@ -29,9 +29,21 @@ def test_ray_fan_draws_one_line_per_ray_and_the_profiles(hot_road):
 
 
 def test_ray_fan_without_temperature_or_ground():
-    figure = plot.ray_fan(refracta.LogisticProfile(), 1.5, [-5, 0, 5], 30.0, ground=None)
+    figure = plot.ray_fan(refracta.LogisticProfile(), 1.5, [-5, 0, 5], 30.0, stop_height=None)
     assert len(figure.axes) == 3  # rays, index, colour bar
     plt.close(figure)
+
+
+def test_ray_fan_ground_and_method_are_the_deprecated_spellings(hot_road):
+    """ground= and method= warn and draw exactly the rays of stop_height= and trace=."""
+    new = plot.ray_fan(hot_road, 1.5, [-1.0, 0.5], 200.0, stop_height=0.2, trace="rk45")
+    with pytest.warns(DeprecationWarning, match="ground= is deprecated; call it stop_height="):
+        with pytest.warns(DeprecationWarning, match="method= is deprecated; call it trace="):
+            old = plot.ray_fan(hot_road, 1.5, [-1.0, 0.5], 200.0, ground=0.2, method="rk45")
+    for line_new, line_old in zip(new.axes[0].get_lines(), old.axes[0].get_lines(), strict=True):
+        np.testing.assert_array_equal(line_new.get_xydata(), line_old.get_xydata())  # the same traces: bit-identical
+    plt.close(new)
+    plt.close(old)
 
 
 def test_ray_fan_rejects_bad_input(hot_road):
