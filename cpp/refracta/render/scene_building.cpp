@@ -2,6 +2,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/shading/area_light.h"
+#include "refracta/shading/sky_batch.h"  // sky_settings
 #include "refracta/shading/sphere_light.h"
 #include "refracta/shading/spot_light.h"
 #include "refracta/shading/water_surface.h"
@@ -87,15 +88,8 @@ PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, double aer
   if (!(sun.norm() > 0.0)) {
     throw_invalid("sun_direction must be non-zero (got (", sun.x(), ", ", sun.y(), ", ", sun.z(), "))");
   }
-  PhysicalSkySettings settings;
-  settings.sun_direction = sun.normalized();
-  settings.aerosol = aerosol;
-  settings.ozone_du = ozone_du;
-  settings.ground_albedo = ground_albedo;
-  settings.altitude = altitude;
-  settings.below_horizon = below_horizon_from(below_horizon);
-  if (visibility) set_visibility(&settings, *visibility);
-  return settings;
+  return sky_settings(sun.normalized(), aerosol, ozone_du, ground_albedo, altitude,
+                      PhysicalSkySettings().rayleigh_scale, below_horizon, visibility);
 }
 
 void set_physical_sky(RenderScene& scene, const PhysicalSkySettings& settings, const SunDisc& sun, double scale,
