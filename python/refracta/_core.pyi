@@ -3095,9 +3095,9 @@ def _astronomical_refraction(field: IndexField, elevations: typing.Any, eye_heig
     """
     Refraction [rad] at apparent elevations [rad] (refracta.astronomical_refraction).
     """
-def _build_options(cls: type, options: typing.Any, owner: str, fields: dict) -> typing.Any:
+def _build_options(cls: type, options: typing.Any, owner: str, fields: dict, paths: dict = {}) -> typing.Any:
     """
-    A validated copy of options (a cls, or None) with fields set: refracta._options.build's rule.
+    A validated copy of options (a cls, or None) with fields set (paths: keyword -> dotted nested field): refracta._options.build's rule.
     """
 def _cancel_thread_work(thread_ids: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> int:
     """

@@ -1,13 +1,13 @@
 """refracta.render_raster: the real-time pipeline on the CPU (rasterized view, shadow maps).
 
 Its options are refracta.RasterRenderOptions (with .shadow_map and .transparency); the keywords
-render_raster takes besides `options` set those fields, through one table (_KEYWORDS). No default
-is written here: a keyword left out keeps the C++ default.
+render_raster takes besides `options` set those fields through the package's one keyword rule
+(_core._build_options; _PATHS maps the flat names to nested fields). No default is written here:
+a keyword left out keeps the C++ default.
 """
 
 from __future__ import annotations
 
-import copy
 import warnings
 from typing import Callable
 
@@ -16,55 +16,48 @@ import numpy as np
 from refracta import _core
 from refracta._progress import ProgressBar
 
-# render_raster's keywords that name a nested field: keyword -> path of attributes from
-# RasterRenderOptions. Any other keyword must be a field of RasterRenderOptions itself.
-_KEYWORDS: dict[str, tuple[str, ...]] = {
-    "resolution": ("shadow_map", "resolution"),
-    "kernel": ("shadow_map", "kernel"),
-    "depth_bias": ("shadow_map", "depth_bias"),
-    "normal_offset": ("shadow_map", "normal_offset"),
-    "bleeding_reduction": ("shadow_map", "bleeding_reduction"),
-    "depth_range": ("shadow_map", "moments", "depth_range"),
-    "storage": ("shadow_map", "moments", "storage"),
-    "bias": ("shadow_map", "moments", "bias"),
-    "bias_vector": ("shadow_map", "moments", "bias_vector"),
-    "layers": ("transparency", "layers"),
-    "weight": ("transparency", "weight"),
-    "moments": ("transparency", "mboit", "moments"),
-    "basis": ("transparency", "mboit", "basis"),
-    "kind": ("transparency", "mboit", "basis"),
-    "beta": ("transparency", "mboit", "beta"),
-    "oit_storage": ("transparency", "mboit", "storage"),
+# render_raster's keywords that name a nested field of RasterRenderOptions: keyword -> its dotted
+# path, which the one keyword rule (_core._build_options) follows. Any other keyword must be a
+# field of RasterRenderOptions itself.
+_PATHS: dict[str, str] = {
+    "resolution": "shadow_map.resolution",
+    "kernel": "shadow_map.kernel",
+    "depth_bias": "shadow_map.depth_bias",
+    "normal_offset": "shadow_map.normal_offset",
+    "bleeding_reduction": "shadow_map.bleeding_reduction",
+    "depth_range": "shadow_map.moments.depth_range",
+    "storage": "shadow_map.moments.storage",
+    "bias": "shadow_map.moments.bias",
+    "bias_vector": "shadow_map.moments.bias_vector",
+    "layers": "transparency.layers",
+    "weight": "transparency.weight",
+    "moments": "transparency.mboit.moments",
+    "basis": "transparency.mboit.basis",
+    "kind": "transparency.mboit.basis",
+    "beta": "transparency.mboit.beta",
+    "oit_storage": "transparency.mboit.storage",
 }
 
 # Spellings kept one release with a DeprecationWarning: MomentBasis 'trig' (now 'trigonometric').
 _DEPRECATED_VALUES = {("basis", "trig"): "trigonometric"}
 
 
-def assign(options, path: tuple[str, ...], value, keyword: str, owner: str) -> None:
-    """Sets options.<path> = value; a refused value raises ValueError naming `keyword`."""
-    target = options
-    for name in path[:-1]:
-        target = getattr(target, name)
-        if target is None:
-            raise ValueError(f"{owner}: {keyword}= sets {'.'.join(path)}, but {name} is None (set transparency=)")
-    field = path[-1]
-    if isinstance(value, str) and (field, value) in _DEPRECATED_VALUES:
-        new = _DEPRECATED_VALUES[(field, value)]
-        warnings.warn(
-            f"{owner}: {keyword}={value!r} is deprecated; write {keyword}={new!r}", DeprecationWarning, stacklevel=4
-        )
-        value = new
-    try:
-        setattr(target, field, value)
-    except (TypeError, ValueError) as error:
-        raise ValueError(f"{owner}: {keyword}={value!r}: {error}") from None
+def undeprecated(fields: dict, paths: dict[str, str], owner: str) -> dict:
+    """`fields` with deprecated values (_DEPRECATED_VALUES, by the field a keyword sets) replaced,
+    each with a DeprecationWarning naming the keyword."""
+    for keyword, value in fields.items():
+        field = paths.get(keyword, keyword).rsplit(".", 1)[-1]
+        if isinstance(value, str) and (field, value) in _DEPRECATED_VALUES:
+            new = _DEPRECATED_VALUES[(field, value)]
+            warnings.warn(
+                f"{owner}: {keyword}={value!r} is deprecated; write {keyword}={new!r}", DeprecationWarning, stacklevel=4
+            )
+            fields[keyword] = new
+    return fields
 
 
 def _select_lights(lights):
     """(use the sun, spot indices or None for all) from render_raster's `lights`."""
-    if lights is None:
-        return True, None
     if isinstance(lights, str):
         if lights == "sun":
             return True, []
@@ -82,49 +75,43 @@ def _select_lights(lights):
     return use_sun, spots
 
 
+def _shadow_fields(shadows) -> dict:
+    """render_raster's `shadows` as fields: a RasterRenderOptions.shadows source ('embree', 'none',
+    'map') or a ShadowMapOptions.method (then shadows='map'); which one, the bound classes say."""
+    probe = _core.RasterRenderOptions()
+    try:
+        probe.shadows = shadows
+        return {"shadows": shadows}
+    except (TypeError, ValueError):
+        pass
+    try:
+        probe.shadow_map.method = shadows
+    except (TypeError, ValueError) as error:
+        raise ValueError(
+            f"render_raster: shadows must be 'embree', 'none' or a ShadowMapOptions.method ({error})"
+        ) from None
+    return {"shadows": "map", "shadow_map.method": shadows}
+
+
 def raster_render_options(options=None, lights=None, shadows=None, transparency=None, **fields):
     """A validated copy of `options` (RasterRenderOptions, None: the defaults) with render_raster's
     keywords applied: lights, shadows (a ShadowMapOptions method, 'embree' or 'none'), transparency
-    (an OIT method name, an OitSettings, or None), then each of `fields` (a None value: left as is)."""
-    if options is None:
-        result = _core.RasterRenderOptions()
-    elif isinstance(options, _core.RasterRenderOptions):
-        result = copy.deepcopy(options)  # through its fields (pickling): the caller's stays as it is
-    else:
-        raise ValueError(
-            f"render_raster: options must be a refracta.RasterRenderOptions or None (got {type(options).__name__})"
-        )
+    (an OIT method name, an OitSettings, or None), then each of `fields` (a None value: left as is),
+    all through the one keyword rule (_core._build_options, with _PATHS for the flat names)."""
+    keywords: dict = {}
     if lights is not None:
-        result.use_sun, result.spots = _select_lights(lights)
+        keywords["use_sun"], keywords["spots"] = _select_lights(lights)
     if shadows is not None:
-        try:
-            result.shadows = shadows
-        except (TypeError, ValueError):
-            try:
-                result.shadow_map.method = shadows
-            except (TypeError, ValueError) as error:
-                raise ValueError(
-                    f"render_raster: shadows must be 'embree', 'none' or a ShadowMapOptions.method ({error})"
-                ) from None
-            result.shadows = "map"
+        keywords.update(_shadow_fields(shadows))
     if isinstance(transparency, _core.OitSettings):
-        result.transparency = transparency
+        keywords["transparency"] = transparency
     elif transparency is not None:
-        if result.transparency is None:
-            result.transparency = _core.OitSettings()
-        assign(result, ("transparency", "method"), transparency, "transparency", "render_raster")
-    for keyword, value in fields.items():
-        if value is None:
-            continue
-        path = _KEYWORDS.get(keyword, (keyword,))
-        if len(path) == 1 and not isinstance(getattr(type(result), keyword, None), property):
-            raise ValueError(
-                f"render_raster: unknown option {keyword!r} (keywords: lights, shadows, transparency, "
-                f"{', '.join(_KEYWORDS)}, and any field of refracta.RasterRenderOptions)"
-            )
-        assign(result, path, value, keyword, "render_raster")
-    result.validate()
-    return result
+        given = options.transparency if isinstance(options, _core.RasterRenderOptions) else None
+        if given is None:
+            keywords["transparency"] = _core.OitSettings()
+        keywords["transparency.method"] = transparency
+    keywords.update(undeprecated({k: v for k, v in fields.items() if v is not None}, _PATHS, "render_raster"))
+    return _core._build_options(_core.RasterRenderOptions, options, "render_raster", keywords, _PATHS)
 
 
 def render_raster(
@@ -165,7 +152,7 @@ def render_raster(
     `beta`, log depth warp over the frame's fragment range; oit_storage 'unorm16': the 16-bit ROV
     variant). Shadows treat every surface as opaque.
 
-    Other keywords set fields (_KEYWORDS maps the flat ones to nested fields): resolution, kernel,
+    Other keywords set fields (_PATHS maps the flat ones to nested fields): resolution, kernel,
     depth_bias, normal_offset, bleeding_reduction (shadow_map); depth_range ('unit' [0, 1], I3D
     2015, or 'signed' [-1, 1], JCGT 2017), storage ('fp64', 'fp32', 'unorm16'), bias, bias_vector
     (shadow_map.moments; None: the published value for the storage and depth range); layers,

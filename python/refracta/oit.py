@@ -13,30 +13,26 @@ McGuire & Bavoil 2013; 'mboit' is moment-based OIT with power moments or trigono
 
 from __future__ import annotations
 
-import copy
-
 import numpy as np
 
 from refracta import _core
-from refracta._raster_render import assign
+from refracta._raster_render import undeprecated
 
-# composite's keywords that name a field of OitSettings.mboit (others are OitSettings' own).
-_MBOIT_KEYWORDS = {
-    "moments": "moments",
-    "basis": "basis",
-    "kind": "basis",
-    "beta": "beta",
-    "bias": "bias",
-    "storage": "storage",
+# composite's keywords that name a field of OitSettings.mboit: keyword -> its dotted path (the one
+# keyword rule, _core._build_options, follows it); layers and weight are OitSettings' own.
+_MBOIT_PATHS = {
+    "moments": "mboit.moments",
+    "basis": "mboit.basis",
+    "kind": "mboit.basis",
+    "beta": "mboit.beta",
+    "bias": "mboit.bias",
+    "storage": "mboit.storage",
 }
 
 
 def oit_settings(method: str, options: _core.OitSettings | None = None, **fields) -> _core.OitSettings:
     """A validated copy of `options` (None: the defaults) with `method` and `fields` set."""
-    if options is not None and not isinstance(options, _core.OitSettings):
-        raise ValueError(f"composite: options must be a refracta.OitSettings or None (got {type(options).__name__})")
-    settings = _core.OitSettings() if options is None else copy.deepcopy(options)
-    assign(settings, ("method",), method, "method", "composite")
+    keywords: dict = {"method": method}
     for keyword, value in fields.items():
         if value is None:
             continue
@@ -44,17 +40,15 @@ def oit_settings(method: str, options: _core.OitSettings | None = None, **fields
             near, far = value
             if not (near > 0 and far > near):
                 raise ValueError("composite: z_range must be (near, far) with 0 < near < far")
-            settings.mboit.z_near, settings.mboit.z_far = float(near), float(far)
-        elif keyword in _MBOIT_KEYWORDS:
-            assign(settings, ("mboit", _MBOIT_KEYWORDS[keyword]), value, keyword, "composite")
-        elif keyword in ("layers", "weight"):
-            assign(settings, (keyword,), value, keyword, "composite")
+            keywords["mboit.z_near"], keywords["mboit.z_far"] = float(near), float(far)
+        elif keyword in _MBOIT_PATHS or keyword in ("layers", "weight"):
+            keywords[keyword] = value
         else:
             raise ValueError(
-                f"composite: unknown option {keyword!r} (layers, weight, z_range, {', '.join(_MBOIT_KEYWORDS)})"
+                f"composite: unknown option {keyword!r} (layers, weight, z_range, {', '.join(_MBOIT_PATHS)})"
             )
-    settings.validate()
-    return settings
+    keywords = undeprecated(keywords, _MBOIT_PATHS, "composite")
+    return _core._build_options(_core.OitSettings, options, "composite", keywords, _MBOIT_PATHS)
 
 
 def composite(

@@ -107,3 +107,21 @@ def test_options_and_keywords_render_the_same_image():
 def test_bad_keywords_name_themselves(keywords, message):
     with pytest.raises(ValueError, match=message):
         refracta.render_raster(lit_box(), CAMERA, **keywords)
+
+
+def test_the_one_keyword_rule_follows_dotted_paths():
+    build = refracta._core._build_options
+    options = build(refracta.RasterRenderOptions, None, "here", {"shadow_map.moments.storage": "fp32", "tile": 8.0})
+    assert options.shadow_map.moments.storage == "fp32" and options.tile == 8  # 8.0: a whole number
+    with pytest.raises(ValueError, match="here: shadow_map.nope= names shadow_map.nope: no field nope"):
+        build(refracta.RasterRenderOptions, None, "here", {"shadow_map.nope": 1})
+    with pytest.raises(ValueError, match="here: layers= sets transparency.layers, but transparency is None"):
+        build(refracta.RasterRenderOptions, None, "here", {"layers": 2}, {"layers": "transparency.layers"})
+    with pytest.raises(ValueError, match=r"here: depth_range='half': depth_range must be"):
+        build(
+            refracta.RasterRenderOptions,
+            None,
+            "here",
+            {"depth_range": "half"},
+            {"depth_range": "shadow_map.moments.depth_range"},
+        )

@@ -22,11 +22,11 @@ void bind_core(py::module_& m) {
         "and those they start until _end_thread_cancel; returns how many were running.");
   m.def(
       "_build_options",
-      [](const py::type& cls, const py::object& options, const std::string& owner, const py::dict& fields) {
-        return build_options(cls, options, fields, owner.c_str());
-      },
-      py::arg("cls"), py::arg("options"), py::arg("owner"), py::arg("fields"),
-      "A validated copy of options (a cls, or None) with fields set: refracta._options.build's rule.");
+      [](const py::type& cls, const py::object& options, const std::string& owner, const py::dict& fields,
+         const py::dict& paths) { return build_options(cls, options, fields, owner.c_str(), paths); },
+      py::arg("cls"), py::arg("options"), py::arg("owner"), py::arg("fields"), py::arg("paths") = py::dict(),
+      "A validated copy of options (a cls, or None) with fields set (paths: keyword -> dotted nested field): "
+      "refracta._options.build's rule.");
   m.def("_end_thread_cancel", &end_thread_cancel, py::arg("thread_id"),
         "Lets the thread's refracta calls run again after _cancel_thread_work.");
 }

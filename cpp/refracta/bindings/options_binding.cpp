@@ -54,34 +54,73 @@ std::string options_repr(const py::object& self) {
   return out;
 }
 
-void set_options_fields(const py::object& options, const py::dict& fields, const char* owner, const char* nested) {
+namespace {
+
+// Sets target.<field> = value (the rule in options_binding.h); `keyword` names it in messages.
+void set_field(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
+               const std::string& keyword) {
+  try {
+    target.attr(field.c_str()) = value;
+  } catch (const py::error_already_set& error) {
+    if (!error.matches(PyExc_TypeError)) throw;
+    if (value.is_none()) return;  // None for a field that takes none: left unset (its default)
+    const std::string shown = py::cast<std::string>(py::repr(value));
+    if (is_integer(target.attr(field.c_str()))) {
+      if (!is_whole(value)) throw_invalid(owner, ": ", keyword, " must be a whole number (got ", shown, ")");
+      target.attr(field.c_str()) = py::int_(int64_t(as_double(value)));
+      return;
+    }
+    const std::string type = py::cast<std::string>(py::type::handle_of(target).attr("__name__"));
+    throw_invalid(owner, ": option ", keyword, "=", shown, " has the wrong type for ", type, ".", field,
+                  " (see help(refracta.", type, "))");
+  }
+}
+
+// A keyword naming a nested field ("shadow_map.moments.storage", or a name `paths` maps to one):
+// walks to the object holding it and sets it; a refused value raises ValueError naming the keyword.
+void set_path(const py::object& options, const std::string& keyword, const std::string& path, const py::handle& value,
+              const char* owner) {
+  py::object target = options;
+  size_t begin = 0;
+  for (size_t dot = path.find('.'); dot != std::string::npos; begin = dot + 1, dot = path.find('.', begin)) {
+    const std::string name = path.substr(begin, dot - begin);
+    if (!is_field(py::type::handle_of(target), name)) throw_invalid(owner, ": ", keyword, "= names ", path, ": no field ", name);
+    target = target.attr(name.c_str());
+    if (target.is_none()) throw_invalid(owner, ": ", keyword, "= sets ", path, ", but ", name, " is None");
+  }
+  const std::string field = path.substr(begin);
+  if (!is_field(py::type::handle_of(target), field)) throw_invalid(owner, ": ", keyword, "= names ", path, ": no field ", field);
+  try {
+    set_field(target, field, value, owner, keyword);
+  } catch (const py::error_already_set& error) {
+    if (!error.matches(PyExc_ValueError)) throw;
+    throw_invalid(owner, ": ", keyword, "=", py::cast<std::string>(py::repr(value)), ": ",
+                  py::cast<std::string>(py::str(error.value())));
+  }
+}
+
+}  // namespace
+
+void set_options_fields(const py::object& options, const py::dict& fields, const char* owner, const char* nested,
+                        const py::dict& paths) {
   py::object inner = py::none();
   if (nested) inner = options.attr(nested);
   for (const auto& item : fields) {
     const std::string name = py::cast<std::string>(py::str(item.first));
+    const std::string path = paths.contains(name) ? py::cast<std::string>(paths[name.c_str()]) : name;
+    if (path.find('.') != std::string::npos) {
+      set_path(options, name, path, item.second, owner);
+      continue;
+    }
     py::object target = options;
-    if (!is_field(py::type::handle_of(options), name)) {
-      if (inner.is_none() || !is_field(py::type::handle_of(inner), name)) {
+    if (!is_field(py::type::handle_of(options), path)) {
+      if (inner.is_none() || !is_field(py::type::handle_of(inner), path)) {
         throw_invalid(owner, ": unknown option '", name, "' (options: ", field_list(options),
                       inner.is_none() ? "" : "; and its " + std::string(nested) + "'s: " + field_list(inner), ")");
       }
       target = inner;
     }
-    try {
-      target.attr(name.c_str()) = item.second;
-    } catch (const py::error_already_set& error) {
-      if (!error.matches(PyExc_TypeError)) throw;
-      if (item.second.is_none()) continue;  // None for a field that takes none: left unset (its default)
-      const std::string value = py::cast<std::string>(py::repr(item.second));
-      if (is_integer(target.attr(name.c_str()))) {
-        if (!is_whole(item.second)) throw_invalid(owner, ": ", name, " must be a whole number (got ", value, ")");
-        target.attr(name.c_str()) = py::int_(int64_t(as_double(item.second)));
-        continue;
-      }
-      const std::string type = py::cast<std::string>(py::type::handle_of(target).attr("__name__"));
-      throw_invalid(owner, ": option ", name, "=", value, " has the wrong type for ", type, ".", name,
-                    " (see help(refracta.", type, "))");
-    }
+    set_field(target, path, item.second, owner, name);
   }
 }
 
@@ -91,13 +130,14 @@ void check_options_type(const py::handle& cls, const py::object& options, const 
                 py::cast<std::string>(py::type::handle_of(options).attr("__name__")), ")");
 }
 
-py::object build_options(const py::type& cls, const py::object& options, const py::dict& fields, const char* owner) {
+py::object build_options(const py::type& cls, const py::object& options, const py::dict& fields, const char* owner,
+                         const py::dict& paths) {
   check_options_type(cls, options, owner);
   py::object copy = cls();
   if (!options.is_none()) {
     for (const auto& item : options_fields(options)) copy.attr(item.first) = item.second;
   }
-  set_options_fields(copy, fields, owner);
+  set_options_fields(copy, fields, owner, nullptr, paths);
   copy.attr("validate")();
   return copy;
 }

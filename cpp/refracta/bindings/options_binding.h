@@ -21,14 +21,17 @@ std::string options_repr(const py::object& self);
 // naming `owner` and listing the fields. None leaves a field that takes no None at its value
 // (public signatures write x=None for "unset"); a float equal to a whole number sets an integer
 // field (40.0 is 40; 2.5 raises "must be a whole number"); any other value the field refuses
-// raises ValueError naming the field.
+// raises ValueError naming the field. A keyword whose name (or its entry in `paths`, keyword ->
+// dotted path) has dots sets a nested field ("shadow_map.moments.storage"); a None on the way, or
+// a value the field refuses, raises ValueError naming the keyword.
 void set_options_fields(const py::object& options, const py::dict& fields, const char* owner,
-                        const char* nested = nullptr);
+                        const char* nested = nullptr, const py::dict& paths = py::dict());
 
 // A copy of `options` (an instance of the bound options class `cls`, or None for its defaults)
 // with `fields` set by set_options_fields, validated: options_from for a class known only in
 // Python (bound as _core._build_options).
-py::object build_options(const py::type& cls, const py::object& options, const py::dict& fields, const char* owner);
+py::object build_options(const py::type& cls, const py::object& options, const py::dict& fields, const char* owner,
+                         const py::dict& paths = py::dict());
 
 // A copy of `options` (an Options, or None for the defaults) with `fields` set, validated.
 // ValueError unless `options` is None or an instance of `cls`.
