@@ -23,7 +23,7 @@ demo: install
 # after both have run, and the last line names what failed.
 test: install
 	@failed=""; \
-	$(PYTHON) -m pytest --nbmake tests notebooks $(PYTEST_ARGS) || failed="$$failed pytest"; \
+	$(PYTHON) -m pytest --nbmake --durations=25 tests notebooks $(PYTEST_ARGS) || failed="$$failed pytest"; \
 	$(MAKE) --no-print-directory lint || failed="$$failed lint"; \
 	if [ -n "$$failed" ]; then echo "make test: FAILED:$$failed"; exit 1; fi
 
