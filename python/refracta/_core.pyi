@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW_DEG', 'Dielectric', 'Diffuse', 'DispersedField', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MomentShadowSettings', 'NumericalError', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
+__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW_DEG', 'Dielectric', 'Diffuse', 'DispersedField', 'DisplaySettings', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MomentShadowSettings', 'NumericalError', 'ObjOptions', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -724,6 +724,56 @@ class TextureNotFoundError(IoError, FileNotFoundError):
     """
     A texture an MTL file names is in none of the folders searched (a refracta.IoError and a FileNotFoundError).
     """
+class ObjOptions:
+    """
+    How Scene.add_obj places an OBJ file and finds its textures (render/obj_materials.h).
+    """
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field (nested options included).
+        """
+    @property
+    def missing_textures(self) -> str:
+        """
+        'error' (raise refracta.TextureNotFoundError) or 'warn' (a UserWarning; the material keeps Kd)
+        """
+    @missing_textures.setter
+    def missing_textures(self, arg1: str) -> None:
+        ...
+    @property
+    def offset(self) -> tuple[float, float, float]:
+        """
+        [m] added to every vertex after scaling
+        """
+    @offset.setter
+    def offset(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def scale(self) -> float:
+        """
+        every vertex is multiplied by this (> 0), then offset
+        """
+    @scale.setter
+    def scale(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def texture_dirs(self) -> list[str]:
+        """
+        folders searched, in order, after the MTL's own for each map_Kd (one folder or a sequence)
+        """
+    @texture_dirs.setter
+    def texture_dirs(self, arg1: typing.Any) -> None:
+        ...
 class Scene:
     """
     Geometry (Embree), materials (refracta.shading) and lights. Scene() starts empty: no sun, no sky,
@@ -773,9 +823,12 @@ class Scene:
         shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without
         material. Returns its id.
         """
-    def add_obj(self, path: str, offset: typing.Any = (0.0, 0.0, 0.0), scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, texture_dirs: typing.Any = (), missing_textures: str = 'error', progress: typing.Any = True) -> list[int]:
+    def add_obj(self, path: str, offset: typing.Any = None, scale: typing.Any = None, *, options: typing.Any = None, texture_dirs: typing.Any = None, missing_textures: typing.Any = None, progress: typing.Any = True) -> list[int]:
         """
         Add a Wavefront OBJ file with its MTL materials, scaled then offset.
+        
+        The settings are a refracta.ObjOptions (``options``; None: its defaults) changed by the keywords
+        offset, scale, texture_dirs and missing_textures (None: left as they are).
         
         Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with
         d < 1 and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as shading normals.
@@ -1084,64 +1137,105 @@ class Camera:
     @property
     def width(self) -> int:
         ...
-class _DisplayNames:
+class DisplaySettings:
     """
-    refracta.io's display keywords (see refracta.io.to_display).
+    How refracta.io turns linear radiance into display values (shading/tonemap.h; the formulas: the
+    refracta.io module). Exposure: automatic (no manual field set: the image's log-average luminance
+    goes to `key`), or manual, at most one of `exposure`, `ev100`, or `shutter` with `f_number` (and
+    `iso`); a `key` given overrides a manual exposure. Then the tone curve `tonemap` and the transfer
+    curve `gamma`. validate() lists every bad field.
     """
-    tonemap: str | None
-    def __init__(self) -> None:
+    def __getstate__(self) -> dict:
         ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError listing every bad field (nested options included).
+        """
     @property
     def ev100(self) -> float | None:
-        ...
+        """
+        manual exposure as EV100: c = K / (1.2 x 2^EV100); None: not this way
+        """
     @ev100.setter
     def ev100(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
         ...
     @property
     def exposure(self) -> float | None:
-        ...
+        """
+        c > 0 multiplying the radiance (manual); None: not this way
+        """
     @exposure.setter
     def exposure(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
         ...
     @property
     def f_number(self) -> float | None:
-        ...
+        """
+        a camera's f-number N (with shutter)
+        """
     @f_number.setter
     def f_number(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
         ...
     @property
     def gamma(self) -> str | float:
-        ...
+        """
+        the transfer curve: 'srgb', 'linear' or a gamma g in [1, 3]
+        """
     @gamma.setter
-    def gamma(self, arg0: str | typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def gamma(self, arg1: str | typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def iso(self) -> float | None:
-        ...
+        """
+        a camera's ISO with shutter and f_number; None: ISO 100
+        """
     @iso.setter
     def iso(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
         ...
     @property
     def key(self) -> float | None:
-        ...
+        """
+        automatic exposure's key a (c = a / log-average luminance); None: 0.18 when no manual exposure is set
+        """
     @key.setter
     def key(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
         ...
     @property
-    def luminous_efficacy(self) -> float | None:
-        ...
+    def luminous_efficacy(self) -> float:
+        """
+        K [cd/m^2] of an image value of 1 (EV100 and camera settings only): 683 lm/W for W/(m^2 sr)
+        """
     @luminous_efficacy.setter
-    def luminous_efficacy(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+    def luminous_efficacy(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def shutter(self) -> float | None:
-        ...
+        """
+        [s] a camera's shutter time (with f_number); None: not this way
+        """
     @shutter.setter
     def shutter(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
         ...
     @property
-    def white(self) -> float | None:
+    def tonemap(self) -> str:
+        """
+        'aces' (filmic), 'reinhard', 'film' (1 - e^(-cL)) or 'linear' (min(cL, 1))
+        """
+    @tonemap.setter
+    def tonemap(self, arg1: str) -> None:
         ...
+    @property
+    def white(self) -> float | None:
+        """
+        Reinhard's L_white (the smallest scaled luminance shown white); None: infinite
+        """
     @white.setter
     def white(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
         ...
@@ -1700,6 +1794,14 @@ class RenderOptions:
     def validate(self) -> None:
         ...
     @property
+    def adaptive(self) -> bool:
+        """
+        first a quarter of spp per pixel, the rest of each 32-pixel block's budget where the first samples vary (same total)
+        """
+    @adaptive.setter
+    def adaptive(self, arg0: bool) -> None:
+        ...
+    @property
     def chord(self) -> float:
         """
         [m] longest straight chord tested against the geometry
@@ -1823,7 +1925,7 @@ class RenderOptions:
     @property
     def spp(self) -> int:
         """
-        samples per pixel (stratified jitter when > 1)
+        samples per pixel (correlated multi-jittered when > 1)
         """
     @spp.setter
     def spp(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -3111,15 +3213,20 @@ def _channel_names(path: str) -> list[str]:
     """
     The channel names of an image file (OIIO's).
     """
+def _cmj_pattern(count: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
+    """
+    (count, 2) sample positions in [0, 1)^2 of the film's correlated multi-jittered pattern (render/film.h,
+    Kensler 2013) with the shuffles of `seed`, jittered by the generator Rng(seed, 0).
+    """
 def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, settings: OitSettings) -> numpy.typing.NDArray[numpy.float64]:
     """
     One pixel's fragments composited over the background.
     """
-def _display(image: typing.Any, **kwargs) -> numpy.typing.NDArray[numpy.float32]:
+def _display(image: typing.Any, display: DisplaySettings) -> numpy.typing.NDArray[numpy.float32]:
     """
-    Display values of an image (refracta.io.to_display; keywords: _DisplayNames).
+    Display values of an image (refracta.io.to_display).
     """
-def _display_exposure(image: typing.Any, **kwargs) -> float:
+def _display_exposure(image: typing.Any, display: DisplaySettings) -> float:
     """
     The exposure c the display settings give this image (io.exposure_of).
     """
@@ -3229,9 +3336,9 @@ def _tabulate_heights(field: IndexField, lo: typing.SupportsFloat | typing.Suppo
     """
 def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, options: typing.Any, progress: typing.Any, **kwargs) -> tuple:
     ...
-def _write_image(path: str, image: typing.Any, **kwargs) -> None:
+def _write_image(path: str, image: typing.Any, display: DisplaySettings) -> None:
     """
-    Write an image as refracta.io.write_image (display keywords: _DisplayNames).
+    Write an image as refracta.io.write_image.
     """
 def _write_image_channels(path: str, image: typing.Any, names: collections.abc.Sequence[str]) -> None:
     """

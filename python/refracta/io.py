@@ -51,7 +51,23 @@ import numpy as np
 
 from refracta import _core
 
-__all__ = ["channel_names", "ev100", "exposure_of", "read_image", "to_display", "write_image", "write_layers"]
+__all__ = [
+    "channel_names",
+    "ev100",
+    "exposure_of",
+    "read_image",
+    "settings",
+    "to_display",
+    "write_image",
+    "write_layers",
+]
+
+
+def settings(display: _core.DisplaySettings | None = None, **fields) -> _core.DisplaySettings:
+    """A validated refracta.DisplaySettings: a copy of `display` (None: the defaults) with the
+    given fields set (a None value: left as it is), by the package's one keyword rule."""
+    given = {name: value for name, value in fields.items() if value is not None}
+    return _core._build_options(_core.DisplaySettings, display, "refracta.io", given)
 
 
 def write_image(
@@ -59,10 +75,11 @@ def write_image(
     image,
     exposure: float | None = None,
     tonemap: str | None = None,
-    gamma="srgb",
+    gamma: str | float | None = None,
     key: float | None = None,
     white: float | None = None,
     *,
+    display: _core.DisplaySettings | None = None,
     ev100: float | None = None,
     iso: float | None = None,
     shutter: float | None = None,
@@ -75,22 +92,13 @@ def write_image(
     (exposure, ev100 or shutter/f_number/iso; none: unchanged, never automatic). Others (.png,
     .jpg, ...) are encoded as to_display does -- by default automatically exposed (log-average
     to middle grey) and tone mapped by the ACES curve, see the module docstring -- and quantised to 8 bits.
+    The display settings are a refracta.DisplaySettings (``display``, or its defaults) changed
+    by the other keywords, its fields (None: left as they are).
     Raises refracta.IoError when the file cannot be written, ValueError for a bad image or option.
     """
-    _core._write_image(
-        os.fspath(path),
-        np.asarray(image),
-        exposure=exposure,
-        tonemap=tonemap,
-        gamma=gamma,
-        key=key,
-        white=white,
-        ev100=ev100,
-        iso=iso,
-        shutter=shutter,
-        f_number=f_number,
-        luminous_efficacy=luminous_efficacy,
-    )
+    fields = dict(exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white, ev100=ev100, iso=iso)
+    fields.update(shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
+    _core._write_image(os.fspath(path), np.asarray(image), settings(display, **fields))
 
 
 # Channel suffixes of a layer in write_layers, by its number of channels (EXR's layer.channel names).
@@ -143,10 +151,11 @@ def to_display(
     image,
     exposure: float | None = None,
     tonemap: str | None = None,
-    gamma="srgb",
+    gamma: str | float | None = None,
     key: float | None = None,
     white: float | None = None,
     *,
+    display: _core.DisplaySettings | None = None,
     ev100: float | None = None,
     iso: float | None = None,
     shutter: float | None = None,
@@ -156,26 +165,18 @@ def to_display(
     """The display values write_image would store in a PNG, as float32 (H, W, C) in [0, 1] (for imshow).
 
     image: (H, W) or (H, W, C) linear radiance, C = 1..4 (alpha, the 2nd of 2 or the 4th of 4,
-    passes unchanged). Exposure: automatic by default (the image's log-average luminance to
-    ``key``, 0.18), or manual: ``exposure`` c > 0 multiplying it, ``ev100``, or ``shutter`` [s]
-    and ``f_number`` (``iso`` 100 unless given; these two with ``luminous_efficacy`` K, the
-    luminance [cd/m^2] of a value of 1, default 683); a ``key`` overrides the manual one. tonemap:
-    'aces' (default, filmic), 'reinhard', 'linear' or 'film'; white: Reinhard's L_white (None: infinite);
-    gamma: 'srgb', 'linear' or g in [1, 3]. See the module docstring for the formulas.
+    passes unchanged). The settings are a refracta.DisplaySettings (``display``, or its defaults)
+    changed by the other keywords, its fields (None: left as they are). Exposure: automatic by
+    default (the image's log-average luminance to ``key``, 0.18), or manual: ``exposure`` c > 0
+    multiplying it, ``ev100``, or ``shutter`` [s] and ``f_number`` (``iso`` 100 unless given;
+    these two with ``luminous_efficacy`` K, the luminance [cd/m^2] of a value of 1, default 683);
+    a ``key`` overrides the manual one. tonemap: 'aces' (default, filmic), 'reinhard', 'linear' or
+    'film'; white: Reinhard's L_white (None: infinite); gamma: 'srgb' (default), 'linear' or g in
+    [1, 3]. See the module docstring for the formulas.
     """
-    return _core._display(
-        np.asarray(image),
-        exposure=exposure,
-        tonemap=tonemap,
-        gamma=gamma,
-        key=key,
-        white=white,
-        ev100=ev100,
-        iso=iso,
-        shutter=shutter,
-        f_number=f_number,
-        luminous_efficacy=luminous_efficacy,
-    )
+    fields = dict(exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white, ev100=ev100, iso=iso)
+    fields.update(shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
+    return _core._display(np.asarray(image), settings(display, **fields))
 
 
 def exposure_of(
@@ -183,27 +184,21 @@ def exposure_of(
     exposure: float | None = None,
     key: float | None = None,
     *,
+    display: _core.DisplaySettings | None = None,
     ev100: float | None = None,
     iso: float | None = None,
     shutter: float | None = None,
     f_number: float | None = None,
     luminous_efficacy: float | None = None,
 ) -> float:
-    """The exposure c (the scale of the radiance) to_display would apply to this image with these settings.
+    """The exposure c (the scale of the radiance) to_display would apply to this image with these settings
+    (a refracta.DisplaySettings ``display`` changed by the keywords, as to_display).
 
     Automatic by default (0.18 / the log-average luminance); use it to give several images (the
     frames of an animation, a with/without pair) one exposure: ``to_display(img, exposure=c)``.
     """
-    return _core._display_exposure(
-        np.asarray(image),
-        exposure=exposure,
-        key=key,
-        ev100=ev100,
-        iso=iso,
-        shutter=shutter,
-        f_number=f_number,
-        luminous_efficacy=luminous_efficacy,
-    )
+    fields = dict(exposure=exposure, key=key, ev100=ev100, iso=iso, shutter=shutter, f_number=f_number)
+    return _core._display_exposure(np.asarray(image), settings(display, **fields, luminous_efficacy=luminous_efficacy))
 
 
 def ev100(f_number: float, shutter: float, iso: float | None = None) -> float:

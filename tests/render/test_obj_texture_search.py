@@ -5,6 +5,7 @@ model in two lines."""
 
 import itertools
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -150,3 +151,29 @@ def test_framing_accepts_bounds_and_rejects_empty_or_degenerate_boxes():
         refracta.Camera.framing(((1, 0, 0), (0, 1, 1)))
     with pytest.raises(ValueError, match="empty"):
         refracta.Camera.framing(refracta.Scene())
+
+
+def test_obj_options_as_an_object_or_by_keyword(tmp_path):
+    """refracta.ObjOptions: add_obj's settings as one bound class (fields, pickling, validate()
+    listing every problem), taken as options= or as its fields by keyword."""
+    path = write_model(tmp_path / "model", map_kd="elsewhere.png")
+    write_texture(tmp_path / "textures" / "elsewhere.png", (255, 0, 0))
+    options = refracta.ObjOptions(offset=(1, 2, 3), scale=2.0, texture_dirs=tmp_path / "textures")
+    assert pickle.loads(pickle.dumps(options)).texture_dirs == [str(tmp_path / "textures")]
+    by_object, by_keywords = refracta.Scene(), refracta.Scene()
+    by_object.add_obj(str(path), options=options, progress=False)
+    by_keywords.add_obj(str(path), (1, 2, 3), 2.0, texture_dirs=tmp_path / "textures", progress=False)
+    for a, b in zip(by_object.bounds, by_keywords.bounds):
+        np.testing.assert_array_equal(a, b)  # the same settings, the same vertices
+    np.testing.assert_array_equal(by_object.bounds[1], (5, 4, 3))  # (2, 1, 0) * 2 + offset
+    bad = refracta.ObjOptions()  # the keyword constructor validates: set them after
+    bad.scale = -1.0
+    bad.missing_textures = "warn"
+    assert bad.missing_textures == "warn"
+    bad.offset = (0, 0, 0)
+    with pytest.raises(ValueError, match="scale must be > 0"):
+        bad.validate()
+    with pytest.raises(ValueError, match="missing_textures must be 'error' or 'warn'"):
+        refracta.ObjOptions(missing_textures="ignore")
+    with pytest.raises(ValueError, match="add_obj: options must be a refracta.ObjOptions or None"):
+        refracta.Scene().add_obj(str(path), options={"scale": 2.0}, progress=False)

@@ -1,6 +1,7 @@
 // Python bindings of image files and the display pipeline (scene/image_io.h, shading/display.h):
 // what refracta.io wraps.
 #include "refracta/bindings/bind_scene.h"
+#include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/options_binding.h"
 
 #include "refracta/scene/image_io.h"
@@ -26,14 +27,6 @@ py::array_t<float> image_to_float32(Image&& image) {
 
 namespace {
 
-// The display keywords of refracta.io (None or absent: DisplaySettings' default), set on a
-// DisplayNames by the package's one keyword rule (options_binding.h); validated by display_settings.
-DisplaySettings display_from(const py::kwargs& keywords) {
-  py::object names = py::cast(DisplayNames());
-  set_options_fields(names, keywords, "refracta.io");
-  return display_settings(py::cast<DisplayNames>(names));
-}
-
 // Writes `image` to `path`: float formats linear times the manual exposure (1 without one; never
 // automatic), the others tone mapped and encoded for display.
 void write_display_image(const std::string& path, Image image, const DisplaySettings& settings) {
@@ -49,39 +42,49 @@ void write_display_image(const std::string& path, Image image, const DisplaySett
 
 }  // namespace
 
+void bind_display_settings(py::module_& m) {
+  using S = DisplaySettings;
+  py::class_<S> cls(m, "DisplaySettings", R"doc(
+How refracta.io turns linear radiance into display values (shading/tonemap.h; the formulas: the
+refracta.io module). Exposure: automatic (no manual field set: the image's log-average luminance
+goes to `key`), or manual, at most one of `exposure`, `ev100`, or `shutter` with `f_number` (and
+`iso`); a `key` given overrides a manual exposure. Then the tone curve `tonemap` and the transfer
+curve `gamma`. validate() lists every bad field.)doc");
+  def_options_common<S>(cls, "DisplaySettings");
+  cls.def_readwrite("exposure", &S::exposure, "c > 0 multiplying the radiance (manual); None: not this way")
+      .def_readwrite("ev100", &S::ev100, "manual exposure as EV100: c = K / (1.2 x 2^EV100); None: not this way")
+      .def_readwrite("iso", &S::iso, "a camera's ISO with shutter and f_number; None: ISO 100")
+      .def_readwrite("shutter", &S::shutter, "[s] a camera's shutter time (with f_number); None: not this way")
+      .def_readwrite("f_number", &S::f_number, "a camera's f-number N (with shutter)")
+      .def_readwrite("luminous_efficacy", &S::luminous_efficacy,
+                     "K [cd/m^2] of an image value of 1 (EV100 and camera settings only): 683 lm/W for W/(m^2 sr)")
+      .def_readwrite("key", &S::key, "automatic exposure's key a (c = a / log-average luminance); None: 0.18 when no manual exposure is set")
+      .def_readwrite("white", &S::white, "Reinhard's L_white (the smallest scaled luminance shown white); None: infinite");
+  def_enum_property(cls, "tonemap", &S::tonemap, tonemap_name, parse_tonemap,
+                    "'aces' (filmic), 'reinhard', 'film' (1 - e^(-cL)) or 'linear' (min(cL, 1))")
+      .def_property("gamma", &gamma_name, &set_gamma, "the transfer curve: 'srgb', 'linear' or a gamma g in [1, 3]");
+}
+
 void bind_image_io(py::module_& m) {
-  py::class_<DisplayNames>(m, "_DisplayNames", "refracta.io's display keywords (see refracta.io.to_display).")
-      .def(py::init<>())
-      .def_readwrite("exposure", &DisplayNames::exposure)
-      .def_readwrite("tonemap", &DisplayNames::tonemap)
-      .def_readwrite("gamma", &DisplayNames::gamma)
-      .def_readwrite("key", &DisplayNames::key)
-      .def_readwrite("white", &DisplayNames::white)
-      .def_readwrite("ev100", &DisplayNames::ev100)
-      .def_readwrite("iso", &DisplayNames::iso)
-      .def_readwrite("shutter", &DisplayNames::shutter)
-      .def_readwrite("f_number", &DisplayNames::f_number)
-      .def_readwrite("luminous_efficacy", &DisplayNames::luminous_efficacy);
+  bind_display_settings(m);
   m.def(
       "_write_image",
-      [](const std::string& path, const py::object& image, const py::kwargs& display) {
-        write_display_image(path, to_image(image, "image"), display_from(display));
+      [](const std::string& path, const py::object& image, const DisplaySettings& display) {
+        write_display_image(path, to_image(image, "image"), display);
       },
-      py::arg("path"), py::arg("image"), "Write an image as refracta.io.write_image (display keywords: _DisplayNames).");
+      py::arg("path"), py::arg("image"), py::arg("display"), "Write an image as refracta.io.write_image.");
   m.def(
       "_display",
-      [](const py::object& image, const py::kwargs& display) {
+      [](const py::object& image, const DisplaySettings& display) {
         Image pixels = to_image(image, "image");
-        tonemap_image(pixels, display_from(display));
+        tonemap_image(pixels, display);
         return image_to_float32(std::move(pixels));
       },
-      py::arg("image"), "Display values of an image (refracta.io.to_display; keywords: _DisplayNames).");
+      py::arg("image"), py::arg("display"), "Display values of an image (refracta.io.to_display).");
   m.def(
       "_display_exposure",
-      [](const py::object& image, const py::kwargs& display) {
-        return display_exposure(to_image(image, "image"), display_from(display));
-      },
-      py::arg("image"), "The exposure c the display settings give this image (io.exposure_of).");
+      [](const py::object& image, const DisplaySettings& display) { return display_exposure(to_image(image, "image"), display); },
+      py::arg("image"), py::arg("display"), "The exposure c the display settings give this image (io.exposure_of).");
   m.def("_ev100", &ev100_of, py::arg("f_number"), py::arg("shutter"), py::arg("iso") = kDefaultIso,
         "EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.");
   m.def("_read_image", [](const std::string& path) { return image_to_float32(read_image(path)); }, py::arg("path"));

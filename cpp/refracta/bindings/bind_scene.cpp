@@ -1,6 +1,8 @@
 // Python bindings of the scene (render/render_scene.h): geometry, materials and OBJ files. Its
 // lights: bind_scene_lights.cpp; the camera: bind_camera.cpp; image files: bind_image_io.cpp.
 #include "refracta/bindings/bind_scene.h"
+#include "refracta/bindings/enum_property.h"
+#include "refracta/bindings/options_binding.h"
 #include "refracta/bindings/pickle_state.h"
 
 #include "refracta/render/obj_materials.h"
@@ -114,12 +116,14 @@ std::function<void(size_t, size_t)> texture_progress(const py::object& progress)
   };
 }
 
-ObjOptions obj_options(const py::object& offset, double scale, const py::object& texture_dirs,
-                       const std::string& missing_textures, const py::object& progress) {
-  ObjOptions options;
-  options.offset = to_point(offset, "offset"), options.scale = scale;
-  options.texture_dirs = to_folders(texture_dirs);
-  options.missing_textures = missing_textures_from(missing_textures);
+// add_obj's settings (an ObjOptions and/or its fields as keywords; None: left as they are) with
+// Python's callbacks: warnings.warn and the progress bar.
+ObjOptions obj_options(const py::object& given, const py::dict& keywords, const py::object& progress) {
+  py::dict fields;
+  for (const auto& [name, value] : keywords) {
+    if (!value.is_none()) fields[name] = value;
+  }
+  ObjOptions options = options_from<ObjOptions>(given, fields, "add_obj");
   options.warn = [](const std::string& message) {
     if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();  // warnings as errors
   };
@@ -154,14 +158,21 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
            "shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without\n"
            "material. Returns its id.")
       .def("add_obj",
-           [](RenderScene& s, const std::string& path, const py::object& offset, double scale,
-              const py::object& texture_dirs, const std::string& missing_textures, const py::object& progress) {
-             return add_obj(s, path, obj_options(offset, scale, texture_dirs, missing_textures, progress));
+           [](RenderScene& s, const std::string& path, const py::object& offset, const py::object& scale,
+              const py::object& options, const py::object& texture_dirs, const py::object& missing_textures,
+              const py::object& progress) {
+             using namespace py::literals;
+             const py::dict fields("offset"_a = offset, "scale"_a = scale, "texture_dirs"_a = texture_dirs,
+                                   "missing_textures"_a = missing_textures);
+             return add_obj(s, path, obj_options(options, fields, progress));
            },
-           py::arg("path"), py::arg("offset") = py::make_tuple(0.0, 0.0, 0.0), py::arg("scale") = 1.0,
-           py::kw_only(), py::arg("texture_dirs") = py::tuple(), py::arg("missing_textures") = "error",
-           py::arg("progress") = true,
+           py::arg("path"), py::arg("offset") = py::none(), py::arg("scale") = py::none(), py::kw_only(),
+           py::arg("options") = py::none(), py::arg("texture_dirs") = py::none(),
+           py::arg("missing_textures") = py::none(), py::arg("progress") = true,
            R"doc(Add a Wavefront OBJ file with its MTL materials, scaled then offset.
+
+The settings are a refracta.ObjOptions (``options``; None: its defaults) changed by the keywords
+offset, scale, texture_dirs and missing_textures (None: left as they are).
 
 Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with
 d < 1 and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as shading normals.
@@ -268,8 +279,25 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
 
 }  // namespace
 
+void bind_obj_options(py::module_& m) {
+  using O = ObjOptions;
+  py::class_<O> cls(m, "ObjOptions", "How Scene.add_obj places an OBJ file and finds its textures (render/obj_materials.h).");
+  def_options_common<O>(cls, "ObjOptions");
+  cls.def_property(
+         "offset", [](const O& o) { return py::make_tuple(o.offset.x(), o.offset.y(), o.offset.z()); },
+         [](O& o, const py::object& v) { o.offset = to_point(v, "offset"); }, "[m] added to every vertex after scaling")
+      .def_readwrite("scale", &O::scale, "every vertex is multiplied by this (> 0), then offset")
+      .def_property(
+          "texture_dirs", [](const O& o) { return o.texture_dirs; },
+          [](O& o, const py::object& v) { o.texture_dirs = to_folders(v); },
+          "folders searched, in order, after the MTL's own for each map_Kd (one folder or a sequence)");
+  def_enum_property(cls, "missing_textures", &O::missing_textures, missing_textures_name, missing_textures_from,
+                    "'error' (raise refracta.TextureNotFoundError) or 'warn' (a UserWarning; the material keeps Kd)");
+}
+
 void bind_scene(py::module_& m) {
   register_texture_not_found(m);
+  bind_obj_options(m);
   py::class_<RenderScene, std::shared_ptr<RenderScene>> scene(m, "Scene", R"doc(
 Geometry (Embree), materials (refracta.shading) and lights. Scene() starts empty: no sun, no sky,
 black. Every add_* takes material= (any refracta.shading material); without it the Blinn-Phong

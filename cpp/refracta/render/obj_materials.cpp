@@ -25,12 +25,12 @@ MaterialPtr material_from_mtl(const MtlMaterial& mtl, int texture) {
   return std::make_shared<BlinnPhong>(TexturedReflectance(mtl.kd, "Kd", texture), mtl.ks, mtl.ns, mtl.alpha);
 }
 
+const char* missing_textures_name(MissingTextures m) { return m == MissingTextures::kWarn ? "warn" : "error"; }
+
 void ObjOptions::validate() const {
   Problems problems("add_obj");
   problems.check(is_finite(offset), "offset must be finite (got (", offset.x(), ", ", offset.y(), ", ", offset.z(), "))");
   problems.check(scale > 0.0 && std::isfinite(scale), "scale must be > 0 (got ", scale, ")");
-  problems.check(missing_textures == MissingTextures::kError || bool(warn),
-                 "missing_textures 'warn' needs a warn callback");
   problems.throw_if_any();
 }
 
@@ -66,6 +66,9 @@ std::vector<std::string> texture_paths(const std::vector<MaterialMesh>& parts, c
 
 std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const ObjOptions& options) {
   options.validate();
+  if (options.missing_textures == MissingTextures::kWarn && !options.warn) {
+    throw_invalid("add_obj: missing_textures 'warn' needs a warn callback");
+  }
   std::vector<MaterialMesh> parts = load_obj(path);
   const std::vector<std::string> textures = texture_paths(parts, options);
   std::set<std::string> distinct(textures.begin(), textures.end()), registered;

@@ -37,12 +37,15 @@ struct ObjOptions {
   // kError: a texture found nowhere throws TextureNotFound; kWarn: `warn` is called once per
   // texture name and the material keeps its Kd.
   MissingTextures missing_textures = MissingTextures::kError;
+  // The callbacks (not settings: neither validated nor pickled). kWarn needs `warn`.
   std::function<void(const std::string& message)> warn;
   // Called after each distinct texture file is registered: (done, total) distinct files.
   std::function<void(size_t done, size_t total)> progress;
 
-  void validate() const;  // throws std::invalid_argument listing every problem
+  void validate() const;  // throws std::invalid_argument listing every bad setting
 };
+
+const char* missing_textures_name(MissingTextures m);  // "error", "warn"
 
 // Adds an OBJ file's parts (scaled, then offset) with their MTL materials (material_from_mtl) and
 // an area light for each part with Ke > 0; returns the geometry ids, one per part. A missing OBJ

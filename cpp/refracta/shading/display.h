@@ -1,6 +1,5 @@
-// Display settings as users name them (io.write_image, io.to_display, io.exposure_of): the tone
-// curve and transfer by name, the exposure fields as given. DisplaySettings (tonemap.h) is what
-// the pipeline runs on; this turns the names into it.
+// Display settings as users name them (io.write_image, io.to_display, io.exposure_of, the bound
+// refracta.DisplaySettings): the tone curve and the transfer curve by name.
 #pragma once
 
 #include "refracta/shading/tonemap.h"
@@ -11,15 +10,12 @@
 
 namespace refracta {
 
-struct DisplayNames {
-  // Unset: DisplaySettings' own defaults (automatic exposure, luminous efficacy 683).
-  std::optional<double> exposure, ev100, iso, shutter, f_number, key, white, luminous_efficacy;
-  std::optional<std::string> tonemap;  // "aces", "reinhard", "linear", "film"; unset: DisplaySettings' curve
-  // "srgb" (the IEC 61966-2-1 curve), "linear" (gamma 1) or a gamma g in [1, 3] (p = l^(1/g)).
-  std::variant<std::string, double> gamma = std::string("srgb");
-};
+const char* tonemap_name(Tonemap tonemap);  // "linear", "film", "reinhard", "aces" (parse_tonemap's)
 
-// Validated settings (std::invalid_argument listing every problem).
-DisplaySettings display_settings(const DisplayNames& names);
+// The transfer curve: "srgb" (the IEC 61966-2-1 curve), "linear" (gamma 1) or a gamma g in [1, 3]
+// (p = l^(1/g)); read back as "srgb" or g.
+using GammaName = std::variant<std::string, double>;
+void set_gamma(DisplaySettings& settings, const GammaName& gamma);  // std::invalid_argument for another name
+GammaName gamma_name(const DisplaySettings& settings);
 
 }  // namespace refracta
