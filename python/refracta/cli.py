@@ -177,8 +177,8 @@ GREEN_FLASH_FRAMES = [(-0.45, 0.7), (-0.74, 0.7), (-0.776, 0.35)]
 GREEN_FLASH_LOOK = {0.7: -0.05, 0.35: -0.02}  # [deg]: where each zoom looks (the fold is at -0.025)
 GREEN_FLASH_SIZE = 512  # [px] each frame, square (issue 19: at least 512 px)
 # One spectral sample a pixel: each carries one hero wavelength through its own dispersed air
-# (no eye table), ~70 us of CPU a sample over the 1500 km paths; the denoiser removes the colour
-# noise the hero wavelengths leave on the disc's edge.
+# (no eye table), ~70 us of CPU a sample over the 1500 km paths; the denoiser and the chroma
+# filter (examples_chroma) remove the noise the single wavelengths leave.
 GREEN_FLASH_SPP = 1
 
 
@@ -206,7 +206,7 @@ def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_
     import numpy as np
 
     import refracta
-    from refracta import examples
+    from refracta import examples, examples_chroma
 
     start = time.perf_counter()
     frames = []
@@ -218,11 +218,14 @@ def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_
         # Spectral renders of the sun's edge leave the sRGB gamut (negative channels), which the
         # denoiser refuses: clipped to the gamut's boundary first, as the display would. No
         # auxiliary images: the frames are the sun and sky seen directly (an emitter has no albedo;
-        # with the sea's albedo and normal beside it OIDN left the disc mottled).
+        # with the sea's albedo and normal beside it OIDN left the disc mottled). OIDN gives the
+        # luminance; the colour, one wavelength a sample, is averaged over pixels of the same
+        # brightness (examples_chroma: what left the disc mottled after OIDN alone).
         image = refracta.render(
             example.scene, camera, example.field, max_length=example.max_length, spectral=True, spp=spp, progress=False
         )
-        frames.append(refracta.denoise(np.maximum(image, 0.0)))
+        luminance = refracta.denoise(np.maximum(image, 0.0)) @ examples_chroma.LUMINANCE
+        frames.append(np.maximum(examples_chroma.chroma_filter(image, luminance), 0.0))
     shown = green_flash_display(frames)
     dpi, gap = 100, 0.08
     figure, axes = plt.subplots(1, len(frames), figsize=(len(frames) * (size / dpi + gap), size / dpi + 0.7), dpi=dpi)

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from refracta import _core, shading, spectrum
+from refracta import _core, examples_meshes, examples_town, shading, spectrum
 
 # Radiance unit of the example scenes. refracta.spectrum.PhysicalSky gives linear sRGB normalised
 # by the integral of the CIE y-bar curve (a mean spectral radiance, W/(m^2 sr nm)); times that
@@ -202,24 +202,30 @@ def _coast(
     rise=600.0,
     inlets=False,
     name="coast",
+    cliff=None,
+    wander=260.0,
 ):
     """A coastline `distance` [m] away (+x) over z in z_range [m]: one height-field mesh of fractal
     noise (_fbm) -- hills up to ~`peak` [m] rising over `rise` [m] from a shore that wanders by a few
     hundred metres into bays and headlands, the sea bed sloping away below it -- on `cell` (dx, dz)
     [m] nodes, smooth-shaded. tip: z [m] past which the land sinks into the sea over 300 m (a
     headland). inlets: valleys down to the sea cut the land into headlands every few hundred m.
+    cliff: a function of z [m] giving the height [m] of a cliff (or quay) standing at the shore,
+    rising over its first 6 m inland (None: none). wander: how far [m] the shore wanders.
     Its albedo, a texture over the mesh: rock where steep, shingle at the waterline, snow above
     `snow_line` [m] where gentle (None: none), tundra elsewhere, blended smoothly. Returns the
     nodes' x [m], z [m] and heights (len(x), len(z)) [m]."""
     x = np.arange(distance - 500.0, distance + depth, cell[0])
     z = np.arange(z_range[0], z_range[1] + cell[1], cell[1])
     X, Z = np.meshgrid(x, z, indexing="ij")
-    shore = distance + 260.0 * _fbm(rng, np.zeros_like(z), z, 700.0, octaves=4)
+    shore = distance + wander * _fbm(rng, np.zeros_like(z), z, 700.0, octaves=4)
     inland = X - shore[None, :]
     relief = np.clip(0.55 + 0.9 * _fbm(rng, X, Z, 1200.0, octaves=6), 0.05, None)
     height = peak * relief**1.4 * _smoothstep(inland / rise) + 6.0 * _smoothstep(inland / 40.0)
     if inlets:
         height = height * _smoothstep((_fbm(rng, np.zeros_like(Z), Z, 260.0, octaves=3) + 0.05) / 0.2)
+    if cliff is not None:
+        height = np.maximum(height, np.asarray(cliff(z))[None, :] * _smoothstep(inland / 6.0))
     if tip is not None:
         height = height * _smoothstep((tip + 300.0 - Z) / 300.0) - 8.0 * _smoothstep((Z - tip) / 300.0)
     height = np.where(inland < 0.0, np.minimum(height, 0.04 * inland), height)  # the sea bed: 4 % down
@@ -253,49 +259,33 @@ def _coast(
     return x, z, height
 
 
-def _houses(scene, coast, rng, count, size=(9.0, 7.0, 12.0), ground=1.0):
-    """`count` white houses with dark roofs on the land of `coast` (the (x, z, height) _coast
-    returns): each at a random z where the land rises above `ground` [m], on its first node there
-    along x (the seaward edge: a village along the shore)."""
-    x, z, height = coast
-    walls, roof = shading.Diffuse((0.78, 0.76, 0.7)), shading.Diffuse((0.12, 0.08, 0.07))
-    columns = rng.choice(np.flatnonzero(height.max(axis=0) > ground + 4.0), size=count, replace=False)
-    for j in columns:
-        i = int(np.argmax(height[:, j] > ground)) + 1
-        base = float(height[i, j])
-        scene.add_box(
-            (x[i] + size[0] / 2, base + size[1] / 2 - 1.0, z[j]), (size[0], size[1] + 2.0, size[2]), material=walls
-        )
-        scene.add_box(
-            (x[i] + size[0] / 2, base + size[1] + 1.0, z[j]), (size[0] + 1.0, 2.0, size[2] + 1.0), material=roof
-        )
+SHIP_HEIGHT = examples_meshes.SHIP_FUNNEL_TOP  # [m] _ship's funnel top above the waterline at scale 1
+SHIP_HULL = examples_meshes.HULL_FREEBOARD  # [m] its deck amidships at scale 1 (upper works above; length 110 m)
 
 
-SHIP_HEIGHT = 28.0  # [m] _ship's funnel top above the waterline at scale 1 (its length 110 m)
-SHIP_HULL = 8.0  # [m] the top of its hull at scale 1 (the superstructure, funnel and masts stand above)
+def _ship_materials():
+    """The freighter's paints by part (examples_meshes.ship): a black hull (painted steel), white
+    upper works, a red funnel with a black top, grey masts and cranes, containers of three colours."""
+    plastic = shading.Plastic
+    return {
+        "hull": plastic(reflectance=(0.03, 0.035, 0.045), alpha=0.4),
+        "white": plastic(reflectance=(0.8, 0.8, 0.76), alpha=0.3),
+        "funnel": plastic(reflectance=(0.6, 0.1, 0.06), alpha=0.3),
+        "funnel_top": shading.Diffuse(0.03),
+        "mast": shading.Diffuse((0.55, 0.53, 0.5)),
+        "cargo0": shading.Diffuse((0.55, 0.12, 0.08)),
+        "cargo1": shading.Diffuse((0.1, 0.25, 0.45)),
+        "cargo2": shading.Diffuse((0.45, 0.4, 0.1)),
+    }
 
 
 def _ship(scene, x, z, scale=1.0):
-    """A freighter broadside on (its length along z): a dark hull (painted steel) with a raised
-    forecastle, a white superstructure aft, a red funnel, two masts and a deck cargo of boxes."""
-    s = scale
-    hull = shading.Principled(base_color=(0.05, 0.06, 0.08), roughness=0.5)
-    white = shading.Plastic(reflectance=(0.8, 0.8, 0.76), alpha=0.3)
-    scene.add_box((x, SHIP_HULL / 2 * s, z), (18.0 * s, SHIP_HULL * s, 110.0 * s), material=hull)
-    scene.add_box((x, 9.0 * s, z - 46.0 * s), (16.0 * s, 2.0 * s, 18.0 * s), material=hull)  # forecastle
-    scene.add_box((x, 13.0 * s, z + 38.0 * s), (14.0 * s, 10.0 * s, 22.0 * s), material=white)
-    scene.add_box((x, 19.0 * s, z + 38.0 * s), (12.0 * s, 2.5 * s, 26.0 * s), material=white)  # bridge wings
-    scene.add_box(
-        (x, (SHIP_HEIGHT - 5.0) * s, z + 44.0 * s),
-        (4.5 * s, 10.0 * s, 4.5 * s),
-        material=shading.Plastic(reflectance=(0.6, 0.1, 0.06), alpha=0.3),
-    )
-    mast = shading.Diffuse((0.5, 0.48, 0.45))
-    for dz, top in ((-44.0, 24.0), (-5.0, 22.0)):
-        scene.add_box((x, (8.0 + top) / 2 * s, z + dz * s), (0.8 * s, (top - 8.0) * s, 0.8 * s), material=mast)
-    cargo = [(0.55, 0.12, 0.08), (0.1, 0.25, 0.45), (0.45, 0.4, 0.1)]
-    for i, dz in enumerate((-30.0, -18.0, 8.0, 20.0)):
-        scene.add_box((x, 10.0 * s, z + dz * s), (14.0 * s, 4.0 * s, 10.0 * s), material=shading.Diffuse(cargo[i % 3]))
+    """A general-cargo freighter broadside on (its length along z, the bow toward -z): the closed
+    meshes of examples_meshes.ship -- a hull with its sheer line, forecastle and raked stem, white
+    upper works aft, a raked funnel, masts, deck cranes and containers -- `scale` times its 110 m,
+    one mesh per paint."""
+    meshes = [mesh.moved((x, 0.0, z), scale) for mesh in examples_meshes.ship()]
+    examples_meshes.add_meshes(scene, meshes, _ship_materials())
 
 
 def _sea(wind_speed: float = 5.0, temperature_c: float = 10.0):
@@ -358,6 +348,7 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
 
 # Arctic air after a cold front: 150 km visibility leaves the coast 20 km away 59 % of its contrast.
 FATA_MORGANA_VISIBILITY = 150.0  # [km]
+FATA_MORGANA_COAST = 20000.0  # [m] to the shore (it wanders by ~60 m)
 
 
 def fata_morgana(width: int = 640, height: int = 240) -> Example:
@@ -374,16 +365,18 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
     rng = np.random.default_rng(7)
     coast = _coast(
         scene,
-        20000.0,
+        FATA_MORGANA_COAST,
         rng,
         (-700.0, 700.0),
-        peak=70.0,
-        rise=60.0,
-        cell=(10.0, 4.0),
-        inlets=True,
+        peak=240.0,
+        depth=1500.0,
+        rise=500.0,
+        cell=(8.0, 4.0),
         name="fata_morgana_coast",
+        cliff=examples_town.shore_cliff,
+        wander=60.0,
     )
-    _houses(scene, coast, rng, 14)
+    examples_meshes.add_meshes(scene, examples_town.town(coast, rng), examples_town.town_materials())
     base = _core.PhysicalAtmosphere(t_ground=276.15, inversion_dt=10.0, inversion_base=12.0, inversion_thickness=8.0)
     field = _core.CurvedEarth(base)
     look = np.radians(0.02)
