@@ -244,11 +244,18 @@ def _coast(
     speckle = _fbm(rng, X, Z, 120.0, octaves=4)  # patchy snow and outcrops
     colour = {k: np.array(v) for k, v in COAST_COLOURS.items()}
     rock = _smoothstep((slope + 0.3 * speckle - 0.3) / 0.25)[..., None]
-    albedo = colour["tundra"] * (1 - rock) + colour["rock"] * rock
+    face = np.zeros_like(height)  # 1 on the nodes of a cliff's face (its foot and top), else 0
+    cliff_rock = colour["rock"]
+    if cliff is not None:  # cliff faces of bare rock to the waterline, banded: pale and dark rock, gullies
+        face = (np.abs(inland) <= cell[0]) * _smoothstep((np.asarray(cliff(z))[None, :] - 4.0) / 4.0)
+        rock = np.maximum(rock, face[..., None])
+        bands = 1.0 + 1.6 * np.clip(_fbm(rng, np.zeros_like(Z), Z, 40.0, octaves=3), -0.5, 1.0)
+        cliff_rock = cliff_rock * bands[..., None]
+    albedo = colour["tundra"] * (1 - rock) + cliff_rock * rock
     if snow_line is not None:
         snow = _smoothstep((height + 50.0 * speckle - snow_line) / 25.0) * (1 - _smoothstep((slope - 0.35) / 0.2))
         albedo = albedo * (1 - snow[..., None]) + colour["snow"] * snow[..., None]
-    wet = (1 - _smoothstep((height - 1.0) / 4.0))[..., None]
+    wet = ((1 - _smoothstep((height - 1.0) / 4.0)) * (1 - face))[..., None]
     albedo = albedo * (1 - wet) + colour["shingle"] * wet
     # uvs: u along z, v along x; the texture's first row is v = 1 (the far side).
     uvs = np.stack([(Z - z[0]) / (z[-1] - z[0]), (X - x[0]) / (x[-1] - x[0])], axis=-1).reshape(-1, 2)
@@ -352,13 +359,15 @@ FATA_MORGANA_COAST = 20000.0  # [m] to the shore (it wanders by ~60 m)
 
 
 def fata_morgana(width: int = 640, height: int = 240) -> Example:
-    """Fata Morgana: a sharp inversion just above the eye (+10 K between 12 and 20 m) over cold
-    water stacks a coast 20 km away (a fractal height field cut by inlets, cliffs and a village of
-    white houses along the shore): the lowest ~10 m of the shore shown erect and above them the
-    same heights upside down, each stretched about six-fold into walls and towers (an inlet
-    becomes an oval of sky); above them a band of mirrored sea and the hill tops. An afternoon sun
-    15 deg high behind the left shoulder, clear Arctic air (visibility 150 km); a 1000 mm lens
-    from 14 m (a ship's bridge)."""
+    """Fata Morgana: a sharp inversion just above the eye (+12 K between 15 and 25 m) over cold
+    water stacks the shore 20 km away -- cliffs of 2-38 m, a harbour town, a lighthouse on its rock,
+    a conifer forest (examples_town) before hills to ~240 m: in the middle column the shore's
+    lowest ~17 m show four times over, erect, inverted, erect (a thin strip) and inverted again
+    above (tests/render/test_examples.py traces it), so houses and roofs repeat mirrored, the
+    lighthouse becomes a tall white column, the trees a palisade and every cliff a flat-topped
+    wall; above them a band of mirrored sea and the hill tops. An afternoon sun 15 deg high behind
+    the left shoulder, clear Arctic air (visibility 150 km); a 1000 mm lens from 14 m (a ship's
+    bridge)."""
     scene = _core.Scene()
     set_physical_sky(scene, sun_direction(15.0, -140.0), visibility=FATA_MORGANA_VISIBILITY)
     scene.add_ground(0.0, 140000.0, material=_sea(6.0, 3.0))
@@ -377,7 +386,7 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
         wander=60.0,
     )
     examples_meshes.add_meshes(scene, examples_town.town(coast, rng), examples_town.town_materials())
-    base = _core.PhysicalAtmosphere(t_ground=276.15, inversion_dt=10.0, inversion_base=12.0, inversion_thickness=8.0)
+    base = _core.PhysicalAtmosphere(t_ground=276.15, inversion_dt=12.0, inversion_base=15.0, inversion_thickness=10.0)
     field = _core.CurvedEarth(base)
     look = np.radians(0.02)
     camera = _core.Camera.photographic(

@@ -214,9 +214,10 @@ def test_cold_sea_shows_the_freighter_erect_and_upside_down_above_it_against_the
 
 
 # Fata Morgana (issue 19): the sharp inversion just above the eye stacks the coast 20 km away --
-# its foot erect, and above it the same heights again upside down -- in every column.
-FATA_MORGANA_FACE = 19500.0  # [m] a plane just before the coast's shore (20 km, wandering by ~150 m)
-COAST_FOOT = 30.0  # [m] the heights of the shore the test follows (the inversion's base is 12 m)
+# its foot erect, and above it the same heights again upside down, then erect and inverted once
+# more (the 60-row view resolves all four).
+FATA_MORGANA_FACE = 19500.0  # [m] a plane just before the coast's shore (20 km, wandering by ~60 m)
+COAST_FOOT = 30.0  # [m] the heights of the shore the test follows (the inversion's base is 15 m)
 
 
 def test_fata_morgana_stacks_the_coast_erect_and_inverted():
@@ -225,6 +226,7 @@ def test_fata_morgana_stacks_the_coast_erect_and_inverted():
     heights = _column_heights(example, example.field, example.camera.width // 2, FATA_MORGANA_FACE)
     kinds = [kind for _, kind in _images(heights, COAST_FOOT)]
     assert kinds[-2:] == ["inverted", "erect"], kinds  # from the bottom up: erect, then inverted above it
+    assert kinds == ["inverted", "erect", "inverted", "erect"], kinds  # stacked: four images of the foot
     straight = _column_heights(
         example, refracta.without_refraction(example.field), example.camera.width // 2, FATA_MORGANA_FACE
     )
