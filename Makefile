@@ -54,6 +54,11 @@ stubs: install
 	$(PYTHON) -m pybind11_stubgen refracta._core -o build/stubs
 	cp build/stubs/refracta/_core.pyi python/refracta/_core.pyi
 
+# Regenerates cpp/generated/docstrings.h, the bindings' docstrings, from the C++ headers' comments
+# (pybind11_mkdoc + libclang; tests/package/test_docstrings.py checks it). The build reads the file.
+docstrings:
+	$(PYTHON) .ci/docstrings.py
+
 # API reference (autodoc + napoleon) and the notebooks (myst-nb, not executed) into build/docs;
 # -W: a warning fails the build, as in tests/package/test_docs.py.
 docs: install

@@ -2897,7 +2897,8 @@ class TerrainShading(Material):
         """
 class Light:
     """
-    A light (shared/SHADING.md section 5). Methods evaluate RGB rendering, vectorised over N points.
+    A light (shared/SHADING.md section 5). In Python its methods evaluate RGB rendering, vectorised over
+    N points.
     """
     def L(self, points: typing.Any, normals: typing.Any, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -2942,7 +2943,8 @@ class Light:
         """
 class LightSampler:
     """
-    Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it after preprocess() of infinite lights.
+    Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it
+    after preprocess() of infinite lights.
     """
     def __getstate__(self) -> tuple[list[Light], int]:
         ...
@@ -2960,7 +2962,8 @@ class LightSampler:
         """
 class PointLight(Light):
     """
-    A point light: intensity [W/sr] (number or RGB) from position [m]; E = I cos(theta)/r^2, power 4 pi I.
+    A point light: intensity I [W/sr] (a colour: one number or RGB) in every direction from position
+    [m]; irradiance at distance r on a surface tilted by theta E = I cos(theta) / r^2; power 4 pi I.
     """
     def __getstate__(self) -> tuple[tuple, tuple]:
         ...
@@ -2973,7 +2976,10 @@ class PointLight(Light):
         ...
 class SpotLight(Light):
     """
-    A spot light at position [m] shining along direction into a cone of full angle [deg] with intensity [W/sr]; hard edge by default, a smoothstep falloff from inner_angle [deg] out to angle when inner_angle < angle.
+    A spot light at position [m] shining along direction into a cone of full angle [deg] with intensity
+    I [W/sr] (a colour). A hard edge by default (full intensity inside the cone, nothing outside); with
+    inner_angle [deg] < angle a smoothstep falloff (pbrt-v4 SpotLight::I): I(w) = I
+    smoothstep(cos(angle/2), cos(inner_angle/2), cos theta), theta from the axis.
     """
     def __getstate__(self) -> tuple[tuple, tuple, float, tuple, float]:
         ...
@@ -2989,7 +2995,8 @@ class SpotLight(Light):
         ...
 class SunLight(Light):
     """
-    The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] over the disc, angular_diameter [deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).
+    The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] (a colour) over the disc,
+    angular_diameter [deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).
     """
     def __getstate__(self) -> tuple[tuple, tuple, float, float]:
         ...
@@ -3012,7 +3019,9 @@ class SunLight(Light):
         """
 class AreaLight(Light):
     """
-    An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) int, emission radiance [W/(m^2 sr)] from the counter-clockwise front ((v1 - v0) x (v2 - v0)) or both sides.
+    An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) of vertex indices, uniform emission
+    radiance L_e [W/(m^2 sr)] (a colour) from the counter-clockwise front of every triangle (front
+    normal normalize((v1 - v0) x (v2 - v0))) or from both sides when two_sided.
     """
     def __getstate__(self) -> tuple[tuple, tuple, bool]:
         ...
@@ -3034,7 +3043,8 @@ class AreaLight(Light):
         ...
 class SphereLight(Light):
     """
-    An emissive sphere: centre [m], radius [m], emission radiance [W/(m^2 sr)] outward; power 4 pi^2 r^2 L.
+    An emissive sphere: centre [m], radius [m], uniform emission radiance L_e [W/(m^2 sr)] (a colour)
+    leaving its surface outward; power 4 pi^2 r^2 Y(L_e).
     """
     def __getstate__(self) -> tuple[tuple, float, tuple]:
         ...
@@ -3047,7 +3057,15 @@ class SphereLight(Light):
         ...
 class EnvironmentLight(Light):
     """
-    An equirectangular environment map (H, W, 3) float linear RGB, rows top (up, +y) to bottom, times scale; rotation: degrees about +y or a 3 x 3 map-to-world rotation. Mitsuba 3's envmap orientation: u = atan2(d.x, -d.z)/(2 pi) wrapped to [0, 1), v = acos(d.y)/pi (d in the map's frame); column i at u = (i + 1/2)/W, row j at v = j/(H - 1), bilinear.
+    An equirectangular environment map (H, W, 3) of float linear RGB, rows top (up, +y) to
+    bottom: radiance [W/(m^2 sr)] = scale x the map, rotated by rotation (degrees about +y or a
+    3 x 3 map-to-world matrix). Mitsuba 3's envmap orientation and interpolation
+    (src/emitters/envmap.cpp): in the map's frame d = rotation^T x world direction, u = atan2(d.x, -d.z)
+    / (2 pi) wrapped into [0, 1), v = acos(d.y) / pi; back: theta = pi v, phi = 2 pi u, d = (sin phi sin
+    theta, cos theta, -cos phi sin theta). So u = 0 looks along -z, u = 1/4 along +x, u = 1/2 (the
+    centre column) along +z. Column i is centred at u = (i + 1/2) / W and wraps around; row j is at v =
+    j / (H - 1) (the first and last rows are the poles); radiance is bilinear between the four
+    surrounding texels.
     """
     @staticmethod
     def rotation_about_y(degrees: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
@@ -3078,7 +3096,8 @@ class EnvironmentLight(Light):
         ...
 class ConstantEnvironment(Light):
     """
-    Uniform radiance [W/(m^2 sr)] from every direction; sampling 'cosine' (about the point's normal, when given) or 'uniform' (the sphere). Irradiance pi L.
+    Uniform radiance L_e [W/(m^2 sr)] (a colour) from every direction; sampling 'cosine' (about the
+    point's normal, when given) or 'uniform' (the sphere, pdf 1/(4 pi)). Irradiance pi L_e.
     """
     def __getstate__(self) -> tuple[tuple, int]:
         ...

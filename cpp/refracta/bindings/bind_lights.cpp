@@ -3,6 +3,7 @@
 // RGB rendering (shading/light_batch.h), for tests and users' own integrators.
 #include "refracta/bindings/bind_scene.h"  // image_to_float32
 #include "refracta/bindings/pickle_state.h"
+#include "generated/docstrings.h"
 #include "refracta/shading/sky_presets.h"  // environment_from_file
 
 #include "refracta/shading/area_light.h"
@@ -32,8 +33,7 @@ py::tuple xyz(const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); }
 
 // The lights a point, a disc or a surface emits: point, spot, sun, area, sphere.
 void bind_finite_lights(py::module_& m) {
-  py::class_<PointLight, Light, std::shared_ptr<PointLight>> point(m, "PointLight",
-      "A point light: intensity [W/sr] (number or RGB) from position [m]; E = I cos(theta)/r^2, power 4 pi I.");
+  py::class_<PointLight, Light, std::shared_ptr<PointLight>> point(m, "PointLight", DOC(refracta, PointLight));
   point
       .def(py::init([](const py::object& position, const py::object& intensity) {
              return std::make_shared<PointLight>(to_point(position, "PointLight: position"), to_illuminant(intensity, "PointLight: intensity"));
@@ -43,9 +43,7 @@ void bind_finite_lights(py::module_& m) {
   def_state_pickle(point, "PointLight", 2, [](const PointLight& l) { return py::make_tuple(xyz(l.position()), color_state(l.intensity())); },
                    [](const py::tuple& t) { return std::make_shared<PointLight>(to_point(t[0], "position"), color_from_state(t[1])); });
 
-  py::class_<SpotLight, Light, std::shared_ptr<SpotLight>> spot(m, "SpotLight",
-      "A spot light at position [m] shining along direction into a cone of full angle [deg] with intensity [W/sr]; "
-      "hard edge by default, a smoothstep falloff from inner_angle [deg] out to angle when inner_angle < angle.");
+  py::class_<SpotLight, Light, std::shared_ptr<SpotLight>> spot(m, "SpotLight", DOC(refracta, SpotLight));
   spot
       .def(py::init([](const py::object& position, const py::object& direction, double angle, const py::object& intensity,
                        const py::object& inner_angle) {
@@ -66,9 +64,7 @@ void bind_finite_lights(py::module_& m) {
                                            color_from_state(t[3]), py::cast<double>(t[4]));
       });
 
-  py::class_<SunLight, Light, std::shared_ptr<SunLight>> sun(m, "SunLight",
-      "The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] over the disc, angular_diameter "
-      "[deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).");
+  py::class_<SunLight, Light, std::shared_ptr<SunLight>> sun(m, "SunLight", DOC(refracta, SunLight));
   sun
       .def(py::init([](const py::object& direction, const py::object& radiance, double angular_diameter, double limb_darkening) {
              return std::make_shared<SunLight>(to_point(direction, "SunLight: direction"), to_illuminant(radiance, "SunLight: radiance"),
@@ -89,9 +85,7 @@ void bind_finite_lights(py::module_& m) {
                                           py::cast<double>(t[3]));
       });
 
-  py::class_<AreaLight, Light, std::shared_ptr<AreaLight>> area(m, "AreaLight",
-      "An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) int, emission radiance [W/(m^2 sr)] from "
-      "the counter-clockwise front ((v1 - v0) x (v2 - v0)) or both sides.");
+  py::class_<AreaLight, Light, std::shared_ptr<AreaLight>> area(m, "AreaLight", DOC(refracta, AreaLight));
   area
       .def(py::init([](const py::object& vertices, const py::object& triangles, const py::object& emission, bool two_sided) {
              Mesh mesh;
@@ -108,8 +102,7 @@ void bind_finite_lights(py::module_& m) {
       [](const AreaLight& l) { return py::make_tuple(mesh_state(l.mesh()), color_state(l.emission()), l.two_sided()); },
       [](const py::tuple& t) { return std::make_shared<AreaLight>(mesh_from_state(t[0]), color_from_state(t[1]), py::cast<bool>(t[2])); });
 
-  py::class_<SphereLight, Light, std::shared_ptr<SphereLight>> sphere(m, "SphereLight",
-      "An emissive sphere: centre [m], radius [m], emission radiance [W/(m^2 sr)] outward; power 4 pi^2 r^2 L.");
+  py::class_<SphereLight, Light, std::shared_ptr<SphereLight>> sphere(m, "SphereLight", DOC(refracta, SphereLight));
   sphere
       .def(py::init([](const py::object& centre, double radius, const py::object& emission) {
              return std::make_shared<SphereLight>(to_point(centre, "SphereLight: centre"), radius, to_illuminant(emission, "SphereLight: emission"));
@@ -127,10 +120,7 @@ void bind_finite_lights(py::module_& m) {
 // The lights at infinity: environment maps and the constant environment.
 void bind_environment_lights(py::module_& m) {
   py::class_<EnvironmentLight, Light, std::shared_ptr<EnvironmentLight>> environment(m, "EnvironmentLight",
-      "An equirectangular environment map (H, W, 3) float linear RGB, rows top (up, +y) to bottom, times scale; "
-      "rotation: degrees about +y or a 3 x 3 map-to-world rotation. Mitsuba 3's envmap orientation: "
-      "u = atan2(d.x, -d.z)/(2 pi) wrapped to [0, 1), v = acos(d.y)/pi (d in the map's frame); column i at "
-      "u = (i + 1/2)/W, row j at v = j/(H - 1), bilinear.");
+                                                                                       DOC(refracta, EnvironmentLight));
   environment
       .def(py::init([](const py::object& image, double scale, const py::object& rotation) {
              return std::make_shared<EnvironmentLight>(to_image(image, "EnvironmentLight: image"), scale, to_rotation(rotation, "rotation"));
@@ -168,8 +158,7 @@ void bind_environment_lights(py::module_& m) {
       });
 
   py::class_<ConstantEnvironment, Light, std::shared_ptr<ConstantEnvironment>> constant(m, "ConstantEnvironment",
-      "Uniform radiance [W/(m^2 sr)] from every direction; sampling 'cosine' (about the point's normal, when given) "
-      "or 'uniform' (the sphere). Irradiance pi L.");
+                                                                                           DOC(refracta, ConstantEnvironment));
   constant.def(py::init([](const py::object& radiance, const std::string& sampling) {
                  return std::make_shared<ConstantEnvironment>(to_illuminant(radiance, "ConstantEnvironment: radiance"),
                                                               ConstantEnvironment::sampling_from(sampling));
@@ -186,8 +175,7 @@ void bind_environment_lights(py::module_& m) {
 }  // namespace
 
 void bind_lights(py::module_& m) {
-  py::class_<Light, std::shared_ptr<Light>>(m, "Light",
-      "A light (shared/SHADING.md section 5). Methods evaluate RGB rendering, vectorised over N points.")
+  py::class_<Light, std::shared_ptr<Light>>(m, "Light", DOC(refracta, Light))
       .def_property_readonly("type", [](const Light& l) { return light_type_name(l.type()); },
           "'delta_position' (point, spot), 'area' (meshes, spheres) or 'infinite' (sun, environments).")
       .def_property_readonly("is_delta", &Light::is_delta)
@@ -231,9 +219,7 @@ void bind_lights(py::module_& m) {
           "Area lights: RGB radiance (N, 3) leaving points (N, 3) with the light's front normals (N, 3) toward unit dirs (N, 3).")
       .def("__repr__", &Light::describe);
 
-  py::class_<LightSampler> sampler(m, "LightSampler",
-      "Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it after "
-      "preprocess() of infinite lights.");
+  py::class_<LightSampler> sampler(m, "LightSampler", DOC(refracta, LightSampler));
   sampler
       .def(py::init([](const std::vector<LightPtr>& lights, const std::string& strategy) {
              return LightSampler(lights, LightSampler::strategy_from(strategy));

@@ -1,7 +1,4 @@
-// An emissive triangle mesh (shared/SHADING.md section 5): uniform emitted radiance L_e
-// [W/(m^2 sr)] from the front of every triangle -- the counter-clockwise side, front normal
-// n = normalize((v1 - v0) x (v2 - v0)) -- or from both sides when two_sided. Power: pi Y(L_e) A
-// (one-sided), twice that two-sided.
+// AreaLight (shared/SHADING.md section 5). Power: pi Y(L_e) A (one-sided), twice that two-sided.
 //
 // Sampling by area: a triangle with probability proportional to its area (PiecewiseConstant1D),
 // a uniform point on it (sample_uniform_triangle), so pdf_A = 1 / A_total and the solid-angle
@@ -26,6 +23,9 @@
 
 namespace refracta {
 
+// An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) of vertex indices, uniform
+// emission radiance L_e [W/(m^2 sr)] (a colour) from the counter-clockwise front of every
+// triangle (front normal normalize((v1 - v0) x (v2 - v0))) or from both sides when two_sided.
 class AreaLight final : public Light {
  public:
   // The mesh must have finite vertices, triangles indexing them, and a positive total area.

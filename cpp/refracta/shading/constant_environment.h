@@ -1,8 +1,6 @@
-// A constant environment (shared/SHADING.md section 5): radiance L_e [W/(m^2 sr)] arriving from
-// every direction (the white furnace when L_e = 1). Sampling: cosine-weighted about ctx.n when
-// the context has a normal and sampling is kCosine (pdf 0 below the surface: the integrator's
-// BSDF sampling, MIS-weighted, must cover transmission), otherwise the uniform sphere (pdf
-// 1/(4 pi)). Irradiance on any surface: E = pi L_e.
+// ConstantEnvironment (shared/SHADING.md section 5), the white furnace when L_e = 1. Cosine
+// sampling gives pdf 0 below the surface: the integrator's BSDF sampling, MIS-weighted, must
+// cover transmission.
 //
 // Integrator: an infinite light, as EnvironmentLight (environment_light.h): escaping rays add
 // Le(dir); NEE with sample_li / pdf_li(ctx, wi, ., .); preprocess(centre, R) before power().
@@ -13,6 +11,8 @@
 
 namespace refracta {
 
+// Uniform radiance L_e [W/(m^2 sr)] (a colour) from every direction; sampling 'cosine' (about the
+// point's normal, when given) or 'uniform' (the sphere, pdf 1/(4 pi)). Irradiance pi L_e.
 class ConstantEnvironment final : public Light {
  public:
   enum class Sampling { kCosine, kUniform };

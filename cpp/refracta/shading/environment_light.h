@@ -1,19 +1,6 @@
 // An equirectangular (latitude-longitude) environment map (shared/SHADING.md section 5): an
 // infinite light at the end of every escaping ray (constant_environment.h: the uniform case).
 //
-// EnvironmentLight: radiance [W/(m^2 sr)] = scale * the map's linear RGB, in Mitsuba 3's envmap
-// orientation and interpolation (src/emitters/envmap.cpp), y up:
-//   local direction d = rotation^T * world direction (rotation: the map's frame -> world, as
-//   Mitsuba's to_world),
-//   u = atan2(d.x, -d.z) / (2 pi), wrapped into [0, 1)   (Mitsuba: the same, then uv - floor(uv))
-//   v = acos(d.y) / pi                                    (Mitsuba: the same)
-//   and back: theta = pi v, phi = 2 pi u, d = (sin phi sin theta, cos theta, -cos phi sin theta).
-//   So u = 0 looks along -z, u = 1/4 along +x, u = 1/2 (the image's centre column) along +z,
-//   u = 3/4 along -x; the top row looks up (+y), the bottom row down (-y).
-//   Texels: column i is centred at u = (i + 1/2) / W and wraps around; row j is the sample at
-//   v = j / (H - 1) (Mitsuba's vertex rows: the first and last rows are the poles). Radiance is
-//   bilinear between the four surrounding texels. (refracta's old Sky map looked along +x at
-//   its centre column; this class follows Mitsuba.)
 // Sampling: a PiecewiseConstant2D over the W x (H - 1) bilinear patches, each weighted by the
 // mean luminance of its four corner texels (the exact mean of the bilinear Y over the patch, and
 // zero only where the radiance is zero) times the mean of sin(theta) over its rows; a point
@@ -40,6 +27,15 @@ namespace refracta {
 
 using Mat3d = Eigen::Matrix3d;
 
+// An equirectangular environment map (H, W, 3) of float linear RGB, rows top (up, +y) to
+// bottom: radiance [W/(m^2 sr)] = scale x the map, rotated by rotation (degrees about +y or a
+// 3 x 3 map-to-world matrix). Mitsuba 3's envmap orientation and interpolation
+// (src/emitters/envmap.cpp): in the map's frame d = rotation^T x world direction,
+// u = atan2(d.x, -d.z) / (2 pi) wrapped into [0, 1), v = acos(d.y) / pi; back: theta = pi v,
+// phi = 2 pi u, d = (sin phi sin theta, cos theta, -cos phi sin theta). So u = 0 looks along -z,
+// u = 1/4 along +x, u = 1/2 (the centre column) along +z. Column i is centred at u = (i + 1/2) / W
+// and wraps around; row j is at v = j / (H - 1) (the first and last rows are the poles);
+// radiance is bilinear between the four surrounding texels.
 class EnvironmentLight final : public Light {
  public:
   // image: width >= 1, height >= 2, 1 (grey), 3 or 4 (alpha ignored) channels, every texel

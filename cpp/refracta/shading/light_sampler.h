@@ -22,6 +22,8 @@ struct SampledLight {
   double probability = 0.0;
 };
 
+// Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build
+// it after preprocess() of infinite lights.
 class LightSampler {
  public:
   enum class Strategy { kPower, kUniform };

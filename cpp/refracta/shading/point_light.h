@@ -1,8 +1,4 @@
-// A point light (shared/SHADING.md section 5): intensity I [W/sr] in every direction from a
-// position; irradiance at distance r on a surface tilted by theta: E = I cos(theta) / r^2; power
-// 4 pi I.
-//
-// Integrator: a delta light (type kDeltaPosition). It cannot be hit by rays; only next-event
+// PointLight (shared/SHADING.md section 5). Integrator: a delta light (type kDeltaPosition). It cannot be hit by rays; only next-event
 // estimation reaches it. sample_li returns pdf = 1 and L = I / r^2 (the inverse square already
 // applied): the contribution is f * L * |cos theta_i| / pdf, shadowed by a ray to p_light.
 // pdf_li is 0 (never MIS-weighted against BSDF sampling).
@@ -15,6 +11,9 @@
 
 namespace refracta {
 
+// A point light: intensity I [W/sr] (a colour: one number or RGB) in every direction from
+// position [m]; irradiance at distance r on a surface tilted by theta E = I cos(theta) / r^2;
+// power 4 pi I.
 class PointLight final : public Light {
  public:
   // position [m] finite; intensity an illuminant Color [W/sr] (throws std::invalid_argument).

@@ -1,6 +1,5 @@
-// An emissive sphere (shared/SHADING.md section 5): uniform radiance L_e [W/(m^2 sr)] leaving its
-// surface outward. Power: pi Y(L_e) 4 pi r^2 = 4 pi^2 r^2 Y(L_e). Seen from distance d on the
-// normal of a facing surface, its irradiance is pi L_e (r / d)^2.
+// SphereLight (shared/SHADING.md section 5). Seen from distance d on the normal of a facing
+// surface, its irradiance is pi L_e (r / d)^2.
 //
 // Sampling (pbrt-v4 Sphere::Sample(ctx)): from outside, a uniform direction in the cone the sphere
 // subtends, sin^2(theta_max) = r^2 / d^2, pdf_w = 1 / (2 pi (1 - cos theta_max)), the point on
@@ -18,6 +17,8 @@
 
 namespace refracta {
 
+// An emissive sphere: centre [m], radius [m], uniform emission radiance L_e [W/(m^2 sr)] (a
+// colour) leaving its surface outward; power 4 pi^2 r^2 Y(L_e).
 class SphereLight final : public Light {
  public:
   SphereLight(const Vec3d& centre, double radius, const Color& emission);

@@ -1,10 +1,5 @@
-// A spot light (shared/SHADING.md section 5): a point at `position` emitting intensity I [W/sr]
-// into a cone about `direction` of full angle `angle` [deg]. Default: a hard edge, as the old
-// renderer's spot (full intensity inside the cone, nothing outside). With inner_angle < angle the
-// edge falls off smoothly (pbrt-v4 SpotLight::I): I(w) = I * smoothstep(cos(angle/2),
-// cos(inner_angle/2), cos theta), theta the angle from the axis; full intensity inside
-// inner_angle. Power: 2 pi I ((1 - cos(inner/2)) + (cos(inner/2) - cos(angle/2)) / 2), exact
-// because the smoothstep integrates to one half over its interval.
+// SpotLight (shared/SHADING.md section 5). Its power, 2 pi I ((1 - cos(inner/2)) + (cos(inner/2)
+// - cos(angle/2)) / 2), is exact because the smoothstep integrates to one half over its interval.
 //
 // Integrator: a delta light (kDeltaPosition), as PointLight: sample_li gives pdf = 1,
 // L = I(w) / r^2 (nullopt outside the cone), pdf_li = 0; shadow ray to p_light.
@@ -15,6 +10,10 @@
 
 namespace refracta {
 
+// A spot light at position [m] shining along direction into a cone of full angle [deg] with
+// intensity I [W/sr] (a colour). A hard edge by default (full intensity inside the cone, nothing
+// outside); with inner_angle [deg] < angle a smoothstep falloff (pbrt-v4 SpotLight::I):
+// I(w) = I smoothstep(cos(angle/2), cos(inner_angle/2), cos theta), theta from the axis.
 class SpotLight final : public Light {
  public:
   // direction: the cone's axis (non-zero, normalised here); angle: full cone angle [deg] in

@@ -1,7 +1,5 @@
-// The sun (shared/SHADING.md section 5): a disc at infinity toward unit `direction`, of angular
-// diameter 2 alpha (0.53 deg by default), with mean radiance `radiance` [W/(m^2 sr)] over the
-// disc, so that the irradiance on a surface facing it is radiance * pi sin^2(alpha) whatever the
-// limb darkening.
+// SunLight (shared/SHADING.md section 5): with angular diameter 2 alpha, the irradiance on a
+// surface facing it is radiance * pi sin^2(alpha) whatever the limb darkening.
 //
 // Limb darkening (linear law): I(mu) = 1 - u (1 - mu), u in [0, 1], mu the cosine on the solar
 // surface. With t = (1 - cos theta) / (1 - cos alpha) the fraction of the disc's solid angle
@@ -27,6 +25,8 @@
 
 namespace refracta {
 
+// The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] (a colour) over the
+// disc, angular_diameter [deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).
 class SunLight final : public Light {
  public:
   // [deg] The smallest disc: its solid angle (4e-12 sr) keeps the sampling density 1 / solid
