@@ -47,6 +47,7 @@ tidy: install
 	$(PYTHON) .ci/clang_tidy.py $(TIDY_ARGS)
 
 bench: install
+	bash .ci/install-debian-packages .ci/bench-packages.txt
 	$(PYTHON) benchmarks/run_all.py
 
 # Regenerates python/refracta/_core.pyi from the built module (tests/python/test_stubs.py checks it).
