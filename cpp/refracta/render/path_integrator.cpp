@@ -40,7 +40,7 @@ class PathTracer : public Integrator {
                     SurfaceAovs* aovs) const override {
     Spectrum L = Spectrum::Zero(), beta = Spectrum::Ones();
     Vec3d o = origin, d = dir;
-    double ior_here = caster_.ior(o);
+    double ior_here = caster_.curved() ? caster_.ior(o) : 1.0;  // straight rays: no air to ask
     double bsdf_pdf = 0.0, eta_scale = 1.0, travelled = 0.0;
     bool specular = true;  // the camera ray counts as specular: emitters it sees are not MIS-weighted
     SurfaceInteraction previous;

@@ -1,4 +1,5 @@
-// Embree 3 scene: triangle meshes, spheres and terrain grids, checked single-ray queries.
+// Embree 3 scene: triangle meshes, spheres (user geometry, intersected in double) and terrain grids,
+// checked single-ray queries.
 #include "refracta/scene/embree_scene.h"
 
 #include "refracta/core/error.h"
@@ -21,10 +22,105 @@ void check_ray(const Vec3d& origin, const Vec3d& dir, double t_max) {
     throw_numerical("ray origin (", origin.x(), ", ", origin.y(), ", ", origin.z(),
                     ") is not finite or beyond 1e7 m");
   }
-  if (!is_finite(dir) || std::abs(dir.norm() - 1.0) > 1e-6) {
+  // |dir| within 1e-6 of 1, compared squared (no square root per ray).
+  constexpr double kUnitLow = (1.0 - 1e-6) * (1.0 - 1e-6), kUnitHigh = (1.0 + 1e-6) * (1.0 + 1e-6);
+  const double squared = dir.squaredNorm();
+  if (!is_finite(dir) || !(squared >= kUnitLow && squared <= kUnitHigh)) {
     throw_numerical("ray direction (", dir.x(), ", ", dir.y(), ", ", dir.z(), ") is not a finite unit vector");
   }
   if (!(t_max > 0.0)) throw_numerical("ray length must be > 0 (got ", t_max, ")");
+}
+
+// Spheres are Embree user geometry: Embree's own RTC_GEOMETRY_TYPE_SPHERE_POINT (a point-curve
+// primitive) cost 1.4-1.8x a user sphere per ray in a sphere-and-floor scene (measured: 128x128
+// camera rays, intersect1 and occluded1; benchmarks/bench_shading.py), and the root is solved here
+// in double anyway. The centres and radii are the Spheres of Scene::add_spheres.
+float float_below(double x) {
+  const float f = float(x);
+  return double(f) <= x ? f : std::nextafter(f, -std::numeric_limits<float>::infinity());
+}
+float float_above(double x) {
+  const float f = float(x);
+  return double(f) >= x ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+}
+
+void sphere_bounds(const RTCBoundsFunctionArguments* args) {
+  const auto& spheres = *static_cast<const Scene::Spheres*>(args->geometryUserPtr);
+  const Vec3d& c = spheres.centres[args->primID];
+  const double r = spheres.radii[args->primID];
+  RTCBounds& b = *args->bounds_o;
+  // Rounded outward: the box holds the double sphere whole.
+  b.lower_x = float_below(c.x() - r), b.lower_y = float_below(c.y() - r), b.lower_z = float_below(c.z() - r);
+  b.upper_x = float_above(c.x() + r), b.upper_y = float_above(c.y() + r), b.upper_z = float_above(c.z() + r);
+}
+
+// The roots t0 <= t1 of |o + t d - c| = r for a ray (o, d) with d not necessarily unit; false
+// when it misses. The discriminant from the ray's closest approach to the centre, not b^2 - ac,
+// which cancels catastrophically for small spheres far away (Haines et al. 2019, "Precision
+// Improvements for Ray/Sphere Intersection", Ray Tracing Gems ch. 7, eqs. 7.5 and 7.7).
+bool sphere_roots(const Vec3d& o, const Vec3d& d, const Vec3d& c, double r, double* t0, double* t1) {
+  const Vec3d oc = o - c;
+  const double a = d.squaredNorm(), b = oc.dot(d);
+  const Vec3d closest = oc - (b / a) * d;  // the ray's nearest point to the centre, less the centre
+  const double disc = a * (r * r - closest.squaredNorm());
+  if (!(disc >= 0.0)) return false;
+  const double q = -(b + std::copysign(std::sqrt(disc), b));
+  const double c_term = oc.squaredNorm() - r * r;
+  const double x0 = q / a, x1 = q != 0.0 ? c_term / q : x0;
+  *t0 = std::min(x0, x1), *t1 = std::max(x0, x1);
+  return true;
+}
+
+Vec3d ray_origin(RTCRayN* ray, unsigned n, unsigned i) {
+  return Vec3d(RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i));
+}
+Vec3d ray_dir(RTCRayN* ray, unsigned n, unsigned i) {
+  return Vec3d(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i));
+}
+
+// The nearest root in (tnear, tfar): the hit, as Embree's sphere reported it (Ng = hit - centre).
+void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
+  const auto& spheres = *static_cast<const Scene::Spheres*>(args->geometryUserPtr);
+  const Vec3d& c = spheres.centres[args->primID];
+  const double r = spheres.radii[args->primID];
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const Vec3d o = ray_origin(ray, args->N, i), d = ray_dir(ray, args->N, i);
+    double t0, t1;
+    if (!sphere_roots(o, d, c, r, &t0, &t1)) continue;
+    const double tnear = RTCRayN_tnear(ray, args->N, i);
+    float& tfar = RTCRayN_tfar(ray, args->N, i);
+    const double t = t0 > tnear ? t0 : t1;
+    if (!(t > tnear && t < double(tfar))) continue;
+    tfar = float(t);
+    const Vec3d ng = o + t * d - c;
+    RTCHitN_Ng_x(hit, args->N, i) = float(ng.x());
+    RTCHitN_Ng_y(hit, args->N, i) = float(ng.y());
+    RTCHitN_Ng_z(hit, args->N, i) = float(ng.z());
+    RTCHitN_u(hit, args->N, i) = 0.0f;
+    RTCHitN_v(hit, args->N, i) = 0.0f;
+    RTCHitN_primID(hit, args->N, i) = args->primID;
+    RTCHitN_geomID(hit, args->N, i) = args->geomID;
+    RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+  }
+}
+
+void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
+  const auto& spheres = *static_cast<const Scene::Spheres*>(args->geometryUserPtr);
+  const Vec3d& c = spheres.centres[args->primID];
+  const double r = spheres.radii[args->primID];
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    double t0, t1;
+    if (!sphere_roots(ray_origin(args->ray, args->N, i), ray_dir(args->ray, args->N, i), c, r, &t0, &t1)) continue;
+    const double tnear = RTCRayN_tnear(args->ray, args->N, i);
+    float& tfar = RTCRayN_tfar(args->ray, args->N, i);
+    if ((t0 > tnear && t0 < double(tfar)) || (t1 > tnear && t1 < double(tfar))) {
+      tfar = -std::numeric_limits<float>::infinity();  // Embree's mark of an occluded ray
+    }
+  }
 }
 
 }  // namespace
@@ -35,6 +131,9 @@ struct Scene::Impl {
   mutable bool dirty = true;
   mutable std::mutex commit_mutex;
   std::string error;
+  // The user-geometry spheres' data (Embree holds raw pointers): kept while the scene lives, a
+  // removed geometry's too.
+  std::vector<std::shared_ptr<const Spheres>> sphere_data;
 
   Impl() {
     device = rtcNewDevice(nullptr);
@@ -142,20 +241,21 @@ unsigned Scene::add_spheres(const std::vector<Vec3d>& centres, const std::vector
                     "(scene coordinates are limited to 1e7 m, Embree's single precision)");
     }
   }
-  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
-                                                        4 * sizeof(float), centres.size()));
-  for (size_t i = 0; i < centres.size(); ++i) {
-    for (int k = 0; k < 3; ++k) v[4 * i + k] = float(centres[i][k]);
-    v[4 * i + 3] = float(radii[i]);
-  }
+  auto data = std::make_shared<const Spheres>(Spheres{centres, radii});
+  impl_->sphere_data.push_back(data);
+  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(geometry, unsigned(centres.size()));
+  rtcSetGeometryUserData(geometry, const_cast<Spheres*>(data.get()));  // read only, by the callbacks
+  rtcSetGeometryBoundsFunction(geometry, sphere_bounds, nullptr);
+  rtcSetGeometryIntersectFunction(geometry, sphere_intersect);
+  rtcSetGeometryOccludedFunction(geometry, sphere_occluded);
   for (size_t i = 0; i < centres.size(); ++i) {
     lower_ = lower_.cwiseMin(centres[i] - Vec3d::Constant(radii[i]));
     upper_ = upper_.cwiseMax(centres[i] + Vec3d::Constant(radii[i]));
   }
   const unsigned id = impl_->attach(geometry, unsigned(materials_.size()));
   materials_.push_back(material);
-  sphere_sets_.push_back(std::make_shared<const Spheres>(Spheres{centres, radii}));
+  sphere_sets_.push_back(std::move(data));
   SceneMesh spheres{id, {}};
   for (size_t i = 0; i < centres.size(); ++i) {
     const Mesh sphere = sphere_mesh(centres[i], radii[i], 48, 24);
@@ -341,14 +441,21 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
   // about 6e-8 of the distance, which beyond a few hundred metres exceeds the offsets that keep
   // secondary rays off the surface (a glass seen from 1 km lost all its transmission).
   if (const auto& spheres = sphere_sets_.at(query.hit.geomID)) {
-    const Vec3d oc = origin - spheres->centres.at(query.hit.primID);
-    const double r = spheres->radii.at(query.hit.primID), b = oc.dot(dir), c = oc.squaredNorm() - r * r;
-    const double disc = b * b - c;
-    if (disc >= 0.0) {
-      const double root = std::sqrt(disc), near = -b - root, far = -b + root;
+    // From the double origin (the callback saw Embree's float copy of it); the normal from the
+    // centre in double.
+    const Vec3d& centre = spheres->centres.at(query.hit.primID);
+    double near, far;
+    if (sphere_roots(origin, dir, centre, spheres->radii.at(query.hit.primID), &near, &far)) {
       const double t = std::abs(near - hit.t) <= std::abs(far - hit.t) ? near : far;
       if (t > 0.0 && std::abs(t - hit.t) <= kRefineWindow * (1.0 + hit.t)) hit.t = t;
     }
+    hit.point = origin + hit.t * dir;
+    const Vec3d normal = (hit.point - centre).normalized();  // unit also where the float t was kept
+    hit.front_face = normal.dot(dir) < 0.0;
+    hit.normal = hit.front_face ? normal : Vec3d(-normal);
+    hit.geometry = query.hit.geomID;
+    hit.primitive = query.hit.primID;
+    return hit;
   } else {
     const Mesh& mesh = meshes_.at(query.hit.geomID).mesh;
     const auto& tri = mesh.triangles.at(query.hit.primID);
@@ -493,6 +600,8 @@ void triangle_surface(const std::array<Vec3d, 3>& p, const std::array<Vec3d, 3>*
 }  // namespace
 
 SurfaceInteraction Scene::interaction(const Hit& hit, const Vec3d& dir, double footprint) const {
+  // The cone's axes only where a footprint is used: textured geometry (uvs) and a cone.
+  if (!(footprint > 0.0) || !has_uvs(hit.geometry)) return interaction(hit, dir, std::array<Vec3d, 2>{Vec3d::Zero(), Vec3d::Zero()});
   const Frame across = Frame::from_z(dir.normalized());
   return interaction(hit, dir, std::array<Vec3d, 2>{across.s * footprint, across.t * footprint});
 }
