@@ -86,6 +86,10 @@ def _car(scene, x, z, colour, glass):
 HOT_ROAD_FOCAL_LENGTH = 500.0  # [mm]
 HOT_ROAD_EYE = 1.5  # [m]
 HOT_ROAD_TILT = 0.25  # [deg] below the horizon: the horizon 38 % from the top, the road below
+# The cars (x, z) [m]: all beyond ~320 m, where the rays that turn above the asphalt begin to meet
+# what stands on it, so each shows its lower part mirrored below it (at 420 m its lowest ~0.7 m;
+# a car at 260 m showed none).
+HOT_ROAD_CARS = [(420.0, 1.7), (500.0, -1.9), (640.0, 1.8), (880.0, -1.9), (1150.0, 1.9)]
 
 
 def hot_road(width: int = 640, height: int = 320) -> Example:
@@ -108,7 +112,7 @@ def hot_road(width: int = 640, height: int = 320) -> Example:
         scene.add_box((2500.0, 0.002, z), (5000.0, 0.004, 0.15), material=paint)
     glass = shading.Plastic(reflectance=(0.01, 0.01, 0.012), ior=1.5, alpha=0.05)  # tinted windows
     colours = [(0.05, 0.15, 0.55), (0.6, 0.04, 0.03), (0.8, 0.8, 0.76), (0.05, 0.05, 0.05), (0.7, 0.55, 0.1)]
-    for i, (x, z) in enumerate([(260.0, 1.7), (380.0, -1.9), (560.0, 1.8), (820.0, -1.9), (1150.0, 1.9)]):
+    for i, (x, z) in enumerate(HOT_ROAD_CARS):
         _car(scene, x, z, colours[i], glass)
     pole = shading.Diffuse((0.18, 0.13, 0.09))  # weathered wood: telegraph poles 8 m tall every 55 m
     for x in np.arange(90.0, 3000.0, 55.0):

@@ -123,6 +123,30 @@ def test_hot_road_default_view_shows_a_wet_road_band_of_a_tenth_of_its_height():
     assert mirage > MIRAGE_OVER_ROAD * np.mean(asphalt), (mirage, np.mean(asphalt))
 
 
+# The wet road's cars (issue 19: "the inverted lower parts of cars ... clearly visible"): each
+# stands beyond where the rays that turn above the asphalt begin to meet what stands on it, so
+# below the car's foot in the image some rows see the car again, upside down. Traced: camera rays
+# through the car's column below its foot that turn above the road and cross the car's plane
+# (its x) between the road and the car's roof (1.8 m), never touching the asphalt on the way.
+CAR_ROOF = 1.8  # [m] examples._car: the cabin's top
+MIRRORED_ROWS = 3  # rows of the 160 x 80 view (0.026 deg each: ~0.2 m at 420 m), a visible band
+
+
+def test_hot_road_cars_stand_over_their_mirrored_lower_parts():
+    example = examples.hot_road(160, 80)
+    camera, field = example.camera, example.field
+    for x, z in examples.HOT_ROAD_CARS:
+        column = camera.project([x, 0.5, z])[0]
+        foot = int(np.ceil(camera.project([x, 0.0, z])[1]))
+        mirrored = 0
+        for v in range(foot, camera.height):
+            origin, direction = camera.ray(column, v + 0.5)
+            path = refracta.trace_ray(field, origin, direction, max_length=example.max_length, stop_height=0.0)
+            height = _crossing_height(path, x)
+            mirrored += height is not None and 0.0 < height < CAR_ROOF
+        assert mirrored >= MIRRORED_ROWS, (x, z, mirrored)
+
+
 def _crossing_height(path, x):
     """The height [m] at which a traced path first reaches the plane at `x` [m] (None if it ends
     before: at the sea or at max_length), linear between its nodes."""
