@@ -47,9 +47,9 @@ def _count(minimum: int):
 # pixel, each image denoised (render(denoise=True): Open Image Denoise with the albedo and normal
 # of the first hit). Over the sea every camera path is a curved ray 20-40 km long (~60-140 us a
 # sample on the shared 2-core machine), so those take one sample and lean on the denoiser. The
-# whole demo takes ~110 s of CPU (user time; the 512 px green flash frames about a third of it):
-# 127-182 s of wall time under a load average of 5-6 from other engineers' builds and tests (it
-# prints its time), about a minute on two free cores.
+# whole demo takes 108-128 s of CPU (user time; the 512 px green flash frames about a third of
+# it): 127-254 s of wall time while other engineers' builds and tests kept the load average at 3-8
+# (it prints its time), about a minute on two free cores.
 DEMO_SETTINGS: dict[str, dict[str, Any]] = {
     "hot_road": dict(transport="direct", spp=4),
     "hot_spot": dict(transport="direct", spp=1),  # three views
