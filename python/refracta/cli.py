@@ -49,7 +49,7 @@ def _count(minimum: int):
 # sample on the shared 2-core machine), so those take one sample and lean on the denoiser. The
 # whole demo takes 108-128 s of CPU (user time; the 512 px green flash frames about a third of
 # it): 127-254 s of wall time while other engineers' builds and tests kept the load average at 3-8
-# (it prints its time), about a minute on two free cores.
+# (it prints its time); an estimated 60-80 s on two free cores (not measured: the machine was shared).
 DEMO_SETTINGS: dict[str, dict[str, Any]] = {
     "hot_road": dict(transport="direct", spp=4),
     "hot_spot": dict(transport="direct", spp=1),  # three views
