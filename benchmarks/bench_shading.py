@@ -145,6 +145,26 @@ class MitsubaLLVM:
         return image, wall, cpu, compile_ms / 1e3, run_ms / 1e3, compiled
 
 
+def llvm_cold_first_render(size: int, spp: int) -> dict | None:
+    """llvm_ad_rgb's first render in a fresh process whose Dr.Jit kernel cache (~/.drjit, read at
+    import) is empty: what compiling its kernels costs a new user. None if it cannot run."""
+    import json
+    import subprocess
+    import sys
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as home:
+        command = [sys.executable, __file__, "--llvm-first-render", "--size", str(size), "--spp", str(spp)]
+        run = subprocess.run(command, env={**os.environ, "HOME": home}, capture_output=True, text=True, check=False)
+    lines = run.stdout.strip().splitlines()
+    return json.loads(lines[-1]) if run.returncode == 0 and lines else None
+
+
+def llvm_first_render(size: int, spp: int) -> dict:
+    _, wall, _, compile_seconds, kernel_seconds, compiled = MitsubaLLVM(size, spp).render()
+    return {"seconds": wall, "compile_seconds": compile_seconds, "kernel_seconds": kernel_seconds, "compiled": compiled}
+
+
 def load_average() -> list[float]:
     return [round(x, 2) for x in os.getloadavg()]
 
@@ -173,6 +193,7 @@ def main(size: int, spp: int, pairs: int) -> dict:
         _, first_wall, _, first_compile, first_run, compiled = llvm.render()
     except (ImportError, RuntimeError, AttributeError) as error:
         llvm_skipped = f"{type(error).__name__}: {error}"
+    cold = llvm_cold_first_render(size, spp) if llvm is not None else None
     pair_rows = []
     ours = None
     for _ in range(pairs):
@@ -210,6 +231,7 @@ def main(size: int, spp: int, pairs: int) -> dict:
             "first_render_compile_seconds": first_compile,
             "first_render_kernel_seconds": first_run,
             "first_render_kernels_compiled": compiled,
+            "cold_cache_first_render": cold,
             "libllvm": os.environ.get("DRJIT_LIBLLVM_PATH"),
         }
     load["after_pairs"] = load_average()
@@ -234,7 +256,8 @@ def main(size: int, spp: int, pairs: int) -> dict:
         )
     if llvm is not None:
         print(
-            f"llvm_ad_rgb first render {first_wall:.2f} s (compile {first_compile:.2f} s, {compiled} kernels compiled)"
+            f"llvm_ad_rgb first render {first_wall:.2f} s (compile {first_compile:.2f} s, {compiled} kernels "
+            f"compiled, the rest from Dr.Jit's disk cache); with an empty cache: {cold}"
         )
     else:
         print("llvm_ad_rgb skipped:", llvm_skipped)
@@ -282,5 +305,11 @@ if __name__ == "__main__":
     parser.add_argument("--size", type=int, default=128)
     parser.add_argument("--spp", type=int, default=256)
     parser.add_argument("--pairs", type=int, default=3)
+    parser.add_argument("--llvm-first-render", action="store_true", help=argparse.SUPPRESS)  # llvm_cold_first_render
     args = parser.parse_args()
-    print("->", write_results("shading", main(args.size, args.spp, args.pairs)))
+    if args.llvm_first_render:
+        import json
+
+        print(json.dumps(llvm_first_render(args.size, args.spp)))
+    else:
+        print("->", write_results("shading", main(args.size, args.spp, args.pairs)))
