@@ -21,17 +21,36 @@ import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 OUTPUT = ROOT / "cpp" / "generated" / "docstrings.h"
-# The headers whose comments are docstrings (converted so far: the lights).
+# The headers whose comments are docstrings (converted so far: the lights and the class
+# docstrings of the options, results and most classes; the rest are still inline in bindings/).
 HEADERS = [
+    "cpp/refracta/edit/edit_settings.h",
+    "cpp/refracta/edit/point_pair.h",
+    "cpp/refracta/media/dispersed_field.h",
+    "cpp/refracta/media/hot_spot.h",
+    "cpp/refracta/media/index_field.h",
+    "cpp/refracta/raster/moment_shadow.h",
+    "cpp/refracta/raster/oit.h",
+    "cpp/refracta/raster/shadow_map.h",
+    "cpp/refracta/rays/ray_path.h",
+    "cpp/refracta/rays/trace_options.h",
+    "cpp/refracta/render/obj_materials.h",
+    "cpp/refracta/render/raster_renderer.h",
+    "cpp/refracta/scene/camera.h",
+    "cpp/refracta/scene/ocean_waves.h",
+    "cpp/refracta/shading/aerial_perspective.h",
+    "cpp/refracta/shading/area_light.h",
+    "cpp/refracta/shading/constant_environment.h",
+    "cpp/refracta/shading/environment_light.h",
     "cpp/refracta/shading/light.h",
     "cpp/refracta/shading/light_sampler.h",
+    "cpp/refracta/shading/physical_sky.h",
     "cpp/refracta/shading/point_light.h",
+    "cpp/refracta/shading/sphere_light.h",
     "cpp/refracta/shading/spot_light.h",
     "cpp/refracta/shading/sun_light.h",
-    "cpp/refracta/shading/area_light.h",
-    "cpp/refracta/shading/sphere_light.h",
-    "cpp/refracta/shading/environment_light.h",
-    "cpp/refracta/shading/constant_environment.h",
+    "cpp/refracta/shading/terrain_shading.h",
+    "cpp/refracta/shading/tonemap.h",
 ]
 FLAGS = ["-std=c++17", "-fparse-all-comments", f"-I{ROOT / 'cpp'}", "-I/usr/include/eigen3"]
 WIDTH = 100  # the headers' own line length: paragraphs keep their shape
@@ -79,10 +98,12 @@ def extract() -> dict[str, str]:
     if errors:
         raise SystemExit("docstrings: the headers do not parse: " + "; ".join(errors))
     found: list = []
-    for header in headers:
-        cache: dict[str, bool] = {}
-        for child in tu.cursor.get_children():
-            mkdoc_lib.extract(header, child, "", found, cache)
+    caches: dict[str, dict[str, bool]] = {}  # mkdoc_lib's file test caches per header
+    wanted = set(headers)
+    for child in tu.cursor.get_children():  # one walk: each top-level declaration in its own header
+        where = child.location.file.name if child.location.file else None
+        if where in wanted:
+            mkdoc_lib.extract(where, child, "", found, caches.setdefault(where, {}))
     entries: dict[str, str] = {}
     for name, _, comment in found:
         if comment.strip() and entries.setdefault(name, comment) != comment:

@@ -10,11 +10,32 @@
 #define DOC_2(a, b) mkd_doc_##a##_##b
 #define DOC_3(a, b, c) mkd_doc_##a##_##b##_##c
 #define DOC(...) DOC_NAME(__VA_ARGS__)
+inline constexpr const char mkd_doc_refracta_AerialPerspective[] = R"doc(Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b` [m]
+(scene coordinates; y = 0 lies the sky's `altitude` above sea level), the transmittance T and the
+single-scattered sunlight S the air adds (the sky's coefficients, densities, phase functions, ozone
+and sun; multiple scattering left out, as in the sky): what arrives at a is T L(b) + S. The chord is
+integrated in pieces in closed form (cpp/refracta/shading/aerial_perspective.h).
+earth_radius: a CurvedEarth's radius when the scene is its flat frame (y is then the height above
+the curved ground), inf for a flat scene (the sky's planet touches y = 0 under the origin).
+Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to every segment.)doc";
 inline constexpr const char mkd_doc_refracta_AreaLight[] = R"doc(An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) of vertex indices, uniform emission
 radiance L_e [W/(m^2 sr)] (a colour) from the counter-clockwise front of every triangle (front
 normal normalize((v1 - v0) x (v2 - v0))) or from both sides when two_sided.)doc";
+inline constexpr const char mkd_doc_refracta_Camera[] = R"doc(Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
+vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at (i
++ 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=) or
+Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)doc";
 inline constexpr const char mkd_doc_refracta_ConstantEnvironment[] = R"doc(Uniform radiance L_e [W/(m^2 sr)] (a colour) from every direction; sampling 'cosine' (about the
 point's normal, when given) or 'uniform' (the sphere, pdf 1/(4 pi)). Irradiance pi L_e.)doc";
+inline constexpr const char mkd_doc_refracta_DispersedField[] = R"doc(A field at another wavelength: n' = 1 + scale (n - 1), grad n' = scale grad n, height-only as its
+base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
+base's. Spectral renders through a field build these per sample (each hero wavelength); build one
+with dispersed_field(field, wavelength).)doc";
+inline constexpr const char mkd_doc_refracta_DisplaySettings[] = R"doc(How refracta.io turns linear radiance into display values (shading/tonemap.h; the formulas: the
+refracta.io module). Exposure: automatic (no manual field set: the image's log-average luminance
+goes to `key`), or manual, at most one of `exposure`, `ev100`, or `shutter` with `f_number` (and
+`iso`); a `key` given overrides a manual exposure. Then the tone curve `tonemap` and the transfer
+curve `gamma`. validate() lists every bad field.)doc";
 inline constexpr const char mkd_doc_refracta_EnvironmentLight[] = R"doc(An equirectangular environment map (H, W, 3) of float linear RGB, rows top (up, +y) to
 bottom: radiance [W/(m^2 sr)] = scale x the map, rotated by rotation (degrees about +y or a
 3 x 3 map-to-world matrix). Mitsuba 3's envmap orientation and interpolation
@@ -24,12 +45,85 @@ theta, cos theta, -cos phi sin theta). So u = 0 looks along -z, u = 1/4 along +x
 centre column) along +z. Column i is centred at u = (i + 1/2) / W and wraps around; row j is at v =
 j / (H - 1) (the first and last rows are the poles); radiance is bilinear between the four
 surrounding texels.)doc";
+inline constexpr const char mkd_doc_refracta_HotSpot[] = R"doc(An areal hot (dt > 0) or cold (dt < 0) patch of ground centred at (x, z) [m]: the air above it is
+warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre, with footprint
+'gaussian' F = exp(-r^2 / (2 radius^2)) or 'compact' F = (1 - r/R)^4 (4 r/R + 1) for r < R = radius
+(Wendland's C2 function: exactly zero outside). Give it to PhysicalAtmosphere(hot_spots=[...]) (dt
+[K]; depth [m], None: the atmosphere's surface_depth) or LogisticProfile(hot_spots=[...]) (dt:
+strength of the profile's hot-spot term there, 1 = the whole term; depth must be None: the term's
+width is a_hot). The fields expose each spot's numbers as parameters hot_spot<i>_x, _z, _radius, _dt
+(, _depth), so refracta.edit.solve can move, resize and heat them.)doc";
+inline constexpr const char mkd_doc_refracta_IndexField[] = R"doc(A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres, y up.
+
+ior(points) -> n, shape (N,) (float for one point); grad_ior(points) -> grad n [1/m], (N, 3).
+params: dict of parameter values; param_names; bounds: dict name -> (lower, upper), the box an
+optimiser searches; ``with_params(**values)`` -> a new field; height_only: n depends on y alone;
+gauge_params: parameters an optimiser holds fixed by default (a joint scaling leaves rays
+unchanged). Raises refracta.NumericalError where n <= 0 or is not finite.)doc";
 inline constexpr const char mkd_doc_refracta_Light[] = R"doc(A light (shared/SHADING.md section 5). In Python its methods evaluate RGB rendering, vectorised over
 N points.)doc";
 inline constexpr const char mkd_doc_refracta_LightSampler[] = R"doc(Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it
 after preprocess() of infinite lights.)doc";
+inline constexpr const char mkd_doc_refracta_MboitSettings[] = R"doc(Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
+'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
+published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit ROV
+variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (z_far <=
+z_near: the fragments' own range, in render_raster the frame's).)doc";
+inline constexpr const char mkd_doc_refracta_MomentShadowSettings[] = R"doc(How a moment shadow map keeps its four power moments and biases them (shared/MOMENTS.md 2-3):
+depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT 2017);
+storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation transforms); bias
+(alpha) and bias_vector (b*): None means the published value for the depth range and storage
+(published_bias, published_bias_vector).)doc";
+inline constexpr const char mkd_doc_refracta_ObjOptions[] = R"doc(How add_obj (Scene.add_obj) places an OBJ file and finds its textures.)doc";
+inline constexpr const char mkd_doc_refracta_OceanWaves[] = R"doc(A wind sea's waves on a periodic square patch (scene/ocean_waves.h): a height field synthesised by
+FFT from the Phillips spectrum, as Tessendorf 2001 ("Simulating Ocean Water") does,
+
+    Phi(k) = A exp(-1 / (k L_w)^2) / k^4 |k^.w^|^2 [m^4],   L_w = wind_speed^2 / g,
+
+with A = 2 (0.21 / 4)^2 / pi = 1.755e-3 fixed by the significant wave height of a fully developed
+sea, H_s = 4 sigma_h = 0.21 U^2 / g (Pierson & Moskowitz 1964; Phillips 1957 for the k^-4 form).
+Each mode is a complex normal with E|h~(k)|^2 = Phi(k) dk^2 (dk = 2 pi / patch_size), Hermitian so
+the field is real; slopes by the FFT of i k h~ (exact on the nodes). Modes run up to the patch's
+Nyquist wavenumber pi resolution / patch_size (shorter waves are the Water material's microfacets)
+and down to 2 pi / patch_size (longer waves are missing). Deterministic from seed (each mode's
+numbers depend only on seed and its integer wavenumber, so a finer resolution keeps the long waves);
+time [s] moves the waves by deep-water dispersion w = sqrt(g k). No choppy displacement.
+
+wind_speed [m/s] in (0, 30] (12.5 m above the sea, as Water's); wind_direction (x, z) horizontal,
+any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024]. Arrays are indexed
+[j, i] at node x = i * spacing, z = j * spacing (rows along z).)doc";
+inline constexpr const char mkd_doc_refracta_OitSettings[] = R"doc(How surfaces with alpha < 1 are composited: method 'exact' (sorted: depth peeling with enough
+layers), 'peel' (the `layers` nearest), 'wboit' (McGuire & Bavoil, JCGT 2013, depth weight 'eq7' or
+'eq9') or 'mboit' (moment-based, settings in `mboit`).)doc";
+inline constexpr const char mkd_doc_refracta_PairOptions[] = R"doc(How an edit's pairs are traced and measured (refracta.edit.solve, distances, jacobian and
+EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
+PairOptions). validate() reports every bad value at once.)doc";
+inline constexpr const char mkd_doc_refracta_PhysicalSkyLight[] = R"doc(A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
+Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
+`aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
+sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
+below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
+BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
+(ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
+default). Its sampling: the comment above.)doc";
 inline constexpr const char mkd_doc_refracta_PointLight[] = R"doc(A point light: intensity I [W/sr] (a colour: one number or RGB) in every direction from position
 [m]; irradiance at distance r on a surface tilted by theta E = I cos(theta) / r^2; power 4 pi I.)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions[] = R"doc(Options of refracta.render_raster, with their defaults (defined once, here). Set any field by name,
+nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
+validate() reports every bad value at once.)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderStats[] = R"doc(What render_raster measured (read-only).)doc";
+inline constexpr const char mkd_doc_refracta_RayPath[] = R"doc(A traced light path. Arrays are per node (the integrator's steps; the path between nodes is the
+quintic Hermite interpolant of positions, tangents and curvatures, accurate to O(step^6)).
+
+points (N,3) [m]; directions (N,3) unit tangents; arc_length (N,) [m]; ior (N,) n at each node;
+ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max_length',
+'stop_height'); evaluations: field evaluations used.)doc";
+inline constexpr const char mkd_doc_refracta_ShadowMapOptions[] = R"doc(The shadow maps of render_raster (an orthographic map for the sun, a perspective one per spot
+light): method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm_hamburger',
+'msm_hausdorff' (four moments box-filtered kernel x kernel, read through `moments`).)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings[] = R"doc(Settings of refracta.edit.solve, with their defaults (defined once, in C++'s SolveSettings). Set any
+field by name, or pass them to solve() as keywords; validate() reports every bad value at once.)doc";
+inline constexpr const char mkd_doc_refracta_SolveSummary[] = R"doc(What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields).)doc";
 inline constexpr const char mkd_doc_refracta_SphereLight[] = R"doc(An emissive sphere: centre [m], radius [m], uniform emission radiance L_e [W/(m^2 sr)] (a colour)
 leaving its surface outward; power 4 pi^2 r^2 Y(L_e).)doc";
 inline constexpr const char mkd_doc_refracta_SpotLight[] = R"doc(A spot light at position [m] shining along direction into a cone of full angle [deg] with intensity
@@ -38,4 +132,15 @@ inner_angle [deg] < angle a smoothstep falloff (pbrt-v4 SpotLight::I): I(w) = I
 smoothstep(cos(angle/2), cos(inner_angle/2), cos theta), theta from the axis.)doc";
 inline constexpr const char mkd_doc_refracta_SunLight[] = R"doc(The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] (a colour) over the disc,
 angular_diameter [deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).)doc";
+inline constexpr const char mkd_doc_refracta_TerrainShading[] = R"doc(Terrain coloured by elevation, slope and snow line (shading/terrain_shading.h), the default of
+Scene.add_terrain: Lambertian, its reflectance ``vegetation`` below ``tree_line`` [m], ``rock``
+above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above ``snow_line``
+[m] on slopes under 55 deg (snow slides off steeper ones); the covers blend over 100 m of height and
+5 deg of slope. Heights are true heights above sea level: with ``earth_radius`` R > 0 (the scene's
+CurvedEarth radius) the scene's y is the flat height y' = R ln(1 + h/R) and h = R (exp(y'/R) - 1); 0
+means a flat Earth (h = y). The slope is the shading normal's angle from +y (the Earth-flattening
+map is conformal: it keeps angles). Colours are linear RGB albedos in [0, 1]: conifer forest ~0.08,
+rock 0.2-0.3, old snow ~0.8.)doc";
+inline constexpr const char mkd_doc_refracta_TraceOptions[] = R"doc(Options of refracta.trace_ray and trace_rays, with their defaults (defined once, here). Set any
+field by name; validate() reports every bad value at once. Pickles through its fields.)doc";
 // NOLINTEND

@@ -16,11 +16,11 @@ class HotSpot:
     An areal hot (dt > 0) or cold (dt < 0) patch of ground centred at (x, z) [m]: the air above it is
     warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre, with footprint
     'gaussian' F = exp(-r^2 / (2 radius^2)) or 'compact' F = (1 - r/R)^4 (4 r/R + 1) for r < R = radius
-    (Wendland's C2 function: exactly zero outside). Give it to PhysicalAtmosphere(hot_spots=[...])
-    (dt [K]; depth [m], None: the atmosphere's surface_depth) or LogisticProfile(hot_spots=[...])
-    (dt: strength of the profile's hot-spot term there, 1 = the whole term; depth must be None: the
-    term's width is a_hot). The fields expose each spot's numbers as parameters hot_spot<i>_x, _z,
-    _radius, _dt (, _depth), so refracta.edit.solve can move, resize and heat them.
+    (Wendland's C2 function: exactly zero outside). Give it to PhysicalAtmosphere(hot_spots=[...]) (dt
+    [K]; depth [m], None: the atmosphere's surface_depth) or LogisticProfile(hot_spots=[...]) (dt:
+    strength of the profile's hot-spot term there, 1 = the whole term; depth must be None: the term's
+    width is a_hot). The fields expose each spot's numbers as parameters hot_spot<i>_x, _z, _radius, _dt
+    (, _depth), so refracta.edit.solve can move, resize and heat them.
     """
     __hash__: typing.ClassVar[None] = None
     def __eq__(self, arg0: HotSpot) -> bool:
@@ -254,8 +254,8 @@ class IndexField:
     ior(points) -> n, shape (N,) (float for one point); grad_ior(points) -> grad n [1/m], (N, 3).
     params: dict of parameter values; param_names; bounds: dict name -> (lower, upper), the box an
     optimiser searches; ``with_params(**values)`` -> a new field; height_only: n depends on y alone;
-    gauge_params: parameters an optimiser holds fixed by default (a joint scaling leaves rays unchanged).
-    Raises refracta.NumericalError where n <= 0 or is not finite.
+    gauge_params: parameters an optimiser holds fixed by default (a joint scaling leaves rays
+    unchanged). Raises refracta.NumericalError where n <= 0 or is not finite.
     """
     def __repr__(self) -> str:
         ...
@@ -726,7 +726,7 @@ class TextureNotFoundError(IoError, FileNotFoundError):
     """
 class ObjOptions:
     """
-    How Scene.add_obj places an OBJ file and finds its textures (render/obj_materials.h).
+    How add_obj (Scene.add_obj) places an OBJ file and finds its textures.
     """
     def __getstate__(self) -> dict:
         ...
@@ -984,9 +984,9 @@ class Scene:
 class Camera:
     """
     Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
-    vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at
-    (i + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=)
-    or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.
+    vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at (i
+    + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=) or
+    Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.
     """
     @staticmethod
     def eye_level(eye: typing.Any, target: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex = 1.6, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex = 50.0, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), *, width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
@@ -1252,12 +1252,12 @@ class OceanWaves:
     the field is real; slopes by the FFT of i k h~ (exact on the nodes). Modes run up to the patch's
     Nyquist wavenumber pi resolution / patch_size (shorter waves are the Water material's microfacets)
     and down to 2 pi / patch_size (longer waves are missing). Deterministic from seed (each mode's
-    numbers depend only on seed and its integer wavenumber, so a finer resolution keeps the long
-    waves); time [s] moves the waves by deep-water dispersion w = sqrt(g k). No choppy displacement.
+    numbers depend only on seed and its integer wavenumber, so a finer resolution keeps the long waves);
+    time [s] moves the waves by deep-water dispersion w = sqrt(g k). No choppy displacement.
     
     wind_speed [m/s] in (0, 30] (12.5 m above the sea, as Water's); wind_direction (x, z) horizontal,
-    any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024]. Arrays are
-    indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).
+    any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024]. Arrays are indexed
+    [j, i] at node x = i * spacing, z = j * spacing (rows along z).
     """
     phillips_a: typing.ClassVar[float] = 0.0017546832475881459
     def __getstate__(self) -> tuple[float, tuple[float, float], float, int, int, float]:
@@ -1349,10 +1349,10 @@ class OceanWaves:
 class MomentShadowSettings:
     """
     How a moment shadow map keeps its four power moments and biases them (shared/MOMENTS.md 2-3):
-    depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT
-    2017); storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation
-    transforms); bias (alpha) and bias_vector (b*): None means the published value for the depth
-    range and storage (published_bias, published_bias_vector).
+    depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT 2017);
+    storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation transforms); bias
+    (alpha) and bias_vector (b*): None means the published value for the depth range and storage
+    (published_bias, published_bias_vector).
     """
     @staticmethod
     def published_bias(depth_range: str, storage: str) -> float:
@@ -1412,8 +1412,8 @@ class MomentShadowSettings:
         ...
 class ShadowMapOptions:
     """
-    The shadow maps of render_raster (an orthographic map for the sun, a perspective one per spot light):
-    method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm_hamburger',
+    The shadow maps of render_raster (an orthographic map for the sun, a perspective one per spot
+    light): method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm_hamburger',
     'msm_hausdorff' (four moments box-filtered kernel x kernel, read through `moments`).
     """
     def __getstate__(self) -> dict:
@@ -1488,11 +1488,11 @@ class ShadowMapOptions:
         ...
 class MboitSettings:
     """
-    Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4):
-    basis 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias
-    None: the published value for the basis, moment count and storage; storage 'fp32' or 'unorm16'
-    (the 16-bit ROV variant, re-quantised after every fragment); log-depth warp over [z_near, z_far]
-    [m] (z_far <= z_near: the fragments' own range, in render_raster the frame's).
+    Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
+    'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
+    published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit ROV
+    variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (z_far <=
+    z_near: the fragments' own range, in render_raster the frame's).
     """
     @staticmethod
     def published_bias(basis: str, moments: typing.SupportsInt | typing.SupportsIndex, storage: str) -> float:
@@ -1627,8 +1627,8 @@ class OitSettings:
         ...
 class RasterRenderOptions:
     """
-    Options of refracta.render_raster, with their defaults (defined once, here). Set any field by
-    name, nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
+    Options of refracta.render_raster, with their defaults (defined once, here). Set any field by name,
+    nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
     validate() reports every bad value at once.
     """
     def __getstate__(self) -> dict:
@@ -2872,13 +2872,13 @@ class TerrainShading(Material):
     """
     Terrain coloured by elevation, slope and snow line (shading/terrain_shading.h), the default of
     Scene.add_terrain: Lambertian, its reflectance ``vegetation`` below ``tree_line`` [m], ``rock``
-    above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above
-    ``snow_line`` [m] on slopes under 55 deg (snow slides off steeper ones); the covers blend over
-    100 m of height and 5 deg of slope. Heights are true heights above sea level: with
-    ``earth_radius`` R > 0 (the scene's CurvedEarth radius) the scene's y is the flat height
-    y' = R ln(1 + h/R) and h = R (exp(y'/R) - 1); 0 means a flat Earth (h = y). The slope is the
-    shading normal's angle from +y (the Earth-flattening map is conformal: it keeps angles).
-    Colours are linear RGB albedos in [0, 1]: conifer forest ~0.08, rock 0.2-0.3, old snow ~0.8.
+    above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above ``snow_line``
+    [m] on slopes under 55 deg (snow slides off steeper ones); the covers blend over 100 m of height and
+    5 deg of slope. Heights are true heights above sea level: with ``earth_radius`` R > 0 (the scene's
+    CurvedEarth radius) the scene's y is the flat height y' = R ln(1 + h/R) and h = R (exp(y'/R) - 1); 0
+    means a flat Earth (h = y). The slope is the shading normal's angle from +y (the Earth-flattening
+    map is conformal: it keeps angles). Colours are linear RGB albedos in [0, 1]: conifer forest ~0.08,
+    rock 0.2-0.3, old snow ~0.8.
     """
     def __getstate__(self) -> dict:
         ...
@@ -3114,7 +3114,7 @@ class PhysicalSky:
     below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
     BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
     (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
-    default). See cpp/refracta/shading/physical_sky.h.
+    default). Its sampling: the comment above.
     """
     @staticmethod
     def solar_irradiance(wavelengths: typing.Any) -> typing.Any:
@@ -3159,11 +3159,11 @@ class PhysicalSky:
         ...
 class AerialPerspective:
     """
-    Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b`
-    [m] (scene coordinates; y = 0 lies the sky's `altitude` above sea level), the transmittance T and
-    the single-scattered sunlight S the air adds (the sky's coefficients, densities, phase functions,
-    ozone and sun; multiple scattering left out, as in the sky): what arrives at a is T L(b) + S. The
-    chord is integrated in pieces in closed form (cpp/refracta/shading/aerial_perspective.h).
+    Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b` [m]
+    (scene coordinates; y = 0 lies the sky's `altitude` above sea level), the transmittance T and the
+    single-scattered sunlight S the air adds (the sky's coefficients, densities, phase functions, ozone
+    and sun; multiple scattering left out, as in the sky): what arrives at a is T L(b) + S. The chord is
+    integrated in pieces in closed form (cpp/refracta/shading/aerial_perspective.h).
     earth_radius: a CurvedEarth's radius when the scene is its flat frame (y is then the height above
     the curved ground), inf for a flat scene (the sky's planet touches y = 0 under the origin).
     Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to every segment.
@@ -3197,8 +3197,8 @@ class DispersedField(IndexField):
     """
     A field at another wavelength: n' = 1 + scale (n - 1), grad n' = scale grad n, height-only as its
     base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
-    base's. Spectral renders through a field build these per sample (each hero wavelength); build
-    one with dispersed_field(field, wavelength).
+    base's. Spectral renders through a field build these per sample (each hero wavelength); build one
+    with dispersed_field(field, wavelength).
     """
     def __getstate__(self) -> tuple:
         ...

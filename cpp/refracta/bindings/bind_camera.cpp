@@ -1,5 +1,6 @@
 // Python bindings of the camera (scene/camera.h): pinhole, thin lens, the photographer's
 // constructors and the geometric jitter.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_scene.h"
 
 #include <cmath>
@@ -124,11 +125,7 @@ for Camera.photographic (focus by default at the target's horizontal distance):
 }  // namespace
 
 void bind_camera(py::module_& m) {
-  py::class_<Camera> camera(m, "Camera", R"doc(
-Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
-vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at
-(i + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=)
-or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)doc");
+  py::class_<Camera> camera(m, "Camera", DOC(refracta, Camera));
   camera
       .def(py::init([](const py::object& position, const py::object& look_at, const py::object& up, double vfov,
                        int width, int height) {

@@ -1,15 +1,12 @@
 // Python bindings of the air's dispersion (media/dispersed_field.h).
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_media.h"
 #include "refracta/media/dispersed_field.h"
 
 namespace refracta {
 
 void bind_dispersion(py::module_& m) {
-  py::class_<DispersedField, IndexField, std::shared_ptr<DispersedField>> cls(m, "DispersedField", R"doc(
-A field at another wavelength: n' = 1 + scale (n - 1), grad n' = scale grad n, height-only as its
-base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
-base's. Spectral renders through a field build these per sample (each hero wavelength); build
-one with dispersed_field(field, wavelength).)doc");
+  py::class_<DispersedField, IndexField, std::shared_ptr<DispersedField>> cls(m, "DispersedField", DOC(refracta, DispersedField));
   auto make = [](std::shared_ptr<IndexField> base, double scale) {
     return std::make_shared<DispersedField>(base, scale);
   };

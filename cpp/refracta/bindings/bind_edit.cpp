@@ -1,6 +1,7 @@
 // Python bindings of editing (cpp/refracta/edit): SolveSettings and PairOptions (options, pickled
 // through their fields), SolveSummary (a read-only result), the solve, the pair measures and the
 // pairs' paths. refracta.edit (Python) builds pairs from cameras and wraps the result.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/interruptible.h"
@@ -45,9 +46,7 @@ ProblemSpec make_spec(const std::shared_ptr<IndexField>& field, const std::vecto
 
 void bind_solve_settings(py::module_& m) {
   using S = SolveSettings;
-  py::class_<S> cls(m, "SolveSettings", R"doc(
-Settings of refracta.edit.solve, with their defaults (defined once, in C++'s SolveSettings). Set any
-field by name, or pass them to solve() as keywords; validate() reports every bad value at once.)doc");
+  py::class_<S> cls(m, "SolveSettings", DOC(refracta, SolveSettings));
   cls.def(py::init<>())
       .def_property("backend", &backend_name, [](S& s, const std::string& v) { parse_backend(v, &s); },
                     "'ceres' (Levenberg-Marquardt, automatic derivatives) or 'nlopt:<ALGORITHM>' (any nlopt name)")
@@ -83,10 +82,7 @@ field by name, or pass them to solve() as keywords; validate() reports every bad
 
 void bind_pair_options(py::module_& m) {
   using P = PairOptions;
-  py::class_<P> cls(m, "PairOptions", R"doc(
-How an edit's pairs are traced and measured (refracta.edit.solve, distances, jacobian and
-EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
-PairOptions). validate() reports every bad value at once.)doc");
+  py::class_<P> cls(m, "PairOptions", DOC(refracta, PairOptions));
   cls.def(py::init<>())
       .def_readwrite("tol", &P::tol, "[m] rk45 target position error (at least 1e-13 per metre of path)")
       .def_readwrite("step", &P::step, "[m] rk4 step (0: 0.3, the original editor's)")
@@ -174,8 +170,7 @@ const std::vector<SummaryField>& summary_fields() {
 }
 
 void bind_solve_summary(py::module_& m) {
-  py::class_<SolveSummary> cls(m, "SolveSummary", R"doc(
-What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields).)doc");
+  py::class_<SolveSummary> cls(m, "SolveSummary", DOC(refracta, SolveSummary));
   for (const SummaryField& field : summary_fields()) field.bind(cls);
   cls.def(py::pickle(
       [](const SolveSummary& s) {

@@ -1,5 +1,6 @@
 // Python bindings of image files and the display pipeline (scene/image_io.h, shading/display.h):
 // what refracta.io wraps.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_scene.h"
 #include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/options_binding.h"
@@ -44,12 +45,7 @@ void write_display_image(const std::string& path, Image image, const DisplaySett
 
 void bind_display_settings(py::module_& m) {
   using S = DisplaySettings;
-  py::class_<S> cls(m, "DisplaySettings", R"doc(
-How refracta.io turns linear radiance into display values (shading/tonemap.h; the formulas: the
-refracta.io module). Exposure: automatic (no manual field set: the image's log-average luminance
-goes to `key`), or manual, at most one of `exposure`, `ev100`, or `shutter` with `f_number` (and
-`iso`); a `key` given overrides a manual exposure. Then the tone curve `tonemap` and the transfer
-curve `gamma`. validate() lists every bad field.)doc");
+  py::class_<S> cls(m, "DisplaySettings", DOC(refracta, DisplaySettings));
   def_options_common<S>(cls, "DisplaySettings");
   cls.def_readwrite("exposure", &S::exposure, "c > 0 multiplying the radiance (manual); None: not this way")
       .def_readwrite("ev100", &S::ev100, "manual exposure as EV100: c = K / (1.2 x 2^EV100); None: not this way")

@@ -1,4 +1,5 @@
 // Python bindings of the refractive-index fields (cpp/refracta/media) and CustomField.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_media.h"
 #include "refracta/bindings/custom_field.h"
 #include "refracta/bindings/interruptible.h"
@@ -165,15 +166,7 @@ py::object grad_of(const IndexField& field, const py::object& points) {
 }
 
 void bind_hot_spot(py::module_& m) {
-  py::class_<HotSpot> cls(m, "HotSpot", R"doc(
-An areal hot (dt > 0) or cold (dt < 0) patch of ground centred at (x, z) [m]: the air above it is
-warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre, with footprint
-'gaussian' F = exp(-r^2 / (2 radius^2)) or 'compact' F = (1 - r/R)^4 (4 r/R + 1) for r < R = radius
-(Wendland's C2 function: exactly zero outside). Give it to PhysicalAtmosphere(hot_spots=[...])
-(dt [K]; depth [m], None: the atmosphere's surface_depth) or LogisticProfile(hot_spots=[...])
-(dt: strength of the profile's hot-spot term there, 1 = the whole term; depth must be None: the
-term's width is a_hot). The fields expose each spot's numbers as parameters hot_spot<i>_x, _z,
-_radius, _dt (, _depth), so refracta.edit.solve can move, resize and heat them.)doc");
+  py::class_<HotSpot> cls(m, "HotSpot", DOC(refracta, HotSpot));
   cls.def(py::init(&make_hot_spot), py::arg("x"), py::arg("z"), py::arg("radius"), py::arg("dt"),
           py::arg("depth") = py::none(), py::arg("footprint") = "gaussian")
       .def_readonly("x", &HotSpot::x)
@@ -198,14 +191,7 @@ _radius, _dt (, _depth), so refracta.edit.solve can move, resize and heat them.)
 
 // The interface every field shares: n, its gradient, parameters, regions, turbulence.
 void bind_index_field(py::module_& m) {
-  py::class_<IndexField, std::shared_ptr<IndexField>>(m, "IndexField", R"doc(
-A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres, y up.
-
-ior(points) -> n, shape (N,) (float for one point); grad_ior(points) -> grad n [1/m], (N, 3).
-params: dict of parameter values; param_names; bounds: dict name -> (lower, upper), the box an
-optimiser searches; ``with_params(**values)`` -> a new field; height_only: n depends on y alone;
-gauge_params: parameters an optimiser holds fixed by default (a joint scaling leaves rays unchanged).
-Raises refracta.NumericalError where n <= 0 or is not finite.)doc")
+  py::class_<IndexField, std::shared_ptr<IndexField>>(m, "IndexField", DOC(refracta, IndexField))
       .def("ior", &ior_of, py::arg("points"), "Refractive index at points (N, 3) -> (N,).")
       .def("grad_ior", &grad_of, py::arg("points"), "Gradient of n [1/m] at points (N, 3) -> (N, 3).")
       .def_property_readonly("type_name", &IndexField::type_name)

@@ -1,6 +1,7 @@
 // Python bindings of the wind sea's waves (scene/ocean_waves.h): refracta.OceanWaves and
 // Scene.add_sea, which pairs the displaced mesh with Water materials that keep the slopes it does
 // not resolve (shading/water_surface.h). Called by bind_scene, after Scene is bound.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_scene.h"
 
 #include "refracta/render/scene_building.h"
@@ -41,24 +42,7 @@ py::array_t<double> grid_array(const OceanWaves& waves, const std::vector<double
 void bind_ocean(py::module_& m) {
   const OceanWavesParameters defaults;
   const double default_wind = WaterParameters{}.wind_speed;
-  py::class_<OceanWaves, std::shared_ptr<OceanWaves>>(m, "OceanWaves", R"doc(
-A wind sea's waves on a periodic square patch (scene/ocean_waves.h): a height field synthesised by
-FFT from the Phillips spectrum, as Tessendorf 2001 ("Simulating Ocean Water") does,
-
-    Phi(k) = A exp(-1 / (k L_w)^2) / k^4 |k^.w^|^2 [m^4],   L_w = wind_speed^2 / g,
-
-with A = 2 (0.21 / 4)^2 / pi = 1.755e-3 fixed by the significant wave height of a fully developed
-sea, H_s = 4 sigma_h = 0.21 U^2 / g (Pierson & Moskowitz 1964; Phillips 1957 for the k^-4 form).
-Each mode is a complex normal with E|h~(k)|^2 = Phi(k) dk^2 (dk = 2 pi / patch_size), Hermitian so
-the field is real; slopes by the FFT of i k h~ (exact on the nodes). Modes run up to the patch's
-Nyquist wavenumber pi resolution / patch_size (shorter waves are the Water material's microfacets)
-and down to 2 pi / patch_size (longer waves are missing). Deterministic from seed (each mode's
-numbers depend only on seed and its integer wavenumber, so a finer resolution keeps the long
-waves); time [s] moves the waves by deep-water dispersion w = sqrt(g k). No choppy displacement.
-
-wind_speed [m/s] in (0, 30] (12.5 m above the sea, as Water's); wind_direction (x, z) horizontal,
-any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024]. Arrays are
-indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).)doc")
+  py::class_<OceanWaves, std::shared_ptr<OceanWaves>>(m, "OceanWaves", DOC(refracta, OceanWaves))
       .def(py::init(&make_waves),
            py::arg("wind_speed") = default_wind,
            py::arg("wind_direction") = py::make_tuple(defaults.wind_direction.x(), defaults.wind_direction.y()),

@@ -1,5 +1,6 @@
 // Python classes of the raster renderer's options (raster/shadow_map.h, raster/oit.h,
 // render/raster_renderer.h): fields under their C++ names, choices as strings, defaults C++'s.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/options_binding.h"
@@ -24,12 +25,7 @@ py::object optional_tuple(const std::optional<Vector>& v) {
 
 void bind_moment_shadow_settings(py::module_& m) {
   using S = MomentShadowSettings;
-  py::class_<S> cls(m, "MomentShadowSettings", R"doc(
-How a moment shadow map keeps its four power moments and biases them (shared/MOMENTS.md 2-3):
-depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT
-2017); storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation
-transforms); bias (alpha) and bias_vector (b*): None means the published value for the depth
-range and storage (published_bias, published_bias_vector).)doc");
+  py::class_<S> cls(m, "MomentShadowSettings", DOC(refracta, MomentShadowSettings));
   def_options_common<S>(cls, "MomentShadowSettings");
   def_enum_property(cls, "depth_range", &S::depth_range, depth_range_name, parse_depth_range,
                     "'unit' ([0, 1]) or 'signed' ([-1, 1])");
@@ -62,10 +58,7 @@ range and storage (published_bias, published_bias_vector).)doc");
 
 void bind_shadow_map_options(py::module_& m) {
   using O = ShadowMapOptions;
-  py::class_<O> cls(m, "ShadowMapOptions", R"doc(
-The shadow maps of render_raster (an orthographic map for the sun, a perspective one per spot light):
-method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm_hamburger',
-'msm_hausdorff' (four moments box-filtered kernel x kernel, read through `moments`).)doc");
+  py::class_<O> cls(m, "ShadowMapOptions", DOC(refracta, ShadowMapOptions));
   def_options_common<O>(cls, "ShadowMapOptions");
   def_enum_property(cls, "method", &O::method, shadow_method_name, parse_shadow_method,
                     "'hard', 'pcf', 'vsm', 'msm_hamburger' or 'msm_hausdorff'")
@@ -81,12 +74,7 @@ method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm
 
 void bind_oit_settings(py::module_& m) {
   using M = MboitSettings;
-  py::class_<M> mboit(m, "MboitSettings", R"doc(
-Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4):
-basis 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias
-None: the published value for the basis, moment count and storage; storage 'fp32' or 'unorm16'
-(the 16-bit ROV variant, re-quantised after every fragment); log-depth warp over [z_near, z_far]
-[m] (z_far <= z_near: the fragments' own range, in render_raster the frame's).)doc");
+  py::class_<M> mboit(m, "MboitSettings", DOC(refracta, MboitSettings));
   def_options_common<M>(mboit, "MboitSettings");
   def_enum_property(mboit, "basis", &M::basis, moment_basis_name, parse_moment_basis, "'power' or 'trigonometric'")
       .def_readwrite("moments", &M::moments, "4, 6 or 8 power moments; 2, 3 or 4 trigonometric")
@@ -104,10 +92,7 @@ None: the published value for the basis, moment count and storage; storage 'fp32
   def_enum_property(mboit, "storage", &M::storage, storage_name, parse_storage, "'fp32' or 'unorm16'");
 
   using O = OitSettings;
-  py::class_<O> cls(m, "OitSettings", R"doc(
-How surfaces with alpha < 1 are composited: method 'exact' (sorted: depth peeling with enough
-layers), 'peel' (the `layers` nearest), 'wboit' (McGuire & Bavoil, JCGT 2013, depth weight 'eq7' or
-'eq9') or 'mboit' (moment-based, settings in `mboit`).)doc");
+  py::class_<O> cls(m, "OitSettings", DOC(refracta, OitSettings));
   def_options_common<O>(cls, "OitSettings");
   def_enum_property(cls, "method", &O::method, oit_method_name, parse_oit_method, "'exact', 'peel', 'wboit' or 'mboit'")
       .def_readwrite("layers", &O::layers, "peel: layers kept");
@@ -119,10 +104,7 @@ layers), 'peel' (the `layers` nearest), 'wboit' (McGuire & Bavoil, JCGT 2013, de
 
 void bind_raster_render_options(py::module_& m) {
   using O = RasterRenderOptions;
-  py::class_<O> cls(m, "RasterRenderOptions", R"doc(
-Options of refracta.render_raster, with their defaults (defined once, here). Set any field by
-name, nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
-validate() reports every bad value at once.)doc");
+  py::class_<O> cls(m, "RasterRenderOptions", DOC(refracta, RasterRenderOptions));
   def_options_common<O>(cls, "RasterRenderOptions");
   def_enum_property(cls, "shadows", &O::shadows, shadow_source_name, parse_shadow_source,
                     "'map' (shadow maps: shadow_map), 'embree' (shadow rays: the reference) or 'none'")
@@ -161,7 +143,7 @@ validate() reports every bad value at once.)doc");
 
 void bind_raster_render_stats(py::module_& m) {
   using S = RasterRenderStats;
-  py::class_<S>(m, "RasterRenderStats", "What render_raster measured (read-only).")
+  py::class_<S>(m, "RasterRenderStats", DOC(refracta, RasterRenderStats))
       .def_readonly("seconds", &S::seconds, "[s] the whole render")
       .def_readonly("shadow_build_seconds", &S::shadow_build_seconds,
                     "[s] rasterizing, filtering and storing the shadow maps")

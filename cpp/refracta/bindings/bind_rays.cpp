@@ -1,4 +1,5 @@
 // Python bindings of the ray integrators (cpp/refracta/rays): trace_ray, the batch tracer, RayPath.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/interruptible.h"
@@ -57,13 +58,7 @@ py::tuple ends_tuple(const RayBatchEnds& ends) {
 }
 
 void bind_ray_path(py::module_& m) {
-  py::class_<RayPath, std::shared_ptr<RayPath>>(m, "RayPath", R"doc(
-A traced light path. Arrays are per node (the integrator's steps; the path between nodes is the
-quintic Hermite interpolant of positions, tangents and curvatures, accurate to O(step^6)).
-
-points (N,3) [m]; directions (N,3) unit tangents; arc_length (N,) [m]; ior (N,) n at each node;
-ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max_length',
-'stop_height'); evaluations: field evaluations used.)doc")
+  py::class_<RayPath, std::shared_ptr<RayPath>>(m, "RayPath", DOC(refracta, RayPath))
       .def_property_readonly("points", [](const RayPath& p) { return points_to_array(p.points()); })
       .def_property_readonly("directions", [](const RayPath& p) { return points_to_array(p.directions()); })
       .def_property_readonly("ray_vectors", [](const RayPath& p) { return points_to_array(p.ray_vectors()); })
@@ -118,9 +113,7 @@ ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max
 }
 
 void bind_trace_options(py::module_& m) {
-  py::class_<TraceOptions> options(m, "TraceOptions", R"doc(
-Options of refracta.trace_ray and trace_rays, with their defaults (defined once, here). Set any
-field by name; validate() reports every bad value at once. Pickles through its fields.)doc");
+  py::class_<TraceOptions> options(m, "TraceOptions", DOC(refracta, TraceOptions));
   def_enum_property(options.def(py::init<>()), "trace", &TraceOptions::trace, &trace_method_name, &parse_trace_method,
                     "the integrator: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the "
                     "path), 'rk4' (fixed step `step`), or 'stratified' (height-only fields: exact paths from "

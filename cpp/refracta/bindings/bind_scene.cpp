@@ -1,5 +1,6 @@
 // Python bindings of the scene (render/render_scene.h): geometry, materials and OBJ files. Its
 // lights: bind_scene_lights.cpp; the camera: bind_camera.cpp; image files: bind_image_io.cpp.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_scene.h"
 #include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/options_binding.h"
@@ -281,7 +282,7 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
 
 void bind_obj_options(py::module_& m) {
   using O = ObjOptions;
-  py::class_<O> cls(m, "ObjOptions", "How Scene.add_obj places an OBJ file and finds its textures (render/obj_materials.h).");
+  py::class_<O> cls(m, "ObjOptions", DOC(refracta, ObjOptions));
   def_options_common<O>(cls, "ObjOptions");
   cls.def_property(
          "offset", [](const O& o) { return py::make_tuple(o.offset.x(), o.offset.y(), o.offset.z()); },

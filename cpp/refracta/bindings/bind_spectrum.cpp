@@ -1,5 +1,6 @@
 // Python bindings of spectral colour (shading/spectrum_batch.h) and the physical sky (sky_batch.h):
 // private _core functions wrapped by python/refracta/spectrum.py (which documents and shapes them).
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_shading.h"
 #include "refracta/shading/sky_batch.h"
 
@@ -77,15 +78,7 @@ void bind_spectrum_functions(py::module_& m) {
 
 void bind_physical_sky(py::module_& m) {
   const PhysicalSkySettings defaults;
-  py::class_<PhysicalSkyLight, std::shared_ptr<PhysicalSkyLight>>(m, "PhysicalSky", R"doc(
-A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
-Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
-`aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
-sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
-below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
-BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
-(ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
-default). See cpp/refracta/shading/physical_sky.h.)doc")
+  py::class_<PhysicalSkyLight, std::shared_ptr<PhysicalSkyLight>>(m, "PhysicalSky", DOC(refracta, PhysicalSkyLight))
       .def(py::init([](const py::object& sun, double aerosol, double ozone_du, double ground_albedo, double altitude,
                        double rayleigh_scale, const std::string& below_horizon, std::optional<double> visibility) {
              const PhysicalSkySettings s = sky_settings(to_point(sun, "sun_direction"), aerosol, ozone_du,
@@ -151,15 +144,7 @@ default). See cpp/refracta/shading/physical_sky.h.)doc")
 }
 
 void bind_aerial_perspective(py::module_& m) {
-  py::class_<AerialPerspective, std::shared_ptr<AerialPerspective>>(m, "AerialPerspective", R"doc(
-Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b`
-[m] (scene coordinates; y = 0 lies the sky's `altitude` above sea level), the transmittance T and
-the single-scattered sunlight S the air adds (the sky's coefficients, densities, phase functions,
-ozone and sun; multiple scattering left out, as in the sky): what arrives at a is T L(b) + S. The
-chord is integrated in pieces in closed form (cpp/refracta/shading/aerial_perspective.h).
-earth_radius: a CurvedEarth's radius when the scene is its flat frame (y is then the height above
-the curved ground), inf for a flat scene (the sky's planet touches y = 0 under the origin).
-Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to every segment.)doc")
+  py::class_<AerialPerspective, std::shared_ptr<AerialPerspective>>(m, "AerialPerspective", DOC(refracta, AerialPerspective))
       .def(py::init([](const std::shared_ptr<PhysicalSkyLight>& sky, double scale) {
              if (!sky) throw_invalid("sky must be a refracta.spectrum.PhysicalSky");
              return std::make_shared<AerialPerspective>(PhysicalSky::shared(sky->settings()), scale);

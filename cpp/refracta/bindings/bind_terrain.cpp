@@ -1,6 +1,7 @@
 // Python bindings of terrain (scene/terrain.h, shading/terrain_shading.h): the array-only
 // Scene._add_terrain_grid that refracta.terrain.add_terrain (the public Scene.add_terrain) calls
 // after reading files and placing samples, and the TerrainShading material.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_scene.h"
 #include "refracta/bindings/bind_shading.h"
 
@@ -37,16 +38,7 @@ void bind_terrain(py::module_& m) {
 
 void bind_terrain_shading(py::module_& m) {
   const TerrainShadingParameters d;
-  py::class_<TerrainShading, Material, std::shared_ptr<TerrainShading>> terrain(m, "TerrainShading", R"doc(
-Terrain coloured by elevation, slope and snow line (shading/terrain_shading.h), the default of
-Scene.add_terrain: Lambertian, its reflectance ``vegetation`` below ``tree_line`` [m], ``rock``
-above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above
-``snow_line`` [m] on slopes under 55 deg (snow slides off steeper ones); the covers blend over
-100 m of height and 5 deg of slope. Heights are true heights above sea level: with
-``earth_radius`` R > 0 (the scene's CurvedEarth radius) the scene's y is the flat height
-y' = R ln(1 + h/R) and h = R (exp(y'/R) - 1); 0 means a flat Earth (h = y). The slope is the
-shading normal's angle from +y (the Earth-flattening map is conformal: it keeps angles).
-Colours are linear RGB albedos in [0, 1]: conifer forest ~0.08, rock 0.2-0.3, old snow ~0.8.)doc");
+  py::class_<TerrainShading, Material, std::shared_ptr<TerrainShading>> terrain(m, "TerrainShading", DOC(refracta, TerrainShading));
   terrain
       .def(py::init([](double snow_line, double tree_line, double rock_slope, double earth_radius, const py::object& vegetation,
                        const py::object& rock, const py::object& snow) {

@@ -24,6 +24,9 @@ enum class SolveStrategy { kAuto, kLocal };
 // Ceres' robust losses on each pair's squared miss (none: plain least squares).
 enum class RobustLoss { kNone, kHuber, kSoftL1, kCauchy, kArctan };
 
+// Settings of refracta.edit.solve, with their defaults (defined once, in C++'s SolveSettings). Set
+// any field by name, or pass them to solve() as keywords; validate() reports every bad value at
+// once.
 struct SolveSettings {
   // Python spells the back-end "ceres" or "nlopt:<ALGORITHM>" (any nlopt algorithm name,
   // nlopt_algorithm; checked by validate()).
@@ -104,6 +107,7 @@ SolveStrategy parse_strategy(const std::string& name);
 const char* loss_name(RobustLoss loss);               // "none", "huber", "soft_l1", "cauchy", "arctan"
 RobustLoss parse_loss(const std::string& name);
 
+// What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields).
 struct SolveSummary {
   std::vector<double> values;        // every parameter of the solved field
   // With camera parameters free: every camera parameter at the result (CameraRig::names() order:

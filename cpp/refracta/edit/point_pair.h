@@ -43,6 +43,9 @@ struct PointPair {
 //   vertex:     the nearest integrator node (the original editor's measure, piecewise constant).
 enum class PairDistance { kContinuous, kVertex };
 
+// How an edit's pairs are traced and measured (refracta.edit.solve, distances, jacobian and
+// EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
+// PairOptions). validate() reports every bad value at once.
 struct PairOptions {
   TraceMethod trace = TraceMethod::kRk45;   // the ray integrator: rk45 or rk4 (stratified has no derivatives)
   double tol = 1e-9;   // rk45 target position error [m] (at least 1e-13 per metre of path)

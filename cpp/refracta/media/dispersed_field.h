@@ -30,6 +30,11 @@ double field_reference_wavelength(const IndexField& field);
 
 // n' = 1 + scale (n - 1) of a base field, grad n' = scale grad n; height-only as its base. Its
 // parameters are the base's (with_param_values keeps the scale).
+
+// A field at another wavelength: n' = 1 + scale (n - 1), grad n' = scale grad n, height-only as its
+// base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
+// base's. Spectral renders through a field build these per sample (each hero wavelength); build one
+// with dispersed_field(field, wavelength).
 class DispersedField final : public IndexField {
  public:
   // base non-null; scale > 0 and finite.

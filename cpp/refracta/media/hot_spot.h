@@ -25,7 +25,15 @@ enum class Footprint { kGaussian, kCompact };
 Footprint parse_footprint(const std::string& name);  // "gaussian", "compact"
 const char* footprint_name(Footprint footprint);
 
-// A hot spot as made (and as reported back from a field's parameters).
+// An areal hot (dt > 0) or cold (dt < 0) patch of ground centred at (x, z) [m]: the air above it is
+// warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre, with footprint
+// 'gaussian' F = exp(-r^2 / (2 radius^2)) or 'compact' F = (1 - r/R)^4 (4 r/R + 1) for r < R =
+// radius (Wendland's C2 function: exactly zero outside). Give it to
+// PhysicalAtmosphere(hot_spots=[...]) (dt [K]; depth [m], None: the atmosphere's surface_depth) or
+// LogisticProfile(hot_spots=[...]) (dt: strength of the profile's hot-spot term there, 1 = the
+// whole term; depth must be None: the term's width is a_hot). The fields expose each spot's numbers
+// as parameters hot_spot<i>_x, _z, _radius, _dt (, _depth), so refracta.edit.solve can move, resize
+// and heat them.
 struct HotSpot {
   double x = 0.0, z = 0.0;  // centre on the ground [m]
   double radius = 1.0;      // [m]: the gaussian's standard deviation, or the compact support's radius

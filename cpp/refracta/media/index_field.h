@@ -26,6 +26,13 @@ struct ParamSpec {
   std::string doc;
 };
 
+// A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres, y up.
+//
+// ior(points) -> n, shape (N,) (float for one point); grad_ior(points) -> grad n [1/m], (N, 3).
+// params: dict of parameter values; param_names; bounds: dict name -> (lower, upper), the box an
+// optimiser searches; ``with_params(**values)`` -> a new field; height_only: n depends on y alone;
+// gauge_params: parameters an optimiser holds fixed by default (a joint scaling leaves rays
+// unchanged). Raises refracta.NumericalError where n <= 0 or is not finite.
 class IndexField {
  public:
   virtual ~IndexField() = default;

@@ -20,8 +20,11 @@ enum class MomentShadowMethod { kHamburger, kHausdorff, kVsm, kCanonical };
 MomentShadowMethod parse_moment_shadow_method(const std::string& name);  // "msm_hamburger", "msm_hausdorff", "vsm", "canonical"
 const char* moment_shadow_method_name(MomentShadowMethod method);
 
-// How the moments are kept and biased (the method is the caller's: the shadow map's, or
-// moments.shadow_intensity's argument).
+// How a moment shadow map keeps its four power moments and biases them (shared/MOMENTS.md 2-3):
+// depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT
+// 2017); storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation
+// transforms); bias (alpha) and bias_vector (b*): None means the published value for the depth
+// range and storage (published_bias, published_bias_vector).
 struct MomentShadowSettings {
   DepthRange depth_range = DepthRange::kUnit;  // [0, 1] (I3D 2015) or [-1, 1] (JCGT 2017)
   Storage storage = Storage::kFp32;            // how a GPU would keep them (the shadow maps' default)

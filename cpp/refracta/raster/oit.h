@@ -30,6 +30,11 @@ enum class WboitWeight { kEq7, kEq9 };
 WboitWeight parse_wboit_weight(const std::string& name);  // "eq7", "eq9"
 const char* wboit_weight_name(WboitWeight weight);
 
+// Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
+// 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
+// published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit
+// ROV variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (z_far
+// <= z_near: the fragments' own range, in render_raster the frame's).
 struct MboitSettings {
   MomentBasis basis = MomentBasis::kPower;
   int moments = 4;              // 4, 6 or 8 power moments; 2, 3 or 4 trigonometric
@@ -63,7 +68,9 @@ enum class OitMethod { kExact, kPeel, kWboit, kMboit };
 OitMethod parse_oit_method(const std::string& name);  // "exact", "peel", "wboit", "mboit"
 const char* oit_method_name(OitMethod method);
 
-// One OIT configuration: the method and its settings.
+// How surfaces with alpha < 1 are composited: method 'exact' (sorted: depth peeling with enough
+// layers), 'peel' (the `layers` nearest), 'wboit' (McGuire & Bavoil, JCGT 2013, depth weight 'eq7'
+// or 'eq9') or 'mboit' (moment-based, settings in `mboit`).
 struct OitSettings {
   OitMethod method = OitMethod::kMboit;
   int layers = 4;               // peel

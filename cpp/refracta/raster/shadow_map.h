@@ -26,6 +26,10 @@ enum class ShadowMethod { kHard, kPcf, kVsm, kHamburger, kHausdorff };
 ShadowMethod parse_shadow_method(const std::string& name);  // "hard", "pcf", "vsm", "msm_hamburger", "msm_hausdorff"
 const char* shadow_method_name(ShadowMethod method);
 
+// The shadow maps of render_raster (an orthographic map for the sun, a perspective one per spot
+// light): method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm',
+// 'msm_hamburger', 'msm_hausdorff' (four moments box-filtered kernel x kernel, read through
+// `moments`).
 struct ShadowMapOptions {
   ShadowMethod method = ShadowMethod::kHamburger;
   int resolution = 1024;     // texels per side

@@ -20,6 +20,12 @@ struct Crossing {
   Vec3d direction;  // unit tangent
 };
 
+// A traced light path. Arrays are per node (the integrator's steps; the path between nodes is the
+// quintic Hermite interpolant of positions, tangents and curvatures, accurate to O(step^6)).
+//
+// points (N,3) [m]; directions (N,3) unit tangents; arc_length (N,) [m]; ior (N,) n at each node;
+// ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max_length',
+// 'stop_height'); evaluations: field evaluations used.
 class RayPath {
  public:
   RayPath(std::vector<RayNode<double>> nodes, TraceStop stop, int64_t evaluations);

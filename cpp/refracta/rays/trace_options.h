@@ -21,6 +21,8 @@ constexpr double kRk4DefaultStep = 0.3;
 // stratified: the largest distance between path nodes when no step is given [m].
 constexpr double kStratifiedDefaultSpacing = 100.0;
 
+// Options of refracta.trace_ray and trace_rays, with their defaults (defined once, here). Set any
+// field by name; validate() reports every bad value at once. Pickles through its fields.
 struct TraceOptions {
   // The ray integrator (one name across the library: RenderOptions::trace, PairOptions' too).
   TraceMethod trace = TraceMethod::kRk45;

@@ -29,6 +29,7 @@ class TextureNotFound : public IoError {
 
 enum class MissingTextures { kError, kWarn };
 
+// How add_obj (Scene.add_obj) places an OBJ file and finds its textures.
 struct ObjOptions {
   Vec3d offset = Vec3d::Zero();  // [m], added after scaling
   double scale = 1.0;            // > 0

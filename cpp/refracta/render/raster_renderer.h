@@ -28,6 +28,9 @@ enum class RasterOutput { kRadiance, kShadow };
 RasterOutput parse_raster_output(const std::string& name);  // "radiance", "shadow"
 const char* raster_output_name(RasterOutput output);
 
+// Options of refracta.render_raster, with their defaults (defined once, here). Set any field by
+// name, nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
+// validate() reports every bad value at once.
 struct RasterRenderOptions {
   ShadowSource shadows = ShadowSource::kMap;
   ShadowMapOptions shadow_map;  // the sun's and the spot lights' maps (shadows = map)
@@ -56,6 +59,7 @@ struct RasterRenderOptions {
   void validate() const;                 // throws std::invalid_argument listing them all
 };
 
+// What render_raster measured (read-only).
 struct RasterRenderStats {
   double seconds = 0.0;               // the whole render
   double shadow_build_seconds = 0.0;  // rasterizing, filtering and storing the shadow map

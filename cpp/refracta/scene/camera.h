@@ -19,6 +19,10 @@
 
 namespace refracta {
 
+// Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is
+// the vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred
+// at (i + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(...,
+// f_number=) or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.
 class Camera {
  public:
   // vfov: full vertical field of view [deg] in (0, 180). Throws std::invalid_argument for NaN

@@ -58,6 +58,24 @@ struct OceanWavesParameters {
   double time = 0.0;  // [s] the waves' phase (deep-water dispersion): animation
 };
 
+// A wind sea's waves on a periodic square patch (scene/ocean_waves.h): a height field synthesised
+// by FFT from the Phillips spectrum, as Tessendorf 2001 ("Simulating Ocean Water") does,
+//
+//     Phi(k) = A exp(-1 / (k L_w)^2) / k^4 |k^.w^|^2 [m^4],   L_w = wind_speed^2 / g,
+//
+// with A = 2 (0.21 / 4)^2 / pi = 1.755e-3 fixed by the significant wave height of a fully developed
+// sea, H_s = 4 sigma_h = 0.21 U^2 / g (Pierson & Moskowitz 1964; Phillips 1957 for the k^-4 form).
+// Each mode is a complex normal with E|h~(k)|^2 = Phi(k) dk^2 (dk = 2 pi / patch_size), Hermitian
+// so the field is real; slopes by the FFT of i k h~ (exact on the nodes). Modes run up to the
+// patch's Nyquist wavenumber pi resolution / patch_size (shorter waves are the Water material's
+// microfacets) and down to 2 pi / patch_size (longer waves are missing). Deterministic from seed
+// (each mode's numbers depend only on seed and its integer wavenumber, so a finer resolution keeps
+// the long waves); time [s] moves the waves by deep-water dispersion w = sqrt(g k). No choppy
+// displacement.
+//
+// wind_speed [m/s] in (0, 30] (12.5 m above the sea, as Water's); wind_direction (x, z) horizontal,
+// any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024]. Arrays are
+// indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).
 class OceanWaves {
  public:
   static constexpr double kGravity = 9.80665;  // [m/s^2] standard gravity

@@ -46,6 +46,14 @@ struct AirFrame {
   void validate() const;
 };
 
+// Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b`
+// [m] (scene coordinates; y = 0 lies the sky's `altitude` above sea level), the transmittance T and
+// the single-scattered sunlight S the air adds (the sky's coefficients, densities, phase functions,
+// ozone and sun; multiple scattering left out, as in the sky): what arrives at a is T L(b) + S. The
+// chord is integrated in pieces in closed form (cpp/refracta/shading/aerial_perspective.h).
+// earth_radius: a CurvedEarth's radius when the scene is its flat frame (y is then the height above
+// the curved ground), inf for a flat scene (the sky's planet touches y = 0 under the origin).
+// Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to every segment.
 class AerialPerspective {
  public:
   // scale multiplies the in-scatter, as it does the sky and the sun (set_physical_sky's scale).

@@ -141,6 +141,15 @@ class PhysicalSky {
 //   [-1, 1] on 2 kElevations rows (the lower hemisphere mirrors the upper one's rows),
 //   pdf_w = pdf_xt / (4 pi^2 |s| cos e).
 // power() = pi R^2 integral of Y(L) over the sphere, R from preprocess (1 m before).
+
+// A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
+// Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
+// `aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
+// sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
+// below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
+// BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
+// (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
+// default). Its sampling: the comment above.
 class PhysicalSkyLight final : public Light {
  public:
   explicit PhysicalSkyLight(const PhysicalSkySettings& settings);

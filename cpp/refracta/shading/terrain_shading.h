@@ -29,6 +29,15 @@ struct TerrainShadingParameters {
   Vec3d snow{0.80, 0.80, 0.83};
 };
 
+// Terrain coloured by elevation, slope and snow line (shading/terrain_shading.h), the default of
+// Scene.add_terrain: Lambertian, its reflectance ``vegetation`` below ``tree_line`` [m], ``rock``
+// above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above
+// ``snow_line`` [m] on slopes under 55 deg (snow slides off steeper ones); the covers blend over
+// 100 m of height and 5 deg of slope. Heights are true heights above sea level: with
+// ``earth_radius`` R > 0 (the scene's CurvedEarth radius) the scene's y is the flat height y' = R
+// ln(1 + h/R) and h = R (exp(y'/R) - 1); 0 means a flat Earth (h = y). The slope is the shading
+// normal's angle from +y (the Earth-flattening map is conformal: it keeps angles). Colours are
+// linear RGB albedos in [0, 1]: conifer forest ~0.08, rock 0.2-0.3, old snow ~0.8.
 class TerrainShading final : public Material {
  public:
   // Snow slides off slopes steeper than this [deg] (avalanche starting zones are 30-55 deg).

@@ -47,6 +47,11 @@ constexpr double kLuminousEfficacy = 683.0;
 // The transfer curve after tone mapping: the IEC 61966-2-1 sRGB curve, or p = l^(1/gamma).
 enum class Transfer { kSrgb, kGamma };
 
+// How refracta.io turns linear radiance into display values (shading/tonemap.h; the formulas: the
+// refracta.io module). Exposure: automatic (no manual field set: the image's log-average luminance
+// goes to `key`), or manual, at most one of `exposure`, `ev100`, or `shutter` with `f_number` (and
+// `iso`); a `key` given overrides a manual exposure. Then the tone curve `tonemap` and the transfer
+// curve `gamma`. validate() lists every bad field.
 struct DisplaySettings {
   // Manual exposure, at most one of: c > 0 multiplying the radiance; EV100; a camera's shutter
   // [s] and f_number (with iso, default kDefaultIso). None of them: automatic.
