@@ -4,6 +4,7 @@
 #include "refracta/core/error.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace refracta {
 
@@ -64,8 +65,20 @@ void TurbulenceGrid::evaluate(const Vec3d& p, double* value, Vec3d* grad) const 
     const double cell = std::floor(t);
     bspline_weights(t - cell, w[a], dw[a]);
     const long n = n_[a];
-    long first = (long(std::fmod(cell, double(n))) - 1) % n;  // in (-n, n)
-    if (first < 0) first += n;
+    // The periodic index of cell - 1 in integers (std::fmod cost as much as a fifth of a shimmer
+    // step). Cells beyond a long's range (or NaN) are far outside any scene: NaN out.
+    if (!(std::abs(cell) < 9e18)) {
+      *value = std::numeric_limits<double>::quiet_NaN();
+      *grad = Vec3d::Constant(*value);
+      return;
+    }
+    long first;  // (cell - 1) mod n: a mask for the usual power-of-two grids, else one division
+    if ((n & (n - 1)) == 0) {
+      first = (long(cell) - 1) & (n - 1);
+    } else {
+      first = long(cell) % n - 1;  // in [-n, n - 1)
+      if (first < 0) first += n;
+    }
     for (int k = 0; k < 4; ++k) {
       const long i = first + k;
       index[a][k] = int(i < n ? i : i - n);

@@ -20,6 +20,8 @@
 #include "refracta/media/index_field.h"
 #include "refracta/media/turbulence.h"
 
+#include <vector>
+
 namespace refracta {
 
 // The calm ray at one arc length: position, unit tangent, n0 and dn0/dh there.
@@ -28,9 +30,6 @@ struct CalmPoint {
   Vec3d t = Vec3d::UnitX();
   double n = 1.0, dn_dh = 0.0;
 };
-
-// The calm point of a height-only field at x along unit t.
-CalmPoint calm_point(const IndexField& calm, const Vec3d& x, const Vec3d& t);
 
 // The turbulent ray's offset from the calm ray.
 struct RayDeviation {
@@ -41,10 +40,36 @@ struct RayDeviation {
   Vec3d tangent(const CalmPoint& at) const { return (at.n * at.t + dv).normalized(); }
 };
 
-// One step of `step` [m] of arc length (position Verlet: drift half, kick, drift half; one
-// evaluation of the turbulence and two of the calm air's height profile), from calm point a over
-// mid to b (b's n: mid's). `calm` is height-only.
-void advance_deviation(const Turbulence& turbulence, const IndexField& calm, const CalmPoint& a, const CalmPoint& mid,
-                         const CalmPoint& b, double step, RayDeviation* deviation);
+// What one step of the deviation evaluates, tabulated once per render: the calm air's n0 and
+// dn0/dh over the layer's heights, and the turbulence's envelope. Both are smooth on the layer's
+// depth (centimetres), so linear interpolation at kTableStep / depth is exact to ~(1/4096)^2 / 8,
+// 1e-7 of the values: far below the deviation's own terms (the calm pull n0'' dy and the
+// turbulence's gradient). Outside the tabulated heights: the field and the envelope's formula.
+class DeviationStepper {
+ public:
+  // `calm` height-only; heights [lo, hi] tabulated.
+  DeviationStepper(const Turbulence& turbulence, const IndexField& calm, double lo, double hi);
+
+  // The calm point of the calm field at x along unit t.
+  CalmPoint calm_point(const Vec3d& x, const Vec3d& t) const;
+  // n0 and dn0/dh at height h.
+  void calm_at(double h, double* n, double* dn_dh) const;
+  // The turbulence's delta_n gradient at p (Turbulence::evaluate's, the envelope tabulated).
+  Vec3d gradient(const Vec3d& p) const;
+
+  // One step of `step` [m] of arc length (position Verlet: drift half, kick, drift half; one
+  // evaluation of the turbulence and one of the calm air's height profile), from calm point a over
+  // mid to b (b's n: mid's).
+  void advance(const CalmPoint& a, const CalmPoint& mid, const CalmPoint& b, double step, RayDeviation* deviation) const;
+
+ private:
+  const Turbulence& turbulence_;
+  const IndexField& calm_;
+  double lo_, per_metre_;           // calm table: heights lo + k / per_metre_
+  std::vector<double> n_, dn_;      // n0, dn0/dh there
+  double envelope_per_metre_ = 0.0; // envelope table over [0, envelope_top_]
+  double envelope_top_ = 0.0;
+  std::vector<double> envelope_;
+};
 
 }  // namespace refracta

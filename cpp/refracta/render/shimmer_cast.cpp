@@ -3,9 +3,11 @@
 
 #include "refracta/core/error.h"
 #include "refracta/media/turbulence_path.h"
+#include "refracta/rays/trace.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace refracta {
@@ -45,6 +47,24 @@ struct EyePath {
   double cx = 1.0, cz = 0.0;
 };
 
+}  // namespace
+
+// The calm path of one camera ray traced exactly (stratified, to options' tol), in 3-D.
+CalmPath::CalmPath(const IndexField& calm, const TraceOptions& options, const Vec3d& eye, const Vec3d& dir,
+                   double length) {
+  TraceOptions trace = options;
+  trace.max_length = length;
+  nodes_ = trace_path(calm, eye, dir, trace).nodes();
+  lowest_.resize(nodes_.size());
+  double low = std::numeric_limits<double>::infinity();
+  for (size_t k = nodes_.size(); k-- > 0;) {
+    low = std::min(low, nodes_[k].x.y());
+    lowest_[k] = low;
+  }
+}
+
+namespace {
+
 // A point of the turbulent path: position, unit tangent, arc length.
 struct PathPoint {
   Vec3d x, t;
@@ -83,8 +103,14 @@ ShimmerCaster::ShimmerCaster(const Scene& scene, FieldPtr layered, std::shared_p
       options_(options),
       calm_(scene, layered_.get(), options),
       top_(turbulence_->region().top),
-      step_(options.turbulence_step * turbulence_->grid->spacing()) {
+      step_(options.turbulence_step * turbulence_->grid->spacing()),
+      // The calm air tabulated from the ground to a little above the layer (a deviated ray's heights).
+      stepper_(*turbulence_, *layered_, 0.0, top_ + 0.05) {
   calm_.use_table(table, eye, pixel_angle);
+  calm_.set_secondary_spread(pixel_angle);  // as the renderer's caster (shadow and bounce rays' tolerance)
+  trace_options_ = table->options().trace;
+  trace_options_.trace = TraceMethod::kStratified;
+  trace_options_.tol = options.tol;
 }
 
 std::unique_ptr<ShimmerCaster> ShimmerCaster::make(const Scene& scene, const IndexField& field, const FieldPtr& layered,
@@ -127,6 +153,44 @@ PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec
     }
   }
   // Never in the layer: the calm path is the turbulent one.
+  if (first == count) return calm_.cast(origin, dir, 0.0, spread);
+  // The calm path itself traced exactly (to the render's tol) as far as the table's path leaves
+  // the layer for good, and a metre on: the table's path is only as close to it as the pixel's
+  // footprint allows (a quarter pixel per metre, 10 cm at 300 m for 48 pixels across the hot
+  // road), while in the layer the calm air's n changes over centimetres and the turbulence's own
+  // deviation is millimetres; following the table's path, the fast image differed from the
+  // strict one mostly by that (bench_realism.py shimmer_fast).
+  double through = options_.max_length;
+  for (size_t k = first + 1; k < count; ++k) {
+    if (path.plane.lowest_from(k) > top_) {
+      through = std::min(through, path.plane.node(k).s + 1.0);
+      break;
+    }
+  }
+  CalmPath exact;
+  try {
+    exact = CalmPath(*layered_, trace_options_, eye_, dir, through);
+  } catch (const NumericalError&) {
+    return strict.cast(origin, dir, 0.0, spread);
+  }
+  return walk(strict, exact, through < options_.max_length, origin, dir, spread);
+}
+
+PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool truncated, const Vec3d& origin,
+                            const Vec3d& dir, double spread) const {
+  const size_t count = path.size();
+  auto dips = [&](const RayNode<double>& a, const RayNode<double>& b) {
+    const double len = b.s - a.s;
+    const double bulge = 0.125 * std::max(a.curvature().norm(), b.curvature().norm()) * len * len;
+    return std::min(a.x.y(), b.x.y()) - bulge <= top_;
+  };
+  size_t first = count;
+  for (size_t k = 0; k + 1 < count; ++k) {
+    if (dips(path.node(k), path.node(k + 1))) {
+      first = k;
+      break;
+    }
+  }
   if (first == count) return calm_.cast(origin, dir, 0.0, spread);
 
   PathEnd end;
@@ -197,13 +261,11 @@ PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec
     if (add({b.x, b.v.normalized(), b.s})) return end;
     a = b;
   }
-  const Turbulence& turbulence = *turbulence_;
-  const IndexField& calm = *layered_;
   RayDeviation deviation;
   PathPoint at = run.back();
   try {
     for (size_t k = first; k + 1 < count; ++k) {
-      if (k > first && path.plane.lowest_from(k) > top_) {
+      if (k > first && path.lowest_from(k) > top_) {
         // Above the layer for good: the calm air from the deviated state.
         if (run.size() >= 2 && test(run.size() - 1)) return end;
         const double remaining = options_.max_length - at.s;
@@ -224,12 +286,12 @@ PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec
       from.t = a.v.normalized();
       for (int i = 0; i < steps; ++i) {
         const double um = (i + 0.5) / steps, u1 = double(i + 1) / steps;
-        const CalmPoint mid = calm_point(calm, segment.position(um), segment.velocity(um).normalized());
+        const CalmPoint mid = stepper_.calm_point(segment.position(um), segment.velocity(um).normalized());
         CalmPoint to;
         to.x = segment.position(u1);
         to.t = segment.velocity(u1).normalized();
         from.n = to.n = mid.n;
-        advance_deviation(turbulence, calm, from, mid, to, len / steps, &deviation);
+        stepper_.advance(from, mid, to, len / steps, &deviation);
         const Vec3d turned = deviation.tangent(to);
         // The small-perturbation criterion (shimmer_cast.h): otherwise the strict trace.
         if (!((turned - to.t).norm() <= kLargeDeviation) || !is_finite(deviation.dx)) {
@@ -246,6 +308,15 @@ PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec
     return strict.cast(origin, dir, 0.0, spread);
   }
   if (run.size() >= 2 && test(run.size() - 1)) return end;
+  if (truncated) {  // the exact calm path stopped short: the calm air from the deviated state
+    const double remaining = options_.max_length - at.s;
+    if (remaining > 0.0) {
+      PathEnd rest = calm_.cast(at.x, at.t, remaining, spread);
+      rest.length += at.s;
+      rest.chords += end.chords;
+      return rest;
+    }
+  }
   end.direction = layered_->sky_direction(at.x, at.t);
   end.end_point = at.x;
   end.length = at.s;
