@@ -64,6 +64,18 @@ inline constexpr const char mkd_doc_refracta_Light[] = R"doc(A light (shared/SHA
 N points.)doc";
 inline constexpr const char mkd_doc_refracta_LightSampler[] = R"doc(Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it
 after preprocess() of infinite lights.)doc";
+inline constexpr const char mkd_doc_refracta_LinearSquaredModel[] = R"doc(n^2 = n0^2 + alpha y: rays are parabolas y = y0 + t0 x + alpha x^2 / (4 beta^2), beta = n(y0)
+cos(e0).)doc";
+inline constexpr const char mkd_doc_refracta_LogisticModel[] = R"doc(The original mirage editor's height profile (Choi 2017), in scene units::
+
+    n(h) = 1 + 0.003 k_s (f(n_bg, 10 a_bg, 0, h) + f(n_inv, -0.1 a_inv, h_ciso, h)
+           + f(n_hot, 0.3 a_hot, 0, h)) / (|n_bg| + |n_inv| + |n_hot|)
+    f(L, w, x0, x) = L / (1 + e^((x0 - x) / w))
+
+Scaling n_bg, n_inv, n_hot together changes nothing (gauge freedom): editing fixes n_bg by default.
+hot_spots=[refracta.HotSpot(x, z, radius, strength), ...] localise the hot term: its deficit near
+the ground, n_hot * sigma(-h / (0.3 a_hot)), is scaled by sum_i dt_i F_i(r_i), so the hot layer lies
+only over the spots (parameters hot_spot<i>_x, _z, _radius, _dt).)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings[] = R"doc(Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
 published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit ROV
@@ -98,6 +110,14 @@ layers), 'peel' (the `layers` nearest), 'wboit' (McGuire & Bavoil, JCGT 2013, de
 inline constexpr const char mkd_doc_refracta_PairOptions[] = R"doc(How an edit's pairs are traced and measured (refracta.edit.solve, distances, jacobian and
 EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
 PairOptions). validate() reports every bad value at once.)doc";
+inline constexpr const char mkd_doc_refracta_PhysicalAtmosphereModel[] = R"doc(Real air: U.S. Standard Atmosphere 1976 temperature (its seven layers to 86 km, geometric heights,
+gravity falling with height) + a smooth inversion layer + a surface layer surface_dt * exp(-h /
+surface_depth) (h >= 0) + areal hot spots (hot_spots=[refracta.HotSpot, ...]), hydrostatic pressure,
+and the index of air from Edlen's formula revised by Birch & Downs (1993/94) at `wavelength`,
+optional relative humidity. Defaults give n - 1 = 2.7784e-4 at the ground (15 C, 101325 Pa, 550 nm).
+Modelled for heights in [-1000, 86000] m (uniform above). With hot spots the field is no longer
+height-only: its parameters gain hot_spot<i>_x, _z, _radius, _dt, _depth, and height_only_part is
+the same air without them.)doc";
 inline constexpr const char mkd_doc_refracta_PhysicalSkyLight[] = R"doc(A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
 Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
 `aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
@@ -132,6 +152,10 @@ inner_angle [deg] < angle a smoothstep falloff (pbrt-v4 SpotLight::I): I(w) = I
 smoothstep(cos(angle/2), cos(inner_angle/2), cos theta), theta from the axis.)doc";
 inline constexpr const char mkd_doc_refracta_SunLight[] = R"doc(The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] (a colour) over the disc,
 angular_diameter [deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).)doc";
+inline constexpr const char mkd_doc_refracta_TemperatureProfileModel[] = R"doc(A measured sounding: temperatures [K] at strictly increasing heights [m], joined by a monotone C1
+cubic (pchip) and levelling off smoothly beyond the ends; hydrostatic pressure from `pressure` [Pa]
+at the lowest height; n from the same air formula as PhysicalAtmosphere. The temperatures are the
+parameters t0, t1, ... (with pressure, humidity, wavelength).)doc";
 inline constexpr const char mkd_doc_refracta_TerrainShading[] = R"doc(Terrain coloured by elevation, slope and snow line (shading/terrain_shading.h), the default of
 Scene.add_terrain: Lambertian, its reflectance ``vegetation`` below ``tree_line`` [m], ``rock``
 above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above ``snow_line``

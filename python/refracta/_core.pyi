@@ -351,7 +351,8 @@ class LogisticProfile(IndexField):
         """
 class LinearSquaredProfile(IndexField):
     """
-    n^2 = n0^2 + alpha y: rays are parabolas y = y0 + t0 x + alpha x^2 / (4 beta^2), beta = n(y0) cos(e0).
+    n^2 = n0^2 + alpha y: rays are parabolas y = y0 + t0 x + alpha x^2 / (4 beta^2), beta = n(y0)
+    cos(e0).
     
     Parameters (name [unit] default, optimiser bounds: meaning):
         n0 [1] 1.00028, [0.5, 3]: index at y = 0
@@ -368,13 +369,13 @@ class LinearSquaredProfile(IndexField):
 class PhysicalAtmosphere(IndexField):
     """
     Real air: U.S. Standard Atmosphere 1976 temperature (its seven layers to 86 km, geometric heights,
-    gravity falling with height) + a smooth inversion layer + a surface layer
-    surface_dt * exp(-h / surface_depth) (h >= 0) + areal hot spots (hot_spots=[refracta.HotSpot, ...]),
-    hydrostatic pressure, and the index of air from Edlen's formula revised by Birch & Downs (1993/94)
-    at `wavelength`, optional relative humidity. Defaults give n - 1 = 2.7784e-4 at the ground (15 C,
-    101325 Pa, 550 nm). Modelled for heights in [-1000, 86000] m (uniform above). With hot spots the
-    field is no longer height-only: its parameters gain hot_spot<i>_x, _z, _radius, _dt, _depth, and
-    height_only_part is the same air without them.
+    gravity falling with height) + a smooth inversion layer + a surface layer surface_dt * exp(-h /
+    surface_depth) (h >= 0) + areal hot spots (hot_spots=[refracta.HotSpot, ...]), hydrostatic pressure,
+    and the index of air from Edlen's formula revised by Birch & Downs (1993/94) at `wavelength`,
+    optional relative humidity. Defaults give n - 1 = 2.7784e-4 at the ground (15 C, 101325 Pa, 550 nm).
+    Modelled for heights in [-1000, 86000] m (uniform above). With hot spots the field is no longer
+    height-only: its parameters gain hot_spot<i>_x, _z, _radius, _dt, _depth, and height_only_part is
+    the same air without them.
     
     Parameters (name [unit] default, optimiser bounds: meaning):
         t_ground [K] 288.15, [220, 330]: air temperature at h = 0 without the surface layer
@@ -1796,7 +1797,7 @@ class RenderOptions:
     @property
     def adaptive(self) -> bool:
         """
-        first a quarter of spp per pixel, the rest of each 32-pixel block's budget where the first samples vary (same total)
+        a pilot of spp / 8 per pixel shares each 32-pixel block's budget: half of spp each, the rest where the pilot varies (same total, unbiased)
         """
     @adaptive.setter
     def adaptive(self, arg0: bool) -> None:

@@ -240,38 +240,15 @@ void bind_media(py::module_& m) {
   bind_turbulence(m);
   bind_index_field(m);
 
-  bind_model<LogisticProfile>(m, "LogisticProfile", R"doc(
-The original mirage editor's height profile (Choi 2017), in scene units::
+  bind_model<LogisticProfile>(m, "LogisticProfile", DOC(refracta, LogisticModel));
 
-    n(h) = 1 + 0.003 k_s (f(n_bg, 10 a_bg, 0, h) + f(n_inv, -0.1 a_inv, h_ciso, h)
-           + f(n_hot, 0.3 a_hot, 0, h)) / (|n_bg| + |n_inv| + |n_hot|)
-    f(L, w, x0, x) = L / (1 + e^((x0 - x) / w))
+  bind_model<LinearSquaredProfile>(m, "LinearSquaredProfile", DOC(refracta, LinearSquaredModel));
 
-Scaling n_bg, n_inv, n_hot together changes nothing (gauge freedom): editing fixes n_bg by default.
-hot_spots=[refracta.HotSpot(x, z, radius, strength), ...] localise the hot term: its deficit near
-the ground, n_hot * sigma(-h / (0.3 a_hot)), is scaled by sum_i dt_i F_i(r_i), so the hot layer lies
-only over the spots (parameters hot_spot<i>_x, _z, _radius, _dt).)doc");
-
-  bind_model<LinearSquaredProfile>(m, "LinearSquaredProfile", R"doc(
-n^2 = n0^2 + alpha y: rays are parabolas y = y0 + t0 x + alpha x^2 / (4 beta^2), beta = n(y0) cos(e0).)doc");
-
-  auto physical = bind_model<PhysicalAtmosphere>(m, "PhysicalAtmosphere", R"doc(
-Real air: U.S. Standard Atmosphere 1976 temperature (its seven layers to 86 km, geometric heights,
-gravity falling with height) + a smooth inversion layer + a surface layer
-surface_dt * exp(-h / surface_depth) (h >= 0) + areal hot spots (hot_spots=[refracta.HotSpot, ...]),
-hydrostatic pressure, and the index of air from Edlen's formula revised by Birch & Downs (1993/94)
-at `wavelength`, optional relative humidity. Defaults give n - 1 = 2.7784e-4 at the ground (15 C,
-101325 Pa, 550 nm). Modelled for heights in [-1000, 86000] m (uniform above). With hot spots the
-field is no longer height-only: its parameters gain hot_spot<i>_x, _z, _radius, _dt, _depth, and
-height_only_part is the same air without them.)doc");
+  auto physical = bind_model<PhysicalAtmosphere>(m, "PhysicalAtmosphere", DOC(refracta, PhysicalAtmosphereModel));
   add_air_column<PhysicalAtmosphere>(physical);
 
   py::class_<TemperatureProfile, IndexField, std::shared_ptr<TemperatureProfile>> sounding(
-      m, "TemperatureProfile", R"doc(
-A measured sounding: temperatures [K] at strictly increasing heights [m], joined by a monotone C1
-cubic (pchip) and levelling off smoothly beyond the ends; hydrostatic pressure from `pressure` [Pa]
-at the lowest height; n from the same air formula as PhysicalAtmosphere. The temperatures are the
-parameters t0, t1, ... (with pressure, humidity, wavelength).)doc");
+      m, "TemperatureProfile", DOC(refracta, TemperatureProfileModel));
   sounding.def(py::init([](const py::object& heights, const py::object& temperatures, double pressure,
                            double humidity, double wavelength) {
                  const std::vector<double> h = to_values(heights, "heights");

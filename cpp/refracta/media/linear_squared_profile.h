@@ -8,6 +8,8 @@
 
 namespace refracta {
 
+// n^2 = n0^2 + alpha y: rays are parabolas y = y0 + t0 x + alpha x^2 / (4 beta^2), beta = n(y0)
+// cos(e0).
 template <class T>
 class LinearSquaredModel : public HeightOnlyModel<LinearSquaredModel<T>, T> {
  public:

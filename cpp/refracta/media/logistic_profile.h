@@ -34,6 +34,16 @@ struct LogisticConfig {
   std::shared_ptr<const Turbulence> turbulence;
 };
 
+// The original mirage editor's height profile (Choi 2017), in scene units::
+//
+//     n(h) = 1 + 0.003 k_s (f(n_bg, 10 a_bg, 0, h) + f(n_inv, -0.1 a_inv, h_ciso, h)
+//            + f(n_hot, 0.3 a_hot, 0, h)) / (|n_bg| + |n_inv| + |n_hot|)
+//     f(L, w, x0, x) = L / (1 + e^((x0 - x) / w))
+//
+// Scaling n_bg, n_inv, n_hot together changes nothing (gauge freedom): editing fixes n_bg by
+// default. hot_spots=[refracta.HotSpot(x, z, radius, strength), ...] localise the hot term: its
+// deficit near the ground, n_hot * sigma(-h / (0.3 a_hot)), is scaled by sum_i dt_i F_i(r_i), so
+// the hot layer lies only over the spots (parameters hot_spot<i>_x, _z, _radius, _dt).
 template <class T>
 class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
  public:

@@ -27,6 +27,14 @@ struct PhysicalAtmosphereConfig {
   std::shared_ptr<const Turbulence> turbulence;
 };
 
+// Real air: U.S. Standard Atmosphere 1976 temperature (its seven layers to 86 km, geometric
+// heights, gravity falling with height) + a smooth inversion layer + a surface layer surface_dt *
+// exp(-h / surface_depth) (h >= 0) + areal hot spots (hot_spots=[refracta.HotSpot, ...]),
+// hydrostatic pressure, and the index of air from Edlen's formula revised by Birch & Downs
+// (1993/94) at `wavelength`, optional relative humidity. Defaults give n - 1 = 2.7784e-4 at the
+// ground (15 C, 101325 Pa, 550 nm). Modelled for heights in [-1000, 86000] m (uniform above). With
+// hot spots the field is no longer height-only: its parameters gain hot_spot<i>_x, _z, _radius,
+// _dt, _depth, and height_only_part is the same air without them.
 template <class T>
 class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereModel<T>, T> {
  public:

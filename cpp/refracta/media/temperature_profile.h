@@ -21,6 +21,10 @@ struct SoundingHeights {
   std::vector<double> heights;
 };
 
+// A measured sounding: temperatures [K] at strictly increasing heights [m], joined by a monotone C1
+// cubic (pchip) and levelling off smoothly beyond the ends; hydrostatic pressure from `pressure`
+// [Pa] at the lowest height; n from the same air formula as PhysicalAtmosphere. The temperatures
+// are the parameters t0, t1, ... (with pressure, humidity, wavelength).
 template <class T>
 class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileModel<T>, T> {
  public:
