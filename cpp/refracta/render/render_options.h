@@ -50,8 +50,8 @@ struct RenderOptions {
   // Ray integrator for curved rays; tol [m]. Height-only fields use 'stratified', others 'rk45'.
   double tol = 1e-4;
   std::optional<TraceMethod> trace;  // force 'rk45' or 'stratified' (default: by the field)
-  // Camera rays through turbulence: the exact trace unless 'perturbed' is asked for (it does not
-  // yet meet issue 21's accuracy goal on the hot road: benchmarks/bench_realism.py shimmer_fast).
+  // Camera rays through turbulence: the exact trace unless 'perturbed' is asked for (it meets issue
+  // 21's accuracy goal on the hot road, not yet its speed goals: benchmarks/bench_realism.py shimmer_fast).
   TurbulenceTrace turbulence_trace = TurbulenceTrace::kStrict;
   // 'perturbed': the step through the layer, in the turbulence's cells. The cubic B-spline's
   // gradient varies on the cell's scale, and a step h samples the path integral's spectrum
