@@ -180,10 +180,14 @@ def render(
     converted to linear sRGB through the CIE 1931 observer. Through a field the air disperses: each
     sample keeps its hero wavelength only and traces every segment through
     refracta.dispersed_field(field, hero) (no eye table: about 1.7x the RGB cost on the hot road).
-    spp: samples per pixel (1: pixel centres; more: stratified jitter), seeded by `seed` per pixel
-    (independent of the thread count). Textures are filtered over each sample's ray-cone footprint
-    (texture_filter=False point-samples them). stats: deprecated (a dict to fill with the counts
-    of RenderStats); pass return_stats=True. progress: a bar on stderr
+    spp: samples per pixel (1: pixel centres; more: a correlated multi-jittered pattern, Kensler
+    2013), seeded by `seed` per pixel (independent of the thread count). adaptive=True: the same
+    width x height x spp samples, shared by a pilot of spp / 8 per pixel within each 32-pixel block
+    (every pixel at least spp / 2, the rest where the pilot varies; unbiased; RenderOptions.adaptive,
+    cpp/refracta/render/adaptive_sampling.h); off by default, and not used by denoise=True: on the
+    demo scenes it does not lower the error (benchmarks/bench_denoise.py). Textures are filtered
+    over each sample's ray-cone footprint (texture_filter=False point-samples them). stats:
+    deprecated (a dict to fill with the counts of RenderStats); pass return_stats=True. progress: a bar on stderr
     (True), a callable progress(done, total), or False. Runs on all cores with the GIL released;
     Ctrl-C stops it. Further keywords: any field of refracta.RenderOptions (max_length, chord,
     sagitta, tol, trace, table, tile, texture_filter, march, step, max_steps, guard_band, rr_depth,

@@ -3,6 +3,7 @@
 #include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/interruptible.h"
 #include "refracta/bindings/options_binding.h"
+#include "refracta/render/film.h"
 #include "refracta/render/raster_renderer.h"
 #include "refracta/render/readouts.h"
 #include "refracta/render/renderer.h"
@@ -48,7 +49,9 @@ validate() reports every bad value at once.)doc");
                     "the calm rays of the eye's table in steps of the turbulence's cells; strict where not small)");
   def_enum_property(options, "march", &O::march, &trace_method_name, &parse_trace_method,
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)");
-  options.def_readwrite("spp", &O::spp, "samples per pixel (stratified jitter when > 1)")
+  options.def_readwrite("spp", &O::spp, "samples per pixel (correlated multi-jittered when > 1)")
+      .def_readwrite("adaptive", &O::adaptive, "a pilot of spp / 8 per pixel shares each 32-pixel block's "
+                     "budget: half of spp each, the rest where the pilot varies (same total, unbiased)")
       .def_readwrite("seed", &O::seed, "seed of the per-pixel random streams")
       .def_readwrite("max_depth", &O::max_depth, "scattering events per path (Mitsuba's max_depth - 1)")
       .def_readwrite("rr_depth", &O::rr_depth, "Russian roulette from this many events on")
@@ -112,6 +115,22 @@ validate() reports every bad value at once.)doc");
         });
       },
       py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("options"), py::arg("progress"));
+  m.def(
+      "_cmj_pattern",
+      [](int count, uint32_t seed) {
+        if (count < 1) throw_invalid("count must be >= 1 (got ", count, ")");
+        const detail::CmjPattern pattern(count, seed);
+        Sampler sampler{Rng(seed, 0)};
+        Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> points(count, 2);
+        for (int s = 0; s < count; ++s) {
+          const double jx = sampler.uniform();
+          points.row(s) = pattern.point(s, jx, sampler.uniform()).transpose();
+        }
+        return points;
+      },
+      py::arg("count"), py::arg("seed"),
+      "(count, 2) sample positions in [0, 1)^2 of the film's correlated multi-jittered pattern (render/film.h,\n"
+      "Kensler 2013) with the shuffles of `seed`, jittered by the generator Rng(seed, 0).");
   // Where each readout lies among the render's channels (readouts.h ReadoutChannel): name -> (first, count).
   m.attr("_READOUT_CHANNELS") = py::dict(py::cast(readout_channels()));
   m.def("_mirage_images", &mirage_images, py::arg("true_elevation"), py::arg("object_id"),

@@ -1,14 +1,18 @@
 // The pixel-sample loop every ray-traced renderer shares, on the one tile loop (tile_loop.h):
-// spp samples per pixel on a stratified jittered grid, a random generator seeded per pixel and
-// sample (results depend neither on the thread count nor on options.pixel_bounds: a part of the
-// image renders as in the whole), hero wavelengths per sample in spectral
-// rendering, each sample's spectrum turned to linear sRGB (shading/color.h) and averaged.
+// spp samples per pixel from a correlated multi-jittered pattern (Kensler 2013: each of the
+// spp columns and spp rows of the pixel holds one sample, and the samples fill the cells of an
+// m x n grid, m n = spp), or with options.adaptive as many as a pilot pass says the pixel needs
+// at the same total (adaptive_sampling.h); a random generator seeded per pixel and pass
+// (results depend neither on the thread count nor on options.pixel_bounds: a part of the image
+// renders as in the whole), hero wavelengths per sample in spectral rendering, each sample's
+// spectrum turned to linear sRGB (shading/color.h) and averaged.
 #pragma once
 
 #include "refracta/core/parallel.h"
 #include "refracta/core/rng.h"
 #include "refracta/core/scratch.h"
 #include "refracta/core/spectrum.h"
+#include "refracta/render/adaptive_sampling.h"
 #include "refracta/render/integrator.h"
 #include "refracta/render/readouts.h"
 #include "refracta/render/render_options.h"
@@ -17,6 +21,9 @@
 #include "refracta/shading/color.h"
 
 #include <tbb/enumerable_thread_specific.h>
+
+#include <atomic>
+#include <vector>
 
 #include <cmath>
 #include <cstdint>
@@ -55,100 +62,197 @@ inline uint32_t permutation_element(uint32_t i, uint32_t n, uint32_t seed) {
   return (i + seed) % n;
 }
 
+// Kensler 2013's correlated multi-jittered pattern (cmj(): "Correlated Multi-Jittered Sampling",
+// Pixar Technical Memo 13-01) of `count` samples in [0, 1)^2: the cells of a columns x rows grid
+// (columns the largest divisor of count not above its square root, so columns x rows = count:
+// 1 x count for a prime count, a Latin hypercube), one sample each; within its cell a sample sits
+// in the sub-column its row's shuffle gives it and in the sub-row its column's shuffle gives it,
+// the same shuffles for every cell ("correlated"): each of the count columns and count rows of
+// the unit square holds exactly one sample. `seed` picks the shuffles; point() takes the jitter.
+class CmjPattern {
+ public:
+  CmjPattern(int count, uint32_t seed) : seed_(seed) {
+    columns_ = std::max(1, int(std::floor(std::sqrt(double(count)) + 1e-9)));
+    while (columns_ > 1 && count % columns_ != 0) --columns_;
+    rows_ = std::max(1, count / columns_);
+  }
+  // Sample s in [0, count), its jitter (jx, jy) in [0, 1)^2.
+  Vec2d point(int s, double jx, double jy) const {
+    const uint32_t i = uint32_t(s % columns_), j = uint32_t(s / columns_);
+    const uint32_t sx = permutation_element(i, uint32_t(columns_), seed_ * 0xa511e9b3u);
+    const uint32_t sy = permutation_element(j, uint32_t(rows_), seed_ * 0x63d83595u);
+    return Vec2d((i + (sy + jx) / rows_) / columns_, (j + (sx + jy) / columns_) / rows_);
+  }
+
+ private:
+  uint32_t seed_;
+  int columns_ = 1, rows_ = 1;
+};
+
+// A 32-bit seed drawn from the pixel's generator.
+inline uint32_t draw_seed(Sampler& sampler) { return uint32_t(sampler.uniform() * 4294967296.0); }
+
+// The running sums of one pixel's samples: radiance (and surface AOVs) in `value`, its samples'
+// luminance and its square (adaptive sampling's variance), the readouts' nearest hit and the sum
+// of the samples' directions at the eye.
+template <int kChannels>
+struct PixelSums {
+  Eigen::Matrix<double, kChannels, 1> value = Eigen::Matrix<double, kChannels, 1>::Zero();
+  double luminance = 0.0, luminance_squared = 0.0;
+  int count = 0;
+  Vec3d directions = Vec3d::Zero();
+  SurfaceAovs nearest;
+  double mean_luminance() const { return count > 0 ? luminance / count : 0.0; }
+  double luminance_variance() const {  // unbiased; 0 under two samples
+    return count > 1 ? std::max(0.0, (luminance_squared - luminance * luminance / count) / (count - 1)) : 0.0;
+  }
+};
+
 }  // namespace detail
 
 // SampleRadiance: Spectrum(const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle,
 // SampledWavelengths&, Sampler&, ScratchBuffer&, SurfaceAovs*): the sample's position (u, v) in pixel
 // coordinates, its point on a thin lens in [0, 1)^2 (Camera::lens_ray; (0.5, 0.5), the lens centre,
-// for a pinhole, which draws no number for it), the spacing of the samples [pixels] (1 / strata: a
-// sample stands for a spacing x spacing square), and its cone's angle [rad] (0 without texture
-// filtering), and where to put the sample's surface AOVs (null without). kRadiance: 3 channels;
+// for a pinhole, which draws no number for it), the spacing of the samples [pixels] (1 / sqrt(spp):
+// a sample stands for its share of the pixel at the average budget, adaptive or not), and its
+// cone's angle [rad] (0 without texture filtering), and where to put the sample's surface AOVs
+// (null without). kRadiance: 3 channels;
 // kSurface: 9, the radiance then the mean albedo and normal of the pixel's samples; kReadouts:
 // those 9 and the kReadoutChannels of readouts.h -- of the nearest hit among the pixel's samples
 // (the first sample of the least path length: never a blend of a foreground and a background)
 // its distance, position and object id, and through `geometry` its true elevation and hidden
 // heights; the apparent elevation and azimuth of the mean of the samples' directions at the eye.
+// `samples` (if given) receives the number of samples drawn: width x height x spp of the bounds
+// without adaptive sampling; with it, the whole image's width x height x spp (pilot included), and
+// for a part of the image its pixels' samples and the pilots of the blocks it touches.
 enum class FilmLayout { kRadiance, kSurface, kReadouts };
 
 template <FilmLayout kLayout, class SampleRadiance>
 Image render_film(const Camera& camera, const RenderOptions& options, WorkControl& control,
-                  const SampleRadiance& radiance, const ReadoutGeometry* geometry = nullptr) {
+                  const SampleRadiance& radiance, int64_t* samples = nullptr,
+                  const ReadoutGeometry* geometry = nullptr) {
   constexpr bool kSurfaceAovs = kLayout != FilmLayout::kRadiance;
   constexpr bool kReadouts = kLayout == FilmLayout::kReadouts;
   constexpr int kChannels = kReadouts ? kSurfaceChannels + kReadoutChannels : kSurfaceAovs ? kSurfaceChannels : 3;
   using PixelValue = Eigen::Matrix<double, kChannels, 1>;
-  // Whole passes over a strata x strata grid, the samples left over uniform over the pixel: every
-  // sample is then uniform over the pixel (a partly filled grid would leave strata unsampled).
-  const int strata = std::max(1, int(std::floor(std::sqrt(double(options.spp)) + 1e-9)));
-  const int stratified = options.spp / (strata * strata) * strata * strata;
+  using Sums = detail::PixelSums<kChannels>;
   // Each sample's cone covers its share of the pixel.
-  const double pixel_angle = options.texture_filter ? camera.pixel_angle() / strata : 0.0;
+  const double spacing = 1.0 / std::sqrt(double(options.spp));
+  const double pixel_angle = options.texture_filter ? camera.pixel_angle() * spacing : 0.0;
   const bool thin_lens = camera.aperture_diameter() > 0.0;
+  const bool centre = options.spp == 1;  // one sample: the pixel's centre
+  const uint64_t width = uint64_t(camera.width()), pixels = width * uint64_t(camera.height());
   tbb::enumerable_thread_specific<ScratchBuffer> scratch_per_thread;
-  return render_tiles(options.bounds_in(camera.width(), camera.height()), options.tile, control, [&](int x, int y) {
+  // `count` more samples of pixel (x, y) into `sums`, from the generator of the pixel's `pass`
+  // (0: the first or only one), as one pattern of that count.
+  auto add_samples = [&](Sums& sums, int x, int y, int count, uint64_t pass) {
+    if (count < 1) return;
     ScratchBuffer& scratch = scratch_per_thread.local();
-    Sampler sampler{Rng(options.seed, uint64_t(y) * uint64_t(camera.width()) + uint64_t(x))};
-    Vec3d sum = Vec3d::Zero();
-    PixelValue value = PixelValue::Zero();
-    Vec3d directions = Vec3d::Zero();  // readouts: the sum of the samples' directions at the eye
-    SurfaceAovs nearest;               // readouts: the sample whose hit is nearest (no hit: none)
-    uint32_t pass_seed = 0;  // the lens cells' shuffle of the current pass over the grid
-    for (int s = 0; s < options.spp; ++s) {
+    Sampler sampler{Rng(options.seed, pass * pixels + uint64_t(y) * width + uint64_t(x))};
+    const detail::CmjPattern pattern(count, centre ? 0u : detail::draw_seed(sampler));
+    // The lens point, drawn only by a thin lens (pinhole renders unchanged), from a pattern of its
+    // own whose samples are paired with the pixel's through a shuffle (pbrt-v4's samplers: each
+    // dimension stratified, their pairing random).
+    const uint32_t lens_seed = thin_lens ? detail::draw_seed(sampler) : 0u;
+    const uint32_t lens_shuffle = thin_lens ? detail::draw_seed(sampler) : 0u;
+    const detail::CmjPattern lens_pattern(count, lens_seed);
+    for (int s = 0; s < count; ++s) {
       poll_cancel();  // a sample through turbulence can take milliseconds (the ray's steps poll too)
-      double du = 0.5, dv = 0.5;
-      if (options.spp > 1 && s < stratified) {  // stratified jitter over a strata x strata grid
-        du = ((s % strata) + sampler.uniform()) / strata;
-        dv = (((s / strata) % strata) + sampler.uniform()) / strata;
-      } else if (options.spp > 1) {
-        du = sampler.uniform();
-        dv = sampler.uniform();
+      Vec2d offset(0.5, 0.5);
+      if (!centre) {
+        const double jx = sampler.uniform();
+        offset = pattern.point(s, jx, sampler.uniform());
       }
-      // The lens point, drawn only by a thin lens (pinhole renders unchanged) from the pixel's own
-      // generator (so thread count and tiles change nothing): stratified over the same
-      // strata x strata grid as the pixel, the cells shuffled per pass (pbrt-v4's
-      // StratifiedSampler: each dimension stratified, their pairing random), else uniform.
       Vec2d lens(0.5, 0.5);
-      if (thin_lens && s < stratified) {
-        const int cells = strata * strata, k = s % cells;
-        if (k == 0) pass_seed = uint32_t(sampler.uniform() * 4294967296.0);
-        const int cell = int(detail::permutation_element(uint32_t(k), uint32_t(cells), pass_seed));
-        const int column = cell % strata, row = cell / strata;  // the stratum's place in the strata x strata grid
-        lens = Vec2d((column + sampler.uniform()) / strata, (row + sampler.uniform()) / strata);
-      } else if (thin_lens) {
-        lens = Vec2d(sampler.uniform(), sampler.uniform());
+      if (thin_lens) {
+        const int t = int(detail::permutation_element(uint32_t(s), uint32_t(count), lens_shuffle));
+        const double jx = sampler.uniform();
+        lens = lens_pattern.point(t, jx, sampler.uniform());
       }
       SampledWavelengths lambda =
           options.spectral ? SampledWavelengths::sample_uniform(sampler.uniform()) : SampledWavelengths::rgb();
       SurfaceAovs aovs;
-      const Spectrum L = radiance(Vec2d(x + du, y + dv), lens, 1.0 / strata, pixel_angle, lambda, sampler, scratch,
-                                  kSurfaceAovs ? &aovs : nullptr);
+      const Spectrum L = radiance(Vec2d(x + offset.x(), y + offset.y()), lens, spacing, pixel_angle, lambda, sampler,
+                                  scratch, kSurfaceAovs ? &aovs : nullptr);
       const Vec3d rgb = to_linear_srgb(L, lambda);
-      if (is_finite(rgb)) sum += rgb;  // a non-finite sample is dropped (the renderer counts them)
+      ++sums.count;
+      if (is_finite(rgb)) {  // a non-finite sample is dropped (the renderer counts them)
+        sums.value.template head<3>() += rgb;
+        const double luminance = rgb.dot(Vec3d(0.2126, 0.7152, 0.0722));  // Rec. 709 / sRGB weights
+        sums.luminance += luminance;
+        sums.luminance_squared += luminance * luminance;
+      }
       if constexpr (kSurfaceAovs) {
-        value.template segment<3>(3) += aovs.albedo;
-        value.template segment<3>(6) += aovs.normal;
+        sums.value.template segment<3>(3) += aovs.albedo;
+        sums.value.template segment<3>(6) += aovs.normal;
       }
       if constexpr (kReadouts) {
-        directions += aovs.eye_direction;
-        if (aovs.hit && (!nearest.hit || aovs.distance < nearest.distance)) nearest = aovs;
+        sums.directions += aovs.eye_direction;
+        if (aovs.hit && (!sums.nearest.hit || aovs.distance < sums.nearest.distance)) sums.nearest = aovs;
       }
     }
-    value.template head<3>() = sum;
-    value /= options.spp;
+  };
+  auto pixel_value = [&](const Sums& sums) {
+    PixelValue value = sums.value / double(sums.count);
     if constexpr (kReadouts) {
+      const SurfaceAovs& nearest = sums.nearest;
       auto out = value.template tail<kReadoutChannels>();
       const double nan = std::numeric_limits<double>::quiet_NaN();
       const Vec3d position = nearest.hit ? nearest.hit->point : Vec3d::Constant(nan);
       out[kReadoutDistance] = nearest.hit ? nearest.distance : std::numeric_limits<double>::infinity();
       out.template segment<3>(kReadoutPosition) = position;
       out[kReadoutObject] = nearest.hit ? double(nearest.hit->geometry) : -1.0;
-      out.template segment<2>(kReadoutApparentElevation) = apparent_angles(directions);
+      out.template segment<2>(kReadoutApparentElevation) = apparent_angles(sums.directions);
       out[kReadoutTrueElevation] = geometry->true_elevation(position);
       out[kReadoutHiddenHeight] = geometry->hidden_geometric(position);
       out[kReadoutHiddenHeight + 1] = geometry->hidden_refracted(position);
     }
     return value;
+  };
+  const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
+  const int first = AdaptiveSampling::first_pass(options.spp);
+  if (!options.adaptive || options.spp <= first) {
+    if (samples) *samples = int64_t(bounds.width()) * bounds.height() * options.spp;
+    return render_tiles(bounds, options.tile, control, [&](int x, int y) {
+      Sums sums;
+      add_samples(sums, x, y, options.spp, 0);
+      return pixel_value(sums);
+    });
+  }
+  // Adaptive: blocks of the image (adaptive_sampling.h) are the units of work, each the pilot
+  // over all its pixels, their sample counts, and the samples of those in the bounds.
+  const int block = AdaptiveSampling::kBlock;
+  const int bx0 = bounds.x0 / block, by0 = bounds.y0 / block;
+  const int blocks_x = (bounds.x1 + block - 1) / block - bx0, blocks_y = (bounds.y1 + block - 1) / block - by0;
+  Image image(bounds.width(), bounds.height(), kChannels);
+  std::atomic<int64_t> drawn{0};
+  parallel_for_each(int64_t(blocks_x) * blocks_y, 1, control, [&](int64_t index) {
+    const int x0 = (bx0 + int(index % blocks_x)) * block, y0 = (by0 + int(index / blocks_x)) * block;
+    const int x1 = std::min(x0 + block, camera.width()), y1 = std::min(y0 + block, camera.height());
+    const int w = x1 - x0, h = y1 - y0;
+    std::vector<Sums> sums(size_t(w) * size_t(h));
+    std::vector<double> mean(sums.size()), variance(sums.size());
+    for (size_t p = 0; p < sums.size(); ++p) {
+      add_samples(sums[p], x0 + int(p % size_t(w)), y0 + int(p / size_t(w)), first, 0);
+      mean[p] = sums[p].mean_luminance();
+      variance[p] = sums[p].luminance_variance();
+    }
+    const std::vector<int> extra = adaptive_extra_samples(w, h, mean, variance, options.spp, first);
+    int64_t count = int64_t(sums.size()) * first;
+    for (size_t p = 0; p < sums.size(); ++p) {
+      const int x = x0 + int(p % size_t(w)), y = y0 + int(p / size_t(w));
+      if (x < bounds.x0 || x >= bounds.x1 || y < bounds.y0 || y >= bounds.y1) continue;
+      Sums pixel;  // the pilot's samples only chose the count: the pixel is one pattern of its own
+      add_samples(pixel, x, y, extra[p], 1);
+      count += extra[p];
+      const PixelValue value = pixel_value(pixel);
+      float* out = image.at(x - bounds.x0, y - bounds.y0);
+      for (int c = 0; c < kChannels; ++c) out[c] = float(value[c]);
+    }
+    drawn.fetch_add(count, std::memory_order_relaxed);
   });
+  if (samples) *samples = drawn.load();
+  return image;
 }
 
 }  // namespace refracta

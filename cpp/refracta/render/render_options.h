@@ -36,7 +36,14 @@ PixelBounds pixel_bounds_from(const std::vector<int>& corners);
 
 struct RenderOptions {
   RenderMethod method = RenderMethod::kCurved;
-  int spp = 1;                // samples per pixel (1: the pixel centre; more: stratified jitter)
+  int spp = 1;                // samples per pixel (1: the pixel centre; more: correlated multi-jittered, film.h)
+  // Adaptive sampling at the same budget (render/adaptive_sampling.h): a pilot of
+  // AdaptiveSampling::first_pass(spp) samples per pixel (2 at 16 spp) chooses how the rest of its
+  // 32 x 32 block's budget is shared: every pixel at least half of spp, the others where the
+  // pilot's samples vary most (edges, noise); each pixel is one pattern of its count, the pilot
+  // is not averaged in (unbiased); the image's total is still width x height x spp.
+  // 'straight' and 'curved' only; spp >= 3 (below, off).
+  bool adaptive = false;
   uint64_t seed = 0;
   double max_length = 5000.0; // curved rays end here and show the sky in their last direction [m]
   double chord = 1000.0;      // longest straight chord tested against the geometry [m]

@@ -72,6 +72,7 @@ void RenderOptions::validate() const {
   if (max_steps < 1) problems.add("max_steps must be >= 1 (got ", max_steps, ")");
   if (surface_aovs && method == RenderMethod::kRasterMarch) problems.add("surface_aovs needs method 'straight' or 'curved'");
   if (readouts && method == RenderMethod::kRasterMarch) problems.add("readouts need method 'straight' or 'curved'");
+  if (adaptive && method == RenderMethod::kRasterMarch) problems.add("adaptive needs method 'straight' or 'curved'");
   if (!(guard_band >= 0.0 && guard_band <= 2.0)) problems.add("guard_band must be in [0, 2] (got ", guard_band, ")");
   if (!(turbulence_step > 0.0 && turbulence_step <= 16.0)) {
     problems.add("turbulence_step must be in (0, 16] cells (got ", turbulence_step, ")");
@@ -259,16 +260,17 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     return L;
   };
   Image image;
+  int64_t samples = 0;
   if (options.readouts) {
     const ReadoutGeometry geometry(camera.position(), exact_field.get(), options.max_length);
-    image = render_film<FilmLayout::kReadouts>(camera, options, control, sample, &geometry);
+    image = render_film<FilmLayout::kReadouts>(camera, options, control, sample, &samples, &geometry);
   } else if (options.surface_aovs) {
-    image = render_film<FilmLayout::kSurface>(camera, options, control, sample);
+    image = render_film<FilmLayout::kSurface>(camera, options, control, sample, &samples);
   } else {
-    image = render_film<FilmLayout::kRadiance>(camera, options, control, sample);
+    image = render_film<FilmLayout::kRadiance>(camera, options, control, sample, &samples);
   }
   if (stats) {
-    stats->samples = int64_t(bounds.width()) * bounds.height() * options.spp;
+    stats->samples = samples;
     stats->chords = chords.load();
     stats->invalid_samples = invalid.load();
   }
