@@ -24,7 +24,9 @@ DeviationStepper::DeviationStepper(const Turbulence& turbulence, const IndexFiel
     envelope_top_ = turbulence.region().top;
     envelope_per_metre_ = (kTableNodes - 1) / envelope_top_;
     envelope_.resize(kTableNodes);
-    for (int k = 0; k < kTableNodes; ++k) envelope_[size_t(k)] = std::exp(-(k / envelope_per_metre_) / turbulence.depth);
+    for (int k = 0; k < kTableNodes; ++k) {
+      envelope_[size_t(k)] = std::exp(-(k / envelope_per_metre_) / turbulence.depth);
+    }
   }
 }
 

@@ -60,7 +60,8 @@ class DeviationStepper {
   // One step of `step` [m] of arc length (position Verlet: drift half, kick, drift half; one
   // evaluation of the turbulence and one of the calm air's height profile), from calm point a over
   // mid to b (b's n: mid's).
-  void advance(const CalmPoint& a, const CalmPoint& mid, const CalmPoint& b, double step, RayDeviation* deviation) const;
+  void advance(const CalmPoint& a, const CalmPoint& mid, const CalmPoint& b, double step,
+               RayDeviation* deviation) const;
 
  private:
   const Turbulence& turbulence_;

@@ -108,6 +108,7 @@ ShimmerCaster::ShimmerCaster(const Scene& scene, FieldPtr layered, std::shared_p
       stepper_(*turbulence_, *layered_, 0.0, top_ + 0.05) {
   calm_.use_table(table, eye, pixel_angle);
   calm_.set_secondary_spread(pixel_angle);  // as the renderer's caster (shadow and bounce rays' tolerance)
+  stretch_steps_ = std::isfinite(turbulence_->depth);
   trace_options_ = table->options().trace;
   trace_options_.trace = TraceMethod::kStratified;
   trace_options_.tol = options.tol;
@@ -174,6 +175,16 @@ PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec
     return strict.cast(origin, dir, 0.0, spread);
   }
   return walk(strict, exact, through < options_.max_length, origin, dir, spread);
+}
+
+double ShimmerCaster::envelope_stretch(const RayNode<double>& a, const RayNode<double>& b) const {
+  if (!stretch_steps_) return 1.0;
+  // The segment's lowest point: its ends less the most a path of that curvature bulges below them.
+  const double len = b.s - a.s;
+  const double bulge = 0.125 * std::max(a.curvature().norm(), b.curvature().norm()) * len * len;
+  const double low = std::min(a.x.y(), b.x.y()) - bulge;
+  const double envelope = std::exp(-std::max(low, 0.0) / turbulence_->depth);
+  return std::clamp(std::exp2(std::floor(std::log2(kFullStepEnvelope / envelope))), 1.0, kLongestStepStretch);
 }
 
 PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool truncated, const Vec3d& origin,
@@ -280,7 +291,7 @@ PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool tru
       const double len = b.s - a.s;
       // Through the layer a step per cell; between dips one step (the calm gradient's change at
       // the deviated height is negligible there, and constant forces Verlet integrates exactly).
-      const int steps = dips(a, b) ? std::max(1, int(std::ceil(len / step_))) : 1;
+      const int steps = dips(a, b) ? std::max(1, int(std::ceil(len / (step_ * envelope_stretch(a, b))))) : 1;
       CalmPoint from;
       from.x = a.x;
       from.t = a.v.normalized();

@@ -43,6 +43,18 @@ namespace refracta {
 
 // Fall back to the strict trace beyond this angle between the turbulent and the calm ray [rad] (above).
 constexpr double kLargeDeviation = 5e-3;
+// Steps through the layer where its envelope is small: a segment of the calm path whose lowest
+// point's envelope E is below kFullStepEnvelope steps 2^floor(log2(kFullStepEnvelope / E)) times
+// turbulence_step, at most kLongestStepStretch times. A longer step aliases the pattern's gradient
+// (2 cells: 11-15 % of the displacement pixel by pixel with no envelope, tests/render/
+// test_shimmer.py's wall), but there the turbulence is at most 5 % of its strength at the ground,
+// so its share of a ray's deviation is small. Measured on the hot road (96 x 36, rows 16-36,
+// default turbulence): the hit displacements' variance against the strict trace's 0.983-0.997 with
+// and 0.982-0.997 without, pixel by pixel 2.9-5.6 % and 3.0-5.5 % of it; the image's error 0.0007
+// and 0.0006 of the turbulence's effect (48 x 18, the knife-edge pixel aside); 1.4-2x faster on
+// 160 x 60. Stretching from E < 0.2, up to 8: displacement error 7.4 % along the road.
+constexpr double kFullStepEnvelope = 0.05;
+constexpr double kLongestStepStretch = 4.0;
 
 // A camera ray's calm path traced exactly as far as `length` [m], with the lowest height from each
 // node on (ShimmerCaster's walk).
@@ -84,6 +96,9 @@ class ShimmerCaster {
   PathEnd walk(const Caster& strict, const CalmPath& path, bool truncated, const Vec3d& origin, const Vec3d& dir,
                double spread) const;
 
+  // How many times turbulence_step a segment of the calm path from a to b may step (envelope).
+  double envelope_stretch(const RayNode<double>& a, const RayNode<double>& b) const;
+
   const Scene& scene_;
   FieldPtr layered_;
   std::shared_ptr<const Turbulence> turbulence_;
@@ -93,7 +108,8 @@ class ShimmerCaster {
   Caster calm_;
   double top_, step_;
   DeviationStepper stepper_;
-  TraceOptions trace_options_;  // the exact calm paths' (the table's, to options.tol)
+  TraceOptions trace_options_;
+  bool stretch_steps_ = false;  // the exact calm paths' (the table's, to options.tol)
 };
 
 }  // namespace refracta
