@@ -22,7 +22,8 @@ import tempfile
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 OUTPUT = ROOT / "cpp" / "generated" / "docstrings.h"
 # The headers whose comments are docstrings (converted so far: the lights and the class
-# docstrings of the options, results and most classes; the rest are still inline in bindings/).
+# docstrings of the options, results, materials and most classes; the rest are still inline in
+# bindings/).
 HEADERS = [
     "cpp/refracta/edit/edit_settings.h",
     "cpp/refracta/edit/point_pair.h",
@@ -44,16 +45,23 @@ HEADERS = [
     "cpp/refracta/scene/ocean_waves.h",
     "cpp/refracta/shading/aerial_perspective.h",
     "cpp/refracta/shading/area_light.h",
+    "cpp/refracta/shading/conductor.h",
     "cpp/refracta/shading/constant_environment.h",
+    "cpp/refracta/shading/dielectric.h",
+    "cpp/refracta/shading/diffuse.h",
     "cpp/refracta/shading/environment_light.h",
     "cpp/refracta/shading/light.h",
     "cpp/refracta/shading/light_sampler.h",
+    "cpp/refracta/shading/phong.h",
     "cpp/refracta/shading/physical_sky.h",
+    "cpp/refracta/shading/plastic.h",
     "cpp/refracta/shading/point_light.h",
+    "cpp/refracta/shading/principled.h",
     "cpp/refracta/shading/sphere_light.h",
     "cpp/refracta/shading/spot_light.h",
     "cpp/refracta/shading/sun_light.h",
     "cpp/refracta/shading/terrain_shading.h",
+    "cpp/refracta/shading/thin_film.h",
     "cpp/refracta/shading/tonemap.h",
 ]
 FLAGS = ["-std=c++17", "-fparse-all-comments", f"-I{ROOT / 'cpp'}", "-I/usr/include/eigen3"]

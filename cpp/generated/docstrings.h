@@ -21,12 +21,23 @@ Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to 
 inline constexpr const char mkd_doc_refracta_AreaLight[] = R"doc(An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) of vertex indices, uniform emission
 radiance L_e [W/(m^2 sr)] (a colour) from the counter-clockwise front of every triangle (front
 normal normalize((v1 - v0) x (v2 - v0))) or from both sides when two_sided.)doc";
+inline constexpr const char mkd_doc_refracta_BlinnPhong[] = R"doc(Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0,
+1] (numbers or (r, g, b)), ns >= 0; alpha in [0, 1] is the raster opacity (MTL d). Sampled by a
+mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd.)doc";
 inline constexpr const char mkd_doc_refracta_Camera[] = R"doc(Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
 vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at (i
 + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=) or
 Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)doc";
+inline constexpr const char mkd_doc_refracta_Conductor[] = R"doc(A smooth metal mirror with the exact complex Fresnel reflectance of eta + i k (numbers or (r, g, b),
+relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.)doc";
 inline constexpr const char mkd_doc_refracta_ConstantEnvironment[] = R"doc(Uniform radiance L_e [W/(m^2 sr)] (a colour) from every direction; sampling 'cosine' (about the
 point's normal, when given) or 'uniform' (the sphere, pdf 1/(4 pi)). Irradiance pi L_e.)doc";
+inline constexpr const char mkd_doc_refracta_Dielectric[] = R"doc(Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
+(eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3),
+C in um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction).
+priority: nested dielectrics (larger wins).)doc";
+inline constexpr const char mkd_doc_refracta_Diffuse[] = R"doc(Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b) in [0, 1] (> 1 is
+refused: it would create energy).)doc";
 inline constexpr const char mkd_doc_refracta_DispersedField[] = R"doc(A field at another wavelength: n' = 1 + scale (n - 1), grad n' = scale grad n, height-only as its
 base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
 base's. Spectral renders through a field build these per sample (each hero wavelength); build one
@@ -126,8 +137,14 @@ below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albed
 BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
 (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
 default). Its sampling: the comment above.)doc";
+inline constexpr const char mkd_doc_refracta_Plastic[] = R"doc(Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of
+index ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), >
+0: GGX (or alpha_u, alpha_v). A texture multiplies the reflectance.)doc";
 inline constexpr const char mkd_doc_refracta_PointLight[] = R"doc(A point light: intensity I [W/sr] (a colour: one number or RGB) in every direction from position
 [m]; irradiance at distance r on a surface tilted by theta E = I cos(theta) / r^2; power 4 pi I.)doc";
+inline constexpr const char mkd_doc_refracta_Principled[] = R"doc(Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and
+metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,
+clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color.)doc";
 inline constexpr const char mkd_doc_refracta_RasterRenderOptions[] = R"doc(Options of refracta.render_raster, with their defaults (defined once, here). Set any field by name,
 nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
 validate() reports every bad value at once.)doc";
@@ -138,6 +155,10 @@ quintic Hermite interpolant of positions, tangents and curvatures, accurate to O
 points (N,3) [m]; directions (N,3) unit tangents; arc_length (N,) [m]; ior (N,) n at each node;
 ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max_length',
 'stop_height'); evaluations: field evaluations used.)doc";
+inline constexpr const char mkd_doc_refracta_RoughConductor[] = R"doc(A rough metal: GGX microfacets (alpha, or alpha_u along the tangent and alpha_v along the bitangent;
+>= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F
+= 1), visible-normal sampling.)doc";
+inline constexpr const char mkd_doc_refracta_RoughDielectric[] = R"doc(Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.)doc";
 inline constexpr const char mkd_doc_refracta_ShadowMapOptions[] = R"doc(The shadow maps of render_raster (an orthographic map for the sun, a perspective one per spot
 light): method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm_hamburger',
 'msm_hausdorff' (four moments box-filtered kernel x kernel, read through `moments`).)doc";
@@ -165,6 +186,11 @@ CurvedEarth radius) the scene's y is the flat height y' = R ln(1 + h/R) and h = 
 means a flat Earth (h = y). The slope is the shading normal's angle from +y (the Earth-flattening
 map is conformal: it keeps angles). Colours are linear RGB albedos in [0, 1]: conifer forest ~0.08,
 rock 0.2-0.3, old snow ~0.8.)doc";
+inline constexpr const char mkd_doc_refracta_ThinDielectric[] = R"doc(A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through
+(no offset, no medium inside: interior_ior is None). ior as for Dielectric.)doc";
+inline constexpr const char mkd_doc_refracta_ThinFilm[] = R"doc(Thin-film iridescence (Belcour & Barla 2017): a film of thickness [nm] and index film_ior on a base
+of complex index eta + i k, with GGX roughness alpha (or alpha_u, alpha_v; 0 = smooth mirror). The
+Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.)doc";
 inline constexpr const char mkd_doc_refracta_TraceOptions[] = R"doc(Options of refracta.trace_ray and trace_rays, with their defaults (defined once, here). Set any
 field by name; validate() reports every bad value at once. Pickles through its fields.)doc";
 // NOLINTEND

@@ -2539,9 +2539,9 @@ class Material:
 class Dielectric(Material):
     """
     Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
-    (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3), C in
-    um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction). priority: nested
-    dielectrics (larger wins).
+    (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3),
+    C in um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction).
+    priority: nested dielectrics (larger wins).
     """
     def __getstate__(self) -> dict:
         ...
@@ -2587,8 +2587,8 @@ class ThinDielectric(Material):
         """
 class Diffuse(Material):
     """
-    Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b)
-    in [0, 1] (> 1 is refused: it would create energy). texture: an image file (str or os.PathLike;
+    Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b) in [0, 1] (> 1 is
+    refused: it would create energy). texture: an image file (str or os.PathLike;
     any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
     multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
     relative paths are from the working directory when the material is made. Each scene the material
@@ -2608,8 +2608,8 @@ class Diffuse(Material):
         """
 class BlinnPhong(Material):
     """
-    Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0, 1]
-    (numbers or (r, g, b)), ns >= 0; alpha in [0, 1] is the raster opacity (MTL d). Sampled by a
+    Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0,
+    1] (numbers or (r, g, b)), ns >= 0; alpha in [0, 1] is the raster opacity (MTL d). Sampled by a
     mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd. texture: an image file (str or os.PathLike;
     any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
     multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
@@ -2647,8 +2647,8 @@ class Conductor(Material):
 class RoughConductor(Material):
     """
     A rough metal: GGX microfacets (alpha, or alpha_u along the tangent and alpha_v along the bitangent;
-    >= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F = 1),
-    visible-normal sampling.
+    >= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F
+    = 1), visible-normal sampling.
     """
     def __getstate__(self) -> dict:
         ...
@@ -2663,9 +2663,9 @@ class RoughConductor(Material):
         """
 class Plastic(Material):
     """
-    Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of index
-    ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX
-    (or alpha_u, alpha_v). A texture multiplies the reflectance. texture: an image file (str or os.PathLike;
+    Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of
+    index ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), >
+    0: GGX (or alpha_u, alpha_v). A texture multiplies the reflectance. texture: an image file (str or os.PathLike;
     any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
     multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
     relative paths are from the working directory when the material is made. Each scene the material

@@ -1,5 +1,6 @@
 // Python bindings of the materials (shading/*.h): one class per BSDF, each pickled through its
 // constructor's keyword arguments (bind_shading.h's def_material).
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_shading.h"
 
 #include "refracta/core/error.h"
@@ -62,19 +63,14 @@ namespace {
 
 // Glass: smooth, rough and thin.
 void bind_dielectrics(py::module_& m) {
-  def_material<Dielectric>(m, "Dielectric",
-      "Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by\n"
-      "(eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3), C in\n"
-      "um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction). priority: nested\n"
-      "dielectrics (larger wins).",
+  def_material<Dielectric>(m, "Dielectric", DOC(refracta, Dielectric),
       py::init([](const py::object& ior, const py::object& sellmeier, int priority) {
         return std::make_shared<Dielectric>(to_ior(ior, sellmeier), priority);
       }),
       [](const Dielectric& m) { return with_ior(py::dict(py::arg("priority") = m.priority()), m.ior()); },
       py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0);
 
-  def_material<RoughDielectric>(m, "RoughDielectric",
-      "Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.",
+  def_material<RoughDielectric>(m, "RoughDielectric", DOC(refracta, RoughDielectric),
       py::init([](std::optional<double> alpha, const py::object& ior, const py::object& sellmeier, int priority,
                   std::optional<double> alpha_u, std::optional<double> alpha_v) {
         const auto a = alphas_from(alpha, alpha_u, alpha_v, true, 0.0);
@@ -88,9 +84,7 @@ void bind_dielectrics(py::module_& m) {
       py::arg("alpha") = py::none(), py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0,
       py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
 
-  def_material<ThinDielectric>(m, "ThinDielectric",
-      "A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through\n"
-      "(no offset, no medium inside: interior_ior is None). ior as for Dielectric.",
+  def_material<ThinDielectric>(m, "ThinDielectric", DOC(refracta, ThinDielectric),
       py::init([](const py::object& ior, const py::object& sellmeier) { return std::make_shared<ThinDielectric>(to_ior(ior, sellmeier)); }),
       [](const ThinDielectric& m) { return with_ior(py::dict(), m.ior()); },
       py::arg("ior") = 1.5, py::arg("sellmeier") = py::none());
@@ -101,9 +95,7 @@ void bind_dielectrics(py::module_& m) {
 void bind_materials(py::module_& m) {
   bind_dielectrics(m);
   const PrincipledParameters kPrincipled;  // Principled's defaults
-  def_material<Diffuse>(m, "Diffuse",
-      "Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b)\n"
-      "in [0, 1] (> 1 is refused: it would create energy). " TEXTURE_DOC,
+  def_material<Diffuse>(m, "Diffuse", textured_doc(DOC(refracta, Diffuse)).c_str(),
       py::init([](const py::object& reflectance, const py::object& texture) {
         return std::make_shared<Diffuse>(to_textured(reflectance, "reflectance", texture));
       }),
@@ -112,10 +104,7 @@ void bind_materials(py::module_& m) {
   },
       py::arg("reflectance") = 0.5, py::arg("texture") = py::none());
 
-  def_material<BlinnPhong>(m, "BlinnPhong",
-      "Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0, 1]\n"
-      "(numbers or (r, g, b)), ns >= 0; alpha in [0, 1] is the raster opacity (MTL d). Sampled by a\n"
-      "mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd. " TEXTURE_DOC,
+  def_material<BlinnPhong>(m, "BlinnPhong", textured_doc(DOC(refracta, BlinnPhong)).c_str(),
       py::init([](const py::object& kd, const py::object& ks, double ns, const py::object& texture, double alpha) {
         return std::make_shared<BlinnPhong>(to_textured(kd, "kd", texture), to_rgb(ks, "ks"), ns, alpha);
       }),
@@ -125,9 +114,7 @@ void bind_materials(py::module_& m) {
   },
       py::arg("kd") = 0.5, py::arg("ks") = 0.0, py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("alpha") = 1.0);
 
-  def_material<Conductor>(m, "Conductor",
-      "A smooth metal mirror with the exact complex Fresnel reflectance of eta + i k (numbers or (r, g, b),\n"
-      "relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.",
+  def_material<Conductor>(m, "Conductor", DOC(refracta, Conductor),
       py::init([](const py::object& eta, const py::object& k) {
         return std::make_shared<Conductor>(to_optional_rgb(eta, "eta"), to_optional_rgb(k, "k"));
       }),
@@ -136,10 +123,7 @@ void bind_materials(py::module_& m) {
   },
       py::arg("eta") = py::none(), py::arg("k") = py::none());
 
-  def_material<RoughConductor>(m, "RoughConductor",
-      "A rough metal: GGX microfacets (alpha, or alpha_u along the tangent and alpha_v along the bitangent;\n"
-      ">= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F = 1),\n"
-      "visible-normal sampling.",
+  def_material<RoughConductor>(m, "RoughConductor", DOC(refracta, RoughConductor),
       py::init([](std::optional<double> alpha, std::optional<double> alpha_u, std::optional<double> alpha_v,
                        const py::object& eta, const py::object& k) {
         const auto a = alphas_from(alpha, alpha_u, alpha_v, true, 0.0);
@@ -152,10 +136,7 @@ void bind_materials(py::module_& m) {
       py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none(),
            py::arg("eta") = py::none(), py::arg("k") = py::none());
 
-  def_material<Plastic>(m, "Plastic",
-      "Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of index\n"
-      "ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX\n"
-      "(or alpha_u, alpha_v). A texture multiplies the reflectance. " TEXTURE_DOC,
+  def_material<Plastic>(m, "Plastic", textured_doc(DOC(refracta, Plastic)).c_str(),
       py::init([](const py::object& reflectance, double ior, std::optional<double> alpha, std::optional<double> alpha_u,
                   std::optional<double> alpha_v, const py::object& texture) {
         const auto a = alphas_from(alpha, alpha_u, alpha_v, false, 0.0);
@@ -168,10 +149,7 @@ void bind_materials(py::module_& m) {
       py::arg("reflectance") = 0.5, py::arg("ior") = 1.5, py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(),
            py::arg("alpha_v") = py::none(), py::arg("texture") = py::none());
 
-  def_material<Principled>(m, "Principled",
-      "Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and\n"
-      "metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,\n"
-      "clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color. " TEXTURE_DOC,
+  def_material<Principled>(m, "Principled", textured_doc(DOC(refracta, Principled)).c_str(),
       py::init([](const py::object& base_color, double metallic, double roughness, double anisotropic, double specular,
                        double specular_tint, double sheen, double sheen_tint, double clearcoat, double clearcoat_gloss,
                        const py::object& texture) {
@@ -193,10 +171,7 @@ void bind_materials(py::module_& m) {
            py::arg("sheen_tint") = kPrincipled.sheen_tint, py::arg("clearcoat") = kPrincipled.clearcoat,
            py::arg("clearcoat_gloss") = kPrincipled.clearcoat_gloss, py::arg("texture") = py::none());
 
-  def_material<ThinFilm>(m, "ThinFilm",
-      "Thin-film iridescence (Belcour & Barla 2017): a film of thickness [nm] and index film_ior on a base\n"
-      "of complex index eta + i k, with GGX roughness alpha (or alpha_u, alpha_v; 0 = smooth mirror). The\n"
-      "Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.",
+  def_material<ThinFilm>(m, "ThinFilm", DOC(refracta, ThinFilm),
       py::init([](double thickness, double film_ior, const py::object& eta, const py::object& k, std::optional<double> alpha,
                   std::optional<double> alpha_u, std::optional<double> alpha_v) {
         const auto a = alphas_from(alpha, alpha_u, alpha_v, false, 0.1);

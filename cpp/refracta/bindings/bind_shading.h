@@ -10,6 +10,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 
 namespace refracta {
@@ -71,5 +72,8 @@ py::class_<T, Material, std::shared_ptr<T>> def_material(py::module_& m, const c
   "relative paths are from the working directory when the material is made. Each scene the material\n"    \
   "is added to registers the file (prepared once into the texture cache). An int is the id of a\n"       \
   "texture the scene already holds. f/pdf/sample evaluate the untextured colour."
+
+// A textured material's docstring: its class comment, then TEXTURE_DOC.
+inline std::string textured_doc(const char* doc) { return std::string(doc) + " " + TEXTURE_DOC; }
 
 }  // namespace refracta

@@ -108,6 +108,8 @@ class ConductorIndex {
   Color eta_, k_;
 };
 
+// A smooth metal mirror with the exact complex Fresnel reflectance of eta + i k (numbers or (r, g,
+// b), relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.
 class Conductor final : public Material {
  public:
   // eta, k unset: a perfect mirror (F = 1); eta without k: k = 0.
@@ -122,6 +124,9 @@ class Conductor final : public Material {
   ConductorIndex index_;
 };
 
+// A rough metal: GGX microfacets (alpha, or alpha_u along the tangent and alpha_v along the
+// bitangent; >= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta +
+// i k (unset: F = 1), visible-normal sampling.
 class RoughConductor final : public Material {
  public:
   RoughConductor(double alpha_u, double alpha_v, const std::optional<Vec3d>& eta = std::nullopt,

@@ -98,6 +98,10 @@ class ThinDielectricBsdf final : public Bsdf {
   double eta_;
 };
 
+// Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
+// (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2,
+// C3), C in um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction).
+// priority: nested dielectrics (larger wins).
 class Dielectric final : public Material {
  public:
   explicit Dielectric(const Ior& ior = Ior(1.5), int priority = 0) : ior_(ior), priority_(priority) {}
@@ -125,6 +129,8 @@ class Dielectric final : public Material {
   int priority_;
 };
 
+// Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric,
+// priority.
 class RoughDielectric final : public Material {
  public:
   RoughDielectric(double alpha_u, double alpha_v, const Ior& ior = Ior(1.5), int priority = 0)
@@ -153,6 +159,8 @@ class RoughDielectric final : public Material {
   int priority_;
 };
 
+// A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through
+// (no offset, no medium inside: interior_ior is None). ior as for Dielectric.
 class ThinDielectric final : public Material {
  public:
   explicit ThinDielectric(const Ior& ior = Ior(1.5)) : ior_(ior) {}

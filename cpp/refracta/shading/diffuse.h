@@ -28,6 +28,8 @@ class DiffuseBsdf final : public TwoSidedReflection<DiffuseBsdf> {
   Spectrum r_;
 };
 
+// Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b) in [0, 1] (> 1
+// is refused: it would create energy).
 class Diffuse final : public Material {
  public:
   explicit Diffuse(const TexturedReflectance& reflectance) : reflectance_(reflectance) {}

@@ -61,6 +61,9 @@ class BlinnPhongBsdf final : public TwoSidedReflection<BlinnPhongBsdf> {
   double ns_, p_diffuse_;
 };
 
+// Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in
+// [0, 1] (numbers or (r, g, b)), ns >= 0; alpha in [0, 1] is the raster opacity (MTL d). Sampled by
+// a mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd.
 class BlinnPhong final : public Material {
  public:
   BlinnPhong(const TexturedReflectance& kd, const Vec3d& ks, double ns, double alpha = 1.0)

@@ -81,6 +81,9 @@ class PlasticBsdf final : public TwoSidedReflection<PlasticBsdf> {
   TrowbridgeReitz distribution_;
 };
 
+// Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of
+// index ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe),
+// > 0: GGX (or alpha_u, alpha_v). A texture multiplies the reflectance.
 class Plastic final : public Material {
  public:
   // alpha = 0: smooth coat; otherwise GGX roughness alpha_u, alpha_v (>= TrowbridgeReitz::kMinAlpha).

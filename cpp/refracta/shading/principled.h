@@ -106,6 +106,9 @@ class PrincipledBsdf final : public TwoSidedReflection<PrincipledBsdf> {
   double clearcoat_alpha_, p_diffuse_, p_clearcoat_;
 };
 
+// Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1],
+// and metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen,
+// sheen_tint, clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color.
 class Principled final : public Material {
  public:
   Principled(const TexturedReflectance& base_color, const PrincipledParameters& p) : base_(base_color), p_(p) {

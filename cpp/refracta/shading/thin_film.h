@@ -104,6 +104,10 @@ class ThinFilmBsdf final : public TwoSidedReflection<ThinFilmBsdf> {
   TrowbridgeReitz distribution_;
 };
 
+// Thin-film iridescence (Belcour & Barla 2017): a film of thickness [nm] and index film_ior on a
+// base of complex index eta + i k, with GGX roughness alpha (or alpha_u, alpha_v; 0 = smooth
+// mirror). The Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm).
+// Reflection only.
 class ThinFilm final : public Material {
  public:
   // thickness [nm] >= 0, film_ior > 0; base eta (> 0) and k (>= 0) per channel; alpha 0 = smooth.
