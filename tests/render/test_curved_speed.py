@@ -6,6 +6,7 @@ renders against their references, unchanged)."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 import refracta
 from refracta import examples, shading
@@ -34,8 +35,18 @@ def hills_scene():
     return scene, camera, refracta.PhysicalAtmosphere(surface_dt=15.0, surface_depth=0.1)
 
 
-def test_curved_renders_do_not_depend_on_threads_tiles_or_bounds():
+def compact_spot_air():
+    """hills_scene's road 2 K warm but for a compact hot spot 20 K warmer under the view: its
+    camera, shadow and bounce rays through the spot are cast in rk45 legs."""
+    spot = refracta.HotSpot(300.0, 0.0, 250.0, 20.0, footprint="compact")
+    return refracta.PhysicalAtmosphere(surface_dt=2.0, surface_depth=0.1, hot_spots=[spot])
+
+
+@pytest.mark.parametrize("air", ["hot_road", "hot_spot"])
+def test_curved_renders_do_not_depend_on_threads_tiles_or_bounds(air):
     scene, camera, field = hills_scene()
+    if air == "hot_spot":
+        field = compact_spot_air()
     options = dict(progress=False, max_length=5000.0)
     whole = refracta.render(scene, camera, field, **options)
     threads = refracta.get_threads()
@@ -49,3 +60,6 @@ def test_curved_renders_do_not_depend_on_threads_tiles_or_bounds():
     np.testing.assert_array_equal(whole, single)
     np.testing.assert_array_equal(whole, tiled)
     np.testing.assert_array_equal(whole[4:20, 10:40], part)
+    if air == "hot_spot":  # the spot's legs were cast: its air shows
+        plain = refracta.PhysicalAtmosphere(surface_dt=2.0, surface_depth=0.1)
+        assert not np.array_equal(whole, refracta.render(scene, camera, plain, **options))

@@ -70,12 +70,18 @@ class Rk4Stepper {
 // Error control aims at the global position error `tol` [m] over the path: each step's local
 // position error plus its direction error carried over the remaining length must stay below
 // tol * h / max_length (error per unit step), so the contributions add up to about tol.
+// Optional: first_step [m] (> 0; default min(max_step, max_length, 1 m)); carry [m], the farthest a
+// direction error is carried (default the remaining length): a caller whose path leaves the
+// error-prone air within `carry` and is held to an angle beyond it (a pixel's footprint grows with
+// the path) needs the direction only to that angle, not to its position at max_length.
 template <class T, class Field>
 class Rk45Stepper {
  public:
-  Rk45Stepper(double tol, double max_step, double max_length)
+  Rk45Stepper(double tol, double max_step, double max_length, double first_step = 0.0,
+              double carry = std::numeric_limits<double>::infinity())
       : tol_(tol), max_step_(max_step), max_length_(max_length),
-        h_(std::min({max_step, max_length, 1.0})) {}
+        h_(first_step > 0.0 ? std::min({first_step, max_step, max_length}) : std::min({max_step, max_length, 1.0})),
+        carry_(carry) {}
 
   RayNode<T> advance(const Field& field, const RayNode<T>& a, double remaining, int64_t* evals) {
     for (int attempt = 0;; ++attempt) {
@@ -92,7 +98,7 @@ class Rk45Stepper {
         h_ = 0.2 * hv;
         continue;
       }
-      const double carried = std::max(remaining - hv, 0.0) / value_of(b.n);
+      const double carried = std::min(std::max(remaining - hv, 0.0), carry_) / value_of(b.n);
       const double allowed = tol_ * hv / max_length_;
       double error = (err_x + err_v * carried) / allowed;
       if (std::isnan(error)) error = std::numeric_limits<double>::infinity();  // shrink, never NaN steps
@@ -171,7 +177,7 @@ class Rk45Stepper {
 
   static constexpr double kMinStep = 1e-12;   // relative to max_length: below it, accept
   static constexpr double kTinyStep = 1e-9;   // relative to max_length: 1000 in a row = singular
-  double tol_, max_step_, max_length_, h_;
+  double tol_, max_step_, max_length_, h_, carry_;
   int min_steps_in_a_row_ = 0;
 };
 

@@ -6,6 +6,7 @@
 #include "refracta/render/chord_plan.h"
 
 #include <tbb/parallel_for.h>
+#include "refracta/rays/march.h"
 #include "refracta/rays/trace.h"
 
 #include <algorithm>
@@ -52,6 +53,15 @@ double refine_on_plane(const PathSegment<double>& seg, const Vec3d& n, const Vec
     u = next;
   }
   return u;
+}
+
+// The longest a path can run inside the regions without leaving them all: each vertical
+// cylinder's diagonal from its top to `bottom` (the trace's stop height), summed, doubled for paths
+// that curve (inf: a slab).
+double longest_inside(const std::vector<LocalRegion>& regions, double bottom) {
+  double sum = 0.0;
+  for (const LocalRegion& region : regions) sum += std::hypot(2.0 * region.radius, region.top - bottom);
+  return 2.0 * sum;
 }
 
 // The path's end at parameter u of seg, where it meets the surface of `hit`.
@@ -293,12 +303,37 @@ PathEnd Caster::cast_in_regions(const Vec3d& origin, const Vec3d& dir, double ma
   TraceOptions trace_options = curved_trace_options(scene_, *field_, origin, options_, max_length);
   trace_options.trace = TraceMethod::kRk45;
   trace_options.step = step_in_regions();
-  // A pixel may stray sagitta_pixels of its footprint; a leg that hands over when it leaves the
-  // regions is held to the footprint where it starts (the path after it is the next leg's).
-  const double per_metre = options_.sagitta_pixels * spread;
-  trace_options.tol = std::max({trace_options.tol, options_.sagitta, per_metre * (exits ? s0 : s0 + max_length)});
+  // A pixel may stray sagitta_pixels of its footprint, k = sagitta_pixels * spread [m per metre of
+  // path]. Regions of bounded size (hot spots): half of it for the integrated path, half for the
+  // chords that stand for it (both can stray the same way: a whole row of ground hits half a pixel
+  // off when each took all of it). rk45 keeps each step's position error plus its direction error
+  // carried on within tol * h / max_length (march.h); tol = k/2 (s0 + max_length) holds that to
+  // about k/2 h per step, so wherever the path ends -- a hit inside the leg, or beyond it after a
+  // handoff -- its summed stray stays within k/2 of its length. (Holding a leg that hands over to
+  // the footprint where it starts, k s0 over the whole reach, asked 600x that of a camera ray
+  // entering a hot spot 20 m from the eye: 5x the steps.) A direction error is carried at most as
+  // far as the path can run inside the regions (reach): beyond them the footprint grows with the
+  // path as fast as the direction error's stray, and the leg holds the direction within k/2.
+  // Slabs (a turbulent layer, unbounded: the strict trace the shimmer fast path is judged by)
+  // keep the whole k, and a leg that hands over is held to the footprint where it starts.
+  const double reach = longest_inside(regions_, *trace_options.stop_height);
+  const bool bounded = std::isfinite(reach);
+  const double per_metre = (bounded ? 0.5 : 1.0) * options_.sagitta_pixels * spread;
+  trace_options.tol =
+      std::max({trace_options.tol, options_.sagitta, per_metre * (exits && !bounded ? s0 : s0 + max_length)});
+  trace_options.validate();
   bool been_inside = inside_region(origin);
-  trace(*field_, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
+  // A leg that enters a hot spot from outside starts in its border air, nearly the layered air:
+  // its first step may descend a quarter of its height above the ground (rk45's default 1 m took
+  // three growing steps to reach the scale of the air; a first step down into the spot's surface
+  // layer is one its error estimate can pass over). Legs that start inside (on a hot surface): 1 m.
+  const Vec3d t0 = dir.normalized();
+  const double first_step = bounded && !been_inside
+                                ? 0.25 * (origin.y() - scene_.lowest()) / std::max(std::abs(t0.y()), 1e-12)
+                                : 0.0;
+  Rk45Stepper<double, IndexField> stepper(trace_options.tol, trace_options.step, trace_options.max_length,
+                                          first_step, reach);
+  march(*field_, origin, t0, trace_options, stepper, [&](const RayNode<double>& a, const RayNode<double>& b) {
     if (segment_blocked(a, b, &end, std::max(options_.sagitta, per_metre * (s0 + a.s)), /*regions=*/false)) return false;
     end.direction = b.v.normalized();
     end.length = b.s;

@@ -135,7 +135,7 @@ class Caster {
   PathEnd cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_length, double spread, bool from_eye) const;
   // The full field's path (rk45) from a state next to or inside a region, until it has been inside
   // and has left every region (handoff), hits the scene or ends (`exits`: false on the last leg).
-  // s0: the path's arc length at origin (a pixel's footprint there bounds the leg's tolerance).
+  // s0: the path's arc length at origin (the footprint's growth from there bounds the leg's tolerance).
   PathEnd cast_in_regions(const Vec3d& origin, const Vec3d& dir, double max_length, double spread, double s0,
                           bool exits) const;
   bool inside_region(const Vec3d& p) const;
