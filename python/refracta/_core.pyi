@@ -2007,7 +2007,7 @@ class RenderOptions:
     def turbulence_trace(self) -> str:
         """
         camera rays through turbulence: 'strict' (the full field, rk45) or 'perturbed' (deviations from
-        the calm rays of the eye's table in steps of the turbulence's cells; strict where not small)
+        each ray's calm path, traced exactly to tol, in steps of the turbulence's cells)
         """
     @turbulence_trace.setter
     def turbulence_trace(self, arg1: str) -> None:

@@ -268,7 +268,7 @@ PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool tru
   run.push_back({a.x, a.v.normalized(), a.s});
   // Before the layer: the calm path's nodes.
   for (size_t k = 0; k < first; ++k) {
-    const RayNode<double> b = path.node(k + 1);
+    const RayNode<double>& b = path.node(k + 1);
     if (add({b.x, b.v.normalized(), b.s})) return end;
     a = b;
   }
@@ -286,7 +286,7 @@ PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool tru
         rest.chords += end.chords;
         return rest;
       }
-      const RayNode<double> b = path.node(k + 1);
+      const RayNode<double>& b = path.node(k + 1);
       const PathSegment<double> segment(a, b);
       const double len = b.s - a.s;
       // Through the layer a step per cell; between dips one step (the calm gradient's change at
