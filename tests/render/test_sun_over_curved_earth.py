@@ -40,3 +40,26 @@ def test_the_sun_stands_higher_over_ground_toward_it_by_the_central_angle(sun_el
     assert away > 0.0  # lit at all (was black)
     phi, e = DISTANCE / EARTH_RADIUS, math.radians(sun_elevation)
     assert toward / away == pytest.approx(math.sin(e + phi) / math.sin(e - phi), rel=RATIO_TOLERANCE)
+
+
+def test_eye_table_over_the_curved_earth_ends_paths_where_they_escape():
+    # A setting sun (examples.green_flash's air and eye, 1500 km of path): the eye's table ends
+    # each path where it leaves the air (Caster::plane_escape, as a traced camera ray does), so
+    # paths longer than 150 km are served from it; the sun's rim, the sky and the warm sea's mirage
+    # as the per-pixel traced render shows them.
+    scene = refracta.Scene()
+    scene.add_ground(0.0, 2.0e5, material=shading.Diffuse((0.1, 0.2, 0.3)))
+    scene.set_environment((0.2, 0.3, 0.5))
+    e = math.radians(-0.74)
+    scene.set_sun((math.cos(e), math.sin(e), 0.0), (1000.0, 800.0, 600.0), angular_diameter=0.53)
+    look = math.radians(-0.05)
+    camera = refracta.Camera(
+        (0.0, 4.0, 0.0), (1000 * math.cos(look), 4 + 1000 * math.sin(look), 0.0), vfov=0.7, width=12, height=12
+    )
+    field = refracta.CurvedEarth(refracta.PhysicalAtmosphere(surface_dt=3.0, surface_depth=2.0))
+    table = refracta.render(scene, camera, field, max_length=1.5e6, progress=False)
+    traced = refracta.render(scene, camera, field, max_length=1.5e6, table=False, progress=False)
+    assert np.sum(traced > 100.0) > 0  # the sun's disc is in the frame
+    # Both end in the same escape integral; they differ by the table's interpolation of the path
+    # below it (measured 0): a quarter pixel's shift would move the sun's rim by ~1e-1 of the maximum.
+    np.testing.assert_allclose(table, traced, rtol=0.0, atol=1e-4 * float(np.max(traced)))

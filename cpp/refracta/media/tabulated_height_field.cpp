@@ -2,6 +2,7 @@
 #include "refracta/media/tabulated_height_field.h"
 
 #include "refracta/core/error.h"
+#include "refracta/media/dispersed_field.h"
 
 #include <algorithm>
 #include <cmath>
@@ -161,6 +162,12 @@ FieldPtr tabulate_heights(const FieldPtr& field, double lo, double hi) {
     return field->with_base(tabulate_heights(inner, field->base_height(lo), field->base_height(hi)));
   }
   if (dynamic_cast<const TabulatedHeightField*>(field.get())) return field;
+  // Tabulated air dispersed to another wavelength (a spectral render's eye tables, one per
+  // dispersion scale: render/hero_casters.h) is a table lookup and a multiply-add already.
+  if (const auto* dispersed = dynamic_cast<const DispersedField*>(field.get());
+      dispersed && dynamic_cast<const TabulatedHeightField*>(dispersed->base().get())) {
+    return field;
+  }
   return std::make_shared<TabulatedHeightField>(field, lo, hi);
 }
 

@@ -24,6 +24,7 @@ void ElevationTableOptions::validate() const {
   problems.check(initial_rays >= 2, "initial_rays must be >= 2 (got ", initial_rays, ")");
   problems.check(min_spacing > 0.0, "min_spacing must be > 0 (got ", min_spacing, ")");
   problems.check(angular_tol >= 0.0, "angular_tol must be >= 0 (got ", angular_tol, ")");
+  problems.check(!std::isnan(ceiling), "ceiling must be a height or inf (got nan)");
   problems.check(max_rays >= initial_rays, "max_rays must be >= initial_rays (got ", max_rays, ")");
   if (trace.stop_height) {
     problems.check(!(eye_height < *trace.stop_height), "eye_height ", eye_height, " m is below stop_height ",
@@ -38,9 +39,22 @@ ElevationTable::Entry ElevationTable::trace_entry(double elevation, const std::a
   trace.tol = std::max(trace.tol, tol);
   trace.cancel = cancel;
   Entry entry;
-  entry.path = std::make_shared<RayPath>(trace_path(
-      *field_, Vec3d(0.0, options_.eye_height, 0.0), Vec3d(std::cos(elevation), std::sin(elevation), 0.0),
-      trace));
+  const Vec3d eye(0.0, options_.eye_height, 0.0), launch(std::cos(elevation), std::sin(elevation), 0.0);
+  if (options_.escape) {
+    // As trace_path, ending at the first node where the path escapes (its stop then kVisitor).
+    std::vector<RayNode<double>> nodes;
+    auto visit = [&](const RayNode<double>& a, const RayNode<double>& b) {
+      if (nodes.empty()) nodes.push_back(a);
+      nodes.push_back(b);
+      entry.escape = options_.escape(b, trace.max_length - b.s);
+      return !entry.escape;
+    };
+    const TraceEnd<double> end = refracta::trace(*field_, eye, launch, trace, visit);
+    if (nodes.empty()) nodes.push_back(end.end);
+    entry.path = std::make_shared<RayPath>(std::move(nodes), end.stop, end.evaluations);
+  } else {
+    entry.path = std::make_shared<RayPath>(trace_path(*field_, eye, launch, trace));
+  }
   int turns = 0;
   const auto& nodes = entry.path->nodes();
   for (size_t i = 1; i < nodes.size(); ++i) {
@@ -118,10 +132,36 @@ double ElevationTable::excess(const std::vector<double>& elevations, const std::
                               const Entry& mid, double elevation, double scale) const {
   double worst = -std::numeric_limits<double>::infinity();
   for (double fraction : {0.25, 0.5, 0.75, 1.0}) {
-    const PlaneState p = interpolate(elevations, entries, i, elevation, fraction);
     const PlaneState m = state_of(*mid.path, fraction * mid.path->length());
+    if (mid.escape && m.h > options_.ceiling) {  // above everything from here on? (options.ceiling)
+      const auto& nodes = mid.path->nodes();
+      bool above = true;
+      for (size_t k = nodes.size(); k-- > 0 && above && nodes[k].s >= m.s;) above = nodes[k].x.y() > options_.ceiling;
+      if (above) continue;
+    }
+    const PlaneState p = interpolate(elevations, entries, i, elevation, fraction);
     const double allowed = scale * (options_.tol + options_.angular_tol * m.s);
     worst = std::max(worst, std::hypot(p.r - m.r, p.h - m.h) - allowed);
+  }
+  if (mid.escape) {
+    // Where the path leaves the air, to the tolerance at its whole length, and the direction it
+    // leaves along (its sky) to angular_tol.
+    const auto [first, count] = stencil_of(entries, i);
+    double weights[4];
+    lagrange_weights(elevations, first, count, elevation, weights);
+    PlaneState states[4];
+    double s = 0.0;
+    for (size_t k = 0; k < count; ++k) {
+      if (!entries[first + k].escape) return std::numeric_limits<double>::infinity();
+      states[k] = *entries[first + k].escape;
+      s += weights[k] * states[k].s;
+    }
+    const PlaneState p = blend(weights, states, count, s, mid.escape->stop);
+    const PlaneState& m = *mid.escape;
+    worst = std::max(worst, std::hypot(p.r - m.r, p.h - m.h) - scale * (options_.tol + options_.angular_tol * m.s));
+    const double turn =
+        std::abs(std::atan2(p.sin_e * m.cos_e - p.cos_e * m.sin_e, p.cos_e * m.cos_e + p.sin_e * m.sin_e));
+    worst = std::max(worst, (turn - scale * options_.angular_tol) * m.s);  // in metres at the escape's length
   }
   return worst;
 }
@@ -291,9 +331,13 @@ ElevationTable::LazyPath ElevationTable::lazy_path(double elevation, double tol)
   if (exact_[i]) {
     // An exact interval has no precomputed stencil: its ends are traced entries, inside is traced.
     if (elevation == elevations_[i] || elevation == elevations_[i + 1]) {
-      lazy.exact_ = entries_[elevation == elevations_[i] ? i : i + 1].path;
+      const Entry& entry = entries_[elevation == elevations_[i] ? i : i + 1];
+      lazy.exact_ = entry.path;
+      lazy.exact_escape_ = entry.escape;
     } else {
-      lazy.exact_ = trace_entry(elevation, nullptr, tol).path;
+      Entry entry = trace_entry(elevation, nullptr, tol);
+      lazy.exact_ = std::move(entry.path);
+      lazy.exact_escape_ = entry.escape;
     }
     const auto& nodes = lazy.exact_->nodes();
     lazy.exact_lowest_.resize(nodes.size());
@@ -316,6 +360,20 @@ size_t ElevationTable::LazyPath::size() const {
 
 TraceStop ElevationTable::LazyPath::stop() const {
   return exact_ ? exact_->stop() : table_->entries_[template_].path->stop();
+}
+
+std::optional<PlaneState> ElevationTable::LazyPath::escape() const {
+  if (exact_) return exact_escape_;
+  const auto [first, count] = table_->stencil(interval_);
+  PlaneState states[4];
+  double s = 0.0;
+  for (size_t k = 0; k < count; ++k) {
+    const auto& state = table_->entries_[first + k].escape;
+    if (!state) return std::nullopt;  // one kind: all escape or none
+    states[k] = *state;
+    s += weights_[k] * state->s;
+  }
+  return blend(weights_, states, count, s, TraceStop::kVisitor);
 }
 
 RayNode<double> ElevationTable::LazyPath::node(size_t k) const {

@@ -15,11 +15,28 @@
 #include "refracta/rays/trace_options.h"
 
 #include <atomic>
+#include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
 
 namespace refracta {
+
+// A point of a path in its vertical plane: horizontal distance r, height h, arc length s and the
+// unit tangent (cos e, sin e).
+struct PlaneState {
+  double r, h, s;
+  double cos_e, sin_e;
+  TraceStop stop;
+};
+
+// Where a path in the table's plane (eye at (0, eye_height, 0), launched toward +x) has left
+// everything it could meet for good: given a node and the path length still to go, the state where
+// it leaves the air (r, h, s, direction there), or nullopt to trace on. Renders over a spherical
+// Earth end each entry there (Caster::plane_escape: above every object, rising, unable to turn,
+// the rest from Bouguer's invariant), so a path to the horizon costs its first kilometres.
+using PlaneEscape = std::function<std::optional<PlaneState>(const RayNode<double>& node, double remaining)>;
 
 struct ElevationTableOptions {
   double eye_height = 1.5;          // [m]
@@ -34,6 +51,16 @@ struct ElevationTableOptions {
   // tol when unset (the traces then as accurate as the interpolation asks).
   TraceOptions trace;
   std::optional<double> trace_tol;  // [m]
+  // Unset: every path is traced to its end (max_length or the stop height). Set: a path ends at
+  // the first node where it escapes; its escape state is interpolated as the ends are, and the
+  // table's check holds it to angular_tol in direction (see PlaneEscape).
+  PlaneEscape escape;
+  // Nothing to meet above this height [m] (renders: the highest object). Where an escaping path
+  // stays above it from a point on, that part is not held to tol (chords are not tested there):
+  // the escape state is. Escape points sit on trace nodes, so their arc lengths jump from one
+  // elevation to the next, and the paths compared at equal fractions of their lengths part along
+  // the way by up to a node's spacing there.
+  double ceiling = std::numeric_limits<double>::infinity();
 
   // Throws std::invalid_argument listing every bad field (refracta::Problems).
   void validate() const;
@@ -44,14 +71,6 @@ struct ElevationTableOptions {
 struct TableRayEnd {
   Vec3d point, direction;
   double length;
-  TraceStop stop;
-};
-
-// A point of a path in its vertical plane: horizontal distance r, height h, arc length s and the
-// unit tangent (cos e, sin e).
-struct PlaneState {
-  double r, h, s;
-  double cos_e, sin_e;
   TraceStop stop;
 };
 
@@ -81,6 +100,8 @@ class ElevationTable {
     // A lower bound of the path's height from node k on (for early exits above a scene).
     double lowest_from(size_t k) const;
     TraceStop stop() const;
+    // Where the path leaves the air when it ends by the table's escape (PlaneEscape), in the plane.
+    std::optional<PlaneState> escape() const;
     // The table entry whose node fractions this path has (its nodes correspond one to one), or
     // kExact when the path is traced exactly.
     size_t template_entry() const { return exact_ ? kExact : template_; }
@@ -92,6 +113,7 @@ class ElevationTable {
     size_t interval_ = 0, template_ = 0;
     double elevation_ = 0.0;
     std::shared_ptr<const RayPath> exact_;  // inside an exact interval
+    std::optional<PlaneState> exact_escape_;  // its escape state
     std::vector<double> exact_lowest_;
     // Interpolation stencil of this elevation (served from the interval's precomputed states).
     double weights_[4] = {0, 0, 0, 0};
@@ -115,6 +137,7 @@ class ElevationTable {
     std::shared_ptr<const RayPath> path;
     int kind = 0;                  // stop reason and number of turning points, packed
     std::vector<double> lowest;    // lowest height from each node to the end
+    std::optional<PlaneState> escape;  // options.escape's state where the path ended by it
   };
   RayNode<double> node_of(const PlaneState& p) const;
   // The stencil of interval i: its first entry and count (4 neighbours of one kind, else 2).

@@ -403,7 +403,7 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
       branch.integrate(x.y(), top, kMinSine, &run, &length, 1e-8, run_tol) && length <= remaining) {
     const double scale = cos_e > 0.0 ? std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h)) / cos_e : 0.0;
     return Escape{Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized(),
-                  Vec3d(x.x() + run * across.x(), top, x.z() + run * across.z())};
+                  Vec3d(x.x() + run * across.x(), top, x.z() + run * across.z()), length};
   }
   double h = x.y() + remaining * sin_x;
   if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;  // the ray may turn below that height
@@ -426,7 +426,14 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
   return Escape{Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized(),
-                Vec3d(x.x() + run * across.x(), h, x.z() + run * across.z())};
+                Vec3d(x.x() + run * across.x(), h, x.z() + run * across.z()), length};
+}
+
+std::optional<PlaneState> Caster::plane_escape(const RayNode<double>& node, double remaining, double spread) const {
+  const auto exit = escape_direction(node.x, node.v, remaining, spread);
+  if (!exit) return std::nullopt;
+  return PlaneState{exit->point.x(), exit->point.y(), node.s + exit->length, exit->direction.x(), exit->direction.y(),
+                    TraceStop::kVisitor};
 }
 
 std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length,
@@ -671,8 +678,11 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
       a = b;
     }
   }
-  // The sky is seen along the path's last direction.
-  if (plane.size() > 1) {
+  // The sky is seen along the path's last direction, or where it escapes (ElevationTableOptions::escape).
+  if (const auto escape = plane.escape()) {
+    end.direction = Vec3d(escape->cos_e * path.cx, escape->sin_e, escape->cos_e * path.cz);
+    end.end_point = Vec3d(eye_.x() + escape->r * path.cx, escape->h, eye_.z() + escape->r * path.cz);
+  } else if (plane.size() > 1) {
     const RayNode<double> last = path.node(plane.size() - 1);
     end.direction = last.v.normalized();
     end.end_point = last.x;

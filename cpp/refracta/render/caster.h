@@ -100,6 +100,12 @@ class Caster {
   // measurably, see render/README in the shading tests).
   bool occluded_straight(const Vec3d& origin, const Vec3d& dir, double distance) const;
 
+  // The eye table's escape (ElevationTableOptions::escape, PlaneEscape): where a path of the
+  // table's plane at `node`, with `remaining` [m] to go, leaves the air as escape_direction finds
+  // it for a camera ray standing for a pixel of `spread` [rad]; nullopt where it may still turn
+  // or meet something.
+  std::optional<PlaneState> plane_escape(const RayNode<double>& node, double remaining, double spread) const;
+
   // Fields with local regions: use this (tabulated) height-only part outside them instead of the
   // field's own height_only_part().
   void use_layered(const IndexField* layered) { layered_ = layered; }
@@ -115,6 +121,8 @@ class Caster {
                                                 const std::array<std::array<Vec3d, 2>, 2>& neighbours) const;
 
   bool curved() const { return field_ != nullptr; }
+  // Nothing to hit, and no region to enter, above this height [m].
+  double ceiling() const { return ceiling_; }
   const IndexField* field() const { return field_; }
   // The height-only air rays see outside every local region: the field itself when height-only,
   // its height_only_part, or null (a 3-D field: everything is traced).
@@ -162,6 +170,7 @@ class Caster {
   // the run (which turns the exit by run / R) is integrated to sagitta_pixels * spread * R.
   struct Escape {
     Vec3d direction, point;
+    double length;  // path length from x to point [m]
   };
   std::optional<Escape> escape_direction(const Vec3d& x, const Vec3d& v, double remaining, double spread) const;
   // Height-only fields with an ior floor: a ray so steep that it cannot turn at any height it

@@ -1,7 +1,11 @@
 // A pool of casters and integrators for spectral renders through dispersive air (hero_casters.h).
 #include "refracta/render/hero_casters.h"
 
+#include "refracta/core/spectrum.h"
 #include "refracta/media/dispersed_field.h"
+
+#include <algorithm>
+#include <cmath>
 
 namespace refracta {
 
@@ -53,5 +57,95 @@ HeroCasters::Lease::~Lease() {
 const Caster& HeroCasters::Lease::caster() const { return hero_->caster; }
 
 const Integrator& HeroCasters::Lease::integrator() const { return *hero_->integrator; }
+
+double HeroCasters::Lease::scale() const { return *hero_->scale; }
+
+// One dispersion scale's air, its caster (its eye table's escape and camera rays) and table.
+struct SpectralEyeTables::Slice {
+  Slice(const RenderScene& scene, const FieldPtr& field, const RenderOptions& options,
+        const std::optional<IorFloors>& floors, double spread, double s)
+      : scale(s), air(tunable_dispersed_field(field, std::make_shared<const double>(s))),
+        caster(scene.geometry, air.get(), options) {
+    if (floors) caster.set_ior_floors(*floors);
+    caster.set_secondary_spread(spread);
+  }
+  double scale;
+  FieldPtr air;
+  Caster caster;
+  std::unique_ptr<ElevationTable> table;
+};
+
+SpectralEyeTables::SpectralEyeTables(const RenderScene& scene, const FieldPtr& field, const RenderOptions& options,
+                                     const std::optional<IorFloors>& floors, const Vec3d& eye, double spread,
+                                     bool escape, const TableFactory& make_table)
+    : options_(options), eye_(eye) {
+  const double reference = field_reference_wavelength(*field);
+  const double lo = air_dispersion_scale(kLambdaMax, reference), hi = air_dispersion_scale(kLambdaMin, reference);
+  for (int k = 0; k < kScales; ++k) {
+    const double s = k + 1 == kScales ? hi : lo + (hi - lo) * k / (kScales - 1);
+    auto slice = std::make_unique<Slice>(scene, field, options, floors, spread, s);
+    PlaneEscape plane_escape;
+    if (escape) {
+      plane_escape = [caster = &slice->caster, spread](const RayNode<double>& node, double remaining) {
+        return caster->plane_escape(node, remaining, spread);
+      };
+    }
+    slice->table = make_table(slice->air, plane_escape);
+    if (!slice->table) {  // no table for this air: every camera ray traced
+      slices_.clear();
+      return;
+    }
+    slice->caster.use_table(slice->table.get(), eye, spread);
+    slices_.push_back(std::move(slice));
+  }
+}
+
+SpectralEyeTables::~SpectralEyeTables() = default;
+
+PathEnd SpectralEyeTables::cast(const Caster& exact, double scale, const Vec3d& origin, const Vec3d& dir,
+                                double spread) const {
+  if (slices_.size() < 2 || origin != eye_ || !(scale >= slices_.front()->scale && scale <= slices_.back()->scale)) {
+    return exact.cast(origin, dir, 0.0, spread);
+  }
+  const double first = slices_.front()->scale, step = (slices_.back()->scale - first) / double(slices_.size() - 1);
+  const size_t k = std::min(size_t((scale - first) / step), slices_.size() - 2);
+  const Slice &lower = *slices_[k], &upper = *slices_[k + 1];
+  const PathEnd a = lower.caster.cast(origin, dir, 0.0, spread);
+  const PathEnd b = upper.caster.cast(origin, dir, 0.0, spread);
+  const double w = std::clamp((scale - lower.scale) / (upper.scale - lower.scale), 0.0, 1.0);
+  auto lerp = [w](const auto& x, const auto& y) { return (1.0 - w) * x + w * y; };
+  // The pixel's tolerance: sagitta_pixels of its footprint (Caster::cast's), in angle and at the
+  // ray's length across it.
+  const double angle = options_.sagitta_pixels * spread;
+  PathEnd end;
+  end.chords = a.chords + b.chords;
+  end.direction = lerp(a.direction, b.direction).normalized();
+  end.length = lerp(a.length, b.length);
+  if (!a.hit && !b.hit) {
+    if (std::acos(std::clamp(a.direction.dot(b.direction), -1.0, 1.0)) <= angle) {
+      end.end_point = lerp(a.end_point, b.end_point);
+      return end;
+    }
+  } else if (a.hit && b.hit && a.hit->geometry == b.hit->geometry && a.hit->primitive == b.hit->primitive &&
+             a.hit->front_face == b.hit->front_face) {
+    // Paths within the tolerance of each other meet a grazed surface far apart along it: compare
+    // the hits across the ray.
+    const Vec3d apart = b.hit->point - a.hit->point;
+    const double across = (apart - apart.dot(end.direction) * end.direction).norm();
+    if (across <= std::max(options_.sagitta, angle * std::max(a.length, b.length))) {
+      Hit hit = *a.hit;
+      hit.t = lerp(a.hit->t, b.hit->t);
+      hit.point = lerp(a.hit->point, b.hit->point);
+      hit.normal = lerp(a.hit->normal, b.hit->normal).normalized();
+      hit.b1 = lerp(a.hit->b1, b.hit->b1);
+      hit.b2 = lerp(a.hit->b2, b.hit->b2);
+      end.hit = hit;
+      return end;
+    }
+  }
+  PathEnd traced = exact.cast(origin, dir, 0.0, spread);
+  traced.chords += end.chords;
+  return traced;
+}
 
 }  // namespace refracta

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "refracta/media/index_field.h"
+#include "refracta/rays/elevation_table.h"
 #include "refracta/render/caster.h"
 #include "refracta/render/integrator.h"
 #include "refracta/render/render_options.h"
@@ -22,6 +23,7 @@
 
 #include <tbb/concurrent_queue.h>
 
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -49,6 +51,7 @@ class HeroCasters {
     ~Lease();
     const Caster& caster() const;
     const Integrator& integrator() const;
+    double scale() const;  // the air's dispersion scale K(hero) / K(reference)
 
    private:
     const HeroCasters& pool_;
@@ -65,6 +68,44 @@ class HeroCasters {
   double spread_;
   double reference_;  // the field's reference wavelength [nm]
   mutable tbb::concurrent_queue<std::unique_ptr<Hero>> idle_;  // built and not held
+};
+
+// Camera rays of a spectral render from the eye of a height-only air (issue 21 goal 5): the eye's
+// ElevationTable at kScales dispersion scales spread evenly over those of the sampled wavelengths
+// (each over its own air, fixed at its scale, with its own caster), and a sample's camera ray, at
+// its hero's scale s between two of them, cast through both tables. Where their ends agree to the
+// pixel's tolerance (sagitta_pixels of its footprint: what a traced camera ray may stray) -- the
+// same surface, the paths at the hits that close across the ray; or both in the sky, their
+// directions that close -- the end is interpolated linearly in s; elsewhere (the ends part near
+// a mirage's fold, a silhouette or the sun's rim) the ray is traced at s, as without the tables.
+// A ray's end moves monotonically with the air's n - 1 (its bending grows with it) between two
+// close scales: the exact end then lies between the tables' ends, within their difference of the
+// interpolated one.
+class SpectralEyeTables {
+ public:
+  // The eye's table over `air` (renderer.cpp's eye_table, its entries ending by `escape` when set).
+  using TableFactory = std::function<std::unique_ptr<ElevationTable>(const FieldPtr& air, const PlaneEscape& escape)>;
+  // Dispersion scales tabulated: 2.4e-3 of n - 1 apart (3.6 % from 830 to 360 nm): a level ray's
+  // 0.5 deg of refraction at the horizon differs by 2e-5 rad between neighbours, a quarter pixel
+  // of 0.7 deg over 64 rows is 4.8e-5 rad.
+  static constexpr int kScales = 16;
+
+  // field: the render's height-only air (tabulated); escape: end the tables' entries where they
+  // leave the air (over a spherical Earth). Keeps references to scene and options.
+  SpectralEyeTables(const RenderScene& scene, const FieldPtr& field, const RenderOptions& options,
+                    const std::optional<IorFloors>& floors, const Vec3d& eye, double spread, bool escape,
+                    const TableFactory& make_table);
+  ~SpectralEyeTables();
+
+  // The end of the camera ray from `origin` along `dir` at dispersion scale `scale`; `exact`
+  // (the sample's caster, its air at that scale) casts it where the tables do not serve it.
+  PathEnd cast(const Caster& exact, double scale, const Vec3d& origin, const Vec3d& dir, double spread) const;
+
+ private:
+  struct Slice;  // one scale's air, caster and table (hero_casters.cpp)
+  const RenderOptions& options_;
+  Vec3d eye_;
+  std::vector<std::unique_ptr<Slice>> slices_;  // ascending scale
 };
 
 }  // namespace refracta

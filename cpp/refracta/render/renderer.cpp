@@ -3,9 +3,9 @@
 //
 // Spectral rendering through a field ('curved'): the air disperses (media/dispersed_field.h), so
 // each sample's rays bend through the field at its exact hero wavelength, cast and shaded by a
-// caster and integrator of a pool retuned to it (hero_casters.h). Its camera ray is traced (the
-// eye's ElevationTable holds one wavelength): that costs what table=False costs in RGB (the
-// table's saving on camera rays), no interpolation error in wavelength.
+// caster and integrator of a pool retuned to it (hero_casters.h). Its camera ray comes from the
+// eye's tables at the dispersion scales either side of its hero's (SpectralEyeTables) where they
+// agree to the pixel's tolerance and the samples pay for 16 tables, else it is traced.
 #include "refracta/render/renderer.h"
 
 #include "refracta/core/error.h"
@@ -117,7 +117,8 @@ std::pair<double, double> elevation_range(const Camera& camera) {
   return {std::max(lo - margin, -0.5 * kPi), std::min(hi + margin, 0.5 * kPi)};
 }
 
-// Over a spherical Earth, camera rays longer than this are traced per pixel: each of the table's
+// Over a spherical Earth without the escape below (turbulence's perturbed camera rays follow the
+// table's whole paths), camera rays longer than this are traced per pixel: each of the table's
 // few thousand paths is traced to its end, while a pixel's path, curving up in flat coordinates,
 // soon leaves the air by the escape shortcut (Caster::escape_direction). Measured on 2 cores,
 // 80 x 60 pixels: the table costs as much as per-pixel tracing at 150 km, 2.3x at 400 km, 32x at
@@ -125,11 +126,17 @@ std::pair<double, double> elevation_range(const Camera& camera) {
 constexpr double kTableLongestPath = 150e3;  // [m]
 
 // `field`: the height-only air camera rays see outside every local region (null for 3-D fields).
+// escape: over a spherical Earth, the caster's (Caster::plane_escape): each entry ends where it
+// leaves the air, so an entry to the horizon costs what a pixel's traced path costs; ceiling: the
+// caster's (ElevationTableOptions::ceiling).
+// A spectral render's air depends on each sample's wavelength: its tables are SpectralEyeTables'
+// (hero_casters.h), one per dispersion scale, each built here (`spectral_slice`).
 std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera& camera, const FieldPtr& field,
-                                          const RenderOptions& options, WorkControl& control) {
+                                          const RenderOptions& options, const PlaneEscape& escape, double ceiling,
+                                          WorkControl& control, bool spectral_slice = false) {
   if (!field || !field->height_only() || options.method != RenderMethod::kCurved || !options.use_table ||
-      (options.max_length > kTableLongestPath && std::isfinite(field->earth_radius())) ||
-      options.spectral || (options.trace && *options.trace != TraceMethod::kStratified) ||
+      (options.max_length > kTableLongestPath && std::isfinite(field->earth_radius()) && !escape) ||
+      (options.spectral && !spectral_slice) || (options.trace && *options.trace != TraceMethod::kStratified) ||
       camera.aperture_diameter() > 0.0) {  // a thin lens's rays leave the eye almost never
     return nullptr;
   }
@@ -142,6 +149,8 @@ std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera
   // More exact traces than a quarter of the pixels would not pay: trace the rest per pixel.
   table_options.max_rays = std::max<int64_t>(int64_t(camera.width()) * camera.height() / 4, 2 * table_options.initial_rays);
   table_options.trace = curved_trace_options(scene.geometry, *field, camera.position(), options, options.max_length);
+  table_options.escape = escape;
+  if (escape) table_options.ceiling = ceiling;
   auto table = std::make_unique<ElevationTable>(field, table_options, control);
   control.done = 0;
   return table;
@@ -191,11 +200,25 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
       }
     }
   }
-  const std::unique_ptr<ElevationTable> table = eye_table(scene, camera, layered, options, control);
   Caster caster(scene.geometry, field.get(), options);
   if (layered && !field->height_only()) caster.use_layered(layered.get());
-  if (table) caster.use_table(table.get(), camera.position(), camera.pixel_angle());
   if (floors) caster.set_ior_floors(*floors);
+  // Over a spherical Earth, paths longer than kTableLongestPath end in the table where they
+  // escape, as a pixel's traced path does (not under turbulence's perturbed camera rays: they walk
+  // the calm path to its end). Shorter ones are traced whole: the cold sea's 41 km table with
+  // escapes was no faster (240 x 80, 1 spp: 4.96 s against 4.84 s; its rays stay under the
+  // coast's 165 m hills, where nothing escapes).
+  PlaneEscape escape;
+  const bool escapes = layered && std::isfinite(layered->earth_radius()) && options.max_length > kTableLongestPath &&
+                       options.turbulence_trace != TurbulenceTrace::kPerturbed;
+  if (escapes) {
+    escape = [&caster, spread = camera.pixel_angle()](const RayNode<double>& node, double remaining) {
+      return caster.plane_escape(node, remaining, spread);
+    };
+  }
+  const std::unique_ptr<ElevationTable> table =
+      eye_table(scene, camera, layered, options, escape, caster.ceiling(), control);
+  if (table) caster.use_table(table.get(), camera.position(), camera.pixel_angle());
   caster.set_secondary_spread(camera.pixel_angle());  // shadow and bounce rays' tolerance (caster.h)
   const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
   // Camera rays through turbulence as deviations from the calm rays (options.turbulence_trace).
@@ -238,6 +261,22 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   // Dispersive air: a pool of casters and integrators, one retuned to each sample's hero (hero_casters.h).
   const std::unique_ptr<HeroCasters> heroes =
       dispersive ? std::make_unique<HeroCasters>(scene, field, options, floors, camera.pixel_angle()) : nullptr;
+  // Dispersive height-only air: camera rays from the eye tables of the scales either side of the hero's.
+  // Each table traces at most a quarter of the pixels' elevations (eye_table's max_rays), and
+  // costs ~20 ms at least (16 tables for 24 x 12 pixels: 0.56 s, against 0.11 s for tracing its
+  // 2304 camera rays): the kScales tables pay for themselves when every pixel casts at least
+  // kScales / 2 camera rays and the image has at least 1024 camera rays per table.
+  // The whole image's, so that pixel_bounds renders its pixels as the whole image does.
+  const int64_t camera_rays = int64_t(camera.width()) * camera.height() * options.spp;
+  std::unique_ptr<SpectralEyeTables> spectral_eye;
+  if (heroes && field->height_only() && 2 * options.spp >= SpectralEyeTables::kScales &&
+      camera_rays >= 1024 * SpectralEyeTables::kScales) {
+    auto make_table = [&](const FieldPtr& air, const PlaneEscape& slice_escape) {
+      return eye_table(scene, camera, air, options, slice_escape, caster.ceiling(), control, /*spectral_slice=*/true);
+    };
+    spectral_eye = std::make_unique<SpectralEyeTables>(scene, field, options, floors, camera.position(),
+                                                       camera.pixel_angle(), escapes, make_table);
+  }
   auto sample = [&](const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle, SampledWavelengths& lambda,
                     Sampler& sampler, ScratchBuffer& scratch, SurfaceAovs* aovs) {
     const Camera::LensRay ray = camera.lens_ray(pixel.x(), pixel.y(), lens);
@@ -250,8 +289,9 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     const Integrator* shade_by = hero ? &hero->integrator() : integrator.get();
     // Turbulence's perturbed camera rays follow the calm air's table: not a dispersed one.
     const ShimmerCaster* shimmering = heroes ? nullptr : shimmer.get();
-    PathEnd first = shimmering ? shimmering->cast(caster, origin, dir, camera.pixel_angle())
-                               : cast_by->cast(origin, dir, 0.0, camera.pixel_angle());
+    PathEnd first = shimmering     ? shimmering->cast(caster, origin, dir, camera.pixel_angle())
+                    : spectral_eye ? spectral_eye->cast(*cast_by, hero->scale(), origin, dir, camera.pixel_angle())
+                                   : cast_by->cast(origin, dir, 0.0, camera.pixel_angle());
     with_footprint(shimmering ? shimmering->calm() : *cast_by, origin, pixel, lens, spacing, &first);
     record_camera_ray(origin, dir, first, aovs);
     chords.fetch_add(first.chords, std::memory_order_relaxed);
