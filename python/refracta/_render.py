@@ -161,8 +161,9 @@ def render(
     distant light) is the integrator's path (stratified for height-only fields, rk45 otherwise,
     to `tol` [m]) cut into chords tested against the scene -- at most `chord` [m] long and never
     farther than `sagitta` [m] from the path -- hits refined on the continuous path; height-only
-    fields serve camera rays from one ElevationTable for the eye (table=False traces each pixel, as
-    paths over 150 km over a CurvedEarth always are; trace='rk45' forces rk45); rays end after
+    fields serve camera rays from one ElevationTable for the eye (table=False traces each pixel;
+    over a CurvedEarth paths over 150 km end in the table where they leave the air, and spectral
+    renders of 8 spp or more one table per dispersion scale; trace='rk45' forces rk45); rays end after
     `max_length` [m] and see the sky in their last direction (over a CurvedEarth turned into the
     world frame by the central angle: a sun or sky far beyond the horizon is where it should be).
     'straight' -- ray casting without atmosphere (the reference); with field=None both are straight.

@@ -77,7 +77,8 @@ struct RenderOptions {
   // Spectral rendering: 4 hero wavelengths per sample (Wilkie et al. 2014) instead of RGB.
   bool spectral = false;
   // Height-only fields: serve every pixel from one ElevationTable for the camera's eye height
-  // (interpolated to `tol`) instead of tracing each pixel (over a CurvedEarth, paths up to 150 km: renderer.cpp).
+  // (interpolated to `tol`) instead of tracing each pixel (over a CurvedEarth, paths over 150 km end in
+  // the table where they leave the air; spectral renders of 8 spp or more: one table per dispersion scale; renderer.cpp).
   bool use_table = true;
   int tile = 16;
   // Render only these pixels of the camera's image (the result has the bounds' size); each pixel
