@@ -10,6 +10,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#endif
+
 #include <atomic>
 #include <cstdint>
 #include <stdexcept>
@@ -72,6 +76,33 @@ inline void poll_cancel(const std::atomic<bool>* extra = nullptr) {
   if (cancel_requested(extra)) throw Cancelled();
 }
 
+// Puts this thread's floating-point mode in IEEE 754's default for the scope's lifetime --
+// subnormals kept (no flush-to-zero, no denormals-are-zero), round to nearest, exceptions masked
+// -- and restores the mode it found. Every task of refracta's parallel loops runs under one, so
+// that results do not depend on the thread that runs them. Embree's rtcCommitScene sets FTZ and
+// DAZ in MXCSR while it builds the BVH on the TBB pool, and TBB workers that joined the build kept
+// them for the next tasks they ran: the first render of a scene (the one that commits it) had
+// part of its pixels shaded with subnormals flushed to zero (a Water ground's Beckmann D at
+// grazing angles underflows to subnormals), so it differed from every later render of the scene.
+class DefaultFloatingPointMode {
+ public:
+#if defined(__SSE__) || defined(__x86_64__)
+  // 0x1f80: all six exceptions masked, round to nearest, FTZ and DAZ off (the status flags clear).
+  static constexpr unsigned kIeeeDefault = 0x1f80u;
+  DefaultFloatingPointMode() : saved_(_mm_getcsr()) { _mm_setcsr(kIeeeDefault); }
+  ~DefaultFloatingPointMode() { _mm_setcsr(saved_); }
+#else
+  DefaultFloatingPointMode() = default;
+#endif
+  DefaultFloatingPointMode(const DefaultFloatingPointMode&) = delete;
+  DefaultFloatingPointMode& operator=(const DefaultFloatingPointMode&) = delete;
+
+#if defined(__SSE__) || defined(__x86_64__)
+ private:
+  unsigned saved_;
+#endif
+};
+
 // Calls body(i) for i in [0, count) on the TBB pool, `grain` items per task at least. The body
 // runs under control.cancel and every flag in force on the calling thread: cancelling either
 // stops the loop (throws Cancelled) at the next item or the next poll_cancel() inside one.
@@ -81,6 +112,7 @@ void parallel_for_each(int64_t count, int64_t grain, WorkControl& control, const
   const CancelScope* outer = CancelScope::innermost();  // the caller's chain, alive while we block
   tbb::parallel_for(tbb::blocked_range<int64_t>(0, count, grain),
                     [&](const tbb::blocked_range<int64_t>& range) {
+                      const DefaultFloatingPointMode fp_mode;
                       const CancelScope scope(control.cancel, outer);
                       for (int64_t i = range.begin(); i != range.end(); ++i) {
                         if (scope.requested()) throw Cancelled();

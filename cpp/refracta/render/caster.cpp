@@ -2,6 +2,7 @@
 #include "refracta/render/caster.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/parallel.h"
 #include "refracta/render/bouguer_branch.h"
 #include "refracta/render/chord_plan.h"
 
@@ -227,6 +228,7 @@ void Caster::use_table(const ElevationTable* table, const Vec3d& eye, double pix
   auto tolerance = [&](double s) { return 0.5 * std::max(sagitta, per_metre * s); };
   plans_.assign(table->size(), {});
   tbb::parallel_for(size_t(0), table->size(), [&](size_t i) {
+    const DefaultFloatingPointMode fp_mode;  // parallel.h: whatever mode the worker was left in
     plans_[i] = plan_chords(table->entry_path(i), tolerance, options_.chord);
   });
 }

@@ -2,6 +2,7 @@
 #include "refracta/shading/spectral.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/parallel.h"
 
 #include <Eigen/LU>
 #include <tbb/blocked_range.h>
@@ -316,6 +317,7 @@ RgbToSpectrumTable::RgbToSpectrumTable(int resolution, int quadrature_step_nm, i
   // fit warm-started by its neighbour (rgb2spec_opt's order).
   const int k0 = n / 5;
   tbb::parallel_for(tbb::blocked_range<int>(0, 3 * n * n), [&](const tbb::blocked_range<int>& range) {
+    const DefaultFloatingPointMode fp_mode;  // parallel.h: whatever mode the worker was left in
     for (int chain = range.begin(); chain != range.end(); ++chain) {
       const int l = chain / (n * n), j = (chain / n) % n, i = chain % n;
       const double x = xy_[i], y = xy_[j];
