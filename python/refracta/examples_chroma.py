@@ -103,6 +103,8 @@ def chroma_filter(
         raise ValueError(
             f"chroma_filter: noisy must be (H, W, 3) and luminance (H, W) (got {noisy.shape}, {luminance.shape})"
         )
+    if not (np.isfinite(noisy).all() and np.isfinite(luminance).all()):
+        raise ValueError("chroma_filter: noisy and luminance must be finite (got NaN or inf)")
     if not sigma > 0 or not range_sigma > 0:
         raise ValueError(f"chroma_filter: sigma and range_sigma must be > 0 (got {sigma}, {range_sigma})")
     positive = luminance[luminance > 0]

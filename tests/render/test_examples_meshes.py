@@ -119,3 +119,5 @@ def test_chroma_filter_names_bad_input():
         examples_chroma.chroma_filter(np.ones((4, 4, 3)), np.ones((4, 5)))
     with pytest.raises(ValueError, match="sigma"):
         examples_chroma.chroma_filter(np.ones((4, 4, 3)), np.ones((4, 4)), sigma=0.0)
+    with pytest.raises(ValueError, match="finite"):
+        examples_chroma.chroma_filter(np.full((4, 4, 3), np.nan), np.ones((4, 4)))

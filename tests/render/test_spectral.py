@@ -418,14 +418,21 @@ def test_bk7_prism_spreads_a_white_edge_into_its_spectrum():
     assert centroid[2] - centroid[0] == pytest.approx(spread, rel=PRISM_FIRST_ORDER), (centroid, spread)
 
 
-def test_dispersive_render_does_not_depend_on_threads_tiles_or_bounds():
-    # A pool of casters and integrators, each retuned to the hero wavelength of the sample that holds
-    # it (render/hero_casters.h): which caster or thread serves a sample must change nothing.
+def box_over_the_hot_road():
+    """A box 80 m down a green field under a white sky, seen at eye height through 1.5 deg (24 x 12
+    pixels): the horizon's mirage and the box's edges, where a dispersive ray's end is most sensitive."""
     scene = refracta.Scene()
     scene.add_ground(0.0, 4000.0, material=shading.Diffuse((0.3, 0.5, 0.2)))
     scene.add_box((80.0, 1.0, 0.0), (4.0, 2.0, 4.0), kd=(0.8, 0.2, 0.1))
     scene.set_environment((1.0, 1.0, 1.0))
     camera = refracta.Camera((0.0, EYE, 0.0), (100.0, EYE - 0.3, 0.0), vfov=1.5, width=24, height=12)
+    return scene, camera
+
+
+def test_dispersive_render_does_not_depend_on_threads_tiles_or_bounds():
+    # A pool of casters and integrators, each retuned to the hero wavelength of the sample that holds
+    # it (render/hero_casters.h): which caster or thread serves a sample must change nothing.
+    scene, camera = box_over_the_hot_road()
     options = dict(spectral=True, spp=4, max_length=1000.0, progress=False)
     whole = refracta.render(scene, camera, hot_road(), **options)
     threads = refracta.get_threads()
@@ -445,11 +452,7 @@ def test_spectral_eye_tables_serve_camera_rays_as_tracing_does():
     # 24 x 12 pixels at 64 spp: enough camera rays for the eye's tables at 16 dispersion scales
     # (render/hero_casters.h SpectralEyeTables), each sample's ray interpolated between the two
     # scales either side of its hero's where their ends agree to a quarter pixel, else traced.
-    scene = refracta.Scene()
-    scene.add_ground(0.0, 4000.0, material=shading.Diffuse((0.3, 0.5, 0.2)))
-    scene.add_box((80.0, 1.0, 0.0), (4.0, 2.0, 4.0), kd=(0.8, 0.2, 0.1))
-    scene.set_environment((1.0, 1.0, 1.0))
-    camera = refracta.Camera((0.0, EYE, 0.0), (100.0, EYE - 0.3, 0.0), vfov=1.5, width=24, height=12)
+    scene, camera = box_over_the_hot_road()
     options = dict(spectral=True, spp=64, max_length=1000.0, progress=False)
     tables = refracta.render(scene, camera, hot_road(), **options)
     traced = refracta.render(scene, camera, hot_road(), table=False, **options)
