@@ -471,3 +471,50 @@ def test_spectral_eye_tables_serve_camera_rays_as_tracing_does():
     finally:
         refracta.set_threads(threads)
     np.testing.assert_array_equal(tables, single)
+
+
+def jackknife_colour(pixels):
+    """Colour per unit luminance of the pixels (N, 3) together -- their summed rgb over their summed
+    Y -- and its jackknife standard error (leaving out one pixel at a time: independent samples)."""
+    total = pixels.sum(axis=0)
+    leave_out = (total - pixels) / (total @ LUMINANCE - pixels @ LUMINANCE)[:, None]
+    n = len(pixels)
+    return total / (total @ LUMINANCE), np.sqrt((n - 1) / n * ((leave_out - leave_out.mean(axis=0)) ** 2).sum(axis=0))
+
+
+def test_hero_wavelengths_leave_a_dispersion_free_disc_grey_at_its_edges():
+    # Issue 19 section 5, the green flash's rim: is a sample's hero wavelength independent of where
+    # it falls in its pixel (render/film.h: the correlated multi-jittered position, then the
+    # wavelength, from one generator)? If it were not, the samples of an edge pixel that land on a
+    # disc would carry a biased mix of wavelengths and every edge would be coloured, left and right
+    # too. An equal-energy sun through uniform air (LinearSquaredProfile with alpha = 0: the
+    # dispersive path, one hero per sample, but no ray bends at any wavelength): its edge pixels --
+    # chosen by the disc's geometry, not by their brightness, which would select on the sampled
+    # wavelengths -- must have the colour of the equal-energy spectrum, as its inside does. A hero
+    # drawn from the upper half of the range wherever a sample lies right of its pixel's centre
+    # would give the left edge R / Y ~ 5.3 instead of 1.2.
+    size, radius = 48, 0.265  # [px], the disc's angular radius [deg]
+    elevation = np.radians(5.0)
+    sun = np.array([np.cos(elevation), np.sin(elevation), 0.0])
+    scene = refracta.Scene()
+    scene.set_sun(sun, np.ones(2), angular_diameter=2 * radius, wavelengths=np.array([360.0, 830.0]))
+    eye = np.array([0.0, 2.0, 0.0])
+    camera = refracta.Camera(eye, eye + sun, vfov=0.7, width=size, height=size)
+    uniform_air = refracta.LinearSquaredProfile(alpha=0.0)
+    image = refracta.render(scene, camera, uniform_air, spectral=True, spp=256, max_length=1e4, progress=False)
+    # A pixel is inside when its four corners are (the disc is convex), on the edge when some are.
+    corners = np.array([[camera.ray(u, v)[1] for u in range(size + 1)] for v in range(size + 1)])
+    inside = np.degrees(np.arccos(np.clip(corners @ sun, -1.0, 1.0))) < radius
+    count = inside[:-1, :-1].astype(int) + inside[1:, :-1] + inside[:-1, 1:] + inside[1:, 1:]
+    edge = (count > 0) & (count < 4)
+    lam = np.arange(360.0, 831.0, 1.0)
+    white = np.array([spectrum.xyz_to_linear_srgb(v) for v in spectrum.cie_xyz(lam)]).sum(axis=0)
+    white /= white @ LUMINANCE  # the equal-energy spectrum's linear sRGB per unit Y: (1.205, 0.948, 0.909)
+    y, x = np.mgrid[0:size, 0:size] + 0.5 - size / 2
+    parts = {"inside": count == 4, "left": edge & (x < -np.abs(y)), "right": edge & (x > np.abs(y))}
+    parts.update({"top": edge & (y < -np.abs(x)), "bottom": edge & (y > np.abs(x))})
+    for name, part in parts.items():
+        assert part.sum() >= 30, name  # 36 edge pixels a side, 968 inside
+        colour, error = jackknife_colour(image[part])
+        # One standard error is 0.6 % of R / Y inside, 4-6 % on an edge's 36 pixels; measured within 1.2.
+        assert np.all(np.abs(colour - white) <= SIGMAS * error), (name, colour, white, error)
