@@ -518,3 +518,76 @@ def test_hero_wavelengths_leave_a_dispersion_free_disc_grey_at_its_edges():
         colour, error = jackknife_colour(image[part])
         # One standard error is 0.6 % of R / Y inside, 4-6 % on an edge's 36 pixels; measured within 1.2.
         assert np.all(np.abs(colour - white) <= SIGMAS * error), (name, colour, white, error)
+
+
+# The green flash's squeezed sun (python -m refracta demo, frame 2: examples.green_flash with the sun's
+# centre 0.74 deg below the true horizon, 0.7 deg over 512 px): the eye 4 m over a sea 3 K warmer
+# than the air, a spherical Earth, paths of up to 1500 km.
+FLASH_EYE = 4.0  # [m]
+FLASH_SIZE, FLASH_VFOV, FLASH_LOOK = 512, 0.7, -0.05  # [px], [deg], [deg]
+FLASH_SUN, SUN_RADIUS = -0.74, 0.265  # [deg]
+FLASH_FOLD_ROWS = range(237, 241)  # the rows around the mirage's fold in the centre column
+# The renderer's camera rays may stray sagitta_pixels (0.25) of a pixel from the exact path.
+FLASH_EDGE_TOL = 0.25  # [px]
+
+
+@pytest.mark.slow
+def test_the_sun_cut_by_the_mirage_is_wider_in_blue_as_the_fold_predicts():
+    # The coloured rim at the LEFT and RIGHT ends of the green flash's squeezed sun is physics, not
+    # horizontal dispersion (a height-only air bends every ray in its vertical plane): the warm
+    # sea's mirage shows only the sun above the true elevation t_min(lam) that the fold of its
+    # mapping reaches -- the sun's cap above that chord, upright, and below it inverted -- and
+    # blue, refracted more, reaches lower into the disc, where its chord is wider. Predicted from
+    # trace_ray's t_min at each wavelength (Edlen's index, PhysicalAtmosphere(wavelength=...), not
+    # the renderer's dispersion wrapper) and the chord of the disc there; measured where the
+    # rendered disc's right edge lies in the fold's rows (its coverage summed along each row, a
+    # sun without limb darkening over a black sky).
+    eye = np.array([0.0, FLASH_EYE, 0.0])
+    look = np.radians(FLASH_LOOK)
+    camera = refracta.Camera(
+        eye, eye + [np.cos(look), np.sin(look), 0.0], vfov=FLASH_VFOV, width=FLASH_SIZE, height=FLASH_SIZE
+    )
+    pixel = np.radians(FLASH_VFOV) / FLASH_SIZE  # [rad] at the image's centre
+    sun = np.radians(FLASH_SUN)
+    scene = refracta.Scene()
+    scene.set_sun((np.cos(sun), np.sin(sun), 0.0), (1.0, 1.0, 1.0), angular_diameter=2 * SUN_RADIUS)
+    scene.add_ground(0.0, 2.0e5)
+    warm_sea = refracta.PhysicalAtmosphere(surface_dt=3.0, surface_depth=2.0)
+    earth = refracta.CurvedEarth(warm_sea)
+    x0, x1 = 336, 372  # the disc's right end (predicted at 351.4 px at 650 nm, 361.4 px at 450 nm)
+    half_widths = {}
+    for lam in (450.0, 650.0):
+        air = refracta.CurvedEarth(warm_sea.with_params(wavelength=lam))
+        elevations = []  # true elevation [rad] seen along the centre column, where the path leaves the air
+        for v in FLASH_FOLD_ROWS:
+            origin, direction = camera.ray(FLASH_SIZE / 2, v + 0.5)
+            path = refracta.trace_ray(air, origin, direction, max_length=1.2e6, trace="stratified", tol=1e-4)
+            end, d = path.points[-1], path.directions[-1]
+            elevations.append(np.arctan2(d[1], d[0]) - end[0] / earth.radius)  # the flat frame's tilt
+        t_min = min(elevations)
+        # The azimuth where the sun's rim crosses the chord at t_min (spherical law of cosines).
+        cos_azimuth = (np.cos(np.radians(SUN_RADIUS)) - np.sin(t_min) * np.sin(sun)) / (np.cos(t_min) * np.cos(sun))
+        predicted = np.arccos(cos_azimuth) / pixel
+        image = refracta.render(
+            scene,
+            camera,
+            _core.dispersed_field(earth, lam),
+            max_length=1.5e6,
+            spp=64,
+            table=False,
+            pixel_bounds=(x0, FLASH_FOLD_ROWS[0], x1, FLASH_FOLD_ROWS[-1] + 1),
+            progress=False,
+        )
+        luminance = image @ LUMINANCE
+        edges = x0 + (luminance / luminance[:, :1]).sum(axis=1)  # [px] the first column is inside
+        measured = max(
+            np.arctan2(abs(d[2]), d[0]) / pixel
+            for d in (camera.ray(x, v + 0.5)[1] for x, v in zip(edges, FLASH_FOLD_ROWS))
+        )
+        # Measured 105.360 against 105.358 px (450 nm), 95.345 against 95.351 px (650 nm).
+        assert measured == pytest.approx(predicted, abs=FLASH_EDGE_TOL), lam
+        half_widths[lam] = measured
+    # Blue's chord 10 px wider at each end -- the side rim: its t_min 0.0083 deg (6 px) lower (1.7 %
+    # of the fold's 0.49 deg of refraction) times the rim's slope there, (t_min - sun) / half-width,
+    # 1.5 (450 nm) to 1.8 (650 nm).
+    assert half_widths[450.0] - half_widths[650.0] > 9.0
