@@ -360,6 +360,9 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
 # Arctic air after a cold front: 150 km visibility leaves the coast 20 km away 59 % of its contrast.
 FATA_MORGANA_VISIBILITY = 150.0  # [km]
 FATA_MORGANA_COAST = 20000.0  # [m] to the shore (it wanders by ~60 m)
+# The sun behind the left shoulder, far enough to the side that it rakes the cliffs: a buttress's
+# side toward it lit 3x as much as the side away (n.l 0.8 against 0.25 for faces turned 20 deg).
+FATA_MORGANA_SUN_AZIMUTH = -125.0  # [deg] from the view (+x) toward +z
 
 
 def fata_morgana(width: int = 640, height: int = 240) -> Example:
@@ -367,13 +370,15 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
     water stacks the shore 20 km away -- cliffs of 2-38 m, a harbour town, a lighthouse on its rock,
     a conifer forest (examples_town) before hills to ~240 m: in the middle column the shore's
     lowest ~17 m show four times over, erect, inverted, erect (a thin strip) and inverted again
-    above (tests/render/test_examples.py traces it), so houses and roofs repeat mirrored, the
-    lighthouse becomes a tall white column, the trees a palisade and every cliff a flat-topped
-    wall; above them a band of mirrored sea and the hill tops. An afternoon sun 15 deg high behind
-    the left shoulder, clear Arctic air (visibility 150 km); a 1000 mm lens from 14 m (a ship's
-    bridge)."""
+    above (tests/render/test_examples.py traces it), so houses, windows and roofs repeat
+    mirrored, the lighthouse becomes a tall white column, the trees a palisade, and the cliffs'
+    buttresses -- lit on the side toward the sun, in shade on the other -- columns of light and
+    shade over strata, heath and the black weed of the waterline; above them a band of mirrored
+    sea and the hill tops. An afternoon sun 15 deg high behind the left shoulder, raking the
+    cliffs (FATA_MORGANA_SUN_AZIMUTH), clear Arctic air (visibility 150 km); a 1000 mm lens from
+    14 m (a ship's bridge)."""
     scene = _core.Scene()
-    set_physical_sky(scene, sun_direction(15.0, -140.0), visibility=FATA_MORGANA_VISIBILITY)
+    set_physical_sky(scene, sun_direction(15.0, FATA_MORGANA_SUN_AZIMUTH), visibility=FATA_MORGANA_VISIBILITY)
     scene.add_ground(0.0, 140000.0, material=_sea(6.0, 3.0))
     rng = np.random.default_rng(7)
     coast = _coast(
@@ -389,7 +394,11 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
         cliff=examples_town.shore_cliff,
         wander=60.0,
     )
-    examples_meshes.add_meshes(scene, examples_town.town(coast, rng), examples_town.town_materials())
+    faces = examples_town.cliff_faces(coast, rng)
+    rock = shading.Diffuse(1.0, texture=_coast_texture("fata_morgana_cliffs", faces.albedo))
+    scene.add_mesh(faces.mesh.vertices, faces.mesh.triangles, material=rock, uvs=faces.uvs)
+    parts = examples_town.town(coast, rng) + examples_town.shore_rocks(coast, faces, rng)
+    examples_meshes.add_meshes(scene, parts, examples_town.town_materials())
     base = _core.PhysicalAtmosphere(t_ground=276.15, inversion_dt=12.0, inversion_base=15.0, inversion_thickness=10.0)
     field = _core.CurvedEarth(base)
     look = np.radians(0.02)

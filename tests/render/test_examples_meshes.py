@@ -88,6 +88,70 @@ def test_the_fata_morgana_shore_has_cliffs_of_several_heights_and_a_town_on_it()
     assert tops.max() > 60.0 and np.sum((tops > 5.0) & (tops < 30.0)) >= 20  # a mast; many lower roofs
 
 
+def _synthetic_shore():
+    """A coast like examples._coast's around shore_cliff: sea bed, then the cliff rising over 6 m
+    from x = 20000 m (nodes every 6 m across, 6 m along the shore)."""
+    x = np.arange(19500.0, 20500.0, 6.0)
+    z = np.arange(-420.0, 426.0, 6.0)
+    land = np.clip((x[:, None] - 20000.0) / 6.0, 0.0, 1.0) * examples_town.shore_cliff(z)[None, :]
+    return x, z, np.where(x[:, None] < 20000.0, 0.04 * (x[:, None] - 20000.0), land)
+
+
+# The cliffs' buttresses: a face turned 17 deg or more to the side (|n_z| > 0.3) is lit by the
+# FATA_MORGANA sun (15 deg high, 125 deg round) at n.l <= 0.32 or >= 0.77, against 0.55 facing the
+# sea -- the light-and-shade ribs a Fata Morgana stretches into columns. A fifth of the face's area.
+RIBBED_AREA = 0.2
+
+
+def test_the_cliff_faces_are_closed_ribbed_and_stand_before_the_coasts_own_face():
+    coast = _synthetic_shore()
+    faces = examples_town.cliff_faces(coast, np.random.default_rng(0))
+    mesh = faces.mesh
+    assert _is_closed(mesh)
+    assert examples_meshes.signed_volume(mesh.vertices, mesh.triangles) > 0
+    assert len(faces.uvs) == len(mesh.vertices) and np.all((faces.uvs >= 0.0) & (faces.uvs <= 1.0))
+    # Every vertex of the faces below the land's top stands seaward of the land at its height (the
+    # height field's own smooth face hidden behind them), and no face is built over the beach.
+    x, z, height = coast
+    v = mesh.vertices
+    column = np.abs(z[None, :] - v[:, 2:3]).argmin(axis=1)
+    below = (v[:, 1] > 0.5) & (v[:, 1] < examples_town.shore_cliff(v[:, 2]) - 0.5)
+    land_x = np.array([np.interp(y, height[:, j], x) for y, j in zip(v[below, 1], column[below])])
+    assert np.all(v[below, 0] < land_x - 1.0), (v[below, 0] - land_x).max()
+    assert np.all(examples_town.shore_cliff(v[:, 2]) >= examples_town.CLIFF_MIN - 0.5)
+    # Ribbed: the share of the seaward face's area turned to the side.
+    a, b, c = (v[mesh.triangles[:, i]] for i in range(3))
+    n = np.cross(b - a, c - a)
+    area = np.linalg.norm(n, axis=1)
+    n = n / area[:, None]
+    seaward = n[:, 0] < -0.3
+    assert np.sum(area[seaward & (np.abs(n[:, 2]) > 0.3)]) >= RIBBED_AREA * np.sum(area[seaward])
+
+
+def test_the_cliff_faces_texture_varies_as_rock_heath_and_weed_do():
+    faces = examples_town.cliff_faces(_synthetic_shore(), np.random.default_rng(0))
+    albedo = faces.albedo
+    rows, columns, _ = albedo.shape
+    y = examples_town.CLIFF_TOP - (np.arange(rows) + 0.5) * examples_town.TEXEL[1]
+    z = faces.z[0] + (np.arange(columns) + 0.5) * examples_town.TEXEL[0]
+    lum = albedo @ np.array([0.2126, 0.7152, 0.0722])
+    granite = z < -270.0  # the 30 m cliff
+    face = (y > 4.0) & (y < 20.0)  # above the splash zone, below the heath of its top
+    # Along the shore: streaks, gullies, bird lime; up the face: strata (coefficients of variation;
+    # a uniformly painted face: 0).
+    along = lum[face][:, granite].mean(axis=0)
+    up = lum[face][:, granite].mean(axis=1)
+    assert along.std() / along.mean() > 0.15 and up.std() / up.mean() > 0.05
+    # Heath on ledges and tops: green texels (g above r and b) on the natural rock, a few percent.
+    green = (albedo[..., 1] > albedo[..., 0]) & (albedo[..., 1] > albedo[..., 2])
+    assert 0.02 < green[y > 0.0][:, granite].mean() < 0.6
+    # The tidal zone: black weed below the waterline's wander (the tide line at 1.0 +- 0.4 m).
+    assert lum[y < 0.4].mean() < 0.05
+    # The quay's dressed stone: plain grey, no heath.
+    quay = (z > -240.0) & (z < -120.0)
+    assert not green[(y > 1.5) & (y < 3.0)][:, quay].any()
+
+
 def test_chroma_filter_removes_colour_noise_and_keeps_a_sharp_coloured_edge():
     rng = np.random.default_rng(1)
     h, w = 64, 64
