@@ -57,12 +57,14 @@ DEMO_SETTINGS: dict[str, dict[str, Any]] = {
     "fata_morgana": dict(transport="direct", spp=1),
 }
 # The automatic exposure's key per example (the log-average luminance maps to it; refracta.io):
-# middle grey by day; the cold sea brighter, as photographers expose a bright hazy seascape (its
-# 1st-99th percentile luminance spans less than 2x: at 0.18 it looked dull grey); the Fata Morgana
+# middle grey by day; the cold sea, a hazy seascape against the evening light, a little brighter
+# (its sea and sky span 1.2x between the 1st and 50th percentile luminance, the glitter 8x above
+# that: at 0.3 the haze looked washed out and the glitter's flank merged into it, at 0.15 muddy
+# brown); the Fata Morgana
 # a little darker: its dark sea fills two thirds of the frame and pulls the log-average down (at
 # 0.14 no pixel of its stacked band clips, the sky shows light and the sea blue-grey; at 0.09, the
 # key of the flat-faced cliffs that then showed near white, the frame looked murky).
-DEMO_KEYS = {"hot_road": 0.18, "hot_spot": 0.18, "cold_sea": 0.3, "fata_morgana": 0.14}
+DEMO_KEYS = {"hot_road": 0.18, "hot_spot": 0.18, "cold_sea": 0.22, "fata_morgana": 0.14}
 # The hot spot's extra view: the camera walks this far [m] toward the patch; its "lake" stays on
 # the same stretch of road (it belongs to the ground), only nearer and lower in the frame. (Walk
 # much farther and rays reach it steeper than its critical angle: the lake goes.)

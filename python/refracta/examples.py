@@ -320,6 +320,25 @@ COLD_SEA_INVERSION: dict[str, Any] = dict(
 COLD_SEA_EYE = 5.0  # [m]
 COLD_SEA_SHIP = (20000.0, 220.0)  # [m] (x, z) of the freighter, against the open horizon
 COLD_SEA_COAST = 30000.0  # [m]
+# Sun glitter through a 2-degree lens. A facet of the sea mirrors the sun into a view that meets the
+# water at a grazing gamma (0.1-0.3 deg here) when its normal bisects the sun's direction and the
+# reversed view: for the sun at elevation e and dphi to the side, it leans toward the eye by
+# ~(e - gamma)/2 and sideways by tan b = sin(dphi) cos(e) / (sin e + sin gamma) -- a sideways lean
+# turns a grazing reflection little, so the glitter is a narrow path under the sun, of half-width
+# ~alpha tan(e) in azimuth (Cox & Munk's Beckmann alpha^2 = 0.003 + 5.12e-3 U). Light air, U = 1 m/s
+# (the still air a sharp inversion needs: alpha^2 = 0.0081, alpha = 0.09), and the sun 10 deg high:
+# a path 0.9 deg wide each side of the sun's azimuth, 2.3 deg right of the view, so 1.27 deg beyond
+# the frame's right edge. Across the frame the sideways lean the glitter needs grows from 0.12
+# (1.4 alpha) at the right edge to 0.32 (3.6 alpha) at the left: the facets that mirror the sun
+# are e^-11 rarer on the left, and the path's flank lights the sea in the frame's lower right and
+# the far sea the inversion lifts into view (the lean toward the eye, 4.9 deg, costs e^-0.9 all
+# over). A lower sun narrows the path but turns the whole frame orange (the sunlight in linear RGB
+# 1 : 0.51 : 0.12 at 4 deg, 1 : 0.69 : 0.36 at 10); a higher one or more wind spreads the glitter
+# over the whole frame (at 4 m/s and 10 deg it is 1.5 deg wide each side). A sun farther to the
+# side leaves no glitter in the frame (30 deg aside, 30 deg high: a lean of 45 deg, e^-121 at
+# alpha 0.09), so the ships and the coast stand against the light.
+COLD_SEA_SUN = (10.0, 2.3)  # [deg] (elevation, azimuth from the view toward +z: to the right)
+COLD_SEA_WIND = 1.0  # [m/s] 12.5 m above the sea (Cox & Munk's height)
 
 
 def cold_sea(width: int = 640, height: int = 240) -> Example:
@@ -328,14 +347,17 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
     eye, shows its upper part erect and above it its whole image upside down, stretched, against
     the bright horizon sky; a smaller ship 13 km away shows erect, inverted and erect again; the
     foot of a snow-patched coast 30 km away (a fractal height field) is drawn out into a thin
-    inverted strip and its hills loom above the horizon. Afternoon: the sun 12 deg high behind
-    the camera's left shoulder lights the ships and the coast; the clear polar air (visibility
-    80 km) greys the distance; the sea is shading.Water (Cox-Munk, 4 m/s wind, 5 deg C: at these
-    ranges one pixel spans 10-60 m of sea, many waves, so the microfacet statistics are the
-    resolved picture). A 1000 mm lens."""
+    inverted strip and its hills loom above the horizon. Evening light: the sun 10 deg high just
+    beyond the frame's right edge (COLD_SEA_SUN) lays the flank of its glitter path on the sea in
+    the frame's lower right and on the far sea the inversion lifts into view, behind the
+    freighter's inverted image; the ships and the coast stand against the light, and the clear
+    polar air (visibility 80 km) greys and warms the distance. The sea is shading.Water (Cox-Munk,
+    light air of 1 m/s, 5 deg C: at these ranges one pixel spans 10-60 m of sea, many waves, so
+    the microfacet statistics are the resolved picture -- the glitter is their mean, not single
+    sparkles). A 1000 mm lens."""
     scene = _core.Scene()
-    set_physical_sky(scene, sun_direction(12.0, -150.0), visibility=COLD_SEA_VISIBILITY)
-    scene.add_ground(0.0, 120000.0, material=_sea(4.0, 5.0))
+    set_physical_sky(scene, sun_direction(*COLD_SEA_SUN), visibility=COLD_SEA_VISIBILITY)
+    scene.add_ground(0.0, 120000.0, material=_sea(COLD_SEA_WIND, 5.0))
     _ship(scene, *COLD_SEA_SHIP)
     _ship(scene, 13000.0, -120.0, scale=0.7)
     _coast(
