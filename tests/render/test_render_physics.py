@@ -129,7 +129,7 @@ def test_table_rendering_matches_tracing_every_pixel(name):
     table = refracta.render(example.scene, example.camera, example.field, **options)
     traced = refracta.render(example.scene, example.camera, example.field, table=False, **options)
     # A pixel differs when it changes by more than 1 % of its radiance: the examples' radiance is in
-    # W/(m^2 sr) (up to ~100 in the cold sea's glitter), where the paths' interpolation moves a hit
+    # W/(m^2 sr) (up to ~2000 in the cold sea's glitter), where the paths' interpolation moves a hit
     # by a fraction of a millimetre and changes the radiance by ~1e-5 of itself -- not a flip.
     scale = np.maximum(table, traced).max(axis=2, keepdims=True)
     differs = np.any(np.abs(table - traced) > 1e-2 * scale, axis=2)
