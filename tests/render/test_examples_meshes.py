@@ -128,6 +128,22 @@ def test_the_cliff_faces_are_closed_ribbed_and_stand_before_the_coasts_own_face(
     assert np.sum(area[seaward & (np.abs(n[:, 2]) > 0.3)]) >= RIBBED_AREA * np.sum(area[seaward])
 
 
+def test_the_boulders_and_boats_are_closed_and_lie_at_the_waterline():
+    coast = _synthetic_shore()
+    rng = np.random.default_rng(0)
+    faces = examples_town.cliff_faces(coast, rng)
+    parts = examples_town.shore_rocks(coast, faces, rng)
+    for mesh in parts:
+        assert _is_closed(mesh), mesh.part
+        assert examples_meshes.signed_volume(mesh.vertices, mesh.triangles) > 0, mesh.part
+    boulders = [m for m in parts if m.part.startswith("boulder")]
+    assert len(boulders) >= 100  # one every 2-6 m of the 840 m of shore but the quay's 140 m
+    for mesh in boulders:
+        lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
+        assert lo[1] < 0.0 < hi[1] <= 3.75  # sunk into the sea bed, at most 0.75 x 5 m above it
+    assert sum(m.part.startswith("boat") for m in parts) == 4
+
+
 def test_the_cliff_faces_texture_varies_as_rock_heath_and_weed_do():
     faces = examples_town.cliff_faces(_synthetic_shore(), np.random.default_rng(0))
     albedo = faces.albedo
