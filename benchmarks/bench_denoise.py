@@ -10,18 +10,20 @@ references' cost bearable on a shared 2-core machine (576-2048 pixels: ~9 min of
 idle machine; 20-25 min wall under load 4-8). The noisy images
 are rendered on the crop and 32 pixels around it (the denoiser's context), then cut to the crop.
 
-Per scene: relative MSE (squared error over reference^2 + 0.01, per channel, averaged) and mean
-FLIP (flip-evaluator, HDR) of
-  noisy             render(spp=16): correlated multi-jittered pixel samples (film.h)
-  denoised          render(spp=16, denoise=True): the same samples, Open Image Denoise with the
-                    albedo and normal guides (noise-free sky pixels kept)
-  adaptive_noisy    render(spp=16, adaptive=True) (adaptive_sampling.h: the same total samples)
-  adaptive_denoised render(spp=16, adaptive=True, denoise=True)
-and each one's ratio to the noisy image's error, beside the goal (5x); the reference's own noise
-(16/4096 of the noisy image's variance) is left in. Flat-region bias: over the crop's pixels whose
-reference differs from its 8 neighbours by under 2 % (smooth areas), the relative difference of
-the denoised and the reference means, with the noisy image's own (unbiased) difference beside it
-as the scale of chance.
+Beside each hardest crop, a representative sample of the whole image: one 8 x 8 tile at a
+uniformly random place in each cell of a 4 x 2 cut of the image (tiles(); a fixed seed, never
+chosen), 512 pixels (0.2-0.4 % of the image) with their own 4096-spp references, rendered with
+16 pixels of context, measured as one image.
+
+Per crop and per tile set: relative MSE (squared error over reference^2 + 0.01, per channel,
+averaged) and mean FLIP (flip-evaluator, HDR) of each variant (variants(): noisy, denoised =
+render(denoise=True), then with refracta.denoise's guided filter, with guides from 64 samples of
+their own, 32 spp denoised at the guide pass's cost, the green flash's demo pipeline), each
+one's ratio to the noisy image's error, beside the goal (5x); the
+reference's own noise (16/4096 of the noisy image's variance) is left in; their CPU seconds.
+Flat-region bias: over the pixels whose reference differs from its 8 neighbours by under 2 %
+(smooth areas), the relative difference of each image's and the reference's means, the noisy
+image's own (unbiased) difference beside it as the scale of chance.
 
     python benchmarks/bench_denoise.py [--quick] [--only SCENE ...]  -> benchmarks/results/denoise.json
 (--quick: 256-spp references, a smoke run, not the published numbers.)
@@ -30,12 +32,18 @@ as the scale of chance.
 from __future__ import annotations
 
 import argparse
+import time
 
 import numpy as np
-from _common import timed, write_results
+from _common import write_results
 
 GOAL = 5.0  # the issue's: denoised error at least 5x below the noisy image's
-MARGIN = 32  # pixels of context around each crop for the denoiser
+MARGIN = 32  # pixels of context around each crop and tile for the denoiser
+# The representative sample beside the hardest crops: one TILE x TILE tile at a random place in
+# each cell of a TILE_GRID (columns, rows) cut of the image (tiles(): 8 x 64 = 512 pixels, the
+# references' cost of a crop).
+TILE, TILE_GRID = 8, (4, 2)
+TILE_MARGIN = 16  # pixels of context around each tile (32 would cost 3x the tiles' 16-spp renders)
 # Crops (x0, y0, x1, y1) at the demo size: the hardest parts of each scene (what the denoiser
 # must keep: sub-pixel edges), sized for the reference's cost (~60 us of CPU a sample for the
 # curved-Earth scenes and hot spots, ~11 us for the hot road).
@@ -90,44 +98,81 @@ def scene_setup(name, size):
     return example.scene, camera, example.field, dict(max_length=example.max_length, spectral=True)
 
 
-def measure(name, size, crop, spp=16, reference_spp=4096) -> dict:
+def _window(bounds, width, height, margin=MARGIN):
+    """`bounds` (x0, y0, x1, y1) widened by `margin` pixels of context (inside the image), and the
+    slices that cut `bounds` back out of it."""
+    x0, y0, x1, y1 = bounds
+    window = (max(0, x0 - margin), max(0, y0 - margin), min(width, x1 + margin), min(height, y1 + margin))
+    return window, (slice(y0 - window[1], y1 - window[1]), slice(x0 - window[0], x1 - window[0]))
+
+
+def tiles(width, height, columns=TILE_GRID[0], rows=TILE_GRID[1], size=TILE, seed=0):
+    """The representative sample: the image cut into columns x rows strata, one size x size tile
+    at a uniformly random place inside each (numpy's generator of `seed`: fixed, never chosen)."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for j in range(rows):
+        for i in range(columns):
+            sx0, sx1 = i * width // columns, (i + 1) * width // columns
+            sy0, sy1 = j * height // rows, (j + 1) * height // rows
+            x0 = int(rng.integers(sx0, sx1 - size + 1))
+            y0 = int(rng.integers(sy0, sy1 - size + 1))
+            out.append((x0, y0, x0 + size, y0 + size))
+    return out
+
+
+def variants(name, render, bounds, width, height, spp, spectral=False):
+    """The images compared, each cut to `bounds` from a render of it with context around:
+      noisy              render(spp=16)
+      denoised           render(spp=16, denoise=True): Open Image Denoise with the render's own
+                         albedo and normal (in RGB the noise-free sky kept)
+      guided             the same, then refracta.denoise's guided filter (guided=True)
+      guides64           render(spp=16, guide_spp=64, denoise=True): guides from 64 samples of
+                         their own, Open Image Denoise and the guided filter
+      equal_cost         render(spp=32, denoise=True): the guide pass's CPU spent on image samples
+      equal_cost_guided  the same 32 spp with the guided filter on its own guides
+    and for the spectral green flash, the demo's own pipeline (refracta.cli._demo_green_flash):
+      demo_chroma        Open Image Denoise on the colour alone for the luminance, the colour by
+                         examples_chroma.chroma_filter.
+    Also the CPU seconds of each render."""
     import refracta
 
-    scene, camera, field, options = scene_setup(name, size)
-    options = dict(progress=False, transport="direct", **options)
-    width, height = camera.width, camera.height
-    window = (
-        max(0, crop[0] - MARGIN),
-        max(0, crop[1] - MARGIN),
-        min(width, crop[2] + MARGIN),
-        min(height, crop[3] + MARGIN),
-    )
-    cut = (slice(crop[1] - window[1], crop[3] - window[1]), slice(crop[0] - window[0], crop[2] - window[0]))
-    reference, reference_seconds = timed(
-        refracta.render, scene, camera, field, spp=reference_spp, seed=1, pixel_bounds=crop, **options
-    )
-    reference = np.maximum(reference, 0.0)
-    row = {"size": [width, height], "crop": list(crop), "window": list(window), "reference_seconds": reference_seconds}
-    images = {}
-    for adaptive in (False, True):
-        prefix = "adaptive_" if adaptive else ""
-        (noisy, aovs), seconds = timed(
-            refracta.render,
-            scene,
-            camera,
-            field,
-            spp=spp,
-            pixel_bounds=window,
-            adaptive=adaptive,
-            aovs=["albedo", "normal"],
-            **options,
-        )
-        noisy = np.maximum(noisy, 0.0)  # spectral renders can leave the gamut (the demo clips them too)
-        denoised = refracta.denoise(noisy, aovs["albedo"], aovs["normal"])
-        sky = ~np.any(aovs["normal"], axis=2)  # as render(denoise=True): the noise-free sky kept
-        denoised[sky] = noisy[sky]
-        images[prefix + "noisy"], images[prefix + "denoised"] = noisy[cut], denoised[cut]
-        row[prefix + "render_seconds"] = seconds
+    small = bounds[2] - bounds[0] <= TILE and bounds[3] - bounds[1] <= TILE
+    window, cut = _window(bounds, width, height, TILE_MARGIN if small else MARGIN)
+    images, seconds = {}, {}
+
+    def run(label, **kw):
+        start = time.process_time()
+        image, aovs = render(pixel_bounds=window, aovs=["albedo", "normal"], **kw)
+        seconds[label] = time.process_time() - start
+        return np.maximum(image, 0.0), aovs  # spectral renders leave the gamut (render(denoise=True) clips too)
+
+    def denoised(image, aovs, guided=False):  # as render(denoise=True) does (refracta/_render.py)
+        clean = refracta.denoise(image, aovs["albedo"], aovs["normal"], guided=guided)
+        if not spectral:  # RGB: the noise-free sky kept; spectral: noisy in colour, denoised
+            sky = ~np.any(aovs["normal"], axis=2)
+            clean[sky] = image[sky]
+        return clean
+
+    noisy, aovs = run("noisy", spp=spp)
+    images["noisy"], images["denoised"] = noisy, denoised(noisy, aovs)
+    images["guided"] = denoised(noisy, aovs, guided=True)
+    image, aovs = run("guides64", spp=spp, guide_spp=64)
+    images["guides64"] = denoised(image, aovs, guided=True)
+    image, aovs = run("equal_cost", spp=2 * spp)
+    images["equal_cost"] = denoised(image, aovs)
+    images["equal_cost_guided"] = denoised(image, aovs, guided=True)
+    if name == "green_flash":
+        from refracta import examples_chroma
+
+        luminance = refracta.denoise(noisy) @ examples_chroma.LUMINANCE
+        images["demo_chroma"] = np.maximum(examples_chroma.chroma_filter(noisy, luminance), 0.0)
+    return {label: image[cut] for label, image in images.items()}, seconds
+
+
+def compare(images, reference) -> dict:
+    """Relative MSE and FLIP of each image, its ratio to the noisy image's, flat-region bias."""
+    row = {}
     base_mse, base_flip = relative_mse(images["noisy"], reference), flip_mean(images["noisy"], reference)
     for label, image in images.items():
         row[f"{label}_relative_mse"] = mse = relative_mse(image, reference)
@@ -136,21 +181,58 @@ def measure(name, size, crop, spp=16, reference_spp=4096) -> dict:
         row[f"{label}_flip_ratio"] = base_flip / flip
     flat = flat_pixels(reference)
     row["flat_share"] = float(flat.mean())
-    if flat.any():
-        mean = float(reference[flat].mean())
-        for label in ("noisy", "denoised", "adaptive_denoised"):
+    mean = float(reference[flat].mean()) if flat.any() else 0.0
+    if mean > 0.0:  # (a black flat region, as the green flash's night sea, has no relative bias)
+        for label in images:
             row[f"{label}_flat_bias"] = float(images[label][flat].mean()) / mean - 1.0
-    row["goal_met"] = bool(row["denoised_mse_ratio"] >= GOAL)
-    row["adaptive_goal_met"] = bool(row["adaptive_denoised_mse_ratio"] >= GOAL)
-    bias = row.get("denoised_flat_bias", float("nan"))
-    print(
-        f"{name} {width}x{height} crop {crop}, {spp} spp vs {reference_spp}: relMSE noisy {base_mse:.3e}, "
-        f"denoised x{row['denoised_mse_ratio']:.2f}, adaptive denoised x{row['adaptive_denoised_mse_ratio']:.2f}; "
-        f"FLIP {base_flip:.4f}, denoised x{row['denoised_flip_ratio']:.2f}, adaptive denoised "
-        f"x{row['adaptive_denoised_flip_ratio']:.2f}; flat bias {bias:+.4f}; reference {reference_seconds:.0f} s",
-        flush=True,
-    )
     return row
+
+
+def measure(name, size, crop, spp=16, reference_spp=4096) -> dict:
+    import refracta
+
+    scene, camera, field, options = scene_setup(name, size)
+    options = dict(progress=False, transport="direct", **options)
+    width, height = camera.width, camera.height
+
+    def render(**kw):
+        return refracta.render(scene, camera, field, **options, **kw)
+
+    out = {"size": [width, height]}
+    # The hardest crop.
+    start = time.perf_counter()
+    reference = np.maximum(render(spp=reference_spp, seed=1, pixel_bounds=crop), 0.0)
+    row = {"crop": list(crop), "window": list(_window(crop, width, height)[0])}
+    row["reference_seconds"] = time.perf_counter() - start
+    spectral = options.get("spectral", False)
+    images, row["cpu_seconds"] = variants(name, render, crop, width, height, spp, spectral)
+    row.update(compare(images, reference))
+    out["crop"] = row
+    # The representative tiles, measured as one image (their pixels side by side).
+    boxes = tiles(width, height)
+    start = time.perf_counter()
+    references = [np.maximum(render(spp=reference_spp, seed=1, pixel_bounds=box), 0.0) for box in boxes]
+    row = {"tiles": [list(box) for box in boxes], "share": len(boxes) * TILE * TILE / (width * height)}
+    row["reference_seconds"] = time.perf_counter() - start
+    parts = [variants(name, render, box, width, height, spp, spectral)[0] for box in boxes]
+    joined = {label: np.concatenate([part[label] for part in parts], axis=1) for label in parts[0]}
+    row.update(compare(joined, np.concatenate(references, axis=1)))
+    out["tiles"] = row
+    for part in ("crop", "tiles"):
+        r = out[part]
+        print(
+            f"{name} {width}x{height} {part}, {spp} spp vs {reference_spp}: "
+            f"relMSE noisy {r['noisy_relative_mse']:.3e}, "
+            + ", ".join(f"{label} x{r[label + '_mse_ratio']:.2f}" for label in images if label != "noisy")
+            + f"; FLIP noisy {r['noisy_flip']:.4f}, "
+            + ", ".join(f"{label} x{r[label + '_flip_ratio']:.2f}" for label in images if label != "noisy")
+            + f"; flat bias denoised {r.get('denoised_flat_bias', float('nan')):+.4f} "
+            f"(noisy {r.get('noisy_flat_bias', float('nan')):+.4f}); reference {r['reference_seconds']:.0f} s",
+            flush=True,
+        )
+    out["goal_met"] = bool(out["crop"]["denoised_mse_ratio"] >= GOAL)
+    out["tiles_goal_met"] = bool(out["tiles"]["denoised_mse_ratio"] >= GOAL)
+    return out
 
 
 def main(quick: bool = False, names=tuple(SCENES)) -> dict:
@@ -164,7 +246,8 @@ def main(quick: bool = False, names=tuple(SCENES)) -> dict:
     previous = RESULTS / "denoise.json"
     if not quick and previous.exists():
         kept = json.loads(previous.read_text())
-        out.update({name: kept[name] for name in SCENES if name in kept and name not in names})
+        # Only scenes measured by this form of the benchmark (a crop and the tiles).
+        out.update({name: kept[name] for name in SCENES if "tiles" in kept.get(name, {}) and name not in names})
     for name in names:
         setting = SCENES[name]
         out[name] = measure(name, setting["size"], setting["crop"], reference_spp=out["reference_spp"])

@@ -1827,6 +1827,14 @@ class RenderOptions:
     def guard_band(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def guide_spp(self) -> int:
+        """
+        with surface_aovs, when above spp: the albedo and normal from a pass of their own, this many first-hit samples per pixel (denoise's guides; 0: the image's)
+        """
+    @guide_spp.setter
+    def guide_spp(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
     def march(self) -> str:
         """
         raster_march: 'rk45' to tol, or 'rk4' with step (the original)

@@ -71,6 +71,8 @@ validate() reports every bad value at once.)doc");
                      "camera rays' footprints from ray differentials through the air (false: the ray cone)")
       .def_readwrite("surface_aovs", &O::surface_aovs, "also render the albedo and normal of the first "
                      "non-specular hit: 9 channels (render's aovs, denoise)")
+      .def_readwrite("guide_spp", &O::guide_spp, "with surface_aovs, when above spp: the albedo and normal from "
+                     "a pass of their own, this many first-hit samples per pixel (denoise's guides; 0: the image's)")
       .def_readwrite("readouts", &O::readouts, "also render the per-pixel readouts after those 9 channels: 19 "
                      "(render's aovs 'distance', ...)")
       .def_readwrite("step", &O::step, "[m] raster_march rk4 step")

@@ -53,6 +53,12 @@ class Integrator {
   virtual Spectrum li_after(const Vec3d& origin, const Vec3d& dir, const PathEnd& first, double pixel_angle,
                             SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch,
                             SurfaceAovs* aovs) const = 0;
+  // Only the albedo and normal li_after would record into `aovs`: the camera path followed through
+  // mirrors and glass (choosing between reflection and transmission with `sampler`) to its first
+  // non-specular surface, no light gathered (the denoiser's guide pass, RenderOptions::guide_spp).
+  virtual void surface_after(const Vec3d& origin, const Vec3d& dir, const PathEnd& first, double pixel_angle,
+                             SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch,
+                             SurfaceAovs& aovs) const = 0;
   const DirectLighting& lighting() const { return lighting_; }
 
  protected:

@@ -38,6 +38,21 @@ class PathTracer : public Integrator {
   Spectrum li_after(const Vec3d& origin, const Vec3d& dir, const PathEnd& first, double pixel_angle,
                     SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch,
                     SurfaceAovs* aovs) const override {
+    return walk<false>(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
+  }
+
+  void surface_after(const Vec3d& origin, const Vec3d& dir, const PathEnd& first, double pixel_angle,
+                     SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch,
+                     SurfaceAovs& aovs) const override {
+    walk<true>(origin, dir, first, pixel_angle, lambda, sampler, scratch, &aovs);
+  }
+
+ private:
+  // The path from the camera ray's end `first` on; kSurfaceOnly: no light gathered, the walk ends
+  // at the first non-specular surface once its albedo and normal are in `aovs` (surface_after).
+  template <bool kSurfaceOnly>
+  Spectrum walk(const Vec3d& origin, const Vec3d& dir, const PathEnd& first, double pixel_angle,
+                SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch, SurfaceAovs* aovs) const {
     Spectrum L = Spectrum::Zero(), beta = Spectrum::Ones();
     Vec3d o = origin, d = dir;
     double ior_here = caster_.curved() ? caster_.ior(o) : 1.0;  // straight rays: no air to ask
@@ -51,6 +66,7 @@ class PathTracer : public Integrator {
     for (int passes = 0; passes < 4 * max_depth + 64; ++passes) {
       const PathEnd end = passes == 0 ? first : caster_.cast(o, d);
       travelled += end.length;
+      if (kSurfaceOnly && !end.hit) break;
       if (!end.hit) {
         const double n_top = caster_.curved() ? lighting_.distant_ior(o, end.direction) * ior_here / caster_.ior(o) : ior_here;
         L += beta * lighting_.escaped(end, d, has_previous ? &previous : nullptr, bsdf_pdf, specular, lambda) *
@@ -63,7 +79,7 @@ class PathTracer : public Integrator {
                                   : scene_.geometry.interaction(*end.hit, end.direction, pixel_angle * travelled);
       // The air between: its in-scatter arrives, and it dims everything from the hit on. A path
       // that escapes sees the sky, which already holds the air all the way out.
-      if (air_) {
+      if (air_ && !kSurfaceOnly) {
         const AerialPerspective::Segment air = air_->along(o, si.p, air_frame_, lambda);
         L += beta * air.inscatter;
         beta *= air.transmittance;
@@ -73,7 +89,7 @@ class PathTracer : public Integrator {
         beta *= sqr(ior_here / ior_hit);
         ior_here = ior_hit;
       }
-      L += beta * lighting_.emitted(si, has_previous ? &previous : nullptr, bsdf_pdf, specular, lambda);
+      if (!kSurfaceOnly) L += beta * lighting_.emitted(si, has_previous ? &previous : nullptr, bsdf_pdf, specular, lambda);
       if (depth >= max_depth || emission_only) break;
       scratch.reset();
       const Scattering s = scattering_at(scene_, si, media, ior_here, lambda, scratch);
@@ -89,6 +105,7 @@ class PathTracer : public Integrator {
       if (aovs && !smooth) {
         record_surface(si, s, media, ior_here, lambda, scratch, aovs);
         aovs = nullptr;  // the first non-specular hit only
+        if (kSurfaceOnly) break;
       }
       if (!smooth) L += beta * lighting_.sample_lights(si, s.bsdf, lambda, sampler);
       const double uc = sampler.uniform();
@@ -121,7 +138,6 @@ class PathTracer : public Integrator {
     return L;
   }
 
- private:
   // The albedo (in RGB whatever the render's wavelengths) and the shading normal facing the path.
   void record_surface(const SurfaceInteraction& si, const Scattering& s, const MediumStack& media, double ior_here,
                       const SampledWavelengths& lambda, ScratchBuffer& scratch, SurfaceAovs* aovs) const {

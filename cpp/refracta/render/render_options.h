@@ -96,6 +96,16 @@ struct RenderOptions {
   // pixel's samples): the image then has 9 channels, radiance, albedo, normal (Intel Open Image
   // Denoise's auxiliary features; renderer.h). 'straight' and 'curved' only.
   bool surface_aovs = false;
+  // With surface_aovs: when above spp, the albedo and normal come from a pass of their own with
+  // this many samples per pixel that stops at each path's first non-specular surface (no lighting:
+  // a camera ray, its mirror and glass chain and the surface's albedo), so they carry the pixel's
+  // edge coverage to guide_spp samples' accuracy (render(denoise=True)'s guided filter rebuilds the
+  // image's edges from them, python/refracta/_denoise.py). Non-adaptive, RGB (a spectral render's
+  // guides follow the air at its reference wavelength); 0 or at most spp: the image's own samples.
+  // Off by default: a guide sample costs ~1/4 of a 'direct' one (64 of them 0.9-1.2x the CPU of
+  // 16 spp on the hot road and cold sea), and on the hot road 32 spp gain as much as 16 + 64 guides
+  // (benchmarks/bench_denoise.py).
+  int guide_spp = 0;
   // Also render the per-pixel readouts (readouts.h: distance, position, object id, apparent and
   // true elevation, apparent azimuth, hidden heights) after those 9 channels: 19 in all.
   // Implies surface_aovs. 'straight' and 'curved' only.

@@ -19,6 +19,7 @@
 #include "refracta/render/shimmer_cast.h"
 #include "refracta/render/readouts.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -71,6 +72,7 @@ void RenderOptions::validate() const {
   if (!(step > 0.0) || !std::isfinite(step)) problems.add("step must be > 0 (got ", step, ")");
   if (max_steps < 1) problems.add("max_steps must be >= 1 (got ", max_steps, ")");
   if (surface_aovs && method == RenderMethod::kRasterMarch) problems.add("surface_aovs needs method 'straight' or 'curved'");
+  if (guide_spp < 0) problems.add("guide_spp must be >= 0 (got ", guide_spp, ")");
   if (readouts && method == RenderMethod::kRasterMarch) problems.add("readouts need method 'straight' or 'curved'");
   if (adaptive && method == RenderMethod::kRasterMarch) problems.add("adaptive needs method 'straight' or 'curved'");
   if (!(guard_band >= 0.0 && guard_band <= 2.0)) problems.add("guard_band must be in [0, 2] (got ", guard_band, ")");
@@ -308,6 +310,36 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     image = render_film<FilmLayout::kSurface>(camera, options, control, sample, &samples);
   } else {
     image = render_film<FilmLayout::kRadiance>(camera, options, control, sample, &samples);
+  }
+  // The denoiser's guides from a pass of their own (options.guide_spp): the first non-specular
+  // surface of guide_spp samples a pixel, from the same casters (a spectral render's at the air's
+  // reference wavelength, its camera rays through an eye table of their own), their albedo and
+  // normal replacing the image's own samples' (channels 3-8).
+  if (options.surface_aovs && options.guide_spp > options.spp) {
+    RenderOptions guide_options = options;
+    guide_options.spp = options.guide_spp;
+    guide_options.adaptive = false;
+    guide_options.spectral = false;
+    guide_options.seed = options.seed ^ 0x9e3779b97f4a7c15ull;  // streams apart from the image's
+    std::unique_ptr<ElevationTable> guide_table;
+    if (!table && options.spectral) {
+      guide_table = eye_table(scene, camera, layered, guide_options, escape, caster.ceiling(), control);
+      if (guide_table) caster.use_table(guide_table.get(), camera.position(), camera.pixel_angle());
+    }
+    auto guide = [&](const Vec2d& pixel, const Vec2d& lens, double spacing, double pixel_angle, SampledWavelengths& lambda,
+                     Sampler& sampler, ScratchBuffer& scratch, SurfaceAovs* aovs) {
+      const Camera::LensRay ray = camera.lens_ray(pixel.x(), pixel.y(), lens);
+      PathEnd first = shimmer ? shimmer->cast(caster, ray.origin, ray.direction, camera.pixel_angle())
+                              : caster.cast(ray.origin, ray.direction, 0.0, camera.pixel_angle());
+      with_footprint(shimmer ? shimmer->calm() : caster, ray.origin, pixel, lens, spacing, &first);
+      chords.fetch_add(first.chords, std::memory_order_relaxed);
+      integrator->surface_after(ray.origin, ray.direction, first, pixel_angle, lambda, sampler, scratch, *aovs);
+      return Spectrum(Spectrum::Zero());
+    };
+    const Image guides = render_film<FilmLayout::kSurface>(camera, guide_options, control, guide);
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) std::copy_n(guides.at(x, y) + 3, 6, image.at(x, y) + 3);
+    }
   }
   if (stats) {
     stats->samples = samples;
