@@ -63,6 +63,8 @@ class DispersedField final : public IndexField {
 
   const FieldPtr& base() const { return base_; }
   double scale() const { return *scale_; }
+  // Where the scale is read (shared with fields retuned alike: TabulatedCurvedEarth).
+  const std::shared_ptr<const double>& scale_source() const { return scale_; }
 
  private:
   FieldPtr base_;

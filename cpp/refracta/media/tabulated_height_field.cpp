@@ -5,6 +5,7 @@
 #include "refracta/media/dispersed_field.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 
@@ -39,6 +40,14 @@ double evaluable_end(const IndexField& field, double from, double to) {
   return from;
 }
 
+// The cubic through values f0, f1 with slopes d0, d1 (per unit of the parameter) on [0, 1].
+std::array<double, 4> hermite_cubic(double f0, double d0, double f1, double d1) {
+  const double jump = f1 - f0;
+  return {f0, d0, 3.0 * jump - 2.0 * d0 - d1, -2.0 * jump + d0 + d1};
+}
+
+double cubic_at(const std::array<double, 4>& c, double t) { return c[0] + t * (c[1] + t * (c[2] + t * c[3])); }
+
 }  // namespace
 
 TabulatedHeightField::TabulatedHeightField(FieldPtr base, double lo, double hi, double tolerance)
@@ -71,8 +80,8 @@ TabulatedHeightField::TabulatedHeightField(FieldPtr base, double lo, double hi, 
   for (size_t k = 0; k + 1 < h_.size(); ++k) {
     const double width = h_[k + 1] - h_[k];
     const Sample &a = samples_[k], &b = samples_[k + 1];
-    const double da = width * a.dn, db = width * b.dn, jump = b.n - a.n;
-    cubics_[k] = {a.n, da, 3.0 * jump - 2.0 * da - db, -2.0 * jump + da + db, 1.0 / width};
+    const std::array<double, 4> c = hermite_cubic(a.n, width * a.dn, b.n, width * b.dn);
+    cubics_[k] = {c[0], c[1], c[2], c[3], 1.0 / width};
   }
   // Buckets of equal width, 16 per node: nodes crowd into thin layers (centimetres apart in a
   // hot layer, metres elsewhere), and a bucket should hold only a few of them.
@@ -156,9 +165,161 @@ std::shared_ptr<const IndexField> TabulatedHeightField::with_param_values(const 
   return std::make_shared<TabulatedHeightField>(base_->with_param_values(values), lo_, hi_, tolerance_);
 }
 
+// --- TabulatedCurvedEarth ------------------------------------------------------------------
+
+namespace {
+
+// Parts of an interval: at most 2^kMaxPartDepth (1 m / 65536 = 15 um; a kink in n -- a
+// temperature profile's knot -- is accepted there, its cubic off by ~jump(dn/dh) x 15 um / 16);
+// at most kMaxParts in all (64 MB of coefficients), past which the rest are accepted as they are.
+constexpr int kMaxPartDepth = 16;
+constexpr size_t kMaxParts = size_t(1) << 20;
+
+// A(y'), A', B(y'), B' of the flattened air (flattened_height's transform, split at n - 1).
+struct FlatSample {
+  double a, da, b, db;
+};
+
+FlatSample flat_sample(const IndexField& base, double radius, double y) {
+  const double scale = std::exp(y / radius);  // r / R = dh/dy'
+  double n, dn;
+  base.evaluate_height(radius * (scale - 1.0), &n, &dn);
+  const double excess = n - 1.0;
+  return {scale, scale / radius, excess * scale, scale * (dn * scale + excess / radius)};
+}
+
+}  // namespace
+
+struct TabulatedCurvedEarth::Table {
+  // A part's cubics in its parameter v in [0, 1]: A = a0 + v (a1 + v (a2 + v a3)), B alike.
+  struct alignas(64) Part {
+    std::array<double, 4> a, b;
+  };
+  struct Interval {
+    uint32_t first;            // its first part
+    uint32_t count;            // 2^d parts
+    double inverse_part;       // count / the interval's width [1/m]
+  };
+  double lo = 0.0, hi = 0.0;      // [m], flat
+  double tolerance = 0.0;         // in B (and so in n')
+  double inverse_width = 0.0;     // intervals per metre
+  std::vector<Interval> intervals;
+  std::vector<Part> parts;
+};
+
+TabulatedCurvedEarth::TabulatedCurvedEarth(const CurvedEarth& air, double lo, double hi, double tolerance)
+    : CurvedEarth(air.base(), air.radius()), decorated_(air.base()) {
+  if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi)) {
+    throw_invalid("TabulatedCurvedEarth: need lo < hi, both finite (got ", lo, ", ", hi, ")");
+  }
+  if (!(tolerance > 0.0)) throw_invalid("TabulatedCurvedEarth: tolerance must be > 0 (got ", tolerance, ")");
+  auto table = std::make_shared<Table>();
+  table_ = table;
+  table->tolerance = tolerance;
+  // The part of [lo, hi] the air models (TabulatedHeightField's rule).
+  double start = lo;
+  if (!evaluable(air, start)) start = evaluable(air, 0.0) ? evaluable_end(air, 0.0, lo) : hi;
+  table->lo = start;
+  table->hi = start < hi ? evaluable_end(air, start, hi) : start;
+  if (!(table->hi > table->lo)) return;  // nothing tabulated: every height is the air's own
+  const IndexField& base = *air.base();
+  const double radius = air.radius(), span = table->hi - table->lo;
+  const size_t count = size_t(std::clamp(std::ceil(span / kInitialSpacing), double(kMinInitialIntervals),
+                                         double(kMaxInitialIntervals)));
+  table->inverse_width = double(count) / span;
+  const double width = span / double(count);
+  table->intervals.reserve(count);
+  std::vector<FlatSample> nodes;
+  std::vector<Table::Part> parts;
+  for (size_t j = 0; j < count; ++j) {
+    const double from = table->lo + width * double(j);
+    // The least depth whose parts all hold B to the tolerance at their quarter points.
+    for (int depth = 0;; ++depth) {
+      const size_t pieces = size_t(1) << depth;
+      const double step = width / double(pieces);
+      auto at = [&](double k) { return flat_sample(base, radius, from + step * k); };
+      nodes.resize(pieces + 1);
+      for (size_t k = 0; k <= pieces; ++k) nodes[k] = at(double(k));
+      parts.resize(pieces);
+      bool close = true;
+      for (size_t k = 0; k < pieces; ++k) {
+        const FlatSample &p = nodes[k], &q = nodes[k + 1];
+        parts[k].a = hermite_cubic(p.a, step * p.da, q.a, step * q.da);
+        parts[k].b = hermite_cubic(p.b, step * p.db, q.b, step * q.db);
+        for (double t : {0.5, 0.25, 0.75}) {
+          if (!close) break;
+          close = std::abs(cubic_at(parts[k].b, t) - at(double(k) + t).b) <= tolerance;
+        }
+      }
+      if (close || depth >= kMaxPartDepth || table->parts.size() + 2 * pieces > kMaxParts) break;
+    }
+    table->intervals.push_back({uint32_t(table->parts.size()), uint32_t(parts.size()),
+                                table->inverse_width * double(parts.size())});
+    table->parts.insert(table->parts.end(), parts.begin(), parts.end());
+  }
+}
+
+TabulatedCurvedEarth::TabulatedCurvedEarth(const TabulatedCurvedEarth& of, std::shared_ptr<const double> scale)
+    : CurvedEarth(of.base(), of.radius()), table_(of.table_), scale_(std::move(scale)) {
+  decorated_ = scale_ ? std::make_shared<DispersedField>(base(), scale_) : base();
+}
+
+size_t TabulatedCurvedEarth::parts() const { return table_->parts.size(); }
+
+void TabulatedCurvedEarth::evaluate_height(double y, double* n, double* dn_dy) const {
+  const Table& table = *table_;
+  if (!(y >= table.lo && y <= table.hi) || table.intervals.empty()) {
+    flattened_height(*decorated_, radius(), y, n, dn_dy);
+    return;
+  }
+  const double t = (y - table.lo) * table.inverse_width;
+  const size_t j = std::min(size_t(t), table.intervals.size() - 1);
+  const Table::Interval& interval = table.intervals[j];
+  const double u = (t - double(j)) * double(interval.count);
+  const size_t k = std::min<size_t>(size_t(u), interval.count - 1);
+  const double v = u - double(k);
+  const Table::Part& part = table.parts[interval.first + k];
+  const std::array<double, 4>&a = part.a, &b = part.b;
+  const double s = scale_ ? *scale_ : 1.0;
+  const double value_a = cubic_at(a, v), value_b = cubic_at(b, v);
+  const double slope_a = a[1] + v * (2.0 * a[2] + 3.0 * v * a[3]);
+  const double slope_b = b[1] + v * (2.0 * b[2] + 3.0 * v * b[3]);
+  *n = value_a + s * value_b;
+  *dn_dy = (slope_a + s * slope_b) * interval.inverse_part;
+}
+
+void TabulatedCurvedEarth::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
+  double dn;
+  evaluate_height(p.y(), n, &dn);
+  *grad = Vec3d(0.0, dn, 0.0);
+}
+
+std::shared_ptr<const IndexField> TabulatedCurvedEarth::with_param_values(const std::vector<double>& values) const {
+  const auto air = std::static_pointer_cast<const CurvedEarth>(CurvedEarth::with_param_values(values));
+  // The range as built (the evaluable part of the original's) and its tolerance.
+  const TabulatedCurvedEarth fresh(*air, table_->lo, table_->hi, table_->tolerance);
+  return std::shared_ptr<const IndexField>(new TabulatedCurvedEarth(fresh, scale_));
+}
+
+std::shared_ptr<const IndexField> TabulatedCurvedEarth::with_base(std::shared_ptr<const IndexField> base) const {
+  if (base == this->base()) return std::shared_ptr<const IndexField>(new TabulatedCurvedEarth(*this, nullptr));
+  if (const auto* dispersed = dynamic_cast<const DispersedField*>(base.get());
+      dispersed && dispersed->base() == this->base()) {
+    return std::shared_ptr<const IndexField>(new TabulatedCurvedEarth(*this, dispersed->scale_source()));
+  }
+  return CurvedEarth::with_base(std::move(base));
+}
+
 FieldPtr tabulate_heights(const FieldPtr& field, double lo, double hi) {
   if (!field || !field->height_only()) return field;
-  if (const FieldPtr inner = field->decorated()) {  // tabulate the air inside CurvedEarth
+  if (dynamic_cast<const TabulatedCurvedEarth*>(field.get())) return field;
+  if (const auto* curved = dynamic_cast<const CurvedEarth*>(field.get())) {
+    // Up to the top of the air at least: escaping rays are integrated up to it (Caster::escape_direction;
+    // the cold sea's 41 km of reach ends half way to the physical atmosphere's 86 km).
+    const double top = curved->straight_above();
+    return std::make_shared<TabulatedCurvedEarth>(*curved, lo, std::isfinite(top) ? std::max(hi, top) : hi);
+  }
+  if (const FieldPtr inner = field->decorated()) {  // tabulate the air inside another decorator
     return field->with_base(tabulate_heights(inner, field->base_height(lo), field->base_height(hi)));
   }
   if (dynamic_cast<const TabulatedHeightField*>(field.get())) return field;
