@@ -119,6 +119,7 @@ IorFloors render_ior_floors(const Scene& scene, const IndexField& field, const V
   floors.objects = count > 0 ? profile->below.back() : 0.0;  // nothing evaluable: no bound (lowest_ior_sampled's 0)
   floors.everywhere = std::min(floors.objects, lowest_ior_sampled(field, top, hi, kMargin));
   if (count >= 2) floors.profile = std::move(profile);  // else nothing to tell heights apart
+  floors.gradients = gradient_bound(field, lo, hi, std::clamp(0.0, lo, hi));
   return floors;
 }
 
@@ -134,6 +135,17 @@ double IorFloors::objects_from(double h, bool rising) const {
 void IorFloors::merge(const IorFloors& other) {
   objects = std::min(objects, other.objects);
   everywhere = std::min(everywhere, other.everywhere);
+  if (gradients && other.gradients && gradients->heights == other.gradients->heights) {
+    auto most = std::make_shared<Gradients>(*gradients);
+    for (size_t k = 0; k < most->most.size(); ++k) {
+      for (size_t i = 0; i < most->most[k].size(); ++i) {
+        most->most[k][i] = std::max(most->most[k][i], other.gradients->most[k][i]);
+      }
+    }
+    gradients = std::move(most);
+  } else {
+    gradients.reset();  // not sampled alike: no bound
+  }
   if (!profile || !other.profile || profile->heights != other.profile->heights) {
     profile.reset();  // not sampled alike: the overall floors alone
     return;
@@ -244,10 +256,11 @@ double Caster::ior(const Vec3d& p) const {
 PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const {
   if (!field_) return cast_straight(origin, dir, max_length > 0.0 ? max_length : kSceneReach);
   const bool from_eye = table_ && origin == eye_ && max_length <= 0.0;
-  if (!(spread > 0.0)) spread = secondary_spread_;
+  const bool secondary = !(spread > 0.0);  // a shadow or bounce ray
+  if (secondary) spread = secondary_spread_;
   const double length = max_length > 0.0 ? max_length : options_.max_length;
-  PathEnd end = legs_ ? cast_in_legs(origin, dir, length, spread, from_eye)
-                      : from_eye ? cast_table(dir) : cast_traced(origin, dir, length, spread);
+  PathEnd end = legs_ ? cast_in_legs(origin, dir, length, spread, from_eye, secondary)
+                      : from_eye ? cast_table(dir) : cast_traced(origin, dir, length, spread, secondary);
   if (!end.hit) end.direction = field_->sky_direction(end.end_point, end.direction);
   return end;
 }
@@ -259,7 +272,7 @@ bool Caster::inside_region(const Vec3d& p) const {
 }
 
 PathEnd Caster::cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,
-                             bool from_eye) const {
+                             bool from_eye, bool secondary) const {
   // A path that grazes a region's border could hand over back and forth: after this many legs
   // the full field traces the rest without handing over.
   constexpr int kMaxLegs = 32;
@@ -275,7 +288,7 @@ PathEnd Caster::cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_l
     // as used uninitialised when it is assigned later (-Wuninitialized under -Werror).
     PathEnd part = last || in_regions     ? cast_in_regions(x, d, max_length - s, spread, s, !last)
                    : leg == 0 && from_eye ? cast_table(d)
-                                          : cast_traced(x, d, max_length - s, spread);
+                                          : cast_traced(x, d, max_length - s, spread, secondary);
     chords += part.chords;
     if (!part.handoff || !(part.handoff->s < max_length - s)) {
       part.length += s;
@@ -439,7 +452,7 @@ std::optional<PlaneState> Caster::plane_escape(const RayNode<double>& node, doub
 }
 
 std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length,
-                                             double spread) const {
+                                             double spread, bool secondary) const {
   // sin e >= 0.01 (0.57 deg) at every height among the objects: the ray cannot turn there, and
   // the stretches' error estimate splits them where 1/sin e varies too fast for 8 points.
   constexpr double kMinSine = 0.01;
@@ -504,6 +517,11 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
     end.length = s;
     a = b;
     step *= 4.0;
+    // Past the air that bends it (a hot road's few metres): the rest is one line.
+    if (secondary &&
+        straight_rest(a, end.direction, s, max_length - s, std::min(scene_.lowest(), origin.y()) - 1.0, spread, &end)) {
+      return end;
+    }
   }
   end.end_point = a;
   if (up < 0.0) return end;  // below everything: the path ends there, as a traced one at its stop height
@@ -515,7 +533,8 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   return end;
 }
 
-PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const {
+PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,
+                            bool secondary) const {
   PathEnd end;
   end.direction = dir;
   // A rising ray above every object that cannot turn never comes back: the invariant gives the
@@ -526,10 +545,12 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
     end.end_point = exit->point;
     return end;
   }
-  // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
-  if (auto monotone = cast_monotone(origin, dir, max_length, spread)) return *monotone;
   const IndexField& air = legs_ ? *layered_ : *field_;  // legs outside the regions: the layered part
   TraceOptions trace_options = curved_trace_options(scene_, air, origin, options_, max_length);
+  // Air that cannot bend the rest of the path off a straight line by its tolerance: one line.
+  if (secondary && straight_rest(origin, dir, 0.0, max_length, *trace_options.stop_height, spread, &end)) return end;
+  // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
+  if (auto monotone = cast_monotone(origin, dir, max_length, spread, secondary)) return *monotone;
   // Through local features rk45 steps at most half their scale (its error estimate cannot step over one).
   if (!legs_ && !regions_.empty()) trace_options.step = step_in_regions();
   // A pixel's ray: an error of sagitta_pixels of its footprint (spread * s) is invisible. Any
@@ -550,7 +571,8 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
         end.end_point = exit->point;
         return false;
       }
-      return true;
+      // Risen (or run) out of the air that bends it: the rest is one line.
+      return !(secondary && straight_rest(b.x, b.v, b.s, max_length - b.s, *trace_options.stop_height, spread, &end));
     });
   } catch (const NumericalError&) {
     // A path rising above every object out of the field's modelled heights has left the air:

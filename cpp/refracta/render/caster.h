@@ -40,9 +40,21 @@ struct IorFloors {
     std::vector<double> heights, below, above;  // ascending [m]; least n at and below / above each
   };
   std::shared_ptr<const Profile> profile;  // null: `objects` for every ray
+  // An upper bound of |d ln n / dh| [1/m] over heights (render_ior_floors: every height a ray can
+  // reach), how much a path can bend there (Caster::straight_rest). Sampled as the floors are;
+  // each interval between samples is bounded by the larger of its ends' and its secant's slope,
+  // widened by kGradientMargin (a feature narrower than the spacing hides as a floor's dip does).
+  struct Gradients {
+    std::vector<double> heights;            // ascending [m]
+    std::vector<std::vector<double>> most;  // most[k][i]: the bound over intervals i .. i + 2^k - 1
+    // The bound over [lo, hi] [m]; inf where that reaches outside the sampled heights.
+    double steepest(double lo, double hi) const;
+  };
+  std::shared_ptr<const Gradients> gradients;  // null: no bound (no path goes straight)
   // The least n between h and the top of the objects (rising), or the bottom and h (falling).
   double objects_from(double h, bool rising) const;
-  // The lower of both floors (a spectral render's ends of the dispersion range).
+  // The lower of both floors and the larger gradient bound (a spectral render's ends of the
+  // dispersion range).
   void merge(const IorFloors& other);
 };
 
@@ -137,10 +149,14 @@ class Caster {
 
  private:
   PathEnd cast_straight(const Vec3d& origin, const Vec3d& dir, double max_length) const;
-  PathEnd cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const;
+  // secondary: a shadow or bounce ray (cast without a spread of its own): the rest of its path may
+  // go on straight above the bending air (straight_rest).
+  PathEnd cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,
+                      bool secondary = false) const;
   PathEnd cast_table(const Vec3d& dir) const;
   // Fields with local regions: the legs of one cast.
-  PathEnd cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_length, double spread, bool from_eye) const;
+  PathEnd cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_length, double spread, bool from_eye,
+                       bool secondary) const;
   // The full field's path (rk45) from a state next to or inside a region, until it has been inside
   // and has left every region (handoff), hits the scene or ends (`exits`: false on the last leg).
   // s0: the path's arc length at origin (the footprint's growth from there bounds the leg's tolerance).
@@ -177,7 +193,19 @@ class Caster {
   // can reach, cut into chords from Bouguer's invariant (bouguer_branch.h) up past every object
   // (then out of the air) or down below them; nullopt where that does not apply (trace it).
   // spread: as cast's (the chords' tolerance grows with the arc length from origin).
-  std::optional<PathEnd> cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const;
+  std::optional<PathEnd> cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,
+                                       bool secondary = false) const;
+  // Shadow and bounce rays through height-only fields with a gradient bound (IorFloors::gradients;
+  // camera rays keep their traced paths: a horizontal silhouette grazed within the quarter pixel
+  // would flip a row of pixels against the eye's table): the rest of a path at x
+  // moving along v, at arc length s [m] of its cast with `remaining` [m] to go (or down to
+  // `bottom` [m], the cast's stop height), as ONE straight line -- tested against the scene in
+  // chords of at most options.chord -- where the bound says the air cannot bend the path off that
+  // line by more than its tolerance (caster_straight.cpp). spread: as cast's. Fills end (hit or
+  // end point, direction, length; adds its chords) and returns true; false, end untouched, where
+  // the bound does not hold or the line meets a local region.
+  bool straight_rest(const Vec3d& x, const Vec3d& v, double s, double remaining, double bottom, double spread,
+                     PathEnd* end) const;
 
   const Scene& scene_;
   const IndexField* field_;
@@ -205,5 +233,9 @@ std::pair<double, double> render_heights(const Scene& scene, const Vec3d& eye, c
 // A height-only field's least n (lowest_ior_sampled) among the objects (render_heights' lower
 // end to the highest object or the eye) and over all of render_heights.
 IorFloors render_ior_floors(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options);
+// A height-only field's gradient bound (IorFloors::Gradients) over heights [lo, hi] [m], sampled
+// as lowest_ior_sampled samples (ground = the height its spacing grows from).
+std::shared_ptr<const IorFloors::Gradients> gradient_bound(const IndexField& field, double lo, double hi,
+                                                           double ground);
 
 }  // namespace refracta
