@@ -430,15 +430,34 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
     return Example("fata_morgana", scene, camera, field, 21000.0, fata_morgana.__doc__ or "")
 
 
+# The hot spot's patch (examples.hot_spot): a sun-baked stretch of the road and its shoulders, a row
+# of HOT_SPOT_COUNT compact spots along the road's centre line from HOT_SPOT_STRETCH[0] to [1], 7.1 m
+# (half a radius) apart so that their sum ripples by 6 %, each HOT_SPOT_DT warmer at its centre:
+# the air over the centre line is 26-27 K warmer than over the rest of the ground, 23 K 2 m off it,
+# 15 K at the road's edges (4 m), 8 K at 6 m, 3 K at 8 m, nothing beyond 14 m. The rest of the
+# desert only HOT_SPOT_GROUND_DT warmer than the air: its own mirage stays within ~0.08 deg of the
+# horizon (critical angle sqrt(2 dn), dn ~ 1e-6 per K), where the ridge 9 km away stands.
+HOT_SPOT_STRETCH = (290.0, 650.0)  # [m] along the road (+x)
+HOT_SPOT_RADIUS = 14.0  # [m] each spot's compact footprint
+HOT_SPOT_COUNT = 52
+HOT_SPOT_DT = 20.0  # [K] each spot at its centre
+HOT_SPOT_GROUND_DT = 1.0  # [K] the rest of the ground
+
+
 def hot_spot(width: int = 640, height: int = 320) -> Example:
-    """An areal hot spot (refracta.HotSpot): the hot road's scene and view, its asphalt and sand
-    only 2 K warmer than the air but for a patch centred 350 m down the road, 25 K warmer at its
-    centre (a compact footprint of radius 300 m: exactly zero outside it, above 11 K within 100 m).
-    The "lake" -- the sky and the cars' lower halves mirrored -- lies over the patch alone: it
-    belongs to the ground, so it stays there when the camera moves (the demo walks 60 m toward it)."""
+    """A local "lake" (refracta.HotSpot): the hot road's scene and view, its sand and asphalt only
+    1 K warmer than the air but for a sun-baked stretch of the road 290-650 m ahead and a few metres
+    of sand either side (HOT_SPOT_STRETCH: a row of compact spots, the air over the road's centre
+    line ~27 K warmer, nothing beyond 14 m of it). The lake -- the sky, the poles and the cars'
+    lower halves mirrored -- lies over the stretch alone: it ends left and right on the sand, the
+    desert beside it is not mirrored, and it belongs to the ground, so it stays there when the
+    camera moves (the demo walks 60 m toward it)."""
     example = hot_road(width, height)
-    spot = _core.HotSpot(350.0, 0.0, 300.0, 25.0, footprint="compact")
-    field = _core.PhysicalAtmosphere(surface_dt=2.0, surface_depth=0.1, hot_spots=[spot])
+    spots = [
+        _core.HotSpot(float(x), 0.0, HOT_SPOT_RADIUS, HOT_SPOT_DT, footprint="compact")
+        for x in np.linspace(*HOT_SPOT_STRETCH, HOT_SPOT_COUNT)
+    ]
+    field = _core.PhysicalAtmosphere(surface_dt=HOT_SPOT_GROUND_DT, surface_depth=0.1, hot_spots=spots)
     return Example("hot_spot", example.scene, example.camera, field, example.max_length, hot_spot.__doc__ or "")
 
 

@@ -90,3 +90,71 @@ def test_spot_changes_only_the_columns_whose_rays_cross_it():
     # The column's rays span its pixel: half a pixel's footprint of slack.
     slack = 0.5 * 120.0 * camera.pixel_angle
     assert np.all(offsets[changed_columns] < 1.5 + slack), "a column changed whose rays never come near the spot"
+
+
+def ground_and_mirrored(example, camera, **options):
+    """Per pixel of `camera` (or of options' pixel_bounds): where its straight ray meets the ground
+    (position [m], NaN where it meets no ground), and whether through example.field it meets
+    anything but the ground (sky, poles, cars, the ridge: the mirage) -- 1 spp, the pixel's centre."""
+    common = dict(max_length=example.max_length, progress=False, transport="direct", spp=1, **options)
+    _, plain = refracta.render(
+        example.scene, camera, refracta.without_refraction(example.field), aovs=["distance", "position"], **common
+    )
+    _, air = refracta.render(example.scene, camera, example.field, aovs=["distance", "position"], **common)
+    on_ground = np.isfinite(plain["distance"]) & (plain["position"][..., 1] < 0.1)  # sand 0, road 2 mm, paint 6 mm
+    ground = np.where(on_ground[..., None], plain["position"], np.nan)
+    mirrored = ~np.isfinite(air["distance"]) | (air["position"][..., 1] > 0.1)
+    return ground, mirrored
+
+
+def test_the_demos_lake_is_local():
+    # examples.hot_spot: a stretch of hot ground 290-650 m down the road, nothing beyond 14 m of its
+    # centre line. A ray that leaves the eye depressed by e turns above the ground if the air there
+    # is less dense by n (1 - cos e) ~ n e^2 / 2 than at the eye (n cos e is conserved in layered
+    # air). Judged by the air at the point its straight ray meets the ground: a column of the lake's
+    # rows whose air there has twice that deficit is mirrored, one with half of it is ground.
+    # The factor 2 either way covers the ray's ~20-40 m run through the bottom 10 cm before that
+    # point, over air partly of another deficit (measured at 240x120: deficit ratio 1-1.5 -> 75 %
+    # mirrored, 1.5-2 -> 99 %, 0.5-1 -> 7 %).
+    example = examples.hot_spot(240, 120)
+    camera = example.camera
+    ground, mirrored = ground_and_mirrored(example, camera)
+    x, z = ground[..., 0], ground[..., 2]
+    lake_rows = (x > 300.0) & (x < 640.0)  # NaN compares false: ground pixels only
+    points = np.where(lake_rows[..., None], ground, 0.0).reshape(-1, 3) * np.array([1.0, 0.0, 1.0])
+    n_ground = example.field.ior(points).reshape(x.shape)
+    n_eye = example.field.ior(np.asarray([camera.position]))[0]
+    rays = np.array([[camera.ray(u + 0.5, v + 0.5)[1] for u in range(camera.width)] for v in range(camera.height)])
+    depression = -np.arcsin(rays[..., 1] / np.linalg.norm(rays, axis=-1))
+    ratio = (n_eye - n_ground) / (n_eye * depression**2 / 2)
+    hot, cool = lake_rows & (ratio > 2.0), lake_rows & (ratio < 0.5)
+    assert hot.sum() > 200 and mirrored[hot].all(), "the hot stretch's air mirrors"
+    assert cool.sum() > 200 and not mirrored[cool].any(), "the mildly warm desert beside it does not"
+    # The lake ends left and right: in its rows the sand beyond the spots' reach lies in the frame on
+    # both sides and none of it is mirrored (1 K there: a mirage only within 0.08 deg of the horizon).
+    beside = lake_rows & (np.abs(z) > examples.HOT_SPOT_RADIUS)
+    assert (beside & (z < 0)).sum() > 50 and (beside & (z > 0)).sum() > 50
+    assert not mirrored[beside].any()
+
+
+def test_the_demos_lake_stays_on_the_ground_as_the_camera_walks():
+    # The lake's near edge along the centre columns (the straight ray's ground point of the nearest
+    # mirrored row) as the camera walks cli.HOT_SPOT_WALK (60 m) toward it: over the hot stretch it
+    # stays near the stretch's start; over the uniformly hot road it moves with the camera.
+    from refracta import cli
+
+    def near_edge(example, walk):
+        camera = cli._moved(example.camera, walk, example.camera.width, example.camera.height)
+        ground, mirrored = ground_and_mirrored(example, camera, pixel_bounds=(316, 0, 324, 320))
+        return np.nanmin(np.where(mirrored, ground[..., 0], np.nan))
+
+    spot, road = examples.hot_spot(640, 320), examples.hot_road(640, 320)
+    walk = cli.HOT_SPOT_WALK
+    # A row spans x^2 / h * pixel angle of road: 9 m at 300 m from the 1.5 m eye (the tolerance on
+    # the road's edge). The spot's edge may move by that and into the start of the stretch, where the
+    # compact footprints' sum climbs over ~14 m: the walked eye looks down more steeply and needs
+    # warmer air (measured: 307.6 -> 314.3 m; the road's 294.0 -> 354.0 m).
+    spot_edge = near_edge(spot, 0.0)
+    assert examples.HOT_SPOT_STRETCH[0] - 15.0 < spot_edge < examples.HOT_SPOT_STRETCH[0] + 30.0
+    assert abs(near_edge(spot, walk) - spot_edge) < 15.0
+    assert abs(near_edge(road, walk) - near_edge(road, 0.0) - walk) < 9.0
