@@ -85,14 +85,14 @@ def denoise(
     Open Image Denoise's output is then regressed on them in 3 x 3 windows (a guided filter, He et
     al. 2013; GUIDED_RADIUS, GUIDED_RIDGE): edges between surfaces take the coverage the guides
     give, not the one the pixel's own samples drew, which Open Image Denoise keeps as detail
-    (relative MSE on the demo scenes' hardest crops, 16 spp 'direct': hot road 2.0x -> 2.8x below
-    the noisy image's, Fata Morgana 2.8x -> 3.6x; with guides of more samples than the image,
-    render(guide_spp=...): 5.6x and 5.2x). Off by default: it also smooths lighting edges the guides
-    do not show where they meet an edge the guides do show -- the shadows at the feet of thin posts
-    on a lit ground, 48 x 32 px, 16 spp: relative MSE 1.3x below the noisy image's with Open Image
-    Denoise alone, 0.5x (worse than noisy) guided. Negative results of the regression are clipped
-    to 0; pixels whose normal is 0 (no surface met) keep Open Image Denoise's output. Returns float32
-    (H, W, 3).
+    (relative MSE on the demo scenes' hardest crops, 16 spp 'direct' against 4096: hot road 2.0x ->
+    2.8x below the noisy image's, Fata Morgana 1.95x -> 2.1x; with guides of more samples than the
+    image, render(guide_spp=64): 5.7x and 2.6x; benchmarks/bench_denoise.py). Off by default: it
+    also smooths lighting edges the guides do not show where they meet an edge the guides do show
+    -- the shadows at the feet of thin posts on a lit ground, 48 x 32 px, 16 spp: relative MSE 1.3x
+    below the noisy image's with Open Image Denoise alone, 0.5x (worse than noisy) guided. Negative
+    results of the regression are clipped to 0; pixels whose normal is 0 (no surface met) keep Open
+    Image Denoise's output. Returns float32 (H, W, 3).
 
     Measured: a diffuse sphere and ground under the physical sky, 4 spp path traced, relative MSE
     against 256 spp falls about 15x (tests/render/test_denoise.py).

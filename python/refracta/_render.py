@@ -165,10 +165,10 @@ def render(
     samples, and denoise=True follows Open Image Denoise with refracta.denoise's guided filter,
     which rebuilds edges between surfaces from them (and smooths shadow edges at the feet of
     objects: see refracta.denoise). Measured on the hot road's hardest crop at 16 spp 'direct'
-    against 1024 spp: denoised relative MSE 2.0x below the noisy image's, 5.6x with guide_spp=64;
-    but that pass costs about as much CPU again as the image (0.9-1.2x on the hot road and the cold
-    sea, 'direct' and 'path'), as 32 spp would, which denoised and guided by its own samples gives
-    5.8x: at equal cost no gain there, so it is off by default (benchmarks/bench_denoise.py).
+    against 4096 spp: denoised relative MSE 2.0x below the noisy image's, 5.7x with guide_spp=64;
+    but that pass costs about as much CPU again as the image (0.7-1.7x on the RGB demo scenes), as 32
+    spp would, which denoised gives 4.5x, and guided by its own samples 6.2x: at equal cost no
+    gain, so it is off by default (benchmarks/bench_denoise.py).
 
     method: 'curved' -- exact curved rays: every segment (camera ray, bounce, shadow ray toward a
     distant light) is the integrator's path (stratified for height-only fields, rk45 otherwise,
@@ -277,8 +277,8 @@ def render(
         # mirrors and glass) carry no Monte Carlo noise in RGB: they keep their values (the
         # denoiser would only blur the sky's gradient: 3.5x its error on the hot road). Spectral
         # samples each carry their own wavelengths (one through dispersive air), so there the sky
-        # is noisy in colour and is denoised too (the green flash's sun, 16 spp: relative MSE
-        # 1.0x -> 7x below the noisy image's, FLIP 1.9x; benchmarks/bench_denoise.py).
+        # is noisy in colour and is denoised too (the green flash's sun, 16 spp against 4096:
+        # relative MSE 1.0x -> 9.0x below the noisy image's, FLIP 1.0x -> 1.9x; bench_denoise.py).
         if not settings.spectral:
             untouched = ~np.any(outputs["normal"], axis=2)
             clean[untouched] = image[untouched]

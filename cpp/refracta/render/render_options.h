@@ -102,9 +102,9 @@ struct RenderOptions {
   // edge coverage to guide_spp samples' accuracy (render(denoise=True)'s guided filter rebuilds the
   // image's edges from them, python/refracta/_denoise.py). Non-adaptive, RGB (a spectral render's
   // guides follow the air at its reference wavelength); 0 or at most spp: the image's own samples.
-  // Off by default: a guide sample costs ~1/4 of a 'direct' one (64 of them 0.9-1.2x the CPU of
-  // 16 spp on the hot road and cold sea), and on the hot road 32 spp gain as much as 16 + 64 guides
-  // (benchmarks/bench_denoise.py).
+  // Off by default: 64 guide samples cost 0.7-1.7x the CPU of 16 'direct' RGB ones on the demo
+  // scenes (about what 32 spp cost, and 32 spp denoised gain as much or more; 0.2x of the spectral
+  // green flash's, where they find no surface: benchmarks/bench_denoise.py).
   int guide_spp = 0;
   // Also render the per-pixel readouts (readouts.h: distance, position, object id, apparent and
   // true elevation, apparent azimuth, hidden heights) after those 9 channels: 19 in all.
