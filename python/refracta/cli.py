@@ -178,7 +178,11 @@ def demo(out: Path, size=None) -> int:
 # (a 2x crop: at 0.7 deg the gleam is ~40 px across; at 0.35 deg the frame still holds the sea
 # below the fold, the horizon a photograph of the gleam would show).
 GREEN_FLASH_FRAMES = [(-0.45, 0.7), (-0.74, 0.7), (-0.776, 0.35)]
-GREEN_FLASH_LOOK = {0.7: -0.05, 0.35: -0.02}  # [deg]: where each zoom looks (the fold is at -0.025)
+# [deg]: where each zoom looks (the fold is at -0.025). At 0.7 deg the first frame's flattened
+# disc spans apparent -0.144 (the mirage's cut, where the sea begins) to +0.306 deg: looking at
+# +0.02 leaves 0.06 deg (44 px at 512) of sky above it and 0.19 deg of sea with the sun's glitter
+# path below (at -0.05 its top was cut off by the frame).
+GREEN_FLASH_LOOK = {0.7: 0.02, 0.35: -0.02}
 GREEN_FLASH_SIZE = 512  # [px] each frame, square (issue 19: at least 512 px)
 # One spectral sample a pixel: each carries one hero wavelength through its own dispersed air
 # (no eye table), ~70 us of CPU a sample over the 1500 km paths; the denoiser and the chroma
@@ -203,33 +207,40 @@ def green_flash_display(frames):
     return np.split(joint, len(frames), axis=1)
 
 
-def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_FLASH_SPP) -> None:
-    """Sunset over a warm sea, spectral and denoised: out/green_flash.png, `size` x `size` frames
-    side by side, one exposure for all (green_flash_display), one figure pixel per rendered pixel."""
-    import matplotlib.pyplot as plt
+def green_flash_frame(elevation: float, vfov: float, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_FLASH_SPP):
+    """One frame of the green flash demo: examples.green_flash with the sun's centre `elevation`
+    [deg] above the true horizon, seen through `vfov` [deg] looking at GREEN_FLASH_LOOK[vfov],
+    `size` x `size`, spectral at `spp`, denoised (linear RGB, >= 0)."""
     import numpy as np
 
     import refracta
     from refracta import examples, examples_chroma
 
+    example = examples.green_flash(size, size, elevation)
+    look = np.radians(GREEN_FLASH_LOOK[vfov])
+    eye = example.camera.position
+    camera = refracta.Camera(eye, eye + [np.cos(look), np.sin(look), 0.0], vfov=vfov, width=size, height=size)
+    # Spectral renders of the sun's edge leave the sRGB gamut (negative channels), which the
+    # denoiser refuses: clipped to the gamut's boundary first, as the display would. No
+    # auxiliary images: the frames are the sun and sky seen directly (an emitter has no albedo;
+    # with the sea's albedo and normal beside it OIDN left the disc mottled). OIDN gives the
+    # luminance; the colour, one wavelength a sample, is averaged over pixels of the same
+    # brightness (examples_chroma: what left the disc mottled after OIDN alone).
+    image = refracta.render(
+        example.scene, camera, example.field, max_length=example.max_length, spectral=True, spp=spp, progress=False
+    )
+    luminance = refracta.denoise(np.maximum(image, 0.0)) @ examples_chroma.LUMINANCE
+    return np.maximum(examples_chroma.chroma_filter(image, luminance), 0.0)
+
+
+def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_FLASH_SPP) -> None:
+    """Sunset over a warm sea, spectral and denoised: out/green_flash.png, `size` x `size` frames
+    (green_flash_frame) side by side, one exposure for all (green_flash_display), one figure pixel
+    per rendered pixel."""
+    import matplotlib.pyplot as plt
+
     start = time.perf_counter()
-    frames = []
-    for elevation, vfov in GREEN_FLASH_FRAMES:
-        example = examples.green_flash(size, size, elevation)
-        look = np.radians(GREEN_FLASH_LOOK[vfov])
-        eye = example.camera.position
-        camera = refracta.Camera(eye, eye + [np.cos(look), np.sin(look), 0.0], vfov=vfov, width=size, height=size)
-        # Spectral renders of the sun's edge leave the sRGB gamut (negative channels), which the
-        # denoiser refuses: clipped to the gamut's boundary first, as the display would. No
-        # auxiliary images: the frames are the sun and sky seen directly (an emitter has no albedo;
-        # with the sea's albedo and normal beside it OIDN left the disc mottled). OIDN gives the
-        # luminance; the colour, one wavelength a sample, is averaged over pixels of the same
-        # brightness (examples_chroma: what left the disc mottled after OIDN alone).
-        image = refracta.render(
-            example.scene, camera, example.field, max_length=example.max_length, spectral=True, spp=spp, progress=False
-        )
-        luminance = refracta.denoise(np.maximum(image, 0.0)) @ examples_chroma.LUMINANCE
-        frames.append(np.maximum(examples_chroma.chroma_filter(image, luminance), 0.0))
+    frames = [green_flash_frame(elevation, vfov, size, spp) for elevation, vfov in GREEN_FLASH_FRAMES]
     shown = green_flash_display(frames)
     dpi, gap = 100, 0.08
     figure, axes = plt.subplots(1, len(frames), figsize=(len(frames) * (size / dpi + gap), size / dpi + 0.7), dpi=dpi)

@@ -465,6 +465,16 @@ def hot_spot(width: int = 640, height: int = 320) -> Example:
 SETTING_SUN_LIMB_DARKENING = 0.6
 
 
+# A calm evening sea under the setting sun. Its glitter path: a facet mirrors the sun (seen from the
+# water at a launch elevation e of a few tenths of a degree, the refraction lifting it from below
+# the true horizon) into a view meeting the water at a grazing gamma when it leans sideways by
+# tan b = sin(dphi) cos(e) / (sin e + sin gamma), so the path is ~alpha (e + gamma) wide each side of
+# the sun's azimuth, and its peak, D G / (4 cos i cos o) with D ~ 1 / alpha^2 and Smith's G ~ 1 /
+# alpha at grazing, ~1 / alpha^3: at 5 m/s (alpha^2 0.0286) the path spanned the 0.7-deg frame at
+# 2-4x the sea beside it; at 1 m/s (alpha^2 0.0081) it is ~2x narrower and ~6x brighter.
+GREEN_FLASH_WIND = 1.0  # [m/s] 12.5 m above the sea (Cox & Munk's height)
+
+
 def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.8) -> Example:
     """A green flash over a warm sea (an inferior-mirage profile): the sea 3 K warmer than the air,
     the excess e-folding over 2 m, the standard atmosphere above to 86 km, a spherical Earth; the
@@ -489,7 +499,7 @@ def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.8
         limb_darkening=SETTING_SUN_LIMB_DARKENING,
         wavelengths=lam,
     )
-    scene.add_ground(0.0, 2.0e5, material=_sea())
+    scene.add_ground(0.0, 2.0e5, material=_sea(GREEN_FLASH_WIND))
     base = _core.PhysicalAtmosphere(surface_dt=3.0, surface_depth=2.0)
     field = _core.CurvedEarth(base)
     look = np.radians(-0.05)

@@ -1,8 +1,12 @@
 // Direct lighting with MIS (direct_lighting.h).
 #include "refracta/render/direct_lighting.h"
 
+#include "refracta/shading/sun_light.h"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 namespace refracta {
 
@@ -10,6 +14,15 @@ namespace {
 
 constexpr double kMinBendSine = 1e-3;     // below this exit elevation the map's Jacobian is singular: no pre-bend
 constexpr double kShadowEpsilon = 1e-4;  // shadow rays to finite lights end this fraction short (pbrt's ShadowEpsilon)
+// Light below the horizon over a spherical Earth (DirectLighting::launch_below_horizon): the
+// launch elevations searched [rad] (refraction at the horizon is ~0.6 deg, the sun's disc 0.53),
+// the exit elevation's tolerance [rad] (1/500 of the sun's disc) and the step of the Jacobian's
+// difference quotient [rad].
+constexpr double kHighestLaunch = 0.03;
+constexpr double kRefractionGuess = 0.01;  // [rad] the first launch: this far above the exit sought
+constexpr double kExitTolerance = 1e-5;
+constexpr double kJacobianStep = 2e-5;
+constexpr int kMaxBendIterations = 16;
 
 }  // namespace
 
@@ -27,6 +40,10 @@ DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, c
   pre_bend_ = caster.curved() && caster.layered() != nullptr && !std::isfinite(caster.layered()->earth_radius());
   spherical_ = caster.curved() && caster.field() != nullptr && std::isfinite(caster.field()->earth_radius());
   all_lights_ = options.transport == Transport::kDirect;
+  // The sun's disc, small beside the refraction at the horizon: its samples below a point's horizon
+  // are launched along the rising path that leaves toward them (launch_below_horizon). Samples of
+  // the sky there meet the sea (its light from below the horizon arrives by BSDF sampling alone).
+  if (spherical_ && scene.sun() != nullptr) bent_sun_ = scene.sun();
 }
 
 double DirectLighting::distant_ior(const Vec3d& p, const Vec3d& exit) const {
@@ -74,6 +91,61 @@ double DirectLighting::exit_jacobian(const Vec3d& p, const Vec3d& launch) const 
   return sqr(n_p / n_top) * launch.y() / sin_exit;
 }
 
+double DirectLighting::exit_elevation(const SurfaceInteraction& si, const Vec3d& across, double elevation,
+                                      const Eigen::Matrix3d& to_world) const {
+  const Vec3d launch = std::cos(elevation) * across + Vec3d(0.0, std::sin(elevation), 0.0);
+  const PathEnd end = caster_.cast(si.offset_toward(launch), launch);
+  if (end.hit) return -std::numeric_limits<double>::infinity();
+  return std::asin(std::clamp(Vec3d(to_world.transpose() * end.direction).y(), -1.0, 1.0));
+}
+
+std::optional<Vec3d> DirectLighting::launch_below_horizon(const SurfaceInteraction& si, const Vec3d& exit,
+                                                          const Eigen::Matrix3d& to_world, double* jacobian) const {
+  const Vec3d across = Vec3d(exit.x(), 0.0, exit.z()).normalized();
+  const double target = std::asin(std::clamp(exit.y(), -1.0, 1.0));
+  // The exit elevation rises with the launch elevation from the lowest launch that clears the
+  // scene up (the ray's vertical plane holds the Earth's centre: the azimuth is kept). Secant
+  // steps from a guess, kept inside the bracket [lo, hi] the evaluations have narrowed (false
+  // position, or bisection while the lower end met the sea); the light has set for si when the
+  // bracket closes at the lowest launch that clears the scene with the exit still too high.
+  double lo = 0.0, hi = kHighestLaunch;
+  double f_lo = -std::numeric_limits<double>::infinity(), f_hi = std::numeric_limits<double>::quiet_NaN();
+  double e = std::clamp(target + kRefractionGuess, 0.05 * kHighestLaunch, 0.95 * kHighestLaunch);
+  double previous_e = 0.0, previous_f = std::numeric_limits<double>::quiet_NaN();
+  for (int i = 0; i < kMaxBendIterations; ++i) {
+    const double f = exit_elevation(si, across, e, to_world) - target;
+    if (std::abs(f) <= kExitTolerance) {
+      *jacobian = bend_jacobian(si, across, e, f + target, to_world);
+      if (!(*jacobian > 0.0)) return std::nullopt;
+      return Vec3d(std::cos(e) * across + Vec3d(0.0, std::sin(e), 0.0));
+    }
+    if (f > 0.0) {
+      hi = e, f_hi = f;
+    } else {
+      lo = e, f_lo = f;
+    }
+    if (hi - lo < kExitTolerance) return std::nullopt;
+    double next = std::numeric_limits<double>::quiet_NaN();
+    if (std::isfinite(f) && std::isfinite(previous_f) && f != previous_f) {
+      next = e - f * (e - previous_e) / (f - previous_f);
+    }
+    if (!(next > lo && next < hi)) {
+      next = std::isfinite(f_lo) && std::isfinite(f_hi) ? (lo * f_hi - hi * f_lo) / (f_hi - f_lo) : 0.5 * (lo + hi);
+    }
+    previous_e = e, previous_f = f;
+    e = next;
+  }
+  return std::nullopt;
+}
+
+double DirectLighting::bend_jacobian(const SurfaceInteraction& si, const Vec3d& across, double launch, double exit,
+                                     const Eigen::Matrix3d& to_world) const {
+  // d omega_exit / d omega_launch = cos e_exit d e_exit / (cos e_launch d e_launch), azimuth kept.
+  const double next = exit_elevation(si, across, launch + kJacobianStep, to_world);
+  if (!std::isfinite(next)) return 0.0;
+  return std::cos(exit) * (next - exit) / (std::cos(launch) * kJacobianStep);
+}
+
 Eigen::Matrix3d DirectLighting::to_world_frame(const Vec3d& p) const {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   if (!spherical_) return rotation;
@@ -119,7 +191,18 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
   Vec3d wi = ls->wi;
   double jacobian = 1.0;
   // Launch the curved shadow ray toward a distant light so that it leaves along the sample.
-  if (light.is_infinite()) wi = launch_toward(si.p, turned ? Vec3d(to_world.transpose() * ls->wi) : ls->wi, &jacobian);
+  if (light.is_infinite()) {
+    const Vec3d exit = turned ? Vec3d(to_world.transpose() * ls->wi) : ls->wi;
+    if (turned && exit.y() < 0.0 && &light == bent_sun_) {
+      // Below p's horizon over a spherical Earth: the setting sun, seen by the refraction of its
+      // light alone (and its glitter on the sea). The rising path that leaves along the sample.
+      const auto launch = launch_below_horizon(si, exit, to_world, &jacobian);
+      if (!launch) return Spectrum::Zero();
+      wi = *launch;
+    } else {
+      wi = launch_toward(si.p, exit, &jacobian);
+    }
+  }
   light_pdf *= jacobian;
   // The BSDF first: a shadow test (through curved air, the expensive part) only where it counts.
   const Spectrum f = bsdf.f(si.wo, wi) * std::abs(wi.dot(bsdf.frame.n));
@@ -175,9 +258,36 @@ Spectrum DirectLighting::escaped(const PathEnd& end, const Vec3d& launch_dir, co
     }
     LightSampleContext ctx;
     ctx.p = from->p;
-    ctx.n = spherical_ ? Vec3d(to_world_frame(from->p) * from->n_toward_wo()) : from->n_toward_wo();
-    const double light_pdf = pick_probability(i) * lights[i]->pdf_li(ctx, end.direction, Vec3d::Zero(), Vec3d::Zero()) *
-                             exit_jacobian(from->p, launch_dir);
+    const Eigen::Matrix3d to_world = to_world_frame(from->p);
+    ctx.n = to_world * from->n_toward_wo();
+    // The density with which light sampling would have launched this same ray: pre-bent, that of
+    // the exit direction it was aimed at (times the map's Jacobian); otherwise light samples
+    // launch along the sampled direction itself, so its density at launch_dir (in the world
+    // frame). Over a spherical Earth the two differ by the whole refraction: a shadow ray launched
+    // toward the sun set 0.45 deg below the true horizon meets the sea, while the BSDF ray that
+    // reflects the sun off the water leaves rising; weighting that ray by the density at its exit
+    // direction (the sun's disc) gave it ~0.3 % of its radiance, and the sea under a setting sun
+    // lost its glitter path.
+    // Over a spherical Earth a light sample below p's horizon launches along the rising path that
+    // leaves along it (launch_below_horizon): the density of this launch from there as well.
+    double light_pdf =
+        pre_bend_ ? lights[i]->pdf_li(ctx, end.direction, Vec3d::Zero(), Vec3d::Zero()) *
+                        exit_jacobian(from->p, launch_dir)
+                  : (lights[i].get() != bent_sun_ || launch_dir.y() >= 0.0
+                         ? lights[i]->pdf_li(ctx, to_world * launch_dir, Vec3d::Zero(), Vec3d::Zero())
+                         : 0.0);
+    const Vec3d exit_here = to_world.transpose() * end.direction;
+    if (lights[i].get() == bent_sun_ && exit_here.y() < 0.0 && launch_dir.y() >= 0.0 &&
+        launch_dir.y() <= std::sin(kHighestLaunch)) {
+      const double pdf_exit = lights[i]->pdf_li(ctx, end.direction, Vec3d::Zero(), Vec3d::Zero());
+      if (pdf_exit > 0.0) {
+        const Vec3d across = Vec3d(launch_dir.x(), 0.0, launch_dir.z()).normalized();
+        const double launch = std::asin(std::clamp(launch_dir.y(), -1.0, 1.0));
+        const double exit = std::asin(std::clamp(exit_here.y(), -1.0, 1.0));
+        light_pdf += pdf_exit * std::max(bend_jacobian(*from, across, launch, exit, to_world), 0.0);
+      }
+    }
+    light_pdf *= pick_probability(i);
     L += Le * power_heuristic(1, bsdf_pdf, 1, light_pdf);
   }
   return L;

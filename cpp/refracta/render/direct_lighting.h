@@ -86,6 +86,20 @@ class DirectLighting : public LightVisibility {
   // frame distant lights are given in (identity elsewhere).
   Eigen::Matrix3d to_world_frame(const Vec3d& p) const;
   double exit_jacobian(const Vec3d& p, const Vec3d& launch) const;
+  // Over a spherical Earth, a distant light's sample `exit` (in p's frame) below p's horizon: the
+  // rising launch direction from si whose curved path leaves the air along it (found by false
+  // position on the launch elevation, the azimuth kept), and the density factor
+  // |d omega_exit / d omega_launch| in `jacobian`; nullopt when no path rising from si leaves
+  // that low (the light has set for si).
+  std::optional<Vec3d> launch_below_horizon(const SurfaceInteraction& si, const Vec3d& exit,
+                                            const Eigen::Matrix3d& to_world, double* jacobian) const;
+  // The elevation in p's frame [rad] at which the path launched from si at `elevation` in the
+  // vertical plane of the horizontal unit vector `across` leaves the air (-inf if it meets the scene).
+  double exit_elevation(const SurfaceInteraction& si, const Vec3d& across, double elevation,
+                        const Eigen::Matrix3d& to_world) const;
+  // |d omega_exit / d omega_launch| at that launch, whose exit elevation is `exit`, by a difference quotient.
+  double bend_jacobian(const SurfaceInteraction& si, const Vec3d& across, double launch, double exit,
+                       const Eigen::Matrix3d& to_world) const;
 
   const RenderScene& scene_;
   const Caster& caster_;
@@ -95,6 +109,7 @@ class DirectLighting : public LightVisibility {
   bool pre_bend_ = false;
   bool spherical_ = false;  // CurvedEarth: distant lights are turned into each point's frame
   bool all_lights_ = false;
+  const Light* bent_sun_ = nullptr;  // over a spherical Earth: the scene's sun (launch_below_horizon)
 };
 
 }  // namespace refracta
