@@ -43,17 +43,31 @@ struct TurnedTablePath {
 };
 
 
-// Point u in [lo, hi] of the segment on the plane through `on` with normal n (Newton).
+// Point u in [lo, hi] of the segment on the plane through `on` with normal n (n faces the arriving
+// path), by Newton from u. Where Newton does not end on the plane with the path heading into it,
+// the path dips through the plane and out again within the segment (a ray turning in the hot
+// layer just under the ground: the hot road's fold) and Newton, started near the dip's bottom
+// where the slope vanishes, slid to the rising side or stalled at a bound (measured: the ground
+// met from below, shaded black, a dark line across the hot road at its fold): the first crossing
+// into the surface from the segment's start (first_plane_crossing) is taken instead.
 double refine_on_plane(const PathSegment<double>& seg, const Vec3d& n, const Vec3d& on, double u, double lo,
                        double hi) {
   for (int it = 0; it < 8; ++it) {
     const double f = n.dot(seg.position(u) - on), df = n.dot(seg.velocity(u));
     if (df == 0.0) break;
     const double next = std::clamp(u - f / df, lo, hi);
-    if (std::abs(next - u) < 1e-14) return next;
+    const bool converged = std::abs(next - u) < 1e-14;
     u = next;
+    if (converged) break;
   }
-  return u;
+  const double offset = n.dot(on);
+  const double miss = std::abs(n.dot(seg.position(u)) - offset);
+  if ((miss <= 1e-9 * (1.0 + std::abs(seg.length())) && n.dot(seg.velocity(u)) < 0.0) ||
+      !(n.dot(seg.position(0.0)) > offset)) {
+    return u;
+  }
+  const double first = first_plane_crossing(seg, n, offset);
+  return first >= 0.0 ? std::clamp(first, lo, hi) : u;
 }
 
 // The longest a path can run inside the regions without leaving them all: each vertical
