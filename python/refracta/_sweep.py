@@ -201,7 +201,7 @@ def map_ordered(
         for i, args in enumerate(arguments):
             futures[pool.submit(task, *head, *shared, *args)] = i
         done = 0
-        for future in concurrent.futures.as_completed(futures):
+        for future in _as_completed_waking(futures):
             i = futures[future]
             failure = future.exception()
             if failure is None:
@@ -216,6 +216,25 @@ def map_ordered(
         _stop(pool, futures, threads)
         raise
     return [outcomes[i] for i in range(total)]
+
+
+# How often the waiting main thread wakes (a Ctrl-C is handled within it, below).
+_WAKE_SECONDS = 0.05
+
+
+def _as_completed_waking(futures):
+    """concurrent.futures.as_completed, waking every _WAKE_SECONDS. Python runs a signal's handler
+    only in the main thread, and the kernel may deliver SIGINT to any thread: one delivered to a
+    pool or TBB thread only flags it, and a main thread blocked in as_completed's untimed wait
+    never runs the handler, so Ctrl-C was lost while the renders ran on (seen in a fresh-clone
+    `make test`: tests/scale/test_02_sweep.py's thread-pool sweep still rendering minutes after
+    SIGINT). Each timed wait returns to the interpreter, which then raises KeyboardInterrupt."""
+    pending = set(futures)
+    while pending:
+        finished, pending = concurrent.futures.wait(
+            pending, timeout=_WAKE_SECONDS, return_when=concurrent.futures.FIRST_COMPLETED
+        )
+        yield from finished
 
 
 class _RunningThreads:

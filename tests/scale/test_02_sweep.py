@@ -4,9 +4,11 @@ every other result is kept, progress, and the same results from thread and proce
 import concurrent.futures
 import multiprocessing
 import pickle
+import queue
 import signal
 import subprocess
 import sys
+import threading
 import time
 
 import numpy as np
@@ -198,15 +200,26 @@ def test_ctrl_c_stops_a_sweep_promptly(tmp_path, kind):
     try:
         sent = time.monotonic()
         process.send_signal(signal.SIGINT)
-        reply = process.stdout.readline().strip()
+        reply = _read_line(process, HANG_GUARD)
         while reply.startswith("ready"):  # a process pool's other worker announcing its own render
-            reply = process.stdout.readline().strip()
+            reply = _read_line(process, HANG_GUARD)
         latency = time.monotonic() - sent
         process.communicate(timeout=HANG_GUARD)
     finally:
         process.kill()
     assert reply == "stopped" and process.returncode == 0
     assert latency < LATENCY_BOUND, f"{kind}: Ctrl-C took {latency:.2f} s"
+
+
+def _read_line(process, timeout):
+    """The child's next line of output, stripped; "" if none comes within `timeout` [s] (a child
+    that ignored Ctrl-C must fail the test, not hang the suite)."""
+    lines: queue.Queue[str] = queue.Queue()
+    threading.Thread(target=lambda: lines.put(process.stdout.readline()), daemon=True).start()
+    try:
+        return lines.get(timeout=timeout).strip()
+    except queue.Empty:  # the reader ends when the caller kills the child
+        return ""
 
 
 def _gone(pid):
