@@ -140,9 +140,14 @@ HANG_GUARD = 60.0  # [s] a bound against a hung child, not a timing assertion
 ORPHAN_GUARD = 10.0
 
 _INTERRUPTED_SWEEP = """
-import concurrent.futures, multiprocessing, os, sys
+import concurrent.futures, multiprocessing, os, signal, sys
 import refracta
 from refracta import examples
+
+# Ctrl-C as a terminal delivers it: a process started from a background job of a non-interactive
+# shell (CI's or a script's `make test &`) inherits SIGINT ignored, and Python then installs no
+# KeyboardInterrupt handler (seen: SigIgn 0x81001007 in such a child, which rendered on).
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 announced = False
 
