@@ -29,6 +29,11 @@ import numpy as np
 import refracta
 from refracta import examples
 
+# Ctrl-C as a terminal delivers it: a process started from a background job of a non-interactive
+# shell (`make test &` in a script) inherits SIGINT ignored, and Python then installs no
+# KeyboardInterrupt handler.
+signal.signal(signal.SIGINT, signal.default_int_handler)
+
 ROAD = examples.hot_road(160, 60)
 UNBOUNDED_SPP = 1_000_000  # hours for 160x60 pixels on any machine
 DELAYS = (0.0, 0.005, 0.02, 0.045)  # [s] within the waiting loop's first 50 ms period

@@ -6,6 +6,7 @@ which has no progress) at the first evaluation of its Python field by the C++ wo
 operation is sized to run for minutes to days on an idle machine, so no machine can finish one
 before the signal arrives."""
 
+import signal
 import sys
 
 import numpy as np
@@ -13,6 +14,11 @@ import numpy as np
 import refracta
 from refracta import examples
 from refracta.edit import PointPair, solve
+
+# Ctrl-C as a terminal delivers it: a process started from a background job of a non-interactive
+# shell (`make test &` in a script) inherits SIGINT ignored, and Python then installs no
+# KeyboardInterrupt handler.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 UNBOUNDED_SPP = 1_000_000  # samples per pixel: days at 640x240 on any machine
 

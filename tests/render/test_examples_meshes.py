@@ -157,10 +157,10 @@ def test_the_cliff_faces_texture_varies_as_rock_heath_and_weed_do():
     # a uniformly painted face: 0).
     along = lum[face][:, granite].mean(axis=0)
     up = lum[face][:, granite].mean(axis=1)
-    assert along.std() / along.mean() > 0.15 and up.std() / up.mean() > 0.05
+    assert along.std() / along.mean() > 0.15 and up.std() / up.mean() > 0.05  # measured 0.29, 0.18: half that
     # Heath on ledges and tops: green texels (g above r and b) on the natural rock, a few percent.
     green = (albedo[..., 1] > albedo[..., 0]) & (albedo[..., 1] > albedo[..., 2])
-    assert 0.02 < green[y > 0.0][:, granite].mean() < 0.6
+    assert 0.02 < green[y > 0.0][:, granite].mean() < 0.6  # a few percent: present, not a green face
     # The tidal zone: black weed below the waterline's wander (the tide line at 1.0 +- 0.4 m).
     assert lum[y < 0.4].mean() < 0.05
     # The quay's dressed stone: plain grey, no heath.

@@ -212,6 +212,7 @@ def test_ctrl_c_stops_a_sweep_promptly(tmp_path, kind):
         process.communicate(timeout=HANG_GUARD)
     finally:
         process.kill()
+        process.communicate()  # reaped and its pipes closed, even when the test failed
     assert reply == "stopped" and process.returncode == 0
     assert latency < LATENCY_BOUND, f"{kind}: Ctrl-C took {latency:.2f} s"
 
