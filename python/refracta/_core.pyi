@@ -333,9 +333,9 @@ class LogisticProfile(IndexField):
     """
     def __getstate__(self) -> tuple:
         ...
-    def __init__(self, n_bg: float = 3.0, n_inv: float = 0.1, n_hot: float = 0.1, h_ciso: float = 1.0, a_bg: float = 1.0, a_inv: float = 1.0, a_hot: float = 1.0, k_s: float = 10.0, *, hot_spots: HotSpot | collections.abc.Sequence[HotSpot] | None = None, turbulence: typing.Any = None) -> None:
+    def __init__(self, n_bg: float = 3.0, n_inv: float = 0.1, n_hot: float = 0.1, h_ciso: float = 1.0, a_bg: float = 1.0, a_inv: float = 1.0, *, a_hot: float = 1.0, k_s: float = 10.0, hot_spots: HotSpot | collections.abc.Sequence[HotSpot] | None = None, turbulence: typing.Any = None) -> None:
         """
-        Parameters in the order above (positional or by name); see the class for units and bounds.
+        The first 6 parameters by position or name, the rest by name; see the class for units and bounds.
         """
     def __setstate__(self, arg0: tuple) -> None:
         ...
@@ -391,9 +391,9 @@ class PhysicalAtmosphere(IndexField):
     """
     def __getstate__(self) -> tuple:
         ...
-    def __init__(self, t_ground: float = 288.15, lapse_rate: float = 0.0065, pressure: float = 101325.0, inversion_dt: float = 0.0, inversion_base: float = 100.0, inversion_thickness: float = 10.0, surface_dt: float = 0.0, surface_depth: float = 0.1, humidity: float = 0.0, wavelength: float = 550.0, *, hot_spots: HotSpot | collections.abc.Sequence[HotSpot] | None = None, turbulence: typing.Any = None) -> None:
+    def __init__(self, t_ground: float = 288.15, lapse_rate: float = 0.0065, pressure: float = 101325.0, inversion_dt: float = 0.0, inversion_base: float = 100.0, inversion_thickness: float = 10.0, *, surface_dt: float = 0.0, surface_depth: float = 0.1, humidity: float = 0.0, wavelength: float = 550.0, hot_spots: HotSpot | collections.abc.Sequence[HotSpot] | None = None, turbulence: typing.Any = None) -> None:
         """
-        Parameters in the order above (positional or by name); see the class for units and bounds.
+        The first 6 parameters by position or name, the rest by name; see the class for units and bounds.
         """
     def __setstate__(self, arg0: tuple) -> None:
         ...

@@ -62,6 +62,9 @@ std::vector<HotSpot> hot_spots_from_python(const char* model, const py::handle& 
   return spots;
 }
 
+// Parameters a model takes by position; the rest by name (the house rule for every bound function).
+constexpr size_t kMaxPositional = 6;
+
 // A model's constructor arguments: parameters by position or name, hot_spots= and turbulence=.
 template <class Field>
 std::shared_ptr<Field> model_from_python(const py::args& args, const py::kwargs& kwargs) {
@@ -83,7 +86,13 @@ std::shared_ptr<Field> model_from_python(const py::args& args, const py::kwargs&
       model.named.emplace_back(name, number_of(value));
     }
   }
-  return make_model<Field>(model);
+  auto field = make_model<Field>(model);  // first: too many or bad parameters raise ValueError
+  if (args.size() > kMaxPositional) {     // accepted for one release, as the earlier API took them
+    const std::string message = std::string(Field::model_name()) + ": parameters after the " +
+                                std::to_string(kMaxPositional) + "th by position are deprecated; pass them by name";
+    if (PyErr_WarnEx(PyExc_DeprecationWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+  }
+  return field;
 }
 
 // The signature line of a model's __init__, which takes *args and **kwargs (its parameters come
@@ -91,12 +100,21 @@ std::shared_ptr<Field> model_from_python(const py::args& args, const py::kwargs&
 std::string init_signature(const char* name, const std::vector<ParamSpec>& specs, bool hot_spots) {
   std::ostringstream out;
   out << "__init__(self: refracta._core." << name;
-  for (const auto& s : specs) out << ", " << s.name << ": float = " << std::string(py::repr(py::float_(s.default_value)));
+  for (size_t i = 0; i < specs.size(); ++i) {
+    if (i == kMaxPositional) out << ", *";
+    out << ", " << specs[i].name << ": float = " << std::string(py::repr(py::float_(specs[i].default_value)));
+  }
   if (hot_spots) {
-    out << ", *, hot_spots: refracta._core.HotSpot | collections.abc.Sequence[refracta._core.HotSpot] | None = None"
+    out << (specs.size() > kMaxPositional ? "" : ", *") << ", hot_spots: refracta._core.HotSpot | collections.abc.Sequence[refracta._core.HotSpot] | None = None"
         << ", turbulence: object = None";
   }
-  out << ") -> None\n\nParameters in the order above (positional or by name); see the class for units and bounds.";
+  out << ") -> None\n\n";
+  if (specs.size() > kMaxPositional) {
+    out << "The first " << kMaxPositional << " parameters by position or name, the rest by name";
+  } else {
+    out << "Parameters in the order above (positional or by name)";
+  }
+  out << "; see the class for units and bounds.";
   return out.str();
 }
 
