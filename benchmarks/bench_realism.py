@@ -333,7 +333,7 @@ def hot_spot_render(width=1280, height=720, repeat=3) -> dict:
 
 
 def water_render(width=320, height=120, spp=8, repeat=2) -> dict:
-    """examples.cold_sea (a superior mirage over a cold sea, physical sky, ships and a coast) path traced at spp samples:
+    """examples.cold_sea (a superior mirage over a cold sea, physical sky, ships, a coast) path traced at spp samples:
     the sea plane as shading.Water() (5 m/s, 20 C, 35 g/kg; Beckmann interface, body term) against
     the example's Plastic (GGX coat over a Lambertian base, alpha 0.25), and a Plastic as rough as the
     water (alpha = Water().alpha = 0.17), which separates the narrower lobe's longer grazing paths
