@@ -45,8 +45,9 @@ with dispersed_field(field, wavelength).)doc";
 inline constexpr const char mkd_doc_refracta_DisplaySettings[] = R"doc(How refracta.io turns linear radiance into display values (shading/tonemap.h; the formulas: the
 refracta.io module). Exposure: automatic (no manual field set: the image's log-average luminance
 goes to `key`), or manual, at most one of `exposure`, `ev100`, or `shutter` with `f_number` (and
-`iso`); a `key` given overrides a manual exposure. Then the tone curve `tonemap` and the transfer
-curve `gamma`. validate() lists every bad field.)doc";
+`iso`); a `key` given overrides a manual exposure. The white balance `white_balance` (none by
+default), then the tone curve `tonemap` and the transfer curve `gamma`. validate() lists every bad
+field.)doc";
 inline constexpr const char mkd_doc_refracta_EnvironmentLight[] = R"doc(An equirectangular environment map (H, W, 3) of float linear RGB, rows top (up, +y) to
 bottom: radiance [W/(m^2 sr)] = scale x the map, rotated by rotation (degrees about +y or a
 3 x 3 map-to-world matrix). Mitsuba 3's envmap orientation and interpolation

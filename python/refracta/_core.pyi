@@ -1143,8 +1143,9 @@ class DisplaySettings:
     How refracta.io turns linear radiance into display values (shading/tonemap.h; the formulas: the
     refracta.io module). Exposure: automatic (no manual field set: the image's log-average luminance
     goes to `key`), or manual, at most one of `exposure`, `ev100`, or `shutter` with `f_number` (and
-    `iso`); a `key` given overrides a manual exposure. Then the tone curve `tonemap` and the transfer
-    curve `gamma`. validate() lists every bad field.
+    `iso`); a `key` given overrides a manual exposure. The white balance `white_balance` (none by
+    default), then the tone curve `tonemap` and the transfer curve `gamma`. validate() lists every bad
+    field.
     """
     def __getstate__(self) -> dict:
         ...
@@ -1239,6 +1240,14 @@ class DisplaySettings:
         """
     @white.setter
     def white(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def white_balance(self) -> typing.Any:
+        """
+        the light shown white: 'none' (the render's D65 white), 'auto' (grey world), 'daylight' (D55), 'cloudy' (D65), 'shade' (D75), 'tungsten' (3200 K), a colour temperature [K] in [1000, 40000] (Planckian) or an RGB white (r, g, b) > 0 in linear sRGB; Bradford adaptation to D65
+        """
+    @white_balance.setter
+    def white_balance(self, arg1: str | typing.SupportsFloat | typing.SupportsIndex | typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> None:
         ...
 class OceanWaves:
     """
@@ -3364,6 +3373,10 @@ def _tabulate_heights(field: IndexField, lo: typing.SupportsFloat | typing.Suppo
     """
 def _trace_batch(field: IndexField, origins: typing.Any, directions: typing.Any, options: typing.Any, progress: typing.Any, **kwargs) -> tuple:
     ...
+def _white_balance_matrix(image: typing.Any, display: DisplaySettings) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    The white balance's linear sRGB matrix for this image (io.white_balance_of).
+    """
 def _write_image(path: str, image: typing.Any, display: DisplaySettings) -> None:
     """
     Write an image as refracta.io.write_image.

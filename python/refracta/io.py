@@ -40,12 +40,27 @@ Tone curve, ``tonemap``:
 - ``gamma='srgb'`` (the IEC 61966-2-1 curve), ``'linear'`` (none) or a number g in [1, 3]:
   p = l^(1/g).
 
+White balance, ``white_balance`` (before the exposure's scale and the tone curve, as a camera
+balances its raw image; C++ tonemap.h): the light named is adapted to the display's D65 white by
+the Bradford transform in XYZ, so a grey lit by it shows neutral, its luminance kept:
+
+- ``'none'`` (default): the render's own white (D65), images as they always were;
+- a colour temperature [K] in [1000, 40000]: Planck's radiator (the Planckian locus);
+- ``'daylight'`` (CIE D55, 5503 K), ``'cloudy'`` (D65, = 'none'), ``'shade'`` (D75),
+  ``'tungsten'`` (3200 K Planckian);
+- an RGB white (r, g, b) > 0, linear sRGB: e.g. the pixel of a grey card;
+- ``'auto'``: grey world (Buchsbaum 1980): the image's mean linear RGB is taken as the light.
+
+The exposure meters the unbalanced image; ``white_balance_of`` gives the matrix (use it, or a
+measured RGB white, to balance several images alike). Float files are written unbalanced.
+
 Finite input never gives NaN: c L is formed in double precision and clamped before mapping.
 """
 
 from __future__ import annotations
 
 import os
+from typing import Any
 
 import numpy as np
 
@@ -59,6 +74,7 @@ __all__ = [
     "settings",
     "to_display",
     "write_image",
+    "white_balance_of",
     "write_layers",
 ]
 
@@ -85,6 +101,7 @@ def write_image(
     shutter: float | None = None,
     f_number: float | None = None,
     luminous_efficacy: float | None = None,
+    white_balance: str | float | tuple[float, float, float] | None = None,
 ) -> None:
     """Write an (H, W, C) float image (C = 1..4; C = 2 and 4 carry alpha last).
 
@@ -96,8 +113,9 @@ def write_image(
     by the other keywords, its fields (None: left as they are).
     Raises refracta.IoError when the file cannot be written, ValueError for a bad image or option.
     """
-    fields = dict(exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white, ev100=ev100, iso=iso)
-    fields.update(shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
+    fields: dict[str, Any] = dict(exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white, ev100=ev100)
+    fields.update(iso=iso, shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
+    fields.update(white_balance=white_balance)
     _core._write_image(os.fspath(path), np.asarray(image), settings(display, **fields))
 
 
@@ -161,6 +179,7 @@ def to_display(
     shutter: float | None = None,
     f_number: float | None = None,
     luminous_efficacy: float | None = None,
+    white_balance: str | float | tuple[float, float, float] | None = None,
 ) -> np.ndarray:
     """The display values write_image would store in a PNG, as float32 (H, W, C) in [0, 1] (for imshow).
 
@@ -172,10 +191,13 @@ def to_display(
     these two with ``luminous_efficacy`` K, the luminance [cd/m^2] of a value of 1, default 683);
     a ``key`` overrides the manual one. tonemap: 'aces' (default, filmic), 'reinhard', 'linear' or
     'film'; white: Reinhard's L_white (None: infinite); gamma: 'srgb' (default), 'linear' or g in
-    [1, 3]. See the module docstring for the formulas.
+    [1, 3]; white_balance: the light shown white, 'none' (default), 'auto' (grey world), a preset
+    ('daylight', 'cloudy', 'shade', 'tungsten'), a colour temperature [K] or an RGB white. See the
+    module docstring for the formulas.
     """
-    fields = dict(exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white, ev100=ev100, iso=iso)
-    fields.update(shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
+    fields: dict[str, Any] = dict(exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white, ev100=ev100)
+    fields.update(iso=iso, shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
+    fields.update(white_balance=white_balance)
     return _core._display(np.asarray(image), settings(display, **fields))
 
 
@@ -199,6 +221,19 @@ def exposure_of(
     """
     fields = dict(exposure=exposure, key=key, ev100=ev100, iso=iso, shutter=shutter, f_number=f_number)
     return _core._display_exposure(np.asarray(image), settings(display, **fields, luminous_efficacy=luminous_efficacy))
+
+
+def white_balance_of(
+    image,
+    white_balance: str | float | tuple[float, float, float] | None = None,
+    *,
+    display: _core.DisplaySettings | None = None,
+) -> np.ndarray:
+    """The (3, 3) matrix B, linear sRGB to linear sRGB (rgb' = B @ rgb), that to_display applies to
+    this image for the white balance (``white_balance``, else ``display``'s; the module docstring):
+    xyz_to_rgb @ Bradford(light's white -> D65) @ rgb_to_xyz. Only 'auto' reads the image (its mean
+    RGB); the identity for 'none' and for grey images. ValueError for a bad white balance."""
+    return _core._white_balance_matrix(np.asarray(image), settings(display, white_balance=white_balance))
 
 
 def ev100(f_number: float, shutter: float, iso: float | None = None) -> float:

@@ -10,7 +10,19 @@ import pytest
 import refracta
 from refracta import io
 
-FIELDS = ("ev100", "exposure", "f_number", "gamma", "iso", "key", "luminous_efficacy", "shutter", "tonemap", "white")
+FIELDS = (
+    "ev100",
+    "exposure",
+    "f_number",
+    "gamma",
+    "iso",
+    "key",
+    "luminous_efficacy",
+    "shutter",
+    "tonemap",
+    "white",
+    "white_balance",
+)
 
 
 def test_fields_are_documented_and_pickle():

@@ -58,7 +58,19 @@ void bind_display_settings(py::module_& m) {
       .def_readwrite("white", &S::white, "Reinhard's L_white (the smallest scaled luminance shown white); None: infinite");
   def_enum_property(cls, "tonemap", &S::tonemap, tonemap_name, parse_tonemap,
                     "'aces' (filmic), 'reinhard', 'film' (1 - e^(-cL)) or 'linear' (min(cL, 1))")
-      .def_property("gamma", &gamma_name, &set_gamma, "the transfer curve: 'srgb', 'linear' or a gamma g in [1, 3]");
+      .def_property("gamma", &gamma_name, &set_gamma, "the transfer curve: 'srgb', 'linear' or a gamma g in [1, 3]")
+      .def_property(
+          "white_balance",
+          [](const S& s) -> py::object {
+            if (const auto* rgb = std::get_if<std::array<double, 3>>(&s.white_balance)) {
+              return py::make_tuple((*rgb)[0], (*rgb)[1], (*rgb)[2]);
+            }
+            return py::cast(s.white_balance);
+          },
+          [](S& s, const WhiteBalance& white_balance) { s.white_balance = white_balance; },
+          "the light shown white: 'none' (the render's D65 white), 'auto' (grey world), 'daylight' (D55), 'cloudy' "
+          "(D65), 'shade' (D75), 'tungsten' (3200 K), a colour temperature [K] in [1000, 40000] (Planckian) or an RGB "
+          "white (r, g, b) > 0 in linear sRGB; Bradford adaptation to D65");
 }
 
 void bind_image_io(py::module_& m) {
@@ -81,6 +93,17 @@ void bind_image_io(py::module_& m) {
       "_display_exposure",
       [](const py::object& image, const DisplaySettings& display) { return display_exposure(to_image(image, "image"), display); },
       py::arg("image"), py::arg("display"), "The exposure c the display settings give this image (io.exposure_of).");
+  m.def(
+      "_white_balance_matrix",
+      [](const py::object& image, const DisplaySettings& display) {
+        const Eigen::Matrix3d b = white_balance_matrix(to_image(image, "image"), display);
+        py::array_t<double> out({py::ssize_t(3), py::ssize_t(3)});
+        for (int r = 0; r < 3; ++r) {
+          for (int c = 0; c < 3; ++c) out.mutable_at(r, c) = b(r, c);
+        }
+        return out;
+      },
+      py::arg("image"), py::arg("display"), "The white balance's linear sRGB matrix for this image (io.white_balance_of).");
   m.def("_ev100", &ev100_of, py::arg("f_number"), py::arg("shutter"), py::arg("iso") = kDefaultIso,
         "EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.");
   m.def("_read_image", [](const std::string& path) { return image_to_float32(read_image(path)); }, py::arg("path"));

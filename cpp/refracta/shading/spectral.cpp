@@ -223,6 +223,40 @@ Vec3d xyz_of_radiance(const std::vector<double>& v) {
   return xyz / constants().y_integral;
 }
 
+Vec3d planckian_white(double kelvin) {
+  if (!(kelvin > 0.0) || !std::isfinite(kelvin)) throw_invalid("colour temperature must be > 0 K (got ", kelvin, ")");
+  std::vector<double> spectrum(kTableSamples);
+  for (int i = 0; i < kTableSamples; ++i) spectrum[i] = planck(kTableMin + i, kelvin);
+  const Vec3d xyz = xyz_of_radiance(spectrum);
+  if (!(xyz.y() > 0.0)) throw_invalid("colour temperature ", kelvin, " K has no visible light");
+  return xyz / xyz.y();
+}
+
+Vec3d daylight_white(double kelvin) {
+  if (!(kelvin >= 4000.0 && kelvin <= 25000.0)) {
+    throw_invalid("CIE daylight needs a correlated colour temperature in [4000, 25000] K (got ", kelvin, ")");
+  }
+  // CIE 015:2004 eq. 3.3 (x_D) and 3.4 (y_D).
+  const double t = 1e3 / kelvin;
+  const double x = kelvin <= 7000.0 ? ((-4.6070 * t + 2.9678) * t + 0.09911) * t + 0.244063
+                                    : ((-2.0064 * t + 1.9018) * t + 0.24748) * t + 0.237040;
+  const double y = -3.0 * x * x + 2.87 * x - 0.275;
+  return Vec3d(x / y, 1.0, (1.0 - x - y) / y);
+}
+
+Eigen::Matrix3d bradford_adaptation(const Vec3d& source_white, const Vec3d& target_white) {
+  Eigen::Matrix3d m;  // Bradford's cone responses from XYZ (Lam 1985)
+  m << 0.8951, 0.2664, -0.1614,  //
+      -0.7502, 1.7135, 0.0367,   //
+      0.0389, -0.0685, 1.0296;
+  const Vec3d source = m * source_white, target = m * target_white;
+  if (!(source.minCoeff() > 0.0) || !(target.minCoeff() > 0.0) || !is_finite(source) || !is_finite(target)) {
+    throw_invalid("a white to adapt must have positive cone responses (got XYZ ", source_white.transpose(), " -> ",
+                  target_white.transpose(), ")");
+  }
+  return m.inverse() * target.cwiseQuotient(source).asDiagonal() * m;
+}
+
 Vec3d xyz_of_reflectance(const std::vector<double>& v) {
   if (v.size() != size_t(kTableSamples)) throw_invalid("a 1 nm spectrum needs ", kTableSamples, " values (got ", v.size(), ")");
   Vec3d xyz = Vec3d::Zero();

@@ -46,6 +46,22 @@ double planck(double lambda_nm, double temperature);
 Vec3d xyz_to_linear_srgb(const Vec3d& xyz);
 Vec3d linear_srgb_to_xyz(const Vec3d& rgb);
 
+// --- White points and chromatic adaptation (the display's white balance, tonemap.h) ---------------
+// XYZ of the light a white balance names, scaled to Y = 1:
+// - planckian_white: Planck's radiator at `kelvin` (planck() at the tables' 1 nm wavelengths through
+//   xyz_of_radiance: the Planckian locus, a photographer's colour temperature with tint 0);
+// - daylight_white: the CIE daylight locus at a correlated colour temperature in [4000, 25000] K
+//   (CIE 015:2004 eq. 3.3-3.4: x_D a cubic in 10^3/T on two ranges, y_D = -3 x_D^2 + 2.87 x_D -
+//   0.275); the standard illuminants sit at 1.4388/1.4380 x their nominal T (D55 5503 K, D65
+//   6504 K, D75 7504 K). Both throw std::invalid_argument outside their range or for NaN.
+Vec3d planckian_white(double kelvin);
+Vec3d daylight_white(double kelvin);
+// The Bradford chromatic adaptation (Lam 1985; Lindbloom's "Chromatic Adaptation"; colour-science's
+// matrix_chromatic_adaptation_VonKries(..., transform='Bradford')): the XYZ -> XYZ matrix
+// M^-1 diag(M target / M source) M, M the Bradford cone-response matrix, taking `source_white` to
+// `target_white`. Throws when a white has a cone response <= 0.
+Eigen::Matrix3d bradford_adaptation(const Vec3d& source_white, const Vec3d& target_white);
+
 // XYZ of a spectrum given as values at the 471 table wavelengths (1 nm over [360, 830]):
 // as a radiance (normalised by integral y) or as a reflectance under D65 (normalised by D65's Y).
 Vec3d xyz_of_radiance(const std::vector<double>& values_1nm);

@@ -53,6 +53,58 @@ void aces(const double* scaled, int colour, double* out) {
   }
 }
 
+// The white balance's presets: a CIE daylight illuminant's correlated temperature, or a
+// Planckian one (tonemap.h).
+struct WhiteBalancePreset {
+  const char* name;
+  double kelvin;
+  bool daylight;
+};
+constexpr WhiteBalancePreset kWhiteBalancePresets[] = {
+    {"daylight", 5503.0, true}, {"cloudy", 6504.0, true}, {"shade", 7504.0, true}, {"tungsten", 3200.0, false}};
+
+const WhiteBalancePreset* find_preset(const std::string& name) {
+  for (const auto& preset : kWhiteBalancePresets) {
+    if (name == preset.name) return &preset;
+  }
+  return nullptr;
+}
+
+// The problem with a white balance, or "" when it is valid.
+std::string white_balance_problem(const WhiteBalance& wb) {
+  if (const auto* name = std::get_if<std::string>(&wb)) {
+    if (*name == "none" || *name == "auto" || find_preset(*name)) return "";
+    return concat("white_balance must be 'auto', 'none', 'daylight', 'cloudy', 'shade', 'tungsten', a colour "
+                  "temperature [K] or an RGB white (got '", *name, "')");
+  }
+  if (const auto* kelvin = std::get_if<double>(&wb)) {
+    if (*kelvin >= kMinWhiteBalanceKelvin && *kelvin <= kMaxWhiteBalanceKelvin) return "";
+    return concat("white_balance must be a colour temperature in [", kMinWhiteBalanceKelvin, ", ",
+                  kMaxWhiteBalanceKelvin, "] K (got ", *kelvin, ")");
+  }
+  const auto& rgb = std::get<std::array<double, 3>>(wb);
+  for (double v : rgb) {
+    if (!(v > 0.0) || !std::isfinite(v)) {
+      return concat("white_balance as an RGB white must have three values > 0 and finite (got (", rgb[0], ", ", rgb[1],
+                    ", ", rgb[2], "))");
+    }
+  }
+  return "";
+}
+
+// Grey world (tonemap.h): the mean linear RGB of the pixels, negative and non-finite values skipped.
+Vec3d grey_world_white(const Image& image) {
+  Vec3d sum = Vec3d::Zero();
+  const size_t count = size_t(image.width) * image.height;
+  for (size_t i = 0; i < count; ++i) {
+    const float* p = &image.pixels[i * image.channels];
+    for (int k = 0; k < 3; ++k) {
+      if (std::isfinite(p[k]) && p[k] > 0.0f) sum[k] += p[k];
+    }
+  }
+  return sum / double(std::max<size_t>(count, 1));
+}
+
 double transfer(double l, const DisplaySettings& s) {
   l = std::clamp(l, 0.0, 1.0);
   return s.transfer == Transfer::kSrgb ? double(srgb_encode(float(l))) : std::pow(l, 1.0 / s.gamma);
@@ -128,8 +180,41 @@ void DisplaySettings::validate() const {
                  "give one manual exposure: exposure, ev100, or shutter and f_number (with iso)");
   problems.check(!key || (*key > 0.0 && std::isfinite(*key)), "key must be > 0 and finite (got ", key.value_or(0.0), ")");
   problems.check(!white || *white > 0.0, "white must be > 0 (got ", white.value_or(0.0), ")");
+  const std::string wb_problem = white_balance_problem(white_balance);
+  problems.check(wb_problem.empty(), wb_problem);
   problems.check(transfer != Transfer::kGamma || (gamma >= 1.0 && gamma <= 3.0), "gamma must be in [1, 3] (got ", gamma, ")");
   problems.throw_if_any();
+}
+
+Eigen::Matrix3d white_balance_matrix(const Image& image, const DisplaySettings& s) {
+  s.validate();
+  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+  if (colour_channels(image.channels) != 3) return identity;
+  // The light's white in XYZ (any Y: the adaptation is scaled to keep the white's luminance).
+  Vec3d light;
+  if (const auto* name = std::get_if<std::string>(&s.white_balance)) {
+    if (*name == "none") return identity;
+    if (*name == "auto") {
+      const Vec3d mean = grey_world_white(image);
+      if (!(mean.minCoeff() > 0.0)) return identity;  // black, or a channel without light: nothing to balance by
+      light = spectral::linear_srgb_to_xyz(mean);
+    } else {
+      const WhiteBalancePreset& preset = *find_preset(*name);
+      light = preset.daylight ? spectral::daylight_white(preset.kelvin) : spectral::planckian_white(preset.kelvin);
+    }
+  } else if (const auto* kelvin = std::get_if<double>(&s.white_balance)) {
+    light = spectral::planckian_white(*kelvin);
+  } else {
+    const auto& rgb = std::get<std::array<double, 3>>(s.white_balance);
+    light = spectral::linear_srgb_to_xyz(Vec3d(rgb[0], rgb[1], rgb[2]));
+  }
+  const Vec3d display_white = spectral::linear_srgb_to_xyz(Vec3d::Ones());
+  Eigen::Matrix3d to_xyz, to_rgb;
+  for (int k = 0; k < 3; ++k) {
+    to_xyz.col(k) = spectral::linear_srgb_to_xyz(Vec3d::Unit(k));
+    to_rgb.col(k) = spectral::xyz_to_linear_srgb(Vec3d::Unit(k));
+  }
+  return to_rgb * spectral::bradford_adaptation(light / light.y() * display_white.y(), display_white) * to_xyz;
 }
 
 double log_average_luminance(const Image& image, double exposure) {
@@ -148,10 +233,17 @@ void tonemap_image(Image& image, const DisplaySettings& s) {
   // The exposure c, manual or automatic (Reinhard eq. 2: the scale a / Lw_bar taking the
   // log-average to the key).
   const double exposure = display_exposure(image, s);
+  // The white balance (before the exposure's scale, as a camera balances its raw image).
+  const Eigen::Matrix3d balance = white_balance_matrix(image, s);
+  const bool balanced = !balance.isIdentity(0.0);
   const double inv_white2 = s.white ? 1.0 / (*s.white * *s.white) : 0.0;
   double scaled[3];
   for (size_t i = 0; i < count; ++i) {
     float* p = &image.pixels[i * image.channels];
+    if (balanced) {
+      const Vec3d rgb = balance * Vec3d(p[0], p[1], p[2]);
+      for (int k = 0; k < 3; ++k) p[k] = float(rgb[k]);
+    }
     const double lw = luminance(p, colour, exposure, scaled);
     double out[3];
     switch (s.tonemap) {

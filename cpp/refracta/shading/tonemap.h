@@ -18,6 +18,24 @@
 //   to the key a (Reinhard et al. 2002, eq. 1-2: c = a / Lw_bar, middle grey a = 0.18 by default,
 //   kAutoKey), whatever the manual exposure (it cancels).
 //
+// White balance (white_balance; before the exposure's scale and the tone curve, as a camera
+// balances its raw image): the light named as white is adapted to the display's white (D65, the
+// sRGB white) by the Bradford transform in XYZ (spectral::bradford_adaptation), so that a grey lit
+// by it shows neutral with its luminance kept. Named by
+// - a colour temperature [K] in [kMinWhiteBalanceKelvin, kMaxWhiteBalanceKelvin]: Planck's
+//   radiator at it (the Planckian locus, spectral::planckian_white);
+// - a preset as cameras name them: 'daylight' CIE D55 (5503 K on the CIE daylight locus, the
+//   photographic daylight standard), 'cloudy' D65 (6504 K, the render's own white: no change),
+//   'shade' D75 (7504 K), 'tungsten' a 3200 K Planckian radiator (studio tungsten lamps);
+// - an RGB white (linear sRGB, each > 0): the colour of the light, e.g. a grey card's pixel;
+// - 'auto': grey world (Buchsbaum 1980, "A spatial processor model for object colour
+//   perception", J. Franklin Inst. 310): the mean linear RGB of the image's pixels (negative and
+//   non-finite values skipped) is taken as the light's colour; a black image is left as it is;
+// - 'none' (the default): no balance, the render's own D65 white (as 'cloudy').
+// The exposure meters the image before the balance (a camera's meter reads the raw light); the
+// balance keeps a white's luminance. Grey images (1-2 channels) are not balanced. Float files are
+// written unbalanced (io.write_image).
+//
 // ACES (Tonemap::kAces): the ACES reference rendering and sRGB output transforms (RRT + ODT) as
 // fitted by Stephen Hill (BakingLab, ACES.hlsl, 2016): linear sRGB -> the fit's input matrix ->
 // (v (v + 0.0245786) - 0.000090537) / (v (0.983729 v + 0.4329510) + 0.238081) per channel -> its
@@ -30,8 +48,12 @@
 
 #include "refracta/core/image.h"
 
+#include <Eigen/Core>
+
+#include <array>
 #include <optional>
 #include <string>
+#include <variant>
 
 namespace refracta {
 
@@ -44,14 +66,24 @@ constexpr double kDefaultIso = 100.0;  // ISO when shutter and f-number are give
 // the candela (683 lm/W at 540 THz) applied to Y.
 constexpr double kLuminousEfficacy = 683.0;
 
+// The white balance's colour temperatures [K]: a candle's flame (~1850 K) to a clear blue sky's
+// light (~27000 K) lie inside; beyond, Planck's radiator hardly changes colour (within 0.01 in x of
+// the locus' limit above 40000 K) or gives no blue at all below 1000 K.
+constexpr double kMinWhiteBalanceKelvin = 1000.0;
+constexpr double kMaxWhiteBalanceKelvin = 40000.0;
+// A white balance as users name it (tonemap.h): a preset or 'auto'/'none', a colour temperature
+// [K], or an RGB white (linear sRGB).
+using WhiteBalance = std::variant<std::string, double, std::array<double, 3>>;
+
 // The transfer curve after tone mapping: the IEC 61966-2-1 sRGB curve, or p = l^(1/gamma).
 enum class Transfer { kSrgb, kGamma };
 
 // How refracta.io turns linear radiance into display values (shading/tonemap.h; the formulas: the
 // refracta.io module). Exposure: automatic (no manual field set: the image's log-average luminance
 // goes to `key`), or manual, at most one of `exposure`, `ev100`, or `shutter` with `f_number` (and
-// `iso`); a `key` given overrides a manual exposure. Then the tone curve `tonemap` and the transfer
-// curve `gamma`. validate() lists every bad field.
+// `iso`); a `key` given overrides a manual exposure. The white balance `white_balance` (none by
+// default), then the tone curve `tonemap` and the transfer curve `gamma`. validate() lists every
+// bad field.
 struct DisplaySettings {
   // Manual exposure, at most one of: c > 0 multiplying the radiance; EV100; a camera's shutter
   // [s] and f_number (with iso, default kDefaultIso). None of them: automatic.
@@ -71,6 +103,10 @@ struct DisplaySettings {
   std::optional<double> white;
   Transfer transfer = Transfer::kSrgb;
   double gamma = 2.2;  // Transfer::kGamma: g in [1, 3] (1: linear output)
+  // The light shown white (before exposure and tone curve; the formulas above): 'none' (the
+  // default: the render's own D65 white, today's images unchanged), 'auto' (grey world), a preset
+  // ('daylight', 'cloudy', 'shade', 'tungsten'), a colour temperature [K] or an RGB white.
+  WhiteBalance white_balance = std::string("none");
 
   // Throws std::invalid_argument listing every invalid field.
   void validate() const;
@@ -87,6 +123,11 @@ double exposure_of_ev100(double ev100, double luminous_efficacy = kLuminousEffic
 double manual_exposure(const DisplaySettings& settings);
 // The exposure c the settings give this image (manual, or automatic from its log-average).
 double display_exposure(const Image& image, const DisplaySettings& settings);
+
+// The white balance's matrix B (linear sRGB -> linear sRGB, rgb' = B rgb) for this image ('auto'
+// reads it; other settings do not): xyz_to_rgb x Bradford(light's white -> D65) x rgb_to_xyz, the
+// identity for 'none' and for grey images.
+Eigen::Matrix3d white_balance_matrix(const Image& image, const DisplaySettings& settings);
 
 // The log-average luminance Lw_bar = exp(mean ln(delta + Lw)) of c x the image (luminance:
 // Y of linear sRGB, 0.2126 R + 0.7152 G + 0.0722 B normalised to sum 1; 1-2 channels: the first).
