@@ -65,6 +65,29 @@ DEMO_SETTINGS: dict[str, dict[str, Any]] = {
 # 0.14 no pixel of its stacked band clips, the sky shows light and the sea blue-grey; at 0.09, the
 # key of the flat-faced cliffs that then showed near white, the frame looked murky).
 DEMO_KEYS = {"hot_road": 0.18, "hot_spot": 0.18, "cold_sea": 0.22, "fata_morgana": 0.14}
+
+
+# White balance (refracta.io's white_balance) per example, as its photographer would set it. The
+# cold sea is balanced on the sunlight that lights it: the 10-deg sun through 80 km visibility is
+# 1 : 0.69 : 0.36 in linear RGB (CCT ~4040 K), so with the render's own white the whole frame --
+# sky, haze, sea and glitter, all that sun's light scattered or mirrored -- showed one sepia; as a
+# grey card facing the sun (or an eye adapted to that light) sets it, the glitter shows white, the
+# haze toward the sun silver and the shade the skylight fills blue-grey. ('auto', grey world, gave
+# ~3780 K there, near it; on the desert demos it turned the sand grey, so it is no default.) The
+# others keep the render's own D65 white ('none': a camera's 'cloudy', near its 'daylight').
+def _demo_white_balance(name: str) -> tuple[float, float, float] | None:
+    """The demo's white balance for an example: the cold sea's sunlight at the ground (linear RGB of
+    its physical sky's sun, refracta.spectrum.PhysicalSky.sun_radiance_rgb; ~1.3 s CPU to build the
+    sky), else None (the render's own white)."""
+    from refracta import examples, spectrum
+
+    if name != "cold_sea":
+        return None
+    sun = examples.sun_direction(*examples.COLD_SEA_SUN)
+    rgb = spectrum.PhysicalSky(sun, visibility=examples.COLD_SEA_VISIBILITY).sun_radiance_rgb().ravel()
+    return (float(rgb[0]), float(rgb[1]), float(rgb[2]))
+
+
 # The hot spot's extra view: the camera walks this far [m] toward the patch; its "lake" stays on
 # the same stretch of road (it belongs to the ground), only nearer and lower in the frame. (Walk
 # much farther and rays reach it steeper than its critical angle: the lake goes.)
@@ -139,7 +162,9 @@ def demo(out: Path, size=None) -> int:
         refracta.io.write_image(out / f"{name}_straight.exr", images[0])
         refracta.io.write_image(out / f"{name}.exr", images[1])
         # One exposure for all views (the log-average of them together), so they compare.
-        both = refracta.io.to_display(np.concatenate(images, axis=0), key=DEMO_KEYS.get(name))
+        both = refracta.io.to_display(
+            np.concatenate(images, axis=0), key=DEMO_KEYS.get(name), white_balance=_demo_white_balance(name)
+        )
         displays = np.split(both, len(images), axis=0)
         # One figure pixel per image pixel: the panels keep the renders' own resolution.
         dpi = 100
