@@ -351,6 +351,21 @@ def _aov_list(text: str) -> list[str]:
     return [name.strip() for name in text.split(",") if name.strip()]
 
 
+def _white_balance(text: str):
+    """--white-balance: a number is a colour temperature [K], three comma-separated numbers an RGB
+    white, anything else a name (checked by refracta.io: a bad one raises ValueError naming it)."""
+    parts = text.split(",")
+    try:
+        values = [float(part) for part in parts]
+    except ValueError:
+        return text.strip()
+    if len(values) == 1:
+        return values[0]
+    if len(values) == 3:
+        return tuple(values)
+    raise argparse.ArgumentTypeError(f"must be a temperature, a name or R,G,B (got {text!r})")
+
+
 def render_file(
     scene_path: Path,
     output: Path,
@@ -365,11 +380,13 @@ def render_file(
     key=None,
     ev100=None,
     aovs=None,
+    white_balance=None,
 ) -> int:
     """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped).
 
-    exposure, ev100, key, tonemap: as refracta.io.write_image (None: its defaults, automatic
-    exposure and the ACES curve). method, spp, transport, max_depth: None keeps RenderOptions' own.
+    exposure, ev100, key, tonemap, white_balance: as refracta.io.write_image (None: its defaults,
+    automatic exposure, the ACES curve, no white balance). method, spp, transport, max_depth: None
+    keeps RenderOptions' own.
     aovs: names of render's per-pixel outputs (refracta.render's aovs: distance, position, ...),
     written after R, G, B as layers of the EXR (refracta.io.write_layers: distance.Y, position.X,
     ...; hidden_height.geometric and .refracted; geographic.lat, .lon, .height, which needs the
@@ -408,7 +425,8 @@ def render_file(
             image = image * refracta.io.exposure_of(image, exposure=exposure, ev100=ev100)
         refracta.io.write_layers(output, image, layers, suffixes=_LAYER_CHANNELS)
     else:
-        refracta.io.write_image(output, result, exposure=exposure, tonemap=tonemap, key=key, ev100=ev100)
+        display = dict(exposure=exposure, tonemap=tonemap, key=key, ev100=ev100, white_balance=white_balance)
+        refracta.io.write_image(output, result, **display)
     defaults = refracta.RenderOptions()
     method, transport = method or defaults.method, transport or defaults.transport
     print(
@@ -507,6 +525,13 @@ def _run(argv=None) -> int:
         "(default 0.18; overrides --exposure/--ev100)",
     )
     render_parser.add_argument(
+        "--white-balance",
+        type=_white_balance,
+        default=None,
+        help="the light shown white in PNG/JPEG output: a colour temperature [K], daylight, cloudy, shade, "
+        "tungsten, auto (grey world), none (default) or a linear RGB white R,G,B (refracta.io's white_balance)",
+    )
+    render_parser.add_argument(
         "--aovs",
         type=_aov_list,
         default=None,
@@ -539,6 +564,7 @@ def _run(argv=None) -> int:
             args.key,
             args.ev100,
             args.aovs,
+            args.white_balance,
         )
     if args.command == "edit":
         return edit_file(args.scene, args.pairs, args.output, args.backend)

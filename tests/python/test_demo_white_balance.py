@@ -1,6 +1,8 @@
 """The demo's cold sea balanced on its sunlight (cli._demo_white_balance, refracta.io white_balance):
 what the sun lights or mirrors -- the glitter -- shows neutral, not the low sun's orange."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -30,3 +32,18 @@ def test_the_cold_sea_demo_shows_its_glitter_white():
     balanced /= balanced[1]
     assert raw[2] < 0.6  # as rendered: the low sun's orange
     np.testing.assert_allclose(balanced, 1.0, atol=GLITTER_NEUTRAL)
+
+
+def test_the_render_command_takes_a_white_balance(tmp_path, capsys):
+    scene_file = Path(__file__).resolve().parents[1] / "data" / "hot_road.toml"
+    exr, png = tmp_path / "image.exr", tmp_path / "image.png"
+    assert cli.main(["render", str(scene_file), "-o", str(exr), "--size", "24x8"]) == 0
+    image = io.read_image(exr)
+    for balance, value in (("3200", 3200.0), ("shade", "shade"), ("1,0.7,0.4", (1.0, 0.7, 0.4))):
+        assert cli.main(["render", str(scene_file), "-o", str(png), "--size", "24x8", "--white-balance", balance]) == 0
+        # The PNG holds the render's display with that balance (8-bit: within one level).
+        expected = io.to_display(image, white_balance=value)
+        np.testing.assert_allclose(io.read_image(png), expected, atol=0.5 / 255 + 1e-6)
+    # A bad one: one line naming white_balance, exit status 1 (cli.main's user errors).
+    assert cli.main(["render", str(scene_file), "-o", str(png), "--size", "24x8", "--white-balance", "500"]) == 1
+    assert "white_balance must be a colour temperature in [1000, 40000] K (got 500)" in capsys.readouterr().err
