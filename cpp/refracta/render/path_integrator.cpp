@@ -63,8 +63,10 @@ class PathTracer : public Integrator {
     MediumStack media;
     int depth = 0;
     const int max_depth = options_.max_depth;
+    PathEnd cast;  // the ends of later segments (the camera ray's is not copied)
     for (int passes = 0; passes < 4 * max_depth + 64; ++passes) {
-      const PathEnd end = passes == 0 ? first : caster_.cast(o, d);
+      if (passes > 0) cast = caster_.cast(o, d);
+      const PathEnd& end = passes == 0 ? first : cast;
       travelled += end.length;
       if (kSurfaceOnly && !end.hit) break;
       if (!end.hit) {

@@ -82,6 +82,16 @@ Vec3d ray_dir(RTCRayN* ray, unsigned n, unsigned i) {
   return Vec3d(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i));
 }
 
+// What Scene::intersect hands Embree as its context: the query's ray in double, and the nearest
+// sphere root the callback accepted, solved from that double ray (Embree's ray is a float copy of
+// it): Scene::intersect then need not solve the hit's sphere again.
+struct SphereQuery {
+  RTCIntersectContext context;  // first: Embree passes callbacks a pointer to it
+  Vec3d origin, dir;
+  double t = 0.0;
+  unsigned geometry = RTC_INVALID_GEOMETRY_ID, primitive = 0;
+};
+
 // The nearest root in (tnear, tfar): the hit, as Embree's sphere reported it (Ng = hit - centre).
 void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
   const auto& spheres = *static_cast<const Scene::Spheres*>(args->geometryUserPtr);
@@ -89,9 +99,13 @@ void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
   const double r = spheres.radii[args->primID];
   RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
   RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  // Scene::intersect's single rays: from the double ray (the float copy's roots, re-solved from
+  // the double ray, gave the same root).
+  auto* query = args->N == 1 ? reinterpret_cast<SphereQuery*>(args->context) : nullptr;
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    const Vec3d o = ray_origin(ray, args->N, i), d = ray_dir(ray, args->N, i);
+    const Vec3d o = query ? query->origin : ray_origin(ray, args->N, i);
+    const Vec3d d = query ? query->dir : ray_dir(ray, args->N, i);
     double t0, t1;
     if (!sphere_roots(o, d, c, r, &t0, &t1)) continue;
     const double tnear = RTCRayN_tnear(ray, args->N, i);
@@ -99,6 +113,7 @@ void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
     const double t = t0 > tnear ? t0 : t1;
     if (!(t > tnear && t < double(tfar))) continue;
     tfar = float(t);
+    if (query) query->t = t, query->geometry = args->geomID, query->primitive = args->primID;
     const Vec3d ng = o + t * d - c;
     RTCHitN_Ng_x(hit, args->N, i) = float(ng.x());
     RTCHitN_Ng_y(hit, args->N, i) = float(ng.y());
@@ -426,13 +441,14 @@ void terrain_hit(const TerrainGrid& grid, const Vec3d& origin, const Vec3d& dir,
 std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, double t_max) const {
   check_ray(origin, dir, t_max);
   if (impl_->dirty) commit();
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  SphereQuery sphere;
+  rtcInitIntersectContext(&sphere.context);
+  sphere.origin = origin, sphere.dir = dir;
   RTCRayHit query;
   fill_ray(query.ray, origin, dir, t_max);
   query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &context, &query);
+  rtcIntersect1(impl_->scene, &sphere.context, &query);
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   Hit hit;
   hit.t = query.ray.tfar;
@@ -445,14 +461,9 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
   // about 6e-8 of the distance, which beyond a few hundred metres exceeds the offsets that keep
   // secondary rays off the surface (a glass seen from 1 km lost all its transmission).
   if (const auto& spheres = sphere_sets_.at(query.hit.geomID)) {
-    // From the double origin (the callback saw Embree's float copy of it); the normal from the
-    // centre in double.
+    // The callback's root, solved from the double ray; the normal from the centre in double.
     const Vec3d& centre = spheres->centres.at(query.hit.primID);
-    double near, far;
-    if (sphere_roots(origin, dir, centre, spheres->radii.at(query.hit.primID), &near, &far)) {
-      const double t = std::abs(near - hit.t) <= std::abs(far - hit.t) ? near : far;
-      if (t > 0.0 && std::abs(t - hit.t) <= kRefineWindow * (1.0 + hit.t)) hit.t = t;
-    }
+    if (sphere.geometry == query.hit.geomID && sphere.primitive == query.hit.primID) hit.t = sphere.t;
     hit.point = origin + hit.t * dir;
     const Vec3d normal = (hit.point - centre).normalized();  // unit also where the float t was kept
     hit.front_face = normal.dot(dir) < 0.0;
@@ -622,15 +633,13 @@ SurfaceInteraction Scene::interaction(const Hit& hit, const Vec3d& dir, const st
   si.ns = si.n;
   si.wo = -dir.normalized();
   if (const auto& spheres = sphere_sets_[hit.geometry]) {
-    // uv from the direction about the centre: u around y (from +x toward -z... as phi), v from the south pole.
+    // dp/du along the parallel through the hit (around y). Spheres have no texture coordinates
+    // (has_uvs; add_sphere and set_material refuse textured materials for them): uv stays zero.
     const Vec3d c = spheres->centres.at(hit.primitive);
     const Vec3d d = (si.p - c).normalized();
-    const double phi = std::atan2(d.z(), d.x());
-    si.uv = Eigen::Vector2d(0.5 + phi / (2.0 * kPi), 1.0 - std::acos(std::clamp(d.y(), -1.0, 1.0)) / kPi);
     si.dpdu = Vec3d(-d.z(), 0.0, d.x());
     if (!(si.dpdu.norm() > 1e-12)) si.dpdu = Vec3d::UnitX();
     si.dpdu.normalize();
-    si.texture.s = si.uv.x(), si.texture.t = 1.0 - si.uv.y();
     return si;
   }
   if (const TerrainGrid* grid = terrain(hit.geometry)) {
