@@ -1828,6 +1828,14 @@ class RenderOptions:
     def differentials(self, arg0: bool) -> None:
         ...
     @property
+    def edge_spp(self) -> int:
+        """
+        when above spp: pixels at edges between surfaces (first hits' albedo or normal differ from a neighbour's) rendered again with this many samples (0: off)
+        """
+    @edge_spp.setter
+    def edge_spp(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
     def guard_band(self) -> float:
         """
         raster_march: extra raster view per side (fraction)

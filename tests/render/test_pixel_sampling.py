@@ -108,3 +108,123 @@ def test_adaptive_needs_a_ray_traced_method():
     scene, camera = poles()
     with pytest.raises(ValueError, match="adaptive needs method"):
         refracta.render(scene, camera, None, method="raster_march", adaptive=True, progress=False)
+
+
+# Edge refinement (RenderOptions.edge_spp; film.h EdgeRefinement): pixels at edges between
+# surfaces rendered again with edge_spp samples.
+BAR_DISTANCE = 10.0  # [m] from the eye to the bar's plane, facing it
+
+
+def tilted_bar(width_px, tilt_deg, size=48, vfov=30.0):
+    """A black bar `width_px` pixels wide, tilted `tilt_deg` from the vertical, in a plane facing
+    the eye against a white sky (radiance 1 everywhere; the bar 0), and the exact share of each
+    pixel it covers: a plane facing a pinhole maps affinely onto the image (u = (z / (D t) + 1)
+    size / 2, v = (1 - y / (D t)) size / 2, t = tan(vfov / 2)), so each pixel's coverage is the area
+    of the bar's image clipped to the pixel's square (Sutherland-Hodgman)."""
+    t = np.tan(np.radians(vfov / 2.0))
+    metres_per_px = 2.0 * BAR_DISTANCE * t / size
+    a = np.radians(tilt_deg)
+    along, across = np.array([np.sin(a), np.cos(a)]), np.array([np.cos(a), -np.sin(a)])  # (z, y)
+    half_length, half_width = 0.35 * size * metres_per_px, 0.5 * width_px * metres_per_px
+    corners = [s * half_length * along + w * half_width * across for s, w in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+    vertices = np.array([[BAR_DISTANCE, y, z] for z, y in corners])
+    scene = refracta.Scene()
+    scene.set_sky((1.0, 1.0, 1.0), (1.0, 1.0, 1.0))
+    scene.add_mesh(vertices, np.array([[0, 1, 2], [0, 2, 3]]), material=shading.Diffuse(0.0), two_sided=True)
+    camera = refracta.Camera((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0, 1, 0), vfov, size, size)
+    polygon = [
+        ((z / (BAR_DISTANCE * t) + 1.0) * size / 2.0, (1.0 - y / (BAR_DISTANCE * t)) * size / 2.0) for z, y in corners
+    ]
+    coverage = np.array([[_clipped_area(polygon, i, j) for i in range(size)] for j in range(size)])
+    return scene, camera, coverage
+
+
+def _clipped_area(polygon, i, j):
+    """Area of `polygon` ((u, v) vertices) inside the pixel square [i, i + 1) x [j, j + 1)."""
+    for axis, bound, keep_above in ((0, i, True), (0, i + 1, False), (1, j, True), (1, j + 1, False)):
+        inside = [(p[axis] >= bound) == keep_above for p in polygon]
+        clipped = []
+        for k, p in enumerate(polygon):
+            q = polygon[(k + 1) % len(polygon)]
+            if inside[k]:
+                clipped.append(p)
+            if inside[k] != inside[(k + 1) % len(polygon)]:
+                s = (bound - p[axis]) / (q[axis] - p[axis])
+                clipped.append((p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])))
+        polygon = clipped
+        if not polygon:
+            return 0.0
+    u, v = np.array(polygon).T
+    return 0.5 * abs(np.dot(u, np.roll(v, -1)) - np.dot(v, np.roll(u, -1)))
+
+
+def coverage_errors(scene, camera, coverage, **options):
+    image = render(scene, camera, **options)
+    edge = (coverage > 0.0) & (coverage < 1.0)
+    return (1.0 - image[..., 1] - coverage)[edge]
+
+
+def jittered_rms_bound(spp):
+    """The RMS coverage error of an edge pixel whose spp = m x n samples are jittered in the cells
+    of an m x n grid (the correlated multi-jittered pattern's cells): only the cells an edge line
+    crosses err, at most m + n - 1 of them per line, two lines for a bar; each by its sample's
+    indicator less the cell's covered share a, over spp: variance a (1 - a) / spp^2 <= 1 / (4 spp^2),
+    cells independent (CMJ's correlated placement within cells measured below it)."""
+    columns = max(m for m in range(1, int(np.sqrt(spp)) + 1) if spp % m == 0)
+    return np.sqrt(2 * (columns + spp // columns - 1)) / (2.0 * spp)
+
+
+@pytest.mark.parametrize("width_px, spp", [(1.5, 1), (0.8, 4)])
+def test_edge_refinement_weighs_a_tilted_bars_coverage_as_its_sample_pattern_allows(width_px, spp):
+    # A bar wide enough that the base samples meet it in every row (1.5 px at the pixel centres,
+    # 0.8 px at 4 spp's half-pixel spacing) marks every pixel its edges cross; refined with 64
+    # samples each (8 x 8 cells), their coverage error's RMS stays under the jittered grid's bound
+    # (0.043); the base samples alone leave several times that (the staircase or the comb).
+    scene, camera, coverage = tilted_bar(width_px, 20.0)
+    bound = jittered_rms_bound(64)
+    for seed in (0, 1):
+        base = coverage_errors(scene, camera, coverage, spp=spp, seed=seed)
+        refined = coverage_errors(scene, camera, coverage, spp=spp, edge_spp=64, seed=seed)
+        assert base.size >= 60
+        assert np.sqrt(np.mean(refined**2)) < bound
+        assert np.sqrt(np.mean(base**2)) > 3.0 * bound  # what refinement removes
+
+
+def test_edge_refinement_keeps_every_other_pixel_as_the_base_pass_had_it():
+    # Pixels away from edges (the ground's noisy sky lighting included) are the base render's, bit
+    # for bit; the poles' edges are rendered again and drawn as edge_spp samples each.
+    scene, camera = poles()
+    base, base_stats = render(scene, camera, spp=2, seed=3, return_stats=True)
+    refined, stats = render(scene, camera, spp=2, edge_spp=32, seed=3, return_stats=True)
+    changed = np.any(base != refined, axis=2)
+    assert 0 < changed.sum() < 0.5 * changed.size
+    extra = stats.samples - base_stats.samples
+    assert extra % 32 == 0 and extra // 32 >= changed.sum()  # each changed pixel drew 32 samples more
+
+
+def test_edge_refined_renders_do_not_depend_on_threads_tiles_or_pixel_bounds():
+    scene, camera = poles()
+    options = dict(spp=1, edge_spp=16, aovs=["albedo", "normal"])
+    whole, aovs = render(scene, camera, **options)
+    refracta.set_threads(1)
+    try:
+        one, one_aovs = render(scene, camera, **options)
+    finally:
+        refracta.set_threads(None)
+    assert np.array_equal(whole, one) and np.array_equal(aovs["normal"], one_aovs["normal"])
+    part, _ = render(scene, camera, pixel_bounds=(5, 3, 40, 19), **options)
+    assert np.array_equal(part, whole[3:19, 5:40])
+    tiled, _ = render(scene, camera, tiles=(3, 2), **options)
+    assert np.array_equal(tiled, whole)
+    radiance_only = render(scene, camera, spp=1, edge_spp=16)  # the same pixels refined without AOVs
+    assert np.array_equal(radiance_only, whole)
+
+
+def test_edge_refinement_refuses_bad_settings():
+    scene, camera = poles()
+    with pytest.raises(ValueError, match="edge_spp must be >= 0"):
+        render(scene, camera, edge_spp=-1)
+    with pytest.raises(ValueError, match="edge_spp .* and adaptive cannot be combined"):
+        render(scene, camera, spp=4, edge_spp=16, adaptive=True)
+    with pytest.raises(ValueError, match="edge_spp needs method"):
+        refracta.render(scene, camera, None, method="raster_march", edge_spp=4, progress=False)

@@ -52,6 +52,8 @@ validate() reports every bad value at once.)doc");
   options.def_readwrite("spp", &O::spp, "samples per pixel (correlated multi-jittered when > 1)")
       .def_readwrite("adaptive", &O::adaptive, "a pilot of spp / 8 per pixel shares each 32-pixel block's "
                      "budget: half of spp each, the rest where the pilot varies (same total, unbiased)")
+      .def_readwrite("edge_spp", &O::edge_spp, "when above spp: pixels at edges between surfaces (first hits' albedo "
+                     "or normal differ from a neighbour's) rendered again with this many samples (0: off)")
       .def_readwrite("seed", &O::seed, "seed of the per-pixel random streams")
       .def_readwrite("max_depth", &O::max_depth, "scattering events per path (Mitsuba's max_depth - 1)")
       .def_readwrite("rr_depth", &O::rr_depth, "Russian roulette from this many events on")

@@ -75,6 +75,9 @@ void RenderOptions::validate() const {
   if (guide_spp < 0) problems.add("guide_spp must be >= 0 (got ", guide_spp, ")");
   if (readouts && method == RenderMethod::kRasterMarch) problems.add("readouts need method 'straight' or 'curved'");
   if (adaptive && method == RenderMethod::kRasterMarch) problems.add("adaptive needs method 'straight' or 'curved'");
+  if (edge_spp < 0) problems.add("edge_spp must be >= 0 (got ", edge_spp, ")");
+  if (edge_spp > spp && adaptive) problems.add("edge_spp (", edge_spp, ") and adaptive cannot be combined");
+  if (edge_spp > spp && method == RenderMethod::kRasterMarch) problems.add("edge_spp needs method 'straight' or 'curved'");
   if (!(guard_band >= 0.0 && guard_band <= 2.0)) problems.add("guard_band must be in [0, 2] (got ", guard_band, ")");
   if (!(turbulence_step > 0.0 && turbulence_step <= 16.0)) {
     problems.add("turbulence_step must be in (0, 16] cells (got ", turbulence_step, ")");
