@@ -16,7 +16,10 @@ chosen), 512 pixels (0.2-0.4 % of the image) with their own 4096-spp references,
 16 pixels of context, measured as one image.
 
 Per crop and per tile set: relative MSE (squared error over reference^2 + 0.01, per channel,
-averaged) and mean FLIP (flip-evaluator, HDR) of each variant (variants(): noisy, denoised =
+averaged), mean HDR-FLIP (flip-evaluator's own exposure bracket from the reference: a tile's score
+depends on the tiles beside it) and mean FLIP as displayed (LDR-FLIP of refracta.io.to_display's
+output at the whole image's automatic exposure, one for all crops, tiles and variants: what a
+viewer of the demo sees) of each variant (variants(): noisy, denoised =
 render(denoise=True), then with refracta.denoise's guided filter, with guides from 64 samples of
 their own, 32 spp denoised at the guide pass's cost, the green flash's demo pipeline), each
 one's ratio to the noisy image's error, beside the goal (5x); the
@@ -27,6 +30,9 @@ image's own (unbiased) difference beside it as the scale of chance.
 
     python benchmarks/bench_denoise.py [--quick] [--only SCENE ...]  -> benchmarks/results/denoise.json
 (--quick: 256-spp references, a smoke run, not the published numbers.)
+    python benchmarks/bench_denoise.py --noise-law
+(noise_law(): what FLIP ratio a pure noise reduction of relative MSE k buys, and the cap a
+reference's own noise puts on it; printed, not written.)
 """
 
 from __future__ import annotations
@@ -61,9 +67,25 @@ def relative_mse(image, reference) -> float:
 
 
 def flip_mean(image, reference) -> float:
+    """HDR-FLIP: flip-evaluator's own exposure bracket (ACES), chosen from `reference`'s luminance,
+    so a tile's score depends on the tiles measured beside it."""
     import flip_evaluator as flip
 
     return float(flip.evaluate(reference, np.ascontiguousarray(image), "HDR", applyMagma=False)[1])
+
+
+def flip_display(image, reference, exposure: float) -> float:
+    """LDR-FLIP of the images as refracta.io.to_display shows them (its default tone map and sRGB)
+    at one `exposure`, the whole image's (what a viewer of the demo sees; the same for every crop
+    and tile)."""
+    import flip_evaluator as flip
+
+    from refracta import io
+
+    def shown(x):
+        return io.to_display(np.ascontiguousarray(np.maximum(x, 0.0), dtype=np.float32), exposure=exposure)
+
+    return float(flip.evaluate(shown(reference), shown(image), "LDR", applyMagma=False)[1])
 
 
 def flat_pixels(reference, tolerance=0.02):
@@ -170,15 +192,19 @@ def variants(name, render, bounds, width, height, spp, spectral=False):
     return {label: image[cut] for label, image in images.items()}, seconds
 
 
-def compare(images, reference) -> dict:
-    """Relative MSE and FLIP of each image, its ratio to the noisy image's, flat-region bias."""
+def compare(images, reference, exposure: float) -> dict:
+    """Relative MSE, HDR-FLIP and FLIP as displayed (at `exposure`) of each image, its ratio to the
+    noisy image's, flat-region bias."""
     row = {}
     base_mse, base_flip = relative_mse(images["noisy"], reference), flip_mean(images["noisy"], reference)
+    base_shown = flip_display(images["noisy"], reference, exposure)
     for label, image in images.items():
         row[f"{label}_relative_mse"] = mse = relative_mse(image, reference)
         row[f"{label}_flip"] = flip = flip_mean(image, reference)
+        row[f"{label}_flip_display"] = shown = flip_display(image, reference, exposure)
         row[f"{label}_mse_ratio"] = base_mse / mse
         row[f"{label}_flip_ratio"] = base_flip / flip
+        row[f"{label}_flip_display_ratio"] = base_shown / shown
     flat = flat_pixels(reference)
     row["flat_share"] = float(flat.mean())
     mean = float(reference[flat].mean()) if flat.any() else 0.0
@@ -190,6 +216,7 @@ def compare(images, reference) -> dict:
 
 def measure(name, size, crop, spp=16, reference_spp=4096) -> dict:
     import refracta
+    from refracta import io
 
     scene, camera, field, options = scene_setup(name, size)
     options = dict(progress=False, transport="direct", **options)
@@ -199,6 +226,9 @@ def measure(name, size, crop, spp=16, reference_spp=4096) -> dict:
         return refracta.render(scene, camera, field, **options, **kw)
 
     out = {"size": [width, height]}
+    # The display's exposure: to_display's automatic one (log-average luminance) of the whole image
+    # at 1 spp (hot road: 0.0434, against 0.0425 from 16 spp denoised; one exposure for all variants).
+    out["display_exposure"] = exposure = io.exposure_of(np.maximum(render(spp=1, seed=2), 0.0))
     # The hardest crop.
     start = time.perf_counter()
     reference = np.maximum(render(spp=reference_spp, seed=1, pixel_bounds=crop), 0.0)
@@ -206,7 +236,7 @@ def measure(name, size, crop, spp=16, reference_spp=4096) -> dict:
     row["reference_seconds"] = time.perf_counter() - start
     spectral = options.get("spectral", False)
     images, row["cpu_seconds"] = variants(name, render, crop, width, height, spp, spectral)
-    row.update(compare(images, reference))
+    row.update(compare(images, reference, exposure))
     out["crop"] = row
     # The representative tiles, measured as one image (their pixels side by side).
     boxes = tiles(width, height)
@@ -216,7 +246,7 @@ def measure(name, size, crop, spp=16, reference_spp=4096) -> dict:
     row["reference_seconds"] = time.perf_counter() - start
     parts = [variants(name, render, box, width, height, spp, spectral)[0] for box in boxes]
     joined = {label: np.concatenate([part[label] for part in parts], axis=1) for label in parts[0]}
-    row.update(compare(joined, np.concatenate(references, axis=1)))
+    row.update(compare(joined, np.concatenate(references, axis=1), exposure))
     out["tiles"] = row
     for part in ("crop", "tiles"):
         r = out[part]
@@ -226,12 +256,77 @@ def measure(name, size, crop, spp=16, reference_spp=4096) -> dict:
             + ", ".join(f"{label} x{r[label + '_mse_ratio']:.2f}" for label in images if label != "noisy")
             + f"; FLIP noisy {r['noisy_flip']:.4f}, "
             + ", ".join(f"{label} x{r[label + '_flip_ratio']:.2f}" for label in images if label != "noisy")
+            + f"; FLIP as displayed noisy {r['noisy_flip_display']:.4f}, "
+            + ", ".join(f"{label} x{r[label + '_flip_display_ratio']:.2f}" for label in images if label != "noisy")
             + f"; flat bias denoised {r.get('denoised_flat_bias', float('nan')):+.4f} "
             f"(noisy {r.get('noisy_flat_bias', float('nan')):+.4f}); reference {r['reference_seconds']:.0f} s",
             flush=True,
         )
     out["goal_met"] = bool(out["crop"]["denoised_mse_ratio"] >= GOAL)
     out["tiles_goal_met"] = bool(out["tiles"]["denoised_mse_ratio"] >= GOAL)
+    return out
+
+
+def noise_law(sigma=0.025, reductions=(5, 25, 100, 400), seed=0) -> dict:
+    """What FLIP ratio a pure noise reduction buys (issue 19 section 4's two goals side by side).
+
+    A smooth image (the hot road at 160 x 80, 64 spp, denoised) plus Gaussian noise of relative
+    standard deviation `sigma` (16 spp 'direct' on the hot road's tiles: ~0.025) is the "noisy"
+    image; the same plus sigma / sqrt(k) noise the "denoised" one (relative MSE k times lower);
+    each against the smooth image itself and against a "reference" carrying 16/4096 of the noisy
+    image's variance (a 4096-spp reference's own noise; and 16/1024). Returns the FLIP ratios
+    (HDR and as displayed) per k, and the relative MSE ratio a 5x FLIP ratio takes (interpolated
+    in log-log against the noise-free reference)."""
+    import refracta
+    from refracta import examples, io
+
+    example = examples.hot_road(160, 80)
+    smooth = refracta.render(
+        example.scene,
+        example.camera,
+        example.field,
+        spp=64,
+        transport="direct",
+        max_length=example.max_length,
+        denoise=True,
+        progress=False,
+    )
+    smooth = np.ascontiguousarray(np.maximum(smooth, 0.0), dtype=np.float32)
+    exposure = io.exposure_of(smooth)
+    rng = np.random.default_rng(seed)
+
+    def noisy(s):
+        return np.ascontiguousarray(np.maximum(smooth * (1.0 + s * rng.standard_normal(smooth.shape)), 0.0), np.float32)
+
+    out: dict = {"sigma": sigma}
+    for reference_spp in (None, 4096, 1024):
+        reference = smooth if reference_spp is None else noisy(sigma * np.sqrt(16 / reference_spp))
+        base = noisy(sigma)
+        hdr0, shown0 = flip_mean(base, reference), flip_display(base, reference, exposure)
+        rows = {}
+        # A perfect denoiser (k infinite) only against a noisy reference: against its own it scores 0.
+        for k in (*reductions, *([] if reference_spp is None else [np.inf])):
+            image = smooth if k == np.inf else noisy(sigma / np.sqrt(k))
+            rows[str(k)] = dict(
+                flip_ratio=hdr0 / flip_mean(image, reference),
+                flip_display_ratio=shown0 / flip_display(image, reference, exposure),
+            )
+        key = "noise_free_reference" if reference_spp is None else f"reference_{reference_spp}_spp"
+        out[key] = rows
+        print(
+            f"{key}: relMSE ratio k -> FLIP ratio HDR / as displayed: "
+            + ", ".join(f"{k}: {r['flip_ratio']:.2f}x / {r['flip_display_ratio']:.2f}x" for k, r in rows.items()),
+            flush=True,
+        )
+    ks = np.array(reductions, float)
+    for metric in ("flip_ratio", "flip_display_ratio"):
+        ratios = np.array([out["noise_free_reference"][str(k)][metric] for k in reductions])
+        out[f"mse_ratio_for_5x_{metric}"] = float(np.exp(np.interp(np.log(GOAL), np.log(ratios), np.log(ks))))
+    print(
+        f"a 5x FLIP ratio takes a relative MSE ratio of {out['mse_ratio_for_5x_flip_ratio']:.0f}x (HDR), "
+        f"{out['mse_ratio_for_5x_flip_display_ratio']:.0f}x (as displayed) for a pure noise reduction",
+        flush=True,
+    )
     return out
 
 
@@ -260,6 +355,10 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--only", nargs="+", choices=sorted(SCENES), default=list(SCENES), help="these scenes only")
+    parser.add_argument("--noise-law", action="store_true", help="only the synthetic FLIP-vs-noise study (noise_law)")
     args = parser.parse_args()
+    if args.noise_law:
+        noise_law()
+        raise SystemExit(0)
     main(args.quick, tuple(args.only))
     print("(--quick: not written)" if args.quick else "-> results/denoise.json")
