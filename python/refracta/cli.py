@@ -213,22 +213,31 @@ GREEN_FLASH_SIZE = 512  # [px] each frame, square (issue 19: at least 512 px)
 # (no eye table), ~70 us of CPU a sample over the 1500 km paths; the denoiser and the chroma
 # filter (examples_chroma) remove the noise the single wavelengths leave.
 GREEN_FLASH_SPP = 1
+# The frames' exposure: their joint log-average luminance (the sky's) to 0.045, two stops below
+# middle grey. The last gleam's blue-violet light (430-490 nm: the sun's image there is lifted
+# most, so more of it clears the mirage's cut -- in the demo's third frame 1.9x as tall and 1.5x as
+# wide as the 520-550 nm image, around it on every side) is ~25x fainter than its green but 3-10x
+# the sky's luminance; exposed for the sky (key 0.18) the hue-kept curve showed it at full
+# saturation, a violet halo as wide as the gleam. Two stops down it is a thin dark-blue rim, the
+# sky a dark orange-brown, as in photographs of the green flash exposed for the sun.
+GREEN_FLASH_KEY = 0.045
 
 
 def green_flash_display(frames):
     """The display values of the green flash frames, one exposure for all: the frames span ~18
     stops (the disc ~3e5 times the sky beside it: ~38 air masses dim the sun, and the sky's
-    single-scattered aureole is dimmer still), more than a sensor's 12-14. They are exposed for
-    the sky (the joint log-average luminance to middle grey, refracta.io's automatic exposure) and
-    mapped by Reinhard's curve on the luminance with the hue kept (refracta.io tonemap='reinhard':
-    L / (1 + L), each channel clamped): the sky shows, and the disc, far beyond the curve's
-    shoulder, clips to its own hue -- orange, and the last gleam green -- not to white as a
-    per-channel curve (ACES) would send it."""
+    single-scattered aureole is dimmer still), more than a sensor's 12-14. They are exposed as a
+    photographer of the green flash does, below the sky's middle grey (the joint log-average
+    luminance to GREEN_FLASH_KEY, refracta.io's automatic exposure) and mapped by Reinhard's curve
+    on the luminance with the hue kept (refracta.io tonemap='reinhard': L / (1 + L), each channel
+    clamped): the sky shows dark, and the disc, far beyond the curve's shoulder, clips to its own
+    hue -- orange, and the last gleam green -- not to white as a per-channel curve (ACES) would
+    send it."""
     import numpy as np
 
     import refracta
 
-    joint = refracta.io.to_display(np.concatenate(frames, axis=1), tonemap="reinhard")
+    joint = refracta.io.to_display(np.concatenate(frames, axis=1), tonemap="reinhard", key=GREEN_FLASH_KEY)
     return np.split(joint, len(frames), axis=1)
 
 
@@ -245,17 +254,22 @@ def green_flash_frame(elevation: float, vfov: float, size: int = GREEN_FLASH_SIZ
     look = np.radians(GREEN_FLASH_LOOK[vfov])
     eye = example.camera.position
     camera = refracta.Camera(eye, eye + [np.cos(look), np.sin(look), 0.0], vfov=vfov, width=size, height=size)
-    # Spectral renders of the sun's edge leave the sRGB gamut (negative channels), which the
-    # denoiser refuses: clipped to the gamut's boundary first, as the display would. No
-    # auxiliary images: the frames are the sun and sky seen directly (an emitter has no albedo;
+    # No auxiliary images: the frames are the sun and sky seen directly (an emitter has no albedo;
     # with the sea's albedo and normal beside it OIDN left the disc mottled). OIDN gives the
-    # luminance; the colour, one wavelength a sample, is averaged over pixels of the same
-    # brightness (examples_chroma: what left the disc mottled after OIDN alone).
+    # luminance, denoising the samples' own luminance as a grey image: a sample's Y is >= 0 even
+    # where its single wavelength lies outside the sRGB gamut, and its colour noise is left out
+    # (fed the colour clipped to >= 0, OIDN left the sky's luminance varying by 5.7-6.7 % between
+    # neighbourhoods of the demo's second frame, rows 20-150, each row to its mean, and 7 % too
+    # bright; fed the grey luminance, 1.7 %). The colour, one wavelength a sample, is averaged over
+    # pixels of the same brightness (examples_chroma.chroma_filter: what left the disc mottled
+    # after OIDN alone), then brought into the gamut with its luminance kept (gamut_map).
     image = refracta.render(
         example.scene, camera, example.field, max_length=example.max_length, spectral=True, spp=spp, progress=False
     )
-    luminance = refracta.denoise(np.maximum(image, 0.0)) @ examples_chroma.LUMINANCE
-    return np.maximum(examples_chroma.chroma_filter(image, luminance), 0.0)
+    luminance = np.maximum(image.astype(np.float64) @ examples_chroma.LUMINANCE, 0.0)
+    grey = np.repeat(luminance[..., None], 3, axis=2).astype(np.float32)
+    denoised = refracta.denoise(grey) @ examples_chroma.LUMINANCE
+    return examples_chroma.gamut_map(examples_chroma.chroma_filter(image, denoised))
 
 
 def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_FLASH_SPP) -> None:

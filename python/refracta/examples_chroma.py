@@ -126,3 +126,26 @@ def chroma_filter(
     own = filtered @ LUMINANCE
     scale = np.where(own > 0, luminance / np.where(own > 0, own, 1.0), 0.0)
     return (filtered * scale[..., None]).astype(np.float32)
+
+
+def gamut_map(image: np.ndarray) -> np.ndarray:
+    """Linear sRGB (H, W, 3) brought inside the gamut's lower boundary (no negative channel) with
+    its luminance kept: each pixel with a negative channel is desaturated toward the grey of its
+    own luminance Y, c' = Y + t (c - Y), t the largest in [0, 1] leaving every channel >= 0
+    (t = Y / (Y - min c)); in-gamut pixels are unchanged, and pixels of Y <= 0 go to black.
+
+    Why: the green flash's spectral light lies outside the sRGB primaries' triangle -- the last
+    gleam's light at 520 nm is (-1.30, 1.79, -0.08) x Y in linear sRGB -- and clipping the negative
+    channels to 0, as the frames did, adds luminance (28 % at 520 nm) and moves the hue toward the
+    nearest primary; desaturating toward the same
+    luminance keeps the brightness the physics gives and the hue line (CIE's constant-luminance
+    gamut mapping; as a camera's processing maps the spectral colours it records into its output
+    space). Float32 out."""
+    image = np.asarray(image, dtype=np.float64)
+    if image.ndim != 3 or image.shape[2] != 3:
+        raise ValueError(f"gamut_map: image must be (H, W, 3) (got {image.shape})")
+    y = image @ LUMINANCE
+    lowest = image.min(axis=2)
+    t = np.where(lowest < 0.0, np.clip(y / np.maximum(y - lowest, 1e-300), 0.0, 1.0), 1.0)
+    mapped = y[..., None] + t[..., None] * (image - y[..., None])
+    return np.maximum(mapped, 0.0).astype(np.float32)  # the last max: rounding and Y <= 0 pixels
