@@ -117,8 +117,11 @@ class MitsubaLLVM:
     def __init__(self, size: int, spp: int):
         if "DRJIT_LIBLLVM_PATH" not in os.environ:
             found = [path for path in DEBIAN_LIBLLVM if os.path.exists(path)]
-            if found:
-                os.environ["DRJIT_LIBLLVM_PATH"] = found[0]
+            if not found:
+                # Dr.Jit would load whatever libLLVM it finds first: Debian 12's LLVM 15 aborts the
+                # process on this machine's AVX-512 kernels ("LLVM ERROR: Cannot select: fminimum").
+                raise RuntimeError("no LLVM 19 (apt-get install libllvm19, or set DRJIT_LIBLLVM_PATH)")
+            os.environ["DRJIT_LIBLLVM_PATH"] = found[0]
         import drjit as dr
         import mitsuba as mi
 
