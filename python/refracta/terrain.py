@@ -37,6 +37,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import stat
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, NamedTuple
@@ -45,7 +46,7 @@ import numpy as np
 
 from refracta import _core
 
-__all__ = ["Elevation", "TerrainGeometry", "add_terrain", "read_elevation"]
+__all__ = ["Elevation", "ElevationFileNotFoundError", "TerrainGeometry", "add_terrain", "read_elevation"]
 
 # SRTM's marker of a void sample (NASA SRTM Data Product Specification).
 _SRTM_VOID = -32768
@@ -103,9 +104,18 @@ class Elevation:
         return lat, lon
 
 
+class ElevationFileNotFoundError(_core.IoError, FileNotFoundError):
+    """An elevation file that does not exist: a refracta.IoError, as every loader's missing file,
+    and the built-in FileNotFoundError."""
+
+
 def _missing(path: str) -> None:
+    """Refuses a missing elevation file, and before opening anything that is not a regular file:
+    reading a FIFO (or a device) waits for a writer that may never come."""
     if not os.path.exists(path):
-        raise FileNotFoundError(f"add_terrain: no such elevation file: {path!r}")
+        raise ElevationFileNotFoundError(f"add_terrain: no such elevation file: {path!r}")
+    if not stat.S_ISREG(os.stat(path).st_mode):
+        raise _core.IoError(f"add_terrain: cannot read elevation file {path!r}: not a regular file")
 
 
 def _read_hgt(path: str) -> Elevation:
@@ -201,7 +211,8 @@ def _geokeys(directory) -> dict[int, Any]:
 def read_elevation(path: str | os.PathLike) -> Elevation:
     """Read an elevation file (an SRTM ``.hgt`` tile or a GeoTIFF) into an :class:`Elevation`.
 
-    FileNotFoundError for a missing file; ValueError for files that are not elevation data, have
+    refracta.IoError for a missing file (ElevationFileNotFoundError, also a FileNotFoundError) or
+    one that is not a regular file; ValueError for files that are not elevation data, have
     no georeference, or whose latitudes fall outside [-90, 90] deg."""
     path = os.fspath(path)
     _missing(path)
@@ -359,7 +370,8 @@ def add_terrain(
     water_level: a true height [m]: a water surface (``water``, default refracta.shading.Water)
     over the terrain's extent at that height.
     Returns a :class:`TerrainGeometry` (the geometry ids). Bad input raises ValueError naming the
-    argument; a missing file FileNotFoundError. Terrain is traced (refracta.render); render_raster
+    argument; a missing file refracta.IoError (ElevationFileNotFoundError, also a
+    FileNotFoundError), a FIFO or folder refracta.IoError. Terrain is traced (refracta.render); render_raster
     draws only triangle meshes and does not show it.
     """
     from refracta import shading

@@ -69,3 +69,23 @@ def test_an_image_header_claiming_more_than_memory_is_refused_before_allocating(
     path.write_bytes(b"PF\n1000000 1000000\n-1.0\n" + bytes(12))
     with pytest.raises(refracta.IoError, match=r"needs at least 12000000000000 bytes"):
         refracta.io.read_image(path)
+
+
+def test_elevation_files_refuse_fifos_and_name_missing_files_as_every_loader_does(tmp_path):
+    # Found trying the README's terrain as a new user: a FIFO named like a GeoTIFF blocked
+    # add_terrain forever (tifffile waited for a writer), a folder named like an SRTM tile was
+    # "not SRTM elevation data: 4096 bytes", and a missing tile raised a bare FileNotFoundError
+    # where every other loader raises refracta.IoError (README, "Errors").
+    from refracta import geo
+
+    frame = geo.LocalFrame(46.0, 7.0)
+    os.mkfifo(tmp_path / "N46E007.hgt")
+    os.mkfifo(tmp_path / "relief.tif")
+    (tmp_path / "folder").mkdir()
+    (tmp_path / "folder" / "N45E007.hgt").mkdir()
+    for path in (tmp_path / "N46E007.hgt", tmp_path / "relief.tif", tmp_path / "folder" / "N45E007.hgt"):
+        with pytest.raises(refracta.IoError, match="not a regular file"):
+            refracta.Scene().add_terrain(path, frame=frame)
+    with pytest.raises(refracta.IoError, match="no such elevation file") as error:
+        refracta.terrain.read_elevation(tmp_path / "N44E007.hgt")
+    assert isinstance(error.value, FileNotFoundError)  # the built-in a user would catch, kept
