@@ -107,22 +107,39 @@ std::pair<double, double> render_heights(const Scene& scene, const Vec3d& eye, c
   return {std::min(scene.lowest(), eye.y()) - 1.0, std::max(scene.highest(), eye.y()) + options.max_length};
 }
 
-IorFloors render_ior_floors(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options) {
-  const auto [lo, hi] = render_heights(scene, eye, options);
-  const double top = std::max(scene.highest(), eye.y());
-  // lowest_ior_sampled's samples (and its margin) among the objects, kept with their heights.
-  constexpr double kMargin = 1e-5;
-  auto profile = std::make_shared<IorFloors::Profile>();
-  const double ground = std::clamp(0.0, lo, top);
-  for (double h = lo; h <= top; h += std::max(1e-3, 1e-3 * std::abs(h - ground))) {
-    double n, dn;
+HeightSamples sample_heights(const IndexField& field, double lo, double hi, double ground) {
+  HeightSamples out;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto sample = [&](double h) {
+    double n = nan, dn = nan;
     try {
       field.evaluate_height(h, &n, &dn);
     } catch (const std::exception&) {
-      continue;
+      n = dn = nan;  // outside the modelled air
     }
+    out.heights.push_back(h);
+    out.n.push_back(n);
+    out.dn.push_back(dn);
+  };
+  for (double h = lo; h < hi; h += std::max(1e-3, 1e-3 * std::abs(h - ground))) sample(h);
+  sample(hi);
+  return out;
+}
+
+IorFloors render_ior_floors(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options) {
+  const auto [lo, hi] = render_heights(scene, eye, options);
+  const double top = std::max(scene.highest(), eye.y());
+  // One pass over every height a ray can reach (finest near the ground, h = 0, or the end of the
+  // range nearer it) feeds the floors among the objects and the gradient bound alike.
+  const HeightSamples samples = sample_heights(field, lo, hi, std::clamp(0.0, lo, hi));
+  // lowest_ior_sampled's margin; its samples among the objects (those up to the top), kept with
+  // their heights.
+  constexpr double kMargin = 1e-5;
+  auto profile = std::make_shared<IorFloors::Profile>();
+  for (size_t i = 0; i < samples.heights.size() && samples.heights[i] <= top; ++i) {
+    const double n = samples.n[i];
     if (!(n > 0.0) || !std::isfinite(n)) continue;
-    profile->heights.push_back(h);
+    profile->heights.push_back(samples.heights[i]);
     profile->below.push_back(n - kMargin);
   }
   const size_t count = profile->heights.size();
@@ -133,7 +150,7 @@ IorFloors render_ior_floors(const Scene& scene, const IndexField& field, const V
   floors.objects = count > 0 ? profile->below.back() : 0.0;  // nothing evaluable: no bound (lowest_ior_sampled's 0)
   floors.everywhere = std::min(floors.objects, lowest_ior_sampled(field, top, hi, kMargin));
   if (count >= 2) floors.profile = std::move(profile);  // else nothing to tell heights apart
-  floors.gradients = gradient_bound(field, lo, hi, std::clamp(0.0, lo, hi));
+  floors.gradients = gradient_bound(samples);
   return floors;
 }
 
@@ -422,13 +439,17 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   const Vec3d across = cos_e > 0.0 ? Vec3d(t.x() / cos_e, 0.0, t.z() / cos_e) : Vec3d::Zero();
   // Over a spherical Earth a ray that reaches the top of its air goes straight in the world frame
   // from there: its sky is seen along its direction at the top, whatever the rest of its length
-  // (one adaptive integral instead of Newton's several).
+  // (one adaptive integral instead of Newton's several). A path is at least as long as the height
+  // it climbs (sin e <= 1): where the top is farther above than the path has left to run (a
+  // shadow ray toward a 10 deg sun from 165 m has 86 km to climb and 41 km to go), the integral
+  // to the top would only find that, and is not made (the margin: the quadrature's own error).
   const double top = layered_->straight_above();
+  const bool top_reachable = top - x.y() <= remaining * (1.0 + 1e-6);
   // A ray that stands for a pixel (spread) may leave turned by sagitta_pixels of it: its run, to
   // that angle times the Earth's radius (over a flat Earth the run turns nothing: unused).
   const double run_tol = spherical ? options_.sagitta_pixels * spread * layered_->earth_radius() : 0.0;
   double n, sin_h, run, length;
-  if (spherical && std::isfinite(top) && top > x.y() && branch.at(top, kMinSine, &n, &dn, &sin_h) &&
+  if (spherical && std::isfinite(top) && top > x.y() && top_reachable && branch.at(top, kMinSine, &n, &dn, &sin_h) &&
       branch.integrate(x.y(), top, kMinSine, &run, &length, 1e-8, run_tol) && length <= remaining) {
     const double scale = cos_e > 0.0 ? std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h)) / cos_e : 0.0;
     return Escape{Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized(),
@@ -443,15 +464,22 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   // Over a spherical Earth (flat coordinates) the run sets the central angle that turns the exit
   // into the world frame: integrated to 1e-8 (0.01 m in 1000 km, 0.3 mas of angle).
   const double relative_tol = spherical ? 1e-8 : 0.0;
+  // Run and length to the first guess, then each Newton step's own stretch added to them: one
+  // 8-point panel over the step (metres, where the rates barely change: the sum is the whole
+  // integral to well under the tolerance above) instead of the whole range integrated again.
+  // The stretches tile every height the path climbs, so their nodes still check it all the way.
+  if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol, run_tol)) return std::nullopt;
   for (int it = 0; it < 6 && (!cannot_turn || std::abs(sin_h - sin_x) > 1e-2 * sin_x); ++it) {
-    if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol, run_tol)) return std::nullopt;
     const double step = (remaining - length) * sin_h;
+    double step_run, step_length;
+    if (!branch.integrate(h, h + step, kMinSine, &step_run, &step_length)) return std::nullopt;
+    const double sign = step < 0.0 ? -1.0 : 1.0;  // integrate's panels are unsigned
+    run += sign * step_run, length += sign * step_length;
     h += step;
     if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
     // A step that moves n by less than 1e-12 turns the exit direction by < 1e-10 rad.
     if (std::abs(step * dn) < 1e-12) break;
   }
-  if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol, run_tol)) return std::nullopt;
   const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
   return Escape{Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized(),
@@ -623,8 +651,21 @@ std::optional<Vec3d> Caster::meets_plane(const Vec3d& origin, const Vec3d& dir, 
     // The neighbours' meeting points a tenth as far from their paths as a camera ray may stray
     // (they are half a pixel apart: the footprint within ~10 %).
     const TurnedTablePath path(*table_, eye_, dir, 0.1 * exact_tol_);
-    RayNode<double> a = path.node(0);
-    for (size_t k = 0; k + 1 < path.plane.size() && a.s <= s_hi; ++k) {
+    // Segments that end before s_lo hold no crossing worth a look: the walk starts at the first
+    // that reaches it, found by bisection on the nodes' arc lengths (they grow with k) -- a sea
+    // pixel's neighbours met 10-30 km out skip some hundred nodes each.
+    size_t lo = 1, hi = path.plane.size();  // the least j >= 1 with s_j >= s_lo
+    while (lo < hi) {
+      const size_t mid = lo + (hi - lo) / 2;
+      if (path.node(mid).s < s_lo) {
+        lo = mid + 1;
+      } else {
+        hi = mid;
+      }
+    }
+    const size_t first = lo - 1;
+    RayNode<double> a = path.node(first);
+    for (size_t k = first; k + 1 < path.plane.size() && a.s <= s_hi; ++k) {
       const RayNode<double> b = path.node(k + 1);
       consider(a, b);
       a = b;

@@ -233,9 +233,15 @@ std::pair<double, double> render_heights(const Scene& scene, const Vec3d& eye, c
 // A height-only field's least n (lowest_ior_sampled) among the objects (render_heights' lower
 // end to the highest object or the eye) and over all of render_heights.
 IorFloors render_ior_floors(const Scene& scene, const IndexField& field, const Vec3d& eye, const RenderOptions& options);
-// A height-only field's gradient bound (IorFloors::Gradients) over heights [lo, hi] [m], sampled
-// as lowest_ior_sampled samples (ground = the height its spacing grows from).
-std::shared_ptr<const IorFloors::Gradients> gradient_bound(const IndexField& field, double lo, double hi,
-                                                           double ground);
+// A height-only field sampled over heights [lo, hi] [m] as lowest_ior_sampled samples (1e-3 of the
+// distance from `ground` apart, at least 1 mm), and at hi: one evaluation per height, from which
+// render_ior_floors reads both its floors and its gradient bound.
+struct HeightSamples {
+  std::vector<double> heights;  // ascending [m]
+  std::vector<double> n, dn;    // n and dn/dh there; NaN where the field cannot be evaluated
+};
+HeightSamples sample_heights(const IndexField& field, double lo, double hi, double ground);
+// A height-only field's gradient bound (IorFloors::Gradients) over the sampled heights.
+std::shared_ptr<const IorFloors::Gradients> gradient_bound(const HeightSamples& samples);
 
 }  // namespace refracta

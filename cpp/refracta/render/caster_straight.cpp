@@ -40,25 +40,18 @@ constexpr double kGradientMargin = 1.25;
 
 }  // namespace
 
-std::shared_ptr<const IorFloors::Gradients> gradient_bound(const IndexField& field, double lo, double hi,
-                                                           double ground) {
+std::shared_ptr<const IorFloors::Gradients> gradient_bound(const HeightSamples& samples) {
   auto out = std::make_shared<IorFloors::Gradients>();
+  out->heights = samples.heights;
   std::vector<double> n_at, slope;  // n and |dn/dh| / n at each height (inf: not evaluable)
   const double inf = std::numeric_limits<double>::infinity();
-  auto sample = [&](double h) {
-    double n, dn;
-    try {
-      field.evaluate_height(h, &n, &dn);
-    } catch (const std::exception&) {
-      n = dn = inf;  // outside the modelled air: no bound there
-    }
-    const bool usable = n > 0.0 && std::isfinite(n) && std::isfinite(dn);
-    out->heights.push_back(h);
+  for (size_t i = 0; i < samples.heights.size(); ++i) {
+    const double n = samples.n[i], dn = samples.dn[i];
+    const bool usable = n > 0.0 && std::isfinite(n) && std::isfinite(dn);  // outside the modelled air: no bound there
     n_at.push_back(usable ? n : inf);
     slope.push_back(usable ? std::abs(dn) / n : inf);
-  };
-  for (double h = lo; h < hi; h += std::max(1e-3, 1e-3 * std::abs(h - ground))) sample(h);
-  sample(hi);
+  }
+  if (out->heights.empty()) return nullptr;
   const size_t intervals = out->heights.size() - 1;
   if (intervals == 0) return nullptr;
   std::vector<double> level(intervals);
@@ -104,6 +97,13 @@ bool Caster::straight_rest(const Vec3d& x, const Vec3d& v, double s, double rema
   const double per_metre = options_.sagitta_pixels * spread;  // [m per m of path], and [rad]
   const double tolerance = std::max(options_.sagitta, per_metre * (s + length));
   const double h_end = x.y() + length * t.y();
+  // The slope where the path is bounds the bend from below: where even it strays too far, no
+  // look-up over the heights can make the line do (over a curved Earth the flat frame's
+  // n' = n e^(y/R) bends paths by about 1/R: 1.3e-7 / m above the cold sea's inversion, where a
+  // shadow ray with 40 km to go would stray 100 m against its 1.5 m).
+  double n0, dn0;
+  layered_->evaluate_height(x.y(), &n0, &dn0);
+  if (!(0.5 * std::abs(dn0) / n0 * length * length <= tolerance)) return false;
   const double bend =
       floors_->gradients->steepest(std::min(x.y(), h_end) - tolerance, std::max(x.y(), h_end) + tolerance);
   const double stray = 0.5 * bend * length * length;
@@ -117,8 +117,6 @@ bool Caster::straight_rest(const Vec3d& x, const Vec3d& v, double s, double rema
   // Bouguer's invariant: the direction at height h, the sign of the elevation kept.
   const double cos_e0 = std::hypot(t.x(), t.z());
   const Vec3d across = cos_e0 > 0.0 ? Vec3d(t.x() / cos_e0, 0.0, t.z() / cos_e0) : Vec3d(1.0, 0.0, 0.0);
-  double n0, dn0;
-  layered_->evaluate_height(x.y(), &n0, &dn0);
   auto direction_at = [&](double h) -> Vec3d {
     if (!keeps_sign) return t;
     double n, dn;
