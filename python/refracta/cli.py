@@ -425,6 +425,8 @@ def render_file(
     if size is not None:
         camera = camera.resized(*size)
     start = time.perf_counter()
+    display = dict(exposure=exposure, tonemap=tonemap, key=key, ev100=ev100, white_balance=white_balance)
+    refracta.io.settings(**display)  # a bad display option is refused before a long render, not after
     if aovs and Path(output).suffix.lower() != ".exr":
         raise ValueError(f"--aovs writes EXR layers: the output must be a .exr file (got {output})")
     if aovs and "geographic" in aovs and loaded.frame is None:
@@ -451,7 +453,6 @@ def render_file(
             image = image * refracta.io.exposure_of(image, exposure=exposure, ev100=ev100)
         refracta.io.write_layers(output, image, layers, suffixes=_LAYER_CHANNELS)
     else:
-        display = dict(exposure=exposure, tonemap=tonemap, key=key, ev100=ev100, white_balance=white_balance)
         refracta.io.write_image(output, result, **display)
     defaults = refracta.RenderOptions()
     method, transport = method or defaults.method, transport or defaults.transport

@@ -38,3 +38,25 @@ def test_user_errors_print_one_line_and_exit_non_zero(tmp_path, args, message, c
     assert "Traceback" not in result.stderr
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith(message), result.stderr
+
+
+@pytest.mark.parametrize(
+    "option, message",
+    [
+        (["--white-balance", "Daylight"], "white_balance must be 'auto', 'none', 'daylight'"),
+        (["--white-balance", "500"], "white_balance must be a colour temperature in [1000, 40000] K"),
+        (["--key", "nan"], "key must be > 0 and finite"),
+    ],
+)
+def test_a_bad_display_option_is_refused_before_rendering(tmp_path, option, message):
+    # Found as a new user: `refracta render scene.toml -o x.png --white-balance Daylight` rendered
+    # the whole scene (its progress bar on stderr), then refused the white balance and wrote nothing:
+    # minutes lost on a large render. The display settings are checked before the render starts.
+    result = refracta_cli(
+        "render", str(DATA / "hot_road.toml"), "-o", "x.png", "--size", "32x12", *option, cwd=tmp_path
+    )
+    assert result.returncode == 1
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("refracta: error: "), result.stderr  # no progress bar
+    assert message in lines[0]
+    assert not (tmp_path / "x.png").exists()
