@@ -165,7 +165,8 @@ struct EdgeRefinement {
 // heights; the apparent elevation and azimuth of the mean of the samples' directions at the eye.
 // `samples` (if given) receives the number of samples drawn: width x height x spp of the bounds
 // without adaptive sampling; with it, the whole image's width x height x spp (pilot included), and
-// for a part of the image its pixels' samples and the pilots of the blocks it touches.
+// for a part of the image its pixels' samples and the pilots of the blocks it touches; with edge
+// refinement the base pass over the bounds and the pixels around them plus edge_spp per refined pixel.
 enum class FilmLayout { kRadiance, kSurface, kReadouts };
 
 template <FilmLayout kLayout, class SampleRadiance>
