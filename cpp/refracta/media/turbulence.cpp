@@ -84,28 +84,33 @@ void TurbulenceGrid::evaluate(const Vec3d& p, double* value, Vec3d* grad) const 
       index[a][k] = int(i < n ? i : i - n);
     }
   }
-  double sum = 0.0, dx = 0.0, dy = 0.0, dz = 0.0;
+  // Sums over j (y) first, as 4-vectors over k (z), then over i (x), and the z weights last:
+  // every multiply-add on 4 lanes (Eigen's packets): 6-7 % faster than the scalar triple loop
+  // (85.6-86.4 -> 79.6-80.5 ns a call along grazing rays through a 256^3 grid, paired, loaded machine).
+  using Array4 = Eigen::Array4d;
+  const Array4 wz(w[2][0], w[2][1], w[2][2], w[2][3]), dwz(dw[2][0], dw[2][1], dw[2][2], dw[2][3]);
   const size_t stride_x = size_t(n_[1]) * n_[2];
+  const bool contiguous = index[2][3] == index[2][0] + 3;  // no wrap in z: the four are adjacent
+  Array4 v = Array4::Zero(), vx = Array4::Zero(), vy = Array4::Zero();
   for (int i = 0; i < 4; ++i) {
     const float* plane = c_.data() + index[0][i] * stride_x;
-    double sy = 0.0, sdy = 0.0, syz = 0.0;  // sums over j of the sums over k, weighted
+    Array4 s = Array4::Zero(), sy = Array4::Zero();  // sums over j of the rows, weighted and derived
     for (int j = 0; j < 4; ++j) {
       const float* row = plane + size_t(index[1][j]) * n_[2];
-      double s = 0.0, ds = 0.0;
-      for (int k = 0; k < 4; ++k) {
-        const double c = row[index[2][k]];
-        s += c * w[2][k];
-        ds += c * dw[2][k];
+      Array4 r;
+      if (contiguous) {
+        r = Eigen::Map<const Eigen::Array4f>(row + index[2][0]).cast<double>();
+      } else {
+        r = Array4(row[index[2][0]], row[index[2][1]], row[index[2][2]], row[index[2][3]]);
       }
-      sy += s * w[1][j];
-      sdy += s * dw[1][j];
-      syz += ds * w[1][j];
+      s += w[1][j] * r;
+      sy += dw[1][j] * r;
     }
-    sum += sy * w[0][i];
-    dx += sy * dw[0][i];
-    dy += sdy * w[0][i];
-    dz += syz * w[0][i];
+    v += w[0][i] * s;
+    vx += dw[0][i] * s;
+    vy += w[0][i] * sy;
   }
+  const double sum = (v * wz).sum(), dx = (vx * wz).sum(), dy = (vy * wz).sum(), dz = (v * dwz).sum();
   *value = sum;
   *grad = Vec3d(dx, dy, dz) / spacing_;
 }

@@ -259,12 +259,15 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
       eye_table(scene, camera, layered, options, escape, caster.ceiling(), control);
   if (table) caster.use_table(table.get(), camera.position(), camera.pixel_angle());
   caster.set_secondary_spread(camera.pixel_angle());  // shadow and bounce rays' tolerance (caster.h)
-  const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
   // Camera rays through turbulence as deviations from the calm rays (options.turbulence_trace).
   const std::unique_ptr<ShimmerCaster> shimmer =
       field ? ShimmerCaster::make(scene.geometry, *field, layered, table.get(), camera.position(), camera.pixel_angle(),
                                   floors, options)
             : nullptr;
+  const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
+  // 'perturbed': the lighting rays of samples whose camera ray was a small perturbation through
+  // the layer go through the calm air (shimmer_cast.h).
+  const std::unique_ptr<Integrator> calm_integrator = shimmer ? make_integrator(scene, shimmer->calm(), options) : nullptr;
   std::atomic<int64_t> chords{0}, invalid{0};
   // Dispersive air: a spectral render through a field that bends rays.
   const bool dispersive = options.spectral && caster.curved();
@@ -332,12 +335,14 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     const Integrator* shade_by = hero ? &hero->integrator() : integrator.get();
     // Turbulence's perturbed camera rays follow the calm air's table: not a dispersed one.
     const ShimmerCaster* shimmering = heroes ? nullptr : shimmer.get();
-    PathEnd first = shimmering     ? shimmering->cast(caster, origin, dir, camera.pixel_angle())
+    bool perturbed = false;
+    PathEnd first = shimmering     ? shimmering->cast(caster, origin, dir, camera.pixel_angle(), &perturbed)
                     : spectral_eye ? spectral_eye->cast(*cast_by, hero->scale(), origin, dir, camera.pixel_angle())
                                    : cast_by->cast(origin, dir, 0.0, camera.pixel_angle());
     with_footprint(shimmering ? shimmering->calm() : *cast_by, origin, pixel, lens, spacing, &first);
     record_camera_ray(origin, dir, first, aovs);
     chords.fetch_add(first.chords, std::memory_order_relaxed);
+    if (perturbed && calm_integrator) shade_by = calm_integrator.get();
     const Spectrum L = shade_by->li_after(origin, dir, first, pixel_angle, lambda, sampler, scratch, aovs);
     if (!L.isFinite().all()) invalid.fetch_add(1, std::memory_order_relaxed);
     return L;

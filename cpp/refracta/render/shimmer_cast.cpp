@@ -130,7 +130,9 @@ std::unique_ptr<ShimmerCaster> ShimmerCaster::make(const Scene& scene, const Ind
   return caster;
 }
 
-PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec3d& dir, double spread) const {
+PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec3d& dir, double spread,
+                            bool* perturbed) const {
+  if (perturbed) *perturbed = false;
   if (origin != eye_) return strict.cast(origin, dir, 0.0, spread);
   const EyePath path(*table_, eye_, dir);
   const size_t count = path.plane.size();
@@ -174,7 +176,7 @@ PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec
   } catch (const NumericalError&) {
     return strict.cast(origin, dir, 0.0, spread);
   }
-  return walk(strict, exact, through < options_.max_length, origin, dir, spread);
+  return walk(strict, exact, through < options_.max_length, origin, dir, spread, perturbed);
 }
 
 double ShimmerCaster::envelope_stretch(const RayNode<double>& a, const RayNode<double>& b) const {
@@ -188,7 +190,7 @@ double ShimmerCaster::envelope_stretch(const RayNode<double>& a, const RayNode<d
 }
 
 PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool truncated, const Vec3d& origin,
-                            const Vec3d& dir, double spread) const {
+                            const Vec3d& dir, double spread, bool* perturbed) const {
   const size_t count = path.size();
   auto dips = [&](const RayNode<double>& a, const RayNode<double>& b) {
     const double len = b.s - a.s;
@@ -203,6 +205,11 @@ PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool tru
     }
   }
   if (first == count) return calm_.cast(origin, dir, 0.0, spread);
+  // The ends of the perturbed walk (not the strict fallbacks) say so through `perturbed`.
+  auto walked = [perturbed](PathEnd e) {
+    if (perturbed) *perturbed = true;
+    return e;
+  };
 
   PathEnd end;
   end.direction = dir;
@@ -269,7 +276,7 @@ PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool tru
   // Before the layer: the calm path's nodes.
   for (size_t k = 0; k < first; ++k) {
     const RayNode<double>& b = path.node(k + 1);
-    if (add({b.x, b.v.normalized(), b.s})) return end;
+    if (add({b.x, b.v.normalized(), b.s})) return end;  // before the layer: not perturbed
     a = b;
   }
   RayDeviation deviation;
@@ -278,13 +285,13 @@ PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool tru
     for (size_t k = first; k + 1 < count; ++k) {
       if (k > first && path.lowest_from(k) > top_) {
         // Above the layer for good: the calm air from the deviated state.
-        if (run.size() >= 2 && test(run.size() - 1)) return end;
+        if (run.size() >= 2 && test(run.size() - 1)) return walked(end);
         const double remaining = options_.max_length - at.s;
         if (!(remaining > 0.0)) break;
         PathEnd rest = calm_.cast(at.x, at.t, remaining, spread);
         rest.length += at.s;
         rest.chords += end.chords;
-        return rest;
+        return walked(rest);
       }
       const RayNode<double>& b = path.node(k + 1);
       const PathSegment<double> segment(a, b);
@@ -309,7 +316,7 @@ PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool tru
           return strict.cast(origin, dir, 0.0, spread);
         }
         at = {to.x + deviation.dx, turned, a.s + u1 * len};
-        if (add(at)) return end;
+        if (add(at)) return walked(end);
         from = to;
       }
       a = b;
@@ -318,20 +325,20 @@ PathEnd ShimmerCaster::walk(const Caster& strict, const CalmPath& path, bool tru
     // The deviated ray left the calm air's modelled heights: the strict trace says what it sees.
     return strict.cast(origin, dir, 0.0, spread);
   }
-  if (run.size() >= 2 && test(run.size() - 1)) return end;
+  if (run.size() >= 2 && test(run.size() - 1)) return walked(end);
   if (truncated) {  // the exact calm path stopped short: the calm air from the deviated state
     const double remaining = options_.max_length - at.s;
     if (remaining > 0.0) {
       PathEnd rest = calm_.cast(at.x, at.t, remaining, spread);
       rest.length += at.s;
       rest.chords += end.chords;
-      return rest;
+      return walked(rest);
     }
   }
   end.direction = layered_->sky_direction(at.x, at.t);
   end.end_point = at.x;
   end.length = at.s;
-  return end;
+  return walked(end);
 }
 
 }  // namespace refracta
