@@ -64,6 +64,13 @@ def _select_lights(lights):
         if lights == "spots":
             return False, None
         raise ValueError(f"lights must be None, 'sun', 'spots' or a list of 'sun' and spot indices (got {lights!r})")
+    if isinstance(lights, _core.IndexField):
+        raise ValueError(
+            "lights must be None, 'sun', 'spots' or a list of 'sun' and spot indices (got an index field: "
+            "render_raster takes no atmosphere; render(..., method='raster_march') marches rays through one)"
+        )
+    if not isinstance(lights, (list, tuple, np.ndarray)):
+        raise ValueError(f"lights must be None, 'sun', 'spots' or a list of 'sun' and spot indices (got {lights!r})")
     use_sun, spots = False, []
     for light in lights:
         if light == "sun":

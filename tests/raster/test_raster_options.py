@@ -125,3 +125,18 @@ def test_the_one_keyword_rule_follows_dotted_paths():
             {"depth_range": "half"},
             {"depth_range": "shadow_map.moments.depth_range"},
         )
+
+
+@pytest.mark.parametrize(
+    "lights, message",
+    [
+        # Found as a new user: render_raster(scene, camera, field) as render(scene, camera, field)
+        # raised TypeError "'PhysicalAtmosphere' object is not iterable", naming neither argument.
+        (refracta.PhysicalAtmosphere(), r"lights must be None, 'sun', 'spots'.*render_raster takes no atmosphere"),
+        (3, r"lights must be None, 'sun', 'spots' or a list of 'sun' and spot indices \(got 3\)"),
+        (["sun", 1.5], "lights entries must be 'sun' or spot-light indices"),
+    ],
+)
+def test_bad_lights_name_the_argument(lights, message):
+    with pytest.raises(ValueError, match=message):
+        refracta.render_raster(lit_box(), CAMERA, lights)
