@@ -54,11 +54,49 @@ bool BouguerBranch::integrate(double ha, double hb, double min_sine, double* run
     *l = half * sum_length;
     return true;
   };
-  if (!panel(ha, hb, run, length)) return false;
-  if (!(relative_tol > 0.0)) return true;
-  // Adaptive: halve a panel until its halves agree with it; the tolerance is shared out by width.
+  if (!(relative_tol > 0.0)) return panel(ha, hb, run, length);
+  // The whole panel, its rates kept in path order (x from -1 to 1, as the ends ha, hb).
+  double rate_run[10], rate_length[10], at_h[10];
+  {
+    const double mid = 0.5 * (ha + hb), half = 0.5 * (hb - ha);
+    double sum_run = 0.0, sum_length = 0.0;
+    at_h[0] = ha, at_h[9] = hb;
+    for (int k = 0; k < 8; ++k) {
+      const int i = k < 4 ? 3 - k : k - 4;
+      at_h[k + 1] = mid + half * (k < 4 ? -kNodes[i] : kNodes[i]);
+    }
+    for (int k = 0; k < 10; ++k) {
+      double n, dn, sine;
+      if (!at(at_h[k], min_sine, &n, &dn, &sine)) return false;
+      rate_run[k] = (beta_ / n) / sine, rate_length[k] = 1.0 / sine;
+      if (k == 0 || k == 9) continue;
+      const int i = k <= 4 ? 4 - k : k - 5;
+      sum_run += kWeights[i] * rate_run[k];
+      sum_length += kWeights[i] * rate_length[k];
+    }
+    *run = std::abs(half) * sum_run;
+    *length = std::abs(half) * sum_length;
+  }
   const double total_run = std::max(*run, 1e-300), total_length = std::max(*length, 1e-300);
   const double width = std::abs(hb - ha);
+  // The whole panel is kept where the trapezoid rule over its nodes and both ends agrees with it
+  // to the tolerance (the trapezoid's error is second order: their difference bounds the panel's
+  // own error): a ray rising smoothly from the objects' tops (the cold sea's shadow rays, 165 m
+  // to 7 km: the run to well under the 239 m a quarter pixel allows) costs 10 evaluations
+  // instead of the whole panel's and its halves' 24. Elsewhere the halving below.
+  {
+    double trapezoid_run = 0.0, trapezoid_length = 0.0;
+    for (int k = 0; k < 9; ++k) {
+      const double gap = std::abs(at_h[k + 1] - at_h[k]);
+      trapezoid_run += 0.5 * gap * (rate_run[k] + rate_run[k + 1]);
+      trapezoid_length += 0.5 * gap * (rate_length[k] + rate_length[k + 1]);
+    }
+    if (std::abs(trapezoid_run - *run) <= std::max(relative_tol * total_run, absolute_tol) &&
+        std::abs(trapezoid_length - *length) <= std::max(relative_tol * total_length, absolute_tol)) {
+      return true;
+    }
+  }
+  // Adaptive: halve a panel until its halves agree with it; the tolerance is shared out by width.
   std::function<bool(double, double, double, double, int, double*, double*)> refine =
       [&](double a, double b, double whole_run, double whole_length, int depth, double* r, double* l) {
         const double m = 0.5 * (a + b);

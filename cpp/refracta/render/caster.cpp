@@ -651,24 +651,33 @@ std::optional<Vec3d> Caster::meets_plane(const Vec3d& origin, const Vec3d& dir, 
     // The neighbours' meeting points a tenth as far from their paths as a camera ray may stray
     // (they are half a pixel apart: the footprint within ~10 %).
     const TurnedTablePath path(*table_, eye_, dir, 0.1 * exact_tol_);
-    // Segments that end before s_lo hold no crossing worth a look: the walk starts at the first
-    // that reaches it, found by bisection on the nodes' arc lengths (they grow with k) -- a sea
-    // pixel's neighbours met 10-30 km out skip some hundred nodes each.
-    size_t lo = 1, hi = path.plane.size();  // the least j >= 1 with s_j >= s_lo
+    // The crossing nearest s_near: from the segment holding s_near (found by bisection on the
+    // nodes' arc lengths, which grow with k) outward both ways, each way until its segments lie
+    // farther from s_near than the best crossing found (walking every node from the eye cost
+    // the cold sea's sea pixels some hundred nodes per neighbour).
+    const size_t count = path.plane.size();
+    if (count < 2) return best;
+    size_t lo = 1, hi = count - 1;  // the least j >= 1 with s_j >= s_near, else the last node
     while (lo < hi) {
       const size_t mid = lo + (hi - lo) / 2;
-      if (path.node(mid).s < s_lo) {
+      if (path.node(mid).s < s_near) {
         lo = mid + 1;
       } else {
         hi = mid;
       }
     }
-    const size_t first = lo - 1;
-    RayNode<double> a = path.node(first);
-    for (size_t k = first; k + 1 < path.plane.size() && a.s <= s_hi; ++k) {
+    const RayNode<double> at_split = path.node(lo - 1);
+    RayNode<double> a = at_split;
+    for (size_t k = lo - 1; k + 1 < count && a.s <= s_hi && a.s - s_near < best_gap; ++k) {
       const RayNode<double> b = path.node(k + 1);
       consider(a, b);
       a = b;
+    }
+    RayNode<double> b = at_split;
+    for (size_t k = lo - 1; k > 0 && b.s >= s_lo && s_near - b.s < best_gap; --k) {
+      const RayNode<double> before = path.node(k - 1);
+      consider(before, b);
+      b = before;
     }
     return best;
   }
