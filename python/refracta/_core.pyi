@@ -2032,7 +2032,8 @@ class RenderOptions:
     def turbulence_trace(self) -> str:
         """
         camera rays through turbulence: 'strict' (the full field, rk45) or 'perturbed' (deviations from
-        each ray's calm path, traced exactly to tol, in steps of the turbulence's cells)
+        each ray's calm path, traced exactly to tol, in steps of the turbulence's cells; those samples'
+        shadow and bounce rays through the calm air)
         """
     @turbulence_trace.setter
     def turbulence_trace(self, arg1: str) -> None:

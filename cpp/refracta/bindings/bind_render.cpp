@@ -46,7 +46,8 @@ validate() reports every bad value at once.)doc");
                     "'rk45', 'stratified'");
   def_enum_property(options, "turbulence_trace", &O::turbulence_trace, &turbulence_trace_name, &parse_turbulence_trace,
                     "camera rays through turbulence: 'strict' (the full field, rk45) or 'perturbed' (deviations from\n"
-                    "each ray's calm path, traced exactly to tol, in steps of the turbulence's cells)");
+                    "each ray's calm path, traced exactly to tol, in steps of the turbulence's cells; those samples'\n"
+                    "shadow and bounce rays through the calm air)");
   def_enum_property(options, "march", &O::march, &trace_method_name, &parse_trace_method,
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)");
   options.def_readwrite("spp", &O::spp, "samples per pixel (correlated multi-jittered when > 1)")
