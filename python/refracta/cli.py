@@ -563,8 +563,8 @@ def _run(argv=None) -> int:
         type=_aov_list,
         default=None,
         help="per-pixel readouts written as EXR layers, comma-separated: distance, position, object_id, "
-        "apparent_elevation, apparent_azimuth, true_elevation, hidden_height, images, albedo, normal "
-        "(refracta.render's aovs)",
+        "apparent_elevation, apparent_azimuth, true_elevation, hidden_height, images, albedo, normal, "
+        "geographic (needs the file's [geographic] table) (refracta.render's aovs)",
     )
     edit_parser = commands.add_parser("edit", help="solve a scene's atmosphere for point pairs (JSON)")
     edit_parser.add_argument("scene", type=Path, help="scene file (.toml) with an [atmosphere] table")
