@@ -429,7 +429,7 @@ def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Pa
     _check_keys(table, ENVIRONMENT_KEYS[kind] | {"type"}, where, "environment", f"a {kind} environment")
 
     def positive(value):
-        value = float(value)
+        value = _real(value)
         if not (value >= 0.0 and value < float("inf")):
             raise ValueError(f"must be finite and >= 0 (got {value})")
         return value
@@ -442,7 +442,7 @@ def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Pa
             )
         elif kind == "map":
             file = get(table, "environment", "file", str, required=True)
-            scene.set_environment(str(path.parent / file), get(table, "environment", "rotation", float, None), scale)
+            scene.set_environment(str(path.parent / file), get(table, "environment", "rotation", _real, None), scale)
         elif kind == "gradient":
             horizon = get(table, "environment", "horizon", lambda v: _colour(v, "horizon"), required=True)
             scene.set_sky(
@@ -505,11 +505,11 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get)
             elif kind == "spot":
                 position = get(entry, "lights", "position", vector, required=True, index=index)
                 direction = get(entry, "lights", "direction", vector, required=True, index=index)
-                angle = get(entry, "lights", "angle", float, 60.0, index=index)
+                angle = get(entry, "lights", "angle", _real, 60.0, index=index)
                 intensity = get(
                     entry, "lights", "intensity", lambda v: _colour(v, "intensity"), required=True, index=index
                 )
-                inner = get(entry, "lights", "inner_angle", float, None, index=index)
+                inner = get(entry, "lights", "inner_angle", _real, None, index=index)
                 if inner is None:
                     scene.add_spot_light(position, direction, angle, intensity)
                 else:
@@ -520,8 +520,8 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get)
                 scene.set_sun(
                     get(entry, "lights", "direction", vector, required=True, index=index),
                     get(entry, "lights", "radiance", lambda v: _colour(v, "radiance"), required=True, index=index),
-                    get(entry, "lights", "angular_diameter", float, 0.53, index=index),
-                    get(entry, "lights", "limb_darkening", float, 0.0, index=index),
+                    get(entry, "lights", "angular_diameter", _real, 0.53, index=index),
+                    get(entry, "lights", "limb_darkening", _real, 0.0, index=index),
                 )
         except ValueError as error:
             if str(error).startswith(str(where.path)):
@@ -731,12 +731,12 @@ def load_scene(path) -> SceneFile:
     position = get(cam, "camera", "position", lambda v: _number_list(v, 3), required=True)
     look_at = get(cam, "camera", "look_at", lambda v: _number_list(v, 3), required=True)
     up = get(cam, "camera", "up", lambda v: _number_list(v, 3), [0.0, 1.0, 0.0])
-    lens = {key: get(cam, "camera", key, float) for key in ("f_number", "focus_distance") if key in cam}
+    lens = {key: get(cam, "camera", key, _real) for key in ("f_number", "focus_distance") if key in cam}
     if "sensor_mm" in cam:
         lens["sensor_mm"] = tuple(get(cam, "camera", "sensor_mm", lambda v: _number_list(v, 2)))
-    focal_length = get(cam, "camera", "focal_length_mm", float)
-    vfov = get(cam, "camera", "vfov", float, 45.0)
-    aperture = get(cam, "camera", "aperture_diameter", float)
+    focal_length = get(cam, "camera", "focal_length_mm", _real)
+    vfov = get(cam, "camera", "vfov", _real, 45.0)
+    aperture = get(cam, "camera", "aperture_diameter", _real)
     try:
         if focal_length is not None:
             camera = _core.Camera.photographic(
@@ -768,7 +768,7 @@ def load_scene(path) -> SceneFile:
             scene.set_sun(
                 get(sun, "sun", "direction", lambda v: _number_list(v, 3), required=True),
                 get(sun, "sun", "radiance", lambda v: _number_list(v, 3), required=True),
-                get(sun, "sun", "angular_diameter", float, 0.53),
+                get(sun, "sun", "angular_diameter", _real, 0.53),
             )
         except ValueError as error:
             raise where.error(str(error), "sun") from None
@@ -782,7 +782,7 @@ def load_scene(path) -> SceneFile:
                 horizon,
                 get(sky, "sky", "zenith", lambda v: _number_list(v, 3), horizon),
                 None if environment is None else str(path.parent / environment),
-                get(sky, "sky", "scale", float, 1.0),
+                get(sky, "sky", "scale", _real, 1.0),
             )
         except ValueError as error:
             raise where.error(str(error), "sky") from None
@@ -810,7 +810,7 @@ def load_scene(path) -> SceneFile:
         material = dict(
             kd=get(obj, "objects", "kd", lambda v: _number_list(v, 3), [0.5, 0.5, 0.5], index=index),
             ks=get(obj, "objects", "ks", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
-            ns=get(obj, "objects", "ns", float, 1.0, index=index),
+            ns=get(obj, "objects", "ns", _real, 1.0, index=index),
         )
         if "material" in obj:
             name = get(obj, "objects", "material", str, index=index)
@@ -830,18 +830,18 @@ def load_scene(path) -> SceneFile:
         try:
             if kind == "ground":
                 scene.add_ground(
-                    get(obj, "objects", "height", float, 0.0, index=index),
-                    get(obj, "objects", "size", float, 20000.0, index=index),
+                    get(obj, "objects", "height", _real, 0.0, index=index),
+                    get(obj, "objects", "size", _real, 20000.0, index=index),
                     **material,
                     texture=texture,
-                    texture_size=get(obj, "objects", "texture_size", float, 1.0, index=index),
+                    texture_size=get(obj, "objects", "texture_size", _real, 1.0, index=index),
                 )
             elif kind == "billboard":
                 image = get(obj, "objects", "texture", str, required=True, index=index)
                 scene.add_billboard(
                     get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
-                    get(obj, "objects", "width", float, required=True, index=index),
-                    get(obj, "objects", "height", float, required=True, index=index),
+                    get(obj, "objects", "width", _real, required=True, index=index),
+                    get(obj, "objects", "height", _real, required=True, index=index),
                     str(path.parent / image) if image else "",
                     get(obj, "objects", "facing", lambda v: _number_list(v, 3), [-1.0, 0.0, 0.0], index=index),
                     kd=material["kd"],
@@ -855,7 +855,7 @@ def load_scene(path) -> SceneFile:
             elif kind == "sphere":
                 scene.add_sphere(
                     get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
-                    get(obj, "objects", "radius", float, required=True, index=index),
+                    get(obj, "objects", "radius", _real, required=True, index=index),
                     **material,
                 )
             elif kind == "obj":
@@ -863,7 +863,7 @@ def load_scene(path) -> SceneFile:
                 scene.add_obj(
                     str(path.parent / file),
                     get(obj, "objects", "offset", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
-                    get(obj, "objects", "scale", float, 1.0, index=index),
+                    get(obj, "objects", "scale", _real, 1.0, index=index),
                 )
             else:
                 scene.add_mesh(

@@ -60,3 +60,26 @@ def test_whole_float_sizes_are_exact(tmp_path):
 def test_a_table_given_as_a_value_names_file_and_line(tmp_path):
     with pytest.raises(ValueError, match=r"scene.toml:1: \[camera\]: must be a table"):
         load(tmp_path, "camera = 5\n")
+
+
+SKY = '[environment]\ntype = "physical_sky"\nsun_direction = [-0.5, 0.6, 0.6]\n'
+
+
+@pytest.mark.parametrize(
+    "text, line, key",
+    [
+        # Found as a new user: `visibility = true` loaded as 1 km of visibility (float(True)), the
+        # string "20" as 20 km, `focal_length_mm = true` as a 1 mm lens: a TOML boolean or string
+        # where a number belongs is refused, naming file, line and key, as every other number is.
+        (CAMERA + SKY + "visibility = true\n", 7, r"\[environment\] visibility"),
+        (CAMERA + SKY + 'visibility = "20"\n', 7, r"\[environment\] visibility"),
+        (CAMERA + SKY + "aerosol = true\n", 7, r"\[environment\] aerosol"),
+        (CAMERA + SKY + "scale = false\n", 7, r"\[environment\] scale"),
+        (CAMERA + "focal_length_mm = true\n", 4, r"\[camera\] focal_length_mm"),
+        (CAMERA + 'vfov = "20"\n', 4, r"\[camera\] vfov"),
+        (CAMERA + "focal_length_mm = 50\nf_number = true\n", 5, r"\[camera\] f_number"),
+    ],
+)
+def test_a_boolean_or_string_for_a_number_is_refused(tmp_path, text, line, key):
+    with pytest.raises(ValueError, match=rf"scene.toml:{line}: {key}: must be a number"):
+        load(tmp_path, text)
