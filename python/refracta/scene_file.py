@@ -633,6 +633,12 @@ def _atmosphere(table: dict, where: _Locator, get):
             spot_keys[0],
         )
     _check_keys(atmosphere, allowed, where, "atmosphere", f"a {model}")
+    # The models' own converters would take a TOML boolean or string as a number (True as 1 K).
+    for key in atmosphere:
+        if key not in ("hot_spots", "turbulence", "heights", "temperatures"):
+            get(atmosphere, "atmosphere", key, _real)
+    if not isinstance(curved, bool):
+        get(table, "atmosphere", "curved_earth", _real)
     spots = _hot_spots(atmosphere.pop("hot_spots"), where, get) if "hot_spots" in atmosphere else []
     turbulence = _turbulence(atmosphere.pop("turbulence"), where, get) if "turbulence" in atmosphere else None
     extra = {}

@@ -78,6 +78,9 @@ SKY = '[environment]\ntype = "physical_sky"\nsun_direction = [-0.5, 0.6, 0.6]\n'
         (CAMERA + "focal_length_mm = true\n", 4, r"\[camera\] focal_length_mm"),
         (CAMERA + 'vfov = "20"\n', 4, r"\[camera\] vfov"),
         (CAMERA + "focal_length_mm = 50\nf_number = true\n", 5, r"\[camera\] f_number"),
+        (CAMERA + "[atmosphere]\nsurface_dt = true\n", 5, r"\[atmosphere\] surface_dt"),
+        (CAMERA + '[atmosphere]\nsurface_depth = "0.1"\n', 5, r"\[atmosphere\] surface_depth"),
+        (CAMERA + '[atmosphere]\ncurved_earth = "6371e3"\n', 5, r"\[atmosphere\] curved_earth"),
     ],
 )
 def test_a_boolean_or_string_for_a_number_is_refused(tmp_path, text, line, key):
