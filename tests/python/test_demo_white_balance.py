@@ -41,8 +41,9 @@ def test_the_render_command_takes_a_white_balance(tmp_path, capsys):
     image = io.read_image(exr)
     for balance, value in (("3200", 3200.0), ("shade", "shade"), ("1,0.7,0.4", (1.0, 0.7, 0.4))):
         assert cli.main(["render", str(scene_file), "-o", str(png), "--size", "24x8", "--white-balance", balance]) == 0
-        # The PNG holds the render's display with that balance (8-bit: within one level).
         expected = io.to_display(image, white_balance=value)
+        # The PNG holds the render's display with that balance: 8-bit, so within half a level of
+        # rounding (plus float32's own rounding of the display values).
         np.testing.assert_allclose(io.read_image(png), expected, atol=0.5 / 255 + 1e-6)
     # A bad one: one line naming white_balance, exit status 1 (cli.main's user errors).
     assert cli.main(["render", str(scene_file), "-o", str(png), "--size", "24x8", "--white-balance", "500"]) == 1
