@@ -220,7 +220,8 @@ def shimmer_render(width=160, height=60) -> dict:
 
 def shimmer_fast(timing=(160, 60), accuracy=(48, 18), frames=48, accuracy_spp=(1, 8)) -> dict:
     """Issue 21 goal 1: RenderOptions.turbulence_trace 'perturbed' (camera rays followed as
-    deviations from the exactly traced calm rays, render/shimmer_cast.h) on the hot road through
+    deviations from the exactly traced calm rays, their lighting rays through the calm air,
+    render/shimmer_cast.h) on the hot road through
     the default turbulence (depth 0.1 m). Timing: calm, perturbed (and the frames-long animation it
     implies) side by side at `timing`; accuracy: mean |perturbed - strict| over mean |strict - calm|
     at `accuracy` (the strict rk45 trace being the reference), per row as well, at each of
