@@ -112,6 +112,10 @@ def denoise(
         raise ValueError(f"denoise: clean_aux must be True or False (got {clean_aux!r})")
     if not isinstance(guided, (bool, np.bool_)):
         raise ValueError(f"denoise: guided must be True or False (got {guided!r})")
+    if guided and (aux_albedo is None or aux_normal is None or not clean_aux):
+        raise ValueError(
+            "denoise: guided=True regresses on the albedo and normal: give both, noise-free (clean_aux=True)"
+        )
     clean = np.asarray(
         pyoidn.denoise(
             color,

@@ -155,6 +155,12 @@ def test_guided_filter_keeps_an_image_linear_in_its_guides():
     np.testing.assert_allclose(_denoise._guided_filter(noisy, flat)[5, 7], np.mean(windows, axis=0), rtol=1e-9)
     with pytest.raises(ValueError, match="guided"):
         refracta.denoise(np.ones((8, 8, 3), np.float32), guided="yes")
+    # guided=True without the guides to regress on was silently Open Image Denoise alone.
+    flat_albedo = np.full((8, 8, 3), 0.5, np.float32)
+    with pytest.raises(ValueError, match="guided=True regresses on the albedo and normal"):
+        refracta.denoise(np.ones((8, 8, 3), np.float32), guided=True)
+    with pytest.raises(ValueError, match="guided=True regresses on the albedo and normal"):
+        refracta.denoise(np.ones((8, 8, 3), np.float32), flat_albedo, guided=True)
 
 
 def _posts(sun):
