@@ -897,7 +897,8 @@ class Scene:
             water_level: a true height [m]: a water surface (``water``, default refracta.shading.Water)
             over the terrain's extent at that height.
             Returns a :class:`TerrainGeometry` (the geometry ids). Bad input raises ValueError naming the
-            argument; a missing file FileNotFoundError. Terrain is traced (refracta.render); render_raster
+            argument; a missing file refracta.IoError (ElevationFileNotFoundError, also a
+            FileNotFoundError), a FIFO or folder refracta.IoError. Terrain is traced (refracta.render); render_raster
             draws only triangle meshes and does not show it.
             
         """
