@@ -39,6 +39,16 @@ def _camera(position, look_at, vfov, width, height):
     return _core.Camera(position, look_at, (0.0, 1.0, 0.0), vfov, width, height)
 
 
+def _finite(value, name: str, function: str) -> float:
+    """`value` as a float; ValueError naming `function`'s argument `name` unless it is a finite real
+    number (a bool or a string is not one: Python's float() would take True as 1 and '1' as 1.0)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ValueError(f"{function}: {name} must be a number (got {value!r})")
+    if not np.isfinite(value):
+        raise ValueError(f"{function}: {name} must be finite (got {value!r})")
+    return float(value)
+
+
 def sun_direction(elevation: float, azimuth: float) -> np.ndarray:
     """Unit vector toward the sun at `elevation` above the horizon and `azimuth` [deg] measured
     from +x (the examples' viewing direction) toward +z; y is up."""
@@ -483,6 +493,7 @@ def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.8
     (refracta.render(..., spectral=True)): each wavelength is bent by its own air, blue and green
     lifted most, so the last sliver of the flattened sun turns green; below it the mirage of the
     warm sea squeezes the disc into an 'Etruscan vase' and cuts it off above the horizon."""
+    sun_elevation = _finite(sun_elevation, "sun_elevation", "examples.green_flash")
     scene = _core.Scene()
     # Sky and sun of a sun on the horizon (the light that reaches the eye runs within ~0.1 deg of
     # the horizontal): the physical sky's Nishita sky, and its sun's spectrum through the air's

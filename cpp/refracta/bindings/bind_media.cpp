@@ -18,13 +18,18 @@ namespace refracta {
 
 namespace {
 
-// A keyword's value as a number (nullopt where it is not one: the library names it).
-std::optional<double> number_of(const py::handle& value) {
-  try {
-    return py::cast<double>(value);
-  } catch (const py::cast_error&) {
-    return std::nullopt;
+// A parameter's value as a number (nullopt where it is not one: the library names it). A bool is
+// not a number here although Python's float() takes it: surface_dt=True would be 1 K.
+ParamInput number_of(const py::handle& value) {
+  ParamInput input{std::nullopt, py::repr(value).cast<std::string>()};
+  if (py::isinstance<py::bool_>(value) || py::isinstance(value, py::module_::import("numpy").attr("bool_"))) {
+    return input;
   }
+  try {
+    input.number = py::cast<double>(value);
+  } catch (const py::cast_error&) {
+  }
+  return input;
 }
 
 NamedValues named_values(const py::kwargs& kwargs) {
@@ -70,9 +75,11 @@ template <class Field>
 std::shared_ptr<Field> model_from_python(const py::args& args, const py::kwargs& kwargs) {
   ModelArgs model;
   for (size_t i = 0; i < args.size(); ++i) {
-    const std::optional<double> value = number_of(args[i]);
-    if (!value) throw_invalid(Field::model_name(), ": positional parameter ", i + 1, " must be a number");
-    model.positional.push_back(*value);
+    const ParamInput value = number_of(args[i]);
+    if (!value.number) {
+      throw_invalid(Field::model_name(), ": positional parameter ", i + 1, " must be a number (got ", value.given, ")");
+    }
+    model.positional.push_back(*value.number);
   }
   constexpr bool spots = HasHotSpots<typename Field::Config>::value;  // else the library refuses them
   for (const auto& [key, value] : kwargs) {

@@ -27,9 +27,9 @@ DoubleArray numbers(const py::handle& object, const char* what, const char* mess
   }
 }
 
-}  // namespace
-
-DoubleArray real_array(const py::handle& object, const char* what) {
+// `object` as a numpy array of bool, integer or float dtype (not yet cast); ValueError naming
+// `what` otherwise (numpy's cast would turn '1.5' into 1.5 or fail naming nothing).
+py::array real_dtype_array(const py::handle& object, const char* what) {
   py::array raw;
   try {
     raw = py::array::ensure(object);
@@ -41,7 +41,13 @@ DoubleArray real_array(const py::handle& object, const char* what) {
   if (kind != 'b' && kind != 'i' && kind != 'u' && kind != 'f') {
     throw_invalid(what, " must hold real numbers (got dtype ", py::str(raw.dtype()).cast<std::string>(), ")");
   }
-  return py::cast<DoubleArray>(raw);
+  return raw;
+}
+
+}  // namespace
+
+DoubleArray real_array(const py::handle& object, const char* what) {
+  return py::cast<DoubleArray>(real_dtype_array(object, what));
 }
 
 std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single) {
@@ -187,7 +193,7 @@ Image to_image(const py::handle& object, const char* what) {
   using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
   FloatArray array;
   try {
-    array = py::cast<FloatArray>(object);
+    array = py::cast<FloatArray>(real_dtype_array(object, what));
   } catch (const py::cast_error&) {
     throw_invalid(what, " must be a float array of shape (H, W, C)");
   }

@@ -28,8 +28,8 @@ std::vector<double> param_values_from(const std::string& type, const std::vector
       throw_invalid(type, ": unknown parameter '", name, "' (parameters: ", names, ")");
     }
     if (given.count(name)) throw_invalid(type, ": parameter '", name, "' given twice");
-    if (!value) throw_invalid(type, ": ", name, " must be a number");
-    values[index] = *value;
+    if (!value.number) throw_invalid(type, ": ", name, " must be a number (got ", value.given, ")");
+    values[index] = *value.number;
   }
   return values;
 }
@@ -38,8 +38,8 @@ FieldPtr with_params(const IndexField& field, const NamedValues& named) {
   std::vector<double> values = field.param_values();
   for (const auto& [name, value] : named) {
     const size_t index = field.param_index(name);
-    if (!value) throw_invalid(field.type_name(), ": ", name, " must be a number");
-    values[index] = *value;
+    if (!value.number) throw_invalid(field.type_name(), ": ", name, " must be a number (got ", value.given, ")");
+    values[index] = *value.number;
   }
   return field.with_param_values(values);
 }

@@ -19,9 +19,15 @@
 
 namespace refracta {
 
-// Arguments by name, in the order given; nullopt: the caller's value was not a number (reported as
-// "<type>: <name> must be a number" once the name is known to be a parameter).
-using NamedValues = std::vector<std::pair<std::string, std::optional<double>>>;
+// A caller's value for a parameter: its number, or nullopt where it was not one (a string, a bool,
+// None...), with `given` its repr for the message "<type>: <name> must be a number (got <given>)",
+// raised once the name is known to be a parameter.
+struct ParamInput {
+  std::optional<double> number;
+  std::string given;
+};
+// Arguments by name, in the order given.
+using NamedValues = std::vector<std::pair<std::string, ParamInput>>;
 
 // The values of `specs` from their defaults, the first ones replaced by `positional` (in order), then
 // each named one. Throws std::invalid_argument (naming `type`) for too many positional values, an

@@ -45,6 +45,9 @@ Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const V
   if (focus_distance && !positive(*focus_distance)) {
     throw_invalid("Camera.photographic: focus_distance must be > 0 [m] and finite (got ", *focus_distance, ")");
   }
+  if (focus_distance && !f_number) {
+    throw_invalid("Camera.photographic: focus_distance needs f_number (a pinhole has no focus)");
+  }
   if (!positive(focal_length_mm)) {
     throw_invalid("Camera.photographic: focal_length_mm must be > 0 and finite (got ", focal_length_mm, ")");
   }

@@ -43,7 +43,8 @@ class Camera {
   // "auto" sensor fit): vfov = 2 atan(sensor_h' / 2f), sensor_h' = sensor_w H / W in the first
   // case. Throws std::invalid_argument for a focal length or sensor side <= 0 or not finite.
   // f_number N given: a thin lens of aperture diameter A = f / N focused at focus_distance [m]
-  // (unset: |look_at - position|). Throws for an f-number or focus distance <= 0 or not finite.
+  // (unset: |look_at - position|). Throws for an f-number or focus distance <= 0 or not finite, and
+  // for a focus distance without an f-number (a pinhole has no focus).
   static Camera photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,
                              double sensor_w_mm, double sensor_h_mm, int width, int height,
                              std::optional<double> f_number = std::nullopt,
