@@ -1061,7 +1061,8 @@ class Camera:
         Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm].
         Each pixel sample takes its own lens point; through a field those rays are traced from the lens
         (not served by the eye's table), which costs what table=False costs. Only the ray-traced methods
-        ('straight', 'curved') render it. f_number or focus_distance <= 0 or NaN: ValueError.
+        ('straight', 'curved') render it. f_number or focus_distance <= 0 or NaN, or focus_distance without
+        f_number (a pinhole has no focus): ValueError.
         """
     def __getstate__(self) -> tuple:
         ...
