@@ -103,12 +103,18 @@ class DefaultFloatingPointMode {
 #endif
 };
 
+// Whether a loop's count is the work's whole progress total (kSet), or the caller set a total
+// for several loops run one after the other (kKeep: the bar must not reach its end after the first).
+enum class ProgressTotal { kSet, kKeep };
+
 // Calls body(i) for i in [0, count) on the TBB pool, `grain` items per task at least. The body
 // runs under control.cancel and every flag in force on the calling thread: cancelling either
 // stops the loop (throws Cancelled) at the next item or the next poll_cancel() inside one.
+// Each finished item adds one to control.done.
 template <class Body>
-void parallel_for_each(int64_t count, int64_t grain, WorkControl& control, const Body& body) {
-  control.total = count;
+void parallel_for_each(int64_t count, int64_t grain, WorkControl& control, const Body& body,
+                       ProgressTotal total = ProgressTotal::kSet) {
+  if (total == ProgressTotal::kSet) control.total = count;
   const CancelScope* outer = CancelScope::innermost();  // the caller's chain, alive while we block
   tbb::parallel_for(tbb::blocked_range<int64_t>(0, count, grain),
                     [&](const tbb::blocked_range<int64_t>& range) {

@@ -113,39 +113,52 @@ struct PixelSums {
 // Edge refinement (RenderOptions::edge_spp): which pixels show an edge between surfaces. A pixel
 // of one or a few point samples cannot weigh the parts of an edge it holds (one sample at its
 // centre gives a staircase, four a comb along thin poles); a sensor's pixel integrates them. The
-// test compares each pixel's first-hit albedo and shading normal, averaged over its base samples
+// test compares the first-hit albedo and shading normal, averaged over each pixel's base samples
 // (SurfaceAovs: deterministic for a given hit, so Monte Carlo noise in the radiance -- a 1-spp
-// sea's glitter flags half the cold sea's pixels by radiance contrast -- does not trigger it),
-// with its 8 neighbours': an edge where they differ by more than
+// sea's glitter flags half the cold sea's pixels by radiance contrast -- does not trigger it), of
+// a pixel's 8 neighbours among themselves: an edge where two of them differ by more than
 //  - kAlbedoStep in any channel: a change of surface or texture a display shows (0.05 of a white
 //    surface's albedo; the demo scenes' poles 0.03 against sand ~0.4, the cold sea's hulls against
 //    the sea);
 //  - kNormalStep in |n_p - n_q| (2 sin(theta / 2): 0.25 is 14 deg): a fold or a corner, and a
 //    pixel that met a surface beside one that saw the sky (normal zero: |n| apart, 1 for a full
 //    pixel).
-// On the demo scenes this flags 6.8 % of the cold sea's pixels at 1 spp and 12.5 % of the hot
-// road's at 4 spp: the outlines of masts, booms, hulls, poles, wires, cars and road markings, both
-// pixels either side of each (the edge lies in one or the other).
+// Never the pixel's own samples: a pixel kept (not refined) keeps them, and a choice made from
+// them would bias it (a thin bar its samples happened to miss would leave it unrefined, its value
+// short of the bar's coverage, every time). Chosen from its neighbours alone, its samples are
+// independent of the choice and either way its value is unbiased. An edge flags the pixels either
+// side of it (each has neighbours on both sides) as comparing each pixel with its own neighbours
+// did; a feature inside one pixel's base samples flags its 8 neighbours, not itself.
 struct EdgeRefinement {
   static constexpr double kAlbedoStep = 0.05;
   static constexpr double kNormalStep = 0.25;
-  // Whether pixel (x, y) of `base` (its pixel (0, 0) is `area`'s (x0, y0); the albedo in channels
-  // `albedo` to albedo + 2, the normal in the next three) differs from a neighbour inside `area`.
+  // Whether the neighbours inside `area` of pixel (x, y) of `base` (its pixel (0, 0) is `area`'s
+  // (x0, y0); the albedo in channels `albedo` to albedo + 2, the normal in the next three) differ.
   static bool at_edge(const Image& base, const PixelBounds& area, int albedo, int x, int y) {
-    const float* p = base.at(x - area.x0, y - area.y0);
+    const float* neighbours[8];
+    int count = 0;
     for (int v = std::max(area.y0, y - 1); v <= std::min(area.y1 - 1, y + 1); ++v) {
       for (int u = std::max(area.x0, x - 1); u <= std::min(area.x1 - 1, x + 1); ++u) {
-        const float* q = base.at(u - area.x0, v - area.y0);
-        double normal_step = 0.0;
-        for (int c = 0; c < 3; ++c) {
-          if (std::abs(double(p[albedo + c]) - double(q[albedo + c])) > kAlbedoStep) return true;
-          const double d = double(p[albedo + 3 + c]) - double(q[albedo + 3 + c]);
-          normal_step += d * d;
-        }
-        if (normal_step > kNormalStep * kNormalStep) return true;
+        if (u != x || v != y) neighbours[count++] = base.at(u - area.x0, v - area.y0);
+      }
+    }
+    for (int i = 0; i < count; ++i) {
+      for (int j = i + 1; j < count; ++j) {
+        if (differ(neighbours[i], neighbours[j], albedo)) return true;
       }
     }
     return false;
+  }
+
+ private:
+  static bool differ(const float* p, const float* q, int albedo) {
+    double normal_step = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      if (std::abs(double(p[albedo + c]) - double(q[albedo + c])) > kAlbedoStep) return true;
+      const double d = double(p[albedo + 3 + c]) - double(q[albedo + 3 + c]);
+      normal_step += d * d;
+    }
+    return normal_step > kNormalStep * kNormalStep;
   }
 };
 
@@ -194,7 +207,9 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
     if (count < 1) return;
     ScratchBuffer& scratch = scratch_per_thread.local();
     Sampler sampler{Rng(options.seed, pass * pixels + uint64_t(y) * width + uint64_t(x))};
-    const bool centre = count == 1 && options.spp == 1;  // one sample (spp 1's base pass): the pixel's centre
+    // One sample of spp 1: the pixel's centre; jittered as a base pass for edge refinement, so a
+    // feature between the pixels' centres may still be met (and, met, flag its neighbours).
+    const bool centre = count == 1 && options.spp == 1 && !refine_edges;
     const detail::CmjPattern pattern(count, centre ? 0u : detail::draw_seed(sampler));
     // The lens point, drawn only by a thin lens (pinhole renders unchanged), from a pattern of its
     // own whose samples are paired with the pixel's through a shuffle (pbrt-v4's samplers: each
@@ -263,18 +278,21 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
     // The base pass over the bounds and the pixels around them (an edge pixel's test needs its
     // neighbours: a part of the image renders as in the whole), its value then the samples' mean
     // albedo and normal; then each pixel at an edge rendered again as one pattern of edge_spp
-    // samples from its second stream, replacing its base samples (they chose it: averaging them in
-    // would bias it, Kirk & Arvo 1991), and every other pixel as the base pass had it.
+    // samples from its second stream, replacing its base samples (one stratified pattern of
+    // edge_spp, not a base pattern and a second one), and every other pixel as the base pass had
+    // it. The choice never reads a pixel's own samples (EdgeRefinement): either way unbiased (Kirk
+    // & Arvo 1991: samples that chose their own pixel's treatment bias it).
     const PixelBounds area{std::max(0, bounds.x0 - 1), std::max(0, bounds.y0 - 1), std::min(camera.width(), bounds.x1 + 1),
                            std::min(camera.height(), bounds.y1 + 1)};
     using BaseValue = Eigen::Matrix<double, kChannels + 6, 1>;
+    control.total = tile_count(area, options.tile) + tile_count(bounds, options.tile);  // both passes
     const Image base = render_tiles(area, options.tile, control, [&](int x, int y) {
       Sums sums;
       add_samples(sums, x, y, options.spp, 0, true);
       BaseValue value;
       value << pixel_value(sums), sums.albedo / double(sums.count), sums.normal / double(sums.count);
       return value;
-    });
+    }, ProgressTotal::kKeep);
     std::atomic<int64_t> refined{0};
     Image image = render_tiles(bounds, options.tile, control, [&](int x, int y) {
       if (!detail::EdgeRefinement::at_edge(base, area, kChannels, x, y)) {
@@ -287,7 +305,7 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
       Sums sums;
       add_samples(sums, x, y, options.edge_spp, 1, kSurfaceAovs);
       return pixel_value(sums);
-    });
+    }, ProgressTotal::kKeep);
     if (samples) *samples = int64_t(area.width()) * area.height() * options.spp + refined.load() * options.edge_spp;
     return image;
   }
