@@ -46,8 +46,8 @@ the Bradford transform in XYZ, so a grey lit by it shows neutral, its luminance 
 
 - ``'none'`` (default): the render's own white (D65), images as they always were;
 - a colour temperature [K] in [1000, 40000]: Planck's radiator (the Planckian locus);
-- ``'daylight'`` (CIE D55, 5503 K), ``'cloudy'`` (D65, = 'none'), ``'shade'`` (D75),
-  ``'tungsten'`` (3200 K Planckian);
+- ``'daylight'`` (CIE D55, 5503 K), ``'cloudy'`` (D65 from the daylight locus at 6504 K: within
+  0.06 % of 'none'), ``'shade'`` (D75), ``'tungsten'`` (3200 K Planckian);
 - an RGB white (r, g, b) > 0, linear sRGB: e.g. the pixel of a grey card;
 - ``'auto'``: grey world (Buchsbaum 1980): the image's mean linear RGB is taken as the light.
 

@@ -111,7 +111,7 @@ std::optional<Vec3d> DirectLighting::launch_below_horizon(const SurfaceInteracti
   // steps from a guess, kept inside the bracket [lo, hi] the evaluations have narrowed (false
   // position, or bisection while the lower end met the sea); the light has set for si when the
   // bracket closes at the lowest launch that clears the scene with the exit still too high.
-  double lo = 0.0, hi = kHighestLaunch;
+  double lo = kLowestLaunch, hi = kHighestLaunch;
   double f_lo = -std::numeric_limits<double>::infinity(), f_hi = std::numeric_limits<double>::quiet_NaN();
   double e = std::clamp(target + kRefractionGuess, 0.05 * kHighestLaunch, 0.95 * kHighestLaunch);
   double previous_e = 0.0, previous_f = std::numeric_limits<double>::quiet_NaN();
@@ -119,7 +119,6 @@ std::optional<Vec3d> DirectLighting::launch_below_horizon(const SurfaceInteracti
   // (the exit rises with the launch) and the light has set for si -- one cast, where bisecting
   // the bracket down to kExitTolerance took ~10 (a sun 0.74 deg below the true horizon seen from
   // the sea: every sample). Otherwise it is the bracket's lower end.
-  lo = kLowestLaunch;
   if (const double f = exit_elevation(si, across, lo, to_world) - target; std::isfinite(f)) {
     if (f > kExitTolerance) return std::nullopt;
     if (f >= -kExitTolerance) {

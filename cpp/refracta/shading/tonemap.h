@@ -25,13 +25,13 @@
 // - a colour temperature [K] in [kMinWhiteBalanceKelvin, kMaxWhiteBalanceKelvin]: Planck's
 //   radiator at it (the Planckian locus, spectral::planckian_white);
 // - a preset as cameras name them: 'daylight' CIE D55 (5503 K on the CIE daylight locus, the
-//   photographic daylight standard), 'cloudy' D65 (6504 K, the render's own white: no change),
+//   photographic daylight standard), 'cloudy' D65 (6504 K on the daylight locus: within 0.06 % of the render's own white),
 //   'shade' D75 (7504 K), 'tungsten' a 3200 K Planckian radiator (studio tungsten lamps);
 // - an RGB white (linear sRGB, each > 0): the colour of the light, e.g. a grey card's pixel;
 // - 'auto': grey world (Buchsbaum 1980, "A spatial processor model for object colour
 //   perception", J. Franklin Inst. 310): the mean linear RGB of the image's pixels (negative and
 //   non-finite values skipped) is taken as the light's colour; a black image is left as it is;
-// - 'none' (the default): no balance, the render's own D65 white (as 'cloudy').
+// - 'none' (the default): no balance, the render's own D65 white (as 'cloudy', to 0.06 %).
 // The exposure meters the image before the balance (a camera's meter reads the raw light); the
 // balance keeps a white's luminance. Grey images (1-2 channels) are not balanced. Float files are
 // written unbalanced (io.write_image).
