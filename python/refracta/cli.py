@@ -47,9 +47,8 @@ def _count(minimum: int):
 # pixel, each image denoised (render(denoise=True): Open Image Denoise with the albedo and normal
 # of the first hit). Over the sea every camera path is a curved ray 20-40 km long (~60-140 us a
 # sample on the shared 2-core machine), so those take one sample and lean on the denoiser. The
-# whole demo takes 108-128 s of CPU (user time; the 512 px green flash frames about a third of
-# it): 127-254 s of wall time while other engineers' builds and tests kept the load average at 3-8
-# (it prints its time); an estimated 60-80 s on two free cores (not measured: the machine was shared).
+# whole demo takes 156 s of CPU (user time) and 84.6 s of wall time on two quiet cores (a fresh
+# clone, 4 December; it prints its time).
 # Edges between surfaces -- poles, wires, booms, hulls -- are rendered again with edge_spp samples
 # per pixel (RenderOptions.edge_spp: the pixels whose first hits' albedo or normal differ from a
 # neighbour's, 7-13 % of them): one sample at a pixel's centre draws them as staircases, and a few
