@@ -13,6 +13,7 @@
 #include "refracta/core/rng.h"
 #include "refracta/core/scratch.h"
 #include "refracta/core/spectrum.h"
+#include "refracta/core/wavelength_distribution.h"
 #include "refracta/render/adaptive_sampling.h"
 #include "refracta/render/integrator.h"
 #include "refracta/render/readouts.h"
@@ -180,12 +181,14 @@ struct EdgeRefinement {
 // without adaptive sampling; with it, the whole image's width x height x spp (pilot included), and
 // for a part of the image its pixels' samples and the pilots of the blocks it touches; with edge
 // refinement the base pass over the bounds and the pixels around them plus edge_spp per refined pixel.
+// A spectral render's samples draw their wavelengths from `wavelengths` (uniform by default).
 enum class FilmLayout { kRadiance, kSurface, kReadouts };
 
 template <FilmLayout kLayout, class SampleRadiance>
 Image render_film(const Camera& camera, const RenderOptions& options, WorkControl& control,
                   const SampleRadiance& radiance, int64_t* samples = nullptr,
-                  const ReadoutGeometry* geometry = nullptr) {
+                  const ReadoutGeometry* geometry = nullptr,
+                  const WavelengthDistribution& wavelengths = WavelengthDistribution()) {
   constexpr bool kSurfaceAovs = kLayout != FilmLayout::kRadiance;
   constexpr bool kReadouts = kLayout == FilmLayout::kReadouts;
   constexpr int kChannels = kReadouts ? kSurfaceChannels + kReadoutChannels : kSurfaceAovs ? kSurfaceChannels : 3;
@@ -230,8 +233,7 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
         const double jx = sampler.uniform();
         lens = lens_pattern.point(t, jx, sampler.uniform());
       }
-      SampledWavelengths lambda =
-          options.spectral ? SampledWavelengths::sample_uniform(sampler.uniform()) : SampledWavelengths::rgb();
+      SampledWavelengths lambda = options.spectral ? wavelengths.sample(sampler.uniform()) : SampledWavelengths::rgb();
       SurfaceAovs aovs;
       const Spectrum L = radiance(Vec2d(x + offset.x(), y + offset.y()), lens, spacing, pixel_angle, lambda, sampler,
                                   scratch, surface ? &aovs : nullptr);

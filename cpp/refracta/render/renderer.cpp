@@ -325,9 +325,6 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     const Camera::LensRay ray = camera.lens_ray(pixel.x(), pixel.y(), lens);
     const Vec3d& origin = ray.origin;
     const Vec3d& dir = ray.direction;
-    // The film drew the wavelengths uniformly (hero = min + u (max - min)); drawn again from the
-    // same u by the scene's density (hero_wavelengths), which the film's conversion then uses.
-    if (!wavelengths.uniform()) lambda = wavelengths.sample((lambda.hero() - kLambdaMin) / (kLambdaMax - kLambdaMin));
     if (heroes) lambda.terminate_secondary();
     const std::optional<HeroCasters::Lease> hero =
         heroes ? std::optional<HeroCasters::Lease>(std::in_place, heroes->for_wavelength(lambda.hero())) : std::nullopt;
@@ -351,11 +348,11 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   int64_t samples = 0;
   if (options.readouts) {
     const ReadoutGeometry geometry(camera.position(), exact_field.get(), options.max_length);
-    image = render_film<FilmLayout::kReadouts>(camera, options, control, sample, &samples, &geometry);
+    image = render_film<FilmLayout::kReadouts>(camera, options, control, sample, &samples, &geometry, wavelengths);
   } else if (options.surface_aovs) {
-    image = render_film<FilmLayout::kSurface>(camera, options, control, sample, &samples);
+    image = render_film<FilmLayout::kSurface>(camera, options, control, sample, &samples, nullptr, wavelengths);
   } else {
-    image = render_film<FilmLayout::kRadiance>(camera, options, control, sample, &samples);
+    image = render_film<FilmLayout::kRadiance>(camera, options, control, sample, &samples, nullptr, wavelengths);
   }
   // The denoiser's guides from a pass of their own (options.guide_spp): the first non-specular
   // surface of guide_spp samples a pixel, from the same casters (a spectral render's at the air's
