@@ -633,7 +633,8 @@ def _atmosphere(table: dict, where: _Locator, get):
             spot_keys[0],
         )
     _check_keys(atmosphere, allowed, where, "atmosphere", f"a {model}")
-    # The models' own converters would take a TOML boolean or string as a number (True as 1 K).
+    # A TOML boolean or string where a number belongs: the models refuse it too, but only this check
+    # can name the file, line and key.
     for key in atmosphere:
         if key not in ("hot_spots", "turbulence", "heights", "temperatures"):
             get(atmosphere, "atmosphere", key, _real)

@@ -87,20 +87,26 @@ def test_adaptive_sampling_leaves_a_flat_region_unbiased():
     assert abs(adaptive.mean() - uniform.mean()) < 4.0 * error  # 4 sigma: fails by chance 6e-5 of the time
 
 
-def test_adaptive_renders_do_not_depend_on_threads_tiles_or_pixel_bounds():
-    scene, camera = poles()
-    options = dict(spp=12, adaptive=True, aovs=["albedo", "normal"])
-    whole, aovs = render(scene, camera, **options)
+def assert_independent_of_threads_tiles_and_bounds(scene, camera, **options):
+    """Render with AOVs on two threads, on one, as a part (pixel_bounds) and in other tiles: the same
+    image bit for bit (and the same normals on one thread). Returns the whole image."""
+    whole, aovs = render(scene, camera, aovs=["albedo", "normal"], **options)
     refracta.set_threads(1)
     try:
-        one, one_aovs = render(scene, camera, **options)
+        one, one_aovs = render(scene, camera, aovs=["albedo", "normal"], **options)
     finally:
         refracta.set_threads(None)
     assert np.array_equal(whole, one) and np.array_equal(aovs["normal"], one_aovs["normal"])
-    part, _ = render(scene, camera, pixel_bounds=(5, 3, 40, 19), **options)
+    part, _ = render(scene, camera, pixel_bounds=(5, 3, 40, 19), aovs=["albedo", "normal"], **options)
     assert np.array_equal(part, whole[3:19, 5:40])
-    tiled, _ = render(scene, camera, tiles=(3, 2), **options)
+    tiled, _ = render(scene, camera, tiles=(3, 2), aovs=["albedo", "normal"], **options)
     assert np.array_equal(tiled, whole)
+    return whole
+
+
+def test_adaptive_renders_do_not_depend_on_threads_tiles_or_pixel_bounds():
+    scene, camera = poles()
+    whole = assert_independent_of_threads_tiles_and_bounds(scene, camera, spp=12, adaptive=True)
     assert not np.array_equal(whole, render(scene, camera, spp=12, aovs=["albedo", "normal"])[0])
 
 
@@ -204,18 +210,7 @@ def test_edge_refinement_keeps_every_other_pixel_as_the_base_pass_had_it():
 
 def test_edge_refined_renders_do_not_depend_on_threads_tiles_or_pixel_bounds():
     scene, camera = poles()
-    options = dict(spp=1, edge_spp=16, aovs=["albedo", "normal"])
-    whole, aovs = render(scene, camera, **options)
-    refracta.set_threads(1)
-    try:
-        one, one_aovs = render(scene, camera, **options)
-    finally:
-        refracta.set_threads(None)
-    assert np.array_equal(whole, one) and np.array_equal(aovs["normal"], one_aovs["normal"])
-    part, _ = render(scene, camera, pixel_bounds=(5, 3, 40, 19), **options)
-    assert np.array_equal(part, whole[3:19, 5:40])
-    tiled, _ = render(scene, camera, tiles=(3, 2), **options)
-    assert np.array_equal(tiled, whole)
+    whole = assert_independent_of_threads_tiles_and_bounds(scene, camera, spp=1, edge_spp=16)
     radiance_only = render(scene, camera, spp=1, edge_spp=16)  # the same pixels refined without AOVs
     assert np.array_equal(radiance_only, whole)
 
