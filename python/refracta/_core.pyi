@@ -1274,7 +1274,7 @@ class OceanWaves:
     phillips_a: typing.ClassVar[float] = 0.0017546832475881459
     def __getstate__(self) -> tuple[float, tuple[float, float], float, int, int, float]:
         ...
-    def __init__(self, wind_speed: typing.SupportsFloat | typing.SupportsIndex = 5.0, wind_direction: typing.Any = (1.0, 0.0), patch_size: typing.SupportsFloat | typing.SupportsIndex = 100.0, resolution: typing.SupportsInt | typing.SupportsIndex = 256, seed: typing.SupportsInt | typing.SupportsIndex = 0, time: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def __init__(self, wind_speed: typing.Any = 5.0, temperature_c: typing.Any = 20.0, salinity: typing.Any = 35.0, body: bool = True, priority: typing.SupportsInt | typing.SupportsIndex = 0, resolved_slope_variance: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -2771,7 +2771,7 @@ class Water(Material):
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, wind_speed: typing.SupportsFloat | typing.SupportsIndex = 5.0, temperature_c: typing.SupportsFloat | typing.SupportsIndex = 20.0, salinity: typing.SupportsFloat | typing.SupportsIndex = 35.0, body: bool = True, priority: typing.SupportsInt | typing.SupportsIndex = 0, resolved_slope_variance: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def __init__(self, wind_speed: typing.Any = 5.0, temperature_c: typing.Any = 20.0, salinity: typing.Any = 35.0, body: bool = True, priority: typing.SupportsInt | typing.SupportsIndex = 0, resolved_slope_variance: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -3405,7 +3405,7 @@ def bessel_j1(x: typing.Any) -> numpy.ndarray:
     """
     The Bessel function J1 (std::cyl_bessel_j), element by element.
     """
-def cox_munk_mean_square_slope(wind_speed: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+def cox_munk_mean_square_slope(wind_speed: typing.Any) -> typing.Any:
     """
     Total mean-square slope of a clean sea surface, 0.003 + 5.12e-3 U (Cox & Munk 1954), wind_speed U
     [m/s] 12.5 m above the sea in [0, 30]. The Water material's Beckmann alpha^2. Vectorised.
@@ -3421,11 +3421,11 @@ def field_reference_wavelength(field: IndexField) -> float:
     The wavelength [nm] a field's n stands for: its `wavelength` parameter (PhysicalAtmosphere,
     TemperatureProfile, CurvedEarth over them), else 550.
     """
-def fresnel_conductor(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+def fresnel_conductor(cos_i: typing.Any, eta: typing.Any, k: typing.Any) -> typing.Any:
     """
     Unpolarised Fresnel reflectance of a conductor of relative complex index eta + i k at ``|cos_i|`` (exact). Vectorised.
     """
-def fresnel_dielectric(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+def fresnel_dielectric(cos_i: typing.Any, eta: typing.Any) -> typing.Any:
     """
     Unpolarised Fresnel reflectance of a dielectric interface, eta = eta_t / eta_i on the side cos_i > 0
     (cos_i < 0: from inside, 1 / eta). Total internal reflection gives 1. Vectorised.
@@ -3448,7 +3448,7 @@ def synthesise_turbulence(settings: TurbulenceSettings, progress: typing.Any = N
     """
     The spline coefficients of the pattern for C_n^2 = 1 (a TurbulenceGrid); GIL released, Ctrl-C stops it.
     """
-def thin_film_reflectance(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], eta: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], *, thickness: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], wavelength: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+def thin_film_reflectance(cos_i: typing.Any, n1: typing.Any, n2: typing.Any, eta: typing.Any, k: typing.Any, *, thickness: typing.Any, wavelength: typing.Any) -> typing.Any:
     """
     Airy reflectance of a film (index n2, thickness [nm]) between n1 and a base eta + i k at a wavelength [nm]. Vectorised.
     """
@@ -3475,27 +3475,27 @@ def von_karman_spectrum(kappa: typing.Any, cn2: typing.SupportsFloat | typing.Su
     kappa_m = 5.92 / l0 (Andrews & Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale
     l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at kappa = 0).
     """
-def water_absorption(wavelength_nm: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+def water_absorption(wavelength_nm: typing.Any) -> typing.Any:
     """
     Absorption coefficient of pure water [1/m] at wavelength_nm in [360, 830]: Pope & Fry 1997 (380-725 nm),
     Smith & Baker 1981 below, Kou et al. 1993 above; linear between 5 nm nodes. Vectorised.
     """
-def water_backscattering(wavelength_nm: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], salinity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 0.0) -> typing.Any:
+def water_backscattering(wavelength_nm: typing.Any, salinity: typing.Any = 0.0) -> typing.Any:
     """
     Backscattering coefficient of pure (sea) water [1/m]: half of Morel 1974's molecular scattering
     0.00222 (1 + 0.3 S / 37) (lambda / 500)^-4.32, salinity S [g/kg] in [0, 40]. Vectorised.
     """
-def water_body_reflectance(wavelength_nm: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], salinity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 0.0) -> typing.Any:
+def water_body_reflectance(wavelength_nm: typing.Any, salinity: typing.Any = 0.0) -> typing.Any:
     """
     Irradiance reflectance just beneath the surface of deep pure (sea) water, R = 0.33 b_b / (a + b_b)
     (Morel & Prieur 1977; Gordon et al. 1975), from water_absorption and water_backscattering. Vectorised.
     """
-def water_density(temperature_c: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+def water_density(temperature_c: typing.Any) -> typing.Any:
     """
     Density of air-free pure water at 101 325 Pa [kg/m^3] (Tanaka et al. 2001), temperature_c in
     [0, 40] deg C. Vectorised.
     """
-def water_ior(wavelength_nm: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], temperature_c: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 20.0, salinity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 0.0) -> typing.Any:
+def water_ior(wavelength_nm: typing.Any, temperature_c: typing.Any = 20.0, salinity: typing.Any = 0.0) -> typing.Any:
     """
     Refractive index of water relative to vacuum: pure water by IAPWS R9-97 at the density of
     Tanaka et al. 2001 (atmospheric pressure), plus Quan & Fry 1995's salinity terms. wavelength_nm

@@ -18,23 +18,13 @@ namespace refracta {
 
 namespace {
 
-// A parameter's value as a number (nullopt where it is not one: the library names it). A bool is
-// not a number here although Python's float() takes it: surface_dt=True would be 1 K.
-ParamInput number_of(const py::handle& value) {
-  ParamInput input{std::nullopt, py::repr(value).cast<std::string>()};
-  if (py::isinstance<py::bool_>(value) || py::isinstance(value, py::module_::import("numpy").attr("bool_"))) {
-    return input;
-  }
-  try {
-    input.number = py::cast<double>(value);
-  } catch (const py::cast_error&) {
-  }
-  return input;
-}
+// A parameter's value as a number (convert.h's number_of; nullopt where it is not one: the library
+// names it).
+ParamInput param_input(const py::handle& value) { return {number_of(value), py::repr(value).cast<std::string>()}; }
 
 NamedValues named_values(const py::kwargs& kwargs) {
   NamedValues out;
-  for (const auto& [key, value] : kwargs) out.emplace_back(py::cast<std::string>(key), number_of(value));
+  for (const auto& [key, value] : kwargs) out.emplace_back(py::cast<std::string>(key), param_input(value));
   return out;
 }
 
@@ -75,7 +65,7 @@ template <class Field>
 std::shared_ptr<Field> model_from_python(const py::args& args, const py::kwargs& kwargs) {
   ModelArgs model;
   for (size_t i = 0; i < args.size(); ++i) {
-    const ParamInput value = number_of(args[i]);
+    const ParamInput value = param_input(args[i]);
     if (!value.number) {
       throw_invalid(Field::model_name(), ": positional parameter ", i + 1, " must be a number (got ", value.given, ")");
     }
@@ -90,7 +80,7 @@ std::shared_ptr<Field> model_from_python(const py::args& args, const py::kwargs&
       const auto object = py::reinterpret_borrow<py::object>(value);
       model.turbulence = spots ? turbulence_from_python(Field::model_name(), object) : nullptr;
     } else {
-      model.named.emplace_back(name, number_of(value));
+      model.named.emplace_back(name, param_input(value));
     }
   }
   auto field = make_model<Field>(model);  // first: too many or bad parameters raise ValueError

@@ -16,14 +16,15 @@ namespace {
 
 void bind_fresnel(py::module_& m) {
   // Fresnel and thin films, vectorised over numpy arrays.
-  m.def("fresnel_dielectric", py::vectorize(&checked_fresnel_dielectric), py::arg("cos_i"), py::arg("eta"),
+  m.def("fresnel_dielectric", vectorize_real(&checked_fresnel_dielectric, {"cos_i", "eta"}), py::arg("cos_i"), py::arg("eta"),
         "Unpolarised Fresnel reflectance of a dielectric interface, eta = eta_t / eta_i on the side cos_i > 0\n"
         "(cos_i < 0: from inside, 1 / eta). Total internal reflection gives 1. Vectorised.");
-  m.def("fresnel_conductor", py::vectorize(&checked_fresnel_conductor), py::arg("cos_i"), py::arg("eta"), py::arg("k"),
+  m.def("fresnel_conductor", vectorize_real(&checked_fresnel_conductor, {"cos_i", "eta", "k"}), py::arg("cos_i"), py::arg("eta"), py::arg("k"),
         "Unpolarised Fresnel reflectance of a conductor of relative complex index eta + i k at ``|cos_i|`` (exact). Vectorised.");
   m.def("fresnel_diffuse_reflectance", &checked_fresnel_diffuse_reflectance, py::arg("eta"),
         "Hemispherical reflectance 2 int F(mu) mu dmu of a dielectric seen from the side where eta = eta_t / eta_i.");
-  m.def("thin_film_reflectance", py::vectorize(&checked_thin_film_reflectance), py::arg("cos_i"), py::arg("n1"),
+  m.def("thin_film_reflectance", vectorize_real(&checked_thin_film_reflectance,
+                                       {"cos_i", "n1", "n2", "eta", "k", "thickness", "wavelength"}), py::arg("cos_i"), py::arg("n1"),
         py::arg("n2"), py::arg("eta"), py::arg("k"), py::kw_only(), py::arg("thickness"), py::arg("wavelength"),
         "Airy reflectance of a film (index n2, thickness [nm]) between n1 and a base eta + i k at a wavelength [nm]. Vectorised.");
 }

@@ -12,26 +12,26 @@ namespace refracta {
 namespace {
 
 void bind_water(py::module_& m) {
-  m.def("water_ior", py::vectorize(&water_ior), py::arg("wavelength_nm"), py::arg("temperature_c") = 20.0,
+  m.def("water_ior", vectorize_real(&water_ior, {"wavelength_nm", "temperature_c", "salinity"}), py::arg("wavelength_nm"), py::arg("temperature_c") = 20.0,
         py::arg("salinity") = 0.0,
         "Refractive index of water relative to vacuum: pure water by IAPWS R9-97 at the density of\n"
         "Tanaka et al. 2001 (atmospheric pressure), plus Quan & Fry 1995's salinity terms. wavelength_nm\n"
         "in [200, 1100], temperature_c in [0, 40] deg C, salinity [g/kg] in [0, 40]. Vectorised.");
-  m.def("water_density", py::vectorize(&water_density), py::arg("temperature_c"),
+  m.def("water_density", vectorize_real(&water_density, {"temperature_c"}), py::arg("temperature_c"),
         "Density of air-free pure water at 101 325 Pa [kg/m^3] (Tanaka et al. 2001), temperature_c in\n"
         "[0, 40] deg C. Vectorised.");
-  m.def("water_absorption", py::vectorize(&water_absorption), py::arg("wavelength_nm"),
+  m.def("water_absorption", vectorize_real(&water_absorption, {"wavelength_nm"}), py::arg("wavelength_nm"),
         "Absorption coefficient of pure water [1/m] at wavelength_nm in [360, 830]: Pope & Fry 1997 (380-725 nm),\n"
         "Smith & Baker 1981 below, Kou et al. 1993 above; linear between 5 nm nodes. Vectorised.");
-  m.def("water_backscattering", py::vectorize(&water_backscattering), py::arg("wavelength_nm"),
+  m.def("water_backscattering", vectorize_real(&water_backscattering, {"wavelength_nm", "salinity"}), py::arg("wavelength_nm"),
         py::arg("salinity") = 0.0,
         "Backscattering coefficient of pure (sea) water [1/m]: half of Morel 1974's molecular scattering\n"
         "0.00222 (1 + 0.3 S / 37) (lambda / 500)^-4.32, salinity S [g/kg] in [0, 40]. Vectorised.");
-  m.def("water_body_reflectance", py::vectorize(&water_body_reflectance), py::arg("wavelength_nm"),
+  m.def("water_body_reflectance", vectorize_real(&water_body_reflectance, {"wavelength_nm", "salinity"}), py::arg("wavelength_nm"),
         py::arg("salinity") = 0.0,
         "Irradiance reflectance just beneath the surface of deep pure (sea) water, R = 0.33 b_b / (a + b_b)\n"
         "(Morel & Prieur 1977; Gordon et al. 1975), from water_absorption and water_backscattering. Vectorised.");
-  m.def("cox_munk_mean_square_slope", py::vectorize(&cox_munk_mean_square_slope), py::arg("wind_speed"),
+  m.def("cox_munk_mean_square_slope", vectorize_real(&cox_munk_mean_square_slope, {"wind_speed"}), py::arg("wind_speed"),
         "Total mean-square slope of a clean sea surface, 0.003 + 5.12e-3 U (Cox & Munk 1954), wind_speed U\n"
         "[m/s] 12.5 m above the sea in [0, 30]. The Water material's Beckmann alpha^2. Vectorised.");
 
@@ -52,8 +52,11 @@ void bind_water(py::module_& m) {
       "resolved_slope_variance: the mean-square slope a displaced wave mesh under it already resolves\n"
       "(Scene.add_sea sets it): alpha^2 = Cox-Munk's total - it, so that resolved + unresolved = total.\n"
       "wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.",
-      py::init([](double wind_speed, double temperature_c, double salinity, bool body, int priority, double resolved) {
-        return std::make_shared<Water>(WaterParameters{wind_speed, temperature_c, salinity, body, priority, resolved});
+      py::init([](const py::object& wind_speed, const py::object& temperature_c, const py::object& salinity, bool body,
+                  int priority, double resolved) {
+        return std::make_shared<Water>(WaterParameters{to_number(wind_speed, "Water: wind_speed"),
+                                                       to_number(temperature_c, "Water: temperature_c"),
+                                                       to_number(salinity, "Water: salinity"), body, priority, resolved});
       }),
       [](const Water& w) {
         const WaterParameters& p = w.parameters();

@@ -50,6 +50,24 @@ DoubleArray real_array(const py::handle& object, const char* what) {
   return py::cast<DoubleArray>(real_dtype_array(object, what));
 }
 
+std::optional<double> number_of(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value) ||
+      py::isinstance(value, py::module_::import("numpy").attr("bool_"))) {
+    return std::nullopt;
+  }
+  try {
+    return py::cast<double>(value);
+  } catch (const py::cast_error&) {
+    return std::nullopt;
+  }
+}
+
+double to_number(const py::handle& value, const char* what) {
+  const std::optional<double> number = number_of(value);
+  if (!number) throw_invalid(what, " must be a number (got ", py::repr(value).cast<std::string>(), ")");
+  return *number;
+}
+
 std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single) {
   const DoubleArray array = numbers(object, what, " must be an array of numbers with shape (N, 3) or (3,)");
   const bool one = array.ndim() == 1;

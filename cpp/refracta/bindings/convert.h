@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace refracta {
@@ -30,6 +31,27 @@ inline constexpr double kUnitTolerance = 1e-6;
 // Any array-like of real numbers (bool, integer or float dtype) as a C-contiguous double array;
 // ValueError naming `what` for complex, string or object data (numpy would cast those silently).
 DoubleArray real_array(const py::handle& object, const char* what);
+
+// A number: a Python or numpy int or float (or anything float() takes but a string or a bool:
+// True would be 1); nullopt otherwise. to_number: ValueError "<what> must be a number (got ...)".
+std::optional<double> number_of(const py::handle& value);
+double to_number(const py::handle& value, const char* what);
+
+namespace detail {
+template <class>
+using AnyObject = py::object;
+template <class Return, class... Args, size_t... I>
+auto vectorize_real(Return (*f)(Args...), std::array<const char*, sizeof...(Args)> names, std::index_sequence<I...>) {
+  return [f, names](const AnyObject<Args>&... args) { return py::vectorize(f)(real_array(args, names[I])...); };
+}
+}  // namespace detail
+
+// f over numbers and arrays of them with numpy's broadcasting (py::vectorize: scalars in, a float
+// out), each argument checked by real_array naming it (py::vectorize alone casts '550' to 550).
+template <class Return, class... Args>
+auto vectorize_real(Return (*f)(Args...), std::array<const char*, sizeof...(Args)> names) {
+  return detail::vectorize_real(f, names, std::index_sequence_for<Args...>());
+}
 
 // Points: (N, 3) or (3,), finite. `single` is set when the input was one point (3,).
 std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single = nullptr);
