@@ -208,48 +208,66 @@ def demo(out: Path, size=None) -> int:
 
 
 # The green flash sequence (examples.green_flash): the sun's centre [deg] above the true horizon in
-# each frame, and the frames' fields of view [deg] -- the flattening setting sun whole, its lower
-# part cut off by the warm sea's mirage, then the last gleam at the fold of the mirage (true
-# -0.512 deg for the upper rim), where the blue-green end of the spectrum, lifted most, is seen last
-# (a 2x crop: at 0.7 deg the gleam is ~40 px across; at 0.35 deg the frame still holds the sea
-# below the fold, the horizon a photograph of the gleam would show).
-GREEN_FLASH_FRAMES = [(-0.45, 0.7), (-0.74, 0.7), (-0.776, 0.35)]
-# [deg]: where each zoom looks (the fold is at -0.025). At 0.7 deg the first frame's flattened
+# each frame, and the frames' fields of view [deg]. The warm sea's mirage folds the sky at apparent
+# -0.026 deg (the vertex line: true -0.5131 deg at 530 nm, -0.5083 at 700, -0.5176 at 450;
+# refracta.astronomical_refraction over the air of examples.green_flash); what of the sun lies above
+# that true elevation is seen twice, erect above the line and inverted below it, and the rays below
+# the mirage down to -0.14 deg see the inverted sky, the sea beneath. The frames: the flattening disc
+# cut by the mirage (-0.45); the sun's top and its inverted image merged into an orange lens floating
+# above the inverted sky (-0.74: every wavelength's cap 0.033-0.043 deg tall); the lens shrinking,
+# orange inside a green rim (-0.768: red's cap 0.0053 deg, green's 0.0091); the last gleam, red and
+# yellow gone (-0.776: 560 nm's cap 0.0009 deg, 530's 0.0021, 450's 0.0066). Each wavelength's lens is
+# the chord of its cap (width 2 sqrt(2 R h)) stretched by the mirage (height 2 sqrt(h / k), k = 9.98 per
+# deg at the vertex): ellipses of one shape, the bluer the larger, so the colours nest around the
+# vertex -- green around orange, a faint blue around the green, at the sides as above and below.
+# 0.35 deg (a ~4000 mm lens on full frame) shows the last gleam ~100 px wide and the sea below it.
+GREEN_FLASH_FRAMES = [(-0.45, 0.7), (-0.74, 0.7), (-0.768, 0.35), (-0.776, 0.35)]
+# [deg]: where each zoom looks (the fold is at -0.026). At 0.7 deg the first frame's flattened
 # disc spans apparent -0.144 (the mirage's cut, where the sea begins) to +0.306 deg: looking at
 # +0.02 leaves 0.06 deg (44 px at 512) of sky above it and 0.19 deg of sea with the sun's glitter
 # path below (at -0.05 its top was cut off by the frame).
 GREEN_FLASH_LOOK = {0.7: 0.02, 0.35: -0.02}
 GREEN_FLASH_SIZE = 512  # [px] each frame, square (issue 19: at least 512 px)
-# One spectral sample a pixel: each carries one hero wavelength through its own dispersed air
+# Two spectral samples a pixel: each carries one hero wavelength through its own dispersed air
 # (no eye table), ~70 us of CPU a sample over the 1500 km paths; the denoiser and the chroma
-# filter (examples_chroma) remove the noise the single wavelengths leave.
-GREEN_FLASH_SPP = 1
-# The frames' exposure: their joint log-average luminance (the sky's) to 0.045, two stops below
-# middle grey. The last gleam's blue-violet light (430-490 nm: the sun's image there is lifted
-# most, so more of it clears the mirage's cut -- in the demo's third frame 1.9x as tall and 1.5x as
-# wide as the 520-550 nm image, around it on every side) is ~25x fainter than its green but 3-10x
-# the sky's luminance; exposed for the sky (key 0.18) the hue-kept curve showed it at full
-# saturation, a violet halo as wide as the gleam. Two stops down it is a thin dark-blue rim, the
-# sky a dark orange-brown, as in photographs of the green flash exposed for the sun.
-GREEN_FLASH_KEY = 0.045
+# filter (examples_chroma) remove the noise the single wavelengths leave. At 1 spp the -0.768 frame's
+# lens had a ragged orange edge on one side (the denoised luminance's blotches at the orange/green
+# boundary, which the chroma filter follows); at 2 spp both sides are smooth, as at 4 (its frame
+# 12.8 s, 14.3 s, 26.6 s of wall time at 1, 2, 4 spp).
+GREEN_FLASH_SPP = 2
+# The frames' exposure, metered on the sun as photographers of the green flash meter: the brightest
+# channel of the sequence (the 99.9th percentile of each pixel's largest channel over all frames:
+# the first frame's disc, its red) at 6 on the film's response 1 - e^(-x), just saturated (0.998),
+# its green at ~1.1 (0.67) and blue at ~0.09: an orange disc. (Exposed for the sky instead, two stops
+# below its middle grey with Reinhard's hue-kept curve as before, the last gleam's faint blue ring --
+# ~1/10 of the gleam's green radiance, but ~20x the sky's luminance -- was shown at full saturation,
+# as bright as the green.) At 3 the disc showed red-orange and the gleam a dim green; at 16 the disc
+# yellow.
+GREEN_FLASH_SUN_EXPOSURE = 6.0
+# The encoding's gamma: the sky and sea lie ~11.6 stops below the disc's red (sky 9.4, disc ~30 000),
+# under sRGB's linear toe (3/255 and darker, one black); a display gamma of 2.6 (DCI cinema's, a flat
+# picture profile's lift) shows them dark brown and dark grey, so the sea horizon under the mirage's
+# inverted sky stays visible (sRGB ~0.09 sky, ~0.05 sea at 512 px), the disc still orange.
+GREEN_FLASH_GAMMA = 2.6
 
 
 def green_flash_display(frames):
-    """The display values of the green flash frames, one exposure for all: the frames span ~18
-    stops (the disc ~3e5 times the sky beside it: ~38 air masses dim the sun, and the sky's
-    single-scattered aureole is dimmer still), more than a sensor's 12-14. They are exposed as a
-    photographer of the green flash does, below the sky's middle grey (the joint log-average
-    luminance to GREEN_FLASH_KEY, refracta.io's automatic exposure) and mapped by Reinhard's curve
-    on the luminance with the hue kept (refracta.io tonemap='reinhard': L / (1 + L), each channel
-    clamped): the sky shows dark, and the disc, far beyond the curve's shoulder, clips to its own
-    hue -- orange, and the last gleam green -- not to white as a per-channel curve (ACES) would
-    send it."""
+    """The display values of the green flash frames, one exposure for all, as a photograph: a
+    film's response per channel, 1 - e^(-c L) (refracta.io tonemap='film'), so every colour is shown
+    by its own radiance -- a colour 10x fainter than another is 10x darker on the film's straight
+    part, whatever its hue -- with the exposure c metered on the sun (GREEN_FLASH_SUN_EXPOSURE over
+    the sequence's brightest channel) and encoded by a display gamma of GREEN_FLASH_GAMMA. The
+    frames span ~12 stops (the disc ~3000 times the sky beside it in red: ~38 air masses dim the
+    sun); the disc's red saturates, its green does not (orange), the sky shows dark."""
     import numpy as np
 
     import refracta
 
-    joint = refracta.io.to_display(np.concatenate(frames, axis=1), tonemap="reinhard", key=GREEN_FLASH_KEY)
-    return np.split(joint, len(frames), axis=1)
+    joint = np.concatenate(frames, axis=1)
+    brightest = float(np.percentile(joint.max(axis=2), 99.9))
+    exposure = GREEN_FLASH_SUN_EXPOSURE / brightest if brightest > 0 else 1.0
+    shown = refracta.io.to_display(joint, exposure=exposure, tonemap="film", gamma=GREEN_FLASH_GAMMA)
+    return np.split(shown, len(frames), axis=1)
 
 
 def green_flash_frame(elevation: float, vfov: float, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_FLASH_SPP):
@@ -298,7 +316,8 @@ def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_
         ax.imshow(frame, interpolation="none")
         ax.set_title(f"sun {elevation:+.3f} deg, {vfov * 60:.0f}' field", fontsize=9)
         ax.axis("off")
-    figure.suptitle("Sunset over a warm sea (spectral): flattening, the mirage's cut, the green flash", fontsize=10)
+    title = "Sunset over a warm sea (spectral): flattening, the mirage's cut, the lens shrinking, the green flash"
+    figure.suptitle(title, fontsize=10)
     figure.subplots_adjust(left=0, right=1, bottom=0, top=size / (size + 70), wspace=gap * dpi / size)
     figure.savefig(out / "green_flash.png", dpi=dpi)
     plt.close(figure)

@@ -337,11 +337,15 @@ def test_fata_morgana_band_shows_the_cliffs_ribs_as_columns_and_the_forest_green
 
 
 # The green flash (issue 19): frames of at least 512 px, and the sky around the setting sun shown,
-# not black. The disc is ~3e5 times as bright as the sky beside it (38 air masses dim the sun and
-# the single-scattered aureole more), beyond any one exposure: the demo exposes for the sky and
-# maps the luminance by Reinhard's curve with the hue kept, so the disc clips to its own colour.
+# not black. The disc's red is ~3000 times the sky's beside it (38 air masses dim the sun), ~12
+# stops: the demo exposes for the sun, as photographers of the green flash do, by a film's response
+# per channel (the disc's red saturates, its green does not: orange), and encodes by a display gamma
+# of 2.6, which shows the sky ~11.6 stops down as a dark brown (sRGB's linear toe would leave it at
+# ~0.01, black).
 GREEN_FLASH_MIN_SIZE = 512  # [px] each frame
-VISIBLE = 0.1  # displayed (sRGB) value: ~1 % of white in linear light, a dark tone clearly above black
+# Displayed luminance: 10/255, a dark tone above black (measured 0.055 at 64 px; sRGB's encoding
+# of the same exposure 0.009).
+VISIBLE = 0.04
 NOT_WHITE = 0.7  # the clipped disc keeps its hue: its blue below 0.7 of its red (white: equal)
 
 
