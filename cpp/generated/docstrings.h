@@ -24,6 +24,19 @@ normal normalize((v1 - v0) x (v2 - v0))) or from both sides when two_sided.)doc"
 inline constexpr const char mkd_doc_refracta_BlinnPhong[] = R"doc(Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0,
 1] (numbers or (r, g, b)), ns >= 0; alpha in [0, 1] is the raster opacity (MTL d). Sampled by a
 mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd.)doc";
+inline constexpr const char mkd_doc_refracta_BsdfSamples[] = R"doc(What Material.sample returns, one row per sample (read-only arrays; bsdf.h's BsdfSample fields): wi
+(N, 3), weight (N, C), f (N, C), pdf (N,), flags (N,) uint32, is_delta (N,), eta (N,), valid (N,),
+terminated (N,); C = 3 (RGB) or 4 (spectral). See Material.sample. s['wi'] (the former dict) still
+works and iteration over the names are deprecated (DeprecationWarning).)doc";
+inline constexpr const char mkd_doc_refracta_BsdfSamples_eta[] = R"doc(The relative index crossed (N,), 1 for reflection (and where invalid).)doc";
+inline constexpr const char mkd_doc_refracta_BsdfSamples_f[] = R"doc(The BSDF value (N, C) [1/sr] (delta lobes: as weight's numerator).)doc";
+inline constexpr const char mkd_doc_refracta_BsdfSamples_flags[] = R"doc(1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular (N,).)doc";
+inline constexpr const char mkd_doc_refracta_BsdfSamples_is_delta[] = R"doc(Whether a delta lobe was sampled (N,).)doc";
+inline constexpr const char mkd_doc_refracta_BsdfSamples_pdf[] = R"doc(Density (N,) [1/sr] (delta lobes: the lobe's selection probability).)doc";
+inline constexpr const char mkd_doc_refracta_BsdfSamples_terminated[] = R"doc(True where a dispersive refraction kept the hero wavelength only (N,).)doc";
+inline constexpr const char mkd_doc_refracta_BsdfSamples_valid[] = R"doc(False where no direction was produced (N,).)doc";
+inline constexpr const char mkd_doc_refracta_BsdfSamples_weight[] = R"doc(``f |cos theta_i| / pdf`` (N, C) (delta lobes: albedo / probability).)doc";
+inline constexpr const char mkd_doc_refracta_BsdfSamples_wi[] = R"doc(Sampled unit directions (N, 3), 0 where invalid.)doc";
 inline constexpr const char mkd_doc_refracta_Camera[] = R"doc(Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
 vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at (i
 + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=) or
@@ -32,6 +45,13 @@ inline constexpr const char mkd_doc_refracta_Conductor[] = R"doc(A smooth metal 
 relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.)doc";
 inline constexpr const char mkd_doc_refracta_ConstantEnvironment[] = R"doc(Uniform radiance L_e [W/(m^2 sr)] (a colour) from every direction; sampling 'cosine' (about the
 point's normal, when given) or 'uniform' (the sphere, pdf 1/(4 pi)). Irradiance pi L_e.)doc";
+inline constexpr const char mkd_doc_refracta_CurvedEarth[] = R"doc(A height-only atmosphere over a spherical Earth, in flat coordinates (conformal Earth-flattening
+transform): x' = distance along the surface, y' = R ln(r/R), n' = n(h) e^(y'/R). Exact for rays in
+their vertical plane; scene heights y' differ from true heights by h^2/(2R) (0.8 mm at 100 m):
+true_height(y') and flat_height(h) convert. Use it for anything seen over kilometres (horizons,
+looming, Fata Morgana).)doc";
+inline constexpr const char mkd_doc_refracta_CurvedEarth_flat_height[] = R"doc(Flat-frame height y' of true heights h [m].)doc";
+inline constexpr const char mkd_doc_refracta_CurvedEarth_true_height[] = R"doc(True height h [m] of flat-frame heights y'.)doc";
 inline constexpr const char mkd_doc_refracta_Dielectric[] = R"doc(Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
 (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3),
 C in um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction).
@@ -48,6 +68,30 @@ goes to `key`), or manual, at most one of `exposure`, `ev100`, or `shutter` with
 `iso`); a `key` given overrides a manual exposure. The white balance `white_balance` (none by
 default), then the tone curve `tonemap` and the transfer curve `gamma`. validate() lists every bad
 field.)doc";
+inline constexpr const char mkd_doc_refracta_DisplaySettings_ev100[] = R"doc(manual exposure as EV100: c = K / (1.2 x 2^EV100); None: not this way)doc";
+inline constexpr const char mkd_doc_refracta_DisplaySettings_exposure[] = R"doc(c > 0 multiplying the radiance (manual); None: not this way)doc";
+inline constexpr const char mkd_doc_refracta_DisplaySettings_f_number[] = R"doc(a camera's f-number N (with shutter))doc";
+inline constexpr const char mkd_doc_refracta_DisplaySettings_iso[] = R"doc(a camera's ISO with shutter and f_number; None: ISO 100 (kDefaultIso))doc";
+inline constexpr const char mkd_doc_refracta_DisplaySettings_key[] = R"doc(Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the image,
+delta = kReinhardDelta); given, it overrides any manual exposure; none: kAutoKey (0.18) when there
+is no manual exposure, else none.)doc";
+inline constexpr const char mkd_doc_refracta_DisplaySettings_luminous_efficacy[] = R"doc(K: luminance [cd/m^2] of an image value of 1 (EV100 and camera settings only): 683 lm/W for
+radiance in W/(m^2 sr).)doc";
+inline constexpr const char mkd_doc_refracta_DisplaySettings_shutter[] = R"doc([s] a camera's shutter time (with f_number); None: not this way)doc";
+inline constexpr const char mkd_doc_refracta_DisplaySettings_white[] = R"doc(Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
+luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3).)doc";
+inline constexpr const char mkd_doc_refracta_ElevationTableOptions[] = R"doc(Options of refracta.ElevationTable beside its eye height and elevation range, with their defaults
+(defined once, here). `trace` holds the exact traces' TraceOptions (their integrator is always
+'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.)doc";
+inline constexpr const char mkd_doc_refracta_ElevationTableOptions_initial_rays[] = R"doc(exact traces before refining)doc";
+inline constexpr const char mkd_doc_refracta_ElevationTableOptions_max_rays[] = R"doc(Beyond this many exact traces, unresolved intervals stay exact (traced exactly per query).)doc";
+inline constexpr const char mkd_doc_refracta_ElevationTableOptions_tol[] = R"doc(interpolation tolerance along the whole path [m], plus angular_tol)doc";
+inline constexpr const char mkd_doc_refracta_ElevationTableOptions_trace[] = R"doc(TraceOptions of the exact traces (max_length, stop_height, step): their integrator is forced to
+stratified, and their tol is trace_tol, or the table's tol when unset (the traces then as accurate
+as the interpolation asks).)doc";
+inline constexpr const char mkd_doc_refracta_ElevationTableOptions_trace_tol[] = R"doc(the exact traces' tolerance [m]; unset (None): tol)doc";
+inline constexpr const char mkd_doc_refracta_ElevationTable_built_options[] = R"doc(The options the table was built with (a copy), as a caller gives them: without the build's cancel
+flag and the ior_floor the table found from its field.)doc";
 inline constexpr const char mkd_doc_refracta_EnvironmentLight[] = R"doc(An equirectangular environment map (H, W, 3) of float linear RGB, rows top (up, +y) to
 bottom: radiance [W/(m^2 sr)] = scale x the map, rotated by rotation (degrees about +y or a
 3 x 3 map-to-world matrix). Mitsuba 3's envmap orientation and interpolation
@@ -93,11 +137,25 @@ inline constexpr const char mkd_doc_refracta_MboitSettings[] = R"doc(Moment-base
 published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit ROV
 variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (z_far <=
 z_near: the fragments' own range, in render_raster the frame's).)doc";
+inline constexpr const char mkd_doc_refracta_MboitSettings_beta[] = R"doc(overestimation in [0, 1]: the share of the fragment's own layer in front)doc";
+inline constexpr const char mkd_doc_refracta_MboitSettings_bias[] = R"doc(alpha, the weight of the bias vector in [0, 1); unset (None): the published value for the basis, the
+moment count and the storage (MOMENTS.md 4.4; published_bias).)doc";
+inline constexpr const char mkd_doc_refracta_MboitSettings_moments[] = R"doc(4, 6 or 8 power moments; 2, 3 or 4 trigonometric)doc";
+inline constexpr const char mkd_doc_refracta_MboitSettings_published_bias[] = R"doc(fp32: 5e-7 / 5e-6 / 5e-5 for 4 / 6 / 8 power moments; unorm16: 6e-5 (the Unity HDRP port),
+5e-5, 5e-4; trigonometric: 4e-4 for 2 moments, 2e-4 for 3 and 4.)doc";
+inline constexpr const char mkd_doc_refracta_MboitSettings_z_far[] = R"doc(far end of the log-depth warp [m]; z_far <= z_near: the fragments' own range)doc";
+inline constexpr const char mkd_doc_refracta_MboitSettings_z_near[] = R"doc(near end of the log-depth warp [m])doc";
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings[] = R"doc(How a moment shadow map keeps its four power moments and biases them (shared/MOMENTS.md 2-3):
 depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT 2017);
 storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation transforms); bias
 (alpha) and bias_vector (b*): None means the published value for the depth range and storage
 (published_bias, published_bias_vector).)doc";
+inline constexpr const char mkd_doc_refracta_MomentShadowSettings_bias[] = R"doc(alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None):
+published_bias(depth_range, storage).)doc";
+inline constexpr const char mkd_doc_refracta_MomentShadowSettings_bias_vector[] = R"doc(b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range).)doc";
+inline constexpr const char mkd_doc_refracta_MomentShadowSettings_published_bias[] = R"doc(The published strengths: 3e-6 (unit) / 3e-7 (signed) for fp32 and fp64 (Peters & Klein 2015 sec. 5;
+Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5 (MOMENTS.md 2.5).)doc";
+inline constexpr const char mkd_doc_refracta_MomentShadowSettings_published_bias_vector[] = R"doc((0.5, 0.5, 0.5, 0.5) for unit depths, (0, 0.375, 0, 0.375) for signed ones.)doc";
 inline constexpr const char mkd_doc_refracta_ObjOptions[] = R"doc(How add_obj (Scene.add_obj) places an OBJ file and finds its textures.)doc";
 inline constexpr const char mkd_doc_refracta_OceanWaves[] = R"doc(A wind sea's waves on a periodic square patch (scene/ocean_waves.h): a height field synthesised by
 FFT from the Phillips spectrum, as Tessendorf 2001 ("Simulating Ocean Water") does,
@@ -119,9 +177,19 @@ any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024].
 inline constexpr const char mkd_doc_refracta_OitSettings[] = R"doc(How surfaces with alpha < 1 are composited: method 'exact' (sorted: depth peeling with enough
 layers), 'peel' (the `layers` nearest), 'wboit' (McGuire & Bavoil, JCGT 2013, depth weight 'eq7' or
 'eq9') or 'mboit' (moment-based, settings in `mboit`).)doc";
+inline constexpr const char mkd_doc_refracta_OitSettings_bytes_per_pixel[] = R"doc(Bytes per pixel a GPU would keep: sorted lists 20 per fragment (depth, alpha, RGB fp32); peeling 12
+per layer (RGBA16F + depth fp32); WBOIT 10 (RGBA16F + R16F); MBOIT b0 in fp32 and the moments in
+fp32 or 16 bits, plus the RGBA16F accumulation.)doc";
+inline constexpr const char mkd_doc_refracta_OitSettings_layers[] = R"doc(peel: layers kept)doc";
+inline constexpr const char mkd_doc_refracta_OitSettings_mboit[] = R"doc(MboitSettings (method 'mboit'))doc";
 inline constexpr const char mkd_doc_refracta_PairOptions[] = R"doc(How an edit's pairs are traced and measured (refracta.edit.solve, distances, jacobian and
 EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
 PairOptions). validate() reports every bad value at once.)doc";
+inline constexpr const char mkd_doc_refracta_PairOptions_max_steps[] = R"doc(Integration steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails.)doc";
+inline constexpr const char mkd_doc_refracta_PairOptions_reach[] = R"doc(The path is traced to reach x |source - eye| + 1 m, and stops early once it is past the source.)doc";
+inline constexpr const char mkd_doc_refracta_PairOptions_step[] = R"doc(rk4 step [m] (0: 0.3, the original editor's))doc";
+inline constexpr const char mkd_doc_refracta_PairOptions_stop_height[] = R"doc(Paths end where they descend through it (a ground) [m]; unset (None): no ground.)doc";
+inline constexpr const char mkd_doc_refracta_PairOptions_tol[] = R"doc(rk45 target position error [m] (at least 1e-13 per metre of path))doc";
 inline constexpr const char mkd_doc_refracta_PhysicalAtmosphereModel[] = R"doc(Real air: U.S. Standard Atmosphere 1976 temperature (its seven layers to 86 km, geometric heights,
 gravity falling with height) + a smooth inversion layer + a surface layer surface_dt * exp(-h /
 surface_depth) (h >= 0) + areal hot spots (hot_spots=[refracta.HotSpot, ...]), hydrostatic pressure,
@@ -149,13 +217,102 @@ clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color.)doc"
 inline constexpr const char mkd_doc_refracta_RasterRenderOptions[] = R"doc(Options of refracta.render_raster, with their defaults (defined once, here). Set any field by name,
 nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
 validate() reports every bad value at once.)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_light_strata[] = R"doc(Stratified samples (per axis, 1 .. 64) of each light with extent other than the sun and the spots
+(environment, sky, area lights), deterministic per pixel.)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_shadow_centre[] = R"doc(The region the sun's map covers, seen from the sun: its centre [m]; unset (None): fitted to the
+visible points closer than shadow_distance to the camera.)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_shadow_distance[] = R"doc([m] the sun's map covers the visible points closer than this to the camera)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_shadow_half_size[] = R"doc(half the side of the sun's map [m]; None: fitted to the visible points)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_shadow_light[] = R"doc(output shadow: -1 the sun, k >= 0 the scene's spot light k)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_shadow_map[] = R"doc(ShadowMapOptions of the sun's and the spot lights' maps (shadows 'map'))doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_spots[] = R"doc(Indices of the spot lights that shine (spot k is the k-th spot light in the scene's order); unset
+(None): all. Other lights (point, area, environment) shade with Embree shadow rays.)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_tile[] = R"doc(tile size [pixels] of the parallel loop)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_transparency[] = R"doc(Surfaces with material alpha < 1 are composited over the opaque ones with this method (fragments
+from the rasterizer, culled by the opaque depth); without it they are opaque. MBOIT's log-depth
+range, when not set, is fitted to the frame's fragments. None: every surface opaque.)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_use_sun[] = R"doc(the scene's sun shines)doc";
 inline constexpr const char mkd_doc_refracta_RasterRenderStats[] = R"doc(What render_raster measured (read-only).)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderStats_bytes_per_texel[] = R"doc(what the shadow method reads per texel)doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderStats_oit_bytes_per_pixel[] = R"doc(what the transparency method keeps per pixel (mean))doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderStats_seconds[] = R"doc(the whole render [s])doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderStats_shadow_build_seconds[] = R"doc(rasterizing, filtering and storing the shadow maps [s])doc";
+inline constexpr const char mkd_doc_refracta_RasterRenderStats_transparent_fragments[] = R"doc(transparent fragments in front of the opaque surfaces)doc";
 inline constexpr const char mkd_doc_refracta_RayPath[] = R"doc(A traced light path. Arrays are per node (the integrator's steps; the path between nodes is the
 quintic Hermite interpolant of positions, tangents and curvatures, accurate to O(step^6)).
 
 points (N,3) [m]; directions (N,3) unit tangents; arc_length (N,) [m]; ior (N,) n at each node;
 ray_vectors (N,3) the integrated v (``|v| = n``); stop: why the path ended ('max_length',
 'stop_height'); evaluations: field evaluations used.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions[] = R"doc(Options of refracta.render, with their defaults (defined once, here). Set any field by name;
+validate() reports every bad value at once.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_adaptive[] = R"doc(Adaptive sampling at the same budget (render/adaptive_sampling.h): a pilot of
+AdaptiveSampling::first_pass(spp) samples per pixel (2 at 16 spp) chooses how the rest of its 32 x
+32 block's budget is shared: every pixel at least half of spp, the others where the pilot's samples
+vary most (edges, noise); each pixel is one pattern of its count, the pilot is not averaged in
+(unbiased); the image's total is still width x height x spp. 'straight' and 'curved' only; spp >= 3
+(below, off).)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_bounds_in[] = R"doc(The pixels to render of a width x height image, (x0, y0, x1, y1): pixel_bounds (checked to lie
+inside, non-empty; std::invalid_argument otherwise) or the whole image.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_chord[] = R"doc(longest straight chord tested against the geometry [m])doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_differentials[] = R"doc(A camera ray's footprint on a textured surface from ray differentials through the air
+(Caster::footprint: the paths of its neighbours, as squeezed or stretched by a mirage); false: the
+ray cone (pixel angle x path length), as for every later bounce.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_edge_spp[] = R"doc(Edge refinement (render/film.h EdgeRefinement): when above spp, every pixel at an edge between
+surfaces -- its first hits' mean albedo or normal differs from a neighbour's -- is rendered again as
+one pattern of edge_spp samples, so its coverage is weighed as a sensor's pixel integrates it; the
+other pixels keep spp. The edges' pixels are few (7-13 % on the demo scenes): the cost is that share
+x edge_spp. 0 (or at most spp): off. Not with adaptive.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_guard_band[] = R"doc(Extra raster view on each side, as a fraction of the image size: rays that bend out of the camera's
+view can still find geometry there. What is in no raster pixel cannot appear.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_guide_spp[] = R"doc(With surface_aovs: when above spp, the albedo and normal come from a pass of their own with this
+many samples per pixel that stops at each path's first non-specular surface (no lighting: a camera
+ray, its mirror and glass chain and the surface's albedo), so they carry the pixel's edge coverage
+to guide_spp samples' accuracy (render(denoise=True)'s guided filter rebuilds the image's edges from
+them, python/refracta/_denoise.py). Non-adaptive, RGB (a spectral render's guides follow the air at
+its reference wavelength); 0 or at most spp: the image's own samples. Off by default: 64 guide
+samples cost 0.7-1.7x the CPU of 16 'direct' RGB ones on the demo scenes (about what 32 spp cost,
+and 32 spp denoised gain as much or more; 0.2x of the spectral green flash's, where they find no
+surface: benchmarks/bench_denoise.py).)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_max_depth[] = R"doc(Scattering events along a path (0: emitters only, 1: direct lighting; Mitsuba's max_depth is this +
+1). 'direct' uses it for specular chains only.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_max_length[] = R"doc(curved rays end here and show the sky in their last direction [m])doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_max_steps[] = R"doc(raster_march 'rk4': steps at most)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_pixel_bounds[] = R"doc(Render only these pixels of the camera's image, (x0, y0, x1, y1): pixels [x0, x1) x [y0, y1) (the
+result has the bounds' size); each pixel exactly as in the whole image (its seed and the eye's
+ElevationTable are the whole image's: distributed tiles). Unset (None): the whole image. Checked
+against the camera by bounds_in(camera).)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_readouts[] = R"doc(Also render the per-pixel readouts (readouts.h: distance, position, object id, apparent and true
+elevation, apparent azimuth, hidden heights) after those 9 channels: 19 in all. Implies
+surface_aovs. 'straight' and 'curved' only.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_rr_depth[] = R"doc(Russian roulette from this many scattering events on (survival min(0.95, max throughput)).)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_sagitta[] = R"doc(largest distance between a chord and the curved path [m])doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_sagitta_pixels[] = R"doc(Camera rays may stray this fraction of a pixel's footprint (pixel angle x path length) from their
+path when that is more than `sagitta`: what a pixel cannot resolve need not be traced.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_seed[] = R"doc(seed of the per-pixel random streams)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_spectral[] = R"doc(Spectral rendering: 4 hero wavelengths per sample (Wilkie et al. 2014) instead of RGB.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_spp[] = R"doc(samples per pixel (1: the pixel centre; more: correlated multi-jittered, film.h))doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_step[] = R"doc(raster_march 'rk4': the step [m])doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_surface_aovs[] = R"doc(Also render the albedo and normal of each sample's first non-specular hit (averaged over the pixel's
+samples): the image then has 9 channels, radiance, albedo, normal (Intel Open Image Denoise's
+auxiliary features; renderer.h). 'straight' and 'curved' only.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_texture_filter[] = R"doc(Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point samples
+the finest level (aliases: only for references and tests).)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_tile[] = R"doc(tile size [pixels] of the parallel loop)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_tol[] = R"doc(Curved-ray integration tolerance [m] (the integrator, `trace`: 'stratified' for height-only fields,
+'rk45' for others).)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_turbulence_step[] = R"doc('perturbed': the step through the layer, in the turbulence's cells. The cubic B-spline's gradient
+varies on the cell's scale, and a step h samples the path integral's spectrum aliased from
+wavenumbers 2 pi / h along the path: at 1 cell that is where the spline's response has its zeros
+(along the lattice axes), at 2 cells the grid's Nyquist, where it carries full power.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_use_table[] = R"doc(Height-only fields: serve every pixel from one ElevationTable for the camera's eye height
+(interpolated to `tol`) instead of tracing each pixel (over a CurvedEarth, paths over 150 km end in
+the table where they leave the air; spectral renders of 8 spp or more: one table per dispersion
+scale; renderer.cpp).)doc";
+inline constexpr const char mkd_doc_refracta_RenderStats[] = R"doc(What refracta.render counted, summed over its samples (read-only; tiles add up with +).)doc";
+inline constexpr const char mkd_doc_refracta_RenderStats_chords[] = R"doc(Embree queries along camera paths (straight rays count one each))doc";
+inline constexpr const char mkd_doc_refracta_RenderStats_invalid_samples[] = R"doc(samples whose radiance was not finite (dropped; should stay 0))doc";
+inline constexpr const char mkd_doc_refracta_RenderStats_samples[] = R"doc(camera samples traced)doc";
 inline constexpr const char mkd_doc_refracta_RoughConductor[] = R"doc(A rough metal: GGX microfacets (alpha, or alpha_u along the tangent and alpha_v along the bitangent;
 >= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F
 = 1), visible-normal sampling.)doc";
@@ -163,8 +320,54 @@ inline constexpr const char mkd_doc_refracta_RoughDielectric[] = R"doc(Rough gla
 inline constexpr const char mkd_doc_refracta_ShadowMapOptions[] = R"doc(The shadow maps of render_raster (an orthographic map for the sun, a perspective one per spot
 light): method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm_hamburger',
 'msm_hausdorff' (four moments box-filtered kernel x kernel, read through `moments`).)doc";
+inline constexpr const char mkd_doc_refracta_ShadowMapOptions_bleeding_reduction[] = R"doc(VSM light-bleeding reduction (Lauritzen) in [0, 1): intensities below this amount of light become 0.)doc";
+inline constexpr const char mkd_doc_refracta_ShadowMapOptions_depth_bias[] = R"doc(hard / pcf: compare against z - depth_bias (normalised depth))doc";
+inline constexpr const char mkd_doc_refracta_ShadowMapOptions_kernel[] = R"doc(k x k filter (odd) of PCF and of the moment map)doc";
+inline constexpr const char mkd_doc_refracta_ShadowMapOptions_moments[] = R"doc(MomentShadowSettings of the moment methods (vsm, msm_*): depth range, storage, bias)doc";
+inline constexpr const char mkd_doc_refracta_ShadowMapOptions_normal_offset[] = R"doc(receivers are moved this many texels along their normal)doc";
+inline constexpr const char mkd_doc_refracta_ShadowMapOptions_resolution[] = R"doc(texels per side, in [2, 8192])doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings[] = R"doc(Settings of refracta.edit.solve, with their defaults (defined once, in C++'s SolveSettings). Set any
 field by name, or pass them to solve() as keywords; validate() reports every bad value at once.)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_accept_angle[] = R"doc(A pair is met when its miss beyond its margin is at most accept_angle * (eye-to-source distance)
+[rad], or its tolerance if larger (PointPair::allowed_miss): 1e-6 rad is far below a pixel of any
+camera.)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_design_per_param[] = R"doc(auto: points per free parameter of the global stage (scan points on its axis; as many again
+quasi-random points, half over the box, half near the start).)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_function_tolerance[] = R"doc(relative change of the cost that ends the solve)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_gradient_tolerance[] = R"doc(ceres: max-norm of the projected gradient)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_local_starts[] = R"doc(auto: local solves from the global stage's best points, at most.)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_loss_scale[] = R"doc([m] the miss where the robust loss starts to down-weight)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_max_evaluations[] = R"doc(Cost evaluations of the whole solve, each tracing every pair (ceres: residual and Jacobian passes;
+nlopt: every call of the objective; the global stage: every design point).)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_max_iterations[] = R"doc(LM iterations of the whole solve (ceres); nlopt counts evaluations instead)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_parameter_tolerance[] = R"doc(relative change of the parameters that ends the solve)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_pixel_tolerance[] = R"doc([pixels] a pair with a pixel destination is met when its miss is within its margin plus this
+fraction of the pixel's footprint at the source (the camera's pixel angle times the source's range;
+PointPair::tolerance), when that exceeds accept_angle times its range. A tenth of a pixel cannot be
+seen in the image, and it spares an edit from failing on a miss of 0.01 px (issue 23: 5.9 mm at 1.9
+km). It judges the result only: the cost still pulls every pair onto its source. refracta.edit.solve
+converts it to metres per pair (C++ sees metres only).)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_quick_iterations[] = R"doc(auto: iterations of the first local solve (and of each continuation). Measured on
+benchmarks/bench_edit.py: LM meets, or is still closing in on, every case it solves from its start
+at all within 15 iterations.)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_seed[] = R"doc(seed of the random starts)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_starts[] = R"doc(Starts of the whole strategy: the first from the field as given, the others uniformly random within
+the free parameters' bounds (seeded by `seed`); the best result is kept (every pair met first, then
+the lowest cost). All starts share the budget above; a start whose field cannot trace every pair is
+skipped.)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_target_cost[] = R"doc([m^2] stop once the cost is <= this (0: never early))doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_time_limit[] = R"doc([s] wall-clock limit of the solve from its call; 0: none. A trace running when it expires is
+interrupted (EvaluationContext's flag, polled every step), and the solve then measures the best
+point found (its misses: one or two evaluations more, not interrupted -- seconds where that point
+itself ducts a long ray: 28 s over the limit for the issue's 1e7 m pair, before its residuals were
+reused; a fraction of a second for ordinary pairs). 300 s is generous: the slowest edit of
+benchmarks/bench_edit.py takes under a second, while a trial atmosphere that ducts a ray over a long
+path costs seconds per evaluation (issue 23: 7.7 M steps for 150 km).)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_trust_region[] = R"doc(ceres: initial trust-region radius of Levenberg-Marquardt in the unit box of the free
+parameters (1 = each parameter's whole bound range). Cautious first steps keep LM out of the flat
+regions of narrow layers (a logistic inversion far from every ray) that a bold first step lands in;
+measured on benchmarks/bench_edit.py: 1e4 (Ceres' default) fails the 16-pair logistic case, 0.1
+solves every case.)doc";
 inline constexpr const char mkd_doc_refracta_SolveSummary[] = R"doc(What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields).)doc";
 inline constexpr const char mkd_doc_refracta_SphereLight[] = R"doc(An emissive sphere: centre [m], radius [m], uniform emission radiance L_e [W/(m^2 sr)] (a colour)
 leaving its surface outward; power 4 pi^2 r^2 Y(L_e).)doc";
@@ -194,4 +397,37 @@ of complex index eta + i k, with GGX roughness alpha (or alpha_u, alpha_v; 0 = s
 Fresnel term is the film's exact Airy reflectance (RGB: at 630, 532, 465 nm). Reflection only.)doc";
 inline constexpr const char mkd_doc_refracta_TraceOptions[] = R"doc(Options of refracta.trace_ray and trace_rays, with their defaults (defined once, here). Set any
 field by name; validate() reports every bad value at once. Pickles through its fields.)doc";
+inline constexpr const char mkd_doc_refracta_TraceOptions_ior_floor[] = R"doc(stratified: a lower bound of n over every height the path can reach (None: unknown). A ray
+whose invariant beta = n cos e stays clearly below it can never turn, so its heights are not scanned
+metre by metre for turning points (a path climbing 100 km: 70 000 nodes, else ~1 000).)doc";
+inline constexpr const char mkd_doc_refracta_TraceOptions_max_length[] = R"doc(arc length at which the path ends [m])doc";
+inline constexpr const char mkd_doc_refracta_TraceOptions_max_steps[] = R"doc(A guard against runaway step-size collapse: a path needing more steps is refused up front.)doc";
+inline constexpr const char mkd_doc_refracta_TraceOptions_stop_height[] = R"doc(The path ends where it descends through this height [m] (a ground); unset (None): no ground.)doc";
+inline constexpr const char mkd_doc_refracta_TraceOptions_tol[] = R"doc(rk45 and stratified: target error of positions along the path [m].)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings[] = R"doc(The settings of a turbulence pattern and its placement (refracta.Turbulence), with the hot road's
+defaults (defined once, here, with their reasons). validate() reports every bad value at once, and a
+grid too large for max_bytes. Pickles through its fields.)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_cell_count[] = R"doc(N: cells, or from size and spacing, or 256.)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_cells[] = R"doc(N (the grid is N^3, one period N * spacing wide), or size [m] (N = ceil(size / spacing)); unset
+both: 256, whose inertial range spans over a decade (x14 within 15 %), where 128 reaches x7.)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_cn2[] = R"doc(C_n^2 [m^(-2/3)] at the ground, >= 0 (the pattern is weighted by E(h): C_n^2(h) = cn2 E(h)^2).
+1e-10: within centimetres of sun-heated asphalt (C_n^2 ~ 1e-13..1e-12 at 1-2 m in daytime, Andrews &
+Phillips 2005 ch. 12, rising as h^(-4/3) toward the ground in free convection, Wyngaard et al.
+1971).)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_depth[] = R"doc(The height envelope E(h) = e^(-h/depth) [m]; unset (None): uniform. 0.1 m: the examples' surface
+layer.)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_inner_scale[] = R"doc(The inner scale l0 [m]: the Gaussian cutoff kappa_m = 5.92 / l0; 5 mm near hot ground.)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_max_bytes[] = R"doc(The largest FFT work arrays allowed [bytes] (a grid needing more is refused); unset (None): half
+this machine's memory (inf: no limit).)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_outer_scale[] = R"doc(The von Karman outer scale L0 [m]; inf: the periodic tile is the outer scale, which keeps the widest
+inertial range.)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_seed[] = R"doc(the random pattern (same seed and grid, same pattern))doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_size[] = R"doc([m] the tile, cells = ceil(size / spacing) (None: from cells))doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_spacing[] = R"doc(The grid's cell [m]: the renderer steps half a cell through the layer, so a pixel's cost grows as
+path length / spacing (benchmarks/bench_realism.py).)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_wind[] = R"doc((u, w) [m/s] along x and z: the pattern at time t is shifted by (u t, 0, w t) (Taylor's frozen
+flow). (0, 2): a light breeze across the examples' line of sight (+x).)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_yaw_deg[] = R"doc(The lattice's turn about the vertical [deg], as every angle users give
+(default_turbulence_yaw_deg()); turbulence_layer turns it into the layer's radians, the one
+conversion.)doc";
 // NOLINTEND

@@ -58,8 +58,8 @@ class HotSpot:
         ...
 class TurbulenceSettings:
     """
-    The settings of refracta.Turbulence, with their defaults (defined once, here; see
-    media/turbulence_synthesis.h for their reasons). validate() reports every bad value at once, and a
+    The settings of a turbulence pattern and its placement (refracta.Turbulence), with the hot road's
+    defaults (defined once, here, with their reasons). validate() reports every bad value at once, and a
     grid too large for max_bytes. Pickles through its fields.
     """
     @staticmethod
@@ -86,7 +86,8 @@ class TurbulenceSettings:
     @property
     def cells(self) -> int | None:
         """
-        N: the grid is N^3 (None: from size, else 256)
+        N (the grid is N^3, one period N * spacing wide), or size [m] (N = ceil(size / spacing)); unset
+        both: 256, whose inertial range spans over a decade (x14 within 15 %), where 128 reaches x7.
         """
     @cells.setter
     def cells(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
@@ -94,7 +95,10 @@ class TurbulenceSettings:
     @property
     def cn2(self) -> float:
         """
-        C_n^2 [m^(-2/3)] at the ground (>= 0)
+        C_n^2 [m^(-2/3)] at the ground, >= 0 (the pattern is weighted by E(h): C_n^2(h) = cn2 E(h)^2).
+        1e-10: within centimetres of sun-heated asphalt (C_n^2 ~ 1e-13..1e-12 at 1-2 m in daytime, Andrews &
+        Phillips 2005 ch. 12, rising as h^(-4/3) toward the ground in free convection, Wyngaard et al.
+        1971).
         """
     @cn2.setter
     def cn2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -102,7 +106,8 @@ class TurbulenceSettings:
     @property
     def depth(self) -> float | None:
         """
-        [m] the envelope e^(-h/depth); None: uniform
+        The height envelope E(h) = e^(-h/depth) [m]; unset (None): uniform. 0.1 m: the examples' surface
+        layer.
         """
     @depth.setter
     def depth(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -110,7 +115,7 @@ class TurbulenceSettings:
     @property
     def inner_scale(self) -> float:
         """
-        inner scale l0 [m]: cutoff kappa_m = 5.92 / l0
+        The inner scale l0 [m]: the Gaussian cutoff kappa_m = 5.92 / l0; 5 mm near hot ground.
         """
     @inner_scale.setter
     def inner_scale(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -118,7 +123,8 @@ class TurbulenceSettings:
     @property
     def max_bytes(self) -> float | None:
         """
-        refuse a grid whose FFT work arrays need more [bytes] (None: half this machine; inf: no limit)
+        The largest FFT work arrays allowed [bytes] (a grid needing more is refused); unset (None): half
+        this machine's memory (inf: no limit).
         """
     @max_bytes.setter
     def max_bytes(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -126,7 +132,8 @@ class TurbulenceSettings:
     @property
     def outer_scale(self) -> float:
         """
-        von Karman outer scale L0 [m] (inf: the tile)
+        The von Karman outer scale L0 [m]; inf: the periodic tile is the outer scale, which keeps the widest
+        inertial range.
         """
     @outer_scale.setter
     def outer_scale(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -150,7 +157,8 @@ class TurbulenceSettings:
     @property
     def spacing(self) -> float:
         """
-        the grid's cell [m]
+        The grid's cell [m]: the renderer steps half a cell through the layer, so a pixel's cost grows as
+        path length / spacing (benchmarks/bench_realism.py).
         """
     @spacing.setter
     def spacing(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -158,7 +166,8 @@ class TurbulenceSettings:
     @property
     def wind(self) -> tuple[float, float]:
         """
-        (u, w) [m/s] along x and z: at_time(t) shifts the pattern by (u t, 0, w t)
+        (u, w) [m/s] along x and z: the pattern at time t is shifted by (u t, 0, w t) (Taylor's frozen
+        flow). (0, 2): a light breeze across the examples' line of sight (+x).
         """
     @wind.setter
     def wind(self, arg1: typing.Any) -> None:
@@ -166,7 +175,9 @@ class TurbulenceSettings:
     @property
     def yaw_deg(self) -> float:
         """
-        [deg] the lattice's turn about the vertical
+        The lattice's turn about the vertical [deg], as every angle users give
+        (default_turbulence_yaw_deg()); turbulence_layer turns it into the layer's radians, the one
+        conversion.
         """
     @yaw_deg.setter
     def yaw_deg(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -568,7 +579,9 @@ class TraceOptions:
     @property
     def ior_floor(self) -> float | None:
         """
-        stratified: a lower bound of n over every height the path can reach (None: unknown)
+        stratified: a lower bound of n over every height the path can reach (None: unknown). A ray
+        whose invariant beta = n cos e stays clearly below it can never turn, so its heights are not scanned
+        metre by metre for turning points (a path climbing 100 km: 70 000 nodes, else ~1 000).
         """
     @ior_floor.setter
     def ior_floor(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -576,7 +589,7 @@ class TraceOptions:
     @property
     def max_length(self) -> float:
         """
-        [m] arc length at which the path ends
+        arc length at which the path ends [m]
         """
     @max_length.setter
     def max_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -584,7 +597,7 @@ class TraceOptions:
     @property
     def max_steps(self) -> int:
         """
-        a guard against runaway paths: a path needing more steps is refused up front
+        A guard against runaway step-size collapse: a path needing more steps is refused up front.
         """
     @max_steps.setter
     def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -600,7 +613,7 @@ class TraceOptions:
     @property
     def stop_height(self) -> float | None:
         """
-        [m] the path ends where it descends through this height (a ground); None: no ground
+        The path ends where it descends through this height [m] (a ground); unset (None): no ground.
         """
     @stop_height.setter
     def stop_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -608,7 +621,7 @@ class TraceOptions:
     @property
     def tol(self) -> float:
         """
-        [m] rk45 and stratified: target error of positions along the path
+        rk45 and stratified: target error of positions along the path [m].
         """
     @tol.setter
     def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -623,9 +636,9 @@ class TraceOptions:
         ...
 class ElevationTableOptions:
     """
-    Options of refracta.ElevationTable beside its eye height and elevation range, with their
-    defaults (defined once, here). `trace` holds the exact traces' TraceOptions (their integrator is
-    always 'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.
+    Options of refracta.ElevationTable beside its eye height and elevation range, with their defaults
+    (defined once, here). `trace` holds the exact traces' TraceOptions (their integrator is always
+    'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.
     """
     def __getstate__(self) -> dict:
         ...
@@ -650,7 +663,7 @@ class ElevationTableOptions:
     @property
     def max_rays(self) -> int:
         """
-        beyond this many exact traces, unresolved intervals are traced exactly per query
+        Beyond this many exact traces, unresolved intervals stay exact (traced exactly per query).
         """
     @max_rays.setter
     def max_rays(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -658,7 +671,7 @@ class ElevationTableOptions:
     @property
     def tol(self) -> float:
         """
-        [m] interpolation tolerance along the whole path
+        interpolation tolerance along the whole path [m], plus angular_tol
         """
     @tol.setter
     def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -666,7 +679,9 @@ class ElevationTableOptions:
     @property
     def trace(self) -> TraceOptions:
         """
-        TraceOptions of the exact traces (max_length, stop_height, step)
+        TraceOptions of the exact traces (max_length, stop_height, step): their integrator is forced to
+        stratified, and their tol is trace_tol, or the table's tol when unset (the traces then as accurate
+        as the interpolation asks).
         """
     @trace.setter
     def trace(self, arg0: TraceOptions) -> None:
@@ -674,7 +689,7 @@ class ElevationTableOptions:
     @property
     def trace_tol(self) -> float | None:
         """
-        [m] the exact traces' tolerance (None: tol)
+        the exact traces' tolerance [m]; unset (None): tol
         """
     @trace_tol.setter
     def trace_tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -709,7 +724,8 @@ class _ElevationTable:
     @property
     def options(self) -> ElevationTableOptions:
         """
-        The options the table was built with (a copy).
+        The options the table was built with (a copy), as a caller gives them: without the build's cancel
+        flag and the ior_floor the table found from its field.
         """
     @property
     def size(self) -> int:
@@ -1198,7 +1214,7 @@ class DisplaySettings:
     @property
     def iso(self) -> float | None:
         """
-        a camera's ISO with shutter and f_number; None: ISO 100
+        a camera's ISO with shutter and f_number; None: ISO 100 (kDefaultIso)
         """
     @iso.setter
     def iso(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1206,7 +1222,9 @@ class DisplaySettings:
     @property
     def key(self) -> float | None:
         """
-        automatic exposure's key a (c = a / log-average luminance); None: 0.18 when no manual exposure is set
+        Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the image,
+        delta = kReinhardDelta); given, it overrides any manual exposure; none: kAutoKey (0.18) when there
+        is no manual exposure, else none.
         """
     @key.setter
     def key(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1214,7 +1232,8 @@ class DisplaySettings:
     @property
     def luminous_efficacy(self) -> float:
         """
-        K [cd/m^2] of an image value of 1 (EV100 and camera settings only): 683 lm/W for W/(m^2 sr)
+        K: luminance [cd/m^2] of an image value of 1 (EV100 and camera settings only): 683 lm/W for
+        radiance in W/(m^2 sr).
         """
     @luminous_efficacy.setter
     def luminous_efficacy(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1238,7 +1257,8 @@ class DisplaySettings:
     @property
     def white(self) -> float | None:
         """
-        Reinhard's L_white (the smallest scaled luminance shown white); None: infinite
+        Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
+        luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3).
         """
     @white.setter
     def white(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1274,7 +1294,7 @@ class OceanWaves:
     phillips_a: typing.ClassVar[float] = 0.0017546832475881459
     def __getstate__(self) -> tuple[float, tuple[float, float], float, int, int, float]:
         ...
-    def __init__(self, wind_speed: typing.Any = 5.0, temperature_c: typing.Any = 20.0, salinity: typing.Any = 35.0, body: bool = True, priority: typing.SupportsInt | typing.SupportsIndex = 0, resolved_slope_variance: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def __init__(self, wind_speed: typing.SupportsFloat | typing.SupportsIndex = 5.0, wind_direction: typing.Any = (1.0, 0.0), patch_size: typing.SupportsFloat | typing.SupportsIndex = 100.0, resolution: typing.SupportsInt | typing.SupportsIndex = 256, seed: typing.SupportsInt | typing.SupportsIndex = 0, time: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -1369,12 +1389,13 @@ class MomentShadowSettings:
     @staticmethod
     def published_bias(depth_range: str, storage: str) -> float:
         """
-        3e-6 (unit) / 3e-7 (signed) for fp32 and fp64; 3e-5 / 6e-5 for unorm16 (MOMENTS.md 2.5)
+        The published strengths: 3e-6 (unit) / 3e-7 (signed) for fp32 and fp64 (Peters & Klein 2015 sec. 5;
+        Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5 (MOMENTS.md 2.5).
         """
     @staticmethod
     def published_bias_vector(depth_range: str) -> typing.Any:
         """
-        (0.5, 0.5, 0.5, 0.5) for unit depths, (0, 0.375, 0, 0.375) for signed ones
+        (0.5, 0.5, 0.5, 0.5) for unit depths, (0, 0.375, 0, 0.375) for signed ones.
         """
     def __getstate__(self) -> dict:
         ...
@@ -1393,7 +1414,8 @@ class MomentShadowSettings:
     @property
     def bias(self) -> float | None:
         """
-        the weight of bias_vector (Peters & Klein's alpha) in [0, 1); None: published_bias(depth_range, storage)
+        alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None):
+        published_bias(depth_range, storage).
         """
     @bias.setter
     def bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1401,7 +1423,7 @@ class MomentShadowSettings:
     @property
     def bias_vector(self) -> typing.Any:
         """
-        b*, the 4 moments biased toward; None: published_bias_vector(depth_range)
+        b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range).
         """
     @bias_vector.setter
     def bias_vector(self, arg1: typing.Any) -> None:
@@ -1445,7 +1467,7 @@ class ShadowMapOptions:
     @property
     def bleeding_reduction(self) -> float:
         """
-        VSM light-bleeding reduction (Lauritzen) in [0, 1): less light than this becomes none
+        VSM light-bleeding reduction (Lauritzen) in [0, 1): intensities below this amount of light become 0.
         """
     @bleeding_reduction.setter
     def bleeding_reduction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1509,7 +1531,8 @@ class MboitSettings:
     @staticmethod
     def published_bias(basis: str, moments: typing.SupportsInt | typing.SupportsIndex, storage: str) -> float:
         """
-        fp32: 5e-7 / 5e-6 / 5e-5 (4 / 6 / 8 power moments); unorm16: 6e-5 / 5e-5 / 5e-4; trigonometric: 4e-4 (2), 2e-4
+        fp32: 5e-7 / 5e-6 / 5e-5 for 4 / 6 / 8 power moments; unorm16: 6e-5 (the Unity HDRP port),
+        5e-5, 5e-4; trigonometric: 4e-4 for 2 moments, 2e-4 for 3 and 4.
         """
     def __getstate__(self) -> dict:
         ...
@@ -1536,7 +1559,7 @@ class MboitSettings:
     @property
     def beta(self) -> float:
         """
-        overestimation in [0, 1]: the share of a fragment's own layer in front
+        overestimation in [0, 1]: the share of the fragment's own layer in front
         """
     @beta.setter
     def beta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1544,7 +1567,8 @@ class MboitSettings:
     @property
     def bias(self) -> float | None:
         """
-        the weight of the bias vector in [0, 1), None for the published value (published_bias)
+        alpha, the weight of the bias vector in [0, 1); unset (None): the published value for the basis, the
+        moment count and the storage (MOMENTS.md 4.4; published_bias).
         """
     @bias.setter
     def bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1568,7 +1592,7 @@ class MboitSettings:
     @property
     def z_far(self) -> float:
         """
-        [m] far end of the log-depth warp (<= z_near: fitted)
+        far end of the log-depth warp [m]; z_far <= z_near: the fragments' own range
         """
     @z_far.setter
     def z_far(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1576,7 +1600,7 @@ class MboitSettings:
     @property
     def z_near(self) -> float:
         """
-        [m] near end of the log-depth warp
+        near end of the log-depth warp [m]
         """
     @z_near.setter
     def z_near(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1599,7 +1623,9 @@ class OitSettings:
         ...
     def bytes_per_pixel(self, fragments_per_pixel: typing.SupportsFloat | typing.SupportsIndex) -> float:
         """
-        Bytes per pixel a GPU would keep for this method at this mean fragment count.
+        Bytes per pixel a GPU would keep: sorted lists 20 per fragment (depth, alpha, RGB fp32); peeling 12
+        per layer (RGBA16F + depth fp32); WBOIT 10 (RGBA16F + R16F); MBOIT b0 in fp32 and the moments in
+        fp32 or 16 bits, plus the RGBA16F accumulation.
         """
     def validate(self) -> None:
         """
@@ -1660,7 +1686,8 @@ class RasterRenderOptions:
     @property
     def light_strata(self) -> int:
         """
-        stratified samples per axis of each light other than the sun and spots (1 .. 64)
+        Stratified samples (per axis, 1 .. 64) of each light with extent other than the sun and the spots
+        (environment, sky, area lights), deterministic per pixel.
         """
     @light_strata.setter
     def light_strata(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1676,7 +1703,8 @@ class RasterRenderOptions:
     @property
     def shadow_centre(self) -> typing.Any:
         """
-        [m] centre of the sun's map; None: fitted to the visible points within shadow_distance
+        The region the sun's map covers, seen from the sun: its centre [m]; unset (None): fitted to the
+        visible points closer than shadow_distance to the camera.
         """
     @shadow_centre.setter
     def shadow_centre(self, arg1: typing.Any) -> None:
@@ -1692,7 +1720,7 @@ class RasterRenderOptions:
     @property
     def shadow_half_size(self) -> float | None:
         """
-        [m] half the side of the sun's map; None: fitted to the visible points
+        half the side of the sun's map [m]; None: fitted to the visible points
         """
     @shadow_half_size.setter
     def shadow_half_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1700,7 +1728,7 @@ class RasterRenderOptions:
     @property
     def shadow_light(self) -> int:
         """
-        output 'shadow': -1 the sun, k >= 0 the scene's spot light k
+        output shadow: -1 the sun, k >= 0 the scene's spot light k
         """
     @shadow_light.setter
     def shadow_light(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1708,7 +1736,7 @@ class RasterRenderOptions:
     @property
     def shadow_map(self) -> ShadowMapOptions:
         """
-        ShadowMapOptions of the sun's and spot lights' maps
+        ShadowMapOptions of the sun's and the spot lights' maps (shadows 'map')
         """
     @shadow_map.setter
     def shadow_map(self, arg0: ShadowMapOptions) -> None:
@@ -1724,7 +1752,8 @@ class RasterRenderOptions:
     @property
     def spots(self) -> list[int] | None:
         """
-        indices of the spot lights that shine (in the scene's order of spot lights); None: all
+        Indices of the spot lights that shine (spot k is the k-th spot light in the scene's order); unset
+        (None): all. Other lights (point, area, environment) shade with Embree shadow rays.
         """
     @spots.setter
     def spots(self, arg0: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None) -> None:
@@ -1740,7 +1769,9 @@ class RasterRenderOptions:
     @property
     def transparency(self) -> OitSettings:
         """
-        OitSettings compositing surfaces with alpha < 1 over the opaque ones; None: every surface opaque
+        Surfaces with material alpha < 1 are composited over the opaque ones with this method (fragments
+        from the rasterizer, culled by the opaque depth); without it they are opaque. MBOIT's log-depth
+        range, when not set, is fitted to the frame's fragments. None: every surface opaque.
         """
     @transparency.setter
     def transparency(self, arg1: typing.Any) -> None:
@@ -1776,12 +1807,12 @@ class RasterRenderStats:
     @property
     def seconds(self) -> float:
         """
-        [s] the whole render
+        the whole render [s]
         """
     @property
     def shadow_build_seconds(self) -> float:
         """
-        [s] rasterizing, filtering and storing the shadow maps
+        rasterizing, filtering and storing the shadow maps [s]
         """
     @property
     def transparent_fragments(self) -> int:
@@ -1801,14 +1832,20 @@ class RenderOptions:
         ...
     def bounds_in(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> tuple[int, int, int, int]:
         """
-        (x0, y0, x1, y1) of the pixels rendered in a width x height image (pixel_bounds, checked, or the whole)
+        The pixels to render of a width x height image, (x0, y0, x1, y1): pixel_bounds (checked to lie
+        inside, non-empty; std::invalid_argument otherwise) or the whole image.
         """
     def validate(self) -> None:
         ...
     @property
     def adaptive(self) -> bool:
         """
-        a pilot of spp / 8 per pixel shares each 32-pixel block's budget: half of spp each, the rest where the pilot varies (same total, unbiased)
+        Adaptive sampling at the same budget (render/adaptive_sampling.h): a pilot of
+        AdaptiveSampling::first_pass(spp) samples per pixel (2 at 16 spp) chooses how the rest of its 32 x
+        32 block's budget is shared: every pixel at least half of spp, the others where the pilot's samples
+        vary most (edges, noise); each pixel is one pattern of its count, the pilot is not averaged in
+        (unbiased); the image's total is still width x height x spp. 'straight' and 'curved' only; spp >= 3
+        (below, off).
         """
     @adaptive.setter
     def adaptive(self, arg0: bool) -> None:
@@ -1816,7 +1853,7 @@ class RenderOptions:
     @property
     def chord(self) -> float:
         """
-        [m] longest straight chord tested against the geometry
+        longest straight chord tested against the geometry [m]
         """
     @chord.setter
     def chord(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1824,7 +1861,9 @@ class RenderOptions:
     @property
     def differentials(self) -> bool:
         """
-        camera rays' footprints from ray differentials through the air (false: the ray cone)
+        A camera ray's footprint on a textured surface from ray differentials through the air
+        (Caster::footprint: the paths of its neighbours, as squeezed or stretched by a mirage); false: the
+        ray cone (pixel angle x path length), as for every later bounce.
         """
     @differentials.setter
     def differentials(self, arg0: bool) -> None:
@@ -1832,7 +1871,11 @@ class RenderOptions:
     @property
     def edge_spp(self) -> int:
         """
-        when above spp: pixels at edges between surfaces (first hits' albedo or normal differ from a neighbour's) rendered again with this many samples (0: off)
+        Edge refinement (render/film.h EdgeRefinement): when above spp, every pixel at an edge between
+        surfaces -- its first hits' mean albedo or normal differs from a neighbour's -- is rendered again as
+        one pattern of edge_spp samples, so its coverage is weighed as a sensor's pixel integrates it; the
+        other pixels keep spp. The edges' pixels are few (7-13 % on the demo scenes): the cost is that share
+        x edge_spp. 0 (or at most spp): off. Not with adaptive.
         """
     @edge_spp.setter
     def edge_spp(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1840,7 +1883,8 @@ class RenderOptions:
     @property
     def guard_band(self) -> float:
         """
-        raster_march: extra raster view per side (fraction)
+        Extra raster view on each side, as a fraction of the image size: rays that bend out of the camera's
+        view can still find geometry there. What is in no raster pixel cannot appear.
         """
     @guard_band.setter
     def guard_band(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1848,7 +1892,15 @@ class RenderOptions:
     @property
     def guide_spp(self) -> int:
         """
-        with surface_aovs, when above spp: the albedo and normal from a pass of their own, this many first-hit samples per pixel (denoise's guides; 0: the image's)
+        With surface_aovs: when above spp, the albedo and normal come from a pass of their own with this
+        many samples per pixel that stops at each path's first non-specular surface (no lighting: a camera
+        ray, its mirror and glass chain and the surface's albedo), so they carry the pixel's edge coverage
+        to guide_spp samples' accuracy (render(denoise=True)'s guided filter rebuilds the image's edges from
+        them, python/refracta/_denoise.py). Non-adaptive, RGB (a spectral render's guides follow the air at
+        its reference wavelength); 0 or at most spp: the image's own samples. Off by default: 64 guide
+        samples cost 0.7-1.7x the CPU of 16 'direct' RGB ones on the demo scenes (about what 32 spp cost,
+        and 32 spp denoised gain as much or more; 0.2x of the spectral green flash's, where they find no
+        surface: benchmarks/bench_denoise.py).
         """
     @guide_spp.setter
     def guide_spp(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1864,7 +1916,8 @@ class RenderOptions:
     @property
     def max_depth(self) -> int:
         """
-        scattering events per path (Mitsuba's max_depth - 1)
+        Scattering events along a path (0: emitters only, 1: direct lighting; Mitsuba's max_depth is this +
+        1). 'direct' uses it for specular chains only.
         """
     @max_depth.setter
     def max_depth(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1872,7 +1925,7 @@ class RenderOptions:
     @property
     def max_length(self) -> float:
         """
-        [m] curved rays end here and show the sky
+        curved rays end here and show the sky in their last direction [m]
         """
     @max_length.setter
     def max_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1880,7 +1933,7 @@ class RenderOptions:
     @property
     def max_steps(self) -> int:
         """
-        raster_march rk4 steps
+        raster_march 'rk4': steps at most
         """
     @max_steps.setter
     def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1896,8 +1949,10 @@ class RenderOptions:
     @property
     def pixel_bounds(self) -> tuple[int, int, int, int] | None:
         """
-        None (the whole image) or (x0, y0, x1, y1): render only pixels [x0, x1) x [y0, y1), each exactly as
-        in the whole image (distributed tiles); the image returned has that size
+        Render only these pixels of the camera's image, (x0, y0, x1, y1): pixels [x0, x1) x [y0, y1) (the
+        result has the bounds' size); each pixel exactly as in the whole image (its seed and the eye's
+        ElevationTable are the whole image's: distributed tiles). Unset (None): the whole image. Checked
+        against the camera by bounds_in(camera).
         """
     @pixel_bounds.setter
     def pixel_bounds(self, arg1: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None) -> None:
@@ -1905,7 +1960,9 @@ class RenderOptions:
     @property
     def readouts(self) -> bool:
         """
-        also render the per-pixel readouts after those 9 channels: 19 (render's aovs 'distance', ...)
+        Also render the per-pixel readouts (readouts.h: distance, position, object id, apparent and true
+        elevation, apparent azimuth, hidden heights) after those 9 channels: 19 in all. Implies
+        surface_aovs. 'straight' and 'curved' only.
         """
     @readouts.setter
     def readouts(self, arg0: bool) -> None:
@@ -1913,7 +1970,7 @@ class RenderOptions:
     @property
     def rr_depth(self) -> int:
         """
-        Russian roulette from this many events on
+        Russian roulette from this many scattering events on (survival min(0.95, max throughput)).
         """
     @rr_depth.setter
     def rr_depth(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1921,7 +1978,7 @@ class RenderOptions:
     @property
     def sagitta(self) -> float:
         """
-        [m] largest distance between a chord and the path
+        largest distance between a chord and the curved path [m]
         """
     @sagitta.setter
     def sagitta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1929,7 +1986,8 @@ class RenderOptions:
     @property
     def sagitta_pixels(self) -> float:
         """
-        camera rays: chords may stray this fraction of a pixel's footprint when more than sagitta
+        Camera rays may stray this fraction of a pixel's footprint (pixel angle x path length) from their
+        path when that is more than `sagitta`: what a pixel cannot resolve need not be traced.
         """
     @sagitta_pixels.setter
     def sagitta_pixels(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1945,7 +2003,7 @@ class RenderOptions:
     @property
     def spectral(self) -> bool:
         """
-        4 hero wavelengths per sample instead of RGB
+        Spectral rendering: 4 hero wavelengths per sample (Wilkie et al. 2014) instead of RGB.
         """
     @spectral.setter
     def spectral(self, arg0: bool) -> None:
@@ -1953,7 +2011,7 @@ class RenderOptions:
     @property
     def spp(self) -> int:
         """
-        samples per pixel (correlated multi-jittered when > 1)
+        samples per pixel (1: the pixel centre; more: correlated multi-jittered, film.h)
         """
     @spp.setter
     def spp(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1961,7 +2019,7 @@ class RenderOptions:
     @property
     def step(self) -> float:
         """
-        [m] raster_march rk4 step
+        raster_march 'rk4': the step [m]
         """
     @step.setter
     def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1969,7 +2027,9 @@ class RenderOptions:
     @property
     def surface_aovs(self) -> bool:
         """
-        also render the albedo and normal of the first non-specular hit: 9 channels (render's aovs, denoise)
+        Also render the albedo and normal of each sample's first non-specular hit (averaged over the pixel's
+        samples): the image then has 9 channels, radiance, albedo, normal (Intel Open Image Denoise's
+        auxiliary features; renderer.h). 'straight' and 'curved' only.
         """
     @surface_aovs.setter
     def surface_aovs(self, arg0: bool) -> None:
@@ -1977,7 +2037,10 @@ class RenderOptions:
     @property
     def table(self) -> bool:
         """
-        height-only fields: serve camera rays from one ElevationTable
+        Height-only fields: serve every pixel from one ElevationTable for the camera's eye height
+        (interpolated to `tol`) instead of tracing each pixel (over a CurvedEarth, paths over 150 km end in
+        the table where they leave the air; spectral renders of 8 spp or more: one table per dispersion
+        scale; renderer.cpp).
         """
     @table.setter
     def table(self, arg0: bool) -> None:
@@ -1985,7 +2048,8 @@ class RenderOptions:
     @property
     def texture_filter(self) -> bool:
         """
-        filter textures over each sample's footprint
+        Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point samples
+        the finest level (aliases: only for references and tests).
         """
     @texture_filter.setter
     def texture_filter(self, arg0: bool) -> None:
@@ -2001,7 +2065,8 @@ class RenderOptions:
     @property
     def tol(self) -> float:
         """
-        [m] curved-ray integration tolerance
+        Curved-ray integration tolerance [m] (the integrator, `trace`: 'stratified' for height-only fields,
+        'rk45' for others).
         """
     @tol.setter
     def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2025,7 +2090,10 @@ class RenderOptions:
     @property
     def turbulence_step(self) -> float:
         """
-        turbulence_trace 'perturbed': the step through the layer in the turbulence's cells
+        'perturbed': the step through the layer, in the turbulence's cells. The cubic B-spline's gradient
+        varies on the cell's scale, and a step h samples the path integral's spectrum aliased from
+        wavenumbers 2 pi / h along the path: at 1 cell that is where the spline's response has its zeros
+        (along the lattice axes), at 2 cells the grid's Nyquist, where it carries full power.
         """
     @turbulence_step.setter
     def turbulence_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2042,7 +2110,7 @@ class RenderOptions:
         ...
 class RenderStats:
     """
-    What refracta.render counted (read-only; tiles add up with +).
+    What refracta.render counted, summed over its samples (read-only; tiles add up with +).
     """
     def __add__(self, arg0: RenderStats) -> RenderStats:
         ...
@@ -2089,7 +2157,9 @@ class SolveSettings:
     @property
     def accept_angle(self) -> float:
         """
-        [rad] a pair is met within its margin plus this times its range (or its tolerance)
+        A pair is met when its miss beyond its margin is at most accept_angle * (eye-to-source distance)
+        [rad], or its tolerance if larger (PointPair::allowed_miss): 1e-6 rad is far below a pixel of any
+        camera.
         """
     @accept_angle.setter
     def accept_angle(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2105,7 +2175,8 @@ class SolveSettings:
     @property
     def design_per_param(self) -> int:
         """
-        auto: global-stage points per free parameter
+        auto: points per free parameter of the global stage (scan points on its axis; as many again
+        quasi-random points, half over the box, half near the start).
         """
     @design_per_param.setter
     def design_per_param(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2113,7 +2184,7 @@ class SolveSettings:
     @property
     def function_tolerance(self) -> float:
         """
-        relative cost change that ends a solve
+        relative change of the cost that ends the solve
         """
     @function_tolerance.setter
     def function_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2129,7 +2200,7 @@ class SolveSettings:
     @property
     def local_starts(self) -> int:
         """
-        auto: local solves from the global stage, at most
+        auto: local solves from the global stage's best points, at most.
         """
     @local_starts.setter
     def local_starts(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2153,7 +2224,8 @@ class SolveSettings:
     @property
     def max_evaluations(self) -> int:
         """
-        cost evaluations of the whole solve (each traces every pair)
+        Cost evaluations of the whole solve, each tracing every pair (ceres: residual and Jacobian passes;
+        nlopt: every call of the objective; the global stage: every design point).
         """
     @max_evaluations.setter
     def max_evaluations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2161,7 +2233,7 @@ class SolveSettings:
     @property
     def max_iterations(self) -> int:
         """
-        LM iterations of the whole solve (ceres)
+        LM iterations of the whole solve (ceres); nlopt counts evaluations instead
         """
     @max_iterations.setter
     def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2169,7 +2241,7 @@ class SolveSettings:
     @property
     def parameter_tolerance(self) -> float:
         """
-        relative parameter change that ends a solve
+        relative change of the parameters that ends the solve
         """
     @parameter_tolerance.setter
     def parameter_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2177,7 +2249,12 @@ class SolveSettings:
     @property
     def pixel_tolerance(self) -> float:
         """
-        [pixels] a pixel destination is met within this fraction of the pixel's footprint at the source
+        [pixels] a pair with a pixel destination is met when its miss is within its margin plus this
+        fraction of the pixel's footprint at the source (the camera's pixel angle times the source's range;
+        PointPair::tolerance), when that exceeds accept_angle times its range. A tenth of a pixel cannot be
+        seen in the image, and it spares an edit from failing on a miss of 0.01 px (issue 23: 5.9 mm at 1.9
+        km). It judges the result only: the cost still pulls every pair onto its source. refracta.edit.solve
+        converts it to metres per pair (C++ sees metres only).
         """
     @pixel_tolerance.setter
     def pixel_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2185,7 +2262,9 @@ class SolveSettings:
     @property
     def quick_iterations(self) -> int:
         """
-        auto: iterations of the first local solve
+        auto: iterations of the first local solve (and of each continuation). Measured on
+        benchmarks/bench_edit.py: LM meets, or is still closing in on, every case it solves from its start
+        at all within 15 iterations.
         """
     @quick_iterations.setter
     def quick_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2201,7 +2280,10 @@ class SolveSettings:
     @property
     def starts(self) -> int:
         """
-        starts of the strategy: the field as given, then uniform random in the bounds (one budget)
+        Starts of the whole strategy: the first from the field as given, the others uniformly random within
+        the free parameters' bounds (seeded by `seed`); the best result is kept (every pair met first, then
+        the lowest cost). All starts share the budget above; a start whose field cannot trace every pair is
+        skipped.
         """
     @starts.setter
     def starts(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2217,7 +2299,7 @@ class SolveSettings:
     @property
     def target_cost(self) -> float:
         """
-        [m^2] stop once the cost is at most this (0: never early)
+        [m^2] stop once the cost is <= this (0: never early)
         """
     @target_cost.setter
     def target_cost(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2225,7 +2307,13 @@ class SolveSettings:
     @property
     def time_limit(self) -> float:
         """
-        [s] wall-clock limit of the whole solve; 0: none
+        [s] wall-clock limit of the solve from its call; 0: none. A trace running when it expires is
+        interrupted (EvaluationContext's flag, polled every step), and the solve then measures the best
+        point found (its misses: one or two evaluations more, not interrupted -- seconds where that point
+        itself ducts a long ray: 28 s over the limit for the issue's 1e7 m pair, before its residuals were
+        reused; a fraction of a second for ordinary pairs). 300 s is generous: the slowest edit of
+        benchmarks/bench_edit.py takes under a second, while a trial atmosphere that ducts a ray over a long
+        path costs seconds per evaluation (issue 23: 7.7 M steps for 150 km).
         """
     @time_limit.setter
     def time_limit(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2233,7 +2321,11 @@ class SolveSettings:
     @property
     def trust_region(self) -> float:
         """
-        ceres: initial trust-region radius in the free parameters' unit box
+        ceres: initial trust-region radius of Levenberg-Marquardt in the unit box of the free
+        parameters (1 = each parameter's whole bound range). Cautious first steps keep LM out of the flat
+        regions of narrow layers (a logistic inversion far from every ray) that a bold first step lands in;
+        measured on benchmarks/bench_edit.py: 1e4 (Ceres' default) fails the 16-pair logistic case, 0.1
+        solves every case.
         """
     @trust_region.setter
     def trust_region(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2265,7 +2357,7 @@ class PairOptions:
     @property
     def max_steps(self) -> int:
         """
-        integration steps a trace may take
+        Integration steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails.
         """
     @max_steps.setter
     def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2273,7 +2365,7 @@ class PairOptions:
     @property
     def reach(self) -> float:
         """
-        paths are traced to reach times the eye-to-source distance, plus 1 m
+        The path is traced to reach x |source - eye| + 1 m, and stops early once it is past the source.
         """
     @reach.setter
     def reach(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2281,7 +2373,7 @@ class PairOptions:
     @property
     def step(self) -> float:
         """
-        [m] rk4 step (0: 0.3, the original editor's)
+        rk4 step [m] (0: 0.3, the original editor's)
         """
     @step.setter
     def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2289,7 +2381,7 @@ class PairOptions:
     @property
     def stop_height(self) -> float | None:
         """
-        [m] paths end where they descend through it (None: no ground)
+        Paths end where they descend through it (a ground) [m]; unset (None): no ground.
         """
     @stop_height.setter
     def stop_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -2297,7 +2389,7 @@ class PairOptions:
     @property
     def tol(self) -> float:
         """
-        [m] rk45 target position error (at least 1e-13 per metre of path)
+        rk45 target position error [m] (at least 1e-13 per metre of path)
         """
     @tol.setter
     def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2450,10 +2542,10 @@ class SolveSummary:
         """
 class BsdfSample:
     """
-    What Material.sample returns, one row per sample (read-only arrays): wi (N, 3), weight (N, C),
-    f (N, C), pdf (N,), flags (N,) uint32, is_delta (N,), eta (N,), valid (N,), terminated (N,);
-    C = 3 (RGB) or 4 (spectral). See Material.sample. s['wi'] (the former dict) still works
-    and iteration over the names are deprecated (DeprecationWarning).
+    What Material.sample returns, one row per sample (read-only arrays; bsdf.h's BsdfSample fields): wi
+    (N, 3), weight (N, C), f (N, C), pdf (N,), flags (N,) uint32, is_delta (N,), eta (N,), valid (N,),
+    terminated (N,); C = 3 (RGB) or 4 (spectral). See Material.sample. s['wi'] (the former dict) still
+    works and iteration over the names are deprecated (DeprecationWarning).
     """
     fields: typing.ClassVar[tuple] = ('wi', 'weight', 'f', 'pdf', 'flags', 'is_delta', 'eta', 'valid', 'terminated')
     def __getitem__(self, key: str) -> typing.Any:
@@ -2469,7 +2561,7 @@ class BsdfSample:
     @property
     def eta(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
-        The relative index crossed (N,), 1 for reflection.
+        The relative index crossed (N,), 1 for reflection (and where invalid).
         """
     @property
     def f(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:

@@ -50,27 +50,22 @@ void bind_solve_settings(py::module_& m) {
   cls.def(py::init<>())
       .def_property("backend", &backend_name, [](S& s, const std::string& v) { parse_backend(v, &s); },
                     "'ceres' (Levenberg-Marquardt, automatic derivatives) or 'nlopt:<ALGORITHM>' (any nlopt name)")
-      .def_readwrite("quick_iterations", &S::quick_iterations, "auto: iterations of the first local solve")
-      .def_readwrite("design_per_param", &S::design_per_param, "auto: global-stage points per free parameter")
-      .def_readwrite("local_starts", &S::local_starts, "auto: local solves from the global stage, at most")
-      .def_readwrite("max_iterations", &S::max_iterations, "LM iterations of the whole solve (ceres)")
-      .def_readwrite("max_evaluations", &S::max_evaluations,
-                     "cost evaluations of the whole solve (each traces every pair)")
-      .def_readwrite("time_limit", &S::time_limit, "[s] wall-clock limit of the whole solve; 0: none")
-      .def_readwrite("function_tolerance", &S::function_tolerance, "relative cost change that ends a solve")
-      .def_readwrite("parameter_tolerance", &S::parameter_tolerance, "relative parameter change that ends a solve")
-      .def_readwrite("gradient_tolerance", &S::gradient_tolerance, "ceres: max-norm of the projected gradient")
-      .def_readwrite("target_cost", &S::target_cost, "[m^2] stop once the cost is at most this (0: never early)")
-      .def_readwrite("trust_region", &S::trust_region,
-                     "ceres: initial trust-region radius in the free parameters' unit box")
-      .def_readwrite("loss_scale", &S::loss_scale, "[m] the miss where the robust loss starts to down-weight")
-      .def_readwrite("accept_angle", &S::accept_angle,
-                     "[rad] a pair is met within its margin plus this times its range (or its tolerance)")
-      .def_readwrite("pixel_tolerance", &S::pixel_tolerance,
-                     "[pixels] a pixel destination is met within this fraction of the pixel's footprint at the source")
-      .def_readwrite("starts", &S::starts,
-                     "starts of the strategy: the field as given, then uniform random in the bounds (one budget)")
-      .def_readwrite("seed", &S::seed, "seed of the random starts")
+      .def_readwrite("quick_iterations", &S::quick_iterations, DOC(refracta, SolveSettings, quick_iterations))
+      .def_readwrite("design_per_param", &S::design_per_param, DOC(refracta, SolveSettings, design_per_param))
+      .def_readwrite("local_starts", &S::local_starts, DOC(refracta, SolveSettings, local_starts))
+      .def_readwrite("max_iterations", &S::max_iterations, DOC(refracta, SolveSettings, max_iterations))
+      .def_readwrite("max_evaluations", &S::max_evaluations, DOC(refracta, SolveSettings, max_evaluations))
+      .def_readwrite("time_limit", &S::time_limit, DOC(refracta, SolveSettings, time_limit))
+      .def_readwrite("function_tolerance", &S::function_tolerance, DOC(refracta, SolveSettings, function_tolerance))
+      .def_readwrite("parameter_tolerance", &S::parameter_tolerance, DOC(refracta, SolveSettings, parameter_tolerance))
+      .def_readwrite("gradient_tolerance", &S::gradient_tolerance, DOC(refracta, SolveSettings, gradient_tolerance))
+      .def_readwrite("target_cost", &S::target_cost, DOC(refracta, SolveSettings, target_cost))
+      .def_readwrite("trust_region", &S::trust_region, DOC(refracta, SolveSettings, trust_region))
+      .def_readwrite("loss_scale", &S::loss_scale, DOC(refracta, SolveSettings, loss_scale))
+      .def_readwrite("accept_angle", &S::accept_angle, DOC(refracta, SolveSettings, accept_angle))
+      .def_readwrite("pixel_tolerance", &S::pixel_tolerance, DOC(refracta, SolveSettings, pixel_tolerance))
+      .def_readwrite("starts", &S::starts, DOC(refracta, SolveSettings, starts))
+      .def_readwrite("seed", &S::seed, DOC(refracta, SolveSettings, seed))
       .def("validate", &S::validate, "Raises ValueError listing every bad field.");
   def_enum_property(cls, "strategy", &S::strategy, &strategy_name, &parse_strategy,
                     "'auto' (a short local solve; if not every pair is met, the global stage and local solves from "
@@ -84,11 +79,11 @@ void bind_pair_options(py::module_& m) {
   using P = PairOptions;
   py::class_<P> cls(m, "PairOptions", DOC(refracta, PairOptions));
   cls.def(py::init<>())
-      .def_readwrite("tol", &P::tol, "[m] rk45 target position error (at least 1e-13 per metre of path)")
-      .def_readwrite("step", &P::step, "[m] rk4 step (0: 0.3, the original editor's)")
-      .def_readwrite("stop_height", &P::stop_height, "[m] paths end where they descend through it (None: no ground)")
-      .def_readwrite("reach", &P::reach, "paths are traced to reach times the eye-to-source distance, plus 1 m")
-      .def_readwrite("max_steps", &P::max_steps, "integration steps a trace may take")
+      .def_readwrite("tol", &P::tol, DOC(refracta, PairOptions, tol))
+      .def_readwrite("step", &P::step, DOC(refracta, PairOptions, step))
+      .def_readwrite("stop_height", &P::stop_height, DOC(refracta, PairOptions, stop_height))
+      .def_readwrite("reach", &P::reach, DOC(refracta, PairOptions, reach))
+      .def_readwrite("max_steps", &P::max_steps, DOC(refracta, PairOptions, max_steps))
       .def("validate", &P::validate, "Raises ValueError listing every bad field.");
   def_enum_property(cls, "trace", &P::trace, &trace_method_name, &parse_trace_method,
                     "the ray integrator: 'rk45' (to tol) or 'rk4' (fixed step); 'stratified' has no derivatives");
@@ -248,9 +243,8 @@ void bind_edit(py::module_& m) {
            const py::object& sources, const PairOptions& options) {
           const FieldPtr f = checked(field);
           const auto pairs = make_pairs(origins, directions, sources);
-          WorkControl control;
-          std::vector<RayPath> paths;
-          run_interruptible(control, py::none(), [&] { paths = pair_paths(*f, pairs, options, control); });
+          std::vector<RayPath> paths =
+              interruptible_result(py::none(), [&](WorkControl& control) { return pair_paths(*f, pairs, options, control); });
           std::vector<std::shared_ptr<RayPath>> out;
           for (RayPath& path : paths) out.push_back(std::make_shared<RayPath>(std::move(path)));
           return out;

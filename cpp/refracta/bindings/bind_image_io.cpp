@@ -47,15 +47,14 @@ void bind_display_settings(py::module_& m) {
   using S = DisplaySettings;
   py::class_<S> cls(m, "DisplaySettings", DOC(refracta, DisplaySettings));
   def_options_common<S>(cls, "DisplaySettings");
-  cls.def_readwrite("exposure", &S::exposure, "c > 0 multiplying the radiance (manual); None: not this way")
-      .def_readwrite("ev100", &S::ev100, "manual exposure as EV100: c = K / (1.2 x 2^EV100); None: not this way")
-      .def_readwrite("iso", &S::iso, "a camera's ISO with shutter and f_number; None: ISO 100")
-      .def_readwrite("shutter", &S::shutter, "[s] a camera's shutter time (with f_number); None: not this way")
-      .def_readwrite("f_number", &S::f_number, "a camera's f-number N (with shutter)")
-      .def_readwrite("luminous_efficacy", &S::luminous_efficacy,
-                     "K [cd/m^2] of an image value of 1 (EV100 and camera settings only): 683 lm/W for W/(m^2 sr)")
-      .def_readwrite("key", &S::key, "automatic exposure's key a (c = a / log-average luminance); None: 0.18 when no manual exposure is set")
-      .def_readwrite("white", &S::white, "Reinhard's L_white (the smallest scaled luminance shown white); None: infinite");
+  cls.def_readwrite("exposure", &S::exposure, DOC(refracta, DisplaySettings, exposure))
+      .def_readwrite("ev100", &S::ev100, DOC(refracta, DisplaySettings, ev100))
+      .def_readwrite("iso", &S::iso, DOC(refracta, DisplaySettings, iso))
+      .def_readwrite("shutter", &S::shutter, DOC(refracta, DisplaySettings, shutter))
+      .def_readwrite("f_number", &S::f_number, DOC(refracta, DisplaySettings, f_number))
+      .def_readwrite("luminous_efficacy", &S::luminous_efficacy, DOC(refracta, DisplaySettings, luminous_efficacy))
+      .def_readwrite("key", &S::key, DOC(refracta, DisplaySettings, key))
+      .def_readwrite("white", &S::white, DOC(refracta, DisplaySettings, white));
   def_enum_property(cls, "tonemap", &S::tonemap, tonemap_name, parse_tonemap,
                     "'aces' (filmic), 'reinhard', 'film' (1 - e^(-cL)) or 'linear' (min(cL, 1))")
       .def_property("gamma", &gamma_name, &set_gamma, "the transfer curve: 'srgb', 'linear' or a gamma g in [1, 3]")
@@ -110,19 +109,7 @@ void bind_image_io(py::module_& m) {
   m.def(
       "_write_image_channels",
       [](const std::string& path, const py::object& image, const std::vector<std::string>& names) {
-        // Any channel count, inf and NaN kept (readouts: no hit is inf distance, a NaN position).
-        using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
-        FloatArray array;
-        try {
-          array = py::cast<FloatArray>(image);
-        } catch (const py::cast_error&) {
-          throw_invalid("image must be a float array of shape (H, W, C)");
-        }
-        if (array.ndim() != 3 || array.shape(0) < 1 || array.shape(1) < 1 || array.shape(2) < 1) {
-          throw_invalid("image must have shape (H, W, C) (got ", array.ndim(), " dimensions)");
-        }
-        Image pixels(int(array.shape(1)), int(array.shape(0)), int(array.shape(2)));
-        std::copy(array.data(), array.data() + array.size(), pixels.pixels.begin());
+        const Image pixels = to_image(image, "image", /*raw=*/true);
         py::gil_scoped_release release;
         write_image_channels(path, pixels, names);
       },

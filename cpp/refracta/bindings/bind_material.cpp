@@ -1,6 +1,7 @@
 // Python bindings of the Material interface (shading/material.h): vectorised evaluation f, pdf
 // and sample in the local shading frame (shading/material_batch.h), and BsdfSample, what sample
 // returns.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_shading.h"
 #include "refracta/shading/material_batch.h"
 
@@ -49,21 +50,16 @@ py::tuple sample_fields() {
 }
 
 void bind_bsdf_sample(py::module_& m) {
-  py::class_<BsdfSamples>(m, "BsdfSample",
-                          "What Material.sample returns, one row per sample (read-only arrays): wi (N, 3), weight (N, C),\n"
-                          "f (N, C), pdf (N,), flags (N,) uint32, is_delta (N,), eta (N,), valid (N,), terminated (N,);\n"
-                          "C = 3 (RGB) or 4 (spectral). See Material.sample. s['wi'] (the former dict) still works\n"
-                          "and iteration over the names are deprecated (DeprecationWarning).")
-      .def_readonly("wi", &BsdfSamples::wi, "Sampled unit directions (N, 3), 0 where invalid.")
-      .def_readonly("weight", &BsdfSamples::weight, "``f |cos theta_i| / pdf`` (N, C) (delta lobes: albedo / probability).")
-      .def_readonly("f", &BsdfSamples::f, "The BSDF value (N, C) [1/sr] (delta lobes: as weight's numerator).")
-      .def_readonly("pdf", &BsdfSamples::pdf, "Density (N,) [1/sr] (delta lobes: the lobe's selection probability).")
-      .def_readonly("flags", &BsdfSamples::flags, "1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular (N,).")
-      .def_readonly("is_delta", &BsdfSamples::is_delta, "Whether a delta lobe was sampled (N,).")
-      .def_readonly("eta", &BsdfSamples::eta, "The relative index crossed (N,), 1 for reflection.")
-      .def_readonly("valid", &BsdfSamples::valid, "False where no direction was produced (N,).")
-      .def_readonly("terminated", &BsdfSamples::terminated,
-                    "True where a dispersive refraction kept the hero wavelength only (N,).")
+  py::class_<BsdfSamples>(m, "BsdfSample", DOC(refracta, BsdfSamples))
+      .def_readonly("wi", &BsdfSamples::wi, DOC(refracta, BsdfSamples, wi))
+      .def_readonly("weight", &BsdfSamples::weight, DOC(refracta, BsdfSamples, weight))
+      .def_readonly("f", &BsdfSamples::f, DOC(refracta, BsdfSamples, f))
+      .def_readonly("pdf", &BsdfSamples::pdf, DOC(refracta, BsdfSamples, pdf))
+      .def_readonly("flags", &BsdfSamples::flags, DOC(refracta, BsdfSamples, flags))
+      .def_readonly("is_delta", &BsdfSamples::is_delta, DOC(refracta, BsdfSamples, is_delta))
+      .def_readonly("eta", &BsdfSamples::eta, DOC(refracta, BsdfSamples, eta))
+      .def_readonly("valid", &BsdfSamples::valid, DOC(refracta, BsdfSamples, valid))
+      .def_readonly("terminated", &BsdfSamples::terminated, DOC(refracta, BsdfSamples, terminated))
       .def_property_readonly_static("fields", [](const py::object&) { return sample_fields(); },
                                     "The names of the fields, in order.")
       .def(py::pickle(  // through the fields, in order

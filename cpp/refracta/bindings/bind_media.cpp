@@ -270,11 +270,8 @@ void bind_media(py::module_& m) {
                  const std::vector<double> t = to_values(temperatures, "temperatures");
                  // Each level adds 16 hydrostatic nodes (~7 us): from ~10^5 levels on this takes
                  // seconds, so it runs like any long call (GIL released, Ctrl-C stops it).
-                 std::shared_ptr<TemperatureProfile> field;
-                 WorkControl control;
-                 run_interruptible(control, py::none(),
-                                   [&] { field = make_temperature_profile(h, t, pressure, humidity, wavelength); });
-                 return field;
+                 return interruptible_result(
+                     py::none(), [&](WorkControl&) { return make_temperature_profile(h, t, pressure, humidity, wavelength); });
                }),
                py::arg("heights"), py::arg("temperatures"), py::arg("pressure") = kStandardPressure,
                py::arg("humidity") = 0.0, py::arg("wavelength") = 550.0)
@@ -289,22 +286,15 @@ void bind_media(py::module_& m) {
       });
   add_air_column<TemperatureProfile>(sounding);
 
-  py::class_<CurvedEarth, IndexField, std::shared_ptr<CurvedEarth>> curved(m, "CurvedEarth", R"doc(
-A height-only atmosphere over a spherical Earth, in flat coordinates (conformal Earth-flattening
-transform): x' = distance along the surface, y' = R ln(r/R), n' = n(h) e^(y'/R). Exact for rays in
-their vertical plane; scene heights y' differ from true heights by h^2/(2R) (0.8 mm at 100 m):
-true_height(y') and flat_height(h) convert. Use it for anything seen over kilometres (horizons,
-looming, Fata Morgana).)doc");
+  py::class_<CurvedEarth, IndexField, std::shared_ptr<CurvedEarth>> curved(m, "CurvedEarth", DOC(refracta, CurvedEarth));
   auto make_curved = [](std::shared_ptr<IndexField> base, double radius) {
     return std::make_shared<CurvedEarth>(base, radius);
   };
   curved.def(py::init(make_curved), py::arg("base"), py::arg("radius") = kEarthRadius)
       .def_property_readonly("base", [](const CurvedEarth& f) { return unconst(f.base()); })
       .def_property_readonly("radius", &CurvedEarth::radius)
-      .def("true_height", &per_height<CurvedEarth, &CurvedEarth::true_height>, py::arg("y"),
-           "True height h [m] of flat-frame heights y'.")
-      .def("flat_height", &per_height<CurvedEarth, &CurvedEarth::flat_height>, py::arg("h"),
-           "Flat-frame height y' of true heights h [m].");
+      .def("true_height", &per_height<CurvedEarth, &CurvedEarth::true_height>, py::arg("y"), DOC(refracta, CurvedEarth, true_height))
+      .def("flat_height", &per_height<CurvedEarth, &CurvedEarth::flat_height>, py::arg("h"), DOC(refracta, CurvedEarth, flat_height));
   using Decorated = std::tuple<std::shared_ptr<IndexField>, double>;
   def_tuple_pickle<Decorated>(
       curved, "CurvedEarth", [](const CurvedEarth& f) { return Decorated(unconst(f.base()), f.radius()); },

@@ -15,12 +15,6 @@ namespace refracta {
 
 namespace {
 
-Vec2d to_vec2(const py::handle& value, const char* what) {
-  const std::vector<double> v = to_values(value, what);
-  if (v.size() != 2) throw_invalid(what, " must be two numbers (x, z) (got ", v.size(), ")");
-  return {v[0], v[1]};
-}
-
 // OceanWaves(...): the parameters, checked by OceanWaves (the seed's sign here: it is unsigned there).
 std::shared_ptr<OceanWaves> make_waves(double wind_speed, const py::handle& wind_direction, double patch_size,
                                        int resolution, long long seed, double time) {

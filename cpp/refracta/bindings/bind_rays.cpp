@@ -118,35 +118,29 @@ void bind_trace_options(py::module_& m) {
                     "the integrator: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the "
                     "path), 'rk4' (fixed step `step`), or 'stratified' (height-only fields: exact paths from "
                     "n(h) cos(e) = const by quadrature to tol; `step` is the largest node spacing)")
-      .def_readwrite("tol", &TraceOptions::tol, "[m] rk45 and stratified: target error of positions along the path")
+      .def_readwrite("tol", &TraceOptions::tol, DOC(refracta, TraceOptions, tol))
       .def_readwrite("step", &TraceOptions::step,
                      concat("[m] rk4: the fixed step (0: ", kRk4DefaultStep, " m, the original editor's); rk45: the "
                             "largest step (0: none); stratified: the largest node spacing (0: ",
                             kStratifiedDefaultSpacing, " m)")
                          .c_str())
-      .def_readwrite("max_length", &TraceOptions::max_length, "[m] arc length at which the path ends")
-      .def_readwrite("stop_height", &TraceOptions::stop_height,
-                     "[m] the path ends where it descends through this height (a ground); None: no ground")
-      .def_readwrite("max_steps", &TraceOptions::max_steps,
-                     "a guard against runaway paths: a path needing more steps is refused up front")
-      .def_readwrite("ior_floor", &TraceOptions::ior_floor,
-                     "stratified: a lower bound of n over every height the path can reach (None: unknown)")
+      .def_readwrite("max_length", &TraceOptions::max_length, DOC(refracta, TraceOptions, max_length))
+      .def_readwrite("stop_height", &TraceOptions::stop_height, DOC(refracta, TraceOptions, stop_height))
+      .def_readwrite("max_steps", &TraceOptions::max_steps, DOC(refracta, TraceOptions, max_steps))
+      .def_readwrite("ior_floor", &TraceOptions::ior_floor, DOC(refracta, TraceOptions, ior_floor))
       .def("validate", &TraceOptions::validate, "Raises ValueError listing every bad field.")
       .def("__repr__", [](const py::object& self) { return "TraceOptions(" + options_repr(self) + ")"; });
   def_options_pickle<TraceOptions>(options);
 
-  py::class_<ElevationTableOptions> table(m, "ElevationTableOptions", R"doc(
-Options of refracta.ElevationTable beside its eye height and elevation range, with their
-defaults (defined once, here). `trace` holds the exact traces' TraceOptions (their integrator is
-always 'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.)doc");
+  using E = ElevationTableOptions;
+  py::class_<E> table(m, "ElevationTableOptions", DOC(refracta, ElevationTableOptions));
   table.def(py::init<>())
-      .def_readwrite("tol", &ElevationTableOptions::tol, "[m] interpolation tolerance along the whole path")
-      .def_readwrite("trace_tol", &ElevationTableOptions::trace_tol, "[m] the exact traces' tolerance (None: tol)")
-      .def_readwrite("initial_rays", &ElevationTableOptions::initial_rays, "exact traces before refining")
-      .def_readwrite("max_rays", &ElevationTableOptions::max_rays,
-                     "beyond this many exact traces, unresolved intervals are traced exactly per query")
-      .def_readwrite("trace", &ElevationTableOptions::trace, "TraceOptions of the exact traces (max_length, stop_height, step)")
-      .def("validate", &ElevationTableOptions::validate, "Raises ValueError listing every bad field.")
+      .def_readwrite("tol", &E::tol, DOC(refracta, ElevationTableOptions, tol))
+      .def_readwrite("trace_tol", &E::trace_tol, DOC(refracta, ElevationTableOptions, trace_tol))
+      .def_readwrite("initial_rays", &E::initial_rays, DOC(refracta, ElevationTableOptions, initial_rays))
+      .def_readwrite("max_rays", &E::max_rays, DOC(refracta, ElevationTableOptions, max_rays))
+      .def_readwrite("trace", &E::trace, DOC(refracta, ElevationTableOptions, trace))
+      .def("validate", &E::validate, "Raises ValueError listing every bad field.")
       .def("__repr__", [](const py::object& self) { return "ElevationTableOptions(" + options_repr(self) + ")"; });
   def_options_pickle<ElevationTableOptions>(table);
 }
@@ -159,11 +153,10 @@ void bind_tracing(py::module_& m) {
           TraceOptions cancellable = trace_options_from(options, fields, "trace_ray", 1);
           const Vec3d o = to_point(origin, "origin"), d = to_point(direction, "direction");
           // On a worker thread with the GIL released, like the batch: Ctrl-C stops a long path.
-          WorkControl control;
-          cancellable.cancel = &control.cancel;
-          std::shared_ptr<RayPath> path;
-          run_interruptible(control, py::none(), [&] { path = std::make_shared<RayPath>(trace_path(f, o, d, cancellable)); });
-          return path;
+          return interruptible_result(py::none(), [&](WorkControl& control) {
+            cancellable.cancel = &control.cancel;
+            return std::make_shared<RayPath>(trace_path(f, o, d, cancellable));
+          });
         },
         py::arg("field"), py::arg("origin"), py::arg("direction"), py::arg("options") = py::none(), R"doc(
 Trace one curved ray through `field` and return its RayPath.
@@ -182,10 +175,8 @@ refused up front), refracta.NumericalError where n <= 0 or is not finite; Ctrl-C
          double earth_radius, double tol) {
         const AstronomicalRefractionOptions options{eye_height, top, earth_radius, tol};
         const std::vector<double> e = to_values(elevations, "apparent elevations");
-        WorkControl control;
-        std::vector<double> out;
-        run_interruptible(control, py::none(), [&] { out = astronomical_refraction(field, e, options, control); });
-        return values_to_array(out);
+        return values_to_array(interruptible_result(
+            py::none(), [&](WorkControl& control) { return astronomical_refraction(field, e, options, control); }));
       },
       py::arg("field"), py::arg("elevations"), py::arg("eye_height"), py::arg("top"), py::arg("earth_radius"),
       py::arg("tol"), "Refraction [rad] at apparent elevations [rad] (refracta.astronomical_refraction).");
@@ -197,12 +188,9 @@ refused up front), refracta.NumericalError where n <= 0 or is not finite; Ctrl-C
           const TraceOptions checked = trace_options_from(options, fields, "trace_rays", 2);
           const std::vector<Vec3d> o = to_points(origins, "origins");
           const std::vector<Vec3d> d = to_points(directions, "directions");
-          WorkControl control;
-          control.total = int64_t(o.size());
-          RayBatchEnds ends;
-          run_interruptible(control, progress_callback(progress, "tracing rays"),
-                            [&] { ends = trace_batch(f, o, d, checked, control); });
-          return ends_tuple(ends);
+          return ends_tuple(interruptible_result(
+              progress_callback(progress, "tracing rays"),
+              [&](WorkControl& control) { return trace_batch(f, o, d, checked, control); }, int64_t(o.size())));
         },
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("options"), py::arg("progress"));
   m.attr("_stop_names") = py::make_tuple(trace_stop_name(TraceStop::kMaxLength),
@@ -232,11 +220,9 @@ void bind_elevation_table(py::module_& m) {
              checked.eye_height = eye_height;
              checked.min_elevation = degrees_to_radians(min_elevation);
              checked.max_elevation = degrees_to_radians(max_elevation);
-             WorkControl control;
-             std::shared_ptr<ElevationTable> table;
-             run_interruptible(control, progress_callback(progress, "elevation table"),
-                               [&] { table = std::make_shared<ElevationTable>(field, checked, control); });
-             return table;
+             return interruptible_result(progress_callback(progress, "elevation table"), [&](WorkControl& control) {
+               return std::make_shared<ElevationTable>(field, checked, control);
+             });
            }),
            py::arg("field"), py::arg("eye_height"), py::arg("min_elevation"), py::arg("max_elevation"),
            py::arg("options"), py::arg("progress"))
@@ -245,21 +231,11 @@ void bind_elevation_table(py::module_& m) {
           [](const ElevationTable& table, const py::object& elevations, const py::object& azimuths) {
             const std::vector<double> e = radians(to_values(elevations, "elevations"));
             const std::vector<double> a = radians(to_values(azimuths, "azimuths"));
-            WorkControl control;
-            RayBatchEnds ends;
-            run_interruptible(control, py::none(), [&] { ends = table.ends(e, a, control); });
-            return ends_tuple(ends);
+            return ends_tuple(
+                interruptible_result(py::none(), [&](WorkControl& control) { return table.ends(e, a, control); }));
           },
           py::arg("elevations"), py::arg("azimuths"), "(points, directions, lengths, stops, evaluations) [deg].")
-      .def_property_readonly(
-          "options",
-          [](const ElevationTable& t) {
-            ElevationTableOptions options = t.options();
-            options.trace.cancel = nullptr;
-            options.trace.ior_floor.reset();  // found by the table from its field
-            return options;
-          },
-          "The options the table was built with (a copy).")
+      .def_property_readonly("options", &ElevationTable::built_options, DOC(refracta, ElevationTable, built_options))
       .def_property_readonly("tol", [](const ElevationTable& t) { return t.options().tol; }, "The interpolation tolerance [m].")
       .def_property_readonly("eye_height", [](const ElevationTable& t) { return t.options().eye_height; }, "[m]")
       .def_property_readonly("size", &ElevationTable::size, "Number of exactly traced elevations.")

@@ -1,4 +1,5 @@
 // Python binding of the renderers (cpp/refracta/render).
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_scene.h"
 #include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/interruptible.h"
@@ -32,9 +33,7 @@ static auto render_interruptibly(const std::shared_ptr<RenderScene>& scene, cons
 
 void bind_render(py::module_& m) {
   using O = RenderOptions;
-  py::class_<O> options(m, "RenderOptions", R"doc(
-Options of refracta.render, with their defaults (defined once, here). Set any field by name;
-validate() reports every bad value at once.)doc");
+  py::class_<O> options(m, "RenderOptions", DOC(refracta, RenderOptions));
   options.def(py::init<>());
   def_enum_property(options, "method", &O::method, &render_method_name, &parse_render_method,
                     "'curved' (exact curved rays), 'straight' (no refraction) or 'raster_march' (the original "
@@ -50,66 +49,53 @@ validate() reports every bad value at once.)doc");
                     "shadow and bounce rays through the calm air)");
   def_enum_property(options, "march", &O::march, &trace_method_name, &parse_trace_method,
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)");
-  options.def_readwrite("spp", &O::spp, "samples per pixel (correlated multi-jittered when > 1)")
-      .def_readwrite("adaptive", &O::adaptive, "a pilot of spp / 8 per pixel shares each 32-pixel block's "
-                     "budget: half of spp each, the rest where the pilot varies (same total, unbiased)")
-      .def_readwrite("edge_spp", &O::edge_spp, "when above spp: pixels at edges between surfaces (first hits' albedo "
-                     "or normal differ from a neighbour's) rendered again with this many samples (0: off)")
-      .def_readwrite("seed", &O::seed, "seed of the per-pixel random streams")
-      .def_readwrite("max_depth", &O::max_depth, "scattering events per path (Mitsuba's max_depth - 1)")
-      .def_readwrite("rr_depth", &O::rr_depth, "Russian roulette from this many events on")
-      .def_readwrite("spectral", &O::spectral, "4 hero wavelengths per sample instead of RGB")
-      .def_readwrite("max_length", &O::max_length, "[m] curved rays end here and show the sky")
-      .def_readwrite("chord", &O::chord, "[m] longest straight chord tested against the geometry")
-      .def_readwrite("sagitta", &O::sagitta, "[m] largest distance between a chord and the path")
-      .def_readwrite("sagitta_pixels", &O::sagitta_pixels,
-                     "camera rays: chords may stray this fraction of a pixel's footprint when more than sagitta")
-      .def_readwrite("tol", &O::tol, "[m] curved-ray integration tolerance")
-      .def_readwrite("turbulence_step", &O::turbulence_step,
-                     "turbulence_trace 'perturbed': the step through the layer in the turbulence's cells")
-      .def_readwrite("table", &O::use_table, "height-only fields: serve camera rays from one ElevationTable")
-      .def_readwrite("tile", &O::tile, "tile size [pixels] of the parallel loop")
-      .def_readwrite("texture_filter", &O::texture_filter, "filter textures over each sample's footprint")
-      .def_readwrite("differentials", &O::differentials,
-                     "camera rays' footprints from ray differentials through the air (false: the ray cone)")
-      .def_readwrite("surface_aovs", &O::surface_aovs, "also render the albedo and normal of the first "
-                     "non-specular hit: 9 channels (render's aovs, denoise)")
-      .def_readwrite("guide_spp", &O::guide_spp, "with surface_aovs, when above spp: the albedo and normal from "
-                     "a pass of their own, this many first-hit samples per pixel (denoise's guides; 0: the image's)")
-      .def_readwrite("readouts", &O::readouts, "also render the per-pixel readouts after those 9 channels: 19 "
-                     "(render's aovs 'distance', ...)")
-      .def_readwrite("step", &O::step, "[m] raster_march rk4 step")
-      .def_readwrite("max_steps", &O::max_steps, "raster_march rk4 steps")
-      .def_readwrite("guard_band", &O::guard_band, "raster_march: extra raster view per side (fraction)")
+  options.def_readwrite("spp", &O::spp, DOC(refracta, RenderOptions, spp))
+      .def_readwrite("adaptive", &O::adaptive, DOC(refracta, RenderOptions, adaptive))
+      .def_readwrite("edge_spp", &O::edge_spp, DOC(refracta, RenderOptions, edge_spp))
+      .def_readwrite("seed", &O::seed, DOC(refracta, RenderOptions, seed))
+      .def_readwrite("max_depth", &O::max_depth, DOC(refracta, RenderOptions, max_depth))
+      .def_readwrite("rr_depth", &O::rr_depth, DOC(refracta, RenderOptions, rr_depth))
+      .def_readwrite("spectral", &O::spectral, DOC(refracta, RenderOptions, spectral))
+      .def_readwrite("max_length", &O::max_length, DOC(refracta, RenderOptions, max_length))
+      .def_readwrite("chord", &O::chord, DOC(refracta, RenderOptions, chord))
+      .def_readwrite("sagitta", &O::sagitta, DOC(refracta, RenderOptions, sagitta))
+      .def_readwrite("sagitta_pixels", &O::sagitta_pixels, DOC(refracta, RenderOptions, sagitta_pixels))
+      .def_readwrite("tol", &O::tol, DOC(refracta, RenderOptions, tol))
+      .def_readwrite("turbulence_step", &O::turbulence_step, DOC(refracta, RenderOptions, turbulence_step))
+      .def_readwrite("table", &O::use_table, DOC(refracta, RenderOptions, use_table))
+      .def_readwrite("tile", &O::tile, DOC(refracta, RenderOptions, tile))
+      .def_readwrite("texture_filter", &O::texture_filter, DOC(refracta, RenderOptions, texture_filter))
+      .def_readwrite("differentials", &O::differentials, DOC(refracta, RenderOptions, differentials))
+      .def_readwrite("surface_aovs", &O::surface_aovs, DOC(refracta, RenderOptions, surface_aovs))
+      .def_readwrite("guide_spp", &O::guide_spp, DOC(refracta, RenderOptions, guide_spp))
+      .def_readwrite("readouts", &O::readouts, DOC(refracta, RenderOptions, readouts))
+      .def_readwrite("step", &O::step, DOC(refracta, RenderOptions, step))
+      .def_readwrite("max_steps", &O::max_steps, DOC(refracta, RenderOptions, max_steps))
+      .def_readwrite("guard_band", &O::guard_band, DOC(refracta, RenderOptions, guard_band))
       .def_property(
           "pixel_bounds",
           [](const O& o) { return o.pixel_bounds ? std::optional(corners(*o.pixel_bounds)) : std::nullopt; },
           [](O& o, const std::optional<std::vector<int>>& v) {
             o.pixel_bounds = v ? std::optional(pixel_bounds_from(*v)) : std::nullopt;
           },
-          "None (the whole image) or (x0, y0, x1, y1): render only pixels [x0, x1) x [y0, y1), each exactly as\n"
-          "in the whole image (distributed tiles); the image returned has that size")
+          DOC(refracta, RenderOptions, pixel_bounds))
       .def("validate", &O::validate)
       .def(
           "bounds_in", [](const O& o, int width, int height) { return corners(o.bounds_in(width, height)); },
-          py::arg("width"), py::arg("height"),
-          "(x0, y0, x1, y1) of the pixels rendered in a width x height image (pixel_bounds, checked, or the whole)");
+          py::arg("width"), py::arg("height"), DOC(refracta, RenderOptions, bounds_in));
   // Pickled as its fields by name and rebuilt through them (the defaults stay C++'s).
   def_options_pickle<O>(options);
 
   using S = RenderStats;
-  py::class_<S>(m, "RenderStats", "What refracta.render counted (read-only; tiles add up with +).")
+  py::class_<S> stats(m, "RenderStats", DOC(refracta, RenderStats));
+  stats
       .def(py::init<>(), "All counts 0.")
-      .def_readonly("samples", &S::samples, "camera samples traced")
-      .def_readonly("chords", &S::chords, "Embree queries along camera paths (straight rays count one each)")
-      .def_readonly("invalid_samples", &S::invalid_samples,
-                    "samples whose radiance was not finite (dropped; should stay 0)")
+      .def_readonly("samples", &S::samples, DOC(refracta, RenderStats, samples))
+      .def_readonly("chords", &S::chords, DOC(refracta, RenderStats, chords))
+      .def_readonly("invalid_samples", &S::invalid_samples, DOC(refracta, RenderStats, invalid_samples))
       .def(py::self + py::self)
-      .def("__repr__", [](const py::object& self) { return "RenderStats(" + options_repr(self) + ")"; })
-      .def(py::pickle([](const S& s) { return std::make_tuple(s.samples, s.chords, s.invalid_samples); },
-                      [](const std::tuple<int64_t, int64_t, int64_t>& t) {
-                        return S{std::get<0>(t), std::get<1>(t), std::get<2>(t)};
-                      }));
+      .def("__repr__", [](const py::object& self) { return "RenderStats(" + options_repr(self) + ")"; });
+  def_fields_pickle(stats, &S::samples, &S::chords, &S::invalid_samples);
 
   m.def(
       "_render",

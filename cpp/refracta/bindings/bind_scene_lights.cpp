@@ -25,10 +25,7 @@ Color sun_colour(const py::object& radiance, const py::object& wavelengths) {
 
 // The physical sky's table, built with Ctrl-C able to stop it (~0.5 s over oneTBB).
 std::shared_ptr<PhysicalSkyLight> build_sky_interruptibly(const PhysicalSkySettings& settings) {
-  std::shared_ptr<PhysicalSkyLight> sky;
-  WorkControl control;
-  run_interruptible(control, py::none(), [&] { sky = std::make_shared<PhysicalSkyLight>(settings); });
-  return sky;
+  return interruptible_result(py::none(), [&](WorkControl&) { return std::make_shared<PhysicalSkyLight>(settings); });
 }
 
 // set_environment's source: a map file, an image array (H, W, 3), or an RGB radiance.

@@ -1,6 +1,7 @@
 // Python bindings of optical turbulence (media/turbulence.h, media/turbulence_synthesis.h): the
 // settings, the synthesis, the grid and the layer the fields add. refracta.Turbulence
 // (python/refracta/turbulence.py) holds them with the ensemble statistics of the pattern.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_media.h"
 #include "refracta/bindings/interruptible.h"
 #include "refracta/bindings/options_binding.h"
@@ -33,18 +34,6 @@ py::array coefficients_of(const TurbulenceGrid& grid) {
   return out;
 }
 
-std::array<double, 2> wind_from(const py::object& value) {
-  std::vector<double> pair;
-  try {
-    if (!py::isinstance<py::str>(value)) pair = py::cast<std::vector<double>>(value);
-  } catch (const py::cast_error&) {
-  }
-  if (pair.size() != 2) {
-    throw_invalid("Turbulence: wind must be (u, w) [m/s] along x and z, finite (got ", std::string(py::repr(value)), ")");
-  }
-  return {pair[0], pair[1]};
-}
-
 // A function of one real array, element by element, as an array of the same shape.
 template <class F>
 py::array elementwise(const py::object& x, const char* what, F f) {
@@ -67,28 +56,28 @@ std::tuple<DoubleArray, DoubleArray> evaluate_points(const Source& source, const
 }
 
 void bind_settings(py::module_& m) {
-  py::class_<TurbulenceSettings> settings(m, "TurbulenceSettings", R"doc(
-The settings of refracta.Turbulence, with their defaults (defined once, here; see
-media/turbulence_synthesis.h for their reasons). validate() reports every bad value at once, and a
-grid too large for max_bytes. Pickles through its fields.)doc");
+  using S = TurbulenceSettings;
+  py::class_<S> settings(m, "TurbulenceSettings", DOC(refracta, TurbulenceSettings));
   settings.def(py::init<>())
-      .def_readwrite("cn2", &TurbulenceSettings::cn2, "C_n^2 [m^(-2/3)] at the ground (>= 0)")
-      .def_readwrite("outer_scale", &TurbulenceSettings::outer_scale, "von Karman outer scale L0 [m] (inf: the tile)")
-      .def_readwrite("inner_scale", &TurbulenceSettings::inner_scale, "inner scale l0 [m]: cutoff kappa_m = 5.92 / l0")
-      .def_readwrite("seed", &TurbulenceSettings::seed, "the random pattern (same seed and grid, same pattern)")
+      .def_readwrite("cn2", &S::cn2, DOC(refracta, TurbulenceSettings, cn2))
+      .def_readwrite("outer_scale", &S::outer_scale, DOC(refracta, TurbulenceSettings, outer_scale))
+      .def_readwrite("inner_scale", &S::inner_scale, DOC(refracta, TurbulenceSettings, inner_scale))
+      .def_readwrite("seed", &S::seed, DOC(refracta, TurbulenceSettings, seed))
       .def_property(
-          "wind", [](const TurbulenceSettings& s) { return py::make_tuple(s.wind[0], s.wind[1]); },
-          [](TurbulenceSettings& s, const py::object& v) { s.wind = wind_from(v); },
-          "(u, w) [m/s] along x and z: at_time(t) shifts the pattern by (u t, 0, w t)")
-      .def_readwrite("spacing", &TurbulenceSettings::spacing, "the grid's cell [m]")
-      .def_readwrite("cells", &TurbulenceSettings::cells, "N: the grid is N^3 (None: from size, else 256)")
-      .def_readwrite("size", &TurbulenceSettings::size, "[m] the tile, cells = ceil(size / spacing) (None: from cells)")
-      .def_readwrite("depth", &TurbulenceSettings::depth, "[m] the envelope e^(-h/depth); None: uniform")
-      .def_readwrite("max_bytes", &TurbulenceSettings::max_bytes,
-                     "refuse a grid whose FFT work arrays need more [bytes] (None: half this machine; inf: no limit)")
-      .def_readwrite("yaw_deg", &TurbulenceSettings::yaw_deg, "[deg] the lattice's turn about the vertical")
-      .def("cell_count", &TurbulenceSettings::cell_count, "N: cells, or from size and spacing, or 256.")
-      .def("validate", &TurbulenceSettings::validate, "Raises ValueError listing every bad field.")
+          "wind", [](const S& s) { return py::make_tuple(s.wind[0], s.wind[1]); },
+          [](S& s, const py::object& v) {
+            const Vec2d wind = to_vec2(v, "Turbulence: wind");
+            s.wind = {wind.x(), wind.y()};
+          },
+          DOC(refracta, TurbulenceSettings, wind))
+      .def_readwrite("spacing", &S::spacing, DOC(refracta, TurbulenceSettings, spacing))
+      .def_readwrite("cells", &S::cells, DOC(refracta, TurbulenceSettings, cells))
+      .def_readwrite("size", &S::size, DOC(refracta, TurbulenceSettings, size))
+      .def_readwrite("depth", &S::depth, DOC(refracta, TurbulenceSettings, depth))
+      .def_readwrite("max_bytes", &S::max_bytes, DOC(refracta, TurbulenceSettings, max_bytes))
+      .def_readwrite("yaw_deg", &S::yaw_deg, DOC(refracta, TurbulenceSettings, yaw_deg))
+      .def("cell_count", &S::cell_count, DOC(refracta, TurbulenceSettings, cell_count))
+      .def("validate", &S::validate, "Raises ValueError listing every bad field.")
       .def_static(
           "from_fields", [](const py::kwargs& fields) { return options_from<TurbulenceSettings>(py::none(), fields, "Turbulence"); },
           "Settings with the given fields set (the rest at their defaults), validated.")
@@ -99,10 +88,7 @@ grid too large for max_bytes. Pickles through its fields.)doc");
 void bind_synthesis(py::module_& m) {
   m.def("synthesise_turbulence",
         [](const TurbulenceSettings& settings, const py::object& progress) {
-          std::shared_ptr<TurbulenceGrid> grid;
-          WorkControl control;
-          run_interruptible(control, progress, [&] { grid = synthesise_turbulence(settings, control); });
-          return grid;
+          return interruptible_result(progress, [&](WorkControl& control) { return synthesise_turbulence(settings, control); });
         },
         py::arg("settings"), py::arg("progress") = py::none(),
         "The spline coefficients of the pattern for C_n^2 = 1 (a TurbulenceGrid); GIL released, Ctrl-C stops it.");

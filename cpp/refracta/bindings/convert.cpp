@@ -106,6 +106,12 @@ std::vector<double> to_values(const py::handle& object, const char* what, bool* 
   return values;
 }
 
+Vec2d to_vec2(const py::handle& object, const char* what) {
+  const std::vector<double> v = to_values(object, what);
+  if (v.size() != 2) throw_invalid(what, " must be two numbers (x, z) (got ", v.size(), ")");
+  return {v[0], v[1]};
+}
+
 std::vector<Vec3d> to_unit_vectors(const py::handle& object, const char* what, size_t count, bool zero_ok,
                                    bool* single) {
   std::vector<Vec3d> v = to_points(object, what, single);
@@ -207,7 +213,7 @@ std::vector<Vec2d> to_uvs(const py::handle& object, const char* what, size_t cou
   return out;
 }
 
-Image to_image(const py::handle& object, const char* what) {
+Image to_image(const py::handle& object, const char* what, bool raw) {
   using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
   FloatArray array;
   try {
@@ -215,12 +221,14 @@ Image to_image(const py::handle& object, const char* what) {
   } catch (const py::cast_error&) {
     throw_invalid(what, " must be a float array of shape (H, W, C)");
   }
-  if (array.ndim() == 2) array = array.reshape({array.shape(0), array.shape(1), py::ssize_t(1)});
-  if (array.ndim() != 3 || array.shape(2) < 1 || array.shape(2) > 4 || array.shape(0) < 1 || array.shape(1) < 1) {
-    throw_invalid(what, " must have shape (H, W), (H, W, 1..4)");
+  if (!raw && array.ndim() == 2) array = array.reshape({array.shape(0), array.shape(1), py::ssize_t(1)});
+  if (array.ndim() != 3 || array.shape(2) < 1 || (!raw && array.shape(2) > 4) || array.shape(0) < 1 ||
+      array.shape(1) < 1) {
+    throw_invalid(what, raw ? " must have shape (H, W, C)" : " must have shape (H, W), (H, W, 1..4)");
   }
   Image image(int(array.shape(1)), int(array.shape(0)), int(array.shape(2)));
   std::copy(array.data(), array.data() + array.size(), image.pixels.begin());
+  if (raw) return image;
   for (size_t i = 0; i < image.pixels.size(); ++i) {
     if (std::isfinite(image.pixels[i])) continue;
     const size_t texel = i / size_t(image.channels);

@@ -59,6 +59,8 @@ std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* s
 Vec3d to_point(const py::handle& object, const char* what);
 // Numbers: a scalar or (N,), finite.
 std::vector<double> to_values(const py::handle& object, const char* what, bool* single = nullptr);
+// A horizontal vector (x, z): two finite numbers.
+Vec2d to_vec2(const py::handle& object, const char* what);
 
 // Unit vectors: points (N, 3) or (3,) of length 1 within kUnitTolerance; with `zero_ok` a row may
 // be 0 (no normal). `count` (kAnyCount: any) is the number of rows required.
@@ -89,8 +91,9 @@ Samples to_samples(const py::handle& object, const char* what, int dims, size_t 
 std::vector<std::array<int, 3>> to_triangles(const py::handle& object, const char* what, size_t vertex_count);
 // Texture coordinates (count, 2), finite.
 std::vector<Vec2d> to_uvs(const py::handle& object, const char* what, size_t count);
-// An image: a float array (H, W) or (H, W, C), C in 1..4, finite.
-Image to_image(const py::handle& object, const char* what);
+// An image: a float array (H, W) or (H, W, C), C in 1..4, finite. `raw`: (H, W, C) with any C >= 1,
+// inf and NaN kept (a float file's channels: readouts give no hit an inf distance, a NaN position).
+Image to_image(const py::handle& object, const char* what, bool raw = false);
 // A rotation: None (identity), an angle [deg] about +y, or a 3 x 3 matrix.
 Eigen::Matrix3d to_rotation(const py::handle& object, const char* what);
 

@@ -88,4 +88,15 @@ void run_interruptible(WorkControl& control, const py::object& progress, Work&& 
   if (!progress.is_none()) progress(control.done.load(), control.total);
 }
 
+// What work(control) returns, run by run_interruptible with a control of its own whose total is
+// `total` (the progress callback's).
+template <class Work>
+auto interruptible_result(const py::object& progress, Work&& work, int64_t total = 0) {
+  WorkControl control;
+  control.total = total;
+  decltype(work(control)) result;
+  run_interruptible(control, progress, [&] { result = work(control); });
+  return result;
+}
+
 }  // namespace refracta

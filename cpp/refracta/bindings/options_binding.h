@@ -5,6 +5,7 @@
 #include "refracta/bindings/bindings.h"
 
 #include <string>
+#include <tuple>
 
 namespace refracta {
 
@@ -57,6 +58,18 @@ void def_options_pickle(Class& cls) {
                        py::object options = py::cast(Options());
                        for (const auto& item : state) options.attr(item.first) = item.second;
                        return py::cast<Options>(options);
+                     }));
+}
+
+// Pickling of a read-only result (RenderStats, RasterRenderStats) through the tuple of its fields,
+// in the order given.
+template <class Result, class... T>
+void def_fields_pickle(py::class_<Result>& cls, T Result::*... fields) {
+  cls.def(py::pickle([=](const Result& r) { return std::make_tuple(r.*fields...); },
+                     [=](const std::tuple<T...>& state) {
+                       Result r;
+                       std::apply([&](const T&... values) { ((r.*fields = values), ...); }, state);
+                       return r;
                      }));
 }
 

@@ -50,8 +50,8 @@ struct SolveSettings {
   // Limits of the whole solve: every stage (the first local solve, its continuations, the global
   // stage's design points, the local solves from them, and every start) draws on one budget. What
   // stopped a stage is named in SolveSummary::stages.
-  int max_iterations = 200;        // LM iterations (ceres); nlopt counts evaluations instead
-  // Cost evaluations, each tracing every pair (ceres: residual and Jacobian passes; nlopt: every
+  int max_iterations = 200;        // LM iterations of the whole solve (ceres); nlopt counts evaluations instead
+  // Cost evaluations of the whole solve, each tracing every pair (ceres: residual and Jacobian passes; nlopt: every
   // call of the objective; the global stage: every design point).
   int max_evaluations = 3000;
   // [s] wall-clock limit of the solve from its call; 0: none. A trace running when it expires is
@@ -63,9 +63,9 @@ struct SolveSettings {
   // ray over a long path costs seconds per evaluation (issue 23: 7.7 M steps for 150 km).
   double time_limit = 300.0;
   double function_tolerance = 1e-14;   // relative change of the cost that ends the solve
-  double parameter_tolerance = 1e-12;  // relative change of the parameters that ends it
+  double parameter_tolerance = 1e-12;  // relative change of the parameters that ends the solve
   double gradient_tolerance = 1e-16;   // ceres: max-norm of the projected gradient
-  double target_cost = 0.0;        // stop once the cost is <= this (0: never early)
+  double target_cost = 0.0;        // [m^2] stop once the cost is <= this (0: never early)
   // ceres: initial trust-region radius of Levenberg-Marquardt in the unit box of the free
   // parameters (1 = each parameter's whole bound range). Cautious first steps keep LM out of the
   // flat regions of narrow layers (a logistic inversion far from every ray) that a bold first
@@ -75,7 +75,7 @@ struct SolveSettings {
   // Ceres robust loss on each pair's squared miss (Python: "none", "huber", "soft_l1", "cauchy",
   // "arctan"); loss_scale [m] is the miss where it starts to down-weight.
   RobustLoss loss = RobustLoss::kNone;
-  double loss_scale = 1.0;
+  double loss_scale = 1.0;  // [m] the miss where the robust loss starts to down-weight
   // A pair is met when its miss beyond its margin is at most accept_angle * (eye-to-source
   // distance) [rad], or its tolerance if larger (PointPair::allowed_miss): 1e-6 rad is far below a
   // pixel of any camera.
@@ -92,7 +92,7 @@ struct SolveSettings {
   // met first, then the lowest cost). All starts share the budget above; a start whose field
   // cannot trace every pair is skipped.
   int starts = 1;
-  uint64_t seed = 0;
+  uint64_t seed = 0;  // seed of the random starts
 
   // Throws std::invalid_argument listing every bad field.
   void validate() const;

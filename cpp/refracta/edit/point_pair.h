@@ -49,12 +49,13 @@ enum class PairDistance { kContinuous, kVertex };
 struct PairOptions {
   TraceMethod trace = TraceMethod::kRk45;   // the ray integrator: rk45 or rk4 (stratified has no derivatives)
   double tol = 1e-9;   // rk45 target position error [m] (at least 1e-13 per metre of path)
-  double step = 0.0;                        // rk4 step [m] (0: 0.3, the original's)
-  std::optional<double> stop_height;        // paths end where they descend through it (a ground) [m]
+  double step = 0.0;                        // rk4 step [m] (0: 0.3, the original editor's)
+  // Paths end where they descend through it (a ground) [m]; unset (None): no ground.
+  std::optional<double> stop_height;
   PairDistance distance = PairDistance::kContinuous;
   // The path is traced to reach x |source - eye| + 1 m, and stops early once it is past the source.
   double reach = 1.5;
-  // Steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails.
+  // Integration steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails.
   int64_t max_steps = 10'000'000;
 
   // Throws std::invalid_argument listing every bad field.

@@ -27,6 +27,11 @@ void flattened_height(const Base& base, const T& radius, const T& y, T* n, T* dn
   *dn_dy = scale * (dn_base * scale + n_base / radius);
 }
 
+// A height-only atmosphere over a spherical Earth, in flat coordinates (conformal Earth-flattening
+// transform): x' = distance along the surface, y' = R ln(r/R), n' = n(h) e^(y'/R). Exact for rays in
+// their vertical plane; scene heights y' differ from true heights by h^2/(2R) (0.8 mm at 100 m):
+// true_height(y') and flat_height(h) convert. Use it for anything seen over kilometres (horizons,
+// looming, Fata Morgana).
 class CurvedEarth : public IndexField {
  public:
   // base must be height-only; radius > 0 [m].
@@ -54,8 +59,10 @@ class CurvedEarth : public IndexField {
 
   const FieldPtr& base() const { return base_; }
   double radius() const { return radius_; }
-  double true_height(double flat_y) const;   // h from y'
-  double flat_height(double height) const;   // y' from h
+  // True height h [m] of flat-frame heights y'.
+  double true_height(double flat_y) const;
+  // Flat-frame height y' of true heights h [m].
+  double flat_height(double height) const;
 
  private:
   FieldPtr base_;

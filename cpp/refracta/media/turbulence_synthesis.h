@@ -45,9 +45,11 @@ double von_karman_spectrum(double kappa, double cn2, double inner_scale, double 
 // straight line can. [deg] (31.717...; its radians are atan(1 / golden ratio) exactly)
 double default_turbulence_yaw_deg();
 
-// The settings of a turbulence pattern and its placement, with the hot road's defaults.
+// The settings of a turbulence pattern and its placement (refracta.Turbulence), with the hot road's
+// defaults (defined once, here, with their reasons). validate() reports every bad value at once, and
+// a grid too large for max_bytes. Pickles through its fields.
 struct TurbulenceSettings {
-  // C_n^2 [m^(-2/3)] at the ground (the pattern is weighted by E(h): C_n^2(h) = cn2 E(h)^2).
+  // C_n^2 [m^(-2/3)] at the ground, >= 0 (the pattern is weighted by E(h): C_n^2(h) = cn2 E(h)^2).
   // 1e-10: within centimetres of sun-heated asphalt (C_n^2 ~ 1e-13..1e-12 at 1-2 m in daytime,
   // Andrews & Phillips 2005 ch. 12, rising as h^(-4/3) toward the ground in free convection,
   // Wyngaard et al. 1971).
@@ -67,10 +69,11 @@ struct TurbulenceSettings {
   // N (the grid is N^3, one period N * spacing wide), or size [m] (N = ceil(size / spacing)); unset
   // both: 256, whose inertial range spans over a decade (x14 within 15 %), where 128 reaches x7.
   std::optional<int64_t> cells;
-  std::optional<double> size;
-  // The height envelope E(h) = e^(-h/depth) [m]; unset: uniform. 0.1 m: the examples' surface layer.
+  std::optional<double> size;  // [m] the tile, cells = ceil(size / spacing) (None: from cells)
+  // The height envelope E(h) = e^(-h/depth) [m]; unset (None): uniform. 0.1 m: the examples' surface layer.
   std::optional<double> depth = 0.1;
-  // The largest FFT work arrays allowed [bytes]; unset: half this machine's memory (inf: no limit).
+  // The largest FFT work arrays allowed [bytes] (a grid needing more is refused); unset (None): half
+  // this machine's memory (inf: no limit).
   std::optional<double> max_bytes;
   // The lattice's turn about the vertical [deg], as every angle users give (default_turbulence_yaw_deg());
   // turbulence_layer turns it into the layer's radians, the one conversion.

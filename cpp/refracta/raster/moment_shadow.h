@@ -28,9 +28,10 @@ const char* moment_shadow_method_name(MomentShadowMethod method);
 struct MomentShadowSettings {
   DepthRange depth_range = DepthRange::kUnit;  // [0, 1] (I3D 2015) or [-1, 1] (JCGT 2017)
   Storage storage = Storage::kFp32;            // how a GPU would keep them (the shadow maps' default)
-  // alpha, the weight of the bias vector; unset: published_bias(depth_range, storage).
+  // alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None):
+  // published_bias(depth_range, storage).
   std::optional<double> bias;
-  // b*, the moments biased toward; unset: published_bias_vector(depth_range).
+  // b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range).
   std::optional<Moments4> bias_vector;
 
   // The published strengths: 3e-6 (unit) / 3e-7 (signed) for fp32 and fp64 (Peters & Klein 2015

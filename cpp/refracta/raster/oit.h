@@ -38,11 +38,12 @@ const char* wboit_weight_name(WboitWeight weight);
 struct MboitSettings {
   MomentBasis basis = MomentBasis::kPower;
   int moments = 4;              // 4, 6 or 8 power moments; 2, 3 or 4 trigonometric
-  double beta = 0.25;           // overestimation: the share of the fragment's own layer in front
-  // alpha, the weight of the bias vector; unset: the published value for the basis, the moment
-  // count and the storage (MOMENTS.md 4.4; published_bias).
+  double beta = 0.25;           // overestimation in [0, 1]: the share of the fragment's own layer in front
+  // alpha, the weight of the bias vector in [0, 1); unset (None): the published value for the
+  // basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).
   std::optional<double> bias;
-  double z_near = 0.0, z_far = 0.0;  // log-warp range [m]; z_far <= z_near: the fragments' own range
+  double z_near = 0.0;  // near end of the log-depth warp [m]
+  double z_far = 0.0;   // far end of the log-depth warp [m]; z_far <= z_near: the fragments' own range
   // fp32 (emulated in double), or unorm16, the 16-bit ROV variant (MOMENTS.md 4.5): b0 in fp32
   // and the normalised moments re-quantised to 16 bits after every fragment, in list order (4
   // power moments through Theta*_4, 6 and 8 through the MBOIT matrices (stored_mboit_unorm16),
@@ -73,9 +74,9 @@ const char* oit_method_name(OitMethod method);
 // or 'eq9') or 'mboit' (moment-based, settings in `mboit`).
 struct OitSettings {
   OitMethod method = OitMethod::kMboit;
-  int layers = 4;               // peel
+  int layers = 4;               // peel: layers kept
   WboitWeight weight = WboitWeight::kEq7;  // wboit
-  MboitSettings mboit;
+  MboitSettings mboit;  // MboitSettings (method 'mboit')
 
   void check(Problems& problems) const;  // adds every bad field (of the method's settings)
   void validate() const;                 // throws std::invalid_argument listing them all

@@ -32,12 +32,12 @@ const char* shadow_method_name(ShadowMethod method);
 // `moments`).
 struct ShadowMapOptions {
   ShadowMethod method = ShadowMethod::kHamburger;
-  int resolution = 1024;     // texels per side
+  int resolution = 1024;     // texels per side, in [2, 8192]
   int kernel = 1;            // k x k filter (odd) of PCF and of the moment map
-  MomentShadowSettings moments;  // moment methods: depth range, storage, bias
+  MomentShadowSettings moments;  // MomentShadowSettings of the moment methods (vsm, msm_*): depth range, storage, bias
   double depth_bias = 2e-4;  // hard / pcf: compare against z - depth_bias (normalised depth)
   double normal_offset = 1.5;  // receivers are moved this many texels along their normal
-  // VSM light-bleeding reduction (Lauritzen): intensities below this amount of light become 0.
+  // VSM light-bleeding reduction (Lauritzen) in [0, 1): intensities below this amount of light become 0.
   double bleeding_reduction = 0.0;
 
   void check(Problems& problems) const;  // adds every bad field

@@ -166,6 +166,13 @@ double ElevationTable::excess(const std::vector<double>& elevations, const std::
   return worst;
 }
 
+ElevationTableOptions ElevationTable::built_options() const {
+  ElevationTableOptions options = options_;
+  options.trace.cancel = nullptr;
+  options.trace.ior_floor.reset();
+  return options;
+}
+
 ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& options, WorkControl& control)
     : field_(std::move(field)), options_(options) {
   if (!field_) throw_invalid("ElevationTable needs a field");

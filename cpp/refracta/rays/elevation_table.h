@@ -38,19 +38,24 @@ struct PlaneState {
 // the rest from Bouguer's invariant), so a path to the horizon costs its first kilometres.
 using PlaneEscape = std::function<std::optional<PlaneState>(const RayNode<double>& node, double remaining)>;
 
+// Options of refracta.ElevationTable beside its eye height and elevation range, with their
+// defaults (defined once, here). `trace` holds the exact traces' TraceOptions (their integrator is
+// always 'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.
 struct ElevationTableOptions {
   double eye_height = 1.5;          // [m]
   double min_elevation = -0.0175;   // [rad]
   double max_elevation = 0.0175;    // [rad]
-  double tol = 1e-3;                // interpolation tolerance [m] ...
-  double angular_tol = 0.0;         // ... plus this much per metre of path [rad] (renders: a pixel)
-  int64_t max_rays = 200000;        // beyond this many exact traces, unresolved intervals stay exact
-  int initial_rays = 65;
+  double tol = 1e-3;                // interpolation tolerance along the whole path [m], plus angular_tol
+  double angular_tol = 0.0;         // added to tol per metre of path [rad] (renders: a pixel)
+  // Beyond this many exact traces, unresolved intervals stay exact (traced exactly per query).
+  int64_t max_rays = 200000;
+  int initial_rays = 65;            // exact traces before refining
   double min_spacing = 1e-7;        // [rad]
-  // The exact traces: trace is forced to stratified, and their tol is trace_tol, or the table's
-  // tol when unset (the traces then as accurate as the interpolation asks).
+  // TraceOptions of the exact traces (max_length, stop_height, step): their integrator is forced to
+  // stratified, and their tol is trace_tol, or the table's tol when unset (the traces then as
+  // accurate as the interpolation asks).
   TraceOptions trace;
-  std::optional<double> trace_tol;  // [m]
+  std::optional<double> trace_tol;  // the exact traces' tolerance [m]; unset (None): tol
   // Unset: every path is traced to its end (max_length or the stop height). Set: a path ends at
   // the first node where it escapes; its escape state is interpolated as the ends are, and the
   // table's check holds it to angular_tol in direction (see PlaneEscape).
@@ -130,6 +135,9 @@ class ElevationTable {
   int64_t evaluations() const { return evaluations_; }
   size_t exact_intervals() const;  // intervals where queries are traced exactly
   const ElevationTableOptions& options() const { return options_; }
+  // The options the table was built with (a copy), as a caller gives them: without the build's
+  // cancel flag and the ior_floor the table found from its field.
+  ElevationTableOptions built_options() const;
   const std::vector<double>& elevations() const { return elevations_; }
 
  private:

@@ -33,9 +33,11 @@ struct TraceOptions {
   // kStratifiedDefaultSpacing). 0 selects the default.
   double step = 0.0;
   double max_length = 1000.0;           // arc length at which the path ends [m]
-  std::optional<double> stop_height;    // the path ends where it descends through this height [m]
-  int64_t max_steps = 10'000'000;       // a guard against runaway step-size collapse
-  // stratified: a lower bound of n over every height the path can reach (none: unknown). A ray
+  // The path ends where it descends through this height [m] (a ground); unset (None): no ground.
+  std::optional<double> stop_height;
+  // A guard against runaway step-size collapse: a path needing more steps is refused up front.
+  int64_t max_steps = 10'000'000;
+  // stratified: a lower bound of n over every height the path can reach (None: unknown). A ray
   // whose invariant beta = n cos e stays clearly below it can never turn, so its heights are not
   // scanned metre by metre for turning points (a path climbing 100 km: 70 000 nodes, else ~1 000).
   std::optional<double> ior_floor;

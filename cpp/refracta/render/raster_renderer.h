@@ -33,26 +33,27 @@ const char* raster_output_name(RasterOutput output);
 // validate() reports every bad value at once.
 struct RasterRenderOptions {
   ShadowSource shadows = ShadowSource::kMap;
-  ShadowMapOptions shadow_map;  // the sun's and the spot lights' maps (shadows = map)
-  // The region the map covers: by default fitted, seen from the sun, to the visible points
-  // closer than shadow_distance [m] to the camera.
+  ShadowMapOptions shadow_map;  // ShadowMapOptions of the sun's and the spot lights' maps (shadows 'map')
+  // The region the sun's map covers, seen from the sun: its centre [m]; unset (None): fitted to the
+  // visible points closer than shadow_distance to the camera.
   std::optional<Vec3d> shadow_centre;
-  std::optional<double> shadow_half_size;
+  std::optional<double> shadow_half_size;  // half the side of the sun's map [m]; None: fitted to the visible points
+  // [m] the sun's map covers the visible points closer than this to the camera
   double shadow_distance = std::numeric_limits<double>::infinity();
   RasterOutput output = RasterOutput::kRadiance;
   int shadow_light = -1;  // output shadow: -1 the sun, k >= 0 the scene's spot light k
-  // The scene's lights to use: the sun, and the spot lights listed (all when not given; spot k is
-  // the k-th spot light in the scene's order). Other lights (point, area, environment) shade
-  // with Embree shadow rays.
-  bool use_sun = true;
+  bool use_sun = true;  // the scene's sun shines
+  // Indices of the spot lights that shine (spot k is the k-th spot light in the scene's order);
+  // unset (None): all. Other lights (point, area, environment) shade with Embree shadow rays.
   std::optional<std::vector<int>> spots;
   // Surfaces with material alpha < 1 are composited over the opaque ones with this method
   // (fragments from the rasterizer, culled by the opaque depth); without it they are opaque.
-  // MBOIT's log-depth range, when not set, is fitted to the frame's fragments.
+  // MBOIT's log-depth range, when not set, is fitted to the frame's fragments. None: every surface
+  // opaque.
   std::optional<OitSettings> transparency;
-  int tile = 16;
-  // Stratified samples (per axis) of each light with extent other than the sun (environment,
-  // sky, area lights), deterministic per pixel.
+  int tile = 16;  // tile size [pixels] of the parallel loop
+  // Stratified samples (per axis, 1 .. 64) of each light with extent other than the sun and the
+  // spots (environment, sky, area lights), deterministic per pixel.
   int light_strata = 8;
 
   void check(Problems& problems) const;  // adds every bad field, the nested options' included
@@ -61,10 +62,10 @@ struct RasterRenderOptions {
 
 // What render_raster measured (read-only).
 struct RasterRenderStats {
-  double seconds = 0.0;               // the whole render
-  double shadow_build_seconds = 0.0;  // rasterizing, filtering and storing the shadow map
-  int bytes_per_texel = 0;
-  int64_t transparent_fragments = 0;  // in front of the opaque surfaces
+  double seconds = 0.0;               // the whole render [s]
+  double shadow_build_seconds = 0.0;  // rasterizing, filtering and storing the shadow maps [s]
+  int bytes_per_texel = 0;            // what the shadow method reads per texel
+  int64_t transparent_fragments = 0;  // transparent fragments in front of the opaque surfaces
   double oit_bytes_per_pixel = 0.0;   // what the transparency method keeps per pixel (mean)
 };
 

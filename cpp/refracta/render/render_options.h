@@ -34,6 +34,8 @@ const char* turbulence_trace_name(TurbulenceTrace method);
 // PixelBounds from (x0, y0, x1, y1) (any other count: std::invalid_argument); pixel_bounds' setter.
 PixelBounds pixel_bounds_from(const std::vector<int>& corners);
 
+// Options of refracta.render, with their defaults (defined once, here). Set any field by name;
+// validate() reports every bad value at once.
 struct RenderOptions {
   RenderMethod method = RenderMethod::kCurved;
   int spp = 1;                // samples per pixel (1: the pixel centre; more: correlated multi-jittered, film.h)
@@ -50,7 +52,7 @@ struct RenderOptions {
   // integrates it; the other pixels keep spp. The edges' pixels are few (7-13 % on the demo
   // scenes): the cost is that share x edge_spp. 0 (or at most spp): off. Not with adaptive.
   int edge_spp = 0;
-  uint64_t seed = 0;
+  uint64_t seed = 0;  // seed of the per-pixel random streams
   double max_length = 5000.0; // curved rays end here and show the sky in their last direction [m]
   double chord = 1000.0;      // longest straight chord tested against the geometry [m]
   double sagitta = 1e-3;      // largest distance between a chord and the curved path [m]
@@ -60,7 +62,8 @@ struct RenderOptions {
   // Camera rays may stray this fraction of a pixel's footprint (pixel angle x path length) from
   // their path when that is more than `sagitta`: what a pixel cannot resolve need not be traced.
   double sagitta_pixels = 0.25;
-  // Ray integrator for curved rays; tol [m]. Height-only fields use 'stratified', others 'rk45'.
+  // Curved-ray integration tolerance [m] (the integrator, `trace`: 'stratified' for height-only
+  // fields, 'rk45' for others).
   double tol = 1e-4;
   std::optional<TraceMethod> trace;  // force 'rk45' or 'stratified' (default: by the field)
   // Camera rays through turbulence: the exact trace unless 'perturbed' is asked for (it meets issue
@@ -86,10 +89,11 @@ struct RenderOptions {
   // (interpolated to `tol`) instead of tracing each pixel (over a CurvedEarth, paths over 150 km end in
   // the table where they leave the air; spectral renders of 8 spp or more: one table per dispersion scale; renderer.cpp).
   bool use_table = true;
-  int tile = 16;
-  // Render only these pixels of the camera's image (the result has the bounds' size); each pixel
-  // exactly as in the whole image (its seed and the eye's ElevationTable are the whole image's).
-  // Unset: the whole image. Checked against the camera by bounds_in(camera).
+  int tile = 16;  // tile size [pixels] of the parallel loop
+  // Render only these pixels of the camera's image, (x0, y0, x1, y1): pixels [x0, x1) x [y0, y1)
+  // (the result has the bounds' size); each pixel exactly as in the whole image (its seed and the
+  // eye's ElevationTable are the whole image's: distributed tiles). Unset (None): the whole image.
+  // Checked against the camera by bounds_in(camera).
   std::optional<PixelBounds> pixel_bounds;
   // Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point
   // samples the finest level (aliases: only for references and tests).
@@ -121,15 +125,15 @@ struct RenderOptions {
   // against the depth buffer: 'rk4' with `step` [m] for at most `max_steps` steps (the
   // original: 0.3 m, 1000 steps), or 'rk45' to `tol` over max_length.
   TraceMethod march = TraceMethod::kRk45;
-  double step = kRk4DefaultStep;
-  int max_steps = 1000;
+  double step = kRk4DefaultStep;  // raster_march 'rk4': the step [m]
+  int max_steps = 1000;           // raster_march 'rk4': steps at most
   // Extra raster view on each side, as a fraction of the image size: rays that bend out of the
   // camera's view can still find geometry there. What is in no raster pixel cannot appear.
   double guard_band = 0.1;
 
   void validate() const;
-  // The pixels to render of a width x height image: pixel_bounds (checked to lie inside, non-empty;
-  // std::invalid_argument otherwise) or the whole image.
+  // The pixels to render of a width x height image, (x0, y0, x1, y1): pixel_bounds (checked to lie
+  // inside, non-empty; std::invalid_argument otherwise) or the whole image.
   PixelBounds bounds_in(int width, int height) const;
 };
 

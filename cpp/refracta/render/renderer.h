@@ -13,9 +13,9 @@
 
 namespace refracta {
 
-// What a render did, summed over its samples.
+// What refracta.render counted, summed over its samples (read-only; tiles add up with +).
 struct RenderStats {
-  int64_t samples = 0;
+  int64_t samples = 0;          // camera samples traced
   int64_t chords = 0;           // Embree queries along camera paths (straight rays count one each)
   int64_t invalid_samples = 0;  // samples whose radiance was not finite (dropped; should stay 0)
 };

@@ -34,17 +34,22 @@ RowMatrixXd bsdf_f(const Material& material, const std::vector<Vec3d>& wo, const
 Eigen::VectorXd bsdf_pdf(const Material& material, const std::vector<Vec3d>& wo, const std::vector<Vec3d>& wi,
                          const BsdfQuery& query);
 
-// Samples of BsdfSample's fields (bsdf.h), a row each; C = 3 (RGB) or 4 (spectral) columns.
+// What Material.sample returns, one row per sample (read-only arrays; bsdf.h's BsdfSample fields):
+// wi (N, 3), weight (N, C), f (N, C), pdf (N,), flags (N,) uint32, is_delta (N,), eta (N,), valid
+// (N,), terminated (N,); C = 3 (RGB) or 4 (spectral). See Material.sample. s['wi'] (the former
+// dict) still works and iteration over the names are deprecated (DeprecationWarning).
 struct BsdfSamples {
   using Flags = Eigen::Matrix<uint32_t, Eigen::Dynamic, 1>;
   using Bools = Eigen::Matrix<bool, Eigen::Dynamic, 1>;
-  RowMatrixX3d wi;        // 0 where invalid
-  RowMatrixXd weight, f;  // (N, C)
-  Eigen::VectorXd pdf;
-  Flags flags;
-  Bools is_delta;
-  Eigen::VectorXd eta;    // 1 for reflection and where invalid
-  Bools valid, terminated;
+  RowMatrixX3d wi;      // Sampled unit directions (N, 3), 0 where invalid.
+  RowMatrixXd weight;   // ``f |cos theta_i| / pdf`` (N, C) (delta lobes: albedo / probability).
+  RowMatrixXd f;        // The BSDF value (N, C) [1/sr] (delta lobes: as weight's numerator).
+  Eigen::VectorXd pdf;  // Density (N,) [1/sr] (delta lobes: the lobe's selection probability).
+  Flags flags;          // 1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular (N,).
+  Bools is_delta;       // Whether a delta lobe was sampled (N,).
+  Eigen::VectorXd eta;  // The relative index crossed (N,), 1 for reflection (and where invalid).
+  Bools valid;          // False where no direction was produced (N,).
+  Bools terminated;     // True where a dispersive refraction kept the hero wavelength only (N,).
   // The fields in this order (pickling); BsdfSamples{fields...} rebuilds it.
   auto fields() const { return std::make_tuple(wi, weight, f, pdf, flags, is_delta, eta, valid, terminated); }
 };

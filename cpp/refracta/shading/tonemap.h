@@ -85,18 +85,21 @@ enum class Transfer { kSrgb, kGamma };
 // default), then the tone curve `tonemap` and the transfer curve `gamma`. validate() lists every
 // bad field.
 struct DisplaySettings {
-  // Manual exposure, at most one of: c > 0 multiplying the radiance; EV100; a camera's shutter
-  // [s] and f_number (with iso, default kDefaultIso). None of them: automatic.
-  std::optional<double> exposure;
-  std::optional<double> ev100;
-  std::optional<double> iso, shutter, f_number;
-  // K: luminance [cd/m^2] of an image value of 1 (EV100 and camera settings only).
+  // Manual exposure, at most one of: exposure; ev100; a camera's shutter and f_number (with iso,
+  // default kDefaultIso). None of them: automatic.
+  std::optional<double> exposure;  // c > 0 multiplying the radiance (manual); None: not this way
+  std::optional<double> ev100;     // manual exposure as EV100: c = K / (1.2 x 2^EV100); None: not this way
+  std::optional<double> iso;       // a camera's ISO with shutter and f_number; None: ISO 100 (kDefaultIso)
+  std::optional<double> shutter;   // [s] a camera's shutter time (with f_number); None: not this way
+  std::optional<double> f_number;  // a camera's f-number N (with shutter)
+  // K: luminance [cd/m^2] of an image value of 1 (EV100 and camera settings only): 683 lm/W for
+  // radiance in W/(m^2 sr).
   double luminous_efficacy = kLuminousEfficacy;
   // The default: ACES, a photographic film curve (io.py says why, with figures).
   Tonemap tonemap = Tonemap::kAces;
   // Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the
-  // image, delta = kReinhardDelta); given, it overrides any manual exposure; none: kAutoKey when
-  // there is no manual exposure, else none.
+  // image, delta = kReinhardDelta); given, it overrides any manual exposure; none: kAutoKey (0.18)
+  // when there is no manual exposure, else none.
   std::optional<double> key;
   // Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
   // luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3).
