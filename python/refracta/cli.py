@@ -215,7 +215,7 @@ def demo(out: Path, size=None) -> int:
 # the mirage down to -0.14 deg see the inverted sky, the sea beneath. The frames: the flattening disc
 # cut by the mirage (-0.45); the sun's top and its inverted image merged into an orange lens floating
 # above the inverted sky (-0.74: every wavelength's cap 0.033-0.043 deg tall); the lens shrinking,
-# orange inside a green rim (-0.768: red's cap 0.0053 deg, green's 0.0091); the last gleam, red and
+# orange inside a green rim (-0.768: 700 nm's cap 0.0053 deg, 530's 0.0101); the last gleam, red and
 # yellow gone (-0.776: 560 nm's cap 0.0009 deg, 530's 0.0021, 450's 0.0066). Each wavelength's lens is
 # the chord of its cap (width 2 sqrt(2 R h)) stretched by the mirage (height 2 sqrt(h / k), k = 9.98 per
 # deg at the vertex): ellipses of one shape, the bluer the larger, so the colours nest around the
