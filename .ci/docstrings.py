@@ -69,6 +69,8 @@ HEADERS = [
     "cpp/refracta/shading/terrain_shading.h",
     "cpp/refracta/shading/thin_film.h",
     "cpp/refracta/shading/tonemap.h",
+    "cpp/refracta/shading/water.h",
+    "cpp/refracta/shading/water_surface.h",
 ]
 FLAGS = ["-std=c++17", "-fparse-all-comments", f"-I{ROOT / 'cpp'}", "-I/usr/include/eigen3"]
 WIDTH = 100  # the headers' own line length: paragraphs keep their shape

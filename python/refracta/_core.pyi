@@ -2614,8 +2614,8 @@ class Material:
         ...
     def f(self, wo: typing.Any, wi: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
-        The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per
-        wavelength. Delta lobes give 0.
+        The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per wavelength.
+        Delta lobes give 0.
         wo, wi: unit directions in the local shading frame (z = shading normal), shape (N, 3) or (3,)
         (one side may be a single direction, broadcast), wo toward the viewer, wi toward the light.
         wavelengths: None for RGB rendering, or (4,) / (N, 4) hero wavelengths [nm] for spectral.
@@ -2628,8 +2628,8 @@ class Material:
         """
     def pdf(self, wo: typing.Any, wi: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
-        Density [1/sr] with which sample(wo, u) produces wi: (N,). It includes the lobe
-        selection probabilities; delta lobes contribute 0.
+        Density [1/sr] with which sample(wo, u) produces wi: (N,). It includes the lobe selection
+        probabilities; delta lobes contribute 0.
         wo, wi: unit directions in the local shading frame (z = shading normal), shape (N, 3) or (3,)
         (one side may be a single direction, broadcast), wo toward the viewer, wi toward the light.
         wavelengths: None for RGB rendering, or (4,) / (N, 4) hero wavelengths [nm] for spectral.
@@ -2637,14 +2637,14 @@ class Material:
         """
     def sample(self, wo: typing.Any, u: typing.Any, wavelengths: typing.Any = None, eta_outside: typing.SupportsFloat | typing.SupportsIndex = 1.0, mode: str = 'radiance') -> BsdfSample:
         """
-        Sample incident directions for wo (N, 3) from uniform numbers u (N, 3) in [0, 1): u[:, 0] picks
-        the lobe, u[:, 1:] the direction. Returns a BsdfSample of arrays: wi (N, 3) (0 where invalid),
-        weight (N, C) = ``f |cos theta_i| / pdf`` (delta lobes: the lobe's albedo over its probability),
-        f (N, C), pdf (N,) (delta lobes: the lobe's selection probability), flags (N,) uint32
-        (1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular/delta), is_delta (N,),
-        eta (N,) the relative index crossed (1 for reflection), valid (N,) False where no direction
-        was produced, terminated (N,) True where a dispersive refraction kept the hero wavelength
-        only. C = 3 (RGB) or 4 (spectral). Other arguments as for f.
+        Sample incident directions for wo (N, 3) from uniform numbers u (N, 3) in [0, 1): u[:, 0] picks the
+        lobe, u[:, 1:] the direction; wo or u may be a single row. Returns a BsdfSample of arrays: wi (N, 3)
+        (0 where invalid), weight (N, C) = ``f |cos theta_i| / pdf`` (delta lobes: the lobe's albedo over
+        its probability), f (N, C), pdf (N,) (delta lobes: the lobe's selection probability), flags (N,)
+        uint32 (1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular/delta), is_delta (N,), eta
+        (N,) the relative index crossed (1 for reflection), valid (N,) False where no direction was
+        produced, terminated (N,) True where a dispersive refraction kept the hero wavelength only. C = 3
+        (RGB) or 4 (spectral). Other arguments as for f.
         """
     @property
     def alpha(self) -> float:
@@ -2847,19 +2847,19 @@ class Water(Material):
     The sea: a wind-roughened water surface over a deep water body (water_surface.h).
     
     The interface is a Beckmann microfacet dielectric (Walter et al. 2007; Mitsuba 3's roughdielectric
-    with distribution='beckmann') whose alpha^2 is Cox & Munk 1954's total mean-square slope
-    0.003 + 5.12e-3 wind_speed (alpha = 0.17 at 5 m/s) and whose index is water_ior(lambda, temperature_c,
+    with distribution='beckmann') whose alpha^2 is Cox & Munk 1954's total mean-square slope 0.003 +
+    5.12e-3 wind_speed (alpha = 0.17 at 5 m/s) and whose index is water_ior(lambda, temperature_c,
     salinity): per wavelength in spectral rendering, at 630, 532 and 465 nm per RGB channel (directions
     sampled at 550 nm). body=True (default): the deep water under it absorbs (Pope & Fry 1997) and
     backscatters (Morel 1974) the light refracted in and returns R = 0.33 b_b / (a + b_b) of it as
-    isotropic light leaving through the rough interface, T(cos_i) T(cos_o) R / (pi eta^2 (1 - R Fbar_int))
-    (T = transmittance(mu), Fbar_int = internal_reflectance());
-    reflection-only and two-sided, nothing continues below. body=False: the bare interface, reflecting
-    and transmitting, bounding a medium of the water's index (priority for nested dielectrics).
-    Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open ocean).
-    resolved_slope_variance: the mean-square slope a displaced wave mesh under it already resolves
-    (Scene.add_sea sets it): alpha^2 = Cox-Munk's total - it, so that resolved + unresolved = total.
-    wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.
+    isotropic light leaving through the rough interface, T(cos_i) T(cos_o) R / (pi eta^2 (1 - R
+    Fbar_int)) (T = transmittance(mu), Fbar_int = internal_reflectance()); reflection-only and two-
+    sided, nothing continues below. body=False: the bare interface, reflecting and transmitting,
+    bounding a medium of the water's index (priority for nested dielectrics).
+    Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open
+    ocean). resolved_slope_variance: the mean-square slope a displaced wave mesh under it already
+    resolves (Scene.add_sea sets it): alpha^2 = Cox-Munk's total - it, so that resolved + unresolved =
+    total. wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.
     """
     def __getstate__(self) -> dict:
         ...
@@ -2870,7 +2870,8 @@ class Water(Material):
     def internal_reflectance(self, wavelength_nm: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> float:
         """
         Fbar_int = 1 - 2 int T(mu) mu dmu / eta^2: what of isotropic light under the rough surface is sent
-        back down (the flat surface's fresnel_diffuse_reflectance(1 / eta) when alpha -> 0).
+        back down, at wavelength_nm (the flat surface's fresnel_diffuse_reflectance(1 / eta) when alpha ->
+        0).
         """
     def ior(self, wavelength_nm: typing.Any) -> typing.Any:
         """
@@ -2878,9 +2879,10 @@ class Water(Material):
         """
     def transmittance(self, mu: typing.Any, wavelength_nm: typing.SupportsFloat | typing.SupportsIndex = 550.0) -> typing.Any:
         """
-        The rough interface's directional transmittance T(mu) from above (the share of the energy arriving at
-        cos theta = mu that crosses into the water), as the water body's term uses it, at the water's index
-        at wavelength_nm under vacuum. Tabulated (33 mu x 5 eta nodes).
+        The rough interface's directional transmittance T(mu) from above (the share of the energy arriving
+        at cos theta = mu that crosses into the water), as the water body's term uses it, at the water's
+        index at wavelength_nm under vacuum, mu in [-1, 1] (std::invalid_argument naming them otherwise).
+        Tabulated (33 mu x 5 eta nodes).
         """
     @property
     def alpha(self) -> float:
@@ -2905,8 +2907,9 @@ class Water(Material):
     @property
     def resolved_slope_variance(self) -> float:
         """
-        The mean-square slope a displaced wave mesh already shows (Scene.add_sea); the microfacets keep
-        alpha^2 = mean_square_slope - resolved_slope_variance.
+        [-] the mean-square slope a displaced mesh under this material already shows (Scene.add_sea: the
+        Tessendorf waves it resolves); the microfacets keep the rest, alpha^2 = sigma^2 - this, so that
+        resolved + unresolved = Cox & Munk's total. In [0, sigma^2 - kMinUnresolvedSlopeVariance].
         """
     @property
     def salinity(self) -> float:
@@ -3499,8 +3502,11 @@ def bessel_j1(x: typing.Any) -> numpy.ndarray:
     """
 def cox_munk_mean_square_slope(wind_speed: typing.Any) -> typing.Any:
     """
-    Total mean-square slope of a clean sea surface, 0.003 + 5.12e-3 U (Cox & Munk 1954), wind_speed U
-    [m/s] 12.5 m above the sea in [0, 30]. The Water material's Beckmann alpha^2. Vectorised.
+    Total (upwind + crosswind) mean-square slope of a clean sea surface at wind speed U [m/s], 12.5 m
+    above the sea: sigma^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, "Measurement of the roughness of the
+    sea surface from photographs of the sun's glitter", JOSA 44(11), 838-850, eq. for sigma_u^2 +
+    sigma_c^2, +-0.004). U in [0, kWaterMaxWindSpeed]; throws naming wind_speed otherwise.
+    Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def dispersed_field(field: IndexField, wavelength: typing.SupportsFloat | typing.SupportsIndex, reference: typing.SupportsFloat | typing.SupportsIndex | None = None) -> IndexField:
     """
@@ -3569,29 +3575,56 @@ def von_karman_spectrum(kappa: typing.Any, cn2: typing.SupportsFloat | typing.Su
     """
 def water_absorption(wavelength_nm: typing.Any) -> typing.Any:
     """
-    Absorption coefficient of pure water [1/m] at wavelength_nm in [360, 830]: Pope & Fry 1997 (380-725 nm),
-    Smith & Baker 1981 below, Kou et al. 1993 above; linear between 5 nm nodes. Vectorised.
+    Absorption coefficient of pure water [1/m] at a wavelength [nm] in [kLambdaMin, kLambdaMax] (360-830
+    nm), linear between 5 nm nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of pure water.
+    II. Integrating cavity measurements", Applied Optics 36(33), 8710-8723) from 380 to 725 nm; Smith &
+    Baker 1981 ("Optical properties of the clearest natural waters (200-800 nm)", Applied Optics 20(2),
+    177-184) below; Kou, Labrie & Chylek 1993 (Applied Optics 32(19)) above, as NASA's ocean-colour
+    processing joins them (0.00635 at 440 nm, 0.0565 at 550, 0.624 at 700). The small temperature and
+    salinity dependence of absorption is left out. Throws outside the range.
+    Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def water_backscattering(wavelength_nm: typing.Any, salinity: typing.Any = 0.0) -> typing.Any:
     """
-    Backscattering coefficient of pure (sea) water [1/m]: half of Morel 1974's molecular scattering
-    0.00222 (1 + 0.3 S / 37) (lambda / 500)^-4.32, salinity S [g/kg] in [0, 40]. Vectorised.
+    Backscattering coefficient of pure (sea) water [1/m]: half the molecular scattering b_w(lambda) =
+    b_w(500) (lambda / 500)^-4.32 of Morel 1974 ("Optical properties of pure water and pure sea water",
+    in Optical Aspects of Oceanography, Jerlov & Steemann Nielsen eds.), whose phase function is
+    symmetric front-to-back; b_w(500) = 0.00222 1/m for pure water, and sea water (S = 35-39 g/kg)
+    scatters 30 % more: b_w(500) = 0.00222 (1 + 0.3 S / 37). Zhang et al. 2009 (Optics Express 17(7))
+    derive the same lambda^-4.32 slope from fluctuation theory.
+    Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def water_body_reflectance(wavelength_nm: typing.Any, salinity: typing.Any = 0.0) -> typing.Any:
     """
-    Irradiance reflectance just beneath the surface of deep pure (sea) water, R = 0.33 b_b / (a + b_b)
-    (Morel & Prieur 1977; Gordon et al. 1975), from water_absorption and water_backscattering. Vectorised.
+    Irradiance reflectance R = E_u / E_d just beneath the surface of an optically deep, homogeneous
+    water body: R = 0.33 b_b / (a + b_b) (Morel & Prieur 1977, "Analysis of variations in ocean color",
+    Limnology and Oceanography 22(4), R = 0.33 b_b / a; written with Gordon, Brown & Jacobs 1975's
+    variable X = b_b / (a + b_b), Applied Optics 14(2), so that R stays below 0.33 where backscattering
+    rivals absorption). Pure water of the given salinity: blue (0.13 at 420 nm), 0.0054 at 550 nm,
+    4.4e-4 at 650 nm for S = 35). Throws outside 360-830 nm or 0-40 g/kg.
+    Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def water_density(temperature_c: typing.Any) -> typing.Any:
     """
-    Density of air-free pure water at 101 325 Pa [kg/m^3] (Tanaka et al. 2001), temperature_c in
-    [0, 40] deg C. Vectorised.
+    Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in [kWaterMinCelsius,
+    kWaterMaxCelsius]: Tanaka, Girard, Davis, Peuto & Bignell 2001, "Recommended table for the density
+    of water between 0 C and 40 C", Metrologia 38, eq. 1 (999.97495 kg/m^3 at its maximum near 4 C,
+    998.2067 at 20 C). Throws std::invalid_argument outside the range.
+    Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def water_ior(wavelength_nm: typing.Any, temperature_c: typing.Any = 20.0, salinity: typing.Any = 0.0) -> typing.Any:
     """
-    Refractive index of water relative to vacuum: pure water by IAPWS R9-97 at the density of
-    Tanaka et al. 2001 (atmospheric pressure), plus Quan & Fry 1995's salinity terms. wavelength_nm
-    in [200, 1100], temperature_c in [0, 40] deg C, salinity [g/kg] in [0, 40]. Vectorised.
+    Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [kWaterMinWavelength,
+    kWaterMaxWavelength], temperature [deg C] and salinity [g/kg, ~PSU] in [0, kWaterMaxSalinity], at
+    atmospheric pressure:
+    - pure water: IAPWS R9-97, "Release on the Refractive Index of Ordinary Water Substance as a
+      Function of Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) =
+      rho_bar A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t);
+    - sea water: plus the salinity terms of Quan & Fry 1995, Applied Optics 34(18), eq. 3, (n1 + n2 t +
+      n3 t^2) S + n6 S / lambda (fitted 0-35 g/kg, 0-30 C, 400-700 nm, relative to
+      air: the 3e-4 difference from vacuum in the increment is far below the fit's accuracy).
+    Throws std::invalid_argument naming the argument outside its range.
+    Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 DEFAULT_TURBULENCE_YAW_DEG: float = 31.71747441146101
 EDIT_CAMERA_PARAMETERS: tuple = ('camera_yaw', 'camera_pitch', 'camera_roll', 'camera_vfov')

@@ -91,8 +91,7 @@ void bind_material_base(py::module_& m) {
           },
           py::arg("wo"), py::arg("wi"), py::arg("wavelengths") = py::none(), py::arg("eta_outside") = 1.0,
           py::arg("mode") = "radiance",
-          (std::string("The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per\n"
-                       "wavelength. Delta lobes give 0.\n") + kEvalDoc).c_str())
+          (std::string(DOC(refracta, bsdf_f)) + "\n" + kEvalDoc).c_str())
       .def(
           "pdf",
           [](const Material& material, const py::object& wo, const py::object& wi, const py::object& wavelengths,
@@ -102,8 +101,7 @@ void bind_material_base(py::module_& m) {
           },
           py::arg("wo"), py::arg("wi"), py::arg("wavelengths") = py::none(), py::arg("eta_outside") = 1.0,
           py::arg("mode") = "radiance",
-          (std::string("Density [1/sr] with which sample(wo, u) produces wi: (N,). It includes the lobe\n"
-                       "selection probabilities; delta lobes contribute 0.\n") + kEvalDoc).c_str())
+          (std::string(DOC(refracta, bsdf_pdf)) + "\n" + kEvalDoc).c_str())
       .def(
           "sample",
           [](const Material& material, const py::object& wo, const py::object& u, const py::object& wavelengths,
@@ -113,14 +111,7 @@ void bind_material_base(py::module_& m) {
           },
           py::arg("wo"), py::arg("u"), py::arg("wavelengths") = py::none(), py::arg("eta_outside") = 1.0,
           py::arg("mode") = "radiance",
-          "Sample incident directions for wo (N, 3) from uniform numbers u (N, 3) in [0, 1): u[:, 0] picks\n"
-          "the lobe, u[:, 1:] the direction. Returns a BsdfSample of arrays: wi (N, 3) (0 where invalid),\n"
-          "weight (N, C) = ``f |cos theta_i| / pdf`` (delta lobes: the lobe's albedo over its probability),\n"
-          "f (N, C), pdf (N,) (delta lobes: the lobe's selection probability), flags (N,) uint32\n"
-          "(1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular/delta), is_delta (N,),\n"
-          "eta (N,) the relative index crossed (1 for reflection), valid (N,) False where no direction\n"
-          "was produced, terminated (N,) True where a dispersive refraction kept the hero wavelength\n"
-          "only. C = 3 (RGB) or 4 (spectral). Other arguments as for f.")
+          (std::string(DOC(refracta, bsdf_sample)) + " Other arguments as for f.").c_str())
       .def("describe", &Material::describe)
       .def("__repr__", &Material::describe)
       .def_property_readonly("priority", &Material::priority, "Nested-dielectric priority (larger wins).")

@@ -64,6 +64,11 @@ py::class_<T, Material, std::shared_ptr<T>> def_material(py::module_& m, const c
   return cls;
 }
 
+// A vectorised function's docstring (vectorize_real): the library's comment, then how it is called.
+inline std::string vectorised_doc(const char* doc) {
+  return std::string(doc) + "\nVectorised: numbers or arrays of them (numpy broadcasting).";
+}
+
 // The texture= argument of the materials with a textured reflectance.
 #define TEXTURE_DOC                                                                                          \
   "texture: an image file (str or os.PathLike;\n"                                                          \

@@ -27,10 +27,12 @@ struct BsdfQuery {
   TransportMode mode = TransportMode::kRadiance;
 };
 
-// f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB or (N, 4) per wavelength; delta lobes 0.
+// The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per wavelength.
+// Delta lobes give 0.
 RowMatrixXd bsdf_f(const Material& material, const std::vector<Vec3d>& wo, const std::vector<Vec3d>& wi,
                    const BsdfQuery& query);
-// The density [1/sr] with which sampling wo gives wi (lobe selection included; delta lobes 0): (N,).
+// Density [1/sr] with which sample(wo, u) produces wi: (N,). It includes the lobe selection
+// probabilities; delta lobes contribute 0.
 Eigen::VectorXd bsdf_pdf(const Material& material, const std::vector<Vec3d>& wo, const std::vector<Vec3d>& wi,
                          const BsdfQuery& query);
 
@@ -53,8 +55,14 @@ struct BsdfSamples {
   // The fields in this order (pickling); BsdfSamples{fields...} rebuilds it.
   auto fields() const { return std::make_tuple(wi, weight, f, pdf, flags, is_delta, eta, valid, terminated); }
 };
-// Sample incident directions for wo from u (rows of three numbers in [0, 1): the lobe, then the
-// direction; (N, 3)); wo or u may be a single row.
+// Sample incident directions for wo (N, 3) from uniform numbers u (N, 3) in [0, 1): u[:, 0] picks
+// the lobe, u[:, 1:] the direction; wo or u may be a single row. Returns a BsdfSample of arrays:
+// wi (N, 3) (0 where invalid), weight (N, C) = ``f |cos theta_i| / pdf`` (delta lobes: the lobe's
+// albedo over its probability), f (N, C), pdf (N,) (delta lobes: the lobe's selection
+// probability), flags (N,) uint32 (1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16
+// specular/delta), is_delta (N,), eta (N,) the relative index crossed (1 for reflection), valid
+// (N,) False where no direction was produced, terminated (N,) True where a dispersive refraction
+// kept the hero wavelength only. C = 3 (RGB) or 4 (spectral).
 BsdfSamples bsdf_sample(const Material& material, const std::vector<Vec3d>& wo, const RowMatrixXd& u,
                         const BsdfQuery& query);
 

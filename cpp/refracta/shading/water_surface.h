@@ -172,6 +172,23 @@ struct WaterParameters {
   double resolved_slope_variance = 0.0;
 };
 
+// The sea: a wind-roughened water surface over a deep water body (water_surface.h).
+//
+// The interface is a Beckmann microfacet dielectric (Walter et al. 2007; Mitsuba 3's roughdielectric
+// with distribution='beckmann') whose alpha^2 is Cox & Munk 1954's total mean-square slope
+// 0.003 + 5.12e-3 wind_speed (alpha = 0.17 at 5 m/s) and whose index is water_ior(lambda,
+// temperature_c, salinity): per wavelength in spectral rendering, at 630, 532 and 465 nm per RGB
+// channel (directions sampled at 550 nm). body=True (default): the deep water under it absorbs
+// (Pope & Fry 1997) and backscatters (Morel 1974) the light refracted in and returns
+// R = 0.33 b_b / (a + b_b) of it as isotropic light leaving through the rough interface,
+// T(cos_i) T(cos_o) R / (pi eta^2 (1 - R Fbar_int)) (T = transmittance(mu), Fbar_int =
+// internal_reflectance()); reflection-only and two-sided, nothing continues below. body=False: the
+// bare interface, reflecting and transmitting, bounding a medium of the water's index (priority
+// for nested dielectrics).
+// Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open
+// ocean). resolved_slope_variance: the mean-square slope a displaced wave mesh under it already
+// resolves (Scene.add_sea sets it): alpha^2 = Cox-Munk's total - it, so that resolved + unresolved
+// = total. wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.
 class Water final : public Material {
  public:
   // Validates every parameter (std::invalid_argument naming it) and tabulates the index and the
@@ -193,11 +210,14 @@ class Water final : public Material {
   // The water's index relative to vacuum at a wavelength [nm] in [kLambdaMin, kLambdaMax] (from the table).
   double ior(double wavelength_nm) const { return interpolate(ior_table_, wavelength_nm); }
   const RoughTransmittance& transmittance() const { return *transmittance_; }
-  // The rough interface's directional transmittance T(mu) from above at the water's index at
-  // wavelength_nm under vacuum, mu in [-1, 1] (std::invalid_argument naming them otherwise).
+  // The rough interface's directional transmittance T(mu) from above (the share of the energy
+  // arriving at cos theta = mu that crosses into the water), as the water body's term uses it, at
+  // the water's index at wavelength_nm under vacuum, mu in [-1, 1] (std::invalid_argument naming
+  // them otherwise). Tabulated (33 mu x 5 eta nodes).
   double transmittance(double mu, double wavelength_nm) const;
   // Fbar_int = 1 - 2 int T(mu) mu dmu / eta^2: what of isotropic light under the rough surface is
-  // sent back down, at wavelength_nm.
+  // sent back down, at wavelength_nm (the flat surface's fresnel_diffuse_reflectance(1 / eta) when
+  // alpha -> 0).
   double internal_reflectance(double wavelength_nm) const;
 
  private:
