@@ -1,7 +1,10 @@
 // Direct lighting with MIS (direct_lighting.h).
 #include "refracta/render/direct_lighting.h"
 
+#include "refracta/core/parallel.h"
 #include "refracta/shading/sun_light.h"
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -26,8 +29,91 @@ constexpr double kExitTolerance = 1e-5;
 constexpr double kLowestLaunch = 0.5 * kExitTolerance;
 constexpr double kJacobianStep = 2e-5;
 constexpr int kMaxBendIterations = 16;
+// LowestLaunches: start-height intervals tabulated, and the scatter of a cast's exit allowed
+// beside the interpolation's measured error [rad] (a tenth of the search's tolerance).
+constexpr int kLowestLaunchIntervals = 32;
+constexpr double kLowestLaunchScatter = 0.1 * kExitTolerance;
+
+// The exit elevation [rad], in the start's own frame, of the lowest launch from (0, h, 0) along +x
+// through `caster`; NaN where its path meets the scene.
+double lowest_launch_exit(const Caster& caster, double h) {
+  const Vec3d origin(0.0, h, 0.0);
+  const PathEnd end = caster.cast(origin, Vec3d(std::cos(kLowestLaunch), std::sin(kLowestLaunch), 0.0));
+  if (end.hit) return std::numeric_limits<double>::quiet_NaN();
+  Eigen::Matrix3d to_world;
+  for (int axis = 0; axis < 3; ++axis) to_world.col(axis) = caster.field()->sky_direction(origin, Vec3d::Unit(axis));
+  return std::asin(std::clamp(Vec3d(to_world.transpose() * end.direction).y(), -1.0, 1.0));
+}
 
 }  // namespace
+
+std::shared_ptr<const LowestLaunches> LowestLaunches::build(const Scene& scene,
+                                                            const std::vector<const Caster*>& casters,
+                                                            const std::vector<double>& scales) {
+  if (casters.size() < 2 || casters.size() != scales.size()) return nullptr;
+  if (!std::isfinite(scene.lowest()) || !std::isfinite(scene.highest())) return nullptr;
+  // offset_toward lifts a point of a level surface by 1e-5 + 2e-6 of its largest coordinate: the
+  // start heights from the lowest surface's least lift (a cast from the surface itself meets it)
+  // to the highest's most.
+  const double reach = std::max(scene.lower().cwiseAbs().maxCoeff(), scene.upper().cwiseAbs().maxCoeff());
+  const double lo = scene.lowest() + 1e-5, hi = scene.highest() + 1e-5 + 2e-6 * reach;
+  auto table = std::make_shared<LowestLaunches>();
+  table->lo_ = lo;
+  table->step_ = (hi - lo) / kLowestLaunchIntervals;
+  table->scales_ = scales;
+  table->margins_.assign(kLowestLaunchIntervals, 0.0);
+  // Each interval's midpoint is cast too: how far the exit strays from the chord between its ends
+  // (the interpolation's error, measured) -- 4x the worst over the scales, plus the casts' scatter,
+  // is the margin least_exit keeps there. An interval where a path meets the scene (a cast from
+  // just above a large surface can meet it within float precision) or strays by more than the
+  // search's tolerance is not tabulated (NaN: its casts are made).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // Every node and midpoint of every scale (each a pure function of its height and scale: the
+  // table is the same whichever thread casts what), then the margins.
+  const size_t nodes = 2 * kLowestLaunchIntervals + 1;
+  std::vector<std::vector<double>> exits(casters.size(), std::vector<double>(nodes, nan));
+  tbb::parallel_for(size_t(0), casters.size() * nodes, [&](size_t i) {
+    const DefaultFloatingPointMode fp_mode;  // parallel.h: whatever mode the worker was left in
+    exits[i / nodes][i % nodes] = lowest_launch_exit(*casters[i / nodes], lo + 0.5 * double(i % nodes) * table->step_);
+  });
+  for (const std::vector<double>& at : exits) {
+    for (size_t j = 0; j < size_t(kLowestLaunchIntervals); ++j) {
+      const double a = at[2 * j], middle = at[2 * j + 1], b = at[2 * j + 2];
+      double& margin = table->margins_[j];
+      margin = std::isnan(a) || std::isnan(middle) || std::isnan(b) || std::isnan(margin)
+                   ? nan
+                   : std::max(margin, std::abs(middle - 0.5 * (a + b)));
+    }
+    std::vector<double> ends;
+    for (size_t j = 0; j < nodes; j += 2) ends.push_back(at[j]);
+    table->exits_.push_back(std::move(ends));
+  }
+  size_t kept = 0;
+  for (double& margin : table->margins_) {
+    margin = margin <= kExitTolerance ? 4.0 * margin + kLowestLaunchScatter : nan;
+    kept += std::isfinite(margin) ? 1 : 0;
+  }
+  return kept > 0 ? table : nullptr;
+}
+
+double LowestLaunches::least_exit(double h, double scale) const {
+  const double u = (h - lo_) / step_;
+  if (!(u >= 0.0 && u <= kLowestLaunchIntervals) || !(scale >= scales_.front() && scale <= scales_.back())) {
+    return -std::numeric_limits<double>::infinity();
+  }
+  const size_t j = std::min(size_t(u), size_t(kLowestLaunchIntervals - 1));
+  if (!std::isfinite(margins_[j])) return -std::numeric_limits<double>::infinity();
+  const size_t k = std::min(size_t(std::upper_bound(scales_.begin(), scales_.end(), scale) - scales_.begin()),
+                            scales_.size() - 1) - 1;
+  const double w = u - double(j);
+  auto at = [&](size_t scale_index) {
+    const std::vector<double>& exits = exits_[scale_index];
+    return (1.0 - w) * exits[j] + w * exits[j + 1];
+  };
+  // Between two close scales the exit moves monotonically with the air's n - 1 (hero_casters.h):
+  // it lies between theirs.
+  return std::min(at(k), at(k + 1)) - margins_[j];
+}
 
 DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options,
                                const LightVisibility* visibility)
@@ -118,7 +204,15 @@ std::optional<Vec3d> DirectLighting::launch_below_horizon(const SurfaceInteracti
   // The lowest launch first: where it already leaves above the sample, every rising launch does
   // (the exit rises with the launch) and the light has set for si -- one cast, where bisecting
   // the bracket down to kExitTolerance took ~10 (a sun 0.74 deg below the true horizon seen from
-  // the sea: every sample). Otherwise it is the bracket's lower end.
+  // the sea: every sample). Otherwise it is the bracket's lower end. A spectral render's table of
+  // the lowest launches (LowestLaunches) answers the first case without the cast where its bound
+  // already leaves above the sample.
+  if (lowest_launches_) {
+    const Vec3d lowest = std::cos(lo) * across + Vec3d(0.0, std::sin(lo), 0.0);
+    if (lowest_launches_->least_exit(si.offset_toward(lowest).y(), *scale_) - target > kExitTolerance) {
+      return std::nullopt;
+    }
+  }
   if (const double f = exit_elevation(si, across, lo, to_world) - target; std::isfinite(f)) {
     if (f > kExitTolerance) return std::nullopt;
     if (f >= -kExitTolerance) {

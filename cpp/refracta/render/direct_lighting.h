@@ -29,9 +29,40 @@
 #include "refracta/shading/bsdf.h"
 
 #include <functional>
+#include <memory>
 #include <optional>
+#include <utility>
+#include <vector>
 
 namespace refracta {
+
+// Over a spherical Earth, where the lowest launch of DirectLighting::launch_below_horizon leaves
+// the air: its exit elevation [rad] in the start point's own frame, tabulated over start heights
+// and the air's dispersion scales (a spectral render retunes the air per sample). In a height-only
+// air over a sphere a path depends on its start height and launch elevation alone (the frame turns
+// with the point), so one cast per node stands for every point's. A sun sample that the table puts
+// below that exit by more than the search's tolerance has set for the point -- the answer the
+// lowest launch's own cast gives -- without the cast (issue 21: it was ~60 % of a spectral green
+// flash frame, one 8 km grazing path per sea sample).
+class LowestLaunches {
+ public:
+  // casters[k]: the render's air at dispersion scale scales[k] (ascending; at least two, each
+  // curved through a height-only air over a spherical Earth, without a table of its own for these
+  // origins); start heights from scene.lowest() to scene.highest() plus the largest offset of a
+  // surface point (SurfaceInteraction::offset_toward). Null where no interval of heights can stand
+  // for the casts (build).
+  static std::shared_ptr<const LowestLaunches> build(const Scene& scene, const std::vector<const Caster*>& casters,
+                                                     const std::vector<double>& scales);
+  // A lower bound [rad] of the lowest launch's exit elevation from start height h [m] at
+  // dispersion scale `scale`: -inf outside the tabulated heights, intervals and scales.
+  double least_exit(double h, double scale) const;
+
+ private:
+  double lo_ = 0.0, step_ = 0.0;            // heights lo_ + j step_, j = 0 .. count - 1 [m]
+  std::vector<double> scales_;               // ascending
+  std::vector<std::vector<double>> exits_;   // exits_[k][j] at scales_[k], height j [rad]
+  std::vector<double> margins_;              // [rad] per height interval (build); NaN: not tabulated
+};
 
 // The light evaluation, and (as a LightVisibility) the ray renderers' shadow rays through the
 // caster; another visibility (render_raster's shadow maps) may stand in for them.
@@ -54,6 +85,13 @@ class DirectLighting : public LightVisibility {
   // lights by BSDF sampling (render_raster).
   Spectrum sample_light(size_t index, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
                         const SampledWavelengths& lambda, const Vec2d& u) const;
+
+  // A spectral render's lowest launches (LowestLaunches), and where the sample's dispersion scale
+  // is read (the hero's air's); without them every lowest launch is cast.
+  void use_lowest_launches(std::shared_ptr<const LowestLaunches> table, std::shared_ptr<const double> scale) {
+    lowest_launches_ = std::move(table);
+    scale_ = std::move(scale);
+  }
 
   // The shadow rays: toward a distant light a curved (or straight) ray through the caster, the
   // light seen along its exit direction; to a finite light a straight segment, dimmed by the
@@ -110,6 +148,8 @@ class DirectLighting : public LightVisibility {
   bool spherical_ = false;  // CurvedEarth: distant lights are turned into each point's frame
   bool all_lights_ = false;
   const Light* bent_sun_ = nullptr;  // over a spherical Earth: the scene's sun (launch_below_horizon)
+  std::shared_ptr<const LowestLaunches> lowest_launches_;  // use_lowest_launches
+  std::shared_ptr<const double> scale_;
 };
 
 }  // namespace refracta

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <vector>
 
 namespace refracta {
 
@@ -19,6 +21,7 @@ struct HeroCasters::Hero {
     if (owner.floors_) caster.set_ior_floors(*owner.floors_);
     caster.set_secondary_spread(owner.spread_);
     integrator = make_integrator(owner.scene_, caster, owner.options_);
+    if (owner.lowest_launches_) integrator->lighting().use_lowest_launches(owner.lowest_launches_, scale);
   }
 
   std::shared_ptr<double> scale;  // K(hero) / K(reference), read by `air` at every evaluation
@@ -34,7 +37,27 @@ HeroCasters::HeroCasters(const RenderScene& scene, FieldPtr field, const RenderO
       options_(options),
       floors_(std::move(floors)),
       spread_(spread),
-      reference_(field_reference_wavelength(*field_)) {}
+      reference_(field_reference_wavelength(*field_)) {
+  // The lowest launches at SpectralEyeTables' dispersion scales (2.4e-3 of n - 1 apart), each
+  // scale's air cast as a hero's is (DirectLighting::launch_below_horizon's sun over a sphere).
+  if (scene.sun() == nullptr || !field_->height_only() || !std::isfinite(field_->earth_radius())) return;
+  const double lo = air_dispersion_scale(kLambdaMax, reference_), hi = air_dispersion_scale(kLambdaMin, reference_);
+  constexpr int kScales = SpectralEyeTables::kScales;
+  std::vector<FieldPtr> airs;
+  std::vector<std::unique_ptr<Caster>> casters;
+  std::vector<const Caster*> views;
+  std::vector<double> scales;
+  for (int k = 0; k < kScales; ++k) {
+    const double s = k + 1 == kScales ? hi : lo + (hi - lo) * k / (kScales - 1);
+    airs.push_back(tunable_dispersed_field(field_, std::make_shared<const double>(s)));
+    casters.push_back(std::make_unique<Caster>(scene.geometry, airs.back().get(), options));
+    if (floors_) casters.back()->set_ior_floors(*floors_);
+    casters.back()->set_secondary_spread(spread);
+    views.push_back(casters.back().get());
+    scales.push_back(s);
+  }
+  lowest_launches_ = LowestLaunches::build(scene.geometry, views, scales);
+}
 
 HeroCasters::~HeroCasters() = default;
 

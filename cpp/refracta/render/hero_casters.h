@@ -67,6 +67,9 @@ class HeroCasters {
   std::optional<IorFloors> floors_;
   double spread_;
   double reference_;  // the field's reference wavelength [nm]
+  // Over a spherical Earth with a sun, every hero's lowest launches below the horizon
+  // (DirectLighting::use_lowest_launches); null: each is cast.
+  std::shared_ptr<const LowestLaunches> lowest_launches_;
   mutable tbb::concurrent_queue<std::unique_ptr<Hero>> idle_;  // built and not held
 };
 

@@ -60,6 +60,7 @@ class Integrator {
                              SampledWavelengths& lambda, Sampler& sampler, ScratchBuffer& scratch,
                              SurfaceAovs& aovs) const = 0;
   const DirectLighting& lighting() const { return lighting_; }
+  DirectLighting& lighting() { return lighting_; }
 
  protected:
   const RenderScene& scene_;
