@@ -198,9 +198,11 @@ optional relative humidity. Defaults give n - 1 = 2.7784e-4 at the ground (15 C,
 Modelled for heights in [-1000, 86000] m (uniform above). With hot spots the field is no longer
 height-only: its parameters gain hot_spot<i>_x, _z, _radius, _dt, _depth, and height_only_part is
 the same air without them.)doc";
-inline constexpr const char mkd_doc_refracta_PhysicalSkyLight[] = R"doc(A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
-Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
-`aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
+inline constexpr const char mkd_doc_refracta_PhysicalSkyLight[] = R"doc(A physical sky through a spherical standard atmosphere: single scattering (Nishita et al. 1993)
+plus, with multiple_scattering (default True), the higher orders by Hillaire 2020's isotropic
+multiple-scattering table (orders 2-13 explicit, then a geometric series): Rayleigh (lambda^-4, 8
+km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by `aerosol`), ozone
+absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
 sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
 below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
 BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth

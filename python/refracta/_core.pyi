@@ -3231,9 +3231,11 @@ class ConstantEnvironment(Light):
         ...
 class PhysicalSky:
     """
-    A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
-    Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
-    `aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
+    A physical sky through a spherical standard atmosphere: single scattering (Nishita et al. 1993)
+    plus, with multiple_scattering (default True), the higher orders by Hillaire 2020's isotropic
+    multiple-scattering table (orders 2-13 explicit, then a geometric series): Rayleigh (lambda^-4, 8
+    km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by `aerosol`), ozone
+    absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
     sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
     below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
     BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
@@ -3243,13 +3245,13 @@ class PhysicalSky:
     @staticmethod
     def solar_irradiance(wavelengths: typing.Any) -> typing.Any:
         ...
-    def __getstate__(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float, float, float, float, int]:
+    def __getstate__(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float, float, float, float, int, bool]:
         ...
-    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, below_horizon: str = 'ground', visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
+    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, below_horizon: str = 'ground', visibility: typing.SupportsFloat | typing.SupportsIndex | None = None, multiple_scattering: bool = True) -> None:
         ...
     def __repr__(self) -> str:
         ...
-    def __setstate__(self, arg0: tuple[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex]) -> None:
+    def __setstate__(self, arg0: tuple[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex, bool]) -> None:
         ...
     def optical_depth(self, wavelength: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
@@ -3285,18 +3287,18 @@ class AerialPerspective:
     """
     Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b` [m]
     (scene coordinates; y = 0 lies the sky's `altitude` above sea level), the transmittance T and the
-    single-scattered sunlight S the air adds (the sky's coefficients, densities, phase functions, ozone
-    and sun; multiple scattering left out, as in the sky): what arrives at a is T L(b) + S. The chord is
-    integrated in pieces in closed form (cpp/refracta/shading/aerial_perspective.h).
+    scattered sunlight S the air adds (the sky's coefficients, densities, phase functions, ozone, sun
+    and multiple-scattering table): what arrives at a is T L(b) + S. The chord is integrated in pieces
+    in closed form (cpp/refracta/shading/aerial_perspective.h).
     earth_radius: a CurvedEarth's radius when the scene is its flat frame (y is then the height above
     the curved ground), inf for a flat scene (the sky's planet touches y = 0 under the origin).
     Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to every segment.
     """
-    def __getstate__(self) -> tuple[tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float, float, float, float, int], float]:
+    def __getstate__(self) -> tuple[tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float, float, float, float, int, bool], float]:
         ...
     def __init__(self, sky: PhysicalSky, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         ...
-    def __setstate__(self, arg0: tuple[tuple[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex], typing.SupportsFloat | typing.SupportsIndex]) -> None:
+    def __setstate__(self, arg0: tuple[tuple[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex, bool], typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
     def along(self, a: typing.Any, b: typing.Any, wavelength: typing.SupportsFloat | typing.SupportsIndex, earth_radius: typing.SupportsFloat | typing.SupportsIndex = ...) -> tuple[float, float]:
         """

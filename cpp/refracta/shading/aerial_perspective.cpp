@@ -52,6 +52,7 @@ AerialPerspective::AerialPerspective(std::shared_ptr<const PhysicalSky> sky, dou
   std::array<double, kNodes> lambda{};
   for (int w = 0; w < kNodes; ++w) lambda[w] = node_wavelength(w);
   nodes_ = bands_at(lambda.data(), kNodes);
+  nodes_.at_nodes = true;
   std::array<double, kNodes> d65{};
   for (int w = 0; w < kNodes; ++w) {
     std::array<double, kNodes> unit{};
@@ -81,8 +82,16 @@ AerialPerspective::Bands AerialPerspective::bands_at(const double* lambda_nm, in
     b.rayleigh[i] = air_.rayleigh_scale * beta_rayleigh(l);
     b.ozone[i] = lerp_nodes(kOzoneCrossSection, l) * air_.ozone_peak_density();
     b.irradiance[i] = PhysicalSky::solar_irradiance(l);
+    b.lambda[i] = l;
   }
   return b;
+}
+
+void AerialPerspective::psi_of(const Located& x, const Bands& bands, double* psi) const {
+  const MultipleScattering& ms = sky_->multiple_scattering();
+  const double mu_s = std::clamp(x.up.dot(sun_), -1.0, 1.0);
+  if (bands.at_nodes) return ms.at_nodes(x.height, mu_s, psi);
+  for (int i = 0; i < bands.count; ++i) psi[i] = ms.at(x.height, mu_s, bands.lambda[i]);
 }
 
 AerialPerspective::Located AerialPerspective::locate(const Vec3d& p, const AirFrame& frame) const {
@@ -156,12 +165,18 @@ void AerialPerspective::integrate(const Vec3d& a, const Vec3d& b, const AirFrame
     return sun_column_at(cell(x.height, std::asin(std::clamp(x.up.dot(sun_), -1.0, 1.0))));
   };
   Column sun0{}, sun1{};
+  // The higher orders of scattering (the sky's Psi_ms, multiple_scattering.h) at a piece's ends,
+  // linear in between.
+  const bool multiple = inscatter && sky_->multiple_scattering().enabled();
+  std::array<double, kNodes> psi0{}, psi1{};
   if (inscatter) sun0 = sun_cell_at(start);
+  if (multiple) psi_of(start, bands, psi0.data());
   double h0 = start.height;
   for (int k = 0; k < pieces; ++k) {
     const Located next = k + 1 == pieces ? end : locate(a + chord * (double(k + 1) / pieces), frame);
     const Column c = column_along(h0, next.height, piece);
     if (inscatter) sun1 = sun_cell_at(next);
+    if (multiple) psi_of(next, bands, psi1.data());
     for (int w = 0; w < n; ++w) {
       const double tau = bands.rayleigh[w] * c.r + mie_extinction * c.m + bands.ozone[w] * c.o;
       const double attenuation = std::exp(-tau);
@@ -172,21 +187,29 @@ void AerialPerspective::integrate(const Vec3d& a, const Vec3d& b, const AirFrame
         // J0 (1 - e^-x) / x, x = tau - kappa. Linear between the ends where the planet hides the sun at one.
         const double j0 = sun_at(sun0, bands, w), j1 = sun_at(sun1, bands, w);
         const double scattering = bands.rayleigh[w] * c.r * rayleigh_phase_mu + mie_scattering * c.m * mie_phase_mu;
+        // The attenuation within the piece against a quantity linear along it: f1 for its start
+        // value, f2 for its change.
+        const double f1 = tau < 1e-4 ? 1.0 - 0.5 * tau : (1.0 - attenuation) / tau;
+        const double f2 = tau < 1e-3 ? 0.5 - tau / 3.0 + tau * tau / 8.0 : (1.0 - attenuation * (1.0 + tau)) / (tau * tau);
         double sunlight;
         if (j0 > 1e-30 && j1 > 1e-30) {
           const double x = tau - std::log(j1 / j0);
           sunlight = j0 * (std::abs(x) < 1e-6 ? 1.0 - 0.5 * x : -std::expm1(-x) / x);
         } else {
-          const double f1 = tau < 1e-4 ? 1.0 - 0.5 * tau : (1.0 - attenuation) / tau;
-          const double f2 = tau < 1e-3 ? 0.5 - tau / 3.0 + tau * tau / 8.0 : (1.0 - attenuation * (1.0 + tau)) / (tau * tau);
           sunlight = j0 * f1 + (j1 - j0) * f2;
         }
-        S[w] += T[w] * scattering * bands.irradiance[w] * sunlight;
+        double light = scattering * sunlight;
+        if (multiple) {
+          const double total_scattering = bands.rayleigh[w] * c.r + mie_scattering * c.m;
+          light += total_scattering * (psi0[w] * f1 + (psi1[w] - psi0[w]) * f2);
+        }
+        S[w] += T[w] * light * bands.irradiance[w];
       }
       T[w] *= attenuation;
     }
     h0 = next.height;
     sun0 = sun1;
+    psi0 = psi1;
   }
   for (int w = 0; w < n; ++w) S[w] *= scale_;
 }
@@ -269,7 +292,10 @@ double AerialPerspective::inscatter_reference(const Vec3d& a, const Vec3d& b, co
     const double extinction = band.rayleigh[0] * rho.r + air_.aerosol * kMieExtinction * rho.m + band.ozone[0] * rho.o;
     const double tau_x = tau + 0.5 * extinction * ds;
     tau += extinction * ds;
-    const auto sun = sun_column(x.height, std::asin(std::clamp(x.up.dot(sun_), -1.0, 1.0)), 4 * kSunColumnSteps);
+    const double mu_s = std::clamp(x.up.dot(sun_), -1.0, 1.0);
+    const double psi = sky_->multiple_scattering().at(x.height, mu_s, lambda_nm);
+    sum += (band.rayleigh[0] * rho.r + air_.aerosol * kMieScattering * rho.m) * psi * std::exp(-tau_x) * ds;
+    const auto sun = sun_column(x.height, std::asin(mu_s), 4 * kSunColumnSteps);
     if (!sun) continue;
     const double sun_t = std::exp(-air_.optical_depth(*sun, lambda_nm, sigma_ozone));
     sum += (band.rayleigh[0] * rho.r * rayleigh_phase(mu) + air_.aerosol * kMieScattering * rho.m * mie_phase(mu)) *

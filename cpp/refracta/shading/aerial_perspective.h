@@ -1,10 +1,11 @@
 // Aerial perspective: the air between a viewer and what it sees dims that light and adds the
 // sunlight the air scatters toward the viewer (DESIGN.md "One atmosphere, many uses"). The same
-// single scattering as the physical sky (physical_sky.h, Nishita et al. 1993) -- its coefficients,
-// density profiles, phase functions (Rayleigh; Mie by Cornette-Shanks), ozone absorption and sun --
-// integrated along a segment instead of to the top of the atmosphere, so that over a segment that
-// leaves the air the in-scatter is the sky's radiance: a black object fades into exactly the sky
-// behind it as its distance grows. Multiple scattering is left out, as in the sky.
+// scattering as the physical sky (physical_sky.h, Nishita et al. 1993) -- its coefficients,
+// density profiles, phase functions (Rayleigh; Mie by Cornette-Shanks), ozone absorption and sun,
+// and its multiple-scattering table (multiple_scattering.h, Hillaire 2020: sigma_s Psi_ms E added
+// to every in-scatter, Psi_ms linear along a piece) -- integrated along a segment instead of to the
+// top of the atmosphere, so that over a segment that leaves the air the in-scatter is the sky's
+// radiance: a black object fades into exactly the sky behind it as its distance grows.
 //
 // A segment is integrated as its straight chord: the curved paths through the air bend by at most
 // a few milliradians over the distances a scene spans, moving heights by metres against the
@@ -48,8 +49,8 @@ struct AirFrame {
 
 // Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b`
 // [m] (scene coordinates; y = 0 lies the sky's `altitude` above sea level), the transmittance T and
-// the single-scattered sunlight S the air adds (the sky's coefficients, densities, phase functions,
-// ozone and sun; multiple scattering left out, as in the sky): what arrives at a is T L(b) + S. The
+// the scattered sunlight S the air adds (the sky's coefficients, densities, phase functions, ozone,
+// sun and multiple-scattering table): what arrives at a is T L(b) + S. The
 // chord is integrated in pieces in closed form (cpp/refracta/shading/aerial_perspective.h).
 // earth_radius: a CurvedEarth's radius when the scene is its flat frame (y is then the height above
 // the curved ground), inf for a flat scene (the sky's planet touches y = 0 under the origin).
@@ -77,7 +78,7 @@ class AerialPerspective {
   // At one wavelength in [360, 830] nm: (transmittance, in-scatter x scale) as along computes them,
   // and the brute-force reference of the same in-scatter integral: the midpoint rule with `steps`
   // points on the chord, the extinction integrated numerically, every point's sun column traced
-  // (4x the sky's quadrature steps, no table).
+  // (4x the sky's quadrature steps, no table) and its multiple scattering from the sky's table.
   std::pair<double, double> along_at(const Vec3d& a, const Vec3d& b, const AirFrame& frame, double lambda_nm) const;
   double inscatter_reference(const Vec3d& a, const Vec3d& b, const AirFrame& frame, double lambda_nm, int steps) const;
   // The sun's transmittance [0, 1] from the top of the atmosphere to height h [m] where it stands
@@ -99,7 +100,11 @@ class AerialPerspective {
   struct Bands {
     int count = 0;
     std::array<double, air_optics::kNodes> rayleigh{}, ozone{}, irradiance{};  // [1/m], [m^2 1/m^3], [W/(m^2 nm)]
+    std::array<double, air_optics::kNodes> lambda{};  // [nm]
+    bool at_nodes = false;  // the 48 node wavelengths, in order
   };
+  // The sky's multiple-scattering Psi_ms [1/sr] at a point, per band.
+  void psi_of(const Located& x, const Bands& bands, double* psi) const;
   Bands bands_at(const double* lambda_nm, int count) const;
   // Integrates the chord a -> b over `bands`: transmittance T and in-scatter S (x scale) per band.
   Bands bands_of(const SampledWavelengths& lambda) const;

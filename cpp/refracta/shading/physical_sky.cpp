@@ -1,4 +1,4 @@
-// Single-scattering physical sky and its light (physical_sky.h).
+// The physical sky (single scattering plus Hillaire's multiple-scattering term) and its light (physical_sky.h).
 #include "refracta/shading/physical_sky.h"
 
 #include "refracta/core/error.h"
@@ -132,7 +132,8 @@ std::shared_ptr<const PhysicalSky> PhysicalSky::shared(const PhysicalSkySettings
   auto same = [&](const PhysicalSkySettings& s) {
     return s.sun_direction == settings.sun_direction && s.aerosol == settings.aerosol && s.ozone_du == settings.ozone_du &&
            s.ground_albedo == settings.ground_albedo && s.altitude == settings.altitude &&
-           s.rayleigh_scale == settings.rayleigh_scale && s.below_horizon == settings.below_horizon;
+           s.rayleigh_scale == settings.rayleigh_scale && s.below_horizon == settings.below_horizon &&
+           s.multiple_scattering == settings.multiple_scattering;
   };
   {
     std::lock_guard<std::mutex> lock(mutex);
@@ -169,49 +170,61 @@ PhysicalSky::PhysicalSky(const PhysicalSkySettings& settings) : settings_(settin
     ground_[w] = settings_.ground_albedo / kPi * solar_irradiance(l) * sun_transmittance_[w] * std::max(0.0, sun_.y());
   }
   ground_rgb_ = rgb_of_10nm(ground_.data());
+  if (settings_.multiple_scattering) {
+    multiple_scattering_ = MultipleScattering({settings_.rayleigh_scale, settings_.aerosol, settings_.ozone_du},
+                                              settings_.ground_albedo);
+  }
   // The table, one direction per task.
   table_.assign(size_t(kElevations) * kAzimuths * kWavelengths, 0.0f);
   rgb_.assign(size_t(kElevations) * kAzimuths, Vec3d::Zero());
   // Under the caller's cancel flags (core/parallel.h): Ctrl-C stops the ~0.5 s build at the next cell.
   WorkControl control;
   constexpr int64_t kCellsPerTask = 16;
+  std::array<double, kWavelengths> lambda, rayleigh, ozone;
+  for (int w = 0; w < kWavelengths; ++w) {
+    lambda[w] = wavelength(w);
+    rayleigh[w] = settings_.rayleigh_scale * beta_rayleigh(lambda[w]);
+    ozone[w] = kOzoneCrossSection[w] * ozone_density;
+  }
+  const double mie_scattering = settings_.aerosol * kMieScattering, mie_extinction = settings_.aerosol * kMieExtinction;
   parallel_for_each(int64_t(kElevations) * kAzimuths, kCellsPerTask, control, [&](int64_t index) {
-    std::array<double, kWavelengths> lambda, values;
-    for (int w = 0; w < kWavelengths; ++w) lambda[w] = wavelength(w);
-    {
-      const int cell = int(index);
-      const int row = cell / kAzimuths, column = cell % kAzimuths;
-      const Vec3d dir = xy_to_direction(Vec2d((column + 0.5) / kAzimuths, (row + 0.5) / kElevations));
+    std::array<double, kWavelengths> values{}, view{}, psi{};
+    view.fill(1.0);
+    const int cell = int(index);
+    const int row = cell / kAzimuths, column = cell % kAzimuths;
+    const Vec3d dir = xy_to_direction(Vec2d((column + 0.5) / kAzimuths, (row + 0.5) / kElevations));
+    // Shared path geometry for all wavelengths.
+    const double length = exit_distance(p0, dir, kTopRadius);
+    const double mu = dir.dot(sun_);
+    const double pr = rayleigh_phase(mu), pm = mie_phase(mu);
+    for (int i = 0; i < kViewSteps; ++i) {
+      const double s = (i + 0.5) / kViewSteps, t = length * s * s, dt = length * 2.0 * s / kViewSteps;
+      const Vec3d x = p0 + t * dir;
+      const double r = x.norm();
+      const Column rho = densities(r - kEarthRadius);
+      const bool lit = !hits_earth(x, sun_);
+      const Column sun = lit ? column_to_top(x, sun_, kSunSteps) : Column{};
+      multiple_scattering_.at_nodes(r - kEarthRadius, x.dot(sun_) / r, psi.data());
       for (int w = 0; w < kWavelengths; ++w) {
-        values[w] = 0.0;
-      }
-      // Shared path geometry for all wavelengths.
-      const double length = exit_distance(p0, dir, kTopRadius);
-      const double mu = dir.dot(sun_);
-      const double pr = rayleigh_phase(mu), pm = mie_phase(mu);
-      Column view;
-      for (int i = 0; i < kViewSteps; ++i) {
-        const double s = (i + 0.5) / kViewSteps, t = length * s * s, dt = length * 2.0 * s / kViewSteps;
-        const Vec3d x = p0 + t * dir;
-        const Column rho = densities(x.norm() - kEarthRadius);
-        Column to_x = view;  // observer -> x: the segments before plus half of this one
-        to_x.r += 0.5 * rho.r * dt, to_x.m += 0.5 * rho.m * dt, to_x.o += 0.5 * rho.o * dt;
-        view.r += rho.r * dt, view.m += rho.m * dt, view.o += rho.o * dt;
-        if (hits_earth(x, sun_)) continue;
-        const Column sun = column_to_top(x, sun_, kSunSteps);
-        const double r = to_x.r + sun.r, m = to_x.m + sun.m, o = to_x.o + sun.o;
-        for (int w = 0; w < kWavelengths; ++w) {
-          const double br = settings_.rayleigh_scale * beta_rayleigh(lambda[w]);
-          const double tau = br * r + settings_.aerosol * kMieExtinction * m + kOzoneCrossSection[w] * ozone_density * o;
-          values[w] += (br * rho.r * pr + settings_.aerosol * kMieScattering * rho.m * pm) * std::exp(-tau) * dt;
+        const double extinction = rayleigh[w] * rho.r + mie_extinction * rho.m + ozone[w] * rho.o;
+        const double step = std::exp(-extinction * dt);
+        // The view's transmittance integrated over the step, the air constant within it (exact
+        // in uniform air however thick: fog).
+        const double through = extinction * dt > 1e-6 ? view[w] * (1.0 - step) / extinction : view[w] * dt;
+        double source = (rayleigh[w] * rho.r + mie_scattering * rho.m) * psi[w];  // the higher orders
+        if (lit) {
+          const double tau_sun = rayleigh[w] * sun.r + mie_extinction * sun.m + ozone[w] * sun.o;
+          source += (rayleigh[w] * rho.r * pr + mie_scattering * rho.m * pm) * std::exp(-tau_sun);
         }
+        values[w] += source * through;
+        view[w] *= step;
       }
-      for (int w = 0; w < kWavelengths; ++w) {
-        values[w] *= solar_irradiance(lambda[w]);
-        table_[size_t(cell) * kWavelengths + w] = float(values[w]);
-      }
-      rgb_[cell] = rgb_of_10nm(values.data());
     }
+    for (int w = 0; w < kWavelengths; ++w) {
+      values[w] *= solar_irradiance(lambda[w]);
+      table_[size_t(cell) * kWavelengths + w] = float(values[w]);
+    }
+    rgb_[cell] = rgb_of_10nm(values.data());
   });
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -231,19 +244,24 @@ double PhysicalSky::radiance_direct(const Vec3d& dir, double lambda_nm) const {
   const double length = exit_distance(p0, dir, kTopRadius), mu = dir.dot(sun_);
   // A finer quadrature than the table's (4x the steps on both rays): the table's reference.
   const int view_steps = 4 * kViewSteps, sun_steps = 4 * kSunSteps;
-  double sum = 0.0, tau_view = 0.0;
+  const double mie_scattering = settings_.aerosol * kMieScattering;
+  double sum = 0.0, view = 1.0;
   for (int i = 0; i < view_steps; ++i) {
     const double s = (i + 0.5) / view_steps, t = length * s * s, dt = length * 2.0 * s / view_steps;
     const Vec3d x = p0 + t * dir;
-    const Column rho = densities(x.norm() - kEarthRadius);
+    const double r = x.norm();
+    const Column rho = densities(r - kEarthRadius);
     const double ext = br * rho.r + settings_.aerosol * kMieExtinction * rho.m + sigma_o * ozone_density * rho.o;
-    const double tau_x = tau_view + 0.5 * ext * dt;
-    tau_view += ext * dt;
-    if (hits_earth(x, sun_)) continue;
-    const Column sun = column_to_top(x, sun_, sun_steps);
-    const double tau_sun = br * sun.r + settings_.aerosol * kMieExtinction * sun.m + sigma_o * ozone_density * sun.o;
-    sum += (br * rho.r * rayleigh_phase(mu) + settings_.aerosol * kMieScattering * rho.m * mie_phase(mu)) *
-           std::exp(-tau_x - tau_sun) * dt;
+    const double step = std::exp(-ext * dt);
+    const double through = ext * dt > 1e-6 ? view * (1.0 - step) / ext : view * dt;
+    view *= step;
+    double source = (br * rho.r + mie_scattering * rho.m) * multiple_scattering_.at(r - kEarthRadius, x.dot(sun_) / r, lambda_nm);
+    if (!hits_earth(x, sun_)) {
+      const Column sun = column_to_top(x, sun_, sun_steps);
+      const double tau_sun = br * sun.r + settings_.aerosol * kMieExtinction * sun.m + sigma_o * ozone_density * sun.o;
+      source += (br * rho.r * rayleigh_phase(mu) + mie_scattering * rho.m * mie_phase(mu)) * std::exp(-tau_sun);
+    }
+    sum += source * through;
   }
   return sum * solar_irradiance(lambda_nm);
 }
@@ -394,7 +412,8 @@ std::string PhysicalSkyLight::describe() const {
   const PhysicalSkySettings& s = sky_->settings();
   return concat("PhysicalSkyLight(sun=(", s.sun_direction.x(), ", ", s.sun_direction.y(), ", ", s.sun_direction.z(),
                 "), aerosol=", s.aerosol, ", ozone_du=", s.ozone_du, ", ground_albedo=", s.ground_albedo,
-                ", altitude=", s.altitude, ", below_horizon=", name_of(s.below_horizon), ")");
+                ", altitude=", s.altitude, ", below_horizon=", name_of(s.below_horizon),
+                ", multiple_scattering=", s.multiple_scattering ? "True" : "False", ")");
 }
 
 }  // namespace refracta

@@ -1,6 +1,7 @@
 // A physical sky (shared/SHADING.md section 5): single scattering of sunlight through a spherical
 // standard atmosphere (Nishita et al. 1993, "Display of the Earth Taking into Account Atmospheric
-// Scattering", SIGGRAPH), spectral, and the sun's colour by extinction. PhysicalSkyLight makes it
+// Scattering", SIGGRAPH) plus the higher orders by the isotropic multiple-scattering table of
+// Hillaire 2020 (multiple_scattering.h), spectral, and the sun's colour by extinction. PhysicalSkyLight makes it
 // an infinite light (light.h); the sun disc itself is a separate light (sun_light.h), fed by
 // PhysicalSky::sun_radiance / sun_radiance_rgb.
 //
@@ -22,8 +23,11 @@
 // - The sun: extraterrestrial spectral irradiance of a 5778 K black body scaled to the solar
 //   constant 1361 W/m^2 (Kopp & Lean 2011): E(lambda) = pi B(lambda, 5778 K) 1361 / (sigma 5778^4).
 //
-// Radiance [W/(m^2 sr nm)] of the sky looking along dir (unit, world, y up): the single-scattered
-// sunlight along the view ray to the top of the atmosphere, the direct sun excluded. Below the
+// Radiance [W/(m^2 sr nm)] of the sky looking along dir (unit, world, y up): the scattered sunlight
+// along the view ray to the top of the atmosphere -- single scattering, and with
+// multiple_scattering sigma_s Psi_ms E per unit length for the higher orders -- each step's
+// attenuation integrated for constant air within it (exact however thick the haze), the direct sun
+// excluded. Below the
 // horizon (dir.y < 0), by PhysicalSkySettings::below_horizon:
 // - kGround: the ground's Lambertian radiance albedo/pi E T_sun(observer) max(0, sun.y), without
 //   the air between the observer and the ground (exact at altitude 0; 0 with albedo 0);
@@ -37,6 +41,7 @@
 #include "refracta/core/math.h"
 #include "refracta/core/sampling.h"
 #include "refracta/shading/light.h"
+#include "refracta/shading/multiple_scattering.h"
 
 #include <array>
 #include <memory>
@@ -59,6 +64,10 @@ struct PhysicalSkySettings {
   double altitude = 0.0;       // the observer's height [m] in [0, 20000]
   double rayleigh_scale = 1.0; // Rayleigh density scale >= 0 (tests: 0 isolates the other terms)
   BelowHorizon below_horizon = BelowHorizon::kGround;
+  // Add the higher orders of scattering (multiple_scattering.h, Hillaire 2020) to the single
+  // scattering: on, because haze and fog are bright in photographs (single scattering alone leaves
+  // a 1 km-visibility horizon at ~1e-4 of the clear sky's); off for the single-scattering sky alone.
+  bool multiple_scattering = true;
   void validate() const;       // throws std::invalid_argument listing every problem
 };
 
@@ -86,7 +95,7 @@ class PhysicalSky {
   double radiance(const Vec3d& dir, double lambda_nm) const;
   // Its linear sRGB radiance [W/(m^2 sr)] (CIE 1931, normalised by integral y: color.h).
   Vec3d rgb_radiance(const Vec3d& dir) const;
-  // Direct single-scattering integration, no table (the table's reference; kHorizon: at e = 0 below
+  // Direct integration along the ray, no view table (the table's reference; kHorizon: at e = 0 below
   // the horizon, the azimuth +x straight down).
   double radiance_direct(const Vec3d& dir, double lambda_nm) const;
 
@@ -105,6 +114,8 @@ class PhysicalSky {
   double optical_depth(double lambda_nm) const;  // Rayleigh + Mie + ozone
 
   const PhysicalSkySettings& settings() const { return settings_; }
+  // The multiple-scattering table (empty with settings().multiple_scattering false).
+  const MultipleScattering& multiple_scattering() const { return multiple_scattering_; }
   double build_seconds() const { return build_seconds_; }
 
   // The sky of these settings, shared: a process-wide cache of the last few tables (immutable), so
@@ -123,6 +134,7 @@ class PhysicalSky {
 
   PhysicalSkySettings settings_;
   Vec3d sun_;
+  MultipleScattering multiple_scattering_;
   std::vector<float> table_;   // [row][column][wavelength], rows at v = (i + 1/2) / kElevations
   std::vector<Vec3d> rgb_;     // [row][column]
   std::array<double, kWavelengths> ground_{};
@@ -142,7 +154,9 @@ class PhysicalSky {
 //   pdf_w = pdf_xt / (4 pi^2 |s| cos e).
 // power() = pi R^2 integral of Y(L) over the sphere, R from preprocess (1 m before).
 
-// A single-scattering physical sky (Nishita et al. 1993) through a spherical standard atmosphere:
+// A physical sky through a spherical standard atmosphere: single scattering (Nishita et al. 1993)
+// plus, with multiple_scattering (default True), the higher orders by Hillaire 2020's isotropic
+// multiple-scattering table (orders 2-13 explicit, then a geometric series):
 // Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
 // `aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
 // sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by

@@ -7,8 +7,9 @@ namespace refracta {
 
 PhysicalSkySettings sky_settings(const Vec3d& sun_direction, double aerosol, double ozone_du, double ground_albedo,
                                  double altitude, double rayleigh_scale, const std::string& below_horizon,
-                                 std::optional<double> visibility) {
+                                 std::optional<double> visibility, bool multiple_scattering) {
   PhysicalSkySettings s;
+  s.multiple_scattering = multiple_scattering;
   s.sun_direction = sun_direction;
   s.aerosol = aerosol;
   s.ozone_du = ozone_du;
@@ -21,13 +22,14 @@ PhysicalSkySettings sky_settings(const Vec3d& sun_direction, double aerosol, dou
 }
 
 PhysicalSkyState sky_state(const PhysicalSkySettings& s) {
-  return {s.sun_direction, s.aerosol, s.ozone_du, s.ground_albedo, s.altitude, s.rayleigh_scale, int(s.below_horizon)};
+  return {s.sun_direction, s.aerosol, s.ozone_du, s.ground_albedo, s.altitude, s.rayleigh_scale, int(s.below_horizon),
+          s.multiple_scattering};
 }
 
 PhysicalSkySettings sky_settings_from_state(const PhysicalSkyState& state) {
   PhysicalSkySettings s;
   int below = 0;
-  std::tie(s.sun_direction, s.aerosol, s.ozone_du, s.ground_albedo, s.altitude, s.rayleigh_scale, below) = state;
+  std::tie(s.sun_direction, s.aerosol, s.ozone_du, s.ground_albedo, s.altitude, s.rayleigh_scale, below, s.multiple_scattering) = state;
   if (below != int(BelowHorizon::kGround) && below != int(BelowHorizon::kHorizon)) {
     throw_invalid("PhysicalSky: bad pickle state (below_horizon ", below, ")");
   }

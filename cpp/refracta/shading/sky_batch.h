@@ -18,10 +18,12 @@ namespace refracta {
 // Koschmieder's law (set_visibility); below_horizon is 'ground' or 'horizon'.
 PhysicalSkySettings sky_settings(const Vec3d& sun_direction, double aerosol, double ozone_du, double ground_albedo,
                                  double altitude, double rayleigh_scale, const std::string& below_horizon,
-                                 std::optional<double> visibility);
+                                 std::optional<double> visibility,
+                                 bool multiple_scattering = PhysicalSkySettings{}.multiple_scattering);
 
-// (sun_direction, aerosol, ozone_du, ground_albedo, altitude, rayleigh_scale, below_horizon as int).
-using PhysicalSkyState = std::tuple<Vec3d, double, double, double, double, double, int>;
+// (sun_direction, aerosol, ozone_du, ground_albedo, altitude, rayleigh_scale, below_horizon as int,
+// multiple_scattering).
+using PhysicalSkyState = std::tuple<Vec3d, double, double, double, double, double, int, bool>;
 PhysicalSkyState sky_state(const PhysicalSkySettings& settings);
 PhysicalSkySettings sky_settings_from_state(const PhysicalSkyState& state);  // throws for a bad below_horizon
 
