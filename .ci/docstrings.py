@@ -56,6 +56,7 @@ HEADERS = [
     "cpp/refracta/shading/diffuse.h",
     "cpp/refracta/shading/environment_light.h",
     "cpp/refracta/shading/light.h",
+    "cpp/refracta/shading/light_batch.h",
     "cpp/refracta/shading/light_sampler.h",
     "cpp/refracta/shading/material_batch.h",
     "cpp/refracta/shading/phong.h",

@@ -116,6 +116,9 @@ params: dict of parameter values; param_names; bounds: dict name -> (lower, uppe
 optimiser searches; ``with_params(**values)`` -> a new field; height_only: n depends on y alone;
 gauge_params: parameters an optimiser holds fixed by default (a joint scaling leaves rays
 unchanged). Raises refracta.NumericalError where n <= 0 or is not finite.)doc";
+inline constexpr const char mkd_doc_refracta_L_rgb[] = R"doc(Area lights: RGB radiance (N, 3) leaving points (N, 3) with the light's front normals (N, 3) toward
+unit dirs (N, 3).)doc";
+inline constexpr const char mkd_doc_refracta_Le_rgb[] = R"doc(Infinite lights: RGB radiance (N, 3) seen looking along unit dirs (N, 3); 0 for others.)doc";
 inline constexpr const char mkd_doc_refracta_Light[] = R"doc(A light (shared/SHADING.md section 5). In Python its methods evaluate RGB rendering, vectorised over
 N points.)doc";
 inline constexpr const char mkd_doc_refracta_LightSampler[] = R"doc(Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it
@@ -458,6 +461,8 @@ inline constexpr const char mkd_doc_refracta_Water_transmittance[] = R"doc(The r
 at cos theta = mu that crosses into the water), as the water body's term uses it, at the water's
 index at wavelength_nm under vacuum, mu in [-1, 1] (std::invalid_argument naming them otherwise).
 Tabulated (33 mu x 5 eta nodes).)doc";
+inline constexpr const char mkd_doc_refracta_area_light_normal[] = R"doc(The front normal of an area light's triangle (unit; 0 for a zero-area one; ValueError for an index
+past its triangles).)doc";
 inline constexpr const char mkd_doc_refracta_bsdf_f[] = R"doc(The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per wavelength.
 Delta lobes give 0.)doc";
 inline constexpr const char mkd_doc_refracta_bsdf_pdf[] = R"doc(Density [1/sr] with which sample(wo, u) produces wi: (N,). It includes the lobe selection
@@ -474,6 +479,15 @@ inline constexpr const char mkd_doc_refracta_cox_munk_mean_square_slope[] = R"do
 above the sea: sigma^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, "Measurement of the roughness of the
 sea surface from photographs of the sun's glitter", JOSA 44(11), 838-850, eq. for sigma_u^2 +
 sigma_c^2, +-0.004). U in [0, kWaterMaxWindSpeed]; throws naming wind_speed otherwise.)doc";
+inline constexpr const char mkd_doc_refracta_pdf_li_all[] = R"doc(The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights
+need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3)
+(each empty: zeros; else one per point).)doc";
+inline constexpr const char mkd_doc_refracta_sample_li_rgb[] = R"doc(Samples a direction toward the light from each point (Light.sample_li).
+
+points: (N, 3) [m]; normals: (N, 3) unit geometric normals (rows may be 0) or None; u: (N, 2) in
+[0, 1). Returns (wi (N, 3) unit toward the light, L (N, 3) RGB radiance arriving [W/(m^2 sr)] (point
+and spot: I/r^2), pdf (N,) per steradian (delta lights: 1), distance (N,) [m] (infinite
+lights: inf)). A point the light cannot reach gets wi = 0, L = 0, pdf = 0, distance = 0.)doc";
 inline constexpr const char mkd_doc_refracta_water_absorption[] = R"doc(Absorption coefficient of pure water [1/m] at a wavelength [nm] in [kLambdaMin, kLambdaMax] (360-830
 nm), linear between 5 nm nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of pure water.
 II. Integrating cavity measurements", Applied Optics 36(33), 8710-8723) from 380 to 725 nm; Smith &

@@ -3026,7 +3026,8 @@ class Light:
     """
     def L(self, points: typing.Any, normals: typing.Any, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
-        Area lights: RGB radiance (N, 3) leaving points (N, 3) with the light's front normals (N, 3) toward unit dirs (N, 3).
+        Area lights: RGB radiance (N, 3) leaving points (N, 3) with the light's front normals (N, 3) toward
+        unit dirs (N, 3).
         """
     def Le(self, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -3036,7 +3037,9 @@ class Light:
         ...
     def pdf_li(self, points: typing.Any, normals: typing.Any, wi: typing.Any, p_light: typing.Any = None, n_light: typing.Any = None) -> numpy.typing.NDArray[numpy.float64]:
         """
-        The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3).
+        The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights
+        need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3)
+        (each empty: zeros; else one per point).
         """
     def preprocess(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
@@ -3044,10 +3047,12 @@ class Light:
         """
     def sample_li(self, points: typing.Any, normals: typing.Any, u: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
-        Samples a direction toward the light from each point.
+        Samples a direction toward the light from each point (Light.sample_li).
         
-        points: (N, 3) [m]; normals: (N, 3) unit geometric normals (rows may be 0) or None; u: (N, 2) in [0, 1).
-        Returns (wi (N, 3) unit toward the light, L (N, 3) RGB radiance arriving [W/(m^2 sr)] (point and spot: I/r^2), pdf (N,) per steradian (delta lights: 1), distance (N,) [m] (infinite lights: inf)). A point the light cannot reach gets wi = 0, L = 0, pdf = 0, distance = 0.
+        points: (N, 3) [m]; normals: (N, 3) unit geometric normals (rows may be 0) or None; u: (N, 2) in
+        [0, 1). Returns (wi (N, 3) unit toward the light, L (N, 3) RGB radiance arriving [W/(m^2 sr)] (point
+        and spot: I/r^2), pdf (N,) per steradian (delta lights: 1), distance (N,) [m] (infinite
+        lights: inf)). A point the light cannot reach gets wi = 0, L = 0, pdf = 0, distance = 0.
         """
     @property
     def is_delta(self) -> bool:
@@ -3155,7 +3160,8 @@ class AreaLight(Light):
         ...
     def normal(self, triangle: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
         """
-        The front normal of a triangle (unit; 0 for a zero-area one).
+        The front normal of an area light's triangle (unit; 0 for a zero-area one; ValueError for an index
+        past its triangles).
         """
     @property
     def area(self) -> float:
@@ -3206,7 +3212,7 @@ class EnvironmentLight(Light):
         """
         (u, v) (N, 2) of directions (N, 3) (normalised here).
         """
-    def uv_to_direction(self, uv: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+    def uv_to_direction(self, uv: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
         World directions (N, 3) of (u, v) (N, 2).
         """

@@ -96,7 +96,8 @@ void bind_finite_lights(py::module_& m) {
            py::arg("vertices"), py::arg("triangles"), py::arg("emission"), py::arg("two_sided") = false)
       .def_property_readonly("area", &AreaLight::area, "Total area [m^2] (zero-area triangles count 0).")
       .def_property_readonly("two_sided", &AreaLight::two_sided)
-      .def("normal", [](const AreaLight& l, size_t t) { return vector_to_array(area_light_normal(l, t)); }, py::arg("triangle"), "The front normal of a triangle (unit; 0 for a zero-area one).");
+      .def("normal", [](const AreaLight& l, size_t t) { return vector_to_array(area_light_normal(l, t)); }, py::arg("triangle"),
+           DOC(refracta, area_light_normal));
   def_state_pickle(
       area, "AreaLight", 3,
       [](const AreaLight& l) { return py::make_tuple(mesh_state(l.mesh()), color_state(l.emission()), l.two_sided()); },
@@ -132,11 +133,8 @@ void bind_environment_lights(py::module_& m) {
              for (size_t i = 0; i < uv.size(); ++i) out.mutable_at(i, 0) = uv[i].x(), out.mutable_at(i, 1) = uv[i].y();
              return out;
            }, py::arg("dirs"), "(u, v) (N, 2) of directions (N, 3) (normalised here).")
-      .def("uv_to_direction", [](const EnvironmentLight& l, const DoubleArray& uv) {
-             if (uv.ndim() != 2 || uv.shape(1) != 2) throw_invalid("uv must have shape (N, 2)");
-             std::vector<Vec2d> rows(size_t(uv.shape(0)));
-             for (size_t i = 0; i < rows.size(); ++i) rows[i] = Vec2d(uv.at(i, 0), uv.at(i, 1));
-             return points_to_array(uv_to_directions(l, rows));
+      .def("uv_to_direction", [](const EnvironmentLight& l, const py::object& uv) {
+             return points_to_array(uv_to_directions(l, to_uvs(uv, "uv", kAnyCount)));
            }, py::arg("uv"), "World directions (N, 3) of (u, v) (N, 2).")
       .def_static("rotation_about_y", [](double degrees) { return matrix_to_array(EnvironmentLight::rotation_about_y(degrees)); },
           py::arg("degrees"),
@@ -192,11 +190,7 @@ void bind_lights(py::module_& m) {
              return py::make_tuple(points_to_array(s.wi), points_to_array(s.L), values_to_array(s.pdf), values_to_array(s.distance));
            },
            py::arg("points"), py::arg("normals"), py::arg("u"),
-          "Samples a direction toward the light from each point.\n\n"
-          "points: (N, 3) [m]; normals: (N, 3) unit geometric normals (rows may be 0) or None; u: (N, 2) in [0, 1).\n"
-          "Returns (wi (N, 3) unit toward the light, L (N, 3) RGB radiance arriving [W/(m^2 sr)] (point and spot: "
-          "I/r^2), pdf (N,) per steradian (delta lights: 1), distance (N,) [m] (infinite lights: inf)). A point the "
-          "light cannot reach gets wi = 0, L = 0, pdf = 0, distance = 0.")
+           DOC(refracta, sample_li_rgb))
       .def("pdf_li",
            [](const Light& l, const py::object& points, const py::object& normals, const py::object& wi,
               const py::object& p_light, const py::object& n_light) {
@@ -206,17 +200,16 @@ void bind_lights(py::module_& m) {
              return values_to_array(pdf_li_all(l, ctx, to_unit_vectors(wi, "wi", ctx.size()), p, n));
            },
            py::arg("points"), py::arg("normals"), py::arg("wi"), py::arg("p_light") = py::none(), py::arg("n_light") = py::none(),
-          "The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights "
-          "need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3).")
+           DOC(refracta, pdf_li_all))
       .def("Le", [](const Light& l, const py::object& dirs) { return points_to_array(Le_rgb(l, to_unit_vectors(dirs, "dirs"))); },
-          py::arg("dirs"), "Infinite lights: RGB radiance (N, 3) seen looking along unit dirs (N, 3); 0 for others.")
+          py::arg("dirs"), DOC(refracta, Le_rgb))
       .def("L",
            [](const Light& l, const py::object& points, const py::object& normals, const py::object& dirs) {
              const std::vector<Vec3d> p = to_points(points, "points");
              return points_to_array(L_rgb(l, p, to_points(normals, "normals"), to_unit_vectors(dirs, "dirs", p.size())));
            },
            py::arg("points"), py::arg("normals"), py::arg("dirs"),
-          "Area lights: RGB radiance (N, 3) leaving points (N, 3) with the light's front normals (N, 3) toward unit dirs (N, 3).")
+           DOC(refracta, L_rgb))
       .def("__repr__", &Light::describe);
 
   py::class_<LightSampler> sampler(m, "LightSampler", DOC(refracta, LightSampler));

@@ -202,7 +202,10 @@ std::vector<std::array<int, 3>> to_triangles(const py::handle& object, const cha
 
 std::vector<Vec2d> to_uvs(const py::handle& object, const char* what, size_t count) {
   const DoubleArray array = numbers(object, what, " must be a float array of shape (N, 2)");
+  const bool any = count == kAnyCount;
+  if (any && array.ndim() == 2) count = size_t(array.shape(0));
   if (array.ndim() != 2 || array.shape(1) != 2 || size_t(array.shape(0)) != count) {
+    if (any) throw_invalid(what, " must have shape (N, 2)");
     throw_invalid(what, " must have shape (", count, ", 2): one per vertex");
   }
   std::vector<Vec2d> out(count);

@@ -89,7 +89,7 @@ Samples to_samples(const py::handle& object, const char* what, int dims, size_t 
 
 // Triangles (M, 3) of vertex indices, each in [0, vertex_count).
 std::vector<std::array<int, 3>> to_triangles(const py::handle& object, const char* what, size_t vertex_count);
-// Texture coordinates (count, 2), finite.
+// Texture coordinates (count, 2), finite; count kAnyCount: (N, 2), any N.
 std::vector<Vec2d> to_uvs(const py::handle& object, const char* what, size_t count);
 // An image: a float array (H, W) or (H, W, C), C in 1..4, finite. `raw`: (H, W, C) with any C >= 1,
 // inf and NaN kept (a float file's channels: readouts give no hit an inf distance, a NaN position).
