@@ -169,7 +169,16 @@ void AerialPerspective::integrate(const Vec3d& a, const Vec3d& b, const AirFrame
   // linear in between.
   const bool multiple = inscatter && sky_->multiple_scattering().enabled();
   std::array<double, kNodes> psi0{}, psi1{};
-  if (inscatter) sun0 = sun_cell_at(start);
+  // The sun's optical depth and transmittance at the piece's ends per band (the end's are the next
+  // piece's start's).
+  std::array<double, kNodes> d_start{}, d_end{}, j_start{}, j_end{};
+  auto sun_depth = [&](const Column& column, int w) {
+    return bands.rayleigh[w] * column.r + mie_extinction * column.m + bands.ozone[w] * column.o;
+  };
+  if (inscatter) {
+    sun0 = sun_cell_at(start);
+    for (int w = 0; w < n; ++w) d_start[w] = sun_depth(sun0, w), j_start[w] = std::exp(-d_start[w]);
+  }
   if (multiple) psi_of(start, bands, psi0.data());
   double h0 = start.height;
   for (int k = 0; k < pieces; ++k) {
@@ -185,15 +194,18 @@ void AerialPerspective::integrate(const Vec3d& a, const Vec3d& b, const AirFrame
         // ends, J(t) = J0 e^(kappa t), kappa = ln(J1 / J0) (the sun's optical depth is near linear
         // along a piece), attenuated within the piece: integral of e^(-tau t) J(t) dt =
         // J0 (1 - e^-x) / x, x = tau - kappa. Linear between the ends where the planet hides the sun at one.
-        const double j0 = sun_at(sun0, bands, w), j1 = sun_at(sun1, bands, w);
+        d_end[w] = sun_depth(sun1, w);
+        const double j0 = j_start[w], j1 = j_end[w] = std::exp(-d_end[w]);
         const double scattering = bands.rayleigh[w] * c.r * rayleigh_phase_mu + mie_scattering * c.m * mie_phase_mu;
         // The attenuation within the piece against a quantity linear along it: f1 for its start
         // value, f2 for its change.
-        const double f1 = tau < 1e-4 ? 1.0 - 0.5 * tau : (1.0 - attenuation) / tau;
-        const double f2 = tau < 1e-3 ? 0.5 - tau / 3.0 + tau * tau / 8.0 : (1.0 - attenuation * (1.0 + tau)) / (tau * tau);
+        // (f2 = (1 - e^-tau (1 + tau)) / tau^2 = (f1 - e^-tau) / tau: one division.)
+        const double inverse = tau < 1e-4 ? 0.0 : 1.0 / tau;
+        const double f1 = tau < 1e-4 ? 1.0 - 0.5 * tau : (1.0 - attenuation) * inverse;
+        const double f2 = tau < 1e-3 ? 0.5 - tau / 3.0 + tau * tau / 8.0 : (f1 - attenuation) * inverse;
         double sunlight;
         if (j0 > 1e-30 && j1 > 1e-30) {
-          const double x = tau - std::log(j1 / j0);
+          const double x = tau + d_end[w] - d_start[w];  // tau - ln(j1 / j0)
           sunlight = j0 * (std::abs(x) < 1e-6 ? 1.0 - 0.5 * x : -std::expm1(-x) / x);
         } else {
           sunlight = j0 * f1 + (j1 - j0) * f2;
@@ -209,6 +221,8 @@ void AerialPerspective::integrate(const Vec3d& a, const Vec3d& b, const AirFrame
     }
     h0 = next.height;
     sun0 = sun1;
+    j_start = j_end;
+    d_start = d_end;
     psi0 = psi1;
   }
   for (int w = 0; w < n; ++w) S[w] *= scale_;
