@@ -4,8 +4,6 @@
 #include "refracta/core/parallel.h"
 #include "refracta/shading/sun_light.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -72,8 +70,9 @@ std::shared_ptr<const LowestLaunches> LowestLaunches::build(const Scene& scene,
   // table is the same whichever thread casts what), then the margins.
   const size_t nodes = 2 * kLowestLaunchIntervals + 1;
   std::vector<std::vector<double>> exits(casters.size(), std::vector<double>(nodes, nan));
-  tbb::parallel_for(size_t(0), casters.size() * nodes, [&](size_t i) {
-    const DefaultFloatingPointMode fp_mode;  // parallel.h: whatever mode the worker was left in
+  WorkControl control;  // the caller's cancel flags stay in force (parallel_for_each)
+  parallel_for_each(int64_t(casters.size() * nodes), 1, control, [&](int64_t index) {
+    const size_t i = size_t(index);
     exits[i / nodes][i % nodes] = lowest_launch_exit(*casters[i / nodes], lo + 0.5 * double(i % nodes) * table->step_);
   });
   for (const std::vector<double>& at : exits) {

@@ -313,8 +313,12 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   std::unique_ptr<SpectralEyeTables> spectral_eye;
   if (heroes && field->height_only() && 2 * options.spp >= SpectralEyeTables::kScales &&
       camera_rays >= 1024 * SpectralEyeTables::kScales) {
+    // The slices' tables are built side by side: each counts its own progress (the render's
+    // cancel flag stays in force through the parallel loops' chain, core/parallel.h).
     auto make_table = [&](const FieldPtr& air, const PlaneEscape& slice_escape) {
-      return eye_table(scene, camera, air, options, slice_escape, caster.ceiling(), control, /*spectral_slice=*/true);
+      WorkControl slice_control;
+      return eye_table(scene, camera, air, options, slice_escape, caster.ceiling(), slice_control,
+                       /*spectral_slice=*/true);
     };
     spectral_eye = std::make_unique<SpectralEyeTables>(scene, field, options, floors, camera.position(),
                                                        camera.pixel_angle(), escapes, make_table);
