@@ -21,6 +21,8 @@ Scene.set_physical_sky(aerial_perspective=True) makes the renderers apply it to 
 inline constexpr const char mkd_doc_refracta_AreaLight[] = R"doc(An emissive triangle mesh: vertices (V, 3) [m], triangles (T, 3) of vertex indices, uniform emission
 radiance L_e [W/(m^2 sr)] (a colour) from the counter-clockwise front of every triangle (front
 normal normalize((v1 - v0) x (v2 - v0))) or from both sides when two_sided.)doc";
+inline constexpr const char mkd_doc_refracta_Beckmann[] = R"doc(The isotropic Beckmann microfacet distribution: D, Lambda (exact, with erf), G1 and the height-
+correlated G. alpha^2 is the total mean-square slope. Directions: (N, 3) unit vectors.)doc";
 inline constexpr const char mkd_doc_refracta_BlinnPhong[] = R"doc(Normalised Blinn-Phong: f = kd / pi + ks (ns + 8) / (8 pi) (n.h)^ns (the MTL model). kd, ks in [0,
 1] (numbers or (r, g, b)), ns >= 0; alpha in [0, 1] is the raster opacity (MTL d). Sampled by a
 mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd.)doc";
@@ -409,6 +411,8 @@ inline constexpr const char mkd_doc_refracta_TraceOptions_max_length[] = R"doc(a
 inline constexpr const char mkd_doc_refracta_TraceOptions_max_steps[] = R"doc(A guard against runaway step-size collapse: a path needing more steps is refused up front.)doc";
 inline constexpr const char mkd_doc_refracta_TraceOptions_stop_height[] = R"doc(The path ends where it descends through this height [m] (a ground); unset (None): no ground.)doc";
 inline constexpr const char mkd_doc_refracta_TraceOptions_tol[] = R"doc(rk45 and stratified: target error of positions along the path [m].)doc";
+inline constexpr const char mkd_doc_refracta_TrowbridgeReitz[] = R"doc(The GGX microfacet distribution: D, Lambda, G1, height-correlated G, the visible-normal density and
+sampler. Directions: (N, 3) unit vectors in the local frame.)doc";
 inline constexpr const char mkd_doc_refracta_TurbulenceSettings[] = R"doc(The settings of a turbulence pattern and its placement (refracta.Turbulence), with the hot road's
 defaults (defined once, here, with their reasons). validate() reports every bad value at once, and a
 grid too large for max_bytes. Pickles through its fields.)doc";

@@ -2928,8 +2928,8 @@ class Water(Material):
         """
 class Beckmann:
     """
-    The isotropic Beckmann microfacet distribution (beckmann.h): D, Lambda (exact, with erf), G1 and
-    the height-correlated G. alpha^2 is the total mean-square slope. Directions: (N, 3) unit vectors.
+    The isotropic Beckmann microfacet distribution: D, Lambda (exact, with erf), G1 and the height-
+    correlated G. alpha^2 is the total mean-square slope. Directions: (N, 3) unit vectors.
     """
     def D(self, m: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
@@ -2948,8 +2948,8 @@ class Beckmann:
         ...
 class TrowbridgeReitz:
     """
-    The GGX microfacet distribution (microfacet.h): D, Lambda, G1, height-correlated G, the
-    visible-normal density and sampler. Directions: (N, 3) unit vectors in the local frame.
+    The GGX microfacet distribution: D, Lambda, G1, height-correlated G, the visible-normal density and
+    sampler. Directions: (N, 3) unit vectors in the local frame.
     """
     def D(self, m: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...

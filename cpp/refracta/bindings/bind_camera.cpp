@@ -39,12 +39,11 @@ Camera camera_from_state(const py::tuple& t) {  // 6 items (no jitter), 7 (no le
 }
 
 Camera jittered(const Camera& c, const py::object& angles) {
-  using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
-  const FloatArray map = py::cast<FloatArray>(angles);
-  if (map.ndim() != 3 || map.shape(0) != c.height() || map.shape(1) != c.width() || map.shape(2) != 2) {
+  Image map = to_image(angles, "Camera.jittered: angles", /*raw=*/true);  // finite: Camera::jittered checks
+  if (map.height != c.height() || map.width != c.width() || map.channels != 2) {
     throw_invalid("Camera.jittered: angles must have shape (height, width, 2) = (", c.height(), ", ", c.width(), ", 2)");
   }
-  return c.jittered(std::vector<float>(map.data(), map.data() + map.size()));
+  return c.jittered(std::move(map.pixels));
 }
 
 py::object jitter_array(const Camera& c) {

@@ -1,5 +1,6 @@
 // Python bindings of the microfacet distributions (shading/microfacet.h, beckmann.h), the Fresnel
 // functions (fresnel.h) and indices of refraction (ior.h), vectorised over numpy arrays.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_shading.h"
 
 #include "refracta/shading/beckmann.h"
@@ -45,9 +46,7 @@ void def_masking(py::class_<Distribution>& cls) {
 
 void bind_microfacet(py::module_& m) {
   bind_fresnel(m);
-  py::class_<Beckmann> beckmann(m, "Beckmann",
-                       "The isotropic Beckmann microfacet distribution (beckmann.h): D, Lambda (exact, with erf), G1 and\n"
-                       "the height-correlated G. alpha^2 is the total mean-square slope. Directions: (N, 3) unit vectors.");
+  py::class_<Beckmann> beckmann(m, "Beckmann", DOC(refracta, Beckmann));
   beckmann.def(py::init([](double alpha) { return Beckmann(TrowbridgeReitz::checked_alpha(alpha, "alpha")); }), py::arg("alpha"))
       .def_property_readonly("alpha", &Beckmann::alpha)
       .def(py::pickle([](const Beckmann& d) { return std::make_tuple(d.alpha()); },
@@ -56,9 +55,7 @@ void bind_microfacet(py::module_& m) {
                       }));
   def_masking(beckmann);
 
-  py::class_<TrowbridgeReitz> ggx(m, "TrowbridgeReitz",
-                              "The GGX microfacet distribution (microfacet.h): D, Lambda, G1, height-correlated G, the\n"
-                              "visible-normal density and sampler. Directions: (N, 3) unit vectors in the local frame.");
+  py::class_<TrowbridgeReitz> ggx(m, "TrowbridgeReitz", DOC(refracta, TrowbridgeReitz));
   ggx.def(py::init([](double alpha_x, double alpha_y) {
              return TrowbridgeReitz(TrowbridgeReitz::checked_alpha(alpha_x, "alpha_x"), TrowbridgeReitz::checked_alpha(alpha_y, "alpha_y"));
            }),

@@ -34,6 +34,8 @@
 
 namespace refracta {
 
+// The isotropic Beckmann microfacet distribution: D, Lambda (exact, with erf), G1 and the
+// height-correlated G. alpha^2 is the total mean-square slope. Directions: (N, 3) unit vectors.
 class Beckmann {
  public:
   // The same floor as GGX's (microfacet.h): narrower lobes are beyond double-precision directions.

@@ -20,6 +20,8 @@
 
 namespace refracta {
 
+// The GGX microfacet distribution: D, Lambda, G1, height-correlated G, the visible-normal density
+// and sampler. Directions: (N, 3) unit vectors in the local frame.
 class TrowbridgeReitz {
  public:
   // Roughness below kMinAlpha is raised to it: narrower lobes put D beyond what double-precision
