@@ -951,7 +951,8 @@ class Scene:
     def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, below_horizon: str = 'horizon', aerial_perspective: bool = True, visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         """
         The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's
-        single scattering (Nishita et al. 1993) for the sun toward `sun_direction` (normalised, y up),
+        single scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun
+        toward `sun_direction` (normalised, y up),
         `aerosol` (Mie density scale), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon
         `below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth (Scene.set_sky's
         convention: the ground is geometry, and a ray ending its max_length still heading slightly down sees
@@ -963,7 +964,8 @@ class Scene:
         106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun
         (e.g. an exposure). Builds the sky's table (~0.5 s).
         aerial_perspective (default True): the same air dims and lights every segment the renderers cast
-        (refracta.spectrum.AerialPerspective: transmittance and single-scattered sunlight), so distant
+        (refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's multiple
+        scattering included), so distant
         objects grey and blue into the sky; False keeps surfaces as seen through empty space.
         visibility [km]: meteorological visibility at the ground (Koschmieder: extinction at 550 nm =
         3.912 / V), setting the aerosol in its place (give one of them). The scene's y = 0 lies `altitude`

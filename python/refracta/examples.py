@@ -59,7 +59,7 @@ def sun_direction(elevation: float, azimuth: float) -> np.ndarray:
 def set_physical_sky(
     scene: _core.Scene, direction, aerosol: float = 1.0, scale: float = RADIANCE_SCALE, visibility=None
 ) -> None:
-    """Light `scene` by Scene.set_physical_sky: a Nishita single-scattering sky and its sun disc
+    """Light `scene` by Scene.set_physical_sky: a Nishita sky (Hillaire 2020's multiple scattering) and its sun disc
     (0.53 deg, coloured by extinction along the sun's path), both times `scale` (RADIANCE_SCALE:
     see above). direction: toward the sun (normalised), y up; aerosol: the Mie density scale.
     Below the horizon the sky continues from the horizon at each azimuth (below_horizon='horizon'):

@@ -83,7 +83,7 @@ def test_in_scatter_matches_a_brute_force_quadrature(case):
 @pytest.mark.parametrize("elevation", [0.0, 2.0, 10.0])
 def test_a_segment_that_leaves_the_air_sees_the_sky(clear_air, elevation):
     # In-scatter along 2000 km from the sky's observer (y = 0) in a direction: the sky's own
-    # single-scattering integral (PhysicalSky.radiance direct), whose quadrature it shares up to
+    # scattering integral (PhysicalSky.radiance direct, multiple scattering included), whose quadrature it shares up to
     # the pieces' discretisation: 0.1 % measured at these elevations, 0.5 % allowed.
     e, a = math.radians(elevation), 1.0
     direction = np.array([math.cos(e) * math.cos(a), math.sin(e), math.cos(e) * math.sin(a)])

@@ -50,7 +50,7 @@ def test_below_the_horizon_is_the_horizon_at_the_same_azimuth(sky):
         np.testing.assert_array_equal(sky.rgb_radiance(below), np.repeat(sky.rgb_radiance(horizon), len(BELOW), 0))
         # Continuous across the horizon: just above it the same value.
         np.testing.assert_array_equal(sky.rgb_radiance(unit(1e-4, azimuth)[None]), sky.rgb_radiance(horizon))
-        # ... which is the single-scattering integral along the horizontal at that azimuth.
+        # ... which is the scattering integral along the horizontal at that azimuth.
         direct = sky.radiance(below[:1], lam, direct=True)
         np.testing.assert_allclose(sky.radiance(below[:1], lam), direct, rtol=HORIZON_TABLE_TOLERANCE)
         assert np.all(direct > 0.0)

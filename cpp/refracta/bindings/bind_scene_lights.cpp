@@ -79,7 +79,8 @@ void bind_sun_and_sky(SceneClass& scene) {
            py::kw_only(), py::arg("scale") = 1.0, py::arg("altitude") = PhysicalSkySettings{}.altitude,
            py::arg("below_horizon") = "horizon", py::arg("aerial_perspective") = true, py::arg("visibility") = py::none(),
            "The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's\n"
-           "single scattering (Nishita et al. 1993) for the sun toward `sun_direction` (normalised, y up),\n"
+           "single scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun\n"
+           "toward `sun_direction` (normalised, y up),\n"
            "`aerosol` (Mie density scale), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon\n"
            "`below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth (Scene.set_sky's\n"
            "convention: the ground is geometry, and a ray ending its max_length still heading slightly down sees\n"
@@ -91,7 +92,8 @@ void bind_sun_and_sky(SceneClass& scene) {
            "106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun\n"
            "(e.g. an exposure). Builds the sky's table (~0.5 s).\n"
            "aerial_perspective (default True): the same air dims and lights every segment the renderers cast\n"
-           "(refracta.spectrum.AerialPerspective: transmittance and single-scattered sunlight), so distant\n"
+           "(refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's multiple\n"
+           "scattering included), so distant\n"
            "objects grey and blue into the sky; False keeps surfaces as seen through empty space.\n"
            "visibility [km]: meteorological visibility at the ground (Koschmieder: extinction at 550 nm =\n"
            "3.912 / V), setting the aerosol in its place (give one of them). The scene's y = 0 lies `altitude`\n"
