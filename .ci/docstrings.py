@@ -35,6 +35,7 @@ HEADERS = [
     "cpp/refracta/media/logistic_profile.h",
     "cpp/refracta/media/physical_atmosphere.h",
     "cpp/refracta/media/temperature_profile.h",
+    "cpp/refracta/media/turbulence.h",
     "cpp/refracta/media/turbulence_synthesis.h",
     "cpp/refracta/raster/moment_shadow.h",
     "cpp/refracta/raster/oit.h",

@@ -143,8 +143,8 @@ published value for the basis, moment count and storage; storage 'fp32' or 'unor
 variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (z_far <=
 z_near: the fragments' own range, in render_raster the frame's).)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_beta[] = R"doc(overestimation in [0, 1]: the share of the fragment's own layer in front)doc";
-inline constexpr const char mkd_doc_refracta_MboitSettings_bias[] = R"doc(alpha, the weight of the bias vector in [0, 1); unset (None): the published value for the basis, the
-moment count and the storage (MOMENTS.md 4.4; published_bias).)doc";
+inline constexpr const char mkd_doc_refracta_MboitSettings_bias[] = R"doc(alpha, the weight of the bias vector in [0, 1); unset (None) gives the published value for the
+basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_moments[] = R"doc(4, 6 or 8 power moments; 2, 3 or 4 trigonometric)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_published_bias[] = R"doc(fp32: 5e-7 / 5e-6 / 5e-5 for 4 / 6 / 8 power moments; unorm16: 6e-5 (the Unity HDRP port),
 5e-5, 5e-4; trigonometric: 4e-4 for 2 moments, 2e-4 for 3 and 4.)doc";
@@ -155,7 +155,7 @@ depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peter
 storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation transforms); bias
 (alpha) and bias_vector (b*): None means the published value for the depth range and storage
 (published_bias, published_bias_vector).)doc";
-inline constexpr const char mkd_doc_refracta_MomentShadowSettings_bias[] = R"doc(alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None):
+inline constexpr const char mkd_doc_refracta_MomentShadowSettings_bias[] = R"doc(alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None) gives
 published_bias(depth_range, storage).)doc";
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings_bias_vector[] = R"doc(b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range).)doc";
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings_published_bias[] = R"doc(The published strengths: 3e-6 (unit) / 3e-7 (signed) for fp32 and fp64 (Peters & Klein 2015 sec. 5;
@@ -191,7 +191,8 @@ inline constexpr const char mkd_doc_refracta_PairOptions[] = R"doc(How an edit's
 EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
 PairOptions). validate() reports every bad value at once.)doc";
 inline constexpr const char mkd_doc_refracta_PairOptions_max_steps[] = R"doc(Integration steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails.)doc";
-inline constexpr const char mkd_doc_refracta_PairOptions_reach[] = R"doc(The path is traced to reach x |source - eye| + 1 m, and stops early once it is past the source.)doc";
+inline constexpr const char mkd_doc_refracta_PairOptions_reach[] = R"doc(The path is traced to reach x (the eye-to-source distance) + 1 m, and stops early once it is past
+the source.)doc";
 inline constexpr const char mkd_doc_refracta_PairOptions_step[] = R"doc(rk4 step [m] (0: 0.3, the original editor's))doc";
 inline constexpr const char mkd_doc_refracta_PairOptions_stop_height[] = R"doc(Paths end where they descend through it (a ground) [m]; unset (None): no ground.)doc";
 inline constexpr const char mkd_doc_refracta_PairOptions_tol[] = R"doc(rk45 target position error [m] (at least 1e-13 per metre of path))doc";
@@ -413,6 +414,14 @@ inline constexpr const char mkd_doc_refracta_TraceOptions_stop_height[] = R"doc(
 inline constexpr const char mkd_doc_refracta_TraceOptions_tol[] = R"doc(rk45 and stratified: target error of positions along the path [m].)doc";
 inline constexpr const char mkd_doc_refracta_TrowbridgeReitz[] = R"doc(The GGX microfacet distribution: D, Lambda, G1, height-correlated G, the visible-normal density and
 sampler. Directions: (N, 3) unit vectors in the local frame.)doc";
+inline constexpr const char mkd_doc_refracta_Turbulence[] = R"doc(A grid placed in the air (Python's TurbulenceLayer): delta_n = scale * E(h) * grid(R_yaw (p -
+offset)), E(h) = e^(-h/depth) above the ground (none for depth = inf): scaled, shifted by the wind,
+the lattice turned by yaw [rad] about the vertical (the layer's internal unit: refracta.Turbulence
+takes yaw_deg [deg]). Made by refracta.Turbulence (its `layer`).)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceGrid[] = R"doc(A periodic uniform cubic B-spline over an nx x ny x nz grid (index (i ny + j) nz + k, x = axis 0, y
+up = axis 1, z = axis 2) of cells `spacing` [m] wide; one period is nx * spacing along x, etc. In
+Python TurbulenceGrid(coefficients (nx, ny, nz) float32, spacing [m]), built by refracta.Turbulence;
+evaluate(points) gives the spline's values and gradients (for tests and plots).)doc";
 inline constexpr const char mkd_doc_refracta_TurbulenceSettings[] = R"doc(The settings of a turbulence pattern and its placement (refracta.Turbulence), with the hot road's
 defaults (defined once, here, with their reasons). validate() reports every bad value at once, and a
 grid too large for max_bytes. Pickles through its fields.)doc";
@@ -492,6 +501,10 @@ points: (N, 3) [m]; normals: (N, 3) unit geometric normals (rows may be 0) or No
 [0, 1). Returns (wi (N, 3) unit toward the light, L (N, 3) RGB radiance arriving [W/(m^2 sr)] (point
 and spot: I/r^2), pdf (N,) per steradian (delta lights: 1), distance (N,) [m] (infinite
 lights: inf)). A point the light cannot reach gets wi = 0, L = 0, pdf = 0, distance = 0.)doc";
+inline constexpr const char mkd_doc_refracta_von_karman_spectrum[] = R"doc(The von Karman spectrum with a Gaussian inner cutoff, Phi_n(kappa) [m^3]: 0.033005 C_n^2 (kappa^2 +
+kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0, kappa_m = 5.92 / l0 (Andrews &
+Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale l0 = 0: no cutoff; outer_scale L0 =
+inf: Kolmogorov at small kappa (infinite at kappa = 0).)doc";
 inline constexpr const char mkd_doc_refracta_water_absorption[] = R"doc(Absorption coefficient of pure water [1/m] at a wavelength [nm] in [kLambdaMin, kLambdaMax] (360-830
 nm), linear between 5 nm nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of pure water.
 II. Integrating cavity measurements", Applied Optics 36(33), 8710-8723) from 380 to 725 nm; Smith &
@@ -517,12 +530,11 @@ of water between 0 C and 40 C", Metrologia 38, eq. 1 (999.97495 kg/m^3 at its ma
 998.2067 at 20 C). Throws std::invalid_argument outside the range.)doc";
 inline constexpr const char mkd_doc_refracta_water_ior[] = R"doc(Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [kWaterMinWavelength,
 kWaterMaxWavelength], temperature [deg C] and salinity [g/kg, ~PSU] in [0, kWaterMaxSalinity], at
-atmospheric pressure:
-- pure water: IAPWS R9-97, "Release on the Refractive Index of Ordinary Water Substance as a
-  Function of Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) =
-  rho_bar A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t);
-- sea water: plus the salinity terms of Quan & Fry 1995, Applied Optics 34(18), eq. 3, (n1 + n2 t +
-  n3 t^2) S + n6 S / lambda (fitted 0-35 g/kg, 0-30 C, 400-700 nm, relative to
-  air: the 3e-4 difference from vacuum in the increment is far below the fit's accuracy).
-Throws std::invalid_argument naming the argument outside its range.)doc";
+atmospheric pressure. Pure water by IAPWS R9-97, "Release on the Refractive Index of Ordinary Water
+Substance as a Function of Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 -
+1)/(n^2 + 2) = rho_bar A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t); sea water plus
+the salinity terms of Quan & Fry 1995, Applied Optics 34(18), eq. 3, (n1 + n2 t + n3 t^2) S + n6 S /
+lambda (fitted 0-35 g/kg, 0-30 C, 400-700 nm, relative to air: the 3e-4 difference from vacuum in
+the increment is far below the fit's accuracy). Throws std::invalid_argument naming the argument
+outside its range.)doc";
 // NOLINTEND

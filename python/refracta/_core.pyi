@@ -184,9 +184,10 @@ class TurbulenceSettings:
         ...
 class TurbulenceGrid:
     """
-    A periodic uniform cubic B-spline over a 3-D grid: TurbulenceGrid(coefficients (nx, ny, nz) float32,
-    spacing [m]); axis 0 is x, 1 is y (up), 2 is z. Built by refracta.Turbulence; evaluate(points) gives
-    the spline's values and gradients (for tests and plots).
+    A periodic uniform cubic B-spline over an nx x ny x nz grid (index (i ny + j) nz + k, x = axis 0, y
+    up = axis 1, z = axis 2) of cells `spacing` [m] wide; one period is nx * spacing along x, etc. In
+    Python TurbulenceGrid(coefficients (nx, ny, nz) float32, spacing [m]), built by refracta.Turbulence;
+    evaluate(points) gives the spline's values and gradients (for tests and plots).
     """
     def __getstate__(self) -> tuple:
         ...
@@ -214,10 +215,10 @@ class TurbulenceGrid:
         ...
 class TurbulenceLayer:
     """
-    A TurbulenceGrid placed in the air: delta_n = scale * E(h) * grid(R_yaw (p - offset)), E(h) =
-    e^(-h/depth) above the ground (none for depth = inf), the lattice turned by yaw [rad] about the
-    vertical (the layer's internal unit: refracta.Turbulence takes yaw_deg [deg]). Made by
-    refracta.Turbulence (its `layer`).
+    A grid placed in the air (Python's TurbulenceLayer): delta_n = scale * E(h) * grid(R_yaw (p -
+    offset)), E(h) = e^(-h/depth) above the ground (none for depth = inf): scaled, shifted by the wind,
+    the lattice turned by yaw [rad] about the vertical (the layer's internal unit: refracta.Turbulence
+    takes yaw_deg [deg]). Made by refracta.Turbulence (its `layer`).
     """
     @staticmethod
     def of(settings: TurbulenceSettings, grid: TurbulenceGrid, time: typing.SupportsFloat | typing.SupportsIndex) -> TurbulenceLayer:
@@ -1416,7 +1417,7 @@ class MomentShadowSettings:
     @property
     def bias(self) -> float | None:
         """
-        alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None):
+        alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None) gives
         published_bias(depth_range, storage).
         """
     @bias.setter
@@ -1569,8 +1570,8 @@ class MboitSettings:
     @property
     def bias(self) -> float | None:
         """
-        alpha, the weight of the bias vector in [0, 1); unset (None): the published value for the basis, the
-        moment count and the storage (MOMENTS.md 4.4; published_bias).
+        alpha, the weight of the bias vector in [0, 1); unset (None) gives the published value for the
+        basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).
         """
     @bias.setter
     def bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -2367,7 +2368,8 @@ class PairOptions:
     @property
     def reach(self) -> float:
         """
-        The path is traced to reach x |source - eye| + 1 m, and stops early once it is past the source.
+        The path is traced to reach x (the eye-to-source distance) + 1 m, and stops early once it is past
+        the source.
         """
     @reach.setter
     def reach(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -3578,10 +3580,10 @@ def turbulence_memory_needed(cells: typing.SupportsInt | typing.SupportsIndex) -
     """
 def von_karman_spectrum(kappa: typing.Any, cn2: typing.SupportsFloat | typing.SupportsIndex = 1.0, inner_scale: typing.SupportsFloat | typing.SupportsIndex = 0.0, outer_scale: typing.SupportsFloat | typing.SupportsIndex = ...) -> numpy.ndarray:
     """
-    The von Karman spectrum with a Gaussian inner cutoff, Phi_n(kappa) [m^3]:
-    0.033005 C_n^2 (kappa^2 + kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0,
-    kappa_m = 5.92 / l0 (Andrews & Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale
-    l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at kappa = 0).
+    The von Karman spectrum with a Gaussian inner cutoff, Phi_n(kappa) [m^3]: 0.033005 C_n^2 (kappa^2 +
+    kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0, kappa_m = 5.92 / l0 (Andrews &
+    Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale l0 = 0: no cutoff; outer_scale L0 =
+    inf: Kolmogorov at small kappa (infinite at kappa = 0).
     """
 def water_absorption(wavelength_nm: typing.Any) -> typing.Any:
     """
@@ -3626,14 +3628,13 @@ def water_ior(wavelength_nm: typing.Any, temperature_c: typing.Any = 20.0, salin
     """
     Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [kWaterMinWavelength,
     kWaterMaxWavelength], temperature [deg C] and salinity [g/kg, ~PSU] in [0, kWaterMaxSalinity], at
-    atmospheric pressure:
-    - pure water: IAPWS R9-97, "Release on the Refractive Index of Ordinary Water Substance as a
-      Function of Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) =
-      rho_bar A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t);
-    - sea water: plus the salinity terms of Quan & Fry 1995, Applied Optics 34(18), eq. 3, (n1 + n2 t +
-      n3 t^2) S + n6 S / lambda (fitted 0-35 g/kg, 0-30 C, 400-700 nm, relative to
-      air: the 3e-4 difference from vacuum in the increment is far below the fit's accuracy).
-    Throws std::invalid_argument naming the argument outside its range.
+    atmospheric pressure. Pure water by IAPWS R9-97, "Release on the Refractive Index of Ordinary Water
+    Substance as a Function of Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 -
+    1)/(n^2 + 2) = rho_bar A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t); sea water plus
+    the salinity terms of Quan & Fry 1995, Applied Optics 34(18), eq. 3, (n1 + n2 t + n3 t^2) S + n6 S /
+    lambda (fitted 0-35 g/kg, 0-30 C, 400-700 nm, relative to air: the 3e-4 difference from vacuum in
+    the increment is far below the fit's accuracy). Throws std::invalid_argument naming the argument
+    outside its range.
     Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 DEFAULT_TURBULENCE_YAW_DEG: float = 31.71747441146101

@@ -99,11 +99,7 @@ void bind_synthesis(py::module_& m) {
           return elementwise(kappa, "kappa", [&](double k) { return von_karman_spectrum(k, cn2, inner_scale, outer_scale); });
         },
         py::arg("kappa"), py::arg("cn2") = 1.0, py::arg("inner_scale") = 0.0,
-        py::arg("outer_scale") = std::numeric_limits<double>::infinity(), R"doc(
-The von Karman spectrum with a Gaussian inner cutoff, Phi_n(kappa) [m^3]:
-0.033005 C_n^2 (kappa^2 + kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0,
-kappa_m = 5.92 / l0 (Andrews & Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale
-l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at kappa = 0).)doc");
+        py::arg("outer_scale") = std::numeric_limits<double>::infinity(), DOC(refracta, von_karman_spectrum));
   m.def("bessel_j1",
         [](const py::object& x) { return elementwise(x, "x", [](double v) { return std::cyl_bessel_j(1.0, std::abs(v)) * (v < 0 ? -1.0 : 1.0); }); },
         py::arg("x"), "The Bessel function J1 (std::cyl_bessel_j), element by element.");
@@ -123,10 +119,7 @@ l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at 
 void bind_turbulence(py::module_& m) {
   bind_settings(m);
 
-  py::class_<TurbulenceGrid, std::shared_ptr<TurbulenceGrid>> grid(m, "TurbulenceGrid", R"doc(
-A periodic uniform cubic B-spline over a 3-D grid: TurbulenceGrid(coefficients (nx, ny, nz) float32,
-spacing [m]); axis 0 is x, 1 is y (up), 2 is z. Built by refracta.Turbulence; evaluate(points) gives
-the spline's values and gradients (for tests and plots).)doc");
+  py::class_<TurbulenceGrid, std::shared_ptr<TurbulenceGrid>> grid(m, "TurbulenceGrid", DOC(refracta, TurbulenceGrid));
   grid.def(py::init(&grid_from), py::arg("coefficients"), py::arg("spacing"))
       .def_property_readonly("shape", [](const TurbulenceGrid& g) { return py::make_tuple(g.shape()[0], g.shape()[1], g.shape()[2]); })
       .def_property_readonly("spacing", &TurbulenceGrid::spacing)
@@ -138,11 +131,7 @@ the spline's values and gradients (for tests and plots).)doc");
       grid, "TurbulenceGrid", [](const TurbulenceGrid& g) { return std::make_tuple(coefficients_of(g), g.spacing()); },
       &grid_from);
 
-  py::class_<Turbulence, std::shared_ptr<Turbulence>> layer(m, "TurbulenceLayer", R"doc(
-A TurbulenceGrid placed in the air: delta_n = scale * E(h) * grid(R_yaw (p - offset)), E(h) =
-e^(-h/depth) above the ground (none for depth = inf), the lattice turned by yaw [rad] about the
-vertical (the layer's internal unit: refracta.Turbulence takes yaw_deg [deg]). Made by
-refracta.Turbulence (its `layer`).)doc");
+  py::class_<Turbulence, std::shared_ptr<Turbulence>> layer(m, "TurbulenceLayer", DOC(refracta, Turbulence));
   auto make_layer = [](std::shared_ptr<TurbulenceGrid> grid, double scale, const py::object& offset, double depth,
                        double yaw) {
     return make_turbulence_layer(grid, scale, to_point(offset, "offset"), depth, yaw);

@@ -22,6 +22,9 @@ namespace refracta {
 
 // A periodic uniform cubic B-spline over an nx x ny x nz grid (index (i ny + j) nz + k, x = axis 0,
 // y up = axis 1, z = axis 2) of cells `spacing` [m] wide; one period is nx * spacing along x, etc.
+// In Python TurbulenceGrid(coefficients (nx, ny, nz) float32, spacing [m]), built by
+// refracta.Turbulence; evaluate(points) gives the spline's values and gradients (for tests and
+// plots).
 class TurbulenceGrid {
  public:
   // Throws std::invalid_argument for a size mismatch, a dimension < 4, a spacing <= 0 or a
@@ -47,8 +50,10 @@ class TurbulenceGrid {
 // add no systematic bending), far below the realisations' own scatter.
 constexpr double kNegligibleTurbulence = 1e-3;
 
-// A grid placed in the air: scaled, shifted by the wind, turned about the vertical, under a height
-// envelope.
+// A grid placed in the air (Python's TurbulenceLayer): delta_n = scale * E(h) * grid(R_yaw (p -
+// offset)), E(h) = e^(-h/depth) above the ground (none for depth = inf): scaled, shifted by the
+// wind, the lattice turned by yaw [rad] about the vertical (the layer's internal unit:
+// refracta.Turbulence takes yaw_deg [deg]). Made by refracta.Turbulence (its `layer`).
 struct Turbulence {
   std::shared_ptr<const TurbulenceGrid> grid;
   double scale = 1.0;             // delta_n per unit of the grid's values

@@ -33,8 +33,10 @@ double von_karman_constant();
 // kappa_m = 5.92 / l0: the Tatarskii inner-scale cutoff in Andrews & Phillips' convention (eq. 3.27).
 constexpr double kInnerScaleFactor = 5.92;
 
-// Phi_n(kappa) [m^3] for kappa [rad/m]; inner_scale 0: no cutoff; outer_scale inf: Kolmogorov at
-// small kappa (infinite at kappa = 0).
+// The von Karman spectrum with a Gaussian inner cutoff, Phi_n(kappa) [m^3]:
+// 0.033005 C_n^2 (kappa^2 + kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0,
+// kappa_m = 5.92 / l0 (Andrews & Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale
+// l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at kappa = 0).
 double von_karman_spectrum(double kappa, double cn2, double inner_scale, double outer_scale);
 
 // The lattice turned about the vertical by atan(1 / golden ratio) (31.7 deg): a periodic tile

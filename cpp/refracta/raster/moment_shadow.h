@@ -28,7 +28,7 @@ const char* moment_shadow_method_name(MomentShadowMethod method);
 struct MomentShadowSettings {
   DepthRange depth_range = DepthRange::kUnit;  // [0, 1] (I3D 2015) or [-1, 1] (JCGT 2017)
   Storage storage = Storage::kFp32;            // how a GPU would keep them (the shadow maps' default)
-  // alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None):
+  // alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None) gives
   // published_bias(depth_range, storage).
   std::optional<double> bias;
   // b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range).

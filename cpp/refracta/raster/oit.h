@@ -39,8 +39,8 @@ struct MboitSettings {
   MomentBasis basis = MomentBasis::kPower;
   int moments = 4;              // 4, 6 or 8 power moments; 2, 3 or 4 trigonometric
   double beta = 0.25;           // overestimation in [0, 1]: the share of the fragment's own layer in front
-  // alpha, the weight of the bias vector in [0, 1); unset (None): the published value for the
-  // basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).
+  // alpha, the weight of the bias vector in [0, 1); unset (None) gives the published value for
+  // the basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).
   std::optional<double> bias;
   double z_near = 0.0;  // near end of the log-depth warp [m]
   double z_far = 0.0;   // far end of the log-depth warp [m]; z_far <= z_near: the fragments' own range

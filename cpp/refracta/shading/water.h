@@ -22,13 +22,13 @@ double water_density(double temperature_c);
 
 // Refractive index of water relative to vacuum at a vacuum wavelength [nm] in
 // [kWaterMinWavelength, kWaterMaxWavelength], temperature [deg C] and salinity [g/kg, ~PSU] in
-// [0, kWaterMaxSalinity], at atmospheric pressure:
-// - pure water: IAPWS R9-97, "Release on the Refractive Index of Ordinary Water Substance as a
-//   Function of Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form
-//   (n^2 - 1)/(n^2 + 2) = rho_bar A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t);
-// - sea water: plus the salinity terms of Quan & Fry 1995, Applied Optics 34(18), eq. 3,
-//   (n1 + n2 t + n3 t^2) S + n6 S / lambda (fitted 0-35 g/kg, 0-30 C, 400-700 nm, relative to
-//   air: the 3e-4 difference from vacuum in the increment is far below the fit's accuracy).
+// [0, kWaterMaxSalinity], at atmospheric pressure. Pure water by IAPWS R9-97, "Release on the
+// Refractive Index of Ordinary Water Substance as a Function of Wavelength, Temperature and
+// Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) = rho_bar A(rho_bar, T_bar, lambda_bar),
+// eq. A1), at water_density(t); sea water plus the salinity terms of Quan & Fry 1995, Applied
+// Optics 34(18), eq. 3, (n1 + n2 t + n3 t^2) S + n6 S / lambda (fitted 0-35 g/kg, 0-30 C, 400-700
+// nm, relative to air: the 3e-4 difference from vacuum in the increment is far below the fit's
+// accuracy).
 // Throws std::invalid_argument naming the argument outside its range.
 double water_ior(double wavelength_nm, double temperature_c = 20.0, double salinity = 0.0);
 
