@@ -48,7 +48,7 @@ double lowest_launch_exit(const Caster& caster, double h) {
 std::shared_ptr<const LowestLaunches> LowestLaunches::build(const Scene& scene,
                                                             const std::vector<const Caster*>& casters,
                                                             const std::vector<double>& scales) {
-  if (casters.size() < 2 || casters.size() != scales.size()) return nullptr;
+  if (casters.empty() || casters.size() != scales.size()) return nullptr;
   if (!std::isfinite(scene.lowest()) || !std::isfinite(scene.highest())) return nullptr;
   // offset_toward lifts a point of a level surface by 1e-5 + 2e-6 of its largest coordinate: the
   // start heights from the lowest surface's least lift (a cast from the surface itself meets it)
@@ -102,8 +102,9 @@ double LowestLaunches::least_exit(double h, double scale) const {
   }
   const size_t j = std::min(size_t(u), size_t(kLowestLaunchIntervals - 1));
   if (!std::isfinite(margins_[j])) return -std::numeric_limits<double>::infinity();
-  const size_t k = std::min(size_t(std::upper_bound(scales_.begin(), scales_.end(), scale) - scales_.begin()),
-                            scales_.size() - 1) - 1;
+  const size_t last = scales_.size() - 1;  // one scale: the render's own air
+  const size_t k =
+      last == 0 ? 0 : std::min(size_t(std::upper_bound(scales_.begin(), scales_.end(), scale) - scales_.begin()), last) - 1;
   const double w = u - double(j);
   auto at = [&](size_t scale_index) {
     const std::vector<double>& exits = exits_[scale_index];
@@ -111,7 +112,7 @@ double LowestLaunches::least_exit(double h, double scale) const {
   };
   // Between two close scales the exit moves monotonically with the air's n - 1 (hero_casters.h):
   // it lies between theirs.
-  return std::min(at(k), at(k + 1)) - margins_[j];
+  return std::min(at(k), at(std::min(k + 1, last))) - margins_[j];
 }
 
 DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options,

@@ -46,9 +46,8 @@ namespace refracta {
 // flash frame, one 8 km grazing path per sea sample).
 class LowestLaunches {
  public:
-  // casters[k]: the render's air at dispersion scale scales[k] (ascending; at least two, each
-  // curved through a height-only air over a spherical Earth, without a table of its own for these
-  // origins); start heights from scene.lowest() to scene.highest() plus the largest offset of a
+  // casters[k]: the render's air at dispersion scale scales[k] (ascending; at least one, each
+  // curved through a height-only air over a spherical Earth); start heights from scene.lowest() to scene.highest() plus the largest offset of a
   // surface point (SurfaceInteraction::offset_toward). Null where no interval of heights can stand
   // for the casts (build).
   static std::shared_ptr<const LowestLaunches> build(const Scene& scene, const std::vector<const Caster*>& casters,
@@ -86,8 +85,9 @@ class DirectLighting : public LightVisibility {
   Spectrum sample_light(size_t index, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
                         const SampledWavelengths& lambda, const Vec2d& u) const;
 
-  // A spectral render's lowest launches (LowestLaunches), and where the sample's dispersion scale
-  // is read (the hero's air's); without them every lowest launch is cast.
+  // The render's lowest launches (LowestLaunches), and where the sample's dispersion scale is read
+  // (a spectral render's hero's air's; 1 for an RGB render's one air); without them every lowest
+  // launch is cast.
   void use_lowest_launches(std::shared_ptr<const LowestLaunches> table, std::shared_ptr<const double> scale) {
     lowest_launches_ = std::move(table);
     scale_ = std::move(scale);
