@@ -35,7 +35,8 @@ double t_to_elevation(double t) {
 // The sun's column from height h where it stands e above the horizon (nullopt: below the planet's limb).
 std::optional<Column> sun_column(double h, double e, int steps) {
   const Vec3d p(0.0, kEarthRadius + std::max(h, 0.0), 0.0), d(std::cos(e), std::sin(e), 0.0);
-  if (hits_earth(p, d)) return std::nullopt;
+  // On the ground a sun below the horizon is hidden (hits_earth's strict test lets it through).
+  if (hits_earth(p, d) || (h <= 0.0 && e < 0.0)) return std::nullopt;
   return column_to_top(p, d, steps);
 }
 
