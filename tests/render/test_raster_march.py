@@ -14,8 +14,23 @@ SAME_RADIANCE = 1e-4
 
 def differing(a, b, relative=0.02):
     """Fraction of pixels whose radiance differs by more than `relative` of the brighter one."""
+    return np.mean(differs(a, b, relative))
+
+
+def differs(a, b, relative=0.02):
+    """Per pixel: does the radiance differ by more than `relative` of the brighter one?"""
     scale = np.maximum(np.abs(a).max(axis=2), np.abs(b).max(axis=2)) + 1e-6
-    return np.mean(np.abs(a - b).max(axis=2) > relative * scale)
+    return np.abs(a - b).max(axis=2) > relative * scale
+
+
+def differing_from_every_neighbour(a, b, relative=0.02):
+    """Fraction of pixels of `a` that differ from `b`'s pixel and from its 8 neighbours: what a
+    step size or a silhouette deciding between neighbouring pixels cannot explain."""
+    unexplained = np.ones(a.shape[:2], bool)
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            unexplained &= differs(a, np.roll(b, (dy, dx), axis=(0, 1)), relative)
+    return np.mean(unexplained)
 
 
 def test_without_a_field_raster_march_equals_straight():
@@ -34,8 +49,9 @@ def test_raster_march_agrees_with_curved_where_the_hit_is_in_view():
     also shows each raster pixel's shading for the straight view, where the curved renderer shades
     the surface for the bent ray that arrives: glossy car paint in the mirrored images differs, and
     the ridge's jagged skyline mirrored in the band (14 % of the height in the 500 mm view) is
-    decided per raster pixel (measured: 8.3 % of pixels in all, nearly all in the band's rows;
-    5.6 % in the former 2.2 deg view with a band of 3 %)."""
+    decided per raster pixel (measured: 10.4 % of pixels in all since the sky's multiple
+    scattering, 8.3 % before, nearly all in the band's rows, where whole rows are shifted by one
+    pixel; 4.1 % differ from every neighbour too: the car paint and the ridge's mirrored skyline)."""
     example = examples.hot_road(160, 60)
     render = dict(progress=False, max_length=example.max_length)
     curved = np.mean(
@@ -54,7 +70,7 @@ def test_raster_march_agrees_with_curved_where_the_hit_is_in_view():
     )
     horizon = int(np.ceil(example.camera.project([1e6, example.camera.position[1], 0.0])[1]))
     assert differing(curved[:horizon], marched[:horizon]) < 0.03
-    assert differing(curved, marched) < 0.10
+    assert differing_from_every_neighbour(curved, marched) < 0.06
     # The mirage itself: below the horizon, bright pixels are the mirrored sky (the road is dark).
     bright_curved = curved[horizon:].max(axis=2) > 0.5
     bright_marched = marched[horizon:].max(axis=2) > 0.5

@@ -14,7 +14,7 @@ using namespace air_optics;
 namespace {
 
 constexpr double kIsotropic = 1.0 / (4.0 * kPi);  // p_u [1/sr]
-constexpr int kSunSteps = kSunColumnSteps / 3;
+constexpr int kMsSunSteps = kSunColumnSteps / 3;
 
 double row_height(int i) {
   const double u = double(i) / (MultipleScattering::kHeights - 1);
@@ -104,7 +104,7 @@ MultipleScattering::MultipleScattering(const AirComposition& composition, double
       std::fill(out, out + kNodes, 0.0);
       return false;
     }
-    const Column c = column_to_top(p, sun, kSunSteps);
+    const Column c = column_to_top(p, sun, kMsSunSteps);
     for (int w = 0; w < kNodes; ++w) out[w] = std::exp(-(air.rayleigh[w] * c.r + air.mie_extinction * c.m + air.ozone[w] * c.o));
     return true;
   };
