@@ -207,13 +207,16 @@ the same air without them.)doc";
 inline constexpr const char mkd_doc_refracta_PhysicalSkyLight[] = R"doc(A physical sky through a spherical standard atmosphere: single scattering (Nishita et al. 1993)
 plus, with multiple_scattering (default True), the higher orders by Hillaire 2020's isotropic
 multiple-scattering table (orders 2-13 explicit, then a geometric series): Rayleigh (lambda^-4, 8
-km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by `aerosol`), ozone
-absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
+km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by `aerosol`, or set by a
+meteorological `visibility` [km] instead: the total extinction at the ground at 550 nm is 3.912 /
+visibility, Koschmieder), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361
+W/m^2.
 sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
 below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
 BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
 (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
-default). Its sampling: the comment above.)doc";
+default). Light sampling draws directions in proportion to a table of the sky's luminance (the upper
+hemisphere; the whole sphere with 'horizon').)doc";
 inline constexpr const char mkd_doc_refracta_Plastic[] = R"doc(Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of
 index ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), >
 0: GGX (or alpha_u, alpha_v). A texture multiplies the reflectance.)doc";
@@ -289,7 +292,7 @@ inline constexpr const char mkd_doc_refracta_RenderOptions_max_steps[] = R"doc(r
 inline constexpr const char mkd_doc_refracta_RenderOptions_pixel_bounds[] = R"doc(Render only these pixels of the camera's image, (x0, y0, x1, y1): pixels [x0, x1) x [y0, y1) (the
 result has the bounds' size); each pixel exactly as in the whole image (its seed and the eye's
 ElevationTable are the whole image's: distributed tiles). Unset (None): the whole image. Checked
-against the camera by bounds_in(camera).)doc";
+against the camera's image by bounds_in(width, height).)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_readouts[] = R"doc(Also render the per-pixel readouts (readouts.h: distance, position, object id, apparent and true
 elevation, apparent azimuth, hidden heights) after those 9 channels: 19 in all. Implies
 surface_aovs. 'straight' and 'curved' only.)doc";
@@ -491,7 +494,7 @@ produced, terminated (N,) True where a dispersive refraction kept the hero wavel
 inline constexpr const char mkd_doc_refracta_cox_munk_mean_square_slope[] = R"doc(Total (upwind + crosswind) mean-square slope of a clean sea surface at wind speed U [m/s], 12.5 m
 above the sea: sigma^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, "Measurement of the roughness of the
 sea surface from photographs of the sun's glitter", JOSA 44(11), 838-850, eq. for sigma_u^2 +
-sigma_c^2, +-0.004). U in [0, kWaterMaxWindSpeed]; throws naming wind_speed otherwise.)doc";
+sigma_c^2, +-0.004). U in [0, 30]; ValueError naming wind_speed otherwise.)doc";
 inline constexpr const char mkd_doc_refracta_pdf_li_all[] = R"doc(The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights
 need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3)
 (each empty: zeros; else one per point).)doc";
@@ -505,13 +508,13 @@ inline constexpr const char mkd_doc_refracta_von_karman_spectrum[] = R"doc(The v
 kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0, kappa_m = 5.92 / l0 (Andrews &
 Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale l0 = 0: no cutoff; outer_scale L0 =
 inf: Kolmogorov at small kappa (infinite at kappa = 0).)doc";
-inline constexpr const char mkd_doc_refracta_water_absorption[] = R"doc(Absorption coefficient of pure water [1/m] at a wavelength [nm] in [kLambdaMin, kLambdaMax] (360-830
-nm), linear between 5 nm nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of pure water.
-II. Integrating cavity measurements", Applied Optics 36(33), 8710-8723) from 380 to 725 nm; Smith &
-Baker 1981 ("Optical properties of the clearest natural waters (200-800 nm)", Applied Optics 20(2),
-177-184) below; Kou, Labrie & Chylek 1993 (Applied Optics 32(19)) above, as NASA's ocean-colour
-processing joins them (0.00635 at 440 nm, 0.0565 at 550, 0.624 at 700). The small temperature and
-salinity dependence of absorption is left out. Throws outside the range.)doc";
+inline constexpr const char mkd_doc_refracta_water_absorption[] = R"doc(Absorption coefficient of pure water [1/m] at a wavelength [nm] in [360, 830], linear between 5 nm
+nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of pure water. II. Integrating cavity
+measurements", Applied Optics 36(33), 8710-8723) from 380 to 725 nm; Smith & Baker 1981 ("Optical
+properties of the clearest natural waters (200-800 nm)", Applied Optics 20(2), 177-184) below; Kou,
+Labrie & Chylek 1993 (Applied Optics 32(19)) above, as NASA's ocean-colour processing joins them
+(0.00635 at 440 nm, 0.0565 at 550, 0.624 at 700). The small temperature and salinity dependence of
+absorption is left out. Throws outside the range.)doc";
 inline constexpr const char mkd_doc_refracta_water_backscattering[] = R"doc(Backscattering coefficient of pure (sea) water [1/m]: half the molecular scattering b_w(lambda) =
 b_w(500) (lambda / 500)^-4.32 of Morel 1974 ("Optical properties of pure water and pure sea water",
 in Optical Aspects of Oceanography, Jerlov & Steemann Nielsen eds.), whose phase function is
@@ -524,17 +527,17 @@ Limnology and Oceanography 22(4), R = 0.33 b_b / a; written with Gordon, Brown &
 variable X = b_b / (a + b_b), Applied Optics 14(2), so that R stays below 0.33 where backscattering
 rivals absorption). Pure water of the given salinity: blue (0.13 at 420 nm), 0.0054 at 550 nm,
 4.4e-4 at 650 nm for S = 35). Throws outside 360-830 nm or 0-40 g/kg.)doc";
-inline constexpr const char mkd_doc_refracta_water_density[] = R"doc(Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in [kWaterMinCelsius,
-kWaterMaxCelsius]: Tanaka, Girard, Davis, Peuto & Bignell 2001, "Recommended table for the density
-of water between 0 C and 40 C", Metrologia 38, eq. 1 (999.97495 kg/m^3 at its maximum near 4 C,
-998.2067 at 20 C). Throws std::invalid_argument outside the range.)doc";
-inline constexpr const char mkd_doc_refracta_water_ior[] = R"doc(Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [kWaterMinWavelength,
-kWaterMaxWavelength], temperature [deg C] and salinity [g/kg, ~PSU] in [0, kWaterMaxSalinity], at
-atmospheric pressure. Pure water by IAPWS R9-97, "Release on the Refractive Index of Ordinary Water
-Substance as a Function of Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 -
-1)/(n^2 + 2) = rho_bar A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t); sea water plus
-the salinity terms of Quan & Fry 1995, Applied Optics 34(18), eq. 3, (n1 + n2 t + n3 t^2) S + n6 S /
-lambda (fitted 0-35 g/kg, 0-30 C, 400-700 nm, relative to air: the 3e-4 difference from vacuum in
-the increment is far below the fit's accuracy). Throws std::invalid_argument naming the argument
-outside its range.)doc";
+inline constexpr const char mkd_doc_refracta_water_density[] = R"doc(Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in [0, 40]: Tanaka,
+Girard, Davis, Peuto & Bignell 2001, "Recommended table for the density of water between 0 C and 40
+C", Metrologia 38, eq. 1 (999.97495 kg/m^3 at its maximum near 4 C, 998.2067 at 20 C). Outside the
+range: std::invalid_argument (ValueError in Python).)doc";
+inline constexpr const char mkd_doc_refracta_water_ior[] = R"doc(Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [200, 1100], temperature
+[deg C] in [0, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure. Pure water by
+IAPWS R9-97, "Release on the Refractive Index of Ordinary Water Substance as a Function of
+Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) = rho_bar
+A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t); sea water plus the salinity terms of
+Quan & Fry 1995, Applied Optics 34(18), eq. 3, (n1 + n2 t + n3 t^2) S + n6 S / lambda (fitted 0-35
+g/kg, 0-30 C, 400-700 nm, relative to air: the 3e-4 difference from vacuum in the increment is far
+below the fit's accuracy). Outside the ranges: std::invalid_argument (ValueError in Python) naming
+the argument.)doc";
 // NOLINTEND

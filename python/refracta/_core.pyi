@@ -963,7 +963,7 @@ class Scene:
         toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral renders,
         its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times
         106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun
-        (e.g. an exposure). Builds the sky's table (~0.5 s).
+        (e.g. an exposure). Builds the sky's table (1-3 s).
         aerial_perspective (default True): the same air dims and lights every segment the renderers cast
         (refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's multiple
         scattering included), so distant
@@ -1955,7 +1955,7 @@ class RenderOptions:
         Render only these pixels of the camera's image, (x0, y0, x1, y1): pixels [x0, x1) x [y0, y1) (the
         result has the bounds' size); each pixel exactly as in the whole image (its seed and the eye's
         ElevationTable are the whole image's: distributed tiles). Unset (None): the whole image. Checked
-        against the camera by bounds_in(camera).
+        against the camera's image by bounds_in(width, height).
         """
     @pixel_bounds.setter
     def pixel_bounds(self, arg1: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None) -> None:
@@ -3244,13 +3244,16 @@ class PhysicalSky:
     A physical sky through a spherical standard atmosphere: single scattering (Nishita et al. 1993)
     plus, with multiple_scattering (default True), the higher orders by Hillaire 2020's isotropic
     multiple-scattering table (orders 2-13 explicit, then a geometric series): Rayleigh (lambda^-4, 8
-    km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by `aerosol`), ozone
-    absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
+    km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by `aerosol`, or set by a
+    meteorological `visibility` [km] instead: the total extinction at the ground at 550 nm is 3.912 /
+    visibility, Koschmieder), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361
+    W/m^2.
     sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
     below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
     BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
     (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
-    default). Its sampling: the comment above.
+    default). Light sampling draws directions in proportion to a table of the sky's luminance (the upper
+    hemisphere; the whole sphere with 'horizon').
     """
     @staticmethod
     def solar_irradiance(wavelengths: typing.Any) -> typing.Any:
@@ -3517,7 +3520,7 @@ def cox_munk_mean_square_slope(wind_speed: typing.Any) -> typing.Any:
     Total (upwind + crosswind) mean-square slope of a clean sea surface at wind speed U [m/s], 12.5 m
     above the sea: sigma^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, "Measurement of the roughness of the
     sea surface from photographs of the sun's glitter", JOSA 44(11), 838-850, eq. for sigma_u^2 +
-    sigma_c^2, +-0.004). U in [0, kWaterMaxWindSpeed]; throws naming wind_speed otherwise.
+    sigma_c^2, +-0.004). U in [0, 30]; ValueError naming wind_speed otherwise.
     Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def dispersed_field(field: IndexField, wavelength: typing.SupportsFloat | typing.SupportsIndex, reference: typing.SupportsFloat | typing.SupportsIndex | None = None) -> IndexField:
@@ -3587,13 +3590,13 @@ def von_karman_spectrum(kappa: typing.Any, cn2: typing.SupportsFloat | typing.Su
     """
 def water_absorption(wavelength_nm: typing.Any) -> typing.Any:
     """
-    Absorption coefficient of pure water [1/m] at a wavelength [nm] in [kLambdaMin, kLambdaMax] (360-830
-    nm), linear between 5 nm nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of pure water.
-    II. Integrating cavity measurements", Applied Optics 36(33), 8710-8723) from 380 to 725 nm; Smith &
-    Baker 1981 ("Optical properties of the clearest natural waters (200-800 nm)", Applied Optics 20(2),
-    177-184) below; Kou, Labrie & Chylek 1993 (Applied Optics 32(19)) above, as NASA's ocean-colour
-    processing joins them (0.00635 at 440 nm, 0.0565 at 550, 0.624 at 700). The small temperature and
-    salinity dependence of absorption is left out. Throws outside the range.
+    Absorption coefficient of pure water [1/m] at a wavelength [nm] in [360, 830], linear between 5 nm
+    nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of pure water. II. Integrating cavity
+    measurements", Applied Optics 36(33), 8710-8723) from 380 to 725 nm; Smith & Baker 1981 ("Optical
+    properties of the clearest natural waters (200-800 nm)", Applied Optics 20(2), 177-184) below; Kou,
+    Labrie & Chylek 1993 (Applied Optics 32(19)) above, as NASA's ocean-colour processing joins them
+    (0.00635 at 440 nm, 0.0565 at 550, 0.624 at 700). The small temperature and salinity dependence of
+    absorption is left out. Throws outside the range.
     Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def water_backscattering(wavelength_nm: typing.Any, salinity: typing.Any = 0.0) -> typing.Any:
@@ -3618,23 +3621,23 @@ def water_body_reflectance(wavelength_nm: typing.Any, salinity: typing.Any = 0.0
     """
 def water_density(temperature_c: typing.Any) -> typing.Any:
     """
-    Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in [kWaterMinCelsius,
-    kWaterMaxCelsius]: Tanaka, Girard, Davis, Peuto & Bignell 2001, "Recommended table for the density
-    of water between 0 C and 40 C", Metrologia 38, eq. 1 (999.97495 kg/m^3 at its maximum near 4 C,
-    998.2067 at 20 C). Throws std::invalid_argument outside the range.
+    Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in [0, 40]: Tanaka,
+    Girard, Davis, Peuto & Bignell 2001, "Recommended table for the density of water between 0 C and 40
+    C", Metrologia 38, eq. 1 (999.97495 kg/m^3 at its maximum near 4 C, 998.2067 at 20 C). Outside the
+    range: std::invalid_argument (ValueError in Python).
     Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def water_ior(wavelength_nm: typing.Any, temperature_c: typing.Any = 20.0, salinity: typing.Any = 0.0) -> typing.Any:
     """
-    Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [kWaterMinWavelength,
-    kWaterMaxWavelength], temperature [deg C] and salinity [g/kg, ~PSU] in [0, kWaterMaxSalinity], at
-    atmospheric pressure. Pure water by IAPWS R9-97, "Release on the Refractive Index of Ordinary Water
-    Substance as a Function of Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 -
-    1)/(n^2 + 2) = rho_bar A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t); sea water plus
-    the salinity terms of Quan & Fry 1995, Applied Optics 34(18), eq. 3, (n1 + n2 t + n3 t^2) S + n6 S /
-    lambda (fitted 0-35 g/kg, 0-30 C, 400-700 nm, relative to air: the 3e-4 difference from vacuum in
-    the increment is far below the fit's accuracy). Throws std::invalid_argument naming the argument
-    outside its range.
+    Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [200, 1100], temperature
+    [deg C] in [0, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure. Pure water by
+    IAPWS R9-97, "Release on the Refractive Index of Ordinary Water Substance as a Function of
+    Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) = rho_bar
+    A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t); sea water plus the salinity terms of
+    Quan & Fry 1995, Applied Optics 34(18), eq. 3, (n1 + n2 t + n3 t^2) S + n6 S / lambda (fitted 0-35
+    g/kg, 0-30 C, 400-700 nm, relative to air: the 3e-4 difference from vacuum in the increment is far
+    below the fit's accuracy). Outside the ranges: std::invalid_argument (ValueError in Python) naming
+    the argument.
     Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 DEFAULT_TURBULENCE_YAW_DEG: float = 31.71747441146101

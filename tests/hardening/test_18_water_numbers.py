@@ -1,5 +1,5 @@
 """The water optics refuse what is not a number, naming the argument (issues 19 and 22): py::vectorize
-cast the string '550' to 550 nm, and Water(wind_speed='5') was pybind11's TypeError listing the
+cast the string '550' to 550 nm and True to 1, and Water(wind_speed='5') was pybind11's TypeError listing the
 whole signature."""
 
 import numpy as np
@@ -22,6 +22,10 @@ from refracta import shading
         (lambda: shading.cox_munk_mean_square_slope("5"), r"wind_speed must hold real numbers"),
         (lambda: shading.fresnel_dielectric("0.5", 1.5), r"cos_i must hold real numbers"),
         (lambda: shading.fresnel_conductor(0.5, 0.2, "3"), r"k must hold real numbers"),
+        # A bool is no temperature: numpy would take True as 1 deg C (as Water(temperature_c=True) refuses).
+        (lambda: shading.water_ior(550.0, True), r"temperature_c must hold real numbers \(got dtype bool\)"),
+        (lambda: shading.water_ior([True, False]), r"wavelength_nm must hold real numbers \(got dtype bool\)"),
+        (lambda: shading.cox_munk_mean_square_slope(np.bool_(True)), r"wind_speed must hold real numbers"),
     ],
 )
 def test_vectorised_water_and_fresnel_functions_refuse_strings(call, message):

@@ -23,7 +23,7 @@ Color sun_colour(const py::object& radiance, const py::object& wavelengths) {
   return Color::tabulated(to_values(wavelengths, "wavelengths"), to_values(radiance, "radiance"), Color::Kind::kIlluminant);
 }
 
-// The physical sky's table, built with Ctrl-C able to stop it (~0.5 s over oneTBB).
+// The physical sky's table, built with Ctrl-C able to stop it (1-3 s over oneTBB, with multiple scattering).
 std::shared_ptr<PhysicalSkyLight> build_sky_interruptibly(const PhysicalSkySettings& settings) {
   return interruptible_result(py::none(), [&](WorkControl&) { return std::make_shared<PhysicalSkyLight>(settings); });
 }
@@ -90,7 +90,7 @@ void bind_sun_and_sky(SceneClass& scene) {
            "toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral renders,\n"
            "its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times\n"
            "106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun\n"
-           "(e.g. an exposure). Builds the sky's table (~0.5 s).\n"
+           "(e.g. an exposure). Builds the sky's table (1-3 s).\n"
            "aerial_perspective (default True): the same air dims and lights every segment the renderers cast\n"
            "(refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's multiple\n"
            "scattering included), so distant\n"

@@ -135,7 +135,7 @@ void bind_physical_sky(py::module_& m) {
            py::arg("centre"), py::arg("radius"))
       .def_property_readonly("build_seconds", [](const PhysicalSkyLight& l) { return l.sky().build_seconds(); })
       .def("__repr__", &PhysicalSkyLight::describe)
-      // Pickled as its settings; unpickling rebuilds the sky's table (~0.5 s).
+      // Pickled as its settings; unpickling rebuilds the sky's table (1-3 s).
       .def(py::pickle([](const PhysicalSkyLight& l) { return sky_state(l.settings()); },
                       [](const PhysicalSkyState& state) {
                         const PhysicalSkySettings s = sky_settings_from_state(state);

@@ -27,9 +27,9 @@ DoubleArray numbers(const py::handle& object, const char* what, const char* mess
   }
 }
 
-// `object` as a numpy array of bool, integer or float dtype (not yet cast); ValueError naming
-// `what` otherwise (numpy's cast would turn '1.5' into 1.5 or fail naming nothing).
-py::array real_dtype_array(const py::handle& object, const char* what) {
+// `object` as a numpy array of integer or float dtype, or bool with `bools` (not yet cast);
+// ValueError naming `what` otherwise (numpy's cast would turn '1.5' into 1.5 or fail naming nothing).
+py::array real_dtype_array(const py::handle& object, const char* what, bool bools = true) {
   py::array raw;
   try {
     raw = py::array::ensure(object);
@@ -38,7 +38,7 @@ py::array real_dtype_array(const py::handle& object, const char* what) {
   }
   if (!raw) throw_invalid(what, " must be an array of numbers");
   const char kind = raw.dtype().kind();
-  if (kind != 'b' && kind != 'i' && kind != 'u' && kind != 'f') {
+  if (!(kind == 'b' && bools) && kind != 'i' && kind != 'u' && kind != 'f') {
     throw_invalid(what, " must hold real numbers (got dtype ", py::str(raw.dtype()).cast<std::string>(), ")");
   }
   return raw;
@@ -46,8 +46,8 @@ py::array real_dtype_array(const py::handle& object, const char* what) {
 
 }  // namespace
 
-DoubleArray real_array(const py::handle& object, const char* what) {
-  return py::cast<DoubleArray>(real_dtype_array(object, what));
+DoubleArray real_array(const py::handle& object, const char* what, bool bools) {
+  return py::cast<DoubleArray>(real_dtype_array(object, what, bools));
 }
 
 std::optional<double> number_of(const py::handle& value) {

@@ -28,9 +28,10 @@ inline constexpr size_t kAnyCount = size_t(-1);
 // ~1e-7; a direction off by more was not normalised.
 inline constexpr double kUnitTolerance = 1e-6;
 
-// Any array-like of real numbers (bool, integer or float dtype) as a C-contiguous double array;
-// ValueError naming `what` for complex, string or object data (numpy would cast those silently).
-DoubleArray real_array(const py::handle& object, const char* what);
+// Any array-like of real numbers (integer or float dtype; bool too with `bools`) as a
+// C-contiguous double array; ValueError naming `what` for complex, string or object data (numpy
+// would cast those silently).
+DoubleArray real_array(const py::handle& object, const char* what, bool bools = true);
 
 // A number: a Python or numpy int or float (or anything float() takes but a string or a bool:
 // True would be 1); nullopt otherwise. to_number: ValueError "<what> must be a number (got ...)".
@@ -42,12 +43,13 @@ template <class>
 using AnyObject = py::object;
 template <class Return, class... Args, size_t... I>
 auto vectorize_real(Return (*f)(Args...), std::array<const char*, sizeof...(Args)> names, std::index_sequence<I...>) {
-  return [f, names](const AnyObject<Args>&... args) { return py::vectorize(f)(real_array(args, names[I])...); };
+  return [f, names](const AnyObject<Args>&... args) { return py::vectorize(f)(real_array(args, names[I], /*bools=*/false)...); };
 }
 }  // namespace detail
 
 // f over numbers and arrays of them with numpy's broadcasting (py::vectorize: scalars in, a float
-// out), each argument checked by real_array naming it (py::vectorize alone casts '550' to 550).
+// out), each argument checked by real_array naming it (py::vectorize alone casts '550' to 550,
+// True to 1).
 template <class Return, class... Args>
 auto vectorize_real(Return (*f)(Args...), std::array<const char*, sizeof...(Args)> names) {
   return detail::vectorize_real(f, names, std::index_sequence_for<Args...>());

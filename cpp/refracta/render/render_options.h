@@ -93,7 +93,7 @@ struct RenderOptions {
   // Render only these pixels of the camera's image, (x0, y0, x1, y1): pixels [x0, x1) x [y0, y1)
   // (the result has the bounds' size); each pixel exactly as in the whole image (its seed and the
   // eye's ElevationTable are the whole image's: distributed tiles). Unset (None): the whole image.
-  // Checked against the camera by bounds_in(camera).
+  // Checked against the camera's image by bounds_in(width, height).
   std::optional<PixelBounds> pixel_bounds;
   // Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point
   // samples the finest level (aliases: only for references and tests).

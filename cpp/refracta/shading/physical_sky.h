@@ -158,12 +158,14 @@ class PhysicalSky {
 // plus, with multiple_scattering (default True), the higher orders by Hillaire 2020's isotropic
 // multiple-scattering table (orders 2-13 explicit, then a geometric series):
 // Rayleigh (lambda^-4, 8 km, tau(550 nm) = 0.097), Mie (1.2 km, Cornette-Shanks g = 0.76, scaled by
-// `aerosol`), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
+// `aerosol`, or set by a meteorological `visibility` [km] instead: the total extinction at the
+// ground at 550 nm is 3.912 / visibility, Koschmieder), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361 W/m^2.
 // sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
 // below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
 // BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
 // (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
-// default). Its sampling: the comment above.
+// default). Light sampling draws directions in proportion to a table of the sky's luminance
+// (the upper hemisphere; the whole sphere with 'horizon').
 class PhysicalSkyLight final : public Light {
  public:
   explicit PhysicalSkyLight(const PhysicalSkySettings& settings);

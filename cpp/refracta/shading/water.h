@@ -14,26 +14,25 @@ constexpr double kWaterMinWavelength = 200.0, kWaterMaxWavelength = 1100.0;  // 
 constexpr double kWaterMaxSalinity = 40.0;  // [g/kg]; Quan & Fry fitted 0-35, linear in S
 
 // Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in
-// [kWaterMinCelsius, kWaterMaxCelsius]: Tanaka, Girard, Davis, Peuto & Bignell 2001,
+// [0, 40]: Tanaka, Girard, Davis, Peuto & Bignell 2001,
 // "Recommended table for the density of water between 0 C and 40 C", Metrologia 38, eq. 1
-// (999.97495 kg/m^3 at its maximum near 4 C, 998.2067 at 20 C). Throws std::invalid_argument
-// outside the range.
+// (999.97495 kg/m^3 at its maximum near 4 C, 998.2067 at 20 C). Outside the range:
+// std::invalid_argument (ValueError in Python).
 double water_density(double temperature_c);
 
-// Refractive index of water relative to vacuum at a vacuum wavelength [nm] in
-// [kWaterMinWavelength, kWaterMaxWavelength], temperature [deg C] and salinity [g/kg, ~PSU] in
-// [0, kWaterMaxSalinity], at atmospheric pressure. Pure water by IAPWS R9-97, "Release on the
+// Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [200, 1100],
+// temperature [deg C] in [0, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure. Pure water by IAPWS R9-97, "Release on the
 // Refractive Index of Ordinary Water Substance as a Function of Wavelength, Temperature and
 // Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) = rho_bar A(rho_bar, T_bar, lambda_bar),
 // eq. A1), at water_density(t); sea water plus the salinity terms of Quan & Fry 1995, Applied
 // Optics 34(18), eq. 3, (n1 + n2 t + n3 t^2) S + n6 S / lambda (fitted 0-35 g/kg, 0-30 C, 400-700
 // nm, relative to air: the 3e-4 difference from vacuum in the increment is far below the fit's
 // accuracy).
-// Throws std::invalid_argument naming the argument outside its range.
+// Outside the ranges: std::invalid_argument (ValueError in Python) naming the argument.
 double water_ior(double wavelength_nm, double temperature_c = 20.0, double salinity = 0.0);
 
-// Absorption coefficient of pure water [1/m] at a wavelength [nm] in [kLambdaMin, kLambdaMax]
-// (360-830 nm), linear between 5 nm nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of
+// Absorption coefficient of pure water [1/m] at a wavelength [nm] in [360, 830],
+// linear between 5 nm nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of
 // pure water. II. Integrating cavity measurements", Applied Optics 36(33), 8710-8723) from 380 to
 // 725 nm; Smith & Baker 1981 ("Optical properties of the clearest natural waters (200-800 nm)",
 // Applied Optics 20(2), 177-184) below; Kou, Labrie & Chylek 1993 (Applied Optics 32(19)) above,
@@ -64,7 +63,7 @@ constexpr double kWaterMaxWindSpeed = 30.0;
 // Total (upwind + crosswind) mean-square slope of a clean sea surface at wind speed U [m/s],
 // 12.5 m above the sea: sigma^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, "Measurement of the roughness
 // of the sea surface from photographs of the sun's glitter", JOSA 44(11), 838-850, eq. for
-// sigma_u^2 + sigma_c^2, +-0.004). U in [0, kWaterMaxWindSpeed]; throws naming wind_speed otherwise.
+// sigma_u^2 + sigma_c^2, +-0.004). U in [0, 30]; ValueError naming wind_speed otherwise.
 double cox_munk_mean_square_slope(double wind_speed);
 
 }  // namespace refracta
