@@ -204,3 +204,16 @@ def test_pickle_state_round_trips_and_refuses_a_bad_below_horizon():
     bad = spectrum.PhysicalSky.__new__(spectrum.PhysicalSky)
     with pytest.raises(ValueError, match="below_horizon"):
         bad.__setstate__((*state[:6], 7, True))
+
+
+@pytest.mark.parametrize("wavelength", [-500.0, 359.0, 831.0, 2000.0])
+def test_the_sky_refuses_wavelengths_outside_its_tables(wavelength):
+    # The sky's spectra are tabulated over [360, 830] nm: outside they were silently 0.
+    sky = spectrum.PhysicalSky((0.0, 1.0, 0.0))
+    for call in (
+        lambda: sky.radiance(np.array([[0.0, 1.0, 0.0]]), [wavelength]),
+        lambda: sky.sun_transmittance([wavelength]),
+        lambda: sky.sun_radiance([wavelength]),
+    ):
+        with pytest.raises(ValueError, match=r"wavelengths must be in \[360, 830\] nm"):
+            call()

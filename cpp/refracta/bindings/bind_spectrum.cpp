@@ -2,6 +2,7 @@
 // private _core functions wrapped by python/refracta/spectrum.py (which documents and shapes them).
 #include "generated/docstrings.h"
 #include "refracta/bindings/bind_shading.h"
+#include "refracta/core/spectrum.h"
 #include "refracta/shading/sky_batch.h"
 
 #include <pybind11/eigen.h>
@@ -11,6 +12,12 @@ namespace refracta {
 namespace {
 
 std::vector<double> wavelengths(const py::handle& object) { return to_values(object, "wavelengths"); }
+// The sky's spectra are tabulated over the rendered range: outside it a ValueError, not 0.
+std::vector<double> sky_wavelengths(const py::handle& object) {
+  std::vector<double> values = wavelengths(object);
+  for (double x : values) checked_wavelength(x, "wavelengths");
+  return values;
+}
 
 void bind_spectrum_functions(py::module_& m) {
   m.def(
@@ -95,7 +102,7 @@ void bind_physical_sky(py::module_& m) {
                              "The Mie density scale (set from `visibility` when that was given).")
       .def("radiance",
            [](const PhysicalSkyLight& l, const py::object& dirs, const py::object& lambda, bool direct) {
-             return sky_radiance(l.sky(), to_unit_vectors(dirs, "dirs"), wavelengths(lambda), direct);
+             return sky_radiance(l.sky(), to_unit_vectors(dirs, "dirs"), sky_wavelengths(lambda), direct);
            },
            py::arg("dirs"), py::arg("wavelengths"), py::arg("direct") = false)
       .def("rgb_radiance",
@@ -105,12 +112,14 @@ void bind_physical_sky(py::module_& m) {
            py::arg("dirs"))
       .def("sun_transmittance",
            [](const PhysicalSkyLight& l, const py::object& lambda) {
-             return per_value(lambda, "wavelengths", [&](double x) { return l.sky().sun_transmittance(x); });
+             return per_value(lambda, "wavelengths", [&](double x) { return l.sky().sun_transmittance(checked_wavelength(x, "wavelengths")); });
            },
            py::arg("wavelengths"))
       .def("sun_radiance",
            [](const PhysicalSkyLight& l, const py::object& lambda, double diameter) {
-             return per_value(lambda, "wavelengths", [&](double x) { return l.sky().sun_radiance(x, diameter); });
+             return per_value(lambda, "wavelengths", [&](double x) {
+               return l.sky().sun_radiance(checked_wavelength(x, "wavelengths"), diameter);
+             });
            },
            py::arg("wavelengths"), py::arg("angular_diameter_deg") = 0.53)
       .def("sun_radiance_rgb", [](const PhysicalSkyLight& l, double d) { return l.sky().sun_radiance_rgb(d); },
