@@ -217,6 +217,18 @@ BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same
 (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
 default). Light sampling draws directions in proportion to a table of the sky's luminance (the upper
 hemisphere; the whole sphere with 'horizon').)doc";
+inline constexpr const char mkd_doc_refracta_PhysicalSky_optical_depth[] = R"doc(The whole optical depth (Rayleigh + Mie + ozone) from the observer straight up to the top at a
+wavelength [nm].)doc";
+inline constexpr const char mkd_doc_refracta_PhysicalSky_rayleigh_optical_depth[] = R"doc(The Rayleigh optical depth from the observer straight up to the top at a wavelength [nm] (a
+numerical integral of the profile).)doc";
+inline constexpr const char mkd_doc_refracta_PhysicalSky_solar_irradiance[] = R"doc(Extraterrestrial solar spectral irradiance [W/(m^2 nm)] at a wavelength [nm] (a 5778 K black body
+scaled to the solar constant, 1361 W/m^2).)doc";
+inline constexpr const char mkd_doc_refracta_PhysicalSky_sun_radiance[] = R"doc(The sun's radiance at the observer [W/(m^2 sr nm)] at a wavelength [nm] in [360, 830]: its
+irradiance (solar_irradiance x sun_transmittance) spread uniformly over a disc of
+`angular_diameter_deg`.)doc";
+inline constexpr const char mkd_doc_refracta_PhysicalSky_sun_radiance_rgb[] = R"doc(The sun's radiance at the observer as RGB renders see it: linear sRGB [W/(m^2 sr)].)doc";
+inline constexpr const char mkd_doc_refracta_PhysicalSky_sun_transmittance[] = R"doc(Beer-Lambert transmittance of the sunlight from the top of the atmosphere to the observer at a
+wavelength [nm] in [360, 830].)doc";
 inline constexpr const char mkd_doc_refracta_Plastic[] = R"doc(Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of
 index ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), >
 0: GGX (or alpha_u, alpha_v). A texture multiplies the reflectance.)doc";
@@ -504,6 +516,14 @@ points: (N, 3) [m]; normals: (N, 3) unit geometric normals (rows may be 0) or No
 [0, 1). Returns (wi (N, 3) unit toward the light, L (N, 3) RGB radiance arriving [W/(m^2 sr)] (point
 and spot: I/r^2), pdf (N,) per steradian (delta lights: 1), distance (N,) [m] (infinite
 lights: inf)). A point the light cannot reach gets wi = 0, L = 0, pdf = 0, distance = 0.)doc";
+inline constexpr const char mkd_doc_refracta_sample_sky[] = R"doc(Light sampling at each row (u1, u2) of u (N, 2) in [0, 1): (directions (N, 3), pdf [1/sr] (N,), RGB
+radiance (N, 3)), 0 where nothing was sampled.)doc";
+inline constexpr const char mkd_doc_refracta_sky_pdf[] = R"doc(The light-sampling density [1/sr] of sample_li in each unit direction (dirs (N, 3) or (3,)).)doc";
+inline constexpr const char mkd_doc_refracta_sky_radiance[] = R"doc(The sky's radiance [W/(m^2 sr nm)] in each unit direction (dirs (N, 3) or (3,)) at each wavelength
+[nm] in [360, 830]: an array (directions, wavelengths). direct: integrated along each direction
+without the sky's table (slower; the table's reference).)doc";
+inline constexpr const char mkd_doc_refracta_sky_rgb_radiance[] = R"doc(The sky's radiance in each unit direction (dirs (N, 3) or (3,)) as RGB renders see it: linear sRGB
+[W/(m^2 sr)], (N, 3).)doc";
 inline constexpr const char mkd_doc_refracta_von_karman_spectrum[] = R"doc(The von Karman spectrum with a Gaussian inner cutoff, Phi_n(kappa) [m^3]: 0.033005 C_n^2 (kappa^2 +
 kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0, kappa_m = 5.92 / l0 (Andrews &
 Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale l0 = 0: no cutoff; outer_scale L0 =

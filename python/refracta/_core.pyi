@@ -3257,7 +3257,10 @@ class PhysicalSky:
     """
     @staticmethod
     def solar_irradiance(wavelengths: typing.Any) -> typing.Any:
-        ...
+        """
+        Extraterrestrial solar spectral irradiance [W/(m^2 nm)] at a wavelength [nm] (a 5778 K black body
+        scaled to the solar constant, 1361 W/m^2).
+        """
     def __getstate__(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float, float, float, float, int, bool]:
         ...
     def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, below_horizon: str = 'ground', visibility: typing.SupportsFloat | typing.SupportsIndex | None = None, multiple_scattering: bool = True) -> None:
@@ -3267,27 +3270,54 @@ class PhysicalSky:
     def __setstate__(self, arg0: tuple[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex, bool]) -> None:
         ...
     def optical_depth(self, wavelength: typing.SupportsFloat | typing.SupportsIndex) -> float:
-        ...
+        """
+        The whole optical depth (Rayleigh + Mie + ozone) from the observer straight up to the top at a
+        wavelength [nm].
+        """
     def pdf_li(self, dirs: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
-        ...
+        """
+        The light-sampling density [1/sr] of sample_li in each unit direction (dirs (N, 3) or (3,)).
+        """
     def power(self) -> float:
         ...
     def preprocess(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def radiance(self, dirs: typing.Any, wavelengths: typing.Any, direct: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
-        ...
+        """
+        The sky's radiance [W/(m^2 sr nm)] in each unit direction (dirs (N, 3) or (3,)) at each wavelength
+        [nm] in [360, 830]: an array (directions, wavelengths). direct: integrated along each direction
+        without the sky's table (slower; the table's reference).
+        """
     def rayleigh_optical_depth(self, wavelength: typing.SupportsFloat | typing.SupportsIndex) -> float:
-        ...
+        """
+        The Rayleigh optical depth from the observer straight up to the top at a wavelength [nm] (a
+        numerical integral of the profile).
+        """
     def rgb_radiance(self, dirs: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
-        ...
+        """
+        The sky's radiance in each unit direction (dirs (N, 3) or (3,)) as RGB renders see it: linear sRGB
+        [W/(m^2 sr)], (N, 3).
+        """
     def sample_li(self, u: typing.Any) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]]:
-        ...
+        """
+        Light sampling at each row (u1, u2) of u (N, 2) in [0, 1): (directions (N, 3), pdf [1/sr] (N,), RGB
+        radiance (N, 3)), 0 where nothing was sampled.
+        """
     def sun_radiance(self, wavelengths: typing.Any, angular_diameter_deg: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> typing.Any:
-        ...
+        """
+        The sun's radiance at the observer [W/(m^2 sr nm)] at a wavelength [nm] in [360, 830]: its
+        irradiance (solar_irradiance x sun_transmittance) spread uniformly over a disc of
+        `angular_diameter_deg`.
+        """
     def sun_radiance_rgb(self, angular_diameter_deg: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
-        ...
+        """
+        The sun's radiance at the observer as RGB renders see it: linear sRGB [W/(m^2 sr)].
+        """
     def sun_transmittance(self, wavelengths: typing.Any) -> typing.Any:
-        ...
+        """
+        Beer-Lambert transmittance of the sunlight from the top of the atmosphere to the observer at a
+        wavelength [nm] in [360, 830].
+        """
     @property
     def aerosol(self) -> float:
         """

@@ -104,41 +104,41 @@ void bind_physical_sky(py::module_& m) {
            [](const PhysicalSkyLight& l, const py::object& dirs, const py::object& lambda, bool direct) {
              return sky_radiance(l.sky(), to_unit_vectors(dirs, "dirs"), sky_wavelengths(lambda), direct);
            },
-           py::arg("dirs"), py::arg("wavelengths"), py::arg("direct") = false)
+           py::arg("dirs"), py::arg("wavelengths"), py::arg("direct") = false, DOC(refracta, sky_radiance))
       .def("rgb_radiance",
            [](const PhysicalSkyLight& l, const py::object& dirs) {
              return sky_rgb_radiance(l.sky(), to_unit_vectors(dirs, "dirs"));
            },
-           py::arg("dirs"))
+           py::arg("dirs"), DOC(refracta, sky_rgb_radiance))
       .def("sun_transmittance",
            [](const PhysicalSkyLight& l, const py::object& lambda) {
              return per_value(lambda, "wavelengths", [&](double x) { return l.sky().sun_transmittance(checked_wavelength(x, "wavelengths")); });
            },
-           py::arg("wavelengths"))
+           py::arg("wavelengths"), DOC(refracta, PhysicalSky, sun_transmittance))
       .def("sun_radiance",
            [](const PhysicalSkyLight& l, const py::object& lambda, double diameter) {
              return per_value(lambda, "wavelengths", [&](double x) {
                return l.sky().sun_radiance(checked_wavelength(x, "wavelengths"), diameter);
              });
            },
-           py::arg("wavelengths"), py::arg("angular_diameter_deg") = 0.53)
+           py::arg("wavelengths"), py::arg("angular_diameter_deg") = 0.53, DOC(refracta, PhysicalSky, sun_radiance))
       .def("sun_radiance_rgb", [](const PhysicalSkyLight& l, double d) { return l.sky().sun_radiance_rgb(d); },
-           py::arg("angular_diameter_deg") = 0.53)
+           py::arg("angular_diameter_deg") = 0.53, DOC(refracta, PhysicalSky, sun_radiance_rgb))
       .def_static("solar_irradiance",
                   [](const py::object& lambda) {
                     return per_value(lambda, "wavelengths", &PhysicalSky::solar_irradiance);
                   },
-                  py::arg("wavelengths"))
+                  py::arg("wavelengths"), DOC(refracta, PhysicalSky, solar_irradiance))
       .def("rayleigh_optical_depth", [](const PhysicalSkyLight& l, double x) { return l.sky().rayleigh_optical_depth(x); },
-           py::arg("wavelength"))
+           py::arg("wavelength"), DOC(refracta, PhysicalSky, rayleigh_optical_depth))
       .def("optical_depth", [](const PhysicalSkyLight& l, double x) { return l.sky().optical_depth(x); },
-           py::arg("wavelength"))
+           py::arg("wavelength"), DOC(refracta, PhysicalSky, optical_depth))
       .def("sample_li",
            [](const PhysicalSkyLight& l, const py::object& u) { return sample_sky(l, to_sample_rows(u, "u", 2)); },
-           py::arg("u"))
+           py::arg("u"), DOC(refracta, sample_sky))
       .def("pdf_li",
            [](const PhysicalSkyLight& l, const py::object& dirs) { return sky_pdf(l, to_unit_vectors(dirs, "dirs")); },
-           py::arg("dirs"))
+           py::arg("dirs"), DOC(refracta, sky_pdf))
       .def("power", &PhysicalSkyLight::power)
       .def("preprocess", [](PhysicalSkyLight& l, const py::object& c, double r) { l.preprocess(to_point(c, "centre"), r); },
            py::arg("centre"), py::arg("radius"))

@@ -99,19 +99,28 @@ class PhysicalSky {
   // the horizon, the azimuth +x straight down).
   double radiance_direct(const Vec3d& dir, double lambda_nm) const;
 
-  // Beer-Lambert transmittance of the sunlight from the top of the atmosphere to the observer.
+  // Beer-Lambert transmittance of the sunlight from the top of the atmosphere to the observer at
+  // a wavelength [nm] in [360, 830].
   double sun_transmittance(double lambda_nm) const;
-  // Extraterrestrial solar spectral irradiance [W/(m^2 nm)] (the 5778 K black body above).
+  // Extraterrestrial solar spectral irradiance [W/(m^2 nm)] at a wavelength [nm] (a 5778 K black
+  // body scaled to the solar constant, 1361 W/m^2).
   static double solar_irradiance(double lambda_nm);
   // The sun at the observer: irradiance at normal incidence [W/(m^2 nm)] = E T, and the radiance
   // of a uniform disc of `angular_diameter_deg` (0.53 by default) = E T / its solid angle.
   double sun_irradiance(double lambda_nm) const { return solar_irradiance(lambda_nm) * sun_transmittance(lambda_nm); }
+  // The sun's radiance at the observer [W/(m^2 sr nm)] at a wavelength [nm] in [360, 830]: its
+  // irradiance (solar_irradiance x sun_transmittance) spread uniformly over a disc of
+  // `angular_diameter_deg`.
   double sun_radiance(double lambda_nm, double angular_diameter_deg = 0.53) const;
-  Vec3d sun_radiance_rgb(double angular_diameter_deg = 0.53) const;  // linear sRGB [W/(m^2 sr)]
+  // The sun's radiance at the observer as RGB renders see it: linear sRGB [W/(m^2 sr)].
+  Vec3d sun_radiance_rgb(double angular_diameter_deg = 0.53) const;
 
-  // Optical depths from the observer straight up to the top (numerical integrals of the profiles).
+  // The Rayleigh optical depth from the observer straight up to the top at a wavelength [nm]
+  // (a numerical integral of the profile).
   double rayleigh_optical_depth(double lambda_nm) const;
-  double optical_depth(double lambda_nm) const;  // Rayleigh + Mie + ozone
+  // The whole optical depth (Rayleigh + Mie + ozone) from the observer straight up to the top at
+  // a wavelength [nm].
+  double optical_depth(double lambda_nm) const;
 
   const PhysicalSkySettings& settings() const { return settings_; }
   // The multiple-scattering table (empty with settings().multiple_scattering false).

@@ -27,16 +27,20 @@ using PhysicalSkyState = std::tuple<Vec3d, double, double, double, double, doubl
 PhysicalSkyState sky_state(const PhysicalSkySettings& settings);
 PhysicalSkySettings sky_settings_from_state(const PhysicalSkyState& state);  // throws for a bad below_horizon
 
-// Radiance [W/(m^2 sr nm)] in each unit direction at each wavelength: (directions, wavelengths);
-// direct: integrated without the table.
+// The sky's radiance [W/(m^2 sr nm)] in each unit direction (dirs (N, 3) or (3,)) at each
+// wavelength [nm] in [360, 830]: an array (directions, wavelengths). direct: integrated along each
+// direction without the sky's table (slower; the table's reference).
 RowMatrixXd sky_radiance(const PhysicalSky& sky, const std::vector<Vec3d>& dirs, const std::vector<double>& lambda_nm,
                          bool direct);
-RowMatrixX3d sky_rgb_radiance(const PhysicalSky& sky, const std::vector<Vec3d>& dirs);  // linear sRGB
-// sample_li at each row (u1, u2) of u with RGB wavelengths: (directions, pdf [1/sr], RGB radiance), 0 where
-// nothing was sampled.
+// The sky's radiance in each unit direction (dirs (N, 3) or (3,)) as RGB renders see it: linear
+// sRGB [W/(m^2 sr)], (N, 3).
+RowMatrixX3d sky_rgb_radiance(const PhysicalSky& sky, const std::vector<Vec3d>& dirs);
+// Light sampling at each row (u1, u2) of u (N, 2) in [0, 1): (directions (N, 3), pdf [1/sr] (N,),
+// RGB radiance (N, 3)), 0 where nothing was sampled.
 std::tuple<RowMatrixX3d, Eigen::VectorXd, RowMatrixX3d> sample_sky(const PhysicalSkyLight& sky,
                                                                     const RowMatrixXd& u);
-Eigen::VectorXd sky_pdf(const PhysicalSkyLight& sky, const std::vector<Vec3d>& dirs);  // [1/sr]
+// The light-sampling density [1/sr] of sample_li in each unit direction (dirs (N, 3) or (3,)).
+Eigen::VectorXd sky_pdf(const PhysicalSkyLight& sky, const std::vector<Vec3d>& dirs);
 
 // (transmittance, in-scatter) of the air from a to b as RGB renders apply them (linear sRGB).
 std::pair<Vec3d, Vec3d> along_rgb(const AerialPerspective& air, const Vec3d& a, const Vec3d& b, double earth_radius);
