@@ -534,7 +534,7 @@ measurements", Applied Optics 36(33), 8710-8723) from 380 to 725 nm; Smith & Bak
 properties of the clearest natural waters (200-800 nm)", Applied Optics 20(2), 177-184) below; Kou,
 Labrie & Chylek 1993 (Applied Optics 32(19)) above, as NASA's ocean-colour processing joins them
 (0.00635 at 440 nm, 0.0565 at 550, 0.624 at 700). The small temperature and salinity dependence of
-absorption is left out. Throws outside the range.)doc";
+absorption is left out. Outside the range: std::invalid_argument (ValueError in Python).)doc";
 inline constexpr const char mkd_doc_refracta_water_backscattering[] = R"doc(Backscattering coefficient of pure (sea) water [1/m]: half the molecular scattering b_w(lambda) =
 b_w(500) (lambda / 500)^-4.32 of Morel 1974 ("Optical properties of pure water and pure sea water",
 in Optical Aspects of Oceanography, Jerlov & Steemann Nielsen eds.), whose phase function is

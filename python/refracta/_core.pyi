@@ -3626,7 +3626,7 @@ def water_absorption(wavelength_nm: typing.Any) -> typing.Any:
     properties of the clearest natural waters (200-800 nm)", Applied Optics 20(2), 177-184) below; Kou,
     Labrie & Chylek 1993 (Applied Optics 32(19)) above, as NASA's ocean-colour processing joins them
     (0.00635 at 440 nm, 0.0565 at 550, 0.624 at 700). The small temperature and salinity dependence of
-    absorption is left out. Throws outside the range.
+    absorption is left out. Outside the range: std::invalid_argument (ValueError in Python).
     Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def water_backscattering(wavelength_nm: typing.Any, salinity: typing.Any = 0.0) -> typing.Any:

@@ -26,10 +26,12 @@ def differs(a, b, relative=0.02):
 def differing_from_every_neighbour(a, b, relative=0.02):
     """Fraction of pixels of `a` that differ from `b`'s pixel and from its 8 neighbours: what a
     step size or a silhouette deciding between neighbouring pixels cannot explain."""
-    unexplained = np.ones(a.shape[:2], bool)
-    for dy in (-1, 0, 1):
-        for dx in (-1, 0, 1):
-            unexplained &= differs(a, np.roll(b, (dy, dx), axis=(0, 1)), relative)
+    height, width = a.shape[:2]
+    padded = np.pad(b, ((1, 1), (1, 1), (0, 0)), mode="edge")  # the border's neighbours are itself
+    unexplained = np.ones((height, width), bool)
+    for dy in (0, 1, 2):
+        for dx in (0, 1, 2):
+            unexplained &= differs(a, padded[dy : dy + height, dx : dx + width], relative)
     return np.mean(unexplained)
 
 
@@ -70,6 +72,9 @@ def test_raster_march_agrees_with_curved_where_the_hit_is_in_view():
     )
     horizon = int(np.ceil(example.camera.project([1e6, example.camera.position[1], 0.0])[1]))
     assert differing(curved[:horizon], marched[:horizon]) < 0.03
+    # 10.4 % measured since the sky's multiple scattering (8.3 % before; docstring), 12 % allowed.
+    assert differing(curved, marched) < 0.12
+    # 4.1 % measured (docstring): the shading and skyline differences no neighbour explains; 6 % allowed.
     assert differing_from_every_neighbour(curved, marched) < 0.06
     # The mirage itself: below the horizon, bright pixels are the mirrored sky (the road is dark).
     bright_curved = curved[horizon:].max(axis=2) > 0.5

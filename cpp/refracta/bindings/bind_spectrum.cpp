@@ -112,7 +112,9 @@ void bind_physical_sky(py::module_& m) {
            py::arg("dirs"), DOC(refracta, sky_rgb_radiance))
       .def("sun_transmittance",
            [](const PhysicalSkyLight& l, const py::object& lambda) {
-             return per_value(lambda, "wavelengths", [&](double x) { return l.sky().sun_transmittance(checked_wavelength(x, "wavelengths")); });
+             return per_value(lambda, "wavelengths", [&](double x) {
+               return l.sky().sun_transmittance(checked_wavelength(x, "wavelengths"));
+             });
            },
            py::arg("wavelengths"), DOC(refracta, PhysicalSky, sun_transmittance))
       .def("sun_radiance",

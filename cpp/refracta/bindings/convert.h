@@ -43,7 +43,9 @@ template <class>
 using AnyObject = py::object;
 template <class Return, class... Args, size_t... I>
 auto vectorize_real(Return (*f)(Args...), std::array<const char*, sizeof...(Args)> names, std::index_sequence<I...>) {
-  return [f, names](const AnyObject<Args>&... args) { return py::vectorize(f)(real_array(args, names[I], /*bools=*/false)...); };
+  return [f, names](const AnyObject<Args>&... args) {
+    return py::vectorize(f)(real_array(args, names[I], /*bools=*/false)...);
+  };
 }
 }  // namespace detail
 

@@ -21,7 +21,8 @@ constexpr double kWaterMaxSalinity = 40.0;  // [g/kg]; Quan & Fry fitted 0-35, l
 double water_density(double temperature_c);
 
 // Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [200, 1100],
-// temperature [deg C] in [0, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure. Pure water by IAPWS R9-97, "Release on the
+// temperature [deg C] in [0, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure.
+// Pure water by IAPWS R9-97, "Release on the
 // Refractive Index of Ordinary Water Substance as a Function of Wavelength, Temperature and
 // Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) = rho_bar A(rho_bar, T_bar, lambda_bar),
 // eq. A1), at water_density(t); sea water plus the salinity terms of Quan & Fry 1995, Applied
@@ -37,7 +38,8 @@ double water_ior(double wavelength_nm, double temperature_c = 20.0, double salin
 // 725 nm; Smith & Baker 1981 ("Optical properties of the clearest natural waters (200-800 nm)",
 // Applied Optics 20(2), 177-184) below; Kou, Labrie & Chylek 1993 (Applied Optics 32(19)) above,
 // as NASA's ocean-colour processing joins them (0.00635 at 440 nm, 0.0565 at 550, 0.624 at 700).
-// The small temperature and salinity dependence of absorption is left out. Throws outside the range.
+// The small temperature and salinity dependence of absorption is left out. Outside the range:
+// std::invalid_argument (ValueError in Python).
 double water_absorption(double wavelength_nm);
 
 // Backscattering coefficient of pure (sea) water [1/m]: half the molecular scattering
