@@ -120,9 +120,9 @@ def test_every_material_and_light_type_loads_and_renders_finite():
     # The physical sky (Scene.set_physical_sky through refracta.examples.set_physical_sky; scaled, so
     # a plain Light whose repr names it) and its sun, point, spot, the emissive panel (AreaLight) and sphere.
     kinds = sorted(
-        "PhysicalSkyLight" if "PhysicalSkyLight" in repr(light) else type(light).__name__ for light in scene.lights
+        "PhysicalSky" if repr(light).startswith("PhysicalSky(") else type(light).__name__ for light in scene.lights
     )
-    assert kinds == ["AreaLight", "PhysicalSkyLight", "PointLight", "SphereLight", "SpotLight", "SunLight"]
+    assert kinds == ["AreaLight", "PhysicalSky", "PointLight", "SphereLight", "SpotLight", "SunLight"]
     assert scene.geometry_count == 12  # ground, panel, 10 objects with the ten material types
     for transport in ("direct", "path"):
         image = refracta.render(scene, camera, field, transport=transport, spp=2, progress=False)

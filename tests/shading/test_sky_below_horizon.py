@@ -144,8 +144,8 @@ def test_sampling_integrates_the_radiance_over_the_sphere(sky):
 def test_scene_set_physical_sky_continues_the_horizon_by_default():
     scene = refracta.Scene()
     scene.set_physical_sky(SUN, scale=2.0)  # the scaled sky: a refracta Light with Le / sample_li / pdf_li
-    light = next(light for light in scene.lights if "PhysicalSkyLight" in repr(light))
-    assert "below_horizon=horizon" in repr(light)
+    light = next(light for light in scene.lights if repr(light).startswith("PhysicalSky("))
+    assert "below_horizon='horizon'" in repr(light)
     for azimuth in AZIMUTHS:
         np.testing.assert_array_equal(
             light.Le(unit(BELOW, azimuth)), np.repeat(light.Le(unit(0.0, azimuth)[None]), len(BELOW), 0)
@@ -162,7 +162,7 @@ def test_scene_set_physical_sky_continues_the_horizon_by_default():
     np.testing.assert_allclose(light.Le(wi), L, rtol=1e-12)
     # 'ground' keeps the Lambertian ground (black with albedo 0).
     scene.set_physical_sky(SUN, scale=2.0, below_horizon="ground")
-    light = next(light for light in scene.lights if "PhysicalSkyLight" in repr(light))
+    light = next(light for light in scene.lights if repr(light).startswith("PhysicalSky("))
     assert np.all(light.Le(unit(BELOW, 90.0)) == 0.0)
 
 

@@ -206,6 +206,18 @@ def test_pickle_state_round_trips_and_refuses_a_bad_below_horizon():
         bad.__setstate__((*state[:6], 7, True))
 
 
+def test_repr_is_the_constructor_call_that_rebuilds_the_sky():
+    # A new-user trial found repr naming the C++ class (PhysicalSkyLight) and a parameter `sun`
+    # that the constructor does not take: repr now evaluates back to the same sky.
+    sky = spectrum.PhysicalSky(
+        [0.0, 0.6, 0.8], aerosol=2.0, ozone_du=250.0, rayleigh_scale=0.5, below_horizon="horizon"
+    )
+    rebuilt = eval(repr(sky), {"PhysicalSky": spectrum.PhysicalSky})
+    assert repr(rebuilt) == repr(sky)
+    views = np.array([[0.0, 1.0, 0.0], [0.6, 0.0, 0.8]])
+    np.testing.assert_array_equal(rebuilt.rgb_radiance(views), sky.rgb_radiance(views))
+
+
 @pytest.mark.parametrize("wavelength", [-500.0, 359.0, 831.0, 2000.0])
 def test_the_sky_refuses_wavelengths_outside_its_tables(wavelength):
     # The sky's spectra are tabulated over [360, 830] nm: outside they were silently 0.

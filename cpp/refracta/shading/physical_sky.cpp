@@ -410,10 +410,12 @@ void PhysicalSkyLight::preprocess(const Vec3d& /*centre*/, double radius) {
 
 std::string PhysicalSkyLight::describe() const {
   const PhysicalSkySettings& s = sky_->settings();
-  return concat("PhysicalSkyLight(sun=(", s.sun_direction.x(), ", ", s.sun_direction.y(), ", ", s.sun_direction.z(),
-                "), aerosol=", s.aerosol, ", ozone_du=", s.ozone_du, ", ground_albedo=", s.ground_albedo,
-                ", altitude=", s.altitude, ", below_horizon=", name_of(s.below_horizon),
-                ", multiple_scattering=", s.multiple_scattering ? "True" : "False", ")");
+  // Named as Python knows it (refracta.spectrum.PhysicalSky), with its constructor's parameter names.
+  return concat("PhysicalSky(sun_direction=(", s.sun_direction.x(), ", ", s.sun_direction.y(), ", ",
+                s.sun_direction.z(), "), aerosol=", s.aerosol, ", ozone_du=", s.ozone_du,
+                ", ground_albedo=", s.ground_albedo, ", altitude=", s.altitude, ", rayleigh_scale=", s.rayleigh_scale,
+                ", below_horizon='", name_of(s.below_horizon), "', multiple_scattering=",
+                s.multiple_scattering ? "True" : "False", ")");
 }
 
 }  // namespace refracta
