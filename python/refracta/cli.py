@@ -84,15 +84,18 @@ DEMO_KEYS = {"hot_road": 0.18, "hot_spot": 0.18, "cold_sea": 0.18, "fata_morgana
 # grey card facing the sun (or an eye adapted to that light) sets it, the glitter shows white, the
 # haze toward the sun silver and the shade the skylight fills blue-grey. ('auto', grey world, gave
 # ~3780 K there, near it; on the desert demos it turned the sand grey, so it is no default.) The
-# others keep the render's own D65 white ('none': a camera's 'cloudy', near its 'daylight').
-def _demo_white_balance(name: str) -> tuple[float, float, float] | None:
+# others are sunlit scenes in a sun 15-30 deg high, shot on a camera's 'daylight' (CIE D55): with
+# the render's own D65 white (a camera's 'cloudy') the hot road's asphalt showed brown and its
+# hazy sky toward the sun beige (linear 1 : 0.84 : 0.70 at the horizon); on 'daylight' the asphalt
+# is grey, the sky a pale grey, the Fata Morgana's sea and sky blue-grey.
+def _demo_white_balance(name: str) -> str | tuple[float, float, float]:
     """The demo's white balance for an example: the cold sea's sunlight at the ground (linear RGB of
     its physical sky's sun, refracta.spectrum.PhysicalSky.sun_radiance_rgb; ~1.3 s CPU to build the
-    sky), else None (the render's own white)."""
+    sky), else 'daylight'."""
     from refracta import examples, spectrum
 
     if name != "cold_sea":
-        return None
+        return "daylight"
     sun = examples.sun_direction(*examples.COLD_SEA_SUN)
     rgb = spectrum.PhysicalSky(sun, visibility=examples.COLD_SEA_VISIBILITY).sun_radiance_rgb().ravel()
     return (float(rgb[0]), float(rgb[1]), float(rgb[2]))
