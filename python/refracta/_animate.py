@@ -19,7 +19,7 @@ import numpy as np
 
 from refracta import _core
 from refracta._checks import finite_pair, is_seed
-from refracta._render import _check_scene, render_options
+from refracta._render import _check_scene, _denoised, render_options
 from refracta._sweep import map_ordered
 
 __all__ = ["animate", "field_at_time", "geometric_noise", "geometric_noise_map"]
@@ -160,6 +160,7 @@ def animate(
     progress: bool | Callable[[int, int], None] = True,
     exposure: float | None = None,
     tonemap: str | None = None,
+    denoise: bool = False,
     **options,
 ) -> np.ndarray:
     """Render a shimmering mirage: one frame per time in `times` [s]; returns linear radiance,
@@ -183,8 +184,10 @@ def animate(
     `times`). executor: None renders the frames one after another here (each on every core); a
     concurrent.futures.Executor or a dask.distributed Client renders one frame per task (scene,
     camera, field and turbulence sent to each dask worker once). progress: a bar of frames on
-    stderr (True), a callable progress(done, total), or False. Further keywords: render's
-    (method, spp, max_length, ...: see refracta.render).
+    stderr (True), a callable progress(done, total), or False. denoise: each frame denoised as
+    render(denoise=True) does it (Open Image Denoise with the frame's own albedo and normal), so
+    that only the shimmer moves, not the sampling noise. Further keywords: render's (method, spp,
+    max_length, turbulence_trace, ...: see refracta.render).
     """
     times = np.asarray(times, dtype=np.float64)
     if times.ndim != 1 or times.size < 1 or not np.all(np.isfinite(times)):
@@ -216,6 +219,10 @@ def animate(
         if "{" not in path and not os.path.isdir(folder):  # ... and so does a folder that is not there
             # (frame files make theirs)
             raise FileNotFoundError(f"animate: the folder of {path!r} does not exist ({folder})")
+    if not isinstance(denoise, (bool, np.bool_)):
+        raise ValueError(f"animate: denoise must be True or False (got {denoise!r})")
+    if denoise:
+        options["surface_aovs"] = True  # the denoiser's guides
     settings = render_options(**options)
     _check_scene(scene, camera, field, settings.method)  # render's SceneWarnings, once for all frames
     outcomes = map_ordered(
@@ -224,7 +231,7 @@ def animate(
         executor,
         progress,
         "rendering frames",
-        shared=(scene, camera, field, settings, turbulence, noise),
+        shared=(scene, camera, field, settings, turbulence, noise, bool(denoise)),
     )
     frames = np.empty((times.size, camera.height, camera.width, 3), dtype=np.float32)
     for i, (ok, value) in enumerate(outcomes):
@@ -236,12 +243,16 @@ def animate(
     return frames
 
 
-def _render_frame(scene, camera, field, settings, turbulence, noise, t):
-    """One frame on a worker: the image at time t (linear float32 (H, W, 3))."""
+def _render_frame(scene, camera, field, settings, turbulence, noise, denoise, t):
+    """One frame on a worker: the image at time t (linear float32 (H, W, 3)), denoised if asked."""
     air = field_at_time(field, turbulence, t) if turbulence is not None else field
     view = geometric_noise(camera, time=t, **noise) if noise is not None else camera
     image, _ = _core._render(scene, view, air, settings, None)
-    return image
+    colour = np.ascontiguousarray(image[..., :3])
+    if not denoise:
+        return colour
+    guides = {"albedo": np.ascontiguousarray(image[..., 3:6]), "normal": np.ascontiguousarray(image[..., 6:9])}
+    return _denoised(colour, guides, settings)
 
 
 def _frame_rate(times: np.ndarray, fps: float | None) -> float:

@@ -274,26 +274,32 @@ def render(
             outputs.update(_readouts(image, wanted, frame))
         image = np.ascontiguousarray(image[..., :3])
     if denoise:
-        if settings.spectral:
-            image = np.maximum(image, 0.0)
-        # Guides of more samples than the image (guide_spp) hold the edges' coverage: the guided filter
-        # rebuilds the image's edges from them (refracta.denoise's `guided`).
-        refine = settings.guide_spp > settings.spp
-        clean = _denoise.denoise(image, outputs["albedo"], outputs["normal"], guided=refine)
-        # Pixels none of whose samples met a scattering surface (the sky, seen directly or through
-        # mirrors and glass) carry no Monte Carlo noise in RGB: they keep their values (the
-        # denoiser would only blur the sky's gradient: 3.5x its error on the hot road). Spectral
-        # samples each carry their own wavelengths (one through dispersive air), so there the sky
-        # is noisy in colour and is denoised too (the green flash's sun, 16 spp against 4096:
-        # relative MSE 1.0x -> 9.0x below the noisy image's, FLIP 1.0x -> 1.9x; bench_denoise.py).
-        if not settings.spectral:
-            untouched = ~np.any(outputs["normal"], axis=2)
-            clean[untouched] = image[untouched]
-        image = clean
+        image = _denoised(image, outputs, settings)
     result = image if aovs is None else (image, {name: outputs[name] for name in wanted})
     if return_stats:
         return (*result, counts) if aovs is not None else (image, counts)
     return result
+
+
+def _denoised(image: np.ndarray, outputs: dict, settings) -> np.ndarray:
+    """`image` (H, W, 3) denoised as render(denoise=True) does it, with the render's own albedo and
+    normal (`outputs`, rendered with settings.surface_aovs)."""
+    if settings.spectral:
+        image = np.maximum(image, 0.0)
+    # Guides of more samples than the image (guide_spp) hold the edges' coverage: the guided filter
+    # rebuilds the image's edges from them (refracta.denoise's `guided`).
+    refine = settings.guide_spp > settings.spp
+    clean = _denoise.denoise(image, outputs["albedo"], outputs["normal"], guided=refine)
+    # Pixels none of whose samples met a scattering surface (the sky, seen directly or through
+    # mirrors and glass) carry no Monte Carlo noise in RGB: they keep their values (the
+    # denoiser would only blur the sky's gradient: 3.5x its error on the hot road). Spectral
+    # samples each carry their own wavelengths (one through dispersive air), so there the sky
+    # is noisy in colour and is denoised too (the green flash's sun, 16 spp against 4096:
+    # relative MSE 1.0x -> 9.0x below the noisy image's, FLIP 1.0x -> 1.9x; bench_denoise.py).
+    if not settings.spectral:
+        untouched = ~np.any(outputs["normal"], axis=2)
+        clean[untouched] = image[untouched]
+    return clean
 
 
 # The per-pixel readouts render(aovs=...) knows (render's docstring; cpp/refracta/render/readouts.h).

@@ -182,6 +182,29 @@ def test_animate_writes_a_gif_whose_frames_shimmer(tmp_path):
     assert np.abs(frames[0] - still).max() > 0.05
 
 
+# The turbulent field's n differs between y = 0 and the wall's foot, which render's ground check (a
+# SceneWarning) reads as a misplaced ground; animate checks the calm field, once.
+@pytest.mark.filterwarnings("ignore::refracta.SceneWarning")
+def test_animate_denoises_each_frame_as_render_does():
+    # One implementation: a denoised frame is render(denoise=True) of the field at that time (Open
+    # Image Denoise is deterministic on the same input), and denoise=False keeps the plain render.
+    scene, camera = checker_wall()
+    field, air = refracta.PhysicalAtmosphere(surface_dt=0.0), strong_turbulence()
+    times = [0.0, 0.05]
+    frames = refracta.animate(
+        scene, camera, field, times, turbulence=air, progress=False, max_length=12.0, denoise=True
+    )
+    plain = refracta.animate(scene, camera, field, times, turbulence=air, progress=False, max_length=12.0)
+    for k, t in enumerate(times):
+        at_t = _animate.field_at_time(field, air, t)
+        expected = refracta.render(scene, camera, at_t, progress=False, max_length=12.0, denoise=True)
+        np.testing.assert_array_equal(frames[k], expected)
+        np.testing.assert_array_equal(plain[k], refracta.render(scene, camera, at_t, progress=False, max_length=12.0))
+    assert not np.array_equal(frames, plain)  # the denoiser did something
+    with pytest.raises(ValueError, match="denoise must be True or False"):
+        refracta.animate(scene, camera, field, times, turbulence=air, progress=False, denoise="yes")
+
+
 def test_animate_on_an_executor_matches_in_process(tmp_path):
     scene, camera = checker_wall()
     field = refracta.PhysicalAtmosphere(surface_dt=0.0)
