@@ -51,7 +51,15 @@ def _finite(value, name: str, function: str) -> float:
 
 def sun_direction(elevation: float, azimuth: float) -> np.ndarray:
     """Unit vector toward the sun at `elevation` above the horizon and `azimuth` [deg] measured
-    from +x (the examples' viewing direction) toward +z; y is up."""
+    from +x (the examples' viewing direction) toward +z; y is up. ValueError unless elevation is in
+    [-90, 90] and azimuth finite."""
+    for name, value in (("elevation", elevation), ("azimuth", azimuth)):
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+            raise ValueError(f"sun_direction: {name} must be a number [deg] (got {value!r})")
+    if not -90.0 <= elevation <= 90.0:
+        raise ValueError(f"sun_direction: elevation must be in [-90, 90] deg (got {elevation!r})")
+    if not np.isfinite(azimuth):
+        raise ValueError(f"sun_direction: azimuth must be finite (got {azimuth!r})")
     e, a = np.radians(elevation), np.radians(azimuth)
     return np.array([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)])
 

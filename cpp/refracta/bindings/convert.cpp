@@ -180,6 +180,15 @@ Samples to_samples(const py::handle& object, const char* what, int dims, size_t 
 }
 
 std::vector<std::array<int, 3>> to_triangles(const py::handle& object, const char* what, size_t vertex_count) {
+  // Float indices are taken where they are whole (np.array([[0.0, 1.0, 2.0]])); the integer cast
+  // below alone would truncate 1.7 to 1.
+  if (const py::array given = py::array::ensure(object); given && given.dtype().kind() == 'f') {
+    const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(given);
+    for (py::ssize_t i = 0; values && i < values.size(); ++i) {
+      const double v = values.data()[i];
+      if (v != std::floor(v)) throw_invalid(what, " must hold whole vertex indices (got ", v, ")");
+    }
+  }
   py::array_t<long long, py::array::c_style | py::array::forcecast> t;
   try {
     t = py::cast<decltype(t)>(object);

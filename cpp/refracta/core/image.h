@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -34,10 +35,15 @@ inline double physical_memory_bytes() {
 inline void check_image_memory(int64_t width, int64_t height, double bytes_per_pixel, const char* what) {
   const double bytes = double(width) * double(height) * bytes_per_pixel, memory = physical_memory_bytes();
   if (memory > 0.0 && bytes > memory) {
+    // Whole numbers printed from the doubles: past 2^63 bytes an int64_t conversion wraps negative.
+    auto whole = [](double value) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.0f", value);
+      return std::string(text);
+    };
     throw std::invalid_argument(std::string(what) + ": a " + std::to_string(width) + " x " + std::to_string(height) +
-                                " image needs at least " + std::to_string(int64_t(bytes)) + " bytes (" +
-                                std::to_string(int64_t(bytes / 1e9)) + " GB), more than this machine's " +
-                                std::to_string(int64_t(memory / 1e9)) + " GB of memory");
+                                " image needs at least " + whole(bytes) + " bytes (" + whole(bytes / 1e9) +
+                                " GB), more than this machine's " + whole(memory / 1e9) + " GB of memory");
   }
 }
 

@@ -13,6 +13,11 @@ CurvedEarth::CurvedEarth(FieldPtr base, double radius) : base_(std::move(base)),
     throw_invalid("CurvedEarth: the base field must depend on height only (", base_->type_name(), " does not)");
   }
   if (!(radius > 0.0) || !std::isfinite(radius)) throw_invalid("CurvedEarth: radius must be > 0 (got ", radius, ")");
+  // Flattening twice would bend the rays by the Earth's curvature twice (and name earth_radius twice).
+  if (std::isfinite(base_->earth_radius())) {
+    throw_invalid("CurvedEarth: the base field is already over a curved Earth (", base_->type_name(),
+                  ", earth_radius ", base_->earth_radius(), " m); give it its flat base instead");
+  }
   specs_ = base_->param_specs();
   specs_.push_back({"earth_radius", kEarthRadius, 6000e3, 1e9, "m", "radius of curvature of the ground"});
 }

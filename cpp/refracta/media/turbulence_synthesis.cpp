@@ -20,6 +20,9 @@ using Complex = std::complex<float>;
 
 constexpr int64_t kDefaultCells = 256;
 constexpr int64_t kMinCells = 8;
+// Far beyond any memory (65536^3 cells need ~5e15 bytes: the memory check refuses them), and within
+// an int with room: a larger count would wrap in the int the grid is indexed by.
+constexpr int64_t kMaxCells = 65536;
 
 // A byte count in the largest unit that keeps it >= 1 (kB, MB, GB: powers of 1000).
 std::string readable_bytes(double size) {
@@ -86,9 +89,12 @@ void TurbulenceSettings::validate() const {
   if (cells && size) {
     problems.add("give cells or size, not both (got cells=", *cells, ", size=", *size, ")");
   } else if (cells) {
-    problems.check(*cells >= kMinCells, "cells must be a whole number >= ", kMinCells, " (got ", *cells, ")");
+    problems.check(*cells >= kMinCells && *cells <= kMaxCells, "cells must be a whole number in [", kMinCells, ", ",
+                   kMaxCells, "] (got ", *cells, ")");
   } else if (size) {
     problems.check(*size > 0.0 && std::isfinite(*size), "size must be > 0 m and finite (got ", *size, ")");
+    problems.check(!(*size / spacing > double(kMaxCells)), "size / spacing must be at most ", kMaxCells,
+                   " cells (got size=", *size, ", spacing=", spacing, ")");
   }
   if (max_bytes) problems.check(*max_bytes > 0.0, "max_bytes must be > 0 (math.inf: no limit; got ", *max_bytes, ")");
   problems.check(std::isfinite(yaw_deg), "yaw_deg must be finite (got ", yaw_deg, ")");

@@ -108,6 +108,10 @@ std::vector<unsigned> add_sea(RenderScene& scene, std::shared_ptr<OceanWaves> wa
   if (!waves) {
     OceanWavesParameters p;
     p.wind_speed = water ? water->parameters().wind_speed : WaterParameters{}.wind_speed;
+    if (!(p.wind_speed > 0.0)) {  // the waves' own check would name an OceanWaves the caller never made
+      throw_invalid("add_sea: the Water material's wind_speed is ", p.wind_speed,
+                    " m/s: calm water has no waves to add; lay it flat with add_ground(material=...) instead");
+    }
     waves = std::make_shared<OceanWaves>(p);
   } else if (water && water->parameters().wind_speed != waves->parameters().wind_speed) {
     throw_invalid("add_sea: wind_speed of the waves (", waves->parameters().wind_speed,

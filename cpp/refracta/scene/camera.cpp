@@ -55,6 +55,11 @@ Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const V
     throw_invalid("Camera.photographic: sensor_mm must be two sides > 0 [mm] (got (", sensor_w_mm, ", ",
                   sensor_h_mm, "))");
   }
+  // A thin lens images only what lies beyond its focal length (1/f = 1/s + 1/s'): nearer, no focus.
+  if (focus_distance && !(*focus_distance > 1e-3 * focal_length_mm)) {
+    throw_invalid("Camera.photographic: focus_distance must exceed the focal length (", 1e-3 * focal_length_mm,
+                  " m) (got ", *focus_distance, ")");
+  }
   if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
   const bool spans_width = double(width) * sensor_h_mm >= double(height) * sensor_w_mm;
   const double image_h_mm = spans_width ? sensor_w_mm * height / width : sensor_h_mm;
