@@ -278,7 +278,7 @@ def test_angle_of_arrival_grows_with_path_length_and_shrinks_with_aperture():
         (dict(seed=-3), "seed must be a whole number"),
         (dict(wind=(1.0, float("inf"))), "wind must be"),
         (dict(wind=3.0), "wind must be"),
-        (dict(cells=4), "cells must be a whole number >= 8"),
+        (dict(cells=4), r"cells must be a whole number in \[8, 65536\]"),
         (dict(cells=16, size=2.0), "give cells or size, not both"),
     ],
 )
