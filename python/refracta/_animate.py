@@ -190,8 +190,11 @@ def animate(
     max_length, turbulence_trace, ...: see refracta.render).
     """
     times = np.asarray(times, dtype=np.float64)
-    if times.ndim != 1 or times.size < 1 or not np.all(np.isfinite(times)):
+    if times.ndim != 1 or times.size < 1:
         raise ValueError(f"animate: times must be a non-empty 1-D array of finite seconds (got shape {times.shape})")
+    if not np.all(np.isfinite(times)):
+        bad = int(np.flatnonzero(~np.isfinite(times))[0])
+        raise ValueError(f"animate: times must be finite seconds (got times[{bad}] = {times[bad]})")
     if turbulence is None and noise is None:
         raise ValueError(
             "animate: give turbulence= (a refracta.Turbulence carried by its wind) or noise= "

@@ -5,6 +5,7 @@ stderr in a terminal."""
 from __future__ import annotations
 
 import time
+from typing import Callable, Union
 
 import tqdm.auto
 import tqdm.std
@@ -53,3 +54,20 @@ class ProgressBar:
         if done >= total:
             self.bar.close()
             self.finished = True
+
+
+# What a progress= argument may be: True (a bar), False or None (none), or a callable progress(done, total).
+ProgressArg = Union[bool, Callable[[int, int], None], None]
+
+
+def progress_callback(progress: ProgressArg, label: str) -> Callable[[int, int], None] | None:
+    """The callback for a progress= argument: a ProgressBar(label) for True, None for False or None,
+    the callable itself; ValueError for anything else (a string reached C++ and failed there as
+    "'str' object is not callable")."""
+    if progress is True:
+        return ProgressBar(label)
+    if progress is False or progress is None:
+        return None
+    if not callable(progress):
+        raise ValueError(f"progress must be True, False or a callable progress(done, total) (got {progress!r})")
+    return progress

@@ -14,7 +14,7 @@ from typing import Callable
 import numpy as np
 
 from refracta import _core
-from refracta._progress import ProgressBar
+from refracta._progress import progress_callback
 
 # render_raster's keywords that name a nested field of RasterRenderOptions: keyword -> its dotted
 # path, which the one keyword rule (_core._build_options) follows. Any other keyword must be a
@@ -179,7 +179,7 @@ def render_raster(
             DeprecationWarning,
             stacklevel=2,
         )
-    callback = ProgressBar("rasterizing") if progress is True else (progress or None)
+    callback = progress_callback(progress, "rasterizing")
     image, counts = _core._render_raster(scene, camera, settings, callback)
     if stats is not None:
         stats.update({name: getattr(counts, name) for name in dir(counts) if not name.startswith("_")})

@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from refracta import _core
+from refracta import _core, _options
 
 # The searches on the launch elevation stop when their bracket moves the ray's height at the
 # target's distance by less than this [m]: a tenth of trace_ray's default tol (1e-6 m).
@@ -104,6 +104,15 @@ class _Tracer:
         for name in ("max_length", "stop_height"):
             if name in fields:
                 raise ValueError(f"refraction_coefficient sets {name} itself: do not pass it")
+        # Checked here so that a misspelt keyword is refused in this function's name, not trace_ray's.
+        known = _options.fields(_core.TraceOptions)
+        unknown = sorted(set(fields) - set(known))
+        if unknown:
+            options = ", ".join(n for n in known if n not in ("max_length", "stop_height"))
+            raise ValueError(
+                f"refraction_coefficient: unknown option {', '.join(map(repr, unknown))} (its keywords: "
+                f"target_height, earth_radius, and trace options: {options})"
+            )
         self.curved, self.distance, self.fields = curved, distance, fields
         self.eye = (0.0, float(curved.flat_height(eye_height)), 0.0)
 

@@ -11,7 +11,7 @@ from typing import Callable
 import numpy as np
 
 from refracta import _core, _denoise, _options
-from refracta._progress import ProgressBar
+from refracta._progress import progress_callback
 from refracta._sweep import map_ordered
 
 
@@ -258,7 +258,7 @@ def render(
     if executor is not None or tiles is not None:
         image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)
     else:
-        callback = ProgressBar("rendering") if progress is True else (progress or None)
+        callback = progress_callback(progress, "rendering")
         # The binding takes None (no atmosphere: straight rays) through its shared_ptr argument, which
         # pybind11's signature, and so the generated stub, cannot mark as optional.
         image, counts = _core._render(scene, camera, field, settings, callback)  # type: ignore[arg-type]

@@ -30,14 +30,12 @@ import time
 import traceback
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Callable, Union
+from typing import Any, Callable
 
 from refracta import _core
-from refracta._progress import ProgressBar
+from refracta._progress import ProgressArg, progress_callback
 
 __all__ = ["SweepError", "SweepFailure", "SweepResult", "grid_points", "map_ordered", "sweep"]
-
-ProgressArg = Union[bool, Callable[[int, int], None], None]
 
 
 @dataclass(frozen=True)
@@ -136,16 +134,6 @@ def as_executor(executor) -> concurrent.futures.Executor | None:
     )
 
 
-def _progress_callback(progress: ProgressArg, label: str) -> Callable[[int, int], None] | None:
-    if progress is True:
-        return ProgressBar(label)
-    if progress is False or progress is None:
-        return None
-    if not callable(progress):
-        raise ValueError(f"progress must be True, False or a callable progress(done, total) (got {progress!r})")
-    return progress
-
-
 def map_ordered(
     function: Callable,
     arguments: Sequence[tuple],
@@ -173,7 +161,7 @@ def map_ordered(
     if shared and callable(getattr(executor, "scatter", None)):  # a dask Client
         shared = tuple(executor.scatter(list(shared), broadcast=True, hash=False))
     shared = tuple(shared)
-    callback = _progress_callback(progress, label)
+    callback = progress_callback(progress, label)
     total = len(arguments)
     outcomes: dict[int, tuple] = {}  # by call index, filled as the calls finish
     if callback:

@@ -44,7 +44,7 @@ from typing import Any, Callable
 import numpy as np
 
 from refracta import _core, _options
-from refracta._progress import ProgressBar
+from refracta._progress import progress_callback
 
 # The options and summary of a solve, bound from C++ (edit_settings.h, point_pair.h).
 SolveSettings = _core.SolveSettings
@@ -416,7 +416,7 @@ def solve(
         eye_or_camera, pairs, settings.pixel_tolerance
     )
     bounds = {k: (float(v[0]), float(v[1])) for k, v in (bounds or {}).items()}
-    callback = ProgressBar(f"editing ({settings.backend})") if progress is True else (progress or None)
+    callback = progress_callback(progress, f"editing ({settings.backend})")
     initial = _core._pair_distances(field, origins, directions, sources, pair_options)
     summary = _core._solve_edit(
         field,

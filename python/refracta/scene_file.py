@@ -681,9 +681,14 @@ def load_scene(path) -> SceneFile:
     """Read a TOML scene file (format in this module's docstring): a SceneFile, which unpacks as
     (scene, camera, field) and has the [atmosphere.turbulence]'s refracta.Turbulence as .turbulence."""
     path = Path(os.fspath(path))
-    if not path.is_file():
+    if not path.exists():
         raise _core.IoError(f"no such scene file: '{path}'")
-    text = path.read_text()
+    if not path.is_file():
+        raise _core.IoError(f"cannot read scene file '{path}': not a regular file")
+    try:
+        text = path.read_text(encoding="utf-8")  # TOML is UTF-8 by its specification
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{path}: not a TOML scene file (not UTF-8 text: {error.reason} at byte {error.start})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:

@@ -9,6 +9,18 @@ import refracta
 from refracta import examples, shading
 
 
+def tiny_camera():
+    return refracta.Camera((0, 1, 0), (1, 1, 0), width=4, height=4)
+
+
+def render_tiny(**options):
+    return refracta.render(sky_scene(), tiny_camera(), None, **{"progress": False, **options})
+
+
+def short_path():
+    return refracta.trace_ray(refracta.PhysicalAtmosphere(), (0.0, 1.5, 0.0), (1.0, 0.0, 0.0), max_length=100.0)
+
+
 def sky_scene():
     scene = refracta.Scene()
     scene.set_sky((1.0, 1.0, 1.0))
@@ -59,6 +71,27 @@ def sky_scene():
         ),
         # RenderOptions.march is parsed as a trace method; its error said 'trace'.
         (lambda: setattr(refracta.RenderOptions(), "march", "foo"), r"^march must be"),
+        # Whole numbers an integer field cannot hold: pybind11's TypeError named neither field nor value.
+        (lambda: render_tiny(spp=2**31), r"render: spp=2147483648 is out of the range of RenderOptions.spp"),
+        (lambda: render_tiny(seed=-1), r"render: seed=-1 is out of the range of RenderOptions.seed"),
+        (lambda: render_tiny(seed=2**70), r"seed=1180591620717411303424 is out of the range"),
+        (lambda: render_tiny(spp=2.5), r"render: spp must be a whole number \(got 2.5\)"),
+        # A string reached C++ and failed there as "'str' object is not callable".
+        (lambda: render_tiny(progress="x"), r"progress must be True, False or a callable"),
+        # A misspelt keyword was refused in trace_ray's name with trace_ray's option list.
+        (
+            lambda: refracta.refraction_coefficient(refracta.PhysicalAtmosphere(), 2.0, 1000.0, target_hieght=3),
+            r"refraction_coefficient: unknown option 'target_hieght' \(its keywords: target_height",
+        ),
+        (lambda: short_path().at_height(float("nan")), r"at_height: y must be a finite height \[m\] \(got nan\)"),
+        # 2**31 - 1 points asked the allocator for 51 GB.
+        (lambda: short_path().sample(2**31 - 1), r"sample: count=2147483647 points need .* GB, more than half"),
+        (
+            lambda: refracta.animate(
+                sky_scene(), tiny_camera(), refracta.PhysicalAtmosphere(), [0.0, float("nan")], noise=dict(rms=1e-3)
+            ),
+            r"animate: times must be finite seconds \(got times\[1\] = nan\)",
+        ),
     ],
 )
 def test_refused_with_a_message_naming_the_argument(make, message):
@@ -72,3 +105,17 @@ def test_whole_float_indices_still_make_a_mesh():
     assert scene.add_mesh(np.eye(3), np.array([[0.0, 1.0, 2.0]])) == 0
     assert scene.add_mesh(np.eye(3), [[0, 1, 2]]) == 1
     assert scene.geometry_count == 2
+
+
+def test_a_folder_is_not_a_scene_file(tmp_path):
+    # It was "no such scene file", of a folder that is there.
+    with pytest.raises(refracta.IoError, match=r"cannot read scene file '.*': not a regular file"):
+        refracta.load_scene(tmp_path)
+
+
+def test_a_binary_file_is_not_a_scene_file(tmp_path):
+    # Bytes that are not UTF-8 raised a raw UnicodeDecodeError.
+    path = tmp_path / "scene.toml"
+    path.write_bytes(b"\xff\xfe\x00 not text")
+    with pytest.raises(ValueError, match=r"scene.toml: not a TOML scene file \(not UTF-8 text"):
+        refracta.load_scene(path)

@@ -31,7 +31,7 @@ bool is_whole(const py::handle& value) {
   if (PyBool_Check(value.ptr())) return false;
   if (!py::isinstance(value, py::module_::import("numbers").attr("Real"))) return false;
   const double x = as_double(value);
-  return std::isfinite(x) && std::floor(x) == x && std::abs(x) < 9.0e18;  // fits an int64
+  return std::isfinite(x) && std::floor(x) == x;  // its range: set_field's
 }
 
 }  // namespace
@@ -65,12 +65,21 @@ void set_field(const py::object& target, const std::string& field, const py::han
     if (!error.matches(PyExc_TypeError)) throw;
     if (value.is_none()) return;  // None for a field that takes none: left unset (its default)
     const std::string shown = py::cast<std::string>(py::repr(value));
+    const std::string type = py::cast<std::string>(py::type::handle_of(target).attr("__name__"));
     if (is_integer(target.attr(field.c_str()))) {
       if (!is_whole(value)) throw_invalid(owner, ": ", keyword, " must be a whole number (got ", shown, ")");
-      target.attr(field.c_str()) = py::int_(int64_t(as_double(value)));
-      return;
+      // A whole number the field's C++ integer cannot hold (2**31 for an int, -1 for an unsigned)
+      // is refused by pybind11 with a TypeError that names neither: say which.
+      if (const double whole = as_double(value); std::abs(whole) < 9.2e18) {
+        try {
+          target.attr(field.c_str()) = py::int_(int64_t(whole));
+          return;
+        } catch (const py::error_already_set& again) {
+          if (!again.matches(PyExc_TypeError)) throw;
+        }
+      }
+      throw_invalid(owner, ": ", keyword, "=", shown, " is out of the range of ", type, ".", field);
     }
-    const std::string type = py::cast<std::string>(py::type::handle_of(target).attr("__name__"));
     throw_invalid(owner, ": option ", keyword, "=", shown, " has the wrong type for ", type, ".", field,
                   " (see help(refracta.", type, "))");
   }

@@ -2,8 +2,10 @@
 #include "refracta/rays/ray_path.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/image.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace refracta {
@@ -94,6 +96,7 @@ std::vector<Crossing> RayPath::crossings(const Vec3d& normal, double offset) con
 }
 
 std::vector<Vec3d> RayPath::at_height(double y) const {
+  if (!std::isfinite(y)) throw_invalid("at_height: y must be a finite height [m] (got ", y, ")");
   std::vector<Vec3d> out;
   for (const Crossing& c : crossings(Vec3d::UnitY(), y)) out.push_back(c.point);
   return out;
@@ -101,6 +104,12 @@ std::vector<Vec3d> RayPath::at_height(double y) const {
 
 std::vector<Vec3d> RayPath::sample(int count) const {
   if (count < 2) throw_invalid("count must be >= 2 (got ", count, ")");
+  // 24 bytes a point here and again in the caller's array: refused before allocating past half of
+  // this machine's memory (2**31 points asked the allocator for 51 GB).
+  if (const double memory = physical_memory_bytes(); memory > 0.0 && 48.0 * double(count) > memory / 2.0) {
+    throw_invalid("sample: count=", count, " points need ", 48.0 * double(count) / 1e9, " GB, more than half of this machine's ",
+                  memory / 1e9, " GB");
+  }
   std::vector<Vec3d> out(static_cast<size_t>(count));
   for (int i = 0; i < count; ++i) out[size_t(i)] = point_at(length() * i / (count - 1));
   return out;
