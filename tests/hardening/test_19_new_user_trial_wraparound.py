@@ -119,3 +119,16 @@ def test_a_binary_file_is_not_a_scene_file(tmp_path):
     path.write_bytes(b"\xff\xfe\x00 not text")
     with pytest.raises(ValueError, match=r"scene.toml: not a TOML scene file \(not UTF-8 text"):
         refracta.load_scene(path)
+
+
+def test_reprs_say_what_the_objects_hold():
+    # Two cameras looking different ways printed alike; the options classes and Scene printed
+    # '<... object at 0x...>'.
+    east, north = refracta.Camera((0, 1, 0), (1, 1, 0)), refracta.Camera((0, 1, 0), (0, 1, 1))
+    assert repr(east) != repr(north) and "look_at=(1, 1, 0)" in repr(east) and "up=(0, 1, 0)" in repr(east)
+    assert repr(refracta.RenderOptions()).startswith("RenderOptions(adaptive=False, chord=1000.0,")
+    assert "backend='ceres'" in repr(refracta._core.SolveSettings())
+    assert "distance='continuous'" in repr(refracta._core.PairOptions())
+    scene = sky_scene()
+    scene.add_ground(0.0, 10.0)
+    assert repr(scene) == "Scene(geometry_count=1, lights=1, aerial_perspective=False)"

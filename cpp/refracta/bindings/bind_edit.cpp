@@ -73,6 +73,7 @@ void bind_solve_settings(py::module_& m) {
   def_enum_property(cls, "loss", &S::loss, &loss_name, &parse_loss,
                     "ceres robust loss on each pair's squared miss: 'none', 'huber', 'soft_l1', 'cauchy', 'arctan'");
   def_options_pickle<S>(cls);
+  def_options_repr(cls, "SolveSettings");
 }
 
 void bind_pair_options(py::module_& m) {
@@ -90,6 +91,7 @@ void bind_pair_options(py::module_& m) {
   def_enum_property(cls, "distance", &P::distance, &pair_distance_name, &parse_pair_distance,
                     "'continuous' (closest approach of the continuous path) or 'vertex' (nearest integrator node)");
   def_options_pickle<P>(cls);
+  def_options_repr(cls, "PairOptions");
 }
 
 // SolveSummary's fields: each bound read-only (typed, for the stubs), read as Python sees it and

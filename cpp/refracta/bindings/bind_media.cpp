@@ -230,8 +230,13 @@ void bind_index_field(py::module_& m) {
         return out;
       }, "Where the field differs from height_only_part: vertical cylinders (x, z, radius [m]) below `top` [m]; `scale` [m]: the feature's horizontal size.")
       .def_property_readonly("param_names", &param_names)
-      .def_property_readonly("params", [](const IndexField& f) { return py::dict(py::cast(named_param_values(f))); })
-      .def_property_readonly("bounds", [](const IndexField& f) { return py::dict(py::cast(param_bounds(f))); })
+      .def_property_readonly(
+          "params", [](const IndexField& f) { return py::dict(py::cast(named_param_values(f))); },
+          "The parameters' values by name: a new dict at each access, so changing it changes no field;\n"
+          "field.with_params(name=value) makes a field with new values.")
+      .def_property_readonly(
+          "bounds", [](const IndexField& f) { return py::dict(py::cast(param_bounds(f))); },
+          "Each parameter's (low, high) bounds by name, as edit.solve keeps them (a new dict at each access).")
       .def_property_readonly("param_info", [](const IndexField& f) {
         py::list out;
         for (const auto& s : f.param_specs()) {

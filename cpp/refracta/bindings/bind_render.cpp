@@ -85,6 +85,7 @@ void bind_render(py::module_& m) {
           py::arg("width"), py::arg("height"), DOC(refracta, RenderOptions, bounds_in));
   // Pickled as its fields by name and rebuilt through them (the defaults stay C++'s).
   def_options_pickle<O>(options);
+  def_options_repr(options, "RenderOptions");
 
   using S = RenderStats;
   py::class_<S> stats(m, "RenderStats", DOC(refracta, RenderStats));

@@ -239,6 +239,11 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
 
 void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& scene) {
   scene.def_property_readonly("geometry_count", [](const RenderScene& s) { return s.geometry.geometry_count(); })
+      .def("__repr__",
+           [](const RenderScene& s) {
+             return concat("Scene(geometry_count=", s.geometry.geometry_count(), ", lights=", s.lights().size(),
+                           ", aerial_perspective=", s.aerial_perspective() ? "True" : "False", ")");
+           })
       .def_property_readonly(
           "bounds",
           [](const RenderScene& s) {

@@ -73,15 +73,21 @@ void def_fields_pickle(py::class_<Result>& cls, T Result::*... fields) {
                      }));
 }
 
+// repr: "Owner(name=value, ...)" of the bound fields.
+template <class Class>
+Class& def_options_repr(Class& cls, const char* owner) {
+  return cls.def("__repr__",
+                 [owner](const py::object& self) { return std::string(owner) + "(" + options_repr(self) + ")"; });
+}
+
 // What every options class has: a constructor taking fields as keywords (validated), repr,
 // validate() and pickling through the fields.
 template <class Options, class Class>
 Class& def_options_common(Class& cls, const char* owner) {
   cls.def(py::init([owner](const py::kwargs& fields) { return options_from<Options>(py::none(), fields, owner); }),
           "The defaults, with any field set by keyword (then validated).")
-      .def("__repr__",
-           [owner](const py::object& self) { return std::string(owner) + "(" + options_repr(self) + ")"; })
       .def("validate", &Options::validate, "Raises ValueError listing every bad field (nested options included).");
+  def_options_repr(cls, owner);
   def_options_pickle<Options>(cls);
   return cls;
 }

@@ -182,8 +182,9 @@ std::string Camera::describe() const {
   const std::string lens = aperture_diameter() > 0.0
                                ? concat(", aperture_diameter=", aperture_diameter(), ", focus_distance=", focus_distance_)
                                : std::string();
-  return concat("Camera(position=(", position_.x(), ", ", position_.y(), ", ", position_.z(), "), vfov=", vfov_,
-                ", size=", width_, "x", height_, lens, ")");
+  auto triple = [](const Vec3d& v) { return concat("(", v.x(), ", ", v.y(), ", ", v.z(), ")"); };
+  return concat("Camera(position=", triple(position_), ", look_at=", triple(look_at_), ", up=", triple(up_hint_),
+                ", vfov=", vfov_, ", size=", width_, "x", height_, lens, ")");
 }
 
 Camera Camera::jittered(std::vector<float> angles) const {

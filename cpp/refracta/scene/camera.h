@@ -117,7 +117,8 @@ class Camera {
   // the lens (aperture_diameter 0: a pinhole); its rays are bit-identical to the original's.
   static Camera restore(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
                         int height, std::vector<float> jitter, double aperture_diameter, double focus_distance);
-  // "Camera(position=(x, y, z), vfov=..., size=WxH[, aperture_diameter=..., focus_distance=...])".
+  // "Camera(position=(x, y, z), look_at=(...), up=(...), vfov=..., size=WxH[, aperture_diameter=...,
+  // focus_distance=...])".
   std::string describe() const;
 
  private:
