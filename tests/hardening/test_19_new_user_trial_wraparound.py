@@ -83,6 +83,16 @@ def sky_scene():
             lambda: refracta.refraction_coefficient(refracta.PhysicalAtmosphere(), 2.0, 1000.0, target_hieght=3),
             r"refraction_coefficient: unknown option 'target_hieght' \(its keywords: target_height",
         ),
+        # Radiances past float32's range filled every pixel with inf.
+        (
+            lambda: refracta.Scene().set_sky((1.0, 1.0, 1.0), scale=1e300),
+            r"set_sky: the sky's radiance times scale must be at most 1e\+30",
+        ),
+        (lambda: refracta.Scene().set_sun((0, 1, 0), (3e38,) * 3), r"radiance must be at most 1e\+30 per channel"),
+        (
+            lambda: refracta.Scene().add_sphere((0, 0, 0), 1.0, emission=(3e38,) * 3),
+            r"emission must be at most 1e\+30 per channel",
+        ),
         (lambda: short_path().at_height(float("nan")), r"at_height: y must be a finite height \[m\] \(got nan\)"),
         # 2**31 - 1 points asked the allocator for 51 GB.
         (lambda: short_path().sample(2**31 - 1), r"sample: count=2147483647 points need .* GB, more than half"),

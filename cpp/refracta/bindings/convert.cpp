@@ -2,6 +2,7 @@
 #include "refracta/bindings/convert.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/spectrum.h"
 #include "refracta/shading/environment_light.h"
 
 #include <algorithm>
@@ -139,6 +140,10 @@ Vec3d to_rgb(const py::handle& value, const char* what) {
     throw_invalid(what, " must be a number or an (r, g, b) triple (got shape ", shape_of(array), ")");
   }
   if (!is_finite(rgb)) throw_invalid(what, " must be finite (got (", rgb.x(), ", ", rgb.y(), ", ", rgb.z(), "))");
+  if (!(rgb.cwiseAbs().maxCoeff() <= kMaxRadiance)) {
+    throw_invalid(what, " must be at most ", kMaxRadiance, " per channel (got (", rgb.x(), ", ", rgb.y(), ", ", rgb.z(),
+                  ")): images are float32");
+  }
   return rgb;
 }
 

@@ -15,6 +15,9 @@ using Spectrum = Eigen::Array4d;
 constexpr int kSpectrumSamples = 4;
 constexpr double kLambdaMin = 360.0;  // [nm] the sampled range of spectral rendering
 constexpr double kLambdaMax = 830.0;  // [nm]
+// The largest radiance (or radiance scale) a light may be given: images are float32 (3.4e38 at
+// most) and an estimator sums and weights its samples, so a larger one fills pixels with inf.
+constexpr double kMaxRadiance = 1e30;
 
 // lambda_nm itself; throws (ValueError) naming `what` unless it lies in the rendered range.
 inline double checked_wavelength(double lambda_nm, const char* what) {

@@ -2,6 +2,7 @@
 #include "refracta/shading/sky_presets.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/spectrum.h"
 #include "refracta/scene/image_io.h"
 #include "refracta/shading/constant_environment.h"
 #include "refracta/shading/environment_light.h"
@@ -32,6 +33,10 @@ Image gradient_sky_image(const Vec3d& horizon, const Vec3d& zenith) {
 
 LightPtr gradient_sky(const Vec3d& horizon, const Vec3d& zenith, double scale) {
   if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("scale must be >= 0 (got ", scale, ")");
+  if (!(scale * std::max(horizon.cwiseAbs().maxCoeff(), zenith.cwiseAbs().maxCoeff()) <= kMaxRadiance)) {
+    throw_invalid("set_sky: the sky's radiance times scale must be at most ", kMaxRadiance, " (got scale ", scale,
+                  "): images are float32");
+  }
   if (zenith == horizon) {  // a constant sky, sampled by cosine
     if (!(horizon.maxCoeff() > 0.0)) return nullptr;
     const Vec3d radiance = horizon * scale;
@@ -59,7 +64,9 @@ SkyAndSun physical_sky_with_sun(const PhysicalSkySettings& settings, const SunDi
                                 const SkyBuilder& build) {
   settings.validate();
   disc.validate();
-  if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("scale must be >= 0 and finite (got ", scale, ")");
+  if (!(scale >= 0.0 && scale <= kMaxRadiance)) {
+    throw_invalid("scale must be in [0, ", kMaxRadiance, "] (got ", scale, "): images are float32");
+  }
   const std::shared_ptr<PhysicalSkyLight> sky = build ? build(settings) : std::make_shared<PhysicalSkyLight>(settings);
   std::vector<double> lambda, radiance;
   for (int i = 0; i < PhysicalSky::kWavelengths; ++i) {
