@@ -688,7 +688,9 @@ def load_scene(path) -> SceneFile:
     try:
         text = path.read_text(encoding="utf-8")  # TOML is UTF-8 by its specification
     except UnicodeDecodeError as error:
-        raise ValueError(f"{path}: not a TOML scene file (not UTF-8 text: {error.reason} at byte {error.start})") from None
+        raise ValueError(
+            f"{path}: not a TOML scene file (not UTF-8 text: {error.reason} at byte {error.start})"
+        ) from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
