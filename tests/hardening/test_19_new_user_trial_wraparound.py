@@ -93,6 +93,11 @@ def sky_scene():
             lambda: refracta.Scene().add_sphere((0, 0, 0), 1.0, emission=(3e38,) * 3),
             r"emission must be at most 1e\+30 per channel",
         ),
+        # py::vectorize's RuntimeError named no argument.
+        (
+            lambda: shading.water_ior([400.0, 500.0, 600.0], [10.0, 20.0]),
+            r"must broadcast together as numpy arrays do \(got wavelength_nm \(3,\), temperature_c \(2,\)",
+        ),
         (lambda: short_path().at_height(float("nan")), r"at_height: y must be a finite height \[m\] \(got nan\)"),
         # 2**31 - 1 points asked the allocator for 51 GB.
         (lambda: short_path().sample(2**31 - 1), r"sample: count=2147483647 points need .* GB, more than half"),

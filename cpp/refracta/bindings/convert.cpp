@@ -184,6 +184,12 @@ Samples to_samples(const py::handle& object, const char* what, int dims, size_t 
   return s;
 }
 
+std::string detail::shapes_of(const std::vector<std::pair<const char*, const DoubleArray*>>& arrays) {
+  std::string out;
+  for (const auto& [name, array] : arrays) out += std::string(out.empty() ? "" : ", ") + name + " " + shape_of(*array);
+  return out;
+}
+
 std::vector<std::array<int, 3>> to_triangles(const py::handle& object, const char* what, size_t vertex_count) {
   // Float indices are taken where they are whole (np.array([[0.0, 1.0, 2.0]])); the integer cast
   // below alone would truncate 1.7 to 1.

@@ -3,6 +3,7 @@
 // colour" or "a unit vector" means the same thing in every function that takes one.
 #pragma once
 
+#include "refracta/core/error.h"
 #include "refracta/core/image.h"
 #include "refracta/core/math.h"
 #include "refracta/core/sampling.h"
@@ -14,6 +15,8 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -41,10 +44,21 @@ double to_number(const py::handle& value, const char* what);
 namespace detail {
 template <class>
 using AnyObject = py::object;
+// "name (shape), ..." of the arguments (vectorize_real's refusal of shapes that do not broadcast).
+std::string shapes_of(const std::vector<std::pair<const char*, const DoubleArray*>>& arrays);
+
 template <class Return, class... Args, size_t... I>
 auto vectorize_real(Return (*f)(Args...), std::array<const char*, sizeof...(Args)> names, std::index_sequence<I...>) {
   return [f, names](const AnyObject<Args>&... args) {
-    return py::vectorize(f)(real_array(args, names[I], /*bools=*/false)...);
+    const std::array<DoubleArray, sizeof...(Args)> arrays{real_array(args, names[I], /*bools=*/false)...};
+    try {
+      return py::vectorize(f)(arrays[I]...);
+    } catch (const std::runtime_error& error) {
+      // py::vectorize's own message names no argument: "incompatible size/dimension of inputs!".
+      if (std::string(error.what()).find("incompatible size") == std::string::npos) throw;
+      throw_invalid("the arguments must broadcast together as numpy arrays do (got ",
+                    shapes_of({{names[I], &arrays[I]}...}), ")");
+    }
   };
 }
 }  // namespace detail
