@@ -19,7 +19,7 @@ import numpy as np
 
 from refracta import _core
 from refracta._checks import finite_pair, is_seed
-from refracta._render import _check_scene, _denoised, render_options
+from refracta._render import _check_scene, _denoised, _surface_outputs, render_options
 from refracta._sweep import map_ordered
 
 __all__ = ["animate", "field_at_time", "geometric_noise", "geometric_noise_map"]
@@ -254,8 +254,7 @@ def _render_frame(scene, camera, field, settings, turbulence, noise, denoise, t)
     colour = np.ascontiguousarray(image[..., :3])
     if not denoise:
         return colour
-    guides = {"albedo": np.ascontiguousarray(image[..., 3:6]), "normal": np.ascontiguousarray(image[..., 6:9])}
-    return _denoised(colour, guides, settings)
+    return _denoised(colour, _surface_outputs(image), settings)
 
 
 def _frame_rate(times: np.ndarray, fps: float | None) -> float:

@@ -269,7 +269,7 @@ def render(
         stats.update({name: getattr(counts, name) for name in ("samples", "chords", "invalid_samples")})
     outputs = {}
     if settings.surface_aovs or settings.readouts:
-        outputs = {"albedo": np.ascontiguousarray(image[..., 3:6]), "normal": np.ascontiguousarray(image[..., 6:9])}
+        outputs = _surface_outputs(image)
         if settings.readouts:
             outputs.update(_readouts(image, wanted, frame))
         image = np.ascontiguousarray(image[..., :3])
@@ -279,6 +279,11 @@ def render(
     if return_stats:
         return (*result, counts) if aovs is not None else (image, counts)
     return result
+
+
+def _surface_outputs(image: np.ndarray) -> dict:
+    """The albedo and normal channels of a render with surface_aovs (image channels 3:6 and 6:9)."""
+    return {"albedo": np.ascontiguousarray(image[..., 3:6]), "normal": np.ascontiguousarray(image[..., 6:9])}
 
 
 def _denoised(image: np.ndarray, outputs: dict, settings) -> np.ndarray:

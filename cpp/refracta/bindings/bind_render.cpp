@@ -47,7 +47,8 @@ void bind_render(py::module_& m) {
                     "camera rays through turbulence: 'strict' (the full field, rk45) or 'perturbed' (deviations from\n"
                     "each ray's calm path, traced exactly to tol, in steps of the turbulence's cells; those samples'\n"
                     "shadow and bounce rays through the calm air)");
-  def_enum_property(options, "march", &O::march, &trace_method_name, &parse_trace_method,
+  def_enum_property(options, "march", &O::march, &trace_method_name,
+                    [](const std::string& name) { return parse_trace_method_as(name, "march"); },
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)");
   options.def_readwrite("spp", &O::spp, DOC(refracta, RenderOptions, spp))
       .def_readwrite("adaptive", &O::adaptive, DOC(refracta, RenderOptions, adaptive))

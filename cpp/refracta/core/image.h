@@ -1,14 +1,13 @@
 // A float RGB(A) image in row-major order, top row first (as numpy (H, W, C)).
 #pragma once
 
+#include "refracta/core/memory.h"
+
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 namespace refracta {
 
@@ -22,12 +21,6 @@ struct Image {
   const float* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * channels]; }
 };
 
-// This machine's physical memory [bytes] (0 if unknown).
-inline double physical_memory_bytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? double(pages) * double(page) : 0.0;
-}
-
 // Refuses, before anything is allocated, an image of width x height pixels whose buffers
 // (bytes_per_pixel in all) would not fit in physical memory: std::invalid_argument (ValueError)
 // naming `what`, the size and the bytes. Without the guard a 100000 x 100000 render asked the
@@ -35,15 +28,9 @@ inline double physical_memory_bytes() {
 inline void check_image_memory(int64_t width, int64_t height, double bytes_per_pixel, const char* what) {
   const double bytes = double(width) * double(height) * bytes_per_pixel, memory = physical_memory_bytes();
   if (memory > 0.0 && bytes > memory) {
-    // Whole numbers printed from the doubles: past 2^63 bytes an int64_t conversion wraps negative.
-    auto whole = [](double value) {
-      char text[64];
-      std::snprintf(text, sizeof text, "%.0f", value);
-      return std::string(text);
-    };
     throw std::invalid_argument(std::string(what) + ": a " + std::to_string(width) + " x " + std::to_string(height) +
-                                " image needs at least " + whole(bytes) + " bytes (" + whole(bytes / 1e9) +
-                                " GB), more than this machine's " + whole(memory / 1e9) + " GB of memory");
+                                " image needs at least " + whole_bytes(bytes) + " bytes (" + whole_bytes(bytes / 1e9) +
+                                " GB), more than this machine's " + whole_bytes(memory / 1e9) + " GB of memory");
   }
 }
 

@@ -1,7 +1,7 @@
 // FFT synthesis of a turbulence grid (turbulence_synthesis.h), on Eigen's FFT module (kissfft).
 #include "refracta/media/turbulence_synthesis.h"
 
-#include "refracta/core/image.h"
+#include "refracta/core/memory.h"
 #include "refracta/core/math.h"
 #include "refracta/core/rng.h"
 
@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <cstdio>
 
 namespace refracta {
 
@@ -23,22 +22,6 @@ constexpr int64_t kMinCells = 8;
 // Far beyond any memory (65536^3 cells need ~5e15 bytes: the memory check refuses them), and within
 // an int with room: a larger count would wrap in the int the grid is indexed by.
 constexpr int64_t kMaxCells = 65536;
-
-// A byte count in the largest unit that keeps it >= 1 (kB, MB, GB: powers of 1000).
-std::string readable_bytes(double size) {
-  char text[64];
-  if (size >= 1e9) std::snprintf(text, sizeof text, "%.1f GB", size / 1e9);
-  else if (size >= 1e6) std::snprintf(text, sizeof text, "%.1f MB", size / 1e6);
-  else if (size >= 1e3) std::snprintf(text, sizeof text, "%.1f kB", size / 1e3);
-  else std::snprintf(text, sizeof text, "%.0f bytes", size);
-  return text;
-}
-
-std::string whole_bytes(double size) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.0f", size);
-  return text;
-}
 
 // Lattice index of FFT bin i of n: 0..n/2-1, then -n/2..-1 (numpy.fft.fftfreq(n, 1/n)).
 int64_t signed_index(int64_t i, int64_t n) { return i < (n + 1) / 2 ? i : i - n; }

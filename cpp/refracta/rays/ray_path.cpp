@@ -2,7 +2,7 @@
 #include "refracta/rays/ray_path.h"
 
 #include "refracta/core/error.h"
-#include "refracta/core/image.h"
+#include "refracta/core/memory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -106,9 +106,9 @@ std::vector<Vec3d> RayPath::sample(int count) const {
   if (count < 2) throw_invalid("count must be >= 2 (got ", count, ")");
   // 24 bytes a point here and again in the caller's array: refused before allocating past half of
   // this machine's memory (2**31 points asked the allocator for 51 GB).
-  if (const double memory = physical_memory_bytes(); memory > 0.0 && 48.0 * double(count) > memory / 2.0) {
-    throw_invalid("sample: count=", count, " points need ", 48.0 * double(count) / 1e9, " GB, more than half of this machine's ",
-                  memory / 1e9, " GB");
+  if (const double memory = physical_memory_bytes(), bytes = 48.0 * double(count); memory > 0.0 && bytes > memory / 2.0) {
+    throw_invalid("sample: count=", count, " points need ", readable_bytes(bytes), ", more than half of this machine's ",
+                  readable_bytes(memory));
   }
   std::vector<Vec3d> out(static_cast<size_t>(count));
   for (int i = 0; i < count; ++i) out[size_t(i)] = point_at(length() * i / (count - 1));

@@ -11,11 +11,13 @@ namespace {
 constexpr double kMinRelativeTol = 1e-15;  // of max_length: double round-off of a position
 }  // namespace
 
-TraceMethod parse_trace_method(const std::string& name) {
+TraceMethod parse_trace_method(const std::string& name) { return parse_trace_method_as(name, "trace"); }
+
+TraceMethod parse_trace_method_as(const std::string& name, const char* option) {
   if (name == "rk4") return TraceMethod::kRk4;
   if (name == "rk45") return TraceMethod::kRk45;
   if (name == "stratified") return TraceMethod::kStratified;
-  throw_invalid("trace must be 'rk4', 'rk45' or 'stratified' (got '", name, "')");
+  throw_invalid(option, " must be 'rk4', 'rk45' or 'stratified' (got '", name, "')");
 }
 
 const char* trace_method_name(TraceMethod method) {

@@ -1,0 +1,36 @@
+// This machine's memory, and byte counts as messages print them (refusals of work too large to
+// allocate: images, turbulence grids, sampled paths).
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+#include <unistd.h>
+
+namespace refracta {
+
+// This machine's physical memory [bytes] (0 if unknown).
+inline double physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? double(pages) * double(page) : 0.0;
+}
+
+// A byte count as a whole number, printed from the double: past 2^63 an int64_t conversion wraps
+// negative (a 1e9 x 1e9 render's refusal said -9223372036854775808 bytes).
+inline std::string whole_bytes(double size) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.0f", size);
+  return text;
+}
+
+// A byte count in the largest unit that keeps it >= 1 (kB, MB, GB: powers of 1000).
+inline std::string readable_bytes(double size) {
+  char text[64];
+  if (size >= 1e9) std::snprintf(text, sizeof text, "%.1f GB", size / 1e9);
+  else if (size >= 1e6) std::snprintf(text, sizeof text, "%.1f MB", size / 1e6);
+  else if (size >= 1e3) std::snprintf(text, sizeof text, "%.1f kB", size / 1e3);
+  else std::snprintf(text, sizeof text, "%.0f bytes", size);
+  return text;
+}
+
+}  // namespace refracta
