@@ -169,7 +169,22 @@ std::shared_ptr<const IndexField> TabulatedHeightField::with_param_values(const 
 
 namespace {
 
-// Parts of an interval: at most 2^kMaxPartDepth (1 m / 65536 = 15 um; a kink in n -- a
+// Blocks of kBlock [m]: one block is 2^d equal parts (d <= kMaxBlockDepth, parts of a metre or
+// more), each part's cubic checked against the air at least every kCheckSpacing [m] along it --
+// as densely as a metre's quarter points, so no thinner feature hides than before (over ranges
+// longer than kMaxInitialIntervals metres, as densely as those intervals' quarter points: a
+// sunset's 1 500 km) -- or, where
+// the air has finer structure (a surface layer, an inversion, a knot), kFinePerBlock intervals of
+// a metre, each 2^d parts checked at their quarter points (d <= kMaxPartDepth). The smooth air
+// above a few tens of metres is then one part per 32 m, not 32 (a cubic over 32 m of the
+// standard atmosphere is off by ~32^4 (n - 1) / (384 H^4) ~ 2e-16, H its 8 km scale height): 86 km
+// of air in ~3 000 parts (200 KB) where 1 m intervals took 86 000 (5.5 MB), so a lookup finds its
+// part in cache (the cold sea's shadow rays spent half their air lookups waiting for memory).
+constexpr double kBlock = 32.0;
+constexpr int kFinePerBlock = 32;
+constexpr int kMaxBlockDepth = 5;
+constexpr double kCheckSpacing = 0.25;
+// Parts of a metre's interval: at most 2^kMaxPartDepth (1 m / 65536 = 15 um; a kink in n -- a
 // temperature profile's knot -- is accepted there, its cubic off by ~jump(dn/dh) x 15 um / 16);
 // at most kMaxParts in all (64 MB of coefficients), past which the rest are accepted as they are.
 constexpr int kMaxPartDepth = 16;
@@ -196,14 +211,16 @@ struct TabulatedCurvedEarth::Table {
     std::array<double, 4> a, b;
   };
   struct Interval {
-    uint32_t first;            // its first part
-    uint32_t count;            // 2^d parts
+    uint32_t first;            // its first part (fine: its first interval in `fine`)
+    uint32_t count;            // 2^d parts (fine: kFinePerBlock intervals)
     double inverse_part;       // count / the interval's width [1/m]
+    bool fine = false;         // a block of intervals (kBlock)
   };
   double lo = 0.0, hi = 0.0;      // [m], flat
   double tolerance = 0.0;         // in B (and so in n')
-  double inverse_width = 0.0;     // intervals per metre
-  std::vector<Interval> intervals;
+  double inverse_width = 0.0;     // blocks per metre
+  std::vector<Interval> intervals;  // the blocks
+  std::vector<Interval> fine;       // the intervals of fine blocks
   std::vector<Part> parts;
 };
 
@@ -224,38 +241,56 @@ TabulatedCurvedEarth::TabulatedCurvedEarth(const CurvedEarth& air, double lo, do
   if (!(table->hi > table->lo)) return;  // nothing tabulated: every height is the air's own
   const IndexField& base = *air.base();
   const double radius = air.radius(), span = table->hi - table->lo;
-  const size_t count = size_t(std::clamp(std::ceil(span / kInitialSpacing), double(kMinInitialIntervals),
+  const size_t count = size_t(std::clamp(std::ceil(span / kBlock), double(kMinInitialIntervals),
                                          double(kMaxInitialIntervals)));
   table->inverse_width = double(count) / span;
   const double width = span / double(count);
+  const double check_spacing = std::max(kCheckSpacing, 0.25 * span / double(kMaxInitialIntervals));
   table->intervals.reserve(count);
   std::vector<FlatSample> nodes;
   std::vector<Table::Part> parts;
-  for (size_t j = 0; j < count; ++j) {
-    const double from = table->lo + width * double(j);
-    // The least depth whose parts all hold B to the tolerance at their quarter points.
-    for (int depth = 0;; ++depth) {
+  // [from, from + length) as 2^d parts, d the least up to max_depth whose cubics hold B to the
+  // tolerance at least every kCheckSpacing and at their quarter points; false where none does.
+  auto cut = [&](double from, double length, int max_depth) {
+    for (int depth = 0; depth <= max_depth; ++depth) {
       const size_t pieces = size_t(1) << depth;
-      const double step = width / double(pieces);
+      const double step = length / double(pieces);
       auto at = [&](double k) { return flat_sample(base, radius, from + step * k); };
       nodes.resize(pieces + 1);
       for (size_t k = 0; k <= pieces; ++k) nodes[k] = at(double(k));
       parts.resize(pieces);
       bool close = true;
+      const int checks = std::max(4, int(std::ceil(step / check_spacing)));
       for (size_t k = 0; k < pieces; ++k) {
         const FlatSample &p = nodes[k], &q = nodes[k + 1];
         parts[k].a = hermite_cubic(p.a, step * p.da, q.a, step * q.da);
         parts[k].b = hermite_cubic(p.b, step * p.db, q.b, step * q.db);
-        for (double t : {0.5, 0.25, 0.75}) {
-          if (!close) break;
+        for (int i = 1; i < checks && close; ++i) {
+          const double t = double(i) / checks;
           close = std::abs(cubic_at(parts[k].b, t) - at(double(k) + t).b) <= tolerance;
         }
       }
-      if (close || depth >= kMaxPartDepth || table->parts.size() + 2 * pieces > kMaxParts) break;
+      if (close || table->parts.size() + 2 * pieces > kMaxParts) return true;
     }
-    table->intervals.push_back({uint32_t(table->parts.size()), uint32_t(parts.size()),
-                                table->inverse_width * double(parts.size())});
+    return false;
+  };
+  auto add = [&](std::vector<Table::Interval>* to, double parts_per_metre) {
+    to->push_back({uint32_t(table->parts.size()), uint32_t(parts.size()), parts_per_metre * double(parts.size())});
     table->parts.insert(table->parts.end(), parts.begin(), parts.end());
+  };
+  for (size_t j = 0; j < count; ++j) {
+    const double from = table->lo + width * double(j);
+    if (cut(from, width, kMaxBlockDepth)) {
+      add(&table->intervals, table->inverse_width);
+      continue;
+    }
+    table->intervals.push_back({uint32_t(table->fine.size()), uint32_t(kFinePerBlock),
+                                table->inverse_width * kFinePerBlock, true});
+    const double fine_width = width / kFinePerBlock;
+    for (int i = 0; i < kFinePerBlock; ++i) {
+      cut(from + fine_width * i, fine_width, kMaxPartDepth);  // at kMaxPartDepth: accepted as it is
+      add(&table->fine, table->inverse_width * kFinePerBlock);
+    }
   }
 }
 
@@ -274,8 +309,14 @@ void TabulatedCurvedEarth::evaluate_height(double y, double* n, double* dn_dy) c
   }
   const double t = (y - table.lo) * table.inverse_width;
   const size_t j = std::min(size_t(t), table.intervals.size() - 1);
-  const Table::Interval& interval = table.intervals[j];
-  const double u = (t - double(j)) * double(interval.count);
+  const Table::Interval* block = &table.intervals[j];
+  double u = (t - double(j)) * double(block->count);
+  if (block->fine) {  // its metre's interval
+    const size_t i = std::min<size_t>(size_t(u), block->count - 1);
+    u = (u - double(i)) * double(table.fine[block->first + i].count);
+    block = &table.fine[block->first + i];
+  }
+  const Table::Interval& interval = *block;
   const size_t k = std::min<size_t>(size_t(u), interval.count - 1);
   const double v = u - double(k);
   const Table::Part& part = table.parts[interval.first + k];

@@ -65,9 +65,9 @@ class TabulatedHeightField final : public IndexField {
 // so that the air dispersed by any scale s (DispersedField: n_s - 1 = s (n - 1)) is
 //   n'_s = A + s B,  dn'_s/dy' = A' + s B'
 // and every dispersion scale of a spectral render shares one table. The nodes: [lo, hi] cut into
-// intervals of about a metre (between 64 and 1e5 of them, as TabulatedHeightField), each split
-// into 2^d equal parts, d the least (at most kMaxPartDepth) for which the cubic of B is within
-// `tolerance` of the exact B at the quarter points of every part. A lookup is then two multiplies
+// intervals of about 32 m (at least 64 of them), each split into 2^d equal parts, d the least (at
+// most kMaxPartDepth) for which the cubic of B is within `tolerance` of the exact B at the
+// quarter points of every part and at least every 0.25 m along it. A lookup is then two multiplies
 // and two loads (the interval, then its part: one 64-byte cache line of coefficients), where the
 // base tabulated in true heights inside CurvedEarth cost a bucket scan, a cubic and an exp per
 // evaluation (53 % of the cold sea's CPU). Outside the table (or where the air cannot be

@@ -284,14 +284,16 @@ double Caster::ior(const Vec3d& p) const {
   return n;
 }
 
-PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length, double spread) const {
+PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,
+                     double origin_width) const {
   if (!field_) return cast_straight(origin, dir, max_length > 0.0 ? max_length : kSceneReach);
   const bool from_eye = table_ && origin == eye_ && max_length <= 0.0;
   const bool secondary = !(spread > 0.0);  // a shadow or bounce ray
   if (secondary) spread = secondary_spread_;
+  const double s0 = secondary && spread > 0.0 && origin_width > 0.0 ? origin_width / spread : 0.0;
   const double length = max_length > 0.0 ? max_length : options_.max_length;
-  PathEnd end = legs_ ? cast_in_legs(origin, dir, length, spread, from_eye, secondary)
-                      : from_eye ? cast_table(dir) : cast_traced(origin, dir, length, spread, secondary);
+  PathEnd end = legs_ ? cast_in_legs(origin, dir, length, spread, from_eye, secondary, s0)
+                      : from_eye ? cast_table(dir) : cast_traced(origin, dir, length, spread, secondary, s0);
   if (!end.hit) end.direction = field_->sky_direction(end.end_point, end.direction);
   return end;
 }
@@ -303,7 +305,7 @@ bool Caster::inside_region(const Vec3d& p) const {
 }
 
 PathEnd Caster::cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,
-                             bool from_eye, bool secondary) const {
+                             bool from_eye, bool secondary, double s0) const {
   // A path that grazes a region's border could hand over back and forth: after this many legs
   // the full field traces the rest without handing over.
   constexpr int kMaxLegs = 32;
@@ -317,9 +319,9 @@ PathEnd Caster::cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_l
     const bool last = leg + 1 >= kMaxLegs;
     // Initialised in one expression: GCC 12 reads a default-constructed PathEnd's empty optionals
     // as used uninitialised when it is assigned later (-Wuninitialized under -Werror).
-    PathEnd part = last || in_regions     ? cast_in_regions(x, d, max_length - s, spread, s, !last)
+    PathEnd part = last || in_regions     ? cast_in_regions(x, d, max_length - s, spread, s0 + s, !last)
                    : leg == 0 && from_eye ? cast_table(d)
-                                          : cast_traced(x, d, max_length - s, spread, secondary);
+                                          : cast_traced(x, d, max_length - s, spread, secondary, s0);
     chords += part.chords;
     if (!part.handoff || !(part.handoff->s < max_length - s)) {
       part.length += s;
@@ -333,7 +335,7 @@ PathEnd Caster::cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_l
     if (!in_regions && leg > 0 && part.handoff->s <= 0.0) {
       // No progress: the layered path enters at once where the full one has just left (a border
       // grazed within the chords' sagitta); the full field's path goes on without handing over.
-      part = cast_in_regions(x, d, max_length - s, spread, s, false);
+      part = cast_in_regions(x, d, max_length - s, spread, s0 + s, false);
       part.length += s;
       part.chords += chords;
       return part;
@@ -477,8 +479,12 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
     run += sign * step_run, length += sign * step_length;
     h += step;
     if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
-    // A step that moves n by less than 1e-12 turns the exit direction by < 1e-10 rad.
-    if (std::abs(step * dn) < 1e-12) break;
+    // Converged once the step turns the exit direction by a hundredth of the pixel's stray or
+    // less: a height change dh turns it by cos e dn dh / (n sin e) (Bouguer's invariant). Newton
+    // converges quadratically, so what the next step would add is far smaller still. Without a
+    // pixel (spread 0): once the step moves n by less than 1e-12 (< 1e-10 rad).
+    const double cos_h = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
+    if (std::abs(step * dn) * cos_h < std::max(1e-12, 1e-2 * options_.sagitta_pixels * spread * n * sin_h)) break;
   }
   const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
@@ -494,7 +500,7 @@ std::optional<PlaneState> Caster::plane_escape(const RayNode<double>& node, doub
 }
 
 std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length,
-                                             double spread, bool secondary) const {
+                                             double spread, bool secondary, double s0) const {
   // sin e >= 0.01 (0.57 deg) at every height among the objects: the ray cannot turn there, and
   // the stretches' error estimate splits them where 1/sin e varies too fast for 8 points.
   constexpr double kMinSine = 0.01;
@@ -534,7 +540,7 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
     if (!branch.at(h + up * step, kMinSine, &n, &dn, &sin_b)) return std::nullopt;
     if (!branch.integrate(h, sin_e, h + up * step, sin_b, kMinSine, &stretch)) return std::nullopt;
     const double chord = std::hypot(stretch.run, step);
-    const double tolerance = std::max(options_.sagitta, per_metre * s);
+    const double tolerance = std::max(options_.sagitta, per_metre * (s0 + s));
     const bool straight = stretch.error <= 0.1 * tolerance && 0.25 * chord * stretch.turning <= tolerance &&
                           chord <= options_.chord;
     if (!straight && step > 1e-6) {
@@ -561,7 +567,8 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
     step *= 4.0;
     // Past the air that bends it (a hot road's few metres): the rest is one line.
     if (secondary &&
-        straight_rest(a, end.direction, s, max_length - s, std::min(scene_.lowest(), origin.y()) - 1.0, spread, &end)) {
+        straight_rest(a, end.direction, s, max_length - s, std::min(scene_.lowest(), origin.y()) - 1.0, spread, &end,
+                      s0)) {
       return end;
     }
   }
@@ -576,7 +583,7 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
 }
 
 PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,
-                            bool secondary) const {
+                            bool secondary, double s0) const {
   PathEnd end;
   end.direction = dir;
   // A rising ray above every object that cannot turn never comes back: the invariant gives the
@@ -590,20 +597,20 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   const IndexField& air = legs_ ? *layered_ : *field_;  // legs outside the regions: the layered part
   TraceOptions trace_options = curved_trace_options(scene_, air, origin, options_, max_length);
   // Air that cannot bend the rest of the path off a straight line by its tolerance: one line.
-  if (secondary && straight_rest(origin, dir, 0.0, max_length, *trace_options.stop_height, spread, &end)) return end;
+  if (secondary && straight_rest(origin, dir, 0.0, max_length, *trace_options.stop_height, spread, &end, s0)) return end;
   // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
-  if (auto monotone = cast_monotone(origin, dir, max_length, spread, secondary)) return *monotone;
+  if (auto monotone = cast_monotone(origin, dir, max_length, spread, secondary, s0)) return *monotone;
   // Through local features rk45 steps at most half their scale (its error estimate cannot step over one).
   if (!legs_ && !regions_.empty()) trace_options.step = step_in_regions();
   // A pixel's ray: an error of sagitta_pixels of its footprint (spread * s) is invisible. Any
   // ray: the chords already stray up to the sagitta from the path, so the integrator need not
   // be closer to it than that.
   const double per_metre = options_.sagitta_pixels * spread;
-  trace_options.tol = std::max({trace_options.tol, per_metre * max_length, options_.sagitta});
+  trace_options.tol = std::max({trace_options.tol, per_metre * (s0 + max_length), options_.sagitta});
   double last_height = origin.y();
   try {
     trace(air, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
-      if (segment_blocked(a, b, &end, std::max(options_.sagitta, per_metre * a.s))) return false;
+      if (segment_blocked(a, b, &end, std::max(options_.sagitta, per_metre * (s0 + a.s)))) return false;
       end.direction = b.v.normalized();
       end.length = b.s;
       end.end_point = b.x;
@@ -614,7 +621,7 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
         return false;
       }
       // Risen (or run) out of the air that bends it: the rest is one line.
-      return !(secondary && straight_rest(b.x, b.v, b.s, max_length - b.s, *trace_options.stop_height, spread, &end));
+      return !(secondary && straight_rest(b.x, b.v, b.s, max_length - b.s, *trace_options.stop_height, spread, &end, s0));
     });
   } catch (const NumericalError&) {
     // A path rising above every object out of the field's modelled heights has left the air:

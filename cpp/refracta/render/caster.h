@@ -106,7 +106,14 @@ class Caster {
   // (max_length <= 0: options.max_length for curved paths, the straight limit otherwise).
   // spread > 0 [rad]: the ray stands for a pixel of that angle (camera rays): its path may stray
   // sagitta_pixels * spread * s from the exact one at arc length s (chords and rk45 tolerance).
-  PathEnd cast(const Vec3d& origin, const Vec3d& dir, double max_length = 0.0, double spread = 0.0) const;
+  // origin_width [m]: a shadow or bounce ray's cone where it starts, the width across the camera
+  // path of the pixel's footprint at the surface it leaves (SurfaceInteraction::footprint). Every
+  // ray leaving that footprint stands for the same pixel, so the path may stray sagitta_pixels of
+  // that width too: a stray of w moves a shadow's edge, or a reflection, by w on the surface, as
+  // moving the ray's origin within the footprint would (which the pixel's samples do). The cone
+  // then widens by spread per metre, as if its apex were origin_width / spread behind the origin.
+  PathEnd cast(const Vec3d& origin, const Vec3d& dir, double max_length = 0.0, double spread = 0.0,
+               double origin_width = 0.0) const;
   // Whether anything lies on the path from origin along dir within `distance` [m] of path
   // length (shadow rays toward finite lights, straight: no field bends metres-long segments
   // measurably, see render/README in the shading tests).
@@ -150,13 +157,14 @@ class Caster {
  private:
   PathEnd cast_straight(const Vec3d& origin, const Vec3d& dir, double max_length) const;
   // secondary: a shadow or bounce ray (cast without a spread of its own): the rest of its path may
-  // go on straight above the bending air (straight_rest).
+  // go on straight above the bending air (straight_rest). s0 [m]: the arc length of the ray's
+  // cone at origin (cast's origin_width / spread): its tolerance at arc length s is that at s0 + s.
   PathEnd cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,
-                      bool secondary = false) const;
+                      bool secondary = false, double s0 = 0.0) const;
   PathEnd cast_table(const Vec3d& dir) const;
   // Fields with local regions: the legs of one cast.
   PathEnd cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_length, double spread, bool from_eye,
-                       bool secondary) const;
+                       bool secondary, double s0) const;
   // The full field's path (rk45) from a state next to or inside a region, until it has been inside
   // and has left every region (handoff), hits the scene or ends (`exits`: false on the last leg).
   // s0: the path's arc length at origin (the footprint's growth from there bounds the leg's tolerance).
@@ -192,20 +200,20 @@ class Caster {
   // Height-only fields with an ior floor: a ray so steep that it cannot turn at any height it
   // can reach, cut into chords from Bouguer's invariant (bouguer_branch.h) up past every object
   // (then out of the air) or down below them; nullopt where that does not apply (trace it).
-  // spread: as cast's (the chords' tolerance grows with the arc length from origin).
+  // spread: as cast's (the chords' tolerance grows with the arc length from origin); s0: as cast_traced's.
   std::optional<PathEnd> cast_monotone(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,
-                                       bool secondary = false) const;
+                                       bool secondary = false, double s0 = 0.0) const;
   // Shadow and bounce rays through height-only fields with a gradient bound (IorFloors::gradients;
   // camera rays keep their traced paths: a horizontal silhouette grazed within the quarter pixel
   // would flip a row of pixels against the eye's table): the rest of a path at x
   // moving along v, at arc length s [m] of its cast with `remaining` [m] to go (or down to
   // `bottom` [m], the cast's stop height), as ONE straight line -- tested against the scene in
   // chords of at most options.chord -- where the bound says the air cannot bend the path off that
-  // line by more than its tolerance (caster_straight.cpp). spread: as cast's. Fills end (hit or
-  // end point, direction, length; adds its chords) and returns true; false, end untouched, where
-  // the bound does not hold or the line meets a local region.
+  // line by more than its tolerance (caster_straight.cpp). spread: as cast's; s0: as cast_traced's.
+  // Fills end (hit or end point, direction, length; adds its chords) and returns true; false, end
+  // untouched, where the bound does not hold or the line meets a local region.
   bool straight_rest(const Vec3d& x, const Vec3d& v, double s, double remaining, double bottom, double spread,
-                     PathEnd* end) const;
+                     PathEnd* end, double s0 = 0.0) const;
 
   const Scene& scene_;
   const IndexField* field_;

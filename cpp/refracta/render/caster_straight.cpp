@@ -87,7 +87,7 @@ double IorFloors::Gradients::steepest(double lo, double hi) const {
 }
 
 bool Caster::straight_rest(const Vec3d& x, const Vec3d& v, double s, double remaining, double bottom, double spread,
-                           PathEnd* end) const {
+                           PathEnd* end, double s0) const {
   if (!layered_ || !floors_ || !floors_->gradients || !(remaining > 0.0)) return false;
   const Vec3d t = v.normalized();
   // The rest of the path, or down to the stop height, where a traced path ends.
@@ -95,7 +95,7 @@ bool Caster::straight_rest(const Vec3d& x, const Vec3d& v, double s, double rema
   if (t.y() < 0.0) length = std::min(length, (x.y() - bottom) / -t.y());
   if (!(length > 0.0)) return false;
   const double per_metre = options_.sagitta_pixels * spread;  // [m per m of path], and [rad]
-  const double tolerance = std::max(options_.sagitta, per_metre * (s + length));
+  const double tolerance = std::max(options_.sagitta, per_metre * (s0 + s + length));
   const double h_end = x.y() + length * t.y();
   // The slope where the path is bounds the bend from below: where even it strays too far, no
   // look-up over the heights can make the line do (over a curved Earth the flat frame's

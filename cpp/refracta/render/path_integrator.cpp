@@ -65,7 +65,7 @@ class PathTracer : public Integrator {
     const int max_depth = options_.max_depth;
     PathEnd cast;  // the ends of later segments (the camera ray's is not copied)
     for (int passes = 0; passes < 4 * max_depth + 64; ++passes) {
-      if (passes > 0) cast = caster_.cast(o, d);
+      if (passes > 0) cast = caster_.cast(o, d, 0.0, 0.0, previous.footprint);
       const PathEnd& end = passes == 0 ? first : cast;
       travelled += end.length;
       if (kSurfaceOnly && !end.hit) break;
@@ -79,6 +79,7 @@ class PathTracer : public Integrator {
       SurfaceInteraction si = passes == 0 && first.footprint
                                   ? scene_.geometry.interaction(*end.hit, end.direction, *first.footprint)
                                   : scene_.geometry.interaction(*end.hit, end.direction, pixel_angle * travelled);
+      si.footprint = pixel_angle * travelled;
       // The air between: its in-scatter arrives, and it dims everything from the hit on. A path
       // that escapes sees the sky, which already holds the air all the way out.
       if (air_ && !kSurfaceOnly) {

@@ -23,6 +23,9 @@ struct SurfaceInteraction {
   unsigned geometry = 0, primitive = 0;
   int material = -1;                 // id in the render scene's material table
   TextureLookup texture;             // (s, t) and its footprint derivatives for image textures
+  // The width [m] across the arriving ray of the pixel's cone at p (a render's paths set it; 0:
+  // none): rays leaving p stand for that footprint (Caster::cast's origin_width).
+  double footprint = 0.0;
 
   // The geometric normal on wo's side (where the ray came from).
   Vec3d n_toward_wo() const { return front_face ? n : Vec3d(-n); }
