@@ -287,10 +287,17 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   const bool dispersive = options.spectral && caster.curved();
   // A camera ray meeting a textured surface gets its footprint from its neighbours' paths (ray
   // differentials through the air, Caster::footprint): half a sample's spacing either side.
-  // Through a thin lens the neighbours' rays leave the same lens point.
+  // Through a thin lens the neighbours' rays leave the same lens point. Only image textures read
+  // it (Material::textured): an untextured sea or hull spends no four neighbour paths on it (6 %
+  // of the cold sea's curved render).
+  auto textured = [&](unsigned geometry) {
+    const int material = scene.geometry.material(geometry);
+    return material >= 0 && size_t(material) < scene.material_count() && scene.material(material).textured();
+  };
   auto with_footprint = [&](const Caster& c, const Vec3d& origin, const Vec2d& pixel, const Vec2d& lens,
                             double spacing, PathEnd* first) {
-    if (!options.texture_filter || !options.differentials || !first->hit || !scene.geometry.has_uvs(first->hit->geometry)) {
+    if (!options.texture_filter || !options.differentials || !first->hit || !scene.geometry.has_uvs(first->hit->geometry) ||
+        !textured(first->hit->geometry)) {
       return;
     }
     const double h = 0.5 * spacing;
