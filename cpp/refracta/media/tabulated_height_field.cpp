@@ -169,17 +169,18 @@ std::shared_ptr<const IndexField> TabulatedHeightField::with_param_values(const 
 
 namespace {
 
-// Blocks of kBlock [m]: one block is 2^d equal parts (d <= kMaxBlockDepth, parts of a metre or
-// more), each part's cubic checked against the air at least every kCheckSpacing [m] along it --
-// as densely as a metre's quarter points, so no thinner feature hides than before (over ranges
-// longer than kMaxInitialIntervals metres, as densely as those intervals' quarter points: a
-// sunset's 1 500 km) -- or, where
-// the air has finer structure (a surface layer, an inversion, a knot), kFinePerBlock intervals of
-// a metre, each 2^d parts checked at their quarter points (d <= kMaxPartDepth). The smooth air
-// above a few tens of metres is then one part per 32 m, not 32 (a cubic over 32 m of the
-// standard atmosphere is off by ~32^4 (n - 1) / (384 H^4) ~ 2e-16, H its 8 km scale height): 86 km
-// of air in ~3 000 parts (200 KB) where 1 m intervals took 86 000 (5.5 MB), so a lookup finds its
-// part in cache (the cold sea's shadow rays spent half their air lookups waiting for memory).
+// Blocks of about kBlock [m] (between kMinInitialIntervals and kMaxInitialIntervals of them):
+// a block is 2^d equal parts (d <= kMaxBlockDepth), each part's cubic checked against the air at
+// its quarter points and at least every kCheckSpacing [m] along it -- as densely as a metre's
+// quarter points, so no thinner feature hides than in 1 m intervals (over ranges longer than
+// kMaxInitialIntervals metres, as densely as those intervals' quarter points: a sunset's
+// 1 500 km) -- or, where the air has finer structure (a surface layer, an inversion, a knot),
+// kFinePerBlock intervals, each 2^d parts checked at their quarter points (d <= kMaxPartDepth):
+// the table as it was before blocks. The smooth air above a few tens of metres is then one part
+// per 32 m, not 32 (a cubic over 32 m of the standard atmosphere is off by ~32^4 (n - 1) /
+// (384 H^4) ~ 2e-16, H its 8 km scale height): 86 km of air in ~3 000 parts (200 KB) where 1 m
+// intervals took 86 000 (5.5 MB), so a lookup finds its part in cache (the cold sea's shadow
+// rays spent half their air lookups waiting for memory).
 constexpr double kBlock = 32.0;
 constexpr int kFinePerBlock = 32;
 constexpr int kMaxBlockDepth = 5;
@@ -250,7 +251,8 @@ TabulatedCurvedEarth::TabulatedCurvedEarth(const CurvedEarth& air, double lo, do
   std::vector<FlatSample> nodes;
   std::vector<Table::Part> parts;
   // [from, from + length) as 2^d parts, d the least up to max_depth whose cubics hold B to the
-  // tolerance at least every kCheckSpacing and at their quarter points; false where none does.
+  // tolerance at least every check_spacing and at their quarter points; false where none does
+  // (or the parts reach kMaxParts), the last depth's parts kept.
   auto cut = [&](double from, double length, int max_depth) {
     for (int depth = 0; depth <= max_depth; ++depth) {
       const size_t pieces = size_t(1) << depth;
@@ -270,7 +272,9 @@ TabulatedCurvedEarth::TabulatedCurvedEarth(const CurvedEarth& air, double lo, do
           close = std::abs(cubic_at(parts[k].b, t) - at(double(k) + t).b) <= tolerance;
         }
       }
-      if (close || table->parts.size() + 2 * pieces > kMaxParts) return true;
+      if (close) return true;
+      // Past the cap: a block's parts stay unchecked no longer than a metre's (the fine cut's).
+      if (table->parts.size() + 2 * pieces > kMaxParts) return false;
     }
     return false;
   };

@@ -65,13 +65,15 @@ class TabulatedHeightField final : public IndexField {
 // so that the air dispersed by any scale s (DispersedField: n_s - 1 = s (n - 1)) is
 //   n'_s = A + s B,  dn'_s/dy' = A' + s B'
 // and every dispersion scale of a spectral render shares one table. The nodes: [lo, hi] cut into
-// intervals of about 32 m (at least 64 of them), each split into 2^d equal parts, d the least (at
-// most kMaxPartDepth) for which the cubic of B is within `tolerance` of the exact B at the
-// quarter points of every part and at least every 0.25 m along it. A lookup is then two multiplies
-// and two loads (the interval, then its part: one 64-byte cache line of coefficients), where the
-// base tabulated in true heights inside CurvedEarth cost a bucket scan, a cubic and an exp per
-// evaluation (53 % of the cold sea's CPU). Outside the table (or where the air cannot be
-// evaluated) the exact CurvedEarth answers.
+// blocks of about 32 m (64 to 1e5 of them), each 2^d equal parts (d <= 5) whose cubics hold B to
+// `tolerance` at their quarter points and at least every 0.25 m, or, where the air has finer
+// structure, 32 intervals of about a metre, each 2^d parts (d the least, at most kMaxPartDepth,
+// for which the cubic of B is within `tolerance` at the quarter points of every part). A lookup
+// is then two multiplies and two loads (three in a fine block: the block, its interval, then
+// the part: one 64-byte cache line of coefficients), where the base tabulated in true heights
+// inside CurvedEarth cost a bucket scan, a cubic and an exp per evaluation (53 % of the cold
+// sea's CPU); the smooth air in 32 m parts keeps the table in cache (tabulated_height_field.cpp).
+// Outside the table (or where the air cannot be evaluated) the exact CurvedEarth answers.
 class TabulatedCurvedEarth final : public CurvedEarth {
  public:
   // air's base height-only; [lo, hi] [m] flat-frame heights. Throws std::invalid_argument for an

@@ -319,6 +319,7 @@ PathEnd Caster::cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_l
     const bool last = leg + 1 >= kMaxLegs;
     // Initialised in one expression: GCC 12 reads a default-constructed PathEnd's empty optionals
     // as used uninitialised when it is assigned later (-Wuninitialized under -Werror).
+    // s0: a secondary ray's cone (cast); a traced leg's tolerance counts from its own start, as before.
     PathEnd part = last || in_regions     ? cast_in_regions(x, d, max_length - s, spread, s0 + s, !last)
                    : leg == 0 && from_eye ? cast_table(d)
                                           : cast_traced(x, d, max_length - s, spread, secondary, s0);
@@ -481,10 +482,13 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
     if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
     // Converged once the step turns the exit direction by a hundredth of the pixel's stray or
     // less: a height change dh turns it by cos e dn dh / (n sin e) (Bouguer's invariant). Newton
-    // converges quadratically, so what the next step would add is far smaller still. Without a
-    // pixel (spread 0): once the step moves n by less than 1e-12 (< 1e-10 rad).
+    // converges quadratically, so what the next step would add is far smaller still. Over a
+    // spherical Earth the step also moves the run, which turns the exit by run / R: about as much
+    // again in the flat frame's air, so the stop is at ~2e-2 of the stray. Without a pixel
+    // (spread 0): once the step's cos e dn dh is below 1e-12 (1e-9 rad at the least sin e, 1e-3).
     const double cos_h = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
-    if (std::abs(step * dn) * cos_h < std::max(1e-12, 1e-2 * options_.sagitta_pixels * spread * n * sin_h)) break;
+    const double turn_tol = 1e-2 * options_.sagitta_pixels * spread * n * sin_h;
+    if (std::abs(step * dn) * cos_h < std::max(1e-12, turn_tol)) break;
   }
   const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
@@ -597,7 +601,9 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   const IndexField& air = legs_ ? *layered_ : *field_;  // legs outside the regions: the layered part
   TraceOptions trace_options = curved_trace_options(scene_, air, origin, options_, max_length);
   // Air that cannot bend the rest of the path off a straight line by its tolerance: one line.
-  if (secondary && straight_rest(origin, dir, 0.0, max_length, *trace_options.stop_height, spread, &end, s0)) return end;
+  if (secondary && straight_rest(origin, dir, 0.0, max_length, *trace_options.stop_height, spread, &end, s0)) {
+    return end;
+  }
   // A ray too steep to turn anywhere: its chords straight from the invariant, no integration.
   if (auto monotone = cast_monotone(origin, dir, max_length, spread, secondary, s0)) return *monotone;
   // Through local features rk45 steps at most half their scale (its error estimate cannot step over one).
@@ -621,7 +627,8 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
         return false;
       }
       // Risen (or run) out of the air that bends it: the rest is one line.
-      return !(secondary && straight_rest(b.x, b.v, b.s, max_length - b.s, *trace_options.stop_height, spread, &end, s0));
+      return !(secondary &&
+               straight_rest(b.x, b.v, b.s, max_length - b.s, *trace_options.stop_height, spread, &end, s0));
     });
   } catch (const NumericalError&) {
     // A path rising above every object out of the field's modelled heights has left the air:

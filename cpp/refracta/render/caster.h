@@ -97,7 +97,8 @@ class Caster {
   // Rays cast without a spread of their own (shadow and bounce rays) stand for at least a pixel
   // of this angle [rad] (the camera's): their paths may stray sagitta_pixels * spread * s too.
   // A mirror's reflection widens a pixel's cone as the camera ray would have, never narrows it
-  // (flat or convex; s counts from the bounce, not the eye); a shadow ray toward a distant light
+  // (flat or convex; s counts from the bounce, or from origin_width / spread behind it: cast's
+  // origin_width); a shadow ray toward a distant light
   // decides a penumbra as wide as the light's disc (the sun: 9.3e-3 rad per metre from the
   // blocker), 40-4000x a quarter pixel's stray (camera pixels span 1e-5 to 1e-3 rad).
   void set_secondary_spread(double pixel_angle) { secondary_spread_ = std::max(pixel_angle, 0.0); }
@@ -106,12 +107,15 @@ class Caster {
   // (max_length <= 0: options.max_length for curved paths, the straight limit otherwise).
   // spread > 0 [rad]: the ray stands for a pixel of that angle (camera rays): its path may stray
   // sagitta_pixels * spread * s from the exact one at arc length s (chords and rk45 tolerance).
-  // origin_width [m]: a shadow or bounce ray's cone where it starts, the width across the camera
-  // path of the pixel's footprint at the surface it leaves (SurfaceInteraction::footprint). Every
-  // ray leaving that footprint stands for the same pixel, so the path may stray sagitta_pixels of
-  // that width too: a stray of w moves a shadow's edge, or a reflection, by w on the surface, as
-  // moving the ray's origin within the footprint would (which the pixel's samples do). The cone
+  // origin_width [m]: a shadow or bounce ray's cone where it starts: the pixel's footprint on the
+  // surface it leaves as the ray sees it (SurfaceInteraction::cone_width_along). Every ray leaving
+  // that footprint stands for the same pixel, so the path may stray sagitta_pixels of that width
+  // too: so far across the ray its origin, a shadow's edge or a reflection moves within a quarter
+  // of the footprint on the surface, as the pixel's own samples spread over all of it. The cone
   // then widens by spread per metre, as if its apex were origin_width / spread behind the origin.
+  // (A mirage that magnifies the surface M times makes that M quarter pixels in the image, as it
+  // does a camera ray's own stray.) The renderer gives none after a specular event: a curved
+  // mirror or a lens may narrow the cone.
   PathEnd cast(const Vec3d& origin, const Vec3d& dir, double max_length = 0.0, double spread = 0.0,
                double origin_width = 0.0) const;
   // Whether anything lies on the path from origin along dir within `distance` [m] of path

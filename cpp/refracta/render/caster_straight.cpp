@@ -7,8 +7,9 @@
 // The path leaves the straight line x(0) + l t(0) by at most
 //   |x(l) - x(0) - l t(0)|  <=  integral_0^l |t(u) - t(0)| du  <=  K l^2 / 2.
 // Where that stays within the path's tolerance over the rest of its length L -- a quarter of the
-// pixel's footprint, sagitta_pixels * spread * (s + l) at arc length s + l of the cast (shadow
-// rays: the camera's pixel, set_secondary_spread), at least options.sagitta -- the rest of the
+// pixel's footprint, sagitta_pixels * spread * (s0 + s + l) at arc length s + l of the cast (shadow
+// rays: the camera's pixel, set_secondary_spread; s0: their cone's width where they start, over
+// spread: Caster::cast's origin_width), at least options.sagitta -- the rest of the
 // path is that line: K L^2 / 2 <= tol(L) suffices for every l <= L (K l^2 / 2 - tol(l) is convex
 // and <= 0 at both ends). The heights visited are the line's, widened by the tolerance itself: a
 // path that has not yet strayed by tol stays within those heights, where K holds, so it never

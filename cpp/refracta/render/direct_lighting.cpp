@@ -331,7 +331,7 @@ Spectrum DirectLighting::arriving(size_t light, const SurfaceInteraction& si, co
   const Light& source = *scene_.lights()[light];
   if (source.is_infinite()) {
     if (caster_.curved()) {
-      const PathEnd end = caster_.cast(si.offset_toward(wi), wi, 0.0, 0.0, si.footprint);
+      const PathEnd end = caster_.cast(si.offset_toward(wi), wi, 0.0, 0.0, si.cone_width_along(wi));
       if (end.hit) return Spectrum::Zero();
       // Along the exit direction; basic radiance L / n^2 is conserved (Ament et al. 2014).
       return source.Le(end.direction, lambda) * sqr(caster_.ior(si.p) / distant_ior(si.p, end.direction));

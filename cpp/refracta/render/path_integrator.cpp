@@ -64,8 +64,12 @@ class PathTracer : public Integrator {
     int depth = 0;
     const int max_depth = options_.max_depth;
     PathEnd cast;  // the ends of later segments (the camera ray's is not copied)
+    // The width of the pixel's cone a bounce ray leaves with (Caster::cast's origin_width): the
+    // footprint as the ray sees it (SurfaceInteraction::cone_width_along); none after a specular
+    // event (a curved mirror or a lens may narrow the cone) or an interface passed straight.
+    double origin_width = 0.0;
     for (int passes = 0; passes < 4 * max_depth + 64; ++passes) {
-      if (passes > 0) cast = caster_.cast(o, d, 0.0, 0.0, previous.footprint);
+      if (passes > 0) cast = caster_.cast(o, d, 0.0, 0.0, origin_width);
       const PathEnd& end = passes == 0 ? first : cast;
       travelled += end.length;
       if (kSurfaceOnly && !end.hit) break;
@@ -79,7 +83,7 @@ class PathTracer : public Integrator {
       SurfaceInteraction si = passes == 0 && first.footprint
                                   ? scene_.geometry.interaction(*end.hit, end.direction, *first.footprint)
                                   : scene_.geometry.interaction(*end.hit, end.direction, pixel_angle * travelled);
-      si.footprint = pixel_angle * travelled;
+      si.cone_width = pixel_angle * travelled;
       // The air between: its in-scatter arrives, and it dims everything from the hit on. A path
       // that escapes sees the sky, which already holds the air all the way out.
       if (air_ && !kSurfaceOnly) {
@@ -102,6 +106,7 @@ class PathTracer : public Integrator {
         // water's lower face then took the air, not the glass, as its outside.
         if (s.false_hit) cross_interface(s, si, d, &media);
         o = si.offset_toward(d);
+        origin_width = 0.0;
         continue;
       }
       const bool smooth = s.bsdf.bsdf->has_delta_only();
@@ -127,6 +132,7 @@ class PathTracer : public Integrator {
       previous = si;
       has_previous = true;
       o = si.offset_toward(bs->wi);
+      origin_width = specular ? 0.0 : si.cone_width_along(bs->wi);
       d = bs->wi;
       // 'direct' stops once a non-specular event has taken its direct lighting; its BSDF ray
       // still finds the emitters it hits (the MIS partner of the light sample) in one more pass.

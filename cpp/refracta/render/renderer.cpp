@@ -296,8 +296,8 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   };
   auto with_footprint = [&](const Caster& c, const Vec3d& origin, const Vec2d& pixel, const Vec2d& lens,
                             double spacing, PathEnd* first) {
-    if (!options.texture_filter || !options.differentials || !first->hit || !scene.geometry.has_uvs(first->hit->geometry) ||
-        !textured(first->hit->geometry)) {
+    if (!options.texture_filter || !options.differentials || !first->hit ||
+        !scene.geometry.has_uvs(first->hit->geometry) || !textured(first->hit->geometry)) {
       return;
     }
     const double h = 0.5 * spacing;

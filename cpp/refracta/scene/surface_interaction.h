@@ -23,9 +23,32 @@ struct SurfaceInteraction {
   unsigned geometry = 0, primitive = 0;
   int material = -1;                 // id in the render scene's material table
   TextureLookup texture;             // (s, t) and its footprint derivatives for image textures
-  // The width [m] across the arriving ray of the pixel's cone at p (a render's paths set it; 0:
-  // none): rays leaving p stand for that footprint (Caster::cast's origin_width).
-  double footprint = 0.0;
+  // The width [m] across the arriving ray of the pixel's cone at p, pixel angle x path length (a
+  // render's paths set it; 0: none). Rays leaving p stand for the pixel too (Caster::cast's
+  // origin_width, cone_width_along).
+  double cone_width = 0.0;
+
+  // The pixel's footprint as a ray leaving along unit w sees it [m]: the cone (cone_width across
+  // wo) carried along wo onto the surface's plane, then projected across w, its narrowest
+  // width. A ray that strays from its path by less than that across w could have left from
+  // another point of the footprint, as the pixel's own samples do. Head-on it is cone_width; a
+  // ray leaving at grazing incidence across the footprint's short axis sees |n . w| of it; one
+  // along the long axis of a grazing view (a sea's glitter) up to cone_width again. 0 without a cone.
+  double cone_width_along(const Vec3d& w) const {
+    const double cos_o = n.dot(wo);
+    if (!(cone_width > 0.0) || !(std::abs(cos_o) > 1e-9)) return 0.0;
+    const Vec3d u1 = wo.cross(std::abs(wo.x()) < 0.9 ? Vec3d::UnitX() : Vec3d::UnitY()).normalized();
+    const Vec3d u2 = wo.cross(u1);
+    auto carried = [&](const Vec3d& u) {
+      const Vec3d on_surface = u - wo * (n.dot(u) / cos_o);
+      return Vec3d(on_surface - w * on_surface.dot(w));
+    };
+    const Vec3d c1 = carried(u1), c2 = carried(u2);
+    // The smaller singular value of [c1 c2]: the least eigenvalue of its Gram matrix, rooted.
+    const double a = c1.squaredNorm(), b = c1.dot(c2), c = c2.squaredNorm();
+    const double least = 0.5 * (a + c) - std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+    return cone_width * std::sqrt(std::max(least, 0.0));
+  }
 
   // The geometric normal on wo's side (where the ray came from).
   Vec3d n_toward_wo() const { return front_face ? n : Vec3d(-n); }
