@@ -80,10 +80,11 @@ class PathTracer : public Integrator {
         break;
       }
       // The camera ray's footprint from its differentials where the renderer gave them, else the cone.
+      const double cone_width = pixel_angle * travelled;
       SurfaceInteraction si = passes == 0 && first.footprint
                                   ? scene_.geometry.interaction(*end.hit, end.direction, *first.footprint)
-                                  : scene_.geometry.interaction(*end.hit, end.direction, pixel_angle * travelled);
-      si.cone_width = pixel_angle * travelled;
+                                  : scene_.geometry.interaction(*end.hit, end.direction, cone_width);
+      si.cone_width = cone_width;
       // The air between: its in-scatter arrives, and it dims everything from the hit on. A path
       // that escapes sees the sky, which already holds the air all the way out.
       if (air_ && !kSurfaceOnly) {

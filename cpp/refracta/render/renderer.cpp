@@ -292,7 +292,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   // of the cold sea's curved render).
   auto textured = [&](unsigned geometry) {
     const int material = scene.geometry.material(geometry);
-    return material >= 0 && size_t(material) < scene.material_count() && scene.material(material).textured();
+    return material >= 0 && scene.material(material).textured();
   };
   auto with_footprint = [&](const Caster& c, const Vec3d& origin, const Vec2d& pixel, const Vec2d& lens,
                             double spacing, PathEnd* first) {
