@@ -129,3 +129,19 @@ def test_curved_earth_tabulated_in_flat_heights_matches_it_at_every_dispersion()
 def test_tabulating_a_field_that_is_not_height_only_returns_it():
     field = refracta.CustomField(lambda p: 1.0 + 1e-4 * p[:, 0], lambda p: np.tile([1e-4, 0.0, 0.0], (len(p), 1)))
     assert _core._tabulate_heights(field, 0.0, 10.0) is field
+
+
+def test_long_chords_do_not_cut_over_a_path_that_dips_under_the_sea():
+    # Over the cold sea the rays just below the horizon come down to the sea 29 km out, where the
+    # inversion's duct would turn them up again from under it (0.45 m down at 31.5 km). A chord
+    # that reaches across that turn stays within its tolerance of the path (a quarter pixel's
+    # footprint is ~0.8 m there) yet never crosses the sea: with chords of up to 20 km, 139 of
+    # the 4 497 pixels that see the sea saw the coast behind it or the sky before chords stopped
+    # at the path's turning points. What remains are single pixels at edges (2 measured).
+    example = examples.cold_sea(160, 60)
+    common = dict(max_length=example.max_length, progress=False, aovs=["object_id"])
+    _, default = refracta.render(example.scene, example.camera, example.field, **common)
+    _, long_chords = refracta.render(example.scene, example.camera, example.field, chord=20000.0, **common)
+    sea = default["object_id"] == 0
+    assert sea.sum() > 4000
+    assert (sea & (long_chords["object_id"] != 0)).sum() <= 10

@@ -55,8 +55,16 @@ ChordPlan plan_chords(const RayPath& path, const std::function<double(double)>& 
       ++i;
       continue;
     }
+    // A chord does not reach across a node where the path turns up or down: a path that dips
+    // under a level (the sea) and rises again, or tops a level and falls again, within the
+    // tolerance would otherwise be cut over by a chord that never crosses it.
+    const double rising = nodes[i + 1].x.y() - nodes[i].x.y();
+    auto same_way = [&](size_t k) { return (nodes[k + 1].x.y() - nodes[k].x.y()) * rising > 0.0; };
     size_t j = i + 1;
-    while (j + 1 < nodes.size() && (nodes[j + 1].x - nodes[i].x).norm() <= max_chord && straight_enough(i, j + 1, tol)) ++j;
+    while (j + 1 < nodes.size() && same_way(j) && (nodes[j + 1].x - nodes[i].x).norm() <= max_chord &&
+           straight_enough(i, j + 1, tol)) {
+      ++j;
+    }
     plan.push_back({uint32_t(i), uint32_t(j), 1});
     i = j;
   }

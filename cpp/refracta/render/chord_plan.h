@@ -1,8 +1,10 @@
 // The straight chords a camera ray's walk tests against the scene, planned once per
 // ElevationTable entry instead of per pixel. Consecutive path nodes are joined into one chord
 // while every node and segment quarter point between them lies within the tolerance of it; a
-// segment that itself strays further is cut into pieces. Every pixel whose path interpolates
-// that entry (its nodes correspond one to one) walks the same plan.
+// segment that itself strays further is cut into pieces. No chord reaches across a node where the
+// path turns up or down, so a chord crosses every level the path crosses (a grazing path that dips
+// under the sea and rises again within the tolerance still meets the sea). Every pixel whose path
+// interpolates that entry (its nodes correspond one to one) walks the same plan.
 #pragma once
 
 #include "refracta/rays/ray_path.h"
