@@ -62,15 +62,20 @@ class TurbulenceSettings:
     defaults (defined once, here, with their reasons). validate() reports every bad value at once, and a
     grid too large for max_bytes. Pickles through its fields.
     """
+    __hash__: typing.ClassVar[None] = None
     @staticmethod
     def from_fields(**kwargs) -> TurbulenceSettings:
         """
         Settings with the given fields set (the rest at their defaults), validated.
         """
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
-    def __init__(self) -> None:
-        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: dict) -> None:
@@ -81,7 +86,7 @@ class TurbulenceSettings:
         """
     def validate(self) -> None:
         """
-        Raises ValueError listing every bad field.
+        Raises ValueError listing every bad field (nested options included).
         """
     @property
     def cells(self) -> int | None:
@@ -570,17 +575,22 @@ class TraceOptions:
     Options of refracta.trace_ray and trace_rays, with their defaults (defined once, here). Set any
     field by name; validate() reports every bad value at once. Pickles through its fields.
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
-    def __init__(self) -> None:
-        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
     def validate(self) -> None:
         """
-        Raises ValueError listing every bad field.
+        Raises ValueError listing every bad field (nested options included).
         """
     @property
     def ior_floor(self) -> float | None:
@@ -646,17 +656,22 @@ class ElevationTableOptions:
     (defined once, here). `trace` holds the exact traces' TraceOptions (their integrator is always
     'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
-    def __init__(self) -> None:
-        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
     def validate(self) -> None:
         """
-        Raises ValueError listing every bad field.
+        Raises ValueError listing every bad field (nested options included).
         """
     @property
     def initial_rays(self) -> int:
@@ -751,6 +766,9 @@ class ObjOptions:
     """
     How add_obj (Scene.add_obj) places an OBJ file and finds its textures.
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
     def __init__(self, **kwargs) -> None:
@@ -1090,7 +1108,13 @@ class Camera:
         ('straight', 'curved') render it. f_number or focus_distance <= 0 or NaN, or focus_distance without
         f_number (a pinhole has no focus): ValueError.
         """
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        """
+        The same view, image size, jitter and lens (what a pickle keeps: their rays are bit-identical).
+        """
     def __getstate__(self) -> tuple:
+        ...
+    def __hash__(self) -> int:
         ...
     def __init__(self, position: typing.Any, look_at: typing.Any, up: typing.Any = (0.0, 1.0, 0.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360) -> None:
         ...
@@ -1175,6 +1199,9 @@ class DisplaySettings:
     default), then the tone curve `tonemap` and the transfer curve `gamma`. validate() lists every bad
     field.
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
     def __init__(self, **kwargs) -> None:
@@ -1396,6 +1423,7 @@ class MomentShadowSettings:
     (alpha) and bias_vector (b*): None means the published value for the depth range and storage
     (published_bias, published_bias_vector).
     """
+    __hash__: typing.ClassVar[None] = None
     @staticmethod
     def published_bias(depth_range: str, storage: str) -> float:
         """
@@ -1407,6 +1435,8 @@ class MomentShadowSettings:
         """
         (0.5, 0.5, 0.5, 0.5) for unit depths, (0, 0.375, 0, 0.375) for signed ones.
         """
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
     def __init__(self, **kwargs) -> None:
@@ -1460,6 +1490,9 @@ class ShadowMapOptions:
     light): method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm_hamburger',
     'msm_hausdorff' (four moments box-filtered kernel x kernel, read through `moments`).
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
     def __init__(self, **kwargs) -> None:
@@ -1538,12 +1571,15 @@ class MboitSettings:
     variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (z_far <=
     z_near: the fragments' own range, in render_raster the frame's).
     """
+    __hash__: typing.ClassVar[None] = None
     @staticmethod
     def published_bias(basis: str, moments: typing.SupportsInt | typing.SupportsIndex, storage: str) -> float:
         """
         fp32: 5e-7 / 5e-6 / 5e-5 for 4 / 6 / 8 power moments; unorm16: 6e-5 (the Unity HDRP port),
         5e-5, 5e-4; trigonometric: 4e-4 for 2 moments, 2e-4 for 3 and 4.
         """
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
     def __init__(self, **kwargs) -> None:
@@ -1621,6 +1657,9 @@ class OitSettings:
     layers), 'peel' (the `layers` nearest), 'wboit' (McGuire & Bavoil, JCGT 2013, depth weight 'eq7' or
     'eq9') or 'mboit' (moment-based, settings in `mboit`).
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
     def __init__(self, **kwargs) -> None:
@@ -1679,6 +1718,9 @@ class RasterRenderOptions:
     nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
     validate() reports every bad value at once.
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
     def __init__(self, **kwargs) -> None:
@@ -1834,10 +1876,15 @@ class RenderOptions:
     Options of refracta.render, with their defaults (defined once, here). Set any field by name;
     validate() reports every bad value at once.
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
-    def __init__(self) -> None:
-        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: dict) -> None:
@@ -1848,7 +1895,9 @@ class RenderOptions:
         inside, non-empty; std::invalid_argument otherwise) or the whole image.
         """
     def validate(self) -> None:
-        ...
+        """
+        Raises ValueError listing every bad field (nested options included).
+        """
     @property
     def adaptive(self) -> bool:
         """
@@ -2156,17 +2205,22 @@ class SolveSettings:
     Settings of refracta.edit.solve, with their defaults (defined once, in C++'s SolveSettings). Set any
     field by name, or pass them to solve() as keywords; validate() reports every bad value at once.
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
-    def __init__(self) -> None:
-        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
     def validate(self) -> None:
         """
-        Raises ValueError listing every bad field.
+        Raises ValueError listing every bad field (nested options included).
         """
     @property
     def accept_angle(self) -> float:
@@ -2350,17 +2404,22 @@ class PairOptions:
     EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
     PairOptions). validate() reports every bad value at once.
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> dict:
         ...
-    def __init__(self) -> None:
-        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        The defaults, with any field set by keyword (then validated).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
     def validate(self) -> None:
         """
-        Raises ValueError listing every bad field.
+        Raises ValueError listing every bad field (nested options included).
         """
     @property
     def distance(self) -> str:

@@ -106,7 +106,9 @@ def write_image(
     """Write an (H, W, C) float image (C = 1..4; C = 2 and 4 carry alpha last).
 
     Float formats (.exr, .hdr, .pfm, .tif) get the linear values times the manual exposure
-    (exposure, ev100 or shutter/f_number/iso; none: unchanged, never automatic). Others (.png,
+    (exposure, ev100 or shutter/f_number/iso; none: unchanged, never automatic); display settings
+    they leave unused (tonemap, key, white, gamma, white_balance away from their defaults) raise
+    a UserWarning naming them. Others (.png,
     .jpg, ...) are encoded as to_display does -- by default automatically exposed (log-average
     to middle grey) and tone mapped by the ACES curve, see the module docstring -- and quantised to 8 bits.
     The display settings are a refracta.DisplaySettings (``display``, or its defaults) changed

@@ -112,8 +112,32 @@ def test_alpha_is_untouched_and_png_matches_to_display(tmp_path):
     refracta.io.write_image(tmp_path / "a.png", image[..., :3], tonemap="reinhard", key=0.18)
     # 8-bit PNG: half a level, plus float slack.
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "a.png"), out[..., :3], atol=0.51 / 255)
-    refracta.io.write_image(tmp_path / "a.exr", image, exposure=2.0, tonemap="reinhard", key=0.18)
-    np.testing.assert_array_equal(refracta.io.read_image(tmp_path / "a.exr"), 2.0 * image)  # EXR stays linear
+    # EXR stays linear: the manual exposure applies, the tone curve and key do not, and say so.
+    with pytest.warns(UserWarning, match="float format, written linear: tonemap, key shape only displayed"):
+        refracta.io.write_image(tmp_path / "a.exr", image, exposure=2.0, tonemap="reinhard", key=0.18)
+    np.testing.assert_array_equal(refracta.io.read_image(tmp_path / "a.exr"), 2.0 * image)
+
+
+@pytest.mark.parametrize(
+    "fields, named",
+    [
+        (dict(gamma=1.8), "gamma"),
+        (dict(gamma="linear"), "gamma"),
+        (dict(white=4.0), "white"),
+        (dict(white_balance="daylight"), "white_balance"),
+        (dict(display=refracta.DisplaySettings(tonemap="film")), "tonemap"),
+    ],
+)
+def test_a_float_file_names_each_display_setting_it_leaves_unused(tmp_path, fields, named):
+    image = np.ones((2, 2, 3), np.float32)
+    with pytest.warns(UserWarning, match=f": {named} shape only displayed"):
+        refracta.io.write_image(tmp_path / "a.exr", image, **fields)
+
+
+def test_a_float_file_with_exposure_only_or_defaults_warns_of_nothing(tmp_path):
+    image = np.ones((2, 2, 3), np.float32)
+    refracta.io.write_image(tmp_path / "a.exr", image, exposure=2.0, ev100=None)  # warnings are errors here
+    refracta.io.write_image(tmp_path / "b.exr", image, display=refracta.DisplaySettings())
 
 
 def test_bad_options_raise_value_error():

@@ -180,7 +180,19 @@ map (height, width, 2) at the pixel centres, bilinear between them. Non-physical
       .def_property_readonly("vfov", &Camera::vfov)
       .def_property_readonly("pixel_angle", &Camera::pixel_angle,
                              "The angle [rad] one pixel subtends at the image centre (vertical field of view / height).")
-      .def("__repr__", &Camera::describe);
+      .def("__repr__", &Camera::describe)
+      .def(
+          "__eq__",
+          [](const Camera& a, const py::object& other) -> py::object {
+            if (!py::isinstance<Camera>(other)) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+            return py::bool_(camera_state(a).equal(camera_state(py::cast<const Camera&>(other))));
+          },
+          "The same view, image size, jitter and lens (what a pickle keeps: their rays are bit-identical).")
+      .def("__hash__", [](const Camera& c) {  // a camera does not change: usable as a key
+        py::tuple state = camera_state(c);
+        state[6] = py::len(state[6]);  // the jitter map's size stands for it (equal cameras, equal hashes)
+        return py::hash(state);
+      });
   bind_camera_constructors(camera);
 }
 

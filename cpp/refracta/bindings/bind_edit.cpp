@@ -47,7 +47,7 @@ ProblemSpec make_spec(const std::shared_ptr<IndexField>& field, const std::vecto
 void bind_solve_settings(py::module_& m) {
   using S = SolveSettings;
   py::class_<S> cls(m, "SolveSettings", DOC(refracta, SolveSettings));
-  cls.def(py::init<>())
+  def_options_common<S>(cls, "SolveSettings")
       .def_property("backend", &backend_name, [](S& s, const std::string& v) { parse_backend(v, &s); },
                     "'ceres' (Levenberg-Marquardt, automatic derivatives) or 'nlopt:<ALGORITHM>' (any nlopt name)")
       .def_readwrite("quick_iterations", &S::quick_iterations, DOC(refracta, SolveSettings, quick_iterations))
@@ -65,33 +65,27 @@ void bind_solve_settings(py::module_& m) {
       .def_readwrite("accept_angle", &S::accept_angle, DOC(refracta, SolveSettings, accept_angle))
       .def_readwrite("pixel_tolerance", &S::pixel_tolerance, DOC(refracta, SolveSettings, pixel_tolerance))
       .def_readwrite("starts", &S::starts, DOC(refracta, SolveSettings, starts))
-      .def_readwrite("seed", &S::seed, DOC(refracta, SolveSettings, seed))
-      .def("validate", &S::validate, "Raises ValueError listing every bad field.");
+      .def_readwrite("seed", &S::seed, DOC(refracta, SolveSettings, seed));
   def_enum_property(cls, "strategy", &S::strategy, &strategy_name, &parse_strategy,
                     "'auto' (a short local solve; if not every pair is met, the global stage and local solves from "
                     "its best points) or 'local' (the back-end from the start only)");
   def_enum_property(cls, "loss", &S::loss, &loss_name, &parse_loss,
                     "ceres robust loss on each pair's squared miss: 'none', 'huber', 'soft_l1', 'cauchy', 'arctan'");
-  def_options_pickle<S>(cls);
-  def_options_repr(cls, "SolveSettings");
 }
 
 void bind_pair_options(py::module_& m) {
   using P = PairOptions;
   py::class_<P> cls(m, "PairOptions", DOC(refracta, PairOptions));
-  cls.def(py::init<>())
+  def_options_common<P>(cls, "PairOptions")
       .def_readwrite("tol", &P::tol, DOC(refracta, PairOptions, tol))
       .def_readwrite("step", &P::step, DOC(refracta, PairOptions, step))
       .def_readwrite("stop_height", &P::stop_height, DOC(refracta, PairOptions, stop_height))
       .def_readwrite("reach", &P::reach, DOC(refracta, PairOptions, reach))
-      .def_readwrite("max_steps", &P::max_steps, DOC(refracta, PairOptions, max_steps))
-      .def("validate", &P::validate, "Raises ValueError listing every bad field.");
+      .def_readwrite("max_steps", &P::max_steps, DOC(refracta, PairOptions, max_steps));
   def_enum_property(cls, "trace", &P::trace, &trace_method_name, &parse_trace_method,
                     "the ray integrator: 'rk45' (to tol) or 'rk4' (fixed step); 'stratified' has no derivatives");
   def_enum_property(cls, "distance", &P::distance, &pair_distance_name, &parse_pair_distance,
                     "'continuous' (closest approach of the continuous path) or 'vertex' (nearest integrator node)");
-  def_options_pickle<P>(cls);
-  def_options_repr(cls, "PairOptions");
 }
 
 // SolveSummary's fields: each bound read-only (typed, for the stubs), read as Python sees it and

@@ -32,6 +32,13 @@ namespace {
 // automatic), the others tone mapped and encoded for display.
 void write_display_image(const std::string& path, Image image, const DisplaySettings& settings) {
   if (is_float_format(path)) {
+    if (const auto unused = display_only_fields_set(settings); !unused.empty()) {
+      std::string names;
+      for (const std::string& name : unused) names += (names.empty() ? "" : ", ") + name;
+      const std::string message = "write_image: " + path + " is a float format, written linear: " + names +
+                                  " shape only displayed images (PNG, JPEG) and are not applied";
+      if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();
+    }
     const double c = manual_exposure(settings);
     for (float& v : image.pixels) v *= float(c);
   } else {

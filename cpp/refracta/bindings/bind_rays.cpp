@@ -114,7 +114,7 @@ void bind_ray_path(py::module_& m) {
 
 void bind_trace_options(py::module_& m) {
   py::class_<TraceOptions> options(m, "TraceOptions", DOC(refracta, TraceOptions));
-  def_enum_property(options.def(py::init<>()), "trace", &TraceOptions::trace, &trace_method_name, &parse_trace_method,
+  def_enum_property(def_options_common<TraceOptions>(options, "TraceOptions"), "trace", &TraceOptions::trace, &trace_method_name, &parse_trace_method,
                     "the integrator: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the "
                     "path), 'rk4' (fixed step `step`), or 'stratified' (height-only fields: exact paths from "
                     "n(h) cos(e) = const by quadrature to tol; `step` is the largest node spacing)")
@@ -127,22 +127,16 @@ void bind_trace_options(py::module_& m) {
       .def_readwrite("max_length", &TraceOptions::max_length, DOC(refracta, TraceOptions, max_length))
       .def_readwrite("stop_height", &TraceOptions::stop_height, DOC(refracta, TraceOptions, stop_height))
       .def_readwrite("max_steps", &TraceOptions::max_steps, DOC(refracta, TraceOptions, max_steps))
-      .def_readwrite("ior_floor", &TraceOptions::ior_floor, DOC(refracta, TraceOptions, ior_floor))
-      .def("validate", &TraceOptions::validate, "Raises ValueError listing every bad field.")
-      .def("__repr__", [](const py::object& self) { return "TraceOptions(" + options_repr(self) + ")"; });
-  def_options_pickle<TraceOptions>(options);
+      .def_readwrite("ior_floor", &TraceOptions::ior_floor, DOC(refracta, TraceOptions, ior_floor));
 
   using E = ElevationTableOptions;
   py::class_<E> table(m, "ElevationTableOptions", DOC(refracta, ElevationTableOptions));
-  table.def(py::init<>())
+  def_options_common<E>(table, "ElevationTableOptions")
       .def_readwrite("tol", &E::tol, DOC(refracta, ElevationTableOptions, tol))
       .def_readwrite("trace_tol", &E::trace_tol, DOC(refracta, ElevationTableOptions, trace_tol))
       .def_readwrite("initial_rays", &E::initial_rays, DOC(refracta, ElevationTableOptions, initial_rays))
       .def_readwrite("max_rays", &E::max_rays, DOC(refracta, ElevationTableOptions, max_rays))
-      .def_readwrite("trace", &E::trace, DOC(refracta, ElevationTableOptions, trace))
-      .def("validate", &E::validate, "Raises ValueError listing every bad field.")
-      .def("__repr__", [](const py::object& self) { return "ElevationTableOptions(" + options_repr(self) + ")"; });
-  def_options_pickle<ElevationTableOptions>(table);
+      .def_readwrite("trace", &E::trace, DOC(refracta, ElevationTableOptions, trace));
 }
 
 void bind_tracing(py::module_& m) {

@@ -34,7 +34,7 @@ static auto render_interruptibly(const std::shared_ptr<RenderScene>& scene, cons
 void bind_render(py::module_& m) {
   using O = RenderOptions;
   py::class_<O> options(m, "RenderOptions", DOC(refracta, RenderOptions));
-  options.def(py::init<>());
+  def_options_common<O>(options, "RenderOptions");
   def_enum_property(options, "method", &O::method, &render_method_name, &parse_render_method,
                     "'curved' (exact curved rays), 'straight' (no refraction) or 'raster_march' (the original "
                     "editor's method)");
@@ -80,13 +80,9 @@ void bind_render(py::module_& m) {
             o.pixel_bounds = v ? std::optional(pixel_bounds_from(*v)) : std::nullopt;
           },
           DOC(refracta, RenderOptions, pixel_bounds))
-      .def("validate", &O::validate)
       .def(
           "bounds_in", [](const O& o, int width, int height) { return corners(o.bounds_in(width, height)); },
           py::arg("width"), py::arg("height"), DOC(refracta, RenderOptions, bounds_in));
-  // Pickled as its fields by name and rebuilt through them (the defaults stay C++'s).
-  def_options_pickle<O>(options);
-  def_options_repr(options, "RenderOptions");
 
   using S = RenderStats;
   py::class_<S> stats(m, "RenderStats", DOC(refracta, RenderStats));

@@ -58,7 +58,7 @@ std::tuple<DoubleArray, DoubleArray> evaluate_points(const Source& source, const
 void bind_settings(py::module_& m) {
   using S = TurbulenceSettings;
   py::class_<S> settings(m, "TurbulenceSettings", DOC(refracta, TurbulenceSettings));
-  settings.def(py::init<>())
+  def_options_common<S>(settings, "TurbulenceSettings")
       .def_readwrite("cn2", &S::cn2, DOC(refracta, TurbulenceSettings, cn2))
       .def_readwrite("outer_scale", &S::outer_scale, DOC(refracta, TurbulenceSettings, outer_scale))
       .def_readwrite("inner_scale", &S::inner_scale, DOC(refracta, TurbulenceSettings, inner_scale))
@@ -77,12 +77,9 @@ void bind_settings(py::module_& m) {
       .def_readwrite("max_bytes", &S::max_bytes, DOC(refracta, TurbulenceSettings, max_bytes))
       .def_readwrite("yaw_deg", &S::yaw_deg, DOC(refracta, TurbulenceSettings, yaw_deg))
       .def("cell_count", &S::cell_count, DOC(refracta, TurbulenceSettings, cell_count))
-      .def("validate", &S::validate, "Raises ValueError listing every bad field.")
       .def_static(
           "from_fields", [](const py::kwargs& fields) { return options_from<TurbulenceSettings>(py::none(), fields, "Turbulence"); },
-          "Settings with the given fields set (the rest at their defaults), validated.")
-      .def("__repr__", [](const py::object& self) { return "TurbulenceSettings(" + options_repr(self) + ")"; });
-  def_options_pickle<TurbulenceSettings>(settings);
+          "Settings with the given fields set (the rest at their defaults), validated.");
 }
 
 void bind_synthesis(py::module_& m) {

@@ -80,7 +80,16 @@ Class& def_options_repr(Class& cls, const char* owner) {
                  [owner](const py::object& self) { return std::string(owner) + "(" + options_repr(self) + ")"; });
 }
 
-// What every options class has: a constructor taking fields as keywords (validated), repr,
+// ==: the same class with equal public fields (nested options compared by theirs).
+template <class Class>
+Class& def_options_eq(Class& cls) {
+  return cls.def("__eq__", [](const py::object& self, const py::object& other) -> py::object {
+    if (!py::type::of(self).is(py::type::of(other))) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+    return py::bool_(options_fields(self).equal(options_fields(other)));
+  });
+}
+
+// What every options class has: a constructor taking fields as keywords (validated), repr, ==,
 // validate() and pickling through the fields.
 template <class Options, class Class>
 Class& def_options_common(Class& cls, const char* owner) {
@@ -88,6 +97,7 @@ Class& def_options_common(Class& cls, const char* owner) {
           "The defaults, with any field set by keyword (then validated).")
       .def("validate", &Options::validate, "Raises ValueError listing every bad field (nested options included).");
   def_options_repr(cls, owner);
+  def_options_eq(cls);
   def_options_pickle<Options>(cls);
   return cls;
 }

@@ -154,6 +154,19 @@ double manual_exposure(const DisplaySettings& s) {
   return 1.0;
 }
 
+std::vector<std::string> display_only_fields_set(const DisplaySettings& s) {
+  const DisplaySettings defaults;
+  std::vector<std::string> set;
+  if (s.tonemap != defaults.tonemap) set.emplace_back("tonemap");
+  if (s.key) set.emplace_back("key");
+  if (s.white) set.emplace_back("white");
+  if (s.transfer != defaults.transfer || (s.transfer == Transfer::kGamma && s.gamma != defaults.gamma)) {
+    set.emplace_back("gamma");
+  }
+  if (s.white_balance != defaults.white_balance) set.emplace_back("white_balance");
+  return set;
+}
+
 double display_exposure(const Image& image, const DisplaySettings& s) {
   const double manual = manual_exposure(s);
   const bool is_manual = s.exposure || s.ev100 || s.shutter;

@@ -54,6 +54,7 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 namespace refracta {
 
@@ -124,6 +125,9 @@ double ev100_of(double f_number, double shutter_s, double iso = kDefaultIso);
 double exposure_of_ev100(double ev100, double luminous_efficacy = kLuminousEfficacy);
 // The manual exposure c of the settings (1 when they give none; float files use it).
 double manual_exposure(const DisplaySettings& settings);
+// The names of the fields that only shape a displayed image (tonemap, key, white, gamma,
+// white_balance) set away from their defaults: what a float file, written linear, leaves unused.
+std::vector<std::string> display_only_fields_set(const DisplaySettings& settings);
 // The exposure c the settings give this image (manual, or automatic from its log-average).
 double display_exposure(const Image& image, const DisplaySettings& settings);
 
