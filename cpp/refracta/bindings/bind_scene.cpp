@@ -56,28 +56,13 @@ Mesh mesh_from(const py::object& vertices, const py::object& triangles, const py
   return mesh;
 }
 
-// refracta.TextureNotFoundError: both a refracta.IoError (what every missing file raises) and a
-// FileNotFoundError. Kept for the life of the process, as pybind11's exceptions.
-PyObject* texture_not_found_error = nullptr;
-
+// refracta.TextureNotFoundError: both a refracta.IoError (what every missing file raises, bound
+// in bind_core) and a FileNotFoundError.
 void register_texture_not_found(py::module_& m) {
-  if (!texture_not_found_error) {
-    py::tuple bases = py::make_tuple(m.attr("IoError"), py::handle(PyExc_FileNotFoundError));  // IoError: bind_core
-    texture_not_found_error = PyErr_NewExceptionWithDoc(
-        "refracta._core.TextureNotFoundError",
-        "A texture an MTL file names is in none of the folders searched (a refracta.IoError and a FileNotFoundError).",
-        bases.ptr(), nullptr);
-    if (!texture_not_found_error) throw py::error_already_set();
-    // By value: pybind11's translator type is void (*)(std::exception_ptr).
-    py::register_exception_translator([](std::exception_ptr error) {  // NOLINT(performance-unnecessary-value-param)
-      try {
-        if (error) std::rethrow_exception(error);
-      } catch (const TextureNotFound& e) {
-        PyErr_SetString(texture_not_found_error, e.what());
-      }
-    });
-  }
-  m.attr("TextureNotFoundError") = py::handle(texture_not_found_error);
+  auto& error = py::register_exception<TextureNotFound>(
+      m, "TextureNotFoundError", py::make_tuple(m.attr("IoError"), py::handle(PyExc_FileNotFoundError)));
+  error.attr("__doc__") =
+      "A texture an MTL file names is in none of the folders searched (a refracta.IoError and a FileNotFoundError).";
 }
 
 // Folders given as one path or a sequence of paths (str or os.PathLike).
