@@ -153,6 +153,42 @@ def test_hidden_height_in_a_standard_atmosphere_against_a_traced_grazing_ray():
     np.testing.assert_allclose(out["hidden_height"][rows, 0, 1], traced, atol=5e-4)
 
 
+def test_hidden_height_over_a_hot_surface_layer_against_a_bisected_grazing_ray():
+    """Over a hot road the grazing ray turns within millimetres of the ground, where each exact
+    trace is slow (a readout of any image took half a minute when the search went to 1e-14 rad at
+    1e-7 m). Found here by our own bisection to 1e-11 rad on traces ten times finer than the
+    render's, its true height at the target is the hidden height."""
+    d, eye = 3000.0, 1.4
+    field = refracta.CurvedEarth(refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1), R)
+    camera = refracta.Camera((0.0, eye, 0.0), (d, eye, 0.0), (0, 1, 0), 0.5, 1, 30)
+    max_length = 1.5 * d
+    _, out = refracta.render(
+        _hidden_scene(d), camera, field, aovs=["hidden_height", "object_id"], progress=False, max_length=max_length
+    )
+
+    def path(e):
+        direction = (np.cos(e), np.sin(e), 0.0)
+        return refracta.trace_ray(
+            field, (0.0, eye, 0.0), direction, trace="stratified", tol=1e-5, max_length=max_length, stop_height=0.0
+        )
+
+    lo, hi = -0.01, 0.0  # meets the ground / passes over it
+    assert path(lo).stop == "stop_height" and path(hi).stop != "stop_height"
+    while hi - lo > 1e-11:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if path(mid).stop == "stop_height" else (lo, mid)
+    points = path(hi).points
+    traced = R * np.expm1(np.interp(d, points[:, 0], points[:, 1]) / R)
+    # It comes down at |e| to turn on the road ~eye/|e| out and leaves it at about the same angle.
+    mirrored = abs(hi) * d - 2 * eye
+    assert abs(traced - mirrored) < 0.2 * mirrored
+    rows = _face_rows(out)
+    assert rows.size > 5
+    # The render traces to 1e-4 m, this to 1e-5 m; float32 (1e-7 m here); the path's nodes
+    # interpolated linearly (the grazing ray's curvature over a node spacing: well under 1e-4 m).
+    np.testing.assert_allclose(out["hidden_height"][rows, 0, 1], traced, atol=3e-4)
+
+
 def _traced_images(field, eye, elevations, face_x, heights, max_length):
     """How many rays of a fine fan (these elevations [deg], in the x-y plane) cross the plane
     x = face_x at each height: the number of images of that point, counted by tracing alone."""

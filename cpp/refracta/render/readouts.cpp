@@ -16,10 +16,17 @@ constexpr double kDegrees = 180.0 / kPi;
 // A ray from `eye` at elevation e [rad] (its azimuth does not matter in height-only air).
 Vec3d at_elevation(double e) { return Vec3d(std::cos(e), std::sin(e), 0.0); }
 
-TraceOptions grazing_options(double max_length) {
+// The grazing ray's elevation is bisected to this [rad]: it moves the ray's heights by ~1e-6 m
+// at 100 km (the hidden height is read to centimetres). Finer, the rays tried touch the ground
+// within nanometres, and over a hot surface layer each exact trace of such a ray took ~1 s (half
+// a minute for a readout of any image before this bound).
+constexpr double kGrazingElevation = 1e-11;
+
+TraceOptions grazing_options(double max_length, const std::atomic<bool>* cancel) {
   TraceOptions options;
+  options.cancel = cancel;
   options.trace = TraceMethod::kStratified;
-  options.tol = 1e-7;  // [m]: far below the centimetres a hidden height is read to
+  options.tol = 1e-4;  // [m]: far below the centimetres a hidden height is read to
   options.max_length = max_length;
   options.stop_height = 0.0;  // the ground: a ray descending through it has met it
   return options;
@@ -40,7 +47,9 @@ Vec2d apparent_angles(const Vec3d& direction) {
   return Vec2d(std::asin(std::clamp(d.y(), -1.0, 1.0)) * kDegrees, azimuth);
 }
 
-ReadoutGeometry::ReadoutGeometry(const Vec3d& eye, const IndexField* field, double max_length) : eye_(eye) {
+ReadoutGeometry::ReadoutGeometry(const Vec3d& eye, const IndexField* field, double max_length,
+                                 const std::atomic<bool>* cancel)
+    : eye_(eye) {
   if (field) radius_ = field->earth_radius();
   std::shared_ptr<const IndexField> layered;
   const IndexField* air = nullptr;
@@ -51,7 +60,7 @@ ReadoutGeometry::ReadoutGeometry(const Vec3d& eye, const IndexField* field, doub
     air = layered.get();
   }
   if (!air || !(eye.y() > 0.0)) return;
-  const TraceOptions options = grazing_options(max_length);
+  const TraceOptions options = grazing_options(max_length, cancel);
   auto meets_ground = [&](double e) {
     return trace(*air, eye, at_elevation(e), options, [](const RayNode<double>&, const RayNode<double>&) {
              return true;
@@ -65,7 +74,7 @@ ReadoutGeometry::ReadoutGeometry(const Vec3d& eye, const IndexField* field, doub
     if (!meets_ground(hi)) break;
     if (up > 0.5 * kPi - 1e-6) return;  // every ray meets the ground: no grazing ray
   }
-  for (int i = 0; i < 200 && hi - lo > 1e-14; ++i) {
+  while (hi - lo > kGrazingElevation) {
     const double mid = 0.5 * (lo + hi);
     (meets_ground(mid) ? lo : hi) = mid;
   }

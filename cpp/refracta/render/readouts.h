@@ -15,6 +15,7 @@
 #include "refracta/core/sampling.h"
 #include "refracta/media/index_field.h"
 
+#include <atomic>
 #include <limits>
 #include <string>
 #include <utility>
@@ -51,9 +52,11 @@ class ReadoutGeometry {
  public:
   // eye: the camera position (scene frame); field: the render's air (null: none), its
   // earth_radius() the sphere's radius (infinite: a flat Earth); max_length [m]: how far the
-  // grazing ray is traced. Traces the grazing ray once (height-only air, or the field's height-only
-  // part; none: the refracted hidden height is the geometric one).
-  ReadoutGeometry(const Vec3d& eye, const IndexField* field, double max_length);
+  // grazing ray is traced; cancel: polled by its traces (Ctrl-C), or none. Traces the grazing ray
+  // once (height-only air, or the field's height-only part; none: the refracted hidden height is
+  // the geometric one).
+  ReadoutGeometry(const Vec3d& eye, const IndexField* field, double max_length,
+                  const std::atomic<bool>* cancel = nullptr);
 
   // Elevation [deg] of `point` seen from the eye along the straight line in the true geometry:
   // over a sphere both points are mapped from the flat frame back onto it (azimuthal equidistant
@@ -67,7 +70,8 @@ class ReadoutGeometry {
   double hidden_geometric(const Vec3d& point) const;
   // With refraction: the true height on that vertical of the grazing ray, the lowest ray from the
   // eye that stays above the ground (y' = 0) for max_length of path (found by bisection on its
-  // elevation, traced exactly by the stratified integrator); 0 up to where it touches the ground;
+  // elevation to 1e-11 rad, traced exactly by the stratified integrator); 0 up to where
+  // it touches the ground;
   // NaN beyond its reach, with the eye at or below the ground, or where every ray from the eye
   // meets the ground (a duct).
   double hidden_refracted(const Vec3d& point) const;

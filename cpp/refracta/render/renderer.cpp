@@ -373,7 +373,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   Image image;
   int64_t samples = 0;
   if (options.readouts) {
-    const ReadoutGeometry geometry(camera.position(), exact_field.get(), options.max_length);
+    const ReadoutGeometry geometry(camera.position(), exact_field.get(), options.max_length, &control.cancel);
     image = render_film<FilmLayout::kReadouts>(camera, options, control, sample, &samples, &geometry, wavelengths);
   } else if (options.surface_aovs) {
     image = render_film<FilmLayout::kSurface>(camera, options, control, sample, &samples, nullptr, wavelengths);
