@@ -258,15 +258,30 @@ def load(path) -> Photo:
     )
 
 
-def _as_display(image, linear: bool) -> np.ndarray:
+def _as_display(image, linear: bool, what: str = "image") -> np.ndarray:
     """float32 (H, W, 3) display values of an image: linear ones through refracta.io.to_display,
-    display ones as they are (grey repeated, alpha dropped)."""
-    image = np.asarray(image, dtype=np.float32)
+    display ones as they are (grey repeated, alpha dropped). ValueError naming `what` for a path,
+    non-numbers, a bad shape, NaN or inf, and display values outside [0, 1]."""
+    if isinstance(image, (str, os.PathLike)):
+        raise ValueError(
+            f"{what} must be an image array (got the path {os.fspath(image)!r}: read it with refracta.photo.load)"
+        )
+    try:
+        image = np.asarray(image, dtype=np.float32)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what} must be an array of numbers (got {type(image).__name__})") from None
     if image.ndim == 2:
         image = image[..., None]
     if image.ndim != 3 or image.shape[2] not in (1, 2, 3, 4):
-        raise ValueError(f"an image must be (H, W) or (H, W, C) with C = 1..4 (got shape {image.shape})")
-    shown = _io.to_display(image) if linear else np.clip(image, 0.0, 1.0)
+        raise ValueError(f"{what} must be (H, W) or (H, W, C) with C = 1..4 (got shape {image.shape})")
+    if not np.isfinite(image).all():
+        raise ValueError(f"{what} holds NaN or inf")
+    if not linear and image.size and not (image.min() >= 0.0 and image.max() <= 1.0):
+        raise ValueError(
+            f"{what} holds display values, which must be in [0, 1] (got {image.min():g} to {image.max():g}; "
+            "8-bit values: divide by 255)"
+        )
+    shown = _io.to_display(image) if linear else image
     shown = shown[..., :3] if shown.shape[2] >= 3 else np.repeat(shown[..., :1], 3, axis=2)
     return np.ascontiguousarray(shown, dtype=np.float32)
 
@@ -396,15 +411,21 @@ def overlay(
         render, given = render
         aovs = {**given, **(aovs or {})}
     aovs = dict(aovs or {})
+    for name, value in (("alpha", alpha), ("threshold", threshold)):
+        if isinstance(value, (bool, str)) or not isinstance(value, (int, float, np.floating, np.integer)):
+            raise ValueError(f"{name} must be a number (got {value!r})")
     if not (0.0 <= float(alpha) <= 1.0):
         raise ValueError(f"alpha must be in [0, 1] (got {alpha!r})")
     if not (float(threshold) > 0.0 and math.isfinite(float(threshold))):
         raise ValueError(f"threshold must be > 0 and finite (got {threshold!r})")
-    rgb = np.asarray(color, dtype=np.float32)
-    if rgb.shape != (3,) or not np.all((rgb >= 0.0) & (rgb <= 1.0)):
+    try:
+        rgb = np.asarray(color, dtype=np.float32)
+    except (TypeError, ValueError):
+        rgb = np.zeros(0, np.float32)  # named below
+    if isinstance(color, str) or rgb.shape != (3,) or not np.all((rgb >= 0.0) & (rgb <= 1.0)):
         raise ValueError(f"color must be 3 values in [0, 1] (got {color!r})")
-    base = photo.display() if isinstance(photo, Photo) else _as_display(photo, linear=False)
-    shown = _as_display(render, linear=True if linear is None else bool(linear))
+    base = photo.display() if isinstance(photo, Photo) else _as_display(photo, linear=False, what="photo")
+    shown = _as_display(render, linear=True if linear is None else bool(linear), what="render")
     if shown.shape[:2] != base.shape[:2]:
         raise ValueError(
             f"the render is {shown.shape[1]}x{shown.shape[0]} pixels but the photograph "

@@ -83,6 +83,30 @@ def test_bad_input_is_refused():
         photo.overlay(picture, render, alpha=2.0)
 
 
+@pytest.mark.parametrize(
+    "change, match",
+    [
+        (dict(picture=np.nan), "photo holds NaN or inf"),  # was an all-NaN image without an error
+        (dict(picture=200.0), r"photo holds display values, which must be in \[0, 1\] \(got 200 to 200; 8-bit"),
+        (dict(picture="photo.png"), "photo must be an image array \\(got the path 'photo.png'"),
+        (dict(render=np.inf), "render holds NaN or inf"),
+        (dict(color="red"), "color must be 3 values"),
+        (dict(alpha="0.5"), "alpha must be a number"),
+        (dict(threshold=True), "threshold must be a number"),
+    ],
+)
+def test_bad_pictures_and_options_are_named(change, match):
+    picture, render, _, _ = _pair()
+    options = {k: v for k, v in change.items() if k not in ("picture", "render")}
+    if "picture" in change:
+        value = change["picture"]
+        picture = value if isinstance(value, str) else np.full_like(picture, value)
+    if "render" in change:
+        render = np.full_like(render, change["render"])
+    with pytest.raises(ValueError, match=match):
+        photo.overlay(picture, render, **options)
+
+
 def test_edges_of_a_rendered_box_land_on_its_projection():
     """A real render with readouts: a 2 m cube whose front face, 20 m from the eye, spans exactly
     8 x 8 pixels of 0.25 m (tan(vfov / 2) = 0.2 over 32 rows), its edges on pixel boundaries, so
