@@ -96,7 +96,10 @@ class Elevation:
         else:
             import pyproj
 
-            to_lonlat = pyproj.Transformer.from_crs(self.epsg, _EPSG_WGS84, always_xy=True)
+            try:
+                to_lonlat = pyproj.Transformer.from_crs(self.epsg, _EPSG_WGS84, always_xy=True)
+            except pyproj.exceptions.CRSError:
+                raise ValueError(f"elevation grid: EPSG:{self.epsg} is not a coordinate system pyproj knows") from None
             lon, lat = to_lonlat.transform(x, y, errcheck=True)
         lat, lon = np.asarray(lat, dtype=np.float64), np.asarray(lon, dtype=np.float64)
         if not (np.all(np.abs(lat) <= 90.0)):
@@ -157,12 +160,20 @@ def _read_geotiff(path: str) -> Elevation:
             f"add_terrain: {path!r}: its compression cannot be decoded here ({error!r}); "
             "compressed GeoTIFFs are read through the imagecodecs package"
         ) from None
+    except Exception as error:  # a truncated or corrupt file fails inside tifffile in many ways
+        raise ValueError(
+            f"add_terrain: {path!r} is not a readable TIFF file ({type(error).__name__}: {error})"
+        ) from None
     if data.ndim == 3 and data.shape[-1] == 1:
         data = data[..., 0]
     if data.ndim != 2 or not (np.issubdtype(data.dtype, np.integer) or np.issubdtype(data.dtype, np.floating)):
         raise ValueError(
             f"add_terrain: {path!r} is not elevation data: a single band of numbers is needed "
             f"(got shape {data.shape}, dtype {data.dtype})"
+        )
+    if data.shape[0] < 2 or data.shape[1] < 2:
+        raise ValueError(
+            f"add_terrain: {path!r}: {data.shape[0]} x {data.shape[1]} samples; a grid needs 2 x 2 or more"
         )
     if _TAG_TRANSFORM in tags:
         raise ValueError(f"add_terrain: {path!r}: a rotated or sheared grid (ModelTransformation) is not supported")
@@ -186,7 +197,23 @@ def _read_geotiff(path: str) -> Elevation:
         raise ValueError(f"add_terrain: {path!r}: pixel scale ({sx}, {sy}) must be > 0 and the tiepoint finite")
     # Pixel-is-area: the tiepoint is a pixel's corner and the sample lies at its centre.
     centre = 0.0 if keys.get(_KEY_RASTER_TYPE) == _RASTER_PIXEL_IS_POINT else 0.5
+    # The smallest spacing a grid may have: 0.1 mm (1e-9 deg of latitude); below it, samples fall
+    # on one point in the scene's single-precision geometry.
+    smallest = 1e-9 if epsg == _EPSG_WGS84 else 1e-4
+    if sx < smallest or sy < smallest:
+        raise ValueError(f"add_terrain: {path!r}: pixel scale ({sx}, {sy}) is below {smallest}: samples would coincide")
+    if epsg == _EPSG_WGS84 and (data.shape[1] - 1) * sx > 360.0:
+        raise ValueError(
+            f"add_terrain: {path!r}: {data.shape[1]} columns of {sx} deg span {(data.shape[1] - 1) * sx} deg "
+            "of longitude (at most 360)"
+        )
     heights = data.astype(np.float64)
+    if np.isinf(heights).any():
+        r, c = np.argwhere(np.isinf(heights))[0]
+        raise ValueError(
+            f"add_terrain: {path!r}: sample (row {r}, column {c}) is {heights[r, c]}; heights must be finite "
+            "(voids: NaN or the GDAL_NODATA value)"
+        )
     nodata = tags.get(_TAG_NODATA)
     if nodata is not None:
         try:
@@ -250,10 +277,16 @@ def _read_geotiff_frame(path: str) -> Elevation:
     import tifffile
 
     _missing(path)
-    with tifffile.TiffFile(path) as tif:
-        page = tif.pages.first
-        tags = {tag.code: tag.value for tag in page.tags.values()}
-        shape = page.shape
+    try:
+        with tifffile.TiffFile(path) as tif:
+            page = tif.pages.first
+            tags = {tag.code: tag.value for tag in page.tags.values()}
+            shape = page.shape
+    except Exception as error:  # not a TIFF, or a corrupt one
+        raise ValueError(
+            f"add_terrain: orthophoto {path!r} is not a readable GeoTIFF ({type(error).__name__}: {error}); "
+            "an orthophoto placed by a georeferenced terrain must be a GeoTIFF"
+        ) from None
     if _TAG_PIXEL_SCALE not in tags or _TAG_TIEPOINT not in tags or 34735 not in tags:
         raise ValueError(f"add_terrain: orthophoto {path!r} has no georeference (a GeoTIFF is needed)")
     keys = _geokeys(tags[34735])

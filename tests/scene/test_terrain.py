@@ -351,6 +351,43 @@ def test_bad_input_raises_clear_errors(tmp_path):
     assert scene.geometry_count == 0
 
 
+def test_broken_and_implausible_geotiffs_are_refused_naming_the_file(tmp_path):
+    """A new-user trial's files: each gave an error from a library underneath, or was accepted."""
+    scene, frame = refracta.Scene(), geo.LocalFrame(46, 7)
+    grid = np.linspace(0.0, 100.0, 12).reshape(3, 4).astype(np.float32)
+    good = write_geotiff(tmp_path / "good.tif", grid, (7.0, 46.0), (0.001, 0.001))
+    garbled = tmp_path / "garbled.tif"
+    garbled.write_bytes(b"II*\x00garbage" * 10)  # a TIFF header, then nothing a TIFF reader can follow
+    with pytest.raises(ValueError, match=r"'.*garbled.tif' is not a readable TIFF file"):  # was IndexError: 0
+        scene.add_terrain(garbled, frame=frame)
+    truncated = tmp_path / "truncated.tif"
+    truncated.write_bytes(good.read_bytes()[:64])
+    with pytest.raises(ValueError, match=r"'.*truncated.tif' is not a TIFF file \(corrupted"):
+        scene.add_terrain(truncated, frame=frame)
+    row = write_geotiff(tmp_path / "row.tif", grid[:1], (7.0, 46.0), (0.001, 0.001))
+    with pytest.raises(ValueError, match="1 x 4 samples; a grid needs 2 x 2"):  # was ZeroDivisionError
+        scene.add_terrain(row, frame=frame)
+    hole = grid.copy()
+    hole[1, 2] = np.inf
+    infinite = write_geotiff(tmp_path / "inf.tif", hole, (7.0, 46.0), (0.001, 0.001))
+    with pytest.raises(ValueError, match=r"inf.tif': sample \(row 1, column 2\) is inf"):
+        scene.add_terrain(infinite, frame=frame)
+    wide = write_geotiff(tmp_path / "wide.tif", grid, (7.0, 46.0), (150.0, 0.001))
+    with pytest.raises(ValueError, match="span 450.0 deg of longitude"):
+        scene.add_terrain(wide, frame=frame)
+    tiny = write_geotiff(tmp_path / "tiny.tif", grid, (7.0, 46.0), (1e-300, 1e-300))
+    with pytest.raises(ValueError, match="samples would coincide"):
+        scene.add_terrain(tiny, frame=frame)
+    unknown = write_geotiff(tmp_path / "crs.tif", grid, (400000.0, 5150000.0), (100.0, 100.0), model=1, epsg=12345)
+    with pytest.raises(ValueError, match="EPSG:12345 is not a coordinate system pyproj knows"):
+        scene.add_terrain(unknown, frame=frame)
+    png = tmp_path / "photo.png"
+    refracta.io.write_image(png, np.full((4, 4, 3), 0.5, np.float32), exposure=1.0)
+    with pytest.raises(ValueError, match="orthophoto '.*photo.png' is not a readable GeoTIFF"):
+        scene.add_terrain(good, frame=frame, orthophoto=png)
+    assert scene.geometry_count == 0
+
+
 def test_a_terrain_scene_pickles_with_its_holes():
     import pickle
 
