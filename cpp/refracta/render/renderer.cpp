@@ -61,7 +61,13 @@ void RenderOptions::validate() const {
   Problems problems("RenderOptions");
   if (spp < 1) problems.add("spp must be >= 1 (got ", spp, ")");
   if (!(max_length > 0.0) || !std::isfinite(max_length)) problems.add("max_length must be > 0 and finite (got ", max_length, ")");
-  if (!(chord > 0.0) || !std::isfinite(chord)) problems.add("chord must be > 0 (got ", chord, ")");
+  if (!(chord > 0.0) || !std::isfinite(chord)) {
+    problems.add("chord must be > 0 (got ", chord, ")");
+  } else if (const int64_t most = TraceOptions().max_steps; max_length / chord > double(most)) {
+    // chord is also the curved traces' largest node spacing (curved_trace_options)
+    problems.add("chord must be >= max_length / ", most, " = ", max_length / double(most),
+                 " m: the curved traces' nodes are at most chord apart (got ", chord, ")");
+  }
   if (!(sagitta >= kSmallestSagitta) || !std::isfinite(sagitta)) {
     problems.add("sagitta must be >= ", kSmallestSagitta, " m and finite (got ", sagitta, ")");
   }
