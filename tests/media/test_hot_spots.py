@@ -195,3 +195,27 @@ def test_bad_spot_parameters_and_arguments_are_refused():
         refracta.LogisticProfile(hot_spots=[refracta.HotSpot(0, 0, 1, 1, depth=0.2)])
     with pytest.raises(ValueError, match="takes no hot_spots"):
         refracta.LinearSquaredProfile(hot_spots=[refracta.HotSpot(0, 0, 1, 1)])
+
+
+@pytest.mark.parametrize(
+    "make, match",
+    [
+        # n - 1 was -7e-7 (n < 1) at 1e6 K: Edlen's density factor turns negative above ~1e5 K.
+        (
+            lambda: refracta.PhysicalAtmosphere(surface_dt=1e6),
+            r"temperature is 2000294.6\d* K .* must stay in \(0, 10000\] K",
+        ),
+        (lambda: refracta.PhysicalAtmosphere(t_ground=-400.0), r"must stay in \(0, 10000\] K"),
+        (
+            lambda: refracta.PhysicalAtmosphere(hot_spots=[refracta.HotSpot(10, 0, 5, 1e6)]),
+            r"hot_spot0_dt must be in \[-150, 500\] K",
+        ),
+        (
+            lambda: refracta.PhysicalAtmosphere(hot_spots=[refracta.HotSpot(10, 0, 5, -600.0)]),
+            "hot_spot0_dt must be in",
+        ),
+    ],
+)
+def test_air_too_hot_or_cold_for_the_index_formula_is_refused(make, match):
+    with pytest.raises(ValueError, match=match):
+        make()
