@@ -3747,4 +3747,5 @@ EDIT_CAMERA_PARAMETERS: tuple = ('camera_yaw', 'camera_pitch', 'camera_roll', 'c
 INNER_SCALE_FACTOR: float = 5.92
 SPECTRUM_CONSTANT: float = 0.03300539063636137
 _READOUT_CHANNELS: dict = {'distance': (9, 1), 'position': (10, 3), 'object_id': (13, 1), 'apparent_elevation': (14, 1), 'apparent_azimuth': (15, 1), 'true_elevation': (16, 1), 'hidden_height': (17, 2)}
+_SCENE_REACH: float = 10000000.0
 _stop_names: tuple = ('max_length', 'stop_height', 'stopped')

@@ -133,6 +133,19 @@ def _flattening(earth_radius) -> tuple[float, Any]:
     return radius, _core.CurvedEarth(_core.PhysicalAtmosphere(), radius)
 
 
+def _within_reach(points: np.ndarray, name: str) -> None:
+    """ValueError naming `name` for scene points beyond the scene's reach: coordinates end 1e7 m
+    from the origin (single-precision geometry), half way to the antipode, where the azimuthal
+    equidistant projection folds back on itself."""
+    reach = float(_core._SCENE_REACH)
+    far = np.hypot(points[..., 0], points[..., 2])
+    if np.any(far > reach):
+        raise ValueError(
+            f"{name}: {float(np.max(far)):.4g} m from the frame's origin, beyond the scene's reach of {reach:g} m "
+            "(put the frame's origin nearer)"
+        )
+
+
 class LocalFrame:
     """The scene frame around an observer at (lat, lon) on WGS84 (see the module's conventions).
 
@@ -206,6 +219,7 @@ class LocalFrame:
         p = _checked(points, "points")
         if p.ndim == 0 or p.shape[-1] != 3:
             raise ValueError(f"points must have shape (..., 3) (got {p.shape})")
+        _within_reach(p, "points")
         lon, lat = self._to_lonlat.transform(p[..., 0], -p[..., 2], errcheck=True)
         return _scalar_or_array(np.asarray(lat)), _scalar_or_array(np.asarray(lon)), self.true_height(p[..., 1])
 
@@ -275,6 +289,7 @@ class LocalFrame:
             if len(position) != 2:
                 raise ValueError(f"position must be (lat, lon) (got {position!r})")
             eye = self.to_scene(position[0], position[1], height)
+            _within_reach(eye, "position")
             a = self._frame_azimuth(float(position[0]), float(position[1]), a)
         forward_ = self.direction(a, e)
         # The unrolled camera's up: the view direction turned 90 deg up in its vertical plane.

@@ -105,3 +105,9 @@ def test_bad_points_are_value_errors():
         geo.LocalFrame(47.0, 8.0, earth_radius=-1.0)
     with pytest.raises(ValueError, match="height"):  # below the Earth's centre: no flat height
         frame.to_scene(47.0, 8.0, -2e7)
+    # 1e9 m east gave a point past the antipode; scene coordinates end at 1e7 m (single precision).
+    with pytest.raises(ValueError, match=r"points: 1e\+09 m from the frame's origin, beyond the scene's reach"):
+        frame.to_geographic([1e9, 0.0, 0.0])
+    # The antipode: the eye was put 2e7 m away, where rays are refused only when rendering.
+    with pytest.raises(ValueError, match="position: 2e\\+07 m from the frame's origin"):
+        frame.camera(2.0, 0.0, 0.0, vfov=10.0, position=(-47.0, -172.0))

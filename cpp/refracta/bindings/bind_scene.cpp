@@ -296,6 +296,7 @@ shorthand kd (diffuse albedo, RGB in [0, 1]), ks (specular albedo), ns (Phong ex
 Meshes and spheres with emission= [W/(m^2 sr), RGB] are area lights (one-sided on the triangles'
 counter-clockwise front unless two_sided). Units: metres, y up.)doc");
   scene.def(py::init<>());
+  m.attr("_SCENE_REACH") = kSceneReach;  // [m] how far from the origin scene coordinates may lie
   bind_scene_geometry(scene);
   bind_scene_queries(scene);
   bind_scene_lights(scene);
