@@ -40,5 +40,5 @@ def test_height_only_renders_with_an_impossible_max_length_are_refused_not_hung(
     from refracta import examples
 
     road = examples.hot_road(16, 8)
-    with pytest.raises(ValueError, match="needs more than 10000000 steps for max_length 1e\\+30 m"):
+    with pytest.raises(ValueError, match="max_length 1e\\+30 m with chord 1000 m needs more than 10000000 steps"):
         refracta.render(road.scene, road.camera, road.field, max_length=1e30, progress=False)

@@ -72,5 +72,5 @@ def test_cameras_compare_and_hash_by_what_they_render():
 def test_a_chord_too_short_for_the_traces_names_chord():
     # chord is also the curved traces' largest node spacing: 1e-9 m was refused as "stratified with
     # step 1e-09 m ... (raise step or lower max_length)", naming an option the user never set.
-    with pytest.raises(ValueError, match=r"chord must be >= max_length / 10000000 = 0.0005 m"):
+    with pytest.raises(ValueError, match=r"chord 1e-09 m needs more than 10000000 .*raise chord to at least 0.0005"):
         _core.RenderOptions(chord=1e-9)

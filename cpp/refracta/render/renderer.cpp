@@ -65,8 +65,9 @@ void RenderOptions::validate() const {
     problems.add("chord must be > 0 (got ", chord, ")");
   } else if (const int64_t most = TraceOptions().max_steps; max_length / chord > double(most)) {
     // chord is also the curved traces' largest node spacing (curved_trace_options)
-    problems.add("chord must be >= max_length / ", most, " = ", max_length / double(most),
-                 " m: the curved traces' nodes are at most chord apart (got ", chord, ")");
+    problems.add("max_length ", max_length, " m with chord ", chord, " m needs more than ", most,
+                 " steps of the curved traces (chord is their largest node spacing): raise chord to at least ",
+                 max_length / double(most), " m or lower max_length");
   }
   if (!(sagitta >= kSmallestSagitta) || !std::isfinite(sagitta)) {
     problems.add("sagitta must be >= ", kSmallestSagitta, " m and finite (got ", sagitta, ")");
