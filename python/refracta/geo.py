@@ -138,7 +138,7 @@ def _within_reach(points: np.ndarray, name: str) -> None:
     from the origin (single-precision geometry), half way to the antipode, where the azimuthal
     equidistant projection folds back on itself."""
     reach = float(_core._SCENE_REACH)
-    far = np.hypot(points[..., 0], points[..., 2])
+    far = np.maximum(np.abs(points[..., 0]), np.abs(points[..., 2]))  # C++'s box, |x|, |z| <= reach
     if np.any(far > reach):
         raise ValueError(
             f"{name}: {float(np.max(far)):.4g} m from the frame's origin, beyond the scene's reach of {reach:g} m "

@@ -276,12 +276,15 @@ def _as_display(image, linear: bool, what: str = "image") -> np.ndarray:
         raise ValueError(f"{what} must be (H, W) or (H, W, C) with C = 1..4 (got shape {image.shape})")
     if not np.isfinite(image).all():
         raise ValueError(f"{what} holds NaN or inf")
-    if not linear and image.size and not (image.min() >= 0.0 and image.max() <= 1.0):
+    # Display values: a resampled photograph overshoots [0, 1] a little (bicubic ringing), clipped
+    # here; beyond a few levels of 8 bits the values are not display values at all.
+    slack = 0.01
+    if not linear and image.size and not (image.min() >= -slack and image.max() <= 1.0 + slack):
         raise ValueError(
             f"{what} holds display values, which must be in [0, 1] (got {image.min():g} to {image.max():g}; "
             "8-bit values: divide by 255)"
         )
-    shown = _io.to_display(image) if linear else image
+    shown = _io.to_display(image) if linear else np.clip(image, 0.0, 1.0)
     shown = shown[..., :3] if shown.shape[2] >= 3 else np.repeat(shown[..., :1], 3, axis=2)
     return np.ascontiguousarray(shown, dtype=np.float32)
 

@@ -160,6 +160,8 @@ def _read_geotiff(path: str) -> Elevation:
             f"add_terrain: {path!r}: its compression cannot be decoded here ({error!r}); "
             "compressed GeoTIFFs are read through the imagecodecs package"
         ) from None
+    except MemoryError:
+        raise
     except Exception as error:  # a truncated or corrupt file fails inside tifffile in many ways
         raise ValueError(
             f"add_terrain: {path!r} is not a readable TIFF file ({type(error).__name__}: {error})"
@@ -202,24 +204,24 @@ def _read_geotiff(path: str) -> Elevation:
     smallest = 1e-9 if epsg == _EPSG_WGS84 else 1e-4
     if sx < smallest or sy < smallest:
         raise ValueError(f"add_terrain: {path!r}: pixel scale ({sx}, {sy}) is below {smallest}: samples would coincide")
-    if epsg == _EPSG_WGS84 and (data.shape[1] - 1) * sx > 360.0:
+    if epsg == _EPSG_WGS84 and (data.shape[1] - 1) * sx > 360.0 * (1.0 + 1e-12):
         raise ValueError(
             f"add_terrain: {path!r}: {data.shape[1]} columns of {sx} deg span {(data.shape[1] - 1) * sx} deg "
             "of longitude (at most 360)"
         )
     heights = data.astype(np.float64)
-    if np.isinf(heights).any():
-        r, c = np.argwhere(np.isinf(heights))[0]
-        raise ValueError(
-            f"add_terrain: {path!r}: sample (row {r}, column {c}) is {heights[r, c]}; heights must be finite "
-            "(voids: NaN or the GDAL_NODATA value)"
-        )
     nodata = tags.get(_TAG_NODATA)
     if nodata is not None:
         try:
             heights[heights == float(str(nodata).strip().rstrip("\x00"))] = np.nan
         except ValueError:
             raise ValueError(f"add_terrain: {path!r}: GDAL_NODATA {nodata!r} is not a number") from None
+    if np.isinf(heights).any():
+        r, c = np.argwhere(np.isinf(heights))[0]
+        raise ValueError(
+            f"add_terrain: {path!r}: sample (row {r}, column {c}) is {heights[r, c]}; heights must be finite "
+            "(voids: NaN or the GDAL_NODATA value)"
+        )
     x0, y0 = x + (centre - i) * sx, y - (centre - j) * sy
     if epsg == _EPSG_WGS84:
         top, bottom = y0, y0 - (data.shape[0] - 1) * sy
@@ -282,6 +284,8 @@ def _read_geotiff_frame(path: str) -> Elevation:
             page = tif.pages.first
             tags = {tag.code: tag.value for tag in page.tags.values()}
             shape = page.shape
+    except MemoryError:
+        raise
     except Exception as error:  # not a TIFF, or a corrupt one
         raise ValueError(
             f"add_terrain: orthophoto {path!r} is not a readable GeoTIFF ({type(error).__name__}: {error}); "

@@ -83,6 +83,12 @@ def test_bad_input_is_refused():
         photo.overlay(picture, render, alpha=2.0)
 
 
+def test_a_photo_overshooting_by_resampling_is_clipped_not_refused():
+    picture, render, _, _ = _pair()
+    ringing = np.clip(picture, 0.0, 1.0) * 1.005 - 0.002  # bicubic resampling overshoots a little
+    np.testing.assert_array_equal(photo.overlay(ringing, render, mode="edges").image >= 0.0, True)
+
+
 @pytest.mark.parametrize(
     "change, match",
     [

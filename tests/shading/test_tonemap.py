@@ -113,7 +113,7 @@ def test_alpha_is_untouched_and_png_matches_to_display(tmp_path):
     # 8-bit PNG: half a level, plus float slack.
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "a.png"), out[..., :3], atol=0.51 / 255)
     # EXR stays linear: the manual exposure applies, the tone curve and key do not, and say so.
-    with pytest.warns(UserWarning, match="float format, written linear: tonemap, key shape only displayed"):
+    with pytest.warns(UserWarning, match="a float format is written linear: tonemap, key shape only displayed"):
         refracta.io.write_image(tmp_path / "a.exr", image, exposure=2.0, tonemap="reinhard", key=0.18)
     np.testing.assert_array_equal(refracta.io.read_image(tmp_path / "a.exr"), 2.0 * image)
 

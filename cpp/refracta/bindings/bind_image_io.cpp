@@ -35,7 +35,8 @@ void write_display_image(const std::string& path, Image image, const DisplaySett
     if (const auto unused = display_only_fields_set(settings); !unused.empty()) {
       std::string names;
       for (const std::string& name : unused) names += (names.empty() ? "" : ", ") + name;
-      const std::string message = "write_image: " + path + " is a float format, written linear: " + names +
+      // Without the path: Python shows a warning once per place and text, not once per frame written.
+      const std::string message = "write_image: a float format is written linear: " + names +
                                   " shape only displayed images (PNG, JPEG) and are not applied";
       if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();
     }

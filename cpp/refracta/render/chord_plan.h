@@ -2,9 +2,10 @@
 // ElevationTable entry instead of per pixel. Consecutive path nodes are joined into one chord
 // while every node and segment quarter point between them lies within the tolerance of it; a
 // segment that itself strays further is cut into pieces. No chord reaches across a node where the
-// path turns up or down, so a chord crosses every level the path crosses (a grazing path that dips
-// under the sea and rises again within the tolerance still meets the sea). Every pixel whose path
-// interpolates that entry (its nodes correspond one to one) walks the same plan.
+// path turns up or down, so the chords of the entry's own path cross every level it crosses (a
+// grazing path that dips under the sea and rises again within the tolerance still meets the sea).
+// Every pixel whose path interpolates that entry (its nodes correspond one to one) walks the same
+// plan; its own turn may lie a node from the entry's, within one chord's stray.
 #pragma once
 
 #include "refracta/rays/ray_path.h"

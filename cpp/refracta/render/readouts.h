@@ -70,7 +70,7 @@ class ReadoutGeometry {
   double hidden_geometric(const Vec3d& point) const;
   // With refraction: the true height on that vertical of the grazing ray, the lowest ray from the
   // eye that stays above the ground (y' = 0) for max_length of path (found by bisection on its
-  // elevation to 1e-11 rad, traced exactly by the stratified integrator); 0 up to where
+  // elevation to 1e-11 rad, traced by the stratified integrator to 1e-4 m); 0 up to where
   // it touches the ground;
   // NaN beyond its reach, with the eye at or below the ground, or where every ray from the eye
   // meets the ground (a duct).

@@ -63,7 +63,8 @@ void RenderOptions::validate() const {
   if (!(max_length > 0.0) || !std::isfinite(max_length)) problems.add("max_length must be > 0 and finite (got ", max_length, ")");
   if (!(chord > 0.0) || !std::isfinite(chord)) {
     problems.add("chord must be > 0 (got ", chord, ")");
-  } else if (const int64_t most = TraceOptions().max_steps; max_length / chord > double(most)) {
+  } else if (const int64_t most = TraceOptions().max_steps;
+             std::isfinite(max_length) && max_length > 0.0 && max_length / chord > double(most)) {
     // chord is also the curved traces' largest node spacing (curved_trace_options)
     problems.add("max_length ", max_length, " m with chord ", chord, " m needs more than ", most,
                  " steps of the curved traces (chord is their largest node spacing): raise chord to at least ",
