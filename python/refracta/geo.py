@@ -42,7 +42,10 @@ _LONLAT = pyproj.CRS.from_proj4("+proj=longlat +ellps=WGS84 +no_defs")
 
 
 def _checked(value, name: str, low: float = -math.inf, high: float = math.inf) -> np.ndarray:
-    """value as a float64 array, every element finite and in [low, high], else ValueError naming it."""
+    """value as a float64 array, every element finite and in [low, high], else ValueError naming it
+    (strings and booleans too: numpy would read "46.5" and True as numbers)."""
+    if np.asarray(value).dtype.kind in "bUS":
+        raise ValueError(f"{name} must be a number or an array of numbers (got {value!r})")
     try:
         array = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError) as error:
@@ -53,6 +56,14 @@ def _checked(value, name: str, low: float = -math.inf, high: float = math.inf) -
         span = f" in [{low:g}, {high:g}]" if math.isfinite(low) or math.isfinite(high) else ""
         raise ValueError(f"{name} must be finite{span} (got {where!r})")
     return array
+
+
+def _number(value, name: str, low: float = -math.inf, high: float = math.inf) -> float:
+    """One number (_checked's rules), else ValueError naming it."""
+    array = _checked(value, name, low, high)
+    if array.ndim != 0:
+        raise ValueError(f"{name} must be one number (got an array of shape {array.shape})")
+    return float(array)
 
 
 def _latitude(value, name: str) -> np.ndarray:
@@ -164,13 +175,13 @@ class LocalFrame:
     """
 
     def __init__(self, lat, lon, height=0.0, earth_radius=None):
-        self.lat = float(_checked(lat, "lat", -90.0, 90.0))
+        self.lat = _number(lat, "lat", -90.0, 90.0)
         if abs(self.lat) == 90.0:
             raise ValueError(
                 f"lat must not be a pole (got {self.lat!r}): north, and so the scene's -z, is undefined there"
             )
-        self.lon = float(_checked(lon, "lon"))
-        self.height = float(_checked(height, "height"))
+        self.lon = _number(lon, "lon")
+        self.height = _number(height, "height")
         if earth_radius is None:
             m, n = principal_radii(self.lat)
             earth_radius = math.sqrt(m * n)
@@ -280,9 +291,9 @@ class LocalFrame:
         """
         if (vfov is None) == (focal_length_mm is None):
             raise ValueError("give exactly one of vfov and focal_length_mm")
-        a = float(_checked(azimuth, "azimuth"))
-        e = float(_checked(elevation, "elevation", -90.0, 90.0))
-        r = math.radians(float(_checked(roll, "roll")))
+        a = _number(azimuth, "azimuth")
+        e = _number(elevation, "elevation", -90.0, 90.0)
+        r = math.radians(_number(roll, "roll"))
         if position is None:
             eye = np.array([0.0, self.flat_height(height), 0.0])
         else:

@@ -105,6 +105,13 @@ def test_bad_points_are_value_errors():
         geo.LocalFrame(47.0, 8.0, earth_radius=-1.0)
     with pytest.raises(ValueError, match="height"):  # below the Earth's centre: no flat height
         frame.to_scene(47.0, 8.0, -2e7)
+    # A string, a bool or an array for one number (the trial's: "46.5" and True were taken as numbers).
+    with pytest.raises(ValueError, match="lat must be a number or an array of numbers \\(got '46.5'\\)"):
+        geo.LocalFrame("46.5", 8.0)
+    with pytest.raises(ValueError, match="lon must be a number or an array of numbers \\(got True\\)"):
+        geo.LocalFrame(47.0, True)
+    with pytest.raises(ValueError, match="lat must be one number \\(got an array of shape \\(2,\\)\\)"):
+        geo.LocalFrame([46.0, 47.0], 8.0)
     # 1e9 m east gave a point past the antipode; scene coordinates end at 1e7 m (single precision).
     with pytest.raises(ValueError, match=r"points: 1e\+09 m from the frame's origin, beyond the scene's reach"):
         frame.to_geographic([1e9, 0.0, 0.0])

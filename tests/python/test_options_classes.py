@@ -74,3 +74,11 @@ def test_a_chord_too_short_for_the_traces_names_chord():
     # step 1e-09 m ... (raise step or lower max_length)", naming an option the user never set.
     with pytest.raises(ValueError, match=r"chord 1e-09 m needs more than 10000000 .*raise chord to at least 0.0005"):
         _core.RenderOptions(chord=1e-9)
+
+
+@pytest.mark.parametrize("field, value", [("spp", True), ("tol", False), ("seed", True)])
+def test_a_boolean_is_not_a_number_of_an_options_field(field, value):
+    # True was taken as 1 sample (new-user trial), as pybind11 converts it; models and scene files refuse it.
+    with pytest.raises(ValueError, match=rf"RenderOptions: {field} must be a number \(got {value}\)"):
+        _core.RenderOptions(**{field: value})
+    assert _core.RenderOptions(adaptive=True).adaptive is True  # a bool field takes it

@@ -59,6 +59,14 @@ namespace {
 // Sets target.<field> = value (the rule in options_binding.h); `keyword` names it in messages.
 void set_field(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
                const std::string& keyword) {
+  // True is not 1 sample: a bool for a number field is refused (pybind11 would take it as 1), as
+  // the models' parameters and scene files refuse it.
+  if (PyBool_Check(value.ptr())) {
+    const py::object current = target.attr(field.c_str());
+    if (!PyBool_Check(current.ptr()) && (PyLong_Check(current.ptr()) || PyFloat_Check(current.ptr()))) {
+      throw_invalid(owner, ": ", keyword, " must be a number (got ", py::cast<std::string>(py::repr(value)), ")");
+    }
+  }
   try {
     target.attr(field.c_str()) = value;
   } catch (const py::error_already_set& error) {
