@@ -75,10 +75,6 @@ void validate_hot_spots(const char* model, const std::vector<double>& values, si
   for (size_t i = 0; i < count; ++i) {
     const double* v = values.data() + first + per * i;
     if (!(v[2] > 0.0)) throw_invalid(model, ": hot_spot", i, "_radius must be > 0 m (got ", v[2], ")");
-    if (with_depth && !(v[3] >= kColdestSpotDt && v[3] <= kHottestSpotDt)) {  // a temperature [K]
-      throw_invalid(model, ": hot_spot", i, "_dt must be in [", kColdestSpotDt, ", ", kHottestSpotDt, "] K (got ", v[3],
-                    ")");
-    }
     if (with_depth && !(v[4] > 0.0)) throw_invalid(model, ": hot_spot", i, "_depth must be > 0 m (got ", v[4], ")");
   }
 }

@@ -57,11 +57,6 @@ HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optiona
 // "HotSpot(x=..., z=..., radius=..., dt=..., depth=... or None, footprint='...')".
 std::string hot_spot_repr(const HotSpot& spot);
 
-// The range of a temperature spot's excess [K] (a model whose spots have a depth, PhysicalAtmosphere;
-// LogisticProfile's dt is a unitless strength): the air it heats stays above 0 K for any plausible
-// ground air (above ~200 K) and far below where the index of air formula fails (hydrostatic_column.h).
-constexpr double kColdestSpotDt = -150.0, kHottestSpotDt = 500.0;
-
 // The parameter specs of the spots, appended after a model's own: names hot_spot<i>_<field>, the
 // search box around the position and size each spot was made with.
 std::vector<ParamSpec> hot_spot_param_specs(const std::vector<HotSpot>& spots, bool with_depth,

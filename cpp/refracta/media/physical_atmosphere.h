@@ -79,6 +79,17 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
 
   static void validate(const Config& config, const std::vector<double>& v) {
     validate_hot_spots(kTypeName, v, kCount, config.hot_spots.size(), true);
+    // A spot's dt is a temperature excess here: the air it heats stays above 0 K for any plausible
+    // ground air (above ~200 K) and far below where the index of air formula fails
+    // (hydrostatic_column.h).
+    constexpr double kColdestSpotDt = -150.0, kHottestSpotDt = 500.0;  // [K]
+    for (size_t i = 0; i < config.hot_spots.size(); ++i) {
+      const double dt = v[kCount + hot_spot_param_count(true) * i + kSpotDt];
+      if (!(dt >= kColdestSpotDt && dt <= kHottestSpotDt)) {
+        throw_invalid(kTypeName, ": hot_spot", i, "_dt must be in [", kColdestSpotDt, ", ", kHottestSpotDt, "] K (got ",
+                      dt, ")");
+      }
+    }
     if (!(v[kGroundPressure] > 0.0)) {
       throw_invalid("PhysicalAtmosphere: pressure must be > 0 Pa (got ", v[kGroundPressure], ")");
     }
