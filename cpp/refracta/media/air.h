@@ -29,19 +29,32 @@ struct AirIndex {
   T d_vapour;       // [1/Pa]
 };
 
-// Birch & Downs (1993/94) modified Edlén equation. pressure [Pa], temperature [K], partial
-// pressure of water vapour [Pa], vacuum wavelength [nm].
+// The wavelength's terms of Birch & Downs' formula below, computed once per field: dry air's
+// (n_s - 1) / 96095.43 [1/Pa] and water vapour's factor [1/Pa] (its divisions were a tenth of a
+// hot-spot field's evaluation when made at every point).
 template <class T>
-AirIndex<T> air_index(const T& pressure, const T& temperature, const T& vapour,
-                      const T& wavelength_nm) {
+struct EdlenDispersion {
+  T dry;
+  T water;
+};
+
+template <class T>
+EdlenDispersion<T> edlen_dispersion(const T& wavelength_nm) {
   const T sigma2 = T(1e6) / (wavelength_nm * wavelength_nm);  // [1/um^2]
   const T dry_standard =
       (T(8342.54) + T(2406147.0) / (T(130.0) - sigma2) + T(15998.0) / (T(38.9) - sigma2)) * 1e-8;
-  const T a = dry_standard / T(96095.43);
+  return {dry_standard / T(96095.43), -(T(3.7345) - T(0.0401) * sigma2) * 1e-10};
+}
+
+// Birch & Downs (1993/94) modified Edlén equation. pressure [Pa], temperature [K], partial
+// pressure of water vapour [Pa], the wavelength's terms (edlen_dispersion).
+template <class T>
+AirIndex<T> air_index(const T& pressure, const T& temperature, const T& vapour, const EdlenDispersion<T>& dispersion) {
+  const T& a = dispersion.dry;
   const T t = temperature - T(kZeroCelsius);
   const T compress = T(1e-8) * (T(0.601) - T(0.00972) * t);  // [1/Pa]
   const T density = T(1.0) + T(0.003661) * t;
-  const T water = -(T(3.7345) - T(0.0401) * sigma2) * 1e-10;  // [1/Pa]
+  const T& water = dispersion.water;
 
   AirIndex<T> out;
   out.n_minus_1 = a * pressure * (T(1.0) + compress * pressure) / density + water * vapour;
@@ -52,6 +65,12 @@ AirIndex<T> air_index(const T& pressure, const T& temperature, const T& vapour,
                       (density * density);
   out.d_vapour = water;
   return out;
+}
+
+// The same at a vacuum wavelength [nm].
+template <class T>
+AirIndex<T> air_index(const T& pressure, const T& temperature, const T& vapour, const T& wavelength_nm) {
+  return air_index(pressure, temperature, vapour, edlen_dispersion(wavelength_nm));
 }
 
 // Saturation vapour pressure over water [Pa] and its derivative [Pa/K] (Alduchov & Eskridge 1996).
@@ -127,13 +146,13 @@ namespace refracta {
 
 // n of air and its sensitivities to pressure [1/Pa] and temperature [1/K] (water vapour at the
 // relative humidity following the temperature), at pressure [Pa], temperature [K], relative
-// humidity [0, 1] and wavelength [nm].
+// humidity [0, 1] and the wavelength's terms (edlen_dispersion).
 template <class T>
-void air_index_at(const T& pressure, const T& temperature, const T& humidity, const T& wavelength_nm, T* n,
-                  T* dn_dpressure, T* dn_dtemperature) {
+void air_index_at(const T& pressure, const T& temperature, const T& humidity, const EdlenDispersion<T>& dispersion,
+                  T* n, T* dn_dpressure, T* dn_dtemperature) {
   T e_s(0.0), de_dt(0.0);
   if (value_of(humidity) != 0.0) saturation_vapour_pressure(temperature, &e_s, &de_dt);
-  const AirIndex<T> air = air_index(pressure, temperature, T(humidity * e_s), wavelength_nm);
+  const AirIndex<T> air = air_index(pressure, temperature, T(humidity * e_s), dispersion);
   *n = T(1.0) + air.n_minus_1;
   *dn_dpressure = air.d_pressure;
   *dn_dtemperature = air.d_temperature + air.d_vapour * humidity * de_dt;

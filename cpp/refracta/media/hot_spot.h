@@ -70,30 +70,31 @@ void validate_hot_spots(const char* model, const std::vector<double>& values, si
 std::vector<HotSpot> hot_spots_from(const std::vector<HotSpot>& made, const std::vector<double>& values, size_t first,
                                     bool with_depth);
 
-// F at horizontal offset (dx, dz) from the centre and its gradient (dF/dx, dF/dz).
+// F at horizontal offset (dx, dz) from the centre and its gradient (dF/dx, dF/dz); inv_radius is
+// 1 / radius (the models keep it: a division after the square root was a tenth of a hot-spot render).
 template <class T>
-void hot_spot_footprint(Footprint kind, const T& dx, const T& dz, const T& radius, T* f, T* df_dx, T* df_dz) {
+void hot_spot_footprint(Footprint kind, const T& dx, const T& dz, const T& inv_radius, T* f, T* df_dx, T* df_dz) {
   using std::exp;
   using std::sqrt;
   const T r2 = dx * dx + dz * dz;
+  const T inv_r2 = inv_radius * inv_radius;
   if (kind == Footprint::kGaussian) {
-    const T inv_var = T(1.0) / (radius * radius);
-    *f = exp(T(-0.5) * r2 * inv_var);
-    *df_dx = -*f * dx * inv_var;
-    *df_dz = -*f * dz * inv_var;
+    *f = exp(T(-0.5) * r2 * inv_r2);
+    *df_dx = -*f * dx * inv_r2;
+    *df_dz = -*f * dz * inv_r2;
     return;
   }
-  if (!(value_of(r2) < value_of(radius) * value_of(radius))) {
+  if (!(value_of(r2) * value_of(inv_r2) < 1.0)) {
     *f = *df_dx = *df_dz = T(0.0);
     return;
   }
   // q = r/R; dF/dr = -20 q (1 - q)^3 / R, so grad F = -20 (1 - q)^3 (dx, dz) / R^2: no division
   // by r (smooth at the centre, where sqrt would give Jets infinite slopes).
-  const T q = value_of(r2) > 0.0 ? sqrt(r2) / radius : T(0.0);
+  const T q = value_of(r2) > 0.0 ? sqrt(r2) * inv_radius : T(0.0);
   const T one_minus = T(1.0) - q;
   const T cube = one_minus * one_minus * one_minus;
   *f = cube * one_minus * (T(4.0) * q + T(1.0));
-  const T slope = T(-20.0) * cube / (radius * radius);
+  const T slope = T(-20.0) * cube * inv_r2;
   *df_dx = slope * dx;
   *df_dz = slope * dz;
 }

@@ -142,7 +142,7 @@ class HydrostaticColumn {
 namespace refracta {
 
 // Shared by the models of air in hydrostatic balance: Derived provides temperature(h, &t, &dt),
-// column(), humidity() and wavelength(); this gives pressure(h) and n(h), dn/dh.
+// column(), humidity() and dispersion() (its wavelength's edlen_dispersion); this gives pressure(h) and n(h), dn/dh.
 template <class Derived, class T>
 struct HydrostaticAirModel : HeightOnlyModel<Derived, T> {
   T pressure(const T& h) const {
@@ -169,7 +169,7 @@ struct HydrostaticAirModel : HeightOnlyModel<Derived, T> {
   void evaluate_height(const T& h, T* n, T* dn_dh) const {
     T p, dp, t, dt, dn_dp, dn_dt;
     column_state(h, &p, &dp, &t, &dt);
-    air_index_at(p, t, self().humidity(), self().wavelength(), n, &dn_dp, &dn_dt);
+    air_index_at(p, t, self().humidity(), self().dispersion(), n, &dn_dp, &dn_dt);
     *dn_dh = dn_dp * dp + dn_dt * dt;
   }
 

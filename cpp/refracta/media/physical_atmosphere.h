@@ -12,11 +12,15 @@
 
 #include "refracta/core/error.h"
 #include "refracta/media/air.h"
+#include "refracta/media/column_table.h"
 #include "refracta/media/hot_spot.h"
 #include "refracta/media/hydrostatic_column.h"
 #include "refracta/media/index_field.h"
 #include "refracta/media/smoothstep.h"
 #include "refracta/media/turbulence.h"
+
+#include <algorithm>
+#include <type_traits>
 
 namespace refracta {
 
@@ -111,9 +115,15 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
   }
 
   PhysicalAtmosphereModel(const Config& config, const std::vector<T>& v)
-      : p_(v.begin(), v.begin() + kCount), spots_(config.hot_spots), turbulence_(config.turbulence) {
+      : p_(v.begin(), v.begin() + kCount),
+        spots_(config.hot_spots),
+        turbulence_(config.turbulence),
+        dispersion_(edlen_dispersion(p_[kWavelength])) {
     const int per = hot_spot_param_count(true);
-    for (size_t i = 0; i < spots_.size(); ++i) spot_values_.emplace_back(v.begin() + kCount + per * i, v.begin() + kCount + per * (i + 1));
+    for (size_t i = 0; i < spots_.size(); ++i) {
+      spot_values_.emplace_back(v.begin() + kCount + per * i, v.begin() + kCount + per * (i + 1));
+      inv_radius_.push_back(T(1.0) / spot_values_[i][kSpotRadius]);
+    }
     const double depth = value_of(p_[kSurfaceDepth]);
     const double base = value_of(p_[kInversionBase]), thick = value_of(p_[kInversionThickness]);
     // Node spacing for the column's 1e-12 accuracy (cubic Hermite with exact slopes, 4-point
@@ -131,6 +141,7 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
         kinks);
     column_ = HydrostaticColumn<T>([this](const T& h, T* t, T* dt) { temperature(h, t, dt); },
                                    std::move(nodes), 0.0, p_[kGroundPressure], kTypeName);
+    if constexpr (std::is_same_v<T, double>) tabulate_near_ground();
   }
 
   bool height_only() const { return spots_.empty() && !turbulence_; }
@@ -141,14 +152,28 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
       HydrostaticAirModel<PhysicalAtmosphereModel<T>, T>::evaluate(p, n, grad);
       return;
     }
-    T p_air, dp_dh, t, dt_dh;
-    this->column_state(p.y(), &p_air, &dp_dh, &t, &dt_dh);
-    Vec3<T> grad_t(T(0.0), dt_dh, T(0.0));
+    T excess(0.0);
+    Vec3<T> grad_excess(T(0.0), T(0.0), T(0.0));
+    bool heated = false;
     if (value_of(p.y()) <= column_.highest()) {
-      for (size_t i = 0; i < spots_.size(); ++i) add_spot(i, p, &t, &grad_t);
+      for (size_t i = 0; i < spots_.size(); ++i) heated = add_spot(i, p, &excess, &grad_excess) || heated;
+    }
+    T p_air, dp_dh, t, dt_dh;
+    // The column near the ground from its table where the spots or the turbulence change the air;
+    // elsewhere its own state, so that the air outside a compact spot is exactly the height-only air.
+    bool tabulated = false;
+    if constexpr (std::is_same_v<T, double>) {
+      tabulated = (heated || turbulence_) && near_ground_.covers(p.y());
+      if (tabulated) near_ground_.at(p.y(), &p_air, &dp_dh, &t, &dt_dh);
+    }
+    if (!tabulated) this->column_state(p.y(), &p_air, &dp_dh, &t, &dt_dh);
+    Vec3<T> grad_t(T(0.0), dt_dh, T(0.0));
+    if (heated) {
+      t += excess;
+      grad_t += grad_excess;
     }
     T dn_dp, dn_dt;
-    air_index_at(p_air, t, p_[kHumidity], p_[kWavelength], n, &dn_dp, &dn_dt);
+    air_index_at(p_air, t, p_[kHumidity], dispersion_, n, &dn_dp, &dn_dt);
     *grad = dn_dt * grad_t;
     grad->y() += dn_dp * dp_dh;
     if (turbulence_) {
@@ -198,28 +223,52 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
 
   const HydrostaticColumn<T>& column() const { return column_; }
   const T& humidity() const { return p_[kHumidity]; }
-  const T& wavelength() const { return p_[kWavelength]; }
+  const EdlenDispersion<T>& dispersion() const { return dispersion_; }
 
  private:
   enum SpotIndex { kSpotX, kSpotZ, kSpotRadius, kSpotDt, kSpotDepth };
 
-  // Spot i's excess dt e(h) F(r) added to t, and its gradient to grad_t.
-  void add_spot(size_t i, const Vec3<T>& p, T* t, Vec3<T>* grad_t) const {
+  // Spot i's excess dt e(h) F(r) added to t, and its gradient to grad_t; false where it adds nothing.
+  bool add_spot(size_t i, const Vec3<T>& p, T* t, Vec3<T>* grad_t) const {
     const std::vector<T>& v = spot_values_[i];
     T f, df_dx, df_dz, e, de_dh;
-    hot_spot_footprint(spots_[i].footprint, T(p.x() - v[kSpotX]), T(p.z() - v[kSpotZ]), v[kSpotRadius], &f, &df_dx,
+    hot_spot_footprint(spots_[i].footprint, T(p.x() - v[kSpotX]), T(p.z() - v[kSpotZ]), inv_radius_[i], &f, &df_dx,
                        &df_dz);
-    if (value_of(f) == 0.0 && value_of(df_dx) == 0.0 && value_of(df_dz) == 0.0) return;
+    if (value_of(f) == 0.0 && value_of(df_dx) == 0.0 && value_of(df_dz) == 0.0) return false;
     surface_decay(p.y(), v[kSpotDepth], &e, &de_dh);
     *t += v[kSpotDt] * e * f;
     *grad_t += v[kSpotDt] * Vec3<T>(e * df_dx, de_dh * f, e * df_dz);
+    return true;
+  }
+
+  // The column's state near the ground (column_table.h), from a surface-layer depth below h = 0 to a
+  // tenth above the highest region (the spots' tops, the turbulent slab's), where rays inside them
+  // evaluate the field; the spacing a 128th of the finest scale tabulated (the surface layer, the
+  // inversion where it reaches that low). Not built beyond 65536 nodes (the column's own state then).
+  void tabulate_near_ground() {
+    double top = 0.0;
+    for (const LocalRegion& region : local_regions()) top = std::max(top, region.top);
+    const double depth = p_[kSurfaceDepth];
+    const double lo = -depth, hi = std::min(1.1 * top, kHighest);
+    if (!(hi > 0.0)) return;
+    double scale = depth;
+    if (p_[kInversionBase] < hi) scale = std::min(scale, p_[kInversionThickness]);
+    const double spacing = scale / 128.0;
+    constexpr double kMostNodes = 65536.0;
+    if ((hi - lo) / spacing > kMostNodes) return;
+    near_ground_ = ColumnTable(lo, hi, spacing, [this](double h, double* p, double* dp, double* t, double* dt) {
+      this->column_state(h, p, dp, t, dt);
+    });
   }
 
   std::vector<T> p_;
   std::vector<HotSpot> spots_;             // footprints (their numbers are in spot_values_)
   std::vector<std::vector<T>> spot_values_;  // x, z, radius, dt, depth per spot
+  std::vector<T> inv_radius_;                // 1 / radius per spot
   std::shared_ptr<const Turbulence> turbulence_;
+  EdlenDispersion<T> dispersion_;
   HydrostaticColumn<T> column_;
+  ColumnTable near_ground_;  // double only (editing's Jets evaluate the column itself)
 };
 
 }  // namespace refracta

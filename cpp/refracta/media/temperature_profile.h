@@ -91,6 +91,7 @@ class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileMod
     pressure_ = v[m];
     humidity_ = v[m + 1];
     wavelength_ = v[m + 2];
+    dispersion_ = edlen_dispersion(wavelength_);
     compute_slopes();
     std::vector<NodeRun> runs = {{h_.front() - kBelow, h_.back() + kAbove, 100.0}};
     for (size_t i = 0; i + 1 < m; ++i) runs.push_back({h_[i], h_[i + 1], (h_[i + 1] - h_[i]) / 16});
@@ -128,7 +129,7 @@ class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileMod
 
   const HydrostaticColumn<T>& column() const { return column_; }
   const T& humidity() const { return humidity_; }
-  const T& wavelength() const { return wavelength_; }
+  const EdlenDispersion<T>& dispersion() const { return dispersion_; }
 
  private:
   static double sign(double x) { return (x > 0) - (x < 0); }
@@ -170,6 +171,7 @@ class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileMod
   std::vector<double> h_;
   std::vector<T> t_, slope_;
   T pressure_, humidity_, wavelength_;
+  EdlenDispersion<T> dispersion_;
   HydrostaticColumn<T> column_;
 };
 
