@@ -81,6 +81,22 @@ def test_compact_spot_is_exactly_the_height_only_air_outside_its_radius():
     assert np.all(field.ior(inside) < part.ior(inside))  # hotter: lower index
 
 
+def test_the_column_table_under_a_spot_is_the_column():
+    """Where a spot heats the air the column's pressure and temperature come from a table
+    (media/column_table.h); a gaussian spot 37 radii away adds ~1e-300 K, so the field there is the
+    column's through the table and its height-only part is the column evaluated exactly. The
+    table's error (cubic Hermite at a 128th of the 0.1 m layer, 10 K): ~1e-11 K in T, ~1e-17 in n;
+    its slope ~4e-9 of the layer's 100 K/m, ~4e-13 1/m in dn/dh."""
+    field = road(refracta.HotSpot(0.0, 0.0, 1.0, 10.0))
+    exact = field.height_only_part
+    h = np.concatenate([np.linspace(-0.1, 1.5, 801), [0.0, 1e-6, 0.0123456]])
+    points = np.stack([np.full_like(h, 37.0), h, np.zeros_like(h)], axis=1)
+    # n: 1e-17 expected; 1e-15 is a few ulps of n ~ 1.0003 (2.2e-16 each).
+    np.testing.assert_allclose(field.ior(points), exact.ior(points), rtol=0, atol=1e-15)
+    # dn/dh ~ 1e-5 1/m in the layer: 1e-12 1/m bounds the table's ~4e-13 (docstring) with margin.
+    np.testing.assert_allclose(field.grad_ior(points), exact.grad_ior(points), rtol=0, atol=1e-12)
+
+
 def test_regions_bound_where_the_field_differs_from_its_height_only_part():
     spot = refracta.HotSpot(0.0, 0.0, 3.0, 10.0, depth=0.1)
     field = road(spot)
