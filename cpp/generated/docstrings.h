@@ -540,7 +540,9 @@ b_w(500) (lambda / 500)^-4.32 of Morel 1974 ("Optical properties of pure water a
 in Optical Aspects of Oceanography, Jerlov & Steemann Nielsen eds.), whose phase function is
 symmetric front-to-back; b_w(500) = 0.00222 1/m for pure water, and sea water (S = 35-39 g/kg)
 scatters 30 % more: b_w(500) = 0.00222 (1 + 0.3 S / 37). Zhang et al. 2009 (Optics Express 17(7))
-derive the same lambda^-4.32 slope from fluctuation theory.)doc";
+derive the same lambda^-4.32 slope from fluctuation theory. Wavelength in [360, 830] nm
+(water_absorption's range, with which it makes the water body's colour), salinity in [0,
+kWaterMaxSalinity = 40] g/kg; outside: std::invalid_argument (ValueError in Python).)doc";
 inline constexpr const char mkd_doc_refracta_water_body_reflectance[] = R"doc(Irradiance reflectance R = E_u / E_d just beneath the surface of an optically deep, homogeneous
 water body: R = 0.33 b_b / (a + b_b) (Morel & Prieur 1977, "Analysis of variations in ocean color",
 Limnology and Oceanography 22(4), R = 0.33 b_b / a; written with Gordon, Brown & Jacobs 1975's

@@ -211,13 +211,19 @@ def animate(
                 f"animate: noise takes rms, correlation_pixels, seed and speed (geometric_noise's "
                 f"keywords), not {', '.join(map(repr, unknown))}"
             )
+        missing = sorted({"rms", "correlation_pixels"} - set(noise))
+        if missing:
+            needs = " and ".join(missing)
+            raise ValueError(f"animate: noise needs {needs} (geometric_noise's keywords; got {noise!r})")
         geometric_noise_map(1, 1, **noise)  # checks the values before any work
     if turbulence is not None:
         with_turbulence(field, turbulence)  # checks the field before any work
+    _check_frames_fit(times.size, camera)
     fps = _frame_rate(times, fps)
     if path is not None:
         path = os.fspath(path)
         _writer_for(path)  # an unknown format or a missing package fails before rendering
+        _check_output_settings(path, exposure, tonemap)
         folder = os.path.dirname(os.path.abspath(path))
         if "{" not in path and not os.path.isdir(folder):  # ... and so does a folder that is not there
             # (frame files make theirs)
@@ -255,6 +261,34 @@ def _render_frame(scene, camera, field, settings, turbulence, noise, denoise, t)
     if not denoise:
         return colour
     return _denoised(colour, _surface_outputs(image), settings)
+
+
+def _check_frames_fit(count: int, camera) -> None:
+    """ValueError before any work when the returned frames (float32 RGB) would take more than half
+    this machine's memory (the rest: each frame's render buffers, the file's display copies)."""
+    needed = 12.0 * count * camera.width * camera.height
+    memory = _core.physical_memory_bytes()
+    if memory > 0 and needed > memory / 2:
+        raise ValueError(
+            f"animate: {count} times of {camera.width} x {camera.height} frames need {needed / 1e9:.1f} GB "
+            f"for the returned frames, more than half this machine's {memory / 1e9:.1f} GB: render fewer "
+            "times per call (or a smaller camera)"
+        )
+
+
+def _check_output_settings(path: str, exposure, tonemap) -> None:
+    """The file's display settings and frame pattern checked before any frame is rendered."""
+    from refracta import io
+
+    io.settings(None, exposure=exposure, tonemap=tonemap)  # ValueError naming the setting
+    if "{" in path:
+        try:
+            path.format(0)
+        except (KeyError, IndexError, ValueError) as error:
+            raise ValueError(
+                f"animate: path's pattern must have one '{{}}' field for the frame number, as "
+                f"'frames/f{{:03d}}.png' (got {path!r}: {error!r})"
+            ) from None
 
 
 def _frame_rate(times: np.ndarray, fps: float | None) -> float:

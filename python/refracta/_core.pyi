@@ -5,8 +5,9 @@ from __future__ import annotations
 import collections.abc
 import numpy
 import numpy.typing
+import os
 import typing
-__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW_DEG', 'Dielectric', 'Diffuse', 'DispersedField', 'DisplaySettings', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MomentShadowSettings', 'NumericalError', 'ObjOptions', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
+__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW_DEG', 'Dielectric', 'Diffuse', 'DispersedField', 'DisplaySettings', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MomentShadowSettings', 'NumericalError', 'ObjOptions', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'physical_memory_bytes', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -837,7 +838,7 @@ class Scene:
         float32, row-major, rows along +z and columns along +x so the front is up; a sample with a NaN
         coordinate is a hole. uv_from_index (2, 3): (u, v) = A (col, row, 1). Returns the geometry id.
         """
-    def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: str, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = (1.0, 1.0, 1.0)) -> int:
+    def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: os.PathLike | str | bytes, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = (1.0, 1.0, 1.0)) -> int:
         """
         Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at
         `centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the
@@ -848,7 +849,7 @@ class Scene:
         Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]; alpha < 1: transparent in
         render_raster.
         """
-    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, texture: str | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, texture: os.PathLike | str | bytes | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
         Add a square ground of side `size` [m] at y = height, centred on the origin, facing up; an optional
         texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z) and
@@ -858,7 +859,7 @@ class Scene:
         """
         Add any refracta.lights light (not area lights of geometry: use emission=). Returns its index.
         """
-    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, material: typing.Any = None, emission: typing.Any = None, two_sided: bool = False, normals: typing.Any = None, *, uvs: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: str | None = None, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, material: typing.Any = None, emission: typing.Any = None, two_sided: bool = False, normals: typing.Any = None, *, uvs: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: os.PathLike | str | bytes | None = None, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
         Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);
         optional per-vertex normals (N, 3) (shading normals, interpolated) and uvs (N, 2) texture
@@ -866,7 +867,7 @@ class Scene:
         shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without
         material. Returns its id.
         """
-    def add_obj(self, path: str, offset: typing.Any = None, scale: typing.Any = None, *, options: typing.Any = None, texture_dirs: typing.Any = None, missing_textures: typing.Any = None, progress: typing.Any = True) -> list[int]:
+    def add_obj(self, path: os.PathLike | str | bytes, offset: typing.Any = None, scale: typing.Any = None, *, options: typing.Any = None, texture_dirs: typing.Any = None, missing_textures: typing.Any = None, progress: typing.Any = True) -> list[int]:
         """
         Add a Wavefront OBJ file with its MTL materials, scaled then offset.
         
@@ -997,7 +998,7 @@ class Scene:
         3.912 / V), setting the aerosol in its place (give one of them). The scene's y = 0 lies `altitude`
         above the sky's sea level.
         """
-    def set_sky(self, horizon: typing.Any = None, zenith: typing.Any = None, environment: str | None = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
+    def set_sky(self, horizon: typing.Any = None, zenith: typing.Any = None, environment: os.PathLike | str | bytes | None = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
         A sky (replacing any environment): radiance toward the horizon (and below) and straight up, linear in
         the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular
@@ -3653,6 +3654,10 @@ def get_threads() -> int:
     """
     The number of threads refracta's parallel work may use (see set_threads).
     """
+def physical_memory_bytes() -> float:
+    """
+    This machine's physical memory [bytes] (0 if unknown): the limit refracta refuses work beyond.
+    """
 def set_threads(n: typing.SupportsInt | typing.SupportsIndex | None) -> None:
     """
     Limit refracta's parallel work (oneTBB: render, trace_rays, render_raster, solve's pair traces,
@@ -3708,7 +3713,9 @@ def water_backscattering(wavelength_nm: typing.Any, salinity: typing.Any = 0.0) 
     in Optical Aspects of Oceanography, Jerlov & Steemann Nielsen eds.), whose phase function is
     symmetric front-to-back; b_w(500) = 0.00222 1/m for pure water, and sea water (S = 35-39 g/kg)
     scatters 30 % more: b_w(500) = 0.00222 (1 + 0.3 S / 37). Zhang et al. 2009 (Optics Express 17(7))
-    derive the same lambda^-4.32 slope from fluctuation theory.
+    derive the same lambda^-4.32 slope from fluctuation theory. Wavelength in [360, 830] nm
+    (water_absorption's range, with which it makes the water body's colour), salinity in [0,
+    kWaterMaxSalinity = 40] g/kg; outside: std::invalid_argument (ValueError in Python).
     Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def water_body_reflectance(wavelength_nm: typing.Any, salinity: typing.Any = 0.0) -> typing.Any:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+FLOAT32_MAX = float(np.finfo(np.float32).max)  # Open Image Denoise works in float32
+
 
 def _channels(name: str, array, shape=None, lo: float = 0.0, hi: float = np.inf) -> np.ndarray:
     """`array` as a C-contiguous float32 (H, W, 3) within [lo, hi]; ValueError naming it otherwise."""
@@ -127,7 +129,7 @@ def denoise(
         import pyoidn
     except ImportError as error:  # a dependency of refracta; missing only in a broken install
         raise ImportError("refracta.denoise needs Intel Open Image Denoise: pip install pyoidn") from error
-    color = _channels("image", image)
+    color = _channels("image", image, hi=FLOAT32_MAX)
     aux_albedo = None if albedo is None else _channels("albedo", albedo, color.shape, 0.0, 1.0)
     aux_normal = None if normal is None else _channels("normal", normal, color.shape, -1.0, 1.0)
     if aux_normal is not None and aux_albedo is None:
@@ -156,6 +158,11 @@ def denoise(
         dtype=np.float32,
     )
     clean = np.ascontiguousarray(clean[margin : margin + height, margin : margin + width])
+    if not np.all(np.isfinite(clean)):
+        raise ValueError(
+            f"denoise: Open Image Denoise's output overflowed float32 (image values up to {color.max():g}): "
+            "scale the image down, denoise, and scale it back"
+        )
     if not (guided and clean_aux and aux_albedo is not None and aux_normal is not None):
         return clean
     guide = np.concatenate([aux_albedo, aux_normal], axis=2).astype(np.float64)

@@ -15,6 +15,7 @@ import numpy as np
 
 from refracta import _core
 from refracta._progress import progress_callback
+from refracta._render import _check_scene
 
 # render_raster's keywords that name a nested field of RasterRenderOptions: keyword -> its dotted
 # path, which the one keyword rule (_core._build_options) follows. Any other keyword must be a
@@ -181,6 +182,7 @@ def render_raster(
         )
     callback = progress_callback(progress, "rasterizing")
     image, counts = _core._render_raster(scene, camera, settings, callback)
+    _check_scene(scene, camera, None, "raster", where="render_raster")
     if stats is not None:
         stats.update({name: getattr(counts, name) for name in dir(counts) if not name.startswith("_")})
     if settings.output == "shadow":

@@ -31,13 +31,22 @@ GROUND_TOLERANCE = 0.1
 LAYER_GRADIENT = 3e-7
 
 
+def _bounds(scene: _core.Scene):
+    """The scene's bounds (lower, upper), or None when it holds no geometry (none added, or all removed)."""
+    try:
+        return scene.bounds
+    except ValueError:
+        return None
+
+
 def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) -> None:
     """The hint for a scene whose every object lies beyond the rays' reach: the nearest point of its
     bounding box is farther from the camera than max_length, so every ray stops in the air and the
     image shows only the sky (terrain or a coast tens of kilometres away with the default reach)."""
-    if scene.geometry_count == 0:
+    bounds = _bounds(scene)
+    if bounds is None:
         return
-    lower, upper = (np.asarray(corner, dtype=float) for corner in scene.bounds)
+    lower, upper = (np.asarray(corner, dtype=float) for corner in bounds)
     eye = np.asarray(camera.position, dtype=float)
     nearest = float(np.linalg.norm(eye - np.clip(eye, lower, upper)))
     farthest = float(np.linalg.norm(np.maximum(abs(lower - eye), abs(upper - eye))))
@@ -51,22 +60,23 @@ def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) ->
         )
 
 
-def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str) -> None:
+def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, where: str = "render") -> None:
     """The SceneWarning hints of render(): a scene without any light or sky; and one whose lowest
     geometry (taken as its ground) lies more than GROUND_TOLERANCE from height 0 of the field the
     rays go through (every field, CurvedEarth's flattened heights too, puts the ground at y = 0)
     with layered air in between (mean ``|dn/dh|`` > LAYER_GRADIENT below the camera)."""
     if len(scene.lights) == 0:
         warnings.warn(
-            "render: the scene has no light and no sky, so the image is black; add one with "
+            f"{where}: the scene has no light and no sky, so the image is black; add one with "
             "scene.set_sky(...), set_sun, set_physical_sky, set_environment, add_point_light or "
             "an emission= geometry",
             SceneWarning,
             stacklevel=3,
         )
-    if field is None or method == "straight" or scene.geometry_count == 0:
+    bounds = _bounds(scene)
+    if field is None or method == "straight" or bounds is None:
         return
-    lowest = float(scene.bounds[0][1])
+    lowest = float(bounds[0][1])
     if not (math.isfinite(lowest) and abs(lowest) > GROUND_TOLERANCE):
         return
     x, _, z = camera.position
@@ -248,6 +258,12 @@ def render(
             "render: aovs 'geographic' needs frame=, the scene's refracta.geo.LocalFrame (its to_geographic maps "
             f"scene points to latitude, longitude and height; got frame={frame!r})"
         )
+    surface = [name for name in wanted if name not in READOUT_NAMES]  # the readouts say so themselves
+    if (denoise or surface) and method == "raster_march":
+        raise ValueError(
+            f"render: {'denoise=True' if denoise else f'aovs {surface}'} needs method 'straight' or 'curved' (the "
+            "first surface's albedo and normal come from the ray renderers; got method='raster_march')"
+        )
     if denoise or wanted:
         options["surface_aovs"] = True
     if any(name in READOUT_NAMES for name in wanted):
@@ -347,7 +363,10 @@ def _aov_names(aovs) -> list[str]:
         return []
     if isinstance(aovs, str):
         raise ValueError(f"aovs must be a list of names, e.g. ['albedo', 'normal'] (got the string {aovs!r})")
-    names = list(aovs)
+    try:
+        names = list(aovs)
+    except TypeError:
+        raise ValueError(f"aovs must be a list of names, e.g. ['albedo', 'normal'] (got {aovs!r})") from None
     unknown = [name for name in names if name not in AOV_NAMES]
     if unknown:
         raise ValueError(f"render: unknown aovs {unknown} (valid names: {', '.join(AOV_NAMES)})")

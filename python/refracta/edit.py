@@ -149,7 +149,10 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float
     """
     if isinstance(pairs, PointPair):
         pairs = [pairs]
-    pairs = list(pairs)
+    try:
+        pairs = list(pairs)
+    except TypeError:
+        raise ValueError(f"pairs must be a PointPair or a list of them (got {type(pairs).__name__})") from None
     if not pairs:
         raise ValueError("pairs is empty: give at least one PointPair")
     for i, pair in enumerate(pairs):
@@ -352,15 +355,15 @@ def solve(
             result.insensitive.
         backend: 'ceres' or 'nlopt:<ALGORITHM>' (see NLOPT_ALGORITHMS; any nlopt name works);
             a SolveSettings field, also accepted here by position.
-        settings: a refracta.SolveSettings (copied); keywords below override its fields.
-        pair_options: a refracta.PairOptions (copied); keywords override its fields.
+        settings: a refracta.edit.SolveSettings (copied); keywords below override its fields.
+        pair_options: a refracta.edit.PairOptions (copied); keywords override its fields.
         bounds: {name: (lower, upper)} overriding the model's (or the camera's) search box.
         derivatives: 'auto', 'automatic' (ceres::Jet) or 'numeric' (central differences).
         progress: True for a bar on stderr, or a callable progress(done, total): done of total
             is the largest fraction used of the iteration, evaluation and time limits (shared by
             every start), reaching total when the solve ends.
-        **options: any field of refracta.SolveSettings or refracta.PairOptions by name; their
-            defaults are the C++ structs' (``help(refracta.SolveSettings)``). SolveSettings:
+        **options: any field of refracta.edit.SolveSettings or refracta.edit.PairOptions by name; their
+            defaults are the C++ structs' (``help(refracta.edit.SolveSettings)``). SolveSettings:
             strategy ('auto': a short local solve from `field`, quick_iterations, continued while
             LM's cost still falls; if it does not meet every pair, a global stage -- scans along
             each free parameter's axis and quasi-random points over the bounds and near the
@@ -461,7 +464,7 @@ def distances(
     **options: Any,
 ) -> np.ndarray:
     """Each pair's miss [m]: how far the path launched toward its destination passes its source.
-    pair_options, ``**options``: a refracta.PairOptions and its fields by name (trace, tol, step,
+    pair_options, ``**options``: a refracta.edit.PairOptions and its fields by name (trace, tol, step,
     stop_height, distance, reach, max_steps), as solve() takes them."""
     pair_options = _pair_options("refracta.edit.distances", pair_options, options)
     _, _, _, origins, directions, sources, _, _, _ = _pair_rays(eye_or_camera, pairs)

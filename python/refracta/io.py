@@ -105,7 +105,7 @@ def write_image(
 ) -> None:
     """Write an (H, W, C) float image (C = 1..4; C = 2 and 4 carry alpha last).
 
-    Float formats (.exr, .hdr, .pfm, .tif) get the linear values times the manual exposure
+    Float formats (.exr, .hdr, .tif) get the linear values times the manual exposure
     (exposure, ev100 or shutter/f_number/iso; none: unchanged, never automatic); display settings
     they leave unused (tonemap, key, white, gamma, white_balance away from their defaults) raise
     a UserWarning naming them. Others (.png,
@@ -138,6 +138,8 @@ def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> Non
         base = base[..., None]
     if base.ndim != 3 or not 1 <= base.shape[2] <= 4:
         raise ValueError(f"write_layers: image must be (H, W) or (H, W, 1..4) (got shape {base.shape})")
+    if not isinstance(layers, dict):
+        raise ValueError(f"write_layers: layers must be a dict of name: array (got {type(layers).__name__})")
     names = list(("R", "G", "B", "A")[: base.shape[2]]) if base.shape[2] >= 3 else ["Y", "A"][: base.shape[2]]
     planes = [base]
     for name, layer in layers.items():

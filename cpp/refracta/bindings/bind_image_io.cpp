@@ -8,6 +8,9 @@
 #include "refracta/scene/image_io.h"
 #include "refracta/shading/display.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 
 namespace refracta {
@@ -42,6 +45,10 @@ void write_display_image(const std::string& path, Image image, const DisplaySett
     }
     const double c = manual_exposure(settings);
     for (float& v : image.pixels) v *= float(c);
+    if (!std::all_of(image.pixels.begin(), image.pixels.end(), [](float v) { return std::isfinite(v); })) {
+      throw_invalid("write_image: the image times the exposure (", c, ") overflows float32 (a value beyond ",
+                    std::numeric_limits<float>::max(), "): lower the exposure");
+    }
   } else {
     tonemap_image(image, settings);
   }

@@ -1,6 +1,7 @@
 // Process-wide settings of the library: how many threads oneTBB may use, and where the messages of
 // the libraries underneath (Ceres' glog, OpenImageIO) go: to Python's logging, never the terminal.
 #include "refracta/bindings/bindings.h"
+#include "refracta/core/memory.h"
 #include "refracta/edit/ceres_log.h"
 #include "refracta/scene/oiio_messages.h"
 
@@ -57,6 +58,8 @@ not depend on it: every parallel loop writes each item's result to its own slot.
       "get_threads",
       [] { return int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)); },
       "The number of threads refracta's parallel work may use (see set_threads).");
+  m.def("physical_memory_bytes", &physical_memory_bytes,
+        "This machine's physical memory [bytes] (0 if unknown): the limit refracta refuses work beyond.");
   m.def("_emit_library_log", &emit_library_log,
         "Move queued Ceres (glog) messages to the Python logger 'refracta.ceres'.");
 }

@@ -118,7 +118,7 @@ ObjOptions obj_options(const py::object& given, const py::dict& keywords, const 
 }
 
 // add_ground's texture_size, when the ground is textured (texture= or a textured material).
-bool textured(const py::object& material, const std::optional<std::string>& texture) {
+bool textured(const py::object& material, const std::optional<FilePath>& texture) {
   return texture || (!material.is_none() && py::isinstance<Material>(material) && py::cast<const Material&>(material).textured());
 }
 
@@ -127,9 +127,9 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
       .def("add_mesh",
            [](RenderScene& s, const py::object& vertices, const py::object& triangles, const py::object& material,
               const py::object& emission, bool two_sided, const py::object& normals, const py::object& uvs,
-              const py::object& kd, const py::object& ks, double ns, std::optional<std::string> texture, double alpha) {
+              const py::object& kd, const py::object& ks, double ns, std::optional<FilePath> texture, double alpha) {
              const Mesh mesh = mesh_from(vertices, triangles, normals, uvs);
-             const int tex = texture ? s.geometry.textures().add(*texture) : -1;
+             const int tex = texture ? s.geometry.textures().add(texture->string()) : -1;
              if (tex >= 0 && mesh.uvs.empty()) throw_invalid("add_mesh: a texture needs uvs");
              const int material_id = material_of(s, material, kd, ks, ns, tex, alpha);
              return add_surface(s, mesh, material_id, emission_of(emission), two_sided, "add_mesh");
@@ -144,13 +144,13 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
            "shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without\n"
            "material. Returns its id.")
       .def("add_obj",
-           [](RenderScene& s, const std::string& path, const py::object& offset, const py::object& scale,
+           [](RenderScene& s, const FilePath& path, const py::object& offset, const py::object& scale,
               const py::object& options, const py::object& texture_dirs, const py::object& missing_textures,
               const py::object& progress) {
              using namespace py::literals;
              const py::dict fields("offset"_a = offset, "scale"_a = scale, "texture_dirs"_a = texture_dirs,
                                    "missing_textures"_a = missing_textures);
-             return add_obj(s, path, obj_options(options, fields, progress));
+             return add_obj(s, path.string(), obj_options(options, fields, progress));
            },
            py::arg("path"), py::arg("offset") = py::none(), py::arg("scale") = py::none(), py::kw_only(),
            py::arg("options") = py::none(), py::arg("texture_dirs") = py::none(),
@@ -178,10 +178,10 @@ taken over a second, a callable gets progress(done, total) textures, False shows
 Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
       .def("add_ground",
            [](RenderScene& s, double height, double size, const py::object& material, const py::object& kd,
-              const py::object& ks, double ns, std::optional<std::string> texture, double texture_size) {
+              const py::object& ks, double ns, std::optional<FilePath> texture, double texture_size) {
              const bool uvs = textured(material, texture);
              const Mesh mesh = uvs ? ground_mesh(height, 0.5 * size, texture_size) : ground_mesh(height, 0.5 * size);
-             const int tex = texture ? s.geometry.add_texture(*texture) : -1;
+             const int tex = texture ? s.geometry.add_texture(texture->string()) : -1;
              return s.geometry.add_mesh(mesh, material_of(s, material, kd, ks, ns, tex));
            },
            py::arg("height") = 0.0, py::arg("size") = 20000.0, py::arg("material") = py::none(),
@@ -191,10 +191,10 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            "texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z) and\n"
            "multiplies kd (or that material's colour).")
       .def("add_billboard",
-           [](RenderScene& s, const py::object& centre, double width, double height, const std::string& texture,
+           [](RenderScene& s, const py::object& centre, double width, double height, const FilePath& texture,
               const py::object& facing, const py::object& kd) {
              const Mesh mesh = billboard_mesh(to_point(centre, "centre"), width, height, to_point(facing, "facing"));
-             return s.geometry.add_mesh(mesh, material_of(s, py::none(), kd, py::int_(0), 1.0, s.geometry.textures().add(texture)));
+             return s.geometry.add_mesh(mesh, material_of(s, py::none(), kd, py::int_(0), 1.0, s.geometry.textures().add(texture.string())));
            },
            py::arg("centre"), py::arg("width"), py::arg("height"), py::arg("texture"),
            py::arg("facing") = py::make_tuple(-1.0, 0.0, 0.0), py::arg("kd") = py::make_tuple(1.0, 1.0, 1.0),

@@ -8,9 +8,15 @@
 #include "refracta/render/render_scene.h"
 #include "refracta/scene/embree_scene.h"
 
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
 #include <memory>
 
 namespace refracta {
+
+// A file path argument: a str or an os.PathLike (pybind11's std::filesystem caster calls os.fspath).
+using FilePath = std::filesystem::path;
 
 py::array_t<float> image_to_float32(const Image& image);
 py::array_t<float> image_to_float32(Image&& image);  // without copying the pixels

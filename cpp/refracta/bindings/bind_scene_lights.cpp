@@ -30,8 +30,15 @@ std::shared_ptr<PhysicalSkyLight> build_sky_interruptibly(const PhysicalSkySetti
 
 // set_environment's source: a map file, an image array (H, W, 3), or an RGB radiance.
 LightPtr environment_of(const py::object& source, const py::object& rotation, double scale) {
-  if (py::isinstance<py::str>(source)) return environment_from_file(py::cast<std::string>(source), scale, to_rotation(rotation, "rotation"));
+  if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
+    return environment_from_file(py::cast<FilePath>(source).string(), scale, to_rotation(rotation, "rotation"));
+  }
   if (py::isinstance<py::array>(source) && py::cast<py::array>(source).ndim() >= 2) {
+    const auto array = py::cast<py::array>(source);
+    if (array.ndim() != 3 || array.shape(2) != 3) {
+      throw_invalid("set_environment: an image must be an (H, W, 3) array of linear RGB (got shape ",
+                    std::string(py::str(py::getattr(array, "shape"))), ")");
+    }
     return std::make_shared<EnvironmentLight>(to_image(source, "image"), scale, to_rotation(rotation, "rotation"));
   }
   return std::make_shared<ConstantEnvironment>(Color::illuminant(to_rgb(source, "radiance") * scale));
@@ -53,9 +60,12 @@ void bind_sun_and_sky(SceneClass& scene) {
            "With wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.\n"
            "refracta.spectrum.PhysicalSky(...).sun_radiance(wavelengths): the sun through the air's extinction).")
       .def("set_sky",
-           [](RenderScene& s, const py::object& horizon, const py::object& zenith, std::optional<std::string> environment,
+           [](RenderScene& s, const py::object& horizon, const py::object& zenith, std::optional<FilePath> environment,
               double scale) {
-             if (environment) return s.set_sky(environment_from_file(*environment, scale));
+             if (environment && !(horizon.is_none() && zenith.is_none())) {
+               throw_invalid("set_sky: give horizon and zenith, or environment, not both (the map is the whole sky)");
+             }
+             if (environment) return s.set_sky(environment_from_file(environment->string(), scale));
              const Vec3d h = horizon.is_none() ? kDefaultSkyColour : to_rgb(horizon, "horizon");
              s.set_sky(gradient_sky(h, zenith.is_none() ? h : to_rgb(zenith, "zenith"), scale));
            },

@@ -96,6 +96,7 @@ void TurbulenceSettings::validate() const {
 }
 
 double turbulence_memory_needed(int64_t cells) {
+  if (cells < kMinCells) throw_invalid("memory_needed: cells must be >= ", kMinCells, " (got ", cells, ")");
   const double n = double(cells);
   const int64_t half = cells / 2 + 1;  // the half spectrum's length along z (whole division)
   return 4.0 * n * n * n + 8.0 * n * n * double(half) + 4.0 * n * n * n + 16e6;

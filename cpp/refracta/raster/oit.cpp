@@ -239,7 +239,9 @@ void MboitSettings::check(Problems& problems) const {
   if (bias) problems.check(*bias >= 0.0 && *bias < 1.0, "bias must be in [0, 1) (got ", *bias, ")");
   problems.check(storage != Storage::kFp64, "storage must be 'fp32' or 'unorm16' (got 'fp64')");
   problems.check(std::isfinite(z_near) && std::isfinite(z_far), "z_near and z_far must be finite");
-  if (z_far > z_near) problems.check(z_near > 0.0, "z_range must be (near, far) with 0 < near < far");
+  if (z_far > z_near) {
+    problems.check(z_near > 0.0, "z_near must be > 0 with z_far > z_near (got z_near ", z_near, ", z_far ", z_far, ")");
+  }
 }
 
 void MboitSettings::validate() const {

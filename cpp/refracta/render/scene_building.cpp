@@ -63,8 +63,12 @@ void set_geometry_material(RenderScene& scene, int geometry, const MaterialPtr& 
 }
 
 std::pair<Vec3d, Vec3d> scene_bounds(const RenderScene& scene) {
-  if (scene.geometry.geometry_count() == 0) throw_invalid("Scene.bounds: the scene is empty");
-  return {scene.geometry.lower(), scene.geometry.upper()};
+  const Vec3d lower = scene.geometry.lower(), upper = scene.geometry.upper();
+  // No geometry, or all of it removed (the box is then inverted: +inf below -inf).
+  if (scene.geometry.geometry_count() == 0 || !(lower.array() <= upper.array()).all()) {
+    throw_invalid("Scene.bounds: the scene is empty (it holds no geometry, or all of it was removed)");
+  }
+  return {lower, upper};
 }
 
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction) {

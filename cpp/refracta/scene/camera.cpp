@@ -66,8 +66,14 @@ Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const V
   const double vfov = 2.0 * std::atan(0.5 * image_h_mm / focal_length_mm) * 180.0 / kPi;
   Camera camera(position, look_at, up, vfov, width, height);
   if (!f_number) return camera;
-  // The aperture's diameter A = f / N [m]; focus by default where the camera looks.
-  return camera.with_lens(1e-3 * focal_length_mm / *f_number, focus_distance.value_or((look_at - position).norm()));
+  // The aperture's diameter A = f / N [m]; focus by default where the camera looks (which must lie
+  // beyond the focal length too: eye_level's target 1e-9 m away rendered wholly blurred).
+  const double focus = focus_distance.value_or((look_at - position).norm());
+  if (!(focus > 1e-3 * focal_length_mm)) {
+    throw_invalid("Camera.photographic: the camera looks at a point ", focus, " m away, nearer than the focal length (",
+                  1e-3 * focal_length_mm, " m), where a lens cannot focus: give focus_distance");
+  }
+  return camera.with_lens(1e-3 * focal_length_mm / *f_number, focus);
 }
 
 Camera Camera::eye_level(const Vec3d& ground, const Vec3d& target, double eye_height, double focal_length_mm,
@@ -115,6 +121,11 @@ Camera Camera::framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& dire
     throw_invalid("Camera.framing: bounds must be finite with lower <= upper (an empty scene has none)");
   }
   if (!is_finite(direction) || direction.norm() == 0.0) throw_invalid("Camera.framing: direction must be finite and non-zero");
+  if (is_finite(up) && up.norm() > 0.0 && !(up.normalized().cross(direction.normalized()).norm() > 1e-9)) {
+    throw_invalid("Camera.framing: direction (", direction.x(), ", ", direction.y(), ", ", direction.z(),
+                  ") must not be parallel to up (", up.x(), ", ", up.y(), ", ", up.z(),
+                  "): give another up, e.g. (0, 0, -1) to look straight down");
+  }
   if (!(vfov_deg > 0.0 && vfov_deg < 180.0)) {
     throw_invalid("Camera.framing: vfov must be in (0, 180) degrees (got ", vfov_deg, ")");
   }

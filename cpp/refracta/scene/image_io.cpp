@@ -44,7 +44,7 @@ void write_image_channels(const std::string& path, const Image& image, const std
   if (int(names.size()) != image.channels) {
     throw_invalid("write_image_channels: ", names.size(), " channel names for ", image.channels, " channels");
   }
-  if (!is_float_format(path)) throw_invalid("write_image_channels: '", path, "' must be a float format (.exr)");
+  if (!is_float_format(path)) throw_invalid("write_layers: '", path, "' must be a float format (.exr)");
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw IoError(concat("cannot write '", path, "': ", OIIO::geterror()));
   OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);

@@ -105,10 +105,18 @@ class TexturedReflectance {
 };
 
 // Material::with_textures of a material whose `member` is its textured reflectance: a copy with
-// the texture file bound to `textures`, or null when the texture is not a file.
+// the texture file bound to `textures`, or null when the texture is not a file (an id must be one
+// of `textures`': ValueError when the material is added, not an index error in the render).
 template <class M>
 std::shared_ptr<const Material> with_bound_texture(const M& material, TexturedReflectance M::*member, Textures& textures) {
-  if ((material.*member).path().empty()) return nullptr;
+  if ((material.*member).path().empty()) {
+    const int id = (material.*member).texture();
+    if (id >= 0 && size_t(id) >= textures.size()) {
+      throw_invalid("texture id ", id, " is not one of this scene's textures (it has ", textures.size(),
+                    "): give the texture's file path instead");
+    }
+    return nullptr;
+  }
   auto copy = std::make_shared<M>(material);
   copy.get()->*member = (material.*member).bound_to(textures);
   return copy;

@@ -33,20 +33,22 @@ Image gradient_sky_image(const Vec3d& horizon, const Vec3d& zenith) {
 
 LightPtr gradient_sky(const Vec3d& horizon, const Vec3d& zenith, double scale) {
   if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("scale must be >= 0 (got ", scale, ")");
-  if (!(scale * std::max(horizon.cwiseAbs().maxCoeff(), zenith.cwiseAbs().maxCoeff()) <= kMaxRadiance)) {
+  Problems problems("set_sky");
+  auto check = [&](const char* name, const Vec3d& radiance) {
+    problems.check(radiance.allFinite() && radiance.minCoeff() >= 0.0, name, " must be finite and >= 0 per channel (got (",
+                   radiance.x(), ", ", radiance.y(), ", ", radiance.z(), "))");
+  };
+  check("horizon", horizon);
+  if (zenith != horizon) check("zenith", zenith);
+  problems.throw_if_any();
+  if (!(scale * std::max(horizon.maxCoeff(), zenith.maxCoeff()) <= kMaxRadiance)) {
     throw_invalid("set_sky: the sky's radiance times scale must be at most ", kMaxRadiance, " (got scale ", scale,
                   "): images are float32");
   }
+  if (!(horizon.maxCoeff() > 0.0 || zenith.maxCoeff() > 0.0)) return nullptr;  // black: no sky
   if (zenith == horizon) {  // a constant sky, sampled by cosine
-    if (!(horizon.maxCoeff() > 0.0)) return nullptr;
-    const Vec3d radiance = horizon * scale;
-    if (!(radiance.minCoeff() >= 0.0)) {
-      throw_invalid("horizon must be finite and >= 0 per channel (got (", radiance.x(), ", ", radiance.y(), ", ",
-                    radiance.z(), "))");
-    }
-    return std::make_shared<ConstantEnvironment>(Color::illuminant(radiance));
+    return std::make_shared<ConstantEnvironment>(Color::illuminant(horizon * scale));
   }
-  if (!(horizon.maxCoeff() > 0.0 || zenith.maxCoeff() > 0.0)) return nullptr;
   return std::make_shared<EnvironmentLight>(gradient_sky_image(horizon, zenith), scale);
 }
 

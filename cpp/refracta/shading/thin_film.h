@@ -17,6 +17,7 @@
 #include "refracta/shading/microfacet.h"
 
 #include <complex>
+#include <utility>
 
 namespace refracta {
 
@@ -46,9 +47,14 @@ inline double thin_film_reflectance(double cos_1, double n1, double n2, std::com
 // wavelength > 0, k and thickness >= 0, the base's index eta + i k.
 inline double checked_thin_film_reflectance(double cos_1, double n1, double n2, double eta, double k, double thickness,
                                             double lambda_nm) {
-  if (!(n1 > 0.0 && n2 > 0.0 && eta > 0.0 && k >= 0.0 && thickness >= 0.0 && lambda_nm > 0.0)) {
-    throw_invalid("thin_film_reflectance needs n1, n2, eta, wavelength > 0 and k, thickness >= 0");
+  Problems problems("thin_film_reflectance");
+  for (const auto& [name, value] : {std::pair{"n1", n1}, std::pair{"n2", n2}, std::pair{"eta", eta}, std::pair{"wavelength", lambda_nm}}) {
+    problems.check(value > 0.0 && std::isfinite(value), name, " must be > 0 and finite (got ", value, ")");
   }
+  for (const auto& [name, value] : {std::pair{"k", k}, std::pair{"thickness", thickness}}) {
+    problems.check(value >= 0.0 && std::isfinite(value), name, " must be >= 0 and finite (got ", value, ")");
+  }
+  problems.throw_if_any();
   return thin_film_reflectance(cos_1, n1, n2, {eta, k}, thickness, lambda_nm);
 }
 

@@ -47,7 +47,9 @@ double water_absorption(double wavelength_nm);
 // pure sea water", in Optical Aspects of Oceanography, Jerlov & Steemann Nielsen eds.), whose phase
 // function is symmetric front-to-back; b_w(500) = 0.00222 1/m for pure water, and sea water
 // (S = 35-39 g/kg) scatters 30 % more: b_w(500) = 0.00222 (1 + 0.3 S / 37). Zhang et al. 2009
-// (Optics Express 17(7)) derive the same lambda^-4.32 slope from fluctuation theory.
+// (Optics Express 17(7)) derive the same lambda^-4.32 slope from fluctuation theory. Wavelength in
+// [360, 830] nm (water_absorption's range, with which it makes the water body's colour), salinity
+// in [0, kWaterMaxSalinity = 40] g/kg; outside: std::invalid_argument (ValueError in Python).
 double water_backscattering(double wavelength_nm, double salinity = 0.0);
 
 // Irradiance reflectance R = E_u / E_d just beneath the surface of an optically deep, homogeneous
