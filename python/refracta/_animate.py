@@ -218,7 +218,6 @@ def animate(
         geometric_noise_map(1, 1, **noise)  # checks the values before any work
     if turbulence is not None:
         with_turbulence(field, turbulence)  # checks the field before any work
-    _check_frames_fit(times.size, camera)
     fps = _frame_rate(times, fps)
     if path is not None:
         path = os.fspath(path)
@@ -228,6 +227,7 @@ def animate(
         if "{" not in path and not os.path.isdir(folder):  # ... and so does a folder that is not there
             # (frame files make theirs)
             raise FileNotFoundError(f"animate: the folder of {path!r} does not exist ({folder})")
+    _check_frames_fit(times.size, camera, path, exposure)
     if not isinstance(denoise, (bool, np.bool_)):
         raise ValueError(f"animate: denoise must be True or False (got {denoise!r})")
     if denoise:
@@ -263,15 +263,19 @@ def _render_frame(scene, camera, field, settings, turbulence, noise, denoise, t)
     return _denoised(colour, _surface_outputs(image), settings)
 
 
-def _check_frames_fit(count: int, camera) -> None:
+def _check_frames_fit(count: int, camera, path: str | None, exposure) -> None:
     """ValueError before any work when the returned frames (float32 RGB) would take more than half
-    this machine's memory (the rest: each frame's render buffers, the file's display copies)."""
+    this machine's memory (the rest: each frame's render buffers). A GIF or MP4 needs about twice
+    that again while it is written: the frames stacked for their joint exposure (unless `exposure`
+    is given), and their 8-bit display copies."""
     needed = 12.0 * count * camera.width * camera.height
+    if path is not None and "{" not in path:
+        needed *= 1.25 if exposure is not None else 2.25
     memory = _core.physical_memory_bytes()
     if memory > 0 and needed > memory / 2:
         raise ValueError(
             f"animate: {count} times of {camera.width} x {camera.height} frames need {needed / 1e9:.1f} GB "
-            f"for the returned frames, more than half this machine's {memory / 1e9:.1f} GB: render fewer "
+            f"for the frames and the file, more than half this machine's {memory / 1e9:.1f} GB: render fewer "
             "times per call (or a smaller camera)"
         )
 
@@ -283,12 +287,15 @@ def _check_output_settings(path: str, exposure, tonemap) -> None:
     io.settings(None, exposure=exposure, tonemap=tonemap)  # ValueError naming the setting
     if "{" in path:
         try:
-            path.format(0)
-        except (KeyError, IndexError, ValueError) as error:
+            distinct = path.format(0) != path.format(1)
+            problem = "" if distinct else ": it names every frame alike"
+        except (KeyError, IndexError, ValueError, TypeError, AttributeError) as error:
+            problem = f": {error!r}"
+        if problem:
             raise ValueError(
                 f"animate: path's pattern must have one '{{}}' field for the frame number, as "
-                f"'frames/f{{:03d}}.png' (got {path!r}: {error!r})"
-            ) from None
+                f"'frames/f{{:03d}}.png' (got {path!r}{problem})"
+            )
 
 
 def _frame_rate(times: np.ndarray, fps: float | None) -> float:

@@ -3656,7 +3656,7 @@ def get_threads() -> int:
     """
 def physical_memory_bytes() -> float:
     """
-    This machine's physical memory [bytes] (0 if unknown): the limit refracta refuses work beyond.
+    This machine's physical memory [bytes] (0 if unknown), by which refracta refuses work too large to allocate.
     """
 def set_threads(n: typing.SupportsInt | typing.SupportsIndex | None) -> None:
     """

@@ -366,7 +366,7 @@ def _aov_names(aovs) -> list[str]:
     try:
         names = list(aovs)
     except TypeError:
-        raise ValueError(f"aovs must be a list of names, e.g. ['albedo', 'normal'] (got {aovs!r})") from None
+        raise ValueError(f"render: aovs must be a list of names, e.g. ['albedo', 'normal'] (got {aovs!r})") from None
     unknown = [name for name in names if name not in AOV_NAMES]
     if unknown:
         raise ValueError(f"render: unknown aovs {unknown} (valid names: {', '.join(AOV_NAMES)})")

@@ -25,11 +25,16 @@ def small_camera():
 NOISE = dict(rms=1e-3, correlation_pixels=2)
 
 
-def test_animate_refuses_frames_that_would_not_fit_in_memory_before_rendering():
+def test_animate_refuses_frames_that_would_not_fit_in_memory_before_rendering(monkeypatch):
+    # A 16 GB machine, whatever this one has (a larger one would start rendering the million frames).
+    monkeypatch.setattr(refracta._animate._core, "physical_memory_bytes", lambda: 16e9)
     camera = refracta.Camera((0, 1.4, 0), (30, 0.9, 0), width=160, height=90)
-    # 1e6 frames of 160 x 90 float32 RGB: 172.8 GB, more than half of any machine this runs on.
-    with pytest.raises(ValueError, match=r"animate: 1000000 times of 160 x 90 frames need 172\.8 GB"):
+    # 1e6 frames of 160 x 90 float32 RGB: 172.8 GB.
+    with pytest.raises(ValueError, match=r"animate: 1000000 times of 160 x 90 frames need 172\.8 GB .* 16\.0 GB"):
         refracta.animate(sky_scene(), camera, None, np.arange(10**6) * 0.1, noise=NOISE, progress=False)
+    # Written to a GIF with automatic exposure: the frames stacked once more, and their 8-bit copies.
+    with pytest.raises(ValueError, match=r"need 388\.8 GB for the frames and the file"):
+        refracta.animate(sky_scene(), camera, None, np.arange(10**6) * 0.1, "a.gif", noise=NOISE, progress=False)
 
 
 @pytest.mark.parametrize(
@@ -37,6 +42,8 @@ def test_animate_refuses_frames_that_would_not_fit_in_memory_before_rendering():
     [
         ("frames/f{x}.png", {}, r"path's pattern must have one '\{\}' field .*KeyError"),
         ("frames/f{}{}.png", {}, r"path's pattern must have one '\{\}' field .*IndexError"),
+        ("frames/f{{}}.png", {}, r"path's pattern must have one '\{\}' field .*names every frame alike"),
+        ("frames/f{0[0]}.png", {}, r"path's pattern must have one '\{\}' field .*TypeError"),
         ("a.gif", {"exposure": 0}, r"exposure must be > 0 and finite \(got 0\)"),
         ("a.gif", {"tonemap": "filmic"}, r"tonemap must be .* \(got 'filmic'\)"),
     ],
@@ -84,10 +91,12 @@ def test_set_sky_refuses_colours_beside_an_environment_map():
         refracta.Scene().set_sky((1.0, 1.0, 1.0), environment="sky.exr")
 
 
-def test_set_environment_refuses_an_image_without_three_channels():
-    for shape in ((4, 8, 4), (4, 4)):
-        with pytest.raises(ValueError, match=re.escape(f"(H, W, 3) array of linear RGB (got shape {shape})")):
+def test_set_environment_refuses_an_image_of_other_channels():
+    for shape in ((4, 8, 2), (4, 8, 3, 1)):
+        with pytest.raises(ValueError, match=re.escape(f"alpha ignored) (got shape {shape})")):
             refracta.Scene().set_environment(np.ones(shape))
+    for shape in ((4, 8), (4, 8, 1), (4, 8, 3), (4, 8, 4)):  # grey, RGB and RGBA, as map files
+        refracta.Scene().set_environment(np.ones(shape))
 
 
 def test_a_texture_id_the_scene_does_not_hold_is_refused_when_the_material_is_added():
@@ -109,8 +118,12 @@ def test_bounds_of_a_scene_whose_geometry_was_all_removed():
 
 def test_eye_level_refuses_to_focus_nearer_than_the_focal_length():
     # It accepted a target 1e-9 m away and rendered wholly blurred; photographic refused the same.
-    with pytest.raises(ValueError, match=r"looks at a point 1e-09 m away, nearer than the focal length \(0\.05 m\)"):
+    with pytest.raises(
+        ValueError, match=r"eye_level: the target is 1e-09 m away, nearer than the focal length \(0\.05 m\)"
+    ):
         refracta.Camera.eye_level((0, 0, 0), (1e-9, 0, 0), f_number=2)
+    with pytest.raises(ValueError, match=r"photographic: the camera looks at a point 0\.01 m away"):
+        refracta.Camera.photographic((0, 1, 0), (0.01, 1, 0), 50.0, f_number=2)
 
 
 def test_framing_straight_down_names_direction_and_up():
@@ -144,7 +157,7 @@ def test_render_raster_warns_like_render_when_nothing_lights_the_scene():
     [
         (
             lambda: refracta.render(sky_scene(), small_camera(), None, aovs=3),
-            r"aovs must be a list of names, .*\(got 3\)",
+            r"render: aovs must be a list of names, .*\(got 3\)",
         ),
         (
             lambda: refracta.render(sky_scene(), small_camera(), None, method="raster_march", denoise=True),

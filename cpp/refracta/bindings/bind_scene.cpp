@@ -194,7 +194,8 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            [](RenderScene& s, const py::object& centre, double width, double height, const FilePath& texture,
               const py::object& facing, const py::object& kd) {
              const Mesh mesh = billboard_mesh(to_point(centre, "centre"), width, height, to_point(facing, "facing"));
-             return s.geometry.add_mesh(mesh, material_of(s, py::none(), kd, py::int_(0), 1.0, s.geometry.textures().add(texture.string())));
+             const int id = s.geometry.textures().add(texture.string());
+             return s.geometry.add_mesh(mesh, material_of(s, py::none(), kd, py::int_(0), 1.0, id));
            },
            py::arg("centre"), py::arg("width"), py::arg("height"), py::arg("texture"),
            py::arg("facing") = py::make_tuple(-1.0, 0.0, 0.0), py::arg("kd") = py::make_tuple(1.0, 1.0, 1.0),

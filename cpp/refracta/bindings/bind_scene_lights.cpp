@@ -35,9 +35,9 @@ LightPtr environment_of(const py::object& source, const py::object& rotation, do
   }
   if (py::isinstance<py::array>(source) && py::cast<py::array>(source).ndim() >= 2) {
     const auto array = py::cast<py::array>(source);
-    if (array.ndim() != 3 || array.shape(2) != 3) {
-      throw_invalid("set_environment: an image must be an (H, W, 3) array of linear RGB (got shape ",
-                    std::string(py::str(py::getattr(array, "shape"))), ")");
+    if (array.ndim() > 3 || (array.ndim() == 3 && array.shape(2) != 1 && array.shape(2) != 3 && array.shape(2) != 4)) {
+      throw_invalid("set_environment: an image must be an (H, W) or (H, W, 1, 3 or 4) array of linear radiance (grey, "
+                    "RGB; alpha ignored) (got shape ", std::string(py::str(py::getattr(array, "shape"))), ")");
     }
     return std::make_shared<EnvironmentLight>(to_image(source, "image"), scale, to_rotation(rotation, "rotation"));
   }

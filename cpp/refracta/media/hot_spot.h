@@ -71,7 +71,8 @@ std::vector<HotSpot> hot_spots_from(const std::vector<HotSpot>& made, const std:
                                     bool with_depth);
 
 // F at horizontal offset (dx, dz) from the centre and its gradient (dF/dx, dF/dz); inv_radius is
-// 1 / radius (the models keep it: a division after the square root was a tenth of a hot-spot render).
+// 1 / radius (PhysicalAtmosphere keeps it per spot: a division after the square root was a tenth
+// of a hot-spot render).
 template <class T>
 void hot_spot_footprint(Footprint kind, const T& dx, const T& dz, const T& inv_radius, T* f, T* df_dx, T* df_dz) {
   using std::exp;

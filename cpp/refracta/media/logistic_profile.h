@@ -157,7 +157,7 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
     for (size_t i = 0; i < spots_.size(); ++i) {
       const std::vector<T>& v = spot_values_[i];
       T f, df_dx, df_dz;
-      hot_spot_footprint(spots_[i].footprint, T(p.x() - v[0]), T(p.z() - v[1]), T(T(1.0) / v[2]), &f, &df_dx, &df_dz);
+      hot_spot_footprint(spots_[i].footprint, T(p.x() - v[0]), T(p.z() - v[1]), T(1.0) / v[2], &f, &df_dx, &df_dz);
       s += v[3] * f, ds_dx += v[3] * df_dx, ds_dz += v[3] * df_dz;
     }
     // n_hot (1 - S sigma(-h/w)): d/dh = n_hot S sigma'(-h/w) / w.

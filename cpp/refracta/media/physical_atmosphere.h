@@ -160,7 +160,9 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
     }
     T p_air, dp_dh, t, dt_dh;
     // The column near the ground from its table where the spots or the turbulence change the air;
-    // elsewhere its own state, so that the air outside a compact spot is exactly the height-only air.
+    // elsewhere its own state, so that the air outside a compact spot is exactly the height-only air
+    // (at the seams -- a compact spot's rim, the table's ends -- n steps by an ulp or so and dn/dh by
+    // ~1e-13 1/m: far below what a trace's error control resolves).
     bool tabulated = false;
     if constexpr (std::is_same_v<T, double>) {
       tabulated = (heated || turbulence_) && near_ground_.covers(p.y());
@@ -243,8 +245,11 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
 
   // The column's state near the ground (column_table.h), from a surface-layer depth below h = 0 to a
   // tenth above the highest region (the spots' tops, the turbulent slab's), where rays inside them
-  // evaluate the field; the spacing a 128th of the finest scale tabulated (the surface layer, the
-  // inversion where it reaches that low). Not built beyond 65536 nodes (the column's own state then).
+  // evaluate the field; the spacing a 128th of the finest scale tabulated: the surface layer's
+  // depth, or a low inversion's thickness / 4.4 (its quintic step's 4th derivative reaches 360 dT /
+  // thickness^4, the layer's dT / depth^4: 360^(1/4) = 4.4). Not built beyond 65536 nodes (2 MB;
+  // a deeper table -- spots metres deep over a centimetre layer -- takes milliseconds to build per
+  // field, and editing builds one per parameter vector): the column's own state then.
   void tabulate_near_ground() {
     double top = 0.0;
     for (const LocalRegion& region : local_regions()) top = std::max(top, region.top);
@@ -252,7 +257,7 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
     const double lo = -depth, hi = std::min(1.1 * top, kHighest);
     if (!(hi > 0.0)) return;
     double scale = depth;
-    if (p_[kInversionBase] < hi) scale = std::min(scale, p_[kInversionThickness]);
+    if (p_[kInversionBase] < hi) scale = std::min(scale, p_[kInversionThickness] / 4.4);
     const double spacing = scale / 128.0;
     constexpr double kMostNodes = 65536.0;
     if ((hi - lo) / spacing > kMostNodes) return;

@@ -88,6 +88,10 @@ Camera Camera::eye_level(const Vec3d& ground, const Vec3d& target, double eye_he
   // Level: the target's horizontal direction, at the eye's height.
   const Vec3d level(target.x() - ground.x(), 0.0, target.z() - ground.z());
   if (!(level.norm() > 0.0)) throw_invalid("Camera.eye_level: target must not be straight above or below the eye");
+  if (f_number && !focus_distance && !(level.norm() > 1e-3 * focal_length_mm)) {
+    throw_invalid("Camera.eye_level: the target is ", level.norm(), " m away, nearer than the focal length (",
+                  1e-3 * focal_length_mm, " m), where a lens cannot focus: give focus_distance");
+  }
   return photographic(position, position + level, Vec3d::UnitY(), focal_length_mm, sensor_w_mm, sensor_h_mm, width,
                       height, f_number, focus_distance);
 }

@@ -35,8 +35,9 @@ LightPtr gradient_sky(const Vec3d& horizon, const Vec3d& zenith, double scale) {
   if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("scale must be >= 0 (got ", scale, ")");
   Problems problems("set_sky");
   auto check = [&](const char* name, const Vec3d& radiance) {
-    problems.check(radiance.allFinite() && radiance.minCoeff() >= 0.0, name, " must be finite and >= 0 per channel (got (",
-                   radiance.x(), ", ", radiance.y(), ", ", radiance.z(), "))");
+    problems.check(radiance.allFinite() && radiance.minCoeff() >= 0.0, name,
+                   " must be finite and >= 0 per channel (got (", radiance.x(), ", ", radiance.y(), ", ", radiance.z(),
+                   "))");
   };
   check("horizon", horizon);
   if (zenith != horizon) check("zenith", zenith);
