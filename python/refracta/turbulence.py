@@ -218,6 +218,12 @@ class Turbulence:
 
     def at_time(self, t: float) -> Turbulence:
         """The same pattern carried by the wind to time t [s]: offset (u t, 0, w t), the grid shared."""
+        if (
+            isinstance(t, (bool, np.bool_))
+            or not isinstance(t, (int, float, np.integer, np.floating))
+            or not math.isfinite(t)
+        ):
+            raise ValueError(f"Turbulence.at_time: t must be a finite number of seconds (got {t!r})")
         moved = object.__new__(Turbulence)
         moved.__dict__.update(self.__dict__)
         moved.time = float(t)
@@ -261,6 +267,9 @@ class Turbulence:
     def _unit_structure_function(self, r) -> np.ndarray:
         """structure_function for C_n^2 = 1 [m^(2/3)]."""
         r = np.atleast_1d(np.asarray(r, dtype=np.float64))
+        valid = np.isfinite(r) & (r >= 0.0)
+        if not np.all(valid):
+            raise ValueError(f"structure_function: separations r must be finite and >= 0 m (got {r[~valid][:3]})")
         kappa, weights, total = self._lattice_sums()
         out = np.empty(r.shape)
         for i, value in np.ndenumerate(r):

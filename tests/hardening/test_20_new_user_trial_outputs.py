@@ -203,3 +203,38 @@ def test_scene_methods_take_pathlib_paths(tmp_path):
     scene.set_sky(environment=environment)
     scene.set_environment(environment)
     assert len(scene.lights) == 1  # the environment replaced the sky
+
+
+def small_turbulence():
+    return refracta.Turbulence(1e-10, cells=16, spacing=0.1)
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: small_turbulence().at_time("1"), r"at_time: t must be a finite number of seconds \(got '1'\)"),
+        (lambda: small_turbulence().at_time(float("nan")), r"at_time: t must be a finite number"),
+        (lambda: small_turbulence().structure_function([float("nan")]), r"r must be finite and >= 0 m"),
+        (lambda: small_turbulence().structure_function([-1.0]), r"r must be finite and >= 0 m"),
+        (lambda: refracta.lights.LightSampler([]), r"LightSampler: lights must hold at least one light"),
+        # A boolean is not a colour (Diffuse(True) was a white reflectance).
+        (lambda: shading.Diffuse(True), r"must hold real numbers \(got dtype bool\)"),
+        (
+            lambda: refracta.Scene().set_sun((0, 1, 0), [1.0, 1.0], wavelengths=[-5.0, 500.0]),
+            r"wavelengths must be finite, > 0 nm and increasing \(got -5 at 0\)",
+        ),
+    ],
+)
+def test_small_validation_gaps(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()
+
+
+def test_out_of_range_mtl_values_are_clamped_with_a_warning(tmp_path):
+    (tmp_path / "m.mtl").write_text("newmtl odd\nKd 5 -1 0.5\nKs 0.1 0.1 0.1\nNs -3\nd 7\n")
+    (tmp_path / "m.obj").write_text("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl odd\nf 1 2 3\n")
+    scene = refracta.Scene()
+    with pytest.warns(UserWarning, match=r"material 'odd' has Kd \(5, -1, 0\.5\), Ns -3, d 7 out of range; clamped"):
+        (part,) = scene.add_obj(tmp_path / "m.obj")
+    # As renderers read MTL files: albedos and opacity in [0, 1], the exponent >= 0 (Ks was in range).
+    assert "kd=(1, 0, 0.5)" in repr(scene.material(part))

@@ -12,10 +12,9 @@ import refracta
 # ~(1e-4 / 0.1)^2 = 1e-6 relative, round-off 1e-16 / 1e-4 = 1e-12 absolute.
 GRADIENT_RELATIVE = 1e-5
 GRADIENT_ABSOLUTE = 1e-11  # round-off 1e-16 / 1e-4 = 1e-12 (comment above), with 10x margin
-# The column table under a spot against the exact column: ~1e-16 in n (an ulp of n ~ 1.0003 is
-# 2.2e-16: a few of them), ~4e-13 1/m in dn/dh for the 10 K, 0.1 m road layer (column_table.h).
-TABLE_N = 1e-15
-TABLE_GRADIENT = 1e-12
+# The column table under a spot against the exact column (column_table.h), for the 10 K, 0.1 m road layer:
+TABLE_N = 1e-15  # its ~1e-16 in n: a few ulps of n ~ 1.0003 (2.2e-16 each)
+TABLE_GRADIENT = 1e-12  # its ~4e-13 1/m in dn/dh, with 2.5x margin
 
 
 def road(*spots, **params):

@@ -20,9 +20,9 @@ std::string shape_of(const DoubleArray& array) {
 }
 
 // real_array with `message` in place of the cast error of inputs that are not numbers at all.
-DoubleArray numbers(const py::handle& object, const char* what, const char* message) {
+DoubleArray numbers(const py::handle& object, const char* what, const char* message, bool bools = true) {
   try {
-    return real_array(object, what);
+    return real_array(object, what, bools);
   } catch (const py::cast_error&) {
     throw_invalid(what, message);
   }
@@ -130,7 +130,8 @@ std::vector<Vec3d> to_unit_vectors(const py::handle& object, const char* what, s
 }
 
 Vec3d to_rgb(const py::handle& value, const char* what) {
-  const DoubleArray array = numbers(value, what, " must be a number or an (r, g, b) triple");
+  // Not True / False: Diffuse(True) was a white reflectance.
+  const DoubleArray array = numbers(value, what, " must be a number or an (r, g, b) triple", /*bools=*/false);
   Vec3d rgb;
   if (array.size() == 1 && array.ndim() <= 1) {
     rgb.setConstant(array.data()[0]);

@@ -71,11 +71,15 @@ std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const
   }
   std::vector<MaterialMesh> parts = load_obj(path);
   const std::vector<std::string> textures = texture_paths(parts, options);
-  std::set<std::string> distinct(textures.begin(), textures.end()), registered;
+  std::set<std::string> distinct(textures.begin(), textures.end()), registered, noted;
   distinct.erase("");
   std::vector<unsigned> ids;
   for (size_t p = 0; p < parts.size(); ++p) {
     MaterialMesh& part = parts[p];
+    if (!part.material.clamped.empty() && options.warn && noted.insert(part.material.name).second) {
+      options.warn(concat("add_obj: '", path, "': material '", part.material.name, "' has ", part.material.clamped,
+                          " out of range; clamped to Kd, Ks, d in [0, 1] and Ns >= 0"));
+    }
     for (auto& v : part.mesh.vertices) v = v * options.scale + options.offset;
     const int texture = textures[p].empty() ? -1 : scene.geometry.add_texture(textures[p]);
     if (texture >= 0 && registered.insert(textures[p]).second && options.progress) {

@@ -89,10 +89,19 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
         out_m.texture_name = m.diffuse_texname;
         out_m.folder = config.mtl_search_path;
       }
-      out_m.kd = Vec3d(m.diffuse[0], m.diffuse[1], m.diffuse[2]).cwiseMax(0.0).cwiseMin(1.0);
-      out_m.ks = Vec3d(m.specular[0], m.specular[1], m.specular[2]).cwiseMax(0.0).cwiseMin(1.0);
+      // Albedos and opacity into [0, 1], the exponent to >= 0, as renderers read MTL files; the
+      // values moved are noted (add_obj warns: a Kd of 5 is a mistake the image would hide).
+      const Vec3d kd(m.diffuse[0], m.diffuse[1], m.diffuse[2]), ks(m.specular[0], m.specular[1], m.specular[2]);
+      out_m.kd = kd.cwiseMax(0.0).cwiseMin(1.0);
+      out_m.ks = ks.cwiseMax(0.0).cwiseMin(1.0);
       out_m.ns = std::max(0.0, double(m.shininess));
       out_m.alpha = std::clamp(double(m.dissolve), 0.0, 1.0);
+      std::vector<std::string> moved;
+      if (out_m.kd != kd) moved.push_back(concat("Kd (", kd.x(), ", ", kd.y(), ", ", kd.z(), ")"));
+      if (out_m.ks != ks) moved.push_back(concat("Ks (", ks.x(), ", ", ks.y(), ", ", ks.z(), ")"));
+      if (out_m.ns != double(m.shininess)) moved.push_back(concat("Ns ", m.shininess));
+      if (out_m.alpha != double(m.dissolve)) moved.push_back(concat("d ", m.dissolve));
+      for (const std::string& item : moved) out_m.clamped += (out_m.clamped.empty() ? "" : ", ") + item;
       out_m.ni = m.ior;
       out_m.illum = m.illum;
       out_m.ke = Vec3d(m.emission[0], m.emission[1], m.emission[2]).cwiseMax(0.0);

@@ -94,8 +94,8 @@ Color Color::tabulated(const std::vector<double>& lambda_nm, const std::vector<d
                   " and ", values.size(), ")");
   }
   for (size_t i = 0; i < lambda_nm.size(); ++i) {
-    if (!std::isfinite(lambda_nm[i]) || (i > 0 && !(lambda_nm[i] > lambda_nm[i - 1]))) {
-      throw_invalid("tabulated: wavelengths must be finite and increasing (got ", lambda_nm[i], " at ", i, ")");
+    if (!std::isfinite(lambda_nm[i]) || !(lambda_nm[i] > 0.0) || (i > 0 && !(lambda_nm[i] > lambda_nm[i - 1]))) {
+      throw_invalid("tabulated: wavelengths must be finite, > 0 nm and increasing (got ", lambda_nm[i], " at ", i, ")");
     }
     if (!std::isfinite(values[i]) || values[i] < 0.0 || (kind == Kind::kReflectance && values[i] > 1.0)) {
       throw_invalid("tabulated: values must be finite and in ", kind == Kind::kReflectance ? "[0, 1]" : "[0, inf)",
