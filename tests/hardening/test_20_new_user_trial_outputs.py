@@ -216,7 +216,6 @@ def small_turbulence():
         (lambda: small_turbulence().at_time(float("nan")), r"at_time: t must be a finite number"),
         (lambda: small_turbulence().structure_function([float("nan")]), r"r must be finite and >= 0 m"),
         (lambda: small_turbulence().structure_function([-1.0]), r"r must be finite and >= 0 m"),
-        (lambda: refracta.lights.LightSampler([]), r"LightSampler: lights must hold at least one light"),
         # A boolean is not a colour (Diffuse(True) was a white reflectance).
         (lambda: shading.Diffuse(True), r"must hold real numbers \(got dtype bool\)"),
         (

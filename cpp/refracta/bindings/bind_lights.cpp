@@ -215,7 +215,6 @@ void bind_lights(py::module_& m) {
   py::class_<LightSampler> sampler(m, "LightSampler", DOC(refracta, LightSampler));
   sampler
       .def(py::init([](const std::vector<LightPtr>& lights, const std::string& strategy) {
-             if (lights.empty()) throw_invalid("LightSampler: lights must hold at least one light");
              return LightSampler(lights, LightSampler::strategy_from(strategy));
            }),
            py::arg("lights"), py::arg("strategy") = "power")
