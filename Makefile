@@ -19,11 +19,17 @@ install: .install.stamp
 demo: install
 	$(PYTHON) -m refracta demo --out out
 
-# The suite, then the static checks (`make lint`); either failing fails `make test` (and so CI),
-# after both have run, and the last line names what failed.
+# The suite, the notebooks, then the static checks (`make lint`); any failing fails `make test`
+# (and so CI), after all have run, and the last line names what failed. The notebooks run apart,
+# bounded in time and once more if they fail: on 4 December 2 runs in ~12 stalled with kernel and
+# client both idle, waiting on each other's ZMQ messages (a Jupyter hang, seen in the fresh-clone run
+# and standalone; the notebooks themselves take ~20 s). A notebook that really fails fails twice.
+NOTEBOOKS = timeout 300 $(PYTHON) -m pytest --nbmake --nbmake-timeout=120 notebooks
 test: install
 	@failed=""; \
-	$(PYTHON) -m pytest --nbmake --durations=25 tests notebooks $(PYTEST_ARGS) || failed="$$failed pytest"; \
+	$(PYTHON) -m pytest --durations=25 tests $(PYTEST_ARGS) || failed="$$failed pytest"; \
+	$(NOTEBOOKS) || { echo "make test: the notebooks failed or stalled; running them once more"; $(NOTEBOOKS); } \
+		|| failed="$$failed notebooks"; \
 	$(MAKE) --no-print-directory lint || failed="$$failed lint"; \
 	if [ -n "$$failed" ]; then echo "make test: FAILED:$$failed"; exit 1; fi
 
