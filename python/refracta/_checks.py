@@ -8,6 +8,12 @@ import math
 import numpy as np
 
 
+def is_number(value) -> bool:
+    """Whether `value` is a real number given as one: an int, a float or a numpy scalar of them, not a
+    bool (float(True) is 1) and not a string (float('1') is 1.0)."""
+    return not isinstance(value, (bool, np.bool_)) and isinstance(value, (int, float, np.integer, np.floating))
+
+
 def is_seed(value) -> bool:
     """Whether `value` is a whole number >= 0 given as an integer (not a bool, not a float)."""
     return not isinstance(value, bool) and isinstance(value, (int, np.integer)) and bool(value >= 0)

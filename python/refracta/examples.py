@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from refracta import _core, examples_meshes, examples_town, shading, spectrum
+from refracta._checks import is_number
 
 # Radiance unit of the example scenes. refracta.spectrum.PhysicalSky gives linear sRGB normalised
 # by the integral of the CIE y-bar curve (a mean spectral radiance, W/(m^2 sr nm)); times that
@@ -42,7 +43,7 @@ def _camera(position, look_at, vfov, width, height):
 def _finite(value, name: str, function: str) -> float:
     """`value` as a float; ValueError naming `function`'s argument `name` unless it is a finite real
     number (a bool or a string is not one: Python's float() would take True as 1 and '1' as 1.0)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+    if not is_number(value):
         raise ValueError(f"{function}: {name} must be a number (got {value!r})")
     if not np.isfinite(value):
         raise ValueError(f"{function}: {name} must be finite (got {value!r})")
@@ -54,7 +55,7 @@ def sun_direction(elevation: float, azimuth: float) -> np.ndarray:
     from +x (the examples' viewing direction) toward +z; y is up. ValueError unless elevation is in
     [-90, 90] and azimuth finite."""
     for name, value in (("elevation", elevation), ("azimuth", azimuth)):
-        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        if not is_number(value):
             raise ValueError(f"sun_direction: {name} must be a number [deg] (got {value!r})")
     if not -90.0 <= elevation <= 90.0:
         raise ValueError(f"sun_direction: elevation must be in [-90, 90] deg (got {elevation!r})")

@@ -40,6 +40,7 @@ import numpy as np
 
 from refracta import _core
 from refracta import io as _io
+from refracta._checks import is_number
 
 __all__ = ["Exif", "OverlayResult", "Photo", "load", "overlay", "read_exif", "OVERLAY_MODES"]
 
@@ -415,7 +416,7 @@ def overlay(
         aovs = {**given, **(aovs or {})}
     aovs = dict(aovs or {})
     for name, value in (("alpha", alpha), ("threshold", threshold)):
-        if isinstance(value, (bool, str)) or not isinstance(value, (int, float, np.floating, np.integer)):
+        if not is_number(value):
             raise ValueError(f"{name} must be a number (got {value!r})")
     if not (0.0 <= float(alpha) <= 1.0):
         raise ValueError(f"alpha must be in [0, 1] (got {alpha!r})")

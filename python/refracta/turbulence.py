@@ -31,6 +31,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from refracta import _core
+from refracta._checks import is_number
 
 __all__ = [
     "Turbulence",
@@ -218,11 +219,7 @@ class Turbulence:
 
     def at_time(self, t: float) -> Turbulence:
         """The same pattern carried by the wind to time t [s]: offset (u t, 0, w t), the grid shared."""
-        if (
-            isinstance(t, (bool, np.bool_))
-            or not isinstance(t, (int, float, np.integer, np.floating))
-            or not math.isfinite(t)
-        ):
+        if not (is_number(t) and math.isfinite(t)):
             raise ValueError(f"Turbulence.at_time: t must be a finite number of seconds (got {t!r})")
         moved = object.__new__(Turbulence)
         moved.__dict__.update(self.__dict__)

@@ -43,11 +43,12 @@ void write_display_image(const std::string& path, Image image, const DisplaySett
                                   " shape only displayed images (PNG, JPEG) and are not applied";
       if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();
     }
-    const double c = manual_exposure(settings);
-    for (float& v : image.pixels) v *= float(c);
-    if (!std::all_of(image.pixels.begin(), image.pixels.end(), [](float v) { return std::isfinite(v); })) {
-      throw_invalid("write_image: the image times the exposure (", c, ") overflows float32 (a value beyond ",
-                    std::numeric_limits<float>::max(), "): lower the exposure");
+    if (const double c = manual_exposure(settings); c != 1.0) {  // the image itself is finite (to_image)
+      for (float& v : image.pixels) v *= float(c);
+      if (!std::all_of(image.pixels.begin(), image.pixels.end(), [](float v) { return std::isfinite(v); })) {
+        throw_invalid("write_image: the image times the exposure (", c, ") overflows float32 (a value beyond ",
+                      std::numeric_limits<float>::max(), "): lower the exposure");
+      }
     }
   } else {
     tonemap_image(image, settings);
