@@ -55,8 +55,9 @@ looming, Fata Morgana).)doc";
 inline constexpr const char mkd_doc_refracta_CurvedEarth_flat_height[] = R"doc(Flat-frame height y' of true heights h [m].)doc";
 inline constexpr const char mkd_doc_refracta_CurvedEarth_true_height[] = R"doc(True height h [m] of flat-frame heights y'.)doc";
 inline constexpr const char mkd_doc_refracta_Dielectric[] = R"doc(Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
-(eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3),
-C in um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction).
+(eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7' (None: 1.5); or, instead, sellmeier=(B1,
+B2, B3, C1, C2, C3), C in um^2 (dispersive: spectral rendering keeps the hero wavelength on
+refraction).
 priority: nested dielectrics (larger wins).)doc";
 inline constexpr const char mkd_doc_refracta_Diffuse[] = R"doc(Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b) in [0, 1] (> 1 is
 refused: it would create energy).)doc";
@@ -81,7 +82,8 @@ inline constexpr const char mkd_doc_refracta_DisplaySettings_luminous_efficacy[]
 radiance in W/(m^2 sr).)doc";
 inline constexpr const char mkd_doc_refracta_DisplaySettings_shutter[] = R"doc([s] a camera's shutter time (with f_number); None: not this way)doc";
 inline constexpr const char mkd_doc_refracta_DisplaySettings_white[] = R"doc(Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
-luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3).)doc";
+luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other tone
+curves refuse it).)doc";
 inline constexpr const char mkd_doc_refracta_ElevationTableOptions[] = R"doc(Options of refracta.ElevationTable beside its eye height and elevation range, with their defaults
 (defined once, here). `trace` holds the exact traces' TraceOptions (their integrator is always
 'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.)doc";

@@ -838,34 +838,35 @@ class Scene:
         float32, row-major, rows along +z and columns along +x so the front is up; a sample with a NaN
         coordinate is a hole. uv_from_index (2, 3): (u, v) = A (col, row, 1). Returns the geometry id.
         """
-    def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: os.PathLike | str | bytes, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = (1.0, 1.0, 1.0)) -> int:
+    def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: os.PathLike | str | bytes, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = None) -> int:
         """
         Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at
         `centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the
-        -x side), upright.
+        -x side), upright; kd (default 1: the picture's own colours) multiplies the texture.
         """
-    def add_box(self, centre: typing.Any, size: typing.Any, material: typing.Any = None, emission: typing.Any = None, *, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_box(self, centre: typing.Any, size: typing.Any, material: typing.Any = None, emission: typing.Any = None, *, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None, alpha: typing.Any = None) -> int:
         """
-        Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]; alpha < 1: transparent in
-        render_raster.
+        Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]. Without `material`, the
+        kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha
+        (default 1; < 1: transparent in render_raster)), a texture (add_mesh) multiplying kd.
         """
-    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = (0.3, 0.3, 0.3), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, texture: os.PathLike | str | bytes | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None, *, texture: os.PathLike | str | bytes | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
-        Add a square ground of side `size` [m] at y = height, centred on the origin, facing up; an optional
-        texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z) and
-        multiplies kd (or that material's colour).
+        Add a square ground of side `size` [m] at y = height, centred on the origin, facing up. Without
+        `material`, the kd/ks/ns shorthand (BlinnPhong; kd default 0.3 grey) and a texture multiplying kd;
+        a texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z).
         """
     def add_light(self, light: ...) -> int:
         """
         Add any refracta.lights light (not area lights of geometry: use emission=). Returns its index.
         """
-    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, material: typing.Any = None, emission: typing.Any = None, two_sided: bool = False, normals: typing.Any = None, *, uvs: typing.Any = None, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0, texture: os.PathLike | str | bytes | None = None, alpha: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_mesh(self, vertices: typing.Any, triangles: typing.Any, material: typing.Any = None, emission: typing.Any = None, two_sided: bool = False, normals: typing.Any = None, *, uvs: typing.Any = None, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None, texture: os.PathLike | str | bytes | None = None, alpha: typing.Any = None) -> int:
         """
         Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);
         optional per-vertex normals (N, 3) (shading normals, interpolated) and uvs (N, 2) texture
-        coordinates (u right, v up); emission makes it an area light. The kd/ks/ns/texture/alpha
-        shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without
-        material. Returns its id.
+        coordinates (u right, v up); emission makes it an area light. Without `material`, the
+        kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha
+        (default 1; < 1: transparent in render_raster)), a texture (add_mesh) multiplying kd. Returns its id.
         """
     def add_obj(self, path: os.PathLike | str | bytes, offset: typing.Any = None, scale: typing.Any = None, *, options: typing.Any = None, texture_dirs: typing.Any = None, missing_textures: typing.Any = None, progress: typing.Any = True) -> list[int]:
         """
@@ -916,9 +917,10 @@ class Scene:
         Returns the geometry ids: the displaced meshes (fine full waves, its fade rings, coarse full waves,
         its fade rings; empty ones left out), then the flat plane.
         """
-    def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, material: typing.Any = None, emission: typing.Any = None, *, kd: typing.Any = (0.5, 0.5, 0.5), ks: typing.Any = (0.0, 0.0, 0.0), ns: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, material: typing.Any = None, emission: typing.Any = None, *, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None) -> int:
         """
-        Add a sphere (exact, not tessellated); emission makes it a spherical light.
+        Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`,
+        the kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).
         """
     def add_spot_light(self, position: typing.Any, direction: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex = 60.0, intensity: typing.Any = (100.0, 100.0, 100.0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> int:
         """
@@ -1052,8 +1054,10 @@ class Camera:
     def framing(scene_or_bounds: typing.Any, direction: typing.Any = (-1.0, -0.5, -1.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360, up: typing.Any = (0.0, 1.0, 0.0)) -> Camera:
         """
         A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
-        onto the box from its +x, +y, +z side) at the centre of the scene's bounds, from the distance at
-        which the bounding sphere fills the narrower of the two fields of view.
+        onto the box from its +x, +y, +z side) at the centre of the scene's box, from the distance at
+        which the bounding sphere fills the narrower of the two fields of view. A scene's box holds its
+        objects: flat horizontal surfaces (add_ground's 20 km square, a water plane) count only when the
+        scene has nothing else.
         
             scene.add_obj("city.obj", texture_dirs=["textures"])
             camera = refracta.Camera.framing(scene, width=800, height=450)
@@ -1296,7 +1300,8 @@ class DisplaySettings:
     def white(self) -> float | None:
         """
         Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
-        luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3).
+        luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other tone
+        curves refuse it).
         """
     @white.setter
     def white(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -2736,13 +2741,14 @@ class Material:
 class Dielectric(Material):
     """
     Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
-    (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2, C3),
-    C in um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction).
+    (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7' (None: 1.5); or, instead, sellmeier=(B1,
+    B2, B3, C1, C2, C3), C in um^2 (dispersive: spectral rendering keeps the hero wavelength on
+    refraction).
     priority: nested dielectrics (larger wins).
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+    def __init__(self, ior: typing.Any = None, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -2757,7 +2763,7 @@ class RoughDielectric(Material):
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, alpha: typing.SupportsFloat | typing.SupportsIndex | None = None, ior: typing.Any = 1.5, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0, alpha_u: typing.SupportsFloat | typing.SupportsIndex | None = None, alpha_v: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
+    def __init__(self, alpha: typing.SupportsFloat | typing.SupportsIndex | None = None, ior: typing.Any = None, sellmeier: typing.Any = None, priority: typing.SupportsInt | typing.SupportsIndex = 0, alpha_u: typing.SupportsFloat | typing.SupportsIndex | None = None, alpha_v: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
@@ -2773,7 +2779,7 @@ class ThinDielectric(Material):
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, ior: typing.Any = 1.5, sellmeier: typing.Any = None) -> None:
+    def __init__(self, ior: typing.Any = None, sellmeier: typing.Any = None) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...

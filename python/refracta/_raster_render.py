@@ -39,6 +39,25 @@ _PATHS: dict[str, str] = {
     "oit_storage": "transparency.mboit.storage",
 }
 
+# The keywords that configure one transparency method: given with another they would change nothing,
+# so render_raster refuses them (with every surface opaque, _build_options refuses them already).
+_TRANSPARENCY_METHOD_OF = {"layers": "peel", "weight": "wboit"}
+_TRANSPARENCY_METHOD_OF.update(dict.fromkeys(("moments", "basis", "kind", "beta", "oit_storage"), "mboit"))
+
+
+def _refuse_unused(settings, fields: dict) -> None:
+    """ValueError for a keyword of `fields` given (not None) for a transparency method `settings` does not use."""
+    if settings.transparency is None:
+        return
+    method = settings.transparency.method
+    for keyword, value in fields.items():
+        wanted = _TRANSPARENCY_METHOD_OF.get(keyword)
+        if value is not None and wanted is not None and method != wanted:
+            raise ValueError(
+                f"render_raster: {keyword} applies to transparency={wanted!r}, not with transparency={method!r}"
+            )
+
+
 # Spellings kept one release with a DeprecationWarning: MomentBasis 'trig' (now 'trigonometric').
 _DEPRECATED_VALUES = {("basis", "trig"): "trigonometric"}
 
@@ -119,7 +138,9 @@ def raster_render_options(options=None, lights=None, shadows=None, transparency=
             keywords["transparency"] = _core.OitSettings()
         keywords["transparency.method"] = transparency
     keywords.update(undeprecated({k: v for k, v in fields.items() if v is not None}, _PATHS, "render_raster"))
-    return _core._build_options(_core.RasterRenderOptions, options, "render_raster", keywords, _PATHS)
+    settings = _core._build_options(_core.RasterRenderOptions, options, "render_raster", keywords, _PATHS)
+    _refuse_unused(settings, fields)
+    return settings
 
 
 def render_raster(

@@ -503,6 +503,16 @@ def jacobian(
     )
 
 
+def _file_option_names() -> set[str]:
+    """The keys a pairs file may hold besides 'pairs': solve()'s options (its keywords that are not
+    the call's own objects, every SolveSettings and PairOptions field, their deprecated spellings)."""
+    import inspect
+
+    objects = {"field", "eye_or_camera", "pairs", "settings", "pair_options", "progress", "options"}
+    keywords = set(inspect.signature(solve).parameters) - objects
+    return keywords | set(_options.fields(_core.SolveSettings) + _options.fields(_core.PairOptions)) | set(_RENAMED)
+
+
 def load_pairs(
     path, scene: _core.Scene | None = None, camera: _core.Camera | None = None
 ) -> tuple[list[PointPair], dict]:
@@ -561,6 +571,12 @@ def load_pairs(
         except ValueError as error:
             raise ValueError(f"{where}: {error}") from None
     options = {k: v for k, v in data.items() if k != "pairs"}
+    strangers = sorted(set(options) - _file_option_names())
+    if strangers:
+        raise ValueError(
+            f"{path}: unknown key{'s' if len(strangers) > 1 else ''} {', '.join(repr(k) for k in strangers)} "
+            f"(besides 'pairs', the file holds solve()'s options: {', '.join(sorted(_file_option_names()))})"
+        )
     if "ground" in options:
         if "stop_height" in options:
             raise ValueError(f'{path}: give "stop_height" only ("ground" is its deprecated spelling)')

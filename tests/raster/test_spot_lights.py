@@ -82,7 +82,7 @@ def test_an_area_light_casts_a_penumbra_that_filtered_moments_follow():
     "kwargs, match",
     [
         (dict(angle=0.0), "angle"),
-        (dict(angle=200.0), "angle"),
+        (dict(angle=400.0), "angle"),
         (dict(radius=-1.0), "radius"),
         (dict(direction=(0, 0, 0)), "direction"),
         (dict(intensity=(1, -1, 1)), "intensity"),

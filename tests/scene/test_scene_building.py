@@ -16,8 +16,8 @@ TRIANGLE = [[0, 0, 0], [1, 0, 0], [0, 0, 1]]
 
 def test_scene_building_refuses_bad_input_naming_it():
     scene = refracta.Scene()
-    with pytest.raises(ValueError, match=r"spot light angle must be in \(0, 170\]"):
-        scene.add_spot_light([0, 5, 0], [0, -1, 0], angle=180.0)
+    with pytest.raises(ValueError, match=r"angle must be in \(0, 360\]"):
+        scene.add_spot_light([0, 5, 0], [0, -1, 0], angle=400.0)
     with pytest.raises(ValueError, match="spot light radius must be >= 0"):
         scene.add_spot_light([0, 5, 0], [0, -1, 0], radius=-1.0)
     with pytest.raises(ValueError, match="normals must have one entry per vertex"):

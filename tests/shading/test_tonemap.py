@@ -99,7 +99,7 @@ def test_huge_values_and_exposures_never_give_nan():
     image = np.array([[[3e38, 1.0, 0.0], [3e38, 3e38, 3e38], [0.0, 0.0, 0.0]]], np.float32)
     for tonemap in ("linear", "film", "reinhard", "aces"):
         for exposure in (1.0, 1e10, 1e300):
-            for kwargs in ({}, {"key": 0.18}, {"white": 2.0}):
+            for kwargs in ({}, {"key": 0.18}) + (({"white": 2.0},) if tonemap == "reinhard" else ()):
                 out = display(image, tonemap=tonemap, exposure=exposure, **kwargs)
                 assert np.all(np.isfinite(out)) and out.min() >= 0.0 and out.max() <= 1.0
     assert display(image, tonemap="linear", exposure=1e300)[0, 1].tolist() == [1.0, 1.0, 1.0]
@@ -123,7 +123,7 @@ def test_alpha_is_untouched_and_png_matches_to_display(tmp_path):
     [
         (dict(gamma=1.8), "gamma"),
         (dict(gamma="linear"), "gamma"),
-        (dict(white=4.0), "white"),
+        (dict(tonemap="reinhard", white=4.0), "tonemap, white"),
         (dict(white_balance="daylight"), "white_balance"),
         (dict(display=refracta.DisplaySettings(tonemap="film")), "tonemap"),
     ],

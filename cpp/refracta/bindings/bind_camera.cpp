@@ -2,6 +2,7 @@
 // constructors and the geometric jitter.
 #include "generated/docstrings.h"
 #include "refracta/bindings/bind_scene.h"
+#include "refracta/render/scene_building.h"
 
 #include <cmath>
 #include <utility>
@@ -12,10 +13,10 @@ namespace {
 
 using Sensor = std::pair<double, double>;  // (width, height) [mm]
 
-// Camera.framing's first argument: a Scene (its bounds) or (lower, upper) corners.
+// Camera.framing's first argument: a Scene (framing_bounds) or (lower, upper) corners.
 std::pair<Vec3d, Vec3d> bounds_of(const py::object& scene_or_bounds) {
-  py::object bounds = scene_or_bounds;
-  if (py::isinstance<RenderScene>(scene_or_bounds)) bounds = scene_or_bounds.attr("bounds");
+  if (py::isinstance<RenderScene>(scene_or_bounds)) return framing_bounds(py::cast<const RenderScene&>(scene_or_bounds));
+  const py::object& bounds = scene_or_bounds;
   if (!py::isinstance<py::sequence>(bounds) || py::isinstance<py::str>(bounds)) {
     throw_invalid("Camera.framing: give a Scene or its bounds (lower, upper)");
   }
@@ -63,8 +64,10 @@ void bind_camera_constructors(py::class_<Camera>& camera) {
       py::arg("scene_or_bounds"), py::arg("direction") = py::make_tuple(-1.0, -0.5, -1.0), py::arg("vfov") = 45.0,
       py::arg("width") = 640, py::arg("height") = 360, py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
       R"doc(A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
-onto the box from its +x, +y, +z side) at the centre of the scene's bounds, from the distance at
-which the bounding sphere fills the narrower of the two fields of view.
+onto the box from its +x, +y, +z side) at the centre of the scene's box, from the distance at
+which the bounding sphere fills the narrower of the two fields of view. A scene's box holds its
+objects: flat horizontal surfaces (add_ground's 20 km square, a water plane) count only when the
+scene has nothing else.
 
     scene.add_obj("city.obj", texture_dirs=["textures"])
     camera = refracta.Camera.framing(scene, width=800, height=450)

@@ -36,9 +36,18 @@ TexturedReflectance to_textured(const py::object& color, const char* name, const
                 std::string(py::str(py::type::of(texture).attr("__name__"))), ")");
 }
 
+// ior= (a number or a glass's name; None: Ior's default) or sellmeier= (six numbers), not both.
 Ior to_ior(const py::object& ior, const py::object& sellmeier) {
-  if (!sellmeier.is_none()) return Ior::sellmeier(sellmeier.cast<std::vector<double>>());
-  return py::isinstance<py::str>(ior) ? Ior::named(ior.cast<std::string>()) : Ior(ior.cast<double>());
+  if (!sellmeier.is_none()) {
+    if (!ior.is_none()) throw_invalid("give ior or sellmeier, not both (got ior=", py::repr(ior).cast<std::string>(), ")");
+    if (py::isinstance<py::str>(sellmeier)) {
+      throw_invalid("sellmeier must be six numbers (B1, B2, B3, C1, C2, C3), C in um^2 (got a string; a glass by name is "
+                    "ior='bk7')");
+    }
+    return Ior::sellmeier(to_values(sellmeier, "sellmeier"));
+  }
+  if (ior.is_none()) return Ior();
+  return py::isinstance<py::str>(ior) ? Ior::named(ior.cast<std::string>()) : Ior(to_number(ior, "ior"));
 }
 
 py::tuple rgb_tuple(const Vec3d& v) { return py::make_tuple(v.x(), v.y(), v.z()); }
@@ -68,7 +77,7 @@ void bind_dielectrics(py::module_& m) {
         return std::make_shared<Dielectric>(to_ior(ior, sellmeier), priority);
       }),
       [](const Dielectric& m) { return with_ior(py::dict(py::arg("priority") = m.priority()), m.ior()); },
-      py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0);
+      py::arg("ior") = py::none(), py::arg("sellmeier") = py::none(), py::arg("priority") = 0);
 
   def_material<RoughDielectric>(m, "RoughDielectric", DOC(refracta, RoughDielectric),
       py::init([](std::optional<double> alpha, const py::object& ior, const py::object& sellmeier, int priority,
@@ -81,13 +90,13 @@ void bind_dielectrics(py::module_& m) {
                                  py::arg("priority") = m.priority()),
                         m.ior());
       },
-      py::arg("alpha") = py::none(), py::arg("ior") = 1.5, py::arg("sellmeier") = py::none(), py::arg("priority") = 0,
+      py::arg("alpha") = py::none(), py::arg("ior") = py::none(), py::arg("sellmeier") = py::none(), py::arg("priority") = 0,
       py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
 
   def_material<ThinDielectric>(m, "ThinDielectric", DOC(refracta, ThinDielectric),
       py::init([](const py::object& ior, const py::object& sellmeier) { return std::make_shared<ThinDielectric>(to_ior(ior, sellmeier)); }),
       [](const ThinDielectric& m) { return with_ior(py::dict(), m.ior()); },
-      py::arg("ior") = 1.5, py::arg("sellmeier") = py::none());
+      py::arg("ior") = py::none(), py::arg("sellmeier") = py::none());
 }
 
 }  // namespace

@@ -28,13 +28,37 @@ std::shared_ptr<Material> to_material(const py::object& material, const char* wh
 
 namespace {
 
-// The material of an add_* call: `material` when given, else the Blinn-Phong shorthand (kd, ks,
-// ns, a kd texture, alpha), as the MTL files and the early API have it.
-int material_of(RenderScene& s, const py::object& material, const py::object& kd, const py::object& ks, double ns,
-                int texture = -1, double alpha = 1.0) {
-  if (!material.is_none()) return s.add_material(to_material(material, ""));
-  return s.add_material(std::make_shared<BlinnPhong>(TexturedReflectance(to_rgb(kd, "kd"), "kd", texture),
-                                                     to_rgb(ks, "ks"), ns, alpha));
+// The Blinn-Phong shorthand of the add_* calls (kd, ks, ns, alpha and a kd texture), as the MTL
+// files and the early API have it; None: BlinnPhong's default (kd: the call's own).
+struct Shorthand {
+  py::object kd, ks, ns, alpha;
+  int texture = -1;
+  bool given() const { return !kd.is_none() || !ks.is_none() || !ns.is_none() || !alpha.is_none() || texture >= 0; }
+};
+
+// The docstrings' account of the shorthand, and add_ground's grey (a darker ground than objects).
+#define SHORTHAND_DOC                                                                                      \
+  "kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha\n" \
+  "(default 1; < 1: transparent in render_raster)), a texture (add_mesh) multiplying kd."
+constexpr double kGroundKd = 0.3;
+
+// The material of an add_* call: `material` when given (then no shorthand: it would be ignored),
+// else the shorthand's BlinnPhong.
+int material_of(RenderScene& s, const char* call, const py::object& material, const Shorthand& shorthand,
+                double default_kd = 0.5) {
+  if (!material.is_none()) {
+    if (shorthand.given()) {
+      throw_invalid(call, ": give `material` or the kd/ks/ns/alpha/texture shorthand, not both (the shorthand would be ignored)");
+    }
+    return s.add_material(to_material(material, ""));
+  }
+  const auto value = [](const py::object& given, const char* name, double fallback) {
+    return given.is_none() ? fallback : to_number(given, name);
+  };
+  const Vec3d kd = shorthand.kd.is_none() ? Vec3d::Constant(default_kd) : to_rgb(shorthand.kd, "kd");
+  const Vec3d ks = shorthand.ks.is_none() ? Vec3d::Zero() : to_rgb(shorthand.ks, "ks");
+  return s.add_material(std::make_shared<BlinnPhong>(TexturedReflectance(kd, "kd", shorthand.texture), ks,
+                                                     value(shorthand.ns, "ns", 1.0), value(shorthand.alpha, "alpha", 1.0)));
 }
 
 // emission= (RGB radiance [W/(m^2 sr)]) or None.
@@ -127,22 +151,22 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
       .def("add_mesh",
            [](RenderScene& s, const py::object& vertices, const py::object& triangles, const py::object& material,
               const py::object& emission, bool two_sided, const py::object& normals, const py::object& uvs,
-              const py::object& kd, const py::object& ks, double ns, std::optional<FilePath> texture, double alpha) {
+              const py::object& kd, const py::object& ks, const py::object& ns, std::optional<FilePath> texture,
+              const py::object& alpha) {
              const Mesh mesh = mesh_from(vertices, triangles, normals, uvs);
              const int tex = texture ? s.geometry.textures().add(texture->string()) : -1;
              if (tex >= 0 && mesh.uvs.empty()) throw_invalid("add_mesh: a texture needs uvs");
-             const int material_id = material_of(s, material, kd, ks, ns, tex, alpha);
+             const int material_id = material_of(s, "add_mesh", material, {kd, ks, ns, alpha, tex});
              return add_surface(s, mesh, material_id, emission_of(emission), two_sided, "add_mesh");
            },
            py::arg("vertices"), py::arg("triangles"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
            py::arg("two_sided") = false, py::arg("normals") = py::none(), py::kw_only(), py::arg("uvs") = py::none(),
-           py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
-           py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("alpha") = 1.0,
+           py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(),
+           py::arg("texture") = py::none(), py::arg("alpha") = py::none(),
            "Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);\n"
            "optional per-vertex normals (N, 3) (shading normals, interpolated) and uvs (N, 2) texture\n"
-           "coordinates (u right, v up); emission makes it an area light. The kd/ks/ns/texture/alpha\n"
-           "shorthand (texture multiplies kd; alpha < 1: transparent in render_raster) applies without\n"
-           "material. Returns its id.")
+           "coordinates (u right, v up); emission makes it an area light. Without `material`, the\n"
+           SHORTHAND_DOC " Returns its id.")
       .def("add_obj",
            [](RenderScene& s, const FilePath& path, const py::object& offset, const py::object& scale,
               const py::object& options, const py::object& texture_dirs, const py::object& missing_textures,
@@ -178,49 +202,51 @@ taken over a second, a callable gets progress(done, total) textures, False shows
 Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
       .def("add_ground",
            [](RenderScene& s, double height, double size, const py::object& material, const py::object& kd,
-              const py::object& ks, double ns, std::optional<FilePath> texture, double texture_size) {
+              const py::object& ks, const py::object& ns, std::optional<FilePath> texture, double texture_size) {
              const bool uvs = textured(material, texture);
              const Mesh mesh = uvs ? ground_mesh(height, 0.5 * size, texture_size) : ground_mesh(height, 0.5 * size);
              const int tex = texture ? s.geometry.add_texture(texture->string()) : -1;
-             return s.geometry.add_mesh(mesh, material_of(s, material, kd, ks, ns, tex));
+             return s.geometry.add_mesh(mesh, material_of(s, "add_ground", material, {kd, ks, ns, py::none(), tex}, kGroundKd));
            },
            py::arg("height") = 0.0, py::arg("size") = 20000.0, py::arg("material") = py::none(),
-           py::arg("kd") = py::make_tuple(0.3, 0.3, 0.3), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
-           py::arg("ns") = 1.0, py::kw_only(), py::arg("texture") = py::none(), py::arg("texture_size") = 1.0,
-           "Add a square ground of side `size` [m] at y = height, centred on the origin, facing up; an optional\n"
-           "texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z) and\n"
-           "multiplies kd (or that material's colour).")
+           py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(), py::kw_only(),
+           py::arg("texture") = py::none(), py::arg("texture_size") = 1.0,
+           "Add a square ground of side `size` [m] at y = height, centred on the origin, facing up. Without\n"
+           "`material`, the kd/ks/ns shorthand (BlinnPhong; kd default 0.3 grey) and a texture multiplying kd;\n"
+           "a texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z).")
       .def("add_billboard",
            [](RenderScene& s, const py::object& centre, double width, double height, const FilePath& texture,
               const py::object& facing, const py::object& kd) {
              const Mesh mesh = billboard_mesh(to_point(centre, "centre"), width, height, to_point(facing, "facing"));
              const int id = s.geometry.textures().add(texture.string());
-             return s.geometry.add_mesh(mesh, material_of(s, py::none(), kd, py::int_(0), 1.0, id));
+             return s.geometry.add_mesh(mesh, material_of(s, "add_billboard", py::none(), {kd, py::none(), py::none(), py::none(), id}, 1.0));
            },
            py::arg("centre"), py::arg("width"), py::arg("height"), py::arg("texture"),
-           py::arg("facing") = py::make_tuple(-1.0, 0.0, 0.0), py::arg("kd") = py::make_tuple(1.0, 1.0, 1.0),
+           py::arg("facing") = py::make_tuple(-1.0, 0.0, 0.0), py::arg("kd") = py::none(),
            "Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at\n"
            "`centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the\n"
-           "-x side), upright.")
+           "-x side), upright; kd (default 1: the picture's own colours) multiplies the texture.")
       .def("add_box",
            [](RenderScene& s, const py::object& centre, const py::object& size, const py::object& material,
-              const py::object& emission, const py::object& kd, const py::object& ks, double ns, double alpha) {
+              const py::object& emission, const py::object& kd, const py::object& ks, const py::object& ns,
+              const py::object& alpha) {
              const Mesh mesh = box_mesh(to_point(centre, "centre"), to_point(size, "size"));
-             return add_surface(s, mesh, material_of(s, material, kd, ks, ns, -1, alpha), emission_of(emission), false, "add_box");
+             return add_surface(s, mesh, material_of(s, "add_box", material, {kd, ks, ns, alpha}), emission_of(emission), false, "add_box");
            },
            py::arg("centre"), py::arg("size"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
-           py::kw_only(), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
-           py::arg("ns") = 1.0, py::arg("alpha") = 1.0,
-           "Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]; alpha < 1: transparent in\n"
-           "render_raster.")
+           py::kw_only(), py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(),
+           py::arg("alpha") = py::none(),
+           "Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]. Without `material`, the\n"
+           SHORTHAND_DOC)
       .def("add_sphere",
            [](RenderScene& s, const py::object& centre, double radius, const py::object& material,
-              const py::object& emission, const py::object& kd, const py::object& ks, double ns) {
-             return add_sphere(s, to_point(centre, "centre"), radius, material_of(s, material, kd, ks, ns), emission_of(emission));
+              const py::object& emission, const py::object& kd, const py::object& ks, const py::object& ns) {
+             return add_sphere(s, to_point(centre, "centre"), radius, material_of(s, "add_sphere", material, {kd, ks, ns, py::none()}), emission_of(emission));
            },
            py::arg("centre"), py::arg("radius"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
-           py::kw_only(), py::arg("kd") = py::make_tuple(0.5, 0.5, 0.5), py::arg("ks") = py::make_tuple(0.0, 0.0, 0.0),
-           py::arg("ns") = 1.0, "Add a sphere (exact, not tessellated); emission makes it a spherical light.");
+           py::kw_only(), py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(),
+           "Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`,\n"
+           "the kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).");
 }
 
 void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& scene) {

@@ -69,11 +69,11 @@ std::unique_ptr<ShadowMap> sun_map(const Scene& scene, const Vec3d& sun_directio
   return std::make_unique<ShadowMap>(scene, sun_direction, centre, half, options.shadow_map, control);
 }
 
-// A spot light's perspective map over its cone (at most 170 degrees wide).
+// A spot light's perspective map over its cone (at most kWidestMappedSpot wide: raster_lights).
 std::unique_ptr<ShadowMap> spot_map(const Scene& scene, const SpotLight& spot, const ShadowMapOptions& options,
                                     WorkControl& control) {
   const Vec3d up = std::abs(spot.direction().y()) < 0.99 ? Vec3d::UnitY() : Vec3d::UnitX();
-  const double tan_half = std::tan(0.5 * degrees_to_radians(std::min(spot.angle(), 170.0)));
+  const double tan_half = std::tan(0.5 * degrees_to_radians(spot.angle()));
   const RasterView view = RasterView::perspective(spot.position(), spot.direction(), up, tan_half, options.resolution,
                                                   0.01);
   return std::make_unique<ShadowMap>(scene, view, options, control);
@@ -99,13 +99,23 @@ RasterLights raster_lights(const RenderScene& scene, const RasterRenderOptions& 
   out.sun_shines = out.sun && options.use_sun;
   if (!options.spots) {
     out.spots = spot_index;
-    return out;
-  }
-  for (int k : *options.spots) {
-    if (k < 0 || size_t(k) >= spot_index.size()) {
-      throw_invalid("lights: spot light ", k, " is not in the scene (it has ", spot_index.size(), ")");
+  } else {
+    for (int k : *options.spots) {
+      if (k < 0 || size_t(k) >= spot_index.size()) {
+        throw_invalid("lights: spot light ", k, " is not in the scene (it has ", spot_index.size(), ")");
+      }
+      out.spots.push_back(spot_index[size_t(k)]);
     }
-    out.spots.push_back(spot_index[size_t(k)]);
+  }
+  if (options.shadows == ShadowSource::kMap) {  // one perspective map per spot light
+    for (size_t k = 0; k < spot_index.size(); ++k) {
+      const double angle = spots[k]->angle();
+      const bool used = std::find(out.spots.begin(), out.spots.end(), spot_index[k]) != out.spots.end();
+      if (used && angle > kWidestMappedSpot) {
+        throw_invalid("spot light ", k, " is ", angle, " deg wide: a shadow map covers at most ", kWidestMappedSpot,
+                      " deg (shadows='embree' traces its shadows, or narrow the light)");
+      }
+    }
   }
   return out;
 }

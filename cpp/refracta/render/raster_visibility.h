@@ -26,7 +26,11 @@ struct RasterLights {
   std::vector<size_t> others;  // every other light: point, area, environment, sky
 };
 
-// Throws std::invalid_argument when options.spots names a spot light the scene does not have.
+// The widest spot light [deg] a shadow map (one perspective view of its cone) covers.
+constexpr double kWidestMappedSpot = 170.0;
+
+// Throws std::invalid_argument when options.spots names a spot light the scene does not have, or
+// with shadow maps when a chosen spot light is wider than kWidestMappedSpot.
 RasterLights raster_lights(const RenderScene& scene, const RasterRenderOptions& options);
 
 class RasterVisibility : public LightVisibility {

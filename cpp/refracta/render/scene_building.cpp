@@ -1,6 +1,7 @@
 #include "refracta/render/scene_building.h"
 
 #include "refracta/core/error.h"
+#include "refracta/scene/terrain.h"
 #include "refracta/shading/area_light.h"
 #include "refracta/shading/sky_batch.h"  // sky_settings
 #include "refracta/shading/sphere_light.h"
@@ -71,6 +72,24 @@ std::pair<Vec3d, Vec3d> scene_bounds(const RenderScene& scene) {
   return {lower, upper};
 }
 
+std::pair<Vec3d, Vec3d> framing_bounds(const RenderScene& scene) {
+  const Scene& geometry = scene.geometry;
+  Eigen::AlignedBox3d objects, planes;  // empty boxes
+  for (const SceneMesh& entry : geometry.meshes()) {
+    if (geometry.removed(entry.geometry)) continue;
+    Eigen::AlignedBox3d box;
+    if (const TerrainGrid* terrain = geometry.terrain(entry.geometry)) {
+      box.extend(terrain->lower()).extend(terrain->upper());
+    }
+    for (const Vec3d& vertex : entry.mesh.vertices) box.extend(vertex);
+    if (box.isEmpty()) continue;
+    (box.sizes().y() == 0.0 ? planes : objects).extend(box);
+  }
+  const Eigen::AlignedBox3d& chosen = objects.isEmpty() ? planes : objects;
+  if (chosen.isEmpty()) return scene_bounds(scene);  // its message for an empty scene
+  return {chosen.min(), chosen.max()};
+}
+
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction) {
   if (direction.norm() == 0.0) throw_invalid("direction must be non-zero");
   return scene.geometry.intersect(origin, direction.normalized(), kSceneReach);
@@ -78,7 +97,6 @@ std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, 
 
 size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,
                       const Color& intensity, double radius) {
-  if (!(angle > 0.0 && angle <= 170.0)) throw_invalid("spot light angle must be in (0, 170] deg (got ", angle, ")");
   if (!(radius >= 0.0) || !std::isfinite(radius)) throw_invalid("spot light radius must be >= 0 (got ", radius, ")");
   const size_t index = scene.add_light(std::make_shared<SpotLight>(position, direction, angle, intensity));
   if (radius > 0.0) scene.set_shadow_radius(index, radius);

@@ -45,10 +45,15 @@ void set_geometry_material(RenderScene& scene, int geometry, const MaterialPtr& 
 // The corners (lower, upper) of the box around every geometry (ValueError for an empty scene).
 std::pair<Vec3d, Vec3d> scene_bounds(const RenderScene& scene);
 
+// The box Camera.framing shows: around every geometry but flat horizontal ones (grounds, water
+// planes: a 20 km ground would frame the plane, not the scene on it), which count only when the
+// scene has nothing else (ValueError for an empty scene).
+std::pair<Vec3d, Vec3d> framing_bounds(const RenderScene& scene);
+
 // The first hit of a straight ray from origin along a non-zero direction (normalised here).
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction);
 
-// Adds a spot light (angle in (0, 170] deg, shadow disc radius >= 0: render_raster's 'embree'
+// Adds a spot light (angle in (0, 360] deg, SpotLight; shadow disc radius >= 0: render_raster's 'embree'
 // reference soft shadows when > 0). Returns its index among the spot lights.
 size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,
                       const Color& intensity, double radius);

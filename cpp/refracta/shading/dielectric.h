@@ -99,8 +99,9 @@ class ThinDielectricBsdf final : public Bsdf {
 };
 
 // Smooth glass: reflect with probability F, refract with 1 - F (TIR: reflect), radiance scaled by
-// (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7'; or sellmeier=(B1, B2, B3, C1, C2,
-// C3), C in um^2 (dispersive: spectral rendering keeps the hero wavelength on refraction).
+// (eta_i / eta_t)^2 on refraction. ior: a number > 0 or 'bk7' (None: 1.5); or, instead,
+// sellmeier=(B1, B2, B3, C1, C2, C3), C in um^2 (dispersive: spectral rendering keeps the hero
+// wavelength on refraction).
 // priority: nested dielectrics (larger wins).
 class Dielectric final : public Material {
  public:

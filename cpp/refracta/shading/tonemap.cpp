@@ -193,6 +193,8 @@ void DisplaySettings::validate() const {
                  "give one manual exposure: exposure, ev100, or shutter and f_number (with iso)");
   problems.check(!key || (*key > 0.0 && std::isfinite(*key)), "key must be > 0 and finite (got ", key.value_or(0.0), ")");
   problems.check(!white || *white > 0.0, "white must be > 0 (got ", white.value_or(0.0), ")");
+  problems.check(!white || tonemap == Tonemap::kReinhard,
+                 "white (Reinhard's L_white) applies to tonemap='reinhard' only: give tonemap='reinhard' or no white");
   const std::string wb_problem = white_balance_problem(white_balance);
   problems.check(wb_problem.empty(), wb_problem);
   problems.check(transfer != Transfer::kGamma || (gamma >= 1.0 && gamma <= 3.0), "gamma must be in [1, 3] (got ", gamma, ")");

@@ -103,7 +103,8 @@ struct DisplaySettings {
   // when there is no manual exposure, else none.
   std::optional<double> key;
   // Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
-  // luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3).
+  // luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other
+  // tone curves refuse it).
   std::optional<double> white;
   Transfer transfer = Transfer::kSrgb;
   double gamma = 2.2;  // Transfer::kGamma: g in [1, 3] (1: linear output)
