@@ -3,7 +3,12 @@
 #pragma once
 
 #include <cstdio>
+#include <memory>
+#include <new>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -32,5 +37,32 @@ inline std::string readable_bytes(double size) {
   else std::snprintf(text, sizeof text, "%.0f bytes", size);
   return text;
 }
+
+// std::allocator, except that a vector's new elements are default-initialised: resize(n) of a
+// trivial type leaves them as they are instead of zeroing them. For buffers whose every element
+// is written next by parallel work that polls Ctrl-C: zeroing an 8192^2 moment map first (1 GB,
+// one thread) took seconds on a busy machine, and could not be interrupted.
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <class U>
+  explicit UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// A vector whose resize(n) does not initialise trivial elements (UninitializedAllocator).
+template <class T>
+using UninitializedVector = std::vector<T, UninitializedAllocator<T>>;
 
 }  // namespace refracta

@@ -131,8 +131,11 @@ int64_t FragmentLists::total() const {
   return n;
 }
 
-VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkControl& control, int tile,
-                           RasterStats* stats, const std::vector<bool>* transparent, FragmentLists* fragments) {
+namespace {
+
+// rasterize's work; `surfaces` false: the depths alone (the other buffers left empty).
+VisibilityBuffer draw(const Scene& scene, const RasterView& view, WorkControl& control, int tile, RasterStats* stats,
+                      const std::vector<bool>* transparent, FragmentLists* fragments, bool surfaces) {
   if (transparent && !fragments) throw_invalid("rasterize: transparent geometry needs fragment lists");
   if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
   // Clip and project every triangle.
@@ -193,13 +196,15 @@ VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkContr
   // Filling a shadow map's buffers (8192^2 texels: 0.1-0.3 s each) polls Ctrl-C between them.
   poll_cancel();
   out.depth.assign(pixels, std::numeric_limits<float>::infinity());
-  poll_cancel();
-  out.geometry.assign(pixels, VisibilityBuffer::kNone);
-  poll_cancel();
-  out.primitive.assign(pixels, VisibilityBuffer::kNone);
-  poll_cancel();
-  out.b1.assign(pixels, 0.0f);
-  out.b2.assign(pixels, 0.0f);
+  if (surfaces) {
+    poll_cancel();
+    out.geometry.assign(pixels, VisibilityBuffer::kNone);
+    poll_cancel();
+    out.primitive.assign(pixels, VisibilityBuffer::kNone);
+    poll_cancel();
+    out.b1.assign(pixels, 0.0f);
+    out.b2.assign(pixels, 0.0f);
+  }
   if (fragments) {
     fragments->width = out.width;
     fragments->height = out.height;
@@ -219,6 +224,7 @@ VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkContr
         const size_t k = out.index(x, y);
         if (!(depth < out.depth[k])) return;
         out.depth[k] = float(depth);
+        if (!surfaces) return;
         out.geometry[k] = t.geometry;
         out.primitive[k] = t.primitive;
         out.b1[k] = float(bary.y());
@@ -245,6 +251,17 @@ VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkContr
     stats->fragments = covered.load();
   }
   return out;
+}
+
+}  // namespace
+
+VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkControl& control, int tile,
+                           RasterStats* stats, const std::vector<bool>* transparent, FragmentLists* fragments) {
+  return draw(scene, view, control, tile, stats, transparent, fragments, /*surfaces=*/true);
+}
+
+VisibilityBuffer rasterize_depth(const Scene& scene, const RasterView& view, WorkControl& control) {
+  return draw(scene, view, control, kRasterTile, nullptr, nullptr, nullptr, /*surfaces=*/false);
 }
 
 Hit surface_of(const Scene& scene, uint32_t geometry, uint32_t primitive, double b1, double b2, const Vec3d& toward) {

@@ -62,6 +62,9 @@ constexpr int kRasterTile = 32;
 VisibilityBuffer rasterize(const Scene& scene, const RasterView& view, WorkControl& control, int tile = kRasterTile,
                            RasterStats* stats = nullptr, const std::vector<bool>* transparent = nullptr,
                            FragmentLists* fragments = nullptr);
+// The same drawing's depths alone (a shadow map's: the other buffers are left empty, not filled
+// and thrown away -- 1 GB of an 8192^2 map).
+VisibilityBuffer rasterize_depth(const Scene& scene, const RasterView& view, WorkControl& control);
 
 // The surface at barycentrics (b1, b2) of a triangle, its normal facing `toward`.
 Hit surface_of(const Scene& scene, uint32_t geometry, uint32_t primitive, double b1, double b2, const Vec3d& toward);

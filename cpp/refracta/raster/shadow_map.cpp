@@ -78,12 +78,13 @@ namespace {
 // depth_row(y, x0, count, out): the normalised depths of row y, columns x0 .. x0 + count - 1.
 // store(mean) gives the stored texel (type Texel).
 template <class Texel, class DepthRow, class Store>
-std::vector<Texel> filtered_moments(int n, int k, WorkControl& control, const DepthRow& depth_row, const Store& store) {
+UninitializedVector<Texel> filtered_moments(int n, int k, WorkControl& control, const DepthRow& depth_row,
+                                            const Store& store) {
   const int r = k / 2;
   constexpr int kBlock = 64;
   const int blocks = (n + kBlock - 1) / kBlock;
   const double inv_area = 1.0 / (double(k) * double(k));
-  std::vector<Texel> out(size_t(n) * n);
+  UninitializedVector<Texel> out(size_t(n) * n);  // every texel written below, by one block
   parallel_for_each(blocks, 1, control, [&](int64_t block) {
     const int x0 = int(block) * kBlock, w = std::min(kBlock, n - x0), span = w + 2 * r;
     std::vector<double> z(static_cast<size_t>(span));
@@ -169,12 +170,7 @@ ShadowMap::ShadowMap(const Scene& scene, const RasterView& light_view, const Sha
 void ShadowMap::build(const Scene& scene, WorkControl& control) {
   const auto start = std::chrono::steady_clock::now();
   const int n = options_.resolution;
-  buffer_ = rasterize(scene, view_, control);
-  // Lookups read depths only: the rest of the visibility buffer (16 of its 20 bytes per texel) goes.
-  std::vector<uint32_t>().swap(buffer_.geometry);
-  std::vector<uint32_t>().swap(buffer_.primitive);
-  std::vector<float>().swap(buffer_.b1);
-  std::vector<float>().swap(buffer_.b2);
+  buffer_ = rasterize_depth(scene, view_, control);  // lookups read depths only
   near_ = std::numeric_limits<double>::infinity(), far_ = -near_;
   for (float d : buffer_.depth) {
     if (std::isfinite(d)) near_ = std::min(near_, double(d)), far_ = std::max(far_, double(d));

@@ -11,6 +11,7 @@
 // Depths are normalised to [0, 1] (or [-1, 1] for signed) over the depth range the map holds.
 #pragma once
 
+#include "refracta/core/memory.h"
 #include "refracta/core/parallel.h"
 #include "refracta/raster/moment_shadow.h"
 #include "refracta/raster/rasterizer.h"
@@ -72,9 +73,9 @@ class ShadowMap {
   // The filtered moment map as stored, per texel: fp64, fp32, or unorm16 (the quantised q of the
   // optimised transform; lookups filter q bilinearly and transform back once, which equals
   // filtering the decoded moments because the transform is affine).
-  std::vector<Moments4> moments_;
-  std::vector<std::array<float, 4>> moments_fp32_;
-  std::vector<std::array<uint16_t, 4>> moments_unorm16_;
+  UninitializedVector<Moments4> moments_;
+  UninitializedVector<std::array<float, 4>> moments_fp32_;
+  UninitializedVector<std::array<uint16_t, 4>> moments_unorm16_;
   double build_seconds_ = 0.0;
 };
 
