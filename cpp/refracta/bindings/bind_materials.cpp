@@ -39,10 +39,12 @@ TexturedReflectance to_textured(const py::object& color, const char* name, const
 // ior= (a number or a glass's name; None: Ior's default) or sellmeier= (six numbers), not both.
 Ior to_ior(const py::object& ior, const py::object& sellmeier) {
   if (!sellmeier.is_none()) {
-    if (!ior.is_none()) throw_invalid("give ior or sellmeier, not both (got ior=", py::repr(ior).cast<std::string>(), ")");
+    if (!ior.is_none()) {
+      throw_invalid("give ior or sellmeier, not both (got ior=", py::repr(ior).cast<std::string>(), ")");
+    }
     if (py::isinstance<py::str>(sellmeier)) {
-      throw_invalid("sellmeier must be six numbers (B1, B2, B3, C1, C2, C3), C in um^2 (got a string; a glass by name is "
-                    "ior='bk7')");
+      throw_invalid("sellmeier must be six numbers (B1, B2, B3, C1, C2, C3), C in um^2 (got a string; a glass by "
+                    "name is ior='bk7')");
     }
     return Ior::sellmeier(to_values(sellmeier, "sellmeier"));
   }
@@ -121,7 +123,8 @@ void bind_materials(py::module_& m) {
         return py::dict(py::arg("kd") = rgb_tuple(m.kd().rgb()), py::arg("ks") = rgb_tuple(m.ks()), py::arg("ns") = m.ns(),
                     py::arg("texture") = texture_argument(m.kd()), py::arg("alpha") = m.alpha());
   },
-      py::arg("kd") = 0.5, py::arg("ks") = 0.0, py::arg("ns") = 1.0, py::arg("texture") = py::none(), py::arg("alpha") = 1.0);
+      py::arg("kd") = BlinnPhong::kDefaultKd, py::arg("ks") = 0.0, py::arg("ns") = BlinnPhong::kDefaultNs,
+      py::arg("texture") = py::none(), py::arg("alpha") = 1.0);
 
   def_material<Conductor>(m, "Conductor", DOC(refracta, Conductor),
       py::init([](const py::object& eta, const py::object& k) {

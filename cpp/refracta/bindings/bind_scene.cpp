@@ -45,10 +45,11 @@ constexpr double kGroundKd = 0.3;
 // The material of an add_* call: `material` when given (then no shorthand: it would be ignored),
 // else the shorthand's BlinnPhong.
 int material_of(RenderScene& s, const char* call, const py::object& material, const Shorthand& shorthand,
-                double default_kd = 0.5) {
+                double default_kd = BlinnPhong::kDefaultKd) {
   if (!material.is_none()) {
     if (shorthand.given()) {
-      throw_invalid(call, ": give `material` or the kd/ks/ns/alpha/texture shorthand, not both (the shorthand would be ignored)");
+      throw_invalid(call, ": give `material` or the kd/ks/ns/alpha/texture shorthand, not both (the shorthand "
+                    "would be ignored)");
     }
     return s.add_material(to_material(material, ""));
   }
@@ -58,7 +59,8 @@ int material_of(RenderScene& s, const char* call, const py::object& material, co
   const Vec3d kd = shorthand.kd.is_none() ? Vec3d::Constant(default_kd) : to_rgb(shorthand.kd, "kd");
   const Vec3d ks = shorthand.ks.is_none() ? Vec3d::Zero() : to_rgb(shorthand.ks, "ks");
   return s.add_material(std::make_shared<BlinnPhong>(TexturedReflectance(kd, "kd", shorthand.texture), ks,
-                                                     value(shorthand.ns, "ns", 1.0), value(shorthand.alpha, "alpha", 1.0)));
+                                                     value(shorthand.ns, "ns", BlinnPhong::kDefaultNs),
+                                                     value(shorthand.alpha, "alpha", 1.0)));
 }
 
 // emission= (RGB radiance [W/(m^2 sr)]) or None.
@@ -206,7 +208,8 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
              const bool uvs = textured(material, texture);
              const Mesh mesh = uvs ? ground_mesh(height, 0.5 * size, texture_size) : ground_mesh(height, 0.5 * size);
              const int tex = texture ? s.geometry.add_texture(texture->string()) : -1;
-             return s.geometry.add_mesh(mesh, material_of(s, "add_ground", material, {kd, ks, ns, py::none(), tex}, kGroundKd));
+             const int material_id = material_of(s, "add_ground", material, {kd, ks, ns, py::none(), tex}, kGroundKd);
+             return s.geometry.add_mesh(mesh, material_id);
            },
            py::arg("height") = 0.0, py::arg("size") = 20000.0, py::arg("material") = py::none(),
            py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(), py::kw_only(),
@@ -219,7 +222,8 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
               const py::object& facing, const py::object& kd) {
              const Mesh mesh = billboard_mesh(to_point(centre, "centre"), width, height, to_point(facing, "facing"));
              const int id = s.geometry.textures().add(texture.string());
-             return s.geometry.add_mesh(mesh, material_of(s, "add_billboard", py::none(), {kd, py::none(), py::none(), py::none(), id}, 1.0));
+             const Shorthand shorthand{kd, py::none(), py::none(), py::none(), id};
+             return s.geometry.add_mesh(mesh, material_of(s, "add_billboard", py::none(), shorthand, 1.0));
            },
            py::arg("centre"), py::arg("width"), py::arg("height"), py::arg("texture"),
            py::arg("facing") = py::make_tuple(-1.0, 0.0, 0.0), py::arg("kd") = py::none(),
@@ -231,7 +235,8 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
               const py::object& emission, const py::object& kd, const py::object& ks, const py::object& ns,
               const py::object& alpha) {
              const Mesh mesh = box_mesh(to_point(centre, "centre"), to_point(size, "size"));
-             return add_surface(s, mesh, material_of(s, "add_box", material, {kd, ks, ns, alpha}), emission_of(emission), false, "add_box");
+             const int material_id = material_of(s, "add_box", material, {kd, ks, ns, alpha});
+             return add_surface(s, mesh, material_id, emission_of(emission), false, "add_box");
            },
            py::arg("centre"), py::arg("size"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
            py::kw_only(), py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(),
@@ -241,7 +246,8 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
       .def("add_sphere",
            [](RenderScene& s, const py::object& centre, double radius, const py::object& material,
               const py::object& emission, const py::object& kd, const py::object& ks, const py::object& ns) {
-             return add_sphere(s, to_point(centre, "centre"), radius, material_of(s, "add_sphere", material, {kd, ks, ns, py::none()}), emission_of(emission));
+             const int material_id = material_of(s, "add_sphere", material, {kd, ks, ns, py::none()});
+             return add_sphere(s, to_point(centre, "centre"), radius, material_id, emission_of(emission));
            },
            py::arg("centre"), py::arg("radius"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
            py::kw_only(), py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(),

@@ -66,6 +66,9 @@ class BlinnPhongBsdf final : public TwoSidedReflection<BlinnPhongBsdf> {
 // a mixture of the cosine hemisphere and the (n.h)^ns lobe; pdf exact. A texture multiplies kd.
 class BlinnPhong final : public Material {
  public:
+  // The defaults of BlinnPhong(...) in Python and of the Scene.add_* calls' kd/ks/ns shorthand.
+  static constexpr double kDefaultKd = 0.5, kDefaultNs = 1.0;
+
   BlinnPhong(const TexturedReflectance& kd, const Vec3d& ks, double ns, double alpha = 1.0)
       : kd_(kd), ks_rgb_(ks), ks_(checked_reflectance(ks, "ks")), ns_(checked_scalar(ns, "ns", 0.0, 1e7)),
         alpha_(checked_scalar(alpha, "alpha", 0.0, 1.0)) {}
