@@ -218,6 +218,12 @@ def animate(
         geometric_noise_map(1, 1, **noise)  # checks the values before any work
     if turbulence is not None:
         with_turbulence(field, turbulence)  # checks the field before any work
+    unused = [name for name, value in (("fps", fps), ("exposure", exposure), ("tonemap", tonemap)) if value is not None]
+    if path is None and unused:
+        raise ValueError(
+            f"animate: {', '.join(unused)} shape{'s' if len(unused) == 1 else ''} the file written to `path`, "
+            "and no path is given (the returned frames are linear radiance: refracta.io.to_display shows them)"
+        )
     fps = _frame_rate(times, fps)
     if path is not None:
         path = os.fspath(path)

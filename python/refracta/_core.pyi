@@ -285,7 +285,7 @@ class IndexField:
         """
         Refractive index at points (N, 3) -> (N,).
         """
-    def with_params(self, **kwargs) -> IndexField:
+    def with_params(self, *args, **kwargs) -> IndexField:
         """
         A new field of the same model with the given parameters changed.
         """

@@ -419,6 +419,15 @@ def _white_balance(text: str):
     raise argparse.ArgumentTypeError(f"must be a temperature, a name or R,G,B (got {text!r})")
 
 
+def _check_output(output: Path) -> None:
+    """Refuses an output path that cannot be written before the work that would fill it."""
+    output = Path(output)
+    if output.is_dir():
+        raise ValueError(f"the output {output} is a folder: give a file name (e.g. {output / 'image.png'})")
+    if not output.absolute().parent.is_dir():
+        raise ValueError(f"the folder of the output {output} does not exist")
+
+
 def render_file(
     scene_path: Path,
     output: Path,
@@ -447,6 +456,7 @@ def render_file(
     """
     import refracta
 
+    _check_output(output)
     loaded = refracta.load_scene(scene_path)
     scene, camera, field = loaded
     if size is not None:
@@ -495,6 +505,7 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     from refracta import edit
     from refracta.scene_file import with_atmosphere
 
+    _check_output(output)
     loaded = refracta.load_scene(scene_path)
     scene, camera, field = loaded
     if field is None:

@@ -44,6 +44,7 @@ from typing import Any, Callable
 import numpy as np
 
 from refracta import _core, _options
+from refracta._checks import is_number
 from refracta._progress import progress_callback
 
 # The options and summary of a solve, bound from C++ (edit_settings.h, point_pair.h).
@@ -73,9 +74,12 @@ NLOPT_ALGORITHMS = ("LN_BOBYQA", "LN_NELDERMEAD", "LN_SBPLX", "LN_COBYLA", "GN_D
 
 
 def _vector(value, sizes, what: str) -> np.ndarray:
-    array = np.asarray(value, dtype=float)
+    wanted = " or ".join(str(s) for s in sizes)
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what} must be {wanted} finite numbers (got {value!r})") from None
     if array.ndim != 1 or array.size not in sizes or not np.all(np.isfinite(array)):
-        wanted = " or ".join(str(s) for s in sizes)
         raise ValueError(f"{what} must be {wanted} finite numbers (got {value!r})")
     return array
 
@@ -400,10 +404,8 @@ def solve(
     _options.unknown(options, where, _options.fields(_core.SolveSettings) + _options.fields(_core.PairOptions))
     if not isinstance(field, _core.IndexField):
         raise ValueError(f"field must be an IndexField (got {type(field).__name__})")
+    free = _free_names(free)
     if free is not None:
-        free = [free] if isinstance(free, str) else list(free)
-        if not free:
-            raise ValueError("free is empty: name at least one parameter (or pass None for the default)")
         valid = list(field.param_names) + list(CAMERA_PARAMETERS)
         unknown = [n for n in free if n not in valid]
         if unknown:
@@ -418,7 +420,7 @@ def solve(
     pairs, eye, camera, origins, directions, sources, weights, margins, tolerances = _pair_rays(
         eye_or_camera, pairs, settings.pixel_tolerance
     )
-    bounds = {k: (float(v[0]), float(v[1])) for k, v in (bounds or {}).items()}
+    bounds = _bounds_of(bounds)
     callback = progress_callback(progress, f"editing ({settings.backend})")
     initial = _core._pair_distances(field, origins, directions, sources, pair_options)
     summary = _core._solve_edit(
@@ -471,6 +473,32 @@ def distances(
     return _core._pair_distances(field, origins, directions, sources, pair_options)
 
 
+def _free_names(free) -> list[str] | None:
+    """solve()'s and jacobian()'s `free` as a list of names (None stays None: the default)."""
+    if free is None:
+        return None
+    names = [free] if isinstance(free, str) else free
+    if not isinstance(names, (list, tuple)) or not all(isinstance(n, str) for n in names):
+        raise ValueError(f"free must be a parameter name or a list of names (got {free!r})")
+    if not names:
+        raise ValueError("free is empty: name at least one parameter (or pass None for the default)")
+    return list(names)
+
+
+def _bounds_of(bounds) -> dict[str, tuple[float, float]]:
+    """solve()'s `bounds` as {name: (lower, upper)} of numbers (None: no bounds of the caller's)."""
+    if bounds is None:
+        return {}
+    if not isinstance(bounds, dict):
+        raise ValueError(f"bounds must be a dict {{name: (lower, upper)}} (got {type(bounds).__name__})")
+    out = {}
+    for name, pair in bounds.items():
+        if not isinstance(pair, (list, tuple, np.ndarray)) or len(pair) != 2 or not all(is_number(v) for v in pair):
+            raise ValueError(f"bounds[{name!r}] must be a (lower, upper) pair of numbers (got {pair!r})")
+        out[name] = (float(pair[0]), float(pair[1]))
+    return out
+
+
 def jacobian(
     field: _core.IndexField,
     eye_or_camera,
@@ -487,7 +515,7 @@ def jacobian(
     ``**options``: as distances()."""
     pair_options = _pair_options("refracta.edit.jacobian", pair_options, options)
     pairs, _, camera, origins, directions, sources, weights, margins, _ = _pair_rays(eye_or_camera, pairs)
-    free = [free] if isinstance(free, str) else list(free or [])
+    free = _free_names(free) or []  # None: every parameter
     return _core._pair_jacobian(
         field,
         origins,
@@ -560,7 +588,11 @@ def load_pairs(
             raise ValueError(f"{where}: unknown key '{sorted(unknown)[0]}'")
         source = entry["source"]
         if isinstance(source, dict):
-            if scene is None or camera is None or "pixel" not in source:
+            if set(source) != {"pixel"}:
+                strangers = sorted(set(source) - {"pixel"})
+                detail = f"unknown key '{strangers[0]}' in" if strangers else "no 'pixel' in"
+                raise ValueError(f"{where}: {detail} source (a source is [x, y, z] or {{'pixel': [u, v]}})")
+            if scene is None or camera is None:
                 raise ValueError(f"{where}: a source given as {{'pixel': [u, v]}} needs the scene and camera")
             u, v = _vector(source["pixel"], (2,), f"{where} source pixel")
             source = camera.pick(scene, u, v)

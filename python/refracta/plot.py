@@ -64,6 +64,8 @@ def ray_fan(
     import matplotlib.pyplot as plt
     from matplotlib import cm, colors
 
+    if not isinstance(field, _core.IndexField):
+        raise ValueError(f"ray_fan: field must be a refracta IndexField (got {type(field).__name__})")
     angles = np.atleast_1d(np.asarray(elevations, dtype=float))  # [deg]
     if angles.size == 0 or not np.all(np.isfinite(angles)):
         raise ValueError("elevations must be a non-empty list of finite angles in degrees")
@@ -153,6 +155,10 @@ def edit_report(result, figsize=(12.0, 4.2), figure=None):
     """
     from matplotlib import colormaps
 
+    from refracta.edit import EditResult
+
+    if not isinstance(result, EditResult):
+        raise ValueError(f"edit_report: result must be a refracta.edit.EditResult (got {type(result).__name__})")
     if figure is None:
         import matplotlib.pyplot as plt
 

@@ -484,6 +484,7 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get)
     from refracta import lights
 
     vector = lambda v: _number_list(v, 3)  # noqa: E731
+    suns = 0
     for index, entry in enumerate(entries):
         kind = get(entry, "lights", "type", str, required=True, index=index)
         if kind == "area":
@@ -517,6 +518,9 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get)
             else:
                 if "sun" in data or data.get("environment", {}).get("type") == "physical_sky":
                     raise where.error("a second sun ([sun] or the physical sky has one)", "lights", "type", index)
+                suns += 1
+                if suns > 1:
+                    raise where.error("a second sun (another [[lights]] entry has type 'sun')", "lights", "type", index)
                 scene.set_sun(
                     get(entry, "lights", "direction", vector, required=True, index=index),
                     get(entry, "lights", "radiance", lambda v: _colour(v, "radiance"), required=True, index=index),
@@ -668,10 +672,9 @@ def _atmosphere(table: dict, where: _Locator, get):
             ) from None
         offending = next((k for k in atmosphere if k in str(error)), None)
         raise where.error(str(error), "atmosphere", offending) from None
-    if curved:
-        radius = 6371e3 if curved is True else float(curved)
+    if curved is not False:  # true (CurvedEarth's own radius), or a radius: 0 and below are refused
         try:
-            field = _core.CurvedEarth(field, radius)
+            field = _core.CurvedEarth(field) if curved is True else _core.CurvedEarth(field, float(curved))
         except ValueError as error:
             raise where.error(str(error), "atmosphere", "curved_earth") from None
     return field, turbulence
@@ -781,11 +784,13 @@ def load_scene(path) -> SceneFile:
         try:
             scene.set_sun(
                 get(sun, "sun", "direction", lambda v: _number_list(v, 3), required=True),
-                get(sun, "sun", "radiance", lambda v: _number_list(v, 3), required=True),
+                get(sun, "sun", "radiance", lambda v: _colour(v, "radiance"), required=True),
                 get(sun, "sun", "angular_diameter", _real, 0.53),
             )
         except ValueError as error:
-            raise where.error(str(error), "sun") from None
+            if str(error).startswith(str(where.path)):  # already located (a key's own check)
+                raise
+            raise where.error(str(error), "sun", _offending_key(str(error), sun)) from None
     if "sky" in data:
         sky = data["sky"]
         _check_keys(sky, SKY_KEYS, where, "sky", "[sky]")

@@ -248,7 +248,13 @@ void bind_index_field(py::module_& m) {
       }, "One dict per parameter: name, default, lower, upper, unit, doc.")
       .def_property_readonly("gauge_params", &IndexField::gauge_params)
       .def("with_params",
-           [](const IndexField& f, const py::kwargs& kw) { return unconst(with_params(f, named_values(kw))); },
+           [](const IndexField& f, const py::args& args, const py::kwargs& kw) {
+             if (!args.empty()) {
+               throw_invalid("with_params takes the parameters by name: with_params(surface_dt=3.0) (a dict d: "
+                             "with_params(**d))");
+             }
+             return unconst(with_params(f, named_values(kw)));
+           },
            "A new field of the same model with the given parameters changed.")
       .def("__repr__", &field_repr);
 }

@@ -15,6 +15,11 @@ using Vec3 = Eigen::Matrix<T, 3, 1>;
 using Vec3d = Vec3<double>;
 
 constexpr double kPi = 3.14159265358979323846;
+// Scene coordinates are limited to this distance from the origin [m]: Embree works in float, and
+// beyond it a coordinate loses metre precision (and Embree may assert). Straight rays, shadow rays
+// and picks that must reach past any scene's far side end here too; features placed in the air
+// (hot spots) lie within it.
+constexpr double kSceneReach = 1e7;
 
 // The plain double value of a scalar (the Jet's `.a` part). Specialised by the edit layer for
 // ceres::Jet; a class template rather than a function so it binds at instantiation time.

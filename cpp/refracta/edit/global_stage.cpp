@@ -114,7 +114,10 @@ Design evaluate_design(const EditProblem& problem, int per_param, SolveBudget& b
         }
       }
     }
-    if (points.size() == from || budget.evaluations_left() == 0 || budget.interrupt()->load()) break;
+    if (points.size() == from || budget.evaluations_left() == 0 || budget.interrupt()->load()) {
+      points.resize(from);  // none of this level was evaluated (a cost of 0 would rank them first)
+      break;
+    }
     out.evaluated += evaluate_points(problem, &points, from, budget);
     for (size_t i = from; i < points.size(); ++i) {
       const int j = axis_of[i - from];

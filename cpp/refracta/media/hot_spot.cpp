@@ -31,6 +31,11 @@ HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optiona
     if (!std::isfinite(value)) throw_invalid("HotSpot: ", what, " must be finite (got ", value, ")");
   }
   if (!(radius > 0.0)) throw_invalid("HotSpot: radius must be > 0 m (got ", radius, ")");
+  for (const auto& [what, value] : {std::pair<const char*, double>{"x", x}, {"z", z}, {"radius", radius}}) {
+    if (std::abs(value) > kSceneReach) {
+      throw_invalid("HotSpot: ", what, " must be within the scene's reach, ", kSceneReach, " m (got ", value, ")");
+    }
+  }
   if (depth && !(*depth > 0.0 && std::isfinite(*depth))) {
     throw_invalid("HotSpot: depth must be > 0 m and finite (got ", *depth, ")");
   }

@@ -9,19 +9,22 @@ namespace refracta {
 
 namespace {
 
-void validate_ray(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
-                  const TraceOptions& options) {
+// The options and the field (once per call), then each ray.
+void validate_trace(const IndexField& field, const TraceOptions& options) {
   options.validate();
-  if (!is_finite(origin)) {
-    throw_invalid("origin must be finite (got (", origin.x(), ", ", origin.y(), ", ", origin.z(), "))");
-  }
-  if (!is_finite(direction) || direction.norm() == 0.0) {
-    throw_invalid("direction must be finite and non-zero (got (", direction.x(), ", ",
-                  direction.y(), ", ", direction.z(), "))");
-  }
   if (options.trace == TraceMethod::kStratified && !field.height_only()) {
     throw_invalid("method 'stratified' needs a field that depends on height only; ",
                   field.type_name(), " does not (use 'rk45')");
+  }
+}
+
+void validate_ray(const Vec3d& origin, const Vec3d& direction, const TraceOptions& options) {
+  if (!is_finite(origin)) {
+    throw_invalid("origin must be finite (got (", origin.x(), ", ", origin.y(), ", ", origin.z(), "))");
+  }
+  if (!is_finite(direction) || direction.cwiseAbs().maxCoeff() == 0.0) {
+    throw_invalid("direction must be finite and non-zero (got (", direction.x(), ", ",
+                  direction.y(), ", ", direction.z(), "))");
   }
   if (options.stop_height && origin.y() < *options.stop_height) {
     throw_invalid("origin height ", origin.y(), " m is below stop_height ", *options.stop_height, " m");
@@ -32,8 +35,9 @@ void validate_ray(const IndexField& field, const Vec3d& origin, const Vec3d& dir
 
 TraceEnd<double> trace(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
                        const TraceOptions& options, const SegmentVisitor& visit) {
-  validate_ray(field, origin, direction, options);
-  const Vec3d t0 = direction.normalized();
+  validate_trace(field, options);
+  validate_ray(origin, direction, options);
+  const Vec3d t0 = direction.stableNormalized();  // scaled first: 1e200 or 1e-300 components stay exact
   switch (options.trace) {
     case TraceMethod::kRk4: {
       Rk4Stepper<double, IndexField> stepper(options.rk4_step());
@@ -73,7 +77,14 @@ RayBatchEnds trace_batch(const IndexField& field, const std::vector<Vec3d>& orig
                   directions.size(), ")");
   }
   const int64_t count = int64_t(origins.size());
-  for (int64_t i = 0; i < count; ++i) validate_ray(field, origins[i], directions[i], options);
+  validate_trace(field, options);
+  for (int64_t i = 0; i < count; ++i) {
+    try {
+      validate_ray(origins[i], directions[i], options);
+    } catch (const std::invalid_argument& error) {
+      throw_invalid("ray ", i, ": ", error.what());
+    }
+  }
   RayBatchEnds out;
   out.points.resize(count);
   out.directions.resize(count);

@@ -33,11 +33,6 @@ struct SceneMesh {
   Mesh mesh;
 };
 
-// Scene coordinates are limited to this distance from the origin [m]: Embree works in float, and
-// beyond it a coordinate loses metre precision (and Embree may assert). Straight rays, shadow rays
-// and picks that must reach past any scene's far side end here too.
-constexpr double kSceneReach = 1e7;
-
 struct Hit {
   double t;          // distance along the (unit) direction [m]
   Vec3d point;       // [m]
