@@ -76,7 +76,7 @@ void bind_microfacet(py::module_& m) {
   def_masking(ggx);
 
   py::class_<Ior>(m, "Ior", "An index of refraction: constant or Sellmeier (C in um^2).")
-      .def(py::init(&to_ior), py::arg("ior") = 1.5, py::arg("sellmeier") = py::none())
+      .def(py::init(&to_ior), py::arg("ior") = py::none(), py::arg("sellmeier") = py::none())
       .def("at", [](const Ior& ior, const py::object& wavelength) {
              return per_value(wavelength, "wavelength", [&](double x) { return ior.at(x); });
            }, py::arg("wavelength"), "n at wavelength(s) [nm].")
