@@ -139,3 +139,13 @@ def test_the_command_line_refuses_an_unwritable_output_before_rendering(tmp_path
             timeout=120,
         )
         assert run.returncode == 1 and message in run.stderr and "wrote" not in run.stdout, run.stderr
+
+
+def test_a_sounding_and_a_ground_name_the_value_out_of_range():
+    with pytest.raises(ValueError, match=r"temperatures\[1\] \(t1\) must be in \(0, 10000\] K \(got 1000000\)"):
+        refracta.TemperatureProfile([0, 1, 10], [300, 295, 290]).with_params(t1=1e6)
+    scene = refracta.Scene()
+    with pytest.raises(ValueError, match=r"ground: size must be > 0 and at most 20000000 m \(got inf\)"):
+        scene.add_ground(size=float("inf"))
+    with pytest.raises(ValueError, match=r"ground: size must be > 0 .* \(got 0\)"):
+        scene.add_ground(size=0.0)

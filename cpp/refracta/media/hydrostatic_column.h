@@ -19,6 +19,11 @@
 
 namespace refracta {
 
+// The hottest air a column holds [K]. Above ~1e5 K Edlen's density factor turns negative (n < 1);
+// 1e4 K is far beyond any real air (a test's ducting lapse rate of -0.13 K/m reaches 1700 K at
+// 11 km) and well inside it.
+constexpr double kHottestAir = 1e4;
+
 // Sorted, de-duplicated nodes: [lo, hi] every `step`, plus finer runs (from, to, step), plus
 // `extra` nodes (kinks of the profile, where the interpolant must not straddle a jump of T').
 struct NodeRun {
@@ -102,11 +107,8 @@ class HydrostaticColumn {
   T checked(const Profile& temperature, double h) const {
     T t, slope;
     temperature(T(h), &t, &slope);
-    // Above ~1e5 K Edlen's density factor turns negative (n < 1); 1e4 K is far beyond any real
-    // air (a test's ducting lapse rate of -0.13 K/m reaches 1700 K at 11 km) and well inside it.
-    constexpr double kHottest = 1e4;  // [K]
-    if (!(value_of(t) > 0.0 && value_of(t) <= kHottest)) {
-      throw_invalid(owner_, ": temperature is ", value_of(t), " K at h = ", h, " m; it must stay in (0, ", kHottest,
+    if (!(value_of(t) > 0.0 && value_of(t) <= kHottestAir)) {
+      throw_invalid(owner_, ": temperature is ", value_of(t), " K at h = ", h, " m; it must stay in (0, ", kHottestAir,
                     "] K over [", nodes_.front(), ", ", nodes_.back(), "] m");
     }
     return t;

@@ -508,7 +508,13 @@ bool Scene::occluded(const Vec3d& origin, const Vec3d& dir, double t_max) const 
 }
 
 Mesh ground_mesh(double height, double half_size) {
-  if (!(half_size > 0.0) || !std::isfinite(height)) throw_invalid("ground: half_size must be > 0 and height finite");
+  // Named as add_ground and scene files take them: the side `size` = 2 half_size, and the height.
+  if (!(half_size > 0.0 && half_size <= kSceneReach)) {
+    throw_invalid("ground: size must be > 0 and at most ", 2.0 * kSceneReach, " m (got ", 2.0 * half_size, ")");
+  }
+  if (!(std::abs(height) <= kSceneReach)) {
+    throw_invalid("ground: height must be finite and within ", kSceneReach, " m of 0 (got ", height, ")");
+  }
   Mesh mesh;
   mesh.vertices = {{-half_size, height, -half_size}, {half_size, height, -half_size},
                    {half_size, height, half_size}, {-half_size, height, half_size}};
