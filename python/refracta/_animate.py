@@ -224,8 +224,8 @@ def animate(
             f"animate: {', '.join(unused)} shape{'s' if len(unused) == 1 else ''} the file written to `path`, "
             "and no path is given (the returned frames are linear radiance: refracta.io.to_display shows them)"
         )
-    fps = _frame_rate(times, fps)
     if path is not None:
+        fps = _frame_rate(times, fps)  # the file's (frames as an array have no rate)
         path = os.fspath(path)
         _writer_for(path)  # an unknown format or a missing package fails before rendering
         _check_output_settings(path, exposure, tonemap)

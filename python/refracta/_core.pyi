@@ -848,7 +848,7 @@ class Scene:
         """
         Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]. Without `material`, the
         kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha
-        (default 1; < 1: transparent in render_raster)), a texture (add_mesh) multiplying kd.
+        (default 1; < 1: transparent in render_raster)).
         """
     def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None, *, texture: os.PathLike | str | bytes | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
         """
@@ -866,7 +866,7 @@ class Scene:
         optional per-vertex normals (N, 3) (shading normals, interpolated) and uvs (N, 2) texture
         coordinates (u right, v up); emission makes it an area light. Without `material`, the
         kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha
-        (default 1; < 1: transparent in render_raster)), a texture (add_mesh) multiplying kd. Returns its id.
+        (default 1; < 1: transparent in render_raster)). A texture (an image file) multiplies kd. Returns its id.
         """
     def add_obj(self, path: os.PathLike | str | bytes, offset: typing.Any = None, scale: typing.Any = None, *, options: typing.Any = None, texture_dirs: typing.Any = None, missing_textures: typing.Any = None, progress: typing.Any = True) -> list[int]:
         """

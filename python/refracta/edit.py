@@ -477,12 +477,15 @@ def _free_names(free) -> list[str] | None:
     """solve()'s and jacobian()'s `free` as a list of names (None stays None: the default)."""
     if free is None:
         return None
-    names = [free] if isinstance(free, str) else free
-    if not isinstance(names, (list, tuple)) or not all(isinstance(n, str) for n in names):
+    try:
+        names = [free] if isinstance(free, str) else list(free)  # any iterable of names: a list, dict keys, ...
+    except TypeError:
+        names = None
+    if names is None or not all(isinstance(n, (str, np.str_)) for n in names):
         raise ValueError(f"free must be a parameter name or a list of names (got {free!r})")
     if not names:
         raise ValueError("free is empty: name at least one parameter (or pass None for the default)")
-    return list(names)
+    return [str(n) for n in names]
 
 
 def _bounds_of(bounds) -> dict[str, tuple[float, float]]:

@@ -826,10 +826,11 @@ def load_scene(path) -> SceneFile:
         allowed |= {"emission"} if kind in EMITTERS else set()
         allowed |= {"two_sided"} if kind == "mesh" else set()
         _check_keys(obj, allowed, where, "objects", f"a {kind}", index)
+        # The shorthand's defaults are the Scene.add_* calls' own (None: theirs; a ground's kd 0.3).
         material = dict(
-            kd=get(obj, "objects", "kd", lambda v: _number_list(v, 3), [0.5, 0.5, 0.5], index=index),
-            ks=get(obj, "objects", "ks", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
-            ns=get(obj, "objects", "ns", _real, 1.0, index=index),
+            kd=get(obj, "objects", "kd", lambda v: _number_list(v, 3), None, index=index),
+            ks=get(obj, "objects", "ks", lambda v: _number_list(v, 3), None, index=index),
+            ns=get(obj, "objects", "ns", _real, None, index=index),
         )
         if "material" in obj:
             name = get(obj, "objects", "material", str, index=index)

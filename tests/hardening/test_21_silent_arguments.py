@@ -64,7 +64,9 @@ def _glass_scene():
     scene = refracta.Scene()
     scene.add_ground()
     scene.add_box((0, 1, 0), (1, 1, 1), alpha=0.5)
-    scene.set_sun((0.3, 1.0, 0.2), 100.0)
+    scene.add_box((0, 1, 3), (2, 2, 1), kd=(0.9, 0.1, 0.1), alpha=0.5)  # a second layer: weights matter
+    scene.set_sun((0.3, 1.0, -0.2), 2e4)  # lit brightly enough that the layers' colours show
+    scene.set_sky((0.5, 0.6, 0.8), (0.2, 0.3, 0.7))
     return scene
 
 
@@ -88,6 +90,7 @@ def test_render_raster_uses_the_settings_of_its_method():
     eq7 = refracta.render_raster(_glass_scene(), camera, shadows="embree", transparency="wboit", weight="eq7")
     eq9 = refracta.render_raster(_glass_scene(), camera, shadows="embree", transparency="wboit", weight="eq9")
     assert eq7.shape == eq9.shape == (8, 16, 3) and np.all(np.isfinite(eq9))
+    assert not np.array_equal(eq7, eq9)  # McGuire & Bavoil's two depth weights composite the glass apart
 
 
 def test_a_pairs_file_with_an_unknown_key_is_refused_naming_it(tmp_path):
@@ -114,14 +117,18 @@ def test_framing_shows_the_objects_on_a_wide_ground():
     assert np.linalg.norm(refracta.Camera.framing(ground_only).position) > 50.0
 
 
-def test_a_spot_light_wider_than_a_shadow_map_is_refused_only_by_shadow_maps():
+def _spot_scene(angle):
     scene = refracta.Scene()
     scene.add_ground()
-    scene.add_spot_light((0, 3, 0), (0, -1, 0), angle=200.0, intensity=50.0)
-    camera = refracta.Camera((0, 2, -6), (0, 0, 0), width=16, height=8)
+    scene.add_spot_light((0, 3, 0), (0, -1, 0), angle=angle, intensity=50.0)
+    return scene
+
+
+def test_a_spot_light_wider_than_a_shadow_map_is_refused_only_by_shadow_maps():
     with pytest.raises(ValueError, match="spot light 0 is 200 deg wide: a shadow map covers at most 170 deg"):
-        refracta.render_raster(scene, camera)
-    traced = refracta.render_raster(scene, camera, shadows="embree")
-    rendered = refracta.render(scene, camera, progress=False)
-    # The ground straight below a 200-deg cone is lit by both renderers (not a black image).
-    assert traced[4:, 8].mean() > 0.0 and rendered[4:, 8].mean() > 0.0
+        refracta.render_raster(_spot_scene(200.0), refracta.Camera((0, 2, -6), (0, 0, 0), width=16, height=8))
+    # Ground 30 m from the foot of a light 3 m up is 84 deg off its axis: inside a 200-deg cone (100
+    # deg each side), outside a 160-deg one.
+    far = refracta.Camera((30, 2, -4), (30, 0, 0), width=16, height=8)
+    for renderer in (lambda s: refracta.render_raster(s, far, shadows="embree"), lambda s: refracta.render(s, far)):
+        assert renderer(_spot_scene(200.0)).mean() > 0.0 and renderer(_spot_scene(160.0)).mean() == 0.0

@@ -15,7 +15,9 @@ using Sensor = std::pair<double, double>;  // (width, height) [mm]
 
 // Camera.framing's first argument: a Scene (framing_bounds) or (lower, upper) corners.
 std::pair<Vec3d, Vec3d> bounds_of(const py::object& scene_or_bounds) {
-  if (py::isinstance<RenderScene>(scene_or_bounds)) return framing_bounds(py::cast<const RenderScene&>(scene_or_bounds));
+  if (py::isinstance<RenderScene>(scene_or_bounds)) {
+    return framing_bounds(py::cast<const RenderScene&>(scene_or_bounds));
+  }
   const py::object& bounds = scene_or_bounds;
   if (!py::isinstance<py::sequence>(bounds) || py::isinstance<py::str>(bounds)) {
     throw_invalid("Camera.framing: give a Scene or its bounds (lower, upper)");

@@ -92,7 +92,8 @@ void bind_dielectrics(py::module_& m) {
                                  py::arg("priority") = m.priority()),
                         m.ior());
       },
-      py::arg("alpha") = py::none(), py::arg("ior") = py::none(), py::arg("sellmeier") = py::none(), py::arg("priority") = 0,
+      py::arg("alpha") = py::none(), py::arg("ior") = py::none(), py::arg("sellmeier") = py::none(),
+      py::arg("priority") = 0,
       py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
 
   def_material<ThinDielectric>(m, "ThinDielectric", DOC(refracta, ThinDielectric),

@@ -39,20 +39,24 @@ struct Shorthand {
 // The docstrings' account of the shorthand, and add_ground's grey (a darker ground than objects).
 #define SHORTHAND_DOC                                                                                      \
   "kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha\n" \
-  "(default 1; < 1: transparent in render_raster)), a texture (add_mesh) multiplying kd."
+  "(default 1; < 1: transparent in render_raster))."
 constexpr double kGroundKd = 0.3;
 
 // The material of an add_* call: `material` when given (then no shorthand: it would be ignored),
 // else the shorthand's BlinnPhong.
+// Refuses `material` with any of the shorthand (or a texture file, before it is prepared).
+void check_material_or_shorthand(const char* call, const py::object& material, const Shorthand& shorthand,
+                                 bool texture_file = false) {
+  if (!material.is_none() && (shorthand.given() || texture_file)) {
+    throw_invalid(call, ": give `material` or the kd/ks/ns/alpha/texture shorthand, not both (the shorthand "
+                  "would be ignored)");
+  }
+}
+
 int material_of(RenderScene& s, const char* call, const py::object& material, const Shorthand& shorthand,
                 double default_kd = BlinnPhong::kDefaultKd) {
-  if (!material.is_none()) {
-    if (shorthand.given()) {
-      throw_invalid(call, ": give `material` or the kd/ks/ns/alpha/texture shorthand, not both (the shorthand "
-                    "would be ignored)");
-    }
-    return s.add_material(to_material(material, ""));
-  }
+  check_material_or_shorthand(call, material, shorthand);
+  if (!material.is_none()) return s.add_material(to_material(material, ""));
   const auto value = [](const py::object& given, const char* name, double fallback) {
     return given.is_none() ? fallback : to_number(given, name);
   };
@@ -156,6 +160,7 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
               const py::object& kd, const py::object& ks, const py::object& ns, std::optional<FilePath> texture,
               const py::object& alpha) {
              const Mesh mesh = mesh_from(vertices, triangles, normals, uvs);
+             check_material_or_shorthand("add_mesh", material, {kd, ks, ns, alpha}, texture.has_value());
              const int tex = texture ? s.geometry.textures().add(texture->string()) : -1;
              if (tex >= 0 && mesh.uvs.empty()) throw_invalid("add_mesh: a texture needs uvs");
              const int material_id = material_of(s, "add_mesh", material, {kd, ks, ns, alpha, tex});
@@ -168,7 +173,7 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
            "Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);\n"
            "optional per-vertex normals (N, 3) (shading normals, interpolated) and uvs (N, 2) texture\n"
            "coordinates (u right, v up); emission makes it an area light. Without `material`, the\n"
-           SHORTHAND_DOC " Returns its id.")
+           SHORTHAND_DOC " A texture (an image file) multiplies kd. Returns its id.")
       .def("add_obj",
            [](RenderScene& s, const FilePath& path, const py::object& offset, const py::object& scale,
               const py::object& options, const py::object& texture_dirs, const py::object& missing_textures,
@@ -207,6 +212,7 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
               const py::object& ks, const py::object& ns, std::optional<FilePath> texture, double texture_size) {
              const bool uvs = textured(material, texture);
              const Mesh mesh = uvs ? ground_mesh(height, 0.5 * size, texture_size) : ground_mesh(height, 0.5 * size);
+             check_material_or_shorthand("add_ground", material, {kd, ks, ns, py::none()}, texture.has_value());
              const int tex = texture ? s.geometry.add_texture(texture->string()) : -1;
              const int material_id = material_of(s, "add_ground", material, {kd, ks, ns, py::none(), tex}, kGroundKd);
              return s.geometry.add_mesh(mesh, material_id);

@@ -40,8 +40,8 @@ inline std::string readable_bytes(double size) {
 
 // std::allocator, except that a vector's new elements are default-initialised: resize(n) of a
 // trivial type leaves them as they are instead of zeroing them. For buffers whose every element
-// is written next by parallel work that polls Ctrl-C: zeroing an 8192^2 moment map first (1 GB,
-// one thread) took seconds on a busy machine, and could not be interrupted.
+// is written next by parallel work that polls Ctrl-C: zeroing an 8192^2 moment map first (1 GiB
+// in fp32, 2 GiB in fp64, one thread) took seconds on a busy machine, and could not be interrupted.
 template <class T>
 struct UninitializedAllocator : std::allocator<T> {
   template <class U>

@@ -36,6 +36,10 @@ HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optiona
       throw_invalid("HotSpot: ", what, " must be within the scene's reach, ", kSceneReach, " m (got ", value, ")");
     }
   }
+  if (std::max(std::abs(x), std::abs(z)) + radius > kSceneReach) {
+    throw_invalid("HotSpot: the spot must lie within the scene's reach: max(|x|, |z|) + radius <= ", kSceneReach,
+                  " m (got ", std::max(std::abs(x), std::abs(z)) + radius, " m)");
+  }
   if (depth && !(*depth > 0.0 && std::isfinite(*depth))) {
     throw_invalid("HotSpot: depth must be > 0 m and finite (got ", *depth, ")");
   }

@@ -41,9 +41,10 @@ bool uses_moments(ShadowMethod m) {
 
 void ShadowMapOptions::check(Problems& problems) const {
   // Peak memory at 8192^2 texels: 2.4 GB for moment maps (fp64: four doubles per texel, 2 GiB,
-  // written once by the one-pass filter, plus the depth buffer; fp32 and unorm16 half / a quarter), 1.3 GB while rasterizing (20 bytes per texel); measured
-  // with tests/hardening/test_05_raster_memory.py (before: 5.5 GB, the rows and the filtered
-  // copy both held, and the whole visibility buffer kept).
+  // written once by the one-pass filter, plus the depth buffer; fp32 and unorm16 half / a
+  // quarter); the depths alone (4 bytes per texel: rasterize_depth) for the others. Measured with
+  // tests/hardening/test_05_raster_memory.py (before: 5.5 GB, the rows and the filtered copy both
+  // held, and the whole visibility buffer kept).
   const bool resolution_ok = resolution >= 2 && resolution <= 8192;
   problems.check(resolution_ok, "resolution must be in [2, 8192] (got ", resolution, ")");
   problems.check(kernel >= 1 && kernel % 2 == 1 && kernel <= resolution,
@@ -55,7 +56,7 @@ void ShadowMapOptions::check(Problems& problems) const {
                  "bleeding_reduction must be in [0, 1) (got ", bleeding_reduction, ")");
   if (resolution_ok) {
     try {
-      check_image_memory(resolution, resolution, uses_moments(method) ? 36.0 : 20.0, "shadow map");
+      check_image_memory(resolution, resolution, uses_moments(method) ? 36.0 : 4.0, "shadow map");
     } catch (const std::invalid_argument& error) {
       problems.add(error.what());
     }

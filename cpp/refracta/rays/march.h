@@ -191,7 +191,8 @@ TraceEnd<T> march(const Field& field, const Vec3<T>& x0, const Vec3<T>& t0,
   const double length = options.max_length;
   const Vec3d up(0.0, 1.0, 0.0);
   // A ray launched downward from the stop height stops where it starts (as the stratified tracer
-  // does); the crossing test below looks only for crossings from above.
+  // does); the crossing test below looks only for crossings from above (and one launched level
+  // that bends below the plane, in the loop).
   if (options.stop_height && value_of(x0.y()) <= *options.stop_height && value_of(t0.y()) < 0.0) {
     out.stop = TraceStop::kStopHeight;
     out.end = node;
@@ -209,6 +210,11 @@ TraceEnd<T> march(const Field& field, const Vec3<T>& x0, const Vec3<T>& t0,
     }
     RayNode<T> next = stepper.advance(field, node, remaining, &out.evaluations);
     ++out.steps;
+    if (options.stop_height && value_of(node.x.y()) == *options.stop_height &&
+        value_of(next.x.y()) < *options.stop_height) {
+      out.stop = TraceStop::kStopHeight;  // on the plane (launched level from it) and bending below it
+      break;
+    }
     bool stopped_at_height = false;
     if (options.stop_height &&
         value_of(node.x.y()) > *options.stop_height) {

@@ -91,8 +91,8 @@ std::pair<Vec3d, Vec3d> framing_bounds(const RenderScene& scene) {
 }
 
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction) {
-  if (direction.norm() == 0.0) throw_invalid("direction must be non-zero");
-  return scene.geometry.intersect(origin, direction.normalized(), kSceneReach);
+  if (!(direction.cwiseAbs().maxCoeff() > 0.0)) throw_invalid("direction must be non-zero");
+  return scene.geometry.intersect(origin, direction.stableNormalized(), kSceneReach);
 }
 
 size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,

@@ -22,9 +22,10 @@ inline void check_point(const Vec3d& p, const char* what) {
 // A direction given by the user: finite and non-zero; returned normalised.
 inline Vec3d check_direction(const Vec3d& d, const char* what) {
   check_point(d, what);
-  const double len = d.norm();
-  if (!(len > 0.0) || !std::isfinite(len)) throw_invalid(what, " must be a non-zero vector (got (", d.x(), ", ", d.y(), ", ", d.z(), "))");
-  return d / len;
+  if (!(d.cwiseAbs().maxCoeff() > 0.0)) {
+    throw_invalid(what, " must be a non-zero vector (got (", d.x(), ", ", d.y(), ", ", d.z(), "))");
+  }
+  return d.stableNormalized();  // scaled first: components of 1e200 or 1e-300 do not overflow or vanish
 }
 
 inline double check_non_negative(double v, const char* what) {
