@@ -83,7 +83,8 @@ def settings(display: _core.DisplaySettings | None = None, **fields) -> _core.Di
     """A validated refracta.DisplaySettings: a copy of `display` (None: the defaults) with the
     given fields set (a None value: left as it is), by the package's one keyword rule."""
     given = {name: value for name, value in fields.items() if value is not None}
-    if display is not None and display.white is not None and given.get("tonemap", "reinhard") != "reinhard":
+    reinhard_white = isinstance(display, _core.DisplaySettings) and display.white is not None
+    if reinhard_white and given.get("tonemap", "reinhard") != "reinhard":
         given.setdefault("white", None)  # Reinhard's white goes with Reinhard's curve (another refuses it)
     return _core._build_options(_core.DisplaySettings, display, "refracta.io", given)
 

@@ -53,7 +53,9 @@
     kd = [0.1, 0.1, 0.1]                # box (centre, size), sphere (centre, radius), obj (file,
                                         # offset, scale), mesh (vertices, triangles, uvs, texture),
                                         # billboard (centre, width, height, texture, facing);
-                                        # all: kd, ks, ns (Blinn-Phong shorthand), or
+                                        # all: kd, ks, ns (Blinn-Phong shorthand; defaults
+                                        # as Scene.add_*'s: kd 0.5, a ground's 0.3, a
+                                        # billboard's 1), or
     material = "paint"                  # a [[materials]] entry by name (not obj, billboard);
     emission = [5.0, 5.0, 5.0]          # box, sphere, mesh: an area light [W/(m^2 sr), RGB]
                                         # (mesh: two_sided = true emits from both faces)

@@ -165,5 +165,5 @@ texture = "checks.png"
     scene, camera, _ = refracta.load_scene(tmp_path / "scene.toml")
     image = refracta.render(scene, camera, None, method="straight", progress=False)
     assert np.allclose(image[0, 0], 0.5, atol=1e-3)  # the environment's sky
-    # Far ground: kd 0.5 x the checks' filtered mean 0.5 x the sky's 0.5 (untextured: 0.25).
-    np.testing.assert_allclose(image[-1].mean(), 0.125, atol=0.03)
+    # Far ground: kd 0.3 (add_ground's) x the checks' filtered mean 0.5 x the sky's 0.5 (untextured: 0.15).
+    np.testing.assert_allclose(image[-1].mean(), 0.075, atol=0.03)
