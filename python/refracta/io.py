@@ -154,11 +154,22 @@ def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> Non
                 f"write_layers: layer {name!r} must be (H, W) or (H, W, C) of the image's {base.shape[:2]} "
                 f"(got shape {np.shape(layer)})"
             )
-        own = (suffixes or {}).get(name) or _LAYER_SUFFIXES.get(values.shape[2])
-        if own is None or len(own) != values.shape[2]:
+        given = (suffixes or {}).get(name)
+        if isinstance(given, str):
+            raise ValueError(f"write_layers: suffixes[{name!r}] must be a sequence of channel names (got {given!r})")
+        own = given or _LAYER_SUFFIXES.get(values.shape[2])
+        if own is None:
             raise ValueError(f"write_layers: layer {name!r} has {values.shape[2]} channels; give its channel names")
+        if len(own) != values.shape[2]:
+            raise ValueError(
+                f"write_layers: suffixes[{name!r}] gives {len(own)} names for {values.shape[2]} channel"
+                f"{'s' if values.shape[2] > 1 else ''}"
+            )
         names += [f"{name}.{suffix}" for suffix in own]
         planes.append(values)
+    repeated = sorted({n for n in names if names.count(n) > 1})
+    if repeated:
+        raise ValueError(f"write_layers: channel names repeat: {', '.join(map(repr, repeated))}")
     _core._write_image_channels(os.fspath(path), np.ascontiguousarray(np.concatenate(planes, axis=2)), names)
 
 

@@ -149,3 +149,34 @@ def test_a_sounding_and_a_ground_name_the_value_out_of_range():
         scene.add_ground(size=float("inf"))
     with pytest.raises(ValueError, match=r"ground: size must be > 0 .* \(got 0\)"):
         scene.add_ground(size=0.0)
+
+
+def test_aerial_perspective_refuses_a_bad_sun_and_stays_finite_deep_below():
+    from refracta import spectrum
+
+    air = spectrum.AerialPerspective(spectrum.PhysicalSky([0, 1, 0]))
+    with pytest.raises(ValueError, match="height must be finite"):
+        air.sun_transmittance(float("nan"), 10.0, 550.0)  # it crashed the process
+    for elevation in (float("nan"), 280.0):
+        with pytest.raises(ValueError, match=r"elevation must be in \[-90, 90\] deg"):
+            air.sun_transmittance(0.0, elevation, 550.0)
+    transmittance, light = air.along([0, -1e6, 0], [1000, -1e6, 0], 550.0)  # it gave NaN light
+    assert np.isfinite(transmittance) and np.isfinite(light)
+
+
+def test_a_low_suns_light_is_a_white_balance():
+    from refracta import io, spectrum
+
+    low = np.radians(0.5)
+    sun = spectrum.PhysicalSky([np.cos(low), np.sin(low), 0]).sun_radiance_rgb().ravel()
+    assert sun[2] < 0.0  # outside sRGB's gamut: a negative linear blue
+    shown = io.to_display(np.ones((2, 2, 3), np.float32), white_balance=tuple(sun), exposure=0.2, tonemap="linear")
+    assert np.all(np.isfinite(shown)) and shown[0, 0, 2] > shown[0, 0, 0]  # the orange light's white: grey shows blue
+
+
+def test_write_layers_refuses_repeated_or_miscounted_channel_names(tmp_path):
+    layer = np.ones((4, 6, 2))
+    with pytest.raises(ValueError, match="channel names repeat: 'd.a'"):
+        refracta.io.write_layers(tmp_path / "a.exr", np.zeros((4, 6, 3)), {"d": layer}, suffixes={"d": ("a", "a")})
+    with pytest.raises(ValueError, match=r"suffixes\['d'\] gives 3 names for 2 channels"):
+        refracta.io.write_layers(tmp_path / "a.exr", np.zeros((4, 6, 3)), {"d": layer}, suffixes={"d": ("a", "b", "c")})

@@ -129,9 +129,10 @@ def test_06_the_setting_travels_and_pickles_and_the_exposure_meters_before_it():
         40001.0,
         float("inf"),
         "sunset",
-        (1.0, 0.0, 1.0),
+        (0.0, 0.0, 0.0),  # no light
+        (1.0, -1.0, 1.0),  # Y < 0: no light's colour
         (1.0, float("nan"), 1.0),
-        (-1.0, 1.0, 1.0),
+        (1.0, 1.0, -1.0),  # Z < 0
     ],
 )
 def test_07_bad_white_balance_is_a_value_error_naming_it(bad):

@@ -96,16 +96,19 @@ void AerialPerspective::psi_of(const Located& x, const Bands& bands, double* psi
 }
 
 AerialPerspective::Located AerialPerspective::locate(const Vec3d& p, const AirFrame& frame) const {
+  // The air is modelled down to kDeepestAir; a point deeper (none a render reaches) takes that
+  // depth's air: the densities' exponentials of a depth of 1000 km overflowed into NaN light.
+  constexpr double kDeepestAir = -1e4;  // [m]
   if (std::isfinite(frame.earth_radius)) {
     const double rho = std::hypot(p.x(), p.z());
     const double phi = rho / frame.earth_radius;
     const Vec3d up = rho > 0.0 ? Vec3d(std::sin(phi) * p.x() / rho, std::cos(phi), std::sin(phi) * p.z() / rho)
                                : Vec3d(0.0, 1.0, 0.0);
-    return {altitude_ + p.y(), up};
+    return {std::max(altitude_ + p.y(), kDeepestAir), up};
   }
   const Vec3d q(p.x(), kEarthRadius + altitude_ + p.y(), p.z());
   const double r = q.norm();
-  return {r - kEarthRadius, q / r};
+  return {std::max(r - kEarthRadius, kDeepestAir), q / r};
 }
 
 AerialPerspective::TableCell AerialPerspective::cell(double height, double elevation) const {
@@ -138,6 +141,11 @@ double AerialPerspective::sun_at(const Column& column, const Bands& bands, int b
 
 double AerialPerspective::sun_transmittance(double height, double elevation, double lambda_nm) const {
   checked_wavelength(lambda_nm, "AerialPerspective.sun_transmittance: wavelength");
+  if (!std::isfinite(height)) throw_invalid("AerialPerspective.sun_transmittance: height must be finite (got ", height, ")");
+  if (!(std::abs(elevation) <= 0.5 * kPi + 1e-12)) {
+    throw_invalid("AerialPerspective.sun_transmittance: elevation must be in [-90, 90] deg (got ", elevation * 180.0 / kPi,
+                  ")");
+  }
   const Bands b = bands_at(&lambda_nm, 1);
   return sun_at(sun_column_at(cell(height, elevation)), b, 0);
 }

@@ -82,12 +82,13 @@ std::string white_balance_problem(const WhiteBalance& wb) {
     return concat("white_balance must be a colour temperature in [", kMinWhiteBalanceKelvin, ", ",
                   kMaxWhiteBalanceKelvin, "] K (got ", *kelvin, ")");
   }
+  // A light's colour, which may lie outside sRGB's gamut (a low sun's light has a negative linear
+  // blue): its XYZ must be a colour, each component > 0.
   const auto& rgb = std::get<std::array<double, 3>>(wb);
-  for (double v : rgb) {
-    if (!(v > 0.0) || !std::isfinite(v)) {
-      return concat("white_balance as an RGB white must have three values > 0 and finite (got (", rgb[0], ", ", rgb[1],
-                    ", ", rgb[2], "))");
-    }
+  const Vec3d xyz = spectral::linear_srgb_to_xyz(Vec3d(rgb[0], rgb[1], rgb[2]));
+  if (!std::isfinite(rgb[0] + rgb[1] + rgb[2]) || !(xyz.minCoeff() > 0.0)) {
+    return concat("white_balance as an RGB white must be finite, with X, Y and Z > 0 (a light's colour; got (", rgb[0],
+                  ", ", rgb[1], ", ", rgb[2], "))");
   }
   return "";
 }

@@ -27,7 +27,8 @@
 // - a preset as cameras name them: 'daylight' CIE D55 (5503 K on the CIE daylight locus, the
 //   photographic daylight standard), 'cloudy' D65 (6504 K on the daylight locus: within 0.06 % of the render's own white),
 //   'shade' D75 (7504 K), 'tungsten' a 3200 K Planckian radiator (studio tungsten lamps);
-// - an RGB white (linear sRGB, each > 0): the colour of the light, e.g. a grey card's pixel;
+// - an RGB white (linear sRGB, its X, Y, Z > 0; a channel may be negative, as a low sun's blue): the colour
+//   of the light, e.g. a grey card's pixel;
 // - 'auto': grey world (Buchsbaum 1980, "A spatial processor model for object colour
 //   perception", J. Franklin Inst. 310): the mean linear RGB of the image's pixels (negative and
 //   non-finite values skipped) is taken as the light's colour; a black image is left as it is;
