@@ -18,7 +18,7 @@ from typing import Callable
 import numpy as np
 
 from refracta import _core
-from refracta._checks import finite_pair, is_seed
+from refracta._checks import finite_pair, is_number, is_seed
 from refracta._render import _check_scene, _denoised, _surface_outputs, render_options
 from refracta._sweep import map_ordered
 
@@ -306,7 +306,7 @@ def _check_output_settings(path: str, exposure, tonemap) -> None:
 
 def _frame_rate(times: np.ndarray, fps: float | None) -> float:
     if fps is not None:
-        if not (isinstance(fps, (int, float, np.floating)) and 0.0 < fps < 1e4):
+        if not (is_number(fps) and 0.0 < fps < 1e4):
             raise ValueError(f"animate: fps must be in (0, 1e4) (got {fps!r})")
         return float(fps)
     steps = np.diff(times)

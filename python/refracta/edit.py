@@ -606,11 +606,12 @@ def load_pairs(
         except ValueError as error:
             raise ValueError(f"{where}: {error}") from None
     options = {k: v for k, v in data.items() if k != "pairs"}
-    strangers = sorted(set(options) - _file_option_names())
+    known = _file_option_names()
+    strangers = sorted(set(options) - known)
     if strangers:
         raise ValueError(
             f"{path}: unknown key{'s' if len(strangers) > 1 else ''} {', '.join(repr(k) for k in strangers)} "
-            f"(besides 'pairs', the file holds solve()'s options: {', '.join(sorted(_file_option_names()))})"
+            f"(besides 'pairs', the file holds solve()'s options: {', '.join(sorted(known))})"
         )
     if "ground" in options:
         if "stop_height" in options:

@@ -190,14 +190,6 @@ TraceEnd<T> march(const Field& field, const Vec3<T>& x0, const Vec3<T>& t0,
   node.v = node.n * t0;  // launch with |v0| = n(x0) (ORACLES.md: not a unit v0)
   const double length = options.max_length;
   const Vec3d up(0.0, 1.0, 0.0);
-  // A ray launched downward from the stop height stops where it starts (as the stratified tracer
-  // does); the crossing test below looks only for crossings from above (and one launched level
-  // that bends below the plane, in the loop).
-  if (options.stop_height && value_of(x0.y()) <= *options.stop_height && value_of(t0.y()) < 0.0) {
-    out.stop = TraceStop::kStopHeight;
-    out.end = node;
-    return out;
-  }
   while (true) {
     const double remaining = length - value_of(node.s);
     if (remaining <= 1e-12 * length) {
@@ -210,9 +202,12 @@ TraceEnd<T> march(const Field& field, const Vec3<T>& x0, const Vec3<T>& t0,
     }
     RayNode<T> next = stepper.advance(field, node, remaining, &out.evaluations);
     ++out.steps;
+    // A ray on the stop height whose step goes below it (launched down or level from the plane)
+    // stops where it is, as the stratified tracer's; the crossing test below looks only for
+    // crossings from above.
     if (options.stop_height && value_of(node.x.y()) == *options.stop_height &&
         value_of(next.x.y()) < *options.stop_height) {
-      out.stop = TraceStop::kStopHeight;  // on the plane (launched level from it) and bending below it
+      out.stop = TraceStop::kStopHeight;
       break;
     }
     bool stopped_at_height = false;

@@ -31,12 +31,9 @@ void validate_ray(const Vec3d& origin, const Vec3d& direction, const TraceOption
   }
 }
 
-}  // namespace
-
-TraceEnd<double> trace(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
-                       const TraceOptions& options, const SegmentVisitor& visit) {
-  validate_trace(field, options);
-  validate_ray(origin, direction, options);
+// trace() of a ray and options already validated.
+TraceEnd<double> trace_valid(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
+                             const TraceOptions& options, const SegmentVisitor& visit) {
   const Vec3d t0 = direction.stableNormalized();  // scaled first: 1e200 or 1e-300 components stay exact
   switch (options.trace) {
     case TraceMethod::kRk4: {
@@ -54,6 +51,15 @@ TraceEnd<double> trace(const IndexField& field, const Vec3d& origin, const Vec3d
     }
   }
   throw std::logic_error("unknown trace method");
+}
+
+}  // namespace
+
+TraceEnd<double> trace(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
+                       const TraceOptions& options, const SegmentVisitor& visit) {
+  validate_trace(field, options);
+  validate_ray(origin, direction, options);
+  return trace_valid(field, origin, direction, options, visit);
 }
 
 RayPath trace_path(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
@@ -95,7 +101,7 @@ RayBatchEnds trace_batch(const IndexField& field, const std::vector<Vec3d>& orig
   TraceOptions cancellable = options;
   cancellable.cancel = &control.cancel;
   parallel_for_each(count, 1, control, [&](int64_t i) {
-    const TraceEnd<double> end = trace(field, origins[i], directions[i], cancellable, keep_going);
+    const TraceEnd<double> end = trace_valid(field, origins[i], directions[i], cancellable, keep_going);
     out.points[i] = end.end.x;
     out.directions[i] = end.end.v.normalized();
     out.lengths[i] = end.end.s;
