@@ -14,6 +14,13 @@ def is_number(value) -> bool:
     return not isinstance(value, (bool, np.bool_)) and isinstance(value, (int, float, np.integer, np.floating))
 
 
+def number(value, name: str) -> float:
+    """`value` as a float when is_number(value); else ValueError naming it (`name`)."""
+    if not is_number(value):
+        raise ValueError(f"{name} must be a number (got {value!r})")
+    return float(value)
+
+
 def is_seed(value) -> bool:
     """Whether `value` is a whole number >= 0 given as an integer (not a bool, not a float)."""
     return not isinstance(value, bool) and isinstance(value, (int, np.integer)) and bool(value >= 0)

@@ -65,6 +65,7 @@ from typing import Any
 import numpy as np
 
 from refracta import _core
+from refracta._checks import number
 
 __all__ = [
     "channel_names",
@@ -260,4 +261,5 @@ def ev100(f_number: float, shutter: float, iso: float | None = None) -> float:
 
     Sunny 16 (f/16, 1/100 s, ISO 100) is EV100 = 14.6. ValueError for values <= 0 or NaN.
     """
-    return _core._ev100(f_number, shutter) if iso is None else _core._ev100(f_number, shutter, iso)
+    f_number, shutter = number(f_number, "ev100: f_number"), number(shutter, "ev100: shutter")
+    return _core._ev100(f_number, shutter) if iso is None else _core._ev100(f_number, shutter, number(iso, "ev100: iso"))

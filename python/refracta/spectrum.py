@@ -43,6 +43,7 @@ from __future__ import annotations
 import numpy as np
 
 from refracta import _core
+from refracta._checks import number
 
 PhysicalSky = _core.PhysicalSky  # documented in C++ (physical_sky.h): see help(PhysicalSky)
 AerialPerspective = _core.AerialPerspective  # documented in C++ (aerial_perspective.h)
@@ -68,14 +69,20 @@ LAMBDA_MAX = 830.0  # [nm]
 
 
 def _wavelengths(wavelengths) -> tuple[np.ndarray, bool]:
-    lam = np.asarray(wavelengths, dtype=float)
+    try:
+        lam = np.asarray(wavelengths, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"wavelengths must be a number or numbers [nm] (got {wavelengths!r})") from None
     if lam.ndim > 1:
         raise ValueError(f"wavelengths must be a number or a 1-D array (got shape {lam.shape})")
     return np.atleast_1d(lam), lam.ndim == 0
 
 
 def _rgb(rgb, what: str = "rgb") -> tuple[np.ndarray, bool]:
-    colours = np.asarray(rgb, dtype=float)
+    try:
+        colours = np.asarray(rgb, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what} must be numbers, shape (3,) or (N, 3) (got {rgb!r})") from None
     if colours.shape[-1:] != (3,) or colours.ndim > 2:
         raise ValueError(f"{what} must have shape (3,) or (N, 3) (got {colours.shape})")
     return np.atleast_2d(colours), colours.ndim == 1
@@ -123,7 +130,9 @@ def blackbody(temperature: float, wavelengths, luminance: float | None = None) -
     Returns a float or (M,) array like `wavelengths`.
     """
     lam, scalar = _wavelengths(wavelengths)
-    out = _core._spectrum_blackbody(float(temperature), lam, luminance)
+    temperature = number(temperature, "blackbody: temperature")
+    luminance = None if luminance is None else number(luminance, "blackbody: luminance")
+    out = _core._spectrum_blackbody(temperature, lam, luminance)
     return out[0] if scalar else out
 
 

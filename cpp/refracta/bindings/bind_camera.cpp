@@ -141,8 +141,9 @@ void bind_camera(py::module_& m) {
            py::arg("vfov") = 45.0, py::arg("width") = 640, py::arg("height") = 360)
       .def(
           "ray",
-          [](const Camera& c, double u, double v) {
-            return py::make_tuple(vector_to_array(c.position()), vector_to_array(c.pixel_direction(u, v)));
+          [](const Camera& c, const py::object& u, const py::object& v) {
+            const Vec3d d = c.pixel_direction(to_number(u, "Camera.ray: u"), to_number(v, "Camera.ray: v"));
+            return py::make_tuple(vector_to_array(c.position()), vector_to_array(d));
           },
           py::arg("u"), py::arg("v"), "(origin, unit direction) of the ray through pixel coordinates (u, v).")
       .def(
@@ -179,7 +180,8 @@ map (height, width, 2) at the pixel centres, bilinear between them. Non-physical
                              "The thin lens's aperture diameter [m] (f / N), 0 for a pinhole.")
       .def_property_readonly("focus_distance", &Camera::focus_distance, "The depth [m] of the plane in focus, 0 for a pinhole.")
       .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
-           "The same view at another image size (vertical field of view kept).")
+           "The same view and lens at another image size (vertical field of view kept). A jittered camera keeps\n"
+           "its angle map at the same size; at another, ValueError (resize the map, then call jittered).")
       .def_property_readonly("width", &Camera::width)
       .def_property_readonly("height", &Camera::height)
       .def_property_readonly("vfov", &Camera::vfov)

@@ -50,9 +50,8 @@ Turbulence make_turbulence_layer(std::shared_ptr<const TurbulenceGrid> grid, dou
   Turbulence layer;
   layer.grid = std::move(grid);
   layer.scale = scale;
-  layer.offset = offset;
   layer.depth = depth;
-  layer.set_yaw(yaw);
+  layer.place(offset, yaw);
   return layer;
 }
 

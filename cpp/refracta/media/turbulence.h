@@ -64,24 +64,40 @@ struct Turbulence {
   // angle whose tangent is far from simple fractions, level rays along x or z cross it
   // quasi-periodically (refracta.Turbulence chooses it).
   double yaw = 0.0;
-  double cos_yaw = 1.0, sin_yaw = 0.0;  // of yaw (set_yaw keeps them together)
+  // Of offset and yaw (place keeps them together): the offset in the lattice's frame, reduced
+  // modulo the tile (a tile's shift is no shift), so that any finite time keeps the lattice
+  // point within the grid's index range.
+  double cos_yaw = 1.0, sin_yaw = 0.0;
+  Vec3d lattice_offset = Vec3d::Zero();
 
-  void set_yaw(double angle) {
+  void place(const Vec3d& shift, double angle) {
+    offset = shift;
     yaw = angle;
     cos_yaw = std::cos(angle);
     sin_yaw = std::sin(angle);
+    lattice_offset = to_lattice(shift);
+    for (int a = 0; a < 3; ++a) {
+      const double period = grid->shape()[size_t(a)] * grid->spacing();
+      const double r = std::fmod(lattice_offset[a], period);
+      lattice_offset[a] = r < 0.0 ? r + period : r;
+    }
   }
+
+  // p [m] turned into the lattice's frame (about the vertical, by yaw).
+  Vec3d to_lattice(const Vec3d& p) const {
+    return Vec3d(cos_yaw * p.x() + sin_yaw * p.z(), p.y(), -sin_yaw * p.x() + cos_yaw * p.z());
+  }
+  // The grid's point for p [m]: turned, then shifted by the wind.
+  Vec3d lattice_point(const Vec3d& p) const { return to_lattice(p) - lattice_offset; }
 
   // delta_n and its gradient at p, for double or Jet positions.
   template <class T>
   void evaluate(const Vec3<T>& p, T* dn, Vec3<T>* grad) const {
     using std::exp;
     const double c = cos_yaw, s = sin_yaw;
-    const double dx = value_of(p.x()) - offset.x(), dz = value_of(p.z()) - offset.z();
-    const Vec3d at(c * dx + s * dz, value_of(p.y()) - offset.y(), -s * dx + c * dz);
     double b;
     Vec3d lattice_grad;
-    grid->evaluate(at, &b, &lattice_grad);
+    grid->evaluate(lattice_point(Vec3d(value_of(p.x()), value_of(p.y()), value_of(p.z()))), &b, &lattice_grad);
     const Vec3d db(c * lattice_grad.x() - s * lattice_grad.z(), lattice_grad.y(), s * lattice_grad.x() + c * lattice_grad.z());
     T e(1.0), de_dh(0.0);
     if (std::isfinite(depth)) {

@@ -60,10 +60,9 @@ Vec3d DeviationStepper::gradient(const Vec3d& p) const {
     return grad;
   }
   const double c = w.cos_yaw, s = w.sin_yaw;
-  const double dx = p.x() - w.offset.x(), dz = p.z() - w.offset.z();
   double b;
   Vec3d g;
-  w.grid->evaluate(Vec3d(c * dx + s * dz, p.y() - w.offset.y(), -s * dx + c * dz), &b, &g);
+  w.grid->evaluate(w.lattice_point(p), &b, &g);
   const size_t k = size_t(u);
   const double e = envelope_[k] + (u - double(k)) * (envelope_[k + 1] - envelope_[k]);
   const double de_dh = -e / w.depth;

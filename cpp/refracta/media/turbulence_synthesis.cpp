@@ -226,9 +226,8 @@ Turbulence turbulence_layer(const TurbulenceSettings& settings, std::shared_ptr<
   Turbulence layer;
   layer.grid = std::move(grid);
   layer.scale = std::sqrt(settings.cn2);
-  layer.offset = Vec3d(settings.wind[0] * time, 0.0, settings.wind[1] * time);
   layer.depth = settings.depth ? *settings.depth : std::numeric_limits<double>::infinity();
-  layer.set_yaw(degrees_to_radians(settings.yaw_deg));
+  layer.place(Vec3d(settings.wind[0] * time, 0.0, settings.wind[1] * time), degrees_to_radians(settings.yaw_deg));
   return layer;
 }
 

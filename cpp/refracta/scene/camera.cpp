@@ -202,6 +202,17 @@ std::string Camera::describe() const {
                 ", vfov=", vfov_, ", size=", width_, "x", height_, lens, ")");
 }
 
+Camera Camera::resized(int width, int height) const {
+  if (jitter_ && (width != width_ || height != height_)) {
+    throw_invalid("Camera.resized: this camera is jittered, and its angle map is ", height_, " x ", width_,
+                  " pixels: resize the map and call jittered on the resized camera");
+  }
+  Camera out(position_, look_at_, up_hint_, vfov_, width, height);
+  out.lens_radius_ = lens_radius_, out.focus_distance_ = focus_distance_;
+  out.jitter_ = jitter_;
+  return out;
+}
+
 Camera Camera::jittered(std::vector<float> angles) const {
   if (angles.size() != size_t(width_) * height_ * 2) {
     throw_invalid("Camera.jittered: the angle map must be (height, width, 2) = (", height_, ", ", width_,

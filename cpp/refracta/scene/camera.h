@@ -104,12 +104,10 @@ class Camera {
   int width() const { return width_; }
   int height() const { return height_; }
   double vfov() const { return vfov_; }
-  // The same view at another image size (the vertical field of view is kept; no jitter).
-  Camera resized(int width, int height) const {
-    Camera out(position_, look_at_, up_hint_, vfov_, width, height);
-    out.lens_radius_ = lens_radius_, out.focus_distance_ = focus_distance_;
-    return out;
-  }
+  // The same view and lens at another image size (the vertical field of view is kept). A jitter
+  // map is per pixel: kept at the same size; at another, std::invalid_argument (resample the map
+  // and call jittered).
+  Camera resized(int width, int height) const;
   // Angle subtended by one pixel at the image centre [rad].
   double pixel_angle() const;
 

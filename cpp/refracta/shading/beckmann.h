@@ -48,8 +48,8 @@ class Beckmann {
 
   // Microfacet normals per unit solid angle and unit area.
   double D(const Vec3d& m) const {
+    if (!(m.z() > 0.0)) return 0.0;  // facets face out of the surface
     const double cos2 = m.z() * m.z();
-    if (!(cos2 > 0.0)) return 0.0;
     const double tan2 = std::max(0.0, 1.0 - cos2) / cos2;
     const double a2 = alpha_ * alpha_;
     return std::exp(-tan2 / a2) / (kPi * a2 * cos2 * cos2);

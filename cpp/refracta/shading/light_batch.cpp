@@ -90,7 +90,14 @@ Vec3d area_light_normal(const AreaLight& light, size_t triangle) {
 
 std::vector<Vec2d> directions_to_uv(const EnvironmentLight& light, const std::vector<Vec3d>& dirs) {
   std::vector<Vec2d> uv(dirs.size());
-  for (size_t i = 0; i < dirs.size(); ++i) uv[i] = light.direction_to_uv(dirs[i].normalized());
+  for (size_t i = 0; i < dirs.size(); ++i) {
+    const Vec3d& d = dirs[i];
+    if (!(d.allFinite() && d.cwiseAbs().maxCoeff() > 0.0)) {
+      throw_invalid("EnvironmentLight.direction_to_uv: dirs[", i, "] must be a finite non-zero vector (got (", d.x(),
+                    ", ", d.y(), ", ", d.z(), "))");
+    }
+    uv[i] = light.direction_to_uv(d.stableNormalized());
+  }
   return uv;
 }
 

@@ -37,7 +37,8 @@ std::optional<SampledLight> LightSampler::sample(double u) const {
 }
 
 double LightSampler::pmf(size_t index) const {
-  return index < lights_.size() ? distribution_.cell_probability(index) : 0.0;
+  if (index >= lights_.size()) throw_invalid("LightSampler.pmf: index must be in [0, ", lights_.size(), ") (got ", index, ")");
+  return distribution_.cell_probability(index);
 }
 
 }  // namespace refracta

@@ -34,7 +34,7 @@ class LightSampler {
 
   // nullopt when there are no lights. u in [0, 1).
   std::optional<SampledLight> sample(double u) const;
-  double pmf(size_t index) const;  // 0 for an index out of range
+  double pmf(size_t index) const;  // std::invalid_argument for an index out of range
   size_t size() const { return lights_.size(); }
   const LightPtr& light(size_t index) const { return lights_.at(index); }
   const std::vector<LightPtr>& lights() const { return lights_; }

@@ -42,8 +42,8 @@ class TrowbridgeReitz {
 
   // D(m): microfacet normals per unit solid angle and unit area; int D(m) cos theta_m dm = 1.
   double D(const Vec3d& m) const {
+    if (!(m.z() > 0.0)) return 0.0;  // facets face out of the surface
     const double cos2 = m.z() * m.z();
-    if (!(cos2 > 0.0)) return 0.0;
     const double sin2 = std::max(0.0, 1.0 - cos2);
     const double tan2 = sin2 / cos2;
     if (std::isinf(tan2)) return 0.0;
