@@ -179,8 +179,8 @@ numbers depend only on seed and its integer wavenumber, so a finer resolution ke
 time [s] moves the waves by deep-water dispersion w = sqrt(g k). No choppy displacement.
 
 wind_speed [m/s] in (0, 30] (12.5 m above the sea, as Water's); wind_direction (x, z) horizontal,
-any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024]. Arrays are indexed
-[j, i] at node x = i * spacing, z = j * spacing (rows along z).)doc";
+any non-zero length; patch_size [m] in [0.01, 1e7]; resolution a power of two in [8, 1024]. Arrays
+are indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).)doc";
 inline constexpr const char mkd_doc_refracta_OitSettings[] = R"doc(How surfaces with alpha < 1 are composited: method 'exact' (sorted: depth peeling with enough
 layers), 'peel' (the `layers` nearest), 'wboit' (McGuire & Bavoil, JCGT 2013, depth weight 'eq7' or
 'eq9') or 'mboit' (moment-based, settings in `mboit`).)doc";

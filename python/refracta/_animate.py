@@ -70,22 +70,15 @@ def geometric_noise_map(
     the pattern translated by speed * time (exact, sub-pixel: a phase shift of its spectrum).
     """
     problems = []
-    if (
-        isinstance(height, bool)
-        or not isinstance(height, (int, np.integer))
-        or height < 1
-        or isinstance(width, bool)
-        or not isinstance(width, (int, np.integer))
-        or width < 1
-    ):
+    if not (is_seed(height) and is_seed(width) and height >= 1 and width >= 1):
         problems.append(f"height and width must be whole numbers >= 1 (got {height!r}, {width!r})")
-    if not (isinstance(rms, (int, float, np.floating)) and 0.0 <= rms < 0.1):
+    if not (is_number(rms) and 0.0 <= rms < 0.1):
         problems.append(f"rms must be in [0, 0.1) rad (got {rms!r})")
-    if not (isinstance(correlation_pixels, (int, float, np.floating)) and 0.0 < correlation_pixels < 1e4):
+    if not (is_number(correlation_pixels) and 0.0 < correlation_pixels < 1e4):
         problems.append(f"correlation_pixels must be in (0, 1e4) (got {correlation_pixels!r})")
     if not is_seed(seed):
         problems.append(f"seed must be a whole number >= 0 (got {seed!r})")
-    if not (isinstance(time, (int, float, np.floating)) and math.isfinite(time)):
+    if not (is_number(time) and math.isfinite(time)):
         problems.append(f"time must be a finite number of seconds (got {time!r})")
     velocity = finite_pair(speed)
     if velocity is None:
@@ -93,6 +86,7 @@ def geometric_noise_map(
     if problems or velocity is None:  # velocity None is one of the problems
         raise ValueError("geometric_noise: " + "; ".join(problems))
     vx, vy = velocity
+    height, width = int(height), int(width)  # numpy integers have no bit_length (_fft_size)
     pad = int(math.ceil(4.0 * correlation_pixels))
     ny, nx = _fft_size(height + pad), _fft_size(width + pad)
     rng = np.random.default_rng(seed)
@@ -225,8 +219,10 @@ def animate(
             "and no path is given (the returned frames are linear radiance: refracta.io.to_display shows them)"
         )
     if path is not None:
-        fps = _frame_rate(times, fps)  # the file's (frames as an array have no rate)
         path = os.fspath(path)
+        if "{" in path and fps is not None:
+            raise ValueError(f"animate: fps is a GIF's or an MP4's; frame files ({path!r}) have no rate")
+        fps = _frame_rate(times, fps)  # the file's (frames as an array have no rate)
         _writer_for(path)  # an unknown format or a missing package fails before rendering
         _check_output_settings(path, exposure, tonemap)
         folder = os.path.dirname(os.path.abspath(path))
@@ -302,6 +298,7 @@ def _check_output_settings(path: str, exposure, tonemap) -> None:
                 f"animate: path's pattern must have one '{{}}' field for the frame number, as "
                 f"'frames/f{{:03d}}.png' (got {path!r}{problem})"
             )
+        _core._check_image_format(path.format(0))  # a format OpenImageIO writes: IoError naming the file
 
 
 def _frame_rate(times: np.ndarray, fps: float | None) -> float:

@@ -1141,13 +1141,14 @@ class Camera:
         """
         (u, v, depth) per point (N, 3); depth [m] along the view axis, <= 0 behind.
         """
-    def ray(self, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+    def ray(self, u: typing.Any, v: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
         (origin, unit direction) of the ray through pixel coordinates (u, v).
         """
     def resized(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> Camera:
         """
-        The same view at another image size (vertical field of view kept).
+        The same view and lens at another image size (vertical field of view kept). A jittered camera keeps
+        its angle map at the same size; at another, ValueError (resize the map, then call jittered).
         """
     def with_lens(self, aperture_diameter: typing.SupportsFloat | typing.SupportsIndex, focus_distance: typing.SupportsFloat | typing.SupportsIndex) -> Camera:
         """
@@ -1331,8 +1332,8 @@ class OceanWaves:
     time [s] moves the waves by deep-water dispersion w = sqrt(g k). No choppy displacement.
     
     wind_speed [m/s] in (0, 30] (12.5 m above the sea, as Water's); wind_direction (x, z) horizontal,
-    any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024]. Arrays are indexed
-    [j, i] at node x = i * spacing, z = j * spacing (rows along z).
+    any non-zero length; patch_size [m] in [0.01, 1e7]; resolution a power of two in [8, 1024]. Arrays
+    are indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).
     """
     phillips_a: typing.ClassVar[float] = 0.0017546832475881459
     def __getstate__(self) -> tuple[float, tuple[float, float], float, int, int, float]:
@@ -3070,7 +3071,7 @@ class Ior:
         ...
     def at(self, wavelength: typing.Any) -> typing.Any:
         """
-        n at wavelength(s) [nm].
+        n at wavelength(s) [nm] in the rendered range [360, 830].
         """
     @property
     def dispersive(self) -> bool:
@@ -3095,7 +3096,7 @@ class TerrainShading(Material):
         ...
     def reflectance(self, height: typing.SupportsFloat | typing.SupportsIndex, slope: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
         """
-        The linear RGB albedo at true height `height` [m] on ground sloping `slope` [deg].
+        The linear RGB albedo at true height `height` [m] on ground sloping `slope` [deg] in [0, 90].
         """
     @property
     def parameters(self) -> dict:
@@ -3479,6 +3480,10 @@ def _canonical_bound(moments: collections.abc.Sequence[typing.SupportsFloat | ty
 def _channel_names(path: str) -> list[str]:
     """
     The channel names of an image file (OIIO's).
+    """
+def _check_image_format(path: str) -> None:
+    """
+    IoError unless an image of path's format (its extension) can be written.
     """
 def _cmj_pattern(count: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
     """

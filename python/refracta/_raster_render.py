@@ -45,17 +45,13 @@ _TRANSPARENCY_METHOD_OF = {"layers": "peel", "weight": "wboit"}
 _TRANSPARENCY_METHOD_OF.update(dict.fromkeys(("moments", "basis", "kind", "beta", "oit_storage"), "mboit"))
 
 
-def _refuse_unused(settings, fields: dict) -> None:
-    """ValueError for a keyword of `fields` given (not None) for a transparency method `settings` does not use."""
-    if settings.transparency is None:
-        return
-    method = settings.transparency.method
+def refuse_unused(method: str, fields: dict, owner: str, method_of: dict[str, str], name: str) -> None:
+    """ValueError for a keyword of `fields` given (not None) that only the method method_of[keyword]
+    uses, when `method` (the argument `name`) is another."""
     for keyword, value in fields.items():
-        wanted = _TRANSPARENCY_METHOD_OF.get(keyword)
+        wanted = method_of.get(keyword)
         if value is not None and wanted is not None and method != wanted:
-            raise ValueError(
-                f"render_raster: {keyword} applies to transparency={wanted!r}, not with transparency={method!r}"
-            )
+            raise ValueError(f"{owner}: {keyword} applies to {name}={wanted!r}, not with {name}={method!r}")
 
 
 # Spellings kept one release with a DeprecationWarning: MomentBasis 'trig' (now 'trigonometric').
@@ -139,7 +135,8 @@ def raster_render_options(options=None, lights=None, shadows=None, transparency=
         keywords["transparency.method"] = transparency
     keywords.update(undeprecated({k: v for k, v in fields.items() if v is not None}, _PATHS, "render_raster"))
     settings = _core._build_options(_core.RasterRenderOptions, options, "render_raster", keywords, _PATHS)
-    _refuse_unused(settings, fields)
+    if settings.transparency is not None:
+        refuse_unused(settings.transparency.method, fields, "render_raster", _TRANSPARENCY_METHOD_OF, "transparency")
     return settings
 
 

@@ -33,6 +33,7 @@ import numpy as np
 import pyproj
 
 from refracta import _core
+from refracta._checks import finite_pair, is_seed
 
 __all__ = ["LocalFrame", "forward", "inverse", "principal_radii", "radius_of_curvature"]
 
@@ -66,8 +67,16 @@ def _number(value, name: str, low: float = -math.inf, high: float = math.inf) ->
     return float(array)
 
 
+# [m] a geodesic longer than once around the Earth (its equator: 40 075 km) is no place.
+_ONCE_AROUND = 4.01e7
+
+
 def _latitude(value, name: str) -> np.ndarray:
     return _checked(value, name, -90.0, 90.0)
+
+
+def _longitude(value, name: str) -> np.ndarray:
+    return _checked(value, name, -360.0, 360.0)  # east of Greenwich, either convention ([-180, 180] or [0, 360])
 
 
 def _scalar_or_array(array: np.ndarray):
@@ -83,8 +92,8 @@ def inverse(lat1, lon1, lat2, lon2):
     clockwise from north in (-180, 180]. At a pole, azimuths are measured from the meridian of the
     longitude given there. Latitudes outside [-90, 90] or non-finite values: ValueError.
     """
-    la1, lo1 = _latitude(lat1, "lat1"), _checked(lon1, "lon1")
-    la2, lo2 = _latitude(lat2, "lat2"), _checked(lon2, "lon2")
+    la1, lo1 = _latitude(lat1, "lat1"), _longitude(lon1, "lon1")
+    la2, lo2 = _latitude(lat2, "lat2"), _longitude(lon2, "lon2")
     la1, lo1, la2, lo2 = np.broadcast_arrays(la1, lo1, la2, lo2)
     az12, az21, dist = _GEOD.inv(lo1, la1, lo2, la2)
     return _scalar_or_array(np.asarray(dist)), _scalar_or_array(np.asarray(az12)), _scalar_or_array(np.asarray(az21))
@@ -97,8 +106,8 @@ def forward(lat, lon, azimuth, distance):
     (lat2, lon2 [deg], back azimuth at the end point [deg]). From a pole the azimuth is measured from
     the meridian of ``lon``. Bad input (latitude outside [-90, 90], negative or non-finite): ValueError.
     """
-    la, lo = _latitude(lat, "lat"), _checked(lon, "lon")
-    az, d = _checked(azimuth, "azimuth"), _checked(distance, "distance", 0.0)
+    la, lo = _latitude(lat, "lat"), _longitude(lon, "lon")
+    az, d = _checked(azimuth, "azimuth"), _checked(distance, "distance", 0.0, _ONCE_AROUND)
     la, lo, az, d = np.broadcast_arrays(la, lo, az, d)
     lon2, lat2, back = _GEOD.fwd(lo, la, az, d)
     return _scalar_or_array(np.asarray(lat2)), _scalar_or_array(np.asarray(lon2)), _scalar_or_array(np.asarray(back))
@@ -217,7 +226,7 @@ class LocalFrame:
         """Scene points (..., 3) float64 [m] of geographic points (lat, lon [deg], height [m] above the
         ellipsoid; arrays broadcast): x east and z south of the origin by the azimuthal equidistant
         projection, y the flat height (module conventions)."""
-        la, lo = _latitude(lat, "lat"), _checked(lon, "lon")
+        la, lo = _latitude(lat, "lat"), _longitude(lon, "lon")
         h = _checked(height, "height")
         la, lo, h = np.broadcast_arrays(la, lo, h)
         east, north = self._to_plane.transform(lo, la, errcheck=True)
@@ -314,13 +323,17 @@ class LocalFrame:
         right = np.cross(forward_, up0)
         up = math.cos(r) * up0 + math.sin(r) * right
         size: dict[str, Any] = {}
-        if image_width is not None:
-            size["width"] = int(image_width)
-        if image_height is not None:
-            size["height"] = int(image_height)
+        for name, value in (("width", image_width), ("height", image_height)):
+            if value is not None:
+                if not (is_seed(value) and value >= 1):
+                    raise ValueError(f"image_{name} must be a whole number of pixels >= 1 (got {value!r})")
+                size[name] = int(value)
         look_at = eye + forward_
         if vfov is not None:
-            return _core.Camera(eye, look_at, up=up, vfov=float(vfov), **size)
+            return _core.Camera(eye, look_at, up=up, vfov=_number(vfov, "vfov"), **size)
         if sensor_mm is not None:
-            size["sensor_mm"] = tuple(sensor_mm)
-        return _core.Camera.photographic(eye, look_at, float(focal_length_mm), up=up, **size)
+            sensor = finite_pair(sensor_mm)
+            if sensor is None:
+                raise ValueError(f"sensor_mm must be (width, height) [mm] (got {sensor_mm!r})")
+            size["sensor_mm"] = sensor
+        return _core.Camera.photographic(eye, look_at, _number(focal_length_mm, "focal_length_mm"), up=up, **size)

@@ -13,10 +13,13 @@ McGuire & Bavoil 2013; 'mboit' is moment-based OIT with power moments or trigono
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from refracta import _core
-from refracta._raster_render import undeprecated
+from refracta._checks import finite_pair
+from refracta._raster_render import refuse_unused, undeprecated
 
 # composite's keywords that name a field of OitSettings.mboit: keyword -> its dotted path (the one
 # keyword rule, _core._build_options, follows it); layers and weight are OitSettings' own.
@@ -28,18 +31,21 @@ _MBOIT_PATHS = {
     "bias": "mboit.bias",
     "storage": "mboit.storage",
 }
+# The method each keyword applies to (another method's keywords are refused, not ignored).
+_METHOD_OF = {"layers": "peel", "weight": "wboit", "z_range": "mboit"} | dict.fromkeys(_MBOIT_PATHS, "mboit")
 
 
 def oit_settings(method: str, options: _core.OitSettings | None = None, **fields) -> _core.OitSettings:
     """A validated copy of `options` (None: the defaults) with `method` and `fields` set."""
     keywords: dict = {"method": method}
+    refuse_unused(method, fields, "composite", _METHOD_OF, "method")
     for keyword, value in fields.items():
         if value is None:
             continue
         if keyword == "z_range":
-            near, far = value
+            near, far = finite_pair(value) or (math.nan, math.nan)
             if not (near > 0 and far > near):
-                raise ValueError("composite: z_range must be (near, far) with 0 < near < far")
+                raise ValueError(f"composite: z_range must be (near, far) with 0 < near < far (got {value!r})")
             keywords["mboit.z_near"], keywords["mboit.z_far"] = float(near), float(far)
         elif keyword in _MBOIT_PATHS or keyword in ("layers", "weight"):
             keywords[keyword] = value

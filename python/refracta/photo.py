@@ -159,7 +159,7 @@ class Photo:
         (vfov(sensor_mm)) and aspect. width: the render's width in pixels (default the
         photograph's); the height follows the photograph's aspect (rounded, at least 1)."""
         w = self.width if width is None else width
-        if isinstance(w, bool) or int(w) != w or not w >= 1:
+        if not (is_number(w) and math.isfinite(w) and w == int(w) and w >= 1):
             raise ValueError(f"width must be a whole number >= 1 (got {width!r})")
         h = max(1, round(int(w) * self.height / self.width))
         return _core.Camera(position, look_at, up, self.vfov(sensor_mm), int(w), h)
@@ -183,10 +183,21 @@ def _rational(value) -> float | None:
     return number if math.isfinite(number) and number > 0.0 else None
 
 
+def _existing_file(path, what: str) -> Path:
+    """`path` as a Path; refracta.IoError naming it when it is not a file."""
+    path = Path(os.fspath(path))
+    if not path.is_file():
+        reason = "it is a folder, not a file" if path.is_dir() else "no such file"
+        raise _core.IoError(f"cannot read {what} {path}: {reason}")
+    return path
+
+
 def read_exif(path) -> Exif:
-    """The EXIF of an image file (Pillow); an Exif of Nones for a file without EXIF or one Pillow cannot open."""
+    """The EXIF of an image file (Pillow); an Exif of Nones for a file without EXIF or one Pillow
+    cannot open (an EXR); refracta.IoError for a path that is not a file."""
     from PIL import Image, UnidentifiedImageError
 
+    path = _existing_file(path, "EXIF of")
     try:
         with Image.open(path) as image:
             exif = image.getexif()
@@ -246,9 +257,7 @@ def load(path) -> Photo:
     (JPEG, PNG, 8-bit TIFF) or linear for float ones (EXR, HDR, PFM). Raises refracta.IoError for a
     missing or unreadable file.
     """
-    path = Path(os.fspath(path))
-    if not path.is_file():
-        raise _core.IoError(f"cannot read photograph {path}: no such file")
+    path = _existing_file(path, "photograph")
     image = _io.read_image(path)
     exif = read_exif(path)
     return Photo(

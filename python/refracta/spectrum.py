@@ -35,7 +35,7 @@ Example::
     from refracta import spectrum
     lam = np.arange(360.0, 831.0)
     s = spectrum.rgb_to_spectrum([0.8, 0.3, 0.1], lam)       # (471,) reflectance in [0, 1]
-    spectrum.spectrum_to_rgb(lam, s)                         # ~ (0.8, 0.3, 0.1)
+    spectrum.spectrum_to_rgb(lam, s, kind="reflectance")     # ~ (0.8, 0.3, 0.1): seen under D65
 """
 
 from __future__ import annotations

@@ -330,6 +330,17 @@ def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
         y = _flat_height(np.where(np.isnan(h), 0.0, h), r)
         y[np.isnan(h)] = np.nan
     rows, cols = h.shape
+    reach = float(_core._SCENE_REACH)  # scene coordinates end there (single-precision geometry)
+    extents = {
+        "heights": np.nanmax(np.abs(y)),
+        "origin and spacing (x)": max(abs(x0), abs(x0 + dx * (cols - 1))),
+        "origin and spacing (z)": max(abs(z0), abs(z0 + dz * (rows - 1))),
+    }
+    for name, extent in extents.items():
+        if not extent <= reach:
+            raise ValueError(
+                f"add_terrain: {name} reach {extent:.4g} m from the origin, beyond the scene's reach of {reach:g} m"
+            )
     positions = np.empty((rows, cols, 3), dtype=np.float32)
     positions[..., 0] = (x0 + dx * np.arange(cols))[None, :]
     positions[..., 1] = y

@@ -66,6 +66,17 @@ def _disc_filter(kappa, aperture: float):
     return ratio * ratio
 
 
+def _check_numbers(owner: str, *checks) -> None:
+    """ValueError naming every (name, value, rule, ok) whose value is not a number or fails ok."""
+    problems = [
+        f"{name} must be {rule} (got {value!r})"
+        for name, value, rule, ok in checks
+        if not (is_number(value) and ok(float(value)))
+    ]
+    if problems:
+        raise ValueError(f"{owner}: " + "; ".join(problems))
+
+
 def tilt_variance(
     cn2: float, path_length: float, inner_scale: float = 0.0, outer_scale: float = math.inf, aperture: float = 0.0
 ) -> float:
@@ -76,19 +87,14 @@ def tilt_variance(
     filter [2 J1(kappa D/2) / (kappa D/2)]^2 of an aperture of diameter D [m] (l0 -> 0, L0 -> inf:
     2.838 C_n^2 L D^(-1/3); the issue's 2.91 is the phase-structure approximation, Z-tilt 3.041).
     By quadrature in log kappa (5e-5 relative)."""
-    problems = [
-        f"{name} must be {rule} (got {value!r})"
-        for name, value, rule, ok in (
-            ("cn2", cn2, ">= 0 and finite", lambda v: 0.0 <= v < math.inf),
-            ("path_length", path_length, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
-            ("inner_scale", inner_scale, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
-            ("outer_scale", outer_scale, "> 0 m (inf: none)", lambda v: v > 0.0),
-            ("aperture", aperture, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
-        )
-        if not ok(float(value))
-    ]
-    if problems:
-        raise ValueError("tilt_variance: " + "; ".join(problems))
+    _check_numbers(
+        "tilt_variance",
+        ("cn2", cn2, ">= 0 and finite", lambda v: 0.0 <= v < math.inf),
+        ("path_length", path_length, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
+        ("inner_scale", inner_scale, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
+        ("outer_scale", outer_scale, "> 0 m (inf: none)", lambda v: v > 0.0),
+        ("aperture", aperture, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
+    )
     if not (inner_scale > 0.0 or aperture > 0.0):
         raise ValueError("tilt_variance: a point aperture needs inner_scale > 0 (the integral diverges without it)")
     scales = [s for s in (inner_scale, aperture) if s > 0.0]
@@ -119,6 +125,12 @@ def _trapezoid(y, x) -> float:
 def plane_wave_tilt_variance(cn2: float, path_length: float, aperture: float) -> float:
     """The issue's plane-wave angle-of-arrival variance 2.91 C_n^2 L D^(-1/3) [rad^2] per axis (the
     phase structure function D_phi(D) / (k D)^2; Andrews & Phillips 2005, eq. 6.75 for a plane wave)."""
+    _check_numbers(
+        "plane_wave_tilt_variance",
+        ("cn2", cn2, ">= 0 and finite", lambda v: 0.0 <= v < math.inf),
+        ("path_length", path_length, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
+        ("aperture", aperture, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
+    )
     return 2.91 * cn2 * path_length * aperture ** (-1.0 / 3.0)
 
 
@@ -335,10 +347,11 @@ class Turbulence:
         t = np.asarray(direction, dtype=np.float64)
         if t.shape != (3,) or not np.all(np.isfinite(t)) or not np.linalg.norm(t) > 0:
             raise ValueError(f"angle_of_arrival_variance: direction must be a non-zero 3-vector (got {direction!r})")
-        if not (path_length > 0 and math.isfinite(path_length)):
-            raise ValueError(f"angle_of_arrival_variance: path_length must be > 0 m (got {path_length!r})")
-        if not (aperture >= 0 and math.isfinite(aperture)):
-            raise ValueError(f"angle_of_arrival_variance: aperture must be >= 0 m (got {aperture!r})")
+        _check_numbers(
+            "angle_of_arrival_variance",
+            ("path_length", path_length, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
+            ("aperture", aperture, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
+        )
         t = t / np.linalg.norm(t)
         # The direction in the lattice's axes (turned by yaw about the vertical, media/turbulence.h).
         c, s = math.cos(self.yaw), math.sin(self.yaw)

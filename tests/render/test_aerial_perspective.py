@@ -95,6 +95,25 @@ def test_a_segment_that_leaves_the_air_sees_the_sky(clear_air, elevation):
         assert inscatter == pytest.approx(sky.radiance(direction[None], [wavelength], direct=True)[0, 0], rel=5e-3)
 
 
+@pytest.mark.parametrize("radius", [math.inf, 6371e3])
+def test_a_longer_segment_holds_the_shorter(clear_air, radius):
+    # Level from 2 m: a straight ray of the flat scene climbs out of the sky's sphere (at ~1000 km
+    # it is above the top), a CurvedEarth's stays at 2 m. The air of the shorter segment is part of
+    # the longer's: T cannot rise and S cannot fall with length (a trial found T = 0.86 at 1e10 m,
+    # where pieces of 40 000 km had skipped the air). Beyond the top nothing changes.
+    lengths = [1e3, 1e4, 1e5, 1e6, 3e6, 1e7]
+    segments = [clear_air.along((0, 2, 0), (d, 2, 0), 550.0, earth_radius=radius) for d in lengths]
+    transmittances, inscatters = np.array(segments).T
+    # Up to the pieces' discretisation, which changes with the length (at most 256 pieces): 5e-6
+    # of the value measured, 1e-5 allowed.
+    assert np.all(np.diff(transmittances) <= 1e-5 * transmittances[1:])
+    assert np.all(np.diff(inscatters) >= -1e-5 * inscatters[1:])  # 1e-5: the discretisation, as above
+    if radius == math.inf:
+        assert segments[-1] == segments[-2]  # both clipped at the top: the same air
+    with pytest.raises(ValueError, match=r"AerialPerspective.along: b must be finite and within 10000000 m"):
+        clear_air.along((0, 2, 0), (1e300, 2, 0), 550.0, earth_radius=radius)
+
+
 def test_the_sun_reaching_a_point_is_the_sky_model_s():
     # The table against the sky's own sun transmittance at the observer (the sky's altitude, 0 m).
     sky = spectrum.PhysicalSky(sun_at(8.0), below_horizon="horizon")

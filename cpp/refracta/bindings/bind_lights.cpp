@@ -49,7 +49,7 @@ void bind_finite_lights(py::module_& m) {
                        const py::object& inner_angle) {
              return std::make_shared<SpotLight>(to_point(position, "SpotLight: position"), to_point(direction, "SpotLight: direction"), angle,
                                                 to_illuminant(intensity, "SpotLight: intensity"),
-                                                inner_angle.is_none() ? -1.0 : py::cast<double>(inner_angle));
+                                                inner_angle.is_none() ? -1.0 : to_number(inner_angle, "SpotLight: inner_angle"));
            }),
            py::arg("position"), py::arg("direction"), py::arg("angle"), py::arg("intensity"), py::arg("inner_angle") = py::none())
       .def_property_readonly("angle", &SpotLight::angle)

@@ -46,7 +46,14 @@ Ior to_ior(const py::object& ior, const py::object& sellmeier) {
       throw_invalid("sellmeier must be six numbers (B1, B2, B3, C1, C2, C3), C in um^2 (got a string; a glass by "
                     "name is ior='bk7')");
     }
-    return Ior::sellmeier(to_values(sellmeier, "sellmeier"));
+    std::vector<double> values;
+    try {
+      values = to_values(sellmeier, "sellmeier");
+    } catch (const std::invalid_argument&) {  // its message would offer "a number"
+      throw_invalid("sellmeier must be six numbers (B1, B2, B3, C1, C2, C3), C in um^2 (got ",
+                    py::repr(sellmeier).cast<std::string>(), ")");
+    }
+    return Ior::sellmeier(values);
   }
   if (ior.is_none()) return Ior();
   return py::isinstance<py::str>(ior) ? Ior::named(ior.cast<std::string>()) : Ior(to_number(ior, "ior"));

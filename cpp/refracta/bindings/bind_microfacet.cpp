@@ -78,8 +78,9 @@ void bind_microfacet(py::module_& m) {
   py::class_<Ior>(m, "Ior", "An index of refraction: constant or Sellmeier (C in um^2).")
       .def(py::init(&to_ior), py::arg("ior") = py::none(), py::arg("sellmeier") = py::none())
       .def("at", [](const Ior& ior, const py::object& wavelength) {
-             return per_value(wavelength, "wavelength", [&](double x) { return ior.at(x); });
-           }, py::arg("wavelength"), "n at wavelength(s) [nm].")
+             return per_value(wavelength, "wavelength",
+                              [&](double x) { return ior.at(checked_wavelength(x, "Ior.at: wavelength")); });
+           }, py::arg("wavelength"), "n at wavelength(s) [nm] in the rendered range [360, 830].")
       .def_property_readonly("dispersive", &Ior::dispersive)
       .def("__repr__", [](const Ior& ior) { return concat("Ior(", ior.describe(), ")"); })
       .def(py::pickle([](const Ior& ior) { return with_ior(py::dict(), ior); },

@@ -52,9 +52,15 @@ void bind_terrain_shading(py::module_& m) {
            py::arg("rock") = rgb_tuple(d.rock), py::arg("snow") = rgb_tuple(d.snow))
       .def(
           "reflectance",
-          [](const TerrainShading& t, double height, double slope) { return rgb_tuple(t.reflectance(height, slope)); },
+          [](const TerrainShading& t, double height, double slope) {
+            if (!std::isfinite(height)) throw_invalid("TerrainShading.reflectance: height must be finite (got ", height, ")");
+            if (!(slope >= 0.0 && slope <= 90.0)) {
+              throw_invalid("TerrainShading.reflectance: slope must be in [0, 90] deg (got ", slope, ")");
+            }
+            return rgb_tuple(t.reflectance(height, slope));
+          },
           py::arg("height"), py::arg("slope"),
-          "The linear RGB albedo at true height `height` [m] on ground sloping `slope` [deg].");
+          "The linear RGB albedo at true height `height` [m] on ground sloping `slope` [deg] in [0, 90].");
   add_parameters<TerrainShading>(terrain, [](const TerrainShading& t) {
     const TerrainShadingParameters& p = t.parameters();
     return py::dict(py::arg("snow_line") = p.snow_line, py::arg("tree_line") = p.tree_line, py::arg("rock_slope") = p.rock_slope,

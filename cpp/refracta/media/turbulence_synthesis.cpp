@@ -55,7 +55,7 @@ double von_karman_spectrum(double kappa, double cn2, double inner_scale, double 
 
 int TurbulenceSettings::cell_count() const {
   if (cells) return int(*cells);
-  if (size) return int(std::max<double>(kMinCells, std::ceil(*size / spacing - 1e-9)));
+  if (size) return int(std::ceil(*size / spacing - 1e-9));
   return int(kDefaultCells);
 }
 
@@ -78,6 +78,9 @@ void TurbulenceSettings::validate() const {
     problems.check(*size > 0.0 && std::isfinite(*size), "size must be > 0 m and finite (got ", *size, ")");
     problems.check(!(*size / spacing > double(kMaxCells)), "size / spacing must be at most ", kMaxCells,
                    " cells (got size=", *size, ", spacing=", spacing, ")");
+    // A smaller tile would be widened to the fewest cells: the size asked for would not be the tile's.
+    problems.check(!(std::ceil(*size / spacing - 1e-9) < double(kMinCells)), "size / spacing must be at least ",
+                   kMinCells, " cells (got size=", *size, ", spacing=", spacing, ")");
   }
   if (max_bytes) problems.check(*max_bytes > 0.0, "max_bytes must be > 0 (math.inf: no limit; got ", *max_bytes, ")");
   problems.check(std::isfinite(yaw_deg), "yaw_deg must be finite (got ", yaw_deg, ")");

@@ -51,8 +51,9 @@ const char* raster_output_name(RasterOutput output) { return output == RasterOut
 void RasterRenderOptions::check(Problems& problems) const {
   if (shadows == ShadowSource::kMap) shadow_map.check(problems);
   if (shadow_half_size) {
-    problems.check(*shadow_half_size > 0.0 && std::isfinite(*shadow_half_size), "shadow_half_size must be > 0 (got ",
-                   *shadow_half_size, ")");
+    // A map wider than the scene's reach has texels wider than anything in it: no shadow survives.
+    problems.check(*shadow_half_size > 0.0 && *shadow_half_size <= kSceneReach, "shadow_half_size must be in (0, ",
+                   kSceneReach, "] m (got ", *shadow_half_size, ")");
   }
   if (shadow_centre) problems.check(is_finite(*shadow_centre), "shadow_centre must be finite");
   problems.check(shadow_distance > 0.0, "shadow_distance must be > 0 (got ", shadow_distance, ")");

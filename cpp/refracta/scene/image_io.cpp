@@ -26,6 +26,10 @@ bool is_float_format(const std::string& path) {
   return ext == ".exr" || ext == ".hdr" || ext == ".pfm" || ext == ".tif" || ext == ".tiff";
 }
 
+void check_image_format(const std::string& path) {
+  if (!OIIO::ImageOutput::create(path)) throw IoError(concat("cannot write '", path, "': ", OIIO::geterror()));
+}
+
 void write_image(const std::string& path, const Image& image) {
   if (image.width < 1 || image.height < 1) throw_invalid("write_image: the image is empty");
   auto out = OIIO::ImageOutput::create(path);

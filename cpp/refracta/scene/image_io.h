@@ -13,6 +13,9 @@ bool is_float_format(const std::string& path);
 // Writes pixels as they are: float formats keep them, others are quantised to 8 bits by OIIO
 // (so encode them for display first). Throws IoError with OIIO's message.
 void write_image(const std::string& path, const Image& image);
+// Throws IoError (OIIO's message) unless OIIO has a writer for path's format (its extension):
+// checked before work whose result goes to that file.
+void check_image_format(const std::string& path);
 // Any format OIIO reads, as float in the file's channel count. Throws IoError.
 Image read_image(const std::string& path);
 // A float file (EXR: layers by channel name, e.g. "R", "G", "B", "distance.Y", "position.X") with

@@ -67,7 +67,9 @@ OceanWaves::OceanWaves(const OceanWavesParameters& parameters) : parameters_(par
   if (!p.wind_direction.allFinite() || !(p.wind_direction.norm() > 0.0)) {
     problem(concat("wind_direction must be a finite, non-zero (x, z) (got (", p.wind_direction.x(), ", ", p.wind_direction.y(), "))"));
   }
-  if (!(p.patch_size > 0.0) || !std::isfinite(p.patch_size)) problem(concat("patch_size must be finite and > 0 m (got ", p.patch_size, ")"));
+  if (!(p.patch_size >= kMinPatchSize && p.patch_size <= kMaxPatchSize)) {
+    problem(concat("patch_size must be in [", kMinPatchSize, ", ", kMaxPatchSize, "] m (got ", p.patch_size, ")"));
+  }
   const int n = p.resolution;
   if (n < kMinResolution || n > kMaxResolution || (n & (n - 1)) != 0) {
     problem(concat("resolution must be a power of two in [", kMinResolution, ", ", kMaxResolution, "] (got ", n, ")"));
@@ -129,6 +131,7 @@ double OceanWaves::spectrum_height_variance() const {
 }
 
 double OceanWaves::spectrum(const Vec2d& k) const {
+  if (!k.allFinite()) throw_invalid("OceanWaves.spectrum: k must be finite (got (", k.x(), ", ", k.y(), "))");
   const double k2 = k.squaredNorm();
   if (!(k2 > 0.0)) return 0.0;
   const double lw = wind_length();

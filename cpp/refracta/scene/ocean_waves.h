@@ -74,7 +74,7 @@ struct OceanWavesParameters {
 // displacement.
 //
 // wind_speed [m/s] in (0, 30] (12.5 m above the sea, as Water's); wind_direction (x, z) horizontal,
-// any non-zero length; patch_size [m] > 0; resolution a power of two in [8, 1024]. Arrays are
+// any non-zero length; patch_size [m] in [0.01, 1e7]; resolution a power of two in [8, 1024]. Arrays are
 // indexed [j, i] at node x = i * spacing, z = j * spacing (rows along z).
 class OceanWaves {
  public:
@@ -82,6 +82,9 @@ class OceanWaves {
   static constexpr double kMaxWindSpeed = 30.0;  // [m/s] as Cox-Munk's range (shading/water.h)
   // 8 nodes: the least that holds a wave; 1024: three N x N complex arrays of 16 MB during synthesis.
   static constexpr int kMinResolution = 8, kMaxResolution = 1024;
+  // A patch holds gravity waves, which Phillips' spectrum describes, down to the capillary
+  // crossover (1.7 cm); the largest is the scene's reach.
+  static constexpr double kMinPatchSize = 0.01, kMaxPatchSize = kSceneReach;
   // Pierson-Moskowitz: H_s = kSignificantHeight U^2 / g for a fully developed sea.
   static constexpr double kSignificantHeight = 0.21;
   // Phillips' A fixed by Pierson-Moskowitz: A pi L_w^2 / 2 = (H_s / 4)^2.

@@ -150,11 +150,42 @@ double AerialPerspective::sun_transmittance(double height, double elevation, dou
   return sun_at(sun_column_at(cell(height, elevation)), b, 0);
 }
 
-void AerialPerspective::integrate(const Vec3d& a, const Vec3d& b, const AirFrame& frame, const Bands& bands,
+bool AerialPerspective::clip_to_air(Vec3d* a, Vec3d* b, const AirFrame& frame) const {
+  const Vec3d chord = *b - *a;
+  double lo = 0.0, hi = 1.0;
+  if (std::isfinite(frame.earth_radius)) {  // height altitude + y, linear along the chord
+    const double h0 = altitude_ + a->y(), dh = chord.y();
+    if (dh == 0.0) return h0 <= kTop;
+    const double t_top = (kTop - h0) / dh;
+    if (dh > 0.0) {
+      hi = std::min(hi, t_top);
+    } else {
+      lo = std::max(lo, t_top);
+    }
+  } else {  // |q(t)| <= kTopRadius on the sky's sphere, q(t) = q0 + t chord: a quadratic in t
+    const Vec3d q0(a->x(), kEarthRadius + altitude_ + a->y(), a->z());
+    const double r0 = q0.norm();
+    const double A = chord.squaredNorm(), B = q0.dot(chord), C = (r0 - kTopRadius) * (r0 + kTopRadius);
+    const double discriminant = B * B - A * C;
+    if (!(discriminant > 0.0)) return C < 0.0;  // tangent or passing above (C < 0: a point, inside)
+    const double q = -(B + std::copysign(std::sqrt(discriminant), B));  // the stable pair of roots
+    const double t1 = q / A, t2 = q != 0.0 ? C / q : -t1;
+    lo = std::max(lo, std::min(t1, t2));
+    hi = std::min(hi, std::max(t1, t2));
+  }
+  if (!(lo < hi)) return false;
+  if (hi < 1.0) *b = *a + hi * chord;  // ends inside the air stay bit for bit
+  if (lo > 0.0) *a = *a + lo * chord;
+  return true;
+}
+
+void AerialPerspective::integrate(const Vec3d& a_in, const Vec3d& b_in, const AirFrame& frame, const Bands& bands,
                                   bool inscatter, double* T, double* S) const {
   const int n = bands.count;
   std::fill(T, T + n, 1.0);
   std::fill(S, S + n, 0.0);
+  Vec3d a = a_in, b = b_in;
+  if (!clip_to_air(&a, &b, frame)) return;
   const Vec3d chord = b - a;
   const double length = chord.norm();
   if (!(length > 0.0) || !std::isfinite(length)) return;
@@ -288,22 +319,35 @@ void AirFrame::validate() const {
   if (!(earth_radius > 0.0)) throw_invalid("earth_radius must be > 0 [m] (infinity: a flat scene) (got ", earth_radius, ")");
 }
 
+void AirFrame::check_segment(const Vec3d& a, const Vec3d& b, const char* what) {
+  for (const auto& [point, name] : {std::pair(&a, "a"), std::pair(&b, "b")}) {
+    if (!(point->allFinite() && point->cwiseAbs().maxCoeff() <= kSceneReach)) {
+      throw_invalid(what, ": ", name, " must be finite and within ", kSceneReach, " m of the origin (got (", point->x(),
+                    ", ", point->y(), ", ", point->z(), "))");
+    }
+  }
+}
+
 std::pair<double, double> AerialPerspective::along_at(const Vec3d& a, const Vec3d& b, const AirFrame& frame,
                                                       double lambda_nm) const {
   frame.validate();
+  AirFrame::check_segment(a, b, "AerialPerspective.along");
   checked_wavelength(lambda_nm, "AerialPerspective.along: wavelength");
   double T = 1.0, S = 0.0;
   integrate(a, b, frame, bands_at(&lambda_nm, 1), true, &T, &S);
   return {T, S};
 }
 
-double AerialPerspective::inscatter_reference(const Vec3d& a, const Vec3d& b, const AirFrame& frame, double lambda_nm,
-                                              int steps) const {
+double AerialPerspective::inscatter_reference(const Vec3d& a_in, const Vec3d& b_in, const AirFrame& frame,
+                                              double lambda_nm, int steps) const {
   frame.validate();
+  AirFrame::check_segment(a_in, b_in, "AerialPerspective.inscatter_reference");
   checked_wavelength(lambda_nm, "AerialPerspective.inscatter_reference: wavelength");
   if (steps < 1) throw_invalid("AerialPerspective.inscatter_reference: steps must be >= 1 (got ", steps, ")");
   const Bands band = bands_at(&lambda_nm, 1);
   const double sigma_ozone = lerp_nodes(kOzoneCrossSection, lambda_nm);
+  Vec3d a = a_in, b = b_in;
+  if (!clip_to_air(&a, &b, frame)) return 0.0;
   const Vec3d chord = b - a;
   const double length = chord.norm(), ds = length / steps;
   if (!(length > 0.0)) return 0.0;

@@ -45,6 +45,9 @@ struct AirFrame {
 
   // Throws (ValueError) unless earth_radius > 0; infinity is the flat scene's frame.
   void validate() const;
+  // Throws (ValueError naming `what`) unless a segment's ends a and b lie within the scene's reach
+  // (kSceneReach), as every point a render reaches does.
+  static void check_segment(const Vec3d& a, const Vec3d& b, const char* what);
 };
 
 // Aerial perspective of a physical sky: along a segment of air from a viewer at `a` to a point `b`
@@ -111,6 +114,9 @@ class AerialPerspective {
   Spectrum rgb_transmittance(const double* transmittance_at_nodes) const;
   void integrate(const Vec3d& a, const Vec3d& b, const AirFrame& frame, const Bands& bands, bool inscatter, double* T,
                  double* S) const;
+  // Moves a and b to the ends of the part of their chord below the atmosphere's top (kTop); false
+  // when none of it is. Above the top there is no air: the pieces are spent where there is.
+  bool clip_to_air(Vec3d* a, Vec3d* b, const AirFrame& frame) const;
   // Table coordinates of a (height, sun elevation).
   struct TableCell {
     int h0, e0;

@@ -27,7 +27,7 @@ AreaLight::AreaLight(std::shared_ptr<const Mesh> mesh, const Color& emission, bo
     const double len = c.norm();
     areas[t] = 0.5 * len;
     if (len > 0.0 && std::isfinite(len)) normals_[t] = c / len;
-    else areas[t] = 0.0;
+    else if (!(len > 0.0)) areas[t] = 0.0;  // degenerate; an overflowing one keeps inf for the message
     area_ += areas[t];
   }
   if (!(area_ > 0.0) || !std::isfinite(area_)) throw_invalid("AreaLight: the mesh must have a positive, finite area (got ", area_, " m^2)");

@@ -126,7 +126,7 @@ Color Color::tabulated(const std::vector<double>& lambda_nm, const std::vector<d
 }
 
 Color Color::blackbody(double temperature, double luminance) {
-  if (!(temperature > 0.0) || !std::isfinite(temperature)) throw_invalid("blackbody: temperature must be > 0 K (got ", temperature, ")");
+  spectral::checked_temperature(temperature, "blackbody: temperature");
   if (!(luminance >= 0.0) || !std::isfinite(luminance)) throw_invalid("blackbody: luminance must be >= 0 (got ", luminance, ")");
   std::vector<double> values(spectral::kTableSamples);
   for (int i = 0; i < spectral::kTableSamples; ++i) values[i] = spectral::planck(spectral::kTableMin + i, temperature);

@@ -76,6 +76,7 @@ Eigen::VectorXd sky_pdf(const PhysicalSkyLight& sky, const std::vector<Vec3d>& d
 std::pair<Vec3d, Vec3d> along_rgb(const AerialPerspective& air, const Vec3d& a, const Vec3d& b, double earth_radius) {
   const AirFrame frame{earth_radius};
   frame.validate();
+  AirFrame::check_segment(a, b, "AerialPerspective.along_rgb");
   const auto segment = air.along(a, b, frame, SampledWavelengths::rgb());
   return {segment.transmittance.head<3>().matrix(), segment.inscatter.head<3>().matrix()};
 }

@@ -203,8 +203,15 @@ double d65_normalised(double lambda_nm) {
   return lerp_table(kCieD65, lambda_nm) * constants().y_integral / constants().d65_y_integral;
 }
 
+double checked_temperature(double temperature, const char* what) {
+  if (!(temperature > 0.0 && temperature <= kHottestBlackbody)) {
+    throw_invalid(what, " must be in (0, ", kHottestBlackbody, "] K (got ", temperature, ")");
+  }
+  return temperature;
+}
+
 double planck(double lambda_nm, double temperature) {
-  if (!(temperature > 0.0) || !std::isfinite(temperature)) throw_invalid("temperature must be > 0 K (got ", temperature, ")");
+  checked_temperature(temperature, "temperature");
   if (!(lambda_nm > 0.0) || !std::isfinite(lambda_nm)) throw_invalid("wavelength must be > 0 nm (got ", lambda_nm, ")");
   constexpr double h = 6.62607015e-34, c = 299792458.0, kb = 1.380649e-23;  // SI 2019, exact
   const double l = lambda_nm * 1e-9;                                         // [m]

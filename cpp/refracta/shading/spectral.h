@@ -41,6 +41,11 @@ double d65_normalised(double lambda_nm);
 
 // Planck's law: spectral radiance of a black body [W/(m^2 sr nm)] at lambda [nm], temperature [K].
 double planck(double lambda_nm, double temperature);
+// [K] the hottest temperature planck and Color::blackbody take: far above any star (a quark-gluon
+// plasma's); hotter, the radiance overflows a double in the visible.
+constexpr double kHottestBlackbody = 1e12;
+// temperature itself; throws (ValueError) naming `what` unless it is in (0, kHottestBlackbody] K.
+double checked_temperature(double temperature, const char* what);
 
 // IEC 61966-2-1: XYZ -> linear sRGB (colour-science's matrix) and its exact inverse.
 Vec3d xyz_to_linear_srgb(const Vec3d& xyz);

@@ -16,6 +16,7 @@ SphereLight::SphereLight(const Vec3d& centre, double radius, const Color& emissi
     : centre_(centre), radius_(radius), emission_(emission) {
   detail::check_point(centre, "SphereLight: centre");
   detail::check_positive(radius, "SphereLight: radius");
+  if (radius > kSceneReach) throw_invalid("SphereLight: radius must be <= ", kSceneReach, " m (got ", radius, ")");
   detail::check_emission(emission, "SphereLight: emission");
 }
 

@@ -48,6 +48,7 @@ inline double thin_film_reflectance(double cos_1, double n1, double n2, std::com
 inline double checked_thin_film_reflectance(double cos_1, double n1, double n2, double eta, double k, double thickness,
                                             double lambda_nm) {
   Problems problems("thin_film_reflectance");
+  problems.check(std::abs(cos_1) <= 1.0, "cos_i must be in [-1, 1] (got ", cos_1, ")");
   for (const auto& [name, value] :
        {std::pair{"n1", n1}, std::pair{"n2", n2}, std::pair{"eta", eta}, std::pair{"wavelength", lambda_nm}}) {
     problems.check(value > 0.0 && std::isfinite(value), name, " must be > 0 and finite (got ", value, ")");
