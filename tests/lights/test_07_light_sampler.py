@@ -36,7 +36,9 @@ def test_sampler_picks_in_proportion_to_power(rng):
     np.testing.assert_allclose(probability, expected[index], rtol=EXACT)
     counts = np.bincount(index, minlength=len(ls))
     assert stats.chisquare(counts, expected * len(index)).pvalue > CHI2_SIGNIFICANCE
-    assert len(sampler) == len(ls) and sampler.pmf(len(ls)) == 0.0
+    assert len(sampler) == len(ls)
+    with pytest.raises(ValueError, match=r"LightSampler.pmf: index must be in \[0, 5\) \(got 5\)"):
+        sampler.pmf(len(ls))  # no light there (it was 0: a typo in an index looked like a dark light)
 
 
 def test_uniform_sampler_and_zero_power_lights(rng):
