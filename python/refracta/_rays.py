@@ -72,8 +72,7 @@ def trace_rays(
     fields as keywords, as in :func:`refracta.trace_ray`. progress: True for a bar on stderr, or
     a callable ``progress(done, total)`` called about every 50 ms.
     """
-    origins = np.asarray(origins, dtype=np.float64)
-    directions = np.asarray(directions, dtype=np.float64)
+    origins, directions = _rows(origins, "origins"), _rows(directions, "directions")
     if origins.ndim == 1 and directions.ndim == 2:
         origins = np.broadcast_to(origins, directions.shape)
     elif directions.ndim == 1 and origins.ndim == 2:
@@ -89,6 +88,17 @@ def trace_rays(
             field, np.ascontiguousarray(origins), np.ascontiguousarray(directions), options, progress, **fields
         )
     )
+
+
+def _rows(value, name: str) -> np.ndarray:
+    """`value` as float64 of shape (3,) or (N, 3), else ValueError naming it."""
+    try:
+        array = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"trace_rays: {name} must be numbers of shape (3,) or (N, 3) (got {value!r})") from None
+    if array.ndim not in (1, 2) or array.shape[-1] != 3:
+        raise ValueError(f"trace_rays: {name} must have shape (3,) or (N, 3) (got {array.shape})")
+    return array
 
 
 def _batch(points, directions, lengths, stops, evaluations) -> RayBatch:

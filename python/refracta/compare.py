@@ -10,12 +10,13 @@ OIT method and compares with the exact (sorted) composite.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 import numpy as np
 
 from refracta import _core
+from refracta._checks import is_seed
 from refracta._raster_render import render_raster
 
 __all__ = ["format_table", "shadows", "transparency"]
@@ -45,6 +46,12 @@ def shadows(
     reference), over_shadow (the same above), nan_count, bits_per_texel, seconds; fig (when
     `figure`) shows, for the largest kernel, each method's shadow image and its error map.
     """
+    methods = _names(methods, "methods")
+    if isinstance(kernels, (str, bytes)) or not isinstance(kernels, Iterable):
+        raise ValueError(f"kernels must be a sequence of odd whole numbers of texels (got {kernels!r})")
+    kernels = list(kernels)
+    if not all(is_seed(k) for k in kernels):
+        raise ValueError(f"kernels must be odd whole numbers of texels (got {kernels!r})")
     kernels = [int(k) for k in kernels]
     if not methods or not kernels:
         raise ValueError("methods and kernels must not be empty")
@@ -121,6 +128,7 @@ def transparency(
     error relative to the exact pixel's brightest channel, over pixels with fragments), nan_count,
     bytes_per_pixel, seconds; fig shows the exact image and each method's error map.
     """
+    methods = _names(methods, "methods")
     unknown = [m for m in methods if m not in TRANSPARENCY_METHODS]
     if unknown:
         raise ValueError(f"unknown transparency methods {unknown} (expected some of {list(TRANSPARENCY_METHODS)})")
@@ -170,6 +178,14 @@ def transparency(
         for ax in axes:
             ax.axis("off")
     return rows, fig
+
+
+def _names(value, what: str) -> list[str]:
+    """A sequence of method names as a list; ValueError for one string (it would be read letter by
+    letter) or anything else."""
+    if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
+        raise ValueError(f"{what} must be a sequence of names, as ({value!r},) (got {value!r})")
+    return list(value)
 
 
 def _figure(images, methods, kernel):

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from refracta import _core, examples_meshes, examples_town, shading, spectrum
-from refracta._checks import is_number
+from refracta._checks import is_number, is_seed
 
 # Radiance unit of the example scenes. refracta.spectrum.PhysicalSky gives linear sRGB normalised
 # by the integral of the CIE y-bar curve (a mean spectral radiance, W/(m^2 sr nm)); times that
@@ -34,6 +34,15 @@ class Example:
     max_length: float
     description: str
     frame: Any = None  # a geographic scene's refracta.geo.LocalFrame (render(..., frame=) for "geographic")
+
+
+def _size(width, height, owner: str) -> tuple[int, int]:
+    """(width, height) as whole numbers of pixels >= 1, else ValueError naming them and `owner`."""
+    if not all(is_seed(v) and v >= 1 for v in (width, height)):
+        raise ValueError(
+            f"examples.{owner}: width and height must be whole numbers of pixels >= 1 (got {width!r}, {height!r})"
+        )
+    return int(width), int(height)
 
 
 def _camera(position, look_at, vfov, width, height):
@@ -118,6 +127,7 @@ def hot_road(width: int = 640, height: int = 320) -> Example:
     (out of frame), under a physical sky with desert haze (visibility 40 km). From ~300 m on the
     road turns into a bright pool: the sky below the horizon, the lower halves of the cars and the
     telegraph poles mirrored upside down; a distant ridge greyed by the air."""
+    width, height = _size(width, height, "hot_road")
     scene = _core.Scene()
     set_physical_sky(scene, sun_direction(30.0, 25.0), visibility=40.0)
     scene.add_ground(0.0, 20000.0, material=shading.Diffuse((0.42, 0.34, 0.25)))  # desert sand
@@ -374,6 +384,7 @@ def cold_sea(width: int = 640, height: int = 240) -> Example:
     light air of 1 m/s, 5 deg C: at these ranges one pixel spans 10-60 m of sea, many waves, so
     the microfacet statistics are the resolved picture -- the glitter is their mean, not single
     sparkles). A 1000 mm lens."""
+    width, height = _size(width, height, "cold_sea")
     scene = _core.Scene()
     set_physical_sky(scene, sun_direction(*COLD_SEA_SUN), visibility=COLD_SEA_VISIBILITY)
     scene.add_ground(0.0, 120000.0, material=_sea(COLD_SEA_WIND, 5.0))
@@ -418,6 +429,7 @@ def fata_morgana(width: int = 640, height: int = 240) -> Example:
     sea and the hill tops. An afternoon sun 15 deg high behind the left shoulder, raking the
     cliffs (FATA_MORGANA_SUN_AZIMUTH), clear Arctic air (visibility 150 km); a 1000 mm lens from
     14 m (a ship's bridge)."""
+    width, height = _size(width, height, "fata_morgana")
     scene = _core.Scene()
     set_physical_sky(scene, sun_direction(15.0, FATA_MORGANA_SUN_AZIMUTH), visibility=FATA_MORGANA_VISIBILITY)
     scene.add_ground(0.0, 140000.0, material=_sea(6.0, 3.0))
@@ -471,6 +483,7 @@ def hot_spot(width: int = 640, height: int = 320) -> Example:
     lower halves mirrored -- lies over the stretch alone: it ends left and right on the sand, the
     desert beside it is not mirrored, and it belongs to the ground, so it stays there when the
     camera moves (the demo walks 60 m toward it)."""
+    width, height = _size(width, height, "hot_spot")
     example = hot_road(width, height)
     spots = [
         _core.HotSpot(float(x), 0.0, HOT_SPOT_RADIUS, HOT_SPOT_DT, footprint="compact")
@@ -502,6 +515,7 @@ def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.8
     (refracta.render(..., spectral=True)): each wavelength is bent by its own air, blue and green
     lifted most, so the last sliver of the flattened sun turns green; below it the mirage of the
     warm sea squeezes the disc into an 'Etruscan vase' and cuts it off above the horizon."""
+    width, height = _size(width, height, "green_flash")
     sun_elevation = _finite(sun_elevation, "sun_elevation", "examples.green_flash")
     scene = _core.Scene()
     # Sky and sun of a sun on the horizon (the light that reaches the eye runs within ~0.1 deg of
@@ -562,6 +576,7 @@ def real_place(width: int = 640, height: int = 320, field=None) -> Example:
     physical sky with a mid-morning sun behind the left shoulder; 220 km visibility greys and
     blues the island. field: another height-only field (true heights) for the air, put over the
     same Earth (None: PhysicalAtmosphere(), the standard atmosphere)."""
+    width, height = _size(width, height, "real_place")
     from refracta import geo, terrain
 
     lat, lon = REAL_PLACE_OBSERVER

@@ -48,7 +48,7 @@ void bind_render(py::module_& m) {
                     "each ray's calm path, traced exactly to tol, in steps of the turbulence's cells; those samples'\n"
                     "shadow and bounce rays through the calm air)");
   def_enum_property(options, "march", &O::march, &trace_method_name,
-                    [](const std::string& name) { return parse_trace_method_as(name, "march"); },
+                    &parse_march_method,
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)");
   options.def_readwrite("spp", &O::spp, DOC(refracta, RenderOptions, spp))
       .def_readwrite("adaptive", &O::adaptive, DOC(refracta, RenderOptions, adaptive))

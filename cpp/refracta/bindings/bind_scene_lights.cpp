@@ -5,6 +5,7 @@
 #include "refracta/render/scene_building.h"
 
 #include "refracta/shading/constant_environment.h"
+#include "refracta/shading/environment_light.h"
 #include "refracta/shading/point_light.h"
 #include "refracta/shading/sky_presets.h"
 #include "refracta/shading/sun_light.h"
@@ -41,6 +42,8 @@ LightPtr environment_of(const py::object& source, const py::object& rotation, do
     }
     return std::make_shared<EnvironmentLight>(to_image(source, "image"), scale, to_rotation(rotation, "rotation"));
   }
+  // Checked as a map's is: a uniform sky looks the same turned any way, but a bad matrix is a mistake.
+  EnvironmentLight::check_rotation(to_rotation(rotation, "rotation"), "set_environment: rotation");
   return std::make_shared<ConstantEnvironment>(Color::illuminant(to_rgb(source, "radiance") * scale));
 }
 

@@ -248,7 +248,10 @@ Image to_image(const py::handle& object, const char* what, bool raw) {
   if (!raw && array.ndim() == 2) array = array.reshape({array.shape(0), array.shape(1), py::ssize_t(1)});
   if (array.ndim() != 3 || array.shape(2) < 1 || (!raw && array.shape(2) > 4) || array.shape(0) < 1 ||
       array.shape(1) < 1) {
-    throw_invalid(what, raw ? " must have shape (H, W, C)" : " must have shape (H, W), (H, W, 1..4)");
+    std::string shape;
+    for (py::ssize_t k = 0; k < array.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(array.shape(k));
+    throw_invalid(what, raw ? " must have shape (H, W, C)" : " must have shape (H, W), (H, W, 1..4)",
+                  ", H and W >= 1 (got (", shape, "))");
   }
   Image image(int(array.shape(1)), int(array.shape(0)), int(array.shape(2)));
   std::copy(array.data(), array.data() + array.size(), image.pixels.begin());

@@ -20,13 +20,11 @@ std::string shortest(double x) {
 }
 }  // namespace
 
-TraceMethod parse_trace_method(const std::string& name) { return parse_trace_method_as(name, "trace"); }
-
-TraceMethod parse_trace_method_as(const std::string& name, const char* option) {
+TraceMethod parse_trace_method(const std::string& name) {
   if (name == "rk4") return TraceMethod::kRk4;
   if (name == "rk45") return TraceMethod::kRk45;
   if (name == "stratified") return TraceMethod::kStratified;
-  throw_invalid(option, " must be 'rk4', 'rk45' or 'stratified' (got '", name, "')");
+  throw_invalid("trace must be 'rk4', 'rk45' or 'stratified' (got '", name, "')");
 }
 
 const char* trace_method_name(TraceMethod method) {

@@ -14,8 +14,6 @@ namespace refracta {
 enum class TraceMethod { kRk4, kRk45, kStratified };
 
 TraceMethod parse_trace_method(const std::string& name);  // "rk4", "rk45", "stratified"
-// The same for an option of another name, which the ValueError names (RenderOptions.march).
-TraceMethod parse_trace_method_as(const std::string& name, const char* option);
 const char* trace_method_name(TraceMethod method);
 
 // rk4's fixed step when none is given [m]: the original editor's.

@@ -232,10 +232,26 @@ bool Caster::pieces_blocked(const PathSegment<double>& seg, int pieces, PathEnd*
     const Handoff from{p0, seg.velocity(u0).normalized(), seg.start() + u0 * seg.length()};
     if (!chord_blocked(p0, d / len, len, from, end, regions)) continue;
     if (end->handoff) return true;
-    const Hit hit = *end->hit;
+    Hit hit = *end->hit;
     const double du = u1 - u0;
-    const double u = refine_on_plane(seg, hit.normal, hit.point, u0 + du * hit.t / len, u0 - 0.5 * du,
-                                     std::min(u1 + 0.5 * du, 1.0));
+    double u = refine_on_plane(seg, hit.normal, hit.point, u0 + du * hit.t / len, u0 - 0.5 * du,
+                               std::min(u1 + 0.5 * du, 1.0));
+    // The path strays up to the sagitta from the chord, so it may cross another surface before
+    // the point refined onto it: a grazing ray dips into the ground under a chord that passes
+    // above it, and was refined onto a box beyond -- a hit below the ground (a trial, trace =
+    // 'rk45'). The chord from the piece's start to the refined point is a chord of the path as
+    // well: a surface it meets first is the one the path meets.
+    for (int check = 0; check < 4; ++check) {
+      const Vec3d to = seg.position(u) - p0;
+      const double dist = to.norm();
+      if (!(dist > 0.0)) break;
+      const auto earlier = scene_.intersect(p0, to / dist, dist);
+      // The refined point's own surface at the end of the chord (float32 geometry: 1e-3 of it).
+      const bool same = earlier && earlier->geometry == hit.geometry && earlier->primitive == hit.primitive;
+      if (!earlier || (same && earlier->t > (1.0 - 1e-3) * dist)) break;
+      hit = *earlier;
+      u = refine_on_plane(seg, hit.normal, hit.point, u0 + (u - u0) * hit.t / dist, u0 - 0.5 * du, u);
+    }
     end_at(seg, u, hit, end);
     return true;
   }

@@ -13,6 +13,7 @@ namespace refracta {
 
 enum class RenderMethod { kStraight, kCurved, kRasterMarch };
 RenderMethod parse_render_method(const std::string& name);  // "straight", "curved", "raster_march"
+TraceMethod parse_march_method(const std::string& name);    // raster_march's integrator: "rk4", "rk45"
 const char* render_method_name(RenderMethod method);
 
 // Light transport (render/integrator.h): 'direct' -- emitters seen directly and direct lighting

@@ -36,6 +36,12 @@ RenderMethod parse_render_method(const std::string& name) {
   throw_invalid("method must be 'straight', 'curved' or 'raster_march' (got '", name, "')");
 }
 
+TraceMethod parse_march_method(const std::string& name) {
+  if (name == "rk4") return TraceMethod::kRk4;
+  if (name == "rk45") return TraceMethod::kRk45;
+  throw_invalid("march must be 'rk4' or 'rk45' (got '", name, "')");
+}
+
 const char* render_method_name(RenderMethod method) {
   return method == RenderMethod::kStraight ? "straight" : method == RenderMethod::kCurved ? "curved" : "raster_march";
 }

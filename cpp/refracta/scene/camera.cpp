@@ -12,7 +12,10 @@ namespace refracta {
 Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
                int height)
     : position_(position), look_at_(look_at), up_hint_(up), vfov_(vfov_deg), width_(width), height_(height) {
-  if (!is_finite(position)) throw_invalid("Camera: position must be finite");
+  if (!(is_finite(position) && position.cwiseAbs().maxCoeff() <= kSceneReach)) {
+    throw_invalid("Camera: position must be finite and within ", kSceneReach, " m of the origin (got (", position.x(),
+                  ", ", position.y(), ", ", position.z(), "))");
+  }
   if (!is_finite(look_at)) throw_invalid("Camera: look_at must be finite");
   if (!is_finite(up)) throw_invalid("Camera: up must be finite");
   if (!(vfov_deg > 0.0 && vfov_deg < 180.0)) {
@@ -25,7 +28,7 @@ Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, dou
     view = look_at / scale - position / scale;
   }
   if (view.norm() == 0.0) throw_invalid("Camera: look_at must differ from position");
-  forward_ = view.normalized();
+  forward_ = view.stableNormalized();  // scaled first: a view 1e200 long does not overflow
   const Vec3d side = forward_.cross(up);
   if (up.norm() == 0.0 || side.norm() < 1e-9 * up.norm()) {
     throw_invalid("Camera: up must be non-zero and not parallel to the view direction");

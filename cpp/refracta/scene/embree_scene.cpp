@@ -323,9 +323,10 @@ int Scene::add_texture(const std::string& path) {
 
 void Scene::check_unchanging(const char* change) const {
   if (const int readers = readers_.load(); readers > 0) {
-    throw std::runtime_error(concat("Scene.", change, ": the scene is being rendered (", readers,
-                                    " render(s) running on other threads); change it after they return, "
-                                    "or build a second Scene"));
+    // The change named last: a public call reaches it through internal ones (add_box adds a material).
+    throw std::runtime_error(concat("Scene: the scene is being rendered (", readers,
+                                    " render(s) running on other threads) and cannot change; change it after they "
+                                    "return, or build a second Scene (refused: ", change, ")"));
   }
 }
 

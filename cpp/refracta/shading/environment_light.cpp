@@ -13,6 +13,17 @@ constexpr double kRotationTolerance = 1e-6;
 
 // ---- EnvironmentLight --------------------------------------------------------------------
 
+void EnvironmentLight::check_rotation(const Mat3d& rotation, const char* what) {
+  for (int i = 0; i < 9; ++i) {
+    if (!std::isfinite(rotation.data()[i])) throw_invalid(what, " must be finite");
+  }
+  const double off = (rotation.transpose() * rotation - Mat3d::Identity()).cwiseAbs().maxCoeff();
+  if (!(off <= kRotationTolerance) || !(rotation.determinant() > 0.0)) {
+    throw_invalid(what, " must be a proper rotation (orthonormal, det +1); |R^T R - I| = ", off,
+                  ", det = ", rotation.determinant());
+  }
+}
+
 EnvironmentLight::EnvironmentLight(const Image& image, double scale, const Mat3d& rotation)
     : width_(image.width), height_(image.height), scale_(scale), rotation_(rotation) {
   if (image.width < 1 || image.height < 2) throw_invalid("EnvironmentLight: image must be at least 1 x 2 texels (got ", image.width, " x ", image.height, ")");
@@ -20,14 +31,7 @@ EnvironmentLight::EnvironmentLight(const Image& image, double scale, const Mat3d
   if (c != 1 && c != 3 && c != 4) throw_invalid("EnvironmentLight: image must have 1, 3 or 4 channels (got ", c, ")");
   if (image.pixels.size() != size_t(image.width) * image.height * c) throw_invalid("EnvironmentLight: image has ", image.pixels.size(), " values for ", image.width, " x ", image.height, " x ", c);
   detail::check_non_negative(scale, "EnvironmentLight: scale");
-  for (int i = 0; i < 9; ++i) {
-    if (!std::isfinite(rotation.data()[i])) throw_invalid("EnvironmentLight: rotation must be finite");
-  }
-  const double off = (rotation.transpose() * rotation - Mat3d::Identity()).cwiseAbs().maxCoeff();
-  if (!(off <= kRotationTolerance) || !(rotation.determinant() > 0.0)) {
-    throw_invalid("EnvironmentLight: rotation must be a proper rotation (orthonormal, det +1); |R^T R - I| = ", off,
-                  ", det = ", rotation.determinant());
-  }
+  check_rotation(rotation, "EnvironmentLight: rotation");
   texels_.resize(size_t(width_) * height_);
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {

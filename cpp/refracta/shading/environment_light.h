@@ -59,6 +59,8 @@ class EnvironmentLight final : public Light {
   Vec3d rgb_at(const Vec2d& uv) const;
   // A rotation about +y by `degrees` (right-handed: +x turns toward -z), for the constructor.
   static Mat3d rotation_about_y(double degrees);
+  // Throws (ValueError naming `what`) unless rotation is finite and a proper rotation.
+  static void check_rotation(const Mat3d& rotation, const char* what);
 
   int width() const { return width_; }
   Image image() const;  // the texels as a float image (exact: they came from floats)
