@@ -89,3 +89,22 @@ def test_messages_name_the_real_problem(call, message):
 def test_a_camera_far_along_its_view_still_looks_there():
     camera = refracta.Camera((0, 1, 0), (1e200, 1, 0))  # the view's length overflows squared
     np.testing.assert_allclose(camera.ray(camera.width / 2, camera.height / 2)[1], [1, 0, 0], atol=1e-12)  # rounding
+
+
+def test_add_obj_adds_nothing_when_its_progress_callback_raises(tmp_path):
+    # The first part (no texture) was added before the second's texture called progress, which raised.
+    refracta.io.write_image(tmp_path / "t.png", np.full((4, 4, 3), 0.5, np.float32), exposure=1.0)
+    (tmp_path / "m.mtl").write_text("newmtl plain\nKd 0.5 0.5 0.5\nnewmtl textured\nKd 1 1 1\nmap_Kd t.png\n")
+    (tmp_path / "two.obj").write_text(
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n"
+        "usemtl plain\nf 1/1 2/2 3/3\nusemtl textured\nf 2/2 4/4 3/3\n"
+    )
+    scene = refracta.Scene()
+
+    def progress(done, total):
+        raise ZeroDivisionError("from the callback")
+
+    with pytest.raises(ZeroDivisionError, match="from the callback"):
+        scene.add_obj(tmp_path / "two.obj", progress=progress)
+    assert scene.geometry_count == 0
+    assert len(scene.add_obj(tmp_path / "two.obj", progress=False)) == 2 and scene.geometry_count == 2

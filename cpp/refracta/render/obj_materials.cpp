@@ -73,19 +73,26 @@ std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const
   const std::vector<std::string> textures = texture_paths(parts, options);
   std::set<std::string> distinct(textures.begin(), textures.end()), registered, noted;
   distinct.erase("");
-  std::vector<unsigned> ids;
+  // The callbacks (warnings, progress) may raise: they all run, and every texture loads, before
+  // the first mesh is added, so that a failure leaves the scene's geometry as it was.
+  std::vector<int> materials(parts.size());
   for (size_t p = 0; p < parts.size(); ++p) {
-    MaterialMesh& part = parts[p];
+    const MaterialMesh& part = parts[p];
     if (!part.material.clamped.empty() && options.warn && noted.insert(part.material.name).second) {
       options.warn(concat("add_obj: '", path, "': material '", part.material.name, "' has ", part.material.clamped,
                           " out of range; clamped to Kd, Ks, d in [0, 1] and Ns >= 0"));
     }
-    for (auto& v : part.mesh.vertices) v = v * options.scale + options.offset;
     const int texture = textures[p].empty() ? -1 : scene.geometry.add_texture(textures[p]);
     if (texture >= 0 && registered.insert(textures[p]).second && options.progress) {
       options.progress(registered.size(), distinct.size());
     }
-    const unsigned id = scene.geometry.add_mesh(part.mesh, scene.add_material(material_from_mtl(part.material, texture)));
+    materials[p] = scene.add_material(material_from_mtl(part.material, texture));
+  }
+  std::vector<unsigned> ids;
+  for (size_t p = 0; p < parts.size(); ++p) {
+    MaterialMesh& part = parts[p];
+    for (auto& v : part.mesh.vertices) v = v * options.scale + options.offset;
+    const unsigned id = scene.geometry.add_mesh(part.mesh, materials[p]);
     if (part.material.ke.maxCoeff() > 0.0) {
       scene.add_light(std::make_shared<AreaLight>(part.mesh, Color::illuminant(part.material.ke), false), int(id));
     }
