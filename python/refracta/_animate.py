@@ -220,9 +220,10 @@ def animate(
         )
     if path is not None:
         path = os.fspath(path)
-        if "{" in path and fps is not None:
+        if "{" not in path:
+            fps = _frame_rate(times, fps)  # the file's (frames as an array, or frame files, have no rate)
+        elif fps is not None:
             raise ValueError(f"animate: fps is a GIF's or an MP4's; frame files ({path!r}) have no rate")
-        fps = _frame_rate(times, fps)  # the file's (frames as an array have no rate)
         _writer_for(path)  # an unknown format or a missing package fails before rendering
         _check_output_settings(path, exposure, tonemap)
         folder = os.path.dirname(os.path.abspath(path))

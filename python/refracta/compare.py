@@ -50,7 +50,7 @@ def shadows(
     if isinstance(kernels, (str, bytes)) or not isinstance(kernels, Iterable):
         raise ValueError(f"kernels must be a sequence of odd whole numbers of texels (got {kernels!r})")
     kernels = list(kernels)
-    if not all(is_seed(k) for k in kernels):
+    if not all(is_seed(k) and k % 2 == 1 for k in kernels):  # before any render
         raise ValueError(f"kernels must be odd whole numbers of texels (got {kernels!r})")
     kernels = [int(k) for k in kernels]
     if not methods or not kernels:

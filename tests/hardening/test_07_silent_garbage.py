@@ -18,8 +18,9 @@ def test_flat_height_below_the_earths_centre_is_refused():
 
 
 def test_a_camera_at_the_edge_of_double_range_aims_correctly():
-    # look_at 1e308 from the position: look_at - position overflowed and every ray was NaN. (A
-    # position that far is refused: scene coordinates end at the scene's reach, 1e7 m.)
+    # position and look_at 2e308 apart: look_at - position overflowed and every ray was NaN. A
+    # position that far is now refused (scene coordinates end at the scene's reach, 1e7 m); a
+    # look_at -1e308 away still overflows the difference.
     with pytest.raises(ValueError, match=r"Camera: position must be finite and within 10000000 m"):
         refracta.Camera([1e308, 0, 0], [-1e308, 0, 0])
     far = refracta.Camera([1, 0, 0], [-1e308, 0, 0])

@@ -61,7 +61,7 @@ def test_turbulence_points_beyond_the_scene_are_refused_not_nan():
     air = refracta.Turbulence(cells=16, spacing=0.05)
     values, _ = air.evaluate(np.array([[1e6, 0.05, 0.0]]))
     assert np.isfinite(values).all()
-    with pytest.raises(ValueError, match=r"evaluate: points\[1\] must lie within 10000000 m"):
+    with pytest.raises(ValueError, match=r"evaluate: points\[1\] must be finite and within 10000000 m"):
         air.evaluate(np.array([[1.0, 0.05, 0.0], [1e18, 0.05, 0.0]]))
 
 
@@ -75,6 +75,11 @@ def test_a_frame_pattern_of_an_unwritable_format_fails_before_any_frame(tmp_path
             noise=dict(rms=1e-4, correlation_pixels=2.0), progress=lambda done, total: calls.append(done),
         )  # fmt: skip
     assert calls == []  # refused before rendering
+    frames = refracta.animate(
+        road.scene, camera, road.field, [0.1, 0.0], str(tmp_path / "f{}.png"),
+        noise=dict(rms=1e-4, correlation_pixels=2.0), progress=False, max_length=200.0,
+    )  # fmt: skip
+    assert frames.shape == (2, 4, 8, 3) and (tmp_path / "f1.png").is_file()  # any times: frame files have no rate
     with pytest.raises(ValueError, match=r"fps is a GIF's or an MP4's; frame files"):
         refracta.animate(
             road.scene, camera, road.field, [0.0, 0.1], str(tmp_path / "f{}.png"), fps=5,
@@ -102,6 +107,10 @@ def test_composite_still_takes_each_method_s_own_keywords():
     np.testing.assert_allclose(exact, [0.875, 0.0, 0.0], atol=1e-15)
     peel = oit.composite(DEPTHS, ALPHAS, COLORS, method="peel", layers=3)
     np.testing.assert_allclose(peel, exact, atol=1e-15)  # every fragment peeled: the exact sum
+    for weight in ("eq7", "eq9"):  # one colour: any weights average it to red, times 1 - 1/8 coverage
+        np.testing.assert_allclose(oit.composite(DEPTHS, ALPHAS, COLORS, method="wboit", weight=weight), exact, atol=1e-12)
+    mboit = oit.composite(DEPTHS, ALPHAS, COLORS, method="mboit", z_range=(0.5, 4.0))
+    assert mboit[0] == pytest.approx(0.875, abs=0.05) and mboit[1] == mboit[2] == 0.0  # MBOIT's approximation: 5 %
 
 
 @pytest.mark.parametrize(

@@ -32,7 +32,9 @@ def test_traced_paths_meet_the_ground_before_what_lies_beyond_it():
     for field, keywords in ((air, dict(trace="rk45")), (refracta.CustomField(air.ior, air.grad_ior), {})):
         _, traced = refracta.render(scene, camera, field, max_length=1000, aovs=aovs, progress=False, **keywords)
         assert not np.any((traced["object_id"] == 1) & (traced["position"][..., 1] < -1e-3))  # nothing underground
-        np.testing.assert_array_equal(traced["object_id"], table["object_id"])  # the same surfaces seen
+        # The same surfaces seen, but for pixels on a boundary the two integrators may split
+        # differently (0 of 768 measured; 1 % allowed).
+        assert np.mean(traced["object_id"] != table["object_id"]) <= 0.01
 
 
 def test_a_uniform_environment_checks_its_rotation_as_a_map_does():
@@ -75,15 +77,16 @@ def test_examples_take_whole_sizes(size):
             r"trace_rays: directions must have shape \(3,\) or \(N, 3\) \(got \(3, 2\)\)",
         ),
         (lambda: refracta.RenderOptions(march="stratified"), r"march must be 'rk4' or 'rk45' \(got 'stratified'\)"),
-        (
-            lambda: refracta.io.write_image("x.png", np.zeros((0, 0, 3), np.float32)),
-            r"H and W >= 1 \(got \(0, 0, 3\)\)",
-        ),
     ],
 )
 def test_messages_name_the_real_problem(call, message):
     with pytest.raises(ValueError, match=message):
         call()
+
+
+def test_an_empty_image_is_named_empty(tmp_path):
+    with pytest.raises(ValueError, match=r"H and W >= 1 \(got \(0, 0, 3\)\)"):
+        refracta.io.write_image(tmp_path / "x.png", np.zeros((0, 0, 3), np.float32))
 
 
 def test_a_camera_far_along_its_view_still_looks_there():

@@ -181,7 +181,9 @@ map (height, width, 2) at the pixel centres, bilinear between them. Non-physical
       .def_property_readonly("focus_distance", &Camera::focus_distance, "The depth [m] of the plane in focus, 0 for a pinhole.")
       .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
            "The same view and lens at another image size (vertical field of view kept). A jittered camera keeps\n"
-           "its angle map at the same size; at another, ValueError (resize the map, then call jittered).")
+           "its angle map at the same size; at another, ValueError (resize the map, then call jittered; or\n"
+           "camera.without_jitter().resized(...)).")
+      .def("without_jitter", &Camera::without_jitter, "The same camera without its jitter map (None: unchanged).")
       .def_property_readonly("width", &Camera::width)
       .def_property_readonly("height", &Camera::height)
       .def_property_readonly("vfov", &Camera::vfov)

@@ -48,10 +48,7 @@ template <class Source>
 std::tuple<DoubleArray, DoubleArray> evaluate_points(const Source& source, const py::object& points) {
   const std::vector<Vec3d> p = to_points(points, "points");
   for (size_t i = 0; i < p.size(); ++i) {  // the pattern's cells are counted in integers
-    if (!(p[i].cwiseAbs().maxCoeff() <= kSceneReach)) {
-      throw_invalid("evaluate: points[", i, "] must lie within ", kSceneReach, " m of the origin (got (", p[i].x(), ", ",
-                    p[i].y(), ", ", p[i].z(), "))");
-    }
+    if (!(p[i].cwiseAbs().maxCoeff() <= kSceneReach)) check_within_reach(p[i], concat("evaluate: points[", i, "]").c_str());
   }
   PointValues out;
   {

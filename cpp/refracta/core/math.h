@@ -2,6 +2,8 @@
 // for automatic-differentiation scalars (ceres::Jet), so one templated implementation serves both.
 #pragma once
 
+#include "refracta/core/error.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -37,6 +39,16 @@ template <class T>
 inline bool is_finite(const Vec3<T>& v) {
   return std::isfinite(value_of(v.x())) && std::isfinite(value_of(v.y())) &&
          std::isfinite(value_of(v.z()));
+}
+
+// p itself; throws (ValueError naming `what`) unless it is finite and within kSceneReach of the
+// origin along every axis (the box scene coordinates live in).
+inline const Vec3d& check_within_reach(const Vec3d& p, const char* what) {
+  if (!(is_finite(p) && p.cwiseAbs().maxCoeff() <= kSceneReach)) {
+    throw_invalid(what, " must be finite and within ", kSceneReach, " m of the origin (got (", p.x(), ", ", p.y(), ", ",
+                  p.z(), "))");
+  }
+  return p;
 }
 
 inline double sqr(double x) { return x * x; }

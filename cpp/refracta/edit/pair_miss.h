@@ -101,8 +101,13 @@ PairMiss<T> pair_miss_along(const Field& field, const PointPair& pair, const Vec
   }
   tangent = tangent / tangent.norm();
   const Vec3<T> offset = x - p;
-  // The vertex measure is the original editor's: the whole offset to the nearest node.
-  out.miss = best_b ? Vec3<T>(offset - tangent * tangent.dot(offset)) : offset;
+  // At a closest approach at the path's start or end (a source behind the eye, or beyond where
+  // the path stops) the offset runs along the path: its perpendicular part was ~0, and a source
+  // 40 km behind the eye "met" (a trial). There the whole offset is the miss, as the vertex
+  // measure (the original editor's) always takes it.
+  const bool at_start = best_b && best_u <= 0.0 && value_of(best_a->s) == 0.0;  // paths start at s = 0
+  const bool at_end = best_b && best_u >= 1.0 && value_of(best_b->s) >= value_of(end.end.s);
+  out.miss = best_b && !at_start && !at_end ? Vec3<T>(offset - tangent * tangent.dot(offset)) : offset;
   out.distance = best;
   out.evaluations = end.evaluations;
   return out;

@@ -226,6 +226,9 @@ std::shared_ptr<TurbulenceGrid> synthesise_turbulence(const TurbulenceSettings& 
 Turbulence turbulence_layer(const TurbulenceSettings& settings, std::shared_ptr<const TurbulenceGrid> grid, double time) {
   if (!grid) throw_invalid("Turbulence: no grid");
   if (!std::isfinite(time)) throw_invalid("Turbulence.at_time: t must be finite (got ", time, ")");
+  if (!(std::isfinite(settings.wind[0] * time) && std::isfinite(settings.wind[1] * time))) {
+    throw_invalid("Turbulence.at_time: the wind carries the pattern beyond any distance by t = ", time, " s");
+  }
   Turbulence layer;
   layer.grid = std::move(grid);
   layer.scale = std::sqrt(settings.cn2);

@@ -206,6 +206,18 @@ bool Caster::chord_blocked(const Vec3d& p, const Vec3d& d, double len, const Han
   return true;
 }
 
+std::optional<Caster::EarlierHit> Caster::earlier_hit(const Vec3d& from, const Vec3d& to, PathEnd* end) const {
+  const Vec3d chord = to - from;
+  const double dist = chord.norm();
+  if (!(dist > 0.0)) return std::nullopt;
+  ++end->chords;
+  // The refined point's own surface (or its neighbour across an edge) is met at the chord's end:
+  // float32 geometry puts it within 1e-3 of the way.
+  const auto earlier = scene_.intersect(from, chord / dist, (1.0 - 1e-3) * dist);
+  if (!earlier) return std::nullopt;
+  return EarlierHit{*earlier, earlier->t / dist};
+}
+
 bool Caster::segment_blocked(const RayNode<double>& a, const RayNode<double>& b, PathEnd* end, double sagitta,
                              bool regions) const {
   const PathSegment<double> seg(a, b);
@@ -236,21 +248,12 @@ bool Caster::pieces_blocked(const PathSegment<double>& seg, int pieces, PathEnd*
     const double du = u1 - u0;
     double u = refine_on_plane(seg, hit.normal, hit.point, u0 + du * hit.t / len, u0 - 0.5 * du,
                                std::min(u1 + 0.5 * du, 1.0));
-    // The path strays up to the sagitta from the chord, so it may cross another surface before
-    // the point refined onto it: a grazing ray dips into the ground under a chord that passes
-    // above it, and was refined onto a box beyond -- a hit below the ground (a trial, trace =
-    // 'rk45'). The chord from the piece's start to the refined point is a chord of the path as
-    // well: a surface it meets first is the one the path meets.
-    for (int check = 0; check < 4; ++check) {
-      const Vec3d to = seg.position(u) - p0;
-      const double dist = to.norm();
-      if (!(dist > 0.0)) break;
-      const auto earlier = scene_.intersect(p0, to / dist, dist);
-      // The refined point's own surface at the end of the chord (float32 geometry: 1e-3 of it).
-      const bool same = earlier && earlier->geometry == hit.geometry && earlier->primitive == hit.primitive;
-      if (!earlier || (same && earlier->t > (1.0 - 1e-3) * dist)) break;
-      hit = *earlier;
-      u = refine_on_plane(seg, hit.normal, hit.point, u0 + (u - u0) * hit.t / dist, u0 - 0.5 * du, u);
+    for (int check = 0; check < kEarlierHitChecks && u > u0; ++check) {
+      const auto earlier = earlier_hit(p0, seg.position(u), end);
+      if (!earlier) break;
+      const double guess = u0 + (u - u0) * earlier->fraction;
+      u = refine_on_plane(seg, earlier->hit.normal, earlier->hit.point, guess, u0 - 0.5 * du, u);
+      hit = earlier->hit;
     }
     end_at(seg, u, hit, end);
     return true;
@@ -763,30 +766,42 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
         const double len = d.norm();
         if (chord_blocked(a.x, d / len, len, Handoff{a.x, a.v.normalized(), a.s}, &end)) {
           if (end.handoff) return end;
-          const Hit hit = *end.hit;  // set: chord_blocked returned true without a handoff
           // Refine on the segment of the path that crosses the hit's tangent plane: the first
           // whose nodes lie on both sides of it (the chord strays from the path, so the segment
           // under the chord's hit need not be that one), else the one under the chord's hit.
-          const double s_hit = a.s + (b.s - a.s) * std::min(hit.t / len, 1.0);
-          auto side = [&](const RayNode<double>& node) { return hit.normal.dot(node.x - hit.point); };
-          RayNode<double> from = a, to = chord.last == chord.first + 1 ? b : path.node(chord.first + 1);
-          RayNode<double> under = from, under_to = to;
-          bool crossing = false;
-          for (size_t k = chord.first;; ++k) {
-            if (from.s <= s_hit) under = from, under_to = to;
-            if ((side(from) <= 0.0) != (side(to) <= 0.0)) {
-              crossing = true;
-              break;
+          // Returns that segment and the parameter on it.
+          auto refine = [&](const Hit& hit, double s_hit) {
+            auto side = [&](const RayNode<double>& node) { return hit.normal.dot(node.x - hit.point); };
+            RayNode<double> from = a, to = chord.last == chord.first + 1 ? b : path.node(chord.first + 1);
+            RayNode<double> under = from, under_to = to;
+            bool crossing = false;
+            for (size_t k = chord.first;; ++k) {
+              if (from.s <= s_hit) under = from, under_to = to;
+              if ((side(from) <= 0.0) != (side(to) <= 0.0)) {
+                crossing = true;
+                break;
+              }
+              if (k + 2 > chord.last) break;
+              from = to;
+              to = k + 2 == chord.last ? b : path.node(k + 2);
             }
-            if (k + 2 > chord.last) break;
-            from = to;
-            to = k + 2 == chord.last ? b : path.node(k + 2);
+            if (!crossing) from = under, to = under_to;
+            const PathSegment<double> seg(from, to);
+            const double u0 = seg.length() > 0.0 ? std::clamp((s_hit - from.s) / seg.length(), 0.0, 1.0) : 0.0;
+            const double u = crossing ? refine_on_plane(seg, hit.normal, hit.point, u0, 0.0, 1.0)
+                                      : refine_on_plane(seg, hit.normal, hit.point, u0, -0.5, 1.5);
+            return std::make_pair(seg, u);
+          };
+          Hit hit = *end.hit;  // set: chord_blocked returned true without a handoff
+          auto [seg, u] = refine(hit, a.s + (b.s - a.s) * std::min(hit.t / len, 1.0));
+          for (int check = 0; check < kEarlierHitChecks; ++check) {
+            const double s_end = seg.start() + u * seg.length();
+            if (!(s_end > a.s)) break;
+            const auto earlier = earlier_hit(a.x, seg.position(u), &end);
+            if (!earlier) break;
+            hit = earlier->hit;
+            std::tie(seg, u) = refine(hit, a.s + (s_end - a.s) * earlier->fraction);
           }
-          if (!crossing) from = under, to = under_to;
-          const PathSegment<double> seg(from, to);
-          const double u0 = seg.length() > 0.0 ? std::clamp((s_hit - from.s) / seg.length(), 0.0, 1.0) : 0.0;
-          const double u = crossing ? refine_on_plane(seg, hit.normal, hit.point, u0, 0.0, 1.0)
-                                    : refine_on_plane(seg, hit.normal, hit.point, u0, -0.5, 1.5);
           end_at(seg, u, hit, &end);
           return end;
         }

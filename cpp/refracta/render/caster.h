@@ -188,6 +188,19 @@ class Caster {
   bool segment_blocked(const RayNode<double>& a, const RayNode<double>& b, PathEnd* end, double sagitta = 0.0,
                        bool regions = true) const;
   bool pieces_blocked(const PathSegment<double>& segment, int pieces, PathEnd* end, bool regions = true) const;
+  // A hit refined onto the path may lie beyond a surface the path crosses first: the path strays
+  // up to the sagitta from its chord, so a grazing ray dips into the ground under a chord that
+  // passes above it and was refined onto a box beyond, below the ground (a trial, trace='rk45').
+  // The chord from the chord's start `from` to the refined point `to` is a chord of the path as
+  // well: the surface it meets before `to`, with the fraction of the way to `to` it lies at.
+  struct EarlierHit {
+    Hit hit;
+    double fraction;
+  };
+  std::optional<EarlierHit> earlier_hit(const Vec3d& from, const Vec3d& to, PathEnd* end) const;
+  // Re-checks of a refined hit (each finds a surface nearer the start; a path seldom crosses
+  // more than one between its chord and itself).
+  static constexpr int kEarlierHitChecks = 4;
   // Where the path from origin along dir crosses the plane through `point` with `normal`, the
   // crossing nearest arc length s_near; nullopt if none within [s_near / 2, 3 s_near / 2 + 1 m].
   std::optional<Vec3d> meets_plane(const Vec3d& origin, const Vec3d& dir, const Vec3d& point, const Vec3d& normal,

@@ -12,10 +12,7 @@ namespace refracta {
 Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
                int height)
     : position_(position), look_at_(look_at), up_hint_(up), vfov_(vfov_deg), width_(width), height_(height) {
-  if (!(is_finite(position) && position.cwiseAbs().maxCoeff() <= kSceneReach)) {
-    throw_invalid("Camera: position must be finite and within ", kSceneReach, " m of the origin (got (", position.x(),
-                  ", ", position.y(), ", ", position.z(), "))");
-  }
+  check_within_reach(position, "Camera: position");
   if (!is_finite(look_at)) throw_invalid("Camera: look_at must be finite");
   if (!is_finite(up)) throw_invalid("Camera: up must be finite");
   if (!(vfov_deg > 0.0 && vfov_deg < 180.0)) {
@@ -23,11 +20,8 @@ Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, dou
   }
   if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
   Vec3d view = look_at - position;
-  if (!is_finite(view)) {  // overflowed (points 1e308 apart): the direction from scaled points
-    const double scale = std::max(position.cwiseAbs().maxCoeff(), look_at.cwiseAbs().maxCoeff());
-    view = look_at / scale - position / scale;
-  }
-  if (view.norm() == 0.0) throw_invalid("Camera: look_at must differ from position");
+  if (!is_finite(view)) view = look_at / look_at.cwiseAbs().maxCoeff();  // look_at ~1e308 away: its direction
+  if (!(view.cwiseAbs().maxCoeff() > 0.0)) throw_invalid("Camera: look_at must differ from position");
   forward_ = view.stableNormalized();  // scaled first: a view 1e200 long does not overflow
   const Vec3d side = forward_.cross(up);
   if (up.norm() == 0.0 || side.norm() < 1e-9 * up.norm()) {

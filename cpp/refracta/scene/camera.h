@@ -108,6 +108,12 @@ class Camera {
   // map is per pixel: kept at the same size; at another, std::invalid_argument (resample the map
   // and call jittered).
   Camera resized(int width, int height) const;
+  // The same camera without its jitter map (a preview at another size, say).
+  Camera without_jitter() const {
+    Camera out = *this;
+    out.jitter_.reset();
+    return out;
+  }
   // Angle subtended by one pixel at the image centre [rad].
   double pixel_angle() const;
 

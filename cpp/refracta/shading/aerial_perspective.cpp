@@ -320,12 +320,8 @@ void AirFrame::validate() const {
 }
 
 void AirFrame::check_segment(const Vec3d& a, const Vec3d& b, const char* what) {
-  for (const auto& [point, name] : {std::pair(&a, "a"), std::pair(&b, "b")}) {
-    if (!(point->allFinite() && point->cwiseAbs().maxCoeff() <= kSceneReach)) {
-      throw_invalid(what, ": ", name, " must be finite and within ", kSceneReach, " m of the origin (got (", point->x(),
-                    ", ", point->y(), ", ", point->z(), "))");
-    }
-  }
+  check_within_reach(a, concat(what, ": a").c_str());
+  check_within_reach(b, concat(what, ": b").c_str());
 }
 
 std::pair<double, double> AerialPerspective::along_at(const Vec3d& a, const Vec3d& b, const AirFrame& frame,

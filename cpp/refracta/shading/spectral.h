@@ -41,8 +41,8 @@ double d65_normalised(double lambda_nm);
 
 // Planck's law: spectral radiance of a black body [W/(m^2 sr nm)] at lambda [nm], temperature [K].
 double planck(double lambda_nm, double temperature);
-// [K] the hottest temperature planck and Color::blackbody take: far above any star (a quark-gluon
-// plasma's); hotter, the radiance overflows a double in the visible.
+// [K] the hottest temperature planck and Color::blackbody take: a choice far beyond any physical
+// source (a quark-gluon plasma's); the radiance itself overflows a double only near 4e296 K.
 constexpr double kHottestBlackbody = 1e12;
 // temperature itself; throws (ValueError) naming `what` unless it is in (0, kHottestBlackbody] K.
 double checked_temperature(double temperature, const char* what);

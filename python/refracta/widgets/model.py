@@ -702,7 +702,8 @@ class EditorModel:
                 else [
                     (
                         "preview",
-                        camera.resized(
+                        # A jitter map is per pixel of the full image: the preview goes without it.
+                        camera.without_jitter().resized(
                             max(1, camera.width // self.preview_scale), max(1, camera.height // self.preview_scale)
                         ),
                     )
