@@ -1030,6 +1030,12 @@ class Scene:
     @property
     def lights(self) -> list[...]:
         ...
+    @property
+    def object_bounds(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+        """
+        (lower, upper) of the scene's objects, as Camera.framing frames them: flat horizontal surfaces
+        (a ground, a sea) count only when there is nothing else. ValueError for an empty scene.
+        """
 class Camera:
     """
     Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
@@ -1148,13 +1154,18 @@ class Camera:
     def resized(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> Camera:
         """
         The same view and lens at another image size (vertical field of view kept). A jittered camera keeps
-        its angle map at the same size; at another, ValueError (resize the map, then call jittered).
+        its angle map at the same size; at another, ValueError (resize the map, then call jittered; or
+        camera.without_jitter().resized(...)).
         """
     def with_lens(self, aperture_diameter: typing.SupportsFloat | typing.SupportsIndex, focus_distance: typing.SupportsFloat | typing.SupportsIndex) -> Camera:
         """
         The same view through a thin lens of aperture_diameter [m] (0: a pinhole) focused on the plane at
         depth focus_distance [m] (Camera.photographic's f_number gives f / N). ValueError for a negative
         diameter or a focus distance <= 0.
+        """
+    def without_jitter(self) -> Camera:
+        """
+        The same camera without its jitter map (None: unchanged).
         """
     @property
     def aperture_diameter(self) -> float:

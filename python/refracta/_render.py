@@ -31,10 +31,11 @@ GROUND_TOLERANCE = 0.1
 LAYER_GRADIENT = 3e-7
 
 
-def _bounds(scene: _core.Scene):
-    """The scene's bounds (lower, upper), or None when it holds no geometry (none added, or all removed)."""
+def _bounds(scene: _core.Scene, objects: bool = False):
+    """The scene's bounds (lower, upper) -- with `objects`, its objects' (Scene.object_bounds: a
+    ground or sea counts only when there is nothing else) -- or None when it holds no geometry."""
     try:
-        return scene.bounds
+        return scene.object_bounds if objects else scene.bounds
     except ValueError:
         return None
 
@@ -42,8 +43,9 @@ def _bounds(scene: _core.Scene):
 def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) -> None:
     """The hint for a scene whose every object lies beyond the rays' reach: the nearest point of its
     bounding box is farther from the camera than max_length, so every ray stops in the air and the
-    image shows only the sky (terrain or a coast tens of kilometres away with the default reach)."""
-    bounds = _bounds(scene)
+    image shows only the sky (terrain or a coast tens of kilometres away with the default reach).
+    The objects' box: a sea or ground around the camera reaches it, and hid a coast beyond reach."""
+    bounds = _bounds(scene, objects=True)
     if bounds is None:
         return
     lower, upper = (np.asarray(corner, dtype=float) for corner in bounds)
@@ -52,8 +54,8 @@ def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) ->
     farthest = float(np.linalg.norm(np.maximum(abs(lower - eye), abs(upper - eye))))
     if math.isfinite(nearest) and nearest > max_length:
         warnings.warn(
-            f"render: the nearest of the scene's geometry is {nearest:.6g} m from the camera, beyond the "
-            f"rays' reach max_length = {max_length:g} m, so the image shows only the sky; pass a larger "
+            f"render: the nearest of the scene's objects is {nearest:.6g} m from the camera, beyond the "
+            f"rays' reach max_length = {max_length:g} m, so the image shows no object; pass a larger "
             f"max_length= (its farthest point is {farthest:.6g} m away; a curved ray is a little longer)",
             SceneWarning,
             stacklevel=3,

@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 import time
 from pathlib import Path
@@ -26,6 +27,17 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def _metres(text: str) -> float:
+    """argparse type: a finite length > 0 [m]."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a length in metres (got {text!r})") from None
+    if not (0.0 < value < math.inf):
+        raise argparse.ArgumentTypeError(f"must be > 0 m and finite (got {text!r})")
+    return value
 
 
 def _count(minimum: int):
@@ -443,12 +455,13 @@ def render_file(
     ev100=None,
     aovs=None,
     white_balance=None,
+    max_length: float | None = None,
 ) -> int:
     """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped).
 
     exposure, ev100, key, tonemap, white_balance: as refracta.io.write_image (None: its defaults,
-    automatic exposure, the ACES curve, no white balance). method, spp, transport, max_depth: None
-    keeps RenderOptions' own.
+    automatic exposure, the ACES curve, no white balance). method, spp, transport, max_depth,
+    max_length [m]: None keeps RenderOptions' own.
     aovs: names of render's per-pixel outputs (refracta.render's aovs: distance, position, ...),
     written after R, G, B as layers of the EXR (refracta.io.write_layers: distance.Y, position.X,
     ...; hidden_height.geometric and .refracted; geographic.lat, .lon, .height, which needs the
@@ -479,6 +492,7 @@ def render_file(
         transport=transport,
         spp=spp,
         max_depth=max_depth,
+        max_length=max_length,
         spectral=spectral,
         progress=True,
         aovs=aovs or None,
@@ -575,6 +589,12 @@ def _run(argv=None) -> int:
         "--transport", choices=["direct", "path"], default=None, help="light transport (default: RenderOptions')"
     )
     render_parser.add_argument("--max-depth", type=_count(0), default=None, help="scattering events per path")
+    render_parser.add_argument(
+        "--max-length",
+        type=_metres,
+        default=None,
+        help="how far the rays reach [m] (default: RenderOptions', 5 km; a coast or terrain farther away needs more)",
+    )
     render_parser.add_argument("--spectral", action="store_true", help="hero-wavelength spectral rendering")
     render_parser.add_argument(
         "--tonemap",
@@ -630,6 +650,7 @@ def _run(argv=None) -> int:
             args.ev100,
             args.aovs,
             args.white_balance,
+            args.max_length,
         )
     if args.command == "edit":
         return edit_file(args.scene, args.pairs, args.output, args.backend)

@@ -108,7 +108,9 @@ def test_composite_still_takes_each_method_s_own_keywords():
     peel = oit.composite(DEPTHS, ALPHAS, COLORS, method="peel", layers=3)
     np.testing.assert_allclose(peel, exact, atol=1e-15)  # every fragment peeled: the exact sum
     for weight in ("eq7", "eq9"):  # one colour: any weights average it to red, times 1 - 1/8 coverage
-        np.testing.assert_allclose(oit.composite(DEPTHS, ALPHAS, COLORS, method="wboit", weight=weight), exact, atol=1e-12)
+        np.testing.assert_allclose(
+            oit.composite(DEPTHS, ALPHAS, COLORS, method="wboit", weight=weight), exact, atol=1e-12
+        )
     mboit = oit.composite(DEPTHS, ALPHAS, COLORS, method="mboit", z_range=(0.5, 4.0))
     assert mboit[0] == pytest.approx(0.875, abs=0.05) and mboit[1] == mboit[2] == 0.0  # MBOIT's approximation: 5 %
 

@@ -276,6 +276,14 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
           },
           "(lower, upper): corners (3,) [m] of the axis-aligned box around every geometry (spheres\n"
           "exact; a ground counts at its full size). ValueError for an empty scene.")
+      .def_property_readonly(
+          "object_bounds",
+          [](const RenderScene& s) {
+            const auto [lower, upper] = framing_bounds(s);
+            return py::make_tuple(vector_to_array(lower), vector_to_array(upper));
+          },
+          "(lower, upper) of the scene's objects, as Camera.framing frames them: flat horizontal surfaces\n"
+          "(a ground, a sea) count only when there is nothing else. ValueError for an empty scene.")
       .def("material",
            [](const RenderScene& s, int geometry) {
              s.geometry.check_geometry(geometry_id(geometry), "material");
