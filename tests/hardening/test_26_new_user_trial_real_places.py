@@ -1,7 +1,6 @@
 """Defects an eighth new-user trial found following the README's real-place and editing workflows
 as a photographer would: each is now computed right or refused by name."""
 
-import numpy as np
 import pytest
 
 import refracta
