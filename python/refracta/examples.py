@@ -551,8 +551,8 @@ REAL_PLACE_EYE = 30.0  # [m] above the sea
 REAL_PLACE_SUMMITS = {"Teide": (28.2724, -16.6425, 3715.0), "Pico Viejo": (28.2567, -16.6622, 3135.0)}
 REAL_PLACE_FOCAL_LENGTH = 300.0  # [mm] on full frame
 REAL_PLACE_TILT = 0.95  # [deg] the camera's elevation: the sea horizon near the bottom, the summit high
-# Canary air on a clear winter morning after rain: 220 km of visibility leaves the island 93 km away
-# exp(-3.912 x 93 / 220) = 19 % of its contrast (Koschmieder) -- faint and bluish, as photographed.
+# Canary air on a clear winter morning after rain: 300 km of visibility leaves the island 93 km away
+# exp(-3.912 x 93 / 300) = 30 % of its contrast (Koschmieder) -- faint and bluish, as photographed.
 REAL_PLACE_VISIBILITY = 300.0  # [km]
 REAL_PLACE_SUN = (110.0, 35.0)  # [deg] (azimuth, elevation): mid-morning, behind the left shoulder
 
@@ -567,13 +567,13 @@ def real_place_elevation_path() -> str:
 
 def real_place(width: int = 640, height: int = 320, field=None) -> Example:
     """A real place: Teide (3715 m) on Tenerife seen across ~93 km of sea from the cliffs of Agaete,
-    Gran Canaria (REAL_PLACE_OBSERVER), 30 m up, through a 400 mm lens. The terrain is an elevation
+    Gran Canaria (REAL_PLACE_OBSERVER), 30 m up, through a 300 mm lens. The terrain is an elevation
     file placed by refracta.geo.LocalFrame (Scene.add_terrain, TerrainShading with a winter snow line);
     its relief is SYNTHETIC (refracta/data/make_tenerife.py: an island shaped after Tenerife around
     the real summits), the positions of observer and summits real. The Earth is curved
     (CurvedEarth, the radius of curvature along the view azimuth, Euler) under the standard
     atmosphere (k about 0.17): the island's lower ~400 m lie hidden behind the sea's bulge. A
-    physical sky with a mid-morning sun behind the left shoulder; 220 km visibility greys and
+    physical sky with a mid-morning sun behind the left shoulder; 300 km visibility greys and
     blues the island. field: another height-only field (true heights) for the air, put over the
     same Earth (None: PhysicalAtmosphere(), the standard atmosphere)."""
     width, height = _size(width, height, "real_place")

@@ -300,6 +300,8 @@ class LocalFrame:
         """
         if (vfov is None) == (focal_length_mm is None):
             raise ValueError("give exactly one of vfov and focal_length_mm")
+        if vfov is not None and sensor_mm is not None:
+            raise ValueError("sensor_mm goes with focal_length_mm; vfov gives the field of view itself")
         a = _number(azimuth, "azimuth")
         e = _number(elevation, "elevation", -90.0, 90.0)
         r = math.radians(_number(roll, "roll"))

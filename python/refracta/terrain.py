@@ -183,7 +183,7 @@ def _read_geotiff(path: str) -> Elevation:
         raise ValueError(
             f"add_terrain: {path!r} has no georeference (GeoTIFF ModelPixelScale, ModelTiepoint and GeoKeys are needed)"
         )
-    keys = _geokeys(tags[34735])
+    keys = _geokeys(tags[34735], path)
     model = keys.get(_KEY_MODEL_TYPE)
     if model == _MODEL_GEOGRAPHIC:
         epsg = keys.get(_KEY_GEOGRAPHIC_TYPE, _EPSG_WGS84)
@@ -193,12 +193,9 @@ def _read_geotiff(path: str) -> Elevation:
         epsg = int(keys[_KEY_PROJECTED_TYPE])
     else:
         raise ValueError(f"add_terrain: {path!r}: its GeoKeys name no EPSG geographic or projected CRS (model {model})")
-    sx, sy = float(tags[_TAG_PIXEL_SCALE][0]), float(tags[_TAG_PIXEL_SCALE][1])
-    i, j, _, x, y, _ = (float(v) for v in tags[_TAG_TIEPOINT][:6])
-    if not (sx > 0.0 and sy > 0.0) or not all(math.isfinite(v) for v in (x, y, i, j)):
+    x0, y0, sx, sy = _placement(tags, keys, path)
+    if not (sx > 0.0 and sy > 0.0) or not (math.isfinite(x0) and math.isfinite(y0)):
         raise ValueError(f"add_terrain: {path!r}: pixel scale ({sx}, {sy}) must be > 0 and the tiepoint finite")
-    # Pixel-is-area: the tiepoint is a pixel's corner and the sample lies at its centre.
-    centre = 0.0 if keys.get(_KEY_RASTER_TYPE) == _RASTER_PIXEL_IS_POINT else 0.5
     # The smallest spacing a grid may have: 0.1 mm (1e-9 deg of latitude); below it, samples fall
     # on one point in the scene's single-precision geometry.
     smallest = 1e-9 if epsg == _EPSG_WGS84 else 1e-4
@@ -213,28 +210,62 @@ def _read_geotiff(path: str) -> Elevation:
     nodata = tags.get(_TAG_NODATA)
     if nodata is not None:
         try:
-            heights[heights == float(str(nodata).strip().rstrip("\x00"))] = np.nan
+            value = float(str(nodata).strip().rstrip("\x00"))
         except ValueError:
             raise ValueError(f"add_terrain: {path!r}: GDAL_NODATA {nodata!r} is not a number") from None
+        # Compared in the band's own type, as GDAL does: float32's -3.4028235e+38 is the band's
+        # lowest float32, though not the double that text reads as.
+        if np.issubdtype(data.dtype, np.floating):
+            with np.errstate(over="ignore"):
+                heights[data == data.dtype.type(value)] = np.nan
+        else:
+            heights[data == value] = np.nan
     if np.isinf(heights).any():
         r, c = np.argwhere(np.isinf(heights))[0]
         raise ValueError(
             f"add_terrain: {path!r}: sample (row {r}, column {c}) is {heights[r, c]}; heights must be finite "
             "(voids: NaN or the GDAL_NODATA value)"
         )
-    x0, y0 = x + (centre - i) * sx, y - (centre - j) * sy
     if epsg == _EPSG_WGS84:
         top, bottom = y0, y0 - (data.shape[0] - 1) * sy
         if not (-90.0 <= bottom <= top <= 90.0):
             raise ValueError(f"add_terrain: {path!r}: latitudes {bottom} to {top} deg are outside [-90, 90]")
+        west, east = x0, x0 + (data.shape[1] - 1) * sx
+        if not (-360.0 <= west and east <= 360.0):
+            raise ValueError(f"add_terrain: {path!r}: longitudes {west} to {east} deg are outside [-360, 360]")
     return Elevation(heights, x0, y0, sx, sy, epsg)
 
 
-def _geokeys(directory) -> dict[int, Any]:
+def _geokeys(directory, path: str) -> dict[int, Any]:
     """GeoKeyDirectory: (version, revision, minor, count) then count entries (key, location, count,
     value); short values only (location 0), which is where the CRS codes live."""
-    d = [int(v) for v in directory]
+    try:
+        d = [int(v) for v in np.ravel(directory)]
+    except (TypeError, ValueError):
+        d = []
+    if len(d) < 4 or len(d) < 4 + 4 * d[3]:
+        raise ValueError(f"add_terrain: {path!r}: its GeoKeyDirectory tag is malformed (got {directory!r})")
     return {d[k]: d[k + 3] for k in range(4, 4 + 4 * d[3], 4) if d[k + 1] == 0}
+
+
+def _tag_numbers(tags: dict, code: int, count: int, path: str, name: str) -> list[float]:
+    """The first `count` numbers of a GeoTIFF tag, else ValueError naming the file and the tag."""
+    try:
+        values = [float(v) for v in np.ravel(tags[code])[:count]]
+    except (TypeError, ValueError):
+        values = []
+    if len(values) < count:
+        raise ValueError(f"add_terrain: {path!r}: its {name} tag must hold {count} numbers (got {tags[code]!r})")
+    return values
+
+
+def _placement(tags: dict, keys: dict, path: str) -> tuple[float, float, float, float]:
+    """(x0, y0, dx, dy): the first sample's centre in the CRS and the pixel scale, from the
+    ModelPixelScale and ModelTiepoint tags (pixel-is-area: the tiepoint is a pixel's corner)."""
+    sx, sy = _tag_numbers(tags, _TAG_PIXEL_SCALE, 2, path, "ModelPixelScale")
+    i, j, _, x, y, _ = _tag_numbers(tags, _TAG_TIEPOINT, 6, path, "ModelTiepoint")
+    centre = 0.0 if keys.get(_KEY_RASTER_TYPE) == _RASTER_PIXEL_IS_POINT else 0.5
+    return x + (centre - i) * sx, y - (centre - j) * sy, sx, sy
 
 
 def read_elevation(path: str | os.PathLike) -> Elevation:
@@ -293,14 +324,12 @@ def _read_geotiff_frame(path: str) -> Elevation:
         ) from None
     if _TAG_PIXEL_SCALE not in tags or _TAG_TIEPOINT not in tags or 34735 not in tags:
         raise ValueError(f"add_terrain: orthophoto {path!r} has no georeference (a GeoTIFF is needed)")
-    keys = _geokeys(tags[34735])
+    keys = _geokeys(tags[34735], path)
     epsg = keys.get(_KEY_GEOGRAPHIC_TYPE, _EPSG_WGS84) if keys.get(_KEY_MODEL_TYPE) == _MODEL_GEOGRAPHIC else None
     if epsg is None:
         epsg = int(keys.get(_KEY_PROJECTED_TYPE, 0))
-    sx, sy = float(tags[_TAG_PIXEL_SCALE][0]), float(tags[_TAG_PIXEL_SCALE][1])
-    i, j, _, x, y, _ = (float(v) for v in tags[_TAG_TIEPOINT][:6])
-    centre = 0.0 if keys.get(_KEY_RASTER_TYPE) == _RASTER_PIXEL_IS_POINT else 0.5
-    return Elevation(np.empty((shape[0], shape[1], 0)), x + (centre - i) * sx, y - (centre - j) * sy, sx, sy, epsg)
+    x0, y0, sx, sy = _placement(tags, keys, path)
+    return Elevation(np.empty((shape[0], shape[1], 0)), x0, y0, sx, sy, epsg)
 
 
 def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:

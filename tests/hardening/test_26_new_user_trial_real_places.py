@@ -1,6 +1,7 @@
 """Defects an eighth new-user trial found following the README's real-place and editing workflows
 as a photographer would: each is now computed right or refused by name."""
 
+import numpy as np
 import pytest
 
 import refracta
@@ -45,3 +46,63 @@ def test_the_command_line_sets_how_far_rays_reach():
     for text in ("-5", "0", "inf", "far"):
         with pytest.raises(Exception, match=r"must be"):
             cli._metres(text)
+
+
+def write_tiff(path, data, scale=(0.001, 0.001), tiepoint=(0, 0, 0, 7.0, 46.0, 0), keys=None, nodata=None):
+    """A WGS84 GeoTIFF with its tags as given (malformed ones included)."""
+    import tifffile
+
+    keys = [1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326] if keys is None else keys
+    tags = [
+        (33550, "d", len(scale), scale, False),
+        (33922, "d", len(tiepoint), tiepoint, False),
+        (34735, "H", len(keys), keys, False),
+    ]
+    if nodata is not None:
+        tags.append((42113, "s", 0, nodata, False))
+    tifffile.imwrite(path, data, extratags=tags)
+    return path
+
+
+@pytest.mark.parametrize(
+    ("tags", "message"),
+    [
+        (dict(keys=[1, 1, 0, 5, 1024, 0, 1, 2]), r"its GeoKeyDirectory tag is malformed"),
+        (dict(scale=(0.001,)), r"its ModelPixelScale tag must hold 2 numbers"),
+        (dict(tiepoint=(0.0, 0.0, 0.0)), r"its ModelTiepoint tag must hold 6 numbers"),
+        (dict(tiepoint=(0, 0, 0, 400.0, 46.0, 0)), r"longitudes 400.0005 to 400.0035 deg are outside \[-360, 360\]"),
+    ],
+)
+def test_malformed_geotiff_tags_name_the_file_and_the_tag(tmp_path, tags, message):
+    path = write_tiff(tmp_path / "bad.tif", np.zeros((4, 4), np.float32), **tags)
+    with pytest.raises(ValueError, match=r"'[^']*bad.tif': " + message):
+        refracta.terrain.read_elevation(path)
+
+
+def test_nodata_is_compared_in_the_band_s_type(tmp_path):
+    # float32's lowest value, written as numpy prints it: the double it reads as is not the band's.
+    data = np.full((3, 3), 120.0, np.float32)
+    data[1, 1] = np.finfo(np.float32).min
+    grid = refracta.terrain.read_elevation(write_tiff(tmp_path / "dem.tif", data, nodata=str(np.finfo(np.float32).min)))
+    assert np.isnan(grid.heights[1, 1]) and np.count_nonzero(np.isnan(grid.heights)) == 1
+
+
+def test_a_sensor_size_needs_a_focal_length():
+    frame = refracta.geo.LocalFrame(46.0, 7.0)
+    with pytest.raises(ValueError, match=r"sensor_mm goes with focal_length_mm"):
+        frame.camera(10.0, 90.0, 0.0, vfov=2.0, sensor_mm=(36.0, 24.0))
+
+
+def test_a_converged_solve_is_not_said_to_be_stopped_by_a_limit():
+    # The quick start's own cap (quick_iterations) was reported as the solve's "iteration limit".
+    truth = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
+    pairs = []
+    for elevation, distance in ((-0.22, 400.0), (-0.12, 600.0)):  # rays turning above the road
+        e = np.radians(elevation)
+        path = refracta.trace_ray(truth, EYE, [np.cos(e), np.sin(e), 0.0], max_length=distance, stop_height=0.0)
+        pairs.append(PointPair((np.cos(e), EYE[1] + np.sin(e), 0.0), tuple(path.points[-1])))
+    result = solve(
+        truth.with_params(surface_dt=6.0), EYE, pairs, free=["surface_dt"], stop_height=0.0, quick_iterations=1
+    )
+    assert result.success and result.iterations > 1  # more than the quick stage's one iteration
+    assert result.stopped_by == "", (result.stopped_by, result.stages)

@@ -221,7 +221,9 @@ class Strategy {
                      ? solve_with_ceres(problem_, x0, settings, budget_)
                      : solve_with_nlopt(problem_, settings.nlopt_algorithm, x0, settings, budget_);
     iterations_ += out.result.iterations;
-    note_stop(out.result.stopped);
+    // A stage's own cap (the quick start's quick_iterations) is not a limit of the solve: the
+    // solve's stopped_by names only a budget that ran out.
+    if (budget_.exhausted() != StopReason::kNone) note_stop(out.result.stopped);
     // The time limit interrupted the traces: measure this result all the same (later stages see
     // the limit and do not start).
     if (budget_.exhausted() == StopReason::kTimeLimit) budget_.resume_for_measurement();

@@ -74,7 +74,8 @@ std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const
   std::set<std::string> distinct(textures.begin(), textures.end()), registered, noted;
   distinct.erase("");
   // The callbacks (warnings, progress) may raise: they all run, and every texture loads, before
-  // the first mesh is added, so that a failure leaves the scene's geometry as it was.
+  // the first mesh is added, so that their failure leaves the scene's geometry as it was (the
+  // materials and textures registered stay, unused).
   std::vector<int> materials(parts.size());
   for (size_t p = 0; p < parts.size(); ++p) {
     const MaterialMesh& part = parts[p];
