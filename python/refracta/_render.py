@@ -260,6 +260,11 @@ def render(
             "render: aovs 'geographic' needs frame=, the scene's refracta.geo.LocalFrame (its to_geographic maps "
             f"scene points to latitude, longitude and height; got frame={frame!r})"
         )
+    if frame is not None and "geographic" not in wanted:
+        raise ValueError(
+            "render: frame= maps the 'geographic' readout; ask for it with aovs=[..., 'geographic'] (got "
+            f"frame={frame!r} and aovs={aovs!r})"
+        )
     surface = [name for name in wanted if name not in READOUT_NAMES]  # the readouts say so themselves
     if (denoise or surface) and method == "raster_march":
         raise ValueError(

@@ -496,7 +496,7 @@ def render_file(
         spectral=spectral,
         progress=True,
         aovs=aovs or None,
-        frame=loaded.frame,
+        frame=loaded.frame if aovs and "geographic" in aovs else None,
     )
     if aovs:
         image, layers = result

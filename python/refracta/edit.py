@@ -172,7 +172,14 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float
                     f"pairs[{i}] gives a pixel destination {pair.destination}; pass a Camera "
                     "as eye_or_camera (or give the destination as a 3D point)"
                 )
-            directions.append(camera.ray(*pair.destination)[1])
+            u, v = pair.destination
+            if not (0.0 <= u <= camera.width and 0.0 <= v <= camera.height):
+                raise ValueError(
+                    f"pairs[{i}]: pixel {pair.destination} lies outside the camera's {camera.width} x "
+                    f"{camera.height} image (u in [0, {camera.width}], v in [0, {camera.height}]); pixels of a "
+                    "photograph need a camera of its size (refracta.photo: Photo.camera)"
+                )
+            directions.append(camera.ray(u, v)[1])
         else:
             direction = np.asarray(pair.destination) - eye
             if not np.linalg.norm(direction) > 0.0:

@@ -455,6 +455,15 @@ def add_terrain(
 
     # The grids: positions and, for orthophotos, the uv map of each.
     grids: list[tuple[np.ndarray, Elevation | None]] = []
+    if isinstance(heights, Sequence) and not isinstance(heights, str):
+        names = [isinstance(p, (str, os.PathLike)) for p in heights]
+        if len(heights) == 0:
+            raise ValueError("add_terrain: heights is empty: give an array of heights [m] or elevation files")
+        if any(names) and not all(names):
+            bad = names.index(False)
+            raise ValueError(
+                f"add_terrain: heights[{bad}] must be an elevation file's path, as the others (got {heights[bad]!r})"
+            )
     if isinstance(heights, (str, os.PathLike)) or (
         isinstance(heights, Sequence) and len(heights) > 0 and all(isinstance(p, (str, os.PathLike)) for p in heights)
     ):

@@ -106,3 +106,29 @@ def test_a_converged_solve_is_not_said_to_be_stopped_by_a_limit():
     )
     assert result.success and result.iterations > 1  # more than the quick stage's one iteration
     assert result.stopped_by == "", (result.stopped_by, result.stages)
+
+
+def test_pixels_outside_the_camera_s_image_are_refused():
+    # Destinations from a photograph twice the camera's size were taken, and the solve fitted a
+    # field of view half the true one, silently.
+    camera = refracta.Camera(EYE, (100.0, 1.5, 0.0), vfov=5.0, width=32, height=16)
+    with pytest.raises(ValueError, match=r"pairs\[0\]: pixel \(64.0, 8.0\) lies outside the camera's 32 x 16 image"):
+        solve(AIR, camera, [PointPair((64.0, 8.0), (100.0, 1.5, 0.0))], free=["camera_yaw"])
+
+
+def test_a_frame_without_the_geographic_readout_is_refused():
+    scene = refracta.Scene()
+    scene.add_ground()
+    scene.set_sky((1, 1, 1))
+    camera = refracta.Camera(EYE, (100.0, 0.0, 0.0), vfov=5.0, width=4, height=2)
+    with pytest.raises(ValueError, match=r"frame= maps the 'geographic' readout"):
+        refracta.render(scene, camera, None, frame=42, progress=False)
+
+
+@pytest.mark.parametrize(
+    ("heights", "message"),
+    [([], r"heights is empty"), (["hill.tif", 3], r"heights\[1\] must be an elevation file's path")],
+)
+def test_terrain_lists_name_what_is_wrong(heights, message):
+    with pytest.raises(ValueError, match=message):
+        refracta.Scene().add_terrain(heights, frame=refracta.geo.LocalFrame(46.0, 7.0))
