@@ -770,7 +770,7 @@ def load_scene(path) -> SceneFile:
     except ValueError as error:
         if str(error).startswith(str(path)):
             raise
-        raise where.error(str(error), "camera") from None
+        raise where.error(str(error), "camera", _offending_key(str(error), cam)) from None
 
     scene = _core.Scene()
     materials = _materials(data.get("materials", []), where, get, path)

@@ -132,3 +132,11 @@ def test_a_frame_without_the_geographic_readout_is_refused():
 def test_terrain_lists_name_what_is_wrong(heights, message):
     with pytest.raises(ValueError, match=message):
         refracta.Scene().add_terrain(heights, frame=refracta.geo.LocalFrame(46.0, 7.0))
+
+
+@pytest.mark.parametrize("vfov", ["0.0", "200.0", "nan"])
+def test_a_scene_file_s_camera_error_names_the_key_s_line(tmp_path, vfov):
+    path = tmp_path / "cam.toml"
+    path.write_text(f"# a scene\n\n[camera]\nposition = [0, 1, 0]\nlook_at = [10, 1, 0]\nvfov = {vfov}\n")
+    with pytest.raises(ValueError, match=r"cam.toml:6: \[camera\] vfov: Camera: vfov must be in \(0, 180\)"):
+        refracta.load_scene(path)

@@ -68,7 +68,10 @@ CAMERA = "[camera]\nposition = [0, 1, 0]\nlook_at = [10, 1, 0]\nsize = [8, 4]\n"
             CAMERA + "[[objects]]\ntype = 'sphere'\ncentre = [1, 2, 3]\nradius = 1\ncolour = [1, 0, 0]\n",
             r"scene.toml:9: \[\[objects\]\] #1 colour: unknown key",
         ),
-        ("[camera]\nposition = [0, 1, 0]\nlook_at = [0, 1, 0]\n", r"scene.toml:1: \[camera\]: .*look_at must differ"),
+        (
+            "[camera]\nposition = [0, 1, 0]\nlook_at = [0, 1, 0]\n",
+            r"scene.toml:[23]: \[camera\] (position|look_at): .*look_at must differ",
+        ),
         ("[camera]\nlook_at = [1, 1, 0]\n", r"scene.toml:1: \[camera\] position: missing"),
     ],
 )
@@ -236,7 +239,7 @@ def test_a_photographic_camera_with_a_lens_loads_and_round_trips(tmp_path):
     [
         ("vfov = 10.0\nfocal_length_mm = 50.0\n", r"\[camera\] focal_length_mm: give vfov or focal_length_mm"),
         ("f_number = 2.0\n", r"\[camera\] f_number: needs focal_length_mm"),
-        ("focal_length_mm = 50.0\nf_number = 0.0\n", r"\[camera\]: Camera.photographic: f_number must be > 0"),
+        ("focal_length_mm = 50.0\nf_number = 0.0\n", r"\[camera\] f_number: Camera.photographic: f_number must be > 0"),
         ("aperture_diameter = 0.01\n", r"\[camera\] aperture_diameter: needs focus_distance"),
         ("focus_distance = 5.0\n", r"\[camera\] focus_distance: needs f_number or aperture_diameter"),
     ],
