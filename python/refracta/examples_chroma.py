@@ -144,6 +144,8 @@ def gamut_map(image: np.ndarray) -> np.ndarray:
     image = np.asarray(image, dtype=np.float64)
     if image.ndim != 3 or image.shape[2] != 3:
         raise ValueError(f"gamut_map: image must be (H, W, 3) (got {image.shape})")
+    if not np.isfinite(image).all():
+        raise ValueError("gamut_map: image must be finite (radiance)")
     y = image @ LUMINANCE
     lowest = image.min(axis=2)
     t = np.where(lowest < 0.0, np.clip(y / np.maximum(y - lowest, 1e-300), 0.0, 1.0), 1.0)

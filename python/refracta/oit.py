@@ -73,8 +73,16 @@ def composite(
         raise ValueError("composite: method 'peel' needs layers")
     settings = oit_settings(method, options, **fields)
     colors = np.asarray(colors, dtype=np.float64).reshape(-1, 3)
+    depths = np.asarray(depths, np.float64).ravel()
+    z_range = fields.get("z_range")
+    if z_range is not None and depths.size and not (z_range[0] <= depths.min() and depths.max() <= z_range[1]):
+        # MBOIT warps depths in the range to [-1, 1]: those beyond it leave the moments' domain.
+        raise ValueError(
+            f"composite: z_range {tuple(z_range)} must hold every fragment's depth "
+            f"(got {depths.min():g} to {depths.max():g})"
+        )
     return _core._composite(
-        np.asarray(depths, np.float64).ravel(),
+        depths,
         np.asarray(alphas, np.float64).ravel(),
         colors,
         np.asarray(background, np.float64),

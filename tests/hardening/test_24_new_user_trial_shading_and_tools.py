@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import refracta
-from refracta import geo, lights, moments, oit, photo, shading, spectrum, turbulence
+from refracta import examples_chroma, geo, lights, moments, oit, photo, shading, spectrum, turbulence
 
 DEPTHS, ALPHAS, COLORS = [1.0, 2.0, 3.0], [0.5, 0.5, 0.5], [[1.0, 0.0, 0.0]] * 3
 
@@ -167,3 +167,17 @@ def test_photographs_are_files(tmp_path):
         photo.load(tmp_path)
     with pytest.raises(refracta.IoError, match=r"no such file"):
         photo.read_exif(tmp_path / "missing.jpg")
+
+
+def test_a_depth_range_must_hold_the_fragments():
+    # z_range (10, 20) around fragments at 1-3 m gave (0.29, 0.29, 0.29) for red, silently.
+    with pytest.raises(ValueError, match=r"z_range \(10, 20\) must hold every fragment's depth \(got 1 to 3\)"):
+        oit.composite(DEPTHS, ALPHAS, COLORS, method="mboit", z_range=(10, 20))
+
+
+def test_spectral_estimates_and_gamut_mapping_refuse_impossible_input():
+    radiance, lam = np.ones((1, 4)), np.full((1, 4), 550.0)
+    with pytest.raises(ValueError, match=r"pdf must be finite and >= 0"):
+        spectrum.to_linear_srgb(radiance, lam, np.full((1, 4), -0.01))
+    with pytest.raises(ValueError, match=r"gamut_map: image must be finite"):
+        examples_chroma.gamut_map(np.full((1, 1, 3), np.nan))

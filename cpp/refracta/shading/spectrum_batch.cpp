@@ -114,6 +114,9 @@ RowMatrixX3d to_linear_srgb(const RowMatrixX4d& radiance, const RowMatrixX4d& la
   if (lambda_nm.rows() != radiance.rows() || pdf.rows() != radiance.rows()) {
     throw_invalid("radiance, wavelengths and pdf must have the same shape (N, 4)");
   }
+  if (!((pdf.array() >= 0.0).all() && pdf.allFinite())) {
+    throw_invalid("pdf must be finite and >= 0 [1/nm] (0: a terminated wavelength)");
+  }
   RowMatrixX3d out(radiance.rows(), 3);
   for (Eigen::Index i = 0; i < radiance.rows(); ++i) {
     SampledWavelengths w;
