@@ -140,3 +140,29 @@ def test_a_scene_file_s_camera_error_names_the_key_s_line(tmp_path, vfov):
     path.write_text(f"# a scene\n\n[camera]\nposition = [0, 1, 0]\nlook_at = [10, 1, 0]\nvfov = {vfov}\n")
     with pytest.raises(ValueError, match=r"cam.toml:6: \[camera\] vfov: Camera: vfov must be in \(0, 180\)"):
         refracta.load_scene(path)
+
+
+def test_the_distance_readout_over_a_curved_earth_is_the_true_length():
+    # Straight rays in true space (without_refraction of a CurvedEarth): the readout must equal the
+    # true chord from the eye to the hit. The mean of the ends' scales missed the path's sag in the
+    # flat frame: L^3 / 12 R^2 too long, 0.15 m at 42 km (a trial).
+    radius = 6371e3
+    field = refracta.without_refraction(refracta.CurvedEarth(refracta.PhysicalAtmosphere(), radius=radius))
+    scene = refracta.Scene()
+    scene.add_box((42000.0, 150.0, 0.0), (200.0, 300.0, 2000.0))
+    scene.set_sky((1, 1, 1))
+    camera = refracta.Camera((0.0, 100.0, 0.0), (42000.0, 150.0, 0.0), vfov=0.5, width=8, height=8)
+    _, aovs = refracta.render(scene, camera, field, max_length=60000.0, aovs=["distance", "position"], progress=False)
+    hit = np.isfinite(aovs["distance"])
+    assert hit.sum() >= 24  # the box fills the lower half of the view or more
+
+    def true_point(p):  # the conformal map: x' = R phi, y' = R ln(r / R) (media/curved_earth.h)
+        rho, r = np.hypot(p[..., 0], p[..., 2]), radius * np.exp(p[..., 1] / radius)
+        phi = rho / radius
+        scale = np.where(rho > 0, r * np.sin(phi) / np.maximum(rho, 1e-300), 1.0)
+        return np.stack([p[..., 0] * scale, r * np.cos(phi) - radius, p[..., 2] * scale], axis=-1)
+
+    eye = true_point(np.array(camera.position, float))
+    chord = np.linalg.norm(true_point(aovs["position"][hit].astype(np.float64)) - eye, axis=1)
+    # 0.01 m: the float32 hit positions and readouts (4 mm at 42 km); 1.9 mm measured, 0.15 m before.
+    np.testing.assert_allclose(aovs["distance"][hit], chord, atol=0.01)

@@ -34,9 +34,12 @@ TraceOptions grazing_options(double max_length, const std::atomic<bool>* cancel)
 
 }  // namespace
 
-double true_path_length(double length, double y_start, double y_end, double earth_radius) {
+double true_path_length(double length, double y_start, double y_end, double slope_start, double slope_end,
+                        double earth_radius) {
   if (!std::isfinite(earth_radius) || !std::isfinite(length)) return length;
-  return length * 0.5 * (std::exp(y_start / earth_radius) + std::exp(y_end / earth_radius));
+  const double y_middle = 0.5 * (y_start + y_end) + 0.125 * length * (slope_start - slope_end);  // Hermite
+  auto scale = [&](double y) { return std::exp(y / earth_radius); };
+  return length * (scale(y_start) + 4.0 * scale(y_middle) + scale(y_end)) / 6.0;
 }
 
 Vec2d apparent_angles(const Vec3d& direction) {

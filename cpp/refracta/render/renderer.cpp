@@ -333,7 +333,9 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     if (!aovs) return;
     aovs->eye_direction = dir;
     aovs->hit = first.hit;
-    aovs->distance = first.hit ? true_path_length(first.length, origin.y(), first.hit->point.y(), earth_radius) : first.length;
+    aovs->distance = first.hit ? true_path_length(first.length, origin.y(), first.hit->point.y(), dir.normalized().y(),
+                                                  first.direction.y(), earth_radius)
+                               : first.length;
   };
   // Dispersive air: a pool of casters and integrators, one retuned to each sample's hero (hero_casters.h).
   const std::unique_ptr<HeroCasters> heroes =
