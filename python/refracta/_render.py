@@ -139,7 +139,8 @@ def render(
     where said): of the NEAREST hit among the pixel's samples (the sample of least path length, so
     a foreground and a background never blend into a point in the air; bit-identical for any
     thread count) -- 'distance' (H, W) the true length of the curved camera path to it [m] (over a
-    CurvedEarth its flat-frame length scaled back by r / R along it, Simpson's rule: mm at 40 km), inf where no sample met anything;
+    CurvedEarth its flat-frame length scaled back by r / R along it, Simpson's rule: mm at 40 km),
+    inf where no sample met anything;
     'position' (H, W, 3) the hit point in scene coordinates [m] (over a CurvedEarth its flat
     frame), NaN where none; 'object_id' (H, W) int32 the id of the
     geometry met (as Scene.add_* returned), -1 where none; 'geographic' (H, W, 3) float64 latitude,
