@@ -33,3 +33,16 @@ def finite_pair(value) -> tuple[float, float] | None:
     except (TypeError, ValueError):
         return None
     return (a, b) if math.isfinite(a) and math.isfinite(b) else None
+
+
+def real_array(value, what: str, shape: tuple[int, ...] | None = None) -> np.ndarray:
+    """`value` as a float64 array (of `shape` when given), else ValueError naming it (`what`):
+    strings and booleans too, which numpy would read as numbers."""
+    try:
+        array = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        array = None
+    if array is None or np.asarray(value).dtype.kind in "bUS" or (shape is not None and array.shape != shape):
+        wanted = f" of shape {shape}" if shape is not None else ""
+        raise ValueError(f"{what} must be numbers{wanted} (got {value!r})")
+    return array

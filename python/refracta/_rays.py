@@ -9,6 +9,7 @@ from typing import Callable
 import numpy as np
 
 from refracta import _core
+from refracta._checks import real_array
 
 
 def without_refraction(field: _core.IndexField | None) -> _core.IndexField | None:
@@ -92,10 +93,7 @@ def trace_rays(
 
 def _rows(value, name: str) -> np.ndarray:
     """`value` as float64 of shape (3,) or (N, 3), else ValueError naming it."""
-    try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(f"trace_rays: {name} must be numbers of shape (3,) or (N, 3) (got {value!r})") from None
+    array = real_array(value, f"trace_rays: {name}")
     if array.ndim not in (1, 2) or array.shape[-1] != 3:
         raise ValueError(f"trace_rays: {name} must have shape (3,) or (N, 3) (got {array.shape})")
     return array

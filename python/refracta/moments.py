@@ -19,24 +19,12 @@ from collections.abc import Sequence
 import numpy as np
 
 from refracta import _core
-from refracta._checks import is_seed
-
-
-def _real_array(value, what: str, shape: tuple[int, ...] | None = None) -> np.ndarray:
-    """`value` as a float64 array (of `shape` when given), else ValueError naming it."""
-    try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        array = None
-    if array is None or np.asarray(value).dtype.kind in "bUS" or (shape is not None and array.shape != shape):
-        wanted = f" of shape {shape}" if shape is not None else ""
-        raise ValueError(f"{what} must be numbers{wanted} (got {value!r})")
-    return array
+from refracta._checks import is_seed, real_array
 
 
 def power_moments(depths, weights=None, count: int = 4) -> np.ndarray:
     """(b_1 .. b_count) of the distributions sum_l w_l delta(z_l) along the last axis (weights sum to 1)."""
-    depths = _real_array(depths, "power_moments: depths")
+    depths = real_array(depths, "power_moments: depths")
     if depths.ndim < 1 or depths.shape[-1] < 1:
         raise ValueError(f"power_moments: depths must hold at least one depth along the last axis (got {depths.shape})")
     if not (is_seed(count) and count >= 1):
@@ -44,7 +32,7 @@ def power_moments(depths, weights=None, count: int = 4) -> np.ndarray:
     if weights is None:
         weights = np.full_like(depths, 1.0 / depths.shape[-1])
     else:
-        weights = _real_array(weights, "power_moments: weights")
+        weights = real_array(weights, "power_moments: weights")
         if weights.shape != depths.shape:
             raise ValueError(f"power_moments: weights must have depths' shape {depths.shape} (got {weights.shape})")
     if not (np.all(np.isfinite(depths)) and np.all(np.isfinite(weights))):
@@ -65,7 +53,7 @@ def power_moments(depths, weights=None, count: int = 4) -> np.ndarray:
 def quantize(moments, depth_range: str = "unit", inverse: bool = False) -> np.ndarray:
     """The optimised quantisation transform (unit: I3D 2015 dense; signed: JCGT 2017 Theta*_4) of
     (..., 4) moments, or its inverse. Moments of any depth in range map into [0, 1]^4."""
-    moments = _real_array(moments, "quantize: moments")
+    moments = real_array(moments, "quantize: moments")
     if moments.shape[-1:] != (4,):
         raise ValueError(f"quantize: moments must have shape (..., 4) (got {moments.shape})")
     flat = np.ascontiguousarray(moments.reshape(-1, 4))
@@ -98,9 +86,9 @@ def shadow_intensity(
         depth_range=depth_range,
         storage=storage,
         bias=bias,
-        bias_vector=None if bias_vector is None else list(_real_array(bias_vector, "bias_vector", (4,))),
+        bias_vector=None if bias_vector is None else list(real_array(bias_vector, "bias_vector", (4,))),
     )
-    moments = _real_array(moments, "shadow_intensity: moments")
+    moments = real_array(moments, "shadow_intensity: moments")
     if moments.shape[-1:] != (4,):
         raise ValueError(f"moments must have shape (..., 4) (got {moments.shape})")
     z_f = np.asarray(z_f, dtype=np.float64)
