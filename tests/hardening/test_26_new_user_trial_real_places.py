@@ -80,10 +80,11 @@ def test_malformed_geotiff_tags_name_the_file_and_the_tag(tmp_path, tags, messag
 
 
 def test_nodata_is_compared_in_the_band_s_type(tmp_path):
-    # float32's lowest value, written as numpy prints it: the double it reads as is not the band's.
+    # float32's lowest value, written as numpy prints it (-3.4028235e+38): the double that text
+    # reads as is not the band's float32.
     data = np.full((3, 3), 120.0, np.float32)
     data[1, 1] = np.finfo(np.float32).min
-    grid = refracta.terrain.read_elevation(write_tiff(tmp_path / "dem.tif", data, nodata=str(np.finfo(np.float32).min)))
+    grid = refracta.terrain.read_elevation(write_tiff(tmp_path / "dem.tif", data, nodata="-3.4028235e+38"))
     assert np.isnan(grid.heights[1, 1]) and np.count_nonzero(np.isnan(grid.heights)) == 1
 
 
