@@ -41,6 +41,7 @@ import numpy as np
 from refracta import _core
 from refracta import io as _io
 from refracta._checks import is_number
+from refracta._render import AOV_NAMES
 
 __all__ = ["Exif", "OverlayResult", "Photo", "load", "overlay", "read_exif", "OVERLAY_MODES"]
 
@@ -424,6 +425,9 @@ def overlay(
         render, given = render
         aovs = {**given, **(aovs or {})}
     aovs = dict(aovs or {})
+    unknown = sorted(name for name in aovs if name not in AOV_NAMES)
+    if unknown:  # a misspelt readout would leave the edges to the luminance, silently
+        raise ValueError(f"overlay: unknown readouts {unknown} in aovs (render's names: {', '.join(AOV_NAMES)})")
     for name, value in (("alpha", alpha), ("threshold", threshold)):
         if not is_number(value):
             raise ValueError(f"{name} must be a number (got {value!r})")

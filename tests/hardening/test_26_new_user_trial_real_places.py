@@ -167,3 +167,9 @@ def test_the_distance_readout_over_a_curved_earth_is_the_true_length():
     chord = np.linalg.norm(true_point(aovs["position"][hit].astype(np.float64)) - eye, axis=1)
     # 0.01 m: the float32 hit positions and readouts (4 mm at 42 km); 1.9 mm measured, 0.15 m before.
     np.testing.assert_allclose(aovs["distance"][hit], chord, atol=0.01)
+
+
+def test_overlay_names_a_readout_it_does_not_know():
+    image = np.zeros((4, 6, 3), np.float32)
+    with pytest.raises(ValueError, match=r"overlay: unknown readouts \['foo'\] in aovs"):
+        refracta.photo.overlay(image, image, aovs={"foo": np.zeros((4, 6))})
