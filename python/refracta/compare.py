@@ -46,10 +46,8 @@ def shadows(
     reference), over_shadow (the same above), nan_count, bits_per_texel, seconds; fig (when
     `figure`) shows, for the largest kernel, each method's shadow image and its error map.
     """
-    methods = _names(methods, "methods")
-    if isinstance(kernels, (str, bytes)) or not isinstance(kernels, Iterable):
-        raise ValueError(f"kernels must be a sequence of odd whole numbers of texels (got {kernels!r})")
-    kernels = list(kernels)
+    methods = _sequence(methods, "methods", "names")
+    kernels = _sequence(kernels, "kernels", "odd whole numbers of texels")
     if not all(is_seed(k) and k % 2 == 1 for k in kernels):  # before any render
         raise ValueError(f"kernels must be odd whole numbers of texels (got {kernels!r})")
     kernels = [int(k) for k in kernels]
@@ -128,7 +126,7 @@ def transparency(
     error relative to the exact pixel's brightest channel, over pixels with fragments), nan_count,
     bytes_per_pixel, seconds; fig shows the exact image and each method's error map.
     """
-    methods = _names(methods, "methods")
+    methods = _sequence(methods, "methods", "names")
     unknown = [m for m in methods if m not in TRANSPARENCY_METHODS]
     if unknown:
         raise ValueError(f"unknown transparency methods {unknown} (expected some of {list(TRANSPARENCY_METHODS)})")
@@ -180,11 +178,11 @@ def transparency(
     return rows, fig
 
 
-def _names(value, what: str) -> list[str]:
-    """A sequence of method names as a list; ValueError for one string (it would be read letter by
-    letter) or anything else."""
+def _sequence(value, what: str, kind: str) -> list:
+    """A sequence (of `kind`) as a list; ValueError for one string (it would be read letter by
+    letter), one number or anything else."""
     if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
-        raise ValueError(f"{what} must be a sequence of names, as ({value!r},) (got {value!r})")
+        raise ValueError(f"{what} must be a sequence of {kind}, as ({value!r},) (got {value!r})")
     return list(value)
 
 

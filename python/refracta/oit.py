@@ -74,11 +74,11 @@ def composite(
     settings = oit_settings(method, options, **fields)
     colors = np.asarray(colors, dtype=np.float64).reshape(-1, 3)
     depths = np.asarray(depths, np.float64).ravel()
-    z_range = fields.get("z_range")
-    if z_range is not None and depths.size and not (z_range[0] <= depths.min() and depths.max() <= z_range[1]):
+    near, far = settings.mboit.z_near, settings.mboit.z_far  # 0, 0: the fragments' own range
+    if settings.method == "mboit" and far > 0.0 and depths.size and not (near <= depths.min() and depths.max() <= far):
         # MBOIT warps depths in the range to [-1, 1]: those beyond it leave the moments' domain.
         raise ValueError(
-            f"composite: z_range {tuple(z_range)} must hold every fragment's depth "
+            f"composite: z_range ({near:g}, {far:g}) must hold every fragment's depth "
             f"(got {depths.min():g} to {depths.max():g})"
         )
     return _core._composite(

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <optional>
+#include <tuple>
 
 namespace refracta {
 
@@ -261,6 +262,11 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            "the kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).");
 }
 
+// A box's (lower, upper) corners as arrays (3,).
+std::tuple<DoubleArray, DoubleArray> box_tuple(const std::pair<Vec3d, Vec3d>& box) {
+  return {vector_to_array(box.first), vector_to_array(box.second)};
+}
+
 void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& scene) {
   scene.def_property_readonly("geometry_count", [](const RenderScene& s) { return s.geometry.geometry_count(); })
       .def("__repr__",
@@ -270,18 +276,12 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
            })
       .def_property_readonly(
           "bounds",
-          [](const RenderScene& s) {
-            const auto [lower, upper] = scene_bounds(s);
-            return py::make_tuple(vector_to_array(lower), vector_to_array(upper));
-          },
+          [](const RenderScene& s) { return box_tuple(scene_bounds(s)); },
           "(lower, upper): corners (3,) [m] of the axis-aligned box around every geometry (spheres\n"
           "exact; a ground counts at its full size). ValueError for an empty scene.")
       .def_property_readonly(
           "object_bounds",
-          [](const RenderScene& s) {
-            const auto [lower, upper] = framing_bounds(s);
-            return py::make_tuple(vector_to_array(lower), vector_to_array(upper));
-          },
+          [](const RenderScene& s) { return box_tuple(framing_bounds(s)); },
           "(lower, upper) of the scene's objects, as Camera.framing frames them: flat horizontal surfaces\n"
           "(a ground, a sea) count only when there is nothing else. ValueError for an empty scene.")
       .def("material",
