@@ -193,8 +193,8 @@ inline constexpr const char mkd_doc_refracta_PairOptions[] = R"doc(How an edit's
 EditResult.paths take these fields as keywords), with their defaults (defined once, in C++'s
 PairOptions). validate() reports every bad value at once.)doc";
 inline constexpr const char mkd_doc_refracta_PairOptions_max_steps[] = R"doc(Integration steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails.)doc";
-inline constexpr const char mkd_doc_refracta_PairOptions_reach[] = R"doc(The path is traced to reach x (the eye-to-source distance) + 1 m, and stops early once it is past
-the source.)doc";
+inline constexpr const char mkd_doc_refracta_PairOptions_reach[] = R"doc(The path is traced to reach x (the eye-to-source distance) + 1 m (reach in [1, 100]), and stops
+early once it is past the source.)doc";
 inline constexpr const char mkd_doc_refracta_PairOptions_step[] = R"doc(rk4 step [m] (0: 0.3, the original editor's))doc";
 inline constexpr const char mkd_doc_refracta_PairOptions_stop_height[] = R"doc(Paths end where they descend through it (a ground) [m]; unset (None): no ground.)doc";
 inline constexpr const char mkd_doc_refracta_PairOptions_tol[] = R"doc(rk45 target position error [m] (at least 1e-13 per metre of path))doc";

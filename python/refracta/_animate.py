@@ -18,7 +18,7 @@ from typing import Callable
 import numpy as np
 
 from refracta import _core
-from refracta._checks import finite_pair, is_number, is_seed
+from refracta._checks import finite_pair, is_number, is_seed, real_array
 from refracta._render import _check_scene, _denoised, _surface_outputs, render_options
 from refracta._sweep import map_ordered
 
@@ -89,6 +89,13 @@ def geometric_noise_map(
     height, width = int(height), int(width)  # numpy integers have no bit_length (_fft_size)
     pad = int(math.ceil(4.0 * correlation_pixels))
     ny, nx = _fft_size(height + pad), _fft_size(width + pad)
+    if ny * nx > _MAX_NOISE_CELLS:  # a 9999-pixel correlation asked for ~40000^2 cells: the OS killed it
+        raise ValueError(
+            f"geometric_noise: correlation_pixels={correlation_pixels!r} on a {height}x{width} image needs a "
+            f"{ny}x{nx} FFT grid (the image plus 4 correlation lengths), more than {_MAX_NOISE_CELLS} cells "
+            f"({_MAX_NOISE_CELLS * 16 >> 20} MB a complex array); a correlation much longer than the image "
+            f"only tilts it as a whole: use one of at most a few times the image size"
+        )
     rng = np.random.default_rng(seed)
     ky = 2.0 * math.pi * np.fft.fftfreq(ny)[:, None]
     kx = 2.0 * math.pi * np.fft.rfftfreq(nx)[None, :]
@@ -120,6 +127,10 @@ def geometric_noise(
     with a Gaussian spectrum (the follow-up editor's cheap shimmer; refracta.Turbulence is the
     physical one). Camera.project ignores the jitter."""
     return camera.jittered(geometric_noise_map(camera.height, camera.width, rms, correlation_pixels, seed, time, speed))
+
+
+# The largest FFT grid geometric_noise_map synthesises on: 4096^2 cells, 256 MB per complex array.
+_MAX_NOISE_CELLS = 1 << 24
 
 
 def _fft_size(n: int) -> int:
@@ -183,7 +194,7 @@ def animate(
     that only the shimmer moves, not the sampling noise. Further keywords: render's (method, spp,
     max_length, turbulence_trace, ...: see refracta.render).
     """
-    times = np.asarray(times, dtype=np.float64)
+    times = real_array(times, "animate: times")  # not True/False, nor a string
     if times.ndim != 1 or times.size < 1:
         raise ValueError(f"animate: times must be a non-empty 1-D array of finite seconds (got shape {times.shape})")
     if not np.all(np.isfinite(times)):
@@ -212,6 +223,7 @@ def animate(
         geometric_noise_map(1, 1, **noise)  # checks the values before any work
     if turbulence is not None:
         with_turbulence(field, turbulence)  # checks the field before any work
+    given_fps = fps
     unused = [name for name, value in (("fps", fps), ("exposure", exposure), ("tonemap", tonemap)) if value is not None]
     if path is None and unused:
         raise ValueError(
@@ -222,6 +234,12 @@ def animate(
         path = os.fspath(path)
         if "{" not in path:
             fps = _frame_rate(times, fps)  # the file's (frames as an array, or frame files, have no rate)
+            if path.lower().endswith(".gif") and fps > _GIF_FASTEST:
+                raise ValueError(
+                    f"animate: a GIF's frame delays are whole hundredths of a second, at least 2 (browsers slow "
+                    f"shorter ones to 0.1 s): at most {_GIF_FASTEST:g} fps (got {fps:g}"
+                    f"{'' if given_fps is not None else ', from the times'}); give fps= or write an MP4"
+                )
         elif fps is not None:
             raise ValueError(f"animate: fps is a GIF's or an MP4's; frame files ({path!r}) have no rate")
         _writer_for(path)  # an unknown format or a missing package fails before rendering
@@ -302,6 +320,10 @@ def _check_output_settings(path: str, exposure, tonemap) -> None:
         _core._check_image_format(path.format(0))  # a format OpenImageIO writes: IoError naming the file
 
 
+# A GIF's frame delay is a whole number of hundredths of a second; browsers play 0 or 1 as 10.
+_GIF_FASTEST = 50.0
+
+
 def _frame_rate(times: np.ndarray, fps: float | None) -> float:
     if fps is not None:
         if not (is_number(fps) and 0.0 < fps < 1e4):
@@ -352,7 +374,8 @@ def _write_gif(path, frames, fps, exposure, tonemap):
     import PIL.Image
 
     images = [PIL.Image.fromarray(f) for f in _display_bytes(frames, exposure, tonemap)]
-    images[0].save(path, save_all=True, append_images=images[1:], duration=int(round(1000.0 / fps)), loop=0)
+    delay = 10 * max(2, round(100.0 / fps))  # [ms], whole hundredths (animate checked fps <= _GIF_FASTEST)
+    images[0].save(path, save_all=True, append_images=images[1:], duration=delay, loop=0)
 
 
 def _write_mp4(path, frames, fps, exposure, tonemap):

@@ -2458,8 +2458,8 @@ class PairOptions:
     @property
     def reach(self) -> float:
         """
-        The path is traced to reach x (the eye-to-source distance) + 1 m, and stops early once it is past
-        the source.
+        The path is traced to reach x (the eye-to-source distance) + 1 m (reach in [1, 100]), and stops
+        early once it is past the source.
         """
     @reach.setter
     def reach(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:

@@ -531,8 +531,11 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     print(result.report())
     # The solved field carries the file's turbulence (if any): written with its settings again.
     output.write_text(with_atmosphere(Path(scene_path).read_text(), result.field, loaded.turbulence))
-    print(f"wrote {output}")
-    return 0 if result.success else 1
+    if result.success:
+        print(f"wrote {output}")
+        return 0
+    print(f"the solve FAILED (report above); wrote its best atmosphere to {output} anyway, to inspect (exit status 1)")
+    return 1
 
 
 def main(argv=None) -> int:
@@ -624,7 +627,12 @@ def _run(argv=None) -> int:
         "apparent_elevation, apparent_azimuth, true_elevation, hidden_height, images, albedo, normal, "
         "geographic (needs the file's [geographic] table) (refracta.render's aovs)",
     )
-    edit_parser = commands.add_parser("edit", help="solve a scene's atmosphere for point pairs (JSON)")
+    edit_parser = commands.add_parser(
+        "edit",
+        help="solve a scene's atmosphere for point pairs (JSON)",
+        description="Solve a scene's atmosphere for point pairs and write the scene with it. Exit status 0 "
+        "when every pair is met; 1 when the solve fails, the best atmosphere it found written all the same.",
+    )
     edit_parser.add_argument("scene", type=Path, help="scene file (.toml) with an [atmosphere] table")
     edit_parser.add_argument(
         "--pairs", type=Path, required=True, help="pairs file (.json), see refracta.edit.load_pairs"

@@ -44,7 +44,7 @@ from typing import Any, Callable
 import numpy as np
 
 from refracta import _core, _options
-from refracta._checks import is_number
+from refracta._checks import is_number, number, real_array
 from refracta._progress import progress_callback
 
 # The options and summary of a solve, bound from C++ (edit_settings.h, point_pair.h).
@@ -76,8 +76,8 @@ NLOPT_ALGORITHMS = ("LN_BOBYQA", "LN_NELDERMEAD", "LN_SBPLX", "LN_COBYLA", "GN_D
 def _vector(value, sizes, what: str) -> np.ndarray:
     wanted = " or ".join(str(s) for s in sizes)
     try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
+        array = real_array(value, what)
+    except ValueError:
         raise ValueError(f"{what} must be {wanted} finite numbers (got {value!r})") from None
     if array.ndim != 1 or array.size not in sizes or not np.all(np.isfinite(array)):
         raise ValueError(f"{what} must be {wanted} finite numbers (got {value!r})")
@@ -85,13 +85,11 @@ def _vector(value, sizes, what: str) -> np.ndarray:
 
 
 def _number(value, what: str) -> float:
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{what} must be a number (got {value!r})") from None
-    if not np.isfinite(number):
+    """A finite number, not a bool or a string (True and '2' were weights)."""
+    value = number(value, what)
+    if not np.isfinite(value):
         raise ValueError(f"{what} must be finite (got {value!r})")
-    return number
+    return value
 
 
 @dataclass(frozen=True)
@@ -206,7 +204,7 @@ _RENAMED = {"integrator": "trace", "ground": "stop_height"}
 
 def _pair_options(where: str, given: _core.PairOptions | None, options: dict) -> _core.PairOptions:
     """PairOptions from `given` (None: the defaults) and PairOptions fields as keywords (deprecated
-    spellings renamed with a warning; any other keyword raises TypeError)."""
+    spellings renamed with a warning; any other keyword raises ValueError naming it)."""
     options = _options.renamed(dict(options), _RENAMED, where, stacklevel=4)
     return _options.build(_core.PairOptions, given, where=where, **options)
 
@@ -215,7 +213,7 @@ def _pair_options(where: str, given: _core.PairOptions | None, options: dict) ->
 _SUMMARY_FIELDS = frozenset(_options.fields(_core.SolveSummary)) - {"values"}
 
 
-@dataclass
+@dataclass(frozen=True)
 class EditResult:
     """What solve() found. ``print(result)`` shows the report.
 
@@ -399,9 +397,9 @@ def solve(
 
     Raises:
         ValueError: bad pairs (NaN, pixel without camera), unknown parameter names or nlopt
-            algorithm, bounds not containing the start, bad option values (every one listed).
-        TypeError: a keyword that is no option. refracta.NumericalError: the start field cannot
-            trace the pairs. KeyboardInterrupt on Ctrl-C.
+            algorithm, bounds not containing the start, bad option values (every one listed), a
+            keyword that is no option. refracta.NumericalError: the start field cannot trace the
+            pairs. KeyboardInterrupt on Ctrl-C.
     """
     where = "refracta.edit.solve"
     options = _options.renamed(dict(options), _RENAMED, where)
@@ -421,6 +419,14 @@ def solve(
             raise ValueError(
                 f"free names camera parameters {[n for n in free if n in CAMERA_PARAMETERS]}: pass a Camera as "
                 "eye_or_camera (the camera whose pixels the destinations are)"
+            )
+    for name, given, cls in (
+        ("settings", settings, _core.SolveSettings),
+        ("pair_options", pair_options, _core.PairOptions),
+    ):
+        if given is not None and not isinstance(given, cls):
+            raise ValueError(
+                f"{where}: {name} must be a refracta.edit.{cls.__name__} or None (got {type(given).__name__})"
             )
     settings = _options.build(_core.SolveSettings, settings, where=where, **settings_keywords)
     pair_options = _options.build(_core.PairOptions, pair_options, where=where, **pair_keywords)

@@ -177,11 +177,11 @@ SPOT = "[atmosphere]\nsurface_dt = 5\n\n[[atmosphere.hot_spots]]\nx = 50\nz = 0\
         (CAMERA + SPOT.replace("radius = 3\n", ""), r":8: \[\[atmosphere.hot_spots\]\] #1 radius: missing"),
         (
             CAMERA + SPOT.replace("radius = 3", "radius = 0"),
-            r":11: \[\[atmosphere.hot_spots\]\] #1 radius: HotSpot: radius must be > 0 m \(got 0\)",
+            r":11: \[\[atmosphere.hot_spots\]\] #1 radius: HotSpot: radius must be >= 0.001 m \(got 0\)",
         ),
         (
             CAMERA + SPOT + "\n[[atmosphere.hot_spots]]\nx = 9\nz = 0\nradius = -2\ndt = 1\n",
-            r":17: \[\[atmosphere.hot_spots\]\] #2 radius: HotSpot: radius must be > 0 m",
+            r":17: \[\[atmosphere.hot_spots\]\] #2 radius: HotSpot: radius must be >= 0.001 m",
         ),
         (
             CAMERA + SPOT + "footprint = 'square'\n",
@@ -214,7 +214,7 @@ SPOT = "[atmosphere]\nsurface_dt = 5\n\n[[atmosphere.hot_spots]]\nx = 50\nz = 0\
         ),
         (
             CAMERA + "[atmosphere]\n\n[atmosphere.turbulence]\ncells = 16\ncn2 = -1e-10\n",
-            r":9: \[atmosphere.turbulence\] cn2: Turbulence: cn2 must be >= 0",
+            r":9: \[atmosphere.turbulence\] cn2: Turbulence: cn2 must be in \[0, 1\]",
         ),
         (
             CAMERA + "[atmosphere]\n\n[atmosphere.turbulence]\ncells = 16.5\n",

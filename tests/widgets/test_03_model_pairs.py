@@ -124,6 +124,7 @@ def test_dragging_a_source_picks_the_point_under_the_pointer(make_model, road):
         ("set_weight", float("nan"), "pair 0 weight"),
         ("set_weight", 0.0, "pair 0 weight"),
         ("set_weight", "heavy", "pair 0 weight"),
+        ("set_weight", True, "pair 0 weight"),  # float(True) is 1: was a weight
         ("set_margin", -1.0, "pair 0 margin"),
         ("set_margin", math.inf, "pair 0 margin"),
     ],
@@ -144,6 +145,18 @@ def test_add_pair_names_a_bad_weight_or_margin(make_model):
     with pytest.raises(ValueError, match="margin"):
         model.add_pair((150.0, 70.0), (258.0, 0.4, 1.7), margin=-0.5)
     assert model.pairs == ()
+
+
+def test_a_destination_off_the_image_is_refused_when_added_or_moved(make_model, road):
+    # It was taken, and failed only later, as a failed solve job.
+    model = make_model()
+    with pytest.raises(ValueError, match=f"outside the {road.camera.width} x {road.camera.height} image"):
+        model.add_pair((1000.0, 5.0), (258.0, 0.4, 1.7))
+    assert model.pairs == ()
+    model.add_pair((150.0, 70.0), (258.0, 0.4, 1.7))
+    with pytest.raises(ValueError, match="outside"):
+        model._replace_pair(0, "move", destination=(150.0, -1.0))
+    assert model.pairs[0].destination == (150.0, 70.0)
 
 
 def test_weight_margin_delete_and_their_undo_redo(make_model):

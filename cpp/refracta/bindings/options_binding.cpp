@@ -57,13 +57,28 @@ std::string options_repr(const py::object& self) {
 namespace {
 
 // Sets target.<field> = value (the rule in options_binding.h); `keyword` names it in messages.
+// Whether an optional field now unset (None) holds a number, not a bool: set to `value` (a bool),
+// it reads back as a number (stop_height=True was a ground 1 m up). Left unset again.
+bool takes_bool_as_number(const py::object& target, const std::string& field, const py::handle& value) {
+  try {
+    target.attr(field.c_str()) = value;
+  } catch (const py::error_already_set& error) {
+    if (!error.matches(PyExc_TypeError)) throw;
+    return false;  // refused anyway, by the setter
+  }
+  const py::object now = target.attr(field.c_str());
+  target.attr(field.c_str()) = py::none();
+  return !PyBool_Check(now.ptr());
+}
+
 void set_field(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
                const std::string& keyword) {
   // True is not 1 sample: a bool for a number field is refused (pybind11 would take it as 1), as
   // the models' parameters and scene files refuse it.
   if (PyBool_Check(value.ptr())) {
     const py::object current = target.attr(field.c_str());
-    if (!PyBool_Check(current.ptr()) && (PyLong_Check(current.ptr()) || PyFloat_Check(current.ptr()))) {
+    if (!PyBool_Check(current.ptr()) && (PyLong_Check(current.ptr()) || PyFloat_Check(current.ptr()) ||
+                                         (current.is_none() && takes_bool_as_number(target, field, value)))) {
       throw_invalid(owner, ": ", keyword, " must be a number (got ", py::cast<std::string>(py::repr(value)), ")");
     }
   }

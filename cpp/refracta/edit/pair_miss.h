@@ -5,6 +5,7 @@
 #pragma once
 
 #include "refracta/edit/point_pair.h"
+#include "refracta/media/model_field.h"
 #include "refracta/rays/march.h"
 
 #include <atomic>
@@ -82,6 +83,8 @@ PairMiss<T> pair_miss_along(const Field& field, const PointPair& pair, const Vec
     end = march(field, x0, t0, trace, stepper, visit);
   } else {
     Rk45Stepper<T, Field> stepper(trace.tol, trace.max_length, trace.max_length);
+    const std::vector<LocalRegion> regions = regions_of(field);
+    stepper.keep_within(&regions);
     end = march(field, x0, t0, trace, stepper, visit);
   }
   if (!best_a) best_a = end.end;  // no segment at all (cannot happen for a valid pair)

@@ -10,6 +10,7 @@ namespace refracta {
 
 namespace {
 constexpr double kRoundOffTolerance = 1e-13;  // per metre of path
+constexpr double kLongestReach = 100.0;
 }  // namespace
 
 PairDistance parse_pair_distance(const std::string& name) {
@@ -30,7 +31,10 @@ void PairOptions::validate() const {
   problems.check(step >= 0.0 && std::isfinite(step), "step must be >= 0 (got ", step, ")");
   problems.check(!stop_height || std::isfinite(*stop_height), "stop_height must be finite (got ",
                  stop_height.value_or(0.0), ")");
-  problems.check(reach >= 1.0 && std::isfinite(reach), "reach must be >= 1 (got ", reach, ")");
+  // A path runs to reach x its source's range: far enough for paths that turn back (ducts, a
+  // Fata Morgana's loops); 1e6 ran paths of 1e9 m, whose round-off collapsed the steps.
+  problems.check(reach >= 1.0 && reach <= kLongestReach, "reach must be in [1, ", kLongestReach, "] (got ", reach,
+                 ")");
   problems.check(max_steps >= 1, "max_steps must be >= 1 (got ", max_steps, ")");
   problems.throw_if_any();
 }

@@ -53,8 +53,8 @@ struct PairOptions {
   // Paths end where they descend through it (a ground) [m]; unset (None): no ground.
   std::optional<double> stop_height;
   PairDistance distance = PairDistance::kContinuous;
-  // The path is traced to reach x (the eye-to-source distance) + 1 m, and stops early once it is
-  // past the source.
+  // The path is traced to reach x (the eye-to-source distance) + 1 m (reach in [1, 100]), and
+  // stops early once it is past the source.
   double reach = 1.5;
   // Integration steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails.
   int64_t max_steps = 10'000'000;

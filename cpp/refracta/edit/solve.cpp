@@ -437,11 +437,31 @@ FieldPtr random_start(const FieldPtr& field, const std::vector<std::string>& fre
   return field->with_param_values(values);
 }
 
+// A pair counts as met within its met tolerance (accept_angle times its range, or its own): a trace
+// less accurate than that could call a pair met that a finer trace misses by metres (a trial: tol
+// 1e3 "met" a pair at 5e-10 m that the default tol misses by 2.4 m), and an rk4 step longer than
+// the pair's range cannot follow its path at all.
+void check_trace_accuracy(const std::vector<PointPair>& pairs, const PairOptions& options, double accept_angle) {
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const double allowed = pairs[i].met_tolerance(accept_angle), range = pairs[i].range();
+    if (options.trace == TraceMethod::kRk45 && options.tol > allowed) {
+      throw_invalid("tol = ", options.tol, " m is more than pair ", i, " may miss its source by (", allowed,
+                    " m, accept_angle x its range or its tolerance): a trace that coarse cannot tell a met "
+                    "pair; lower tol");
+    }
+    if (options.trace == TraceMethod::kRk4 && options.step > range) {
+      throw_invalid("step = ", options.step, " m is longer than pair ", i, "'s range (", range,
+                    " m): rk4 cannot follow its path; lower step");
+    }
+  }
+}
+
 }  // namespace
 
 SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pairs,
                         const ProblemSpec& spec, const SolveSettings& settings, WorkControl& control) {
   settings.validate();
+  check_trace_accuracy(pairs, spec.pair, settings.accept_angle);
   SolveBudget budget(settings, control);
   SolveSummary best = solve_from(field, pairs, spec, settings, budget);
   if (settings.starts == 1) {
@@ -455,8 +475,11 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
   double time = best.time;
   int run = 1, best_start = 0;
   std::string stopped = best.stopped_by;
+  // Every random start draws the parameters the field given depends on; which of them another
+  // start finds no pair depending on there, it holds at their drawn values.
+  const std::vector<std::string> free = best.free, insensitive = best.insensitive;
   for (int k = 1; k < settings.starts; ++k) {
-    const FieldPtr start = random_start(field, best.free, spec, settings.seed, k);
+    const FieldPtr start = random_start(field, free, spec, settings.seed, k);
     StopReason reason = budget.exhausted();
     if (reason == StopReason::kIterations && settings.backend != SolveBackend::kCeres) reason = StopReason::kNone;
     if (reason != StopReason::kNone) {
@@ -477,6 +500,12 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
       best = std::move(trial);
       best_start = k;
     }
+  }
+  if (best_start > 0) {
+    // Reported against the field given: a parameter the winning start drew is changed, even where
+    // that start held it (a trial: h_ciso drawn from 1 to 87 was listed as held fixed).
+    best.free = free;
+    best.insensitive = insensitive;
   }
   best.initial_cost = initial_cost;
   best.pair_traces = pair_traces;

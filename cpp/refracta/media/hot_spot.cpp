@@ -21,6 +21,14 @@ bool HotSpot::operator==(const HotSpot& o) const {
          (depth == o.depth || (std::isnan(depth) && std::isnan(o.depth)));
 }
 
+namespace {
+// A spot narrower than a millimetre heats nothing a ray resolves, and 1 / radius^2 overflows for
+// the tiniest (a trial's 1e-300 m made every ior NaN, 100 m away).
+constexpr double kSmallestRadius = 1e-3;  // [m]
+// A spot's excess decays as e^(-h / depth): from a tenth of a millimetre to the troposphere's 10 km.
+constexpr double kShallowestDepth = 1e-4, kDeepestDepth = 1e4;  // [m]
+}  // namespace
+
 HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optional<double> depth,
                       const std::string& footprint) {
   HotSpot s;
@@ -30,7 +38,9 @@ HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optiona
   for (const auto& [what, value] : finite) {
     if (!std::isfinite(value)) throw_invalid("HotSpot: ", what, " must be finite (got ", value, ")");
   }
-  if (!(radius > 0.0)) throw_invalid("HotSpot: radius must be > 0 m (got ", radius, ")");
+  if (!(radius >= kSmallestRadius)) {
+    throw_invalid("HotSpot: radius must be >= ", kSmallestRadius, " m (got ", radius, ")");
+  }
   for (const auto& [what, value] : {std::pair<const char*, double>{"x", x}, {"z", z}, {"radius", radius}}) {
     if (std::abs(value) > kSceneReach) {
       throw_invalid("HotSpot: ", what, " must be within the scene's reach, ", kSceneReach, " m (got ", value, ")");
@@ -40,8 +50,8 @@ HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optiona
     throw_invalid("HotSpot: the spot must lie within the scene's reach: max(|x|, |z|) + radius <= ", kSceneReach,
                   " m (got ", std::max(std::abs(x), std::abs(z)) + radius, " m)");
   }
-  if (depth && !(*depth > 0.0 && std::isfinite(*depth))) {
-    throw_invalid("HotSpot: depth must be > 0 m and finite (got ", *depth, ")");
+  if (depth && !(*depth >= kShallowestDepth && *depth <= kDeepestDepth)) {
+    throw_invalid("HotSpot: depth must be in [", kShallowestDepth, ", ", kDeepestDepth, "] m (got ", *depth, ")");
   }
   return s;
 }
@@ -62,7 +72,7 @@ std::vector<ParamSpec> hot_spot_param_specs(const std::vector<HotSpot>& spots, b
     const double travel = std::max(100.0, 20.0 * s.radius);
     specs.push_back({name + "x", s.x, s.x - travel, s.x + travel, "m", "x of the centre"});
     specs.push_back({name + "z", s.z, s.z - travel, s.z + travel, "m", "z of the centre"});
-    specs.push_back({name + "radius", s.radius, s.radius / 20.0, s.radius * 20.0, "m",
+    specs.push_back({name + "radius", s.radius, std::max(kSmallestRadius, s.radius / 20.0), s.radius * 20.0, "m",
                      std::string(footprint_name(s.footprint)) + " footprint radius"});
     ParamSpec dt = dt_spec;
     dt.name = name + "dt";
@@ -83,8 +93,13 @@ void validate_hot_spots(const char* model, const std::vector<double>& values, si
   const int per = hot_spot_param_count(with_depth);
   for (size_t i = 0; i < count; ++i) {
     const double* v = values.data() + first + per * i;
-    if (!(v[2] > 0.0)) throw_invalid(model, ": hot_spot", i, "_radius must be > 0 m (got ", v[2], ")");
-    if (with_depth && !(v[4] > 0.0)) throw_invalid(model, ": hot_spot", i, "_depth must be > 0 m (got ", v[4], ")");
+    if (!(v[2] >= kSmallestRadius)) {
+      throw_invalid(model, ": hot_spot", i, "_radius must be >= ", kSmallestRadius, " m (got ", v[2], ")");
+    }
+    if (with_depth && !(v[4] >= kShallowestDepth && v[4] <= kDeepestDepth)) {
+      throw_invalid(model, ": hot_spot", i, "_depth must be in [", kShallowestDepth, ", ", kDeepestDepth, "] m (got ",
+                    v[4], ")");
+    }
   }
 }
 

@@ -57,4 +57,16 @@ double smallest_scale(const std::vector<LocalRegion>& regions) {
   return scale;
 }
 
+double step_within_regions(const std::vector<LocalRegion>& regions, const Vec3d& p, const Vec3d& d, double h) {
+  double step = h;
+  for (const LocalRegion& region : regions) {
+    if (region.contains(p)) {
+      step = std::min(step, 0.5 * region.scale);
+    } else if (const auto t = region.entry(p, d, step)) {
+      step = std::min(step, *t + 0.5 * region.scale);
+    }
+  }
+  return step;
+}
+
 }  // namespace refracta

@@ -43,5 +43,11 @@ std::optional<double> first_entry(const std::vector<LocalRegion>& regions, const
 double highest_top(const std::vector<LocalRegion>& regions);
 // The smallest scale among the regions (+inf for none).
 double smallest_scale(const std::vector<LocalRegion>& regions);
+// The longest step (at most h) [m] from p along the unit d that cannot pass over a region's
+// feature: inside a region half its scale, from outside half a scale past where the straight step
+// enters one. An adaptive integrator sees the field only at its stages: rk45 in calm air grows its
+// steps to tens of metres and stepped over a 10 m hot spot whole (a trial: the spot changed no
+// traced path, and editing its temperature had no gradient).
+double step_within_regions(const std::vector<LocalRegion>& regions, const Vec3d& p, const Vec3d& d, double h);
 
 }  // namespace refracta

@@ -36,6 +36,20 @@ template <class M, class = void>
 struct HasLocalFeatures : std::false_type {};
 template <class M>
 struct HasLocalFeatures<M, std::void_t<decltype(std::declval<const M&>().local_regions())>> : std::true_type {};
+}  // namespace detail
+
+// Where a field or a model differs from its height-only part (none for a model without local
+// features).
+template <class Field>
+std::vector<LocalRegion> regions_of(const Field& field) {
+  if constexpr (detail::HasLocalFeatures<Field>::value) {
+    return field.local_regions();
+  } else {
+    return {};
+  }
+}
+
+namespace detail {
 // Whether a model declares static Config config_at(const Config&, const std::vector<double>&).
 template <class M, class = void>
 struct HasConfigAt : std::false_type {};

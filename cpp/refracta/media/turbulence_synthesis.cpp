@@ -59,9 +59,15 @@ int TurbulenceSettings::cell_count() const {
   return int(kDefaultCells);
 }
 
+namespace {
+constexpr double kStrongestCn2 = 1.0;  // [m^(-2/3)]
+}  // namespace
+
 void TurbulenceSettings::validate() const {
   Problems problems("Turbulence");
-  problems.check(cn2 >= 0.0 && std::isfinite(cn2), "cn2 must be >= 0 m^(-2/3) and finite (got ", cn2, ")");
+  // The strongest turbulence measured over hot ground is ~1e-10 m^(-2/3). Up to 1: the unit
+  // realisation whose statistics are checked (n swings by ~1 then); 1e300 was accepted.
+  problems.check(cn2 >= 0.0 && cn2 <= kStrongestCn2, "cn2 must be in [0, ", kStrongestCn2, "] m^(-2/3) (got ", cn2, ")");
   problems.check(outer_scale > 0.0, "outer_scale must be > 0 m or inf (got ", outer_scale, ")");
   problems.check(inner_scale > 0.0 && std::isfinite(inner_scale), "inner_scale must be > 0 m and finite (got ", inner_scale, ")");
   problems.check(seed >= 0, "seed must be a whole number >= 0 (got ", seed, ")");
@@ -83,7 +89,8 @@ void TurbulenceSettings::validate() const {
                    kMinCells, " cells (got size=", *size, ", spacing=", spacing, ")");
   }
   if (max_bytes) problems.check(*max_bytes > 0.0, "max_bytes must be > 0 (math.inf: no limit; got ", *max_bytes, ")");
-  problems.check(std::isfinite(yaw_deg), "yaw_deg must be finite (got ", yaw_deg, ")");
+  // Beyond a turn or so an angle only loses digits (1e300 deg has none left below 360).
+  problems.check(std::abs(yaw_deg) <= 360.0, "yaw_deg must be in [-360, 360] (got ", yaw_deg, ")");
   problems.throw_if_any();
   // Refused before anything is allocated. Half of this machine by default (no limit where its
   // memory cannot be read).

@@ -7,6 +7,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/parallel.h"
+#include "refracta/media/local_region.h"
 #include "refracta/rays/ray_node.h"
 #include "refracta/rays/trace_options.h"
 
@@ -83,9 +84,18 @@ class Rk45Stepper {
         h_(first_step > 0.0 ? std::min({first_step, max_step, max_length}) : std::min({max_step, max_length, 1.0})),
         carry_(carry) {}
 
+  // Steps no longer than step_within_regions allows in `regions` (which must outlive the stepper;
+  // empty: no limit).
+  void keep_within(const std::vector<LocalRegion>* regions) { regions_ = regions; }
+
   RayNode<T> advance(const Field& field, const RayNode<T>& a, double remaining, int64_t* evals) {
     for (int attempt = 0;; ++attempt) {
-      const double hv = std::min(h_, remaining);
+      double hv = std::min(h_, remaining);
+      if (regions_ && !regions_->empty()) {
+        const Vec3d x(value_of(a.x.x()), value_of(a.x.y()), value_of(a.x.z()));
+        const Vec3d v(value_of(a.v.x()), value_of(a.v.y()), value_of(a.v.z()));
+        hv = step_within_regions(*regions_, x, v.normalized(), hv);
+      }
       double err_x, err_v;
       RayNode<T> b;
       try {
@@ -178,6 +188,7 @@ class Rk45Stepper {
   static constexpr double kMinStep = 1e-12;   // relative to max_length: below it, accept
   static constexpr double kTinyStep = 1e-9;   // relative to max_length: 1000 in a row = singular
   double tol_, max_step_, max_length_, h_, carry_;
+  const std::vector<LocalRegion>* regions_ = nullptr;
   int min_steps_in_a_row_ = 0;
 };
 

@@ -43,6 +43,8 @@ TraceEnd<double> trace_valid(const IndexField& field, const Vec3d& origin, const
     case TraceMethod::kRk45: {
       const double max_step = options.step > 0 ? options.step : options.max_length;
       Rk45Stepper<double, IndexField> stepper(options.tol, max_step, options.max_length);
+      const std::vector<LocalRegion> regions = field.local_regions();
+      stepper.keep_within(&regions);
       return march(field, origin, t0, options, stepper, visit);
     }
     case TraceMethod::kStratified: {

@@ -51,7 +51,7 @@ from typing import TYPE_CHECKING, Callable, cast
 
 import numpy as np
 
-from refracta import _core
+from refracta import _checks, _core
 from refracta import io as _image_io
 from refracta._rays import without_refraction
 from refracta._render import render
@@ -128,10 +128,7 @@ class _Snapshot:
 
 
 def _finite(value, name: str) -> float:
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number (got {value!r})") from None
+    number = _checks.number(value, name)  # not True, nor '2'
     if not math.isfinite(number):
         raise ValueError(f"{name} must be a finite number (got {value!r})")
     return number
@@ -456,6 +453,7 @@ class EditorModel:
         point [m]; returns its index. Raises ValueError naming a bad weight (finite, > 0) or margin
         (finite, >= 0) or point."""
         pair = make_pair(destination, source, weight, margin)
+        self._check_in_image(pair)
         with self._lock:
             before = self._snapshot("add pair")
             self.pairs = self.pairs + (pair,)
@@ -471,11 +469,21 @@ class EditorModel:
             values = dict(destination=old.destination, source=old.source, weight=old.weight, margin=old.margin)
             values.update(changes)
             new = make_pair(values["destination"], values["source"], values["weight"], values["margin"])
+            self._check_in_image(new)
             before = self._snapshot(label)
             self.pairs = self.pairs[:index] + (new,) + self.pairs[index + 1 :]
             if record:
                 self._record(before)
         self._notify("pairs", "history")
+
+    def _check_in_image(self, pair) -> None:
+        """A pixel destination must lie on the camera's image, as solve requires (a pair added off it
+        failed only later, as a failed solve job)."""
+        if len(pair.destination) == 2:
+            u, v = pair.destination
+            width, height = self.camera.width, self.camera.height
+            if not (0.0 <= u <= width and 0.0 <= v <= height):
+                raise ValueError(f"pixel {pair.destination} lies outside the {width} x {height} image")
 
     def _check_index(self, index: int) -> None:
         if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < len(self.pairs):
@@ -616,6 +624,8 @@ class EditorModel:
         index = drag["pair"]
         mu, mv = drag["marker"][0] + du, drag["marker"][1] + dv
         if drag["kind"] == "destination":
+            # Held on the image (solve refuses destinations off it), as a pointer leaving it does.
+            mu, mv = min(max(mu, 0.0), self.camera.width), min(max(mv, 0.0), self.camera.height)
             self._replace_pair(index, drag["before"].label, record=False, destination=(mu, mv))
         else:
             point = self.camera.pick(self.scene, mu, mv)
