@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 FLOAT32_MAX = float(np.finfo(np.float32).max)  # Open Image Denoise works in float32
+# Above this largest value Open Image Denoise is given the image scaled to 1 (1e30 was still fine).
+HUGE_RADIANCE = 1e20
 
 
 def _channels(name: str, array, shape=None, lo: float = 0.0, hi: float = np.inf) -> np.ndarray:
@@ -146,9 +148,13 @@ def denoise(
         )
     margin = BORDER_MARGIN
     height, width = color.shape[:2]
+    # Open Image Denoise's own exposure estimate overflows for images near float32's limit (1e38
+    # came back all zeros): those are denoised scaled down to 1 at their largest value, then scaled
+    # back (its output is scale-invariant; ordinary renders are left exactly as they are).
+    scale = float(color.max()) if color.size and color.max() > HUGE_RADIANCE else 1.0
     clean = np.asarray(
         pyoidn.denoise(
-            _mirrored(color, margin),
+            _mirrored(color / np.float32(scale) if scale != 1.0 else color, margin),
             _mirrored(aux_albedo, margin),
             _mirrored(aux_normal, margin),
             hdr=True,
@@ -158,6 +164,8 @@ def denoise(
         dtype=np.float32,
     )
     clean = np.ascontiguousarray(clean[margin : margin + height, margin : margin + width])
+    if scale != 1.0:
+        clean *= np.float32(scale)
     if not np.all(np.isfinite(clean)):
         raise ValueError(
             f"denoise: Open Image Denoise's output overflowed float32 (image values up to {color.max():g}): "

@@ -45,13 +45,38 @@ _TRANSPARENCY_METHOD_OF = {"layers": "peel", "weight": "wboit"}
 _TRANSPARENCY_METHOD_OF.update(dict.fromkeys(("moments", "basis", "kind", "beta", "oit_storage"), "mboit"))
 
 
-def refuse_unused(method: str, fields: dict, owner: str, method_of: dict[str, str], name: str) -> None:
-    """ValueError for a keyword of `fields` given (not None) that only the method method_of[keyword]
-    uses, when `method` (the argument `name`) is another."""
+# The keywords that configure some shadow methods only (a ShadowMapOptions.method, or 'embree' and
+# 'none', which use no map): given with another they changed nothing (a trial: shadows='hard' with
+# kernel=9, 'pcf' with storage=).
+_MAPS = ("hard", "pcf", "vsm", "msm_hamburger", "msm_hausdorff")
+_MOMENT_MAPS = ("vsm", "msm_hamburger", "msm_hausdorff")
+_SHADOW_METHODS_OF: dict[str, str | tuple[str, ...]] = dict.fromkeys(
+    ("resolution", "normal_offset", "shadow_centre", "shadow_half_size", "shadow_distance"), _MAPS
+)
+_SHADOW_METHODS_OF.update(kernel=("pcf", *_MOMENT_MAPS), depth_bias=("hard", "pcf"), bleeding_reduction="vsm")
+_SHADOW_METHODS_OF.update(dict.fromkeys(("depth_range", "storage", "bias", "bias_vector"), _MOMENT_MAPS))
+
+
+def shadow_fields_for(method: str, fields: dict) -> dict:
+    """The entries of `fields` (render_raster keywords) that shadows=`method` uses: the others would
+    be refused (compare.shadows gives each method its own)."""
+    uses = {k: (v,) if isinstance(v, str) else v for k, v in _SHADOW_METHODS_OF.items()}
+    return {k: v for k, v in fields.items() if k not in uses or method in uses[k]}
+
+
+def refuse_unused(
+    method: str, fields: dict, owner: str, method_of: dict[str, str] | dict[str, str | tuple[str, ...]], name: str
+) -> None:
+    """ValueError for a keyword of `fields` given (not None) that only the method (or methods)
+    method_of[keyword] use, when `method` (the argument `name`) is another."""
     for keyword, value in fields.items():
         wanted = method_of.get(keyword)
-        if value is not None and wanted is not None and method != wanted:
-            raise ValueError(f"{owner}: {keyword} applies to {name}={wanted!r}, not with {name}={method!r}")
+        if value is None or wanted is None:
+            continue
+        methods = (wanted,) if isinstance(wanted, str) else wanted
+        if method not in methods:
+            listed = " or ".join(repr(m) for m in methods)
+            raise ValueError(f"{owner}: {keyword} applies to {name}={listed}, not with {name}={method!r}")
 
 
 # Spellings kept one release with a DeprecationWarning: MomentBasis 'trig' (now 'trigonometric').
@@ -123,7 +148,16 @@ def raster_render_options(options=None, lights=None, shadows=None, transparency=
     all through the one keyword rule (_core._build_options, with _PATHS for the flat names)."""
     keywords: dict = {}
     if lights is not None:
+        both = [name for name in ("use_sun", "spots") if fields.get(name) is not None]
+        if both:  # lights=["sun"] with spots=[0] lit spot 0 all the same
+            raise ValueError(
+                f"render_raster: give lights= or {' and '.join(both)}=, not both (they select the same lights)"
+            )
         keywords["use_sun"], keywords["spots"] = _select_lights(lights)
+    if fields.get("shadow_light") is not None and fields.get("output") != "shadow":
+        given = options.output if isinstance(options, _core.RasterRenderOptions) else None
+        if given != "shadow":  # it picks the light whose shadow output='shadow' shows: else ignored
+            raise ValueError("render_raster: shadow_light applies to output='shadow'")
     if shadows is not None:
         keywords.update(_shadow_fields(shadows))
     if isinstance(transparency, _core.OitSettings):
@@ -135,6 +169,8 @@ def raster_render_options(options=None, lights=None, shadows=None, transparency=
         keywords["transparency.method"] = transparency
     keywords.update(undeprecated({k: v for k, v in fields.items() if v is not None}, _PATHS, "render_raster"))
     settings = _core._build_options(_core.RasterRenderOptions, options, "render_raster", keywords, _PATHS)
+    shadow_method = settings.shadow_map.method if settings.shadows == "map" else settings.shadows
+    refuse_unused(shadow_method, fields, "render_raster", _SHADOW_METHODS_OF, "shadows")
     if settings.transparency is not None:
         refuse_unused(settings.transparency.method, fields, "render_raster", _TRANSPARENCY_METHOD_OF, "transparency")
     return settings
@@ -156,7 +192,8 @@ def render_raster(
     """Render `scene` from `camera` by rasterization, the lights' shadows from shadow maps; returns
     float32 (H, W, 3) linear radiance (output='shadow': (H, W, 2)), or with return_stats=True the
     pair (image, refracta.RasterRenderStats: seconds, shadow_build_seconds, bytes_per_texel,
-    transparent_fragments, oit_bytes_per_pixel). No atmosphere: this is the straight-ray view.
+    transparent_fragments, oit_bytes_per_pixel). No refraction: this is the straight-ray view
+    (its air's haze, a physical sky's aerial perspective, is applied as the ray renderers apply it).
 
     The options are a refracta.RasterRenderOptions (`options`, or its defaults, defined once in
     C++: see help(refracta.RasterRenderOptions)), changed by these keywords (None or absent: left
@@ -186,6 +223,9 @@ def render_raster(
     of RasterRenderOptions: output ('radiance' or 'shadow': shadow intensity in [0, 1] and 1 where
     the light reaches the surface, zeros elsewhere, for the sun, shadow_light=-1, or the scene's
     spot light `shadow_light`), shadow_centre, shadow_half_size, shadow_distance, tile, light_strata.
+    A keyword that only other methods use (kernel with 'hard', storage with 'pcf', any map keyword
+    with 'embree'; shadow_light without output='shadow') raises ValueError, as lights= with
+    use_sun= or spots= does.
 
     stats: deprecated (a dict filled with the statistics); use return_stats=True.
     """

@@ -87,7 +87,19 @@ def settings(display: _core.DisplaySettings | None = None, **fields) -> _core.Di
     reinhard_white = isinstance(display, _core.DisplaySettings) and display.white is not None
     if reinhard_white and given.get("tonemap", "reinhard") != "reinhard":
         given.setdefault("white", None)  # Reinhard's white goes with Reinhard's curve (another refuses it)
+    # A manual exposure given as a keyword replaces the display's (one of exposure, ev100, or a
+    # camera's shutter, f_number and iso): display=DisplaySettings(ev100=10), exposure=2 was refused.
+    if isinstance(display, _core.DisplaySettings):
+        for group in _MANUAL_EXPOSURES:
+            if any(name in given for name in group):
+                for other in _MANUAL_EXPOSURES:
+                    if other is not group:
+                        given.update({name: None for name in other if getattr(display, name) is not None})
     return _core._build_options(_core.DisplaySettings, display, "refracta.io", given)
+
+
+# The ways to give a manual exposure, one at a time (DisplaySettings.validate).
+_MANUAL_EXPOSURES = (("exposure",), ("ev100",), ("shutter", "f_number", "iso"))
 
 
 def write_image(

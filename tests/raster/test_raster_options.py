@@ -69,7 +69,7 @@ def test_flat_keywords_set_the_nested_fields_of_a_copy():
     options = raster_render_options(
         given,
         lights="sun",
-        shadows="pcf",
+        shadows="vsm",
         resolution=512,
         kernel=3,
         storage="unorm16",
@@ -77,7 +77,7 @@ def test_flat_keywords_set_the_nested_fields_of_a_copy():
         layers=2,
         output="shadow",
     )
-    assert (options.shadows, options.shadow_map.method, options.shadow_map.resolution) == ("map", "pcf", 512)
+    assert (options.shadows, options.shadow_map.method, options.shadow_map.resolution) == ("map", "vsm", 512)
     assert options.shadow_map.kernel == 3 and options.shadow_map.moments.storage == "unorm16"
     assert options.transparency.method == "peel" and options.transparency.layers == 2
     assert options.output == "shadow" and options.use_sun and options.spots == []

@@ -69,9 +69,9 @@ def test_an_area_light_casts_a_penumbra_that_filtered_moments_follow():
     shadow = soft[..., 0][soft[..., 1] > 0]
     assert np.any(shadow == 1.0) and np.any((shadow > 0.05) & (shadow < 0.95))
     errors = {}
-    for method, kernel in (("hard", 1), ("msm_hamburger", 15)):
+    for method, filtering in (("hard", {}), ("msm_hamburger", {"kernel": 15})):
         image = refracta.render_raster(
-            scene, CAMERA, shadows=method, kernel=kernel, output="shadow", shadow_light=0, resolution=512
+            scene, CAMERA, shadows=method, output="shadow", shadow_light=0, resolution=512, **filtering
         )
         valid = (soft[..., 1] > 0) & (image[..., 1] > 0)
         errors[method] = np.abs(image[..., 0] - soft[..., 0])[valid].mean()

@@ -44,7 +44,11 @@ void write_display_image(const std::string& path, Image image, const DisplaySett
       if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();
     }
     if (const double c = manual_exposure(settings); c != 1.0) {  // the image itself is finite (to_image)
-      for (float& v : image.pixels) v *= float(c);
+      // Two and four channels carry alpha last: a coverage, not light (it was multiplied too).
+      const bool alpha = image.channels == 2 || image.channels == 4;
+      for (size_t i = 0; i < image.pixels.size(); ++i) {
+        if (!alpha || int(i % size_t(image.channels)) != image.channels - 1) image.pixels[i] *= float(c);
+      }
       if (!std::all_of(image.pixels.begin(), image.pixels.end(), [](float v) { return std::isfinite(v); })) {
         throw_invalid("write_image: the image times the exposure (", c, ") overflows float32 (a value beyond ",
                       std::numeric_limits<float>::max(), "): lower the exposure");

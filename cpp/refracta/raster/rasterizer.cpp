@@ -280,6 +280,17 @@ Hit surface_of(const Scene& scene, uint32_t geometry, uint32_t primitive, double
   if (const Scene::Spheres* spheres = scene.spheres(geometry)) {
     // A sphere set is rasterized as one tessellation per sphere, in order; its hits name the sphere.
     hit.primitive = uint32_t(primitive / (mesh.mesh.triangles.size() / spheres->centres.size()));
+    // The tessellation lies inside the exact sphere Embree intersects (by its sagitta): a shadow
+    // ray from it met the sphere from inside, and every sphere was black under the sky and point
+    // lights (a trial). The point goes out to the sphere along its radius, the normal with it.
+    const Vec3d& centre = spheres->centres[hit.primitive];
+    const Vec3d radial = hit.point - centre;
+    if (radial.norm() > 0.0) {
+      hit.normal = radial.normalized();
+      hit.point = centre + spheres->radii[hit.primitive] * hit.normal;
+      if (hit.normal.dot(toward - hit.point) < 0.0) hit.normal = -hit.normal;
+      hit.t = (toward - hit.point).norm();
+    }
   }
   hit.b1 = b1;
   hit.b2 = b2;

@@ -19,6 +19,10 @@ namespace refracta {
 
 namespace {
 
+// A leg rising more steeply than this (sin of ~5.7 deg) from inside a region: cast_in_regions'
+// first step (below).
+constexpr double kSteepRise = 0.1;
+
 // The eye's table path for a direction's elevation, turned about the vertical through the eye to
 // the direction's azimuth (a height-only field's paths differ by that turn alone).
 struct TurnedTablePath {
@@ -394,11 +398,17 @@ PathEnd Caster::cast_in_regions(const Vec3d& origin, const Vec3d& dir, double ma
   // A leg that enters a hot spot from outside starts in its border air, nearly the layered air:
   // its first step may descend a quarter of its height above the ground (rk45's default 1 m took
   // three growing steps to reach the scale of the air; a first step down into the spot's surface
-  // layer is one its error estimate can pass over). Legs that start inside (on a hot surface): 1 m.
+  // layer is one its error estimate can pass over). A leg that rises steeply from inside (a shadow
+  // or bounce ray leaving a hot surface) may climb a quarter of the way to the regions' top in its
+  // first step: from its default 1 m rk45 shrank about twice a leg (33 field evaluations a leg on
+  // a compact spot under the hot road's 35 deg sun, 23 with this). Other legs: 1 m.
   const Vec3d t0 = dir.normalized();
-  const double first_step = bounded && !been_inside
-                                ? 0.25 * (origin.y() - scene_.lowest()) / std::max(std::abs(t0.y()), 1e-12)
-                                : 0.0;
+  double first_step = 0.0;
+  if (bounded && !been_inside) {
+    first_step = 0.25 * (origin.y() - scene_.lowest()) / std::max(std::abs(t0.y()), 1e-12);
+  } else if (bounded && t0.y() > kSteepRise) {
+    first_step = 0.25 * (highest_top(regions_) - origin.y()) / t0.y();
+  }
   Rk45Stepper<double, IndexField> stepper(trace_options.tol, trace_options.step, trace_options.max_length,
                                           first_step, reach);
   march(*field_, origin, t0, trace_options, stepper, [&](const RayNode<double>& a, const RayNode<double>& b) {

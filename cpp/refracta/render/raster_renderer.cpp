@@ -14,6 +14,7 @@
 #include "refracta/render/raster_visibility.h"
 #include "refracta/render/surface_scattering.h"
 #include "refracta/render/tile_loop.h"
+#include "refracta/shading/aerial_perspective.h"
 
 #include <tbb/enumerable_thread_specific.h>
 
@@ -74,10 +75,20 @@ namespace {
 
 // The fragments' depth range [m], to which MBOIT's log-depth warp is fitted when not given.
 void fit_mboit_range(const FragmentLists& fragments, OitSettings& oit) {
-  if (oit.method != OitMethod::kMboit || oit.mboit.z_far > oit.mboit.z_near) return;
+  if (oit.method != OitMethod::kMboit) return;
   double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
   for (const auto& list : fragments.lists) {
     for (const auto& f : list) lo = std::min(lo, double(f.depth)), hi = std::max(hi, double(f.depth));
+  }
+  if (oit.mboit.z_far > oit.mboit.z_near) {
+    // MBOIT warps depths in the range to [-1, 1]: those beyond it leave the moments' domain (a
+    // trial's range of 100-200 m over fragments 6-14 m away was taken, and the image changed).
+    if (hi >= lo && !(oit.mboit.z_near <= lo && hi <= oit.mboit.z_far)) {
+      throw_invalid("transparency.mboit: z_near, z_far = ", oit.mboit.z_near, ", ", oit.mboit.z_far,
+                    " m must hold every transparent fragment's depth (they lie from ", lo, " to ", hi,
+                    " m); leave both 0 to fit them");
+    }
+    return;
   }
   if (hi > lo) oit.mboit.z_near = lo, oit.mboit.z_far = hi * (1.0 + 1e-6);
 }
@@ -115,8 +126,8 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   if (any_transparent) fit_mboit_range(fragments, oit);
 
   if (options.shadow_light >= int(lights.spots.size())) {
-    throw_invalid("shadow_light ", options.shadow_light, " is not a spot light of the scene (it has ",
-                  lights.spots.size(), ")");
+    throw_invalid("shadow_light ", options.shadow_light, " must index the spot lights shaded (", lights.spots.size(),
+                  ", as lights= or spots= select them)");
   }
   const bool output_shadow = options.output == RasterOutput::kShadow;
   if (output_shadow && options.shadow_light < 0 && !lights.sun) throw_invalid("output 'shadow': the scene has no sun");
@@ -140,6 +151,16 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   const SampledWavelengths lambda_rgb = SampledWavelengths::rgb();
   const int n = options.light_strata;
   const double weight = 1.0 / (n * n);
+  // The air between the eye and a surface (aerial perspective), as the ray renderers' integrators
+  // add it: its in-scatter arrives, and it dims the surface's light (a trial: the raster image was
+  // the same with and without the haze).
+  const AerialPerspective* air = render_scene.aerial_perspective();
+  auto through_air = [&](const Vec3d& p, const Spectrum& L) -> Vec3d {
+    if (!air) return Vec3d(L.head<3>().matrix());
+    SampledWavelengths lambda = lambda_rgb;
+    const AerialPerspective::Segment segment = air->along(eye, p, caster.air_frame(), lambda);
+    return Vec3d((segment.transmittance * L + segment.inscatter).head<3>().matrix());
+  };
   auto shade = [&](const Hit& hit, const Vec3d& dir, double footprint) -> Vec3d {
     ScratchBuffer& scratch = scratch_per_thread.local();
     scratch.reset();
@@ -147,7 +168,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     SampledWavelengths lambda = lambda_rgb;
     const Scattering s = scattering_at(render_scene, si, MediumStack(), 1.0, lambda, scratch);
     Spectrum L = lighting.emitted(si, nullptr, 0.0, true, lambda);
-    if (!s.bsdf) return Vec3d(L.head<3>().matrix());
+    if (!s.bsdf) return through_air(si.p, L);
     if (lights.sun_shines) L += lighting.sample_light(*lights.sun, si, s.bsdf, lambda, Vec2d(0.0, 0.0));
     for (size_t spot : lights.spots) L += lighting.sample_light(spot, si, s.bsdf, lambda, Vec2d(0.5, 0.5));
     for (size_t i : lights.others) {
@@ -169,7 +190,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
         }
       }
     }
-    return Vec3d(L.head<3>().matrix());
+    return through_air(si.p, L);
   };
   auto sky = [&](const Vec3d& dir) {
     Spectrum L = Spectrum::Zero();

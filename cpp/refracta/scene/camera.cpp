@@ -36,17 +36,22 @@ Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const V
                             double sensor_w_mm, double sensor_h_mm, int width, int height,
                             std::optional<double> f_number, std::optional<double> focus_distance) {
   auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-  if (f_number && !positive(*f_number)) {
-    throw_invalid("Camera.photographic: f_number must be > 0 and finite (got ", *f_number, ")");
+  // Lenses as made: f/0.5 is the limit of a lens in air (N >= 1 / (2 sin 90 deg)), f/10000 a
+  // pinhole's order; focal lengths from a 0.1 mm phone lens to 100 m (a telescope's); focus
+  // within the scene's reach (a trial's 1e300 m focus turned every lens ray to NaN, and a 1e-6
+  // f-number made a 50 km aperture).
+  if (f_number && !(*f_number >= 0.5 && *f_number <= 1e4)) {
+    throw_invalid("Camera.photographic: f_number must be in [0.5, 10000] (got ", *f_number, ")");
   }
-  if (focus_distance && !positive(*focus_distance)) {
-    throw_invalid("Camera.photographic: focus_distance must be > 0 [m] and finite (got ", *focus_distance, ")");
+  if (focus_distance && !(*focus_distance > 0.0 && *focus_distance <= kSceneReach)) {
+    throw_invalid("Camera.photographic: focus_distance must be in (0, ", kSceneReach, "] m (got ", *focus_distance,
+                  ")");
   }
   if (focus_distance && !f_number) {
     throw_invalid("Camera.photographic: focus_distance needs f_number (a pinhole has no focus)");
   }
-  if (!positive(focal_length_mm)) {
-    throw_invalid("Camera.photographic: focal_length_mm must be > 0 and finite (got ", focal_length_mm, ")");
+  if (!(focal_length_mm >= 0.1 && focal_length_mm <= 1e5)) {
+    throw_invalid("Camera.photographic: focal_length_mm must be in [0.1, 100000] (got ", focal_length_mm, ")");
   }
   if (!positive(sensor_w_mm) || !positive(sensor_h_mm)) {
     throw_invalid("Camera.photographic: sensor_mm must be two sides > 0 [mm] (got (", sensor_w_mm, ", ",

@@ -36,6 +36,9 @@ void write_image(const std::string& path, const Image& image) {
   if (!out) throw IoError(concat("cannot write '", path, "': ", OIIO::geterror()));
   const OIIO::TypeDesc format = is_float_format(path) ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
   OIIO::ImageSpec spec(image.width, image.height, image.channels, format);
+  // Colours are not premultiplied by alpha (to_display's are what a PNG stores): OIIO would divide
+  // them by it for formats that store straight alpha (a 0.5-alpha pixel's 231 became 255).
+  spec.attribute("oiio:UnassociatedAlpha", 1);
   if (!out->open(path, spec)) throw IoError(concat("cannot write '", path, "': ", out->geterror()));
   if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) {
     throw IoError(concat("cannot write '", path, "': ", out->geterror()));
@@ -74,7 +77,10 @@ Image read_image(const std::string& path) {
   if (!std::filesystem::exists(path)) throw IoError(concat("no such image file: '", path, "'"));
   // OIIO's readers spin on a FIFO or a device such as /dev/zero: refuse them before opening.
   if (!std::filesystem::is_regular_file(path)) throw IoError(concat("cannot read '", path, "': not a regular file"));
-  auto in = OIIO::ImageInput::open(path);
+  // Values as stored: a PNG's colours straight, not premultiplied by its alpha (write_image's).
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
   if (!in) throw IoError(concat("cannot read '", path, "': ", OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) {

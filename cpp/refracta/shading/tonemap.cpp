@@ -121,6 +121,12 @@ Tonemap parse_tonemap(const std::string& name) {
   throw_invalid("tonemap must be 'linear', 'film', 'reinhard' or 'aces' (got '", name, "')");
 }
 
+namespace {
+// Exposure values a camera meets with margin: a starlit night is about -6, sunlit snow 16; beyond
+// +-50 the exposure 2^-EV over- or underflows what a pixel can show (1e300 gave a black image).
+constexpr double kLargestEv100 = 50.0;
+}  // namespace
+
 double ev100_of(double f_number, double shutter_s, double iso) {
   std::vector<std::string> problems;
   auto positive = [&](double v, const char* name) {
@@ -134,11 +140,16 @@ double ev100_of(double f_number, double shutter_s, double iso) {
     for (const auto& p : problems) message += (message.empty() ? "" : "; ") + p;
     throw_invalid(message);
   }
-  return std::log2(f_number * f_number / shutter_s) - std::log2(iso / 100.0);
+  const double ev100 = std::log2(f_number * f_number / shutter_s) - std::log2(iso / 100.0);
+  if (!(std::abs(ev100) <= kLargestEv100)) {
+    throw_invalid("f_number ", f_number, ", shutter ", shutter_s, " s and iso ", iso, " give EV100 ", ev100,
+                  ", beyond +-", kLargestEv100, " (a starlit night is -6, sunlit snow 16)");
+  }
+  return ev100;
 }
 
 double exposure_of_ev100(double ev100, double luminous_efficacy) {
-  if (!std::isfinite(ev100)) throw_invalid("ev100 must be finite (got ", ev100, ")");
+  if (!(std::abs(ev100) <= kLargestEv100)) throw_invalid("ev100 must be in [-", kLargestEv100, ", ", kLargestEv100, "] (got ", ev100, ")");
   if (!(luminous_efficacy > 0.0) || !std::isfinite(luminous_efficacy)) {
     throw_invalid("luminous_efficacy must be > 0 and finite (got ", luminous_efficacy, ")");
   }
@@ -180,7 +191,8 @@ void DisplaySettings::validate() const {
   Problems problems("display settings");
   problems.check(!exposure || (*exposure > 0.0 && std::isfinite(*exposure)), "exposure must be > 0 and finite (got ",
                  exposure.value_or(0.0), ")");
-  problems.check(!ev100 || std::isfinite(*ev100), "ev100 must be finite (got ", ev100.value_or(0.0), ")");
+  problems.check(!ev100 || std::abs(*ev100) <= kLargestEv100, "ev100 must be in [-", kLargestEv100, ", ",
+                 kLargestEv100, "] (got ", ev100.value_or(0.0), ")");
   auto positive = [&](const std::optional<double>& v, const char* name) {
     problems.check(!v || (*v > 0.0 && std::isfinite(*v)), name, " must be > 0 and finite (got ", v.value_or(0.0), ")");
   };
