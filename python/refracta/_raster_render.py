@@ -155,8 +155,8 @@ def raster_render_options(options=None, lights=None, shadows=None, transparency=
             )
         keywords["use_sun"], keywords["spots"] = _select_lights(lights)
     if fields.get("shadow_light") is not None and fields.get("output") != "shadow":
-        given = options.output if isinstance(options, _core.RasterRenderOptions) else None
-        if given != "shadow":  # it picks the light whose shadow output='shadow' shows: else ignored
+        output = options.output if isinstance(options, _core.RasterRenderOptions) else None
+        if output != "shadow":  # it picks the light whose shadow output='shadow' shows: else ignored
             raise ValueError("render_raster: shadow_light applies to output='shadow'")
     if shadows is not None:
         keywords.update(_shadow_fields(shadows))

@@ -63,7 +63,7 @@ def shadows(
         return references[key]
 
     rows: list[dict] = []
-    images = {}
+    images: dict[tuple[str, int], tuple[np.ndarray, np.ndarray]] = {}
     for kernel in kernels:
         for method in methods:
             fields = shadow_fields_for(method, dict(options, kernel=kernel))

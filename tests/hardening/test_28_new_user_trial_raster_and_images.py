@@ -25,14 +25,15 @@ def test_a_png_with_alpha_stores_and_reads_back_the_display_colours(tmp_path):
     io.write_image(path, image, exposure=1.0, tonemap="linear")
     stored = np.asarray(PIL_Image.open(path), dtype=float)[0, 0]  # an independent reader
     np.testing.assert_allclose(stored, np.round(shown), atol=ONE_LEVEL)
-    np.testing.assert_allclose(io.read_image(path)[0, 0] * 255, stored, atol=1e-3)
+    np.testing.assert_allclose(io.read_image(path)[0, 0] * 255, stored, atol=1e-3)  # float32 of n / 255, times 255
 
 
 def test_a_float_file_scales_the_colours_by_the_exposure_not_the_alpha(tmp_path):
     image = np.zeros((2, 2, 4), np.float32)
     image[..., :3], image[..., 3] = (0.8, 0.3, 0.05), 0.25
     io.write_image(tmp_path / "a.exr", image, exposure=3.0)
-    np.testing.assert_allclose(io.read_image(tmp_path / "a.exr")[0, 0], (2.4, 0.9, 0.15, 0.25), rtol=1e-6)
+    expected = (2.4, 0.9, 0.15, 0.25)
+    np.testing.assert_allclose(io.read_image(tmp_path / "a.exr")[0, 0], expected, rtol=1e-6)  # float32 rounding
 
 
 def test_render_raster_sees_distant_boxes_through_the_same_haze_as_the_ray_tracer():
