@@ -2,6 +2,7 @@
 #include "refracta/render/render_scene.h"
 
 #include "refracta/core/error.h"
+#include "refracta/shading/area_light.h"
 #include "refracta/shading/physical_sky.h"
 #include "refracta/shading/scaled_light.h"
 #include "refracta/shading/spot_light.h"
@@ -42,6 +43,11 @@ void RenderScene::remove_lights_if_emitted_by(int geometry_id) {
 size_t RenderScene::add_light(LightPtr light, int emitter) {
   geometry.check_unchanging("add_light");
   if (!light) throw_invalid("light must not be None");
+  // An area light alone lit the scene, but no camera or BSDF ray saw its surface (a trial).
+  if (emitter < 0 && dynamic_cast<const AreaLight*>(light.get())) {
+    throw_invalid("add_light: an area light must be emitted by a surface the rays see: give its geometry emission= "
+                  "(add_mesh, add_box, add_sphere, ...) instead");
+  }
   if (emitter >= 0) {
     if (size_t(emitter) >= geometry.geometry_count()) throw_invalid("add_light: no geometry ", emitter);
     if (light_of_geometry_.size() < geometry.geometry_count()) light_of_geometry_.resize(geometry.geometry_count(), -1);

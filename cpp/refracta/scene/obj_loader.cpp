@@ -96,6 +96,10 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       out_m.ks = ks.cwiseMax(0.0).cwiseMin(1.0);
       out_m.ns = std::max(0.0, double(m.shininess));
       out_m.alpha = std::clamp(double(m.dissolve), 0.0, 1.0);
+      // Kd + Ks > 1 reflects more light than arrives: both scaled down to a sum of 1 (per the
+      // largest channel's sum), as energy-conserving renderers read Phong materials.
+      const double sum = (out_m.kd + out_m.ks).maxCoeff();
+      if (sum > 1.0) out_m.kd /= sum, out_m.ks /= sum;
       std::vector<std::string> moved;
       if (out_m.kd != kd) moved.push_back(concat("Kd (", kd.x(), ", ", kd.y(), ", ", kd.z(), ")"));
       if (out_m.ks != ks) moved.push_back(concat("Ks (", ks.x(), ", ", ks.y(), ", ", ks.z(), ")"));

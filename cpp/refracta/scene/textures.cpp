@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 struct Textures::Impl {
   OIIO::TextureSystem* system = nullptr;
   std::vector<OIIO::ustring> files;  // prepared (MIP-mapped, linear) files, by id
+  std::vector<int> channels;          // their colour channels, by id: 1 (grey) or 3 (RGB)
   std::mutex mutex;
 
   Impl() {
@@ -73,22 +74,33 @@ std::string texture_cache_folder() {
 
 namespace {
 
-// The prepared copy of `path`: a tiled, MIP-mapped, linear half-float OpenEXR in the cache
-// folder, named by the source's path, size and time so an edited file is prepared again.
-std::string prepare(const std::string& path) {
+// A texture's colour channels: 1 for a grey image (with or without alpha), else 3. Alpha is not
+// a texture's: the prepared copy leaves it out (kept, make_texture premultiplied the colour by
+// it, and a cut-out's clear texels rendered black).
+int colour_channels(int channels) { return channels >= 3 ? 3 : 1; }
+
+// The prepared copy of `path`: a tiled, MIP-mapped, linear half-float OpenEXR of its colour
+// channels in the cache folder, named by the source's path, size and time (and this preparation's
+// version) so an edited file is prepared again. *channels: its colour channels.
+std::string prepare(const std::string& path, int* channels) {
   std::error_code error;
   const auto size = fs::file_size(path, error);
   if (error) throw IoError(concat("no such texture file: '", path, "'"));
   const auto time = fs::last_write_time(path, error).time_since_epoch().count();
-  const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time));
+  constexpr int kPreparation = 2;  // 2: sRGB decoded by the stored format, colour channels only
+  const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time, "|v", kPreparation));
   const fs::path prepared = fs::path(texture_cache_folder()) / concat(std::hex, key, ".exr");
-  if (fs::exists(prepared)) return prepared.string();
 
-  OIIO::ImageBuf source(path);
+  // Colours as stored, not premultiplied by their alpha (which is dropped below).
+  OIIO::ImageSpec straight;
+  straight.attribute("oiio:UnassociatedAlpha", 1);
+  OIIO::ImageBuf source(path, 0, 0, nullptr, &straight);
   // The header first: a damaged or hostile one claiming a huge image (or display window, which
   // make_texture fills) was std::bad_alloc.
   if (!source.init_spec(path, 0, 0)) throw IoError(concat("cannot read texture '", path, "': ", source.geterror()));
   const OIIO::ImageSpec header = source.spec();
+  *channels = colour_channels(header.nchannels);
+  if (fs::exists(prepared)) return prepared.string();
   if (header.full_width < 1 || header.full_height < 1 || header.width < 1 || header.height < 1) {
     throw IoError(concat("texture '", path, "': its header gives an empty image or display window"));
   }
@@ -110,11 +122,12 @@ std::string prepare(const std::string& path) {
   if (non_finite > 0) {
     throw IoError(concat("texture '", path, "' has ", non_finite, " NaN or infinite texel values; textures must be finite"));
   }
-  // 8- and 16-bit images store sRGB-encoded colour: filter in linear light.
-  const OIIO::TypeDesc stored = source.spec().format;
-  OIIO::ImageBuf linear = source;
+  // 8- and 16-bit images store sRGB-encoded colour: filter in linear light. The format as stored,
+  // from the header: read as float, the buffer's own is float (and a PNG's 128 stayed 0.502).
+  const OIIO::TypeDesc stored = header.format;
+  OIIO::ImageBuf linear = *channels == header.nchannels ? source : OIIO::ImageBufAlgo::channels(source, *channels, {});
   if (stored.basetype == OIIO::TypeDesc::UINT8 || stored.basetype == OIIO::TypeDesc::UINT16) {
-    linear = OIIO::ImageBufAlgo::colorconvert(source, "sRGB", "linear");
+    linear = OIIO::ImageBufAlgo::colorconvert(linear, "sRGB", "linear");
     if (linear.has_error()) throw IoError(concat("texture '", path, "': ", linear.geterror()));
   }
   // The source's ICC profile describes its encoded colours, not the linear copy; OpenEXR has no
@@ -153,9 +166,11 @@ int Textures::add(const std::string& path) {
   for (size_t i = 0; i < paths_.size(); ++i) {
     if (paths_[i] == path) return int(i);
   }
-  const std::string prepared = prepare(path);
+  int channels = 3;
+  const std::string prepared = prepare(path, &channels);
   std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->files.emplace_back(prepared);
+  impl_->channels.push_back(channels);
   paths_.push_back(path);
   return int(paths_.size() - 1);
 }
@@ -169,7 +184,7 @@ Vec3d Textures::lookup(int id, const TextureLookup& at) const {
                               float(at.dsdy), float(at.dtdy), 3, result)) {
     throw IoError(concat("texture lookup failed for '", paths_.at(id), "': ", impl_->system->geterror()));
   }
-  return to_rgb(result, 3);
+  return to_rgb(result, impl_->channels.at(id));
 }
 
 Vec3d Textures::environment(int id, const Vec3d& dir, double footprint) const {
@@ -189,7 +204,7 @@ Vec3d Textures::environment(int id, const Vec3d& dir, double footprint) const {
                               float(at.dtdy), 3, result)) {
     throw IoError(concat("environment lookup failed for '", paths_.at(id), "': ", impl_->system->geterror()));
   }
-  return to_rgb(result, 3);
+  return to_rgb(result, impl_->channels.at(id));
 }
 
 }  // namespace refracta
