@@ -438,7 +438,11 @@ def _check_output(output: Path) -> None:
         raise ValueError(f"the output {output} is a folder: give a file name (e.g. {output / 'image.png'})")
     if not output.absolute().parent.is_dir():
         raise ValueError(f"the folder of the output {output} does not exist")
-    if output.suffix.lower() not in (".toml", ".gif", ".mp4"):  # an image: a format OIIO writes (x.xyz failed after the render)
+    if output.suffix.lower() not in (
+        ".toml",
+        ".gif",
+        ".mp4",
+    ):  # an image: a format OIIO writes (x.xyz failed after the render)
         from refracta import _core
 
         _core._check_image_format(str(output))

@@ -233,7 +233,9 @@ def test_out_of_range_mtl_values_are_clamped_with_a_warning(tmp_path):
     (tmp_path / "m.mtl").write_text("newmtl odd\nKd 5 -1 0.5\nKs 0.1 0.1 0.1\nNs -3\nd 7\n")
     (tmp_path / "m.obj").write_text("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl odd\nf 1 2 3\n")
     scene = refracta.Scene()
-    with pytest.warns(UserWarning, match=r"material 'odd' has Kd \(5, -1, 0\.5\), Ns -3, d 7 out of range; clamped"):
+    moved = r"material 'odd' has Kd \(5, -1, 0\.5\), Ks .*, Ns -3, d 7 out of range; moved"
+    with pytest.warns(UserWarning, match=moved):
         (part,) = scene.add_obj(tmp_path / "m.obj")
-    # As renderers read MTL files: albedos and opacity in [0, 1], the exponent >= 0 (Ks was in range).
-    assert "kd=(1, 0, 0.5)" in repr(scene.material(part))
+    # As renderers read MTL files: albedos and opacity in [0, 1], the exponent >= 0, and Kd + Ks
+    # <= 1: Kd clamped to (1, 0, 0.5), then both scaled by 1 / 1.1 (Ks 0.1 was in range alone).
+    assert "kd=(0.9090909079, 0, 0.4545454539), ks=(0.09090909214" in repr(scene.material(part))

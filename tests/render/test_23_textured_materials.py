@@ -101,9 +101,10 @@ def test_each_material_shows_the_texture_where_its_uvs_say(tmp_path, cls, key, c
     """Red left half, blue right half of the texture land on the quad's left and right: there the
     image is that of the material coloured red, or blue, without texture."""
     texture = str(two_colour_texture(tmp_path / "sign.exr"))
-    image = render(quad_scene(cls(**{key: 1.0}, texture=texture, **extra), sun=False))
-    red = render(quad_scene(cls(**{key: (1.0, 0.0, 0.0)}, **extra), sun=False))
-    blue = render(quad_scene(cls(**{key: (0.0, 0.0, 1.0)}, **extra), sun=False))
+    # 0.8: BlinnPhong's kd + ks must stay <= 1 (ks 0.2)
+    image = render(quad_scene(cls(**{key: 0.8}, texture=texture, **extra), sun=False))
+    red = render(quad_scene(cls(**{key: (0.8, 0.0, 0.0)}, **extra), sun=False))
+    blue = render(quad_scene(cls(**{key: (0.0, 0.0, 0.8)}, **extra), sun=False))
     np.testing.assert_allclose(image[:, 12], red[:, 12], rtol=RENDER_RTOL, atol=1e-7)  # as above
     np.testing.assert_allclose(image[:, 28], blue[:, 28], rtol=RENDER_RTOL, atol=1e-7)  # as above
 

@@ -157,8 +157,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   const AerialPerspective* air = render_scene.aerial_perspective();
   auto through_air = [&](const Vec3d& p, const Spectrum& L) -> Vec3d {
     if (!air) return Vec3d(L.head<3>().matrix());
-    SampledWavelengths lambda = lambda_rgb;
-    const AerialPerspective::Segment segment = air->along(eye, p, caster.air_frame(), lambda);
+    const AerialPerspective::Segment segment = air->along(eye, p, caster.air_frame(), lambda_rgb);
     return Vec3d((segment.transmittance * L + segment.inscatter).head<3>().matrix());
   };
   auto shade = [&](const Hit& hit, const Vec3d& dir, double footprint) -> Vec3d {

@@ -98,8 +98,10 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       out_m.alpha = std::clamp(double(m.dissolve), 0.0, 1.0);
       // Kd + Ks > 1 reflects more light than arrives: both scaled down to a sum of 1 (per the
       // largest channel's sum), as energy-conserving renderers read Phong materials.
+      // (MTL values come as float: 0.8 + 0.2 is 1 + 1.5e-8, within kFloatSlack of a sum of 1.)
+      constexpr double kFloatSlack = 1e-6;
       const double sum = (out_m.kd + out_m.ks).maxCoeff();
-      if (sum > 1.0) out_m.kd /= sum, out_m.ks /= sum;
+      if (sum > 1.0 + kFloatSlack) out_m.kd /= sum, out_m.ks /= sum;
       std::vector<std::string> moved;
       if (out_m.kd != kd) moved.push_back(concat("Kd (", kd.x(), ", ", kd.y(), ", ", kd.z(), ")"));
       if (out_m.ks != ks) moved.push_back(concat("Ks (", ks.x(), ", ", ks.y(), ", ", ks.z(), ")"));

@@ -75,7 +75,7 @@ class BlinnPhong final : public Material {
   BlinnPhong(const TexturedReflectance& kd, const Vec3d& ks, double ns, double alpha = 1.0)
       : kd_(kd), ks_rgb_(ks), ks_(checked_reflectance(ks, "ks")), ns_(checked_scalar(ns, "ns", 0.0, 1e7)),
         alpha_(checked_scalar(alpha, "alpha", 0.0, 1.0)) {
-    if (!((kd_.rgb() + ks_rgb_).maxCoeff() <= 1.0)) {
+    if (!((kd_.rgb() + ks_rgb_).maxCoeff() <= 1.0 + 1e-6)) {  // float inputs (MTL) may sum to 1 + 1e-8
       throw_invalid("BlinnPhong: kd + ks must be <= 1 in every channel (got kd ", describe_rgb(kd_.rgb()), ", ks ",
                     describe_rgb(ks_rgb_), "): more would reflect more light than arrives");
     }
