@@ -150,3 +150,26 @@ def test_the_stats_dict_still_works_for_one_release_with_a_warning():
     with pytest.warns(DeprecationWarning, match="return_stats"):
         image = refracta.render(example.scene, example.camera, None, method="straight", progress=False, stats=stats)
     assert image.shape == (6, 16, 3) and stats == {"samples": 16 * 6, "chords": 16 * 6, "invalid_samples": 0}
+
+
+# Both trace the same paths to the same tolerance and shade the same surfaces: measured 3e-4 of
+# the sky's radiance apart at most (the box's shading at its raster pixel against the hit's).
+SAME_MIRAGE = 1e-3
+
+
+def test_a_ray_turning_just_above_the_ground_near_the_horizon_is_not_taken_as_hitting_it():
+    # A pixel near the horizon spans hundreds of metres of ground: compared with its centre's depth,
+    # a mirage ray turning 0.11 m above the road was "behind" the ground, and raster_march's image
+    # was the straight one (a trial). Now the point is compared with the pixel's triangle plane
+    # along its own line of sight.
+    air = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
+    scene = refracta.Scene()
+    scene.add_ground(0.0, 2000.0)
+    scene.set_sky((1.0, 1.0, 1.0))
+    scene.add_box((400.0, 1.0, 0.0), (4.0, 2.0, 2.0), kd=(0.1, 0.2, 0.6))
+    camera = refracta.Camera((0.0, 1.5, 0.0), (300.0, 1.2, 0.0), (0.0, 1.0, 0.0), 2.0, 32, 12)
+    marched = refracta.render(scene, camera, air, method="raster_march", progress=False)
+    curved = refracta.render(scene, camera, air, method="curved", progress=False)
+    straight = refracta.render(scene, camera, air, method="straight", progress=False)
+    assert np.abs(curved - straight).max() > 0.5  # the mirage: sky where the straight view sees road
+    np.testing.assert_allclose(marched, curved, atol=SAME_MIRAGE)

@@ -23,15 +23,17 @@ namespace refracta {
 namespace {
 
 struct RasterFrame {
+  const Scene* scene = nullptr;
   RasterView view;
   VisibilityBuffer buffer;
   Image colour;
 
-  // The raster pixel a world point projects to and whether the point lies behind its surface.
-  // The surface's depth there is interpolated in 1/depth between the four nearest pixel centres
-  // when they show the same geometry (exact for a plane, where 1/depth is affine on screen):
-  // at grazing angles a ground pixel spans hundreds of metres of depth, and the nearest centre's
-  // depth alone would put points just above the ground behind it.
+  // The raster pixel a world point projects to and whether the point lies behind its surface: on
+  // or beyond the plane of the triangle that pixel shows, along the point's own line of sight
+  // (exact for the drawn triangle). At grazing angles a ground pixel spans hundreds of metres of
+  // depth: its centre's depth (or one interpolated between centres, which fails beside the sky at
+  // the horizon) put points just above the ground behind it, and a mirage's rays turning a
+  // centimetre above the road were taken as hitting it (a trial).
   bool behind(const Vec3d& x, int* px, int* py) const {
     const Vec3d p = view.to_view(x);
     if (view.perspective() && p.z() <= view.near()) return false;
@@ -39,24 +41,19 @@ struct RasterFrame {
     view.to_pixel(p, &u, &v);
     if (!(u >= 0.0 && v >= 0.0 && u < buffer.width && v < buffer.height)) return false;
     *px = int(u), *py = int(v);
-    return p.z() >= surface_depth(u, v, *px, *py);
-  }
-
-  double surface_depth(double u, double v, int px, int py) const {
-    const double fx = u - 0.5, fy = v - 0.5;
-    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-    const double nearest = buffer.depth[buffer.index(px, py)];
-    if (x0 < 0 || y0 < 0 || x0 + 1 >= buffer.width || y0 + 1 >= buffer.height) return nearest;
-    const uint32_t g = buffer.geometry[buffer.index(x0, y0)];
-    double inverse = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      const int x = x0 + (k & 1), y = y0 + (k >> 1);
-      const size_t i = buffer.index(x, y);
-      if (g == VisibilityBuffer::kNone || buffer.geometry[i] != g) return nearest;
-      const double w = ((k & 1) ? fx - x0 : 1.0 - (fx - x0)) * ((k >> 1) ? fy - y0 : 1.0 - (fy - y0));
-      inverse += w / buffer.depth[i];
-    }
-    return 1.0 / inverse;
+    const size_t i = buffer.index(*px, *py);
+    if (buffer.geometry[i] == VisibilityBuffer::kNone) return false;
+    if (!view.perspective()) return p.z() >= buffer.depth[i];
+    const SceneMesh& mesh = scene->meshes().at(buffer.geometry[i]);
+    const auto& tri = mesh.mesh.triangles.at(buffer.primitive[i]);
+    const Vec3d a = view.to_view(mesh.mesh.vertices[tri[0]]), b = view.to_view(mesh.mesh.vertices[tri[1]]),
+                c = view.to_view(mesh.mesh.vertices[tri[2]]);
+    const Vec3d normal = (b - a).cross(c - a);
+    // The line of sight through p, s p, meets the plane at s = n.a / n.p: p is behind it for s <= 1.
+    const double toward = normal.dot(p), plane = normal.dot(a);
+    if (toward == 0.0) return false;  // along the plane
+    const double s_plane = plane / toward;
+    return s_plane > 0.0 && s_plane <= 1.0;
   }
 };
 
@@ -81,7 +78,7 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
                           const RenderOptions& options, WorkControl& control, RenderStats* stats) {
   if (options.spectral) throw_invalid("raster_march renders RGB only (spectral=True needs method='curved')");
   const Scene& scene = render_scene.geometry;
-  RasterFrame frame{RasterView::from_camera(camera, options.guard_band), {}, {}};
+  RasterFrame frame{&scene, RasterView::from_camera(camera, options.guard_band), {}, {}};
   frame.buffer = rasterize(scene, frame.view, control);
   const Vec3d eye = camera.position();
   // Raster pixels are shaded by the straight-ray integrator (what the original did: the colour
