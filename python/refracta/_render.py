@@ -245,6 +245,11 @@ def render(
     """
     if "integrator" in options:
         raise ValueError("render: 'integrator' is now 'trace' (the ray integrator: 'rk45' or 'stratified')")
+    for name, given, kind in (("scene", scene, _core.Scene), ("camera", camera, _core.Camera)):
+        if not isinstance(given, kind):  # was pybind's "_render(): incompatible function arguments"
+            raise ValueError(f"render: {name} must be a refracta.{kind.__name__} (got {type(given).__name__})")
+    if field is not None and not isinstance(field, _core.IndexField):
+        raise ValueError(f"render: field must be a refracta index field or None (got {type(field).__name__})")
     if stats is not None:
         if not isinstance(stats, dict):
             raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")

@@ -76,3 +76,21 @@ def test_the_cli_refuses_an_image_format_before_rendering(tmp_path):
     )
     assert result.returncode == 1 and "cannot write" in result.stderr
     assert "Traceback" not in result.stderr and "rendering" not in result.stdout.lower()
+
+
+def test_mtl_emission_and_pbr_values_out_of_range_are_moved_with_the_warning(tmp_path):
+    # A Ke of -5 was dropped without a word; a Pr of 5 was refused without the file's name.
+    (tmp_path / "a.mtl").write_text("newmtl odd\nKd 0.5 0.5 0.5\nKe -5 0 0\nPr 5\n")
+    (tmp_path / "a.obj").write_text("mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 0 1\nusemtl odd\nf 1 2 3\n")
+    with pytest.warns(UserWarning, match="material 'odd' has Ke \\(-5, 0, 0\\), Pr 5 out of range"):
+        refracta.Scene().add_obj(str(tmp_path / "a.obj"))
+
+
+@pytest.mark.parametrize("which", ["scene", "camera", "field"])
+def test_render_names_an_argument_of_the_wrong_kind(which):
+    # pybind11 said "_render(): incompatible function arguments", naming a private function.
+    arguments = {"scene": refracta.Scene(), "camera": refracta.Camera((0, 1, 0), (1, 1, 0), (0, 1, 0), 45, 8, 8)}
+    arguments["field"] = None
+    arguments[which] = "air"
+    with pytest.raises(ValueError, match=f"render: {which} must be a refracta"):
+        refracta.render(arguments["scene"], arguments["camera"], arguments["field"], progress=False)

@@ -107,13 +107,19 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       if (out_m.ks != ks) moved.push_back(concat("Ks (", ks.x(), ", ", ks.y(), ", ", ks.z(), ")"));
       if (out_m.ns != double(m.shininess)) moved.push_back(concat("Ns ", m.shininess));
       if (out_m.alpha != double(m.dissolve)) moved.push_back(concat("d ", m.dissolve));
-      for (const std::string& item : moved) out_m.clamped += (out_m.clamped.empty() ? "" : ", ") + item;
       out_m.ni = m.ior;
       out_m.illum = m.illum;
-      out_m.ke = Vec3d(m.emission[0], m.emission[1], m.emission[2]).cwiseMax(0.0);
-      // tinyobjloader reads the PBR extension's Pr and Pm; 0 is its "absent" value too.
-      out_m.pr = m.roughness > 0.0f ? double(m.roughness) : -1.0;
-      out_m.pm = m.metallic > 0.0f ? double(m.metallic) : -1.0;
+      // Emission >= 0, and the PBR extension's Pr and Pm into [0, 1] (tinyobjloader reads them; 0 is
+      // its "absent" value too), noted like the rest (a Ke of -5 was dropped, a Pr of 5 refused
+      // without the file's name).
+      const Vec3d ke(m.emission[0], m.emission[1], m.emission[2]);
+      out_m.ke = ke.cwiseMax(0.0);
+      if (out_m.ke != ke) moved.push_back(concat("Ke (", ke.x(), ", ", ke.y(), ", ", ke.z(), ")"));
+      out_m.pr = m.roughness > 0.0f ? std::min(1.0, double(m.roughness)) : -1.0;
+      out_m.pm = m.metallic > 0.0f ? std::min(1.0, double(m.metallic)) : -1.0;
+      if (m.roughness > 1.0f) moved.push_back(concat("Pr ", m.roughness));
+      if (m.metallic > 1.0f) moved.push_back(concat("Pm ", m.metallic));
+      for (const std::string& item : moved) out_m.clamped += (out_m.clamped.empty() ? "" : ", ") + item;
     }
     if (!part.mesh.triangles.empty()) out.push_back(std::move(part));
   }
