@@ -114,14 +114,9 @@ class Rk45Stepper {
       if (std::isnan(error)) error = std::numeric_limits<double>::infinity();  // shrink, never NaN steps
       // Error per unit step scales as h^4: step factor error^(-1/4), safety 0.9, within [0.2, 5]
       // (two square roots: pow was 2.5 % of a hot-spot render).
-      double factor = error == 0.0 ? 5.0 : std::clamp(0.9 / std::sqrt(std::sqrt(error)), 0.2, 5.0);
+      const double factor = error == 0.0 ? 5.0 : std::clamp(0.9 / std::sqrt(std::sqrt(error)), 0.2, 5.0);
       const bool at_min_step = hv <= kMinStep * max_length_;
       if (error <= 1.0 || at_min_step) {
-        // After a rejection the accepted step does not grow the next (Hairer, Norsett & Wanner,
-        // Solving ODEs I, II.4: facmax = 1): rays nearing a hot surface layer, whose error grows
-        // with e^(-h/depth) at a fixed step, grew, were rejected and shrank again, 8.8 times a
-        // leg into a hot spot (1.4x its field evaluations).
-        if (attempt > 0) factor = std::min(factor, 1.0);
         // A few minimum steps carry the ray across a discontinuity of the field; a long run of
         // them means the field is singular here (n -> 0, an infinite gradient).
         // Tiny accepted steps shrinking toward a point (a Zeno sequence) mean the same.
