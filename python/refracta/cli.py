@@ -154,6 +154,8 @@ def demo(out: Path, size=None) -> int:
     import refracta
     from refracta import examples, plot
 
+    if out.exists() and not out.is_dir():  # mkdir said "[Errno 17] File exists"
+        raise ValueError(f"--out {out} is a file: give a folder for the demo's images")
     out.mkdir(parents=True, exist_ok=True)
     total = time.perf_counter()
     for name, make in examples.EXAMPLES.items():

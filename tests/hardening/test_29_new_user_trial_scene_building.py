@@ -94,3 +94,21 @@ def test_render_names_an_argument_of_the_wrong_kind(which):
     arguments[which] = "air"
     with pytest.raises(ValueError, match=f"render: {which} must be a refracta"):
         refracta.render(arguments["scene"], arguments["camera"], arguments["field"], progress=False)
+
+
+def test_an_environment_light_given_a_path_says_how_to_read_it(tmp_path):
+    # numpy read the path's characters: "image must hold real numbers (got dtype <U11)".
+    for path in ("sky.png", tmp_path / "sky.png"):
+        with pytest.raises(ValueError, match="read a file with refracta.io.read_image"):
+            refracta.lights.EnvironmentLight(path)
+
+
+def test_the_demo_refuses_a_file_as_its_folder(tmp_path):
+    (tmp_path / "taken").write_text("")
+    result = subprocess.run(
+        [sys.executable, "-m", "refracta", "demo", "--out", str(tmp_path / "taken")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert result.returncode == 1 and "is a file: give a folder" in result.stderr  # was "[Errno 17] File exists"

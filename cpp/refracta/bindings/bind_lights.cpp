@@ -124,6 +124,10 @@ void bind_environment_lights(py::module_& m) {
                                                                                        DOC(refracta, EnvironmentLight));
   environment
       .def(py::init([](const py::object& image, double scale, const py::object& rotation) {
+             if (py::isinstance<py::str>(image) || py::hasattr(image, "__fspath__")) {  // numpy read a path's characters
+               throw_invalid("EnvironmentLight: image is an array of radiances; read a file with refracta.io.read_image "
+                             "(or give its path to Scene.set_environment)");
+             }
              return std::make_shared<EnvironmentLight>(to_image(image, "EnvironmentLight: image"), scale, to_rotation(rotation, "rotation"));
            }),
            py::arg("image"), py::arg("scale") = 1.0, py::arg("rotation") = py::none())
