@@ -433,6 +433,10 @@ def _white_balance(text: str):
     raise argparse.ArgumentTypeError(f"must be a temperature, a name or R,G,B (got {text!r})")
 
 
+# Outputs that are not images OpenImageIO writes: scene files (edit) and animations (imageio, Pillow).
+_NOT_IMAGES = (".toml", ".gif", ".mp4")
+
+
 def _check_output(output: Path) -> None:
     """Refuses an output path that cannot be written before the work that would fill it."""
     output = Path(output)
@@ -440,11 +444,7 @@ def _check_output(output: Path) -> None:
         raise ValueError(f"the output {output} is a folder: give a file name (e.g. {output / 'image.png'})")
     if not output.absolute().parent.is_dir():
         raise ValueError(f"the folder of the output {output} does not exist")
-    if output.suffix.lower() not in (
-        ".toml",
-        ".gif",
-        ".mp4",
-    ):  # an image: a format OIIO writes (x.xyz failed after the render)
+    if output.suffix.lower() not in _NOT_IMAGES:  # an image OIIO must write (x.xyz failed after the render)
         from refracta import _core
 
         _core._check_image_format(str(output))

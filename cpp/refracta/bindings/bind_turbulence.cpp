@@ -48,7 +48,7 @@ template <class Source>
 std::tuple<DoubleArray, DoubleArray> evaluate_points(const Source& source, const py::object& points) {
   const std::vector<Vec3d> p = to_points(points, "points");
   for (size_t i = 0; i < p.size(); ++i) {  // the pattern's cells are counted in integers
-    if (!(p[i].cwiseAbs().maxCoeff() <= kSceneReach)) check_within_reach(p[i], concat("evaluate: points[", i, "]").c_str());
+    if (!within_reach(p[i])) check_within_reach(p[i], concat("evaluate: points[", i, "]").c_str());
   }
   PointValues out;
   {

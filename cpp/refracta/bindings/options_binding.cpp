@@ -56,7 +56,6 @@ std::string options_repr(const py::object& self) {
 
 namespace {
 
-// Sets target.<field> = value (the rule in options_binding.h); `keyword` names it in messages.
 // Whether an optional field now unset (None) holds a number, not a bool: set to `value` (a bool),
 // it reads back as a number (stop_height=True was a ground 1 m up). Left unset again.
 bool takes_bool_as_number(const py::object& target, const std::string& field, const py::handle& value) {
@@ -71,6 +70,7 @@ bool takes_bool_as_number(const py::object& target, const std::string& field, co
   return !PyBool_Check(now.ptr());
 }
 
+// Sets target.<field> = value (the rule in options_binding.h); `keyword` names it in messages.
 void set_field(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
                const std::string& keyword) {
   // True is not 1 sample: a bool for a number field is refused (pybind11 would take it as 1), as

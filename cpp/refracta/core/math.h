@@ -41,10 +41,13 @@ inline bool is_finite(const Vec3<T>& v) {
          std::isfinite(value_of(v.z()));
 }
 
-// p itself; throws (ValueError naming `what`) unless it is finite and within kSceneReach of the
-// origin along every axis (the box scene coordinates live in).
+// Whether p is finite and within kSceneReach of the origin along every axis (the box scene
+// coordinates live in).
+inline bool within_reach(const Vec3d& p) { return is_finite(p) && p.cwiseAbs().maxCoeff() <= kSceneReach; }
+
+// p itself; throws (ValueError naming `what`) unless within_reach(p).
 inline const Vec3d& check_within_reach(const Vec3d& p, const char* what) {
-  if (!(is_finite(p) && p.cwiseAbs().maxCoeff() <= kSceneReach)) {
+  if (!within_reach(p)) {
     throw_invalid(what, " must be finite and within ", kSceneReach, " m of the origin (got (", p.x(), ", ", p.y(), ", ",
                   p.z(), "))");
   }
