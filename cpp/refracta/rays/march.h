@@ -88,6 +88,13 @@ class Rk45Stepper {
   // empty: no limit).
   void keep_within(const std::vector<LocalRegion>* regions) { regions_ = regions; }
 
+  // A step accepted right after a rejection does not grow the next (Hairer, Norsett & Wanner,
+  // Solving ODEs I, II.4: facmax = 1). For paths into air whose error grows along them (a hot
+  // spot's surface layer, e^(-h/depth) at a fixed step): there steps grew 5x, were rejected and
+  // shrank again, 8.8 times a leg. Not for every trace: where the error estimate is round-off (a
+  // 10 000 km editing pair near its eye), rejections are noise and the steps must grow past them.
+  void hold_after_rejection() { hold_after_rejection_ = true; }
+
   RayNode<T> advance(const Field& field, const RayNode<T>& a, double remaining, int64_t* evals) {
     for (int attempt = 0;; ++attempt) {
       double hv = std::min(h_, remaining);
@@ -114,9 +121,10 @@ class Rk45Stepper {
       if (std::isnan(error)) error = std::numeric_limits<double>::infinity();  // shrink, never NaN steps
       // Error per unit step scales as h^4: step factor error^(-1/4), safety 0.9, within [0.2, 5]
       // (two square roots: pow was 2.5 % of a hot-spot render).
-      const double factor = error == 0.0 ? 5.0 : std::clamp(0.9 / std::sqrt(std::sqrt(error)), 0.2, 5.0);
+      double factor = error == 0.0 ? 5.0 : std::clamp(0.9 / std::sqrt(std::sqrt(error)), 0.2, 5.0);
       const bool at_min_step = hv <= kMinStep * max_length_;
       if (error <= 1.0 || at_min_step) {
+        if (hold_after_rejection_ && attempt > 0) factor = std::min(factor, 1.0);
         // A few minimum steps carry the ray across a discontinuity of the field; a long run of
         // them means the field is singular here (n -> 0, an infinite gradient).
         // Tiny accepted steps shrinking toward a point (a Zeno sequence) mean the same.
@@ -189,6 +197,7 @@ class Rk45Stepper {
   static constexpr double kTinyStep = 1e-9;   // relative to max_length: 1000 in a row = singular
   double tol_, max_step_, max_length_, h_, carry_;
   const std::vector<LocalRegion>* regions_ = nullptr;
+  bool hold_after_rejection_ = false;
   int min_steps_in_a_row_ = 0;
 };
 

@@ -411,6 +411,7 @@ PathEnd Caster::cast_in_regions(const Vec3d& origin, const Vec3d& dir, double ma
   }
   Rk45Stepper<double, IndexField> stepper(trace_options.tol, trace_options.step, trace_options.max_length,
                                           first_step, reach);
+  stepper.hold_after_rejection();
   march(*field_, origin, t0, trace_options, stepper, [&](const RayNode<double>& a, const RayNode<double>& b) {
     if (segment_blocked(a, b, &end, std::max(options_.sagitta, per_metre * (s0 + a.s)), /*regions=*/false)) return false;
     end.direction = b.v.normalized();
