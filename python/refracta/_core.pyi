@@ -850,11 +850,11 @@ class Scene:
         kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha
         (default 1; < 1: transparent in render_raster)).
         """
-    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None, *, texture: os.PathLike | str | bytes | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> int:
+    def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None, *, texture: os.PathLike | str | bytes | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex | None = None) -> int:
         """
         Add a square ground of side `size` [m] at y = height, centred on the origin, facing up. Without
         `material`, the kd/ks/ns shorthand (BlinnPhong; kd default 0.3 grey) and a texture multiplying kd;
-        a texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z).
+        a texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z; None: 1 m).
         """
     def add_light(self, light: ...) -> int:
         """
@@ -977,12 +977,12 @@ class Scene:
         Give a geometry (an id returned by add_*, e.g. one part of add_obj) another refracta.shading material.
         Its emission, if any, stays. Not while a render of this scene runs (RuntimeError).
         """
-    def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, below_horizon: str = 'horizon', aerial_perspective: bool = True, visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
+    def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex | None = None, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, below_horizon: str = 'horizon', aerial_perspective: bool = True, visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         """
         The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's
         single scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun
         toward `sun_direction` (normalised, y up),
-        `aerosol` (Mie density scale), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon
+        `aerosol` (Mie density scale; None: 1, a clear sky), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon
         `below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth (Scene.set_sky's
         convention: the ground is geometry, and a ray ending its max_length still heading slightly down sees
         the horizon sky, importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of
@@ -3354,7 +3354,7 @@ class PhysicalSky:
         """
     def __getstate__(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float, float, float, float, int, bool]:
         ...
-    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex = 1.0, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, below_horizon: str = 'ground', visibility: typing.SupportsFloat | typing.SupportsIndex | None = None, multiple_scattering: bool = True) -> None:
+    def __init__(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex | None = None, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, rayleigh_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, *, below_horizon: str = 'ground', visibility: typing.SupportsFloat | typing.SupportsIndex | None = None, multiple_scattering: bool = True) -> None:
         ...
     def __repr__(self) -> str:
         ...

@@ -75,21 +75,19 @@ def sun_direction(elevation: float, azimuth: float) -> np.ndarray:
 
 
 def set_physical_sky(
-    scene: _core.Scene, direction, aerosol: float = 1.0, scale: float = RADIANCE_SCALE, visibility=None
+    scene: _core.Scene, direction, aerosol: float | None = None, scale: float = RADIANCE_SCALE, visibility=None
 ) -> None:
     """Light `scene` by Scene.set_physical_sky: a Nishita sky (Hillaire 2020's multiple scattering) and its sun disc
     (0.53 deg, coloured by extinction along the sun's path), both times `scale` (RADIANCE_SCALE:
-    see above). direction: toward the sun (normalised), y up; aerosol: the Mie density scale.
+    see above). direction: toward the sun (normalised), y up; aerosol: the Mie density scale (None:
+    Scene.set_physical_sky's, a clear sky).
     Below the horizon the sky continues from the horizon at each azimuth (below_horizon='horizon'):
     a path that ends at max_length still heading slightly down -- trapped in a duct over the sea, or
     not yet turned over the road -- would meet the water or the hot layer at a grazing angle and see
     the horizon sky there, not a black ground. Aerial perspective is on (the sky's own air greys
     and blues distant objects); visibility [km]: the meteorological visibility that sets the
-    aerosol instead (None: `aerosol`)."""
-    if visibility is None:
-        scene.set_physical_sky(direction, aerosol=aerosol, scale=scale, below_horizon="horizon")
-    else:
-        scene.set_physical_sky(direction, scale=scale, below_horizon="horizon", visibility=visibility)
+    aerosol instead (give one of them)."""
+    scene.set_physical_sky(direction, aerosol=aerosol, scale=scale, below_horizon="horizon", visibility=visibility)
 
 
 def _paint(colour):

@@ -41,6 +41,7 @@
     direction = [-0.35, 0.45, 0.25]
     radiance = [2.6e4, 2.45e4, 2.2e4]
     angular_diameter = 0.53
+    limb_darkening = 0.6                # optional: u of I(mu) = 1 - u (1 - mu) (default 0)
 
     [sky]                               # optional
     horizon = [0.75, 0.82, 0.92]
@@ -196,7 +197,7 @@ CAMERA_KEYS = {
     "focus_distance",
     "aperture_diameter",
 }
-SUN_KEYS = {"direction", "radiance", "angular_diameter"}
+SUN_KEYS = {"direction", "radiance", "angular_diameter", "limb_darkening"}
 SKY_KEYS = {"horizon", "zenith", "environment", "scale"}
 ENVIRONMENT_KEYS = {
     "constant": {"radiance"},
@@ -365,12 +366,12 @@ def _boolean(value: Any) -> bool:
 
 
 def _offending_key(message: str, keys) -> str | None:
-    """The parameter a constructor's error message names: a whole-word match first, then the
-    longest key the message contains (alpha -> 'alpha_u must be ...')."""
-    words = set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", message))
-    exact = [k for k in keys if k in words]
+    """The parameter a constructor's error message names: the first whole word that is a key,
+    then the longest key the message contains (alpha -> 'alpha_u must be ...')."""
+    words = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", message)
+    exact = [word for word in words if word in keys]
     if exact:
-        return exact[0]
+        return exact[0]  # the first the message names
     contained = sorted((k for k in keys if k in message), key=len, reverse=True)
     return contained[0] if contained else None
 
@@ -481,7 +482,7 @@ def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Pa
         raise where.error(str(error), "environment", _offending_key(str(error), table)) from None
 
 
-def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get) -> None:
+def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get, present) -> None:
     """[[lights]]: point, spot and sun lights (area lights are objects with emission)."""
     from refracta import lights
 
@@ -508,15 +509,16 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get)
             elif kind == "spot":
                 position = get(entry, "lights", "position", vector, required=True, index=index)
                 direction = get(entry, "lights", "direction", vector, required=True, index=index)
-                angle = get(entry, "lights", "angle", _real, 60.0, index=index)
                 intensity = get(
                     entry, "lights", "intensity", lambda v: _colour(v, "intensity"), required=True, index=index
                 )
-                inner = get(entry, "lights", "inner_angle", _real, None, index=index)
-                if inner is None:
-                    scene.add_spot_light(position, direction, angle, intensity)
+                cone = present(entry, "lights", ("angle", "inner_angle"), _real, index=index)
+                if "inner_angle" in cone:
+                    if "angle" not in cone:  # a SpotLight's angle has no default (add_spot_light's 60 deg)
+                        raise where.error("inner_angle needs the cone's angle", "lights", "inner_angle", index)
+                    scene.add_light(lights.SpotLight(position, direction, intensity=intensity, **cone))
                 else:
-                    scene.add_light(lights.SpotLight(position, direction, angle, intensity, inner))
+                    scene.add_spot_light(position, direction, intensity=intensity, **cone)
             else:
                 if "sun" in data or data.get("environment", {}).get("type") == "physical_sky":
                     raise where.error("a second sun ([sun] or the physical sky has one)", "lights", "type", index)
@@ -526,8 +528,7 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get)
                 scene.set_sun(
                     get(entry, "lights", "direction", vector, required=True, index=index),
                     get(entry, "lights", "radiance", lambda v: _colour(v, "radiance"), required=True, index=index),
-                    get(entry, "lights", "angular_diameter", _real, 0.53, index=index),
-                    get(entry, "lights", "limb_darkening", _real, 0.0, index=index),
+                    **present(entry, "lights", ("angular_diameter", "limb_darkening"), _real, index=index),
                 )
         except ValueError as error:
             if str(error).startswith(str(where.path)):
@@ -714,6 +715,10 @@ def load_scene(path) -> SceneFile:
                 raise
             raise where.error(str(error), name, key, index) from None
 
+    def present(table: dict, name: str, keys, convert, index=None) -> dict:
+        """The keys the table gives, converted, as keywords: the rest take the call's own defaults."""
+        return {key: get(table, name, key, convert, index=index) for key in keys if key in table}
+
     tables = ("camera", "atmosphere", "geographic", "sun", "sky", "environment", "materials", "lights", "objects")
     unknown = set(data) - set(tables)
     if unknown:
@@ -787,7 +792,7 @@ def load_scene(path) -> SceneFile:
             scene.set_sun(
                 get(sun, "sun", "direction", lambda v: _number_list(v, 3), required=True),
                 get(sun, "sun", "radiance", lambda v: _colour(v, "radiance"), required=True),
-                get(sun, "sun", "angular_diameter", _real, 0.53),
+                **present(sun, "sun", ("angular_diameter", "limb_darkening"), _real),
             )
         except ValueError as error:
             if str(error).startswith(str(where.path)):  # already located (a key's own check)
@@ -808,7 +813,7 @@ def load_scene(path) -> SceneFile:
         except ValueError as error:
             raise where.error(str(error), "sky") from None
 
-    _lights(scene, data.get("lights", []), data, where, get)
+    _lights(scene, data.get("lights", []), data, where, get, present)
 
     for index, obj in enumerate(data.get("objects", [])):
         kind = get(obj, "objects", "type", str, required=True, index=index)
@@ -846,17 +851,15 @@ def load_scene(path) -> SceneFile:
         if kind in EMITTERS:
             material["emission"] = get(obj, "objects", "emission", lambda v: _colour(v, "emission"), None, index=index)
         if kind == "mesh":
-            material["two_sided"] = get(obj, "objects", "two_sided", _boolean, False, index=index)
+            material |= present(obj, "objects", ("two_sided",), _boolean, index=index)
         texture = get(obj, "objects", "texture", str, None, index=index)
         texture = None if texture is None else str(path.parent / texture)
         try:
             if kind == "ground":
                 scene.add_ground(
-                    get(obj, "objects", "height", _real, 0.0, index=index),
-                    get(obj, "objects", "size", _real, 20000.0, index=index),
+                    **present(obj, "objects", ("height", "size", "texture_size"), _real, index=index),
                     **material,
                     texture=texture,
-                    texture_size=get(obj, "objects", "texture_size", _real, 1.0, index=index),
                 )
             elif kind == "billboard":
                 image = get(obj, "objects", "texture", str, required=True, index=index)
@@ -896,7 +899,9 @@ def load_scene(path) -> SceneFile:
                     texture=texture,
                 )
         except ValueError as error:
-            raise where.error(str(error), "objects", None, index) from None
+            if str(error).startswith(str(where.path)):  # already located (a key's own check)
+                raise
+            raise where.error(str(error), "objects", _offending_key(str(error), obj), index) from None
 
     field, turbulence = None, None
     if "atmosphere" in data:

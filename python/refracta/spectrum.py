@@ -1,6 +1,6 @@
 """Spectral colour: RGB <-> spectra, black bodies, the CIE 1931 observer, and the physical sky.
 
-PhysicalSky(sun_direction, aerosol=1, ozone_du=300, ground_albedo=0, altitude=0,
+PhysicalSky(sun_direction, aerosol=None (1: a clear sky), ozone_du=300, ground_albedo=0, altitude=0,
 rayleigh_scale=1, below_horizon='ground' (the Lambertian ground) or 'horizon' (the horizon's
 radiance at the same azimuth, sampled over the whole sphere)): radiance(dirs (N, 3) unit,
 wavelengths (M,)) -> (N, M) [W/(m^2 sr nm)]

@@ -44,7 +44,7 @@ def test_a_textured_wall_seen_low_through_a_logistic_profile_renders(tmp_path):
         scene.add_ground(0, 1000)
         v = np.array([[30, 0, -10], [30, 0, 10], [30, 10, 10], [30, 10, -10]], float)
         uv = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
-        scene.add_mesh(v, np.array([[0, 1, 2], [0, 2, 3]]), uvs=uv, texture={str(texture)!r}, two_sided=True)
+        scene.add_mesh(v, np.array([[0, 1, 2], [0, 2, 3]]), uvs=uv, texture={str(texture)!r})
         scene.set_sun((-1, 1, 0.3), (3.0, 3.0, 3.0))
         camera = refracta.Camera((0, 0.3, 0), (10, 0.3, 0), vfov=20, width=8, height=4)
         table = refracta.render(scene, camera, refracta.LogisticProfile(), max_length=500, progress=False)

@@ -272,7 +272,7 @@ sun_direction = [0.3, 0.5, 0.2]
         (
             "visibility = 10.0\naerosol = 3.0\n",
             None,
-            r"s.toml:10: \[environment\] visibility: give aerosol or visibility",
+            r"s.toml:11: \[environment\] aerosol: give aerosol or visibility",
         ),
         ("aerial_perspective = 1\n", None, r"s.toml:10: \[environment\] aerial_perspective: must be true or false$"),
     ],

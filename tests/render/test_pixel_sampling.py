@@ -136,7 +136,7 @@ def tilted_bar(width_px, tilt_deg, size=48, vfov=30.0):
     vertices = np.array([[BAR_DISTANCE, y, z] for z, y in corners])
     scene = refracta.Scene()
     scene.set_sky((1.0, 1.0, 1.0), (1.0, 1.0, 1.0))
-    scene.add_mesh(vertices, np.array([[0, 1, 2], [0, 2, 3]]), material=shading.Diffuse(0.0), two_sided=True)
+    scene.add_mesh(vertices, np.array([[0, 1, 2], [0, 2, 3]]), material=shading.Diffuse(0.0))
     camera = refracta.Camera((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0, 1, 0), vfov, size, size)
     polygon = [
         ((z / (BAR_DISTANCE * t) + 1.0) * size / 2.0, (1.0 - y / (BAR_DISTANCE * t)) * size / 2.0) for z, y in corners

@@ -32,7 +32,7 @@ def mirror_scene():
     along = np.array([1.0, 0.0, 1.0]) / np.sqrt(2.0)
     up = np.array([0.0, 1.0, 0.0])
     corners = [MIRROR + 20.0 * (a * along + b * up) for a, b in [(-1, -1), (1, -1), (1, 1), (-1, 1)]]
-    scene.add_mesh(np.array(corners), np.array([[0, 1, 2], [0, 2, 3]]), material=shading.Conductor(), two_sided=True)
+    scene.add_mesh(np.array(corners), np.array([[0, 1, 2], [0, 2, 3]]), material=shading.Conductor())
     scene.add_box((30.0, 0.5 * (EDGE + 1600.0), WALL_Z + 5.0), (4000.0, 1600.0 - EDGE, 10.0), kd=(0.9, 0.9, 0.9))
     scene.add_box((30.0, 0.5 * EDGE, WALL_Z + 5.0), (4000.0, EDGE, 10.0), kd=(0.02, 0.02, 0.02))
     scene.add_ground(0.0, 8000.0, kd=(0.3, 0.3, 0.3))

@@ -210,9 +210,12 @@ taken over a second, a callable gets progress(done, total) textures, False shows
 Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
       .def("add_ground",
            [](RenderScene& s, double height, double size, const py::object& material, const py::object& kd,
-              const py::object& ks, const py::object& ns, std::optional<FilePath> texture, double texture_size) {
+              const py::object& ks, const py::object& ns, std::optional<FilePath> texture,
+              std::optional<double> texture_size) {
              const bool uvs = textured(material, texture);
-             const Mesh mesh = uvs ? ground_mesh(height, 0.5 * size, texture_size) : ground_mesh(height, 0.5 * size);
+             if (texture_size && !uvs) throw_invalid("add_ground: texture_size applies to a texture (texture= or a textured material)");
+             const Mesh mesh = uvs ? ground_mesh(height, 0.5 * size, texture_size.value_or(kGroundTextureSize))
+                                   : ground_mesh(height, 0.5 * size);
              check_material_or_shorthand("add_ground", material, {kd, ks, ns, py::none()}, texture.has_value());
              const int tex = texture ? s.geometry.add_texture(texture->string()) : -1;
              const int material_id = material_of(s, "add_ground", material, {kd, ks, ns, py::none(), tex}, kGroundKd);
@@ -220,10 +223,10 @@ Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
            },
            py::arg("height") = 0.0, py::arg("size") = 20000.0, py::arg("material") = py::none(),
            py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(), py::kw_only(),
-           py::arg("texture") = py::none(), py::arg("texture_size") = 1.0,
+           py::arg("texture") = py::none(), py::arg("texture_size") = py::none(),
            "Add a square ground of side `size` [m] at y = height, centred on the origin, facing up. Without\n"
            "`material`, the kd/ks/ns shorthand (BlinnPhong; kd default 0.3 grey) and a texture multiplying kd;\n"
-           "a texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z).")
+           "a texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z; None: 1 m).")
       .def("add_billboard",
            [](RenderScene& s, const py::object& centre, double width, double height, const FilePath& texture,
               const py::object& facing, const py::object& kd) {

@@ -78,7 +78,7 @@ void bind_sun_and_sky(SceneClass& scene) {
            "the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular\n"
            "environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.")
       .def("set_physical_sky",
-           [](RenderScene& s, const py::object& sun_direction, double aerosol, double ozone_du, double ground_albedo,
+           [](RenderScene& s, const py::object& sun_direction, std::optional<double> aerosol, double ozone_du, double ground_albedo,
               double sun_angular_diameter, double limb_darkening, double scale, double altitude,
               const std::string& below_horizon, bool aerial_perspective, const std::optional<double>& visibility) {
              const PhysicalSkySettings settings = physical_sky_settings(to_point(sun_direction, "sun_direction"), aerosol,
@@ -86,7 +86,7 @@ void bind_sun_and_sky(SceneClass& scene) {
              const SunDisc sun{sun_angular_diameter, limb_darkening};
              set_physical_sky(s, settings, sun, scale, aerial_perspective, &build_sky_interruptibly);
            },
-           py::arg("sun_direction"), py::arg("aerosol") = PhysicalSkySettings{}.aerosol,
+           py::arg("sun_direction"), py::arg("aerosol") = py::none(),
            py::arg("ozone_du") = PhysicalSkySettings{}.ozone_du, py::arg("ground_albedo") = PhysicalSkySettings{}.ground_albedo,
            py::arg("sun_angular_diameter") = sun.angular_diameter, py::arg("limb_darkening") = sun.limb_darkening,
            py::kw_only(), py::arg("scale") = 1.0, py::arg("altitude") = PhysicalSkySettings{}.altitude,
@@ -94,7 +94,7 @@ void bind_sun_and_sky(SceneClass& scene) {
            "The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's\n"
            "single scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun\n"
            "toward `sun_direction` (normalised, y up),\n"
-           "`aerosol` (Mie density scale), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon\n"
+           "`aerosol` (Mie density scale; None: 1, a clear sky), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon\n"
            "`below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth (Scene.set_sky's\n"
            "convention: the ground is geometry, and a ray ending its max_length still heading slightly down sees\n"
            "the horizon sky, importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of\n"

@@ -86,7 +86,7 @@ void bind_spectrum_functions(py::module_& m) {
 void bind_physical_sky(py::module_& m) {
   const PhysicalSkySettings defaults;
   py::class_<PhysicalSkyLight, std::shared_ptr<PhysicalSkyLight>>(m, "PhysicalSky", DOC(refracta, PhysicalSkyLight))
-      .def(py::init([](const py::object& sun, double aerosol, double ozone_du, double ground_albedo, double altitude,
+      .def(py::init([](const py::object& sun, std::optional<double> aerosol, double ozone_du, double ground_albedo, double altitude,
                        double rayleigh_scale, const std::string& below_horizon, std::optional<double> visibility,
                        bool multiple_scattering) {
              const PhysicalSkySettings s = sky_settings(to_point(sun, "sun_direction"), aerosol, ozone_du, ground_albedo,
@@ -94,7 +94,7 @@ void bind_physical_sky(py::module_& m) {
              py::gil_scoped_release release;
              return std::make_shared<PhysicalSkyLight>(s);
            }),
-           py::arg("sun_direction"), py::arg("aerosol") = defaults.aerosol, py::arg("ozone_du") = defaults.ozone_du,
+           py::arg("sun_direction"), py::arg("aerosol") = py::none(), py::arg("ozone_du") = defaults.ozone_du,
            py::arg("ground_albedo") = defaults.ground_albedo, py::arg("altitude") = defaults.altitude,
            py::arg("rayleigh_scale") = defaults.rayleigh_scale, py::kw_only(), py::arg("below_horizon") = "ground",
            py::arg("visibility") = py::none(), py::arg("multiple_scattering") = defaults.multiple_scattering)

@@ -9,6 +9,8 @@
 #include "refracta/core/sampling.h"
 #include "refracta/shading/color.h"
 
+#include "refracta/bindings/strict_numbers.h"  // before any use of a number caster
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 

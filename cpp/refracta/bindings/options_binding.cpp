@@ -56,32 +56,25 @@ std::string options_repr(const py::object& self) {
 
 namespace {
 
-// Whether an optional field now unset (None) holds a number, not a bool: set to `value` (a bool),
-// it reads back as a number (stop_height=True was a ground 1 m up). Left unset again.
-bool takes_bool_as_number(const py::object& target, const std::string& field, const py::handle& value) {
+// Whether a number field: it holds a number, or, unset (None), takes one (then left unset again).
+bool is_number_field(const py::object& target, const std::string& field) {
+  const py::object current = target.attr(field.c_str());
+  if (PyBool_Check(current.ptr())) return false;
+  if (PyLong_Check(current.ptr()) || PyFloat_Check(current.ptr())) return true;
+  if (!current.is_none()) return false;
   try {
-    target.attr(field.c_str()) = value;
+    target.attr(field.c_str()) = py::int_(0);
   } catch (const py::error_already_set& error) {
     if (!error.matches(PyExc_TypeError)) throw;
-    return false;  // refused anyway, by the setter
+    return false;
   }
-  const py::object now = target.attr(field.c_str());
   target.attr(field.c_str()) = py::none();
-  return !PyBool_Check(now.ptr());
+  return true;
 }
 
 // Sets target.<field> = value (the rule in options_binding.h); `keyword` names it in messages.
 void set_field(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
                const std::string& keyword) {
-  // True is not 1 sample: a bool for a number field is refused (pybind11 would take it as 1), as
-  // the models' parameters and scene files refuse it.
-  if (PyBool_Check(value.ptr())) {
-    const py::object current = target.attr(field.c_str());
-    if (!PyBool_Check(current.ptr()) && (PyLong_Check(current.ptr()) || PyFloat_Check(current.ptr()) ||
-                                         (current.is_none() && takes_bool_as_number(target, field, value)))) {
-      throw_invalid(owner, ": ", keyword, " must be a number (got ", py::cast<std::string>(py::repr(value)), ")");
-    }
-  }
   try {
     target.attr(field.c_str()) = value;
   } catch (const py::error_already_set& error) {
@@ -89,6 +82,10 @@ void set_field(const py::object& target, const std::string& field, const py::han
     if (value.is_none()) return;  // None for a field that takes none: left unset (its default)
     const std::string shown = py::cast<std::string>(py::repr(value));
     const std::string type = py::cast<std::string>(py::type::handle_of(target).attr("__name__"));
+    // True is not 1 sample (bindings/strict_numbers.h refuses bools for numbers).
+    if (PyBool_Check(value.ptr()) && is_number_field(target, field)) {
+      throw_invalid(owner, ": ", keyword, " must be a number (got ", shown, ")");
+    }
     if (is_integer(target.attr(field.c_str()))) {
       if (!is_whole(value)) throw_invalid(owner, ": ", keyword, " must be a whole number (got ", shown, ")");
       // A whole number the field's C++ integer cannot hold (2**31 for an int, -1 for an unsigned)

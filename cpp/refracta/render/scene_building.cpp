@@ -39,6 +39,10 @@ MissingTextures missing_textures_from(const std::string& name) {
 
 unsigned add_surface(RenderScene& scene, const Mesh& mesh, int material, const std::optional<Color>& emission,
                      bool two_sided, const char* what) {
+  if (two_sided && !emission) {
+    throw_invalid(what, ": two_sided makes an area light emit from both faces: give emission= too (a surface is seen "
+                  "from both sides anyway)");
+  }
   check_uvs(scene, material, !mesh.uvs.empty(), what);
   const unsigned id = scene.geometry.add_mesh(mesh, material);
   if (emission) scene.add_light(std::make_shared<AreaLight>(mesh, *emission, two_sided), int(id));
@@ -47,6 +51,7 @@ unsigned add_surface(RenderScene& scene, const Mesh& mesh, int material, const s
 
 unsigned add_sphere(RenderScene& scene, const Vec3d& centre, double radius, int material,
                     const std::optional<Color>& emission) {
+  if (!(radius > 0.0) || !std::isfinite(radius)) throw_invalid("add_sphere: radius must be > 0 (got ", radius, ")");
   check_uvs(scene, material, false, "add_sphere");
   const unsigned id = scene.geometry.add_spheres({centre}, {radius}, material);
   if (emission) scene.add_light(std::make_shared<SphereLight>(centre, radius, *emission), int(id));
@@ -103,7 +108,7 @@ size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& di
   return scene.spots().size() - 1;
 }
 
-PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, double aerosol, double ozone_du,
+PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, std::optional<double> aerosol, double ozone_du,
                                           double ground_albedo, double altitude, const std::string& below_horizon,
                                           const std::optional<double>& visibility) {
   const Vec3d& sun = sun_direction;

@@ -18,6 +18,9 @@
 
 namespace refracta {
 
+// add_ground's texture repeat [m] when none is given.
+constexpr double kGroundTextureSize = 1.0;
+
 // A geometry id given by a caller: negative ids name nothing (ValueError).
 unsigned geometry_id(int geometry);
 
@@ -31,7 +34,8 @@ void normalise_normals(Mesh& mesh);
 MissingTextures missing_textures_from(const std::string& name);
 
 // Adds a mesh with its material and, with emission (an illuminant), its area light, emitting from
-// the counter-clockwise front or from both sides. Returns the geometry id.
+// the counter-clockwise front or from both sides (two_sided without emission: ValueError). Returns
+// the geometry id.
 unsigned add_surface(RenderScene& scene, const Mesh& mesh, int material, const std::optional<Color>& emission,
                      bool two_sided, const char* what);
 
@@ -60,7 +64,7 @@ size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& di
 
 // Scene.set_physical_sky's keywords as settings: the sun direction non-zero (normalised here),
 // below_horizon 'horizon' or 'ground', visibility [km] (when given) setting the aerosol.
-PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, double aerosol, double ozone_du,
+PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, std::optional<double> aerosol, double ozone_du,
                                           double ground_albedo, double altitude, const std::string& below_horizon,
                                           const std::optional<double>& visibility);
 

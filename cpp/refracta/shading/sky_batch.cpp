@@ -5,13 +5,17 @@
 
 namespace refracta {
 
-PhysicalSkySettings sky_settings(const Vec3d& sun_direction, double aerosol, double ozone_du, double ground_albedo,
+PhysicalSkySettings sky_settings(const Vec3d& sun_direction, std::optional<double> aerosol, double ozone_du, double ground_albedo,
                                  double altitude, double rayleigh_scale, const std::string& below_horizon,
                                  std::optional<double> visibility, bool multiple_scattering) {
   PhysicalSkySettings s;
   s.multiple_scattering = multiple_scattering;
   s.sun_direction = sun_direction;
-  s.aerosol = aerosol;
+  if (aerosol && visibility) {  // an explicit aerosol = 1.0 (the default) is one too
+    throw_invalid("give aerosol or visibility, not both (got aerosol ", *aerosol, " and visibility ", *visibility,
+                  " km)");
+  }
+  if (aerosol) s.aerosol = *aerosol;
   s.ozone_du = ozone_du;
   s.ground_albedo = ground_albedo;
   s.altitude = altitude;

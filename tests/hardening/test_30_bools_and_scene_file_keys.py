@@ -1,0 +1,152 @@
+"""Bools are not numbers anywhere in the module, and a scene file says what the Python calls say.
+
+A new-user trial found pybind11 taking True as 1 in every bound number parameter (Camera(vfov=True)
+drew a 1-degree view, HotSpot(True, ...) stood at x = 1); scene-file errors located twice or on the
+table's first line instead of the key's; [sun] refusing limb_darkening that [[lights]] takes;
+inputs taken and ignored (an explicit aerosol beside visibility, two_sided without emission,
+texture_size without a texture).
+"""
+
+import numpy as np
+import pytest
+
+import refracta
+
+EYE, AHEAD = (0.0, 1.5, 0.0), (100.0, 1.0, 0.0)
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: refracta.Camera(EYE, AHEAD, vfov=True),
+        lambda: refracta.Camera(EYE, AHEAD, width=True),
+        lambda: refracta.Camera(EYE, AHEAD, vfov=np.bool_(True)),
+        lambda: refracta.Camera.photographic(EYE, AHEAD, True),
+        lambda: refracta.HotSpot(True, 0.0, 10.0, 5.0),
+        lambda: refracta.Scene().add_sphere((0.0, 0.0, 0.0), False),
+    ],
+)
+def test_a_bool_is_refused_where_a_number_is_expected(make):
+    with pytest.raises(TypeError, match="incompatible"):
+        make()
+
+
+def test_numpy_numbers_and_ints_for_floats_are_still_numbers():
+    camera = refracta.Camera(EYE, AHEAD, vfov=np.float32(30.0), width=np.int64(32), height=16)
+    assert (camera.vfov, camera.width) == (30.0, 32)
+    assert refracta.HotSpot(np.float64(1.5), 0, 10, 5).x == 1.5
+
+
+def test_integers_beyond_their_type_and_fractions_are_refused():
+    with pytest.raises(TypeError):
+        refracta.Camera(EYE, AHEAD, width=2**40)
+    with pytest.raises(TypeError):
+        refracta.Camera(EYE, AHEAD, width=32.5)
+
+
+def test_an_options_field_names_a_bool_given_for_a_number():
+    with pytest.raises(ValueError, match="spp must be a number"):
+        refracta.RenderOptions(spp=True)
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: refracta.spectrum.PhysicalSky((0.0, 1.0, 0.0), aerosol=1.0, visibility=10.0),
+        lambda: refracta.Scene().set_physical_sky((0.0, 1.0, 0.0), aerosol=1.0, visibility=10.0),
+    ],
+)
+def test_an_explicit_default_aerosol_beside_visibility_is_refused(make):
+    # aerosol=1.0 is the default's value: it was taken as "not given" and silently replaced.
+    with pytest.raises(ValueError, match="give aerosol or visibility, not both"):
+        make()
+
+
+def test_visibility_alone_sets_the_aerosol_and_none_keeps_the_clear_sky():
+    assert refracta.spectrum.PhysicalSky((0.0, 1.0, 0.0), aerosol=None).aerosol == 1.0  # C++'s default
+    # 10 km of visibility is far hazier than the clear sky (~100+ km): several times its aerosol.
+    assert refracta.spectrum.PhysicalSky((0.0, 1.0, 0.0), visibility=10.0).aerosol > 3.0
+
+
+def test_two_sided_without_emission_and_texture_size_without_texture_are_refused():
+    scene = refracta.Scene()
+    triangle = dict(vertices=[(0, 0, 0), (1, 0, 0), (0, 1, 0)], triangles=[(0, 1, 2)])
+    with pytest.raises(ValueError, match="two_sided makes an area light emit from both faces"):
+        scene.add_mesh(**triangle, two_sided=True)
+    scene.add_mesh(**triangle, emission=(1.0, 1.0, 1.0), two_sided=True)
+    with pytest.raises(ValueError, match="texture_size applies to a texture"):
+        scene.add_ground(texture_size=3.0)
+
+
+def test_a_sphere_names_its_own_radius():
+    with pytest.raises(ValueError, match=r"add_sphere: radius must be > 0 \(got -1"):
+        refracta.Scene().add_sphere((0.0, 0.0, 0.0), -1.0)
+
+
+CAMERA = "[camera]\nposition = [0, 1.5, 0]\nlook_at = [100, 1, 0]\nvfov = 10\nsize = [32, 16]\n"
+
+
+def load(tmp_path, text):
+    path = tmp_path / "scene.toml"
+    path.write_text(CAMERA + text)
+    return refracta.load_scene(path)
+
+
+@pytest.mark.parametrize(
+    "text, line, key, message",
+    [
+        # Located once, at the key (it was "scene.toml:6: [[objects]] #1: scene.toml:9: ...").
+        ('[[objects]]\ntype = "sphere"\ncentre = [10, 0, 0]\nradius = "a"\n', 9, "radius", "must be a number"),
+        # At the key the library's message names (was the table's first line, no key).
+        ('[[objects]]\ntype = "sphere"\ncentre = [10, 0, 0]\nradius = -1\n', 9, "radius", "radius must be > 0"),
+        ('[[objects]]\ntype = "box"\ncentre = [10, 0, 0]\nsize = [1, -1, 1]\n', 9, "size", "size must be > 0"),
+        ('[[objects]]\ntype = "ground"\ntexture_size = 3.0\n', 8, "texture_size", "texture_size applies to a texture"),
+        (
+            '[[objects]]\ntype = "mesh"\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\ntriangles = [[0, 1, 2]]\n'
+            "two_sided = true\n",
+            10,
+            "two_sided",
+            "give emission",
+        ),
+        # [sun] takes limb_darkening as [[lights]]' sun and Scene.set_sun do (it was an unknown key).
+        ("[sun]\ndirection = [0, 1, 0]\nradiance = [1, 1, 1]\nlimb_darkening = 2\n", 9, "limb_darkening", r"\[0, 1\]"),
+        (
+            '[environment]\ntype = "physical_sky"\nsun_direction = [0, 1, 0]\naerosol = 1.0\nvisibility = 10\n',
+            9,
+            "aerosol",
+            "not both",
+        ),
+        (
+            '[[lights]]\ntype = "spot"\nposition = [0, 5, 0]\ndirection = [0, -1, 0]\nintensity = [1, 1, 1]\n'
+            "inner_angle = 10\n",
+            11,
+            "inner_angle",
+            "needs the cone's angle",
+        ),
+    ],
+)
+def test_scene_file_errors_name_the_line_and_key_once(tmp_path, text, line, key, message):
+    with pytest.raises(ValueError, match=message) as error:
+        load(tmp_path, text)
+    text_of_error = str(error.value)
+    assert text_of_error.count("scene.toml") == 1, text_of_error
+    assert f"scene.toml:{line}:" in text_of_error
+    if key is not None:
+        assert f" {key}: " in text_of_error
+
+
+def test_a_scene_files_sun_limb_darkening_reaches_the_sun(tmp_path):
+    # The same sun through the file and through Scene.set_sun: equal renders, and unequal to the
+    # undarkened disc (limb darkening dims the disc's edge, so the disc's mean radiance changes).
+    sun = "[sun]\ndirection = [1, 0.0, 0]\nradiance = [100, 100, 100]\nangular_diameter = 2.0\n"
+    camera = refracta.Camera(EYE, (100.0, 1.5, 0.0), vfov=4.0, width=24, height=24)
+
+    def render(scene):
+        return refracta.render(scene, camera, None, method="straight", spp=4, progress=False)
+
+    darkened = load(tmp_path, sun + "limb_darkening = 0.8\n").scene
+    direct = refracta.Scene()
+    direct.set_sun((1.0, 0.0, 0.0), (100.0, 100.0, 100.0), 2.0, 0.8)
+    plain = load(tmp_path, sun).scene
+    np.testing.assert_array_equal(render(darkened), render(direct))  # same scene, same seed: bit-identical
+    assert not np.array_equal(render(darkened), render(plain))
