@@ -150,3 +150,11 @@ def test_a_scene_files_sun_limb_darkening_reaches_the_sun(tmp_path):
     plain = load(tmp_path, sun).scene
     np.testing.assert_array_equal(render(darkened), render(direct))  # same scene, same seed: bit-identical
     assert not np.array_equal(render(darkened), render(plain))
+
+
+def test_ocean_waves_refuse_times_whose_phases_would_be_rounding_noise():
+    # omega t at t = 1e20 s rounds to ~1e4 rad: a random sea, not this sea later.
+    with pytest.raises(ValueError, match=r"time must be finite and within \+-1000000000 s"):
+        refracta.OceanWaves(time=1e20, resolution=64)
+    later = refracta.OceanWaves(time=3600.0, resolution=64)  # an hour on: the same sea, moved
+    assert np.isfinite(later.heights()).all()

@@ -74,7 +74,13 @@ OceanWaves::OceanWaves(const OceanWavesParameters& parameters) : parameters_(par
   if (n < kMinResolution || n > kMaxResolution || (n & (n - 1)) != 0) {
     problem(concat("resolution must be a power of two in [", kMinResolution, ", ", kMaxResolution, "] (got ", n, ")"));
   }
-  if (!std::isfinite(p.time)) problem(concat("time must be finite (got ", p.time, ")"));
+  // Each wave's phase is omega t: beyond ~1e9 s (32 years) its rounding (omega t x 1.1e-16, omega
+  // up to ~10 rad/s) passes 1e-6 rad, and by 1e16 s the phases are noise: a different sea, not the
+  // same sea later.
+  constexpr double kLongestTime = 1e9;  // [s]
+  if (!(std::abs(p.time) <= kLongestTime)) {
+    problem(concat("time must be finite and within +-", kLongestTime, " s (got ", p.time, ")"));
+  }
   if (!problems.empty()) throw_invalid("OceanWaves: ", problems);
   wind_ = p.wind_direction.normalized();
 
