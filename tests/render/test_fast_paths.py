@@ -145,3 +145,33 @@ def test_long_chords_do_not_cut_over_a_path_that_dips_under_the_sea():
     sea = default["object_id"] == 0
     assert sea.sum() > 4000
     assert (sea & (long_chords["object_id"] != 0)).sum() <= 10
+
+
+@pytest.mark.parametrize("azimuth_deg", [180.0, 90.0, 0.0])
+def test_the_ceiling_by_azimuth_keeps_every_object_it_passes(azimuth_deg):
+    # Camera rays stop testing chords once their path stays above the highest geometry at their
+    # azimuth (render/azimuth_ceiling.h). Towers of different heights stand across the view --
+    # looking along -x puts the bins' wrap at +-180 deg in its middle -- each the tallest thing in
+    # its own azimuths: a ceiling taken from the wrong bins, or lost at the wrap, would cut the
+    # taller towers' tops off. The rays through the table must see what rays traced per pixel see.
+    heading = np.radians(azimuth_deg)
+    ahead, side = np.array([np.cos(heading), 0.0, np.sin(heading)]), np.array([-np.sin(heading), 0.0, np.cos(heading)])
+    scene = refracta.Scene()
+    scene.add_ground(0.0, 20000.0, kd=0.3)
+    for k, offset in enumerate(np.linspace(-60.0, 60.0, 7)):
+        height = 5.0 + 6.0 * k
+        centre = 800.0 * ahead + offset * side + np.array([0.0, height / 2, 0.0])
+        scene.add_box(centre, (4.0, height, 4.0), kd=(0.8, 0.2, 0.2))
+    scene.set_sky((0.5, 0.6, 0.9))
+    eye = np.array([0.0, 2.0, 0.0])
+    camera = refracta.Camera(eye, eye + ahead * 800.0 + np.array([0.0, 15.0, 0.0]), vfov=5.0, width=96, height=48)
+    air = refracta.PhysicalAtmosphere(surface_dt=5.0, surface_depth=0.3)
+    common = dict(max_length=5000.0, progress=False, aovs=["position"], transport="direct")
+    _, table = refracta.render(scene, camera, air, **common)
+    _, traced = refracta.render(scene, camera, air, table=False, **common)
+    hit_table, hit_traced = np.isfinite(table["position"][..., 0]), np.isfinite(traced["position"][..., 0])
+    # The towers' silhouettes: the same pixels hit (a quarter-pixel stray may flip a few edges).
+    assert hit_traced.sum() > 500
+    assert (hit_table != hit_traced).sum() <= 0.01 * hit_traced.sum()
+    # Each tower's top row is seen through the table as traced per pixel.
+    assert np.array_equal(hit_table.any(axis=1), hit_traced.any(axis=1))

@@ -292,6 +292,7 @@ void Caster::use_table(const ElevationTable* table, const Vec3d& eye, double pix
   // little more between the same nodes.
   const double sagitta = options_.sagitta, per_metre = options_.sagitta_pixels * pixel_angle;
   auto tolerance = [&](double s) { return 0.5 * std::max(sagitta, per_metre * s); };
+  if (regions_.empty()) azimuth_ceiling_ = AzimuthCeiling(scene_, eye);
   plans_.assign(table->size(), {});
   tbb::parallel_for(size_t(0), table->size(), [&](size_t i) {
     const DefaultFloatingPointMode fp_mode;  // parallel.h: whatever mode the worker was left in
@@ -755,11 +756,12 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
   const TurnedTablePath path(*table_, eye_, dir, exact_tol_);
   const ElevationTable::LazyPath& plane = path.plane;
   const size_t entry = plane.template_entry();
+  // Nothing left to hit once the rest of the path stays above everything at its azimuth.
+  const double ceiling = std::min(ceiling_, azimuth_ceiling_.at(dir));
   if (entry == ElevationTable::LazyPath::kExact) {
     RayNode<double> a = path.node(0);
     for (size_t k = 0; k + 1 < plane.size(); ++k) {
-      // Nothing left to hit once the rest of the path stays above every object.
-      if (plane.lowest_from(k) > ceiling_) break;
+      if (plane.lowest_from(k) > ceiling) break;
       const RayNode<double> b = path.node(k + 1);
       if (segment_blocked(a, b, &end)) return end;
       end.direction = b.v.normalized();
@@ -769,7 +771,7 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
   } else {
     RayNode<double> a = path.node(0);
     for (const PlannedChord& chord : plans_[entry]) {
-      if (plane.lowest_from(chord.first) > ceiling_) break;
+      if (plane.lowest_from(chord.first) > ceiling) break;
       const RayNode<double> b = path.node(chord.last);
       if (chord.pieces > 1) {
         if (pieces_blocked(PathSegment<double>(a, b), int(chord.pieces), &end)) return end;

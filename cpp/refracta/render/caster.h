@@ -15,6 +15,7 @@
 #include "refracta/rays/elevation_table.h"
 #include "refracta/rays/ray_node.h"
 #include "refracta/rays/trace_options.h"
+#include "refracta/render/azimuth_ceiling.h"
 #include "refracta/render/chord_plan.h"
 #include "refracta/render/render_options.h"
 #include "refracta/scene/embree_scene.h"
@@ -245,6 +246,7 @@ class Caster {
   std::optional<IorFloors> floors_;
   double secondary_spread_ = 0.0;   // set_secondary_spread
   std::vector<ChordPlan> plans_;  // per table entry
+  AzimuthCeiling azimuth_ceiling_;  // about the eye (use_table); none (+inf) with local regions
   double exact_tol_ = 0.0;        // [m] camera rays inside the table's exact intervals are traced to this
 };
 
