@@ -293,14 +293,15 @@ def _orthophoto_uv(orthophoto: str, grid: Elevation) -> np.ndarray:
         )
     width, height = photo.heights.shape[1], photo.heights.shape[0]
     # Texture coordinates from the image's left and top edges (its pixels' corners):
-    # s = (x - left) / (width dx), t = (top - y) / (height dy); v = 1 - t.
+    # s = (x - left) / (width dx), t = (top - y) / (height dy); v = 1 - t. A grid sample (c, r) lies at
+    # x = x0 + c dx, y = y0 - r dy (row 0 north), so v falls by dy per row.
     left, top = photo.x0 - 0.5 * photo.dx, photo.y0 + 0.5 * photo.dy
     su = 1.0 / (width * photo.dx)
     st = 1.0 / (height * photo.dy)
     return np.array(
         [
             [grid.dx * su, 0.0, (grid.x0 - left) * su],
-            [0.0, grid.dy * st, 1.0 - (top - grid.y0) * st],
+            [0.0, -grid.dy * st, 1.0 - (top - grid.y0) * st],
         ]
     )
 

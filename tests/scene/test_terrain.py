@@ -268,25 +268,30 @@ def test_a_projected_geotiff_goes_through_its_crs(tmp_path):
 
 
 def test_an_orthophoto_is_draped_by_its_georeference(tmp_path):
-    # A 16 x 16-pixel orthophoto over the DEM's extent: left half red, right half blue.
+    # A 16 x 16-pixel orthophoto over the DEM's extent: its northern half red in the west, blue in
+    # the east, its southern half green (a trial found the image mirrored north-south: v rose with
+    # the rows).
     dem = write_geotiff(
         tmp_path / "dem.tif", np.full((21, 21), 100.0, np.float32), (7.0, 46.0), (0.001, 0.001), raster=2
     )
     photo = np.zeros((16, 16, 3), dtype=np.uint8)
-    photo[:, :8] = (255, 0, 0)
-    photo[:, 8:] = (0, 0, 255)
+    photo[:8, :8] = (255, 0, 0)
+    photo[:8, 8:] = (0, 0, 255)
+    photo[8:] = (0, 255, 0)
     ortho = write_geotiff(tmp_path / "ortho.tif", photo, (7.0, 46.0), (0.00125, 0.00125))
     frame = geo.LocalFrame(45.99, 7.01, earth_radius=math.inf)
     scene = refracta.Scene()
     scene.add_terrain(dem, frame=frame, orthophoto=ortho)
     scene.set_sun((0.0, 1.0, 0.0), (1.0, 1.0, 1.0))
-    for lon, colour in ((7.005, 0), (7.015, 2)):  # 4 texels either side of the edge between the halves
-        p = frame.to_scene(45.99, lon, 100.0)
+    # 4 texels either side of the edges between the quarters (the DEM spans 45.98-46.0 N, 7.0-7.02 E).
+    for lat, lon, colour in ((45.995, 7.005, 0), (45.995, 7.015, 2), (45.985, 7.005, 1), (45.985, 7.015, 1)):
+        p = frame.to_scene(lat, lon, 100.0)
         eye = p + [0.0, 50.0, 0.0]
         camera = refracta.Camera(eye, p, up=(0.0, 0.0, -1.0), vfov=1.0, width=4, height=4)
         image = refracta.render(scene, camera, None, progress=False)
         pixel = image[2, 2]
-        assert pixel[colour] > 5 * pixel[2 - colour], (lon, pixel)
+        others = [pixel[k] for k in range(3) if k != colour]
+        assert pixel[colour] > 5 * max(others), (lat, lon, pixel)
 
 
 def test_a_water_level_adds_water_over_the_extent_below_which_samples_are_under_water():
