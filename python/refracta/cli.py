@@ -415,7 +415,10 @@ _LAYER_CHANNELS = {
 
 def _aov_list(text: str) -> list[str]:
     """--aovs distance,position,...: the names, checked by render (a bad one lists the valid names)."""
-    return [name.strip() for name in text.split(",") if name.strip()]
+    names = [name.strip() for name in text.split(",") if name.strip()]
+    if not names:
+        raise argparse.ArgumentTypeError(f"names no readout (got {text!r}): e.g. --aovs distance,position")
+    return names
 
 
 def _white_balance(text: str):
@@ -433,21 +436,23 @@ def _white_balance(text: str):
     raise argparse.ArgumentTypeError(f"must be a temperature, a name or R,G,B (got {text!r})")
 
 
-# Outputs that are not images OpenImageIO writes: scene files (edit) and animations (imageio, Pillow).
-_NOT_IMAGES = (".toml", ".gif", ".mp4")
-
-
-def _check_output(output: Path) -> None:
-    """Refuses an output path that cannot be written before the work that would fill it."""
+def _check_output(output: Path, scene_file: bool = False) -> None:
+    """Refuses an output path that cannot be written before the work that would fill it: an image
+    OpenImageIO writes (x.xyz failed after the render), or with scene_file a .toml file."""
     output = Path(output)
     if output.is_dir():
         raise ValueError(f"the output {output} is a folder: give a file name (e.g. {output / 'image.png'})")
     if not output.absolute().parent.is_dir():
         raise ValueError(f"the folder of the output {output} does not exist")
-    if output.suffix.lower() not in _NOT_IMAGES:  # an image OIIO must write (x.xyz failed after the render)
-        from refracta import _core
+    if output.exists() and not output.is_file():  # a FIFO or a device: writing waits for a reader
+        raise ValueError(f"the output {output} is not a regular file")
+    if scene_file:
+        if output.suffix.lower() != ".toml":
+            raise ValueError(f"the output {output} must be a scene file (.toml): edit writes the scene's text")
+        return
+    from refracta import _core
 
-        _core._check_image_format(str(output))
+    _core._check_image_format(str(output))
 
 
 def render_file(
@@ -529,7 +534,7 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     from refracta import edit
     from refracta.scene_file import with_atmosphere
 
-    _check_output(output)
+    _check_output(output, scene_file=True)
     loaded = refracta.load_scene(scene_path)
     scene, camera, field = loaded
     if field is None:
