@@ -15,6 +15,7 @@ import math
 from dataclasses import dataclass
 
 from refracta import _core, _options
+from refracta._checks import is_number
 
 # The searches on the launch elevation stop when their bracket moves the ray's height at the
 # target's distance by less than this [m]: a tenth of trace_ray's default tol (1e-6 m).
@@ -71,11 +72,13 @@ class RefractionCoefficient:
     apparent_elevation: float | None
 
 
+_SHORTEST = 1.0  # [m] the shortest distance k is measured over (refraction_coefficient)
+
+
 def _finite(value, name: str, low: float) -> float:
-    try:
-        number = float(value)
-    except (TypeError, ValueError) as error:
-        raise ValueError(f"{name} must be a number (got {value!r})") from error
+    if not is_number(value):  # not True (1 m), not "30"
+        raise ValueError(f"{name} must be a number (got {value!r})")
+    number = float(value)
     if not (math.isfinite(number) and number >= low):
         raise ValueError(f"{name} must be finite and >= {low:g} [m] (got {number!r})")
     return number
@@ -238,7 +241,7 @@ def refraction_coefficient(
     ray, k > 1, may reach it).
 
     Returns a :class:`RefractionCoefficient`. ValueError for a field that is not height-only, a
-    negative or non-finite height, a distance <= 0 or beyond a quarter of the Earth's circumference
+    negative or non-finite height, a distance below 1 m or beyond a quarter of the Earth's circumference
     (R pi / 2), or an earth_radius that contradicts a CurvedEarth's; refracta.NumericalError where
     no ray reaches the distance.
     """
@@ -246,8 +249,12 @@ def refraction_coefficient(
     radius = float(curved.radius)
     h0 = _finite(eye_height, "eye_height", 0.0)
     d = _finite(distance, "distance", 0.0)
-    if not 0.0 < d < 0.5 * math.pi * radius:
-        raise ValueError(f"distance must be in (0, R pi / 2) = (0, {0.5 * math.pi * radius:g}) m (got {d!r})")
+    # Below a metre the Earth's drop (d^2 / 2R < 1e-7 m) is lost in the heights' rounding: k came
+    # out 0.185 at 1 mm and 1.0 at 1 um for a field whose k is 0.1695 from 1 m on.
+    if not _SHORTEST <= d < 0.5 * math.pi * radius:
+        raise ValueError(
+            f"distance must be in [{_SHORTEST:g}, R pi / 2) = [{_SHORTEST:g}, {0.5 * math.pi * radius:g}) m (got {d!r})"
+        )
     target = None if target_height is None else _finite(target_height, "target_height", 0.0)
     # 'stratified' (exact paths from n cos e = const) by default: it finds a grazing ray's lowest
     # point exactly, where rk45's nodes can step over a dip of centimetres below the surface.

@@ -33,7 +33,7 @@ import numpy as np
 import pyproj
 
 from refracta import _core
-from refracta._checks import finite_pair, is_seed
+from refracta._checks import finite_pair, is_number, is_seed
 
 __all__ = ["LocalFrame", "forward", "inverse", "principal_radii", "radius_of_curvature"]
 
@@ -139,12 +139,9 @@ def _flattening(earth_radius) -> tuple[float, Any]:
     None -> sqrt(M N) is filled in by the caller; a CurvedEarth -> itself; inf -> (inf, None): flat."""
     if isinstance(earth_radius, _core.CurvedEarth):
         return float(earth_radius.radius), earth_radius
-    try:
-        radius = float(earth_radius)
-    except (TypeError, ValueError) as error:
-        raise ValueError(
-            f"earth_radius must be a number [m], math.inf or a CurvedEarth (got {earth_radius!r})"
-        ) from error
+    if not is_number(earth_radius):  # not True (a 1 m Earth), not "6e6"
+        raise ValueError(f"earth_radius must be a number [m], math.inf or a CurvedEarth (got {earth_radius!r})")
+    radius = float(earth_radius)
     if radius == math.inf:
         return radius, None
     if not (radius > 0.0 and math.isfinite(radius)):

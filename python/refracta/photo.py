@@ -66,8 +66,23 @@ _TAG_PLANE_UNIT = 0xA210
 # FocalPlaneResolutionUnit: millimetres per unit (1: none given, read as inches as EXIF's default).
 _PLANE_UNIT_MM = {1: 25.4, 2: 25.4, 3: 10.0, 4: 1.0, 5: 1e-3}
 
-# File formats whose 8-bit values are display-encoded (sRGB), not linear radiance.
+# File formats that hold linear radiance (float); a TIFF holds it when its samples are floats.
 _LINEAR_SUFFIXES = (".exr", ".hdr", ".pfm")
+
+
+def _holds_linear(path: Path) -> bool:
+    """Whether a photograph file holds linear radiance: a float format, or a TIFF of float samples
+    (an 8- or 16-bit TIFF is display-encoded, as JPEG and PNG are)."""
+    suffix = path.suffix.lower()
+    if suffix in (".tif", ".tiff"):
+        import tifffile
+
+        try:
+            with tifffile.TiffFile(path) as tif:
+                return tif.pages.first.dtype is not None and tif.pages.first.dtype.kind == "f"
+        except Exception:  # read by OpenImageIO above; a TIFF tifffile cannot parse: as 8-bit
+            return False
+    return suffix in _LINEAR_SUFFIXES
 
 
 @dataclass(frozen=True)
@@ -112,7 +127,7 @@ class Photo:
 
     def display(self) -> np.ndarray:
         """float32 (H, W, 3) display values in [0, 1] (a linear photograph through refracta.io.to_display)."""
-        return _as_display(self.image, self.linear)
+        return _as_display(self.image, self.linear, what="photo")
 
     def sensor_mm(self) -> tuple[float, float] | None:
         """The sensor's (width, height) [mm] along the image as displayed, or None if EXIF does not say."""
@@ -168,9 +183,12 @@ class Photo:
 
 def _sensor(value) -> tuple[float, float]:
     try:
-        w, h = (float(v) for v in value)
-    except (TypeError, ValueError):
-        raise ValueError(f"sensor_mm must be (width, height) in mm (got {value!r})") from None
+        sides = list(value)
+    except TypeError:
+        sides = []
+    if len(sides) != 2 or not all(is_number(v) for v in sides):  # not (True, True), not ("36", "24")
+        raise ValueError(f"sensor_mm must be (width, height) in mm (got {value!r})")
+    w, h = (float(v) for v in sides)
     if not (w > 0.0 and h > 0.0 and math.isfinite(w) and math.isfinite(h)):
         raise ValueError(f"sensor_mm must be two finite sizes > 0 mm (got {value!r})")
     return w, h
@@ -212,7 +230,8 @@ def read_exif(path) -> Exif:
     sensor = None
     plane_x, plane_y = _rational(tag(_TAG_PLANE_X)), _rational(tag(_TAG_PLANE_Y))
     pixels_x, pixels_y = _rational(tag(_TAG_PIXEL_X)), _rational(tag(_TAG_PIXEL_Y))
-    unit = _PLANE_UNIT_MM.get(int(tag(_TAG_PLANE_UNIT) or 2))
+    unit_code = _rational(tag(_TAG_PLANE_UNIT) or 2)  # a malformed tag (a string) reads as none
+    unit = _PLANE_UNIT_MM.get(int(unit_code)) if unit_code is not None and unit_code.is_integer() else None
     if plane_x and plane_y and pixels_x and pixels_y and unit:
         sensor = (pixels_x / plane_x * unit, pixels_y / plane_y * unit)
     orientation = exif.get(_TAG_ORIENTATION, 1)
@@ -255,7 +274,7 @@ def load(path) -> Photo:
     """Read a photograph (any format OpenImageIO reads) and its EXIF; the EXIF orientation is applied.
 
     Returns a Photo: its image float32 (H, W, C), display-encoded in [0, 1] for 8-bit formats
-    (JPEG, PNG, 8-bit TIFF) or linear for float ones (EXR, HDR, PFM). Raises refracta.IoError for a
+    (JPEG, PNG, 8- and 16-bit TIFF) or linear for float ones (EXR, HDR, PFM, float TIFF). Raises refracta.IoError for a
     missing or unreadable file.
     """
     path = _existing_file(path, "photograph")
@@ -263,7 +282,7 @@ def load(path) -> Photo:
     exif = read_exif(path)
     return Photo(
         image=_orient(image, exif.orientation),
-        linear=path.suffix.lower() in _LINEAR_SUFFIXES,
+        linear=_holds_linear(path),
         exif=exif,
         path=path,
     )
@@ -442,6 +461,8 @@ def overlay(
     if isinstance(color, str) or rgb.shape != (3,) or not np.all((rgb >= 0.0) & (rgb <= 1.0)):
         raise ValueError(f"color must be 3 values in [0, 1] (got {color!r})")
     base = photo.display() if isinstance(photo, Photo) else _as_display(photo, linear=False, what="photo")
+    if linear is not None and not isinstance(linear, (bool, np.bool_)):  # bool("no") is True
+        raise ValueError(f"linear must be True, False or None (got {linear!r})")
     shown = _as_display(render, linear=True if linear is None else bool(linear), what="render")
     if shown.shape[:2] != base.shape[:2]:
         raise ValueError(

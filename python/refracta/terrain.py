@@ -45,6 +45,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from refracta import _core
+from refracta._checks import is_number
 
 __all__ = ["Elevation", "ElevationFileNotFoundError", "TerrainGeometry", "add_terrain", "read_elevation"]
 
@@ -338,7 +339,9 @@ def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
     try:
         h = np.asarray(heights, dtype=np.float64)
     except (TypeError, ValueError):
-        raise ValueError("add_terrain: heights must be a (rows, cols) array of numbers [m]") from None
+        h = None
+    if h is None or np.asarray(heights).dtype.kind in "bUS":  # numpy reads "100" and True as numbers
+        raise ValueError("add_terrain: heights must be a (rows, cols) array of numbers [m]")
     if h.ndim != 2 or h.shape[0] < 2 or h.shape[1] < 2:
         raise ValueError(
             f"add_terrain: heights must be a (rows, cols) array with rows, cols >= 2 (got shape {h.shape})"
@@ -352,7 +355,7 @@ def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
     if earth_radius is None:
         y = h
     else:
-        r = float(earth_radius)
+        r = _earth_radius(earth_radius)
         if not (r > 0.0 and math.isfinite(r)):
             raise ValueError(f"add_terrain: earth_radius must be > 0 [m] (got {earth_radius!r})")
         if np.nanmin(h) <= -r:
@@ -385,11 +388,23 @@ def _flat_height(h: np.ndarray, radius: float) -> np.ndarray:
     return np.asarray(earth.flat_height(h.ravel()), dtype=np.float64).reshape(h.shape)
 
 
+def _earth_radius(value) -> float:
+    """The array form's earth_radius [m]: a number, or a CurvedEarth's radius (as LocalFrame takes)."""
+    if isinstance(value, _core.CurvedEarth):
+        return float(value.radius)
+    if not is_number(value):
+        raise ValueError(f"add_terrain: earth_radius must be a number [m] or a CurvedEarth (got {value!r})")
+    return float(value)
+
+
 def _pair(value, name: str, positive: bool) -> tuple[float, float]:
     try:
-        a, b = (float(v) for v in value)
-    except (TypeError, ValueError):
-        raise ValueError(f"add_terrain: {name} must be two numbers [m] (got {value!r})") from None
+        numbers = list(value)
+    except TypeError:
+        numbers = []
+    if len(numbers) != 2 or not all(is_number(v) for v in numbers):  # not (True, True), not ("1", "1")
+        raise ValueError(f"add_terrain: {name} must be two numbers [m] (got {value!r})")
+    a, b = (float(v) for v in numbers)
     if not (math.isfinite(a) and math.isfinite(b)):
         raise ValueError(f"add_terrain: {name} must be finite (got {value!r})")
     if positive and not (a > 0.0 and b > 0.0):
@@ -411,8 +426,11 @@ def _geographic_positions(grid: Elevation, frame) -> np.ndarray:
     return positions
 
 
-def _water(scene, material, level: float, earth_radius: float | None, lower, upper) -> int:
+def _water(scene, material, level, earth_radius: float | None, lower, upper) -> int:
     """A rectangle at the flat height of ``level`` over the terrain's extent (x, z)."""
+    if not is_number(level):
+        raise ValueError(f"add_terrain: water_level must be a number [m] (got {level!r})")
+    level = float(level)
     if not math.isfinite(level):
         raise ValueError(f"add_terrain: water_level must be finite [m] (got {level!r})")
     y = level
@@ -441,7 +459,7 @@ def add_terrain(
 
     heights: a (rows, cols) array of heights [m] (NaN: a hole), with ``origin`` (x0, z0) [m] and
     ``spacing`` (dx, dz) [m] > 0 (rows along +z, columns along +x) and, for a curved Earth,
-    ``earth_radius`` [m]; or the path of an SRTM .hgt tile or a GeoTIFF, or a list of them, with
+    ``earth_radius`` [m] (or a CurvedEarth); or the path of an SRTM .hgt tile or a GeoTIFF, or a list of them, with
     ``frame`` a :class:`refracta.geo.LocalFrame` placing them.
     material: a refracta.shading material, or None for TerrainShading (elevation, slope, snow line).
     orthophoto: an image file draped over the terrain (a georeferenced GeoTIFF for the file forms).
@@ -454,6 +472,8 @@ def add_terrain(
     """
     from refracta import shading
 
+    if isinstance(heights, bytes):  # a path as bytes (os.fsencode), not an array of them
+        heights = os.fsdecode(heights)
     # The grids: positions and, for orthophotos, the uv map of each.
     grids: list[tuple[np.ndarray, Elevation | None]] = []
     if isinstance(heights, Sequence) and not isinstance(heights, str):
@@ -488,7 +508,7 @@ def add_terrain(
         if origin is None or spacing is None:
             raise ValueError("add_terrain: an array of heights needs origin=(x0, z0) and spacing=(dx, dz) [m]")
         grids.append((_array_positions(heights, origin, spacing, earth_radius), None))
-        radius = math.inf if earth_radius is None else float(earth_radius)
+        radius = math.inf if earth_radius is None else _earth_radius(earth_radius)
 
     if material is None:
         if orthophoto is not None:
@@ -516,7 +536,7 @@ def add_terrain(
     water_id = None
     if water_level is not None:
         water_material = shading.Water() if water is None else water
-        water_id = _water(self, water_material, float(water_level), radius, lower[[0, 2]], upper[[0, 2]])
+        water_id = _water(self, water_material, water_level, radius, lower[[0, 2]], upper[[0, 2]])
     elif water is not None:
         raise ValueError("add_terrain: water= is the material of the water_level surface; give water_level")
     return TerrainGeometry(ids, water_id)

@@ -5,9 +5,11 @@
 
 import os
 
+import numpy as np
 import pytest
 
-from refracta import cli
+import refracta
+from refracta import cli, geo
 
 SCENE = "[camera]\nposition = [0, 1.5, 0]\nlook_at = [100, 1, 0]\nvfov = 10\nsize = [16, 8]\n"
 
@@ -63,3 +65,80 @@ def test_a_size_beyond_an_int_is_named_not_a_traceback(tmp_path, capsys):
     path.write_text(SCENE.replace("size = [16, 8]", "size = [99999999999999999999, 8]"))
     status, err = run(capsys, "render", path, "-o", tmp_path / "big.png")
     assert status == 1 and "[camera] size: must be two whole numbers of pixels in [1, 2147483647]" in err
+
+
+def test_a_float_tiff_photograph_is_linear(tmp_path):
+    # Only the suffix decided: a float TIFF was taken as display values and refused by overlay.
+    import tifffile
+
+    from refracta import photo
+
+    rng = np.random.default_rng(1)
+    tifffile.imwrite(tmp_path / "f.tif", (4.0 * rng.random((9, 16, 3))).astype(np.float32), photometric="rgb")
+    tifffile.imwrite(tmp_path / "b.tif", (255 * rng.random((9, 16, 3))).astype(np.uint8), photometric="rgb")
+    assert photo.load(tmp_path / "f.tif").linear
+    assert not photo.load(tmp_path / "b.tif").linear
+    photo.overlay(photo.load(tmp_path / "f.tif"), np.zeros((9, 16, 3), np.float32))
+
+
+def test_a_malformed_exif_unit_reads_as_none(tmp_path):
+    # A FocalPlaneResolutionUnit that is a string broke photo.load (int('x')).
+    from PIL import Image
+
+    from refracta import photo
+
+    exif = Image.Exif()
+    exif.get_ifd(0x8769).update({0x920A: 50.0, 0xA20E: 1000.0, 0xA20F: 1000.0, 0xA210: "x"})
+    Image.new("RGB", (16, 9)).save(tmp_path / "p.jpg", exif=exif)
+    assert photo.read_exif(tmp_path / "p.jpg").sensor_mm is None
+    assert photo.load(tmp_path / "p.jpg").exif.focal_length_mm == 50.0
+
+
+@pytest.mark.parametrize(
+    "make, match",
+    [
+        (lambda: geo.LocalFrame(46.0, 7.0, earth_radius=True), "earth_radius must be a number"),
+        (lambda: geo.LocalFrame(46.0, 7.0, earth_radius="6e6"), "earth_radius must be a number"),
+        (lambda: refracta.refraction_coefficient(refracta.PhysicalAtmosphere(), True, 1000.0), "eye_height must be"),
+        (lambda: refracta.refraction_coefficient(refracta.PhysicalAtmosphere(), "30", 1000.0), "eye_height must be"),
+        # k came out 0.185 at 1 mm and 1.0 at 1 um (0.1695 from 1 m on): the drop is rounding there.
+        (lambda: refracta.refraction_coefficient(refracta.PhysicalAtmosphere(), 2.0, 1e-3), r"distance must be in \[1"),
+        (lambda: _terrain(spacing=(True, True)), "spacing must be two numbers"),
+        (lambda: _terrain(spacing=("1", "1")), "spacing must be two numbers"),
+        (lambda: _terrain(heights=np.full((3, 3), "1")), "heights must be a"),
+        (lambda: _terrain(earth_radius=True), "earth_radius must be a number"),
+        (lambda: _terrain(earth_radius="abc"), "earth_radius must be a number"),
+        (lambda: _terrain(water_level="200"), "water_level must be a number"),
+        (lambda: _terrain(water_level=True), "water_level must be a number"),
+    ],
+)
+def test_bools_and_strings_are_not_numbers_in_the_places_api(make, match):
+    with pytest.raises(ValueError, match=match):
+        make()
+
+
+def _terrain(heights=None, **kwargs):
+    arguments = dict(origin=(0.0, 0.0), spacing=(10.0, 10.0)) | kwargs
+    return refracta.Scene().add_terrain(np.zeros((3, 3)) if heights is None else heights, **arguments)
+
+
+def test_the_array_form_takes_a_curved_earth_as_local_frame_does():
+    earth = refracta.CurvedEarth(refracta.PhysicalAtmosphere())
+    ids = refracta.Scene().add_terrain(np.zeros((3, 3)), origin=(0, 0), spacing=(10, 10), earth_radius=earth)
+    assert ids.terrain
+
+
+def test_photo_sensor_and_overlay_flags_refuse_what_is_not_theirs(tmp_path):
+    from PIL import Image
+
+    from refracta import photo
+
+    exif = Image.Exif()
+    exif.get_ifd(0x8769)[0x920A] = 50.0
+    Image.new("RGB", (16, 9)).save(tmp_path / "p.jpg", exif=exif)
+    loaded = photo.load(tmp_path / "p.jpg")
+    assert loaded.vfov(sensor_mm=(36, 24)) == pytest.approx(2 * np.degrees(np.arctan(24 / 100)))
+    with pytest.raises(ValueError, match="sensor_mm must be"):
+        loaded.vfov(sensor_mm=(True, True))  # was 0.573 deg: a 1 mm sensor
+    with pytest.raises(ValueError, match="linear must be True, False or None"):
+        photo.overlay(loaded, np.zeros((9, 16, 3), np.float32), linear="no")  # bool("no") is True
