@@ -46,8 +46,8 @@ def geographic_camera(
     """
     from refracta import geo  # here: pyproj loads on first use, not with refracta
 
-    if earth_radius is None:
-        earth_radius = geo.radius_of_curvature(lat, azimuth)
+    if earth_radius is None:  # azimuth checked first: an array of them made an array of radii
+        earth_radius = geo.radius_of_curvature(geo._number(lat, "lat"), geo._number(azimuth, "azimuth"))
     frame = geo.LocalFrame(lat, lon, earth_radius=earth_radius)
     return frame.camera(
         height,

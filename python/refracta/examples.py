@@ -591,6 +591,8 @@ def real_place(width: int = 640, height: int = 320, field=None) -> Example:
         frame=frame,
         material=shading.TerrainShading(snow_line=2600.0, tree_line=2000.0, earth_radius=radius),
     )
+    if field is not None and not isinstance(field, _core.IndexField):
+        raise ValueError(f"real_place: field must be a refracta field (an IndexField; got {type(field).__name__})")
     base = _core.PhysicalAtmosphere() if field is None else field
     camera = frame.camera(
         REAL_PLACE_EYE,

@@ -3,7 +3,8 @@
 Conventions (issue 20, shared by refracta.geo, the terrain loader and the per-pixel readouts):
 
 - Angles in degrees, distances and heights in metres. Latitude in [-90, 90] (outside, or NaN:
-  ValueError naming the argument); longitude any finite value (wrapped by pyproj).
+  ValueError naming the argument); longitude in [-360, 360] (either convention, [-180, 180] or
+  [0, 360]; wrapped by pyproj).
 - Azimuth: degrees clockwise from north (0 north, 90 east). Elevation: degrees above the local
   horizontal.
 - Scene frame of an observer at (lat0, lon0): x east, y up, z SOUTH (right-handed; north is -z), so
@@ -186,7 +187,7 @@ class LocalFrame:
             raise ValueError(
                 f"lat must not be a pole (got {self.lat!r}): north, and so the scene's -z, is undefined there"
             )
-        self.lon = _number(lon, "lon")
+        self.lon = _number(lon, "lon", -360.0, 360.0)  # as every function of this module takes it
         self.height = _number(height, "height")
         if earth_radius is None:
             m, n = principal_radii(self.lat)
@@ -305,11 +306,12 @@ class LocalFrame:
         if position is None:
             eye = np.array([0.0, self.flat_height(height), 0.0])
         else:
-            if len(position) != 2:
+            place = finite_pair(position)
+            if place is None:
                 raise ValueError(f"position must be (lat, lon) (got {position!r})")
-            eye = self.to_scene(position[0], position[1], height)
+            eye = self.to_scene(place[0], place[1], height)
             _within_reach(eye, "position")
-            a = self._frame_azimuth(float(position[0]), float(position[1]), a)
+            a = self._frame_azimuth(place[0], place[1], a)
         forward_ = self.direction(a, e)
         # The unrolled camera's up: the view direction turned 90 deg up in its vertical plane.
         sa, ca, se, ce = (
@@ -324,8 +326,10 @@ class LocalFrame:
         size: dict[str, Any] = {}
         for name, value in (("width", image_width), ("height", image_height)):
             if value is not None:
-                if not (is_seed(value) and value >= 1):
-                    raise ValueError(f"image_{name} must be a whole number of pixels >= 1 (got {value!r})")
+                if not (is_seed(value) and 1 <= value <= 2**31 - 1):
+                    raise ValueError(
+                        f"image_{name} must be a whole number of pixels in [1, 2147483647] (got {value!r})"
+                    )
                 size[name] = int(value)
         look_at = eye + forward_
         if vfov is not None:

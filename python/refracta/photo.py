@@ -206,7 +206,13 @@ def _existing_file(path, what: str) -> Path:
     """`path` as a Path; refracta.IoError naming it when it is not a file."""
     path = Path(os.fspath(path))
     if not path.is_file():
-        reason = "it is a folder, not a file" if path.is_dir() else "no such file"
+        reason = (
+            "it is a folder, not a file"
+            if path.is_dir()
+            else "not a regular file (a FIFO or a device)"
+            if path.exists()
+            else "no such file"
+        )
         raise _core.IoError(f"cannot read {what} {path}: {reason}")
     return path
 

@@ -142,3 +142,28 @@ def test_photo_sensor_and_overlay_flags_refuse_what_is_not_theirs(tmp_path):
         loaded.vfov(sensor_mm=(True, True))  # was 0.573 deg: a 1 mm sensor
     with pytest.raises(ValueError, match="linear must be True, False or None"):
         photo.overlay(loaded, np.zeros((9, 16, 3), np.float32), linear="no")  # bool("no") is True
+
+
+@pytest.mark.parametrize(
+    "make, match",
+    [
+        # An array of azimuths made an array of Earth radii, and the message blamed earth_radius.
+        (lambda: refracta.Camera.geographic(47, 8, 450, [120.0, 1.0], 0, vfov=5), "azimuth must be one number"),
+        (lambda: geo.LocalFrame(46, 7).camera(10, 90, 0, vfov=10, position=46), r"position must be \(lat, lon\)"),
+        (lambda: geo.LocalFrame(46, 7).camera(10, 90, 0, vfov=10, image_width=10**12), "image_width must be"),
+        (lambda: geo.LocalFrame(46, 1e9), r"lon must be finite in \[-360, 360\]"),  # as geo's functions take it
+        (lambda: refracta.examples.real_place(16, 8, field="x"), "real_place: field must be a refracta field"),
+    ],
+)
+def test_the_places_api_names_the_argument_at_fault(make, match):
+    with pytest.raises(ValueError, match=match):
+        make()
+
+
+def test_a_fifo_photograph_is_named_as_one(tmp_path):
+    from refracta import photo
+
+    fifo = tmp_path / "p.jpg"
+    os.mkfifo(fifo)
+    with pytest.raises(refracta.IoError, match="not a regular file"):  # it said "no such file"
+        photo.load(fifo)
