@@ -134,7 +134,7 @@ def test_moment_helpers_name_what_is_wrong(call, message):
 
 def test_geodesy_and_cameras_refuse_meaningless_numbers():
     frame = geo.LocalFrame(46.5, 7.5)
-    with pytest.raises(ValueError, match=r"image_width must be a whole number of pixels in \[1, 2147483647\] \(got 1.7\)"):
+    with pytest.raises(ValueError, match=r"image_width must be a whole number of pixels in \[1, \d+\] \(got 1.7\)"):
         frame.camera(1000.0, 45.0, 1.0, vfov=10.0, image_width=1.7)
     with pytest.raises(ValueError, match=r"image_height must be a whole number"):
         frame.camera(1000.0, 45.0, 1.0, vfov=10.0, image_height=True)
