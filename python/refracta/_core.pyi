@@ -935,7 +935,7 @@ class Scene:
         
             heights: a (rows, cols) array of heights [m] (NaN: a hole), with ``origin`` (x0, z0) [m] and
             ``spacing`` (dx, dz) [m] > 0 (rows along +z, columns along +x) and, for a curved Earth,
-            ``earth_radius`` [m]; or the path of an SRTM .hgt tile or a GeoTIFF, or a list of them, with
+            ``earth_radius`` [m] (or a CurvedEarth); or the path of an SRTM .hgt tile or a GeoTIFF, or a list of them, with
             ``frame`` a :class:`refracta.geo.LocalFrame` placing them.
             material: a refracta.shading material, or None for TerrainShading (elevation, slope, snow line).
             orthophoto: an image file draped over the terrain (a georeferenced GeoTIFF for the file forms).

@@ -140,10 +140,11 @@ def test_a_textured_ground_material_gets_texture_coordinates(tmp_path):
     texture = str(uniform_texture(tmp_path / "albedo.exr"))
     camera = refracta.Camera((0.0, 2.0, 0.0), (0.0, 0.0, 0.01), (1, 0, 0), 20.0, 8, 8)
     scenes = []
-    for material in (shading.Diffuse(0.8, texture=texture), shading.Diffuse(0.8)):
+    cases = ((shading.Diffuse(0.8, texture=texture), {"texture_size": 3.0}), (shading.Diffuse(0.8), {}))
+    for material, repeat in cases:
         scene = refracta.Scene()
         scene.set_sky(SKY, SKY)
-        scene.add_ground(0.0, 100.0, material=material, texture_size=3.0)
+        scene.add_ground(0.0, 100.0, material=material, **repeat)  # untextured: no texture_size (refused)
         scenes.append(refracta.render(scene, camera, None, method="straight", progress=False))
     np.testing.assert_allclose(scenes[0], scenes[1] * np.float32(TEXEL), rtol=RENDER_RTOL)
 

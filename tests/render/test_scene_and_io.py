@@ -52,7 +52,7 @@ def test_bad_scene_input_raises_value_errors():
         scene.add_box([0, 0, 0], [1, 1, 1], kd=(2, 0, 0))
     with pytest.raises(ValueError, match="refers to vertex 7"):
         scene.add_mesh(np.zeros((3, 3)), [[0, 1, 7]])
-    with pytest.raises(ValueError, match="radii"):
+    with pytest.raises(ValueError, match="add_sphere: radius must be > 0"):
         scene.add_sphere([0, 0, 0], -1.0)
     with pytest.raises(ValueError, match="vertices"):
         scene.add_mesh(np.array([[0, 0, np.inf], [1, 0, 0], [0, 1, 0]]), [[0, 1, 2]])
