@@ -231,7 +231,7 @@ def animate(
             "and no path is given (the returned frames are linear radiance: refracta.io.to_display shows them)"
         )
     if path is not None:
-        path = os.fspath(path)
+        path = os.fsdecode(os.fspath(path))  # a bytes path too
         if "{" not in path:
             fps = _frame_rate(times, fps)  # the file's (frames as an array, or frame files, have no rate)
             if path.lower().endswith(".gif") and fps > _GIF_FASTEST:
@@ -239,6 +239,12 @@ def animate(
                     f"animate: a GIF's frame delays are whole hundredths of a second, at least 2 (browsers slow "
                     f"shorter ones to 0.1 s): at most {_GIF_FASTEST:g} fps (got {fps:g}"
                     f"{'' if given_fps is not None else ', from the times'}); give fps= or write an MP4"
+                )
+            if path.lower().endswith(".gif") and fps < _GIF_SLOWEST:
+                raise ValueError(
+                    f"animate: a GIF's frame delays are 16-bit hundredths of a second, at most 655.35 s: at least "
+                    f"{_GIF_SLOWEST:.6g} fps (got {fps:g}{'' if given_fps is not None else ', from the times'}); "
+                    "give fps= (a time-lapse plays faster than it was shot)"
                 )
         elif fps is not None:
             raise ValueError(f"animate: fps is a GIF's or an MP4's; frame files ({path!r}) have no rate")
@@ -248,6 +254,8 @@ def animate(
         if "{" not in path and not os.path.isdir(folder):  # ... and so does a folder that is not there
             # (frame files make theirs)
             raise FileNotFoundError(f"animate: the folder of {path!r} does not exist ({folder})")
+        if "{" not in path:  # ... or a file that cannot be written there (tried: /proc takes none)
+            _check_writable(path)
     _check_frames_fit(times.size, camera, path, exposure)
     if not isinstance(denoise, (bool, np.bool_)):
         raise ValueError(f"animate: denoise must be True or False (got {denoise!r})")
@@ -322,6 +330,20 @@ def _check_output_settings(path: str, exposure, tonemap) -> None:
 
 # A GIF's frame delay is a whole number of hundredths of a second; browsers play 0 or 1 as 10.
 _GIF_FASTEST = 50.0
+_GIF_SLOWEST = 1.0 / 655.35  # a delay of 65535 hundredths of a second
+
+
+def _check_writable(path: str) -> None:
+    """Opens `path` for appending (creating it, then removing what it created): OSError naming it now,
+    not after every frame has rendered."""
+    existed = os.path.exists(path)
+    try:
+        with open(path, "ab"):
+            pass
+    except OSError as error:
+        raise OSError(f"animate: cannot write {path!r}: {error.strerror}") from None
+    if not existed:
+        os.remove(path)
 
 
 def _frame_rate(times: np.ndarray, fps: float | None) -> float:

@@ -1858,6 +1858,9 @@ class RasterRenderStats:
     """
     What render_raster measured (read-only).
     """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
     def __getstate__(self) -> tuple[float, float, int, int, float]:
         ...
     def __repr__(self) -> str:
@@ -2191,7 +2194,10 @@ class RenderStats:
     """
     What refracta.render counted, summed over its samples (read-only; tiles add up with +).
     """
+    __hash__: typing.ClassVar[None] = None
     def __add__(self, arg0: RenderStats) -> RenderStats:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
         ...
     def __getstate__(self) -> tuple[int, int, int]:
         ...

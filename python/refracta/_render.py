@@ -11,6 +11,7 @@ from typing import Callable
 import numpy as np
 
 from refracta import _core, _denoise, _options
+from refracta._checks import is_seed
 from refracta._progress import progress_callback
 from refracta._sweep import map_ordered
 
@@ -259,6 +260,8 @@ def render(
             stacklevel=2,
         )
     wanted = _aov_names(aovs)
+    if not isinstance(return_stats, (bool, np.bool_)):  # "no" is truthy
+        raise ValueError(f"render: return_stats must be True or False (got {return_stats!r})")
     if not isinstance(denoise, (bool, np.bool_)):
         raise ValueError(f"denoise must be True or False (got {denoise!r})")
     if "geographic" in wanted and not callable(getattr(frame, "to_geographic", None)):
@@ -411,9 +414,12 @@ def tile_bounds(
         ys = list(range(y0, y1, int(tiles))) + [y1]
     else:
         try:
-            nx, ny = (int(v) for v in tiles)
-        except (TypeError, ValueError):
-            raise ValueError(f"tiles must be a tile size or (nx, ny) (got {tiles!r})") from None
+            counts = list(tiles)
+        except TypeError:
+            counts = []
+        if len(counts) != 2 or not all(is_seed(v) for v in counts):  # not (True, 1), not (2.0, 1)
+            raise ValueError(f"tiles must be a tile size or (nx, ny) whole numbers (got {tiles!r})")
+        nx, ny = (int(v) for v in counts)
         if not (1 <= nx <= w and 1 <= ny <= h) or (nx, ny) != tuple(tiles):
             raise ValueError(f"tiles (nx, ny) must be whole numbers in [1, {w}] x [1, {h}] (got {tiles!r})")
         xs = [x0 + (i * w) // nx for i in range(nx + 1)]

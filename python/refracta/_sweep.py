@@ -101,6 +101,8 @@ def grid_points(grid: Mapping[str, Sequence[Any]] | Sequence[Mapping[str, Any]])
     """
     if isinstance(grid, Mapping):
         names = list(grid)
+        if not names:  # the product of no axes is one empty point: f() once, which no one means
+            raise ValueError("sweep: grid names no parameter (a dict of lists: {'name': [values], ...})")
         values = []
         for name in names:
             if not isinstance(name, str):
@@ -108,6 +110,8 @@ def grid_points(grid: Mapping[str, Sequence[Any]] | Sequence[Mapping[str, Any]])
             axis = grid[name]
             if isinstance(axis, (str, bytes)) or not isinstance(axis, Iterable):
                 raise ValueError(f"sweep: grid[{name!r}] must be a list of values (got {axis!r})")
+            if isinstance(axis, (set, frozenset)):  # its order is arbitrary, and so would the sweep's be
+                raise ValueError(f"sweep: grid[{name!r}] must be ordered values (a list; got a set)")
             values.append(list(axis))
         return [dict(zip(names, combination)) for combination in itertools.product(*values)]
     if isinstance(grid, (str, bytes)) or not isinstance(grid, Iterable):

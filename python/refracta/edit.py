@@ -334,6 +334,34 @@ class EditResult:
         )
 
 
+def solve_options(
+    settings: _core.SolveSettings | None = None,
+    pair_options: _core.PairOptions | None = None,
+    *,
+    where: str = "refracta.edit.solve",
+    **options: Any,
+) -> tuple[_core.SolveSettings, _core.PairOptions]:
+    """The (SolveSettings, PairOptions) that solve builds from its settings, pair_options and option
+    keywords (each a field of one of them; old names renamed with a DeprecationWarning), validated:
+    ValueError naming a keyword that is no option or every bad value. For checking options before
+    a solve runs (the editor's solve_options)."""
+    options = _options.renamed(dict(options), _RENAMED, where)
+    settings_keywords, pair_keywords = _options.split(options, _core.SolveSettings, _core.PairOptions)
+    _options.unknown(options, where, _options.fields(_core.SolveSettings) + _options.fields(_core.PairOptions))
+    for name, given, cls in (
+        ("settings", settings, _core.SolveSettings),
+        ("pair_options", pair_options, _core.PairOptions),
+    ):
+        if given is not None and not isinstance(given, cls):
+            raise ValueError(
+                f"{where}: {name} must be a refracta.edit.{cls.__name__} or None (got {type(given).__name__})"
+            )
+    return (
+        _options.build(_core.SolveSettings, settings, where=where, **settings_keywords),
+        _options.build(_core.PairOptions, pair_options, where=where, **pair_keywords),
+    )
+
+
 def solve(
     field: _core.IndexField,
     eye_or_camera,
@@ -402,11 +430,8 @@ def solve(
             pairs. KeyboardInterrupt on Ctrl-C.
     """
     where = "refracta.edit.solve"
-    options = _options.renamed(dict(options), _RENAMED, where)
     if backend is not None:
         options["backend"] = backend
-    settings_keywords, pair_keywords = _options.split(options, _core.SolveSettings, _core.PairOptions)
-    _options.unknown(options, where, _options.fields(_core.SolveSettings) + _options.fields(_core.PairOptions))
     if not isinstance(field, _core.IndexField):
         raise ValueError(f"field must be an IndexField (got {type(field).__name__})")
     free = _free_names(free)
@@ -420,16 +445,7 @@ def solve(
                 f"free names camera parameters {[n for n in free if n in CAMERA_PARAMETERS]}: pass a Camera as "
                 "eye_or_camera (the camera whose pixels the destinations are)"
             )
-    for name, given, cls in (
-        ("settings", settings, _core.SolveSettings),
-        ("pair_options", pair_options, _core.PairOptions),
-    ):
-        if given is not None and not isinstance(given, cls):
-            raise ValueError(
-                f"{where}: {name} must be a refracta.edit.{cls.__name__} or None (got {type(given).__name__})"
-            )
-    settings = _options.build(_core.SolveSettings, settings, where=where, **settings_keywords)
-    pair_options = _options.build(_core.PairOptions, pair_options, where=where, **pair_keywords)
+    settings, pair_options = solve_options(settings, pair_options, where=where, **options)
     pairs, eye, camera, origins, directions, sources, weights, margins, tolerances = _pair_rays(
         eye_or_camera, pairs, settings.pixel_tolerance
     )

@@ -140,6 +140,7 @@ void bind_raster_render_stats(py::module_& m) {
       .def_readonly("transparent_fragments", &S::transparent_fragments, DOC(refracta, RasterRenderStats, transparent_fragments))
       .def_readonly("oit_bytes_per_pixel", &S::oit_bytes_per_pixel, DOC(refracta, RasterRenderStats, oit_bytes_per_pixel))
       .def("__repr__", [](const py::object& self) { return "RasterRenderStats(" + options_repr(self) + ")"; });
+  def_options_eq(cls);
   def_fields_pickle(cls, &S::seconds, &S::shadow_build_seconds, &S::bytes_per_texel, &S::transparent_fragments,
                     &S::oit_bytes_per_pixel);
 }

@@ -93,6 +93,7 @@ void bind_render(py::module_& m) {
       .def_readonly("invalid_samples", &S::invalid_samples, DOC(refracta, RenderStats, invalid_samples))
       .def(py::self + py::self)
       .def("__repr__", [](const py::object& self) { return "RenderStats(" + options_repr(self) + ")"; });
+  def_options_eq(stats);  // a record: equal counts, equal stats (a pickled copy too)
   def_fields_pickle(stats, &S::samples, &S::chords, &S::invalid_samples);
 
   m.def(

@@ -45,11 +45,25 @@ py::dict options_fields(const py::object& self) {
   return state;
 }
 
+namespace {
+
+// repr of a field's value that eval reads back: inf and nan as float('inf') and float('nan')
+// (Python's repr writes bare inf, a NameError).
+std::string value_repr(const py::handle& value) {
+  if (PyFloat_Check(value.ptr())) {
+    const double v = PyFloat_AS_DOUBLE(value.ptr());
+    if (std::isnan(v)) return "float('nan')";
+    if (std::isinf(v)) return v > 0 ? "float('inf')" : "-float('inf')";
+  }
+  return py::cast<std::string>(py::repr(value));
+}
+
+}  // namespace
+
 std::string options_repr(const py::object& self) {
   std::string out;
   for (const auto& item : options_fields(self)) {
-    out += (out.empty() ? "" : ", ") + py::cast<std::string>(py::str(item.first)) + "=" +
-           py::cast<std::string>(py::repr(item.second));
+    out += (out.empty() ? "" : ", ") + py::cast<std::string>(py::str(item.first)) + "=" + value_repr(item.second);
   }
   return out;
 }
@@ -75,6 +89,14 @@ bool is_number_field(const py::object& target, const std::string& field) {
 // Sets target.<field> = value (the rule in options_binding.h); `keyword` names it in messages.
 void set_field(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
                const std::string& keyword) {
+  // An on/off field takes True or False only: pybind11 takes None as False (differentials=None
+  // turned ray differentials off) and any number by its truth (spectral=2.5, adaptive=nan).
+  if (PyBool_Check(target.attr(field.c_str()).ptr())) {
+    if (value.is_none()) return;  // None leaves it at its default, as for every other field
+    if (!py::detail::is_python_or_numpy_bool(value)) {
+      throw_invalid(owner, ": ", keyword, " must be True or False (got ", py::cast<std::string>(py::repr(value)), ")");
+    }
+  }
   try {
     target.attr(field.c_str()) = value;
   } catch (const py::error_already_set& error) {

@@ -20,7 +20,8 @@ std::string options_repr(const py::object& self);
 // that is not one of its fields goes to the nested options object `nested` (its attribute of that
 // name, e.g. an ElevationTableOptions' `trace`) when that has it; any other name raises ValueError
 // naming `owner` and listing the fields. None leaves a field that takes no None at its value
-// (public signatures write x=None for "unset"); a float equal to a whole number sets an integer
+// (public signatures write x=None for "unset"), an on/off field's too, and such a field takes
+// True or False only (not 1, not 2.5); a float equal to a whole number sets an integer
 // field (40.0 is 40; 2.5 raises "must be a whole number"); any other value the field refuses
 // raises ValueError naming the field. A keyword whose name (or its entry in `paths`, keyword ->
 // dotted path) has dots sets a nested field ("shadow_map.moments.storage"); a None on the way, or

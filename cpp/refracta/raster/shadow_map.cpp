@@ -47,7 +47,8 @@ void ShadowMapOptions::check(Problems& problems) const {
   // held, and the whole visibility buffer kept).
   const bool resolution_ok = resolution >= 2 && resolution <= 8192;
   problems.check(resolution_ok, "resolution must be in [2, 8192] (got ", resolution, ")");
-  problems.check(kernel >= 1 && kernel % 2 == 1 && kernel <= resolution,
+  // Against the resolution only when that is valid: a bad resolution is one problem, not two.
+  problems.check(kernel >= 1 && kernel % 2 == 1 && (!resolution_ok || kernel <= resolution),
                  "kernel must be an odd size >= 1 and <= resolution (got ", kernel, ")");
   moments.check(problems);
   problems.check(depth_bias >= 0.0 && std::isfinite(depth_bias), "depth_bias must be >= 0 (got ", depth_bias, ")");

@@ -134,6 +134,26 @@ def _finite(value, name: str) -> float:
     return number
 
 
+def _check_options(render_options: dict, solve_options: dict) -> None:
+    """Builds the options every render and solve will, so a bad one fails here, not later in the
+    background (where it would only be a message)."""
+    import inspect
+
+    from refracta import _core, _options, edit
+    from refracta._render import render
+    from refracta._render import render_options as build_render_options
+
+    # render()'s own arguments that are not RenderOptions fields (aovs, denoise, ...): its to check.
+    fields = set(_options.fields(_core.RenderOptions))
+    named = {n for n, p in inspect.signature(render).parameters.items() if p.kind is not p.VAR_KEYWORD} - fields
+    try:
+        build_render_options(**{k: v for k, v in render_options.items() if k not in named})
+    except ValueError as error:
+        raise ValueError(f"render_options: {error}") from None
+    solve_named = ("bounds", "derivatives")  # edit.solve's own arguments, not options
+    edit.solve_options(where="solve_options", **{k: v for k, v in solve_options.items() if k not in solve_named})
+
+
 def check_weight(weight, name: str = "weight") -> float:
     """`weight` as a float; ValueError naming `name` unless finite and > 0."""
     value = _finite(weight, name)
@@ -268,6 +288,7 @@ class EditorModel:
         for reserved in ("free", "ground", "stop_height", "progress"):
             if reserved in self.solve_options:
                 raise ValueError(f"solve_options: pass {reserved!r} as the editor's own argument")
+        _check_options(self.render_options, self.solve_options)
         self.preview_scale = int(preview_scale)
         self.display = dict(DEFAULT_DISPLAY if display is None else display)
         self.pairs: tuple = ()

@@ -186,7 +186,8 @@ class MirageEditor(w.VBox):
 
     def close(self) -> None:
         """Stop the background work and close the widgets."""
-        self.model.close()
+        if hasattr(self, "model"):  # not when the constructor failed before making it
+            self.model.close()
         for child in self.children:
             _close_tree(child)
         super().close()
