@@ -87,7 +87,7 @@ def test_sweep_refuses_an_empty_grid_and_an_unordered_axis():
         refracta.sweep(lambda x: x, {"x": {1, 2}})
 
 
-def test_the_editor_refuses_bad_options_when_made(recwarn):
+def test_the_editor_refuses_bad_options_when_made():
     from refracta.widgets.model import EditorModel
 
     road = examples.hot_road(32, 12)
