@@ -41,7 +41,8 @@ def test_a_nested_options_problem_is_one_problem():
     options.shadow_map.resolution = -1
     with pytest.raises(ValueError) as error:
         options.validate()
-    assert "resolution must be in [2, 8192]" in str(error.value) and "kernel" not in str(error.value)
+    # Named as the nested field it is (it read "resolution must be ...").
+    assert "shadow_map.resolution must be in [2, 8192]" in str(error.value) and "kernel" not in str(error.value)
 
 
 @pytest.mark.parametrize("cls", [refracta.RasterRenderOptions, refracta.TurbulenceSettings, refracta.RenderOptions])

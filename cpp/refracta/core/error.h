@@ -61,6 +61,15 @@ class Problems {
     if (!holds) add(parts...);
   }
 
+  // The problems of a nested options object, named as its fields: nested.check(problems)'s
+  // "resolution must be ..." becomes "shadow_map.resolution must be ...".
+  template <class Nested>
+  void check_nested(const char* name, const Nested& nested) {
+    const std::size_t first = list_.size();
+    nested.check(*this);
+    for (std::size_t i = first; i < list_.size(); ++i) list_[i] = std::string(name) + "." + list_[i];
+  }
+
   bool empty() const { return list_.empty(); }
   const std::vector<std::string>& list() const { return list_; }
 

@@ -252,7 +252,7 @@ void MboitSettings::validate() const {
 
 void OitSettings::check(Problems& problems) const {
   if (method == OitMethod::kPeel) problems.check(layers >= 1, "layers must be >= 1 (got ", layers, ")");
-  if (method == OitMethod::kMboit) mboit.check(problems);
+  if (method == OitMethod::kMboit) problems.check_nested("mboit", mboit);
 }
 
 void OitSettings::validate() const {

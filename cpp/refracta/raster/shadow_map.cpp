@@ -50,7 +50,7 @@ void ShadowMapOptions::check(Problems& problems) const {
   // Against the resolution only when that is valid: a bad resolution is one problem, not two.
   problems.check(kernel >= 1 && kernel % 2 == 1 && (!resolution_ok || kernel <= resolution),
                  "kernel must be an odd size >= 1 and <= resolution (got ", kernel, ")");
-  moments.check(problems);
+  problems.check_nested("moments", moments);
   problems.check(depth_bias >= 0.0 && std::isfinite(depth_bias), "depth_bias must be >= 0 (got ", depth_bias, ")");
   problems.check(normal_offset >= 0.0 && std::isfinite(normal_offset), "normal_offset must be >= 0 (got ", normal_offset, ")");
   problems.check(bleeding_reduction >= 0.0 && bleeding_reduction < 1.0,

@@ -50,7 +50,7 @@ RasterOutput parse_raster_output(const std::string& name) {
 const char* raster_output_name(RasterOutput output) { return output == RasterOutput::kShadow ? "shadow" : "radiance"; }
 
 void RasterRenderOptions::check(Problems& problems) const {
-  if (shadows == ShadowSource::kMap) shadow_map.check(problems);
+  if (shadows == ShadowSource::kMap) problems.check_nested("shadow_map", shadow_map);
   if (shadow_half_size) {
     // A map wider than the scene's reach has texels wider than anything in it: no shadow survives.
     problems.check(*shadow_half_size > 0.0 && *shadow_half_size <= kSceneReach, "shadow_half_size must be in (0, ",
@@ -59,7 +59,7 @@ void RasterRenderOptions::check(Problems& problems) const {
   if (shadow_centre) problems.check(is_finite(*shadow_centre), "shadow_centre must be finite");
   problems.check(shadow_distance > 0.0, "shadow_distance must be > 0 (got ", shadow_distance, ")");
   problems.check(tile >= 1, "tile must be >= 1 (got ", tile, ")");
-  if (transparency) transparency->check(problems);
+  if (transparency) problems.check_nested("transparency", *transparency);
   problems.check(shadow_light >= -1, "shadow_light must be -1 (the sun) or a spot light index (got ", shadow_light,
                  ")");
   problems.check(light_strata >= 1 && light_strata <= 64, "light_strata must be in [1, 64] (got ", light_strata, ")");
