@@ -26,13 +26,22 @@ def is_seed(value) -> bool:
     return not isinstance(value, bool) and isinstance(value, (int, np.integer)) and bool(value >= 0)
 
 
-def finite_pair(value) -> tuple[float, float] | None:
-    """`value` as two finite floats, or None when it is not a pair of finite numbers."""
+def number_pair(value) -> tuple[float, float] | None:
+    """`value` as two floats when it holds exactly two numbers (is_number: not (True, True), not
+    ("36", "24")), else None."""
     try:
-        a, b = (float(v) for v in value)
-    except (TypeError, ValueError):
+        items = list(value)
+    except TypeError:
         return None
-    return (a, b) if math.isfinite(a) and math.isfinite(b) else None
+    if len(items) != 2 or not all(is_number(v) for v in items):
+        return None
+    return float(items[0]), float(items[1])
+
+
+def finite_pair(value) -> tuple[float, float] | None:
+    """`value` as two finite floats, or None when it is not a pair of finite numbers (number_pair)."""
+    pair = number_pair(value)
+    return pair if pair is not None and math.isfinite(pair[0]) and math.isfinite(pair[1]) else None
 
 
 def real_array(value, what: str, shape: tuple[int, ...] | None = None) -> np.ndarray:

@@ -15,7 +15,7 @@ import math
 from dataclasses import dataclass
 
 from refracta import _core, _options
-from refracta._checks import is_number
+from refracta._checks import number as _number
 
 # The searches on the launch elevation stop when their bracket moves the ray's height at the
 # target's distance by less than this [m]: a tenth of trace_ray's default tol (1e-6 m).
@@ -76,9 +76,7 @@ _SHORTEST = 1.0  # [m] the shortest distance k is measured over (refraction_coef
 
 
 def _finite(value, name: str, low: float) -> float:
-    if not is_number(value):  # not True (1 m), not "30"
-        raise ValueError(f"{name} must be a number (got {value!r})")
-    number = float(value)
+    number = _number(value, name)  # not True (1 m), not "30"
     if not (math.isfinite(number) and number >= low):
         raise ValueError(f"{name} must be finite and >= {low:g} [m] (got {number!r})")
     return number

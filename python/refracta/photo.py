@@ -40,7 +40,7 @@ import numpy as np
 
 from refracta import _core
 from refracta import io as _io
-from refracta._checks import is_number
+from refracta._checks import is_number, number_pair
 from refracta._render import AOV_NAMES
 
 __all__ = ["Exif", "OverlayResult", "Photo", "load", "overlay", "read_exif", "OVERLAY_MODES"]
@@ -182,13 +182,10 @@ class Photo:
 
 
 def _sensor(value) -> tuple[float, float]:
-    try:
-        sides = list(value)
-    except TypeError:
-        sides = []
-    if len(sides) != 2 or not all(is_number(v) for v in sides):  # not (True, True), not ("36", "24")
+    sides = number_pair(value)
+    if sides is None:
         raise ValueError(f"sensor_mm must be (width, height) in mm (got {value!r})")
-    w, h = (float(v) for v in sides)
+    w, h = sides
     if not (w > 0.0 and h > 0.0 and math.isfinite(w) and math.isfinite(h)):
         raise ValueError(f"sensor_mm must be two finite sizes > 0 mm (got {value!r})")
     return w, h

@@ -45,7 +45,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from refracta import _core
-from refracta._checks import is_number
+from refracta._checks import is_number, number_pair
 
 __all__ = ["Elevation", "ElevationFileNotFoundError", "TerrainGeometry", "add_terrain", "read_elevation"]
 
@@ -398,13 +398,10 @@ def _earth_radius(value) -> float:
 
 
 def _pair(value, name: str, positive: bool) -> tuple[float, float]:
-    try:
-        numbers = list(value)
-    except TypeError:
-        numbers = []
-    if len(numbers) != 2 or not all(is_number(v) for v in numbers):  # not (True, True), not ("1", "1")
+    pair = number_pair(value)
+    if pair is None:
         raise ValueError(f"add_terrain: {name} must be two numbers [m] (got {value!r})")
-    a, b = (float(v) for v in numbers)
+    a, b = pair
     if not (math.isfinite(a) and math.isfinite(b)):
         raise ValueError(f"add_terrain: {name} must be finite (got {value!r})")
     if positive and not (a > 0.0 and b > 0.0):

@@ -25,7 +25,9 @@ template <class T>
 class StrictNumberCaster {
  public:
   bool load(handle src, bool convert) {
-    if (!src || is_python_or_numpy_bool(src)) return false;
+    if (!src) return false;
+    // Exact floats and ints (most arguments) are no bools; anything else may be one.
+    if (!PyFloat_CheckExact(src.ptr()) && !PyLong_CheckExact(src.ptr()) && is_python_or_numpy_bool(src)) return false;
     if constexpr (std::is_floating_point_v<T>) {
       if (!convert && !PyFloat_Check(src.ptr()) && !PyLong_Check(src.ptr())) return false;
       const double d = PyFloat_AsDouble(src.ptr());
