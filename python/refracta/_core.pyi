@@ -3504,7 +3504,7 @@ def _check_image_format(path: str) -> None:
     """
 def _cmj_pattern(count: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
     """
-    (count, 2) sample positions in [0, 1)^2 of the film's correlated multi-jittered pattern (render/film.h,
+    (count, 2) sample positions in [0, 1)^2 of the film's correlated multi-jittered pattern (core/sample_patterns.h,
     Kensler 2013) with the shuffles of `seed`, jittered by the generator Rng(seed, 0).
     """
 def _composite(depths: typing.Any, alphas: typing.Any, colors: typing.Any, background: typing.Any, settings: OitSettings) -> numpy.typing.NDArray[numpy.float64]:

@@ -9,9 +9,9 @@ import refracta
 from refracta import lights
 
 UP, HORIZONTAL, DOWN = [[0.0, 1.0, 0.0]], [[1.0, 0.0, 0.0]], [[0.0, -1.0, 0.0]]
-# The gradient map's rows sit at their centres, half a row (0.35 deg) off the lookup's nodes, and
-# the horizon lies between two rows: the blend there is within 1 % of (zenith - horizon).
-ROW_OFFSET_TOLERANCE = 0.01
+# The gradient map's rows sit on the lookup's nodes, the horizon one of them: exact at the nodes
+# but for float32 texels, linear between them within (pi / 256)^2 / 8 = 2e-5 of (zenith - horizon).
+ROW_OFFSET_TOLERANCE = 3e-5
 # RGB round trip of an illuminant colour through float32 texels: float rounding.
 FLOAT_TOLERANCE = 1e-6
 
@@ -25,6 +25,11 @@ def test_a_gradient_sky_runs_from_the_horizon_below_to_the_zenith_above():
     np.testing.assert_allclose(sky.Le(UP)[0], zenith, atol=ROW_OFFSET_TOLERANCE * span)
     np.testing.assert_allclose(sky.Le(HORIZONTAL)[0], horizon, atol=ROW_OFFSET_TOLERANCE * span)
     np.testing.assert_allclose(sky.Le(DOWN)[0], horizon, rtol=FLOAT_TOLERANCE)
+    # Linear in the sine of the elevation (set_sky's docstring) between the nodes too.
+    elevation = np.radians(np.linspace(0.05, 89.95, 181))
+    directions = np.stack([np.cos(elevation), np.sin(elevation), np.zeros_like(elevation)], axis=1)
+    expected = horizon + np.sin(elevation)[:, None] * (zenith - horizon)
+    np.testing.assert_allclose(sky.Le(directions), expected, atol=ROW_OFFSET_TOLERANCE * span)
 
 
 def test_a_sky_without_zenith_is_constant_and_without_colours_the_default_blue():

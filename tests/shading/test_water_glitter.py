@@ -111,9 +111,11 @@ def test_04_glitter_is_wider_in_more_wind():
     assert (widths[2] - widths[0]) / 8.0 == pytest.approx(5.12e-3, rel=2 * RENDER_TOLERANCE)
 
 
-# Mitsuba's render of the same glitter: the total within 0.1 % (measured 0.04 %); per pixel, the mean
-# absolute difference is 4 spp noise of both renderers plus the sun's disc against Mitsuba's
-# directional (delta) sun, measured 2.4 %, 1.5 %, 1.0 % of the total at 2, 5, 10 m/s.
+# Mitsuba's render of the same glitter at 64 spp: the total within 0.1 %. Its 4-spp total spreads
+# 0.08 % (sd over 6 seeds at 2 m/s), ours 0.025 %; at 64 spp Mitsuba's 0.024 %, and the sun's disc
+# against Mitsuba's directional (delta) sun moves ours 0.02 % (64-spp means): 0.1 % is ~3 sd.
+# Per pixel, the mean absolute difference is 4 spp noise plus the disc, measured 2.4 %, 1.5 %,
+# 1.0 % of the total at 2, 5, 10 m/s with both at 4 spp (an upper bound with Mitsuba at 64).
 MITSUBA_TOTAL_TOLERANCE = 1e-3
 MITSUBA_PIXEL_TOLERANCE = 5e-2
 
@@ -135,7 +137,7 @@ def test_05_mitsuba_renders_the_same_glitter(wind):
                 "fov_axis": "y",
                 "to_world": mi.ScalarTransform4f().look_at(origin=[0, 10, 0], target=[0, 0, 0], up=[0, 0, 1]),
                 "film": {"type": "hdrfilm", "width": size, "height": size, "rfilter": {"type": "box"}},
-                "sampler": {"type": "independent", "sample_count": 4},
+                "sampler": {"type": "independent", "sample_count": 64},
             },
             "sea": {
                 "type": "rectangle",

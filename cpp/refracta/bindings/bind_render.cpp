@@ -109,17 +109,17 @@ void bind_render(py::module_& m) {
       "_cmj_pattern",
       [](int count, uint32_t seed) {
         if (count < 1) throw_invalid("count must be >= 1 (got ", count, ")");
-        const detail::CmjPattern pattern(count, seed);
-        Sampler sampler{Rng(seed, 0)};
+        const CmjPattern pattern(count, seed);
+        Rng rng(seed, 0);
         Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> points(count, 2);
         for (int s = 0; s < count; ++s) {
-          const double jx = sampler.uniform();
-          points.row(s) = pattern.point(s, jx, sampler.uniform()).transpose();
+          const double jx = rng.uniform();
+          points.row(s) = pattern.point(s, jx, rng.uniform()).transpose();
         }
         return points;
       },
       py::arg("count"), py::arg("seed"),
-      "(count, 2) sample positions in [0, 1)^2 of the film's correlated multi-jittered pattern (render/film.h,\n"
+      "(count, 2) sample positions in [0, 1)^2 of the film's correlated multi-jittered pattern (core/sample_patterns.h,\n"
       "Kensler 2013) with the shuffles of `seed`, jittered by the generator Rng(seed, 0).");
   // Where each readout lies among the render's channels (readouts.h ReadoutChannel): name -> (first, count).
   m.attr("_READOUT_CHANNELS") = py::dict(py::cast(readout_channels()));

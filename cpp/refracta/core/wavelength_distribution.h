@@ -9,6 +9,7 @@
 #pragma once
 
 #include "refracta/core/error.h"
+#include "refracta/core/sample_patterns.h"
 #include "refracta/core/spectrum.h"
 
 #include <algorithm>
@@ -44,6 +45,15 @@ class WavelengthDistribution {
     if (!(lambda_nm >= kLambdaMin && lambda_nm <= kLambdaMax)) return 0.0;
     if (uniform()) return 1.0 / (kLambdaMax - kLambdaMin);
     return density_[bin_of(lambda_nm)];
+  }
+
+  // Four wavelengths whose set is chosen by u_set and whose hero among them by u_hero, both in
+  // [0, 1): the sets repeat every quarter of u (u + i/4 below), so sample((u_set + floor(4 u_hero)) / 4).
+  // Stratified over a pixel's samples as one 2-D point, both the sets and the heroes are (a
+  // stratified u alone would give 4 samples the same set: each quarter of u spans every set).
+  SampledWavelengths sample(double u_set, double u_hero) const {
+    const double quarter = std::floor(u_hero * kSpectrumSamples);
+    return sample(std::min((u_set + quarter) / kSpectrumSamples, kOneMinusEpsilon));
   }
 
   // Four wavelengths from u in [0, 1): lambda_i at u + i/4 (wrapped) of the cumulative density.

@@ -118,9 +118,7 @@ double LowestLaunches::least_exit(double h, double scale) const {
 DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options,
                                const LightVisibility* visibility)
     : scene_(scene), caster_(caster), options_(options), visibility_(visibility ? *visibility : *this) {
-  std::vector<double> power;
-  for (const auto& light : scene.lights()) power.push_back(std::max(light->power(), 0.0));
-  if (!power.empty()) select_ = PiecewiseConstant1D(power);
+  if (!scene.lights().empty()) select_ = PiecewiseConstant1D(choice_weights(scene.lights()));
   // Pre-bent through the height-only air (fields with local regions: outside them; a path through
   // a spot leaves a little off the sampled direction, and is evaluated where it does leave).
   // Not over a spherical Earth (CurvedEarth): its paths leave the air turned by their central angle
@@ -262,6 +260,26 @@ Eigen::Matrix3d DirectLighting::to_world_frame(const Vec3d& p) const {
   if (!spherical_) return rotation;
   for (int axis = 0; axis < 3; ++axis) rotation.col(axis) = caster_.field()->sky_direction(p, Vec3d::Unit(axis));
   return rotation;
+}
+
+std::vector<double> DirectLighting::choice_weights(const std::vector<LightPtr>& lights) {
+  double infinite_power = 0.0, bounded_power = 0.0;
+  int infinite = 0;
+  for (const auto& light : lights) {
+    const double power = std::max(light->power(), 0.0);
+    (light->is_infinite() ? infinite_power : bounded_power) += power;
+    if (light->is_infinite() && power > 0.0) ++infinite;
+  }
+  // Each infinite light of some power counts as much as all the bounded ones together.
+  const double bounded_share = bounded_power > 0.0 ? 1.0 / (infinite + 1) : 0.0;
+  const double infinite_share = infinite_power > 0.0 ? 1.0 - bounded_share : 0.0;
+  std::vector<double> weights;
+  for (const auto& light : lights) {
+    const double power = std::max(light->power(), 0.0);
+    weights.push_back(light->is_infinite() ? (power > 0.0 ? infinite_share * power / infinite_power : 0.0)
+                                           : (power > 0.0 ? bounded_share * power / bounded_power : 0.0));
+  }
+  return weights;
 }
 
 Spectrum DirectLighting::sample_lights(const SurfaceInteraction& si, const SurfaceBsdf& bsdf,

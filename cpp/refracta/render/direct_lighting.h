@@ -143,7 +143,14 @@ class DirectLighting : public LightVisibility {
   const Caster& caster_;
   const RenderOptions& options_;
   const LightVisibility& visibility_;
-  PiecewiseConstant1D select_;  // light choice in proportion to power
+  // 'path' chooses one light a vertex (select_, from choice_weights): infinite lights and bounded
+  // ones as two classes, each infinite light of some power as likely as all the bounded ones
+  // together (pbrt-v4's BVHLightSampler gives the same share to its infinite lights), in
+  // proportion to power within each class. An infinite light's power is taken through the scene's
+  // bounding disc: a sky over a 1 km ground has ~1e5 times a lamp's, and one choice by power alone
+  // all but never sampled the lamp (its light came as rare fireflies from BSDF samples).
+  static std::vector<double> choice_weights(const std::vector<LightPtr>& lights);
+  PiecewiseConstant1D select_;
   bool pre_bend_ = false;
   bool spherical_ = false;  // CurvedEarth: distant lights are turned into each point's frame
   bool all_lights_ = false;

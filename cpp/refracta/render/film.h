@@ -35,64 +35,8 @@ namespace refracta {
 
 namespace detail {
 
-// Element i of a pseudo-random permutation of [0, n) chosen by `seed` (Kensler 2013, "Correlated
-// Multi-Jittered Sampling", Pixar Technical Memo 13-01, permute(): an invertible hash of the bits
-// below n's highest, cycle-walked into [0, n)); as pbrt-v4's PermutationElement.
-inline uint32_t permutation_element(uint32_t i, uint32_t n, uint32_t seed) {
-  uint32_t w = n - 1;
-  w |= w >> 1, w |= w >> 2, w |= w >> 4, w |= w >> 8, w |= w >> 16;
-  do {
-    i ^= seed;
-    i *= 0xe170893d;
-    i ^= seed >> 16;
-    i ^= (i & w) >> 4;
-    i ^= seed >> 8;
-    i *= 0x0929eb3f;
-    i ^= seed >> 23;
-    i ^= (i & w) >> 1;
-    i *= 1 | seed >> 27;
-    i *= 0x6935fa69;
-    i ^= (i & w) >> 11;
-    i *= 0x74dcb303;
-    i ^= (i & w) >> 2;
-    i *= 0x9e501cc3;
-    i ^= (i & w) >> 2;
-    i *= 0xc860a3df;
-    i &= w;
-    i ^= i >> 5;
-  } while (i >= n);
-  return (i + seed) % n;
-}
-
-// Kensler 2013's correlated multi-jittered pattern (cmj(): "Correlated Multi-Jittered Sampling",
-// Pixar Technical Memo 13-01) of `count` samples in [0, 1)^2: the cells of a columns x rows grid
-// (columns the largest divisor of count not above its square root, so columns x rows = count:
-// 1 x count for a prime count, a Latin hypercube), one sample each; within its cell a sample sits
-// in the sub-column its row's shuffle gives it and in the sub-row its column's shuffle gives it,
-// the same shuffles for every cell ("correlated"): each of the count columns and count rows of
-// the unit square holds exactly one sample. `seed` picks the shuffles; point() takes the jitter.
-class CmjPattern {
- public:
-  CmjPattern(int count, uint32_t seed) : seed_(seed) {
-    columns_ = std::max(1, int(std::floor(std::sqrt(double(count)) + 1e-9)));
-    while (columns_ > 1 && count % columns_ != 0) --columns_;
-    rows_ = std::max(1, count / columns_);
-  }
-  // Sample s in [0, count), its jitter (jx, jy) in [0, 1)^2.
-  Vec2d point(int s, double jx, double jy) const {
-    const uint32_t i = uint32_t(s % columns_), j = uint32_t(s / columns_);
-    const uint32_t sx = permutation_element(i, uint32_t(columns_), seed_ * 0xa511e9b3u);
-    const uint32_t sy = permutation_element(j, uint32_t(rows_), seed_ * 0x63d83595u);
-    return Vec2d((i + (sy + jx) / rows_) / columns_, (j + (sx + jy) / columns_) / rows_);
-  }
-
- private:
-  uint32_t seed_;
-  int columns_ = 1, rows_ = 1;
-};
-
 // A 32-bit seed drawn from the pixel's generator.
-inline uint32_t draw_seed(Sampler& sampler) { return uint32_t(sampler.uniform() * 4294967296.0); }
+inline uint32_t draw_seed(Sampler& sampler) { return uint32_t(sampler.rng.uniform() * 4294967296.0); }
 
 // The running sums of one pixel's samples: radiance (and surface AOVs) in `value`, its samples'
 // luminance and its square (adaptive sampling's variance), the readouts' nearest hit and the sum
@@ -213,27 +157,38 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
     // One sample of spp 1: the pixel's centre; jittered as a base pass for edge refinement, so a
     // feature between the pixels' centres may still be met (and, met, flag its neighbours).
     const bool centre = count == 1 && options.spp == 1 && !refine_edges;
-    const detail::CmjPattern pattern(count, centre ? 0u : detail::draw_seed(sampler));
+    const uint32_t pattern_seed = centre ? 0u : detail::draw_seed(sampler);
+    const CmjPattern pattern(count, pattern_seed);
     // The lens point, drawn only by a thin lens (pinhole renders unchanged), from a pattern of its
     // own whose samples are paired with the pixel's through a shuffle (pbrt-v4's samplers: each
     // dimension stratified, their pairing random).
     const uint32_t lens_seed = thin_lens ? detail::draw_seed(sampler) : 0u;
     const uint32_t lens_shuffle = thin_lens ? detail::draw_seed(sampler) : 0u;
-    const detail::CmjPattern lens_pattern(count, lens_seed);
+    const CmjPattern lens_pattern(count, lens_seed);
+    // The radiance's own draws, stratified over these samples (Sampler), their shuffles from a hash
+    // of the pattern's seed (the generator's numbers, and so the samples' positions, as before).
+    if (count > 1) sampler.set_pattern(count, Rng::mix(pattern_seed ^ 0x5851F42D4C957F2Dull));
     for (int s = 0; s < count; ++s) {
       poll_cancel();  // a sample through turbulence can take milliseconds (the ray's steps poll too)
+      sampler.start_sample(s);
       Vec2d offset(0.5, 0.5);
       if (!centre) {
-        const double jx = sampler.uniform();
-        offset = pattern.point(s, jx, sampler.uniform());
+        const double jx = sampler.rng.uniform();
+        offset = pattern.point(s, jx, sampler.rng.uniform());
       }
       Vec2d lens(0.5, 0.5);
       if (thin_lens) {
-        const int t = int(detail::permutation_element(uint32_t(s), uint32_t(count), lens_shuffle));
-        const double jx = sampler.uniform();
-        lens = lens_pattern.point(t, jx, sampler.uniform());
+        const int t = int(permutation_element(uint32_t(s), uint32_t(count), lens_shuffle));
+        const double jx = sampler.rng.uniform();
+        lens = lens_pattern.point(t, jx, sampler.rng.uniform());
       }
-      SampledWavelengths lambda = options.spectral ? wavelengths.sample(sampler.uniform()) : SampledWavelengths::rgb();
+      SampledWavelengths lambda = SampledWavelengths::rgb();
+      if (options.spectral) {
+        // One 2-D draw: the samples' sets and (through dispersive air, where only the hero counts)
+        // their heroes both stratified.
+        const Vec2d u = sampler.uniform2();
+        lambda = wavelengths.sample(u.x(), u.y());
+      }
       SurfaceAovs aovs;
       const Spectrum L = radiance(Vec2d(x + offset.x(), y + offset.y()), lens, spacing, pixel_angle, lambda, sampler,
                                   scratch, surface ? &aovs : nullptr);

@@ -17,11 +17,15 @@
 namespace refracta {
 
 Image gradient_sky_image(const Vec3d& horizon, const Vec3d& zenith) {
-  // 256 rows resolve the blend to < 0.4 % of its range per row; azimuth needs no resolution.
-  constexpr int kRows = 256, kColumns = 4;
+  // Rows at EnvironmentLight's nodes (row y at theta = pi y / (rows - 1), the poles on the first
+  // and last), 257 so that the horizon is a node: the blend is exact there and at every node, and
+  // its linear interpolation between them within (pi / 256)^2 / 8 = 2e-5 of its range. (Rows at
+  // texel centres sat half a row off the lookup's nodes: the sky was 0.4 % low and its horizon
+  // blurred over a row.) Azimuth needs no resolution.
+  constexpr int kRows = 257, kColumns = 4;
   Image image(kColumns, kRows, 3);
   for (int y = 0; y < kRows; ++y) {
-    const double theta = kPi * (y + 0.5) / kRows;  // from the zenith
+    const double theta = kPi * y / (kRows - 1);  // from the zenith
     const double t = std::clamp(std::cos(theta), 0.0, 1.0);
     const Vec3d c = (1.0 - t) * horizon + t * zenith;
     for (int x = 0; x < kColumns; ++x) {
