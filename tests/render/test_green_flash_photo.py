@@ -114,9 +114,10 @@ LENS_R = 0.53 / 2  # [deg] the sun's angular radius (examples.green_flash)
 LENS_PIXEL = 0.35 / 256  # [deg] the demo's last frame at 256 px
 LENS_SIZE = (96, 48)  # [px] around the vertex
 # Rendered against predicted width and height (measured -0.5 %, -0.2 %, +0.5 % and -0.8 %, -1.2 %,
-# +1.1 % at 500, 530, 560 nm, 16 spp; up to -4.8 % at 4 spp): the lens's edge pixels (the mask's boundary within half a pixel on
-# each side of a 13-63 px lens: 2-7 % of its size in the second moment) and limb darkening (the
-# half-maximum mask cuts the cap's dimmer rim); the +-1 nm band moves h by +-2 % (+-1 % in size).
+# +1.1 % at 500, 530, 560 nm, 16 spp; up to -4.8 % at 4 spp): the lens's edge pixels (the mask's
+# boundary within half a pixel on each side of a 13-63 px lens: 2-7 % of its size in the second
+# moment) and limb darkening (the half-maximum mask cuts the cap's dimmer rim); the +-1 nm band
+# moves h by +-2 % (+-1 % in size).
 LENS_SIZE_TOLERANCE = 0.07
 # All bands' ellipses on one row. Measured at 16 spp over seeds 0-3: 500 nm's 0.15-0.21 px above
 # 560 nm's every time (the half-maximum masks of ellipses 14 to 27 px tall), +-0.05 px of noise;
