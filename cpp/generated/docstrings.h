@@ -125,8 +125,8 @@ unit dirs (N, 3).)doc";
 inline constexpr const char mkd_doc_refracta_Le_rgb[] = R"doc(Infinite lights: RGB radiance (N, 3) seen looking along unit dirs (N, 3); 0 for others.)doc";
 inline constexpr const char mkd_doc_refracta_Light[] = R"doc(A light (shared/SHADING.md section 5). In Python its methods evaluate RGB rendering, vectorised over
 N points.)doc";
-inline constexpr const char mkd_doc_refracta_LightSampler[] = R"doc(Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it
-after preprocess() of infinite lights.)doc";
+inline constexpr const char mkd_doc_refracta_LightSampler[] = R"doc(Chooses one light per sample, in proportion to power ('power'), by kind ('kind') or uniformly
+('uniform'). Build it after preprocess() of infinite lights.)doc";
 inline constexpr const char mkd_doc_refracta_LinearSquaredModel[] = R"doc(n^2 = n0^2 + alpha y: rays are parabolas y = y0 + t0 x + alpha x^2 / (4 beta^2), beta = n(y0)
 cos(e0).)doc";
 inline constexpr const char mkd_doc_refracta_LogisticModel[] = R"doc(The original mirage editor's height profile (Choi 2017), in scene units::

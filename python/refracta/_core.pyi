@@ -3173,8 +3173,8 @@ class Light:
         """
 class LightSampler:
     """
-    Chooses one light per sample, in proportion to power ('power') or uniformly ('uniform'). Build it
-    after preprocess() of infinite lights.
+    Chooses one light per sample, in proportion to power ('power'), by kind ('kind') or uniformly
+    ('uniform'). Build it after preprocess() of infinite lights.
     """
     def __getstate__(self) -> tuple[list[Light], int]:
         ...

@@ -233,7 +233,7 @@ void bind_lights(py::module_& m) {
       sampler, "LightSampler", 2, [](const LightSampler& s) { return py::make_tuple(s.lights(), int(s.strategy())); },
       [](const py::tuple& t) {
         const int strategy = py::cast<int>(t[1]);
-        if (strategy != int(LightSampler::Strategy::kPower) && strategy != int(LightSampler::Strategy::kUniform)) {
+        if (strategy < int(LightSampler::Strategy::kPower) || strategy > int(LightSampler::Strategy::kKind)) {
           throw_invalid("LightSampler: bad pickle state");
         }
         return LightSampler(py::cast<std::vector<LightPtr>>(t[0]), LightSampler::Strategy(strategy));

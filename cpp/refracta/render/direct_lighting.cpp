@@ -117,8 +117,11 @@ double LowestLaunches::least_exit(double h, double scale) const {
 
 DirectLighting::DirectLighting(const RenderScene& scene, const Caster& caster, const RenderOptions& options,
                                const LightVisibility* visibility)
-    : scene_(scene), caster_(caster), options_(options), visibility_(visibility ? *visibility : *this) {
-  if (!scene.lights().empty()) select_ = PiecewiseConstant1D(choice_weights(scene.lights()));
+    : scene_(scene),
+      caster_(caster),
+      options_(options),
+      visibility_(visibility ? *visibility : *this),
+      select_(scene.lights(), LightSampler::Strategy::kKind) {
   // Pre-bent through the height-only air (fields with local regions: outside them; a path through
   // a spot leaves a little off the sampled direction, and is evaluated where it does leave).
   // Not over a spherical Earth (CurvedEarth): its paths leave the air turned by their central angle
@@ -262,26 +265,6 @@ Eigen::Matrix3d DirectLighting::to_world_frame(const Vec3d& p) const {
   return rotation;
 }
 
-std::vector<double> DirectLighting::choice_weights(const std::vector<LightPtr>& lights) {
-  double infinite_power = 0.0, bounded_power = 0.0;
-  int infinite = 0;
-  for (const auto& light : lights) {
-    const double power = std::max(light->power(), 0.0);
-    (light->is_infinite() ? infinite_power : bounded_power) += power;
-    if (light->is_infinite() && power > 0.0) ++infinite;
-  }
-  // Each infinite light of some power counts as much as all the bounded ones together.
-  const double bounded_share = bounded_power > 0.0 ? 1.0 / (infinite + 1) : 0.0;
-  const double infinite_share = infinite_power > 0.0 ? 1.0 - bounded_share : 0.0;
-  std::vector<double> weights;
-  for (const auto& light : lights) {
-    const double power = std::max(light->power(), 0.0);
-    weights.push_back(light->is_infinite() ? (power > 0.0 ? infinite_share * power / infinite_power : 0.0)
-                                           : (power > 0.0 ? bounded_share * power / bounded_power : 0.0));
-  }
-  return weights;
-}
-
 Spectrum DirectLighting::sample_lights(const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
                                        const SampledWavelengths& lambda, Sampler& sampler) const {
   const size_t count = scene_.lights().size();
@@ -291,8 +274,7 @@ Spectrum DirectLighting::sample_lights(const SurfaceInteraction& si, const Surfa
     for (size_t i = 0; i < count; ++i) sum += sample_one(i, 1.0, si, bsdf, lambda, sampler.uniform2(), true);
     return sum;
   }
-  size_t index;
-  select_.sample(sampler.uniform(), nullptr, &index);
+  const size_t index = select_.sample(sampler.uniform())->index;
   const double pick = pick_probability(index);
   if (!(pick > 0.0)) return Spectrum::Zero();
   return sample_one(index, pick, si, bsdf, lambda, sampler.uniform2(), true);

@@ -27,6 +27,7 @@
 #include "refracta/render/render_options.h"
 #include "refracta/render/render_scene.h"
 #include "refracta/shading/bsdf.h"
+#include "refracta/shading/light_sampler.h"
 
 #include <functional>
 #include <memory>
@@ -112,7 +113,7 @@ class DirectLighting : public LightVisibility {
   double distant_ior(const Vec3d& p, const Vec3d& exit) const;
 
  private:
-  double pick_probability(size_t light) const { return all_lights_ ? 1.0 : select_.cell_probability(light); }
+  double pick_probability(size_t light) const { return all_lights_ ? 1.0 : select_.pmf(light); }
   // mis: weighted against BSDF sampling (power heuristic) unless the light is delta.
   Spectrum sample_one(size_t index, double pick, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
                       const SampledWavelengths& lambda, const Vec2d& u, bool mis) const;
@@ -143,14 +144,7 @@ class DirectLighting : public LightVisibility {
   const Caster& caster_;
   const RenderOptions& options_;
   const LightVisibility& visibility_;
-  // 'path' chooses one light a vertex (select_, from choice_weights): infinite lights and bounded
-  // ones as two classes, each infinite light of some power as likely as all the bounded ones
-  // together (pbrt-v4's BVHLightSampler gives the same share to its infinite lights), in
-  // proportion to power within each class. An infinite light's power is taken through the scene's
-  // bounding disc: a sky over a 1 km ground has ~1e5 times a lamp's, and one choice by power alone
-  // all but never sampled the lamp (its light came as rare fireflies from BSDF samples).
-  static std::vector<double> choice_weights(const std::vector<LightPtr>& lights);
-  PiecewiseConstant1D select_;
+  LightSampler select_;  // 'path''s choice of one light a vertex (by kind: a lamp under a sky is sampled)
   bool pre_bend_ = false;
   bool spherical_ = false;  // CurvedEarth: distant lights are turned into each point's frame
   bool all_lights_ = false;

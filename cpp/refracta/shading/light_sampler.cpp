@@ -3,26 +3,38 @@
 
 #include "refracta/core/error.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace refracta {
 
 LightSampler::Strategy LightSampler::strategy_from(const std::string& name) {
-  if (name != "power" && name != "uniform") {
-    throw_invalid("LightSampler: strategy must be 'power' or 'uniform' (got '", name, "')");
-  }
-  return name == "power" ? Strategy::kPower : Strategy::kUniform;
+  if (name == "power") return Strategy::kPower;
+  if (name == "uniform") return Strategy::kUniform;
+  if (name == "kind") return Strategy::kKind;
+  throw_invalid("LightSampler: strategy must be 'power', 'uniform' or 'kind' (got '", name, "')");
 }
 
 LightSampler::LightSampler(std::vector<LightPtr> lights, Strategy strategy)
     : lights_(std::move(lights)), strategy_(strategy) {
   std::vector<double> weights(lights_.size(), 1.0);
+  double infinite_power = 0.0, bounded_power = 0.0;
+  int infinite = 0;  // infinite lights of some power
   for (size_t i = 0; i < lights_.size(); ++i) {
     if (!lights_[i]) throw_invalid("LightSampler: lights[", i, "] is null");
-    if (strategy_ == Strategy::kPower) {
-      const double p = lights_[i]->power();
-      if (!std::isfinite(p) || p < 0.0) throw_invalid("LightSampler: lights[", i, "].power() must be finite and >= 0 (got ", p, ")");
-      weights[i] = p;
+    if (strategy_ == Strategy::kUniform) continue;
+    const double p = lights_[i]->power();
+    if (!std::isfinite(p) || p < 0.0) throw_invalid("LightSampler: lights[", i, "].power() must be finite and >= 0 (got ", p, ")");
+    weights[i] = p;
+    (lights_[i]->is_infinite() ? infinite_power : bounded_power) += p;
+    if (lights_[i]->is_infinite() && p > 0.0) ++infinite;
+  }
+  if (strategy_ == Strategy::kKind) {
+    const double bounded_share = bounded_power > 0.0 ? 1.0 / (infinite + 1) : 0.0;
+    const double infinite_share = 1.0 - bounded_share;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+      weights[i] *= lights_[i]->is_infinite() ? (infinite_power > 0.0 ? infinite_share / infinite_power : 0.0)
+                                              : bounded_share / std::max(bounded_power, 1e-300);
     }
   }
   if (!lights_.empty()) distribution_ = PiecewiseConstant1D(weights);
