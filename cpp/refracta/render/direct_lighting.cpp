@@ -181,6 +181,53 @@ double DirectLighting::exit_jacobian(const Vec3d& p, const Vec3d& launch) const 
   return sqr(n_p / n_top) * launch.y() / sin_exit;
 }
 
+std::optional<Vec3d> DirectLighting::launch_bent_sun(const SurfaceInteraction& si, const Vec3d& exit,
+                                                     const Eigen::Matrix3d& to_world, double* jacobian) const {
+  // Below p's horizon: the setting sun, seen by the refraction of its light alone (and its glitter
+  // on the sea). The rising path that leaves along the sample, found by its casts.
+  if (exit.y() < 0.0) return launch_below_horizon(si, exit, to_world, jacobian);
+  // Above it: the launch the sun's exit map sends toward the sample, where it covers it.
+  const Vec3d horizontal(exit.x(), 0.0, exit.z());
+  double launch;
+  if (sun_exits_ && horizontal.norm() > kMinBendSine &&
+      sun_exits_->launch(si.p.y(), *scale_, std::asin(exit.y()), &launch, jacobian)) {
+    return Vec3d(std::cos(launch) * horizontal.normalized() + Vec3d(0.0, std::sin(launch), 0.0));
+  }
+  *jacobian = 1.0;
+  return exit;
+}
+
+double DirectLighting::bent_sun_pdf(const SurfaceInteraction& from, const Vec3d& launch_dir, const Vec3d& exit_here,
+                                    const LightSampleContext& ctx, const Eigen::Matrix3d& to_world) const {
+  // The light samples that can launch along launch_dir, by where their exit lay (launch_bent_sun).
+  const Light& sun = *bent_sun_;
+  const Vec3d horizontal(launch_dir.x(), 0.0, launch_dir.z());
+  const double launch = std::asin(std::clamp(launch_dir.y(), -1.0, 1.0));
+  double pdf = 0.0;
+  // Above p's horizon through the exit map: the density at the exit it maps this launch to.
+  double exit, jacobian;
+  if (sun_exits_ && horizontal.norm() > kMinBendSine &&
+      sun_exits_->exit(from.p.y(), *scale_, launch, &exit, &jacobian) && exit >= 0.0) {
+    const Vec3d toward = std::cos(exit) * horizontal.normalized() + Vec3d(0.0, std::sin(exit), 0.0);
+    pdf += sun.pdf_li(ctx, to_world * toward, Vec3d::Zero(), Vec3d::Zero()) * jacobian;
+  }
+  // Above it where the map does not cover the sample: launched along the sample itself.
+  if (launch_dir.y() >= 0.0 &&
+      !(sun_exits_ && horizontal.norm() > kMinBendSine && sun_exits_->covers(from.p.y(), *scale_, launch))) {
+    pdf += sun.pdf_li(ctx, to_world * launch_dir, Vec3d::Zero(), Vec3d::Zero());
+  }
+  // Below it (launch_below_horizon): the rising path that leaves along the sample, whose exit this
+  // path's own is.
+  if (exit_here.y() < 0.0 && launch >= kLowestLaunch && launch <= kHighestLaunch) {
+    const double pdf_exit = sun.pdf_li(ctx, to_world * exit_here, Vec3d::Zero(), Vec3d::Zero());
+    if (pdf_exit > 0.0) {
+      const double below = std::asin(std::clamp(exit_here.y(), -1.0, 1.0));
+      pdf += pdf_exit * std::max(bend_jacobian(from, horizontal.normalized(), launch, below, to_world), 0.0);
+    }
+  }
+  return pdf;
+}
+
 double DirectLighting::exit_elevation(const SurfaceInteraction& si, const Vec3d& across, double elevation,
                                       const Eigen::Matrix3d& to_world) const {
   const Vec3d launch = std::cos(elevation) * across + Vec3d(0.0, std::sin(elevation), 0.0);
@@ -304,10 +351,8 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
   // Launch the curved shadow ray toward a distant light so that it leaves along the sample.
   if (light.is_infinite()) {
     const Vec3d exit = turned ? Vec3d(to_world.transpose() * ls->wi) : ls->wi;
-    if (turned && exit.y() < 0.0 && &light == bent_sun_) {
-      // Below p's horizon over a spherical Earth: the setting sun, seen by the refraction of its
-      // light alone (and its glitter on the sea). The rising path that leaves along the sample.
-      const auto launch = launch_below_horizon(si, exit, to_world, &jacobian);
+    if (turned && &light == bent_sun_) {
+      const auto launch = launch_bent_sun(si, exit, to_world, &jacobian);
       if (!launch) return Spectrum::Zero();
       wi = *launch;
     } else {
@@ -372,32 +417,18 @@ Spectrum DirectLighting::escaped(const PathEnd& end, const Vec3d& launch_dir, co
     const Eigen::Matrix3d to_world = to_world_frame(from->p);
     ctx.n = to_world * from->n_toward_wo();
     // The density with which light sampling would have launched this same ray: pre-bent, that of
-    // the exit direction it was aimed at (times the map's Jacobian); otherwise light samples
-    // launch along the sampled direction itself, so its density at launch_dir (in the world
-    // frame). Over a spherical Earth the two differ by the whole refraction: a shadow ray launched
-    // toward the sun set 0.45 deg below the true horizon meets the sea, while the BSDF ray that
-    // reflects the sun off the water leaves rising; weighting that ray by the density at its exit
-    // direction (the sun's disc) gave it ~0.3 % of its radiance, and the sea under a setting sun
-    // lost its glitter path.
-    // Over a spherical Earth a light sample below p's horizon launches along the rising path that
-    // leaves along it (launch_below_horizon): the density of this launch from there as well.
+    // the exit direction it was aimed at (times the map's Jacobian); the sun over a spherical
+    // Earth, by where its sample's exit lay (bent_sun_pdf); otherwise light samples launch along
+    // the sampled direction itself, so its density at launch_dir (in the world frame). Over a
+    // spherical Earth the two differ by the whole refraction: weighting the BSDF ray that reflects
+    // a setting sun off the water by the density at its exit direction gave it ~0.3 % of its
+    // radiance, and the sea lost its glitter path.
     double light_pdf =
         pre_bend_ ? lights[i]->pdf_li(ctx, end.direction, Vec3d::Zero(), Vec3d::Zero()) *
                         exit_jacobian(from->p, launch_dir)
-                  : (lights[i].get() != bent_sun_ || launch_dir.y() >= 0.0
-                         ? lights[i]->pdf_li(ctx, to_world * launch_dir, Vec3d::Zero(), Vec3d::Zero())
-                         : 0.0);
-    const Vec3d exit_here = to_world.transpose() * end.direction;
-    if (lights[i].get() == bent_sun_ && exit_here.y() < 0.0 && launch_dir.y() >= std::sin(kLowestLaunch) &&
-        launch_dir.y() <= std::sin(kHighestLaunch)) {
-      const double pdf_exit = lights[i]->pdf_li(ctx, end.direction, Vec3d::Zero(), Vec3d::Zero());
-      if (pdf_exit > 0.0) {
-        const Vec3d across = Vec3d(launch_dir.x(), 0.0, launch_dir.z()).normalized();
-        const double launch = std::asin(std::clamp(launch_dir.y(), -1.0, 1.0));
-        const double exit = std::asin(std::clamp(exit_here.y(), -1.0, 1.0));
-        light_pdf += pdf_exit * std::max(bend_jacobian(*from, across, launch, exit, to_world), 0.0);
-      }
-    }
+        : lights[i].get() == bent_sun_
+            ? bent_sun_pdf(*from, launch_dir, Vec3d(to_world.transpose() * end.direction), ctx, to_world)
+            : lights[i]->pdf_li(ctx, to_world * launch_dir, Vec3d::Zero(), Vec3d::Zero());
     light_pdf *= pick_probability(i);
     L += Le * power_heuristic(1, bsdf_pdf, 1, light_pdf);
   }

@@ -16,7 +16,8 @@
 // direction (unbiased: the light is evaluated where the path does leave; a sun near the horizon
 // is then met by fewer samples) -- over a spherical Earth the sampled direction turned into the
 // point's own frame first, so that a path without air leaves exactly along it (else a sun 0.53 deg
-// wide is missed beyond ~30 km, where the central angle exceeds its radius).
+// wide is missed beyond ~30 km, where the central angle exceeds its radius), and the sun's samples
+// through its exit map (SunExitMap) above the point's horizon and by a search below it.
 #pragma once
 
 #include "refracta/core/rng.h"
@@ -26,6 +27,7 @@
 #include "refracta/render/light_visibility.h"
 #include "refracta/render/render_options.h"
 #include "refracta/render/render_scene.h"
+#include "refracta/render/sun_exit_map.h"
 #include "refracta/shading/bsdf.h"
 #include "refracta/shading/light_sampler.h"
 
@@ -86,11 +88,14 @@ class DirectLighting : public LightVisibility {
   Spectrum sample_light(size_t index, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
                         const SampledWavelengths& lambda, const Vec2d& u) const;
 
-  // The render's lowest launches (LowestLaunches), and where the sample's dispersion scale is read
-  // (a spectral render's hero's air's; 1 for an RGB render's one air); without them every lowest
-  // launch is cast.
-  void use_lowest_launches(std::shared_ptr<const LowestLaunches> table, std::shared_ptr<const double> scale) {
-    lowest_launches_ = std::move(table);
+  // Over a spherical Earth with a sun: the render's lowest launches (LowestLaunches; without them
+  // every lowest launch is cast), its sun's exit map (SunExitMap; without it sun samples above a
+  // point's horizon launch along the sample), and where the sample's dispersion scale is read (a
+  // spectral render's hero's air's; 1 for an RGB render's one air). Either table may be null.
+  void use_sun_tables(std::shared_ptr<const LowestLaunches> lowest, std::shared_ptr<const SunExitMap> exits,
+                      std::shared_ptr<const double> scale) {
+    lowest_launches_ = std::move(lowest);
+    sun_exits_ = std::move(exits);
     scale_ = std::move(scale);
   }
 
@@ -130,6 +135,15 @@ class DirectLighting : public LightVisibility {
   // position on the launch elevation, the azimuth kept), and the density factor
   // |d omega_exit / d omega_launch| in `jacobian`; nullopt when no path rising from si leaves
   // that low (the light has set for si).
+  // The scene's sun over a spherical Earth, its sample `exit` in p's frame: launched below p's
+  // horizon by launch_below_horizon, above it through the sun's exit map where that covers the
+  // exit, else along the sample; the density factor in `jacobian`, nullopt where the sun has set.
+  std::optional<Vec3d> launch_bent_sun(const SurfaceInteraction& si, const Vec3d& exit, const Eigen::Matrix3d& to_world,
+                                       double* jacobian) const;
+  // The density of light samples of that sun launching along `launch_dir` (p's frame) from `from`,
+  // whose path left along `exit_here` (p's frame): the sum over the three ways above.
+  double bent_sun_pdf(const SurfaceInteraction& from, const Vec3d& launch_dir, const Vec3d& exit_here,
+                      const LightSampleContext& ctx, const Eigen::Matrix3d& to_world) const;
   std::optional<Vec3d> launch_below_horizon(const SurfaceInteraction& si, const Vec3d& exit,
                                             const Eigen::Matrix3d& to_world, double* jacobian) const;
   // The elevation in p's frame [rad] at which the path launched from si at `elevation` in the
@@ -149,7 +163,8 @@ class DirectLighting : public LightVisibility {
   bool spherical_ = false;  // CurvedEarth: distant lights are turned into each point's frame
   bool all_lights_ = false;
   const Light* bent_sun_ = nullptr;  // over a spherical Earth: the scene's sun (launch_below_horizon)
-  std::shared_ptr<const LowestLaunches> lowest_launches_;  // use_lowest_launches
+  std::shared_ptr<const LowestLaunches> lowest_launches_;  // use_sun_tables
+  std::shared_ptr<const SunExitMap> sun_exits_;
   std::shared_ptr<const double> scale_;
 };
 

@@ -22,7 +22,9 @@ struct HeroCasters::Hero {
     if (owner.floors_) caster.set_ior_floors(*owner.floors_);
     caster.set_secondary_spread(owner.spread_);
     integrator = make_integrator(owner.scene_, caster, owner.options_);
-    if (owner.lowest_launches_) integrator->lighting().use_lowest_launches(owner.lowest_launches_, scale);
+    if (owner.lowest_launches_ || owner.sun_exits_) {
+      integrator->lighting().use_sun_tables(owner.lowest_launches_, owner.sun_exits_, scale);
+    }
   }
 
   std::shared_ptr<double> scale;  // K(hero) / K(reference), read by `air` at every evaluation
@@ -58,6 +60,10 @@ HeroCasters::HeroCasters(const RenderScene& scene, FieldPtr field, const RenderO
     scales.push_back(s);
   }
   lowest_launches_ = LowestLaunches::build(scene.geometry, views, scales);
+  // The sun's exit map at the two extreme scales: a path's refraction is linear in the air's n - 1
+  // to first order, and the scales span 2.4 % of it.
+  sun_exits_ = SunExitMap::build(scene.geometry, {airs.front().get(), airs.back().get()}, {scales.front(), scales.back()},
+                                 options, spread, *scene.sun());
 }
 
 HeroCasters::~HeroCasters() = default;

@@ -20,6 +20,7 @@
 #include "refracta/render/integrator.h"
 #include "refracta/render/render_options.h"
 #include "refracta/render/render_scene.h"
+#include "refracta/render/sun_exit_map.h"
 
 #include <tbb/concurrent_queue.h>
 
@@ -67,9 +68,10 @@ class HeroCasters {
   std::optional<IorFloors> floors_;
   double spread_;
   double reference_;  // the field's reference wavelength [nm]
-  // Over a spherical Earth with a sun, every hero's lowest launches below the horizon
-  // (DirectLighting::use_lowest_launches); null: each is cast.
+  // Over a spherical Earth with a sun, every hero's lowest launches below the horizon and the sun's
+  // exit map above it (DirectLighting::use_sun_tables); null: each is cast, or launched along the sample.
   std::shared_ptr<const LowestLaunches> lowest_launches_;
+  std::shared_ptr<const SunExitMap> sun_exits_;
   mutable tbb::concurrent_queue<std::unique_ptr<Hero>> idle_;  // built and not held
 };
 

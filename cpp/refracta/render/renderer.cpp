@@ -285,13 +285,14 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
             : nullptr;
   const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
   // Over a spherical Earth with a sun, the lowest launches of its samples below a point's horizon
-  // from a table (LowestLaunches, at the render's one scale); spectral renders' heroes carry
-  // theirs (hero_casters.cpp).
+  // and its exit map above it from tables (LowestLaunches, SunExitMap, at the render's one scale);
+  // spectral renders' heroes carry theirs (hero_casters.cpp).
   if (!options.spectral && caster.curved() && caster.field()->height_only() &&
       std::isfinite(caster.field()->earth_radius()) && scene.sun() != nullptr) {
-    if (auto lowest = LowestLaunches::build(scene.geometry, {&caster}, {1.0})) {
-      integrator->lighting().use_lowest_launches(std::move(lowest), std::make_shared<const double>(1.0));
-    }
+    integrator->lighting().use_sun_tables(
+        LowestLaunches::build(scene.geometry, {&caster}, {1.0}),
+        SunExitMap::build(scene.geometry, {caster.field()}, {1.0}, options, camera.pixel_angle(), *scene.sun()),
+        std::make_shared<const double>(1.0));
   }
   // 'perturbed': the lighting rays of samples whose camera ray was a small perturbation through
   // the layer go through the calm air (shimmer_cast.h).
