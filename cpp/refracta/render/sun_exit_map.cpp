@@ -12,19 +12,19 @@ namespace refracta {
 
 namespace {
 
-constexpr int kHeightIntervals = 32;
-constexpr size_t kLaunchNodes = 128;
+constexpr int kMapHeightIntervals = 32;
+constexpr size_t kMapLaunchNodes = 128;
 // The launch band around the exits sought [rad]: refraction lifts a launch above its exit by up to
 // ~0.6 deg at the horizon (more in a duct), a hot layer can bend it the other way.
-constexpr double kBandAbove = 0.015, kBandBelow = 0.005;
-constexpr double kLowestLaunch = 5e-6;  // [rad] a level ray would start on the surface's far side
-constexpr double kExitPad = 1e-3;       // [rad] beyond the sun's extreme elevations in the scene
+constexpr double kMapBandAbove = 0.015, kMapBandBelow = 0.005;
+constexpr double kLowestMapLaunch = 5e-6;  // [rad] a level ray would start on the surface's far side
+constexpr double kMapExitPad = 1e-3;       // [rad] beyond the sun's extreme elevations in the scene
 // [m] a point this far outside the surfaces' heights (float error of a hit) reads the nearest row.
-constexpr double kHeightSlack = 1e-3;
+constexpr double kMapHeightSlack = 1e-3;
 
 // The exit elevation [rad] in the start's frame of the path launched at `elevation` from (0, h, 0)
 // along +x through air alone; NaN where it ends inside the air or the cast fails.
-double exit_elevation(const Caster& caster, double h, double elevation) {
+double air_exit_elevation(const Caster& caster, double h, double elevation) {
   const Vec3d origin(0.0, h, 0.0);
   try {
     const PathEnd end = caster.cast(origin, Vec3d(std::cos(elevation), std::sin(elevation), 0.0));
@@ -46,7 +46,8 @@ std::shared_ptr<const SunExitMap> SunExitMap::build(const Scene& scene, const st
   if (!std::isfinite(scene.lowest()) || !std::isfinite(scene.highest())) return nullptr;
   // The sun's elevation in the frames of the scene box's corners (it changes linearly with the
   // position along the ground to first order in the central angle: the corners bound it).
-  const Vec3d lower = scene.lower(), upper = scene.upper();
+  const Vec3d& lower = scene.lower();
+  const Vec3d& upper = scene.upper();
   const double disc_radius = std::acos(1.0 - sun.solid_angle() / (2.0 * kPi));
   double e_min = std::numeric_limits<double>::infinity(), e_max = -e_min;
   for (double x : {lower.x(), upper.x()}) {
@@ -57,18 +58,18 @@ std::shared_ptr<const SunExitMap> SunExitMap::build(const Scene& scene, const st
       e_min = std::min(e_min, e), e_max = std::max(e_max, e);
     }
   }
-  const double exit_lo = std::max(0.0, e_min - disc_radius - kExitPad), exit_hi = e_max + disc_radius + kExitPad;
+  const double exit_lo = std::max(0.0, e_min - disc_radius - kMapExitPad), exit_hi = e_max + disc_radius + kMapExitPad;
   if (!(exit_hi > 0.0)) return nullptr;
   auto map = std::make_shared<SunExitMap>();
   // The surfaces' heights (a point's map is read at its own height; row() takes a height within
-  // kHeightSlack of the ends as the end's).
+  // kMapHeightSlack of the ends as the end's).
   map->h_lo_ = scene.lowest();
-  map->h_step_ = std::max(scene.highest() - scene.lowest(), kHeightSlack) / kHeightIntervals;
-  map->heights_ = kHeightIntervals + 1;
-  map->e_lo_ = std::max(kLowestLaunch, exit_lo - kBandBelow);
-  const double e_hi = std::min(0.5 * kPi - 1e-6, exit_hi + kBandAbove);
-  map->launches_ = kLaunchNodes;
-  map->e_step_ = (e_hi - map->e_lo_) / double(kLaunchNodes - 1);
+  map->h_step_ = std::max(scene.highest() - scene.lowest(), kMapHeightSlack) / kMapHeightIntervals;
+  map->heights_ = kMapHeightIntervals + 1;
+  map->e_lo_ = std::max(kLowestMapLaunch, exit_lo - kMapBandBelow);
+  const double e_hi = std::min(0.5 * kPi - 1e-6, exit_hi + kMapBandAbove);
+  map->launches_ = kMapLaunchNodes;
+  map->e_step_ = (e_hi - map->e_lo_) / double(kMapLaunchNodes - 1);
   map->scales_ = scales;
   // Air alone: the scene's surfaces block shadow rays, not the map (the render's casts say what
   // a path meets).
@@ -86,7 +87,7 @@ std::shared_ptr<const SunExitMap> SunExitMap::build(const Scene& scene, const st
     const size_t k = size_t(index) / per_scale, node = size_t(index) % per_scale;
     const size_t j = node / map->launches_, i = node % map->launches_;
     map->exits_[k][node] =
-        exit_elevation(*casters[k], map->h_lo_ + double(j) * map->h_step_, map->e_lo_ + double(i) * map->e_step_);
+        air_exit_elevation(*casters[k], map->h_lo_ + double(j) * map->h_step_, map->e_lo_ + double(i) * map->e_step_);
   });
   // Each row's monotone part: from the highest launch down while the exit falls strictly.
   bool any = false;
@@ -114,11 +115,11 @@ double SunExitMap::Row::at(size_t i) const {
 }
 
 bool SunExitMap::row(double h, double scale, Row* out) const {
-  const double h_hi = h_lo_ + kHeightIntervals * h_step_;
-  if (!(h >= h_lo_ - kHeightSlack && h <= h_hi + kHeightSlack)) return false;
+  const double h_hi = h_lo_ + kMapHeightIntervals * h_step_;
+  if (!(h >= h_lo_ - kMapHeightSlack && h <= h_hi + kMapHeightSlack)) return false;
   const double u = (std::clamp(h, h_lo_, h_hi) - h_lo_) / h_step_;
   out->map = this;
-  out->cell = std::min(size_t(u), size_t(kHeightIntervals - 1));
+  out->cell = std::min(size_t(u), size_t(kMapHeightIntervals - 1));
   out->w_height = u - double(out->cell);
   out->scale_cell = 0;
   // Two scales: linear in the air's n - 1 between them (clamped at the ends); one: the render's air.
