@@ -276,7 +276,7 @@ AdaptiveSampling::first_pass(spp) samples per pixel (2 at 16 spp) chooses how th
 32 block's budget is shared: every pixel at least half of spp, the others where the pilot's samples
 vary most (edges, noise); each pixel is one pattern of its count, the pilot is not averaged in
 (unbiased); the image's total is still width x height x spp. 'straight' and 'curved' only; spp >= 3
-(below, off).)doc";
+(below, a ValueError).)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_bounds_in[] = R"doc(The pixels to render of a width x height image, (x0, y0, x1, y1): pixel_bounds (checked to lie
 inside, non-empty; std::invalid_argument otherwise) or the whole image.)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_chord[] = R"doc(longest straight chord tested against the geometry [m])doc";

@@ -1927,7 +1927,7 @@ class RenderOptions:
         32 block's budget is shared: every pixel at least half of spp, the others where the pilot's samples
         vary most (edges, noise); each pixel is one pattern of its count, the pilot is not averaged in
         (unbiased); the image's total is still width x height x spp. 'straight' and 'curved' only; spp >= 3
-        (below, off).
+        (below, a ValueError).
         """
     @adaptive.setter
     def adaptive(self, arg0: bool) -> None:

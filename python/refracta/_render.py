@@ -211,8 +211,8 @@ def render(
     spp: samples per pixel (1: pixel centres; more: a correlated multi-jittered pattern, Kensler
     2013), seeded by `seed` per pixel (independent of the thread count). adaptive=True: the same
     width x height x spp samples, shared by a pilot of spp / 8 per pixel within each 32-pixel block
-    (every pixel at least spp / 2, the rest where the pilot varies; unbiased; RenderOptions.adaptive,
-    cpp/refracta/render/adaptive_sampling.h); off by default, and not used by denoise=True: on the
+    (every pixel at least spp / 2, the rest where the pilot varies; unbiased; spp >= 3;
+    RenderOptions.adaptive, cpp/refracta/render/adaptive_sampling.h); off by default, and not used by denoise=True: on the
     demo scenes it does not lower the error (benchmarks/bench_denoise.py). edge_spp (RenderOptions.edge_spp,
     off by default): when above spp, every pixel at an edge between surfaces (its samples' first-hit
     albedo or normal differs from a neighbour's: the outlines of poles, booms, hulls) is rendered

@@ -57,6 +57,13 @@ def test_adaptive_sampling_draws_exactly_width_x_height_x_spp_samples():
     assert 0 < stats.samples < camera.width * camera.height * 16
 
 
+def test_adaptive_sampling_below_its_pilot_is_refused():
+    # Its pilot takes 2 samples a pixel: below 3 it was silently off.
+    scene, camera = poles()
+    with pytest.raises(ValueError, match=r"adaptive needs spp >= 3 \(got 2\)"):
+        render(scene, camera, spp=2, adaptive=True)
+
+
 def test_adaptive_sampling_puts_the_samples_where_the_edges_are():
     # Against a 1024-spp reference, the error of the columns holding the poles' edges falls at
     # the same budget (measured: 2.5x; the whole image 1.4x) and the whole image's does not grow.

@@ -92,6 +92,7 @@ void RenderOptions::validate() const {
   if (guide_spp < 0) problems.add("guide_spp must be >= 0 (got ", guide_spp, ")");
   if (readouts && method == RenderMethod::kRasterMarch) problems.add("readouts need method 'straight' or 'curved'");
   if (adaptive && method == RenderMethod::kRasterMarch) problems.add("adaptive needs method 'straight' or 'curved'");
+  if (adaptive && spp < 3) problems.add("adaptive needs spp >= 3 (got ", spp, "): its pilot takes 2 samples a pixel");
   if (edge_spp < 0) problems.add("edge_spp must be >= 0 (got ", edge_spp, ")");
   if (edge_spp > spp && adaptive) problems.add("edge_spp (", edge_spp, ") and adaptive cannot be combined");
   if (edge_spp > spp && method == RenderMethod::kRasterMarch) problems.add("edge_spp needs method 'straight' or 'curved'");
