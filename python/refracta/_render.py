@@ -212,15 +212,15 @@ def render(
     2013), seeded by `seed` per pixel (independent of the thread count). adaptive=True: the same
     width x height x spp samples, shared by a pilot of spp / 8 per pixel within each 32-pixel block
     (every pixel at least spp / 2, the rest where the pilot varies; unbiased; spp >= 3;
-    RenderOptions.adaptive, cpp/refracta/render/adaptive_sampling.h); off by default, and not used by denoise=True: on the
-    demo scenes it does not lower the error (benchmarks/bench_denoise.py). edge_spp (RenderOptions.edge_spp,
-    off by default): when above spp, every pixel at an edge between surfaces (its samples' first-hit
-    albedo or normal differs from a neighbour's: the outlines of poles, booms, hulls) is rendered
-    again as one pattern of edge_spp samples, the others keep spp: the staircases and combs of a
-    few point samples become the coverage a sensor's pixel integrates, at the cost of the edges'
-    pixels only (hot road poles, 640x320 'direct' denoised, against 256 spp: relative MSE 0.0146
-    at 4 spp, 0.0011 at spp=2, edge_spp=32 for 1.3x its CPU, 0.0015 at 16 spp for 3.1x; film.h
-    EdgeRefinement). Textures are filtered
+    RenderOptions.adaptive, cpp/refracta/render/adaptive_sampling.h); off by default, and not used
+    by denoise=True: on the demo scenes it does not lower the error (benchmarks/bench_denoise.py).
+    edge_spp (RenderOptions.edge_spp, off by default): when above spp, every pixel at an edge
+    between surfaces (its samples' first-hit albedo or normal differs from a neighbour's: the
+    outlines of poles, booms, hulls) is rendered again as one pattern of edge_spp samples, the
+    others keep spp: the staircases and combs of a few point samples become the coverage a sensor's
+    pixel integrates, at the cost of the edges' pixels only (hot road poles, 640x320 'direct'
+    denoised, against 256 spp: relative MSE 0.0146 at 4 spp, 0.0011 at spp=2, edge_spp=32 for 1.3x
+    its CPU, 0.0015 at 16 spp for 3.1x; film.h EdgeRefinement). Textures are filtered
     over each sample's ray-cone footprint (texture_filter=False point-samples them). stats:
     deprecated (a dict to fill with the counts of RenderStats); pass return_stats=True. progress: a bar on stderr
     (True), a callable progress(done, total), or False. Runs on all cores with the GIL released;
