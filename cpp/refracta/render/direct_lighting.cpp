@@ -187,11 +187,11 @@ std::optional<Vec3d> DirectLighting::launch_bent_sun(const SurfaceInteraction& s
   // on the sea). The rising path that leaves along the sample, found by its casts.
   if (exit.y() < 0.0) return launch_below_horizon(si, exit, to_world, jacobian);
   // Above it: the launch the sun's exit map sends toward the sample, where it covers it.
-  const Vec3d horizontal(exit.x(), 0.0, exit.z());
-  double launch;
-  if (sun_exits_ && horizontal.norm() > kMinBendSine &&
-      sun_exits_->launch(si.p.y(), *scale_, std::asin(exit.y()), &launch, jacobian)) {
-    return Vec3d(std::cos(launch) * horizontal.normalized() + Vec3d(0.0, std::sin(launch), 0.0));
+  if (sun_exits_ && sun_exits_->covers(si.p, *scale_, exit)) {
+    const auto launch = sun_exits_->launch(si.p, to_world, *scale_, exit);
+    if (!launch) return std::nullopt;  // rare: no launch found for a covered exit (none has this density)
+    *jacobian = launch->jacobian;
+    return launch->direction;
   }
   *jacobian = 1.0;
   return exit;
@@ -205,15 +205,14 @@ double DirectLighting::bent_sun_pdf(const SurfaceInteraction& from, const Vec3d&
   const double launch = std::asin(std::clamp(launch_dir.y(), -1.0, 1.0));
   double pdf = 0.0;
   // Above p's horizon through the exit map: the density at the exit it maps this launch to.
-  double exit, jacobian;
-  if (sun_exits_ && horizontal.norm() > kMinBendSine &&
-      sun_exits_->exit(from.p.y(), *scale_, launch, &exit, &jacobian) && exit >= 0.0) {
-    const Vec3d toward = std::cos(exit) * horizontal.normalized() + Vec3d(0.0, std::sin(exit), 0.0);
-    pdf += sun.pdf_li(ctx, to_world * toward, Vec3d::Zero(), Vec3d::Zero()) * jacobian;
+  Vec3d exit;
+  if (sun_exits_) {
+    if (const auto jacobian = sun_exits_->density(from.p, to_world, *scale_, launch_dir, &exit); jacobian && exit.y() >= 0.0) {
+      pdf += sun.pdf_li(ctx, to_world * exit, Vec3d::Zero(), Vec3d::Zero()) * *jacobian;
+    }
   }
   // Above it where the map does not cover the sample: launched along the sample itself.
-  if (launch_dir.y() >= 0.0 &&
-      !(sun_exits_ && horizontal.norm() > kMinBendSine && sun_exits_->covers(from.p.y(), *scale_, launch))) {
+  if (launch_dir.y() >= 0.0 && !(sun_exits_ && sun_exits_->covers(from.p, *scale_, launch_dir))) {
     pdf += sun.pdf_li(ctx, to_world * launch_dir, Vec3d::Zero(), Vec3d::Zero());
   }
   // Below it (launch_below_horizon): the rising path that leaves along the sample, whose exit this

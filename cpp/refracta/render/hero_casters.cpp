@@ -63,7 +63,7 @@ HeroCasters::HeroCasters(const RenderScene& scene, FieldPtr field, const RenderO
   // The sun's exit map at the two extreme scales: a path's refraction is linear in the air's n - 1
   // to first order, and the scales span 2.4 % of it.
   sun_exits_ = SunExitMap::build(scene.geometry, {airs.front().get(), airs.back().get()},
-                                 {scales.front(), scales.back()}, options, spread, *scene.sun());
+                                 {scales.front(), scales.back()}, field_, options, spread, *scene.sun());
 }
 
 HeroCasters::~HeroCasters() = default;

@@ -292,7 +292,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
       std::isfinite(caster.field()->earth_radius()) && scene.sun() != nullptr) {
     integrator->lighting().use_sun_tables(
         LowestLaunches::build(scene.geometry, {&caster}, {1.0}),
-        SunExitMap::build(scene.geometry, {caster.field()}, {1.0}, options, camera.pixel_angle(), *scene.sun()),
+        SunExitMap::build(scene.geometry, {caster.field()}, {1.0}, field, options, camera.pixel_angle(), *scene.sun()),
         std::make_shared<const double>(1.0));
   }
   // 'perturbed': the lighting rays of samples whose camera ray was a small perturbation through

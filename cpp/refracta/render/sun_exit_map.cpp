@@ -21,16 +21,31 @@ constexpr double kLowestMapLaunch = 5e-6;  // [rad] a level ray would start on t
 constexpr double kMapExitPad = 1e-3;       // [rad] beyond the sun's extreme elevations in the scene
 // [m] a point this far outside the surfaces' heights (float error of a hit) reads the nearest row.
 constexpr double kMapHeightSlack = 1e-3;
+// The launch's solve: exits this far [rad] inside a row's covered ones (a path's azimuthal turn
+// off the origin's axes, ~1e-3 rad at 60 km, moves its exit elevation far less), the tolerance
+// [rad] on the exit's elevation and azimuth, the iterations allowed (2-3 taken), and the step
+// [rad] of the Jacobian's difference quotients.
+constexpr double kMapCoverMargin = 1e-3;
+constexpr double kMapSolveTolerance = 1e-11;
+constexpr int kMapSolveIterations = 8;
+constexpr double kMapJacobianStep = 1e-7;
+
+Vec3d toward(double elevation, const Vec3d& across) {
+  return std::cos(elevation) * across + Vec3d(0.0, std::sin(elevation), 0.0);
+}
 
 // The exit elevation [rad] in the start's frame of the path launched at `elevation` from (0, h, 0)
-// along +x through air alone; NaN where it ends inside the air or the cast fails.
-double air_exit_elevation(const Caster& caster, double h, double elevation) {
+// along +x through air alone, and its horizontal run [m] in `run`; NaN where it ends inside the air
+// or the cast fails.
+double air_exit_elevation(const Caster& caster, double h, double elevation, double* run) {
   const Vec3d origin(0.0, h, 0.0);
+  *run = std::numeric_limits<double>::quiet_NaN();
   try {
     const PathEnd end = caster.cast(origin, Vec3d(std::cos(elevation), std::sin(elevation), 0.0));
     if (end.hit) return std::numeric_limits<double>::quiet_NaN();
     Eigen::Matrix3d to_world;
     for (int axis = 0; axis < 3; ++axis) to_world.col(axis) = caster.field()->sky_direction(origin, Vec3d::Unit(axis));
+    *run = end.end_point.x();
     return std::asin(std::clamp(Vec3d(to_world.transpose() * end.direction).y(), -1.0, 1.0));
   } catch (const std::exception&) {  // a path below the field's modelled heights: no exit
     return std::numeric_limits<double>::quiet_NaN();
@@ -40,9 +55,10 @@ double air_exit_elevation(const Caster& caster, double h, double elevation) {
 }  // namespace
 
 std::shared_ptr<const SunExitMap> SunExitMap::build(const Scene& scene, const std::vector<const IndexField*>& airs,
-                                                     const std::vector<double>& scales, const RenderOptions& options,
-                                                     double spread, const SunLight& sun) {
-  if (airs.empty() || airs.size() != scales.size() || airs.size() > 2) return nullptr;
+                                                     const std::vector<double>& scales, FieldPtr frame,
+                                                     const RenderOptions& options, double spread, const SunLight& sun) {
+  if (airs.empty() || airs.size() != scales.size() || airs.size() > 2 || !frame) return nullptr;
+  if (!std::isfinite(frame->earth_radius())) return nullptr;
   if (!std::isfinite(scene.lowest()) || !std::isfinite(scene.highest())) return nullptr;
   // The sun's elevation in the frames of the scene box's corners (it changes linearly with the
   // position along the ground to first order in the central angle: the corners bound it).
@@ -61,6 +77,8 @@ std::shared_ptr<const SunExitMap> SunExitMap::build(const Scene& scene, const st
   const double exit_lo = std::max(0.0, e_min - disc_radius - kMapExitPad), exit_hi = e_max + disc_radius + kMapExitPad;
   if (!(exit_hi > 0.0)) return nullptr;
   auto map = std::make_shared<SunExitMap>();
+  map->radius_ = frame->earth_radius();
+  map->frame_ = std::move(frame);
   // The surfaces' heights (a point's map is read at its own height; row() takes a height within
   // kMapHeightSlack of the ends as the end's).
   map->h_lo_ = scene.lowest();
@@ -82,12 +100,13 @@ std::shared_ptr<const SunExitMap> SunExitMap::build(const Scene& scene, const st
   }
   const size_t per_scale = map->heights_ * map->launches_;
   map->exits_.assign(airs.size(), std::vector<double>(per_scale));
+  map->runs_.assign(airs.size(), std::vector<double>(per_scale));
   WorkControl control;  // the caller's cancel flags stay in force (parallel_for_each)
   parallel_for_each(int64_t(airs.size() * per_scale), 1, control, [&](int64_t index) {
     const size_t k = size_t(index) / per_scale, node = size_t(index) % per_scale;
     const size_t j = node / map->launches_, i = node % map->launches_;
-    map->exits_[k][node] =
-        air_exit_elevation(*casters[k], map->h_lo_ + double(j) * map->h_step_, map->e_lo_ + double(i) * map->e_step_);
+    map->exits_[k][node] = air_exit_elevation(*casters[k], map->h_lo_ + double(j) * map->h_step_,
+                                              map->e_lo_ + double(i) * map->e_step_, &map->runs_[k][node]);
   });
   // Each row's monotone part: from the highest launch down while the exit falls strictly.
   bool any = false;
@@ -97,7 +116,8 @@ std::shared_ptr<const SunExitMap> SunExitMap::build(const Scene& scene, const st
       const double* row = &map->exits_[k][j * map->launches_];
       size_t first = map->launches_ - 1;
       if (std::isnan(row[first])) continue;
-      while (first > 0 && row[first - 1] < row[first]) --first;
+      const double* run = &map->runs_[k][j * map->launches_];
+      while (first > 0 && row[first - 1] < row[first] && std::isfinite(run[first - 1])) --first;
       map->first_[k][j] = first;
       any = any || (first + 1 < map->launches_ && row[map->launches_ - 1] > 0.0);
     }
@@ -105,10 +125,10 @@ std::shared_ptr<const SunExitMap> SunExitMap::build(const Scene& scene, const st
   return any ? map : nullptr;
 }
 
-double SunExitMap::Row::at(size_t i) const {
+double SunExitMap::Row::at(const std::vector<std::vector<double>>& table, size_t i) const {
   auto value = [&](size_t k) {
-    const std::vector<double>& exits = map->exits_[k];
-    return (1.0 - w_height) * exits[cell * map->launches_ + i] + w_height * exits[(cell + 1) * map->launches_ + i];
+    const std::vector<double>& nodes = table[k];
+    return (1.0 - w_height) * nodes[cell * map->launches_ + i] + w_height * nodes[(cell + 1) * map->launches_ + i];
   };
   const size_t last = map->scales_.size() - 1;
   return (1.0 - w_scale) * value(scale_cell) + w_scale * value(std::min(scale_cell + 1, last));
@@ -131,40 +151,94 @@ bool SunExitMap::row(double h, double scale, Row* out) const {
   return out->first + 1 < launches_;
 }
 
-bool SunExitMap::covers(double h, double scale, double exit) const {
-  Row r;
-  return row(h, scale, &r) && exit >= r.at(r.first) && exit <= r.at(launches_ - 1);
+Vec3d SunExitMap::exit_of(const Row& r, const Vec3d& p, const Eigen::Matrix3d& to_world, double e,
+                          const Vec3d& across) const {
+  const double u = (e - e_lo_) / e_step_;
+  const size_t i = std::min(size_t(std::max(u, 0.0)), launches_ - 2);
+  const double t = u - double(i);
+  const double exit = (1.0 - t) * r.at(exits_, i) + t * r.at(exits_, i + 1);
+  const double run = (1.0 - t) * r.at(runs_, i) + t * r.at(runs_, i + 1);
+  // Along +x from the origin the flat direction at the end is turned down by the central angle
+  // run / R into the start's frame (CurvedEarth::sky_direction): undo that, then turn the path's
+  // end at p + run across by the frame's own rotation there.
+  const Vec3d end = p + run * across;
+  return to_world.transpose() * frame_->sky_direction(end, toward(exit + run / radius_, across));
 }
 
-bool SunExitMap::launch(double h, double scale, double exit, double* launch_elevation, double* jacobian) const {
+double SunExitMap::jacobian(const Row& r, const Vec3d& p, const Eigen::Matrix3d& to_world, double e, const Vec3d& across,
+                            const Vec3d& x) const {
+  // d omega_exit / d omega_launch: the area the exit's partial derivatives span over cos(e) de dphi,
+  // by difference quotients (in elevation toward the inside of e's cell: the table is linear there).
+  const double u = (e - e_lo_) / e_step_;
+  const double cell_top = e_lo_ + (std::floor(u) + 1.0) * e_step_;
+  const double de = e + kMapJacobianStep < cell_top ? kMapJacobianStep : -kMapJacobianStep;
+  const Vec3d x_e = exit_of(r, p, to_world, e + de, across);
+  const Vec3d sideways = Vec3d(-across.z(), 0.0, across.x());
+  const Vec3d turned = (across + kMapJacobianStep * sideways).normalized();
+  const Vec3d x_phi = exit_of(r, p, to_world, e, turned);
+  const double dphi = std::atan2(kMapJacobianStep, 1.0);
+  return (x_e - x).cross(x_phi - x).norm() / (std::abs(de) * dphi * std::cos(e));
+}
+
+bool SunExitMap::covered(const Row& r, const Vec3d& exit) const {
+  const double target = std::asin(std::clamp(exit.y(), -1.0, 1.0));
+  return target >= r.at(exits_, r.first) + kMapCoverMargin && target <= r.at(exits_, launches_ - 1) - kMapCoverMargin &&
+         Vec3d(exit.x(), 0.0, exit.z()).norm() > 1e-9;
+}
+
+bool SunExitMap::covers(const Vec3d& p, double scale, const Vec3d& exit) const {
   Row r;
-  if (!row(h, scale, &r) || !(exit >= r.at(r.first) && exit <= r.at(launches_ - 1))) return false;
-  // The cell [i, i + 1] holding the exit (the row rises strictly from r.first), then the line through it.
+  return row(p.y(), scale, &r) && covered(r, exit);
+}
+
+std::optional<SunExitMap::Launch> SunExitMap::launch(const Vec3d& p, const Eigen::Matrix3d& to_world, double scale,
+                                                     const Vec3d& exit) const {
+  Row r;
+  if (!row(p.y(), scale, &r) || !covered(r, exit)) return std::nullopt;
+  Vec3d across = Vec3d(exit.x(), 0.0, exit.z()).normalized();
+  const double target = std::asin(std::clamp(exit.y(), -1.0, 1.0));
+  // The elevation along the origin's axis first: the cell [lo, lo + 1] holding the target exit.
   size_t lo = r.first, hi = launches_ - 1;
   while (hi - lo > 1) {
     const size_t mid = (lo + hi) / 2;
-    (r.at(mid) <= exit ? lo : hi) = mid;
+    (r.at(exits_, mid) <= target ? lo : hi) = mid;
   }
-  const double a = r.at(lo), b = r.at(hi);
-  const double launch = e_lo_ + (double(lo) + (exit - a) / (b - a)) * e_step_;
-  *launch_elevation = launch;
-  // d omega_exit / d omega_launch = cos e_exit d e_exit / (cos e_launch d e_launch), azimuth kept.
-  *jacobian = std::cos(exit) * (b - a) / (std::cos(launch) * e_step_);
-  return true;
+  double e = e_lo_ + (double(lo) + (target - r.at(exits_, lo)) / (r.at(exits_, hi) - r.at(exits_, lo))) * e_step_;
+  const double e_first = e_lo_ + double(r.first) * e_step_, e_last = e_lo_ + double(launches_ - 1) * e_step_;
+  // Then Newton steps in elevation (the cell's slope) and the azimuth's error turned back.
+  for (int k = 0; k < kMapSolveIterations; ++k) {
+    const Vec3d x = exit_of(r, p, to_world, e, across);
+    const double elevation_error = target - std::asin(std::clamp(x.y(), -1.0, 1.0));
+    const double azimuth_error =
+        std::atan2(x.x() * exit.z() - x.z() * exit.x(), x.x() * exit.x() + x.z() * exit.z());
+    if (std::abs(elevation_error) < kMapSolveTolerance && std::abs(azimuth_error) < kMapSolveTolerance) {
+      return Launch{toward(e, across), jacobian(r, p, to_world, e, across, x)};
+    }
+    const double u = (e - e_lo_) / e_step_;
+    const size_t i = std::min(size_t(std::max(u, 0.0)), launches_ - 2);
+    const double slope = (r.at(exits_, i + 1) - r.at(exits_, i)) / e_step_;
+    e += elevation_error / slope;
+    const double c = std::cos(azimuth_error), s = std::sin(azimuth_error);
+    across = Vec3d(c * across.x() - s * across.z(), 0.0, s * across.x() + c * across.z());
+    if (!(e >= e_first && e <= e_last)) return std::nullopt;
+  }
+  return std::nullopt;
 }
 
-bool SunExitMap::exit(double h, double scale, double launch_elevation, double* exit_elevation,
-                      double* jacobian) const {
+std::optional<double> SunExitMap::density(const Vec3d& p, const Eigen::Matrix3d& to_world, double scale,
+                                          const Vec3d& launch, Vec3d* exit) const {
   Row r;
-  if (!row(h, scale, &r)) return false;
-  const double u = (launch_elevation - e_lo_) / e_step_;
-  if (!(u >= double(r.first) && u <= double(launches_ - 1))) return false;
-  const size_t lo = std::min(size_t(u), launches_ - 2), hi = lo + 1;
-  const double a = r.at(lo), b = r.at(hi);
-  const double exit = a + (u - double(lo)) * (b - a);
-  *exit_elevation = exit;
-  *jacobian = std::cos(exit) * (b - a) / (std::cos(launch_elevation) * e_step_);
-  return true;
+  if (!row(p.y(), scale, &r)) return std::nullopt;
+  Vec3d across(launch.x(), 0.0, launch.z());
+  if (!(across.norm() > 1e-9)) return std::nullopt;
+  across.normalize();
+  const double e = std::asin(std::clamp(launch.y(), -1.0, 1.0));
+  if (!(e >= e_lo_ + double(r.first) * e_step_ && e <= e_lo_ + double(launches_ - 1) * e_step_)) return std::nullopt;
+  *exit = exit_of(r, p, to_world, e, across);
+  // launch() takes up that exit and solves back to this launch (the rows rise strictly in
+  // elevation, the azimuth turns smoothly: one launch per exit) to within kMapSolveTolerance.
+  if (!covered(r, *exit)) return std::nullopt;
+  return jacobian(r, p, to_world, e, across, *exit);
 }
 
 }  // namespace refracta
