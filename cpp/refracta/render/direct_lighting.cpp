@@ -207,9 +207,8 @@ double DirectLighting::bent_sun_pdf(const SurfaceInteraction& from, const Vec3d&
   // Above p's horizon through the exit map: the density at the exit it maps this launch to.
   Vec3d exit;
   if (sun_exits_) {
-    if (const auto jacobian = sun_exits_->density(from.p, to_world, *scale_, launch_dir, &exit); jacobian && exit.y() >= 0.0) {
-      pdf += sun.pdf_li(ctx, to_world * exit, Vec3d::Zero(), Vec3d::Zero()) * *jacobian;
-    }
+    const auto jacobian = sun_exits_->density(from.p, to_world, *scale_, launch_dir, &exit);
+    if (jacobian && exit.y() >= 0.0) pdf += sun.pdf_li(ctx, to_world * exit, Vec3d::Zero(), Vec3d::Zero()) * *jacobian;
   }
   // Above it where the map does not cover the sample: launched along the sample itself.
   if (launch_dir.y() >= 0.0 && !(sun_exits_ && sun_exits_->covers(from.p, *scale_, launch_dir))) {

@@ -165,8 +165,8 @@ Vec3d SunExitMap::exit_of(const Row& r, const Vec3d& p, const Eigen::Matrix3d& t
   return to_world.transpose() * frame_->sky_direction(end, toward(exit + run / radius_, across));
 }
 
-double SunExitMap::jacobian(const Row& r, const Vec3d& p, const Eigen::Matrix3d& to_world, double e, const Vec3d& across,
-                            const Vec3d& x) const {
+double SunExitMap::jacobian(const Row& r, const Vec3d& p, const Eigen::Matrix3d& to_world, double e,
+                            const Vec3d& across, const Vec3d& x) const {
   // d omega_exit / d omega_launch: the area the exit's partial derivatives span over cos(e) de dphi,
   // by difference quotients (in elevation toward the inside of e's cell: the table is linear there).
   const double u = (e - e_lo_) / e_step_;
