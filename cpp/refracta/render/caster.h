@@ -101,8 +101,14 @@ class Caster {
   // (flat or convex; s counts from the bounce, or from origin_width / spread behind it: cast's
   // origin_width); a shadow ray toward a distant light
   // decides a penumbra as wide as the light's disc (the sun: 9.3e-3 rad per metre from the
-  // blocker), 40-4000x a quarter pixel's stray (camera pixels span 1e-5 to 1e-3 rad).
-  void set_secondary_spread(double pixel_angle) { secondary_spread_ = std::max(pixel_angle, 0.0); }
+  // blocker), 40-4000x a quarter pixel's stray (camera pixels span 1e-5 to 1e-3 rad). Coarser
+  // pixels (a thumbnail: 16 px across 20 deg are 0.022 rad) count as kMaxSecondarySpread: the
+  // direction a path toward the sun leaves in must stay well inside its 4.6e-3 rad disc (at
+  // 0.022 rad a 1 deg sun's irradiance was 2 % off, at 1.1e-3 rad 0.15 %).
+  static constexpr double kMaxSecondarySpread = 1e-3;
+  void set_secondary_spread(double pixel_angle) {
+    secondary_spread_ = std::clamp(pixel_angle, 0.0, kMaxSecondarySpread);
+  }
 
   // The end of the path from origin along unit dir, at most max_length [m] long
   // (max_length <= 0: options.max_length for curved paths, the straight limit otherwise).
