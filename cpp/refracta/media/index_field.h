@@ -66,6 +66,13 @@ class IndexField {
   // d itself, except for a spherical Earth in flat coordinates (CurvedEarth), where the frame at
   // p is turned by the central angle from the origin's.
   virtual Vec3d sky_direction(const Vec3d& /*p*/, const Vec3d& d) const { return d; }
+  // The rotation taking the frame at p (this field's coordinates) to the world's: sky_direction of
+  // each axis.
+  Eigen::Matrix3d sky_frame(const Vec3d& p) const {
+    Eigen::Matrix3d rotation;
+    for (int axis = 0; axis < 3; ++axis) rotation.col(axis) = sky_direction(p, Vec3d::Unit(axis));
+    return rotation;
+  }
   // The radius [m] of a spherical Earth these coordinates flatten (inf: flat).
   virtual double earth_radius() const { return std::numeric_limits<double>::infinity(); }
   // Height-only fields: above this height [m] a ray goes straight in the world frame (its

@@ -32,17 +32,6 @@ constexpr int kMaxBendIterations = 16;
 constexpr int kLowestLaunchIntervals = 32;
 constexpr double kLowestLaunchScatter = 0.1 * kExitTolerance;
 
-// The exit elevation [rad], in the start's own frame, of the lowest launch from (0, h, 0) along +x
-// through `caster`; NaN where its path meets the scene.
-double lowest_launch_exit(const Caster& caster, double h) {
-  const Vec3d origin(0.0, h, 0.0);
-  const PathEnd end = caster.cast(origin, Vec3d(std::cos(kLowestLaunch), std::sin(kLowestLaunch), 0.0));
-  if (end.hit) return std::numeric_limits<double>::quiet_NaN();
-  Eigen::Matrix3d to_world;
-  for (int axis = 0; axis < 3; ++axis) to_world.col(axis) = caster.field()->sky_direction(origin, Vec3d::Unit(axis));
-  return std::asin(std::clamp(Vec3d(to_world.transpose() * end.direction).y(), -1.0, 1.0));
-}
-
 }  // namespace
 
 std::shared_ptr<const LowestLaunches> LowestLaunches::build(const Scene& scene,
@@ -73,7 +62,8 @@ std::shared_ptr<const LowestLaunches> LowestLaunches::build(const Scene& scene,
   WorkControl control;  // the caller's cancel flags stay in force (parallel_for_each)
   parallel_for_each(int64_t(casters.size() * nodes), 1, control, [&](int64_t index) {
     const size_t i = size_t(index);
-    exits[i / nodes][i % nodes] = lowest_launch_exit(*casters[i / nodes], lo + 0.5 * double(i % nodes) * table->step_);
+    const double h = lo + 0.5 * double(i % nodes) * table->step_;
+    exits[i / nodes][i % nodes] = start_frame_exit(*casters[i / nodes], h, kLowestLaunch);
   });
   for (const std::vector<double>& at : exits) {
     for (size_t j = 0; j < size_t(kLowestLaunchIntervals); ++j) {
@@ -304,10 +294,7 @@ double DirectLighting::bend_jacobian(const SurfaceInteraction& si, const Vec3d& 
 }
 
 Eigen::Matrix3d DirectLighting::to_world_frame(const Vec3d& p) const {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  if (!spherical_) return rotation;
-  for (int axis = 0; axis < 3; ++axis) rotation.col(axis) = caster_.field()->sky_direction(p, Vec3d::Unit(axis));
-  return rotation;
+  return spherical_ ? caster_.field()->sky_frame(p) : Eigen::Matrix3d::Identity();
 }
 
 Spectrum DirectLighting::sample_lights(const SurfaceInteraction& si, const SurfaceBsdf& bsdf,

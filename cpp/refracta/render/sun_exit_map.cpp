@@ -34,25 +34,23 @@ Vec3d toward(double elevation, const Vec3d& across) {
   return std::cos(elevation) * across + Vec3d(0.0, std::sin(elevation), 0.0);
 }
 
-// The exit elevation [rad] in the start's frame of the path launched at `elevation` from (0, h, 0)
-// along +x through air alone, and its horizontal run [m] in `run`; NaN where it ends inside the air
-// or the cast fails.
-double air_exit_elevation(const Caster& caster, double h, double elevation, double* run) {
+}  // namespace
+
+double start_frame_exit(const Caster& caster, double h, double elevation, double* run) {
   const Vec3d origin(0.0, h, 0.0);
-  *run = std::numeric_limits<double>::quiet_NaN();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (run) *run = nan;
   try {
     const PathEnd end = caster.cast(origin, Vec3d(std::cos(elevation), std::sin(elevation), 0.0));
-    if (end.hit) return std::numeric_limits<double>::quiet_NaN();
-    Eigen::Matrix3d to_world;
-    for (int axis = 0; axis < 3; ++axis) to_world.col(axis) = caster.field()->sky_direction(origin, Vec3d::Unit(axis));
-    *run = end.end_point.x();
-    return std::asin(std::clamp(Vec3d(to_world.transpose() * end.direction).y(), -1.0, 1.0));
+    if (end.hit) return nan;
+    if (run) *run = end.end_point.x();
+    return std::asin(std::clamp(Vec3d(caster.field()->sky_frame(origin).transpose() * end.direction).y(), -1.0, 1.0));
+  } catch (const Cancelled&) {  // Ctrl-C: the render stops
+    throw;
   } catch (const std::exception&) {  // a path below the field's modelled heights: no exit
-    return std::numeric_limits<double>::quiet_NaN();
+    return nan;
   }
 }
-
-}  // namespace
 
 std::shared_ptr<const SunExitMap> SunExitMap::build(const Scene& scene, const std::vector<const IndexField*>& airs,
                                                      const std::vector<double>& scales, FieldPtr frame,
@@ -105,7 +103,7 @@ std::shared_ptr<const SunExitMap> SunExitMap::build(const Scene& scene, const st
   parallel_for_each(int64_t(airs.size() * per_scale), 1, control, [&](int64_t index) {
     const size_t k = size_t(index) / per_scale, node = size_t(index) % per_scale;
     const size_t j = node / map->launches_, i = node % map->launches_;
-    map->exits_[k][node] = air_exit_elevation(*casters[k], map->h_lo_ + double(j) * map->h_step_,
+    map->exits_[k][node] = start_frame_exit(*casters[k], map->h_lo_ + double(j) * map->h_step_,
                                               map->e_lo_ + double(i) * map->e_step_, &map->runs_[k][node]);
   });
   // Each row's monotone part: from the highest launch down while the exit falls strictly.

@@ -33,6 +33,14 @@
 
 namespace refracta {
 
+class Caster;
+
+// The exit elevation [rad], in the start's own frame, of the path launched at `elevation` [rad]
+// from (0, h, 0) along +x through `caster`, and its horizontal run [m] to the path's end in `run`
+// (optional); NaN where the path meets the scene or cannot be traced (below the air's modelled
+// heights). In a height-only air it stands for every start at height h (SunExitMap, LowestLaunches).
+double start_frame_exit(const Caster& caster, double h, double elevation, double* run = nullptr);
+
 class SunExitMap {
  public:
   // airs[k]: the render's air at dispersion scale scales[k] (ascending, one or two; height-only over
