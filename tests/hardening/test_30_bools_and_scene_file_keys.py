@@ -1,4 +1,4 @@
-"""Bools are not numbers anywhere in the module, and a scene file says what the Python calls say.
+"""Bools are not numbers anywhere in the module, nor numbers bools, and a scene file says what the Python calls say.
 
 A new-user trial found pybind11 taking True as 1 in every bound number parameter (Camera(vfov=True)
 drew a 1-degree view, HotSpot(True, ...) stood at x = 1); scene-file errors located twice or on the
@@ -29,6 +29,54 @@ EYE, AHEAD = (0.0, 1.5, 0.0), (100.0, 1.0, 0.0)
 def test_a_bool_is_refused_where_a_number_is_expected(make):
     with pytest.raises(TypeError, match="incompatible"):
         make()
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: refracta.shading.Water(body=0),
+        lambda: refracta.shading.Water(body=1.0),
+        lambda: refracta.spectrum.PhysicalSky((0.0, 1.0, 0.0), multiple_scattering=1),
+        lambda: refracta.Scene().set_aerial_perspective("yes"),
+        lambda: refracta.Scene().set_physical_sky((0.0, 1.0, 0.0), aerial_perspective=None),
+    ],
+)
+def test_a_number_or_string_is_refused_where_a_bool_is_expected(make):
+    # pybind11 converts anything with __bool__: a flag given 0.5 or one argument slot off passed.
+    with pytest.raises(TypeError, match="incompatible"):
+        make()
+
+
+def test_python_and_numpy_bools_are_still_bools():
+    assert refracta.spectrum.PhysicalSky((0.0, 1.0, 0.0), multiple_scattering=np.bool_(False)) is not None
+    refracta.Scene().set_aerial_perspective(np.bool_(False))
+    refracta.shading.Water(body=False)
+
+
+@pytest.mark.parametrize(
+    ("options", "field", "value"),
+    [
+        (refracta.RenderOptions, "adaptive", 1),
+        (refracta.RenderOptions, "spectral", 0.0),
+        (refracta.RenderOptions, "differentials", None),
+        (refracta.RasterRenderOptions, "use_sun", 1),
+    ],
+)
+def test_an_options_flag_set_as_an_attribute_takes_a_bool_only(options, field, value):
+    # As the constructor's keywords (options_binding.cpp set_field): pybind11's setter took a truth.
+    target = options()
+    with pytest.raises(ValueError, match=f"{options.__name__}: {field} must be True or False"):
+        setattr(target, field, value)
+    setattr(target, field, np.bool_(True))
+    assert getattr(target, field) is True
+
+
+def test_options_attributes_other_than_flags_set_as_before():
+    options = refracta.RenderOptions()
+    options.spp, options.seed = 8, 3
+    assert (options.spp, options.seed) == (8, 3)
+    with pytest.raises(AttributeError):
+        options.no_such_field = 1
 
 
 def test_numpy_numbers_and_ints_for_floats_are_still_numbers():

@@ -93,7 +93,7 @@ void bind_finite_lights(py::module_& m) {
              mesh.triangles = to_triangles(triangles, "AreaLight: triangles", mesh.vertices.size());
              return std::make_shared<AreaLight>(std::move(mesh), to_illuminant(emission, "AreaLight: emission"), two_sided);
            }),
-           py::arg("vertices"), py::arg("triangles"), py::arg("emission"), py::arg("two_sided") = false)
+           py::arg("vertices"), py::arg("triangles"), py::arg("emission"), py::arg("two_sided").noconvert() = false)
       .def_property_readonly("area", &AreaLight::area, "Total area [m^2] (zero-area triangles count 0).")
       .def_property_readonly("two_sided", &AreaLight::two_sided)
       .def("normal", [](const AreaLight& l, size_t t) { return vector_to_array(area_light_normal(l, t)); }, py::arg("triangle"),

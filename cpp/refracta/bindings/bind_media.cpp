@@ -317,7 +317,7 @@ vectorised. height_only=True promises n depends on y alone (enables method='stra
 Slow: the integrators call back into Python at every evaluation.)doc");
   custom
       .def(py::init<py::object, py::object, bool>(), py::arg("ior"), py::arg("grad_ior"),
-           py::arg("height_only") = false)
+           py::arg("height_only").noconvert() = false)
       .def_property_readonly("ior_function", &CustomField::ior_function)
       .def_property_readonly("grad_function", &CustomField::grad_function);
   // Pickled as its callables: this works when they pickle (module-level functions with

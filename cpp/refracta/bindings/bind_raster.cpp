@@ -34,7 +34,7 @@ void bind_raster(py::module_& m) {
       "(depth, geometry, primitive, barycentric (H * W, 3), offset, triangles, screen triangles, fragments).");
   m.def("_shadow_intensity", &shadow_intensities, py::arg("moments"), py::arg("z_f"), py::arg("method"),
         py::arg("settings"), "Shadow intensities of (N, 4) moments at N receiver depths.");
-  m.def("_quantize_moments", &quantize_moments, py::arg("moments"), py::arg("depth_range"), py::arg("inverse"),
+  m.def("_quantize_moments", &quantize_moments, py::arg("moments"), py::arg("depth_range"), py::arg("inverse").noconvert(),
         "The optimised quantisation transform of (N, 4) moments, or its inverse.");
   m.def(
       "_canonical_bound",

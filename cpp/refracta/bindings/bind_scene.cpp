@@ -168,7 +168,7 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
              return add_surface(s, mesh, material_id, emission_of(emission), two_sided, "add_mesh");
            },
            py::arg("vertices"), py::arg("triangles"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
-           py::arg("two_sided") = false, py::arg("normals") = py::none(), py::kw_only(), py::arg("uvs") = py::none(),
+           py::arg("two_sided").noconvert() = false, py::arg("normals") = py::none(), py::kw_only(), py::arg("uvs") = py::none(),
            py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(),
            py::arg("texture") = py::none(), py::arg("alpha") = py::none(),
            "Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);\n"

@@ -90,7 +90,7 @@ void bind_sun_and_sky(SceneClass& scene) {
            py::arg("ozone_du") = PhysicalSkySettings{}.ozone_du, py::arg("ground_albedo") = PhysicalSkySettings{}.ground_albedo,
            py::arg("sun_angular_diameter") = sun.angular_diameter, py::arg("limb_darkening") = sun.limb_darkening,
            py::kw_only(), py::arg("scale") = 1.0, py::arg("altitude") = PhysicalSkySettings{}.altitude,
-           py::arg("below_horizon") = "horizon", py::arg("aerial_perspective") = true, py::arg("visibility") = py::none(),
+           py::arg("below_horizon") = "horizon", py::arg("aerial_perspective").noconvert() = true, py::arg("visibility") = py::none(),
            "The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's\n"
            "single scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun\n"
            "toward `sun_direction` (normalised, y up),\n"
@@ -118,7 +118,7 @@ void bind_sun_and_sky(SceneClass& scene) {
       .def(
           "set_aerial_perspective",
           [](RenderScene& s, bool enabled) { enabled ? s.enable_aerial_perspective() : s.disable_aerial_perspective(); },
-          py::arg("enabled"),
+          py::arg("enabled").noconvert(),
           "Turn aerial perspective on (from the scene's physical sky; ValueError without one) or off, keeping the sky.")
       .def("set_environment",
            [](RenderScene& s, const py::object& source, const py::object& rotation, double scale) {

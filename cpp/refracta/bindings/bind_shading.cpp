@@ -37,11 +37,11 @@ void bind_water(py::module_& m) {
       [](const Water& w) {
         const WaterParameters& p = w.parameters();
         return py::dict(py::arg("wind_speed") = p.wind_speed, py::arg("temperature_c") = p.temperature_c,
-                        py::arg("salinity") = p.salinity, py::arg("body") = p.body, py::arg("priority") = p.priority,
+                        py::arg("salinity") = p.salinity, py::arg("body").noconvert() = p.body, py::arg("priority") = p.priority,
                         py::arg("resolved_slope_variance") = p.resolved_slope_variance);
       },
       py::arg("wind_speed") = water_defaults.wind_speed, py::arg("temperature_c") = water_defaults.temperature_c,
-           py::arg("salinity") = water_defaults.salinity, py::arg("body") = water_defaults.body,
+           py::arg("salinity") = water_defaults.salinity, py::arg("body").noconvert() = water_defaults.body,
            py::arg("priority") = water_defaults.priority, py::arg("resolved_slope_variance") = water_defaults.resolved_slope_variance)
       .def_property_readonly("wind_speed", [](const Water& w) { return w.parameters().wind_speed; }, "[m/s] 12.5 m above the sea")
       .def_property_readonly("temperature_c", [](const Water& w) { return w.parameters().temperature_c; }, "[deg C]")

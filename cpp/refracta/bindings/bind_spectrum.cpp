@@ -51,7 +51,7 @@ void bind_spectrum_functions(py::module_& m) {
   m.def(
       "_spectrum_d65",
       [](const py::object& lambda, bool normalised) { return spectral::d65(wavelengths(lambda), normalised); },
-      py::arg("wavelengths"), py::arg("normalised"), "D65 (spectrum.py).");
+      py::arg("wavelengths"), py::arg("normalised").noconvert(), "D65 (spectrum.py).");
   m.def("_spectrum_cie_y_integral", &spectral::cie_y_integral, "integral y (spectrum.py).");
   m.def(
       "_spectrum_xyz_to_linear_srgb",
@@ -60,7 +60,7 @@ void bind_spectrum_functions(py::module_& m) {
   m.def(
       "_spectrum_sample_wavelengths",
       [](const py::object& u, bool terminate) { return spectral::sample_wavelengths(to_values(u, "u"), terminate); },
-      py::arg("u"), py::arg("terminate"), "Hero wavelengths and pdfs (spectrum.py).");
+      py::arg("u"), py::arg("terminate").noconvert(), "Hero wavelengths and pdfs (spectrum.py).");
   m.def(
       "_spectrum_to_linear_srgb",
       [](const py::object& radiance, const py::object& lambda, const py::object& pdf) {
@@ -97,14 +97,14 @@ void bind_physical_sky(py::module_& m) {
            py::arg("sun_direction"), py::arg("aerosol") = py::none(), py::arg("ozone_du") = defaults.ozone_du,
            py::arg("ground_albedo") = defaults.ground_albedo, py::arg("altitude") = defaults.altitude,
            py::arg("rayleigh_scale") = defaults.rayleigh_scale, py::kw_only(), py::arg("below_horizon") = "ground",
-           py::arg("visibility") = py::none(), py::arg("multiple_scattering") = defaults.multiple_scattering)
+           py::arg("visibility") = py::none(), py::arg("multiple_scattering").noconvert() = defaults.multiple_scattering)
       .def_property_readonly("aerosol", [](const PhysicalSkyLight& l) { return l.settings().aerosol; },
                              "The Mie density scale (set from `visibility` when that was given).")
       .def("radiance",
            [](const PhysicalSkyLight& l, const py::object& dirs, const py::object& lambda, bool direct) {
              return sky_radiance(l.sky(), to_unit_vectors(dirs, "dirs"), sky_wavelengths(lambda), direct);
            },
-           py::arg("dirs"), py::arg("wavelengths"), py::arg("direct") = false, DOC(refracta, sky_radiance))
+           py::arg("dirs"), py::arg("wavelengths"), py::arg("direct").noconvert() = false, DOC(refracta, sky_radiance))
       .def("rgb_radiance",
            [](const PhysicalSkyLight& l, const py::object& dirs) {
              return sky_rgb_radiance(l.sky(), to_unit_vectors(dirs, "dirs"));

@@ -68,6 +68,15 @@ std::string options_repr(const py::object& self) {
   return out;
 }
 
+void set_option_attribute(const py::object& self, const py::str& name, const py::object& value, const char* owner) {
+  const py::object current = py::getattr(self, name, py::none());
+  if (PyBool_Check(current.ptr()) && !py::detail::is_python_or_numpy_bool(value)) {
+    throw_invalid(owner, ": ", py::cast<std::string>(name), " must be True or False (got ",
+                  py::cast<std::string>(py::repr(value)), ")");
+  }
+  if (PyObject_GenericSetAttr(self.ptr(), name.ptr(), value.ptr()) != 0) throw py::error_already_set();
+}
+
 namespace {
 
 // Whether a number field: it holds a number, or, unset (None), takes one (then left unset again).

@@ -35,6 +35,11 @@ void set_options_fields(const py::object& options, const py::dict& fields, const
 py::object build_options(const py::type& cls, const py::object& options, const py::dict& fields, const char* owner,
                          const py::dict& paths = py::dict());
 
+// self.<name> = value, through the object's descriptors, except that an on/off field takes True
+// or False only (ValueError naming `owner` and the field): pybind11's own setter takes any
+// number by its truth (options.adaptive = 1, options.spectral = 0.0) and None as False.
+void set_option_attribute(const py::object& self, const py::str& name, const py::object& value, const char* owner);
+
 // A copy of `options` (an Options, or None for the defaults) with `fields` set, validated.
 // ValueError unless `options` is None or an instance of `cls`.
 void check_options_type(const py::handle& cls, const py::object& options, const char* owner);
@@ -90,13 +95,16 @@ Class& def_options_eq(Class& cls) {
   });
 }
 
-// What every options class has: a constructor taking fields as keywords (validated), repr, ==,
-// validate() and pickling through the fields.
+// What every options class has: a constructor taking fields as keywords (validated), strict
+// on/off fields (set_option_attribute), repr, ==, validate() and pickling through the fields.
 template <class Options, class Class>
 Class& def_options_common(Class& cls, const char* owner) {
   cls.def(py::init([owner](const py::kwargs& fields) { return options_from<Options>(py::none(), fields, owner); }),
           "The defaults, with any field set by keyword (then validated).")
-      .def("validate", &Options::validate, "Raises ValueError listing every bad field (nested options included).");
+      .def("validate", &Options::validate, "Raises ValueError listing every bad field (nested options included).")
+      .def("__setattr__", [owner](const py::object& self, const py::str& name, const py::object& value) {
+        set_option_attribute(self, name, value, owner);
+      });
   def_options_repr(cls, owner);
   def_options_eq(cls);
   def_options_pickle<Options>(cls);

@@ -5,6 +5,9 @@
 // __float__ when converting), ints and objects with __index__ for integers (never floats), within
 // the C++ type's range. Included by convert.h before any binding uses a number (an explicit
 // specialisation must precede its first use in every file: all binding files include it first).
+// Bool parameters are the converse: pybind11 specialises type_caster<bool> itself and converts
+// anything with __bool__ (a number one argument slot off passed as a flag), so each bound bool
+// argument is declared py::arg(name).noconvert(), which takes Python's and numpy's bools only.
 #pragma once
 
 #include <pybind11/pybind11.h>
