@@ -1157,7 +1157,7 @@ class Camera:
         """
     def ray(self, u: typing.Any, v: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
-        (origin, unit direction) of the ray through pixel coordinates (u, v).
+        (origin, unit direction) of the ray through pixel coordinates (u, v), the pixel's corner at its integers (its centre at x + 0.5); u and v numbers, or (N,) arrays (either may be a number): then (N, 3) origins and directions.
         """
     def resized(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> Camera:
         """

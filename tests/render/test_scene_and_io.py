@@ -20,6 +20,26 @@ def test_camera_ray_and_project_are_inverse():
     assert np.degrees(np.arccos(top @ bottom)) == pytest.approx(40.0, abs=1e-9)
 
 
+def test_camera_ray_takes_arrays_of_pixel_coordinates():
+    camera = refracta.Camera([1, 2, 3], [10, 1, -2], vfov=40, width=200, height=100)
+    u, v = np.array([0.5, 100.0, 199.5]), np.array([0.5, 50.0, 10.25])
+    origins, directions = camera.ray(u, v)
+    assert origins.shape == directions.shape == (3, 3)
+    # Each row as the scalar call gives it (the same double arithmetic: exact).
+    for i in range(3):
+        np.testing.assert_array_equal(directions[i], camera.ray(u[i], v[i])[1])
+        np.testing.assert_array_equal(origins[i], camera.position)
+    # One coordinate may be a number: a row of pixels.
+    row = camera.ray(np.arange(200) + 0.5, 50.0)[1]
+    np.testing.assert_array_equal(row[100], camera.ray(100.5, 50.0)[1])
+    # Round trip through project, as for one ray (1e-9 of a pixel in double).
+    np.testing.assert_allclose(camera.project(origins + 7.0 * directions)[:, :2], np.stack([u, v], 1), atol=1e-9)
+    with pytest.raises(ValueError, match="u and v must have the same length"):
+        camera.ray(u, v[:2])
+    with pytest.raises(ValueError, match="Camera.ray: v"):
+        camera.ray(u, np.array([1.0, np.nan, 2.0]))
+
+
 def test_pick_returns_the_visible_point():
     scene = refracta.Scene()
     scene.add_box([10, 0, 0], [2, 2, 2])

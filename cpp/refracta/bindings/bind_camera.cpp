@@ -142,10 +142,24 @@ void bind_camera(py::module_& m) {
       .def(
           "ray",
           [](const Camera& c, const py::object& u, const py::object& v) {
-            const Vec3d d = c.pixel_direction(to_number(u, "Camera.ray: u"), to_number(v, "Camera.ray: v"));
-            return py::make_tuple(vector_to_array(c.position()), vector_to_array(d));
+            bool single_u = false, single_v = false;
+            const std::vector<double> us = to_values(u, "Camera.ray: u", &single_u);
+            const std::vector<double> vs = to_values(v, "Camera.ray: v", &single_v);
+            if (single_u && single_v) {
+              return py::make_tuple(vector_to_array(c.position()), vector_to_array(c.pixel_direction(us[0], vs[0])));
+            }
+            if (!single_u && !single_v && us.size() != vs.size()) {
+              throw_invalid("Camera.ray: u and v must have the same length (got ", us.size(), " and ", vs.size(), ")");
+            }
+            const size_t n = single_u ? vs.size() : us.size();
+            std::vector<Vec3d> directions(n);
+            for (size_t i = 0; i < n; ++i) directions[i] = c.pixel_direction(us[single_u ? 0 : i], vs[single_v ? 0 : i]);
+            return py::make_tuple(points_to_array(std::vector<Vec3d>(n, c.position())), points_to_array(directions));
           },
-          py::arg("u"), py::arg("v"), "(origin, unit direction) of the ray through pixel coordinates (u, v).")
+          py::arg("u"), py::arg("v"),
+          "(origin, unit direction) of the ray through pixel coordinates (u, v), the pixel's corner at its "
+          "integers (its centre at x + 0.5); u and v numbers, or (N,) arrays (either may be a number): then "
+          "(N, 3) origins and directions.")
       .def(
           "project",
           [](const Camera& c, const py::object& points) {
