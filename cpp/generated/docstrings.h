@@ -314,6 +314,9 @@ inline constexpr const char mkd_doc_refracta_RenderOptions_rr_depth[] = R"doc(Ru
 inline constexpr const char mkd_doc_refracta_RenderOptions_sagitta[] = R"doc(largest distance between a chord and the curved path [m])doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_sagitta_pixels[] = R"doc(Camera rays may stray this fraction of a pixel's footprint (pixel angle x path length) from their
 path when that is more than `sagitta`: what a pixel cannot resolve need not be traced.)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_sample_counts[] = R"doc(Also write each pixel's number of camera samples (the ones its value averages: spp, edge_spp at a
+refined edge, the adaptive count; a pilot's samples only choose that count) as one more, last
+channel (renderer.h). 'straight' and 'curved' only.)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_seed[] = R"doc(seed of the per-pixel random streams)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_spectral[] = R"doc(Spectral rendering: 4 hero wavelengths per sample (Wilkie et al. 2014) instead of RGB.)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_spp[] = R"doc(samples per pixel (1: the pixel centre; more: correlated multi-jittered, film.h))doc";

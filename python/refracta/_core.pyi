@@ -2097,6 +2097,16 @@ class RenderOptions:
     def sagitta_pixels(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def sample_counts(self) -> bool:
+        """
+        Also write each pixel's number of camera samples (the ones its value averages: spp, edge_spp at a
+        refined edge, the adaptive count; a pilot's samples only choose that count) as one more, last
+        channel (renderer.h). 'straight' and 'curved' only.
+        """
+    @sample_counts.setter
+    def sample_counts(self, arg0: bool) -> None:
+        ...
+    @property
     def seed(self) -> int:
         """
         seed of the per-pixel random streams

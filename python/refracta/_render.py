@@ -166,7 +166,10 @@ def render(
     sight to the object: 1 unmiraged, 2 or 3 in a mirage), 0 where none. Averaged over the
     samples: 'apparent_elevation' and 'apparent_azimuth' (H, W) [deg] of the mean of the samples'
     camera-ray directions at the eye: elevation above the horizontal plane (y), azimuth clockwise
-    from north (-z) in [0, 360) (refracta.geo's conventions). Not with method 'raster_march'.
+    from north (-z) in [0, 360) (refracta.geo's conventions). And 'samples' (H, W) int32: how many
+    camera samples each pixel's value averages (RenderOptions.sample_counts: spp, edge_spp where an
+    edge was refined, the adaptive count; an adaptive pilot's samples only chose it), e.g. to see
+    where adaptive sampling spent them. Not with method 'raster_march'.
     denoise: return the image denoised by Intel Open Image Denoise
     (refracta.denoise) with those albedo and normal as its guides (rendered for it whether asked
     for or not); in RGB renders pixels where no sample met such a surface (the sky) keep their
@@ -278,10 +281,12 @@ def render(
     if (denoise or surface) and method == "raster_march":
         raise ValueError(
             f"render: {'denoise=True' if denoise else f'aovs {surface}'} needs method 'straight' or 'curved' (the "
-            "first surface's albedo and normal come from the ray renderers; got method='raster_march')"
+            "ray renderers give the first surface's albedo and normal and count samples; got method='raster_march')"
         )
-    if denoise or wanted:
+    if denoise or any(name != "samples" for name in wanted):
         options["surface_aovs"] = True
+    if "samples" in wanted:
+        options["sample_counts"] = True
     if any(name in READOUT_NAMES for name in wanted):
         options["readouts"] = True
     settings = render_options(
@@ -300,8 +305,11 @@ def render(
     if stats is not None:
         stats.update({name: getattr(counts, name) for name in ("samples", "chords", "invalid_samples")})
     outputs = {}
+    if settings.sample_counts:  # the last channel (renderer.h)
+        outputs["samples"] = np.ascontiguousarray(image[..., -1].astype(np.int32))
+        image = np.ascontiguousarray(image[..., :-1])
     if settings.surface_aovs or settings.readouts:
-        outputs = _surface_outputs(image)
+        outputs.update(_surface_outputs(image))
         if settings.readouts:
             outputs.update(_readouts(image, wanted, frame))
         image = np.ascontiguousarray(image[..., :3])
@@ -352,7 +360,7 @@ READOUT_NAMES = (
     "images",
 )
 # The per-pixel outputs render(aovs=...) knows, and what they are (render's docstring).
-AOV_NAMES = ("albedo", "normal", *READOUT_NAMES)
+AOV_NAMES = ("albedo", "normal", *READOUT_NAMES, "samples")
 
 
 def _readouts(image: np.ndarray, wanted: list[str], frame) -> dict[str, np.ndarray]:

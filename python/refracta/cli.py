@@ -639,7 +639,7 @@ def _run(argv=None) -> int:
         type=_aov_list,
         default=None,
         help="per-pixel readouts written as EXR layers, comma-separated: distance, position, object_id, "
-        "apparent_elevation, apparent_azimuth, true_elevation, hidden_height, images, albedo, normal, "
+        "apparent_elevation, apparent_azimuth, true_elevation, hidden_height, images, albedo, normal, samples, "
         "geographic (needs the file's [geographic] table) (refracta.render's aovs)",
     )
     edit_parser = commands.add_parser(

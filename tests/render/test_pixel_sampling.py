@@ -260,3 +260,44 @@ def test_edge_refinement_reports_both_passes_as_one_progress():
     tiles = -(-camera.width // 8) * -(-camera.height // 8)
     assert all(done <= total for done, total in reports)
     assert reports[-1] == (2 * tiles, 2 * tiles)
+
+
+def test_the_samples_aov_counts_each_pixels_samples():
+    # Uniform: spp everywhere. Edge refinement: edge_spp exactly where the value changed from the
+    # base pass, spp elsewhere, and with the base pass's samples of the refined pixels the counts
+    # add up to the render's total. Adaptive: the pixels' own counts plus the 2-sample pilot of
+    # every pixel are the total, and the poles' columns get more than the flat ground.
+    scene, camera = poles()
+    image, aovs = render(scene, camera, spp=4, aovs=["samples"])
+    assert image.shape == (24, 48, 3) and image.flags.c_contiguous
+    assert aovs["samples"].dtype == np.int32 and np.all(aovs["samples"] == 4)
+    np.testing.assert_array_equal(image, render(scene, camera, spp=4))  # the image unchanged
+
+    base = render(scene, camera, spp=2, seed=3)
+    refined, aovs, stats = render(scene, camera, spp=2, edge_spp=32, seed=3, aovs=["samples"], return_stats=True)
+    counts = aovs["samples"]
+    assert set(np.unique(counts)) == {2, 32}
+    changed = np.any(base != refined, axis=2)
+    assert np.all(counts[changed] == 32)
+    assert counts.sum() + 2 * np.sum(counts == 32) == stats.samples
+
+    _, aovs, stats = render(scene, camera, spp=16, adaptive=True, aovs=["samples", "normal"], return_stats=True)
+    counts = aovs["samples"]
+    assert counts.sum() + 2 * counts.size == stats.samples
+    sky_rows = slice(0, 8)
+    assert counts[sky_rows].max() > 16 > counts[16:].min()  # edges above the mean budget, flat ground below
+
+
+def test_the_samples_aov_is_the_same_in_tiles_and_parts():
+    scene, camera = poles()
+    whole = render(scene, camera, spp=12, adaptive=True, aovs=["samples"])[1]["samples"]
+    part = render(scene, camera, spp=12, adaptive=True, aovs=["samples"], pixel_bounds=(5, 3, 40, 19))[1]["samples"]
+    np.testing.assert_array_equal(part, whole[3:19, 5:40])
+    tiled = render(scene, camera, spp=12, adaptive=True, aovs=["samples"], tiles=(3, 2))[1]["samples"]
+    np.testing.assert_array_equal(tiled, whole)
+
+
+def test_the_samples_aov_needs_a_ray_traced_method():
+    scene, camera = poles()
+    with pytest.raises(ValueError, match="needs method 'straight' or 'curved'"):
+        refracta.render(scene, camera, None, method="raster_march", aovs=["samples"], progress=False)

@@ -70,6 +70,7 @@ void bind_render(py::module_& m) {
       .def_readwrite("surface_aovs", &O::surface_aovs, DOC(refracta, RenderOptions, surface_aovs))
       .def_readwrite("guide_spp", &O::guide_spp, DOC(refracta, RenderOptions, guide_spp))
       .def_readwrite("readouts", &O::readouts, DOC(refracta, RenderOptions, readouts))
+      .def_readwrite("sample_counts", &O::sample_counts, DOC(refracta, RenderOptions, sample_counts))
       .def_readwrite("step", &O::step, DOC(refracta, RenderOptions, step))
       .def_readwrite("max_steps", &O::max_steps, DOC(refracta, RenderOptions, max_steps))
       .def_readwrite("guard_band", &O::guard_band, DOC(refracta, RenderOptions, guard_band))

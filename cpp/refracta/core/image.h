@@ -3,6 +3,7 @@
 
 #include "refracta/core/memory.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -20,6 +21,18 @@ struct Image {
   float* at(int x, int y) { return &pixels[(std::size_t(y) * width + x) * channels]; }
   const float* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * channels]; }
 };
+
+// `image` with the one channel of `extra` (the same size) appended as its last.
+inline Image with_channel(const Image& image, const Image& extra) {
+  Image out(image.width, image.height, image.channels + 1);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      std::copy_n(image.at(x, y), image.channels, out.at(x, y));
+      out.at(x, y)[image.channels] = extra.at(x, y)[0];
+    }
+  }
+  return out;
+}
 
 // Refuses, before anything is allocated, an image of width x height pixels whose buffers
 // (bytes_per_pixel in all) would not fit in physical memory: std::invalid_argument (ValueError)

@@ -121,7 +121,8 @@ struct EdgeRefinement {
 // (the first sample of the least path length: never a blend of a foreground and a background)
 // its distance, position and object id, and through `geometry` its true elevation and hidden
 // heights; the apparent elevation and azimuth of the mean of the samples' directions at the eye.
-// `samples` (if given) receives the number of samples drawn: width x height x spp of the bounds
+// `pixel_samples` (if given) becomes a one-channel image of the bounds: each pixel's number of
+// samples its value averages. `samples` (if given) receives the number of samples drawn: width x height x spp of the bounds
 // without adaptive sampling; with it, the whole image's width x height x spp (pilot included), and
 // for a part of the image its pixels' samples and the pilots of the blocks it touches; with edge
 // refinement the base pass over the bounds and the pixels around them plus edge_spp per refined pixel.
@@ -132,7 +133,8 @@ template <FilmLayout kLayout, class SampleRadiance>
 Image render_film(const Camera& camera, const RenderOptions& options, WorkControl& control,
                   const SampleRadiance& radiance, int64_t* samples = nullptr,
                   const ReadoutGeometry* geometry = nullptr,
-                  const WavelengthDistribution& wavelengths = WavelengthDistribution()) {
+                  const WavelengthDistribution& wavelengths = WavelengthDistribution(),
+                  Image* pixel_samples = nullptr) {
   constexpr bool kSurfaceAovs = kLayout != FilmLayout::kRadiance;
   constexpr bool kReadouts = kLayout == FilmLayout::kReadouts;
   constexpr int kChannels = kReadouts ? kSurfaceChannels + kReadoutChannels : kSurfaceAovs ? kSurfaceChannels : 3;
@@ -231,6 +233,10 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
   };
   const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());
   const int first = AdaptiveSampling::first_pass(options.spp);
+  if (pixel_samples) *pixel_samples = Image(bounds.width(), bounds.height(), 1);
+  auto count_samples = [&](int x, int y, int count) {
+    if (pixel_samples) pixel_samples->at(x - bounds.x0, y - bounds.y0)[0] = float(count);
+  };
   if (refine_edges) {
     // The base pass over the bounds and the pixels around them (an edge pixel's test needs its
     // neighbours: a part of the image renders as in the whole), its value then the samples' mean
@@ -253,12 +259,14 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
     std::atomic<int64_t> refined{0};
     Image image = render_tiles(bounds, options.tile, control, [&](int x, int y) {
       if (!detail::EdgeRefinement::at_edge(base, area, kChannels, x, y)) {
+        count_samples(x, y, options.spp);
         const float* kept = base.at(x - area.x0, y - area.y0);
         PixelValue value;
         for (int c = 0; c < kChannels; ++c) value[c] = double(kept[c]);
         return value;
       }
       refined.fetch_add(1, std::memory_order_relaxed);
+      count_samples(x, y, options.edge_spp);
       Sums sums;
       add_samples(sums, x, y, options.edge_spp, 1, kSurfaceAovs);
       return pixel_value(sums);
@@ -269,6 +277,7 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
   if (!options.adaptive || options.spp <= first) {
     if (samples) *samples = int64_t(bounds.width()) * bounds.height() * options.spp;
     return render_tiles(bounds, options.tile, control, [&](int x, int y) {
+      count_samples(x, y, options.spp);
       Sums sums;
       add_samples(sums, x, y, options.spp, 0, kSurfaceAovs);
       return pixel_value(sums);
@@ -299,6 +308,7 @@ Image render_film(const Camera& camera, const RenderOptions& options, WorkContro
       if (x < bounds.x0 || x >= bounds.x1 || y < bounds.y0 || y >= bounds.y1) continue;
       Sums pixel;  // the pilot's samples only chose the count: the pixel is one pattern of its own
       add_samples(pixel, x, y, extra[p], 1, kSurfaceAovs);
+      count_samples(x, y, extra[p]);
       count += extra[p];
       const PixelValue value = pixel_value(pixel);
       float* out = image.at(x - bounds.x0, y - bounds.y0);

@@ -121,6 +121,10 @@ struct RenderOptions {
   // true elevation, apparent azimuth, hidden heights) after those 9 channels: 19 in all.
   // Implies surface_aovs. 'straight' and 'curved' only.
   bool readouts = false;
+  // Also write each pixel's number of camera samples (the ones its value averages: spp, edge_spp
+  // at a refined edge, the adaptive count; a pilot's samples only choose that count) as one more,
+  // last channel (renderer.h). 'straight' and 'curved' only.
+  bool sample_counts = false;
 
   // raster_march (the original editor's method): the integrator marching each pixel's ray
   // against the depth buffer: 'rk4' with `step` [m] for at most `max_steps` steps (the

@@ -91,6 +91,7 @@ void RenderOptions::validate() const {
   if (surface_aovs && method == RenderMethod::kRasterMarch) problems.add("surface_aovs needs method 'straight' or 'curved'");
   if (guide_spp < 0) problems.add("guide_spp must be >= 0 (got ", guide_spp, ")");
   if (readouts && method == RenderMethod::kRasterMarch) problems.add("readouts need method 'straight' or 'curved'");
+  if (sample_counts && method == RenderMethod::kRasterMarch) problems.add("sample_counts needs method 'straight' or 'curved'");
   if (adaptive && method == RenderMethod::kRasterMarch) problems.add("adaptive needs method 'straight' or 'curved'");
   if (adaptive && spp < 3) problems.add("adaptive needs spp >= 3 (got ", spp, "): its pilot takes 2 samples a pixel");
   if (edge_spp < 0) problems.add("edge_spp must be >= 0 (got ", edge_spp, ")");
@@ -222,7 +223,8 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   options.validate();
   const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());  // before any work
   // float32 channels, and room for one copy by the caller (the pixels themselves move out).
-  check_image_memory(bounds.width(), bounds.height(), options.readouts ? 152.0 : options.surface_aovs ? 72.0 : 24.0,
+  check_image_memory(bounds.width(), bounds.height(),
+                     (options.readouts ? 152.0 : options.surface_aovs ? 72.0 : 24.0) + (options.sample_counts ? 12.0 : 0.0),
                      "render");
   scene.prepare();
   if (options.method == RenderMethod::kRasterMarch) {
@@ -388,15 +390,19 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
     if (!L.isFinite().all()) invalid.fetch_add(1, std::memory_order_relaxed);
     return L;
   };
-  Image image;
+  Image image, counts;
+  Image* const pixel_samples = options.sample_counts ? &counts : nullptr;
   int64_t samples = 0;
   if (options.readouts) {
     const ReadoutGeometry geometry(camera.position(), exact_field.get(), options.max_length, &control.cancel);
-    image = render_film<FilmLayout::kReadouts>(camera, options, control, sample, &samples, &geometry, wavelengths);
+    image = render_film<FilmLayout::kReadouts>(camera, options, control, sample, &samples, &geometry, wavelengths,
+                                               pixel_samples);
   } else if (options.surface_aovs) {
-    image = render_film<FilmLayout::kSurface>(camera, options, control, sample, &samples, nullptr, wavelengths);
+    image = render_film<FilmLayout::kSurface>(camera, options, control, sample, &samples, nullptr, wavelengths,
+                                              pixel_samples);
   } else {
-    image = render_film<FilmLayout::kRadiance>(camera, options, control, sample, &samples, nullptr, wavelengths);
+    image = render_film<FilmLayout::kRadiance>(camera, options, control, sample, &samples, nullptr, wavelengths,
+                                               pixel_samples);
   }
   // The denoiser's guides from a pass of their own (options.guide_spp): the first non-specular
   // surface of guide_spp samples a pixel, from the same casters (a spectral render's at the air's
@@ -428,6 +434,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
       for (int x = 0; x < image.width; ++x) std::copy_n(guides.at(x, y) + 3, 6, image.at(x, y) + 3);
     }
   }
+  if (pixel_samples) image = with_channel(image, counts);
   if (stats) {
     stats->samples = samples;
     stats->chords = chords.load();
