@@ -1127,6 +1127,11 @@ class Camera:
         ('straight', 'curved') render it. f_number or focus_distance <= 0 or NaN, or focus_distance without
         f_number (a pinhole has no focus): ValueError.
         """
+    @staticmethod
+    def photographic_vfov(focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640) -> float:
+        """
+        The vertical field of view [deg] Camera.photographic gives an image of width x height pixels (the image spans the sensor's width when relatively wider than the sensor, else its height).
+        """
     def __eq__(self, arg0: typing.Any) -> typing.Any:
         """
         The same view, image size, jitter and lens (what a pickle keeps: their rays are bit-identical).

@@ -55,8 +55,9 @@ def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) ->
     farthest = float(np.linalg.norm(np.maximum(abs(lower - eye), abs(upper - eye))))
     if math.isfinite(nearest) and nearest > max_length:
         warnings.warn(
-            f"render: the nearest of the scene's objects is {nearest:.6g} m from the camera, beyond the "
-            f"rays' reach max_length = {max_length:g} m, so the image shows no object; pass a larger "
+            f"render: the nearest of the scene's objects (a ground or sea plane aside) is {nearest:.6g} m from "
+            f"the camera, beyond the rays' reach max_length = {max_length:g} m, so the image shows none of them "
+            f"(a ground or sea within reach, and the sky); pass a larger "
             f"max_length= (its farthest point is {farthest:.6g} m away; a curved ray is a little longer)",
             SceneWarning,
             stacklevel=3,
@@ -64,7 +65,8 @@ def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) ->
 
 
 def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, where: str = "render") -> None:
-    """The SceneWarning hints of render(): a scene without any light or sky; and one whose lowest
+    """The SceneWarning hints of render(): a scene without any light or sky; a camera at or below
+    the field's ground (height 0); and one whose lowest
     geometry (taken as its ground) lies more than GROUND_TOLERANCE from height 0 of the field the
     rays go through (every field, CurvedEarth's flattened heights too, puts the ground at y = 0)
     with layered air in between (mean ``|dn/dh|`` > LAYER_GRADIENT below the camera)."""
@@ -73,6 +75,15 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
             f"{where}: the scene has no light and no sky, so the image is black; add one with "
             "scene.set_sky(...), set_sun, set_physical_sky, set_environment, add_point_light or "
             "an emission= geometry",
+            SceneWarning,
+            stacklevel=3,
+        )
+    if field is not None and method != "straight" and not camera.position[1] > 0.0:
+        warnings.warn(
+            f"{where}: the camera is at y = {camera.position[1]:g} m, at or below the field's ground (every "
+            "field puts it at height 0), so its rays start in or under the ground and sea: the image is not "
+            "what an eye above them sees; raise the camera (e.g. Camera.geographic's height: the ground's "
+            "height plus the eye's above it)",
             SceneWarning,
             stacklevel=3,
         )
@@ -166,7 +177,9 @@ def render(
     sight to the object: 1 unmiraged, 2 or 3 in a mirage), 0 where none. Averaged over the
     samples: 'apparent_elevation' and 'apparent_azimuth' (H, W) [deg] of the mean of the samples'
     camera-ray directions at the eye: elevation above the horizontal plane (y), azimuth clockwise
-    from north (-z) in [0, 360) (refracta.geo's conventions). And 'samples' (H, W) int32: how many
+    from the frame's north (-z) in [0, 360) (refracta.geo's conventions; a compass bearing at the eye
+    is ``frame.bearing(aovs["apparent_azimuth"], camera.position)``, which differs away from the
+    frame's origin by the meridians' convergence). And 'samples' (H, W) int32: how many
     camera samples each pixel's value averages (RenderOptions.sample_counts: spp, edge_spp where an
     edge was refined, the adaptive count; an adaptive pilot's samples only chose it), e.g. to see
     where adaptive sampling spent them. Not with method 'raster_march'.

@@ -140,13 +140,16 @@ class Photo:
         """The vertical field of view [deg] of the image as displayed, from EXIF (module docstring).
 
         sensor_mm: the sensor's (width, height) [mm] along the displayed image, overriding EXIF's.
+        The picture spans the sensor's width when it is relatively wider than the sensor (a 16:9
+        frame from a 3:2 sensor), else its height, as Camera.photographic fits it.
         Raises ValueError when EXIF gives no focal length, or a focal length but neither a sensor
         size nor a 35 mm equivalent (naming what to pass).
         """
         exif = self.exif
         sensor = self.sensor_mm() if sensor_mm is None else _sensor(sensor_mm)
         if exif.focal_length_mm is not None and sensor is not None:
-            return math.degrees(2.0 * math.atan(sensor[1] / (2.0 * exif.focal_length_mm)))
+            # Camera.photographic's fit: a picture relatively wider than the sensor spans its width.
+            return _core.Camera.photographic_vfov(exif.focal_length_mm, sensor, self.width, self.height)
         if exif.focal_length_35mm is not None:
             half_diagonal = math.atan(_FULL_FRAME_DIAGONAL / (2.0 * exif.focal_length_35mm))
             share = self.height / math.hypot(self.width, self.height)

@@ -115,6 +115,29 @@ def test_bad_points_are_value_errors():
     # 1e9 m east gave a point past the antipode; scene coordinates end at 1e7 m (single precision).
     with pytest.raises(ValueError, match=r"points: 1e\+09 m from the frame's origin, beyond the scene's reach"):
         frame.to_geographic([1e9, 0.0, 0.0])
+    # to_scene refuses such points as to_geographic does (the antipode came back as z = -2e7 m).
+    with pytest.raises(ValueError, match=r"to_scene: the points: 2e\+07 m from the frame's origin"):
+        frame.to_scene(-47.0, -172.0, 0.0)
     # The antipode: the eye was put 2e7 m away, where rays are refused only when rendering.
     with pytest.raises(ValueError, match="position: 2e\\+07 m from the frame's origin"):
         frame.camera(2.0, 0.0, 0.0, vfov=10.0, position=(-47.0, -172.0))
+
+
+def test_bearing_turns_a_frame_azimuth_into_the_compass_bearing_camera_takes():
+    # A trial's camera 20 km west-north of the origin at bearing 270: its view's frame azimuth is
+    # 270.177 (the meridians' convergence), which bearing() takes back to 270.
+    frame = geo.LocalFrame(45.0, 10.0)
+    for compass in (0.0, 90.0, 270.0, 359.5):
+        camera = frame.camera(100.0, compass, 0.0, vfov=1.0, image_width=41, image_height=11, position=(45.05, 9.75))
+        forward = camera.ray(20.5, 5.5)[1]
+        frame_azimuth = np.degrees(np.arctan2(forward[0], -forward[2])) % 360.0
+        assert abs(frame_azimuth - compass) > 0.1 or compass == 0.0  # the turn is real here (0.18 deg)
+        # The round trip of two 1 m geodesic steps in double: 1e-9 deg.
+        turn = (frame.bearing(frame_azimuth, camera.position) - compass + 180.0) % 360.0 - 180.0
+        assert abs(turn) < 1e-6
+    # At the origin the frame's north is the compass's; arrays map element by element.
+    at_origin = frame.bearing(np.array([[10.0, 200.0]]), (0.0, 1.0, 0.0))
+    assert at_origin.shape == (1, 2)
+    np.testing.assert_allclose(at_origin, [[10.0, 200.0]], atol=1e-6)  # the same 1 m round trip
+    with pytest.raises(ValueError, match="position must be one scene point"):
+        frame.bearing(10.0, (0.0, 1.0))

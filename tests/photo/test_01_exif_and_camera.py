@@ -1,6 +1,7 @@
 """refracta.photo.load: pixels through OpenImageIO, EXIF through Pillow (written here by Pillow),
 orientation applied as Pillow's exif_transpose does, and the field of view it gives a Camera."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -65,8 +66,30 @@ def test_35mm_equivalent_is_read_on_the_full_frame_diagonal(tmp_path):
     camera = picture.camera((0.0, 2.0, 0.0), (0.0, 2.0, -10.0), width=15)
     assert (camera.width, camera.height) == (15, 10)
     assert camera.vfov == pytest.approx(picture.vfov(), abs=ANGLE_TOL)
-    # A given sensor size overrides: 8 mm on a 6.4 x 4.8 mm sensor.
-    assert picture.vfov(sensor_mm=(6.4, 4.8)) == pytest.approx(math.degrees(2 * math.atan(4.8 / 16.0)), abs=ANGLE_TOL)
+    # A given sensor size overrides: 8 mm on a 6.4 x 4.8 mm (4:3) sensor. The 3:2 picture is
+    # relatively wider than the sensor, so it spans the sensor's width, a crop of its height:
+    # 6.4 x 20 / 30 mm (it took the whole 4.8 mm, as Camera.photographic does not).
+    cropped = 6.4 * STORED_H / STORED_W
+    assert picture.vfov(sensor_mm=(6.4, 4.8)) == pytest.approx(
+        math.degrees(2 * math.atan(cropped / 16.0)), abs=ANGLE_TOL
+    )
+    lens = refracta.Camera.photographic((0, 0, 0), (0, 0, -1), 8.0, (6.4, 4.8), width=STORED_W, height=STORED_H)
+    assert picture.vfov(sensor_mm=(6.4, 4.8)) == pytest.approx(lens.vfov, abs=ANGLE_TOL)
+
+
+def test_a_picture_wider_than_its_sensor_spans_the_sensors_width(tmp_path):
+    # A trial's 3:1 picture at 300 mm on full frame: 4.58 deg from the sensor's height, where
+    # Camera.photographic (and the camera, which crops a wide frame from the sensor's width) gives 2.29.
+    picture = photo.load(_write_jpeg(tmp_path / "w.jpg", focal=300.0))
+    picture = dataclasses.replace(picture, image=picture.image[:10])  # 30 x 10: 3:1
+    wide = math.degrees(2 * math.atan(36.0 * 10 / 30 / 600.0))
+    assert picture.vfov(sensor_mm=(36.0, 24.0)) == pytest.approx(wide, abs=ANGLE_TOL)
+    assert refracta.Camera.photographic_vfov(300.0, (36.0, 24.0), 30, 10) == pytest.approx(wide, abs=ANGLE_TOL)
+    # A picture narrower than the sensor (1:1) spans its height: 24 mm.
+    square = dataclasses.replace(picture, image=picture.image[:, :10])
+    assert square.vfov(sensor_mm=(36.0, 24.0)) == pytest.approx(
+        math.degrees(2 * math.atan(24.0 / 600.0)), abs=ANGLE_TOL
+    )
 
 
 def test_a_float_photograph_is_linear_and_shown_through_the_tone_curve(tmp_path):

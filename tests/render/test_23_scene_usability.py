@@ -185,7 +185,10 @@ def test_geometry_beyond_the_rays_reach_warns_and_a_longer_reach_sees_it():
     scene.set_sky(SKY, SKY)
     scene.add_box((300.0, 10.0, 0.0), (20.0, 20.0, 20.0), kd=(0.8, 0.2, 0.1))  # resting on y = 0
     camera = refracta.Camera((0.0, 1.0, 0.0), (300.0, 1.0, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
-    with pytest.warns(refracta.SceneWarning, match="290 m from the camera, beyond the rays' reach max_length = 100 m"):
+    with pytest.warns(
+        refracta.SceneWarning,
+        match="290 m from the camera, beyond the rays' reach max_length = 100 m, so the image shows none of them",
+    ):
         short = refracta.render(scene, camera, HOT_ROAD, progress=False, max_length=100.0)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -194,3 +197,20 @@ def test_geometry_beyond_the_rays_reach_warns_and_a_longer_reach_sees_it():
     sky, box = short[1, 2], long[1, 2]
     assert box[0] > box[2] and not sky[0] > sky[2]  # the box's red (kd 0.8, 0.2, 0.1) only when reached
     assert render_quietly(scene, HOT_ROAD, method="straight") == []  # straight rays have no reach
+
+
+@pytest.mark.parametrize("eye_y", [0.0, -10.0])
+def test_a_camera_at_or_below_the_fields_ground_warns(eye_y):
+    """A trial's eye at sea level (Camera.geographic height 0) saw sky where the sea under it lies,
+    and at -10 m the sea's underside, silently; an eye above the ground renders without the hint."""
+    scene = refracta.Scene()
+    scene.set_sky(SKY, SKY)
+    scene.add_ground(0.0, 100.0, kd=(0.5, 0.5, 0.5))
+    camera = refracta.Camera((0.0, eye_y, 0.0), (100.0, eye_y - 1.0, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
+    with pytest.warns(refracta.SceneWarning, match=f"the camera is at y = {eye_y:g} m, at or below the field's ground"):
+        refracta.render(scene, camera, HOT_ROAD, progress=False, max_length=200.0)
+    above = refracta.Camera((0.0, 1.5, 0.0), (100.0, 0.5, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        refracta.render(scene, above, HOT_ROAD, progress=False, max_length=200.0)
+    assert not [w for w in caught if issubclass(w.category, refracta.SceneWarning)]

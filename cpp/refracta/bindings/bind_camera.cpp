@@ -13,6 +13,10 @@ namespace {
 
 using Sensor = std::pair<double, double>;  // (width, height) [mm]
 
+double photographic_vfov_of(double focal_length_mm, const Sensor& sensor_mm, int width, int height) {
+  return Camera::photographic_vfov(focal_length_mm, sensor_mm.first, sensor_mm.second, width, height);
+}
+
 // Camera.framing's first argument: a Scene (framing_bounds) or (lower, upper) corners.
 std::pair<Vec3d, Vec3d> bounds_of(const py::object& scene_or_bounds) {
   if (py::isinstance<RenderScene>(scene_or_bounds)) {
@@ -75,7 +79,11 @@ scene has nothing else.
     camera = refracta.Camera.framing(scene, width=800, height=450)
 
 scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc");
-  camera.def_static(
+  camera.def_static("photographic_vfov", &photographic_vfov_of, py::arg("focal_length_mm"),
+                  py::arg("sensor_mm") = Sensor(36.0, 24.0), py::arg("width") = 960, py::arg("height") = 640,
+                  "The vertical field of view [deg] Camera.photographic gives an image of width x height pixels "
+                  "(the image spans the sensor's width when relatively wider than the sensor, else its height).")
+      .def_static(
       "photographic",
       [](const py::object& position, const py::object& look_at, double focal_length_mm, const Sensor& sensor_mm,
          int width, int height, const py::object& up, std::optional<double> f_number, std::optional<double> focus_distance) {

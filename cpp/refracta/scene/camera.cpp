@@ -32,10 +32,25 @@ Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, dou
   tan_half_ = std::tan(0.5 * degrees_to_radians(vfov_deg));
 }
 
+double Camera::photographic_vfov(double focal_length_mm, double sensor_w_mm, double sensor_h_mm, int width,
+                                 int height) {
+  auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  if (!(focal_length_mm >= 0.1 && focal_length_mm <= 1e5)) {
+    throw_invalid("Camera.photographic: focal_length_mm must be in [0.1, 100000] (got ", focal_length_mm, ")");
+  }
+  if (!positive(sensor_w_mm) || !positive(sensor_h_mm)) {
+    throw_invalid("Camera.photographic: sensor_mm must be two sides > 0 [mm] (got (", sensor_w_mm, ", ",
+                  sensor_h_mm, "))");
+  }
+  if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
+  const bool spans_width = double(width) * sensor_h_mm >= double(height) * sensor_w_mm;
+  const double image_h_mm = spans_width ? sensor_w_mm * height / width : sensor_h_mm;
+  return 2.0 * std::atan(0.5 * image_h_mm / focal_length_mm) * 180.0 / kPi;
+}
+
 Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,
                             double sensor_w_mm, double sensor_h_mm, int width, int height,
                             std::optional<double> f_number, std::optional<double> focus_distance) {
-  auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
   // Lenses as made: f/0.5 is the limit of a lens in air (N >= 1 / (2 sin 90 deg)), f/10000 a
   // pinhole's order; focal lengths from a 0.1 mm phone lens to 100 m (a telescope's); focus
   // within the scene's reach (a trial's 1e300 m focus turned every lens ray to NaN, and a 1e-6
@@ -50,22 +65,12 @@ Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const V
   if (focus_distance && !f_number) {
     throw_invalid("Camera.photographic: focus_distance needs f_number (a pinhole has no focus)");
   }
-  if (!(focal_length_mm >= 0.1 && focal_length_mm <= 1e5)) {
-    throw_invalid("Camera.photographic: focal_length_mm must be in [0.1, 100000] (got ", focal_length_mm, ")");
-  }
-  if (!positive(sensor_w_mm) || !positive(sensor_h_mm)) {
-    throw_invalid("Camera.photographic: sensor_mm must be two sides > 0 [mm] (got (", sensor_w_mm, ", ",
-                  sensor_h_mm, "))");
-  }
+  const double vfov = photographic_vfov(focal_length_mm, sensor_w_mm, sensor_h_mm, width, height);
   // A thin lens images only what lies beyond its focal length (1/f = 1/s + 1/s'): nearer, no focus.
   if (focus_distance && !(*focus_distance > 1e-3 * focal_length_mm)) {
     throw_invalid("Camera.photographic: focus_distance must exceed the focal length (", 1e-3 * focal_length_mm,
                   " m) (got ", *focus_distance, ")");
   }
-  if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
-  const bool spans_width = double(width) * sensor_h_mm >= double(height) * sensor_w_mm;
-  const double image_h_mm = spans_width ? sensor_w_mm * height / width : sensor_h_mm;
-  const double vfov = 2.0 * std::atan(0.5 * image_h_mm / focal_length_mm) * 180.0 / kPi;
   Camera camera(position, look_at, up, vfov, width, height);
   if (!f_number) return camera;
   // The aperture's diameter A = f / N [m]; focus by default where the camera looks (which must lie

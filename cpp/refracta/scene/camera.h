@@ -45,6 +45,10 @@ class Camera {
   // f_number N given: a thin lens of aperture diameter A = f / N focused at focus_distance [m]
   // (unset: |look_at - position|). Throws for an f-number or focus distance <= 0 or not finite, and
   // for a focus distance without an f-number (a pinhole has no focus).
+  // The vertical field of view [deg] of that fit for an image of width x height pixels (throws as
+  // photographic() for the focal length, the sensor and the size).
+  static double photographic_vfov(double focal_length_mm, double sensor_w_mm, double sensor_h_mm, int width,
+                                  int height);
   static Camera photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,
                              double sensor_w_mm, double sensor_h_mm, int width, int height,
                              std::optional<double> f_number = std::nullopt,
