@@ -132,9 +132,8 @@ def test_bearing_turns_a_frame_azimuth_into_the_compass_bearing_camera_takes():
         forward = camera.ray(20.5, 5.5)[1]
         frame_azimuth = np.degrees(np.arctan2(forward[0], -forward[2])) % 360.0
         assert abs(frame_azimuth - compass) > 0.1 or compass == 0.0  # the turn is real here (0.18 deg)
-        # The round trip of two 1 m geodesic steps in double: 1e-9 deg.
         turn = (frame.bearing(frame_azimuth, camera.position) - compass + 180.0) % 360.0 - 180.0
-        assert abs(turn) < 1e-6
+        assert abs(turn) < 1e-6  # the round trip of two 1 m geodesic steps in double: ~1e-9 deg
     # At the origin the frame's north is the compass's; arrays map element by element.
     at_origin = frame.bearing(np.array([[10.0, 200.0]]), (0.0, 1.0, 0.0))
     assert at_origin.shape == (1, 2)

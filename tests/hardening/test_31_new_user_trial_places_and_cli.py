@@ -137,7 +137,8 @@ def test_photo_sensor_and_overlay_flags_refuse_what_is_not_theirs(tmp_path):
     exif.get_ifd(0x8769)[0x920A] = 50.0
     Image.new("RGB", (16, 9)).save(tmp_path / "p.jpg", exif=exif)
     loaded = photo.load(tmp_path / "p.jpg")
-    assert loaded.vfov(sensor_mm=(36, 24)) == pytest.approx(2 * np.degrees(np.arctan(24 / 100)), rel=1e-12)  # exact
+    # 16:9 is relatively wider than the 3:2 sensor: it spans the sensor's width, 36 x 9 / 16 mm high.
+    assert loaded.vfov(sensor_mm=(36, 24)) == pytest.approx(2 * np.degrees(np.arctan(20.25 / 100)), rel=1e-12)  # exact
     with pytest.raises(ValueError, match="sensor_mm must be"):
         loaded.vfov(sensor_mm=(True, True))  # was 0.573 deg: a 1 mm sensor
     with pytest.raises(ValueError, match="linear must be True, False or None"):

@@ -73,7 +73,7 @@ def test_camera_state_restores_jitter_and_lens_and_repr_names_the_lens():
     copy = pickle.loads(pickle.dumps(camera))
     assert copy.jitter is not None and copy.aperture_diameter == 0.01 and copy.focus_distance == 5.0
     assert repr(copy) == repr(camera) and "aperture_diameter=0.01, focus_distance=5" in repr(camera)
-    with pytest.raises(ValueError, match="u and v must be finite"):
+    with pytest.raises(ValueError, match="Camera.ray: u must be finite"):
         camera.ray(NAN, 1.0)
 
 
