@@ -80,10 +80,10 @@ scene has nothing else.
 
 scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc");
   camera.def_static("photographic_vfov", &photographic_vfov_of, py::arg("focal_length_mm"),
-                  py::arg("sensor_mm") = Sensor(36.0, 24.0), py::arg("width") = 960, py::arg("height") = 640,
-                  "The vertical field of view [deg] Camera.photographic gives an image of width x height pixels "
-                  "(the image spans the sensor's width when relatively wider than the sensor, else its height).")
-      .def_static(
+                    py::arg("sensor_mm") = Sensor(36.0, 24.0), py::arg("width") = 960, py::arg("height") = 640,
+                    "The vertical field of view [deg] Camera.photographic gives an image of width x height pixels "
+                    "(the image spans the sensor's width when relatively wider than the sensor, else its height).");
+  camera.def_static(
       "photographic",
       [](const py::object& position, const py::object& look_at, double focal_length_mm, const Sensor& sensor_mm,
          int width, int height, const py::object& up, std::optional<double> f_number, std::optional<double> focus_distance) {

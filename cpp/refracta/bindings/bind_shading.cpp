@@ -37,7 +37,7 @@ void bind_water(py::module_& m) {
       [](const Water& w) {
         const WaterParameters& p = w.parameters();
         return py::dict(py::arg("wind_speed") = p.wind_speed, py::arg("temperature_c") = p.temperature_c,
-                        py::arg("salinity") = p.salinity, py::arg("body").noconvert() = p.body, py::arg("priority") = p.priority,
+                        py::arg("salinity") = p.salinity, py::arg("body") = p.body, py::arg("priority") = p.priority,
                         py::arg("resolved_slope_variance") = p.resolved_slope_variance);
       },
       py::arg("wind_speed") = water_defaults.wind_speed, py::arg("temperature_c") = water_defaults.temperature_c,

@@ -24,7 +24,8 @@ RenderStats operator+(const RenderStats& a, const RenderStats& b);
 
 // Linear RGB radiance image (height, width, 3); with options.surface_aovs (height, width, 9):
 // radiance, then the albedo and the normal of the first non-specular hit (integrator.h
-// SurfaceAovs); with options.readouts (height, width, 19): those and the readouts (readouts.h).
+// SurfaceAovs); with options.readouts (height, width, 19): those and the readouts (readouts.h);
+// with options.sample_counts one channel more, the last: each pixel's number of samples.
 // field may be null (then 'curved' = 'straight'). Refuses (ValueError) bad options and, before
 // anything is allocated, an image that would not fit in memory (core/image.h).
 Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& field, const RenderOptions& options,
