@@ -174,7 +174,8 @@ def render(
     column, rows meeting the same object are cut into monotone branches of true elevation (a
     turning row belongs to both branches it joins); the count of branches on the pixel's object
     whose range of true elevations holds the pixel's (how many times the column shows that line of
-    sight to the object: 1 unmiraged, 2 or 3 in a mirage), 0 where none. Averaged over the
+    sight to the object: 1 unmiraged, 2 or 3 in a mirage), 0 where none (with pixel_bounds, the
+    bounds' whole columns are rendered for it, and RenderStats counts their samples). Averaged over the
     samples: 'apparent_elevation' and 'apparent_azimuth' (H, W) [deg] of the mean of the samples'
     camera-ray directions at the eye: elevation above the horizontal plane (y), azimuth clockwise
     from the frame's north (-z) in [0, 360) (refracta.geo's conventions; a compass bearing at the eye
@@ -227,7 +228,7 @@ def render(
     spp: samples per pixel (1: pixel centres; more: a correlated multi-jittered pattern, Kensler
     2013), seeded by `seed` per pixel (independent of the thread count). adaptive=True: the same
     width x height x spp samples, shared by a pilot of spp / 8 per pixel within each 32-pixel block
-    (every pixel at least spp / 2, the rest where the pilot varies; unbiased; spp >= 3;
+    (every pixel at least spp / 2, the rest where the pilot varies; unbiased; spp >= 6;
     RenderOptions.adaptive, cpp/refracta/render/adaptive_sampling.h); off by default, and not used
     by denoise=True: on the demo scenes it does not lower the error (benchmarks/bench_denoise.py).
     edge_spp (RenderOptions.edge_spp, off by default): when above spp, every pixel at an edge
@@ -305,6 +306,7 @@ def render(
     settings = render_options(
         method=method, transport=transport, spp=spp, max_depth=max_depth, spectral=spectral, seed=seed, **options
     )
+    rows = _whole_columns_for_images(settings, camera, wanted)
     if executor is not None or tiles is not None:
         image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)
     else:
@@ -326,6 +328,9 @@ def render(
         if settings.readouts:
             outputs.update(_readouts(image, wanted, frame))
         image = np.ascontiguousarray(image[..., :3])
+    if rows is not None:  # back to the rows asked for
+        image = np.ascontiguousarray(image[rows])
+        outputs = {name: np.ascontiguousarray(values[rows]) for name, values in outputs.items()}
     if denoise:
         image = _denoised(image, outputs, settings)
     result = image if aovs is None else (image, {name: outputs[name] for name in wanted})
@@ -393,6 +398,20 @@ def _readouts(image: np.ndarray, wanted: list[str], frame) -> dict[str, np.ndarr
             geographic[met] = np.stack([np.asarray(lat), np.asarray(lon), np.asarray(height)], axis=-1)
         out["geographic"] = geographic
     return out
+
+
+def _whole_columns_for_images(settings, camera, wanted) -> slice | None:
+    """The 'images' readout counts the mirage's branches down each pixel's whole column
+    (_core._mirage_images): with pixel_bounds of fewer rows, settings are widened to the bounds'
+    whole columns (so every pixel is as in the whole image, at the cost of those rows); returns the
+    rows to cut back to, or None."""
+    if "images" not in wanted or settings.pixel_bounds is None:
+        return None
+    x0, y0, x1, y1 = settings.pixel_bounds
+    if (y0, y1) == (0, camera.height):
+        return None
+    settings.pixel_bounds = (x0, 0, x1, camera.height)
+    return slice(y0, y1)
 
 
 def _aov_names(aovs) -> list[str]:

@@ -485,10 +485,8 @@ def render_file(
     import refracta
 
     _check_output(output)
-    loaded = refracta.load_scene(scene_path)
+    loaded = refracta.load_scene(scene_path, size=size)  # a lens fits its sensor at the size asked for
     scene, camera, field = loaded
-    if size is not None:
-        camera = camera.resized(*size)
     start = time.perf_counter()
     display = dict(exposure=exposure, tonemap=tonemap, key=key, ev100=ev100, white_balance=white_balance)
     refracta.io.settings(**display)  # a bad display option is refused before a long render, not after

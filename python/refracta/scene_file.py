@@ -683,10 +683,18 @@ def _atmosphere(table: dict, where: _Locator, get):
     return field, turbulence
 
 
-def load_scene(path) -> SceneFile:
+def load_scene(path, size=None) -> SceneFile:
     """Read a TOML scene file (format in this module's docstring): a SceneFile, which unpacks as
-    (scene, camera, field) and has the [atmosphere.turbulence]'s refracta.Turbulence as .turbulence."""
+    (scene, camera, field) and has the [atmosphere.turbulence]'s refracta.Turbulence as .turbulence.
+    size: (width, height) [pixels] in place of the file's [camera] size, the camera built at it as
+    if the file said so (a focal_length_mm lens fits its sensor at that size: Camera.resized keeps
+    the vertical field of view instead)."""
     path = Path(os.fspath(path))
+    if size is not None:
+        try:
+            size = _image_size(list(size) if isinstance(size, tuple) else size)
+        except (TypeError, ValueError) as error:
+            raise ValueError(f"load_scene: size {error} (got {size!r})") from None
     if not path.exists():
         raise _core.IoError(f"no such scene file: '{path}'")
     if not path.is_file():
@@ -734,7 +742,7 @@ def load_scene(path) -> SceneFile:
 
     cam = data["camera"]
     _check_keys(cam, CAMERA_KEYS, where, "camera", "[camera]")
-    size = get(cam, "camera", "size", _image_size, [640, 360])
+    size = get(cam, "camera", "size", _image_size, [640, 360]) if size is None else size
     # A field of view, or a lens on a sensor; a thin lens from either (f_number with the focal
     # length, aperture_diameter with vfov).
     for a, b in (

@@ -81,4 +81,4 @@ def test_a_boolean_is_not_a_number_of_an_options_field(field, value):
     # True was taken as 1 sample (new-user trial), as pybind11 converts it; models and scene files refuse it.
     with pytest.raises(ValueError, match=rf"RenderOptions: {field} must be a number \(got {value}\)"):
         _core.RenderOptions(**{field: value})
-    assert _core.RenderOptions(adaptive=True, spp=4).adaptive is True  # a bool field takes it
+    assert _core.RenderOptions(adaptive=True, spp=8).adaptive is True  # a bool field takes it

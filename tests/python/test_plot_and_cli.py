@@ -85,6 +85,30 @@ def test_cli_renders_a_scene_file_with_path_tracing_and_spectral_colour(tmp_path
         assert image.shape[:2] == (16, 48) and np.all(np.isfinite(image)) and image.max() > 0.0
 
 
+def test_cli_size_builds_a_lens_camera_at_that_size(tmp_path):
+    # A trial: --size resized the file's camera keeping its vfov, so a 300 mm lens rendered at
+    # 48 x 48 saw 2.29 deg where the same file saying size = [48, 48] sees 4.58 (24 mm high).
+    data = Path(__file__).resolve().parents[1] / "data"
+    text = (data / "hot_road.toml").read_text()
+    assert "vfov = 2.2" in text and "size = [96, 32]" in text
+    for name in ("tent.obj", "tent.mtl"):  # the file's objects, by relative path
+        (tmp_path / name).write_bytes((data / name).read_bytes())
+    lens = text.replace("vfov = 2.2", "focal_length_mm = 300.0")
+    (tmp_path / "lens.toml").write_text(lens)
+    camera = refracta.load_scene(tmp_path / "lens.toml", size=(48, 48)).camera
+    expected = refracta.Camera.photographic((0, 0, 0), (1, 0, 0), 300.0, width=48, height=48).vfov
+    assert camera.vfov == pytest.approx(expected, rel=1e-12)  # the same closed form: round-off only
+    assert (camera.width, camera.height) == (48, 48)
+    assert cli.main(["render", str(tmp_path / "lens.toml"), "-o", str(tmp_path / "a.exr"), "--size", "48x48"]) == 0
+    (tmp_path / "sized.toml").write_text(lens.replace("size = [96, 32]", "size = [48, 48]"))
+    assert cli.main(["render", str(tmp_path / "sized.toml"), "-o", str(tmp_path / "b.exr")]) == 0
+    np.testing.assert_array_equal(
+        refracta.io.read_image(tmp_path / "a.exr"), refracta.io.read_image(tmp_path / "b.exr")
+    )
+    with pytest.raises(ValueError, match="load_scene: size must be two whole numbers"):
+        refracta.load_scene(tmp_path / "lens.toml", size=(48, 0))
+
+
 def test_edit_report_draws_into_a_given_figure_outside_pyplot(hot_road):
     """figure=matplotlib.figure.Figure(): the same drawing, and pyplot never knows of it (the
     editor draws it on a worker thread)."""

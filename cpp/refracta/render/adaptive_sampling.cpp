@@ -12,6 +12,12 @@ int AdaptiveSampling::first_pass(int spp) { return std::max(2, int(std::lround(k
 
 int AdaptiveSampling::least(int spp) { return std::max(1, int(std::lround(kLeast * spp))); }
 
+int AdaptiveSampling::min_spp() {
+  int spp = 3;
+  while (spp - first_pass(spp) <= least(spp)) ++spp;
+  return spp;
+}
+
 namespace {
 
 // Each pixel's noise: its samples' luminance deviation over sqrt(mean^2 + floor^2).

@@ -43,6 +43,10 @@ struct AdaptiveSampling {
   static int least(int spp);
   // The pilot's samples per pixel for `spp`: at least 2 (a variance needs two).
   static int first_pass(int spp);
+  // The fewest spp at which the budget left after the pilot exceeds every pixel's fewest
+  // samples, so that some can go where they are needed (6: below it, every pixel would simply get
+  // spp - 2, fewer than without adaptive sampling, at the same cost).
+  static int min_spp();
 };
 
 // The samples of each pixel of a width x height block (row-major) after the pilot, given each

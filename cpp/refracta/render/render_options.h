@@ -45,7 +45,8 @@ struct RenderOptions {
   // 32 x 32 block's budget is shared: every pixel at least half of spp, the others where the
   // pilot's samples vary most (edges, noise); each pixel is one pattern of its count, the pilot
   // is not averaged in (unbiased); the image's total is still width x height x spp.
-  // 'straight' and 'curved' only; spp >= 3 (below, a ValueError).
+  // 'straight' and 'curved' only; spp >= 6 (AdaptiveSampling::min_spp; below, a ValueError: the
+  // pilot would leave no samples to move).
   bool adaptive = false;
   // Edge refinement (render/film.h EdgeRefinement): when above spp, every pixel at an edge between
   // surfaces -- its first hits' mean albedo or normal differs from a neighbour's -- is rendered

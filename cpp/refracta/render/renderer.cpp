@@ -13,6 +13,7 @@
 #include "refracta/media/dispersed_field.h"
 #include "refracta/media/tabulated_height_field.h"
 #include "refracta/rays/elevation_table.h"
+#include "refracta/render/adaptive_sampling.h"
 #include "refracta/render/caster.h"
 #include "refracta/render/film.h"
 #include "refracta/render/hero_casters.h"
@@ -93,7 +94,11 @@ void RenderOptions::validate() const {
   if (readouts && method == RenderMethod::kRasterMarch) problems.add("readouts need method 'straight' or 'curved'");
   if (sample_counts && method == RenderMethod::kRasterMarch) problems.add("sample_counts needs method 'straight' or 'curved'");
   if (adaptive && method == RenderMethod::kRasterMarch) problems.add("adaptive needs method 'straight' or 'curved'");
-  if (adaptive && spp < 3) problems.add("adaptive needs spp >= 3 (got ", spp, "): its pilot takes 2 samples a pixel");
+  if (adaptive && spp < AdaptiveSampling::min_spp()) {
+    problems.add("adaptive needs spp >= ", AdaptiveSampling::min_spp(), " (got ", spp, "): below, its pilot of ",
+                 AdaptiveSampling::first_pass(spp), " samples a pixel leaves none to move, and every pixel would get ",
+                 spp - AdaptiveSampling::first_pass(spp), " instead of ", spp);
+  }
   if (edge_spp < 0) problems.add("edge_spp must be >= 0 (got ", edge_spp, ")");
   if (edge_spp > spp && adaptive) problems.add("edge_spp (", edge_spp, ") and adaptive cannot be combined");
   if (edge_spp > spp && method == RenderMethod::kRasterMarch) problems.add("edge_spp needs method 'straight' or 'curved'");
