@@ -7,6 +7,8 @@ inputs taken and ignored (an explicit aerosol beside visibility, two_sided witho
 texture_size without a texture).
 """
 
+import re
+
 import numpy as np
 import pytest
 
@@ -75,6 +77,29 @@ def test_options_attributes_other_than_flags_set_as_before():
     options = refracta.RenderOptions()
     options.spp, options.seed = 8, 3
     assert (options.spp, options.seed) == (8, 3)
+    options.spp = 12.0  # a whole float for an integer field, as the keywords take it
+    assert options.spp == 12 and isinstance(options.spp, int)
+    options.pixel_bounds = (0, 0, 4, 4)
+    options.pixel_bounds = None  # an optional field takes None
+    assert options.pixel_bounds is None
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "message"),
+    [
+        ("spp", True, "RenderOptions: spp must be a number (got True)"),
+        ("spp", 2.5, "RenderOptions: spp must be a whole number (got 2.5)"),
+        ("spp", None, "RenderOptions: spp cannot be None"),
+        ("seed", 2**70, "RenderOptions: seed=1180591620717411303424 is out of the range of RenderOptions.seed"),
+        ("max_length", "far", "RenderOptions: option max_length='far' has the wrong type for RenderOptions.max_length"),
+    ],
+)
+def test_an_options_attribute_refused_names_the_field(field, value, message):
+    # The keywords' messages (options_binding.cpp set_refused); pybind11's setter raised a TypeError
+    # listing its signature ("incompatible function arguments").
+    options = refracta.RenderOptions()
+    with pytest.raises(ValueError, match=re.escape(message)):
+        setattr(options, field, value)
     unknown = "no_such_field"  # pybind11's classes take no new attributes; the strict setter keeps that
     with pytest.raises(AttributeError):
         setattr(options, unknown, 1)

@@ -68,16 +68,16 @@ std::string options_repr(const py::object& self) {
   return out;
 }
 
-void set_option_attribute(const py::object& self, const py::str& name, const py::object& value, const char* owner) {
-  const py::object current = py::getattr(self, name, py::none());
-  if (PyBool_Check(current.ptr()) && !py::detail::is_python_or_numpy_bool(value)) {
-    throw_invalid(owner, ": ", py::cast<std::string>(name), " must be True or False (got ",
-                  py::cast<std::string>(py::repr(value)), ")");
-  }
-  if (PyObject_GenericSetAttr(self.ptr(), name.ptr(), value.ptr()) != 0) throw py::error_already_set();
-}
-
 namespace {
+
+// target.<field> = value through the object's descriptors, bypassing its __setattr__ (which
+// routes here: set_option_attribute): false where the field's setter refuses the value's type.
+bool set_through_descriptor(const py::handle& target, const std::string& field, const py::handle& value) {
+  if (PyObject_GenericSetAttr(target.ptr(), py::str(field).ptr(), value.ptr()) == 0) return true;
+  py::error_already_set error;
+  if (!error.matches(PyExc_TypeError)) throw error;
+  return false;
+}
 
 // Whether a number field: it holds a number, or, unset (None), takes one (then left unset again).
 bool is_number_field(const py::object& target, const std::string& field) {
@@ -85,55 +85,50 @@ bool is_number_field(const py::object& target, const std::string& field) {
   if (PyBool_Check(current.ptr())) return false;
   if (PyLong_Check(current.ptr()) || PyFloat_Check(current.ptr())) return true;
   if (!current.is_none()) return false;
-  try {
-    target.attr(field.c_str()) = py::int_(0);
-  } catch (const py::error_already_set& error) {
-    if (!error.matches(PyExc_TypeError)) throw;
-    return false;
-  }
-  target.attr(field.c_str()) = py::none();
+  if (!set_through_descriptor(target, field, py::int_(0))) return false;
+  set_through_descriptor(target, field, py::none());
   return true;
+}
+
+// An on/off field takes True or False only: pybind11 takes None as False (differentials=None
+// turned ray differentials off) and any number by its truth (spectral=2.5, adaptive=nan).
+void check_on_off(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
+                  const std::string& keyword) {
+  if (PyBool_Check(target.attr(field.c_str()).ptr()) && !py::detail::is_python_or_numpy_bool(value)) {
+    throw_invalid(owner, ": ", keyword, " must be True or False (got ", py::cast<std::string>(py::repr(value)), ")");
+  }
+}
+
+// target.<field> = value where the field's setter refused the value's type: a whole number for an
+// integer field is set as one (40.0 is 40); anything else raises ValueError naming `keyword`.
+void set_refused(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
+                 const std::string& keyword) {
+  const std::string shown = py::cast<std::string>(py::repr(value));
+  const std::string type = py::cast<std::string>(py::type::handle_of(target).attr("__name__"));
+  // True is not 1 sample (bindings/strict_numbers.h refuses bools for numbers).
+  if (PyBool_Check(value.ptr()) && is_number_field(target, field)) {
+    throw_invalid(owner, ": ", keyword, " must be a number (got ", shown, ")");
+  }
+  if (is_integer(target.attr(field.c_str()))) {
+    if (!is_whole(value)) throw_invalid(owner, ": ", keyword, " must be a whole number (got ", shown, ")");
+    // A whole number the field's C++ integer cannot hold (2**31 for an int, -1 for an unsigned)
+    // is refused by pybind11 with a TypeError that names neither: say which.
+    const double whole = as_double(value);
+    if (std::abs(whole) < 9.2e18 && set_through_descriptor(target, field, py::int_(int64_t(whole)))) return;
+    throw_invalid(owner, ": ", keyword, "=", shown, " is out of the range of ", type, ".", field);
+  }
+  throw_invalid(owner, ": option ", keyword, "=", shown, " has the wrong type for ", type, ".", field,
+                " (see help(refracta.", type, "))");
 }
 
 // Sets target.<field> = value (the rule in options_binding.h); `keyword` names it in messages.
 void set_field(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
                const std::string& keyword) {
-  // An on/off field takes True or False only: pybind11 takes None as False (differentials=None
-  // turned ray differentials off) and any number by its truth (spectral=2.5, adaptive=nan).
-  if (PyBool_Check(target.attr(field.c_str()).ptr())) {
-    if (value.is_none()) return;  // None leaves it at its default, as for every other field
-    if (!py::detail::is_python_or_numpy_bool(value)) {
-      throw_invalid(owner, ": ", keyword, " must be True or False (got ", py::cast<std::string>(py::repr(value)), ")");
-    }
-  }
-  try {
-    target.attr(field.c_str()) = value;
-  } catch (const py::error_already_set& error) {
-    if (!error.matches(PyExc_TypeError)) throw;
-    if (value.is_none()) return;  // None for a field that takes none: left unset (its default)
-    const std::string shown = py::cast<std::string>(py::repr(value));
-    const std::string type = py::cast<std::string>(py::type::handle_of(target).attr("__name__"));
-    // True is not 1 sample (bindings/strict_numbers.h refuses bools for numbers).
-    if (PyBool_Check(value.ptr()) && is_number_field(target, field)) {
-      throw_invalid(owner, ": ", keyword, " must be a number (got ", shown, ")");
-    }
-    if (is_integer(target.attr(field.c_str()))) {
-      if (!is_whole(value)) throw_invalid(owner, ": ", keyword, " must be a whole number (got ", shown, ")");
-      // A whole number the field's C++ integer cannot hold (2**31 for an int, -1 for an unsigned)
-      // is refused by pybind11 with a TypeError that names neither: say which.
-      if (const double whole = as_double(value); std::abs(whole) < 9.2e18) {
-        try {
-          target.attr(field.c_str()) = py::int_(int64_t(whole));
-          return;
-        } catch (const py::error_already_set& again) {
-          if (!again.matches(PyExc_TypeError)) throw;
-        }
-      }
-      throw_invalid(owner, ": ", keyword, "=", shown, " is out of the range of ", type, ".", field);
-    }
-    throw_invalid(owner, ": option ", keyword, "=", shown, " has the wrong type for ", type, ".", field,
-                  " (see help(refracta.", type, "))");
-  }
+  if (value.is_none() && PyBool_Check(target.attr(field.c_str()).ptr())) return;  // None: the default, as below
+  check_on_off(target, field, value, owner, keyword);
+  if (set_through_descriptor(target, field, value)) return;
+  if (value.is_none()) return;  // None for a field that takes none: left unset (its default)
+  set_refused(target, field, value, owner, keyword);
 }
 
 // A keyword naming a nested field ("shadow_map.moments.storage", or a name `paths` maps to one):
@@ -160,6 +155,14 @@ void set_path(const py::object& options, const std::string& keyword, const std::
 }
 
 }  // namespace
+
+void set_option_attribute(const py::object& self, const py::str& name, const py::object& value, const char* owner) {
+  const std::string field = name;
+  check_on_off(self, field, value, owner, field);
+  if (set_through_descriptor(self, field, value)) return;
+  if (value.is_none()) throw_invalid(owner, ": ", field, " cannot be None");
+  set_refused(self, field, value, owner, field);
+}
 
 void set_options_fields(const py::object& options, const py::dict& fields, const char* owner, const char* nested,
                         const py::dict& paths) {
