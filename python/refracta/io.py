@@ -80,6 +80,16 @@ __all__ = [
 ]
 
 
+def _image_array(image, where: str) -> np.ndarray:
+    """`image` as an array; a render's (image, aovs) pair (render(aovs=...) returns one) is named."""
+    if isinstance(image, tuple) and len(image) >= 2 and isinstance(image[1], dict):
+        raise ValueError(
+            f"{where}: got render's (image, aovs) pair, not an image: pass its image (image, aovs = "
+            "refracta.render(..., aovs=[...])), and write the AOVs with refracta.io.write_layers"
+        )
+    return np.asarray(image)
+
+
 def settings(display: _core.DisplaySettings | None = None, **fields) -> _core.DisplaySettings:
     """A validated refracta.DisplaySettings: a copy of `display` (None: the defaults) with the
     given fields set (a None value: left as it is), by the package's one keyword rule."""
@@ -134,7 +144,7 @@ def write_image(
     fields: dict[str, Any] = dict(exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white, ev100=ev100)
     fields.update(iso=iso, shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
     fields.update(white_balance=white_balance)
-    _core._write_image(os.fspath(path), np.asarray(image), settings(display, **fields))
+    _core._write_image(os.fspath(path), _image_array(image, "write_image"), settings(display, **fields))
 
 
 # Channel suffixes of a layer in write_layers, by its number of channels (EXR's layer.channel names).
@@ -229,7 +239,7 @@ def to_display(
     fields: dict[str, Any] = dict(exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white, ev100=ev100)
     fields.update(iso=iso, shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
     fields.update(white_balance=white_balance)
-    return _core._display(np.asarray(image), settings(display, **fields))
+    return _core._display(_image_array(image, "to_display"), settings(display, **fields))
 
 
 def exposure_of(
@@ -251,7 +261,9 @@ def exposure_of(
     frames of an animation, a with/without pair) one exposure: ``to_display(img, exposure=c)``.
     """
     fields = dict(exposure=exposure, key=key, ev100=ev100, iso=iso, shutter=shutter, f_number=f_number)
-    return _core._display_exposure(np.asarray(image), settings(display, **fields, luminous_efficacy=luminous_efficacy))
+    return _core._display_exposure(
+        _image_array(image, "exposure_of"), settings(display, **fields, luminous_efficacy=luminous_efficacy)
+    )
 
 
 def white_balance_of(
@@ -264,7 +276,9 @@ def white_balance_of(
     this image for the white balance (``white_balance``, else ``display``'s; the module docstring):
     xyz_to_rgb @ Bradford(light's white -> D65) @ rgb_to_xyz. Only 'auto' reads the image (its mean
     RGB); the identity for 'none' and for grey images. ValueError for a bad white balance."""
-    return _core._white_balance_matrix(np.asarray(image), settings(display, white_balance=white_balance))
+    return _core._white_balance_matrix(
+        _image_array(image, "white_balance_of"), settings(display, white_balance=white_balance)
+    )
 
 
 def ev100(f_number: float, shutter: float, iso: float | None = None) -> float:

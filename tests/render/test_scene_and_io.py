@@ -116,3 +116,16 @@ def test_pick_rejects_non_finite_pixels():
     camera = refracta.Camera([0, 0, 0], [1, 0, 0], width=4, height=4)
     with pytest.raises(ValueError, match="finite"):
         camera.pick(scene, float("nan"), 1.0)
+
+
+def test_image_functions_name_a_renders_image_and_aovs_pair(tmp_path):
+    # A trial passed render(aovs=...)'s (image, aovs) to write_image: numpy's "inhomogeneous shape".
+    pair = (np.ones((4, 6, 3), np.float32), {"albedo": np.ones((4, 6, 3), np.float32)})
+    for call in (
+        lambda: refracta.io.write_image(tmp_path / "a.png", pair),
+        lambda: refracta.io.to_display(pair),
+        lambda: refracta.io.exposure_of(pair),
+    ):
+        with pytest.raises(ValueError, match=r"got render's \(image, aovs\) pair, not an image"):
+            call()
+    refracta.io.write_image(tmp_path / "a.png", pair[0])  # its image is written
