@@ -16,7 +16,7 @@
     model = "PhysicalAtmosphere"        # or LogisticProfile, LinearSquaredProfile, TemperatureProfile
     surface_dt = 10.0                   # any parameter of the model, by name
     # TemperatureProfile: heights = [...], temperatures = [...]
-    curved_earth = false                # true (or a radius [m]): CurvedEarth around the model
+    curved_earth = false                # true (or a planet's radius [m], >= 1000): CurvedEarth around it
 
     [[atmosphere.hot_spots]]            # any number (PhysicalAtmosphere, LogisticProfile): HotSpot
     x = 120.0                           # centre on the ground [m]
@@ -646,7 +646,16 @@ def _atmosphere(table: dict, where: _Locator, get):
         if key not in ("hot_spots", "turbulence", "heights", "temperatures"):
             get(atmosphere, "atmosphere", key, _real)
     if not isinstance(curved, bool):
-        get(table, "atmosphere", "curved_earth", _real)
+        radius = get(table, "atmosphere", "curved_earth", _real)
+        # A planet's radius: `curved_earth = 1` (TOML's 1 is not true) made a 1 m Earth, refused
+        # only when rendering, by n overflowing in its flat frame.
+        if not radius >= MIN_PLANET_RADIUS:
+            raise where.error(
+                f"must be true (the Earth's radius) or a planet's radius [m] of at least {MIN_PLANET_RADIUS:g} "
+                f"(got {radius:g}; the Earth's is 6371000)",
+                "atmosphere",
+                "curved_earth",
+            )
     spots = _hot_spots(atmosphere.pop("hot_spots"), where, get) if "hot_spots" in atmosphere else []
     turbulence = _turbulence(atmosphere.pop("turbulence"), where, get) if "turbulence" in atmosphere else None
     extra = {}
@@ -681,6 +690,11 @@ def _atmosphere(table: dict, where: _Locator, get):
         except ValueError as error:
             raise where.error(str(error), "atmosphere", "curved_earth") from None
     return field, turbulence
+
+
+# [m] the smallest radius `curved_earth` takes: a body that holds an atmosphere is far larger
+# (the Moon's radius is 1.7e6 m); below ~1 km a number is a typo for true.
+MIN_PLANET_RADIUS = 1e3
 
 
 def load_scene(path, size=None) -> SceneFile:

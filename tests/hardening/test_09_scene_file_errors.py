@@ -86,3 +86,12 @@ SKY = '[environment]\ntype = "physical_sky"\nsun_direction = [-0.5, 0.6, 0.6]\n'
 def test_a_boolean_or_string_for_a_number_is_refused(tmp_path, text, line, key):
     with pytest.raises(ValueError, match=rf"scene.toml:{line}: {key}: must be a number"):
         load(tmp_path, text)
+
+
+@pytest.mark.parametrize("radius", ["1", "0", "-5.0", "999.0"])
+def test_curved_earth_takes_true_or_a_planets_radius(tmp_path, radius):
+    # A trial's `curved_earth = 1` (TOML's 1 is not true) loaded as a 1 m Earth and failed only when
+    # rendering, with n overflowing in its flat frame.
+    with pytest.raises(ValueError, match=r"scene.toml:5: \[atmosphere\] curved_earth: must be true .* at least 1000"):
+        load(tmp_path, CAMERA + f"[atmosphere]\ncurved_earth = {radius}\n")
+    assert load(tmp_path, CAMERA + "[atmosphere]\ncurved_earth = 6371000.0\n")[2].radius == 6371000.0
