@@ -78,7 +78,9 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
             SceneWarning,
             stacklevel=3,
         )
-    if field is not None and method != "straight" and not camera.position[1] > 0.0:
+    # (A CustomField's coordinates are the user's own: it has no ground to be below.)
+    models_ground = field is not None and not isinstance(field, _core.CustomField)
+    if models_ground and method != "straight" and not camera.position[1] > 0.0:
         warnings.warn(
             f"{where}: the camera is at y = {camera.position[1]:g} m, at or below the field's ground (every "
             "field puts it at height 0), so its rays start in or under the ground and sea: the image is not "

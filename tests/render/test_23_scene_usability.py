@@ -214,3 +214,16 @@ def test_a_camera_at_or_below_the_fields_ground_warns(eye_y):
         warnings.simplefilter("always")
         refracta.render(scene, above, HOT_ROAD, progress=False, max_length=200.0)
     assert not [w for w in caught if issubclass(w.category, refracta.SceneWarning)]
+
+
+def test_a_custom_field_has_no_ground_to_be_below():
+    # A CustomField's coordinates are its author's: a camera at y < 0 is no hint there.
+    scene = refracta.Scene()
+    scene.set_sky(SKY, SKY)
+    scene.add_box((20.0, -3.0, 0.0), (2.0, 2.0, 2.0), kd=(0.5, 0.5, 0.5))
+    field = refracta.CustomField(lambda p: np.ones(len(p)), lambda p: np.zeros((len(p), 3)), height_only=True)
+    camera = refracta.Camera((0.0, -3.0, 0.0), (20.0, -3.0, 0.0), (0.0, 1.0, 0.0), 20.0, 4, 3)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        refracta.render(scene, camera, field, progress=False, max_length=40.0)
+    assert not [w for w in caught if "the camera is at y" in str(w.message)]
