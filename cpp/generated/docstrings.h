@@ -240,9 +240,10 @@ inline constexpr const char mkd_doc_refracta_Principled[] = R"doc(Burley 2012's 
 metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,
 clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color. Not energy conserving,
 as Burley's model is not: its lobes are summed (the diffuse is not reduced by the specular's
-reflectance) and the diffuse's retro-reflective rim exceeds 1 at grazing angles. A white base_color
-(defaults) reflects 1.04 of the light at normal incidence and 1.19 at 89 deg (1.05 and 1.21 with
-clearcoat 1; the mean of sample() weights): a white furnace renders it about 4 % bright.)doc";
+reflectance) and the diffuse's retro-reflective rim exceeds 1 at grazing angles. A white base_color,
+the other parameters at their defaults, reflects 1.04 of the light at normal incidence and 1.19 at
+89 deg (1.05 and 1.21 with clearcoat 1; the mean of sample() weights): a white furnace renders it
+about 4 % bright.)doc";
 inline constexpr const char mkd_doc_refracta_RasterRenderOptions[] = R"doc(Options of refracta.render_raster, with their defaults (defined once, here). Set any field by name,
 nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
 validate() reports every bad value at once.)doc";

@@ -44,14 +44,29 @@ def finite_pair(value) -> tuple[float, float] | None:
     return pair if pair is not None and math.isfinite(pair[0]) and math.isfinite(pair[1]) else None
 
 
+def _holds_bool(value) -> bool:
+    """Whether `value` is a bool or a (nested) list or tuple holding one: numpy reads (True, 20.0)
+    as the float array [1.0, 20.0]."""
+    if isinstance(value, (bool, np.bool_)):
+        return True
+    if isinstance(value, (list, tuple)):
+        return any(_holds_bool(item) for item in value)
+    return False
+
+
 def real_array(value, what: str, shape: tuple[int, ...] | None = None) -> np.ndarray:
     """`value` as a float64 array (of `shape` when given), else ValueError naming it (`what`):
-    strings and booleans too, which numpy would read as numbers."""
+    strings and booleans too (also among numbers in a list), which numpy would read as numbers."""
     try:
         array = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):
         array = None
-    if array is None or np.asarray(value).dtype.kind in "bUS" or (shape is not None and array.shape != shape):
+    if (
+        array is None
+        or np.asarray(value).dtype.kind in "bUS"
+        or _holds_bool(value)
+        or (shape is not None and array.shape != shape)
+    ):
         wanted = f" of shape {shape}" if shape is not None else ""
         raise ValueError(f"{what} must be numbers{wanted} (got {value!r})")
     return array

@@ -2951,9 +2951,10 @@ class Principled(Material):
     metallic, roughness (alpha = roughness^2), anisotropic, specular, specular_tint, sheen, sheen_tint,
     clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color. Not energy conserving,
     as Burley's model is not: its lobes are summed (the diffuse is not reduced by the specular's
-    reflectance) and the diffuse's retro-reflective rim exceeds 1 at grazing angles. A white base_color
-    (defaults) reflects 1.04 of the light at normal incidence and 1.19 at 89 deg (1.05 and 1.21 with
-    clearcoat 1; the mean of sample() weights): a white furnace renders it about 4 % bright. texture: an image file (str or os.PathLike;
+    reflectance) and the diffuse's retro-reflective rim exceeds 1 at grazing angles. A white base_color,
+    the other parameters at their defaults, reflects 1.04 of the light at normal incidence and 1.19 at
+    89 deg (1.05 and 1.21 with clearcoat 1; the mean of sample() weights): a white furnace renders it
+    about 4 % bright. texture: an image file (str or os.PathLike;
     any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
     multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
     relative paths are from the working directory when the material is made. Each scene the material

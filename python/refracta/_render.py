@@ -66,7 +66,7 @@ def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) ->
 
 def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, where: str = "render") -> None:
     """The SceneWarning hints of render(): a scene without any light or sky; a camera at or below
-    the field's ground (height 0); and one whose lowest
+    the scene's lowest geometry; and one whose lowest
     geometry (taken as its ground) lies more than GROUND_TOLERANCE from height 0 of the field the
     rays go through (every field, CurvedEarth's flattened heights too, puts the ground at y = 0)
     with layered air in between (mean ``|dn/dh|`` > LAYER_GRADIENT below the camera)."""
@@ -78,18 +78,18 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
             SceneWarning,
             stacklevel=3,
         )
-    # (A CustomField's coordinates are the user's own: it has no ground to be below.)
-    models_ground = field is not None and not isinstance(field, _core.CustomField)
-    if models_ground and method != "straight" and not camera.position[1] > 0.0:
+    bounds = _bounds(scene)
+    # The eye at or below the scene's lowest geometry (taken as its ground, as below): a trial's eye
+    # at sea level saw sky where the sea lies (its rays start on the plane), below it the sea's underside.
+    if bounds is not None and not camera.position[1] > bounds[0][1]:
         warnings.warn(
-            f"{where}: the camera is at y = {camera.position[1]:g} m, at or below the field's ground (every "
-            "field puts it at height 0), so its rays start in or under the ground and sea: the image is not "
-            "what an eye above them sees; raise the camera (e.g. Camera.geographic's height: the ground's "
-            "height plus the eye's above it)",
+            f"{where}: the camera is at y = {camera.position[1]:g} m, at or below the scene's lowest geometry "
+            f"(taken as its ground, y = {bounds[0][1]:g} m), so its rays start in or under the ground and sea: "
+            "the image is not what an eye above them sees; raise the camera (e.g. Camera.geographic's height: "
+            "the ground's height plus the eye's above it)",
             SceneWarning,
             stacklevel=3,
         )
-    bounds = _bounds(scene)
     if field is None or method == "straight" or bounds is None:
         return
     lowest = float(bounds[0][1])

@@ -213,9 +213,10 @@ def _pair_options(where: str, given: _core.PairOptions | None, options: dict) ->
 _SUMMARY_FIELDS = frozenset(_options.fields(_core.SolveSummary)) - {"values"}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # its fields (index fields, arrays) have no value equality: by identity
 class EditResult:
-    """What solve() found. ``print(result)`` shows the report.
+    """What solve() found. ``print(result)`` shows the report. Compared and hashed by identity (a
+    pickled copy is a different result; compare its fields).
 
     field: the solved field; start: the field it started from. cost / initial_cost: 1/2 sum of
     weight * (miss - margin)^2 over the pairs outside their margins [m^2]; distances: each pair's

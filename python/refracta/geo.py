@@ -266,7 +266,7 @@ class LocalFrame:
         ``position`` (3,) of the frame azimuth(s) ``azimuth`` [deg clockwise from the frame's north,
         -z]: render's 'apparent_azimuth' readout as the bearing a compass at the camera reads,
         ``frame.bearing(aovs["apparent_azimuth"], camera.position)``, which ``camera(position=...)``
-        takes back. They differ by the meridians' convergence (about 0.9 deg 100 km east of the origin
+        takes back. They differ by the meridians' convergence (about 0.96 deg 100 km east of the origin
         at 47 deg) and the projection's small distortion: the geodesic of the direction's first metre."""
         a = np.radians(_checked(azimuth, "azimuth"))
         p = _checked(position, "position")
@@ -281,7 +281,7 @@ class LocalFrame:
 
     def _frame_azimuth(self, lat: float, lon: float, azimuth: float) -> float:
         """The frame's azimuth [deg] of the geodesic leaving (lat, lon) at the local ``azimuth``: its
-        first metre projected (this includes the meridians' convergence, about 0.9 deg 100 km east
+        first metre projected (this includes the meridians' convergence, about 0.96 deg 100 km east
         of the origin at 47 deg, and the projection's small distortion)."""
         lat2, lon2, _ = forward(lat, lon, azimuth, 1.0)
         start, end = self.to_scene([lat, lat2], [lon, lon2], 0.0)

@@ -82,7 +82,7 @@ __all__ = [
 
 def _image_array(image, where: str) -> np.ndarray:
     """`image` as an array; a render's (image, aovs) pair (render(aovs=...) returns one) is named."""
-    if isinstance(image, tuple) and len(image) >= 2 and isinstance(image[1], dict):
+    if isinstance(image, (tuple, list)) and len(image) >= 2 and isinstance(image[1], dict):
         raise ValueError(
             f"{where}: got render's (image, aovs) pair, not an image: pass its image (image, aovs = "
             "refracta.render(..., aovs=[...])), and write the AOVs with refracta.io.write_layers"

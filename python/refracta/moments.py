@@ -56,8 +56,10 @@ def quantize(moments, depth_range: str = "unit", inverse: bool = False) -> np.nd
     moments = real_array(moments, "quantize: moments")
     if moments.shape[-1:] != (4,):
         raise ValueError(f"quantize: moments must have shape (..., 4) (got {moments.shape})")
+    if not isinstance(inverse, (bool, np.bool_)):
+        raise ValueError(f"quantize: inverse must be True or False (got {inverse!r})")
     flat = np.ascontiguousarray(moments.reshape(-1, 4))
-    return _core._quantize_moments(flat, depth_range, inverse).reshape(moments.shape)
+    return _core._quantize_moments(flat, depth_range, bool(inverse)).reshape(moments.shape)
 
 
 # The 4MSMs' names before they matched render_raster's (kept one release, with a DeprecationWarning).

@@ -141,7 +141,9 @@ class Photo:
 
         sensor_mm: the sensor's (width, height) [mm] along the displayed image, overriding EXIF's.
         The picture spans the sensor's width when it is relatively wider than the sensor (a 16:9
-        frame from a 3:2 sensor), else its height, as Camera.photographic fits it.
+        frame from a 3:2 sensor), else its height, as Camera.photographic fits it. Without a sensor
+        size, a 35 mm equivalent focal length is taken on the picture's diagonal, as EXIF (CIPA
+        DC-008) defines it: the camera scales it by the diagonal of the picture's own area.
         Raises ValueError when EXIF gives no focal length, or a focal length but neither a sensor
         size nor a 35 mm equivalent (naming what to pass).
         """

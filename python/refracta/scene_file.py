@@ -16,7 +16,7 @@
     model = "PhysicalAtmosphere"        # or LogisticProfile, LinearSquaredProfile, TemperatureProfile
     surface_dt = 10.0                   # any parameter of the model, by name
     # TemperatureProfile: heights = [...], temperatures = [...]
-    curved_earth = false                # true (or a planet's radius [m], >= 1000): CurvedEarth around it
+    curved_earth = false                # true (or a radius [m], >= 1000): CurvedEarth around the model
 
     [[atmosphere.hot_spots]]            # any number (PhysicalAtmosphere, LogisticProfile): HotSpot
     x = 120.0                           # centre on the ground [m]
@@ -646,16 +646,7 @@ def _atmosphere(table: dict, where: _Locator, get):
         if key not in ("hot_spots", "turbulence", "heights", "temperatures"):
             get(atmosphere, "atmosphere", key, _real)
     if not isinstance(curved, bool):
-        radius = get(table, "atmosphere", "curved_earth", _real)
-        # A planet's radius: `curved_earth = 1` (TOML's 1 is not true) made a 1 m Earth, refused
-        # only when rendering, by n overflowing in its flat frame.
-        if not radius >= MIN_PLANET_RADIUS:
-            raise where.error(
-                f"must be true (the Earth's radius) or a planet's radius [m] of at least {MIN_PLANET_RADIUS:g} "
-                f"(got {radius:g}; the Earth's is 6371000)",
-                "atmosphere",
-                "curved_earth",
-            )
+        get(table, "atmosphere", "curved_earth", _real)
     spots = _hot_spots(atmosphere.pop("hot_spots"), where, get) if "hot_spots" in atmosphere else []
     turbulence = _turbulence(atmosphere.pop("turbulence"), where, get) if "turbulence" in atmosphere else None
     extra = {}
@@ -692,11 +683,6 @@ def _atmosphere(table: dict, where: _Locator, get):
     return field, turbulence
 
 
-# [m] the smallest radius `curved_earth` takes: a body that holds an atmosphere is far larger
-# (the Moon's radius is 1.7e6 m); below ~1 km a number is a typo for true.
-MIN_PLANET_RADIUS = 1e3
-
-
 def load_scene(path, size=None) -> SceneFile:
     """Read a TOML scene file (format in this module's docstring): a SceneFile, which unpacks as
     (scene, camera, field) and has the [atmosphere.turbulence]'s refracta.Turbulence as .turbulence.
@@ -705,10 +691,12 @@ def load_scene(path, size=None) -> SceneFile:
     the vertical field of view instead)."""
     path = Path(os.fspath(path))
     if size is not None:
-        try:
-            size = _image_size(list(size) if isinstance(size, tuple) else size)
+        try:  # a tuple or array of numpy's ints as a list of Python's (the camera takes them)
+            if isinstance(size, (tuple, list, np.ndarray)):
+                size = [v.item() if isinstance(v, np.generic) else v for v in size]
+            size = _image_size(size)
         except (TypeError, ValueError) as error:
-            raise ValueError(f"load_scene: size {error} (got {size!r})") from None
+            raise ValueError(f"load_scene: size {error}") from None
     if not path.exists():
         raise _core.IoError(f"no such scene file: '{path}'")
     if not path.is_file():

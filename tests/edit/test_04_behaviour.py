@@ -1,6 +1,8 @@
 """What an artist meets: impossible requests, weights, defaults for degenerate parameters,
 multi-start, the report, and bad input."""
 
+import pickle
+
 import numpy as np
 import pytest
 
@@ -77,6 +79,9 @@ def test_the_report_names_the_outcome_and_the_parameters(road_pairs):
     assert "EditResult(success=True" in repr(result)
     assert len(result.history) == result.iterations + 1
     assert len(result.paths()) == len(pairs)
+    # By identity: hash() raised "unhashable type: 'list'" and == compared fields that have no value
+    # equality (a trial); results can key a dict of runs.
+    assert {result: "run"}[result] == "run" and result == result and result != pickle.loads(pickle.dumps(result))
 
 
 def test_vertex_distance_never_beats_the_continuous_one():

@@ -91,7 +91,7 @@ def test_options_attributes_other_than_flags_set_as_before():
         ("spp", 2.5, "RenderOptions: spp must be a whole number (got 2.5)"),
         ("spp", None, "RenderOptions: spp cannot be None"),
         ("seed", 2**70, "RenderOptions: seed=1180591620717411303424 is out of the range of RenderOptions.seed"),
-        ("max_length", "far", "RenderOptions: option max_length='far' has the wrong type for RenderOptions.max_length"),
+        ("max_length", "far", "RenderOptions: max_length must be a number (got 'far')"),
     ],
 )
 def test_an_options_attribute_refused_names_the_field(field, value, message):
@@ -232,3 +232,24 @@ def test_ocean_waves_refuse_times_whose_phases_would_be_rounding_noise():
         refracta.OceanWaves(time=1e20, resolution=64)
     later = refracta.OceanWaves(time=3600.0, resolution=64)  # an hour on: the same sea, moved
     assert np.isfinite(later.heights()).all()
+
+
+def test_review_findings_bools_and_planets():
+    # Camera.ray took bools through its new array path (True, False was the ray through (1, 0)).
+    camera = refracta.Camera(EYE, AHEAD, width=8, height=4)
+    with pytest.raises(ValueError, match="Camera.ray: u must hold real numbers"):
+        camera.ray(True, False)
+    with pytest.raises(ValueError, match="Camera.ray: v must hold real numbers"):
+        camera.ray(np.array([1.0, 2.0]), np.array([True, False]))
+    # The Python layer names a non-bool flag before the strict binding's generic TypeError.
+    with pytest.raises(ValueError, match="quantize: inverse must be True or False"):
+        refracta.moments.quantize(np.full((1, 4), 0.5), inverse=1)
+    # numpy's True and a string are no counts either (they were "must be a whole number").
+    options = refracta.RenderOptions()
+    for value in (np.True_, "x"):
+        with pytest.raises(ValueError, match="RenderOptions: spp must be a number"):
+            options.spp = value
+    # A planet, not a pebble: the flat frame's n = e^(y/R) n(h) overflows 115 R up.
+    with pytest.raises(ValueError, match="CurvedEarth: radius must be a planet's, at least 1000 m"):
+        refracta.CurvedEarth(refracta.PhysicalAtmosphere(), 1.0)
+    assert refracta.CurvedEarth(refracta.PhysicalAtmosphere(), 1000.0).radius == 1000.0

@@ -184,3 +184,16 @@ def test_python_signatures_write_no_numeric_default():
             if isinstance(p.default, numbers.Number) and not isinstance(p.default, bool)
         }
         assert not defaults, (function, defaults)
+
+
+def test_a_tolerance_finer_than_double_precision_says_so():
+    # A trial: tol 1e-8 over 40 km asks each step of h metres for 1e-8 h / 4e4 (2.5e-13 per metre),
+    # below the rounding of positions 4.5 km out; the step collapsed, and the message blamed only
+    # the field. 30 km, or the default tol, traces it.
+    field = refracta.CurvedEarth(refracta.PhysicalAtmosphere(surface_dt=-2.0, surface_depth=2.0))
+    e = np.radians(-0.05)
+    direction = [np.cos(e), np.sin(e), 0.01]
+    with pytest.raises(refracta.NumericalError, match=r"tol = 1e-08 m over max_length = 40000 m is finer than double"):
+        refracta.trace_ray(field, [0.0, 5.0, 0.0], direction, max_length=40000.0, stop_height=0.0, tol=1e-8)
+    path = refracta.trace_ray(field, [0.0, 5.0, 0.0], direction, max_length=40000.0, stop_height=0.0)
+    assert 4000.0 < path.points[-1][0] < 6000.0  # the ground, ~4.9 km out (the trial's 4909 m)

@@ -200,15 +200,18 @@ def test_geometry_beyond_the_rays_reach_warns_and_a_longer_reach_sees_it():
 
 
 @pytest.mark.parametrize("eye_y", [0.0, -10.0])
-def test_a_camera_at_or_below_the_fields_ground_warns(eye_y):
+def test_a_camera_at_or_below_the_scenes_ground_warns(eye_y):
     """A trial's eye at sea level (Camera.geographic height 0) saw sky where the sea under it lies,
     and at -10 m the sea's underside, silently; an eye above the ground renders without the hint."""
     scene = refracta.Scene()
     scene.set_sky(SKY, SKY)
     scene.add_ground(0.0, 100.0, kd=(0.5, 0.5, 0.5))
     camera = refracta.Camera((0.0, eye_y, 0.0), (100.0, eye_y - 1.0, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
-    with pytest.warns(refracta.SceneWarning, match=f"the camera is at y = {eye_y:g} m, at or below the field's ground"):
-        refracta.render(scene, camera, HOT_ROAD, progress=False, max_length=200.0)
+    for field in (HOT_ROAD, None):
+        with pytest.warns(
+            refracta.SceneWarning, match=f"the camera is at y = {eye_y:g} m, at or below the scene's lowest"
+        ):
+            refracta.render(scene, camera, field, progress=False, max_length=200.0)
     above = refracta.Camera((0.0, 1.5, 0.0), (100.0, 0.5, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -216,14 +219,14 @@ def test_a_camera_at_or_below_the_fields_ground_warns(eye_y):
     assert not [w for w in caught if issubclass(w.category, refracta.SceneWarning)]
 
 
-def test_a_custom_field_has_no_ground_to_be_below():
-    # A CustomField's coordinates are its author's: a camera at y < 0 is no hint there.
+def test_a_camera_above_a_ground_below_height_zero_has_no_hint():
+    # The review's Dead Sea: a shore 430 m below the ellipsoid, the eye 2 m above it; the hint
+    # compared the eye with height 0, not with the scene's ground.
     scene = refracta.Scene()
     scene.set_sky(SKY, SKY)
-    scene.add_box((20.0, -3.0, 0.0), (2.0, 2.0, 2.0), kd=(0.5, 0.5, 0.5))
-    field = refracta.CustomField(lambda p: np.ones(len(p)), lambda p: np.zeros((len(p), 3)), height_only=True)
-    camera = refracta.Camera((0.0, -3.0, 0.0), (20.0, -3.0, 0.0), (0.0, 1.0, 0.0), 20.0, 4, 3)
+    scene.add_ground(-430.0, 200.0, kd=(0.5, 0.5, 0.5))
+    camera = refracta.Camera((0.0, -428.0, 0.0), (100.0, -428.5, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        refracta.render(scene, camera, field, progress=False, max_length=40.0)
+        refracta.render(scene, camera, refracta.PhysicalAtmosphere(), progress=False, max_length=300.0)
     assert not [w for w in caught if "the camera is at y" in str(w.message)]

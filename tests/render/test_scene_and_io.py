@@ -129,3 +129,9 @@ def test_image_functions_name_a_renders_image_and_aovs_pair(tmp_path):
         with pytest.raises(ValueError, match=r"got render's \(image, aovs\) pair, not an image"):
             call()
     refracta.io.write_image(tmp_path / "a.png", pair[0])  # its image is written
+
+
+def test_a_list_pair_is_named_too():
+    pair = [np.ones((4, 6, 3), np.float32), {"albedo": np.ones((4, 6, 3), np.float32)}]
+    with pytest.raises(ValueError, match=r"got render's \(image, aovs\) pair"):
+        refracta.io.to_display(pair)

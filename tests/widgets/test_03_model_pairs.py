@@ -37,6 +37,21 @@ def test_a_click_on_the_sky_as_a_source_says_so_and_changes_nothing(make_model):
     assert not model.can_undo
 
 
+def test_a_click_off_the_image_says_so_and_places_nothing(make_model, road):
+    # A trial: a source click left of the image was picked beyond the frame, and a destination
+    # click there raised out of click() (the notebook promises messages, not tracebacks).
+    model = make_model()
+    width = road.camera.width
+    model.click(-5.0, 26.0)
+    assert model.pending_source is None and model.message_kind == "error"
+    assert f"lies outside the {width} x" in model.message
+    model.click(*CAR)
+    model.click(width + 3.0, 27.0)
+    assert model.pairs == () and model.message_kind == "error" and "lies outside" in model.message
+    model.click(180.4, 66.0)  # the source still waits for a destination on the image
+    assert len(model.pairs) == 1
+
+
 def test_the_secondary_button_drops_a_waiting_source(make_model):
     model = make_model()
     model.click(*CAR)

@@ -12,6 +12,10 @@ namespace refracta {
 namespace {
 
 using Sensor = std::pair<double, double>;  // (width, height) [mm]
+// The photographic cameras' defaults (photographic, photographic_vfov, eye_level): a full-frame
+// sensor and a 3:2 image.
+constexpr Sensor kFullFrame(36.0, 24.0);
+constexpr int kPhotoWidth = 960, kPhotoHeight = 640;
 
 double photographic_vfov_of(double focal_length_mm, const Sensor& sensor_mm, int width, int height) {
   return Camera::photographic_vfov(focal_length_mm, sensor_mm.first, sensor_mm.second, width, height);
@@ -80,7 +84,7 @@ scene has nothing else.
 
 scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc");
   camera.def_static("photographic_vfov", &photographic_vfov_of, py::arg("focal_length_mm"),
-                    py::arg("sensor_mm") = Sensor(36.0, 24.0), py::arg("width") = 960, py::arg("height") = 640,
+                    py::arg("sensor_mm") = kFullFrame, py::arg("width") = kPhotoWidth, py::arg("height") = kPhotoHeight,
                     "The vertical field of view [deg] Camera.photographic gives an image of width x height pixels "
                     "(the image spans the sensor's width when relatively wider than the sensor, else its height).");
   camera.def_static(
@@ -91,8 +95,8 @@ scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc");
                                     focal_length_mm, sensor_mm.first, sensor_mm.second, width, height, f_number,
                                     focus_distance);
       },
-      py::arg("position"), py::arg("look_at"), py::arg("focal_length_mm"), py::arg("sensor_mm") = Sensor(36.0, 24.0),
-      py::arg("width") = 960, py::arg("height") = 640, py::kw_only(), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
+      py::arg("position"), py::arg("look_at"), py::arg("focal_length_mm"), py::arg("sensor_mm") = kFullFrame,
+      py::arg("width") = kPhotoWidth, py::arg("height") = kPhotoHeight, py::kw_only(), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
       py::arg("f_number") = py::none(), py::arg("focus_distance") = py::none(),
       R"doc(A camera described by its lens and sensor: focal_length_mm on a sensor of
 sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the
@@ -121,7 +125,7 @@ f_number (a pinhole has no focus): ValueError.)doc");
                                  sensor_mm.first, sensor_mm.second, width, height, f_number, focus_distance);
       },
       py::arg("eye"), py::arg("target"), py::arg("eye_height") = 1.6, py::arg("focal_length_mm") = 50.0,
-      py::arg("sensor_mm") = Sensor(36.0, 24.0), py::kw_only(), py::arg("width") = 960, py::arg("height") = 640,
+      py::arg("sensor_mm") = kFullFrame, py::kw_only(), py::arg("width") = kPhotoWidth, py::arg("height") = kPhotoHeight,
       py::arg("f_number") = py::none(), py::arg("focus_distance") = py::none(),
       R"doc(A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the
 lens eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the

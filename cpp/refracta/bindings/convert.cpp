@@ -97,7 +97,8 @@ Vec3d to_point(const py::handle& object, const char* what) {
 }
 
 std::vector<double> to_values(const py::handle& object, const char* what, bool* single) {
-  const DoubleArray array = numbers(object, what, " must be a number or an array of numbers");
+  // Bools are not numbers (True would be 1: Camera.ray(True, False) was the ray through (1, 0)).
+  const DoubleArray array = numbers(object, what, " must be a number or an array of numbers", /*bools=*/false);
   if (array.ndim() > 1) throw_invalid(what, " must be a number or a 1-D array (got ", array.ndim(), " dimensions)");
   if (single) *single = array.ndim() == 0;
   std::vector<double> values(array.data(), array.data() + array.size());

@@ -77,7 +77,7 @@ auto vectorize_real(Return (*f)(Args...), std::array<const char*, sizeof...(Args
 std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single = nullptr);
 // Exactly one point (3,).
 Vec3d to_point(const py::handle& object, const char* what);
-// Numbers: a scalar or (N,), finite.
+// Numbers: a scalar or (N,), finite; not bools.
 std::vector<double> to_values(const py::handle& object, const char* what, bool* single = nullptr);
 // A horizontal vector (x, z): two finite numbers.
 Vec2d to_vec2(const py::handle& object, const char* what);

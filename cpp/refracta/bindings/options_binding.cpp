@@ -105,8 +105,8 @@ void set_refused(const py::object& target, const std::string& field, const py::h
                  const std::string& keyword) {
   const std::string shown = py::cast<std::string>(py::repr(value));
   const std::string type = py::cast<std::string>(py::type::handle_of(target).attr("__name__"));
-  // True is not 1 sample (bindings/strict_numbers.h refuses bools for numbers).
-  if (PyBool_Check(value.ptr()) && is_number_field(target, field)) {
+  // True is not 1 sample (bindings/strict_numbers.h refuses bools for numbers), nor 'x' a count.
+  if (!number_of(value) && is_number_field(target, field)) {
     throw_invalid(owner, ": ", keyword, " must be a number (got ", shown, ")");
   }
   if (is_integer(target.attr(field.c_str()))) {

@@ -12,7 +12,10 @@ CurvedEarth::CurvedEarth(FieldPtr base, double radius) : base_(std::move(base)),
   if (!base_->height_only()) {
     throw_invalid("CurvedEarth: the base field must depend on height only (", base_->type_name(), " does not)");
   }
-  if (!(radius > 0.0) || !std::isfinite(radius)) throw_invalid("CurvedEarth: radius must be > 0 (got ", radius, ")");
+  if (!(radius >= kMinRadius) || !std::isfinite(radius)) {
+    throw_invalid("CurvedEarth: radius must be a planet's, at least ", kMinRadius, " m (the Earth's is ", kEarthRadius,
+                  " m; got ", radius, ")");
+  }
   // Flattening twice would bend the rays by the Earth's curvature twice (and name earth_radius twice).
   if (std::isfinite(base_->earth_radius())) {
     throw_invalid("CurvedEarth: the base field is already over a curved Earth (", base_->type_name(),

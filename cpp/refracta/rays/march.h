@@ -131,9 +131,13 @@ class Rk45Stepper {
         // Only steps the error control shrank count: a small largest step asked for is no sign.
         min_steps_in_a_row_ = hv <= kTinyStep * max_length_ && hv < max_step_ ? min_steps_in_a_row_ + 1 : 0;
         if (min_steps_in_a_row_ > 1000) {
+          // Also a tolerance finer than double precision: each step may err by tol h / max_length,
+          // while rounding the position alone errs by ~1e-16 |x| (a trial's tol 1e-8 over 40 km).
           throw_numerical("rk45: step size collapsed at (", value_of(a.x.x()), ", ", value_of(a.x.y()),
                           ", ", value_of(a.x.z()), ") m where n = ", value_of(a.n), " and |grad n| = ",
-                          value_of(a.grad.norm()), " 1/m; the field is singular there");
+                          value_of(a.grad.norm()), " 1/m; the field is singular there, or tol = ", tol_,
+                          " m over max_length = ", max_length_,
+                          " m is finer than double precision resolves there (loosen tol or shorten max_length)");
         }
         h_ = std::min(hv * factor, max_step_);
         return b;

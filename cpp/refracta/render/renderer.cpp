@@ -95,9 +95,15 @@ void RenderOptions::validate() const {
   if (sample_counts && method == RenderMethod::kRasterMarch) problems.add("sample_counts needs method 'straight' or 'curved'");
   if (adaptive && method == RenderMethod::kRasterMarch) problems.add("adaptive needs method 'straight' or 'curved'");
   if (adaptive && spp < AdaptiveSampling::min_spp()) {
-    problems.add("adaptive needs spp >= ", AdaptiveSampling::min_spp(), " (got ", spp, "): below, its pilot of ",
-                 AdaptiveSampling::first_pass(spp), " samples a pixel leaves none to move, and every pixel would get ",
-                 spp - AdaptiveSampling::first_pass(spp), " instead of ", spp);
+    const int first = AdaptiveSampling::first_pass(spp);
+    if (spp <= first) {
+      problems.add("adaptive needs spp >= ", AdaptiveSampling::min_spp(), " (got ", spp, "): its pilot takes ", first,
+                   " samples a pixel");
+    } else {
+      problems.add("adaptive needs spp >= ", AdaptiveSampling::min_spp(), " (got ", spp, "): below, its pilot of ",
+                   first, " samples a pixel leaves none to move, and every pixel would get ", spp - first,
+                   " instead of ", spp);
+    }
   }
   if (edge_spp < 0) problems.add("edge_spp must be >= 0 (got ", edge_spp, ")");
   if (edge_spp > spp && adaptive) problems.add("edge_spp (", edge_spp, ") and adaptive cannot be combined");

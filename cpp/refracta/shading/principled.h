@@ -111,9 +111,9 @@ class PrincipledBsdf final : public TwoSidedReflection<PrincipledBsdf> {
 // sheen_tint, clearcoat, clearcoat_gloss, all in [0, 1]. A texture multiplies base_color.
 // Not energy conserving, as Burley's model is not: its lobes are summed (the diffuse is not
 // reduced by the specular's reflectance) and the diffuse's retro-reflective rim exceeds 1 at
-// grazing angles. A white base_color (defaults) reflects 1.04 of the light at normal incidence
-// and 1.19 at 89 deg (1.05 and 1.21 with clearcoat 1; the mean of sample() weights): a white
-// furnace renders it about 4 % bright.
+// grazing angles. A white base_color, the other parameters at their defaults, reflects 1.04 of
+// the light at normal incidence and 1.19 at 89 deg (1.05 and 1.21 with clearcoat 1; the mean of
+// sample() weights): a white furnace renders it about 4 % bright.
 class Principled final : public Material {
  public:
   Principled(const TexturedReflectance& base_color, const PrincipledParameters& p) : base_(base_color), p_(p) {

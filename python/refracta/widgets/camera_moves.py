@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from refracta import _core
+from refracta._checks import number, real_array
 
 __all__ = ["DOLLY_STEP", "ORBIT_PER_HEIGHT", "POLE_MARGIN_DEG", "dolly", "frame", "orbit", "pan", "with_pose"]
 
@@ -47,9 +48,9 @@ def with_pose(camera: _core.Camera, position=None, look_at=None, vfov=None, size
 
     Raises ValueError naming the field: non-finite numbers, the eye at the look-at point, a view
     direction along the up vector, vfov outside (0, 180)."""
-    position = np.asarray(camera.position if position is None else position, dtype=float)
-    look_at = np.asarray(camera.look_at if look_at is None else look_at, dtype=float)
-    vfov = float(camera.vfov if vfov is None else vfov)
+    position = real_array(camera.position if position is None else position, "camera position")
+    look_at = real_array(camera.look_at if look_at is None else look_at, "camera look_at")
+    vfov = number(camera.vfov if vfov is None else vfov, "camera vfov")  # True was a 1-degree view
     width, height = (camera.width, camera.height) if size is None else (int(size[0]), int(size[1]))
     for name, value in (("position", position), ("look_at", look_at)):
         if value.shape != (3,) or not np.all(np.isfinite(value)):

@@ -610,6 +610,10 @@ class EditorModel:
                 "this close to a marker, hold Shift."
             )
             return
+        width, height = self.camera.width, self.camera.height
+        if not (0.0 <= u <= width and 0.0 <= v <= height):  # a source or destination off the image
+            self.say(f"Pixel ({u:.1f}, {v:.1f}) lies outside the {width} x {height} image: click on it.", "error")
+            return
         if self.pending_source is None:
             point = self.camera.pick(self.scene, u, v)
             if point is None:
