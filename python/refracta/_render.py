@@ -64,9 +64,22 @@ def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) ->
         )
 
 
+def _ground_height(scene: _core.Scene, bounds) -> float | None:
+    """The height of the scene's ground or sea: its lowest geometry when flat horizontal surfaces
+    lie outside the objects' box (Scene.object_bounds leaves them out) or are all it holds; None
+    for a scene of objects alone (a target box has no ground to be below)."""
+    if bounds is None:
+        return None
+    lower, upper = (np.asarray(corner, dtype=float) for corner in bounds)
+    objects = _bounds(scene, objects=True)
+    if objects is not None and not (np.array_equal(objects[0], lower) and np.array_equal(objects[1], upper)):
+        return float(lower[1])
+    return float(lower[1]) if lower[1] == upper[1] else None
+
+
 def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, where: str = "render") -> None:
     """The SceneWarning hints of render(): a scene without any light or sky; a camera at or below
-    the scene's lowest geometry; and one whose lowest
+    its ground or sea (_ground_height); and one whose lowest
     geometry (taken as its ground) lies more than GROUND_TOLERANCE from height 0 of the field the
     rays go through (every field, CurvedEarth's flattened heights too, puts the ground at y = 0)
     with layered air in between (mean ``|dn/dh|`` > LAYER_GRADIENT below the camera)."""
@@ -79,14 +92,14 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
             stacklevel=3,
         )
     bounds = _bounds(scene)
-    # The eye at or below the scene's lowest geometry (taken as its ground, as below): a trial's eye
-    # at sea level saw sky where the sea lies (its rays start on the plane), below it the sea's underside.
-    if bounds is not None and not camera.position[1] > bounds[0][1]:
+    # The eye at or below the scene's ground or sea: a trial's eye at sea level saw sky where the sea
+    # lies (its rays start on the plane), below it the sea's underside.
+    ground = _ground_height(scene, bounds)
+    if ground is not None and not camera.position[1] > ground:
         warnings.warn(
-            f"{where}: the camera is at y = {camera.position[1]:g} m, at or below the scene's lowest geometry "
-            f"(taken as its ground, y = {bounds[0][1]:g} m), so its rays start in or under the ground and sea: "
-            "the image is not what an eye above them sees; raise the camera (e.g. Camera.geographic's height: "
-            "the ground's height plus the eye's above it)",
+            f"{where}: the camera is at y = {camera.position[1]:g} m, at or below the scene's ground or sea "
+            f"(y = {ground:g} m), so its rays start in or under it: the image is not what an eye above it "
+            "sees; raise the camera (e.g. Camera.geographic's height: the ground's height plus the eye's above it)",
             SceneWarning,
             stacklevel=3,
         )

@@ -209,7 +209,7 @@ def test_a_camera_at_or_below_the_scenes_ground_warns(eye_y):
     camera = refracta.Camera((0.0, eye_y, 0.0), (100.0, eye_y - 1.0, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
     for field in (HOT_ROAD, None):
         with pytest.warns(
-            refracta.SceneWarning, match=f"the camera is at y = {eye_y:g} m, at or below the scene's lowest"
+            refracta.SceneWarning, match=f"the camera is at y = {eye_y:g} m, at or below the scene's ground"
         ):
             refracta.render(scene, camera, field, progress=False, max_length=200.0)
     above = refracta.Camera((0.0, 1.5, 0.0), (100.0, 0.5, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
@@ -226,6 +226,19 @@ def test_a_camera_above_a_ground_below_height_zero_has_no_hint():
     scene.set_sky(SKY, SKY)
     scene.add_ground(-430.0, 200.0, kd=(0.5, 0.5, 0.5))
     camera = refracta.Camera((0.0, -428.0, 0.0), (100.0, -428.5, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        refracta.render(scene, camera, refracta.PhysicalAtmosphere(), progress=False, max_length=300.0)
+    assert not [w for w in caught if "the camera is at y" in str(w.message)]
+
+
+def test_a_camera_below_a_target_without_a_ground_has_no_hint():
+    # A scene of a target alone (the geographic readout's tests: an eye 5 m up, a box whose bottom
+    # lies at 19 m in the flat frame) has no ground to be below.
+    scene = refracta.Scene()
+    scene.set_sky(SKY, SKY)
+    scene.add_box((100.0, 20.0, 0.0), (2.0, 2.0, 2.0), kd=(0.5, 0.5, 0.5))
+    camera = refracta.Camera((0.0, 5.0, 0.0), (100.0, 20.0, 0.0), (0.0, 1.0, 0.0), 5.0, 4, 3)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         refracta.render(scene, camera, refracta.PhysicalAtmosphere(), progress=False, max_length=300.0)
