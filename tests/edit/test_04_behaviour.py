@@ -185,3 +185,18 @@ def test_auto_lets_a_solve_still_closing_in_finish_instead_of_going_global():
     assert auto.success and not any(stage.startswith("global") for stage in auto.stages), auto.stages
     assert "continued (the cost still fell)" in auto.stages[1]
     assert auto.iterations == local.iterations
+
+
+def test_a_source_behind_the_eye_is_named_as_such():
+    # A trial: a source 400 m behind the camera was reported as "its path passes 1 m above the
+    # source" (the path's nearest point to it is the eye itself).
+    example = refracta.examples.hot_road(160, 60)
+    result = solve(
+        example.field,
+        example.camera,
+        [PointPair((80.0, 40.0), (-400.0, 0.5, 0.0))],
+        free=["surface_dt"],
+        stop_height=0.0,
+    )
+    assert not result.success
+    assert "its source lies 400.00125 m from the eye, behind it as seen toward its destination" in result.message

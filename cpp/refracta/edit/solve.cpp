@@ -291,6 +291,14 @@ bool jacobian_condition(const EditProblem& problem, const std::vector<double>& x
 // atmosphere the global stage sampled within the bounds.
 std::string why_unmet(const EditProblem& problem, const std::vector<double>& residuals,
                       const std::vector<std::vector<double>>& sampled, size_t i) {
+  // A path toward the destination starts at the eye: a source behind it is nearest the eye itself,
+  // whose height difference the side below would report (a trial's "passes 1 m above" a source 400 m back).
+  const PointPair& pair = problem.pairs()[i];
+  if ((pair.source - pair.origin).dot(pair.direction) <= 0.0) {
+    return concat("its source lies ", (pair.source - pair.origin).norm(),
+                  " m from the eye, behind it as seen toward its destination: no path toward the destination "
+                  "comes near it (a source in front of the camera, or another destination)");
+  }
   const double vertical = residuals[3 * i + 1] / std::sqrt(problem.pairs()[i].weight);
   const char* side = vertical > 0.0 ? "above" : "below";
   std::string out = concat("its path passes ", std::abs(vertical), " m ", side, " the source");
