@@ -123,9 +123,10 @@ struct EdgeRefinement {
 // heights; the apparent elevation and azimuth of the mean of the samples' directions at the eye.
 // `pixel_samples` (if given) becomes a one-channel image of the bounds: each pixel's number of
 // samples its value averages. `samples` (if given) receives the number of samples drawn: width x
-// height x spp of the bounds without adaptive sampling; with it, the whole image's width x height x spp (pilot included), and
-// for a part of the image its pixels' samples and the pilots of the blocks it touches; with edge
-// refinement the base pass over the bounds and the pixels around them plus edge_spp per refined pixel.
+// height x spp of the bounds without adaptive sampling; with it, the whole image's width x height
+// x spp (pilot included), and for a part of the image its pixels' samples and the pilots of the
+// blocks it touches; with edge refinement the base pass over the bounds and the pixels around them
+// plus edge_spp per refined pixel.
 // A spectral render's samples draw their wavelengths from `wavelengths` (uniform by default).
 enum class FilmLayout { kRadiance, kSurface, kReadouts };
 

@@ -497,14 +497,16 @@ class EditorModel:
                 self._record(before)
         self._notify("pairs", "history")
 
+    def _on_image(self, u: float, v: float) -> bool:
+        """Whether pixel (u, v) lies on the camera's image (its edges included, as solve takes them)."""
+        return 0.0 <= u <= self.camera.width and 0.0 <= v <= self.camera.height
+
     def _check_in_image(self, pair) -> None:
         """A pixel destination must lie on the camera's image, as solve requires (a pair added off it
         failed only later, as a failed solve job)."""
-        if len(pair.destination) == 2:
-            u, v = pair.destination
+        if len(pair.destination) == 2 and not self._on_image(*pair.destination):
             width, height = self.camera.width, self.camera.height
-            if not (0.0 <= u <= width and 0.0 <= v <= height):
-                raise ValueError(f"pixel {pair.destination} lies outside the {width} x {height} image")
+            raise ValueError(f"pixel {pair.destination} lies outside the {width} x {height} image")
 
     def _check_index(self, index: int) -> None:
         if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < len(self.pairs):
@@ -610,8 +612,8 @@ class EditorModel:
                 "this close to a marker, hold Shift."
             )
             return
-        width, height = self.camera.width, self.camera.height
-        if not (0.0 <= u <= width and 0.0 <= v <= height):  # a source or destination off the image
+        if not self._on_image(u, v):  # a source or destination off the image
+            width, height = self.camera.width, self.camera.height
             self.say(f"Pixel ({u:.1f}, {v:.1f}) lies outside the {width} x {height} image: click on it.", "error")
             return
         if self.pending_source is None:
