@@ -288,6 +288,23 @@ def test_bad_arguments_raise_value_error_naming_them(kwargs, message):
         refracta.Turbulence(**kwargs)
 
 
+def test_an_unset_count_takes_a_whole_float_as_a_set_one_does():
+    # TurbulenceSettings.cells is unset (None) by default: 64.0 was "the wrong type" there, while a
+    # field holding a count takes it (options_binding.cpp is_integer_field).
+    settings = refracta.TurbulenceSettings()
+    settings.cells = 64.0
+    assert settings.cells == 64 and isinstance(settings.cells, int)
+    assert refracta.TurbulenceSettings(cells=32.0).cells == 32
+    with pytest.raises(ValueError, match="cells must be a whole number"):
+        settings.cells = 2.5
+    settings.cells = None
+    with pytest.raises(ValueError, match="cells must be a whole number"):
+        settings.cells = 2.5
+    assert settings.cells is None  # a refused value leaves the field unset
+    settings.size = 3  # an unset float field takes an int as a float
+    assert settings.size == 3.0
+
+
 def test_every_problem_is_reported_at_once():
     with pytest.raises(ValueError, match="cn2 must be .*spacing must be .*depth must be"):
         refracta.Turbulence(cn2=-1.0, spacing=-1.0, depth=0.0)

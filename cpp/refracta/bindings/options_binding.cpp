@@ -90,6 +90,17 @@ bool is_number_field(const py::object& target, const std::string& field) {
   return true;
 }
 
+// Whether an integer field: it holds an int, or, unset (None), takes 0 but not 0.5 (then left unset
+// again): TurbulenceSettings.cells = 64.0 sets 64 as it would on a field holding a value.
+bool is_integer_field(const py::object& target, const std::string& field) {
+  const py::object current = target.attr(field.c_str());
+  if (!current.is_none()) return is_integer(current);
+  const bool integer = set_through_descriptor(target, field, py::int_(0)) &&
+                       !set_through_descriptor(target, field, py::float_(0.5));
+  set_through_descriptor(target, field, py::none());
+  return integer;
+}
+
 // An on/off field takes True or False only: pybind11 takes None as False (differentials=None
 // turned ray differentials off) and any number by its truth (spectral=2.5, adaptive=nan).
 void check_on_off(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
@@ -109,7 +120,7 @@ void set_refused(const py::object& target, const std::string& field, const py::h
   if (!number_of(value) && is_number_field(target, field)) {
     throw_invalid(owner, ": ", keyword, " must be a number (got ", shown, ")");
   }
-  if (is_integer(target.attr(field.c_str()))) {
+  if (is_integer_field(target, field)) {
     if (!is_whole(value)) throw_invalid(owner, ": ", keyword, " must be a whole number (got ", shown, ")");
     // A whole number the field's C++ integer cannot hold (2**31 for an int, -1 for an unsigned)
     // is refused by pybind11 with a TypeError that names neither: say which.
