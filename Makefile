@@ -58,7 +58,7 @@ bench: install
 
 # Regenerates python/refracta/_core.pyi from the built module (tests/python/test_stubs.py checks it).
 stubs: install
-	$(PYTHON) -m pybind11_stubgen refracta._core -o build/stubs
+	REFRACTA_UNWRAPPED_CORE=1 $(PYTHON) -m pybind11_stubgen refracta._core -o build/stubs
 	cp build/stubs/refracta/_core.pyi python/refracta/_core.pyi
 
 # Regenerates cpp/generated/docstrings.h, the bindings' docstrings, from the C++ headers' comments

@@ -13,8 +13,11 @@ and does not import matplotlib.
 
 import importlib as _importlib
 
-from refracta import io, lights, shading, spectrum, terrain, testing
+# _arguments first (it wraps _core as it loads, before any module takes a name from it): a refused
+# argument is named (refracta/_arguments.py).
+from refracta import _arguments, io, lights, shading, spectrum, terrain, testing  # noqa: F401 (_arguments)
 from refracta._animate import animate, geometric_noise
+from refracta._arguments import ArgumentError
 from refracta._astronomy import astronomical_refraction
 from refracta._core import (
     Camera,
@@ -96,6 +99,7 @@ def __dir__():
 
 
 __all__ = [
+    "ArgumentError",
     "Camera",
     "CurvedEarth",
     "CustomField",

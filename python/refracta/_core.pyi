@@ -1782,7 +1782,11 @@ class RasterRenderOptions:
     def light_strata(self) -> int:
         """
         Stratified samples (per axis, 1 .. 64) of each light with extent other than the sun and the spots
-        (environment, sky, area lights), deterministic per pixel.
+        (environment, sky, area lights), deterministic per pixel: the same n^2 directions everywhere, so
+        their quadrature error is a bias, not noise (under a sky with a small bright
+        patch: +18 %, -9 %, +8 %, -1 % at n = 4, 8, 16, 32; a lobe taking a share F of the samples,
+        e.g. water's reflection, F ~ 0.03, gets about F n^2 of them): raise it for glossy or dielectric
+        surfaces under bright skies.
         """
     @light_strata.setter
     def light_strata(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -3034,7 +3038,7 @@ class Water(Material):
     @property
     def alpha(self) -> float:
         """
-        The Beckmann roughness alpha = sqrt(mean_square_slope - resolved_slope_variance).
+        Deprecated: the roughness (use Water.roughness); Material.alpha, the raster's opacity, is 1 for water.
         """
     @property
     def body(self) -> bool:
@@ -3057,6 +3061,11 @@ class Water(Material):
         [-] the mean-square slope a displaced mesh under this material already shows (Scene.add_sea: the
         Tessendorf waves it resolves); the microfacets keep the rest, alpha^2 = sigma^2 - this, so that
         resolved + unresolved = Cox & Munk's total. In [0, sigma^2 - kMinUnresolvedSlopeVariance].
+        """
+    @property
+    def roughness(self) -> float:
+        """
+        The Beckmann roughness alpha = sqrt(mean_square_slope - resolved_slope_variance).
         """
     @property
     def salinity(self) -> float:

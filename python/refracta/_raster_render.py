@@ -199,8 +199,10 @@ def render_raster(
     C++: see help(refracta.RasterRenderOptions)), changed by these keywords (None or absent: left
     as they are):
 
-    lights: which of the scene's lights shine: None (all: its sun and spot lights), "sun", "spots",
-    or a list of "sun" and spot-light indices (as returned by Scene.add_spot_light).
+    lights: which of the scene's sun and spot lights shine: None (all), "sun", "spots", or a list
+    of "sun" and spot-light indices (as returned by Scene.add_spot_light). Its other lights (point,
+    sphere and area lights, the sky and environment maps) always shine, each by light_strata^2
+    samples; lights=[] leaves them on.
 
     shadows: a shadow map's method (shadow_map.method: 'hard', one depth compare; 'pcf', k x k
     compares; 'vsm', 'msm_hamburger', 'msm_hausdorff': moments filtered k x k by separable running

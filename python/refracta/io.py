@@ -87,7 +87,15 @@ def _image_array(image, where: str) -> np.ndarray:
             f"{where}: got render's (image, aovs) pair, not an image: pass its image (image, aovs = "
             "refracta.render(..., aovs=[...])), and write the AOVs with refracta.io.write_layers"
         )
-    return np.asarray(image)
+    array = np.asarray(image)
+    if array.dtype.kind == "f" and array.dtype.itemsize > 4 and array.size:
+        # Images cross as float32: a finite float64 beyond its range became inf on the way, with
+        # numpy's overflow warning, and was then refused as "not finite".
+        with np.errstate(invalid="ignore"):
+            largest = np.nanmax(np.where(np.isfinite(array), np.abs(array), 0.0))
+        if largest > np.finfo(np.float32).max:
+            raise ValueError(f"{where}: image values must fit float32 (|value| <= 3.4e38; got {largest:.3g})")
+    return array
 
 
 def settings(display: _core.DisplaySettings | None = None, **fields) -> _core.DisplaySettings:

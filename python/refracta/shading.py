@@ -18,7 +18,12 @@ names; Mitsuba 3's ``si.wi`` is refracta's ``wo``). Keywords of the three method
 ``wavelengths=`` (4,) or (N, 4) [nm] for spectral evaluation (values per wavelength, shape (N, 4)),
 ``eta_outside=1.0`` (index of the medium on the normal's side), ``mode='radiance'|'importance'``
 (refraction scales radiance by (eta_i / eta_t)^2, importance not). Non-unit or NaN directions raise
-ValueError. Reflectances above 1 are refused (ValueError) because they would create energy.
+ValueError. Reflectances above 1 are refused (ValueError) because they would create energy. Two
+models reflect somewhat more than arrives at some parameters all the same, as their published
+forms do: ``Principled`` (Burley 2012: its sheen, clearcoat and diffuse retro-reflection are
+added, not balanced; albedo 1.04 at normal incidence and up to 1.7 at grazing with every lobe at
+full strength) and ``BlinnPhong`` with a low ``ns`` (its (ns + 2) / 2pi normalisation: 1.06 at
+ns = 4, ks = 1); use ``Diffuse``, ``Plastic`` or the microfacet models where energy must balance.
 
 Materials (colours are a number or an (r, g, b) triple; ``texture=`` an image file whose linear
 RGB multiplies the colour at the surface's uvs, registered in each scene the material joins):

@@ -129,3 +129,23 @@ def test_16_bit_mboit_transforms_keep_every_valid_moment_vector_in_range(count, 
         z, w = rng.uniform(-1, 1, k), rng.dirichlet(np.ones(k))
         b = [float(np.sum(w * z**j)) for j in range(1, count + 1)]
         np.testing.assert_allclose(_core._mboit_unorm16(b), b, atol=2e-3)
+
+
+def test_water_is_opaque_to_the_rasterizer():
+    # Water's roughness overrode Material.alpha, the raster's opacity: a sea was blended as a layer
+    # of opacity 0.17-0.40, and a red lamp 1 m under it showed through at ~83 % (a trial).
+    import numpy as np
+
+    from refracta import shading
+
+    scene = refracta.Scene()
+    lamp = np.array([[-50, -1, -50], [50, -1, -50], [50, -1, 50], [-50, -1, 50.0]])
+    scene.add_mesh(lamp, np.array([[0, 2, 1], [0, 3, 2]]), emission=(5.0, 0.0, 0.0), material=shading.Diffuse(0.0))
+    scene.add_ground(0.0, 100.0, material=shading.Water())
+    scene.set_sky(1.0)
+    camera = refracta.Camera((0, 3, 0), (0, 0, 3), vfov=20, width=20, height=20)
+    assert shading.Material.alpha.fget(shading.Water()) == 1.0
+    opaque = refracta.render_raster(scene, camera)
+    exact, stats = refracta.render_raster(scene, camera, transparency="exact", return_stats=True)
+    assert stats.transparent_fragments == 0
+    np.testing.assert_array_equal(exact, opaque)  # the lamp stays hidden: no red through the sea

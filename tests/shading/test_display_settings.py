@@ -61,3 +61,11 @@ def test_an_object_and_its_fields_by_keyword_display_alike():
         io.settings(None, gama=2.2)
     with pytest.raises(ValueError, match="options must be a refracta.DisplaySettings"):
         io.to_display(image, display={"exposure": 1.0})
+
+
+def test_an_image_beyond_float32_is_refused_saying_so(tmp_path):
+    # Images cross as float32: 1e300 (finite) became inf with numpy's overflow warning on the way,
+    # then was refused as "must be finite (got inf)" (a trial).
+    with pytest.raises(ValueError, match=r"write_image: image values must fit float32 .*got 1e\+300"):
+        io.write_image(tmp_path / "huge.png", np.full((2, 2, 3), 1e300))
+    io.write_image(tmp_path / "fine.exr", np.full((2, 2, 3), 3e38))  # the largest float32s still pass

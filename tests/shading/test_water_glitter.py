@@ -36,7 +36,7 @@ def test_01_cox_munk_slopes_and_alpha():
         water = shading.Water(u)
         # The same linear formula in double: rounding.
         assert water.mean_square_slope == pytest.approx(0.003 + 5.12e-3 * u, rel=1e-12)
-        assert water.alpha == pytest.approx(np.sqrt(0.003 + 5.12e-3 * u), rel=1e-12)  # as above
+        assert water.roughness == pytest.approx(np.sqrt(0.003 + 5.12e-3 * u), rel=1e-12)  # as above
     np.testing.assert_allclose(shading.cox_munk_mean_square_slope(np.array(WINDS)), 0.003 + 5.12e-3 * np.array(WINDS))
 
 
@@ -145,7 +145,7 @@ def test_05_mitsuba_renders_the_same_glitter(wind):
                 "bsdf": {
                     "type": "roughdielectric",
                     "distribution": "beckmann",
-                    "alpha": water.alpha,
+                    "alpha": water.roughness,
                     "int_ior": float(water.ior(532.0)),
                     "ext_ior": 1.0,
                 },

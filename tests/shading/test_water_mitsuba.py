@@ -43,7 +43,7 @@ def mitsuba_bsdf(water, channel):
         {
             "type": "roughdielectric",
             "distribution": "beckmann",
-            "alpha": water.alpha,
+            "alpha": water.roughness,
             "int_ior": float(water.ior(RGB_NM[channel])),
             "ext_ior": 1.0,
         }
@@ -77,8 +77,8 @@ def mitsuba_g1(alpha, w):
 
 def masking_correction(water, wo, wi):
     """Mitsuba's G1(wo) G1(wi) over refracta's height-correlated G2 (both depend on |cos| only)."""
-    b = shading.Beckmann(water.alpha)
-    return mitsuba_g1(water.alpha, wo) * mitsuba_g1(water.alpha, wi) / b.G(wo, np.abs(wi))
+    b = shading.Beckmann(water.roughness)
+    return mitsuba_g1(water.roughness, wo) * mitsuba_g1(water.roughness, wi) / b.G(wo, np.abs(wi))
 
 
 def lobe_pairs(water, below=False, n=240, seed=7):

@@ -170,7 +170,7 @@ def test_06_resolved_and_microfacet_slopes_add_up_to_cox_munk():
     assert len(ids) == 9  # per level (fine, coarse) the full waves and 3 fade rings, then the flat sea
     for water in materials:
         assert water.mean_square_slope == pytest.approx(total, rel=FORMULA_TOLERANCE)
-        assert water.alpha**2 + water.resolved_slope_variance == pytest.approx(total, rel=FORMULA_TOLERANCE)
+        assert water.roughness**2 + water.resolved_slope_variance == pytest.approx(total, rel=FORMULA_TOLERANCE)
     resolved = [w.resolved_slope_variance for w in materials]
     assert resolved[0] == pytest.approx(waves.slope_variance, rel=DISC_SAMPLE_TOLERANCE)
     # The coarse level is the same sea at a quarter of the resolution: its longer modes exactly.

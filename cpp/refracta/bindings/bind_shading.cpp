@@ -26,6 +26,17 @@ void bind_water(py::module_& m) {
   m.def("cox_munk_mean_square_slope", vectorize_real(&cox_munk_mean_square_slope, {"wind_speed"}), py::arg("wind_speed"),
         vectorised_doc(DOC(refracta, cox_munk_mean_square_slope)).c_str());
 
+  // Water.alpha was the roughness, where every other material's alpha is its raster opacity: kept
+  // one release, with a warning.
+  const auto deprecated_water_alpha = [](const Water& w) {
+    if (PyErr_WarnEx(PyExc_DeprecationWarning,
+                     "Water.alpha is its roughness and will be its opacity (Material.alpha) in the next release: "
+                     "use Water.roughness",
+                     1) != 0) {
+      throw py::error_already_set();
+    }
+    return w.roughness();
+  };
   const WaterParameters water_defaults;
   def_material<Water>(m, "Water", DOC(refracta, Water),
       py::init([](const py::object& wind_speed, const py::object& temperature_c, const py::object& salinity, bool body,
@@ -50,7 +61,11 @@ void bind_water(py::module_& m) {
       .def_property_readonly("mean_square_slope", &Water::mean_square_slope, "Cox & Munk's total sigma^2.")
       .def_property_readonly("resolved_slope_variance", [](const Water& w) { return w.parameters().resolved_slope_variance; },
                              DOC(refracta, WaterParameters, resolved_slope_variance))
-      .def_property_readonly("alpha", &Water::alpha, "The Beckmann roughness alpha = sqrt(mean_square_slope - resolved_slope_variance).")
+      .def_property_readonly("roughness", &Water::roughness,
+                             "The Beckmann roughness alpha = sqrt(mean_square_slope - resolved_slope_variance).")
+      .def_property_readonly("alpha", deprecated_water_alpha,
+                             "Deprecated: the roughness (use Water.roughness); Material.alpha, the raster's opacity, "
+                             "is 1 for water.")
       .def("ior", [](const Water& w, const py::object& wavelength) {
              return per_value(wavelength, "wavelength_nm",
                               [&](double x) { return w.ior(checked_wavelength(x, "Water.ior: wavelength_nm")); });

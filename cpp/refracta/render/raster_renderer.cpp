@@ -179,7 +179,12 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
             L += lighting.sample_light(i, si, s.bsdf, lambda, u) * weight;
             continue;
           }
-          const auto bs = s.bsdf.sample(si.wo, (a * n + b + 0.5) * weight, u);
+          // The lobe's number from a fixed shuffle of the strata (k -> 67 k mod n^2, 67 a prime
+          // above the largest n): tied to u.x, a lobe of small probability (a dielectric's
+          // reflection, F ~ 0.03) was taken in the first row of directions only, and a rough
+          // water surface under a sky came out 7-10x too dark (a trial).
+          const int lobe = (a * n + b) * 67 % (n * n);
+          const auto bs = s.bsdf.sample(si.wo, (lobe + 0.5) * weight, u);
           if (!bs) continue;
           LightLiSample ls;
           ls.L = light.Le(bs->wi, lambda);

@@ -20,13 +20,17 @@ SphereLight::SphereLight(const Vec3d& centre, double radius, const Color& emissi
   detail::check_emission(emission, "SphereLight: emission");
 }
 
+bool SphereLight::from_inside(const Vec3d& p) const {
+  return (centre_ - p).squaredNorm() <= radius_ * radius_ * (1.0 + 2e-9);
+}
+
 std::optional<LightLiSample> SphereLight::sample_li(const LightSampleContext& ctx, const Vec2d& u,
                                                     const SampledWavelengths& lambda) const {
   const Vec3d to_centre = centre_ - ctx.p;
   const double d2 = to_centre.squaredNorm();
   const double r2 = radius_ * radius_;
   LightLiSample s;
-  if (d2 <= r2) {
+  if (from_inside(ctx.p)) {
     // Inside: uniform area; the outward emission cannot reach the point.
     const Vec3d n = sample_uniform_sphere(u);
     s.p_light = centre_ + radius_ * n;
@@ -73,7 +77,7 @@ double SphereLight::pdf_li(const LightSampleContext& ctx, const Vec3d& wi, const
   const Vec3d to_centre = centre_ - ctx.p;
   const double d2 = to_centre.squaredNorm();
   const double r2 = radius_ * radius_;
-  if (d2 <= r2) {
+  if (from_inside(ctx.p)) {
     const double dist2 = (p_light - ctx.p).squaredNorm();
     const double len = n_light.norm();
     const double cos_l = len > 0.0 ? std::abs(n_light.dot(wi)) / len : 0.0;

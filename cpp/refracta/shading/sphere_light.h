@@ -41,6 +41,11 @@ class SphereLight final : public Light {
   const Color& emission() const { return emission_; }
 
  private:
+  // Whether p samples the sphere from inside: within it, or on it to a relative 1e-9 (its surface
+  // from inside, a rounding outside: from just outside the cone would be the hemisphere, and a
+  // trial saw the inner wall of a sphere light lit by the sphere).
+  bool from_inside(const Vec3d& p) const;
+
   Vec3d centre_;
   double radius_;
   Color emission_;

@@ -206,7 +206,9 @@ class Water final : public Material {
   // setting error (a grid finer than the capillary waves), not a sea.
   static constexpr double kMinUnresolvedSlopeVariance = 1e-4;
   double mean_square_slope() const { return mean_square_slope_; }  // Cox-Munk's total sigma^2
-  double alpha() const override { return alpha_; }  // Beckmann alpha = sqrt(sigma^2 - resolved_slope_variance)
+  // The Beckmann roughness alpha = sqrt(sigma^2 - resolved_slope_variance). (Not Material::alpha,
+  // the raster's opacity: overriding that made every sea 60-83 % transparent in render_raster.)
+  double roughness() const { return alpha_; }
   // The water's index relative to vacuum at a wavelength [nm] in [kLambdaMin, kLambdaMax] (from the table).
   double ior(double wavelength_nm) const { return interpolate(ior_table_, wavelength_nm); }
   const RoughTransmittance& transmittance() const { return *transmittance_; }

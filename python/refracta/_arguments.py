@@ -1,0 +1,252 @@
+"""Argument errors that name the argument.
+
+pybind11 answers a call whose arguments do not convert with a generic TypeError ("__init__():
+incompatible constructor arguments. The following argument types are supported: ...") that names
+neither the argument nor what is wrong with it: `Camera(p, q, vfov="wide")` or `HotSpot(0, 300,
+"big", 8)`. install(), run as this module loads (refracta's
+__init__ imports it first), wraps every public function and method of refracta._core so that such a
+failure is diagnosed from the call's own signature (the one pybind11 prints: every bound function
+has exactly one) and raised as an ArgumentError naming the argument: "Camera: vfov must be a
+number (got 'wide')". The C++ conversions stay the only rule: the wrapper only reads a failure
+that has happened, and re-raises pybind11's error unchanged where it cannot say more.
+
+The stubs describe refracta._core itself: with REFRACTA_UNWRAPPED_CORE set (make stubs and the
+stubs' test) nothing is wrapped.
+"""
+
+from __future__ import annotations
+
+import functools
+import numbers
+import os
+import re
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+
+class ArgumentError(TypeError, ValueError):
+    """An argument of the wrong kind, named (a TypeError, as Python's own, and a ValueError, as
+    refracta's other messages about bad input)."""
+
+
+_INCOMPATIBLE = re.compile(r"^(\w+)\(\): incompatible (?:function|constructor) arguments")
+_SIGNATURE = re.compile(r"^\s*1\. (?P<owner>[\w.]*)\((?P<params>.*)\)(?: -> .*)?$", re.MULTILINE)
+
+
+def _split_top_level(text: str, separator: str = ",") -> list[str]:
+    """`text` split at the separators outside brackets and quotes."""
+    parts, depth, quote, start = [], 0, "", 0
+    for i, ch in enumerate(text):
+        if quote:
+            quote = "" if ch == quote and text[i - 1] != "\\" else quote
+        elif ch in "'\"":
+            quote = ch
+        elif ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+        elif ch == separator and depth == 0:
+            parts.append(text[start:i].strip())
+            start = i + 1
+    if text[start:].strip():
+        parts.append(text[start:].strip())
+    return parts
+
+
+def _parameters(signature: str) -> tuple[list[tuple[str, str, bool]], int]:
+    """(name, annotation, has a default) of each parameter of a pybind11 signature's parameter
+    list, and how many may be given by position (those before a bare `*`)."""
+    out: list[tuple[str, str, bool]] = []
+    positional = -1
+    for part in _split_top_level(signature):
+        if part == "*":
+            positional = len(out)
+            continue
+        if part.startswith("*"):  # *args, **kwargs: anything goes
+            return out, -2
+        name, _, rest = part.partition(":")
+        annotation, has_default = rest, False
+        if "=" in rest:
+            annotation, has_default = _split_default(rest), True
+        out.append((name.strip(), annotation.strip(), has_default))
+    return out, len(out) if positional < 0 else positional
+
+
+def _split_default(text: str) -> str:
+    """The annotation of "annotation = default" (the default may hold '=' only inside brackets)."""
+    depth = 0
+    for i, ch in enumerate(text):
+        depth += ch in "([{"
+        depth -= ch in ")]}"
+        if ch == "=" and depth == 0:
+            return text[:i]
+    return text
+
+
+def _is_bool(value: Any) -> bool:
+    return isinstance(value, (bool, np.bool_))
+
+
+def _what_is_wrong(annotation: str, value: Any) -> str | None:
+    """Why `value` cannot be the annotated parameter, or None if it may be (or we cannot tell)."""
+    alternatives = _split_top_level(annotation, "|")
+    reasons = []
+    for alternative in alternatives:
+        reason = _against_one(alternative, value)
+        if reason is None:
+            return None
+        reasons.append(reason)
+    reasons = list(dict.fromkeys(reasons))
+    for wider, narrower in _SUBSUMES:  # "a number or a whole number": a number
+        if wider in reasons and narrower in reasons:
+            reasons.remove(narrower)
+    return " or ".join(reasons)
+
+
+_SUBSUMES = (("a number", "a whole number"), ("a path (str or os.PathLike)", "a string"))
+
+
+def _against_one(annotation: str, value: Any) -> str | None:
+    if annotation == "None":
+        return None if value is None else "None"
+    if annotation in ("typing.SupportsFloat", "float"):
+        ok = isinstance(value, numbers.Real) and not _is_bool(value)
+        return None if ok else "a number"
+    if annotation in ("typing.SupportsInt", "int"):
+        ok = isinstance(value, numbers.Integral) and not _is_bool(value)
+        return None if ok else "a whole number"
+    if annotation == "typing.SupportsIndex":
+        ok = hasattr(value, "__index__") and not _is_bool(value)
+        return None if ok else "a whole number"
+    if annotation == "bool":
+        return None if _is_bool(value) else "True or False"
+    if annotation == "str":
+        return None if isinstance(value, str) else "a string"
+    if annotation in ("os.PathLike", "bytes"):
+        return None if isinstance(value, (str, bytes, os.PathLike)) else "a path (str or os.PathLike)"
+    if annotation.startswith(("refracta._core.", "refracta::")):  # the second: a C++ name pybind11 left raw
+        from refracta import _core
+
+        cls = getattr(_core, re.split(r"\.|::", annotation)[-1], None)
+        if cls is None:
+            return None
+        return None if isinstance(value, cls) else f"a refracta.{cls.__name__}"
+    if annotation.startswith("tuple[") and annotation.endswith("]"):
+        items = _split_top_level(annotation[len("tuple[") : -1])
+        described = _described_tuple(items)
+        if described is None:
+            return None
+        ok = isinstance(value, (tuple, list, np.ndarray)) and len(value) == len(items)
+        ok = ok and all(_what_is_wrong(item, element) is None for item, element in zip(items, value))
+        return None if ok else described
+    return None  # other containers, arrays, objects, callables: the C++ conversion names those itself
+
+
+def _described_tuple(items: list[str]) -> str | None:
+    """ "a pair of numbers" for tuple[float, float]; None unless every item is a number."""
+    if not all("typing.SupportsFloat" in item or item == "float" for item in items):
+        return None
+    return "a pair of numbers" if len(items) == 2 else f"{len(items)} numbers"
+
+
+def _shown(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def diagnose(owner: str, message: str, args: tuple, kwargs: dict) -> str | None:
+    """What is wrong with a call that pybind11 refused with `message`, naming the argument; None
+    where the signature in the message does not say."""
+    match = _SIGNATURE.search(message)
+    if not match:
+        return None
+    params, positional = _parameters(match.group("params"))
+    if positional == -2:
+        return None
+    if params and params[0][0] == "self":  # a method's (a constructor's signature has none)
+        params, positional = params[1:], positional - 1
+    names = [name for name, _, _ in params]
+    if len(args) > positional:
+        return f"{owner} takes at most {positional} arguments by position (got {len(args)}); pass the rest by name"
+    given = dict(zip(names, args))
+    for key, value in kwargs.items():
+        if key not in names:
+            return f"{owner}: unknown argument '{key}' (arguments: {', '.join(names)})"
+        if key in given:
+            return f"{owner}: {key} given by position and by name"
+        given[key] = value
+    for name, annotation, has_default in params:
+        if name not in given:
+            if not has_default:
+                return f"{owner}: missing argument '{name}'"
+            continue
+        reason = _what_is_wrong(annotation, given[name])
+        if reason:
+            return f"{owner}: {name} must be {reason} (got {_shown(given[name])})"
+    return None
+
+
+def _wrap(function: Callable, owner: str, name: str, is_method: bool) -> Callable:
+    @functools.wraps(function)
+    def call(*args, **kwargs):
+        try:
+            return function(*args, **kwargs)
+        except TypeError as error:
+            diagnosis = _diagnosis(error, owner, name, args[1:] if is_method else args, kwargs)
+            # No reference to the arguments may stay in this frame once it raises: a traceback that
+            # shows its arguments (pytest's, IPython's verbose mode) would take repr() of a `self`
+            # whose __init__ failed, and pybind11's methods crash on an unconstructed instance.
+            del args, kwargs
+            if diagnosis is None:
+                raise
+            raise ArgumentError(diagnosis) from None
+        except BaseException:
+            del args, kwargs
+            raise
+
+    call.__qualname__ = owner if "." in owner or not is_method else f"{owner}.{name}"
+    call.__module__ = "refracta._core"
+    return call
+
+
+def _diagnosis(error: TypeError, owner: str, name: str, args: tuple, kwargs: dict) -> str | None:
+    """diagnose() of a TypeError that is pybind11's refusal of this call's arguments; None for
+    any other TypeError (raised inside the call, or by another function it called)."""
+    message = str(error)
+    failed = _INCOMPATIBLE.match(message)
+    if not failed or failed.group(1) != name:
+        return None
+    return diagnose(owner, message, args, kwargs)
+
+
+def install(core) -> None:
+    """Wraps refracta._core's public functions and its classes' public methods and constructors
+    (not other dunders: pickling and operators keep pybind11's own)."""
+    if os.environ.get("REFRACTA_UNWRAPPED_CORE"):
+        return
+    for name, value in list(vars(core).items()):
+        if name.startswith("__"):
+            continue
+        if type(value).__name__ == "builtin_function_or_method":
+            setattr(core, name, _wrap(value, name.lstrip("_"), name, is_method=False))
+        elif isinstance(value, type):
+            _install_class(value)
+
+
+def _install_class(cls: type) -> None:
+    for name, member in list(vars(cls).items()):
+        if name.startswith("_") and name != "__init__":
+            continue
+        owner = cls.__name__ if name == "__init__" else f"{cls.__name__}.{name}"
+        kind = type(member).__name__
+        if kind == "instancemethod":
+            setattr(cls, name, _wrap(member.__func__, owner, name, is_method=True))
+        elif kind == "staticmethod":
+            setattr(cls, name, staticmethod(_wrap(member.__func__, owner, name, is_method=False)))
+
+
+from refracta import _core  # noqa: E402 (the functions above first; then every later import of _core is wrapped)
+
+install(_core)
