@@ -47,6 +47,7 @@ HEADERS = [
     "cpp/refracta/render/raster_renderer.h",
     "cpp/refracta/render/render_options.h",
     "cpp/refracta/render/renderer.h",
+    "cpp/refracta/render/shimmer_cast.h",
     "cpp/refracta/scene/camera.h",
     "cpp/refracta/scene/ocean_waves.h",
     "cpp/refracta/shading/aerial_perspective.h",

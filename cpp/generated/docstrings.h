@@ -64,7 +64,14 @@ refused: it would create energy).)doc";
 inline constexpr const char mkd_doc_refracta_DispersedField[] = R"doc(A field at another wavelength: n' = 1 + scale (n - 1), grad n' = scale grad n, height-only as its
 base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
 base's. Spectral renders through a field build these per sample (each hero wavelength); build one
-with dispersed_field(field, wavelength).)doc";
+with dispersed_field(field, wavelength).
+
+Built by dispersed_field, it knows its wavelength: its `wavelength` parameter (where its base has
+one: PhysicalAtmosphere, TemperatureProfile) is that wavelength, not the base's, so that
+field_reference_wavelength, a second dispersed_field (which scales from it) and the repr see the air
+it is (a trial: a field dispersed to 450 nm said 550, and dispersing it again scaled from 550);
+with_param_values then reads a new wavelength as a new scale over the base. Over a base without one
+(550 nm by convention) the parameters stay the base's.)doc";
 inline constexpr const char mkd_doc_refracta_DisplaySettings[] = R"doc(How refracta.io turns linear radiance into display values (shading/tonemap.h; the formulas: the
 refracta.io module). Exposure: automatic (no manual field set: the image's log-average luminance
 goes to `key`), or manual, at most one of `exposure`, `ev100`, or `shutter` with `f_number` (and
@@ -415,9 +422,12 @@ smoothstep(cos(angle/2), cos(inner_angle/2), cos theta), theta from the axis.)do
 inline constexpr const char mkd_doc_refracta_SunLight[] = R"doc(The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] (a colour) over the disc,
 angular_diameter [deg], linear limb darkening u in [0, 1] (I(mu) = 1 - u (1 - mu)).)doc";
 inline constexpr const char mkd_doc_refracta_TemperatureProfileModel[] = R"doc(A measured sounding: temperatures [K] at strictly increasing heights [m], joined by a monotone C1
-cubic (pchip) and levelling off smoothly beyond the ends; hydrostatic pressure from `pressure` [Pa]
-at the lowest height; n from the same air formula as PhysicalAtmosphere. The temperatures are the
-parameters t0, t1, ... (with pressure, humidity, wavelength).)doc";
+cubic (pchip) and levelling off smoothly beyond the ends, as T_end + s w tanh(dh / w) (s: the end
+slope, w: the end interval): up to one more interval's worth of the end gradient (a coarse top
+interval of 10 K over 10 m goes on to ~10 K more; add a level where the air is known to turn);
+hydrostatic pressure from `pressure` [Pa] at the lowest height; n from the same air formula as
+PhysicalAtmosphere. The temperatures are the parameters t0, t1, ... (with pressure, humidity,
+wavelength).)doc";
 inline constexpr const char mkd_doc_refracta_TerrainShading[] = R"doc(Terrain coloured by elevation, slope and snow line (shading/terrain_shading.h), the default of
 Scene.add_terrain: Lambertian, its reflectance ``vegetation`` below ``tree_line`` [m], ``rock``
 above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above ``snow_line``
@@ -524,6 +534,12 @@ sigma_c^2, +-0.004). U in [0, 30]; ValueError naming wind_speed otherwise.)doc";
 inline constexpr const char mkd_doc_refracta_pdf_li_all[] = R"doc(The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights
 need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3)
 (each empty: zeros; else one per point).)doc";
+inline constexpr const char mkd_doc_refracta_perturbed_trace_refusal[] = R"doc(Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera` (null:
+it can, or 'strict' was asked, or the field has no turbulence): the fast path follows the eye
+table's calm paths (renderer.cpp eye_table: height-only calm air without hot spots, RGB, curved
+rays, the table on and stratified, a pinhole camera, paths over a spherical Earth no longer than
+kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python) warn with it, as the
+render then traces strictly.)doc";
 inline constexpr const char mkd_doc_refracta_sample_li_rgb[] = R"doc(Samples a direction toward the light from each point (Light.sample_li).
 
 points: (N, 3) [m]; normals: (N, 3) unit geometric normals (rows may be 0) or None; u: (N, 2) in

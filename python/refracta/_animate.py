@@ -19,7 +19,7 @@ import numpy as np
 
 from refracta import _core
 from refracta._checks import finite_pair, is_number, is_seed, real_array
-from refracta._render import _check_scene, _denoised, _surface_outputs, render_options
+from refracta._render import _check_scene, _denoised, _surface_outputs, render_options, warn_if_perturbed_refused
 from refracta._sweep import map_ordered
 
 __all__ = ["animate", "field_at_time", "geometric_noise", "geometric_noise_map"]
@@ -263,6 +263,8 @@ def animate(
         options["surface_aovs"] = True  # the denoiser's guides
     settings = render_options(**options)
     _check_scene(scene, camera, field, settings.method)  # render's SceneWarnings, once for all frames
+    first = field_at_time(field, turbulence, float(times[0])) if turbulence is not None and times.size else field
+    warn_if_perturbed_refused(first, settings, camera, "animate")
     outcomes = map_ordered(
         _render_frame,
         [(float(t),) for t in times],

@@ -17,7 +17,6 @@ stubs' test) nothing is wrapped.
 from __future__ import annotations
 
 import functools
-import numbers
 import os
 import re
 from collections.abc import Callable
@@ -109,28 +108,28 @@ _SUBSUMES = (("a number", "a whole number"), ("a path (str or os.PathLike)", "a 
 
 
 def _against_one(annotation: str, value: Any) -> str | None:
+    """Why pybind11 surely refuses `value` for one alternative of an annotation (bindings/
+    strict_numbers.h's rule for numbers), or None where it may take it: only a sure refusal is
+    named, so that another argument, the one at fault, is not blamed."""
     if annotation == "None":
         return None if value is None else "None"
-    if annotation in ("typing.SupportsFloat", "float"):
-        ok = isinstance(value, numbers.Real) and not _is_bool(value)
+    if annotation in ("typing.SupportsFloat", "float"):  # any __float__ or __index__, never a bool
+        ok = not _is_bool(value) and (hasattr(type(value), "__float__") or hasattr(type(value), "__index__"))
         return None if ok else "a number"
-    if annotation in ("typing.SupportsInt", "int"):
-        ok = isinstance(value, numbers.Integral) and not _is_bool(value)
+    if annotation in ("typing.SupportsInt", "int", "typing.SupportsIndex"):  # __index__, never a float
+        ok = not _is_bool(value) and hasattr(type(value), "__index__")
         return None if ok else "a whole number"
-    if annotation == "typing.SupportsIndex":
-        ok = hasattr(value, "__index__") and not _is_bool(value)
-        return None if ok else "a whole number"
-    if annotation == "bool":
+    if annotation == "bool":  # bound with noconvert: Python's and numpy's bools only
         return None if _is_bool(value) else "True or False"
     if annotation == "str":
-        return None if isinstance(value, str) else "a string"
+        return None if isinstance(value, (str, bytes)) else "a string"
     if annotation in ("os.PathLike", "bytes"):
         return None if isinstance(value, (str, bytes, os.PathLike)) else "a path (str or os.PathLike)"
     if annotation.startswith(("refracta._core.", "refracta::")):  # the second: a C++ name pybind11 left raw
         from refracta import _core
 
         cls = getattr(_core, re.split(r"\.|::", annotation)[-1], None)
-        if cls is None:
+        if cls is None or value is None:  # a holder argument may take None
             return None
         return None if isinstance(value, cls) else f"a refracta.{cls.__name__}"
     if annotation.startswith("tuple[") and annotation.endswith("]"):
@@ -138,10 +137,20 @@ def _against_one(annotation: str, value: Any) -> str | None:
         described = _described_tuple(items)
         if described is None:
             return None
-        ok = isinstance(value, (tuple, list, np.ndarray)) and len(value) == len(items)
-        ok = ok and all(_what_is_wrong(item, element) is None for item, element in zip(items, value))
-        return None if ok else described
+        return None if _is_sequence_of(value, items) else described
     return None  # other containers, arrays, objects, callables: the C++ conversion names those itself
+
+
+def _is_sequence_of(value: Any, items: list[str]) -> bool:
+    """Whether pybind11's tuple caster may take `value`: a sequence (not a string) of len(items)
+    elements, each one its item may be."""
+    if isinstance(value, (str, bytes)):
+        return False
+    try:
+        elements = list(value)
+    except TypeError:  # not iterable (a number, a 0-d array)
+        return False
+    return len(elements) == len(items) and all(_what_is_wrong(i, e) is None for i, e in zip(items, elements))
 
 
 def _described_tuple(items: list[str]) -> str | None:
@@ -169,7 +178,8 @@ def diagnose(owner: str, message: str, args: tuple, kwargs: dict) -> str | None:
         params, positional = params[1:], positional - 1
     names = [name for name, _, _ in params]
     if len(args) > positional:
-        return f"{owner} takes at most {positional} arguments by position (got {len(args)}); pass the rest by name"
+        rest = "; pass the rest by name" if positional < len(params) else ""
+        return f"{owner} takes at most {positional} arguments by position (got {len(args)}){rest}"
     given = dict(zip(names, args))
     for key, value in kwargs.items():
         if key not in names:
@@ -194,7 +204,10 @@ def _wrap(function: Callable, owner: str, name: str, is_method: bool) -> Callabl
         try:
             return function(*args, **kwargs)
         except TypeError as error:
-            diagnosis = _diagnosis(error, owner, name, args[1:] if is_method else args, kwargs)
+            try:
+                diagnosis = _diagnosis(error, owner, name, args[1:] if is_method else args, kwargs)
+            except Exception:  # (a value whose repr or len raises): pybind11's own message
+                diagnosis = None
             # No reference to the arguments may stay in this frame once it raises: a traceback that
             # shows its arguments (pytest's, IPython's verbose mode) would take repr() of a `self`
             # whose __init__ failed, and pybind11's methods crash on an unconstructed instance.
@@ -206,7 +219,7 @@ def _wrap(function: Callable, owner: str, name: str, is_method: bool) -> Callabl
             del args, kwargs
             raise
 
-    call.__qualname__ = owner if "." in owner or not is_method else f"{owner}.{name}"
+    call.__qualname__ = name if not is_method else (owner if "." in owner else f"{owner}.{name}")  # pickling
     call.__module__ = "refracta._core"
     return call
 

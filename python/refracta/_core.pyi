@@ -443,9 +443,12 @@ class PhysicalAtmosphere(IndexField):
 class TemperatureProfile(IndexField):
     """
     A measured sounding: temperatures [K] at strictly increasing heights [m], joined by a monotone C1
-    cubic (pchip) and levelling off smoothly beyond the ends; hydrostatic pressure from `pressure` [Pa]
-    at the lowest height; n from the same air formula as PhysicalAtmosphere. The temperatures are the
-    parameters t0, t1, ... (with pressure, humidity, wavelength).
+    cubic (pchip) and levelling off smoothly beyond the ends, as T_end + s w tanh(dh / w) (s: the end
+    slope, w: the end interval): up to one more interval's worth of the end gradient (a coarse top
+    interval of 10 K over 10 m goes on to ~10 K more; add a level where the air is known to turn);
+    hydrostatic pressure from `pressure` [Pa] at the lowest height; n from the same air formula as
+    PhysicalAtmosphere. The temperatures are the parameters t0, t1, ... (with pressure, humidity,
+    wavelength).
     """
     def __getstate__(self) -> tuple:
         ...
@@ -2226,7 +2229,8 @@ class RenderOptions:
         """
         camera rays through turbulence: 'strict' (the full field, rk45) or 'perturbed' (deviations from
         each ray's calm path, traced exactly to tol, in steps of the turbulence's cells; those samples'
-        shadow and bounce rays through the calm air)
+        shadow and bounce rays through the calm air). 'perturbed' serves RGB curved renders through
+        height-only calm air (no hot spots); elsewhere the render traces strictly, and render() warns
         """
     @turbulence_trace.setter
     def turbulence_trace(self, arg1: str) -> None:
@@ -3520,8 +3524,15 @@ class DispersedField(IndexField):
     base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
     base's. Spectral renders through a field build these per sample (each hero wavelength); build one
     with dispersed_field(field, wavelength).
+    
+    Built by dispersed_field, it knows its wavelength: its `wavelength` parameter (where its base has
+    one: PhysicalAtmosphere, TemperatureProfile) is that wavelength, not the base's, so that
+    field_reference_wavelength, a second dispersed_field (which scales from it) and the repr see the air
+    it is (a trial: a field dispersed to 450 nm said 550, and dispersing it again scaled from 550);
+    with_param_values then reads a new wavelength as a new scale over the base. Over a base without one
+    (550 nm by convention) the parameters stay the base's.
     """
-    def __getstate__(self) -> tuple:
+    def __getstate__(self) -> tuple[IndexField, float, float]:
         ...
     def __init__(self, base: IndexField, scale: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -3601,6 +3612,15 @@ def _pair_jacobian(field: IndexField, origins: typing.Any, directions: typing.An
 def _pair_paths(field: IndexField, origins: typing.Any, directions: typing.Any, sources: typing.Any, options: PairOptions) -> list[RayPath]:
     """
     Each pair's path, traced by PairOptions' rule for it (what its miss is measured on).
+    """
+def _perturbed_trace_refusal(field: IndexField, options: RenderOptions, camera: Camera) -> str | None:
+    """
+    Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera` (null:
+    it can, or 'strict' was asked, or the field has no turbulence): the fast path follows the eye
+    table's calm paths (renderer.cpp eye_table: height-only calm air without hot spots, RGB, curved
+    rays, the table on and stratified, a pinhole camera, paths over a spherical Earth no longer than
+    kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python) warn with it, as the
+    render then traces strictly.
     """
 def _power_moment_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
     """

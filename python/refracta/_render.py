@@ -131,6 +131,19 @@ def render_options(**options) -> _core.RenderOptions:
     return _options.build(_core.RenderOptions, where="render", **options)
 
 
+def warn_if_perturbed_refused(field, settings, camera, owner: str) -> None:
+    """A SceneWarning where turbulence_trace='perturbed' cannot serve the render (the C++ rule:
+    render/shimmer_cast.h perturbed_trace_refusal), which then traces the turbulence strictly."""
+    refusal = _core._perturbed_trace_refusal(field, settings, camera)
+    if refusal:
+        warnings.warn(
+            f"{owner}: turbulence_trace='perturbed' does not apply here -- {refusal}; the turbulence is traced "
+            "strictly (the same image, at the strict cost)",
+            SceneWarning,
+            stacklevel=3,
+        )
+
+
 def render(
     scene: _core.Scene,
     camera: _core.Camera,
@@ -321,6 +334,7 @@ def render(
     settings = render_options(
         method=method, transport=transport, spp=spp, max_depth=max_depth, spectral=spectral, seed=seed, **options
     )
+    warn_if_perturbed_refused(field, settings, camera, "render")
     rows = _whole_columns_for_images(settings, camera, wanted)
     if executor is not None or tiles is not None:
         image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)

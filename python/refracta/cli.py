@@ -538,12 +538,15 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     if field is None:
         raise ValueError(f"{scene_path}: has no [atmosphere] table to edit")
     pairs, options = edit.load_pairs(pairs_path, scene, camera)
+    if not pairs:  # (a file the editor saved before any pair was placed)
+        raise ValueError(f"{pairs_path}: 'pairs' is empty: give at least one pair to solve for")
     if backend is not None:
         options["backend"] = backend
     result = edit.solve(field, camera, pairs, progress=True, **options)
     print(result.report())
     # The solved field carries the file's turbulence (if any): written with its settings again.
-    output.write_text(with_atmosphere(Path(scene_path).read_text(), result.field, loaded.turbulence))
+    text = Path(scene_path).read_text(encoding="utf-8-sig")  # as load_scene reads it (a byte-order mark dropped)
+    output.write_text(with_atmosphere(text, result.field, loaded.turbulence))
     if result.success:
         print(f"wrote {output}")
         return 0

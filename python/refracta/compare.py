@@ -46,6 +46,9 @@ def shadows(
     reference), over_shadow (the same above), nan_count, bits_per_texel, seconds; fig (when
     `figure`) shows, for the largest kernel, each method's shadow image and its error map.
     """
+    for own in ("kernel", "shadows"):  # each render's own (from methods and kernels): silently overwritten before
+        if own in options:
+            raise ValueError(f"compare.shadows: {own}= is set per render from methods and kernels; give those")
     methods = _sequence(methods, "methods", "names")
     kernels = _sequence(kernels, "kernels", "odd whole numbers of texels")
     if not all(is_seed(k) and k % 2 == 1 for k in kernels):  # before any render

@@ -628,6 +628,11 @@ def load_pairs(
             if scene is None or camera is None:
                 raise ValueError(f"{where}: a source given as {{'pixel': [u, v]}} needs the scene and camera")
             u, v = _vector(source["pixel"], (2,), f"{where} source pixel")
+            if not (0.0 <= u <= camera.width and 0.0 <= v <= camera.height):  # pick would extrapolate the ray
+                raise ValueError(
+                    f"{where}: source pixel ({u:g}, {v:g}) lies outside the camera's {camera.width} x "
+                    f"{camera.height} image (u in [0, {camera.width}], v in [0, {camera.height}])"
+                )
             source = camera.pick(scene, u, v)
             if source is None:
                 raise ValueError(f"{where}: the camera sees no scene object at pixel ({u:g}, {v:g})")

@@ -93,7 +93,7 @@ def shadow_intensity(
     moments = real_array(moments, "shadow_intensity: moments")
     if moments.shape[-1:] != (4,):
         raise ValueError(f"moments must have shape (..., 4) (got {moments.shape})")
-    z_f = np.asarray(z_f, dtype=np.float64)
+    z_f = real_array(z_f, "shadow_intensity: z_f")  # a bool or "0.5" was read as a depth
     shape = np.broadcast_shapes(moments.shape[:-1], z_f.shape)
     flat_b = np.broadcast_to(moments, shape + (4,)).reshape(-1, 4)
     flat_z = np.broadcast_to(z_f, shape).reshape(-1)

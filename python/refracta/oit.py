@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 from refracta import _core
-from refracta._checks import finite_pair
+from refracta._checks import finite_pair, real_array
 from refracta._raster_render import refuse_unused, undeprecated
 
 # composite's keywords that name a field of OitSettings.mboit: keyword -> its dotted path (the one
@@ -72,8 +72,13 @@ def composite(
     if method == "peel" and fields.get("layers") is None and options is None:
         raise ValueError("composite: method 'peel' needs layers")
     settings = oit_settings(method, options, **fields)
-    colors = np.asarray(colors, dtype=np.float64).reshape(-1, 3)
-    depths = np.asarray(depths, np.float64).ravel()
+    # Named, bools and strings refused (True was a depth of 1, "0.5" an alpha of 0.5: a trial).
+    depths = real_array(depths, "composite: depths").ravel()
+    alphas = real_array(alphas, "composite: alphas").ravel()
+    colors = real_array(colors, "composite: colors")
+    if colors.size % 3:  # (the fragments' counts are the C++ check's)
+        raise ValueError(f"composite: colors must be (r, g, b) triples (got shape {colors.shape})")
+    colors = colors.reshape(-1, 3)
     near, far = settings.mboit.z_near, settings.mboit.z_far  # 0, 0: the fragments' own range
     if settings.method == "mboit" and far > 0.0 and depths.size and not (near <= depths.min() and depths.max() <= far):
         # MBOIT warps depths in the range to [-1, 1]: those beyond it leave the moments' domain.
@@ -81,10 +86,4 @@ def composite(
             f"composite: z_range ({near:g}, {far:g}) must hold every fragment's depth "
             f"(got {depths.min():g} to {depths.max():g})"
         )
-    return _core._composite(
-        depths,
-        np.asarray(alphas, np.float64).ravel(),
-        colors,
-        np.asarray(background, np.float64),
-        settings,
-    )
+    return _core._composite(depths, alphas, colors, real_array(background, "composite: background"), settings)

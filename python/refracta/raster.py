@@ -8,11 +8,13 @@ tiles over threads -- into a visibility buffer. The renderers use the same code
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from refracta import _core
+from refracta._checks import is_number, number
 
 __all__ = ["RasterBuffers", "rasterize"]
 
@@ -38,9 +40,10 @@ def rasterize(
 ) -> RasterBuffers:
     """Rasterize `scene` from `camera` (its image widened by guard_band on each side, as a fraction
     of it; 0: none) in square tiles of `tile` pixels (None: the renderers' own, 32)."""
-    if isinstance(tile, bool) or (tile is not None and int(tile) != tile):
-        raise ValueError(f"tile must be a whole number >= 1 (got {tile!r})")
+    guard_band = number(guard_band, "rasterize: guard_band")  # True was a guard band of 1 (a trial)
+    if tile is not None and not (is_number(tile) and math.isfinite(tile) and int(tile) == tile):
+        raise ValueError(f"rasterize: tile must be a whole number >= 1 (got {tile!r})")
     depth, geometry, primitive, barycentric, offset, *counts = _core._rasterize(
-        scene, camera, float(guard_band), None if tile is None else int(tile)
+        scene, camera, guard_band, None if tile is None else int(tile)
     )
     return RasterBuffers(depth, geometry, primitive, barycentric.reshape(depth.shape + (3,)), tuple(offset), *counts)

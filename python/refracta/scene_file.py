@@ -702,7 +702,9 @@ def load_scene(path, size=None) -> SceneFile:
     if not path.is_file():
         raise _core.IoError(f"cannot read scene file '{path}': not a regular file")
     try:
-        text = path.read_text(encoding="utf-8")  # TOML is UTF-8 by its specification
+        # TOML is UTF-8 by its specification; a byte-order mark (Windows editors write one) is read
+        # past, as TOML parsers commonly do (tomllib refused it: "Invalid statement (at line 1, column 1)").
+        text = path.read_text(encoding="utf-8-sig")
     except UnicodeDecodeError as error:
         raise ValueError(
             f"{path}: not a TOML scene file (not UTF-8 text: {error.reason} at byte {error.start})"
@@ -1074,7 +1076,9 @@ def atmosphere_table(field: _core.IndexField, turbulence=None) -> str:
 def _with_table(text: str, name: str, table: str, first: bool) -> str:
     """`text` (a scene file) with its table `name` and every sub-table of it ([name.*], [[name.*]])
     replaced by `table`, at the place of the first of them; without them, `table` is put first
-    (`first`) or last. Everything else, comments included, is kept."""
+    (`first`) or last. Everything else, comments included, is kept; a byte-order mark (a text read
+    without encoding="utf-8-sig") is dropped, or the first header would go unseen."""
+    text = text.removeprefix("\ufeff")
     lines = text.splitlines(keepends=True)
     headers = {i: match.group(1) for i, line in enumerate(lines) if (match := _HEADER.match(line))}
     starts = list(headers)

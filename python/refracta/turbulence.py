@@ -211,7 +211,9 @@ class Turbulence:
 
     @property
     def size(self) -> float:
-        """The period of the pattern along x, y and z [m]: cells * spacing."""
+        """The period of the pattern's lattice [m]: cells * spacing, along y and along the lattice's
+        own horizontal axes -- x and z themselves only with yaw_deg = 0; the default yaw turns the
+        lattice (31.7 deg) so that no road along x or z sees the pattern repeat."""
         return self.cells * self.spacing
 
     @staticmethod

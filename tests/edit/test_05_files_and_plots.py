@@ -81,6 +81,22 @@ def test_a_pixel_source_is_picked_from_the_scene(tmp_path):
     np.testing.assert_allclose(pairs[0].source, camera.pick(scene, 48, 20))
 
 
+def test_a_pixel_source_off_the_image_or_no_pairs_is_refused_naming_the_file(tmp_path, capsys):
+    # A trial: a source pixel (1e6, 1e6) was picked along the extrapolated ray (a point on the ground
+    # by the camera), and `refracta edit` with no pairs said "pairs is empty" without the file (the
+    # editor saves and loads an empty list: load_pairs takes it).
+    scene, camera, _ = refracta.load_scene(DATA / "hot_road.toml")
+    path = tmp_path / "pairs.json"
+    for pixel in ([1e6, 1e6], [48, camera.height + 1]):
+        path.write_text(json.dumps({"pairs": [{"destination": [48, 20], "source": {"pixel": pixel}}]}))
+        with pytest.raises(ValueError, match=r"pairs.json: pairs\[0\]: source pixel .* lies outside the camera's"):
+            load_pairs(path, scene, camera)
+    path.write_text(json.dumps({"pairs": []}))
+    assert load_pairs(path, scene, camera) == ([], {})
+    assert cli.main(["edit", str(DATA / "hot_road.toml"), "--pairs", str(path), "-o", str(tmp_path / "x.toml")]) != 0
+    assert "pairs.json: 'pairs' is empty" in capsys.readouterr().err
+
+
 def test_edit_report_draws_paths_and_history(road_pairs):
     truth, eye, pairs = road_pairs
     result = solve(truth.with_params(surface_dt=8.0), eye, pairs, free=["surface_dt"], stop_height=0.0)

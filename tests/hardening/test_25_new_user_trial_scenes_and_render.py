@@ -52,6 +52,8 @@ def test_a_uniform_environment_checks_its_rotation_as_a_map_does():
         (lambda s, c: compare.shadows(s, c, methods=("pcf",), kernels=(3.9,)), r"kernels must be odd whole numbers"),
         (lambda s, c: compare.shadows(s, c, methods=("pcf",), kernels=(True,)), r"kernels must be odd whole numbers"),
         (lambda s, c: compare.shadows(s, c, methods=("pcf",), kernels=3), r"kernels must be a sequence"),
+        # kernel= was overwritten by each render's own from kernels (a trial)
+        (lambda s, c: compare.shadows(s, c, methods=("pcf",), kernel=5), r"kernel= is set per render"),
         (lambda s, c: compare.transparency(s, c, methods="peel 2"), r"methods must be a sequence of names"),
     ],
 )

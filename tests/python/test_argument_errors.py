@@ -122,3 +122,22 @@ def test_the_diagnosis_reads_the_signature_pybind11_prints(params, args, kwargs,
     message = f"{header}\n    1. ({params}) -> None\n"
     found = _arguments.diagnose("f", message, args, kwargs)
     assert found == expected if expected is None else expected in found
+
+
+def test_only_a_sure_refusal_is_blamed():
+    # pybind11 takes __float__ objects for a float and any sequence for a tuple: the wrapper must not
+    # blame those, but the argument it surely refuses (a review: Decimal(50) was named, not width='x').
+    from decimal import Decimal
+
+    with pytest.raises(refracta.ArgumentError, match="photographic_vfov: width must be a whole number"):
+        refracta.Camera.photographic_vfov(Decimal(50), width="x")
+    assert refracta.Camera.photographic_vfov(Decimal(50), sensor_mm=range(24, 48, 12)) > 0  # (24, 36)
+    with pytest.raises(refracta.ArgumentError, match=r"takes at most 4 arguments by position \(got 5\)$"):
+        refracta.Camera.photographic_vfov(50, 1, 2, 3, 4)  # no keyword-only marker: no "pass the rest by name"
+
+
+def test_module_functions_keep_their_names_for_pickling():
+    import pickle
+
+    assert pickle.loads(pickle.dumps(_core._build_options)) is _core._build_options
+    assert pickle.loads(pickle.dumps(refracta.trace_ray)) is refracta.trace_ray

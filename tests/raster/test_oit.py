@@ -5,6 +5,8 @@ import itertools
 import numpy as np
 import pytest
 
+import refracta
+import refracta.raster
 from refracta import oit
 
 # The published fp32 biases move the moments by <= 5e-5; transmittances follow to ~1e-4.
@@ -227,3 +229,19 @@ def test_the_old_trig_spelling_still_works_with_a_warning():
     np.testing.assert_array_equal(
         legacy, oit.composite(depths, alphas, colors, method="mboit", moments=3, basis="trigonometric")
     )
+
+
+def test_composite_and_shadow_intensity_refuse_bools_and_strings_naming_them():
+    # A trial: True was a depth of 1 and "0.5" an alpha of 0.5; mismatched colours failed in numpy.
+    from refracta import moments
+
+    with pytest.raises(ValueError, match="composite: alphas must be numbers"):
+        oit.composite([1, 2], [True, "0.5"], [[1, 0, 0], [0, 1, 0]])
+    with pytest.raises(ValueError, match=r"composite: colors must be \(r, g, b\) triples \(got shape \(2, 2\)\)"):
+        oit.composite([1, 2, 3], [0.5] * 3, np.eye(2))
+    assert np.allclose(oit.composite([1.0], [0.5], [1.0, 0.0, 0.0]), [0.5, 0.0, 0.0])  # one fragment, flat colour
+    b = moments.power_moments(np.array([0.3]))
+    with pytest.raises(ValueError, match="shadow_intensity: z_f must be numbers"):
+        moments.shadow_intensity(b, True)
+    with pytest.raises(ValueError, match="rasterize: guard_band must be a number"):
+        refracta.raster.rasterize(refracta.Scene(), refracta.Camera((0, 1, 0), (1, 1, 0)), guard_band=True)

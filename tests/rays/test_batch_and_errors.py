@@ -53,6 +53,23 @@ def test_progress_callback_reports_completion():
     assert calls[-1] == (50, 50)
 
 
+@pytest.mark.parametrize("progress", ["yes", 5])
+def test_a_progress_that_is_neither_a_flag_nor_a_callable_is_named(progress):
+    # Was "TypeError: 'str' object is not callable" from inside the batch (a trial); render's rule now.
+    field = refracta.LogisticProfile()
+    with pytest.raises(ValueError, match="progress must be True, False or a callable"):
+        refracta.trace_rays(field, [0, 1, 0], [1, 0, 0], progress=progress)
+    with pytest.raises(ValueError, match="progress must be True, False or a callable"):
+        refracta.ElevationTable(field, 1.5, -1.0, 1.0, progress=progress)
+
+
+def test_numpy_bools_are_flags_for_progress():
+    # A review: the shared rule took progress=np.True_ for neither a flag nor a callable.
+    field = refracta.LogisticProfile()
+    refracta.trace_rays(field, [0, 1, 0], [1, 0, 0], progress=np.False_)
+    refracta.trace_rays(field, [0, 1, 0], [1, 0, 0], progress=np.True_)
+
+
 def test_interrupt_stops_a_long_batch_promptly():
     slow = refracta.CustomField(lambda p: 1 + 1e-4 * p[:, 1], lambda p: np.tile([0.0, 1e-4, 0.0], (len(p), 1)))
 

@@ -250,3 +250,16 @@ def test_a_photographic_camera_with_a_lens_loads_and_round_trips(tmp_path):
 def test_impossible_lenses_in_scene_files_are_refused_naming_the_key(tmp_path, extra, message):
     with pytest.raises(ValueError, match=message):
         refracta.load_scene(write(tmp_path, CAMERA + extra))
+
+
+def test_a_byte_order_mark_is_read_past(tmp_path):
+    # Windows editors save UTF-8 with a BOM; tomllib refused it as "Invalid statement (at line 1,
+    # column 1)" (a trial). The file reads as it would without.
+    text = (DATA / "hot_road.toml").read_text().replace('"tent.obj"', f'"{DATA / "tent.obj"}"')
+    plain, marked = tmp_path / "plain.toml", tmp_path / "marked.toml"
+    plain.write_text(text, encoding="utf-8")
+    marked.write_text(text, encoding="utf-8-sig")
+    assert marked.read_bytes().startswith(b"\xef\xbb\xbf")
+    scene, camera, field = refracta.load_scene(marked)
+    _, camera_plain, field_plain = refracta.load_scene(plain)
+    assert field.params == field_plain.params and camera.position.tolist() == camera_plain.position.tolist()

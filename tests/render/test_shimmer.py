@@ -3,6 +3,8 @@ RenderOptions.turbulence_trace 'perturbed', render/shimmer_cast.h) against the s
 (rk45 through the full field), on a few rows of the hot road through a small turbulence grid
 (64^3 cells of 5 cm: synthesised in a fraction of a second)."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -46,6 +48,32 @@ def test_turbulence_trace_option():
             turbulence_step=0.0,
             progress=False,
         )
+
+
+def test_where_the_fast_path_does_not_apply_the_render_says_so(road):
+    # A trial: with hot spots or spectral=True, 'perturbed' rendered strictly (bit-identical, at the
+    # strict cost) without a word. Now a SceneWarning says why (shimmer_cast.h perturbed_trace_refusal).
+    turbulence = refracta.Turbulence(1e-10, cells=16, depth=0.1)
+    spot = refracta.HotSpot(330.0, 0.0, 110.0, 16.0, footprint="compact")
+    with_spots = refracta.PhysicalAtmosphere(**road.field.params, hot_spots=[spot], turbulence=turbulence)
+    height_only = refracta.PhysicalAtmosphere(**road.field.params, turbulence=turbulence)
+    small = dict(pixel_bounds=(0, ROWS[0], 4, ROWS[0] + 1), progress=False, max_length=road.max_length)
+    with pytest.warns(refracta.SceneWarning, match="height only"):
+        refracta.render(road.scene, road.camera, with_spots, turbulence_trace="perturbed", **small)
+    with pytest.warns(refracta.SceneWarning, match="RGB renders"):
+        refracta.render(road.scene, road.camera, height_only, turbulence_trace="perturbed", spectral=True, **small)
+    with pytest.warns(refracta.SceneWarning, match="eye table"):  # (a review: these went unsaid)
+        refracta.render(road.scene, road.camera, height_only, turbulence_trace="perturbed", table=False, **small)
+    with pytest.warns(refracta.SceneWarning, match="animate: turbulence_trace='perturbed' does not apply"):
+        tiny = road.camera.resized(4, 2)  # (the strict turbulent trace it falls back to is dear)
+        spotted_calm = refracta.PhysicalAtmosphere(**road.field.params, hot_spots=[spot])
+        refracta.animate(
+            road.scene, tiny, spotted_calm, [0.0], turbulence=turbulence, turbulence_trace="perturbed", progress=False
+        )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", refracta.SceneWarning)  # where it applies, or not asked for: silent
+        refracta.render(road.scene, road.camera, height_only, turbulence_trace="perturbed", **small)
+        refracta.render(road.scene, road.camera, with_spots, **small)
 
 
 def test_calm_air_is_the_calm_render(road):

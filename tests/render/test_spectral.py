@@ -231,6 +231,44 @@ def test_dispersed_field_is_the_field_at_that_wavelength():
         _core.DispersedField(field, 0.0)
 
 
+def test_a_dispersed_field_knows_its_wavelength():
+    # A trial: dispersed to 450 nm, the field said 550 (its base's parameter), so dispersing it again
+    # scaled from 550 and astronomical_refraction(wavelength=650) came out 0.35' high.
+    import pickle
+
+    field = hot_road()
+    blue = _core.dispersed_field(field, 450.0)
+    assert _core.field_reference_wavelength(blue) == 450.0 and blue.params["wavelength"] == 450.0
+    assert "wavelength=450" in repr(blue)
+    points = np.array([[0.0, h, 0.0] for h in (0.0, 0.3, 100.0)])
+    for wavelength in (550.0, 650.0):
+        again = _core.dispersed_field(blue, wavelength)
+        direct = field.with_params(wavelength=wavelength)
+        # Two scales' product against one: a few roundings of n - 1 (~1e-4), well inside 1e-12.
+        np.testing.assert_allclose(again.ior(points) - 1.0, direct.ior(points) - 1.0, rtol=1e-12, atol=2.3e-16)
+    # Its wavelength parameter is its own: set it, and the scale over the base follows.
+    green = blue.with_params(wavelength=500.0)
+    expected = field.with_params(wavelength=500.0).ior(points) - 1.0
+    # As above: one scale against the air formula at 500 nm, rounding of n - 1 (~1e-4) far inside 1e-12.
+    np.testing.assert_allclose(green.ior(points) - 1.0, expected, rtol=1e-12, atol=2.3e-16)
+    assert _core.field_reference_wavelength(_core.dispersed_field(refracta.CurvedEarth(field), 450.0)) == 450.0
+    copy = pickle.loads(pickle.dumps(blue))
+    assert _core.field_reference_wavelength(copy) == 450.0 and np.array_equal(copy.ior(points), blue.ior(points))
+    # The earlier pickle state (base, scale) still reads: the wavelength then unknown (the base's).
+    base, scale, _ = blue.__getstate__()
+    older = _core.DispersedField.__new__(_core.DispersedField)
+    older.__setstate__((base, scale))
+    assert np.array_equal(older.ior(points), blue.ior(points)) and older.params["wavelength"] == 550.0
+    # A reference of the caller's (not the field's own 550): the scale is K(450) / K(600), so the
+    # wavelength 450 would misstate it; the parameters stay the base's, and an edit keeps the scale.
+    odd = _core.dispersed_field(field, 450.0, reference=600.0)
+    assert odd.params["wavelength"] == 550.0 and odd.with_params(t_ground=288.15).scale == odd.scale
+    # The height-only part (of air with hot spots) keeps it: a spectral render's index floors use it.
+    spot = refracta.HotSpot(300.0, 0.0, 50.0, 5.0, footprint="compact")
+    with_spot = _core.dispersed_field(refracta.PhysicalAtmosphere(**field.params, hot_spots=[spot]), 450.0)
+    assert _core.field_reference_wavelength(with_spot.height_only_part) == 450.0
+
+
 def test_mirage_boundary_moves_with_wavelength_as_the_k_ratio_predicts():
     field = hot_road()
     traced = {lam: critical_depression_traced(_core.dispersed_field(field, lam)) for lam in (450.0, 650.0)}

@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 
+import refracta
 from refracta.widgets import camera_moves
 from refracta.widgets import model as editor_model
 
@@ -245,3 +246,26 @@ def test_pairs_hold_plain_floats_so_their_repr_reads_plainly(make_model, road):
     (pair,) = model.pairs
     assert all(type(x) is float for x in pair.source + pair.destination)
     assert "np.float64" not in repr(pair) and "destination=(180.4, 66.0)" in repr(pair)
+
+
+def test_bad_editor_settings_are_refused_when_made_naming_them(make_model):
+    # A trial: display={"gamma": "x"} was accepted and every render then failed in the background;
+    # preview_scale="a", set_free(3) and a huge zoom-out raised Python's own errors (and the zoom left
+    # an undo step behind).
+    with pytest.raises(ValueError, match="gamma"):
+        make_model(display={"gamma": "x"})
+    with pytest.raises(ValueError, match="unknown option 'foo'"):
+        make_model(display={"foo": 1})
+    with pytest.raises(ValueError, match="display must be a dict"):
+        make_model(display="aces")
+    for scale in ("a", 2.5, float("nan"), True, 0):
+        with pytest.raises(ValueError, match="preview_scale must be a whole number >= 1"):
+            make_model(preview_scale=scale)
+    model = make_model()
+    with pytest.raises(ValueError, match="free must be a parameter name or a list of them"):
+        model.set_free(3)
+    distance = np.linalg.norm(np.subtract(model.camera.position, model.camera.look_at))
+    model.wheel(-1e4)  # 0.9 ** -1e4 overflowed: now held inside the scene's reach
+    assert model.can_undo
+    far = np.linalg.norm(np.subtract(model.camera.position, model.camera.look_at))
+    assert distance < far < refracta._core._SCENE_REACH and np.all(np.isfinite(model.camera.position))

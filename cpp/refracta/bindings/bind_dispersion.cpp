@@ -3,6 +3,8 @@
 #include "refracta/bindings/bind_media.h"
 #include "refracta/media/dispersed_field.h"
 
+#include <limits>
+
 namespace refracta {
 
 void bind_dispersion(py::module_& m) {
@@ -13,9 +15,15 @@ void bind_dispersion(py::module_& m) {
   cls.def(py::init(make), py::arg("base"), py::arg("scale"))
       .def_property_readonly("base", [](const DispersedField& f) { return unconst(f.base()); })
       .def_property_readonly("scale", &DispersedField::scale);
-  using State = std::tuple<std::shared_ptr<IndexField>, double>;
-  def_tuple_pickle<State>(
-      cls, "DispersedField", [](const DispersedField& f) { return State(unconst(f.base()), f.scale()); }, make);
+  // (base, scale, wavelength): the wavelength (NaN where not known) kept, so that a field dispersed
+  // to 450 nm says so after a round trip; the earlier (base, scale) still read.
+  cls.def(py::pickle(
+      [](const DispersedField& f) { return py::make_tuple(unconst(f.base()), f.scale(), f.wavelength()); },
+      [](const py::tuple& t) {
+        if (t.size() != 2 && t.size() != 3) throw_invalid("DispersedField: bad pickle state (", t.size(), " items)");
+        const double wavelength = t.size() == 3 ? t[2].cast<double>() : std::numeric_limits<double>::quiet_NaN();
+        return std::make_shared<DispersedField>(t[0].cast<std::shared_ptr<IndexField>>(), t[1].cast<double>(), wavelength);
+      }));
 
   m.def("air_dispersion_scale", &air_dispersion_scale, py::arg("wavelength"), py::arg("reference") = kDefaultFieldWavelength,
         "K(wavelength)/K(reference) of dry air (Birch & Downs 1993 Edlen formula at 101325 Pa, 288.15 K):\n"

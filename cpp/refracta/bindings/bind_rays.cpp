@@ -39,10 +39,10 @@ TraceOptions trace_options_from(const py::object& options, const py::kwargs& fie
 }
 
 // progress: True for a bar on stderr, else None / False or a callable progress(done, total).
+// The package's one rule (refracta._progress.progress_callback: anything else is a ValueError
+// naming progress; a string reached the work and failed as "'str' object is not callable").
 py::object progress_callback(const py::object& progress, const char* label) {
-  if (progress.is_none() || (py::isinstance<py::bool_>(progress) && !py::cast<bool>(progress))) return py::none();
-  if (py::isinstance<py::bool_>(progress)) return py::module_::import("refracta._progress").attr("ProgressBar")(label);
-  return progress;
+  return py::module_::import("refracta._progress").attr("progress_callback")(progress, label);
 }
 
 const IndexField& checked_field(const std::shared_ptr<IndexField>& field) {

@@ -8,6 +8,7 @@
 #include "refracta/render/raster_renderer.h"
 #include "refracta/render/readouts.h"
 #include "refracta/render/renderer.h"
+#include "refracta/render/shimmer_cast.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/operators.h>
@@ -46,7 +47,8 @@ void bind_render(py::module_& m) {
   def_enum_property(options, "turbulence_trace", &O::turbulence_trace, &turbulence_trace_name, &parse_turbulence_trace,
                     "camera rays through turbulence: 'strict' (the full field, rk45) or 'perturbed' (deviations from\n"
                     "each ray's calm path, traced exactly to tol, in steps of the turbulence's cells; those samples'\n"
-                    "shadow and bounce rays through the calm air)");
+                    "shadow and bounce rays through the calm air). 'perturbed' serves RGB curved renders through\n"
+                    "height-only calm air (no hot spots); elsewhere the render traces strictly, and render() warns");
   def_enum_property(options, "march", &O::march, &trace_method_name,
                     &parse_march_method,
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)");
@@ -106,6 +108,13 @@ void bind_render(py::module_& m) {
         });
       },
       py::arg("scene"), py::arg("camera"), py::arg("field"), py::arg("options"), py::arg("progress"));
+  m.def(
+      "_perturbed_trace_refusal",
+      [](const std::shared_ptr<IndexField>& field, const O& options, const Camera& camera) -> std::optional<std::string> {
+        const char* why = perturbed_trace_refusal(field.get(), options, camera);
+        return why ? std::optional<std::string>(why) : std::nullopt;
+      },
+      py::arg("field"), py::arg("options"), py::arg("camera"), DOC(refracta, perturbed_trace_refusal));
   m.def(
       "_cmj_pattern",
       [](int count, uint32_t seed) {

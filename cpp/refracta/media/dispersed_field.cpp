@@ -5,6 +5,7 @@
 #include "refracta/media/air.h"
 
 #include <cmath>
+#include <limits>
 
 namespace refracta {
 
@@ -31,13 +32,28 @@ double field_reference_wavelength(const IndexField& field) {
   return kDefaultFieldWavelength;
 }
 
-DispersedField::DispersedField(FieldPtr base, double scale)
-    : DispersedField(std::move(base), std::make_shared<const double>(scale)) {
+DispersedField::DispersedField(FieldPtr base, double scale, double wavelength_nm)
+    : DispersedField(std::move(base), std::make_shared<const double>(scale), wavelength_nm) {
   if (!(scale > 0.0) || !std::isfinite(scale)) throw_invalid("DispersedField: scale must be > 0 and finite (got ", scale, ")");
 }
 
-DispersedField::DispersedField(FieldPtr base, std::shared_ptr<const double> scale)
-    : base_(std::move(base)), scale_(std::move(scale)) {
+int DispersedField::wavelength_index() const {
+  const std::vector<ParamSpec>& specs = base_->param_specs();
+  for (size_t i = 0; i < specs.size(); ++i) {
+    if (specs[i].name == "wavelength") return int(i);
+  }
+  return -1;
+}
+
+std::vector<double> DispersedField::param_values() const {
+  std::vector<double> values = base_->param_values();
+  const int i = wavelength_index();
+  if (i >= 0 && std::isfinite(wavelength_)) values[size_t(i)] = wavelength_;
+  return values;
+}
+
+DispersedField::DispersedField(FieldPtr base, std::shared_ptr<const double> scale, double wavelength_nm)
+    : base_(std::move(base)), scale_(std::move(scale)), wavelength_(wavelength_nm) {
   if (!base_) throw_invalid("DispersedField: base must be a field (got None)");
   if (!scale_) throw_invalid("DispersedField: scale must be given");
 }
@@ -58,23 +74,37 @@ void DispersedField::evaluate_height(double h, double* n, double* dn_dh) const {
 
 FieldPtr DispersedField::height_only_part() const {
   const FieldPtr part = base_->height_only_part();
-  return part ? std::make_shared<DispersedField>(part, scale_) : nullptr;
+  return part ? std::make_shared<DispersedField>(part, scale_, wavelength_) : nullptr;
 }
 
 std::shared_ptr<const IndexField> DispersedField::with_param_values(const std::vector<double>& values) const {
-  return std::make_shared<DispersedField>(base_->with_param_values(values), scale());  // the scale now
+  const int i = wavelength_index();
+  if (i < 0 || !std::isfinite(wavelength_) || size_t(i) >= values.size()) {
+    return std::make_shared<DispersedField>(base_->with_param_values(values), scale(), wavelength_);  // the scale now
+  }
+  // The wavelength parameter is this field's: a new one is a new scale over the base, at its own.
+  std::vector<double> base_values = values;
+  base_values[size_t(i)] = base_->param_values()[size_t(i)];
+  const double wavelength = values[size_t(i)];
+  const FieldPtr base = base_->with_param_values(base_values);
+  return std::make_shared<DispersedField>(base, air_dispersion_scale(wavelength, field_reference_wavelength(*base)),
+                                          wavelength);
 }
 
 FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, double reference_nm) {
   if (!field) throw_invalid("dispersed_field: field must be a field (got None)");
-  if (reference_nm <= 0.0) reference_nm = field_reference_wavelength(*field);
+  // The wavelength is the field's to report only when the scale is from its own reference (a
+  // reference of the caller's makes an air whose parameters say nothing of it: the base's kept).
+  const double own = field_reference_wavelength(*field);
+  const bool known = reference_nm <= 0.0 || reference_nm == own;
+  if (reference_nm <= 0.0) reference_nm = own;
   if (const FieldPtr inner = field->decorated()) {  // disperse the air inside CurvedEarth
     const FieldPtr base = dispersed_field(inner, wavelength_nm, reference_nm);
     return base == inner ? field : field->with_base(base);
   }
   const double scale = air_dispersion_scale(wavelength_nm, reference_nm);
   if (scale == 1.0) return field;
-  return std::make_shared<DispersedField>(field, scale);
+  return std::make_shared<DispersedField>(field, scale, known ? wavelength_nm : std::numeric_limits<double>::quiet_NaN());
 }
 
 FieldPtr tunable_dispersed_field(const FieldPtr& field, const std::shared_ptr<const double>& scale) {

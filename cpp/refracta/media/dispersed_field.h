@@ -17,6 +17,8 @@
 
 #include "refracta/media/index_field.h"
 
+#include <limits>
+
 namespace refracta {
 
 // The reference wavelength of fields without a `wavelength` parameter [nm].
@@ -35,15 +37,24 @@ double field_reference_wavelength(const IndexField& field);
 // base; for dry air scale = K(lambda)/K(lambda_ref) (air_dispersion_scale). Its parameters are the
 // base's. Spectral renders through a field build these per sample (each hero wavelength); build one
 // with dispersed_field(field, wavelength).
+//
+// Built by dispersed_field, it knows its wavelength: its `wavelength` parameter (where its base
+// has one: PhysicalAtmosphere, TemperatureProfile) is that wavelength, not the base's, so that
+// field_reference_wavelength, a second dispersed_field (which scales from it) and the repr see the
+// air it is (a trial: a field dispersed to 450 nm said 550, and dispersing it again scaled from
+// 550); with_param_values then reads a new wavelength as a new scale over the base. Over a base
+// without one (550 nm by convention) the parameters stay the base's.
 class DispersedField final : public IndexField {
  public:
-  // base non-null; scale > 0 and finite.
-  DispersedField(FieldPtr base, double scale);
+  // base non-null; scale > 0 and finite. wavelength_nm: the wavelength the scale takes the base to
+  // (NaN: not known, the parameters are the base's).
+  DispersedField(FieldPtr base, double scale, double wavelength_nm = std::numeric_limits<double>::quiet_NaN());
   // The scale read from `scale` at every evaluation, so that its owner can retune the field (and
   // its height_only_part, which shares it) to another wavelength without rebuilding anything: a
   // spectral render's pooled air, set to the hero wavelength of the sample that holds it
   // (render/hero_casters.h). The owner sets it > 0 and finite, and never while the field is in use.
-  DispersedField(FieldPtr base, std::shared_ptr<const double> scale);
+  DispersedField(FieldPtr base, std::shared_ptr<const double> scale,
+                 double wavelength_nm = std::numeric_limits<double>::quiet_NaN());
 
   std::string type_name() const override { return "DispersedField"; }
   void evaluate(const Vec3d& p, double* n, Vec3d* grad) const override;
@@ -51,7 +62,7 @@ class DispersedField final : public IndexField {
   double uniform_above() const override { return base_->uniform_above(); }
   void evaluate_height(double h, double* n, double* dn_dh) const override;
   const std::vector<ParamSpec>& param_specs() const override { return base_->param_specs(); }
-  std::vector<double> param_values() const override { return base_->param_values(); }
+  std::vector<double> param_values() const override;
   std::shared_ptr<const IndexField> with_param_values(const std::vector<double>& values) const override;
   std::vector<std::string> gauge_params() const override { return base_->gauge_params(); }
   // The base's height-only part, dispersed alike; its regions.
@@ -63,12 +74,17 @@ class DispersedField final : public IndexField {
 
   const FieldPtr& base() const { return base_; }
   double scale() const { return *scale_; }
+  double wavelength() const { return wavelength_; }  // NaN where not known
   // Where the scale is read (shared with fields retuned alike: TabulatedCurvedEarth).
   const std::shared_ptr<const double>& scale_source() const { return scale_; }
 
  private:
+  // The index of the base's `wavelength` parameter, or -1.
+  int wavelength_index() const;
+
   FieldPtr base_;
   std::shared_ptr<const double> scale_;
+  double wavelength_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The field at `wavelength_nm` [nm]: a DispersedField by air_dispersion_scale(wavelength,

@@ -22,9 +22,12 @@ struct SoundingHeights {
 };
 
 // A measured sounding: temperatures [K] at strictly increasing heights [m], joined by a monotone C1
-// cubic (pchip) and levelling off smoothly beyond the ends; hydrostatic pressure from `pressure`
-// [Pa] at the lowest height; n from the same air formula as PhysicalAtmosphere. The temperatures
-// are the parameters t0, t1, ... (with pressure, humidity, wavelength).
+// cubic (pchip) and levelling off smoothly beyond the ends, as T_end + s w tanh(dh / w) (s: the end
+// slope, w: the end interval): up to one more interval's worth of the end gradient (a coarse top
+// interval of 10 K over 10 m goes on to ~10 K more; add a level where the air is known to turn);
+// hydrostatic pressure from `pressure` [Pa] at the lowest height; n from the same air formula as
+// PhysicalAtmosphere. The temperatures are the parameters t0, t1, ... (with pressure, humidity,
+// wavelength).
 template <class T>
 class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileModel<T>, T> {
  public:

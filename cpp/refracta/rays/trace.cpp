@@ -13,8 +13,8 @@ namespace {
 void validate_trace(const IndexField& field, const TraceOptions& options) {
   options.validate();
   if (options.trace == TraceMethod::kStratified && !field.height_only()) {
-    throw_invalid("method 'stratified' needs a field that depends on height only; ",
-                  field.type_name(), " does not (use 'rk45')");
+    throw_invalid("trace='stratified' needs a field that depends on height only; ",
+                  field.type_name(), " does not (use trace='rk45')");
   }
 }
 

@@ -18,10 +18,12 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 namespace refracta {
 
@@ -72,6 +74,31 @@ void RasterRenderOptions::validate() const {
 }
 
 namespace {
+
+// The lobe-choosing number of each of the n x n direction strata (a * n + b), as ranks 0 .. n^2 - 1:
+// the order in which the R2 sequence (Roberts 2018, "The unreasonable effectiveness of quasirandom
+// sequences": frac(j alpha), alpha from the plastic number) first visits the strata, the rest in
+// row order. A lobe of probability F takes the strata of the first F n^2 ranks, spread over the
+// directions whatever F is. Tied to the direction (k / n^2), a dielectric's reflection (F ~ 0.03)
+// was taken in the first row of directions only, and rough water under a sky came out 7-10x too
+// dark (a trial); a multiplicative shuffle (67 k mod n^2) put each lobe's share on a few lines of
+// the grid, worse at n = 64 than at 24 (a review).
+std::vector<int> lobe_ranks(int n) {
+  const size_t count = size_t(n) * size_t(n);
+  constexpr double kPlastic = 1.32471795724474602596;
+  const double alpha_x = 1.0 / kPlastic, alpha_y = 1.0 / (kPlastic * kPlastic);
+  std::vector<int> rank(count, -1);
+  int next = 0;
+  for (size_t j = 0; j < 64 * count && size_t(next) < count; ++j) {
+    const double x = std::fmod(0.5 + double(j) * alpha_x, 1.0), y = std::fmod(0.5 + double(j) * alpha_y, 1.0);
+    const size_t cell = size_t(std::min(int(x * n), n - 1)) * size_t(n) + size_t(std::min(int(y * n), n - 1));
+    if (rank[cell] < 0) rank[cell] = next++;
+  }
+  for (int& r : rank) {
+    if (r < 0) r = next++;
+  }
+  return rank;
+}
 
 // The fragments' depth range [m], to which MBOIT's log-depth warp is fitted when not given.
 void fit_mboit_range(const FragmentLists& fragments, OitSettings& oit) {
@@ -151,6 +178,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   const SampledWavelengths lambda_rgb = SampledWavelengths::rgb();
   const int n = options.light_strata;
   const double weight = 1.0 / (n * n);
+  const std::vector<int> lobe_of = lobe_ranks(n);
   // The air between the eye and a surface (aerial perspective), as the ray renderers' integrators
   // add it: its in-scatter arrives, and it dims the surface's light (a trial: the raster image was
   // the same with and without the haze).
@@ -179,12 +207,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
             L += lighting.sample_light(i, si, s.bsdf, lambda, u) * weight;
             continue;
           }
-          // The lobe's number from a fixed shuffle of the strata (k -> 67 k mod n^2, 67 a prime
-          // above the largest n): tied to u.x, a lobe of small probability (a dielectric's
-          // reflection, F ~ 0.03) was taken in the first row of directions only, and a rough
-          // water surface under a sky came out 7-10x too dark (a trial).
-          const int lobe = (a * n + b) * 67 % (n * n);
-          const auto bs = s.bsdf.sample(si.wo, (lobe + 0.5) * weight, u);
+          const auto bs = s.bsdf.sample(si.wo, (lobe_of[size_t(a * n + b)] + 0.5) * weight, u);
           if (!bs) continue;
           LightLiSample ls;
           ls.L = light.Le(bs->wi, lambda);

@@ -3,6 +3,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/frame.h"
+#include "refracta/scene/terrain.h"
 #include "refracta/shading/spot_light.h"
 #include "refracta/shading/sun_light.h"
 
@@ -41,8 +42,30 @@ double spot_occlusion(const Scene& scene, const Vec3d& p_surface, const Vec3d& n
   return sum / (kStrata * kStrata);
 }
 
+// Where, seen from the sun (side, up), anything can cast a shadow on points no lower than
+// `lowest` [m]: the box of every geometry's bounds but a flat horizontal one at or below `lowest`
+// under a sun above the horizon (a ground can shadow nothing above it). Empty: no caster.
+Eigen::AlignedBox2d caster_bounds(const Scene& scene, const Vec3d& sun_direction, const Vec3d& side, const Vec3d& up,
+                                  double lowest) {
+  Eigen::AlignedBox2d out;
+  for (const SceneMesh& entry : scene.meshes()) {
+    if (scene.removed(entry.geometry)) continue;
+    Eigen::AlignedBox3d box;
+    if (const TerrainGrid* terrain = scene.terrain(entry.geometry)) box.extend(terrain->lower()).extend(terrain->upper());
+    for (const Vec3d& vertex : entry.mesh.vertices) box.extend(vertex);
+    if (box.isEmpty() || (box.sizes().y() == 0.0 && box.max().y() <= lowest && sun_direction.y() > 0.0)) continue;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3d p = box.corner(Eigen::AlignedBox3d::CornerType(corner));
+      out.extend(Eigen::Vector2d(p.dot(side), p.dot(up)));
+    }
+  }
+  return out;
+}
+
 // The sun's orthographic map: given, or fitted (seen from the sun) to the visible points closer
-// than shadow_distance to the eye, 2 % wider than they are.
+// than shadow_distance to the eye that some geometry lies over (caster_bounds; a point outside
+// the map is lit), 2 % wider than they are. Fitted to the visible points alone, a 2 km ground
+// spread the map's texels over kilometres, and 1.6 m boxes on it lost every shadow (a trial).
 std::unique_ptr<ShadowMap> sun_map(const Scene& scene, const Vec3d& sun_direction, const RasterRenderOptions& options,
                                    const VisibilityBuffer& buffer, const Vec3d& eye, WorkControl& control) {
   const Vec3d along = -sun_direction;
@@ -52,6 +75,7 @@ std::unique_ptr<ShadowMap> sun_map(const Scene& scene, const Vec3d& sun_directio
   double half = options.shadow_half_size.value_or(1.0);
   if (!options.shadow_centre || !options.shadow_half_size) {
     Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    double lowest = std::numeric_limits<double>::infinity();  // of the visible points [m]
     for (int y = 0; y < buffer.height; ++y) {
       poll_cancel();  // a serial pass over every pixel
       for (int x = 0; x < buffer.width; ++x) {
@@ -59,9 +83,15 @@ std::unique_ptr<ShadowMap> sun_map(const Scene& scene, const Vec3d& sun_directio
         if (!hit || (hit->point - eye).norm() > options.shadow_distance) continue;
         const Vec3d q(hit->point.dot(side), hit->point.dot(up), hit->point.dot(along));
         lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+        lowest = std::min(lowest, hit->point.y());
       }
     }
-    if (!(hi.x() >= lo.x())) lo = hi = Vec3d::Zero();
+    const Eigen::AlignedBox2d casters = caster_bounds(scene, sun_direction, side, up, lowest);
+    if (!casters.isEmpty()) {
+      lo.head<2>() = lo.head<2>().cwiseMax(casters.min());
+      hi.head<2>() = hi.head<2>().cwiseMin(casters.max());
+    }
+    if (!(hi.x() >= lo.x() && hi.y() >= lo.y())) lo = hi = Vec3d::Zero();  // nothing visible under a caster
     const Vec3d mid = 0.5 * (lo + hi);
     if (!options.shadow_centre) centre = mid.x() * side + mid.y() * up + mid.z() * along;
     if (!options.shadow_half_size) half = std::max(0.5 * (hi - lo).head<2>().maxCoeff() * 1.02, 1e-3);

@@ -152,14 +152,6 @@ std::pair<double, double> elevation_range(const Camera& camera) {
   return {std::max(lo - margin, -0.5 * kPi), std::min(hi + margin, 0.5 * kPi)};
 }
 
-// Over a spherical Earth without the escape below (turbulence's perturbed camera rays follow the
-// table's whole paths), camera rays longer than this are traced per pixel: each of the table's
-// few thousand paths is traced to its end, while a pixel's path, curving up in flat coordinates,
-// soon leaves the air by the escape shortcut (Caster::escape_direction). Measured on 2 cores,
-// 80 x 60 pixels: the table costs as much as per-pixel tracing at 150 km, 2.3x at 400 km, 32x at
-// 1200 km (a setting sun). Over a flat Earth level rays never leave the air: the table stays.
-constexpr double kTableLongestPath = 150e3;  // [m]
-
 // `field`: the height-only air camera rays see outside every local region (null for 3-D fields).
 // escape: over a spherical Earth, the caster's (Caster::plane_escape): each entry ends where it
 // leaves the air, so an entry to the horizon costs what a pixel's traced path costs; ceiling: the

@@ -114,17 +114,44 @@ ShimmerCaster::ShimmerCaster(const Scene& scene, FieldPtr layered, std::shared_p
   trace_options_.tol = options.tol;
 }
 
+namespace {
+
+// perturbed_trace_refusal's reasons that the field and options give (ShimmerCaster::make has no
+// camera; without the table it is null there all the same).
+const char* air_refusal(const IndexField* field, const RenderOptions& options) {
+  if (options.turbulence_trace != TurbulenceTrace::kPerturbed || !field || !field->turbulence()) return nullptr;
+  if (options.method != RenderMethod::kCurved) return "it follows curved rays (method 'curved')";
+  if (options.spectral) return "it serves RGB renders (spectral renders trace each wavelength strictly)";
+  if (!field->with_turbulence(nullptr)->height_only()) {
+    return "it needs calm air that depends on height only (no hot spots, no custom field)";
+  }
+  if (!options.use_table || (options.trace && *options.trace != TraceMethod::kStratified)) {
+    return "it follows the eye table's calm paths (table=True, trace None or 'stratified')";
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+const char* perturbed_trace_refusal(const IndexField* field, const RenderOptions& options, const Camera& camera) {
+  if (const char* why = air_refusal(field, options)) return why;
+  if (options.turbulence_trace != TurbulenceTrace::kPerturbed || !field || !field->turbulence()) return nullptr;
+  if (camera.aperture_diameter() > 0.0) return "it follows rays from the eye (a pinhole camera, no aperture)";
+  if (std::isfinite(field->earth_radius()) && options.max_length > kTableLongestPath) {
+    return "over a spherical Earth it follows paths up to 150 km (max_length <= 150e3)";
+  }
+  return nullptr;
+}
+
 std::unique_ptr<ShimmerCaster> ShimmerCaster::make(const Scene& scene, const IndexField& field, const FieldPtr& layered,
                                                    const ElevationTable* table, const Vec3d& eye, double pixel_angle,
                                                    const std::optional<IorFloors>& floors,
                                                    const RenderOptions& options) {
-  if (options.turbulence_trace != TurbulenceTrace::kPerturbed || !table || !layered || !layered->height_only() ||
-      options.spectral || options.method != RenderMethod::kCurved) {
+  if (options.turbulence_trace != TurbulenceTrace::kPerturbed || !field.turbulence() ||
+      air_refusal(&field, options) || !table || !layered || !layered->height_only()) {
     return nullptr;
   }
   std::shared_ptr<const Turbulence> turbulence = field.turbulence();
-  // Hot spots besides the turbulence: the calm part is not the height-only air (strict).
-  if (!turbulence || !field.with_turbulence(nullptr)->height_only()) return nullptr;
   auto caster = std::make_unique<ShimmerCaster>(scene, layered, std::move(turbulence), table, eye, pixel_angle, options);
   if (floors) caster->calm_.set_ior_floors(*floors);
   return caster;

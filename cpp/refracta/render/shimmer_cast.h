@@ -50,6 +50,7 @@
 #include "refracta/rays/trace_options.h"
 #include "refracta/render/caster.h"
 #include "refracta/render/render_options.h"
+#include "refracta/scene/camera.h"
 
 #include <memory>
 #include <optional>
@@ -87,6 +88,14 @@ class CalmPath {
   std::vector<RayNode<double>> nodes_;
   std::vector<double> lowest_;
 };
+
+// Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera`
+// (null: it can, or 'strict' was asked, or the field has no turbulence): the fast path follows
+// the eye table's calm paths (renderer.cpp eye_table: height-only calm air without hot spots, RGB,
+// curved rays, the table on and stratified, a pinhole camera, paths over a spherical Earth no
+// longer than kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python)
+// warn with it, as the render then traces strictly.
+const char* perturbed_trace_refusal(const IndexField* field, const RenderOptions& options, const Camera& camera);
 
 class ShimmerCaster {
  public:

@@ -17,6 +17,8 @@ Camera.ray and Camera.project use them):
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from refracta import _core
@@ -106,5 +108,9 @@ def dolly(camera: _core.Camera, steps: float) -> _core.Camera:
     target = np.asarray(camera.look_at, dtype=float)
     offset = np.asarray(camera.position, dtype=float) - target
     distance = float(np.linalg.norm(offset))
-    new_distance = max(distance * DOLLY_STEP ** float(steps), MIN_DISTANCE)
+    # In logarithms, the far end held inside the scene's reach as the near one above MIN_DISTANCE:
+    # 0.9 ** -1e4 overflowed (a trial).
+    reach = _core._SCENE_REACH - float(np.abs(target).max())
+    log_distance = math.log(distance) + float(steps) * math.log(DOLLY_STEP)
+    new_distance = math.exp(min(max(log_distance, math.log(MIN_DISTANCE)), math.log(max(reach, distance))))
     return with_pose(camera, position=target + offset * (new_distance / distance))

@@ -269,7 +269,9 @@ class EditorModel:
             raise ValueError(f"camera must be a refracta.Camera (got {type(camera).__name__})")
         if not isinstance(field, _core.IndexField):
             raise ValueError(f"field must be a refracta IndexField (got {type(field).__name__})")
-        if isinstance(preview_scale, bool) or int(preview_scale) != preview_scale or preview_scale < 1:
+        scale = preview_scale
+        whole = _checks.is_number(scale) and math.isfinite(scale) and int(scale) == scale
+        if not whole or scale < 1:
             raise ValueError(f"preview_scale must be a whole number >= 1 (got {preview_scale!r})")
         self._lock = threading.RLock()
         self._observers: list[Callable[[str], None]] = []
@@ -290,7 +292,10 @@ class EditorModel:
                 raise ValueError(f"solve_options: pass {reserved!r} as the editor's own argument")
         _check_options(self.render_options, self.solve_options)
         self.preview_scale = int(preview_scale)
+        if display is not None and not isinstance(display, dict):
+            raise ValueError(f"display must be a dict of refracta.io.to_display keywords (got {display!r})")
         self.display = dict(DEFAULT_DISPLAY if display is None else display)
+        _image_io.settings(**self.display)  # here, not in every render job: a bad one fails now (ValueError)
         self.pairs: tuple = ()
         self.pending_source: np.ndarray | None = None  # a source waiting for its destination [m]
         self.selected: int | None = None
@@ -554,6 +559,8 @@ class EditorModel:
         unknown names."""
         if isinstance(free, str):
             free = [free]
+        if free is not None and not (isinstance(free, (list, tuple)) and all(isinstance(n, str) for n in free)):
+            raise ValueError(f"free must be a parameter name or a list of them (got {free!r})")
         free = tuple(free or ())
         valid = list(self.field.param_names) + list(_camera_names())
         unknown = [name for name in free if name not in valid]
@@ -697,10 +704,11 @@ class EditorModel:
         steps = _finite(steps, "steps")
         if steps == 0.0:
             return
+        camera = camera_moves.dolly(self.camera, steps)  # first: a move that fails records no undo step
         with self._lock:
             self._record(self._snapshot("dolly"))
         self._notify("history")
-        self._set_camera(camera_moves.dolly(self.camera, steps))
+        self._set_camera(camera)
 
     # ---------------------------------------------------------------- camera
     def set_camera(self, position=None, look_at=None, vfov=None) -> None:
@@ -940,7 +948,7 @@ class EditorModel:
         path = Path(path)
         loaded = load_scene(path)
         scene, camera, field = loaded
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8-sig")  # as load_scene reads it (a byte-order mark dropped)
         with self._lock:
             before = self._snapshot(f"load scene {path.name}")
             self.scene, self.scene_text, self.camera = scene, text, camera

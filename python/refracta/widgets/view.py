@@ -119,7 +119,7 @@ class MirageEditor(w.VBox):
             loaded.camera,
             loaded.field,
             free,
-            scene_text=Path(path).read_text(),
+            scene_text=Path(path).read_text(encoding="utf-8-sig"),  # as load_scene reads it
             turbulence=loaded.turbulence,
             **kwargs,
         )
