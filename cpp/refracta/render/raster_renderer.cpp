@@ -207,7 +207,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
             L += lighting.sample_light(i, si, s.bsdf, lambda, u) * weight;
             continue;
           }
-          const auto bs = s.bsdf.sample(si.wo, (lobe_of[size_t(a * n + b)] + 0.5) * weight, u);
+          const auto bs = s.bsdf.sample(si.wo, (lobe_of[size_t(a) * size_t(n) + size_t(b)] + 0.5) * weight, u);
           if (!bs) continue;
           LightLiSample ls;
           ls.L = light.Le(bs->wi, lambda);
