@@ -534,7 +534,7 @@ sigma_c^2, +-0.004). U in [0, 30]; ValueError naming wind_speed otherwise.)doc";
 inline constexpr const char mkd_doc_refracta_pdf_li_all[] = R"doc(The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights
 need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3)
 (each empty: zeros; else one per point).)doc";
-inline constexpr const char mkd_doc_refracta_perturbed_trace_refusal[] = R"doc(Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera` (null:
+inline constexpr const char mkd_doc_refracta_perturbed_trace_refusal[] = R"doc(Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera` (empty:
 it can, or 'strict' was asked, or the field has no turbulence): the fast path follows the eye
 table's calm paths (renderer.cpp eye_table: height-only calm air without hot spots, RGB, curved
 rays, the table on and stratified, a pinhole camera, paths over a spherical Earth no longer than

@@ -3,12 +3,12 @@
 pybind11 answers a call whose arguments do not convert with a generic TypeError ("__init__():
 incompatible constructor arguments. The following argument types are supported: ...") that names
 neither the argument nor what is wrong with it: `Camera(p, q, vfov="wide")` or `HotSpot(0, 300,
-"big", 8)`. install(), run as this module loads (refracta's
-__init__ imports it first), wraps every public function and method of refracta._core so that such a
-failure is diagnosed from the call's own signature (the one pybind11 prints: every bound function
-has exactly one) and raised as an ArgumentError naming the argument: "Camera: vfov must be a
-number (got 'wide')". The C++ conversions stay the only rule: the wrapper only reads a failure
-that has happened, and re-raises pybind11's error unchanged where it cannot say more.
+"big", 8)`. install(), run as this module loads (refracta's __init__ imports it first), wraps
+every public function and method of refracta._core so that such a failure is diagnosed from the
+call's own signature (the one pybind11 prints: every bound function has exactly one) and raised
+as an ArgumentError naming the argument: "Camera: vfov must be a number (got 'wide')". The C++
+conversions stay the only rule: the wrapper only reads a failure that has happened, and
+re-raises pybind11's error unchanged where it cannot say more.
 
 The stubs describe refracta._core itself: with REFRACTA_UNWRAPPED_CORE set (make stubs and the
 stubs' test) nothing is wrapped.
@@ -22,7 +22,7 @@ import re
 from collections.abc import Callable
 from typing import Any
 
-import numpy as np
+from refracta._checks import is_flag
 
 
 class ArgumentError(TypeError, ValueError):
@@ -66,26 +66,9 @@ def _parameters(signature: str) -> tuple[list[tuple[str, str, bool]], int]:
         if part.startswith("*"):  # *args, **kwargs: anything goes
             return out, -2
         name, _, rest = part.partition(":")
-        annotation, has_default = rest, False
-        if "=" in rest:
-            annotation, has_default = _split_default(rest), True
-        out.append((name.strip(), annotation.strip(), has_default))
+        annotation, *default = _split_top_level(rest, "=") or [""]  # "annotation = default"
+        out.append((name.strip(), annotation, bool(default)))
     return out, len(out) if positional < 0 else positional
-
-
-def _split_default(text: str) -> str:
-    """The annotation of "annotation = default" (the default may hold '=' only inside brackets)."""
-    depth = 0
-    for i, ch in enumerate(text):
-        depth += ch in "([{"
-        depth -= ch in ")]}"
-        if ch == "=" and depth == 0:
-            return text[:i]
-    return text
-
-
-def _is_bool(value: Any) -> bool:
-    return isinstance(value, (bool, np.bool_))
 
 
 def _what_is_wrong(annotation: str, value: Any) -> str | None:
@@ -114,13 +97,13 @@ def _against_one(annotation: str, value: Any) -> str | None:
     if annotation == "None":
         return None if value is None else "None"
     if annotation in ("typing.SupportsFloat", "float"):  # any __float__ or __index__, never a bool
-        ok = not _is_bool(value) and (hasattr(type(value), "__float__") or hasattr(type(value), "__index__"))
+        ok = not is_flag(value) and (hasattr(type(value), "__float__") or hasattr(type(value), "__index__"))
         return None if ok else "a number"
     if annotation in ("typing.SupportsInt", "int", "typing.SupportsIndex"):  # __index__, never a float
-        ok = not _is_bool(value) and hasattr(type(value), "__index__")
+        ok = not is_flag(value) and hasattr(type(value), "__index__")
         return None if ok else "a whole number"
     if annotation == "bool":  # bound with noconvert: Python's and numpy's bools only
-        return None if _is_bool(value) else "True or False"
+        return None if is_flag(value) else "True or False"
     if annotation == "str":
         return None if isinstance(value, (str, bytes)) else "a string"
     if annotation in ("os.PathLike", "bytes"):

@@ -44,10 +44,21 @@ def finite_pair(value) -> tuple[float, float] | None:
     return pair if pair is not None and math.isfinite(pair[0]) and math.isfinite(pair[1]) else None
 
 
+def is_flag(value) -> bool:
+    """Whether `value` is Python's or numpy's bool (what an on/off argument takes)."""
+    return isinstance(value, (bool, np.bool_))
+
+
+def on_image(camera, u: float, v: float) -> bool:
+    """Whether pixel coordinates (u, v) lie on `camera`'s image, its edges included (as solve takes
+    them): beyond it a pixel's ray is extrapolated, not one the camera shows."""
+    return 0.0 <= u <= camera.width and 0.0 <= v <= camera.height
+
+
 def _holds_bool(value) -> bool:
     """Whether `value` is a bool or a (nested) list or tuple holding one: numpy reads (True, 20.0)
     as the float array [1.0, 20.0]."""
-    if isinstance(value, (bool, np.bool_)):
+    if is_flag(value):
         return True
     if isinstance(value, (list, tuple)):
         return any(_holds_bool(item) for item in value)

@@ -3615,7 +3615,7 @@ def _pair_paths(field: IndexField, origins: typing.Any, directions: typing.Any, 
     """
 def _perturbed_trace_refusal(field: IndexField, options: RenderOptions, camera: Camera) -> str | None:
     """
-    Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera` (null:
+    Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera` (empty:
     it can, or 'strict' was asked, or the field has no turbulence): the fast path follows the eye
     table's calm paths (renderer.cpp eye_table: height-only calm air without hot spots, RGB, curved
     rays, the table on and stratified, a pinhole camera, paths over a spherical Earth no longer than

@@ -7,9 +7,10 @@ from __future__ import annotations
 import time
 from typing import Callable, Union
 
-import numpy as np
 import tqdm.auto
 import tqdm.std
+
+from refracta._checks import is_flag
 
 
 # The calls come every 50 ms, so tqdm's monitor thread (which wakes a bar whose updates stall) has
@@ -65,7 +66,7 @@ def progress_callback(progress: ProgressArg, label: str) -> Callable[[int, int],
     """The callback for a progress= argument: a ProgressBar(label) for True, None for False or None,
     the callable itself; ValueError for anything else (a string reached C++ and failed there as
     "'str' object is not callable")."""
-    if progress is None or isinstance(progress, (bool, np.bool_)):  # numpy's bools as Python's
+    if progress is None or is_flag(progress):  # numpy's bools as Python's
         return ProgressBar(label) if progress else None
     if not callable(progress):
         raise ValueError(f"progress must be True, False or a callable progress(done, total) (got {progress!r})")

@@ -530,7 +530,7 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     """Solve the scene's atmosphere for the pairs file; write the scene with the solved atmosphere."""
     import refracta
     from refracta import edit
-    from refracta.scene_file import with_atmosphere
+    from refracta.scene_file import read_scene_text, with_atmosphere
 
     _check_output(output, scene_file=True)
     loaded = refracta.load_scene(scene_path)
@@ -545,8 +545,7 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     result = edit.solve(field, camera, pairs, progress=True, **options)
     print(result.report())
     # The solved field carries the file's turbulence (if any): written with its settings again.
-    text = Path(scene_path).read_text(encoding="utf-8-sig")  # as load_scene reads it (a byte-order mark dropped)
-    output.write_text(with_atmosphere(text, result.field, loaded.turbulence))
+    output.write_text(with_atmosphere(read_scene_text(scene_path), result.field, loaded.turbulence))
     if result.success:
         print(f"wrote {output}")
         return 0

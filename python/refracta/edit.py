@@ -44,7 +44,7 @@ from typing import Any, Callable
 import numpy as np
 
 from refracta import _core, _options
-from refracta._checks import is_number, number, real_array
+from refracta._checks import is_number, number, on_image, real_array
 from refracta._progress import progress_callback
 
 # The options and summary of a solve, bound from C++ (edit_settings.h, point_pair.h).
@@ -171,7 +171,7 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float
                     "as eye_or_camera (or give the destination as a 3D point)"
                 )
             u, v = pair.destination
-            if not (0.0 <= u <= camera.width and 0.0 <= v <= camera.height):
+            if not on_image(camera, u, v):
                 raise ValueError(
                     f"pairs[{i}]: pixel {pair.destination} lies outside the camera's {camera.width} x "
                     f"{camera.height} image (u in [0, {camera.width}], v in [0, {camera.height}]); pixels of a "
@@ -628,7 +628,7 @@ def load_pairs(
             if scene is None or camera is None:
                 raise ValueError(f"{where}: a source given as {{'pixel': [u, v]}} needs the scene and camera")
             u, v = _vector(source["pixel"], (2,), f"{where} source pixel")
-            if not (0.0 <= u <= camera.width and 0.0 <= v <= camera.height):  # pick would extrapolate the ray
+            if not on_image(camera, u, v):  # pick would extrapolate the ray
                 raise ValueError(
                     f"{where}: source pixel ({u:g}, {v:g}) lies outside the camera's {camera.width} x "
                     f"{camera.height} image (u in [0, {camera.width}], v in [0, {camera.height}])"

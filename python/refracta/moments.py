@@ -19,7 +19,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from refracta import _core
-from refracta._checks import is_seed, real_array
+from refracta._checks import is_flag, is_seed, real_array
 
 
 def power_moments(depths, weights=None, count: int = 4) -> np.ndarray:
@@ -56,7 +56,7 @@ def quantize(moments, depth_range: str = "unit", inverse: bool = False) -> np.nd
     moments = real_array(moments, "quantize: moments")
     if moments.shape[-1:] != (4,):
         raise ValueError(f"quantize: moments must have shape (..., 4) (got {moments.shape})")
-    if not isinstance(inverse, (bool, np.bool_)):
+    if not is_flag(inverse):
         raise ValueError(f"quantize: inverse must be True or False (got {inverse!r})")
     flat = np.ascontiguousarray(moments.reshape(-1, 4))
     return _core._quantize_moments(flat, depth_range, bool(inverse)).reshape(moments.shape)

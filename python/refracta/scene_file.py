@@ -683,6 +683,13 @@ def _atmosphere(table: dict, where: _Locator, get):
     return field, turbulence
 
 
+def read_scene_text(path) -> str:
+    """A scene file's text as load_scene reads it: UTF-8 (TOML's encoding), a byte-order mark
+    (Windows editors write one) read past, as TOML parsers commonly do (tomllib refused it:
+    "Invalid statement (at line 1, column 1)"). UnicodeDecodeError for text that is not UTF-8."""
+    return Path(os.fspath(path)).read_text(encoding="utf-8-sig")
+
+
 def load_scene(path, size=None) -> SceneFile:
     """Read a TOML scene file (format in this module's docstring): a SceneFile, which unpacks as
     (scene, camera, field) and has the [atmosphere.turbulence]'s refracta.Turbulence as .turbulence.
@@ -702,9 +709,7 @@ def load_scene(path, size=None) -> SceneFile:
     if not path.is_file():
         raise _core.IoError(f"cannot read scene file '{path}': not a regular file")
     try:
-        # TOML is UTF-8 by its specification; a byte-order mark (Windows editors write one) is read
-        # past, as TOML parsers commonly do (tomllib refused it: "Invalid statement (at line 1, column 1)").
-        text = path.read_text(encoding="utf-8-sig")
+        text = read_scene_text(path)
     except UnicodeDecodeError as error:
         raise ValueError(
             f"{path}: not a TOML scene file (not UTF-8 text: {error.reason} at byte {error.start})"

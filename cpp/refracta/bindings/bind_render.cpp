@@ -111,8 +111,8 @@ void bind_render(py::module_& m) {
   m.def(
       "_perturbed_trace_refusal",
       [](const std::shared_ptr<IndexField>& field, const O& options, const Camera& camera) -> std::optional<std::string> {
-        const char* why = perturbed_trace_refusal(field.get(), options, camera);
-        return why ? std::optional<std::string>(why) : std::nullopt;
+        std::string why = perturbed_trace_refusal(field.get(), options, camera);
+        return why.empty() ? std::nullopt : std::optional<std::string>(std::move(why));
       },
       py::arg("field"), py::arg("options"), py::arg("camera"), DOC(refracta, perturbed_trace_refusal));
   m.def(

@@ -116,13 +116,17 @@ ShimmerCaster::ShimmerCaster(const Scene& scene, FieldPtr layered, std::shared_p
 
 namespace {
 
-// perturbed_trace_refusal's reasons that the field and options give (ShimmerCaster::make has no
-// camera; without the table it is null there all the same).
-const char* air_refusal(const IndexField* field, const RenderOptions& options) {
-  if (options.turbulence_trace != TurbulenceTrace::kPerturbed || !field || !field->turbulence()) return nullptr;
+// Whether the render asks for the perturbed trace through turbulent air at all.
+bool asks_perturbed(const IndexField* field, const RenderOptions& options) {
+  return options.turbulence_trace == TurbulenceTrace::kPerturbed && field && field->turbulence();
+}
+
+// perturbed_trace_refusal's reasons that the field and options give, for a render that asks
+// (ShimmerCaster::make has no camera; without the table it is null there all the same).
+const char* air_refusal(const IndexField& field, const RenderOptions& options) {
   if (options.method != RenderMethod::kCurved) return "it follows curved rays (method 'curved')";
   if (options.spectral) return "it serves RGB renders (spectral renders trace each wavelength strictly)";
-  if (!field->with_turbulence(nullptr)->height_only()) {
+  if (!field.with_turbulence(nullptr)->height_only()) {
     return "it needs calm air that depends on height only (no hot spots, no custom field)";
   }
   if (!options.use_table || (options.trace && *options.trace != TraceMethod::kStratified)) {
@@ -133,22 +137,23 @@ const char* air_refusal(const IndexField* field, const RenderOptions& options) {
 
 }  // namespace
 
-const char* perturbed_trace_refusal(const IndexField* field, const RenderOptions& options, const Camera& camera) {
-  if (const char* why = air_refusal(field, options)) return why;
-  if (options.turbulence_trace != TurbulenceTrace::kPerturbed || !field || !field->turbulence()) return nullptr;
+std::string perturbed_trace_refusal(const IndexField* field, const RenderOptions& options, const Camera& camera) {
+  if (!asks_perturbed(field, options)) return "";
+  if (const char* why = air_refusal(*field, options)) return why;
   if (camera.aperture_diameter() > 0.0) return "it follows rays from the eye (a pinhole camera, no aperture)";
   if (std::isfinite(field->earth_radius()) && options.max_length > kTableLongestPath) {
-    return "over a spherical Earth it follows paths up to 150 km (max_length <= 150e3)";
+    return concat("over a spherical Earth it follows paths up to max_length = ", kTableLongestPath, " m (got ",
+                  options.max_length, ")");
   }
-  return nullptr;
+  return "";
 }
 
 std::unique_ptr<ShimmerCaster> ShimmerCaster::make(const Scene& scene, const IndexField& field, const FieldPtr& layered,
                                                    const ElevationTable* table, const Vec3d& eye, double pixel_angle,
                                                    const std::optional<IorFloors>& floors,
                                                    const RenderOptions& options) {
-  if (options.turbulence_trace != TurbulenceTrace::kPerturbed || !field.turbulence() ||
-      air_refusal(&field, options) || !table || !layered || !layered->height_only()) {
+  if (!asks_perturbed(&field, options) || air_refusal(field, options) || !table || !layered ||
+      !layered->height_only()) {
     return nullptr;
   }
   std::shared_ptr<const Turbulence> turbulence = field.turbulence();

@@ -54,6 +54,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace refracta {
@@ -90,12 +91,12 @@ class CalmPath {
 };
 
 // Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera`
-// (null: it can, or 'strict' was asked, or the field has no turbulence): the fast path follows
+// (empty: it can, or 'strict' was asked, or the field has no turbulence): the fast path follows
 // the eye table's calm paths (renderer.cpp eye_table: height-only calm air without hot spots, RGB,
 // curved rays, the table on and stratified, a pinhole camera, paths over a spherical Earth no
 // longer than kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python)
 // warn with it, as the render then traces strictly.
-const char* perturbed_trace_refusal(const IndexField* field, const RenderOptions& options, const Camera& camera);
+std::string perturbed_trace_refusal(const IndexField* field, const RenderOptions& options, const Camera& camera);
 
 class ShimmerCaster {
  public:

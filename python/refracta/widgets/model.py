@@ -502,14 +502,10 @@ class EditorModel:
                 self._record(before)
         self._notify("pairs", "history")
 
-    def _on_image(self, u: float, v: float) -> bool:
-        """Whether pixel (u, v) lies on the camera's image (its edges included, as solve takes them)."""
-        return 0.0 <= u <= self.camera.width and 0.0 <= v <= self.camera.height
-
     def _check_in_image(self, pair) -> None:
         """A pixel destination must lie on the camera's image, as solve requires (a pair added off it
         failed only later, as a failed solve job)."""
-        if len(pair.destination) == 2 and not self._on_image(*pair.destination):
+        if len(pair.destination) == 2 and not _checks.on_image(self.camera, *pair.destination):
             width, height = self.camera.width, self.camera.height
             raise ValueError(f"pixel {pair.destination} lies outside the {width} x {height} image")
 
@@ -619,7 +615,7 @@ class EditorModel:
                 "this close to a marker, hold Shift."
             )
             return
-        if not self._on_image(u, v):  # a source or destination off the image
+        if not _checks.on_image(self.camera, u, v):  # a source or destination off the image
             width, height = self.camera.width, self.camera.height
             self.say(f"Pixel ({u:.1f}, {v:.1f}) lies outside the {width} x {height} image: click on it.", "error")
             return
@@ -943,12 +939,12 @@ class EditorModel:
     def import_scene(self, path) -> None:
         """Replace scene, camera and atmosphere by a scene file's (refracta.load_scene); undoable.
         A file without [atmosphere] keeps the editor's."""
-        from refracta.scene_file import load_scene
+        from refracta.scene_file import load_scene, read_scene_text
 
         path = Path(path)
         loaded = load_scene(path)
         scene, camera, field = loaded
-        text = path.read_text(encoding="utf-8-sig")  # as load_scene reads it (a byte-order mark dropped)
+        text = read_scene_text(path)
         with self._lock:
             before = self._snapshot(f"load scene {path.name}")
             self.scene, self.scene_text, self.camera = scene, text, camera

@@ -109,7 +109,7 @@ class MirageEditor(w.VBox):
     @classmethod
     def from_file(cls, path, free: Sequence[str] | None = None, **kwargs) -> MirageEditor:
         """An editor for a scene file (refracta.load_scene): exports keep everything in the file."""
-        from refracta.scene_file import load_scene
+        from refracta.scene_file import load_scene, read_scene_text
 
         loaded = load_scene(path)
         if loaded.field is None:
@@ -119,7 +119,7 @@ class MirageEditor(w.VBox):
             loaded.camera,
             loaded.field,
             free,
-            scene_text=Path(path).read_text(encoding="utf-8-sig"),  # as load_scene reads it
+            scene_text=read_scene_text(path),
             turbulence=loaded.turbulence,
             **kwargs,
         )
