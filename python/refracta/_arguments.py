@@ -188,7 +188,7 @@ def _wrap(function: Callable, owner: str, name: str, is_method: bool) -> Callabl
             return function(*args, **kwargs)
         except TypeError as error:
             try:
-                diagnosis = _diagnosis(error, owner, name, args[1:] if is_method else args, kwargs)
+                diagnosis = _diagnosis(error, function, owner, name, args[1:] if is_method else args, kwargs)
             except Exception:  # (a value whose repr or len raises): pybind11's own message
                 diagnosis = None
             # No reference to the arguments may stay in this frame once it raises: a traceback that
@@ -207,14 +207,20 @@ def _wrap(function: Callable, owner: str, name: str, is_method: bool) -> Callabl
     return call
 
 
-def _diagnosis(error: TypeError, owner: str, name: str, args: tuple, kwargs: dict) -> str | None:
-    """diagnose() of a TypeError that is pybind11's refusal of this call's arguments; None for
-    any other TypeError (raised inside the call, or by another function it called)."""
+def _diagnosis(error: TypeError, function: Callable, owner: str, name: str, args: tuple, kwargs: dict) -> str | None:
+    """diagnose() of a TypeError that is pybind11's refusal of this call's arguments. Any other
+    TypeError is diagnosed from the function's own signature: a conversion that failed inside
+    pybind11 ("len() of unsized object" for a 0-d array given as a pair) is named where an
+    argument is surely refused (then the call cannot have run); else None, and the error stands
+    (raised inside the call, or by another function it called)."""
     message = str(error)
     failed = _INCOMPATIBLE.match(message)
-    if not failed or failed.group(1) != name:
+    if failed:
+        return diagnose(owner, message, args, kwargs) if failed.group(1) == name else None
+    signature = (function.__doc__ or "").split("\n", 1)[0]
+    if not signature.startswith(f"{name}("):
         return None
-    return diagnose(owner, message, args, kwargs)
+    return diagnose(owner, f"    1. {signature}", args, kwargs)
 
 
 def install(core) -> None:
