@@ -3,6 +3,8 @@ bound Camera class by refracta/__init__.py; refracta.geo (and so pyproj) loads o
 
 from __future__ import annotations
 
+import math
+
 from refracta._core import Camera
 
 
@@ -10,9 +12,10 @@ def geographic_camera(
     lat,
     lon,
     height,
-    azimuth,
-    elevation,
+    azimuth=None,
+    elevation=None,
     *,
+    target=None,
     vfov=None,
     focal_length_mm=None,
     sensor_mm=None,
@@ -23,7 +26,9 @@ def geographic_camera(
 ) -> Camera:
     """A camera at latitude ``lat``, longitude ``lon`` [deg], ``height`` [m] above the WGS84
     ellipsoid (the eye's height: the ground's height plus the eye above it), looking at ``azimuth``
-    [deg clockwise from north] and ``elevation`` [deg above the horizontal].
+    [deg clockwise from north] and ``elevation`` [deg above the horizontal] -- or, instead of those
+    two, at ``target`` = (lat, lon[, height above the ellipsoid, default 0]): its bearing and its
+    elevation with no air (``LocalFrame.aim``; refraction then lifts it a little above the centre).
 
     It sits at the origin of ``refracta.geo.LocalFrame(lat, lon, earth_radius=R)``, at scene
     position (0, R ln(1 + height / R), 0): build the rest of the scene with that frame
@@ -47,12 +52,16 @@ def geographic_camera(
     from refracta import geo  # here: pyproj loads on first use, not with refracta
 
     if earth_radius is None:  # azimuth checked first: an array of them made an array of radii
-        earth_radius = geo.radius_of_curvature(geo._number(lat, "lat"), geo._number(azimuth, "azimuth"))
+        along = azimuth
+        if target is not None and azimuth is None:  # along the geodesic to the target
+            along = geo.LocalFrame(lat, lon, earth_radius=math.inf).aim(target, height)[0]
+        earth_radius = geo.radius_of_curvature(geo._number(lat, "lat"), geo._number(along, "azimuth"))
     frame = geo.LocalFrame(lat, lon, earth_radius=earth_radius)
     return frame.camera(
         height,
         azimuth,
         elevation,
+        target=target,
         vfov=vfov,
         focal_length_mm=focal_length_mm,
         sensor_mm=sensor_mm,

@@ -23,6 +23,9 @@ class _Text(tqdm.std.tqdm):
     monitor_interval = 0
 
 
+_FEW = "{l_bar}{bar}| {n_fmt}/{total_fmt} [{elapsed}<{remaining}]"
+
+
 class ProgressBar:
     """A progress(done, total) callback drawing ``label: 52%|#####     | 80k/153k [00:01<00:01, ...]``.
 
@@ -46,10 +49,13 @@ class ProgressBar:
         if self.bar is None:
             # The quiet period counts from this object's creation, not from the first call.
             delay = max(0.0, self.quiet_seconds - (time.monotonic() - self.start))
+            # Thousands of items: counts and rate in SI units (80k/153k, 7.6Mit/s); a few: the counts
+            # alone, as a rate of items ended in microseconds reads 7577944.20it/s.
+            shape = {"unit_scale": True} if total >= 1000 else {"bar_format": _FEW}
             if self.stream is None:
-                self.bar = _Widget(total=total, desc=self.label, unit_scale=total >= 1000, delay=delay)
+                self.bar = _Widget(total=total, desc=self.label, delay=delay, **shape)
             else:
-                self.bar = _Text(total=total, desc=self.label, unit_scale=total >= 1000, delay=delay, file=self.stream)
+                self.bar = _Text(total=total, desc=self.label, delay=delay, file=self.stream, **shape)
         if self.bar.total != total:
             self.bar.total = total
         self.bar.update(done - self.bar.n)

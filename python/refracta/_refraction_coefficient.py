@@ -209,6 +209,17 @@ def _apparent_elevation(tracer: _Tracer, target: float, low: float, low_height: 
             side = 1
 
 
+def straight_elevation(distance: float, eye_height: float, target_height: float, radius: float) -> float:
+    """[deg] The elevation at the eye of the straight line to a target: the eye `eye_height` [m] and
+    the target `target_height` [m] above a sphere of `radius` [m] (math.inf: flat), `distance` [m]
+    apart along it (the central angle distance / radius). Where the target shows with no air."""
+    if not math.isfinite(radius):
+        return math.degrees(math.atan2(target_height - eye_height, distance))
+    phi = distance / radius
+    far = radius + target_height
+    return math.degrees(math.atan2(far * math.cos(phi) - (radius + eye_height), far * math.sin(phi)))
+
+
 def refraction_coefficient(
     field: _core.IndexField,
     eye_height,
@@ -271,9 +282,7 @@ def refraction_coefficient(
 
     true_elevation = apparent_elevation = None
     if target is not None:
-        # Straight line from the eye (radius R + h0) to the target (R + target, at angle phi).
-        far = radius + target
-        true_elevation = math.degrees(math.atan2(far * math.cos(phi) - (radius + h0), far * math.sin(phi)))
+        true_elevation = straight_elevation(d, h0, target, radius)
         if target >= hidden_refracted:
             guess = math.radians(true_elevation)
             apparent_elevation = math.degrees(_apparent_elevation(tracer, target, limit, hidden_refracted, guess))

@@ -77,6 +77,23 @@ def _ground_height(scene: _core.Scene, bounds) -> float | None:
     return float(lower[1]) if lower[1] == upper[1] else None
 
 
+def _check_frame_radius(frame, field, method: str) -> None:
+    """A SceneWarning where the frame= of the 'geographic' readout flattens another Earth than the
+    rays' field: its latitudes, longitudes and heights would then be of points the render did not see."""
+    air = None if field is None or method == "straight" else field.earth_radius
+    ours = math.inf if air is None else float(air)
+    theirs = float(getattr(frame, "earth_radius", math.inf))
+    if ours == theirs or (math.isfinite(ours) and math.isfinite(theirs) and abs(ours - theirs) <= 1e-9 * ours):
+        return
+    warnings.warn(
+        f"render: frame= flattens an Earth of radius {theirs:g} m but the rays go through "
+        + ("straight (flat) air" if air is None else f"a field of earth_radius {ours:g} m")
+        + ": the 'geographic' readout maps points the render did not see; give the frame and CurvedEarth one radius",
+        SceneWarning,
+        stacklevel=3,
+    )
+
+
 def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, where: str = "render") -> None:
     """The SceneWarning hints of render(): a scene without any light or sky; a camera at or below
     its ground or sea (_ground_height); and one whose lowest
@@ -319,6 +336,8 @@ def render(
             "render: frame= maps the 'geographic' readout; ask for it with aovs=[..., 'geographic'] (got "
             f"frame={frame!r} and aovs={aovs!r})"
         )
+    if frame is not None:
+        _check_frame_radius(frame, field, method)
     surface = [name for name in wanted if name not in READOUT_NAMES]  # the readouts say so themselves
     if (denoise or surface) and method == "raster_march":
         raise ValueError(

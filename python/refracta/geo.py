@@ -35,6 +35,7 @@ import pyproj
 
 from refracta import _core
 from refracta._checks import finite_pair, is_number, is_seed
+from refracta._refraction_coefficient import straight_elevation
 
 __all__ = ["LocalFrame", "forward", "inverse", "principal_radii", "radius_of_curvature"]
 
@@ -46,7 +47,7 @@ _LONLAT = pyproj.CRS.from_proj4("+proj=longlat +ellps=WGS84 +no_defs")
 def _checked(value, name: str, low: float = -math.inf, high: float = math.inf) -> np.ndarray:
     """value as a float64 array, every element finite and in [low, high], else ValueError naming it
     (strings and booleans too: numpy would read "46.5" and True as numbers)."""
-    if np.asarray(value).dtype.kind in "bUS":
+    if value is None or np.asarray(value).dtype.kind in "bUSO":  # numpy reads None as NaN
         raise ValueError(f"{name} must be a number or an array of numbers (got {value!r})")
     try:
         array = np.asarray(value, dtype=np.float64)
@@ -80,6 +81,15 @@ def _longitude(value, name: str) -> np.ndarray:
     return _checked(value, name, -360.0, 360.0)  # east of Greenwich, either convention ([-180, 180] or [0, 360])
 
 
+def _broadcast(**arrays: np.ndarray) -> list[np.ndarray]:
+    """The arrays broadcast together, else ValueError naming them and their shapes."""
+    try:
+        return np.broadcast_arrays(*arrays.values())
+    except ValueError:
+        shapes = ", ".join(f"{name} {np.shape(a)}" for name, a in arrays.items())
+        raise ValueError(f"the arrays do not broadcast together: {shapes}") from None
+
+
 def _scalar_or_array(array: np.ndarray):
     """A 0-d result as a Python float, else the array."""
     return float(array) if np.ndim(array) == 0 else array
@@ -95,7 +105,7 @@ def inverse(lat1, lon1, lat2, lon2):
     """
     la1, lo1 = _latitude(lat1, "lat1"), _longitude(lon1, "lon1")
     la2, lo2 = _latitude(lat2, "lat2"), _longitude(lon2, "lon2")
-    la1, lo1, la2, lo2 = np.broadcast_arrays(la1, lo1, la2, lo2)
+    la1, lo1, la2, lo2 = _broadcast(lat1=la1, lon1=lo1, lat2=la2, lon2=lo2)
     az12, az21, dist = _GEOD.inv(lo1, la1, lo2, la2)
     return _scalar_or_array(np.asarray(dist)), _scalar_or_array(np.asarray(az12)), _scalar_or_array(np.asarray(az21))
 
@@ -109,7 +119,7 @@ def forward(lat, lon, azimuth, distance):
     """
     la, lo = _latitude(lat, "lat"), _longitude(lon, "lon")
     az, d = _checked(azimuth, "azimuth"), _checked(distance, "distance", 0.0, _ONCE_AROUND)
-    la, lo, az, d = np.broadcast_arrays(la, lo, az, d)
+    la, lo, az, d = _broadcast(lat=la, lon=lo, azimuth=az, distance=d)
     lon2, lat2, back = _GEOD.fwd(lo, la, az, d)
     return _scalar_or_array(np.asarray(lat2)), _scalar_or_array(np.asarray(lon2)), _scalar_or_array(np.asarray(back))
 
@@ -154,14 +164,18 @@ def _flattening(earth_radius) -> tuple[float, Any]:
 def _within_reach(points: np.ndarray, name: str) -> None:
     """ValueError naming `name` for scene points beyond the scene's reach: coordinates end 1e7 m
     from the origin (single-precision geometry), half way to the antipode, where the azimuthal
-    equidistant projection folds back on itself."""
+    equidistant projection folds back on itself; heights end there too (C++'s box: |x|, |y|, |z|)."""
     reach = float(_core._SCENE_REACH)
-    far = np.maximum(np.abs(points[..., 0]), np.abs(points[..., 2]))  # C++'s box, |x|, |z| <= reach
+    far = np.maximum(np.abs(points[..., 0]), np.abs(points[..., 2]))
     if np.any(far > reach):
         raise ValueError(
             f"{name}: {float(np.max(far)):.4g} m from the frame's origin, beyond the scene's reach of {reach:g} m "
             "(put the frame's origin nearer)"
         )
+    high = np.abs(points[..., 1])
+    if np.any(high > reach):
+        highest = float(np.max(high))
+        raise ValueError(f"{name}: a scene height of {highest:.4g} m, beyond the scene's reach of {reach:g} m")
 
 
 class LocalFrame:
@@ -231,7 +245,7 @@ class LocalFrame:
         """to_scene, its refusal naming `what`."""
         la, lo = _latitude(lat, "lat"), _longitude(lon, "lon")
         h = _checked(height, "height")
-        la, lo, h = np.broadcast_arrays(la, lo, h)
+        la, lo, h = _broadcast(lat=la, lon=lo, height=h)
         east, north = self._to_plane.transform(lo, la, errcheck=True)
         y = np.asarray(self.flat_height(h), dtype=np.float64)
         points = np.stack(
@@ -258,7 +272,7 @@ class LocalFrame:
         that azimuth from the origin."""
         a = np.radians(_checked(azimuth, "azimuth"))
         e = np.radians(_checked(elevation, "elevation", -90.0, 90.0))
-        a, e = np.broadcast_arrays(a, e)
+        a, e = _broadcast(azimuth=a, elevation=e)
         return np.stack([np.cos(e) * np.sin(a), np.sin(e), -np.cos(e) * np.cos(a)], axis=-1)
 
     def bearing(self, azimuth, position):
@@ -295,12 +309,36 @@ class LocalFrame:
         """The scene point (3,) of the ground at the origin: (0, flat height of ``height``, 0)."""
         return np.array([0.0, self.flat_height(self.height), 0.0])
 
+    def aim(self, target, height, position=None) -> tuple[float, float]:
+        """(azimuth, elevation) [deg] from an eye ``height`` [m] above the ellipsoid over the origin
+        (or over ``position`` = (lat, lon)) toward ``target`` = (lat, lon) or (lat, lon, height [m]
+        above the ellipsoid; 0: sea level): the compass bearing of the geodesic to it, and the
+        elevation of the straight line to it through a sphere of the frame's earth_radius (flat
+        frame: over flat ground) -- where it would show with no air; refraction lifts it (by about
+        k d / 2R, 0.045 deg at 60 km for the standard k = 0.17). ``camera(target=...)`` looks there."""
+        place = finite_pair(position) if position is not None else (self.lat, self.lon)
+        if place is None:
+            raise ValueError(f"position must be (lat, lon) (got {position!r})")
+        values = np.asarray(target, dtype=object) if isinstance(target, (tuple, list)) else None
+        if values is None or values.shape not in ((2,), (3,)):
+            raise ValueError(f"target must be (lat, lon) or (lat, lon, height) (got {target!r})")
+        lat = _number(values[0], "target's lat", -90.0, 90.0)
+        lon = _number(values[1], "target's lon", -360.0, 360.0)
+        target_height = _number(values[2], "target's height") if len(values) == 3 else 0.0
+        distance, azimuth, _ = inverse(place[0], place[1], lat, lon)
+        if not distance > 0.0:
+            raise ValueError(f"target {target!r} is straight above or below the eye: it has no azimuth")
+        eye_height = _number(height, "height")
+        elevation = straight_elevation(distance, eye_height, target_height, self.earth_radius)
+        return float(azimuth), elevation
+
     def camera(
         self,
         height,
-        azimuth,
-        elevation,
+        azimuth=None,
+        elevation=None,
         *,
+        target=None,
         vfov=None,
         focal_length_mm=None,
         sensor_mm=None,
@@ -313,7 +351,9 @@ class LocalFrame:
         origin (or over ``position`` = (lat, lon) elsewhere in the frame), looking at ``azimuth``
         (clockwise from the local north there: a compass bearing, turned into the frame's by
         projecting the geodesic that leaves at it) and ``elevation`` [deg] above the horizontal
-        (CurvedEarth's flat frame keeps y as the local vertical everywhere).
+        (CurvedEarth's flat frame keeps y as the local vertical everywhere). Or, instead of azimuth and
+        elevation, ``target`` = (lat, lon[, height]): aimed at it (``aim``: its bearing and its elevation
+        with no air, so that refraction lifts it a little above the image's centre).
 
         Give exactly one of vfov [deg] (vertical field of view; Camera(...)) or focal_length_mm with
         sensor_mm = (width, height) [mm] (Camera.photographic's lens and sensor; None: its full-frame
@@ -325,6 +365,12 @@ class LocalFrame:
         """
         if (vfov is None) == (focal_length_mm is None):
             raise ValueError("give exactly one of vfov and focal_length_mm")
+        if target is not None:
+            if azimuth is not None or elevation is not None:
+                raise ValueError("give azimuth and elevation, or target, not both")
+            azimuth, elevation = self.aim(target, height, position)
+        elif azimuth is None or elevation is None:
+            raise ValueError("give azimuth and elevation [deg], or target=(lat, lon[, height])")
         if vfov is not None and sensor_mm is not None:
             raise ValueError("sensor_mm goes with focal_length_mm; vfov gives the field of view itself")
         height = _number(height, "height")

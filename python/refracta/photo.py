@@ -180,8 +180,8 @@ class Photo:
         (vfov(sensor_mm)) and aspect. width: the render's width in pixels (default the
         photograph's); the height follows the photograph's aspect (rounded, at least 1)."""
         w = self.width if width is None else width
-        if not (is_number(w) and math.isfinite(w) and w == int(w) and w >= 1):
-            raise ValueError(f"width must be a whole number >= 1 (got {width!r})")
+        if not (is_number(w) and math.isfinite(w) and w == int(w) and 1 <= w <= 2**31 - 1):
+            raise ValueError(f"width must be a whole number of pixels in [1, 2147483647] (got {width!r})")
         h = max(1, round(int(w) * self.height / self.width))
         return _core.Camera(position, look_at, up, self.vfov(sensor_mm), int(w), h)
 
@@ -480,6 +480,14 @@ def overlay(
     for name, value in aovs.items():
         if np.shape(value)[:2] != base.shape[:2]:
             raise ValueError(f"readout '{name}' has shape {np.shape(value)}, not the image's {base.shape[:2]}")
+    ids = np.asarray(aovs.get("object_id", np.zeros(0, dtype=np.int32)))
+    if ids.dtype.kind not in "iu":
+        whole = np.mod(ids, 1.0) == 0.0 if ids.dtype.kind == "f" else np.zeros(ids.shape, dtype=bool)
+        if not whole.all():
+            raise ValueError(
+                "overlay: readout 'object_id' must hold whole numbers, an id per pixel (-1: none) as render gives "
+                f"it (got {ids[~whole].flat[0].item()!r})"
+            )
 
     edges = _render_edges(shown, aovs, float(threshold))
     hits = _hits(aovs)

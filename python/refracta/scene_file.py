@@ -944,9 +944,9 @@ def _geographic(table: dict, field, where: _Locator, get) -> LocalFrame:
     lon = get(table, "geographic", "lon", degrees, required=True)
     if not -90.0 < lat < 90.0:
         raise where.error(f"must be in (-90, 90) deg, not a pole (got {lat!r})", "geographic", "lat")
-    if not -180.0 <= lon <= 180.0:
-        raise where.error(f"must be in [-180, 180] deg (got {lon!r})", "geographic", "lon")
-    radius = field.radius if isinstance(field, _core.CurvedEarth) else math.inf
+    if not -360.0 <= lon <= 360.0:  # refracta.geo's range: east of Greenwich, [-180, 180] or [0, 360]
+        raise where.error(f"must be in [-360, 360] deg (got {lon!r})", "geographic", "lon")
+    radius = math.inf if field is None else field.earth_radius
     return geo.LocalFrame(lat, lon, earth_radius=radius)
 
 

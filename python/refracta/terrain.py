@@ -34,6 +34,8 @@ are under water.
 
 from __future__ import annotations
 
+import contextlib
+import logging
 import math
 import os
 import re
@@ -117,9 +119,9 @@ def _missing(path: str) -> None:
     """Refuses a missing elevation file, and before opening anything that is not a regular file:
     reading a FIFO (or a device) waits for a writer that may never come."""
     if not os.path.exists(path):
-        raise ElevationFileNotFoundError(f"add_terrain: no such elevation file: {path!r}")
+        raise ElevationFileNotFoundError(f"no such elevation file: {path!r}")
     if not stat.S_ISREG(os.stat(path).st_mode):
-        raise _core.IoError(f"add_terrain: cannot read elevation file {path!r}: not a regular file")
+        raise _core.IoError(f"cannot read elevation file {path!r}: not a regular file")
 
 
 def _read_hgt(path: str) -> Elevation:
@@ -127,17 +129,15 @@ def _read_hgt(path: str) -> Elevation:
     name = os.path.basename(path)
     match = re.fullmatch(r"([NS])(\d{2})([EW])(\d{3})\.hgt", name, flags=re.IGNORECASE)
     if not match:
-        raise ValueError(f"add_terrain: {name!r} is not an SRTM tile name like N46E007.hgt (the name gives its corner)")
+        raise ValueError(f"{name!r} is not an SRTM tile name like N46E007.hgt (the name gives its corner)")
     lat = int(match[2]) * (1 if match[1].upper() == "N" else -1)
     lon = int(match[4]) * (1 if match[3].upper() == "E" else -1)
     if not (-90 <= lat <= 89) or not (-180 <= lon <= 179):
-        raise ValueError(f"add_terrain: {name!r}: corner latitude {lat} must be in [-90, 89], longitude in [-180, 179]")
+        raise ValueError(f"{name!r}: corner latitude {lat} must be in [-90, 89], longitude in [-180, 179]")
     size = os.path.getsize(path)
     n = next((n for n in _SRTM_SIZES if size == 2 * n * n), None)
     if n is None:
-        raise ValueError(
-            f"add_terrain: {name!r} is not SRTM elevation data: {size} bytes, not 2 x 1201^2 or 2 x 3601^2"
-        )
+        raise ValueError(f"{name!r} is not SRTM elevation data: {size} bytes, not 2 x 1201^2 or 2 x 3601^2")
     raw = np.fromfile(path, dtype=">i2").reshape(n, n)
     heights = raw.astype(np.float64)
     heights[raw == _SRTM_VOID] = np.nan
@@ -145,66 +145,77 @@ def _read_hgt(path: str) -> Elevation:
     return Elevation(heights, float(lon), float(lat + 1), step, step, _EPSG_WGS84)
 
 
+@contextlib.contextmanager
+def _quiet_tifffile():
+    """tifffile's log lines off while it reads ("invalid offset to first page" on stderr): what is
+    wrong with a file is raised, named, instead."""
+    logger = logging.getLogger("tifffile")
+    level = logger.level
+    logger.setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        logger.setLevel(level)
+
+
 def _read_geotiff(path: str) -> Elevation:
     """A single-band GeoTIFF with ModelPixelScale + ModelTiepoint (north up) and its GeoKeys."""
     import tifffile
 
     try:
-        with tifffile.TiffFile(path) as tif:
+        with _quiet_tifffile(), tifffile.TiffFile(path) as tif:
             page = tif.pages.first
             tags = {tag.code: tag.value for tag in page.tags.values()}
             data = page.asarray()
     except (tifffile.TiffFileError, ValueError) as error:
-        raise ValueError(f"add_terrain: {path!r} is not a TIFF file ({error})") from None
+        raise ValueError(f"{path!r} is not a TIFF file ({error})") from None
     except (KeyError, ImportError, NotImplementedError) as error:  # tifffile without the file's codec
         raise ValueError(
-            f"add_terrain: {path!r}: its compression cannot be decoded here ({error!r}); "
+            f"{path!r}: its compression cannot be decoded here ({error!r}); "
             "compressed GeoTIFFs are read through the imagecodecs package"
         ) from None
     except MemoryError:
         raise
     except Exception as error:  # a truncated or corrupt file fails inside tifffile in many ways
         raise ValueError(
-            f"add_terrain: {path!r} is not a readable TIFF file ({type(error).__name__}: {error})"
+            f"{path!r} is not a readable TIFF file: damaged or truncated? (tifffile: {type(error).__name__}: {error})"
         ) from None
     if data.ndim == 3 and data.shape[-1] == 1:
         data = data[..., 0]
     if data.ndim != 2 or not (np.issubdtype(data.dtype, np.integer) or np.issubdtype(data.dtype, np.floating)):
         raise ValueError(
-            f"add_terrain: {path!r} is not elevation data: a single band of numbers is needed "
+            f"{path!r} is not elevation data: a single band of numbers is needed "
             f"(got shape {data.shape}, dtype {data.dtype})"
         )
     if data.shape[0] < 2 or data.shape[1] < 2:
-        raise ValueError(
-            f"add_terrain: {path!r}: {data.shape[0]} x {data.shape[1]} samples; a grid needs 2 x 2 or more"
-        )
+        raise ValueError(f"{path!r}: {data.shape[0]} x {data.shape[1]} samples; a grid needs 2 x 2 or more")
     if _TAG_TRANSFORM in tags:
-        raise ValueError(f"add_terrain: {path!r}: a rotated or sheared grid (ModelTransformation) is not supported")
+        raise ValueError(f"{path!r}: a rotated or sheared grid (ModelTransformation) is not supported")
     if _TAG_PIXEL_SCALE not in tags or _TAG_TIEPOINT not in tags or 34735 not in tags:
         raise ValueError(
-            f"add_terrain: {path!r} has no georeference (GeoTIFF ModelPixelScale, ModelTiepoint and GeoKeys are needed)"
+            f"{path!r} has no georeference (GeoTIFF ModelPixelScale, ModelTiepoint and GeoKeys are needed)"
         )
     keys = _geokeys(tags[34735], path)
     model = keys.get(_KEY_MODEL_TYPE)
     if model == _MODEL_GEOGRAPHIC:
         epsg = keys.get(_KEY_GEOGRAPHIC_TYPE, _EPSG_WGS84)
         if epsg != _EPSG_WGS84:
-            raise ValueError(f"add_terrain: {path!r}: geographic CRS EPSG:{epsg}; only WGS84 (EPSG:4326) is supported")
+            raise ValueError(f"{path!r}: geographic CRS EPSG:{epsg}; only WGS84 (EPSG:4326) is supported")
     elif model == _MODEL_PROJECTED and keys.get(_KEY_PROJECTED_TYPE) not in (None, 32767):
         epsg = int(keys[_KEY_PROJECTED_TYPE])
     else:
-        raise ValueError(f"add_terrain: {path!r}: its GeoKeys name no EPSG geographic or projected CRS (model {model})")
+        raise ValueError(f"{path!r}: its GeoKeys name no EPSG geographic or projected CRS (model {model})")
     x0, y0, sx, sy = _placement(tags, keys, path)
     if not (sx > 0.0 and sy > 0.0) or not (math.isfinite(x0) and math.isfinite(y0)):
-        raise ValueError(f"add_terrain: {path!r}: pixel scale ({sx}, {sy}) must be > 0 and the tiepoint finite")
+        raise ValueError(f"{path!r}: pixel scale ({sx}, {sy}) must be > 0 and the tiepoint finite")
     # The smallest spacing a grid may have: 0.1 mm (1e-9 deg of latitude); below it, samples fall
     # on one point in the scene's single-precision geometry.
     smallest = 1e-9 if epsg == _EPSG_WGS84 else 1e-4
     if sx < smallest or sy < smallest:
-        raise ValueError(f"add_terrain: {path!r}: pixel scale ({sx}, {sy}) is below {smallest}: samples would coincide")
+        raise ValueError(f"{path!r}: pixel scale ({sx}, {sy}) is below {smallest}: samples would coincide")
     if epsg == _EPSG_WGS84 and (data.shape[1] - 1) * sx > 360.0 * (1.0 + 1e-12):
         raise ValueError(
-            f"add_terrain: {path!r}: {data.shape[1]} columns of {sx} deg span {(data.shape[1] - 1) * sx} deg "
+            f"{path!r}: {data.shape[1]} columns of {sx} deg span {(data.shape[1] - 1) * sx} deg "
             "of longitude (at most 360)"
         )
     heights = data.astype(np.float64)
@@ -213,7 +224,7 @@ def _read_geotiff(path: str) -> Elevation:
         try:
             value = float(str(nodata).strip().rstrip("\x00"))
         except ValueError:
-            raise ValueError(f"add_terrain: {path!r}: GDAL_NODATA {nodata!r} is not a number") from None
+            raise ValueError(f"{path!r}: GDAL_NODATA {nodata!r} is not a number") from None
         # Compared in the band's own type, as GDAL does: float32's -3.4028235e+38 is the band's
         # lowest float32, though not the double that text reads as.
         if np.issubdtype(data.dtype, np.floating):
@@ -224,16 +235,16 @@ def _read_geotiff(path: str) -> Elevation:
     if np.isinf(heights).any():
         r, c = np.argwhere(np.isinf(heights))[0]
         raise ValueError(
-            f"add_terrain: {path!r}: sample (row {r}, column {c}) is {heights[r, c]}; heights must be finite "
+            f"{path!r}: sample (row {r}, column {c}) is {heights[r, c]}; heights must be finite "
             "(voids: NaN or the GDAL_NODATA value)"
         )
     if epsg == _EPSG_WGS84:
         top, bottom = y0, y0 - (data.shape[0] - 1) * sy
         if not (-90.0 <= bottom <= top <= 90.0):
-            raise ValueError(f"add_terrain: {path!r}: latitudes {bottom} to {top} deg are outside [-90, 90]")
+            raise ValueError(f"{path!r}: latitudes {bottom} to {top} deg are outside [-90, 90]")
         west, east = x0, x0 + (data.shape[1] - 1) * sx
         if not (-360.0 <= west and east <= 360.0):
-            raise ValueError(f"add_terrain: {path!r}: longitudes {west} to {east} deg are outside [-360, 360]")
+            raise ValueError(f"{path!r}: longitudes {west} to {east} deg are outside [-360, 360]")
     return Elevation(heights, x0, y0, sx, sy, epsg)
 
 
@@ -245,7 +256,7 @@ def _geokeys(directory, path: str) -> dict[int, Any]:
     except (TypeError, ValueError):
         d = []
     if len(d) < 4 or len(d) < 4 + 4 * d[3]:
-        raise ValueError(f"add_terrain: {path!r}: its GeoKeyDirectory tag is malformed (got {directory!r})")
+        raise ValueError(f"{path!r}: its GeoKeyDirectory tag is malformed (got {directory!r})")
     return {d[k]: d[k + 3] for k in range(4, 4 + 4 * d[3], 4) if d[k + 1] == 0}
 
 
@@ -256,7 +267,7 @@ def _tag_numbers(tags: dict, code: int, count: int, path: str, name: str) -> lis
     except (TypeError, ValueError):
         values = []
     if len(values) < count:
-        raise ValueError(f"add_terrain: {path!r}: its {name} tag must hold {count} numbers (got {tags[code]!r})")
+        raise ValueError(f"{path!r}: its {name} tag must hold {count} numbers (got {tags[code]!r})")
     return values
 
 
@@ -269,19 +280,32 @@ def _placement(tags: dict, keys: dict, path: str) -> tuple[float, float, float, 
     return x + (centre - i) * sx, y - (centre - j) * sy, sx, sy
 
 
+@contextlib.contextmanager
+def _named(where: str):
+    """The file readers' errors (ValueError, refracta.IoError) prefixed by the public call that read."""
+    try:
+        yield
+    except (ValueError, _core.IoError) as error:
+        raise type(error)(f"{where}: {error}") from None
+
+
 def read_elevation(path: str | os.PathLike) -> Elevation:
     """Read an elevation file (an SRTM ``.hgt`` tile or a GeoTIFF) into an :class:`Elevation`.
 
     refracta.IoError for a missing file (ElevationFileNotFoundError, also a FileNotFoundError) or
     one that is not a regular file; ValueError for files that are not elevation data, have
     no georeference, or whose latitudes fall outside [-90, 90] deg."""
-    path = os.fspath(path)
+    with _named("read_elevation"):
+        return _read_elevation(os.fspath(path))
+
+
+def _read_elevation(path: str) -> Elevation:
     _missing(path)
     if path.lower().endswith(".hgt"):
         return _read_hgt(path)
     if path.lower().endswith((".tif", ".tiff")):
         return _read_geotiff(path)
-    raise ValueError(f"add_terrain: {path!r}: elevation files are SRTM .hgt tiles or GeoTIFFs (.tif, .tiff)")
+    raise ValueError(f"{path!r}: elevation files are SRTM .hgt tiles or GeoTIFFs (.tif, .tiff)")
 
 
 def _orthophoto_uv(orthophoto: str, grid: Elevation) -> np.ndarray:
@@ -289,7 +313,7 @@ def _orthophoto_uv(orthophoto: str, grid: Elevation) -> np.ndarray:
     photo = _read_geotiff_frame(orthophoto)
     if photo.epsg != grid.epsg:
         raise ValueError(
-            f"add_terrain: orthophoto {orthophoto!r} is in EPSG:{photo.epsg}, the elevation in EPSG:{grid.epsg}: "
+            f"orthophoto {orthophoto!r} is in EPSG:{photo.epsg}, the elevation in EPSG:{grid.epsg}: "
             "give both in the same CRS"
         )
     width, height = photo.heights.shape[1], photo.heights.shape[0]
@@ -313,7 +337,7 @@ def _read_geotiff_frame(path: str) -> Elevation:
 
     _missing(path)
     try:
-        with tifffile.TiffFile(path) as tif:
+        with _quiet_tifffile(), tifffile.TiffFile(path) as tif:
             page = tif.pages.first
             tags = {tag.code: tag.value for tag in page.tags.values()}
             shape = page.shape
@@ -321,11 +345,11 @@ def _read_geotiff_frame(path: str) -> Elevation:
         raise
     except Exception as error:  # not a TIFF, or a corrupt one
         raise ValueError(
-            f"add_terrain: orthophoto {path!r} is not a readable GeoTIFF ({type(error).__name__}: {error}); "
+            f"orthophoto {path!r} is not a readable GeoTIFF ({type(error).__name__}: {error}); "
             "an orthophoto placed by a georeferenced terrain must be a GeoTIFF"
         ) from None
     if _TAG_PIXEL_SCALE not in tags or _TAG_TIEPOINT not in tags or 34735 not in tags:
-        raise ValueError(f"add_terrain: orthophoto {path!r} has no georeference (a GeoTIFF is needed)")
+        raise ValueError(f"orthophoto {path!r} has no georeference (a GeoTIFF is needed)")
     keys = _geokeys(tags[34735], path)
     epsg = keys.get(_KEY_GEOGRAPHIC_TYPE, _EPSG_WGS84) if keys.get(_KEY_MODEL_TYPE) == _MODEL_GEOGRAPHIC else None
     if epsg is None:
@@ -341,7 +365,7 @@ def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
     except (TypeError, ValueError):
         h = None
     if h is None or np.asarray(heights).dtype.kind in "bUS":  # numpy reads "100" and True as numbers
-        raise ValueError("add_terrain: heights must be a (rows, cols) array of numbers [m]")
+        raise ValueError("heights must be a (rows, cols) array of numbers [m]")
     if h.ndim != 2 or h.shape[0] < 2 or h.shape[1] < 2:
         raise ValueError(
             f"add_terrain: heights must be a (rows, cols) array with rows, cols >= 2 (got shape {h.shape})"
@@ -493,7 +517,8 @@ def add_terrain(
             raise ValueError("add_terrain: elevation files need frame=refracta.geo.LocalFrame(lat, lon) to place them")
         paths = [heights] if isinstance(heights, (str, os.PathLike)) else list(heights)
         for path in paths:
-            grid = read_elevation(path)
+            with _named("add_terrain"):
+                grid = _read_elevation(os.fspath(path))
             if np.isnan(grid.heights).all():
                 raise ValueError(f"add_terrain: {os.fspath(path)!r} holds only voids: nothing to add")
             grids.append((_geographic_positions(grid, frame), grid))
@@ -517,14 +542,16 @@ def add_terrain(
             "add_terrain: give material or orthophoto, not both (a textured material uses the terrain's uvs)"
         )
     if orthophoto is not None:
-        _missing(os.fspath(orthophoto))
+        with _named("add_terrain"):
+            _missing(os.fspath(orthophoto))
 
     ids = []
     lower, upper = np.full(3, np.inf), np.full(3, -np.inf)
     for positions, placed in grids:
         rows, cols = positions.shape[:2]
         if orthophoto is not None and placed is not None:
-            uv = _orthophoto_uv(os.fspath(orthophoto), placed)
+            with _named("add_terrain"):
+                uv = _orthophoto_uv(os.fspath(orthophoto), placed)
         else:  # the image over the grid: u along the columns, its top edge along row 0 (v = 1)
             uv = np.array([[1.0 / (cols - 1), 0.0, 0.0], [0.0, -1.0 / (rows - 1), 1.0]])
         ids.append(self._add_terrain_grid(positions, material, uv))

@@ -94,3 +94,56 @@ def test_bad_camera_arguments():
         refracta.Camera.geographic(47.0, 8.0, 10.0, 0.0, 95.0, vfov=5.0)
     with pytest.raises(ValueError, match="roll"):
         refracta.Camera.geographic(47.0, 8.0, 10.0, 0.0, 0.0, vfov=5.0, roll=math.nan)
+
+
+def test_a_camera_aimed_at_a_target_centres_it_with_no_air_and_refraction_lifts_it():
+    # A 40 m sphere 60 km away at 780 m, seen from 20 m: aimed by target=, it sits at the image's
+    # centre through air of almost no pressure, and the C++ readout's true elevation of its points
+    # is LocalFrame.aim's elevation (two implementations of the straight line over the sphere).
+    lat0, lon0, eye = 50.0, 1.0, 20.0
+    lat, lon, _ = geo.forward(lat0, lon0, 30.0, 60000.0)
+    target = (lat, lon, 780.0)
+    camera = refracta.Camera.geographic(lat0, lon0, eye, target=target, vfov=0.5, image_width=48, image_height=48)
+    radius = geo.radius_of_curvature(lat0, 30.0)
+    frame = geo.LocalFrame(lat0, lon0, earth_radius=radius)
+    azimuth, elevation = frame.aim(target, eye)
+    assert azimuth == pytest.approx(30.0, abs=1e-9)  # the geodesic's own azimuth, rounding
+    scene = refracta.Scene()
+    scene.set_sky((0.5, 0.6, 0.8))  # only the readouts count: a sky keeps the image from being black
+    scene.add_sphere(frame.to_scene(*target), 40.0)
+    thin = refracta.CurvedEarth(refracta.PhysicalAtmosphere(lapse_rate=0.0, pressure=1e-3), radius)
+    standard = refracta.CurvedEarth(refracta.PhysicalAtmosphere(), radius)
+    rows = {}
+    for name, air in (("thin", thin), ("standard", standard)):
+        _, aovs = refracta.render(
+            scene, camera, air, aovs=["true_elevation", "object_id"], max_length=80000.0, progress=False
+        )
+        hit = aovs["object_id"] >= 0
+        assert hit.sum() > 30  # the sphere spans ~7 pixels across
+        ys, xs = np.nonzero(hit)
+        assert xs.mean() == pytest.approx(23.5, abs=0.5)  # pixel centres: the image's centre column
+        rows[name] = ys.mean()
+        if name == "thin":
+            # Its true elevation, averaged over its near face, is its centre's to its 0.04 deg radius / 10.
+            assert np.mean(aovs["true_elevation"][hit]) == pytest.approx(elevation, abs=0.004)
+    assert rows["thin"] == pytest.approx(23.5, abs=0.5)
+    # Refraction lifts it by k d / 2R: k in [0.12, 0.22] around the standard 0.17, 96 pixels a degree.
+    lift = (rows["thin"] - rows["standard"]) / 96.0
+    assert 0.12 * 60000.0 / (2 * radius) < math.radians(lift) < 0.22 * 60000.0 / (2 * radius)
+
+
+def test_aim_refuses_a_target_it_cannot_aim_at():
+    frame = geo.LocalFrame(50.0, 1.0)
+    for target, message in (
+        ((50.0,), "target must be"),
+        ("north", "target must be"),
+        ((50.0, 1.0), "straight above or below"),
+        ((95.0, 1.0), "target's lat"),
+        ((50.1, 1.0, float("nan")), "target's height"),
+    ):
+        with pytest.raises(ValueError, match=message):
+            frame.camera(20.0, target=target, vfov=1.0)
+    with pytest.raises(ValueError, match="not both"):
+        frame.camera(20.0, 30.0, 0.0, target=(50.1, 1.0), vfov=1.0)
+    with pytest.raises(ValueError, match="or target"):
+        frame.camera(20.0, vfov=1.0)

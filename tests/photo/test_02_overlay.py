@@ -132,3 +132,11 @@ def test_edges_of_a_rendered_box_land_on_its_projection():
         result = photo.overlay(np.full((32, 48, 3), GREY), (rendered[0], {readout: rendered[1][readout]}), mode="edges")
         np.testing.assert_array_equal(result.edges, expected)
         np.testing.assert_array_equal(result.skyline, np.where((np.arange(48) >= 20) & (np.arange(48) < 28), 12, -1))
+
+
+def test_an_object_id_readout_of_fractions_is_refused():
+    # A new user's trial: overlay took an 'object_id' of 0.5s and drew edges from it.
+    picture, render, _, readouts = _pair()
+    with pytest.raises(ValueError, match="'object_id' must hold whole numbers.*0.5"):
+        photo.overlay(picture, render, aovs={"object_id": np.full((H, W), 0.5)})
+    photo.overlay(picture, render, aovs={"object_id": readouts["object_id"]})  # whole floats are ids

@@ -3,6 +3,7 @@ distance, position, object id, apparent and true elevation, hidden heights and m
 multiplicity, checked against closed forms and against rays traced here, not against the
 readouts themselves."""
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -425,3 +426,21 @@ def test_a_ridge_from_elevation_data_against_refraction_coefficient():
         lift = np.radians(out["apparent_elevation"][row, 0] - out["true_elevation"][row, 0])
         kd = expected.k * ground / (2 * R)
         assert lift == pytest.approx(kd, rel=0.02)  # k is the level ray's; this line climbs 0.23 deg: other air
+
+
+def test_a_frame_of_another_earth_than_the_fields_is_warned_of():
+    """frame= flattening another Earth than the rays' field: the 'geographic' readout would map
+    points the render did not see (a new user's trial: accepted silently)."""
+    from refracta import geo
+
+    scene, *_ = _flat_scene()
+    camera = refracta.Camera((0.0, 1.5, 0.0), (50.0, 1.5, 0.0), (0, 1, 0), 40.0, 8, 6)
+    curved = refracta.CurvedEarth(refracta.PhysicalAtmosphere(), 6.0e6)
+    for frame, field in (
+        (geo.LocalFrame(50.0, 1.0, earth_radius=6.381e6), curved),  # two radii
+        (geo.LocalFrame(50.0, 1.0), refracta.PhysicalAtmosphere()),  # a curved frame, flat air
+        (geo.LocalFrame(50.0, 1.0, earth_radius=math.inf), curved),  # a flat frame, curved air
+    ):
+        with pytest.warns(refracta.SceneWarning, match="frame= flattens an Earth"):
+            refracta.render(scene, camera, field, aovs=["geographic"], frame=frame, progress=False)
+    refracta.render(scene, camera, curved, aovs=["geographic"], frame=geo.LocalFrame(50.0, 1.0, earth_radius=curved))

@@ -72,7 +72,7 @@ def test_the_frame_takes_the_curved_earth_radius_and_pickles(tmp_path):
     [
         ("lat = 91.0\nlon = 10.0", r"place.toml:[0-9]+: \[geographic\] lat: .*must be in \(-90, 90\)"),
         ("lat = 90.0\nlon = 10.0", r"place.toml:[0-9]+: \[geographic\] lat: .*not a pole"),
-        ("lat = 60.0\nlon = 200.0", r"place.toml:[0-9]+: \[geographic\] lon: .*\[-180, 180\]"),
+        ("lat = 60.0\nlon = 400.0", r"place.toml:[0-9]+: \[geographic\] lon: .*\[-360, 360\]"),
         ('lat = "60 N"\nlon = 10.0', r"place.toml:[0-9]+: \[geographic\] lat: .*must be a number"),
         ("lat = nan\nlon = 10.0", r"place.toml:[0-9]+: \[geographic\] lat: .*finite"),
         ("lat = 60.0", r"place.toml:[0-9]+: \[geographic\] lon: .*missing"),
@@ -92,3 +92,13 @@ def test_cli_asks_for_the_table_when_geographic_readouts_have_no_place(tmp_path,
     assert refracta.load_scene(path).frame is None
     assert cli.main(["render", str(path), "-o", str(tmp_path / "x.exr"), "--aovs", "geographic"]) == 1
     assert "add a [geographic] table" in capsys.readouterr().err
+
+
+def test_longitudes_east_of_greenwich_in_either_convention_are_one_place(tmp_path):
+    # refracta.geo takes [-180, 180] and [0, 360] alike; so does a scene file's [geographic] table.
+    east, _ = _scene_file(tmp_path, geographic="lat = 60.0\nlon = 359.0")
+    a = refracta.load_scene(east).frame
+    west, _ = _scene_file(tmp_path, geographic="lat = 60.0\nlon = -1.0")
+    b = refracta.load_scene(west).frame
+    assert a.lon == 359.0
+    np.testing.assert_allclose(a.to_geographic(b.to_scene(60.5, -1.0, 0.0))[:2], (60.5, -1.0), atol=1e-9)  # rounding

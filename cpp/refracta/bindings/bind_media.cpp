@@ -211,6 +211,9 @@ void bind_index_field(py::module_& m) {
       .def("grad_ior", &grad_of, py::arg("points"), "Gradient of n [1/m] at points (N, 3) -> (N, 3).")
       .def_property_readonly("type_name", &IndexField::type_name)
       .def_property_readonly("height_only", &IndexField::height_only)
+      .def_property_readonly("earth_radius", &IndexField::earth_radius,
+                             "The radius [m] of the spherical Earth whose coordinates this field flattens (CurvedEarth's "
+                             "radius; inf: a flat-Earth field).")
       .def_property_readonly("height_only_part", [](const IndexField& f) { return unconst(f.height_only_part()); },
                              "A field that depends on height alone except in local regions (hot spots): the height-only "
                              "field that holds outside them; None for other fields.")

@@ -93,8 +93,10 @@ Image read_image(const std::string& path) {
     throw IoError(error.what());
   }
   Image image(spec.width, spec.height, spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
-    throw IoError(concat("cannot read '", path, "': ", in->geterror()));
+  // A truncated JPEG or TIFF reads "successfully", its missing rows grey or black, and reports
+  // the damage only as an error message: refused as well.
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()) || in->has_error()) {
+    throw IoError(concat("cannot read '", path, "' (damaged or truncated?): ", in->geterror()));
   }
   in->close();
   return image;
