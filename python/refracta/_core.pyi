@@ -301,6 +301,11 @@ class IndexField:
         Each parameter's (low, high) bounds by name, as edit.solve keeps them (a new dict at each access).
         """
     @property
+    def earth_radius(self) -> float:
+        """
+        The radius [m] of the spherical Earth whose coordinates this field flattens (CurvedEarth's radius; inf: a flat-Earth field).
+        """
+    @property
     def gauge_params(self) -> list[str]:
         ...
     @property
@@ -1082,11 +1087,13 @@ class Camera:
         scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].
         """
     @staticmethod
-    def geographic(lat, lon, height, azimuth, elevation, *, vfov = None, focal_length_mm = None, sensor_mm = None, image_width = None, image_height = None, roll = 0.0, earth_radius = None) -> Camera:
+    def geographic(lat, lon, height, azimuth = None, elevation = None, *, target = None, vfov = None, focal_length_mm = None, sensor_mm = None, image_width = None, image_height = None, roll = 0.0, earth_radius = None) -> Camera:
         """
         A camera at latitude ``lat``, longitude ``lon`` [deg], ``height`` [m] above the WGS84
             ellipsoid (the eye's height: the ground's height plus the eye above it), looking at ``azimuth``
-            [deg clockwise from north] and ``elevation`` [deg above the horizontal].
+            [deg clockwise from north] and ``elevation`` [deg above the horizontal] -- or, instead of those
+            two, at ``target`` = (lat, lon[, height above the ellipsoid, default 0]): its bearing and its
+            elevation with no air (``LocalFrame.aim``; refraction then lifts it a little above the centre).
         
             It sits at the origin of ``refracta.geo.LocalFrame(lat, lon, earth_radius=R)``, at scene
             position (0, R ln(1 + height / R), 0): build the rest of the scene with that frame

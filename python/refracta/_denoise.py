@@ -12,8 +12,9 @@ HUGE_RADIANCE = 1e20
 def _channels(name: str, array, shape=None, lo: float = 0.0, hi: float = np.inf) -> np.ndarray:
     """`array` as a C-contiguous float32 (H, W, 3) within [lo, hi]; ValueError naming it otherwise."""
     values = np.asarray(array)
-    if values.dtype.kind not in "biuf":
-        raise ValueError(f"denoise: {name} must hold real numbers (got dtype {values.dtype})")
+    if array is None or values.dtype.kind not in "biuf":
+        shown = "None" if array is None else f"dtype {values.dtype}"
+        raise ValueError(f"denoise: {name} must be an (H, W, 3) array of real numbers (got {shown})")
     if values.ndim != 3 or values.shape[2] != 3 or values.shape[0] < 1 or values.shape[1] < 1:
         raise ValueError(f"denoise: {name} must have shape (H, W, 3) (got {values.shape})")
     if shape is not None and values.shape != shape:

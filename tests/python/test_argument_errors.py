@@ -37,8 +37,8 @@ EYE, AHEAD = (0.0, 1.5, 0.0), (0.0, 1.5, 10.0)
             "Camera.photographic: sensor_mm must be a pair of numbers (got 36)",
         ),
         (  # pybind11's tuple caster fails inside with "len() of unsized object"
-            lambda: refracta.Camera.photographic_vfov(50.0, sensor_mm=np.array(36.0)),
-            "Camera.photographic_vfov: sensor_mm must be a pair of numbers (got array(36.))",
+            lambda: refracta.Camera.photographic_vfov(50.0, sensor_mm=np.array(36)),
+            "Camera.photographic_vfov: sensor_mm must be a pair of numbers (got array(36))",
         ),
         (lambda: refracta.Scene().add_obj(3), "Scene.add_obj: path must be a path (str or os.PathLike) (got 3)"),
         (lambda: refracta.set_threads("two"), "set_threads: n must be a whole number or None (got 'two')"),

@@ -131,7 +131,7 @@ def test_07_pickles_and_describes():
         (dict(salinity=-0.1), "salinity"),
         (dict(salinity=float("nan")), "salinity"),
         (dict(salinity=41.0), "salinity"),
-        (dict(temperature_c=-2.0), "temperature_c"),
+        (dict(temperature_c=-2.5), "temperature_c"),
         (dict(temperature_c=41.0), "temperature_c"),
         (dict(temperature_c=float("nan")), "temperature_c"),
     ],

@@ -63,3 +63,12 @@ def test_sea_water_adds_quan_and_frys_salinity_terms():
 def test_values_outside_the_formulas_ranges_are_refused(arguments, name):
     with pytest.raises(ValueError, match=name):
         shading.water_ior(*arguments)
+
+
+def test_an_arctic_sea_at_its_freezing_point_is_water():
+    # Sea water of 35 g/kg freezes at -1.9 C; the cold seas of superior mirages sit there (a new
+    # user's trial: Water(temperature_c=-1.5, salinity=35) was refused). Near 0 C n changes by
+    # ~3e-5 per K (the table of IAPWS R9-97), so 1.5 K below 0 C stays within 1e-4 of it.
+    cold, zero = shading.water_ior(589.3, -1.5, 35.0), shading.water_ior(589.3, 0.0, 35.0)
+    assert cold == pytest.approx(zero, abs=1e-4)
+    assert shading.Water(temperature_c=-1.5, salinity=35.0).temperature_c == -1.5

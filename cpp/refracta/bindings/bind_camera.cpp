@@ -31,7 +31,7 @@ std::pair<Vec3d, Vec3d> bounds_of(const py::object& scene_or_bounds) {
     throw_invalid("Camera.framing: give a Scene or its bounds (lower, upper)");
   }
   if (py::len(bounds) != 2) throw_invalid("Camera.framing: bounds must be (lower, upper)");
-  return {to_point(bounds[py::int_(0)], "bounds[0]"), to_point(bounds[py::int_(1)], "bounds[1]")};
+  return {to_point(bounds[py::int_(0)], "Camera.framing: bounds[0]"), to_point(bounds[py::int_(1)], "Camera.framing: bounds[1]")};
 }
 
 // Pickled as its constructor's arguments (and jitter, and lens): the copy's rays are bit-identical.
@@ -69,7 +69,7 @@ void bind_camera_constructors(py::class_<Camera>& camera) {
       [](const py::object& scene_or_bounds, const py::object& direction, double vfov, int width, int height,
          const py::object& up) {
         const auto [lower, upper] = bounds_of(scene_or_bounds);
-        return Camera::framing(lower, upper, to_point(direction, "direction"), to_point(up, "up"), vfov, width, height);
+        return Camera::framing(lower, upper, to_point(direction, "Camera.framing: direction"), to_point(up, "Camera.framing: up"), vfov, width, height);
       },
       py::arg("scene_or_bounds"), py::arg("direction") = py::make_tuple(-1.0, -0.5, -1.0), py::arg("vfov") = 45.0,
       py::arg("width") = 640, py::arg("height") = 360, py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
@@ -91,7 +91,7 @@ scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc");
       "photographic",
       [](const py::object& position, const py::object& look_at, double focal_length_mm, const Sensor& sensor_mm,
          int width, int height, const py::object& up, std::optional<double> f_number, std::optional<double> focus_distance) {
-        return Camera::photographic(to_point(position, "position"), to_point(look_at, "look_at"), to_point(up, "up"),
+        return Camera::photographic(to_point(position, "Camera.photographic: position"), to_point(look_at, "Camera.photographic: look_at"), to_point(up, "Camera.photographic: up"),
                                     focal_length_mm, sensor_mm.first, sensor_mm.second, width, height, f_number,
                                     focus_distance);
       },
@@ -121,7 +121,7 @@ f_number (a pinhole has no focus): ValueError.)doc");
       [](const py::object& eye, const py::object& target, double eye_height, double focal_length_mm,
          const Sensor& sensor_mm, int width, int height, std::optional<double> f_number,
          std::optional<double> focus_distance) {
-        return Camera::eye_level(to_point(eye, "eye"), to_point(target, "target"), eye_height, focal_length_mm,
+        return Camera::eye_level(to_point(eye, "Camera.eye_level: eye"), to_point(target, "Camera.eye_level: target"), eye_height, focal_length_mm,
                                  sensor_mm.first, sensor_mm.second, width, height, f_number, focus_distance);
       },
       py::arg("eye"), py::arg("target"), py::arg("eye_height") = 1.6, py::arg("focal_length_mm") = 50.0,
@@ -146,7 +146,7 @@ void bind_camera(py::module_& m) {
   camera
       .def(py::init([](const py::object& position, const py::object& look_at, const py::object& up, double vfov,
                        int width, int height) {
-             return Camera(to_point(position, "position"), to_point(look_at, "look_at"), to_point(up, "up"), vfov,
+             return Camera(to_point(position, "Camera: position"), to_point(look_at, "Camera: look_at"), to_point(up, "Camera: up"), vfov,
                            width, height);
            }),
            py::arg("position"), py::arg("look_at"), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),

@@ -69,11 +69,15 @@ double to_number(const py::handle& value, const char* what) {
   return *number;
 }
 
-std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single) {
-  const DoubleArray array = numbers(object, what, " must be an array of numbers with shape (N, 3) or (3,)");
+namespace {
+
+// to_points, its messages for `one_point` (to_point's single (3,)) or for points (N, 3) or (3,).
+std::vector<Vec3d> points_of(const py::handle& object, const char* what, bool* single, bool one_point) {
+  const char* shapes = one_point ? "(3,), one point (x, y, z)" : "(N, 3) or (3,)";
+  const DoubleArray array = numbers(object, what, concat(" must be an array of numbers with shape ", shapes).c_str());
   const bool one = array.ndim() == 1;
-  if (!((one && array.shape(0) == 3) || (array.ndim() == 2 && array.shape(1) == 3))) {
-    throw_invalid(what, " must have shape (N, 3) or (3,) (got ", shape_of(array), ")");
+  if (!((one && array.shape(0) == 3) || (!one_point && array.ndim() == 2 && array.shape(1) == 3))) {
+    throw_invalid(what, " must have shape ", shapes, " (got ", shape_of(array), ")");
   }
   if (single) *single = one;
   const py::ssize_t count = one ? 1 : array.shape(0);
@@ -89,12 +93,13 @@ std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* s
   return points;
 }
 
-Vec3d to_point(const py::handle& object, const char* what) {
-  bool single = false;
-  std::vector<Vec3d> points = to_points(object, what, &single);
-  if (!single) throw_invalid(what, " must be one point of shape (3,)");
-  return points[0];
+}  // namespace
+
+std::vector<Vec3d> to_points(const py::handle& object, const char* what, bool* single) {
+  return points_of(object, what, single, false);
 }
+
+Vec3d to_point(const py::handle& object, const char* what) { return points_of(object, what, nullptr, true)[0]; }
 
 std::vector<double> to_values(const py::handle& object, const char* what, bool* single) {
   // Bools are not numbers (True would be 1: Camera.ray(True, False) was the ray through (1, 0)).
@@ -260,7 +265,7 @@ Image to_image(const py::handle& object, const char* what, bool raw) {
   for (size_t i = 0; i < image.pixels.size(); ++i) {
     if (std::isfinite(image.pixels[i])) continue;
     const size_t texel = i / size_t(image.channels);
-    throw_invalid(what, " texel (row ", texel / size_t(image.width), ", column ", texel % size_t(image.width),
+    throw_invalid(what, " pixel (row ", texel / size_t(image.width), ", column ", texel % size_t(image.width),
                   ") must be finite (got ", image.pixels[i], ")");
   }
   return image;

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace refracta {
 
@@ -99,8 +101,14 @@ Camera Camera::eye_level(const Vec3d& ground, const Vec3d& target, double eye_he
     throw_invalid("Camera.eye_level: the target is ", level.norm(), " m away, nearer than the focal length (",
                   1e-3 * focal_length_mm, " m), where a lens cannot focus: give focus_distance");
   }
-  return photographic(position, position + level, Vec3d::UnitY(), focal_length_mm, sensor_w_mm, sensor_h_mm, width,
-                      height, f_number, focus_distance);
+  try {
+    return photographic(position, position + level, Vec3d::UnitY(), focal_length_mm, sensor_w_mm, sensor_h_mm, width,
+                        height, f_number, focus_distance);
+  } catch (const std::invalid_argument& error) {  // the lens's and sensor's checks, named as the call made
+    const std::string message = error.what(), made = "Camera.photographic:";
+    if (message.rfind(made, 0) != 0) throw;
+    throw std::invalid_argument("Camera.eye_level:" + message.substr(made.size()));
+  }
 }
 
 Camera Camera::with_lens(double aperture_diameter, double focus_distance) const {

@@ -11,13 +11,13 @@
 
 namespace refracta {
 
-namespace {
-
-void check_range(const char* name, double value, double lo, double hi, const char* unit) {
+void check_water_range(const char* function, const char* name, double value, double lo, double hi, const char* unit) {
   if (!(value >= lo && value <= hi)) {
-    throw_invalid("water: ", name, " must be in [", lo, ", ", hi, "] ", unit, " (got ", value, ")");
+    throw_invalid(function, ": ", name, " must be in [", lo, ", ", hi, "] ", unit, " (got ", value, ")");
   }
 }
+
+namespace {
 
 // Pure-water absorption [1/m] every 5 nm from 360 to 830 nm (water.h cites the sources): Smith &
 // Baker 1981 at 360-370 nm, 375 nm joined linearly to Pope & Fry 1997's 380-725 nm, Kou et al.
@@ -38,7 +38,7 @@ constexpr std::array<double, 95> kAbsorption = {
 }  // namespace
 
 double water_absorption(double wavelength_nm) {
-  check_range("wavelength", wavelength_nm, kLambdaMin, kLambdaMax, "nm");
+  check_water_range("water_absorption", "wavelength", wavelength_nm, kLambdaMin, kLambdaMax, "nm");
   const double x = (wavelength_nm - kAbsorptionStart) / kAbsorptionStep;
   const size_t i = std::min(size_t(x), kAbsorption.size() - 2);
   const double t = x - double(i);
@@ -46,8 +46,8 @@ double water_absorption(double wavelength_nm) {
 }
 
 double water_backscattering(double wavelength_nm, double salinity) {
-  check_range("wavelength", wavelength_nm, kLambdaMin, kLambdaMax, "nm");
-  check_range("salinity", salinity, 0.0, kWaterMaxSalinity, "g/kg");
+  check_water_range("water_backscattering", "wavelength", wavelength_nm, kLambdaMin, kLambdaMax, "nm");
+  check_water_range("water_backscattering", "salinity", salinity, 0.0, kWaterMaxSalinity, "g/kg");
   // Morel 1974: pure water 0.00222 1/m at 500 nm, sea water of 35-39 g/kg 30 % more, lambda^-4.32.
   const double b500 = 0.00222 * (1.0 + 0.3 * salinity / 37.0);
   return 0.5 * b500 * std::pow(wavelength_nm / 500.0, -4.32);
@@ -59,12 +59,12 @@ double water_body_reflectance(double wavelength_nm, double salinity) {
 }
 
 double cox_munk_mean_square_slope(double wind_speed) {
-  check_range("wind_speed", wind_speed, 0.0, kWaterMaxWindSpeed, "m/s");
+  check_water_range("cox_munk_mean_square_slope", "wind_speed", wind_speed, 0.0, kWaterMaxWindSpeed, "m/s");
   return 0.003 + 5.12e-3 * wind_speed;
 }
 
 double water_density(double temperature_c) {
-  check_range("temperature_c", temperature_c, kWaterMinCelsius, kWaterMaxCelsius, "deg C");
+  check_water_range("water_density", "temperature_c", temperature_c, kWaterMinCelsius, kWaterMaxCelsius, "deg C");
   // Tanaka et al. 2001, eq. 1: rho = a5 [1 - (t + a1)^2 (t + a2) / (a3 (t + a4))].
   constexpr double a1 = -3.983035, a2 = 301.797, a3 = 522528.9, a4 = 69.34881, a5 = 999.974950;
   const double t = temperature_c;
@@ -72,9 +72,10 @@ double water_density(double temperature_c) {
 }
 
 double water_ior(double wavelength_nm, double temperature_c, double salinity) {
-  check_range("wavelength", wavelength_nm, kWaterMinWavelength, kWaterMaxWavelength, "nm");
-  check_range("salinity", salinity, 0.0, kWaterMaxSalinity, "g/kg");
-  const double rho = water_density(temperature_c);  // checks the temperature
+  check_water_range("water_ior", "wavelength", wavelength_nm, kWaterMinWavelength, kWaterMaxWavelength, "nm");
+  check_water_range("water_ior", "salinity", salinity, 0.0, kWaterMaxSalinity, "g/kg");
+  check_water_range("water_ior", "temperature_c", temperature_c, kWaterMinCelsius, kWaterMaxCelsius, "deg C");
+  const double rho = water_density(temperature_c);
   // IAPWS R9-97: reduced density, temperature and wavelength, and the coefficients of eq. A1.
   constexpr double a0 = 0.244257733, a1 = 9.74634476e-3, a2 = -3.73234996e-3, a3 = 2.68678472e-4,
                    a4 = 1.58920570e-3, a5 = 2.45934259e-3, a6 = 0.900704920, a7 = -1.66626219e-2;

@@ -9,19 +9,27 @@
 namespace refracta {
 
 // Ranges the formulas are used in (each inside its source's validity).
-constexpr double kWaterMinCelsius = 0.0, kWaterMaxCelsius = 40.0;    // Tanaka et al.'s density fit
+// Down to -2 C: sea water of 35 g/kg freezes at -1.9 C (UNESCO 1983), and the cold seas of
+// superior mirages sit there. Tanaka et al.'s density fit (0-40 C) is extrapolated those 2 K: at
+// -5 C it gives 999.263 kg/m^3 against supercooled water's measured ~999.27 (Hare & Sorensen
+// 1987), a difference worth 2e-6 in n; IAPWS R9-97 itself holds from -12 C.
+constexpr double kWaterMinCelsius = -2.0, kWaterMaxCelsius = 40.0;
 constexpr double kWaterMinWavelength = 200.0, kWaterMaxWavelength = 1100.0;  // IAPWS R9-97 [nm]
 constexpr double kWaterMaxSalinity = 40.0;  // [g/kg]; Quan & Fry fitted 0-35, linear in S
 
+// Throws std::invalid_argument "<function>: <name> must be in [lo, hi] <unit> (got value)" unless
+// lo <= value <= hi (NaN too): the checks of the functions below, and of Water's parameters.
+void check_water_range(const char* function, const char* name, double value, double lo, double hi, const char* unit);
+
 // Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in
-// [0, 40]: Tanaka, Girard, Davis, Peuto & Bignell 2001,
+// [-2, 40] (above): Tanaka, Girard, Davis, Peuto & Bignell 2001,
 // "Recommended table for the density of water between 0 C and 40 C", Metrologia 38, eq. 1
 // (999.97495 kg/m^3 at its maximum near 4 C, 998.2067 at 20 C). Outside the range:
 // std::invalid_argument (ValueError in Python).
 double water_density(double temperature_c);
 
 // Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [200, 1100],
-// temperature [deg C] in [0, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure.
+// temperature [deg C] in [-2, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure.
 // Pure water by IAPWS R9-97, "Release on the
 // Refractive Index of Ordinary Water Substance as a Function of Wavelength, Temperature and
 // Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) = rho_bar A(rho_bar, T_bar, lambda_bar),

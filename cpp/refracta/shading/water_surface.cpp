@@ -86,7 +86,10 @@ double RoughTransmittance::hemispherical(double eta) const {
 }
 
 Water::Water(const WaterParameters& parameters) : parameters_(parameters) {
-  mean_square_slope_ = cox_munk_mean_square_slope(parameters.wind_speed);  // checks wind_speed
+  check_water_range("Water", "wind_speed", parameters.wind_speed, 0.0, kWaterMaxWindSpeed, "m/s");
+  check_water_range("Water", "temperature_c", parameters.temperature_c, kWaterMinCelsius, kWaterMaxCelsius, "deg C");
+  check_water_range("Water", "salinity", parameters.salinity, 0.0, kWaterMaxSalinity, "g/kg");
+  mean_square_slope_ = cox_munk_mean_square_slope(parameters.wind_speed);
   const double resolved = parameters.resolved_slope_variance;
   if (!std::isfinite(resolved) || resolved < 0.0 || resolved > mean_square_slope_ - kMinUnresolvedSlopeVariance) {
     throw_invalid("Water: resolved_slope_variance must be in [0, ", mean_square_slope_ - kMinUnresolvedSlopeVariance,
@@ -94,7 +97,6 @@ Water::Water(const WaterParameters& parameters) : parameters_(parameters) {
                   kMinUnresolvedSlopeVariance, " kept by the microfacets) (got ", resolved, ")");
   }
   alpha_ = std::sqrt(mean_square_slope_ - resolved);
-  // water_ior checks temperature_c and salinity (naming them) on the first node.
   ior_table_.resize(kTableSize);
   std::vector<double> lambda(kTableSize), r(kTableSize);
   for (size_t i = 0; i < kTableSize; ++i) {

@@ -188,7 +188,7 @@ struct WaterParameters {
 // Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open
 // ocean). resolved_slope_variance: the mean-square slope a displaced wave mesh under it already
 // resolves (Scene.add_sea sets it): alpha^2 = Cox-Munk's total - it, so that resolved + unresolved
-// = total. wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.
+// = total. wind_speed in [0, 30] m/s, temperature_c in [-2, 40] (a cold sea at its freezing point), salinity in [0, 40] g/kg.
 class Water final : public Material {
  public:
   // Validates every parameter (std::invalid_argument naming it) and tabulates the index and the
