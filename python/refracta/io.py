@@ -296,7 +296,8 @@ def ev100(f_number: float, shutter: float, iso: float | None = None) -> float:
     Sunny 16 (f/16, 1/100 s, ISO 100) is EV100 = 14.6. ValueError for values <= 0 or NaN.
     """
     f_number, shutter = number(f_number, "ev100: f_number"), number(shutter, "ev100: shutter")
+    camera = (f_number, shutter) if iso is None else (f_number, shutter, number(iso, "ev100: iso"))
     try:
-        return _core._ev100(f_number, shutter) if iso is None else _core._ev100(f_number, shutter, number(iso, "ev100: iso"))
+        return _core._ev100(*camera)
     except ValueError as error:  # the library's check of the values, named as the call
         raise ValueError(f"ev100: {error}") from None
