@@ -72,3 +72,12 @@ def test_a_progress_bar_of_a_few_items_shows_no_rate_of_millions():
     bar(10, 10)
     text = stream.getvalue()
     assert "10/10" in text and "it/s" not in text  # was "7577944.20it/s" for items ended in microseconds
+
+
+def test_fog_the_multiple_scattering_table_does_not_resolve_is_warned_of():
+    # A trial's horizon against visibility (sun 30 deg up): 0.0085 at 0.5 km, 0.0105 at 0.55, 0.0047
+    # at 0.65, 0.0053 at 1 km -- below 0.8 km the table's steps do not resolve the fog.
+    with pytest.warns(UserWarning, match="visibility 0.5 km is fog the sky's multiple-scattering table does not"):
+        refracta.spectrum.PhysicalSky((0.0, 1.0, 0.0), visibility=0.5)
+    with pytest.warns(UserWarning, match="Scene.set_physical_sky: visibility 0.3 km is fog"):
+        refracta.Scene().set_physical_sky((0.0, 1.0, 0.0), visibility=0.3)

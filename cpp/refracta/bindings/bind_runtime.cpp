@@ -31,6 +31,10 @@ int python_level(int severity) {
 
 }  // namespace
 
+void warn(const std::string& message) {
+  if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();
+}
+
 void emit_library_log() {
   std::vector<LibraryLogRecord> records = take_ceres_log();
   if (records.empty()) return;

@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <string>
 #include <vector>
 
 namespace refracta {
@@ -27,6 +28,8 @@ void bind_lights(py::module_& m);
 void bind_spectrum(py::module_& m);
 void bind_dispersion(py::module_& m);
 void bind_runtime(py::module_& m);
+// A UserWarning of `message` (with the GIL held); a warning turned into an error raises.
+void warn(const std::string& message);
 // Moves the queued messages of Ceres (glog) to Python's logging; call with the GIL held.
 void emit_library_log();
 

@@ -86,6 +86,13 @@ BelowHorizon below_horizon_from(const std::string& name) {
   throw_invalid("below_horizon must be 'ground' or 'horizon' (got '", name, "')");
 }
 
+std::optional<std::string> fog_caveat(std::optional<double> visibility_km) {
+  if (!visibility_km || !(*visibility_km < kLeastResolvedVisibility)) return std::nullopt;
+  return concat("visibility ", *visibility_km, " km is fog the sky's multiple-scattering table does not resolve (below ",
+                kLeastResolvedVisibility, " km): its brightness does not follow the visibility smoothly and a sunlit "
+                "fog comes out far too dark");
+}
+
 double aerosol_for_visibility(double visibility_km, const PhysicalSkySettings& settings) {
   if (!(visibility_km > 0.0) || !std::isfinite(visibility_km)) {
     throw_invalid("visibility must be > 0 km and finite (got ", visibility_km, ")");
