@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from refracta import _core
+from refracta._checks import real_array
 
 ARCMIN_PER_RADIAN = 180.0 * 60.0 / np.pi
 
@@ -39,7 +40,7 @@ def astronomical_refraction(
     """
     if not isinstance(field, _core.IndexField):
         raise ValueError(f"field must be an IndexField (got {type(field).__name__})")
-    elevations = np.asarray(apparent_elevation_deg, dtype=float)
+    elevations = real_array(apparent_elevation_deg, "apparent elevation")  # not "0", nor True
     if not np.all(np.isfinite(elevations)):
         raise ValueError(f"apparent elevation must be finite (got {apparent_elevation_deg!r})")
     if np.any(np.abs(elevations) > 90.0):

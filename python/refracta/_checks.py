@@ -67,17 +67,20 @@ def _holds_bool(value) -> bool:
 
 def real_array(value, what: str, shape: tuple[int, ...] | None = None) -> np.ndarray:
     """`value` as a float64 array (of `shape` when given), else ValueError naming it (`what`):
-    strings and booleans too (also among numbers in a list), which numpy would read as numbers."""
+    strings and booleans too (also among numbers in a list), which numpy would read as numbers,
+    and numpy's datetime64 and timedelta64, which it reads as counts of their unit (ms, days)."""
     try:
         array = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):
         array = None
     if (
         array is None
-        or np.asarray(value).dtype.kind in "bUS"
+        or np.asarray(value).dtype.kind in "bUSmM"
         or _holds_bool(value)
         or (shape is not None and array.shape != shape)
     ):
         wanted = f" of shape {shape}" if shape is not None else ""
-        raise ValueError(f"{what} must be numbers{wanted} (got {value!r})")
+        times = np.asarray(value).dtype.kind in "mM"
+        hint = "; numpy times count their unit: give seconds, e.g. times / np.timedelta64(1, 's')" if times else ""
+        raise ValueError(f"{what} must be numbers{wanted} (got {value!r}){hint}")
     return array

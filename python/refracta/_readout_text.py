@@ -34,6 +34,19 @@ def _planes(aovs: dict) -> list[tuple[str, np.ndarray]]:
     return planes
 
 
+def checked_planes(aovs: dict, image, who: str) -> tuple[np.ndarray, list[tuple[str, np.ndarray]]]:
+    """The image (H, W, >= 3) and its readouts' planes (name, (H, W, C)), each the image's size,
+    else ValueError naming `who` and the readout: a hover would show another pixel's values."""
+    pixels = np.asarray(image)
+    if pixels.ndim != 3 or pixels.shape[2] < 3:
+        raise ValueError(f"{who}: image must be (H, W, 3) (got shape {pixels.shape})")
+    planes = _planes(aovs)
+    for name, array in planes:
+        if array.shape[:2] != pixels.shape[:2]:
+            raise ValueError(f"{who}: aovs[{name!r}] is {array.shape[:2]}, the image {pixels.shape[:2]}")
+    return pixels, planes
+
+
 def readout_text(aovs: dict, u: float, v: float) -> str:
     """The readouts at image point (u, v) (pixels: u right, v down; pixel (i, j) covers
     [i, i + 1) x [j, j + 1)) as lines 'name: value unit'; 'none' where the pixel met nothing."""
@@ -53,5 +66,6 @@ def readout_text(aovs: dict, u: float, v: float) -> str:
                 else f"{value:.{digits}f}"
             )
             parts.append(f"{label} {text}" if label else text)
-        lines.append(f"{name}: {', '.join(parts)}" + (f" {unit}" if unit else ""))
+        met = not np.all(np.isnan(array[j, i]))  # "none", not "none deg"
+        lines.append(f"{name}: {', '.join(parts)}" + (f" {unit}" if unit and met else ""))
     return "\n".join(lines)

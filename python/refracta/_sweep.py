@@ -113,6 +113,8 @@ def grid_points(grid: Mapping[str, Sequence[Any]] | Sequence[Mapping[str, Any]])
             if isinstance(axis, (set, frozenset)):  # its order is arbitrary, and so would the sweep's be
                 raise ValueError(f"sweep: grid[{name!r}] must be ordered values (a list; got a set)")
             values.append(list(axis))
+            if not values[-1]:  # the product is then empty: nothing would run
+                raise ValueError(f"sweep: grid[{name!r}] has no values (the sweep would run nothing)")
         return [dict(zip(names, combination)) for combination in itertools.product(*values)]
     if isinstance(grid, (str, bytes)) or not isinstance(grid, Iterable):
         raise ValueError(f"sweep: grid must be a dict of lists or a list of dicts (got {type(grid).__name__})")
@@ -121,6 +123,8 @@ def grid_points(grid: Mapping[str, Sequence[Any]] | Sequence[Mapping[str, Any]])
         if not isinstance(point, Mapping) or not all(isinstance(k, str) for k in point):
             raise ValueError(f"sweep: grid[{i}] must be a dict of parameter names to values (got {point!r})")
         points.append(dict(point))
+    if not points:
+        raise ValueError("sweep: grid is an empty list of points (the sweep would run nothing)")
     return points
 
 

@@ -12,6 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from refracta import _core
+from refracta._checks import real_array
 
 _UNSET = object()  # a deprecated keyword not given
 
@@ -66,16 +67,21 @@ def ray_fan(
 
     if not isinstance(field, _core.IndexField):
         raise ValueError(f"ray_fan: field must be a refracta IndexField (got {type(field).__name__})")
-    angles = np.atleast_1d(np.asarray(elevations, dtype=float))  # [deg]
-    if angles.size == 0 or not np.all(np.isfinite(angles)):
-        raise ValueError("elevations must be a non-empty list of finite angles in degrees")
+    angles = np.atleast_1d(real_array(elevations, "ray_fan: elevations"))  # [deg]; not "0.1", nor True
+    if angles.size == 0 or not np.all(np.isfinite(angles)) or np.any(np.abs(angles) > 90.0):
+        raise ValueError(
+            f"ray_fan: elevations must be a non-empty list of finite angles in [-90, 90] deg (got {elevations!r})"
+        )
     stop_height = _renamed("ground", ground, "stop_height", stop_height)
     trace = _renamed("method", method, "trace", trace)
     if not np.isfinite(eye_height) or (stop_height is not None and eye_height < stop_height):
         raise ValueError(f"eye_height must be finite and above the ground (got {eye_height})")
     trace = trace or ("stratified" if field.height_only else "rk45")
 
-    temperature = getattr(field, "temperature", None)  # the models with a temperature profile
+    # The air's own profiles: a CurvedEarth's base at true heights (its flat frame's index rises with
+    # height by e^(y / R), which read as air growing denser upward).
+    air = field.base if isinstance(field, _core.CurvedEarth) else field
+    temperature = getattr(air, "temperature", None)  # the models with a temperature profile
     has_temperature = temperature is not None
     fig, axes = plt.subplots(
         1,
@@ -122,14 +128,15 @@ def ray_fan(
 
     margin = 0.05 * (high - low if high > low else 1.0)
     heights = _profile_heights(field, low - margin, high + margin)
-    points = np.stack([np.zeros_like(heights), heights, np.zeros_like(heights)], axis=1)
+    true = np.asarray(field.true_height(heights)) if air is not field else heights
+    points = np.stack([np.zeros_like(heights), true, np.zeros_like(heights)], axis=1)
     ax_index = axes[-1]
-    ax_index.plot((field.ior(points) - 1.0) * 1e6, heights, color="tab:blue")
+    ax_index.plot((air.ior(points) - 1.0) * 1e6, heights, color="tab:blue")
     ax_index.set_xlabel("(n - 1) x 1e6")
     ax_index.set_title("index")
     if temperature is not None:
         ax_t = axes[1]
-        ax_t.plot(temperature(heights) - 273.15, heights, color="tab:red")
+        ax_t.plot(temperature(true) - 273.15, heights, color="tab:red")
         ax_t.set_xlabel("T [°C]")
         ax_t.set_title("temperature")
     ax_rays.set_ylim(low - margin, high + margin)
@@ -217,10 +224,11 @@ def readouts_figure(image, aovs: dict, exposure: float | None = None, figsize=(9
     import matplotlib.pyplot as plt
 
     from refracta import io
-    from refracta._readout_text import readout_text
+    from refracta._readout_text import checked_planes, readout_text
 
+    pixels, _ = checked_planes(aovs, image, "readouts_figure")
     figure, axes = plt.subplots(figsize=figsize)
-    axes.imshow(io.to_display(np.asarray(image)[..., :3], exposure=exposure), interpolation="nearest")
+    axes.imshow(io.to_display(pixels[..., :3], exposure=exposure), interpolation="nearest")
     # imshow puts pixel (i, j)'s centre at (i, j): the image point is (x + 0.5, y + 0.5).
     axes.format_coord = lambda x, y: readout_text(aovs, x + 0.5, y + 0.5).replace("\n", "; ")  # type: ignore[method-assign]
     axes.set_axis_off()

@@ -81,3 +81,72 @@ def test_fog_the_multiple_scattering_table_does_not_resolve_is_warned_of():
         refracta.spectrum.PhysicalSky((0.0, 1.0, 0.0), visibility=0.5)
     with pytest.warns(UserWarning, match="Scene.set_physical_sky: visibility 0.3 km is fog"):
         refracta.Scene().set_physical_sky((0.0, 1.0, 0.0), visibility=0.3)
+
+
+def test_numpy_times_are_refused_not_read_as_counts_of_their_unit():
+    # animate read timedelta64[ms] (0, 1000) as 0 and 1000 s, datetime64 as seconds since 1970.
+    field = refracta.PhysicalAtmosphere()
+    camera = refracta.Camera((0.0, 1.5, 0.0), (100.0, 1.0, 0.0), (0, 1, 0), 10.0, 8, 4)
+    scene = refracta.Scene()
+    scene.set_sky((1.0, 1.0, 1.0))
+    noise = dict(rms=1e-5, correlation_pixels=2)
+    for times in (np.array([0, 1000], dtype="timedelta64[ms]"), np.array(["2026-06-21T19:50"], dtype="datetime64[s]")):
+        with pytest.raises(ValueError, match="animate: times must be numbers.*give seconds"):
+            refracta.animate(scene, camera, field, times, noise=noise, progress=False)
+
+
+def test_a_spectrum_wholly_outside_the_rendered_wavelengths_is_refused():
+    # A sun given at 900-1200 nm rendered black, spectral and RGB alike, without a word.
+    scene = refracta.Scene()
+    with pytest.raises(ValueError, match="wavelengths 900-1200 nm lie outside the rendered 360-830 nm"):
+        scene.set_sun((0.0, 1.0, 0.0), np.full(4, 1e3), wavelengths=[900.0, 1000.0, 1100.0, 1200.0])
+    scene.set_sun((0.0, 1.0, 0.0), np.full(4, 1e3), wavelengths=[700.0, 800.0, 900.0, 1000.0])  # its red part shows
+
+
+def test_an_empty_sweep_is_refused_as_the_empty_grid_is():
+    # sweep(f, {}) raised, but an axis without values or an empty list of points returned [].
+    for grid, message in (({"sun_elevation": []}, r"grid\['sun_elevation'\] has no values"), ([], "empty list")):
+        with pytest.raises(ValueError, match=message):
+            refracta.sweep(lambda **point: 0, grid, progress=False)
+
+
+def test_readouts_of_another_size_than_the_image_are_refused_and_none_has_no_unit():
+    # The figure hovered pixel (2, 2)'s values over pixel (20, 20) of a 32 x 32 image.
+    from refracta import plot
+    from refracta._readout_text import readout_text
+
+    with pytest.raises(ValueError, match=r"readouts_figure: aovs\['distance'\] is \(3, 3\), the image \(32, 32\)"):
+        plot.readouts_figure(np.ones((32, 32, 3)), {"distance": np.zeros((3, 3))})
+    text = readout_text({"true_elevation": np.full((2, 2), np.nan), "distance": np.ones((2, 2))}, 0.5, 0.5)
+    assert "true_elevation: none\n" in text + "\n" and "distance: 1.00 m" in text  # was "none deg"
+
+
+def test_angles_given_as_strings_or_beyond_the_zenith_are_refused():
+    from refracta import plot
+
+    air = refracta.PhysicalAtmosphere()
+    with pytest.raises(ValueError, match="apparent elevation must be numbers"):
+        refracta.astronomical_refraction(air, "0")  # was 33.01'
+    with pytest.raises(ValueError, match="ray_fan: elevations must be numbers"):
+        plot.ray_fan(air, 1.5, elevations="0.1", max_length=100.0)
+    with pytest.raises(ValueError, match=r"ray_fan: elevations must be .* in \[-90, 90\] deg"):
+        plot.ray_fan(air, 1.5, elevations=[100.0], max_length=100.0)
+
+
+def test_a_curved_earths_ray_fan_shows_the_airs_own_profiles():
+    # Its index panel showed the flat frame's n e^(y / R), rising with height (277.8 -> 290.9 at
+    # 100 m: air growing denser upward), and its temperature panel was missing.
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from refracta import plot
+
+    air = refracta.PhysicalAtmosphere()
+    figure = plot.ray_fan(refracta.CurvedEarth(air, 6371e3), 2.0, elevations=[-0.1, 0.1], max_length=20000.0)
+    titles = [axes.get_title() for axes in figure.axes]
+    assert "temperature" in titles
+    index = figure.axes[titles.index("index")].lines[0]
+    n, y = np.asarray(index.get_xdata()), np.asarray(index.get_ydata())
+    assert np.all(np.diff(n) < 0) and np.all(np.diff(y) > 0)  # the standard atmosphere thins upward
+    lowest = air.ior(np.array([0.0, y[0], 0.0]))  # a few metres from the ground
+    assert n[0] == pytest.approx((float(lowest) - 1.0) * 1e6, rel=1e-9)  # flat and true heights differ by y^2/2R

@@ -35,7 +35,7 @@ def test_readout_text_is_the_pixel_under_the_point(rendered):
     assert text[3] == f"object_id: {box}"
     sky = np.argwhere(aovs["object_id"] == -1)[0]
     assert "distance: inf m" in readout_text(aovs, sky[1] + 0.5, sky[0] + 0.5)
-    assert "position: x none, y none, z none m" in readout_text(aovs, sky[1] + 0.5, sky[0] + 0.5)
+    assert "position: x none, y none, z none\n" in readout_text(aovs, sky[1] + 0.5, sky[0] + 0.5)  # no unit for none
 
 
 def test_matplotlib_status_bar_shows_the_readouts(rendered):

@@ -102,6 +102,10 @@ Color Color::tabulated(const std::vector<double>& lambda_nm, const std::vector<d
                     " (got ", values[i], " at ", lambda_nm[i], " nm)");
     }
   }
+  if (lambda_nm.back() < spectral::kTableMin || lambda_nm.front() > spectral::kTableMax) {
+    throw_invalid("tabulated: wavelengths ", lambda_nm.front(), "-", lambda_nm.back(), " nm lie outside the rendered ",
+                  spectral::kTableMin, "-", spectral::kTableMax, " nm: the spectrum would be black");
+  }
   // Resample to the 1 nm grid: linear between samples, 0 outside them (one sample: a spike of
   // zero width, i.e. black, unless it falls on the grid).
   auto table = std::make_shared<std::vector<double>>(spectral::kTableSamples, 0.0);

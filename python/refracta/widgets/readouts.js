@@ -44,11 +44,13 @@ function render({ model, el }) {
     const channels = layout.reduce((n, item) => n + item.labels.length, 0);
     const lines = [`pixel (${i}, ${j})`];
     for (const item of layout) {
+      let met = false;  // "none", not "none deg"
       const parts = item.labels.map((labelText, c) => {
         const value = view.getFloat32(4 * ((j * width + i) * channels + item.offset + c), true);
+        met = met || !Number.isNaN(value);
         return (labelText ? `${labelText} ` : "") + formatValue(value, item.digits);
       });
-      lines.push(`${item.name}: ${parts.join(", ")}${item.unit ? " " + item.unit : ""}`);
+      lines.push(`${item.name}: ${parts.join(", ")}${item.unit && met ? " " + item.unit : ""}`);
     }
     return lines.join("\n");
   }

@@ -13,7 +13,7 @@ import numpy as np
 import traitlets
 
 from refracta import io
-from refracta._readout_text import _format, _planes, readout_text
+from refracta._readout_text import _format, checked_planes, readout_text
 from refracta.widgets.canvas import png_bytes
 
 __all__ = ["ReadoutViewer", "readout_text", "show_readouts"]
@@ -42,14 +42,8 @@ def show_readouts(
     """A ReadoutViewer of a render's image (linear HDR, shown through refracta.io.to_display with
     `exposure`, None: automatic) and its readouts (render's second result). scale: display pixels
     per image pixel (None: the image about 640 pixels wide)."""
-    pixels = np.asarray(image)
-    if pixels.ndim != 3 or pixels.shape[2] < 3:
-        raise ValueError(f"show_readouts: image must be (H, W, 3) (got shape {pixels.shape})")
+    pixels, planes = checked_planes(aovs, image, "show_readouts")
     height, width = pixels.shape[:2]
-    planes = _planes(aovs)
-    for name, array in planes:
-        if array.shape[:2] != (height, width):
-            raise ValueError(f"show_readouts: aovs[{name!r}] is {array.shape[:2]}, the image {(height, width)}")
     layout, offset = [], 0
     for name, array in planes:
         labels, unit, digits = _format(name, array.shape[2])
