@@ -502,7 +502,8 @@ bounding a medium of the water's index (priority for nested dielectrics).
 Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open
 ocean). resolved_slope_variance: the mean-square slope a displaced wave mesh under it already
 resolves (Scene.add_sea sets it): alpha^2 = Cox-Munk's total - it, so that resolved + unresolved =
-total. wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.)doc";
+total. wind_speed in [0, 30] m/s, temperature_c in [-2, 40] (a cold sea at its freezing point),
+salinity in [0, 40] g/kg.)doc";
 inline constexpr const char mkd_doc_refracta_WaterParameters_resolved_slope_variance[] = R"doc([-] the mean-square slope a displaced mesh under this material already shows (Scene.add_sea: the
 Tessendorf waves it resolves); the microfacets keep the rest, alpha^2 = sigma^2 - this, so that
 resolved + unresolved = Cox & Munk's total. In [0, sigma^2 - kMinUnresolvedSlopeVariance].)doc";
@@ -579,12 +580,12 @@ Limnology and Oceanography 22(4), R = 0.33 b_b / a; written with Gordon, Brown &
 variable X = b_b / (a + b_b), Applied Optics 14(2), so that R stays below 0.33 where backscattering
 rivals absorption). Pure water of the given salinity: blue (0.13 at 420 nm), 0.0054 at 550 nm,
 4.4e-4 at 650 nm for S = 35). Throws outside 360-830 nm or 0-40 g/kg.)doc";
-inline constexpr const char mkd_doc_refracta_water_density[] = R"doc(Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in [0, 40]: Tanaka,
-Girard, Davis, Peuto & Bignell 2001, "Recommended table for the density of water between 0 C and 40
-C", Metrologia 38, eq. 1 (999.97495 kg/m^3 at its maximum near 4 C, 998.2067 at 20 C). Outside the
-range: std::invalid_argument (ValueError in Python).)doc";
+inline constexpr const char mkd_doc_refracta_water_density[] = R"doc(Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in [-2, 40] (above):
+Tanaka, Girard, Davis, Peuto & Bignell 2001, "Recommended table for the density of water between 0 C
+and 40 C", Metrologia 38, eq. 1 (999.97495 kg/m^3 at its maximum near 4 C, 998.2067 at 20 C).
+Outside the range: std::invalid_argument (ValueError in Python).)doc";
 inline constexpr const char mkd_doc_refracta_water_ior[] = R"doc(Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [200, 1100], temperature
-[deg C] in [0, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure. Pure water by
+[deg C] in [-2, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure. Pure water by
 IAPWS R9-97, "Release on the Refractive Index of Ordinary Water Substance as a Function of
 Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) = rho_bar
 A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t); sea water plus the salinity terms of

@@ -360,6 +360,8 @@ class LogisticProfile(IndexField):
         a_inv [1] 1, [0.01, 100]: inversion width (logistic width 0.1 a_inv)
         a_hot [1] 1, [0.01, 100]: hot-spot width (logistic width 0.3 a_hot)
         k_s [1] 10, [-300, 300]: overall strength: n - 1 reaches 0.003 k_s
+    
+    The optimiser bounds are where edit.solve searches; the model itself takes any physical value (a value it refuses is named).
     """
     def __getstate__(self) -> tuple:
         ...
@@ -387,6 +389,8 @@ class LinearSquaredProfile(IndexField):
     Parameters (name [unit] default, optimiser bounds: meaning):
         n0 [1] 1.00028, [0.5, 3]: index at y = 0
         alpha [1/m] 0, [-0.001, 0.001]: d(n^2)/dy
+    
+    The optimiser bounds are where edit.solve searches; the model itself takes any physical value (a value it refuses is named).
     """
     def __getstate__(self) -> tuple:
         ...
@@ -418,6 +422,8 @@ class PhysicalAtmosphere(IndexField):
         surface_depth [m] 0.1, [0.005, 10]: e-folding depth of the surface layer
         humidity [1] 0, [0, 1]: relative humidity
         wavelength [nm] 550, [380, 780]: vacuum wavelength
+    
+    The optimiser bounds are where edit.solve searches; the model itself takes any physical value (a value it refuses is named).
     """
     def __getstate__(self) -> tuple:
         ...
@@ -3021,7 +3027,8 @@ class Water(Material):
     Defaults: wind_speed 5 m/s (a gentle breeze), temperature_c 20 deg C, salinity 35 g/kg (the open
     ocean). resolved_slope_variance: the mean-square slope a displaced wave mesh under it already
     resolves (Scene.add_sea sets it): alpha^2 = Cox-Munk's total - it, so that resolved + unresolved =
-    total. wind_speed in [0, 30] m/s, temperature_c in [0, 40], salinity in [0, 40] g/kg.
+    total. wind_speed in [0, 30] m/s, temperature_c in [-2, 40] (a cold sea at its freezing point),
+    salinity in [0, 40] g/kg.
     """
     def __getstate__(self) -> dict:
         ...
@@ -3840,16 +3847,16 @@ def water_body_reflectance(wavelength_nm: typing.Any, salinity: typing.Any = 0.0
     """
 def water_density(temperature_c: typing.Any) -> typing.Any:
     """
-    Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in [0, 40]: Tanaka,
-    Girard, Davis, Peuto & Bignell 2001, "Recommended table for the density of water between 0 C and 40
-    C", Metrologia 38, eq. 1 (999.97495 kg/m^3 at its maximum near 4 C, 998.2067 at 20 C). Outside the
-    range: std::invalid_argument (ValueError in Python).
+    Density of air-free pure water at 101 325 Pa [kg/m^3], temperature [deg C] in [-2, 40] (above):
+    Tanaka, Girard, Davis, Peuto & Bignell 2001, "Recommended table for the density of water between 0 C
+    and 40 C", Metrologia 38, eq. 1 (999.97495 kg/m^3 at its maximum near 4 C, 998.2067 at 20 C).
+    Outside the range: std::invalid_argument (ValueError in Python).
     Vectorised: numbers or arrays of them (numpy broadcasting).
     """
 def water_ior(wavelength_nm: typing.Any, temperature_c: typing.Any = 20.0, salinity: typing.Any = 0.0) -> typing.Any:
     """
     Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [200, 1100], temperature
-    [deg C] in [0, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure. Pure water by
+    [deg C] in [-2, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure. Pure water by
     IAPWS R9-97, "Release on the Refractive Index of Ordinary Water Substance as a Function of
     Wavelength, Temperature and Pressure" (the Lorentz-Lorenz form (n^2 - 1)/(n^2 + 2) = rho_bar
     A(rho_bar, T_bar, lambda_bar), eq. A1), at water_density(t); sea water plus the salinity terms of

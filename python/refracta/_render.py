@@ -337,7 +337,7 @@ def render(
             f"frame={frame!r} and aovs={aovs!r})"
         )
     if frame is not None:
-        _check_frame_radius(frame, field, method)
+        _check_frame_radius(frame, field, method or "curved")
     surface = [name for name in wanted if name not in READOUT_NAMES]  # the readouts say so themselves
     if (denoise or surface) and method == "raster_march":
         raise ValueError(

@@ -81,10 +81,10 @@ def _longitude(value, name: str) -> np.ndarray:
     return _checked(value, name, -360.0, 360.0)  # east of Greenwich, either convention ([-180, 180] or [0, 360])
 
 
-def _broadcast(**arrays: np.ndarray) -> list[np.ndarray]:
+def _broadcast(**arrays: np.ndarray) -> tuple[np.ndarray, ...]:
     """The arrays broadcast together, else ValueError naming them and their shapes."""
     try:
-        return np.broadcast_arrays(*arrays.values())
+        return tuple(np.broadcast_arrays(*arrays.values()))
     except ValueError:
         shapes = ", ".join(f"{name} {np.shape(a)}" for name, a in arrays.items())
         raise ValueError(f"the arrays do not broadcast together: {shapes}") from None

@@ -80,7 +80,8 @@ def ray_fan(
 
     # The air's own profiles: a CurvedEarth's base at true heights (its flat frame's index rises with
     # height by e^(y / R), which read as air growing denser upward).
-    air = field.base if isinstance(field, _core.CurvedEarth) else field
+    curved = field if isinstance(field, _core.CurvedEarth) else None
+    air = curved.base if curved is not None else field
     temperature = getattr(air, "temperature", None)  # the models with a temperature profile
     has_temperature = temperature is not None
     fig, axes = plt.subplots(
@@ -128,7 +129,7 @@ def ray_fan(
 
     margin = 0.05 * (high - low if high > low else 1.0)
     heights = _profile_heights(field, low - margin, high + margin)
-    true = np.asarray(field.true_height(heights)) if air is not field else heights
+    true = np.asarray(curved.true_height(heights)) if curved is not None else heights
     points = np.stack([np.zeros_like(heights), true, np.zeros_like(heights)], axis=1)
     ax_index = axes[-1]
     ax_index.plot((air.ior(points) - 1.0) * 1e6, heights, color="tab:blue")

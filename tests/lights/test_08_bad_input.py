@@ -49,7 +49,7 @@ TRI_V, TRI_T = [[0, 1, 0], [1, 1, 0], [0, 1, 1]], [[0, 1, 2]]
         (lambda: EnvironmentLight(np.zeros((0, 4, 3))), "image"),
         (lambda: EnvironmentLight(np.zeros((1, 4, 3))), "image"),
         (lambda: EnvironmentLight(np.full((4, 8, 3), -1.0)), "texel"),
-        (lambda: EnvironmentLight(np.full((4, 8, 3), np.inf)), "texel"),
+        (lambda: EnvironmentLight(np.full((4, 8, 3), np.inf)), "pixel"),
         (lambda: EnvironmentLight(np.ones((4, 8, 2))), "channels"),
         (lambda: EnvironmentLight(np.ones((4, 8, 3)), scale=-1.0), "scale"),
         (lambda: EnvironmentLight(np.ones((4, 8, 3)), rotation=np.diag([1.0, 1.0, -1.0])), "rotation"),

@@ -121,7 +121,7 @@ def test_elevation_table_matches_exact_traces(hot_road):
     [
         (dict(origin=[0, float("nan"), 0]), ValueError, "origin must be finite"),
         (dict(direction=[0, 0, 0]), ValueError, "direction must be finite and non-zero"),
-        (dict(direction=[1, 2]), ValueError, r"shape \(N, 3\) or \(3,\)"),
+        (dict(direction=[1, 2]), ValueError, r"shape \(3,\), one point"),
         (dict(tol=0.0), ValueError, "tol must be > 0"),
         (dict(tol=float("nan")), ValueError, "tol must be > 0"),
         (dict(step=-1.0), ValueError, "step must be > 0"),

@@ -298,3 +298,26 @@ def test_set_aerial_perspective_turns_the_air_off_and_on():
     bare.set_sky((0.5, 0.6, 0.9))
     with pytest.raises(ValueError, match="physical sky"):
         bare.set_aerial_perspective(True)
+
+
+@pytest.mark.parametrize(("height", "method"), [(200.0, "straight"), (200.0, "raster_march"), (1850.0, "straight")])
+def test_from_a_raised_camera_a_black_target_fades_into_the_sky_seen_from_there(height, method):
+    # The sky behind a target is the sky seen from the camera's height, the haze on it the air's
+    # at that height (render/raised_sky.h). A trial's 200 m camera in 5 km visibility saw black
+    # boxes 5 and 10 km away 20 % brighter than the ground's horizon sky beside them. Koschmieder
+    # at the camera's height: sigma(h) = beta_R(550) e^(-h / 8 km) + (3.912 / V - beta_R(550))
+    # e^(-h / 1.2 km) (physical_sky.h's densities; no ozone below 10 km), the contrast e^(-sigma d).
+    visibility, beta_rayleigh = 5.0, 1.2126e-5
+    sigma = beta_rayleigh * math.exp(-height / 8000.0) + (KOSCHMIEDER / (visibility * 1e3) - beta_rayleigh) * math.exp(
+        -height / 1200.0
+    )
+    for distance in (1000.0, 3000.0, 20000.0 if height < 1000.0 else 60000.0):
+        scene = refracta.Scene()
+        scene.set_physical_sky(sun_at(30.0), below_horizon="horizon", visibility=visibility)
+        scene.add_box((distance, height, 0.0), (1.0, 0.02 * distance, 0.02 * distance), material=shading.Diffuse(0.0))
+        camera = refracta.Camera((0.0, height, 0.0), (distance, height, 0.0), (0, 1, 0), 3.0, 16, 16)
+        image = refracta.render(scene, camera, None, method=method, progress=False, max_length=1e5)
+        contrast = 1.0 - image[8, 8, 1] / image[8, 0, 1]
+        # The green channel stands for 550 nm (the aerosol's extinction is grey, Rayleigh's 1.5 % of
+        # it), and the sky's far light and the chord's rise over the sky's sphere: 0.005.
+        assert contrast == pytest.approx(math.exp(-sigma * distance), abs=0.005), (distance, contrast)

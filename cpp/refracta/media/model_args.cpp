@@ -51,6 +51,8 @@ std::string param_table(const std::vector<ParamSpec>& specs) {
     out << "    " << s.name << " [" << s.unit << "] " << s.default_value << ", [" << s.lower << ", " << s.upper
         << "]: " << s.doc << "\n";
   }
+  out << "\nThe optimiser bounds are where edit.solve searches; the model itself takes any physical value (a "
+         "value it refuses is named).\n";
   return out.str();
 }
 

@@ -364,9 +364,11 @@ Spectrum DirectLighting::arriving(size_t light, const SurfaceInteraction& si, co
       const PathEnd end = caster_.cast(si.offset_toward(wi), wi, 0.0, 0.0, si.cone_width_along(wi));
       if (end.hit) return Spectrum::Zero();
       // Along the exit direction; basic radiance L / n^2 is conserved (Ament et al. 2014).
-      return source.Le(end.direction, lambda) * sqr(caster_.ior(si.p) / distant_ior(si.p, end.direction));
+      return distant_Le(source, si.p.y(), end.direction, lambda) * sqr(caster_.ior(si.p) / distant_ior(si.p, end.direction));
     }
-    return caster_.scene().occluded(si.offset_toward(wi), wi, kSceneReach) ? Spectrum::Zero() : ls.L;
+    if (caster_.scene().occluded(si.offset_toward(wi), wi, kSceneReach)) return Spectrum::Zero();
+    // The sample's radiance is the ground sky's; seen from a raised point, the raised one's.
+    return raised_sky_ && raised_sky_->raises(source) ? raised_sky_->Le(source, si.p.y(), wi, lambda) : ls.L;
   }
   // Aim the shadow ray from the offset point at the light point itself: a ray parallel to wi
   // from the offset origin would meet the light's surface up to offset / cos short of
@@ -386,12 +388,12 @@ Spectrum DirectLighting::arriving(size_t light, const SurfaceInteraction& si, co
 }
 
 Spectrum DirectLighting::escaped(const PathEnd& end, const Vec3d& launch_dir, const SurfaceInteraction* from,
-                                 double bsdf_pdf, bool specular, const SampledWavelengths& lambda) const {
+                                 double from_y, double bsdf_pdf, bool specular, const SampledWavelengths& lambda) const {
   Spectrum L = Spectrum::Zero();
   const auto& lights = scene_.lights();
   for (size_t i = 0; i < lights.size(); ++i) {
     if (!lights[i]->is_infinite()) continue;
-    const Spectrum Le = lights[i]->Le(end.direction, lambda);
+    const Spectrum Le = distant_Le(*lights[i], from_y, end.direction, lambda);
     if (!(Le.maxCoeff() > 0.0)) continue;
     if (!from || specular) {
       L += Le;

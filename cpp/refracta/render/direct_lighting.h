@@ -25,6 +25,7 @@
 #include "refracta/core/spectrum.h"
 #include "refracta/render/caster.h"
 #include "refracta/render/light_visibility.h"
+#include "refracta/render/raised_sky.h"
 #include "refracta/render/render_options.h"
 #include "refracta/render/render_scene.h"
 #include "refracta/render/sun_exit_map.h"
@@ -99,16 +100,20 @@ class DirectLighting : public LightVisibility {
     scale_ = std::move(scale);
   }
 
+  // A raised camera's sky (raised_sky.h; null: the ground's sky everywhere).
+  void use_raised_sky(std::shared_ptr<const RaisedSky> sky) { raised_sky_ = std::move(sky); }
+
   // The shadow rays: toward a distant light a curved (or straight) ray through the caster, the
   // light seen along its exit direction; to a finite light a straight segment, dimmed by the
   // aerial perspective.
   Spectrum arriving(size_t light, const SurfaceInteraction& si, const Vec3d& wi, const LightLiSample& ls,
                     const SampledWavelengths& lambda) const override;
 
-  // Radiance of the infinite lights seen at the end of an escaped path, MIS-weighted against
-  // light sampling from `from` (bsdf_pdf: density of the launch direction; specular: no MIS).
-  Spectrum escaped(const PathEnd& end, const Vec3d& launch_dir, const SurfaceInteraction* from, double bsdf_pdf,
-                   bool specular, const SampledWavelengths& lambda) const;
+  // Radiance of the infinite lights seen at the end of an escaped path that left scene height
+  // `from_y` (its last segment's start: the eye or `from`), MIS-weighted against light sampling
+  // from `from` (bsdf_pdf: density of the launch direction; specular: no MIS).
+  Spectrum escaped(const PathEnd& end, const Vec3d& launch_dir, const SurfaceInteraction* from, double from_y,
+                   double bsdf_pdf, bool specular, const SampledWavelengths& lambda) const;
   // Radiance an area light emits at si toward si.wo, MIS-weighted likewise.
   Spectrum emitted(const SurfaceInteraction& si, const SurfaceInteraction* from, double bsdf_pdf, bool specular,
                    const SampledWavelengths& lambda) const;
@@ -166,6 +171,11 @@ class DirectLighting : public LightVisibility {
   std::shared_ptr<const LowestLaunches> lowest_launches_;  // use_sun_tables
   std::shared_ptr<const SunExitMap> sun_exits_;
   std::shared_ptr<const double> scale_;
+  std::shared_ptr<const RaisedSky> raised_sky_;
+  // A distant light's radiance along dir as seen from scene height y (the raised camera's sky).
+  Spectrum distant_Le(const Light& light, double y, const Vec3d& dir, const SampledWavelengths& lambda) const {
+    return raised_sky_ ? raised_sky_->Le(light, y, dir, lambda) : light.Le(dir, lambda);
+  }
 };
 
 }  // namespace refracta

@@ -22,6 +22,7 @@ struct HeroCasters::Hero {
     if (owner.floors_) caster.set_ior_floors(*owner.floors_);
     caster.set_secondary_spread(owner.spread_);
     integrator = make_integrator(owner.scene_, caster, owner.options_);
+    integrator->lighting().use_raised_sky(owner.raised_sky_);
     if (owner.lowest_launches_ || owner.sun_exits_) {
       integrator->lighting().use_sun_tables(owner.lowest_launches_, owner.sun_exits_, scale);
     }
@@ -34,13 +35,14 @@ struct HeroCasters::Hero {
 };
 
 HeroCasters::HeroCasters(const RenderScene& scene, FieldPtr field, const RenderOptions& options,
-                         std::optional<IorFloors> floors, double spread)
+                         std::optional<IorFloors> floors, double spread, std::shared_ptr<const RaisedSky> raised_sky)
     : scene_(scene),
       field_(std::move(field)),
       options_(options),
       floors_(std::move(floors)),
       spread_(spread),
-      reference_(field_reference_wavelength(*field_)) {
+      reference_(field_reference_wavelength(*field_)),
+      raised_sky_(std::move(raised_sky)) {
   // The lowest launches at SpectralEyeTables' dispersion scales (2.4e-3 of n - 1 apart), each
   // scale's air cast as a hero's is (DirectLighting::launch_below_horizon's sun over a sphere).
   if (scene.sun() == nullptr || !field_->height_only() || !std::isfinite(field_->earth_radius())) return;

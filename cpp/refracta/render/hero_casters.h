@@ -35,8 +35,9 @@ class HeroCasters {
   // field: the render's air (non-null, its rays curved); floors: the ior floors over every
   // wavelength (IorFloors::merge); spread: set_secondary_spread's. Keeps references to scene and
   // options, which must outlive it.
+  // raised_sky: the render's (DirectLighting::use_raised_sky), given to every hero's lighting.
   HeroCasters(const RenderScene& scene, FieldPtr field, const RenderOptions& options, std::optional<IorFloors> floors,
-              double spread);
+              double spread, std::shared_ptr<const RaisedSky> raised_sky = nullptr);
   ~HeroCasters();
 
  private:
@@ -72,6 +73,7 @@ class HeroCasters {
   // exit map above it (DirectLighting::use_sun_tables); null: each is cast, or launched along the sample.
   std::shared_ptr<const LowestLaunches> lowest_launches_;
   std::shared_ptr<const SunExitMap> sun_exits_;
+  std::shared_ptr<const RaisedSky> raised_sky_;
   mutable tbb::concurrent_queue<std::unique_ptr<Hero>> idle_;  // built and not held
 };
 

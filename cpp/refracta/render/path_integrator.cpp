@@ -75,7 +75,7 @@ class PathTracer : public Integrator {
       if (kSurfaceOnly && !end.hit) break;
       if (!end.hit) {
         const double n_top = caster_.curved() ? lighting_.distant_ior(o, end.direction) * ior_here / caster_.ior(o) : ior_here;
-        L += beta * lighting_.escaped(end, d, has_previous ? &previous : nullptr, bsdf_pdf, specular, lambda) *
+        L += beta * lighting_.escaped(end, d, has_previous ? &previous : nullptr, o.y(), bsdf_pdf, specular, lambda) *
              sqr(ior_here / n_top);
         break;
       }

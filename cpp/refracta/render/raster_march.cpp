@@ -11,6 +11,7 @@
 #include "refracta/rays/trace.h"
 #include "refracta/render/caster.h"
 #include "refracta/render/integrator.h"
+#include "refracta/render/raised_sky.h"
 #include "refracta/render/renderer.h"
 #include "refracta/render/tile_loop.h"
 
@@ -87,6 +88,7 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
   straight.method = RenderMethod::kStraight;
   const Caster caster(scene, nullptr, straight);
   const std::unique_ptr<Integrator> integrator = make_integrator(render_scene, caster, straight);
+  integrator->lighting().use_raised_sky(RaisedSky::for_camera(render_scene, camera.position().y()));
   tbb::enumerable_thread_specific<ScratchBuffer> scratch_per_thread;
   const double pixel_angle = options.texture_filter ? camera.pixel_angle() : 0.0;
   frame.colour = render_tiles(frame.view.width(), frame.view.height(), options.tile, control, [&](int x, int y) {
@@ -117,7 +119,7 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
   auto sky = [&](const Vec3d& dir) {
     PathEnd escaped;
     escaped.direction = dir;
-    return Vec3d(integrator->lighting().escaped(escaped, dir, nullptr, 0.0, true, rgb).head<3>().matrix());
+    return Vec3d(integrator->lighting().escaped(escaped, dir, nullptr, eye.y(), 0.0, true, rgb).head<3>().matrix());
   };
   auto colour_at = [&](int px, int py) {
     const float* c = frame.colour.at(px, py);

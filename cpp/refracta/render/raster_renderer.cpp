@@ -11,6 +11,7 @@
 #include "refracta/core/scratch.h"
 #include "refracta/render/caster.h"
 #include "refracta/render/direct_lighting.h"
+#include "refracta/render/raised_sky.h"
 #include "refracta/render/raster_visibility.h"
 #include "refracta/render/surface_scattering.h"
 #include "refracta/render/tile_loop.h"
@@ -183,6 +184,11 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   // add it: its in-scatter arrives, and it dims the surface's light (a trial: the raster image was
   // the same with and without the haze).
   const AerialPerspective* air = render_scene.aerial_perspective();
+  // A raised camera's sky, as the ray renderers' (raised_sky.h).
+  const std::shared_ptr<const RaisedSky> raised_sky = RaisedSky::for_camera(render_scene, eye.y());
+  auto distant_Le = [&](const Light& light, double y, const Vec3d& dir) {
+    return raised_sky ? raised_sky->Le(light, y, dir, lambda_rgb) : light.Le(dir, lambda_rgb);
+  };
   auto through_air = [&](const Vec3d& p, const Spectrum& L) -> Vec3d {
     if (!air) return Vec3d(L.head<3>().matrix());
     const AerialPerspective::Segment segment = air->along(eye, p, caster.air_frame(), lambda_rgb);
@@ -210,7 +216,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
           const auto bs = s.bsdf.sample(si.wo, (lobe_of[size_t(a) * size_t(n) + size_t(b)] + 0.5) * weight, u);
           if (!bs) continue;
           LightLiSample ls;
-          ls.L = light.Le(bs->wi, lambda);
+          ls.L = distant_Le(light, si.p.y(), bs->wi);
           ls.wi = bs->wi;
           ls.pdf = bs->pdf;
           L += bs->weight * visibility.arriving(i, si, bs->wi, ls, lambda) * weight;
@@ -223,7 +229,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     Spectrum L = Spectrum::Zero();
     for (size_t i = 0; i < render_scene.lights().size(); ++i) {
       const Light& light = *render_scene.lights()[i];
-      if (light.is_infinite() && (i != lights.sun || lights.sun_shines)) L += light.Le(dir, lambda_rgb);
+      if (light.is_infinite() && (i != lights.sun || lights.sun_shines)) L += distant_Le(light, eye.y(), dir);
     }
     return Vec3d(L.head<3>().matrix());
   };

@@ -64,6 +64,7 @@ class RenderScene {
   void disable_aerial_perspective();
   // Null without aerial perspective.
   const AerialPerspective* aerial_perspective() const { return aerial_.get(); }
+  const Light* aerial_source() const { return aerial_source_; }  // the sky light it was made from
   const std::shared_ptr<AerialPerspective>& aerial_perspective_ptr() const { return aerial_; }
 
   // A spot light's disc radius [m] for render_raster's soft-shadow reference ('embree' shadows

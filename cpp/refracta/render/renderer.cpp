@@ -18,6 +18,7 @@
 #include "refracta/render/film.h"
 #include "refracta/render/hero_casters.h"
 #include "refracta/render/integrator.h"
+#include "refracta/render/raised_sky.h"
 #include "refracta/render/shimmer_cast.h"
 #include "refracta/render/readouts.h"
 #include "refracta/shading/spectral.h"
@@ -290,6 +291,8 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                                   floors, options)
             : nullptr;
   const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
+  const std::shared_ptr<const RaisedSky> raised_sky = RaisedSky::for_camera(scene, camera.position().y());
+  integrator->lighting().use_raised_sky(raised_sky);
   // Over a spherical Earth with a sun, the lowest launches of its samples below a point's horizon
   // and its exit map above it from tables (LowestLaunches, SunExitMap, at the render's one scale);
   // spectral renders' heroes carry theirs (hero_casters.cpp).
@@ -303,6 +306,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   // 'perturbed': the lighting rays of samples whose camera ray was a small perturbation through
   // the layer go through the calm air (shimmer_cast.h).
   const std::unique_ptr<Integrator> calm_integrator = shimmer ? make_integrator(scene, shimmer->calm(), options) : nullptr;
+  if (calm_integrator) calm_integrator->lighting().use_raised_sky(raised_sky);
   std::atomic<int64_t> chords{0}, invalid{0};
   // Dispersive air: a spectral render through a field that bends rays.
   const bool dispersive = options.spectral && caster.curved();
@@ -346,7 +350,7 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   };
   // Dispersive air: a pool of casters and integrators, one retuned to each sample's hero (hero_casters.h).
   const std::unique_ptr<HeroCasters> heroes =
-      dispersive ? std::make_unique<HeroCasters>(scene, field, options, floors, camera.pixel_angle()) : nullptr;
+      dispersive ? std::make_unique<HeroCasters>(scene, field, options, floors, camera.pixel_angle(), raised_sky) : nullptr;
   // Dispersive height-only air: camera rays from the eye tables of the scales either side of the hero's.
   // Each table traces at most 1 / kScales of the pixels' elevations (eye_table's max_rays), and
   // costs ~20 ms at least (16 tables for 24 x 12 pixels: 0.56 s, against 0.11 s for tracing its

@@ -66,7 +66,9 @@ void PhysicalSkySettings::validate() const {
   if (!(aerosol >= 0.0) || !std::isfinite(aerosol)) problems.push_back(concat("aerosol must be >= 0 (got ", aerosol, ")"));
   if (!(ozone_du >= 0.0) || !std::isfinite(ozone_du)) problems.push_back(concat("ozone_du must be >= 0 (got ", ozone_du, ")"));
   if (!(ground_albedo >= 0.0 && ground_albedo <= 1.0)) problems.push_back(concat("ground_albedo must be in [0, 1] (got ", ground_albedo, ")"));
-  if (!(altitude >= 0.0 && altitude <= 20000.0)) problems.push_back(concat("altitude must be in [0, 20000] m (got ", altitude, ")"));
+  if (!(altitude >= 0.0 && altitude <= kPhysicalSkyHighestAltitude)) {
+    problems.push_back(concat("altitude must be in [0, ", kPhysicalSkyHighestAltitude, "] m (got ", altitude, ")"));
+  }
   if (!(rayleigh_scale >= 0.0) || !std::isfinite(rayleigh_scale)) problems.push_back(concat("rayleigh_scale must be >= 0 (got ", rayleigh_scale, ")"));
   if (below_horizon != BelowHorizon::kGround && below_horizon != BelowHorizon::kHorizon) {
     problems.push_back(concat("below_horizon must be ground or horizon (got ", int(below_horizon), ")"));

@@ -57,12 +57,15 @@ enum class BelowHorizon { kGround, kHorizon };
 // "ground" or "horizon" (the Python names); anything else throws std::invalid_argument.
 BelowHorizon below_horizon_from(const std::string& name);
 
+// The highest observer altitude [m] the sky model takes (PhysicalSkySettings::altitude).
+constexpr double kPhysicalSkyHighestAltitude = 20000.0;
+
 struct PhysicalSkySettings {
   Vec3d sun_direction = Vec3d(0.0, 1.0, 0.0);  // unit, toward the sun, y up
   double aerosol = 1.0;        // Mie density scale >= 0 (1: clear, 0: none; ~3-5: hazy)
   double ozone_du = 300.0;     // ozone column [Dobson units] >= 0 (0: none)
   double ground_albedo = 0.0;  // in [0, 1]: the ground seen below the horizon (kGround; 0 with kHorizon)
-  double altitude = 0.0;       // the observer's height [m] in [0, 20000]
+  double altitude = 0.0;       // the observer's height [m] in [0, kPhysicalSkyHighestAltitude]
   double rayleigh_scale = 1.0; // Rayleigh density scale >= 0 (tests: 0 isolates the other terms)
   BelowHorizon below_horizon = BelowHorizon::kGround;
   // Add the higher orders of scattering (multiple_scattering.h, Hillaire 2020) to the single
