@@ -22,11 +22,14 @@ Conventions (issue 20, shared by refracta.geo, the terrain loader and the per-pi
   ``CurvedEarth(base, radius=geo.radius_of_curvature(lat0, azimuth))``.
 
 Geodesics are pyproj's (Karney's algorithm, accurate to nanometres): :func:`inverse` and
-:func:`forward` are ``pyproj.Geod(ellps="WGS84").inv`` / ``.fwd`` with checked arguments.
+:func:`forward` are ``pyproj.Geod(ellps="WGS84").inv`` / ``.fwd`` with checked arguments. The sun's
+place at a time (:func:`sun_position`, ``LocalFrame.sun_direction``) is the astral package's NOAA
+solar-position calculation.
 """
 
 from __future__ import annotations
 
+import datetime
 import math
 from typing import Any
 
@@ -37,7 +40,7 @@ from refracta import _core
 from refracta._checks import finite_pair, is_number, is_seed
 from refracta._refraction_coefficient import straight_elevation
 
-__all__ = ["LocalFrame", "forward", "inverse", "principal_radii", "radius_of_curvature"]
+__all__ = ["LocalFrame", "forward", "inverse", "principal_radii", "radius_of_curvature", "sun_position"]
 
 _GEOD = pyproj.Geod(ellps="WGS84")
 # Geographic coordinates on the WGS84 ellipsoid itself (no datum shift between the two CRSs).
@@ -122,6 +125,37 @@ def forward(lat, lon, azimuth, distance):
     la, lo, az, d = _broadcast(lat=la, lon=lo, azimuth=az, distance=d)
     lon2, lat2, back = _GEOD.fwd(lo, la, az, d)
     return _scalar_or_array(np.asarray(lat2)), _scalar_or_array(np.asarray(lon2)), _scalar_or_array(np.asarray(back))
+
+
+def _utc(when) -> datetime.datetime:
+    """A time as an aware UTC datetime: a datetime with its time zone, or an ISO 8601 string with
+    its offset ("2024-06-21T19:50:00Z", "...+01:00"); a time without a zone is ambiguous: ValueError."""
+    if isinstance(when, str):
+        try:
+            when = datetime.datetime.fromisoformat(when.replace("Z", "+00:00"))
+        except ValueError:
+            raise ValueError(f"when must be an ISO 8601 time such as '2024-06-21T19:50:00Z' (got {when!r})") from None
+    if not isinstance(when, datetime.datetime):
+        raise ValueError(f"when must be a datetime with its time zone or an ISO 8601 string (got {when!r})")
+    if when.tzinfo is None or when.utcoffset() is None:
+        raise ValueError(
+            f"when must say its time zone (got {when.isoformat()}): e.g. datetime(..., tzinfo=timezone.utc) or '...Z'"
+        )
+    return when.astimezone(datetime.timezone.utc)
+
+
+def sun_position(lat, lon, when) -> tuple[float, float]:
+    """The sun's (azimuth [deg clockwise from north], elevation [deg]) seen from (lat, lon) [deg] at
+    `when` (a datetime with its time zone, or an ISO 8601 string with its offset): its true place,
+    without the air's refraction -- a render through air refracts it (astronomical_refraction
+    gives how much: 33 arcmin at the horizon). NOAA's solar-position calculation (the astral
+    package; about 0.01 deg for 1800-2100). Give ``LocalFrame.sun_direction`` its scene vector."""
+    import astral  # here: a small package, loaded when first asked for the sun's place
+    import astral.sun
+
+    observer = astral.Observer(latitude=_number(lat, "lat", -90.0, 90.0), longitude=_number(lon, "lon", -360.0, 360.0))
+    utc = _utc(when)
+    return float(astral.sun.azimuth(observer, utc)), float(astral.sun.elevation(observer, utc, with_refraction=False))
 
 
 def principal_radii(lat):
@@ -308,6 +342,13 @@ class LocalFrame:
     def origin_ground(self) -> np.ndarray:
         """The scene point (3,) of the ground at the origin: (0, flat height of ``height``, 0)."""
         return np.array([0.0, self.flat_height(self.height), 0.0])
+
+    def sun_direction(self, when) -> np.ndarray:
+        """The scene's unit vector (3,) toward the sun's true place at `when` (sun_position at the
+        frame's origin), for Scene.set_physical_sky or set_sun: a render through a CurvedEarth air
+        refracts it as a real sun near the horizon (lifted, flattened)."""
+        azimuth, elevation = sun_position(self.lat, self.lon, when)
+        return self.direction(azimuth, elevation)
 
     def aim(self, target, height, position=None) -> tuple[float, float]:
         """(azimuth, elevation) [deg] from an eye ``height`` [m] above the ellipsoid over the origin
