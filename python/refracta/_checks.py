@@ -80,7 +80,9 @@ def real_array(value, what: str, shape: tuple[int, ...] | None = None) -> np.nda
         or (shape is not None and array.shape != shape)
     ):
         wanted = f" of shape {shape}" if shape is not None else ""
-        times = np.asarray(value).dtype.kind in "mM"
-        hint = "; numpy times count their unit: give seconds, e.g. times / np.timedelta64(1, 's')" if times else ""
+        kind = np.asarray(value).dtype.kind
+        since = "(t - t[0])" if kind == "M" else "t"  # a datetime64 has no seconds of its own, its span has
+        seconds = f"; numpy times count their unit: give seconds, e.g. {since} / np.timedelta64(1, 's')"
+        hint = seconds if kind in "mM" else ""
         raise ValueError(f"{what} must be numbers{wanted} (got {value!r}){hint}")
     return array

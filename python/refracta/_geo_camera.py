@@ -51,6 +51,8 @@ def geographic_camera(
     """
     from refracta import geo  # here: pyproj loads on first use, not with refracta
 
+    if target is None and (azimuth is None or elevation is None):
+        raise ValueError("Camera.geographic: give azimuth and elevation [deg], or target=(lat, lon[, height])")
     if earth_radius is None:  # azimuth checked first: an array of them made an array of radii
         along = azimuth
         if target is not None and azimuth is None:  # along the geodesic to the target

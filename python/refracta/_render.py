@@ -336,8 +336,6 @@ def render(
             "render: frame= maps the 'geographic' readout; ask for it with aovs=[..., 'geographic'] (got "
             f"frame={frame!r} and aovs={aovs!r})"
         )
-    if frame is not None:
-        _check_frame_radius(frame, field, method or "curved")
     surface = [name for name in wanted if name not in READOUT_NAMES]  # the readouts say so themselves
     if (denoise or surface) and method == "raster_march":
         raise ValueError(
@@ -354,6 +352,8 @@ def render(
         method=method, transport=transport, spp=spp, max_depth=max_depth, spectral=spectral, seed=seed, **options
     )
     warn_if_perturbed_refused(field, settings, camera, "render")
+    if frame is not None:
+        _check_frame_radius(frame, field, settings.method)
     rows = _whole_columns_for_images(settings, camera, wanted)
     if executor is not None or tiles is not None:
         image, counts = _render_tiled(scene, camera, field, settings, executor, tiles, progress)

@@ -153,7 +153,9 @@ def sun_position(lat, lon, when) -> tuple[float, float]:
     import astral  # here: a small package, loaded when first asked for the sun's place
     import astral.sun
 
-    observer = astral.Observer(latitude=_number(lat, "lat", -90.0, 90.0), longitude=_number(lon, "lon", -360.0, 360.0))
+    east = _number(lon, "lon", -360.0, 360.0)
+    # astral takes [-180, 180] and does not wrap: 344.3 E put the sun of -15.7 below the horizon.
+    observer = astral.Observer(latitude=_number(lat, "lat", -90.0, 90.0), longitude=(east + 180.0) % 360.0 - 180.0)
     utc = _utc(when)
     return float(astral.sun.azimuth(observer, utc)), float(astral.sun.elevation(observer, utc, with_refraction=False))
 
@@ -353,14 +355,15 @@ class LocalFrame:
     def aim(self, target, height, position=None) -> tuple[float, float]:
         """(azimuth, elevation) [deg] from an eye ``height`` [m] above the ellipsoid over the origin
         (or over ``position`` = (lat, lon)) toward ``target`` = (lat, lon) or (lat, lon, height [m]
-        above the ellipsoid; 0: sea level): the compass bearing of the geodesic to it, and the
+        above the ellipsoid, default 0; a map's height above the geoid differs by up to ~100 m,
+        0.1 deg at 60 km: give both heights above one surface): the compass bearing of the geodesic to it, and the
         elevation of the straight line to it through a sphere of the frame's earth_radius (flat
         frame: over flat ground) -- where it would show with no air; refraction lifts it (by about
         k d / 2R, 0.045 deg at 60 km for the standard k = 0.17). ``camera(target=...)`` looks there."""
         place = finite_pair(position) if position is not None else (self.lat, self.lon)
         if place is None:
             raise ValueError(f"position must be (lat, lon) (got {position!r})")
-        values = np.asarray(target, dtype=object) if isinstance(target, (tuple, list)) else None
+        values = np.asarray(target, dtype=object) if isinstance(target, (tuple, list, np.ndarray)) else None
         if values is None or values.shape not in ((2,), (3,)):
             raise ValueError(f"target must be (lat, lon) or (lat, lon, height) (got {target!r})")
         lat = _number(values[0], "target's lat", -90.0, 90.0)

@@ -115,13 +115,13 @@ class ElevationFileNotFoundError(_core.IoError, FileNotFoundError):
     and the built-in FileNotFoundError."""
 
 
-def _missing(path: str) -> None:
-    """Refuses a missing elevation file, and before opening anything that is not a regular file:
-    reading a FIFO (or a device) waits for a writer that may never come."""
+def _missing(path: str, what: str = "elevation file") -> None:
+    """Refuses a missing elevation file (or orthophoto: `what`), and before opening anything that
+    is not a regular file: reading a FIFO (or a device) waits for a writer that may never come."""
     if not os.path.exists(path):
-        raise ElevationFileNotFoundError(f"no such elevation file: {path!r}")
+        raise ElevationFileNotFoundError(f"no such {what}: {path!r}")
     if not stat.S_ISREG(os.stat(path).st_mode):
-        raise _core.IoError(f"cannot read elevation file {path!r}: not a regular file")
+        raise _core.IoError(f"cannot read {what} {path!r}: not a regular file")
 
 
 def _read_hgt(path: str) -> Elevation:
@@ -286,7 +286,8 @@ def _named(where: str):
     try:
         yield
     except (ValueError, _core.IoError) as error:
-        raise type(error)(f"{where}: {error}") from None
+        error.args = (f"{where}: {error}",)  # the error itself, whatever its constructor takes
+        raise
 
 
 def read_elevation(path: str | os.PathLike) -> Elevation:
@@ -335,7 +336,7 @@ def _read_geotiff_frame(path: str) -> Elevation:
     """An orthophoto's georeference (its pixels as an Elevation's grid; the values unused)."""
     import tifffile
 
-    _missing(path)
+    _missing(path, "orthophoto")
     try:
         with _quiet_tifffile(), tifffile.TiffFile(path) as tif:
             page = tif.pages.first
@@ -532,6 +533,9 @@ def add_terrain(
         grids.append((_array_positions(heights, origin, spacing, earth_radius), None))
         radius = math.inf if earth_radius is None else _earth_radius(earth_radius)
 
+    if orthophoto is not None and material is None:  # named before the texture loader names it a texture
+        with _named("add_terrain"):
+            _missing(os.fspath(orthophoto), "orthophoto")
     if material is None:
         if orthophoto is not None:
             material = shading.Diffuse(1.0, texture=os.fspath(orthophoto))
@@ -541,10 +545,6 @@ def add_terrain(
         raise ValueError(
             "add_terrain: give material or orthophoto, not both (a textured material uses the terrain's uvs)"
         )
-    if orthophoto is not None:
-        with _named("add_terrain"):
-            _missing(os.fspath(orthophoto))
-
     ids = []
     lower, upper = np.full(3, np.inf), np.full(3, -np.inf)
     for positions, placed in grids:

@@ -47,5 +47,7 @@ def test_the_frames_sun_direction_is_its_sun_position_and_times_say_their_zone()
     ):
         with pytest.raises(ValueError, match=message):
             geo.sun_position(28.1, -15.7, bad)
+    # East of Greenwich in [0, 360] is the same place: only rounding differs.
+    assert geo.sun_position(28.1, 344.3, when) == pytest.approx(geo.sun_position(28.1, -15.7, when), abs=1e-9)
     with pytest.raises(ValueError, match="lat"):
         geo.sun_position(95.0, 0.0, when)

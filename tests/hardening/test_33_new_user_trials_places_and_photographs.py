@@ -33,6 +33,21 @@ def test_a_truncated_image_is_refused_not_filled_with_grey(tmp_path, suffix):
         photo.load(_truncated(tmp_path, suffix))
 
 
+def test_a_jpeg_libjpeg_only_warns_about_still_loads(tmp_path):
+    # OIIO reports libjpeg's warnings as errors too; a JPEG with two stray bytes before a marker
+    # ("Corrupt JPEG data: 2 extraneous bytes", which every viewer shows) is a photograph.
+    from PIL import Image
+
+    pixels = (np.random.default_rng(0).random((32, 48, 3)) * 255).astype(np.uint8)
+    whole = tmp_path / "whole.jpg"
+    Image.fromarray(pixels).save(whole, "JPEG")
+    data = whole.read_bytes()
+    marker = data.index(b"\xff\xdb")
+    stray = tmp_path / "stray.jpg"
+    stray.write_bytes(data[:marker] + b"\x00\x00" + data[marker:])
+    np.testing.assert_array_equal(photo.load(stray).image, photo.load(whole).image)
+
+
 def test_a_photographs_camera_is_refused_beyond_the_pixels_a_camera_holds():
     image = np.full((8, 12, 3), 0.5, dtype=np.float32)
     picture = photo.Photo(image=image, linear=False, exif=photo.Exif(focal_length_35mm=50.0), path=None)
@@ -63,6 +78,9 @@ def test_elevation_file_errors_name_the_call_and_keep_tifffile_quiet(tmp_path, c
     with pytest.raises(ValueError, match="^add_terrain: .*not a readable TIFF file"):
         refracta.Scene().add_terrain(bad, frame=geo.LocalFrame(46.0, 7.0))
     assert "invalid offset" not in capsys.readouterr().err  # tifffile's own log line
+    grid = np.zeros((3, 3))
+    with pytest.raises(refracta.IoError, match="^add_terrain: no such orthophoto"):
+        refracta.Scene().add_terrain(grid, origin=(0, 0), spacing=(1, 1), orthophoto=tmp_path / "photo.tif")
 
 
 def test_a_progress_bar_of_a_few_items_shows_no_rate_of_millions():
@@ -81,6 +99,10 @@ def test_fog_the_multiple_scattering_table_does_not_resolve_is_warned_of():
         refracta.spectrum.PhysicalSky((0.0, 1.0, 0.0), visibility=0.5)
     with pytest.warns(UserWarning, match="Scene.set_physical_sky: visibility 0.3 km is fog"):
         refracta.Scene().set_physical_sky((0.0, 1.0, 0.0), visibility=0.3)
+    # The same fog given by its aerosol (the review: only visibility= was warned of).
+    aerosol = refracta.spectrum.PhysicalSky((0.0, 1.0, 0.0), visibility=1.0).aerosol * 2.0
+    with pytest.warns(UserWarning, match=r"visibility 0.50\d* km is fog"):
+        refracta.spectrum.PhysicalSky((0.0, 1.0, 0.0), aerosol=aerosol)
 
 
 def test_numpy_times_are_refused_not_read_as_counts_of_their_unit():

@@ -321,3 +321,35 @@ def test_from_a_raised_camera_a_black_target_fades_into_the_sky_seen_from_there(
         # The green channel stands for 550 nm (the aerosol's extinction is grey, Rayleigh's 1.5 % of
         # it), and the sky's far light and the chord's rise over the sky's sphere: 0.005.
         assert contrast == pytest.approx(math.exp(-sigma * distance), abs=0.005), (distance, contrast)
+
+
+def _irradiance_on_a_level_plate(sky):
+    """E_sun cos(60 deg) + the integral of the sky's radiance x cos over the upper hemisphere
+    (96 x 192 midpoints), for a sun 30 deg up of 0.53 deg."""
+    disc = 2.0 * math.pi * (1.0 - math.cos(math.radians(0.265)))
+    sun = np.asarray(sky.sun_radiance_rgb()) * disc * math.sin(math.radians(30.0))
+    theta = (np.arange(96) + 0.5) / 96 * (math.pi / 2)
+    phi = (np.arange(192) + 0.5) / 192 * (2 * math.pi)
+    t, p = np.meshgrid(theta, phi, indexing="ij")
+    dirs = np.stack([np.sin(t) * np.cos(p), np.cos(t), np.sin(t) * np.sin(p)], axis=-1).reshape(-1, 3)
+    radiance = np.asarray(sky.rgb_radiance(dirs)).reshape(96, 192, 3)
+    weight = (np.cos(t) * np.sin(t))[..., None] * (math.pi / 2 / 96) * (2 * math.pi / 192)
+    return sun + (radiance * weight).sum(axis=(0, 1))
+
+
+@pytest.mark.parametrize("height", [5.0, 400.0])
+def test_a_white_plate_by_a_raised_camera_is_lit_by_the_sun_and_sky_of_its_height(height):
+    # A white Lambertian plate 1 m below the camera: its radiance is (E_sun + E_sky) / pi with the
+    # sun and sky of its own height -- from 400 m in 5 km visibility 29 % more than the ground's
+    # (the sun through 0.26 less Mie depth, straight up). The same air: the ground sky's aerosol
+    # (PhysicalSky(visibility=) sets it for visibility at the observer's own height).
+    ground = spectrum.PhysicalSky(sun_at(30.0), below_horizon="horizon", visibility=5.0)
+    own = spectrum.PhysicalSky(sun_at(30.0), below_horizon="horizon", aerosol=ground.aerosol, altitude=height)
+    scene = refracta.Scene()
+    scene.set_physical_sky(sun_at(30.0), below_horizon="horizon", visibility=5.0)
+    scene.add_box((0.0, height - 1.5, 0.0), (4.0, 1.0, 4.0), material=shading.Diffuse(1.0))
+    camera = refracta.Camera((0.0, height, 0.0), (0.0, height - 1.0, 0.0), (1, 0, 0), 20.0, 8, 8)
+    image = refracta.render(scene, camera, None, spp=256, progress=False, max_length=1e5)
+    expected = _irradiance_on_a_level_plate(own if height >= 10.0 else ground) / math.pi
+    # Light sampling's noise over 16 384 samples and the sky table's interpolation: 1 %.
+    np.testing.assert_allclose(image.reshape(-1, 3).mean(axis=0), expected, rtol=0.01)

@@ -83,7 +83,7 @@ void bind_sun_and_sky(SceneClass& scene) {
               const std::string& below_horizon, bool aerial_perspective, const std::optional<double>& visibility) {
              const PhysicalSkySettings settings = physical_sky_settings(to_point(sun_direction, "sun_direction"), aerosol,
                                                                         ozone_du, ground_albedo, altitude, below_horizon, visibility);
-             if (const auto caveat = fog_caveat(visibility)) warn("Scene.set_physical_sky: " + *caveat);
+             if (const auto caveat = fog_caveat(settings)) warn("Scene.set_physical_sky: " + *caveat);
              const SunDisc sun{sun_angular_diameter, limb_darkening};
              set_physical_sky(s, settings, sun, scale, aerial_perspective, &build_sky_interruptibly);
            },

@@ -91,7 +91,7 @@ void bind_physical_sky(py::module_& m) {
                        bool multiple_scattering) {
              const PhysicalSkySettings s = sky_settings(to_point(sun, "sun_direction"), aerosol, ozone_du, ground_albedo,
                                                         altitude, rayleigh_scale, below_horizon, visibility, multiple_scattering);
-             if (const auto caveat = fog_caveat(visibility)) warn("PhysicalSky: " + *caveat);
+             if (const auto caveat = fog_caveat(s)) warn("PhysicalSky: " + *caveat);
              py::gil_scoped_release release;
              return std::make_shared<PhysicalSkyLight>(s);
            }),

@@ -328,8 +328,11 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
   const bool turned = spherical_ && light.is_infinite();
   const Eigen::Matrix3d to_world = turned ? to_world_frame(si.p) : Eigen::Matrix3d::Identity();
   if (turned) ctx.n = to_world * ctx.n;
-  const auto ls = light.sample_li(ctx, u_light, lambda);
+  auto ls = light.sample_li(ctx, u_light, lambda);
   if (!ls || !(ls->pdf > 0.0) || !(ls->L.maxCoeff() > 0.0)) return Spectrum::Zero();
+  // The sample carries the ground's sky or sun; seen from a raised point, the raised one's (a
+  // curved shadow ray's arriving() evaluates it again along its exit).
+  if (raised_sky_) ls->L = raised_sky_->seen_from(light, si.p.y(), ls->wi, ls->L, lambda);
   double light_pdf = ls->pdf;
   Vec3d wi = ls->wi;
   double jacobian = 1.0;
@@ -366,9 +369,7 @@ Spectrum DirectLighting::arriving(size_t light, const SurfaceInteraction& si, co
       // Along the exit direction; basic radiance L / n^2 is conserved (Ament et al. 2014).
       return distant_Le(source, si.p.y(), end.direction, lambda) * sqr(caster_.ior(si.p) / distant_ior(si.p, end.direction));
     }
-    if (caster_.scene().occluded(si.offset_toward(wi), wi, kSceneReach)) return Spectrum::Zero();
-    // The sample's radiance is the ground sky's; seen from a raised point, the raised one's.
-    return raised_sky_ && raised_sky_->raises(source) ? raised_sky_->Le(source, si.p.y(), wi, lambda) : ls.L;
+    return caster_.scene().occluded(si.offset_toward(wi), wi, kSceneReach) ? Spectrum::Zero() : ls.L;
   }
   // Aim the shadow ray from the offset point at the light point itself: a ray parallel to wi
   // from the offset origin would meet the light's surface up to offset / cos short of

@@ -102,6 +102,11 @@ class DirectLighting : public LightVisibility {
 
   // A raised camera's sky (raised_sky.h; null: the ground's sky everywhere).
   void use_raised_sky(std::shared_ptr<const RaisedSky> sky) { raised_sky_ = std::move(sky); }
+  // A distant light's radiance along dir as seen from scene height y (the raised camera's sky).
+  Spectrum distant_Le(const Light& light, double y, const Vec3d& dir, const SampledWavelengths& lambda) const {
+    const Spectrum ground = light.Le(dir, lambda);
+    return raised_sky_ ? raised_sky_->seen_from(light, y, dir, ground, lambda) : ground;
+  }
 
   // The shadow rays: toward a distant light a curved (or straight) ray through the caster, the
   // light seen along its exit direction; to a finite light a straight segment, dimmed by the
@@ -172,10 +177,7 @@ class DirectLighting : public LightVisibility {
   std::shared_ptr<const SunExitMap> sun_exits_;
   std::shared_ptr<const double> scale_;
   std::shared_ptr<const RaisedSky> raised_sky_;
-  // A distant light's radiance along dir as seen from scene height y (the raised camera's sky).
-  Spectrum distant_Le(const Light& light, double y, const Vec3d& dir, const SampledWavelengths& lambda) const {
-    return raised_sky_ ? raised_sky_->Le(light, y, dir, lambda) : light.Le(dir, lambda);
-  }
+
 };
 
 }  // namespace refracta

@@ -168,7 +168,8 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   const Caster caster(scene, nullptr, ray_options);
   const DirectLighting shadow_rays(render_scene, caster, ray_options);
   const RasterVisibility visibility(render_scene, lights, options, buffer, eye, shadow_rays, control);
-  const DirectLighting lighting(render_scene, caster, ray_options, &visibility);
+  DirectLighting lighting(render_scene, caster, ray_options, &visibility);
+  lighting.use_raised_sky(RaisedSky::for_camera(render_scene, eye.y()));  // a raised camera's sky (raised_sky.h)
 
   // Shading of a rasterized surface, every shining light deterministically: the sun along its
   // disc's centre (irradiance = disc radiance x solid angle), spots exactly, other finite lights
@@ -184,11 +185,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   // add it: its in-scatter arrives, and it dims the surface's light (a trial: the raster image was
   // the same with and without the haze).
   const AerialPerspective* air = render_scene.aerial_perspective();
-  // A raised camera's sky, as the ray renderers' (raised_sky.h).
-  const std::shared_ptr<const RaisedSky> raised_sky = RaisedSky::for_camera(render_scene, eye.y());
-  auto distant_Le = [&](const Light& light, double y, const Vec3d& dir) {
-    return raised_sky ? raised_sky->Le(light, y, dir, lambda_rgb) : light.Le(dir, lambda_rgb);
-  };
+
   auto through_air = [&](const Vec3d& p, const Spectrum& L) -> Vec3d {
     if (!air) return Vec3d(L.head<3>().matrix());
     const AerialPerspective::Segment segment = air->along(eye, p, caster.air_frame(), lambda_rgb);
@@ -216,7 +213,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
           const auto bs = s.bsdf.sample(si.wo, (lobe_of[size_t(a) * size_t(n) + size_t(b)] + 0.5) * weight, u);
           if (!bs) continue;
           LightLiSample ls;
-          ls.L = distant_Le(light, si.p.y(), bs->wi);
+          ls.L = lighting.distant_Le(light, si.p.y(), bs->wi, lambda);
           ls.wi = bs->wi;
           ls.pdf = bs->pdf;
           L += bs->weight * visibility.arriving(i, si, bs->wi, ls, lambda) * weight;
@@ -229,7 +226,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     Spectrum L = Spectrum::Zero();
     for (size_t i = 0; i < render_scene.lights().size(); ++i) {
       const Light& light = *render_scene.lights()[i];
-      if (light.is_infinite() && (i != lights.sun || lights.sun_shines)) L += distant_Le(light, eye.y(), dir);
+      if (light.is_infinite() && (i != lights.sun || lights.sun_shines)) L += lighting.distant_Le(light, eye.y(), dir, lambda_rgb);
     }
     return Vec3d(L.head<3>().matrix());
   };

@@ -87,13 +87,18 @@ void RenderScene::set_sky(LightPtr sky) {
   if (sky) add_light(std::move(sky));
 }
 
+const PhysicalSkyLight* physical_sky_of(const Light& light, double* scale) {
+  *scale = 1.0;
+  const Light* inner = &light;
+  if (const auto* scaled = dynamic_cast<const ScaledInfiniteLight*>(inner)) *scale = scaled->scale(), inner = scaled->light().get();
+  return dynamic_cast<const PhysicalSkyLight*>(inner);
+}
+
 void RenderScene::enable_aerial_perspective() {
   geometry.check_unchanging("enable_aerial_perspective");
   for (const LightPtr& light : lights_) {
     double scale = 1.0;
-    const Light* inner = light.get();
-    if (const auto* scaled = dynamic_cast<const ScaledInfiniteLight*>(inner)) scale = scaled->scale(), inner = scaled->light().get();
-    if (const auto* sky = dynamic_cast<const PhysicalSkyLight*>(inner)) {
+    if (const PhysicalSkyLight* sky = physical_sky_of(*light, &scale)) {
       aerial_ = std::make_shared<AerialPerspective>(PhysicalSky::shared(sky->settings()), scale);
       aerial_source_ = light.get();
       return;

@@ -13,8 +13,12 @@
 
 namespace refracta {
 
+class PhysicalSkyLight;
 class SpotLight;
 class SunLight;
+
+// The physical sky a scene light is (set_physical_sky's, perhaps scaled: its scale in `scale`), or null.
+const PhysicalSkyLight* physical_sky_of(const Light& light, double* scale);
 
 class RenderScene {
  public:

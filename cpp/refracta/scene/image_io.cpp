@@ -73,6 +73,19 @@ std::vector<std::string> read_channel_names(const std::string& path) {
   return names;
 }
 
+namespace {
+
+// A reader's message of a file that ended before its pixels did: libjpeg's premature end, a TIFF
+// strip read short, PNG's and OpenEXR's end of file.
+bool reports_truncation(const std::string& message) {
+  for (const char* sign : {"Premature end", "Read error", "failed reading", "end of file", "End of file"}) {
+    if (message.find(sign) != std::string::npos) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 Image read_image(const std::string& path) {
   if (!std::filesystem::exists(path)) throw IoError(concat("no such image file: '", path, "'"));
   // OIIO's readers spin on a FIFO or a device such as /dev/zero: refuse them before opening.
@@ -94,9 +107,13 @@ Image read_image(const std::string& path) {
   }
   Image image(spec.width, spec.height, spec.nchannels);
   // A truncated JPEG or TIFF reads "successfully", its missing rows grey or black, and reports
-  // the damage only as an error message: refused as well.
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()) || in->has_error()) {
-    throw IoError(concat("cannot read '", path, "' (damaged or truncated?): ", in->geterror()));
+  // the damage only as an error message: refused as well. (OIIO reports libjpeg's warnings as
+  // errors too -- "unknown JFIF revision number", "extraneous bytes before marker" on files any
+  // viewer shows -- so only the messages of a file that ended early refuse it.)
+  const bool read = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data());
+  const std::string trouble = in->has_error() ? in->geterror() : std::string();
+  if (!read || reports_truncation(trouble)) {
+    throw IoError(concat("cannot read '", path, "' (damaged or truncated?): ", trouble));
   }
   in->close();
   return image;

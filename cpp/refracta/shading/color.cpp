@@ -102,7 +102,7 @@ Color Color::tabulated(const std::vector<double>& lambda_nm, const std::vector<d
                     " (got ", values[i], " at ", lambda_nm[i], " nm)");
     }
   }
-  if (lambda_nm.back() < spectral::kTableMin || lambda_nm.front() > spectral::kTableMax) {
+  if (lambda_nm.back() <= spectral::kTableMin || lambda_nm.front() >= spectral::kTableMax) {  // touching: black too
     throw_invalid("tabulated: wavelengths ", lambda_nm.front(), "-", lambda_nm.back(), " nm lie outside the rendered ",
                   spectral::kTableMin, "-", spectral::kTableMax, " nm: the spectrum would be black");
   }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
+#include <limits>
 #include <mutex>
 #include <cmath>
 #include <string>
@@ -88,9 +89,28 @@ BelowHorizon below_horizon_from(const std::string& name) {
   throw_invalid("below_horizon must be 'ground' or 'horizon' (got '", name, "')");
 }
 
-std::optional<std::string> fog_caveat(std::optional<double> visibility_km) {
-  if (!visibility_km || !(*visibility_km < kLeastResolvedVisibility)) return std::nullopt;
-  return concat("visibility ", *visibility_km, " km is fog the sky's multiple-scattering table does not resolve (below ",
+namespace {
+
+constexpr double kKoschmieder = 3.912;  // -ln(0.02): the 2 % contrast threshold
+
+// The extinction [1/m] of the air's molecules (Rayleigh and ozone) at 550 nm at the observer.
+double molecular_extinction(const PhysicalSkySettings& settings) {
+  const Column rho = densities(settings.altitude);
+  return settings.rayleigh_scale * beta_rayleigh(550.0) * rho.r +
+         lerp_nodes(kOzoneCrossSection, 550.0) * settings.ozone_du * kDobsonUnit / kOzoneHalfWidth * rho.o;
+}
+
+}  // namespace
+
+double visibility_of(const PhysicalSkySettings& settings) {
+  const double total = molecular_extinction(settings) + kMieExtinction * settings.aerosol * densities(settings.altitude).m;
+  return total > 0.0 ? kKoschmieder / total / 1e3 : std::numeric_limits<double>::infinity();
+}
+
+std::optional<std::string> fog_caveat(const PhysicalSkySettings& settings) {
+  const double visibility_km = visibility_of(settings);
+  if (!(visibility_km < kLeastResolvedVisibility)) return std::nullopt;
+  return concat("visibility ", visibility_km, " km is fog the sky's multiple-scattering table does not resolve (below ",
                 kLeastResolvedVisibility, " km): its brightness does not follow the visibility smoothly and a sunlit "
                 "fog comes out far too dark");
 }
@@ -99,16 +119,13 @@ double aerosol_for_visibility(double visibility_km, const PhysicalSkySettings& s
   if (!(visibility_km > 0.0) || !std::isfinite(visibility_km)) {
     throw_invalid("visibility must be > 0 km and finite (got ", visibility_km, ")");
   }
-  constexpr double kKoschmieder = 3.912;  // -ln(0.02): the 2 % contrast threshold
-  const Column rho = densities(settings.altitude);
-  const double molecules = settings.rayleigh_scale * beta_rayleigh(550.0) * rho.r +
-                           lerp_nodes(kOzoneCrossSection, 550.0) * settings.ozone_du * kDobsonUnit / kOzoneHalfWidth * rho.o;
+  const double molecules = molecular_extinction(settings);
   const double total = kKoschmieder / (visibility_km * 1e3);
   if (!(total > molecules)) {
     throw_invalid("visibility ", visibility_km, " km is beyond what the air's molecules alone allow here (",
                   kKoschmieder / molecules / 1e3, " km)");
   }
-  return (total - molecules) / (kMieExtinction * rho.m);
+  return (total - molecules) / (kMieExtinction * densities(settings.altitude).m);
 }
 
 void set_visibility(PhysicalSkySettings* settings, double visibility_km) {

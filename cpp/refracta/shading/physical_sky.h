@@ -89,8 +89,12 @@ void set_visibility(PhysicalSkySettings* settings, double visibility_km);
 // at 0.5 km, 0.0105 at 0.55, 0.0047 at 0.65, 0.0053 at 1 km; smooth from 0.8 km up) and a
 // sunlit fog comes out orders of magnitude too dark.
 constexpr double kLeastResolvedVisibility = 0.8;
-// A caveat for a visibility [km] below kLeastResolvedVisibility (to warn of), else nullopt.
-std::optional<std::string> fog_caveat(std::optional<double> visibility_km);
+// The meteorological visibility [km] of settings' air at the observer (Koschmieder: 3.912 over
+// the total extinction at 550 nm; the inverse of aerosol_for_visibility).
+double visibility_of(const PhysicalSkySettings& settings);
+// A caveat for an air of visibility below kLeastResolvedVisibility (to warn of), else nullopt:
+// given by visibility= or by aerosol= alike.
+std::optional<std::string> fog_caveat(const PhysicalSkySettings& settings);
 
 class PhysicalSky {
  public:
