@@ -128,7 +128,10 @@ def ray_fan(
     ax_rays.set_title(title or f"{field.type_name}: rays from {eye_height:g} m")
 
     margin = 0.05 * (high - low if high > low else 1.0)
-    heights = _profile_heights(field, low - margin, high + margin)
+    # The profiles from the ground up (below it there is no air: a trial read the surface layer's
+    # continuation under the road, 34 C, as the road's own excess).
+    bottom = low - margin if stop_height is None else max(low - margin, stop_height)
+    heights = _profile_heights(field, bottom, high + margin)
     true = np.asarray(curved.true_height(heights)) if curved is not None else heights
     points = np.stack([np.zeros_like(heights), true, np.zeros_like(heights)], axis=1)
     ax_index = axes[-1]

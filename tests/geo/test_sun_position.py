@@ -27,7 +27,7 @@ def test_the_solstice_sun_culminates_at_ninety_degrees_less_the_latitude_from_it
     # is the obliquity to 1e-3 deg over the day. NOAA's calculation is good to ~0.01 deg and a
     # minute's step misses the culmination by < 0.001 deg: 0.02.
     azimuth, elevation = highest_of_the_day(lat, lon, datetime.date(2024, 6, 20))
-    assert elevation == pytest.approx(90.0 - abs(lat - OBLIQUITY_2024), abs=0.02)
+    assert elevation == pytest.approx(90.0 - abs(lat - OBLIQUITY_2024), abs=0.02)  # NOAA and the step (above)
     # Due south north of the tropic, due north south of it: within the minute's turn (< 0.5 deg here).
     assert azimuth == pytest.approx(180.0 if lat > OBLIQUITY_2024 else 0.0, abs=0.5) or azimuth > 359.5
 

@@ -172,3 +172,18 @@ def test_a_curved_earths_ray_fan_shows_the_airs_own_profiles():
     assert np.all(np.diff(n) < 0) and np.all(np.diff(y) > 0)  # the standard atmosphere thins upward
     lowest = air.ior(np.array([0.0, y[0], 0.0]))  # a few metres from the ground
     assert n[0] == pytest.approx((float(lowest) - 1.0) * 1e6, rel=1e-9)  # flat and true heights differ by y^2/2R
+
+
+def test_a_level_ray_from_a_hot_road_the_air_lifts_leaves_it_in_the_stratified_trace_too():
+    # A trial (the ray tracer against exact solutions): 'stratified' ended a level ray launched on
+    # the road at once, where rk45 and rk4 follow it up (4.168 m after 1 km over the 10 K road).
+    road = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
+    ends = {}
+    for trace in ("stratified", "rk45"):
+        path = refracta.trace_ray(road, [0, 0, 0], [1, 0, 0], trace=trace, max_length=1000.0, stop_height=0.0)
+        assert path.stop == "max_length"
+        ends[trace] = path.points[-1]
+    np.testing.assert_allclose(ends["stratified"], ends["rk45"], atol=1e-6)  # rk45's default tol, 1e-7 m, with margin
+    # Level where the air does not lift it (n falling with height): it ends there, as before.
+    still = refracta.trace_ray(refracta.PhysicalAtmosphere(), [0, 0, 0], [1, 0, 0], trace="stratified", stop_height=0.0)
+    assert still.stop == "stop_height"

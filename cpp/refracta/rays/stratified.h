@@ -68,7 +68,10 @@ class StratifiedTracer {
 
     auto visitor = [&](const RayNode<double>& a, const RayNode<double>& b) { return visit(a, b); };
     visit_ = visitor;
-    if (options_.stop_height && x0.y() <= *options_.stop_height && sin_e0 <= 0.0) {
+    // At or below the stop height a path ends where it descends; a level one that the air bends
+    // upward (n rising with height, a hot road's) leaves it, as rk45's does.
+    const bool descends = sin_e0 < 0.0 || (sin_e0 == 0.0 && !(dn0 > 0.0));
+    if (options_.stop_height && x0.y() <= *options_.stop_height && descends) {
       out_.stop = TraceStop::kStopHeight;
     } else if (gap0 <= 1e-15 * n0 && dn0 == 0.0) {
       straight_horizontal(n0);
