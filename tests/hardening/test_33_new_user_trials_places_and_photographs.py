@@ -187,3 +187,15 @@ def test_a_level_ray_from_a_hot_road_the_air_lifts_leaves_it_in_the_stratified_t
     # Level where the air does not lift it (n falling with height): it ends there, as before.
     still = refracta.trace_ray(refracta.PhysicalAtmosphere(), [0, 0, 0], [1, 0, 0], trace="stratified", stop_height=0.0)
     assert still.stop == "stop_height"
+
+
+def test_an_rk4_step_too_long_for_the_air_is_refused_not_followed_to_garbage():
+    # A 0.3 mm-wide hot layer (LogisticProfile a_hot 1e-3) that reflects the ray: rk4's fixed steps
+    # jumped it (the path ended at y = 31.2 m, |v| / n at 1.27) where rk45 and 'stratified' agree
+    # on the reflection, y = 2.003 m.
+    air = refracta.LogisticProfile(a_hot=1e-3, n_hot=3.0)
+    start, direction = [0.0, 1.0, 0.0], [1.0, -0.05, 0.0]
+    with pytest.raises(refracta.NumericalError, match=r"rk4: its fixed step of .* m is too long for this air"):
+        refracta.trace_ray(air, start, direction, trace="rk4", max_length=60.0)
+    reference = refracta.trace_ray(air, start, direction, trace="rk45", max_length=60.0, tol=1e-9)
+    assert reference.points[-1][1] == pytest.approx(2.0035, abs=1e-3)  # the trial's 2.00349, to its digits

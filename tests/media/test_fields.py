@@ -156,7 +156,8 @@ def test_parameters_bounds_and_with_params():
 @pytest.mark.parametrize(
     "make, message",
     [
-        (lambda: refracta.LogisticProfile(a_bg=-1), "a_bg must be > 0"),
+        (lambda: refracta.LogisticProfile(a_bg=-1), "a_bg must be >= 1e-06 m"),
+        (lambda: refracta.LogisticProfile(a_hot=1e-300), "a_hot must be >= 1e-06 m"),
         (lambda: refracta.LogisticProfile(n_bg=0, n_inv=0, n_hot=0), "amplitude"),
         (lambda: refracta.LogisticProfile(k_s=400), "k_s"),
         (lambda: refracta.LogisticProfile(bogus=1), "unknown parameter 'bogus'"),

@@ -81,10 +81,13 @@ class LogisticModel : public HeightOnlyModel<LogisticModel<T>, T> {
 
   static void validate(const Config& config, const std::vector<double>& k) {
     validate_hot_spots(kTypeName, k, kCount, config.hot_spots.size(), false);
+    // Widths from a micrometre: no air layer is thinner, and below that the gradient outruns
+    // double precision (a_hot = 1e-300 gave 8e296 /m, and rk45 stepped through the layer).
+    constexpr double kLeastWidth = 1e-6;
     const char* widths[] = {"a_bg", "a_inv", "a_hot"};
     for (int i = 0; i < 3; ++i) {
-      if (!(k[kABg + i] > 0.0)) {
-        throw_invalid("LogisticProfile: ", widths[i], " must be > 0 (got ", k[kABg + i], ")");
+      if (!(k[kABg + i] >= kLeastWidth) || !std::isfinite(k[kABg + i])) {
+        throw_invalid("LogisticProfile: ", widths[i], " must be >= ", kLeastWidth, " m and finite (got ", k[kABg + i], ")");
       }
     }
     if (std::abs(k[kNBg]) + std::abs(k[kNInv]) + std::abs(k[kNHot]) == 0.0) {
