@@ -257,7 +257,7 @@ def refraction_coefficient(
     curved = _curved_earth(field, earth_radius)
     radius = float(curved.radius)
     h0 = _finite(eye_height, "eye_height", 0.0)
-    d = _finite(distance, "distance", 0.0)
+    d = _number(distance, "distance")  # NaN and infinities fail the range below, which names it
     # Below a metre the Earth's drop (d^2 / 2R < 1e-7 m) is lost in the heights' rounding: k came
     # out 0.185 at 1 mm and 1.0 at 1 um for a field whose k is 0.1695 from 1 m on.
     if not _SHORTEST <= d < 0.5 * math.pi * radius:

@@ -199,3 +199,16 @@ def test_an_rk4_step_too_long_for_the_air_is_refused_not_followed_to_garbage():
         refracta.trace_ray(air, start, direction, trace="rk4", max_length=60.0)
     reference = refracta.trace_ray(air, start, direction, trace="rk45", max_length=60.0, tol=1e-9)
     assert reference.points[-1][1] == pytest.approx(2.0035, abs=1e-3)  # the trial's 2.00349, to its digits
+
+
+def test_a_batch_names_the_ray_a_field_failed_on():
+    # A CustomField's NaN inside trace_rays named a point but not the ray (other batch errors do).
+    def index(points):
+        return np.where(points[:, 0] > 50.0, np.nan, 1.0003)
+
+    field = refracta.CustomField(index, lambda points: np.zeros_like(points))
+    origins, directions = np.tile([0.0, 1.0, 0.0], (3, 1)), np.tile([1.0, 0.0, 0.0], (3, 1))
+    with pytest.raises(refracta.NumericalError, match=r"^ray \d: CustomField: ior returned n = nan"):
+        refracta.trace_rays(field, origins, directions, max_length=100.0)
+    with pytest.raises(ValueError, match=r"distance must be in \[1, R pi / 2\)"):  # the rule, for NaN too
+        refracta.refraction_coefficient(refracta.PhysicalAtmosphere(), 2.0, float("nan"))

@@ -122,7 +122,13 @@ RayBatchEnds trace_batch(const IndexField& field, const std::vector<Vec3d>& orig
   TraceOptions cancellable = options;
   cancellable.cancel = &control.cancel;
   parallel_for_each(count, 1, control, [&](int64_t i) {
-    const TraceEnd<double> end = trace_valid(field, origins[i], directions[i], cancellable, keep_going);
+    const TraceEnd<double> end = [&] {
+      try {  // which ray of the batch met the trouble (a CustomField's NaN named a point, not the ray)
+        return trace_valid(field, origins[i], directions[i], cancellable, keep_going);
+      } catch (const NumericalError& error) {
+        throw_numerical("ray ", i, ": ", error.what());
+      }
+    }();
     out.points[i] = end.end.x;
     out.directions[i] = end.end.v.normalized();
     out.lengths[i] = end.end.s;
