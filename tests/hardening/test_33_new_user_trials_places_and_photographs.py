@@ -212,3 +212,14 @@ def test_a_batch_names_the_ray_a_field_failed_on():
         refracta.trace_rays(field, origins, directions, max_length=100.0)
     with pytest.raises(ValueError, match=r"distance must be in \[1, R pi / 2\)"):  # the rule, for NaN too
         refracta.refraction_coefficient(refracta.PhysicalAtmosphere(), 2.0, float("nan"))
+
+
+def test_a_duct_stratified_cannot_resolve_says_which_integrator_can():
+    # A level ray 1 um above the hot road's maximum of n (0.8196 m) turns about it within n's
+    # round-off: 'stratified' cannot follow it (a known limit) and now says rk45 can, which does.
+    road = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
+    start = [0.0, 0.819575485306 + 1e-6, 0.0]
+    with pytest.raises(refracta.NumericalError, match="cannot resolve a duct .*trace='rk45' follows it"):
+        refracta.trace_ray(road, start, [1.0, 0.0, 0.0], trace="stratified", max_length=2e4)
+    end = refracta.trace_ray(road, start, [1.0, 0.0, 0.0], trace="rk45", max_length=2e4).points[-1]
+    assert abs(end[1] - 0.819575485306) < 1e-4  # it stays in the duct: the trial's -7.7e-7 m, with margin

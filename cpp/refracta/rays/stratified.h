@@ -340,7 +340,10 @@ class StratifiedTracer {
       const bool at_turning = gap_next > 0.0 && gap_next <= 8 * 2.2e-16 * n_next && !from_turning;
       if (gap_next <= 0.0 || at_turning) {
         if (from_turning) {  // a second turning point within one scan step: look closer
-          if (delta < 1e-12) throw_numerical("stratified: cannot resolve a duct at h = ", h_prev, " m");
+          if (delta < 1e-12) {
+            throw_numerical("stratified: cannot resolve a duct at h = ", h_prev, " m (the ray turns back and forth "
+                            "about a maximum of n within its round-off; trace='rk45' follows it)");
+          }
           delta *= 0.25;
           continue;
         }
