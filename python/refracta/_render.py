@@ -80,6 +80,8 @@ def _ground_height(scene: _core.Scene, bounds) -> float | None:
 def _check_frame_radius(frame, field, method: str) -> None:
     """A SceneWarning where the frame= of the 'geographic' readout flattens another Earth than the
     rays' field: its latitudes, longitudes and heights would then be of points the render did not see."""
+    if field is not None and not isinstance(field, _core.IndexField):
+        return  # the render names the field's type itself
     air = None if field is None or method == "straight" else field.earth_radius
     ours = math.inf if air is None else float(air)
     theirs = float(getattr(frame, "earth_radius", math.inf))

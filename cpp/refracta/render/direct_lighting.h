@@ -104,8 +104,7 @@ class DirectLighting : public LightVisibility {
   void use_raised_sky(std::shared_ptr<const RaisedSky> sky) { raised_sky_ = std::move(sky); }
   // A distant light's radiance along dir as seen from scene height y (the raised camera's sky).
   Spectrum distant_Le(const Light& light, double y, const Vec3d& dir, const SampledWavelengths& lambda) const {
-    const Spectrum ground = light.Le(dir, lambda);
-    return raised_sky_ ? raised_sky_->seen_from(light, y, dir, ground, lambda) : ground;
+    return raised_sky_ ? raised_sky_->Le(light, y, dir, lambda) : light.Le(dir, lambda);
   }
 
   // The shadow rays: toward a distant light a curved (or straight) ray through the caster, the

@@ -15,11 +15,11 @@ std::shared_ptr<const RaisedSky> RaisedSky::for_camera(const RenderScene& scene,
   const PhysicalSkyLight* sky = physical_sky_of(*source, &scale);
   if (!sky) return nullptr;
   const double step = std::log1p(kHeightStep);
-  double height = std::exp(std::round(std::log(camera_y) / step) * step);
   PhysicalSkySettings settings = sky->settings();
-  height = std::min(height, kPhysicalSkyHighestAltitude - settings.altitude);
-  if (!(height >= kLeastHeight)) return nullptr;  // the ground's own altitude is already the model's top
-  settings.altitude += height;
+  const double table = std::min(std::exp(std::round(std::log(camera_y) / step) * step),
+                                kPhysicalSkyHighestAltitude - settings.altitude);
+  if (!(table >= kLeastHeight)) return nullptr;  // the ground's own altitude is already the model's top
+  settings.altitude += table;
   auto raised = std::make_shared<RaisedSky>();
   raised->ground_ = source;
   raised->sun_ = scene.sun();
@@ -27,7 +27,7 @@ std::shared_ptr<const RaisedSky> RaisedSky::for_camera(const RenderScene& scene,
   raised->raised_ = std::make_shared<const PhysicalSkyLight>(settings);
   const Vec3d below = raised->ground_sky_->sun_radiance_rgb(), above = raised->raised_->sky().sun_radiance_rgb();
   for (int c = 0; c < 3; ++c) raised->sun_ratio_rgb_[c] = below[c] > 0.0 ? above[c] / below[c] : 1.0;
-  raised->height_ = height;
+  raised->height_ = camera_y;
   raised->scale_ = scale;
   return raised;
 }
@@ -51,6 +51,11 @@ Spectrum RaisedSky::seen_from(const Light& light, double y, const Vec3d& dir, co
   }
   const Spectrum above = scale_ * raised_->Le(dir, lambda);
   return t == 1.0 ? above : ((1.0 - t) * ground + t * above).eval();
+}
+
+Spectrum RaisedSky::Le(const Light& light, double y, const Vec3d& dir, const SampledWavelengths& lambda) const {
+  if (&light == ground_ && blend(y) == 1.0) return scale_ * raised_->Le(dir, lambda);
+  return seen_from(light, y, dir, light.Le(dir, lambda), lambda);
 }
 
 }  // namespace refracta

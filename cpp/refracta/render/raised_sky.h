@@ -9,7 +9,7 @@
 //
 // RaisedSky tabulates the sky also for an observer at about the camera's height (kHeightStep),
 // and a path that leaves the air from height y sees the two blended linearly in y between 0 and
-// that height, clamped: the camera's own rays see its sky above the horizon (below it, with
+// the camera's height, clamped: the camera's own rays see its sky above the horizon (below it, with
 // below_horizon 'ground', the ground's radiance without the air between), paths leaving the
 // ground the ground's, between them a blend (over a 1.2 km aerosol scale height a few percent
 // off mid-way from 1 850 m), above the camera the camera's. The sun's radiance is scaled alike by
@@ -48,6 +48,9 @@ class RaisedSky {
   // from y = 0 (its Le, or a light sample's L); any other light: `ground`.
   Spectrum seen_from(const Light& light, double y, const Vec3d& dir, const Spectrum& ground,
                      const SampledWavelengths& lambda) const;
+  // The same from the light's own Le, evaluated only where the blend needs it (a camera ray that
+  // leaves the air sees the raised sky alone).
+  Spectrum Le(const Light& light, double y, const Vec3d& dir, const SampledWavelengths& lambda) const;
 
  private:
   double blend(double y) const;  // the raised table's weight at height y, in [0, 1]
@@ -57,7 +60,8 @@ class RaisedSky {
   std::shared_ptr<const PhysicalSky> ground_sky_;
   std::shared_ptr<const PhysicalSkyLight> raised_;
   Vec3d sun_ratio_rgb_ = Vec3d::Ones();  // the sun's RGB radiance at the raised height over the ground's
-  double height_ = 0.0, scale_ = 1.0;
+  double height_ = 0.0;  // the camera's height [m]: the blend's top (its table: height_ to kHeightStep)
+  double scale_ = 1.0;
 };
 
 }  // namespace refracta

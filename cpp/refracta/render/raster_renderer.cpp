@@ -185,7 +185,6 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   // add it: its in-scatter arrives, and it dims the surface's light (a trial: the raster image was
   // the same with and without the haze).
   const AerialPerspective* air = render_scene.aerial_perspective();
-
   auto through_air = [&](const Vec3d& p, const Spectrum& L) -> Vec3d {
     if (!air) return Vec3d(L.head<3>().matrix());
     const AerialPerspective::Segment segment = air->along(eye, p, caster.air_frame(), lambda_rgb);
