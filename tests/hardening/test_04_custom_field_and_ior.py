@@ -55,3 +55,25 @@ def test_extreme_but_usable_indices_trace_like_n_of_one(n0):
         b = refracta.trace_ray(field(1.0), [0, 1, 0], [1, 0.1, 0], trace=method, max_length=100.0)
         assert np.isfinite(a.points).all()
         np.testing.assert_allclose(a.points[-1], b.points[-1], atol=1e-6)
+
+
+def test_a_custom_field_that_is_not_height_only_is_refused_where_it_is_traced():
+    # height_only=True let 'stratified' trace the column at x = z = 0 of a field that changes with
+    # x: silently the wrong rays. Its first evaluation now compares n and grad_ior 1 m aside.
+    field = refracta.CustomField(
+        lambda p: 1.0003 - 1e-5 * p[:, 1] + 1e-6 * p[:, 0],
+        lambda p: np.tile([1e-6, -1e-5, 0.0], (len(p), 1)),
+        height_only=True,
+    )
+    with pytest.raises(ValueError, match=r"height_only=True, but the field depends on x or z.*height_only=False"):
+        refracta.trace_ray(field, [0, 1.5, 0], [1, 0, 0], trace="stratified", max_length=100.0)
+
+
+def test_a_gradient_that_is_not_the_fields_is_warned_about():
+    # grad_ior twice ior's slope bends rays twice as much as n changes: a RuntimeWarning naming
+    # both at the first point evaluated (central differences 1 mm apart, 1e-3 relative allowance).
+    field = refracta.CustomField(lambda p: 1.0003 - 1e-5 * p[:, 1], lambda p: np.tile([0, -2e-5, 0.0], (len(p), 1)))
+    with pytest.warns(RuntimeWarning, match=r"grad_ior\(0, 1.5, 0\) = \(0, -2e-05, 0\) but ior's central differences"):
+        refracta.trace_ray(field, [0, 1.5, 0], [1, 0, 0], max_length=100.0)
+    right = refracta.CustomField(lambda p: 1.0003 - 1e-5 * p[:, 1], lambda p: np.tile([0, -1e-5, 0.0], (len(p), 1)))
+    refracta.trace_ray(right, [0, 1.5, 0], [1, 0, 0], max_length=100.0)  # no warning: pytest's filter is "error"

@@ -9,6 +9,7 @@ import io
 
 import numpy as np
 import pytest
+import scipy.optimize
 
 import refracta
 from refracta import geo, photo, terrain
@@ -214,12 +215,34 @@ def test_a_batch_names_the_ray_a_field_failed_on():
         refracta.refraction_coefficient(refracta.PhysicalAtmosphere(), 2.0, float("nan"))
 
 
-def test_a_duct_stratified_cannot_resolve_says_which_integrator_can():
+@pytest.mark.parametrize("offset", [0.0, 1e-9, 1e-6, -1e-6, 1e-5])
+@pytest.mark.parametrize("elevation", [0.0, 3e-8, 1e-7])
+def test_a_ray_in_a_duct_within_round_off_of_its_maximum(offset, elevation):
     # A level ray 1 um above the hot road's maximum of n (0.8196 m) turns about it within n's
-    # round-off: 'stratified' cannot follow it (a known limit) and now says rk45 can, which does.
+    # round-off: 'stratified' refused it ("cannot resolve a duct"), and one 3e-8 rad above level
+    # from the maximum came back 5e109 m away. It now follows the harmonic oscillation dn/dh gives
+    # (rays/stratified.h harmonic_duct), against rk45 at a thousandth of its tolerance.
     road = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
-    start = [0.0, 0.819575485306 + 1e-6, 0.0]
-    with pytest.raises(refracta.NumericalError, match="cannot resolve a duct .*trace='rk45' follows it"):
-        refracta.trace_ray(road, start, [1.0, 0.0, 0.0], trace="stratified", max_length=2e4)
-    end = refracta.trace_ray(road, start, [1.0, 0.0, 0.0], trace="rk45", max_length=2e4).points[-1]
-    assert abs(end[1] - 0.819575485306) < 1e-4  # it stays in the duct: the trial's -7.7e-7 m, with margin
+    start = [0.0, 0.819575485306 + offset, 0.0]
+    direction = [np.cos(elevation), np.sin(elevation), 0.0]
+    path = refracta.trace_ray(road, start, direction, trace="stratified", max_length=2e4, tol=1e-6)
+    reference = refracta.trace_ray(road, start, direction, trace="rk45", max_length=2e4, tol=1e-9)
+    assert path.length == pytest.approx(2e4, rel=1e-12)  # it runs its whole length
+    # Measured: <= 1.7e-7 m; the tolerance is tol, as for every trace (rk45's own error ~1e-9 m).
+    assert np.linalg.norm(path.points[-1] - reference.points[-1]) < 1e-6
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e-8, -1e-6, 1e-5])
+@pytest.mark.parametrize("elevation", [0.0, 1e-9, 3e-8, 1e-6])
+def test_a_shallow_duct_at_a_tight_tolerance(offset, elevation):
+    # A sounding cooling 1 K/m to 5 m, then warming: n peaks at 4.9148 m (k = -n'' ~ 4e-7 1/m^2,
+    # oscillations ~10 km long). Rays launched by the peak oscillate micrometres about it;
+    # 'stratified' at tol 1e-9 m follows them (harmonically where n - beta is ~1e-15) as rk45 does.
+    sounding = refracta.TemperatureProfile(heights=[0, 5, 10, 20], temperatures=[290, 285, 290, 291])
+    peak = scipy.optimize.brentq(lambda h: sounding.grad_ior(np.array([[0.0, h, 0.0]]))[0][1], 4.0, 5.0, xtol=1e-15)
+    start = [0.0, peak + offset, 0.0]
+    direction = [np.cos(elevation), np.sin(elevation), 0.0]
+    path = refracta.trace_ray(sounding, start, direction, trace="stratified", max_length=3000.0, tol=1e-9)
+    reference = refracta.trace_ray(sounding, start, direction, trace="rk45", max_length=3000.0, tol=1e-11)
+    # Measured: <= 6.6e-10 m (1e-6 rad: Bouguer's quadrature; the rest harmonic, <= 2e-11); tol 1e-9 m.
+    assert np.linalg.norm(path.points[-1] - reference.points[-1]) < 1e-9

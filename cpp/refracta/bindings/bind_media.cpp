@@ -317,7 +317,9 @@ void bind_media(py::module_& m) {
   py::class_<CustomField, IndexField, std::shared_ptr<CustomField>> custom(m, "CustomField", R"doc(
 A field written in Python: ior(points (N,3)) -> (N,) and grad_ior(points (N,3)) -> (N,3), both
 vectorised. height_only=True promises n depends on y alone (enables method='stratified').
-Slow: the integrators call back into Python at every evaluation.)doc");
+Slow: the integrators call back into Python at every evaluation. Its first evaluation checks it
+there: height_only=True against n and grad_ior 1 m aside (ValueError if either changes), and
+grad_ior against ior's central differences 1 mm apart (a RuntimeWarning beyond 1e-3 of it).)doc");
   custom
       .def(py::init<py::object, py::object, bool>(), py::arg("ior"), py::arg("grad_ior"),
            py::arg("height_only").noconvert() = false)

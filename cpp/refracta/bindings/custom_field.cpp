@@ -54,6 +54,43 @@ void CustomField::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
   py::gil_scoped_acquire acquire;
   *n = ior_at({p})[0];
   *grad = grad_ior_at({p})[0];
+  if (!checked_.exchange(true)) check_first_evaluation(p, *n, *grad);
+}
+
+void CustomField::check_first_evaluation(const Vec3d& p, double n, const Vec3d& grad) const {
+  if (height_only_) {
+    const Vec3d aside = p + Vec3d(1.0, 0.0, 1.0);
+    const double n_aside = ior_at({aside})[0];
+    const Vec3d grad_aside = grad_ior_at({aside})[0];
+    // n's round-off is 1e-16 of it; a field that changes by 1e-12 of n over a metre aside is not height-only.
+    const double horizontal = std::max({std::abs(grad.x()), std::abs(grad.z()), std::abs(grad_aside.x()),
+                                        std::abs(grad_aside.z())});
+    if (std::abs(n_aside - n) > 1e-12 * std::abs(n) || horizontal > 1e-12 * std::abs(n)) {
+      throw_invalid("CustomField: height_only=True, but the field depends on x or z: n = ", n, " at (", p.x(), ", ",
+                    p.y(), ", ", p.z(), ") and ", n_aside, " 1 m aside, grad_ior's largest horizontal component ",
+                    horizontal, " 1/m (pass height_only=False)");
+    }
+  }
+  // Central differences 1 mm apart: a smooth field's truncation (~1e-7 of its change over 1 mm)
+  // and n's round-off (1e-16 / 1e-3 m) are far below the 1e-3 relative allowance.
+  constexpr double kStep = 1e-3;
+  std::vector<Vec3d> probes;
+  for (int a = 0; a < 3; ++a) {
+    Vec3d step = Vec3d::Zero();
+    step[a] = kStep;
+    probes.push_back(p + step);
+    probes.push_back(p - step);
+  }
+  const std::vector<double> values = ior_at(probes);
+  Vec3d differences;
+  for (int a = 0; a < 3; ++a) differences[a] = (values[2 * a] - values[2 * a + 1]) / (2.0 * kStep);
+  if ((differences - grad).norm() > 1e-3 * std::max(grad.norm(), differences.norm()) + 1e-12 * std::abs(n)) {
+    const std::string message =
+        concat("CustomField: grad_ior(", p.x(), ", ", p.y(), ", ", p.z(), ") = (", grad.x(), ", ", grad.y(), ", ",
+               grad.z(), ") but ior's central differences there give (", differences.x(), ", ", differences.y(), ", ",
+               differences.z(), "): rays follow grad_ior, so they bend as it says, not as ior changes");
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+  }
 }
 
 void CustomField::evaluate_height(double h, double* n, double* dn_dh) const {

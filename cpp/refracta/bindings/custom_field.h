@@ -6,6 +6,8 @@
 #include "refracta/bindings/bindings.h"
 #include "refracta/media/index_field.h"
 
+#include <atomic>
+
 namespace refracta {
 
 class CustomField : public IndexField {
@@ -29,6 +31,13 @@ class CustomField : public IndexField {
   const py::object& grad_function() const { return *grad_; }
 
  private:
+  // At its first evaluation (inside the work that makes it, GIL held), the field is checked where
+  // it is evaluated: height_only=True against n and its gradient 1 m aside (a field that is not
+  // height-only would be traced as the column at x = z = 0: ValueError), and grad_ior against
+  // ior's central differences (a RuntimeWarning: rays follow grad_ior; a kink there also differs).
+  void check_first_evaluation(const Vec3d& p, double n, const Vec3d& grad) const;
+  mutable std::atomic<bool> checked_{false};
+
   // Held by pointer so the destructor can take the GIL before releasing them.
   py::object* ior_;
   py::object* grad_;

@@ -37,6 +37,12 @@ constexpr double kGaussWeights[4] = {0.129484966168870, 0.279705391489277, 0.381
 
 }  // namespace detail
 
+// A duct whose gap n* - beta at its maximum is below kDuctGap n is followed as a harmonic oscillation
+// (StratifiedTracer::harmonic_duct): there n - beta keeps fewer than ~3 significant digits. Maxima of n
+// are looked for within kDuctReach [m] of the ray.
+constexpr double kDuctGap = 1e-11;
+constexpr double kDuctReach = 0.1;
+
 template <class Field>
 class StratifiedTracer {
  public:
@@ -59,6 +65,7 @@ class StratifiedTracer {
     // n0 - beta = n0 (1 - cos e0), written without cancellation.
     const double gap0 = n0 * sin_e0 * sin_e0 / (1.0 + cos_e0);
     launch_h_ = x0.y(), launch_gap_ = gap0, launch_slope_ = dn0;
+    launch_slope_dr_ = cos_e0 > 0.0 ? sin_e0 / cos_e0 : 0.0;
     // Below every n the path can meet (with the margin of an elevation of 0.57 deg at the floor,
     // as the renderer's cannot-turn test), beta has no turning height: scan in whole panels.
     constexpr double kClearOfTurning = 0.99995;  // sqrt(1 - 0.01^2)
@@ -80,6 +87,11 @@ class StratifiedTracer {
       bool turning = gap0 <= 1e-15 * n0;
       double direction = turning ? (dn0 > 0.0 ? 1.0 : -1.0) : (sin_e0 > 0.0 ? 1.0 : -1.0);
       if (turning) set_turning_point(h);
+      // Launched nearly level by a shallow duct's maximum (toward which n rises): its oscillation.
+      if (gap0 <= kDuctGap * n0 && dn0 != 0.0 && harmonic_duct(h, launch_slope_dr_, dn0 > 0.0 ? 1.0 : -1.0, true)) {
+        out_.end = last_;
+        return out_;
+      }
       while (!done()) {
         if (!branch(&h, &turning, &direction)) break;
       }
@@ -147,6 +159,75 @@ class StratifiedTracer {
     r_ += rest * cos_e;
     emit(node(s_, r_, last_.x.y() + rest * sin_e, n, 0.0, sin_e));
     reached_end_ = true;
+  }
+
+  // A ray about a maximum of n whose gap there, n* - beta, is within a few thousand ulps of round-off
+  // (a duct too shallow for Bouguer's invariant to place the turning heights): dn/dh, accurate there,
+  // can. Near the maximum h*, n = n* - k (h - h*)^2 / 2, and the invariant differentiated along r
+  // gives h'' = n n'(h) / beta^2 = -omega^2 (h - h*), omega^2 = n k / beta^2: the ray oscillates
+  // harmonically, h = h* + a cos(omega (r - r_t)) + (h'_t / omega) sin(omega (r - r_t)) from height
+  // h_t = h* + a and slope h'_t = dh/dr, with ds/dr = n / beta = 1 to within that gap.
+  // `dir`: the way toward the maximum. With `only_if_exact`, follows the ray only where n's cubic and
+  // quartic terms (k measured over the oscillation's span against k at the maximum) move it by less
+  // than tol over the rest of the path, and returns whether it did; without, it always follows it
+  // (the ray turns within round-off: nothing else can) or throws NumericalError.
+  bool harmonic_duct(double h_t, double slope_dr, double dir, bool only_if_exact) {
+    auto slope = [&](double h) {
+      double n, dn;
+      eval(h, &n, &dn);
+      return dn;
+    };
+    const double slope_t = slope(h_t);
+    double near = h_t, far = h_t;
+    bool bracketed = slope_t == 0.0;
+    for (double width = 1e-9; width <= kDuctReach && !bracketed; width *= 4.0) {
+      far = h_t + dir * width;
+      bracketed = (slope(far) > 0.0) != (slope_t > 0.0);
+      if (!bracketed) near = far;
+    }
+    if (!bracketed) {
+      if (only_if_exact) return false;
+      throw_numerical("stratified: cannot resolve a duct at h = ", h_t, " m (the ray turns back and forth within "
+                      "n's round-off, but no maximum of n lies within ", kDuctReach, " m; trace='rk45' follows it)");
+    }
+    double lo = near, hi = far;  // slope(lo) has slope_t's sign
+    for (int it = 0; it < 200 && std::abs(hi - lo) > 1e-15 * (1.0 + std::abs(lo)); ++it) {
+      const double mid = 0.5 * (lo + hi);
+      ((slope(mid) > 0.0) == (slope_t > 0.0) ? lo : hi) = mid;
+    }
+    const double h_max = 0.5 * (lo + hi), offset = h_t - h_max;
+    const double k = (slope(h_max - 1e-6) - slope(h_max + 1e-6)) / 2e-6;
+    double n_max, dn_max;
+    eval(h_max, &n_max, &dn_max);
+    if (!(k > 0.0)) {
+      if (only_if_exact) return false;
+      throw_numerical("stratified: cannot resolve a duct at h = ", h_t, " m (n's maximum at ", h_max,
+                      " m is flat to round-off; trace='rk45' follows it)");
+    }
+    const double omega = std::sqrt(n_max * k) / beta_;
+    const double amplitude = std::hypot(offset, slope_dr / omega);
+    if (only_if_exact) {
+      if (0.5 * k * amplitude * amplitude > kDuctGap * n_max) return false;  // Bouguer resolves it
+      // k over the span, each side: a quartic term changes omega, a cubic one shifts the centre.
+      const double span = std::max(amplitude, 1e-6);
+      const double k_above = -slope(h_max + span) / span, k_below = slope(h_max - span) / span;
+      const double stray = amplitude * (std::abs(0.5 * (k_above + k_below) / k - 1.0) * omega * (length_ - s_) +
+                                        std::abs(k_above - k_below) / k);
+      if (!(stray <= options_.tol)) return false;
+    }
+    const double r_t = r_, s_t = s_;
+    const int count = std::max(1, int(std::ceil((length_ - s_t) / spacing_)));
+    for (int i = 1; i <= count && !done(); ++i) {
+      s_ = s_t + (length_ - s_t) * i / count;
+      r_ = r_t + (s_ - s_t);
+      const double phase = omega * (r_ - r_t), c = std::cos(phase), sn = std::sin(phase);
+      const double h = h_max + offset * c + slope_dr / omega * sn, dh_dr = -offset * omega * sn + slope_dr * c;
+      double n, dn;
+      eval(h, &n, &dn);
+      emit(node(s_, r_, h, n, dn, dh_dr / std::sqrt(1.0 + dh_dr * dh_dr)));
+    }
+    reached_end_ = true;
+    return true;
   }
 
   // --- the integrand in either variable -------------------------------------------------------
@@ -341,8 +422,8 @@ class StratifiedTracer {
       if (gap_next <= 0.0 || at_turning) {
         if (from_turning) {  // a second turning point within one scan step: look closer
           if (delta < 1e-12) {
-            throw_numerical("stratified: cannot resolve a duct at h = ", h_prev, " m (the ray turns back and forth "
-                            "about a maximum of n within its round-off; trace='rk45' follows it)");
+            harmonic_duct(*h_start, 0.0, dir, false);
+            return false;
           }
           delta *= 0.25;
           continue;
@@ -394,6 +475,7 @@ class StratifiedTracer {
   double beta_ = 0.0, s_ = 0.0, r_ = 0.0;
   double turning_gap_ = 0.0, turning_slope_ = 0.0;
   double launch_h_ = 0.0, launch_gap_ = 0.0, launch_slope_ = 0.0;
+  double launch_slope_dr_ = 0.0;  // dh/dr at the launch: tan of its elevation
   bool stopped_ = false, reached_end_ = false;
   RayNode<double> last_;
   double uniform_above_;  // the field's: n is constant above it [m]
