@@ -107,3 +107,17 @@ def test_uniform_field_gives_straight_lines():
         expected = np.array([1, 2, 3]) + np.outer(path.arc_length, t)
         np.testing.assert_allclose(path.points, expected, rtol=0, atol=1e-11)
         np.testing.assert_allclose(path.directions, np.broadcast_to(t, path.directions.shape), atol=1e-14)
+
+
+@pytest.mark.parametrize("elevation", [1e-9, 1e-8, 3e-8, -3e-8, 1e-7])
+def test_a_nearly_level_ray_in_uniform_air_is_a_straight_line(elevation):
+    # Within 4.5e-8 rad of level n - beta is below 1e-15: 'stratified' took such a launch for a
+    # turning point, and in uniform air kept the ray level (3e-5 m low after 1 km at 3e-8 rad)
+    # or, scanning on, ended it at x = 0. The straight line, from the launch's exact gap.
+    field = height_field(lambda y: np.full_like(y, 1.0003), lambda y: np.zeros_like(y))
+    start, d = np.array([0.0, 1.5, 0.0]), np.array([np.cos(elevation), np.sin(elevation), 0.0])
+    path = refracta.trace_ray(field, start, d, trace="stratified", max_length=1000.0, tol=1e-9)
+    # Heights to 1e-12 m (measured <= 1e-16); along the ray the heights' own round-off (2.2e-16 m
+    # at 1.5 m) over a slope of 1e-9 leaves 2.2e-7 m (measured 8e-8 m at 1e-9 rad).
+    assert path.points[-1][1] - 1.5 == pytest.approx(1000.0 * np.sin(elevation), abs=1e-12)
+    assert path.points[-1][0] == pytest.approx(1000.0 * np.cos(elevation), abs=3e-7)

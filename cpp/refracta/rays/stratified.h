@@ -80,11 +80,11 @@ class StratifiedTracer {
     const bool descends = sin_e0 < 0.0 || (sin_e0 == 0.0 && !(dn0 > 0.0));
     if (options_.stop_height && x0.y() <= *options_.stop_height && descends) {
       out_.stop = TraceStop::kStopHeight;
-    } else if (gap0 <= 1e-15 * n0 && dn0 == 0.0) {
+    } else if (sin_e0 == 0.0 && dn0 == 0.0) {
       straight_horizontal(n0);
     } else {
       double h = x0.y();
-      bool turning = gap0 <= 1e-15 * n0;
+      bool turning = sin_e0 == 0.0;
       double direction = turning ? (dn0 > 0.0 ? 1.0 : -1.0) : (sin_e0 > 0.0 ? 1.0 : -1.0);
       if (turning) set_turning_point(h);
       // Launched nearly level by a shallow duct's maximum (toward which n rises): its oscillation.
@@ -242,10 +242,8 @@ class StratifiedTracer {
     double height(double w) const { return substituted ? centre + side * w * w : w; }
   };
 
-  void rates(const Variable& var, double w, double* dr, double* ds, double* gap) {
-    const double h = var.height(w);
-    double n, dn;
-    eval(h, &n, &dn);
+  // n - beta at height h (n, dn there), from var's reference where the plain difference loses digits.
+  double gap_at(const Variable& var, double h, double n, double dn) {
     double d = n - beta_;
     if (d < 1e-6 * n) {
       // n - beta is a difference of two numbers near 1 (absolute error ~4e-16): below 1e-6 it
@@ -258,6 +256,14 @@ class StratifiedTracer {
       const double simpson_error = std::abs(dh * (var.ref_slope - 2.0 * dn_mid + dn)) / 12.0;
       if (simpson_error < 4e-16 * n) d = dh / 6.0 * (var.ref_slope + 4.0 * dn_mid + dn) + var.ref_gap;
     }
+    return d;
+  }
+
+  void rates(const Variable& var, double w, double* dr, double* ds, double* gap) {
+    const double h = var.height(w);
+    double n, dn;
+    eval(h, &n, &dn);
+    const double d = gap_at(var, h, n, dn);
     *gap = d;
     const double q = std::sqrt(std::max(d, 1e-300) * (n + beta_));
     const double jacobian = var.substituted ? 2.0 * std::abs(w) : 1.0;
@@ -415,10 +421,13 @@ class StratifiedTracer {
       }
       double n_next, dn_next;
       eval(h_next, &n_next, &dn_next);
-      const double gap_next = n_next - beta_;
-      // Within round-off of beta (8 ulps of n): the turning height is here, to within
-      // noise / |dn/dh|; scanning on would creep toward it forever.
-      const bool at_turning = gap_next > 0.0 && gap_next <= 8 * 2.2e-16 * n_next && !from_turning;
+      // From the launch's or the turning point's exact gap where n - beta loses digits: a ray
+      // launched within 4.5e-8 rad of level has n - beta ~1e-15 all along in uniform air.
+      const double gap_next = gap_at(plain, h_next, n_next, dn_next);
+      // Within round-off of beta (8 ulps of n) where n falls along the motion: the turning height
+      // is here, to within noise / |dn/dh|; scanning on would creep toward it forever.
+      const bool at_turning =
+          gap_next > 0.0 && gap_next <= 8 * 2.2e-16 * n_next && dir * dn_next < 0.0 && !from_turning;
       if (gap_next <= 0.0 || at_turning) {
         if (from_turning) {  // a second turning point within one scan step: look closer
           if (delta < 1e-12) {
