@@ -203,14 +203,18 @@ def test_python_signatures_write_no_numeric_default():
         assert not defaults, (function, defaults)
 
 
-def test_a_tolerance_finer_than_double_precision_says_so():
-    # A trial: tol 1e-8 over 40 km asks each step of h metres for 1e-8 h / 4e4 (2.5e-13 per metre),
-    # below the rounding of positions 4.5 km out; the step collapsed, and the message blamed only
-    # the field. 30 km, or the default tol, traces it.
+def test_a_fine_tolerance_over_the_curved_earth_traces():
+    # A trial: tol 1e-8 over 40 km had rk45's step collapse ("finer than double precision"), where
+    # the cause was the flat frame's height, R (e^(y/R) - 1), rounded to R eps ~ 1e-9 m: now expm1.
+    # The ray meets the ground ~4.9 km out (the trial's 4909 m), where 'stratified' puts it.
     field = refracta.CurvedEarth(refracta.PhysicalAtmosphere(surface_dt=-2.0, surface_depth=2.0))
     e = np.radians(-0.05)
     direction = [np.cos(e), np.sin(e), 0.01]
-    with pytest.raises(refracta.NumericalError, match=r"tol = 1e-08 m over max_length = 40000 m is finer than double"):
-        refracta.trace_ray(field, [0.0, 5.0, 0.0], direction, max_length=40000.0, stop_height=0.0, tol=1e-8)
-    path = refracta.trace_ray(field, [0.0, 5.0, 0.0], direction, max_length=40000.0, stop_height=0.0)
-    assert 4000.0 < path.points[-1][0] < 6000.0  # the ground, ~4.9 km out (the trial's 4909 m)
+    exact = refracta.trace_ray(
+        field, [0.0, 5.0, 0.0], direction, max_length=40000.0, stop_height=0.0, trace="stratified", tol=1e-9
+    )
+    for tol in (1e-8, 1e-10):
+        path = refracta.trace_ray(field, [0.0, 5.0, 0.0], direction, max_length=40000.0, stop_height=0.0, tol=tol)
+        assert 4000.0 < path.points[-1][0] < 6000.0
+        # Heights to tol; along the ground a height error grows by 1 / tan(0.05 deg) = 1146 (measured 1.7e-7 m).
+        assert np.linalg.norm(path.points[-1] - exact.points[-1]) < 1146 * 1e-8 + 1e-9

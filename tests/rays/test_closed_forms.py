@@ -121,3 +121,34 @@ def test_a_nearly_level_ray_in_uniform_air_is_a_straight_line(elevation):
     # at 1.5 m) over a slope of 1e-9 leaves 2.2e-7 m (measured 8e-8 m at 1e-9 rad).
     assert path.points[-1][1] - 1.5 == pytest.approx(1000.0 * np.sin(elevation), abs=1e-12)
     assert path.points[-1][0] == pytest.approx(1000.0 * np.cos(elevation), abs=3e-7)
+
+
+@pytest.mark.parametrize(
+    "field_name, eye, elevation",
+    [
+        ("curved standard air", 100.0, -1e-9),
+        ("curved standard air", 100.0, 1e-9),
+        ("curved standard air", 100.0, -3e-8),
+        ("flat standard air", 100.0, -1e-9),
+        ("n^2 linear", 100.0, 1e-8),
+        ("sounding duct", 10.4486, 1e-8),
+    ],
+)
+def test_nearly_level_launches_beside_a_turning_height(field_name, eye, elevation):
+    # A ray within ~1e-7 rad of level turns within micrometres of its launch (ahead of it or, where
+    # n rises along its motion, behind it). 'stratified' scanned from the launch into the inverse
+    # square root beside it: ends 1e130 m away, or 1 mm off over 30 km, whatever tol (a trial).
+    # It now starts from the turning height (its u-substitution, n - beta from the launch's exact gap).
+    fields = {
+        "curved standard air": refracta.CurvedEarth(refracta.PhysicalAtmosphere()),
+        "flat standard air": refracta.PhysicalAtmosphere(),
+        "n^2 linear": refracta.LinearSquaredProfile(1.000277, -1e-7),
+        "sounding duct": refracta.TemperatureProfile([0, 5, 10, 20, 40], [300, 290, 285, 290, 295]),
+    }
+    field, d = fields[field_name], direction(np.degrees(elevation))
+    exact = refracta.trace_ray(field, [0, eye, 0], d, trace="stratified", tol=1e-9, max_length=30000.0)
+    reference = refracta.trace_ray(field, [0, eye, 0], d, trace="rk45", tol=1e-9, max_length=30000.0)
+    assert exact.length == pytest.approx(30000.0, rel=1e-12)
+    # Both to 1e-9 m of their own paths; over 30 km rk45's global error adds up to ~1e-8 (measured
+    # differences <= 2.4e-8 m; before: 1.3e-3 m, or x = 7.7e130).
+    assert np.linalg.norm(exact.points[-1] - reference.points[-1]) < 1e-7

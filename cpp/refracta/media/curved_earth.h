@@ -19,10 +19,13 @@ constexpr double kEarthRadius = 6371e3;  // [m], mean radius
 // base.evaluate_height(h, &n, &dn_dh); templated so editing differentiates through it.
 template <class T, class Base>
 void flattened_height(const Base& base, const T& radius, const T& y, T* n, T* dn_dy) {
-  using std::exp;
-  const T scale = exp(y / radius);  // r / R = dh/dy'
+  using std::expm1;
+  // h = R (e^(y/R) - 1) by expm1: e^(y/R) - 1 in two steps rounds h to R eps ~ 1e-9 m, a jitter
+  // that rk45's error control saw as structure near a hot road (its steps collapsed at tol 1e-6).
+  const T grown = expm1(y / radius);
+  const T scale = grown + T(1.0);  // r / R = dh/dy'
   T n_base, dn_base;
-  base.evaluate_height(radius * (scale - T(1.0)), &n_base, &dn_base);
+  base.evaluate_height(radius * grown, &n_base, &dn_base);
   *n = n_base * scale;
   *dn_dy = scale * (dn_base * scale + n_base / radius);
 }

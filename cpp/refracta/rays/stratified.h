@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
 
 namespace refracta {
 
@@ -41,7 +42,10 @@ constexpr double kGaussWeights[4] = {0.129484966168870, 0.279705391489277, 0.381
 // (StratifiedTracer::harmonic_duct): there n - beta keeps fewer than ~3 significant digits. Maxima of n
 // are looked for within kDuctReach [m] of the ray.
 constexpr double kDuctGap = 1e-11;
-constexpr double kDuctReach = 0.1;
+constexpr double kDuctReach = 10.0;
+// A launch this close [m] to a turning height (ahead of it or behind) starts from it
+// (StratifiedTracer::start_near_turning).
+constexpr double kNearTurning = 1e-6;
 
 template <class Field>
 class StratifiedTracer {
@@ -91,6 +95,9 @@ class StratifiedTracer {
       if (gap0 <= kDuctGap * n0 && dn0 != 0.0 && harmonic_duct(h, launch_slope_dr_, dn0 > 0.0 ? 1.0 : -1.0, true)) {
         out_.end = last_;
         return out_;
+      }
+      if (!turning && dn0 != 0.0 && launch_gap_ <= kNearTurning * std::abs(dn0)) {
+        start_near_turning(h, direction, dn0, &h, &turning, &direction);
       }
       while (!done()) {
         if (!branch(&h, &turning, &direction)) break;
@@ -242,8 +249,9 @@ class StratifiedTracer {
     double height(double w) const { return substituted ? centre + side * w * w : w; }
   };
 
-  // n - beta at height h (n, dn there), from var's reference where the plain difference loses digits.
-  double gap_at(const Variable& var, double h, double n, double dn) {
+  // n - beta at height h (n, dn there), from var's reference where the plain difference loses digits;
+  // dh: h - var.ref_h where the caller knows it more exactly than the difference of the two.
+  double gap_at(const Variable& var, double h, double n, double dn, std::optional<double> exact_dh = std::nullopt) {
     double d = n - beta_;
     if (d < 1e-6 * n) {
       // n - beta is a difference of two numbers near 1 (absolute error ~4e-16): below 1e-6 it
@@ -251,19 +259,26 @@ class StratifiedTracer {
       // Simpson's rule does not cancel; its error is below the trapezoid-midpoint discrepancy.
       // Take whichever error is smaller.
       double n_mid, dn_mid;
-      eval(0.5 * (h + var.ref_h), &n_mid, &dn_mid);
-      const double dh = h - var.ref_h;
+      const double dh = exact_dh ? *exact_dh : h - var.ref_h;
+      eval(var.ref_h + 0.5 * dh, &n_mid, &dn_mid);
       const double simpson_error = std::abs(dh * (var.ref_slope - 2.0 * dn_mid + dn)) / 12.0;
       if (simpson_error < 4e-16 * n) d = dh / 6.0 * (var.ref_slope + 4.0 * dn_mid + dn) + var.ref_gap;
     }
     return d;
   }
 
+  // In a u-panel about a turning height, h - h_t is side w^2 exactly: near h_t the height itself
+  // rounds to h_t (its ulp, 1.4e-14 m at 100 m, is w^2 for w ~ 1e-7), where n - beta would be 0.
+  static std::optional<double> exact_offset(const Variable& var, double w) {
+    if (var.substituted && var.ref_h == var.centre) return var.side * w * w;
+    return std::nullopt;
+  }
+
   void rates(const Variable& var, double w, double* dr, double* ds, double* gap) {
     const double h = var.height(w);
     double n, dn;
     eval(h, &n, &dn);
-    const double d = gap_at(var, h, n, dn);
+    const double d = gap_at(var, h, n, dn, exact_offset(var, w));
     *gap = d;
     const double q = std::sqrt(std::max(d, 1e-300) * (n + beta_));
     const double jacobian = var.substituted ? 2.0 * std::abs(w) : 1.0;
@@ -305,6 +320,13 @@ class StratifiedTracer {
     if (done()) return true;
     const PanelSums sums = gauss_kronrod(var, wa, wb);
     if (sums.min_gap <= 0.0 && !var.substituted) return false;
+    // About a turning height n - beta grows away from it; a negative gap there means the turning
+    // height taken (one within n's round-off of beta) is not the ray's: refuse rather than return
+    // a path of that integral's poles.
+    if (sums.min_gap < 0.0 || !std::isfinite(sums.s)) {
+      throw_numerical("stratified: lost the turning height near h = ", var.centre, " m (n - beta there is within n's "
+                      "round-off over more than ", kDuctReach, " m); trace='rk45' follows the ray");
+    }
     const bool too_long = sums.s > spacing_;
     // Error per unit length, floored at what round-off in n - beta allows (a relative 1e-16 of n
     // over the smallest gap): asking for less only splits panels to chase noise.
@@ -322,16 +344,18 @@ class StratifiedTracer {
     }
     s_ += sums.s;
     r_ += sums.r;
-    emit_at(var.height(wb), direction);
+    emit_at(var, wb, direction);
     return true;
   }
 
-  void emit_at(double h, double direction, bool turning = false) {
+  // A node at var's w: its direction from n - beta as the panels integrate it (gap_at), so that
+  // beside a turning height, where the plain difference is round-off, the node's slope is the path's.
+  void emit_at(const Variable& var, double w, double direction) {
+    const double h = var.height(w);
     double n, dn;
     eval(h, &n, &dn);
-    const double sin_e =
-        turning ? 0.0 : direction * std::sqrt(std::max(n - beta_, 0.0) * (n + beta_)) / n;
-    emit(node(s_, r_, h, n, dn, sin_e));
+    const double gap = gap_at(var, h, n, dn, exact_offset(var, w));
+    emit(node(s_, r_, h, n, dn, direction * std::sqrt(std::max(gap, 0.0) * (n + beta_)) / n));
   }
 
   // The path reaches max_length inside [wa, wb]: find w with s(w) = max_length by Newton.
@@ -352,17 +376,19 @@ class StratifiedTracer {
     }
     s_ = length_;
     r_ += part.r;
-    emit_at(var.height(w), direction);
+    emit_at(var, w, direction);
     reached_end_ = true;
   }
 
   // Root of n(h) = beta in (h_pos, h_neg], g(h_pos) > 0 >= g(h_neg): Newton kept in the bracket.
-  double turning_height(double h_pos, double h_neg) {
+  // The gap from var's reference where n - beta loses digits (gap_at): a near-level launch's whole
+  // gap can lie below n's round-off.
+  double turning_height(const Variable& var, double h_pos, double h_neg) {
     double lo = h_pos, hi = h_neg, h = 0.5 * (lo + hi);
     for (int it = 0; it < 100 && std::abs(hi - lo) > 1e-13 * (1.0 + std::abs(h)); ++it) {
       double n, dn;
       eval(h, &n, &dn);
-      const double g = n - beta_;
+      const double g = gap_at(var, h, n, dn);
       if (g == 0.0) break;
       if (g > 0.0) lo = h; else hi = h;
       const double newton = dn != 0.0 ? h - g / dn : h;
@@ -379,6 +405,39 @@ class StratifiedTracer {
     eval(h_t, &n, &dn);
     turning_gap_ = 0.0;
     turning_slope_ = dn;
+  }
+
+  // A launch within kNearTurning of a turning height h_t (n - beta = |dn/dh| |h - h_t| to first
+  // order): a scan from it would meet the inverse square root singularity right beside the start,
+  // which the panels' halving cannot isolate (and n - beta there is below n's round-off). The path
+  // near h_t in the u-substitution instead: ahead (n falls along the motion) the ray reaches h_t
+  // and turns there; behind (n rises) it left h_t, and goes on from the launch's u to the turning
+  // branch's first step (1e-4 m from h_t). Updates *h, *turning and *direction for the scan.
+  void start_near_turning(double h0, double motion, double dn0, double* h, bool* turning, double* direction) {
+    const bool ahead = motion * dn0 < 0.0;
+    Variable launch;
+    launch.ref_h = launch_h_, launch.ref_gap = launch_gap_, launch.ref_slope = launch_slope_;
+    double ht = h0 + (ahead ? motion : -motion) * launch_gap_ / std::abs(dn0);
+    for (int it = 0; it < 4; ++it) {  // Newton on the exact gap from the linear estimate
+      double n, dn;
+      eval(ht, &n, &dn);
+      if (dn == 0.0) break;
+      ht -= gap_at(launch, ht, n, dn) / dn;
+    }
+    set_turning_point(ht);
+    if (ahead) {
+      integrate_near_turning(ht, h0, true, motion);
+      last_.v = last_.n * Vec3d(last_.v.x(), 0.0, last_.v.z()).normalized();
+      *h = ht, *turning = true, *direction = -motion;
+      return;
+    }
+    Variable var;
+    var.substituted = true;
+    var.centre = ht, var.side = motion;
+    var.ref_h = ht, var.ref_gap = turning_gap_, var.ref_slope = turning_slope_;
+    constexpr double kFirstStep = 1e-4;  // the turning branch's (branch())
+    integrate(var, std::sqrt(std::abs(h0 - ht)), std::sqrt(kFirstStep), motion);
+    *h = ht + motion * kFirstStep, *turning = false, *direction = motion;
   }
 
   // u-panel from height ha to the turning height ht (towards = true), or from ht out to hb.
@@ -437,7 +496,7 @@ class StratifiedTracer {
           delta *= 0.25;
           continue;
         }
-        const double ht = at_turning ? h_next : turning_height(h_prev, h_next);
+        const double ht = at_turning ? h_next : turning_height(plain, h_prev, h_next);
         set_turning_point(ht);
         if (!integrate_near_turning(ht, h_prev, true, dir)) {
           delta *= 0.25;
