@@ -17,6 +17,7 @@ stubs' test) nothing is wrapped.
 from __future__ import annotations
 
 import functools
+import operator
 import os
 import re
 from collections.abc import Callable
@@ -71,12 +72,14 @@ def _parameters(signature: str) -> tuple[list[tuple[str, str, bool]], int]:
     return out, len(out) if positional < 0 else positional
 
 
-def _what_is_wrong(annotation: str, value: Any) -> str | None:
-    """Why `value` cannot be the annotated parameter, or None if it may be (or we cannot tell)."""
+def _what_is_wrong(annotation: str, value: Any, ranges: bool = False) -> str | None:
+    """Why `value` cannot be the annotated parameter, or None if it may be (or we cannot tell).
+    ranges: also a whole number beyond a C++ int (which an int64 parameter would take: asked only
+    once no argument is surely wrong)."""
     alternatives = _split_top_level(annotation, "|")
     reasons = []
     for alternative in alternatives:
-        reason = _against_one(alternative, value)
+        reason = _against_one(alternative, value, ranges)
         if reason is None:
             return None
         reasons.append(reason)
@@ -90,7 +93,7 @@ def _what_is_wrong(annotation: str, value: Any) -> str | None:
 _SUBSUMES = (("a number", "a whole number"), ("a path (str or os.PathLike)", "a string"))
 
 
-def _against_one(annotation: str, value: Any) -> str | None:
+def _against_one(annotation: str, value: Any, ranges: bool = False) -> str | None:
     """Why pybind11 surely refuses `value` for one alternative of an annotation (bindings/
     strict_numbers.h's rule for numbers), or None where it may take it: only a sure refusal is
     named, so that another argument, the one at fault, is not blamed."""
@@ -101,6 +104,8 @@ def _against_one(annotation: str, value: Any) -> str | None:
         return None if ok else "a number"
     if annotation in ("typing.SupportsInt", "int", "typing.SupportsIndex"):  # __index__, never a float
         ok = not is_flag(value) and hasattr(type(value), "__index__")
+        if ranges and ok and abs(operator.index(value)) >= 2**31:  # beyond a C++ int, which pybind11 refuses
+            return "a whole number of magnitude below 2**31"
         return None if ok else "a whole number"
     if annotation == "bool":  # bound with noconvert: Python's and numpy's bools only
         return None if is_flag(value) else "True or False"
@@ -170,14 +175,14 @@ def diagnose(owner: str, message: str, args: tuple, kwargs: dict) -> str | None:
         if key in given:
             return f"{owner}: {key} given by position and by name"
         given[key] = value
-    for name, annotation, has_default in params:
-        if name not in given:
-            if not has_default:
-                return f"{owner}: missing argument '{name}'"
-            continue
-        reason = _what_is_wrong(annotation, given[name])
-        if reason:
-            return f"{owner}: {name} must be {reason} (got {_shown(given[name])})"
+    for name, _, has_default in params:
+        if name not in given and not has_default:
+            return f"{owner}: missing argument '{name}'"
+    for ranges in (False, True):
+        for name, annotation, _ in params:
+            reason = _what_is_wrong(annotation, given[name], ranges) if name in given else None
+            if reason:
+                return f"{owner}: {name} must be {reason} (got {_shown(given[name])})"
     return None
 
 

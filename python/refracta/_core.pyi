@@ -3780,7 +3780,7 @@ def physical_memory_bytes() -> float:
 def set_threads(n: typing.SupportsInt | typing.SupportsIndex | None) -> None:
     """
     Limit refracta's parallel work (oneTBB: render, trace_rays, render_raster, solve's pair traces,
-    Embree's BVH builds) to n threads; n = None or 0 restores the default, every core. Results do
+    Embree's BVH builds) to n threads, n in [0, 256]; n = None or 0 restores the default, every core. Results do
     not depend on it: every parallel loop writes each item's result to its own slot.
     """
 def synthesise_turbulence(settings: TurbulenceSettings, progress: typing.Any = None) -> TurbulenceGrid:

@@ -165,7 +165,9 @@ def _hidden_height(tracer: _Tracer) -> tuple[float, float]:
             high = middle
     height = tracer.height_at_distance(high, ground=True)
     assert height is not None  # `high` clears by the loop's invariant
-    return max(height, 0.0), high
+    # Within the horizon the limiting ray meets the surface at `distance` itself: height 0, which
+    # the bisection leaves a few nanometres up (a sea-level target then counted as hidden).
+    return (height if height > _HEIGHT_TOL else 0.0), high
 
 
 def _apparent_elevation(tracer: _Tracer, target: float, low: float, low_height: float, guess: float) -> float:

@@ -41,11 +41,14 @@ def _bounds(scene: _core.Scene, objects: bool = False):
         return None
 
 
-def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) -> None:
+def _check_reach(
+    scene: _core.Scene, camera: _core.Camera, max_length: float, reach: str = "max_length", remedy: str = ""
+) -> None:
     """The hint for a scene whose every object lies beyond the rays' reach: the nearest point of its
     bounding box is farther from the camera than max_length, so every ray stops in the air and the
     image shows only the sky (terrain or a coast tens of kilometres away with the default reach).
-    The objects' box: a sea or ground around the camera reaches it, and hid a coast beyond reach."""
+    The objects' box: a sea or ground around the camera reaches it, and hid a coast beyond reach.
+    reach: what limits the rays, named in the warning (with its `remedy`)."""
     bounds = _bounds(scene, objects=True)
     if bounds is None:
         return
@@ -56,9 +59,9 @@ def _check_reach(scene: _core.Scene, camera: _core.Camera, max_length: float) ->
     if math.isfinite(nearest) and nearest > max_length:
         warnings.warn(
             f"render: the nearest of the scene's objects (a ground or sea plane aside) is {nearest:.6g} m from "
-            f"the camera, beyond the rays' reach max_length = {max_length:g} m, so the image shows none of them "
+            f"the camera, beyond the rays' reach {reach} = {max_length:g} m, so the image shows none of them "
             f"(a ground or sea within reach, and the sky); pass a larger "
-            f"max_length= (its farthest point is {farthest:.6g} m away; a curved ray is a little longer)",
+            f"{remedy or 'max_length='} (its farthest point is {farthest:.6g} m away; a curved ray is a little longer)",
             SceneWarning,
             stacklevel=3,
         )
@@ -367,6 +370,10 @@ def render(
     _check_scene(scene, camera, field, settings.method)  # with the image: a refused render needs no hint
     if field is not None and settings.method != "straight":  # straight rays have no max_length
         _check_reach(scene, camera, settings.max_length)
+        march_reach = settings.step * settings.max_steps
+        if settings.method == "raster_march" and settings.march == "rk4" and march_reach < settings.max_length:
+            # The original editor's march stops after max_steps steps: 300 m with its settings.
+            _check_reach(scene, camera, march_reach, "step x max_steps", "max_steps= (or march='rk45')")
     if stats is not None:
         stats.update({name: getattr(counts, name) for name in ("samples", "chords", "invalid_samples")})
     outputs = {}

@@ -154,10 +154,38 @@ def sun_position(lat, lon, when) -> tuple[float, float]:
     import astral.sun
 
     east = _number(lon, "lon", -360.0, 360.0)
+    north = _number(lat, "lat", -90.0, 90.0)
     # astral takes [-180, 180] and does not wrap: 344.3 E put the sun of -15.7 below the horizon.
-    observer = astral.Observer(latitude=_number(lat, "lat", -90.0, 90.0), longitude=(east + 180.0) % 360.0 - 180.0)
+    observer = astral.Observer(latitude=north, longitude=(east + 180.0) % 360.0 - 180.0)
     utc = _utc(when)
+    if abs(north) > _ASTRAL_LATITUDE:
+        return _polar_sun_position(north, east, utc)
     return float(astral.sun.azimuth(observer, utc)), float(astral.sun.elevation(observer, utc, with_refraction=False))
+
+
+# astral's zenith_and_azimuth computes at most 89.8 deg from the equator: at a pole the sun stood
+# 0.2 deg off its declination (a trial). Beyond it the same NOAA declination and equation of time,
+# turned to the place by its hour angle.
+_ASTRAL_LATITUDE = 89.8
+
+
+def _polar_sun_position(lat: float, lon: float, utc) -> tuple[float, float]:
+    """sun_position's (azimuth, elevation) [deg] for |lat| > 89.8: NOAA's declination d and
+    equation of time (astral), the hour angle H from the true solar time, and
+    sin(elevation) = sin(lat) sin(d) + cos(lat) cos(d) cos(H); azimuth clockwise from north along
+    the meridian of `lon` (at a pole itself every direction is south or north)."""
+    import astral.sun
+
+    century = astral.sun.julianday_to_juliancentury(astral.sun.julianday(utc))
+    declination = math.radians(astral.sun.sun_declination(century))
+    minutes = utc.hour * 60.0 + utc.minute + (utc.second + utc.microsecond * 1e-6) / 60.0
+    hour_angle = math.radians((minutes + astral.sun.eq_of_time(century) + 4.0 * lon) / 4.0 - 180.0)
+    phi = math.radians(lat)
+    sin_d, cos_d, cos_h = math.sin(declination), math.cos(declination), math.cos(hour_angle)
+    sin_elevation = math.sin(phi) * sin_d + math.cos(phi) * cos_d * cos_h
+    elevation = math.degrees(math.asin(max(-1.0, min(1.0, sin_elevation))))
+    east, north = -cos_d * math.sin(hour_angle), math.cos(phi) * sin_d - math.sin(phi) * cos_d * cos_h
+    return math.degrees(math.atan2(east, north)) % 360.0, elevation
 
 
 def principal_radii(lat):

@@ -966,7 +966,19 @@ def _toml_value(value) -> str:
 
 def camera_table(camera: _core.Camera) -> str:
     """The [camera] table that load_scene reads back as `camera` (position, look_at, up [m], vfov
-    [deg], size [pixels]; a thin lens as aperture_diameter and focus_distance [m])."""
+    [deg], size [pixels]; a thin lens as aperture_diameter and focus_distance [m]).
+
+    Raises:
+        ValueError: not a refracta.Camera; a jittered camera (a scene file has no jitter map:
+            camera.without_jitter() writes the rest).
+    """
+    if not isinstance(camera, _core.Camera):
+        raise ValueError(f"camera_table: camera must be a refracta.Camera (got {type(camera).__name__})")
+    if camera.jitter is not None:
+        raise ValueError(
+            "camera_table: a scene file keeps no jitter map, and this camera has one: write "
+            "camera.without_jitter(), and keep the map beside the file (np.save)"
+        )
     lines = [
         "[camera]",
         f"position = {_toml_value([float(x) for x in camera.position])}",
@@ -1048,9 +1060,13 @@ def atmosphere_table(field: _core.IndexField, turbulence=None) -> str:
             settings are written; None for a field without turbulence.
 
     Raises:
-        ValueError: another kind of field; a field with turbulence and no `turbulence` (or
-            another one than it carries); `turbulence` for a field without.
+        ValueError: another kind of field (or not a field); a field with turbulence and no
+            `turbulence` (or another one than it carries); `turbulence` for a field without.
     """
+    if not isinstance(field, _core.IndexField):
+        raise ValueError(
+            f"atmosphere_table: field must be a refracta field, one of {', '.join(MODELS)} (got {type(field).__name__})"
+        )
     curved = None
     if isinstance(field, _core.CurvedEarth):
         curved, field = field.radius, field.base
@@ -1106,11 +1122,25 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
     return kept[0] + table + "\n" + "".join(part.lstrip("\n") for part in kept[1:] + [rest])
 
 
-def with_atmosphere(text: str, field: _core.IndexField, turbulence=None) -> str:
+def with_atmosphere(text: str, field: _core.IndexField | None, turbulence=None) -> str:
     """A scene file's text with its [atmosphere] table (its hot spots and turbulence included)
     replaced by atmosphere_table(field, turbulence) (appended if absent); everything else,
-    comments included, is kept."""
+    comments included, is kept. field None (load_scene's field of a file without air, rendered
+    straight): the [atmosphere] tables removed."""
+    if field is None:
+        if turbulence is not None:
+            raise ValueError("with_atmosphere: turbulence was given for no field (None)")
+        return _without_table(text, "atmosphere")
     return _with_table(text, "atmosphere", atmosphere_table(field, turbulence), first=False)
+
+
+def _without_table(text: str, name: str) -> str:
+    """`text` (a scene file) without its table `name` and its sub-tables (see _with_table)."""
+    marker = "# refracta: a removed table\n"
+    replaced = _with_table(text, name, marker, first=False)
+    if marker not in replaced.replace(marker, "", 1) and not replaced.endswith(marker):
+        return replaced.replace(marker + "\n", "", 1)
+    return text.removeprefix("\ufeff")  # no such table: appended, so nothing to remove
 
 
 def with_camera(text: str, camera: _core.Camera) -> str:

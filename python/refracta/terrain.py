@@ -62,6 +62,10 @@ _ROWS_PER_CHUNK = 256
 _TAG_PIXEL_SCALE, _TAG_TIEPOINT, _TAG_TRANSFORM, _TAG_NODATA = 33550, 33922, 34264, 42113
 _KEY_MODEL_TYPE, _KEY_RASTER_TYPE, _KEY_GEOGRAPHIC_TYPE, _KEY_PROJECTED_TYPE = 1024, 1025, 2048, 3072
 _MODEL_PROJECTED, _MODEL_GEOGRAPHIC = 1, 2
+# VerticalUnitsGeoKey: the heights' unit, EPSG unit code -> metres (US elevation products come in
+# feet; without it a tile stood 3.28 times too tall).
+_KEY_VERTICAL_UNITS = 4099
+_VERTICAL_UNITS = {9001: 1.0, 9002: 0.3048, 9003: 1200.0 / 3937.0, 9036: 1000.0}
 _RASTER_PIXEL_IS_POINT = 2
 _EPSG_WGS84 = 4326
 
@@ -219,6 +223,12 @@ def _read_geotiff(path: str) -> Elevation:
             "of longitude (at most 360)"
         )
     heights = data.astype(np.float64)
+    unit = keys.get(_KEY_VERTICAL_UNITS, 9001)
+    if unit not in _VERTICAL_UNITS:
+        raise ValueError(
+            f"{path!r}: heights in EPSG unit {unit} (VerticalUnitsGeoKey); supported: metre (9001), foot (9002), "
+            "US survey foot (9003), kilometre (9036)"
+        )
     nodata = tags.get(_TAG_NODATA)
     if nodata is not None:
         try:
@@ -232,6 +242,7 @@ def _read_geotiff(path: str) -> Elevation:
                 heights[data == data.dtype.type(value)] = np.nan
         else:
             heights[data == value] = np.nan
+    heights *= _VERTICAL_UNITS[unit]  # NaN voids stay NaN
     if np.isinf(heights).any():
         r, c = np.argwhere(np.isinf(heights))[0]
         raise ValueError(

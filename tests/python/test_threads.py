@@ -39,7 +39,7 @@ def test_set_threads_none_or_zero_restores_every_core():
 
 
 def test_set_threads_rejects_negative():
-    with pytest.raises(ValueError, match="n must be >= 0"):
+    with pytest.raises(ValueError, match=r"n must be in \[0, 256\] or None \(got -1"):
         refracta.set_threads(-1)
 
 

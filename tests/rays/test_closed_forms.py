@@ -120,7 +120,7 @@ def test_a_nearly_level_ray_in_uniform_air_is_a_straight_line(elevation):
     # Heights to 1e-12 m (measured <= 1e-16); along the ray the heights' own round-off (2.2e-16 m
     # at 1.5 m) over a slope of 1e-9 leaves 2.2e-7 m (measured 8e-8 m at 1e-9 rad).
     assert path.points[-1][1] - 1.5 == pytest.approx(1000.0 * np.sin(elevation), abs=1e-12)
-    assert path.points[-1][0] == pytest.approx(1000.0 * np.cos(elevation), abs=3e-7)
+    assert path.points[-1][0] == pytest.approx(1000.0 * np.cos(elevation), abs=3e-7)  # the round-off above
 
 
 @pytest.mark.parametrize(
@@ -148,7 +148,7 @@ def test_nearly_level_launches_beside_a_turning_height(field_name, eye, elevatio
     field, d = fields[field_name], direction(np.degrees(elevation))
     exact = refracta.trace_ray(field, [0, eye, 0], d, trace="stratified", tol=1e-9, max_length=30000.0)
     reference = refracta.trace_ray(field, [0, eye, 0], d, trace="rk45", tol=1e-9, max_length=30000.0)
-    assert exact.length == pytest.approx(30000.0, rel=1e-12)
+    assert exact.length == pytest.approx(30000.0, rel=1e-12)  # its whole length, to arc length's round-off
     # Both to 1e-9 m of their own paths; over 30 km rk45's global error adds up to ~1e-8 (measured
     # differences <= 2.4e-8 m; before: 1.3e-3 m, or x = 7.7e130).
     assert np.linalg.norm(exact.points[-1] - reference.points[-1]) < 1e-7

@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <optional>
+#include <thread>
 
 namespace refracta {
 
@@ -48,7 +49,12 @@ void bind_runtime(py::module_& m) {
   m.def(
       "set_threads",
       [](std::optional<int> n) {
-        if (n && *n < 0) throw_invalid("set_threads: n must be >= 0 or None (got ", *n, ")");
+        // oneTBB keeps at most 256 workers (get_threads said 1000000, then 257, after set_threads(10**6)).
+        constexpr int kMostThreads = 256;
+        if (n && (*n < 0 || *n > kMostThreads)) {
+          throw_invalid("set_threads: n must be in [0, ", kMostThreads, "] or None (got ", *n, "; this machine has ",
+                        std::thread::hardware_concurrency(), " hardware threads)");
+        }
         thread_limit().reset();  // one limit at a time: the newest is the one in force
         if (n && *n > 0) {
           thread_limit() = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(*n));
@@ -56,7 +62,7 @@ void bind_runtime(py::module_& m) {
       },
       py::arg("n"), R"doc(
 Limit refracta's parallel work (oneTBB: render, trace_rays, render_raster, solve's pair traces,
-Embree's BVH builds) to n threads; n = None or 0 restores the default, every core. Results do
+Embree's BVH builds) to n threads, n in [0, 256]; n = None or 0 restores the default, every core. Results do
 not depend on it: every parallel loop writes each item's result to its own slot.)doc");
   m.def(
       "get_threads",

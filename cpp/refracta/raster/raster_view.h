@@ -12,7 +12,10 @@ class RasterView {
  public:
   // The camera's view, widened by guard_band (a fraction of the image size added on each side;
   // the pixel grid grows with it so pixels keep their size). near [m]: the clipping distance.
-  static RasterView from_camera(const Camera& camera, double guard_band = 0.0, double near = 0.05);
+  static RasterView from_camera(const Camera& camera, double guard_band = 0.0, double near = kCameraNear);
+  // A camera's clipping distance [m]: depths are stored linearly (float, 6e-8 relative at every
+  // depth), so it costs no precision; at 5 cm a lens 2 cm above a hot plate saw sky through it.
+  static constexpr double kCameraNear = 1e-4;
   // A square perspective view from `origin` along `direction` with half field of view
   // atan(tan_half) each way, on a size x size grid (a spot light's shadow map).
   static RasterView perspective(const Vec3d& origin, const Vec3d& direction, const Vec3d& up, double tan_half,

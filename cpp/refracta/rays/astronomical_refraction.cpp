@@ -76,7 +76,13 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
   }
   const double central_angle = exit_point->x() / options.earth_radius;
   const double elevation_at_top = std::asin(std::clamp(exit_direction->y(), -1.0, 1.0));
-  return apparent_elevation - (elevation_at_top - central_angle);
+  // The starlight came from the vacuum beyond the top, where the field stays at n_top (a sounding
+  // levels off there at n - 1 ~ 3e-5, 10 % of the ground's): entering the air at the top's radius
+  // keeps n r cos e, so in vacuum cos e = n_top cos e_top (PhysicalAtmosphere's 86 km: n - 1 ~ 1e-8).
+  double n_top, dn_top;
+  field->evaluate_height(top, &n_top, &dn_top);
+  const double elevation_in_vacuum = std::acos(std::min(1.0, n_top * std::cos(elevation_at_top)));
+  return apparent_elevation - (elevation_in_vacuum - central_angle);
 }
 
 std::vector<double> astronomical_refraction(const FieldPtr& field, const std::vector<double>& apparent_elevations,

@@ -4,8 +4,9 @@
 // the ray's vertical plane) by the stratified tracer, up to the top of the air (where it is
 // uniform, so the ray then goes straight). There, at central angle phi = x'/R from the eye, the
 // ray's elevation above the local horizon is e_top (the flattening is conformal), so its
-// direction -- the star's -- lies at e_top - phi above the eye's horizon, and
-//   refraction = e0 - (e_top - phi).
+// direction -- the star's, after the vacuum beyond the top (cos e = n_top cos e_top, Bouguer's
+// invariant at the top's radius) -- lies at e - phi above the eye's horizon, and
+//   refraction = e0 - (e - phi).
 // Checked against the refraction integral R = -int (dn/dr) / n tan z dr with n r sin z constant
 // (tests/rays/test_astronomical_refraction.py).
 #pragma once

@@ -28,6 +28,24 @@ void require_regular(const std::string& path, const char* kind) {
   }
 }
 
+// The vertex references of a face, line or point record ("f 1/2/3 -1//2 ..."): whole numbers,
+// non-zero, within a C++ int (tinyobjloader's atoi wrapped 4294967299 to vertex 3, silently).
+void check_indices(const std::string& path, int number, const std::string& key, std::istringstream& tokens) {
+  for (std::string token; tokens >> token;) {
+    std::istringstream parts(token);
+    for (std::string part; std::getline(parts, part, '/');) {
+      if (part.empty()) continue;  // "1//2": no texture coordinate
+      errno = 0;
+      char* end = nullptr;
+      const long long value = std::strtoll(part.c_str(), &end, 10);
+      if (end != part.c_str() + part.size() || errno == ERANGE || value == 0 || std::llabs(value) > 2147483647LL) {
+        throw IoError(concat("OBJ '", path, "' line ", number, ": '", key, "' has '", token,
+                             "', whose indices must be non-zero whole numbers below 2**31"));
+      }
+    }
+  }
+}
+
 // Checks one file's numeric records; appends its mtllib names to `libraries` (OBJ files).
 void check_file(const std::string& path, const char* kind, const std::set<std::string>& numeric,
                 std::vector<std::string>* libraries) {
@@ -45,9 +63,14 @@ void check_file(const std::string& path, const char* kind, const std::set<std::s
       for (std::string name; tokens >> name;) libraries->push_back(name);
       continue;
     }
+    if (libraries && (key == "f" || key == "l" || key == "p")) {
+      check_indices(path, number, key, tokens);
+      continue;
+    }
     if (!numeric.count(key)) continue;
     std::string token;
     bool first = true;
+    int count = 0;
     while (tokens >> token) {
       if (first && (token == "spectral")) break;  // "Kd spectral file.rfl [factor]"
       if (token == "-halo") continue;              // "d -halo 0.5"
@@ -63,6 +86,12 @@ void check_file(const std::string& path, const char* kind, const std::set<std::s
         throw IoError(concat(kind, " '", path, "' line ", number, ": '", key, "' has '", token,
                              "', which is not a finite number"));
       }
+      ++count;
+    }
+    // A position or normal without its three coordinates: tinyobjloader reads the missing ones as 0.
+    if (libraries && (key == "v" || key == "vn") && count < 3) {
+      throw IoError(concat(kind, " '", path, "' line ", number, ": '", key, "' has ", count,
+                           " coordinates; it needs x y z"));
     }
   }
 }

@@ -1,0 +1,159 @@
+"""New-user trials of 6 December: a physicist's rays in odd atmospheres (the stratified tracer's
+near-level launches and shallow ducts are in tests/rays/test_closed_forms.py and test_33, the
+curved Earth's height in tests/media/test_curved_earth.py, astronomical refraction above a
+sounding in tests/rays/test_astronomical_refraction.py), a technical artist's bad inputs, and a
+photographer's real places: what silently gave a wrong picture, a wrong number or the wrong error."""
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import examples, geo, terrain
+from refracta import scene_file as sf
+
+
+def test_the_rasterizer_sees_geometry_2_cm_from_the_lens():
+    # A lens 2 cm above the ground: render_raster clipped everything nearer than 5 cm and showed
+    # sky in the bottom row, where the ray tracer sees the ground. The clipping distance is 0.1 mm.
+    scene = refracta.Scene()
+    scene.add_ground()
+    scene.set_sky((0.5, 0.6, 0.9))
+    camera = refracta.Camera((0, 0.02, 0), (1, 0.02, 0), vfov=60, width=8, height=6)
+    traced = refracta.render(scene, camera, None, progress=False)
+    rasterized = refracta.render_raster(scene, camera)
+    # Same surfaces, same unlit colour: the rows agree exactly in which pixels see ground.
+    np.testing.assert_array_equal(traced[:, 0, 0] < 0.4, rasterized[:, 0, 0] < 0.4)
+    assert rasterized[-1, 0, 0] < 0.4  # the bottom row sees the ground (0.15), not the sky (0.5)
+
+
+def test_the_original_editors_march_says_it_stops_short_of_the_scene():
+    # march='rk4' walks step x max_steps = 300 m (the original editor's settings) whatever
+    # max_length is: a box 500 m away was silently sky. Now a SceneWarning says so and how to reach it.
+    scene = refracta.Scene()
+    scene.add_ground()
+    scene.set_sky((0.5, 0.6, 0.9))
+    scene.add_box((500, 3, 0), (10, 6, 10), kd=(0.9, 0.1, 0.1))
+    camera = refracta.Camera((0, 1.5, 0), (500, 3, 0), vfov=2, width=16, height=8)
+    air = refracta.PhysicalAtmosphere(surface_dt=5)
+    with pytest.warns(refracta.SceneWarning, match=r"step x max_steps = 300 m.*max_steps= \(or march='rk45'\)"):
+        refracta.render(scene, camera, air, method="raster_march", march="rk4", progress=False)
+    image = refracta.render(scene, camera, air, method="raster_march", march="rk4", max_steps=2000, progress=False)
+    assert image[4, 8, 0] > 2 * image[4, 8, 2]  # the red box, reached in 600 m of steps
+
+
+def test_the_green_flash_example_shows_the_last_gleam_by_default():
+    # Its default sun elevation, -0.8 deg, lay below the mirage's cut: an empty sky. Now -0.776,
+    # the demo's last gleam (the README's own example).
+    assert examples.green_flash.__defaults__[-1] == pytest.approx(-0.776)
+
+
+def test_scene_file_writers_name_what_they_were_given():
+    camera = "[camera]\nposition = [0.0, 1.5, 0.0]\nlook_at = [100.0, 1.5, 0.0]\n"
+    text = camera + '\n[atmosphere]\nmodel = "PhysicalAtmosphere"\n'
+    with pytest.raises(ValueError, match=r"atmosphere_table: field must be a refracta field.*\(got str\)"):
+        sf.atmosphere_table("PhysicalAtmosphere")
+    with pytest.raises(ValueError, match=r"camera_table: camera must be a refracta.Camera \(got NoneType\)"):
+        sf.with_camera(text, None)
+    # None: a scene without air (load_scene's field of a file with no [atmosphere]): the table goes.
+    without = sf.with_atmosphere(text, None)
+    assert "[atmosphere]" not in without and "[camera]" in without
+    assert sf.with_atmosphere(without, None) == without
+    jittered = refracta.Camera((0, 1, 0), (10, 1, 0), vfov=5, width=8, height=4).jittered(np.full((4, 8, 2), 1e-4))
+    with pytest.raises(ValueError, match="keeps no jitter map"):
+        sf.with_camera(text, jittered)
+
+
+def test_render_raster_progress_never_passes_its_total():
+    # Its rasterizing and shadow-map loops added to one count: (1038, 16) for a 16 x 8 image.
+    scene = refracta.Scene()
+    scene.add_ground()
+    scene.add_box((5, 0.5, 0), (1, 1, 1))
+    scene.set_sun((0.3, 1.0, 0.2), 3.0)
+    calls = []
+    camera = refracta.Camera((0, 1, 0), (5, 0.5, 0), width=16, height=8)
+    refracta.render_raster(scene, camera, progress=lambda done, total: calls.append((done, total)))
+    assert calls and all(0 <= done <= total for done, total in calls)
+    assert calls[-1][0] == calls[-1][1]  # it ends at its total
+
+
+def test_an_image_size_beyond_a_cpp_int_is_named():
+    with pytest.raises(
+        refracta.ArgumentError, match=r"Camera: width must be a whole number of magnitude below 2\*\*31"
+    ):
+        refracta.Camera((0, 1, 0), (1, 1, 0), width=10**12, height=10)
+
+
+def test_set_threads_refuses_more_than_onetbb_keeps():
+    before = refracta.get_threads()
+    with pytest.raises(ValueError, match=r"set_threads: n must be in \[0, 256\]"):
+        refracta.set_threads(10**6)
+    assert refracta.get_threads() == before
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4294967299\n", "indices must be non-zero whole numbers below 2\\*\\*31"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n", "below 2\\*\\*31"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "non-zero"),
+        ("v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "'v' has 2 coordinates; it needs x y z"),
+    ],
+)
+def test_malformed_obj_indices_and_vertices_are_refused(tmp_path, text, message):
+    # tinyobjloader read index 4294967299 as vertex 3 and 'v 0 0' as (0, 0, 0), silently.
+    path = tmp_path / "bad.obj"
+    path.write_text(text)
+    with pytest.raises(refracta.IoError, match=message):
+        refracta.Scene().add_obj(str(path))
+
+
+# From a third trial, real places and photographs.
+
+
+def test_a_sea_level_target_within_the_horizon_has_an_apparent_elevation():
+    # From 100 m the horizon lies 35.7 km out, so a waterline 20 km away is in view; the hidden
+    # height's bisection stopped nanometres up and the target at 0 m counted as hidden (None).
+    air = refracta.CurvedEarth(refracta.PhysicalAtmosphere(), 6371000.0)
+    sea = refracta.refraction_coefficient(air, 100.0, 20000.0, target_height=0.0)
+    one_metre = refracta.refraction_coefficient(air, 100.0, 20000.0, target_height=1.0)
+    assert sea.hidden_height_refracted == 0.0
+    # 1 m lower at 20 km is 1 / 20000 rad = 0.0029 deg lower, less the air's lift (k ~ 0.17: ~1 %).
+    assert sea.apparent_elevation == pytest.approx(one_metre.apparent_elevation - np.degrees(1 / 20000), abs=1e-4)
+
+
+@pytest.mark.parametrize(
+    "lat, when, declination",
+    [
+        (90.0, "2024-06-21T12:00:00Z", 23.437),
+        (-90.0, "2024-12-21T12:00:00Z", 23.439),
+        (90.0, "2024-03-20T12:00:00Z", 0.147),
+    ],
+)
+def test_the_sun_at_a_pole_stands_at_its_declination(lat, when, declination):
+    # astral computes at most 89.8 deg from the equator: at a pole the sun stood 0.2 deg off
+    # (23.637 at midsummer). The declinations are the trial's own (Meeus); the NOAA series they
+    # and astral use agree to ~0.001 deg.
+    assert geo.sun_position(lat, 0.0, when)[1] == pytest.approx(declination, abs=2e-3)
+    # Just inside the clamp the place is astral's own (the same series, turned the same way).
+    inside = geo.sun_position(89.79, 20.0, when)
+    assert geo._polar_sun_position(89.79, 20.0, geo._utc(when)) == pytest.approx(inside, abs=1e-9)
+
+
+def test_geotiff_heights_in_feet_are_read_in_metres(tmp_path):
+    # VerticalUnitsGeoKey (4099) was ignored: a US tile in feet stood 3.28 times too tall.
+    import tifffile
+
+    def write(name, unit):
+        keys = [1, 1, 0, 4, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326, 4099, 0, 1, unit]
+        tags = [
+            (33550, "d", 3, (0.01, 0.01, 0.0), False),
+            (33922, "d", 6, (0.0, 0.0, 0.0, 8.0, 47.0, 0.0), False),
+            (34735, "H", len(keys), keys, False),
+        ]
+        tifffile.imwrite(tmp_path / name, np.full((3, 3), 1000.0, np.float32), extratags=tags)
+        return tmp_path / name
+
+    assert terrain.read_elevation(write("feet.tif", 9002)).heights[0, 0] == pytest.approx(304.8, rel=1e-7)  # float32
+    assert terrain.read_elevation(write("metres.tif", 9001)).heights[0, 0] == 1000.0
+    with pytest.raises(ValueError, match=r"heights in EPSG unit 9999 \(VerticalUnitsGeoKey\)"):
+        terrain.read_elevation(write("other.tif", 9999))
