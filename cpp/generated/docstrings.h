@@ -412,7 +412,8 @@ parameters (1 = each parameter's whole bound range). Cautious first steps keep L
 regions of narrow layers (a logistic inversion far from every ray) that a bold first step lands in;
 measured on benchmarks/bench_edit.py: 1e4 (Ceres' default) fails the 16-pair logistic case, 0.1
 solves every case.)doc";
-inline constexpr const char mkd_doc_refracta_SolveSummary[] = R"doc(What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields).)doc";
+inline constexpr const char mkd_doc_refracta_SolveSummary[] = R"doc(What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields, values
+aside: there the solved field, EditResult.field, holds them).)doc";
 inline constexpr const char mkd_doc_refracta_SphereLight[] = R"doc(An emissive sphere: centre [m], radius [m], uniform emission radiance L_e [W/(m^2 sr)] (a colour)
 leaving its surface outward; power 4 pi^2 r^2 Y(L_e).)doc";
 inline constexpr const char mkd_doc_refracta_SpotLight[] = R"doc(A spot light at position [m] shining along direction into a cone of full angle [deg] with intensity

@@ -2568,7 +2568,8 @@ class PairOptions:
         ...
 class SolveSummary:
     """
-    What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields).
+    What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields, values
+    aside: there the solved field, EditResult.field, holds them).
     """
     def __getstate__(self) -> dict:
         ...

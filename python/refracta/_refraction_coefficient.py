@@ -86,7 +86,9 @@ def _curved_earth(field, earth_radius) -> _core.CurvedEarth:
     if not isinstance(field, _core.IndexField):
         raise ValueError(f"field must be an IndexField (got {type(field).__name__})")
     if not field.height_only:
-        raise ValueError(f"field must depend on height only (a {field.type_name} does not)")
+        local = [what for what in ("hot_spots", "turbulence") if getattr(field, what, None)]
+        why = f"this {field.type_name} carries {' and '.join(local)}" if local else f"a {field.type_name} does not"
+        raise ValueError(f"field must depend on height only ({why})")
     if isinstance(field, _core.CurvedEarth):
         if earth_radius is not None and float(earth_radius) != field.radius:
             raise ValueError(

@@ -107,7 +107,8 @@ SolveStrategy parse_strategy(const std::string& name);
 const char* loss_name(RobustLoss loss);               // "none", "huber", "soft_l1", "cauchy", "arctan"
 RobustLoss parse_loss(const std::string& name);
 
-// What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields).
+// What an edit solve returned (read-only; refracta.edit.EditResult forwards its fields, values
+// aside: there the solved field, EditResult.field, holds them).
 struct SolveSummary {
   std::vector<double> values;        // every parameter of the solved field
   // With camera parameters free: every camera parameter at the result (CameraRig::names() order:

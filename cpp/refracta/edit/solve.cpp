@@ -58,22 +58,44 @@ bool still_falling(const std::vector<double>& history) {
 // of quick_iterations (a derivative-free step costs about m + 1 evaluations).
 constexpr int kNloptEvaluationsPerIteration = 20;
 
-std::vector<std::string> insensitive_params(const EditProblem& problem) {
+// Each free parameter's effect at x: its Jacobian column's norm times its bounds' width (empty
+// where the pairs cannot be traced there).
+std::vector<double> effects_at(const EditProblem& problem, const std::vector<double>& x) {
   std::vector<double> r, jacobian;
-  if (!problem.evaluate(problem.start(), &r, &jacobian)) return {};
+  if (!problem.evaluate(x, &r, &jacobian)) return {};
   const int m = problem.num_free();
   std::vector<double> effect(m, 0.0);
-  double largest = 0.0;
   for (int j = 0; j < m; ++j) {
     double norm2 = 0.0;
     for (int k = 0; k < problem.num_residuals(); ++k) norm2 += std::pow(jacobian[size_t(k) * m + j], 2);
     effect[j] = std::sqrt(norm2) * (problem.upper()[j] - problem.lower()[j]);
-    largest = std::max(largest, effect[j]);
   }
+  return effect;
+}
+
+bool negligible(const std::vector<double>& effect, int j) {
+  const double largest = *std::max_element(effect.begin(), effect.end());
+  return effect[j] == 0.0 || effect[j] <= kInsensitive * largest;
+}
+
+// The free parameters no pair depends on: negligible at the start and at the centre of the bounds.
+// At the start alone a parameter can be idle only there -- the default air's surface_depth while
+// its surface_dt is 0, a hot spot's x and z while its dt is 0 -- and was held fixed, so that the
+// solve then reported no answer where one lay inside the bounds (a trial).
+std::vector<std::string> insensitive_params(const EditProblem& problem) {
+  const std::vector<double> at_start = effects_at(problem, problem.start());
+  if (at_start.empty()) return {};
+  const int m = problem.num_free();
+  std::vector<double> centre = problem.start();
+  for (int j = 0; j < m; ++j) {
+    const double mid = 0.5 * (problem.lower()[j] + problem.upper()[j]);
+    if (std::isfinite(mid)) centre[size_t(j)] = mid;
+  }
+  const std::vector<double> at_centre = effects_at(problem, centre);
   std::vector<std::string> out;
   const auto names = problem.free_names();
   for (int j = 0; j < m; ++j) {
-    if (effect[j] == 0.0 || effect[j] <= kInsensitive * largest) out.push_back(names[j]);
+    if (negligible(at_start, j) && (at_centre.empty() || negligible(at_centre, j))) out.push_back(names[j]);
   }
   return out;
 }
@@ -312,12 +334,13 @@ std::string why_unmet(const EditProblem& problem, const std::vector<double>& res
     out += concat(", and ", side, " it in all ", sampled.size(),
                   " atmospheres the global stage sampled within the bounds: the destination lies ",
                   vertical > 0.0 ? "above" : "below",
-                  " every image of the source these free parameters made (", vertical > 0.0 ? "lower" : "raise",
+                  " every image of the source those atmospheres made (", vertical > 0.0 ? "lower" : "raise",
                   " the destination, free another parameter or widen the bounds)");
   } else {
     out += concat(" (the sampled atmospheres sent it ", above, " times above and ", below,
-                  " times below the source: the destination is within reach, but not together with the other "
-                  "pairs, or the solve stopped early)");
+                  " times below the source: the destination is within reach, ",
+                  problem.pairs().size() > 1 ? "but perhaps not together with the other pairs, or " : "but ",
+                  "the solve stopped before it found the atmosphere)");
   }
   return out;
 }
@@ -411,8 +434,9 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
   if (!out.stopped_by.empty()) out.message += concat(". The solve was stopped by the ", out.stopped_by);
   if (!unmet.empty()) {
     out.message += concat(". Not every pair is met: ", unmet,
-                          ". No atmosphere with these free parameters within their bounds puts every "
-                          "image where asked, or the solve stopped early");
+                          ". None of the atmospheres the solve tried within these free parameters' bounds puts "
+                          "every image where asked: there may be none, or one in a basin the global stage's samples "
+                          "missed (try other starts, or starting values nearer the answer)");
   }
   // At a solution the misses vanish and the Jacobian says which parameter combinations they fix
   // (elsewhere it also carries the turning of the miss vectors, which says nothing about that).
