@@ -65,6 +65,7 @@ _MODEL_PROJECTED, _MODEL_GEOGRAPHIC = 1, 2
 # VerticalUnitsGeoKey: the heights' unit, EPSG unit code -> metres (US elevation products come in
 # feet; without it a tile stood 3.28 times too tall).
 _KEY_VERTICAL_UNITS = 4099
+_FARTHEST_HEIGHT = 1e5  # [m] from sea level: no terrain (the deepest trench is 11 km, the highest peak 8.8 km)
 _VERTICAL_UNITS = {9001: 1.0, 9002: 0.3048, 9003: 1200.0 / 3937.0, 9036: 1000.0}
 _RASTER_PIXEL_IS_POINT = 2
 _EPSG_WGS84 = 4326
@@ -248,6 +249,17 @@ def _read_geotiff(path: str) -> Elevation:
         raise ValueError(
             f"{path!r}: sample (row {r}, column {c}) is {heights[r, c]}; heights must be finite "
             "(voids: NaN or the GDAL_NODATA value)"
+        )
+    # No terrain lies 100 km from sea level: such a sample is a void the file's GDAL_NODATA does not
+    # name (float32's lowest, written as a shorter text), which reached CurvedEarth's bounds unnamed.
+    with np.errstate(invalid="ignore"):
+        beyond = np.abs(heights) > _FARTHEST_HEIGHT
+    if beyond.any():
+        r, c = np.argwhere(beyond)[0]
+        named = "no GDAL_NODATA" if nodata is None else f"GDAL_NODATA {nodata!r} is not it in the band's type"
+        raise ValueError(
+            f"{path!r}: sample (row {r}, column {c}) is {heights[r, c]:g} m, beyond {_FARTHEST_HEIGHT:g} m of any "
+            f"terrain: a void value? ({named})"
         )
     if epsg == _EPSG_WGS84:
         top, bottom = y0, y0 - (data.shape[0] - 1) * sy

@@ -186,3 +186,21 @@ def test_a_hot_spot_in_the_air_names_itself_as_what_is_not_height_only():
     spot = refracta.PhysicalAtmosphere(hot_spots=[refracta.HotSpot(0, 0, 10, 5)])
     with pytest.raises(ValueError, match=r"height only \(this PhysicalAtmosphere carries hot_spots\)"):
         refracta.refraction_coefficient(spot, 2.0, 100.0)
+
+
+def test_a_void_the_nodata_text_misses_is_named_with_its_file(tmp_path):
+    # GDAL_NODATA '-3.40282e+38' is not float32's lowest (-3.4028235e+38): the void stayed a height,
+    # and CurvedEarth refused "-3.402823466e+38 m" without naming the file or the sample.
+    import tifffile
+
+    keys = [1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326]
+    tags = [
+        (33550, "d", 3, (0.01, 0.01, 0.0), False),
+        (33922, "d", 6, (0.0, 0.0, 0.0, 8.0, 47.0, 0.0), False),
+        (34735, "H", len(keys), keys, False),
+        (42113, "s", 0, "-3.40282e+38", False),
+    ]
+    path = tmp_path / "void.tif"
+    tifffile.imwrite(path, np.array([[1.0, np.finfo(np.float32).min], [3.0, 4.0]], np.float32), extratags=tags)
+    with pytest.raises(ValueError, match=r"void.tif'?: sample \(row 0, column 1\) is -3.40282e\+38 m.*a void value"):
+        refracta.Scene().add_terrain(str(path), frame=geo.LocalFrame(47.0, 8.0))
