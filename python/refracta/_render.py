@@ -117,7 +117,9 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
     # The eye at or below the scene's ground or sea: a trial's eye at sea level saw sky where the sea
     # lies (its rays start on the plane), below it the sea's underside.
     ground = _ground_height(scene, bounds)
-    if ground is not None and not camera.position[1] > ground:
+    # Over it, not beside it: a flat terrain tile 22 km off is no ground under the camera (a trial).
+    over = bounds is not None and all(bounds[0][a] <= camera.position[a] <= bounds[1][a] for a in (0, 2))
+    if ground is not None and over and not camera.position[1] > ground:
         warnings.warn(
             f"{where}: the camera is at y = {camera.position[1]:g} m, at or below the scene's ground or sea "
             f"(y = {ground:g} m), so its rays start in or under it: the image is not what an eye above it "
@@ -216,7 +218,8 @@ def render(
     hides from the eye: channel 0 without refraction, the true height where the eye's tangent to
     the sphere crosses it, R (sec(theta - theta0) - 1) for a central angle theta beyond the
     horizon's theta0 = acos(R / (R + h_eye)) (about (d - sqrt(2 R h_eye))^2 / (2R) at ground
-    distance d), 0 nearer and on a flat Earth; channel 1 with refraction, the true height there
+    distance d), 0 nearer and on a flat Earth, NaN for an eye at or below height 0 (no tangent:
+    a shore below sea level has its own water level, not the sea's); channel 1 with refraction, the true height there
     of the grazing ray -- the lowest ray from the eye that stays above the ground (y' = 0) for
     max_length of path, found by bisection on its elevation through the field's height-only air
     and traced exactly -- 0 up to where it touches the ground, NaN beyond its reach or where every

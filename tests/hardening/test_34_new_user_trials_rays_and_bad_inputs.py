@@ -204,3 +204,26 @@ def test_a_void_the_nodata_text_misses_is_named_with_its_file(tmp_path):
     tifffile.imwrite(path, np.array([[1.0, np.finfo(np.float32).min], [3.0, 4.0]], np.float32), extratags=tags)
     with pytest.raises(ValueError, match=r"void.tif'?: sample \(row 0, column 1\) is -3.40282e\+38 m.*a void value"):
         refracta.Scene().add_terrain(str(path), frame=geo.LocalFrame(47.0, 8.0))
+
+
+def test_a_flat_tile_beside_the_camera_is_not_the_ground_under_it():
+    # A constant 300 m tile 20 km off warned "the camera is at y = 20 m, at or below the scene's
+    # ground": a scene whose geometry is all at one height counted as ground wherever it lay.
+    scene = refracta.Scene()
+    scene.add_terrain(np.full((4, 4), 300.0), origin=(20000.0, 0.0), spacing=(100.0, 100.0))
+    scene.set_sky((0.5, 0.6, 0.9))
+    camera = refracta.Camera((0, 20, 150), (20150, 300, 150), width=16, height=8)
+    refracta.render(scene, camera, None, progress=False)  # pytest's filter turns a SceneWarning into an error
+    ground = refracta.Scene()
+    ground.add_ground()
+    ground.set_sky((0.5, 0.6, 0.9))
+    with pytest.warns(refracta.SceneWarning, match="at or below the scene's ground"):
+        refracta.render(ground, refracta.Camera((0, -1, 0), (10, -1, 0), width=16, height=8), None, progress=False)
+
+
+def test_a_luminous_efficacy_without_a_photographic_exposure_is_refused():
+    # K turns EV100 into an exposure; under automatic exposure it was accepted and ignored.
+    image = np.ones((4, 4, 3), np.float32)
+    with pytest.raises(ValueError, match="luminous_efficacy .* applies to a photographic exposure"):
+        refracta.io.to_display(image, luminous_efficacy=100.0)
+    refracta.io.to_display(image, ev100=0.0, luminous_efficacy=100.0)

@@ -204,6 +204,10 @@ void DisplaySettings::validate() const {
                  "a camera's exposure needs both shutter [s] and f_number (iso defaults to 100)");
   problems.check(int(exposure.has_value()) + int(ev100.has_value()) + int(shutter || f_number || iso) <= 1,
                  "give one manual exposure: exposure, ev100, or shutter and f_number (with iso)");
+  // K turns EV100 into an exposure; with none given (automatic, or exposure=) it was ignored silently.
+  problems.check(luminous_efficacy == kLuminousEfficacy || ev100 || shutter || f_number,
+                 "luminous_efficacy (the luminance [cd/m^2] of a value of 1) applies to a photographic exposure: give "
+                 "ev100, or shutter and f_number, or no luminous_efficacy");
   problems.check(!key || (*key > 0.0 && std::isfinite(*key)), "key must be > 0 and finite (got ", key.value_or(0.0), ")");
   problems.check(!white || *white > 0.0, "white must be > 0 (got ", white.value_or(0.0), ")");
   problems.check(!white || tonemap == Tonemap::kReinhard,
