@@ -42,9 +42,19 @@ def test_the_original_editors_march_says_it_stops_short_of_the_scene():
 
 
 def test_the_green_flash_example_shows_the_last_gleam_by_default():
-    # Its default sun elevation, -0.8 deg, lay below the mirage's cut: an empty sky. Now -0.776,
-    # the demo's last gleam (the README's own example).
-    assert examples.green_flash.__defaults__[-1] == pytest.approx(-0.776)
+    # Its default sun elevation, -0.8 deg, lay below the mirage's cut: an empty sky (brightest
+    # pixel 36 at 40 x 40). Now -0.776, the demo's last gleam: measured 3227 there, the sun's disc.
+    example = examples.green_flash(40, 40)
+    image = refracta.render(
+        example.scene,
+        example.camera,
+        example.field,
+        max_length=example.max_length,
+        spectral=True,
+        spp=2,
+        progress=False,
+    )
+    assert image.max() > 300.0  # ten times the empty frame's brightest sky: some of the sun is in view
 
 
 def test_scene_file_writers_name_what_they_were_given():
@@ -227,3 +237,6 @@ def test_a_luminous_efficacy_without_a_photographic_exposure_is_refused():
     with pytest.raises(ValueError, match="luminous_efficacy .* applies to a photographic exposure"):
         refracta.io.to_display(image, luminous_efficacy=100.0)
     refracta.io.to_display(image, ev100=0.0, luminous_efficacy=100.0)
+    # Refused where used, not where built: a preset may carry K for the EV100 each call gives.
+    preset = refracta.DisplaySettings(luminous_efficacy=100.0)
+    refracta.io.to_display(image, display=preset, ev100=0.0)

@@ -107,8 +107,8 @@ std::vector<Vec3d> RayPath::sample(int count) const {
   // 24 bytes a point here and again in the caller's array: refused before allocating past half of
   // this machine's memory (2**31 points asked the allocator for 51 GB).
   if (const double memory = physical_memory_bytes(), bytes = 48.0 * double(count); memory > 0.0 && bytes > memory / 2.0) {
-    throw_invalid("sample: count=", count, " points need ", readable_bytes(bytes), " (as many here as in the array returned), more than half of this machine's ",
-                  readable_bytes(memory));
+    throw_invalid("sample: count=", count, " points need ", readable_bytes(bytes),
+                  " (as many here as in the array returned), more than half of this machine's ", readable_bytes(memory));
   }
   std::vector<Vec3d> out(static_cast<size_t>(count));
   for (int i = 0; i < count; ++i) out[size_t(i)] = point_at(length() * i / (count - 1));

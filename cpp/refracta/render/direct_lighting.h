@@ -176,7 +176,6 @@ class DirectLighting : public LightVisibility {
   std::shared_ptr<const SunExitMap> sun_exits_;
   std::shared_ptr<const double> scale_;
   std::shared_ptr<const RaisedSky> raised_sky_;
-
 };
 
 }  // namespace refracta

@@ -225,7 +225,9 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     Spectrum L = Spectrum::Zero();
     for (size_t i = 0; i < render_scene.lights().size(); ++i) {
       const Light& light = *render_scene.lights()[i];
-      if (light.is_infinite() && (i != lights.sun || lights.sun_shines)) L += lighting.distant_Le(light, eye.y(), dir, lambda_rgb);
+      if (light.is_infinite() && (i != lights.sun || lights.sun_shines)) {
+        L += lighting.distant_Le(light, eye.y(), dir, lambda_rgb);
+      }
     }
     return Vec3d(L.head<3>().matrix());
   };

@@ -158,6 +158,13 @@ double exposure_of_ev100(double ev100, double luminous_efficacy) {
 
 double manual_exposure(const DisplaySettings& s) {
   s.validate();
+  // K turns EV100 into an exposure; used without one (automatic, or exposure=) it was ignored
+  // silently. Refused where the settings are used, not where built: a preset may carry K for the
+  // EV100 each call gives.
+  if (s.luminous_efficacy != kLuminousEfficacy && !s.ev100 && !s.shutter) {
+    throw_invalid("display settings: luminous_efficacy (the luminance [cd/m^2] of a value of 1) applies to a photographic exposure: give "
+                  "ev100, or shutter and f_number, or no luminous_efficacy");
+  }
   if (s.exposure) return *s.exposure;
   if (s.ev100) return exposure_of_ev100(*s.ev100, s.luminous_efficacy);
   if (s.shutter) {
@@ -204,10 +211,6 @@ void DisplaySettings::validate() const {
                  "a camera's exposure needs both shutter [s] and f_number (iso defaults to 100)");
   problems.check(int(exposure.has_value()) + int(ev100.has_value()) + int(shutter || f_number || iso) <= 1,
                  "give one manual exposure: exposure, ev100, or shutter and f_number (with iso)");
-  // K turns EV100 into an exposure; with none given (automatic, or exposure=) it was ignored silently.
-  problems.check(luminous_efficacy == kLuminousEfficacy || ev100 || shutter || f_number,
-                 "luminous_efficacy (the luminance [cd/m^2] of a value of 1) applies to a photographic exposure: give "
-                 "ev100, or shutter and f_number, or no luminous_efficacy");
   problems.check(!key || (*key > 0.0 && std::isfinite(*key)), "key must be > 0 and finite (got ", key.value_or(0.0), ")");
   problems.check(!white || *white > 0.0, "white must be > 0 (got ", white.value_or(0.0), ")");
   problems.check(!white || tonemap == Tonemap::kReinhard,
