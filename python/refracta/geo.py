@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import datetime
 import math
+import re
 from typing import Any
 
 import numpy as np
@@ -132,7 +133,8 @@ def _utc(when) -> datetime.datetime:
     its offset ("2024-06-21T19:50:00Z", "...+01:00"); a time without a zone is ambiguous: ValueError."""
     if isinstance(when, str):
         try:
-            when = datetime.datetime.fromisoformat(when.replace("Z", "+00:00"))
+            # RFC 3339 (section 5.6) allows a lower-case "z" for UTC, which fromisoformat refuses.
+            when = datetime.datetime.fromisoformat(re.sub(r"[zZ]$", "+00:00", when.strip()))
         except ValueError:
             raise ValueError(f"when must be an ISO 8601 time such as '2024-06-21T19:50:00Z' (got {when!r})") from None
     if not isinstance(when, datetime.datetime):

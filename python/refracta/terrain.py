@@ -100,7 +100,7 @@ class Elevation:
         c = np.arange(self.heights.shape[1], dtype=np.float64)[None, :]
         x, y = np.broadcast_arrays(self.x0 + c * self.dx, self.y0 - r * self.dy)
         if self.epsg == _EPSG_WGS84:
-            lat, lon = y, x
+            lat, lon = y, (x + 180.0) % 360.0 - 180.0  # a grid across 360 E runs on past it (read_elevation)
         else:
             import pyproj
 
@@ -265,9 +265,10 @@ def _read_geotiff(path: str) -> Elevation:
         top, bottom = y0, y0 - (data.shape[0] - 1) * sy
         if not (-90.0 <= bottom <= top <= 90.0):
             raise ValueError(f"{path!r}: latitudes {bottom} to {top} deg are outside [-90, 90]")
-        west, east = x0, x0 + (data.shape[1] - 1) * sx
-        if not (-360.0 <= west and east <= 360.0):
-            raise ValueError(f"{path!r}: longitudes {west} to {east} deg are outside [-360, 360]")
+        # Either convention ([-180, 180] or [0, 360]) for the west edge; a grid may run on across
+        # the meridian where its convention wraps (359.9 to 360.1 E), at most once around (above).
+        if not (-360.0 <= x0 <= 360.0):
+            raise ValueError(f"{path!r}: its west edge, longitude {x0} deg, is outside [-360, 360]")
     return Elevation(heights, x0, y0, sx, sy, epsg)
 
 

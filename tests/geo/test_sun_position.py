@@ -37,6 +37,8 @@ def test_the_frames_sun_direction_is_its_sun_position_and_times_say_their_zone()
     when = datetime.datetime(2024, 6, 21, 20, 50, tzinfo=datetime.timezone(datetime.timedelta(hours=1)))
     azimuth, elevation = geo.sun_position(28.1, -15.7, "2024-06-21T19:50:00Z")  # the same instant
     assert (azimuth, elevation) == geo.sun_position(28.1, -15.7, when)
+    # RFC 3339 allows a lower-case z (a trial's was refused) and a lower-case t.
+    assert geo.sun_position(28.1, -15.7, "2024-06-21t19:50:00z") == (azimuth, elevation)
     np.testing.assert_array_equal(frame.sun_direction(when), frame.direction(azimuth, elevation))
     assert 290.0 < azimuth < 300.0 and 0.0 < elevation < 3.0  # a Canary Islands summer sunset, west-north-west
     for bad, message in (

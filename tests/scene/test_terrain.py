@@ -251,6 +251,26 @@ def test_a_geographic_geotiff_is_placed_like_the_same_samples_given_by_latitude(
     assert vertical_hit(scene, hole[0] + 1.0, hole[2] + 1.0) is None
 
 
+def test_a_geotiff_across_the_meridian_of_its_convention_is_placed_as_the_wrapped_one(tmp_path):
+    """A grid written in [0, 360] longitudes may run across 360 E (a trial's 359.9-360.1 E was
+    refused): it is the same ground as the grid from -0.1 E, sample by sample."""
+    data = (50.0 + np.arange(8 * 21).reshape(8, 21)).astype(np.float32)
+    scale = (0.01, 0.01)
+    across = terrain.read_elevation(write_geotiff(tmp_path / "across.tif", data, (359.9, 51.5), scale))
+    wrapped = terrain.read_elevation(write_geotiff(tmp_path / "wrapped.tif", data, (-0.1, 51.5), scale))
+    rows = slice(0, 8)
+    lat, lon = across.coordinates(rows)
+    lat_w, lon_w = wrapped.coordinates(rows)
+    assert np.array_equal(lat, lat_w)
+    assert np.allclose(lon, lon_w, rtol=0.0, atol=1e-9)  # [deg] the same longitudes, 360 apart, rounded
+    frame = geo.LocalFrame(51.45, 0.0, earth_radius=math.inf)
+    scene = refracta.Scene()
+    scene.add_terrain(write_geotiff(tmp_path / "across2.tif", data, (359.9, 51.5), scale), frame=frame)
+    r, c = 3, 12  # 0.025 E, east of the meridian the grid crosses
+    p = frame.to_scene(51.5 - (r + 0.5) * scale[1], -0.1 + (c + 0.5) * scale[0], float(data[r, c]))
+    assert vertical_hit(scene, p[0], p[2]) == pytest.approx(p[1], abs=2e-3)  # float32 at ~5 km from the origin
+
+
 def test_a_projected_geotiff_goes_through_its_crs(tmp_path):
     import pyproj
 
