@@ -179,3 +179,18 @@ def test_bad_limits_raise_value_error_naming_them(kwargs, match):
             free="k_s",
             **kwargs,
         )
+
+
+def test_each_nlopt_start_from_the_design_gets_a_share_of_the_evaluations():
+    # A derivative-free solve creeping through a basin of slow ducting atmospheres took the whole
+    # budget from the first start (a trial: BOBYQA, 2 597 evaluations in 300 s, the other starts
+    # never tried). With the tolerances off no start converges: each must stop at its share.
+    result = run("""
+        field = refracta.LogisticProfile(k_s=1.0)
+        pairs = [pair, PointPair((1000.0, 1.2, 0.0), (1000.0, 0.5, 0.0))]  # no path passes both
+        report(solve(field, eye, pairs, free=["h_ciso", "a_inv"], backend="nlopt:LN_BOBYQA", max_evaluations=700,
+                     quick_iterations=5, function_tolerance=0.0, parameter_tolerance=0.0))
+    """)
+    starts = [stage for stage in result["stages"] if stage.startswith("local from a design point")]
+    assert len(starts) == 4, result["stages"]  # local_starts (the first solve's end competes among them)
+    assert result["evaluations"] <= 700

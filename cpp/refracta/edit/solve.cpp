@@ -181,9 +181,19 @@ class Strategy {
     design.points.push_back({best.result.x, best.cost, "the end of the first local solve", {}});
     std::stable_sort(design.points.begin(), design.points.end(),
                      [](const DesignPoint& a, const DesignPoint& b) { return a.cost < b.cost; });
-    for (const DesignPoint& start : spread_best(problem_, design.points, settings_.local_starts, kStartSpacing)) {
+    const std::vector<DesignPoint> starts = spread_best(problem_, design.points, settings_.local_starts, kStartSpacing);
+    for (size_t k = 0; k < starts.size(); ++k) {
+      const DesignPoint& start = starts[k];
       if (stopped("the local solves from the design")) break;
-      Attempt attempt = local(start.x, remaining_settings());
+      // nlopt: an equal share of the evaluations left for each start still to come. A derivative-free
+      // solve creeping through a basin of ducting trial atmospheres (100 ms an evaluation for a 1 km
+      // pair at k_s = -193) took the whole budget from the first start (a trial: 2 597 evaluations,
+      // 300 s, the other starts never tried). LM ends such a basin itself (its trust region shrinks).
+      SolveSettings settings = remaining_settings();
+      if (settings_.backend != SolveBackend::kCeres) {
+        settings.max_evaluations = std::max(1, settings.max_evaluations / int(starts.size() - k));
+      }
+      Attempt attempt = local(start.x, settings);
       stage(concat("local from a design point (", start.label, ", cost ", start.cost, " m^2)"), attempt);
       if (std::make_pair(attempt.all_met, -attempt.cost) > std::make_pair(best.all_met, -best.cost)) {
         best = std::move(attempt);
