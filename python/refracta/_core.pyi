@@ -1037,6 +1037,12 @@ class Scene:
         With wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.
         refracta.spectrum.PhysicalSky(...).sun_radiance(wavelengths): the sun through the air's extinction).
         """
+    def terrain_height(self, x: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex) -> float | None:
+        """
+        The height [m] of the highest terrain surface (add_terrain's) over scene point (x, z), or None
+        where none lies there; other geometry above it is looked through. An eye 1.7 m above the
+        ground there: y = scene.terrain_height(x, z) + 1.7.
+        """
     @property
     def aerial_perspective(self) -> typing.Any:
         """

@@ -119,11 +119,19 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
     ground = _ground_height(scene, bounds)
     # Over it, not beside it: a flat terrain tile 22 km off is no ground under the camera (a trial).
     over = bounds is not None and all(bounds[0][a] <= camera.position[a] <= bounds[1][a] for a in (0, 2))
-    if ground is not None and over and not camera.position[1] > ground:
+    # A terrain's ground under the eye (a trial's eye 1.7 m above sea level on a 1 500 m hillside saw
+    # open sea: its rays started inside the hill).
+    x, y, z = (float(v) for v in camera.position)
+    terrain = scene.terrain_height(x, z)
+    below = (terrain, "terrain") if terrain is not None and not y > terrain else None
+    if below is None and ground is not None and over and not y > ground:
+        below = (ground, "ground or sea")
+    if below is not None:
         warnings.warn(
-            f"{where}: the camera is at y = {camera.position[1]:g} m, at or below the scene's ground or sea "
-            f"(y = {ground:g} m), so its rays start in or under it: the image is not what an eye above it "
-            "sees; raise the camera (e.g. Camera.geographic's height: the ground's height plus the eye's above it)",
+            f"{where}: the camera is at y = {y:g} m, at or below the scene's {below[1]} (y = {below[0]:g} m "
+            "under it), so its rays start in or under it: the image is not what an eye above it sees; raise the "
+            "camera (e.g. Camera.geographic's height: the ground's height plus the eye's above it; "
+            "scene.terrain_height(x, z) gives the terrain's)",
             SceneWarning,
             stacklevel=3,
         )

@@ -3,6 +3,7 @@ CurvedEarth's flattened Earth), holes, a ridge 100 km away against exact traces,
 files written here (nothing downloaded), orthophoto uvs, water, TerrainShading and bad input."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -427,3 +428,29 @@ def test_a_terrain_scene_pickles_with_its_holes():
         assert vertical_hit(copy, x, z) == vertical_hit(scene, x, z)
     assert vertical_hit(copy, 2.5, 1.5) is None  # beside the hole
     assert isinstance(copy.material(0), shading.TerrainShading)
+
+
+def test_terrain_height_is_the_ground_under_a_point_and_render_warns_an_eye_inside_it():
+    # A 1 500 m cone of 100 m cells: at its apex 1 500 m, 1 000 m out 1 000 m (on a sample: exact in
+    # the bilinear cells' triangles); none beyond the grid. A box on the apex is looked through.
+    x = np.linspace(-2000.0, 2000.0, 41)
+    cone = np.clip(1500.0 - 0.5 * np.hypot(x[None, :], x[:, None]), 0.0, None)
+    scene = refracta.Scene()
+    scene.set_sky((0.5, 0.6, 0.9), (0.8, 0.8, 0.9))
+    scene.add_ground(0.0, 2.0e4)
+    scene.add_terrain(cone, origin=(-2000.0, -2000.0), spacing=(100.0, 100.0))
+    scene.add_box((-10.0, 1490.0, -10.0), (10.0, 1600.0, 10.0))
+    assert scene.terrain_height(0.0, 0.0) == pytest.approx(1500.0, abs=1e-3)  # float32 vertices
+    assert scene.terrain_height(1000.0, 0.0) == pytest.approx(1000.0, abs=1e-3)
+    assert scene.terrain_height(5000.0, 0.0) is None  # the sea plane is not terrain
+    with pytest.raises(ValueError, match="x and z must be finite"):
+        scene.terrain_height(float("nan"), 0.0)
+    # The trial's eye 1.7 m above sea level on the hillside: its rays started inside the hill and
+    # showed open sea, without a word.
+    inside = refracta.Camera((500.0, 1.7, 0.0), (-1000.0, 1.7, 0.0), vfov=20.0, width=8, height=4)
+    with pytest.warns(refracta.SceneWarning, match=r"below the scene's terrain \(y = 1250 m under it\)"):
+        refracta.render(scene, inside, None, progress=False)
+    above = refracta.Camera((500.0, 1251.7, 0.0), (-1000.0, 600.0, 0.0), vfov=20.0, width=8, height=4)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", refracta.SceneWarning)
+        refracta.render(scene, above, None, progress=False)

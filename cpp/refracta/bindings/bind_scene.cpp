@@ -314,6 +314,10 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
            },
            py::arg("origin"), py::arg("direction"),
            "First hit of a straight ray: (point, distance, geometry id), or None.")
+      .def("terrain_height", &terrain_height, py::arg("x"), py::arg("z"),
+           "The height [m] of the highest terrain surface (add_terrain's) over scene point (x, z), or None\n"
+           "where none lies there; other geometry above it is looked through. An eye 1.7 m above the\n"
+           "ground there: y = scene.terrain_height(x, z) + 1.7.")
       // Pickled as its content (pickle_state.h): meshes, materials, lights, texture paths.
       .def(py::pickle(&scene_state, &scene_from_state));
 }

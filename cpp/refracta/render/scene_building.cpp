@@ -100,6 +100,26 @@ std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, 
   return scene.geometry.intersect(origin, direction.stableNormalized(), kSceneReach);
 }
 
+std::optional<double> terrain_height(const RenderScene& scene, double x, double z) {
+  if (!std::isfinite(x) || !std::isfinite(z)) throw_invalid("terrain_height: x and z must be finite (got ", x, ", ", z, ")");
+  if (std::max(std::abs(x), std::abs(z)) > kSceneReach) return std::nullopt;
+  const Vec3d lower = scene.geometry.lower(), upper = scene.geometry.upper();
+  if (scene.geometry.geometry_count() == 0 || !(lower.array() <= upper.array()).all()) return std::nullopt;
+  const Vec3d down(0.0, -1.0, 0.0);
+  Vec3d origin(x, upper.y() + 1.0, z);
+  double reach = upper.y() - lower.y() + 2.0;
+  // Past every other surface on the way down (a roof, a bridge, the sea over a drowned valley):
+  // each hit restarts the ray just beyond it, at most once per geometry and side.
+  for (size_t k = 0; k <= 2 * scene.geometry.geometry_count() + 2 && reach > 0.0; ++k) {
+    const auto hit = scene.geometry.intersect(origin, down, reach);
+    if (!hit) return std::nullopt;
+    if (scene.geometry.terrain(hit->geometry) && hit->front_face) return hit->point.y();
+    const double step = hit->t + 1e-6 * (1.0 + std::abs(hit->point.y()));
+    origin.y() -= step, reach -= step;
+  }
+  return std::nullopt;
+}
+
 size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,
                       const Color& intensity, double radius) {
   if (!(radius >= 0.0) || !std::isfinite(radius)) throw_invalid("spot light radius must be >= 0 (got ", radius, ")");

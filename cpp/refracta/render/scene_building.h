@@ -57,6 +57,11 @@ std::pair<Vec3d, Vec3d> framing_bounds(const RenderScene& scene);
 // The first hit of a straight ray from origin along a non-zero direction (normalised here).
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction);
 
+// The height [m] of the highest terrain surface (Scene.add_terrain's grids, seen from above)
+// over (x, z), or nullopt where no terrain lies there; other geometry above it is looked through.
+// Where an eye stands on the terrain: Camera positions, and render()'s "camera below the ground" hint.
+std::optional<double> terrain_height(const RenderScene& scene, double x, double z);
+
 // Adds a spot light (angle in (0, 360] deg, SpotLight; shadow disc radius >= 0: render_raster's 'embree'
 // reference soft shadows when > 0). Returns its index among the spot lights.
 size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,
