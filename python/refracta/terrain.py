@@ -104,11 +104,13 @@ class Elevation:
         else:
             import pyproj
 
+            to_lonlat = pyproj.Transformer.from_crs(
+                _projected_crs(self.epsg, "elevation grid"), _EPSG_WGS84, always_xy=True
+            )
             try:
-                to_lonlat = pyproj.Transformer.from_crs(self.epsg, _EPSG_WGS84, always_xy=True)
-            except pyproj.exceptions.CRSError:
-                raise ValueError(f"elevation grid: EPSG:{self.epsg} is not a coordinate system pyproj knows") from None
-            lon, lat = to_lonlat.transform(x, y, errcheck=True)
+                lon, lat = to_lonlat.transform(x, y, errcheck=True)
+            except pyproj.exceptions.ProjError as error:
+                raise ValueError(f"elevation grid: samples outside the domain of EPSG:{self.epsg} ({error})") from None
         lat, lon = np.asarray(lat, dtype=np.float64), np.asarray(lon, dtype=np.float64)
         if not (np.all(np.abs(lat) <= 90.0)):
             raise ValueError(f"elevation grid: latitudes outside [-90, 90] deg (from {lat.min()} to {lat.max()})")
@@ -261,6 +263,8 @@ def _read_geotiff(path: str) -> Elevation:
             f"{path!r}: sample (row {r}, column {c}) is {heights[r, c]:g} m, beyond {_FARTHEST_HEIGHT:g} m of any "
             f"terrain: a void value? ({named})"
         )
+    if epsg != _EPSG_WGS84:
+        _check_projected(path, epsg, x0, y0, x0 + (data.shape[1] - 1) * sx, y0 - (data.shape[0] - 1) * sy)
     if epsg == _EPSG_WGS84:
         top, bottom = y0, y0 - (data.shape[0] - 1) * sy
         if not (-90.0 <= bottom <= top <= 90.0):
@@ -270,6 +274,43 @@ def _read_geotiff(path: str) -> Elevation:
         if not (-360.0 <= x0 <= 360.0):
             raise ValueError(f"{path!r}: its west edge, longitude {x0} deg, is outside [-360, 360]")
     return Elevation(heights, x0, y0, sx, sy, epsg)
+
+
+def _projected_crs(epsg: int, where: str):
+    """The pyproj CRS of a projected EPSG code, else ValueError naming `where`."""
+    import pyproj
+
+    try:
+        crs = pyproj.CRS.from_epsg(epsg)
+    except pyproj.exceptions.CRSError:
+        raise ValueError(f"{where}: EPSG:{epsg} is not a coordinate system pyproj knows") from None
+    if not crs.is_projected:  # a geocentric (4978) or vertical (5773) code read as map coordinates
+        raise ValueError(f"{where}: EPSG:{epsg} ({crs.name}) is not a projected coordinate system")
+    return crs
+
+
+def _check_projected(path: str, epsg: int, west: float, north: float, east: float, south: float) -> None:
+    """A projected grid's corners must lie in its projection's domain: they map to latitude and
+    longitude and back to where they were (a northing of 5e8 m came back as -2e7 m, and the tile
+    was placed somewhere arbitrary: a trial)."""
+    import pyproj
+
+    crs = _projected_crs(epsg, repr(path))
+    x = np.array([west, east, west, east, 0.5 * (west + east)])
+    y = np.array([north, north, south, south, 0.5 * (north + south)])
+    try:
+        lon, lat = pyproj.Transformer.from_crs(crs, _EPSG_WGS84, always_xy=True).transform(x, y, errcheck=True)
+        to_crs = pyproj.Transformer.from_crs(_EPSG_WGS84, crs, always_xy=True)
+        back_x, back_y = to_crs.transform(lon, lat, errcheck=True)
+    except pyproj.exceptions.ProjError:
+        lon = back_x = back_y = np.full_like(x, np.nan)
+    # 1 m: far above a projection's round trip (micrometres), far below any grid that fits its domain.
+    off = np.hypot(np.asarray(back_x) - x, np.asarray(back_y) - y)
+    if not (np.all(off <= 1.0) and np.all(np.isfinite(lon))):
+        raise ValueError(
+            f"{path!r}: its corners, x {west:g} to {east:g} and y {south:g} to {north:g} m, lie outside the domain of "
+            f"EPSG:{epsg} ({crs.name}): is the georeference (ModelTiepoint, ModelPixelScale) right?"
+        )
 
 
 def _geokeys(directory, path: str) -> dict[int, Any]:

@@ -288,6 +288,25 @@ def test_a_projected_geotiff_goes_through_its_crs(tmp_path):
     assert vertical_hit(scene, 0.0, -1.0) is None  # north of the first row
 
 
+@pytest.mark.parametrize(
+    "tiepoint, epsg, message",
+    [
+        ((420000.0, 5.0e8), 32632, "outside the domain of EPSG:32632"),  # placed at -0.92, -170.28: a trial
+        ((-5.0e7, 5.1e6), 32632, "outside the domain of EPSG:32632"),  # pyproj's ProjError, unnamed
+        ((4.0e6, 6.0e5), 4978, r"EPSG:4978 \(WGS 84\) is not a projected coordinate system"),  # geocentric
+        ((4.0e6, 6.0e5), 5773, r"EPSG:5773 .* is not a projected coordinate system"),  # a vertical datum
+    ],
+)
+def test_a_projected_geotiff_outside_its_crs_is_refused_naming_the_file(tmp_path, tiepoint, epsg, message):
+    path = write_geotiff(
+        tmp_path / "bad.tif", np.full((5, 5), 100.0, np.float32), tiepoint, (30.0, 30.0), model=1, epsg=epsg
+    )
+    with pytest.raises(ValueError, match=f"read_elevation: '.*bad.tif'.*{message}"):
+        terrain.read_elevation(path)
+    with pytest.raises(ValueError, match=f"add_terrain: '.*bad.tif'.*{message}"):
+        refracta.Scene().add_terrain(path, frame=geo.LocalFrame(46.0, 7.5))
+
+
 def test_an_orthophoto_is_draped_by_its_georeference(tmp_path):
     # A 16 x 16-pixel orthophoto over the DEM's extent: its northern half red in the west, blue in
     # the east, its southern half green (a trial found the image mirrored north-south: v rose with
