@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from refracta import _core
-from refracta._checks import real_array
+from refracta._checks import number, real_array
 
 ARCMIN_PER_RADIAN = 180.0 * 60.0 / np.pi
 
@@ -47,14 +47,14 @@ def astronomical_refraction(
         bad = elevations[np.abs(elevations) > 90.0].ravel()[0]
         raise ValueError(f"apparent elevation must be in [-90, 90] deg (got {bad:g})")
     if wavelength is not None:
-        field = _core.dispersed_field(field, float(wavelength))
-    radians = _core._astronomical_refraction(
+        field = _core.dispersed_field(field, number(wavelength, "wavelength"))
+    radians = _core._astronomical_refraction(  # numbers, not "5" (float() read it) nor True
         field,
         np.radians(elevations).ravel(),
-        float(eye_height),
-        0.0 if top is None else float(top),
-        float(earth_radius),
-        float(tol),
+        number(eye_height, "eye_height"),
+        0.0 if top is None else number(top, "top"),
+        number(earth_radius, "earth_radius"),
+        number(tol, "tol"),
     )
     out = radians.reshape(elevations.shape) * ARCMIN_PER_RADIAN
     return float(out) if out.ndim == 0 else out

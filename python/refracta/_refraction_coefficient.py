@@ -102,7 +102,7 @@ def _curved_earth(field, earth_radius) -> _core.CurvedEarth:
         return field
     if earth_radius is None:
         return _core.CurvedEarth(field)  # CurvedEarth's own default radius (C++)
-    return _core.CurvedEarth(field, _finite(earth_radius, "earth_radius", 0.0))
+    return _core.CurvedEarth(field, _number(earth_radius, "earth_radius"))  # CurvedEarth names its range
 
 
 class _Tracer:

@@ -32,6 +32,7 @@ from __future__ import annotations
 import datetime
 import math
 import re
+import warnings
 from typing import Any
 
 import numpy as np
@@ -135,15 +136,32 @@ def _utc(when) -> datetime.datetime:
         try:
             # RFC 3339 (section 5.6) allows a lower-case "z" for UTC, which fromisoformat refuses.
             when = datetime.datetime.fromisoformat(re.sub(r"[zZ]$", "+00:00", when.strip()))
-        except ValueError:
-            raise ValueError(f"when must be an ISO 8601 time such as '2024-06-21T19:50:00Z' (got {when!r})") from None
+        except ValueError as error:  # its reason: "day is out of range for month", "second must be in 0..59"
+            raise ValueError(
+                f"when must be an ISO 8601 time such as '2024-06-21T19:50:00Z' (got {when!r}: {error})"
+            ) from None
     if not isinstance(when, datetime.datetime):
         raise ValueError(f"when must be a datetime with its time zone or an ISO 8601 string (got {when!r})")
     if when.tzinfo is None or when.utcoffset() is None:
         raise ValueError(
             f"when must say its time zone (got {when.isoformat()}): e.g. datetime(..., tzinfo=timezone.utc) or '...Z'"
         )
-    return when.astimezone(datetime.timezone.utc)
+    try:
+        utc = when.astimezone(datetime.timezone.utc)
+    except OverflowError:  # 0001-01-01T00:00+05:00 is in year 0 in UTC
+        raise ValueError(f"when is outside the years 1-9999 in UTC (got {when.isoformat()})") from None
+    if not _NOAA_YEARS[0] <= utc.year <= _NOAA_YEARS[1]:
+        warnings.warn(
+            f"when: {utc.year} is outside {_NOAA_YEARS[0]}-{_NOAA_YEARS[1]}, where NOAA's solar position holds "
+            "to about 0.01 deg; its error grows with the years beyond",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+    return utc
+
+
+# The years NOAA's solar-position calculation (astral's) is accurate to about 0.01 deg over.
+_NOAA_YEARS = (1800, 2100)
 
 
 def sun_position(lat, lon, when) -> tuple[float, float]:
@@ -398,11 +416,18 @@ class LocalFrame:
             raise ValueError(f"target must be (lat, lon) or (lat, lon, height) (got {target!r})")
         lat = _number(values[0], "target's lat", -90.0, 90.0)
         lon = _number(values[1], "target's lon", -360.0, 360.0)
-        target_height = _number(values[2], "target's height") if len(values) == 3 else 0.0
+        # Above the Earth's centre, as to_scene takes them (a trial's -1e7 m gave an elevation of -90.13).
+        lowest = -self.earth_radius if math.isfinite(self.earth_radius) else -math.inf
+        target_height = _number(values[2], "target's height", lowest) if len(values) == 3 else 0.0
         distance, azimuth, _ = inverse(place[0], place[1], lat, lon)
         if not distance > 0.0:
             raise ValueError(f"target {target!r} is straight above or below the eye: it has no azimuth")
-        eye_height = _number(height, "height")
+        reach = float(_core._SCENE_REACH)
+        if distance > reach:  # the antipode gave a camera looking straight down
+            raise ValueError(
+                f"target {target!r}: {distance:.4g} m from the eye, beyond the scene's reach of {reach:g} m"
+            )
+        eye_height = _number(height, "height", lowest)
         elevation = straight_elevation(distance, eye_height, target_height, self.earth_radius)
         return float(azimuth), elevation
 

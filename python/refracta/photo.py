@@ -19,8 +19,9 @@ Example::
 
 Field of view (vertical, degrees, of the image as displayed, orientation applied):
 
-* focal length f [mm] and sensor size (EXIF FocalPlaneX/YResolution with the image's pixel size,
-  or ``sensor_mm=`` given): vfov = 2 atan(h / 2f), h the sensor side along the image's height;
+* focal length f [mm] and sensor size (EXIF FocalPlaneX/YResolution with the EXIF image size,
+  PixelX/YDimension -- the sensor's, which a resized copy keeps -- or ``sensor_mm=`` given):
+  vfov = 2 atan(h / 2f), h the sensor side along the image's height;
 * else the 35 mm equivalent focal length f35 (EXIF FocalLengthIn35mmFilm), read as CIPA DC-008
   defines it: the lens that gives a full-frame (36 x 24 mm, diagonal 43.27 mm) camera the same
   diagonal angle of view. The diagonal angle 2 atan(43.27 / 2 f35) is shared out by the image's
@@ -91,7 +92,7 @@ class Exif:
 
     focal_length_mm: the lens's focal length [mm]; focal_length_35mm: its 35 mm equivalent [mm];
     sensor_mm: the sensor's (width, height) [mm] along the image as stored (before orientation),
-    from the focal-plane resolution and the image's pixel size; orientation: the EXIF orientation
+    from the focal-plane resolution and EXIF's image size (PixelX/YDimension); orientation: the EXIF orientation
     code 1..8 (1: as stored); make, model: the camera's.
     """
 

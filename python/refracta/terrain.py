@@ -66,6 +66,9 @@ _MODEL_PROJECTED, _MODEL_GEOGRAPHIC = 1, 2
 # feet; without it a tile stood 3.28 times too tall).
 _KEY_VERTICAL_UNITS = 4099
 _FARTHEST_HEIGHT = 1e5  # [m] from sea level: no terrain (the deepest trench is 11 km, the highest peak 8.8 km)
+# [m] the finest sample spacing: below it samples fall on one point in the scene's single-precision
+# geometry (float32 resolves 6e-5 m at 1 km from the origin).
+_FINEST_SPACING = 1e-4
 _VERTICAL_UNITS = {9001: 1.0, 9002: 0.3048, 9003: 1200.0 / 3937.0, 9036: 1000.0}
 _RASTER_PIXEL_IS_POINT = 2
 _EPSG_WGS84 = 4326
@@ -217,7 +220,7 @@ def _read_geotiff(path: str) -> Elevation:
         raise ValueError(f"{path!r}: pixel scale ({sx}, {sy}) must be > 0 and the tiepoint finite")
     # The smallest spacing a grid may have: 0.1 mm (1e-9 deg of latitude); below it, samples fall
     # on one point in the scene's single-precision geometry.
-    smallest = 1e-9 if epsg == _EPSG_WGS84 else 1e-4
+    smallest = 1e-9 if epsg == _EPSG_WGS84 else _FINEST_SPACING
     if sx < smallest or sy < smallest:
         raise ValueError(f"{path!r}: pixel scale ({sx}, {sy}) is below {smallest}: samples would coincide")
     if epsg == _EPSG_WGS84 and (data.shape[1] - 1) * sx > 360.0 * (1.0 + 1e-12):
@@ -426,12 +429,13 @@ def _read_geotiff_frame(path: str) -> Elevation:
 
 def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
     """(rows, cols, 3) float32 scene positions of the array form (NaN rows at NaN heights)."""
+    # numpy reads "100" and True as numbers, and drops a complex height's imaginary part with a warning
     try:
-        h = np.asarray(heights, dtype=np.float64)
+        h = None if np.asarray(heights).dtype.kind in "bUSc" else np.asarray(heights, dtype=np.float64)
     except (TypeError, ValueError):
         h = None
-    if h is None or np.asarray(heights).dtype.kind in "bUS":  # numpy reads "100" and True as numbers
-        raise ValueError("heights must be a (rows, cols) array of numbers [m]")
+    if h is None:
+        raise ValueError("add_terrain: heights must be a (rows, cols) array of real numbers [m]")
     if h.ndim != 2 or h.shape[0] < 2 or h.shape[1] < 2:
         raise ValueError(
             f"add_terrain: heights must be a (rows, cols) array with rows, cols >= 2 (got shape {h.shape})"
@@ -440,8 +444,19 @@ def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
         raise ValueError("add_terrain: heights must be finite (NaN marks a hole; got an infinity)")
     if np.isnan(h).all():
         raise ValueError("add_terrain: heights are all NaN (holes): nothing to add")
+    with np.errstate(invalid="ignore"):
+        beyond = np.abs(h) > _FARTHEST_HEIGHT
+    if beyond.any():  # as the files' samples are (read_elevation)
+        r, c = np.argwhere(beyond)[0]
+        raise ValueError(
+            f"add_terrain: heights[{r}, {c}] is {h[r, c]:g} m, beyond {_FARTHEST_HEIGHT:g} m of any terrain"
+        )
     x0, z0 = _pair(origin, "origin", positive=False)
     dx, dz = _pair(spacing, "spacing", positive=True)
+    if min(dx, dz) < _FINEST_SPACING:
+        raise ValueError(
+            f"add_terrain: spacing ({dx:g}, {dz:g}) m is below {_FINEST_SPACING:g} m: samples would coincide"
+        )
     if earth_radius is None:
         y = h
     else:
@@ -518,8 +533,8 @@ def _water(scene, material, level, earth_radius: float | None, lower, upper) -> 
     if not is_number(level):
         raise ValueError(f"add_terrain: water_level must be a number [m] (got {level!r})")
     level = float(level)
-    if not math.isfinite(level):
-        raise ValueError(f"add_terrain: water_level must be finite [m] (got {level!r})")
+    if not (math.isfinite(level) and abs(level) <= _FARTHEST_HEIGHT):
+        raise ValueError(f"add_terrain: water_level must be finite, within {_FARTHEST_HEIGHT:g} m [m] (got {level!r})")
     y = level
     if earth_radius is not None and math.isfinite(earth_radius):
         y = float(_flat_height(np.array([level]), earth_radius)[0])

@@ -258,3 +258,56 @@ def test_refraction_coefficient_refuses_a_sight_line_above_the_air():
     small = refracta.CurvedEarth(air, 1.0e6)  # a small planet: the bound follows its radius
     with pytest.raises(ValueError, match=r"distance must be in \[1, 429700\] m"):
         refracta.refraction_coefficient(small, 10.0, 5.0e5)
+
+
+def test_aim_takes_heights_above_the_earths_centre_and_targets_within_reach():
+    # aim gave an elevation of -90.13 for a target 1e7 m below the ellipsoid, an eye below the
+    # Earth's centre aimed without a word, and the antipode made a camera looking straight down.
+    frame = geo.LocalFrame(46.0, 7.5, earth_radius=6371e3)
+    with pytest.raises(ValueError, match=r"target's height must be finite in \[-6\.371e\+06"):
+        frame.aim((46.0, 8.0, -1e7), 10.0)
+    with pytest.raises(ValueError, match=r"^height must be finite in \[-6\.371e\+06"):
+        frame.aim((46.0, 8.0, 100.0), -1e7)
+    with pytest.raises(ValueError, match="target's height"):  # not the elevation it was turned into
+        refracta.Camera.geographic(46.0, 7.5, 10.0, target=(46.0, 8.0, -1e7), vfov=5.0)
+    with pytest.raises(ValueError, match=r"2e\+07 m from the eye, beyond the scene's reach"):
+        frame.aim((-46.0, -172.5), 10.0)
+    # A real aim: 38.6 km east at 46 N, 100 m above a 10 m eye, the Earth's drop d^2/2R = 117 m.
+    azimuth, elevation = frame.aim((46.0, 8.0, 100.0), 10.0)
+    assert azimuth == pytest.approx(89.82, abs=0.01)  # the geodesic's bearing (meridian convergence)
+    assert elevation == pytest.approx(-0.0410, abs=1e-4)  # atan((90 - 117) / 38.6 km), to 1e-4 deg
+
+
+def test_terrain_arrays_are_checked_as_files_are():
+    scene = refracta.Scene()
+    grid = dict(origin=(0.0, 0.0), spacing=(1.0, 1.0))
+    with pytest.raises(ValueError, match=r"heights\[0, 0\] is 2e\+07 m, beyond 100000 m of any terrain"):
+        scene.add_terrain(np.full((3, 3), 2e7), earth_radius=6371e3, **grid)
+    with pytest.raises(ValueError, match="array of real numbers"):  # numpy dropped the imaginary part
+        scene.add_terrain(np.full((3, 3), 1 + 5j), **grid)
+    with pytest.raises(ValueError, match=r"spacing \(1e-30, 1e-30\) m is below 0\.0001 m: samples would coincide"):
+        scene.add_terrain(np.zeros((3, 3)), origin=(0.0, 0.0), spacing=(1e-30, 1e-30))
+    with pytest.raises(ValueError, match="water_level must be finite, within 100000 m"):
+        scene.add_terrain(np.zeros((3, 3)), water_level=1e7, **grid)
+
+
+def test_sun_position_names_what_is_wrong_with_a_time():
+    for when, message in (
+        ("2024-02-30T12:00:00Z", "day is out of range for month"),
+        ("2016-12-31T23:59:60Z", r"second must be in 0\.\.59"),  # a leap second: datetime has none
+        ("0001-01-01T00:00:00+05:00", "outside the years 1-9999 in UTC"),  # OverflowError before
+    ):
+        with pytest.raises(ValueError, match=message):
+            geo.sun_position(45.0, 7.0, when)
+    with pytest.warns(RuntimeWarning, match="0500 is outside 1800-2100|500 is outside 1800-2100"):
+        geo.sun_position(45.0, 7.0, "0500-06-21T12:00:00Z")
+
+
+def test_astronomical_refraction_and_refraction_coefficient_name_their_numbers():
+    air = refracta.PhysicalAtmosphere()
+    with pytest.raises(ValueError, match=r"eye_height must be a number \(got '5'\)"):  # float() read it
+        refracta.astronomical_refraction(air, 5.0, "5")
+    with pytest.raises(ValueError, match="earth_radius must be finite and > 0 m"):  # "> 0 (got inf)" before
+        refracta.astronomical_refraction(air, 5.0, earth_radius=math.inf)
+    with pytest.raises(ValueError, match="at least 1000 m"):  # said ">= 0" for -1, then refused 0
+        refracta.refraction_coefficient(air, 2.0, 1000.0, earth_radius=-1.0)

@@ -371,7 +371,7 @@ def test_bad_input_raises_clear_errors(tmp_path):
         scene.add_terrain(np.zeros(5), origin=(0, 0), spacing=(1, 1))
     with pytest.raises(ValueError, match="origin="):
         scene.add_terrain(ok)
-    with pytest.raises(ValueError, match="array of numbers"):
+    with pytest.raises(ValueError, match="array of real numbers"):
         scene.add_terrain([["a", "b"], ["c", "d"]], origin=(0, 0), spacing=(1, 1))
     with pytest.raises(FileNotFoundError):
         scene.add_terrain(tmp_path / "N46E007.hgt", frame=geo.LocalFrame(46, 7))

@@ -13,9 +13,9 @@ namespace refracta {
 void AstronomicalRefractionOptions::validate() const {
   Problems problems("astronomical_refraction");
   problems.check(std::isfinite(eye_height) && eye_height >= 0.0, "eye_height must be >= 0 m and finite (got ", eye_height, ")");
-  problems.check(std::isfinite(top) && top >= 0.0, "top must be >= 0 m (got ", top, ")");
-  problems.check(earth_radius > 0.0 && std::isfinite(earth_radius), "earth_radius must be > 0 m (got ", earth_radius, ")");
-  problems.check(tol > 0.0 && std::isfinite(tol), "tol must be > 0 m (got ", tol, ")");
+  problems.check(std::isfinite(top) && top >= 0.0, "top must be >= 0 m and finite (got ", top, ")");
+  problems.check(earth_radius > 0.0 && std::isfinite(earth_radius), "earth_radius must be finite and > 0 m (got ", earth_radius, ")");
+  problems.check(tol > 0.0 && std::isfinite(tol), "tol must be > 0 m and finite (got ", tol, ")");
   problems.throw_if_any();
 }
 
