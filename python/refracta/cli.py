@@ -8,6 +8,7 @@ import argparse
 import math
 import sys
 import time
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -515,6 +516,14 @@ def render_file(
         image, layers = result
         if exposure is not None or ev100 is not None:  # as write_image does for float files: manual only
             image = image * refracta.io.exposure_of(image, exposure=exposure, ev100=ev100)
+        # Said as write_image says it for a float file (it was silently ignored here).
+        unused = [f"--{name.replace('_', '-')}" for name in ("key", "tonemap", "white_balance") if display[name]]
+        if unused:
+            warnings.warn(
+                f"render: {output} is written linear: {', '.join(unused)} shape only displayed images "
+                "(PNG, JPEG) and are not applied",
+                stacklevel=2,
+            )
         refracta.io.write_layers(output, image, layers, suffixes=_LAYER_CHANNELS)
     else:
         refracta.io.write_image(output, result, **display)

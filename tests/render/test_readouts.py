@@ -369,6 +369,10 @@ def test_cli_writes_readouts_as_exr_layers(tmp_path):
     _, out = refracta.render(scene, camera.resized(24, 8), field, aovs=["distance"], progress=False)
     assert np.array_equal(pixels[..., names.index("distance.Y")], out["distance"])  # the layer is the readout, inf kept
     assert cli.main(["render", str(scene_file), "-o", str(tmp_path / "x.png"), "--aovs", "distance"]) == 1
+    # --key shapes only displayed images: said for the layered EXR as write_image says it (it was ignored).
+    argv = ["render", str(scene_file), "-o", str(output), "--size", "24x8", "--aovs", "distance", "--key", "0.3"]
+    with pytest.warns(UserWarning, match="written linear: --key shape only displayed images"):
+        assert cli.main(argv) == 0
 
 
 def test_geographic_of_a_target_placed_by_latitude_and_longitude():
