@@ -469,8 +469,7 @@ def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
         y[np.isnan(h)] = np.nan
     rows, cols = h.shape
     reach = float(_core._SCENE_REACH)  # scene coordinates end there (single-precision geometry)
-    extents = {
-        "heights": np.nanmax(np.abs(y)),
+    extents = {  # the heights are within _FARTHEST_HEIGHT (above)
         "origin and spacing (x)": max(abs(x0), abs(x0 + dx * (cols - 1))),
         "origin and spacing (z)": max(abs(z0), abs(z0 + dz * (rows - 1))),
     }

@@ -156,7 +156,8 @@ def test_noise_maps_take_numpy_sizes():
 
 def test_terrain_beyond_the_scene_s_reach_is_named_not_called_holes():
     scene = refracta.Scene()
-    with pytest.raises(ValueError, match=r"add_terrain: heights reach 1e\+40 m from the origin"):
+    # Named as a file's sample is: no terrain lies 100 km from sea level (also far inside the reach).
+    with pytest.raises(ValueError, match=r"add_terrain: heights\[0, 0\] is 1e\+40 m, beyond 100000 m of any terrain"):
         scene.add_terrain(np.full((3, 3), 1e40), origin=(0, 0), spacing=(1, 1))
     with pytest.raises(ValueError, match=r"origin and spacing \(x\) reach 1e\+300 m"):
         scene.add_terrain(np.zeros((3, 3)), origin=(1e300, 0), spacing=(1, 1))

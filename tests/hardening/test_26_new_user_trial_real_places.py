@@ -71,7 +71,7 @@ def write_tiff(path, data, scale=(0.001, 0.001), tiepoint=(0, 0, 0, 7.0, 46.0, 0
         (dict(keys=[1, 1, 0, 5, 1024, 0, 1, 2]), r"its GeoKeyDirectory tag is malformed"),
         (dict(scale=(0.001,)), r"its ModelPixelScale tag must hold 2 numbers"),
         (dict(tiepoint=(0.0, 0.0, 0.0)), r"its ModelTiepoint tag must hold 6 numbers"),
-        (dict(tiepoint=(0, 0, 0, 400.0, 46.0, 0)), r"longitudes 400.0005 to 400.0035 deg are outside \[-360, 360\]"),
+        (dict(tiepoint=(0, 0, 0, 400.0, 46.0, 0)), r"its west edge, longitude 400.0005 deg, is outside \[-360, 360\]"),
     ],
 )
 def test_malformed_geotiff_tags_name_the_file_and_the_tag(tmp_path, tags, message):
