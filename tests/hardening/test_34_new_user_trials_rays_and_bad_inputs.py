@@ -311,3 +311,21 @@ def test_astronomical_refraction_and_refraction_coefficient_name_their_numbers()
         refracta.astronomical_refraction(air, 5.0, earth_radius=math.inf)
     with pytest.raises(ValueError, match="at least 1000 m"):  # said ">= 0" for -1, then refused 0
         refracta.refraction_coefficient(air, 2.0, 1000.0, earth_radius=-1.0)
+
+
+@pytest.mark.parametrize("tol", [1e-6, 1e-8])
+@pytest.mark.parametrize("elevation", [-0.2, -0.3])
+def test_stratified_paths_hold_tol_between_their_nodes(tol, elevation):
+    # A ray dipping into the hot road's layer: the panels' quadrature alone left nodes 75 m apart
+    # across it, and crossings() between them (the quintic through the nodes) missed the path by
+    # 1.4e-4 m at tol 1e-6 (a physicist's trial: 3e-5..9e-5 m at tol 1e-10). Against rk45 at 1e-12.
+    road = refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
+    e = math.radians(elevation)
+    start, direction = (0.0, 1.2, 0.0), (math.cos(e), math.sin(e), 0.0)
+    path = refracta.trace_ray(road, start, direction, trace="stratified", tol=tol, max_length=1000.0)
+    reference = refracta.trace_ray(road, start, direction, trace="rk45", tol=1e-12, max_length=1000.0)
+    worst = 0.0
+    for x in np.linspace(5.0, 995.0, 199):
+        (ours, *_), (theirs, *_) = path.crossings((1.0, 0.0, 0.0), x)[0], reference.crossings((1.0, 0.0, 0.0), x)[0]
+        worst = max(worst, abs(ours[1] - theirs[1]))
+    assert worst <= tol  # the path's own tolerance, now between nodes too

@@ -41,6 +41,12 @@ struct TraceOptions {
   // whose invariant beta = n cos e stays clearly below it can never turn, so its heights are not
   // scanned metre by metre for turning points (a path climbing 100 km: 70 000 nodes, else ~1 000).
   std::optional<double> ior_floor;
+  // stratified: positions between nodes (PathSegment's quintic through them: RayPath.crossings,
+  // sample) held to tol as the nodes are, with a node added where the panels alone leave them
+  // farther apart (75 m across a hot road's layer: 1.4e-4 m off at tol 1e-6). The renderers turn it
+  // off (ElevationTable, Caster): their chords need the pixel's footprint, far coarser than tol,
+  // and the extra nodes cost a cold sea 10 %. Not bound: trace_ray's paths always hold it.
+  bool hold_between_nodes = true;
   // Polled at every step: when set, the trace throws Cancelled (Ctrl-C in a long batch).
   const std::atomic<bool>* cancel = nullptr;
 

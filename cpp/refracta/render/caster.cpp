@@ -102,6 +102,7 @@ TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, c
   trace_options.tol = options.tol;
   trace_options.max_length = max_length;
   trace_options.step = options.chord;
+  trace_options.hold_between_nodes = false;  // the chords keep to the sagitta instead
   // Nothing can be hit below the lowest geometry: end the path 1 m under it (or under the origin).
   trace_options.stop_height = std::min(scene.lowest(), origin.y()) - 1.0;
   return trace_options;
