@@ -3,6 +3,7 @@ extension) -> Principled, glass (illum 4/6/7 with d < 1 and Ni > 1) -> Dielectri
 light that renders its radiance."""
 
 import numpy as np
+import pytest
 
 import refracta
 
@@ -83,3 +84,29 @@ def test_ke_makes_an_area_light_of_that_radiance(tmp_path):
     # The emission seen directly through float32 pixels.
     np.testing.assert_allclose(image[1, 1], (2.0, 3.0, 4.0), rtol=1e-6)
     assert len(scene.lights) == 1
+
+
+def test_a_colour_of_one_value_is_a_grey(tmp_path):
+    # The MTL specification: "g and b are optional; if only r is specified, g and b are assumed equal
+    # to r". tinyobjloader read (r, 0, 0): a grey paint came out red, a white lamp red (a trial).
+    (tmp_path / "one.obj").write_text("mtllib one.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\n")
+    (tmp_path / "one.mtl").write_text("newmtl grey\nKd 0.3\nKs 0.2\nNs 10\nKe 2\n")
+    scene = refracta.Scene()
+    ids = scene.add_obj(str(tmp_path / "one.obj"))
+    material = scene.material(ids[0])
+    np.testing.assert_allclose(material.parameters["kd"], (0.3, 0.3, 0.3), rtol=1e-7)  # float32 in the reader
+    np.testing.assert_allclose(material.parameters["ks"], (0.2, 0.2, 0.2), rtol=1e-7)
+    scene.set_sky((0.0, 0.0, 0.0))
+    camera = refracta.Camera((0.3, 0.3, 2.0), (0.3, 0.3, 0.0), width=4, height=4)
+    np.testing.assert_array_equal(refracta.render(scene, camera, None, progress=False)[2, 1], (2.0, 2.0, 2.0))
+    (tmp_path / "two.obj").write_text("mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\n")
+    (tmp_path / "two.mtl").write_text("newmtl grey\nKd 0.3 0.4\n")  # b was read as 0
+    with pytest.raises(refracta.IoError, match=r"line 2: 'Kd' has 2 values; a colour is r g b, or one grey value"):
+        refracta.Scene().add_obj(str(tmp_path / "two.obj"))
+
+
+def test_an_index_of_refraction_at_or_below_zero_is_noted(tmp_path):
+    (tmp_path / "ni.obj").write_text("mtllib ni.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl glass\nf 1 2 3\n")
+    (tmp_path / "ni.mtl").write_text("newmtl glass\nillum 7\nd 0.1\nNi -1.5\n")
+    with pytest.warns(UserWarning, match="material 'glass' has Ni -1.5 out of range"):
+        refracta.Scene().add_obj(str(tmp_path / "ni.obj"))

@@ -81,7 +81,8 @@ std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const
     const MaterialMesh& part = parts[p];
     if (!part.material.clamped.empty() && options.warn && noted.insert(part.material.name).second) {
       options.warn(concat("add_obj: '", path, "': material '", part.material.name, "' has ", part.material.clamped,
-                          " out of range; moved to Kd, Ks, d, Pr, Pm in [0, 1] with Kd + Ks <= 1 (both scaled), Ns, Ke >= 0"));
+                          " out of range; moved to Kd, Ks, d, Pr, Pm in [0, 1] with Kd + Ks <= 1 (both scaled), "
+                          "Ns, Ke >= 0, Ni <= 0 to 1"));
     }
     const int texture = textures[p].empty() ? -1 : scene.geometry.add_texture(textures[p]);
     if (texture >= 0 && registered.insert(textures[p]).second && options.progress) {

@@ -17,7 +17,8 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.mtl_search_path = std::filesystem::path(path).parent_path().string();
-  check_obj_numbers(path, config.mtl_search_path);  // regular files, no unparsable numbers
+  // Regular files, no unparsable numbers; the colours given as one grey value.
+  const MtlGreys greys = check_obj_numbers(path, config.mtl_search_path);
   tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, config)) {
     throw IoError(concat("cannot read OBJ '", path, "': ", reader.Error()));
@@ -26,7 +27,15 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
     throw IoError(concat("OBJ '", path, "': ", reader.Warning()));  // a missing .mtl file
   }
   const auto& attrib = reader.GetAttrib();
-  const auto& materials = reader.GetMaterials();
+  std::vector<tinyobj::material_t> materials = reader.GetMaterials();
+  for (tinyobj::material_t& m : materials) {
+    const auto grey = greys.find(m.name);
+    if (grey == greys.end()) continue;
+    for (const auto& [key, colour] : {std::pair<const char*, tinyobj::real_t*>{"Ka", m.ambient}, {"Kd", m.diffuse},
+                                      {"Ks", m.specular}, {"Ke", m.emission}, {"Tf", m.transmittance}}) {
+      if (grey->second.count(key)) colour[1] = colour[2] = colour[0];
+    }
+  }
   const size_t vertex_count = attrib.vertices.size() / 3;
   const size_t texcoord_count = attrib.texcoords.size() / 2;
   const size_t normal_count = attrib.normals.size() / 3;
@@ -108,6 +117,10 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       if (out_m.ns != double(m.shininess)) moved.push_back(concat("Ns ", m.shininess));
       if (out_m.alpha != double(m.dissolve)) moved.push_back(concat("d ", m.dissolve));
       out_m.ni = m.ior;
+      if (!(m.ior > 0.0f)) {  // an index of refraction is > 0: the refracting material takes 1 (none)
+        moved.push_back(concat("Ni ", m.ior));
+        out_m.ni = 1.0;
+      }
       out_m.illum = m.illum;
       // Emission >= 0, and the PBR extension's Pr and Pm into [0, 1] (tinyobjloader reads them; 0 is
       // its "absent" value too), noted like the rest (a Ke of -5 was dropped, a Pr of 5 refused

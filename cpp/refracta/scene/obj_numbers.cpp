@@ -46,13 +46,16 @@ void check_indices(const std::string& path, int number, const std::string& key, 
   }
 }
 
-// Checks one file's numeric records; appends its mtllib names to `libraries` (OBJ files).
+const std::set<std::string> kMtlColours = {"Ka", "Kd", "Ks", "Ke", "Tf"};
+
+// Checks one file's numeric records; appends its mtllib names to `libraries` (OBJ files) and its
+// one-value colours to `greys` (MTL files).
 void check_file(const std::string& path, const char* kind, const std::set<std::string>& numeric,
-                std::vector<std::string>* libraries) {
+                std::vector<std::string>* libraries, MtlGreys* greys) {
   require_regular(path, kind);
   std::ifstream in(path);
   if (!in) throw IoError(concat("cannot read ", kind, " '", path, "'"));
-  std::string line;
+  std::string line, material;
   for (int number = 1; std::getline(in, line); ++number) {
     const size_t comment = line.find('#');
     if (comment != std::string::npos) line.resize(comment);
@@ -67,15 +70,23 @@ void check_file(const std::string& path, const char* kind, const std::set<std::s
       check_indices(path, number, key, tokens);
       continue;
     }
+    if (greys && key == "newmtl") {
+      std::getline(tokens >> std::ws, material);
+      material.erase(material.find_last_not_of(" \t\r") + 1);
+      continue;
+    }
     if (!numeric.count(key)) continue;
     std::string token;
-    bool first = true;
+    bool first = true, plain = true;  // plain: r [g b], not "spectral" nor "xyz"
     int count = 0;
     while (tokens >> token) {
-      if (first && (token == "spectral")) break;  // "Kd spectral file.rfl [factor]"
+      if (first && (token == "spectral")) {  // "Kd spectral file.rfl [factor]"
+        plain = false;
+        break;
+      }
       if (token == "-halo") continue;              // "d -halo 0.5"
       if (first && token == "xyz") {               // "Kd xyz x y z"
-        first = false;
+        first = false, plain = false;
         continue;
       }
       first = false;
@@ -93,18 +104,27 @@ void check_file(const std::string& path, const char* kind, const std::set<std::s
       throw IoError(concat(kind, " '", path, "' line ", number, ": '", key, "' has ", count,
                            " coordinates; it needs x y z"));
     }
+    if (greys && plain && kMtlColours.count(key)) {
+      if (count == 2) {  // tinyobjloader read b as 0
+        throw IoError(concat(kind, " '", path, "' line ", number, ": '", key,
+                             "' has 2 values; a colour is r g b, or one grey value"));
+      }
+      if (count == 1) (*greys)[material].insert(key);
+    }
   }
 }
 
 }  // namespace
 
-void check_obj_numbers(const std::string& obj_path, const std::string& mtl_folder) {
+MtlGreys check_obj_numbers(const std::string& obj_path, const std::string& mtl_folder) {
   std::vector<std::string> libraries;
-  check_file(obj_path, "OBJ", kObjNumeric, &libraries);
+  check_file(obj_path, "OBJ", kObjNumeric, &libraries, nullptr);
+  MtlGreys greys;
   for (const std::string& name : libraries) {
     const std::filesystem::path mtl = std::filesystem::path(mtl_folder) / name;
-    if (std::filesystem::exists(mtl)) check_file(mtl.string(), "MTL", kMtlNumeric, nullptr);
+    if (std::filesystem::exists(mtl)) check_file(mtl.string(), "MTL", kMtlNumeric, nullptr, &greys);
   }
+  return greys;
 }
 
 }  // namespace refracta

@@ -3,14 +3,20 @@
 // word, and blocks reading a FIFO. Throws IoError naming file, line and token.
 #pragma once
 
+#include <map>
+#include <set>
 #include <string>
 
 namespace refracta {
 
+// Per MTL material name, its colours (Ka, Kd, Ks, Ke, Tf) given as one value: a grey, "g and b
+// assumed equal to r" (the MTL specification), which tinyobjloader reads as (r, 0, 0).
+using MtlGreys = std::map<std::string, std::set<std::string>>;
+
 // Checks `obj_path` (a regular file) and every MTL file its mtllib lines name (resolved against
 // mtl_folder, when they exist; a missing one is tinyobjloader's error to report): each number of a
 // numeric record (v, vt, vn, vp; Ka, Kd, Ks, Ke, Tf, Ns, Ni, d, Tr, illum, Pr, Pm, ...) must
-// parse entirely and be finite.
-void check_obj_numbers(const std::string& obj_path, const std::string& mtl_folder);
+// parse entirely and be finite, and a colour has one value or three. Returns the one-value colours.
+MtlGreys check_obj_numbers(const std::string& obj_path, const std::string& mtl_folder);
 
 }  // namespace refracta
