@@ -993,8 +993,10 @@ class Scene:
     def set_environment(self, source: typing.Any, rotation: typing.Any = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
         The environment (replacing any sky): an RGB radiance (a constant environment), an equirectangular
-        map file (EXR/HDR/PNG through OpenImageIO) or a float array (H, W, 3), times `scale`, turned by
-        `rotation` (degrees about y, or a 3 x 3 matrix). Orientation: refracta.lights.EnvironmentLight.
+        map file (EXR/HDR through OpenImageIO as linear radiance; an 8- or 16-bit PNG/JPEG decoded from
+        sRGB, as textures are) or a float array of linear radiance, (H, W) grey or (H, W, 1, 3 or 4; alpha
+        ignored), times `scale`, turned by `rotation` (degrees about y, or a 3 x 3 matrix). Orientation:
+        refracta.lights.EnvironmentLight.
         """
     def set_material(self, geometry: typing.SupportsInt | typing.SupportsIndex, material: typing.Any) -> None:
         """

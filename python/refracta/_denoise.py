@@ -16,7 +16,7 @@ def _channels(name: str, array, shape=None, lo: float = 0.0, hi: float = np.inf)
         shown = "None" if array is None else f"dtype {values.dtype}"
         raise ValueError(f"denoise: {name} must be an (H, W, 3) array of real numbers (got {shown})")
     if values.ndim != 3 or values.shape[2] != 3 or values.shape[0] < 1 or values.shape[1] < 1:
-        raise ValueError(f"denoise: {name} must have shape (H, W, 3) (got {values.shape})")
+        raise ValueError(f"denoise: {name} must have shape (H, W, 3), H and W >= 1 (got {values.shape})")
     if shape is not None and values.shape != shape:
         raise ValueError(f"denoise: {name} must have the image's shape {shape} (got {values.shape})")
     if not np.all(np.isfinite(values)):

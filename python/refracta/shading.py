@@ -22,8 +22,9 @@ ValueError. Reflectances above 1 are refused (ValueError) because they would cre
 models reflect somewhat more than arrives at some parameters all the same, as their published
 forms do: ``Principled`` (Burley 2012: its sheen, clearcoat and diffuse retro-reflection are
 added, not balanced; albedo 1.04 at normal incidence and up to 1.7 at grazing with every lobe at
-full strength) and ``BlinnPhong`` with a low ``ns`` (its (ns + 2) / 2pi normalisation: 1.06 at
-ns = 4, ks = 1); use ``Diffuse``, ``Plastic`` or the microfacet models where energy must balance.
+full strength) and ``BlinnPhong`` (its lobe's (ns + 8) / (8 pi) normalisation is approximate: with
+ks = 1 it reflects 1.02-1.06 at normal incidence for ns from 1 to 100, and kd + ks = 1 up to
+~1.03); use ``Diffuse``, ``Plastic`` or the microfacet models where energy must balance.
 
 Materials (colours are a number or an (r, g, b) triple; ``texture=`` an image file whose linear
 RGB multiplies the colour at the surface's uvs, registered in each scene the material joins):

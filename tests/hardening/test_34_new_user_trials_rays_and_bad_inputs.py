@@ -329,3 +329,41 @@ def test_stratified_paths_hold_tol_between_their_nodes(tol, elevation):
         (ours, *_), (theirs, *_) = path.crossings((1.0, 0.0, 0.0), x)[0], reference.crossings((1.0, 0.0, 0.0), x)[0]
         worst = max(worst, abs(ours[1] - theirs[1]))
     assert worst <= tol  # the path's own tolerance, now between nodes too
+
+
+def test_an_8_bit_environment_map_is_decoded_from_srgb_as_a_texture_is(tmp_path):
+    # A PNG's 128 was radiance 0.502 as a sky and 0.216 as a texture; a uint8 array's was 128.
+    from PIL import Image
+
+    path = tmp_path / "g128.png"
+    Image.fromarray(np.full((8, 16, 3), 128, np.uint8)).save(path)
+    decoded = ((128 / 255 + 0.055) / 1.055) ** 2.4  # IEC 61966-2-1: 0.2158605
+    looking = refracta.Camera((0.0, 0.0, 0.0), (0.0, 0.0, -1.0), width=4, height=4)
+    scene = refracta.Scene()
+    scene.set_environment(path)
+    sky = refracta.render(scene, looking, None, progress=False)[2, 2]
+    np.testing.assert_allclose(sky, decoded, rtol=1e-6)  # float32 radiance
+    ground = refracta.Scene()
+    ground.add_ground(material=refracta.shading.Diffuse(1.0, texture=str(path)))
+    ground.set_environment((1.0, 1.0, 1.0))
+    down = refracta.Camera((0.0, 5.0, 0.0), (0.0, 0.0, 0.0), up=(0.0, 0.0, -1.0), vfov=20.0, width=4, height=4)
+    texel = refracta.render(ground, down, None, progress=False)[2, 2]
+    np.testing.assert_allclose(texel, sky, rtol=1e-3)  # the texture's half-float MIP copy
+    with pytest.raises(ValueError, match="set_environment: an image array holds linear radiance as floats"):
+        scene.set_environment(np.full((8, 16, 3), 128, np.uint8))
+    with pytest.raises(ValueError, match=r"EnvironmentLight: image holds linear radiance as floats \(got dtype bool"):
+        refracta.lights.EnvironmentLight(np.ones((8, 16, 3), bool))
+
+
+def test_environment_textures_and_denoise_name_what_is_wrong(tmp_path):
+    scene = refracta.Scene()
+    with pytest.raises(ValueError, match=r"set_environment: scale must be finite and >= 0 \(got -1\)"):
+        scene.set_environment((1.0, 1.0, 1.0), scale=-1.0)  # "emission must be ..." before
+    with pytest.raises(ValueError, match=r"set_environment: radiance must be finite and >= 0 per channel"):
+        scene.set_environment((-1.0, 1.0, 1.0))
+    folder = tmp_path / "adir.png"
+    folder.mkdir()
+    with pytest.raises(refracta.IoError, match="not a regular file"):  # "no such texture file" before
+        refracta.shading.Diffuse(0.5, texture=str(folder))
+    with pytest.raises(ValueError, match=r"H and W >= 1 \(got \(0, 0, 3\)\)"):
+        refracta.denoise(np.zeros((0, 0, 3), np.float32))

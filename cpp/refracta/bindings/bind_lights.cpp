@@ -128,6 +128,7 @@ void bind_environment_lights(py::module_& m) {
                throw_invalid("EnvironmentLight: image is an array of radiances; read a file with refracta.io.read_image "
                              "(or give its path to Scene.set_environment)");
              }
+             require_float_radiance(image, "EnvironmentLight: image");
              return std::make_shared<EnvironmentLight>(to_image(image, "EnvironmentLight: image"), scale, to_rotation(rotation, "rotation"));
            }),
            py::arg("image"), py::arg("scale") = 1.0, py::arg("rotation") = py::none())

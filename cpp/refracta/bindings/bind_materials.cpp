@@ -24,7 +24,10 @@ TexturedReflectance to_textured(const py::object& color, const char* name, const
     if (!py::isinstance<py::str>(path_object)) throw_invalid("texture must be a str path (got bytes)");
     const std::string path = py::cast<std::string>(path_object);
     std::error_code error;
-    if (!std::filesystem::is_regular_file(path, error)) throw IoError(concat("no such texture file: '", path, "'"));
+    if (!std::filesystem::exists(path, error)) throw IoError(concat("no such texture file: '", path, "'"));
+    if (!std::filesystem::is_regular_file(path, error)) {
+      throw IoError(concat("cannot read texture '", path, "': not a regular file"));
+    }
     return TexturedReflectance(rgb, name, -1, std::filesystem::absolute(path).string());
   }
   if (py::isinstance<py::int_>(texture) && !py::isinstance<py::bool_>(texture)) {

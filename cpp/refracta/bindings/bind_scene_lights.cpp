@@ -10,6 +10,7 @@
 #include "refracta/shading/sky_presets.h"
 #include "refracta/shading/sun_light.h"
 
+#include <cmath>
 #include <optional>
 
 namespace refracta {
@@ -29,8 +30,9 @@ std::shared_ptr<PhysicalSkyLight> build_sky_interruptibly(const PhysicalSkySetti
   return interruptible_result(py::none(), [&](WorkControl&) { return std::make_shared<PhysicalSkyLight>(settings); });
 }
 
-// set_environment's source: a map file, an image array (H, W, 3), or an RGB radiance.
+// set_environment's source: a map file, an image array of radiance, or an RGB radiance.
 LightPtr environment_of(const py::object& source, const py::object& rotation, double scale) {
+  if (!(scale >= 0.0 && std::isfinite(scale))) throw_invalid("set_environment: scale must be finite and >= 0 (got ", scale, ")");
   if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
     return environment_from_file(py::cast<FilePath>(source).string(), scale, to_rotation(rotation, "rotation"));
   }
@@ -40,11 +42,13 @@ LightPtr environment_of(const py::object& source, const py::object& rotation, do
       throw_invalid("set_environment: an image must be an (H, W) or (H, W, 1, 3 or 4) array of linear radiance (grey, "
                     "RGB; alpha ignored) (got shape ", std::string(py::str(py::getattr(array, "shape"))), ")");
     }
+    require_float_radiance(source, "set_environment: an image array");
     return std::make_shared<EnvironmentLight>(to_image(source, "image"), scale, to_rotation(rotation, "rotation"));
   }
   // Checked as a map's is: a uniform sky looks the same turned any way, but a bad matrix is a mistake.
   EnvironmentLight::check_rotation(to_rotation(rotation, "rotation"), "set_environment: rotation");
-  return std::make_shared<ConstantEnvironment>(Color::illuminant(to_rgb(source, "radiance") * scale));
+  const Vec3d radiance = to_illuminant(source, "set_environment: radiance").rgb();  // named, >= 0 per channel
+  return std::make_shared<ConstantEnvironment>(Color::illuminant(radiance * scale));
 }
 
 void bind_sun_and_sky(SceneClass& scene) {
@@ -127,8 +131,10 @@ void bind_sun_and_sky(SceneClass& scene) {
            },
            py::arg("source"), py::arg("rotation") = py::none(), py::arg("scale") = 1.0,
            "The environment (replacing any sky): an RGB radiance (a constant environment), an equirectangular\n"
-           "map file (EXR/HDR/PNG through OpenImageIO) or a float array (H, W, 3), times `scale`, turned by\n"
-           "`rotation` (degrees about y, or a 3 x 3 matrix). Orientation: refracta.lights.EnvironmentLight.");
+           "map file (EXR/HDR through OpenImageIO as linear radiance; an 8- or 16-bit PNG/JPEG decoded from\n"
+           "sRGB, as textures are) or a float array of linear radiance, (H, W) grey or (H, W, 1, 3 or 4; alpha\n"
+           "ignored), times `scale`, turned by `rotation` (degrees about y, or a 3 x 3 matrix). Orientation:\n"
+           "refracta.lights.EnvironmentLight.");
 }
 
 }  // namespace

@@ -243,6 +243,15 @@ std::vector<Vec2d> to_uvs(const py::handle& object, const char* what, size_t cou
   return out;
 }
 
+void require_float_radiance(const py::handle& object, const char* what) {
+  if (!py::isinstance<py::array>(object)) return;  // lists: numbers, read as floats
+  const py::dtype dtype = py::cast<py::array>(object).dtype();
+  if (dtype.kind() == 'f') return;
+  throw_invalid(what, " holds linear radiance as floats (got dtype ", std::string(py::str(dtype)),
+                "; an 8-bit picture holds sRGB-encoded colour: give its file to Scene.set_environment, which "
+                "decodes it, or decode it)");
+}
+
 Image to_image(const py::handle& object, const char* what, bool raw) {
   using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
   FloatArray array;

@@ -114,6 +114,9 @@ std::vector<Vec2d> to_uvs(const py::handle& object, const char* what, size_t cou
 // An image: a float array (H, W) or (H, W, C), C in 1..4, finite. `raw`: (H, W, C) with any C >= 1,
 // inf and NaN kept (a float file's channels: readouts give no hit an inf distance, a NaN position).
 Image to_image(const py::handle& object, const char* what, bool raw = false);
+// Refuses an array of radiances whose dtype is not a float's: integers are a picture's sRGB-encoded
+// colours (a uint8 sky's 128 was radiance 128), booleans a mask.
+void require_float_radiance(const py::handle& object, const char* what);
 // A rotation: None (identity), an angle [deg] about +y, or a 3 x 3 matrix.
 Eigen::Matrix3d to_rotation(const py::handle& object, const char* what);
 

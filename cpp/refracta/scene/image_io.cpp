@@ -119,4 +119,11 @@ Image read_image(const std::string& path) {
   return image;
 }
 
+bool stores_encoded_colour(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw IoError(concat("cannot read '", path, "': ", OIIO::geterror()));
+  const OIIO::TypeDesc::BASETYPE stored = OIIO::TypeDesc::BASETYPE(in->spec().format.basetype);
+  return stored == OIIO::TypeDesc::UINT8 || stored == OIIO::TypeDesc::UINT16;
+}
+
 }  // namespace refracta

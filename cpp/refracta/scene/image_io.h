@@ -18,6 +18,9 @@ void write_image(const std::string& path, const Image& image);
 void check_image_format(const std::string& path);
 // Any format OIIO reads, as float in the file's channel count. Throws IoError.
 Image read_image(const std::string& path);
+// Whether the file stores 8- or 16-bit integers: by convention sRGB-encoded colour (textures and
+// environment maps decode it), where float files hold linear values. Throws IoError.
+bool stores_encoded_colour(const std::string& path);
 // A float file (EXR: layers by channel name, e.g. "R", "G", "B", "distance.Y", "position.X") with
 // one name per channel, the pixels as they are. Throws IoError, std::invalid_argument.
 void write_image_channels(const std::string& path, const Image& image, const std::vector<std::string>& names);

@@ -8,6 +8,7 @@
 #include "refracta/shading/environment_light.h"
 #include "refracta/shading/scaled_light.h"
 #include "refracta/shading/sun_light.h"
+#include "refracta/shading/tonemap.h"  // srgb_decode
 
 #include <algorithm>
 #include <cmath>
@@ -90,7 +91,16 @@ SkyAndSun physical_sky_with_sun(const PhysicalSkySettings& settings, const SunDi
 }
 
 std::shared_ptr<EnvironmentLight> environment_from_file(const std::string& path, double scale, const Mat3d& rotation) {
-  auto light = std::make_shared<EnvironmentLight>(read_image(path), scale, rotation);
+  Image image = read_image(path);
+  // An 8- or 16-bit map holds sRGB-encoded colour, as a texture does (textures.cpp): decoded to
+  // radiance, alpha aside (a PNG's 128 was radiance 0.502, a texture's 0.216: a trial).
+  if (stores_encoded_colour(path)) {
+    const int colours = image.channels == 2 || image.channels == 4 ? image.channels - 1 : image.channels;
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+      if (int(i % size_t(image.channels)) < colours) image.pixels[i] = float(srgb_decode(image.pixels[i]));
+    }
+  }
+  auto light = std::make_shared<EnvironmentLight>(std::move(image), scale, rotation);
   light->set_source(std::filesystem::absolute(path).string());
   return light;
 }
