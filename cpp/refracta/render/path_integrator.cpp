@@ -11,8 +11,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 
 namespace refracta {
 
@@ -20,37 +18,24 @@ namespace {
 
 constexpr double kMaxSurvival = 0.95;
 
-// The directional albedo of `bsdf` toward wo, in [0, 1]: the mean weight of 32 samples (the
-// path's sampler is not drawn from, so the image is the same with or without readouts).
+// The directional albedo of `bsdf` toward wo, in [0, 1]: the mean weight of 64 samples at fixed
+// quasi-random points (the path's sampler is not drawn from, so the image is the same with or
+// without readouts; fixed, so the estimate varies smoothly with wo, as the denoiser's guide must).
 Vec3d directional_albedo(const SurfaceBsdf& bsdf, const Vec3d& wo) {
-  // The first points of Roberts' R3 sequence (core/low_discrepancy.h), the lobe's choice and the
-  // direction spread over the cube together, shifted (Cranley-Patterson) by a hash of wo: each
-  // estimate unbiased, and a pixel's samples, whose wo differ, average toward the albedo. A fixed
-  // 4 x 4 grid whose row also chose the lobe was biased: a rough gold 15 % high, a red plastic's
-  // green 28 % low (a trial).
-  constexpr int kCount = 32;
+  // The first points of Roberts' R3 sequence (core/low_discrepancy.h): the lobe's choice and the
+  // direction spread over the cube together. A 4 x 4 grid whose row also chose the lobe was
+  // biased: a rough gold 15 % high, a red plastic's green 28 % low (a trial). Points shifted per
+  // sample were unbiased but noisy, and the denoiser kept a sea's noise as the guide's texture.
+  constexpr int kCount = 64;
   static const std::vector<std::vector<double>> points = [] {
     const QuasiRandom sequence(3);
     std::vector<std::vector<double>> out;
     for (int i = 0; i < kCount; ++i) out.push_back(sequence.point(i));
     return out;
   }();
-  uint64_t hash = 0x9e3779b97f4a7c15ULL;
-  for (int k = 0; k < 3; ++k) {
-    uint64_t bits;
-    std::memcpy(&bits, &wo[k], sizeof bits);
-    hash = (hash ^ bits) * 0xbf58476d1ce4e5b9ULL;
-    hash ^= hash >> 31;
-  }
-  double shift[3];
-  for (double& s : shift) {
-    hash = (hash ^ (hash >> 29)) * 0x94d049bb133111ebULL;
-    s = double(hash >> 11) * 0x1.0p-53;
-  }
-  auto wrapped = [](double v) { return v - std::floor(v); };
   Spectrum sum = Spectrum::Zero();
   for (const std::vector<double>& u : points) {
-    const auto bs = bsdf.sample(wo, wrapped(u[0] + shift[0]), Vec2d(wrapped(u[1] + shift[1]), wrapped(u[2] + shift[2])));
+    const auto bs = bsdf.sample(wo, u[0], Vec2d(u[1], u[2]));
     if (bs && bs->weight.isFinite().all()) sum += bs->weight;
   }
   return (sum.head<3>() / kCount).max(0.0).min(1.0).matrix();
