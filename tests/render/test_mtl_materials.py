@@ -110,3 +110,10 @@ def test_an_index_of_refraction_at_or_below_zero_is_noted(tmp_path):
     (tmp_path / "ni.mtl").write_text("newmtl glass\nillum 7\nd 0.1\nNi -1.5\n")
     with pytest.warns(UserWarning, match="material 'glass' has Ni -1.5 out of range"):
         refracta.Scene().add_obj(str(tmp_path / "ni.obj"))
+
+
+def test_a_missing_material_library_is_named(tmp_path):
+    # tinyobjloader's words were passed on: "Material file [ missing.mtl ] not found in a path : ...".
+    (tmp_path / "m.obj").write_text("mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n")
+    with pytest.raises(refracta.IoError, match=r"m\.obj': its material library 'missing\.mtl' \(mtllib\) is not in"):
+        refracta.Scene().add_obj(str(tmp_path / "m.obj"))

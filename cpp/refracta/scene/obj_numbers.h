@@ -14,7 +14,7 @@ namespace refracta {
 using MtlGreys = std::map<std::string, std::set<std::string>>;
 
 // Checks `obj_path` (a regular file) and every MTL file its mtllib lines name (resolved against
-// mtl_folder, when they exist; a missing one is tinyobjloader's error to report): each number of a
+// mtl_folder; a missing one is an IoError naming it): each number of a
 // numeric record (v, vt, vn, vp; Ka, Kd, Ks, Ke, Tf, Ns, Ni, d, Tr, illum, Pr, Pm, ...) must
 // parse entirely and be finite, and a colour has one value or three. Returns the one-value colours.
 MtlGreys check_obj_numbers(const std::string& obj_path, const std::string& mtl_folder);
