@@ -257,10 +257,9 @@ def _read_geotiff(path: str) -> Elevation:
         )
     # No terrain lies 100 km from sea level: such a sample is a void the file's GDAL_NODATA does not
     # name (float32's lowest, written as a shorter text), which reached CurvedEarth's bounds unnamed.
-    with np.errstate(invalid="ignore"):
-        beyond = np.abs(heights) > _FARTHEST_HEIGHT
-    if beyond.any():
-        r, c = np.argwhere(beyond)[0]
+    beyond = _beyond_any_terrain(heights)
+    if beyond is not None:
+        r, c = beyond
         named = "no GDAL_NODATA" if nodata is None else f"GDAL_NODATA {nodata!r} is not it in the band's type"
         raise ValueError(
             f"{path!r}: sample (row {r}, column {c}) is {heights[r, c]:g} m, beyond {_FARTHEST_HEIGHT:g} m of any "
@@ -268,7 +267,7 @@ def _read_geotiff(path: str) -> Elevation:
         )
     if epsg != _EPSG_WGS84:
         _check_projected(path, epsg, x0, y0, x0 + (data.shape[1] - 1) * sx, y0 - (data.shape[0] - 1) * sy)
-    if epsg == _EPSG_WGS84:
+    else:
         top, bottom = y0, y0 - (data.shape[0] - 1) * sy
         if not (-90.0 <= bottom <= top <= 90.0):
             raise ValueError(f"{path!r}: latitudes {bottom} to {top} deg are outside [-90, 90]")
@@ -277,6 +276,17 @@ def _read_geotiff(path: str) -> Elevation:
         if not (-360.0 <= x0 <= 360.0):
             raise ValueError(f"{path!r}: its west edge, longitude {x0} deg, is outside [-360, 360]")
     return Elevation(heights, x0, y0, sx, sy, epsg)
+
+
+def _beyond_any_terrain(heights: np.ndarray) -> tuple[int, int] | None:
+    """(row, column) of the first height farther than _FARTHEST_HEIGHT from sea level (NaN holes
+    aside), or None."""
+    with np.errstate(invalid="ignore"):
+        beyond = np.abs(heights) > _FARTHEST_HEIGHT
+    if not beyond.any():
+        return None
+    r, c = np.argwhere(beyond)[0]
+    return int(r), int(c)
 
 
 def _projected_crs(epsg: int, where: str):
@@ -444,12 +454,12 @@ def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
         raise ValueError("add_terrain: heights must be finite (NaN marks a hole; got an infinity)")
     if np.isnan(h).all():
         raise ValueError("add_terrain: heights are all NaN (holes): nothing to add")
-    with np.errstate(invalid="ignore"):
-        beyond = np.abs(h) > _FARTHEST_HEIGHT
-    if beyond.any():  # as the files' samples are (read_elevation)
-        r, c = np.argwhere(beyond)[0]
+    beyond = _beyond_any_terrain(h)
+    if beyond is not None:  # as the files' samples are (read_elevation)
+        row, column = beyond
         raise ValueError(
-            f"add_terrain: heights[{r}, {c}] is {h[r, c]:g} m, beyond {_FARTHEST_HEIGHT:g} m of any terrain"
+            f"add_terrain: heights[{row}, {column}] is {h[row, column]:g} m, "
+            f"beyond {_FARTHEST_HEIGHT:g} m of any terrain"
         )
     x0, z0 = _pair(origin, "origin", positive=False)
     dx, dz = _pair(spacing, "spacing", positive=True)

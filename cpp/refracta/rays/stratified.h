@@ -333,14 +333,16 @@ class StratifiedTracer {
     // Error per unit length, floored at what round-off in n - beta allows (a relative 1e-16 of n
     // over the smallest gap): asking for less only splits panels to chase noise.
     const double noise = 2.2e-16 * sums.s * (beta_ + 1.0) / std::max(sums.min_gap, 1e-300);
-    bool inaccurate =
+    const bool inaccurate =
         sums.error > std::max(options_.tol * std::max(sums.s / length_, 1e-6), noise);
     const bool splittable = depth < 30 && std::abs(wb - wa) > 1e-12 * (1 + std::abs(wa));
-    if (options_.hold_between_nodes && splittable && !too_long && !inaccurate && s_ + sums.s < length_ &&
-        interpolation_error(var, wa, wb, direction, sums) > options_.tol) {
-      inaccurate = true;
-    }
-    if ((too_long || inaccurate) && splittable) {
+    // Held to tol between the nodes too, or to the positions' own round-off where that is coarser
+    // (a path far from the origin): beyond it the halves would only split on noise.
+    const bool loose = options_.hold_between_nodes && splittable && !too_long && !inaccurate &&
+                       s_ + sums.s < length_ &&
+                       interpolation_error(var, wa, wb, direction, sums) >
+                           std::max(options_.tol, 1e-15 * (last_.x.norm() + sums.s));
+    if ((too_long || inaccurate || loose) && splittable) {
       const double mid = 0.5 * (wa + wb);
       if (!integrate(var, wa, mid, direction, depth + 1)) return false;
       return integrate(var, mid, wb, direction, depth + 1);

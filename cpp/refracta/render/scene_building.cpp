@@ -103,17 +103,22 @@ std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, 
 std::optional<double> terrain_height(const RenderScene& scene, double x, double z) {
   if (!std::isfinite(x) || !std::isfinite(z)) throw_invalid("terrain_height: x and z must be finite (got ", x, ", ", z, ")");
   if (std::max(std::abs(x), std::abs(z)) > kSceneReach) return std::nullopt;
-  const Vec3d lower = scene.geometry.lower(), upper = scene.geometry.upper();
-  if (scene.geometry.geometry_count() == 0 || !(lower.array() <= upper.array()).all()) return std::nullopt;
+  const Scene& geometry = scene.geometry;
+  bool any_terrain = false;  // render() asks for every scene: most hold none
+  for (unsigned g = 0; g < geometry.geometry_count() && !any_terrain; ++g) {
+    any_terrain = geometry.terrain(g) && !geometry.removed(g);
+  }
+  const Vec3d lower = geometry.lower(), upper = geometry.upper();
+  if (!any_terrain || !(lower.array() <= upper.array()).all()) return std::nullopt;
   const Vec3d down(0.0, -1.0, 0.0);
   Vec3d origin(x, upper.y() + 1.0, z);
   double reach = upper.y() - lower.y() + 2.0;
   // Past every other surface on the way down (a roof, a bridge, the sea over a drowned valley):
   // each hit restarts the ray just beyond it, at most once per geometry and side.
-  for (size_t k = 0; k <= 2 * scene.geometry.geometry_count() + 2 && reach > 0.0; ++k) {
-    const auto hit = scene.geometry.intersect(origin, down, reach);
+  for (size_t k = 0; k <= 2 * geometry.geometry_count() + 2 && reach > 0.0; ++k) {
+    const auto hit = geometry.intersect(origin, down, reach);
     if (!hit) return std::nullopt;
-    if (scene.geometry.terrain(hit->geometry) && hit->front_face) return hit->point.y();
+    if (geometry.terrain(hit->geometry) && hit->front_face) return hit->point.y();
     const double step = hit->t + 1e-6 * (1.0 + std::abs(hit->point.y()));
     origin.y() -= step, reach -= step;
   }
