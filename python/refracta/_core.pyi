@@ -3659,7 +3659,7 @@ def _rasterize(scene: Scene, camera: Camera, guard_band: typing.SupportsFloat | 
     """
     (depth, geometry, primitive, barycentric (H * W, 3), offset, triangles, screen triangles, fragments).
     """
-def _read_image(path: str) -> numpy.typing.NDArray[numpy.float32]:
+def _read_image(path: str, linear: bool) -> numpy.typing.NDArray[numpy.float32]:
     ...
 def _render(scene: Scene, camera: Camera, field: IndexField, options: RenderOptions, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], RenderStats]:
     ...

@@ -209,9 +209,18 @@ def channel_names(path) -> list[str]:
     return list(_core._channel_names(os.fspath(path)))
 
 
-def read_image(path) -> np.ndarray:
-    """Read any image OpenImageIO reads as float32 (H, W, C); 8-bit files come back in [0, 1]."""
-    return _core._read_image(os.fspath(path))
+def read_image(path, linear: bool = False) -> np.ndarray:
+    """Read any image OpenImageIO reads as float32 (H, W, C).
+
+    linear=False: the values as the file stores them: float files (EXR, HDR, PFM, float TIFF)
+    their linear values, 8- and 16-bit files (PNG, JPEG, TIFF) their display-encoded values
+    scaled to [0, 1] (128 of 255 reads 0.502). linear=True: 8- and 16-bit files decoded from sRGB
+    to linear values, as textures and environment maps are (128 of 255 reads 0.216), alpha as
+    stored; float files as they are. Raises refracta.IoError for a missing or unreadable file.
+    """
+    if not isinstance(linear, bool):
+        raise ValueError(f"read_image: linear must be True or False (got {linear!r})")
+    return _core._read_image(os.fspath(path), linear)
 
 
 def to_display(

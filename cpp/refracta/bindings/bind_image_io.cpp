@@ -127,7 +127,12 @@ void bind_image_io(py::module_& m) {
       py::arg("image"), py::arg("display"), "The white balance's linear sRGB matrix for this image (io.white_balance_of).");
   m.def("_ev100", &ev100_of, py::arg("f_number"), py::arg("shutter"), py::arg("iso") = kDefaultIso,
         "EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.");
-  m.def("_read_image", [](const std::string& path) { return image_to_float32(read_image(path)); }, py::arg("path"));
+  m.def(
+      "_read_image",
+      [](const std::string& path, bool linear) {
+        return image_to_float32(linear ? read_linear_image(path) : read_image(path));
+      },
+      py::arg("path"), py::arg("linear"));
   m.def(
       "_write_image_channels",
       [](const std::string& path, const py::object& image, const std::vector<std::string>& names) {

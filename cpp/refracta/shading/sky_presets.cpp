@@ -3,12 +3,11 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/spectrum.h"
-#include "refracta/scene/image_io.h"
 #include "refracta/shading/constant_environment.h"
 #include "refracta/shading/environment_light.h"
 #include "refracta/shading/scaled_light.h"
 #include "refracta/shading/sun_light.h"
-#include "refracta/shading/tonemap.h"  // srgb_decode
+#include "refracta/shading/tonemap.h"  // read_linear_image
 
 #include <algorithm>
 #include <cmath>
@@ -91,15 +90,9 @@ SkyAndSun physical_sky_with_sun(const PhysicalSkySettings& settings, const SunDi
 }
 
 std::shared_ptr<EnvironmentLight> environment_from_file(const std::string& path, double scale, const Mat3d& rotation) {
-  Image image = read_image(path);
   // An 8- or 16-bit map holds sRGB-encoded colour, as a texture does (textures.cpp): decoded to
   // radiance, alpha aside (a PNG's 128 was radiance 0.502, a texture's 0.216: a trial).
-  if (stores_encoded_colour(path)) {
-    const int colours = image.channels == 2 || image.channels == 4 ? image.channels - 1 : image.channels;
-    for (size_t i = 0; i < image.pixels.size(); ++i) {
-      if (int(i % size_t(image.channels)) < colours) image.pixels[i] = float(srgb_decode(image.pixels[i]));
-    }
-  }
+  Image image = read_linear_image(path);
   auto light = std::make_shared<EnvironmentLight>(std::move(image), scale, rotation);
   light->set_source(std::filesystem::absolute(path).string());
   return light;

@@ -2,6 +2,7 @@
 #include "refracta/shading/tonemap.h"
 
 #include "refracta/core/error.h"
+#include "refracta/scene/image_io.h"
 #include "refracta/shading/spectral.h"
 
 #include <algorithm>
@@ -318,5 +319,15 @@ float srgb_encode(float c) {
 }
 
 double srgb_decode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
+
+Image read_linear_image(const std::string& path) {
+  Image image = read_image(path);
+  if (!stores_encoded_colour(path)) return image;
+  const int colours = image.channels == 2 || image.channels == 4 ? image.channels - 1 : image.channels;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    if (int(i % size_t(image.channels)) < colours) image.pixels[i] = float(srgb_decode(image.pixels[i]));
+  }
+  return image;
+}
 
 }  // namespace refracta

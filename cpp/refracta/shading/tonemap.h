@@ -155,4 +155,9 @@ float tonemap(float radiance, float exposure, Tonemap mode);
 float srgb_encode(float linear);
 double srgb_decode(double encoded);
 
+// An image file's linear values (OIIO reads any format): 8- and 16-bit files hold sRGB-encoded
+// colour by convention (textures and environment maps decode it), decoded here, alpha (the 2nd
+// of 2 channels, the 4th of 4) as stored; float files as they are. Throws IoError.
+Image read_linear_image(const std::string& path);
+
 }  // namespace refracta
