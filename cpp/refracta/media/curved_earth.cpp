@@ -55,7 +55,7 @@ double CurvedEarth::straight_above() const {
 }
 
 Vec3d CurvedEarth::sky_direction(const Vec3d& p, const Vec3d& d) const {
-  const double rho = std::hypot(p.x(), p.z());
+  const double rho = std::sqrt(p.x() * p.x() + p.z() * p.z());
   if (!(rho > 0.0)) return d;
   const double phi = rho / radius_;
   const Vec3d out(p.x() / rho, 0.0, p.z() / rho);  // horizontal, away from the origin

@@ -103,7 +103,7 @@ PlaneState blend(const double* weights, const PlaneState* states, size_t count, 
     out.cos_e += weights[k] * states[k].cos_e;
     out.sin_e += weights[k] * states[k].sin_e;
   }
-  const double norm = std::hypot(out.cos_e, out.sin_e);
+  const double norm = std::sqrt(out.cos_e * out.cos_e + out.sin_e * out.sin_e);  // ~1: no hypot's care needed
   out.cos_e /= norm;
   out.sin_e /= norm;
   return out;

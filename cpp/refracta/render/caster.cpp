@@ -29,7 +29,7 @@ struct TurnedTablePath {
   // tol: lazy_path's (a path inside an exact interval is traced to it).
   TurnedTablePath(const ElevationTable& table, const Vec3d& eye, const Vec3d& dir, double tol)
       : plane(table.lazy_path(std::asin(std::clamp(dir.y(), -1.0, 1.0)), tol)), eye(eye) {
-    const double horizontal = std::hypot(dir.x(), dir.z());
+    const double horizontal = std::sqrt(dir.x() * dir.x() + dir.z() * dir.z());
     cx = horizontal > 0 ? dir.x() / horizontal : 1.0;
     cz = horizontal > 0 ? dir.z() / horizontal : 0.0;
   }
@@ -454,7 +454,7 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
     return std::nullopt;
   }
   const Vec3d t = v.normalized();
-  const double cos_e = std::hypot(t.x(), t.z());
+  const double cos_e = std::sqrt(t.x() * t.x() + t.z() * t.z());
   double n_x, dn, sin_x;
   layered_->evaluate_height(x.y(), &n_x, &dn);
   const BouguerBranch branch(*layered_, n_x * cos_e);
@@ -506,21 +506,24 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol, run_tol)) return std::nullopt;
   for (int it = 0; it < 6 && (!cannot_turn || std::abs(sin_h - sin_x) > 1e-2 * sin_x); ++it) {
     const double step = (remaining - length) * sin_h;
-    double step_run, step_length;
-    if (!branch.integrate(h, h + step, kMinSine, &step_run, &step_length)) return std::nullopt;
-    const double sign = step < 0.0 ? -1.0 : 1.0;  // integrate's panels are unsigned
-    run += sign * step_run, length += sign * step_length;
-    h += step;
-    if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
     // Converged once the step turns the exit direction by a hundredth of the pixel's stray or
     // less: a height change dh turns it by cos e dn dh / (n sin e) (Bouguer's invariant). Newton
     // converges quadratically, so what the next step would add is far smaller still. Over a
     // spherical Earth the step also moves the run, which turns the exit by run / R: about as much
     // again in the flat frame's air, so the stop is at ~2e-2 of the stray. Without a pixel
     // (spread 0): once the step's cos e dn dh is below 1e-12 (1e-9 rad at the least sin e, 1e-3).
+    // That last step is taken along the direction at h (its run and length off by the step's
+    // turn times the step, far inside the tolerances) instead of integrated: one panel less.
     const double cos_h = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
     const double turn_tol = 1e-2 * options_.sagitta_pixels * spread * n * sin_h;
-    if (std::abs(step * dn) * cos_h < std::max(1e-12, turn_tol)) break;
+    const bool last = std::abs(step * dn) * cos_h < std::max(1e-12, turn_tol);
+    double step_run = std::abs(step) * cos_h / sin_h, step_length = std::abs(step) / sin_h;
+    if (!last && !branch.integrate(h, h + step, kMinSine, &step_run, &step_length)) return std::nullopt;
+    const double sign = step < 0.0 ? -1.0 : 1.0;  // integrate's panels are unsigned
+    run += sign * step_run, length += sign * step_length;
+    h += step;
+    if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
+    if (last) break;
   }
   const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;
@@ -542,7 +545,7 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   constexpr double kMinSine = 0.01;
   if (!floors_ || !layered_ || dir.y() == 0.0) return std::nullopt;
   const Vec3d t = dir.normalized();
-  const double cos_e0 = std::hypot(t.x(), t.z());
+  const double cos_e0 = std::sqrt(t.x() * t.x() + t.z() * t.z());
   double n0, dn0;
   layered_->evaluate_height(origin.y(), &n0, &dn0);
   const double beta = n0 * cos_e0;
@@ -575,7 +578,7 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
     BouguerBranch::Stretch stretch;
     if (!branch.at(h + up * step, kMinSine, &n, &dn, &sin_b)) return std::nullopt;
     if (!branch.integrate(h, sin_e, h + up * step, sin_b, kMinSine, &stretch)) return std::nullopt;
-    const double chord = std::hypot(stretch.run, step);
+    const double chord = std::sqrt(stretch.run * stretch.run + step * step);
     const double tolerance = std::max(options_.sagitta, per_metre * (s0 + s));
     const bool straight = stretch.error <= 0.1 * tolerance && 0.25 * chord * stretch.turning <= tolerance &&
                           chord <= options_.chord;

@@ -116,7 +116,7 @@ bool Caster::straight_rest(const Vec3d& x, const Vec3d& v, double s, double rema
   if (!(direction_error <= per_metre)) return false;
   if (legs_ && first_entry(regions_, x, t, length)) return false;  // a region bends it: cast in legs
   // Bouguer's invariant: the direction at height h, the sign of the elevation kept.
-  const double cos_e0 = std::hypot(t.x(), t.z());
+  const double cos_e0 = std::sqrt(t.x() * t.x() + t.z() * t.z());
   const Vec3d across = cos_e0 > 0.0 ? Vec3d(t.x() / cos_e0, 0.0, t.z() / cos_e0) : Vec3d(1.0, 0.0, 0.0);
   auto direction_at = [&](double h) -> Vec3d {
     if (!keeps_sign) return t;
