@@ -166,10 +166,11 @@ storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation 
 (published_bias, published_bias_vector).)doc";
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings_bias[] = R"doc(alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None) gives
 published_bias(depth_range, storage).)doc";
-inline constexpr const char mkd_doc_refracta_MomentShadowSettings_bias_vector[] = R"doc(b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range).)doc";
+inline constexpr const char mkd_doc_refracta_MomentShadowSettings_bias_vector[] = R"doc(b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range, storage).)doc";
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings_published_bias[] = R"doc(The published strengths: 3e-6 (unit) / 3e-7 (signed) for fp32 and fp64 (Peters & Klein 2015 sec. 5;
 Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5 (MOMENTS.md 2.5).)doc";
-inline constexpr const char mkd_doc_refracta_MomentShadowSettings_published_bias_vector[] = R"doc((0.5, 0.5, 0.5, 0.5) for unit depths, (0, 0.375, 0, 0.375) for signed ones.)doc";
+inline constexpr const char mkd_doc_refracta_MomentShadowSettings_published_bias_vector[] = R"doc((0.5, 0.5, 0.5, 0.5) for unit depths; for signed ones (0, 0.375, 0, 0.375), and with 16-bit storage
+(the sparse quantisation) (0, 0.628, 0, 0.628) (Peters et al. 2017; MOMENTS.md 2.2).)doc";
 inline constexpr const char mkd_doc_refracta_ObjOptions[] = R"doc(How add_obj (Scene.add_obj) places an OBJ file and finds its textures.)doc";
 inline constexpr const char mkd_doc_refracta_OceanWaves[] = R"doc(A wind sea's waves on a periodic square patch (scene/ocean_waves.h): a height field synthesised by
 FFT from the Phillips spectrum, as Tessendorf 2001 ("Simulating Ocean Water") does,

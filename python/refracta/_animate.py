@@ -398,8 +398,16 @@ def _write_gif(path, frames, fps, exposure, tonemap):
     import PIL.Image
 
     images = [PIL.Image.fromarray(f) for f in _display_bytes(frames, exposure, tonemap)]
-    delay = 10 * max(2, round(100.0 / fps))  # [ms], whole hundredths (animate checked fps <= _GIF_FASTEST)
-    images[0].save(path, save_all=True, append_images=images[1:], duration=delay, loop=0)
+    images[0].save(path, save_all=True, append_images=images[1:], duration=_gif_delays(len(images), fps), loop=0)
+
+
+def _gif_delays(count: int, fps: float) -> list[int]:
+    """Each frame's delay [ms]: a GIF keeps whole hundredths of a second, so each frame ends at its
+    time rounded to one (24 fps: 40, 40, 50, 40, 40, 50 ... ms), and the animation runs at `fps` on
+    average instead of at the nearest whole delay's rate (25 fps); at least 20 ms each (animate
+    checked fps <= _GIF_FASTEST)."""
+    ends = [round((i + 1) * 100.0 / fps) for i in range(count)]
+    return [10 * max(2, end - start) for start, end in zip([0] + ends[:-1], ends)]
 
 
 def _write_mp4(path, frames, fps, exposure, tonemap):

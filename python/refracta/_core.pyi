@@ -1490,9 +1490,10 @@ class MomentShadowSettings:
         Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5 (MOMENTS.md 2.5).
         """
     @staticmethod
-    def published_bias_vector(depth_range: str) -> typing.Any:
+    def published_bias_vector(depth_range: str, storage: str = 'fp32') -> typing.Any:
         """
-        (0.5, 0.5, 0.5, 0.5) for unit depths, (0, 0.375, 0, 0.375) for signed ones.
+        (0.5, 0.5, 0.5, 0.5) for unit depths; for signed ones (0, 0.375, 0, 0.375), and with 16-bit storage
+        (the sparse quantisation) (0, 0.628, 0, 0.628) (Peters et al. 2017; MOMENTS.md 2.2).
         """
     def __eq__(self, arg0: typing.Any) -> typing.Any:
         ...
@@ -1524,7 +1525,7 @@ class MomentShadowSettings:
     @property
     def bias_vector(self) -> typing.Any:
         """
-        b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range).
+        b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range, storage).
         """
     @bias_vector.setter
     def bias_vector(self, arg1: typing.Any) -> None:
@@ -3265,6 +3266,8 @@ class LightSampler:
     def __init__(self, lights: collections.abc.Sequence[Light], strategy: str = 'power') -> None:
         ...
     def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...

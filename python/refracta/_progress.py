@@ -24,6 +24,7 @@ class _Text(tqdm.std.tqdm):
 
 
 _FEW = "{l_bar}{bar}| {n_fmt}/{total_fmt} [{elapsed}<{remaining}]"
+_SHARE = "{l_bar}{bar}| [{elapsed}<{remaining}]"
 
 
 class ProgressBar:
@@ -33,10 +34,12 @@ class ProgressBar:
     stream: draw a text bar into this file instead (tqdm's ``file``); by default tqdm.auto chooses
     a Jupyter widget or stderr. quiet_seconds: draw nothing until the work has run this long, from
     this object's creation (tqdm's ``delay``): work that ends sooner leaves no trace, e.g. a model
-    whose textures are already prepared."""
+    whose textures are already prepared. share: done / total is a share of the work, not a count
+    of items (a solve's budget used): the bar shows the percentage alone."""
 
-    def __init__(self, label: str, stream=None, quiet_seconds: float = 0.0):
+    def __init__(self, label: str, stream=None, quiet_seconds: float = 0.0, share: bool = False):
         self.label = label
+        self.share = share
         self.stream = stream
         self.quiet_seconds = quiet_seconds
         self.start = time.monotonic()
@@ -51,7 +54,13 @@ class ProgressBar:
             delay = max(0.0, self.quiet_seconds - (time.monotonic() - self.start))
             # Thousands of items: counts and rate in SI units (80k/153k, 7.6Mit/s); a few: the counts
             # alone, as a rate of items ended in microseconds reads 7577944.20it/s.
-            shape = {"unit_scale": True} if total >= 1000 else {"bar_format": _FEW}
+            shape = (
+                {"bar_format": _SHARE}
+                if self.share
+                else {"unit_scale": True}
+                if total >= 1000
+                else {"bar_format": _FEW}
+            )
             if self.stream is None:
                 self.bar = _Widget(total=total, desc=self.label, delay=delay, **shape)
             else:
@@ -68,12 +77,12 @@ class ProgressBar:
 ProgressArg = Union[bool, Callable[[int, int], None], None]
 
 
-def progress_callback(progress: ProgressArg, label: str) -> Callable[[int, int], None] | None:
-    """The callback for a progress= argument: a ProgressBar(label) for True, None for False or None,
+def progress_callback(progress: ProgressArg, label: str, share: bool = False) -> Callable[[int, int], None] | None:
+    """The callback for a progress= argument: a ProgressBar(label, share=share) for True, None for False or None,
     the callable itself; ValueError for anything else (a string reached C++ and failed there as
     "'str' object is not callable")."""
     if progress is None or is_flag(progress):  # numpy's bools as Python's
-        return ProgressBar(label) if progress else None
+        return ProgressBar(label, share=share) if progress else None
     if not callable(progress):
         raise ValueError(f"progress must be True, False or a callable progress(done, total) (got {progress!r})")
     return progress

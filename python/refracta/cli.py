@@ -539,7 +539,7 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     """Solve the scene's atmosphere for the pairs file; write the scene with the solved atmosphere."""
     import refracta
     from refracta import edit
-    from refracta.scene_file import read_scene_text, with_atmosphere
+    from refracta.scene_file import read_scene_text, relocate, with_atmosphere
 
     _check_output(output, scene_file=True)
     loaded = refracta.load_scene(scene_path)
@@ -554,7 +554,9 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     result = edit.solve(field, camera, pairs, progress=True, **options)
     print(result.report())
     # The solved field carries the file's turbulence (if any): written with its settings again.
-    output.write_text(with_atmosphere(read_scene_text(scene_path), result.field, loaded.turbulence))
+    # Its file names rewritten to name the same files from the output's folder.
+    text = with_atmosphere(read_scene_text(scene_path), result.field, loaded.turbulence)
+    output.write_text(relocate(text, Path(scene_path).absolute().parent, Path(output).absolute().parent))
     if result.success:
         print(f"wrote {output}")
         return 0

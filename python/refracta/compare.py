@@ -94,7 +94,7 @@ def shadows(
                     "seconds": counts.seconds,
                 }
             )
-            images[(method, kernel)] = (image, truth)
+            images[(method, kernel)] = (image, truth, fields.get("kernel"))
     fig = _figure(images, methods, max(kernels)) if figure else None
     return rows, fig
 
@@ -199,9 +199,9 @@ def _figure(images, methods, kernel):
 
     fig, axes = plt.subplots(2, len(methods), figsize=(3.2 * len(methods), 4.6), squeeze=False, constrained_layout=True)
     for column, method in enumerate(methods):
-        image, truth = images[(method, kernel)]
+        image, truth, used = images[(method, kernel)]  # used: the kernel it took (None: it takes none)
         axes[0, column].imshow(image[..., 0], cmap="gray_r", vmin=0, vmax=1)
-        axes[0, column].set_title(f"{method} {kernel}x{kernel}", fontsize=9)
+        axes[0, column].set_title(method if used is None else f"{method} {used}x{used}", fontsize=9)
         error = np.where(image[..., 1] > 0, image[..., 0] - truth[..., 0], 0.0)
         shown = axes[1, column].imshow(error, cmap="RdBu_r", vmin=-0.5, vmax=0.5)
         axes[1, column].set_title("error (red: too dark)", fontsize=8)
@@ -213,22 +213,23 @@ def _figure(images, methods, kernel):
 
 def format_table(rows: Sequence[dict]) -> str:
     """The rows of shadows() or transparency() as aligned text."""
+    name = max([14] + [len(r["method"]) for r in rows])  # the widest method's name sets the column
     if rows and "kernel" not in rows[0]:
-        lines = [f"{'method':14s} {'mean':>8s} {'p99':>8s} {'NaN':>4s} {'bytes/px':>9s} {'time [s]':>8s}"]
+        lines = [f"{'method':{name}s} {'mean':>8s} {'p99':>8s} {'NaN':>4s} {'bytes/px':>9s} {'time [s]':>8s}"]
         for r in rows:
             lines.append(
-                f"{r['method']:14s} {r['mean_error']:8.4f} {r['p99_error']:8.4f} {r['nan_count']:4d} "
+                f"{r['method']:{name}s} {r['mean_error']:8.4f} {r['p99_error']:8.4f} {r['nan_count']:4d} "
                 f"{r['bytes_per_pixel']:9.1f} {r['seconds']:8.3f}"
             )
         return "\n".join(lines)
     header = (
-        f"{'method':14s} {'kernel':>6s} {'reference':>10s} {'mean':>8s} {'p99':>8s} {'leak':>7s} "
+        f"{'method':{name}s} {'kernel':>6s} {'reference':>10s} {'mean':>8s} {'p99':>8s} {'leak':>7s} "
         f"{'over':>7s} {'NaN':>4s} {'bits':>5s} {'time [s]':>8s}"
     )
     lines = [header]
     for r in rows:
         lines.append(
-            f"{r['method']:14s} {r['kernel']:6d} {r['reference']:>10s} {r['mean_error']:8.4f} "
+            f"{r['method']:{name}s} {r['kernel']:6d} {r['reference']:>10s} {r['mean_error']:8.4f} "
             f"{r['p99_error']:8.4f} {r['light_leak']:7.4f} {r['over_shadow']:7.4f} {r['nan_count']:4d} "
             f"{r['bits_per_texel']:5d} {r['seconds']:8.3f}"
         )

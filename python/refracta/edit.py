@@ -298,6 +298,12 @@ class EditResult:
             + (f" ({self.starts} starts)" if self.starts > 1 else ""),
             "  pair  weight  miss before [m]  miss after [m]  margin [m]  met  range [m]",
         ]
+        if self.settings.loss != "none":  # two measures: say which is which
+            lines.insert(
+                2,
+                f"  (cost: plain, 1/2 sum w (miss - margin)^2; the solver minimised its {self.settings.loss} loss "
+                f"at scale {self.settings.loss_scale:g} m, which `history` holds)",
+            )
         margins = self.margins if len(self.margins) == len(self.pairs) else np.zeros(len(self.pairs))
         met = self.met if len(self.met) == len(self.pairs) else np.zeros(len(self.pairs), dtype=bool)
         for i, pair in enumerate(self.pairs):
@@ -451,7 +457,7 @@ def solve(
         eye_or_camera, pairs, settings.pixel_tolerance
     )
     bounds = _bounds_of(bounds)
-    callback = progress_callback(progress, f"editing ({settings.backend})")
+    callback = progress_callback(progress, f"editing ({settings.backend})", share=True)  # the budget's share used
     initial = _core._pair_distances(field, origins, directions, sources, pair_options)
     summary = _core._solve_edit(
         field,

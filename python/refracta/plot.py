@@ -209,10 +209,27 @@ def edit_report(result, figsize=(12.0, 4.2), figure=None):
     ax_paths.set_title(f"{result.field.type_name}: paths before (dashed) and after (solid)")
     ax_paths.legend(fontsize=8, loc="best")
 
-    history = np.maximum(np.asarray(result.history, dtype=float), np.finfo(float).tiny)
-    ax_cost.semilogy(np.arange(len(history)), history, color="tab:blue")
-    ax_cost.set_xlabel("iteration" if result.backend == "ceres" else "evaluation")
-    ax_cost.set_ylabel("cost [m²]")
+    # The history is the run that gave the result (the last local solve of a staged one), in the
+    # measure the solver minimised (with a robust loss, not the plain cost): the start's plain cost
+    # is marked beside it, so the whole descent shows.
+    tiny = np.finfo(float).tiny
+    history = np.maximum(np.asarray(result.history, dtype=float), tiny)
+    step = "iteration" if result.backend == "ceres" else "evaluation"
+    staged = len(result.stages) > 1
+    ax_cost.semilogy(
+        np.arange(1, len(history) + 1),
+        history,
+        color="tab:blue",
+        label=f"last local solve, per {step}" if staged else None,
+    )
+    ax_cost.semilogy([0], [max(result.initial_cost, tiny)], "o", color="crimson", label="start (plain cost)")
+    ax_cost.semilogy(
+        [len(history)], [max(result.cost, tiny)], "s", color="tab:green", mfc="none", label="result (plain)"
+    )
+    ax_cost.legend(fontsize=8, loc="best")
+    ax_cost.set_xlabel(f"{step} of the last local solve" if staged else step)
+    loss = result.settings.loss
+    ax_cost.set_ylabel("cost [m²]" if loss == "none" else f"cost [m²] ({loss} loss in the curve)")
     ax_cost.set_title(f"{result.backend}: {'success' if result.success else 'failed'}")
     ax_cost.grid(True, which="both", alpha=0.3)
     return figure

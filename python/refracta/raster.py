@@ -9,7 +9,7 @@ tiles over threads -- into a visibility buffer. The renderers use the same code
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -25,10 +25,10 @@ class RasterBuffers:
     (-1 where empty); barycentric (H, W, 3) float32 weights of the triangle's vertices; offset:
     (x, y) of the camera image's pixel (0, 0) inside the buffers (the guard band); counts."""
 
-    depth: np.ndarray
-    geometry: np.ndarray
-    primitive: np.ndarray
-    barycentric: np.ndarray
+    depth: np.ndarray = field(repr=False)
+    geometry: np.ndarray = field(repr=False)
+    primitive: np.ndarray = field(repr=False)
+    barycentric: np.ndarray = field(repr=False)
     offset: tuple
     triangles: int
     screen_triangles: int

@@ -1099,7 +1099,7 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
     replaced by `table`, at the place of the first of them; without them, `table` is put first
     (`first`) or last. Everything else, comments included, is kept; a byte-order mark (a text read
     without encoding="utf-8-sig") is dropped, or the first header would go unseen."""
-    text = text.removeprefix("\ufeff")
+    text = _without_root_keys(text.removeprefix("\ufeff"), name)
     lines = text.splitlines(keepends=True)
     headers = {i: match.group(1) for i, line in enumerate(lines) if (match := _HEADER.match(line))}
     starts = list(headers)
@@ -1120,6 +1120,87 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
     rest = "".join(lines[previous:])
     # The new table where the first old one was; the others' lines dropped (with the blank lines after them).
     return kept[0] + table + "\n" + "".join(part.lstrip("\n") for part in kept[1:] + [rest])
+
+
+def _without_root_keys(text: str, name: str) -> str:
+    """`text` without the lines before its first table header that define table `name` as a key
+    (``name = { ... }``, an inline table, or dotted ``name.key = ...``): _with_table replaces the
+    table, so such a line would define it twice (tomllib: "Cannot declare ('atmosphere',) twice").
+    ValueError where such a definition spans lines (a multi-line array inside it)."""
+    key = re.compile(rf"^\s*(?:{re.escape(name)}|\"{re.escape(name)}\"|'{re.escape(name)}')\s*[=.]")
+    lines = text.splitlines(keepends=True)
+    kept = []
+    for number, line in enumerate(lines, 1):
+        if _HEADER.match(line):
+            return "".join(kept + lines[number - 1 :])
+        if key.match(line):
+            try:
+                tomllib.loads(line)
+            except tomllib.TOMLDecodeError:
+                raise ValueError(
+                    f"line {number}: {name} is written over several lines there; write it as a table under a "
+                    f"[{name}] header so that it can be replaced"
+                ) from None
+            continue
+        kept.append(line)
+    return "".join(kept)
+
+
+def relocate(text: str, source, target) -> str:
+    """A scene file's text with its relative file names (objects' `file` and `texture`, materials'
+    `texture`, [environment] `file`, [sky] `environment`) rewritten so that they name the same
+    files when the text is saved in folder `target` instead of folder `source` (the folder the
+    names are relative to: the file's own). Names that cannot be made relative (another drive)
+    become absolute; absolute names are kept. Everything else, comments included, is kept.
+
+    Raises:
+        ValueError: a file name written so that it cannot be rewritten in place (e.g. a quoted key).
+    """
+    source, target = Path(os.fspath(source)), Path(os.fspath(target))
+    if source.resolve() == target.resolve():
+        return text
+
+    def moved(name: str) -> str:
+        if not name or Path(name).is_absolute():
+            return name  # a billboard's "" (no image) too
+        full = os.path.normpath(os.path.abspath(source / name))
+        try:
+            return Path(os.path.relpath(full, os.path.abspath(target))).as_posix()
+        except ValueError:  # another drive
+            return Path(full).as_posix()
+
+    def rewritten(match: re.Match) -> str:
+        return match["key"] + _toml_value(moved(tomllib.loads("v = " + match["value"])["v"]))
+
+    out = _FILE_VALUE.sub(rewritten, text)
+    try:
+        expected = sorted(moved(name) for name in _file_names(tomllib.loads(text)))
+        found = sorted(_file_names(tomllib.loads(out)))
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"relocate: the text is not TOML: {error}") from None
+    if expected != found:
+        missed = sorted(set(expected) - set(found))
+        raise ValueError(f"relocate: cannot rewrite the file name(s) {missed} where they are written")
+    return out
+
+
+# A file name's key and its string value, as a scene file writes them (relocate).
+_FILE_VALUE = re.compile(r"""(?P<key>\b(?:file|texture|environment)\s*=\s*)(?P<value>"(?:[^"\\\n]|\\.)*"|'[^'\n]*')""")
+
+
+def _file_names(data) -> list[str]:
+    """Every string under a file-name key (relocate's) in parsed TOML, at any depth."""
+    names: list[str] = []
+    if isinstance(data, dict):
+        for key, value in data.items():
+            if key in ("file", "texture", "environment") and isinstance(value, str):
+                names.append(value)
+            else:
+                names += _file_names(value)
+    elif isinstance(data, list):
+        for value in data:
+            names += _file_names(value)
+    return names
 
 
 def with_atmosphere(text: str, field: _core.IndexField | None, turbulence=None) -> str:

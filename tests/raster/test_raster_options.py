@@ -59,6 +59,9 @@ def test_unset_biases_are_the_published_ones():
     assert settings.bias is None and settings.bias_vector is None
     assert refracta.MomentShadowSettings.published_bias("unit", "fp32") == 3e-6
     assert refracta.MomentShadowSettings.published_bias_vector("signed") == (0.0, 0.375, 0.0, 0.375)
+    # JCGT 2017's 16-bit sparse quantisation pairs 6e-5 with its own vector (MOMENTS.md 2.2).
+    assert refracta.MomentShadowSettings.published_bias_vector("signed", "unorm16") == (0.0, 0.628, 0.0, 0.628)
+    assert refracta.MomentShadowSettings.published_bias_vector("unit", "unorm16") == (0.5, 0.5, 0.5, 0.5)
     assert refracta.MboitSettings.published_bias("power", 4, "unorm16") == 6e-5
     with pytest.raises(ValueError, match="storage must be 'fp32' or 'unorm16'"):
         refracta.MboitSettings(storage="fp64")

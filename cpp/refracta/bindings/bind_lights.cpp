@@ -228,8 +228,16 @@ void bind_lights(py::module_& m) {
              return py::make_tuple(py::array_t<long long>(py::ssize_t(chosen.index.size()), chosen.index.data()),
                                    values_to_array(chosen.probability));
            }, py::arg("u"), "(index (N,) int, probability (N,)) for u (N,) in [0, 1).")
-      .def("pmf", &LightSampler::pmf, py::arg("index"))
-      .def("__len__", &LightSampler::size);
+      .def("pmf",
+           [](const LightSampler& s, long long index) {
+             if (index < 0) throw_invalid("pmf: index must be >= 0 (got ", index, ")");
+             return s.pmf(size_t(index));
+           },
+           py::arg("index"))
+      .def("__len__", &LightSampler::size)
+      .def("__repr__", [](const LightSampler& s) {
+        return concat("LightSampler(", s.size(), " lights, strategy='", LightSampler::strategy_name(s.strategy()), "')");
+      });
   def_state_pickle(
       sampler, "LightSampler", 2, [](const LightSampler& s) { return py::make_tuple(s.lights(), int(s.strategy())); },
       [](const py::tuple& t) {

@@ -47,10 +47,11 @@ void bind_moment_shadow_settings(py::module_& m) {
           py::arg("depth_range"), py::arg("storage"), DOC(refracta, MomentShadowSettings, published_bias))
       .def_static(
           "published_bias_vector",
-          [](const std::string& range) {
-            return optional_tuple(std::optional(S::published_bias_vector(parse_depth_range(range))));
+          [](const std::string& range, const std::string& storage) {
+            return optional_tuple(std::optional(S::published_bias_vector(parse_depth_range(range), parse_storage(storage))));
           },
-          py::arg("depth_range"), DOC(refracta, MomentShadowSettings, published_bias_vector));
+          py::arg("depth_range"), py::arg("storage") = storage_name(S{}.storage),
+          DOC(refracta, MomentShadowSettings, published_bias_vector));
 }
 
 void bind_shadow_map_options(py::module_& m) {

@@ -109,6 +109,11 @@ EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const Pro
     upper_.push_back(hi);
     log_scaled_.push_back(lo > 0.0 && hi >= kLogScaleRatio * lo);
   }
+  if (free_.empty() && field_count_ == 0) {
+    throw_invalid("no free parameters: this ", field_->type_name(), " has no parameters to solve for (",
+                  rig_ ? "only the camera's: free=['camera_yaw', ...]" : "and without a camera none of the camera's",
+                  "); a model such as PhysicalAtmosphere has them");
+  }
   if (free_.empty()) throw_invalid("no free parameters: name at least one in free");
   spec_.free = names;
   costs_ = make_pair_costs(field_, values_, free_, pairs_, options_, derivatives_, rig_, context_.get());

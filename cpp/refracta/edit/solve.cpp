@@ -441,7 +441,10 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
   out.success = unmet.empty() && (settings.strategy == SolveStrategy::kAuto || result.converged);
   out.message = result.message;
   while (!out.message.empty() && out.message.back() == '.') out.message.pop_back();
-  if (!out.stopped_by.empty()) out.message += concat(". The solve was stopped by the ", out.stopped_by);
+  // (Unless the back-end's own message says so already: "stopped by the time limit" twice.)
+  const std::string stop = concat("stopped by the ", out.stopped_by);
+  const bool said = out.message.size() >= stop.size() && out.message.compare(out.message.size() - stop.size(), stop.size(), stop) == 0;
+  if (!out.stopped_by.empty() && !said) out.message += concat(". The solve was ", stop);
   if (!unmet.empty()) {
     out.message += concat(". Not every pair is met: ", unmet,
                           ". None of the atmospheres the solve tried within these free parameters' bounds puts "

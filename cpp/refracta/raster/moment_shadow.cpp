@@ -29,8 +29,9 @@ double MomentShadowSettings::published_bias(DepthRange range, Storage storage) {
   return is_signed ? 3e-7 : 3e-6;
 }
 
-Moments4 MomentShadowSettings::published_bias_vector(DepthRange range) {
-  return range == DepthRange::kSigned ? Moments4{0.0, 0.375, 0.0, 0.375} : Moments4{0.5, 0.5, 0.5, 0.5};
+Moments4 MomentShadowSettings::published_bias_vector(DepthRange range, Storage storage) {
+  if (range != DepthRange::kSigned) return Moments4{0.5, 0.5, 0.5, 0.5};
+  return storage == Storage::kUnorm16 ? Moments4{0.0, 0.628, 0.0, 0.628} : Moments4{0.0, 0.375, 0.0, 0.375};
 }
 
 void MomentShadowSettings::check(Problems& problems) const {

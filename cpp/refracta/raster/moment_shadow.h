@@ -31,16 +31,17 @@ struct MomentShadowSettings {
   // alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None) gives
   // published_bias(depth_range, storage).
   std::optional<double> bias;
-  // b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range).
+  // b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range, storage).
   std::optional<Moments4> bias_vector;
 
   // The published strengths: 3e-6 (unit) / 3e-7 (signed) for fp32 and fp64 (Peters & Klein 2015
   // sec. 5; Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5 (MOMENTS.md 2.5).
   static double published_bias(DepthRange range, Storage storage);
-  // (0.5, 0.5, 0.5, 0.5) for unit depths, (0, 0.375, 0, 0.375) for signed ones.
-  static Moments4 published_bias_vector(DepthRange range);
+  // (0.5, 0.5, 0.5, 0.5) for unit depths; for signed ones (0, 0.375, 0, 0.375), and with 16-bit
+  // storage (the sparse quantisation) (0, 0.628, 0, 0.628) (Peters et al. 2017; MOMENTS.md 2.2).
+  static Moments4 published_bias_vector(DepthRange range, Storage storage);
   double bias_or_published() const { return bias ? *bias : published_bias(depth_range, storage); }
-  Moments4 bias_vector_or_published() const { return bias_vector ? *bias_vector : published_bias_vector(depth_range); }
+  Moments4 bias_vector_or_published() const { return bias_vector ? *bias_vector : published_bias_vector(depth_range, storage); }
 
   void check(Problems& problems) const;  // adds every bad field
   void validate() const;                 // throws std::invalid_argument listing them all

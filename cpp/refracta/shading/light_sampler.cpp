@@ -15,6 +15,15 @@ LightSampler::Strategy LightSampler::strategy_from(const std::string& name) {
   throw_invalid("LightSampler: strategy must be 'power', 'uniform' or 'kind' (got '", name, "')");
 }
 
+const char* LightSampler::strategy_name(Strategy strategy) {
+  switch (strategy) {
+    case Strategy::kPower: return "power";
+    case Strategy::kUniform: return "uniform";
+    case Strategy::kKind: return "kind";
+  }
+  return "?";
+}
+
 LightSampler::LightSampler(std::vector<LightPtr> lights, Strategy strategy)
     : lights_(std::move(lights)), strategy_(strategy) {
   std::vector<double> weights(lights_.size(), 1.0);

@@ -36,6 +36,7 @@ class LightSampler {
   enum class Strategy { kPower, kUniform, kKind };
   // 'power', 'uniform' or 'kind' (ValueError otherwise).
   static Strategy strategy_from(const std::string& name);
+  static const char* strategy_name(Strategy strategy);
   // lights must not hold null pointers (throws std::invalid_argument).
   explicit LightSampler(std::vector<LightPtr> lights, Strategy strategy = Strategy::kPower);
 

@@ -116,23 +116,69 @@ def _directions(theta: np.ndarray, phi: np.ndarray) -> np.ndarray:
     return np.stack([sin_theta * np.cos(phi), sin_theta * np.sin(phi), np.cos(theta)], axis=-1)
 
 
-def _integrate_cells(pdf: Callable[[np.ndarray], np.ndarray], res_theta: int, res_phi: int, order: int) -> np.ndarray:
-    """Integral of pdf over every (theta, phi) cell by order x order Gauss-Legendre."""
+def _gauss_cells(pdf, bounds: np.ndarray, order: int) -> np.ndarray:
+    """Integral of pdf over each (theta0, theta1, phi0, phi1) row of `bounds` (M, 4) by order x
+    order Gauss-Legendre (sin theta dtheta dphi)."""
     x, w = np.polynomial.legendre.leggauss(order)
-    dt, dphi = np.pi / res_theta, 2.0 * np.pi / res_phi
-    t0 = dt * np.arange(res_theta)
-    p0 = -np.pi + dphi * np.arange(res_phi)
-    t = (t0[:, None] + 0.5 * dt * (1.0 + x)[None, :]).reshape(-1)  # (res_theta * order,)
-    p = (p0[:, None] + 0.5 * dphi * (1.0 + x)[None, :]).reshape(-1)
-    tt, pp = np.meshgrid(t, p, indexing="ij")
-    dirs = _directions(tt.reshape(-1), pp.reshape(-1))
+    half_t = 0.5 * (bounds[:, 1] - bounds[:, 0])
+    half_p = 0.5 * (bounds[:, 3] - bounds[:, 2])
+    t = bounds[:, 0, None] + half_t[:, None] * (1.0 + x)[None, :]  # (M, order)
+    p = bounds[:, 2, None] + half_p[:, None] * (1.0 + x)[None, :]
+    tt = np.broadcast_to(t[:, :, None], (len(bounds), order, order)).reshape(-1)
+    pp = np.broadcast_to(p[:, None, :], (len(bounds), order, order)).reshape(-1)
+    dirs = _directions(tt, pp)
     dirs /= np.linalg.norm(dirs, axis=1, keepdims=True)
     values = np.asarray(pdf(dirs), dtype=np.float64)
     if not np.all(np.isfinite(values)) or np.any(values < 0):
         raise ValueError("the density returned negative or non-finite values")
-    values = (values * np.sin(tt.reshape(-1))).reshape(res_theta, order, res_phi, order)
-    weights = np.einsum("i,j->ij", w, w) * (0.25 * dt * dphi)
-    return np.einsum("aibj,ij->ab", values, weights)
+    values = (values * np.sin(tt)).reshape(len(bounds), order, order)
+    return np.einsum("mij,i,j->m", values, w, w) * half_t * half_p
+
+
+# Halvings of a cell's sides at most (2^-10 of a 3.75 deg cell: 0.2 arcsec), and the cells split
+# at once at most: a density sharper than that is accepted at its last level.
+_MAX_DEPTH = 10
+_MAX_SPLIT = 200_000
+
+
+def _integrate_cells(
+    pdf: Callable[[np.ndarray], np.ndarray], res_theta: int, res_phi: int, order: int, samples: int = 0
+) -> np.ndarray:
+    """Integral of pdf over every (theta, phi) cell by order x order Gauss-Legendre, adaptive: a
+    cell (or part) where twice the order disagrees by more than a tenth of its expected count's
+    standard deviation for `samples` draws (sqrt(N I) / N; at least 1e-9 of the whole) is split
+    into four, down to _MAX_DEPTH halvings. A lobe narrower than the cells (a clearcoat's GGX
+    alpha of 0.001 in 3.75 deg cells) is then integrated, not missed between the nodes."""
+    dt, dphi = np.pi / res_theta, 2.0 * np.pi / res_phi
+    ti, pi = np.meshgrid(np.arange(res_theta), np.arange(res_phi), indexing="ij")
+    t0, p0 = (dt * ti).reshape(-1), (-np.pi + dphi * pi).reshape(-1)
+    bounds = np.stack([t0, t0 + dt, p0, p0 + dphi], axis=1)
+    owner = np.arange(len(bounds))
+    share = np.ones(len(bounds))  # each part's share of its cell's tolerance
+    total = np.zeros(len(bounds))
+    per_draw = 1.0 / max(samples, 1)
+    for depth in range(_MAX_DEPTH + 1):
+        coarse, fine = _gauss_cells(pdf, bounds, order), _gauss_cells(pdf, bounds, 2 * order)
+        allowed = np.maximum(0.1 * np.sqrt(np.maximum(fine, per_draw) * per_draw), 1e-9) * share
+        split = np.abs(fine - coarse) > allowed
+        if depth == _MAX_DEPTH or np.count_nonzero(split) * 4 > _MAX_SPLIT:
+            split[:] = False
+        np.add.at(total, owner[~split], fine[~split])
+        if not split.any():
+            break
+        b = bounds[split]
+        mt, mp = 0.5 * (b[:, 0] + b[:, 1]), 0.5 * (b[:, 2] + b[:, 3])
+        bounds = np.concatenate(
+            [
+                np.stack([b[:, 0], mt, b[:, 2], mp], 1),
+                np.stack([b[:, 0], mt, mp, b[:, 3]], 1),
+                np.stack([mt, b[:, 1], b[:, 2], mp], 1),
+                np.stack([mt, b[:, 1], mp, b[:, 3]], 1),
+            ]
+        )
+        owner = np.tile(owner[split], 4)
+        share = np.tile(share[split] / 4.0, 4)
+    return total.reshape(res_theta, res_phi)
 
 
 def test_sampler(
@@ -173,7 +219,7 @@ def test_sampler(
     ip = np.clip(((phi + np.pi) / (2.0 * np.pi) * res_phi).astype(int), 0, res_phi - 1)
     observed = np.zeros((res_theta, res_phi))
     np.add.at(observed, (it, ip), 1.0)
-    integral = _integrate_cells(pdf, res_theta, res_phi, integration_order)
+    integral = _integrate_cells(pdf, res_theta, res_phi, integration_order, samples)
     expected = integral * samples
     # One more cell: the samples the density does not cover (failed or delta).
     obs = np.append(observed.reshape(-1), samples - len(directions))

@@ -42,6 +42,7 @@ from __future__ import annotations
 import io as _io
 import logging
 import math
+import os
 import threading
 import warnings
 from collections.abc import Sequence
@@ -55,6 +56,7 @@ from refracta import _checks, _core
 from refracta import io as _image_io
 from refracta._rays import without_refraction
 from refracta._render import render
+from refracta.scene_file import relocate
 from refracta.widgets import camera_moves, files
 from refracta.widgets.jobs import Job, JobRunner
 
@@ -118,6 +120,7 @@ class _Snapshot:
     label: str
     scene: _core.Scene
     scene_text: str | None
+    scene_folder: Path | None
     camera: _core.Camera
     field: _core.IndexField
     turbulence: Turbulence | None
@@ -125,6 +128,21 @@ class _Snapshot:
     free: tuple[str, ...] | None
     result: EditResult | None
     fan_png: bytes | None
+
+
+def _json_value(value):
+    """`value` as JSON holds it (tuples as lists, numpy numbers as Python's), or None where it cannot."""
+    if isinstance(value, (bool, str)) or value is None:
+        return value
+    if _checks.is_number(value):
+        return value.item() if isinstance(value, np.generic) else value
+    if isinstance(value, (list, tuple)):
+        items = [_json_value(v) for v in value]
+        return None if any(i is None and v is not None for i, v in zip(items, value)) else items
+    if isinstance(value, dict) and all(isinstance(k, str) for k in value):
+        items = {k: _json_value(v) for k, v in value.items()}
+        return None if any(items[k] is None and value[k] is not None for k in value) else items
+    return None
 
 
 def _finite(value, name: str) -> float:
@@ -234,6 +252,8 @@ class EditorModel:
         render_options: further refracta.render keywords (spp, transport, ...).
         solve_options: further refracta.edit.solve keywords (backend, accept_angle, ...).
         scene_text: the TOML text the scene was loaded from (export keeps everything in it).
+        scene_folder: the folder its file names are relative to (the file's): export_scene rewrites
+            them for the folder it writes to (None: they are written as they are).
         turbulence: the refracta.Turbulence whose layer `field` carries (field.turbulence), or None:
             exports write its settings (a field keeps only the layer; refracta.scene_file).
         preview_scale: the preview renders 1/preview_scale of the width and height (4: a quarter).
@@ -256,6 +276,7 @@ class EditorModel:
         render_options: dict | None = None,
         solve_options: dict | None = None,
         scene_text: str | None = None,
+        scene_folder: str | os.PathLike | None = None,
         turbulence: Turbulence | None = None,
         preview_scale: int = 4,
         display: dict | None = None,
@@ -276,6 +297,7 @@ class EditorModel:
         self._lock = threading.RLock()
         self._observers: list[Callable[[str], None]] = []
         self.scene, self.scene_text, self.camera, self.field = scene, scene_text, camera, field
+        self.scene_folder = None if scene_folder is None else Path(os.fspath(scene_folder)).absolute()
         self.turbulence = turbulence
         self.free: tuple[str, ...] | None = None
         self.set_free(free)
@@ -339,6 +361,7 @@ class EditorModel:
             label,
             self.scene,
             self.scene_text,
+            self.scene_folder,
             self.camera,
             self.field,
             self.turbulence,
@@ -385,7 +408,7 @@ class EditorModel:
                     state.camera,
                     state.field,
                 )
-                self.turbulence = state.turbulence
+                self.turbulence, self.scene_folder = state.turbulence, state.scene_folder
                 self.pairs, self.free, self.result, self.fan_png = state.pairs, state.free, state.result, state.fan_png
                 self.pending_source, self._drag = None, None
                 if self.selected is not None and self.selected >= len(self.pairs):
@@ -888,9 +911,22 @@ class EditorModel:
 
     # ---------------------------------------------------------------- files
     def _solve_file_options(self) -> dict:
-        options: dict[str, object] = {
-            k: v for k, v in self.solve_options.items() if isinstance(v, (str, int, float, bool, list))
-        }
+        """The solve options as the pairs file holds them (JSON); a warning names any it cannot
+        hold (objects, callables), which `refracta edit` then solves without."""
+        options: dict[str, object] = {}
+        dropped = []
+        for name, value in self.solve_options.items():
+            plain = _json_value(value)
+            if plain is None and value is not None:
+                dropped.append(name)
+            else:
+                options[name] = plain
+        if dropped:
+            warnings.warn(
+                f"the pairs file cannot hold the solve option(s) {', '.join(dropped)} (only numbers, strings, "
+                "lists and dicts of them): `refracta edit` with it solves without them",
+                stacklevel=3,
+            )
         options["free"] = list(self.free) if self.free else None
         options["stop_height"] = self.stop_height
         return options
@@ -899,17 +935,23 @@ class EditorModel:
         """The pairs in the JSON format of `refracta edit --pairs` (refracta.edit.load_pairs)."""
         return files.pairs_json(self.pairs, self._solve_file_options())
 
-    def scene_toml(self) -> str:
-        """The scene as TOML with the editor's camera and atmosphere (refracta.load_scene)."""
-        return files.scene_toml(self.scene_text, self.camera, self.field, self.turbulence)
+    def scene_toml(self, folder=None) -> str:
+        """The scene as TOML with the editor's camera and atmosphere (refracta.load_scene), its file
+        names relative to `folder` (where it will be saved; None: the scene's own folder)."""
+        text = files.scene_toml(self.scene_text, self.camera, self.field, self.turbulence)
+        if folder is None or self.scene_folder is None:
+            return text
+        return relocate(text, self.scene_folder, folder)
 
     def export_pairs(self, path) -> Path:
         """Write pairs_json() to `path`; returns it. refracta.IoError if it cannot be written."""
         return self._write(path, self.pairs_json(), "pairs")
 
     def export_scene(self, path) -> Path:
-        """Write scene_toml() to `path`; returns it. refracta.IoError if it cannot be written."""
-        return self._write(path, self.scene_toml(), "scene")
+        """Write scene_toml() to `path`, its file names (objects, textures, environment maps)
+        rewritten to name the same files from there; returns it. refracta.IoError if it cannot be
+        written."""
+        return self._write(path, self.scene_toml(Path(os.fspath(path)).absolute().parent), "scene")
 
     def _write(self, path, text: str, what: str) -> Path:
         path = Path(path)
@@ -948,6 +990,7 @@ class EditorModel:
         with self._lock:
             before = self._snapshot(f"load scene {path.name}")
             self.scene, self.scene_text, self.camera = scene, text, camera
+            self.scene_folder = path.absolute().parent
             if field is not None:
                 self.field, self.turbulence = field, loaded.turbulence
                 if self.free and any(n not in field.param_names and n not in _camera_names() for n in self.free):

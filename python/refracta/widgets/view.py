@@ -63,7 +63,7 @@ class MirageEditor(w.VBox):
         max_length: [m] rays end after this length in renders (None: the renderer's default).
         scale: display pixels per image pixel (None: the image is shown DISPLAY_WIDTH wide).
         background: a photograph to click on (see set_background), or None.
-        **options: render_options, solve_options, scene_text, turbulence, preview_scale, display
+        **options: render_options, solve_options, scene_text, scene_folder, turbulence, preview_scale, display
             (see refracta.widgets.model.EditorModel).
 
     Example::
@@ -120,6 +120,7 @@ class MirageEditor(w.VBox):
             loaded.field,
             free,
             scene_text=read_scene_text(path),
+            scene_folder=Path(os.fspath(path)).absolute().parent,
             turbulence=loaded.turbulence,
             **kwargs,
         )
