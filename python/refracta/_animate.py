@@ -232,30 +232,7 @@ def animate(
         )
     if path is not None:
         path = os.fsdecode(os.fspath(path))  # a bytes path too
-        if "{" not in path:
-            fps = _frame_rate(times, fps)  # the file's (frames as an array, or frame files, have no rate)
-            if path.lower().endswith(".gif") and fps > _GIF_FASTEST:
-                raise ValueError(
-                    f"animate: a GIF's frame delays are whole hundredths of a second, at least 2 (browsers slow "
-                    f"shorter ones to 0.1 s): at most {_GIF_FASTEST:g} fps (got {fps:g}"
-                    f"{'' if given_fps is not None else ', from the times'}); give fps= or write an MP4"
-                )
-            if path.lower().endswith(".gif") and fps < _GIF_SLOWEST:
-                raise ValueError(
-                    f"animate: a GIF's frame delays are 16-bit hundredths of a second, at most 655.35 s: at least "
-                    f"{_GIF_SLOWEST:.6g} fps (got {fps:g}{'' if given_fps is not None else ', from the times'}); "
-                    "give fps= (a time-lapse plays faster than it was shot)"
-                )
-        elif fps is not None:
-            raise ValueError(f"animate: fps is a GIF's or an MP4's; frame files ({path!r}) have no rate")
-        _writer_for(path)  # an unknown format or a missing package fails before rendering
-        _check_output_settings(path, exposure, tonemap)
-        folder = os.path.dirname(os.path.abspath(path))
-        if "{" not in path and not os.path.isdir(folder):  # ... and so does a folder that is not there
-            # (frame files make theirs)
-            raise FileNotFoundError(f"animate: the folder of {path!r} does not exist ({folder})")
-        if "{" not in path:  # ... or a file that cannot be written there (tried: /proc takes none)
-            _check_writable(path)
+        fps = _checked_file(path, None if "{" in path else _frame_rate(times, fps), given_fps, exposure, tonemap)
     _check_frames_fit(times.size, camera, path, exposure)
     if not isinstance(denoise, (bool, np.bool_)):
         raise ValueError(f"animate: denoise must be True or False (got {denoise!r})")
@@ -281,6 +258,67 @@ def animate(
     if path is not None:
         _writer_for(path)(path, frames, fps, exposure, tonemap)
     return frames
+
+
+def _checked_file(path: str, fps: float | None, given_fps, exposure, tonemap, where: str = "animate"):
+    """The frame rate to write `path` at (None for frame files), after the checks made before any
+    work: a GIF's rate within its delays' range, fps only for a GIF or an MP4, a known format and
+    its package, the exposure and tone map, the folder there and the file writable."""
+    if "{" not in path:
+        if path.lower().endswith(".gif") and fps > _GIF_FASTEST:
+            raise ValueError(
+                f"{where}: a GIF's frame delays are whole hundredths of a second, at least 2 (browsers slow "
+                f"shorter ones to 0.1 s): at most {_GIF_FASTEST:g} fps (got {fps:g}"
+                f"{'' if given_fps is not None else ', from the times'}); give fps= or write an MP4"
+            )
+        if path.lower().endswith(".gif") and fps < _GIF_SLOWEST:
+            raise ValueError(
+                f"{where}: a GIF's frame delays are 16-bit hundredths of a second, at most 655.35 s: at least "
+                f"{_GIF_SLOWEST:.6g} fps (got {fps:g}{'' if given_fps is not None else ', from the times'}); "
+                "give fps= (a time-lapse plays faster than it was shot)"
+            )
+    elif given_fps is not None:
+        raise ValueError(f"{where}: fps is a GIF's or an MP4's; frame files ({path!r}) have no rate")
+    _writer_for(path)  # an unknown format or a missing package fails before rendering
+    _check_output_settings(path, exposure, tonemap)
+    folder = os.path.dirname(os.path.abspath(path))
+    if "{" not in path and not os.path.isdir(folder):  # ... and so does a folder that is not there
+        # (frame files make theirs)
+        raise FileNotFoundError(f"{where}: the folder of {path!r} does not exist ({folder})")
+    if "{" not in path:  # ... or a file that cannot be written there (tried: /proc takes none)
+        _check_writable(path)
+    return None if "{" in path else fps
+
+
+def write_animation(path, frames, fps: float | None = None, exposure: float | None = None, tonemap: str | None = None):
+    """Write frames of linear radiance, float (T, H, W, 3), as animate writes its own: '.gif'
+    (Pillow; loops), '.mp4' (H.264 through imageio-ffmpeg) at `fps` frames per second (needed for
+    them), or a pattern with a '{}' field for the frame number (one file per frame through
+    refracta.io.write_image). GIF and MP4 frames share one exposure (`exposure`, or the automatic
+    exposure of all the frames together; tonemap None: io's default curve), so nothing flickers.
+    For frames made otherwise than by animate: a sweep's (refracta.sweep), a turntable's.
+
+    Raises:
+        ValueError: frames not (T, H, W, 3) finite numbers with T >= 1, fps missing or out of
+            range for the format, an unknown format.
+        ImportError: Pillow or imageio-ffmpeg missing for a GIF or an MP4.
+        FileNotFoundError, OSError: the folder missing, the file not writable.
+    """
+    try:
+        frames = np.asarray(frames, dtype=np.float32)
+    except (TypeError, ValueError):
+        raise ValueError(f"write_animation: frames must be an array of numbers (got {type(frames).__name__})") from None
+    if frames.ndim != 4 or frames.shape[0] < 1 or frames.shape[3] != 3 or 0 in frames.shape:
+        raise ValueError(f"write_animation: frames must be (T, H, W, 3) with T >= 1 (got shape {frames.shape})")
+    if not np.all(np.isfinite(frames)):
+        raise ValueError("write_animation: frames hold NaN or inf")
+    path = os.fsdecode(os.fspath(path))
+    if "{" not in path:
+        if fps is None:
+            raise ValueError(f"write_animation: give fps (frames per second) for {path!r}")
+        fps = _frame_rate(np.zeros(0), fps, "write_animation")
+    fps = _checked_file(path, fps, fps, exposure, tonemap, "write_animation")
+    _writer_for(path)(path, frames, fps, exposure, tonemap)
 
 
 def _render_frame(scene, camera, field, settings, turbulence, noise, denoise, t):
@@ -348,10 +386,10 @@ def _check_writable(path: str) -> None:
         os.remove(path)
 
 
-def _frame_rate(times: np.ndarray, fps: float | None) -> float:
+def _frame_rate(times: np.ndarray, fps: float | None, where: str = "animate") -> float:
     if fps is not None:
         if not (is_number(fps) and 0.0 < fps < 1e4):
-            raise ValueError(f"animate: fps must be in (0, 1e4) (got {fps!r})")
+            raise ValueError(f"{where}: fps must be in (0, 1e4) (got {fps!r})")
         return float(fps)
     steps = np.diff(times)
     if steps.size == 0:

@@ -65,6 +65,7 @@ from typing import Any
 import numpy as np
 
 from refracta import _core
+from refracta._animate import write_animation
 from refracta._checks import number
 
 __all__ = [
@@ -74,6 +75,7 @@ __all__ = [
     "read_image",
     "settings",
     "to_display",
+    "write_animation",
     "write_image",
     "white_balance_of",
     "write_layers",

@@ -95,8 +95,9 @@
     aerosol = 1.0                       # (sun_direction, aerosol or visibility [km],
                                         # aerial_perspective = true/false, scale: also sets the sun)
 
-File names (obj, textures, environment) are relative to the TOML file. Errors raise ValueError naming the file, the line
-and the key; missing files raise refracta.IoError.
+File names (obj, textures, environment) are relative to the TOML file (relocate(text, source, target) rewrites them for
+a copy saved in another folder). Errors raise ValueError naming the file, the line and the key; missing files raise
+refracta.IoError.
 
 Writing: camera_table(camera) and atmosphere_table(field, turbulence) give the [camera] and
 [atmosphere] tables load_scene reads back as the same camera and field; with_camera and

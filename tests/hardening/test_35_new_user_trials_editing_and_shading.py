@@ -218,3 +218,24 @@ def test_plain_solve_options_reach_the_pairs_file_without_a_warning():
         model.close()
     assert (data["backend"], data["max_iterations"], data["accept_angle"]) == ("nlopt:LN_SBPLX", 40, 1e-5)
     assert data["free"] == ["surface_dt"] and data["stop_height"] == 0.0
+
+
+def test_write_animation_writes_frames_made_otherwise(tmp_path):
+    # A sweep's or a turntable's frames had no public writer (animate needs turbulence or noise).
+    pytest.importorskip("PIL")
+    from PIL import Image
+
+    frames = np.random.default_rng(0).random((5, 8, 10, 3)).astype(np.float32)
+    refracta.io.write_animation(tmp_path / "a.gif", frames, fps=24)
+    with Image.open(tmp_path / "a.gif") as gif:
+        assert (gif.n_frames, gif.size) == (5, (10, 8))
+    refracta.io.write_animation(tmp_path / "f{:02d}.png", frames)
+    assert sorted(p.name for p in tmp_path.glob("f*.png")) == [f"f{i:02d}.png" for i in range(5)]
+    with pytest.raises(ValueError, match="give fps"):
+        refracta.io.write_animation(tmp_path / "b.gif", frames)
+    with pytest.raises(ValueError, match=r"\(T, H, W, 3\)"):
+        refracta.io.write_animation(tmp_path / "b.gif", frames[0], fps=10)
+    with pytest.raises(ValueError, match="NaN or inf"):
+        refracta.io.write_animation(tmp_path / "b.gif", frames * np.nan, fps=10)
+    with pytest.raises(ValueError, match="frame files"):
+        refracta.io.write_animation(tmp_path / "g{}.png", frames, fps=10)
