@@ -265,6 +265,8 @@ def _checked_file(path: str, fps: float | None, given_fps, exposure, tonemap, wh
     work: a GIF's rate within its delays' range, fps only for a GIF or an MP4, a known format and
     its package, the exposure and tone map, the folder there and the file writable."""
     if "{" not in path:
+        if fps is None:
+            raise ValueError(f"{where}: give fps (frames per second) for {path!r}")
         if path.lower().endswith(".gif") and fps > _GIF_FASTEST:
             raise ValueError(
                 f"{where}: a GIF's frame delays are whole hundredths of a second, at least 2 (browsers slow "
@@ -313,10 +315,8 @@ def write_animation(path, frames, fps: float | None = None, exposure: float | No
     if not np.all(np.isfinite(frames)):
         raise ValueError("write_animation: frames hold NaN or inf")
     path = os.fsdecode(os.fspath(path))
-    if "{" not in path:
-        if fps is None:
-            raise ValueError(f"write_animation: give fps (frames per second) for {path!r}")
-        fps = _frame_rate(np.zeros(0), fps, "write_animation")
+    if "{" not in path and fps is not None:
+        fps = _frame_rate(np.zeros(0), fps, "write_animation")  # its range checked
     fps = _checked_file(path, fps, fps, exposure, tonemap, "write_animation")
     _writer_for(path)(path, frames, fps, exposure, tonemap)
 

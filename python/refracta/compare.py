@@ -66,7 +66,7 @@ def shadows(
         return references[key]
 
     rows: list[dict] = []
-    images: dict[tuple[str, int], tuple[np.ndarray, np.ndarray]] = {}
+    images: dict[tuple[str, int], tuple[np.ndarray, np.ndarray, int | None]] = {}
     for kernel in kernels:
         for method in methods:
             fields = shadow_fields_for(method, dict(options, kernel=kernel))

@@ -1130,7 +1130,7 @@ def _without_root_keys(text: str, name: str) -> str:
     ValueError where such a definition spans lines (a multi-line array inside it)."""
     key = re.compile(rf"^\s*(?:{re.escape(name)}|\"{re.escape(name)}\"|'{re.escape(name)}')\s*[=.]")
     lines = text.splitlines(keepends=True)
-    kept = []
+    kept: list[str] = []
     for number, line in enumerate(lines, 1):
         if _HEADER.match(line):
             return "".join(kept + lines[number - 1 :])

@@ -108,6 +108,7 @@ def test_read_image_linear_keeps_alpha(tmp_path):
     linear = refracta.io.read_image(tmp_path / "c.png", linear=True)
     # Colour decoded (128/255 -> 0.2159; half a level's slope, plus float slack), alpha as stored.
     np.testing.assert_allclose(linear[..., :3], 0.21586, atol=1.1e-3)
+    # The alpha: 8-bit, half a level plus float slack.
     np.testing.assert_allclose(linear[..., 3], 128 / 255, atol=0.6 / 255)
     with pytest.raises(ValueError, match="linear must be True or False"):
         refracta.io.read_image(tmp_path / "c.png", linear=1)

@@ -137,11 +137,11 @@ def _json_value(value):
     if _checks.is_number(value):
         return value.item() if isinstance(value, np.generic) else value
     if isinstance(value, (list, tuple)):
-        items = [_json_value(v) for v in value]
-        return None if any(i is None and v is not None for i, v in zip(items, value)) else items
+        listed = [_json_value(v) for v in value]
+        return None if any(i is None and v is not None for i, v in zip(listed, value)) else listed
     if isinstance(value, dict) and all(isinstance(k, str) for k in value):
-        items = {k: _json_value(v) for k, v in value.items()}
-        return None if any(items[k] is None and value[k] is not None for k in value) else items
+        named = {k: _json_value(v) for k, v in value.items()}
+        return None if any(named[k] is None and value[k] is not None for k in value) else named
     return None
 
 
