@@ -67,7 +67,9 @@ class ProgressBar:
                 self.bar = _Text(total=total, desc=self.label, delay=delay, file=self.stream, **shape)
         if self.bar.total != total:
             self.bar.total = total
-        self.bar.update(done - self.bar.n)
+            self.bar.refresh()
+        if done != self.bar.n:  # the calls come every 50 ms: a bar redrawn unchanged fills a log with copies
+            self.bar.update(done - self.bar.n)
         if done >= total:
             self.bar.close()
             self.finished = True

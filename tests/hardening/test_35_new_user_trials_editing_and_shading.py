@@ -239,3 +239,17 @@ def test_write_animation_writes_frames_made_otherwise(tmp_path):
         refracta.io.write_animation(tmp_path / "b.gif", frames * np.nan, fps=10)
     with pytest.raises(ValueError, match="frame files"):
         refracta.io.write_animation(tmp_path / "g{}.png", frames, fps=10)
+
+
+def test_a_progress_bar_is_not_redrawn_unchanged():
+    # The CLI's bar redrew '0/12' about ten times before it advanced (a trial): the calls come
+    # every 50 ms whether or not the work moved. Spaced past tqdm's 0.1 s redraw interval here.
+    import time
+
+    stream = io.StringIO()
+    bar = ProgressBar("render", stream=stream)
+    for _ in range(4):
+        bar(0, 12)
+        time.sleep(0.12)
+    bar(12, 12)
+    assert stream.getvalue().count("0/12") == 1 and "12/12" in stream.getvalue()
