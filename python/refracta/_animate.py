@@ -264,6 +264,7 @@ def _checked_file(path: str, fps: float | None, given_fps, exposure, tonemap, wh
     """The frame rate to write `path` at (None for frame files), after the checks made before any
     work: a GIF's rate within its delays' range, fps only for a GIF or an MP4, a known format and
     its package, the exposure and tone map, the folder there and the file writable."""
+    _writer_for(path, where)  # an unknown format or a missing package fails before rendering
     if "{" not in path:
         if fps is None:
             raise ValueError(f"{where}: give fps (frames per second) for {path!r}")
@@ -281,7 +282,6 @@ def _checked_file(path: str, fps: float | None, given_fps, exposure, tonemap, wh
             )
     elif given_fps is not None:
         raise ValueError(f"{where}: fps is a GIF's or an MP4's; frame files ({path!r}) have no rate")
-    _writer_for(path)  # an unknown format or a missing package fails before rendering
     _check_output_settings(path, exposure, tonemap)
     folder = os.path.dirname(os.path.abspath(path))
     if "{" not in path and not os.path.isdir(folder):  # ... and so does a folder that is not there
@@ -400,7 +400,7 @@ def _frame_rate(times: np.ndarray, fps: float | None, where: str = "animate") ->
     return 1.0 / step
 
 
-def _writer_for(path: str):
+def _writer_for(path: str, where: str = "animate"):
     """The writer of `path`'s format (raising ValueError for an unknown one, ImportError naming the
     package for a missing one)."""
     if "{" in path:
@@ -410,17 +410,17 @@ def _writer_for(path: str):
         try:
             import PIL.Image  # noqa: F401
         except ImportError:
-            raise ImportError("animate: writing a GIF needs Pillow (pip install pillow)") from None
+            raise ImportError(f"{where}: writing a GIF needs Pillow (pip install pillow)") from None
         return _write_gif
     if extension == ".mp4":
         try:
             import imageio_ffmpeg  # noqa: F401
         except ImportError:
             raise ImportError(
-                "animate: writing an MP4 needs imageio-ffmpeg (pip install 'refracta[animation]')"
+                f"{where}: writing an MP4 needs imageio-ffmpeg (pip install 'refracta[animation]')"
             ) from None
         return _write_mp4
-    raise ValueError(f"animate: path must end in .gif or .mp4, or hold a '{{}}' field for frame files (got {path!r})")
+    raise ValueError(f"{where}: path must end in .gif or .mp4, or hold a '{{}}' field for frame files (got {path!r})")
 
 
 def _display_bytes(frames, exposure, tonemap) -> np.ndarray:

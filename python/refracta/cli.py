@@ -543,6 +543,9 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
 
     _check_output(output, scene_file=True)
     loaded = refracta.load_scene(scene_path)
+    # Its file names rewritten to name the same files from the output's folder, before the solve
+    # (a name that cannot be rewritten fails now, not after minutes of solving).
+    text = relocate(read_scene_text(scene_path), Path(scene_path).absolute().parent, Path(output).absolute().parent)
     scene, camera, field = loaded
     if field is None:
         raise ValueError(f"{scene_path}: has no [atmosphere] table to edit")
@@ -554,9 +557,7 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     result = edit.solve(field, camera, pairs, progress=True, **options)
     print(result.report())
     # The solved field carries the file's turbulence (if any): written with its settings again.
-    # Its file names rewritten to name the same files from the output's folder.
-    text = with_atmosphere(read_scene_text(scene_path), result.field, loaded.turbulence)
-    output.write_text(relocate(text, Path(scene_path).absolute().parent, Path(output).absolute().parent))
+    output.write_text(with_atmosphere(text, result.field, loaded.turbulence))
     if result.success:
         print(f"wrote {output}")
         return 0

@@ -66,7 +66,7 @@ import numpy as np
 
 from refracta import _core
 from refracta._animate import write_animation
-from refracta._checks import number
+from refracta._checks import is_flag, number
 
 __all__ = [
     "channel_names",
@@ -220,9 +220,9 @@ def read_image(path, linear: bool = False) -> np.ndarray:
     to linear values, as textures and environment maps are (128 of 255 reads 0.216), alpha as
     stored; float files as they are. Raises refracta.IoError for a missing or unreadable file.
     """
-    if not isinstance(linear, bool):
+    if not is_flag(linear):
         raise ValueError(f"read_image: linear must be True or False (got {linear!r})")
-    return _core._read_image(os.fspath(path), linear)
+    return _core._read_image(os.fspath(path), bool(linear))
 
 
 def to_display(

@@ -1126,8 +1126,8 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
 def _without_root_keys(text: str, name: str) -> str:
     """`text` without the lines before its first table header that define table `name` as a key
     (``name = { ... }``, an inline table, or dotted ``name.key = ...``): _with_table replaces the
-    table, so such a line would define it twice (tomllib: "Cannot declare ('atmosphere',) twice").
-    ValueError where such a definition spans lines (a multi-line array inside it)."""
+    table, so such a line would define it twice (tomllib: "Cannot declare ('atmosphere',) twice"),
+    its comment with it. ValueError where such a definition spans lines (a multi-line array inside it)."""
     key = re.compile(rf"^\s*(?:{re.escape(name)}|\"{re.escape(name)}\"|'{re.escape(name)}')\s*[=.]")
     lines = text.splitlines(keepends=True)
     kept: list[str] = []
@@ -1152,41 +1152,88 @@ def relocate(text: str, source, target) -> str:
     `texture`, [environment] `file`, [sky] `environment`) rewritten so that they name the same
     files when the text is saved in folder `target` instead of folder `source` (the folder the
     names are relative to: the file's own). Names that cannot be made relative (another drive)
-    become absolute; absolute names are kept. Everything else, comments included, is kept.
+    become absolute; absolute names are kept. Everything else, comments and strings included, is
+    kept. Symbolic links are followed as opening the file would ("link/../x" is beside the
+    link's target).
 
     Raises:
-        ValueError: a file name written so that it cannot be rewritten in place (e.g. a quoted key).
+        ValueError: text that is not TOML; a file name written so that it cannot be rewritten in
+            place (a quoted key).
     """
+    try:
+        expected_names = _file_names(tomllib.loads(text))
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"relocate: the text is not TOML: {error}") from None
     source, target = Path(os.fspath(source)), Path(os.fspath(target))
     if source.resolve() == target.resolve():
         return text
+    real_target = os.path.realpath(target)
 
     def moved(name: str) -> str:
         if not name or Path(name).is_absolute():
             return name  # a billboard's "" (no image) too
-        full = os.path.normpath(os.path.abspath(source / name))
+        full = os.path.realpath(source / name)
         try:
-            return Path(os.path.relpath(full, os.path.abspath(target))).as_posix()
+            return Path(os.path.relpath(full, real_target)).as_posix()
         except ValueError:  # another drive
             return Path(full).as_posix()
 
+    code = _code_positions(text)
+
     def rewritten(match: re.Match) -> str:
+        if not code[match.start()]:
+            return match[0]  # in a comment or a string
         return match["key"] + _toml_value(moved(tomllib.loads("v = " + match["value"])["v"]))
 
     out = _FILE_VALUE.sub(rewritten, text)
-    try:
-        expected = sorted(moved(name) for name in _file_names(tomllib.loads(text)))
-        found = sorted(_file_names(tomllib.loads(out)))
-    except tomllib.TOMLDecodeError as error:
-        raise ValueError(f"relocate: the text is not TOML: {error}") from None
+    expected = sorted(moved(name) for name in expected_names)
+    found = sorted(_file_names(tomllib.loads(out)))
     if expected != found:
         missed = sorted(set(expected) - set(found))
         raise ValueError(f"relocate: cannot rewrite the file name(s) {missed} where they are written")
     return out
 
 
-# A file name's key and its string value, as a scene file writes them (relocate).
-_FILE_VALUE = re.compile(r"""(?P<key>\b(?:file|texture|environment)\s*=\s*)(?P<value>"(?:[^"\\\n]|\\.)*"|'[^'\n]*')""")
+# A file name's key and its string value, as a scene file writes them (relocate): multi-line
+# strings first, then one-line ones.
+_FILE_VALUE = re.compile(
+    r"""(?P<key>\b(?:file|texture|environment)\s*=\s*)"""
+    r"""(?P<value>\"\"\"(?:[^"\\]|\\.|"(?!""))*\"\"\"|'\'\'[\s\S]*?'\'\'|"(?:[^"\\\n]|\\.)*"|'[^'\n]*')"""
+)
+
+
+def _code_positions(text: str) -> list[bool]:
+    """Per character of a TOML text: whether it lies outside comments and strings."""
+    code = [True] * (len(text) + 1)
+    i, n = 0, len(text)
+    while i < n:
+        c = text[i]
+        if c == "#":
+            end = text.find("\n", i)
+            end = n if end < 0 else end
+        elif text.startswith('"""', i) or text.startswith("'''", i):
+            quote = text[i : i + 3]
+            j = i + 3
+            while True:
+                j = text.find(quote, j)
+                if j < 0 or quote == "'''" or text[j - 1] != "\\":
+                    break
+                j += 1
+            end = n if j < 0 else j + 3
+            while end < n and text[end] == quote[0]:  # """a"""" : up to two quotes belong to the string
+                end += 1
+        elif c in "\"'":
+            j = i + 1
+            while j < n and text[j] != c and text[j] != "\n":
+                j += 2 if c == '"' and text[j] == "\\" else 1
+            end = j + 1
+        else:
+            i += 1
+            continue
+        for k in range(i, min(end, n)):
+            code[k] = False
+        i = end
+    return code
 
 
 def _file_names(data) -> list[str]:
@@ -1218,11 +1265,12 @@ def with_atmosphere(text: str, field: _core.IndexField | None, turbulence=None) 
 
 def _without_table(text: str, name: str) -> str:
     """`text` (a scene file) without its table `name` and its sub-tables (see _with_table)."""
+    text = _without_root_keys(text.removeprefix("\ufeff"), name)
     marker = "# refracta: a removed table\n"
     replaced = _with_table(text, name, marker, first=False)
     if marker not in replaced.replace(marker, "", 1) and not replaced.endswith(marker):
         return replaced.replace(marker + "\n", "", 1)
-    return text.removeprefix("\ufeff")  # no such table: appended, so nothing to remove
+    return text  # no such table: appended, so nothing to remove
 
 
 def with_camera(text: str, camera: _core.Camera) -> str:

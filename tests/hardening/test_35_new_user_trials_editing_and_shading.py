@@ -253,3 +253,56 @@ def test_a_progress_bar_is_not_redrawn_unchanged():
         time.sleep(0.12)
     bar(12, 12)
     assert stream.getvalue().count("0/12") == 1 and "12/12" in stream.getvalue()
+
+
+def test_relocate_leaves_comments_and_strings_and_follows_links(tmp_path):
+    # A review: the rewrite ran over the raw text (comments, strings, multi-line strings), and
+    # resolved '..' by text where opening the file follows a symbolic link first.
+    text = (
+        '# see file = "x.obj"\n'
+        "name = 'file = \"y\"'\n"
+        "[[objects]]\n"
+        'kind = "obj"\n'
+        "file = '''m.obj'''\n"
+        'note = """\nfile = "z.obj"\n"""\n'
+    )
+    out = sf.relocate(text, tmp_path / "a", tmp_path / "b")
+    data = sf.tomllib.loads(out)
+    assert data["objects"][0]["file"] == "../a/m.obj"
+    assert data["name"] == 'file = "y"' and data["objects"][0]["note"] == 'file = "z.obj"\n'
+    assert out.startswith('# see file = "x.obj"\n')
+    (tmp_path / "real" / "dir").mkdir(parents=True)
+    (tmp_path / "real" / "models").mkdir()
+    (tmp_path / "link").symlink_to(tmp_path / "real" / "dir")
+    moved = sf.relocate('[[objects]]\nkind = "obj"\nfile = "../models/m.obj"\n', tmp_path / "link", tmp_path / "out")
+    # link/../models is real/models: from out/, ../real/models.
+    assert sf.tomllib.loads(moved)["objects"][0]["file"] == "../real/models/m.obj"
+    with pytest.raises(ValueError, match="not TOML"):
+        sf.relocate("file = ", tmp_path / "a", tmp_path / "b")
+
+
+def test_an_inline_atmosphere_is_removed_too():
+    base = sf.with_atmosphere((DATA / "hot_road.toml").read_text(), None)
+    inline = 'atmosphere = { model = "PhysicalAtmosphere", surface_dt = 10.0 }\n' + base
+    assert "atmosphere" not in sf.tomllib.loads(sf.with_atmosphere(inline, None))
+
+
+def test_write_animation_names_a_format_it_cannot_write(tmp_path):
+    frames = np.zeros((2, 4, 4, 3), np.float32)
+    with pytest.raises(ValueError, match=r"write_animation: path must end in \.gif or \.mp4"):
+        refracta.io.write_animation(tmp_path / "x.png", frames)
+
+
+def test_numpy_values_reach_the_pairs_file():
+    road = refracta.examples.hot_road(48, 16)
+    bounds = {"surface_dt": np.array([0.0, 100.0])}
+    model = EditorModel(
+        road.scene, road.camera, road.field, ["surface_dt"], stop_height=0.0, solve_options=dict(bounds=bounds),
+        autorender=False,
+    )  # fmt: skip
+    try:
+        assert json.loads(model.pairs_json())["bounds"] == {"surface_dt": [0.0, 100.0]}
+    finally:
+        model.close()
+    assert refracta.io.read_image(DATA.parent.parent / "notebooks" / "images" / "real_place_photo.png",
+                                  linear=np.True_).dtype == np.float32  # fmt: skip

@@ -230,7 +230,7 @@ void bind_lights(py::module_& m) {
            }, py::arg("u"), "(index (N,) int, probability (N,)) for u (N,) in [0, 1).")
       .def("pmf",
            [](const LightSampler& s, long long index) {
-             if (index < 0) throw_invalid("pmf: index must be >= 0 (got ", index, ")");
+             if (index < 0) throw_invalid("LightSampler.pmf: index must be >= 0 (got ", index, ")");
              return s.pmf(size_t(index));
            },
            py::arg("index"))

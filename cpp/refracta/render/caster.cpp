@@ -23,6 +23,10 @@ namespace {
 // first step (below).
 constexpr double kSteepRise = 0.1;
 
+// The longest last Newton step of an escape taken without a panel (escape_direction) [m]: the
+// tabulated air checks its cubics every 0.25 m, and a ray's escape lies above every object.
+constexpr double kLinearStep = 1.0;
+
 // The eye's table path for a direction's elevation, turned about the vertical through the eye to
 // the direction's azimuth (a height-only field's paths differ by that turn alone).
 struct TurnedTablePath {
@@ -502,28 +506,36 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   // Run and length to the first guess, then each Newton step's own stretch added to them: one
   // 8-point panel over the step (metres, where the rates barely change: the sum is the whole
   // integral to well under the tolerance above) instead of the whole range integrated again.
-  // The stretches tile every height the path climbs, so their nodes still check it all the way.
+  // The stretches tile every height the path climbs, so their nodes still check it all the way
+  // (but a last step of at most kLinearStep, checked at its ends).
   if (!branch.integrate(x.y(), h, kMinSine, &run, &length, relative_tol, run_tol)) return std::nullopt;
   for (int it = 0; it < 6 && (!cannot_turn || std::abs(sin_h - sin_x) > 1e-2 * sin_x); ++it) {
     const double step = (remaining - length) * sin_h;
-    // Converged once the step turns the exit direction by a hundredth of the pixel's stray or
-    // less: a height change dh turns it by cos e dn dh / (n sin e) (Bouguer's invariant). Newton
+    const double h_next = h + step;
+    double n_next, dn_next, sin_next;
+    if (!branch.at(h_next, kMinSine, &n_next, &dn_next, &sin_next)) return std::nullopt;
+    // Converged once a step turns the exit direction by a hundredth of the pixel's stray or less:
+    // a height change dh turns it by cos e dn dh / (n sin e) (Bouguer's invariant). Newton
     // converges quadratically, so what the next step would add is far smaller still. Over a
     // spherical Earth the step also moves the run, which turns the exit by run / R: about as much
     // again in the flat frame's air, so the stop is at ~2e-2 of the stray. Without a pixel
     // (spread 0): once the step's cos e dn dh is below 1e-12 (1e-9 rad at the least sin e, 1e-3).
-    // That last step is taken along the direction at h (its run and length off by the step's
-    // turn times the step, far inside the tolerances) instead of integrated: one panel less.
     const double cos_h = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
-    const double turn_tol = 1e-2 * options_.sagitta_pixels * spread * n * sin_h;
-    const bool last = std::abs(step * dn) * cos_h < std::max(1e-12, turn_tol);
-    double step_run = std::abs(step) * cos_h / sin_h, step_length = std::abs(step) / sin_h;
-    if (!last && !branch.integrate(h, h + step, kMinSine, &step_run, &step_length)) return std::nullopt;
+    const double cos_next = std::sqrt(std::max(0.0, 1.0 - sin_next * sin_next));
+    const double turn_tol = std::max(1e-12, 1e-2 * options_.sagitta_pixels * spread * n * sin_h);
+    // A last step that small -- n, and the slope at both ends, change the exit by less than that
+    // -- and at most kLinearStep long, where no layer the air models hides between its ends, is
+    // taken by the trapezoid rule over its ends instead of a panel: its run and length are off by
+    // far less than their tolerances.
+    const bool last = std::abs(step) <= kLinearStep && std::abs(n_next - n) * cos_h < turn_tol &&
+                      std::abs(step * dn) * cos_h < turn_tol && std::abs(step * dn_next) * cos_next < turn_tol;
+    double step_run = 0.5 * std::abs(step) * (cos_h / sin_h + cos_next / sin_next);
+    double step_length = 0.5 * std::abs(step) * (1.0 / sin_h + 1.0 / sin_next);
+    if (!last && !branch.integrate(h, h_next, kMinSine, &step_run, &step_length)) return std::nullopt;
     const double sign = step < 0.0 ? -1.0 : 1.0;  // integrate's panels are unsigned
     run += sign * step_run, length += sign * step_length;
-    h += step;
-    if (!branch.at(h, kMinSine, &n, &dn, &sin_h)) return std::nullopt;
-    if (last) break;
+    h = h_next, n = n_next, dn = dn_next, sin_h = sin_next;
+    if (last || std::abs(step * dn) * cos_next < turn_tol) break;
   }
   const double cos_end = std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h));
   const double scale = cos_e > 0.0 ? cos_end / cos_e : 0.0;

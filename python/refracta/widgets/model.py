@@ -131,9 +131,14 @@ class _Snapshot:
 
 
 def _json_value(value):
-    """`value` as JSON holds it (tuples as lists, numpy numbers as Python's), or None where it cannot."""
+    """`value` as JSON holds it (tuples and arrays as lists, numpy numbers and bools as Python's),
+    or None where it cannot."""
     if isinstance(value, (bool, str)) or value is None:
         return value
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
     if _checks.is_number(value):
         return value.item() if isinstance(value, np.generic) else value
     if isinstance(value, (list, tuple)):
