@@ -68,6 +68,32 @@ def test_pools_give_the_serial_results(pool):
     assert list(parallel) == list(serial)
 
 
+def shared_reads(_big, index):
+    """(this worker's pid, the shared file its arguments came from, index): for the test below."""
+    import os
+
+    from refracta import _sweep
+
+    return os.getpid(), _sweep._shared_in_worker[0], index
+
+
+def test_a_process_pool_gets_the_shared_arguments_as_one_file_removed_after(tmp_path, monkeypatch):
+    # They went with every task (a default Turbulence's 67 MB with every animation frame, a
+    # trial): now one pickle file, read once by each worker process, removed at the end.
+    import tempfile
+
+    from refracta._sweep import map_ordered
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    big = np.zeros(1_000_000)
+    context = multiprocessing.get_context("spawn")
+    with concurrent.futures.ProcessPoolExecutor(2, mp_context=context) as executor:
+        outcomes = map_ordered(shared_reads, [(i,) for i in range(8)], executor, shared=(big,))
+    assert all(ok for ok, _ in outcomes) and [value[2] for _, value in outcomes] == list(range(8))
+    files = {value[1] for _, value in outcomes}
+    assert len(files) == 1 and not list(tmp_path.iterdir())  # one file for every task, removed after
+
+
 def test_failed_points_are_reported_with_their_parameters_and_the_rest_kept():
     grid = {"surface_dt": [5.0, 10.0, 3.0, 12.0], "eye": [2.0]}
     with pytest.raises(
