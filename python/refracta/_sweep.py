@@ -305,8 +305,12 @@ def _pickled(shared: tuple) -> str:
     """The path of a new temporary file holding `shared` pickled (map_ordered removes it)."""
     # A name of its own (a cached worker copy is known by it, and mkstemp may reuse a removed one's).
     handle, path = tempfile.mkstemp(prefix=f"refracta-shared-{uuid.uuid4().hex}-", suffix=".pickle")
-    with os.fdopen(handle, "wb") as file:
-        pickle.dump(shared, file, protocol=pickle.HIGHEST_PROTOCOL)
+    try:
+        with os.fdopen(handle, "wb") as file:
+            pickle.dump(shared, file, protocol=pickle.HIGHEST_PROTOCOL)
+    except BaseException:  # unpicklable (a lambda), a full disk: no file left behind
+        os.remove(path)
+        raise
     return path
 
 

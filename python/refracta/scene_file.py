@@ -1194,10 +1194,12 @@ def relocate(text: str, source, target) -> str:
     return out
 
 
-# A file name's key and its string value, as a scene file writes them (relocate): multi-line
-# strings first, then one-line ones.
+# The keys whose string values are file names (relocate), wherever their table.
+_FILE_KEYS = ("file", "texture", "environment")
+# A file name's key and its string value, as a scene file writes them: multi-line strings first,
+# then one-line ones.
 _FILE_VALUE = re.compile(
-    r"""(?P<key>\b(?:file|texture|environment)\s*=\s*)"""
+    r"""(?P<key>\b(?:""" + "|".join(_FILE_KEYS) + r""")\s*=\s*)"""
     r"""(?P<value>\"\"\"(?:[^"\\]|\\.|"(?!""))*\"\"\"|'\'\'[\s\S]*?'\'\'|"(?:[^"\\\n]|\\.)*"|'[^'\n]*')"""
 )
 
@@ -1241,7 +1243,7 @@ def _file_names(data) -> list[str]:
     names: list[str] = []
     if isinstance(data, dict):
         for key, value in data.items():
-            if key in ("file", "texture", "environment") and isinstance(value, str):
+            if key in _FILE_KEYS and isinstance(value, str):
                 names.append(value)
             else:
                 names += _file_names(value)

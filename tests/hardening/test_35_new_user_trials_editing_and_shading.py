@@ -163,7 +163,7 @@ def test_a_gif_keeps_its_frame_rate_on_average(fps):
     assert abs(sum(delays) - 96 * 1000.0 / fps) <= 5.0
 
 
-def test_compare_labels_the_hard_shadow_without_a_kernel_and_aligns_long_names():
+def test_compare_tables_align_long_method_names():
     rows = [
         {"method": "mboit trig 3 unorm16", "mean_error": 0.01, "p99_error": 0.1, "nan_count": 0,
          "bytes_per_pixel": 16.0, "seconds": 0.5},

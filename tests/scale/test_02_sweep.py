@@ -274,3 +274,16 @@ def test_process_pool_workers_exit_when_their_parent_is_killed(tmp_path):
     while not _gone(worker) and time.monotonic() < deadline:
         time.sleep(0.05)
     assert _gone(worker), f"worker {worker} still rendering {ORPHAN_GUARD} s after its parent was killed"
+
+
+def test_unpicklable_shared_arguments_leave_no_file(tmp_path, monkeypatch):
+    import tempfile
+
+    from refracta._sweep import map_ordered
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    context = multiprocessing.get_context("spawn")
+    with concurrent.futures.ProcessPoolExecutor(1, mp_context=context) as executor:
+        with pytest.raises((pickle.PicklingError, AttributeError, TypeError)):
+            map_ordered(shared_reads, [(0,)], executor, shared=(lambda: 0,))
+    assert not list(tmp_path.iterdir())

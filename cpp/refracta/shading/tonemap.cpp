@@ -323,7 +323,7 @@ double srgb_decode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0
 Image read_linear_image(const std::string& path) {
   Image image = read_image(path);
   if (!stores_encoded_colour(path)) return image;
-  const int colours = image.channels == 2 || image.channels == 4 ? image.channels - 1 : image.channels;
+  const int colours = colour_channels(image.channels);  // alpha (2nd of 2, 4th of 4) as stored
   for (size_t i = 0; i < image.pixels.size(); ++i) {
     if (int(i % size_t(image.channels)) < colours) image.pixels[i] = float(srgb_decode(image.pixels[i]));
   }

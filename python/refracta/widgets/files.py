@@ -16,9 +16,12 @@ pairs.json -o solved.toml``.
 from __future__ import annotations
 
 import json
+import warnings
 from collections.abc import Sequence
 
-from refracta import _core
+import numpy as np
+
+from refracta import _checks, _core
 from refracta.scene_file import with_atmosphere, with_camera
 
 __all__ = ["pairs_json", "scene_toml"]
@@ -27,8 +30,9 @@ __all__ = ["pairs_json", "scene_toml"]
 def pairs_json(pairs: Sequence, options: dict | None = None) -> str:
     """The pairs (refracta.edit.PointPair) and solve options as the JSON text load_pairs reads.
 
-    options: solve() keywords to store beside the pairs (free, stop_height, backend, ...); entries that
-    are None are left out (solve's defaults apply)."""
+    options: solve() keywords to store beside the pairs (free, stop_height, backend, bounds, ...);
+    entries that are None are left out (solve's defaults apply), and a warning names any that JSON
+    cannot hold (objects, callables), which `refracta edit` then solves without."""
     entries = []
     for pair in pairs:
         entries.append(
@@ -39,11 +43,41 @@ def pairs_json(pairs: Sequence, options: dict | None = None) -> str:
                 "margin": float(pair.margin),
             }
         )
-    data = {"pairs": entries}
+    data: dict[str, object] = {"pairs": entries}
+    dropped = []
     for name, value in (options or {}).items():
-        if value is not None:
-            data[name] = list(value) if isinstance(value, tuple) else value
+        plain = _json_value(value)
+        if plain is not None:
+            data[name] = plain
+        elif value is not None:
+            dropped.append(name)
+    if dropped:
+        warnings.warn(
+            f"the pairs file cannot hold the solve option(s) {', '.join(dropped)} (only numbers, strings, "
+            "lists and dicts of them): `refracta edit` with it solves without them",
+            stacklevel=4,
+        )
     return json.dumps(data, indent=2) + "\n"
+
+
+def _json_value(value):
+    """`value` as JSON holds it (tuples and arrays as lists, numpy numbers and bools as Python's),
+    or None where it cannot."""
+    if isinstance(value, (bool, str)) or value is None:
+        return value
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if _checks.is_number(value):
+        return value.item() if isinstance(value, np.generic) else value
+    if isinstance(value, (list, tuple)):
+        listed = [_json_value(v) for v in value]
+        return None if any(i is None and v is not None for i, v in zip(listed, value)) else listed
+    if isinstance(value, dict) and all(isinstance(k, str) for k in value):
+        named = {k: _json_value(v) for k, v in value.items()}
+        return None if any(named[k] is None and value[k] is not None for k in value) else named
+    return None
 
 
 def scene_toml(text: str | None, camera: _core.Camera, field: _core.IndexField, turbulence=None) -> str:

@@ -130,26 +130,6 @@ class _Snapshot:
     fan_png: bytes | None
 
 
-def _json_value(value):
-    """`value` as JSON holds it (tuples and arrays as lists, numpy numbers and bools as Python's),
-    or None where it cannot."""
-    if isinstance(value, (bool, str)) or value is None:
-        return value
-    if isinstance(value, np.bool_):
-        return bool(value)
-    if isinstance(value, np.ndarray):
-        value = value.tolist()
-    if _checks.is_number(value):
-        return value.item() if isinstance(value, np.generic) else value
-    if isinstance(value, (list, tuple)):
-        listed = [_json_value(v) for v in value]
-        return None if any(i is None and v is not None for i, v in zip(listed, value)) else listed
-    if isinstance(value, dict) and all(isinstance(k, str) for k in value):
-        named = {k: _json_value(v) for k, v in value.items()}
-        return None if any(named[k] is None and value[k] is not None for k in value) else named
-    return None
-
-
 def _finite(value, name: str) -> float:
     number = _checks.number(value, name)  # not True, nor '2'
     if not math.isfinite(number):
@@ -916,22 +896,7 @@ class EditorModel:
 
     # ---------------------------------------------------------------- files
     def _solve_file_options(self) -> dict:
-        """The solve options as the pairs file holds them (JSON); a warning names any it cannot
-        hold (objects, callables), which `refracta edit` then solves without."""
-        options: dict[str, object] = {}
-        dropped = []
-        for name, value in self.solve_options.items():
-            plain = _json_value(value)
-            if plain is None and value is not None:
-                dropped.append(name)
-            else:
-                options[name] = plain
-        if dropped:
-            warnings.warn(
-                f"the pairs file cannot hold the solve option(s) {', '.join(dropped)} (only numbers, strings, "
-                "lists and dicts of them): `refracta edit` with it solves without them",
-                stacklevel=3,
-            )
+        options: dict[str, object] = dict(self.solve_options)
         options["free"] = list(self.free) if self.free else None
         options["stop_height"] = self.stop_height
         return options
