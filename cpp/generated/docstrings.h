@@ -43,6 +43,64 @@ inline constexpr const char mkd_doc_refracta_Camera[] = R"doc(Pinhole camera. Ca
 vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at (i
 + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=) or
 Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)doc";
+inline constexpr const char mkd_doc_refracta_Camera_aperture_diameter[] = R"doc(The thin lens's aperture diameter [m] (f / N), 0 for a pinhole.)doc";
+inline constexpr const char mkd_doc_refracta_Camera_eye_level[] = R"doc(A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the lens
+eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the
+horizontal direction of ``target`` (the target's own height does not tilt it). Over flat ground the
+horizon runs through the image's centre row, where mirages are: a hot road's "wet" band and the
+inverted images under cars sit just below it (Camera.framing's 45 deg aerial view shows none of
+them). Over a curved Earth the sea horizon dips sqrt(2 h / R) below it (0.041 deg at 1.6 m). Lens,
+sensor, f_number and focus_distance as for Camera.photographic (focus by default at the target's
+horizontal distance). ValueError for an eye height <= 0 or not finite, or a target straight above or
+below the eye:
+
+    camera = refracta.Camera.eye_level((0, 0, 0), (0, 0, -200), eye_height=1.6, focal_length_mm=200))doc";
+inline constexpr const char mkd_doc_refracta_Camera_framing[] = R"doc(A camera that shows a whole scene (or box): it looks along ``direction`` (default: down onto the box
+from its +x, +y, +z side) at the centre of the scene's box, from the distance at which the bounding
+sphere fills the narrower of the two fields of view (the whole box is in the image, touching its
+border only if the box is a cube seen along an axis). A scene's box holds its objects: flat
+horizontal surfaces (add_ground's 20 km square, a water plane) count only when the scene has nothing
+else.
+
+    scene.add_obj("city.obj", texture_dirs=["textures"]) camera = refracta.Camera.framing(scene,
+    width=800, height=450)
+
+scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg]. ValueError
+(std::invalid_argument) for an empty, non-finite or single-point box.)doc";
+inline constexpr const char mkd_doc_refracta_Camera_jittered[] = R"doc(The same camera with every ray turned by small angles [rad] toward the image's right and up: a map
+(height, width, 2) at the pixel centres, bilinear between them (held at the border). Non-physical
+"geometric noise" (the follow-up editor's cheap shimmer); project() ignores it. ValueError for a map
+of another size or with non-finite angles.)doc";
+inline constexpr const char mkd_doc_refracta_Camera_photographic[] = R"doc(A camera described by its lens and sensor: focal_length_mm on a sensor of sensor_mm = (width,
+height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the sensor's width when
+it is relatively wider than the sensor, else its height (a crop of the other side, Blender's "auto"
+sensor fit); vfov follows as 2 atan(h / 2f). A 300 mm telephoto on full frame at 960 x 640 sees 4.58
+deg vertically:
+
+    camera = refracta.Camera.photographic((0, 5, 0), (28000, 5, 0), 300.0, width=960, height=640)
+
+position, look_at [m]; up as for Camera.
+
+Depth of field: with f_number N a thin lens of aperture diameter A = f / N, focused at
+focus_distance [m] (None: the distance to look_at); None: a pinhole, everything sharp. A point at
+depth d [m] then blurs to the thin-lens circle of confusion ``c = A f abs(d - d_f) / (d (d_f - f))``
+on the sensor; the image keeps the field of view of focus at infinity (no focus breathing, as
+Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm]. Each
+pixel sample takes its own lens point; through a field those rays are traced from the lens (not
+served by the eye's table), which costs what table=False costs. Only the ray-traced methods
+('straight', 'curved') render it. A focal length, sensor side, f_number or focus_distance <= 0 or
+NaN, or focus_distance without f_number (a pinhole has no focus): ValueError.)doc";
+inline constexpr const char mkd_doc_refracta_Camera_photographic_vfov[] = R"doc(The vertical field of view [deg] Camera.photographic gives an image of width x height pixels (the
+image spans the sensor's width when relatively wider than the sensor, else its height).)doc";
+inline constexpr const char mkd_doc_refracta_Camera_pixel_angle[] = R"doc(The angle [rad] one pixel subtends at the image centre (vertical field of view / height).)doc";
+inline constexpr const char mkd_doc_refracta_Camera_resized[] = R"doc(The same view and lens at another image size (vertical field of view kept). A jittered camera keeps
+its angle map at the same size; at another, ValueError (resize the map, then call jittered; or
+camera.without_jitter().resized(...)).)doc";
+inline constexpr const char mkd_doc_refracta_Camera_up_hint[] = R"doc(The up vector given to the constructor.)doc";
+inline constexpr const char mkd_doc_refracta_Camera_with_lens[] = R"doc(The same view through a thin lens of aperture_diameter [m] (0: a pinhole) focused on the plane at
+depth focus_distance [m] along forward() (Camera.photographic's f_number gives f / N). ValueError
+for a negative or non-finite diameter, or a focus distance <= 0 or not finite.)doc";
+inline constexpr const char mkd_doc_refracta_Camera_without_jitter[] = R"doc(The same camera without its jitter map (None: unchanged; a preview at another size, say).)doc";
 inline constexpr const char mkd_doc_refracta_Conductor[] = R"doc(A smooth metal mirror with the exact complex Fresnel reflectance of eta + i k (numbers or (r, g, b),
 relative to vacuum). eta and k unset: a perfect mirror, F = 1; eta without k: k = 0.)doc";
 inline constexpr const char mkd_doc_refracta_ConstantEnvironment[] = R"doc(Uniform radiance L_e [W/(m^2 sr)] (a colour) from every direction; sampling 'cosine' (about the
@@ -172,6 +230,11 @@ Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5 (MOMENTS.md 2
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings_published_bias_vector[] = R"doc((0.5, 0.5, 0.5, 0.5) for unit depths; for signed ones (0, 0.375, 0, 0.375), and with 16-bit storage
 (the sparse quantisation) (0, 0.628, 0, 0.628) (Peters et al. 2017; MOMENTS.md 2.2).)doc";
 inline constexpr const char mkd_doc_refracta_ObjOptions[] = R"doc(How add_obj (Scene.add_obj) places an OBJ file and finds its textures.)doc";
+inline constexpr const char mkd_doc_refracta_ObjOptions_missing_textures[] = R"doc('error' (raise refracta.TextureNotFoundError) or 'warn' (a UserWarning once per texture name,
+through the `warn` callback; the material keeps Kd))doc";
+inline constexpr const char mkd_doc_refracta_ObjOptions_offset[] = R"doc([m] added to every vertex after scaling)doc";
+inline constexpr const char mkd_doc_refracta_ObjOptions_scale[] = R"doc(every vertex is multiplied by this (> 0), then offset)doc";
+inline constexpr const char mkd_doc_refracta_ObjOptions_texture_dirs[] = R"doc(folders searched, in order, after the MTL's own for each map_Kd (one folder or a sequence))doc";
 inline constexpr const char mkd_doc_refracta_OceanWaves[] = R"doc(A wind sea's waves on a periodic square patch (scene/ocean_waves.h): a height field synthesised by
 FFT from the Phillips spectrum, as Tessendorf 2001 ("Simulating Ocean Water") does,
 
@@ -354,6 +417,11 @@ inline constexpr const char mkd_doc_refracta_RenderOptions_use_table[] = R"doc(H
 (interpolated to `tol`) instead of tracing each pixel (over a CurvedEarth, paths over 150 km end in
 the table where they leave the air; spectral renders of 8 spp or more: one table per dispersion
 scale; renderer.cpp).)doc";
+inline constexpr const char mkd_doc_refracta_RenderScene[] = R"doc(Geometry (Embree), materials (refracta.shading) and lights. Scene() starts empty: no sun, no sky,
+black. Every add_* takes material= (any refracta.shading material); without it the Blinn-Phong
+shorthand kd (diffuse albedo, RGB in [0, 1]), ks (specular albedo), ns (Phong exponent) applies.
+Meshes and spheres with emission= [W/(m^2 sr), RGB] are area lights (one-sided on the triangles'
+counter-clockwise front unless two_sided). Units: metres, y up.)doc";
 inline constexpr const char mkd_doc_refracta_RenderStats[] = R"doc(What refracta.render counted, summed over its samples (read-only; tiles add up with +).)doc";
 inline constexpr const char mkd_doc_refracta_RenderStats_chords[] = R"doc(Embree queries along camera paths (straight rays count one each))doc";
 inline constexpr const char mkd_doc_refracta_RenderStats_invalid_samples[] = R"doc(samples whose radiance was not finite (dropped; should stay 0))doc";
@@ -516,6 +584,45 @@ inline constexpr const char mkd_doc_refracta_Water_transmittance[] = R"doc(The r
 at cos theta = mu that crosses into the water), as the water body's term uses it, at the water's
 index at wavelength_nm under vacuum, mu in [-1, 1] (std::invalid_argument naming them otherwise).
 Tabulated (33 mu x 5 eta nodes).)doc";
+inline constexpr const char mkd_doc_refracta_add_billboard[] = R"doc(Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at
+`centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the -x
+side), upright; kd (default 1: the picture's own colours) multiplies the texture.)doc";
+inline constexpr const char mkd_doc_refracta_add_box[] = R"doc(Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]. Without `material`, the
+kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha
+(default 1; < 1: transparent in render_raster)).)doc";
+inline constexpr const char mkd_doc_refracta_add_ground[] = R"doc(Add a square ground of side `size` [m] at y = height, centred on the origin, facing up. Without
+`material`, the kd/ks/ns shorthand (BlinnPhong; kd default 0.3 grey) and a texture multiplying kd; a
+texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z;
+None: 1 m).)doc";
+inline constexpr const char mkd_doc_refracta_add_mesh[] = R"doc(Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);
+optional per-vertex normals (N, 3) (shading normals, interpolated; any length but 0) and uvs (N, 2)
+texture coordinates (u right, v up); emission makes it an area light. Without `material`, the
+kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha
+(default 1; < 1: transparent in render_raster)). A texture (an image file) multiplies kd. Returns
+its id.)doc";
+inline constexpr const char mkd_doc_refracta_add_obj[] = R"doc(Add a Wavefront OBJ file with its MTL materials, scaled then offset.
+
+The settings are a refracta.ObjOptions (``options``; None: its defaults) changed by the keywords
+offset, scale, texture_dirs and missing_textures (None: left as they are).
+
+Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with d < 1
+and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as shading normals.
+
+A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of ``texture_dirs``
+in order (relative folders from the working directory), as written and by its file name alone (a
+path from the author's machine). A texture found nowhere raises refracta.TextureNotFoundError (a
+refracta.IoError and a FileNotFoundError) naming it and the folders searched
+(``missing_textures='error'``), or, with ``missing_textures='warn'``, issues a UserWarning (Python's
+warnings) and its material uses Kd.
+
+Each texture is prepared once (MIP-mapped, linear) into the texture cache folder
+($REFRACTA_TEXTURE_CACHE, else refracta-textures in the temporary folder); a model with hundreds of
+textures takes seconds the first time. progress: True shows a bar on stderr once preparing has taken
+over a second, a callable gets progress(done, total) textures, False shows nothing.
+
+Returns the geometry ids, one per part. A missing OBJ or MTL raises refracta.IoError.)doc";
+inline constexpr const char mkd_doc_refracta_add_sphere[] = R"doc(Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`, the
+kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).)doc";
 inline constexpr const char mkd_doc_refracta_area_light_normal[] = R"doc(The front normal of an area light's triangle (unit; 0 for a zero-area one; ValueError for an index
 past its triangles).)doc";
 inline constexpr const char mkd_doc_refracta_bsdf_f[] = R"doc(The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per wavelength.

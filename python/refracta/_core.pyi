@@ -811,7 +811,8 @@ class ObjOptions:
     @property
     def missing_textures(self) -> str:
         """
-        'error' (raise refracta.TextureNotFoundError) or 'warn' (a UserWarning; the material keeps Kd)
+        'error' (raise refracta.TextureNotFoundError) or 'warn' (a UserWarning once per texture name,
+        through the `warn` callback; the material keeps Kd)
         """
     @missing_textures.setter
     def missing_textures(self, arg1: str) -> None:
@@ -865,8 +866,8 @@ class Scene:
     def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: os.PathLike | str | bytes, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = None) -> int:
         """
         Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at
-        `centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the
-        -x side), upright; kd (default 1: the picture's own colours) multiplies the texture.
+        `centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the -x
+        side), upright; kd (default 1: the picture's own colours) multiplies the texture.
         """
     def add_box(self, centre: typing.Any, size: typing.Any, material: typing.Any = None, emission: typing.Any = None, *, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None, alpha: typing.Any = None) -> int:
         """
@@ -877,8 +878,9 @@ class Scene:
     def add_ground(self, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 20000.0, material: typing.Any = None, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None, *, texture: os.PathLike | str | bytes | None = None, texture_size: typing.SupportsFloat | typing.SupportsIndex | None = None) -> int:
         """
         Add a square ground of side `size` [m] at y = height, centred on the origin, facing up. Without
-        `material`, the kd/ks/ns shorthand (BlinnPhong; kd default 0.3 grey) and a texture multiplying kd;
-        a texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z; None: 1 m).
+        `material`, the kd/ks/ns shorthand (BlinnPhong; kd default 0.3 grey) and a texture multiplying kd; a
+        texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z;
+        None: 1 m).
         """
     def add_light(self, light: ...) -> int:
         """
@@ -887,10 +889,11 @@ class Scene:
     def add_mesh(self, vertices: typing.Any, triangles: typing.Any, material: typing.Any = None, emission: typing.Any = None, two_sided: bool = False, normals: typing.Any = None, *, uvs: typing.Any = None, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None, texture: os.PathLike | str | bytes | None = None, alpha: typing.Any = None) -> int:
         """
         Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);
-        optional per-vertex normals (N, 3) (shading normals, interpolated) and uvs (N, 2) texture
-        coordinates (u right, v up); emission makes it an area light. Without `material`, the
+        optional per-vertex normals (N, 3) (shading normals, interpolated; any length but 0) and uvs (N, 2)
+        texture coordinates (u right, v up); emission makes it an area light. Without `material`, the
         kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha
-        (default 1; < 1: transparent in render_raster)). A texture (an image file) multiplies kd. Returns its id.
+        (default 1; < 1: transparent in render_raster)). A texture (an image file) multiplies kd. Returns
+        its id.
         """
     def add_obj(self, path: os.PathLike | str | bytes, offset: typing.Any = None, scale: typing.Any = None, *, options: typing.Any = None, texture_dirs: typing.Any = None, missing_textures: typing.Any = None, progress: typing.Any = True) -> list[int]:
         """
@@ -899,22 +902,22 @@ class Scene:
         The settings are a refracta.ObjOptions (``options``; None: its defaults) changed by the keywords
         offset, scale, texture_dirs and missing_textures (None: left as they are).
         
-        Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with
-        d < 1 and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as shading normals.
+        Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with d < 1
+        and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as shading normals.
         
-        A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of
-        ``texture_dirs`` in order (relative folders from the working directory), as written and by its
-        file name alone (a path from the author's machine). A texture found nowhere raises
-        refracta.TextureNotFoundError (a refracta.IoError and a FileNotFoundError) naming it and the
-        folders searched (``missing_textures='error'``), or, with
-        ``missing_textures='warn'``, issues a UserWarning (Python's warnings) and its material uses Kd.
+        A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of ``texture_dirs``
+        in order (relative folders from the working directory), as written and by its file name alone (a
+        path from the author's machine). A texture found nowhere raises refracta.TextureNotFoundError (a
+        refracta.IoError and a FileNotFoundError) naming it and the folders searched
+        (``missing_textures='error'``), or, with ``missing_textures='warn'``, issues a UserWarning (Python's
+        warnings) and its material uses Kd.
         
         Each texture is prepared once (MIP-mapped, linear) into the texture cache folder
         ($REFRACTA_TEXTURE_CACHE, else refracta-textures in the temporary folder); a model with hundreds of
-        textures takes seconds the first time. progress: True shows a bar on stderr once preparing has
-        taken over a second, a callable gets progress(done, total) textures, False shows nothing.
+        textures takes seconds the first time. progress: True shows a bar on stderr once preparing has taken
+        over a second, a callable gets progress(done, total) textures, False shows nothing.
         
-        Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.
+        Returns the geometry ids, one per part. A missing OBJ or MTL raises refracta.IoError.
         """
     def add_point_light(self, position: typing.Any, intensity: typing.Any) -> int:
         """
@@ -943,8 +946,8 @@ class Scene:
         """
     def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, material: typing.Any = None, emission: typing.Any = None, *, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None) -> int:
         """
-        Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`,
-        the kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).
+        Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`, the
+        kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).
         """
     def add_spot_light(self, position: typing.Any, direction: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex = 60.0, intensity: typing.Any = (100.0, 100.0, 100.0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> int:
         """
@@ -1078,29 +1081,33 @@ class Camera:
     @staticmethod
     def eye_level(eye: typing.Any, target: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex = 1.6, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex = 50.0, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), *, width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
         """
-        A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the
-        lens eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the
-        horizontal direction of ``target``. Over flat ground the horizon runs through the image's centre
-        row, where mirages are: a hot road's "wet" band and the inverted images under cars sit just below
-        it (Camera.framing's 45 deg aerial view shows none of them). Over a curved Earth the sea horizon
-        dips sqrt(2 h / R) below it (0.041 deg at 1.6 m). Lens, sensor, f_number and focus_distance as
-        for Camera.photographic (focus by default at the target's horizontal distance):
+        A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the lens
+        eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the
+        horizontal direction of ``target`` (the target's own height does not tilt it). Over flat ground the
+        horizon runs through the image's centre row, where mirages are: a hot road's "wet" band and the
+        inverted images under cars sit just below it (Camera.framing's 45 deg aerial view shows none of
+        them). Over a curved Earth the sea horizon dips sqrt(2 h / R) below it (0.041 deg at 1.6 m). Lens,
+        sensor, f_number and focus_distance as for Camera.photographic (focus by default at the target's
+        horizontal distance). ValueError for an eye height <= 0 or not finite, or a target straight above or
+        below the eye:
         
             camera = refracta.Camera.eye_level((0, 0, 0), (0, 0, -200), eye_height=1.6, focal_length_mm=200)
         """
     @staticmethod
     def framing(scene_or_bounds: typing.Any, direction: typing.Any = (-1.0, -0.5, -1.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360, up: typing.Any = (0.0, 1.0, 0.0)) -> Camera:
         """
-        A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
-        onto the box from its +x, +y, +z side) at the centre of the scene's box, from the distance at
-        which the bounding sphere fills the narrower of the two fields of view. A scene's box holds its
-        objects: flat horizontal surfaces (add_ground's 20 km square, a water plane) count only when the
-        scene has nothing else.
+        A camera that shows a whole scene (or box): it looks along ``direction`` (default: down onto the box
+        from its +x, +y, +z side) at the centre of the scene's box, from the distance at which the bounding
+        sphere fills the narrower of the two fields of view (the whole box is in the image, touching its
+        border only if the box is a cube seen along an axis). A scene's box holds its objects: flat
+        horizontal surfaces (add_ground's 20 km square, a water plane) count only when the scene has nothing
+        else.
         
-            scene.add_obj("city.obj", texture_dirs=["textures"])
-            camera = refracta.Camera.framing(scene, width=800, height=450)
+            scene.add_obj("city.obj", texture_dirs=["textures"]) camera = refracta.Camera.framing(scene,
+            width=800, height=450)
         
-        scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].
+        scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg]. ValueError
+        (std::invalid_argument) for an empty, non-finite or single-point box.
         """
     @staticmethod
     def geographic(lat, lon, height, azimuth = None, elevation = None, *, target = None, vfov = None, focal_length_mm = None, sensor_mm = None, image_width = None, image_height = None, roll = 0.0, earth_radius = None) -> Camera:
@@ -1134,10 +1141,11 @@ class Camera:
     @staticmethod
     def photographic(position: typing.Any, look_at: typing.Any, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, *, up: typing.Any = (0.0, 1.0, 0.0), f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
         """
-        A camera described by its lens and sensor: focal_length_mm on a sensor of
-        sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the
-        sensor's width when it is relatively wider than the sensor, else its height; vfov follows as
-        2 atan(h / 2f). A 300 mm telephoto on full frame at 960 x 640 sees 4.58 deg vertically:
+        A camera described by its lens and sensor: focal_length_mm on a sensor of sensor_mm = (width,
+        height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the sensor's width when
+        it is relatively wider than the sensor, else its height (a crop of the other side, Blender's "auto"
+        sensor fit); vfov follows as 2 atan(h / 2f). A 300 mm telephoto on full frame at 960 x 640 sees 4.58
+        deg vertically:
         
             camera = refracta.Camera.photographic((0, 5, 0), (28000, 5, 0), 300.0, width=960, height=640)
         
@@ -1147,16 +1155,17 @@ class Camera:
         focus_distance [m] (None: the distance to look_at); None: a pinhole, everything sharp. A point at
         depth d [m] then blurs to the thin-lens circle of confusion ``c = A f abs(d - d_f) / (d (d_f - f))``
         on the sensor; the image keeps the field of view of focus at infinity (no focus breathing, as
-        Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm].
-        Each pixel sample takes its own lens point; through a field those rays are traced from the lens
-        (not served by the eye's table), which costs what table=False costs. Only the ray-traced methods
-        ('straight', 'curved') render it. f_number or focus_distance <= 0 or NaN, or focus_distance without
-        f_number (a pinhole has no focus): ValueError.
+        Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm]. Each
+        pixel sample takes its own lens point; through a field those rays are traced from the lens (not
+        served by the eye's table), which costs what table=False costs. Only the ray-traced methods
+        ('straight', 'curved') render it. A focal length, sensor side, f_number or focus_distance <= 0 or
+        NaN, or focus_distance without f_number (a pinhole has no focus): ValueError.
         """
     @staticmethod
     def photographic_vfov(focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640) -> float:
         """
-        The vertical field of view [deg] Camera.photographic gives an image of width x height pixels (the image spans the sensor's width when relatively wider than the sensor, else its height).
+        The vertical field of view [deg] Camera.photographic gives an image of width x height pixels (the
+        image spans the sensor's width when relatively wider than the sensor, else its height).
         """
     def __eq__(self, arg0: typing.Any) -> typing.Any:
         """
@@ -1174,9 +1183,10 @@ class Camera:
         ...
     def jittered(self, angles: typing.Any) -> Camera:
         """
-        The same camera with every ray turned by small angles [rad] toward the image's right and up: a
-        map (height, width, 2) at the pixel centres, bilinear between them. Non-physical "geometric noise"
-        (the follow-up editor's cheap shimmer); project() ignores it.
+        The same camera with every ray turned by small angles [rad] toward the image's right and up: a map
+        (height, width, 2) at the pixel centres, bilinear between them (held at the border). Non-physical
+        "geometric noise" (the follow-up editor's cheap shimmer); project() ignores it. ValueError for a map
+        of another size or with non-finite angles.
         """
     def pick(self, scene: Scene, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex) -> typing.Any:
         """
@@ -1199,12 +1209,12 @@ class Camera:
     def with_lens(self, aperture_diameter: typing.SupportsFloat | typing.SupportsIndex, focus_distance: typing.SupportsFloat | typing.SupportsIndex) -> Camera:
         """
         The same view through a thin lens of aperture_diameter [m] (0: a pinhole) focused on the plane at
-        depth focus_distance [m] (Camera.photographic's f_number gives f / N). ValueError for a negative
-        diameter or a focus distance <= 0.
+        depth focus_distance [m] along forward() (Camera.photographic's f_number gives f / N). ValueError
+        for a negative or non-finite diameter, or a focus distance <= 0 or not finite.
         """
     def without_jitter(self) -> Camera:
         """
-        The same camera without its jitter map (None: unchanged).
+        The same camera without its jitter map (None: unchanged; a preview at another size, say).
         """
     @property
     def aperture_diameter(self) -> float:

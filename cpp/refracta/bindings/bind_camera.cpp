@@ -73,20 +73,10 @@ void bind_camera_constructors(py::class_<Camera>& camera) {
       },
       py::arg("scene_or_bounds"), py::arg("direction") = py::make_tuple(-1.0, -0.5, -1.0), py::arg("vfov") = 45.0,
       py::arg("width") = 640, py::arg("height") = 360, py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
-      R"doc(A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
-onto the box from its +x, +y, +z side) at the centre of the scene's box, from the distance at
-which the bounding sphere fills the narrower of the two fields of view. A scene's box holds its
-objects: flat horizontal surfaces (add_ground's 20 km square, a water plane) count only when the
-scene has nothing else.
-
-    scene.add_obj("city.obj", texture_dirs=["textures"])
-    camera = refracta.Camera.framing(scene, width=800, height=450)
-
-scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc");
+      DOC(refracta, Camera, framing));
   camera.def_static("photographic_vfov", &photographic_vfov_of, py::arg("focal_length_mm"),
                     py::arg("sensor_mm") = kFullFrame, py::arg("width") = kPhotoWidth, py::arg("height") = kPhotoHeight,
-                    "The vertical field of view [deg] Camera.photographic gives an image of width x height pixels "
-                    "(the image spans the sensor's width when relatively wider than the sensor, else its height).");
+                    DOC(refracta, Camera, photographic_vfov));
   camera.def_static(
       "photographic",
       [](const py::object& position, const py::object& look_at, double focal_length_mm, const Sensor& sensor_mm,
@@ -98,24 +88,7 @@ scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg].)doc");
       py::arg("position"), py::arg("look_at"), py::arg("focal_length_mm"), py::arg("sensor_mm") = kFullFrame,
       py::arg("width") = kPhotoWidth, py::arg("height") = kPhotoHeight, py::kw_only(), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
       py::arg("f_number") = py::none(), py::arg("focus_distance") = py::none(),
-      R"doc(A camera described by its lens and sensor: focal_length_mm on a sensor of
-sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the
-sensor's width when it is relatively wider than the sensor, else its height; vfov follows as
-2 atan(h / 2f). A 300 mm telephoto on full frame at 960 x 640 sees 4.58 deg vertically:
-
-    camera = refracta.Camera.photographic((0, 5, 0), (28000, 5, 0), 300.0, width=960, height=640)
-
-position, look_at [m]; up as for Camera.
-
-Depth of field: with f_number N a thin lens of aperture diameter A = f / N, focused at
-focus_distance [m] (None: the distance to look_at); None: a pinhole, everything sharp. A point at
-depth d [m] then blurs to the thin-lens circle of confusion ``c = A f abs(d - d_f) / (d (d_f - f))``
-on the sensor; the image keeps the field of view of focus at infinity (no focus breathing, as
-Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm].
-Each pixel sample takes its own lens point; through a field those rays are traced from the lens
-(not served by the eye's table), which costs what table=False costs. Only the ray-traced methods
-('straight', 'curved') render it. f_number or focus_distance <= 0 or NaN, or focus_distance without
-f_number (a pinhole has no focus): ValueError.)doc");
+      DOC(refracta, Camera, photographic));
   camera.def_static(
       "eye_level",
       [](const py::object& eye, const py::object& target, double eye_height, double focal_length_mm,
@@ -127,16 +100,7 @@ f_number (a pinhole has no focus): ValueError.)doc");
       py::arg("eye"), py::arg("target"), py::arg("eye_height") = 1.6, py::arg("focal_length_mm") = 50.0,
       py::arg("sensor_mm") = kFullFrame, py::kw_only(), py::arg("width") = kPhotoWidth, py::arg("height") = kPhotoHeight,
       py::arg("f_number") = py::none(), py::arg("focus_distance") = py::none(),
-      R"doc(A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the
-lens eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the
-horizontal direction of ``target``. Over flat ground the horizon runs through the image's centre
-row, where mirages are: a hot road's "wet" band and the inverted images under cars sit just below
-it (Camera.framing's 45 deg aerial view shows none of them). Over a curved Earth the sea horizon
-dips sqrt(2 h / R) below it (0.041 deg at 1.6 m). Lens, sensor, f_number and focus_distance as
-for Camera.photographic (focus by default at the target's horizontal distance):
-
-    camera = refracta.Camera.eye_level((0, 0, 0), (0, 0, -200), eye_height=1.6, focal_length_mm=200)
-)doc");
+      DOC(refracta, Camera, eye_level));
 }
 
 }  // namespace
@@ -190,31 +154,19 @@ void bind_camera(py::module_& m) {
           "The scene point seen at pixel (u, v) without atmosphere (straight ray), or None.")
       .def_property_readonly("position", [](const Camera& c) { return vector_to_array(c.position()); })
       .def_property_readonly("look_at", [](const Camera& c) { return vector_to_array(c.look_at()); })
-      .def_property_readonly("up", [](const Camera& c) { return vector_to_array(c.up_hint()); },
-                             "The up vector given to the constructor.")
-      .def("jittered", &jittered, py::arg("angles"), R"doc(
-The same camera with every ray turned by small angles [rad] toward the image's right and up: a
-map (height, width, 2) at the pixel centres, bilinear between them. Non-physical "geometric noise"
-(the follow-up editor's cheap shimmer); project() ignores it.)doc")
+      .def_property_readonly("up", [](const Camera& c) { return vector_to_array(c.up_hint()); }, DOC(refracta, Camera, up_hint))
+      .def("jittered", &jittered, py::arg("angles"), DOC(refracta, Camera, jittered))
       .def_property_readonly("jitter", &jitter_array, "The angle map (height, width, 2) [rad] of a jittered camera, or None.")
       .def(py::pickle(&camera_state, &camera_from_state))
-      .def("with_lens", &Camera::with_lens, py::arg("aperture_diameter"), py::arg("focus_distance"),
-           "The same view through a thin lens of aperture_diameter [m] (0: a pinhole) focused on the plane at\n"
-           "depth focus_distance [m] (Camera.photographic's f_number gives f / N). ValueError for a negative\n"
-           "diameter or a focus distance <= 0.")
-      .def_property_readonly("aperture_diameter", &Camera::aperture_diameter,
-                             "The thin lens's aperture diameter [m] (f / N), 0 for a pinhole.")
+      .def("with_lens", &Camera::with_lens, py::arg("aperture_diameter"), py::arg("focus_distance"), DOC(refracta, Camera, with_lens))
+      .def_property_readonly("aperture_diameter", &Camera::aperture_diameter, DOC(refracta, Camera, aperture_diameter))
       .def_property_readonly("focus_distance", &Camera::focus_distance, "The depth [m] of the plane in focus, 0 for a pinhole.")
-      .def("resized", &Camera::resized, py::arg("width"), py::arg("height"),
-           "The same view and lens at another image size (vertical field of view kept). A jittered camera keeps\n"
-           "its angle map at the same size; at another, ValueError (resize the map, then call jittered; or\n"
-           "camera.without_jitter().resized(...)).")
-      .def("without_jitter", &Camera::without_jitter, "The same camera without its jitter map (None: unchanged).")
+      .def("resized", &Camera::resized, py::arg("width"), py::arg("height"), DOC(refracta, Camera, resized))
+      .def("without_jitter", &Camera::without_jitter, DOC(refracta, Camera, without_jitter))
       .def_property_readonly("width", &Camera::width)
       .def_property_readonly("height", &Camera::height)
       .def_property_readonly("vfov", &Camera::vfov)
-      .def_property_readonly("pixel_angle", &Camera::pixel_angle,
-                             "The angle [rad] one pixel subtends at the image centre (vertical field of view / height).")
+      .def_property_readonly("pixel_angle", &Camera::pixel_angle, DOC(refracta, Camera, pixel_angle))
       .def("__repr__", &Camera::describe)
       .def(
           "__eq__",

@@ -8,7 +8,6 @@
 
 #include "refracta/render/obj_materials.h"
 #include "refracta/render/scene_building.h"
-#include "refracta/shading/phong.h"
 
 #include <cmath>
 #include <optional>
@@ -29,61 +28,34 @@ std::shared_ptr<Material> to_material(const py::object& material, const char* wh
 
 namespace {
 
-// The Blinn-Phong shorthand of the add_* calls (kd, ks, ns, alpha and a kd texture), as the MTL
-// files and the early API have it; None: BlinnPhong's default (kd: the call's own).
-struct Shorthand {
-  py::object kd, ks, ns, alpha;
-  int texture = -1;
-  bool given() const { return !kd.is_none() || !ks.is_none() || !ns.is_none() || !alpha.is_none() || texture >= 0; }
+// An add_* call's SurfaceLook from its arguments (None: unset).
+struct LookArgs {
+  py::object material = py::none(), emission = py::none(), kd = py::none(), ks = py::none(), ns = py::none(),
+             alpha = py::none();
+  std::optional<FilePath> texture;
+  bool two_sided = false;
 };
 
-// The docstrings' account of the shorthand, and add_ground's grey (a darker ground than objects).
-#define SHORTHAND_DOC                                                                                      \
-  "kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha\n" \
-  "(default 1; < 1: transparent in render_raster))."
-constexpr double kGroundKd = 0.3;
-
-// The material of an add_* call: `material` when given (then no shorthand: it would be ignored),
-// else the shorthand's BlinnPhong.
-// Refuses `material` with any of the shorthand (or a texture file, before it is prepared).
-void check_material_or_shorthand(const char* call, const py::object& material, const Shorthand& shorthand,
-                                 bool texture_file = false) {
-  if (!material.is_none() && (shorthand.given() || texture_file)) {
-    throw_invalid(call, ": give `material` or the kd/ks/ns/alpha/texture shorthand, not both (the shorthand "
-                  "would be ignored)");
-  }
+SurfaceLook look_of(const LookArgs& args) {
+  SurfaceLook look;
+  if (!args.material.is_none()) look.material = to_material(args.material, "");
+  if (!args.emission.is_none()) look.emission = to_illuminant(args.emission, "emission");
+  if (!args.kd.is_none()) look.kd = to_rgb(args.kd, "kd");
+  if (!args.ks.is_none()) look.ks = to_rgb(args.ks, "ks");
+  if (!args.ns.is_none()) look.ns = to_number(args.ns, "ns");
+  if (!args.alpha.is_none()) look.alpha = to_number(args.alpha, "alpha");
+  if (args.texture) look.texture = args.texture->string();
+  look.two_sided = args.two_sided;
+  return look;
 }
 
-int material_of(RenderScene& s, const char* call, const py::object& material, const Shorthand& shorthand,
-                double default_kd = BlinnPhong::kDefaultKd) {
-  check_material_or_shorthand(call, material, shorthand);
-  if (!material.is_none()) return s.add_material(to_material(material, ""));
-  const auto value = [](const py::object& given, const char* name, double fallback) {
-    return given.is_none() ? fallback : to_number(given, name);
-  };
-  const Vec3d kd = shorthand.kd.is_none() ? Vec3d::Constant(default_kd) : to_rgb(shorthand.kd, "kd");
-  const Vec3d ks = shorthand.ks.is_none() ? Vec3d::Zero() : to_rgb(shorthand.ks, "ks");
-  return s.add_material(std::make_shared<BlinnPhong>(TexturedReflectance(kd, "kd", shorthand.texture), ks,
-                                                     value(shorthand.ns, "ns", BlinnPhong::kDefaultNs),
-                                                     value(shorthand.alpha, "alpha", 1.0)));
-}
-
-// emission= (RGB radiance [W/(m^2 sr)]) or None.
-std::optional<Color> emission_of(const py::object& emission) {
-  if (emission.is_none()) return std::nullopt;
-  return to_illuminant(emission, "emission");
-}
-
-// add_mesh's arrays: vertices (N, 3), triangles (M, 3), optional normals (N, 3) (normalised) and uvs (N, 2).
+// add_mesh's arrays: vertices (N, 3), triangles (M, 3), optional normals (N, 3) and uvs (N, 2).
 Mesh mesh_from(const py::object& vertices, const py::object& triangles, const py::object& normals, const py::object& uvs) {
   Mesh mesh;
   mesh.vertices = to_points(vertices, "vertices");
   mesh.triangles = to_triangles(triangles, "triangles", mesh.vertices.size());
   if (!uvs.is_none()) mesh.uvs = to_uvs(uvs, "uvs", mesh.vertices.size());
-  if (!normals.is_none()) {  // shading normals, of any length but 0
-    mesh.normals = to_points(normals, "normals");
-    normalise_normals(mesh);
-  }
+  if (!normals.is_none()) mesh.normals = to_points(normals, "normals");
   return mesh;
 }
 
@@ -148,11 +120,6 @@ ObjOptions obj_options(const py::object& given, const py::dict& keywords, const 
   return options;
 }
 
-// add_ground's texture_size, when the ground is textured (texture= or a textured material).
-bool textured(const py::object& material, const std::optional<FilePath>& texture) {
-  return texture || (!material.is_none() && py::isinstance<Material>(material) && py::cast<const Material&>(material).textured());
-}
-
 void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& scene) {
   scene
       .def("add_mesh",
@@ -160,21 +127,13 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
               const py::object& emission, bool two_sided, const py::object& normals, const py::object& uvs,
               const py::object& kd, const py::object& ks, const py::object& ns, std::optional<FilePath> texture,
               const py::object& alpha) {
-             const Mesh mesh = mesh_from(vertices, triangles, normals, uvs);
-             check_material_or_shorthand("add_mesh", material, {kd, ks, ns, alpha}, texture.has_value());
-             const int tex = texture ? s.geometry.textures().add(texture->string()) : -1;
-             if (tex >= 0 && mesh.uvs.empty()) throw_invalid("add_mesh: a texture needs uvs");
-             const int material_id = material_of(s, "add_mesh", material, {kd, ks, ns, alpha, tex});
-             return add_surface(s, mesh, material_id, emission_of(emission), two_sided, "add_mesh");
+             Mesh mesh = mesh_from(vertices, triangles, normals, uvs);
+             return add_mesh(s, std::move(mesh), look_of({material, emission, kd, ks, ns, alpha, texture, two_sided}));
            },
            py::arg("vertices"), py::arg("triangles"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
            py::arg("two_sided").noconvert() = false, py::arg("normals") = py::none(), py::kw_only(), py::arg("uvs") = py::none(),
            py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(),
-           py::arg("texture") = py::none(), py::arg("alpha") = py::none(),
-           "Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);\n"
-           "optional per-vertex normals (N, 3) (shading normals, interpolated) and uvs (N, 2) texture\n"
-           "coordinates (u right, v up); emission makes it an area light. Without `material`, the\n"
-           SHORTHAND_DOC " A texture (an image file) multiplies kd. Returns its id.")
+           py::arg("texture") = py::none(), py::arg("alpha") = py::none(), DOC(refracta, add_mesh))
       .def("add_obj",
            [](RenderScene& s, const FilePath& path, const py::object& offset, const py::object& scale,
               const py::object& options, const py::object& texture_dirs, const py::object& missing_textures,
@@ -186,83 +145,42 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
            },
            py::arg("path"), py::arg("offset") = py::none(), py::arg("scale") = py::none(), py::kw_only(),
            py::arg("options") = py::none(), py::arg("texture_dirs") = py::none(),
-           py::arg("missing_textures") = py::none(), py::arg("progress") = true,
-           R"doc(Add a Wavefront OBJ file with its MTL materials, scaled then offset.
-
-The settings are a refracta.ObjOptions (``options``; None: its defaults) changed by the keywords
-offset, scale, texture_dirs and missing_textures (None: left as they are).
-
-Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with
-d < 1 and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as shading normals.
-
-A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of
-``texture_dirs`` in order (relative folders from the working directory), as written and by its
-file name alone (a path from the author's machine). A texture found nowhere raises
-refracta.TextureNotFoundError (a refracta.IoError and a FileNotFoundError) naming it and the
-folders searched (``missing_textures='error'``), or, with
-``missing_textures='warn'``, issues a UserWarning (Python's warnings) and its material uses Kd.
-
-Each texture is prepared once (MIP-mapped, linear) into the texture cache folder
-($REFRACTA_TEXTURE_CACHE, else refracta-textures in the temporary folder); a model with hundreds of
-textures takes seconds the first time. progress: True shows a bar on stderr once preparing has
-taken over a second, a callable gets progress(done, total) textures, False shows nothing.
-
-Returns the geometry ids. A missing OBJ or MTL raises refracta.IoError.)doc")
+           py::arg("missing_textures") = py::none(), py::arg("progress") = true, DOC(refracta, add_obj))
       .def("add_ground",
            [](RenderScene& s, double height, double size, const py::object& material, const py::object& kd,
               const py::object& ks, const py::object& ns, std::optional<FilePath> texture,
               std::optional<double> texture_size) {
-             const bool uvs = textured(material, texture);
-             if (texture_size && !uvs) throw_invalid("add_ground: texture_size applies to a texture (texture= or a textured material)");
-             const Mesh mesh = uvs ? ground_mesh(height, 0.5 * size, texture_size.value_or(kGroundTextureSize))
-                                   : ground_mesh(height, 0.5 * size);
-             check_material_or_shorthand("add_ground", material, {kd, ks, ns, py::none()}, texture.has_value());
-             const int tex = texture ? s.geometry.add_texture(texture->string()) : -1;
-             const int material_id = material_of(s, "add_ground", material, {kd, ks, ns, py::none(), tex}, kGroundKd);
-             return s.geometry.add_mesh(mesh, material_id);
+             return add_ground(s, height, size, look_of({material, py::none(), kd, ks, ns, py::none(), texture, false}), texture_size);
            },
            py::arg("height") = 0.0, py::arg("size") = 20000.0, py::arg("material") = py::none(),
            py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(), py::kw_only(),
-           py::arg("texture") = py::none(), py::arg("texture_size") = py::none(),
-           "Add a square ground of side `size` [m] at y = height, centred on the origin, facing up. Without\n"
-           "`material`, the kd/ks/ns shorthand (BlinnPhong; kd default 0.3 grey) and a texture multiplying kd;\n"
-           "a texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z; None: 1 m).")
+           py::arg("texture") = py::none(), py::arg("texture_size") = py::none(), DOC(refracta, add_ground))
       .def("add_billboard",
            [](RenderScene& s, const py::object& centre, double width, double height, const FilePath& texture,
               const py::object& facing, const py::object& kd) {
-             const Mesh mesh = billboard_mesh(to_point(centre, "centre"), width, height, to_point(facing, "facing"));
-             const int id = s.geometry.textures().add(texture.string());
-             const Shorthand shorthand{kd, py::none(), py::none(), py::none(), id};
-             return s.geometry.add_mesh(mesh, material_of(s, "add_billboard", py::none(), shorthand, 1.0));
+             return add_billboard(s, to_point(centre, "centre"), width, height, texture.string(), to_point(facing, "facing"),
+                                  to_optional_rgb(kd, "kd"));
            },
            py::arg("centre"), py::arg("width"), py::arg("height"), py::arg("texture"),
-           py::arg("facing") = py::make_tuple(-1.0, 0.0, 0.0), py::arg("kd") = py::none(),
-           "Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at\n"
-           "`centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the\n"
-           "-x side), upright; kd (default 1: the picture's own colours) multiplies the texture.")
+           py::arg("facing") = py::make_tuple(-1.0, 0.0, 0.0), py::arg("kd") = py::none(), DOC(refracta, add_billboard))
       .def("add_box",
            [](RenderScene& s, const py::object& centre, const py::object& size, const py::object& material,
               const py::object& emission, const py::object& kd, const py::object& ks, const py::object& ns,
               const py::object& alpha) {
-             const Mesh mesh = box_mesh(to_point(centre, "centre"), to_point(size, "size"));
-             const int material_id = material_of(s, "add_box", material, {kd, ks, ns, alpha});
-             return add_surface(s, mesh, material_id, emission_of(emission), false, "add_box");
+             return add_box(s, to_point(centre, "centre"), to_point(size, "size"),
+                            look_of({material, emission, kd, ks, ns, alpha, std::nullopt, false}));
            },
            py::arg("centre"), py::arg("size"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
            py::kw_only(), py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(),
-           py::arg("alpha") = py::none(),
-           "Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]. Without `material`, the\n"
-           SHORTHAND_DOC)
+           py::arg("alpha") = py::none(), DOC(refracta, add_box))
       .def("add_sphere",
            [](RenderScene& s, const py::object& centre, double radius, const py::object& material,
               const py::object& emission, const py::object& kd, const py::object& ks, const py::object& ns) {
-             const int material_id = material_of(s, "add_sphere", material, {kd, ks, ns, py::none()});
-             return add_sphere(s, to_point(centre, "centre"), radius, material_id, emission_of(emission));
+             return add_sphere(s, to_point(centre, "centre"), radius, look_of({material, emission, kd, ks, ns, py::none(), std::nullopt, false}));
            },
            py::arg("centre"), py::arg("radius"), py::arg("material") = py::none(), py::arg("emission") = py::none(),
            py::kw_only(), py::arg("kd") = py::none(), py::arg("ks") = py::none(), py::arg("ns") = py::none(),
-           "Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`,\n"
-           "the kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).");
+           DOC(refracta, add_sphere));
 }
 
 // A box's (lower, upper) corners as arrays (3,).
@@ -330,25 +248,19 @@ void bind_obj_options(py::module_& m) {
   def_options_common<O>(cls, "ObjOptions");
   cls.def_property(
          "offset", [](const O& o) { return py::make_tuple(o.offset.x(), o.offset.y(), o.offset.z()); },
-         [](O& o, const py::object& v) { o.offset = to_point(v, "offset"); }, "[m] added to every vertex after scaling")
-      .def_readwrite("scale", &O::scale, "every vertex is multiplied by this (> 0), then offset")
+         [](O& o, const py::object& v) { o.offset = to_point(v, "offset"); }, DOC(refracta, ObjOptions, offset))
+      .def_readwrite("scale", &O::scale, DOC(refracta, ObjOptions, scale))
       .def_property(
           "texture_dirs", [](const O& o) { return o.texture_dirs; },
-          [](O& o, const py::object& v) { o.texture_dirs = to_folders(v); },
-          "folders searched, in order, after the MTL's own for each map_Kd (one folder or a sequence)");
+          [](O& o, const py::object& v) { o.texture_dirs = to_folders(v); }, DOC(refracta, ObjOptions, texture_dirs));
   def_enum_property(cls, "missing_textures", &O::missing_textures, missing_textures_name, missing_textures_from,
-                    "'error' (raise refracta.TextureNotFoundError) or 'warn' (a UserWarning; the material keeps Kd)");
+                    DOC(refracta, ObjOptions, missing_textures));
 }
 
 void bind_scene(py::module_& m) {
   register_texture_not_found(m);
   bind_obj_options(m);
-  py::class_<RenderScene, std::shared_ptr<RenderScene>> scene(m, "Scene", R"doc(
-Geometry (Embree), materials (refracta.shading) and lights. Scene() starts empty: no sun, no sky,
-black. Every add_* takes material= (any refracta.shading material); without it the Blinn-Phong
-shorthand kd (diffuse albedo, RGB in [0, 1]), ks (specular albedo), ns (Phong exponent) applies.
-Meshes and spheres with emission= [W/(m^2 sr), RGB] are area lights (one-sided on the triangles'
-counter-clockwise front unless two_sided). Units: metres, y up.)doc");
+  py::class_<RenderScene, std::shared_ptr<RenderScene>> scene(m, "Scene", DOC(refracta, RenderScene));
   scene.def(py::init<>());
   m.attr("_SCENE_REACH") = kSceneReach;  // [m] how far from the origin scene coordinates may lie
   bind_scene_geometry(scene);

@@ -31,12 +31,14 @@ enum class MissingTextures { kError, kWarn };
 
 // How add_obj (Scene.add_obj) places an OBJ file and finds its textures.
 struct ObjOptions {
-  Vec3d offset = Vec3d::Zero();  // [m], added after scaling
-  double scale = 1.0;            // > 0
-  // Folders searched, in order, after the MTL's own for each map_Kd (scene/texture_search.h).
+  // [m] added to every vertex after scaling
+  Vec3d offset = Vec3d::Zero();
+  // every vertex is multiplied by this (> 0), then offset
+  double scale = 1.0;
+  // folders searched, in order, after the MTL's own for each map_Kd (one folder or a sequence)
   std::vector<std::string> texture_dirs;
-  // kError: a texture found nowhere throws TextureNotFound; kWarn: `warn` is called once per
-  // texture name and the material keeps its Kd.
+  // 'error' (raise refracta.TextureNotFoundError) or 'warn' (a UserWarning once per texture name,
+  // through the `warn` callback; the material keeps Kd)
   MissingTextures missing_textures = MissingTextures::kError;
   // The callbacks (not settings: neither validated nor pickled). kWarn needs `warn`.
   std::function<void(const std::string& message)> warn;
@@ -48,9 +50,28 @@ struct ObjOptions {
 
 const char* missing_textures_name(MissingTextures m);  // "error", "warn"
 
-// Adds an OBJ file's parts (scaled, then offset) with their MTL materials (material_from_mtl) and
-// an area light for each part with Ke > 0; returns the geometry ids, one per part. A missing OBJ
-// or MTL throws IoError.
+// Add a Wavefront OBJ file with its MTL materials, scaled then offset.
+//
+// The settings are a refracta.ObjOptions (``options``; None: its defaults) changed by the keywords
+// offset, scale, texture_dirs and missing_textures (None: left as they are).
+//
+// Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with
+// d < 1 and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as
+// shading normals.
+//
+// A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of
+// ``texture_dirs`` in order (relative folders from the working directory), as written and by its
+// file name alone (a path from the author's machine). A texture found nowhere raises
+// refracta.TextureNotFoundError (a refracta.IoError and a FileNotFoundError) naming it and the
+// folders searched (``missing_textures='error'``), or, with ``missing_textures='warn'``, issues a
+// UserWarning (Python's warnings) and its material uses Kd.
+//
+// Each texture is prepared once (MIP-mapped, linear) into the texture cache folder
+// ($REFRACTA_TEXTURE_CACHE, else refracta-textures in the temporary folder); a model with hundreds of
+// textures takes seconds the first time. progress: True shows a bar on stderr once preparing has
+// taken over a second, a callable gets progress(done, total) textures, False shows nothing.
+//
+// Returns the geometry ids, one per part. A missing OBJ or MTL raises refracta.IoError.
 std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const ObjOptions& options = {});
 
 }  // namespace refracta

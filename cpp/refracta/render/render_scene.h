@@ -20,6 +20,11 @@ class SunLight;
 // The physical sky a scene light is (set_physical_sky's, perhaps scaled: its scale in `scale`), or null.
 const PhysicalSkyLight* physical_sky_of(const Light& light, double* scale);
 
+// Geometry (Embree), materials (refracta.shading) and lights. Scene() starts empty: no sun, no sky,
+// black. Every add_* takes material= (any refracta.shading material); without it the Blinn-Phong
+// shorthand kd (diffuse albedo, RGB in [0, 1]), ks (specular albedo), ns (Phong exponent) applies.
+// Meshes and spheres with emission= [W/(m^2 sr), RGB] are area lights (one-sided on the triangles'
+// counter-clockwise front unless two_sided). Units: metres, y up.
 class RenderScene {
  public:
   Scene geometry;

@@ -3,6 +3,7 @@
 #include "refracta/core/error.h"
 #include "refracta/scene/terrain.h"
 #include "refracta/shading/area_light.h"
+#include "refracta/shading/phong.h"
 #include "refracta/shading/sky_batch.h"  // sky_settings
 #include "refracta/shading/sphere_light.h"
 #include "refracta/shading/spot_light.h"
@@ -37,25 +38,79 @@ MissingTextures missing_textures_from(const std::string& name) {
   return name == "warn" ? MissingTextures::kWarn : MissingTextures::kError;
 }
 
-unsigned add_surface(RenderScene& scene, const Mesh& mesh, int material, const std::optional<Color>& emission,
-                     bool two_sided, const char* what) {
-  if (two_sided && !emission) {
+namespace {
+
+void check_material_or_shorthand(const SurfaceLook& look, const char* call) {
+  if (look.material && (look.kd || look.ks || look.ns || look.alpha || look.texture)) {
+    throw_invalid(call, ": give `material` or the kd/ks/ns/alpha/texture shorthand, not both (the shorthand "
+                  "would be ignored)");
+  }
+}
+
+// The look's material added to the scene: its own, or the shorthand's BlinnPhong (texture: a scene
+// texture id, -1 for none).
+int material_of(RenderScene& scene, const SurfaceLook& look, int texture, double default_kd) {
+  if (look.material) return scene.add_material(look.material);
+  return scene.add_material(std::make_shared<BlinnPhong>(
+      TexturedReflectance(look.kd.value_or(Vec3d::Constant(default_kd)), "kd", texture), look.ks.value_or(Vec3d::Zero()),
+      look.ns.value_or(BlinnPhong::kDefaultNs), look.alpha.value_or(1.0)));
+}
+
+// A mesh with its material and, with the look's emission, its area light.
+unsigned add_surface(RenderScene& scene, const Mesh& mesh, int material, const SurfaceLook& look, const char* what) {
+  if (look.two_sided && !look.emission) {
     throw_invalid(what, ": two_sided makes an area light emit from both faces: give emission= too (a surface is seen "
                   "from both sides anyway)");
   }
   check_uvs(scene, material, !mesh.uvs.empty(), what);
   const unsigned id = scene.geometry.add_mesh(mesh, material);
-  if (emission) scene.add_light(std::make_shared<AreaLight>(mesh, *emission, two_sided), int(id));
+  if (look.emission) scene.add_light(std::make_shared<AreaLight>(mesh, *look.emission, look.two_sided), int(id));
   return id;
 }
 
-unsigned add_sphere(RenderScene& scene, const Vec3d& centre, double radius, int material,
-                    const std::optional<Color>& emission) {
+}  // namespace
+
+unsigned add_mesh(RenderScene& scene, Mesh mesh, const SurfaceLook& look) {
+  if (!mesh.normals.empty()) normalise_normals(mesh);
+  check_material_or_shorthand(look, "add_mesh");
+  const int texture = look.texture ? scene.geometry.add_texture(*look.texture) : -1;
+  if (texture >= 0 && mesh.uvs.empty()) throw_invalid("add_mesh: a texture needs uvs");
+  return add_surface(scene, mesh, material_of(scene, look, texture, BlinnPhong::kDefaultKd), look, "add_mesh");
+}
+
+unsigned add_box(RenderScene& scene, const Vec3d& centre, const Vec3d& size, const SurfaceLook& look) {
+  const Mesh mesh = box_mesh(centre, size);
+  check_material_or_shorthand(look, "add_box");
+  return add_surface(scene, mesh, material_of(scene, look, -1, BlinnPhong::kDefaultKd), look, "add_box");
+}
+
+unsigned add_sphere(RenderScene& scene, const Vec3d& centre, double radius, const SurfaceLook& look) {
+  check_material_or_shorthand(look, "add_sphere");
+  const int material = material_of(scene, look, -1, BlinnPhong::kDefaultKd);
   if (!(radius > 0.0) || !std::isfinite(radius)) throw_invalid("add_sphere: radius must be > 0 (got ", radius, ")");
   check_uvs(scene, material, false, "add_sphere");
   const unsigned id = scene.geometry.add_spheres({centre}, {radius}, material);
-  if (emission) scene.add_light(std::make_shared<SphereLight>(centre, radius, *emission), int(id));
+  if (look.emission) scene.add_light(std::make_shared<SphereLight>(centre, radius, *look.emission), int(id));
   return id;
+}
+
+unsigned add_ground(RenderScene& scene, double height, double size, const SurfaceLook& look,
+                    std::optional<double> texture_size) {
+  const bool uvs = look.texture || (look.material && look.material->textured());
+  if (texture_size && !uvs) throw_invalid("add_ground: texture_size applies to a texture (texture= or a textured material)");
+  const Mesh mesh = uvs ? ground_mesh(height, 0.5 * size, texture_size.value_or(kGroundTextureSize))
+                        : ground_mesh(height, 0.5 * size);
+  check_material_or_shorthand(look, "add_ground");
+  const int texture = look.texture ? scene.geometry.add_texture(*look.texture) : -1;
+  return scene.geometry.add_mesh(mesh, material_of(scene, look, texture, kGroundKd));
+}
+
+unsigned add_billboard(RenderScene& scene, const Vec3d& centre, double width, double height,
+                       const std::string& texture, const Vec3d& facing, const std::optional<Vec3d>& kd) {
+  const Mesh mesh = billboard_mesh(centre, width, height, facing);
+  SurfaceLook look;
+  look.kd = kd;
+  return scene.geometry.add_mesh(mesh, material_of(scene, look, scene.geometry.add_texture(texture), 1.0));
 }
 
 void set_geometry_material(RenderScene& scene, int geometry, const MaterialPtr& material) {

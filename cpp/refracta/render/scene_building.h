@@ -33,15 +33,53 @@ void normalise_normals(Mesh& mesh);
 // add_obj's missing_textures: 'error' or 'warn'.
 MissingTextures missing_textures_from(const std::string& name);
 
-// Adds a mesh with its material and, with emission (an illuminant), its area light, emitting from
-// the counter-clockwise front or from both sides (two_sided without emission: ValueError). Returns
-// the geometry id.
-unsigned add_surface(RenderScene& scene, const Mesh& mesh, int material, const std::optional<Color>& emission,
-                     bool two_sided, const char* what);
+// The look an add_* call gives its geometry: `material` (any refracta.shading material), or else
+// the Blinn-Phong shorthand of the MTL files and the early API -- BlinnPhong(kd (the call's default
+// grey), ks (default 0), ns (default 1), alpha (default 1; < 1: transparent in render_raster)), an
+// image file `texture` multiplying kd. `material` with any of the shorthand is refused (it would be
+// ignored). `emission` [W/(m^2 sr), RGB] makes the geometry an area or sphere light, one-sided on
+// the triangles' counter-clockwise front unless `two_sided`.
+struct SurfaceLook {
+  MaterialPtr material;
+  std::optional<Vec3d> kd, ks;
+  std::optional<double> ns, alpha;
+  std::optional<std::string> texture;
+  std::optional<Color> emission;
+  bool two_sided = false;
+};
 
-// Adds a sphere with its material and, with emission, its sphere light. Returns the geometry id.
-unsigned add_sphere(RenderScene& scene, const Vec3d& centre, double radius, int material,
-                    const std::optional<Color>& emission);
+// add_ground's default kd: a darker grey than objects' (BlinnPhong::kDefaultKd).
+constexpr double kGroundKd = 0.3;
+
+// Add a triangle mesh: vertices (N, 3) [m], triangles (M, 3) indices (front: counter-clockwise);
+// optional per-vertex normals (N, 3) (shading normals, interpolated; any length but 0) and uvs
+// (N, 2) texture coordinates (u right, v up); emission makes it an area light. Without `material`,
+// the kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1),
+// alpha (default 1; < 1: transparent in render_raster)). A texture (an image file) multiplies kd.
+// Returns its id.
+unsigned add_mesh(RenderScene& scene, Mesh mesh, const SurfaceLook& look);
+
+// Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]. Without `material`, the
+// kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1),
+// alpha (default 1; < 1: transparent in render_raster)).
+unsigned add_box(RenderScene& scene, const Vec3d& centre, const Vec3d& size, const SurfaceLook& look);
+
+// Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`,
+// the kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).
+unsigned add_sphere(RenderScene& scene, const Vec3d& centre, double radius, const SurfaceLook& look);
+
+// Add a square ground of side `size` [m] at y = height, centred on the origin, facing up. Without
+// `material`, the kd/ks/ns shorthand (BlinnPhong; kd default 0.3 grey) and a texture multiplying
+// kd; a texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z;
+// None: 1 m).
+unsigned add_ground(RenderScene& scene, double height, double size, const SurfaceLook& look,
+                    std::optional<double> texture_size);
+
+// Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at
+// `centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the
+// -x side), upright; kd (default 1: the picture's own colours) multiplies the texture.
+unsigned add_billboard(RenderScene& scene, const Vec3d& centre, double width, double height,
+                       const std::string& texture, const Vec3d& facing, const std::optional<Vec3d>& kd);
 
 // Gives a geometry another material (its emission stays); a textured one needs the geometry's uvs.
 void set_geometry_material(RenderScene& scene, int geometry, const MaterialPtr& material);

@@ -30,47 +30,73 @@ class Camera {
   Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
          int height);
 
-  // A camera looking along `direction` at the centre of the box [lower, upper] from just far
-  // enough that the box's bounding sphere fills the narrower of the two fields of view (the whole
-  // box is in the image, touching its border only if the box is a cube seen along an axis).
-  // Throws std::invalid_argument for an empty, non-finite or single-point box.
+  // A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
+  // onto the box from its +x, +y, +z side) at the centre of the scene's box, from the distance at
+  // which the bounding sphere fills the narrower of the two fields of view (the whole box is in the
+  // image, touching its border only if the box is a cube seen along an axis). A scene's box holds
+  // its objects: flat horizontal surfaces (add_ground's 20 km square, a water plane) count only
+  // when the scene has nothing else.
+  //
+  //     scene.add_obj("city.obj", texture_dirs=["textures"])
+  //     camera = refracta.Camera.framing(scene, width=800, height=450)
+  //
+  // scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg]. ValueError
+  // (std::invalid_argument) for an empty, non-finite or single-point box.
   static Camera framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& direction, const Vec3d& up,
                         double vfov_deg, int width, int height);
 
-  // A camera described as a photographer would: a lens of focal length f [mm] on a sensor of
-  // sensor_w x sensor_h [mm] (36 x 24: full frame). The image spans the sensor's width when it is
-  // relatively wider than the sensor, else its height (a crop of the other side, Blender's
-  // "auto" sensor fit): vfov = 2 atan(sensor_h' / 2f), sensor_h' = sensor_w H / W in the first
-  // case. Throws std::invalid_argument for a focal length or sensor side <= 0 or not finite.
-  // f_number N given: a thin lens of aperture diameter A = f / N focused at focus_distance [m]
-  // (unset: |look_at - position|). Throws for an f-number or focus distance <= 0 or not finite, and
-  // for a focus distance without an f-number (a pinhole has no focus).
-  // The vertical field of view [deg] of that fit for an image of width x height pixels (throws as
-  // photographic() for the focal length, the sensor and the size).
+  // The vertical field of view [deg] Camera.photographic gives an image of width x height pixels
+  // (the image spans the sensor's width when relatively wider than the sensor, else its height).
   static double photographic_vfov(double focal_length_mm, double sensor_w_mm, double sensor_h_mm, int width,
                                   int height);
+  // A camera described by its lens and sensor: focal_length_mm on a sensor of
+  // sensor_mm = (width, height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans
+  // the sensor's width when it is relatively wider than the sensor, else its height (a crop of the
+  // other side, Blender's "auto" sensor fit); vfov follows as 2 atan(h / 2f). A 300 mm telephoto
+  // on full frame at 960 x 640 sees 4.58 deg vertically:
+  //
+  //     camera = refracta.Camera.photographic((0, 5, 0), (28000, 5, 0), 300.0, width=960, height=640)
+  //
+  // position, look_at [m]; up as for Camera.
+  //
+  // Depth of field: with f_number N a thin lens of aperture diameter A = f / N, focused at
+  // focus_distance [m] (None: the distance to look_at); None: a pinhole, everything sharp. A point at
+  // depth d [m] then blurs to the thin-lens circle of confusion ``c = A f abs(d - d_f) / (d (d_f - f))``
+  // on the sensor; the image keeps the field of view of focus at infinity (no focus breathing, as
+  // Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm].
+  // Each pixel sample takes its own lens point; through a field those rays are traced from the lens
+  // (not served by the eye's table), which costs what table=False costs. Only the ray-traced methods
+  // ('straight', 'curved') render it. A focal length, sensor side, f_number or focus_distance <= 0
+  // or NaN, or focus_distance without f_number (a pinhole has no focus): ValueError.
   static Camera photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,
                              double sensor_w_mm, double sensor_h_mm, int width, int height,
                              std::optional<double> f_number = std::nullopt,
                              std::optional<double> focus_distance = std::nullopt);
 
-  // A photographer standing at `ground` (the point under their feet [m]) with the lens
-  // eye_height [m] above it, looking horizontally -- at the horizon of a flat Earth, which then
-  // runs through the image's centre row -- toward `target` (its horizontal direction; the
-  // target's own height does not tilt the camera). Lens and sensor as photographic(); focus
-  // (with an f-number) at focus_distance, else at the target's horizontal distance. Throws for an
-  // eye height <= 0 or not finite, or a target straight above or below the eye.
+  // A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the
+  // lens eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in
+  // the horizontal direction of ``target`` (the target's own height does not tilt it). Over flat
+  // ground the horizon runs through the image's centre row, where mirages are: a hot road's "wet"
+  // band and the inverted images under cars sit just below it (Camera.framing's 45 deg aerial view
+  // shows none of them). Over a curved Earth the sea horizon dips sqrt(2 h / R) below it (0.041 deg
+  // at 1.6 m). Lens, sensor, f_number and focus_distance as for Camera.photographic (focus by
+  // default at the target's horizontal distance). ValueError for an eye height <= 0 or not finite,
+  // or a target straight above or below the eye:
+  //
+  //     camera = refracta.Camera.eye_level((0, 0, 0), (0, 0, -200), eye_height=1.6, focal_length_mm=200)
   static Camera eye_level(const Vec3d& ground, const Vec3d& target, double eye_height, double focal_length_mm,
                           double sensor_w_mm, double sensor_h_mm, int width, int height,
                           std::optional<double> f_number = std::nullopt,
                           std::optional<double> focus_distance = std::nullopt);
 
-  // The same camera with a thin lens of aperture diameter [m] (0: a pinhole) focused at depth
-  // focus_distance [m] along forward(). Throws for a negative or non-finite diameter, or a focus
-  // distance <= 0 or not finite.
+  // The same view through a thin lens of aperture_diameter [m] (0: a pinhole) focused on the plane
+  // at depth focus_distance [m] along forward() (Camera.photographic's f_number gives f / N).
+  // ValueError for a negative or non-finite diameter, or a focus distance <= 0 or not finite.
   Camera with_lens(double aperture_diameter, double focus_distance) const;
-  double aperture_diameter() const { return 2.0 * lens_radius_; }  // [m], 0 for a pinhole
-  double focus_distance() const { return focus_distance_; }         // [m], 0 for a pinhole
+  // The thin lens's aperture diameter [m] (f / N), 0 for a pinhole.
+  double aperture_diameter() const { return 2.0 * lens_radius_; }
+  // The depth [m] of the plane in focus, 0 for a pinhole.
+  double focus_distance() const { return focus_distance_; }
 
   // The ray of pixel coordinates (u, v) through the lens point lens_u in [0, 1)^2 (mapped to the
   // disc by Shirley & Chiu's concentric map): its origin on the lens and its unit direction. A
@@ -89,10 +115,10 @@ class Camera {
   Vec3d project(const Vec3d& point) const;
   std::vector<Vec3d> project(std::vector<Vec3d> points) const;  // each point's (u, v, depth)
 
-  // The same camera with every ray turned by small angles [rad] toward right() and up(): a map
-  // (height, width, 2) at the pixel centres, interpolated bilinearly between them (held at the
-  // border) -- the follow-up editor's non-physical "geometric noise" for shimmer. Throws
-  // std::invalid_argument for a map of another size or with non-finite angles.
+  // The same camera with every ray turned by small angles [rad] toward the image's right and up: a
+  // map (height, width, 2) at the pixel centres, bilinear between them (held at the border).
+  // Non-physical "geometric noise" (the follow-up editor's cheap shimmer); project() ignores it.
+  // ValueError for a map of another size or with non-finite angles.
   Camera jittered(std::vector<float> angles) const;
   // The jitter map (empty: none).
   const std::vector<float>& jitter() const;
@@ -100,6 +126,7 @@ class Camera {
   const Vec3d& position() const { return position_; }
   // The constructor's look_at and up, as given (a copy rebuilt from them is bit-identical).
   const Vec3d& look_at() const { return look_at_; }
+  // The up vector given to the constructor.
   const Vec3d& up_hint() const { return up_hint_; }
   const Vec3d& forward() const { return forward_; }
   const Vec3d& right() const { return right_; }
@@ -108,17 +135,17 @@ class Camera {
   int width() const { return width_; }
   int height() const { return height_; }
   double vfov() const { return vfov_; }
-  // The same view and lens at another image size (the vertical field of view is kept). A jitter
-  // map is per pixel: kept at the same size; at another, std::invalid_argument (resample the map
-  // and call jittered).
+  // The same view and lens at another image size (vertical field of view kept). A jittered camera
+  // keeps its angle map at the same size; at another, ValueError (resize the map, then call
+  // jittered; or camera.without_jitter().resized(...)).
   Camera resized(int width, int height) const;
-  // The same camera without its jitter map (a preview at another size, say).
+  // The same camera without its jitter map (None: unchanged; a preview at another size, say).
   Camera without_jitter() const {
     Camera out = *this;
     out.jitter_.reset();
     return out;
   }
-  // Angle subtended by one pixel at the image centre [rad].
+  // The angle [rad] one pixel subtends at the image centre (vertical field of view / height).
   double pixel_angle() const;
 
   // A camera from its pickled parts: the constructor's arguments, the jitter map (empty: none) and
