@@ -42,6 +42,7 @@ HEADERS = [
     "cpp/refracta/raster/shadow_map.h",
     "cpp/refracta/rays/elevation_table.h",
     "cpp/refracta/rays/ray_path.h",
+    "cpp/refracta/rays/trace.h",
     "cpp/refracta/rays/trace_options.h",
     "cpp/refracta/render/obj_materials.h",
     "cpp/refracta/render/raster_renderer.h",

@@ -299,7 +299,8 @@ scaled to the solar constant, 1361 W/m^2).)doc";
 inline constexpr const char mkd_doc_refracta_PhysicalSky_sun_radiance[] = R"doc(The sun's radiance at the observer [W/(m^2 sr nm)] at a wavelength [nm] in [360, 830]: its
 irradiance (solar_irradiance x sun_transmittance) spread uniformly over a disc of
 `angular_diameter_deg`.)doc";
-inline constexpr const char mkd_doc_refracta_PhysicalSky_sun_radiance_rgb[] = R"doc(The sun's radiance at the observer as RGB renders see it: linear sRGB [W/(m^2 sr)].)doc";
+inline constexpr const char mkd_doc_refracta_PhysicalSky_sun_radiance_rgb[] = R"doc(The sun's radiance at the observer as RGB renders see it: linear sRGB of its XYZ / integral ybar, a
+luminance-weighted spectral radiance [W/(m^2 sr nm)] (times 106.86 nm: W/(m^2 sr)).)doc";
 inline constexpr const char mkd_doc_refracta_PhysicalSky_sun_transmittance[] = R"doc(Beer-Lambert transmittance of the sunlight from the top of the atmosphere to the observer at a
 wavelength [nm] in [360, 830].)doc";
 inline constexpr const char mkd_doc_refracta_Plastic[] = R"doc(Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of
@@ -621,8 +622,31 @@ textures takes seconds the first time. progress: True shows a bar on stderr once
 over a second, a callable gets progress(done, total) textures, False shows nothing.
 
 Returns the geometry ids, one per part. A missing OBJ or MTL raises refracta.IoError.)doc";
+inline constexpr const char mkd_doc_refracta_add_point_light[] = R"doc(Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns its
+index.)doc";
+inline constexpr const char mkd_doc_refracta_add_sea[] = R"doc(Add a sea at y = height with waves near `centre` (x, z) [m] (put it under the camera).
+
+Within detail_radius [m] of centre: the waves (an OceanWaves; default OceanWaves(wind_speed=the
+material's)) tiled on a mesh of their nodes with shading normals from their slopes; over the outer
+30 % of the radius they blend into a coarse level, the same sea at a quarter of the resolution
+(exactly its longer waves) on nodes 4 cells apart, which reaches 4 detail_radius and fades to flat
+over its outer 30 %; beyond, a flat square of side `size` [m] centred on the origin (as add_ground).
+The levels meet without a crack. (Waves with resolution < 32 have no coarse level.)
+
+material: default shading.Water(wind_speed=waves.wind_speed). With a Water (its wind_speed must
+equal the waves'), every displaced band (per level the full waves, then 3 fade rings) gets a copy
+with resolved_slope_variance set to the mean-square slope its mesh's normals show, so that resolved
++ microfacet = Cox & Munk's total and the statistical roughness grows with distance as the resolved
+slopes fall; the flat plane keeps the full Water. Any other material is used as given everywhere.
+
+Returns the geometry ids: the displaced meshes (fine full waves, its fade rings, coarse full waves,
+its fade rings; empty ones left out), then the flat plane.)doc";
 inline constexpr const char mkd_doc_refracta_add_sphere[] = R"doc(Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`, the
 kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).)doc";
+inline constexpr const char mkd_doc_refracta_add_spot_light[] = R"doc(Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] (in
+(0, 360]) with `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives
+render_raster's 'embree' reference soft shadows of a disc that size. Returns its index among the
+spot lights.)doc";
 inline constexpr const char mkd_doc_refracta_area_light_normal[] = R"doc(The front normal of an area light's triangle (unit; 0 for a zero-area one; ValueError for an index
 past its triangles).)doc";
 inline constexpr const char mkd_doc_refracta_bsdf_f[] = R"doc(The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per wavelength.
@@ -658,12 +682,47 @@ and spot: I/r^2), pdf (N,) per steradian (delta lights: 1), distance (N,) [m] (i
 lights: inf)). A point the light cannot reach gets wi = 0, L = 0, pdf = 0, distance = 0.)doc";
 inline constexpr const char mkd_doc_refracta_sample_sky[] = R"doc(Light sampling at each row (u1, u2) of u (N, 2) in [0, 1): (directions (N, 3), pdf [1/sr] (N,), RGB
 radiance (N, 3)), 0 where nothing was sampled.)doc";
+inline constexpr const char mkd_doc_refracta_set_physical_sky[] = R"doc(The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's single
+scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun toward
+`sun_direction` (normalised, y up), `aerosol` (Mie density scale; None: 1, a clear sky), `ozone_du`
+[Dobson units], observer `altitude` [m]. Below the horizon `below_horizon`: 'horizon' (default)
+continues the sky from the horizon at each azimuth (Scene.set_sky's convention: the ground is
+geometry, and a ray ending its max_length still heading slightly down sees the horizon sky,
+importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of `ground_albedo`
+(which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter` [deg] with linear
+limb darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction
+(reddened toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral
+renders, its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant:
+times 106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun
+(e.g. an exposure). Builds the sky's table (1-3 s; `build_sky`). aerial_perspective (default True):
+the same air dims and lights every segment the renderers cast (refracta.spectrum.AerialPerspective:
+transmittance and scattered sunlight, the sky's multiple scattering included), so distant objects
+grey and blue into the sky; False keeps surfaces as seen through empty space. visibility [km]:
+meteorological visibility at the ground (Koschmieder: extinction at 550 nm = 3.912 / V), setting the
+aerosol in its place (give one of them). The scene's y = 0 lies `altitude` above the sky's sea
+level.)doc";
+inline constexpr const char mkd_doc_refracta_set_sky[] = R"doc(A sky (replacing any environment): radiance toward the horizon (and below) and straight up, linear
+in the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular
+environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.)doc";
+inline constexpr const char mkd_doc_refracta_set_sun[] = R"doc(The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter
+[deg], limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays. With
+wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.
+refracta.spectrum.PhysicalSky(...).sun_radiance(wavelengths): the sun through the air's extinction).)doc";
 inline constexpr const char mkd_doc_refracta_sky_pdf[] = R"doc(The light-sampling density [1/sr] of sample_li in each unit direction (dirs (N, 3) or (3,)).)doc";
 inline constexpr const char mkd_doc_refracta_sky_radiance[] = R"doc(The sky's radiance [W/(m^2 sr nm)] in each unit direction (dirs (N, 3) or (3,)) at each wavelength
 [nm] in [360, 830]: an array (directions, wavelengths). direct: integrated along each direction
 without the sky's table (slower; the table's reference).)doc";
-inline constexpr const char mkd_doc_refracta_sky_rgb_radiance[] = R"doc(The sky's radiance in each unit direction (dirs (N, 3) or (3,)) as RGB renders see it: linear sRGB
-[W/(m^2 sr)], (N, 3).)doc";
+inline constexpr const char mkd_doc_refracta_sky_rgb_radiance[] = R"doc(The sky's radiance in each unit direction (dirs (N, 3) or (3,)) as RGB renders see it, (N, 3):
+linear sRGB of the spectrum's XYZ / integral ybar, i.e. a luminance-weighted spectral radiance
+[W/(m^2 sr nm)] (times 106.86 nm: W/(m^2 sr)).)doc";
+inline constexpr const char mkd_doc_refracta_trace_path[] = R"doc(Trace one curved ray through `field` and return its RayPath (the whole path recorded).
+
+The ray equations dx/ds = v/n, dv/ds = grad n are launched with ``v0 = n(origin) * direction /
+|direction|``. options: a refracta.TraceOptions, or None for its defaults; any of its fields may
+also be given as keywords (trace, tol, step, max_length, stop_height, max_steps, ior_floor), e.g.
+``trace_ray(field, o, d, trace='rk4', step=0.1)``; ``method=`` is the deprecated name of ``trace=``.
+Raises ValueError for bad arguments (a path needing more than max_steps nodes is refused up front),
+refracta.NumericalError where n <= 0 or is not finite; Ctrl-C (KeyboardInterrupt) stops it.)doc";
 inline constexpr const char mkd_doc_refracta_von_karman_spectrum[] = R"doc(The von Karman spectrum with a Gaussian inner cutoff, Phi_n(kappa) [m^3]: 0.033005 C_n^2 (kappa^2 +
 kappa0^2)^(-11/6) exp(-kappa^2 / kappa_m^2), kappa0 = 2 pi / L0, kappa_m = 5.92 / l0 (Andrews &
 Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale l0 = 0: no cutoff; outer_scale L0 =

@@ -921,7 +921,8 @@ class Scene:
         """
     def add_point_light(self, position: typing.Any, intensity: typing.Any) -> int:
         """
-        Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns its index.
+        Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns its
+        index.
         """
     def add_sea(self, waves: OceanWaves | None = None, height: typing.SupportsFloat | typing.SupportsIndex = 0.0, size: typing.SupportsFloat | typing.SupportsIndex = 200000.0, material: typing.Any = None, detail_radius: typing.SupportsFloat | typing.SupportsIndex = 50.0, centre: typing.Any = (0.0, 0.0)) -> list[int]:
         """
@@ -931,15 +932,14 @@ class Scene:
         material's)) tiled on a mesh of their nodes with shading normals from their slopes; over the outer
         30 % of the radius they blend into a coarse level, the same sea at a quarter of the resolution
         (exactly its longer waves) on nodes 4 cells apart, which reaches 4 detail_radius and fades to flat
-        over its outer 30 %; beyond, a flat square of side `size` [m] centred on the origin (as
-        add_ground). The levels meet without a crack. (Waves with resolution < 32 have no coarse level.)
+        over its outer 30 %; beyond, a flat square of side `size` [m] centred on the origin (as add_ground).
+        The levels meet without a crack. (Waves with resolution < 32 have no coarse level.)
         
         material: default shading.Water(wind_speed=waves.wind_speed). With a Water (its wind_speed must
         equal the waves'), every displaced band (per level the full waves, then 3 fade rings) gets a copy
-        with resolved_slope_variance set to the mean-square slope its mesh's normals show, so that
-        resolved + microfacet = Cox & Munk's total and the statistical roughness grows with distance as the
-        resolved slopes fall; the flat plane keeps the full Water. Any other material is used as given
-        everywhere.
+        with resolved_slope_variance set to the mean-square slope its mesh's normals show, so that resolved
+        + microfacet = Cox & Munk's total and the statistical roughness grows with distance as the resolved
+        slopes fall; the flat plane keeps the full Water. Any other material is used as given everywhere.
         
         Returns the geometry ids: the displaced meshes (fine full waves, its fade rings, coarse full waves,
         its fade rings; empty ones left out), then the flat plane.
@@ -951,9 +951,10 @@ class Scene:
         """
     def add_spot_light(self, position: typing.Any, direction: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex = 60.0, intensity: typing.Any = (100.0, 100.0, 100.0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> int:
         """
-        Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] with
-        `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives render_raster's 'embree'
-        reference soft shadows of a disc that size. Returns its index among the spot lights.
+        Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] (in
+        (0, 360]) with `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives
+        render_raster's 'embree' reference soft shadows of a disc that size. Returns its index among the
+        spot lights.
         """
     def add_terrain(self, heights, origin = None, spacing = None, material = None, *, frame = None, earth_radius = None, orthophoto = None, water_level = None, water = None) -> TerrainGeometry:
         """
@@ -1008,38 +1009,37 @@ class Scene:
         """
     def set_physical_sky(self, sun_direction: typing.Any, aerosol: typing.SupportsFloat | typing.SupportsIndex | None = None, ozone_du: typing.SupportsFloat | typing.SupportsIndex = 300.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.0, sun_angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, altitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, below_horizon: str = 'horizon', aerial_perspective: bool = True, visibility: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         """
-        The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's
-        single scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun
-        toward `sun_direction` (normalised, y up),
-        `aerosol` (Mie density scale; None: 1, a clear sky), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon
-        `below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth (Scene.set_sky's
-        convention: the ground is geometry, and a ray ending its max_length still heading slightly down sees
-        the horizon sky, importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of
-        `ground_albedo` (which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter` [deg]
-        with linear limb darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction (reddened
-        toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral renders,
-        its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times
-        106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun
-        (e.g. an exposure). Builds the sky's table (1-3 s).
-        aerial_perspective (default True): the same air dims and lights every segment the renderers cast
-        (refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's multiple
-        scattering included), so distant
-        objects grey and blue into the sky; False keeps surfaces as seen through empty space.
-        visibility [km]: meteorological visibility at the ground (Koschmieder: extinction at 550 nm =
-        3.912 / V), setting the aerosol in its place (give one of them). The scene's y = 0 lies `altitude`
-        above the sky's sea level.
+        The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's single
+        scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun toward
+        `sun_direction` (normalised, y up), `aerosol` (Mie density scale; None: 1, a clear sky), `ozone_du`
+        [Dobson units], observer `altitude` [m]. Below the horizon `below_horizon`: 'horizon' (default)
+        continues the sky from the horizon at each azimuth (Scene.set_sky's convention: the ground is
+        geometry, and a ray ending its max_length still heading slightly down sees the horizon sky,
+        importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of `ground_albedo`
+        (which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter` [deg] with linear
+        limb darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction
+        (reddened toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral
+        renders, its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant:
+        times 106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun
+        (e.g. an exposure). Builds the sky's table (1-3 s; `build_sky`). aerial_perspective (default True):
+        the same air dims and lights every segment the renderers cast (refracta.spectrum.AerialPerspective:
+        transmittance and scattered sunlight, the sky's multiple scattering included), so distant objects
+        grey and blue into the sky; False keeps surfaces as seen through empty space. visibility [km]:
+        meteorological visibility at the ground (Koschmieder: extinction at 550 nm = 3.912 / V), setting the
+        aerosol in its place (give one of them). The scene's y = 0 lies `altitude` above the sky's sea
+        level.
         """
     def set_sky(self, horizon: typing.Any = None, zenith: typing.Any = None, environment: os.PathLike | str | bytes | None = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
-        A sky (replacing any environment): radiance toward the horizon (and below) and straight up, linear in
-        the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular
+        A sky (replacing any environment): radiance toward the horizon (and below) and straight up, linear
+        in the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular
         environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.
         """
     def set_sun(self, direction: typing.Any, radiance: typing.Any, angular_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.53, limb_darkening: typing.SupportsFloat | typing.SupportsIndex = 0.0, wavelengths: typing.Any = None) -> None:
         """
-        The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter [deg],
-        limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.
-        With wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.
+        The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter
+        [deg], limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays. With
+        wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.
         refracta.spectrum.PhysicalSky(...).sun_radiance(wavelengths): the sun through the air's extinction).
         """
     def terrain_height(self, x: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex) -> float | None:
@@ -1372,7 +1372,7 @@ class DisplaySettings:
     @property
     def white_balance(self) -> typing.Any:
         """
-        the light shown white: 'none' (the render's D65 white), 'auto' (grey world), 'daylight' (D55), 'cloudy' (D65), 'shade' (D75), 'tungsten' (3200 K), a colour temperature [K] in [1000, 40000] (Planckian) or an RGB white (r, g, b) > 0 in linear sRGB; Bradford adaptation to D65
+        the light shown white: 'none' (the render's D65 white), 'auto' (grey world), 'daylight' (D55), 'cloudy' (D65), 'shade' (D75), 'tungsten' (3200 K), a colour temperature [K] in [1000, 40000] (Planckian) or an RGB white (r, g, b) in linear sRGB with X, Y and Z > 0; Bradford adaptation to D65
         """
     @white_balance.setter
     def white_balance(self, arg1: str | typing.SupportsFloat | typing.SupportsIndex | typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> None:
@@ -3489,8 +3489,9 @@ class PhysicalSky:
         """
     def rgb_radiance(self, dirs: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
-        The sky's radiance in each unit direction (dirs (N, 3) or (3,)) as RGB renders see it: linear sRGB
-        [W/(m^2 sr)], (N, 3).
+        The sky's radiance in each unit direction (dirs (N, 3) or (3,)) as RGB renders see it, (N, 3):
+        linear sRGB of the spectrum's XYZ / integral ybar, i.e. a luminance-weighted spectral radiance
+        [W/(m^2 sr nm)] (times 106.86 nm: W/(m^2 sr)).
         """
     def sample_li(self, u: typing.Any) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]]:
         """
@@ -3505,7 +3506,8 @@ class PhysicalSky:
         """
     def sun_radiance_rgb(self, angular_diameter_deg: typing.SupportsFloat | typing.SupportsIndex = 0.53) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The sun's radiance at the observer as RGB renders see it: linear sRGB [W/(m^2 sr)].
+        The sun's radiance at the observer as RGB renders see it: linear sRGB of its XYZ / integral ybar, a
+        luminance-weighted spectral radiance [W/(m^2 sr nm)] (times 106.86 nm: W/(m^2 sr)).
         """
     def sun_transmittance(self, wavelengths: typing.Any) -> typing.Any:
         """
@@ -3815,15 +3817,14 @@ def thin_film_reflectance(cos_i: typing.Any, n1: typing.Any, n2: typing.Any, eta
     """
 def trace_ray(field: IndexField, origin: typing.Any, direction: typing.Any, options: typing.Any = None, **kwargs) -> RayPath:
     """
-    Trace one curved ray through `field` and return its RayPath.
+    Trace one curved ray through `field` and return its RayPath (the whole path recorded).
     
-    The ray equations dx/ds = v/n, dv/ds = grad n are launched with ``v0 = n(origin) * direction / |direction|``.
-    options: a refracta.TraceOptions, or None for its defaults; any of its fields may also be given
-    as keywords (trace, tol, step, max_length, stop_height, max_steps, ior_floor), e.g.
-    ``trace_ray(field, o, d, trace='rk4', step=0.1)``; ``method=`` is the deprecated name of
-    ``trace=``. Raises ValueError for bad arguments (a path needing more than max_steps nodes is
-    refused up front), refracta.NumericalError where n <= 0 or is not finite; Ctrl-C
-    (KeyboardInterrupt) stops it.
+    The ray equations dx/ds = v/n, dv/ds = grad n are launched with ``v0 = n(origin) * direction /
+    |direction|``. options: a refracta.TraceOptions, or None for its defaults; any of its fields may
+    also be given as keywords (trace, tol, step, max_length, stop_height, max_steps, ior_floor), e.g.
+    ``trace_ray(field, o, d, trace='rk4', step=0.1)``; ``method=`` is the deprecated name of ``trace=``.
+    Raises ValueError for bad arguments (a path needing more than max_steps nodes is refused up front),
+    refracta.NumericalError where n <= 0 or is not finite; Ctrl-C (KeyboardInterrupt) stops it.
     """
 def turbulence_memory_needed(cells: typing.SupportsInt | typing.SupportsIndex) -> float:
     """

@@ -613,7 +613,7 @@ def _run(argv=None) -> int:
         "--ev100",
         type=float,
         default=None,
-        help="manual exposure in EV100 (scale 1 / (1.2 2^EV100), Lagarde & de Rousiers 2014)",
+        help="manual exposure in EV100 (scale 683 / (1.2 2^EV100), radiance in W/(m^2 sr); Lagarde & de Rousiers)",
     )
     render_parser.add_argument(
         "--transport", choices=["direct", "path"], default=None, help="light transport (default: RenderOptions')"

@@ -613,13 +613,21 @@ EXAMPLES = {"hot_road": hot_road, "cold_sea": cold_sea, "fata_morgana": fata_mor
 
 
 def hot_road_atmosphere():
-    """Inferior mirage: asphalt 10 K warmer than the air, e-folding over 10 cm; eye at 1.5 m."""
+    """A ray-fan air for an inferior mirage (not hot_road()'s, whose asphalt is 15 K warmer): asphalt
+    10 K warmer than the air, e-folding over 10 cm; eye at 1.5 m.
+
+    Returns (field, eye_height [m], elevations [deg] of a fan of rays, max_length [m]), what the
+    arguments refracta.plot.ray_fan takes."""
     field = _core.PhysicalAtmosphere(surface_dt=10.0, surface_depth=0.1)
     return field, 1.5, np.linspace(-0.5, 0.3, 17), 1000.0
 
 
 def cold_sea_atmosphere():
-    """Superior mirage: cold water under a warm inversion (+8 K over 10-30 m); eye at 10 m."""
+    """A ray-fan air for a superior mirage (flat, not cold_sea()'s curved Earth with +10 K over
+    20-30 m and the eye at 5 m): cold water under a warm inversion (+8 K over 10-30 m); eye at 10 m.
+
+    Returns (field, eye_height [m], elevations [deg] of a fan of rays, max_length [m]), what the
+    arguments refracta.plot.ray_fan takes."""
     field = _core.PhysicalAtmosphere(
         t_ground=278.15,
         surface_dt=-4.0,
@@ -632,7 +640,10 @@ def cold_sea_atmosphere():
 
 
 def editor_profile():
-    """The original editor's logistic profile at its default start (scene units, n up to ~1.03)."""
+    """The original editor's logistic profile at its default start (scene units, n up to ~1.03).
+
+    Returns (field, eye_height, elevations [deg] of a fan of rays, max_length), as
+    hot_road_atmosphere."""
     field = _core.LogisticProfile()
     return field, 1.5, np.linspace(-8.0, 4.0, 17), 60.0
 

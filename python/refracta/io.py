@@ -18,7 +18,7 @@ Exposure c, the scale applied to the linear radiance first:
   [cd/m^2 per image unit], default 683 (lm/W: radiance in W m^-2 sr^-1 whose Y is
   photometrically weighted, the unit of refracta.examples, i.e. Scene.set_physical_sky(...,
   scale=examples.RADIANCE_SCALE)). The sunlit hot_road example is then well exposed near sunny
-  16 (its automatic exposure is EV100 13.4; f/16, 1/100 s, ISO 100 is 14.6).
+  16 (its automatic exposure is EV100 13.9; f/16, 1/100 s, ISO 100 is 14.6).
 
 Tone curve, ``tonemap``:
 
@@ -26,11 +26,11 @@ Tone curve, ``tonemap``:
   ACES.hlsl, 2016; with three.js's 1/0.6 exposure boost, so middle grey shows at ~0.5), per
   channel in the fit's working space: a toe in the shadows, a shoulder rolling highlights off to
   white, bright colours desaturating as on film. The default because it looks like a photograph
-  where Reinhard's curve looks flat: measured on examples.hot_road() (480 x 160, automatic
-  exposure) the displayed luminance spans 0.01-0.91 (1st-99th percentile, median 0.51) against
-  Reinhard's 0.06-0.77 (median 0.43), whose sky never gets near white; on cold_sea() the orange
-  sunset sky shows at 0.60 against 0.48. Its price: hues of saturated highlights shift toward
-  white (a clear sky's pale blue goes greyer). OpenColorIO's ACES would be the reference, but
+  where Reinhard's curve looks flat: measured on examples.hot_road() (480 x 160, 4 spp, automatic
+  exposure) the displayed (sRGB-encoded) luminance spans 0.10-0.83 (1st-99th percentile, median
+  0.66) against Reinhard's 0.17-0.66 (median 0.53), whose sky never gets near white; on cold_sea()
+  0.23-0.93 against 0.27-0.80. Its price: hues of saturated highlights shift toward white (a clear
+  sky's pale blue goes greyer). OpenColorIO's ACES would be the reference, but
   the OpenImageIO here (2.4 on OCIO 2.1) has no ACES config, only linear/sRGB/Rec709.
 - ``'reinhard'``: Reinhard et al. 2002, "Photographic Tone Reproduction for Digital Images": on
   the luminance L = c Lw, Ld = L (1 + L / white^2) / (1 + L) (eq. 4; ``white=None``:
@@ -47,8 +47,9 @@ the Bradford transform in XYZ, so a grey lit by it shows neutral, its luminance 
 - ``'none'`` (default): the render's own white (D65), images as they always were;
 - a colour temperature [K] in [1000, 40000]: Planck's radiator (the Planckian locus);
 - ``'daylight'`` (CIE D55, 5503 K), ``'cloudy'`` (D65 from the daylight locus at 6504 K: within
-  0.06 % of 'none'), ``'shade'`` (D75), ``'tungsten'`` (3200 K Planckian);
-- an RGB white (r, g, b) > 0, linear sRGB: e.g. the pixel of a grey card;
+  0.09 % of 'none'), ``'shade'`` (D75), ``'tungsten'`` (3200 K Planckian);
+- an RGB white (r, g, b), linear sRGB, whose X, Y and Z are > 0 (a light's colour, which may lie
+  outside sRGB's gamut as a low sun's does): e.g. the pixel of a grey card;
 - ``'auto'``: grey world (Buchsbaum 1980): the image's mean linear RGB is taken as the light.
 
 The exposure meters the unbalanced image; ``white_balance_of`` gives the matrix (use it, or a

@@ -9,8 +9,6 @@
 #include "refracta/shading/display.h"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 #include <string>
 
 namespace refracta {
@@ -43,17 +41,7 @@ void write_display_image(const std::string& path, Image image, const DisplaySett
                                   " shape only displayed images (PNG, JPEG) and are not applied";
       if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();
     }
-    if (const double c = manual_exposure(settings); c != 1.0) {  // the image itself is finite (to_image)
-      // Two and four channels carry alpha last: a coverage, not light (it was multiplied too).
-      const bool alpha = image.channels == 2 || image.channels == 4;
-      for (size_t i = 0; i < image.pixels.size(); ++i) {
-        if (!alpha || int(i % size_t(image.channels)) != image.channels - 1) image.pixels[i] *= float(c);
-      }
-      if (!std::all_of(image.pixels.begin(), image.pixels.end(), [](float v) { return std::isfinite(v); })) {
-        throw_invalid("write_image: the image times the exposure (", c, ") overflows float32 (a value beyond ",
-                      std::numeric_limits<float>::max(), "): lower the exposure");
-      }
-    }
+    expose_linear(image, settings);
   } else {
     tonemap_image(image, settings);
   }
@@ -89,7 +77,7 @@ void bind_display_settings(py::module_& m) {
           [](S& s, const WhiteBalance& white_balance) { s.white_balance = white_balance; },
           "the light shown white: 'none' (the render's D65 white), 'auto' (grey world), 'daylight' (D55), 'cloudy' "
           "(D65), 'shade' (D75), 'tungsten' (3200 K), a colour temperature [K] in [1000, 40000] (Planckian) or an RGB "
-          "white (r, g, b) > 0 in linear sRGB; Bradford adaptation to D65");
+          "white (r, g, b) in linear sRGB with X, Y and Z > 0; Bradford adaptation to D65");
 }
 
 void bind_image_io(py::module_& m) {
@@ -117,12 +105,7 @@ void bind_image_io(py::module_& m) {
   m.def(
       "_white_balance_matrix",
       [](const py::object& image, const DisplaySettings& display) {
-        const Eigen::Matrix3d b = white_balance_matrix(to_image(image, "image"), display);
-        py::array_t<double> out({py::ssize_t(3), py::ssize_t(3)});
-        for (int r = 0; r < 3; ++r) {
-          for (int c = 0; c < 3; ++c) out.mutable_at(r, c) = b(r, c);
-        }
-        return out;
+        return matrix_to_array(white_balance_matrix(to_image(image, "image"), display));
       },
       py::arg("image"), py::arg("display"), "The white balance's linear sRGB matrix for this image (io.white_balance_of).");
   m.def("_ev100", &ev100_of, py::arg("f_number"), py::arg("shutter"), py::arg("iso") = kDefaultIso,

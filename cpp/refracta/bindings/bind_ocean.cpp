@@ -92,24 +92,7 @@ void bind_ocean(py::module_& m) {
             py::arg("waves") = py::none(), py::arg("height") = layout_defaults.height, py::arg("size") = layout_defaults.size,
             py::arg("material") = py::none(), py::arg("detail_radius") = layout_defaults.detail_radius,
             py::arg("centre") = py::make_tuple(layout_defaults.centre.x(), layout_defaults.centre.y()),
-            R"doc(Add a sea at y = height with waves near `centre` (x, z) [m] (put it under the camera).
-
-Within detail_radius [m] of centre: the waves (an OceanWaves; default OceanWaves(wind_speed=the
-material's)) tiled on a mesh of their nodes with shading normals from their slopes; over the outer
-30 % of the radius they blend into a coarse level, the same sea at a quarter of the resolution
-(exactly its longer waves) on nodes 4 cells apart, which reaches 4 detail_radius and fades to flat
-over its outer 30 %; beyond, a flat square of side `size` [m] centred on the origin (as
-add_ground). The levels meet without a crack. (Waves with resolution < 32 have no coarse level.)
-
-material: default shading.Water(wind_speed=waves.wind_speed). With a Water (its wind_speed must
-equal the waves'), every displaced band (per level the full waves, then 3 fade rings) gets a copy
-with resolved_slope_variance set to the mean-square slope its mesh's normals show, so that
-resolved + microfacet = Cox & Munk's total and the statistical roughness grows with distance as the
-resolved slopes fall; the flat plane keeps the full Water. Any other material is used as given
-everywhere.
-
-Returns the geometry ids: the displaced meshes (fine full waves, its fade rings, coarse full waves,
-its fade rings; empty ones left out), then the flat plane.)doc");
+            DOC(refracta, add_sea));
 }
 
 }  // namespace refracta

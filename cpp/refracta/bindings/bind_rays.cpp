@@ -152,16 +152,7 @@ void bind_tracing(py::module_& m) {
             return std::make_shared<RayPath>(trace_path(f, o, d, cancellable));
           });
         },
-        py::arg("field"), py::arg("origin"), py::arg("direction"), py::arg("options") = py::none(), R"doc(
-Trace one curved ray through `field` and return its RayPath.
-
-The ray equations dx/ds = v/n, dv/ds = grad n are launched with ``v0 = n(origin) * direction / |direction|``.
-options: a refracta.TraceOptions, or None for its defaults; any of its fields may also be given
-as keywords (trace, tol, step, max_length, stop_height, max_steps, ior_floor), e.g.
-``trace_ray(field, o, d, trace='rk4', step=0.1)``; ``method=`` is the deprecated name of
-``trace=``. Raises ValueError for bad arguments (a path needing more than max_steps nodes is
-refused up front), refracta.NumericalError where n <= 0 or is not finite; Ctrl-C
-(KeyboardInterrupt) stops it.)doc");
+        py::arg("field"), py::arg("origin"), py::arg("direction"), py::arg("options") = py::none(), DOC(refracta, trace_path));
 
   m.def(
       "_astronomical_refraction",

@@ -1,14 +1,13 @@
 // Python bindings of a scene's lights (render/render_scene.h): the sun, the skies
 // (shading/sky_presets.h), environments and added lights.
+#include "generated/docstrings.h"
 #include "refracta/bindings/bind_scene.h"
 #include "refracta/bindings/interruptible.h"
 #include "refracta/render/scene_building.h"
 
 #include "refracta/shading/constant_environment.h"
 #include "refracta/shading/environment_light.h"
-#include "refracta/shading/point_light.h"
 #include "refracta/shading/sky_presets.h"
-#include "refracta/shading/sun_light.h"
 
 #include <cmath>
 #include <optional>
@@ -57,30 +56,18 @@ void bind_sun_and_sky(SceneClass& scene) {
       .def("set_sun",
            [](RenderScene& s, const py::object& direction, const py::object& radiance, double angular_diameter,
               double limb_darkening, const py::object& wavelengths) {
-             s.set_sun(std::make_shared<SunLight>(to_point(direction, "direction"), sun_colour(radiance, wavelengths),
-                                                  angular_diameter, limb_darkening));
+             set_sun(s, to_point(direction, "direction"), sun_colour(radiance, wavelengths), {angular_diameter, limb_darkening});
            },
            py::arg("direction"), py::arg("radiance"), py::arg("angular_diameter") = sun.angular_diameter,
-           py::arg("limb_darkening") = sun.limb_darkening, py::arg("wavelengths") = py::none(),
-           "The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter [deg],\n"
-           "limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.\n"
-           "With wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.\n"
-           "refracta.spectrum.PhysicalSky(...).sun_radiance(wavelengths): the sun through the air's extinction).")
+           py::arg("limb_darkening") = sun.limb_darkening, py::arg("wavelengths") = py::none(), DOC(refracta, set_sun))
       .def("set_sky",
            [](RenderScene& s, const py::object& horizon, const py::object& zenith, std::optional<FilePath> environment,
               double scale) {
-             if (environment && !(horizon.is_none() && zenith.is_none())) {
-               throw_invalid("set_sky: give horizon and zenith, or environment, not both (the map is the whole sky)");
-             }
-             if (environment) return s.set_sky(environment_from_file(environment->string(), scale));
-             const Vec3d h = horizon.is_none() ? kDefaultSkyColour : to_rgb(horizon, "horizon");
-             s.set_sky(gradient_sky(h, zenith.is_none() ? h : to_rgb(zenith, "zenith"), scale));
+             set_sky(s, to_optional_rgb(horizon, "horizon"), to_optional_rgb(zenith, "zenith"),
+                     environment ? std::optional(environment->string()) : std::nullopt, scale);
            },
            py::arg("horizon") = py::none(), py::arg("zenith") = py::none(), py::arg("environment") = py::none(),
-           py::arg("scale") = 1.0,
-           "A sky (replacing any environment): radiance toward the horizon (and below) and straight up, linear in\n"
-           "the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular\n"
-           "environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.")
+           py::arg("scale") = 1.0, DOC(refracta, set_sky))
       .def("set_physical_sky",
            [](RenderScene& s, const py::object& sun_direction, std::optional<double> aerosol, double ozone_du, double ground_albedo,
               double sun_angular_diameter, double limb_darkening, double scale, double altitude,
@@ -96,26 +83,7 @@ void bind_sun_and_sky(SceneClass& scene) {
            py::arg("sun_angular_diameter") = sun.angular_diameter, py::arg("limb_darkening") = sun.limb_darkening,
            py::kw_only(), py::arg("scale") = 1.0, py::arg("altitude") = PhysicalSkySettings{}.altitude,
            py::arg("below_horizon") = "horizon", py::arg("aerial_perspective").noconvert() = true, py::arg("visibility") = py::none(),
-           "The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's\n"
-           "single scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun\n"
-           "toward `sun_direction` (normalised, y up),\n"
-           "`aerosol` (Mie density scale; None: 1, a clear sky), `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon\n"
-           "`below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth (Scene.set_sky's\n"
-           "convention: the ground is geometry, and a ray ending its max_length still heading slightly down sees\n"
-           "the horizon sky, importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of\n"
-           "`ground_albedo` (which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter` [deg]\n"
-           "with linear limb darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction (reddened\n"
-           "toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral renders,\n"
-           "its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times\n"
-           "106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun\n"
-           "(e.g. an exposure). Builds the sky's table (1-3 s).\n"
-           "aerial_perspective (default True): the same air dims and lights every segment the renderers cast\n"
-           "(refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's multiple\n"
-           "scattering included), so distant\n"
-           "objects grey and blue into the sky; False keeps surfaces as seen through empty space.\n"
-           "visibility [km]: meteorological visibility at the ground (Koschmieder: extinction at 550 nm =\n"
-           "3.912 / V), setting the aerosol in its place (give one of them). The scene's y = 0 lies `altitude`\n"
-           "above the sky's sea level.")
+           DOC(refracta, set_physical_sky))
       .def_property_readonly(
           "aerial_perspective",
           [](const RenderScene& s) { return s.aerial_perspective() ? py::cast(s.aerial_perspective_ptr()) : py::none(); },
@@ -150,10 +118,9 @@ void bind_scene_lights(SceneClass& scene) {
            py::arg("light"), "Add any refracta.lights light (not area lights of geometry: use emission=). Returns its index.")
       .def("add_point_light",
            [](RenderScene& s, const py::object& position, const py::object& intensity) {
-             return s.add_light(std::make_shared<PointLight>(to_point(position, "position"), to_illuminant(intensity, "intensity")));
+             return add_point_light(s, to_point(position, "position"), to_illuminant(intensity, "intensity"));
            },
-           py::arg("position"), py::arg("intensity"),
-           "Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns its index.")
+           py::arg("position"), py::arg("intensity"), DOC(refracta, add_point_light))
       .def("add_spot_light",
            [](RenderScene& s, const py::object& position, const py::object& direction, double angle,
               const py::object& intensity, double radius) {
@@ -161,10 +128,7 @@ void bind_scene_lights(SceneClass& scene) {
                                    to_illuminant(intensity, "intensity"), radius);
            },
            py::arg("position"), py::arg("direction"), py::arg("angle") = 60.0,
-           py::arg("intensity") = py::make_tuple(100.0, 100.0, 100.0), py::arg("radius") = 0.0,
-           "Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] with\n"
-           "`intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives render_raster's 'embree'\n"
-           "reference soft shadows of a disc that size. Returns its index among the spot lights.")
+           py::arg("intensity") = py::make_tuple(100.0, 100.0, 100.0), py::arg("radius") = 0.0, DOC(refracta, add_spot_light))
       .def_property_readonly("lights", [](const RenderScene& s) { return s.lights(); });
 }
 

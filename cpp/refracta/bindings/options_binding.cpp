@@ -175,27 +175,59 @@ void set_option_attribute(const py::object& self, const py::str& name, const py:
   set_refused(self, field, value, owner, field);
 }
 
+namespace {
+
+// Sets one keyword (set_options_fields' rule).
+void set_keyword(const py::object& options, const py::object& inner, const std::string& name, const py::handle& value,
+                 const char* owner, const char* nested, const py::dict& paths) {
+  const std::string path = paths.contains(name) ? py::cast<std::string>(paths[name.c_str()]) : name;
+  if (path.find('.') != std::string::npos) return set_path(options, name, path, value, owner);
+  py::object target = options;
+  if (!is_field(py::type::handle_of(options), path)) {
+    if (inner.is_none() || !is_field(py::type::handle_of(inner), path)) {
+      throw_invalid(owner, ": unknown option '", name, "' (options: ", field_list(options),
+                    inner.is_none() ? "" : "; and its " + std::string(nested) + "'s: " + field_list(inner), ")");
+    }
+    target = inner;
+  }
+  set_field(target, path, value, owner, name);
+}
+
+// The message of a ValueError `run` raises (without its "owner: " prefix), or "" when it raises none.
+template <class Run>
+std::string value_error_of(const char* owner, Run run) {
+  std::string message;
+  try {
+    run();
+    return "";
+  } catch (const std::invalid_argument& error) {
+    message = error.what();
+  } catch (const py::error_already_set& error) {
+    if (!error.matches(PyExc_ValueError)) throw;
+    message = py::cast<std::string>(py::str(error.value()));
+  }
+  const std::string prefix = std::string(owner) + ": ";
+  return message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
+}
+
+}  // namespace
+
 void set_options_fields(const py::object& options, const py::dict& fields, const char* owner, const char* nested,
                         const py::dict& paths) {
-  py::object inner = py::none();
-  if (nested) inner = options.attr(nested);
+  const py::object inner = nested ? py::object(options.attr(nested)) : py::object(py::none());
+  Problems problems(owner);  // every refused keyword, then what validate() finds in the rest
   for (const auto& item : fields) {
     const std::string name = py::cast<std::string>(py::str(item.first));
-    const std::string path = paths.contains(name) ? py::cast<std::string>(paths[name.c_str()]) : name;
-    if (path.find('.') != std::string::npos) {
-      set_path(options, name, path, item.second, owner);
-      continue;
-    }
-    py::object target = options;
-    if (!is_field(py::type::handle_of(options), path)) {
-      if (inner.is_none() || !is_field(py::type::handle_of(inner), path)) {
-        throw_invalid(owner, ": unknown option '", name, "' (options: ", field_list(options),
-                      inner.is_none() ? "" : "; and its " + std::string(nested) + "'s: " + field_list(inner), ")");
-      }
-      target = inner;
-    }
-    set_field(target, path, item.second, owner, name);
+    const std::string problem =
+        value_error_of(owner, [&] { set_keyword(options, inner, name, item.second, owner, nested, paths); });
+    if (!problem.empty()) problems.add(problem);
   }
+  if (problems.empty()) return;
+  // validate() names the class ("RenderOptions: ..."), which `owner` (e.g. "render") may not be.
+  const std::string type = py::cast<std::string>(py::type::handle_of(options).attr("__name__"));
+  const std::string rest = value_error_of(type.c_str(), [&] { options.attr("validate")(); });
+  if (!rest.empty()) problems.add(rest);
+  problems.throw_if_any();
 }
 
 void check_options_type(const py::handle& cls, const py::object& options, const char* owner) {

@@ -25,7 +25,8 @@ std::string options_repr(const py::object& self);
 // field (40.0 is 40; 2.5 raises "must be a whole number"); any other value the field refuses
 // raises ValueError naming the field. A keyword whose name (or its entry in `paths`, keyword ->
 // dotted path) has dots sets a nested field ("shadow_map.moments.storage"); a None on the way, or
-// a value the field refuses, raises ValueError naming the keyword.
+// a value the field refuses, raises ValueError naming the keyword. One ValueError lists every
+// refused keyword and then what validate() finds in the fields that were set.
 void set_options_fields(const py::object& options, const py::dict& fields, const char* owner,
                         const char* nested = nullptr, const py::dict& paths = py::dict());
 

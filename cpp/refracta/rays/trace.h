@@ -20,7 +20,15 @@ using SegmentVisitor = std::function<bool(const RayNode<double>&, const RayNode<
 TraceEnd<double> trace(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
                        const TraceOptions& options, const SegmentVisitor& visit);
 
-// Traces and records the whole path.
+// Trace one curved ray through `field` and return its RayPath (the whole path recorded).
+//
+// The ray equations dx/ds = v/n, dv/ds = grad n are launched with ``v0 = n(origin) * direction /
+// |direction|``. options: a refracta.TraceOptions, or None for its defaults; any of its fields may
+// also be given as keywords (trace, tol, step, max_length, stop_height, max_steps, ior_floor), e.g.
+// ``trace_ray(field, o, d, trace='rk4', step=0.1)``; ``method=`` is the deprecated name of
+// ``trace=``. Raises ValueError for bad arguments (a path needing more than max_steps nodes is
+// refused up front), refracta.NumericalError where n <= 0 or is not finite; Ctrl-C
+// (KeyboardInterrupt) stops it.
 RayPath trace_path(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
                    const TraceOptions& options);
 

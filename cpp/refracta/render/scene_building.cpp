@@ -4,9 +4,11 @@
 #include "refracta/scene/terrain.h"
 #include "refracta/shading/area_light.h"
 #include "refracta/shading/phong.h"
+#include "refracta/shading/point_light.h"
 #include "refracta/shading/sky_batch.h"  // sky_settings
 #include "refracta/shading/sphere_light.h"
 #include "refracta/shading/spot_light.h"
+#include "refracta/shading/sun_light.h"
 #include "refracta/shading/water_surface.h"
 
 #include <cmath>
@@ -178,6 +180,24 @@ std::optional<double> terrain_height(const RenderScene& scene, double x, double 
     origin.y() -= step, reach -= step;
   }
   return std::nullopt;
+}
+
+size_t add_point_light(RenderScene& scene, const Vec3d& position, const Color& intensity) {
+  return scene.add_light(std::make_shared<PointLight>(position, intensity));
+}
+
+void set_sun(RenderScene& scene, const Vec3d& direction, const Color& radiance, const SunDisc& disc) {
+  scene.set_sun(std::make_shared<SunLight>(direction, radiance, disc.angular_diameter, disc.limb_darkening));
+}
+
+void set_sky(RenderScene& scene, const std::optional<Vec3d>& horizon, const std::optional<Vec3d>& zenith,
+             const std::optional<std::string>& environment, double scale) {
+  if (environment && (horizon || zenith)) {
+    throw_invalid("set_sky: give horizon and zenith, or environment, not both (the map is the whole sky)");
+  }
+  if (environment) return scene.set_sky(environment_from_file(*environment, scale));
+  const Vec3d h = horizon.value_or(kDefaultSkyColour);
+  scene.set_sky(gradient_sky(h, zenith.value_or(h), scale));
 }
 
 size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,

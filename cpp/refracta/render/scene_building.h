@@ -100,10 +100,29 @@ std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, 
 // Where an eye stands on the terrain: Camera positions, and render()'s "camera below the ground" hint.
 std::optional<double> terrain_height(const RenderScene& scene, double x, double z);
 
-// Adds a spot light (angle in (0, 360] deg, SpotLight; shadow disc radius >= 0: render_raster's 'embree'
-// reference soft shadows when > 0). Returns its index among the spot lights.
+// Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns
+// its index.
+size_t add_point_light(RenderScene& scene, const Vec3d& position, const Color& intensity);
+
+// Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg]
+// (in (0, 360]) with `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives
+// render_raster's 'embree' reference soft shadows of a disc that size. Returns its index among the
+// spot lights.
 size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,
                       const Color& intensity, double radius);
+
+// The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter
+// [deg], limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.
+// With wavelengths (M,) [nm, increasing], radiance is a spectrum (M,) [W/(m^2 sr nm)] instead (e.g.
+// refracta.spectrum.PhysicalSky(...).sun_radiance(wavelengths): the sun through the air's extinction).
+void set_sun(RenderScene& scene, const Vec3d& direction, const Color& radiance, const SunDisc& disc);
+
+// A sky (replacing any environment): radiance toward the horizon (and below) and straight up,
+// linear in the sine of the elevation (zenith default: the horizon's, a constant sky), or an
+// equirectangular environment map file (refracta.lights.EnvironmentLight's orientation), times
+// `scale`.
+void set_sky(RenderScene& scene, const std::optional<Vec3d>& horizon, const std::optional<Vec3d>& zenith,
+             const std::optional<std::string>& environment, double scale);
 
 // Scene.set_physical_sky's keywords as settings: the sun direction non-zero (normalised here),
 // below_horizon 'horizon' or 'ground', visibility [km] (when given) setting the aerosol.
@@ -111,16 +130,46 @@ PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, std::optio
                                           double ground_albedo, double altitude, const std::string& below_horizon,
                                           const std::optional<double>& visibility);
 
-// The physical sky and its sun (replacing every environment, sky and sun), and, with
-// aerial_perspective and scale > 0, the same air's aerial perspective. build_sky builds the table.
+// The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's
+// single scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun
+// toward `sun_direction` (normalised, y up), `aerosol` (Mie density scale; None: 1, a clear sky),
+// `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon `below_horizon`: 'horizon'
+// (default) continues the sky from the horizon at each azimuth (Scene.set_sky's convention: the
+// ground is geometry, and a ray ending its max_length still heading slightly down sees the horizon
+// sky, importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of
+// `ground_albedo` (which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter`
+// [deg] with linear limb darkening u, its radiance the 5778 K solar spectrum through the
+// atmosphere's extinction (reddened toward the horizon; none below it). Units: spectral radiance
+// W/(m^2 sr nm) in spectral renders, its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral
+// ybar, as Color.illuminant: times 106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree.
+// `scale` multiplies sky and sun (e.g. an exposure). Builds the sky's table (1-3 s; `build_sky`).
+// aerial_perspective (default True): the same air dims and lights every segment the renderers cast
+// (refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's multiple
+// scattering included), so distant objects grey and blue into the sky; False keeps surfaces as
+// seen through empty space. visibility [km]: meteorological visibility at the ground (Koschmieder:
+// extinction at 550 nm = 3.912 / V), setting the aerosol in its place (give one of them). The
+// scene's y = 0 lies `altitude` above the sky's sea level.
 void set_physical_sky(RenderScene& scene, const PhysicalSkySettings& settings, const SunDisc& sun, double scale,
                       bool aerial_perspective, const SkyBuilder& build_sky);
 
-// Scene.add_sea: the sea's meshes (sea_meshes) with their materials. waves null: OceanWaves of the
-// Water material's wind speed; material null: Water of the waves' wind speed. With a Water (its
-// wind speed must be the waves'; its resolved_slope_variance 0), each displaced band gets a copy
-// whose resolved_slope_variance is what the band's normals show. Returns the geometry ids (empty
-// bands left out), the flat plane last.
+// Add a sea at y = height with waves near `centre` (x, z) [m] (put it under the camera).
+//
+// Within detail_radius [m] of centre: the waves (an OceanWaves; default OceanWaves(wind_speed=the
+// material's)) tiled on a mesh of their nodes with shading normals from their slopes; over the outer
+// 30 % of the radius they blend into a coarse level, the same sea at a quarter of the resolution
+// (exactly its longer waves) on nodes 4 cells apart, which reaches 4 detail_radius and fades to flat
+// over its outer 30 %; beyond, a flat square of side `size` [m] centred on the origin (as
+// add_ground). The levels meet without a crack. (Waves with resolution < 32 have no coarse level.)
+//
+// material: default shading.Water(wind_speed=waves.wind_speed). With a Water (its wind_speed must
+// equal the waves'), every displaced band (per level the full waves, then 3 fade rings) gets a copy
+// with resolved_slope_variance set to the mean-square slope its mesh's normals show, so that
+// resolved + microfacet = Cox & Munk's total and the statistical roughness grows with distance as the
+// resolved slopes fall; the flat plane keeps the full Water. Any other material is used as given
+// everywhere.
+//
+// Returns the geometry ids: the displaced meshes (fine full waves, its fade rings, coarse full waves,
+// its fade rings; empty ones left out), then the flat plane.
 std::vector<unsigned> add_sea(RenderScene& scene, std::shared_ptr<OceanWaves> waves, const SeaLayout& layout,
                               MaterialPtr material);
 

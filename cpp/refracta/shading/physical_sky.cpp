@@ -110,6 +110,11 @@ double visibility_of(const PhysicalSkySettings& settings) {
 std::optional<std::string> fog_caveat(const PhysicalSkySettings& settings) {
   const double visibility_km = visibility_of(settings);
   if (!(visibility_km < kLeastResolvedVisibility)) return std::nullopt;
+  if (!settings.multiple_scattering) {
+    return concat("visibility ", visibility_km, " km is fog (below ", kLeastResolvedVisibility,
+                  " km), whose light is mostly scattered many times: single scattering alone "
+                  "(multiple_scattering=False) renders a sunlit fog far too dark");
+  }
   return concat("visibility ", visibility_km, " km is fog the sky's multiple-scattering table does not resolve (below ",
                 kLeastResolvedVisibility, " km): its brightness does not follow the visibility smoothly and a sunlit "
                 "fog comes out far too dark");

@@ -108,7 +108,8 @@ class PhysicalSky {
   // The table: spectral radiance along dir [W/(m^2 sr nm)], linear in lambda between the 10 nm
   // nodes (0 outside [360, 830]) and bilinear in (azimuth, v).
   double radiance(const Vec3d& dir, double lambda_nm) const;
-  // Its linear sRGB radiance [W/(m^2 sr)] (CIE 1931, normalised by integral y: color.h).
+  // As RGB renders see it: linear sRGB of the spectrum's XYZ (CIE 1931) / integral ybar (color.h),
+  // i.e. a luminance-weighted spectral radiance [W/(m^2 sr nm)] (times 106.86 nm: W/(m^2 sr)).
   Vec3d rgb_radiance(const Vec3d& dir) const;
   // Direct integration along the ray, no view table (the table's reference; kHorizon: at e = 0 below
   // the horizon, the azimuth +x straight down).
@@ -127,7 +128,8 @@ class PhysicalSky {
   // irradiance (solar_irradiance x sun_transmittance) spread uniformly over a disc of
   // `angular_diameter_deg`.
   double sun_radiance(double lambda_nm, double angular_diameter_deg = 0.53) const;
-  // The sun's radiance at the observer as RGB renders see it: linear sRGB [W/(m^2 sr)].
+  // The sun's radiance at the observer as RGB renders see it: linear sRGB of its XYZ / integral ybar,
+  // a luminance-weighted spectral radiance [W/(m^2 sr nm)] (times 106.86 nm: W/(m^2 sr)).
   Vec3d sun_radiance_rgb(double angular_diameter_deg = 0.53) const;
 
   // The Rayleigh optical depth from the observer straight up to the top at a wavelength [nm]

@@ -32,8 +32,9 @@ PhysicalSkySettings sky_settings_from_state(const PhysicalSkyState& state);  // 
 // direction without the sky's table (slower; the table's reference).
 RowMatrixXd sky_radiance(const PhysicalSky& sky, const std::vector<Vec3d>& dirs, const std::vector<double>& lambda_nm,
                          bool direct);
-// The sky's radiance in each unit direction (dirs (N, 3) or (3,)) as RGB renders see it: linear
-// sRGB [W/(m^2 sr)], (N, 3).
+// The sky's radiance in each unit direction (dirs (N, 3) or (3,)) as RGB renders see it, (N, 3):
+// linear sRGB of the spectrum's XYZ / integral ybar, i.e. a luminance-weighted spectral radiance
+// [W/(m^2 sr nm)] (times 106.86 nm: W/(m^2 sr)).
 RowMatrixX3d sky_rgb_radiance(const PhysicalSky& sky, const std::vector<Vec3d>& dirs);
 // Light sampling at each row (u1, u2) of u (N, 2) in [0, 1): (directions (N, 3), pdf [1/sr] (N,),
 // RGB radiance (N, 3)), 0 where nothing was sampled.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -155,6 +156,19 @@ double exposure_of_ev100(double ev100, double luminous_efficacy) {
     throw_invalid("luminous_efficacy must be > 0 and finite (got ", luminous_efficacy, ")");
   }
   return luminous_efficacy / (1.2 * std::exp2(ev100));
+}
+
+void expose_linear(Image& image, const DisplaySettings& settings) {
+  const double c = manual_exposure(settings);
+  if (c == 1.0) return;
+  const bool alpha = image.channels == 2 || image.channels == 4;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    if (!alpha || int(i % size_t(image.channels)) != image.channels - 1) image.pixels[i] *= float(c);
+  }
+  if (!std::all_of(image.pixels.begin(), image.pixels.end(), [](float v) { return std::isfinite(v); })) {
+    throw_invalid("write_image: the image times the exposure (", c, ") overflows float32 (a value beyond ",
+                  std::numeric_limits<float>::max(), "): lower the exposure");
+  }
 }
 
 double manual_exposure(const DisplaySettings& s) {

@@ -25,14 +25,14 @@
 // - a colour temperature [K] in [kMinWhiteBalanceKelvin, kMaxWhiteBalanceKelvin]: Planck's
 //   radiator at it (the Planckian locus, spectral::planckian_white);
 // - a preset as cameras name them: 'daylight' CIE D55 (5503 K on the CIE daylight locus, the
-//   photographic daylight standard), 'cloudy' D65 (6504 K on the daylight locus: within 0.06 % of the render's own white),
+//   photographic daylight standard), 'cloudy' D65 (6504 K on the daylight locus: within 0.09 % of the render's own white),
 //   'shade' D75 (7504 K), 'tungsten' a 3200 K Planckian radiator (studio tungsten lamps);
 // - an RGB white (linear sRGB, its X, Y, Z > 0; a channel may be negative, as a low sun's blue): the colour
 //   of the light, e.g. a grey card's pixel;
 // - 'auto': grey world (Buchsbaum 1980, "A spatial processor model for object colour
 //   perception", J. Franklin Inst. 310): the mean linear RGB of the image's pixels (negative and
 //   non-finite values skipped) is taken as the light's colour; a black image is left as it is;
-// - 'none' (the default): no balance, the render's own D65 white (as 'cloudy', to 0.06 %).
+// - 'none' (the default): no balance, the render's own D65 white (as 'cloudy', to 0.09 %).
 // The exposure meters the image before the balance (a camera's meter reads the raw light); the
 // balance keeps a white's luminance. Grey images (1-2 channels) are not balanced. Float files are
 // written unbalanced (io.write_image).
@@ -130,6 +130,10 @@ double manual_exposure(const DisplaySettings& settings);
 // The names of the fields that only shape a displayed image (tonemap, key, white, gamma,
 // white_balance) set away from their defaults: what a float file, written linear, leaves unused.
 std::vector<std::string> display_only_fields_set(const DisplaySettings& settings);
+// A float file's pixels (written linear): the image times the manual exposure (none: 1; never
+// automatic), alpha (the last of 2 or 4 channels: a coverage, not light) untouched. Throws
+// std::invalid_argument where that overflows float32.
+void expose_linear(Image& image, const DisplaySettings& settings);
 // The exposure c the settings give this image (manual, or automatic from its log-average).
 double display_exposure(const Image& image, const DisplaySettings& settings);
 
