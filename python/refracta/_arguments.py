@@ -90,7 +90,17 @@ def _what_is_wrong(annotation: str, value: Any, ranges: bool = False) -> str | N
     return " or ".join(reasons)
 
 
-_SUBSUMES = (("a number", "a whole number"), ("a path (str or os.PathLike)", "a string"))
+_SUBSUMES = (
+    ("a number", "a whole number"),
+    ("a number (not an array)", "a whole number (not an array)"),
+    ("a path (str or os.PathLike)", "a string"),
+)
+
+
+def _is_array(value: Any) -> bool:
+    """Whether `value` is an array of one dimension or more (numpy's, or anything with an ndim)."""
+    ndim = getattr(value, "ndim", None)
+    return isinstance(ndim, int) and ndim > 0
 
 
 def _against_one(annotation: str, value: Any, ranges: bool = False) -> str | None:
@@ -101,9 +111,13 @@ def _against_one(annotation: str, value: Any, ranges: bool = False) -> str | Non
         return None if value is None else "None"
     if annotation in ("typing.SupportsFloat", "float"):  # any __float__ or __index__, never a bool
         ok = not is_flag(value) and (hasattr(type(value), "__float__") or hasattr(type(value), "__index__"))
+        if ok and _is_array(value):  # numpy 2 converts only 0-d arrays to a number
+            return "a number (not an array)"
         return None if ok else "a number"
     if annotation in ("typing.SupportsInt", "int", "typing.SupportsIndex"):  # __index__, never a float
         ok = not is_flag(value) and hasattr(type(value), "__index__")
+        if ok and _is_array(value):  # an array's __index__ takes 0-d integer arrays only
+            return "a whole number (not an array)"
         if ranges and ok and abs(operator.index(value)) >= 2**31:  # beyond a C++ int, which pybind11 refuses
             return "a whole number of magnitude below 2**31"
         return None if ok else "a whole number"

@@ -61,6 +61,7 @@ Finite input never gives NaN: c L is formed in double precision and clamped befo
 from __future__ import annotations
 
 import os
+import unicodedata
 from typing import Any
 
 import numpy as np
@@ -91,14 +92,19 @@ def _image_array(image, where: str) -> np.ndarray:
             "refracta.render(..., aovs=[...])), and write the AOVs with refracta.io.write_layers"
         )
     array = np.asarray(image)
+    _check_fits_float32(array, f"{where}: image values")
+    return array
+
+
+def _check_fits_float32(array: np.ndarray, what: str) -> None:
+    """ValueError naming `what` when a float array wider than float32 holds a finite value beyond
+    float32's range: images cross as float32, and such a value became inf on the way (with numpy's
+    overflow warning; write_layers wrote it to the file so)."""
     if array.dtype.kind == "f" and array.dtype.itemsize > 4 and array.size:
-        # Images cross as float32: a finite float64 beyond its range became inf on the way, with
-        # numpy's overflow warning, and was then refused as "not finite".
         with np.errstate(invalid="ignore"):
             largest = np.nanmax(np.where(np.isfinite(array), np.abs(array), 0.0))
         if largest > np.finfo(np.float32).max:
-            raise ValueError(f"{where}: image values must fit float32 (|value| <= 3.4e38; got {largest:.3g})")
-    return array
+            raise ValueError(f"{what} must fit float32 (|value| <= 3.4e38; got {largest:.3g})")
 
 
 def settings(display: _core.DisplaySettings | None = None, **fields) -> _core.DisplaySettings:
@@ -167,10 +173,12 @@ def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> Non
     channels as R, G, B (A), then each layer's as ``name.Y`` (one channel), ``name.X``,
     ``name.Y``, ``name.Z`` (two to four; e.g. position.X), or the names ``suffixes[name]`` gives
     (e.g. {"hidden_height": ("geometric", "refracted")}). Layers are (H, W) or (H, W, C) arrays of
-    the image's size, stored as float32 as they are (inf and NaN kept; integers as floats). Raises
-    ValueError for a bad layer or a non-float format, refracta.IoError when the file cannot be
-    written."""
-    base = np.asarray(image, dtype=np.float32)
+    the image's size, stored as float32 as they are (inf and NaN kept; integers as floats). A
+    layer's name is a non-empty string (dots allowed between parts: EXR's nested layers); a
+    suffix a non-empty string without a dot. Raises ValueError for a bad layer (complex or
+    non-numeric values, finite values beyond float32's range, a bad name) or a non-float format,
+    refracta.IoError when the file cannot be written."""
+    base = _layer_values(_image_array(image, "write_layers"), "write_layers: image")
     if base.ndim == 2:
         base = base[..., None]
     if base.ndim != 3 or not 1 <= base.shape[2] <= 4:
@@ -180,7 +188,8 @@ def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> Non
     names = list(("R", "G", "B", "A")[: base.shape[2]]) if base.shape[2] >= 3 else ["Y", "A"][: base.shape[2]]
     planes = [base]
     for name, layer in layers.items():
-        values = np.asarray(layer, dtype=np.float32)
+        _check_channel_name(name, "layer name")
+        values = _layer_values(layer, f"write_layers: layer {name!r}")
         if values.ndim == 2:
             values = values[..., None]
         if values.ndim != 3 or values.shape[:2] != base.shape[:2]:
@@ -189,8 +198,10 @@ def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> Non
                 f"(got shape {np.shape(layer)})"
             )
         given = (suffixes or {}).get(name)
-        if isinstance(given, str):
+        if given is not None and not isinstance(given, (list, tuple)):
             raise ValueError(f"write_layers: suffixes[{name!r}] must be a sequence of channel names (got {given!r})")
+        for suffix in given or ():
+            _check_channel_name(suffix, f"suffixes[{name!r}]", dots=False)
         own = given or _LAYER_SUFFIXES.get(values.shape[2])
         if own is None:
             raise ValueError(f"write_layers: layer {name!r} has {values.shape[2]} channels; give its channel names")
@@ -207,9 +218,39 @@ def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> Non
     _core._write_image_channels(os.fspath(path), np.ascontiguousarray(np.concatenate(planes, axis=2)), names)
 
 
+def _check_channel_name(name, what: str, dots: bool = True) -> None:
+    """ValueError unless `name` is a channel name part write_layers can write and read back: a
+    non-empty string, not blank, without control characters (OpenImageIO cut 'a\\x00b' to 'a'),
+    and without a dot (`dots` False) or with dots only between non-empty parts ('a.b', not '.a',
+    'a.' or 'a..b', which make an empty layer name in EXR's layer.channel)."""
+    if not isinstance(name, str):
+        raise ValueError(f"write_layers: {what} must be a string (got {name!r})")
+    if not name.strip() or any(unicodedata.category(c) == "Cc" for c in name):
+        raise ValueError(f"write_layers: {what} must be a non-empty name without control characters (got {name!r})")
+    if "." in name and (not dots or "" in name.split(".")):
+        rule = "hold no dot" if not dots else "have dots only between non-empty parts"
+        raise ValueError(f"write_layers: {what} must {rule} (got {name!r})")
+
+
+def _layer_values(values, what: str) -> np.ndarray:
+    """`values` (an image or a layer of write_layers) as float32, else ValueError naming `what`:
+    complex values (numpy dropped the imaginary part), strings and other non-numbers, and
+    finite values beyond float32's range (they became inf)."""
+    array = np.asarray(values)
+    if array.dtype.kind not in "biuf":
+        raise ValueError(f"{what} must hold real numbers (got dtype {array.dtype})")
+    _check_fits_float32(array, what)
+    return array.astype(np.float32)
+
+
 def channel_names(path) -> list[str]:
-    """The channel names of an image file, as OpenImageIO reads them (an EXR's layer.channel)."""
-    return list(_core._channel_names(os.fspath(path)))
+    """The channel names of an image file, as OpenImageIO reads them (an EXR's layer.channel).
+    Raises refracta.IoError for a missing file or one that is not a regular file (a folder, or a
+    FIFO, which would block)."""
+    path = os.fspath(path)
+    if os.path.exists(path) and not os.path.isfile(path):  # as read_image refuses them
+        raise _core.IoError(f"cannot read '{path}': not a regular file")
+    return list(_core._channel_names(path))
 
 
 def read_image(path, linear: bool = False) -> np.ndarray:

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import math
 import os
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -103,6 +104,18 @@ class Exif:
     make: str | None = None
     model: str | None = None
 
+    def __post_init__(self):
+        # Refused here, where they are named: a focal length of -50 mm gave a vfov of -34 deg.
+        for name in ("focal_length_mm", "focal_length_35mm"):
+            value = getattr(self, name)
+            if value is not None and not (is_number(value) and 0.0 < float(value) < math.inf):
+                raise ValueError(f"Exif: {name} must be None or a finite number of mm > 0 (got {value!r})")
+        if self.sensor_mm is not None:
+            _sensor(self.sensor_mm, "Exif: sensor_mm")
+        code = self.orientation
+        if isinstance(code, bool) or not isinstance(code, (int, np.integer)) or not 1 <= code <= 8:
+            raise ValueError(f"Exif: orientation must be an EXIF orientation code 1..8 (got {self.orientation!r})")
+
 
 @dataclass
 class Photo:
@@ -137,6 +150,12 @@ class Photo:
         w, h = self.exif.sensor_mm
         return (h, w) if self.exif.orientation in (5, 6, 7, 8) else (w, h)
 
+    def _check_size(self) -> None:
+        """ValueError for an image without pixels (its aspect and field of view are undefined)."""
+        shape = np.shape(self.image)
+        if len(shape) < 2 or shape[0] < 1 or shape[1] < 1:
+            raise ValueError(f"the photograph's image is empty (shape {shape}): it has no aspect or field of view")
+
     def vfov(self, sensor_mm: tuple[float, float] | None = None) -> float:
         """The vertical field of view [deg] of the image as displayed, from EXIF (module docstring).
 
@@ -148,6 +167,7 @@ class Photo:
         Raises ValueError when EXIF gives no focal length, or a focal length but neither a sensor
         size nor a 35 mm equivalent (naming what to pass).
         """
+        self._check_size()
         exif = self.exif
         sensor = self.sensor_mm() if sensor_mm is None else _sensor(sensor_mm)
         if exif.focal_length_mm is not None and sensor is not None:
@@ -180,6 +200,7 @@ class Photo:
         """A Camera at `position` looking at `look_at` with the photograph's vertical field of view
         (vfov(sensor_mm)) and aspect. width: the render's width in pixels (default the
         photograph's); the height follows the photograph's aspect (rounded, at least 1)."""
+        self._check_size()
         w = self.width if width is None else width
         if not (is_number(w) and math.isfinite(w) and w == int(w) and 1 <= w <= 2**31 - 1):
             raise ValueError(f"width must be a whole number of pixels in [1, 2147483647] (got {width!r})")
@@ -187,14 +208,21 @@ class Photo:
         return _core.Camera(position, look_at, up, self.vfov(sensor_mm), int(w), h)
 
 
-def _sensor(value) -> tuple[float, float]:
+def _sensor(value, name: str = "sensor_mm") -> tuple[float, float]:
     sides = number_pair(value)
     if sides is None:
-        raise ValueError(f"sensor_mm must be (width, height) in mm (got {value!r})")
+        raise ValueError(f"{name} must be (width, height) in mm (got {value!r})")
     w, h = sides
     if not (w > 0.0 and h > 0.0 and math.isfinite(w) and math.isfinite(h)):
-        raise ValueError(f"sensor_mm must be two finite sizes > 0 mm (got {value!r})")
+        raise ValueError(f"{name} must be two finite sizes > 0 mm (got {value!r})")
     return w, h
+
+
+# [mm] the sides an EXIF-derived sensor may have: 0.5 mm is below the short side of the smallest
+# sensor type in cameras that write EXIF (1/10 inch, 1.28 x 0.96 mm), 500 mm twice the long side
+# of 8 x 10-inch sheet film (254 mm). Beyond them the focal-plane resolution is wrong (a trial's
+# 1e-9 pixels per cm gave a 3.2e11 mm sensor and a vfov of 179.99999993 deg).
+_SENSOR_SIDES_MM = (0.5, 500.0)
 
 
 def _rational(value) -> float | None:
@@ -222,7 +250,9 @@ def _existing_file(path, what: str) -> Path:
 
 def read_exif(path) -> Exif:
     """The EXIF of an image file (Pillow); an Exif of Nones for a file without EXIF or one Pillow
-    cannot open (an EXR); refracta.IoError for a path that is not a file."""
+    cannot open (an EXR); refracta.IoError for a path that is not a file. Malformed tags read as
+    none, and so does a sensor size no camera has (a side outside 0.5 to 500 mm: a wrong
+    focal-plane resolution), with a UserWarning naming the tags."""
     from PIL import Image, UnidentifiedImageError
 
     path = _existing_file(path, "EXIF of")
@@ -243,6 +273,17 @@ def read_exif(path) -> Exif:
     unit = _PLANE_UNIT_MM.get(int(unit_code)) if unit_code is not None and unit_code.is_integer() else None
     if plane_x and plane_y and pixels_x and pixels_y and unit:
         sensor = (pixels_x / plane_x * unit, pixels_y / plane_y * unit)
+        low, high = _SENSOR_SIDES_MM
+        if not all(low <= side <= high for side in sensor):
+            # As a malformed tag: read as none (vfov falls back to the 35 mm equivalent), said.
+            warnings.warn(
+                f"{path}: the EXIF sensor size {sensor[0]:.3g} x {sensor[1]:.3g} mm (PixelXDimension / "
+                "FocalPlaneXResolution and PixelYDimension / FocalPlaneYResolution, in FocalPlaneResolutionUnit) "
+                f"is no camera's ({low:g} to {high:g} mm a side): ignored, as if the tags were absent",
+                UserWarning,
+                stacklevel=2,
+            )
+            sensor = None
     orientation = exif.get(_TAG_ORIENTATION, 1)
     try:
         orientation = int(orientation)
@@ -481,6 +522,16 @@ def overlay(
     for name, value in aovs.items():
         if np.shape(value)[:2] != base.shape[:2]:
             raise ValueError(f"readout '{name}' has shape {np.shape(value)}, not the image's {base.shape[:2]}")
+    # The readouts the edges and the skyline are drawn from: a number per pixel, as render gives them.
+    readouts = (("object_id", "an object id per pixel (-1: none)"), ("distance", "a distance per pixel (inf: none)"))
+    for name, holds in readouts:
+        values = np.asarray(aovs.get(name, np.zeros(base.shape[:2])))
+        if values.shape not in (base.shape[:2], base.shape[:2] + (1,)):
+            raise ValueError(
+                f"overlay: readout '{name}' must be (H, W) or (H, W, 1), {holds} (got shape {values.shape})"
+            )
+        if values.dtype.kind not in "iuf":
+            raise ValueError(f"overlay: readout '{name}' must hold numbers, {holds} (got dtype {values.dtype})")
     ids = np.asarray(aovs.get("object_id", np.zeros(0, dtype=np.int32)))
     if ids.dtype.kind not in "iu":
         whole = np.mod(ids, 1.0) == 0.0 if ids.dtype.kind == "f" else np.zeros(ids.shape, dtype=bool)

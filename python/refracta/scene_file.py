@@ -231,6 +231,25 @@ _SPOT_PARAMETER = re.compile(r"hot_spot\d+_")  # the fields' parameter names of 
 _HEADER = re.compile(r"^\s*\[\[?\s*([A-Za-z0-9_.\"-]+)\s*\]\]?\s*(#.*)?$")
 
 
+class _NestedTooDeepError(ValueError):
+    """TOML whose arrays or inline tables nest deeper than the parser can follow."""
+
+
+# What _loads raises for text it cannot read as TOML.
+_TOML_ERRORS = (tomllib.TOMLDecodeError, _NestedTooDeepError)
+
+
+def _loads(text: str) -> dict:
+    """tomllib.loads(text); arrays nested thousands deep raise _NestedTooDeepError (a ValueError)
+    where tomllib, which recurses once per level, raised a bare RecursionError."""
+    try:
+        return tomllib.loads(text)
+    except RecursionError:
+        raise _NestedTooDeepError(
+            "arrays or inline tables nested too deeply to read (Python's recursion limit)"
+        ) from None
+
+
 class SceneFile(tuple):
     """What a scene file describes; unpacks as (scene, camera, field), which are also attributes.
 
@@ -684,11 +703,22 @@ def _atmosphere(table: dict, where: _Locator, get):
     return field, turbulence
 
 
+def _refuse_non_regular(path: Path) -> None:
+    """refracta.IoError for a path that exists but is not a regular file (a folder, a FIFO, a
+    device): reading a FIFO waits for a writer that may never come."""
+    if path.exists() and not path.is_file():
+        raise _core.IoError(f"cannot read scene file '{path}': not a regular file")
+
+
 def read_scene_text(path) -> str:
     """A scene file's text as load_scene reads it: UTF-8 (TOML's encoding), a byte-order mark
     (Windows editors write one) read past, as TOML parsers commonly do (tomllib refused it:
-    "Invalid statement (at line 1, column 1)"). UnicodeDecodeError for text that is not UTF-8."""
-    return Path(os.fspath(path)).read_text(encoding="utf-8-sig")
+    "Invalid statement (at line 1, column 1)"). UnicodeDecodeError for text that is not UTF-8;
+    refracta.IoError for a path that is not a regular file (a folder, or a FIFO, which would
+    block), FileNotFoundError for a missing one."""
+    path = Path(os.fspath(path))
+    _refuse_non_regular(path)
+    return path.read_text(encoding="utf-8-sig")
 
 
 def load_scene(path, size=None) -> SceneFile:
@@ -707,17 +737,15 @@ def load_scene(path, size=None) -> SceneFile:
             raise ValueError(f"load_scene: size {error}") from None
     if not path.exists():
         raise _core.IoError(f"no such scene file: '{path}'")
-    if not path.is_file():
-        raise _core.IoError(f"cannot read scene file '{path}': not a regular file")
     try:
-        text = read_scene_text(path)
+        text = read_scene_text(path)  # refuses a folder or a FIFO
     except UnicodeDecodeError as error:
         raise ValueError(
             f"{path}: not a TOML scene file (not UTF-8 text: {error.reason} at byte {error.start})"
         ) from None
     try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
+        data = _loads(text)
+    except _TOML_ERRORS as error:
         raise ValueError(f"{path}: malformed TOML: {error}") from None
     where = _Locator(path, text)
 
@@ -957,12 +985,23 @@ def _toml_value(value) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+        return _toml_string(value)
     if isinstance(value, int):
         return str(value)
     if isinstance(value, (list, tuple, np.ndarray)):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
     return repr(float(value))
+
+
+# TOML's escapes of a basic string; the other control characters (TOML refuses them raw) as \uXXXX.
+_STRING_ESCAPES = {"\\": "\\\\", '"': '\\"', "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
+
+
+def _toml_string(value: str) -> str:
+    """`value` as a TOML basic string: a file name holding a newline ("a\\nb.obj" in the file)
+    was written back with a raw one, which is not TOML."""
+    escaped = (_STRING_ESCAPES.get(c) or (f"\\u{ord(c):04X}" if ord(c) < 0x20 or ord(c) == 0x7F else c) for c in value)
+    return '"' + "".join(escaped) + '"'
 
 
 def camera_table(camera: _core.Camera) -> str:
@@ -1095,25 +1134,58 @@ def atmosphere_table(field: _core.IndexField, turbulence=None) -> str:
     return "\n".join(lines + turbulence_lines) + "\n"
 
 
+def _lines_at_top_level(text: str) -> list[tuple[str, bool]]:
+    """The lines of a TOML text (splitlines, their ends kept), each with whether its first
+    character after blanks is code at the top level: outside comments and strings (multi-line ones
+    too: a "[camera]" line inside one is text) and outside arrays spanning lines. Only such a
+    line can be a table header or a root key."""
+    code = _code_positions(text)
+    brackets = [(m.start(), 1 if m[0] in "[{" else -1) for m in re.finditer(r"[\[\]{}]", text) if code[m.start()]]
+    lines, depth, offset, k = [], 0, 0, 0
+    for line in text.splitlines(keepends=True):
+        first = offset + len(line) - len(line.lstrip(" \t"))
+        lines.append((line, depth == 0 and bool(code[first])))
+        offset += len(line)
+        while k < len(brackets) and brackets[k][0] < offset:
+            depth += brackets[k][1]
+            k += 1
+    return lines
+
+
+def _table_headers(text: str) -> dict[int, str]:
+    """{line index: the table's first key} of the table headers of a TOML text ([a.b] and [[a.b]],
+    keys bare or quoted: ["camera"] is [camera])."""
+    headers = {}
+    for index, (line, top) in enumerate(_lines_at_top_level(text)):
+        if top and line.lstrip(" \t").startswith("["):
+            try:
+                headers[index] = next(iter(tomllib.loads(line)))
+            except (tomllib.TOMLDecodeError, StopIteration):
+                raise ValueError(f"line {index + 1}: cannot read the table header {line.strip()!r}") from None
+    return headers
+
+
 def _with_table(text: str, name: str, table: str, first: bool) -> str:
-    """`text` (a scene file) with its table `name` and every sub-table of it ([name.*], [[name.*]])
-    replaced by `table`, at the place of the first of them; without them, `table` is put first
-    (`first`) or last. Everything else, comments included, is kept; a byte-order mark (a text read
-    without encoding="utf-8-sig") is dropped, or the first header would go unseen."""
+    """`text` (a scene file) with its table `name` and every sub-table of it ([name.*], [[name.*]];
+    the name bare or quoted) replaced by `table`, at the place of the first of them; without them,
+    `table` is put first (`first`; after any keys before the first header, which would otherwise
+    become the table's) or last. Everything else, comments included, is kept; a byte-order mark
+    (a text read without encoding="utf-8-sig") is dropped, or the first header would go unseen."""
     text = _without_root_keys(text.removeprefix("\ufeff"), name)
     lines = text.splitlines(keepends=True)
-    headers = {i: match.group(1) for i, line in enumerate(lines) if (match := _HEADER.match(line))}
+    headers = _table_headers(text)
     starts = list(headers)
     ends = starts[1:] + [len(lines)]
-    owned = [
-        (start, end)
-        for start, end in zip(starts, ends)
-        if headers[start] == name or headers[start].startswith(name + ".")
-    ]
+    owned = [(start, end) for start, end in zip(starts, ends) if headers[start] == name]
     if not owned:
-        if first:
+        if not first:
+            return text + ("" if text.endswith("\n") or not text else "\n") + "\n" + table
+        top = starts[0] if starts else len(lines)
+        keys = [line for line, code in _lines_at_top_level(text)[:top] if code and line.strip()[:1] not in ("", "#")]
+        if not keys:
             return table + "\n" + text
-        return text + ("" if text.endswith("\n") or not text else "\n") + "\n" + table
+        before = "".join(lines[:top])
+        return before + ("" if before.endswith("\n") else "\n") + table + "\n" + "".join(lines[top:])
     kept, previous = [], 0
     for start, end in owned:
         kept.append("".join(lines[previous:start]))
@@ -1129,12 +1201,12 @@ def _without_root_keys(text: str, name: str) -> str:
     table, so such a line would define it twice (tomllib: "Cannot declare ('atmosphere',) twice"),
     its comment with it. ValueError where such a definition spans lines (a multi-line array inside it)."""
     key = re.compile(rf"^\s*(?:{re.escape(name)}|\"{re.escape(name)}\"|'{re.escape(name)}')\s*[=.]")
-    lines = text.splitlines(keepends=True)
+    lines = _lines_at_top_level(text)
     kept: list[str] = []
-    for number, line in enumerate(lines, 1):
-        if _HEADER.match(line):
-            return "".join(kept + lines[number - 1 :])
-        if key.match(line):
+    for number, (line, top) in enumerate(lines, 1):
+        if top and line.lstrip(" \t").startswith("["):  # the first header: tables from here on
+            return "".join(kept + [line for line, _ in lines[number - 1 :]])
+        if top and key.match(line):
             try:
                 tomllib.loads(line)
             except tomllib.TOMLDecodeError:
@@ -1145,6 +1217,47 @@ def _without_root_keys(text: str, name: str) -> str:
             continue
         kept.append(line)
     return "".join(kept)
+
+
+def _same_toml(a, b) -> bool:
+    """Whether two parsed TOML values are the same (tables in any order; NaN equal to NaN)."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same_toml(a[key], b[key]) for key in a)
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(_same_toml(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return type(a) is type(b) and a == b
+
+
+def _table_edited(caller: str, text: str, name: str, table: str | None, first: bool = False) -> str:
+    """`text` (a scene file) with its table `name` replaced by `table` (_with_table; None: removed,
+    _without_table), checked: ValueError for a text that is not TOML (before anything is changed),
+    and for a result that is not TOML, or does not hold exactly `table` as `name` and everything
+    else as the text did (a table the edit could not find in place), rather than broken text."""
+    if not isinstance(text, str):
+        raise ValueError(f"{caller}: text must be a scene file's text, a str (got {type(text).__name__})")
+    try:
+        expected = _loads(text.removeprefix("\ufeff"))
+    except _TOML_ERRORS as error:
+        raise ValueError(f"{caller}: the text is not TOML: {error}") from None
+    expected.pop(name, None)
+    if table is None:
+        out = _without_table(text, name)
+    else:
+        expected[name] = tomllib.loads(table)[name]
+        out = _with_table(text, name, table, first)
+    try:
+        same = _same_toml(_loads(out), expected)
+        problem = f"it would not hold {'no' if table is None else 'the new'} [{name}] and the rest as it was"
+    except _TOML_ERRORS as error:
+        same, problem = False, f"it would not be TOML: {error}"
+    if not same:
+        raise ValueError(
+            f"{caller}: cannot {'remove' if table is None else 'replace'} the [{name}] table of this text in "
+            f"place ({problem}); write [{name}] as one table under a [{name}] header"
+        )
+    return out
 
 
 def relocate(text: str, source, target) -> str:
@@ -1161,8 +1274,8 @@ def relocate(text: str, source, target) -> str:
             place (a quoted key).
     """
     try:
-        expected_names = _file_names(tomllib.loads(text))
-    except tomllib.TOMLDecodeError as error:
+        expected_names = _file_names(_loads(text))
+    except _TOML_ERRORS as error:
         raise ValueError(f"relocate: the text is not TOML: {error}") from None
     source, target = Path(os.fspath(source)), Path(os.fspath(target))
     if source.resolve() == target.resolve():
@@ -1187,7 +1300,12 @@ def relocate(text: str, source, target) -> str:
 
     out = _FILE_VALUE.sub(rewritten, text)
     expected = sorted(moved(name) for name in expected_names)
-    found = sorted(_file_names(tomllib.loads(out)))
+    try:
+        found = sorted(_file_names(_loads(out)))
+    except _TOML_ERRORS as error:
+        raise ValueError(
+            f"relocate: the file names cannot be rewritten in place (the text would not be TOML: {error})"
+        ) from None
     if expected != found:
         missed = sorted(set(expected) - set(found))
         raise ValueError(f"relocate: cannot rewrite the file name(s) {missed} where they are written")
@@ -1196,46 +1314,46 @@ def relocate(text: str, source, target) -> str:
 
 # The keys whose string values are file names (relocate), wherever their table.
 _FILE_KEYS = ("file", "texture", "environment")
-# A file name's key and its string value, as a scene file writes them: multi-line strings first,
-# then one-line ones.
+# A file name's key (a whole bare key: not my-file's) and its string value, as a scene file writes
+# them: multi-line strings first, then one-line ones.
 _FILE_VALUE = re.compile(
-    r"""(?P<key>\b(?:""" + "|".join(_FILE_KEYS) + r""")\s*=\s*)"""
+    r"""(?P<key>(?<![A-Za-z0-9_-])(?:""" + "|".join(_FILE_KEYS) + r""")\s*=\s*)"""
     r"""(?P<value>\"\"\"(?:[^"\\]|\\.|"(?!""))*\"\"\"|'\'\'[\s\S]*?'\'\'|"(?:[^"\\\n]|\\.)*"|'[^'\n]*')"""
 )
 
 
-def _code_positions(text: str) -> list[bool]:
-    """Per character of a TOML text: whether it lies outside comments and strings."""
-    code = [True] * (len(text) + 1)
+# Where _code_positions looks next: a comment or a string opens at these characters only.
+_COMMENT_OR_QUOTE = re.compile("[#\"']")
+# The rest of a string after its opening quote(s), up to and with its closing one(s) (escapes, \\ and
+# \" among them, are two characters; a multi-line basic string's body may hold one or two quotes).
+_STRING_REST = {
+    '"""': re.compile(r'(?:[^"\\]|\\[\s\S]|"(?!""))*(?:"""|\Z)'),
+    "'''": re.compile(r"[\s\S]*?(?:'''|\Z)"),
+    '"': re.compile(r'(?:[^"\\\n]|\\[\s\S])*(?:["\n]|\Z)'),
+    "'": re.compile(r"[^'\n]*(?:['\n]|\Z)"),
+}
+
+
+def _code_positions(text: str) -> bytearray:
+    """Per character of a TOML text: whether (1) or not (0) it lies outside comments and strings."""
+    code = bytearray(b"\x01") * (len(text) + 1)
     i, n = 0, len(text)
-    while i < n:
-        c = text[i]
-        if c == "#":
+    while True:
+        found = _COMMENT_OR_QUOTE.search(text, i)
+        if found is None:
+            return code
+        i = found.start()
+        if text[i] == "#":
             end = text.find("\n", i)
             end = n if end < 0 else end
-        elif text.startswith('"""', i) or text.startswith("'''", i):
-            quote = text[i : i + 3]
-            j = i + 3
-            while True:
-                j = text.find(quote, j)
-                if j < 0 or quote == "'''" or text[j - 1] != "\\":
-                    break
-                j += 1
-            end = n if j < 0 else j + 3
-            while end < n and text[end] == quote[0]:  # """a"""" : up to two quotes belong to the string
-                end += 1
-        elif c in "\"'":
-            j = i + 1
-            while j < n and text[j] != c and text[j] != "\n":
-                j += 2 if c == '"' and text[j] == "\\" else 1
-            end = j + 1
         else:
-            i += 1
-            continue
-        for k in range(i, min(end, n)):
-            code[k] = False
+            quote = text[i : i + 3] if text.startswith(('"""', "'''"), i) else text[i]
+            rest = _STRING_REST[quote].match(text, i + len(quote))
+            end = rest.end() if rest is not None else n  # (each pattern matches an unterminated rest)
+            while len(quote) == 3 and end < n and text[end] == quote[0]:  # """a"""": 'a"'
+                end += 1
+        code[i:end] = bytes(end - i)
         i = end
-    return code
 
 
 def _file_names(data) -> list[str]:
@@ -1257,12 +1375,13 @@ def with_atmosphere(text: str, field: _core.IndexField | None, turbulence=None) 
     """A scene file's text with its [atmosphere] table (its hot spots and turbulence included)
     replaced by atmosphere_table(field, turbulence) (appended if absent); everything else,
     comments included, is kept. field None (load_scene's field of a file without air, rendered
-    straight): the [atmosphere] tables removed."""
+    straight): the [atmosphere] tables removed. ValueError for a text that is not TOML, and
+    where the table cannot be replaced in place (the result is checked: never broken TOML)."""
     if field is None:
         if turbulence is not None:
             raise ValueError("with_atmosphere: turbulence was given for no field (None)")
-        return _without_table(text, "atmosphere")
-    return _with_table(text, "atmosphere", atmosphere_table(field, turbulence), first=False)
+        return _table_edited("with_atmosphere", text, "atmosphere", None)
+    return _table_edited("with_atmosphere", text, "atmosphere", atmosphere_table(field, turbulence))
 
 
 def _without_table(text: str, name: str) -> str:
@@ -1277,5 +1396,6 @@ def _without_table(text: str, name: str) -> str:
 
 def with_camera(text: str, camera: _core.Camera) -> str:
     """A scene file's text with its [camera] table replaced by camera_table(camera) (put first if
-    absent); everything else, comments included, is kept."""
-    return _with_table(text, "camera", camera_table(camera), first=True)
+    absent); everything else, comments included, is kept. ValueError for a text that is not TOML,
+    and where the table cannot be replaced in place (the result is checked: never broken TOML)."""
+    return _table_edited("with_camera", text, "camera", camera_table(camera), first=True)

@@ -69,6 +69,8 @@ _FARTHEST_HEIGHT = 1e5  # [m] from sea level: no terrain (the deepest trench is 
 # [m] the finest sample spacing: below it samples fall on one point in the scene's single-precision
 # geometry (float32 resolves 6e-5 m at 1 km from the origin).
 _FINEST_SPACING = 1e-4
+# The least spacing of the array form in single-precision units of its farthest coordinate.
+_SINGLE_PRECISION_STEPS = 8
 _VERTICAL_UNITS = {9001: 1.0, 9002: 0.3048, 9003: 1200.0 / 3937.0, 9036: 1000.0}
 _RASTER_PIXEL_IS_POINT = 2
 _EPSG_WGS84 = 4326
@@ -216,8 +218,6 @@ def _read_geotiff(path: str) -> Elevation:
     else:
         raise ValueError(f"{path!r}: its GeoKeys name no EPSG geographic or projected CRS (model {model})")
     x0, y0, sx, sy = _placement(tags, keys, path)
-    if not (sx > 0.0 and sy > 0.0) or not (math.isfinite(x0) and math.isfinite(y0)):
-        raise ValueError(f"{path!r}: pixel scale ({sx}, {sy}) must be > 0 and the tiepoint finite")
     # The smallest spacing a grid may have: 0.1 mm (1e-9 deg of latitude); below it, samples fall
     # on one point in the scene's single-precision geometry.
     smallest = 1e-9 if epsg == _EPSG_WGS84 else _FINEST_SPACING
@@ -355,7 +355,11 @@ def _placement(tags: dict, keys: dict, path: str) -> tuple[float, float, float, 
     sx, sy = _tag_numbers(tags, _TAG_PIXEL_SCALE, 2, path, "ModelPixelScale")
     i, j, _, x, y, _ = _tag_numbers(tags, _TAG_TIEPOINT, 6, path, "ModelTiepoint")
     centre = 0.0 if keys.get(_KEY_RASTER_TYPE) == _RASTER_PIXEL_IS_POINT else 0.5
-    return x + (centre - i) * sx, y - (centre - j) * sy, sx, sy
+    x0, y0 = x + (centre - i) * sx, y - (centre - j) * sy
+    # North up, east right: a negative scale (a mirrored grid) or a zero one is not a placement.
+    if not (0.0 < sx < math.inf and 0.0 < sy < math.inf) or not (math.isfinite(x0) and math.isfinite(y0)):
+        raise ValueError(f"{path!r}: pixel scale ({sx}, {sy}) must be finite and > 0, and the tiepoint finite")
+    return x0, y0, sx, sy
 
 
 @contextlib.contextmanager
@@ -433,7 +437,10 @@ def _read_geotiff_frame(path: str) -> Elevation:
     epsg = keys.get(_KEY_GEOGRAPHIC_TYPE, _EPSG_WGS84) if keys.get(_KEY_MODEL_TYPE) == _MODEL_GEOGRAPHIC else None
     if epsg is None:
         epsg = int(keys.get(_KEY_PROJECTED_TYPE, 0))
-    x0, y0, sx, sy = _placement(tags, keys, path)
+    try:
+        x0, y0, sx, sy = _placement(tags, keys, path)  # elevation GeoTIFFs' checks of the scale too
+    except ValueError as error:
+        raise ValueError(f"orthophoto {error}") from None
     return Elevation(np.empty((shape[0], shape[1], 0)), x0, y0, sx, sy, epsg)
 
 
@@ -487,6 +494,19 @@ def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
         if not extent <= reach:
             raise ValueError(
                 f"add_terrain: {name} reach {extent:.4g} m from the origin, beyond the scene's reach of {reach:g} m"
+            )
+    for name, step, extent in (
+        ("x", dx, extents["origin and spacing (x)"]),
+        ("z", dz, extents["origin and spacing (z)"]),
+    ):
+        # The positions are single precision: a step under 8 of its units there moves the samples by
+        # up to 1/16 of the spacing, and under 1 merges them (a trial's 1e-4 m at 9.9e6 m: one point).
+        resolution = float(np.spacing(np.float32(extent)))
+        if step < _SINGLE_PRECISION_STEPS * resolution:
+            raise ValueError(
+                f"add_terrain: spacing {step:g} m along {name} is finer than single-precision positions resolve "
+                f"{extent:.4g} m from the origin (steps of {resolution:g} m; at least "
+                f"{_SINGLE_PRECISION_STEPS * resolution:g} m there): put the origin nearer the terrain"
             )
     positions = np.empty((rows, cols, 3), dtype=np.float32)
     positions[..., 0] = (x0 + dx * np.arange(cols))[None, :]

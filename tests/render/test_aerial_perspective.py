@@ -211,10 +211,10 @@ def test_replacing_the_sky_ends_the_air():
 @pytest.mark.parametrize(
     "visibility, message",
     [
-        (0.0, "visibility must be > 0"),
-        (-3.0, "visibility must be > 0"),
-        (float("nan"), "visibility must be > 0"),
-        (float("inf"), "visibility must be > 0"),
+        (0.0, "visibility must be >= 0.001 km"),
+        (-3.0, "visibility must be >= 0.001 km"),
+        (float("nan"), "visibility must be >= 0.001 km"),
+        (float("inf"), "visibility must be >= 0.001 km"),
         (1000.0, "beyond what the air's molecules"),
     ],
 )

@@ -4,6 +4,7 @@
 #include "refracta/bindings/bind_shading.h"
 
 #include "refracta/core/error.h"
+#include "refracta/scene/textures.h"
 #include "refracta/shading/conductor.h"
 #include "refracta/shading/dielectric.h"
 #include "refracta/shading/diffuse.h"
@@ -23,11 +24,7 @@ TexturedReflectance to_textured(const py::object& color, const char* name, const
     const py::object path_object = py::module_::import("os").attr("fspath")(texture);
     if (!py::isinstance<py::str>(path_object)) throw_invalid("texture must be a str path (got bytes)");
     const std::string path = py::cast<std::string>(path_object);
-    std::error_code error;
-    if (!std::filesystem::exists(path, error)) throw IoError(concat("no such texture file: '", path, "'"));
-    if (!std::filesystem::is_regular_file(path, error)) {
-      throw IoError(concat("cannot read texture '", path, "': not a regular file"));
-    }
+    check_texture_file(path);
     return TexturedReflectance(rgb, name, -1, std::filesystem::absolute(path).string());
   }
   if (py::isinstance<py::int_>(texture) && !py::isinstance<py::bool_>(texture)) {

@@ -200,7 +200,12 @@ void bind_hot_spot(py::module_& m) {
   def_tuple_pickle<State>(
       cls, "HotSpot", [](const HotSpot& s) { return State(s.x, s.z, s.radius, s.dt, s.depth, int(s.footprint)); },
       [](double x, double z, double radius, double dt, double depth, int footprint) {
-        return HotSpot{x, z, radius, dt, depth, Footprint(footprint)};
+        if (footprint != int(Footprint::kGaussian) && footprint != int(Footprint::kCompact)) {
+          throw_invalid("HotSpot: bad pickle state (footprint ", footprint, ")");
+        }
+        // Through the constructor's checks, as HotSpot(...) would be.
+        return make_hot_spot(x, z, radius, dt, std::isnan(depth) ? std::nullopt : std::optional<double>(depth),
+                             footprint_name(Footprint(footprint)));
       });
 }
 

@@ -143,15 +143,22 @@ std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state) {
     }
   }
   for (const py::handle material : state[2]) scene->add_material(py::cast<std::shared_ptr<Material>>(material));
+  const auto material_id = [&scene](const py::handle& id) {
+    const int material = py::cast<int>(id);
+    if (material < 0 || size_t(material) >= scene->material_count()) {
+      throw_invalid("Scene: bad pickle state (material ", material, " of ", scene->material_count(), ")");
+    }
+    return material;
+  };
   for (const py::handle item : state[3]) {
     const py::tuple part = py::cast<py::tuple>(item);
     const std::string kind = py::cast<std::string>(part[0]);
     if (kind == "spheres") {
       check_size(part, 4, "Scene spheres");
-      geometry.add_spheres(to_points(part[1], "centres"), to_values(part[2], "radii"), py::cast<int>(part[3]));
+      geometry.add_spheres(to_points(part[1], "centres"), to_values(part[2], "radii"), material_id(part[3]));
     } else if (kind == "mesh") {
       check_size(part, 3, "Scene mesh");
-      geometry.add_mesh(mesh_from_state(part[1]), py::cast<int>(part[2]));
+      geometry.add_mesh(mesh_from_state(part[1]), material_id(part[2]));
     } else if (kind == "terrain") {
       check_size(part, 4, "Scene terrain");
       const auto positions = py::cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(part[1]);
@@ -166,7 +173,7 @@ std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state) {
       std::vector<float> values(positions.data(), positions.data() + positions.size());
       geometry.add_terrain(std::make_shared<const TerrainGrid>(int(positions.shape(0)), int(positions.shape(1)),
                                                                std::move(values), uv_from_index),
-                           py::cast<int>(part[3]));
+                           material_id(part[3]));
     } else if (kind == "removed") {  // Scene.remove'd: a stand-in removed again keeps the ids
       Mesh stand_in;
       stand_in.vertices = {Vec3d::Zero(), Vec3d::UnitX(), Vec3d::UnitZ()};

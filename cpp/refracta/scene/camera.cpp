@@ -20,6 +20,11 @@ Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, dou
   if (!(vfov_deg > 0.0 && vfov_deg < 180.0)) {
     throw_invalid("Camera: vfov must be in (0, 180) degrees (got ", vfov_deg, ")");
   }
+  // Below the narrowest lens photographic() allows (a 0.1 mm side at 100 m: 6e-5 deg) by 60x;
+  // a denormal field of view (a trial's 1e-300 mm sensor) made every pixel's ray the same.
+  if (vfov_deg < kNarrowestVfov) {
+    throw_invalid("Camera: vfov must be at least ", kNarrowestVfov, " degrees (got ", vfov_deg, ")");
+  }
   if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
   Vec3d view = look_at - position;
   if (!is_finite(view)) view = look_at / look_at.cwiseAbs().maxCoeff();  // look_at ~1e308 away: its direction
@@ -42,6 +47,11 @@ double Camera::photographic_vfov(double focal_length_mm, double sensor_w_mm, dou
   }
   if (!positive(sensor_w_mm) || !positive(sensor_h_mm)) {
     throw_invalid("Camera.photographic: sensor_mm must be two sides > 0 [mm] (got (", sensor_w_mm, ", ",
+                  sensor_h_mm, "))");
+  }
+  // Sensors as made: from a 1 mm endoscope chip to 20 x 24 inch film (610 mm), with room.
+  if (!(std::min(sensor_w_mm, sensor_h_mm) >= 0.1 && std::max(sensor_w_mm, sensor_h_mm) <= 2000.0)) {
+    throw_invalid("Camera.photographic: sensor_mm sides must be in [0.1, 2000] mm (got (", sensor_w_mm, ", ",
                   sensor_h_mm, "))");
   }
   if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
@@ -204,7 +214,7 @@ Camera Camera::restore(const Vec3d& position, const Vec3d& look_at, const Vec3d&
                        int height, std::vector<float> jitter, double aperture_diameter, double focus_distance) {
   Camera camera(position, look_at, up, vfov_deg, width, height);
   if (!jitter.empty()) camera = camera.jittered(std::move(jitter));
-  if (aperture_diameter > 0.0) camera = camera.with_lens(aperture_diameter, focus_distance);
+  if (aperture_diameter != 0.0) camera = camera.with_lens(aperture_diameter, focus_distance);  // checks a bad lens
   return camera;
 }
 

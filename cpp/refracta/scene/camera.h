@@ -19,6 +19,9 @@
 
 namespace refracta {
 
+// The narrowest vertical field of view a camera takes [deg] (3.6 milliarcseconds).
+constexpr double kNarrowestVfov = 1e-6;
+
 // Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is
 // the vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred
 // at (i + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(...,

@@ -238,6 +238,10 @@ SeaMeshes sea_meshes(const OceanWaves& waves, const SeaLayout& layout) {
   auto problem = [&](const std::string& message) { problems += (problems.empty() ? "" : "; ") + message; };
   if (!std::isfinite(layout.height)) problem(concat("height must be finite (got ", layout.height, ")"));
   if (!c.allFinite()) problem(concat("centre must be a finite (x, z) (got (", c.x(), ", ", c.y(), "))"));
+  if (c.allFinite() && !(c.cwiseAbs().maxCoeff() <= kSceneReach)) {
+    problem(concat("centre must lie within the scene's reach of ", kSceneReach, " m of the origin (got (", c.x(), ", ",
+                   c.y(), "))"));
+  }
   const double max_radius = 0.5 * std::sqrt(double(kMaxSeaCells)) * spacing - kCoarseStep * spacing;
   if (!(radius > 0.0) || !(radius <= max_radius)) {
     problem(concat("detail_radius must be > 0 and at most ", max_radius, " m (", kMaxSeaCells,

@@ -72,6 +72,12 @@ std::string texture_cache_folder() {
   throw IoError(concat("no folder for the texture cache (tried ", tried, "): set REFRACTA_TEXTURE_CACHE to a writable folder"));
 }
 
+void check_texture_file(const std::string& path) {
+  std::error_code error;
+  if (!fs::exists(path, error)) throw IoError(concat("no such texture file: '", path, "'"));
+  if (!fs::is_regular_file(path, error)) throw IoError(concat("cannot read texture '", path, "': not a regular file"));
+}
+
 namespace {
 
 // A texture's colour channels: 1 for a grey image (with or without alpha), else 3. Alpha is not
@@ -83,6 +89,7 @@ int colour_channels(int channels) { return channels >= 3 ? 3 : 1; }
 // channels in the cache folder, named by the source's path, size and time (and this preparation's
 // version) so an edited file is prepared again. *channels: its colour channels.
 std::string prepare(const std::string& path, int* channels) {
+  check_texture_file(path);
   std::error_code error;
   const auto size = fs::file_size(path, error);
   if (error) throw IoError(concat("no such texture file: '", path, "'"));

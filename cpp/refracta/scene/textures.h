@@ -26,6 +26,10 @@ struct TextureLookup {
 // named by the source's absolute path, size and time; deleting them is always safe.
 std::string texture_cache_folder();
 
+// IoError unless `path` names a regular file: "no such texture file" or "not a regular file" (a
+// folder, or a FIFO that would block the read).
+void check_texture_file(const std::string& path);
+
 class Textures {
  public:
   Textures();

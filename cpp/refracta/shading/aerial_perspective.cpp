@@ -3,6 +3,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/parallel.h"
+#include "refracta/core/spectrum.h"
 #include "refracta/shading/spectral.h"
 
 #include <algorithm>
@@ -45,7 +46,9 @@ std::optional<Column> sun_column(double h, double e, int steps) {
 AerialPerspective::AerialPerspective(std::shared_ptr<const PhysicalSky> sky, double scale)
     : sky_(std::move(sky)), scale_(scale) {
   if (!sky_) throw_invalid("AerialPerspective: no sky");
-  if (!(scale >= 0.0) || !std::isfinite(scale)) throw_invalid("AerialPerspective: scale must be >= 0 (got ", scale, ")");
+  if (!(scale >= 0.0 && scale <= kMaxRadiance)) {
+    throw_invalid("AerialPerspective: scale must be in [0, ", kMaxRadiance, "] (got ", scale, "): images are float32");
+  }
   const PhysicalSkySettings& s = sky_->settings();
   air_ = {s.rayleigh_scale, s.aerosol, s.ozone_du};
   altitude_ = s.altitude;

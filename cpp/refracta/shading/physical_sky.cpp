@@ -65,7 +65,18 @@ void PhysicalSkySettings::validate() const {
     problems.push_back(concat("sun_direction must be a unit vector (got norm ", sun_direction.norm(), ")"));
   }
   if (!(aerosol >= 0.0) || !std::isfinite(aerosol)) problems.push_back(concat("aerosol must be >= 0 (got ", aerosol, ")"));
-  if (!(ozone_du >= 0.0) || !std::isfinite(ozone_du)) problems.push_back(concat("ozone_du must be >= 0 (got ", ozone_du, ")"));
+  // The Earth's column is 100-600 DU; beyond this bound the Chappuis band alone (optical depth ~1.3
+  // at 600 nm per 10 000 DU) blackens the sky: not an atmosphere.
+  if (!(ozone_du >= 0.0 && ozone_du <= kMostOzone)) {
+    problems.push_back(concat("ozone_du must be in [0, ", kMostOzone, "] Dobson units (got ", ozone_du,
+                              "; the Earth's column is 100-600)"));
+  }
+  if (aerosol >= 0.0 && std::isfinite(aerosol) && ozone_du >= 0.0 && ozone_du <= kMostOzone && rayleigh_scale >= 0.0 &&
+      std::isfinite(rayleigh_scale) && altitude >= 0.0 && altitude <= kPhysicalSkyHighestAltitude &&
+      visibility_of(*this) < kLeastVisibility) {
+    problems.push_back(concat("aerosol ", aerosol, " makes the meteorological visibility ", 1e3 * visibility_of(*this),
+                              " m, below ", 1e3 * kLeastVisibility, " m: not an air the sky can be seen through"));
+  }
   if (!(ground_albedo >= 0.0 && ground_albedo <= 1.0)) problems.push_back(concat("ground_albedo must be in [0, 1] (got ", ground_albedo, ")"));
   if (!(altitude >= 0.0 && altitude <= kPhysicalSkyHighestAltitude)) {
     problems.push_back(concat("altitude must be in [0, ", kPhysicalSkyHighestAltitude, "] m (got ", altitude, ")"));
@@ -108,6 +119,7 @@ double visibility_of(const PhysicalSkySettings& settings) {
 }
 
 std::optional<std::string> fog_caveat(const PhysicalSkySettings& settings) {
+  settings.validate();  // refused settings are not warned of first
   const double visibility_km = visibility_of(settings);
   if (!(visibility_km < kLeastResolvedVisibility)) return std::nullopt;
   if (!settings.multiple_scattering) {
@@ -121,8 +133,8 @@ std::optional<std::string> fog_caveat(const PhysicalSkySettings& settings) {
 }
 
 double aerosol_for_visibility(double visibility_km, const PhysicalSkySettings& settings) {
-  if (!(visibility_km > 0.0) || !std::isfinite(visibility_km)) {
-    throw_invalid("visibility must be > 0 km and finite (got ", visibility_km, ")");
+  if (!(visibility_km >= kLeastVisibility) || !std::isfinite(visibility_km)) {
+    throw_invalid("visibility must be >= ", kLeastVisibility, " km (1 m) and finite (got ", visibility_km, ")");
   }
   const double molecules = molecular_extinction(settings);
   const double total = kKoschmieder / (visibility_km * 1e3);

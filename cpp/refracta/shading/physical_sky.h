@@ -59,6 +59,10 @@ BelowHorizon below_horizon_from(const std::string& name);
 
 // The highest observer altitude [m] the sky model takes (PhysicalSkySettings::altitude).
 constexpr double kPhysicalSkyHighestAltitude = 20000.0;
+// The most ozone [Dobson units] a sky takes (the Earth's column is 100-600 DU).
+constexpr double kMostOzone = 10000.0;
+// The least meteorological visibility [km] an air may have (1 m: the densest fog is ~10 m).
+constexpr double kLeastVisibility = 1e-3;
 
 struct PhysicalSkySettings {
   Vec3d sun_direction = Vec3d(0.0, 1.0, 0.0);  // unit, toward the sun, y up
@@ -93,7 +97,7 @@ constexpr double kLeastResolvedVisibility = 0.8;
 // the total extinction at 550 nm; the inverse of aerosol_for_visibility).
 double visibility_of(const PhysicalSkySettings& settings);
 // A caveat for an air of visibility below kLeastResolvedVisibility (to warn of), else nullopt:
-// given by visibility= or by aerosol= alike.
+// given by visibility= or by aerosol= alike. Throws as validate() for invalid settings.
 std::optional<std::string> fog_caveat(const PhysicalSkySettings& settings);
 
 class PhysicalSky {
