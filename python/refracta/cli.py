@@ -456,6 +456,12 @@ def _check_output(output: Path, scene_file: bool = False) -> None:
     _core._check_image_format(str(output))
 
 
+# Samples per pixel from which a spectral render's colour noise no longer tints a displayed image
+# (a trial's flat sky, mean of the PNG against the RGB render's: 1 spp (183, 176, 86), 4 spp
+# (195, 189, 128), 16 spp (193, 198, 199) against (193, 198, 204)).
+_SPECTRAL_CLEAN_SPP = 16
+
+
 def render_file(
     scene_path: Path,
     output: Path,
@@ -472,6 +478,8 @@ def render_file(
     aovs=None,
     white_balance=None,
     max_length: float | None = None,
+    denoise: bool = False,
+    seed: int | None = None,
 ) -> int:
     """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped).
 
@@ -481,7 +489,8 @@ def render_file(
     aovs: names of render's per-pixel outputs (refracta.render's aovs: distance, position, ...),
     written after R, G, B as layers of the EXR (refracta.io.write_layers: distance.Y, position.X,
     ...; hidden_height.geometric and .refracted; geographic.lat, .lon, .height, which needs the
-    scene file's [geographic] table); the output must then be an EXR.
+    scene file's [geographic] table); the output must then be an EXR. denoise: refracta.render's
+    (Open Image Denoise with the first hit's albedo and normal); seed: RenderOptions.seed.
     """
     import refracta
 
@@ -498,6 +507,15 @@ def render_file(
             f"--aovs geographic needs the scene's place on the Earth: add a [geographic] table "
             f"(lat, lon [deg] of the scene's origin) to {scene_path}"
         )
+    samples = spp or refracta.RenderOptions().spp
+    displayed = Path(output).suffix.lower() not in (".exr", ".hdr", ".pfm", ".tif", ".tiff")  # kept linear
+    if spectral and not denoise and displayed and samples < _SPECTRAL_CLEAN_SPP:
+        warnings.warn(
+            f"render: a spectral render at {samples} spp is noisy in colour (each sample one set of "
+            f"wavelengths), and a PNG clips each pixel's noise, which shifts the picture's colour: use "
+            f"--spp {_SPECTRAL_CLEAN_SPP} or more, or --denoise (an EXR keeps the unbiased linear values)",
+            stacklevel=2,
+        )
     result = refracta.render(
         scene,
         camera,
@@ -508,9 +526,11 @@ def render_file(
         max_depth=max_depth,
         max_length=max_length,
         spectral=spectral,
+        seed=seed,
         progress=True,
         aovs=aovs or None,
         frame=loaded.frame if aovs and "geographic" in aovs else None,
+        denoise=denoise,
     )
     if aovs:
         image, layers = result
@@ -572,7 +592,9 @@ def main(argv=None) -> int:
     import refracta
 
     try:
-        return _run(argv)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            return _run(argv)
     except (ValueError, OSError, refracta.NumericalError) as error:
         message = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
         print(f"refracta: error: {message}", file=sys.stderr)
@@ -582,8 +604,20 @@ def main(argv=None) -> int:
         return 130
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning as one line for a command-line user (`refracta: SceneWarning: ...`), without
+    the Python source line it came from."""
+    print(f"refracta: {category.__name__}: {message}", file=sys.stderr if file is None else file)
+
+
 def _run(argv=None) -> int:
+    import refracta
+
     parser = _Parser(prog="refracta", description="Physically based mirages.")
+    parser.add_argument("--version", action="version", version=f"refracta {refracta.__version__}")
+    parser.add_argument(
+        "--threads", type=_count(1), default=None, help="threads the work may use (default: every core)"
+    )
     commands = parser.add_subparsers(dest="command", required=True)
     demo_parser = commands.add_parser("demo", help="render the example mirages and ray fans")
     demo_parser.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
@@ -627,6 +661,14 @@ def _run(argv=None) -> int:
     )
     render_parser.add_argument("--spectral", action="store_true", help="hero-wavelength spectral rendering")
     render_parser.add_argument(
+        "--denoise",
+        action="store_true",
+        help="Open Image Denoise, guided by the first hit's albedo and normal (refracta.render's denoise)",
+    )
+    render_parser.add_argument(
+        "--seed", type=_count(0), default=None, help="the samples' random seed (default: RenderOptions')"
+    )
+    render_parser.add_argument(
         "--tonemap",
         choices=["aces", "reinhard", "linear", "film"],
         default=None,
@@ -667,6 +709,8 @@ def _run(argv=None) -> int:
     edit_parser.add_argument("-o", "--output", type=Path, required=True, help="scene file to write (.toml)")
     edit_parser.add_argument("--backend", default=None, help="ceres (default) or nlopt:<ALGORITHM>")
     args = parser.parse_args(argv)
+    if args.threads is not None:
+        refracta.set_threads(args.threads)
     if args.command == "demo":
         return demo(args.out, args.size)
     if args.command == "render":
@@ -686,6 +730,8 @@ def _run(argv=None) -> int:
             args.aovs,
             args.white_balance,
             args.max_length,
+            args.denoise,
+            args.seed,
         )
     if args.command == "edit":
         return edit_file(args.scene, args.pairs, args.output, args.backend)

@@ -339,6 +339,11 @@ def _unknown_key_message(key: str, allowed, what: str) -> str:
     return f"unknown key for {what} ({hint}expected {', '.join(sorted(allowed))})"
 
 
+def _article(word: str) -> str:
+    """'an' before a vowel ('an obj object'), else 'a'."""
+    return "an" if word[:1].lower() in "aeiou" else "a"
+
+
 def _check_keys(table: dict, allowed, where: _Locator, name: str, what: str, index: int | None = None) -> None:
     """ValueError naming file, line and the first key of `table` not in `allowed`."""
     extra = sorted(set(table) - set(allowed))
@@ -411,7 +416,7 @@ def _materials(entries: list, where: _Locator, get, path: Path) -> dict:
         if name in materials:
             raise where.error(f"material '{name}' is defined twice", "materials", "name", index)
         class_name, keys = MATERIAL_TYPES[kind]
-        _check_keys(entry, keys | {"name", "type"}, where, "materials", f"a {kind} material", index)
+        _check_keys(entry, keys | {"name", "type"}, where, "materials", f"{_article(kind)} {kind} material", index)
         params = {}
         for key in sorted(set(entry) & keys):
             value = entry[key]
@@ -449,7 +454,7 @@ def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Pa
         raise where.error(
             f"unknown environment type '{kind}' (expected {', '.join(ENVIRONMENT_KEYS)})", "environment", "type"
         )
-    _check_keys(table, ENVIRONMENT_KEYS[kind] | {"type"}, where, "environment", f"a {kind} environment")
+    _check_keys(table, ENVIRONMENT_KEYS[kind] | {"type"}, where, "environment", f"{_article(kind)} {kind} environment")
 
     def positive(value):
         value = _real(value)
@@ -519,7 +524,7 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get,
                 "type",
                 index,
             )
-        _check_keys(entry, LIGHT_KEYS[kind] | {"type"}, where, "lights", f"a {kind} light", index)
+        _check_keys(entry, LIGHT_KEYS[kind] | {"type"}, where, "lights", f"{_article(kind)} {kind} light", index)
         try:
             if kind == "point":
                 scene.add_point_light(
@@ -659,7 +664,7 @@ def _atmosphere(table: dict, where: _Locator, get):
             "atmosphere",
             spot_keys[0],
         )
-    _check_keys(atmosphere, allowed, where, "atmosphere", f"a {model}")
+    _check_keys(atmosphere, allowed | {"model", "curved_earth"}, where, "atmosphere", f"a {model}")
     # A TOML boolean or string where a number belongs: the models refuse it too, but only this check
     # can name the file, line and key.
     for key in atmosphere:
@@ -878,7 +883,7 @@ def load_scene(path, size=None) -> SceneFile:
         )
         allowed |= {"emission"} if kind in EMITTERS else set()
         allowed |= {"two_sided"} if kind == "mesh" else set()
-        _check_keys(obj, allowed, where, "objects", f"a {kind}", index)
+        _check_keys(obj, allowed, where, "objects", f"{_article(kind)} {kind} object", index)
         # The shorthand's defaults are the Scene.add_* calls' own (None: theirs; a ground's kd 0.3).
         material = dict(
             kd=get(obj, "objects", "kd", lambda v: _number_list(v, 3), None, index=index),
@@ -1169,8 +1174,10 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
     """`text` (a scene file) with its table `name` and every sub-table of it ([name.*], [[name.*]];
     the name bare or quoted) replaced by `table`, at the place of the first of them; without them,
     `table` is put first (`first`; after any keys before the first header, which would otherwise
-    become the table's) or last. Everything else, comments included, is kept; a byte-order mark
-    (a text read without encoding="utf-8-sig") is dropped, or the first header would go unseen."""
+    become the table's) or last. Everything else, comments included, is kept (the comment lines
+    after a replaced table's last key too: they are the next table's); the replaced tables' own
+    comments go with them. A byte-order mark (a text read without encoding="utf-8-sig") is dropped,
+    or the first header would go unseen."""
     text = _without_root_keys(text.removeprefix("\ufeff"), name)
     lines = text.splitlines(keepends=True)
     headers = _table_headers(text)
@@ -1186,13 +1193,29 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
             return table + "\n" + text
         before = "".join(lines[:top])
         return before + ("" if before.endswith("\n") else "\n") + table + "\n" + "".join(lines[top:])
+    loose = _loose_lines(text)
     kept, previous = [], 0
     for start, end in owned:
         kept.append("".join(lines[previous:start]))
+        while end > start + 1 and loose[end - 1]:  # comments before the next table are that table's
+            end -= 1
         previous = end
     rest = "".join(lines[previous:])
     # The new table where the first old one was; the others' lines dropped (with the blank lines after them).
     return kept[0] + table + "\n" + "".join(part.lstrip("\n") for part in kept[1:] + [rest])
+
+
+def _loose_lines(text: str) -> list[bool]:
+    """Per line of a TOML text: whether it is blank or a comment line (not a line of a multi-line
+    string that starts with #)."""
+    code = _code_positions(text)
+    loose, offset = [], 0
+    for line in text.splitlines(keepends=True):
+        stripped = line.strip()
+        outside = offset == 0 or bool(code[offset - 1])  # the line break before it is not in a string
+        loose.append(outside and (not stripped or stripped.startswith("#")))
+        offset += len(line)
+    return loose
 
 
 def _without_root_keys(text: str, name: str) -> str:
@@ -1294,8 +1317,8 @@ def relocate(text: str, source, target) -> str:
     code = _code_positions(text)
 
     def rewritten(match: re.Match) -> str:
-        if not code[match.start()]:
-            return match[0]  # in a comment or a string
+        if not (match.start() == 0 or code[match.start() - 1]):
+            return match[0]  # in a comment or a string (a key's own quotes, "file" = ..., are its)
         return match["key"] + _toml_value(moved(tomllib.loads("v = " + match["value"])["v"]))
 
     out = _FILE_VALUE.sub(rewritten, text)
@@ -1314,10 +1337,11 @@ def relocate(text: str, source, target) -> str:
 
 # The keys whose string values are file names (relocate), wherever their table.
 _FILE_KEYS = ("file", "texture", "environment")
-# A file name's key (a whole bare key: not my-file's) and its string value, as a scene file writes
+# A file name's key (a whole key, bare or quoted: not my-file's) and its string value, as a scene file writes
 # them: multi-line strings first, then one-line ones.
+_FILE_KEY = "|".join(_FILE_KEYS)
 _FILE_VALUE = re.compile(
-    r"""(?P<key>(?<![A-Za-z0-9_-])(?:""" + "|".join(_FILE_KEYS) + r""")\s*=\s*)"""
+    rf"""(?P<key>(?<![A-Za-z0-9_-])(?:"(?:{_FILE_KEY})"|'(?:{_FILE_KEY})'|(?:{_FILE_KEY}))\s*=\s*)"""
     r"""(?P<value>\"\"\"(?:[^"\\]|\\.|"(?!""))*\"\"\"|'\'\'[\s\S]*?'\'\'|"(?:[^"\\\n]|\\.)*"|'[^'\n]*')"""
 )
 

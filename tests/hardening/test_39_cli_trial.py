@@ -1,0 +1,99 @@
+"""A December 2026 trial of the command line and the scene files end to end: each test fails on
+the code before the fix."""
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+import tomllib
+
+import refracta
+from refracta import cli
+from refracta.scene_file import relocate, with_atmosphere, with_camera
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+SCENE = '''# top
+[camera]
+position = [0.0, 1.5, 0.0]
+look_at = [10.0, 1.5, 0.0]
+# about the air below
+
+[atmosphere]   # mild road
+surface_dt = 3.0 # K
+# ---- Lighting section ----
+# The sun is low.
+[sun]
+direction = [0.0, 1.0, 0.0]
+radiance = 1.0
+note = """
+# not a comment
+"""
+'''
+
+
+def test_editing_a_table_keeps_the_comments_of_the_next_one():
+    out = with_atmosphere(SCENE, refracta.PhysicalAtmosphere(surface_dt=5.0))
+    assert "# ---- Lighting section ----\n# The sun is low.\n[sun]" in out
+    assert "# about the air below" in out and "# not a comment" in out
+    assert tomllib.loads(out)["atmosphere"]["surface_dt"] == 5.0
+    moved = with_camera(SCENE, refracta.Camera((0, 2, 0), (5, 2, 0), width=8, height=4))
+    assert "# about the air below\n\n[atmosphere]" in moved
+    assert tomllib.loads(moved)["camera"]["size"] == [8, 4]
+
+
+def test_relocate_rewrites_a_quoted_file_key(tmp_path):
+    # `"file" = "crate.obj"` made `refracta edit -o elsewhere/solved.toml` fail.
+    text = '[[objects]]\ntype = "obj"\n"file" = "crate.obj"\n[[objects]]\ntype = "obj"\n\'file\' = "b.obj"\n'
+    out = relocate(text, tmp_path / "scene", tmp_path / "solved")
+    files = [entry["file"] for entry in tomllib.loads(out)["objects"]]
+    assert files == ["../scene/crate.obj", "../scene/b.obj"]
+    same = relocate('x = "file = \'a.obj\'"\n# file = "c.obj"\n', tmp_path / "scene", tmp_path / "solved")
+    assert same == 'x = "file = \'a.obj\'"\n# file = "c.obj"\n'  # in a string and a comment: left alone
+
+
+def test_unknown_keys_say_an_obj_and_list_model_and_curved_earth(tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_text(
+        '[camera]\nposition = [0, 1, 0]\nlook_at = [1, 1, 0]\n[[objects]]\ntype = "obj"\nfile = "a.obj"\nbogus = 1\n'
+    )
+    with pytest.raises(ValueError, match="unknown key for an obj object"):
+        refracta.load_scene(path)
+    path.write_text("[camera]\nposition = [0, 1, 0]\nlook_at = [1, 1, 0]\n[atmosphere]\nsurfce_dt = 1.0\n")
+    with pytest.raises(ValueError, match=r"expected [^)]*\bcurved_earth\b[^)]*\bmodel\b"):
+        refracta.load_scene(path)
+
+
+def test_cli_threads_seed_denoise_and_version(tmp_path, capsys):
+    with pytest.raises(SystemExit) as stop:
+        cli.main(["--version"])
+    assert stop.value.code == 0 and capsys.readouterr().out.strip() == f"refracta {refracta.__version__}"
+    threads = refracta.get_threads()
+    try:
+        noisy, seeded, other = (tmp_path / f"{name}.exr" for name in ("noisy", "seeded", "other"))
+        base = ["render", str(DATA / "hot_road.toml"), "--size", "24x9", "--spp", "2"]
+        assert cli.main(["--threads", "1", *base, "-o", str(seeded), "--seed", "5"]) == 0
+        assert refracta.get_threads() == 1
+        assert cli.main([*base, "-o", str(other), "--seed", "6"]) == 0
+        assert cli.main([*base, "-o", str(noisy), "--seed", "5", "--denoise"]) == 0
+    finally:
+        refracta.set_threads(threads)
+    a, b, c = (refracta.io.read_image(path)[..., :3] for path in (seeded, other, noisy))
+    assert not np.array_equal(a, b)  # another seed, other samples
+    assert not np.array_equal(a, c)  # the same samples, denoised
+    # Denoising keeps the picture: the mean within 5 % (OIDN preserves energy to ~1 % on smooth images).
+    assert float(c.mean()) == pytest.approx(float(a.mean()), rel=0.05)
+
+
+def test_a_low_spp_spectral_png_warns_and_an_exr_does_not(tmp_path, capsys):
+    base = ["render", str(DATA / "hot_road.toml"), "--size", "16x6", "--spp", "1", "--spectral"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")  # as a command line shows it (the tests make warnings errors)
+        assert cli.main([*base, "-o", str(tmp_path / "a.png")]) == 0
+    err = capsys.readouterr().err
+    assert "refracta: UserWarning: render: a spectral render at 1 spp is noisy in colour" in err
+    assert "--denoise" in err and "warnings.warn" not in err  # one line, no Python source shown
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert cli.main([*base, "-o", str(tmp_path / "a.exr")]) == 0
+        assert cli.main([*base, "--spp", "16", "-o", str(tmp_path / "b.png")]) == 0
