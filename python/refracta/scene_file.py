@@ -331,6 +331,13 @@ class _Locator:
         name = f"{where} {key}" if key else where
         return ValueError(f"{self.path}:{line}: {name}: {message}")
 
+    def located(self, error: Exception, table: str, key: str | None = None, index: int | None = None) -> Exception:
+        """`error` again, of its own class (refracta.IoError, TextureNotFoundError, ...), its message
+        led by the file, line and key as error() writes them."""
+        if str(error).startswith(str(self.path)):
+            return error
+        return type(error)(str(self.error(str(error), table, key, index)))
+
 
 def _unknown_key_message(key: str, allowed, what: str) -> str:
     """'unknown key for a <what> (did you mean vfov?; expected ...)'."""
@@ -505,6 +512,8 @@ def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Pa
         if str(error).startswith(str(where.path)):  # already located (a key's own check)
             raise
         raise where.error(str(error), "environment", _offending_key(str(error), table)) from None
+    except _core.IoError as error:  # a file the table names: located, its kind kept
+        raise where.located(error, "environment", _offending_key(str(error), table) or "file") from None
 
 
 def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get, present) -> None:
@@ -953,6 +962,8 @@ def load_scene(path, size=None) -> SceneFile:
             if str(error).startswith(str(where.path)):  # already located (a key's own check)
                 raise
             raise where.error(str(error), "objects", _offending_key(str(error), obj), index) from None
+        except _core.IoError as error:  # a file the entry names (an OBJ, its MTL, a texture): located
+            raise where.located(error, "objects", _offending_key(str(error), obj) or "file", index) from None
 
     field, turbulence = None, None
     if "atmosphere" in data:

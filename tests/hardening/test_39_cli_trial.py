@@ -97,3 +97,17 @@ def test_a_low_spp_spectral_png_warns_and_an_exr_does_not(tmp_path, capsys):
         warnings.simplefilter("error")
         assert cli.main([*base, "-o", str(tmp_path / "a.exr")]) == 0
         assert cli.main([*base, "--spp", "16", "-o", str(tmp_path / "b.png")]) == 0
+
+
+def test_a_missing_file_a_scene_names_is_located_and_keeps_its_kind(tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_text(
+        '[camera]\nposition = [0, 1, 0]\nlook_at = [1, 1, 0]\n\n[[objects]]\ntype = "obj"\nfile = "nothere.obj"\n'
+    )
+    with pytest.raises(refracta.IoError, match=r"scene.toml:7: \[\[objects\]\] #1 file: no such OBJ file"):
+        refracta.load_scene(path)
+    path.write_text(
+        "[camera]\nposition = [0, 1, 0]\nlook_at = [1, 1, 0]\n\n" + '[environment]\ntype = "map"\nfile = "sky.exr"\n'
+    )
+    with pytest.raises(refracta.IoError, match=r"scene.toml:7: \[environment\] file: "):
+        refracta.load_scene(path)
