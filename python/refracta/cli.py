@@ -200,7 +200,7 @@ def demo(out: Path, size=None) -> int:
         figure, axes = plt.subplots(len(images), 1, figsize=(width / dpi, len(images) * (height / dpi + 0.3)), dpi=dpi)
         for ax, display, (_, _, label) in zip(np.atleast_1d(axes), displays, views):
             ax.imshow(display, interpolation="none")
-            ax.set_title(f"{name}: {label}", fontsize=9)
+            ax.set_title(f"{name}: {label}", fontsize=_title_points(f"{name}: {label}", width, 9))
             ax.axis("off")
         figure.subplots_adjust(
             left=0, right=1, bottom=0, top=1 - 0.3 / (height / dpi + 0.3) / len(images), hspace=0.3 / (height / dpi)
@@ -319,6 +319,13 @@ def green_flash_frame(elevation: float, vfov: float, size: int = GREEN_FLASH_SIZ
     return examples_chroma.gamut_map(examples_chroma.chroma_filter(image, denoised))
 
 
+def _title_points(text: str, width: int, largest: float) -> float:
+    """A title's font size [pt] that fits `width` pixels at 100 dpi (a character is about 0.6 em
+    wide): `largest` for the demo's own sizes, smaller for `refracta demo --size 160x60`, whose
+    titles were cut off at both ends."""
+    return max(3.0, min(largest, width * 72.0 / (0.6 * 100.0 * len(text))))
+
+
 def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_FLASH_SPP) -> None:
     """Sunset over a warm sea, spectral and denoised: out/green_flash.png, `size` x `size` frames
     (green_flash_frame) side by side, one exposure for all (green_flash_display), one figure pixel
@@ -332,10 +339,11 @@ def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_
     figure, axes = plt.subplots(1, len(frames), figsize=(len(frames) * (size / dpi + gap), size / dpi + 0.7), dpi=dpi)
     for ax, frame, (elevation, vfov) in zip(axes, shown, GREEN_FLASH_FRAMES):
         ax.imshow(frame, interpolation="none")
-        ax.set_title(f"sun {elevation:+.3f} deg, {vfov * 60:.0f}' field", fontsize=9)
+        label = f"sun {elevation:+.3f} deg, {vfov * 60:.0f}' field"
+        ax.set_title(label, fontsize=_title_points(label, size, 9))
         ax.axis("off")
     title = "Sunset over a warm sea (spectral): flattening, the mirage's cut, the lens shrinking, the green flash"
-    figure.suptitle(title, fontsize=10)
+    figure.suptitle(title, fontsize=_title_points(title, len(frames) * size, 10))
     figure.subplots_adjust(left=0, right=1, bottom=0, top=size / (size + 70), wspace=gap * dpi / size)
     figure.savefig(out / "green_flash.png", dpi=dpi)
     plt.close(figure)

@@ -111,3 +111,11 @@ def test_a_missing_file_a_scene_names_is_located_and_keeps_its_kind(tmp_path):
     )
     with pytest.raises(refracta.IoError, match=r"scene.toml:7: \[environment\] file: "):
         refracta.load_scene(path)
+
+
+def test_demo_titles_fit_small_demos_and_keep_the_demo_s_own_size():
+    title = "hot_spot: through the atmosphere, 60 m nearer"
+    assert cli._title_points(title, 640, 9) == 9  # the committed demo images' titles unchanged
+    small = cli._title_points(title, 160, 9)
+    # At 100 dpi a character is ~0.6 em: the title's width in pixels at that size fits 160 px.
+    assert small < 9 and len(title) * 0.6 * small * 100 / 72 <= 160 + 1e-9  # 1e-9: rounding of the product
