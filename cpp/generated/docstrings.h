@@ -40,9 +40,10 @@ inline constexpr const char mkd_doc_refracta_BsdfSamples_valid[] = R"doc(False w
 inline constexpr const char mkd_doc_refracta_BsdfSamples_weight[] = R"doc(``f |cos theta_i| / pdf`` (N, C) (delta lobes: albedo / probability).)doc";
 inline constexpr const char mkd_doc_refracta_BsdfSamples_wi[] = R"doc(Sampled unit directions (N, 3), 0 where invalid.)doc";
 inline constexpr const char mkd_doc_refracta_Camera[] = R"doc(Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
-vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at (i
-+ 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=) or
-Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)doc";
+vertical field of view [deg], from 1e-6 to under 180. Pixel coordinates (u, v): u right, v down,
+pixel (i, j) centred at (i + 0.5, j + 0.5). A photographer's camera with depth of field:
+Camera.photographic(..., f_number=) or Camera.eye_level(..., f_number=); any camera through a thin
+lens: with_lens.)doc";
 inline constexpr const char mkd_doc_refracta_Camera_aperture_diameter[] = R"doc(The thin lens's aperture diameter [m] (f / N), 0 for a pinhole.)doc";
 inline constexpr const char mkd_doc_refracta_Camera_eye_level[] = R"doc(A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the lens
 eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the
@@ -65,8 +66,8 @@ else.
     scene.add_obj("city.obj", texture_dirs=["textures"]) camera = refracta.Camera.framing(scene,
     width=800, height=450)
 
-scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg]. ValueError
-(std::invalid_argument) for an empty, non-finite or single-point box.)doc";
+scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg]. ValueError for an
+empty, non-finite or single-point box.)doc";
 inline constexpr const char mkd_doc_refracta_Camera_jittered[] = R"doc(The same camera with every ray turned by small angles [rad] toward the image's right and up: a map
 (height, width, 2) at the pixel centres, bilinear between them (held at the border). Non-physical
 "geometric noise" (the follow-up editor's cheap shimmer); project() ignores it. ValueError for a map
@@ -88,8 +89,9 @@ on the sensor; the image keeps the field of view of focus at infinity (no focus 
 Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm]. Each
 pixel sample takes its own lens point; through a field those rays are traced from the lens (not
 served by the eye's table), which costs what table=False costs. Only the ray-traced methods
-('straight', 'curved') render it. A focal length, sensor side, f_number or focus_distance <= 0 or
-NaN, or focus_distance without f_number (a pinhole has no focus): ValueError.)doc";
+('straight', 'curved') render it. ValueError for a focal length outside [0.1, 100000] mm, a sensor
+side outside [0.1, 2000] mm, an f_number or focus_distance <= 0 or NaN, or a focus_distance without
+an f_number (a pinhole has no focus).)doc";
 inline constexpr const char mkd_doc_refracta_Camera_photographic_vfov[] = R"doc(The vertical field of view [deg] Camera.photographic gives an image of width x height pixels (the
 image spans the sensor's width when relatively wider than the sensor, else its height).)doc";
 inline constexpr const char mkd_doc_refracta_Camera_pixel_angle[] = R"doc(The angle [rad] one pixel subtends at the image centre (vertical field of view / height).)doc";
@@ -685,22 +687,23 @@ radiance (N, 3)), 0 where nothing was sampled.)doc";
 inline constexpr const char mkd_doc_refracta_set_physical_sky[] = R"doc(The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's single
 scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun toward
 `sun_direction` (normalised, y up), `aerosol` (Mie density scale; None: 1, a clear sky), `ozone_du`
-[Dobson units], observer `altitude` [m]. Below the horizon `below_horizon`: 'horizon' (default)
-continues the sky from the horizon at each azimuth (Scene.set_sky's convention: the ground is
-geometry, and a ray ending its max_length still heading slightly down sees the horizon sky,
-importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of `ground_albedo`
-(which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter` [deg] with linear
-limb darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction
-(reddened toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral
-renders, its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant:
-times 106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun
-(e.g. an exposure). Builds the sky's table (1-3 s; `build_sky`). aerial_perspective (default True):
-the same air dims and lights every segment the renderers cast (refracta.spectrum.AerialPerspective:
-transmittance and scattered sunlight, the sky's multiple scattering included), so distant objects
-grey and blue into the sky; False keeps surfaces as seen through empty space. visibility [km]:
-meteorological visibility at the ground (Koschmieder: extinction at 550 nm = 3.912 / V), setting the
-aerosol in its place (give one of them). The scene's y = 0 lies `altitude` above the sky's sea
-level.)doc";
+[Dobson units, at most 10 000; the Earth's column is 100-600], observer `altitude` [m]. Below the
+horizon `below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth
+(Scene.set_sky's convention: the ground is geometry, and a ray ending its max_length still heading
+slightly down sees the horizon sky, importance-sampled over the whole sphere); 'ground' shows the
+Lambertian ground of `ground_albedo` (which must be 0 with 'horizon'). And the sun: a disc of
+`sun_angular_diameter` [deg] with linear limb darkening u, its radiance the 5778 K solar spectrum
+through the atmosphere's extinction (reddened toward the horizon; none below it). Units: spectral
+radiance W/(m^2 sr nm) in spectral renders, its CIE-Y-weighted mean in RGB (linear sRGB of XYZ /
+integral ybar, as Color.illuminant: times 106.86 nm gives W/(m^2 sr)); RGB and spectral renders
+agree. `scale` multiplies sky and sun (e.g. an exposure). Builds the sky's table (1-3 s;
+`build_sky`). aerial_perspective (default True): the same air dims and lights every segment the
+renderers cast (refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's
+multiple scattering included), so distant objects grey and blue into the sky; False keeps surfaces
+as seen through empty space. visibility [km, at least 0.001]: meteorological visibility at the
+ground (Koschmieder: extinction at 550 nm = 3.912 / V), setting the aerosol in its place (give one
+of them; an aerosol thicker than 1 m of visibility is refused too). The scene's y = 0 lies
+`altitude` above the sky's sea level.)doc";
 inline constexpr const char mkd_doc_refracta_set_sky[] = R"doc(A sky (replacing any environment): radiance toward the horizon (and below) and straight up, linear
 in the sine of the elevation (zenith default: the horizon's, a constant sky), or an equirectangular
 environment map file (refracta.lights.EnvironmentLight's orientation), times `scale`.)doc";

@@ -1012,22 +1012,23 @@ class Scene:
         The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's single
         scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun toward
         `sun_direction` (normalised, y up), `aerosol` (Mie density scale; None: 1, a clear sky), `ozone_du`
-        [Dobson units], observer `altitude` [m]. Below the horizon `below_horizon`: 'horizon' (default)
-        continues the sky from the horizon at each azimuth (Scene.set_sky's convention: the ground is
-        geometry, and a ray ending its max_length still heading slightly down sees the horizon sky,
-        importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of `ground_albedo`
-        (which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter` [deg] with linear
-        limb darkening u, its radiance the 5778 K solar spectrum through the atmosphere's extinction
-        (reddened toward the horizon; none below it). Units: spectral radiance W/(m^2 sr nm) in spectral
-        renders, its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant:
-        times 106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree. `scale` multiplies sky and sun
-        (e.g. an exposure). Builds the sky's table (1-3 s; `build_sky`). aerial_perspective (default True):
-        the same air dims and lights every segment the renderers cast (refracta.spectrum.AerialPerspective:
-        transmittance and scattered sunlight, the sky's multiple scattering included), so distant objects
-        grey and blue into the sky; False keeps surfaces as seen through empty space. visibility [km]:
-        meteorological visibility at the ground (Koschmieder: extinction at 550 nm = 3.912 / V), setting the
-        aerosol in its place (give one of them). The scene's y = 0 lies `altitude` above the sky's sea
-        level.
+        [Dobson units, at most 10 000; the Earth's column is 100-600], observer `altitude` [m]. Below the
+        horizon `below_horizon`: 'horizon' (default) continues the sky from the horizon at each azimuth
+        (Scene.set_sky's convention: the ground is geometry, and a ray ending its max_length still heading
+        slightly down sees the horizon sky, importance-sampled over the whole sphere); 'ground' shows the
+        Lambertian ground of `ground_albedo` (which must be 0 with 'horizon'). And the sun: a disc of
+        `sun_angular_diameter` [deg] with linear limb darkening u, its radiance the 5778 K solar spectrum
+        through the atmosphere's extinction (reddened toward the horizon; none below it). Units: spectral
+        radiance W/(m^2 sr nm) in spectral renders, its CIE-Y-weighted mean in RGB (linear sRGB of XYZ /
+        integral ybar, as Color.illuminant: times 106.86 nm gives W/(m^2 sr)); RGB and spectral renders
+        agree. `scale` multiplies sky and sun (e.g. an exposure). Builds the sky's table (1-3 s;
+        `build_sky`). aerial_perspective (default True): the same air dims and lights every segment the
+        renderers cast (refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's
+        multiple scattering included), so distant objects grey and blue into the sky; False keeps surfaces
+        as seen through empty space. visibility [km, at least 0.001]: meteorological visibility at the
+        ground (Koschmieder: extinction at 550 nm = 3.912 / V), setting the aerosol in its place (give one
+        of them; an aerosol thicker than 1 m of visibility is refused too). The scene's y = 0 lies
+        `altitude` above the sky's sea level.
         """
     def set_sky(self, horizon: typing.Any = None, zenith: typing.Any = None, environment: os.PathLike | str | bytes | None = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
@@ -1074,9 +1075,10 @@ class Scene:
 class Camera:
     """
     Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
-    vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at (i
-    + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(..., f_number=) or
-    Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.
+    vertical field of view [deg], from 1e-6 to under 180. Pixel coordinates (u, v): u right, v down,
+    pixel (i, j) centred at (i + 0.5, j + 0.5). A photographer's camera with depth of field:
+    Camera.photographic(..., f_number=) or Camera.eye_level(..., f_number=); any camera through a thin
+    lens: with_lens.
     """
     @staticmethod
     def eye_level(eye: typing.Any, target: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex = 1.6, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex = 50.0, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), *, width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
@@ -1106,8 +1108,8 @@ class Camera:
             scene.add_obj("city.obj", texture_dirs=["textures"]) camera = refracta.Camera.framing(scene,
             width=800, height=450)
         
-        scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg]. ValueError
-        (std::invalid_argument) for an empty, non-finite or single-point box.
+        scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg]. ValueError for an
+        empty, non-finite or single-point box.
         """
     @staticmethod
     def geographic(lat, lon, height, azimuth = None, elevation = None, *, target = None, vfov = None, focal_length_mm = None, sensor_mm = None, image_width = None, image_height = None, roll = 0.0, earth_radius = None) -> Camera:
@@ -1158,8 +1160,9 @@ class Camera:
         Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm]. Each
         pixel sample takes its own lens point; through a field those rays are traced from the lens (not
         served by the eye's table), which costs what table=False costs. Only the ray-traced methods
-        ('straight', 'curved') render it. A focal length, sensor side, f_number or focus_distance <= 0 or
-        NaN, or focus_distance without f_number (a pinhole has no focus): ValueError.
+        ('straight', 'curved') render it. ValueError for a focal length outside [0.1, 100000] mm, a sensor
+        side outside [0.1, 2000] mm, an f_number or focus_distance <= 0 or NaN, or a focus_distance without
+        an f_number (a pinhole has no focus).
         """
     @staticmethod
     def photographic_vfov(focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640) -> float:

@@ -599,10 +599,10 @@ def main(argv=None) -> int:
     and returns 1; Ctrl-C returns 130; anything else is a bug and keeps its traceback."""
     import refracta
 
+    shown = warnings.formatwarning
+    warnings.formatwarning = _format_warning  # as shown; recorded warnings (pytest.warns, logging) unchanged
     try:
-        with warnings.catch_warnings():
-            warnings.showwarning = _show_warning
-            return _run(argv)
+        return _run(argv)
     except (ValueError, OSError, refracta.NumericalError) as error:
         message = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
         print(f"refracta: error: {message}", file=sys.stderr)
@@ -610,12 +610,14 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print("refracta: interrupted", file=sys.stderr)
         return 130
+    finally:
+        warnings.formatwarning = shown
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
-    """A warning as one line for a command-line user (`refracta: SceneWarning: ...`), without
-    the Python source line it came from."""
-    print(f"refracta: {category.__name__}: {message}", file=sys.stderr if file is None else file)
+def _format_warning(message, category, filename, lineno, line=None) -> str:
+    """A warning as a command-line user reads it (`refracta: SceneWarning: ...`), without the
+    Python file, line and source it came from."""
+    return f"refracta: {category.__name__}: {message}\n"
 
 
 def _run(argv=None) -> int:

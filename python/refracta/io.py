@@ -198,8 +198,9 @@ def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> Non
                 f"(got shape {np.shape(layer)})"
             )
         given = (suffixes or {}).get(name)
-        if given is not None and not isinstance(given, (list, tuple)):
+        if given is not None and (isinstance(given, str) or not isinstance(given, (list, tuple, np.ndarray))):
             raise ValueError(f"write_layers: suffixes[{name!r}] must be a sequence of channel names (got {given!r})")
+        given = None if given is None else [str(suffix) if isinstance(suffix, str) else suffix for suffix in given]
         for suffix in given or ():
             _check_channel_name(suffix, f"suffixes[{name!r}]", dots=False)
         own = given or _LAYER_SUFFIXES.get(values.shape[2])

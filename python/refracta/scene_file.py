@@ -1150,15 +1150,21 @@ def atmosphere_table(field: _core.IndexField, turbulence=None) -> str:
     return "\n".join(lines + turbulence_lines) + "\n"
 
 
+def _toml_lines(text: str) -> list[str]:
+    """A TOML text's lines, their ends kept: split at line feeds only (TOML's newline; str.splitlines
+    also splits at U+2028 and U+0085, which a quoted key may hold)."""
+    return re.findall(r"[^\n]*\n|[^\n]+$", text)
+
+
 def _lines_at_top_level(text: str) -> list[tuple[str, bool]]:
-    """The lines of a TOML text (splitlines, their ends kept), each with whether its first
+    """The lines of a TOML text (_toml_lines), each with whether its first
     character after blanks is code at the top level: outside comments and strings (multi-line ones
     too: a "[camera]" line inside one is text) and outside arrays spanning lines. Only such a
     line can be a table header or a root key."""
     code = _code_positions(text)
     brackets = [(m.start(), 1 if m[0] in "[{" else -1) for m in re.finditer(r"[\[\]{}]", text) if code[m.start()]]
     lines, depth, offset, k = [], 0, 0, 0
-    for line in text.splitlines(keepends=True):
+    for line in _toml_lines(text):
         first = offset + len(line) - len(line.lstrip(" \t"))
         lines.append((line, depth == 0 and bool(code[first])))
         offset += len(line)
@@ -1190,7 +1196,7 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
     comments go with them. A byte-order mark (a text read without encoding="utf-8-sig") is dropped,
     or the first header would go unseen."""
     text = _without_root_keys(text.removeprefix("\ufeff"), name)
-    lines = text.splitlines(keepends=True)
+    lines = _toml_lines(text)
     headers = _table_headers(text)
     starts = list(headers)
     ends = starts[1:] + [len(lines)]
@@ -1221,7 +1227,7 @@ def _loose_lines(text: str) -> list[bool]:
     string that starts with #)."""
     code = _code_positions(text)
     loose, offset = [], 0
-    for line in text.splitlines(keepends=True):
+    for line in _toml_lines(text):
         stripped = line.strip()
         outside = offset == 0 or bool(code[offset - 1])  # the line break before it is not in a string
         loose.append(outside and (not stripped or stripped.startswith("#")))
@@ -1430,7 +1436,8 @@ def _without_table(text: str, name: str) -> str:
 
 
 def with_camera(text: str, camera: _core.Camera) -> str:
-    """A scene file's text with its [camera] table replaced by camera_table(camera) (put first if
-    absent); everything else, comments included, is kept. ValueError for a text that is not TOML,
-    and where the table cannot be replaced in place (the result is checked: never broken TOML)."""
+    """A scene file's text with its [camera] table replaced by camera_table(camera) (if absent, put
+    before the first table, after any root keys); everything else, comments included, is kept.
+    ValueError for a text that is not TOML, and where the table cannot be replaced in place (the
+    result is checked: never broken TOML)."""
     return _table_edited("with_camera", text, "camera", camera_table(camera), first=True)

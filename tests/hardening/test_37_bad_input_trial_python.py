@@ -350,3 +350,13 @@ def test_overlay_draws_from_readouts_as_render_gives_them():
     distance = np.where(ids >= 0, 10.0, np.inf)
     for readouts in ({"object_id": ids}, {"distance": distance}, {"object_id": ids[..., 0].astype(float)}):
         assert photo.overlay(image, (image, readouts)).skyline.tolist() == [5] * 16
+
+
+def test_write_layers_takes_suffixes_as_any_sequence_of_names(tmp_path):
+    # A numpy array of names was refused as "must be a sequence of channel names" (a review).
+    path = tmp_path / "l.exr"
+    layers = {"hidden_height": np.ones((4, 6, 2))}
+    refracta.io.write_layers(path, np.ones((4, 6, 3)), layers, {"hidden_height": np.array(["geometric", "refracted"])})
+    assert "hidden_height.refracted" in refracta.io.channel_names(path)
+    with pytest.raises(ValueError, match="must be a sequence of channel names"):
+        refracta.io.write_layers(path, np.ones((4, 6, 3)), layers, {"hidden_height": "geometric"})

@@ -133,7 +133,7 @@ PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, std::optio
 // The physical sky (replacing every environment, sky and sun): refracta.spectrum.PhysicalSky's
 // single scattering (Nishita et al. 1993) plus Hillaire 2020's multiple scattering, for the sun
 // toward `sun_direction` (normalised, y up), `aerosol` (Mie density scale; None: 1, a clear sky),
-// `ozone_du` [Dobson units], observer `altitude` [m]. Below the horizon `below_horizon`: 'horizon'
+// `ozone_du` [Dobson units, at most 10 000; the Earth's column is 100-600], observer `altitude` [m]. Below the horizon `below_horizon`: 'horizon'
 // (default) continues the sky from the horizon at each azimuth (Scene.set_sky's convention: the
 // ground is geometry, and a ray ending its max_length still heading slightly down sees the horizon
 // sky, importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of
@@ -146,8 +146,9 @@ PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, std::optio
 // aerial_perspective (default True): the same air dims and lights every segment the renderers cast
 // (refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's multiple
 // scattering included), so distant objects grey and blue into the sky; False keeps surfaces as
-// seen through empty space. visibility [km]: meteorological visibility at the ground (Koschmieder:
-// extinction at 550 nm = 3.912 / V), setting the aerosol in its place (give one of them). The
+// seen through empty space. visibility [km, at least 0.001]: meteorological visibility at the
+// ground (Koschmieder: extinction at 550 nm = 3.912 / V), setting the aerosol in its place (give
+// one of them; an aerosol thicker than 1 m of visibility is refused too). The
 // scene's y = 0 lies `altitude` above the sky's sea level.
 void set_physical_sky(RenderScene& scene, const PhysicalSkySettings& settings, const SunDisc& sun, double scale,
                       bool aerial_perspective, const SkyBuilder& build_sky);

@@ -23,13 +23,13 @@ namespace refracta {
 constexpr double kNarrowestVfov = 1e-6;
 
 // Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is
-// the vertical field of view [deg]. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred
+// the vertical field of view [deg], from 1e-6 to under 180. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred
 // at (i + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(...,
 // f_number=) or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.
 class Camera {
  public:
-  // vfov: full vertical field of view [deg] in (0, 180). Throws std::invalid_argument for NaN
-  // input, a zero view direction, an up vector parallel to it, or a size < 1.
+  // vfov: full vertical field of view [deg] in [kNarrowestVfov, 180). Throws std::invalid_argument
+  // for NaN input, a zero view direction, an up vector parallel to it, or a size < 1.
   Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
          int height);
 
@@ -43,8 +43,8 @@ class Camera {
   //     scene.add_obj("city.obj", texture_dirs=["textures"])
   //     camera = refracta.Camera.framing(scene, width=800, height=450)
   //
-  // scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg]. ValueError
-  // (std::invalid_argument) for an empty, non-finite or single-point box.
+  // scene_or_bounds: a Scene or (lower, upper) corners (3,) [m]; vfov [deg]. ValueError for an
+  // empty, non-finite or single-point box.
   static Camera framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& direction, const Vec3d& up,
                         double vfov_deg, int width, int height);
 
@@ -69,8 +69,9 @@ class Camera {
   // Blender, Mitsuba and pbrt), so in pixels c (d_f - f) / d_f x width / (sensor width used) [mm].
   // Each pixel sample takes its own lens point; through a field those rays are traced from the lens
   // (not served by the eye's table), which costs what table=False costs. Only the ray-traced methods
-  // ('straight', 'curved') render it. A focal length, sensor side, f_number or focus_distance <= 0
-  // or NaN, or focus_distance without f_number (a pinhole has no focus): ValueError.
+  // ('straight', 'curved') render it. ValueError for a focal length outside [0.1, 100000] mm, a
+  // sensor side outside [0.1, 2000] mm, an f_number or focus_distance <= 0 or NaN, or a
+  // focus_distance without an f_number (a pinhole has no focus).
   static Camera photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,
                              double sensor_w_mm, double sensor_h_mm, int width, int height,
                              std::optional<double> f_number = std::nullopt,

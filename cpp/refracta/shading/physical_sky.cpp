@@ -73,7 +73,7 @@ void PhysicalSkySettings::validate() const {
   }
   if (aerosol >= 0.0 && std::isfinite(aerosol) && ozone_du >= 0.0 && ozone_du <= kMostOzone && rayleigh_scale >= 0.0 &&
       std::isfinite(rayleigh_scale) && altitude >= 0.0 && altitude <= kPhysicalSkyHighestAltitude &&
-      visibility_of(*this) < kLeastVisibility) {
+      visibility_of(*this) < kLeastVisibility * (1.0 - 1e-9)) {  // visibility= 0.001 comes back a rounding below
     problems.push_back(concat("aerosol ", aerosol, " makes the meteorological visibility ", 1e3 * visibility_of(*this),
                               " m, below ", 1e3 * kLeastVisibility, " m: not an air the sky can be seen through"));
   }
