@@ -614,7 +614,7 @@ def main(argv=None) -> int:
         warnings.formatwarning = shown
 
 
-def _format_warning(message, category, filename, lineno, line=None) -> str:
+def _format_warning(message, category, _filename, _lineno, _line=None) -> str:
     """A warning as a command-line user reads it (`refracta: SceneWarning: ...`), without the
     Python file, line and source it came from."""
     return f"refracta: {category.__name__}: {message}\n"

@@ -1311,7 +1311,7 @@ def relocate(text: str, source, target) -> str:
 
     Raises:
         ValueError: text that is not TOML; a file name written so that it cannot be rewritten in
-            place (a quoted key).
+            place (a key spelled with escapes, "fi\\u006ce"; bare and quoted keys are rewritten).
     """
     try:
         expected_names = _file_names(_loads(text))

@@ -82,8 +82,10 @@ def test_relocate_rewrites_every_file_name_and_keeps_the_rest(tmp_path):
     assert data["materials"][0]["texture"] == "../../a/tex/a.png"
     assert data["objects"][0] == {"kind": "obj", "file": "../../a/models/x.obj", "texture": "../../a/tex/b.png"}
     assert sf.relocate(text, tmp_path, tmp_path) == text
-    with pytest.raises(ValueError, match="cannot rewrite the file name"):
-        sf.relocate('[[objects]]\nkind = "obj"\n"file" = "x.obj"\n', tmp_path / "a", tmp_path / "b")
+    quoted = sf.relocate('[[objects]]\nkind = "obj"\n"file" = "x.obj"\n', tmp_path / "a", tmp_path / "b")
+    assert sf.tomllib.loads(quoted)["objects"][0]["file"] == "../a/x.obj"  # a quoted key is rewritten too
+    with pytest.raises(ValueError, match="cannot rewrite the file name"):  # a key spelled with an escape is not
+        sf.relocate('[[objects]]\nkind = "obj"\n"fi\\u006ce" = "x.obj"\n', tmp_path / "a", tmp_path / "b")
 
 
 @pytest.mark.parametrize(
