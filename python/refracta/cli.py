@@ -614,9 +614,10 @@ def main(argv=None) -> int:
         warnings.formatwarning = shown
 
 
-def _format_warning(message, category, _filename, _lineno, _line=None) -> str:
+def _format_warning(message, category, filename, lineno, line=None) -> str:
     """A warning as a command-line user reads it (`refracta: SceneWarning: ...`), without the
     Python file, line and source it came from."""
+    del filename, lineno, line  # warnings.formatwarning's signature; none of them is shown
     return f"refracta: {category.__name__}: {message}\n"
 
 
