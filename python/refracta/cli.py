@@ -430,6 +430,31 @@ def _aov_list(text: str) -> list[str]:
     return names
 
 
+def _option(text: str) -> tuple[str, object]:
+    """--set NAME=VALUE: a render option by its RenderOptions name, the value read as TOML reads
+    one (1e5, true, "rk45", [0, 0, 64, 32]), else as a string (rk45); render checks both."""
+    from refracta.scene_file import tomllib  # tomli before Python 3.11
+
+    name, equals, value = text.partition("=")
+    if not equals or not name.strip().isidentifier():
+        raise argparse.ArgumentTypeError(f"must be NAME=VALUE, a RenderOptions field (got {text!r})")
+    try:
+        parsed = tomllib.loads(f"v = {value.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        parsed = value.strip()
+    return name.strip(), parsed
+
+
+def _options_given(pairs: list) -> dict:
+    """--set's NAME=VALUE pairs as keywords; a name given twice is refused (the last would win)."""
+    options: dict = {}
+    for name, value in pairs:
+        if name in options:
+            raise ValueError(f"--set {name} is given twice")
+        options[name] = value
+    return options
+
+
 def _white_balance(text: str):
     """--white-balance: a number is a colour temperature [K], three comma-separated numbers an RGB
     white, anything else a name (checked by refracta.io: a bad one raises ValueError naming it)."""
@@ -488,6 +513,7 @@ def render_file(
     max_length: float | None = None,
     denoise: bool = False,
     seed: int | None = None,
+    options: dict | None = None,
 ) -> int:
     """Render a TOML scene file to an image (EXR stays linear; PNG/JPEG are tone mapped).
 
@@ -498,7 +524,8 @@ def render_file(
     written after R, G, B as layers of the EXR (refracta.io.write_layers: distance.Y, position.X,
     ...; hidden_height.geometric and .refracted; geographic.lat, .lon, .height, which needs the
     scene file's [geographic] table); the output must then be an EXR. denoise: refracta.render's
-    (Open Image Denoise with the first hit's albedo and normal); seed: RenderOptions.seed.
+    (Open Image Denoise with the first hit's albedo and normal); seed: RenderOptions.seed;
+    options: further RenderOptions fields by name (--set chord=200000), checked by render.
     """
     import refracta
 
@@ -539,6 +566,7 @@ def render_file(
         aovs=aovs or None,
         frame=loaded.frame if aovs and "geographic" in aovs else None,
         denoise=denoise,
+        **(options or {}),
     )
     if aovs:
         image, layers = result
@@ -680,6 +708,15 @@ def _run(argv=None) -> int:
         "--seed", type=_count(0), default=None, help="the samples' random seed (default: RenderOptions')"
     )
     render_parser.add_argument(
+        "--set",
+        type=_option,
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="any other render option by its refracta.RenderOptions name, e.g. --set chord=200000 --set tol=1e-4 "
+        "(repeatable; see help(refracta.RenderOptions))",
+    )
+    render_parser.add_argument(
         "--tonemap",
         choices=["aces", "reinhard", "linear", "film"],
         default=None,
@@ -743,6 +780,7 @@ def _run(argv=None) -> int:
             args.max_length,
             args.denoise,
             args.seed,
+            _options_given(args.set),
         )
     if args.command == "edit":
         return edit_file(args.scene, args.pairs, args.output, args.backend)

@@ -136,3 +136,33 @@ def test_a_quoted_key_with_a_unicode_line_separator_is_one_line():
     camera = refracta.Camera((0, 1, 0), (1, 1, 0), width=8, height=4)
     out = with_camera('["x\u2028y"]\nk = 1\n[camera]\nvfov = 1\n', camera)
     assert tomllib.loads(out)["x\u2028y"] == {"k": 1} and tomllib.loads(out)["camera"]["size"] == [8, 4]
+
+
+def test_cli_set_reaches_any_render_option_by_its_name(tmp_path, capsys):
+    # Render options without a flag of their own (chord, tol, ...) had no way in from the command line.
+    base = ["render", str(DATA / "hot_road.toml"), "--size", "16x6", "--spp", "1", "--max-length", "9e6"]
+    assert cli.main([*base, "-o", str(tmp_path / "a.exr"), "--set", "chord=0.5"]) == 1
+    assert "max_length 9000000 m with chord 0.5 m needs more than" in capsys.readouterr().err  # the value arrived
+    assert cli.main([*base, "-o", str(tmp_path / "a.exr"), "--set", "chord=2000"]) == 0
+    assert cli.main([*base[:-2], "-o", str(tmp_path / "b.exr"), "--set", "bogus=1"]) == 1
+    assert "unknown option 'bogus'" in capsys.readouterr().err
+    assert cli.main([*base[:-2], "-o", str(tmp_path / "b.exr"), "--set", "tol=1e-4", "--set", "tol=1e-5"]) == 1
+    assert "--set tol is given twice" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as stop:
+        cli.main([*base[:-2], "-o", str(tmp_path / "b.exr"), "--set", "chord"])
+    assert stop.value.code == 2 and "must be NAME=VALUE" in capsys.readouterr().err
+    assert cli._option('trace="rk45"') == ("trace", "rk45") == cli._option("trace=rk45")
+    assert cli._option("pixel_bounds=[0, 0, 8, 4]") == ("pixel_bounds", [0, 0, 8, 4])
+
+
+def test_a_max_length_beyond_the_scene_s_reach_is_refused_before_the_render(tmp_path, capsys):
+    # A trial's --max-length 1e8 rendered for seconds, then failed: "ray origin ... beyond 1e7 m".
+    road = refracta.examples.hot_road(16, 6)
+    with pytest.raises(
+        ValueError, match=r"render: max_length 100000000 m from a camera 1.5 m out .* at most 9999998.5 m"
+    ):
+        refracta.render(road.scene, road.camera, road.field, max_length=1e8, progress=False)
+    args = ["render", str(DATA / "hot_road.toml"), "--size", "16x6", "--spp", "1", "-o", str(tmp_path / "a.exr")]
+    assert cli.main([*args, "--max-length", "1e8"]) == 1
+    err = capsys.readouterr().err
+    assert "where scene coordinates end" in err and "rendering" not in err  # refused before any pixel

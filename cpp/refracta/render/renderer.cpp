@@ -225,6 +225,14 @@ WavelengthDistribution hero_wavelengths(const RenderScene& scene) {
 Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exact_field, const RenderOptions& options,
              WorkControl& control, RenderStats* stats) {
   options.validate();
+  // Rays must stay where scene coordinates may lie (Embree's points are checked against
+  // kSceneReach): one let run farther failed mid-render (a trial's max_length 1e8 m, seconds in).
+  const double eye = camera.position().cwiseAbs().maxCoeff() + camera.aperture_diameter();
+  if (!(eye + options.max_length <= kSceneReach)) {
+    throw_invalid("render: max_length ", options.max_length, " m from a camera ", eye, " m out would take rays beyond ",
+                  kSceneReach, " m from the origin, where scene coordinates end: give max_length at most ",
+                  std::max(0.0, kSceneReach - eye), " m");
+  }
   const PixelBounds bounds = options.bounds_in(camera.width(), camera.height());  // before any work
   // float32 channels, and room for one copy by the caller (the pixels themselves move out).
   check_image_memory(bounds.width(), bounds.height(),
