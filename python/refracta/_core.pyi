@@ -3640,6 +3640,10 @@ def _ev100(f_number: typing.SupportsFloat | typing.SupportsIndex, shutter: typin
     """
     EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.
     """
+def _is_float_format(path: str) -> bool:
+    """
+    Whether write_image keeps path's format linear.
+    """
 def _mboit_unorm16(b: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
     """
     6 or 8 normalised power moments after MBOIT's 16-bit storage (transform, rounding, inverse).

@@ -543,7 +543,7 @@ def render_file(
             f"(lat, lon [deg] of the scene's origin) to {scene_path}"
         )
     samples = spp or refracta.RenderOptions().spp
-    displayed = Path(output).suffix.lower() not in (".exr", ".hdr", ".pfm", ".tif", ".tiff")  # kept linear
+    displayed = not refracta._core._is_float_format(str(output))  # a float file is written linear, unclipped
     if spectral and not denoise and displayed and samples < _SPECTRAL_CLEAN_SPP:
         warnings.warn(
             f"render: a spectral render at {samples} spp is noisy in colour (each sample one set of "

@@ -248,10 +248,7 @@ def channel_names(path) -> list[str]:
     """The channel names of an image file, as OpenImageIO reads them (an EXR's layer.channel).
     Raises refracta.IoError for a missing file or one that is not a regular file (a folder, or a
     FIFO, which would block)."""
-    path = os.fspath(path)
-    if os.path.exists(path) and not os.path.isfile(path):  # as read_image refuses them
-        raise _core.IoError(f"cannot read '{path}': not a regular file")
-    return list(_core._channel_names(path))
+    return list(_core._channel_names(os.fspath(path)))
 
 
 def read_image(path, linear: bool = False) -> np.ndarray:

@@ -87,9 +87,9 @@ unsigned add_box(RenderScene& scene, const Vec3d& centre, const Vec3d& size, con
 }
 
 unsigned add_sphere(RenderScene& scene, const Vec3d& centre, double radius, const SurfaceLook& look) {
+  if (!(radius > 0.0) || !std::isfinite(radius)) throw_invalid("add_sphere: radius must be > 0 (got ", radius, ")");
   check_material_or_shorthand(look, "add_sphere");
   const int material = material_of(scene, look, -1, BlinnPhong::kDefaultKd);
-  if (!(radius > 0.0) || !std::isfinite(radius)) throw_invalid("add_sphere: radius must be > 0 (got ", radius, ")");
   check_uvs(scene, material, false, "add_sphere");
   const unsigned id = scene.geometry.add_spheres({centre}, {radius}, material);
   if (look.emission) scene.add_light(std::make_shared<SphereLight>(centre, radius, *look.emission), int(id));

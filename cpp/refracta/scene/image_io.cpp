@@ -64,8 +64,19 @@ void write_image_channels(const std::string& path, const Image& image, const std
   if (!out->close()) throw IoError(concat("cannot write '", path, "': ", out->geterror()));
 }
 
-std::vector<std::string> read_channel_names(const std::string& path) {
+namespace {
+
+// IoError unless `path` is a regular file: OIIO's readers spin on a FIFO or a device such as
+// /dev/zero, so they are refused before opening.
+void check_readable(const std::string& path) {
   if (!std::filesystem::exists(path)) throw IoError(concat("no such image file: '", path, "'"));
+  if (!std::filesystem::is_regular_file(path)) throw IoError(concat("cannot read '", path, "': not a regular file"));
+}
+
+}  // namespace
+
+std::vector<std::string> read_channel_names(const std::string& path) {
+  check_readable(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw IoError(concat("cannot read '", path, "': ", OIIO::geterror()));
   std::vector<std::string> names = in->spec().channelnames;
@@ -87,9 +98,7 @@ bool reports_truncation(const std::string& message) {
 }  // namespace
 
 Image read_image(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw IoError(concat("no such image file: '", path, "'"));
-  // OIIO's readers spin on a FIFO or a device such as /dev/zero: refuse them before opening.
-  if (!std::filesystem::is_regular_file(path)) throw IoError(concat("cannot read '", path, "': not a regular file"));
+  check_readable(path);
   // Values as stored: a PNG's colours straight, not premultiplied by its alpha (write_image's).
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);

@@ -71,12 +71,6 @@ void PhysicalSkySettings::validate() const {
     problems.push_back(concat("ozone_du must be in [0, ", kMostOzone, "] Dobson units (got ", ozone_du,
                               "; the Earth's column is 100-600)"));
   }
-  if (aerosol >= 0.0 && std::isfinite(aerosol) && ozone_du >= 0.0 && ozone_du <= kMostOzone && rayleigh_scale >= 0.0 &&
-      std::isfinite(rayleigh_scale) && altitude >= 0.0 && altitude <= kPhysicalSkyHighestAltitude &&
-      visibility_of(*this) < kLeastVisibility * (1.0 - 1e-9)) {  // visibility= 0.001 comes back a rounding below
-    problems.push_back(concat("aerosol ", aerosol, " makes the meteorological visibility ", 1e3 * visibility_of(*this),
-                              " m, below ", 1e3 * kLeastVisibility, " m: not an air the sky can be seen through"));
-  }
   if (!(ground_albedo >= 0.0 && ground_albedo <= 1.0)) problems.push_back(concat("ground_albedo must be in [0, 1] (got ", ground_albedo, ")"));
   if (!(altitude >= 0.0 && altitude <= kPhysicalSkyHighestAltitude)) {
     problems.push_back(concat("altitude must be in [0, ", kPhysicalSkyHighestAltitude, "] m (got ", altitude, ")"));
@@ -87,6 +81,11 @@ void PhysicalSkySettings::validate() const {
   } else if (below_horizon == BelowHorizon::kHorizon && ground_albedo != 0.0 && !std::isnan(ground_albedo)) {
     problems.push_back(concat("ground_albedo must be 0 with below_horizon horizon (got ", ground_albedo,
                               "; the ground is seen only with below_horizon ground)"));
+  }
+  // Of otherwise valid settings (visibility= 0.001 comes back a rounding below, hence the margin).
+  if (problems.empty() && visibility_of(*this) < kLeastVisibility * (1.0 - 1e-9)) {
+    problems.push_back(concat("aerosol ", aerosol, " makes the meteorological visibility ", 1e3 * visibility_of(*this),
+                              " m, below ", 1e3 * kLeastVisibility, " m: not an air the sky can be seen through"));
   }
   if (problems.empty()) return;
   std::string message = "PhysicalSky: ";

@@ -161,9 +161,9 @@ double exposure_of_ev100(double ev100, double luminous_efficacy) {
 void expose_linear(Image& image, const DisplaySettings& settings) {
   const double c = manual_exposure(settings);
   if (c == 1.0) return;
-  const bool alpha = image.channels == 2 || image.channels == 4;
+  const int colours = colour_channels(image.channels);  // alpha (2nd of 2, 4th of 4): a coverage, not light
   for (size_t i = 0; i < image.pixels.size(); ++i) {
-    if (!alpha || int(i % size_t(image.channels)) != image.channels - 1) image.pixels[i] *= float(c);
+    if (int(i % size_t(image.channels)) < colours) image.pixels[i] *= float(c);
   }
   if (!std::all_of(image.pixels.begin(), image.pixels.end(), [](float v) { return std::isfinite(v); })) {
     throw_invalid("write_image: the image times the exposure (", c, ") overflows float32 (a value beyond ",
