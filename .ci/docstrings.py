@@ -52,6 +52,7 @@ HEADERS = [
     "cpp/refracta/render/scene_building.h",
     "cpp/refracta/render/shimmer_cast.h",
     "cpp/refracta/scene/camera.h",
+    "cpp/refracta/scene/image_io.h",
     "cpp/refracta/scene/ocean_waves.h",
     "cpp/refracta/shading/aerial_perspective.h",
     "cpp/refracta/shading/area_light.h",

@@ -663,6 +663,8 @@ uint32 (1 reflection, 2 transmission, 4 diffuse, 8 glossy, 16 specular/delta), i
 (N,) the relative index crossed (1 for reflection), valid (N,) False where no direction was
 produced, terminated (N,) True where a dispersive refraction kept the hero wavelength only. C = 3
 (RGB) or 4 (spectral).)doc";
+inline constexpr const char mkd_doc_refracta_check_writable[] = R"doc(IoError if `path` exists and is not a regular file: opening a FIFO to write waits for a reader that
+may never come, so writers refuse it (and devices, folders) before opening.)doc";
 inline constexpr const char mkd_doc_refracta_cox_munk_mean_square_slope[] = R"doc(Total (upwind + crosswind) mean-square slope of a clean sea surface at wind speed U [m/s], 12.5 m
 above the sea: sigma^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, "Measurement of the roughness of the
 sea surface from photographs of the sun's glitter", JOSA 44(11), 838-850, eq. for sigma_u^2 +

@@ -405,6 +405,7 @@ def _writer_for(path: str, where: str = "animate"):
     package for a missing one)."""
     if "{" in path:
         return _write_sequence
+    _core._check_writable(path)  # a FIFO would block the write once every frame is rendered
     extension = os.path.splitext(path)[1].lower()
     if extension == ".gif":
         try:

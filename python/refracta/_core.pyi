@@ -3611,6 +3611,11 @@ def _check_image_format(path: str) -> None:
     """
     IoError unless an image of path's format (its extension) can be written.
     """
+def _check_writable(path: str) -> None:
+    """
+    IoError if `path` exists and is not a regular file: opening a FIFO to write waits for a reader that
+    may never come, so writers refuse it (and devices, folders) before opening.
+    """
 def _cmj_pattern(count: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
     """
     (count, 2) sample positions in [0, 1)^2 of the film's correlated multi-jittered pattern (core/sample_patterns.h,

@@ -84,6 +84,7 @@ void bind_image_io(py::module_& m) {
   bind_display_settings(m);
   m.def("_check_image_format", &check_image_format, py::arg("path"),
         "IoError unless an image of path's format (its extension) can be written.");
+  m.def("_check_writable", &check_writable, py::arg("path"), DOC(refracta, check_writable));
   m.def("_is_float_format", &is_float_format, py::arg("path"), "Whether write_image keeps path's format linear.");
   m.def(
       "_write_image",

@@ -21,6 +21,17 @@ std::string extension(const std::string& path) {
 
 }  // namespace
 
+void check_readable(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw IoError(concat("no such image file: '", path, "'"));
+  if (!std::filesystem::is_regular_file(path)) throw IoError(concat("cannot read '", path, "': not a regular file"));
+}
+
+void check_writable(const std::string& path) {
+  if (std::filesystem::exists(path) && !std::filesystem::is_regular_file(path)) {
+    throw IoError(concat("cannot write '", path, "': not a regular file"));
+  }
+}
+
 bool is_float_format(const std::string& path) {
   const std::string ext = extension(path);
   return ext == ".exr" || ext == ".hdr" || ext == ".pfm" || ext == ".tif" || ext == ".tiff";
@@ -32,6 +43,7 @@ void check_image_format(const std::string& path) {
 
 void write_image(const std::string& path, const Image& image) {
   if (image.width < 1 || image.height < 1) throw_invalid("write_image: the image is empty");
+  check_writable(path);
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw IoError(concat("cannot write '", path, "': ", OIIO::geterror()));
   const OIIO::TypeDesc format = is_float_format(path) ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
@@ -52,6 +64,7 @@ void write_image_channels(const std::string& path, const Image& image, const std
     throw_invalid("write_image_channels: ", names.size(), " channel names for ", image.channels, " channels");
   }
   if (!is_float_format(path)) throw_invalid("write_layers: '", path, "' must be a float format (.exr)");
+  check_writable(path);
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw IoError(concat("cannot write '", path, "': ", OIIO::geterror()));
   OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
@@ -64,16 +77,6 @@ void write_image_channels(const std::string& path, const Image& image, const std
   if (!out->close()) throw IoError(concat("cannot write '", path, "': ", out->geterror()));
 }
 
-namespace {
-
-// IoError unless `path` is a regular file: OIIO's readers spin on a FIFO or a device such as
-// /dev/zero, so they are refused before opening.
-void check_readable(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw IoError(concat("no such image file: '", path, "'"));
-  if (!std::filesystem::is_regular_file(path)) throw IoError(concat("cannot read '", path, "': not a regular file"));
-}
-
-}  // namespace
 
 std::vector<std::string> read_channel_names(const std::string& path) {
   check_readable(path);

@@ -8,6 +8,12 @@
 
 namespace refracta {
 
+// IoError unless `path` is a regular file ("no such image file", "not a regular file"): OIIO's
+// readers spin on a FIFO or a device such as /dev/zero, so they are refused before opening.
+void check_readable(const std::string& path);
+// IoError if `path` exists and is not a regular file: opening a FIFO to write waits for a reader
+// that may never come, so writers refuse it (and devices, folders) before opening.
+void check_writable(const std::string& path);
 // True for formats that keep linear floating point (EXR, HDR, PFM, TIFF).
 bool is_float_format(const std::string& path);
 // Writes pixels as they are: float formats keep them, others are quantised to 8 bits by OIIO
