@@ -360,3 +360,11 @@ def test_write_layers_takes_suffixes_as_any_sequence_of_names(tmp_path):
     assert "hidden_height.refracted" in refracta.io.channel_names(path)
     with pytest.raises(ValueError, match="must be a sequence of channel names"):
         refracta.io.write_layers(path, np.ones((4, 6, 3)), layers, {"hidden_height": "geometric"})
+
+
+def test_an_error_in_a_quoted_table_names_its_line(tmp_path):
+    # ["camera"] is [camera], "vfov" is vfov: the message gave line 0 for quoted spellings.
+    path = tmp_path / "quoted.toml"
+    path.write_text('["camera"]\nposition = [0, 1.5, 0]\nlook_at = [0, 1.5, -10]\n"vfov" = -5\nsize = [64, 32]\n')
+    with pytest.raises(ValueError, match=r"quoted.toml:4: \[camera\] vfov: .*vfov must be in"):
+        refracta.load_scene(path)
