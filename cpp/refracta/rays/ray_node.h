@@ -8,6 +8,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/math.h"
+#include "refracta/core/polynomial_roots.h"
 #include "refracta/media/ior_range.h"
 
 #include <algorithm>
@@ -77,46 +78,51 @@ class PathSegment {
   Vec3<T> acceleration(const T& u) const {
     return c_[2] * T(2.0) + u * (c_[3] * T(6.0) + u * (c_[4] * T(12.0) + u * c_[5] * T(20.0)));
   }
+  // normal . x(u) - offset as the coefficients of its quintic in u (plain values).
+  std::array<double, 6> across(const Vec3d& normal, double offset) const {
+    std::array<double, 6> g{};
+    for (size_t k = 0; k < 6; ++k) {
+      g[k] = value_of(c_[k].x()) * normal.x() + value_of(c_[k].y()) * normal.y() + value_of(c_[k].z()) * normal.z();
+    }
+    g[0] -= offset;
+    return g;
+  }
 
  private:
   T s0_, length_;
   Vec3<T> c_[6];
 };
 
-// First u in [0, 1] where normal . x(u) - offset changes sign from the start's sign, or -1.
-// Sampled at 16 points so that a path dipping across the plane and back within one segment is
-// still caught; refined by bisection then Newton (the Newton steps in T carry derivatives).
+// Whether sum_k g[k] u^k may be 0 on [0, 1]: each term u^k lies in [0, 1], so the sum lies within
+// g[0] plus its other coefficients' negative (or positive) parts; most segments end here.
+inline bool may_vanish(const std::array<double, 6>& g) {
+  double low = g[0], high = g[0];
+  for (size_t k = 1; k < 6; ++k) (g[k] < 0.0 ? low : high) += g[k];
+  return low <= 0.0 && high >= 0.0;
+}
+
+// First u in (0, 1] where normal . x(u) - offset changes sign from the start's sign (or reaches
+// 0), or -1: the roots of the segment's quintic (core/polynomial_roots.h), so a path dipping
+// across the plane and back within one segment is caught however briefly; refined by Newton in T
+// (its steps carry the derivatives of a Jet).
 template <class T>
 T first_plane_crossing(const PathSegment<T>& seg, const Vec3d& normal, double offset) {
-  auto f = [&](double u) {
-    const Vec3<T> p = seg.position(T(u));
-    return value_of(p.x()) * normal.x() + value_of(p.y()) * normal.y() +
-           value_of(p.z()) * normal.z() - offset;
-  };
-  const double f0 = f(0.0);
-  if (f0 == 0.0) return T(-1.0);
-  constexpr int kSamples = 16;
-  double lo = 0.0, hi = -1.0;
-  for (int i = 1; i <= kSamples; ++i) {
-    const double u = double(i) / kSamples;
-    if ((f(u) > 0.0) != (f0 > 0.0)) {
-      hi = u;
-      break;
-    }
-    lo = u;
+  const std::array<double, 6> g = seg.across(normal, offset);
+  if (g[0] == 0.0 || !may_vanish(g)) return T(-1.0);
+  const PolynomialRoots<6> roots = polynomial_roots(g, 0.0, 1.0);
+  double root = -1.0;
+  for (size_t i = 0; i < roots.count && root < 0.0; ++i) {
+    if (roots.at[i] > 0.0) root = roots.at[i];
   }
-  if (hi < 0.0) return T(-1.0);
-  for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    if ((f(mid) > 0.0) == (f0 > 0.0)) lo = mid; else hi = mid;
-  }
-  T u(hi);
+  if (root < 0.0) return T(-1.0);
+  const double lo = root * (1.0 - 1e-12), hi = root * (1.0 + 1e-12);
+  T u(root);
   for (int it = 0; it < 2; ++it) {
     const Vec3<T> p = seg.position(u), dp = seg.velocity(u);
-    const T g = p.x() * normal.x() + p.y() * normal.y() + p.z() * normal.z() - T(offset);
-    const T dg = dp.x() * normal.x() + dp.y() * normal.y() + dp.z() * normal.z();
-    if (value_of(dg) == 0.0) break;
-    const T next = u - g / dg;
+    const T gap = p.x() * normal.x() + p.y() * normal.y() + p.z() * normal.z() - T(offset);
+    const T rate = dp.x() * normal.x() + dp.y() * normal.y() + dp.z() * normal.z();
+    if (value_of(rate) == 0.0) break;
+    const T next = u - gap / rate;
     if (value_of(next) < lo - 1e-12 || value_of(next) > hi + 1e-12) break;
     u = next;
   }

@@ -69,28 +69,14 @@ std::vector<Crossing> RayPath::crossings(const Vec3d& normal, double offset) con
   if (nodes_.size() == 1 && unit.dot(nodes_[0].x) == off) {
     out.push_back({nodes_[0].x, 0.0, nodes_[0].tangent().normalized()});
   }
-  // Each segment sampled at 32 points, so a path that dips through the plane and back within one
-  // segment still reports both crossings; each sign change refined by bisection.
-  constexpr int kSamples = 32;
+  // Every root of each segment's quintic (a path that dips through the plane and back within one
+  // segment reports both crossings, however brief the dip).
   for (size_t i = 0; i + 1 < nodes_.size(); ++i) {
     const PathSegment<double> seg(nodes_[i], nodes_[i + 1]);
-    auto f = [&](double u) { return unit.dot(seg.position(u)) - off; };
-    double u_prev = 0.0, f_prev = f(0.0);
-    if (f_prev == 0.0) add(seg, 0.0);
-    for (int j = 1; j <= kSamples; ++j) {
-      const double u = double(j) / kSamples, fu = f(u);
-      if (fu == 0.0) {
-        add(seg, u);
-      } else if (f_prev != 0.0 && (fu > 0.0) != (f_prev > 0.0)) {
-        double a = u_prev, b = u;
-        for (int it = 0; it < 80 && b - a > 1e-16; ++it) {
-          const double m = 0.5 * (a + b), fm = f(m);
-          if (fm != 0.0 && (fm > 0.0) == (f_prev > 0.0)) a = m; else b = m;
-        }
-        add(seg, 0.5 * (a + b));
-      }
-      u_prev = u, f_prev = fu;
-    }
+    const std::array<double, 6> g = seg.across(unit, off);
+    if (!may_vanish(g)) continue;
+    const PolynomialRoots<6> roots = polynomial_roots(g, 0.0, 1.0);
+    for (size_t k = 0; k < roots.count; ++k) add(seg, roots.at[k]);
   }
   return out;
 }
