@@ -229,12 +229,10 @@ PhysicalSky::PhysicalSky(const PhysicalSkySettings& settings) : settings_(settin
     ozone[w] = kOzoneCrossSection[w] * ozone_density;
   }
   const double mie_scattering = settings_.aerosol * kMieScattering, mie_extinction = settings_.aerosol * kMieExtinction;
-  parallel_for_each(int64_t(kElevations) * kAzimuths, kCellsPerTask, control, [&](int64_t index) {
-    std::array<double, kWavelengths> values{}, view{}, psi{};
+  // The sky along dir, per table wavelength [W/(m^2 sr nm)].
+  auto sky_along = [&](const Vec3d& dir, std::array<double, kWavelengths>& values) {
+    std::array<double, kWavelengths> view{}, psi{};
     view.fill(1.0);
-    const int cell = int(index);
-    const int row = cell / kAzimuths, column = cell % kAzimuths;
-    const Vec3d dir = xy_to_direction(Vec2d((column + 0.5) / kAzimuths, (row + 0.5) / kElevations));
     // Shared path geometry for all wavelengths.
     const double length = exit_distance(p0, dir, kTopRadius);
     const double mu = dir.dot(sun_);
@@ -262,10 +260,22 @@ PhysicalSky::PhysicalSky(const PhysicalSkySettings& settings) : settings_(settin
         view[w] *= step;
       }
     }
-    for (int w = 0; w < kWavelengths; ++w) {
-      values[w] *= solar_irradiance(lambda[w]);
-      table_[size_t(cell) * kWavelengths + w] = float(values[w]);
+    for (int w = 0; w < kWavelengths; ++w) values[w] *= solar_irradiance(lambda[w]);
+  };
+  // Each cell, then (the last task) the zenith, which every azimuth shares.
+  const int64_t cells = int64_t(kElevations) * kAzimuths;
+  parallel_for_each(cells + 1, kCellsPerTask, control, [&](int64_t index) {
+    std::array<double, kWavelengths> values{};
+    if (index == cells) {
+      sky_along(Vec3d::UnitY(), values);
+      zenith_ = values;
+      zenith_rgb_ = rgb_of_10nm(values.data());
+      return;
     }
+    const int cell = int(index);
+    const int row = cell / kAzimuths, column = cell % kAzimuths;
+    sky_along(xy_to_direction(Vec2d((column + 0.5) / kAzimuths, (row + 0.5) / kElevations)), values);
+    for (int w = 0; w < kWavelengths; ++w) table_[size_t(cell) * kWavelengths + w] = float(values[w]);
     rgb_[cell] = rgb_of_10nm(values.data());
   });
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -308,36 +318,41 @@ double PhysicalSky::radiance_direct(const Vec3d& dir, double lambda_nm) const {
   return sum * solar_irradiance(lambda_nm);
 }
 
+PhysicalSky::TablePoint PhysicalSky::table_point(const Vec3d& dir) {
+  const Vec2d xy = direction_to_xy(dir);  // below the horizon: y = 0, the lowest row (kHorizon)
+  const double fx = xy.x() * kAzimuths - 0.5, row = xy.y() * kElevations - 0.5;
+  const double fy = std::clamp(row, 0.0, kElevations - 1.0);
+  const int x0 = int(std::floor(fx)), y0 = std::min(int(fy), kElevations - 2);
+  // Above the top row's centres (e > 88.6 deg) toward the zenith's one value: the top row alone
+  // gave the zenith the radiance 88.6 deg up at each azimuth, 3.4 % apart on either side of it.
+  const double zenith = std::clamp((row - (kElevations - 1)) * 2.0, 0.0, 1.0);
+  return {y0, (x0 + kAzimuths) % kAzimuths, (x0 + 1) % kAzimuths, fx - x0, fy - y0, zenith};
+}
+
 double PhysicalSky::radiance(const Vec3d& dir, double lambda_nm) const {
   if (!(lambda_nm >= 360.0 && lambda_nm <= 830.0)) return 0.0;
   if (dir.y() < 0.0 && settings_.below_horizon == BelowHorizon::kGround) return ground_radiance(lambda_nm);
-  const Vec2d xy = direction_to_xy(dir);  // below the horizon: y = 0, the lowest row (kHorizon)
-  const double fx = xy.x() * kAzimuths - 0.5, fy = std::clamp(xy.y() * kElevations - 0.5, 0.0, kElevations - 1.0);
-  const int x0 = int(std::floor(fx)), y0 = std::min(int(fy), kElevations - 2);
-  const double tx = fx - x0, ty = fy - y0;
-  const int xa = (x0 + kAzimuths) % kAzimuths, xb = (x0 + 1) % kAzimuths;
+  const TablePoint p = table_point(dir);
   const double fw = (lambda_nm - 360.0) / 10.0;
   const int w0 = std::min(int(fw), kWavelengths - 2);
   const double tw = fw - w0;
   double out = 0.0;
   for (int k = 0; k < 2; ++k) {
     const int w = w0 + k;
-    const double v = (1.0 - ty) * ((1.0 - tx) * table_at(y0, xa, w) + tx * table_at(y0, xb, w)) +
-                     ty * ((1.0 - tx) * table_at(y0 + 1, xa, w) + tx * table_at(y0 + 1, xb, w));
-    out += (k ? tw : 1.0 - tw) * v;
+    const double v = (1.0 - p.ty) * ((1.0 - p.tx) * table_at(p.y0, p.xa, w) + p.tx * table_at(p.y0, p.xb, w)) +
+                     p.ty * ((1.0 - p.tx) * table_at(p.y0 + 1, p.xa, w) + p.tx * table_at(p.y0 + 1, p.xb, w));
+    out += (k ? tw : 1.0 - tw) * ((1.0 - p.zenith) * v + p.zenith * zenith_[size_t(w)]);
   }
   return out;
 }
 
 Vec3d PhysicalSky::rgb_radiance(const Vec3d& dir) const {
   if (dir.y() < 0.0 && settings_.below_horizon == BelowHorizon::kGround) return ground_rgb_;
-  const Vec2d xy = direction_to_xy(dir);
-  const double fx = xy.x() * kAzimuths - 0.5, fy = std::clamp(xy.y() * kElevations - 0.5, 0.0, kElevations - 1.0);
-  const int x0 = int(std::floor(fx)), y0 = std::min(int(fy), kElevations - 2);
-  const double tx = fx - x0, ty = fy - y0;
-  const int xa = (x0 + kAzimuths) % kAzimuths, xb = (x0 + 1) % kAzimuths;
+  const TablePoint p = table_point(dir);
   auto at = [&](int r, int c) { return rgb_[size_t(r) * kAzimuths + c]; };
-  return (1.0 - ty) * ((1.0 - tx) * at(y0, xa) + tx * at(y0, xb)) + ty * ((1.0 - tx) * at(y0 + 1, xa) + tx * at(y0 + 1, xb));
+  const Vec3d v = (1.0 - p.ty) * ((1.0 - p.tx) * at(p.y0, p.xa) + p.tx * at(p.y0, p.xb)) +
+                  p.ty * ((1.0 - p.tx) * at(p.y0 + 1, p.xa) + p.tx * at(p.y0 + 1, p.xb));
+  return (1.0 - p.zenith) * v + p.zenith * zenith_rgb_;
 }
 
 double PhysicalSky::ground_radiance(double lambda_nm) const { return lerp_10nm(ground_.data(), lambda_nm); }

@@ -159,6 +159,13 @@ class PhysicalSky {
   static Vec3d xy_to_direction(const Vec2d& xy);
 
  private:
+  // Where a direction falls in the table: its bilinear cell (rows y0, y0 + 1; columns xa, xb) and
+  // the weight of the zenith's value.
+  struct TablePoint {
+    int y0, xa, xb;
+    double tx, ty, zenith;
+  };
+  static TablePoint table_point(const Vec3d& dir);
   double ground_radiance(double lambda_nm) const;
   double table_at(int row, int column, int w) const { return table_[(size_t(row) * kAzimuths + column) * kWavelengths + w]; }
 
@@ -167,6 +174,8 @@ class PhysicalSky {
   MultipleScattering multiple_scattering_;
   std::vector<float> table_;   // [row][column][wavelength], rows at v = (i + 1/2) / kElevations
   std::vector<Vec3d> rgb_;     // [row][column]
+  std::array<double, kWavelengths> zenith_{};  // the sky straight up, which every azimuth shares
+  Vec3d zenith_rgb_ = Vec3d::Zero();
   std::array<double, kWavelengths> ground_{};
   std::array<double, kWavelengths> sun_transmittance_{};
   Vec3d ground_rgb_ = Vec3d::Zero();
