@@ -68,21 +68,20 @@ def _holds_bool(value) -> bool:
 def real_array(value, what: str, shape: tuple[int, ...] | None = None) -> np.ndarray:
     """`value` as a float64 array (of `shape` when given), else ValueError naming it (`what`):
     strings and booleans too (also among numbers in a list), which numpy would read as numbers,
-    and numpy's datetime64 and timedelta64, which it reads as counts of their unit (ms, days)."""
+    numpy's datetime64 and timedelta64, which it reads as counts of their unit (ms, days), complex
+    arrays, whose imaginary parts it would drop, and numbers beyond float64's range (10**400)."""
+    kind = ""
     try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        array = None
-    if (
-        array is None
-        or np.asarray(value).dtype.kind in "bUSmM"
-        or _holds_bool(value)
-        or (shape is not None and array.shape != shape)
-    ):
-        wanted = f" of shape {shape}" if shape is not None else ""
         kind = np.asarray(value).dtype.kind
+        array = None if kind in "bUSmMc" else np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError, OverflowError):
+        array = None
+    if array is None or _holds_bool(value) or (shape is not None and array.shape != shape):
+        wanted = f" of shape {shape}" if shape is not None else ""
         since = "(t - t[0])" if kind == "M" else "t"  # a datetime64 has no seconds of its own, its span has
         seconds = f"; numpy times count their unit: give seconds, e.g. {since} / np.timedelta64(1, 's')"
         hint = seconds if kind in "mM" else ""
-        raise ValueError(f"{what} must be numbers{wanted} (got {value!r}){hint}")
+        given = repr(value)
+        given = given if len(given) <= 120 else given[:100] + " ..."  # 10**400 has 401 digits
+        raise ValueError(f"{what} must be numbers{wanted} (got {given}){hint}")
     return array

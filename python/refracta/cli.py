@@ -445,10 +445,30 @@ def _option(text: str) -> tuple[str, object]:
     return name.strip(), parsed
 
 
+# render's keywords that the render command sets itself: --set NAME would give them twice.
+_SET_BY_THE_COMMAND = {
+    "method": "--method",
+    "transport": "--transport",
+    "spp": "--spp",
+    "max_depth": "--max-depth",
+    "max_length": "--max-length",
+    "spectral": "--spectral",
+    "seed": "--seed",
+    "denoise": "--denoise",
+    "aovs": "--aovs",
+    "progress": None,
+    "frame": None,
+}
+
+
 def _options_given(pairs: list) -> dict:
-    """--set's NAME=VALUE pairs as keywords; a name given twice is refused (the last would win)."""
+    """--set's NAME=VALUE pairs as keywords; a name given twice is refused (the last would win), and
+    so is one the command sets itself (its own flag, or none: progress, frame)."""
     options: dict = {}
     for name, value in pairs:
+        if name in _SET_BY_THE_COMMAND:
+            flag = _SET_BY_THE_COMMAND[name]
+            raise ValueError(f"--set {name}: " + (f"give it as {flag}" if flag else "the command sets it itself"))
         if name in options:
             raise ValueError(f"--set {name} is given twice")
         options[name] = value

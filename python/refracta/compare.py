@@ -26,6 +26,14 @@ __all__ = ["format_table", "shadows", "transparency"]
 LEAK_THRESHOLD = 0.05
 
 
+def _refuse_own(options: dict, own, where: str, source: str) -> None:
+    """ValueError for a render keyword the comparison sets per render (it would be given twice, or
+    silently overwritten)."""
+    for name in own:
+        if name in options:
+            raise ValueError(f"{where}: {name}= is set per render from {source}; give those")
+
+
 def _reference_of(method: str, kernel: int) -> str:
     return "embree" if kernel == 1 or method in ("hard", "pcf", "embree") else "pcf"
 
@@ -46,9 +54,7 @@ def shadows(
     reference), over_shadow (the same above), nan_count, bits_per_texel, seconds; fig (when
     `figure`) shows, for the largest kernel, each method's shadow image and its error map.
     """
-    for own in ("kernel", "shadows"):  # each render's own (from methods and kernels): silently overwritten before
-        if own in options:
-            raise ValueError(f"compare.shadows: {own}= is set per render from methods and kernels; give those")
+    _refuse_own(options, ("kernel", "shadows", "output", "return_stats"), "compare.shadows", "methods and kernels")
     methods = _sequence(methods, "methods", "names")
     kernels = _sequence(kernels, "kernels", "odd whole numbers of texels")
     if not all(is_seed(k) and k % 2 == 1 for k in kernels):  # before any render
@@ -132,6 +138,8 @@ def transparency(
     error relative to the exact pixel's brightest channel, over pixels with fragments), nan_count,
     bytes_per_pixel, seconds; fig shows the exact image and each method's error map.
     """
+    own = {"transparency", "return_stats"}.union(*(TRANSPARENCY_METHODS[m] for m in TRANSPARENCY_METHODS))
+    _refuse_own(options, sorted(own), "compare.transparency", "methods")
     methods = _sequence(methods, "methods", "names")
     if not methods:  # the figure's grid had no axes to index
         raise ValueError("methods must not be empty")

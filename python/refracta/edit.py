@@ -606,15 +606,19 @@ def load_pairs(
         # Refused before opening: reading a FIFO (or a device) waits for a writer that may never come.
         if not stat.S_ISREG(path.stat().st_mode):
             raise _core.IoError(f"cannot read pairs file {path}: not a regular file")
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8")
     except _core.IoError:
         raise
     except OSError as error:
         raise _core.IoError(f"cannot read pairs file {path}: {error.strerror}") from None
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{path}: not a pairs file (JSON is UTF-8 text; byte {error.start} is not)") from None
     try:
         data = json.loads(text)
     except json.JSONDecodeError as error:
         raise ValueError(f"{path}:{error.lineno}: not valid JSON: {error.msg}") from None
+    except RecursionError:
+        raise ValueError(f"{path}: not a pairs file (JSON nested too deeply)") from None
     if not isinstance(data, dict) or not isinstance(data.get("pairs"), list):
         raise ValueError(f"{path}: expected an object with a list 'pairs'")
     pairs = []

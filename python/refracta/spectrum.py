@@ -43,7 +43,7 @@ from __future__ import annotations
 import numpy as np
 
 from refracta import _core
-from refracta._checks import number
+from refracta._checks import number, real_array
 
 PhysicalSky = _core.PhysicalSky  # documented in C++ (physical_sky.h): see help(PhysicalSky)
 AerialPerspective = _core.AerialPerspective  # documented in C++ (aerial_perspective.h)
@@ -69,9 +69,9 @@ LAMBDA_MAX = 830.0  # [nm]
 
 
 def _wavelengths(wavelengths) -> tuple[np.ndarray, bool]:
-    try:
-        lam = np.asarray(wavelengths, dtype=float)
-    except (TypeError, ValueError):
+    try:  # strings ('500'), booleans and complex numbers refused, as numpy would read them
+        lam = real_array(wavelengths, "wavelengths")
+    except ValueError:
         raise ValueError(f"wavelengths must be a number or numbers [nm] (got {wavelengths!r})") from None
     if lam.ndim > 1:
         raise ValueError(f"wavelengths must be a number or a 1-D array (got shape {lam.shape})")
@@ -80,8 +80,8 @@ def _wavelengths(wavelengths) -> tuple[np.ndarray, bool]:
 
 def _rgb(rgb, what: str = "rgb") -> tuple[np.ndarray, bool]:
     try:
-        colours = np.asarray(rgb, dtype=float)
-    except (TypeError, ValueError):
+        colours = real_array(rgb, what)
+    except ValueError:
         raise ValueError(f"{what} must be numbers, shape (3,) or (N, 3) (got {rgb!r})") from None
     if colours.shape[-1:] != (3,) or colours.ndim > 2:
         raise ValueError(f"{what} must have shape (3,) or (N, 3) (got {colours.shape})")
@@ -116,10 +116,13 @@ def spectrum_to_rgb(wavelengths, values, kind: str = "illuminant") -> np.ndarray
     under D65, XYZ = integral(s cmf D65)/integral(y D65). XYZ -> sRGB by the IEC 61966-2-1 matrix.
     """
     lam, _ = _wavelengths(wavelengths)
-    v = np.asarray(values, dtype=float)
+    v = real_array(values, "values")
     if v.shape != lam.shape:
         raise ValueError(f"values must have the shape of wavelengths {lam.shape} (got {v.shape})")
-    return _core._spectrum_tabulated_to_rgb(lam, v, kind)
+    rgb = _core._spectrum_tabulated_to_rgb(lam, v, kind)
+    if np.all(np.isfinite(v)) and not np.all(np.isfinite(rgb)):  # 1e307 W/(m^2 sr nm) summed past float64
+        raise ValueError(f"values up to {np.abs(v).max():g} overflow float64 when integrated over wavelength")
+    return rgb
 
 
 def blackbody(temperature: float, wavelengths, luminance: float | None = None) -> np.ndarray:

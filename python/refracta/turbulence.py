@@ -351,7 +351,8 @@ class Turbulence:
             raise ValueError(f"angle_of_arrival_variance: direction must be a non-zero 3-vector (got {direction!r})")
         _check_numbers(
             "angle_of_arrival_variance",
-            ("path_length", path_length, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
+            # No ray in a scene runs further (and the sums square it: 1e155 overflowed to NaN).
+            ("path_length", path_length, f"in (0, {_core._SCENE_REACH:g}] m", lambda v: 0.0 < v <= _core._SCENE_REACH),
             ("aperture", aperture, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
         )
         t = t / np.linalg.norm(t)

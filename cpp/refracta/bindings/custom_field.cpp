@@ -21,7 +21,7 @@ CustomField::~CustomField() {
   delete grad_;
 }
 
-std::vector<double> CustomField::ior_at(const std::vector<Vec3d>& points) const {
+std::vector<double> CustomField::call_ior(const std::vector<Vec3d>& points) const {
   const py::ssize_t count = py::ssize_t(points.size());
   DoubleArray out = real_array((*ior_)(points_to_array(points)), "CustomField: ior(points)");
   if (!(out.size() == count && (out.ndim() == 1 || (out.ndim() == 2 && out.shape(1) == 1) ||
@@ -34,7 +34,7 @@ std::vector<double> CustomField::ior_at(const std::vector<Vec3d>& points) const 
   return n;
 }
 
-std::vector<Vec3d> CustomField::grad_ior_at(const std::vector<Vec3d>& points) const {
+std::vector<Vec3d> CustomField::call_grad(const std::vector<Vec3d>& points) const {
   const py::ssize_t count = py::ssize_t(points.size());
   DoubleArray out = real_array((*grad_)(points_to_array(points)), "CustomField: grad_ior(points)");
   // Exactly (N, 3), or (3,) for one point: a (3, N) array has the same size but other meaning.
@@ -49,19 +49,41 @@ std::vector<Vec3d> CustomField::grad_ior_at(const std::vector<Vec3d>& points) co
   return grads;
 }
 
+std::vector<double> CustomField::ior_at(const std::vector<Vec3d>& points) const {
+  if (python_is_shutting_down()) throw Cancelled();
+  py::gil_scoped_acquire acquire;
+  std::vector<double> n = call_ior(points);  // first: a bad shape is named for the points given
+  if (!points.empty()) check_once(points[0]);
+  return n;
+}
+
+std::vector<Vec3d> CustomField::grad_ior_at(const std::vector<Vec3d>& points) const {
+  if (python_is_shutting_down()) throw Cancelled();
+  py::gil_scoped_acquire acquire;
+  std::vector<Vec3d> grads = call_grad(points);
+  if (!points.empty()) check_once(points[0]);
+  return grads;
+}
+
 void CustomField::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
   if (python_is_shutting_down()) throw Cancelled();  // never call into an exiting interpreter
   py::gil_scoped_acquire acquire;
-  *n = ior_at({p})[0];
-  *grad = grad_ior_at({p})[0];
-  if (!checked_.exchange(true)) check_first_evaluation(p, *n, *grad);
+  check_once(p);
+  *n = call_ior({p})[0];
+  *grad = call_grad({p})[0];
+}
+
+void CustomField::check_once(const Vec3d& p) const {
+  if (checked_) return;  // the GIL is held: one check at a time
+  check_first_evaluation(p, call_ior({p})[0], call_grad({p})[0]);
+  checked_ = true;  // only once passed: a field refused once is refused at every use
 }
 
 void CustomField::check_first_evaluation(const Vec3d& p, double n, const Vec3d& grad) const {
   if (height_only_) {
     const Vec3d aside = p + Vec3d(1.0, 0.0, 1.0);
-    const double n_aside = ior_at({aside})[0];
-    const Vec3d grad_aside = grad_ior_at({aside})[0];
+    const double n_aside = call_ior({aside})[0];
+    const Vec3d grad_aside = call_grad({aside})[0];
     // n's round-off is 1e-16 of it; a field that changes by 1e-12 of n over a metre aside is not height-only.
     const double horizontal = std::max({std::abs(grad.x()), std::abs(grad.z()), std::abs(grad_aside.x()),
                                         std::abs(grad_aside.z())});
@@ -81,7 +103,7 @@ void CustomField::check_first_evaluation(const Vec3d& p, double n, const Vec3d& 
     probes.push_back(p + step);
     probes.push_back(p - step);
   }
-  const std::vector<double> values = ior_at(probes);
+  const std::vector<double> values = call_ior(probes);
   Vec3d differences;
   for (int a = 0; a < 3; ++a) differences[a] = (values[2 * a] - values[2 * a + 1]) / (2.0 * kStep);
   if ((differences - grad).norm() > 1e-3 * std::max(grad.norm(), differences.norm()) + 1e-12 * std::abs(n)) {

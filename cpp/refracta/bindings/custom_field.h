@@ -31,12 +31,16 @@ class CustomField : public IndexField {
   const py::object& grad_function() const { return *grad_; }
 
  private:
-  // At its first evaluation (inside the work that makes it, GIL held), the field is checked where
+  // At its first evaluation, by any path (inside the work that makes it, GIL held), the field is checked where
   // it is evaluated: height_only=True against n and its gradient 1 m aside (a field that is not
   // height-only would be traced as the column at x = z = 0: ValueError), and grad_ior against
   // ior's central differences (a RuntimeWarning: rays follow grad_ior; a kink there also differs).
   void check_first_evaluation(const Vec3d& p, double n, const Vec3d& grad) const;
+  void check_once(const Vec3d& p) const;  // with the GIL held
   mutable std::atomic<bool> checked_{false};
+  // The Python calls themselves, with their shape and value checks.
+  std::vector<double> call_ior(const std::vector<Vec3d>& points) const;
+  std::vector<Vec3d> call_grad(const std::vector<Vec3d>& points) const;
 
   // Held by pointer so the destructor can take the GIL before releasing them.
   py::object* ior_;

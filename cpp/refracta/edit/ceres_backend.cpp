@@ -183,7 +183,8 @@ BackendResult solve_with_ceres(const EditProblem& problem, const std::vector<dou
   ceres::Solve(options, &ceres_problem, &summary);
   budget.check_cancelled();
 
-  out.iterations = int(summary.iterations.size()) - 1;  // iteration 0 is the start
+  // Iteration 0 is the start; a solve stopped before it (time limit, failed evaluation) has none.
+  out.iterations = std::max(0, int(summary.iterations.size()) - 1);
   if (!summary.iterations.empty()) out.trust_region = summary.iterations.back().trust_region_radius;
   out.evaluations = batch.evaluations();
   if (out.stopped == StopReason::kNone && summary.termination_type == ceres::NO_CONVERGENCE) {

@@ -94,8 +94,10 @@ EditProblem::EditProblem(FieldPtr field, std::vector<PointPair> pairs, const Pro
     std::tie(lo, hi) = camera ? rig_->default_bounds(k) : std::make_pair(specs[index].lower, specs[index].upper);
     if (auto it = spec.bounds.find(name); it != spec.bounds.end()) std::tie(lo, hi) = it->second;
     if (camera) CameraRig::check_bounds(k, lo, hi);
-    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
-      throw_invalid("bounds of '", name, "' must be finite with lower < upper (got [", lo, ", ", hi, "])");
+    // The solvers work in the unit box (x - lower) / (upper - lower): its width must be finite too.
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || !std::isfinite(hi - lo)) {
+      throw_invalid("bounds of '", name, "' must be finite with lower < upper and a finite width upper - lower (got [",
+                    lo, ", ", hi, "])");
     }
     const double x = values_[index];
     if (x < lo || x > hi) {

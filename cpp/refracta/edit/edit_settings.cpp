@@ -70,6 +70,8 @@ void SolveSettings::validate() const {
       {"quick_iterations", quick_iterations}, {"design_per_param", design_per_param},
       {"local_starts", local_starts}, {"starts", starts}};
   for (const auto& [name, value] : at_least_one) problems.check(value >= 1, name, " must be >= 1 (got ", value, ")");
+  problems.check(design_per_param <= kMostDesignPerParam, "design_per_param must be <= ", kMostDesignPerParam, " (got ",
+                 design_per_param, ")");
   problems.check(trust_region > 0.0 && std::isfinite(trust_region), "trust_region must be > 0 (got ", trust_region,
                  ")");
   const std::pair<const char*, double> non_negative[] = {

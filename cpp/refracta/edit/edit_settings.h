@@ -24,6 +24,11 @@ enum class SolveStrategy { kAuto, kLocal };
 // Ceres' robust losses on each pair's squared miss (none: plain least squares).
 enum class RobustLoss { kNone, kHuber, kSoftL1, kCauchy, kArctan };
 
+// The most design points per free parameter: the whole design is built before it is evaluated
+// (2 x this x the free parameters), and 10^5 already takes far longer to evaluate than a solve's
+// time limit allows (a pair traces in ~0.1-1 ms); 10^8 filled 23 GB before its first evaluation.
+inline constexpr int kMostDesignPerParam = 100000;
+
 // Settings of refracta.edit.solve, with their defaults (defined once, in C++'s SolveSettings). Set
 // any field by name, or pass them to solve() as keywords; validate() reports every bad value at
 // once.
@@ -43,7 +48,7 @@ struct SolveSettings {
   // start at all within 15 iterations.
   int quick_iterations = 15;
   // auto: points per free parameter of the global stage (scan points on its axis; as many again
-  // quasi-random points, half over the box, half near the start).
+  // quasi-random points, half over the box, half near the start), at most kMostDesignPerParam.
   int design_per_param = 16;
   // auto: local solves from the global stage's best points, at most.
   int local_starts = 4;

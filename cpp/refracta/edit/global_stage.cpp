@@ -80,8 +80,8 @@ Design evaluate_design(const EditProblem& problem, int per_param, SolveBudget& b
     for (int k = 0; k < per_param; ++k) on_axis(j, (k + 0.5) / per_param, "scan of " + names[j]);
   }
   const QuasiRandom sequence(m);
-  const int spread = per_param * m;
-  for (int n = 0; n < spread; ++n) {
+  const int64_t spread = int64_t(per_param) * m;
+  for (int64_t n = 0; n < spread; ++n) {
     const std::vector<double> u = sequence.point(n + 1);
     std::vector<double> x(m);
     const bool near = n % 2 == 1;

@@ -60,8 +60,10 @@ void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& opti
       throw_invalid("pair ", i, ": the destination direction must be finite and non-zero");
     }
     if (!is_finite(p.source)) throw_invalid("pair ", i, ": the source point is not finite");
-    if (!(p.weight > 0.0) || !std::isfinite(p.weight)) {
-      throw_invalid("pair ", i, ": weight must be > 0 (got ", p.weight, ")");
+    // The cost adds weight x miss^2 [m^2]: 1e308 overflowed it ("evaluation failed"); weights in
+    // use are relative importances of order 1.
+    if (!(p.weight > 0.0 && p.weight <= kMostPairWeight)) {
+      throw_invalid("pair ", i, ": weight must be in (0, ", kMostPairWeight, "] (got ", p.weight, ")");
     }
     if (!(p.margin >= 0.0) || !std::isfinite(p.margin)) {
       throw_invalid("pair ", i, ": margin must be >= 0 and finite (got ", p.margin, ")");

@@ -3,6 +3,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/scratch.h"
+#include "refracta/media/ior_range.h"
 #include "refracta/scene/surface_interaction.h"
 
 #include <algorithm>
@@ -20,8 +21,9 @@ constexpr double kBelowOne = 1.0 - 1e-16;
 class Evaluator {
  public:
   Evaluator(const Material& material, const BsdfQuery& query, size_t n) : material_(material), query_(query) {
-    if (!std::isfinite(query.eta_outside) || query.eta_outside <= 0.0) {
-      throw_invalid("eta_outside must be finite and > 0 (got ", query.eta_outside, ")");
+    if (!usable_ior(query.eta_outside)) {  // 1e200 passed, and its square overflowed to NaN results
+      throw_invalid("eta_outside must be a refractive index in [", kMinIor, ", ", kMaxIor, "] (got ",
+                    query.eta_outside, ")");
     }
     if (!query.wavelengths) return;
     const RowMatrixX4d& w = *query.wavelengths;

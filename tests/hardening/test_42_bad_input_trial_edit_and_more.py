@@ -1,0 +1,99 @@
+"""A 6 December 2026 bad-input trial of editing, comparisons, spectra and the command line: each
+test fails on the code before the fix."""
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import cli, compare, shading, spectrum
+from refracta.edit import PointPair, load_pairs, solve
+
+from .test_39_cli_trial import DATA
+
+FIELD_ARGS = ((0.0, 1.5, 0.0), [PointPair((1000.0, 1.2, 1.0), (1000.0, 30.0, 0.0))])
+
+
+def test_a_design_too_large_to_build_is_refused_at_once():
+    # 10**8 points per parameter were built before the first evaluation: 23 GB, then killed.
+    with pytest.raises(ValueError, match=r"design_per_param must be <= 100000 \(got 100000000\)"):
+        solve(refracta.LogisticProfile(), *FIELD_ARGS, free=["k_s"], design_per_param=10**8)
+
+
+def test_bounds_whose_width_overflows_are_refused():
+    # (-1e308, 1e308): the unit box's width overflowed; the solve "failed in -2 iterations".
+    with pytest.raises(ValueError, match="a finite width upper - lower"):
+        solve(refracta.LogisticProfile(), *FIELD_ARGS, free=["k_s"], bounds={"k_s": (-1e308, 1e308)})
+
+
+def test_a_weight_that_overflows_the_cost_is_refused():
+    pairs = [PointPair((1000.0, 1.2, 1.0), (1000.0, 30.0, 0.0), weight=1e308)]
+    with pytest.raises(ValueError, match=r"weight must be in \(0, 1e\+100\]"):
+        solve(refracta.LogisticProfile(), (0.0, 1.5, 0.0), pairs, free=["k_s"])
+
+
+def not_height_only():
+    return refracta.CustomField(
+        lambda p: 1.0003 + 1e-6 * p[:, 0], lambda p: np.tile([1e-6, 0.0, 0.0], (len(p), 1)), height_only=True
+    )
+
+
+def test_an_elevation_table_checks_a_custom_field_s_promise():
+    # The table read the field through its vectorised calls, which skipped the first-use check.
+    field = not_height_only()
+    for _ in range(2):  # and a field refused once is refused again (the check was marked done)
+        with pytest.raises(ValueError, match="height_only=True, but the field depends on x or z"):
+            refracta.ElevationTable(field, 1.5, -1.0, 1.0)
+    with pytest.raises(ValueError, match="height_only=True, but the field depends on x or z"):
+        refracta.trace_rays(field, [0.0, 1.5, 0.0], [1.0, 0.0, 0.0])
+
+
+def test_complex_and_overflowing_numbers_are_refused():
+    with pytest.raises(ValueError, match="PointPair destination must be 2 or 3 finite numbers"):
+        PointPair(np.array([1000 + 7j, 1.2, 0.0]), (1000.0, 3.0, 0.0))  # the imaginary part was dropped
+    with pytest.raises(ValueError, match="PointPair destination must be 2 or 3 finite numbers"):
+        PointPair((10**400, 1.0, 0.0), (1.0, 2.0, 3.0))  # an OverflowError escaped
+    with pytest.raises(ValueError, match="directions must be numbers"):
+        refracta.trace_rays(refracta.PhysicalAtmosphere(), [0.0, 1.5, 0.0], np.array([[1.0, 0.0, 0.0]]) + 1j)
+
+
+def test_malformed_pairs_files_name_the_file(tmp_path):
+    deep, binary = tmp_path / "deep.json", tmp_path / "binary.json"
+    deep.write_text("[" * 100000 + "]" * 100000)
+    binary.write_bytes(b"\xff\xfe not text")
+    with pytest.raises(ValueError, match=r"deep.json: not a pairs file \(JSON nested too deeply\)"):
+        load_pairs(deep)
+    with pytest.raises(ValueError, match=r"binary.json: not a pairs file \(JSON is UTF-8 text"):
+        load_pairs(binary)
+
+
+def test_the_command_line_refuses_set_for_its_own_flags(tmp_path, capsys):
+    base = ["render", str(DATA / "hot_road.toml"), "--size", "16x6", "-o", str(tmp_path / "a.png")]
+    assert cli.main([*base, "--set", "spp=1"]) == 1  # was a TypeError traceback: spp given twice
+    assert "--set spp: give it as --spp" in capsys.readouterr().err
+    assert cli.main([*base, "--set", "progress=false"]) == 1
+    assert "--set progress: the command sets it itself" in capsys.readouterr().err
+
+
+def test_comparisons_refuse_keywords_they_set_per_render():
+    scene = refracta.Scene()
+    camera = refracta.Camera((0.0, 1.0, 5.0), (0.0, 0.0, 0.0), vfov=40.0, width=16, height=8)
+    with pytest.raises(ValueError, match="compare.transparency: transparency= is set per render"):
+        compare.transparency(scene, camera, methods=["peel 2"], transparency="exact")
+    with pytest.raises(ValueError, match="compare.transparency: layers= is set per render"):
+        compare.transparency(scene, camera, layers=3)
+    with pytest.raises(ValueError, match="compare.shadows: output= is set per render"):
+        compare.shadows(scene, camera, output="radiance")
+
+
+def test_values_past_float64_are_refused_not_nan():
+    wo, wi = np.array([[0.0, 0.0, 1.0]]), np.array([[0.0, 0.6, 0.8]])
+    for material in (shading.Plastic(), shading.Water()):
+        with pytest.raises(ValueError, match=r"eta_outside must be a refractive index in \[1e-50, 1e\+50\]"):
+            material.f(wo, wi, eta_outside=1e200)
+    with pytest.raises(ValueError, match=r"path_length must be in \(0, 1e\+07\] m"):
+        refracta.Turbulence(cells=16).angle_of_arrival_variance(1e155)
+    wavelengths = np.array([400.0, 500.0, 600.0, 700.0])
+    with pytest.raises(ValueError, match="overflow float64 when integrated"):
+        spectrum.spectrum_to_rgb(wavelengths, np.full(4, 1e307))
+    with pytest.raises(ValueError, match="wavelengths must be a number or numbers"):
+        spectrum.blackbody(5800.0, "500")
