@@ -26,6 +26,7 @@ OUTPUT = ROOT / "cpp" / "generated" / "docstrings.h"
 # bindings/).
 HEADERS = [
     "cpp/refracta/edit/edit_settings.h",
+    "cpp/refracta/edit/pair_cost.h",
     "cpp/refracta/edit/point_pair.h",
     "cpp/refracta/media/curved_earth.h",
     "cpp/refracta/media/dispersed_field.h",

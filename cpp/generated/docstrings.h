@@ -448,7 +448,7 @@ inline constexpr const char mkd_doc_refracta_SolveSettings_accept_angle[] = R"do
 [rad], or its tolerance if larger (PointPair::allowed_miss): 1e-6 rad is far below a pixel of any
 camera.)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_design_per_param[] = R"doc(auto: points per free parameter of the global stage (scan points on its axis; as many again
-quasi-random points, half over the box, half near the start).)doc";
+quasi-random points, half over the box, half near the start), at most kMostDesignPerParam.)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_function_tolerance[] = R"doc(relative change of the cost that ends the solve)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_gradient_tolerance[] = R"doc(ceres: max-norm of the projected gradient)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_local_starts[] = R"doc(auto: local solves from the global stage's best points, at most.)doc";
@@ -669,6 +669,7 @@ inline constexpr const char mkd_doc_refracta_cox_munk_mean_square_slope[] = R"do
 above the sea: sigma^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, "Measurement of the roughness of the
 sea surface from photographs of the sun's glitter", JOSA 44(11), 838-850, eq. for sigma_u^2 +
 sigma_c^2, +-0.004). U in [0, 30]; ValueError naming wind_speed otherwise.)doc";
+inline constexpr const char mkd_doc_refracta_parse_derivatives[] = R"doc("automatic", "numeric", or "auto" (automatic when `field` has a templated model, else numeric).)doc";
 inline constexpr const char mkd_doc_refracta_pdf_li_all[] = R"doc(The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights
 need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3)
 (each empty: zeros; else one per point).)doc";

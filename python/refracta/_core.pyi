@@ -2352,7 +2352,7 @@ class SolveSettings:
     def design_per_param(self) -> int:
         """
         auto: points per free parameter of the global stage (scan points on its axis; as many again
-        quasi-random points, half over the box, half near the start).
+        quasi-random points, half over the box, half near the start), at most kMostDesignPerParam.
         """
     @design_per_param.setter
     def design_per_param(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -3606,6 +3606,10 @@ def _canonical_bound(moments: collections.abc.Sequence[typing.SupportsFloat | ty
 def _channel_names(path: str) -> list[str]:
     """
     The channel names of an image file (OIIO's).
+    """
+def _check_derivatives(derivatives: str, field: IndexField) -> None:
+    """
+    "automatic", "numeric", or "auto" (automatic when `field` has a templated model, else numeric).
     """
 def _check_image_format(path: str) -> None:
     """

@@ -13,7 +13,7 @@ import numpy as np
 from refracta import _core, _denoise, _options
 from refracta._checks import is_seed
 from refracta._progress import progress_callback
-from refracta._sweep import map_ordered
+from refracta._sweep import as_executor, map_ordered
 
 
 class SceneWarning(UserWarning):
@@ -337,27 +337,8 @@ def render(
             DeprecationWarning,
             stacklevel=2,
         )
-    wanted = _aov_names(aovs)
-    if not isinstance(return_stats, (bool, np.bool_)):  # "no" is truthy
-        raise ValueError(f"render: return_stats must be True or False (got {return_stats!r})")
-    if not isinstance(denoise, (bool, np.bool_)):
-        raise ValueError(f"denoise must be True or False (got {denoise!r})")
-    if "geographic" in wanted and not callable(getattr(frame, "to_geographic", None)):
-        raise ValueError(
-            "render: aovs 'geographic' needs frame=, the scene's refracta.geo.LocalFrame (its to_geographic maps "
-            f"scene points to latitude, longitude and height; got frame={frame!r})"
-        )
-    if frame is not None and "geographic" not in wanted:
-        raise ValueError(
-            "render: frame= maps the 'geographic' readout; ask for it with aovs=[..., 'geographic'] (got "
-            f"frame={frame!r} and aovs={aovs!r})"
-        )
-    surface = [name for name in wanted if name not in READOUT_NAMES]  # the readouts say so themselves
-    if (denoise or surface) and method == "raster_march":
-        raise ValueError(
-            f"render: {'denoise=True' if denoise else f'aovs {surface}'} needs method 'straight' or 'curved' (the "
-            "ray renderers give the first surface's albedo and normal and count samples; got method='raster_march')"
-        )
+    own = dict(return_stats=return_stats, aovs=aovs, denoise=denoise, frame=frame, executor=executor, tiles=tiles)
+    wanted = check_render_keywords(camera, method, **own)
     if denoise or any(name != "samples" for name in wanted):
         options["surface_aovs"] = True
     if "samples" in wanted:
@@ -405,6 +386,46 @@ def render(
     if return_stats:
         return (*result, counts) if aovs is not None else (image, counts)
     return result
+
+
+def check_render_keywords(
+    camera: _core.Camera,
+    method: str | None,
+    *,
+    return_stats=False,
+    aovs=None,
+    denoise=False,
+    frame=None,
+    executor=None,
+    tiles=None,
+) -> list[str]:
+    """render()'s own keywords (those that are not RenderOptions fields) checked before any work,
+    by render and by the editor for its render_options; returns the names aovs asks for."""
+    wanted = _aov_names(aovs)
+    if not isinstance(return_stats, (bool, np.bool_)):  # "no" is truthy
+        raise ValueError(f"render: return_stats must be True or False (got {return_stats!r})")
+    if not isinstance(denoise, (bool, np.bool_)):
+        raise ValueError(f"denoise must be True or False (got {denoise!r})")
+    if "geographic" in wanted and not callable(getattr(frame, "to_geographic", None)):
+        raise ValueError(
+            "render: aovs 'geographic' needs frame=, the scene's refracta.geo.LocalFrame (its to_geographic maps "
+            f"scene points to latitude, longitude and height; got frame={frame!r})"
+        )
+    if frame is not None and "geographic" not in wanted:
+        raise ValueError(
+            "render: frame= maps the 'geographic' readout; ask for it with aovs=[..., 'geographic'] (got "
+            f"frame={frame!r} and aovs={aovs!r})"
+        )
+    surface = [name for name in wanted if name not in READOUT_NAMES]  # the readouts say so themselves
+    if (denoise or surface) and method == "raster_march":
+        raise ValueError(
+            f"render: {'denoise=True' if denoise else f'aovs {surface}'} needs method 'straight' or 'curved' (the "
+            "ray renderers give the first surface's albedo and normal and count samples; got method='raster_march')"
+        )
+    as_executor(executor)  # its kind: None, an Executor or a dask Client
+    if tiles is not None:
+        tile_bounds(camera.width, camera.height, tiles)
+    return wanted
 
 
 def _surface_outputs(image: np.ndarray) -> dict:

@@ -524,6 +524,17 @@ def _free_names(free) -> list[str] | None:
     return [str(n) for n in names]
 
 
+def check_solve_keywords(field: _core.IndexField, bounds=None, derivatives: str | None = None) -> None:
+    """solve()'s bounds= and derivatives= checked before any work (the editor's solve_options):
+    bounds of the field's or the camera's parameters, a derivatives name the field takes."""
+    names = list(field.param_names) + list(CAMERA_PARAMETERS)
+    for name in _bounds_of(bounds):
+        if name not in names:
+            raise ValueError(f"bounds given for {name!r}, which is not a parameter of {field.type_name} ({names})")
+    if derivatives is not None:
+        _core._check_derivatives(derivatives, field)
+
+
 def _bounds_of(bounds) -> dict[str, tuple[float, float]]:
     """solve()'s `bounds` as {name: (lower, upper)} of numbers (None: no bounds of the caller's)."""
     if bounds is None:

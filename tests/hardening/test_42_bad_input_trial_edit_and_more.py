@@ -97,3 +97,45 @@ def test_values_past_float64_are_refused_not_nan():
         spectrum.spectrum_to_rgb(wavelengths, np.full(4, 1e307))
     with pytest.raises(ValueError, match="wavelengths must be a number or numbers"):
         spectrum.blackbody(5800.0, "500")
+
+
+@pytest.fixture(scope="module")
+def hot_road():
+    from refracta import examples
+
+    return examples.hot_road(32, 12)
+
+
+@pytest.mark.parametrize(
+    "keywords, message",
+    [
+        (dict(render_options=dict(aovs=["zz"])), "render_options: render: unknown aovs"),
+        (dict(render_options=dict(denoise="yes")), "render_options: denoise must be True or False"),
+        (dict(render_options=dict(tiles=0)), "render_options: tiles must be a tile size >= 1"),
+        (dict(render_options=dict(executor=5)), "render_options: executor must be None"),
+        (dict(solve_options=dict(bounds=5)), "bounds must be a dict"),
+        (dict(solve_options=dict(bounds={"zz": (0, 1)})), "bounds given for 'zz', which is not a parameter"),
+        (dict(solve_options=dict(derivatives="zzz")), "derivatives must be 'auto', 'automatic' or 'numeric'"),
+        (dict(turbulence=5), "turbulence must be a refracta.Turbulence or None"),
+        (dict(scene_text="[[[bad toml"), "scene_text is not a scene file's TOML text"),
+    ],
+)
+def test_the_editor_refuses_bad_options_when_made(hot_road, keywords, message):
+    # Each was stored and failed later, as a background job's message or at export.
+    from refracta.widgets.model import EditorModel
+
+    with pytest.raises(ValueError, match=message):
+        EditorModel(hot_road.scene, hot_road.camera, hot_road.field, autorender=False, **keywords)
+
+
+def test_importing_pairs_with_bad_options_changes_nothing(hot_road, tmp_path):
+    import json
+
+    from refracta.widgets.model import EditorModel
+
+    model = EditorModel(hot_road.scene, hot_road.camera, hot_road.field, autorender=False)
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps({"free": ["surface_dt"], "max_iterations": -5, "pairs": []}))
+    with pytest.raises(ValueError, match="max_iterations must be >= 1"):
+        model.import_pairs(path)
+    assert model.free is None and model.solve_options == {}  # free was set before the options failed

@@ -37,7 +37,7 @@ def test_a_brief_dip_below_the_ground_is_found(trace):
     np.testing.assert_allclose(crossings[:, 0], expected, atol=1e-5)
     stopped = refracta.trace_ray(field, start, direction, max_length=5000.0, stop_height=0.0, trace=trace)
     assert stopped.stop == "stop_height"
-    np.testing.assert_allclose(stopped.points[-1][:2], [expected[0], 0.0], atol=1e-5)
+    np.testing.assert_allclose(stopped.points[-1][:2], [expected[0], 0.0], atol=1e-5)  # as the crossings
 
 
 def test_a_ray_just_above_the_ground_is_not_stopped():

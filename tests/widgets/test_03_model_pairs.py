@@ -269,3 +269,14 @@ def test_bad_editor_settings_are_refused_when_made_naming_them(make_model):
     assert model.can_undo
     far = np.linalg.norm(np.subtract(model.camera.position, model.camera.look_at))
     assert distance < far < refracta._core._SCENE_REACH and np.all(np.isfinite(model.camera.position))
+
+
+def test_set_pairs_replaces_every_pair_in_one_undo_step(make_model):
+    model = make_model()
+    model.click(*CAR)
+    model.click(150.0, 70.0)
+    first = model.pairs
+    model.set_pairs([*first, *first], label="doubled")
+    assert len(model.pairs) == 2 and model.pairs[1].destination == (150.0, 70.0)
+    model.undo()
+    assert model.pairs == first

@@ -220,6 +220,12 @@ void bind_edit(py::module_& m) {
         py::arg("derivatives"), py::arg("pair_options"), py::arg("settings"), py::arg("progress"),
         py::arg("camera") = py::none(), py::arg("pixels") = py::none());
 
+  m.def(
+      "_check_derivatives",
+      [](const std::string& derivatives, const std::shared_ptr<IndexField>& field) {
+        parse_derivatives(derivatives, *checked(field));
+      },
+      py::arg("derivatives"), py::arg("field"), DOC(refracta, parse_derivatives));
   m.def("_pair_distances",
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
            const py::object& sources, const PairOptions& options) {

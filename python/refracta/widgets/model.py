@@ -137,24 +137,42 @@ def _finite(value, name: str) -> float:
     return number
 
 
-def _check_options(render_options: dict, solve_options: dict) -> None:
-    """Builds the options every render and solve will, so a bad one fails here, not later in the
-    background (where it would only be a message)."""
+def _check_options(render_options: dict, solve_options: dict, camera: _core.Camera, field: _core.IndexField) -> None:
+    """Builds the options every render and solve will, and checks render's and solve's own keywords
+    as they would, so a bad one fails here, not later in the background (where it would only be a
+    message)."""
     import inspect
 
-    from refracta import _core, _options, edit
-    from refracta._render import render
+    from refracta import _options, edit
+    from refracta._render import check_render_keywords, render
     from refracta._render import render_options as build_render_options
 
-    # render()'s own arguments that are not RenderOptions fields (aovs, denoise, ...): its to check.
+    # render()'s own arguments that are not RenderOptions fields (aovs, denoise, ...).
     fields = set(_options.fields(_core.RenderOptions))
     named = {n for n, p in inspect.signature(render).parameters.items() if p.kind is not p.VAR_KEYWORD} - fields
+    own = {k: v for k, v in render_options.items() if k in named}
     try:
+        check_render_keywords(camera, render_options.get("method"), **own)
         build_render_options(**{k: v for k, v in render_options.items() if k not in named})
-    except ValueError as error:
+    except (ValueError, TypeError) as error:  # TypeError: a keyword render does not take
         raise ValueError(f"render_options: {error}") from None
     solve_named = ("bounds", "derivatives")  # edit.solve's own arguments, not options
     edit.solve_options(where="solve_options", **{k: v for k, v in solve_options.items() if k not in solve_named})
+    edit.check_solve_keywords(field, solve_options.get("bounds"), solve_options.get("derivatives"))
+
+
+def _check_scene_text(text) -> None:
+    """scene_text: None or a scene file's TOML text (exported later with the editor's camera and air)."""
+    if text is None:
+        return
+    if not isinstance(text, str):
+        raise ValueError(f"scene_text must be a scene file's text or None (got {type(text).__name__})")
+    from refracta.scene_file import _loads, tomllib
+
+    try:
+        _loads(text)
+    except (tomllib.TOMLDecodeError, ValueError) as error:
+        raise ValueError(f"scene_text is not a scene file's TOML text: {error}") from None
 
 
 def check_weight(weight, name: str = "weight") -> float:
@@ -279,6 +297,11 @@ class EditorModel:
         whole = _checks.is_number(scale) and math.isfinite(scale) and int(scale) == scale
         if not whole or scale < 1:
             raise ValueError(f"preview_scale must be a whole number >= 1 (got {preview_scale!r})")
+        _check_scene_text(scene_text)
+        from refracta.turbulence import Turbulence  # at runtime (the module-level import is for typing)
+
+        if turbulence is not None and not isinstance(turbulence, Turbulence):
+            raise ValueError(f"turbulence must be a refracta.Turbulence or None (got {type(turbulence).__name__})")
         self._lock = threading.RLock()
         self._observers: list[Callable[[str], None]] = []
         self.scene, self.scene_text, self.camera, self.field = scene, scene_text, camera, field
@@ -297,7 +320,7 @@ class EditorModel:
         for reserved in ("free", "ground", "stop_height", "progress"):
             if reserved in self.solve_options:
                 raise ValueError(f"solve_options: pass {reserved!r} as the editor's own argument")
-        _check_options(self.render_options, self.solve_options)
+        _check_options(self.render_options, self.solve_options, camera, field)
         self.preview_scale = int(preview_scale)
         if display is not None and not isinstance(display, dict):
             raise ValueError(f"display must be a dict of refracta.io.to_display keywords (got {display!r})")
@@ -551,16 +574,27 @@ class EditorModel:
 
     def set_pairs(self, pairs: Sequence, label: str = "set pairs") -> None:
         """Replace every pair (refracta.edit.PointPair objects; undoable)."""
-        pairs = tuple(make_pair(p.destination, p.source, p.weight, p.margin) for p in pairs)
+        self._replace_pairs(pairs, label)
+
+    def _replace_pairs(self, pairs: Sequence, label: str, **state) -> None:
+        """Every pair replaced, with other attributes (`state`: free, stop_height, solve_options,
+        already checked) in the same undo step."""
+        made = tuple(make_pair(p.destination, p.source, p.weight, p.margin) for p in pairs)
         with self._lock:
             before = self._snapshot(label)
-            self.pairs, self.selected, self.pending_source = pairs, None, None
+            self.pairs, self.selected, self.pending_source = made, None, None
+            for name, value in state.items():
+                setattr(self, name, value)
             self._record(before)
-        self._notify("pairs", "history")
+        self._notify("pairs", *(["free"] if "free" in state else []), "history")
 
     def set_free(self, free: Sequence[str] | None) -> None:
         """The parameters a solve may change (None or empty: solve()'s default). ValueError naming
         unknown names."""
+        self.free = self._checked_free(free)
+        self._notify("free")
+
+    def _checked_free(self, free: Sequence[str] | None) -> tuple[str, ...] | None:
         if isinstance(free, str):
             free = [free]
         if free is not None and not (isinstance(free, (list, tuple)) and all(isinstance(n, str) for n in free)):
@@ -570,8 +604,7 @@ class EditorModel:
         unknown = [name for name in free if name not in valid]
         if unknown:
             raise ValueError(f"free: unknown parameter(s) {unknown} of {self.field.type_name}; valid names: {valid}")
-        self.free = free or None
-        self._notify("free")
+        return free or None
 
     # ---------------------------------------------------------------- pointer events
     def set_mode(self, mode: str) -> None:
@@ -939,13 +972,16 @@ class EditorModel:
         from refracta.edit import load_pairs
 
         pairs, options = load_pairs(path, self.scene, self.camera)
-        if "free" in options:
-            self.set_free(options.pop("free"))
+        # Everything checked before anything changes: a bad option fails here, not in a later solve.
+        free = self._checked_free(options.pop("free")) if "free" in options else self.free
+        stop_height = self.stop_height
         if "stop_height" in options:
-            stop_height = options.pop("stop_height")
-            self.stop_height = None if stop_height is None else _finite(stop_height, "stop_height")
-        self.solve_options.update(options)
-        self.set_pairs(pairs, label=f"load pairs from {Path(path).name}")
+            given = options.pop("stop_height")
+            stop_height = None if given is None else _finite(given, "stop_height")
+        solve_options = {**self.solve_options, **options}
+        _check_options(self.render_options, solve_options, self.camera, self.field)
+        label = f"load pairs from {Path(path).name}"
+        self._replace_pairs(pairs, label, free=free, stop_height=stop_height, solve_options=solve_options)
         self.say(f"Loaded {len(pairs)} pair(s) from {path}.", "success")
 
     def import_scene(self, path) -> None:
