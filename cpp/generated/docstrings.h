@@ -553,8 +553,8 @@ inline constexpr const char mkd_doc_refracta_TurbulenceSettings_outer_scale[] = 
 inertial range.)doc";
 inline constexpr const char mkd_doc_refracta_TurbulenceSettings_seed[] = R"doc(the random pattern (same seed and grid, same pattern))doc";
 inline constexpr const char mkd_doc_refracta_TurbulenceSettings_size[] = R"doc([m] the tile, cells = ceil(size / spacing) (None: from cells))doc";
-inline constexpr const char mkd_doc_refracta_TurbulenceSettings_spacing[] = R"doc(The grid's cell [m]: the renderer steps half a cell through the layer, so a pixel's cost grows as
-path length / spacing (benchmarks/bench_realism.py).)doc";
+inline constexpr const char mkd_doc_refracta_TurbulenceSettings_spacing[] = R"doc(The grid's cell [m], in [1e-6, 1e4]: the renderer steps half a cell through the layer, so a pixel's
+cost grows as path length / spacing (benchmarks/bench_realism.py).)doc";
 inline constexpr const char mkd_doc_refracta_TurbulenceSettings_wind[] = R"doc((u, w) [m/s] along x and z: the pattern at time t is shifted by (u t, 0, w t) (Taylor's frozen
 flow). (0, 2): a light breeze across the examples' line of sight (+x).)doc";
 inline constexpr const char mkd_doc_refracta_TurbulenceSettings_yaw_deg[] = R"doc(The lattice's turn about the vertical [deg], as every angle users give

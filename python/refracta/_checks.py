@@ -49,6 +49,13 @@ def is_flag(value) -> bool:
     return isinstance(value, (bool, np.bool_))
 
 
+def flag(value, name: str) -> bool:
+    """`value` as True or False, else ValueError naming it: bool() would take 'no' as True."""
+    if not is_flag(value):
+        raise ValueError(f"{name} must be True or False (got {value!r})")
+    return bool(value)
+
+
 def on_image(camera, u: float, v: float) -> bool:
     """Whether pixel coordinates (u, v) lie on `camera`'s image, its edges included (as solve takes
     them): beyond it a pixel's ray is extrapolated, not one the camera shows."""

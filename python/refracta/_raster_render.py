@@ -14,6 +14,7 @@ from typing import Callable
 import numpy as np
 
 from refracta import _core
+from refracta._checks import flag
 from refracta._progress import progress_callback
 from refracta._render import _check_scene
 
@@ -232,6 +233,7 @@ def render_raster(
     stats: deprecated (a dict filled with the statistics); use return_stats=True.
     """
     settings = raster_render_options(options, lights, shadows, transparency, **fields)
+    flag(return_stats, "render_raster: return_stats")  # 'no' would return the statistics too
     if stats is not None:
         if not isinstance(stats, dict):
             raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")

@@ -43,7 +43,7 @@ from __future__ import annotations
 import numpy as np
 
 from refracta import _core
-from refracta._checks import number, real_array
+from refracta._checks import flag, number, real_array
 
 PhysicalSky = _core.PhysicalSky  # documented in C++ (physical_sky.h): see help(PhysicalSky)
 AerialPerspective = _core.AerialPerspective  # documented in C++ (aerial_perspective.h)
@@ -156,7 +156,7 @@ def d65(wavelengths, normalised: bool = False) -> np.ndarray:
     (D65 integral(y) / integral(y D65)), the spectrum of emission RGB (1, 1, 1).
     """
     lam, scalar = _wavelengths(wavelengths)
-    out = _core._spectrum_d65(lam, bool(normalised))
+    out = _core._spectrum_d65(lam, flag(normalised, "d65: normalised"))
     return out[0] if scalar else out
 
 
@@ -182,7 +182,7 @@ def sample_wavelengths(u, terminate_secondary: bool = False) -> tuple[np.ndarray
     uu = np.atleast_1d(np.asarray(u, dtype=float))
     if uu.ndim != 1:
         raise ValueError(f"u must be a number or a 1-D array (got shape {uu.shape})")
-    return _core._spectrum_sample_wavelengths(uu, bool(terminate_secondary))
+    return _core._spectrum_sample_wavelengths(uu, flag(terminate_secondary, "sample_wavelengths: terminate_secondary"))
 
 
 def to_linear_srgb(radiance, wavelengths, pdf) -> np.ndarray:

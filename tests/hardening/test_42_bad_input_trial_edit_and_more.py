@@ -139,3 +139,32 @@ def test_importing_pairs_with_bad_options_changes_nothing(hot_road, tmp_path):
     with pytest.raises(ValueError, match="max_iterations must be >= 1"):
         model.import_pairs(path)
     assert model.free is None and model.solve_options == {}  # free was set before the options failed
+
+
+def test_on_off_arguments_take_true_or_false_only():
+    # bool('yes') is True: each was read so.
+    with pytest.raises(ValueError, match="d65: normalised must be True or False"):
+        spectrum.d65([500.0], normalised="yes")
+    with pytest.raises(ValueError, match="sample_wavelengths: terminate_secondary must be True or False"):
+        spectrum.sample_wavelengths(0.3, terminate_secondary="yes")
+    camera = refracta.Camera((0.0, 1.0, 5.0), (0.0, 0.0, 0.0), vfov=40.0, width=8, height=4)
+    with pytest.raises(ValueError, match="render_raster: return_stats must be True or False"):
+        refracta.render_raster(refracta.Scene(), camera, return_stats="no")
+
+
+def test_sizes_that_overflowed_later_are_named():
+    for spacing in (1e-300, 1e300):  # were "TurbulenceGrid: coefficients must be finite"
+        with pytest.raises(ValueError, match=r"spacing must be in \[1e-06, 10000\] m"):
+            refracta.Turbulence(cells=16, spacing=spacing)
+    with pytest.raises(ValueError, match="eye_height must be within the scene's reach"):
+        refracta.ElevationTable(refracta.PhysicalAtmosphere(), 1e300, -1.0, 1.0)  # was TabulatedHeightField's
+
+
+def test_the_editor_refuses_a_bad_display_scale(hot_road):
+    from refracta.widgets.model import EditorModel
+
+    model = EditorModel(hot_road.scene, hot_road.camera, hot_road.field, autorender=False)
+    for scale in (0.0, -1.0, float("nan")):
+        with pytest.raises(ValueError, match="scale"):
+            model.pointer_down(10.0, 5.0, scale=scale)
+    model.close()

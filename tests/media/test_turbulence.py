@@ -274,7 +274,7 @@ def test_angle_of_arrival_grows_with_path_length_and_shrinks_with_aperture():
         (dict(outer_scale=0.0), "outer_scale must be > 0"),
         (dict(inner_scale=-0.01), "inner_scale must be > 0"),
         (dict(inner_scale=float("nan")), "inner_scale must be > 0"),
-        (dict(spacing=0.0), "spacing must be > 0"),
+        (dict(spacing=0.0), r"spacing must be in \[1e-06, 10000\] m"),
         (dict(depth=-1.0), "depth must be > 0"),
         (dict(seed=-3), "seed must be a whole number"),
         (dict(wind=(1.0, float("inf"))), "wind must be"),

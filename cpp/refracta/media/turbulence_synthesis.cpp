@@ -61,6 +61,7 @@ int TurbulenceSettings::cell_count() const {
 
 namespace {
 constexpr double kStrongestCn2 = 1.0;  // [m^(-2/3)]
+constexpr double kFinestSpacing = 1e-6, kCoarsestSpacing = 1e4;  // [m]
 }  // namespace
 
 void TurbulenceSettings::validate() const {
@@ -73,7 +74,10 @@ void TurbulenceSettings::validate() const {
   problems.check(seed >= 0, "seed must be a whole number >= 0 (got ", seed, ")");
   problems.check(std::isfinite(wind[0]) && std::isfinite(wind[1]), "wind must be (u, w) [m/s] along x and z, finite (got (",
                  wind[0], ", ", wind[1], "))");
-  problems.check(spacing > 0.0 && std::isfinite(spacing), "spacing must be > 0 m and finite (got ", spacing, ")");
+  // A cell from a micrometre (far below any inner scale of air) to 10 km (tiles beyond the scene's
+  // reach); 1e-300 and 1e300 overflowed the synthesis ("coefficients must be finite").
+  problems.check(spacing >= kFinestSpacing && spacing <= kCoarsestSpacing, "spacing must be in [", kFinestSpacing, ", ",
+                 kCoarsestSpacing, "] m (got ", spacing, ")");
   if (depth) problems.check(*depth > 0.0 && std::isfinite(*depth), "depth must be > 0 m or None (uniform) (got ", *depth, ")");
   if (cells && size) {
     problems.add("give cells or size, not both (got cells=", *cells, ", size=", *size, ")");

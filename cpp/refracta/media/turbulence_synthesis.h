@@ -65,8 +65,8 @@ struct TurbulenceSettings {
   // (u, w) [m/s] along x and z: the pattern at time t is shifted by (u t, 0, w t) (Taylor's frozen
   // flow). (0, 2): a light breeze across the examples' line of sight (+x).
   std::array<double, 2> wind = {0.0, 2.0};
-  // The grid's cell [m]: the renderer steps half a cell through the layer, so a pixel's cost grows
-  // as path length / spacing (benchmarks/bench_realism.py).
+  // The grid's cell [m], in [1e-6, 1e4]: the renderer steps half a cell through the layer, so a
+  // pixel's cost grows as path length / spacing (benchmarks/bench_realism.py).
   double spacing = 0.05;
   // N (the grid is N^3, one period N * spacing wide), or size [m] (N = ceil(size / spacing)); unset
   // both: 256, whose inertial range spans over a decade (x14 within 15 %), where 128 reaches x7.

@@ -14,7 +14,8 @@ namespace refracta {
 void ElevationTableOptions::validate() const {
   Problems problems("ElevationTable");
   trace.check(problems);
-  problems.check(std::isfinite(eye_height), "eye_height must be finite (got ", eye_height, ")");
+  problems.check(std::abs(eye_height) <= kSceneReach, "eye_height must be within the scene's reach, |h| <= ", kSceneReach,
+                 " m (got ", eye_height, ")");
   const double limit = 0.5 * kPi;
   problems.check(min_elevation >= -limit && max_elevation <= limit && min_elevation < max_elevation,
                  "elevations must satisfy -90 deg <= min_elevation < max_elevation <= 90 deg (got ",

@@ -630,6 +630,8 @@ class EditorModel:
         pixel (markers are grabbed within GRAB_RADIUS display pixels; with shift in points mode
         none is: the press places a point however close to a marker)."""
         u, v = _finite(u, "u"), _finite(v, "v")
+        if not _finite(scale, "scale") > 0.0:
+            raise ValueError(f"scale must be > 0 display pixels per image pixel (got {scale!r})")
         if self.mode == "camera":
             kind = "pan" if (button == 2 or shift) else "orbit"
             self._drag = {"kind": kind, "start": (u, v), "camera": self.camera, "before": self._snapshot(kind)}
