@@ -448,7 +448,7 @@ inline constexpr const char mkd_doc_refracta_SolveSettings_accept_angle[] = R"do
 [rad], or its tolerance if larger (PointPair::allowed_miss): 1e-6 rad is far below a pixel of any
 camera.)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_design_per_param[] = R"doc(auto: points per free parameter of the global stage (scan points on its axis; as many again
-quasi-random points, half over the box, half near the start), at most kMostDesignPerParam.)doc";
+quasi-random points, half over the box, half near the start), at most 100000 (kMostDesignPerParam).)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_function_tolerance[] = R"doc(relative change of the cost that ends the solve)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_gradient_tolerance[] = R"doc(ceres: max-norm of the projected gradient)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_local_starts[] = R"doc(auto: local solves from the global stage's best points, at most.)doc";

@@ -165,8 +165,8 @@ class TurbulenceSettings:
     @property
     def spacing(self) -> float:
         """
-        The grid's cell [m]: the renderer steps half a cell through the layer, so a pixel's cost grows as
-        path length / spacing (benchmarks/bench_realism.py).
+        The grid's cell [m], in [1e-6, 1e4]: the renderer steps half a cell through the layer, so a pixel's
+        cost grows as path length / spacing (benchmarks/bench_realism.py).
         """
     @spacing.setter
     def spacing(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2352,7 +2352,7 @@ class SolveSettings:
     def design_per_param(self) -> int:
         """
         auto: points per free parameter of the global stage (scan points on its axis; as many again
-        quasi-random points, half over the box, half near the start), at most kMostDesignPerParam.
+        quasi-random points, half over the box, half near the start), at most 100000 (kMostDesignPerParam).
         """
     @design_per_param.setter
     def design_per_param(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:

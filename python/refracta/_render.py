@@ -11,7 +11,7 @@ from typing import Callable
 import numpy as np
 
 from refracta import _core, _denoise, _options
-from refracta._checks import is_seed
+from refracta._checks import flag, is_seed
 from refracta._progress import progress_callback
 from refracta._sweep import as_executor, map_ordered
 
@@ -402,10 +402,8 @@ def check_render_keywords(
     """render()'s own keywords (those that are not RenderOptions fields) checked before any work,
     by render and by the editor for its render_options; returns the names aovs asks for."""
     wanted = _aov_names(aovs)
-    if not isinstance(return_stats, (bool, np.bool_)):  # "no" is truthy
-        raise ValueError(f"render: return_stats must be True or False (got {return_stats!r})")
-    if not isinstance(denoise, (bool, np.bool_)):
-        raise ValueError(f"denoise must be True or False (got {denoise!r})")
+    flag(return_stats, "render: return_stats")  # "no" is truthy
+    flag(denoise, "denoise")
     if "geographic" in wanted and not callable(getattr(frame, "to_geographic", None)):
         raise ValueError(
             "render: aovs 'geographic' needs frame=, the scene's refracta.geo.LocalFrame (its to_geographic maps "

@@ -445,8 +445,8 @@ def _option(text: str) -> tuple[str, object]:
     return name.strip(), parsed
 
 
-# render's keywords that the render command sets itself: --set NAME would give them twice.
-_SET_BY_THE_COMMAND = {
+# RenderOptions fields the render command sets by its own flags: --set NAME would give them twice.
+_SET_BY_FLAGS = {
     "method": "--method",
     "transport": "--transport",
     "spp": "--spp",
@@ -454,21 +454,26 @@ _SET_BY_THE_COMMAND = {
     "max_length": "--max-length",
     "spectral": "--spectral",
     "seed": "--seed",
-    "denoise": "--denoise",
-    "aovs": "--aovs",
-    "progress": None,
-    "frame": None,
 }
 
 
 def _options_given(pairs: list) -> dict:
-    """--set's NAME=VALUE pairs as keywords; a name given twice is refused (the last would win), and
-    so is one the command sets itself (its own flag, or none: progress, frame)."""
+    """--set's NAME=VALUE pairs as keywords: not render's own keywords (scene, progress,
+    return_stats, aovs, denoise ...: the command's to set), not a field with a flag of its own, and
+    not one given twice (the last would win). Other names reach RenderOptions, which names a wrong one."""
+    import inspect
+
+    import refracta
+    from refracta import _core, _options
+
+    fields = set(_options.fields(_core.RenderOptions))
+    own = set(inspect.signature(refracta.render).parameters) - fields
     options: dict = {}
     for name, value in pairs:
-        if name in _SET_BY_THE_COMMAND:
-            flag = _SET_BY_THE_COMMAND[name]
-            raise ValueError(f"--set {name}: " + (f"give it as {flag}" if flag else "the command sets it itself"))
+        if name in _SET_BY_FLAGS:
+            raise ValueError(f"--set {name}: give it as {_SET_BY_FLAGS[name]}")
+        if name in own:
+            raise ValueError(f"--set {name}: not a refracta.RenderOptions field (the command sets render's {name})")
         if name in options:
             raise ValueError(f"--set {name} is given twice")
         options[name] = value

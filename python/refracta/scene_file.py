@@ -228,7 +228,7 @@ TURBULENCE_KEYS = {
 }
 _SPOT_PARAMETER = re.compile(r"hot_spot\d+_")  # the fields' parameter names of spot i
 # A table header on a line of its own: [name] or [[name]], a comment after it allowed.
-_HEADER = re.compile(r"^\s*\[\[?\s*([A-Za-z0-9_.\"-]+)\s*\]\]?\s*(#.*)?$")
+_HEADER = re.compile(r"^\s*\[\[?\s*([A-Za-z0-9_.\"'-]+)\s*\]\]?\s*(#.*)?$")
 
 
 class _NestedTooDeepError(ValueError):
@@ -309,14 +309,14 @@ class _Locator:
         for number, line in enumerate(self.lines, 1):
             header = _HEADER.match(line)
             if header:
-                current = header.group(1).replace('"', "")  # ["camera"] is [camera]
+                current = re.sub("[\"']", "", header.group(1))  # ["camera"] and ['camera'] are [camera]
                 if current == table:
                     count += 1
                     if index is None or count == index:
                         header_line = number
                 continue
             if current == table and (index is None or count == index) and key is not None:
-                if re.match(rf'\s*"?{re.escape(key)}"?\s*=', line):
+                if re.match(rf"\s*[\"']?{re.escape(key)}[\"']?\s*=", line):
                     return number
             if current is None and not header_line and re.match(rf"\s*{re.escape(table)}\s*=", line):
                 header_line = number  # a top-level key where a table belongs: camera = 5

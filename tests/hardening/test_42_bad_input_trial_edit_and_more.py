@@ -70,8 +70,9 @@ def test_the_command_line_refuses_set_for_its_own_flags(tmp_path, capsys):
     base = ["render", str(DATA / "hot_road.toml"), "--size", "16x6", "-o", str(tmp_path / "a.png")]
     assert cli.main([*base, "--set", "spp=1"]) == 1  # was a TypeError traceback: spp given twice
     assert "--set spp: give it as --spp" in capsys.readouterr().err
-    assert cli.main([*base, "--set", "progress=false"]) == 1
-    assert "--set progress: the command sets it itself" in capsys.readouterr().err
+    for name in ("progress", "scene", "return_stats"):  # render's own keywords: tracebacks or a late failure
+        assert cli.main([*base, "--set", f"{name}=true"]) == 1
+        assert f"--set {name}: not a refracta.RenderOptions field" in capsys.readouterr().err
 
 
 def test_comparisons_refuse_keywords_they_set_per_render():
@@ -109,7 +110,6 @@ def hot_road():
 @pytest.mark.parametrize(
     "keywords, message",
     [
-        (dict(render_options=dict(aovs=["zz"])), "render_options: render: unknown aovs"),
         (dict(render_options=dict(denoise="yes")), "render_options: denoise must be True or False"),
         (dict(render_options=dict(tiles=0)), "render_options: tiles must be a tile size >= 1"),
         (dict(render_options=dict(executor=5)), "render_options: executor must be None"),
@@ -117,6 +117,9 @@ def hot_road():
         (dict(solve_options=dict(bounds={"zz": (0, 1)})), "bounds given for 'zz', which is not a parameter"),
         (dict(solve_options=dict(derivatives="zzz")), "derivatives must be 'auto', 'automatic' or 'numeric'"),
         (dict(turbulence=5), "turbulence must be a refracta.Turbulence or None"),
+        (dict(render_options=dict(return_stats=True)), "render_options: 'return_stats' is the editor's to choose"),
+        (dict(render_options=dict(aovs=["distance"])), "render_options: 'aovs' is the editor's to choose"),
+        (dict(render_options=dict(tiles=(16, 1))), r"tiles \(nx, ny\) must be whole numbers in \[1, 8\]"),
         (dict(scene_text="[[[bad toml"), "scene_text is not a scene file's TOML text"),
     ],
 )
@@ -139,6 +142,13 @@ def test_importing_pairs_with_bad_options_changes_nothing(hot_road, tmp_path):
     with pytest.raises(ValueError, match="max_iterations must be >= 1"):
         model.import_pairs(path)
     assert model.free is None and model.solve_options == {}  # free was set before the options failed
+    # A good file's free, stop height and options come back with undo, as its pairs do.
+    path.write_text(json.dumps({"free": ["surface_dt"], "stop_height": 0.5, "max_iterations": 7, "pairs": []}))
+    model.import_pairs(path)
+    assert (model.free, model.stop_height, model.solve_options) == (("surface_dt",), 0.5, {"max_iterations": 7})
+    model.undo()
+    assert (model.free, model.stop_height, model.solve_options) == (None, None, {})
+    model.close()
 
 
 def test_on_off_arguments_take_true_or_false_only():

@@ -28,10 +28,11 @@ void bind_lights(py::module_& m);
 void bind_spectrum(py::module_& m);
 void bind_dispersion(py::module_& m);
 void bind_runtime(py::module_& m);
+// Last: every refracta class's objects made by __new__ alone raise TypeError when used (unbuilt_objects.cpp).
+void refuse_unbuilt_objects();
 // A UserWarning of `message` (with the GIL held); a warning turned into an error raises.
 void warn(const std::string& message);
 // Moves the queued messages of Ceres (glog) to Python's logging; call with the GIL held.
 void emit_library_log();
-
 
 }  // namespace refracta

@@ -74,9 +74,16 @@ void CustomField::evaluate(const Vec3d& p, double* n, Vec3d* grad) const {
 }
 
 void CustomField::check_once(const Vec3d& p) const {
-  if (checked_) return;  // the GIL is held: one check at a time
-  check_first_evaluation(p, call_ior({p})[0], call_grad({p})[0]);
-  checked_ = true;  // only once passed: a field refused once is refused at every use
+  // Claimed before the check runs: the user's functions may let other threads take the GIL, which
+  // would start checks of their own. A refusal releases it, so a field refused once is refused at
+  // every use.
+  if (checked_.exchange(true)) return;
+  try {
+    check_first_evaluation(p, call_ior({p})[0], call_grad({p})[0]);
+  } catch (...) {
+    checked_ = false;
+    throw;
+  }
 }
 
 void CustomField::check_first_evaluation(const Vec3d& p, double n, const Vec3d& grad) const {

@@ -48,7 +48,7 @@ struct SolveSettings {
   // start at all within 15 iterations.
   int quick_iterations = 15;
   // auto: points per free parameter of the global stage (scan points on its axis; as many again
-  // quasi-random points, half over the box, half near the start), at most kMostDesignPerParam.
+  // quasi-random points, half over the box, half near the start), at most 100000 (kMostDesignPerParam).
   int design_per_param = 16;
   // auto: local solves from the global stage's best points, at most.
   int local_starts = 4;

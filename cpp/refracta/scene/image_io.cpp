@@ -19,15 +19,28 @@ std::string extension(const std::string& path) {
   return ext;
 }
 
+// The kind of file at `path` (not_found when nothing is there); IoError naming `doing` and the
+// system's reason when it cannot be told (a name too long, a folder without permission).
+std::filesystem::file_type file_type_at(const std::string& path, const char* doing) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (error && status.type() != std::filesystem::file_type::not_found) {
+    throw IoError(concat("cannot ", doing, " '", path, "': ", error.message()));
+  }
+  return status.type();
+}
+
 }  // namespace
 
 void check_readable(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw IoError(concat("no such image file: '", path, "'"));
-  if (!std::filesystem::is_regular_file(path)) throw IoError(concat("cannot read '", path, "': not a regular file"));
+  const std::filesystem::file_type type = file_type_at(path, "read");
+  if (type == std::filesystem::file_type::not_found) throw IoError(concat("no such image file: '", path, "'"));
+  if (type != std::filesystem::file_type::regular) throw IoError(concat("cannot read '", path, "': not a regular file"));
 }
 
 void check_writable(const std::string& path) {
-  if (std::filesystem::exists(path) && !std::filesystem::is_regular_file(path)) {
+  const std::filesystem::file_type type = file_type_at(path, "write");
+  if (type != std::filesystem::file_type::not_found && type != std::filesystem::file_type::regular) {
     throw IoError(concat("cannot write '", path, "': not a regular file"));
   }
 }

@@ -115,7 +115,8 @@ class DisplayImage:
 
 @dataclass(frozen=True)
 class _Snapshot:
-    """What undo restores: references to the immutable scene, camera and field, the pairs tuple."""
+    """What undo restores: references to the immutable scene, camera and field, the pairs tuple, the
+    solve's free parameters, stop height and options."""
 
     label: str
     scene: _core.Scene
@@ -126,6 +127,8 @@ class _Snapshot:
     turbulence: Turbulence | None
     pairs: tuple
     free: tuple[str, ...] | None
+    stop_height: float | None
+    solve_options: dict  # replaced, never changed in place
     result: EditResult | None
     fan_png: bytes | None
 
@@ -137,14 +140,16 @@ def _finite(value, name: str) -> float:
     return number
 
 
-def _check_options(render_options: dict, solve_options: dict, camera: _core.Camera, field: _core.IndexField) -> None:
+def _check_options(
+    render_options: dict, solve_options: dict, camera: _core.Camera, field: _core.IndexField, preview_scale: int
+) -> None:
     """Builds the options every render and solve will, and checks render's and solve's own keywords
-    as they would, so a bad one fails here, not later in the background (where it would only be a
-    message)."""
+    as they would (tiles at the preview's size too), so a bad one fails here, not later in the
+    background (where it would only be a message)."""
     import inspect
 
     from refracta import _options, edit
-    from refracta._render import check_render_keywords, render
+    from refracta._render import check_render_keywords, render, tile_bounds
     from refracta._render import render_options as build_render_options
 
     # render()'s own arguments that are not RenderOptions fields (aovs, denoise, ...).
@@ -153,6 +158,9 @@ def _check_options(render_options: dict, solve_options: dict, camera: _core.Came
     own = {k: v for k, v in render_options.items() if k in named}
     try:
         check_render_keywords(camera, render_options.get("method"), **own)
+        if own.get("tiles") is not None:
+            small = camera.width // preview_scale, camera.height // preview_scale
+            tile_bounds(max(1, small[0]), max(1, small[1]), own["tiles"])
         build_render_options(**{k: v for k, v in render_options.items() if k not in named})
     except (ValueError, TypeError) as error:  # TypeError: a keyword render does not take
         raise ValueError(f"render_options: {error}") from None
@@ -313,14 +321,16 @@ class EditorModel:
         self.render_options = dict(render_options or {})
         if max_length is not None:
             self.render_options["max_length"] = _finite(max_length, "max_length")
-        for reserved in ("progress", "method"):  # each render job passes its own
+        # Each render job passes its own, and shows one image: a tuple (aovs, return_stats) or a
+        # second scene would break the jobs in the background.
+        for reserved in ("progress", "method", "aovs", "return_stats", "stats", "frame", "scene", "camera", "field"):
             if reserved in self.render_options:
                 raise ValueError(f"render_options: {reserved!r} is the editor's to choose")
         self.solve_options = dict(solve_options or {})
         for reserved in ("free", "ground", "stop_height", "progress"):
             if reserved in self.solve_options:
                 raise ValueError(f"solve_options: pass {reserved!r} as the editor's own argument")
-        _check_options(self.render_options, self.solve_options, camera, field)
+        _check_options(self.render_options, self.solve_options, camera, field, int(preview_scale))
         self.preview_scale = int(preview_scale)
         if display is not None and not isinstance(display, dict):
             raise ValueError(f"display must be a dict of refracta.io.to_display keywords (got {display!r})")
@@ -375,6 +385,8 @@ class EditorModel:
             self.turbulence,
             self.pairs,
             self.free,
+            self.stop_height,
+            self.solve_options,
             self.result,
             self.fan_png,
         )
@@ -418,6 +430,7 @@ class EditorModel:
                 )
                 self.turbulence, self.scene_folder = state.turbulence, state.scene_folder
                 self.pairs, self.free, self.result, self.fan_png = state.pairs, state.free, state.result, state.fan_png
+                self.stop_height, self.solve_options = state.stop_height, state.solve_options
                 self.pending_source, self._drag = None, None
                 if self.selected is not None and self.selected >= len(self.pairs):
                     self.selected = None
@@ -981,7 +994,7 @@ class EditorModel:
             given = options.pop("stop_height")
             stop_height = None if given is None else _finite(given, "stop_height")
         solve_options = {**self.solve_options, **options}
-        _check_options(self.render_options, solve_options, self.camera, self.field)
+        _check_options(self.render_options, solve_options, self.camera, self.field, self.preview_scale)
         label = f"load pairs from {Path(path).name}"
         self._replace_pairs(pairs, label, free=free, stop_height=stop_height, solve_options=solve_options)
         self.say(f"Loaded {len(pairs)} pair(s) from {path}.", "success")
