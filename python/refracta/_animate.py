@@ -105,7 +105,13 @@ def geometric_noise_map(
         np.exp(-0.5 * (2.0 * math.pi * np.fft.fftfreq(nx)) ** 2 * correlation_pixels**2).sum()
         * np.exp(-0.5 * (2.0 * math.pi * np.fft.fftfreq(ny)) ** 2 * correlation_pixels**2).sum()
     )
-    gain = np.sqrt(nx * ny * power / full) * np.exp(-1j * (kx * vx + ky * vy) * time)
+    shift_x, shift_y = vx * time, vy * time
+    if not (math.isfinite(shift_x) and math.isfinite(shift_y)):
+        raise ValueError(f"geometric_noise: speed x time must be a finite shift in pixels (got {speed!r} x {time!r})")
+    # The pattern repeats with the grid: its shift modulo the grid is the same pattern, and stays
+    # exact however long the animation runs (time=1e308 gave NaN angles, reported by Camera.jittered).
+    shift_x, shift_y = math.fmod(shift_x, nx), math.fmod(shift_y, ny)
+    gain = np.sqrt(nx * ny * power / full) * np.exp(-1j * (kx * shift_x + ky * shift_y))
     out = np.empty((height, width, 2))
     for c in range(2):
         noise = rng.standard_normal((ny, nx))

@@ -178,3 +178,16 @@ def test_the_editor_refuses_a_bad_display_scale(hot_road):
         with pytest.raises(ValueError, match="scale"):
             model.pointer_down(10.0, 5.0, scale=scale)
     model.close()
+
+
+def test_geometric_noise_at_a_huge_time_is_the_periodic_pattern_or_named():
+    from refracta._animate import _fft_size, geometric_noise_map
+
+    # The pattern repeats with its FFT grid (30 + 4 x 3 pixels wide: 45), so a shift of one period
+    # is the same pattern exactly, and a shift of 1e300 pixels a finite one (it gave NaN angles).
+    period = _fft_size(30 + 12) / 10.0
+    start = geometric_noise_map(20, 30, 1e-3, 3.0, seed=1, time=0.0)
+    np.testing.assert_array_equal(geometric_noise_map(20, 30, 1e-3, 3.0, seed=1, time=period), start)
+    assert np.isfinite(geometric_noise_map(20, 30, 1e-3, 3.0, seed=1, time=1e299)).all()
+    with pytest.raises(ValueError, match=r"speed x time must be a finite shift in pixels"):
+        geometric_noise_map(20, 30, 1e-3, 3.0, seed=1, time=1e308)  # 10 pixels/s x 1e308 s overflows
