@@ -79,8 +79,9 @@ def real_array(value, what: str, shape: tuple[int, ...] | None = None) -> np.nda
     arrays, whose imaginary parts it would drop, and numbers beyond float64's range (10**400)."""
     kind = ""
     try:
-        kind = np.asarray(value).dtype.kind
-        array = None if kind in "bUSmMc" else np.asarray(value, dtype=np.float64)
+        raw = np.asarray(value)
+        kind = raw.dtype.kind
+        array = None if kind in "bUSmMc" else np.asarray(raw, dtype=np.float64)
     except (TypeError, ValueError, OverflowError):
         array = None
     if array is None or _holds_bool(value) or (shape is not None and array.shape != shape):

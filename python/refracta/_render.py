@@ -388,6 +388,16 @@ def render(
     return result
 
 
+def own_keywords() -> set[str]:
+    """render()'s keywords that are not RenderOptions fields: scene, camera, field, progress,
+    return_stats, aovs, denoise, frame, executor, tiles, stats."""
+    import inspect
+
+    fields = set(_options.fields(_core.RenderOptions))
+    parameters = inspect.signature(render).parameters.items()
+    return {name for name, p in parameters if p.kind is not p.VAR_KEYWORD} - fields
+
+
 def check_render_keywords(
     camera: _core.Camera,
     method: str | None,

@@ -461,13 +461,9 @@ def _options_given(pairs: list) -> dict:
     """--set's NAME=VALUE pairs as keywords: not render's own keywords (scene, progress,
     return_stats, aovs, denoise ...: the command's to set), not a field with a flag of its own, and
     not one given twice (the last would win). Other names reach RenderOptions, which names a wrong one."""
-    import inspect
+    from refracta._render import own_keywords
 
-    import refracta
-    from refracta import _core, _options
-
-    fields = set(_options.fields(_core.RenderOptions))
-    own = set(inspect.signature(refracta.render).parameters) - fields
+    own = own_keywords()
     options: dict = {}
     for name, value in pairs:
         if name in _SET_BY_FLAGS:

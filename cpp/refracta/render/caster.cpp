@@ -693,8 +693,8 @@ std::optional<Vec3d> Caster::meets_plane(const Vec3d& origin, const Vec3d& dir, 
   double best_gap = std::numeric_limits<double>::infinity();
   auto consider = [&](const RayNode<double>& a, const RayNode<double>& b) {
     if (b.s < s_lo || a.s > s_hi) return;
-    const double fa = normal.dot(a.x) - offset, fb = normal.dot(b.x) - offset;
-    if ((fa > 0.0) == (fb > 0.0) && fa != 0.0) return;
+    // Every segment: the roots of its quintic find a dip through the plane and out again, which
+    // a test of the ends' sides skipped (first_plane_crossing rejects the others cheaply).
     const PathSegment<double> segment(a, b);
     const double u = first_plane_crossing(segment, normal, offset);
     if (!(u >= 0.0)) return;

@@ -90,7 +90,6 @@ void write_image_channels(const std::string& path, const Image& image, const std
   if (!out->close()) throw IoError(concat("cannot write '", path, "': ", out->geterror()));
 }
 
-
 std::vector<std::string> read_channel_names(const std::string& path) {
   check_readable(path);
   auto in = OIIO::ImageInput::open(path);

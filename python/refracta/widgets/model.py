@@ -146,15 +146,11 @@ def _check_options(
     """Builds the options every render and solve will, and checks render's and solve's own keywords
     as they would (tiles at the preview's size too), so a bad one fails here, not later in the
     background (where it would only be a message)."""
-    import inspect
-
-    from refracta import _options, edit
-    from refracta._render import check_render_keywords, render, tile_bounds
+    from refracta import edit
+    from refracta._render import check_render_keywords, own_keywords, tile_bounds
     from refracta._render import render_options as build_render_options
 
-    # render()'s own arguments that are not RenderOptions fields (aovs, denoise, ...).
-    fields = set(_options.fields(_core.RenderOptions))
-    named = {n for n, p in inspect.signature(render).parameters.items() if p.kind is not p.VAR_KEYWORD} - fields
+    named = own_keywords()  # render's own arguments, not RenderOptions fields (aovs, denoise, ...)
     own = {k: v for k, v in render_options.items() if k in named}
     try:
         check_render_keywords(camera, render_options.get("method"), **own)
