@@ -1191,9 +1191,14 @@ class Camera:
         "geometric noise" (the follow-up editor's cheap shimmer); project() ignores it. ValueError for a map
         of another size or with non-finite angles.
         """
-    def pick(self, scene: Scene, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex) -> typing.Any:
+    def pick(self, scene: Scene, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex, field: IndexField | None = None, max_length: typing.SupportsFloat | typing.SupportsIndex | None = None) -> typing.Any:
         """
-        The scene point seen at pixel (u, v) without atmosphere (straight ray), or None.
+        The scene point [m] seen at film position (u, v) [pixels; a pixel's centre at +0.5], or None.
+        field=None: along the straight ray of the scene's own frame. With a field: along the path through
+        it, at most max_length [m] long (None: as far as scene coordinates go; curved paths by the
+        render's default options). Over a CurvedEarth's flat frame the point seen without the air is
+        pick(scene, u, v, refracta.without_refraction(field)): the scene's own straight ray would
+        cross a flat Earth.
         """
     def project(self, points: typing.Any) -> typing.Any:
         """
@@ -2597,6 +2602,11 @@ class SolveSummary:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...
+    @property
+    def at_bounds(self) -> list[str]:
+        """
+        free parameters the result left on a bound of the search (the message says which bound): the best fit may lie beyond it
+        """
     @property
     def backend(self) -> str:
         """

@@ -80,19 +80,25 @@ def _ground_height(scene: _core.Scene, bounds) -> float | None:
     return float(lower[1]) if lower[1] == upper[1] else None
 
 
+def _straight_over_a_sphere(field) -> bool:
+    """Whether method 'straight' through `field` follows a spherical Earth's straight lines (C++
+    straight_air): like curved rays they end after max_length; over a flat Earth they have none."""
+    return isinstance(field, _core.IndexField) and math.isfinite(field.earth_radius)
+
+
 def _check_frame_radius(frame, field, method: str) -> None:
     """A SceneWarning where the frame= of the 'geographic' readout flattens another Earth than the
     rays' field: its latitudes, longitudes and heights would then be of points the render did not see."""
     if field is not None and not isinstance(field, _core.IndexField):
         return  # the render names the field's type itself
-    air = None if field is None or method == "straight" else field.earth_radius
-    ours = math.inf if air is None else float(air)
+    # Straight rays over a field's Earth are straight lines of that Earth's true geometry.
+    ours = math.inf if field is None else float(field.earth_radius)
     theirs = float(getattr(frame, "earth_radius", math.inf))
     if ours == theirs or (math.isfinite(ours) and math.isfinite(theirs) and abs(ours - theirs) <= 1e-9 * ours):
         return
     warnings.warn(
         f"render: frame= flattens an Earth of radius {theirs:g} m but the rays go through "
-        + ("straight (flat) air" if air is None else f"a field of earth_radius {ours:g} m")
+        + ("straight (flat) air" if field is None else f"a field of earth_radius {ours:g} m")
         + ": the 'geographic' readout maps points the render did not see; give the frame and CurvedEarth one radius",
         SceneWarning,
         stacklevel=3,
@@ -272,6 +278,10 @@ def render(
     `max_length` [m] and see the sky in their last direction (over a CurvedEarth turned into the
     world frame by the central angle: a sun or sky far beyond the horizon is where it should be).
     'straight' -- ray casting without atmosphere (the reference); with field=None both are straight.
+    Over a field with an Earth radius (a CurvedEarth: the scene is its flat frame) the rays are the
+    straight lines of the true geometry, bending toward the sky in the flat frame, so the Earth's
+    bulge hides what it hides without air; they end after `max_length` like curved rays (the
+    rays of refracta.without_refraction(field)). Over a flat Earth they have no max_length.
     'raster_march' -- the original editor's method: the scene rasterized from the camera (with
     `guard_band`), each pixel's curved ray marched ('rk45' to `tol`, or march='rk4' with `step` [m]
     for at most `max_steps` steps: the original's 0.3 m x 1000) until a step lands behind the depth
@@ -360,7 +370,7 @@ def render(
         # pybind11's signature, and so the generated stub, cannot mark as optional.
         image, counts = _core._render(scene, camera, field, settings, callback)  # type: ignore[arg-type]
     _check_scene(scene, camera, field, settings.method)  # with the image: a refused render needs no hint
-    if field is not None and settings.method != "straight":  # straight rays have no max_length
+    if field is not None and (settings.method != "straight" or _straight_over_a_sphere(field)):
         _check_reach(scene, camera, settings.max_length)
         march_reach = settings.step * settings.max_steps
         if settings.method == "raster_march" and settings.march == "rk4" and march_reach < settings.max_length:

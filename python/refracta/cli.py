@@ -626,7 +626,7 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     scene, camera, field = loaded
     if field is None:
         raise ValueError(f"{scene_path}: has no [atmosphere] table to edit")
-    pairs, options = edit.load_pairs(pairs_path, scene, camera)
+    pairs, options = edit.load_pairs(pairs_path, scene, camera, field)
     if not pairs:  # (a file the editor saved before any pair was placed)
         raise ValueError(f"{pairs_path}: 'pairs' is empty: give at least one pair to solve for")
     if backend is not None:

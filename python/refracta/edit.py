@@ -46,6 +46,7 @@ import numpy as np
 from refracta import _core, _options
 from refracta._checks import is_number, number, on_image, real_array
 from refracta._progress import progress_callback
+from refracta._rays import without_refraction
 
 # The options and summary of a solve, bound from C++ (edit_settings.h, point_pair.h).
 SolveSettings = _core.SolveSettings
@@ -100,8 +101,10 @@ class PointPair:
         destination: where the image should appear -- a pixel ``(u, v)`` of the camera passed to
             solve(), or a 3D point [m] the eye looks toward (only its direction from the eye
             matters).
-        source: the 3D scene point [m] that should be seen there (``camera.pick(scene, u, v)``
-            finds the point a pixel shows without atmosphere).
+        source: the 3D scene point [m] that should be seen there
+            (``camera.pick(scene, u, v, refracta.without_refraction(field))`` finds the point a
+            pixel shows without atmosphere; over a CurvedEarth without the field it would be a
+            flat Earth's).
         weight: importance (> 0); the pair's miss is scaled by sqrt(weight) in the cost.
         margin: how far (>= 0) the path may pass from the source at no cost: metres, or pixels
             for a pixel destination (converted at the source's distance). The cost is a dead zone,
@@ -592,7 +595,7 @@ def _file_option_names() -> set[str]:
 
 
 def load_pairs(
-    path, scene: _core.Scene | None = None, camera: _core.Camera | None = None
+    path, scene: _core.Scene | None = None, camera: _core.Camera | None = None, field: _core.IndexField | None = None
 ) -> tuple[list[PointPair], dict]:
     """Point pairs from a JSON file, and the solve options it carries.
 
@@ -603,7 +606,9 @@ def load_pairs(
          "free": ["surface_dt"], "backend": "ceres", "stop_height": 0.0}  # optional solve() options
 
     A source given as a pixel is the scene point the camera sees there without atmosphere
-    (camera.pick), so `scene` and `camera` are needed for it. The key "ground" is the deprecated
+    (camera.pick), so `scene` and `camera` are needed for it, and over a CurvedEarth the `field`
+    the pairs are for: its Earth's straight lines (refracta.without_refraction(field)) pick the
+    point; without it the scene's flat frame would be a flat Earth. The key "ground" is the deprecated
     spelling of "stop_height" (read for one release, with a DeprecationWarning). Raises
     refracta.IoError for a missing file and ValueError naming the file and the pair for anything
     malformed.
@@ -612,6 +617,8 @@ def load_pairs(
     import stat
     from pathlib import Path
 
+    if field is not None and not isinstance(field, _core.IndexField):
+        raise ValueError(f"load_pairs: field must be a refracta index field or None (got {type(field).__name__})")
     path = Path(path)
     try:
         # Refused before opening: reading a FIFO (or a device) waits for a writer that may never come.
@@ -654,7 +661,7 @@ def load_pairs(
                     f"{where}: source pixel ({u:g}, {v:g}) lies outside the camera's {camera.width} x "
                     f"{camera.height} image (u in [0, {camera.width}], v in [0, {camera.height}])"
                 )
-            source = camera.pick(scene, u, v)
+            source = camera.pick(scene, u, v, without_refraction(field))
             if source is None:
                 raise ValueError(f"{where}: the camera sees no scene object at pixel ({u:g}, {v:g})")
         try:

@@ -200,3 +200,27 @@ def test_a_source_behind_the_eye_is_named_as_such():
     )
     assert not result.success
     assert "its source lies 400.00125 m from the eye, behind it as seen toward its destination" in result.message
+
+
+def test_a_result_on_a_bound_of_the_search_says_so():
+    """The impossible request above ends on alpha's upper bound (1e-3): the summary lists it and
+    the message names the bound and how to widen it (a trial's marine layer fitted 10 m, the
+    default upper bound of surface_depth, and reported success without a word). A result inside
+    its bounds lists nothing."""
+    result = solve(
+        refracta.LinearSquaredProfile(),
+        (0.0, 1.5, 0.0),
+        [PointPair((1.0, 1.5, 0.0), (1000.0, 600.0, 0.0))],
+        free="alpha",
+    )
+    assert result.at_bounds == ["alpha"]
+    assert result.field.params["alpha"] == pytest.approx(1e-3, rel=1e-5)  # the unit box's 1e-6 of its width
+    assert "lies on a bound of the search: alpha = " in result.message
+    assert "(its upper bound 0.001)" in result.message and "bounds={'alpha': (lower, upper)}" in result.message
+    inside = solve(
+        refracta.LinearSquaredProfile(),
+        (0.0, 1.5, 0.0),
+        [PointPair((1.0, 1.5, 0.0), (1000.0, 3.0, 0.0))],
+        free="alpha",
+    )
+    assert inside.success and inside.at_bounds == [] and "bound of the search" not in inside.message

@@ -262,6 +262,7 @@ def test_08_bad_inputs_name_the_argument():
     for kwargs, name in [
         (dict(detail_radius=1e4), "detail_radius"),
         (dict(detail_radius=0.0), "detail_radius"),
+        (dict(detail_radius=1e-9), "detail_radius must be at least the waves' spacing"),  # segfaulted (a trial)
         (dict(size=80.0), "size"),
         (dict(centre=(float("nan"), 0.0)), "centre"),
         (dict(height=float("inf")), "height"),

@@ -2,9 +2,11 @@
 // constructors and the geometric jitter.
 #include "generated/docstrings.h"
 #include "refracta/bindings/bind_scene.h"
+#include "refracta/render/picking.h"
 #include "refracta/render/scene_building.h"
 
 #include <cmath>
+#include <optional>
 #include <utility>
 
 namespace refracta {
@@ -146,12 +148,18 @@ void bind_camera(py::module_& m) {
           py::arg("points"), "(u, v, depth) per point (N, 3); depth [m] along the view axis, <= 0 behind.")
       .def(
           "pick",
-          [](const Camera& c, const RenderScene& s, double u, double v) -> py::object {
-            const auto hit = s.geometry.intersect(c.position(), c.pixel_direction(u, v), kSceneReach);
-            return hit ? py::object(vector_to_array(hit->point)) : py::object(py::none());
+          [](const Camera& c, const RenderScene& s, double u, double v, const std::optional<std::shared_ptr<IndexField>>& field,
+             std::optional<double> max_length) -> py::object {
+            const auto point = picked_point(s.geometry, c, field.value_or(nullptr), u, v, max_length);
+            return point ? py::object(vector_to_array(*point)) : py::object(py::none());
           },
-          py::arg("scene"), py::arg("u"), py::arg("v"),
-          "The scene point seen at pixel (u, v) without atmosphere (straight ray), or None.")
+          py::arg("scene"), py::arg("u"), py::arg("v"), py::arg("field") = py::none(), py::arg("max_length") = py::none(),
+          "The scene point [m] seen at film position (u, v) [pixels; a pixel's centre at +0.5], or None.\n"
+          "field=None: along the straight ray of the scene's own frame. With a field: along the path through\n"
+          "it, at most max_length [m] long (None: as far as scene coordinates go; curved paths by the\n"
+          "render's default options). Over a CurvedEarth's flat frame the point seen without the air is\n"
+          "pick(scene, u, v, refracta.without_refraction(field)): the scene's own straight ray would\n"
+          "cross a flat Earth.")
       .def_property_readonly("position", [](const Camera& c) { return vector_to_array(c.position()); })
       .def_property_readonly("look_at", [](const Camera& c) { return vector_to_array(c.look_at()); })
       .def_property_readonly("up", [](const Camera& c) { return vector_to_array(c.up_hint()); }, DOC(refracta, Camera, up_hint))

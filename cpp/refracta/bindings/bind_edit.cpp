@@ -127,6 +127,9 @@ const std::vector<SummaryField>& summary_fields() {
       plain("camera", &S::camera, "with camera parameters free: the solved Camera; else None"),
       plain("free", &S::free, "the parameters that were optimised"),
       plain("insensitive", &S::insensitive, "requested free, but no pair depends on them: held fixed"),
+      plain("at_bounds", &S::at_bounds,
+            "free parameters the result left on a bound of the search (the message says which bound): the best "
+            "fit may lie beyond it"),
       plain("backend", &S::backend, "'ceres' or 'nlopt:<ALGORITHM>'"),
       plain("derivatives", &S::derivatives, "'automatic' or 'numeric'"),
       plain("initial_cost", &S::initial_cost, "[m^2] 1/2 sum weight * (miss - margin)^2 at the start"),

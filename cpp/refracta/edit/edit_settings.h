@@ -122,6 +122,9 @@ struct SolveSummary {
   std::optional<Camera> camera;
   std::vector<std::string> free;     // the parameters that were optimised
   std::vector<std::string> insensitive;  // requested free, but no pair depends on them: held fixed
+  // Free parameters the result left on a bound of the search box (within 1e-6 of its unit width):
+  // the best fit may lie beyond it (the message says which bound, and how to widen it).
+  std::vector<std::string> at_bounds;
   std::string backend, derivatives;
   double initial_cost = 0.0, cost = 0.0;   // 1/2 sum of weight * miss^2 [m^2]
   std::vector<double> distances;     // per pair, unweighted [m]

@@ -355,6 +355,27 @@ std::string why_unmet(const EditProblem& problem, const std::vector<double>& res
   return out;
 }
 
+// The free parameters that x leaves on a bound of the search box, into out->at_bounds and its
+// message: a fit that stops there may have wanted to go on (a trial's marine layer, 60 m deep,
+// fitted 10 m, the default upper bound of surface_depth, with a surface_dt to match).
+void on_bounds(const EditProblem& problem, const std::vector<double>& x, SolveSummary* out) {
+  constexpr double kOnBound = 1e-6;  // of the parameter's unit width: well below any step a solver takes
+  const std::vector<std::string> names = problem.free_names();
+  std::string which;
+  for (int j = 0; j < problem.num_free(); ++j) {
+    const double u = problem.to_unit(j, x[j]);
+    if (u > kOnBound && u < 1.0 - kOnBound) continue;
+    out->at_bounds.push_back(names[j]);
+    const bool upper = u >= 1.0 - kOnBound;
+    which += concat(which.empty() ? "" : ", ", names[j], " = ", x[j], " (its ", upper ? "upper" : "lower", " bound ",
+                    upper ? problem.upper()[j] : problem.lower()[j], ")");
+  }
+  if (which.empty()) return;
+  out->message += concat(". The result lies on a bound of the search: ", which,
+                         "; the best fit may lie beyond it: widen it with bounds={'", out->at_bounds.front(),
+                         "': (lower, upper)}");
+}
+
 // The strategy from one start (`field`'s values), drawing on the solve's budget: the
 // insensitive-parameter check, the strategy, the measured result. Throws NumericalError when the
 // start cannot trace every pair.
@@ -459,6 +480,7 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
                           " free parameters' combinations (Jacobian rank ", out.rank, ", condition ", out.condition,
                           "); other values of ", concat_names(out.free), " meet them as well");
   }
+  on_bounds(*problem, result.x, &out);
   const std::string failure = problem->context().first_failure();
   if (!failure.empty()) out.message += concat(". Some trial parameters failed to trace: ", failure);
   return out;

@@ -17,6 +17,7 @@
 #include "refracta/render/caster.h"
 #include "refracta/render/film.h"
 #include "refracta/render/hero_casters.h"
+#include "refracta/render/picking.h"
 #include "refracta/render/integrator.h"
 #include "refracta/render/raised_sky.h"
 #include "refracta/render/shimmer_cast.h"
@@ -245,6 +246,13 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                     "method 'straight' or 'curved'");
     }
     return render_raster_march(scene, camera, exact_field, options, control, stats);
+  }
+  // Straight rays over a spherical Earth are straight in its true geometry (straight_air); like
+  // every curved path they end after max_length.
+  if (options.method == RenderMethod::kStraight && exact_field && std::isfinite(exact_field->earth_radius())) {
+    RenderOptions curved = options;
+    curved.method = RenderMethod::kCurved;
+    return render(scene, camera, straight_air(exact_field.get()), curved, control, stats);
   }
   // Height-only air -- the field, or outside its local regions its height-only part -- is
   // tabulated once (to 1e-12 in n) over every height a ray can reach. (Not when rk45 is forced:

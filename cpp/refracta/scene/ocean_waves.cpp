@@ -216,7 +216,8 @@ void add_level(long i0, long i1, long j0, long j1, double spacing, const Vec2d& 
 // full waves, then kFadeBands rings.
 int fade_band(double r, double fade_start, double radius, int first) {
   if (r < fade_start) return first;
-  return first + std::min(kFadeBands, 1 + int((r - fade_start) / (radius - fade_start) * kFadeBands));
+  // In double before the cast: beyond the radius the quotient grows without bound.
+  return first + 1 + int(std::min(double(kFadeBands - 1), (r - fade_start) / (radius - fade_start) * kFadeBands));
 }
 
 }  // namespace
@@ -243,9 +244,10 @@ SeaMeshes sea_meshes(const OceanWaves& waves, const SeaLayout& layout) {
                    c.y(), "))"));
   }
   const double max_radius = 0.5 * std::sqrt(double(kMaxSeaCells)) * spacing - kCoarseStep * spacing;
-  if (!(radius > 0.0) || !(radius <= max_radius)) {
-    problem(concat("detail_radius must be > 0 and at most ", max_radius, " m (", kMaxSeaCells,
-                   " cells of the waves' spacing ", spacing, " m) (got ", radius, ")"));
+  // Below one spacing the patch holds no wave node of its own (a trial's 1e-9 m crashed here).
+  if (!(radius >= spacing) || !(radius <= max_radius)) {
+    problem(concat("detail_radius must be at least the waves' spacing ", spacing, " m and at most ", max_radius,
+                   " m (", kMaxSeaCells, " cells of that spacing) (got ", radius, ")"));
   }
   if (!(layout.size > 0.0) || !std::isfinite(layout.size)) {
     problem(concat("size must be finite and > 0 m (got ", layout.size, ")"));

@@ -672,7 +672,7 @@ class EditorModel:
             self.say(f"Pixel ({u:.1f}, {v:.1f}) lies outside the {width} x {height} image: click on it.", "error")
             return
         if self.pending_source is None:
-            point = self.camera.pick(self.scene, u, v)
+            point = self.camera.pick(self.scene, u, v, without_refraction(self.field))
             if point is None:
                 self.say(
                     f"Nothing at pixel ({u:.1f}, {v:.1f}) to be a source (sky, or beyond the scene): click an object.",
@@ -710,7 +710,7 @@ class EditorModel:
             mu, mv = min(max(mu, 0.0), self.camera.width), min(max(mv, 0.0), self.camera.height)
             self._replace_pair(index, drag["before"].label, record=False, destination=(mu, mv))
         else:
-            point = self.camera.pick(self.scene, mu, mv)
+            point = self.camera.pick(self.scene, mu, mv, without_refraction(self.field))
             if point is None:
                 self.say(
                     f"Nothing at pixel ({mu:.1f}, {mv:.1f}) to be a source; the source stays where it was.", "error"
@@ -982,7 +982,7 @@ class EditorModel:
         refracta.edit.load_pairs raises (IoError, ValueError naming the file and pair)."""
         from refracta.edit import load_pairs
 
-        pairs, options = load_pairs(path, self.scene, self.camera)
+        pairs, options = load_pairs(path, self.scene, self.camera, self.field)
         # Everything checked before anything changes: a bad option fails here, not in a later solve.
         free = self._checked_free(options.pop("free")) if "free" in options else self.free
         stop_height = self.stop_height

@@ -1,0 +1,43 @@
+#include "refracta/render/picking.h"
+
+#include "refracta/core/error.h"
+#include "refracta/media/curved_earth.h"
+#include "refracta/media/fields.h"
+#include "refracta/render/caster.h"
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+namespace refracta {
+
+FieldPtr straight_air(const IndexField* field) {
+  if (!field || !std::isfinite(field->earth_radius())) return nullptr;
+  return std::make_shared<const CurvedEarth>(std::make_shared<const LinearSquaredProfile>(NoConfig{}, std::vector<double>{1.0, 0.0}),
+                                             field->earth_radius());
+}
+
+std::optional<Vec3d> picked_point(const Scene& scene, const Camera& camera, const FieldPtr& field, double u, double v,
+                                  std::optional<double> max_length) {
+  const Vec3d eye = camera.position(), dir = camera.pixel_direction(u, v);
+  const double reach = kSceneReach - eye.cwiseAbs().maxCoeff();
+  const double length = max_length.value_or(reach);
+  if (!(length > 0.0 && length <= reach)) {
+    throw_invalid("pick: max_length must be > 0 and keep the ray within ", kSceneReach,
+                  " m of the origin, where scene coordinates end (at most ", reach, " m from this camera; got ", length,
+                  ")");
+  }
+  if (!field) {
+    const auto hit = scene.intersect(eye, dir, length);
+    return hit ? std::optional(hit->point) : std::nullopt;
+  }
+  RenderOptions options;
+  options.method = RenderMethod::kCurved;
+  options.max_length = length;
+  options.validate();
+  const Caster caster(scene, field.get(), options);
+  const PathEnd end = caster.cast(eye, dir);
+  return end.hit ? std::optional(end.hit->point) : std::nullopt;
+}
+
+}  // namespace refracta
