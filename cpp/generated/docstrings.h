@@ -209,15 +209,15 @@ only over the spots (parameters hot_spot<i>_x, _z, _radius, _dt).)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings[] = R"doc(Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
 published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit ROV
-variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (z_far <=
-z_near: the fragments' own range, in render_raster the frame's).)doc";
+variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (both 0: the
+fragments' own range, in render_raster the frame's).)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_beta[] = R"doc(overestimation in [0, 1]: the share of the fragment's own layer in front)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_bias[] = R"doc(alpha, the weight of the bias vector in [0, 1); unset (None) gives the published value for the
 basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_moments[] = R"doc(4, 6 or 8 power moments; 2, 3 or 4 trigonometric)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_published_bias[] = R"doc(fp32: 5e-7 / 5e-6 / 5e-5 for 4 / 6 / 8 power moments; unorm16: 6e-5 (the Unity HDRP port),
 5e-5, 5e-4; trigonometric: 4e-4 for 2 moments, 2e-4 for 3 and 4.)doc";
-inline constexpr const char mkd_doc_refracta_MboitSettings_z_far[] = R"doc(far end of the log-depth warp [m]; z_far <= z_near: the fragments' own range)doc";
+inline constexpr const char mkd_doc_refracta_MboitSettings_z_far[] = R"doc(far end of the log-depth warp [m]; both 0: the fragments' own range)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_z_near[] = R"doc(near end of the log-depth warp [m])doc";
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings[] = R"doc(How a moment shadow map keeps its four power moments and biases them (shared/MOMENTS.md 2-3):
 depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT 2017);

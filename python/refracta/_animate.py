@@ -10,9 +10,13 @@ executor path shared with refracta.render and refracta.sweep (refracta._sweep.ma
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
+import subprocess
+import tempfile
 from collections.abc import Sequence
+from fractions import Fraction
 from typing import Callable
 
 import numpy as np
@@ -238,7 +242,8 @@ def animate(
         )
     if path is not None:
         path = os.fsdecode(os.fspath(path))  # a bytes path too
-        fps = _checked_file(path, None if "{" in path else _frame_rate(times, fps), given_fps, exposure, tonemap)
+        rate = None if "{" in path else _frame_rate(times, fps)
+        fps = _checked_file(path, rate, given_fps, exposure, tonemap, times.size)
     _check_frames_fit(times.size, camera, path, exposure)
     if not isinstance(denoise, (bool, np.bool_)):
         raise ValueError(f"animate: denoise must be True or False (got {denoise!r})")
@@ -266,29 +271,21 @@ def animate(
     return frames
 
 
-def _checked_file(path: str, fps: float | None, given_fps, exposure, tonemap, where: str = "animate"):
+def _checked_file(
+    path: str, fps: float | None, given_fps, exposure, tonemap, count: int, where: str = "animate"
+) -> float | None:
     """The frame rate to write `path` at (None for frame files), after the checks made before any
-    work: a GIF's rate within its delays' range, fps only for a GIF or an MP4, a known format and
-    its package, the exposure and tone map, the folder there and the file writable."""
+    work: a GIF's or an MP4's rate within what its file holds, fps only for a GIF or an MP4, a
+    known format and its package, the exposure and tone map, a pattern naming each of the `count`
+    frames apart, the folder there and the file writable."""
     _writer_for(path, where)  # an unknown format or a missing package fails before rendering
     if "{" not in path:
         if fps is None:
             raise ValueError(f"{where}: give fps (frames per second) for {path!r}")
-        if path.lower().endswith(".gif") and fps > _GIF_FASTEST:
-            raise ValueError(
-                f"{where}: a GIF's frame delays are whole hundredths of a second, at least 2 (browsers slow "
-                f"shorter ones to 0.1 s): at most {_GIF_FASTEST:g} fps (got {fps:g}"
-                f"{'' if given_fps is not None else ', from the times'}); give fps= or write an MP4"
-            )
-        if path.lower().endswith(".gif") and fps < _GIF_SLOWEST:
-            raise ValueError(
-                f"{where}: a GIF's frame delays are 16-bit hundredths of a second, at most 655.35 s: at least "
-                f"{_GIF_SLOWEST:.6g} fps (got {fps:g}{'' if given_fps is not None else ', from the times'}); "
-                "give fps= (a time-lapse plays faster than it was shot)"
-            )
+        _check_frame_rate(path, fps, "" if given_fps is not None else ", from the times", where)
     elif given_fps is not None:
         raise ValueError(f"{where}: fps is a GIF's or an MP4's; frame files ({path!r}) have no rate")
-    _check_output_settings(path, exposure, tonemap)
+    _check_output_settings(path, exposure, tonemap, count, where)
     folder = os.path.dirname(os.path.abspath(path))
     if "{" not in path and not os.path.isdir(folder):  # ... and so does a folder that is not there
         # (frame files make theirs)
@@ -308,9 +305,11 @@ def write_animation(path, frames, fps: float | None = None, exposure: float | No
 
     Raises:
         ValueError: frames not (T, H, W, 3) finite numbers with T >= 1, fps missing or out of
-            range for the format, an unknown format.
+            range for the format (a GIF: 1/655.35 to 50 fps; an MP4: 1/655.35 fps to 1e4), an
+            unknown format, a pattern that names two frames alike.
         ImportError: Pillow or imageio-ffmpeg missing for a GIF or an MP4.
         FileNotFoundError, OSError: the folder missing, the file not writable.
+        refracta.IoError: ffmpeg failed to write the MP4 (its message given).
     """
     try:
         frames = np.asarray(frames, dtype=np.float32)
@@ -323,7 +322,7 @@ def write_animation(path, frames, fps: float | None = None, exposure: float | No
     path = os.fsdecode(os.fspath(path))
     if "{" not in path and fps is not None:
         fps = _frame_rate(np.zeros(0), fps, "write_animation")  # its range checked
-    fps = _checked_file(path, fps, fps, exposure, tonemap, "write_animation")
+    fps = _checked_file(path, fps, fps, exposure, tonemap, frames.shape[0], "write_animation")
     _writer_for(path)(path, frames, fps, exposure, tonemap)
 
 
@@ -355,8 +354,29 @@ def _check_frames_fit(count: int, camera, path: str | None, exposure) -> None:
         )
 
 
-def _check_output_settings(path: str, exposure, tonemap) -> None:
-    """The file's display settings and frame pattern checked before any frame is rendered."""
+def _check_frame_rate(path: str, fps: float, source: str, where: str) -> None:
+    """ValueError unless a GIF's or an MP4's file holds frames at `fps` (`source`: where fps came from)."""
+    if path.lower().endswith(".gif") and fps > _GIF_FASTEST:
+        raise ValueError(
+            f"{where}: a GIF's frame delays are whole hundredths of a second, at least 2 (browsers slow "
+            f"shorter ones to 0.1 s): at most {_GIF_FASTEST:g} fps (got {fps:g}{source}); give fps= or "
+            "write an MP4"
+        )
+    if fps < _SLOWEST and path.lower().endswith(".gif"):
+        raise ValueError(
+            f"{where}: a GIF's frame delays are 16-bit hundredths of a second, at most 655.35 s: at least "
+            f"{_SLOWEST:.6g} fps (got {fps:g}{source}); give fps= (a time-lapse plays faster than it was shot)"
+        )
+    if fps < _SLOWEST:
+        raise ValueError(
+            f"{where}: an MP4 shows a frame at most 655.35 s (ffmpeg's muxer fails on longer ones): at least "
+            f"{_SLOWEST:.6g} fps (got {fps:g}{source}); give fps= (a time-lapse plays faster than it was shot)"
+        )
+
+
+def _check_output_settings(path: str, exposure, tonemap, count: int, where: str = "animate") -> None:
+    """The file's display settings and frame pattern checked before any frame is rendered: the
+    pattern names each of the `count` frames apart (ValueError naming two it names alike)."""
     from refracta import io
 
     io.settings(None, exposure=exposure, tonemap=tonemap)  # ValueError naming the setting
@@ -368,15 +388,40 @@ def _check_output_settings(path: str, exposure, tonemap) -> None:
             problem = f": {error!r}"
         if problem:
             raise ValueError(
-                f"animate: path's pattern must have one '{{}}' field for the frame number, as "
+                f"{where}: path's pattern must have one '{{}}' field for the frame number, as "
                 f"'frames/f{{:03d}}.png' (got {path!r}{problem})"
             )
+        _check_frame_names(path, count, where)
         _core._check_image_format(path.format(0))  # a format OpenImageIO writes: IoError naming the file
+
+
+def _check_frame_names(path: str, count: int, where: str) -> None:
+    """ValueError naming the first two of frames 0..count-1 that `path`'s pattern names alike (one
+    file written over the other: '{:.0e}' names 10 and 11 both '1e+01'), as the same file
+    ('d{}/../f.png' names every frame 'f.png'), or a frame it cannot name."""
+    first_of: dict[str, int] = {}
+    for i in range(count):
+        try:
+            name = path.format(i)
+        except (KeyError, IndexError, ValueError, TypeError, AttributeError, OverflowError) as error:
+            raise ValueError(f"{where}: path's pattern {path!r} cannot name frame {i}: {error}") from None
+        file = os.path.normcase(os.path.abspath(name))
+        if file in first_of:
+            raise ValueError(
+                f"{where}: path's pattern {path!r} names frames {first_of[file]} and {i} alike ({name!r}): "
+                f"one would overwrite the other; give a field that writes every frame number of 0..{count - 1} "
+                f"apart, as '{{:03d}}'"
+            )
+        first_of[file] = i
 
 
 # A GIF's frame delay is a whole number of hundredths of a second; browsers play 0 or 1 as 10.
 _GIF_FASTEST = 50.0
-_GIF_SLOWEST = 1.0 / 655.35  # a delay of 65535 hundredths of a second
+# The longest frame a GIF or an MP4 holds [s]: a GIF's delay is 16-bit hundredths of a second
+# (655.35 s); ffmpeg's MP4 muxer fails on frames near 2^16 s and longer ("Not yet implemented" at
+# 1/65535 fps from 30 frames on, at 1e-5 fps always; below 1e-6 fps the rational rate _write_mp4
+# passes rounds to 0) and wrote 20000 frames of 655.35 s: the GIF's bound serves both.
+_SLOWEST = 1.0 / 655.35
 
 
 def _check_writable(path: str) -> None:
@@ -456,18 +501,46 @@ def _gif_delays(count: int, fps: float) -> list[int]:
 
 
 def _write_mp4(path, frames, fps, exposure, tonemap):
+    """H.264 in yuv420p through the ffmpeg imageio-ffmpeg ships, run here with the command its
+    write_frames(quality=8) builds for libx264 (crf 10) -- write_frames reads neither ffmpeg's exit
+    status nor its messages: a rate ffmpeg refused wrote no file, or a 261-byte unreadable one, and
+    returned normally. IoError naming the file and ffmpeg's message when ffmpeg fails (the file it
+    began removed)."""
     import imageio_ffmpeg
 
     data = _display_bytes(frames, exposure, tonemap)
     # H.264 in yuv420p needs even sizes: repeat the last row / column.
     data = np.pad(data, ((0, 0), (0, data.shape[1] % 2), (0, data.shape[2] % 2), (0, 0)), mode="edge")
-    writer = imageio_ffmpeg.write_frames(
-        path, (data.shape[2], data.shape[1]), fps=fps, macro_block_size=2, quality=8, ffmpeg_log_level="error"
-    )
-    writer.send(None)
-    for frame in data:
-        writer.send(np.ascontiguousarray(frame))
-    writer.close()
+    command = [
+        imageio_ffmpeg.get_ffmpeg_exe(),
+        *("-y", "-f", "rawvideo", "-vcodec", "rawvideo", "-s", f"{data.shape[2]}x{data.shape[1]}"),
+        *("-pix_fmt", "rgb24", "-r", str(Fraction(fps).limit_denominator()), "-i", "-", "-an"),
+        *("-vcodec", "libx264", "-pix_fmt", "yuv420p", "-crf", "10", "-v", "error", path),
+    ]
+    with tempfile.TemporaryFile() as log:  # a file, not a pipe: ffmpeg never waits for a reader
+        ffmpeg = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=log)
+        pipe = ffmpeg.stdin
+        assert pipe is not None  # stdin=PIPE
+        try:
+            try:
+                for frame in data:
+                    pipe.write(np.ascontiguousarray(frame).tobytes())
+            except BrokenPipeError:  # ffmpeg stopped reading: its status and log say why
+                pass
+            with contextlib.suppress(BrokenPipeError):  # (closed all the same)
+                pipe.close()
+            status = ffmpeg.wait()
+        except BaseException:  # Ctrl-C: no ffmpeg left behind
+            ffmpeg.kill()
+            ffmpeg.wait()
+            raise
+        log.seek(0)
+        message = log.read().decode(errors="replace").strip()
+    if status != 0:
+        if os.path.isfile(path):
+            os.remove(path)  # what ffmpeg began is no movie
+        said = " | ".join(message.splitlines()[-4:]) or "no message"
+        raise _core.IoError(f"cannot write the MP4 {path!r}: ffmpeg (H.264) stopped with status {status}: {said}")
 
 
 def _write_sequence(path, frames, fps, exposure, tonemap):

@@ -1650,8 +1650,8 @@ class MboitSettings:
     Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
     'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
     published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit ROV
-    variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (z_far <=
-    z_near: the fragments' own range, in render_raster the frame's).
+    variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (both 0: the
+    fragments' own range, in render_raster the frame's).
     """
     __hash__: typing.ClassVar[None] = None
     @staticmethod
@@ -1722,7 +1722,7 @@ class MboitSettings:
     @property
     def z_far(self) -> float:
         """
-        far end of the log-depth warp [m]; z_far <= z_near: the fragments' own range
+        far end of the log-depth warp [m]; both 0: the fragments' own range
         """
     @z_far.setter
     def z_far(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:

@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 
-# How each readout is shown: its channels' labels, unit and decimals (names as render's aovs).
-_FORMATS: dict[str, tuple[tuple[str, ...], str, int]] = {
+# How each readout is shown: its channels' labels, unit and decimals (names as render's aovs); a
+# readout whose channels differ gives a unit and decimals per channel, each shown after its value.
+_FORMATS: dict[str, tuple[tuple[str, ...], str | tuple[str, ...], int | tuple[int, ...]]] = {
     "distance": (("",), "m", 2),
     "position": (("x", "y", "z"), "m", 2),
     "object_id": (("",), "", 0),
-    "geographic": (("lat", "lon", "height"), "deg, deg, m", 6),
+    "geographic": (("lat", "lon", "height"), ("deg", "deg", "m"), (6, 6, 2)),  # 1e-6 deg: ~0.1 m
     "apparent_elevation": (("",), "deg", 5),
     "apparent_azimuth": (("",), "deg", 5),
     "true_elevation": (("",), "deg", 5),
@@ -21,9 +22,14 @@ _FORMATS: dict[str, tuple[tuple[str, ...], str, int]] = {
 }
 
 
-def _format(name: str, channels: int) -> tuple[tuple[str, ...], str, int]:
+def _format(name: str, channels: int) -> tuple[tuple[str, ...], str, tuple[str, ...], tuple[int, ...]]:
+    """(labels, the unit after all values, the unit after each value, decimals per value)."""
     labels, unit, digits = _FORMATS.get(name, (tuple(str(c) for c in range(channels)), "", 4))
-    return (labels if len(labels) == channels else tuple(str(c) for c in range(channels))), unit, digits
+    if len(labels) != channels:
+        labels, unit, digits = tuple(str(c) for c in range(channels)), "", 4
+    each = unit if isinstance(unit, tuple) else ("",) * channels
+    decimals = digits if isinstance(digits, tuple) else (digits,) * channels
+    return labels, "" if isinstance(unit, tuple) else unit, each, decimals
 
 
 def _planes(aovs: dict) -> list[tuple[str, np.ndarray]]:
@@ -55,15 +61,15 @@ def readout_text(aovs: dict, u: float, v: float) -> str:
     i, j = min(max(int(np.floor(u)), 0), width - 1), min(max(int(np.floor(v)), 0), height - 1)
     lines = [f"pixel ({i}, {j})"]
     for name, array in planes:
-        labels, unit, digits = _format(name, array.shape[2])
+        labels, unit, units, decimals = _format(name, array.shape[2])
         parts = []
-        for label, value in zip(labels, array[j, i]):
+        for label, value, own, digits in zip(labels, array[j, i], units, decimals):
             text = (
                 "none"
                 if np.isnan(value)
                 else ("inf" if value > 0 else "-inf")
                 if np.isinf(value)
-                else f"{value:.{digits}f}"
+                else f"{value:.{digits}f}" + (f" {own}" if own else "")
             )
             parts.append(f"{label} {text}" if label else text)
         met = not np.all(np.isnan(array[j, i]))  # "none", not "none deg"

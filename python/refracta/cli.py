@@ -414,25 +414,29 @@ def _demo_shimmer(out: Path, size=(120, 40), noise_size=(320, 120)) -> None:
     )
 
 
-# EXR channel names of the readouts with more than one channel that are not X, Y, Z (io.write_layers).
-_LAYER_CHANNELS = {
-    "albedo": ("R", "G", "B"),
-    "hidden_height": ("geometric", "refracted"),
-    "geographic": ("lat", "lon", "height"),
-}
-
-
 def _aov_list(text: str) -> list[str]:
     """--aovs distance,position,...: the names, checked by render (a bad one lists the valid names)."""
-    names = [name.strip() for name in text.split(",") if name.strip()]
-    if not names:
+    names = [name.strip() for name in text.split(",")]
+    if not any(names):
         raise argparse.ArgumentTypeError(f"names no readout (got {text!r}): e.g. --aovs distance,position")
+    if not all(names):  # ',distance' or 'distance,,position': a readout left out by mistake?
+        raise argparse.ArgumentTypeError(
+            f"has an empty name (got {text!r}): readout names separated by single commas, e.g. --aovs distance,position"
+        )
     return names
+
+
+def _output_path(text: str) -> Path:
+    """-o/--output: a file name; an empty one (Path('') is '.', 'a folder') refused as empty."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError(f"is empty (got {text!r}): give a file name")
+    return Path(text)
 
 
 def _option(text: str) -> tuple[str, object]:
     """--set NAME=VALUE: a render option by its RenderOptions name, the value read as TOML reads
-    one (1e5, true, "rk45", [0, 0, 64, 32]), else as a string (rk45); render checks both."""
+    one (1e5, true, "rk45", [0, 0, 64, 32]; True / False as true / false), else as a string (rk45);
+    render checks both."""
     from refracta.scene_file import tomllib  # tomli before Python 3.11
 
     name, equals, value = text.partition("=")
@@ -441,7 +445,8 @@ def _option(text: str) -> tuple[str, object]:
     try:
         parsed = tomllib.loads(f"v = {value.strip()}")["v"]
     except tomllib.TOMLDecodeError:
-        parsed = value.strip()
+        # Python's True / False (and TRUE ...) too: TOML's true / false alone was the trap of a trial.
+        parsed = {"true": True, "false": False}.get(value.strip().lower(), value.strip())
     return name.strip(), parsed
 
 
@@ -601,7 +606,7 @@ def render_file(
                 "(PNG, JPEG) and are not applied",
                 stacklevel=2,
             )
-        refracta.io.write_layers(output, image, layers, suffixes=_LAYER_CHANNELS)
+        refracta.io.write_layers(output, image, layers)  # readouts named as io.READOUT_CHANNELS
     else:
         refracta.io.write_image(output, result, **display)
     defaults = refracta.RenderOptions()
@@ -687,7 +692,7 @@ def _run(argv=None) -> int:
     render_parser = commands.add_parser("render", help="render a TOML scene file")
     render_parser.add_argument("scene", type=Path, help="scene file (.toml)")
     render_parser.add_argument(
-        "-o", "--output", type=Path, default=Path("out.exr"), help="image file (default out.exr)"
+        "-o", "--output", type=_output_path, default=Path("out.exr"), help="image file (default out.exr)"
     )
     render_parser.add_argument(
         "--method", choices=["curved", "straight", "raster_march"], default=None, help="default: RenderOptions'"
@@ -775,7 +780,7 @@ def _run(argv=None) -> int:
     edit_parser.add_argument(
         "--pairs", type=Path, required=True, help="pairs file (.json), see refracta.edit.load_pairs"
     )
-    edit_parser.add_argument("-o", "--output", type=Path, required=True, help="scene file to write (.toml)")
+    edit_parser.add_argument("-o", "--output", type=_output_path, required=True, help="scene file to write (.toml)")
     edit_parser.add_argument("--backend", default=None, help="ceres (default) or nlopt:<ALGORITHM>")
     args = parser.parse_args(argv)
     if args.threads is not None:

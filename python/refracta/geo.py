@@ -66,6 +66,11 @@ def _checked(value, name: str, low: float = -math.inf, high: float = math.inf) -
     return array
 
 
+def _value_kind(value) -> str:
+    """numpy's dtype kind of `value` ('O' for None, which numpy would read as NaN)."""
+    return "O" if value is None else np.asarray(value).dtype.kind
+
+
 def _number(value, name: str, low: float = -math.inf, high: float = math.inf) -> float:
     """One number (_checked's rules), else ValueError naming it."""
     array = _checked(value, name, low, high)
@@ -340,13 +345,22 @@ class LocalFrame:
 
     def to_geographic(self, points):
         """(lat [deg], lon [deg], height [m] above the ellipsoid) of scene points (..., 3): the inverse of
-        to_scene (a round trip is exact to well under a millimetre). Longitudes in [-180, 180]."""
-        p = _checked(points, "points")
+        to_scene (a round trip is exact to well under a millimetre). Longitudes in [-180, 180]. A point
+        holding NaN -- a sky pixel of render's 'position' readout -- gives NaN for all three, so a
+        readout image converts whole."""
+        if _value_kind(points) not in "iuf":
+            _checked(points, "points")  # its message for strings, booleans, None and the like
+        p = np.asarray(points, dtype=np.float64)
         if p.ndim == 0 or p.shape[-1] != 3:
             raise ValueError(f"points must have shape (..., 3) (got {p.shape})")
+        missing = np.asarray(np.isnan(p).any(axis=-1))
+        p = _checked(np.where(missing[..., None], 0.0, p), "points")
         _within_reach(p, "points")
         lon, lat = self._to_lonlat.transform(p[..., 0], -p[..., 2], errcheck=True)
-        return _scalar_or_array(np.asarray(lat)), _scalar_or_array(np.asarray(lon)), self.true_height(p[..., 1])
+        lat, lon, height = (
+            np.where(missing, np.nan, np.asarray(v, dtype=np.float64)) for v in (lat, lon, self.true_height(p[..., 1]))
+        )
+        return _scalar_or_array(lat), _scalar_or_array(lon), _scalar_or_array(height)
 
     @staticmethod
     def direction(azimuth, elevation) -> np.ndarray:
@@ -457,7 +471,8 @@ class LocalFrame:
         Give exactly one of vfov [deg] (vertical field of view; Camera(...)) or focal_length_mm with
         sensor_mm = (width, height) [mm] (Camera.photographic's lens and sensor; None: its full-frame
         default). image_width, image_height [pixels]: the image (None: the bound constructor's
-        default). roll [deg]: the camera turned clockwise about its view direction as seen from
+        default; one alone: the other follows the default image's shape, or the sensor's). roll
+        [deg]: the camera turned clockwise about its view direction as seen from
         behind it (the image's right side dips: a level horizon in view then rises to the right of
         the image), 0 level. ValueError when both or neither of vfov and focal_length_mm are
         given, or for a non-finite angle.
@@ -504,11 +519,27 @@ class LocalFrame:
                     )
                 size[name] = int(value)
         look_at = eye + forward_
-        if vfov is not None:
-            return _core.Camera(eye, look_at, up=up, vfov=_number(vfov, "vfov"), **size)
+        lens: dict[str, Any] = {}
         if sensor_mm is not None:
             sensor = finite_pair(sensor_mm)
             if sensor is None:
                 raise ValueError(f"sensor_mm must be (width, height) [mm] (got {sensor_mm!r})")
-            size["sensor_mm"] = sensor
-        return _core.Camera.photographic(eye, look_at, _number(focal_length_mm, "focal_length_mm"), up=up, **size)
+            lens["sensor_mm"] = sensor
+        if len(size) == 1:  # one side given: the other keeps the default image's shape (square pixels)
+            if "sensor_mm" in lens:
+                aspect = lens["sensor_mm"][0] / lens["sensor_mm"][1]
+            else:
+                default = (
+                    _core.Camera(eye, look_at, up=up)
+                    if vfov is not None
+                    else _core.Camera.photographic(eye, look_at, _number(focal_length_mm, "focal_length_mm"), up=up)
+                )
+                aspect = default.width / default.height
+            given, value = next(iter(size.items()))
+            other = value / aspect if given == "width" else value * aspect
+            size["height" if given == "width" else "width"] = max(1, round(other))
+        if vfov is not None:
+            return _core.Camera(eye, look_at, up=up, vfov=_number(vfov, "vfov"), **size)
+        return _core.Camera.photographic(
+            eye, look_at, _number(focal_length_mm, "focal_length_mm"), up=up, **size, **lens
+        )

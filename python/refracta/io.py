@@ -168,16 +168,26 @@ def write_image(
 _LAYER_SUFFIXES = {1: ("Y",), 2: ("X", "Y"), 3: ("X", "Y", "Z"), 4: ("X", "Y", "Z", "W")}
 
 
+# EXR channel names of render's readouts whose channels are not X, Y, Z (write_layers' defaults).
+READOUT_CHANNELS = {
+    "albedo": ("R", "G", "B"),
+    "hidden_height": ("geometric", "refracted"),
+    "geographic": ("lat", "lon", "height"),
+}
+
+
 def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> None:
     """Write a linear float image with extra named layers to a float file (EXR): the image's
     channels as R, G, B (A), then each layer's as ``name.Y`` (one channel), ``name.X``,
-    ``name.Y``, ``name.Z`` (two to four; e.g. position.X), or the names ``suffixes[name]`` gives
-    (e.g. {"hidden_height": ("geometric", "refracted")}). Layers are (H, W) or (H, W, C) arrays of
-    the image's size, stored as float32 as they are (inf and NaN kept; integers as floats). A
-    layer's name is a non-empty string (dots allowed between parts: EXR's nested layers); a
-    suffix a non-empty string without a dot. Raises ValueError for a bad layer (complex or
-    non-numeric values, finite values beyond float32's range, a bad name) or a non-float format,
-    refracta.IoError when the file cannot be written."""
+    ``name.Y``, ``name.Z`` (two to four; e.g. position.X), render's readouts as their channels
+    are (READOUT_CHANNELS: albedo.R, hidden_height.geometric, geographic.lat, .lon, .height), or
+    the names ``suffixes[name]`` gives (e.g. {"hidden_height": ("geometric", "refracted")}).
+    Layers are (H, W) or (H, W, C) arrays of the image's size, stored as float32 as they are (inf
+    and NaN kept; integers as floats). A layer's name is a non-empty string (dots allowed between
+    parts: EXR's nested layers); a suffix a non-empty string without a dot. Raises ValueError for
+    a bad layer (complex or non-numeric values, finite values beyond float32's range, a bad name,
+    a name longer than EXR's 255 bytes) or a non-float format, refracta.IoError when the file
+    cannot be written."""
     base = _layer_values(_image_array(image, "write_layers"), "write_layers: image")
     if base.ndim == 2:
         base = base[..., None]
@@ -203,7 +213,10 @@ def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> Non
         given = None if given is None else [str(suffix) if isinstance(suffix, str) else suffix for suffix in given]
         for suffix in given or ():
             _check_channel_name(suffix, f"suffixes[{name!r}]", dots=False)
-        own = given or _LAYER_SUFFIXES.get(values.shape[2])
+        readout = READOUT_CHANNELS.get(name)
+        own = given or (
+            readout if readout and len(readout) == values.shape[2] else _LAYER_SUFFIXES.get(values.shape[2])
+        )
         if own is None:
             raise ValueError(f"write_layers: layer {name!r} has {values.shape[2]} channels; give its channel names")
         if len(own) != values.shape[2]:

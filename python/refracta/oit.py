@@ -86,4 +86,8 @@ def composite(
             f"composite: z_range ({near:g}, {far:g}) must hold every fragment's depth "
             f"(got {depths.min():g} to {depths.max():g})"
         )
-    return _core._composite(depths, alphas, colors, real_array(background, "composite: background"), settings)
+    # Checked here: C++'s converter is the one for points, and named (x, y, z) for a colour.
+    backdrop = real_array(background, "composite: background")
+    if backdrop.shape != (3,):
+        raise ValueError(f"composite: background must be a colour (r, g, b), shape (3,) (got shape {backdrop.shape})")
+    return _core._composite(depths, alphas, colors, backdrop, settings)

@@ -102,6 +102,11 @@ def rgb_to_spectrum(rgb, wavelengths, kind: str = "reflectance", method: str = "
     colours, single = _rgb(rgb)
     lam, scalar = _wavelengths(wavelengths)
     out = _core._spectrum_rgb_to_spectrum(colours, lam, kind, method)
+    if not np.all(np.isfinite(out)):  # the input is finite (C++ checks it): [1e308, 1, 1] gave NaN
+        raise ValueError(
+            f"rgb_to_spectrum: rgb up to {np.abs(colours).max():g} overflows float64 in the {kind} spectrum "
+            "(an unbounded or illuminant spectrum is 2 max(rgb) times the fit of rgb / (2 max(rgb)))"
+        )
     if scalar:
         out = out[:, 0]
     return out[0] if single else out
@@ -169,6 +174,11 @@ def xyz_to_linear_srgb(xyz) -> np.ndarray:
     """CIE XYZ (3,) or (N, 3) to linear sRGB with the IEC 61966-2-1 matrix."""
     values, single = _rgb(xyz, "xyz")
     out = _core._spectrum_xyz_to_linear_srgb(values)
+    if not np.all(np.isfinite(out)):  # the input is finite (C++ checks it): 1e308 gave inf
+        raise ValueError(
+            f"xyz_to_linear_srgb: xyz up to {np.abs(values).max():g} overflows float64 through the sRGB matrix "
+            "(its entries reach 3.2)"
+        )
     return out[0] if single else out
 
 
@@ -179,9 +189,9 @@ def sample_wavelengths(u, terminate_secondary: bool = False) -> tuple[np.ndarray
     quarter of the range each (wrapping around), pdf 1/470 per nm. terminate_secondary keeps the
     hero only (pdf of the others 0, the hero's divided by 4), as a dispersive interface does.
     """
-    uu = np.atleast_1d(np.asarray(u, dtype=float))
+    uu = np.atleast_1d(real_array(u, "sample_wavelengths: u"))  # not '0.5', True or 0.5 + 1j
     if uu.ndim != 1:
-        raise ValueError(f"u must be a number or a 1-D array (got shape {uu.shape})")
+        raise ValueError(f"sample_wavelengths: u must be a number or a 1-D array (got shape {uu.shape})")
     return _core._spectrum_sample_wavelengths(uu, flag(terminate_secondary, "sample_wavelengths: terminate_secondary"))
 
 
@@ -191,8 +201,17 @@ def to_linear_srgb(radiance, wavelengths, pdf) -> np.ndarray:
     XYZ = (1/4) sum_i L_i cmf(lambda_i) / pdf_i / integral(y), wavelengths of pdf 0 (terminated)
     skipped, then the IEC 61966-2-1 matrix. Returns (N, 3).
     """
-    arrays = [np.atleast_2d(np.asarray(a, dtype=float)) for a in (radiance, wavelengths, pdf)]
-    return _core._spectrum_to_linear_srgb(*arrays)
+    names = ("radiance", "wavelengths", "pdf")
+    arrays = [np.atleast_2d(real_array(a, f"to_linear_srgb: {n}")) for a, n in zip((radiance, wavelengths, pdf), names)]
+    rgb = _core._spectrum_to_linear_srgb(*arrays)
+    if not np.all(np.isfinite(rgb)):  # the inputs are finite (C++ checks them): radiance / pdf overflowed
+        radiance_, pdf_ = arrays[0], arrays[2]
+        smallest = pdf_[pdf_ > 0.0].min() if np.any(pdf_ > 0.0) else 0.0
+        raise ValueError(
+            f"to_linear_srgb: radiance / pdf overflows float64 (radiance up to {np.abs(radiance_).max():g}, "
+            f"pdf down to {smallest:g} per nm; a hero-wavelength pdf is 1/470)"
+        )
+    return rgb
 
 
 def _measure_table(

@@ -67,12 +67,13 @@ def _disc_filter(kappa, aperture: float):
 
 
 def _check_numbers(owner: str, *checks) -> None:
-    """ValueError naming every (name, value, rule, ok) whose value is not a number or fails ok."""
-    problems = [
-        f"{name} must be {rule} (got {value!r})"
-        for name, value, rule, ok in checks
-        if not (is_number(value) and ok(float(value)))
-    ]
+    """ValueError naming every (name, value, rule, ok) whose value is not a number or fails ok (a
+    name's later rules skipped once one of its rules failed)."""
+    problems, failed = [], set()
+    for name, value, rule, ok in checks:
+        if name not in failed and not (is_number(value) and ok(float(value))):
+            problems.append(f"{name} must be {rule} (got {value!r})")
+            failed.add(name)
     if problems:
         raise ValueError(f"{owner}: " + "; ".join(problems))
 
@@ -86,35 +87,83 @@ def tilt_variance(
     (aperture = 0: needs inner_scale > 0; for L0 -> inf it is 3.280 C_n^2 L l0^(-1/3)) or the G-tilt
     filter [2 J1(kappa D/2) / (kappa D/2)]^2 of an aperture of diameter D [m] (l0 -> 0, L0 -> inf:
     2.838 C_n^2 L D^(-1/3); the issue's 2.91 is the phase-structure approximation, Z-tilt 3.041).
-    By quadrature in log kappa (5e-5 relative)."""
+    By quadrature in log kappa (5e-5 relative), in units of the smallest scale, a scale 1e20 times
+    beyond the others left out (its share is below 1e-6). cn2 in [0, 1] m^(-2/3) as
+    refracta.Turbulence takes it; path_length up to the scene's reach (1e7 m)."""
     _check_numbers(
         "tilt_variance",
-        ("cn2", cn2, ">= 0 and finite", lambda v: 0.0 <= v < math.inf),
-        ("path_length", path_length, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
+        *_strength_checks(cn2, path_length),
         ("inner_scale", inner_scale, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
         ("outer_scale", outer_scale, "> 0 m (inf: none)", lambda v: v > 0.0),
         ("aperture", aperture, ">= 0 m and finite", lambda v: 0.0 <= v < math.inf),
     )
     if not (inner_scale > 0.0 or aperture > 0.0):
         raise ValueError("tilt_variance: a point aperture needs inner_scale > 0 (the integral diverges without it)")
-    scales = [s for s in (inner_scale, aperture) if s > 0.0]
-    if not math.isinf(outer_scale):
-        scales.append(outer_scale)
-    lo, hi = 1e-6 / max(scales), 2e3 / min(scales)
+    if not outer_scale > inner_scale:  # as refracta.Turbulence: no eddies between the scales
+        raise ValueError(
+            f"tilt_variance: outer_scale must exceed inner_scale, or be inf (got outer_scale {outer_scale!r}, "
+            f"inner_scale {inner_scale!r})"
+        )
+    inner_scale, outer_scale, aperture = _scales_that_count(float(inner_scale), float(outer_scale), float(aperture))
+    # kappa^3 Phi(kappa; l0, L0) dkappa at kappa = x / s is s^(-1/3) x^3 Phi(x; l0 / s, L0 / s) dx:
+    # the integral in units of the smallest scale s (1e-100 m overflowed kappa^4 in metres, 1e300 m
+    # underflowed kappa^2 to a NaN); the scales that count span at most _SCALES_APART^2, so that
+    # kappa runs over 1e-46..2e3 there, kappa^4 and kappa^(-11/3) within float64.
+    scales = [v for v in (inner_scale, aperture, outer_scale) if 0.0 < v < math.inf]
+    unit = min(scales)
+    lo, hi = 1e-6 * (unit / max(scales)), 2e3  # (1e-6 * 5e-324 is 0)
     log_kappa = np.linspace(math.log(lo), math.log(hi), 200_001)
     kappa = np.exp(log_kappa)
     # kappa^3 Phi dkappa = kappa^4 Phi dln(kappa)
-    integrand = kappa**4 * von_karman_spectrum(kappa, 1.0, inner_scale, outer_scale)
+    integrand = kappa**4 * von_karman_spectrum(kappa, 1.0, inner_scale / unit, outer_scale / unit)
     if aperture > 0.0:
-        integrand = integrand * _disc_filter(kappa, aperture)
+        integrand = integrand * _disc_filter(kappa, aperture / unit)
     # Below lo every filter is 1: int_0^lo kappa^3 Phi = 0.033 * 3 lo^(1/3) (Kolmogorov; 1 % of the
     # whole at lo = 1e-6 / scale, so it is added), or lo^4 / (4 kappa0^(11/3)) under an outer scale.
     if math.isinf(outer_scale):
         below = 3.0 * lo ** (1.0 / 3.0)
     else:
-        below = lo**4 / 4.0 * (2.0 * math.pi / outer_scale) ** (-11.0 / 3.0)
+        below = lo**4 / 4.0 * (2.0 * math.pi * unit / outer_scale) ** (-11.0 / 3.0)
     total = _trapezoid(integrand, log_kappa) + SPECTRUM_CONSTANT * below
-    return float(2.0 * math.pi**2 * path_length * cn2 * total)
+    # s^(-1/3) <= 3e107 (s >= 5e-324): finite with cn2 <= 1 and L <= 1e7 m.
+    return float(2.0 * math.pi**2 * path_length * cn2 * total * unit ** (-1.0 / 3.0))
+
+
+# A scale more than this many times beyond another changes the tilt by less than 1e-6 of it (an
+# outer scale by ~1.3 (l0 / L0)^(1/3): 1.3e-6 at 1e18, measured; an inner scale below the aperture
+# by far less: 1.4e-9 at l0 = D / 1e5), far below the quadrature's 5e-5: tilt_variance leaves it out.
+_SCALES_APART = 1e20
+
+
+def _scales_that_count(inner_scale: float, outer_scale: float, aperture: float) -> tuple[float, float, float]:
+    """(inner_scale, outer_scale, aperture) [m] without those _SCALES_APART beyond the others (an
+    inner scale or an aperture 0, an outer scale inf); ValueError for an aperture that many outer
+    scales wide (a tilt of 0 within float64: nothing a path of air shows)."""
+    if aperture > 0.0 and inner_scale > 0.0:
+        if inner_scale * _SCALES_APART < aperture:
+            inner_scale = 0.0
+        elif aperture * _SCALES_APART < inner_scale:
+            aperture = 0.0
+    if outer_scale > _SCALES_APART * max(inner_scale, aperture):
+        outer_scale = math.inf
+    if aperture > outer_scale * _SCALES_APART:
+        raise ValueError(
+            f"tilt_variance: aperture must be at most {_SCALES_APART:g} outer scales (got aperture {aperture!r} m, "
+            f"outer_scale {outer_scale!r} m)"
+        )
+    return inner_scale, outer_scale, aperture
+
+
+def _strength_checks(cn2, path_length) -> tuple:
+    """_check_numbers' rules for C_n^2 and the path: cn2 in Turbulence's range (C++'s
+    TurbulenceSettings: [0, 1] m^(-2/3), far above any air), the path no longer than a scene reaches
+    (_core._SCENE_REACH, as angle_of_arrival_variance: 1e308 m gave an infinite variance)."""
+    reach = _core._SCENE_REACH
+    return (
+        ("cn2", cn2, ">= 0 and finite", lambda v: 0.0 <= v < math.inf),
+        ("cn2", cn2, "at most 1 m^(-2/3), as refracta.Turbulence takes it", lambda v: v <= 1.0),
+        ("path_length", path_length, f"> 0 m and at most {reach:g} m (a scene's reach)", lambda v: 0.0 < v <= reach),
+    )
 
 
 def _trapezoid(y, x) -> float:
@@ -127,8 +176,7 @@ def plane_wave_tilt_variance(cn2: float, path_length: float, aperture: float) ->
     phase structure function D_phi(D) / (k D)^2; Andrews & Phillips 2005, eq. 6.75 for a plane wave)."""
     _check_numbers(
         "plane_wave_tilt_variance",
-        ("cn2", cn2, ">= 0 and finite", lambda v: 0.0 <= v < math.inf),
-        ("path_length", path_length, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
+        *_strength_checks(cn2, path_length),
         ("aperture", aperture, "> 0 m and finite", lambda v: 0.0 < v < math.inf),
     )
     return 2.91 * cn2 * path_length * aperture ** (-1.0 / 3.0)

@@ -271,11 +271,16 @@ def test_angle_of_arrival_grows_with_path_length_and_shrinks_with_aperture():
         (dict(cn2=-1e-14), r"cn2 must be in \[0, 1\]"),
         (dict(cn2=float("nan")), r"cn2 must be in \[0, 1\]"),
         (dict(cn2=1e300), r"cn2 must be in \[0, 1\]"),  # was accepted
-        (dict(outer_scale=0.0), "outer_scale must be > 0"),
-        (dict(inner_scale=-0.01), "inner_scale must be > 0"),
-        (dict(inner_scale=float("nan")), "inner_scale must be > 0"),
+        (dict(outer_scale=0.0), "outer_scale must exceed inner_scale"),
+        (dict(inner_scale=-0.01), r"inner_scale must be in \(0, 10000\] m"),
+        (dict(inner_scale=float("nan")), r"inner_scale must be in \(0, 10000\] m"),
+        # These three gave an all-zero pattern without a word (a trial):
+        (dict(inner_scale=10.0, outer_scale=1.0), "outer_scale must exceed inner_scale"),
+        (dict(inner_scale=1e300), r"inner_scale must be in \(0, 10000\] m"),
+        (dict(outer_scale=1e-300), "outer_scale must exceed inner_scale"),
+        (dict(depth=1e-300), r"depth must be in \[1e-06, 10000000\] m"),  # gradients of 1e293
         (dict(spacing=0.0), r"spacing must be in \[1e-06, 10000\] m"),
-        (dict(depth=-1.0), "depth must be > 0"),
+        (dict(depth=-1.0), r"depth must be in \[1e-06, 10000000\] m"),
         (dict(seed=-3), "seed must be a whole number"),
         (dict(wind=(1.0, float("inf"))), "wind must be"),
         (dict(wind=3.0), "wind must be"),

@@ -19,8 +19,9 @@ std::string shape_of(const DoubleArray& array) {
   return shape + (array.ndim() == 1 ? ",)" : ")");
 }
 
-// real_array with `message` in place of the cast error of inputs that are not numbers at all.
-DoubleArray numbers(const py::handle& object, const char* what, const char* message, bool bools = true) {
+// real_array with `message` in place of the cast error of inputs that are not numbers at all;
+// bools refused unless `bools` (a point (True, 0, 1) or a triangle of True is a mistake).
+DoubleArray numbers(const py::handle& object, const char* what, const char* message, bool bools = false) {
   try {
     return real_array(object, what, bools);
   } catch (const py::cast_error&) {
@@ -103,7 +104,7 @@ Vec3d to_point(const py::handle& object, const char* what) { return points_of(ob
 
 std::vector<double> to_values(const py::handle& object, const char* what, bool* single) {
   // Bools are not numbers (True would be 1: Camera.ray(True, False) was the ray through (1, 0)).
-  const DoubleArray array = numbers(object, what, " must be a number or an array of numbers", /*bools=*/false);
+  const DoubleArray array = numbers(object, what, " must be a number or an array of numbers");
   if (array.ndim() > 1) throw_invalid(what, " must be a number or a 1-D array (got ", array.ndim(), " dimensions)");
   if (single) *single = array.ndim() == 0;
   std::vector<double> values(array.data(), array.data() + array.size());
@@ -137,7 +138,7 @@ std::vector<Vec3d> to_unit_vectors(const py::handle& object, const char* what, s
 
 Vec3d to_rgb(const py::handle& value, const char* what) {
   // Not True / False: Diffuse(True) was a white reflectance.
-  const DoubleArray array = numbers(value, what, " must be a number or an (r, g, b) triple", /*bools=*/false);
+  const DoubleArray array = numbers(value, what, " must be a number or an (r, g, b) triple");
   Vec3d rgb;
   if (array.size() == 1 && array.ndim() <= 1) {
     rgb.setConstant(array.data()[0]);
@@ -200,7 +201,9 @@ std::string detail::shapes_of(const std::vector<std::pair<const char*, const Dou
 std::vector<std::array<int, 3>> to_triangles(const py::handle& object, const char* what, size_t vertex_count) {
   // Float indices are taken where they are whole (np.array([[0.0, 1.0, 2.0]])); the integer cast
   // below alone would truncate 1.7 to 1.
-  if (const py::array given = py::array::ensure(object); given && given.dtype().kind() == 'f') {
+  if (const py::array given = py::array::ensure(object); given && given.dtype().kind() == 'b') {
+    throw_invalid(what, " must hold whole vertex indices (got booleans)");
+  } else if (given && given.dtype().kind() == 'f') {
     const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(given);
     for (py::ssize_t i = 0; values && i < values.size(); ++i) {
       const double v = values.data()[i];

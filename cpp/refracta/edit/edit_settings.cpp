@@ -2,6 +2,7 @@
 #include "refracta/edit/edit_settings.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/math.h"
 
 #include <cmath>
 #include <utility>
@@ -72,8 +73,11 @@ void SolveSettings::validate() const {
   for (const auto& [name, value] : at_least_one) problems.check(value >= 1, name, " must be >= 1 (got ", value, ")");
   problems.check(design_per_param <= kMostDesignPerParam, "design_per_param must be <= ", kMostDesignPerParam, " (got ",
                  design_per_param, ")");
-  problems.check(trust_region > 0.0 && std::isfinite(trust_region), "trust_region must be > 0 (got ", trust_region,
-                 ")");
+  // Ceres' own limits of a trust region (Solver::Options' min and max_trust_region_radius): outside
+  // them its CHECK fails, or it reported its own option's name (a trial's 1e-300 and 1e300).
+  constexpr double kSmallestTrustRegion = 1e-32, kLargestTrustRegion = 1e16;
+  problems.check(trust_region >= kSmallestTrustRegion && trust_region <= kLargestTrustRegion, "trust_region must be in [",
+                 kSmallestTrustRegion, ", ", kLargestTrustRegion, "] (got ", trust_region, ")");
   const std::pair<const char*, double> non_negative[] = {
       {"time_limit", time_limit}, {"function_tolerance", function_tolerance},
       {"parameter_tolerance", parameter_tolerance}, {"gradient_tolerance", gradient_tolerance},
@@ -81,7 +85,11 @@ void SolveSettings::validate() const {
   for (const auto& [name, value] : non_negative) {
     problems.check(value >= 0.0 && std::isfinite(value), name, " must be >= 0 and finite (got ", value, ")");
   }
-  problems.check(loss_scale > 0.0 && std::isfinite(loss_scale), "loss_scale must be > 0 (got ", loss_scale, ")");
+  // A miss [m]: from a micrometre to the scene's reach. Beyond, the loss's own arithmetic fails (a
+  // trial's cauchy at 1e300: a NaN cost change, the parameters left at the start).
+  constexpr double kSmallestLossScale = 1e-6;
+  problems.check(loss_scale >= kSmallestLossScale && loss_scale <= kSceneReach, "loss_scale must be in [",
+                 kSmallestLossScale, ", ", kSceneReach, "] m (got ", loss_scale, ")");
   problems.check(loss == RobustLoss::kNone || backend == SolveBackend::kCeres, "a robust loss needs backend 'ceres'");
   problems.throw_if_any();
 }

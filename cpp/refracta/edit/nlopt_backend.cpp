@@ -159,6 +159,15 @@ BackendResult solve_with_nlopt(const EditProblem& problem, const std::string& al
     out.converged = true;  // nlopt's own advice: the result is usually still useful
     out.message = prefix + "stopped by round-off (the cost cannot be reduced further)";
   } catch (const std::invalid_argument& error) {
+    // Refused before its first evaluation: the algorithm cannot take this problem at all (LN_NEWUOA
+    // one free parameter, an algorithm this nlopt lacks): a user's error, not a verdict on the
+    // atmosphere (a trial's CLI edit reported "the destination lies above every image" and wrote
+    // the start's field).
+    if (out.evaluations == 0) {
+      throw_invalid("backend 'nlopt:", algorithm, "' cannot solve this problem (", m, " free parameter",
+                    m == 1 ? "" : "s", "): nlopt says '", error.what(),
+                    "' (LN_BOBYQA, LN_SBPLX and LD_LBFGS take any number of parameters)");
+    }
     out.message = prefix + "invalid arguments: " + error.what();
   } catch (const std::bad_alloc&) {
     out.message = prefix + "out of memory";

@@ -69,8 +69,13 @@ void TurbulenceSettings::validate() const {
   // The strongest turbulence measured over hot ground is ~1e-10 m^(-2/3). Up to 1: the unit
   // realisation whose statistics are checked (n swings by ~1 then); 1e300 was accepted.
   problems.check(cn2 >= 0.0 && cn2 <= kStrongestCn2, "cn2 must be in [0, ", kStrongestCn2, "] m^(-2/3) (got ", cn2, ")");
-  problems.check(outer_scale > 0.0, "outer_scale must be > 0 m or inf (got ", outer_scale, ")");
-  problems.check(inner_scale > 0.0 && std::isfinite(inner_scale), "inner_scale must be > 0 m and finite (got ", inner_scale, ")");
+  // The spectrum lives between the scales: an inner scale at or beyond the outer one (or beyond
+  // 10 km, past any tile) left an all-zero pattern without a word (a trial).
+  problems.check(inner_scale > 0.0 && inner_scale <= kCoarsestSpacing, "inner_scale must be in (0, ", kCoarsestSpacing,
+                 "] m (got ", inner_scale, ")");
+  problems.check(outer_scale > inner_scale || !(inner_scale > 0.0),
+                 "outer_scale must exceed inner_scale, or be inf (got outer_scale ", outer_scale, ", inner_scale ",
+                 inner_scale, ")");
   problems.check(seed >= 0, "seed must be a whole number >= 0 (got ", seed, ")");
   problems.check(std::isfinite(wind[0]) && std::isfinite(wind[1]), "wind must be (u, w) [m/s] along x and z, finite (got (",
                  wind[0], ", ", wind[1], "))");
@@ -78,7 +83,11 @@ void TurbulenceSettings::validate() const {
   // reach); 1e-300 and 1e300 overflowed the synthesis ("coefficients must be finite").
   problems.check(spacing >= kFinestSpacing && spacing <= kCoarsestSpacing, "spacing must be in [", kFinestSpacing, ", ",
                  kCoarsestSpacing, "] m (got ", spacing, ")");
-  if (depth) problems.check(*depth > 0.0 && std::isfinite(*depth), "depth must be > 0 m or None (uniform) (got ", *depth, ")");
+  // From a micrometre (1e-300 gave gradients of 1e293) to the scene's reach.
+  if (depth) {
+    problems.check(*depth >= kFinestSpacing && *depth <= kSceneReach, "depth must be in [", kFinestSpacing, ", ",
+                   kSceneReach, "] m or None (uniform) (got ", *depth, ")");
+  }
   if (cells && size) {
     problems.add("give cells or size, not both (got cells=", *cells, ", size=", *size, ")");
   } else if (cells) {

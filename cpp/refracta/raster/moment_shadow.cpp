@@ -37,9 +37,19 @@ Moments4 MomentShadowSettings::published_bias_vector(DepthRange range, Storage s
 void MomentShadowSettings::check(Problems& problems) const {
   if (bias) problems.check(*bias >= 0.0 && *bias < 1.0, "bias must be in [0, 1) (got ", *bias, ")");
   if (bias_vector) {
-    bool finite = true;
-    for (double v : *bias_vector) finite = finite && std::isfinite(v);
-    problems.check(finite, "bias_vector must be finite");
+    // b* is biased toward as a moment vector (b_k = E[z^k]) of depths in the range: b_k of depths
+    // in [0, 1] lie in [0, 1]; of depths in [-1, 1] odd ones in [-1, 1], even ones in [0, 1]. Far
+    // beyond, the bias swamps the map's own moments (a trial's (1e300, 0, 0, 0) lit every receiver).
+    const bool is_signed = depth_range == DepthRange::kSigned;
+    bool within = true;
+    for (int k = 0; k < 4; ++k) {
+      const double v = (*bias_vector)[k], lowest = is_signed && k % 2 == 0 ? -1.0 : 0.0;  // k = 0 is b_1
+      within = within && v >= lowest && v <= 1.0;
+    }
+    const Moments4& b = *bias_vector;
+    problems.check(within, "bias_vector must hold moments of depths in the ", is_signed ? "signed" : "unit",
+                   " range: b1..b4 each in ", is_signed ? "[-1, 1] (b2 and b4 in [0, 1])" : "[0, 1]", " (got (", b[0],
+                   ", ", b[1], ", ", b[2], ", ", b[3], "))");
   }
 }
 

@@ -241,6 +241,9 @@ void MboitSettings::check(Problems& problems) const {
   problems.check(std::isfinite(z_near) && std::isfinite(z_far), "z_near and z_far must be finite");
   if (z_far > z_near) {
     problems.check(z_near > 0.0, "z_near must be > 0 with z_far > z_near (got z_near ", z_near, ", z_far ", z_far, ")");
+  } else if (z_near != 0.0 || z_far != 0.0) {  // (10, 1) was taken silently as the fragments' own range
+    problems.check(false, "z_far must exceed z_near (got z_near ", z_near, ", z_far ", z_far,
+                   "); both 0, the default, take the fragments' own range");
   }
 }
 

@@ -33,8 +33,8 @@ const char* wboit_weight_name(WboitWeight weight);
 // Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
 // 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
 // published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit
-// ROV variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (z_far
-// <= z_near: the fragments' own range, in render_raster the frame's).
+// ROV variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (both 0:
+// the fragments' own range, in render_raster the frame's).
 struct MboitSettings {
   MomentBasis basis = MomentBasis::kPower;
   int moments = 4;              // 4, 6 or 8 power moments; 2, 3 or 4 trigonometric
@@ -43,7 +43,7 @@ struct MboitSettings {
   // the basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).
   std::optional<double> bias;
   double z_near = 0.0;  // near end of the log-depth warp [m]
-  double z_far = 0.0;   // far end of the log-depth warp [m]; z_far <= z_near: the fragments' own range
+  double z_far = 0.0;   // far end of the log-depth warp [m]; both 0: the fragments' own range
   // fp32 (emulated in double), or unorm16, the 16-bit ROV variant (MOMENTS.md 4.5): b0 in fp32
   // and the normalised moments re-quantised to 16 bits after every fragment, in list order (4
   // power moments through Theta*_4, 6 and 8 through the MBOIT matrices (stored_mboit_unorm16),

@@ -51,8 +51,13 @@ void ShadowMapOptions::check(Problems& problems) const {
   problems.check(kernel >= 1 && kernel % 2 == 1 && (!resolution_ok || kernel <= resolution),
                  "kernel must be an odd size >= 1 and <= resolution (got ", kernel, ")");
   problems.check_nested("moments", moments);
-  problems.check(depth_bias >= 0.0 && std::isfinite(depth_bias), "depth_bias must be >= 0 (got ", depth_bias, ")");
-  problems.check(normal_offset >= 0.0 && std::isfinite(normal_offset), "normal_offset must be >= 0 (got ", normal_offset, ")");
+  // Depths are normalised to [0, 1]: a bias of 1 or more lights every receiver; an offset of more
+  // texels than the map has moves every receiver off it (a trial's 1e300s removed every shadow).
+  problems.check(depth_bias >= 0.0 && depth_bias < 1.0,
+                 "depth_bias must be in [0, 1), a share of the map's normalised depth range (got ", depth_bias, ")");
+  problems.check(normal_offset >= 0.0 && (!resolution_ok || normal_offset <= resolution),
+                 "normal_offset must be >= 0 and at most the map's resolution of ", resolution, " texels (got ",
+                 normal_offset, ")");
   problems.check(bleeding_reduction >= 0.0 && bleeding_reduction < 1.0,
                  "bleeding_reduction must be in [0, 1) (got ", bleeding_reduction, ")");
   if (resolution_ok) {

@@ -134,6 +134,10 @@ RasterLights raster_lights(const RenderScene& scene, const RasterRenderOptions& 
       if (k < 0 || size_t(k) >= spot_index.size()) {
         throw_invalid("lights: spot light ", k, " is not in the scene (it has ", spot_index.size(), ")");
       }
+      // Listed twice, a spot shone twice (a trial: exactly 2x its light).
+      if (std::find(out.spots.begin(), out.spots.end(), spot_index[size_t(k)]) != out.spots.end()) {
+        throw_invalid("lights: spot light ", k, " is listed twice");
+      }
       out.spots.push_back(spot_index[size_t(k)]);
     }
   }

@@ -122,11 +122,15 @@ Camera Camera::eye_level(const Vec3d& ground, const Vec3d& target, double eye_he
 }
 
 Camera Camera::with_lens(double aperture_diameter, double focus_distance) const {
-  if (!(aperture_diameter >= 0.0) || !std::isfinite(aperture_diameter)) {
-    throw_invalid("Camera: aperture diameter must be >= 0 [m] and finite (got ", aperture_diameter, ")");
+  // The widest lens photographic() makes is 200 m (100 m at f/0.5); a kilometre allows any
+  // synthetic aperture without rays starting far from the camera (a trial's 1e8 m lens was then
+  // reported as a max_length too long for "a camera 100000001.5 m out").
+  constexpr double kWidestAperture = 1e3;  // [m]
+  if (!(aperture_diameter >= 0.0 && aperture_diameter <= kWidestAperture)) {
+    throw_invalid("Camera: aperture diameter must be in [0, ", kWidestAperture, "] m (got ", aperture_diameter, ")");
   }
-  if (!(focus_distance > 0.0) || !std::isfinite(focus_distance)) {
-    throw_invalid("Camera: focus_distance must be > 0 [m] and finite (got ", focus_distance, ")");
+  if (!(focus_distance > 0.0 && focus_distance <= kSceneReach)) {
+    throw_invalid("Camera: focus_distance must be in (0, ", kSceneReach, "] m (got ", focus_distance, ")");
   }
   Camera out = *this;
   out.lens_radius_ = 0.5 * aperture_diameter;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <set>
 
 namespace refracta {
 
@@ -22,6 +23,7 @@ std::string extension(const std::string& path) {
 // The kind of file at `path` (not_found when nothing is there); IoError naming `doing` and the
 // system's reason when it cannot be told (a name too long, a folder without permission).
 std::filesystem::file_type file_type_at(const std::string& path, const char* doing) {
+  check_path_text(path);
   std::error_code error;
   const std::filesystem::file_status status = std::filesystem::status(path, error);
   if (error && status.type() != std::filesystem::file_type::not_found) {
@@ -31,6 +33,14 @@ std::filesystem::file_type file_type_at(const std::string& path, const char* doi
 }
 
 }  // namespace
+
+void check_path_text(const std::string& path) {
+  const size_t nul = path.find('\0');
+  if (nul != std::string::npos) {
+    throw_invalid("path '", path.substr(0, nul), "\\0", path.substr(nul + 1), "' holds a NUL byte (character ", nul,
+                  "): no file is named so");
+  }
+}
 
 void check_readable(const std::string& path) {
   const std::filesystem::file_type type = file_type_at(path, "read");
@@ -77,6 +87,17 @@ void write_image_channels(const std::string& path, const Image& image, const std
     throw_invalid("write_image_channels: ", names.size(), " channel names for ", image.channels, " channels");
   }
   if (!is_float_format(path)) throw_invalid("write_layers: '", path, "' must be a float format (.exr)");
+  // OpenEXR keeps at most 255 bytes of a channel's name: it cut longer ones, and two layers whose
+  // names began alike became one channel. A name given twice would be one channel too.
+  constexpr size_t kLongestChannelName = 255;
+  std::set<std::string> seen;
+  for (const std::string& name : names) {
+    if (name.empty() || name.size() > kLongestChannelName) {
+      throw_invalid("write_layers: a channel name must hold 1 to ", kLongestChannelName, " bytes, as EXR stores it (got ",
+                    name.size(), ": '", name.substr(0, 40), name.size() > 40 ? "...'" : "'", ")");
+    }
+    if (!seen.insert(name).second) throw_invalid("write_layers: channel name '", name, "' given twice");
+  }
   check_writable(path);
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw IoError(concat("cannot write '", path, "': ", OIIO::geterror()));

@@ -8,6 +8,9 @@
 
 namespace refracta {
 
+// ValueError for a path holding a NUL byte: the C library would read it as the path's end and open
+// another file ('a\0b.exr' wrote 'a'), where Python's open() refuses ("embedded null byte").
+void check_path_text(const std::string& path);
 // IoError unless `path` is a regular file ("no such image file", "not a regular file"): OIIO's
 // readers spin on a FIFO or a device such as /dev/zero, so they are refused before opening.
 void check_readable(const std::string& path);

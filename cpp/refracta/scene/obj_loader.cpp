@@ -2,6 +2,7 @@
 #include "refracta/scene/obj_loader.h"
 
 #include "refracta/core/error.h"
+#include "refracta/scene/image_io.h"
 #include "refracta/scene/obj_numbers.h"
 
 #include <tiny_obj_loader.h>
@@ -13,6 +14,7 @@
 namespace refracta {
 
 std::vector<MaterialMesh> load_obj(const std::string& path) {
+  check_path_text(path);
   if (!std::filesystem::exists(path)) throw IoError(concat("no such OBJ file: '", path, "'"));
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;

@@ -237,7 +237,10 @@ SeaMeshes sea_meshes(const OceanWaves& waves, const SeaLayout& layout) {
   const double outermost = coarse ? coarse_radius + coarse_spacing : radius + spacing;
   std::string problems;
   auto problem = [&](const std::string& message) { problems += (problems.empty() ? "" : "; ") + message; };
-  if (!std::isfinite(layout.height)) problem(concat("height must be finite (got ", layout.height, ")"));
+  // Within the scene's reach, as every vertex must be (a trial's 1e300 was reported as a mesh vertex).
+  if (!(std::abs(layout.height) <= kSceneReach)) {
+    problem(concat("height must lie within ", kSceneReach, " m of 0 (got ", layout.height, ")"));
+  }
   if (!c.allFinite()) problem(concat("centre must be a finite (x, z) (got (", c.x(), ", ", c.y(), "))"));
   if (c.allFinite() && !(c.cwiseAbs().maxCoeff() <= kSceneReach)) {
     problem(concat("centre must lie within the scene's reach of ", kSceneReach, " m of the origin (got (", c.x(), ", ",
@@ -249,8 +252,9 @@ SeaMeshes sea_meshes(const OceanWaves& waves, const SeaLayout& layout) {
     problem(concat("detail_radius must be at least the waves' spacing ", spacing, " m and at most ", max_radius,
                    " m (", kMaxSeaCells, " cells of that spacing) (got ", radius, ")"));
   }
-  if (!(layout.size > 0.0) || !std::isfinite(layout.size)) {
-    problem(concat("size must be finite and > 0 m (got ", layout.size, ")"));
+  if (!(layout.size > 0.0 && layout.size <= 2.0 * kSceneReach)) {
+    problem(concat("size must be > 0 and at most ", 2.0 * kSceneReach, " m, the scene's reach either side (got ",
+                   layout.size, ")"));
   } else if (problems.empty() && !(c.cwiseAbs().maxCoeff() + outermost + spacing < half)) {
     problem(concat("size must exceed 2 (|centre| + ", coarse ? "4 detail_radius + 5 spacing" : "detail_radius + 2 spacing",
                    ") in x and z, ", 2.0 * (c.cwiseAbs().maxCoeff() + outermost + spacing), " m (got ", layout.size, ")"));

@@ -3,6 +3,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/image.h"
+#include "refracta/scene/image_io.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -73,6 +74,7 @@ std::string texture_cache_folder() {
 }
 
 void check_texture_file(const std::string& path) {
+  check_path_text(path);
   std::error_code error;
   if (!fs::exists(path, error)) throw IoError(concat("no such texture file: '", path, "'"));
   if (!fs::is_regular_file(path, error)) throw IoError(concat("cannot read texture '", path, "': not a regular file"));

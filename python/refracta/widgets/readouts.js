@@ -4,13 +4,14 @@
 //
 // Model traits: image (PNG bytes), width/height (image pixels), scale (display pixels per image
 // pixel), values (float32 little-endian bytes, height x width x channels, row-major),
-// layout ([{name, offset, labels: [..], unit, digits}]: each readout's first channel and its
-// channels' labels), text (the readout shown; also set on hover, so Python sees the last one).
+// layout ([{name, offset, labels: [..], unit, units: [..], digits: [..]}]: each readout's first
+// channel, its channels' labels, the unit after all values or each value's own, and each value's
+// decimals), text (the readout shown; also set on hover, so Python sees the last one).
 
-function formatValue(value, digits) {
+function formatValue(value, digits, unit) {
   if (Number.isNaN(value)) return "none";
   if (!Number.isFinite(value)) return value > 0 ? "inf" : "-inf";
-  return value.toFixed(digits);
+  return value.toFixed(digits) + (unit ? ` ${unit}` : "");
 }
 
 function render({ model, el }) {
@@ -48,7 +49,7 @@ function render({ model, el }) {
       const parts = item.labels.map((labelText, c) => {
         const value = view.getFloat32(4 * ((j * width + i) * channels + item.offset + c), true);
         met = met || !Number.isNaN(value);
-        return (labelText ? `${labelText} ` : "") + formatValue(value, item.digits);
+        return (labelText ? `${labelText} ` : "") + formatValue(value, item.digits[c], item.units[c]);
       });
       lines.push(`${item.name}: ${parts.join(", ")}${item.unit && met ? " " + item.unit : ""}`);
     }

@@ -46,8 +46,17 @@ def show_readouts(
     height, width = pixels.shape[:2]
     layout, offset = [], 0
     for name, array in planes:
-        labels, unit, digits = _format(name, array.shape[2])
-        layout.append({"name": name, "offset": offset, "labels": list(labels), "unit": unit, "digits": digits})
+        labels, unit, units, digits = _format(name, array.shape[2])
+        layout.append(
+            {
+                "name": name,
+                "offset": offset,
+                "labels": list(labels),
+                "unit": unit,
+                "units": list(units),
+                "digits": list(digits),
+            }
+        )
         offset += array.shape[2]
     stacked = np.concatenate([a for _, a in planes], axis=2) if planes else np.zeros((height, width, 0))
     display = np.clip(io.to_display(pixels[..., :3], exposure=exposure) * 255.0 + 0.5, 0, 255).astype(np.uint8)
