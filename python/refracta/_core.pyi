@@ -1200,9 +1200,12 @@ class Camera:
         pick(scene, u, v, refracta.without_refraction(field)): the scene's own straight ray would
         cross a flat Earth.
         """
-    def project(self, points: typing.Any) -> typing.Any:
+    def project(self, points: typing.Any, earth_radius: typing.SupportsFloat | typing.SupportsIndex = ...) -> typing.Any:
         """
-        (u, v, depth) per point (N, 3); depth [m] along the view axis, <= 0 behind.
+        (u, v, depth) per point (N, 3) through the pinhole; depth [m] along the view axis, <= 0 behind.
+        earth_radius [m]: the scene is the flat frame of a CurvedEarth of this radius; the points are
+        projected along the true geometry's straight lines, where pick(scene, u, v,
+        refracta.without_refraction(field)) finds them (inf: the scene's own straight lines).
         """
     def ray(self, u: typing.Any, v: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """

@@ -30,7 +30,9 @@ _SHARE = "{l_bar}{bar}| [{elapsed}<{remaining}]"
 class ProgressBar:
     """A progress(done, total) callback drawing ``label: 52%|#####     | 80k/153k [00:01<00:01, ...]``.
 
-    The bar is made at the first call (when the total is known) and closed when done reaches total.
+    The bar is made at the first call with a total and closed when done reaches total; a call with
+    another total after that is a next phase of the work (a render prepares its textures, then
+    renders its tiles), shown by a bar of its own.
     stream: draw a text bar into this file instead (tqdm's ``file``); by default tqdm.auto chooses
     a Jupyter widget or stderr. quiet_seconds: draw nothing until the work has run this long, from
     this object's creation (tqdm's ``delay``): work that ends sooner leaves no trace, e.g. a model
@@ -47,8 +49,12 @@ class ProgressBar:
         self.finished = False
 
     def __call__(self, done: int, total: int) -> None:
-        if self.finished:
+        if total <= 0:  # the work has not said how much there is yet (a bar of 0/0 read as finished)
             return
+        if self.finished:
+            if self.bar is not None and total == self.bar.total and done >= total:
+                return  # the end, reported again
+            self.bar, self.finished = None, False  # a next phase of the work (a render's textures, then its tiles)
         if self.bar is None:
             # The quiet period counts from this object's creation, not from the first call.
             delay = max(0.0, self.quiet_seconds - (time.monotonic() - self.start))

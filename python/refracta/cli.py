@@ -618,10 +618,11 @@ def render_file(
 
 
 def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | None = None) -> int:
-    """Solve the scene's atmosphere for the pairs file; write the scene with the solved atmosphere."""
+    """Solve the scene's atmosphere for the pairs file; write the scene with the solved atmosphere
+    (and the solved camera where the pairs file frees camera parameters)."""
     import refracta
     from refracta import edit
-    from refracta.scene_file import read_scene_text, relocate, with_atmosphere
+    from refracta.scene_file import read_scene_text, relocate, with_atmosphere, with_camera
 
     _check_output(output, scene_file=True)
     loaded = refracta.load_scene(scene_path)
@@ -639,7 +640,10 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     result = edit.solve(field, camera, pairs, progress=True, **options)
     print(result.report())
     # The solved field carries the file's turbulence (if any): written with its settings again.
-    output.write_text(with_atmosphere(text, result.field, loaded.turbulence))
+    text = with_atmosphere(text, result.field, loaded.turbulence)
+    if len(result.camera_values) and result.camera is not None:  # camera parameters free: as solved (was dropped)
+        text = with_camera(text, result.camera)
+    output.write_text(text)
     if result.success:
         print(f"wrote {output}")
         return 0

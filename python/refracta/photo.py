@@ -181,7 +181,7 @@ class Photo:
         if exif.focal_length_mm is None:
             raise ValueError(
                 f"the EXIF{where} gives no focal length (FocalLength or FocalLengthIn35mmFilm): "
-                "set the camera's vfov yourself"
+                "give it yourself, as Photo.camera(position, look_at, vfov=...) [deg]"
             )
         raise ValueError(
             f"the EXIF{where} gives the focal length ({exif.focal_length_mm:g} mm) but neither the sensor size "
@@ -196,16 +196,20 @@ class Photo:
         *,
         width: int | None = None,
         sensor_mm: tuple[float, float] | None = None,
+        vfov: float | None = None,
     ) -> _core.Camera:
         """A Camera at `position` looking at `look_at` with the photograph's vertical field of view
-        (vfov(sensor_mm)) and aspect. width: the render's width in pixels (default the
-        photograph's); the height follows the photograph's aspect (rounded, at least 1)."""
+        (vfov(sensor_mm), or `vfov` [deg] given: a photograph whose EXIF says nothing of its lens)
+        and aspect. width: the render's width in pixels (default the photograph's); the height
+        follows the photograph's aspect (rounded, at least 1)."""
         self._check_size()
+        if vfov is not None and sensor_mm is not None:
+            raise ValueError("Photo.camera: give vfov or sensor_mm, not both (sensor_mm sets the field of view)")
         w = self.width if width is None else width
         if not (is_number(w) and math.isfinite(w) and w == int(w) and 1 <= w <= 2**31 - 1):
             raise ValueError(f"width must be a whole number of pixels in [1, 2147483647] (got {width!r})")
         h = max(1, round(int(w) * self.height / self.width))
-        return _core.Camera(position, look_at, up, self.vfov(sensor_mm), int(w), h)
+        return _core.Camera(position, look_at, up, self.vfov(sensor_mm) if vfov is None else vfov, int(w), h)
 
 
 def _sensor(value, name: str = "sensor_mm") -> tuple[float, float]:

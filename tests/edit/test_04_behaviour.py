@@ -224,3 +224,38 @@ def test_a_result_on_a_bound_of_the_search_says_so():
         free="alpha",
     )
     assert inside.success and inside.at_bounds == [] and "bound of the search" not in inside.message
+
+
+def test_pixel_destinations_a_fraction_of_a_pixel_apart_are_reported_in_pixels():
+    """Two destinations 0.3 px off their sources' images, in opposite directions: no alpha meets
+    both within pixel_tolerance (0.1 px), and the least-squares optimum splits the difference, each
+    0.3 px off. That was reported as an atmosphere none of the solve's samples found (a trial's
+    photograph, read to half a pixel); now in pixels, with what to do."""
+    camera = refracta.Camera((0.0, 1.5, 0.0), (1000.0, 1.5, 0.0), vfov=2.0, width=200, height=100)
+    pairs = []
+    for source, shift in zip([(1000.0, 3.0, 0.0), (1000.0, 1.0, 5.0)], (0.3, -0.3)):
+        u, v, _ = camera.project(source)
+        pairs.append(PointPair((u, v + shift), source))
+    result = solve(refracta.LinearSquaredProfile(), camera, pairs, free="alpha")
+    assert not result.success
+    assert "The fit converged with every pair within a pixel of its place" in result.message
+    assert "None of the atmospheres" not in result.message
+    rms = float(result.message.split("(rms ")[1].split(" px")[0])
+    # The two shifts are symmetric, so each pair ends 0.3 px off: alpha bends both paths alike to
+    # 1e-4 px over 2 m of height at 1 km.
+    assert rms == pytest.approx(0.3, abs=1e-3)
+    margins = [PointPair(p.destination, p.source, margin=0.5) for p in pairs]
+    assert solve(refracta.LinearSquaredProfile(), camera, margins, free="alpha").success  # as the message advises
+
+
+def test_a_start_that_already_meets_every_pair_is_said_to():
+    """A margin of 1 m around a source the start's path passes 0.4 m from: met before any step, so
+    the pairs cannot tell the start's alpha from the solved one (a trial's success moved surface_dt
+    by 3.4 K chasing sub-millimetre misses, without a word)."""
+    eye, field = (0.0, 1.5, 0.0), refracta.LinearSquaredProfile()
+    pair = PointPair((1.0, 1.5, 0.0), (1000.0, 1.9, 0.0), margin=1.0)
+    assert distances(field, eye, [pair])[0] < 1.0
+    result = solve(field, eye, [pair], free="alpha")
+    assert result.success and "The start already met every pair" in result.message
+    unmet_start = solve(field, eye, [PointPair((1.0, 1.5, 0.0), (1000.0, 3.0, 0.0))], free="alpha")
+    assert unmet_start.success and "already met" not in unmet_start.message

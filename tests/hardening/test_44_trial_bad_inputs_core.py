@@ -118,3 +118,21 @@ def test_booleans_are_not_coordinates():
         refracta.trace_ray(field, (0.0, 1.0, 0.0), np.array([True, False, False]), max_length=10.0)
     with pytest.raises(ValueError, match="triangles must hold whole vertex indices"):
         refracta.Scene().add_mesh(np.eye(3), np.array([[True, False, True]]))
+
+
+def test_a_hand_made_ray_path_state_must_be_a_trace():
+    path = refracta.trace_ray(refracta.LinearSquaredProfile(), (0.0, 1.0, 0.0), (1.0, 0.0, 0.0), max_length=10.0)
+    nodes, stop, evaluations = path.__getstate__()
+    copy = refracta.RayPath.__new__(refracta.RayPath)
+    copy.__setstate__((nodes, stop, evaluations))
+    assert copy.length == path.length
+    bad_nodes = np.array(nodes, copy=True)
+    bad_nodes[-1, 1] = np.nan  # was taken: length nan
+    reversed_nodes = np.array(nodes[::-1], copy=True)
+    for state, message in [
+        ((bad_nodes, stop, evaluations), "nodes must be finite"),
+        ((reversed_nodes, stop, evaluations), "arc lengths must not fall"),
+        ((nodes, stop, -5), "evaluations -5"),
+    ]:
+        with pytest.raises(ValueError, match=message):
+            refracta.RayPath.__new__(refracta.RayPath).__setstate__(state)

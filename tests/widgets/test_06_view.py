@@ -169,3 +169,18 @@ def test_an_editor_from_a_scene_file_exports_the_whole_file(tmp_path):
     no_air.write_text("[camera]\nposition = [0.0, 1.4, 0.0]\nlook_at = [300.0, 0.62, 0.0]\nsize = [96, 32]\n")
     with pytest.raises(ValueError, match="no \\[atmosphere\\]"):
         MirageEditor.from_file(no_air)
+
+
+def test_camera_parameters_can_be_free_in_the_editor(road):
+    """free=["surface_dt", "camera_pitch"] raised traitlets' "Invalid selection" (the list offered the
+    field's parameters alone), and set_free with one left the widget and the model apart (a trial)."""
+    editor = MirageEditor(
+        road.scene, road.camera, road.field, free=["surface_dt", "camera_pitch"], stop_height=0.0,
+        max_length=road.max_length,
+    )  # fmt: skip
+    try:
+        assert editor._free.value == ("surface_dt", "camera_pitch")
+        editor.model.set_free(["surface_depth", "camera_yaw"])
+        assert editor._free.value == ("surface_depth", "camera_yaw") == tuple(editor.model.free)
+    finally:
+        editor.close()

@@ -6,6 +6,7 @@
 #include "refracta/render/scene_building.h"
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -140,12 +141,16 @@ void bind_camera(py::module_& m) {
           "(N, 3) origins and directions.")
       .def(
           "project",
-          [](const Camera& c, const py::object& points) {
+          [](const Camera& c, const py::object& points, double earth_radius) {
             bool single = false;
-            const std::vector<Vec3d> p = c.project(to_points(points, "points", &single));
+            const std::vector<Vec3d> p = projected_over_sphere(c, earth_radius, to_points(points, "points", &single));
             return single ? py::object(vector_to_array(p[0])) : py::object(points_to_array(p));
           },
-          py::arg("points"), "(u, v, depth) per point (N, 3); depth [m] along the view axis, <= 0 behind.")
+          py::arg("points"), py::arg("earth_radius") = std::numeric_limits<double>::infinity(),
+          "(u, v, depth) per point (N, 3) through the pinhole; depth [m] along the view axis, <= 0 behind.\n"
+          "earth_radius [m]: the scene is the flat frame of a CurvedEarth of this radius; the points are\n"
+          "projected along the true geometry's straight lines, where pick(scene, u, v,\n"
+          "refracta.without_refraction(field)) finds them (inf: the scene's own straight lines).")
       .def(
           "pick",
           [](const Camera& c, const RenderScene& s, double u, double v, const std::optional<std::shared_ptr<IndexField>>& field,

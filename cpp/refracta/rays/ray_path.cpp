@@ -145,6 +145,12 @@ RayPath::PackedNodes RayPath::packed() const {
 RayPath RayPath::unpacked(const PackedNodes& rows, int stop, int64_t evaluations) {
   if (rows.rows() < 1) throw_invalid("RayPath: bad pickle state (nodes)");
   if (stop < 0 || stop > int(TraceStop::kVisitor)) throw_invalid("RayPath: bad pickle state (stop ", stop, ")");
+  if (evaluations < 0) throw_invalid("RayPath: bad pickle state (evaluations ", evaluations, ")");
+  // What a trace makes: finite nodes in order of arc length (a trial's NaN nodes gave length nan).
+  if (!rows.allFinite()) throw_invalid("RayPath: bad pickle state (nodes must be finite)");
+  for (Eigen::Index i = 1; i < rows.rows(); ++i) {
+    if (!(rows(i, 0) >= rows(i - 1, 0))) throw_invalid("RayPath: bad pickle state (arc lengths must not fall)");
+  }
   std::vector<RayNode<double>> nodes(size_t(rows.rows()));
   for (size_t i = 0; i < nodes.size(); ++i) {
     const auto r = rows.row(Eigen::Index(i));

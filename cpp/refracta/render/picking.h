@@ -6,6 +6,7 @@
 #include "refracta/scene/embree_scene.h"
 
 #include <optional>
+#include <vector>
 
 namespace refracta {
 
@@ -23,5 +24,13 @@ FieldPtr straight_air(const IndexField* field);
 // one that would leave the scene's reach.
 std::optional<Vec3d> picked_point(const Scene& scene, const Camera& camera, const FieldPtr& field, double u, double v,
                                   std::optional<double> max_length);
+
+// (u, v, depth) of each scene point as Camera::project gives it, but over a spherical Earth of
+// `earth_radius` [m] (the scene a CurvedEarth's flat frame; inf: Camera::project itself) along the
+// true geometry's straight lines: where picked_point through straight_air finds the point (its
+// inverse; exact for an eye above the frame's origin, where every ray's vertical plane holds the
+// origin, as the flattening assumes). depth [m] along the view axis in the true geometry, <= 0
+// behind.
+std::vector<Vec3d> projected_over_sphere(const Camera& camera, double earth_radius, std::vector<Vec3d> points);
 
 }  // namespace refracta

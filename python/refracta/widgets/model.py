@@ -226,18 +226,24 @@ def _deprecated_ground(ground: float | None, stop_height: float | None, where: s
 
 
 def ground_circle(
-    camera: _core.Camera, centre_x: float, centre_z: float, radius: float, segments: int = SPOT_SEGMENTS
+    camera: _core.Camera,
+    centre_x: float,
+    centre_z: float,
+    radius: float,
+    segments: int = SPOT_SEGMENTS,
+    earth_radius: float = math.inf,
 ) -> list[tuple[float, float] | None]:
     """The circle of `radius` [m] about (centre_x, 0, centre_z) on the ground plane y = 0, as image
     pixels (u, v) of `camera` (Camera.project: where the camera sees the ground without
-    atmosphere): segments + 1 points, the last the first again (a closed outline); None for a
-    point behind the camera (the outline breaks there)."""
+    atmosphere, over a CurvedEarth of earth_radius along its true straight lines): segments + 1
+    points, the last the first again (a closed outline); None for a point behind the camera (the
+    outline breaks there)."""
     angles = np.linspace(0.0, 2.0 * np.pi, segments + 1)
     angles[-1] = 0.0  # exactly the first point: the outline closes
     points = np.stack(
         [centre_x + radius * np.cos(angles), np.zeros_like(angles), centre_z + radius * np.sin(angles)], axis=1
     )
-    projected = np.asarray(camera.project(points), dtype=float)
+    projected = np.asarray(camera.project(points, earth_radius=earth_radius), dtype=float)
     return [(float(u), float(v)) if depth > 0.0 else None for u, v, depth in projected]
 
 
@@ -455,18 +461,18 @@ class EditorModel:
         with self._lock:
             camera, pairs, selected = self.camera, self.pairs, self.selected
             unmet = set(unmet_pairs(self.result)) if self.result_matches_pairs else None
-            pending = self.pending_source
+            pending, earth_radius = self.pending_source, float(self.field.earth_radius)
         out = []
         for i, pair in enumerate(pairs):
             met = None if unmet is None else i not in unmet
             for kind, uv in (
-                ("source", self._project(camera, pair.source)),
+                ("source", self._project(camera, pair.source, earth_radius)),
                 ("destination", self._destination_pixel(camera, pair)),
             ):
                 if uv is not None:
                     out.append({"kind": kind, "pair": i, "u": uv[0], "v": uv[1], "selected": i == selected, "met": met})
         if pending is not None:
-            uv = self._project(camera, pending)
+            uv = self._project(camera, pending, earth_radius)
             if uv is not None:
                 out.append({"kind": "pending", "pair": -1, "u": uv[0], "v": uv[1], "selected": True, "met": None})
         return out
@@ -486,7 +492,7 @@ class EditorModel:
         support, where the spot ends) and, for a gaussian, 'reach' (where its footprint falls
         below 1e-6: HotSpot.reach)."""
         with self._lock:
-            camera, spots = self.camera, self.hot_spots
+            camera, spots, earth_radius = self.camera, self.hot_spots, float(self.field.earth_radius)
         out = []
         for index, spot in enumerate(spots):
             rings = [("radius", spot.radius)] + ([("reach", spot.reach)] if spot.footprint == "gaussian" else [])
@@ -495,9 +501,13 @@ class EditorModel:
                     "spot": index,
                     "footprint": spot.footprint,
                     "hot": spot.dt > 0.0,
-                    "centre": self._project(camera, (spot.x, 0.0, spot.z)),
+                    "centre": self._project(camera, (spot.x, 0.0, spot.z), earth_radius),
                     "rings": [
-                        {"kind": kind, "radius": float(radius), "points": ground_circle(camera, spot.x, spot.z, radius)}
+                        {
+                            "kind": kind,
+                            "radius": float(radius),
+                            "points": ground_circle(camera, spot.x, spot.z, radius, earth_radius=earth_radius),
+                        }
                         for kind, radius in rings
                     ],
                 }
@@ -505,8 +515,11 @@ class EditorModel:
         return out
 
     @staticmethod
-    def _project(camera, point) -> tuple[float, float] | None:
-        u, v, depth = np.asarray(camera.project(np.asarray(point, dtype=float)[None, :]), dtype=float)[0]
+    def _project(camera, point, earth_radius: float = math.inf) -> tuple[float, float] | None:
+        """Where the camera sees a scene point without air: over a CurvedEarth (earth_radius) along
+        the true straight lines, where a click picks it (camera.pick through without_refraction)."""
+        point = np.asarray(point, dtype=float)[None, :]
+        u, v, depth = np.asarray(camera.project(point, earth_radius=earth_radius), dtype=float)[0]
         return (float(u), float(v)) if depth > 0.0 else None
 
     def _destination_pixel(self, camera, pair):

@@ -36,6 +36,15 @@ MESSAGE_COLOURS = {"info": "#333", "success": "#1a7f37", "error": "#c62828"}
 TABLE_STYLE = "style='border-spacing: 14px 1px'"
 
 
+def _free_choices(field) -> list[str]:
+    """What the "free" list offers: the field's parameters, then the camera's (refracta.edit's
+    CAMERA_PARAMETERS: a photograph's camera is solved with the air; offering only the field's made
+    a camera parameter free in the model a TraitError in the widget)."""
+    from refracta.edit import CAMERA_PARAMETERS
+
+    return list(field.param_names) + list(CAMERA_PARAMETERS)
+
+
 class MirageEditor(w.VBox):
     """Interactive mirage editor: click where a scene point's mirage image should appear and solve
     for the atmosphere that puts it there.
@@ -263,7 +272,7 @@ class MirageEditor(w.VBox):
         model = self.model
         # Pairs tab
         self._pair_rows = w.VBox()
-        names = list(model.field.param_names)
+        names = _free_choices(model.field)
         self._free = w.SelectMultiple(
             options=names,
             value=tuple(model.free or ()),
@@ -590,7 +599,7 @@ class MirageEditor(w.VBox):
         self._fan.value = self.model.fan_png or b""
 
     def _show_field(self) -> None:
-        names = tuple(self.model.field.param_names)
+        names = tuple(_free_choices(self.model.field))
         if tuple(self._free.options) != names:  # a loaded scene with another model
             self._syncing = True
             try:
