@@ -518,6 +518,7 @@ def _write_mp4(path, frames, fps, exposure, tonemap):
         *("-vcodec", "libx264", "-pix_fmt", "yuv420p", "-crf", "10", "-v", "error", path),
     ]
     with tempfile.TemporaryFile() as log:  # a file, not a pipe: ffmpeg never waits for a reader
+        existed = os.path.exists(path)  # a failure removes only a file of its own making
         ffmpeg = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=log)
         pipe = ffmpeg.stdin
         assert pipe is not None  # stdin=PIPE
@@ -537,7 +538,7 @@ def _write_mp4(path, frames, fps, exposure, tonemap):
         log.seek(0)
         message = log.read().decode(errors="replace").strip()
     if status != 0:
-        if os.path.isfile(path):
+        if os.path.isfile(path) and not existed:
             os.remove(path)  # what ffmpeg began is no movie
         said = " | ".join(message.splitlines()[-4:]) or "no message"
         raise _core.IoError(f"cannot write the MP4 {path!r}: ffmpeg (H.264) stopped with status {status}: {said}")

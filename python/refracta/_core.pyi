@@ -2086,7 +2086,8 @@ class RenderOptions:
     @property
     def max_length(self) -> float:
         """
-        curved rays end here and show the sky in their last direction [m]
+        Curved rays end here and show the sky in their last direction [m]; so do straight rays over a field
+        with an Earth radius (the sphere's straight lines, render/picking.h straight_air).
         """
     @max_length.setter
     def max_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:

@@ -235,7 +235,9 @@ class EditResult:
     limit'; '' if none). condition, rank: of the Jacobian in the free parameters' unit box at a
     result meeting every pair (else 0, 0); above 1e6 the message says the solution is not unique.
     history: cost per iteration (ceres) or best cost per evaluation (nlopt) of that run. free: the
-    optimised parameters; insensitive: requested free parameters no pair depends on (held fixed).
+    optimised parameters; insensitive: requested free parameters no pair depends on (held fixed);
+    at_bounds: free parameters the result left on a bound of the search (the best fit may lie
+    beyond: widen bounds=).
     iterations (of the start that gave the result), evaluations (cost evaluations, the global
     stage's design points and every start included), pair_traces (traced pairs, derivative passes
     included), time [s] (solving only), starts, backend, derivatives. These are read from

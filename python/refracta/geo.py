@@ -525,7 +525,9 @@ class LocalFrame:
             if sensor is None:
                 raise ValueError(f"sensor_mm must be (width, height) [mm] (got {sensor_mm!r})")
             lens["sensor_mm"] = sensor
-        if len(size) == 1:  # one side given: the other keeps the default image's shape (square pixels)
+        sides = lens.get("sensor_mm", (1.0, 1.0))
+        if len(size) == 1 and sides[0] > 0.0 and sides[1] > 0.0:  # (a bad sensor: Camera.photographic's error)
+            # One side given: the other keeps the default image's shape (square pixels).
             if "sensor_mm" in lens:
                 aspect = lens["sensor_mm"][0] / lens["sensor_mm"][1]
             else:

@@ -75,6 +75,7 @@ __all__ = [
     "ev100",
     "exposure_of",
     "read_image",
+    "read_layers",
     "settings",
     "to_display",
     "write_animation",
@@ -187,7 +188,8 @@ def write_layers(path, image, layers: dict, suffixes: dict | None = None) -> Non
     parts: EXR's nested layers); a suffix a non-empty string without a dot. Raises ValueError for
     a bad layer (complex or non-numeric values, finite values beyond float32's range, a bad name,
     a name longer than EXR's 255 bytes) or a non-float format, refracta.IoError when the file
-    cannot be written."""
+    cannot be written. EXR keeps channels sorted by name: read_layers gives them back in this
+    order (read_image in the file's: geographic.height before .lat)."""
     base = _layer_values(_image_array(image, "write_layers"), "write_layers: image")
     if base.ndim == 2:
         base = base[..., None]
@@ -262,6 +264,32 @@ def channel_names(path) -> list[str]:
     Raises refracta.IoError for a missing file or one that is not a regular file (a folder, or a
     FIFO, which would block)."""
     return list(_core._channel_names(os.fspath(path)))
+
+
+def read_layers(path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """(image, layers) of a float file as write_layers wrote it: the image from its unnamed channels
+    (R, G, B, A, or Y), each layer ``name`` from its ``name.<suffix>`` channels, (H, W) for one
+    channel, (H, W, C) otherwise, its channels in the order write_layers gives them
+    (READOUT_CHANNELS for render's readouts, X, Y, Z, W otherwise) -- not the file's: EXR keeps
+    channels sorted by name, so read_image puts geographic.height before .lat and .lon. A layer
+    of other suffixes keeps the file's order. Raises refracta.IoError as read_image does."""
+    names, pixels = channel_names(path), read_image(path)
+    base = [i for i, name in enumerate(names) if "." not in name]
+    order = {"R": 0, "G": 1, "B": 2, "Y": 0, "A": 3}
+    base.sort(key=lambda i: order.get(names[i], len(order)))
+    groups: dict[str, dict[str, int]] = {}
+    for i, name in enumerate(names):
+        if "." in name:
+            layer, suffix = name.rsplit(".", 1)
+            groups.setdefault(layer, {})[suffix] = i
+    layers = {}
+    for layer, channels in groups.items():
+        wanted = READOUT_CHANNELS.get(layer) or _LAYER_SUFFIXES.get(len(channels))
+        suffixes = list(wanted) if wanted and set(wanted) == set(channels) else list(channels)
+        values = pixels[..., [channels[suffix] for suffix in suffixes]]
+        layers[layer] = values[..., 0] if values.shape[-1] == 1 else values
+    image = pixels[..., base]
+    return (image[..., 0] if image.shape[-1] == 1 else image), layers
 
 
 def read_image(path, linear: bool = False) -> np.ndarray:

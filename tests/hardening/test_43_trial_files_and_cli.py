@@ -214,3 +214,17 @@ def test_spectra_that_overflow_are_named_not_nan(call, message):
     # Each gave NaN or inf.
     with pytest.raises(ValueError, match=message):
         call()
+
+
+def test_an_mp4_ffmpeg_refuses_before_opening_leaves_a_file_that_was_there(tmp_path, monkeypatch):
+    # A review: a failure removed `path` whether or not ffmpeg had made it (a user's earlier movie).
+    ffmpeg = pytest.importorskip("imageio_ffmpeg")
+    failing = tmp_path / "ffmpeg"
+    failing.write_text("#!/bin/sh\necho 'Unrecognized option' >&2\nexit 1\n")
+    failing.chmod(0o755)
+    monkeypatch.setattr(ffmpeg, "get_ffmpeg_exe", lambda: str(failing))
+    path = tmp_path / "x.mp4"
+    path.write_bytes(b"an earlier movie")
+    with pytest.raises(refracta.IoError, match="Unrecognized option"):
+        io.write_animation(path, np.full((2, 8, 8, 3), 0.5), fps=10.0)
+    assert path.read_bytes() == b"an earlier movie"

@@ -136,3 +136,17 @@ def test_a_hand_made_ray_path_state_must_be_a_trace():
     ]:
         with pytest.raises(ValueError, match=message):
             refracta.RayPath.__new__(refracta.RayPath).__setstate__(state)
+
+
+def test_project_over_a_sphere_refuses_a_radius_that_would_overflow():
+    camera = refracta.Camera((0.0, 5.0, 0.0), (1000.0, 5.0, 0.0))
+    for radius in (1e-300, 10.0, -1.0, float("nan")):  # 1e-300 gave NaN pixels, 10 a depth of -2.8e35
+        with pytest.raises(ValueError, match=r"earth_radius must be at least 1000 m, or inf"):
+            camera.project([100.0, 800.0, 0.0], earth_radius=radius)
+    assert camera.project([100.0, 5.0, 0.0], earth_radius=float("inf"))[2] == pytest.approx(100.0)  # flat: exact
+
+
+def test_a_lens_camera_aimed_at_a_far_point_focuses_within_the_scene():
+    # A review: the default focus, the distance to look_at, was refused beyond 1e7 m by with_lens.
+    camera = refracta.Camera.photographic((0.0, 2.0, 0.0), (5e7, 2.0, 0.0), 50.0, f_number=8.0)
+    assert camera.focus_distance == 1e7

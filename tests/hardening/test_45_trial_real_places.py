@@ -44,6 +44,12 @@ def test_readouts_are_written_under_their_own_channel_names(tmp_path):
     latitude = layers[..., names.index("geographic.lat")]
     # The latitude, as named, stored as float32: 60 deg to half a float32 step, 2^-19 deg ~ 1.9e-6.
     np.testing.assert_allclose(latitude, out["geographic"][..., 0], atol=2e-6)
+    # EXR sorts channels by name (geographic.height first); read_layers gives them in the readout's order.
+    again, read = io.read_layers(tmp_path / "r.exr")
+    np.testing.assert_array_equal(again, image)  # float32 both ways
+    assert set(read) == set(out)
+    for name, values in out.items():
+        np.testing.assert_allclose(read[name], values, rtol=1e-7, atol=2e-6)  # as the latitude above
 
 
 def test_sky_pixels_of_the_position_readout_give_nan_places():

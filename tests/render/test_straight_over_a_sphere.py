@@ -78,9 +78,9 @@ def test_pick_through_the_air_sees_what_the_render_sees():
     geometric = sphere_distance(elevation_of_row(camera, row))
     distance = float(np.linalg.norm(point - camera.position))
     assert distance < geometric
-    # pixel centre (2.5, 30.5) is the render's 1-spp sample only approximately: its sample lies within
-    # the pixel, 0.01 deg tall, which moves the hit by ~1.5 % of its distance here.
-    assert distance == pytest.approx(float(seen["distance"][row, 2]), rel=0.03)
+    # At 1 spp the render samples the pixel's centre, (2.5, 30.5): the same ray, traced to 1 mm, its
+    # distance read as float32 (6e-8): 1e-5 relative. (Half a pixel off would be ~1.5 % here.)
+    assert distance == pytest.approx(float(seen["distance"][row, 2]), rel=1e-5)
 
 
 def test_pick_refuses_a_reach_beyond_the_scene():

@@ -19,7 +19,8 @@ FieldPtr straight_air(const IndexField* field) {
 
 std::optional<Vec3d> picked_point(const Scene& scene, const Camera& camera, const FieldPtr& field, double u, double v,
                                   std::optional<double> max_length) {
-  const Vec3d eye = camera.position(), dir = camera.pixel_direction(u, v);
+  const Vec3d& eye = camera.position();
+  const Vec3d dir = camera.pixel_direction(u, v);
   const double reach = kSceneReach - eye.cwiseAbs().maxCoeff();
   const double length = max_length.value_or(reach);
   if (!(length > 0.0 && length <= reach)) {
@@ -64,9 +65,14 @@ Vec3d flat_direction(const Vec3d& e, const Vec3d& d, double radius) {
 }  // namespace
 
 std::vector<Vec3d> projected_over_sphere(const Camera& camera, double earth_radius, std::vector<Vec3d> points) {
-  if (!(earth_radius > 0.0)) throw_invalid("project: earth_radius must be > 0 m or inf (got ", earth_radius, ")");
+  // CurvedEarth's own floor: below it e^(y/R) overflows (a radius of 1e-300 gave NaN pixels).
+  if (!(earth_radius >= CurvedEarth::kMinRadius)) {
+    throw_invalid("project: earth_radius must be at least ", CurvedEarth::kMinRadius, " m, or inf (got ", earth_radius,
+                  ")");
+  }
   if (std::isinf(earth_radius)) return camera.project(std::move(points));
-  const Vec3d eye = camera.position(), eye_true = true_position(eye, earth_radius);
+  const Vec3d& eye = camera.position();
+  const Vec3d eye_true = true_position(eye, earth_radius);
   for (Vec3d& p : points) {
     // The point along the eye's flat-frame direction of its true one, as far as it truly is.
     const Vec3d d = true_position(p, earth_radius) - eye_true;

@@ -63,7 +63,9 @@ struct RenderOptions {
   // scenes): the cost is that share x edge_spp. 0 (or at most spp): off. Not with adaptive.
   int edge_spp = 0;
   uint64_t seed = 0;  // seed of the per-pixel random streams
-  double max_length = 5000.0; // curved rays end here and show the sky in their last direction [m]
+  // Curved rays end here and show the sky in their last direction [m]; so do straight rays over a
+  // field with an Earth radius (the sphere's straight lines, render/picking.h straight_air).
+  double max_length = 5000.0;
   double chord = 1000.0;      // longest straight chord tested against the geometry [m]
   double sagitta = 1e-3;      // largest distance between a chord and the curved path [m]
   // Embree intersects in single precision (hits uncertain by ~1e-7 of their distance, 0.1 mm at

@@ -87,7 +87,8 @@ Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const V
   if (!f_number) return camera;
   // The aperture's diameter A = f / N [m]; focus by default where the camera looks (which must lie
   // beyond the focal length too: eye_level's target 1e-9 m away rendered wholly blurred).
-  const double focus = focus_distance.value_or((look_at - position).norm());
+  // (At most the scene's reach, as with_lens takes: a look_at 5e7 m away is a direction.)
+  const double focus = focus_distance.value_or(std::min((look_at - position).norm(), kSceneReach));
   if (!(focus > 1e-3 * focal_length_mm)) {
     throw_invalid("Camera.photographic: the camera looks at a point ", focus, " m away, nearer than the focal length (",
                   1e-3 * focal_length_mm, " m), where a lens cannot focus: give focus_distance");
