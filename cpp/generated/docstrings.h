@@ -39,11 +39,11 @@ inline constexpr const char mkd_doc_refracta_BsdfSamples_terminated[] = R"doc(Tr
 inline constexpr const char mkd_doc_refracta_BsdfSamples_valid[] = R"doc(False where no direction was produced (N,).)doc";
 inline constexpr const char mkd_doc_refracta_BsdfSamples_weight[] = R"doc(``f |cos theta_i| / pdf`` (N, C) (delta lobes: albedo / probability).)doc";
 inline constexpr const char mkd_doc_refracta_BsdfSamples_wi[] = R"doc(Sampled unit directions (N, 3), 0 where invalid.)doc";
-inline constexpr const char mkd_doc_refracta_Camera[] = R"doc(Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
-vertical field of view [deg], from 1e-6 to under 180. Pixel coordinates (u, v): u right, v down,
-pixel (i, j) centred at (i + 0.5, j + 0.5). A photographer's camera with depth of field:
-Camera.photographic(..., f_number=) or Camera.eye_level(..., f_number=); any camera through a thin
-lens: with_lens.)doc";
+inline constexpr const char mkd_doc_refracta_Camera[] = R"doc(Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360; one side
+given alone, the other follows that 16:9 shape): vfov is the vertical field of view [deg], from 1e-6
+to under 180. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at (i + 0.5, j + 0.5).
+A photographer's camera with depth of field: Camera.photographic(..., f_number=) or
+Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.)doc";
 inline constexpr const char mkd_doc_refracta_Camera_aperture_diameter[] = R"doc(The thin lens's aperture diameter [m] (f / N), 0 for a pinhole.)doc";
 inline constexpr const char mkd_doc_refracta_Camera_eye_level[] = R"doc(A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the lens
 eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the

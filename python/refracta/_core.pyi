@@ -1074,14 +1074,14 @@ class Scene:
         """
 class Camera:
     """
-    Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is the
-    vertical field of view [deg], from 1e-6 to under 180. Pixel coordinates (u, v): u right, v down,
-    pixel (i, j) centred at (i + 0.5, j + 0.5). A photographer's camera with depth of field:
-    Camera.photographic(..., f_number=) or Camera.eye_level(..., f_number=); any camera through a thin
-    lens: with_lens.
+    Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360; one side
+    given alone, the other follows that 16:9 shape): vfov is the vertical field of view [deg], from 1e-6
+    to under 180. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred at (i + 0.5, j + 0.5).
+    A photographer's camera with depth of field: Camera.photographic(..., f_number=) or
+    Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.
     """
     @staticmethod
-    def eye_level(eye: typing.Any, target: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex = 1.6, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex = 50.0, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), *, width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
+    def eye_level(eye: typing.Any, target: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex = 1.6, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex = 50.0, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), *, width: typing.SupportsInt | typing.SupportsIndex | None = None, height: typing.SupportsInt | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
         """
         A photographer's view: standing at ``eye`` (the ground point under the feet [m]) with the lens
         eye_height [m] above it (1.6: a standing adult), the camera level, aimed at the horizon in the
@@ -1096,7 +1096,7 @@ class Camera:
             camera = refracta.Camera.eye_level((0, 0, 0), (0, 0, -200), eye_height=1.6, focal_length_mm=200)
         """
     @staticmethod
-    def framing(scene_or_bounds: typing.Any, direction: typing.Any = (-1.0, -0.5, -1.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360, up: typing.Any = (0.0, 1.0, 0.0)) -> Camera:
+    def framing(scene_or_bounds: typing.Any, direction: typing.Any = (-1.0, -0.5, -1.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex | None = None, height: typing.SupportsInt | typing.SupportsIndex | None = None, up: typing.Any = (0.0, 1.0, 0.0)) -> Camera:
         """
         A camera that shows a whole scene (or box): it looks along ``direction`` (default: down onto the box
         from its +x, +y, +z side) at the centre of the scene's box, from the distance at which the bounding
@@ -1141,7 +1141,7 @@ class Camera:
             
         """
     @staticmethod
-    def photographic(position: typing.Any, look_at: typing.Any, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex = 960, height: typing.SupportsInt | typing.SupportsIndex = 640, *, up: typing.Any = (0.0, 1.0, 0.0), f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
+    def photographic(position: typing.Any, look_at: typing.Any, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), width: typing.SupportsInt | typing.SupportsIndex | None = None, height: typing.SupportsInt | typing.SupportsIndex | None = None, *, up: typing.Any = (0.0, 1.0, 0.0), f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
         """
         A camera described by its lens and sensor: focal_length_mm on a sensor of sensor_mm = (width,
         height) [mm] (full frame 36 x 24; APS-C about 23.5 x 15.6). The image spans the sensor's width when
@@ -1178,8 +1178,11 @@ class Camera:
         ...
     def __hash__(self) -> int:
         ...
-    def __init__(self, position: typing.Any, look_at: typing.Any, up: typing.Any = (0.0, 1.0, 0.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 360) -> None:
-        ...
+    def __init__(self, position: typing.Any, look_at: typing.Any, up: typing.Any = (0.0, 1.0, 0.0), vfov: typing.SupportsFloat | typing.SupportsIndex = 45.0, width: typing.SupportsInt | typing.SupportsIndex | None = None, height: typing.SupportsInt | typing.SupportsIndex | None = None) -> None:
+        """
+        width, height [pixels]: the image, 640 x 360 by default; one given alone, the other follows that
+        16:9 shape (square pixels).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:

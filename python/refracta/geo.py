@@ -471,7 +471,8 @@ class LocalFrame:
         Give exactly one of vfov [deg] (vertical field of view; Camera(...)) or focal_length_mm with
         sensor_mm = (width, height) [mm] (Camera.photographic's lens and sensor; None: its full-frame
         default). image_width, image_height [pixels]: the image (None: the bound constructor's
-        default; one alone: the other follows the default image's shape, or the sensor's). roll
+        default; one alone: the other follows the default image's shape, or the sensor's, as the
+        constructor does). roll
         [deg]: the camera turned clockwise about its view direction as seen from
         behind it (the image's right side dips: a level horizon in view then rises to the right of
         the image), 0 level. ValueError when both or neither of vfov and focal_length_mm are
@@ -525,21 +526,6 @@ class LocalFrame:
             if sensor is None:
                 raise ValueError(f"sensor_mm must be (width, height) [mm] (got {sensor_mm!r})")
             lens["sensor_mm"] = sensor
-        sides = lens.get("sensor_mm", (1.0, 1.0))
-        if len(size) == 1 and sides[0] > 0.0 and sides[1] > 0.0:  # (a bad sensor: Camera.photographic's error)
-            # One side given: the other keeps the default image's shape (square pixels).
-            if "sensor_mm" in lens:
-                aspect = lens["sensor_mm"][0] / lens["sensor_mm"][1]
-            else:
-                default = (
-                    _core.Camera(eye, look_at, up=up)
-                    if vfov is not None
-                    else _core.Camera.photographic(eye, look_at, _number(focal_length_mm, "focal_length_mm"), up=up)
-                )
-                aspect = default.width / default.height
-            given, value = next(iter(size.items()))
-            other = value / aspect if given == "width" else value * aspect
-            size["height" if given == "width" else "width"] = max(1, round(other))
         if vfov is not None:
             return _core.Camera(eye, look_at, up=up, vfov=_number(vfov, "vfov"), **size)
         return _core.Camera.photographic(

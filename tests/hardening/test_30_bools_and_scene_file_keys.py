@@ -21,7 +21,7 @@ EYE, AHEAD = (0.0, 1.5, 0.0), (100.0, 1.0, 0.0)
     ("make", "message"),
     [
         (lambda: refracta.Camera(EYE, AHEAD, vfov=True), "Camera: vfov must be a number (got True)"),
-        (lambda: refracta.Camera(EYE, AHEAD, width=True), "Camera: width must be a whole number (got True)"),
+        (lambda: refracta.Camera(EYE, AHEAD, width=True), "Camera: width must be a whole number or None (got True)"),
         # (numpy's repr of its bool: np.True_, or True under legacy print options another test may set)
         (lambda: refracta.Camera(EYE, AHEAD, vfov=np.bool_(True)), "Camera: vfov must be a number (got "),
         (

@@ -76,6 +76,15 @@ def test_a_camera_given_one_side_keeps_the_default_shape():
     assert (tall.width, tall.height) == (round(90 * full.width / full.height), 90)
     photo = frame.camera(10.0, 90.0, 0.0, focal_length_mm=200.0, sensor_mm=(24.0, 36.0), image_width=300)
     assert (photo.width, photo.height) == (300, 450)  # the sensor's own shape: square pixels
+    # The bound constructors, which LocalFrame.camera calls, do the same (a review: Camera(width=320)
+    # kept its default height of 360, Camera.photographic(width=320) its 640).
+    eye, ahead = (0.0, 1.5, 0.0), (100.0, 1.5, 0.0)
+    assert (refracta.Camera(eye, ahead, width=320).height, refracta.Camera(eye, ahead, height=90).width) == (180, 160)
+    assert refracta.Camera.photographic(eye, ahead, 200.0, width=320).height == 213  # 3:2, rounded
+    assert refracta.Camera.eye_level((0.0, 0.0, 0.0), (0.0, 0.0, -200.0), width=480).height == 320
+    assert refracta.Camera.framing(((-1.0, -1.0, -1.0), (1.0, 1.0, 1.0)), height=180).width == 320
+    full = refracta.Camera(eye, ahead)
+    assert (full.width, full.height) == (640, 360)  # both left out: the defaults
 
 
 def test_the_readout_text_gives_each_value_its_unit():

@@ -19,7 +19,7 @@ EYE, AHEAD = (0.0, 1.5, 0.0), (0.0, 1.5, 10.0)
     ("call", "message"),
     [
         (lambda: refracta.Camera(EYE, AHEAD, vfov="wide"), "Camera: vfov must be a number (got 'wide')"),
-        (lambda: refracta.Camera(EYE, AHEAD, width=64.0), "Camera: width must be a whole number (got 64.0)"),
+        (lambda: refracta.Camera(EYE, AHEAD, width=64.0), "Camera: width must be a whole number or None (got 64.0)"),
         (lambda: refracta.Camera(EYE), "Camera: missing argument 'look_at'"),
         (
             lambda: refracta.Camera(EYE, AHEAD, fov=30.0),

@@ -19,6 +19,14 @@ using Sensor = std::pair<double, double>;  // (width, height) [mm]
 // sensor and a 3:2 image.
 constexpr Sensor kFullFrame(36.0, 24.0);
 constexpr int kPhotoWidth = 960, kPhotoHeight = 640;
+// Camera() and Camera.framing: a 16:9 image.
+constexpr int kWidth = 640, kHeight = 360;
+using Side = std::optional<int>;  // an image side that may be left out (Camera::image_size)
+
+// A photographic camera's image: a side left out follows the sensor's shape.
+std::pair<int, int> photo_size(Side width, Side height, const Sensor& sensor_mm) {
+  return Camera::image_size(width, height, kPhotoWidth, kPhotoHeight, sensor_mm.first / sensor_mm.second);
+}
 
 double photographic_vfov_of(double focal_length_mm, const Sensor& sensor_mm, int width, int height) {
   return Camera::photographic_vfov(focal_length_mm, sensor_mm.first, sensor_mm.second, width, height);
@@ -69,13 +77,14 @@ py::object jitter_array(const Camera& c) {
 void bind_camera_constructors(py::class_<Camera>& camera) {
   camera.def_static(
       "framing",
-      [](const py::object& scene_or_bounds, const py::object& direction, double vfov, int width, int height,
+      [](const py::object& scene_or_bounds, const py::object& direction, double vfov, Side width, Side height,
          const py::object& up) {
         const auto [lower, upper] = bounds_of(scene_or_bounds);
-        return Camera::framing(lower, upper, to_point(direction, "Camera.framing: direction"), to_point(up, "Camera.framing: up"), vfov, width, height);
+        const auto [w, h] = Camera::image_size(width, height, kWidth, kHeight, double(kWidth) / kHeight);
+        return Camera::framing(lower, upper, to_point(direction, "Camera.framing: direction"), to_point(up, "Camera.framing: up"), vfov, w, h);
       },
       py::arg("scene_or_bounds"), py::arg("direction") = py::make_tuple(-1.0, -0.5, -1.0), py::arg("vfov") = 45.0,
-      py::arg("width") = 640, py::arg("height") = 360, py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
+      py::arg("width") = py::none(), py::arg("height") = py::none(), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
       DOC(refracta, Camera, framing));
   camera.def_static("photographic_vfov", &photographic_vfov_of, py::arg("focal_length_mm"),
                     py::arg("sensor_mm") = kFullFrame, py::arg("width") = kPhotoWidth, py::arg("height") = kPhotoHeight,
@@ -83,25 +92,27 @@ void bind_camera_constructors(py::class_<Camera>& camera) {
   camera.def_static(
       "photographic",
       [](const py::object& position, const py::object& look_at, double focal_length_mm, const Sensor& sensor_mm,
-         int width, int height, const py::object& up, std::optional<double> f_number, std::optional<double> focus_distance) {
+         Side width, Side height, const py::object& up, std::optional<double> f_number, std::optional<double> focus_distance) {
+        const auto [w, h] = photo_size(width, height, sensor_mm);
         return Camera::photographic(to_point(position, "Camera.photographic: position"), to_point(look_at, "Camera.photographic: look_at"), to_point(up, "Camera.photographic: up"),
-                                    focal_length_mm, sensor_mm.first, sensor_mm.second, width, height, f_number,
+                                    focal_length_mm, sensor_mm.first, sensor_mm.second, w, h, f_number,
                                     focus_distance);
       },
       py::arg("position"), py::arg("look_at"), py::arg("focal_length_mm"), py::arg("sensor_mm") = kFullFrame,
-      py::arg("width") = kPhotoWidth, py::arg("height") = kPhotoHeight, py::kw_only(), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
+      py::arg("width") = py::none(), py::arg("height") = py::none(), py::kw_only(), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
       py::arg("f_number") = py::none(), py::arg("focus_distance") = py::none(),
       DOC(refracta, Camera, photographic));
   camera.def_static(
       "eye_level",
       [](const py::object& eye, const py::object& target, double eye_height, double focal_length_mm,
-         const Sensor& sensor_mm, int width, int height, std::optional<double> f_number,
+         const Sensor& sensor_mm, Side width, Side height, std::optional<double> f_number,
          std::optional<double> focus_distance) {
+        const auto [w, h] = photo_size(width, height, sensor_mm);
         return Camera::eye_level(to_point(eye, "Camera.eye_level: eye"), to_point(target, "Camera.eye_level: target"), eye_height, focal_length_mm,
-                                 sensor_mm.first, sensor_mm.second, width, height, f_number, focus_distance);
+                                 sensor_mm.first, sensor_mm.second, w, h, f_number, focus_distance);
       },
       py::arg("eye"), py::arg("target"), py::arg("eye_height") = 1.6, py::arg("focal_length_mm") = 50.0,
-      py::arg("sensor_mm") = kFullFrame, py::kw_only(), py::arg("width") = kPhotoWidth, py::arg("height") = kPhotoHeight,
+      py::arg("sensor_mm") = kFullFrame, py::kw_only(), py::arg("width") = py::none(), py::arg("height") = py::none(),
       py::arg("f_number") = py::none(), py::arg("focus_distance") = py::none(),
       DOC(refracta, Camera, eye_level));
 }
@@ -112,12 +123,15 @@ void bind_camera(py::module_& m) {
   py::class_<Camera> camera(m, "Camera", DOC(refracta, Camera));
   camera
       .def(py::init([](const py::object& position, const py::object& look_at, const py::object& up, double vfov,
-                       int width, int height) {
+                       Side width, Side height) {
+             const auto [w, h] = Camera::image_size(width, height, kWidth, kHeight, double(kWidth) / kHeight);
              return Camera(to_point(position, "Camera: position"), to_point(look_at, "Camera: look_at"), to_point(up, "Camera: up"), vfov,
-                           width, height);
+                           w, h);
            }),
            py::arg("position"), py::arg("look_at"), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
-           py::arg("vfov") = 45.0, py::arg("width") = 640, py::arg("height") = 360)
+           py::arg("vfov") = 45.0, py::arg("width") = py::none(), py::arg("height") = py::none(),
+           "width, height [pixels]: the image, 640 x 360 by default; one given alone, the other follows that\n"
+           "16:9 shape (square pixels).")
       .def(
           "ray",
           [](const Camera& c, const py::object& u, const py::object& v) {

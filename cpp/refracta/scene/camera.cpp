@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -58,6 +59,20 @@ double Camera::photographic_vfov(double focal_length_mm, double sensor_w_mm, dou
   const bool spans_width = double(width) * sensor_h_mm >= double(height) * sensor_w_mm;
   const double image_h_mm = spans_width ? sensor_w_mm * height / width : sensor_h_mm;
   return 2.0 * std::atan(0.5 * image_h_mm / focal_length_mm) * 180.0 / kPi;
+}
+
+std::pair<int, int> Camera::image_size(std::optional<int> width, std::optional<int> height, int default_width,
+                                       int default_height, double aspect) {
+  if (width && height) return {*width, *height};
+  if (!width && !height) return {default_width, default_height};
+  if (!(aspect > 0.0 && std::isfinite(aspect))) aspect = double(default_width) / double(default_height);
+  const double other = width ? double(*width) / aspect : double(*height) * aspect;
+  if (!(other < double(std::numeric_limits<int>::max()))) {
+    throw_invalid("Camera: a ", width ? "width" : "height", " of ", width ? *width : *height, " makes a ",
+                  width ? "height" : "width", " of ", other, " pixels at the image's shape: give both");
+  }
+  const int made = std::max(1, int(std::lround(other)));
+  return width ? std::pair(*width, made) : std::pair(made, *height);
 }
 
 Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,

@@ -14,6 +14,7 @@
 
 #include <memory>
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,8 @@ namespace refracta {
 // The narrowest vertical field of view a camera takes [deg] (3.6 milliarcseconds).
 constexpr double kNarrowestVfov = 1e-6;
 
-// Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360): vfov is
+// Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360; one side
+// given alone, the other follows that 16:9 shape): vfov is
 // the vertical field of view [deg], from 1e-6 to under 180. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred
 // at (i + 0.5, j + 0.5). A photographer's camera with depth of field: Camera.photographic(...,
 // f_number=) or Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.
@@ -32,6 +34,13 @@ class Camera {
   // for NaN input, a zero view direction, an up vector parallel to it, or a size < 1.
   Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
          int height);
+
+  // Both sides of an image of which either may be left out (nullopt): a missing side follows the
+  // given one at `aspect` (width / height with square pixels: the default image's, or a sensor's),
+  // rounded, at least 1; both missing, the defaults (a width of 320 alone made 320 x 360 of a
+  // 640 x 360 default). Throws (ValueError) for a side it makes beyond an int.
+  static std::pair<int, int> image_size(std::optional<int> width, std::optional<int> height, int default_width,
+                                        int default_height, double aspect);
 
   // A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
   // onto the box from its +x, +y, +z side) at the centre of the scene's box, from the distance at
