@@ -685,7 +685,7 @@ def _run(argv=None) -> int:
     parser = _Parser(prog="refracta", description="Physically based mirages.")
     parser.add_argument("--version", action="version", version=f"refracta {refracta.__version__}")
     parser.add_argument(
-        "--threads", type=_count(1), default=None, help="threads the work may use (default: every core)"
+        "--threads", type=_count(0), default=None, help="threads the work may use (default, or 0: every core)"
     )
     commands = parser.add_subparsers(dest="command", required=True)
     demo_parser = commands.add_parser("demo", help="render the example mirages and ray fans")

@@ -147,6 +147,9 @@ def ray_fan(
     return fig
 
 
+_LISTED_PAIRS = 10  # edit_report's legend names each pair up to this many
+
+
 def edit_report(result, figsize=(12.0, 4.2), figure=None):
     """An edit at a glance: each pair's light path before (dashed) and after (solid) the solve,
     seen from the side (distance from the eye vs height), with its source (x) and the eye; and
@@ -192,16 +195,21 @@ def edit_report(result, figsize=(12.0, 4.2), figure=None):
                 lw=1.0 if which == "start" else 1.6,
                 alpha=0.6 if which == "start" else 1.0,
             )
+    # A legend line per pair up to _LISTED_PAIRS; beyond, one line for them all (40 pairs' lines
+    # covered the plot and ran off the figure, and constrained layout gave up with a warning).
+    listed = len(result.pairs) <= _LISTED_PAIRS
     for i, (pair, colour) in enumerate(zip(result.pairs, colours)):
         source = np.asarray(pair.source)
+        label: str | None
+        if listed:
+            label = f"pair {i}: miss {result.initial_distances[i]:.2g} -> {result.distances[i]:.2g} m"
+        else:
+            largest = (float(np.max(result.initial_distances)), float(np.max(result.distances)))
+            label = (
+                f"{len(result.pairs)} sources: largest miss {largest[0]:.2g} -> {largest[1]:.2g} m" if i == 0 else None
+            )
         ax_paths.plot(
-            np.hypot(source[0] - eye[0], source[2] - eye[2]),
-            source[1],
-            "x",
-            color=colour,
-            ms=9,
-            mew=2,
-            label=f"pair {i}: miss {result.initial_distances[i]:.2g} -> {result.distances[i]:.2g} m",
+            np.hypot(source[0] - eye[0], source[2] - eye[2]), source[1], "x", color=colour, ms=9, mew=2, label=label
         )
     ax_paths.plot([0.0], [eye[1]], "o", color="crimson", ms=5, label="eye")
     ax_paths.set_xlabel("distance from the eye [m]")

@@ -7,7 +7,7 @@ import pytest
 
 import refracta
 from refracta import cli, plot
-from refracta.edit import load_pairs, solve
+from refracta.edit import PointPair, load_pairs, solve
 from refracta.scene_file import atmosphere_table, with_atmosphere
 
 DATA = __import__("pathlib").Path(__file__).parent.parent / "data"
@@ -104,3 +104,19 @@ def test_edit_report_draws_paths_and_history(road_pairs):
     paths_axis, cost_axis = figure.axes
     assert len(paths_axis.lines) == 2 * len(pairs) + len(pairs) + 1  # before, after, sources, eye
     assert len(cost_axis.lines[0].get_ydata()) == len(result.history)
+
+
+def test_edit_report_of_many_pairs_keeps_its_legend_short(road_pairs):
+    """40 pairs' legend lines covered the plot and ran off the figure, and matplotlib's constrained
+    layout warned that it could not be applied (a trial): beyond 10 pairs one line stands for all."""
+    import warnings
+
+    truth, eye, pairs = road_pairs
+    many = [PointPair(p.destination, p.source) for p in pairs for _ in range(12 // len(pairs) + 1)][:12]
+    result = solve(truth.with_params(surface_dt=8.0), eye, many, free=["surface_dt"], stop_height=0.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the layout's warning, if any, fails here
+        figure = plot.edit_report(result)
+        figure.canvas.draw()
+    labels = [text.get_text() for text in figure.axes[0].get_legend().get_texts()]
+    assert labels[0].startswith("12 sources: largest miss") and len(labels) == 2  # and the eye

@@ -78,6 +78,12 @@ def test_cli_threads_seed_denoise_and_version(tmp_path, capsys):
         assert refracta.get_threads() == 1
         assert cli.main([*base, "-o", str(other), "--seed", "6"]) == 0
         assert cli.main([*base, "-o", str(noisy), "--seed", "5", "--denoise"]) == 0
+        # 0 is every core, as set_threads(0) is (the command line refused it: a trial).
+        refracta.set_threads(0)
+        every = refracta.get_threads()
+        refracta.set_threads(1)
+        assert cli.main(["--threads", "0", *base, "-o", str(tmp_path / "all.exr")]) == 0
+        assert refracta.get_threads() == every
     finally:
         refracta.set_threads(threads)
     a, b, c = (refracta.io.read_image(path)[..., :3] for path in (seeded, other, noisy))
