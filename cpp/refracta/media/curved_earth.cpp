@@ -55,16 +55,28 @@ double CurvedEarth::straight_above() const {
 }
 
 Vec3d CurvedEarth::sky_direction(const Vec3d& p, const Vec3d& d) const {
+  return turned(p, d, radius_, true).normalized();
+}
+
+Vec3d CurvedEarth::sphere_point(const Vec3d& flat, double radius) {
+  const double rho = std::hypot(flat.x(), flat.z()), phi = rho / radius;
+  const double r = radius + radius * std::expm1(flat.y() / radius);
+  const double s = rho > 0.0 ? std::sin(phi) / rho : 1.0 / radius;  // sin(phi) per metre of rho
+  return r * Vec3d(flat.x() * s, std::cos(phi), flat.z() * s);
+}
+
+Vec3d CurvedEarth::turned(const Vec3d& p, const Vec3d& d, double radius, bool to_origin) {
   const double rho = std::sqrt(p.x() * p.x() + p.z() * p.z());
   if (!(rho > 0.0)) return d;
-  const double phi = rho / radius_;
+  const double phi = rho / radius;
   const Vec3d out(p.x() / rho, 0.0, p.z() / rho);  // horizontal, away from the origin
   // Rotation by phi taking the local vertical (the origin frame's y turned toward `out`) back:
-  // y -> cos(phi) y - sin(phi) out, out -> cos(phi) out + sin(phi) y, the perpendicular kept.
+  // y -> cos(phi) y - sin(phi) out, out -> cos(phi) out + sin(phi) y, the perpendicular kept
+  // (and by -phi the other way).
   const double along = d.dot(out), up = d.y();
   const Vec3d across = d - along * out - up * Vec3d::UnitY();
-  const double c = std::cos(phi), s = std::sin(phi);
-  return (across + (c * along + s * up) * out + (c * up - s * along) * Vec3d::UnitY()).normalized();
+  const double c = std::cos(phi), s = to_origin ? std::sin(phi) : -std::sin(phi);
+  return across + (c * along + s * up) * out + (c * up - s * along) * Vec3d::UnitY();
 }
 
 std::shared_ptr<const IndexField> CurvedEarth::with_base(std::shared_ptr<const IndexField> base) const {

@@ -56,6 +56,12 @@ class CurvedEarth : public IndexField {
   // tilted by phi = rho / R toward rho's direction, and a flat-frame direction's elevation e' is
   // e' there (the map is conformal): turned back by phi into the origin's frame.
   Vec3d sky_direction(const Vec3d& p, const Vec3d& d) const override;
+  // The true sphere behind a flat frame of radius R: a flat-frame point's position [m] from the
+  // sphere's centre, the origin's vertical along +y (r = R e^(y'/R), phi = rho / R toward rho's
+  // direction); and a direction at flat-frame point p turned by p's central angle into the
+  // origin's frame, where the sphere's true directions are (to_origin), or back from it.
+  static Vec3d sphere_point(const Vec3d& flat, double radius);
+  static Vec3d turned(const Vec3d& p, const Vec3d& d, double radius, bool to_origin);
   double earth_radius() const override { return radius_; }
   double straight_above() const override;
 

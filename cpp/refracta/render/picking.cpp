@@ -41,29 +41,6 @@ std::optional<Vec3d> picked_point(const Scene& scene, const Camera& camera, cons
   return end.hit ? std::optional(end.hit->point) : std::nullopt;
 }
 
-namespace {
-
-// A flat-frame point of CurvedEarth's flattening (x' = R phi along the surface from the origin,
-// y' = R ln(r / R)) in true coordinates centred on the sphere's surface under the origin.
-Vec3d true_position(const Vec3d& p, double radius) {
-  const double rho = std::hypot(p.x(), p.z()), phi = rho / radius, r = radius * std::exp(p.y() / radius);
-  const double sx = rho > 0.0 ? p.x() / rho : 0.0, sz = rho > 0.0 ? p.z() / rho : 0.0;
-  return {r * std::sin(phi) * sx, r * std::cos(phi) - radius, r * std::sin(phi) * sz};
-}
-
-// A true direction at flat-frame point e as the flat frame's: the map is conformal, its axes at e
-// those of the true local frame there (up tilted by phi toward the point's horizontal direction).
-Vec3d flat_direction(const Vec3d& e, const Vec3d& d, double radius) {
-  const double rho = std::hypot(e.x(), e.z());
-  if (!(rho > 0.0)) return d;
-  const double phi = rho / radius, sx = e.x() / rho, sz = e.z() / rho;
-  const Vec3d up(std::sin(phi) * sx, std::cos(phi), std::sin(phi) * sz);
-  const Vec3d outward(std::cos(phi) * sx, -std::sin(phi), std::cos(phi) * sz), across(-sz, 0.0, sx);
-  return d.dot(outward) * Vec3d(sx, 0.0, sz) + d.dot(up) * Vec3d::UnitY() + d.dot(across) * across;
-}
-
-}  // namespace
-
 std::vector<Vec3d> projected_over_sphere(const Camera& camera, double earth_radius, std::vector<Vec3d> points) {
   // CurvedEarth's own floor: below it e^(y/R) overflows (a radius of 1e-300 gave NaN pixels).
   if (!(earth_radius >= CurvedEarth::kMinRadius)) {
@@ -72,11 +49,11 @@ std::vector<Vec3d> projected_over_sphere(const Camera& camera, double earth_radi
   }
   if (std::isinf(earth_radius)) return camera.project(std::move(points));
   const Vec3d& eye = camera.position();
-  const Vec3d eye_true = true_position(eye, earth_radius);
+  const Vec3d eye_true = CurvedEarth::sphere_point(eye, earth_radius);
   for (Vec3d& p : points) {
     // The point along the eye's flat-frame direction of its true one, as far as it truly is.
-    const Vec3d d = true_position(p, earth_radius) - eye_true;
-    p = eye + flat_direction(eye, d, earth_radius);
+    const Vec3d d = CurvedEarth::sphere_point(p, earth_radius) - eye_true;
+    p = eye + CurvedEarth::turned(eye, d, earth_radius, false);
   }
   return camera.project(std::move(points));
 }

@@ -1,6 +1,7 @@
 // Per-pixel readouts: angles, true elevations, hidden heights, mirage multiplicity (readouts.h).
 #include "refracta/render/readouts.h"
 
+#include "refracta/media/curved_earth.h"
 #include "refracta/rays/trace.h"
 
 #include <algorithm>
@@ -105,12 +106,7 @@ double ReadoutGeometry::true_height(double flat_y) const {
   return std::isfinite(radius_) ? radius_ * std::expm1(flat_y / radius_) : flat_y;
 }
 
-Vec3d ReadoutGeometry::sphere_point(const Vec3d& flat) const {
-  const double rho = std::hypot(flat.x(), flat.z()), phi = rho / radius_;
-  const double r = radius_ + true_height(flat.y());
-  const double s = rho > 0.0 ? std::sin(phi) / rho : 1.0 / radius_;  // sin(phi) per metre of rho
-  return r * Vec3d(flat.x() * s, std::cos(phi), flat.z() * s);
-}
+Vec3d ReadoutGeometry::sphere_point(const Vec3d& flat) const { return CurvedEarth::sphere_point(flat, radius_); }
 
 double ReadoutGeometry::true_elevation(const Vec3d& point) const {
   if (!point.allFinite()) return kNaN;
