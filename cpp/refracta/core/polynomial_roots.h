@@ -5,8 +5,11 @@
 // narrower than the spacing: a ray grazing the ground for 80 m in a 3 km step.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace refracta {
 
@@ -16,6 +19,62 @@ double polynomial_value(const std::array<double, N>& c, double x) {
   double value = c[N - 1];
   for (size_t k = N - 1; k-- > 0;) value = value * x + c[k];
   return value;
+}
+
+// Whether sum_k c[k] x^k keeps one sign over [lo, hi], so has no root there: its range by Horner's
+// rule in interval arithmetic (which can only widen it), held off 0 by far more than the rounding of
+// any evaluation (Horner's error is below 2N ulps of sum_k |c[k]| |x|^k; the margin is 1e-12 of it).
+template <size_t N>
+bool keeps_sign(const std::array<double, N>& c, double lo, double hi) {
+  double low = c[N - 1], high = c[N - 1], magnitude = std::abs(c[N - 1]);
+  const double reach = std::max(std::abs(lo), std::abs(hi));
+  for (size_t k = N - 1; k-- > 0;) {
+    const double a = low * lo, b = low * hi, p = high * lo, q = high * hi;
+    low = std::min({a, b, p, q}) + c[k];
+    high = std::max({a, b, p, q}) + c[k];
+    magnitude = magnitude * reach + std::abs(c[k]);
+  }
+  const double margin = 1e-12 * magnitude;
+  return low > margin || high < -margin;
+}
+
+// Where sum_k c[k] x^k, monotone on [a, b] with f(a) = fa and f(b) of the other sign, changes sign:
+// a bracket of adjacent doubles, as bisection alone closes (the two agree within the band of
+// rounding around the root, a few ulps), and the end past a returned (or a double where f is 0).
+// Each step takes Newton's point inside the bracket and probes one step beyond it: converging
+// quadratically, Newton's error is far below its step, so the probe lands past the root and the
+// bracket closes from both ends (about ten evaluations where bisection needs 53 + log2(1 / root)).
+// Bisection wherever a step did not halve the bracket.
+template <size_t N>
+double sign_change(const std::array<double, N>& c, double a, double fa, double b) {
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  double x0 = a, x1 = b;  // f(x0) has fa's sign, f(x1) not
+  auto inside = [&](double x) { return x > x0 && x < x1; };
+  auto keep = [&](double x, double f) {
+    if ((f > 0.0) == (fa > 0.0)) x0 = x; else x1 = x;
+  };
+  double x = 0.5 * (x0 + x1);
+  // Every step shrinks the bracket and at least every other one halves it: the cap is never
+  // reached (halving alone splits the whole range of doubles in ~2100 steps).
+  for (int it = 0; it < 4400 && inside(x); ++it) {
+    const double width = x1 - x0;
+    double f = c[N - 1], df = 0.0;
+    for (size_t k = N - 1; k-- > 0;) df = df * x + f, f = f * x + c[k];
+    if (f == 0.0) return x;
+    keep(x, f);
+    const double next = x - f / df;
+    if (inside(next)) {
+      const double step = std::max(std::abs(next - x), 2.0 * kEps * std::abs(next));
+      const double probe = next + (next > x ? step : -step);
+      if (inside(probe)) {
+        const double fp = polynomial_value(c, probe);
+        if (fp == 0.0) return probe;
+        keep(probe, fp);
+      }
+    }
+    x = inside(next) && x1 - x0 <= 0.5 * width ? next : 0.5 * (x0 + x1);
+  }
+  return x1;
 }
 
 // Roots found by polynomial_roots: at most N - 1, in increasing order.
@@ -31,6 +90,9 @@ struct PolynomialRoots {
 template <size_t N>
 PolynomialRoots<N> polynomial_roots(const std::array<double, N>& c, double lo, double hi) {
   PolynomialRoots<N> out;
+  // No sign change anywhere: every evaluation below would share one sign (the common case of a
+  // path segment far from a plane), so nothing to find.
+  if (keeps_sign(c, lo, hi)) return out;
   auto add = [&](double x) {
     if (out.count == 0 || out.at[out.count - 1] != x) out.at[out.count++] = x;
   };
@@ -41,6 +103,7 @@ PolynomialRoots<N> polynomial_roots(const std::array<double, N>& c, double lo, d
   if constexpr (N > 2) {
     std::array<double, N - 1> derivative{};
     for (size_t k = 1; k < N; ++k) derivative[k - 1] = double(k) * c[k];
+    // A derivative that keeps its sign has no roots: the recursion would find none (above).
     const PolynomialRoots<N - 1> turns = polynomial_roots(derivative, lo, hi);
     for (size_t i = 0; i < turns.count; ++i) {
       if (turns.at[i] > cuts[cut_count - 1] && turns.at[i] < hi) cuts[cut_count++] = turns.at[i];
@@ -54,20 +117,7 @@ PolynomialRoots<N> polynomial_roots(const std::array<double, N>& c, double lo, d
     if (fb == 0.0) {
       add(b);
     } else if (fa != 0.0 && (fa > 0.0) != (fb > 0.0)) {
-      double x0 = a, x1 = b;  // monotone here: one sign change, kept between x0 and x1
-      // 53 + log2(1 / root) halvings for a root in [0, 1] (86 at 1e-10); the cap only stops roots
-      // below ~1e-44 from being resolved further, far below any length in a scene.
-      for (int it = 0; it < 200; ++it) {
-        const double mid = 0.5 * (x0 + x1);
-        if (mid <= x0 || mid >= x1) break;
-        const double fm = polynomial_value(c, mid);
-        if (fm == 0.0) {
-          x0 = x1 = mid;
-          break;
-        }
-        if ((fm > 0.0) == (fa > 0.0)) x0 = mid; else x1 = mid;
-      }
-      add(x1);
+      add(sign_change(c, a, fa, b));
     }
     a = b, fa = fb;
   }
