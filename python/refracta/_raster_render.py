@@ -203,7 +203,7 @@ def render_raster(
     lights: which of the scene's sun and spot lights shine: None (all), "sun", "spots", or a list
     of "sun" and spot-light indices (as returned by Scene.add_spot_light). Its other lights (point,
     sphere and area lights, the sky and environment maps) always shine, each by light_strata^2
-    samples; lights=[] leaves them on.
+    light samples and as many BSDF samples, MIS-combined; lights=[] leaves them on.
 
     shadows: a shadow map's method (shadow_map.method: 'hard', one depth compare; 'pcf', k x k
     compares; 'vsm', 'msm_hamburger', 'msm_hausdorff': moments filtered k x k by separable running

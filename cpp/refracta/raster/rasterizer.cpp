@@ -272,8 +272,11 @@ Hit surface_of(const Scene& scene, uint32_t geometry, uint32_t primitive, double
   const Vec3d& c = mesh.mesh.vertices[tri[2]];
   Hit hit;
   hit.point = (1.0 - b1 - b2) * a + b1 * b + b2 * c;
-  hit.normal = (b - a).cross(c - a).normalized();
-  if (hit.normal.dot(toward - hit.point) < 0.0) hit.normal = -hit.normal;
+  // The counter-clockwise front, as Scene::intersect tells it (a one-sided emitter's back, seen
+  // from behind, shone as its front did: a trial).
+  const Vec3d front = (b - a).cross(c - a).normalized();
+  hit.front_face = front.dot(toward - hit.point) >= 0.0;
+  hit.normal = hit.front_face ? front : Vec3d(-front);
   hit.t = (toward - hit.point).norm();
   hit.geometry = geometry;
   hit.primitive = primitive;
@@ -286,9 +289,10 @@ Hit surface_of(const Scene& scene, uint32_t geometry, uint32_t primitive, double
     const Vec3d& centre = spheres->centres[hit.primitive];
     const Vec3d radial = hit.point - centre;
     if (radial.norm() > 0.0) {
-      hit.normal = radial.normalized();
-      hit.point = centre + spheres->radii[hit.primitive] * hit.normal;
-      if (hit.normal.dot(toward - hit.point) < 0.0) hit.normal = -hit.normal;
+      const Vec3d outward = radial.normalized();
+      hit.point = centre + spheres->radii[hit.primitive] * outward;
+      hit.front_face = outward.dot(toward - hit.point) >= 0.0;
+      hit.normal = hit.front_face ? outward : Vec3d(-outward);
       hit.t = (toward - hit.point).norm();
     }
   }

@@ -313,8 +313,8 @@ Spectrum DirectLighting::sample_lights(const SurfaceInteraction& si, const Surfa
 }
 
 Spectrum DirectLighting::sample_light(size_t index, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
-                                      const SampledWavelengths& lambda, const Vec2d& u) const {
-  return sample_one(index, 1.0, si, bsdf, lambda, u, false);
+                                      const SampledWavelengths& lambda, const Vec2d& u, bool mis) const {
+  return sample_one(index, 1.0, si, bsdf, lambda, u, mis);
 }
 
 Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,

@@ -83,11 +83,11 @@ class DirectLighting : public LightVisibility {
   // sample of every light (less noise where a few lights matter, as a sun and its sky).
   Spectrum sample_lights(const SurfaceInteraction& si, const SurfaceBsdf& bsdf, const SampledWavelengths& lambda,
                          Sampler& sampler) const;
-  // One sample (u) of light `index` at si: f L |cos| / pdf, every light taken with certainty and
-  // without MIS, for a renderer that evaluates each light by its own samples and never meets
-  // lights by BSDF sampling (render_raster).
+  // One sample (u) of light `index` at si: f L |cos| / pdf, every light taken with certainty, for a
+  // renderer that evaluates each light by its own samples (render_raster); mis: weighted against
+  // as many BSDF samples (emitted, escaped), else the light's samples alone.
   Spectrum sample_light(size_t index, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
-                        const SampledWavelengths& lambda, const Vec2d& u) const;
+                        const SampledWavelengths& lambda, const Vec2d& u, bool mis) const;
 
   // Over a spherical Earth with a sun: the render's lowest launches (LowestLaunches; without them
   // every lowest launch is cast), its sun's exit map (SunExitMap; without it sun samples above a
