@@ -289,8 +289,10 @@ def render(
 
     transport: 'direct' -- emitters seen directly and direct lighting (next-event estimation and
     BSDF sampling, power-heuristic MIS) at the first non-specular surface, mirror and glass chains
-    followed up to max_depth; 'path' -- unidirectional path tracing with NEE and MIS, Russian
-    roulette after 3 bounces. max_depth counts scattering events (0: emitters only, 1: direct
+    followed up to max_depth; 'path' -- unidirectional path tracing with NEE and MIS. Both play
+    Russian roulette from rr_depth scattering events on, 'direct' along its mirror and glass chains
+    too (unbiased, but a glass sphere's pixels then scatter about their mean: raise rr_depth for
+    long chains followed in full). max_depth counts scattering events (0: emitters only, 1: direct
     lighting; Mitsuba's max_depth is this + 1; default _core.RenderOptions().max_depth).
     spectral: 4 hero wavelengths per sample (Wilkie et al. 2014) with colours upsampled from RGB,
     converted to linear sRGB through the CIE 1931 observer. Through a field the air disperses: each

@@ -24,7 +24,8 @@ forms do: ``Principled`` (Burley 2012: its sheen, clearcoat and diffuse retro-re
 added, not balanced; albedo 1.04 at normal incidence and up to 1.7 at grazing with every lobe at
 full strength) and ``BlinnPhong`` (its lobe's (ns + 8) / (8 pi) normalisation is approximate: with
 ks = 1 it reflects 1.02-1.075 at normal incidence for ns from 1 to 100 (most near ns 8-10), and
-kd + ks = 1 up to ~1.03); use ``Diffuse``, ``Plastic`` or the microfacet models where energy must balance.
+with kd + ks = 1 in between by ks's share: 1.05 at kd 0.3, ks 0.7 and 1.07 at kd 0.1, ks 0.9, ns 8);
+use ``Diffuse``, ``Plastic`` or the microfacet models where energy must balance.
 
 Materials (colours are a number or an (r, g, b) triple; ``texture=`` an image file whose linear
 RGB multiplies the colour at the surface's uvs, registered in each scene the material joins):

@@ -49,7 +49,9 @@ def rectangle_irradiance_factor(x, z, a, h):
     of a parallel rectangle, Howell's catalogue), summed, times pi."""
 
     def corner(A, B):
-        return 0.5 * (A / np.hypot(A, h) * np.arctan(B / np.hypot(A, h)) + B / np.hypot(B, h) * np.arctan(A / np.hypot(B, h)))
+        return 0.5 * (
+            A / np.hypot(A, h) * np.arctan(B / np.hypot(A, h)) + B / np.hypot(B, h) * np.arctan(A / np.hypot(B, h))
+        )
 
     return corner(a - x, a - z) + corner(a + x, a - z) + corner(a - x, a + z) + corner(a + x, a + z)
 

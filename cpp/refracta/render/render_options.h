@@ -18,8 +18,8 @@ const char* render_method_name(RenderMethod method);
 
 // Light transport (render/integrator.h): 'direct' -- emitters seen directly and direct lighting
 // at the first non-specular surface (next-event estimation with MIS), following mirror and glass
-// chains up to max_depth; 'path' -- unidirectional path tracing with NEE and MIS, Russian
-// roulette, max_depth scattering events.
+// chains up to max_depth; 'path' -- unidirectional path tracing with NEE and MIS, max_depth
+// scattering events. Both play Russian roulette from rr_depth events on (direct's chains too).
 enum class Transport { kDirect, kPath };
 Transport parse_transport(const std::string& name);  // "direct", "path"
 const char* transport_name(Transport transport);
