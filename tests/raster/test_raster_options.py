@@ -68,6 +68,8 @@ def test_unset_biases_are_the_published_ones():
     # An unknown name gets the same two names (it listed 'fp64' too, which is then refused: a trial).
     with pytest.raises(ValueError, match=r"storage must be 'fp32' or 'unorm16' \(got 'fp16'\)"):
         refracta.MboitSettings(storage="fp16")
+    with pytest.raises(ValueError, match="storage must be 'fp32' or 'unorm16'"):  # no fp64 bias either
+        refracta.MboitSettings.published_bias("power", 4, "fp64")
 
 
 def test_flat_keywords_set_the_nested_fields_of_a_copy():

@@ -81,7 +81,7 @@ void bind_oit_settings(py::module_& m) {
       .def_static(
           "published_bias",
           [](const std::string& basis, int moments, const std::string& storage) {
-            return M::published_bias(parse_moment_basis(basis), moments, parse_storage(storage));
+            return M::published_bias(parse_moment_basis(basis), moments, parse_mboit_storage(storage));
           },
           py::arg("basis"), py::arg("moments"), py::arg("storage"), DOC(refracta, MboitSettings, published_bias));
   def_enum_property(mboit, "storage", &M::storage, storage_name, parse_mboit_storage, "'fp32' or 'unorm16'");

@@ -195,9 +195,13 @@ double RasterVisibility::shadow(size_t light, const Vec3d& p, const Vec3d& n) co
 
 Spectrum RasterVisibility::arriving(size_t light, const SurfaceInteraction& si, const Vec3d& wi,
                                     const LightLiSample& ls, const SampledWavelengths& lambda) const {
-  const Vec3d n = si.n_toward_wo();
-  if (wi.dot(n) <= 0.0) return Spectrum::Zero();
-  if (spot_[light] || light == sun_) return ls.L * (1.0 - shadow(light, si.p, n));
+  // The sun and the spots light the side their maps see; the other lights arrive from any side,
+  // as in the ray renderers (through a rough glass, from behind: render_raster's BSDF samples meet
+  // them there too, and MIS needs both kinds of sample to cover the same directions).
+  if (spot_[light] || light == sun_) {
+    const Vec3d n = si.n_toward_wo();
+    return wi.dot(n) <= 0.0 ? Spectrum::Zero() : Spectrum(ls.L * (1.0 - shadow(light, si.p, n)));
+  }
   return source_ == ShadowSource::kNone ? ls.L : rays_.arriving(light, si, wi, ls, lambda);
 }
 
