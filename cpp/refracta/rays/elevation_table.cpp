@@ -388,11 +388,20 @@ std::optional<PlaneState> ElevationTable::LazyPath::escape() const {
 
 RayNode<double> ElevationTable::LazyPath::node(size_t k) const {
   if (exact_) return exact_->nodes()[k];
+  return table_->node_of(state(k));
+}
+
+PlaneState ElevationTable::LazyPath::state(size_t k) const {
+  if (exact_) {
+    const RayNode<double>& node = exact_->nodes()[k];
+    const double speed = std::sqrt(node.v.x() * node.v.x() + node.v.y() * node.v.y());
+    return {node.x.x(), node.x.y(), node.s, node.v.x() / speed, node.v.y() / speed, exact_->stop()};
+  }
   // The same interpolation as interpolate(), from the states precomputed at the template's nodes.
   const RayPath& nearest = *table_->entries_[template_].path;
   const PlaneState* states = &table_->stencils_[interval_].at_nodes[template_ - interval_][k * count_];
   const double fraction = nearest.length() > 0 ? nearest.nodes()[k].s / nearest.length() : 0.0;
-  return table_->node_of(blend(weights_, states, count_, fraction * length_, table_->entries_[interval_].path->stop()));
+  return blend(weights_, states, count_, fraction * length_, table_->entries_[interval_].path->stop());
 }
 
 double ElevationTable::LazyPath::lowest_from(size_t k) const {

@@ -102,6 +102,8 @@ class ElevationTable {
    public:
     size_t size() const;
     RayNode<double> node(size_t k) const;
+    // Node k's place and direction in the plane alone (node(k) without the field's n and grad there).
+    PlaneState state(size_t k) const;
     // A lower bound of the path's height from node k on (for early exits above a scene).
     double lowest_from(size_t k) const;
     TraceStop stop() const;

@@ -44,6 +44,15 @@ struct TurnedTablePath {
     out.v = Vec3d(vr * cx, out.v.y(), vr * cz);
     return out;
   }
+  // Node k's arc length, place and unit direction: what a chord needs, without the field's n there.
+  struct Point {
+    double s;
+    Vec3d x, direction;
+  };
+  Point point(size_t k) const {
+    const PlaneState p = plane.state(k);
+    return {p.s, Vec3d(eye.x() + p.r * cx, p.h, eye.z() + p.r * cz), Vec3d(p.cos_e * cx, p.sin_e, p.cos_e * cz)};
+  }
 
   const ElevationTable::LazyPath plane;
   const Vec3d eye;
@@ -785,23 +794,27 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
       a = b;
     }
   } else {
-    RayNode<double> a = path.node(0);
+    // Chords between nodes' places; the nodes themselves (the field evaluated there) only where a
+    // segment of the path is needed: a chord in pieces, a hit to refine.
+    TurnedTablePath::Point a = path.point(0);
     for (const PlannedChord& chord : plans_[entry]) {
       if (plane.lowest_from(chord.first) > ceiling) break;
-      const RayNode<double> b = path.node(chord.last);
+      const TurnedTablePath::Point b = path.point(chord.last);
       if (chord.pieces > 1) {
-        if (pieces_blocked(PathSegment<double>(a, b), int(chord.pieces), &end)) return end;
+        const PathSegment<double> segment(path.node(chord.first), path.node(chord.last));
+        if (pieces_blocked(segment, int(chord.pieces), &end)) return end;
       } else if (const Vec3d d = b.x - a.x; d.norm() > 0.0) {
         const double len = d.norm();
-        if (chord_blocked(a.x, d / len, len, Handoff{a.x, a.v.normalized(), a.s}, &end)) {
+        if (chord_blocked(a.x, d / len, len, Handoff{a.x, a.direction, a.s}, &end)) {
           if (end.handoff) return end;
           // Refine on the segment of the path that crosses the hit's tangent plane: the first
           // whose nodes lie on both sides of it (the chord strays from the path, so the segment
           // under the chord's hit need not be that one), else the one under the chord's hit.
           // Returns that segment and the parameter on it.
+          const RayNode<double> node_a = path.node(chord.first), node_b = path.node(chord.last);
           auto refine = [&](const Hit& hit, double s_hit) {
             auto side = [&](const RayNode<double>& node) { return hit.normal.dot(node.x - hit.point); };
-            RayNode<double> from = a, to = chord.last == chord.first + 1 ? b : path.node(chord.first + 1);
+            RayNode<double> from = node_a, to = chord.last == chord.first + 1 ? node_b : path.node(chord.first + 1);
             RayNode<double> under = from, under_to = to;
             bool crossing = false;
             for (size_t k = chord.first;; ++k) {
@@ -812,7 +825,7 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
               }
               if (k + 2 > chord.last) break;
               from = to;
-              to = k + 2 == chord.last ? b : path.node(k + 2);
+              to = k + 2 == chord.last ? node_b : path.node(k + 2);
             }
             if (!crossing) from = under, to = under_to;
             const PathSegment<double> seg(from, to);
@@ -835,7 +848,7 @@ PathEnd Caster::cast_table(const Vec3d& dir) const {
           return end;
         }
       }
-      end.direction = b.v.normalized();
+      end.direction = b.direction;
       end.length = b.s;
       a = b;
     }
