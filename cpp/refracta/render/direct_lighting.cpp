@@ -303,7 +303,10 @@ Spectrum DirectLighting::sample_lights(const SurfaceInteraction& si, const Surfa
   if (count == 0) return Spectrum::Zero();
   if (all_lights_) {
     Spectrum sum = Spectrum::Zero();
-    for (size_t i = 0; i < count; ++i) sum += sample_one(i, 1.0, si, bsdf, lambda, sampler.uniform2(), true);
+    std::optional<Eigen::Matrix3d> frame;  // p's frame, turned once for all the distant lights
+    for (size_t i = 0; i < count; ++i) {
+      sum += sample_one(i, 1.0, si, bsdf, lambda, sampler.uniform2(), true, &frame);
+    }
     return sum;
   }
   const size_t index = select_.sample(sampler.uniform())->index;
@@ -318,7 +321,8 @@ Spectrum DirectLighting::sample_light(size_t index, const SurfaceInteraction& si
 }
 
 Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
-                                    const SampledWavelengths& lambda, const Vec2d& u_light, bool mis) const {
+                                    const SampledWavelengths& lambda, const Vec2d& u_light, bool mis,
+                                    std::optional<Eigen::Matrix3d>* frame) const {
   const Light& light = *scene_.lights()[index];
   LightSampleContext ctx;
   ctx.p = si.p;
@@ -326,7 +330,10 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
   // A distant light is sampled in the world frame; over a spherical Earth the sample is then turned
   // into p's frame (a rotation: its density is unchanged).
   const bool turned = spherical_ && light.is_infinite();
-  const Eigen::Matrix3d to_world = turned ? to_world_frame(si.p) : Eigen::Matrix3d::Identity();
+  std::optional<Eigen::Matrix3d> own_frame;
+  if (!frame) frame = &own_frame;
+  if (turned && !*frame) *frame = to_world_frame(si.p);
+  const Eigen::Matrix3d to_world = turned ? **frame : Eigen::Matrix3d::Identity();
   if (turned) ctx.n = to_world * ctx.n;
   auto ls = light.sample_li(ctx, u_light, lambda);
   if (!ls || !(ls->pdf > 0.0) || !(ls->L.maxCoeff() > 0.0)) return Spectrum::Zero();
@@ -392,6 +399,7 @@ Spectrum DirectLighting::escaped(const PathEnd& end, const Vec3d& launch_dir, co
                                  double from_y, double bsdf_pdf, bool specular, const SampledWavelengths& lambda) const {
   Spectrum L = Spectrum::Zero();
   const auto& lights = scene_.lights();
+  std::optional<Eigen::Matrix3d> frame;  // from's frame, turned once for all the distant lights
   for (size_t i = 0; i < lights.size(); ++i) {
     if (!lights[i]->is_infinite()) continue;
     const Spectrum Le = distant_Le(*lights[i], from_y, end.direction, lambda);
@@ -402,7 +410,8 @@ Spectrum DirectLighting::escaped(const PathEnd& end, const Vec3d& launch_dir, co
     }
     LightSampleContext ctx;
     ctx.p = from->p;
-    const Eigen::Matrix3d to_world = to_world_frame(from->p);
+    if (!frame) frame = to_world_frame(from->p);
+    const Eigen::Matrix3d& to_world = *frame;
     ctx.n = to_world * from->n_toward_wo();
     // The density with which light sampling would have launched this same ray: pre-bent, that of
     // the exit direction it was aimed at (times the map's Jacobian); the sun over a spherical

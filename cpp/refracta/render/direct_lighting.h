@@ -128,9 +128,11 @@ class DirectLighting : public LightVisibility {
 
  private:
   double pick_probability(size_t light) const { return all_lights_ ? 1.0 : select_.pmf(light); }
-  // mis: weighted against BSDF sampling (power heuristic) unless the light is delta.
+  // mis: weighted against BSDF sampling (power heuristic) unless the light is delta. frame: where
+  // si.p's turned frame (to_world_frame) is kept between the lights of one point (null: not kept).
   Spectrum sample_one(size_t index, double pick, const SurfaceInteraction& si, const SurfaceBsdf& bsdf,
-                      const SampledWavelengths& lambda, const Vec2d& u, bool mis) const;
+                      const SampledWavelengths& lambda, const Vec2d& u, bool mis,
+                      std::optional<Eigen::Matrix3d>* frame = nullptr) const;
   // Pre-bending in height-only fields: the launch direction at p whose curved path leaves along
   // `exit`, and the density factor |d omega_exit / d omega_launch|.
   Vec3d launch_toward(const Vec3d& p, const Vec3d& exit, double* jacobian) const;
