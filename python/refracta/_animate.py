@@ -217,6 +217,16 @@ def animate(
         )
     if turbulence is not None and not hasattr(turbulence, "at_time"):
         raise ValueError(f"animate: turbulence must be a refracta.Turbulence (got {type(turbulence).__name__})")
+    if turbulence is not None and noise is None and len(np.unique(times)) > 1:
+        # Frozen turbulence moves with its wind only (Taylor's hypothesis): without wind, or without
+        # strength, every frame was the same (a trial: 45 s a frame for identical frames).
+        still = "has no wind (wind=(0, 0))" if not any(turbulence.wind) else None
+        still = still or ("has no strength (cn2=0)" if not turbulence.cn2 > 0.0 else None)
+        if still:
+            raise ValueError(
+                f"animate: the turbulence {still}, so every frame is the same: give it a wind and a cn2 > 0, "
+                "or noise= (geometric_noise keywords)"
+            )
     if noise is not None:
         if not isinstance(noise, dict) or "time" in noise:
             raise ValueError(f"animate: noise must be a dict of geometric_noise keywords, without time (got {noise!r})")
@@ -413,6 +423,16 @@ def _check_frame_names(path: str, count: int, where: str) -> None:
                 f"apart, as '{{:03d}}'"
             )
         first_of[file] = i
+    # Their folders, made when written, must not be blocked by a file of that name (a trial: every
+    # frame rendered, then a bare FileExistsError).
+    for folder in sorted({os.path.dirname(file) for file in first_of}):
+        ancestor = folder
+        while ancestor and not os.path.exists(ancestor) and os.path.dirname(ancestor) != ancestor:
+            ancestor = os.path.dirname(ancestor)
+        if ancestor and os.path.exists(ancestor) and not os.path.isdir(ancestor):
+            raise NotADirectoryError(
+                f"{where}: path's pattern {path!r} writes frames into {folder!r}, but {ancestor!r} is a file"
+            )
 
 
 # A GIF's frame delay is a whole number of hundredths of a second; browsers play 0 or 1 as 10.

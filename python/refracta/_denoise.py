@@ -5,8 +5,11 @@ from __future__ import annotations
 import numpy as np
 
 FLOAT32_MAX = float(np.finfo(np.float32).max)  # Open Image Denoise works in float32
-# Above this largest value Open Image Denoise is given the image scaled to 1 (1e30 was still fine).
+# Outside [TINY_RADIANCE, HUGE_RADIANCE] at its largest value Open Image Denoise is given the image
+# scaled to 1 (1e30 was still fine; at 1e-10 its output was all zeros, with guides up to 700x the
+# image's largest value: a trial; 1e-8 was still exact).
 HUGE_RADIANCE = 1e20
+TINY_RADIANCE = 1e-6
 
 
 def _channels(name: str, array, shape=None, lo: float = 0.0, hi: float = np.inf) -> np.ndarray:
@@ -149,10 +152,15 @@ def denoise(
         )
     margin = BORDER_MARGIN
     height, width = color.shape[:2]
+    # A black image stays black (guided, Open Image Denoise put back light of ~1e-6).
+    if not color.max() > 0.0:
+        return np.zeros_like(color)
     # Open Image Denoise's own exposure estimate overflows for images near float32's limit (1e38
-    # came back all zeros): those are denoised scaled down to 1 at their largest value, then scaled
-    # back (its output is scale-invariant; ordinary renders are left exactly as they are).
-    scale = float(color.max()) if color.size and color.max() > HUGE_RADIANCE else 1.0
+    # came back all zeros) and loses images of tiny values: those are denoised scaled to 1 at their
+    # largest value, then scaled back (its output is scale-invariant; ordinary renders are left
+    # exactly as they are).
+    largest = float(color.max())
+    scale = largest if largest > HUGE_RADIANCE or largest < TINY_RADIANCE else 1.0
     clean = np.asarray(
         pyoidn.denoise(
             _mirrored(color / np.float32(scale) if scale != 1.0 else color, margin),

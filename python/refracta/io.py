@@ -5,9 +5,10 @@ defaults live; this module passes its arguments through, None meaning "not given
 
 Exposure c, the scale applied to the linear radiance first:
 
-- automatic, the default (no exposure argument): c = key / Lw_bar, Lw_bar = exp(mean(ln(1e-6 +
+- automatic, the default (no exposure argument): c = key / Lw_bar, Lw_bar = exp(mean(ln(delta +
   Lw))) the log-average luminance (Y of linear sRGB) of the image, key 0.18 (middle grey;
-  Reinhard et al. 2002, eq. 1-2). A render of any scene comes out with its average at middle
+  Reinhard et al. 2002, eq. 1-2; delta = 1e-6 times the mean luminance where that is below 1,
+  else 1e-6, so that black pixels keep the logarithm finite at any scale). A render of any scene comes out with its average at middle
   grey, whatever the light's units. ``key`` (e.g. 0.09 for a dusk, 0.36 for snow) sets the grey;
   given, it overrides the manual settings below.
 - manual: ``exposure`` (c itself), or photographic units: ``ev100``, or a camera's ``shutter`` [s]
@@ -358,12 +359,14 @@ def exposure_of(
     (a refracta.DisplaySettings ``display`` changed by the keywords, as to_display).
 
     Automatic by default (0.18 / the log-average luminance); use it to give several images (the
-    frames of an animation, a with/without pair) one exposure: ``to_display(img, exposure=c)``.
+    frames of an animation, a with/without pair) one exposure: ``to_display(img, exposure=c)``. A
+    stack of frames (T, H, W, C) gives the exposure of all of them together.
     """
     fields = dict(exposure=exposure, key=key, ev100=ev100, iso=iso, shutter=shutter, f_number=f_number)
-    return _core._display_exposure(
-        _image_array(image, "exposure_of"), settings(display, **fields, luminous_efficacy=luminous_efficacy)
-    )
+    array = _image_array(image, "exposure_of")
+    if array.ndim == 4:  # frames, stacked as one tall image (animate's joint exposure)
+        array = array.reshape(-1, *array.shape[2:])
+    return _core._display_exposure(array, settings(display, **fields, luminous_efficacy=luminous_efficacy))
 
 
 def white_balance_of(

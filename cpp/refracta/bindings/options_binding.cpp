@@ -110,6 +110,19 @@ void check_on_off(const py::object& target, const std::string& field, const py::
   }
 }
 
+// The whole numbers an integer field's C++ type holds, as "lo .. hi", found by setting probes
+// (the field's value restored).
+std::string integer_range(const py::object& target, const std::string& field) {
+  const py::object kept = target.attr(field.c_str());
+  auto takes = [&](const py::object& value) { return set_through_descriptor(target, field, value); };
+  const bool is_signed = takes(py::int_(-1));
+  const py::object big = py::int_(is_signed ? (int64_t(1) << 31) : (int64_t(1) << 32));
+  const bool wide = takes(big);
+  set_through_descriptor(target, field, kept);
+  if (is_signed) return wide ? "-2^63 .. 2^63 - 1" : "-2^31 .. 2^31 - 1";
+  return wide ? "0 .. 2^64 - 1" : "0 .. 2^32 - 1";
+}
+
 // target.<field> = value where the field's setter refused the value's type: a whole number for an
 // integer field is set as one (40.0 is 40); anything else raises ValueError naming `keyword`.
 void set_refused(const py::object& target, const std::string& field, const py::handle& value, const char* owner,
@@ -126,7 +139,8 @@ void set_refused(const py::object& target, const std::string& field, const py::h
     // is refused by pybind11 with a TypeError that names neither: say which.
     const double whole = as_double(value);
     if (std::abs(whole) < 9.2e18 && set_through_descriptor(target, field, py::int_(int64_t(whole)))) return;
-    throw_invalid(owner, ": ", keyword, "=", shown, " is out of the range of ", type, ".", field);
+    throw_invalid(owner, ": ", keyword, "=", shown, " is out of the range of ", type, ".", field, " (",
+                  integer_range(target, field), ")");
   }
   throw_invalid(owner, ": option ", keyword, "=", shown, " has the wrong type for ", type, ".", field,
                 " (see help(refracta.", type, "))");

@@ -272,7 +272,14 @@ double log_average_luminance(const Image& image, double exposure) {
   const size_t count = size_t(image.width) * image.height;
   if (count == 0) return 0.0;
   double sum = 0.0, scaled[3];
-  for (size_t i = 0; i < count; ++i) sum += std::log(kReinhardDelta + luminance(&image.pixels[i * image.channels], colour, exposure, scaled));
+  // delta in the image's own units where they are small (a mean luminance below 1): a scene scaled
+  // by 1e-7 was exposed to half its key and one scaled by 1e-9 came out black (a trial), as the
+  // constant delta outweighed every pixel. At a mean of 1 or more, Reinhard's constant itself.
+  for (size_t i = 0; i < count; ++i) sum += luminance(&image.pixels[i * image.channels], colour, exposure, scaled);
+  const double mean = sum / double(count);
+  const double delta = kReinhardDelta * (mean > 0.0 ? std::min(mean, 1.0) : 1.0);
+  sum = 0.0;
+  for (size_t i = 0; i < count; ++i) sum += std::log(delta + luminance(&image.pixels[i * image.channels], colour, exposure, scaled));
   return std::exp(sum / double(count));
 }
 

@@ -100,7 +100,7 @@ struct DisplaySettings {
   // The default: ACES, a photographic film curve (io.py says why, with figures).
   Tonemap tonemap = Tonemap::kAces;
   // Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the
-  // image, delta = kReinhardDelta); given, it overrides any manual exposure; none: kAutoKey (0.18)
+  // image, delta = kReinhardDelta times the mean luminance where that is below 1); given, it overrides any manual exposure; none: kAutoKey (0.18)
   // when there is no manual exposure, else none.
   std::optional<double> key;
   // Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
@@ -142,7 +142,8 @@ double display_exposure(const Image& image, const DisplaySettings& settings);
 // identity for 'none' and for grey images.
 Eigen::Matrix3d white_balance_matrix(const Image& image, const DisplaySettings& settings);
 
-// The log-average luminance Lw_bar = exp(mean ln(delta + Lw)) of c x the image (luminance:
+// The log-average luminance Lw_bar = exp(mean ln(delta + Lw)) of c x the image (delta:
+// kReinhardDelta x min(1, the mean luminance), or kReinhardDelta for a black image; luminance:
 // Y of linear sRGB, 0.2126 R + 0.7152 G + 0.0722 B normalised to sum 1; 1-2 channels: the first).
 double log_average_luminance(const Image& image, double exposure);
 
