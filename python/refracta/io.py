@@ -8,9 +8,9 @@ Exposure c, the scale applied to the linear radiance first:
 - automatic, the default (no exposure argument): c = key / Lw_bar, Lw_bar = exp(mean(ln(delta +
   Lw))) the log-average luminance (Y of linear sRGB) of the image, key 0.18 (middle grey;
   Reinhard et al. 2002, eq. 1-2; delta = 1e-6 times the mean luminance where that is below 1,
-  else 1e-6, so that black pixels keep the logarithm finite at any scale). A render of any scene comes out with its average at middle
-  grey, whatever the light's units. ``key`` (e.g. 0.09 for a dusk, 0.36 for snow) sets the grey;
-  given, it overrides the manual settings below.
+  else 1e-6, so that black pixels keep the logarithm finite at any scale). A render of any scene
+  comes out with its average at middle grey, whatever the light's units. ``key`` (e.g. 0.09 for a
+  dusk, 0.36 for snow) sets the grey; given, it overrides the manual settings below.
 - manual: ``exposure`` (c itself), or photographic units: ``ev100``, or a camera's ``shutter`` [s]
   and ``f_number`` (with ``iso``, default 100): EV100 = log2(N^2 / t) - log2(ISO / 100) and
   c = 1 / (1.2 x 2^EV100) (ISO 12232 saturation-based sensitivity; Lagarde & de Rousiers 2014,
