@@ -68,8 +68,9 @@ def test_03_camera_settings_are_their_ev100():
 def test_04_automatic_exposure_is_the_default_and_puts_the_log_average_at_middle_grey(luminance):
     image = np.full((4, 5, 3), luminance, np.float32)
     assert io.exposure_of(image) == pytest.approx(0.18 / luminance, rel=DELTA_REL)
-    # Any brightness displays the same, ACES of middle grey (exactly: of 0.18 L / (L + delta)).
-    scaled = 0.18 * luminance / (luminance + 1e-6)
+    # Any brightness displays the same, ACES of middle grey (exactly: of 0.18 L / (L + delta), delta
+    # 1e-6 of the mean luminance below a mean of 1, else 1e-6).
+    scaled = 0.18 * luminance / (luminance + 1e-6 * min(luminance, 1.0))
     np.testing.assert_allclose(
         io.to_display(image, gamma="linear")[0, 0], aces_reference([scaled] * 3), atol=FLOAT_TOLERANCE
     )

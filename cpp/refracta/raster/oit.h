@@ -30,15 +30,15 @@ enum class WboitWeight { kEq7, kEq9 };
 WboitWeight parse_wboit_weight(const std::string& name);  // "eq7", "eq9"
 const char* wboit_weight_name(WboitWeight weight);
 
+// MboitSettings.storage by name: 'fp32' or 'unorm16' (no 'fp64': MBOIT's published biases are
+// for these two); throws std::invalid_argument naming them for any other.
+Storage parse_mboit_storage(const std::string& name);
+
 // Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
 // 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
 // published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit
 // ROV variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (both 0:
 // the fragments' own range, in render_raster the frame's).
-// MboitSettings.storage by name: 'fp32' or 'unorm16' (no 'fp64': MBOIT's published biases are
-// for these two); throws std::invalid_argument naming them for any other.
-Storage parse_mboit_storage(const std::string& name);
-
 struct MboitSettings {
   MomentBasis basis = MomentBasis::kPower;
   int moments = 4;              // 4, 6 or 8 power moments; 2, 3 or 4 trigonometric
