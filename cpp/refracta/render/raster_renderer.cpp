@@ -166,7 +166,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
 
   // Shading of a rasterized surface, every shining light deterministically: the sun along its
   // disc's centre (irradiance = disc radiance x solid angle), spots and point lights exactly, lights
-  // with extent (area lights, environments, the sky) by light_strata^2 stratified light samples and
+  // with extent (area lights, environments, the sky) by light_strata^2 quasi-random light samples and
   // as many BSDF samples, combined by the power heuristic (Veach 1997, ch. 9) as the ray renderers'
   // direct lighting does. Light samples alone left a quadrature bias of +39 % under a panel 0.2 m
   // above a floor at n = 8 (its samples a grid on the panel, as far apart as the floor is from it);
