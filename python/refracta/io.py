@@ -365,6 +365,10 @@ def exposure_of(
     fields = dict(exposure=exposure, key=key, ev100=ev100, iso=iso, shutter=shutter, f_number=f_number)
     array = _image_array(image, "exposure_of")
     if array.ndim == 4:  # frames, stacked as one tall image (animate's joint exposure)
+        if 0 in array.shape[:3]:
+            raise ValueError(
+                f"exposure_of: a stack of frames must have shape (T, H, W, C), T, H, W >= 1 (got {array.shape})"
+            )
         array = array.reshape(-1, *array.shape[2:])
     return _core._display_exposure(array, settings(display, **fields, luminous_efficacy=luminous_efficacy))
 

@@ -9,6 +9,8 @@ import pytest
 
 import refracta
 
+from ..environment_integrals import irradiance_under_map
+
 TILT = (0.8, 1.0, 0.0)  # the vertex normals: 38.7 deg from the quad's geometric normal (+y)
 KD = 0.5
 
@@ -18,32 +20,6 @@ def radiance_map():
     image = np.ones((16, 32))
     image[8:] = 10.0
     return image
-
-
-def allowed_irradiance(image, shading_normal, rows=2048, columns=4096):
-    """E = integral of L(d) (d . ns) over the directions above both the geometric plane (y > 0) and
-    the shading normal's, L by the EnvironmentLight's bilinear interpolation (rows at v = j / (H - 1),
-    columns centred at (i + 1/2) / W; d = (sin phi sin theta, cos theta, -cos phi sin theta)), by the
-    midpoint rule on a grid far finer than the map."""
-    height, width = image.shape
-    v = (np.arange(rows) + 0.5) / rows
-    u = (np.arange(columns) + 0.5) / columns
-    row = v * (height - 1)
-    j = np.clip(np.floor(row).astype(int), 0, height - 2)
-    fv = (row - j)[:, None]
-    column = u * width - 0.5
-    i = np.floor(column).astype(int)
-    fu = column - i
-    left, right = i % width, (i + 1) % width
-    radiance = (image[j][:, left] * (1 - fu) + image[j][:, right] * fu) * (1 - fv) + (
-        image[j + 1][:, left] * (1 - fu) + image[j + 1][:, right] * fu
-    ) * fv
-    theta, phi = np.pi * v[:, None], 2.0 * np.pi * u[None, :]
-    d = np.stack(np.broadcast_arrays(np.sin(phi) * np.sin(theta), np.cos(theta), -np.cos(phi) * np.sin(theta)), -1)
-    cosine = d @ shading_normal
-    allowed = (d[..., 1] > 0.0) & (cosine > 0.0)
-    weight = np.sin(theta) * (np.pi / rows) * (2.0 * np.pi / columns)
-    return float(np.sum(np.where(allowed, radiance * cosine, 0.0) * weight))
 
 
 def tilted_quad_scene():
@@ -59,7 +35,7 @@ CAMERA = refracta.Camera((0.0, 1.0, 0.01), (0.0, 0.0, 0.0), vfov=4, width=4, hei
 
 
 def expected_radiance():
-    return KD / np.pi * allowed_irradiance(radiance_map(), np.array(TILT) / np.linalg.norm(TILT))
+    return KD / np.pi * irradiance_under_map(radiance_map(), TILT)
 
 
 @pytest.mark.parametrize("transport", ["direct", "path"])

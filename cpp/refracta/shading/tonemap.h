@@ -100,8 +100,8 @@ struct DisplaySettings {
   // The default: ACES, a photographic film curve (io.py says why, with figures).
   Tonemap tonemap = Tonemap::kAces;
   // Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the
-  // image, delta = kReinhardDelta times the mean luminance where that is below 1); given, it overrides any manual exposure; none: kAutoKey (0.18)
-  // when there is no manual exposure, else none.
+  // image, delta = kReinhardDelta times the mean luminance where that is below 1); given, it
+  // overrides any manual exposure; none: kAutoKey (0.18) when there is no manual exposure, else none.
   std::optional<double> key;
   // Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
   // luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other
