@@ -11,6 +11,7 @@
 #include "refracta/rays/trace.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -191,6 +192,7 @@ void IorFloors::merge(const IorFloors& other) {
         most->most[k][i] = std::max(most->most[k][i], other.gradients->most[k][i]);
       }
     }
+    most->sum_up();
     gradients = std::move(most);
   } else {
     gradients.reset();  // not sampled alike: no bound
@@ -293,6 +295,9 @@ Caster::Caster(const Scene& scene, const IndexField* field, const RenderOptions&
     // layered part still pre-bends shadow rays toward distant lights, and above every region
     // rays still leave along Bouguer's invariant).
     legs_ = !(options.trace && *options.trace == TraceMethod::kRk45);
+  }
+  if (layered_ && regions_.empty() && std::isfinite(layered_->earth_radius())) {
+    cover_ = std::make_shared<const HeightCover>(scene_);
   }
 }
 
@@ -591,8 +596,32 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   PathEnd end;
   end.direction = t;
   double h = origin.y(), s = 0.0, run = 0.0, sin_e = std::abs(t.y()), n = n0, dn = dn0;
+  // A rising ray with nothing over the ground it crosses up to the objects' top as high as where it
+  // starts (the sea away from the ships and the coast) meets nothing there: no chords, only its run
+  // and length up to that top, to what its escape needs (climb_clear). Up to the top its run is at
+  // most its climb times the cotangent of its flattest elevation, where n is least (cos e = beta / n).
+  if (up > 0.0 && cover_ && floors_->gradients && origin.y() < ceiling_) {
+    const double flattest = beta / floors_->objects_from(origin.y(), true);
+    const double run_up = (ceiling_ - origin.y()) * flattest / std::sqrt(1.0 - flattest * flattest);
+    const Vec3d far = origin + run_up * across;
+    // The escape turns its exit by run / R; the climb's share of its tolerance on that is a tenth.
+    const double run_tol = 0.1 * options_.sagitta_pixels * spread * layered_->earth_radius();
+    Climb climb;
+    if (cover_->highest(origin.x(), origin.z(), far.x(), far.z()) < origin.y() &&
+        climb_clear(branch, origin.y(), ceiling_, run_tol, &climb) && climb.length <= max_length &&
+        branch.at(ceiling_, kMinSine, &n, &dn, &sin_e)) {
+      h = ceiling_, s = climb.length, run = climb.run;
+      end.direction = direction(sin_e);
+      end.length = s;
+      // Past the air that bends it, the rest is one line, as after the chords below.
+      if (secondary && straight_rest(point(run, h), end.direction, s, max_length - s,
+                                     std::min(scene_.lowest(), origin.y()) - 1.0, spread, &end, s0)) {
+        return end;
+      }
+    }
+  }
   double step = up * (target - h);
-  Vec3d a = origin;
+  Vec3d a = point(run, h);
   while (up * (target - h) > 0.0) {
     step = std::min(step, up * (target - h));
     double sin_b;
@@ -640,6 +669,58 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   end.direction = exit->direction;
   end.end_point = exit->point;
   return end;
+}
+
+bool Caster::climb_clear(const BouguerBranch& branch, double h0, double h1, double tol, Climb* out) const {
+  // Samples more than this, or gaps halved more often: the ray is left to the chords.
+  constexpr int kMostSamples = 256, kMostDepth = 40;
+  if (!(tol > 0.0) || !(h1 > h0) || !floors_ || !floors_->gradients) return false;
+  const IorFloors::Gradients& bound = *floors_->gradients;
+  const double beta = branch.beta();
+  struct Sample {
+    double h, n, rate_run, rate_length, below, above;
+    int depth;
+  };
+  auto sample = [&](double h, int depth, Sample* at) {
+    double dn, sin_e;
+    at->h = h, at->depth = depth;
+    if (!branch.at(h, 0.0, &at->n, &dn, &sin_e) || !(sin_e > 0.0)) return false;
+    at->rate_run = beta / at->n / sin_e, at->rate_length = 1.0 / sin_e;  // cot e, 1 / sin e
+    return bound.climbed_around(h, &at->below, &at->above);
+  };
+  // The trapezoid rule over gaps between samples, each gap halved until it is kept: between its
+  // ends ln n varies by at most the bound's integral, so n stays above the lower end's n times
+  // (1 - that) and cos e below beta over it, and there cot e and 1 / sin e change with ln n at most
+  // at cos e / sin^3 e: the rule errs over the gap by at most its width times their whole change,
+  // kept within the gap's share of tol.
+  std::array<Sample, kMostDepth + 2> right;  // the ends of the gaps still to do, the nearest last
+  Sample left;
+  int pending = 0, samples = 2;
+  if (!sample(h0, 0, &left) || !sample(h1, 0, &right[0])) return false;
+  pending = 1;
+  out->run = out->length = 0.0;
+  const double per_metre = tol / (h1 - h0);
+  while (pending > 0) {
+    const Sample& b = right[size_t(pending) - 1];
+    const double variation = b.above - left.below;
+    if (!(variation < 0.5)) return false;  // (ln n varies by ~1e-4 in the lowest kilometres)
+    const double c = beta / (std::min(left.n, b.n) * (1.0 - variation));
+    if (!(c < 1.0)) return false;  // the ray may turn between them
+    const double sine = std::sqrt(1.0 - c * c);
+    const double gap = b.h - left.h;
+    if (variation * c / (sine * sine * sine) <= per_metre) {
+      out->run += 0.5 * gap * (left.rate_run + b.rate_run);
+      out->length += 0.5 * gap * (left.rate_length + b.rate_length);
+      left = b;
+      --pending;
+      continue;
+    }
+    const int depth = std::max(left.depth, b.depth) + 1;
+    if (depth > kMostDepth || ++samples > kMostSamples) return false;
+    if (!sample(0.5 * (left.h + b.h), depth, &right[size_t(pending)])) return false;
+    ++pending;
+  }
+  return true;
 }
 
 PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_length, double spread,

@@ -17,6 +17,7 @@
 #include "refracta/rays/trace_options.h"
 #include "refracta/render/azimuth_ceiling.h"
 #include "refracta/render/chord_plan.h"
+#include "refracta/render/height_cover.h"
 #include "refracta/render/render_options.h"
 #include "refracta/scene/embree_scene.h"
 #include "refracta/shading/aerial_perspective.h"
@@ -29,6 +30,8 @@
 #include <vector>
 
 namespace refracta {
+
+class BouguerBranch;
 
 // Lower bounds of a height-only field's n: among the scene's objects, and everywhere a ray goes;
 // and over the objects' heights sampled (render_ior_floors): the least n at and below each
@@ -50,6 +53,14 @@ struct IorFloors {
     std::vector<std::vector<double>> most;  // most[k][i]: the bound over intervals i .. i + 2^k - 1
     // The bound over [lo, hi] [m]; inf where that reaches outside the sampled heights.
     double steepest(double lo, double hi) const;
+    // climbed[i]: the bound integrated from heights[0] to heights[i], from most[0] (sum_up: call
+    // after changing it). Between two heights it bounds the total variation of ln n.
+    std::vector<double> climbed;
+    void sum_up();
+    // climbed at the samples at or below and at or above h (their difference between two heights
+    // a and b, the lower one's below and the upper one's above, bounds ln n's variation between);
+    // false outside the samples.
+    bool climbed_around(double h, double* below, double* above) const;
   };
   std::shared_ptr<const Gradients> gradients;  // null: no bound (no path goes straight)
   // The least n between h and the top of the objects (rising), or the bottom and h (falling).
@@ -221,6 +232,16 @@ class Caster {
     double length;  // path length from x to point [m]
   };
   std::optional<Escape> escape_direction(const Vec3d& x, const Vec3d& v, double remaining, double spread) const;
+  // A rising ray's run and length [m] from height h0 up to h1 over ground where nothing stands
+  // (cast_monotone): the trapezoid rule over the samples of panels, each kept where the gradient
+  // bound (IorFloors::Gradients) says the rates of run and length, cot e and 1 / sin e, cannot
+  // change between neighbouring samples enough to move either by more than its share of `tol` [m]
+  // -- a bound, not an estimate: a layer thinner than the samples' spacing (the cold sea's
+  // inversion) cannot hide from it. False where the ray may turn or the panels would be too many.
+  struct Climb {
+    double run = 0.0, length = 0.0;
+  };
+  bool climb_clear(const BouguerBranch& branch, double h0, double h1, double tol, Climb* out) const;
   // Height-only fields with an ior floor: a ray so steep that it cannot turn at any height it
   // can reach, cut into chords from Bouguer's invariant (bouguer_branch.h) up past every object
   // (then out of the air) or down below them; nullopt where that does not apply (trace it).
@@ -253,6 +274,8 @@ class Caster {
   double secondary_spread_ = 0.0;   // set_secondary_spread
   std::vector<ChordPlan> plans_;  // per table entry
   AzimuthCeiling azimuth_ceiling_;  // about the eye (use_table); none (+inf) with local regions
+  // Over a spherical Earth without local regions: the highest geometry over the ground (cast_monotone).
+  std::shared_ptr<const HeightCover> cover_;
   double exact_tol_ = 0.0;        // [m] camera rays inside the table's exact intervals are traced to this
 };
 

@@ -70,7 +70,21 @@ std::shared_ptr<const IorFloors::Gradients> gradient_bound(const HeightSamples& 
     for (size_t i = 0; i < next.size(); ++i) next[i] = std::max(below[i], below[i + width / 2]);
     out->most.push_back(std::move(next));
   }
+  out->sum_up();
   return out;
+}
+
+void IorFloors::Gradients::sum_up() {
+  climbed.assign(heights.size(), 0.0);
+  for (size_t i = 0; i + 1 < heights.size(); ++i) climbed[i + 1] = climbed[i] + most[0][i] * (heights[i + 1] - heights[i]);
+}
+
+bool IorFloors::Gradients::climbed_around(double h, double* below, double* above) const {
+  if (!(h >= heights.front()) || !(h <= heights.back())) return false;
+  const size_t at = size_t(std::lower_bound(heights.begin(), heights.end(), h) - heights.begin());
+  *above = climbed[at];
+  *below = heights[at] == h ? climbed[at] : climbed[at - 1];
+  return true;
 }
 
 double IorFloors::Gradients::steepest(double lo, double hi) const {
