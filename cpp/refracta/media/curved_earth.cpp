@@ -58,6 +58,16 @@ Vec3d CurvedEarth::sky_direction(const Vec3d& p, const Vec3d& d) const {
   return turned(p, d, radius_, true).normalized();
 }
 
+Eigen::Matrix3d CurvedEarth::sky_frame(const Vec3d& p) const {
+  const double rho = std::sqrt(p.x() * p.x() + p.z() * p.z());
+  if (!(rho > 0.0)) return Eigen::Matrix3d::Identity();
+  const double phi = rho / radius_;
+  const Vec3d out(p.x() / rho, 0.0, p.z() / rho), up = Vec3d::UnitY();
+  // turned(): the plane of `out` and the vertical turned by phi, the perpendicular kept.
+  return Eigen::Matrix3d::Identity() + (std::cos(phi) - 1.0) * (out * out.transpose() + up * up.transpose()) +
+         std::sin(phi) * (out * up.transpose() - up * out.transpose());
+}
+
 Vec3d CurvedEarth::sphere_point(const Vec3d& flat, double radius) {
   const double rho = std::hypot(flat.x(), flat.z()), phi = rho / radius;
   const double r = radius + radius * std::expm1(flat.y() / radius);

@@ -56,6 +56,9 @@ class CurvedEarth : public IndexField {
   // tilted by phi = rho / R toward rho's direction, and a flat-frame direction's elevation e' is
   // e' there (the map is conformal): turned back by phi into the origin's frame.
   Vec3d sky_direction(const Vec3d& p, const Vec3d& d) const override;
+  // The same turn as one matrix (a sine and cosine for all three axes; DirectLighting turns every
+  // shading point's light samples by it).
+  Eigen::Matrix3d sky_frame(const Vec3d& p) const override;
   // The true sphere behind a flat frame of radius R: a flat-frame point's position [m] from the
   // sphere's centre, the origin's vertical along +y (r = R e^(y'/R), phi = rho / R toward rho's
   // direction); and a direction at flat-frame point p turned by p's central angle into the

@@ -69,6 +69,7 @@ class DispersedField final : public IndexField {
   FieldPtr height_only_part() const override;
   std::vector<LocalRegion> local_regions() const override { return base_->local_regions(); }
   Vec3d sky_direction(const Vec3d& p, const Vec3d& d) const override { return base_->sky_direction(p, d); }
+  Eigen::Matrix3d sky_frame(const Vec3d& p) const override { return base_->sky_frame(p); }
   double earth_radius() const override { return base_->earth_radius(); }
   double straight_above() const override { return base_->straight_above(); }
 

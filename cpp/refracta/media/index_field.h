@@ -68,7 +68,7 @@ class IndexField {
   virtual Vec3d sky_direction(const Vec3d& /*p*/, const Vec3d& d) const { return d; }
   // The rotation taking the frame at p (this field's coordinates) to the world's: sky_direction of
   // each axis.
-  Eigen::Matrix3d sky_frame(const Vec3d& p) const {
+  virtual Eigen::Matrix3d sky_frame(const Vec3d& p) const {
     Eigen::Matrix3d rotation;
     for (int axis = 0; axis < 3; ++axis) rotation.col(axis) = sky_direction(p, Vec3d::Unit(axis));
     return rotation;
