@@ -22,7 +22,8 @@ def tower_scene() -> refracta.Scene:
     for x, z, height in zip(rng.uniform(-500, 500, 10), rng.uniform(-500, 500, 10), rng.uniform(20.0, 60.0, 10)):
         scene.add_box((x, height / 2, z), (30.0, height, 30.0), kd=0.5)
     e, a = math.radians(SUN_ELEVATION), math.radians(SUN_AZIMUTH)
-    scene.set_sun((math.cos(e) * math.cos(a), math.sin(e), math.cos(e) * math.sin(a)), (2e5, 2e5, 2e5))  # disc radiance [W/(m^2 sr)]
+    sun = (math.cos(e) * math.cos(a), math.sin(e), math.cos(e) * math.sin(a))
+    scene.set_sun(sun, (2e5, 2e5, 2e5))  # disc radiance [W/(m^2 sr)]: lit ground 20x the shade
     scene.set_environment((0.02, 0.02, 0.02))
     return scene
 
