@@ -604,13 +604,15 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
     const double flattest = beta / floors_->objects_from(origin.y(), true);
     const double run_up = (ceiling_ - origin.y()) * flattest / std::sqrt(1.0 - flattest * flattest);
     const Vec3d far = origin + run_up * across;
-    // The escape turns its exit by run / R; the climb's share of its tolerance on that is a tenth.
+    // The escape turns its exit by run / R; the climb may add a tenth of the escape's own tolerance
+    // on that (whose quadrature's estimated error lies far below it in practice).
     const double run_tol = 0.1 * options_.sagitta_pixels * spread * layered_->earth_radius();
     Climb climb;
+    double n_top, dn_top, sin_top;
     if (cover_->highest(origin.x(), origin.z(), far.x(), far.z()) < origin.y() &&
         climb_clear(branch, origin.y(), ceiling_, run_tol, &climb) && climb.length <= max_length &&
-        branch.at(ceiling_, kMinSine, &n, &dn, &sin_e)) {
-      h = ceiling_, s = climb.length, run = climb.run;
+        branch.at(ceiling_, kMinSine, &n_top, &dn_top, &sin_top)) {
+      h = ceiling_, s = climb.length, run = climb.run, n = n_top, dn = dn_top, sin_e = sin_top;
       end.direction = direction(sin_e);
       end.length = s;
       // Past the air that bends it, the rest is one line, as after the chords below.
@@ -715,6 +717,8 @@ bool Caster::climb_clear(const BouguerBranch& branch, double h0, double h1, doub
       --pending;
       continue;
     }
+    // Inside one interval of the bound's samples halving cannot lower its variation: chords then.
+    if (left.below == b.below && left.above == b.above) return false;
     const int depth = std::max(left.depth, b.depth) + 1;
     if (depth > kMostDepth || ++samples > kMostSamples) return false;
     if (!sample(0.5 * (left.h + b.h), depth, &right[size_t(pending)])) return false;

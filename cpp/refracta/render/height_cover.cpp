@@ -53,8 +53,9 @@ int HeightCover::row(double z) const { return std::clamp(int(std::floor((z - z_l
 
 void HeightCover::raise(double x0, double z0, double x1, double z1, double top) {
   // Widened by a hair: a box that touches a cell's border counts on both sides of it (the
-  // traversal may pass a corner through either neighbour).
-  const double hair = 1e-6 * cell_;
+  // traversal may pass a corner through either neighbour), and Embree's float vertices (6e-8 of
+  // a coordinate off ours) stay inside it.
+  const double hair = 1e-6 * (cell_ + std::max({std::abs(x0), std::abs(x1), std::abs(z0), std::abs(z1)}));
   const int c1 = column(x1 + hair), r1 = row(z1 + hair);
   for (int r = row(z0 - hair); r <= r1; ++r) {
     for (int c = column(x0 - hair); c <= c1; ++c) {
@@ -78,8 +79,11 @@ double HeightCover::highest(double x0, double z0, double x1, double z1) const {
     else t1 = std::min(t1, t);
     return t0 <= t1;
   };
-  const double x_hi = x_lo_ + columns_ * cell_, z_hi = z_lo_ + rows_ * cell_;
-  if (!clip(-dx, x0 - x_lo_) || !clip(dx, x_hi - x0) || !clip(-dz, z0 - z_lo_) || !clip(dz, z_hi - z0)) return -kInf;
+  // The grid and a cell around it: its far edge x_lo_ + columns_ cell_ may round below the scene's,
+  // whose geometry the cells at the edge hold (cells beyond hold nothing: the walk stops there).
+  const double x_lo = x_lo_ - cell_, z_lo = z_lo_ - cell_;
+  const double x_hi = x_lo_ + (columns_ + 1) * cell_, z_hi = z_lo_ + (rows_ + 1) * cell_;
+  if (!clip(-dx, x0 - x_lo) || !clip(dx, x_hi - x0) || !clip(-dz, z0 - z_lo) || !clip(dz, z_hi - z0)) return -kInf;
   // The cells it passes, in order (Amanatides and Woo 1987, "A Fast Voxel Traversal Algorithm").
   const double xa = x0 + t0 * dx, za = z0 + t0 * dz;
   int c = column(xa), r = row(za);
