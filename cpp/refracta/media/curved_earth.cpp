@@ -59,13 +59,11 @@ Vec3d CurvedEarth::sky_direction(const Vec3d& p, const Vec3d& d) const {
 }
 
 Eigen::Matrix3d CurvedEarth::sky_frame(const Vec3d& p) const {
-  const double rho = std::sqrt(p.x() * p.x() + p.z() * p.z());
-  if (!(rho > 0.0)) return Eigen::Matrix3d::Identity();
-  const double phi = rho / radius_;
-  const Vec3d out(p.x() / rho, 0.0, p.z() / rho), up = Vec3d::UnitY();
-  // turned(): the plane of `out` and the vertical turned by phi, the perpendicular kept.
-  return Eigen::Matrix3d::Identity() + (std::cos(phi) - 1.0) * (out * out.transpose() + up * up.transpose()) +
-         std::sin(phi) * (out * up.transpose() - up * out.transpose());
+  // One turn (a sine and cosine) for all three axes.
+  const Turn turn(p, radius_, true);
+  Eigen::Matrix3d rotation;
+  for (int axis = 0; axis < 3; ++axis) rotation.col(axis) = turn(Vec3d::Unit(axis));
+  return rotation;
 }
 
 Vec3d CurvedEarth::sphere_point(const Vec3d& flat, double radius) {
@@ -75,18 +73,26 @@ Vec3d CurvedEarth::sphere_point(const Vec3d& flat, double radius) {
   return r * Vec3d(flat.x() * s, std::cos(phi), flat.z() * s);
 }
 
-Vec3d CurvedEarth::turned(const Vec3d& p, const Vec3d& d, double radius, bool to_origin) {
+CurvedEarth::Turn::Turn(const Vec3d& p, double radius, bool to_origin) {
   const double rho = std::sqrt(p.x() * p.x() + p.z() * p.z());
-  if (!(rho > 0.0)) return d;
+  if (!(rho > 0.0)) return;
   const double phi = rho / radius;
-  const Vec3d out(p.x() / rho, 0.0, p.z() / rho);  // horizontal, away from the origin
+  out = Vec3d(p.x() / rho, 0.0, p.z() / rho);  // horizontal, away from the origin
+  c = std::cos(phi), s = to_origin ? std::sin(phi) : -std::sin(phi);
+}
+
+Vec3d CurvedEarth::Turn::operator()(const Vec3d& d) const {
+  if (out.isZero()) return d;
   // Rotation by phi taking the local vertical (the origin frame's y turned toward `out`) back:
   // y -> cos(phi) y - sin(phi) out, out -> cos(phi) out + sin(phi) y, the perpendicular kept
   // (and by -phi the other way).
   const double along = d.dot(out), up = d.y();
   const Vec3d across = d - along * out - up * Vec3d::UnitY();
-  const double c = std::cos(phi), s = to_origin ? std::sin(phi) : -std::sin(phi);
   return across + (c * along + s * up) * out + (c * up - s * along) * Vec3d::UnitY();
+}
+
+Vec3d CurvedEarth::turned(const Vec3d& p, const Vec3d& d, double radius, bool to_origin) {
+  return Turn(p, radius, to_origin)(d);
 }
 
 std::shared_ptr<const IndexField> CurvedEarth::with_base(std::shared_ptr<const IndexField> base) const {

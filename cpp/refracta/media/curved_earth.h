@@ -56,8 +56,8 @@ class CurvedEarth : public IndexField {
   // tilted by phi = rho / R toward rho's direction, and a flat-frame direction's elevation e' is
   // e' there (the map is conformal): turned back by phi into the origin's frame.
   Vec3d sky_direction(const Vec3d& p, const Vec3d& d) const override;
-  // The same turn as one matrix (a sine and cosine for all three axes; DirectLighting turns every
-  // shading point's light samples by it).
+  // The same turn as one matrix (one Turn for all three axes; DirectLighting turns every shading
+  // point's light samples by it).
   Eigen::Matrix3d sky_frame(const Vec3d& p) const override;
   // The true sphere behind a flat frame of radius R: a flat-frame point's position [m] from the
   // sphere's centre, the origin's vertical along +y (r = R e^(y'/R), phi = rho / R toward rho's
@@ -65,6 +65,13 @@ class CurvedEarth : public IndexField {
   // origin's frame, where the sphere's true directions are (to_origin), or back from it.
   static Vec3d sphere_point(const Vec3d& flat, double radius);
   static Vec3d turned(const Vec3d& p, const Vec3d& d, double radius, bool to_origin);
+  // That turn at p, kept to apply to several directions.
+  struct Turn {
+    Turn(const Vec3d& p, double radius, bool to_origin);
+    Vec3d operator()(const Vec3d& d) const;
+    Vec3d out = Vec3d::Zero();  // horizontal unit away from the origin (zero at the origin: no turn)
+    double c = 1.0, s = 0.0;    // cos and (signed) sin of the central angle
+  };
   double earth_radius() const override { return radius_; }
   double straight_above() const override;
 

@@ -296,9 +296,6 @@ Caster::Caster(const Scene& scene, const IndexField* field, const RenderOptions&
     // rays still leave along Bouguer's invariant).
     legs_ = !(options.trace && *options.trace == TraceMethod::kRk45);
   }
-  if (layered_ && regions_.empty() && std::isfinite(layered_->earth_radius())) {
-    cover_ = std::make_shared<const HeightCover>(scene_);
-  }
 }
 
 void Caster::use_table(const ElevationTable* table, const Vec3d& eye, double pixel_angle) {
@@ -600,7 +597,8 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
   // starts (the sea away from the ships and the coast) meets nothing there: no chords, only its run
   // and length up to that top, to what its escape needs (climb_clear). Up to the top its run is at
   // most its climb times the cotangent of its flattest elevation, where n is least (cos e = beta / n).
-  if (up > 0.0 && cover_ && floors_->gradients && origin.y() < ceiling_) {
+  const HeightCover* cover = regions_.empty() ? floors_->cover.get() : nullptr;
+  if (up > 0.0 && cover && floors_->gradients && origin.y() < ceiling_) {
     const double flattest = beta / floors_->objects_from(origin.y(), true);
     const double run_up = (ceiling_ - origin.y()) * flattest / std::sqrt(1.0 - flattest * flattest);
     const Vec3d far = origin + run_up * across;
@@ -609,7 +607,7 @@ std::optional<PathEnd> Caster::cast_monotone(const Vec3d& origin, const Vec3d& d
     const double run_tol = 0.1 * options_.sagitta_pixels * spread * layered_->earth_radius();
     Climb climb;
     double n_top, dn_top, sin_top;
-    if (cover_->highest(origin.x(), origin.z(), far.x(), far.z()) < origin.y() &&
+    if (cover->highest(origin.x(), origin.z(), far.x(), far.z()) < origin.y() &&
         climb_clear(branch, origin.y(), ceiling_, run_tol, &climb) && climb.length <= max_length &&
         branch.at(ceiling_, kMinSine, &n_top, &dn_top, &sin_top)) {
       h = ceiling_, s = climb.length, run = climb.run, n = n_top, dn = dn_top, sin_e = sin_top;

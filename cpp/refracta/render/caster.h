@@ -63,6 +63,9 @@ struct IorFloors {
     bool climbed_around(double h, double* below, double* above) const;
   };
   std::shared_ptr<const Gradients> gradients;  // null: no bound (no path goes straight)
+  // Over a spherical Earth: the scene's highest geometry over the ground (cast_monotone's rays that
+  // climb past nothing; the renderer builds it once for all its casters); null: none.
+  std::shared_ptr<const HeightCover> cover;
   // The least n between h and the top of the objects (rising), or the bottom and h (falling).
   double objects_from(double h, bool rising) const;
   // The lower of both floors and the larger gradient bound (a spectral render's ends of the
@@ -275,8 +278,6 @@ class Caster {
   double secondary_spread_ = 0.0;   // set_secondary_spread
   std::vector<ChordPlan> plans_;  // per table entry
   AzimuthCeiling azimuth_ceiling_;  // about the eye (use_table); none (+inf) with local regions
-  // Over a spherical Earth without local regions: the highest geometry over the ground (cast_monotone).
-  std::shared_ptr<const HeightCover> cover_;
   double exact_tol_ = 0.0;        // [m] camera rays inside the table's exact intervals are traced to this
 };
 

@@ -355,15 +355,12 @@ Spectrum DirectLighting::sample_one(size_t index, double pick, const SurfaceInte
     }
   }
   light_pdf *= jacobian;
-  // Light leaking through a shading normal is refused here as the path integrator refuses its
-  // BSDF samples (path_integrator.cpp): a direction the shading frame reflects into but the
-  // geometry puts across the surface. Light samples alone took it, MIS-weighted, so part of it
-  // counted (a review: a quad with tilted vertex normals under a map bright below the horizon,
-  // 0.78 where refusing it on both sides gives 0.45).
+  // Light leaking through a shading normal is refused here as the integrators refuse their BSDF
+  // samples: light samples alone took it, MIS-weighted, so part of it counted (a review: a quad
+  // with tilted vertex normals under a map bright below the horizon, 0.78 where refusing it on
+  // both sides gives 0.45). The shading frame decides what the BSDF takes as transmitted.
   const Vec3d& ns = bsdf.frame.n;
-  if ((wi.dot(si.n) > 0.0) != (si.wo.dot(si.n) > 0.0) && (wi.dot(ns) > 0.0) == (si.wo.dot(ns) > 0.0)) {
-    return Spectrum::Zero();
-  }
+  if (si.leaks(wi, (wi.dot(ns) > 0.0) != (si.wo.dot(ns) > 0.0))) return Spectrum::Zero();
   // The BSDF first: a shadow test (through curved air, the expensive part) only where it counts.
   const Spectrum f = bsdf.f(si.wo, wi) * std::abs(wi.dot(bsdf.frame.n));
   if (!(f.maxCoeff() > 0.0)) return Spectrum::Zero();

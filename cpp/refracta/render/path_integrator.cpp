@@ -131,8 +131,7 @@ class PathTracer : public Integrator {
       const double uc = sampler.uniform();
       const auto bs = s.bsdf.sample(si.wo, uc, sampler.uniform2());
       if (!bs) break;
-      // Light leaking through a shading normal: the sampled side must agree with the geometry.
-      if ((bs->wi.dot(si.n) > 0.0) != (si.wo.dot(si.n) > 0.0) && !bs->is_transmission()) break;
+      if (si.leaks(bs->wi, bs->is_transmission())) break;
       ++depth;
       beta *= bs->weight;
       bsdf_pdf = bs->pdf;

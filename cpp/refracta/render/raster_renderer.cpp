@@ -249,8 +249,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     for (const Vec3d& u : points) {
       const auto bs = s.bsdf.sample(si.wo, u.z(), Vec2d(u.x(), u.y()));
       if (!bs || !(bs->weight.maxCoeff() > 0.0)) continue;
-      // Light leaking through a shading normal: refused as the ray renderers refuse it.
-      if ((bs->wi.dot(si.n) > 0.0) != (si.wo.dot(si.n) > 0.0) && !bs->is_transmission()) continue;
+      if (si.leaks(bs->wi, bs->is_transmission())) continue;
       L += bs->weight * met_along(si, *bs, lambda) * weight;
     }
     return through_air(si.p, L);

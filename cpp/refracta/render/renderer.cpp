@@ -280,6 +280,8 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
                                         camera.position(), options));
       }
     }
+    // Over a spherical Earth: what stands over the ground, built once for every caster of the render.
+    if (std::isfinite(layered->earth_radius())) floors->cover = std::make_shared<const HeightCover>(scene.geometry);
   }
   Caster caster(scene.geometry, field.get(), options);
   if (layered && !field->height_only()) caster.use_layered(layered.get());

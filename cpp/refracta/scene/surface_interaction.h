@@ -52,6 +52,11 @@ struct SurfaceInteraction {
 
   // The geometric normal on wo's side (where the ray came from).
   Vec3d n_toward_wo() const { return front_face ? n : Vec3d(-n); }
+  // Light leaking through a shading normal: wi on the other side of the surface from wo where the
+  // BSDF takes it as reflected (the shading frame puts both on one side), refused by every sampler.
+  bool leaks(const Vec3d& wi, bool transmitted) const {
+    return (wi.dot(n) > 0.0) != (wo.dot(n) > 0.0) && !transmitted;
+  }
   // A point moved off the surface along the geometric normal to the side of w, so that a ray
   // leaving along w does not find this surface again.
   Vec3d offset_toward(const Vec3d& w) const {
