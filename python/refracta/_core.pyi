@@ -1064,6 +1064,13 @@ class Scene:
     def geometry_count(self) -> int:
         ...
     @property
+    def ground_bounds(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]] | None:
+        """
+        (lower, upper) of the scene's ground or sea: its flat horizontal surfaces when they reach outside
+        the other geometry or are all it holds, else None (a floor inside a room's walls, a scene of
+        objects alone); surfaces that emit light are no ground.
+        """
+    @property
     def lights(self) -> list[...]:
         ...
     @property

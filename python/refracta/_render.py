@@ -67,19 +67,6 @@ def _check_reach(
         )
 
 
-def _ground_height(scene: _core.Scene, bounds) -> float | None:
-    """The height of the scene's ground or sea: its lowest geometry when flat horizontal surfaces
-    lie outside the objects' box (Scene.object_bounds leaves them out) or are all it holds; None
-    for a scene of objects alone (a target box has no ground to be below)."""
-    if bounds is None:
-        return None
-    lower, upper = (np.asarray(corner, dtype=float) for corner in bounds)
-    objects = _bounds(scene, objects=True)
-    if objects is not None and not (np.array_equal(objects[0], lower) and np.array_equal(objects[1], upper)):
-        return float(lower[1])
-    return float(lower[1]) if lower[1] == upper[1] else None
-
-
 def _straight_over_a_sphere(field) -> bool:
     """Whether method 'straight' through `field` follows a spherical Earth's straight lines (C++
     straight_air): like curved rays they end after max_length; over a flat Earth they have none."""
@@ -107,7 +94,7 @@ def _check_frame_radius(frame, field, method: str) -> None:
 
 def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, where: str = "render") -> None:
     """The SceneWarning hints of render(): a scene without any light or sky; a camera at or below
-    its ground or sea (_ground_height); and one whose lowest
+    its ground or sea (Scene.ground_bounds); and one whose lowest
     geometry (taken as its ground) lies more than GROUND_TOLERANCE from height 0 of the field the
     rays go through (every field, CurvedEarth's flattened heights too, puts the ground at y = 0)
     with layered air in between (mean ``|dn/dh|`` > LAYER_GRADIENT below the camera)."""
@@ -121,10 +108,11 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
         )
     bounds = _bounds(scene)
     # The eye at or below the scene's ground or sea: a trial's eye at sea level saw sky where the sea
-    # lies (its rays start on the plane), below it the sea's underside.
-    ground = _ground_height(scene, bounds)
-    # Over it, not beside it: a flat terrain tile 22 km off is no ground under the camera (a trial).
-    over = bounds is not None and all(bounds[0][a] <= camera.position[a] <= bounds[1][a] for a in (0, 2))
+    # lies (its rays start on the plane), below it the sea's underside. Over it, not beside it: a
+    # flat terrain tile 22 km off is no ground under the camera (a trial).
+    ground_box = scene.ground_bounds
+    over = ground_box is not None and all(ground_box[0][a] <= camera.position[a] <= ground_box[1][a] for a in (0, 2))
+    ground = float(ground_box[0][1]) if ground_box is not None else None
     # A terrain's ground under the eye (a trial's eye 1.7 m above sea level on a 1 500 m hillside saw
     # open sea: its rays started inside the hill).
     x, y, z = (float(v) for v in camera.position)

@@ -243,3 +243,36 @@ def test_a_camera_below_a_target_without_a_ground_has_no_hint():
         warnings.simplefilter("always")
         refracta.render(scene, camera, refracta.PhysicalAtmosphere(), progress=False, max_length=300.0)
     assert not [w for w in caught if "the camera is at y" in str(w.message)]
+
+
+def test_a_light_panel_overhead_is_no_ground():
+    # A lone emitting quad 3 m up (an area light over the camera) was taken for the scene's ground,
+    # and render() said the camera stood under it; the same quad as a plain surface is a ground.
+    quad = {"vertices": [(-1, 3, -1), (1, 3, -1), (1, 3, 1), (-1, 3, 1)], "triangles": [(0, 2, 1), (0, 3, 2)]}
+    camera = refracta.Camera((0.0, 1.5, 0.0), (0.0, 3.0, 0.1), (0.0, 1.0, 0.0), 60.0, 4, 3)
+    panel = refracta.Scene()
+    panel.add_mesh(**quad, emission=(1.0, 1.0, 1.0), two_sided=True)
+    assert panel.ground_bounds is None
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        refracta.render(panel, camera, None, progress=False)
+    assert not [w for w in caught if "the camera is at y" in str(w.message)]
+    surface = refracta.Scene()
+    surface.set_sky(SKY, SKY)
+    surface.add_mesh(**quad, kd=(0.5, 0.5, 0.5))
+    lower, upper = surface.ground_bounds
+    assert lower[1] == upper[1] == 3.0 and lower[0] == -1.0 and upper[2] == 1.0
+    with pytest.warns(refracta.SceneWarning, match="the camera is at y = 1.5 m, at or below the scene's ground"):
+        refracta.render(surface, camera, None, progress=False)
+
+
+def test_a_floor_inside_walls_is_the_rooms_not_a_ground():
+    # A floor quad within a box's footprint and height (a room's) is no ground: the eye may stand on
+    # either side of it; a sea reaching beyond the objects is one.
+    scene = refracta.Scene()
+    scene.add_box((0.0, 2.0, 0.0), (10.0, 4.0, 10.0), kd=(0.5, 0.5, 0.5))
+    scene.add_mesh(vertices=[(-4, 1, -4), (4, 1, -4), (4, 1, 4), (-4, 1, 4)], triangles=[(0, 2, 1), (0, 3, 2)])
+    assert scene.ground_bounds is None
+    scene.add_ground(0.0, 100.0)
+    lower, upper = scene.ground_bounds
+    assert lower[1] == 0.0 and upper[1] == 1.0 and upper[0] == 50.0  # both flat surfaces: the sea's box

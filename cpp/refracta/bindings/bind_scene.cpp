@@ -205,6 +205,15 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
           [](const RenderScene& s) { return box_tuple(framing_bounds(s)); },
           "(lower, upper) of the scene's objects, as Camera.framing frames them: flat horizontal surfaces\n"
           "(a ground, a sea) count only when there is nothing else. ValueError for an empty scene.")
+      .def_property_readonly(
+          "ground_bounds",
+          [](const RenderScene& s) -> std::optional<std::tuple<DoubleArray, DoubleArray>> {
+            if (const auto box = ground_bounds(s)) return box_tuple(*box);
+            return std::nullopt;
+          },
+          "(lower, upper) of the scene's ground or sea: its flat horizontal surfaces when they reach outside\n"
+          "the other geometry or are all it holds, else None (a floor inside a room's walls, a scene of\n"
+          "objects alone); surfaces that emit light are no ground.")
       .def("material",
            [](const RenderScene& s, int geometry) {
              s.geometry.check_geometry(geometry_id(geometry), "material");

@@ -134,22 +134,43 @@ std::pair<Vec3d, Vec3d> scene_bounds(const RenderScene& scene) {
   return {lower, upper};
 }
 
-std::pair<Vec3d, Vec3d> framing_bounds(const RenderScene& scene) {
+namespace {
+
+// The boxes around a scene's flat horizontal surfaces (grounds, seas) and around the rest of its
+// meshes and terrain; `emitters` false leaves out the surfaces that emit light.
+struct FlatAndRest {
+  Eigen::AlignedBox3d planes, objects;  // empty boxes
+};
+
+FlatAndRest flat_and_rest(const RenderScene& scene, bool emitters) {
   const Scene& geometry = scene.geometry;
-  Eigen::AlignedBox3d objects, planes;  // empty boxes
+  FlatAndRest out;
   for (const SceneMesh& entry : geometry.meshes()) {
-    if (geometry.removed(entry.geometry)) continue;
+    if (geometry.removed(entry.geometry) || (!emitters && scene.light_of(entry.geometry) >= 0)) continue;
     Eigen::AlignedBox3d box;
     if (const TerrainGrid* terrain = geometry.terrain(entry.geometry)) {
       box.extend(terrain->lower()).extend(terrain->upper());
     }
     for (const Vec3d& vertex : entry.mesh.vertices) box.extend(vertex);
     if (box.isEmpty()) continue;
-    (box.sizes().y() == 0.0 ? planes : objects).extend(box);
+    (box.sizes().y() == 0.0 ? out.planes : out.objects).extend(box);
   }
-  const Eigen::AlignedBox3d& chosen = objects.isEmpty() ? planes : objects;
+  return out;
+}
+
+}  // namespace
+
+std::pair<Vec3d, Vec3d> framing_bounds(const RenderScene& scene) {
+  const FlatAndRest boxes = flat_and_rest(scene, true);
+  const Eigen::AlignedBox3d& chosen = boxes.objects.isEmpty() ? boxes.planes : boxes.objects;
   if (chosen.isEmpty()) return scene_bounds(scene);  // its message for an empty scene
   return {chosen.min(), chosen.max()};
+}
+
+std::optional<std::pair<Vec3d, Vec3d>> ground_bounds(const RenderScene& scene) {
+  const FlatAndRest boxes = flat_and_rest(scene, false);
+  if (boxes.planes.isEmpty() || boxes.objects.contains(boxes.planes)) return std::nullopt;
+  return std::make_pair(Vec3d(boxes.planes.min()), Vec3d(boxes.planes.max()));
 }
 
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction) {

@@ -92,6 +92,12 @@ std::pair<Vec3d, Vec3d> scene_bounds(const RenderScene& scene);
 // scene has nothing else (ValueError for an empty scene).
 std::pair<Vec3d, Vec3d> framing_bounds(const RenderScene& scene);
 
+// The box around the scene's ground or sea, for render()'s "camera at or below the ground" hint:
+// its flat horizontal surfaces when they reach outside the other geometry's box or are all it
+// holds; nullopt for a scene of objects alone (a floor inside a room's walls is the room's). A
+// surface that emits light is no ground: a lone light panel overhead is not a floor.
+std::optional<std::pair<Vec3d, Vec3d>> ground_bounds(const RenderScene& scene);
+
 // The first hit of a straight ray from origin along a non-zero direction (normalised here).
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction);
 
