@@ -65,6 +65,16 @@ def test_a_tampered_camera_lens_is_refused_not_dropped():
             copy.__setstate__(tuple(state))
 
 
+def test_a_tampered_constant_environment_sampling_is_refused():
+    # Sampling 7 was taken as is: neither cosine nor uniform, it sampled uniformly, silently.
+    light = refracta.lights.ConstantEnvironment((1.0, 1.0, 1.0), sampling="uniform")
+    state = list(light.__getstate__())
+    assert pickle.loads(pickle.dumps(light)).__getstate__()[1] == state[1]
+    state[1] = 7
+    with pytest.raises(ValueError, match=r"ConstantEnvironment: bad pickle state \(sampling 7\)"):
+        refracta.lights.ConstantEnvironment.__new__(refracta.lights.ConstantEnvironment).__setstate__(tuple(state))
+
+
 def test_a_tampered_hot_spot_footprint_is_refused():
     spot = refracta.HotSpot(0.0, 300.0, 50.0, 8.0, footprint="compact")
     assert pickle.loads(pickle.dumps(spot)) == spot

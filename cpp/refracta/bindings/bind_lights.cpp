@@ -171,7 +171,11 @@ void bind_environment_lights(py::module_& m) {
       constant, "ConstantEnvironment", 2,
       [](const ConstantEnvironment& l) { return py::make_tuple(color_state(l.radiance()), int(l.sampling())); },
       [](const py::tuple& t) {
-        return std::make_shared<ConstantEnvironment>(color_from_state(t[0]), ConstantEnvironment::Sampling(py::cast<int>(t[1])));
+        const int sampling = py::cast<int>(t[1]);
+        if (sampling != int(ConstantEnvironment::Sampling::kCosine) && sampling != int(ConstantEnvironment::Sampling::kUniform)) {
+          throw_invalid("ConstantEnvironment: bad pickle state (sampling ", sampling, ")");
+        }
+        return std::make_shared<ConstantEnvironment>(color_from_state(t[0]), ConstantEnvironment::Sampling(sampling));
       });
 }
 
