@@ -540,6 +540,13 @@ def _gif_delays(count: int, fps: float) -> list[int]:
     return [10 * max(2, end - start) for start, end in zip([0] + ends[:-1], ends)]
 
 
+# The MP4's colours: converted to Y'CbCr by BT.709's matrix in video range and tagged so (with sRGB's
+# transfer curve, which to_display applied, and BT.709's primaries, sRGB's). Untagged, ffmpeg's
+# default conversion was BT.601's, which players read as BT.709 for HD video (browsers): saturated
+# colours were off by up to 26 of 255 levels (tests/render/test_animate.py).
+_MP4_COLOUR_TAGS = "colorprim=bt709:transfer=iec61966-2-1:colormatrix=bt709"
+
+
 def _write_mp4(path, frames, fps, exposure, tonemap):
     """H.264 in yuv420p through the ffmpeg imageio-ffmpeg ships, run here with the command its
     write_frames(quality=8) builds for libx264 (crf 10) -- write_frames reads neither ffmpeg's exit
@@ -555,7 +562,8 @@ def _write_mp4(path, frames, fps, exposure, tonemap):
         imageio_ffmpeg.get_ffmpeg_exe(),
         *("-y", "-f", "rawvideo", "-vcodec", "rawvideo", "-s", f"{data.shape[2]}x{data.shape[1]}"),
         *("-pix_fmt", "rgb24", "-r", str(Fraction(fps).limit_denominator()), "-i", "-", "-an"),
-        *("-vcodec", "libx264", "-pix_fmt", "yuv420p", "-crf", "10", "-v", "error", path),
+        *("-vf", "scale=out_color_matrix=bt709:out_range=tv", "-vcodec", "libx264", "-pix_fmt", "yuv420p"),
+        *("-x264-params", _MP4_COLOUR_TAGS, "-crf", "10", "-v", "error", path),
     ]
     with tempfile.TemporaryFile() as log:  # a file, not a pipe: ffmpeg never waits for a reader
         existed = os.path.exists(path)  # a failure removes only a file of its own making

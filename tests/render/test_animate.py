@@ -5,6 +5,7 @@ that change, GIF / MP4 / frame files, executors, bad input)."""
 import concurrent.futures
 import gc
 import math
+import subprocess
 import warnings
 
 import numpy as np
@@ -286,6 +287,29 @@ def test_animate_writes_mp4_and_frame_files(tmp_path):
         max_length=12.0,
     )
     assert sorted(p.name for p in (tmp_path / "frames").iterdir()) == ["f00.png", "f01.png"]
+
+
+def test_an_mp4_is_converted_and_tagged_as_bt709(tmp_path):
+    # Flat patches of saturated and grey colours, decoded by BT.709's matrix as players do for tagged
+    # (and HD) video: within 2 levels (H.264 at crf 10 and 4:2:0 chroma on 32-pixel patches: 0-2
+    # measured). Encoded by ffmpeg's default BT.601 matrix and untagged, the green was 26 levels off.
+    ffmpeg = pytest.importorskip("imageio_ffmpeg")
+    linear = np.array([(0.6, 0.02, 0.02), (0.02, 0.6, 0.02), (0.02, 0.02, 0.6), (0.2, 0.2, 0.2), (0.8, 0.6, 0.05)])
+    frames = np.zeros((2, 32, 32 * len(linear), 3), dtype=np.float32)
+    for i, colour in enumerate(linear):
+        frames[:, :, 32 * i : 32 * (i + 1)] = colour
+    refracta.io.write_animation(tmp_path / "patches.mp4", frames, fps=10, exposure=1.0, tonemap="linear")
+    expected = _animate._display_bytes(frames, 1.0, "linear")[0]
+    exe = ffmpeg.get_ffmpeg_exe()
+    probe = subprocess.run([exe, "-i", str(tmp_path / "patches.mp4")], capture_output=True, text=True).stderr
+    stream = [line for line in probe.splitlines() if "Video:" in line]
+    assert len(stream) == 1 and "bt709/bt709/iec61966-2-1" in stream[0], stream
+    decode = [exe, "-i", str(tmp_path / "patches.mp4"), "-vf", "scale=in_color_matrix=bt709:in_range=tv"]
+    raw = subprocess.run([*decode, "-f", "rawvideo", "-pix_fmt", "rgb24", "-v", "error", "-"], capture_output=True)
+    decoded = np.frombuffer(raw.stdout, dtype=np.uint8).reshape(2, 32, -1, 3)[0].astype(int)
+    centres = [(16, 32 * i + 16) for i in range(len(linear))]
+    errors = [np.abs(decoded[c] - expected[c].astype(int)).max() for c in centres]
+    assert max(errors) <= 2, errors
 
 
 def test_animate_bad_input(tmp_path):
