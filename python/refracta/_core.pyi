@@ -2284,10 +2284,12 @@ class RenderOptions:
     @property
     def turbulence_trace(self) -> str:
         """
-        camera rays through turbulence: 'strict' (the full field, rk45) or 'perturbed' (deviations from
-        each ray's calm path, traced exactly to tol, in steps of the turbulence's cells; those samples'
-        shadow and bounce rays through the calm air). 'perturbed' serves RGB curved renders through
-        height-only calm air (no hot spots); elsewhere the render traces strictly, and render() warns
+        camera rays through turbulence: 'auto' (default: 'perturbed' where it applies, else 'strict'),
+        'strict' (the full field, rk45) or 'perturbed' (deviations from each ray's calm path, traced
+        exactly to tol, in steps of the turbulence's cells; those samples' shadow and bounce rays through
+        the calm air; rays turned by more than 5 mrad traced strictly). 'perturbed' serves RGB curved
+        renders through height-only calm air (no hot spots) from a pinhole camera; elsewhere the render
+        traces strictly, and render() warns where 'perturbed' was asked for
         """
     @turbulence_trace.setter
     def turbulence_trace(self, arg1: str) -> None:

@@ -26,6 +26,7 @@ def turbulent(road, cn2):
 
 
 def render(road, field, columns=(0, WIDTH), **options):
+    options.setdefault("turbulence_trace", "strict")  # the reference, unless the test asks for another
     return refracta.render(
         road.scene,
         road.camera,
@@ -38,7 +39,7 @@ def render(road, field, columns=(0, WIDTH), **options):
 
 
 def test_turbulence_trace_option():
-    assert refracta.RenderOptions().turbulence_trace == "strict"
+    assert refracta.RenderOptions().turbulence_trace == "auto"
     with pytest.raises(ValueError, match="turbulence_trace"):
         refracta.RenderOptions().turbulence_trace = "fast"
     with pytest.raises(ValueError, match="turbulence_step"):
@@ -72,8 +73,14 @@ def test_where_the_fast_path_does_not_apply_the_render_says_so(road):
         )
     with warnings.catch_warnings():
         warnings.simplefilter("error", refracta.SceneWarning)  # where it applies, or not asked for: silent
-        refracta.render(road.scene, road.camera, height_only, turbulence_trace="perturbed", **small)
-        refracta.render(road.scene, road.camera, with_spots, **small)
+        perturbed = refracta.render(road.scene, road.camera, height_only, turbulence_trace="perturbed", **small)
+        spotted = refracta.render(road.scene, road.camera, with_spots, turbulence_trace="strict", **small)
+        # 'auto', the default: 'perturbed' where it applies, 'strict' elsewhere, without a word.
+        assert np.array_equal(refracta.render(road.scene, road.camera, height_only, **small), perturbed)
+        assert np.array_equal(refracta.render(road.scene, road.camera, with_spots, **small), spotted)
+    assert not np.array_equal(
+        perturbed, refracta.render(road.scene, road.camera, height_only, turbulence_trace="strict", **small)
+    )
 
 
 def test_calm_air_is_the_calm_render(road):
@@ -157,7 +164,7 @@ def test_angle_of_arrival_statistics_match_strict():
 
     calm = positions(refracta.PhysicalAtmosphere(surface_dt=0.0))
     field = refracta.PhysicalAtmosphere(surface_dt=0.0, turbulence=air)
-    strict = positions(field) - calm
+    strict = positions(field, turbulence_trace="strict") - calm
     fast = positions(field, turbulence_trace="perturbed") - calm
     variance = np.mean(strict**2)
     assert variance > 1e-6  # the turbulence moves the hits by millimetres (rms 6 mm measured)

@@ -45,10 +45,12 @@ void bind_render(py::module_& m) {
                     "ray integrator for curved rays: None (stratified for height-only fields, rk45 otherwise), "
                     "'rk45', 'stratified'");
   def_enum_property(options, "turbulence_trace", &O::turbulence_trace, &turbulence_trace_name, &parse_turbulence_trace,
-                    "camera rays through turbulence: 'strict' (the full field, rk45) or 'perturbed' (deviations from\n"
-                    "each ray's calm path, traced exactly to tol, in steps of the turbulence's cells; those samples'\n"
-                    "shadow and bounce rays through the calm air). 'perturbed' serves RGB curved renders through\n"
-                    "height-only calm air (no hot spots); elsewhere the render traces strictly, and render() warns");
+                    "camera rays through turbulence: 'auto' (default: 'perturbed' where it applies, else 'strict'),\n"
+                    "'strict' (the full field, rk45) or 'perturbed' (deviations from each ray's calm path, traced\n"
+                    "exactly to tol, in steps of the turbulence's cells; those samples' shadow and bounce rays through\n"
+                    "the calm air; rays turned by more than 5 mrad traced strictly). 'perturbed' serves RGB curved\n"
+                    "renders through height-only calm air (no hot spots) from a pinhole camera; elsewhere the render\n"
+                    "traces strictly, and render() warns where 'perturbed' was asked for");
   def_enum_property(options, "march", &O::march, &trace_method_name,
                     &parse_march_method,
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)");

@@ -28,8 +28,8 @@ const char* transport_name(Transport transport);
 // path under rk45's error control; 'perturbed' -- the turbulent ray followed as its deviation from
 // the calm ray of the eye's table, in fixed steps of the turbulence's cells, the strict path where
 // the deviation is not small (issue 21: shimmer at video rates).
-enum class TurbulenceTrace { kStrict, kPerturbed };
-TurbulenceTrace parse_turbulence_trace(const std::string& name);  // "strict", "perturbed"
+enum class TurbulenceTrace { kStrict, kPerturbed, kAuto };
+TurbulenceTrace parse_turbulence_trace(const std::string& name);  // "strict", "perturbed", "auto"
 const char* turbulence_trace_name(TurbulenceTrace method);
 
 // PixelBounds from (x0, y0, x1, y1) (any other count: std::invalid_argument); pixel_bounds' setter.
@@ -78,9 +78,11 @@ struct RenderOptions {
   // fields, 'rk45' for others).
   double tol = 1e-4;
   std::optional<TraceMethod> trace;  // force 'rk45' or 'stratified' (default: by the field)
-  // Camera rays through turbulence: the exact trace unless 'perturbed' is asked for (it meets issue
-  // 21's accuracy goal on the hot road, not yet its speed goals: benchmarks/bench_realism.py shimmer_fast).
-  TurbulenceTrace turbulence_trace = TurbulenceTrace::kStrict;
+  // Camera rays through turbulence: 'auto' follows them as deviations from their calm paths
+  // ('perturbed', render/shimmer_cast.h: 20-25x faster than 'strict' on the hot road, within 4 % of
+  // the turbulence's own effect of the strict image) wherever that applies, and traces them
+  // strictly elsewhere, silently; 'perturbed' says where it does not apply (a SceneWarning).
+  TurbulenceTrace turbulence_trace = TurbulenceTrace::kAuto;
   // 'perturbed': the step through the layer, in the turbulence's cells. The cubic B-spline's
   // gradient varies on the cell's scale, and a step h samples the path integral's spectrum
   // aliased from wavenumbers 2 pi / h along the path: at 1 cell that is where the spline's

@@ -292,8 +292,9 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   // escapes was no faster (240 x 80, 1 spp: 4.96 s against 4.84 s; its rays stay under the
   // coast's 165 m hills, where nothing escapes).
   PlaneEscape escape;
+  const bool perturbed = perturbed_trace_serves(field.get(), options, camera);
   const bool escapes = layered && std::isfinite(layered->earth_radius()) && options.max_length > kTableLongestPath &&
-                       options.turbulence_trace != TurbulenceTrace::kPerturbed;
+                       !perturbed;
   if (escapes) {
     escape = [&caster, spread = camera.pixel_angle()](const RayNode<double>& node, double remaining) {
       return caster.plane_escape(node, remaining, spread);
@@ -305,9 +306,9 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   caster.set_secondary_spread(camera.pixel_angle());  // shadow and bounce rays' tolerance (caster.h)
   // Camera rays through turbulence as deviations from the calm rays (options.turbulence_trace).
   const std::unique_ptr<ShimmerCaster> shimmer =
-      field ? ShimmerCaster::make(scene.geometry, *field, layered, table.get(), camera.position(), camera.pixel_angle(),
-                                  floors, options)
-            : nullptr;
+      perturbed ? ShimmerCaster::make(scene.geometry, *field, layered, table.get(), camera.position(),
+                                      camera.pixel_angle(), floors, options)
+                : nullptr;
   const std::unique_ptr<Integrator> integrator = make_integrator(scene, caster, options);
   const std::shared_ptr<const RaisedSky> raised_sky = RaisedSky::for_camera(scene, camera.position().y());
   integrator->lighting().use_raised_sky(raised_sky);

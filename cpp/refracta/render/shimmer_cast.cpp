@@ -15,11 +15,17 @@ namespace refracta {
 TurbulenceTrace parse_turbulence_trace(const std::string& name) {
   if (name == "strict") return TurbulenceTrace::kStrict;
   if (name == "perturbed") return TurbulenceTrace::kPerturbed;
-  throw_invalid("turbulence_trace must be 'strict' or 'perturbed' (got '", name, "')");
+  if (name == "auto") return TurbulenceTrace::kAuto;
+  throw_invalid("turbulence_trace must be 'auto', 'strict' or 'perturbed' (got '", name, "')");
 }
 
 const char* turbulence_trace_name(TurbulenceTrace method) {
-  return method == TurbulenceTrace::kStrict ? "strict" : "perturbed";
+  switch (method) {
+    case TurbulenceTrace::kStrict: return "strict";
+    case TurbulenceTrace::kPerturbed: return "perturbed";
+    case TurbulenceTrace::kAuto: return "auto";
+  }
+  return "auto";
 }
 
 namespace {
@@ -116,9 +122,9 @@ ShimmerCaster::ShimmerCaster(const Scene& scene, FieldPtr layered, std::shared_p
 
 namespace {
 
-// Whether the render asks for the perturbed trace through turbulent air at all.
+// Whether the render asks for the perturbed trace through turbulent air at all ('perturbed' or 'auto').
 bool asks_perturbed(const IndexField* field, const RenderOptions& options) {
-  return options.turbulence_trace == TurbulenceTrace::kPerturbed && field && field->turbulence();
+  return options.turbulence_trace != TurbulenceTrace::kStrict && field && field->turbulence();
 }
 
 // perturbed_trace_refusal's reasons that the field and options give, for a render that asks
@@ -137,15 +143,28 @@ const char* air_refusal(const IndexField& field, const RenderOptions& options) {
 
 }  // namespace
 
-std::string perturbed_trace_refusal(const IndexField* field, const RenderOptions& options, const Camera& camera) {
-  if (!asks_perturbed(field, options)) return "";
-  if (const char* why = air_refusal(*field, options)) return why;
+namespace {
+
+// Why the perturbed trace cannot serve a render that asks for it ('perturbed' or 'auto'); empty: it can.
+std::string refusal(const IndexField& field, const RenderOptions& options, const Camera& camera) {
+  if (const char* why = air_refusal(field, options)) return why;
   if (camera.aperture_diameter() > 0.0) return "it follows rays from the eye (a pinhole camera, no aperture)";
-  if (std::isfinite(field->earth_radius()) && options.max_length > kTableLongestPath) {
+  if (std::isfinite(field.earth_radius()) && options.max_length > kTableLongestPath) {
     return concat("over a spherical Earth it follows paths up to max_length = ", kTableLongestPath, " m (got ",
                   options.max_length, ")");
   }
   return "";
+}
+
+}  // namespace
+
+std::string perturbed_trace_refusal(const IndexField* field, const RenderOptions& options, const Camera& camera) {
+  if (options.turbulence_trace != TurbulenceTrace::kPerturbed || !asks_perturbed(field, options)) return "";
+  return refusal(*field, options, camera);
+}
+
+bool perturbed_trace_serves(const IndexField* field, const RenderOptions& options, const Camera& camera) {
+  return asks_perturbed(field, options) && refusal(*field, options, camera).empty();
 }
 
 std::unique_ptr<ShimmerCaster> ShimmerCaster::make(const Scene& scene, const IndexField& field, const FieldPtr& layered,

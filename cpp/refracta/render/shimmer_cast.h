@@ -91,16 +91,19 @@ class CalmPath {
 };
 
 // Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera`
-// (empty: it can, or 'strict' was asked, or the field has no turbulence): the fast path follows
+// (empty: it can, or 'strict' or 'auto' was asked, or the field has no turbulence): the fast path follows
 // the eye table's calm paths (renderer.cpp eye_table: height-only calm air without hot spots, RGB,
 // curved rays, the table on and stratified, a pinhole camera, paths over a spherical Earth no
 // longer than kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python)
 // warn with it, as the render then traces strictly.
 std::string perturbed_trace_refusal(const IndexField* field, const RenderOptions& options, const Camera& camera);
+// Whether the render's camera rays take the perturbed trace: the field carries turbulence,
+// turbulence_trace is 'perturbed' or 'auto', and nothing above refuses it.
+bool perturbed_trace_serves(const IndexField* field, const RenderOptions& options, const Camera& camera);
 
 class ShimmerCaster {
  public:
-  // Null unless options.turbulence_trace is 'perturbed' and the fast path applies: a field carrying
+  // Null unless options.turbulence_trace is 'perturbed' or 'auto' and the fast path applies: a field carrying
   // turbulence whose calm part (the field without it) is `layered` (height-only: no hot spots),
   // camera rays served by the eye's `table`. Keeps references to its arguments.
   static std::unique_ptr<ShimmerCaster> make(const Scene& scene, const IndexField& field, const FieldPtr& layered,
