@@ -676,11 +676,11 @@ inline constexpr const char mkd_doc_refracta_pdf_li_all[] = R"doc(The solid-angl
 need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3)
 (each empty: zeros; else one per point).)doc";
 inline constexpr const char mkd_doc_refracta_perturbed_trace_refusal[] = R"doc(Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera` (empty:
-it can, or 'strict' was asked, or the field has no turbulence): the fast path follows the eye
-table's calm paths (renderer.cpp eye_table: height-only calm air without hot spots, RGB, curved
-rays, the table on and stratified, a pinhole camera, paths over a spherical Earth no longer than
-kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python) warn with it, as the
-render then traces strictly.)doc";
+it can, or 'strict' or 'auto' was asked, or the field has no turbulence): the fast path follows the
+eye table's calm paths (renderer.cpp eye_table: calm air that is height-only or hot spots over such
+air, RGB, curved rays, the table on and stratified, a pinhole camera, paths over a spherical Earth
+no longer than kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python) warn
+with it, as the render then traces strictly.)doc";
 inline constexpr const char mkd_doc_refracta_sample_li_rgb[] = R"doc(Samples a direction toward the light from each point (Light.sample_li).
 
 points: (N, 3) [m]; normals: (N, 3) unit geometric normals (rows may be 0) or None; u: (N, 2) in

@@ -2288,8 +2288,8 @@ class RenderOptions:
         'strict' (the full field, rk45) or 'perturbed' (deviations from each ray's calm path, traced
         exactly to tol, in steps of the turbulence's cells; those samples' shadow and bounce rays through
         the calm air; rays turned by more than 5 mrad traced strictly). 'perturbed' serves RGB curved
-        renders through height-only calm air (no hot spots) from a pinhole camera; elsewhere the render
-        traces strictly, and render() warns where 'perturbed' was asked for
+        renders through height-only calm air, or hot spots over it, from a pinhole camera; elsewhere the
+        render traces strictly, and render() warns where 'perturbed' was asked for
         """
     @turbulence_trace.setter
     def turbulence_trace(self, arg1: str) -> None:
@@ -3699,11 +3699,11 @@ def _pair_paths(field: IndexField, origins: typing.Any, directions: typing.Any, 
 def _perturbed_trace_refusal(field: IndexField, options: RenderOptions, camera: Camera) -> str | None:
     """
     Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera` (empty:
-    it can, or 'strict' was asked, or the field has no turbulence): the fast path follows the eye
-    table's calm paths (renderer.cpp eye_table: height-only calm air without hot spots, RGB, curved
-    rays, the table on and stratified, a pinhole camera, paths over a spherical Earth no longer than
-    kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python) warn with it, as the
-    render then traces strictly.
+    it can, or 'strict' or 'auto' was asked, or the field has no turbulence): the fast path follows the
+    eye table's calm paths (renderer.cpp eye_table: calm air that is height-only or hot spots over such
+    air, RGB, curved rays, the table on and stratified, a pinhole camera, paths over a spherical Earth
+    no longer than kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python) warn
+    with it, as the render then traces strictly.
     """
 def _power_moment_bound(moments: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], z_f: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
     """

@@ -49,8 +49,8 @@ void bind_render(py::module_& m) {
                     "'strict' (the full field, rk45) or 'perturbed' (deviations from each ray's calm path, traced\n"
                     "exactly to tol, in steps of the turbulence's cells; those samples' shadow and bounce rays through\n"
                     "the calm air; rays turned by more than 5 mrad traced strictly). 'perturbed' serves RGB curved\n"
-                    "renders through height-only calm air (no hot spots) from a pinhole camera; elsewhere the render\n"
-                    "traces strictly, and render() warns where 'perturbed' was asked for");
+                    "renders through height-only calm air, or hot spots over it, from a pinhole camera; elsewhere the\n"
+                    "render traces strictly, and render() warns where 'perturbed' was asked for");
   def_enum_property(options, "march", &O::march, &trace_method_name,
                     &parse_march_method,
                     "raster_march: 'rk45' to tol, or 'rk4' with step (the original)");

@@ -11,8 +11,9 @@ constexpr int kTableNodes = 4096;  // per table (turbulence_path.h: interpolatio
 
 }  // namespace
 
-DeviationStepper::DeviationStepper(const Turbulence& turbulence, const IndexField& calm, double lo, double hi)
-    : turbulence_(turbulence), calm_(calm), lo_(lo), per_metre_(0.0) {
+DeviationStepper::DeviationStepper(const Turbulence& turbulence, const IndexField& calm, double lo, double hi,
+                                   const IndexField* spotted)
+    : turbulence_(turbulence), calm_(calm), spotted_(spotted), lo_(lo), per_metre_(0.0) {
   // A layer without an envelope (no top): the field itself at every height.
   if (std::isfinite(hi) && hi > lo) {
     per_metre_ = (kTableNodes - 1) / (hi - lo);
@@ -30,23 +31,28 @@ DeviationStepper::DeviationStepper(const Turbulence& turbulence, const IndexFiel
   }
 }
 
-void DeviationStepper::calm_at(double h, double* n, double* dn_dh) const {
-  const double u = (h - lo_) * per_metre_;
+void DeviationStepper::calm_at(const Vec3d& p, double* n, Vec3d* grad) const {
+  if (spotted_) {
+    spotted_->evaluate(p, n, grad);
+    return;
+  }
+  *grad = Vec3d::Zero();
+  const double u = (p.y() - lo_) * per_metre_;
   if (n_.empty() || !(u >= 0.0 && u < kTableNodes - 1)) {
-    calm_.evaluate_height(h, n, dn_dh);
+    calm_.evaluate_height(p.y(), n, &grad->y());
     return;
   }
   const size_t k = size_t(u);
   const double f = u - double(k);
   *n = n_[k] + f * (n_[k + 1] - n_[k]);
-  *dn_dh = dn_[k] + f * (dn_[k + 1] - dn_[k]);
+  grad->y() = dn_[k] + f * (dn_[k + 1] - dn_[k]);
 }
 
 CalmPoint DeviationStepper::calm_point(const Vec3d& x, const Vec3d& t) const {
   CalmPoint point;
   point.x = x;
   point.t = t;
-  calm_at(x.y(), &point.n, &point.dn_dh);
+  calm_at(x, &point.n, &point.grad);
   return point;
 }
 
@@ -75,11 +81,10 @@ void DeviationStepper::advance(const CalmPoint& a, const CalmPoint& mid, const C
   RayDeviation& d = *deviation;
   const Vec3d half = d.dx + 0.5 * step * (d.tangent(a) - a.t);
   const Vec3d x = mid.x + half;
-  Vec3d grad = gradient(x);
-  double n0, dn0;
-  calm_at(x.y(), &n0, &dn0);
-  grad.y() += dn0 - mid.dn_dh;
-  d.dv += step * grad;
+  double n0;
+  Vec3d calm_grad;
+  calm_at(x, &n0, &calm_grad);
+  d.dv += step * (gradient(x) + (calm_grad - mid.grad));
   d.dx = half + 0.5 * step * (d.tangent(b) - b.t);
 }
 

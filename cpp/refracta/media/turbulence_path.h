@@ -24,11 +24,13 @@
 
 namespace refracta {
 
-// The calm ray at one arc length: position, unit tangent, n0 and dn0/dh there.
+// The calm ray at one arc length: position, unit tangent, n0 and its gradient there (a height-only
+// calm air's: (0, dn0/dh, 0)).
 struct CalmPoint {
   Vec3d x = Vec3d::Zero();
   Vec3d t = Vec3d::UnitX();
-  double n = 1.0, dn_dh = 0.0;
+  double n = 1.0;
+  Vec3d grad = Vec3d::Zero();
 };
 
 // The turbulent ray's offset from the calm ray.
@@ -45,15 +47,21 @@ struct RayDeviation {
 // depth (centimetres), so linear interpolation at kTableStep / depth is exact to ~(1/4096)^2 / 8,
 // 1e-7 of the values: far below the deviation's own terms (the calm pull n0'' dy and the
 // turbulence's gradient). Outside the tabulated heights: the field and the envelope's formula.
+//
+// Calm air that is not height-only (hot spots over layered air: `spotted`, whose height-only part
+// is `calm`) is evaluated where the ray is, not tabulated: its pull on the deviation is then
+// grad n0(x0 + dx) - grad n0(x0), sideways too.
 class DeviationStepper {
  public:
-  // `calm` height-only; heights [lo, hi] tabulated.
-  DeviationStepper(const Turbulence& turbulence, const IndexField& calm, double lo, double hi);
+  // `calm` height-only; heights [lo, hi] tabulated. `spotted` (if given): the calm air itself,
+  // `calm` its height-only part.
+  DeviationStepper(const Turbulence& turbulence, const IndexField& calm, double lo, double hi,
+                   const IndexField* spotted = nullptr);
 
   // The calm point of the calm field at x along unit t.
   CalmPoint calm_point(const Vec3d& x, const Vec3d& t) const;
-  // n0 and dn0/dh at height h.
-  void calm_at(double h, double* n, double* dn_dh) const;
+  // n0 and its gradient at p.
+  void calm_at(const Vec3d& p, double* n, Vec3d* grad) const;
   // The turbulence's delta_n gradient at p (Turbulence::evaluate's, the envelope tabulated).
   Vec3d gradient(const Vec3d& p) const;
 
@@ -66,6 +74,7 @@ class DeviationStepper {
  private:
   const Turbulence& turbulence_;
   const IndexField& calm_;
+  const IndexField* spotted_;
   double lo_, per_metre_;           // calm table: heights lo + k / per_metre_
   std::vector<double> n_, dn_;      // n0, dn0/dh there
   double envelope_per_metre_ = 0.0; // envelope table over [0, envelope_top_]

@@ -98,25 +98,31 @@ double plane_crossing(const PathPoint& p, const PathPoint& q, const Vec3d& norma
 
 }  // namespace
 
-ShimmerCaster::ShimmerCaster(const Scene& scene, FieldPtr layered, std::shared_ptr<const Turbulence> turbulence,
-                             const ElevationTable* table, const Vec3d& eye, double pixel_angle,
-                             const RenderOptions& options)
+ShimmerCaster::ShimmerCaster(const Scene& scene, FieldPtr calm, FieldPtr layered,
+                             std::shared_ptr<const Turbulence> turbulence, const ElevationTable* table,
+                             const Vec3d& eye, double pixel_angle, const RenderOptions& options)
     : scene_(scene),
+      calm_field_(std::move(calm)),
       layered_(std::move(layered)),
+      spotted_(!calm_field_->height_only()),
       turbulence_(std::move(turbulence)),
       table_(table),
       eye_(eye),
       options_(options),
-      calm_(scene, layered_.get(), options),
+      calm_(scene, spotted_ ? calm_field_.get() : layered_.get(), options),
       top_(turbulence_->region().top),
       step_(options.turbulence_step * turbulence_->grid->spacing()),
-      // The calm air tabulated from the ground to a little above the layer (a deviated ray's heights).
-      stepper_(*turbulence_, *layered_, 0.0, top_ + 0.05) {
+      // The calm air tabulated from the ground to a little above the layer (a deviated ray's
+      // heights); hot spots' air is evaluated where the ray is.
+      stepper_(*turbulence_, *layered_, 0.0, top_ + 0.05, spotted_ ? calm_field_.get() : nullptr) {
+  if (spotted_) calm_.use_layered(layered_.get());
   calm_.use_table(table, eye, pixel_angle);
   calm_.set_secondary_spread(pixel_angle);  // as the renderer's caster (shadow and bounce rays' tolerance)
   stretch_steps_ = std::isfinite(turbulence_->depth);
   trace_options_ = table->options().trace;
-  trace_options_.trace = TraceMethod::kStratified;
+  // The calm paths: stratified through layered air, rk45 through hot spots' (the strict trace's
+  // integrator for them), both to the render's tol.
+  trace_options_.trace = spotted_ ? TraceMethod::kRk45 : TraceMethod::kStratified;
   trace_options_.tol = options.tol;
 }
 
@@ -132,8 +138,9 @@ bool asks_perturbed(const IndexField* field, const RenderOptions& options) {
 const char* air_refusal(const IndexField& field, const RenderOptions& options) {
   if (options.method != RenderMethod::kCurved) return "it follows curved rays (method 'curved')";
   if (options.spectral) return "it serves RGB renders (spectral renders trace each wavelength strictly)";
-  if (!field.with_turbulence(nullptr)->height_only()) {
-    return "it needs calm air that depends on height only (no hot spots, no custom field)";
+  const FieldPtr calm = field.with_turbulence(nullptr);
+  if (!calm->height_only() && !calm->height_only_part()) {
+    return "it needs calm air that depends on height only, or hot spots over such air (not a custom field)";
   }
   if (!options.use_table || (options.trace && *options.trace != TraceMethod::kStratified)) {
     return "it follows the eye table's calm paths (table=True, trace None or 'stratified')";
@@ -176,7 +183,10 @@ std::unique_ptr<ShimmerCaster> ShimmerCaster::make(const Scene& scene, const Ind
     return nullptr;
   }
   std::shared_ptr<const Turbulence> turbulence = field.turbulence();
-  auto caster = std::make_unique<ShimmerCaster>(scene, layered, std::move(turbulence), table, eye, pixel_angle, options);
+  FieldPtr calm = field.with_turbulence(nullptr);
+  if (calm->height_only()) calm = layered;  // (tabulated)
+  auto caster = std::make_unique<ShimmerCaster>(scene, std::move(calm), layered, std::move(turbulence), table, eye,
+                                                pixel_angle, options);
   if (floors) caster->calm_.set_ior_floors(*floors);
   return caster;
 }
@@ -185,6 +195,15 @@ PathEnd ShimmerCaster::cast(const Caster& strict, const Vec3d& origin, const Vec
                             bool* perturbed) const {
   if (perturbed) *perturbed = false;
   if (origin != eye_) return strict.cast(origin, dir, 0.0, spread);
+  if (spotted_) {  // hot spots bend the calm paths away from the table's: each traced whole
+    CalmPath exact;
+    try {
+      exact = CalmPath(*calm_field_, trace_options_, eye_, dir, options_.max_length);
+    } catch (const NumericalError&) {
+      return strict.cast(origin, dir, 0.0, spread);
+    }
+    return walk(strict, exact, false, origin, dir, spread, perturbed);
+  }
   const EyePath path(*table_, eye_, dir);
   const size_t count = path.plane.size();
   // The first segment of the calm path that may dip into the layer (its nodes, less the most a

@@ -11,6 +11,11 @@
 // of the fast path's error (0.148 of the turbulence's effect; traced: one knife-edge pixel, 64
 // samples of which agree with the strict trace to 2e-5, bench_realism.py shimmer_fast). Rays that
 // never reach the layer are the calm caster's, exactly as the strict caster's legs give them.
+// Over hot spots the calm air is not height-only and the table's paths are not its paths: every
+// camera ray's calm path is traced whole (rk45 to tol, the strict integrator for such air), and the
+// deviation feels the calm air's full gradient (turbulence_path.h). On the hot road under the
+// README's spot, the mirage band's rows agree with the strict trace to 0.0002 (compact) and 0.048
+// (gaussian: one knife-edge pixel) of the turbulence's effect, 30-35x faster (tests/render/test_shimmer.py).
 //
 // The small-perturbation criterion: nothing is linearised, but the deviation is followed in fixed
 // steps with no error control, along the calm path, whose table was refined for the calm ray's
@@ -92,9 +97,9 @@ class CalmPath {
 
 // Why options.turbulence_trace 'perturbed' cannot serve a render through `field` from `camera`
 // (empty: it can, or 'strict' or 'auto' was asked, or the field has no turbulence): the fast path follows
-// the eye table's calm paths (renderer.cpp eye_table: height-only calm air without hot spots, RGB,
-// curved rays, the table on and stratified, a pinhole camera, paths over a spherical Earth no
-// longer than kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python)
+// the eye table's calm paths (renderer.cpp eye_table: calm air that is height-only or hot spots
+// over such air, RGB, curved rays, the table on and stratified, a pinhole camera, paths over a
+// spherical Earth no longer than kTableLongestPath). ShimmerCaster::make's rule; render() and animate() (Python)
 // warn with it, as the render then traces strictly.
 std::string perturbed_trace_refusal(const IndexField* field, const RenderOptions& options, const Camera& camera);
 // Whether the render's camera rays take the perturbed trace: the field carries turbulence,
@@ -103,9 +108,9 @@ bool perturbed_trace_serves(const IndexField* field, const RenderOptions& option
 
 class ShimmerCaster {
  public:
-  // Null unless options.turbulence_trace is 'perturbed' or 'auto' and the fast path applies: a field carrying
-  // turbulence whose calm part (the field without it) is `layered` (height-only: no hot spots),
-  // camera rays served by the eye's `table`. Keeps references to its arguments.
+  // Null unless options.turbulence_trace is 'perturbed' or 'auto' and the fast path applies: a field
+  // carrying turbulence whose calm part (the field without it) is `layered` (height-only) or hot
+  // spots over it, camera rays served by the eye's `table`. Keeps references to its arguments.
   static std::unique_ptr<ShimmerCaster> make(const Scene& scene, const IndexField& field, const FieldPtr& layered,
                                              const ElevationTable* table, const Vec3d& eye, double pixel_angle,
                                              const std::optional<IorFloors>& floors, const RenderOptions& options);
@@ -120,7 +125,9 @@ class ShimmerCaster {
   // The calm air's caster (footprints of camera rays: their neighbours' calm paths).
   const Caster& calm() const { return calm_; }
 
-  ShimmerCaster(const Scene& scene, FieldPtr layered, std::shared_ptr<const Turbulence> turbulence,
+  // `calm`: the field without its turbulence; `layered`: its height-only part (calm itself, or the
+  // air under its hot spots).
+  ShimmerCaster(const Scene& scene, FieldPtr calm, FieldPtr layered, std::shared_ptr<const Turbulence> turbulence,
                 const ElevationTable* table, const Vec3d& eye, double pixel_angle, const RenderOptions& options);
 
  private:
@@ -133,7 +140,9 @@ class ShimmerCaster {
   double envelope_stretch(const RayNode<double>& a, const RayNode<double>& b) const;
 
   const Scene& scene_;
+  FieldPtr calm_field_;  // the calm air: layered_, or hot spots over it (spotted_)
   FieldPtr layered_;
+  bool spotted_;
   std::shared_ptr<const Turbulence> turbulence_;
   const ElevationTable* table_;
   Vec3d eye_;
