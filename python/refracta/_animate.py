@@ -15,6 +15,7 @@ import math
 import os
 import subprocess
 import tempfile
+import warnings
 from collections.abc import Sequence
 from fractions import Fraction
 from typing import Callable
@@ -500,7 +501,9 @@ def _display_bytes(frames, exposure, tonemap) -> np.ndarray:
     from refracta.io import exposure_of, to_display
 
     if exposure is None:  # the frames' joint log-average, stacked as one tall image
-        exposure = exposure_of(np.concatenate(list(frames), axis=0))
+        with warnings.catch_warnings():  # black frames stay black at any exposure
+            warnings.filterwarnings("ignore", "exposure_of: the image has no light", RuntimeWarning)
+            exposure = exposure_of(np.concatenate(list(frames), axis=0))
     return np.stack([np.round(to_display(f, exposure, tonemap) * 255.0).astype(np.uint8) for f in frames])
 
 

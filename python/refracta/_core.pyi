@@ -549,7 +549,7 @@ class RayPath:
         """
     def closest_point(self, q: typing.Any) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float]:
         """
-        (point, distance, s): the point of the continuous path closest to q, its distance [m] and its arc length [m].
+        (point, distance, s): the point of the continuous path closest to q (within 1e7 m of the origin), its distance [m] and its arc length [m].
         """
     def crossings(self, normal: typing.Any, offset: typing.SupportsFloat | typing.SupportsIndex) -> list[tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]]:
         """
@@ -3442,7 +3442,7 @@ class EnvironmentLight(Light):
         """
     def uv_to_direction(self, uv: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
-        World directions (N, 3) of (u, v) (N, 2).
+        World directions (N, 3) of (u, v) (N, 2), each in [0, 1].
         """
     @property
     def rotation(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -3660,9 +3660,10 @@ def _display(image: typing.Any, display: DisplaySettings) -> numpy.typing.NDArra
     """
     Display values of an image (refracta.io.to_display).
     """
-def _display_exposure(image: typing.Any, display: DisplaySettings) -> float:
+def _display_exposure(image: typing.Any, display: DisplaySettings) -> tuple[float, bool]:
     """
-    The exposure c the display settings give this image (io.exposure_of).
+    (c, metered_nothing): the exposure c the display settings give this image (io.exposure_of), and whether
+    automatic exposure found no light to meter.
     """
 def _emit_library_log() -> None:
     """

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import concurrent.futures
 import itertools
+import math
 import os
 import pickle
 import tempfile
@@ -34,6 +35,8 @@ import uuid
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Callable
+
+import numpy as np
 
 from refracta import _core
 from refracta._progress import ProgressArg, progress_callback
@@ -95,6 +98,11 @@ class SweepError(RuntimeError):
         return (SweepError, (self.failures, self.results))
 
 
+# The most points a dict-of-lists grid may hold: they are made (a dict each, ~0.5 kB) before the
+# first run, so 10^10 of them (ten axes of ten values, a typo away) filled the memory instead.
+_MOST_GRID_POINTS = 10_000_000
+
+
 def grid_points(grid: Mapping[str, Sequence[Any]] | Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
     """The points of a grid, in sweep order.
 
@@ -111,13 +119,21 @@ def grid_points(grid: Mapping[str, Sequence[Any]] | Sequence[Mapping[str, Any]])
             if not isinstance(name, str):
                 raise ValueError(f"sweep: grid keys must be parameter names (got {name!r})")
             axis = grid[name]
-            if isinstance(axis, (str, bytes)) or not isinstance(axis, Iterable):
+            zero_d = isinstance(axis, np.ndarray) and axis.ndim == 0  # iterable by type, not by shape
+            if isinstance(axis, (str, bytes)) or not isinstance(axis, Iterable) or zero_d:
                 raise ValueError(f"sweep: grid[{name!r}] must be a list of values (got {axis!r})")
             if isinstance(axis, (set, frozenset)):  # its order is arbitrary, and so would the sweep's be
                 raise ValueError(f"sweep: grid[{name!r}] must be ordered values (a list; got a set)")
             values.append(list(axis))
             if not values[-1]:  # the product is then empty: nothing would run
                 raise ValueError(f"sweep: grid[{name!r}] has no values (the sweep would run nothing)")
+        count = math.prod(len(axis) for axis in values)
+        if count > _MOST_GRID_POINTS:  # each point a dict, built before the first run: refuse, not swap
+            lengths = " x ".join(f"{name}={len(axis)}" for name, axis in zip(names, values))
+            raise ValueError(
+                f"sweep: the grid has {count:,} points ({lengths}), more than {_MOST_GRID_POINTS:,}; "
+                "sweep fewer values per parameter, or pass a list of the points to run"
+            )
         return [dict(zip(names, combination)) for combination in itertools.product(*values)]
     if isinstance(grid, (str, bytes)) or not isinstance(grid, Iterable):
         raise ValueError(f"sweep: grid must be a dict of lists or a list of dicts (got {type(grid).__name__})")

@@ -8,6 +8,7 @@ ATMOSPHERES maps a name to (field, eye height [m], elevations [deg], max length 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -37,8 +38,13 @@ class Example:
 
 
 def _size(width, height, owner: str) -> tuple[int, int]:
-    """(width, height) as whole numbers of pixels >= 1, else ValueError naming them and `owner`."""
-    if not all(is_seed(v) and v >= 1 for v in (width, height)):
+    """(width, height) as whole numbers of pixels >= 1 (8.0 is 8, as for every whole-number option),
+    else ValueError naming them and `owner`."""
+
+    def whole(value) -> bool:
+        return is_seed(value) or (is_number(value) and math.isfinite(float(value)) and float(value).is_integer())
+
+    if not all(whole(v) and v >= 1 for v in (width, height)):
         raise ValueError(
             f"examples.{owner}: width and height must be whole numbers of pixels >= 1 (got {width!r}, {height!r})"
         )

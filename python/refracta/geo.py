@@ -91,6 +91,16 @@ def _longitude(value, name: str) -> np.ndarray:
     return _checked(value, name, -360.0, 360.0)  # east of Greenwich, either convention ([-180, 180] or [0, 360])
 
 
+def _angle(value, name: str) -> np.ndarray:
+    """An azimuth or a roll [deg] within a turn either way: 1e300 deg was taken for 0 (its sine and
+    cosine are rounding noise)."""
+    return _checked(value, name, -360.0, 360.0)
+
+
+# [m] The scene's reach (C++ kSceneReach): an origin or an eye beyond it is no place on Earth.
+_REACH = float(_core._SCENE_REACH)
+
+
 def _broadcast(**arrays: np.ndarray) -> tuple[np.ndarray, ...]:
     """The arrays broadcast together, else ValueError naming them and their shapes."""
     try:
@@ -128,7 +138,7 @@ def forward(lat, lon, azimuth, distance):
     the meridian of ``lon``. Bad input (latitude outside [-90, 90], negative or non-finite): ValueError.
     """
     la, lo = _latitude(lat, "lat"), _longitude(lon, "lon")
-    az, d = _checked(azimuth, "azimuth"), _checked(distance, "distance", 0.0, _ONCE_AROUND)
+    az, d = _angle(azimuth, "azimuth"), _checked(distance, "distance", 0.0, _ONCE_AROUND)
     la, lo, az, d = _broadcast(lat=la, lon=lo, azimuth=az, distance=d)
     lon2, lat2, back = _GEOD.fwd(lo, la, az, d)
     return _scalar_or_array(np.asarray(lat2)), _scalar_or_array(np.asarray(lon2)), _scalar_or_array(np.asarray(back))
@@ -229,8 +239,9 @@ def radius_of_curvature(lat, azimuth):
     latitude ``lat`` [deg] (Euler's formula): 1/R = cos^2(azimuth)/M + sin^2(azimuth)/N, with M and N
     from :func:`principal_radii`. The Earth radius to give CurvedEarth for a view along that azimuth
     (6335.4 km north-south at the equator, 6378.1 km east-west; 6399.6 km at the poles)."""
-    m, n = principal_radii(lat)
-    a = np.radians(_checked(azimuth, "azimuth"))
+    la, az = _broadcast(lat=_latitude(lat, "lat"), azimuth=_angle(azimuth, "azimuth"))
+    m, n = principal_radii(la)
+    a = np.radians(az)
     return _scalar_or_array(1.0 / (np.cos(a) ** 2 / m + np.sin(a) ** 2 / n))
 
 
@@ -291,7 +302,7 @@ class LocalFrame:
                 f"lat must not be a pole (got {self.lat!r}): north, and so the scene's -z, is undefined there"
             )
         self.lon = _number(lon, "lon", -360.0, 360.0)  # as every function of this module takes it
-        self.height = _number(height, "height")
+        self.height = _number(height, "height", -_REACH, _REACH)
         if earth_radius is None:
             m, n = principal_radii(self.lat)
             earth_radius = math.sqrt(m * n)
@@ -368,7 +379,7 @@ class LocalFrame:
         at the origin: (cos e sin a, sin e, -cos e cos a). Away from the origin, CurvedEarth's flat
         frame keeps y as the local vertical and (sin a, 0, -cos a) as the direction of the geodesic of
         that azimuth from the origin."""
-        a = np.radians(_checked(azimuth, "azimuth"))
+        a = np.radians(_angle(azimuth, "azimuth"))
         e = np.radians(_checked(elevation, "elevation", -90.0, 90.0))
         a, e = _broadcast(azimuth=a, elevation=e)
         return np.stack([np.cos(e) * np.sin(a), np.sin(e), -np.cos(e) * np.cos(a)], axis=-1)
@@ -380,7 +391,7 @@ class LocalFrame:
         ``frame.bearing(aovs["apparent_azimuth"], camera.position)``, which ``camera(position=...)``
         takes back. They differ by the meridians' convergence (about 0.96 deg 100 km east of the origin
         at 47 deg) and the projection's small distortion: the geodesic of the direction's first metre."""
-        a = np.radians(_checked(azimuth, "azimuth"))
+        a = np.radians(_angle(azimuth, "azimuth"))
         p = _checked(position, "position")
         if p.shape != (3,):
             raise ValueError(f"position must be one scene point (3,) (got shape {p.shape})")
@@ -488,10 +499,10 @@ class LocalFrame:
             raise ValueError("give azimuth and elevation [deg], or target=(lat, lon[, height])")
         if vfov is not None and sensor_mm is not None:
             raise ValueError("sensor_mm goes with focal_length_mm; vfov gives the field of view itself")
-        height = _number(height, "height")
-        a = _number(azimuth, "azimuth")
+        height = _number(height, "height", -_REACH, _REACH)
+        a = _number(azimuth, "azimuth", -360.0, 360.0)
         e = _number(elevation, "elevation", -90.0, 90.0)
-        r = math.radians(_number(roll, "roll"))
+        r = math.radians(_number(roll, "roll", -360.0, 360.0))
         if position is None:
             eye = np.array([0.0, self.flat_height(height), 0.0])
         else:

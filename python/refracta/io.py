@@ -63,6 +63,7 @@ from __future__ import annotations
 
 import os
 import unicodedata
+import warnings
 from typing import Any
 
 import numpy as np
@@ -360,7 +361,9 @@ def exposure_of(
 
     Automatic by default (0.18 / the log-average luminance); use it to give several images (the
     frames of an animation, a with/without pair) one exposure: ``to_display(img, exposure=c)``. A
-    stack of frames (T, H, W, C) gives the exposure of all of them together.
+    stack of frames (T, H, W, C) gives the exposure of all of them together. An image without light
+    (no pixel of positive luminance) has nothing to meter: the manual exposure (1 unless given), with a
+    RuntimeWarning.
     """
     fields = dict(exposure=exposure, key=key, ev100=ev100, iso=iso, shutter=shutter, f_number=f_number)
     array = _image_array(image, "exposure_of")
@@ -370,7 +373,17 @@ def exposure_of(
                 f"exposure_of: a stack of frames must have shape (T, H, W, C), T, H, W >= 1 (got {array.shape})"
             )
         array = array.reshape(-1, *array.shape[2:])
-    return _core._display_exposure(array, settings(display, **fields, luminous_efficacy=luminous_efficacy))
+    exposure, metered_nothing = _core._display_exposure(
+        array, settings(display, **fields, luminous_efficacy=luminous_efficacy)
+    )
+    if metered_nothing:
+        warnings.warn(
+            "exposure_of: the image has no light (no pixel of positive luminance), so automatic exposure meters "
+            f"nothing: {exposure:g} (the manual exposure) is returned; give exposure= for images that share it",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    return exposure
 
 
 def white_balance_of(
@@ -382,7 +395,9 @@ def white_balance_of(
     """The (3, 3) matrix B, linear sRGB to linear sRGB (rgb' = B @ rgb), that to_display applies to
     this image for the white balance (``white_balance``, else ``display``'s; the module docstring):
     xyz_to_rgb @ Bradford(light's white -> D65) @ rgb_to_xyz. Only 'auto' reads the image (its mean
-    RGB); the identity for 'none' and for grey images. ValueError for a bad white balance."""
+    RGB); the identity for 'none', for grey images, and for 'auto' on an image with a channel
+    without light (an all-red one: grey world has nothing to balance by). ValueError for a bad white
+    balance."""
     return _core._white_balance_matrix(
         _image_array(image, "white_balance_of"), settings(display, white_balance=white_balance)
     )

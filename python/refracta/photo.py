@@ -131,6 +131,16 @@ class Photo:
     exif: Exif = field(default_factory=Exif)
     path: Path | None = None
 
+    def __post_init__(self) -> None:
+        # A nested list (a user's own photograph) as the array it stands for: .width read its .shape.
+        if not isinstance(self.image, np.ndarray):
+            try:
+                self.image = np.asarray(self.image, dtype=np.float32)
+            except (TypeError, ValueError):
+                raise ValueError(
+                    f"Photo: image must be an array of numbers (H, W) or (H, W, C) (got {type(self.image).__name__})"
+                ) from None
+
     @property
     def width(self) -> int:
         return int(self.image.shape[1])
@@ -536,6 +546,13 @@ def overlay(
             )
         if values.dtype.kind not in "iuf":
             raise ValueError(f"overlay: readout '{name}' must hold numbers, {holds} (got dtype {values.dtype})")
+    distances = np.asarray(aovs.get("distance", np.zeros(0)), dtype=np.float64)
+    wrong = ~(distances >= 0.0)  # NaN too: render gives inf where nothing was hit
+    if wrong.any():
+        raise ValueError(
+            "overlay: readout 'distance' must hold distances >= 0 [m], inf where nothing was hit, as render gives "
+            f"it (got {distances[wrong].flat[0].item()!r})"
+        )
     ids = np.asarray(aovs.get("object_id", np.zeros(0, dtype=np.int32)))
     if ids.dtype.kind not in "iu":
         whole = np.mod(ids, 1.0) == 0.0 if ids.dtype.kind == "f" else np.zeros(ids.shape, dtype=bool)

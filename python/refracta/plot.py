@@ -68,7 +68,7 @@ def ray_fan(
     if not isinstance(field, _core.IndexField):
         raise ValueError(f"ray_fan: field must be a refracta IndexField (got {type(field).__name__})")
     angles = np.atleast_1d(real_array(elevations, "ray_fan: elevations"))  # [deg]; not "0.1", nor True
-    if angles.size == 0 or not np.all(np.isfinite(angles)) or np.any(np.abs(angles) > 90.0):
+    if angles.ndim != 1 or angles.size == 0 or not np.all(np.isfinite(angles)) or np.any(np.abs(angles) > 90.0):
         raise ValueError(
             f"ray_fan: elevations must be a non-empty list of finite angles in [-90, 90] deg (got {elevations!r})"
         )

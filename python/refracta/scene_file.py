@@ -408,6 +408,16 @@ def _offending_key(message: str, keys) -> str | None:
     return contained[0] if contained else None
 
 
+def _material_texture_entry(entries: list, name, message: str, path: Path) -> int | None:
+    """The index of the [[materials]] entry `name` when `message` (a texture's IoError) is about its
+    texture file, else None."""
+    for index, entry in enumerate(entries):
+        texture = entry.get("texture") if isinstance(entry, dict) else None
+        if entry.get("name") == name and isinstance(texture, str) and str(path.parent / texture) in message:
+            return index
+    return None
+
+
 def _materials(entries: list, where: _Locator, get, path: Path) -> dict:
     """[[materials]] -> {name: refracta.shading material}."""
     from refracta import shading
@@ -963,6 +973,9 @@ def load_scene(path, size=None) -> SceneFile:
                 raise
             raise where.error(str(error), "objects", _offending_key(str(error), obj), index) from None
         except _core.IoError as error:  # a file the entry names (an OBJ, its MTL, a texture): located
+            source = _material_texture_entry(data.get("materials", []), obj.get("material"), str(error), path)
+            if source is not None:  # its material's texture: read when the object takes the material
+                raise where.located(error, "materials", "texture", source) from None
             raise where.located(error, "objects", _offending_key(str(error), obj) or "file", index) from None
 
     field, turbulence = None, None

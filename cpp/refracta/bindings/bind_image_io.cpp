@@ -102,8 +102,14 @@ void bind_image_io(py::module_& m) {
       py::arg("image"), py::arg("display"), "Display values of an image (refracta.io.to_display).");
   m.def(
       "_display_exposure",
-      [](const py::object& image, const DisplaySettings& display) { return display_exposure(to_image(image, "image"), display); },
-      py::arg("image"), py::arg("display"), "The exposure c the display settings give this image (io.exposure_of).");
+      [](const py::object& image, const DisplaySettings& display) {
+        bool metered_nothing = false;
+        const double exposure = display_exposure(to_image(image, "image"), display, &metered_nothing);
+        return std::make_tuple(exposure, metered_nothing);
+      },
+      py::arg("image"), py::arg("display"),
+      "(c, metered_nothing): the exposure c the display settings give this image (io.exposure_of), and whether\n"
+      "automatic exposure found no light to meter.");
   m.def(
       "_white_balance_matrix",
       [](const py::object& image, const DisplaySettings& display) {

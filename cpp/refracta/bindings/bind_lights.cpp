@@ -140,7 +140,7 @@ void bind_environment_lights(py::module_& m) {
            }, py::arg("dirs"), "(u, v) (N, 2) of directions (N, 3) (normalised here).")
       .def("uv_to_direction", [](const EnvironmentLight& l, const py::object& uv) {
              return points_to_array(uv_to_directions(l, to_uvs(uv, "uv", kAnyCount)));
-           }, py::arg("uv"), "World directions (N, 3) of (u, v) (N, 2).")
+           }, py::arg("uv"), "World directions (N, 3) of (u, v) (N, 2), each in [0, 1].")
       .def_static("rotation_about_y", [](double degrees) { return matrix_to_array(EnvironmentLight::rotation_about_y(degrees)); },
           py::arg("degrees"),
           "The 3 x 3 rotation about +y by degrees (right-handed: +x turns toward -z).")

@@ -92,8 +92,8 @@ void bind_ray_path(py::module_& m) {
             return std::make_tuple(c.point, c.distance, c.s);
           },
           py::arg("q"),
-          "(point, distance, s): the point of the continuous path closest to q, its distance [m] "
-          "and its arc length [m].")
+          "(point, distance, s): the point of the continuous path closest to q (within 1e7 m of the origin), "
+          "its distance [m] and its arc length [m].")
       .def("at_height", [](const RayPath& p, double y) { return points_to_array(p.at_height(y)); }, py::arg("y"),
            "Every point where the path crosses height y [m], in path order, (K, 3).")
       .def(

@@ -65,6 +65,11 @@ void validate_pairs(const std::vector<PointPair>& pairs, const PairOptions& opti
     if (!(p.weight > 0.0 && p.weight <= kMostPairWeight)) {
       throw_invalid("pair ", i, ": weight must be in (0, ", kMostPairWeight, "] (got ", p.weight, ")");
     }
+    // ... and 1e-300 underflowed it: the solve stopped at once ("gradient max norm 0") and blamed the air.
+    if (p.weight < kLeastPairWeight) {
+      throw_invalid("pair ", i, ": weight must be at least ", kLeastPairWeight, " (got ", p.weight,
+                    "): a cost that small underflows; weights are relative importances");
+    }
     if (!(p.margin >= 0.0) || !std::isfinite(p.margin)) {
       throw_invalid("pair ", i, ": margin must be >= 0 and finite (got ", p.margin, ")");
     }

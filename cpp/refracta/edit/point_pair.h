@@ -13,14 +13,15 @@
 
 namespace refracta {
 
-// The largest pair weight (a cost of weight x miss^2 must stay within float64).
+// The largest and least pair weights (a cost of weight x miss^2 must stay within float64).
 inline constexpr double kMostPairWeight = 1e100;
+inline constexpr double kLeastPairWeight = 1e-100;
 
 struct PointPair {
   Vec3d origin = Vec3d::Zero();     // the eye [m]
   Vec3d direction = Vec3d::UnitX(); // toward the destination (any length > 0)
   Vec3d source = Vec3d::UnitX();    // the scene point to be seen along it [m]
-  double weight = 1.0;              // importance, in (0, kMostPairWeight]; the residual is scaled by sqrt(weight)
+  double weight = 1.0;              // importance, in [kLeastPairWeight, kMostPairWeight]; the residual is scaled by sqrt(weight)
   // A miss up to this distance [m] costs nothing (a dead zone: residual = miss (1 - margin/|miss|)
   // outside it, so the cost stays C1); less important points get larger margins.
   double margin = 0.0;

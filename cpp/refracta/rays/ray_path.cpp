@@ -38,7 +38,12 @@ Vec3d RayPath::point_at(double s, Vec3d* direction) const {
 }
 
 ClosestPoint RayPath::closest_point(const Vec3d& q) const {
-  if (!is_finite(q)) throw_invalid("closest_point: the point must be finite");
+  // Farther out, the distances to a path's points differ by less than a double resolves there
+  // (1e20 m away a 100 m path's ends are equally far): the answer would be its start, s = 0.
+  if (!within_reach(q)) {
+    throw_invalid("closest_point: the point must be finite and within ", kSceneReach, " m of the origin (got (", q.x(),
+                  ", ", q.y(), ", ", q.z(), "))");
+  }
   ClosestPoint best{nodes_[0].x, (nodes_[0].x - q).norm(), 0.0};
   for (size_t i = 0; i + 1 < nodes_.size(); ++i) {
     const RayNode<double>& a = nodes_[i];

@@ -104,7 +104,12 @@ std::vector<Vec2d> directions_to_uv(const EnvironmentLight& light, const std::ve
 std::vector<Vec3d> uv_to_directions(const EnvironmentLight& light, const std::vector<Vec2d>& uv) {
   std::vector<Vec3d> dirs(uv.size());
   for (size_t i = 0; i < uv.size(); ++i) {
+    // The map's (u, v) cover [0, 1] each (v pole to pole: beyond it is no direction; u wraps, so a
+    // u outside was a mistake too).
     if (!std::isfinite(uv[i].x()) || !std::isfinite(uv[i].y())) throw_invalid("uv must be finite");
+    if (!(uv[i].x() >= 0.0 && uv[i].x() <= 1.0 && uv[i].y() >= 0.0 && uv[i].y() <= 1.0)) {
+      throw_invalid("uv must be in [0, 1] (got row ", i, ": (", uv[i].x(), ", ", uv[i].y(), "))");
+    }
     dirs[i] = light.uv_to_direction(uv[i]);
   }
   return dirs;

@@ -27,10 +27,14 @@ class TrowbridgeReitz {
   // Roughness below kMinAlpha is raised to it: narrower lobes put D beyond what double-precision
   // directions resolve (D peaks at 1/(pi alpha^2)); use the smooth materials for mirrors.
   static constexpr double kMinAlpha = 1e-4;
+  // Roughness above this is refused: slopes ~100 (facets within 0.6 deg of vertical) are no surface,
+  // and alpha = 1e300 was taken and reflected nothing (its D and G underflow).
+  static constexpr double kMaxAlpha = 100.0;
 
-  // Validates alpha (finite, >= 0; `name` goes into the message) and applies the clamp.
+  // Validates alpha (finite, in [0, kMaxAlpha]; `name` goes into the message) and applies the clamp.
   static double checked_alpha(double alpha, const char* name) {
     if (!std::isfinite(alpha) || alpha < 0.0) throw_invalid(name, " must be finite and >= 0 (got ", alpha, ")");
+    if (alpha > kMaxAlpha) throw_invalid(name, " must be at most ", kMaxAlpha, " (got ", alpha, ")");
     return std::max(alpha, kMinAlpha);
   }
 

@@ -201,10 +201,26 @@ std::vector<std::string> display_only_fields_set(const DisplaySettings& s) {
   return set;
 }
 
-double display_exposure(const Image& image, const DisplaySettings& s) {
+bool has_light(const Image& image) {
+  const int colour = colour_channels(image.channels);
+  double scaled[3];
+  for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
+    if (luminance(&image.pixels[i * image.channels], colour, 1.0, scaled) > 0.0) return true;
+  }
+  return false;
+}
+
+double display_exposure(const Image& image, const DisplaySettings& s, bool* metered_nothing) {
+  if (metered_nothing) *metered_nothing = false;
   const double manual = manual_exposure(s);
   const bool is_manual = s.exposure || s.ev100 || s.shutter;
   if (is_manual && !s.key) return manual;
+  // An image without light meters nothing: a / delta (180 000) was no exposure for frames that
+  // share it (io.exposure_of warns).
+  if (!has_light(image)) {
+    if (metered_nothing) *metered_nothing = true;
+    return manual;
+  }
   // Automatic: (a / Lw_bar(c x image)) c, the manual c cancelling but for delta.
   return s.key.value_or(kAutoKey) / log_average_luminance(image, manual) * manual;
 }

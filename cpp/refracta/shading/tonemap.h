@@ -134,8 +134,12 @@ std::vector<std::string> display_only_fields_set(const DisplaySettings& settings
 // automatic), alpha (the last of 2 or 4 channels: a coverage, not light) untouched. Throws
 // std::invalid_argument where that overflows float32.
 void expose_linear(Image& image, const DisplaySettings& settings);
-// The exposure c the settings give this image (manual, or automatic from its log-average).
-double display_exposure(const Image& image, const DisplaySettings& settings);
+// The exposure c the settings give this image (manual, or automatic from its log-average; an image
+// without light -- no pixel of positive luminance -- gets the manual one, 1 unless given, and
+// `metered_nothing`, if given, says so).
+double display_exposure(const Image& image, const DisplaySettings& settings, bool* metered_nothing = nullptr);
+// Whether some pixel has a positive luminance (negative channels count as 0).
+bool has_light(const Image& image);
 
 // The white balance's matrix B (linear sRGB -> linear sRGB, rgb' = B rgb) for this image ('auto'
 // reads it; other settings do not): xyz_to_rgb x Bradford(light's white -> D65) x rgb_to_xyz, the
