@@ -195,15 +195,8 @@ def shimmer_render(width=160, height=60) -> dict:
     air = refracta.Turbulence(depth=0.1)
     field = refracta.PhysicalAtmosphere(**road.field.params, turbulence=air)
     start = time.perf_counter()
-    image, stats = refracta.render(
-        road.scene,
-        road.camera,
-        field,
-        progress=False,
-        max_length=road.max_length,
-        return_stats=True,
-        turbulence_trace="strict",
-    )
+    strict = dict(progress=False, max_length=road.max_length, return_stats=True, turbulence_trace="strict")
+    image, stats = refracta.render(road.scene, road.camera, field, **strict)
     seconds = time.perf_counter() - start
     difference = float(np.mean(np.abs(image - calm_image)) / np.mean(calm_image))
     changed = float(np.mean(np.abs(image - calm_image).max(axis=2) > 0.05 * calm_image.max()))
