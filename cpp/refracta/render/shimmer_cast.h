@@ -78,6 +78,8 @@ constexpr double kLargeDeviation = 5e-3;
 // 160 x 60. Stretching from E < 0.2, up to 8: displacement error 7.4 % along the road.
 constexpr double kFullStepEnvelope = 0.05;
 constexpr double kLongestStepStretch = 4.0;
+// The chords' tolerance in the layer, as a fraction of RenderOptions::sagitta (shimmer_cast.cpp walk).
+constexpr double kLayerSagittaFraction = 0.1;
 
 // A camera ray's calm path traced exactly as far as `length` [m], with the lowest height from each
 // node on (ShimmerCaster's walk).
