@@ -158,6 +158,9 @@ def generate() -> str:
 
 
 def main() -> int:
+    if len(sys.argv) > 2 or (len(sys.argv) == 2 and sys.argv[1].startswith("-")):
+        # It takes no options: `--check` was once taken for the output path and written there.
+        raise SystemExit(f"usage: {sys.argv[0]} [OUTPUT] (default {OUTPUT}); it takes no options")
     output = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else OUTPUT
     output.parent.mkdir(parents=True, exist_ok=True)
     output.write_text(generate())
