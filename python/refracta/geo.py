@@ -91,10 +91,13 @@ def _longitude(value, name: str) -> np.ndarray:
     return _checked(value, name, -360.0, 360.0)  # east of Greenwich, either convention ([-180, 180] or [0, 360])
 
 
+# [deg] An azimuth or a roll within a turn either way: 1e300 deg was taken for 0 (its sine and
+# cosine are rounding noise).
+_TURN = (-360.0, 360.0)
+
+
 def _angle(value, name: str) -> np.ndarray:
-    """An azimuth or a roll [deg] within a turn either way: 1e300 deg was taken for 0 (its sine and
-    cosine are rounding noise)."""
-    return _checked(value, name, -360.0, 360.0)
+    return _checked(value, name, *_TURN)
 
 
 # [m] The scene's reach (C++ kSceneReach): an origin or an eye beyond it is no place on Earth.
@@ -500,9 +503,9 @@ class LocalFrame:
         if vfov is not None and sensor_mm is not None:
             raise ValueError("sensor_mm goes with focal_length_mm; vfov gives the field of view itself")
         height = _number(height, "height", -_REACH, _REACH)
-        a = _number(azimuth, "azimuth", -360.0, 360.0)
+        a = _number(azimuth, "azimuth", *_TURN)
         e = _number(elevation, "elevation", -90.0, 90.0)
-        r = math.radians(_number(roll, "roll", -360.0, 360.0))
+        r = math.radians(_number(roll, "roll", *_TURN))
         if position is None:
             eye = np.array([0.0, self.flat_height(height), 0.0])
         else:

@@ -109,12 +109,12 @@ ShimmerCaster::ShimmerCaster(const Scene& scene, FieldPtr calm, FieldPtr layered
       table_(table),
       eye_(eye),
       options_(options),
-      calm_(scene, spotted_ ? calm_field_.get() : layered_.get(), options),
+      calm_(scene, calm_field_.get(), options),
       top_(turbulence_->region().top),
       step_(options.turbulence_step * turbulence_->grid->spacing()),
       // The calm air tabulated from the ground to a little above the layer (a deviated ray's
-      // heights); hot spots' air is evaluated where the ray is.
-      stepper_(*turbulence_, *layered_, 0.0, top_ + 0.05, spotted_ ? calm_field_.get() : nullptr) {
+      // heights); hot spots' air is evaluated where the ray is, and needs no table.
+      stepper_(*turbulence_, *layered_, 0.0, spotted_ ? 0.0 : top_ + 0.05, spotted_ ? calm_field_.get() : nullptr) {
   if (spotted_) calm_.use_layered(layered_.get());
   calm_.use_table(table, eye, pixel_angle);
   calm_.set_secondary_spread(pixel_angle);  // as the renderer's caster (shadow and bounce rays' tolerance)

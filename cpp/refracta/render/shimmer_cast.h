@@ -127,8 +127,8 @@ class ShimmerCaster {
   // The calm air's caster (footprints of camera rays: their neighbours' calm paths).
   const Caster& calm() const { return calm_; }
 
-  // `calm`: the field without its turbulence; `layered`: its height-only part (calm itself, or the
-  // air under its hot spots).
+  // `calm`: the field without its turbulence; `layered`: its height-only part (calm itself, the
+  // same object, or the air under its hot spots).
   ShimmerCaster(const Scene& scene, FieldPtr calm, FieldPtr layered, std::shared_ptr<const Turbulence> turbulence,
                 const ElevationTable* table, const Vec3d& eye, double pixel_angle, const RenderOptions& options);
 
