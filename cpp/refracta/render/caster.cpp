@@ -97,6 +97,18 @@ double longest_inside(const std::vector<LocalRegion>& regions, double bottom) {
   return 2.0 * sum;
 }
 
+// dir with its elevation at x set by Bouguer's invariant n(h) cos e = beta of a path through the
+// height-only `layered` air (its azimuth and the sign of its climb kept); dir itself where no
+// elevation satisfies it (a place, within its tolerance, past the path's turning height).
+Vec3d on_invariant(const IndexField& layered, const Vec3d& x, const Vec3d& dir, double beta) {
+  double n, dn;
+  layered.evaluate_height(x.y(), &n, &dn);
+  const double cos_e = beta / n, horizontal = std::hypot(dir.x(), dir.z());
+  if (!(cos_e < 1.0) || !(horizontal > 0.0)) return dir;
+  const double sin_e = std::copysign(std::sqrt(1.0 - cos_e * cos_e), dir.y());
+  return Vec3d(dir.x() / horizontal * cos_e, sin_e, dir.z() / horizontal * cos_e);
+}
+
 // The path's end at parameter u of seg, where it meets the surface of `hit`.
 void end_at(const PathSegment<double>& seg, double u, const Hit& hit, PathEnd* end) {
   Hit refined = hit;
@@ -372,6 +384,14 @@ PathEnd Caster::cast_in_legs(const Vec3d& origin, const Vec3d& dir, double max_l
     }
     x = part.handoff->x;
     d = part.handoff->dir;
+    if (leg == 0 && from_eye && !in_regions) {
+      // The table holds its interpolated paths' places to its tolerance, not their directions (a
+      // mirage ray entering a turbulent layer 76 m out came 3.3e-4 rad off, and a duct above
+      // trapped it): the camera ray's invariant gives the direction at the handoff's place.
+      double n_eye, dn_eye;
+      layered_->evaluate_height(eye_.y(), &n_eye, &dn_eye);
+      d = on_invariant(*layered_, x, d, n_eye * std::hypot(dir.x(), dir.z()) / dir.norm());
+    }
     s += part.handoff->s;
     if (!in_regions && leg > 0 && part.handoff->s <= 0.0) {
       // No progress: the layered path enters at once where the full one has just left (a border
