@@ -219,10 +219,35 @@ def _figure(images, methods, kernel):
     return fig
 
 
+# The columns format_table prints of each kind of row.
+_TRANSPARENCY_COLUMNS = ("method", "mean_error", "p99_error", "nan_count", "bytes_per_pixel", "seconds")
+_SHADOW_COLUMNS = (
+    "method",
+    "kernel",
+    "reference",
+    "mean_error",
+    "p99_error",
+    "light_leak",
+    "over_shadow",
+    "nan_count",
+    "bits_per_texel",
+    "seconds",
+)
+
+
 def format_table(rows: Sequence[dict]) -> str:
     """The rows of shadows() or transparency() as aligned text."""
+    shadow_rows = bool(rows) and isinstance(rows[0], dict) and "kernel" in rows[0]
+    needed = _SHADOW_COLUMNS if shadow_rows else _TRANSPARENCY_COLUMNS
+    for i, r in enumerate(rows):
+        missing = [key for key in needed if not isinstance(r, dict) or key not in r]
+        if missing:
+            raise ValueError(
+                f"format_table: rows[{i}] lacks {', '.join(map(repr, missing))}: give the rows of "
+                "compare.shadows() or compare.transparency(), one kind at a time"
+            )
     name = max([14] + [len(r["method"]) for r in rows])  # the widest method's name sets the column
-    if rows and "kernel" not in rows[0]:
+    if not shadow_rows:
         lines = [f"{'method':{name}s} {'mean':>8s} {'p99':>8s} {'NaN':>4s} {'bytes/px':>9s} {'time [s]':>8s}"]
         for r in rows:
             lines.append(
