@@ -22,7 +22,7 @@ from typing import Callable
 
 import numpy as np
 
-from refracta import _core
+from refracta import _core, _options
 from refracta._checks import finite_pair, is_number, is_seed, real_array
 from refracta._render import _check_scene, _denoised, _surface_outputs, render_options, warn_if_perturbed_refused
 from refracta._sweep import map_ordered
@@ -205,6 +205,8 @@ def animate(
     that only the shimmer moves, not the sampling noise. Further keywords: render's (method, spp,
     max_length, turbulence_trace, ...: see refracta.render).
     """
+    # render's keywords first: a misspelt one (turbulance=) was blamed on a missing turbulence=.
+    _options.build(_core.RenderOptions, where="animate", **options)
     times = real_array(times, "animate: times")  # not True/False, nor a string
     if times.ndim != 1 or times.size < 1:
         raise ValueError(f"animate: times must be a non-empty 1-D array of finite seconds (got shape {times.shape})")

@@ -52,7 +52,7 @@ def astronomical_refraction(
         field,
         np.radians(elevations).ravel(),
         number(eye_height, "eye_height"),
-        0.0 if top is None else number(top, "top"),
+        None if top is None else number(top, "top"),
         number(earth_radius, "earth_radius"),
         number(tol, "tol"),
     )

@@ -1045,9 +1045,12 @@ class Scene:
         """
     def terrain_height(self, x: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex) -> float | None:
         """
-        The height [m] of the highest terrain surface (add_terrain's) over scene point (x, z), or None
-        where none lies there; other geometry above it is looked through. An eye 1.7 m above the
-        ground there: y = scene.terrain_height(x, z) + 1.7.
+        The scene height y [m] of the highest terrain surface (add_terrain's) over scene point (x, z), or
+        None where none lies there; other geometry above it is looked through. An eye 1.7 m above the
+        ground there, in scene coordinates: Camera((x, scene.terrain_height(x, z) + 1.7, z), ...). Over a
+        geo.LocalFrame's curved Earth y is the flat frame's, short of the height above the ellipsoid by
+        h^2 / R (3.9 m at 5 000 m) that frame.camera and Camera.geographic take: use
+        frame.ground_height(scene, (lat, lon)) there.
         """
     @property
     def aerial_perspective(self) -> typing.Any:
@@ -3614,7 +3617,7 @@ class DispersedField(IndexField):
     @property
     def scale(self) -> float:
         ...
-def _astronomical_refraction(field: IndexField, elevations: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex, top: typing.SupportsFloat | typing.SupportsIndex, earth_radius: typing.SupportsFloat | typing.SupportsIndex, tol: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+def _astronomical_refraction(field: IndexField, elevations: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex, top: typing.SupportsFloat | typing.SupportsIndex | None, earth_radius: typing.SupportsFloat | typing.SupportsIndex, tol: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
     """
     Refraction [rad] at apparent elevations [rad] (refracta.astronomical_refraction).
     """

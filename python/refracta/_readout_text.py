@@ -55,7 +55,10 @@ def checked_planes(aovs: dict, image, who: str) -> tuple[np.ndarray, list[tuple[
 
 def readout_text(aovs: dict, u: float, v: float) -> str:
     """The readouts at image point (u, v) (pixels: u right, v down; pixel (i, j) covers
-    [i, i + 1) x [j, j + 1)) as lines 'name: value unit'; 'none' where the pixel met nothing."""
+    [i, i + 1) x [j, j + 1)) as lines 'name: value unit': 'none' where a readout has no value (NaN:
+    a sky pixel's position, elevations), 'inf' for a sky pixel's distance (its ray ran off). A point
+    outside the image reads the nearest edge pixel (a pointer just past the edge), the line
+    'pixel (i, j)' saying which."""
     planes = _planes(aovs)
     height, width = planes[0][1].shape[:2] if planes else (1, 1)
     i, j = min(max(int(np.floor(u)), 0), width - 1), min(max(int(np.floor(v)), 0), height - 1)

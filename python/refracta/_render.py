@@ -124,8 +124,9 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
         warnings.warn(
             f"{where}: the camera is at y = {y:g} m, at or below the scene's {below[1]} (y = {below[0]:g} m "
             "under it), so its rays start in or under it: the image is not what an eye above it sees; raise the "
-            "camera (e.g. Camera.geographic's height: the ground's height plus the eye's above it; "
-            "scene.terrain_height(x, z) gives the terrain's)",
+            "camera: in scene coordinates scene.terrain_height(x, z) gives the terrain's y; a geo.LocalFrame's "
+            "camera (frame.camera, Camera.geographic) takes heights above the ellipsoid, "
+            "frame.ground_height(scene, (lat, lon)) plus the eye's above the ground",
             SceneWarning,
             stacklevel=3,
         )

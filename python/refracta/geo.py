@@ -102,6 +102,8 @@ def _angle(value, name: str) -> np.ndarray:
 
 # [m] The scene's reach (C++ kSceneReach): an origin or an eye beyond it is no place on Earth.
 _REACH = float(_core._SCENE_REACH)
+# How a bad (lat, lon) given as position= is named.
+_POSITION_NAMES = ("position[0] (lat)", "position[1] (lon)")
 
 
 def _broadcast(**arrays: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -344,9 +346,9 @@ class LocalFrame:
         reach, 1e7 m from the origin (half way to the antipode)."""
         return self._scene_points(lat, lon, height, "to_scene: the points")
 
-    def _scene_points(self, lat, lon, height, what: str) -> np.ndarray:
-        """to_scene, its refusal naming `what`."""
-        la, lo = _latitude(lat, "lat"), _longitude(lon, "lon")
+    def _scene_points(self, lat, lon, height, what: str, names=("lat", "lon")) -> np.ndarray:
+        """to_scene, its refusal naming `what`, a bad lat or lon by `names`."""
+        la, lo = _latitude(lat, names[0]), _longitude(lon, names[1])
         h = _checked(height, "height")
         la, lo, h = _broadcast(lat=la, lon=lo, height=h)
         east, north = self._to_plane.transform(lo, la, errcheck=True)
@@ -420,6 +422,23 @@ class LocalFrame:
     def origin_ground(self) -> np.ndarray:
         """The scene point (3,) of the ground at the origin: (0, flat height of ``height``, 0)."""
         return np.array([0.0, self.flat_height(self.height), 0.0])
+
+    def ground_height(self, scene, position=None) -> float | None:
+        """The height [m] above the ellipsoid of ``scene``'s terrain (Scene.terrain_height: the highest
+        terrain surface) under the origin, or under ``position`` = (lat, lon) [deg]; None where no
+        terrain lies there. What :meth:`camera` adds an eye's height to:
+        ``frame.camera(frame.ground_height(scene) + 1.7, azimuth, 0.0, vfov=10.0)``. (Scene heights
+        are the flat frame's y: over a curved Earth they fall short of true heights by h^2 / R,
+        3.9 m at 5 000 m, so the terrain's y plus an eye's height is no camera height.)"""
+        if position is None:
+            x, z = 0.0, 0.0
+        else:
+            place = finite_pair(position)
+            if place is None:
+                raise ValueError(f"ground_height: position must be (lat, lon) (got {position!r})")
+            x, _, z = (float(v) for v in self._scene_points(place[0], place[1], 0.0, "position", _POSITION_NAMES))
+        y = scene.terrain_height(x, z)
+        return None if y is None else float(self.true_height(y))
 
     def sun_direction(self, when) -> np.ndarray:
         """The scene's unit vector (3,) toward the sun's true place at `when` (sun_position at the
@@ -512,7 +531,7 @@ class LocalFrame:
             place = finite_pair(position)
             if place is None:
                 raise ValueError(f"position must be (lat, lon) (got {position!r})")
-            eye = self._scene_points(place[0], place[1], height, "position")
+            eye = self._scene_points(place[0], place[1], height, "position", _POSITION_NAMES)
             a = self._frame_azimuth(place[0], place[1], a)
         forward_ = self.direction(a, e)
         # The unrolled camera's up: the view direction turned 90 deg up in its vertical plane.

@@ -1,9 +1,15 @@
-"""Defects found by trials of 7 December (a read of the last notes' leftovers and new users' trials):
-compare.format_table raised KeyError on rows it was not made for."""
+"""Defects found by trials of 7 December (the last notes' leftovers, a photographer's trial of the
+real-places workflow, an edge-case trial of the renderers): compare.format_table raised KeyError on
+rows it was not made for; scene.terrain_height (the flat frame's y) was offered as a geographic
+camera's ground; a 1 nm surface layer sent rays below the ground; a star reflected back at a low
+top of the air was taken as leaving level, and top=0 as no top; a misspelt keyword of animate was
+blamed on a missing one; a camera at the end of scene coordinates was asked for max_length <= 0."""
 
+import numpy as np
 import pytest
 
-from refracta import compare
+import refracta
+from refracta import compare, examples, geo
 
 
 def test_format_table_names_what_a_foreign_row_lacks():
@@ -36,3 +42,86 @@ def test_format_table_names_what_a_foreign_row_lacks():
         compare.format_table(["pcf"])
     assert compare.format_table([shadow]).splitlines()[1].startswith("pcf")
     assert compare.format_table([]).count("\n") == 0  # the header alone
+
+
+# --- A photographer's trial of the real-places workflow --------------------------------------------
+
+
+def plateau(tmp_path, height):
+    """A flat 5 000 m plateau 0.2 deg across around (46.0, 7.0): a WGS84 GeoTIFF."""
+    import tifffile
+
+    keys = [1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326]
+    tags = [
+        (33550, "d", 3, (0.01, 0.01, 0.0), False),
+        (33922, "d", 6, (0, 0, 0, 6.9, 46.1, 0), False),
+        (34735, "H", len(keys), keys, False),
+    ]
+    path = tmp_path / "plateau.tif"
+    tifffile.imwrite(path, np.full((21, 21), height, np.float32), extratags=tags)
+    return path
+
+
+def test_the_ground_under_a_geographic_camera_is_its_true_height(tmp_path):
+    # scene.terrain_height is the flat frame's y, 3.9 m short of 5 000 m above the ellipsoid (h^2 / R):
+    # the warning told users to add an eye's 1.7 m to it for frame.camera, which put the eye 0.26 m
+    # under the plateau. frame.ground_height gives the height frame.camera takes.
+    frame = geo.LocalFrame(46.0, 7.0)
+    scene = refracta.Scene()
+    scene.add_terrain(plateau(tmp_path, 5000.0), frame=frame)
+    ground = frame.ground_height(scene)
+    # A flat grid: its own height, to the terrain's float32 positions (a unit of 4.9e-4 m at 4 998 m).
+    assert ground == pytest.approx(5000.0, abs=1e-3)
+    assert frame.ground_height(scene, (46.05, 7.05)) == pytest.approx(5000.0, abs=1e-3)  # as above
+    assert frame.ground_height(scene, (47.0, 7.0)) is None  # no terrain 100 km north
+    camera = frame.camera(ground + 1.7, 90.0, 0.0, vfov=10.0)
+    y = scene.terrain_height(0.0, 0.0)
+    # 1.7 m above the ground in the flat frame too (dy/dh = R / (R + h): 1.7 m less 1.3 mm).
+    assert camera.position[1] - y == pytest.approx(1.7, abs=2e-3)
+    with pytest.raises(ValueError, match=r"position\[0\] \(lat\) must be"):
+        frame.camera(10.0, 0.0, 0.0, vfov=10.0, position=(95.0, 7.0))
+    with pytest.raises(ValueError, match=r"position\[1\] \(lon\) must be"):
+        frame.ground_height(scene, (46.0, 700.0))
+
+
+# --- An edge-case trial of the renderers -----------------------------------------------------------
+
+
+def test_a_surface_layer_thinner_than_a_tenth_of_a_millimetre_is_refused():
+    # A 1 nm layer sent the eye table's rays 1.7 km below the ground ("add a ground": it had one).
+    for depth in (1e-9, 0.0, 1e5):
+        with pytest.raises(ValueError, match=r"surface_depth must be in \[0.0001, 10000\] m"):
+            refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=depth)
+    assert refracta.PhysicalAtmosphere(surface_dt=10.0, surface_depth=1e-4).params["surface_depth"] == 1e-4
+
+
+def test_a_star_reflected_back_at_a_low_top_of_the_air_is_an_error():
+    # Where n drops from n_top to 1 at the top, a ray flatter than the critical angle there cannot
+    # leave; it was taken as leaving level (60' at 1 deg and 31' at 2 deg, through a 1 m atmosphere).
+    air = refracta.PhysicalAtmosphere()
+    with pytest.raises(refracta.NumericalError, match=r"too flat to leave it.*n cos e = 1.0001"):
+        refracta.astronomical_refraction(air, 1.0, top=1.0)
+    with pytest.raises(refracta.NumericalError, match=r"reflected back"):
+        refracta.astronomical_refraction(air, 0.0, top=1000.0)
+    # Steeper than the critical angle (acos(1 / n_top) = 1.35 deg at 1 m) it leaves, bent at the top.
+    assert 0.0 < refracta.astronomical_refraction(air, 2.0, top=1.0) < 60.0 * 2.0
+    # top=0 is a top at the ground, not "the field's own top" (which is top=None).
+    with pytest.raises(ValueError, match=r"the top of the air \(0 m\) must lie above the eye \(5 m\)"):
+        refracta.astronomical_refraction(air, 0.0, eye_height=5.0, top=0.0)
+    assert refracta.astronomical_refraction(air, 0.0, top=None) == pytest.approx(33.0, abs=0.05)  # 33.0' (README)
+
+
+def test_a_misspelt_keyword_of_animate_is_named():
+    road = examples.hot_road(8, 4)
+    turbulence = refracta.Turbulence(1e-10, cells=16)
+    with pytest.raises(ValueError, match=r"animate: unknown option 'turbulance'"):
+        refracta.animate(road.scene, road.camera, road.field, [0.0], turbulance=turbulence)
+
+
+def test_a_camera_at_the_end_of_scene_coordinates_is_told_so():
+    # "give max_length at most 0 m" asked for what no render takes.
+    scene = refracta.Scene()
+    scene.set_sky((1.0, 1.0, 1.0))
+    camera = refracta.Camera((0.0, 1e7, 0.0), (300.0, 1e7, 0.0), (0, 1, 0), 20.0, 8, 4)
+    with pytest.raises(ValueError, match=r"the camera is 10000000 m from the origin, at the end of scene coordinates"):
+        refracta.render(scene, camera, None, progress=False)

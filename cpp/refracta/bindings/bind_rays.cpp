@@ -156,8 +156,8 @@ void bind_tracing(py::module_& m) {
 
   m.def(
       "_astronomical_refraction",
-      [](const std::shared_ptr<IndexField>& field, const py::object& elevations, double eye_height, double top,
-         double earth_radius, double tol) {
+      [](const std::shared_ptr<IndexField>& field, const py::object& elevations, double eye_height,
+         std::optional<double> top, double earth_radius, double tol) {
         const AstronomicalRefractionOptions options{eye_height, top, earth_radius, tol};
         const std::vector<double> e = to_values(elevations, "apparent elevations");
         return values_to_array(interruptible_result(

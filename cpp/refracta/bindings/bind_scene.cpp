@@ -242,9 +242,12 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
            py::arg("origin"), py::arg("direction"),
            "First hit of a straight ray: (point, distance, geometry id), or None.")
       .def("terrain_height", &terrain_height, py::arg("x"), py::arg("z"),
-           "The height [m] of the highest terrain surface (add_terrain's) over scene point (x, z), or None\n"
-           "where none lies there; other geometry above it is looked through. An eye 1.7 m above the\n"
-           "ground there: y = scene.terrain_height(x, z) + 1.7.")
+           "The scene height y [m] of the highest terrain surface (add_terrain's) over scene point (x, z), or\n"
+           "None where none lies there; other geometry above it is looked through. An eye 1.7 m above the\n"
+           "ground there, in scene coordinates: Camera((x, scene.terrain_height(x, z) + 1.7, z), ...). Over a\n"
+           "geo.LocalFrame's curved Earth y is the flat frame's, short of the height above the ellipsoid by\n"
+           "h^2 / R (3.9 m at 5 000 m) that frame.camera and Camera.geographic take: use\n"
+           "frame.ground_height(scene, (lat, lon)) there.")
       // Pickled as its content (pickle_state.h): meshes, materials, lights, texture paths.
       .def(py::pickle(&scene_state, &scene_from_state));
 }

@@ -25,8 +25,6 @@ namespace {
 // A spot narrower than a millimetre heats nothing a ray resolves, and 1 / radius^2 overflows for
 // the tiniest (a trial's 1e-300 m made every ior NaN, 100 m away).
 constexpr double kSmallestRadius = 1e-3;  // [m]
-// A spot's excess decays as e^(-h / depth): from a tenth of a millimetre to the troposphere's 10 km.
-constexpr double kShallowestDepth = 1e-4, kDeepestDepth = 1e4;  // [m]
 }  // namespace
 
 HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optional<double> depth,
@@ -50,8 +48,8 @@ HotSpot make_hot_spot(double x, double z, double radius, double dt, std::optiona
     throw_invalid("HotSpot: the spot must lie within the scene's reach: max(|x|, |z|) + radius <= ", kSceneReach,
                   " m (got ", std::max(std::abs(x), std::abs(z)) + radius, " m)");
   }
-  if (depth && !(*depth >= kShallowestDepth && *depth <= kDeepestDepth)) {
-    throw_invalid("HotSpot: depth must be in [", kShallowestDepth, ", ", kDeepestDepth, "] m (got ", *depth, ")");
+  if (depth && !(*depth >= kShallowestLayer && *depth <= kDeepestLayer)) {
+    throw_invalid("HotSpot: depth must be in [", kShallowestLayer, ", ", kDeepestLayer, "] m (got ", *depth, ")");
   }
   return s;
 }
@@ -96,8 +94,8 @@ void validate_hot_spots(const char* model, const std::vector<double>& values, si
     if (!(v[2] >= kSmallestRadius)) {
       throw_invalid(model, ": hot_spot", i, "_radius must be >= ", kSmallestRadius, " m (got ", v[2], ")");
     }
-    if (with_depth && !(v[4] >= kShallowestDepth && v[4] <= kDeepestDepth)) {
-      throw_invalid(model, ": hot_spot", i, "_depth must be in [", kShallowestDepth, ", ", kDeepestDepth, "] m (got ",
+    if (with_depth && !(v[4] >= kShallowestLayer && v[4] <= kDeepestLayer)) {
+      throw_invalid(model, ": hot_spot", i, "_depth must be in [", kShallowestLayer, ", ", kDeepestLayer, "] m (got ",
                     v[4], ")");
     }
   }

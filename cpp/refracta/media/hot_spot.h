@@ -21,6 +21,12 @@
 
 namespace refracta {
 
+// A surface layer's excess (a hot spot's, PhysicalAtmosphere's surface layer) decays as
+// e^(-h / depth), depth from a tenth of a millimetre (180 wavelengths of green light, thinner than
+// any measured over hot ground; a trial's 1 nm layer sent the eye table's rays below the ground) to
+// the troposphere's 10 km.
+constexpr double kShallowestLayer = 1e-4, kDeepestLayer = 1e4;  // [m]
+
 enum class Footprint { kGaussian, kCompact };
 Footprint parse_footprint(const std::string& name);  // "gaussian", "compact"
 const char* footprint_name(Footprint footprint);

@@ -101,8 +101,9 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
       throw_invalid("PhysicalAtmosphere: inversion_thickness must be > 0 m (got ",
                     v[kInversionThickness], ")");
     }
-    if (!(v[kSurfaceDepth] > 0.0)) {
-      throw_invalid("PhysicalAtmosphere: surface_depth must be > 0 m (got ", v[kSurfaceDepth], ")");
+    if (!(v[kSurfaceDepth] >= kShallowestLayer && v[kSurfaceDepth] <= kDeepestLayer)) {
+      throw_invalid("PhysicalAtmosphere: surface_depth must be in [", kShallowestLayer, ", ", kDeepestLayer,
+                    "] m (got ", v[kSurfaceDepth], ")");
     }
     if (!(v[kHumidity] >= 0.0 && v[kHumidity] <= 1.0)) {
       throw_invalid("PhysicalAtmosphere: humidity must be in [0, 1] (got ", v[kHumidity], ")");

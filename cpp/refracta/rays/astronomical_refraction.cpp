@@ -13,7 +13,7 @@ namespace refracta {
 void AstronomicalRefractionOptions::validate() const {
   Problems problems("astronomical_refraction");
   problems.check(std::isfinite(eye_height) && eye_height >= 0.0, "eye_height must be >= 0 m and finite (got ", eye_height, ")");
-  problems.check(std::isfinite(top) && top >= 0.0, "top must be >= 0 m and finite (got ", top, ")");
+  problems.check(!top || std::isfinite(*top), "top must be finite (got ", top.value_or(0.0), ")");
   problems.check(earth_radius > 0.0 && std::isfinite(earth_radius), "earth_radius must be finite and > 0 m (got ", earth_radius, ")");
   problems.check(tol > 0.0 && std::isfinite(tol), "tol must be > 0 m and finite (got ", tol, ")");
   problems.throw_if_any();
@@ -32,7 +32,7 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
     throw_invalid("astronomical_refraction: apparent elevation must be in [-90, 90] deg (got ",
                   apparent_elevation * 180.0 / kPi, " deg)");
   }
-  const double top = options.top > 0.0 ? options.top : field->uniform_above();
+  const double top = options.top ? *options.top : field->uniform_above();
   if (!std::isfinite(top)) {
     throw_invalid("astronomical_refraction: ", field->type_name(), " is not uniform above any height; give top [m]");
   }
@@ -81,7 +81,14 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
   // keeps n r cos e, so in vacuum cos e = n_top cos e_top (PhysicalAtmosphere's 86 km: n - 1 ~ 1e-8).
   double n_top, dn_top;
   field->evaluate_height(top, &n_top, &dn_top);
-  const double elevation_in_vacuum = std::acos(std::min(1.0, n_top * std::cos(elevation_at_top)));
+  const double cos_in_vacuum = n_top * std::cos(elevation_at_top);
+  if (cos_in_vacuum > 1.0) {  // totally reflected where n drops to 1: no star is seen along it
+    throw_numerical("astronomical_refraction: the ray reaches the top of the air (", top, " m) ",
+                    elevation_at_top * 180.0 / kPi, " deg above the horizon, too flat to leave it: where n drops from ",
+                    n_top, " to 1 it is reflected back (n cos e = ", cos_in_vacuum,
+                    " > 1); give a higher top, where n - 1 is smaller");
+  }
+  const double elevation_in_vacuum = std::acos(cos_in_vacuum);
   return apparent_elevation - (elevation_in_vacuum - central_angle);
 }
 

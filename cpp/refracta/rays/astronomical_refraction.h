@@ -14,15 +14,16 @@
 #include "refracta/core/parallel.h"
 #include "refracta/media/index_field.h"
 
+#include <optional>
 #include <vector>
 
 namespace refracta {
 
 struct AstronomicalRefractionOptions {
   double eye_height = 0.0;   // [m] above the ground (h = 0)
-  // The top of the air [m]: above it n is uniform (0: the field's uniform_above(), e.g. 86 km for
-  // PhysicalAtmosphere; a field without one needs it given).
-  double top = 0.0;
+  // The top of the air [m]: above it n is uniform (unset: the field's uniform_above(), e.g. 86 km
+  // for PhysicalAtmosphere; a field without one needs it given).
+  std::optional<double> top;
   double earth_radius = 6371e3;  // [m]
   double tol = 1e-7;             // the tracer's position tolerance [m]
 
@@ -32,7 +33,8 @@ struct AstronomicalRefractionOptions {
 // Refraction [rad] of a star seen at `apparent_elevation` [rad] in [-pi/2, pi/2] through the
 // height-only `field` (true heights: a base field, not a CurvedEarth). Throws std::invalid_argument
 // for a field that is not height-only, an elevation outside the range, a top at or below the eye,
-// or a ray that meets the ground (h = 0) before it leaves the air.
+// or a ray that meets the ground (h = 0) before it leaves the air; NumericalError for a ray that
+// cannot leave (ducted, or turned back where n drops to 1 above a low top).
 double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
                                const AstronomicalRefractionOptions& options);
 // The same at many apparent elevations [rad], in parallel; options validated first.

@@ -229,6 +229,10 @@ Image render(const RenderScene& scene, const Camera& camera, const FieldPtr& exa
   // Rays must stay where scene coordinates may lie (Embree's points are checked against
   // kSceneReach): one let run farther failed mid-render (a trial's max_length 1e8 m, seconds in).
   const double eye = camera.position().cwiseAbs().maxCoeff() + camera.aperture_diameter();
+  if (!(eye < kSceneReach)) {  // no max_length would do: none is 0 or less
+    throw_invalid("render: the camera is ", eye, " m from the origin, at the end of scene coordinates (",
+                  kSceneReach, " m): rays cannot start there; place the scene's origin nearer the camera");
+  }
   if (!(eye + options.max_length <= kSceneReach)) {
     throw_invalid("render: max_length ", options.max_length, " m from a camera ", eye, " m out would take rays beyond ",
                   kSceneReach, " m from the origin, where scene coordinates end: give max_length at most ",
