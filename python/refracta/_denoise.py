@@ -24,6 +24,11 @@ def _channels(name: str, array, shape=None, lo: float = 0.0, hi: float = np.inf)
         raise ValueError(f"denoise: {name} must have the image's shape {shape} (got {values.shape})")
     if not np.all(np.isfinite(values)):
         raise ValueError(f"denoise: {name} must be finite (it has NaN or inf)")
+    if name == "image" and values.min() < 0.0 <= values.max() <= hi:
+        raise ValueError(
+            f"denoise: image must be >= 0 (got values down to {values.min():g}): a spectral render's colours "
+            "outside sRGB's gamut come out negative; denoise np.maximum(image, 0), as render(denoise=True) does"
+        )
     if values.min() < lo or values.max() > hi:
         raise ValueError(f"denoise: {name} must lie in [{lo:g}, {hi:g}] (got [{values.min():g}, {values.max():g}])")
     return np.ascontiguousarray(values, dtype=np.float32)

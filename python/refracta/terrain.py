@@ -17,8 +17,17 @@ Two forms of :func:`add_terrain` (bound as ``Scene.add_terrain``):
   3601 x 3601 samples, the name giving its south-west corner, e.g. ``N46E007.hgt``; -32768 marks a
   void), a GeoTIFF (read with tifffile: ModelTiepoint + ModelPixelScale and its GeoKeys; geographic
   WGS84 (EPSG:4326) or a projected CRS with an EPSG code, through pyproj; GDAL_NODATA samples are
-  holes), or a list of such files (one grid each; neighbouring SRTM tiles share their edge samples,
-  so they meet without a seam). Each sample goes to ``frame.to_scene(lat, lon, h)``
+  holes), or a list of such files. Tiles of a list on one lattice (one CRS, equal spacings, their
+  samples a whole number of samples apart) that touch are joined into one grid before they are
+  placed: NaN where no tile covers, the first file's sample where tiles overlap (neighbouring SRTM
+  tiles share their edge samples), so that pixel-is-area GeoTIFF tiles, whose edge samples lie one
+  spacing apart, meet without a crack. Tiles on different lattices (another CRS or spacing, or
+  shifted by a fraction of a sample) stay separate grids, as do touching tiles of one lattice too
+  sparse to join (a grid over twice their samples): a SceneWarning names them where a crack may
+  show between them (tiles of one CRS that meet edge to edge without sharing an area of samples).
+  A geographic grid all around the Earth (columns x spacing = 360 deg) is closed across the
+  meridian where its columns wrap; its polar caps, beyond its first and last rows, stay open.
+  Each sample goes to ``frame.to_scene(lat, lon, h)``
   (:class:`refracta.geo.LocalFrame`: azimuthal equidistant about the observer, flat heights with
   ``frame.earth_radius`` -- give the scene's CurvedEarth the same radius).
 
@@ -40,8 +49,9 @@ import math
 import os
 import re
 import stat
-from collections.abc import Sequence
-from dataclasses import dataclass
+import warnings
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, replace
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -74,11 +84,22 @@ _SINGLE_PRECISION_STEPS = 8
 _VERTICAL_UNITS = {9001: 1.0, 9002: 0.3048, 9003: 1200.0 / 3937.0, 9036: 1000.0}
 _RASTER_PIXEL_IS_POINT = 2
 _EPSG_WGS84 = 4326
+# Tiles lie on one lattice when their first samples are a whole number of samples apart to this
+# fraction of a sample: GeoTIFF writers' doubles put them ~1e-12 of a sample off, a tile resampled
+# with a shifted origin is off by a visible fraction.
+_LATTICE_TOLERANCE = 1e-6
+# ... and their spacings agree to this fraction: across a mosaic 1e5 samples wide the two lattices
+# part by at most 1e-4 of a sample (double-precision scales of one spacing agree to ~1e-16).
+_SPACING_TOLERANCE = 1e-9
+# A mosaic of touching tiles holds at most this many times their samples (NaN where none covers:
+# two tiles meeting at a corner fill half of theirs); sparser ones stay separate grids (warned).
+_MOSAIC_FILL = 2.0
 
 
 class TerrainGeometry(NamedTuple):
     """What :func:`add_terrain` added: the terrain's geometry ids (one per grid: one for an array or
-    a file, one per tile of a list) and the water surface's id (None without ``water_level``)."""
+    a file; for a list, one per set of touching tiles joined into one grid and one per tile left
+    alone, in the order of their first files) and the water surface's id (None without ``water_level``)."""
 
     terrain: list[int]
     water: int | None
@@ -406,9 +427,13 @@ def _orthophoto_uv(orthophoto: str, grid: Elevation) -> np.ndarray:
     left, top = photo.x0 - 0.5 * photo.dx, photo.y0 + 0.5 * photo.dy
     su = 1.0 / (width * photo.dx)
     st = 1.0 / (height * photo.dy)
+    x0 = grid.x0
+    if grid.epsg == _EPSG_WGS84:  # the grid's longitudes in the photo's convention ([-180, 180] or [0, 360])
+        turns = (_middle(photo.x0, photo.dx, width) - _middle(grid.x0, grid.dx, grid.heights.shape[1])) / 360.0
+        x0 += 360.0 * round(turns)
     return np.array(
         [
-            [grid.dx * su, 0.0, (grid.x0 - left) * su],
+            [grid.dx * su, 0.0, (x0 - left) * su],
             [0.0, -grid.dy * st, 1.0 - (top - grid.y0) * st],
         ]
     )
@@ -557,6 +582,207 @@ def _geographic_positions(grid: Elevation, frame) -> np.ndarray:
     return positions
 
 
+def _tile_grids(paths: list[str]) -> Iterator[Elevation]:
+    """The grids of a list of elevation files, one at a time: touching tiles of one lattice joined
+    into one (:func:`_tile_sets`), a geographic grid all around the Earth closed (:func:`_closed_around`).
+    The tiles are read first (every file's error before any grid is placed); each one's heights go
+    as its grid is made."""
+    read = []
+    for path in paths:
+        with _named("add_terrain"):
+            read.append(_read_elevation(path))
+        if np.isnan(read[-1].heights).all():
+            raise ValueError(f"add_terrain: {path!r} holds only voids: nothing to add")
+    sets = _tile_sets(paths, read)
+    tiles: list[Elevation | None] = list(read)  # each tile leaves as its grid is made
+    del read
+    for members in sets:
+        yield _closed_around(_joined(tiles, members))
+
+
+def _middle(x0: float, dx: float, count: int) -> float:
+    """The coordinate halfway between a grid's first and last samples along one axis."""
+    return x0 + 0.5 * (count - 1) * dx
+
+
+def _on_lattice(reference: Elevation, tile: Elevation) -> tuple[float, int, int] | None:
+    """(x0, row, column): where ``tile``'s first sample lies on ``reference``'s lattice, with the
+    tile's x0 in the reference's convention (a geographic tile's longitudes moved by whole turns to
+    within 180 deg of the reference's first sample); None when the lattices differ (another CRS,
+    another spacing, or samples a fraction of a sample apart)."""
+    if tile.epsg != reference.epsg:
+        return None
+    if not (
+        abs(tile.dx - reference.dx) <= _SPACING_TOLERANCE * reference.dx
+        and abs(tile.dy - reference.dy) <= _SPACING_TOLERANCE * reference.dy
+    ):
+        return None
+    x0 = tile.x0
+    if tile.epsg == _EPSG_WGS84:
+        x0 -= 360.0 * math.floor((x0 - reference.x0 + 180.0) / 360.0)
+    column, row = (x0 - reference.x0) / reference.dx, (reference.y0 - tile.y0) / reference.dy
+    if abs(column - round(column)) > _LATTICE_TOLERANCE or abs(row - round(row)) > _LATTICE_TOLERANCE:
+        return None
+    return x0, round(row), round(column)
+
+
+def _tile_sets(paths: list[str], tiles: list[Elevation]) -> list[list[int]]:
+    """Which tiles make one grid (indices, each set in file order, the sets in the order of their
+    first files): the touching tiles of one lattice (:func:`_touching`) whose grid holds at most
+    _MOSAIC_FILL times their samples; every other tile alone. A SceneWarning names the tiles left
+    alone between which a crack may show. Geographic tiles are moved by whole turns onto their
+    lattice's convention (in ``tiles``)."""
+    from refracta._render import SceneWarning
+
+    # The lattices, each tile on the first it lies on.
+    lattices: list[list[int]] = []
+    for i, tile in enumerate(tiles):
+        for lattice in lattices:
+            place = _on_lattice(tiles[lattice[0]], tile)
+            if place is not None:
+                tiles[i] = replace(tile, x0=place[0])
+                lattice.append(i)
+                break
+        else:
+            lattices.append([i])
+    # The touching tiles of each lattice, joined unless too sparse.
+    sets: list[list[int]] = []
+    lattice_of: list[int] = []  # each set's lattice
+    for k, lattice in enumerate(lattices):
+        for touching in _touching([tiles[i] for i in lattice]):
+            members = [lattice[m] for m in touching]
+            grid = _mosaic_frame([tiles[i] for i in members])[0]
+            samples = sum(tiles[i].heights.size for i in members)
+            if grid.heights.shape[0] * grid.heights.shape[1] <= _MOSAIC_FILL * samples:
+                sets.append(members)
+                lattice_of.append(k)
+                continue
+            warnings.warn(
+                f"add_terrain: the tiles {[paths[i] for i in members]} touch on one grid but are too sparse to join: "
+                f"their grid would hold {grid.heights.shape[0] * grid.heights.shape[1]} samples, over "
+                f"{_MOSAIC_FILL:g} times their {samples}; they are added as separate grids and a crack may show "
+                "between them",
+                SceneWarning,
+                stacklevel=4,
+            )
+            sets.extend([i] for i in members)
+            lattice_of.extend([k] * len(members))
+    # Grids of different lattices meeting edge to edge: a crack may show between them.
+    frames = [_mosaic_frame([tiles[i] for i in members])[0] for members in sets]
+    names = [" + ".join(repr(paths[i]) for i in members) for members in sets]
+    cracks = [
+        f"{names[a]} and {names[b]}"
+        for a in range(len(sets))
+        for b in range(a + 1, len(sets))
+        if lattice_of[a] != lattice_of[b] and _meet_edge_to_edge(frames[a], frames[b])
+    ]
+    if cracks:
+        warnings.warn(
+            f"add_terrain: tiles on different grids (another spacing, or shifted by a fraction of a sample) meet "
+            f"edge to edge: {'; '.join(cracks)}; they cannot be joined and a crack may show between them "
+            "(resample them onto one grid to join them)",
+            SceneWarning,
+            stacklevel=4,
+        )
+    return sorted(sets, key=min)
+
+
+def _touching(tiles: list[Elevation]) -> list[list[int]]:
+    """The sets of tiles of one lattice connected through touching ones (indices in order): two
+    touch when their samples overlap, share an edge (SRTM tiles) or lie one spacing apart
+    (pixel-is-area tiles), also across a corner."""
+    first = np.array(_mosaic_frame(tiles)[1])
+    last = first + np.array([tile.heights.shape[:2] for tile in tiles]) - 1
+    # At most one spacing between them along rows and along columns.
+    touch = np.all((first[:, None, :] <= last[None, :, :] + 1) & (first[None, :, :] <= last[:, None, :] + 1), axis=2)
+    unseen = set(range(len(tiles)))
+    sets = []
+    for start in range(len(tiles)):
+        if start not in unseen:
+            continue
+        unseen.discard(start)
+        members, frontier = [start], [start]
+        while frontier:
+            for j in np.flatnonzero(touch[frontier.pop()]):
+                if int(j) in unseen:
+                    unseen.discard(int(j))
+                    members.append(int(j))
+                    frontier.append(int(j))
+        sets.append(sorted(members))
+    return sets
+
+
+def _mosaic_frame(tiles: Sequence[Elevation]) -> tuple[Elevation, list[tuple[int, int]]]:
+    """The grid over tiles of one lattice (their longitudes in one convention: _tile_sets), as a
+    shape-only Elevation (heights (rows, cols, 0)), and each tile's first sample (row, column) in it."""
+    reference = tiles[0]
+    offsets = [
+        (round((reference.y0 - tile.y0) / reference.dy), round((tile.x0 - reference.x0) / reference.dx))
+        for tile in tiles
+    ]
+    top, left = min(r for r, _ in offsets), min(c for _, c in offsets)
+    rows = max(r + tile.heights.shape[0] for tile, (r, _) in zip(tiles, offsets)) - top
+    cols = max(c + tile.heights.shape[1] for tile, (_, c) in zip(tiles, offsets)) - left
+    grid = Elevation(
+        np.empty((rows, cols, 0)),
+        reference.x0 + left * reference.dx,
+        reference.y0 - top * reference.dy,
+        reference.dx,
+        reference.dy,
+        reference.epsg,
+    )
+    return grid, [(r - top, c - left) for r, c in offsets]
+
+
+def _joined(tiles: list[Elevation | None], members: list[int]) -> Elevation:
+    """One grid of the tiles ``members`` of one lattice: NaN where none covers, the first tile's
+    sample where they overlap (neighbouring SRTM tiles share their edge samples, which agree). The
+    tiles leave ``tiles``: their heights go when the grid is made (one grid's at a time)."""
+    parts = []
+    for i in members:
+        tile, tiles[i] = tiles[i], None
+        assert tile is not None  # _tile_sets puts each tile in one set
+        parts.append(tile)
+    if len(parts) == 1:
+        return parts[0]
+    frame, corners = _mosaic_frame(parts)
+    heights = np.full(frame.heights.shape[:2], np.nan)
+    for tile, (r, c) in zip(parts, corners):
+        window = heights[r : r + tile.heights.shape[0], c : c + tile.heights.shape[1]]
+        np.copyto(window, tile.heights, where=np.isnan(window))
+    return replace(frame, heights=heights)
+
+
+def _closed_around(grid: Elevation) -> Elevation:
+    """A geographic grid all around the Earth (columns x dx = 360 deg, as a global pixel-is-area
+    grid's) with its first column repeated after its last, at its longitudes + 360 deg: the cells
+    between them close the seam where its columns wrap (the antimeridian, or 0 deg in the [0, 360]
+    convention). Any other grid as it is. Nothing is added at the poles."""
+    cols = grid.heights.shape[1]
+    if grid.epsg != _EPSG_WGS84 or abs(cols * grid.dx - 360.0) > _LATTICE_TOLERANCE * grid.dx:
+        return grid
+    return replace(grid, heights=np.concatenate([grid.heights, grid.heights[:, :1]], axis=1))
+
+
+def _meet_edge_to_edge(a: Elevation, b: Elevation) -> bool:
+    """Whether grids ``a`` and ``b`` (shape-only is enough) of one CRS meet edge to edge: their
+    pixels touch (at most half a spacing of each between their outer samples) but no area lies
+    under the samples of both, so their triangles may leave a crack between them. Grids in two
+    CRSs are not compared."""
+    if a.epsg != b.epsg:
+        return False
+    (rows_a, cols_a), (rows_b, cols_b) = a.heights.shape[:2], b.heights.shape[:2]
+    shift = 0.0
+    if a.epsg == _EPSG_WGS84:  # b's longitudes in a's convention
+        shift = 360.0 * round((_middle(a.x0, a.dx, cols_a) - _middle(b.x0, b.dx, cols_b)) / 360.0)
+    gap_x = max(a.x0, b.x0 + shift) - min(a.x0 + (cols_a - 1) * a.dx, b.x0 + shift + (cols_b - 1) * b.dx)
+    gap_y = max(a.y0 - (rows_a - 1) * a.dy, b.y0 - (rows_b - 1) * b.dy) - min(a.y0, b.y0)
+    slack_x, slack_y = _LATTICE_TOLERANCE * min(a.dx, b.dx), _LATTICE_TOLERANCE * min(a.dy, b.dy)
+    touch = gap_x <= 0.5 * (a.dx + b.dx) + slack_x and gap_y <= 0.5 * (a.dy + b.dy) + slack_y
+    overlap = gap_x < -slack_x and gap_y < -slack_y
+    return touch and not overlap
+
+
 def _water(scene, material, level, earth_radius: float | None, lower, upper) -> int:
     """A rectangle at the flat height of ``level`` over the terrain's extent (x, z)."""
     if not is_number(level):
@@ -625,14 +851,10 @@ def add_terrain(
             )
         if frame is None or not hasattr(frame, "to_scene"):
             raise ValueError("add_terrain: elevation files need frame=refracta.geo.LocalFrame(lat, lon) to place them")
-        paths = [heights] if isinstance(heights, (str, os.PathLike)) else list(heights)
-        for path in paths:
-            with _named("add_terrain"):
-                grid = _read_elevation(os.fspath(path))
-            if np.isnan(grid.heights).all():
-                raise ValueError(f"add_terrain: {os.fspath(path)!r} holds only voids: nothing to add")
-            grids.append((_geographic_positions(grid, frame), grid))
-            del grid  # the float64 heights go before the next tile is read
+        paths = [os.fspath(heights)] if isinstance(heights, (str, os.PathLike)) else [os.fspath(p) for p in heights]
+        for grid in _tile_grids(paths):
+            placement = replace(grid, heights=np.empty((*grid.heights.shape, 0)))  # the uvs' (the heights go)
+            grids.append((_geographic_positions(grid, frame), placement))
         radius = float(frame.earth_radius)
     else:
         if frame is not None:

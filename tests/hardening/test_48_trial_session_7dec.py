@@ -125,3 +125,22 @@ def test_a_camera_at_the_end_of_scene_coordinates_is_told_so():
     camera = refracta.Camera((0.0, 1e7, 0.0), (300.0, 1e7, 0.0), (0, 1, 0), 20.0, 8, 4)
     with pytest.raises(ValueError, match=r"the camera is 10000000 m from the origin, at the end of scene coordinates"):
         refracta.render(scene, camera, None, progress=False)
+
+
+def test_turbulence_cells_too_fine_to_trace_are_named():
+    # Cells of 1 um: each ray failed on "TraceOptions: rk45 with step 4e-06 m needs more than ...".
+    road = examples.hot_road(8, 4)
+    air = refracta.PhysicalAtmosphere(
+        **road.field.params, turbulence=refracta.Turbulence(1e-10, cells=16, spacing=1e-6)
+    )
+    with pytest.raises(ValueError, match=r"through the turbulence .*Turbulence\(spacing=\.\.\.\)"):
+        refracta.render(road.scene, road.camera, air, max_length=road.max_length, progress=False)
+
+
+def test_a_spectral_render_is_denoised_once_its_negative_colours_are_clipped():
+    # Out-of-gamut spectral colours are negative: "image must lie in [0, 3.4e+38]" did not say why.
+    image = np.ones((8, 8, 3), np.float32)
+    image[2, 3, 0] = -3.0
+    with pytest.raises(ValueError, match=r"outside sRGB's gamut come out negative; denoise np.maximum\(image, 0\)"):
+        refracta.denoise(image)
+    assert refracta.denoise(np.maximum(image, 0.0)).shape == (8, 8, 3)

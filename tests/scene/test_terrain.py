@@ -197,7 +197,7 @@ def test_neighbouring_tiles_share_their_edge(tmp_path):
     east = write_hgt(tmp_path, "N46E008.hgt", np.full((n, n), 100))
     frame = geo.LocalFrame(46.5, 8.0, earth_radius=math.inf)
     scene = refracta.Scene()
-    assert scene.add_terrain([west, east], frame=frame).terrain == [0, 1]
+    assert scene.add_terrain([west, east], frame=frame).terrain == [0]  # joined into one grid (terrain._tile_grids)
     seam = frame.to_scene(46.5, 8.0, 100.0)
     for dx in (-1.0, 0.0, 1.0):  # either side of and on the shared meridian
         assert vertical_hit(scene, seam[0] + dx, seam[2]) == pytest.approx(100.0, abs=1e-3)  # float32

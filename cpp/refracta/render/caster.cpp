@@ -307,6 +307,17 @@ Caster::Caster(const Scene& scene, const IndexField* field, const RenderOptions&
     // layered part still pre-bends shadow rays toward distant lights, and above every region
     // rays still leave along Bouguer's invariant).
     legs_ = !(options.trace && *options.trace == TraceMethod::kRk45);
+    // Inside a turbulent layer (a slab: a path may run in it all its length) rk45 steps at most
+    // half its scale, 8 cells: refused here, naming the cells, where that would take more steps
+    // than a trace may (a trial's turbulence of 1 um cells failed each ray on TraceOptions' step).
+    const double step = step_in_regions();
+    const int64_t max_steps = TraceOptions().max_steps;
+    const bool slab = std::any_of(regions_.begin(), regions_.end(), [](const LocalRegion& r) { return !std::isfinite(r.radius); });
+    if (slab && step < options.chord && options.max_length / step > double(max_steps)) {
+      throw_invalid("render: rk45 steps at most ", step, " m through the turbulence (half its scale of 8 cells): a ",
+                    "path of max_length ", options.max_length, " m in it would take more than ", max_steps,
+                    " steps; give the turbulence larger cells (Turbulence(spacing=...)) or a shorter max_length");
+    }
   }
 }
 
