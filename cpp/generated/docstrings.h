@@ -408,7 +408,8 @@ inline constexpr const char mkd_doc_refracta_RenderOptions_spp[] = R"doc(samples
 inline constexpr const char mkd_doc_refracta_RenderOptions_step[] = R"doc(raster_march 'rk4': the step [m])doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_surface_aovs[] = R"doc(Also render the albedo and normal of each sample's first non-specular hit (averaged over the pixel's
 samples): the image then has 9 channels, radiance, albedo, normal (Intel Open Image Denoise's
-auxiliary features; renderer.h). 'straight' and 'curved' only.)doc";
+auxiliary features; renderer.h; Python's render returns them as aovs=["albedo", "normal"] and the
+image's 3). 'straight' and 'curved' only.)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_texture_filter[] = R"doc(Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point samples
 the finest level (aliases: only for references and tests).)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_tile[] = R"doc(tile size [pixels] of the parallel loop)doc";

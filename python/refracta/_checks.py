@@ -93,3 +93,19 @@ def real_array(value, what: str, shape: tuple[int, ...] | None = None) -> np.nda
         given = given if len(given) <= 120 else given[:100] + " ..."  # 10**400 has 401 digits
         raise ValueError(f"{what} must be numbers{wanted} (got {given}){hint}")
     return array
+
+
+def no_unknown_keywords(where: str, unknown: dict, function, hint: str = "") -> None:
+    """A TypeError (refracta's ArgumentError) naming keywords ``function`` does not take, with the
+    ones it does (Python's own "got an unexpected keyword argument" named an internal function)."""
+    if unknown:
+        import inspect
+
+        from refracta._arguments import ArgumentError
+
+        parameters = inspect.signature(function).parameters.values()
+        names = [p.name for p in parameters if p.kind != p.VAR_KEYWORD and p.name != "self"]
+        raise ArgumentError(
+            f"{where}: unknown keyword{'s' if len(unknown) > 1 else ''} {', '.join(map(repr, unknown))} "
+            f"(it takes {', '.join(names)}){hint}"
+        )

@@ -1122,7 +1122,7 @@ class Camera:
         empty, non-finite or single-point box.
         """
     @staticmethod
-    def geographic(lat, lon, height, azimuth = None, elevation = None, *, target = None, vfov = None, focal_length_mm = None, sensor_mm = None, image_width = None, image_height = None, roll = 0.0, earth_radius = None) -> Camera:
+    def geographic(lat, lon, height, azimuth = None, elevation = None, *, target = None, vfov = None, focal_length_mm = None, sensor_mm = None, image_width = None, image_height = None, roll = 0.0, earth_radius = None, **unknown) -> Camera:
         """
         A camera at latitude ``lat``, longitude ``lon`` [deg], ``height`` [m] above the WGS84
             ellipsoid (the eye's height: the ground's height plus the eye above it), looking at ``azimuth``
@@ -2215,7 +2215,8 @@ class RenderOptions:
         """
         Also render the albedo and normal of each sample's first non-specular hit (averaged over the pixel's
         samples): the image then has 9 channels, radiance, albedo, normal (Intel Open Image Denoise's
-        auxiliary features; renderer.h). 'straight' and 'curved' only.
+        auxiliary features; renderer.h; Python's render returns them as aovs=["albedo", "normal"] and the
+        image's 3). 'straight' and 'curved' only.
         """
     @surface_aovs.setter
     def surface_aovs(self, arg0: bool) -> None:

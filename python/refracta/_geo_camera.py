@@ -5,7 +5,11 @@ from __future__ import annotations
 
 import math
 
+from refracta._checks import no_unknown_keywords
 from refracta._core import Camera
+
+# Where width= or height= is meant as the image's size (height is the eye's here).
+IMAGE_SIZE_HINT = "; the image's size is image_width= and image_height= (height is the eye's)"
 
 
 def geographic_camera(
@@ -23,6 +27,7 @@ def geographic_camera(
     image_height=None,
     roll=0.0,
     earth_radius=None,
+    **unknown,
 ) -> Camera:
     """A camera at latitude ``lat``, longitude ``lon`` [deg], ``height`` [m] above the WGS84
     ellipsoid (the eye's height: the ground's height plus the eye above it), looking at ``azimuth``
@@ -50,6 +55,8 @@ def geographic_camera(
         air = refracta.CurvedEarth(refracta.PhysicalAtmosphere(), radius=R)
     """
     from refracta import geo  # here: pyproj loads on first use, not with refracta
+
+    no_unknown_keywords("Camera.geographic", unknown, geographic_camera, IMAGE_SIZE_HINT)
 
     if target is None and (azimuth is None or elevation is None):
         raise ValueError("Camera.geographic: give azimuth and elevation [deg], or target=(lat, lon[, height])")

@@ -30,7 +30,7 @@ def without_refraction(field: _core.IndexField | None) -> _core.IndexField | Non
     return None
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # arrays: == would be ambiguous (two batches are equal by identity)
 class RayBatch:
     """Ends of a batch of traced rays.
 
@@ -55,6 +55,10 @@ class RayBatch:
 
     def __len__(self) -> int:
         return 3
+
+    def __getitem__(self, index):
+        """As the 3-tuple it unpacks as: end_points, end_directions, lengths."""
+        return (self.end_points, self.end_directions, self.lengths)[index]
 
 
 def trace_rays(

@@ -39,7 +39,7 @@ import numpy as np
 import pyproj
 
 from refracta import _core
-from refracta._checks import finite_pair, is_number, is_seed
+from refracta._checks import finite_pair, is_number, is_seed, no_unknown_keywords
 from refracta._refraction_coefficient import straight_elevation
 
 __all__ = ["LocalFrame", "forward", "inverse", "principal_radii", "radius_of_curvature", "sun_position"]
@@ -492,6 +492,7 @@ class LocalFrame:
         image_height=None,
         roll=0.0,
         position=None,
+        **unknown,
     ) -> _core.Camera:
         """A camera in this frame, ``height`` [m] above the ellipsoid (the eye, not the ground) over the
         origin (or over ``position`` = (lat, lon) elsewhere in the frame), looking at ``azimuth``
@@ -511,6 +512,9 @@ class LocalFrame:
         the image), 0 level. ValueError when both or neither of vfov and focal_length_mm are
         given, or for a non-finite angle.
         """
+        from refracta._geo_camera import IMAGE_SIZE_HINT
+
+        no_unknown_keywords("LocalFrame.camera", unknown, LocalFrame.camera, IMAGE_SIZE_HINT)
         if (vfov is None) == (focal_length_mm is None):
             raise ValueError("give exactly one of vfov and focal_length_mm")
         if target is not None:

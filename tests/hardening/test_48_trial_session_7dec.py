@@ -144,3 +144,29 @@ def test_a_spectral_render_is_denoised_once_its_negative_colours_are_clipped():
     with pytest.raises(ValueError, match=r"outside sRGB's gamut come out negative; denoise np.maximum\(image, 0\)"):
         refracta.denoise(image)
     assert refracta.denoise(np.maximum(image, 0.0)).shape == (8, 8, 3)
+
+
+def test_unknown_keywords_of_the_geographic_cameras_are_named():
+    # width= raised Python's own TypeError naming the internal geographic_camera().
+    with pytest.raises(refracta.ArgumentError, match=r"Camera.geographic: unknown keyword 'width' .*image_width="):
+        refracta.Camera.geographic(46.0, 7.0, 100.0, 0.0, 0.0, vfov=10.0, width=8)
+    with pytest.raises(refracta.ArgumentError, match=r"LocalFrame.camera: unknown keyword 'widht' \(it takes height,"):
+        geo.LocalFrame(46.0, 7.0).camera(10.0, 0.0, 0.0, vfov=10.0, widht=8)
+    assert refracta.Camera.geographic(46.0, 7.0, 100.0, 0.0, 0.0, vfov=10.0, image_width=8).width == 8
+
+
+def test_a_ray_batch_is_indexed_as_the_tuple_it_unpacks_as():
+    batch = refracta.trace_rays(refracta.PhysicalAtmosphere(), [[0.0, 1.0, 0.0]] * 4, [1.0, 0.0, 0.0], max_length=10.0)
+    points, directions, lengths = batch
+    assert batch[0] is points and batch[2] is lengths and len(batch) == 3
+    assert batch == batch and batch != refracta.trace_rays(refracta.PhysicalAtmosphere(), points, directions)
+
+
+def test_tolerances_below_round_off_and_tops_beyond_reach_are_named():
+    road = examples.hot_road(8, 4)
+    # "ElevationTable: stratified: tol must be at least ..." named a table the user never made.
+    with pytest.raises(ValueError, match=r"RenderOptions: tol must be at least 1e-15 x max_length = 1.2e-11 m"):
+        refracta.render(road.scene, road.camera, road.field, max_length=road.max_length, tol=1e-12, progress=False)
+    # "TraceOptions: stratified with step 100 m needs more than ..." did not name top.
+    with pytest.raises(ValueError, match=r"astronomical_refraction: top must be at most 10000000 m"):
+        refracta.astronomical_refraction(refracta.PhysicalAtmosphere(), 0.0, top=1e9)

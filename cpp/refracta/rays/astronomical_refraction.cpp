@@ -13,7 +13,10 @@ namespace refracta {
 void AstronomicalRefractionOptions::validate() const {
   Problems problems("astronomical_refraction");
   problems.check(std::isfinite(eye_height) && eye_height >= 0.0, "eye_height must be >= 0 m and finite (got ", eye_height, ")");
-  problems.check(!top || std::isfinite(*top), "top must be finite (got ", top.value_or(0.0), ")");
+  // Air ends within 1 000 km; the trace's length grows with the top (4 x it): at most where scene
+  // coordinates end.
+  problems.check(!top || (std::isfinite(*top) && *top <= kSceneReach), "top must be at most ", kSceneReach,
+                 " m and finite (got ", top.value_or(0.0), ")");
   problems.check(earth_radius > 0.0 && std::isfinite(earth_radius), "earth_radius must be finite and > 0 m (got ", earth_radius, ")");
   problems.check(tol > 0.0 && std::isfinite(tol), "tol must be > 0 m and finite (got ", tol, ")");
   problems.throw_if_any();

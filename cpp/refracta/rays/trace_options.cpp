@@ -10,7 +10,6 @@
 namespace refracta {
 
 namespace {
-constexpr double kMinRelativeTol = 1e-15;  // of max_length: double round-off of a position
 
 // The shortest text that reads back as x (as Python's repr).
 std::string shortest(double x) {

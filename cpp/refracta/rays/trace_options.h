@@ -20,6 +20,8 @@ const char* trace_method_name(TraceMethod method);
 constexpr double kRk4DefaultStep = 0.3;
 // stratified: the largest distance between path nodes when no step is given [m].
 constexpr double kStratifiedDefaultSpacing = 100.0;
+// The least tol, of max_length: a position's round-off in doubles.
+constexpr double kMinRelativeTol = 1e-15;
 
 // Options of refracta.trace_ray and trace_rays, with their defaults (defined once, here). Set any
 // field by name; validate() reports every bad value at once. Pickles through its fields.

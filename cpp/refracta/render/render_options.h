@@ -118,7 +118,8 @@ struct RenderOptions {
   bool differentials = true;
   // Also render the albedo and normal of each sample's first non-specular hit (averaged over the
   // pixel's samples): the image then has 9 channels, radiance, albedo, normal (Intel Open Image
-  // Denoise's auxiliary features; renderer.h). 'straight' and 'curved' only.
+  // Denoise's auxiliary features; renderer.h; Python's render returns them as
+  // aovs=["albedo", "normal"] and the image's 3). 'straight' and 'curved' only.
   bool surface_aovs = false;
   // With surface_aovs: when above spp, the albedo and normal come from a pass of their own with
   // this many samples per pixel that stops at each path's first non-specular surface (no lighting:

@@ -85,7 +85,12 @@ void RenderOptions::validate() const {
   if (!(sagitta_pixels >= 0.0) || !std::isfinite(sagitta_pixels)) {
     problems.add("sagitta_pixels must be >= 0 and finite (got ", sagitta_pixels, ")");
   }
-  if (!(tol > 0.0) || !std::isfinite(tol)) problems.add("tol must be > 0 (got ", tol, ")");
+  if (!(tol > 0.0) || !std::isfinite(tol)) {
+    problems.add("tol must be > 0 (got ", tol, ")");
+  } else if (method != RenderMethod::kStraight && tol < kMinRelativeTol * max_length) {
+    problems.add("tol must be at least ", kMinRelativeTol, " x max_length = ", kMinRelativeTol * max_length,
+                 " m, the round-off of positions (got ", tol, "): raise tol or lower max_length");
+  }
   if (tile < 1) problems.add("tile must be >= 1 (got ", tile, ")");
   if (trace && *trace == TraceMethod::kRk4) problems.add("trace must be 'rk45' or 'stratified' for rendering");
   if (march == TraceMethod::kStratified) problems.add("march must be 'rk4' or 'rk45'");
