@@ -24,7 +24,14 @@ import numpy as np
 
 from refracta import _core, _options
 from refracta._checks import finite_pair, is_number, is_seed, real_array
-from refracta._render import _check_scene, _denoised, _surface_outputs, render_options, warn_if_perturbed_refused
+from refracta._render import (
+    SceneWarning,
+    _check_scene,
+    _denoised,
+    _surface_outputs,
+    render_options,
+    warn_if_perturbed_refused,
+)
 from refracta._sweep import map_ordered
 
 __all__ = ["animate", "field_at_time", "geometric_noise", "geometric_noise_map"]
@@ -246,6 +253,13 @@ def animate(
         geometric_noise_map(1, 1, **noise)  # checks the values before any work
     if turbulence is not None:
         with_turbulence(field, turbulence)  # checks the field before any work
+        if getattr(field, "turbulence", None) is not None:
+            warnings.warn(
+                "animate: the field has turbulence of its own, and turbulence= replaces it in every frame "
+                "(give field.with_turbulence(None) to say so)",
+                SceneWarning,
+                stacklevel=2,
+            )
     given_fps = fps
     unused = [name for name, value in (("fps", fps), ("exposure", exposure), ("tonemap", tonemap)) if value is not None]
     if path is None and unused:

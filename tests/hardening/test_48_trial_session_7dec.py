@@ -170,3 +170,11 @@ def test_tolerances_below_round_off_and_tops_beyond_reach_are_named():
     # "TraceOptions: stratified with step 100 m needs more than ..." did not name top.
     with pytest.raises(ValueError, match=r"astronomical_refraction: top must be at most 10000000 m"):
         refracta.astronomical_refraction(refracta.PhysicalAtmosphere(), 0.0, top=1e9)
+
+
+def test_animate_says_when_turbulence_replaces_the_fields_own():
+    road = examples.hot_road(8, 4)
+    turbulence = refracta.Turbulence(1e-10, cells=16, wind=(1.0, 0.0))
+    air = refracta.PhysicalAtmosphere(**road.field.params, turbulence=turbulence)
+    with pytest.warns(refracta.SceneWarning, match=r"the field has turbulence of its own, and turbulence= replaces"):
+        refracta.animate(road.scene, road.camera, air, [0.0], turbulence=turbulence, progress=False)
