@@ -458,7 +458,7 @@ inline constexpr const char mkd_doc_refracta_SolveSettings_local_starts[] = R"do
 inline constexpr const char mkd_doc_refracta_SolveSettings_loss_scale[] = R"doc([m] the miss where the robust loss starts to down-weight)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_max_evaluations[] = R"doc(Cost evaluations of the whole solve, each tracing every pair (ceres: residual and Jacobian passes;
 nlopt: every call of the objective; the global stage: every design point).)doc";
-inline constexpr const char mkd_doc_refracta_SolveSettings_max_iterations[] = R"doc(LM iterations of the whole solve (ceres); nlopt counts evaluations instead)doc";
+inline constexpr const char mkd_doc_refracta_SolveSettings_max_iterations[] = R"doc(LM iterations of the whole solve (ceres); nlopt has none: max_evaluations stops it)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_parameter_tolerance[] = R"doc(relative change of the parameters that ends the solve)doc";
 inline constexpr const char mkd_doc_refracta_SolveSettings_pixel_tolerance[] = R"doc([pixels] a pair with a pixel destination is met when its miss is within its margin plus this
 fraction of the pixel's footprint at the source (the camera's pixel angle times the source's range;

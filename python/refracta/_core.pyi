@@ -2435,7 +2435,7 @@ class SolveSettings:
     @property
     def max_iterations(self) -> int:
         """
-        LM iterations of the whole solve (ceres); nlopt counts evaluations instead
+        LM iterations of the whole solve (ceres); nlopt has none: max_evaluations stops it
         """
     @max_iterations.setter
     def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:

@@ -611,9 +611,8 @@ def render_file(
         refracta.io.write_image(output, result, **display)
     defaults = refracta.RenderOptions()
     method, transport = method or defaults.method, transport or defaults.transport
-    print(
-        f"wrote {output} ({camera.width}x{camera.height}, {method}, {transport}, {time.perf_counter() - start:.1f} s)"
-    )
+    written = (result[0] if aovs else result).shape  # pixel_bounds: a part of the camera's image
+    print(f"wrote {output} ({written[1]}x{written[0]}, {method}, {transport}, {time.perf_counter() - start:.1f} s)")
     return 0
 
 

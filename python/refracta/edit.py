@@ -36,6 +36,7 @@ Units: metres (scene units for LogisticProfile); cost is 1/2 sum weight * miss^2
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -458,9 +459,17 @@ def solve(
                 "eye_or_camera (the camera whose pixels the destinations are)"
             )
     settings, pair_options = solve_options(settings, pair_options, where=where, **options)
+    if "max_iterations" in options and settings.backend.startswith("nlopt"):
+        warnings.warn(
+            f"{where}: max_iterations counts Ceres' iterations; {settings.backend} has none and stops on "
+            "max_evaluations (every call of its objective) and time_limit",
+            RuntimeWarning,
+            stacklevel=2,
+        )
     pairs, eye, camera, origins, directions, sources, weights, margins, tolerances = _pair_rays(
         eye_or_camera, pairs, settings.pixel_tolerance
     )
+    check_solve_keywords(field, bounds)  # bounds where the model is defined (a trial's humidity in [-1, 3])
     bounds = _bounds_of(bounds)
     callback = progress_callback(progress, f"editing ({settings.backend})", share=True)  # the budget's share used
     initial = _core._pair_distances(field, origins, directions, sources, pair_options)
@@ -533,9 +542,18 @@ def check_solve_keywords(field: _core.IndexField, bounds=None, derivatives: str 
     """solve()'s bounds= and derivatives= checked before any work (the editor's solve_options):
     bounds of the field's or the camera's parameters, a derivatives name the field takes."""
     names = list(field.param_names) + list(CAMERA_PARAMETERS)
-    for name in _bounds_of(bounds):
+    for name, (lower, upper) in _bounds_of(bounds).items():
         if name not in names:
             raise ValueError(f"bounds given for {name!r}, which is not a parameter of {field.type_name} ({names})")
+        if not (math.isfinite(lower) and math.isfinite(upper) and lower < upper):
+            raise ValueError(f"bounds of {name!r} must be finite with lower < upper (got [{lower:g}, {upper:g}])")
+        for bound in (lower, upper) if name in field.param_names else ():
+            try:  # the model's own rule (as solve's EditProblem checks it)
+                field.with_params(**{name: bound})
+            except ValueError as error:
+                raise ValueError(
+                    f"bounds of {name!r} must lie where {field.type_name} is defined: at {bound:g}, {error}"
+                ) from None
     if derivatives is not None:
         _core._check_derivatives(derivatives, field)
 

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from refracta import _core
-from refracta._checks import real_array
+from refracta._checks import is_number, real_array
 
 _UNSET = object()  # a deprecated keyword not given
 
@@ -74,8 +74,12 @@ def ray_fan(
         )
     stop_height = _renamed("ground", ground, "stop_height", stop_height)
     trace = _renamed("method", method, "trace", trace)
-    if not np.isfinite(eye_height) or (stop_height is not None and eye_height < stop_height):
-        raise ValueError(f"eye_height must be finite and above the ground (got {eye_height})")
+    if (
+        not is_number(eye_height)
+        or not np.isfinite(eye_height)
+        or (stop_height is not None and eye_height < stop_height)
+    ):
+        raise ValueError(f"ray_fan: eye_height must be a finite number above the ground (got {eye_height!r})")
     trace = trace or ("stratified" if field.height_only else "rk45")
 
     # The air's own profiles: a CurvedEarth's base at true heights (its flat frame's index rises with

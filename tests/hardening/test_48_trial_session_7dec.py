@@ -3,7 +3,9 @@ real-places workflow, an edge-case trial of the renderers): compare.format_table
 rows it was not made for; scene.terrain_height (the flat frame's y) was offered as a geographic
 camera's ground; a 1 nm surface layer sent rays below the ground; a star reflected back at a low
 top of the air was taken as leaving level, and top=0 as no top; a misspelt keyword of animate was
-blamed on a missing one; a camera at the end of scene coordinates was asked for max_length <= 0."""
+blamed on a missing one; a camera at the end of scene coordinates was asked for max_length <= 0;
+an editing trial's bounds where the model is undefined, max_iterations silently ignored by nlopt,
+the command line's size of a pixel_bounds render, ray_fan's eye_height as a string."""
 
 import numpy as np
 import pytest
@@ -178,3 +180,82 @@ def test_animate_says_when_turbulence_replaces_the_fields_own():
     air = refracta.PhysicalAtmosphere(**road.field.params, turbulence=turbulence)
     with pytest.warns(refracta.SceneWarning, match=r"the field has turbulence of its own, and turbulence= replaces"):
         refracta.animate(road.scene, road.camera, air, [0.0], turbulence=turbulence, progress=False)
+
+
+# --- A technical artist's trial of editing, scene files and the command line -------------------------
+
+
+def traced_pairs():
+    """Three pairs traced through a known surface layer (12 K over 0.15 m) from an eye 1.5 m up."""
+    from refracta.edit import PointPair
+
+    truth = refracta.PhysicalAtmosphere(surface_dt=12.0, surface_depth=0.15)
+    eye = np.array([0.0, 1.5, 0.0])
+    pairs = []
+    for elevation, length in [(-0.003, 400.0), (-0.0025, 700.0), (-0.002, 900.0)]:
+        d = np.array([1.0, elevation, 0.0]) / np.hypot(1.0, elevation)
+        end = refracta.trace_ray(truth, eye, d, max_length=length, stop_height=0.0).points[-1]
+        pairs.append(PointPair(tuple(eye + 100.0 * d), tuple(end)))
+    return eye, pairs
+
+
+def test_bounds_beyond_where_the_model_is_defined_are_refused_up_front():
+    # humidity in [-1, 3] was taken: the solve spent all 200 iterations on air it could not trace.
+    from refracta import edit
+
+    eye, pairs = traced_pairs()
+    start = refracta.PhysicalAtmosphere(surface_dt=5.0, surface_depth=0.3)
+    with pytest.raises(ValueError, match=r"bounds of 'humidity' must lie where PhysicalAtmosphere is defined: at -1, "):
+        edit.solve(start, eye, pairs, free=["humidity"], bounds={"humidity": (-1.0, 3.0)}, stop_height=0.0)
+    # The editor checks them when it is made, not in the background solve.
+    from refracta.widgets import EditorModel
+
+    road = examples.hot_road(48, 16)
+    for bounds, message in (({"surface_dt": (5.0, 1.0)}, "lower < upper"), ({"humidity": (0.0, 3.0)}, "at 3, ")):
+        with pytest.raises(ValueError, match=message):
+            EditorModel(
+                road.scene,
+                road.camera,
+                road.field,
+                free=list(bounds),
+                solve_options={"bounds": bounds},
+                autorender=False,
+            )
+
+
+def test_max_iterations_given_to_an_nlopt_backend_is_said_to_have_no_effect():
+    from refracta import edit
+
+    eye, pairs = traced_pairs()
+    start = refracta.PhysicalAtmosphere(surface_dt=5.0, surface_depth=0.3)
+    with pytest.warns(RuntimeWarning, match=r"max_iterations counts Ceres' iterations; nlopt:LN_BOBYQA has none"):
+        result = edit.solve(
+            start,
+            eye,
+            pairs,
+            free=["surface_dt"],
+            backend="nlopt:LN_BOBYQA",
+            max_iterations=1,
+            max_evaluations=20,
+            strategy="local",
+            stop_height=0.0,
+        )
+    assert result.evaluations <= 20 + 2  # max_evaluations holds (and the measures of the best point after)
+
+
+def test_the_command_line_says_the_size_it_wrote(tmp_path, capsys):
+    from refracta import cli
+
+    scene = tmp_path / "s.toml"
+    scene.write_text(
+        "[camera]\nposition = [0, 1.5, 0]\nlook_at = [100, 1.5, 0]\nvfov = 20\nsize = [48, 16]\n"
+        "[sky]\nzenith = [1, 1, 1]\nhorizon = [1, 1, 1]\n"
+    )
+    assert cli.main(["render", str(scene), "-o", str(tmp_path / "p.exr"), "--set", "pixel_bounds=[4,2,20,10]"]) == 0
+    assert "(16x8," in capsys.readouterr().out  # the part written, not the camera's 48 x 16
+    assert refracta.io.read_image(tmp_path / "p.exr").shape[:2] == (8, 16)
+
+
+def test_ray_fan_names_an_eye_height_that_is_no_number():
+    with pytest.raises(ValueError, match=r"ray_fan: eye_height must be a finite number above the ground \(got '1.5'\)"):
+        refracta.plot.ray_fan(refracta.PhysicalAtmosphere(), "1.5", [0.1], 500.0)

@@ -55,7 +55,7 @@ struct SolveSettings {
   // Limits of the whole solve: every stage (the first local solve, its continuations, the global
   // stage's design points, the local solves from them, and every start) draws on one budget. What
   // stopped a stage is named in SolveSummary::stages.
-  int max_iterations = 200;        // LM iterations of the whole solve (ceres); nlopt counts evaluations instead
+  int max_iterations = 200;        // LM iterations of the whole solve (ceres); nlopt has none: max_evaluations stops it
   // Cost evaluations of the whole solve, each tracing every pair (ceres: residual and Jacobian passes; nlopt: every
   // call of the objective; the global stage: every design point).
   int max_evaluations = 3000;
