@@ -545,8 +545,11 @@ def check_solve_keywords(field: _core.IndexField, bounds=None, derivatives: str 
     for name, (lower, upper) in _bounds_of(bounds).items():
         if name not in names:
             raise ValueError(f"bounds given for {name!r}, which is not a parameter of {field.type_name} ({names})")
-        if not (math.isfinite(lower) and math.isfinite(upper) and lower < upper):
-            raise ValueError(f"bounds of {name!r} must be finite with lower < upper (got [{lower:g}, {upper:g}])")
+        if not (math.isfinite(lower) and math.isfinite(upper) and lower < upper and math.isfinite(upper - lower)):
+            raise ValueError(  # as the solve's own check (edit_problem.cpp) says it
+                f"bounds of {name!r} must be finite with lower < upper and a finite width upper - lower "
+                f"(got [{lower:g}, {upper:g}])"
+            )
         for bound in (lower, upper) if name in field.param_names else ():
             try:  # the model's own rule (as solve's EditProblem checks it)
                 field.with_params(**{name: bound})

@@ -882,6 +882,8 @@ def load_scene(path, size=None) -> SceneFile:
             )
         except ValueError as error:
             raise where.error(str(error), "sky") from None
+        except _core.IoError as error:  # the environment file: located, its kind kept (as [environment]'s)
+            raise where.located(error, "sky", "environment") from None
 
     _lights(scene, data.get("lights", []), data, where, get, present)
 

@@ -259,3 +259,25 @@ def test_the_command_line_says_the_size_it_wrote(tmp_path, capsys):
 def test_ray_fan_names_an_eye_height_that_is_no_number():
     with pytest.raises(ValueError, match=r"ray_fan: eye_height must be a finite number above the ground \(got '1.5'\)"):
         refracta.plot.ray_fan(refracta.PhysicalAtmosphere(), "1.5", [0.1], 500.0)
+
+
+def test_a_stage_stopped_by_its_own_cap_says_so():
+    # "local from the start: 15 iterations ... stopped by the iteration limit" read as the solve's
+    # max_iterations (200), which was not reached.
+    from refracta import edit
+
+    eye, pairs = traced_pairs()
+    start = refracta.PhysicalAtmosphere(surface_dt=5.0, surface_depth=0.3)
+    result = edit.solve(start, eye, pairs, free=["surface_dt", "surface_depth"], quick_iterations=1, stop_height=0.0)
+    assert result.stages[0].endswith("stopped at the stage's own cap of iterations (quick_iterations)")
+    assert result.stopped_by == ""
+
+
+def test_a_sky_environment_file_that_cannot_be_read_is_located(tmp_path):
+    from refracta import scene_file
+
+    (tmp_path / "text.exr").write_text("hello")
+    scene = tmp_path / "s.toml"
+    scene.write_text('[camera]\nposition = [0, 1.5, 0]\nlook_at = [100, 1.5, 0]\n[sky]\nenvironment = "text.exr"\n')
+    with pytest.raises(refracta.IoError, match=r"s.toml:5: \[sky\] environment: cannot read '.*text.exr'"):
+        scene_file.load_scene(scene)

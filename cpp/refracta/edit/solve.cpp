@@ -273,7 +273,10 @@ class Strategy {
   void stage(const std::string& what, const Attempt& attempt) {
     std::string line = concat(what, ": ", attempt.result.iterations, " iterations, cost ", attempt.cost, " m^2, ",
                               attempt.met, " of ", problem_.pairs().size(), " pairs met");
-    if (attempt.result.stopped != StopReason::kNone) {
+    if (attempt.result.stopped == StopReason::kIterations && budget_.exhausted() == StopReason::kNone) {
+      // The stage's own cap (the quick start's quick_iterations), not the solve's max_iterations.
+      line += "; stopped at the stage's own cap of iterations (quick_iterations)";
+    } else if (attempt.result.stopped != StopReason::kNone) {
       line += concat("; stopped by the ", stop_reason_name(attempt.result.stopped));
     }
     out_->stages.push_back(line);
