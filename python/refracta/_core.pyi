@@ -1396,7 +1396,7 @@ class DisplaySettings:
     @property
     def white_balance(self) -> typing.Any:
         """
-        the light shown white: 'none' (the render's D65 white), 'auto' (grey world), 'daylight' (D55), 'cloudy' (D65), 'shade' (D75), 'tungsten' (3200 K), a colour temperature [K] in [1000, 40000] (Planckian) or an RGB white (r, g, b) in linear sRGB with X, Y and Z > 0; Bradford adaptation to D65
+        the light shown white: 'none' (the render's D65 white), 'auto' (grey world), 'daylight' (D55), 'cloudy' (D65), 'shade' (D75), 'tungsten' (3200 K), a colour temperature [K] in [1000, 40000] (Planckian) or an RGB white (r, g, b) in linear sRGB with X, Y, Z and its cone responses > 0; Bradford adaptation to D65
         """
     @white_balance.setter
     def white_balance(self, arg1: str | typing.SupportsFloat | typing.SupportsIndex | typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> None:

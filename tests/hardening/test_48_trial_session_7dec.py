@@ -281,3 +281,10 @@ def test_a_sky_environment_file_that_cannot_be_read_is_located(tmp_path):
     scene.write_text('[camera]\nposition = [0, 1.5, 0]\nlook_at = [100, 1.5, 0]\n[sky]\nenvironment = "text.exr"\n')
     with pytest.raises(refracta.IoError, match=r"s.toml:5: \[sky\] environment: cannot read '.*text.exr'"):
         scene_file.load_scene(scene)
+
+
+def test_a_white_balance_without_positive_cone_responses_is_a_display_setting_error():
+    # (1, -0.1, 0.36) has X, Y, Z > 0 but a negative cone response: the adaptation's own message came,
+    # without "display settings: white_balance", in normalised XYZ.
+    with pytest.raises(ValueError, match=r"display settings: white_balance as an RGB white .*cone responses > 0"):
+        refracta.io.to_display(np.ones((4, 4, 3), np.float32), white_balance=(1.0, -0.1, 0.36))

@@ -77,7 +77,7 @@ void bind_display_settings(py::module_& m) {
           [](S& s, const WhiteBalance& white_balance) { s.white_balance = white_balance; },
           "the light shown white: 'none' (the render's D65 white), 'auto' (grey world), 'daylight' (D55), 'cloudy' "
           "(D65), 'shade' (D75), 'tungsten' (3200 K), a colour temperature [K] in [1000, 40000] (Planckian) or an RGB "
-          "white (r, g, b) in linear sRGB with X, Y and Z > 0; Bradford adaptation to D65");
+          "white (r, g, b) in linear sRGB with X, Y, Z and its cone responses > 0; Bradford adaptation to D65");
 }
 
 void bind_image_io(py::module_& m) {

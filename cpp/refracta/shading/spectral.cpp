@@ -251,13 +251,26 @@ Vec3d daylight_white(double kelvin) {
   return Vec3d(x / y, 1.0, (1.0 - x - y) / y);
 }
 
-Eigen::Matrix3d bradford_adaptation(const Vec3d& source_white, const Vec3d& target_white) {
-  Eigen::Matrix3d m;  // Bradford's cone responses from XYZ (Lam 1985)
+namespace {
+// Bradford's cone responses from XYZ (Lam 1985).
+Eigen::Matrix3d bradford_cones() {
+  Eigen::Matrix3d m;
   m << 0.8951, 0.2664, -0.1614,  //
       -0.7502, 1.7135, 0.0367,   //
       0.0389, -0.0685, 1.0296;
+  return m;
+}
+}  // namespace
+
+bool adaptable_white(const Vec3d& white) {
+  const Vec3d cones = bradford_cones() * white;
+  return cones.minCoeff() > 0.0 && is_finite(cones);
+}
+
+Eigen::Matrix3d bradford_adaptation(const Vec3d& source_white, const Vec3d& target_white) {
+  const Eigen::Matrix3d m = bradford_cones();
   const Vec3d source = m * source_white, target = m * target_white;
-  if (!(source.minCoeff() > 0.0) || !(target.minCoeff() > 0.0) || !is_finite(source) || !is_finite(target)) {
+  if (!adaptable_white(source_white) || !adaptable_white(target_white)) {
     throw_invalid("a white to adapt must have positive cone responses (got XYZ ", source_white.transpose(), " -> ",
                   target_white.transpose(), ")");
   }

@@ -66,6 +66,8 @@ Vec3d daylight_white(double kelvin);
 // M^-1 diag(M target / M source) M, M the Bradford cone-response matrix, taking `source_white` to
 // `target_white`. Throws when a white has a cone response <= 0.
 Eigen::Matrix3d bradford_adaptation(const Vec3d& source_white, const Vec3d& target_white);
+// Whether XYZ `white` can be adapted from or to: its Bradford cone responses all > 0 and finite.
+bool adaptable_white(const Vec3d& white);
 
 // XYZ of a spectrum given as values at the 471 table wavelengths (1 nm over [360, 830]):
 // as a radiance (normalised by integral y) or as a reflectance under D65 (normalised by D65's Y).

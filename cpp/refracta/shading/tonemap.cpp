@@ -88,9 +88,9 @@ std::string white_balance_problem(const WhiteBalance& wb) {
   // blue): its XYZ must be a colour, each component > 0.
   const auto& rgb = std::get<std::array<double, 3>>(wb);
   const Vec3d xyz = spectral::linear_srgb_to_xyz(Vec3d(rgb[0], rgb[1], rgb[2]));
-  if (!std::isfinite(rgb[0] + rgb[1] + rgb[2]) || !(xyz.minCoeff() > 0.0)) {
-    return concat("white_balance as an RGB white must be finite, with X, Y and Z > 0 (a light's colour; got (", rgb[0],
-                  ", ", rgb[1], ", ", rgb[2], "))");
+  if (!std::isfinite(rgb[0] + rgb[1] + rgb[2]) || !(xyz.minCoeff() > 0.0) || !spectral::adaptable_white(xyz)) {
+    return concat("white_balance as an RGB white must be finite, with X, Y and Z and its cone responses > 0 (a light's "
+                  "colour; got (", rgb[0], ", ", rgb[1], ", ", rgb[2], "))");
   }
   return "";
 }
