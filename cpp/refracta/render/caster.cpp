@@ -312,7 +312,8 @@ Caster::Caster(const Scene& scene, const IndexField* field, const RenderOptions&
     // than a trace may (a trial's turbulence of 1 um cells failed each ray on TraceOptions' step).
     const double step = step_in_regions();
     const int64_t max_steps = TraceOptions().max_steps;
-    const bool slab = std::any_of(regions_.begin(), regions_.end(), [](const LocalRegion& r) { return !std::isfinite(r.radius); });
+    const bool slab =
+        std::any_of(regions_.begin(), regions_.end(), [](const LocalRegion& r) { return !std::isfinite(r.radius); });
     if (slab && step < options.chord && options.max_length / step > double(max_steps)) {
       throw_invalid("render: rk45 steps at most ", step, " m through the turbulence (half its scale of 8 cells): a ",
                     "path of max_length ", options.max_length, " m in it would take more than ", max_steps,
