@@ -863,10 +863,6 @@ class Scene:
         float32, row-major, rows along +z and columns along +x so the front is up; a sample with a NaN
         coordinate is a hole. uv_from_index (2, 3): (u, v) = A (col, row, 1). Returns the geometry id.
         """
-    def _enclosing_geometry(self, x: typing.SupportsFloat | typing.SupportsIndex, y: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex) -> int | None:
-        """
-        The id of the geometry enclosing scene point (x, y, z) (crossed an odd number of times along each axis), or None.
-        """
     def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: os.PathLike | str | bytes, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = None) -> int:
         """
         Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at

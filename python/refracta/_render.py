@@ -130,14 +130,6 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
             SceneWarning,
             stacklevel=3,
         )
-    enclosing = scene._enclosing_geometry(x, y, z) if below is None else None
-    if enclosing is not None:  # a trial's eye 1 mm up, inside the hot road's 2 mm road slab: a black image
-        warnings.warn(
-            f"{where}: the camera at ({x:g}, {y:g}, {z:g}) m is inside object {enclosing} (every ray from it meets "
-            "that object's inside first), so the image shows the object's inside: move the camera out of it",
-            SceneWarning,
-            stacklevel=3,
-        )
     if field is None or method == "straight" or bounds is None:
         return
     lowest = float(bounds[0][1])

@@ -288,17 +288,3 @@ def test_a_white_balance_without_positive_cone_responses_is_a_display_setting_er
     # without "display settings: white_balance", in normalised XYZ.
     with pytest.raises(ValueError, match=r"display settings: white_balance as an RGB white .*cone responses > 0"):
         refracta.io.to_display(np.ones((4, 4, 3), np.float32), white_balance=(1.0, -0.1, 0.36))
-
-
-def test_a_camera_inside_an_object_is_told_so():
-    # An eye 1 mm up, inside the hot road's 2 mm road slab, rendered a black image without a word.
-    road = examples.hot_road(16, 8)
-    inside = refracta.Camera((10.0, 0.001, 0.0), (300.0, 0.001, 0.0), (0, 1, 0), road.camera.vfov, 16, 8)
-    with pytest.warns(refracta.SceneWarning, match=r"the camera at \(10, 0.001, 0\) m is inside object 1"):
-        refracta.render(road.scene, inside, road.field, max_length=road.max_length, progress=False)
-    # Water or glass around the eye is seen through: no warning; nor for an eye above the road.
-    scene = refracta.Scene()
-    scene.set_sky((1.0, 1.0, 1.0))
-    scene.add_box((0.0, 0.0, 0.0), (4.0, 4.0, 4.0), material=refracta.shading.Dielectric(1.33))
-    assert scene._enclosing_geometry(0.0, 0.5, 0.0) is None
-    assert road.scene._enclosing_geometry(*road.camera.position) is None

@@ -248,8 +248,6 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
            "geo.LocalFrame's curved Earth y is the flat frame's, short of the height above the ellipsoid by\n"
            "h^2 / R (3.9 m at 5 000 m) that frame.camera and Camera.geographic take: use\n"
            "frame.ground_height(scene, (lat, lon)) there.")
-      .def("_enclosing_geometry", &enclosing_geometry, py::arg("x"), py::arg("y"), py::arg("z"),
-           "The id of the geometry enclosing scene point (x, y, z) (crossed an odd number of times along each axis), or None.")
       // Pickled as its content (pickle_state.h): meshes, materials, lights, texture paths.
       .def(py::pickle(&scene_state, &scene_from_state));
 }

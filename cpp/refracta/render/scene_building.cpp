@@ -12,7 +12,6 @@
 #include "refracta/shading/water_surface.h"
 
 #include <cmath>
-#include <map>
 
 namespace refracta {
 
@@ -177,37 +176,6 @@ std::optional<std::pair<Vec3d, Vec3d>> ground_bounds(const RenderScene& scene) {
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction) {
   if (!(direction.cwiseAbs().maxCoeff() > 0.0)) throw_invalid("direction must be non-zero");
   return scene.geometry.intersect(origin, direction.stableNormalized(), kSceneReach);
-}
-
-std::optional<unsigned> enclosing_geometry(const RenderScene& scene, double x, double y, double z) {
-  const Vec3d p(x, y, z);
-  if (!within_reach(p)) return std::nullopt;
-  // Crossings of each geometry along each of the six axes, each ray restarted just past each hit
-  // (at most kMostCrossings: beyond, the point is called enclosed by nothing).
-  constexpr int kMostCrossings = 4096;  // a 5 km road crosses ~1 000 dash marks
-  std::map<unsigned, int> odd_in;  // geometry -> the directions along which it is crossed an odd number of times
-  for (int axis = 0; axis < 3; ++axis) {
-    for (const double sign : {-1.0, 1.0}) {
-      const Vec3d d = sign * Vec3d::Unit(axis);
-      std::map<unsigned, int> crossings;
-      Vec3d origin = p;
-      int k = 0;
-      for (; k < kMostCrossings; ++k) {
-        const auto hit = scene.geometry.intersect(origin, d, kSceneReach);
-        if (!hit) break;
-        ++crossings[hit->geometry];
-        origin = hit->point + d * (1e-6 * (1.0 + hit->point.cwiseAbs().maxCoeff()));
-      }
-      if (k == kMostCrossings) return std::nullopt;
-      for (const auto& [geometry, count] : crossings) odd_in[geometry] += count % 2;
-    }
-  }
-  for (const auto& [geometry, directions] : odd_in) {
-    // An eye inside water or glass (a material with an interior) sees through it: no hint.
-    const bool clear = scene.material(scene.geometry.material(geometry)).interior_ior(SampledWavelengths::rgb()).has_value();
-    if (directions == 6 && !clear) return geometry;
-  }
-  return std::nullopt;
 }
 
 std::optional<double> terrain_height(const RenderScene& scene, double x, double z) {

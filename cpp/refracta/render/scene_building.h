@@ -106,12 +106,6 @@ std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, 
 // Where an eye stands on the terrain: Camera positions, and render()'s "camera below the ground" hint.
 std::optional<double> terrain_height(const RenderScene& scene, double x, double z);
 
-// The geometry enclosing (x, y, z), if one does: the rays along the six axes each cross it an odd
-// number of times (a closed mesh or sphere around the point, whatever lies inside it too).
-// render()'s "camera inside an object" hint; open geometry (a ground, terrain) and water or glass
-// (a material with an interior, which an eye sees through) enclose nothing.
-std::optional<unsigned> enclosing_geometry(const RenderScene& scene, double x, double y, double z);
-
 // Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns
 // its index.
 size_t add_point_light(RenderScene& scene, const Vec3d& position, const Color& intensity);
