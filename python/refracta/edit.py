@@ -459,6 +459,7 @@ def solve(
                 "eye_or_camera (the camera whose pixels the destinations are)"
             )
     settings, pair_options = solve_options(settings, pair_options, where=where, **options)
+    check_solve_keywords(field, bounds)  # bounds where the model is defined (a trial's humidity in [-1, 3])
     if "max_iterations" in options and settings.backend.startswith("nlopt"):
         warnings.warn(
             f"{where}: max_iterations counts Ceres' iterations; {settings.backend} has none and stops on "
@@ -469,7 +470,6 @@ def solve(
     pairs, eye, camera, origins, directions, sources, weights, margins, tolerances = _pair_rays(
         eye_or_camera, pairs, settings.pixel_tolerance
     )
-    check_solve_keywords(field, bounds)  # bounds where the model is defined (a trial's humidity in [-1, 3])
     bounds = _bounds_of(bounds)
     callback = progress_callback(progress, f"editing ({settings.backend})", share=True)  # the budget's share used
     initial = _core._pair_distances(field, origins, directions, sources, pair_options)

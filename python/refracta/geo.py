@@ -430,6 +430,8 @@ class LocalFrame:
         ``frame.camera(frame.ground_height(scene) + 1.7, azimuth, 0.0, vfov=10.0)``. (Scene heights
         are the flat frame's y: over a curved Earth they fall short of true heights by h^2 / R,
         3.9 m at 5 000 m, so the terrain's y plus an eye's height is no camera height.)"""
+        if not isinstance(scene, _core.Scene):
+            raise ValueError(f"ground_height: scene must be a refracta.Scene (got {type(scene).__name__})")
         if position is None:
             x, z = 0.0, 0.0
         else:

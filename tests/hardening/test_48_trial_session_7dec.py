@@ -84,6 +84,8 @@ def test_the_ground_under_a_geographic_camera_is_its_true_height(tmp_path):
         frame.camera(10.0, 0.0, 0.0, vfov=10.0, position=(95.0, 7.0))
     with pytest.raises(ValueError, match=r"position\[1\] \(lon\) must be"):
         frame.ground_height(scene, (46.0, 700.0))
+    with pytest.raises(ValueError, match=r"ground_height: scene must be a refracta.Scene \(got str\)"):
+        frame.ground_height("plateau.tif")
 
 
 # --- An edge-case trial of the renderers -----------------------------------------------------------
