@@ -116,6 +116,19 @@ def test_conflicting_pairs_stop_at_the_limit_and_say_why_they_are_unmet():
     assert "the sampled atmospheres sent it" in result["message"]
 
 
+def test_a_converged_local_solve_cut_short_after_it_says_which_stopped():
+    # Its local solve converged (Ceres: CONVERGENCE), then the budget ran out before the design's
+    # local solves: the message said CONVERGENCE and "The solve was stopped by the iteration limit".
+    result = run("""
+        pairs = [pair, PointPair((1000.0, 1.2, 0.0), (1000.0, 0.5, 0.0))]
+        report(solve(field, eye, pairs, free=free, max_iterations=12))
+    """)
+    assert result["stopped_by"] == "iteration limit"
+    assert "CONVERGENCE" in result["message"]
+    assert "That local solve converged; the solve as a whole was stopped by the iteration limit" in result["message"]
+    assert "The solve was stopped" not in result["message"]
+
+
 @pytest.mark.slow
 def test_a_source_ten_thousand_km_away_stops_at_the_time_limit():
     # Its trial atmospheres duct the ray over 1.5e7 m (seconds a trace): the design took minutes.

@@ -504,7 +504,12 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
   // (Unless the back-end's own message says so already: "stopped by the time limit" twice.)
   const std::string stop = concat("stopped by the ", out.stopped_by);
   const bool said = out.message.size() >= stop.size() && out.message.compare(out.message.size() - stop.size(), stop.size(), stop) == 0;
-  if (!out.stopped_by.empty() && !said) out.message += concat(". The solve was ", stop);
+  // A local solve that converged was not what the budget stopped: the stages after it were.
+  if (!out.stopped_by.empty() && !said) {
+    out.message += result.converged ? concat(". That local solve converged; the solve as a whole was ", stop,
+                                             " before its later stages (see stages)")
+                                    : concat(". The solve was ", stop);
+  }
   if (!unmet.empty()) {
     out.message += concat(". Not every pair is met: ", unmet);
     const std::string near = near_miss(pairs, out.distances, settings, result.converged);
