@@ -34,6 +34,20 @@ def test_a_truncated_image_is_refused_not_filled_with_grey(tmp_path, suffix):
         photo.load(_truncated(tmp_path, suffix))
 
 
+@pytest.mark.parametrize("suffix", [".jpg", ".tif", ".png", ".exr"])
+def test_a_truncated_image_is_refused_without_a_word_on_stderr(tmp_path, suffix, capfd):
+    # libpng printed "libpng error: IDAT: Read error: hit end of file" to the terminal beside the
+    # IoError (its own reader's default, which OpenImageIO does not quiet): a truncated PNG is now
+    # refused from its chunks before libpng reads it, naming the chunk it ends in.
+    cut = _truncated(tmp_path, suffix)
+    capfd.readouterr()
+    with pytest.raises(refracta.IoError, match="cannot read") as raised:
+        refracta.io.read_image(cut)
+    assert capfd.readouterr().err == ""
+    if suffix == ".png":
+        assert "ends inside its IDAT chunk" in str(raised.value)
+
+
 def test_a_jpeg_libjpeg_only_warns_about_still_loads(tmp_path):
     # OIIO reports libjpeg's warnings as errors too; a JPEG with two stray bytes before a marker
     # ("Corrupt JPEG data: 2 extraneous bytes", which every viewer shows) is a photograph.

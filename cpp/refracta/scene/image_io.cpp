@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 namespace refracta {
@@ -46,6 +48,29 @@ void check_readable(const std::string& path) {
   const std::filesystem::file_type type = file_type_at(path, "read");
   if (type == std::filesystem::file_type::not_found) throw IoError(concat("no such image file: '", path, "'"));
   if (type != std::filesystem::file_type::regular) throw IoError(concat("cannot read '", path, "': not a regular file"));
+}
+
+// Chunks: 4-byte big-endian length, 4-byte type, data, 4-byte CRC (PNG specification, 5.3).
+void check_png_complete(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  unsigned char head[8];
+  if (!file.read(reinterpret_cast<char*>(head), 8) || !std::equal(head, head + 8, signature)) return;  // no PNG
+  const std::uintmax_t size = std::filesystem::file_size(path);
+  std::uintmax_t at = 8;
+  while (true) {
+    if (!file.read(reinterpret_cast<char*>(head), 8)) break;
+    const std::uintmax_t length = (std::uintmax_t(head[0]) << 24) | (head[1] << 16) | (head[2] << 8) | head[3];
+    const std::string type(reinterpret_cast<const char*>(head + 4), 4);
+    at += 12 + length;
+    if (at > size) {
+      throw IoError(concat("cannot read '", path, "' (damaged or truncated?): it ends inside its ", type, " chunk, ",
+                           at - size, " bytes short"));
+    }
+    if (type == "IEND") return;
+    file.seekg(std::streamoff(length + 4), std::ios::cur);
+  }
+  throw IoError(concat("cannot read '", path, "' (damaged or truncated?): it ends before its IEND chunk"));
 }
 
 void check_writable(const std::string& path) {
@@ -135,6 +160,7 @@ bool reports_truncation(const std::string& message) {
 
 Image read_image(const std::string& path) {
   check_readable(path);
+  check_png_complete(path);
   // Values as stored: a PNG's colours straight, not premultiplied by its alpha (write_image's).
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);

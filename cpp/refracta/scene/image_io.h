@@ -14,6 +14,10 @@ void check_path_text(const std::string& path);
 // IoError unless `path` is a regular file ("no such image file", "not a regular file"): OIIO's
 // readers spin on a FIFO or a device such as /dev/zero, so they are refused before opening.
 void check_readable(const std::string& path);
+// IoError when `path` is a PNG file that ends before its IEND chunk (a write or a download cut
+// short); other files pass. libpng prints its own "libpng error: ..." to stderr for such a file,
+// in a reader OpenImageIO gives no way to quiet, so the readers refuse it before OpenImageIO opens it.
+void check_png_complete(const std::string& path);
 // IoError if `path` exists and is not a regular file: opening a FIFO to write waits for a reader
 // that may never come, so writers refuse it (and devices, folders) before opening.
 void check_writable(const std::string& path);
