@@ -226,18 +226,16 @@ def edit_report(result, figsize=(12.0, 4.2), figure=None):
     # is marked beside it, so the whole descent shows.
     tiny = np.finfo(float).tiny
     history = np.maximum(np.asarray(result.history, dtype=float), tiny)
-    step = "iteration" if result.backend == "ceres" else "evaluation"
+    # Ceres records its iteration 0 (the local solve's start), nlopt each evaluation from the first.
+    ceres = result.backend == "ceres"
+    step = "iteration" if ceres else "evaluation"
     staged = len(result.stages) > 1
-    ax_cost.semilogy(
-        np.arange(1, len(history) + 1),
-        history,
-        color="tab:blue",
-        label=f"last local solve, per {step}" if staged else None,
-    )
-    ax_cost.semilogy([0], [max(result.initial_cost, tiny)], "o", color="crimson", label="start (plain cost)")
-    ax_cost.semilogy(
-        [len(history)], [max(result.cost, tiny)], "s", color="tab:green", mfc="none", label="result (plain)"
-    )
+    steps = np.arange(len(history)) if ceres else np.arange(1, len(history) + 1)
+    ax_cost.semilogy(steps, history, color="tab:blue", label=f"last local solve, per {step}" if staged else None)
+    start = "the solve's start (plain cost)" if staged else "start (plain cost)"
+    ax_cost.semilogy([0], [max(result.initial_cost, tiny)], "o", color="crimson", label=start)
+    last = steps[-1] if len(steps) else 0
+    ax_cost.semilogy([last], [max(result.cost, tiny)], "s", color="tab:green", mfc="none", label="result (plain)")
     ax_cost.legend(fontsize=8, loc="best")
     ax_cost.set_xlabel(f"{step} of the last local solve" if staged else step)
     loss = result.settings.loss

@@ -104,6 +104,11 @@ def test_edit_report_draws_paths_and_history(road_pairs):
     paths_axis, cost_axis = figure.axes
     assert len(paths_axis.lines) == 2 * len(pairs) + len(pairs) + 1  # before, after, sources, eye
     assert len(cost_axis.lines[0].get_ydata()) == len(result.history)
+    # Ceres' history starts at its iteration 0: the curve runs 0 .. iterations of the last local
+    # solve (it ran 1 .. iterations + 1, past the result's marker), ending where the result is drawn.
+    steps = cost_axis.lines[0].get_xdata()
+    assert steps[0] == 0 and steps[-1] == len(result.history) - 1
+    assert cost_axis.lines[2].get_xdata()[0] == steps[-1]
 
 
 def test_edit_report_of_many_pairs_keeps_its_legend_short(road_pairs):

@@ -141,3 +141,18 @@ def test_a_solve_without_pairs_says_so(make_model):
     model = make_model()
     assert model.solve() is None
     assert model.message_kind == "error" and "Add at least one pair" in model.message
+
+
+def test_a_solved_edit_that_one_pair_cannot_fix_says_it_is_not_unique(make_model, road):
+    # One pair, two free parameters: the solve's summary said the solution is not unique (Jacobian
+    # rank 1), the editor only "Solved: every pair met" -- and notebook 04 read its answer as the one.
+    truth = road.field.with_params(surface_dt=TRUTH_SURFACE_DT)
+    model = make_model(free=["surface_dt", "surface_depth"])
+    model.add_pair((160.0, 63.4), truth_source(truth, road.camera, 160.0, 63.4))
+    model.solve()
+    assert model.wait(WAIT)
+    assert model.result.success and "The solution is not unique" in model.result.message
+    assert model.message_kind == "success"
+    assert model.message.startswith("Solved: every pair met")
+    assert "The solution is not unique: the pairs fix 1 of the 2" in model.message
+    assert model.message.endswith("meet them as well.")

@@ -922,7 +922,12 @@ class EditorModel:
             self._notify("field", "result", "fan", "pairs", "history", "camera")
             unmet = unmet_pairs(result)
             if result.success:
-                self.say(f"Solved: every pair met ({result.iterations} iterations, {result.time:.2g} s).", "success")
+                # The solve's own word when the pairs fix fewer combinations than there are free parameters.
+                unique = result.message.find("The solution is not unique")
+                caveat = " " + result.message[unique:].split(". ")[0] + "." if unique >= 0 else ""
+                self.say(
+                    f"Solved: every pair met ({result.iterations} iterations, {result.time:.2g} s).{caveat}", "success"
+                )
             elif unmet:
                 self.say(
                     f"Not every image can be put there: pair(s) {', '.join(map(str, unmet))} missed. " + result.message,
