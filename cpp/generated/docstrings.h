@@ -259,7 +259,8 @@ layers), 'peel' (the `layers` nearest), 'wboit' (McGuire & Bavoil, JCGT 2013, de
 'eq9') or 'mboit' (moment-based, settings in `mboit`).)doc";
 inline constexpr const char mkd_doc_refracta_OitSettings_bytes_per_pixel[] = R"doc(Bytes per pixel a GPU would keep: sorted lists 20 per fragment (depth, alpha, RGB fp32); peeling 12
 per layer (RGBA16F + depth fp32); WBOIT 10 (RGBA16F + R16F); MBOIT b0 in fp32 and the moments in
-fp32 or 16 bits, plus the RGBA16F accumulation.)doc";
+fp32 or 16 bits, plus the RGBA16F accumulation. ValueError unless fragments_per_pixel is finite and
+>= 0.)doc";
 inline constexpr const char mkd_doc_refracta_OitSettings_layers[] = R"doc(peel: layers kept)doc";
 inline constexpr const char mkd_doc_refracta_OitSettings_mboit[] = R"doc(MboitSettings (method 'mboit'))doc";
 inline constexpr const char mkd_doc_refracta_PairOptions[] = R"doc(How an edit's pairs are traced and measured (refracta.edit.solve, distances, jacobian and

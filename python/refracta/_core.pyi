@@ -1776,7 +1776,8 @@ class OitSettings:
         """
         Bytes per pixel a GPU would keep: sorted lists 20 per fragment (depth, alpha, RGB fp32); peeling 12
         per layer (RGBA16F + depth fp32); WBOIT 10 (RGBA16F + R16F); MBOIT b0 in fp32 and the moments in
-        fp32 or 16 bits, plus the RGBA16F accumulation.
+        fp32 or 16 bits, plus the RGBA16F accumulation. ValueError unless fragments_per_pixel is finite and
+        >= 0.
         """
     def validate(self) -> None:
         """

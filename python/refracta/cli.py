@@ -653,7 +653,9 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
 def main(argv=None) -> int:
     """Runs a command. A user error (a missing or malformed file, a bad value: ValueError, OSError
     and refracta.IoError, refracta.NumericalError) prints one line `refracta: error: ...` to stderr
-    and returns 1; Ctrl-C returns 130; anything else is a bug and keeps its traceback."""
+    and returns 1; Ctrl-C returns 130; anything else is a bug and keeps its traceback. Command-line
+    syntax errors (an unknown command or option, a missing or malformed argument, --seed -1) are
+    argparse's: usage and the error on stderr, then SystemExit(2), as --help exits with 0."""
     import refracta
 
     shown = warnings.formatwarning

@@ -7,7 +7,8 @@ moments (b1, b2, b3, b4), vectorised over leading axes. Depths are in [0, 1] ('u
 [-1, 1] ('signed', JCGT 2017). bias and bias_vector default (None) to the published values of
 refracta.MomentShadowSettings for the depth range and storage: fp64 / fp32 3e-6 toward
 (0.5, 0.5, 0.5, 0.5) (unit) and 3e-7 toward (0, 0.375, 0, 0.375) (signed); unorm16 3e-5 / 6e-5.
-'canonical' is the generic kernel (any moment count) used as a cross-check of the closed forms.
+'canonical' is the generic kernel (the canonical representation that MBOIT solves for 4, 6 and 8
+moments) on these four moments, a cross-check of the closed forms.
 The 4MSMs' old names 'hamburger' and 'hausdorff' still work, with a DeprecationWarning.
 """
 

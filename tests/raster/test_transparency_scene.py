@@ -149,3 +149,11 @@ def test_water_is_opaque_to_the_rasterizer():
     exact, stats = refracta.render_raster(scene, camera, transparency="exact", return_stats=True)
     assert stats.transparent_fragments == 0
     np.testing.assert_array_equal(exact, opaque)  # the lamp stays hidden: no red through the sea
+
+
+@pytest.mark.parametrize("fragments", [-1.0, float("nan"), float("inf")])
+def test_bytes_per_pixel_refuses_impossible_fragment_counts(fragments):
+    # A trial: -1 fragments a pixel cost -20 bytes, NaN and inf passed through.
+    with pytest.raises(ValueError, match="bytes_per_pixel: fragments_per_pixel must be finite and >= 0"):
+        refracta.OitSettings(method="exact").bytes_per_pixel(fragments)
+    assert refracta.OitSettings(method="exact").bytes_per_pixel(2.5) == 50.0  # 20 bytes a fragment

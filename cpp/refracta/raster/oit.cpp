@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <optional>
 
 namespace refracta {
 
@@ -169,15 +170,34 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
   // Bias (1 - alpha) b + alpha b*, and the Hankel matrix factorised once for all the pixel's
   // fragments (PowerMomentBound; closed-form roots for 4 moments).
   b[0] = 1.0;
-  for (int j = 1; j <= m; ++j) b[j] = (1.0 - alpha_bias) * b[j] + alpha_bias * target[size_t(j - 1)];
-  const PowerMomentBound bound_of(b.data(), m);
+  auto biased = [&](double bias) {
+    std::array<double, PowerMomentBound::kMaxMoments + 1> out = b;
+    for (int j = 1; j <= m; ++j) out[j] = (1.0 - bias) * b[j] + bias * target[size_t(j - 1)];
+    return out;
+  };
+  std::array<double, PowerMomentBound::kMaxMoments + 1> moments = biased(alpha_bias);
+  std::optional<PowerMomentBound> bound_of(std::in_place, moments.data(), m);
+  // 16 bits: the moments re-quantised after every fragment can leave the moment space by their
+  // rounding, in an order-dependent way; the Hankel matrix is then indefinite and every fragment
+  // got the fallback's transmittance (8 moments: up to half the pixel's colour between orders of
+  // three fragments, a trial). Such a pixel is biased kRebias times more, as often as needed (a
+  // single fragment's fallback is exact: MOMENTS.md 4.6).
+  constexpr double kRebias = 10.0;
+  const bool rounded = unorm16 && fragments.size() > 1;
+  for (double bias = alpha_bias * kRebias; rounded && bias < 0.5; bias *= kRebias) {
+    bool falls_back = bound_of->singular();
+    for (size_t i = 0; i < fragments.size() && !falls_back; ++i) falls_back = bound_of->at(warped[i]).fallback;
+    if (!falls_back) break;
+    moments = biased(bias);
+    bound_of.emplace(moments.data(), m);
+  }
   // Pass 2: each fragment weighted by its estimated transmittance.
   Vec3d accum = Vec3d::Zero();
   double accum_alpha = 0.0;
   for (size_t i = 0; i < fragments.size(); ++i) {
     const Fragment& f = fragments[i];
     const double alpha = std::min(f.alpha, 0.999);
-    const MomentBound bound = bound_of.at(warped[i]);
+    const MomentBound bound = bound_of->at(warped[i]);
     const double absorbance = bound.lower + options.beta * bound.at_query;
     const double t = std::clamp(std::exp(-total * absorbance), 0.0, 1.0);
     accum += alpha * t * f.colour;
@@ -271,6 +291,9 @@ void OitSettings::validate() const {
 }
 
 double OitSettings::bytes_per_pixel(double fragments_per_pixel) const {
+  if (!(fragments_per_pixel >= 0.0 && std::isfinite(fragments_per_pixel))) {
+    throw_invalid("bytes_per_pixel: fragments_per_pixel must be finite and >= 0 (got ", fragments_per_pixel, ")");
+  }
   switch (method) {
     case OitMethod::kExact: return 20.0 * fragments_per_pixel;
     case OitMethod::kPeel: return 12.0 * layers;

@@ -86,7 +86,8 @@ struct OitSettings {
   void validate() const;                 // throws std::invalid_argument listing them all
   // Bytes per pixel a GPU would keep: sorted lists 20 per fragment (depth, alpha, RGB fp32);
   // peeling 12 per layer (RGBA16F + depth fp32); WBOIT 10 (RGBA16F + R16F); MBOIT b0 in fp32 and
-  // the moments in fp32 or 16 bits, plus the RGBA16F accumulation.
+  // the moments in fp32 or 16 bits, plus the RGBA16F accumulation. ValueError unless
+  // fragments_per_pixel is finite and >= 0.
   double bytes_per_pixel(double fragments_per_pixel) const;
 };
 
