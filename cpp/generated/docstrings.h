@@ -673,6 +673,12 @@ inline constexpr const char mkd_doc_refracta_cox_munk_mean_square_slope[] = R"do
 above the sea: sigma^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, "Measurement of the roughness of the
 sea surface from photographs of the sun's glitter", JOSA 44(11), 838-850, eq. for sigma_u^2 +
 sigma_c^2, +-0.004). U in [0, 30]; ValueError naming wind_speed otherwise.)doc";
+inline constexpr const char mkd_doc_refracta_dark_enclosure[] = R"doc(The geometry that keeps every light from `eye`, if one does: every light of the scene is at infinity
+(sun, sky, environment) and a closed, opaque geometry lies around the eye (the rays along the six
+axes each cross it an odd number of times; a material that transmits, water or glass, is seen
+through). The image is then black: render()'s "camera inside an object" hint (a trial's eye 1 mm up
+inside the hot road's 2 mm road slab). A room lit from within, or a furnace whose walls glow, has a
+light that is not at infinity, and is no mistake.)doc";
 inline constexpr const char mkd_doc_refracta_parse_derivatives[] = R"doc("automatic", "numeric", or "auto" (automatic when `field` has a templated model, else numeric).)doc";
 inline constexpr const char mkd_doc_refracta_pdf_li_all[] = R"doc(The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights
 need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3)

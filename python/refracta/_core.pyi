@@ -863,6 +863,15 @@ class Scene:
         float32, row-major, rows along +z and columns along +x so the front is up; a sample with a NaN
         coordinate is a hole. uv_from_index (2, 3): (u, v) = A (col, row, 1). Returns the geometry id.
         """
+    def _dark_enclosure(self, eye: typing.Any) -> int | None:
+        """
+        The geometry that keeps every light from `eye`, if one does: every light of the scene is at infinity
+        (sun, sky, environment) and a closed, opaque geometry lies around the eye (the rays along the six
+        axes each cross it an odd number of times; a material that transmits, water or glass, is seen
+        through). The image is then black: render()'s "camera inside an object" hint (a trial's eye 1 mm up
+        inside the hot road's 2 mm road slab). A room lit from within, or a furnace whose walls glow, has a
+        light that is not at infinity, and is no mistake.
+        """
     def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: os.PathLike | str | bytes, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = None) -> int:
         """
         Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at

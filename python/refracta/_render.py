@@ -130,6 +130,15 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
             SceneWarning,
             stacklevel=3,
         )
+    enclosure = scene._dark_enclosure((x, y, z)) if len(scene.lights) > 0 and below is None else None
+    if enclosure is not None:  # a trial's eye 1 mm up, inside the hot road's 2 mm road slab: a black image
+        warnings.warn(
+            f"{where}: the camera at ({x:g}, {y:g}, {z:g}) m is inside object {enclosure}, closed and opaque, and "
+            "every light of the scene is outside it at infinity (sun, sky, environment), so the image is dark (no "
+            "surface in it is lit; only the air's own glow, with aerial perspective): move the camera out of it",
+            SceneWarning,
+            stacklevel=3,
+        )
     if field is None or method == "straight" or bounds is None:
         return
     lowest = float(bounds[0][1])

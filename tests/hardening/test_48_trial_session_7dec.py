@@ -290,3 +290,26 @@ def test_a_white_balance_without_positive_cone_responses_is_a_display_setting_er
     # without "display settings: white_balance", in normalised XYZ.
     with pytest.raises(ValueError, match=r"display settings: white_balance as an RGB white .*cone responses > 0"):
         refracta.io.to_display(np.ones((4, 4, 3), np.float32), white_balance=(1.0, -0.1, 0.36))
+
+
+def test_a_camera_shut_in_an_object_that_no_light_reaches_is_told_so():
+    # An eye 1 mm up, inside the hot road's 2 mm road slab, rendered a black image without a word.
+    road = examples.hot_road(16, 8)
+    inside = refracta.Camera((10.0, 0.001, 0.0), (300.0, 0.001, 0.0), (0, 1, 0), road.camera.vfov, 16, 8)
+    with pytest.warns(refracta.SceneWarning, match=r"the camera at \(10, 0.001, 0\) m is inside object 1, closed"):
+        image = refracta.render(road.scene, inside, road.field, max_length=road.max_length, progress=False)
+    seen = refracta.render(road.scene, road.camera, road.field, max_length=road.max_length, progress=False)
+    # What the warning says: dark. Only the aerial perspective's in-scatter along the camera rays'
+    # metres inside the slab (~1e-5 /m of sunlight, unshadowed) is left: measured 1e-4 of the road's mean.
+    assert image.max() < 1e-2 * seen.mean()
+    assert road.scene._dark_enclosure(road.camera.position) is None  # the eye above the road
+    # Glass around the eye is seen through; a closed room with a light inside it is lit.
+    scene = refracta.Scene()
+    scene.set_sky((1.0, 1.0, 1.0))
+    glass = scene.add_box((0.0, 0.0, 0.0), (4.0, 4.0, 4.0), material=refracta.shading.Dielectric(1.33))
+    assert scene._dark_enclosure((0.0, 0.5, 0.0)) is None
+    scene.remove(glass)
+    scene.add_box((0.0, 0.0, 0.0), (4.0, 4.0, 4.0), kd=0.5)
+    assert scene._dark_enclosure((0.0, 0.5, 0.0)) is not None
+    scene.add_point_light((0.0, 1.0, 0.0), 10.0)
+    assert scene._dark_enclosure((0.0, 0.5, 0.0)) is None

@@ -248,6 +248,8 @@ void bind_scene_queries(py::class_<RenderScene, std::shared_ptr<RenderScene>>& s
            "geo.LocalFrame's curved Earth y is the flat frame's, short of the height above the ellipsoid by\n"
            "h^2 / R (3.9 m at 5 000 m) that frame.camera and Camera.geographic take: use\n"
            "frame.ground_height(scene, (lat, lon)) there.")
+      .def("_dark_enclosure", [](const RenderScene& s, const py::object& eye) { return dark_enclosure(s, to_point(eye, "eye")); },
+           py::arg("eye"), DOC(refracta, dark_enclosure))
       // Pickled as its content (pickle_state.h): meshes, materials, lights, texture paths.
       .def(py::pickle(&scene_state, &scene_from_state));
 }

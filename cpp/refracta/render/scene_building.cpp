@@ -12,6 +12,7 @@
 #include "refracta/shading/water_surface.h"
 
 #include <cmath>
+#include <map>
 
 namespace refracta {
 
@@ -176,6 +177,37 @@ std::optional<std::pair<Vec3d, Vec3d>> ground_bounds(const RenderScene& scene) {
 std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, const Vec3d& direction) {
   if (!(direction.cwiseAbs().maxCoeff() > 0.0)) throw_invalid("direction must be non-zero");
   return scene.geometry.intersect(origin, direction.stableNormalized(), kSceneReach);
+}
+
+std::optional<unsigned> dark_enclosure(const RenderScene& scene, const Vec3d& eye) {
+  if (!is_finite(eye) || eye.cwiseAbs().maxCoeff() > kSceneReach) return std::nullopt;
+  for (const LightPtr& light : scene.lights()) {
+    if (!light->is_infinite() && light->type() != LightType::kDeltaDirection) return std::nullopt;
+  }
+  // Crossings of each geometry along each of the six axes, each ray restarted just past each hit
+  // (at most kMostCrossings: beyond, the eye is called enclosed by nothing).
+  constexpr int kMostCrossings = 4096;  // a 5 km road crosses ~1 000 dash marks
+  std::map<unsigned, int> odd_along;  // geometry -> the axes' directions crossing it an odd number of times
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double sign : {-1.0, 1.0}) {
+      const Vec3d d = sign * Vec3d::Unit(axis);
+      std::map<unsigned, int> crossings;
+      Vec3d origin = eye;
+      int k = 0;
+      for (; k < kMostCrossings; ++k) {
+        const auto hit = scene.geometry.intersect(origin, d, kSceneReach);
+        if (!hit) break;
+        ++crossings[hit->geometry];
+        origin = hit->point + d * (1e-6 * (1.0 + hit->point.cwiseAbs().maxCoeff()));
+      }
+      if (k == kMostCrossings) return std::nullopt;
+      for (const auto& [geometry, count] : crossings) odd_along[geometry] += count % 2;
+    }
+  }
+  for (const auto& [geometry, directions] : odd_along) {
+    if (directions == 6 && !scene.material(scene.geometry.material(geometry)).transmits()) return geometry;
+  }
+  return std::nullopt;
 }
 
 std::optional<double> terrain_height(const RenderScene& scene, double x, double z) {

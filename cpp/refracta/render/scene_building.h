@@ -106,6 +106,14 @@ std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, 
 // Where an eye stands on the terrain: Camera positions, and render()'s "camera below the ground" hint.
 std::optional<double> terrain_height(const RenderScene& scene, double x, double z);
 
+// The geometry that keeps every light from `eye`, if one does: every light of the scene is at
+// infinity (sun, sky, environment) and a closed, opaque geometry lies around the eye (the rays
+// along the six axes each cross it an odd number of times; a material that transmits, water or
+// glass, is seen through). The image is then black: render()'s "camera inside an object" hint (a
+// trial's eye 1 mm up inside the hot road's 2 mm road slab). A room lit from within, or a furnace
+// whose walls glow, has a light that is not at infinity, and is no mistake.
+std::optional<unsigned> dark_enclosure(const RenderScene& scene, const Vec3d& eye);
+
 // Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns
 // its index.
 size_t add_point_light(RenderScene& scene, const Vec3d& position, const Color& intensity);

@@ -120,6 +120,7 @@ class Dielectric final : public Material {
     return lambda.spectral ? ior_.at(lambda.hero()) : ior_.rgb_value();
   }
   int priority() const override { return priority_; }
+  bool transmits() const override { return true; }
   std::string describe() const override {
     return concat("Dielectric(ior=", ior_.describe(), priority_ ? concat(", priority=", priority_) : "", ")");
   }
@@ -146,6 +147,7 @@ class RoughDielectric final : public Material {
     return lambda.spectral ? ior_.at(lambda.hero()) : ior_.rgb_value();
   }
   int priority() const override { return priority_; }
+  bool transmits() const override { return true; }
   std::string describe() const override {
     return concat("RoughDielectric(alpha_u=", alpha_u_, ", alpha_v=", alpha_v_, ", ior=", ior_.describe(),
                   priority_ ? concat(", priority=", priority_) : "", ")");
@@ -170,6 +172,7 @@ class ThinDielectric final : public Material {
     if (ior_.dispersive() && context.lambda->spectral) context.lambda->terminate_secondary();
     return scratch.make<ThinDielectricBsdf>(n / context.eta_outside);
   }
+  bool transmits() const override { return true; }
   std::string describe() const override { return concat("ThinDielectric(ior=", ior_.describe(), ")"); }
   const Ior& ior() const { return ior_; }
 

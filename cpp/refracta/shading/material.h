@@ -34,6 +34,8 @@ class Material {
   // Dielectrics that bound a medium: their index of refraction at the hero wavelength (RGB
   // rendering: at 550 nm); nullopt for everything else (thin dielectrics included).
   virtual std::optional<double> interior_ior(const SampledWavelengths& /*lambda*/) const { return std::nullopt; }
+  // Whether light passes through the surface (dielectrics, thin ones and water included).
+  virtual bool transmits() const { return false; }
   // Nested dielectrics: a surface whose priority is below the highest of the media the path is
   // inside is a false hit. Larger wins.
   virtual int priority() const { return 0; }

@@ -198,6 +198,7 @@ class Water final : public Material {
   const Bsdf* bsdf(const SurfaceInteraction& si, const MaterialContext& context, ScratchBuffer& scratch) const override;
   std::optional<double> interior_ior(const SampledWavelengths& lambda) const override;
   int priority() const override { return parameters_.priority; }
+  bool transmits() const override { return true; }
   std::string describe() const override;
 
   const WaterParameters& parameters() const { return parameters_; }
