@@ -341,7 +341,8 @@ class StratifiedTracer {
     const bool loose = options_.hold_between_nodes && splittable && !too_long && !inaccurate &&
                        s_ + sums.s < length_ &&
                        interpolation_error(var, wa, wb, direction, sums) >
-                           std::max(options_.tol, 1e-15 * (last_.x.norm() + sums.s));
+                           std::max(options_.between_nodes ? options_.between_nodes->at(s_) : options_.tol,
+                                    1e-15 * (last_.x.norm() + sums.s));
     if ((too_long || inaccurate || loose) && splittable) {
       const double mid = 0.5 * (wa + wb);
       if (!integrate(var, wa, mid, direction, depth + 1)) return false;

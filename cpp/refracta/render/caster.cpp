@@ -128,7 +128,7 @@ TraceOptions curved_trace_options(const Scene& scene, const IndexField& field, c
   trace_options.tol = options.tol;
   trace_options.max_length = max_length;
   trace_options.step = options.chord;
-  trace_options.hold_between_nodes = false;  // the chords keep to the sagitta instead
+  trace_options.hold_between_nodes = false;  // unless a share of the pixel's footprint is given (cast_traced, ElevationTable)
   // Nothing can be hit below the lowest geometry: end the path 1 m under it (or under the origin).
   trace_options.stop_height = std::min(scene.lowest(), origin.y()) - 1.0;
   return trace_options;
@@ -784,6 +784,10 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   // be closer to it than that.
   const double per_metre = options_.sagitta_pixels * spread;
   trace_options.tol = std::max({trace_options.tol, per_metre * (s0 + max_length), options_.sagitta});
+  // That tol is the footprint at the path's end; between nodes (up to a chord apart) the chords
+  // read the quintic, held to a quarter of the footprint where they are (TraceOptions::between_nodes).
+  trace_options.hold_between_nodes = true;
+  trace_options.between_nodes = TraceOptions::GrowingTolerance{0.25 * options_.sagitta, 0.25 * per_metre, s0};
   double last_height = origin.y();
   try {
     trace(air, origin, dir, trace_options, [&](const RayNode<double>& a, const RayNode<double>& b) {
