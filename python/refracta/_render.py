@@ -314,7 +314,7 @@ def render(
     (True), a callable progress(done, total), or False. Runs on all cores with the GIL released;
     Ctrl-C stops it. Further keywords: any field of refracta.RenderOptions (max_length, chord,
     sagitta, tol, trace, table, tile, texture_filter, march, step, max_steps, guard_band, rr_depth,
-    pixel_bounds: render only pixels [x0, x1) x [y0, y1), each exactly as in the whole image).
+    pixel_bounds=(x0, y0, x1, y1): render only pixels [x0, x1) x [y0, y1), each exactly as in the whole image).
 
     executor, tiles: split the image into tiles rendered by `executor` (a dask.distributed Client,
     any concurrent.futures.Executor, or None: one after another here) and assembled into the

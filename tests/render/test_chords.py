@@ -31,8 +31,14 @@ def test_hits_on_a_wall_through_a_hot_layer_lie_on_the_path(table):
     field = refracta.PhysicalAtmosphere(surface_dt=8.0, surface_depth=0.15)
     scene, camera = wall_scene()
     _, aovs = refracta.render(
-        scene, camera, field, max_length=3000.0, table=table, aovs=["object_id", "position"],
-        pixel_bounds=(COLUMN, 56, COLUMN + 1, 62), progress=False,
+        scene,
+        camera,
+        field,
+        max_length=3000.0,
+        table=table,
+        aovs=["object_id", "position"],
+        pixel_bounds=(COLUMN, 56, COLUMN + 1, 62),
+        progress=False,
     )
     footprint = camera.pixel_angle * WALL_DISTANCE  # [m] 35 mm
     for k, row in enumerate(range(56, 62)):
