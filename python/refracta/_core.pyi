@@ -3012,9 +3012,14 @@ class RoughConductor(Material):
         """
 class Plastic(Material):
     """
-    Coated diffuse (Weidlich & Wilkie 2007; Mitsuba's plastic / roughplastic): a dielectric coat of
-    index ior over a Lambertian base of reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), >
-    0: GGX (or alpha_u, alpha_v). A texture multiplies the reflectance. texture: an image file (str or os.PathLike;
+    Coated diffuse (Weidlich & Wilkie 2007): a dielectric coat of index ior over a Lambertian base of
+    reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX (or alpha_u, alpha_v). A
+    texture multiplies the reflectance. The base's light enters and leaves through the smooth coat's
+    Fresnel terms at any alpha, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fdr_internal))
+    (shared/SHADING.md 3). Smooth: Mitsuba 3's plastic with nonlinear=True (its default, False, is up to
+    35 % brighter). Rough: roughplastic's specular lobe; its diffuse part differs from roughplastic's,
+    which takes the rough interface's tabulated transmittance and internal reflectance (a trial, alpha
+    0.2, R 0.7: 14 % brighter at normal incidence, 17 % darker at 80 deg). texture: an image file (str or os.PathLike;
     any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
     multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
     relative paths are from the working directory when the material is made. Each scene the material
