@@ -310,10 +310,11 @@ inline constexpr const char mkd_doc_refracta_Plastic[] = R"doc(Coated diffuse (W
 reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX (or alpha_u, alpha_v). A
 texture multiplies the reflectance. The base's light enters and leaves through the smooth coat's
 Fresnel terms at any alpha, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fdr_internal))
-(shared/SHADING.md 3). Smooth: Mitsuba 3's plastic with nonlinear=True (its default, False, is up to
-35 % brighter). Rough: roughplastic's specular lobe; its diffuse part differs from roughplastic's,
-which takes the rough interface's tabulated transmittance and internal reflectance (a trial, alpha
-0.2, R 0.7: 14 % brighter at normal incidence, 17 % darker at 80 deg).)doc";
+(shared/SHADING.md 3). Smooth: Mitsuba 3's plastic with nonlinear=True (its default, False, divides
+by 1 - Fdr_internal instead: brighter by (1 - R Fdr_internal) / (1 - Fdr_internal), 35 % at R 0.77
+and 2.5x as R -> 0 for ior 1.5). Rough: roughplastic's specular lobe; its diffuse part differs from
+roughplastic's, which takes the rough interface's tabulated transmittance and internal reflectance
+(a trial, alpha 0.2, R 0.7: 14 % brighter at normal incidence, 17 % darker at 80 deg).)doc";
 inline constexpr const char mkd_doc_refracta_PointLight[] = R"doc(A point light: intensity I [W/sr] (a colour: one number or RGB) in every direction from position
 [m]; irradiance at distance r on a surface tilted by theta E = I cos(theta) / r^2; power 4 pi I.)doc";
 inline constexpr const char mkd_doc_refracta_Principled[] = R"doc(Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and
@@ -679,11 +680,12 @@ above the sea: sigma^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, "Measurement of the
 sea surface from photographs of the sun's glitter", JOSA 44(11), 838-850, eq. for sigma_u^2 +
 sigma_c^2, +-0.004). U in [0, 30]; ValueError naming wind_speed otherwise.)doc";
 inline constexpr const char mkd_doc_refracta_dark_enclosure[] = R"doc(The geometry that keeps every light from `eye`, if one does: every light of the scene is at infinity
-(sun, sky, environment) and a closed, opaque geometry lies around the eye (the rays along the six
-axes each cross it an odd number of times; a material that transmits, water or glass, is seen
-through). The image is then black: render()'s "camera inside an object" hint (a trial's eye 1 mm up
-inside the hot road's 2 mm road slab). A room lit from within, or a furnace whose walls glow, has a
-light that is not at infinity, and is no mistake.)doc";
+(sun, sky, environment) and one opaque geometry lies around the eye (256 rays spread over the sphere
+each cross it an odd number of times; a material that transmits, water or glass, is seen through,
+and a ray through an opening finds none). No surface in view is then lit: render()'s "camera inside
+an object" hint (a trial's eye 1 mm up inside the hot road's 2 mm road slab). A room lit from
+within, or a furnace whose walls glow, has a light that is not at infinity, and is no mistake; an
+opening narrower than the rays' spacing (~0.2 rad) can be missed.)doc";
 inline constexpr const char mkd_doc_refracta_parse_derivatives[] = R"doc("automatic", "numeric", or "auto" (automatic when `field` has a templated model, else numeric).)doc";
 inline constexpr const char mkd_doc_refracta_pdf_li_all[] = R"doc(The solid-angle density (N,) with which sample_li picks unit wi (N, 3) at points (N, 3). Area lights
 need the point p_light (N, 3) where the ray along wi hits the light and its normal n_light (N, 3)

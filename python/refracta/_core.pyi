@@ -866,11 +866,12 @@ class Scene:
     def _dark_enclosure(self, eye: typing.Any) -> int | None:
         """
         The geometry that keeps every light from `eye`, if one does: every light of the scene is at infinity
-        (sun, sky, environment) and a closed, opaque geometry lies around the eye (the rays along the six
-        axes each cross it an odd number of times; a material that transmits, water or glass, is seen
-        through). The image is then black: render()'s "camera inside an object" hint (a trial's eye 1 mm up
-        inside the hot road's 2 mm road slab). A room lit from within, or a furnace whose walls glow, has a
-        light that is not at infinity, and is no mistake.
+        (sun, sky, environment) and one opaque geometry lies around the eye (256 rays spread over the sphere
+        each cross it an odd number of times; a material that transmits, water or glass, is seen through,
+        and a ray through an opening finds none). No surface in view is then lit: render()'s "camera inside
+        an object" hint (a trial's eye 1 mm up inside the hot road's 2 mm road slab). A room lit from
+        within, or a furnace whose walls glow, has a light that is not at infinity, and is no mistake; an
+        opening narrower than the rays' spacing (~0.2 rad) can be missed.
         """
     def add_billboard(self, centre: typing.Any, width: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, texture: os.PathLike | str | bytes, facing: typing.Any = (-1.0, 0.0, 0.0), kd: typing.Any = None) -> int:
         """
@@ -3016,10 +3017,11 @@ class Plastic(Material):
     reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX (or alpha_u, alpha_v). A
     texture multiplies the reflectance. The base's light enters and leaves through the smooth coat's
     Fresnel terms at any alpha, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fdr_internal))
-    (shared/SHADING.md 3). Smooth: Mitsuba 3's plastic with nonlinear=True (its default, False, is up to
-    35 % brighter). Rough: roughplastic's specular lobe; its diffuse part differs from roughplastic's,
-    which takes the rough interface's tabulated transmittance and internal reflectance (a trial, alpha
-    0.2, R 0.7: 14 % brighter at normal incidence, 17 % darker at 80 deg). texture: an image file (str or os.PathLike;
+    (shared/SHADING.md 3). Smooth: Mitsuba 3's plastic with nonlinear=True (its default, False, divides
+    by 1 - Fdr_internal instead: brighter by (1 - R Fdr_internal) / (1 - Fdr_internal), 35 % at R 0.77
+    and 2.5x as R -> 0 for ior 1.5). Rough: roughplastic's specular lobe; its diffuse part differs from
+    roughplastic's, which takes the rough interface's tabulated transmittance and internal reflectance
+    (a trial, alpha 0.2, R 0.7: 14 % brighter at normal incidence, 17 % darker at 80 deg). texture: an image file (str or os.PathLike;
     any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
     multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
     relative paths are from the working directory when the material is made. Each scene the material

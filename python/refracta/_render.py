@@ -94,7 +94,9 @@ def _check_frame_radius(frame, field, method: str) -> None:
 
 def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, where: str = "render") -> None:
     """The SceneWarning hints of render(): a scene without any light or sky; a camera at or below
-    its ground or sea (Scene.ground_bounds); and one whose lowest
+    its ground or sea (Scene.ground_bounds); a camera shut in an opaque object that no light reaches
+    (Scene._dark_enclosure; not for render_raster, whose alpha and shadows='none' let light in);
+    and one whose lowest
     geometry (taken as its ground) lies more than GROUND_TOLERANCE from height 0 of the field the
     rays go through (every field, CurvedEarth's flattened heights too, puts the ground at y = 0)
     with layered air in between (mean ``|dn/dh|`` > LAYER_GRADIENT below the camera)."""
@@ -130,12 +132,14 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
             SceneWarning,
             stacklevel=3,
         )
-    enclosure = scene._dark_enclosure((x, y, z)) if len(scene.lights) > 0 and below is None else None
+    traced = method != "raster" and len(scene.lights) > 0 and below is None
+    enclosure = scene._dark_enclosure((x, y, z)) if traced else None
     if enclosure is not None:  # a trial's eye 1 mm up, inside the hot road's 2 mm road slab: a black image
         warnings.warn(
-            f"{where}: the camera at ({x:g}, {y:g}, {z:g}) m is inside object {enclosure}, closed and opaque, and "
-            "every light of the scene is outside it at infinity (sun, sky, environment), so the image is dark (no "
-            "surface in it is lit; only the air's own glow, with aerial perspective): move the camera out of it",
+            f"{where}: the camera at ({x:g}, {y:g}, {z:g}) m is inside object {enclosure}: rays in 256 directions "
+            "from it all meet that opaque object's inside, and every light of the scene is at infinity outside it "
+            "(sun, sky, environment), so the image is dark (no surface in it is lit; only the air's own glow, with "
+            "aerial perspective): move the camera out of it",
             SceneWarning,
             stacklevel=3,
         )

@@ -7,6 +7,8 @@ blamed on a missing one; a camera at the end of scene coordinates was asked for 
 an editing trial's bounds where the model is undefined, max_iterations silently ignored by nlopt,
 the command line's size of a pixel_bounds render, ray_fan's eye_height as a string."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -296,7 +298,8 @@ def test_a_camera_shut_in_an_object_that_no_light_reaches_is_told_so():
     # An eye 1 mm up, inside the hot road's 2 mm road slab, rendered a black image without a word.
     road = examples.hot_road(16, 8)
     inside = refracta.Camera((10.0, 0.001, 0.0), (300.0, 0.001, 0.0), (0, 1, 0), road.camera.vfov, 16, 8)
-    with pytest.warns(refracta.SceneWarning, match=r"the camera at \(10, 0.001, 0\) m is inside object 1, closed"):
+    shut_in = r"the camera at \(10, 0.001, 0\) m is inside object 1: rays in 256 directions"
+    with pytest.warns(refracta.SceneWarning, match=shut_in):
         image = refracta.render(road.scene, inside, road.field, max_length=road.max_length, progress=False)
     seen = refracta.render(road.scene, road.camera, road.field, max_length=road.max_length, progress=False)
     # What the warning says: dark. Only the aerial perspective's in-scatter along the camera rays'
@@ -313,3 +316,47 @@ def test_a_camera_shut_in_an_object_that_no_light_reaches_is_told_so():
     assert scene._dark_enclosure((0.0, 0.5, 0.0)) is not None
     scene.add_point_light((0.0, 1.0, 0.0), 10.0)
     assert scene._dark_enclosure((0.0, 0.5, 0.0)) is None
+
+
+def _room(window: bool):
+    """A 4 m room of one opaque mesh around (0, 2, 0), with or without a 1 m window in its +x wall
+    off every axis through the room's middle."""
+
+    def quad(a, b, c, d):
+        i = len(vertices)
+        vertices.extend([a, b, c, d])
+        triangles.extend([(i, i + 1, i + 2), (i, i + 2, i + 3)])
+
+    vertices, triangles = [], []
+    quad((-2, 0, -2), (2, 0, -2), (2, 0, 2), (-2, 0, 2))
+    quad((-2, 4, -2), (-2, 4, 2), (2, 4, 2), (2, 4, -2))
+    quad((-2, 0, -2), (-2, 0, 2), (-2, 4, 2), (-2, 4, -2))
+    quad((-2, 0, -2), (-2, 4, -2), (2, 4, -2), (2, 0, -2))
+    quad((-2, 0, 2), (2, 0, 2), (2, 4, 2), (-2, 4, 2))
+    if window:  # the +x wall around a window at y in [2.5, 3.5], z in [0.5, 1.5]
+        quad((2, 0, -2), (2, 0, 2), (2, 2.5, 2), (2, 2.5, -2))
+        quad((2, 3.5, -2), (2, 3.5, 2), (2, 4, 2), (2, 4, -2))
+        quad((2, 2.5, -2), (2, 2.5, 0.5), (2, 3.5, 0.5), (2, 3.5, -2))
+        quad((2, 2.5, 1.5), (2, 2.5, 2), (2, 3.5, 2), (2, 3.5, 1.5))
+    else:
+        quad((2, 0, -2), (2, 0, 2), (2, 4, 2), (2, 4, -2))
+    scene = refracta.Scene()
+    scene.set_sky((0.5, 0.6, 0.9))
+    scene.set_sun((1.0, 0.3, 0.0), 2e4)
+    scene.add_mesh(np.array(vertices, float), np.array(triangles), kd=0.6)
+    return scene
+
+
+def test_a_room_with_a_window_is_lit_and_no_camera_in_it_is_warned():
+    # A review: the six axes' rays from the eye all met the walls, so a sunlit room with a window off
+    # those axes was called dark (its image: a sunlit patch, max 0.26). Rays in 256 directions find it.
+    eye = (0.0, 2.0, 0.0)
+    assert _room(window=True)._dark_enclosure(eye) is None
+    assert _room(window=False)._dark_enclosure(eye) == 0
+    camera = refracta.Camera(eye, (-3.0, 1.0, 0.0), (0, 1, 0), 100.0, 24, 16)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", refracta.SceneWarning)
+        lit = refracta.render(_room(window=True), camera, None, spp=4, progress=False)
+        assert lit.max() > 0.1  # the sun through the window on the wall behind the eye's view
+        # The rasterizer's alpha and shadows='none' let light through walls: no such hint there.
+        refracta.render_raster(_room(window=False), camera, shadows="none")

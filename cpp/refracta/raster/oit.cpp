@@ -10,7 +10,6 @@
 #include <array>
 #include <cmath>
 #include <complex>
-#include <optional>
 
 namespace refracta {
 
@@ -175,29 +174,31 @@ Vec3d composite_mboit(const std::vector<Fragment>& fragments, const Vec3d& backg
     for (int j = 1; j <= m; ++j) out[j] = (1.0 - bias) * b[j] + bias * target[size_t(j - 1)];
     return out;
   };
-  std::array<double, PowerMomentBound::kMaxMoments + 1> moments = biased(alpha_bias);
-  std::optional<PowerMomentBound> bound_of(std::in_place, moments.data(), m);
+  // Each fragment's bound (pass 2 reads them).
+  thread_local std::vector<MomentBound> bounds;
+  bounds.resize(fragments.size());
+  auto bound_all = [&](double bias) {
+    const std::array<double, PowerMomentBound::kMaxMoments + 1> moments = biased(bias);
+    const PowerMomentBound bound_of(moments.data(), m);
+    bool falls_back = false;
+    for (size_t i = 0; i < fragments.size(); ++i) falls_back |= (bounds[i] = bound_of.at(warped[i])).fallback;
+    return falls_back;
+  };
   // 16 bits: the moments re-quantised after every fragment can leave the moment space by their
   // rounding, in an order-dependent way; the Hankel matrix is then indefinite and every fragment
   // got the fallback's transmittance (8 moments: up to half the pixel's colour between orders of
-  // three fragments, a trial). Such a pixel is biased kRebias times more, as often as needed (a
-  // single fragment's fallback is exact: MOMENTS.md 4.6).
+  // three fragments, a trial). Such a pixel is biased kRebias times more, as often as needed up to
+  // a bias of 0.5 (a single fragment's fallback is exact: MOMENTS.md 4.6).
   constexpr double kRebias = 10.0;
   const bool rounded = unorm16 && fragments.size() > 1;
-  for (double bias = alpha_bias * kRebias; rounded && bias < 0.5; bias *= kRebias) {
-    bool falls_back = bound_of->singular();
-    for (size_t i = 0; i < fragments.size() && !falls_back; ++i) falls_back = bound_of->at(warped[i]).fallback;
-    if (!falls_back) break;
-    moments = biased(bias);
-    bound_of.emplace(moments.data(), m);
-  }
+  for (double bias = alpha_bias; bound_all(bias) && rounded && bias * kRebias < 0.5;) bias *= kRebias;
   // Pass 2: each fragment weighted by its estimated transmittance.
   Vec3d accum = Vec3d::Zero();
   double accum_alpha = 0.0;
   for (size_t i = 0; i < fragments.size(); ++i) {
     const Fragment& f = fragments[i];
     const double alpha = std::min(f.alpha, 0.999);
-    const MomentBound bound = bound_of->at(warped[i]);
+    const MomentBound& bound = bounds[i];
     const double absorbance = bound.lower + options.beta * bound.at_query;
     const double t = std::clamp(std::exp(-total * absorbance), 0.0, 1.0);
     accum += alpha * t * f.colour;

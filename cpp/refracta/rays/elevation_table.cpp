@@ -184,8 +184,9 @@ ElevationTable::ElevationTable(FieldPtr field, const ElevationTableOptions& opti
   options_.trace.trace = TraceMethod::kStratified;
   options_.trace.tol = options_.trace_tol.value_or(options_.tol);
   options_.validate();
-  // Between an entry's nodes the quintic is read (the renderers' chord plans): held to half the
-  // table's own accuracy (tol + angular_tol s), not to the traces' tol (trace_tol may be far tighter).
+  // Between an entry's nodes the quintic is read (the renderers' chord plans): held to half of the
+  // larger term of the table's own accuracy, tol or angular_tol s, not to the traces' tol (trace_tol
+  // may be far tighter).
   options_.trace.hold_between_nodes = true;
   options_.trace.between_nodes = TraceOptions::GrowingTolerance{0.5 * options_.tol, 0.5 * options_.angular_tol, 0.0};
   // Every height a path can reach, tabulated once (to 1e-12 in n: far below any tolerance).

@@ -55,9 +55,9 @@ struct TraceOptions {
     double at(double s) const { return std::max(floor, per_metre * (from + s)); }
   };
   // stratified, holding between nodes: when set, held to this instead of tol. The renderers (Caster,
-  // ElevationTable) hold them to a share of the pixel's footprint: their tol is the footprint at the
-  // path's end, and nodes up to a chord (1 km) apart, read between with no hold, strayed 15 mm
-  // from the path 300 m out, 0.43 of a 0.8-deg lens's pixel (tests/render/test_chords.py).
+  // ElevationTable) hold them to a share of the stray a pixel allows where they are: their tol is
+  // the stray at the path's end, and nodes up to a chord (1 km) apart, read between with no hold,
+  // strayed 15 mm from the path 300 m out, 0.43 of a 0.8-deg lens's pixel (tests/render/test_chords.py).
   std::optional<GrowingTolerance> between_nodes;
   // Polled at every step: when set, the trace throws Cancelled (Ctrl-C in a long batch).
   const std::atomic<bool>* cancel = nullptr;

@@ -784,8 +784,9 @@ PathEnd Caster::cast_traced(const Vec3d& origin, const Vec3d& dir, double max_le
   // be closer to it than that.
   const double per_metre = options_.sagitta_pixels * spread;
   trace_options.tol = std::max({trace_options.tol, per_metre * (s0 + max_length), options_.sagitta});
-  // That tol is the footprint at the path's end; between nodes (up to a chord apart) the chords
-  // read the quintic, held to a quarter of the footprint where they are (TraceOptions::between_nodes).
+  // That tol is the stray allowed at the path's end; between nodes (up to a chord apart) the
+  // chords read the quintic, held to a quarter of the stray allowed where they are (1/16 of the
+  // pixel's footprint by default; TraceOptions::between_nodes).
   trace_options.hold_between_nodes = true;
   trace_options.between_nodes = TraceOptions::GrowingTolerance{0.25 * options_.sagitta, 0.25 * per_metre, s0};
   double last_height = origin.y();

@@ -11,8 +11,11 @@
 #include "refracta/shading/sun_light.h"
 #include "refracta/shading/water_surface.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
+#include <set>
 
 namespace refracta {
 
@@ -184,30 +187,41 @@ std::optional<unsigned> dark_enclosure(const RenderScene& scene, const Vec3d& ey
   for (const LightPtr& light : scene.lights()) {
     if (!light->is_infinite() && light->type() != LightType::kDeltaDirection) return std::nullopt;
   }
-  // Crossings of each geometry along each of the six axes, each ray restarted just past each hit
-  // (at most kMostCrossings: beyond, the eye is called enclosed by nothing).
+  // kDirections rays spread evenly over the sphere (a Fibonacci lattice): a window, a door or a
+  // hole lets light in wherever one of them passes, which six along the axes missed (a review: a
+  // sunlit room with a 1 m window, called dark). Each ray is restarted just past each hit (at most
+  // kMostCrossings: beyond, the eye is called enclosed by nothing), and the geometry it crosses an
+  // odd number of times is what lies around the eye along it.
+  constexpr int kDirections = 256;
   constexpr int kMostCrossings = 4096;  // a 5 km road crosses ~1 000 dash marks
-  std::map<unsigned, int> odd_along;  // geometry -> the axes' directions crossing it an odd number of times
-  for (int axis = 0; axis < 3; ++axis) {
-    for (const double sign : {-1.0, 1.0}) {
-      const Vec3d d = sign * Vec3d::Unit(axis);
-      std::map<unsigned, int> crossings;
-      Vec3d origin = eye;
-      int k = 0;
-      for (; k < kMostCrossings; ++k) {
-        const auto hit = scene.geometry.intersect(origin, d, kSceneReach);
-        if (!hit) break;
-        ++crossings[hit->geometry];
-        origin = hit->point + d * (1e-6 * (1.0 + hit->point.cwiseAbs().maxCoeff()));
-      }
-      if (k == kMostCrossings) return std::nullopt;
-      for (const auto& [geometry, count] : crossings) odd_along[geometry] += count % 2;
+  std::set<unsigned> around;            // the opaque geometry every ray so far crossed an odd number of times
+  for (int i = 0; i < kDirections; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / kDirections, r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = kPi * (3.0 - std::sqrt(5.0)) * i;  // the golden angle
+    const Vec3d d(r * std::cos(phi), z, r * std::sin(phi));
+    std::map<unsigned, int> crossings;
+    Vec3d origin = eye;
+    int k = 0;
+    for (; k < kMostCrossings; ++k) {
+      const auto hit = scene.geometry.intersect(origin, d, kSceneReach);
+      if (!hit) break;
+      ++crossings[hit->geometry];
+      origin = hit->point + d * (1e-6 * (1.0 + hit->point.cwiseAbs().maxCoeff()));
     }
+    if (k == kMostCrossings) return std::nullopt;
+    std::set<unsigned> odd;
+    for (const auto& [geometry, count] : crossings) {
+      if (count % 2 == 1 && !scene.material(scene.geometry.material(geometry)).transmits()) odd.insert(geometry);
+    }
+    if (i > 0) {
+      std::set<unsigned> both;
+      std::set_intersection(around.begin(), around.end(), odd.begin(), odd.end(), std::inserter(both, both.begin()));
+      odd = std::move(both);
+    }
+    if (odd.empty()) return std::nullopt;  // a way out along this ray
+    around = std::move(odd);
   }
-  for (const auto& [geometry, directions] : odd_along) {
-    if (directions == 6 && !scene.material(scene.geometry.material(geometry)).transmits()) return geometry;
-  }
-  return std::nullopt;
+  return *around.begin();
 }
 
 std::optional<double> terrain_height(const RenderScene& scene, double x, double z) {

@@ -107,11 +107,12 @@ std::optional<Hit> intersect_ray(const RenderScene& scene, const Vec3d& origin, 
 std::optional<double> terrain_height(const RenderScene& scene, double x, double z);
 
 // The geometry that keeps every light from `eye`, if one does: every light of the scene is at
-// infinity (sun, sky, environment) and a closed, opaque geometry lies around the eye (the rays
-// along the six axes each cross it an odd number of times; a material that transmits, water or
-// glass, is seen through). The image is then black: render()'s "camera inside an object" hint (a
-// trial's eye 1 mm up inside the hot road's 2 mm road slab). A room lit from within, or a furnace
-// whose walls glow, has a light that is not at infinity, and is no mistake.
+// infinity (sun, sky, environment) and one opaque geometry lies around the eye (256 rays spread
+// over the sphere each cross it an odd number of times; a material that transmits, water or glass,
+// is seen through, and a ray through an opening finds none). No surface in view is then lit:
+// render()'s "camera inside an object" hint (a trial's eye 1 mm up inside the hot road's 2 mm road
+// slab). A room lit from within, or a furnace whose walls glow, has a light that is not at
+// infinity, and is no mistake; an opening narrower than the rays' spacing (~0.2 rad) can be missed.
 std::optional<unsigned> dark_enclosure(const RenderScene& scene, const Vec3d& eye);
 
 // Add a point light at `position` [m] of `intensity` [W/sr, RGB] (irradiance I cos / d^2). Returns

@@ -86,7 +86,8 @@ class PlasticBsdf final : public TwoSidedReflection<PlasticBsdf> {
 // texture multiplies the reflectance. The base's light enters and leaves through the smooth coat's
 // Fresnel terms at any alpha, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fdr_internal))
 // (shared/SHADING.md 3). Smooth: Mitsuba 3's plastic with nonlinear=True (its default, False,
-// is up to 35 % brighter). Rough: roughplastic's specular lobe; its diffuse part differs from
+// divides by 1 - Fdr_internal instead: brighter by (1 - R Fdr_internal) / (1 - Fdr_internal),
+// 35 % at R 0.77 and 2.5x as R -> 0 for ior 1.5). Rough: roughplastic's specular lobe; its diffuse part differs from
 // roughplastic's, which takes the rough interface's tabulated transmittance and internal
 // reflectance (a trial, alpha 0.2, R 0.7: 14 % brighter at normal incidence, 17 % darker at 80 deg).
 class Plastic final : public Material {
