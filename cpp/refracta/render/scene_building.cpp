@@ -1,6 +1,7 @@
 #include "refracta/render/scene_building.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/sampling.h"
 #include "refracta/scene/terrain.h"
 #include "refracta/shading/area_light.h"
 #include "refracta/shading/phong.h"
@@ -196,9 +197,8 @@ std::optional<unsigned> dark_enclosure(const RenderScene& scene, const Vec3d& ey
   constexpr int kMostCrossings = 4096;  // a 5 km road crosses ~1 000 dash marks
   std::set<unsigned> around;            // the opaque geometry every ray so far crossed an odd number of times
   for (int i = 0; i < kDirections; ++i) {
-    const double z = 1.0 - (2.0 * i + 1.0) / kDirections, r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const double phi = kPi * (3.0 - std::sqrt(5.0)) * i;  // the golden angle
-    const Vec3d d(r * std::cos(phi), z, r * std::sin(phi));
+    const double golden = 0.5 * (std::sqrt(5.0) - 1.0);  // azimuths turn by the golden angle
+    const Vec3d d = sample_uniform_sphere(Vec2d((i + 0.5) / kDirections, std::fmod(i * golden, 1.0)));
     std::map<unsigned, int> crossings;
     Vec3d origin = eye;
     int k = 0;

@@ -100,8 +100,8 @@ std::string prepare(const std::string& path, int* channels) {
   const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time, "|v", kPreparation));
   const fs::path prepared = fs::path(texture_cache_folder()) / concat(std::hex, key, ".exr");
 
-  // Colours as stored, not premultiplied by their alpha (which is dropped below).
   check_png_complete(path);
+  // Colours as stored, not premultiplied by their alpha (which is dropped below).
   OIIO::ImageSpec straight;
   straight.attribute("oiio:UnassociatedAlpha", 1);
   OIIO::ImageBuf source(path, 0, 0, nullptr, &straight);
