@@ -148,9 +148,9 @@ manual exposure; none: kAutoKey (0.18) when there is no manual exposure, else no
 inline constexpr const char mkd_doc_refracta_DisplaySettings_luminous_efficacy[] = R"doc(K: luminance [cd/m^2] of an image value of 1 (EV100 and camera settings only): 683 lm/W for
 radiance in W/(m^2 sr).)doc";
 inline constexpr const char mkd_doc_refracta_DisplaySettings_shutter[] = R"doc([s] a camera's shutter time (with f_number); None: not this way)doc";
-inline constexpr const char mkd_doc_refracta_DisplaySettings_white[] = R"doc(Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
-luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other tone
-curves refuse it).)doc";
+inline constexpr const char mkd_doc_refracta_DisplaySettings_white[] = R"doc(Reinhard: L_white of eq. 4, Ld = min(1, L (1 + L / L_white^2) / (1 + L)), the smallest scaled
+luminance mapped to display luminance 1 (in the colour's own hue: Ld / Lw scales its channels);
+none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other tone curves refuse it).)doc";
 inline constexpr const char mkd_doc_refracta_ElevationTableOptions[] = R"doc(Options of refracta.ElevationTable beside its eye height and elevation range, with their defaults
 (defined once, here). `trace` holds the exact traces' TraceOptions (their integrator is always
 'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.)doc";

@@ -19,7 +19,7 @@ Exposure c, the scale applied to the linear radiance first:
   [cd/m^2 per image unit], default 683 (lm/W: radiance in W m^-2 sr^-1 whose Y is
   photometrically weighted, the unit of refracta.examples, i.e. Scene.set_physical_sky(...,
   scale=examples.RADIANCE_SCALE)). The sunlit hot_road example is then well exposed near sunny
-  16 (its automatic exposure is EV100 13.9; f/16, 1/100 s, ISO 100 is 14.6).
+  16 (its automatic exposure at its 640 x 320 is EV100 13.9; f/16, 1/100 s, ISO 100 is 14.6).
 
 Tone curve, ``tonemap``:
 
@@ -35,8 +35,9 @@ Tone curve, ``tonemap``:
   the OpenImageIO here (2.4 on OCIO 2.1) has no ACES config, only linear/sRGB/Rec709.
 - ``'reinhard'``: Reinhard et al. 2002, "Photographic Tone Reproduction for Digital Images": on
   the luminance L = c Lw, Ld = L (1 + L / white^2) / (1 + L) (eq. 4; ``white=None``:
-  Ld = L / (1 + L), eq. 3); the colour is scaled by Ld / Lw (hue kept) and each channel clamped
-  to 1.
+  Ld = L / (1 + L), eq. 3), at most 1; the colour is scaled by Ld / Lw (hue kept: a colour whose L
+  exceeds ``white`` shows at display luminance 1 in its own hue, e.g. (3, 1, 0.2) with white=1 as
+  (1, 0.73, 0.15), not burnt to white) and each channel clamped to 1.
 - ``'linear'``: l = min(c L, 1) per channel; ``'film'``: the film response l = 1 - e^(-c L).
 - ``gamma='srgb'`` (the IEC 61966-2-1 curve), ``'linear'`` (none) or a number g in [1, 3]:
   p = l^(1/g).
@@ -57,6 +58,13 @@ The exposure meters the unbalanced image; ``white_balance_of`` gives the matrix 
 measured RGB white, to balance several images alike). Float files are written unbalanced.
 
 Finite input never gives NaN: c L is formed in double precision and clamped before mapping.
+Colours outside sRGB's gamut (a spectral render's pure spectral light has negative channels:
+520 nm is (-1.30, 1.79, -0.08)) have those channels clipped to 0, in the exposure meter too,
+which shifts their hue and raises their luminance (+28 % at 520 nm); map them into the gamut
+first where that matters (refracta.examples_chroma.gamut_map keeps the luminance).
+
+A PNG carries its transfer curve (its sRGB chunk, or gAMA for ``gamma=`` 'linear' or a number);
+float files are linear in sRGB's primaries (OpenEXR's default).
 """
 
 from __future__ import annotations

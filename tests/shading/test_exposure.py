@@ -92,10 +92,21 @@ def test_06_a_key_overrides_a_manual_exposure_and_manual_overrides_automatic():
     assert io.exposure_of(image) == pytest.approx(0.18 / log_average, rel=1e-6)
     assert io.exposure_of(image, key=0.09) == pytest.approx(0.09 / log_average, rel=1e-6)  # as above (3.6e-7 measured)
     assert io.exposure_of(image, exposure=3.0) == 3.0
-    # With a key the manual exposure cancels, but for delta: a c / Lw_bar(c L) x c.
-    log_average_3 = math.exp(np.mean(np.log(1e-6 + 3.0 * (image.astype(float) @ LUMA))))
+    # With a key the manual exposure has no say: the image itself is metered.
     # As above (3.6e-7 measured).
-    assert io.exposure_of(image, exposure=3.0, key=0.09) == pytest.approx(0.09 * 3.0 / log_average_3, rel=1e-6)
+    assert io.exposure_of(image, exposure=3.0, key=0.09) == pytest.approx(0.09 / log_average, rel=1e-6)
+
+
+def test_06b_a_key_overrides_a_manual_exposure_also_over_black_pixels():
+    # A trial's case: half black, half white. Metered after exposure=1000, the black pixels' delta
+    # (set in the scaled units) made the exposure 22x that of the key alone (254.6 vs 5692).
+    image = np.zeros((8, 8, 3), np.float32)
+    image[:, 4:] = 1.0
+    alone = io.exposure_of(image, key=0.18)
+    assert alone == pytest.approx(0.18 / math.sqrt(1e-6 * 0.5), rel=1e-6)  # delta = 1e-6 x mean 0.5; as above
+    for manual in ({"exposure": 1000.0}, {"ev100": 0.0}, {"exposure": 1e-3}):
+        assert io.exposure_of(image, key=0.18, **manual) == alone  # the same arithmetic: bit-equal
+    np.testing.assert_array_equal(io.to_display(image, key=0.18, exposure=1000.0), io.to_display(image, key=0.18))
 
 
 def test_07_aces_is_hills_fit():

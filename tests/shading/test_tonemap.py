@@ -1,6 +1,8 @@
 """Film and tone mapping (shared/SHADING.md section 8): closed forms, Reinhard's log-average,
 monotonicity, the transfer curves' inverses, and no NaN for huge values."""
 
+import struct
+
 import numpy as np
 import pytest
 
@@ -76,6 +78,37 @@ def test_reinhard_scales_colour_by_the_luminance_ratio():
     out = display(rgb, tonemap="reinhard", exposure=1.0)[0, 0]
     np.testing.assert_allclose(out, rgb[0, 0] * (1 / (1 + lw)), rtol=1e-5)  # Ld/Lw = 1/(1+Lw)
     np.testing.assert_allclose(out / out[0], rgb[0, 0] / rgb[0, 0, 0], rtol=1e-5)  # hue kept
+
+
+def test_reinhard_white_keeps_the_hue_of_a_colour_above_it():
+    # (3, 1, 0.2) with white=1: L >= white, so Ld = 1 and the colour is scaled by 1/Lw, its red
+    # channel then clamped: shown (1, 0.731, 0.146), not burnt to white (the docstring's promise).
+    rgb = np.array([[[3.0, 1.0, 0.2]]], np.float32)
+    lw = LUMA @ rgb[0, 0]
+    out = display(rgb, tonemap="reinhard", exposure=1.0, white=1.0)[0, 0]
+    np.testing.assert_allclose(out, np.minimum(rgb[0, 0] / lw, 1.0), rtol=1e-5)  # float32 output
+
+
+def png_colour_chunks(path) -> dict:
+    data, at, chunks = path.read_bytes(), 8, {}
+    while at < len(data):
+        (length,) = struct.unpack(">I", data[at : at + 4])
+        kind = data[at + 4 : at + 8].decode()
+        chunks[kind] = data[at + 8 : at + 8 + length]
+        at += 12 + length
+    return {k: v for k, v in chunks.items() if k in ("sRGB", "gAMA", "iCCP")}
+
+
+def test_a_png_says_which_transfer_curve_encodes_it(tmp_path):
+    # A viewer that reads the PNG's colour chunks decodes it as written: the sRGB chunk for the sRGB
+    # curve, gAMA 1/g (in units of 1e-5) for a gamma, 1 for linear output.
+    image = np.full((2, 2, 3), 0.5, np.float32)
+    for gamma, expected in (("srgb", {"sRGB", "gAMA"}), ("linear", {"gAMA"}), (2.2, {"gAMA"})):
+        refracta.io.write_image(tmp_path / "a.png", image, gamma=gamma)
+        chunks = png_colour_chunks(tmp_path / "a.png")
+        assert set(chunks) == expected, gamma
+        (gama,) = struct.unpack(">I", chunks["gAMA"])
+        assert gama == {"srgb": 45455, "linear": 100000, 2.2: 45455}[gamma]  # the PNG spec's integer 1e5/g
 
 
 @pytest.mark.parametrize("tonemap", ["linear", "film", "reinhard", "aces"])

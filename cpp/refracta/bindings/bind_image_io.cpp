@@ -29,9 +29,8 @@ py::array_t<float> image_to_float32(Image&& image) {
 
 namespace {
 
-// Writes `image` to `path`: float formats linear times the manual exposure (1 without one; never
-// automatic), the others tone mapped and encoded for display.
-void write_display_image(const std::string& path, Image image, const DisplaySettings& settings) {
+// io.write_image (display.h's write_display_image), warning first of the settings a float file leaves unused.
+void write_display_image_warning(const std::string& path, Image image, const DisplaySettings& settings) {
   if (is_float_format(path)) {
     if (const auto unused = display_only_fields_set(settings); !unused.empty()) {
       std::string names;
@@ -41,12 +40,9 @@ void write_display_image(const std::string& path, Image image, const DisplaySett
                                   " shape only displayed images (PNG, JPEG) and are not applied";
       if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();
     }
-    expose_linear(image, settings);
-  } else {
-    tonemap_image(image, settings);
   }
   py::gil_scoped_release release;
-  write_image(path, image);
+  write_display_image(path, std::move(image), settings);
 }
 
 }  // namespace
@@ -89,7 +85,7 @@ void bind_image_io(py::module_& m) {
   m.def(
       "_write_image",
       [](const std::string& path, const py::object& image, const DisplaySettings& display) {
-        write_display_image(path, to_image(image, "image"), display);
+        write_display_image_warning(path, to_image(image, "image"), display);
       },
       py::arg("path"), py::arg("image"), py::arg("display"), "Write an image as refracta.io.write_image.");
   m.def(

@@ -89,7 +89,7 @@ void check_image_format(const std::string& path) {
   if (!OIIO::ImageOutput::create(path)) throw IoError(concat("cannot write '", path, "': ", OIIO::geterror()));
 }
 
-void write_image(const std::string& path, const Image& image) {
+void write_image(const std::string& path, const Image& image, const std::string& colour_space) {
   if (image.width < 1 || image.height < 1) throw_invalid("write_image: the image is empty");
   check_writable(path);
   auto out = OIIO::ImageOutput::create(path);
@@ -99,6 +99,7 @@ void write_image(const std::string& path, const Image& image) {
   // Colours are not premultiplied by alpha (to_display's are what a PNG stores): OIIO would divide
   // them by it for formats that store straight alpha (a 0.5-alpha pixel's 231 became 255).
   spec.attribute("oiio:UnassociatedAlpha", 1);
+  if (!colour_space.empty()) spec.attribute("oiio:ColorSpace", colour_space);
   if (!out->open(path, spec)) throw IoError(concat("cannot write '", path, "': ", out->geterror()));
   if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) {
     throw IoError(concat("cannot write '", path, "': ", out->geterror()));

@@ -24,8 +24,10 @@ void check_writable(const std::string& path);
 // True for formats that keep linear floating point (EXR, HDR, PFM, TIFF).
 bool is_float_format(const std::string& path);
 // Writes pixels as they are: float formats keep them, others are quantised to 8 bits by OIIO
-// (so encode them for display first). Throws IoError with OIIO's message.
-void write_image(const std::string& path, const Image& image);
+// (so encode them for display first). `colour_space`, if given, is stored as the file's colour
+// space (OIIO's oiio:ColorSpace: "sRGB" gives a PNG its sRGB chunk, "linear" or
+// "GammaCorrected<g>" its gAMA chunk). Throws IoError with OIIO's message.
+void write_image(const std::string& path, const Image& image, const std::string& colour_space = "");
 // Throws IoError (OIIO's message) unless OIIO has a writer for path's format (its extension):
 // checked before work whose result goes to that file.
 void check_image_format(const std::string& path);

@@ -2,6 +2,7 @@
 #include "refracta/shading/display.h"
 
 #include "refracta/core/error.h"
+#include "refracta/scene/image_io.h"
 
 namespace refracta {
 
@@ -30,6 +31,20 @@ void set_gamma(DisplaySettings& settings, const GammaName& gamma) {
 GammaName gamma_name(const DisplaySettings& settings) {
   if (settings.transfer == Transfer::kSrgb) return std::string("srgb");
   return settings.gamma;
+}
+
+void write_display_image(const std::string& path, Image image, const DisplaySettings& settings) {
+  if (is_float_format(path)) {
+    expose_linear(image, settings);
+    write_image(path, image);
+    return;
+  }
+  tonemap_image(image, settings);
+  std::string colour_space = "sRGB";
+  if (settings.transfer == Transfer::kGamma) {
+    colour_space = settings.gamma == 1.0 ? "linear" : concat("GammaCorrected", settings.gamma);
+  }
+  write_image(path, image, colour_space);
 }
 
 }  // namespace refracta

@@ -18,4 +18,11 @@ using GammaName = std::variant<std::string, double>;
 void set_gamma(DisplaySettings& settings, const GammaName& gamma);  // std::invalid_argument for another name
 GammaName gamma_name(const DisplaySettings& settings);
 
+// io.write_image: a float format (is_float_format) gets the image linear times the manual
+// exposure (expose_linear; display_only_fields_set names the settings it leaves unused), any
+// other the image tone mapped and encoded (tonemap_image), tagged with its transfer curve's
+// colour space (sRGB, linear or a gamma) so that viewers that read it need not assume one.
+// Throws IoError, std::invalid_argument.
+void write_display_image(const std::string& path, Image image, const DisplaySettings& settings);
+
 }  // namespace refracta

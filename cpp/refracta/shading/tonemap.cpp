@@ -221,8 +221,10 @@ double display_exposure(const Image& image, const DisplaySettings& s, bool* mete
     if (metered_nothing) *metered_nothing = true;
     return manual;
   }
-  // Automatic: (a / Lw_bar(c x image)) c, the manual c cancelling but for delta.
-  return s.key.value_or(kAutoKey) / log_average_luminance(image, manual) * manual;
+  // Automatic: a / Lw_bar, metered on the image itself, so that a manual exposure given with a key
+  // has no say (metered after it, the delta of the black pixels, set in its scaled units, left a
+  // half-black image's exposure 22x higher under exposure=1000: a trial).
+  return s.key.value_or(kAutoKey) / log_average_luminance(image);
 }
 
 void DisplaySettings::validate() const {
@@ -283,7 +285,7 @@ Eigen::Matrix3d white_balance_matrix(const Image& image, const DisplaySettings& 
   return to_rgb * spectral::bradford_adaptation(light / light.y() * display_white.y(), display_white) * to_xyz;
 }
 
-double log_average_luminance(const Image& image, double exposure) {
+double log_average_luminance(const Image& image) {
   const int colour = colour_channels(image.channels);
   const size_t count = size_t(image.width) * image.height;
   if (count == 0) return 0.0;
@@ -291,11 +293,11 @@ double log_average_luminance(const Image& image, double exposure) {
   // delta in the image's own units where they are small (a mean luminance below 1): a scene scaled
   // by 1e-7 was exposed to half its key and one scaled by 1e-9 came out black (a trial), as the
   // constant delta outweighed every pixel. At a mean of 1 or more, Reinhard's constant itself.
-  for (size_t i = 0; i < count; ++i) sum += luminance(&image.pixels[i * image.channels], colour, exposure, scaled);
+  for (size_t i = 0; i < count; ++i) sum += luminance(&image.pixels[i * image.channels], colour, 1.0, scaled);
   const double mean = sum / double(count);
   const double delta = kReinhardDelta * (mean > 0.0 ? std::min(mean, 1.0) : 1.0);
   sum = 0.0;
-  for (size_t i = 0; i < count; ++i) sum += std::log(delta + luminance(&image.pixels[i * image.channels], colour, exposure, scaled));
+  for (size_t i = 0; i < count; ++i) sum += std::log(delta + luminance(&image.pixels[i * image.channels], colour, 1.0, scaled));
   return std::exp(sum / double(count));
 }
 

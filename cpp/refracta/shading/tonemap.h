@@ -13,10 +13,10 @@
 //   into luminance: 683 lm/W (kLuminousEfficacy) for radiance in W m^-2 sr^-1 whose Y is the
 //   photometrically weighted radiance -- refracta.examples' unit (the physical sky times
 //   106.857 nm, examples.RADIANCE_SCALE); a sunlit example is then well exposed near sunny 16
-//   (hot road: EV100 13.4 by the automatic exposure, sunny 16 is 14.6).
+//   (hot road at its 640 x 320: EV100 13.9 by the automatic exposure, sunny 16 is 14.6).
 // - automatic (no manual setting, or a `key` given): the log-average luminance of the image goes
 //   to the key a (Reinhard et al. 2002, eq. 1-2: c = a / Lw_bar, middle grey a = 0.18 by default,
-//   kAutoKey), whatever the manual exposure (it cancels).
+//   kAutoKey), metered on the image itself: a manual exposure given with a key has no effect.
 //
 // White balance (white_balance; before the exposure's scale and the tone curve, as a camera
 // balances its raw image): the light named as white is adapted to the display's white (D65, the
@@ -103,9 +103,10 @@ struct DisplaySettings {
   // image, delta = kReinhardDelta times the mean luminance where that is below 1); given, it
   // overrides any manual exposure; none: kAutoKey (0.18) when there is no manual exposure, else none.
   std::optional<double> key;
-  // Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
-  // luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other
-  // tone curves refuse it).
+  // Reinhard: L_white of eq. 4, Ld = min(1, L (1 + L / L_white^2) / (1 + L)), the smallest scaled
+  // luminance mapped to display luminance 1 (in the colour's own hue: Ld / Lw scales its
+  // channels); none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other tone curves
+  // refuse it).
   std::optional<double> white;
   Transfer transfer = Transfer::kSrgb;
   double gamma = 2.2;  // Transfer::kGamma: g in [1, 3] (1: linear output)
@@ -146,10 +147,10 @@ bool has_light(const Image& image);
 // identity for 'none' and for grey images.
 Eigen::Matrix3d white_balance_matrix(const Image& image, const DisplaySettings& settings);
 
-// The log-average luminance Lw_bar = exp(mean ln(delta + Lw)) of c x the image (delta:
+// The log-average luminance Lw_bar = exp(mean ln(delta + Lw)) of the image (delta:
 // kReinhardDelta x min(1, the mean luminance), or kReinhardDelta for a black image; luminance:
 // Y of linear sRGB, 0.2126 R + 0.7152 G + 0.0722 B normalised to sum 1; 1-2 channels: the first).
-double log_average_luminance(const Image& image, double exposure);
+double log_average_luminance(const Image& image);
 
 // Tone map and encode a whole image in place (the 4th channel of RGBA and the 2nd of grey+alpha
 // untouched). Linear and film map each channel; Reinhard maps the luminance Lw to Ld and scales
