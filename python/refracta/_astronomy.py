@@ -15,21 +15,23 @@ ARCMIN_PER_RADIAN = 180.0 * 60.0 / np.pi
 def astronomical_refraction(
     field: _core.IndexField,
     apparent_elevation_deg,
-    eye_height: float = 0.0,
+    eye_height: float | None = None,
     *,
     wavelength: float | None = None,
     top: float | None = None,
-    earth_radius: float = 6371e3,
-    tol: float = 1e-7,
+    earth_radius: float | None = None,
+    tol: float | None = None,
 ) -> float | np.ndarray:
     """Refraction [arcmin] of a star seen at `apparent_elevation_deg` [deg, in [-90, 90]].
 
     The star's true elevation is the apparent one less the refraction. `field` is the air with
     true heights (a height-only field: PhysicalAtmosphere, TemperatureProfile, ...; not a
-    CurvedEarth -- the Earth's curvature, `earth_radius` [m], is applied here); the ray is traced
-    from `eye_height` [m] to `top` [m] (default: where the field becomes uniform, 86 km for
-    PhysicalAtmosphere, the top of the U.S. Standard Atmosphere 1976). `wavelength` [nm]: the air
-    dispersed to that wavelength (refracta.dispersed_field), default the field's own.
+    CurvedEarth -- the Earth's curvature, `earth_radius` [m] (default 6371 km, the mean radius), is
+    applied here); the ray is traced from `eye_height` [m] (default 0: the ground) to `top` [m]
+    (default: where the field becomes uniform, 86 km for PhysicalAtmosphere, the top of the U.S.
+    Standard Atmosphere 1976) to within `tol` [m] (default 1e-7). `wavelength` [nm]: the air
+    dispersed to that wavelength (refracta.dispersed_field), default the field's own. The defaults
+    are C++'s (AstronomicalRefractionOptions): None takes them.
 
     For the standard atmosphere at 550 nm: 33.0' at the horizon, 9.66' at 5 deg, 0.953' at 45 deg;
     blue (450 nm) is lifted 33" more than red (650 nm) at the horizon.
@@ -51,10 +53,10 @@ def astronomical_refraction(
     radians = _core._astronomical_refraction(  # numbers, not "5" (float() read it) nor True
         field,
         np.radians(elevations).ravel(),
-        number(eye_height, "eye_height"),
+        None if eye_height is None else number(eye_height, "eye_height"),
         None if top is None else number(top, "top"),
-        number(earth_radius, "earth_radius"),
-        number(tol, "tol"),
+        None if earth_radius is None else number(earth_radius, "earth_radius"),
+        None if tol is None else number(tol, "tol"),
     )
     out = radians.reshape(elevations.shape) * ARCMIN_PER_RADIAN
     return float(out) if out.ndim == 0 else out

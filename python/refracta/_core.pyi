@@ -1396,9 +1396,9 @@ class DisplaySettings:
     @property
     def white(self) -> float | None:
         """
-        Reinhard: L_white of eq. 4, Ld = L (1 + L / L_white^2) / (1 + L), the smallest scaled
-        luminance mapped to white; none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other tone
-        curves refuse it).
+        Reinhard: L_white of eq. 4, Ld = min(1, L (1 + L / L_white^2) / (1 + L)), the smallest scaled
+        luminance mapped to display luminance 1 (in the colour's own hue: Ld / Lw scales its channels);
+        none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other tone curves refuse it).
         """
     @white.setter
     def white(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -3635,7 +3635,7 @@ class DispersedField(IndexField):
     @property
     def scale(self) -> float:
         ...
-def _astronomical_refraction(field: IndexField, elevations: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex, top: typing.SupportsFloat | typing.SupportsIndex | None, earth_radius: typing.SupportsFloat | typing.SupportsIndex, tol: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+def _astronomical_refraction(field: IndexField, elevations: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex | None, top: typing.SupportsFloat | typing.SupportsIndex | None, earth_radius: typing.SupportsFloat | typing.SupportsIndex | None, tol: typing.SupportsFloat | typing.SupportsIndex | None) -> numpy.typing.NDArray[numpy.float64]:
     """
     Refraction [rad] at apparent elevations [rad] (refracta.astronomical_refraction).
     """

@@ -21,7 +21,7 @@ from refracta._checks import is_number, is_seed
 # by the integral of the CIE y-bar curve (a mean spectral radiance, W/(m^2 sr nm)); times that
 # integral (106.86 nm, CIE 1931 2 deg) its Y is the y-bar-weighted radiance in W/(m^2 sr), so that
 # 683 x Y is the luminance in cd/m^2 (a clear horizon sky: ~3000-5000 cd/m^2).
-RADIANCE_SCALE = 106.857
+RADIANCE_SCALE = spectrum.cie_y_integral()
 
 
 @dataclass
@@ -532,7 +532,7 @@ def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.7
     horizon_sun = sun_direction(0.0, 0.0)
     set_physical_sky(scene, horizon_sun)
     lam = np.arange(360.0, 831.0, 10.0)
-    sun = spectrum.PhysicalSky(horizon_sun).sun_radiance(lam, 0.53) * RADIANCE_SCALE
+    sun = spectrum.PhysicalSky(horizon_sun).sun_radiance(lam) * RADIANCE_SCALE
     scene.set_sun(
         sun_direction(sun_elevation, 0.0),
         sun,

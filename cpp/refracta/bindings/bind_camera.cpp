@@ -15,12 +15,10 @@ namespace refracta {
 namespace {
 
 using Sensor = std::pair<double, double>;  // (width, height) [mm]
-// The photographic cameras' defaults (photographic, photographic_vfov, eye_level): a full-frame
-// sensor and a 3:2 image.
-constexpr Sensor kFullFrame(36.0, 24.0);
-constexpr int kPhotoWidth = 960, kPhotoHeight = 640;
-// Camera() and Camera.framing: a 16:9 image.
-constexpr int kWidth = 640, kHeight = 360;
+using D = CameraDefaults;
+constexpr Sensor kFullFrame(D::kSensorWidth, D::kSensorHeight);
+constexpr int kPhotoWidth = D::kPhotoWidth, kPhotoHeight = D::kPhotoHeight;
+constexpr int kWidth = D::kWidth, kHeight = D::kHeight;
 using Side = std::optional<int>;  // an image side that may be left out (Camera::image_size)
 
 // A photographic camera's image: a side left out follows the sensor's shape.
@@ -83,7 +81,7 @@ void bind_camera_constructors(py::class_<Camera>& camera) {
         const auto [w, h] = Camera::image_size(width, height, kWidth, kHeight, double(kWidth) / kHeight);
         return Camera::framing(lower, upper, to_point(direction, "Camera.framing: direction"), to_point(up, "Camera.framing: up"), vfov, w, h);
       },
-      py::arg("scene_or_bounds"), py::arg("direction") = py::make_tuple(-1.0, -0.5, -1.0), py::arg("vfov") = 45.0,
+      py::arg("scene_or_bounds"), py::arg("direction") = py::make_tuple(-1.0, -0.5, -1.0), py::arg("vfov") = D::kVfov,
       py::arg("width") = py::none(), py::arg("height") = py::none(), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
       DOC(refracta, Camera, framing));
   camera.def_static("photographic_vfov", &photographic_vfov_of, py::arg("focal_length_mm"),
@@ -111,7 +109,7 @@ void bind_camera_constructors(py::class_<Camera>& camera) {
         return Camera::eye_level(to_point(eye, "Camera.eye_level: eye"), to_point(target, "Camera.eye_level: target"), eye_height, focal_length_mm,
                                  sensor_mm.first, sensor_mm.second, w, h, f_number, focus_distance);
       },
-      py::arg("eye"), py::arg("target"), py::arg("eye_height") = 1.6, py::arg("focal_length_mm") = 50.0,
+      py::arg("eye"), py::arg("target"), py::arg("eye_height") = D::kEyeHeight, py::arg("focal_length_mm") = D::kFocalLength,
       py::arg("sensor_mm") = kFullFrame, py::kw_only(), py::arg("width") = py::none(), py::arg("height") = py::none(),
       py::arg("f_number") = py::none(), py::arg("focus_distance") = py::none(),
       DOC(refracta, Camera, eye_level));
@@ -129,7 +127,7 @@ void bind_camera(py::module_& m) {
                            w, h);
            }),
            py::arg("position"), py::arg("look_at"), py::arg("up") = py::make_tuple(0.0, 1.0, 0.0),
-           py::arg("vfov") = 45.0, py::arg("width") = py::none(), py::arg("height") = py::none(),
+           py::arg("vfov") = D::kVfov, py::arg("width") = py::none(), py::arg("height") = py::none(),
            "width, height [pixels]: the image, 640 x 360 by default; one given alone, the other follows that\n"
            "16:9 shape (square pixels).")
       .def(

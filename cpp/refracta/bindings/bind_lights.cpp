@@ -70,7 +70,8 @@ void bind_finite_lights(py::module_& m) {
              return std::make_shared<SunLight>(to_point(direction, "SunLight: direction"), to_illuminant(radiance, "SunLight: radiance"),
                                                angular_diameter, limb_darkening);
            }),
-           py::arg("direction"), py::arg("radiance"), py::arg("angular_diameter") = 0.53, py::arg("limb_darkening") = 0.0)
+           py::arg("direction"), py::arg("radiance"), py::arg("angular_diameter") = SunDisc().angular_diameter,
+           py::arg("limb_darkening") = SunDisc().limb_darkening)
       .def_property_readonly("solid_angle", &SunLight::solid_angle, "Of the disc [sr].")
       .def_property_readonly("direction", [](const SunLight& l) { return vector_to_array(l.direction()); })
       .def_property_readonly("irradiance", [](const SunLight& l) { return vector_to_array(l.irradiance_rgb()); },

@@ -166,7 +166,7 @@ void bind_materials(py::module_& m) {
         return py::dict(py::arg("reflectance") = rgb_tuple(m.reflectance().rgb()), py::arg("ior") = m.ior(), py::arg("alpha_u") = m.alpha_u(),
                     py::arg("alpha_v") = m.alpha_v(), py::arg("texture") = texture_argument(m.reflectance()));
   },
-      py::arg("reflectance") = 0.5, py::arg("ior") = 1.5, py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(),
+      py::arg("reflectance") = 0.5, py::arg("ior") = Plastic::kDefaultIor, py::arg("alpha") = py::none(), py::arg("alpha_u") = py::none(),
            py::arg("alpha_v") = py::none(), py::arg("texture") = py::none());
 
   def_material<Principled>(m, "Principled", textured_doc(DOC(refracta, Principled)).c_str(),
@@ -194,14 +194,15 @@ void bind_materials(py::module_& m) {
   def_material<ThinFilm>(m, "ThinFilm", DOC(refracta, ThinFilm),
       py::init([](double thickness, double film_ior, const py::object& eta, const py::object& k, std::optional<double> alpha,
                   std::optional<double> alpha_u, std::optional<double> alpha_v) {
-        const auto a = alphas_from(alpha, alpha_u, alpha_v, false, 0.1);
+        const auto a = alphas_from(alpha, alpha_u, alpha_v, false, ThinFilm::kDefaultAlpha);
         return std::make_shared<ThinFilm>(thickness, film_ior, to_rgb(eta, "eta"), to_rgb(k, "k"), a.first, a.second);
       }),
       [](const ThinFilm& m) {
         return py::dict(py::arg("thickness") = m.thickness(), py::arg("film_ior") = m.film_ior(), py::arg("eta") = rgb_tuple(m.eta()),
                     py::arg("k") = rgb_tuple(m.k()), py::arg("alpha_u") = m.alpha_u(), py::arg("alpha_v") = m.alpha_v());
   },
-      py::arg("thickness"), py::arg("film_ior") = 1.33, py::arg("eta") = 1.5, py::arg("k") = 0.0, py::arg("alpha") = py::none(),
+      py::arg("thickness"), py::arg("film_ior") = ThinFilm::kDefaultFilmIor, py::arg("eta") = ThinFilm::kDefaultEta,
+           py::arg("k") = ThinFilm::kDefaultK, py::arg("alpha") = py::none(),
            py::kw_only(), py::arg("alpha_u") = py::none(), py::arg("alpha_v") = py::none());
 
 }

@@ -4,6 +4,7 @@
 #include "refracta/bindings/custom_field.h"
 #include "refracta/bindings/interruptible.h"
 #include "refracta/media/curved_earth.h"
+#include "refracta/media/dispersed_field.h"
 #include "refracta/media/model_args.h"
 #include "refracta/media/tabulated_height_field.h"
 
@@ -293,7 +294,7 @@ void bind_media(py::module_& m) {
                      py::none(), [&](WorkControl&) { return make_temperature_profile(h, t, pressure, humidity, wavelength); });
                }),
                py::arg("heights"), py::arg("temperatures"), py::arg("pressure") = kStandardPressure,
-               py::arg("humidity") = 0.0, py::arg("wavelength") = 550.0)
+               py::arg("humidity") = 0.0, py::arg("wavelength") = kDefaultFieldWavelength)
       .def_property_readonly("heights",
                              [](const TemperatureProfile& f) { return values_to_array(f.config().heights); });
   using Sounding = std::tuple<std::vector<double>, std::vector<double>>;

@@ -156,9 +156,13 @@ void bind_tracing(py::module_& m) {
 
   m.def(
       "_astronomical_refraction",
-      [](const std::shared_ptr<IndexField>& field, const py::object& elevations, double eye_height,
-         std::optional<double> top, double earth_radius, double tol) {
-        const AstronomicalRefractionOptions options{eye_height, top, earth_radius, tol};
+      [](const std::shared_ptr<IndexField>& field, const py::object& elevations, std::optional<double> eye_height,
+         std::optional<double> top, std::optional<double> earth_radius, std::optional<double> tol) {
+        AstronomicalRefractionOptions options;  // its defaults where None
+        options.eye_height = eye_height.value_or(options.eye_height);
+        options.top = top;
+        options.earth_radius = earth_radius.value_or(options.earth_radius);
+        options.tol = tol.value_or(options.tol);
         const std::vector<double> e = to_values(elevations, "apparent elevations");
         return values_to_array(interruptible_result(
             py::none(), [&](WorkControl& control) { return astronomical_refraction(field, e, options, control); }));

@@ -14,15 +14,15 @@ namespace {
 
 void bind_water(py::module_& m) {
   m.def("water_ior", vectorize_real(&water_ior, {"wavelength_nm", "temperature_c", "salinity"}), py::arg("wavelength_nm"),
-        py::arg("temperature_c") = 20.0, py::arg("salinity") = 0.0, vectorised_doc(DOC(refracta, water_ior)).c_str());
+        py::arg("temperature_c") = kWaterTableTemperature, py::arg("salinity") = kPureWaterSalinity, vectorised_doc(DOC(refracta, water_ior)).c_str());
   m.def("water_density", vectorize_real(&water_density, {"temperature_c"}), py::arg("temperature_c"),
         vectorised_doc(DOC(refracta, water_density)).c_str());
   m.def("water_absorption", vectorize_real(&water_absorption, {"wavelength_nm"}), py::arg("wavelength_nm"),
         vectorised_doc(DOC(refracta, water_absorption)).c_str());
   m.def("water_backscattering", vectorize_real(&water_backscattering, {"wavelength_nm", "salinity"}),
-        py::arg("wavelength_nm"), py::arg("salinity") = 0.0, vectorised_doc(DOC(refracta, water_backscattering)).c_str());
+        py::arg("wavelength_nm"), py::arg("salinity") = kPureWaterSalinity, vectorised_doc(DOC(refracta, water_backscattering)).c_str());
   m.def("water_body_reflectance", vectorize_real(&water_body_reflectance, {"wavelength_nm", "salinity"}),
-        py::arg("wavelength_nm"), py::arg("salinity") = 0.0, vectorised_doc(DOC(refracta, water_body_reflectance)).c_str());
+        py::arg("wavelength_nm"), py::arg("salinity") = kPureWaterSalinity, vectorised_doc(DOC(refracta, water_body_reflectance)).c_str());
   m.def("cox_munk_mean_square_slope", vectorize_real(&cox_munk_mean_square_slope, {"wind_speed"}), py::arg("wind_speed"),
         vectorised_doc(DOC(refracta, cox_munk_mean_square_slope)).c_str());
 

@@ -4,6 +4,7 @@
 #include "refracta/bindings/bind_shading.h"
 #include "refracta/core/spectrum.h"
 #include "refracta/shading/sky_batch.h"
+#include "refracta/shading/sky_presets.h"  // SunDisc
 
 #include <pybind11/eigen.h>
 
@@ -124,9 +125,9 @@ void bind_physical_sky(py::module_& m) {
                return l.sky().sun_radiance(checked_wavelength(x, "wavelengths"), diameter);
              });
            },
-           py::arg("wavelengths"), py::arg("angular_diameter_deg") = 0.53, DOC(refracta, PhysicalSky, sun_radiance))
+           py::arg("wavelengths"), py::arg("angular_diameter_deg") = SunDisc().angular_diameter, DOC(refracta, PhysicalSky, sun_radiance))
       .def("sun_radiance_rgb", [](const PhysicalSkyLight& l, double d) { return l.sky().sun_radiance_rgb(d); },
-           py::arg("angular_diameter_deg") = 0.53, DOC(refracta, PhysicalSky, sun_radiance_rgb))
+           py::arg("angular_diameter_deg") = SunDisc().angular_diameter, DOC(refracta, PhysicalSky, sun_radiance_rgb))
       .def_static("solar_irradiance",
                   [](const py::object& lambda) {
                     return per_value(lambda, "wavelengths", &PhysicalSky::solar_irradiance);

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "refracta/core/parallel.h"
+#include "refracta/media/curved_earth.h"  // kEarthRadius
 #include "refracta/media/index_field.h"
 
 #include <optional>
@@ -24,7 +25,7 @@ struct AstronomicalRefractionOptions {
   // The top of the air [m]: above it n is uniform (unset: the field's uniform_above(), e.g. 86 km
   // for PhysicalAtmosphere; a field without one needs it given).
   std::optional<double> top;
-  double earth_radius = 6371e3;  // [m]
+  double earth_radius = kEarthRadius;  // [m], the mean radius
   double tol = 1e-7;             // the tracer's position tolerance [m]
 
   void validate() const;

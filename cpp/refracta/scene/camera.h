@@ -23,6 +23,19 @@ namespace refracta {
 // The narrowest vertical field of view a camera takes [deg] (3.6 milliarcseconds).
 constexpr double kNarrowestVfov = 1e-6;
 
+// The cameras' defaults, where Python leaves them out: Camera(...) and Camera.framing a 45 deg
+// view on a 16:9 image of 640 x 360; the photographic cameras (photographic, eye_level) a
+// full-frame 36 x 24 mm sensor and a 3:2 image of 960 x 640, eye_level a 50 mm lens 1.6 m above
+// the ground (a standing adult's eye).
+struct CameraDefaults {
+  static constexpr double kVfov = 45.0;  // [deg]
+  static constexpr int kWidth = 640, kHeight = 360;
+  static constexpr double kSensorWidth = 36.0, kSensorHeight = 24.0;  // [mm]
+  static constexpr int kPhotoWidth = 960, kPhotoHeight = 640;
+  static constexpr double kFocalLength = 50.0;  // [mm]
+  static constexpr double kEyeHeight = 1.6;     // [m]
+};
+
 // Pinhole camera. Camera(position, look_at, up=(0, 1, 0), vfov=45, width=640, height=360; one side
 // given alone, the other follows that 16:9 shape): vfov is
 // the vertical field of view [deg], from 1e-6 to under 180. Pixel coordinates (u, v): u right, v down, pixel (i, j) centred

@@ -92,8 +92,9 @@ class PlasticBsdf final : public TwoSidedReflection<PlasticBsdf> {
 // reflectance (a trial, alpha 0.2, R 0.7: 14 % brighter at normal incidence, 17 % darker at 80 deg).
 class Plastic final : public Material {
  public:
+  static constexpr double kDefaultIor = 1.5;  // a varnish's or a polymer's coat
   // alpha = 0: smooth coat; otherwise GGX roughness alpha_u, alpha_v (>= TrowbridgeReitz::kMinAlpha).
-  Plastic(const TexturedReflectance& reflectance, double ior = 1.5, double alpha_u = 0.0, double alpha_v = 0.0)
+  Plastic(const TexturedReflectance& reflectance, double ior = kDefaultIor, double alpha_u = 0.0, double alpha_v = 0.0)
       : reflectance_(reflectance), ior_(ior) {
     const double au = checked_alpha_or_zero(alpha_u, "alpha_u"), av = checked_alpha_or_zero(alpha_v, "alpha_v");
     if ((au == 0.0) != (av == 0.0)) throw_invalid("alpha_u and alpha_v must both be 0 (smooth) or both > 0 (got ", alpha_u, ", ", alpha_v, ")");

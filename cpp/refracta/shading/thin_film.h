@@ -118,6 +118,8 @@ class ThinFilmBsdf final : public TwoSidedReflection<ThinFilmBsdf> {
 // Reflection only.
 class ThinFilm final : public Material {
  public:
+  // Python's defaults: a soap film (water's index) on glass, slightly rough.
+  static constexpr double kDefaultFilmIor = 1.33, kDefaultEta = 1.5, kDefaultK = 0.0, kDefaultAlpha = 0.1;
   // thickness [nm] >= 0, film_ior > 0; base eta (> 0) and k (>= 0) per channel; alpha 0 = smooth.
   ThinFilm(double thickness, double film_ior, const Vec3d& eta, const Vec3d& k, double alpha_u, double alpha_v)
       : thickness_(checked_scalar(thickness, "thickness", 0.0, 1e6)), film_ior_(film_ior), eta_rgb_(eta), k_rgb_(k),

@@ -28,6 +28,11 @@ void check_water_range(const char* function, const char* name, double value, dou
 // std::invalid_argument (ValueError in Python).
 double water_density(double temperature_c);
 
+// The water functions' defaults: pure water (salinity 0) at 20 deg C, the usual reference
+// temperature of refractive indices (n_D at 20 deg C). shading.Water's sea has its own defaults.
+constexpr double kPureWaterSalinity = 0.0;       // [g/kg]
+constexpr double kWaterTableTemperature = 20.0;  // [deg C]
+
 // Refractive index of water relative to vacuum at a vacuum wavelength [nm] in [200, 1100],
 // temperature [deg C] in [-2, 40] and salinity [g/kg, ~PSU] in [0, 40], at atmospheric pressure.
 // Pure water by IAPWS R9-97, "Release on the
@@ -38,7 +43,8 @@ double water_density(double temperature_c);
 // nm, relative to air: the 3e-4 difference from vacuum in the increment is far below the fit's
 // accuracy).
 // Outside the ranges: std::invalid_argument (ValueError in Python) naming the argument.
-double water_ior(double wavelength_nm, double temperature_c = 20.0, double salinity = 0.0);
+double water_ior(double wavelength_nm, double temperature_c = kWaterTableTemperature,
+                 double salinity = kPureWaterSalinity);
 
 // Absorption coefficient of pure water [1/m] at a wavelength [nm] in [360, 830],
 // linear between 5 nm nodes: Pope & Fry 1997 ("Absorption spectrum (380-700 nm) of
@@ -58,7 +64,7 @@ double water_absorption(double wavelength_nm);
 // (Optics Express 17(7)) derive the same lambda^-4.32 slope from fluctuation theory. Wavelength in
 // [360, 830] nm (water_absorption's range, with which it makes the water body's colour), salinity
 // in [0, kWaterMaxSalinity = 40] g/kg; outside: std::invalid_argument (ValueError in Python).
-double water_backscattering(double wavelength_nm, double salinity = 0.0);
+double water_backscattering(double wavelength_nm, double salinity = kPureWaterSalinity);
 
 // Irradiance reflectance R = E_u / E_d just beneath the surface of an optically deep, homogeneous
 // water body: R = 0.33 b_b / (a + b_b) (Morel & Prieur 1977, "Analysis of variations in ocean
@@ -66,7 +72,7 @@ double water_backscattering(double wavelength_nm, double salinity = 0.0);
 // 1975's variable X = b_b / (a + b_b), Applied Optics 14(2), so that R stays below 0.33 where
 // backscattering rivals absorption). Pure water of the given salinity: blue (0.13 at 420 nm),
 // 0.0054 at 550 nm, 4.4e-4 at 650 nm for S = 35). Throws outside 360-830 nm or 0-40 g/kg.
-double water_body_reflectance(double wavelength_nm, double salinity = 0.0);
+double water_body_reflectance(double wavelength_nm, double salinity = kPureWaterSalinity);
 
 // Wind speeds the Cox-Munk statistics are used for [m/s]: they measured 1-14 m/s; beyond 30 m/s
 // foam and spray cover the sea, which they do not describe.

@@ -195,14 +195,16 @@ def check_margin(margin, name: str = "margin") -> float:
     return value
 
 
-def make_pair(destination, source, weight=1.0, margin=0.0):
-    """A refracta.edit.PointPair, weight and margin checked first (ValueError naming them).
+def make_pair(destination, source, weight=None, margin=None):
+    """A refracta.edit.PointPair, weight and margin checked first (ValueError naming them; None:
+    PointPair's defaults).
 
     margin [pixels for a pixel destination, m for a 3D one]: the pair counts as met once its miss
     is within it."""
     from refracta.edit import PointPair
 
-    weight, margin = check_weight(weight), check_margin(margin)
+    weight = check_weight(PointPair.weight if weight is None else weight)
+    margin = check_margin(PointPair.margin if margin is None else margin)
     # PointPair checks that the source has three values.
     point = cast("tuple[float, float, float]", tuple(float(x) for x in source))
     return PointPair(tuple(float(x) for x in destination), point, weight, margin=margin)
@@ -527,7 +529,7 @@ class EditorModel:
             return float(pair.destination[0]), float(pair.destination[1])
         return self._project(camera, pair.destination)
 
-    def add_pair(self, destination, source, weight: float = 1.0, margin: float = 0.0) -> int:
+    def add_pair(self, destination, source, weight: float | None = None, margin: float | None = None) -> int:
         """Add a pair: destination a pixel (u, v) of the camera or a 3D point [m], source a scene
         point [m]; returns its index. Raises ValueError naming a bad weight (finite, > 0) or margin
         (finite, >= 0) or point."""

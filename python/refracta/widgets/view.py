@@ -154,7 +154,7 @@ class MirageEditor(w.VBox):
         """The last solve's refracta.edit.EditResult (None before the first)."""
         return self.model.result
 
-    def add_pair(self, destination, source, weight: float = 1.0, margin: float = 0.0) -> int:
+    def add_pair(self, destination, source, weight: float | None = None, margin: float | None = None) -> int:
         """Add a pair (see EditorModel.add_pair); returns its index."""
         return self.model.add_pair(destination, source, weight, margin)
 
