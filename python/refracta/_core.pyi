@@ -2878,7 +2878,9 @@ class Material:
     @property
     def alpha(self) -> float:
         """
-        Opacity for raster transparency, in [0, 1].
+        Opacity for raster transparency, in [0, 1] (BlinnPhong's alpha=; 1 for the others). Not a
+        roughness: the alpha= of RoughDielectric, RoughConductor, Plastic and ThinFilm is their
+        microfacet roughness, read back as parameters['alpha_u'] and ['alpha_v'].
         """
     @property
     def priority(self) -> int:

@@ -115,7 +115,10 @@ void bind_material_base(py::module_& m) {
       .def("describe", &Material::describe)
       .def("__repr__", &Material::describe)
       .def_property_readonly("priority", &Material::priority, "Nested-dielectric priority (larger wins).")
-      .def_property_readonly("alpha", &Material::alpha, "Opacity for raster transparency, in [0, 1].")
+      .def_property_readonly("alpha", &Material::alpha,
+                             "Opacity for raster transparency, in [0, 1] (BlinnPhong's alpha=; 1 for the others). Not a\n"
+                             "roughness: the alpha= of RoughDielectric, RoughConductor, Plastic and ThinFilm is their\n"
+                             "microfacet roughness, read back as parameters['alpha_u'] and ['alpha_v'].")
       .def("interior_ior", &interior_ior_at, py::arg("wavelength") = py::none(),
            "Index of refraction of the medium a dielectric bounds, at the given wavelength [nm] (None: RGB\n"
            "rendering's 550 nm), or None for materials that bound no medium.");
