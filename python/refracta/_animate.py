@@ -288,7 +288,8 @@ def animate(
         "rendering frames",
         shared=(scene, camera, field, settings, turbulence, noise, bool(denoise)),
     )
-    frames = np.empty((times.size, camera.height, camera.width, 3), dtype=np.float32)
+    x0, y0, x1, y1 = settings.bounds_in(camera.width, camera.height)  # pixel_bounds: frames of the window
+    frames = np.empty((times.size, y1 - y0, x1 - x0, 3), dtype=np.float32)
     for i, (ok, value) in enumerate(outcomes):
         if not ok:
             raise value[0]

@@ -258,7 +258,10 @@ def render(
     for or not); in RGB renders pixels where no sample met such a surface (the sky) keep their
     noise-free values (spectral ones are noisy in colour there too, and are denoised; their
     samples can leave the sRGB gamut, negative channels, which are clipped to 0 first, as the
-    demo and a display do).
+    demo and a display do). With pixel_bounds the denoiser sees the window alone, so its pixels
+    are not the whole image's denoised ones (a trial: up to 15 % of the window's maximum on the
+    cold sea at 4 spp); render a margin around the window (some 32 pixels) and crop it for those.
+    Executor tiles (tiles=) are joined before denoising.
     guide_spp (RenderOptions.guide_spp, default there: 0): when above spp, the albedo and normal
     come from a pass of their own of guide_spp samples per pixel that stop at the first
     non-specular surface (no lighting), so they hold each pixel's edge coverage to that many
@@ -318,7 +321,8 @@ def render(
     (True), a callable progress(done, total), or False. Runs on all cores with the GIL released;
     Ctrl-C stops it. Further keywords: any field of refracta.RenderOptions (max_length, chord,
     sagitta, tol, trace, table, tile, texture_filter, march, step, max_steps, guard_band, rr_depth,
-    pixel_bounds=(x0, y0, x1, y1): render only pixels [x0, x1) x [y0, y1), each exactly as in the whole image).
+    pixel_bounds=(x0, y0, x1, y1): render only pixels [x0, x1) x [y0, y1), each exactly as in the whole
+    image, before denoise=True, which sees the window alone).
 
     executor, tiles: split the image into tiles rendered by `executor` (a dask.distributed Client,
     any concurrent.futures.Executor, or None: one after another here) and assembled into the

@@ -435,15 +435,18 @@ def _output_path(text: str) -> Path:
 
 def _option(text: str) -> tuple[str, object]:
     """--set NAME=VALUE: a render option by its RenderOptions name, the value read as TOML reads
-    one (1e5, true, "rk45", [0, 0, 64, 32]; True / False as true / false), else as a string (rk45);
-    render checks both."""
+    one (1e5, true, "rk45", [0, 0, 64, 32]; Python's (0, 0, 64, 32) as that array; True / False as
+    true / false), else as a string (rk45); render checks both."""
     from refracta.scene_file import tomllib  # tomli before Python 3.11
 
     name, equals, value = text.partition("=")
     if not equals or not name.strip().isidentifier():
         raise argparse.ArgumentTypeError(f"must be NAME=VALUE, a RenderOptions field (got {text!r})")
+    value = value.strip()
+    if value.startswith("(") and value.endswith(")"):  # a Python tuple: pixel_bounds=(10,5,50,30) (a trial)
+        value = "[" + value[1:-1] + "]"
     try:
-        parsed = tomllib.loads(f"v = {value.strip()}")["v"]
+        parsed = tomllib.loads(f"v = {value}")["v"]
     except tomllib.TOMLDecodeError:
         # Python's True / False (and TRUE ...) too: TOML's true / false alone was the trap of a trial.
         parsed = {"true": True, "false": False}.get(value.strip().lower(), value.strip())
