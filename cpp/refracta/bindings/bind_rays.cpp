@@ -193,7 +193,7 @@ std::vector<double> radians(std::vector<double> values) {
 }
 
 std::vector<double> degrees(std::vector<double> values) {
-  for (double& value : values) value = value * 180.0 / kPi;
+  for (double& value : values) value = radians_to_degrees(value);
   return values;
 }
 

@@ -70,8 +70,6 @@ not depend on it: every parallel loop writes each item's result to its own slot.
       "The number of threads refracta's parallel work may use (see set_threads).");
   m.def("physical_memory_bytes", &physical_memory_bytes,
         "This machine's physical memory [bytes] (0 if unknown), by which refracta refuses work too large to allocate.");
-  m.def("_emit_library_log", &emit_library_log,
-        "Move queued Ceres (glog) messages to the Python logger 'refracta.ceres'.");
 }
 
 }  // namespace refracta

@@ -188,7 +188,7 @@ void bind_aerial_perspective(py::module_& m) {
            "The same in-scatter by brute force: `steps` midpoints on the chord, each point's sun column traced.")
       .def("sun_transmittance",
            [](const AerialPerspective& air, double height, double elevation_deg, double wavelength) {
-             return air.sun_transmittance(height, elevation_deg * kPi / 180.0, wavelength);
+             return air.sun_transmittance(height, degrees_to_radians(elevation_deg), wavelength);
            },
            py::arg("height"), py::arg("elevation_deg"), py::arg("wavelength"),
            "The sun's transmittance to `height` [m] above sea level where it stands `elevation_deg` above the local horizon.")

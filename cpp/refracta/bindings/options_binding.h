@@ -41,10 +41,10 @@ py::object build_options(const py::type& cls, const py::object& options, const p
 // number by its truth (options.adaptive = 1, options.spectral = 0.0) and None as False.
 void set_option_attribute(const py::object& self, const py::str& name, const py::object& value, const char* owner);
 
-// A copy of `options` (an Options, or None for the defaults) with `fields` set, validated.
 // ValueError unless `options` is None or an instance of `cls`.
 void check_options_type(const py::handle& cls, const py::object& options, const char* owner);
 
+// A copy of `options` (an Options, or None for the defaults) with `fields` set, validated.
 template <class Options>
 Options options_from(const py::object& options, const py::dict& fields, const char* owner,
                      const char* nested = nullptr) {

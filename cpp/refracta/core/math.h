@@ -57,5 +57,6 @@ inline const Vec3d& check_within_reach(const Vec3d& p, const char* what) {
 inline double sqr(double x) { return x * x; }
 
 inline double degrees_to_radians(double deg) { return deg * kPi / 180.0; }
+inline double radians_to_degrees(double rad) { return rad * 180.0 / kPi; }
 
 }  // namespace refracta

@@ -44,7 +44,7 @@ std::array<double, CameraRig::kCount> CameraRig::start_values() const { return {
 
 std::pair<double, double> CameraRig::default_bounds(int k) const {
   const double vfov = start_.vfov();
-  const double hfov = 2.0 * std::atan(start_.tan_half() * start_.width() / start_.height()) * 180.0 / kPi;
+  const double hfov = radians_to_degrees(2.0 * std::atan(start_.tan_half() * start_.width() / start_.height()));
   switch (k) {
     case 0: return {-0.5 * hfov, 0.5 * hfov};
     case 1: return {-0.5 * vfov, 0.5 * vfov};

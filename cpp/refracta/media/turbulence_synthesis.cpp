@@ -41,7 +41,7 @@ std::pair<double, double> normal_pair(Rng& rng) {
 
 double von_karman_constant() { return 5.0 / (18.0 * kPi * std::tgamma(1.0 / 3.0)); }
 
-double default_turbulence_yaw_deg() { return std::atan(0.5 * (std::sqrt(5.0) - 1.0)) * 180.0 / kPi; }
+double default_turbulence_yaw_deg() { return radians_to_degrees(std::atan(0.5 * (std::sqrt(5.0) - 1.0))); }
 
 double von_karman_spectrum(double kappa, double cn2, double inner_scale, double outer_scale) {
   const double kappa0 = std::isinf(outer_scale) ? 0.0 : 2.0 * kPi / outer_scale;

@@ -33,7 +33,7 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
   if (!field->height_only()) throw_invalid("astronomical_refraction: the field must depend on height only (", field->type_name(), ")");
   if (!std::isfinite(apparent_elevation) || std::abs(apparent_elevation) > 0.5 * kPi) {
     throw_invalid("astronomical_refraction: apparent elevation must be in [-90, 90] deg (got ",
-                  apparent_elevation * 180.0 / kPi, " deg)");
+                  radians_to_degrees(apparent_elevation), " deg)");
   }
   const double top = options.top ? *options.top : field->uniform_above();
   if (!std::isfinite(top)) {
@@ -71,7 +71,7 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
                                      });
   if (!exit_point) {
     if (end.stop == TraceStop::kStopHeight) {
-      throw_invalid("astronomical_refraction: the ray at apparent elevation ", apparent_elevation * 180.0 / kPi,
+      throw_invalid("astronomical_refraction: the ray at apparent elevation ", radians_to_degrees(apparent_elevation),
                     " deg meets the ground before it leaves the air (raise eye_height or the elevation)");
     }
     throw_numerical("astronomical_refraction: the ray did not reach the top of the air (", top, " m) within ",
@@ -87,7 +87,7 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
   const double cos_in_vacuum = n_top * std::cos(elevation_at_top);
   if (cos_in_vacuum > 1.0) {  // totally reflected where n drops to 1: no star is seen along it
     throw_numerical("astronomical_refraction: the ray reaches the top of the air (", top, " m) ",
-                    elevation_at_top * 180.0 / kPi, " deg above the horizon, too flat to leave it: where n drops from ",
+                    radians_to_degrees(elevation_at_top), " deg above the horizon, too flat to leave it: where n drops from ",
                     n_top, " to 1 it is reflected back (n cos e = ", cos_in_vacuum,
                     " > 1); give a higher top, where n - 1 is smaller");
   }

@@ -58,7 +58,7 @@ double Camera::photographic_vfov(double focal_length_mm, double sensor_w_mm, dou
   if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
   const bool spans_width = double(width) * sensor_h_mm >= double(height) * sensor_w_mm;
   const double image_h_mm = spans_width ? sensor_w_mm * height / width : sensor_h_mm;
-  return 2.0 * std::atan(0.5 * image_h_mm / focal_length_mm) * 180.0 / kPi;
+  return radians_to_degrees(2.0 * std::atan(0.5 * image_h_mm / focal_length_mm));
 }
 
 std::pair<int, int> Camera::image_size(std::optional<int> width, std::optional<int> height, int default_width,

@@ -146,7 +146,7 @@ double AerialPerspective::sun_transmittance(double height, double elevation, dou
   checked_wavelength(lambda_nm, "AerialPerspective.sun_transmittance: wavelength");
   if (!std::isfinite(height)) throw_invalid("AerialPerspective.sun_transmittance: height must be finite (got ", height, ")");
   if (!(std::abs(elevation) <= 0.5 * kPi + 1e-12)) {
-    throw_invalid("AerialPerspective.sun_transmittance: elevation must be in [-90, 90] deg (got ", elevation * 180.0 / kPi,
+    throw_invalid("AerialPerspective.sun_transmittance: elevation must be in [-90, 90] deg (got ", radians_to_degrees(elevation),
                   ")");
   }
   const Bands b = bands_at(&lambda_nm, 1);

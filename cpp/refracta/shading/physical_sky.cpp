@@ -368,7 +368,7 @@ double PhysicalSky::sun_radiance(double lambda_nm, double angular_diameter_deg) 
   if (!(angular_diameter_deg > 0.0 && angular_diameter_deg < 180.0)) {
     throw_invalid("angular_diameter_deg must be in (0, 180) (got ", angular_diameter_deg, ")");
   }
-  const double half = 0.5 * angular_diameter_deg * kPi / 180.0;
+  const double half = 0.5 * degrees_to_radians(angular_diameter_deg);
   return sun_irradiance(lambda_nm) / (2.0 * kPi * (1.0 - std::cos(half)));
 }
 

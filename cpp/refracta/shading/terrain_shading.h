@@ -72,7 +72,7 @@ class TerrainShading final : public Material {
   const Bsdf* bsdf(const SurfaceInteraction& si, const MaterialContext& context, ScratchBuffer& scratch) const override {
     const double r = p_.earth_radius, y = si.p.y();
     const double h = r > 0.0 ? r * std::expm1(y / r) : y;
-    const double slope = std::acos(std::clamp(std::abs(si.ns.y()), 0.0, 1.0)) * 180.0 / kPi;
+    const double slope = radians_to_degrees(std::acos(std::clamp(std::abs(si.ns.y()), 0.0, 1.0)));
     return scratch.make<DiffuseBsdf>(reflectance_spectrum(reflectance(h, slope), *context.lambda));
   }
   const TerrainShadingParameters& parameters() const { return p_; }
