@@ -119,7 +119,8 @@ def _against_one(annotation: str, value: Any, ranges: bool = False) -> str | Non
         if ok and _is_array(value):  # an array's __index__ takes 0-d integer arrays only
             return "a whole number (not an array)"
         if ranges and ok and abs(operator.index(value)) >= 2**31:  # beyond a C++ int, which pybind11 refuses
-            return "a whole number of magnitude below 2**31"
+            # The annotation does not say which integer: seeds are 64-bit (a trial was told 2**31 of one).
+            return "a whole number of magnitude below 2**31 (2**63 where it is 64-bit, as seeds are)"
         return None if ok else "a whole number"
     if annotation == "bool":  # bound with noconvert: Python's and numpy's bools only
         return None if is_flag(value) else "True or False"

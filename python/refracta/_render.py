@@ -96,8 +96,8 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
     """The SceneWarning hints of render(): a scene without any light or sky; a camera at or below
     its ground or sea (Scene.ground_bounds); a camera shut in an opaque object that no light reaches
     (Scene._dark_enclosure; not for render_raster, whose alpha and shadows='none' let light in);
-    and one whose lowest
-    geometry (taken as its ground) lies more than GROUND_TOLERANCE from height 0 of the field the
+    and one whose ground or sea (Scene.ground_bounds; without one, its lowest geometry) lies more
+    than GROUND_TOLERANCE from height 0 of the field the
     rays go through (every field, CurvedEarth's flattened heights too, puts the ground at y = 0)
     with layered air in between (mean ``|dn/dh|`` > LAYER_GRADIENT below the camera)."""
     if len(scene.lights) == 0:
@@ -145,7 +145,9 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
         )
     if field is None or method == "straight" or bounds is None:
         return
-    lowest = float(bounds[0][1])
+    # The scene's ground or sea where it has one (a wave sea's mean level, not its troughs: a trial's
+    # 10 m/s sea at 0 was told to move 1.84 m up), else its lowest geometry.
+    lowest = ground if ground is not None else float(bounds[0][1])
     if not (math.isfinite(lowest) and abs(lowest) > GROUND_TOLERANCE):
         return
     x, _, z = camera.position
@@ -156,7 +158,8 @@ def _check_scene(scene: _core.Scene, camera: _core.Camera, field, method: str, w
         layered = True  # no air there at all: the scene is surely misplaced
     if layered:
         warnings.warn(
-            f"render: the scene's lowest geometry is at y = {lowest:g} m, but the field's ground is at "
+            f"render: the scene's {'ground' if ground is not None else 'lowest geometry'} is at y = {lowest:g} m, "
+            "but the field's ground is at "
             f"height 0, so its ground layer lies {'below' if lowest > 0 else 'above'} the scene's "
             "ground; move the scene (add_obj(offset=...), add_ground(height=0)) so its ground is at y = 0",
             SceneWarning,
@@ -268,10 +271,10 @@ def render(
     samples, and denoise=True follows Open Image Denoise with refracta.denoise's guided filter,
     which rebuilds edges between surfaces from them (and smooths shadow edges at the feet of
     objects: see refracta.denoise). Measured on the hot road's hardest crop at 16 spp 'direct'
-    against 4096 spp: denoised relative MSE 2.0x below the noisy image's, 5.7x with guide_spp=64;
+    against 4096 spp: denoised relative MSE 2.0x below the noisy image's, 5.0x with guide_spp=64;
     but that pass costs about as much CPU again as the image (0.7-1.7x on the RGB demo scenes), as 32
-    spp would, which denoised gives 4.5x, and guided by its own samples 6.2x: at equal cost no
-    gain, so it is off by default (benchmarks/bench_denoise.py).
+    spp would, which denoised gives 4.7x, and guided by its own samples 6.9x: at equal cost no
+    gain, so it is off by default (benchmarks/bench_denoise.py, the README's table).
 
     method: 'curved' -- exact curved rays: every segment (camera ray, bounce, shadow ray toward a
     distant light) is the integrator's path (stratified for height-only fields, rk45 otherwise,

@@ -579,7 +579,7 @@ def real_place(width: int = 640, height: int = 320, field=None) -> Example:
     its relief is SYNTHETIC (refracta/data/make_tenerife.py: an island shaped after Tenerife around
     the real summits), the positions of observer and summits real. The Earth is curved
     (CurvedEarth, the radius of curvature along the view azimuth, Euler) under the standard
-    atmosphere (k about 0.17): the island's lower ~400 m lie hidden behind the sea's bulge. A
+    atmosphere (k about 0.17): the island's lower ~340 m lie hidden behind the sea's bulge (426 m without air). A
     physical sky with a mid-morning sun behind the left shoulder; 300 km visibility greys and
     blues the island. field: another height-only field (true heights) for the air, put over the
     same Earth (None: PhysicalAtmosphere(), the standard atmosphere)."""

@@ -145,8 +145,20 @@ def test_a_ground_away_from_the_fields_height_0_warns(height):
     scene = refracta.Scene()
     scene.set_sky(SKY, SKY)
     scene.add_ground(height, 100.0)
-    with pytest.warns(refracta.SceneWarning, match=f"lowest geometry is at y = {height:g} m"):
+    with pytest.warns(refracta.SceneWarning, match=f"ground is at y = {height:g} m"):
         refracta.render(scene, CAMERA.resized(4, 3), HOT_ROAD, progress=False, max_length=100.0)
+
+
+def test_a_wave_sea_is_placed_by_its_mean_level_not_its_troughs():
+    # A trial: a 10 m/s sea at mean level 0 under layered air was told to move 1.84 m up (its troughs).
+    calm_at_zero, lowered = refracta.Scene(), refracta.Scene()
+    for scene, level in ((calm_at_zero, 0.0), (lowered, -2.0)):
+        scene.set_sky(SKY, SKY)
+        scene.add_sea(refracta.OceanWaves(wind_speed=10.0, resolution=32), height=level, detail_radius=50.0)
+    assert float(calm_at_zero.bounds[0][1]) < -1.0  # the troughs reach well below the mean level
+    assert render_quietly(calm_at_zero, HOT_ROAD) == []
+    with pytest.warns(refracta.SceneWarning, match="ground is at y = -2 m"):
+        refracta.render(lowered, CAMERA.resized(4, 3), HOT_ROAD, progress=False, max_length=100.0)
 
 
 def test_no_ground_warning_where_it_does_not_apply():

@@ -21,7 +21,9 @@ std::shared_ptr<OceanWaves> make_waves(double wind_speed, const py::handle& wind
   if (seed < 0) throw_invalid("OceanWaves: seed must be >= 0 (got ", seed, ")");
   const OceanWavesParameters p{wind_speed, to_vec2(wind_direction, "wind_direction"), patch_size, resolution,
                                uint64_t(seed), time};
-  return std::make_shared<OceanWaves>(p);
+  auto waves = std::make_shared<OceanWaves>(p);
+  if (const auto caveat = waves->patch_caveat()) warn(*caveat);
+  return waves;
 }
 
 // A field over the nodes as an array (N, N) or, with two components per node, (N, N, 2).

@@ -171,7 +171,8 @@ void set_physical_sky(RenderScene& scene, const PhysicalSkySettings& settings, c
 // Add a sea at y = height with waves near `centre` (x, z) [m] (put it under the camera).
 //
 // Within detail_radius [m] of centre: the waves (an OceanWaves; default OceanWaves(wind_speed=the
-// material's)) tiled on a mesh of their nodes with shading normals from their slopes; over the outer
+// material's), whose 100 m patch holds a fully developed sea up to ~12 m/s: above, pass
+// OceanWaves(wind_speed, patch_size=10 U^2/g), which warns when too small) tiled on a mesh of their nodes with shading normals from their slopes; over the outer
 // 30 % of the radius they blend into a coarse level, the same sea at a quarter of the resolution
 // (exactly its longer waves) on nodes 4 cells apart, which reaches 4 detail_radius and fades to flat
 // over its outer 30 %; beyond, a flat square of side `size` [m] centred on the origin (as
