@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from refracta import _core, examples_meshes, examples_town, shading, spectrum
+from refracta import _core, _options, examples_meshes, examples_town, shading, spectrum
 from refracta._checks import is_number, is_seed
 
 # Radiance unit of the example scenes. refracta.spectrum.PhysicalSky gives linear sRGB normalised
@@ -81,11 +81,17 @@ def sun_direction(elevation: float, azimuth: float) -> np.ndarray:
 
 
 def set_physical_sky(
-    scene: _core.Scene, direction, aerosol: float | None = None, scale: float = RADIANCE_SCALE, visibility=None
+    scene: _core.Scene,
+    sun_direction=None,
+    aerosol: float | None = None,
+    scale: float = RADIANCE_SCALE,
+    visibility=None,
+    **deprecated,
 ) -> None:
     """Light `scene` by Scene.set_physical_sky: a Nishita sky (Hillaire 2020's multiple scattering) and its sun disc
     (0.53 deg, coloured by extinction along the sun's path), both times `scale` (RADIANCE_SCALE:
-    see above). direction: toward the sun (normalised), y up; aerosol: the Mie density scale (None:
+    see above). sun_direction (Scene.set_physical_sky's name; direction= is its deprecated
+    spelling): toward the sun (normalised), y up; aerosol: the Mie density scale (None:
     Scene.set_physical_sky's, a clear sky).
     Below the horizon the sky continues from the horizon at each azimuth (below_horizon='horizon'):
     a path that ends at max_length still heading slightly down -- trapped in a duct over the sea, or
@@ -93,7 +99,15 @@ def set_physical_sky(
     the horizon sky there, not a black ground. Aerial perspective is on (the sky's own air greys
     and blues distant objects); visibility [km]: the meteorological visibility that sets the
     aerosol instead (give one of them)."""
-    scene.set_physical_sky(direction, aerosol=aerosol, scale=scale, below_horizon="horizon", visibility=visibility)
+    kw = _options.renamed(dict(deprecated), {"direction": "sun_direction"}, "examples.set_physical_sky")
+    if sun_direction is None and "sun_direction" in kw:
+        sun_direction = kw.pop("sun_direction")
+    if kw or sun_direction is None:
+        raise TypeError(
+            "examples.set_physical_sky: "
+            + (f"unexpected keyword {next(iter(kw))!r}" if kw else "give sun_direction (toward the sun, y up)")
+        )
+    scene.set_physical_sky(sun_direction, aerosol=aerosol, scale=scale, below_horizon="horizon", visibility=visibility)
 
 
 def _paint(colour):

@@ -4,6 +4,7 @@ and refused any other window with numpy's broadcast error; the command line took
 for --set pixel_bounds=(x0, y0, x1, y1)."""
 
 import numpy as np
+import pytest
 
 import refracta
 from refracta import cli, examples
@@ -26,3 +27,13 @@ def test_the_command_line_reads_a_python_tuple_as_an_array():
     assert cli._option("pixel_bounds=(10, 5, 50, 30)") == ("pixel_bounds", [10, 5, 50, 30])
     assert cli._option("pixel_bounds=[10, 5, 50, 30]") == ("pixel_bounds", [10, 5, 50, 30])
     assert cli._option("trace=rk45") == ("trace", "rk45")  # a bare word stays a string
+
+
+def test_examples_set_physical_sky_names_the_sun_as_scene_set_physical_sky_does():
+    # An API review: examples.set_physical_sky(direction=) against Scene.set_physical_sky(sun_direction=).
+    scene = refracta.Scene()
+    examples.set_physical_sky(scene, sun_direction=(0.0, 1.0, 0.0))
+    with pytest.warns(DeprecationWarning, match="direction= is deprecated; call it sun_direction="):
+        examples.set_physical_sky(scene, direction=(0.0, 1.0, 0.0))
+    with pytest.raises(TypeError, match="give sun_direction"):
+        examples.set_physical_sky(scene)
