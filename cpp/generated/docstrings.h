@@ -516,10 +516,10 @@ Scene.add_terrain: Lambertian, its reflectance ``vegetation`` below ``tree_line`
 above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above ``snow_line``
 [m] on slopes under 55 deg (snow slides off steeper ones); the covers blend over 100 m of height and
 5 deg of slope. Heights are true heights above sea level: with ``earth_radius`` R > 0 (the scene's
-CurvedEarth radius) the scene's y is the flat height y' = R ln(1 + h/R) and h = R (exp(y'/R) - 1); 0
-means a flat Earth (h = y). The slope is the shading normal's angle from +y (the Earth-flattening
-map is conformal: it keeps angles). Colours are linear RGB albedos in [0, 1]: conifer forest ~0.08,
-rock 0.2-0.3, old snow ~0.8.)doc";
+CurvedEarth radius) the scene's y is the flat height y' = R ln(1 + h/R) and h = R (exp(y'/R) - 1);
+inf (or 0) means a flat Earth (h = y). The slope is the shading normal's angle from +y (the Earth-
+flattening map is conformal: it keeps angles). Colours are linear RGB albedos in [0, 1]: conifer
+forest ~0.08, rock 0.2-0.3, old snow ~0.8.)doc";
 inline constexpr const char mkd_doc_refracta_ThinDielectric[] = R"doc(A thin pane (window): reflection R' = R + T^2 R / (1 - R^2), transmission 1 - R' straight through
 (no offset, no medium inside: interior_ior is None). ior as for Dielectric.)doc";
 inline constexpr const char mkd_doc_refracta_ThinFilm[] = R"doc(Thin-film iridescence (Belcour & Barla 2017): a film of thickness [nm] and index film_ior on a base

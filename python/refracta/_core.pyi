@@ -3250,14 +3250,14 @@ class TerrainShading(Material):
     above it and wherever the ground is steeper than ``rock_slope`` [deg], ``snow`` above ``snow_line``
     [m] on slopes under 55 deg (snow slides off steeper ones); the covers blend over 100 m of height and
     5 deg of slope. Heights are true heights above sea level: with ``earth_radius`` R > 0 (the scene's
-    CurvedEarth radius) the scene's y is the flat height y' = R ln(1 + h/R) and h = R (exp(y'/R) - 1); 0
-    means a flat Earth (h = y). The slope is the shading normal's angle from +y (the Earth-flattening
-    map is conformal: it keeps angles). Colours are linear RGB albedos in [0, 1]: conifer forest ~0.08,
-    rock 0.2-0.3, old snow ~0.8.
+    CurvedEarth radius) the scene's y is the flat height y' = R ln(1 + h/R) and h = R (exp(y'/R) - 1);
+    inf (or 0) means a flat Earth (h = y). The slope is the shading normal's angle from +y (the Earth-
+    flattening map is conformal: it keeps angles). Colours are linear RGB albedos in [0, 1]: conifer
+    forest ~0.08, rock 0.2-0.3, old snow ~0.8.
     """
     def __getstate__(self) -> dict:
         ...
-    def __init__(self, snow_line: typing.SupportsFloat | typing.SupportsIndex = 3000.0, tree_line: typing.SupportsFloat | typing.SupportsIndex = 2000.0, rock_slope: typing.SupportsFloat | typing.SupportsIndex = 35.0, earth_radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, vegetation: typing.Any = (0.06, 0.09, 0.04), rock: typing.Any = (0.25, 0.23, 0.21), snow: typing.Any = (0.8, 0.8, 0.83)) -> None:
+    def __init__(self, snow_line: typing.SupportsFloat | typing.SupportsIndex = 3000.0, tree_line: typing.SupportsFloat | typing.SupportsIndex = 2000.0, rock_slope: typing.SupportsFloat | typing.SupportsIndex = 35.0, earth_radius: typing.SupportsFloat | typing.SupportsIndex = ..., *, vegetation: typing.Any = (0.06, 0.09, 0.04), rock: typing.Any = (0.25, 0.23, 0.21), snow: typing.Any = (0.8, 0.8, 0.83)) -> None:
         ...
     def __setstate__(self, arg0: dict) -> None:
         ...

@@ -45,7 +45,7 @@ RGB multiplies the colour at the surface's uvs, registered in each scene the mat
 
 - ``Water(wind_speed=5.0, temperature_c=20.0, salinity=35.0, body=True, priority=0,
   resolved_slope_variance=0.0)``: the sea, below.
-- ``TerrainShading(snow_line=3000, tree_line=2000, rock_slope=35, earth_radius=0, *, vegetation,
+- ``TerrainShading(snow_line=3000, tree_line=2000, rock_slope=35, earth_radius=inf, *, vegetation,
   rock, snow)``: terrain coloured by elevation, slope and snow line (Scene.add_terrain's default).
 
 Water: ``water_ior(wavelength_nm, temperature_c=20.0, salinity=0.0)`` (IAPWS R9-97 with Tanaka et

@@ -871,7 +871,7 @@ def add_terrain(
         if orthophoto is not None:
             material = shading.Diffuse(1.0, texture=os.fspath(orthophoto))
         else:
-            material = shading.TerrainShading(earth_radius=radius if math.isfinite(radius) else 0.0)
+            material = shading.TerrainShading(earth_radius=radius)
     elif orthophoto is not None:
         raise ValueError(
             "add_terrain: give material or orthophoto, not both (a textured material uses the terrain's uvs)"

@@ -347,6 +347,28 @@ def test_a_water_level_adds_water_over_the_extent_below_which_samples_are_under_
     assert geometry == ids.terrain[0] and point[1] > 0.0
 
 
+def test_terrain_shading_spells_a_flat_earth_as_inf_like_the_rest_of_the_library():
+    # An API review: TerrainShading's flat Earth was earth_radius=0 where Camera.project and
+    # AerialPerspective say inf; both now mean y is the height (the default inf), a finite R turns
+    # y back into h = R (exp(y / R) - 1): at y = 1900 m and R = 10 km, h = 2092 m, above the tree line.
+    def seen(material):
+        scene = refracta.Scene()
+        scene.add_terrain(np.full((4, 4), 1900.0), origin=(0.0, 0.0), spacing=(1.0, 1.0), material=material)
+        scene.set_sun((0.0, 1.0, 0.0), (1.0, 1.0, 1.0))
+        camera = refracta.Camera(
+            (1.5, 1920.0, 1.5), (1.5, 1900.0, 1.5), up=(0.0, 0.0, -1.0), vfov=1.0, width=2, height=2
+        )
+        return refracta.render(scene, camera, None, progress=False)
+
+    flat = seen(shading.TerrainShading())
+    assert shading.TerrainShading().parameters["earth_radius"] == math.inf
+    np.testing.assert_array_equal(flat, seen(shading.TerrainShading(earth_radius=0.0)))
+    curved = seen(shading.TerrainShading(earth_radius=1e4))
+    assert curved[0, 0, 0] / curved[0, 0, 1] > 1.5 * flat[0, 0, 0] / flat[0, 0, 1]  # rock's red against forest's
+    with pytest.raises(ValueError, match="earth_radius must be > 0"):
+        shading.TerrainShading(earth_radius=-1.0)
+
+
 def test_terrain_shading_snow_rock_and_vegetation():
     t = shading.TerrainShading(snow_line=3000.0, tree_line=2000.0, rock_slope=35.0)
     p = t.parameters
