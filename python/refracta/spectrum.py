@@ -97,7 +97,10 @@ def rgb_to_spectrum(rgb, wavelengths, kind: str = "reflectance", method: str = "
     RGBUnboundedSpectrum) or 'illuminant' (unbounded x D65 normalised to Y = 1, in the units of
     the RGB radiance per nm of 1/integral(y)). method: 'fit' (a Gauss-Newton fit per colour, as
     Color::reflectance) or 'table' (reflectances only: the coefficient table textures use at
-    render time). Raises ValueError for colours out of range or non-finite input.
+    render time). Raises ValueError for colours out of range or non-finite input. The inverse is
+    spectrum_to_rgb with the same kind: its default is 'illuminant' (a tabulated spectrum is
+    usually a light), this one's 'reflectance' (a colour is usually a surface's), so a round trip
+    names kind= (with the defaults (0.8, 0.3, 0.1) comes back (0.92, 0.29, 0.09)).
     """
     colours, single = _rgb(rgb)
     lam, scalar = _wavelengths(wavelengths)
@@ -119,6 +122,7 @@ def spectrum_to_rgb(wavelengths, values, kind: str = "illuminant") -> np.ndarray
     integrated against the CIE 1931 2-degree functions. kind='illuminant': a radiance,
     XYZ = integral(L cmf)/integral(y); 'reflectance' (values in [0, 1]) or 'unbounded' (>= 0):
     under D65, XYZ = integral(s cmf D65)/integral(y D65). XYZ -> sRGB by the IEC 61966-2-1 matrix.
+    The inverse of rgb_to_spectrum with the same kind (whose default is 'reflectance': give kind=).
     """
     lam, _ = _wavelengths(wavelengths)
     v = real_array(values, "values")
