@@ -334,7 +334,8 @@ def render(
     rasterize and shade the whole view and split only the march). tiles=(nx, ny): nx x ny
     tiles of near-equal size; tiles=n: square tiles of n pixels; None with an executor: 128-pixel
     tiles. Scene, camera and field are pickled to the workers (texture files by path: they must be
-    readable there). progress then reports finished tiles; stats sums the tiles' counts.
+    readable there). progress then reports finished tiles; stats sums the tiles' counts. Not
+    RenderOptions.tile (tile=, one letter short): the parallel loop's square of pixels per task.
 
     Warns (refracta.SceneWarning) when the scene has no light and no sky (a black image), and when
     a field is given (method not 'straight') and the scene's lowest geometry lies more than
