@@ -75,6 +75,7 @@ _MODEL_PROJECTED, _MODEL_GEOGRAPHIC = 1, 2
 # VerticalUnitsGeoKey: the heights' unit, EPSG unit code -> metres (US elevation products come in
 # feet; without it a tile stood 3.28 times too tall).
 _KEY_VERTICAL_UNITS = 4099
+_KEY_ANGULAR_UNITS, _ANGULAR_DEGREE = 2054, 9102  # GeogAngularUnitsGeoKey: EPSG's degree
 _FARTHEST_HEIGHT = 1e5  # [m] from sea level: no terrain (the deepest trench is 11 km, the highest peak 8.8 km)
 # [m] the finest sample spacing: below it samples fall on one point in the scene's single-precision
 # geometry (float32 resolves 6e-5 m at 1 km from the origin).
@@ -191,6 +192,23 @@ def _quiet_tifffile():
         logger.setLevel(level)
 
 
+# Bytes a terrain sample takes on its way into the scene: the file's band (up to 8), its heights
+# in float64 (8), the positions in float32 (12) and the mesh's vertex (12).
+_BYTES_PER_SAMPLE = 40
+
+
+def _check_fits(path: str, shape: tuple) -> None:
+    """ValueError before decoding a band whose samples would not fit in this machine's memory (a
+    trial's 7 MB zlib file claimed 40 000 x 40 000 floats: ~64 GB on the way in)."""
+    samples = math.prod(int(n) for n in shape)
+    need, have = samples * _BYTES_PER_SAMPLE, int(_core.physical_memory_bytes())
+    if have > 0 and need > have:
+        raise ValueError(
+            f"{path!r}: {' x '.join(str(int(n)) for n in shape)} samples need ~{need / 2**30:.0f} GiB on their way "
+            f"into the scene, more than this machine's {have / 2**30:.0f} GiB: crop or resample the file"
+        )
+
+
 def _read_geotiff(path: str) -> Elevation:
     """A single-band GeoTIFF with ModelPixelScale + ModelTiepoint (north up) and its GeoKeys."""
     import tifffile
@@ -199,6 +217,7 @@ def _read_geotiff(path: str) -> Elevation:
         with _quiet_tifffile(), tifffile.TiffFile(path) as tif:
             page = tif.pages.first
             tags = {tag.code: tag.value for tag in page.tags.values()}
+            _check_fits(path, page.shape)
             data = page.asarray()
     except (tifffile.TiffFileError, ValueError) as error:
         raise ValueError(f"{path!r} is not a TIFF file ({error})") from None
@@ -234,6 +253,9 @@ def _read_geotiff(path: str) -> Elevation:
         epsg = keys.get(_KEY_GEOGRAPHIC_TYPE, _EPSG_WGS84)
         if epsg != _EPSG_WGS84:
             raise ValueError(f"{path!r}: geographic CRS EPSG:{epsg}; only WGS84 (EPSG:4326) is supported")
+        angular = keys.get(_KEY_ANGULAR_UNITS, _ANGULAR_DEGREE)
+        if angular != _ANGULAR_DEGREE:  # a trial's radians were read as degrees
+            raise ValueError(f"{path!r}: angles in EPSG unit {angular} (GeogAngularUnitsGeoKey); only degrees (9102)")
     elif model == _MODEL_PROJECTED and keys.get(_KEY_PROJECTED_TYPE) not in (None, 32767):
         epsg = int(keys[_KEY_PROJECTED_TYPE])
     else:
@@ -269,6 +291,8 @@ def _read_geotiff(path: str) -> Elevation:
                 heights[data == data.dtype.type(value)] = np.nan
         else:
             heights[data == value] = np.nan
+    elif data.dtype == np.int16:  # SRTM's void, as in .hgt files, where no GDAL_NODATA names one (a trial's
+        heights[data == _SRTM_VOID] = np.nan  # -32768 was a 32.8 km pit)
     heights *= _VERTICAL_UNITS[unit]  # NaN voids stay NaN
     if np.isinf(heights).any():
         r, c = np.argwhere(np.isinf(heights))[0]
@@ -878,16 +902,21 @@ def add_terrain(
         )
     ids = []
     lower, upper = np.full(3, np.inf), np.full(3, -np.inf)
-    for positions, placed in grids:
-        rows, cols = positions.shape[:2]
-        if orthophoto is not None and placed is not None:
-            with _named("add_terrain"):
-                uv = _orthophoto_uv(os.fspath(orthophoto), placed)
-        else:  # the image over the grid: u along the columns, its top edge along row 0 (v = 1)
-            uv = np.array([[1.0 / (cols - 1), 0.0, 0.0], [0.0, -1.0 / (rows - 1), 1.0]])
-        ids.append(self._add_terrain_grid(positions, material, uv))
-        lower = np.fmin(lower, np.nanmin(positions.reshape(-1, 3), axis=0))
-        upper = np.fmax(upper, np.nanmax(positions.reshape(-1, 3), axis=0))
+    try:
+        for positions, placed in grids:
+            rows, cols = positions.shape[:2]
+            if orthophoto is not None and placed is not None:
+                with _named("add_terrain"):
+                    uv = _orthophoto_uv(os.fspath(orthophoto), placed)
+            else:  # the image over the grid: u along the columns, its top edge along row 0 (v = 1)
+                uv = np.array([[1.0 / (cols - 1), 0.0, 0.0], [0.0, -1.0 / (rows - 1), 1.0]])
+            ids.append(self._add_terrain_grid(positions, material, uv))
+            lower = np.fmin(lower, np.nanmin(positions.reshape(-1, 3), axis=0))
+            upper = np.fmax(upper, np.nanmax(positions.reshape(-1, 3), axis=0))
+    except BaseException:  # all or nothing: a later grid's error leaves none of the call's grids (a trial)
+        for added in ids:
+            self.remove(added)
+        raise
     water_id = None
     if water_level is not None:
         water_material = shading.Water() if water is None else water

@@ -495,3 +495,33 @@ def test_terrain_height_is_the_ground_under_a_point_and_render_warns_an_eye_insi
     with warnings.catch_warnings():
         warnings.simplefilter("error", refracta.SceneWarning)
         refracta.render(scene, above, None, progress=False)
+
+
+def test_files_keep_to_what_they_say_and_fail_whole(tmp_path):
+    """A terrain trial's files: int16 -32768 with no GDAL_NODATA was a 32.8 km pit (now SRTM's void,
+    as in .hgt files); radians in GeogAngularUnitsGeoKey were read as degrees; a band too large for
+    the machine was decoded before anything checked it; a list whose second grid failed left the
+    first in the scene."""
+    import tifffile
+
+    data = np.full((6, 6), 500, np.int16)
+    data[2, 3] = -32768
+    void = terrain.read_elevation(write_geotiff(tmp_path / "void.tif", data, (10.0, 46.0), (0.001, 0.001)))
+    assert np.isnan(void.heights[2, 3]) and np.nanmin(void.heights) == 500.0
+    keys = [1, 1, 0, 4, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326, 2054, 0, 1, 9101]  # 9101: radians
+    tags = [(33550, "d", 3, (1e-5, 1e-5, 0.0), False), (33922, "d", 6, (0, 0, 0, 0.17, 0.8, 0), False)]
+    tifffile.imwrite(tmp_path / "radians.tif", data, extratags=[*tags, (34735, "H", len(keys), keys, False)])
+    with pytest.raises(ValueError, match="GeogAngularUnitsGeoKey"):
+        terrain.read_elevation(tmp_path / "radians.tif")
+    with pytest.raises(ValueError, match="more than this machine's"):  # 10^12 samples: ~40 TB on the way in
+        terrain._check_fits("huge.tif", (10**6, 10**6))
+    # Every other sample void: no cell has four valid corners, so the second grid fails to build.
+    checker = np.where((np.arange(6)[:, None] + np.arange(6)[None, :]) % 2 == 0, 300.0, np.nan).astype(np.float32)
+    good = write_geotiff(tmp_path / "good.tif", np.full((6, 6), 500.0, np.float32), (10.0, 46.0), (0.001, 0.001))
+    bad = write_geotiff(tmp_path / "checker.tif", checker, (10.1, 46.0), (0.001, 0.001))
+    frame = geo.LocalFrame(45.997, 10.003)
+    scene = refracta.Scene()
+    with pytest.raises(ValueError, match="four valid corners"):
+        scene.add_terrain([good, bad], frame=frame)
+    above = frame.to_scene(45.997, 10.003, 2000.0)
+    assert scene.intersect(above, (0.0, -1.0, 0.0)) is None  # the first grid is gone with the call
