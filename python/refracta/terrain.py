@@ -603,7 +603,33 @@ def _geographic_positions(grid: Elevation, frame) -> np.ndarray:
         holes = np.isnan(h)
         positions[band] = frame.to_scene(lat, lon, np.where(holes, 0.0, h))
         positions[band][holes] = np.nan
+    _check_resolved(positions, grid)
     return positions
+
+
+def _check_resolved(positions: np.ndarray, grid: Elevation) -> None:
+    """ValueError where a file's samples are closer than the scene's single-precision positions
+    resolve where they lie (the array form's rule, _SINGLE_PRECISION_STEPS): a trial's 1e-8 deg
+    tile 387 km from the frame's origin collapsed its 20 columns onto one x. The median step along
+    rows and columns, so that a polar row's meeting meridians do not count."""
+    ground = positions[..., [0, 2]].astype(np.float64)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # voids (NaN) and all-NaN slices
+        steps = [
+            np.nanmedian(np.linalg.norm(np.diff(ground, axis=axis), axis=-1))
+            for axis in (0, 1)
+            if ground.shape[axis] > 1
+        ]
+        extent = float(np.nanmax(np.abs(ground)))
+    resolution = float(np.spacing(np.float32(extent)))
+    step = min(steps)
+    if step < _SINGLE_PRECISION_STEPS * resolution:
+        raise ValueError(
+            f"add_terrain: an elevation grid's samples ({grid.dx:g} x {grid.dy:g}) lie {step:.3g} m apart, finer "
+            f"than single-precision positions resolve {extent / 1e3:.4g} km from the frame's origin (steps of "
+            f"{resolution:g} m; at least {_SINGLE_PRECISION_STEPS * resolution:g} m there): put the frame's origin "
+            "nearer the terrain or resample the file"
+        )
 
 
 def _tile_grids(paths: list[str]) -> Iterator[Elevation]:

@@ -525,3 +525,14 @@ def test_files_keep_to_what_they_say_and_fail_whole(tmp_path):
         scene.add_terrain([good, bad], frame=frame)
     above = frame.to_scene(45.997, 10.003, 2000.0)
     assert scene.intersect(above, (0.0, -1.0, 0.0)) is None  # the first grid is gone with the call
+
+
+def test_a_file_finer_than_single_precision_resolves_is_refused(tmp_path):
+    # A trial: 1e-8 deg samples 387 km from the frame's origin fell on one float32 x, unannounced
+    # (the array form refused the same). Here 1e-7 deg (1.1 cm) 111 km off, where float32 steps by
+    # 7.8 mm: under the 8 steps the array form asks for.
+    data = np.full((20, 20), 100.0, np.float32)
+    fine = write_geotiff(tmp_path / "fine.tif", data, (11.0, 46.0), (1e-7, 1e-7))
+    with pytest.raises(ValueError, match="finer than single-precision positions resolve"):
+        refracta.Scene().add_terrain(fine, frame=geo.LocalFrame(46.0, 9.56))
+    refracta.Scene().add_terrain(fine, frame=geo.LocalFrame(46.0, 10.999))  # 80 m off: resolved
