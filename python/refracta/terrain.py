@@ -163,15 +163,15 @@ def _read_hgt(path: str) -> Elevation:
     name = os.path.basename(path)
     match = re.fullmatch(r"([NS])(\d{2})([EW])(\d{3})\.hgt", name, flags=re.IGNORECASE)
     if not match:
-        raise ValueError(f"{name!r} is not an SRTM tile name like N46E007.hgt (the name gives its corner)")
+        raise ValueError(f"{path!r} is not an SRTM tile name like N46E007.hgt (the name gives its corner)")
     lat = int(match[2]) * (1 if match[1].upper() == "N" else -1)
     lon = int(match[4]) * (1 if match[3].upper() == "E" else -1)
     if not (-90 <= lat <= 89) or not (-180 <= lon <= 179):
-        raise ValueError(f"{name!r}: corner latitude {lat} must be in [-90, 89], longitude in [-180, 179]")
+        raise ValueError(f"{path!r}: corner latitude {lat} must be in [-90, 89], longitude in [-180, 179]")
     size = os.path.getsize(path)
     n = next((n for n in _SRTM_SIZES if size == 2 * n * n), None)
     if n is None:
-        raise ValueError(f"{name!r} is not SRTM elevation data: {size} bytes, not 2 x 1201^2 or 2 x 3601^2")
+        raise ValueError(f"{path!r} is not SRTM elevation data: {size} bytes, not 2 x 1201^2 or 2 x 3601^2")
     raw = np.fromfile(path, dtype=">i2").reshape(n, n)
     heights = raw.astype(np.float64)
     heights[raw == _SRTM_VOID] = np.nan
