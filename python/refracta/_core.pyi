@@ -954,7 +954,8 @@ class Scene:
         slopes fall; the flat plane keeps the full Water. Any other material is used as given everywhere.
         
         Returns the geometry ids: the displaced meshes (fine full waves, its fade rings, coarse full waves,
-        its fade rings; empty ones left out), then the flat plane.
+        its fade rings; empty ones left out), then the flat plane. A null `waves` is set to the default sea
+        it made (whose patch_caveat the binding warns with).
         """
     def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, material: typing.Any = None, emission: typing.Any = None, *, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None) -> int:
         """
@@ -1427,7 +1428,9 @@ class OceanWaves:
     Nyquist wavenumber pi resolution / patch_size (shorter waves are the Water material's microfacets)
     and down to 2 pi / patch_size (longer waves are missing). Deterministic from seed (each mode's
     numbers depend only on seed and its integer wavenumber, so a finer resolution keeps the long waves);
-    time [s] moves the waves by deep-water dispersion w = sqrt(g k). No choppy displacement.
+    time [s] moves the waves by deep-water dispersion w = sqrt(g k), every one of them downwind. A patch
+    too small for the wind warns (its longer waves missing: patch_size of 10 U^2/g keeps ~92 % of the
+    sea's variance). No choppy displacement.
     
     wind_speed [m/s] in (0, 30] (12.5 m above the sea, as Water's); wind_direction (x, z) horizontal,
     any non-zero length; patch_size [m] in [0.01, 1e7]; resolution a power of two in [8, 1024]. Arrays

@@ -22,9 +22,10 @@ class SceneWarning(UserWarning):
     Silence it with ``warnings.filterwarnings("ignore", category=refracta.SceneWarning)``."""
 
 
-# How far the lowest geometry may lie from the field's height 0 [m] before render() warns: a hot
-# road's surface layer e-folds over ~0.1 m (ORACLES.md's typical layer), so a ground 0.1 m off
-# already sits a whole e-folding above or below the air that makes the mirage.
+# How far the scene's ground or sea (else its lowest geometry) may lie from the field's height 0 [m]
+# before render() warns: a hot road's surface layer e-folds over ~0.1 m (ORACLES.md's typical
+# layer), so a ground 0.1 m off already sits a whole e-folding above or below the air that makes
+# the mirage.
 GROUND_TOLERANCE = 0.1
 # ... and only when the air between that ground and height 0 is layered: its mean |dn/dh| [1/m]
 # above ten times the standard atmosphere's near the ground (~3e-8 /m). Air that steep is a ground
@@ -338,7 +339,8 @@ def render(
     RenderOptions.tile (tile=, one letter short): the parallel loop's square of pixels per task.
 
     Warns (refracta.SceneWarning) when the scene has no light and no sky (a black image), and when
-    a field is given (method not 'straight') and the scene's lowest geometry lies more than
+    a field is given (method not 'straight') and the scene's ground or sea (Scene.ground_bounds;
+    without one, its lowest geometry) lies more than
     GROUND_TOLERANCE = 0.1 m from the field's height 0, where its ground should be, with layered
     air in between (mean ``|dn/dh|`` under the camera above LAYER_GRADIENT = 3e-7 /m, ten times the
     standard atmosphere's: a hot road's or a cold sea's ground layer); and when curved rays' max_length

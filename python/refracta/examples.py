@@ -99,6 +99,8 @@ def set_physical_sky(
     the horizon sky there, not a black ground. Aerial perspective is on (the sky's own air greys
     and blues distant objects); visibility [km]: the meteorological visibility that sets the
     aerosol instead (give one of them)."""
+    if sun_direction is not None and "direction" in deprecated:
+        raise TypeError("examples.set_physical_sky: pass sun_direction only (direction= is its deprecated spelling)")
     kw = _options.renamed(dict(deprecated), {"direction": "sun_direction"}, "examples.set_physical_sky")
     if sun_direction is None and "sun_direction" in kw:
         sun_direction = kw.pop("sun_direction")

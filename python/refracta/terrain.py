@@ -17,8 +17,9 @@ Two forms of :func:`add_terrain` (bound as ``Scene.add_terrain``):
   3601 x 3601 samples, the name giving its south-west corner, e.g. ``N46E007.hgt``; -32768 marks a
   void), a GeoTIFF (read with tifffile: ModelTiepoint + ModelPixelScale and its GeoKeys; geographic
   WGS84 (EPSG:4326) or a projected CRS with an EPSG code, through pyproj; GDAL_NODATA samples are
-  holes), or a list of such files. Tiles of a list on one lattice (one CRS, equal spacings, their
-  samples a whole number of samples apart) that touch are joined into one grid before they are
+  holes, and an int16 band's -32768 where no GDAL_NODATA names a void), or a list of such files.
+  Tiles of a list on one lattice (one CRS, equal spacings, their samples a whole number of samples
+  apart) that touch are joined into one grid before they are
   placed: NaN where no tile covers, the first file's sample where tiles overlap (neighbouring SRTM
   tiles share their edge samples), so that pixel-is-area GeoTIFF tiles, whose edge samples lie one
   spacing apart, meet without a crack. Tiles on different lattices (another CRS or spacing, or
@@ -197,13 +198,17 @@ def _quiet_tifffile():
 _BYTES_PER_SAMPLE = 40
 
 
+class _TooLargeError(ValueError):
+    """A band too large for the machine (raised through the reader's own ValueError handler)."""
+
+
 def _check_fits(path: str, shape: tuple) -> None:
     """ValueError before decoding a band whose samples would not fit in this machine's memory (a
     trial's 7 MB zlib file claimed 40 000 x 40 000 floats: ~64 GB on the way in)."""
     samples = math.prod(int(n) for n in shape)
     need, have = samples * _BYTES_PER_SAMPLE, int(_core.physical_memory_bytes())
     if have > 0 and need > have:
-        raise ValueError(
+        raise _TooLargeError(
             f"{path!r}: {' x '.join(str(int(n)) for n in shape)} samples need ~{need / 2**30:.0f} GiB on their way "
             f"into the scene, more than this machine's {have / 2**30:.0f} GiB: crop or resample the file"
         )
@@ -219,6 +224,8 @@ def _read_geotiff(path: str) -> Elevation:
             tags = {tag.code: tag.value for tag in page.tags.values()}
             _check_fits(path, page.shape)
             data = page.asarray()
+    except _TooLargeError:
+        raise
     except (tifffile.TiffFileError, ValueError) as error:
         raise ValueError(f"{path!r} is not a TIFF file ({error})") from None
     except (KeyError, ImportError, NotImplementedError) as error:  # tifffile without the file's codec
@@ -548,14 +555,12 @@ def _array_positions(heights, origin, spacing, earth_radius) -> np.ndarray:
         ("x", dx, extents["origin and spacing (x)"]),
         ("z", dz, extents["origin and spacing (z)"]),
     ):
-        # The positions are single precision: a step under 8 of its units there moves the samples by
-        # up to 1/16 of the spacing, and under 1 merges them (a trial's 1e-4 m at 9.9e6 m: one point).
-        resolution = float(np.spacing(np.float32(extent)))
-        if step < _SINGLE_PRECISION_STEPS * resolution:
+        resolution, least = _least_resolved_step(extent)
+        if step < least:
             raise ValueError(
                 f"add_terrain: spacing {step:g} m along {name} is finer than single-precision positions resolve "
                 f"{extent:.4g} m from the origin (steps of {resolution:g} m; at least "
-                f"{_SINGLE_PRECISION_STEPS * resolution:g} m there): put the origin nearer the terrain"
+                f"{least:g} m there): put the origin nearer the terrain"
             )
     positions = np.empty((rows, cols, 3), dtype=np.float32)
     positions[..., 0] = (x0 + dx * np.arange(cols))[None, :]
@@ -607,6 +612,14 @@ def _geographic_positions(grid: Elevation, frame) -> np.ndarray:
     return positions
 
 
+def _least_resolved_step(extent: float) -> tuple[float, float]:
+    """(float32's step at `extent` [m] from the origin, the least sample spacing allowed there): the
+    positions are single precision, and a spacing under _SINGLE_PRECISION_STEPS of its steps moves
+    the samples by up to 1/16 of it, under 1 merges them (a trial's 1e-4 m at 9.9e6 m: one point)."""
+    resolution = float(np.spacing(np.float32(extent)))
+    return resolution, _SINGLE_PRECISION_STEPS * resolution
+
+
 def _check_resolved(positions: np.ndarray, grid: Elevation) -> None:
     """ValueError where a file's samples are closer than the scene's single-precision positions
     resolve where they lie (the array form's rule, _SINGLE_PRECISION_STEPS): a trial's 1e-8 deg
@@ -621,13 +634,13 @@ def _check_resolved(positions: np.ndarray, grid: Elevation) -> None:
             if ground.shape[axis] > 1
         ]
         extent = float(np.nanmax(np.abs(ground)))
-    resolution = float(np.spacing(np.float32(extent)))
+    resolution, least = _least_resolved_step(extent)
     step = min(steps)
-    if step < _SINGLE_PRECISION_STEPS * resolution:
+    if step < least:
         raise ValueError(
             f"add_terrain: an elevation grid's samples ({grid.dx:g} x {grid.dy:g}) lie {step:.3g} m apart, finer "
             f"than single-precision positions resolve {extent / 1e3:.4g} km from the frame's origin (steps of "
-            f"{resolution:g} m; at least {_SINGLE_PRECISION_STEPS * resolution:g} m there): put the frame's origin "
+            f"{resolution:g} m; at least {least:g} m there): put the frame's origin "
             "nearer the terrain or resample the file"
         )
 
@@ -939,16 +952,16 @@ def add_terrain(
             ids.append(self._add_terrain_grid(positions, material, uv))
             lower = np.fmin(lower, np.nanmin(positions.reshape(-1, 3), axis=0))
             upper = np.fmax(upper, np.nanmax(positions.reshape(-1, 3), axis=0))
-    except BaseException:  # all or nothing: a later grid's error leaves none of the call's grids (a trial)
+        water_id = None
+        if water_level is not None:
+            water_material = shading.Water() if water is None else water
+            water_id = _water(self, water_material, water_level, radius, lower[[0, 2]], upper[[0, 2]])
+        elif water is not None:
+            raise ValueError("add_terrain: water= is the material of the water_level surface; give water_level")
+    except BaseException:  # all or nothing: a later grid's or the water's error leaves none of the call's grids
         for added in ids:
             self.remove(added)
         raise
-    water_id = None
-    if water_level is not None:
-        water_material = shading.Water() if water is None else water
-        water_id = _water(self, water_material, water_level, radius, lower[[0, 2]], upper[[0, 2]])
-    elif water is not None:
-        raise ValueError("add_terrain: water= is the material of the water_level surface; give water_level")
     return TerrainGeometry(ids, water_id)
 
 

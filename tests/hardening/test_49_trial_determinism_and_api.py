@@ -37,3 +37,5 @@ def test_examples_set_physical_sky_names_the_sun_as_scene_set_physical_sky_does(
         examples.set_physical_sky(scene, direction=(0.0, 1.0, 0.0))
     with pytest.raises(TypeError, match="give sun_direction"):
         examples.set_physical_sky(scene)
+    with pytest.raises(TypeError, match="pass sun_direction only"):
+        examples.set_physical_sky(scene, (0.0, 1.0, 0.0), direction=(0.0, 1.0, 0.0))

@@ -364,8 +364,9 @@ def test_terrain_shading_spells_a_flat_earth_as_inf_like_the_rest_of_the_library
     assert shading.TerrainShading().parameters["earth_radius"] == math.inf
     np.testing.assert_array_equal(flat, seen(shading.TerrainShading(earth_radius=0.0)))
     curved = seen(shading.TerrainShading(earth_radius=1e4))
-    assert curved[0, 0, 0] / curved[0, 0, 1] > 1.5 * flat[0, 0, 0] / flat[0, 0, 1]  # rock's red against forest's
-    with pytest.raises(ValueError, match="earth_radius must be > 0"):
+    # Rock's red/green (0.25/0.23) is 1.63x forest's (0.06/0.09): 1.5 leaves room for the spectral round trip.
+    assert curved[0, 0, 0] / curved[0, 0, 1] > 1.5 * flat[0, 0, 0] / flat[0, 0, 1]
+    with pytest.raises(ValueError, match="earth_radius must be >= 0"):
         shading.TerrainShading(earth_radius=-1.0)
 
 
@@ -515,6 +516,14 @@ def test_files_keep_to_what_they_say_and_fail_whole(tmp_path):
         terrain.read_elevation(tmp_path / "radians.tif")
     with pytest.raises(ValueError, match="more than this machine's"):  # 10^12 samples: ~40 TB on the way in
         terrain._check_fits("huge.tif", (10**6, 10**6))
+    small_machine = pytest.MonkeyPatch()  # the reader's own message, not "not a TIFF file (...)"
+    small_machine.setattr(terrain._core, "physical_memory_bytes", lambda: 1000)
+    try:
+        with pytest.raises(ValueError, match=r"void.tif': 6 x 6 samples need .* more than this machine's") as refused:
+            terrain.read_elevation(tmp_path / "void.tif")
+        assert "not a TIFF file" not in str(refused.value)
+    finally:
+        small_machine.undo()
     # Every other sample void: no cell has four valid corners, so the second grid fails to build.
     checker = np.where((np.arange(6)[:, None] + np.arange(6)[None, :]) % 2 == 0, 300.0, np.nan).astype(np.float32)
     good = write_geotiff(tmp_path / "good.tif", np.full((6, 6), 500.0, np.float32), (10.0, 46.0), (0.001, 0.001))
@@ -525,6 +534,9 @@ def test_files_keep_to_what_they_say_and_fail_whole(tmp_path):
         scene.add_terrain([good, bad], frame=frame)
     above = frame.to_scene(45.997, 10.003, 2000.0)
     assert scene.intersect(above, (0.0, -1.0, 0.0)) is None  # the first grid is gone with the call
+    with pytest.raises(ValueError, match="water_level"):  # the water's own error, after the terrain was placed
+        scene.add_terrain(good, frame=frame, water_level=float("nan"))
+    assert scene.intersect(above, (0.0, -1.0, 0.0)) is None
 
 
 def test_a_file_finer_than_single_precision_resolves_is_refused(tmp_path):

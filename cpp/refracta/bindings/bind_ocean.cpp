@@ -21,9 +21,7 @@ std::shared_ptr<OceanWaves> make_waves(double wind_speed, const py::handle& wind
   if (seed < 0) throw_invalid("OceanWaves: seed must be >= 0 (got ", seed, ")");
   const OceanWavesParameters p{wind_speed, to_vec2(wind_direction, "wind_direction"), patch_size, resolution,
                                uint64_t(seed), time};
-  auto waves = std::make_shared<OceanWaves>(p);
-  if (const auto caveat = waves->patch_caveat()) warn(*caveat);
-  return waves;
+  return std::make_shared<OceanWaves>(p);
 }
 
 // A field over the nodes as an array (N, N) or, with two components per node, (N, N, 2).
@@ -39,7 +37,12 @@ void bind_ocean(py::module_& m) {
   const OceanWavesParameters defaults;
   const double default_wind = WaterParameters{}.wind_speed;
   py::class_<OceanWaves, std::shared_ptr<OceanWaves>>(m, "OceanWaves", DOC(refracta, OceanWaves))
-      .def(py::init(&make_waves),
+      .def(py::init([](double wind_speed, const py::handle& wind_direction, double patch_size, int resolution,
+                       long long seed, double time) {
+             auto waves = make_waves(wind_speed, wind_direction, patch_size, resolution, seed, time);
+             if (const auto caveat = waves->patch_caveat()) warn(*caveat);  // made, not unpickled
+             return waves;
+           }),
            py::arg("wind_speed") = default_wind,
            py::arg("wind_direction") = py::make_tuple(defaults.wind_direction.x(), defaults.wind_direction.y()),
            py::arg("patch_size") = defaults.patch_size, py::arg("resolution") = defaults.resolution,
@@ -89,7 +92,11 @@ void bind_ocean(py::module_& m) {
             [](RenderScene& s, const std::optional<std::shared_ptr<OceanWaves>>& waves, double height, double size,
                const py::object& material, double detail_radius, const py::object& centre) {
               const SeaLayout layout{height, size, detail_radius, to_vec2(centre, "centre")};
-              return add_sea(s, waves.value_or(nullptr), layout, material.is_none() ? nullptr : to_material(material, ""));
+              std::shared_ptr<OceanWaves> sea = waves.value_or(nullptr);
+              const bool made_here = !sea;
+              auto ids = add_sea(s, sea, layout, material.is_none() ? nullptr : to_material(material, ""));
+              if (const auto caveat = made_here ? sea->patch_caveat() : std::nullopt) warn("add_sea: " + *caveat);
+              return ids;
             },
             py::arg("waves") = py::none(), py::arg("height") = layout_defaults.height, py::arg("size") = layout_defaults.size,
             py::arg("material") = py::none(), py::arg("detail_radius") = layout_defaults.detail_radius,

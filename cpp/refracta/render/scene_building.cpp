@@ -301,7 +301,7 @@ void set_physical_sky(RenderScene& scene, const PhysicalSkySettings& settings, c
   if (aerial_perspective && scale > 0.0) scene.enable_aerial_perspective();
 }
 
-std::vector<unsigned> add_sea(RenderScene& scene, std::shared_ptr<OceanWaves> waves, const SeaLayout& layout,
+std::vector<unsigned> add_sea(RenderScene& scene, std::shared_ptr<OceanWaves>& waves, const SeaLayout& layout,
                               MaterialPtr material) {
   std::shared_ptr<const Water> water = std::dynamic_pointer_cast<const Water>(material);
   if (!waves) {

@@ -186,8 +186,9 @@ void set_physical_sky(RenderScene& scene, const PhysicalSkySettings& settings, c
 // everywhere.
 //
 // Returns the geometry ids: the displaced meshes (fine full waves, its fade rings, coarse full waves,
-// its fade rings; empty ones left out), then the flat plane.
-std::vector<unsigned> add_sea(RenderScene& scene, std::shared_ptr<OceanWaves> waves, const SeaLayout& layout,
+// its fade rings; empty ones left out), then the flat plane. A null `waves` is set to the default
+// sea it made (whose patch_caveat the binding warns with).
+std::vector<unsigned> add_sea(RenderScene& scene, std::shared_ptr<OceanWaves>& waves, const SeaLayout& layout,
                               MaterialPtr material);
 
 }  // namespace refracta

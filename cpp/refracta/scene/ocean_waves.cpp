@@ -396,7 +396,7 @@ std::optional<std::string> OceanWaves::patch_caveat() const {
   const double nyquist = kPi * parameters_.resolution / parameters_.patch_size;
   const double resolvable = std::exp(-1.0 / (nyquist * nyquist * wind_length() * wind_length()));
   const double held = expected_height_variance_ / (spectrum_height_variance() * resolvable);
-  if (held >= kLeastHeldVariance) return std::nullopt;
+  if (!(held < kLeastHeldVariance)) return std::nullopt;  // also 0 / 0: a grid too coarse to resolve any of it
   return concat("OceanWaves: the ", parameters_.patch_size, " m patch holds ", std::round(100.0 * held),
                 " % of the height variance of a fully developed sea's waves its grid resolves at ", parameters_.wind_speed, " m/s (H_s ",
                 std::round(40.0 * std::sqrt(expected_height_variance_)) / 10.0, " m, not ",

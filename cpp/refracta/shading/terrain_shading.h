@@ -59,7 +59,7 @@ class TerrainShading final : public Material {
     if (!std::isfinite(p.snow_line) || !std::isfinite(p.tree_line)) throw_invalid("TerrainShading: snow_line and tree_line must be finite");
     if (!(p.rock_slope > 0.0 && p.rock_slope < 90.0)) throw_invalid("TerrainShading: rock_slope must be in (0, 90) deg (got ", p.rock_slope, ")");
     if (!(p.earth_radius >= 0.0)) {
-      throw_invalid("TerrainShading: earth_radius must be > 0 [m] (inf, or 0, for a flat Earth; got ", p.earth_radius, ")");
+      throw_invalid("TerrainShading: earth_radius must be >= 0 [m] (inf, or 0, for a flat Earth; got ", p.earth_radius, ")");
     }
   }
 
