@@ -23,10 +23,12 @@ through the same executor path (:func:`map_ordered`).
 from __future__ import annotations
 
 import concurrent.futures
+import contextlib
 import itertools
 import math
 import os
 import pickle
+import signal
 import tempfile
 import threading
 import time
@@ -250,13 +252,43 @@ def _as_completed_waking(futures):
     pool or TBB thread only flags it, and a main thread blocked in as_completed's untimed wait
     never runs the handler, so Ctrl-C was lost while the renders ran on (seen in a fresh-clone
     `make test`: tests/scale/test_02_sweep.py's thread-pool sweep still rendering minutes after
-    SIGINT). Each timed wait returns to the interpreter, which then raises KeyboardInterrupt."""
+    SIGINT). Each timed wait returns to the interpreter, and the Ctrl-C is raised between waits
+    (_sigint_between_waits)."""
     pending = set(futures)
-    while pending:
-        finished, pending = concurrent.futures.wait(
-            pending, timeout=_WAKE_SECONDS, return_when=concurrent.futures.FIRST_COMPLETED
-        )
-        yield from finished
+    with _sigint_between_waits() as raise_if_interrupted:
+        while pending:
+            finished, pending = concurrent.futures.wait(
+                pending, timeout=_WAKE_SECONDS, return_when=concurrent.futures.FIRST_COMPLETED
+            )
+            raise_if_interrupted()
+            yield from finished
+
+
+@contextlib.contextmanager
+def _sigint_between_waits():
+    """In the main thread with Python's own Ctrl-C handler: SIGINT only noted while inside, and
+    KeyboardInterrupt raised by the callable it yields (or on leaving), between waits. Raised at
+    any bytecode, it could land inside concurrent.futures.wait between its acquisitions of the
+    futures' locks, leaving one held: cancelling the futures then deadlocked, and the sweep hung
+    (a `make test`: tests/scale/test_02_sweep.py's thread-pool sweep, no reply 60 s after SIGINT).
+    Elsewhere (another thread, a handler of the user's): no change."""
+    main = threading.current_thread() is threading.main_thread()
+    if not main or signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+        yield lambda: None
+        return
+    caught: list[int] = []
+
+    def raise_if_interrupted() -> None:
+        if caught:
+            caught.clear()
+            raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield raise_if_interrupted
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    raise_if_interrupted()  # one that came after the last wait
 
 
 class _RunningThreads:

@@ -102,13 +102,11 @@ def set_physical_sky(
     if sun_direction is not None and "direction" in deprecated:
         raise TypeError("examples.set_physical_sky: pass sun_direction only (direction= is its deprecated spelling)")
     kw = _options.renamed(dict(deprecated), {"direction": "sun_direction"}, "examples.set_physical_sky")
-    if sun_direction is None and "sun_direction" in kw:
-        sun_direction = kw.pop("sun_direction")
-    if kw or sun_direction is None:
-        raise TypeError(
-            "examples.set_physical_sky: "
-            + (f"unexpected keyword {next(iter(kw))!r}" if kw else "give sun_direction (toward the sun, y up)")
-        )
+    sun_direction = kw.pop("sun_direction", sun_direction)
+    if kw:
+        raise TypeError(f"examples.set_physical_sky: unexpected keyword {next(iter(kw))!r}")
+    if sun_direction is None:
+        raise TypeError("examples.set_physical_sky: give sun_direction (toward the sun, y up)")
     scene.set_physical_sky(sun_direction, aerosol=aerosol, scale=scale, below_horizon="horizon", visibility=visibility)
 
 

@@ -624,16 +624,15 @@ def _check_resolved(positions: np.ndarray, grid: Elevation) -> None:
     """ValueError where a file's samples are closer than the scene's single-precision positions
     resolve where they lie (the array form's rule, _SINGLE_PRECISION_STEPS): a trial's 1e-8 deg
     tile 387 km from the frame's origin collapsed its 20 columns onto one x. The median step along
-    rows and columns, so that a polar row's meeting meridians do not count."""
-    ground = positions[..., [0, 2]].astype(np.float64)
+    the middle row and the middle column (a polar row's meeting meridians do not count; the whole
+    grid's steps would cost a 3601^2 tile some 600 MB), against the farthest coordinate."""
+    rows, cols = positions.shape[:2]
+    middle_row = positions[rows // 2, :, [0, 2]].T.astype(np.float64)  # (cols, 2): x, z
+    middle_column = positions[:, cols // 2][:, [0, 2]].astype(np.float64)  # (rows, 2)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # voids (NaN) and all-NaN slices
-        steps = [
-            np.nanmedian(np.linalg.norm(np.diff(ground, axis=axis), axis=-1))
-            for axis in (0, 1)
-            if ground.shape[axis] > 1
-        ]
-        extent = float(np.nanmax(np.abs(ground)))
+        steps = [np.nanmedian(np.linalg.norm(np.diff(line, axis=0), axis=-1)) for line in (middle_row, middle_column)]
+        extent = max(float(max(np.nanmax(positions[..., a]), -np.nanmin(positions[..., a]))) for a in (0, 2))
     resolution, least = _least_resolved_step(extent)
     step = min(steps)
     if step < least:

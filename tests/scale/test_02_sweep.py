@@ -3,6 +3,7 @@ every other result is kept, progress, and the same results from thread and proce
 
 import concurrent.futures
 import multiprocessing
+import os
 import pickle
 import queue
 import signal
@@ -287,3 +288,31 @@ def test_unpicklable_shared_arguments_leave_no_file(tmp_path, monkeypatch):
         with pytest.raises((pickle.PicklingError, AttributeError, TypeError)):
             map_ordered(shared_reads, [(0,)], executor, shared=(lambda: 0,))
     assert not list(tmp_path.iterdir())
+
+
+def test_a_sigint_while_waiting_is_raised_between_waits_not_inside_them():
+    # Raised at any bytecode, a Ctrl-C could land inside concurrent.futures.wait between its
+    # acquisitions of the futures' locks, leaving one held, and the sweep hung (a make test).
+    from refracta import _sweep
+
+    # Python's own Ctrl-C handler, as in a terminal (a background job may inherit SIGINT ignored).
+    inherited = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        _sigint_noted_then_raised(_sweep)
+    finally:
+        signal.signal(signal.SIGINT, inherited)
+
+
+def _sigint_noted_then_raised(_sweep):
+    with _sweep._sigint_between_waits() as raise_if_interrupted:
+        os.kill(os.getpid(), signal.SIGINT)  # delivered to this (the main) thread: only noted
+        time.sleep(0.01)  # the handler runs between bytecodes: it must not raise here
+        with pytest.raises(KeyboardInterrupt):
+            raise_if_interrupted()
+        raise_if_interrupted()  # noted once
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    with pytest.raises(KeyboardInterrupt):  # one noted after the last wait is raised on leaving
+        with _sweep._sigint_between_waits():
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.01)
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler

@@ -195,9 +195,9 @@ std::optional<unsigned> dark_enclosure(const RenderScene& scene, const Vec3d& ey
   // odd number of times is what lies around the eye along it.
   constexpr int kDirections = 256;
   constexpr int kMostCrossings = 4096;  // a 5 km road crosses ~1 000 dash marks
-  std::set<unsigned> around;            // the opaque geometry every ray so far crossed an odd number of times
+  const double golden = 0.5 * (std::sqrt(5.0) - 1.0);  // azimuths turn by the golden angle
+  std::set<unsigned> around;  // the opaque geometry every ray so far crossed an odd number of times
   for (int i = 0; i < kDirections; ++i) {
-    const double golden = 0.5 * (std::sqrt(5.0) - 1.0);  // azimuths turn by the golden angle
     const Vec3d d = sample_uniform_sphere(Vec2d((i + 0.5) / kDirections, std::fmod(i * golden, 1.0)));
     std::map<unsigned, int> crossings;
     Vec3d origin = eye;

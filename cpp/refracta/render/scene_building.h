@@ -172,11 +172,12 @@ void set_physical_sky(RenderScene& scene, const PhysicalSkySettings& settings, c
 //
 // Within detail_radius [m] of centre: the waves (an OceanWaves; default OceanWaves(wind_speed=the
 // material's), whose 100 m patch holds a fully developed sea up to ~12 m/s: above, pass
-// OceanWaves(wind_speed, patch_size=10 U^2/g), which warns when too small) tiled on a mesh of their nodes with shading normals from their slopes; over the outer
-// 30 % of the radius they blend into a coarse level, the same sea at a quarter of the resolution
-// (exactly its longer waves) on nodes 4 cells apart, which reaches 4 detail_radius and fades to flat
-// over its outer 30 %; beyond, a flat square of side `size` [m] centred on the origin (as
-// add_ground). The levels meet without a crack. (Waves with resolution < 32 have no coarse level.)
+// OceanWaves(wind_speed, patch_size=10 U^2/g), which warns when too small) tiled on a mesh of
+// their nodes with shading normals from their slopes; over the outer 30 % of the radius they blend
+// into a coarse level, the same sea at a quarter of the resolution (exactly its longer waves) on
+// nodes 4 cells apart, which reaches 4 detail_radius and fades to flat over its outer 30 %; beyond,
+// a flat square of side `size` [m] centred on the origin (as add_ground). The levels meet without a
+// crack. (Waves with resolution < 32 have no coarse level.)
 //
 // material: default shading.Water(wind_speed=waves.wind_speed). With a Water (its wind_speed must
 // equal the waves'), every displaced band (per level the full waves, then 3 fade rings) gets a copy

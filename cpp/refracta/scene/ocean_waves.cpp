@@ -397,11 +397,12 @@ std::optional<std::string> OceanWaves::patch_caveat() const {
   const double resolvable = std::exp(-1.0 / (nyquist * nyquist * wind_length() * wind_length()));
   const double held = expected_height_variance_ / (spectrum_height_variance() * resolvable);
   if (!(held < kLeastHeldVariance)) return std::nullopt;  // also 0 / 0: a grid too coarse to resolve any of it
+  const auto tenths = [](double x) { return std::round(10.0 * x) / 10.0; };
   return concat("OceanWaves: the ", parameters_.patch_size, " m patch holds ", std::round(100.0 * held),
-                " % of the height variance of a fully developed sea's waves its grid resolves at ", parameters_.wind_speed, " m/s (H_s ",
-                std::round(40.0 * std::sqrt(expected_height_variance_)) / 10.0, " m, not ",
-                std::round(10.0 * significant_wave_height()) / 10.0,
-                "): its waves longer than the patch are missing; a patch_size of 10 L_w = ", std::ceil(10.0 * wind_length()),
+                " % of the height variance of a fully developed sea's waves its grid resolves at ",
+                parameters_.wind_speed, " m/s (H_s ", tenths(4.0 * std::sqrt(expected_height_variance_)), " m, not ",
+                tenths(significant_wave_height()), "): its waves longer than the patch are missing; a patch_size of ",
+                "10 L_w = ", std::ceil(10.0 * wind_length()),
                 " m keeps ~92 % (raise resolution alike to keep the spacing)");
 }
 

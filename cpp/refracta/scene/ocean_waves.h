@@ -13,8 +13,9 @@
 // one, and h is real (h~(-k) = conj h~(k)) with E|h~(k)|^2 = Phi(k) dk^2: the field's variance is
 // the spectrum summed over the patch's modes (Tessendorf's h~(k, t), his factor 1/sqrt(2) put on
 // the sum of the two travelling halves and his h0 holding 2 Phi on the upwind half-plane only, so
-// that Phi is the two-sided spectrum whose integral is the variance). Slopes by the same inverse FFT of i k h~ (his gradient): exact on
-// the nodes, not finite differences. Synthesised by Eigen's FFT (kissfft) rows then columns.
+// that Phi is the two-sided spectrum whose integral is the variance). Slopes by the same inverse
+// FFT of i k h~ (his gradient): exact on the nodes, not finite differences. Synthesised by Eigen's
+// FFT (kissfft) rows then columns.
 //
 // The spectrum: Phillips 1957 as Tessendorf writes it (section 3.4),
 //   Phi(k) = A exp(-1 / (k L_w)^2) / k^4 |k^.w^|^2,   L_w = U^2 / g,
