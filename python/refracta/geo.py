@@ -553,9 +553,9 @@ class LocalFrame:
         size: dict[str, Any] = {}
         for name, value in (("width", image_width), ("height", image_height)):
             if value is not None:
-                if not (is_seed(value) and 1 <= value <= 2**31 - 1):
+                if not (is_seed(value) and 1 <= value <= _core.Camera.max_side):
                     raise ValueError(
-                        f"image_{name} must be a whole number of pixels in [1, 2147483647] (got {value!r})"
+                        f"image_{name} must be a whole number of pixels in [1, {_core.Camera.max_side}] (got {value!r})"
                     )
                 size[name] = int(value)
         look_at = eye + forward_

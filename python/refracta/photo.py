@@ -216,8 +216,8 @@ class Photo:
         if vfov is not None and sensor_mm is not None:
             raise ValueError("Photo.camera: give vfov or sensor_mm, not both (sensor_mm sets the field of view)")
         w = self.width if width is None else width
-        if not (is_number(w) and math.isfinite(w) and w == int(w) and 1 <= w <= 2**31 - 1):
-            raise ValueError(f"width must be a whole number of pixels in [1, 2147483647] (got {width!r})")
+        if not (is_number(w) and math.isfinite(w) and w == int(w) and 1 <= w <= _core.Camera.max_side):
+            raise ValueError(f"width must be a whole number of pixels in [1, {_core.Camera.max_side}] (got {width!r})")
         h = max(1, round(int(w) * self.height / self.width))
         return _core.Camera(position, look_at, up, self.vfov(sensor_mm) if vfov is None else vfov, int(w), h)
 

@@ -366,8 +366,9 @@ def _image_size(value: Any) -> list:
         or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
     ):
         raise TypeError("must be a list of 2 numbers [width, height]")
-    if not all(v == v and abs(v) != float("inf") and float(v).is_integer() and 1 <= v <= 2**31 - 1 for v in value):
-        raise ValueError(f"must be two whole numbers of pixels in [1, 2147483647] (got {value})")
+    most = _core.Camera.max_side
+    if not all(v == v and abs(v) != float("inf") and float(v).is_integer() and 1 <= v <= most for v in value):
+        raise ValueError(f"must be two whole numbers of pixels in [1, {most}] (got {value})")
     return [int(v) for v in value]
 
 

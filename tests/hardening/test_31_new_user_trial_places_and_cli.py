@@ -64,7 +64,7 @@ def test_a_size_beyond_an_int_is_named_not_a_traceback(tmp_path, capsys):
     path = tmp_path / "big.toml"
     path.write_text(SCENE.replace("size = [16, 8]", "size = [99999999999999999999, 8]"))
     status, err = run(capsys, "render", path, "-o", tmp_path / "big.png")
-    assert status == 1 and "[camera] size: must be two whole numbers of pixels in [1, 2147483647]" in err
+    assert status == 1 and "[camera] size: must be two whole numbers of pixels in [1, 16777216]" in err
 
 
 def test_a_float_tiff_photograph_is_linear(tmp_path):

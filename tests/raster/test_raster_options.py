@@ -46,7 +46,7 @@ def test_validate_lists_every_problem_of_the_nested_options():
     with pytest.raises(ValueError) as error:
         options.validate()
     for problem in (
-        "tile must be >= 1",
+        "tile must be in [1, 65536] pixels",
         "kernel must be an odd size",
         "bias must be in [0, 1)",
         "beta must be in [0, 1]",

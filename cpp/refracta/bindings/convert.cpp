@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace refracta {
@@ -270,6 +271,10 @@ Image to_image(const py::handle& object, const char* what, bool raw) {
     for (py::ssize_t k = 0; k < array.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(array.shape(k));
     throw_invalid(what, raw ? " must have shape (H, W, C)" : " must have shape (H, W), (H, W, 1..4)",
                   ", H and W >= 1 (got (", shape, "))");
+  }
+  constexpr py::ssize_t kIntMax = std::numeric_limits<int>::max();
+  if (array.shape(0) > kIntMax || array.shape(1) > kIntMax || array.shape(2) > kIntMax) {
+    throw_invalid(what, " has a side past 2^31 - 1 pixels (got ", array.shape(0), " x ", array.shape(1), ")");
   }
   Image image(int(array.shape(1)), int(array.shape(0)), int(array.shape(2)));
   std::copy(array.data(), array.data() + array.size(), image.pixels.begin());

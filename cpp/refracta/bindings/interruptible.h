@@ -57,7 +57,7 @@ void run_interruptible(WorkControl& control, const py::object& progress, Work&& 
           control.cancel = true;
         } else if (!progress.is_none()) {
           try {
-            progress(control.done.load(), control.total);
+            progress(control.done.load(), control.total.load());
           } catch (py::error_already_set& error) {
             // Raised by the callback: stop like Ctrl-C, re-raised once the worker has finished
             // (waiting here, with the GIL held, would deadlock a worker calling into Python).
@@ -85,7 +85,7 @@ void run_interruptible(WorkControl& control, const py::object& progress, Work&& 
       throw std::runtime_error("work was cancelled");
     }
   }
-  if (!progress.is_none()) progress(control.done.load(), control.total);
+  if (!progress.is_none()) progress(control.done.load(), control.total.load());
 }
 
 // What work(control) returns, run by run_interruptible with a control of its own whose total is

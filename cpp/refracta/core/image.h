@@ -12,6 +12,11 @@
 
 namespace refracta {
 
+// The largest square tile a render or a rasterization is cut into [pixels]: 2^16, wider than any
+// use has for one. With a tile near 2^31 the tile count (side + tile - 1) / tile overflowed an int:
+// an image came back unrendered (black) and the rasterizer's bins were indexed at -1.
+constexpr int kMaxTile = 1 << 16;
+
 struct Image {
   int width = 0, height = 0, channels = 3;
   std::vector<float> pixels;  // width * height * channels

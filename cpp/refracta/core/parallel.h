@@ -23,7 +23,7 @@ namespace refracta {
 struct WorkControl {
   std::atomic<bool> cancel{false};
   std::atomic<int64_t> done{0};
-  int64_t total = 0;
+  std::atomic<int64_t> total{0};  // set by the workers while the caller's thread reports progress
 };
 
 // Thrown out of work whose control was cancelled.

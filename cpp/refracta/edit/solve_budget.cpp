@@ -93,7 +93,8 @@ void SolveBudget::finish() { control_.done = kProgressTotal; }
 void SolveBudget::update_progress() {
   double used = std::max(double(iterations_.load()) / max_iterations_, double(evaluations_.load()) / max_evaluations_);
   if (time_limit_ > 0.0) used = std::max(used, seconds() / time_limit_);
-  const int64_t done = std::min(kProgressTotal - 1, int64_t(used * kProgressTotal));  // the end reports the total
+  // min first: a time_limit of 1e-20 s makes `used` ~1e16, past an int64 once scaled.
+  const int64_t done = std::min(kProgressTotal - 1, int64_t(std::min(used, 1.0) * kProgressTotal));  // the end reports the total
   int64_t before = control_.done.load();
   while (done > before && !control_.done.compare_exchange_weak(before, done)) {
   }

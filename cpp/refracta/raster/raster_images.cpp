@@ -2,13 +2,18 @@
 #include "refracta/raster/raster_images.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/image.h"
 
 namespace refracta {
 
 RasterImages rasterize_images(const Scene& scene, const Camera& camera, double guard_band, std::optional<int> tile,
                               WorkControl& control) {
-  if (tile && *tile < 1) throw_invalid("tile must be a whole number >= 1 (got ", *tile, ")");
+  if (tile && (*tile < 1 || *tile > kMaxTile)) {
+    throw_invalid("tile must be a whole number in [1, ", kMaxTile, "] (got ", *tile, ")");
+  }
   const RasterView view = RasterView::from_camera(camera, guard_band);
+  // The buffer, then its images: float depth, int64 geometry and primitive, three float barycentrics.
+  check_image_memory(view.width(), view.height(), kVisibilityBytesPerPixel + 32.0, "rasterize");
   RasterImages out;
   const VisibilityBuffer buffer = rasterize(scene, view, control, tile.value_or(kRasterTile), &out.stats);
   const Eigen::Index h = buffer.height, w = buffer.width;

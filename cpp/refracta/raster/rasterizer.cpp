@@ -2,6 +2,7 @@
 #include "refracta/raster/rasterizer.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/image.h"
 
 #include <algorithm>
 #include <array>
@@ -137,7 +138,7 @@ namespace {
 VisibilityBuffer draw(const Scene& scene, const RasterView& view, WorkControl& control, int tile, RasterStats* stats,
                       const std::vector<bool>* transparent, FragmentLists* fragments, bool surfaces) {
   if (transparent && !fragments) throw_invalid("rasterize: transparent geometry needs fragment lists");
-  if (tile < 1) throw_invalid("tile must be >= 1 (got ", tile, ")");
+  if (tile < 1 || tile > kMaxTile) throw_invalid("tile must be in [1, ", kMaxTile, "] pixels (got ", tile, ")");
   // Clip and project every triangle.
   std::vector<ScreenTriangle> screen;
   int64_t submitted = 0;

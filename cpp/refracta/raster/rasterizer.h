@@ -17,6 +17,9 @@
 
 namespace refracta {
 
+// The bytes a visibility buffer holds per pixel: depth, geometry, primitive and two barycentrics.
+constexpr double kVisibilityBytesPerPixel = 20.0;
+
 struct VisibilityBuffer {
   static constexpr uint32_t kNone = 0xffffffffu;
   int width = 0, height = 0;

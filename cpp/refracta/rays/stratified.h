@@ -151,8 +151,8 @@ class StratifiedTracer {
   }
 
   void straight_horizontal(double n0) {
-    const int count = std::max(1, int(std::ceil(length_ / spacing_)));
-    for (int i = 1; i <= count && !done(); ++i) {
+    const int64_t count = std::max<int64_t>(1, int64_t(std::ceil(length_ / spacing_)));  // <= max_steps
+    for (int64_t i = 1; i <= count && !done(); ++i) {
       const double s = length_ * i / count;
       emit(node(s, s, origin_.y(), n0, 0.0, 0.0));
     }
@@ -225,8 +225,8 @@ class StratifiedTracer {
       if (!(stray <= options_.tol)) return false;
     }
     const double r_t = r_, s_t = s_;
-    const int count = std::max(1, int(std::ceil((length_ - s_t) / spacing_)));
-    for (int i = 1; i <= count && !done(); ++i) {
+    const int64_t count = std::max<int64_t>(1, int64_t(std::ceil((length_ - s_t) / spacing_)));
+    for (int64_t i = 1; i <= count && !done(); ++i) {
       s_ = s_t + (length_ - s_t) * i / count;
       r_ = r_t + (s_ - s_t);
       const double phase = omega * (r_ - r_t), c = std::cos(phase), sn = std::sin(phase);

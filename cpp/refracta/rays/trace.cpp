@@ -2,6 +2,7 @@
 #include "refracta/rays/trace.h"
 
 #include "refracta/core/error.h"
+#include "refracta/core/memory.h"
 #include "refracta/rays/march.h"
 #include "refracta/rays/stratified.h"
 
@@ -85,10 +86,27 @@ TraceEnd<double> trace(const IndexField& field, const Vec3d& origin, const Vec3d
 
 RayPath trace_path(const IndexField& field, const Vec3d& origin, const Vec3d& direction,
                    const TraceOptions& options) {
+  // Every node is kept: refused where they would pass half of this machine's memory (max_steps
+  // bounds the count, not the bytes: rk4 with step 1e-3 m over 1000 km and max_steps 1e9 asked for
+  // 88 GB). Up front where the step gives the count a path of max_length has at least; as they grow
+  // otherwise, at a quarter (the vector's growth copies them once more).
+  constexpr double kNodeBytes = sizeof(RayNode<double>);
+  const double memory = physical_memory_bytes();
+  const double least_step = options.least_step();
+  if (memory > 0.0 && least_step > 0.0 && options.max_length / least_step * kNodeBytes > memory / 2.0) {
+    throw_invalid("trace_ray: a path of max_length ", options.max_length, " m in steps of ", least_step, " m keeps ",
+                  whole_bytes(options.max_length / least_step), " nodes of ", kNodeBytes, " bytes, more than half of ",
+                  "this machine's ", readable_bytes(memory), ": raise step or lower max_length");
+  }
+  const double most_nodes = memory > 0.0 ? memory / 4.0 / kNodeBytes : HUGE_VAL;
   std::vector<RayNode<double>> nodes;
   const TraceEnd<double> end =
       trace(field, origin, direction, options, [&](const RayNode<double>& a, const RayNode<double>& b) {
         if (nodes.empty()) nodes.push_back(a);
+        if (double(nodes.size()) >= most_nodes) {
+          throw_invalid("trace_ray: the path's ", nodes.size(), " nodes so far fill a quarter of this machine's ",
+                        readable_bytes(memory), ": raise step or lower max_length");
+        }
         nodes.push_back(b);
         return true;
       });

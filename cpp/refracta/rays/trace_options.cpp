@@ -63,9 +63,7 @@ void TraceOptions::check(Problems& problems) const {
   // Refused before any work: a path that needs more than max_steps steps (rk4: max_length / step;
   // rk45: at least max_length / step when a largest step is given; stratified: at least
   // max_length / node spacing) would run for minutes and fill memory with nodes.
-  const double least_step = trace == TraceMethod::kRk4          ? rk4_step()
-                            : trace == TraceMethod::kStratified ? stratified_spacing()
-                                                                : step;
+  const double least_step = this->least_step();
   problems.check(!(least_step > 0 && max_length / least_step > double(max_steps)), trace_method_name(trace),
                  " with step ", least_step, " m needs more than ", max_steps, " steps for max_length ", max_length,
                  " m (raise step or lower max_length)");

@@ -65,6 +65,12 @@ struct TraceOptions {
   // rk4's step and stratified's node spacing, the defaults applied.
   double rk4_step() const { return step > 0.0 ? step : kRk4DefaultStep; }
   double stratified_spacing() const { return step > 0.0 ? step : kStratifiedDefaultSpacing; }
+  // The shortest step the method takes over a whole path (rk4: its step; stratified: its node
+  // spacing; rk45: the largest step given, 0 when none is): a path of max_length has at least
+  // max_length / least_step() nodes.
+  double least_step() const {
+    return trace == TraceMethod::kRk4 ? rk4_step() : trace == TraceMethod::kStratified ? stratified_spacing() : step;
+  }
 
   // Throws std::invalid_argument listing every bad field (refracta::Problems).
   void validate() const;

@@ -80,6 +80,9 @@ Image render_raster_march(const RenderScene& render_scene, const Camera& camera,
   if (options.spectral) throw_invalid("raster_march renders RGB only (spectral=True needs method='curved')");
   const Scene& scene = render_scene.geometry;
   RasterFrame frame{&scene, RasterView::from_camera(camera, options.guard_band), {}, {}};
+  // The whole guard-banded view is rasterized, whatever pixel_bounds the image has: its visibility
+  // buffer (20 bytes a pixel) must fit too.
+  check_image_memory(frame.view.width(), frame.view.height(), kVisibilityBytesPerPixel, "render (raster_march's view)");
   frame.buffer = rasterize(scene, frame.view, control);
   const Vec3d eye = camera.position();
   // Raster pixels are shaded by the straight-ray integrator (what the original did: the colour

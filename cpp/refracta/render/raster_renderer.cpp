@@ -61,7 +61,7 @@ void RasterRenderOptions::check(Problems& problems) const {
   }
   if (shadow_centre) problems.check(is_finite(*shadow_centre), "shadow_centre must be finite");
   problems.check(shadow_distance > 0.0, "shadow_distance must be > 0 (got ", shadow_distance, ")");
-  problems.check(tile >= 1, "tile must be >= 1 (got ", tile, ")");
+  problems.check(tile >= 1 && tile <= kMaxTile, "tile must be in [1, ", kMaxTile, "] pixels (got ", tile, ")");
   if (transparency) problems.check_nested("transparency", *transparency);
   problems.check(shadow_light >= -1, "shadow_light must be -1 (the sun) or a spot light index (got ", shadow_light,
                  ")");
@@ -123,8 +123,11 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     throw_invalid("render_raster draws through a pinhole: depth of field (a camera with an f_number) needs "
                   "refracta.render with method 'straight' or 'curved'");
   }
-  // float32 RGB here and in the numpy copy handed to Python: 24 bytes per pixel at least.
-  check_image_memory(camera.width(), camera.height(), 24.0, "render_raster");
+  // The visibility buffer, float32 RGB here and in the numpy copy handed to Python, and with
+  // transparency a fragment list's header (a std::vector) per pixel.
+  check_image_memory(camera.width(), camera.height(),
+                     kVisibilityBytesPerPixel + 24.0 + (options.transparency ? double(sizeof(std::vector<int>)) : 0.0),
+                     "render_raster");
   render_scene.prepare();
   const Scene& scene = render_scene.geometry;
   const RasterLights lights = raster_lights(render_scene, options);

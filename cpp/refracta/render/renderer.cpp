@@ -91,7 +91,7 @@ void RenderOptions::validate() const {
     problems.add("tol must be at least ", kMinRelativeTol, " x max_length = ", kMinRelativeTol * max_length,
                  " m, the round-off of positions (got ", tol, "): raise tol or lower max_length");
   }
-  if (tile < 1) problems.add("tile must be >= 1 (got ", tile, ")");
+  if (tile < 1 || tile > kMaxTile) problems.add("tile must be in [1, ", kMaxTile, "] pixels (got ", tile, ")");
   if (trace && *trace == TraceMethod::kRk4) problems.add("trace must be 'rk45' or 'stratified' for rendering");
   if (march == TraceMethod::kStratified) problems.add("march must be 'rk4' or 'rk45'");
   if (!(step > 0.0) || !std::isfinite(step)) problems.add("step must be > 0 (got ", step, ")");
@@ -116,8 +116,8 @@ void RenderOptions::validate() const {
   if (edge_spp > spp && adaptive) problems.add("edge_spp (", edge_spp, ") and adaptive cannot be combined");
   if (edge_spp > spp && method == RenderMethod::kRasterMarch) problems.add("edge_spp needs method 'straight' or 'curved'");
   if (!(guard_band >= 0.0 && guard_band <= 2.0)) problems.add("guard_band must be in [0, 2] (got ", guard_band, ")");
-  if (!(turbulence_step > 0.0 && turbulence_step <= 16.0)) {
-    problems.add("turbulence_step must be in (0, 16] cells (got ", turbulence_step, ")");
+  if (!(turbulence_step >= 0.01 && turbulence_step <= 16.0)) {
+    problems.add("turbulence_step must be in [0.01, 16] cells (got ", turbulence_step, ")");
   }
   if (max_depth < 0) problems.add("max_depth must be >= 0 (got ", max_depth, ")");
   if (rr_depth < 1) problems.add("rr_depth must be >= 1 (got ", rr_depth, ")");

@@ -12,6 +12,14 @@
 
 namespace refracta {
 
+// Throws unless both sides are in [1, kMaxImageSide].
+static void check_image_size(int width, int height, const char* what) {
+  if (width < 1 || height < 1) throw_invalid(what, ": size must be at least 1x1 (got ", width, "x", height, ")");
+  if (width > kMaxImageSide || height > kMaxImageSide) {
+    throw_invalid(what, ": sides must be at most ", kMaxImageSide, " pixels (got ", width, "x", height, ")");
+  }
+}
+
 Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
                int height)
     : position_(position), look_at_(look_at), up_hint_(up), vfov_(vfov_deg), width_(width), height_(height) {
@@ -26,7 +34,7 @@ Camera::Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, dou
   if (vfov_deg < kNarrowestVfov) {
     throw_invalid("Camera: vfov must be at least ", kNarrowestVfov, " degrees (got ", vfov_deg, ")");
   }
-  if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
+  check_image_size(width, height, "Camera");
   Vec3d view = look_at - position;
   if (!is_finite(view)) view = look_at / look_at.cwiseAbs().maxCoeff();  // look_at ~1e308 away: its direction
   if (!(view.cwiseAbs().maxCoeff() > 0.0)) throw_invalid("Camera: look_at must differ from position");
@@ -55,7 +63,7 @@ double Camera::photographic_vfov(double focal_length_mm, double sensor_w_mm, dou
     throw_invalid("Camera.photographic: sensor_mm sides must be in [0.1, 2000] mm (got (", sensor_w_mm, ", ",
                   sensor_h_mm, "))");
   }
-  if (width < 1 || height < 1) throw_invalid("Camera: size must be at least 1x1 (got ", width, "x", height, ")");
+  check_image_size(width, height, "Camera");
   const bool spans_width = double(width) * sensor_h_mm >= double(height) * sensor_w_mm;
   const double image_h_mm = spans_width ? sensor_w_mm * height / width : sensor_h_mm;
   return radians_to_degrees(2.0 * std::atan(0.5 * image_h_mm / focal_length_mm));
@@ -178,7 +186,7 @@ Camera Camera::framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& dire
   if (!(vfov_deg > 0.0 && vfov_deg < 180.0)) {
     throw_invalid("Camera.framing: vfov must be in (0, 180) degrees (got ", vfov_deg, ")");
   }
-  if (width < 1 || height < 1) throw_invalid("Camera.framing: size must be at least 1x1 (got ", width, "x", height, ")");
+  check_image_size(width, height, "Camera.framing");
   const Vec3d centre = 0.5 * (lower + upper);
   const double radius = 0.5 * (upper - lower).norm();  // of the bounding sphere
   if (!(radius > 0.0)) throw_invalid("Camera.framing: the bounds are a single point");

@@ -23,6 +23,12 @@ namespace refracta {
 // The narrowest vertical field of view a camera takes [deg] (3.6 milliarcseconds).
 constexpr double kNarrowestVfov = 1e-6;
 
+// The longest image side a camera takes [pixels]: 2^24 (16.8 million), past any sensor or stitched
+// panorama, and small enough that pixel arithmetic -- a raster view's guard bands of up to two sides
+// each way, the last tile's end -- stays inside an int (a camera 858993460 pixels wide overflowed
+// its guard band and the raster march read far outside its buffer).
+constexpr int kMaxImageSide = 1 << 24;
+
 // The cameras' defaults, where Python leaves them out: Camera(...) and Camera.framing a 45 deg
 // view on a 16:9 image of 640 x 360; the photographic cameras (photographic, eye_level) a
 // full-frame 36 x 24 mm sensor and a 3:2 image of 960 x 640, eye_level a 50 mm lens 1.6 m above
@@ -44,7 +50,8 @@ struct CameraDefaults {
 class Camera {
  public:
   // vfov: full vertical field of view [deg] in [kNarrowestVfov, 180). Throws std::invalid_argument
-  // for NaN input, a zero view direction, an up vector parallel to it, or a size < 1.
+  // for NaN input, a zero view direction, an up vector parallel to it, or a side < 1 or above
+  // kMaxImageSide.
   Camera(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double vfov_deg, int width,
          int height);
 

@@ -8,6 +8,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -147,7 +148,9 @@ void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
 struct Scene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  mutable bool dirty = true;
+  // Read by queries on many threads without the lock (commit() takes it to write): atomic, so a
+  // query that sees false also sees the committed scene.
+  mutable std::atomic<bool> dirty{true};
   mutable std::mutex commit_mutex;
   std::string error;
   // The user-geometry spheres' data (Embree holds raw pointers): kept while the scene lives, a

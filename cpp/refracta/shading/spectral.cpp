@@ -7,6 +7,7 @@
 #include <Eigen/LU>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -466,7 +467,14 @@ Coefficients RgbToSpectrumTable::coefficients(const Vec3d& rgb_in) const {
 const RgbToSpectrumTable& rgb_to_spectrum_table() {
   static std::once_flag once;
   static std::unique_ptr<RgbToSpectrumTable> table;
-  std::call_once(once, [] { table = std::make_unique<RgbToSpectrumTable>(kTableResolution, kTableQuadratureStep, kTablePolishSteps); });
+  // Isolated: its first caller is often a render's tile, and a thread waiting in the table's own
+  // parallel loop must not take another tile that waits on this call_once (a deadlock, oneTBB's
+  // documented lazy-initialisation trap).
+  std::call_once(once, [] {
+    tbb::this_task_arena::isolate([] {
+      table = std::make_unique<RgbToSpectrumTable>(kTableResolution, kTableQuadratureStep, kTablePolishSteps);
+    });
+  });
   return *table;
 }
 
