@@ -9,8 +9,9 @@ Sections (one function each, each a dict in results/realism.json):
   structure_function     D_n(r) / (C_n^2 r^(2/3)) measured through the C++ evaluator across the
                          default grid's inertial range (4 realisations), beside the ensemble formula
   angle_of_arrival       rays traced through 4 realisations against the realisations' expectation,
-                         with the continuous spectrum's closed forms beside it; and what tiling
-                         does to a hot-road path along a lattice axis
+                         with the continuous spectrum's closed forms beside it; what tiling
+                         does to a 300 m hot-road path off and along a lattice axis; the vertical
+                         over the horizontal tilt of level paths (isotropy)
   shimmer_render         examples.hot_road(160, 60) with the default turbulence in its hot layer
                          (depth 0.1 m), traced strictly, against the calm air
   shimmer_fast           the same through turbulence_trace 'perturbed' (issue 21 goal 1): its
@@ -139,9 +140,11 @@ def angle_of_arrival(seeds=4, rays=1500, along_x_cells=256) -> dict:
         f"angle of arrival: measured {np.mean(measured):.3e} rad^2, expected {np.mean(expected):.3e} "
         f"(ratio {ratio:.3f} +- {sigma:.3f}); closed forms {', '.join(f'{k} {v:.3e}' for k, v in closed.items())}"
     )
-    # A hot-road path: 300 m along +x (a lattice axis) through the default grid, against the
-    # continuous spectrum: the 12.8 m tile repeats along the path and its modes add coherently.
+    # A hot-road path: 300 m along +x through the default grid (31.7 deg off the lattice's axes, its
+    # default yaw), against the continuous spectrum; and along a lattice axis (yaw 0), where the
+    # 12.8 m tile repeats along the path and its modes add coherently.
     road = refracta.Turbulence(cells=along_x_cells, depth=None)
+    on_axis = refracta.Turbulence(cells=along_x_cells, depth=None, yaw_deg=0.0).angle_of_arrival_variance(300.0)
     start = time.perf_counter()
     along_x = {
         str(L): {
@@ -180,6 +183,8 @@ def angle_of_arrival(seeds=4, rays=1500, along_x_cells=256) -> dict:
         "continuous_closed_forms_rad2": closed,
         "hot_road_path_along_x": along_x,
         "hot_road_path_2deg_off_axis_over_continuous": off_axis / along_x["300.0"]["continuous_l0_one_cell"],
+        "hot_road_path_on_a_lattice_axis_over_continuous": on_axis / along_x["300.0"]["continuous_l0_one_cell"],
+        "level_path_tilt_vertical_over_horizontal": level_path_tilts(road),
         "expectation_seconds_256": seconds,
     }
 
@@ -536,8 +541,38 @@ def denoise_quality_demo_size(width=640, height=240, spp=16, reference_spp=512, 
     return denoise_quality(width, height, spp, reference_spp, names, crops)
 
 
+def level_path_tilts(air, lengths=(12.8, 100.0, 300.0), seeds=3, paths=40) -> dict:
+    """The vertical over the horizontal tilt variance (first order: the transverse gradient summed
+    along the path) of level paths of each length through `air`'s settings, at random places,
+    headings and seeds: 1 for isotropic turbulence (it grew as L^2 while the lattice held modes
+    constant along every level path)."""
+    import refracta
+
+    rng = np.random.default_rng(11)
+    out = {}
+    for length in lengths:
+        step = air.spacing / 2
+        s = np.arange(0.0, length, step) + step / 2
+        vertical, horizontal = [], []
+        for seed in range(seeds):
+            layer = refracta.Turbulence(air.cn2, cells=air.cells, depth=None, seed=seed).layer
+            for _ in range(paths):
+                heading = rng.uniform(0.0, 2.0 * math.pi)
+                along = np.array([math.cos(heading), 0.0, math.sin(heading)])
+                across = np.array([-math.sin(heading), 0.0, math.cos(heading)])
+                _, gradient = layer.evaluate(rng.uniform(-500.0, 500.0, 3) + s[:, None] * along)
+                vertical.append(gradient[:, 1].sum() * step)
+                horizontal.append((gradient @ across).sum() * step)
+        out[str(length)] = float(np.var(vertical) / np.var(horizontal))
+    print("level paths, vertical / horizontal tilt variance:", {k: round(v, 2) for k, v in out.items()})
+    return out
+
+
 # Sections that --only runs on their own (with their published arguments).
 SECTIONS = {
+    "turbulence_generation": turbulence_generation,
+    "structure_function": structure_function,
+    "angle_of_arrival": angle_of_arrival,
     "water_render": water_render,
     "aerial_perspective_render": aerial_perspective_render,
     "denoise_quality": denoise_quality,

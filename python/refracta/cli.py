@@ -356,7 +356,7 @@ def _demo_green_flash(out: Path, size: int = GREEN_FLASH_SIZE, spp: int = GREEN_
 
 # The turbulent rays end (and see the sky in their last direction) after 1.5 km, where the
 # shimmering band's rays have crossed the hot layer. They are followed by turbulence_trace
-# 'perturbed' (render/shimmer_cast.h: as deviations from the calm rays, within 0.035 of the
+# 'perturbed' (render/shimmer_cast.h: as deviations from the calm rays, within 0.037 of the
 # turbulence's effect of the strict trace, bench_realism.py shimmer_fast): 0.55 ms a pixel-frame
 # against the strict rk45 trace's 5 ms (one core, 96 x 32 and 48 x 16 here), so the GIF went from 3
 # frames of 48 x 16 (12.7 s) to 8 of 120 x 40 (~11 s wall on two cores), each denoised so that only

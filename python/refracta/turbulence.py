@@ -206,7 +206,7 @@ class Turbulence:
       turbulent layer, so the cost of a pixel grows as path length / spacing.
     - cells N (default 256) or size [m] (cells = ceil(size / spacing)): the grid is N^3, one
       period N * spacing wide in x, y and z. N = 256 reaches an inertial range over a decade
-      (x14 within 15 %: see inertial_range); N = 128 does not (x7); the float32 coefficients take
+      (x16 within 15 %: see inertial_range); N = 128 does not (x8); the float32 coefficients take
       4 N^3 bytes (64 MB at 256), the synthesis about 12 bytes per cell (memory_needed; ~3 s at 256
       on 2 cores).
     - depth [m] > 0 or None: the height envelope E(h) = e^(-h/depth) above the ground (rays above
@@ -217,15 +217,16 @@ class Turbulence:
       _core.DEFAULT_TURBULENCE_YAW_DEG: see media/turbulence_synthesis.h for why). ``yaw=`` [rad],
       its former spelling, still works for one release with a DeprecationWarning. A tile shorter than
       a ray's path repeats along it: along a lattice axis the same modes add up coherently and
-      the angle-of-arrival variance grows as L^2 beyond the tile (8x the continuous spectrum's
+      the angle-of-arrival variance grows as L^2 beyond the tile (7.9x the continuous spectrum's
       over 300 m at the defaults); turned, a level line of sight along x crosses the
-      tile quasi-periodically: 0.33x the continuous spectrum's (l0 = 5 mm; the grid resolves
-      nothing below ~3 cells) over one tile, 0.67x over 300 m -- the lowest modes, a tile long,
-      still add up partly. angle_of_arrival_variance(L, direction=...) gives the realised figure.
+      tile quasi-periodically and sees fewer modes than the continuous spectrum has: 0.32x its
+      value (l0 = 5 mm; the grid resolves nothing below ~3 cells) over one tile, 0.18x over
+      300 m. angle_of_arrival_variance(L, direction=...) gives the realised figure.
 
     The pattern (C++, _core.synthesise_turbulence): white noise filtered by sqrt(Phi_n) on the N^3
     lattice of wavenumbers 2 pi i / (N spacing) (the k = 0 mode removed; the lowest modes carry Phi
-    averaged over their cell), divided by the cubic B-spline's response so that the spline through
+    averaged over their cell; the modes with no horizontal wavenumber, layers as wide as the scene,
+    give their variance to the four modes beside them), divided by the cubic B-spline's response so that the spline through
     the coefficients passes through the synthesised samples (Unser, Aldroubi & Eden 1991, "Fast
     B-spline transforms", eq. 10), synthesised for C_n^2 = 1 and scaled by sqrt(cn2) in the layer.
 
@@ -365,8 +366,8 @@ class Turbulence:
     def inertial_range(self) -> tuple[float, float]:
         """(r_min, r_max) [m]: the separations the pattern resolves, where its ensemble structure
         function is C_n^2 r^(2/3) within INERTIAL_TOLERANCE (15 %). The defaults (256 cells, l0 below
-        a cell, L0 = inf) give 0.39..5.6 m, x14; 128 cells x7, not a decade; a large inner scale
-        or a finite outer scale narrow it (l0 = 2 cells: x9 at 256). ValueError when nowhere within."""
+        a cell, L0 = inf) give 0.37..6.0 m, x16; 128 cells x8, not a decade; a large inner scale
+        or a finite outer scale narrow it (l0 = 2 cells: x9.4 at 256). ValueError when nowhere within."""
         return self.separations_within(INERTIAL_TOLERANCE)
 
     def angle_of_arrival_variance(

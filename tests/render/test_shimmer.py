@@ -25,7 +25,7 @@ def turbulent(road, cn2):
     return refracta.PhysicalAtmosphere(**road.field.params, turbulence=air)
 
 
-def render(road, field, columns=(0, WIDTH), **options):
+def render(road, field, columns=(0, WIDTH), rows=ROWS, **options):
     options.setdefault("turbulence_trace", "strict")  # the reference, unless the test asks for another
     return refracta.render(
         road.scene,
@@ -33,7 +33,7 @@ def render(road, field, columns=(0, WIDTH), **options):
         field,
         progress=False,
         max_length=road.max_length,
-        pixel_bounds=(columns[0], ROWS[0], columns[1], ROWS[1]),
+        pixel_bounds=(columns[0], rows[0], columns[1], rows[1]),
         **options,
     )
 
@@ -98,17 +98,36 @@ def test_calm_air_is_the_calm_render(road):
 
 @pytest.mark.slow
 def test_perturbed_against_strict(road):
-    calm = render(road, road.field)
+    # Issue 21's goal, on the whole image: |perturbed - strict| at most 10 % of the turbulence's
+    # own effect |strict - calm|. Measured 0.001 (seed 0) and 0.017 (seed 1, nearly all of it one
+    # knife-edge pixel); the strict trace takes ~8 s.
+    calm = render(road, road.field, rows=(0, HEIGHT))
     field = turbulent(road, 1e-10)
-    strict = render(road, field)
-    fast = render(road, field, turbulence_trace="perturbed")
+    strict = render(road, field, rows=(0, HEIGHT))
+    fast = render(road, field, rows=(0, HEIGHT), turbulence_trace="perturbed")
     effect = np.abs(strict - calm).mean()
-    error = np.abs(fast - strict).mean()
     assert effect > 0.0
-    # Issue 21's goal: 10 % of the turbulence's own effect. Measured 0.0028 on these road rows
-    # since the calm path is traced exactly (0.03-0.08 when it was the eye table's, README); with
-    # the mirage band's rows 6-9 too, 0.038 (one knife-edge pixel), but their strict trace takes 4 s.
-    assert error <= 0.1 * effect  # tolerance: the goal itself
+    assert np.abs(fast - strict).mean() <= 0.1 * effect  # tolerance: the goal itself
+
+
+@pytest.mark.slow
+def test_perturbed_hits_follow_the_strict_ones(road):
+    # On the road rows the turbulence moves each hit by 0.18 m rms, the perturbed walk misses the
+    # strict hit by 3.4 mm rms (0.019 of it). Their image is no measure there: the asphalt's grain
+    # turns millimetres into colour, and the near-uniform road shows little of the turbulence, so
+    # |perturbed - strict| is 0.42 of |strict - calm| on these rows (0.0028 while the lattice held
+    # horizontal layers, whose fixed change of the profile was most of the "effect").
+    field = turbulent(road, 1e-10)
+    hits = {}
+    for name, options in (("calm", dict(field=road.field)), ("strict", {}), ("perturbed", {})):
+        trace = "perturbed" if name == "perturbed" else "strict"
+        _, aovs = render(road, options.get("field", field), turbulence_trace=trace, aovs=["position"])
+        hits[name] = aovs["position"].reshape(-1, 3)
+    assert np.all(np.isfinite(np.concatenate(list(hits.values()))))  # every pixel meets the road
+    moved = np.sqrt(np.mean(np.sum((hits["strict"] - hits["calm"]) ** 2, axis=1)))
+    missed = np.sqrt(np.mean(np.sum((hits["perturbed"] - hits["strict"]) ** 2, axis=1)))
+    assert moved > 0.05  # metres: the turbulence moves them
+    assert missed <= 0.05 * moved  # measured 0.019: a perturbation's error, well inside it
 
 
 @pytest.mark.slow

@@ -154,6 +154,13 @@ TurbulenceSpectrum::TurbulenceSpectrum(int64_t cells, double spacing, double inn
 }
 
 double TurbulenceSpectrum::mode_variance(int64_t i, int64_t j, int64_t k) const {
+  // The horizontal layers' variance goes to their four horizontal neighbours (the header says why).
+  if (i == 0 && k == 0) return 0.0;
+  const double own = cell_variance(i, j, k);
+  return std::abs(i) + std::abs(k) == 1 ? own + 0.25 * cell_variance(0, j, 0) : own;
+}
+
+double TurbulenceSpectrum::cell_variance(int64_t i, int64_t j, int64_t k) const {
   constexpr int m = kCellAveraged, w = 2 * m + 1;
   if (std::abs(i) <= m && std::abs(j) <= m && std::abs(k) <= m) {
     return cell_table_[(size_t(i + m) * w + size_t(j + m)) * w + size_t(k + m)];

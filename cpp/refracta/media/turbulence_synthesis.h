@@ -97,6 +97,15 @@ double turbulence_memory_needed(int64_t cells);
 // over their cell of wavenumber space (8^3 midpoints: the spectrum varies by orders of magnitude
 // across those cells, and the point value loses much of their variance -- the ensemble D at a
 // quarter of the tile rises from 0.90 to 0.95 C_n^2 r^(2/3) at N = 256); 0 at kappa = 0.
+// On the vertical axis (i = k = 0, y being up) the modes would be layers as wide as the scene,
+// which the wind never moves: each seed added its own lasting change to the mean profile n(h) (rms
+// 5e-6 over 4 km x 4 km at the default 256^3 of 5 cm; the hot road's surface gradient moved by
+// -13 % to +42 % from seed to seed) and a vertical tilt that grew as L^2 along every level path (5x
+// the horizontal one at 300 m, 12x at 600 m; a trial of 7 December). Their cells hold the
+// horizontal scales beyond the lattice's period, which it cannot show; their variance goes to the
+// four modes beside them, (+-1, j, 0) and (0, j, +-1), whose horizontal scale is the period: each
+// vertical wavenumber keeps its variance (the pattern's vertical spectrum, and so D_n for vertical
+// separations, are unchanged), and no mode is constant along a level path.
 class TurbulenceSpectrum {
  public:
   TurbulenceSpectrum(int64_t cells, double spacing, double inner_scale, double outer_scale);
@@ -111,6 +120,8 @@ class TurbulenceSpectrum {
   static constexpr int kCellSamples = 8;
 
  private:
+  // Phi_n over the mode's cell (cell-averaged near 0), before the layers' variance is moved.
+  double cell_variance(int64_t i, int64_t j, int64_t k) const;
   int64_t cells_;
   double dk_, inner_scale_, outer_scale_;
   std::vector<double> cell_table_;  // (2 kCellAveraged + 1)^3
