@@ -226,8 +226,9 @@ class Turbulence:
     The pattern (C++, _core.synthesise_turbulence): white noise filtered by sqrt(Phi_n) on the N^3
     lattice of wavenumbers 2 pi i / (N spacing) (the k = 0 mode removed; the lowest modes carry Phi
     averaged over their cell; the modes with no horizontal wavenumber, layers as wide as the scene,
-    give their variance to the four modes beside them), divided by the cubic B-spline's response so that the spline through
-    the coefficients passes through the synthesised samples (Unser, Aldroubi & Eden 1991, "Fast
+    give their variance to the four modes beside them), divided by the cubic B-spline's response so
+    that the spline through the coefficients passes through the synthesised samples (Unser, Aldroubi
+    & Eden 1991, "Fast
     B-spline transforms", eq. 10), synthesised for C_n^2 = 1 and scaled by sqrt(cn2) in the layer.
 
     Attributes: settings (the TurbulenceSettings), layer (the TurbulenceLayer fields take), grid,
