@@ -196,7 +196,8 @@ class Turbulence:
     - inner_scale l0 [m] > 0: the Gaussian cutoff kappa_m = 5.92 / l0 (default 5 mm). A grid
       resolves nothing below ~2 cells: below that the grid's own cutoff rules and l0 changes little
       (it is still in the spectrum the statistics below use).
-    - seed: the random pattern (same seed and grid, same pattern). The white noise is drawn in C++
+    - seed: the random pattern (same seed and grid, same pattern; default 0, and None is that
+      default, not fresh randomness: pass a seed of your own for another pattern). The white noise is drawn in C++
       (refracta::Rng per slab): the same seed gives the same pattern on every machine and thread
       count, but not the pattern numpy drew before the synthesis moved to C++.
     - wind (u, w) [m/s] along x and z: ``at_time(t)`` shifts the pattern by (u t, 0, w t) (Taylor's
@@ -335,13 +336,13 @@ class Turbulence:
         out = np.empty(r.shape)
         for i, value in np.ndenumerate(r):
             out[i] = 2.0 * (total - np.dot(weights, np.sinc(kappa * value / math.pi)))
-        return out
+        return np.maximum(out, 0.0)  # a variance: round-off made D(0) -3e-26
 
     def separations_within(self, tolerance: float = INERTIAL_TOLERANCE) -> tuple[float, float]:
         """The widest interval (r_min, r_max) [m] of separations up to half the tile in which the
         ensemble structure_function is within `tolerance` (a relative error, > 0) of C_n^2 r^(2/3).
         Raises ValueError when no separation is (the grid too coarse for its inner scale)."""
-        if not (0.0 < tolerance < math.inf):
+        if not (is_number(tolerance) and 0.0 < tolerance < math.inf):
             raise ValueError(f"separations_within: tolerance must be > 0 and finite (got {tolerance!r})")
         r = np.geomspace(self.spacing, self.size / 2, 241)
         ratio = self._unit_structure_function(r) / r ** (2.0 / 3.0)

@@ -96,7 +96,8 @@ void bind_synthesis(py::module_& m) {
         "Bytes the synthesis of a cells^3 grid holds at its peak (a bound).");
   m.def("von_karman_spectrum",
         [](const py::object& kappa, double cn2, double inner_scale, double outer_scale) {
-          return elementwise(kappa, "kappa", [&](double k) { return von_karman_spectrum(k, cn2, inner_scale, outer_scale); });
+          return elementwise(kappa, "kappa",
+                             [&](double k) { return checked_von_karman_spectrum(k, cn2, inner_scale, outer_scale); });
         },
         py::arg("kappa"), py::arg("cn2") = 1.0, py::arg("inner_scale") = 0.0,
         py::arg("outer_scale") = std::numeric_limits<double>::infinity(), DOC(refracta, von_karman_spectrum));

@@ -117,7 +117,11 @@ std::vector<double> to_values(const py::handle& object, const char* what, bool* 
 
 Vec2d to_vec2(const py::handle& object, const char* what) {
   const std::vector<double> v = to_values(object, what);
-  if (v.size() != 2) throw_invalid(what, " must be two numbers (x, z) (got ", v.size(), ")");
+  if (v.size() != 2) {
+    std::string got;  // the values, not their count (wind=5 said "got 1")
+    for (size_t i = 0; i < v.size() && i < 4; ++i) got += concat(i ? ", " : "", v[i]);
+    throw_invalid(what, " must be two numbers (x, z) (got ", v.size() == 1 ? got : concat(v.size(), " numbers: ", got, v.size() > 4 ? ", ..." : ""), ")");
+  }
   return {v[0], v[1]};
 }
 

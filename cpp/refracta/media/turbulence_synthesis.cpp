@@ -53,6 +53,17 @@ double von_karman_spectrum(double kappa, double cn2, double inner_scale, double 
   return phi;
 }
 
+double checked_von_karman_spectrum(double kappa, double cn2, double inner_scale, double outer_scale) {
+  // A negative C_n^2 made a negative spectrum; NaN and negative scales passed through.
+  if (!(kappa >= 0.0 && std::isfinite(kappa))) throw_invalid("von_karman_spectrum: kappa must be finite and >= 0 (got ", kappa, ")");
+  if (!(cn2 >= 0.0 && std::isfinite(cn2))) throw_invalid("von_karman_spectrum: cn2 must be finite and >= 0 (got ", cn2, ")");
+  if (!(inner_scale >= 0.0 && std::isfinite(inner_scale))) {
+    throw_invalid("von_karman_spectrum: inner_scale must be finite and >= 0 m (got ", inner_scale, ")");
+  }
+  if (!(outer_scale > 0.0)) throw_invalid("von_karman_spectrum: outer_scale must be > 0 m (inf: none; got ", outer_scale, ")");
+  return von_karman_spectrum(kappa, cn2, inner_scale, outer_scale);
+}
+
 int TurbulenceSettings::cell_count() const {
   if (cells) return int(*cells);
   if (size) return int(std::ceil(*size / spacing - 1e-9));
@@ -252,6 +263,12 @@ std::shared_ptr<TurbulenceGrid> synthesise_turbulence(const TurbulenceSettings& 
 
 Turbulence turbulence_layer(const TurbulenceSettings& settings, std::shared_ptr<const TurbulenceGrid> grid, double time) {
   if (!grid) throw_invalid("Turbulence: no grid");
+  // The settings' pattern only: another grid (16^3 under settings of 32^3) was taken as theirs.
+  const int n = settings.cell_count();
+  if (grid->shape() != std::array<int, 3>{n, n, n} || grid->spacing() != settings.spacing) {
+    throw_invalid("Turbulence: the grid (", grid->shape()[0], "^3 cells of ", grid->spacing(),
+                  " m) is not the settings' (", n, "^3 of ", settings.spacing, " m)");
+  }
   if (!std::isfinite(time)) throw_invalid("Turbulence.at_time: t must be finite (got ", time, ")");
   if (!(std::isfinite(settings.wind[0] * time) && std::isfinite(settings.wind[1] * time))) {
     throw_invalid("Turbulence.at_time: the wind carries the pattern beyond any distance by t = ", time, " s");

@@ -38,6 +38,9 @@ constexpr double kInnerScaleFactor = 5.92;
 // kappa_m = 5.92 / l0 (Andrews & Phillips 2005, eq. 3.27). kappa [rad/m] (array); inner_scale
 // l0 = 0: no cutoff; outer_scale L0 = inf: Kolmogorov at small kappa (infinite at kappa = 0).
 double von_karman_spectrum(double kappa, double cn2, double inner_scale, double outer_scale);
+// von_karman_spectrum for a caller's numbers: throws std::invalid_argument naming the first bad one
+// (kappa finite and >= 0, cn2 finite and >= 0, inner_scale finite and >= 0, outer_scale > 0).
+double checked_von_karman_spectrum(double kappa, double cn2, double inner_scale, double outer_scale);
 
 // The lattice turned about the vertical by atan(1 / golden ratio) (31.7 deg): a periodic tile
 // repeats along a ray running along a lattice axis (its modes then add up coherently, the variance
