@@ -427,7 +427,9 @@ inline constexpr const char mkd_doc_refracta_RenderOptions_tol[] = R"doc(Curved-
 inline constexpr const char mkd_doc_refracta_RenderOptions_turbulence_step[] = R"doc('perturbed': the step through the layer, in the turbulence's cells. The cubic B-spline's gradient
 varies on the cell's scale, and a step h samples the path integral's spectrum aliased from
 wavenumbers 2 pi / h along the path: at 1 cell that is where the spline's response has its zeros
-(along the lattice axes), at 2 cells the grid's Nyquist, where it carries full power.)doc";
+(along the lattice axes), at 2 cells the grid's Nyquist, where it carries full power. In [0.01, 16]:
+below a hundredth of a cell nothing changes but the cost (1e-300 overflowed the step count and meant
+one step through the layer).)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_use_table[] = R"doc(Height-only fields: serve every pixel from one ElevationTable for the camera's eye height
 (interpolated to `tol`) instead of tracing each pixel (over a CurvedEarth, paths over 150 km end in
 the table where they leave the air; spectral renders of 8 spp or more: one table per dispersion

@@ -1103,6 +1103,7 @@ class Camera:
     A photographer's camera with depth of field: Camera.photographic(..., f_number=) or
     Camera.eye_level(..., f_number=); any camera through a thin lens: with_lens.
     """
+    max_side: typing.ClassVar[int] = 16777216
     @staticmethod
     def eye_level(eye: typing.Any, target: typing.Any, eye_height: typing.SupportsFloat | typing.SupportsIndex = 1.6, focal_length_mm: typing.SupportsFloat | typing.SupportsIndex = 50.0, sensor_mm: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex] = (36.0, 24.0), *, width: typing.SupportsInt | typing.SupportsIndex | None = None, height: typing.SupportsInt | typing.SupportsIndex | None = None, f_number: typing.SupportsFloat | typing.SupportsIndex | None = None, focus_distance: typing.SupportsFloat | typing.SupportsIndex | None = None) -> Camera:
         """
@@ -2296,7 +2297,9 @@ class RenderOptions:
         'perturbed': the step through the layer, in the turbulence's cells. The cubic B-spline's gradient
         varies on the cell's scale, and a step h samples the path integral's spectrum aliased from
         wavenumbers 2 pi / h along the path: at 1 cell that is where the spline's response has its zeros
-        (along the lattice axes), at 2 cells the grid's Nyquist, where it carries full power.
+        (along the lattice axes), at 2 cells the grid's Nyquist, where it carries full power. In [0.01, 16]:
+        below a hundredth of a cell nothing changes but the cost (1e-300 overflowed the step count and meant
+        one step through the layer).
         """
     @turbulence_step.setter
     def turbulence_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
