@@ -9,6 +9,8 @@
 #include "refracta/shading/color.h"
 #include "refracta/shading/light.h"
 
+#include <atomic>
+
 namespace refracta {
 
 // Uniform radiance L_e [W/(m^2 sr)] (a colour) from every direction; sampling 'cosine' (about the
@@ -37,7 +39,7 @@ class ConstantEnvironment final : public Light {
   bool cosine(const LightSampleContext& ctx) const { return sampling_ == Sampling::kCosine && ctx.n.squaredNorm() > 0.0; }
   Color radiance_;
   Sampling sampling_;
-  double scene_radius_ = 1.0;
+  std::atomic<double> scene_radius_{1.0};  // preprocess writes it while other renders may read it
 };
 
 }  // namespace refracta

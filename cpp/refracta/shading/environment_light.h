@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -84,7 +85,7 @@ class EnvironmentLight final : public Light {
   std::string source_;
   PiecewiseConstant2D distribution_;
   Color white_;                // Color::illuminant(1, 1, 1): D65 in spectral rendering
-  double scene_radius_ = 1.0;
+  std::atomic<double> scene_radius_{1.0};  // preprocess writes it while other renders may read it
 };
 
 }  // namespace refracta

@@ -44,6 +44,7 @@
 #include "refracta/shading/multiple_scattering.h"
 
 #include <array>
+#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
@@ -229,7 +230,7 @@ class PhysicalSkyLight final : public Light {
   std::shared_ptr<const PhysicalSky> sky_;  // PhysicalSky::shared
   PiecewiseConstant2D distribution_;  // over (x, y) (kGround) or (x, t) (kHorizon)
   double radiance_integral_ = 0.0;  // integral of Y(L) over the sphere [W/m^2]
-  double scene_radius_ = 1.0;
+  std::atomic<double> scene_radius_{1.0};  // preprocess writes it while other renders may read it
 };
 
 }  // namespace refracta

@@ -23,6 +23,8 @@
 #include "refracta/shading/color.h"
 #include "refracta/shading/light.h"
 
+#include <atomic>
+
 namespace refracta {
 
 // The sun: a disc at infinity toward direction, mean radiance [W/(m^2 sr)] (a colour) over the
@@ -70,7 +72,7 @@ class SunLight final : public Light {
   Color radiance_;
   double angular_diameter_, limb_;
   double one_minus_cos_max_, sin2_max_;
-  double scene_radius_ = 1.0;
+  std::atomic<double> scene_radius_{1.0};  // preprocess writes it while other renders may read it
 };
 
 }  // namespace refracta
