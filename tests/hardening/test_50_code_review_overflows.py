@@ -90,3 +90,34 @@ def test_a_turbulence_step_below_a_hundredth_of_a_cell_is_refused():
     with pytest.raises(ValueError, match=r"turbulence_step must be in \[0.01, 16\] cells \(got 1e-300\)"):
         refracta.RenderOptions(turbulence_step=1e-300)
     assert refracta.RenderOptions(turbulence_step=0.01).turbulence_step == 0.01
+
+
+MANY_MAPS = """
+import resource, sys
+import refracta
+# 8 GB of address space: were the maps built without the check, the first few would fail to
+# allocate (MemoryError) instead of the machine running out of memory.
+resource.setrlimit(resource.RLIMIT_AS, (8 << 30, 8 << 30))
+scene = refracta.Scene()
+scene.add_ground(0.0)
+for i in range(2000):
+    scene.add_spot_light((i * 0.01, 5.0, 0.0), (0.0, -1.0, 0.0), angle=30.0)
+camera = refracta.Camera((0, 1.6, 5), (0, 0, 0), width=8, height=4)
+try:
+    refracta.render_raster(scene, camera, shadows="msm_hamburger", resolution=4096)
+except ValueError as error:
+    print(error)
+    sys.exit(0)
+sys.exit(1)
+"""
+
+
+def test_render_raster_refuses_shadow_maps_that_cannot_live_together():
+    # 2000 spot lights' 4096^2 moment maps (36 bytes a texel): 1.2 TB together, each checked
+    # alone 0.6 GB; eleven 8192^2 ones took 25 GB.
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, "-c", MANY_MAPS], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "render_raster's 2000 shadow maps: a 4096 x 4096 image needs at least" in done.stdout

@@ -62,12 +62,14 @@ void ShadowMapOptions::check(Problems& problems) const {
                  "bleeding_reduction must be in [0, 1) (got ", bleeding_reduction, ")");
   if (resolution_ok) {
     try {
-      check_image_memory(resolution, resolution, uses_moments(method) ? 36.0 : 4.0, "shadow map");
+      check_image_memory(resolution, resolution, bytes_per_texel(), "shadow map");
     } catch (const std::invalid_argument& error) {
       problems.add(error.what());
     }
   }
 }
+
+double ShadowMapOptions::bytes_per_texel() const { return uses_moments(method) ? 36.0 : 4.0; }
 
 void ShadowMapOptions::validate() const {
   Problems problems("ShadowMapOptions");

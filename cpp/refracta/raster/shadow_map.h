@@ -42,6 +42,8 @@ struct ShadowMapOptions {
   double bleeding_reduction = 0.0;
 
   void check(Problems& problems) const;  // adds every bad field
+  // A map's bytes per texel while it is built: the depth, and the moment methods' float moments.
+  double bytes_per_texel() const;
   void validate() const;                 // throws std::invalid_argument listing them all
 };
 

@@ -3,6 +3,7 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/frame.h"
+#include "refracta/core/image.h"
 #include "refracta/scene/terrain.h"
 #include "refracta/shading/spot_light.h"
 #include "refracta/shading/sun_light.h"
@@ -172,6 +173,12 @@ RasterVisibility::RasterVisibility(const RenderScene& scene, const RasterLights&
   }
   if (source_ != ShadowSource::kMap) return;
   const bool sun_needed = lights.sun_shines || (options.output == RasterOutput::kShadow && options.shadow_light < 0);
+  // Each map is checked alone (ShadowMapOptions); all of them live together (eleven spot lights'
+  // 8192^2 moment maps took 25 GB).
+  const int resolution = options.shadow_map.resolution;
+  const size_t maps = lights.spots.size() + (sun_ && sun_needed ? 1 : 0);
+  check_image_memory(resolution, resolution, double(maps) * options.shadow_map.bytes_per_texel(),
+                     concat("render_raster's ", maps, " shadow maps").c_str());
   if (sun_ && sun_needed) maps_[*sun_] = sun_map(scene.geometry, sun_direction_, options, buffer, eye, control);
   for (size_t i : lights.spots) {
     if (!maps_[i]) maps_[i] = spot_map(scene.geometry, *spot_[i], options.shadow_map, control);
