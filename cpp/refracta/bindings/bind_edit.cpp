@@ -234,11 +234,9 @@ void bind_edit(py::module_& m) {
            const py::object& sources, const PairOptions& options) {
           const FieldPtr f = checked(field);
           const auto pairs = make_pairs(origins, directions, sources);
-          std::vector<double> d;
-          {
-            py::gil_scoped_release release;
-            d = pair_distances(*f, pairs, options);
-          }
+          // Ctrl-C stops it: a ducting atmosphere's pairs take seconds each (a code review).
+          const std::vector<double> d =
+              interruptible_result(py::none(), [&](WorkControl& control) { return pair_distances(*f, pairs, options, control); });
           return values_to_array(d);
         },
         py::arg("field"), py::arg("origins"), py::arg("directions"), py::arg("sources"), py::arg("options"));

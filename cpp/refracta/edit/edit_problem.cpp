@@ -222,11 +222,10 @@ FieldPtr EditProblem::field_at(const std::vector<double>& x) const {
 }
 
 std::vector<double> pair_distances(const IndexField& field, const std::vector<PointPair>& pairs,
-                                   const PairOptions& options) {
+                                   const PairOptions& options, WorkControl& control) {
   options.validate();
   validate_pairs(pairs, options);
   std::vector<double> out(pairs.size());
-  WorkControl control;
   parallel_for_each(int64_t(pairs.size()), 1, control, [&](int64_t i) {
     out[i] = pair_miss<double>(field, pairs[i], options).distance;
   });
@@ -257,7 +256,8 @@ std::vector<PointPair> EditProblem::pairs_at(const std::vector<double>& x) const
 }
 
 std::vector<double> EditProblem::distances(const std::vector<double>& x) const {
-  return pair_distances(*field_at(x), pairs_at(x), options_);
+  WorkControl control;  // inside the solve's own (the thread's cancel scope still stops it)
+  return pair_distances(*field_at(x), pairs_at(x), options_, control);
 }
 
 PairJacobian pair_jacobian(const FieldPtr& field, std::vector<PointPair> pairs, ProblemSpec spec) {

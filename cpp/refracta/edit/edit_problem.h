@@ -15,9 +15,9 @@
 namespace refracta {
 
 // Each pair's unweighted distance [m] for a field, measured as an edit would (pairs in parallel).
-// Throws std::invalid_argument for bad pairs or options.
+// Throws std::invalid_argument for bad pairs or options; control.cancel stops it (throws Cancelled).
 std::vector<double> pair_distances(const IndexField& field, const std::vector<PointPair>& pairs,
-                                   const PairOptions& options);
+                                   const PairOptions& options, WorkControl& control);
 
 // Each pair's whole path through `field`, traced by the rule its miss is measured with
 // (PairOptions::trace_options), pairs in parallel: what a plot of an edit draws. control.cancel

@@ -343,7 +343,10 @@ double AerialPerspective::inscatter_reference(const Vec3d& a_in, const Vec3d& b_
   frame.validate();
   AirFrame::check_segment(a_in, b_in, "AerialPerspective.inscatter_reference");
   checked_wavelength(lambda_nm, "AerialPerspective.inscatter_reference: wavelength");
-  if (steps < 1) throw_invalid("AerialPerspective.inscatter_reference: steps must be >= 1 (got ", steps, ")");
+  // At most a million (4 s): each step traces its sun column, and the loop cannot be interrupted.
+  if (steps < 1 || steps > 1'000'000) {
+    throw_invalid("AerialPerspective.inscatter_reference: steps must be in [1, 1000000] (got ", steps, ")");
+  }
   const Bands band = bands_at(&lambda_nm, 1);
   const double sigma_ozone = lerp_nodes(kOzoneCrossSection, lambda_nm);
   Vec3d a = a_in, b = b_in;

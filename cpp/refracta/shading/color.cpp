@@ -97,9 +97,11 @@ Color Color::tabulated(const std::vector<double>& lambda_nm, const std::vector<d
     if (!std::isfinite(lambda_nm[i]) || !(lambda_nm[i] > 0.0) || (i > 0 && !(lambda_nm[i] > lambda_nm[i - 1]))) {
       throw_invalid("tabulated: wavelengths must be finite, > 0 nm and increasing (got ", lambda_nm[i], " at ", i, ")");
     }
-    if (!std::isfinite(values[i]) || values[i] < 0.0 || (kind == Kind::kReflectance && values[i] > 1.0)) {
-      throw_invalid("tabulated: values must be finite and in ", kind == Kind::kReflectance ? "[0, 1]" : "[0, inf)",
-                    " (got ", values[i], " at ", lambda_nm[i], " nm)");
+    // An illuminant at most kMaxRadiance, as an RGB one (a sun of 1e300 per nm rendered inf).
+    const double most = kind == Kind::kReflectance ? 1.0 : kMaxRadiance;
+    if (!std::isfinite(values[i]) || values[i] < 0.0 || values[i] > most) {
+      throw_invalid("tabulated: values must be finite and in [0, ", most, "] (got ", values[i], " at ", lambda_nm[i],
+                    " nm)");
     }
   }
   if (lambda_nm.back() <= spectral::kTableMin || lambda_nm.front() >= spectral::kTableMax) {  // touching: black too

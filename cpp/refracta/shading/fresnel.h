@@ -35,6 +35,7 @@ inline double fresnel_dielectric(double cos_i, double eta) {
 inline double fresnel_complex(double cos_i, std::complex<double> eta) {
   using C = std::complex<double>;
   cos_i = std::clamp(std::abs(cos_i), 0.0, 1.0);
+  if (cos_i == 0.0) return 1.0;  // grazing: all reflected (r_s was 0 / 0 at eta = 1, k = 0)
   const double sin2_i = 1.0 - cos_i * cos_i;
   const C sin2_t = sin2_i / (eta * eta);
   const C cos_t = std::sqrt(C(1.0) - sin2_t);

@@ -30,7 +30,15 @@ class Ior {
     ior.dispersive_ = true;
     ior.b_ = b;
     ior.c_ = c;
-    // The formula has poles at lambda^2 = C_j: refuse coefficients with one inside the sampled range.
+    // The formula has poles at lambda^2 = C_j, n^2 < 0 just below each: refuse coefficients with
+    // one inside the sampled range (sampling whole nanometres missed a pole at 600.5 nm).
+    for (int j = 0; j < 3; ++j) {
+      const double pole_nm = 1e3 * std::sqrt(c[j]);
+      if (b[j] > 0.0 && pole_nm >= 360.0 && pole_nm <= 830.0) {
+        throw_invalid("sellmeier term ", j + 1, " has its pole at ", pole_nm, " nm (sqrt(C", j + 1,
+                      ")), inside 360-830 nm");
+      }
+    }
     for (double lambda = 360.0; lambda <= 830.0; lambda += 1.0) {
       const double n = ior.at(lambda);
       if (!std::isfinite(n) || n <= 0.0) throw_invalid("sellmeier coefficients give n(", lambda, " nm) = ", n, " (must be > 0 over 360-830 nm)");

@@ -65,6 +65,7 @@ void for_pairs(const Material& material, const std::vector<Vec3d>& wo, const std
                const BsdfQuery& query, const Value& value) {
   const size_t n = broadcast(wo.size(), wi.size(), "wo and wi");
   Evaluator evaluator(material, query, n);
+  if (n == 0) return;  // no rows: nothing to build (row 0 of an empty (0, 4) was read: a segfault)
   const Bsdf* bsdf = evaluator.build(0);
   for (size_t i = 0; i < n; ++i) {
     if (evaluator.spectral() && i > 0) bsdf = evaluator.build(i);
