@@ -390,17 +390,25 @@ def _exit_with_parent(parent_pid: int, first_ppid: int) -> None:
         time.sleep(_PARENT_POLL)
 
 
+# Linux's process table as files. Elsewhere (macOS) there is no /proc: opening one raised
+# FileNotFoundError, read as "the parent has died", and every worker exited on its first task.
+_HAS_PROC = os.path.isdir("/proc/self")
+
+
 def _alive(pid: int) -> bool:
     """False once pid has exited, including as a zombie not yet reaped (a killed parent whose own
     parent waits for our pipes to close: a worker that started its task only after the kill)."""
-    try:
-        with open(f"/proc/{pid}/stat") as stat:
-            return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except FileNotFoundError:
-        return False
-    except OSError:  # no /proc (macOS): signal 0 tells whether the pid exists
-        pass
-    try:
+    if _HAS_PROC:
+        try:
+            with open(f"/proc/{pid}/stat") as stat:
+                return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
+        except FileNotFoundError:
+            return False
+        except OSError:  # unreadable: alive
+            return True
+    if os.name == "nt":  # no probe: os.kill(pid, 0) would terminate it there
+        return True
+    try:  # signal 0 tells whether the pid exists
         os.kill(pid, 0)
     except ProcessLookupError:
         return False

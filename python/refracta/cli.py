@@ -645,7 +645,7 @@ def edit_file(scene_path: Path, pairs_path: Path, output: Path, backend: str | N
     text = with_atmosphere(text, result.field, loaded.turbulence)
     if len(result.camera_values) and result.camera is not None:  # camera parameters free: as solved (was dropped)
         text = with_camera(text, result.camera)
-    output.write_text(text)
+    output.write_text(text, encoding="utf-8")  # as scene files are read (the locale's lost a solve to "°C")
     if result.success:
         print(f"wrote {output}")
         return 0

@@ -226,6 +226,7 @@ def _coast_texture(name, colours):
     import hashlib
     import os
     import tempfile
+    import threading
 
     from refracta import io
 
@@ -234,7 +235,9 @@ def _coast_texture(name, colours):
     os.makedirs(folder, exist_ok=True)
     path = os.path.join(folder, f"{name}_{hashlib.sha1(colours.tobytes()).hexdigest()[:16]}.exr")
     if not os.path.exists(path):
-        partial = f"{path}.{os.getpid()}.exr"  # written whole, then renamed: safe for parallel builders
+        # Written whole, then renamed: safe for parallel builders, threads of one process too (a
+        # name of the pid alone was shared by threads, and the later one's rename failed).
+        partial = f"{path}.{os.getpid()}.{threading.get_ident()}.exr"
         io.write_image(partial, colours)
         os.replace(partial, path)
     return path

@@ -108,8 +108,8 @@ that make it again: a field with turbulence is written with the refracta.Turbule
 
     loaded = refracta.load_scene("road.toml")
     solved = refracta.edit.solve(loaded.field, loaded.camera, pairs).field
-    Path("solved.toml").write_text(with_atmosphere(Path("road.toml").read_text(), solved,
-                                                   turbulence=loaded.turbulence))
+    text = Path("road.toml").read_text(encoding="utf-8")
+    Path("solved.toml").write_text(with_atmosphere(text, solved, turbulence=loaded.turbulence), encoding="utf-8")
 """
 
 from __future__ import annotations

@@ -50,6 +50,7 @@ import math
 import os
 import re
 import stat
+import threading
 import warnings
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
@@ -180,17 +181,31 @@ def _read_hgt(path: str) -> Elevation:
     return Elevation(heights, float(lon), float(lat + 1), step, step, _EPSG_WGS84)
 
 
+# Reads in progress that silenced tifffile, and its level before the first: threads that read
+# together restore it once, after the last (each saving and restoring its own left it silenced).
+_tifffile_quiet = threading.Lock()
+_tifffile_readers = 0
+_tifffile_level = logging.NOTSET
+
+
 @contextlib.contextmanager
 def _quiet_tifffile():
     """tifffile's log lines off while it reads ("invalid offset to first page" on stderr): what is
     wrong with a file is raised, named, instead."""
+    global _tifffile_readers, _tifffile_level
     logger = logging.getLogger("tifffile")
-    level = logger.level
-    logger.setLevel(logging.CRITICAL + 1)
+    with _tifffile_quiet:
+        if _tifffile_readers == 0:
+            _tifffile_level = logger.level
+            logger.setLevel(logging.CRITICAL + 1)
+        _tifffile_readers += 1
     try:
         yield
     finally:
-        logger.setLevel(level)
+        with _tifffile_quiet:
+            _tifffile_readers -= 1
+            if _tifffile_readers == 0:
+                logger.setLevel(_tifffile_level)
 
 
 # Bytes a terrain sample takes on its way into the scene: the file's band (up to 8), its heights
@@ -629,10 +644,18 @@ def _check_resolved(positions: np.ndarray, grid: Elevation) -> None:
     rows, cols = positions.shape[:2]
     middle_row = positions[rows // 2, :, [0, 2]].T.astype(np.float64)  # (cols, 2): x, z
     middle_column = positions[:, cols // 2][:, [0, 2]].astype(np.float64)  # (rows, 2)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)  # voids (NaN) and all-NaN slices
-        steps = [np.nanmedian(np.linalg.norm(np.diff(line, axis=0), axis=-1)) for line in (middle_row, middle_column)]
-        extent = max(float(max(np.nanmax(positions[..., a]), -np.nanmin(positions[..., a]))) for a in (0, 2))
+    # Voids (NaN) skipped without numpy's warnings (a warnings filter is the whole process's, and
+    # threads reading terrain together left "ignore" in force).
+    steps = []
+    for line in (middle_row, middle_column):
+        step_lengths = np.linalg.norm(np.diff(line, axis=0), axis=-1)
+        step_lengths = step_lengths[np.isfinite(step_lengths)]
+        steps.append(float(np.median(step_lengths)) if step_lengths.size else math.nan)
+    # fmax / fmin skip NaN (nan only where every sample is one), without a copy of the grid.
+    extent = max(
+        float(max(np.fmax.reduce(positions[..., a], axis=None), -np.fmin.reduce(positions[..., a], axis=None)))
+        for a in (0, 2)
+    )
     resolution, least = _least_resolved_step(extent)
     step = min(steps)
     if step < least:

@@ -35,7 +35,7 @@ class ImageCanvas(anywidget.AnyWidget):
     data-level and data-generation attributes).
     """
 
-    _esm = (Path(__file__).with_name("canvas.js")).read_text()
+    _esm = (Path(__file__).with_name("canvas.js")).read_text(encoding="utf-8")
     _css = ".refracta-canvas { display: block; outline: none; touch-action: none; user-select: none; }"
 
     image = traitlets.Bytes(b"").tag(sync=True)

@@ -990,7 +990,7 @@ class EditorModel:
     def _write(self, path, text: str, what: str) -> Path:
         path = Path(path)
         try:
-            path.write_text(text)
+            path.write_text(text, encoding="utf-8")  # as scene files are read
         except OSError as error:
             raise _core.IoError(f"cannot write {what} file {path}: {error.strerror}") from None
         self.say(f"Wrote {path}.", "success")

@@ -25,7 +25,7 @@ class ReadoutViewer(anywidget.AnyWidget):
     H x W x channels), layout (each readout's offset, labels, unit, decimals) and text (the last
     readout shown)."""
 
-    _esm = (Path(__file__).with_name("readouts.js")).read_text()
+    _esm = (Path(__file__).with_name("readouts.js")).read_text(encoding="utf-8")
 
     image = traitlets.Bytes(b"").tag(sync=True)
     width = traitlets.Int(1).tag(sync=True)
