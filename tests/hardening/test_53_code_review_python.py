@@ -15,7 +15,6 @@ from multiprocessing import get_context
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 import refracta
 from refracta import _sweep, examples, terrain
