@@ -553,7 +553,7 @@ defaults (defined once, here, with their reasons). validate() reports every bad 
 grid too large for max_bytes. Pickles through its fields.)doc";
 inline constexpr const char mkd_doc_refracta_TurbulenceSettings_cell_count[] = R"doc(N: cells, or from size and spacing, or 256.)doc";
 inline constexpr const char mkd_doc_refracta_TurbulenceSettings_cells[] = R"doc(N (the grid is N^3, one period N * spacing wide), or size [m] (N = ceil(size / spacing)); unset
-both: 256, whose inertial range spans over a decade (x14 within 15 %), where 128 reaches x7.)doc";
+both: 256, whose inertial range spans over a decade (x16 within 15 %), where 128 reaches x8.)doc";
 inline constexpr const char mkd_doc_refracta_TurbulenceSettings_cn2[] = R"doc(C_n^2 [m^(-2/3)] at the ground, >= 0 (the pattern is weighted by E(h): C_n^2(h) = cn2 E(h)^2).
 1e-10: within centimetres of sun-heated asphalt (C_n^2 ~ 1e-13..1e-12 at 1-2 m in daytime, Andrews &
 Phillips 2005 ch. 12, rising as h^(-4/3) toward the ground in free convection, Wyngaard et al.

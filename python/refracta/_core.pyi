@@ -95,7 +95,7 @@ class TurbulenceSettings:
     def cells(self) -> int | None:
         """
         N (the grid is N^3, one period N * spacing wide), or size [m] (N = ceil(size / spacing)); unset
-        both: 256, whose inertial range spans over a decade (x14 within 15 %), where 128 reaches x7.
+        both: 256, whose inertial range spans over a decade (x16 within 15 %), where 128 reaches x8.
         """
     @cells.setter
     def cells(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:

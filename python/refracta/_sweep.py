@@ -26,6 +26,7 @@ import concurrent.futures
 import contextlib
 import itertools
 import math
+import multiprocessing
 import os
 import pickle
 import signal
@@ -406,9 +407,10 @@ def _alive(pid: int) -> bool:
             return False
         except OSError:  # unreadable: alive
             return True
-    if os.name == "nt":  # no probe: os.kill(pid, 0) would terminate it there
-        return True
-    try:  # signal 0 tells whether the pid exists
+    if os.name == "nt":  # os.kill(pid, 0) would send CTRL_C_EVENT there: ask multiprocessing instead
+        parent = multiprocessing.parent_process()
+        return parent is None or parent.pid != pid or parent.is_alive()
+    try:  # signal 0 tells whether the pid exists (a zombie counts as alive; getppid's change tells)
         os.kill(pid, 0)
     except ProcessLookupError:
         return False

@@ -199,7 +199,10 @@ class Turbulence:
     - seed: the random pattern (same seed and grid, same pattern; default 0, and None is that
       default, not fresh randomness: pass a seed of your own for another pattern). The white noise is drawn in C++
       (refracta::Rng per slab): the same seed gives the same pattern on every machine and thread
-      count, but not the pattern numpy drew before the synthesis moved to C++.
+      count, but not the pattern numpy drew before the synthesis moved to C++, nor the pattern
+      of releases before 7 December 2026 (whose lattice held horizontal layers: see
+      media/turbulence_synthesis.h); a Turbulence pickled before then keeps its old grid, which
+      its statistics here no longer describe.
     - wind (u, w) [m/s] along x and z: ``at_time(t)`` shifts the pattern by (u t, 0, w t) (Taylor's
       frozen flow); default (0, 2), across the examples' line of sight (+x). A wind along the line of
       sight slides the pattern along the rays and shimmers far less.
@@ -222,7 +225,9 @@ class Turbulence:
       over 300 m at the defaults); turned, a level line of sight along x crosses the
       tile quasi-periodically and sees fewer modes than the continuous spectrum has: 0.32x its
       value (l0 = 5 mm; the grid resolves nothing below ~3 cells) over one tile, 0.18x over
-      300 m. angle_of_arrival_variance(L, direction=...) gives the realised figure.
+      300 m (against l0 one cell, the README's: 0.69x and 0.38x; over 300 m it depends on the
+      heading, 0.37-2.6x within 20 deg of x). angle_of_arrival_variance(L, direction=...) gives
+      the realised figure.
 
     The pattern (C++, _core.synthesise_turbulence): white noise filtered by sqrt(Phi_n) on the N^3
     lattice of wavenumbers 2 pi i / (N spacing) (the k = 0 mode removed; the lowest modes carry Phi

@@ -74,13 +74,14 @@ def test_rasterize_refuses_an_image_larger_than_memory():
 
 
 def test_trace_ray_refuses_a_path_whose_nodes_cannot_fit_in_memory():
-    # rk4 in 1 mm steps over 1000 km: 1e9 nodes of 88 bytes, under a max_steps of 1e10.
+    # rk4 in 10 um steps over 1000 km: 1e11 nodes of 88 bytes (8.8 TB, past any machine), under a
+    # max_steps of 1e12 (a trial's 1e9 nodes in 1 mm steps asked for 88 GB).
     air = refracta.PhysicalAtmosphere()
     with pytest.raises(
         ValueError,
-        match=r"trace_ray: a path of max_length 1000000 m in steps of 0.001 m keeps 1000000000 nodes of 88 bytes",
+        match=r"trace_ray: a path of max_length 1000000 m in steps of 1e-05 m keeps 100000000000 nodes of 88 bytes",
     ):
-        refracta.trace_ray(air, (0, 1, 0), (1, 0, 0), trace="rk4", step=1e-3, max_length=1e6, max_steps=10**10)
+        refracta.trace_ray(air, (0, 1, 0), (1, 0, 0), trace="rk4", step=1e-5, max_length=1e6, max_steps=10**12)
     # The same path at a step that fits is traced as before.
     path = refracta.trace_ray(air, (0, 1, 0), (1, 0, 0), trace="rk4", step=10.0, max_length=1e3)
     assert len(path.points) == 101  # 1000 m in 10 m steps, both ends
@@ -121,3 +122,16 @@ def test_render_raster_refuses_shadow_maps_that_cannot_live_together():
     done = subprocess.run([sys.executable, "-c", MANY_MAPS], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stdout + done.stderr
     assert "render_raster's 2000 shadow maps: a 4096 x 4096 image needs at least" in done.stdout
+
+
+def test_a_perturbed_walk_of_more_than_1e8_steps_is_refused():
+    # 0.01 of a 0.1 mm cell over 1.5 km: 1.5e9 steps a ray, near an int's count (which overflowed
+    # into one step); the strict trace's own bound (1e7 rk45 steps of half 8 cells) lets it by.
+    from refracta import examples
+
+    road = examples.hot_road(8, 4)
+    air = refracta.PhysicalAtmosphere(
+        **road.field.params, turbulence=refracta.Turbulence(1e-10, cells=16, spacing=1e-4, depth=0.1)
+    )
+    with pytest.raises(ValueError, match=r"turbulence_trace 'perturbed': steps of 1e-06 m .* would be more than 1e8"):
+        refracta.render(road.scene, road.camera, air, turbulence_step=0.01, max_length=1500.0, progress=False)

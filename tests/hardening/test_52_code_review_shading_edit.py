@@ -42,9 +42,10 @@ def test_an_index_matched_rough_dielectric_lets_all_light_straight_through():
     assert np.all(sample.valid) and np.all(sample.is_delta)
     np.testing.assert_array_equal(sample.weight, 1.0)
     np.testing.assert_allclose(sample.wi, np.tile(-wo, (2000, 1)), atol=1e-15)  # tolerance: round-off of a unit vector
-    # Beside it, a hair off index matching, the rough lobe keeps its energy (the trial: 0.988).
+    # Beside it, a hair off index matching, the rough lobe's samples are all valid (the trial: 100 %,
+    # mean weight 0.988): only the exact match was lost.
     near = shading.RoughDielectric(alpha=0.3, ior=1.5).sample(wo, u, eta_outside=1.4999)
-    assert np.mean(near.valid) > 0.99  # tolerance: the lobe's own losses at alpha 0.3
+    assert np.mean(near.valid) > 0.99  # tolerance: a sample or two may fall outside the lobe
 
 
 def test_a_sellmeier_pole_between_whole_nanometres_is_refused():

@@ -133,10 +133,10 @@ def test_ensemble_structure_function_matches_averaged_realisations():
 
 @pytest.mark.slow
 def test_inertial_range_of_the_grid_sizes():
-    # 128 cells reach about x7 (not a decade); a large inner scale or a finite outer scale narrow it.
+    # 128 cells reach about x8 (not a decade); a large inner scale or a finite outer scale narrow it.
     small = uniform(cells=128, spacing=0.05, inner_scale=0.005)
     lo, hi = small.inertial_range
-    assert 3.0 < hi / lo < 10.0  # "about x7" for 128 cells (comment above): between 3 and a decade
+    assert 3.0 < hi / lo < 10.0  # "about x8" for 128 cells (comment above): between 3 and a decade
     assert lo > 4 * small.spacing and hi <= small.size / 2
     coarse = uniform(cells=32, spacing=0.05, inner_scale=0.5)  # l0 = 10 cells: nowhere Kolmogorov
     with pytest.raises(ValueError, match="no separation"):

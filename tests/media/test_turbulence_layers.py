@@ -47,3 +47,27 @@ def test_level_paths_tilt_alike_in_both_transverse_axes():
             vertical.append(gradient[:, 1].sum() * step)
             horizontal.append((gradient @ across).sum() * step)
     assert 0.4 < np.var(vertical) / np.var(horizontal) < 2.5  # tolerance: the scatter above, 5-12 excluded
+
+
+def test_the_layers_variance_is_moved_to_their_neighbours_not_dropped():
+    # Independently of the C++ table: Phi_n averaged over a mode's cell of wavenumber space by 8^3
+    # midpoints (what the lowest modes carry), from the public von_Karman spectrum. The layer
+    # (0, j, 0) holds nothing; each of its four horizontal neighbours holds its own cell's
+    # variance plus a quarter of the layer's, so every vertical wavenumber keeps its total.
+    from refracta import turbulence as tb
+
+    air = refracta.Turbulence(1e-10, cells=16, depth=None)
+    dk = 2.0 * math.pi / air.size
+    offsets = (np.arange(8) + 0.5) / 8 - 0.5
+    x, y, z = np.meshgrid(offsets, offsets, offsets, indexing="ij")
+
+    def cell(i, j, k):
+        kappa = dk * np.sqrt((i + x) ** 2 + (j + y) ** 2 + (k + z) ** 2)
+        return float(np.mean(tb.von_karman_spectrum(kappa.ravel(), 1.0, air.inner_scale, air.outer_scale))) * dk**3
+
+    for j in (1, 2, 3):
+        assert air._mode_variance(0, [j], [0])[0, 0] == 0.0
+        for i, k in ((1, 0), (-1, 0), (0, 1), (0, -1)):
+            expected = cell(i, j, k) + 0.25 * cell(0, j, 0)
+            assert air._mode_variance(i, [j], [k])[0, 0] == pytest.approx(expected, rel=1e-12)  # tolerance: round-off
+        assert air._mode_variance(1, [j], [1])[0, 0] == pytest.approx(cell(1, j, 1), rel=1e-12)  # untouched

@@ -119,7 +119,8 @@ void bind_camera_constructors(py::class_<Camera>& camera) {
 
 void bind_camera(py::module_& m) {
   py::class_<Camera> camera(m, "Camera", DOC(refracta, Camera));
-  camera.attr("max_side") = kMaxImageSide;  // the longest image side [pixels] a camera takes
+  camera.def_property_readonly_static(
+      "max_side", [](const py::object&) { return kMaxImageSide; }, "The longest image side [pixels] a camera takes: 2^24.");
   camera
       .def(py::init([](const py::object& position, const py::object& look_at, const py::object& up, double vfov,
                        Side width, Side height) {

@@ -72,7 +72,7 @@ struct TurbulenceSettings {
   // pixel's cost grows as path length / spacing (benchmarks/bench_realism.py).
   double spacing = 0.05;
   // N (the grid is N^3, one period N * spacing wide), or size [m] (N = ceil(size / spacing)); unset
-  // both: 256, whose inertial range spans over a decade (x14 within 15 %), where 128 reaches x7.
+  // both: 256, whose inertial range spans over a decade (x16 within 15 %), where 128 reaches x8.
   std::optional<int64_t> cells;
   std::optional<double> size;  // [m] the tile, cells = ceil(size / spacing) (None: from cells)
   // The height envelope E(h) = e^(-h/depth) [m]; unset (None): uniform. 0.1 m: the examples' surface layer.
@@ -98,8 +98,8 @@ double turbulence_memory_needed(int64_t cells);
 // The variance sigma^2 [m^(2/3) for C_n^2 = 1] of each Fourier mode of the samples on the lattice
 // of a grid: Phi_n(|kappa|) dkappa^3; the lowest modes (every index within 4 of 0) Phi_n averaged
 // over their cell of wavenumber space (8^3 midpoints: the spectrum varies by orders of magnitude
-// across those cells, and the point value loses much of their variance -- the ensemble D at a
-// quarter of the tile rises from 0.90 to 0.95 C_n^2 r^(2/3) at N = 256); 0 at kappa = 0.
+// across those cells, and the point value loses much of their variance -- when introduced, the
+// ensemble D at a quarter of the tile rose from 0.90 to 0.95 C_n^2 r^(2/3) at N = 256); 0 at kappa = 0.
 // On the vertical axis (i = k = 0, y being up) the modes would be layers as wide as the scene,
 // which the wind never moves: each seed added its own lasting change to the mean profile n(h) (rms
 // 5e-6 over 4 km x 4 km at the default 256^3 of 5 cm; the hot road's surface gradient moved by
@@ -108,7 +108,9 @@ double turbulence_memory_needed(int64_t cells);
 // horizontal scales beyond the lattice's period, which it cannot show; their variance goes to the
 // four modes beside them, (+-1, j, 0) and (0, j, +-1), whose horizontal scale is the period: each
 // vertical wavenumber keeps its variance (the pattern's vertical spectrum, and so D_n for vertical
-// separations, are unchanged), and no mode is constant along a level path.
+// separations, are unchanged; for horizontal ones D_n rises toward half a tile), and no mode is
+// constant along a level path at an irrational slope to the lattice (the default yaw's x and z; at
+// yaw 0 the (0, j, +-1) modes are constant along x, and tilt still grows as L^2 there).
 class TurbulenceSpectrum {
  public:
   TurbulenceSpectrum(int64_t cells, double spacing, double inner_scale, double outer_scale);

@@ -115,6 +115,13 @@ ShimmerCaster::ShimmerCaster(const Scene& scene, FieldPtr calm, FieldPtr layered
       // The calm air tabulated from the ground to a little above the layer (a deviated ray's
       // heights); hot spots' air is evaluated where the ray is, and needs no table.
       stepper_(*turbulence_, *layered_, 0.0, spotted_ ? 0.0 : top_ + 0.05, spotted_ ? calm_field_.get() : nullptr) {
+  // A step per cell through up to max_length of layer: past 1e8 steps (seconds a ray) the step is
+  // too small for the path (turbulence_step 0.01 of 1 um cells overflowed an int step count).
+  if (!(options.max_length / step_ <= 1e8)) {
+    throw_invalid("turbulence_trace 'perturbed': steps of ", step_, " m (turbulence_step ", options.turbulence_step,
+                  " x the turbulence's ", turbulence_->grid->spacing(), " m cells) over max_length ", options.max_length,
+                  " m would be more than 1e8: raise turbulence_step or lower max_length");
+  }
   if (spotted_) calm_.use_layered(layered_.get());
   calm_.use_table(table, eye, pixel_angle);
   calm_.set_secondary_spread(pixel_angle);  // as the renderer's caster (shadow and bounce rays' tolerance)

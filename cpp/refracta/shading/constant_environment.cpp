@@ -45,7 +45,8 @@ double ConstantEnvironment::pdf_li(const LightSampleContext& ctx, const Vec3d& w
 Spectrum ConstantEnvironment::Le(const Vec3d& /*dir*/, const SampledWavelengths& lambda) const { return radiance_.sample(lambda); }
 
 double ConstantEnvironment::power() const {
-  return 4.0 * kPi * kPi * scene_radius_ * scene_radius_ * detail::luminance(radiance_.rgb());
+  const double r = scene_radius_;  // one load: another render's preprocess may write it
+  return 4.0 * kPi * kPi * r * r * detail::luminance(radiance_.rgb());
 }
 
 void ConstantEnvironment::preprocess(const Vec3d& centre, double radius) {

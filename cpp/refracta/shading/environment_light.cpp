@@ -147,7 +147,8 @@ Spectrum EnvironmentLight::Le(const Vec3d& dir, const SampledWavelengths& lambda
 
 double EnvironmentLight::power() const {
   // integral of Y over the sphere = 2 pi^2 * integral over [0,1]^2 of Y(u, v) sin(theta) du dv.
-  return kPi * scene_radius_ * scene_radius_ * 2.0 * kPi * kPi * scale_ * distribution_.integral();
+  const double r = scene_radius_;  // one load: another render's preprocess may write it
+  return kPi * r * r * 2.0 * kPi * kPi * scale_ * distribution_.integral();
 }
 
 void EnvironmentLight::preprocess(const Vec3d& centre, double radius) {

@@ -458,7 +458,10 @@ Spectrum PhysicalSkyLight::Le(const Vec3d& dir, const SampledWavelengths& lambda
   return s;
 }
 
-double PhysicalSkyLight::power() const { return kPi * scene_radius_ * scene_radius_ * radiance_integral_; }
+double PhysicalSkyLight::power() const {
+  const double r = scene_radius_;  // one load: another render's preprocess may write it
+  return kPi * r * r * radiance_integral_;
+}
 
 void PhysicalSkyLight::preprocess(const Vec3d& /*centre*/, double radius) {
   if (!(radius > 0.0) || !std::isfinite(radius)) throw_invalid("PhysicalSkyLight: scene radius must be > 0 (got ", radius, ")");

@@ -75,7 +75,8 @@ Spectrum SunLight::Le(const Vec3d& dir, const SampledWavelengths& lambda) const 
 Vec3d SunLight::irradiance_rgb() const { return radiance_.rgb() * (kPi * sin2_max_); }
 
 double SunLight::power() const {
-  return kPi * scene_radius_ * scene_radius_ * detail::luminance(irradiance_rgb());
+  const double r = scene_radius_;  // one load: another render's preprocess may write it
+  return kPi * r * r * detail::luminance(irradiance_rgb());
 }
 
 void SunLight::preprocess(const Vec3d& centre, double radius) {
