@@ -537,27 +537,21 @@ def denoise_quality_demo_size(width=640, height=240, spp=16, reference_spp=512, 
 
 
 def level_path_tilts(air, lengths=(12.8, 100.0, 300.0), seeds=3, paths=40) -> dict:
-    """The vertical over the horizontal tilt variance (first order: the transverse gradient summed
-    along the path) of level paths of each length through `air`'s settings, at random places,
-    headings and seeds: 1 for isotropic turbulence (it grew as L^2 while the lattice held modes
-    constant along every level path)."""
+    """The vertical over the horizontal tilt variance of level paths of each length through `air`'s
+    settings (refracta.testing.tilts), at random places, headings and seeds: 1 for isotropic
+    turbulence (it grew as L^2 while the lattice held modes constant along every level path)."""
     import refracta
+    from refracta.testing.tilts import level_path_tilts as tilts
 
     rng = np.random.default_rng(11)
     out = {}
     for length in lengths:
-        step = air.spacing / 2
-        s = np.arange(0.0, length, step) + step / 2
         vertical, horizontal = [], []
         for seed in range(seeds):
             layer = refracta.Turbulence(air.cn2, cells=air.cells, depth=None, seed=seed).layer
-            for _ in range(paths):
-                heading = rng.uniform(0.0, 2.0 * math.pi)
-                along = np.array([math.cos(heading), 0.0, math.sin(heading)])
-                across = np.array([-math.sin(heading), 0.0, math.cos(heading)])
-                _, gradient = layer.evaluate(rng.uniform(-500.0, 500.0, 3) + s[:, None] * along)
-                vertical.append(gradient[:, 1].sum() * step)
-                horizontal.append((gradient @ across).sum() * step)
+            v, h = tilts(layer, length, paths, rng, step=air.spacing / 2)
+            vertical.extend(v)
+            horizontal.extend(h)
         out[str(length)] = float(np.var(vertical) / np.var(horizontal))
     print("level paths, vertical / horizontal tilt variance:", {k: round(v, 2) for k, v in out.items()})
     return out

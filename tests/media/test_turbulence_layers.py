@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import refracta
+from refracta.testing.tilts import level_path_tilts
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
@@ -34,18 +35,12 @@ def test_level_paths_tilt_alike_in_both_transverse_axes():
     # at 256^3 over 300 m: benchmarks' level_path_tilt_vertical_over_horizontal). With the layers,
     # which are constant along every level path, it was 5-12 at such lengths.
     rng = np.random.default_rng(5)
-    step, length = 0.025, 75.0
-    s = np.arange(0.0, length, step) + step / 2
     vertical, horizontal = [], []
     for seed in range(4):
         layer = refracta.Turbulence(1e-10, cells=64, depth=None, seed=seed).layer
-        for _ in range(50):
-            heading = rng.uniform(0.0, 2.0 * math.pi)
-            along = np.array([math.cos(heading), 0.0, math.sin(heading)])
-            across = np.array([-math.sin(heading), 0.0, math.cos(heading)])
-            _, gradient = layer.evaluate(rng.uniform(-500.0, 500.0, 3) + s[:, None] * along)
-            vertical.append(gradient[:, 1].sum() * step)
-            horizontal.append((gradient @ across).sum() * step)
+        v, h = level_path_tilts(layer, 75.0, 50, rng, step=0.025)
+        vertical.extend(v)
+        horizontal.extend(h)
     assert 0.4 < np.var(vertical) / np.var(horizontal) < 2.5  # tolerance: the scatter above, 5-12 excluded
 
 
