@@ -395,7 +395,10 @@ surface: benchmarks/bench_denoise.py).)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_max_depth[] = R"doc(Scattering events along a path (0: emitters only, 1: direct lighting; Mitsuba's max_depth is this +
 1). 'direct' uses it for specular chains only.)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_max_length[] = R"doc(Curved rays end here and show the sky in their last direction [m]; so do straight rays over a field
-with an Earth radius (the sphere's straight lines, render/picking.h straight_air).)doc";
+with an Earth radius (the sphere's straight lines, render/picking.h straight_air). Over such a field
+a camera ray that ends in the air above every object goes on to where it leaves the air and shows
+the sky there (Caster::continue_to_sky): the scene is met within max_length, the sky's refraction
+wherever it happens.)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_max_steps[] = R"doc(raster_march 'rk4': steps at most)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_pixel_bounds[] = R"doc(Render only these pixels of the camera's image, (x0, y0, x1, y1): pixels [x0, x1) x [y0, y1) (the
 result has the bounds' size); each pixel exactly as in the whole image (its seed and the eye's

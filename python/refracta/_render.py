@@ -285,7 +285,9 @@ def render(
     over a CurvedEarth paths over 150 km end in the table where they leave the air, and spectral
     renders of 8 spp or more one table per dispersion scale; trace='rk45' forces rk45); rays end after
     `max_length` [m] and see the sky in their last direction (over a CurvedEarth turned into the
-    world frame by the central angle: a sun or sky far beyond the horizon is where it should be).
+    world frame by the central angle: a sun or sky far beyond the horizon is where it should be;
+    there a camera ray that ends in the air above every object goes on to where it leaves the air
+    and sees the sky there, so a low sun stands where its refraction puts it whatever max_length).
     'straight' -- ray casting without atmosphere (the reference); with field=None both are straight.
     Over a field with an Earth radius (a CurvedEarth: the scene is its flat frame) the rays are the
     straight lines of the true geometry, bending toward the sky in the flat frame, so the Earth's

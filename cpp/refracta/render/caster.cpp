@@ -358,8 +358,35 @@ PathEnd Caster::cast(const Vec3d& origin, const Vec3d& dir, double max_length, d
   const double length = max_length > 0.0 ? max_length : options_.max_length;
   PathEnd end = legs_ ? cast_in_legs(origin, dir, length, spread, from_eye, secondary, s0)
                       : from_eye ? cast_table(dir) : cast_traced(origin, dir, length, spread, secondary, s0);
-  if (!end.hit) end.direction = field_->sky_direction(end.end_point, end.direction);
+  if (!end.hit) {
+    if (!secondary) continue_to_sky(&end, spread);
+    end.direction = field_->sky_direction(end.end_point, end.direction);
+  }
   return end;
+}
+
+void Caster::continue_to_sky(PathEnd* end, double spread) const {
+  if (!layered_ || !std::isfinite(layered_->earth_radius())) return;
+  const Vec3d x = end->end_point + Vec3d(0.0, 1e-9 * (1.0 + std::abs(end->end_point.y())), 0.0);
+  if (!(x.y() > ceiling_) || !(x.y() < layered_->straight_above())) return;
+  auto escaped = [&](const Vec3d& p, const Vec3d& v) {
+    const auto exit = escape_direction(p, v, kSceneReach, spread);
+    if (exit) end->direction = exit->direction, end->end_point = exit->point;
+    return exit.has_value();
+  };
+  if (escaped(x, end->direction)) return;
+  // Too level for the escape's quadrature, or still sinking toward its lowest point: traced on
+  // until it is steep enough (Earth's curvature raises a level ray by 1 - k of a radian per R of
+  // path: 1e-3 in ~8 km), at most kTableLongestPath; one that sinks under the objects (to the sea
+  // beyond max_length, or trapped in a duct) keeps its end.
+  TraceOptions options = curved_trace_options(scene_, *layered_, x, options_, kTableLongestPath);
+  if (std::isfinite(ceiling_)) options.stop_height = ceiling_;
+  try {
+    trace(*layered_, x, end->direction, options,
+          [&](const RayNode<double>&, const RayNode<double>& b) { return !escaped(b.x, b.v); });
+  } catch (const NumericalError&) {
+    // out of the modelled air before it could escape: the end stays where max_length left it
+  }
 }
 
 double Caster::step_in_regions() const { return std::min(options_.chord, 0.5 * smallest_scale(regions_)); }
@@ -520,19 +547,20 @@ std::optional<Caster::Escape> Caster::escape_direction(const Vec3d& x, const Vec
   const bool cannot_turn = floors_ && branch.beta() < floors_->everywhere * std::sqrt(1.0 - kMinSine * kMinSine);
   const Vec3d across = cos_e > 0.0 ? Vec3d(t.x() / cos_e, 0.0, t.z() / cos_e) : Vec3d::Zero();
   // Over a spherical Earth a ray that reaches the top of its air goes straight in the world frame
-  // from there: its sky is seen along its direction at the top, whatever the rest of its length
-  // (one adaptive integral instead of Newton's several). A path is at least as long as the height
-  // it climbs (sin e <= 1): where the top is farther above than the path has left to run (a
-  // shadow ray toward a 10 deg sun from 165 m has 86 km to climb and 41 km to go), the integral
-  // to the top would only find that, and is not made (the margin: the quadrature's own error).
+  // from there: its sky is seen along its direction at the top (one adaptive integral instead of
+  // Newton's several). That holds whatever is left of its max_length, which bounds where the scene
+  // may be met: nothing is above this ray. Most of a low sun's refraction lies beyond the few
+  // kilometres a scene spans: seen along the direction after the default 5 km instead, a sun 0.3
+  // deg up showed 27' low (10 deg up: 4.8'), against astronomical_refraction (a trial). Over a flat
+  // Earth a ray this low may still turn back toward the ground far beyond max_length: there the
+  // sky stays where the path ends.
   const double top = layered_->straight_above();
-  const bool top_reachable = top - x.y() <= remaining * (1.0 + 1e-6);
   // A ray that stands for a pixel (spread) may leave turned by sagitta_pixels of it: its run, to
   // that angle times the Earth's radius (over a flat Earth the run turns nothing: unused).
   const double run_tol = spherical ? options_.sagitta_pixels * spread * layered_->earth_radius() : 0.0;
   double n, sin_h, run, length;
-  if (spherical && std::isfinite(top) && top > x.y() && top_reachable && branch.at(top, kMinSine, &n, &dn, &sin_h) &&
-      branch.integrate(x.y(), top, kMinSine, &run, &length, 1e-8, run_tol) && length <= remaining) {
+  if (spherical && std::isfinite(top) && top > x.y() && branch.at(top, kMinSine, &n, &dn, &sin_h) &&
+      branch.integrate(x.y(), top, kMinSine, &run, &length, 1e-8, run_tol)) {
     const double scale = cos_e > 0.0 ? std::sqrt(std::max(0.0, 1.0 - sin_h * sin_h)) / cos_e : 0.0;
     return Escape{Vec3d(t.x() * scale, sin_h, t.z() * scale).normalized(),
                   Vec3d(x.x() + run * across.x(), top, x.z() + run * across.z()), length};

@@ -181,6 +181,14 @@ class Caster {
 
  private:
   PathEnd cast_straight(const Vec3d& origin, const Vec3d& dir, double max_length) const;
+  // Over a spherical Earth, a camera ray's path that ended in the air (after max_length) above every
+  // object goes on through the air -- nothing is above it to meet -- to where it leaves the air
+  // (escape_direction): its sky is seen there. Unchanged where it sinks under the objects on the
+  // way, and over a flat Earth. Shadow and bounce rays keep their ends: the sun reaches them
+  // through light sampling's exit map, and tracing the level ones on from the sea cost the cold
+  // sea 11 % and the Fata Morgana 13 % of their CPU for the sky near the horizon, which changes
+  // slowly (camera rays alone: no measurable cost, paired runs at 320 x 120).
+  void continue_to_sky(PathEnd* end, double spread) const;
   // secondary: a shadow or bounce ray (cast without a spread of its own): the rest of its path may
   // go on straight above the bending air (straight_rest). s0 [m]: the arc length of the ray's
   // cone at origin (cast's origin_width / spread): its tolerance at arc length s is that at s0 + s.
@@ -226,9 +234,10 @@ class Caster {
   // crossing nearest arc length s_near; nullopt if none within [s_near / 2, 3 s_near / 2 + 1 m].
   std::optional<Vec3d> meets_plane(const Vec3d& origin, const Vec3d& dir, const Vec3d& point, const Vec3d& normal,
                                    double s_near) const;
-  // Height-only fields: where a ray at x moving along v ends after `remaining` [m] of path and its
-  // direction there, when it is above every object, rising, and cannot turn on the way (n stays
-  // above its invariant n(h) cos e); nullopt otherwise. spread: as cast's; over a spherical Earth
+  // Height-only fields: where a ray at x moving along v leaves the air (at straight_above(), however
+  // far: nothing is above it to meet) and its direction there -- or, in air with no such top, where
+  // it ends after `remaining` [m] of path -- when it is above every object, rising, and cannot turn
+  // on the way (n stays above its invariant n(h) cos e); nullopt otherwise. spread: as cast's; over a spherical Earth
   // the run (which turns the exit by run / R) is integrated to sagitta_pixels * spread * R.
   struct Escape {
     Vec3d direction, point;

@@ -64,7 +64,10 @@ struct RenderOptions {
   int edge_spp = 0;
   uint64_t seed = 0;  // seed of the per-pixel random streams
   // Curved rays end here and show the sky in their last direction [m]; so do straight rays over a
-  // field with an Earth radius (the sphere's straight lines, render/picking.h straight_air).
+  // field with an Earth radius (the sphere's straight lines, render/picking.h straight_air). Over
+  // such a field a camera ray that ends in the air above every object goes on to where it leaves
+  // the air and shows the sky there (Caster::continue_to_sky): the scene is met within max_length,
+  // the sky's refraction wherever it happens.
   double max_length = 5000.0;
   double chord = 1000.0;      // longest straight chord tested against the geometry [m]
   double sagitta = 1e-3;      // largest distance between a chord and the curved path [m]
