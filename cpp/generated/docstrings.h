@@ -422,8 +422,9 @@ inline constexpr const char mkd_doc_refracta_RenderOptions_surface_aovs[] = R"do
 samples): the image then has 9 channels, radiance, albedo, normal (Intel Open Image Denoise's
 auxiliary features; renderer.h; Python's render returns them as aovs=["albedo", "normal"] and the
 image's 3). 'straight' and 'curved' only.)doc";
-inline constexpr const char mkd_doc_refracta_RenderOptions_texture_filter[] = R"doc(Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point samples
-the finest level (aliases: only for references and tests).)doc";
+inline constexpr const char mkd_doc_refracta_RenderOptions_texture_filter[] = R"doc(Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic; bilinear between
+texels); false reads the finest level at the sample's point, bilinearly (aliases: only for
+references and tests). Magnified, both are that bilinear lookup.)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_tile[] = R"doc(tile size [pixels] of the parallel loop)doc";
 inline constexpr const char mkd_doc_refracta_RenderOptions_tol[] = R"doc(Curved-ray integration tolerance [m] (the integrator, `trace`: 'stratified' for height-only fields,
 'rk45' for others).)doc";
@@ -618,8 +619,9 @@ inline constexpr const char mkd_doc_refracta_add_mesh[] = R"doc(Add a triangle m
 optional per-vertex normals (N, 3) (shading normals, interpolated; any length but 0) and uvs (N, 2)
 texture coordinates (u right, v up); emission makes it an area light. Without `material`, the
 kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha
-(default 1; < 1: transparent in render_raster)). A texture (an image file) multiplies kd. Returns
-its id.)doc";
+(default 1; < 1: transparent in render_raster)). A texture (an image file) multiplies kd. A light
+reflects by its material too (as pbrt-v4's area lights do; Mitsuba 3's emitters are black unless
+given a BSDF): material=Diffuse(0.0) for a black lamp. Returns its id.)doc";
 inline constexpr const char mkd_doc_refracta_add_obj[] = R"doc(Add a Wavefront OBJ file with its MTL materials, scaled then offset.
 
 The settings are a refracta.ObjOptions (``options``; None: its defaults) changed by the keywords
@@ -663,8 +665,10 @@ slopes fall; the flat plane keeps the full Water. Any other material is used as 
 Returns the geometry ids: the displaced meshes (fine full waves, its fade rings, coarse full waves,
 its fade rings; empty ones left out), then the flat plane. A null `waves` is set to the default sea
 it made (whose patch_caveat the binding warns with).)doc";
-inline constexpr const char mkd_doc_refracta_add_sphere[] = R"doc(Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`, the
-kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).)doc";
+inline constexpr const char mkd_doc_refracta_add_sphere[] = R"doc(Add a sphere (exact, not tessellated); emission makes it a spherical light (reflecting by its
+material too, as add_mesh's). Without `material`, the kd/ks/ns shorthand: BlinnPhong(kd (default 0.5
+grey), ks (default 0), ns (default 1)). Its shading tangent (an anisotropic material's u, e.g.
+RoughConductor's alpha_u) runs around the +y axis, along the lines of latitude.)doc";
 inline constexpr const char mkd_doc_refracta_add_spot_light[] = R"doc(Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] (in
 (0, 360]) with `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives
 render_raster's 'embree' reference soft shadows of a disc that size. Returns its index among the

@@ -902,8 +902,9 @@ class Scene:
         optional per-vertex normals (N, 3) (shading normals, interpolated; any length but 0) and uvs (N, 2)
         texture coordinates (u right, v up); emission makes it an area light. Without `material`, the
         kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1), alpha
-        (default 1; < 1: transparent in render_raster)). A texture (an image file) multiplies kd. Returns
-        its id.
+        (default 1; < 1: transparent in render_raster)). A texture (an image file) multiplies kd. A light
+        reflects by its material too (as pbrt-v4's area lights do; Mitsuba 3's emitters are black unless
+        given a BSDF): material=Diffuse(0.0) for a black lamp. Returns its id.
         """
     def add_obj(self, path: os.PathLike | str | bytes, offset: typing.Any = None, scale: typing.Any = None, *, options: typing.Any = None, texture_dirs: typing.Any = None, missing_textures: typing.Any = None, progress: typing.Any = True) -> list[int]:
         """
@@ -959,8 +960,10 @@ class Scene:
         """
     def add_sphere(self, centre: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, material: typing.Any = None, emission: typing.Any = None, *, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None) -> int:
         """
-        Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`, the
-        kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).
+        Add a sphere (exact, not tessellated); emission makes it a spherical light (reflecting by its
+        material too, as add_mesh's). Without `material`, the kd/ks/ns shorthand: BlinnPhong(kd (default 0.5
+        grey), ks (default 0), ns (default 1)). Its shading tangent (an anisotropic material's u, e.g.
+        RoughConductor's alpha_u) runs around the +y axis, along the lines of latitude.
         """
     def add_spot_light(self, position: typing.Any, direction: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex = 60.0, intensity: typing.Any = (100.0, 100.0, 100.0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> int:
         """
@@ -2118,7 +2121,10 @@ class RenderOptions:
     def max_length(self) -> float:
         """
         Curved rays end here and show the sky in their last direction [m]; so do straight rays over a field
-        with an Earth radius (the sphere's straight lines, render/picking.h straight_air).
+        with an Earth radius (the sphere's straight lines, render/picking.h straight_air). Over such a field
+        a camera ray that ends in the air above every object goes on to where it leaves the air and shows
+        the sky there (Caster::continue_to_sky): the scene is met within max_length, the sky's refraction
+        wherever it happens.
         """
     @max_length.setter
     def max_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2252,8 +2258,9 @@ class RenderOptions:
     @property
     def texture_filter(self) -> bool:
         """
-        Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point samples
-        the finest level (aliases: only for references and tests).
+        Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic; bilinear between
+        texels); false reads the finest level at the sample's point, bilinearly (aliases: only for
+        references and tests). Magnified, both are that bilinear lookup.
         """
     @texture_filter.setter
     def texture_filter(self, arg0: bool) -> None:

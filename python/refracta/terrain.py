@@ -263,9 +263,7 @@ def _read_geotiff(path: str) -> Elevation:
         )
     if data.shape[0] < 2 or data.shape[1] < 2:
         raise ValueError(f"{path!r}: {data.shape[0]} x {data.shape[1]} samples; a grid needs 2 x 2 or more")
-    if _TAG_TRANSFORM in tags:
-        raise ValueError(f"{path!r}: a rotated or sheared grid (ModelTransformation) is not supported")
-    if _TAG_PIXEL_SCALE not in tags or _TAG_TIEPOINT not in tags or 34735 not in tags:
+    if not _placed(tags) or 34735 not in tags:
         raise ValueError(
             f"{path!r} has no georeference (GeoTIFF ModelPixelScale, ModelTiepoint and GeoKeys are needed)"
         )
@@ -416,16 +414,35 @@ def _tag_numbers(tags: dict, code: int, count: int, path: str, name: str) -> lis
     return values
 
 
+def _placed(tags: dict) -> bool:
+    """Whether a GeoTIFF says where its grid lies: ModelPixelScale and ModelTiepoint, or ModelTransformation."""
+    return (_TAG_PIXEL_SCALE in tags and _TAG_TIEPOINT in tags) or _TAG_TRANSFORM in tags
+
+
 def _placement(tags: dict, keys: dict, path: str) -> tuple[float, float, float, float]:
     """(x0, y0, dx, dy): the first sample's centre in the CRS and the pixel scale, from the
-    ModelPixelScale and ModelTiepoint tags (pixel-is-area: the tiepoint is a pixel's corner)."""
-    sx, sy = _tag_numbers(tags, _TAG_PIXEL_SCALE, 2, path, "ModelPixelScale")
-    i, j, _, x, y, _ = _tag_numbers(tags, _TAG_TIEPOINT, 6, path, "ModelTiepoint")
+    ModelPixelScale and ModelTiepoint tags (pixel-is-area: the tiepoint is a pixel's corner), or
+    from a ModelTransformation that only scales and shifts (as GDAL may write a north-up grid)."""
     centre = 0.0 if keys.get(_KEY_RASTER_TYPE) == _RASTER_PIXEL_IS_POINT else 0.5
+    if _TAG_TRANSFORM in tags:
+        # X = a i + b j + d, Y = e i + f j + h (row-major 4 x 4; raster (i, j) = (column, row)).
+        a, b, _, d, e, f, _, h = _tag_numbers(tags, _TAG_TRANSFORM, 8, path, "ModelTransformation")
+        if b != 0.0 or e != 0.0:
+            raise ValueError(
+                f"{path!r}: a rotated or sheared grid (ModelTransformation with terms {b}, {e} off its "
+                "diagonal) is not supported; only north-up, east-right grids are read"
+            )
+        sx, sy, x, y, i, j = a, -f, d, h, 0.0, 0.0
+    else:
+        sx, sy = _tag_numbers(tags, _TAG_PIXEL_SCALE, 2, path, "ModelPixelScale")
+        i, j, _, x, y, _ = _tag_numbers(tags, _TAG_TIEPOINT, 6, path, "ModelTiepoint")
     x0, y0 = x + (centre - i) * sx, y - (centre - j) * sy
     # North up, east right: a negative scale (a mirrored grid) or a zero one is not a placement.
     if not (0.0 < sx < math.inf and 0.0 < sy < math.inf) or not (math.isfinite(x0) and math.isfinite(y0)):
-        raise ValueError(f"{path!r}: pixel scale ({sx}, {sy}) must be finite and > 0, and the tiepoint finite")
+        raise ValueError(
+            f"{path!r}: pixel scale ({sx}, {sy}) must be finite and > 0 (only north-up, east-right grids "
+            "are read: rows from north to south, columns from west to east), and the tiepoint finite"
+        )
     return x0, y0, sx, sy
 
 
@@ -502,7 +519,7 @@ def _read_geotiff_frame(path: str) -> Elevation:
             f"orthophoto {path!r} is not a readable GeoTIFF ({type(error).__name__}: {error}); "
             "an orthophoto placed by a georeferenced terrain must be a GeoTIFF"
         ) from None
-    if _TAG_PIXEL_SCALE not in tags or _TAG_TIEPOINT not in tags or 34735 not in tags:
+    if not _placed(tags) or 34735 not in tags:
         raise ValueError(f"orthophoto {path!r} has no georeference (a GeoTIFF is needed)")
     keys = _geokeys(tags[34735], path)
     epsg = keys.get(_KEY_GEOGRAPHIC_TYPE, _EPSG_WGS84) if keys.get(_KEY_MODEL_TYPE) == _MODEL_GEOGRAPHIC else None

@@ -47,6 +47,31 @@ def test_a_distant_checkerboard_does_not_alias(tmp_path):
     assert abs(filtered[ground][:, 0].mean() - reference[ground][:, 0].mean()) < 0.05
 
 
+def test_a_magnified_edge_is_a_bilinear_ramp_one_texel_wide(tmp_path):
+    """Looking straight down at a check's edge, 10 pixels a texel: the lookup is bilinear between
+    texels (pbrt-v4's and Mitsuba 3's default), so the edge is a straight ramp across one texel. A
+    trial against Mitsuba 3 found OpenImageIO's default (smart bicubic: a B-spline) spreading it
+    over ~3 texels; with or without the footprint filter the magnified lookup is the same."""
+    scene = checkerboard_scene(tmp_path)  # 8 texels a check of 1 m: 0.125 m a texel
+    half_width = 0.4  # [m] 64 pixels over 0.8 m, 6.4 texels: 10 pixels a texel
+    vfov = 2 * np.degrees(np.arctan(half_width * 8 / 64 / 10.0))
+    camera = refracta.Camera((0.0, 10.0, 0.5), (0.0, 0.0, 0.5), (0, 0, -1), vfov, 64, 8)
+    render = dict(method="straight", progress=False, spp=16)
+    image = refracta.render(scene, camera, None, **render)
+    np.testing.assert_array_equal(image, refracta.render(scene, camera, None, texture_filter=False, **render))
+    profile = image[4, :, 0]  # across the checks' edge near x = 0, at z = 0.5 (mid-check)
+    ends = sorted((profile[:10].mean(), profile[-10:].mean()))  # a black and a white check, either way round
+    assert ends == [pytest.approx(0.0, abs=1e-3), pytest.approx(1.0, abs=1e-3)]  # the checks' own values
+    ramp = np.nonzero((profile > 0.01) & (profile < 0.99))[0]
+    # Bilinear: the ramp spans the texel centres either side of the edge, 10 pixels (the pixel's own
+    # width blurs each end by up to one more); the B-spline spread it over ~30.
+    assert 9 <= len(ramp) <= 11
+    # A straight ramp: each step the same, 0.1 of the swing a pixel, to the 16 samples' spread over
+    # a pixel of a linear ramp (none: a pixel's mean of a line is its centre's value) and float.
+    steps = np.abs(np.diff(profile[ramp[0] : ramp[-1] + 1]))
+    np.testing.assert_allclose(steps, 0.1, atol=2e-3)
+
+
 def test_a_near_texel_is_reproduced_exactly(tmp_path):
     """Looking straight down at a check, the filtered value is the check's own value."""
     scene = checkerboard_scene(tmp_path)

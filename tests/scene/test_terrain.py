@@ -223,6 +223,35 @@ def write_geotiff(
     return path
 
 
+def test_a_geotiff_placed_by_a_model_transformation_reads_as_by_scale_and_tiepoint(tmp_path):
+    """GDAL may georeference a north-up grid by ModelTransformation (scale and shift only) instead
+    of ModelPixelScale and ModelTiepoint: a trial's file was refused as "a rotated or sheared grid".
+    It reads as the same grid placed by scale and tiepoint; a rotated one, or one stored south-up,
+    is refused saying why."""
+    import tifffile
+
+    data = (300.0 + np.arange(8 * 9).reshape(8, 9)).astype(np.float32)
+    by_tiepoint = terrain.read_elevation(write_geotiff(tmp_path / "tie.tif", data, (7.0, 46.1), (0.01, 0.02)))
+    keys = [1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326]
+
+    def transformed(name, matrix):
+        path = tmp_path / name
+        tags = [(34264, "d", 16, matrix, False), (34735, "H", len(keys), keys, False)]
+        tifffile.imwrite(path, data, extratags=tags)
+        return path
+
+    north_up = [0.01, 0, 0, 7.0, 0, -0.02, 0, 46.1, 0, 0, 0, 0, 0, 0, 0, 1]
+    read = terrain.read_elevation(transformed("matrix.tif", north_up))
+    assert np.array_equal(read.heights, by_tiepoint.heights)
+    assert (read.x0, read.y0, read.dx, read.dy) == (by_tiepoint.x0, by_tiepoint.y0, by_tiepoint.dx, by_tiepoint.dy)
+    rotated = [0.01, 0.001, 0, 7.0, 0.001, -0.02, 0, 46.1, 0, 0, 0, 0, 0, 0, 0, 1]
+    with pytest.raises(ValueError, match=r"rotated\.tif'?: a rotated or sheared grid .*only north-up"):
+        terrain.read_elevation(transformed("rotated.tif", rotated))
+    south_up = [0.01, 0, 0, 7.0, 0, 0.02, 0, 46.0, 0, 0, 0, 0, 0, 0, 0, 1]
+    with pytest.raises(ValueError, match=r"south\.tif'?: pixel scale \(0\.01, -0\.02\) .*only north-up"):
+        terrain.read_elevation(transformed("south.tif", south_up))
+
+
 @pytest.mark.parametrize("compression", ["lzw", "zlib"])
 def test_compressed_geotiffs_read_as_the_uncompressed_one(tmp_path, compression):
     """Elevation downloads (SRTM/Copernicus GeoTIFFs) are LZW- or Deflate-compressed: read through

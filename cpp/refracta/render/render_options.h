@@ -113,8 +113,9 @@ struct RenderOptions {
   // eye's ElevationTable are the whole image's: distributed tiles). Unset (None): the whole image.
   // Checked against the camera's image by bounds_in(width, height).
   std::optional<PixelBounds> pixel_bounds;
-  // Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic); false point
-  // samples the finest level (aliases: only for references and tests).
+  // Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic; bilinear between
+  // texels); false reads the finest level at the sample's point, bilinearly (aliases: only for
+  // references and tests). Magnified, both are that bilinear lookup.
   bool texture_filter = true;
   // A camera ray's footprint on a textured surface from ray differentials through the air
   // (Caster::footprint: the paths of its neighbours, as squeezed or stretched by a mirage); false:

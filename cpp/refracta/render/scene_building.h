@@ -56,7 +56,8 @@ constexpr double kGroundKd = 0.3;
 // (N, 2) texture coordinates (u right, v up); emission makes it an area light. Without `material`,
 // the kd/ks/ns/alpha shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1),
 // alpha (default 1; < 1: transparent in render_raster)). A texture (an image file) multiplies kd.
-// Returns its id.
+// A light reflects by its material too (as pbrt-v4's area lights do; Mitsuba 3's emitters are
+// black unless given a BSDF): material=Diffuse(0.0) for a black lamp. Returns its id.
 unsigned add_mesh(RenderScene& scene, Mesh mesh, const SurfaceLook& look);
 
 // Add an axis-aligned box (faces outward): centre (3,) and size (3,) [m]. Without `material`, the
@@ -64,8 +65,10 @@ unsigned add_mesh(RenderScene& scene, Mesh mesh, const SurfaceLook& look);
 // alpha (default 1; < 1: transparent in render_raster)).
 unsigned add_box(RenderScene& scene, const Vec3d& centre, const Vec3d& size, const SurfaceLook& look);
 
-// Add a sphere (exact, not tessellated); emission makes it a spherical light. Without `material`,
-// the kd/ks/ns shorthand: BlinnPhong(kd (default 0.5 grey), ks (default 0), ns (default 1)).
+// Add a sphere (exact, not tessellated); emission makes it a spherical light (reflecting by its
+// material too, as add_mesh's). Without `material`, the kd/ks/ns shorthand: BlinnPhong(kd (default
+// 0.5 grey), ks (default 0), ns (default 1)). Its shading tangent (an anisotropic material's u,
+// e.g. RoughConductor's alpha_u) runs around the +y axis, along the lines of latitude.
 unsigned add_sphere(RenderScene& scene, const Vec3d& centre, double radius, const SurfaceLook& look);
 
 // Add a square ground of side `size` [m] at y = height, centred on the origin, facing up. Without

@@ -42,10 +42,6 @@ class Textures {
   int add(const std::string& path);
   // Filtered linear RGB (a grey or RGBA image gives its first channels, grey replicated).
   Vec3d lookup(int id, const TextureLookup& at) const;
-  // Filtered linear RGB of an equirectangular (lat-long) environment map seen along unit dir:
-  // y up, the top row the zenith, the centre column looking along +x, s growing toward +z;
-  // footprint: the angular width of the lookup [rad].
-  Vec3d environment(int id, const Vec3d& dir, double footprint) const;
   const std::string& path(int id) const { return paths_.at(id); }
   size_t size() const { return paths_.size(); }  // textures registered (ids 0 .. size - 1)
 
