@@ -297,7 +297,10 @@ class LocalFrame:
 
     Horizontal positions are PROJ's azimuthal equidistant projection about (lat, lon) on WGS84
     (``+proj=aeqd``): exact geodesic distance and azimuth from the origin, to nanometres over
-    thousands of km (it is singular at the antipode).
+    thousands of km (it is singular at the antipode). Only from the origin: a camera D from it sees
+    a target s beyond it about D s / (3 R^2) rad to the side (0.0068 deg for 150 km and 100 km)
+    and reads its distance up to ~D^2 / (6 R^2) of itself long (``camera(position=...)`` warns
+    past half a pixel); for such views make a frame at the camera.
     """
 
     def __init__(self, lat, lon, height=0.0, earth_radius=None):
@@ -460,14 +463,8 @@ class LocalFrame:
         place = finite_pair(position) if position is not None else (self.lat, self.lon)
         if place is None:
             raise ValueError(f"position must be (lat, lon) (got {position!r})")
-        values = np.asarray(target, dtype=object) if isinstance(target, (tuple, list, np.ndarray)) else None
-        if values is None or values.shape not in ((2,), (3,)):
-            raise ValueError(f"target must be (lat, lon) or (lat, lon, height) (got {target!r})")
-        lat = _number(values[0], "target's lat", -90.0, 90.0)
-        lon = _number(values[1], "target's lon", -360.0, 360.0)
-        # Above the Earth's centre, as to_scene takes them (a trial's -1e7 m gave an elevation of -90.13).
+        lat, lon, target_height = self._target(target)
         lowest = -self.earth_radius if math.isfinite(self.earth_radius) else -math.inf
-        target_height = _number(values[2], "target's height", lowest) if len(values) == 3 else 0.0
         distance, azimuth, _ = inverse(place[0], place[1], lat, lon)
         if not distance > 0.0:
             raise ValueError(f"target {target!r} is straight above or below the eye: it has no azimuth")
@@ -479,6 +476,52 @@ class LocalFrame:
         eye_height = _number(height, "height", lowest)
         elevation = straight_elevation(distance, eye_height, target_height, self.earth_radius)
         return float(azimuth), elevation
+
+    def _target(self, target) -> tuple[float, float, float]:
+        """(lat, lon, height above the ellipsoid) of a target (lat, lon[, height]), checked."""
+        values = np.asarray(target, dtype=object) if isinstance(target, (tuple, list, np.ndarray)) else None
+        if values is None or values.shape not in ((2,), (3,)):
+            raise ValueError(f"target must be (lat, lon) or (lat, lon, height) (got {target!r})")
+        lat = _number(values[0], "target's lat", -90.0, 90.0)
+        lon = _number(values[1], "target's lon", -360.0, 360.0)
+        # Above the Earth's centre, as to_scene takes them (a trial's -1e7 m gave an elevation of -90.13).
+        lowest = -self.earth_radius if math.isfinite(self.earth_radius) else -math.inf
+        return lat, lon, (_number(values[2], "target's height", lowest) if len(values) == 3 else 0.0)
+
+    def _aim_in_frame(self, eye: np.ndarray, target, height: float) -> tuple[float, float]:
+        """(frame azimuth, elevation) [deg] from the scene point ``eye``, ``height`` [m] above the
+        ellipsoid, toward ``target`` as the frame places it: the straight line to its scene point in
+        plan, so that a camera away from the origin centres it (the geodesic's bearing leaves the
+        projection's straight line by about D s / 3R^2 there: below)."""
+        lat, lon, target_height = self._target(target)
+        point = self.to_scene(lat, lon, 0.0)
+        run = math.hypot(point[0] - eye[0], point[2] - eye[2])
+        if not run > 0.0:
+            raise ValueError(f"target {target!r} is straight above or below the eye: it has no azimuth")
+        azimuth = math.degrees(math.atan2(point[0] - eye[0], eye[2] - point[2]))
+        return azimuth, straight_elevation(run, height, target_height, self.earth_radius)
+
+    def _warn_far_from_origin(self, eye: np.ndarray, pixel_angle: float) -> None:
+        """Warn when a camera at the scene point ``eye`` is so far from the origin that the
+        projection's distortion moves a target as far again from it by more than half a pixel: the
+        azimuthal equidistant plane keeps distances and bearings from its origin only, so away from
+        it a target s [m] beyond a camera D [m] out shows about D s / (3 R^2) [rad] to the side and
+        its distance reads up to ~D^2 / (6 R^2) of itself long (a trial: D = 150 km, s = 100 km,
+        0.0068 deg and 8.5 m)."""
+        offset = math.hypot(eye[0], eye[2])
+        m, n = principal_radii(self.lat)  # the projection's distortion is the ellipsoid's
+        radius = math.sqrt(m * n)
+        shift = offset * offset / (3.0 * radius * radius)
+        if shift > 0.5 * pixel_angle:
+            warnings.warn(
+                f"a camera {offset / 1e3:.3g} km from the frame's origin: the frame's azimuthal equidistant "
+                f"plane is exact only from its origin, so a target {offset / 1e3:.3g} km beyond the camera "
+                f"shows about {shift / pixel_angle:.2g} pixels to the side ({math.degrees(shift):.2g} deg) and "
+                "distances read slightly long; for geometry true to the pixel make the frame at the camera: "
+                "geo.LocalFrame(lat, lon) (or Camera.geographic)",
+                UserWarning,
+                stacklevel=3,
+            )
 
     def camera(
         self,
@@ -502,7 +545,10 @@ class LocalFrame:
         projecting the geodesic that leaves at it) and ``elevation`` [deg] above the horizontal
         (CurvedEarth's flat frame keeps y as the local vertical everywhere). Or, instead of azimuth and
         elevation, ``target`` = (lat, lon[, height]): aimed at it (``aim``: its bearing and its elevation
-        with no air, so that refraction lifts it a little above the image's centre).
+        with no air, so that refraction lifts it a little above the image's centre; from ``position``
+        along the frame's straight line to it, which centres it there, see the class). A camera so
+        far from the origin that the frame's distortion moves a target as far again by more than
+        half a pixel warns.
 
         Give exactly one of vfov [deg] (vertical field of view; Camera(...)) or focal_length_mm with
         sensor_mm = (width, height) [mm] (Camera.photographic's lens and sensor; None: its full-frame
@@ -538,7 +584,10 @@ class LocalFrame:
             if place is None:
                 raise ValueError(f"position must be (lat, lon) (got {position!r})")
             eye = self._scene_points(place[0], place[1], height, "position", _POSITION_NAMES)
-            a = self._frame_azimuth(place[0], place[1], a)
+            if target is None:
+                a = self._frame_azimuth(place[0], place[1], a)
+            else:
+                a, e = self._aim_in_frame(eye, target, height)
         forward_ = self.direction(a, e)
         # The unrolled camera's up: the view direction turned 90 deg up in its vertical plane.
         sa, ca, se, ce = (
@@ -566,7 +615,11 @@ class LocalFrame:
                 raise ValueError(f"sensor_mm must be (width, height) [mm] (got {sensor_mm!r})")
             lens["sensor_mm"] = sensor
         if vfov is not None:
-            return _core.Camera(eye, look_at, up=up, vfov=_number(vfov, "vfov"), **size)
-        return _core.Camera.photographic(
-            eye, look_at, _number(focal_length_mm, "focal_length_mm"), up=up, **size, **lens
-        )
+            camera = _core.Camera(eye, look_at, up=up, vfov=_number(vfov, "vfov"), **size)
+        else:
+            camera = _core.Camera.photographic(
+                eye, look_at, _number(focal_length_mm, "focal_length_mm"), up=up, **size, **lens
+            )
+        if position is not None:
+            self._warn_far_from_origin(eye, camera.pixel_angle)
+        return camera

@@ -140,3 +140,31 @@ def test_bearing_turns_a_frame_azimuth_into_the_compass_bearing_camera_takes():
     np.testing.assert_allclose(at_origin, [[10.0, 200.0]], atol=1e-6)  # the same 1 m round trip
     with pytest.raises(ValueError, match="position must be one scene point"):
         frame.bearing(10.0, (0.0, 1.0))
+
+
+def test_a_camera_away_from_the_origin_centres_its_target_and_warns_of_the_frames_distortion():
+    # A trial's camera 150 km north-east of the origin aimed at a summit 100 km away at bearing 300:
+    # aimed by the geodesic's bearing it showed the summit 0.0067 deg (13 px) to the side, the
+    # azimuthal equidistant plane's distortion away from its origin (about D s / 3R^2). Aimed along
+    # the frame's straight line to the summit it is centred; the distance readout stays long by the
+    # same distortion (8.5 m in 100 km), which the warning names.
+    frame = geo.LocalFrame(45.0, 7.0)
+    lat_b, lon_b, _ = geo.forward(45.0, 7.0, 45.0, 150e3)
+    lat_c, lon_c, _ = geo.forward(lat_b, lon_b, 300.0, 100e3)
+    summit = frame.to_scene(lat_c, lon_c, 0.0)
+    scene = refracta.Scene()
+    scene.add_box((summit[0], 1000.0, summit[2]), (3.0, 2000.0, 3.0))
+    scene.set_environment((1.0, 1.0, 1.0))
+    with pytest.warns(UserWarning, match=r"150 km from the frame's origin: .* about 21 pixels to the side"):
+        camera = frame.camera(
+            30.0, target=(lat_c, lon_c, 1000.0), position=(lat_b, lon_b), vfov=0.0305, image_width=61, image_height=61
+        )
+    air = refracta.CurvedEarth(refracta.LinearSquaredProfile(1.0, 0.0), frame.earth_radius)
+    _, aovs = refracta.render(
+        scene, camera, air, method="straight", progress=False, max_length=150e3, aovs=["object_id"]
+    )
+    columns = np.nonzero((aovs["object_id"] == 0).any(axis=0))[0]
+    # The 3 m box is 3.4 px wide at 100 km: its columns' middle within half a pixel of the centre's.
+    assert abs(0.5 * (columns.min() + columns.max()) - 30.0) <= 0.5
+    # Near the origin the distortion is far below a pixel: no warning (pytest turns one into an error).
+    frame.camera(100.0, target=(45.3, 7.2), position=(45.05, 7.1), vfov=1.0, image_width=41, image_height=11)
