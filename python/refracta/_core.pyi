@@ -387,7 +387,7 @@ class LinearSquaredProfile(IndexField):
     cos(e0).
     
     Parameters (name [unit] default, optimiser bounds: meaning):
-        n0 [1] 1.00028, [0.5, 3]: index at y = 0
+        n0 [1] 1.000277, [0.5, 3]: index at y = 0
         alpha [1/m] 0, [-0.001, 0.001]: d(n^2)/dy
     
     The optimiser bounds are where edit.solve searches; the model itself takes any physical value (a value it refuses is named).
@@ -412,7 +412,7 @@ class PhysicalAtmosphere(IndexField):
     the same air without them.
     
     Parameters (name [unit] default, optimiser bounds: meaning):
-        t_ground [K] 288.15, [220, 330]: air temperature at h = 0 without the surface layer
+        t_ground [K] 288.15, [220, 330]: air temperature at h = 0 without the surface layer (the 1976 layers above shift with it)
         lapse_rate [K/m] 0.0065, [-0.02, 0.02]: tropospheric dT/dh is -lapse_rate
         pressure [Pa] 101325, [50000, 110000]: pressure at h = 0
         inversion_dt [K] 0, [-30, 30]: temperature rise across the inversion layer

@@ -46,6 +46,7 @@ FieldPtr with_params(const IndexField& field, const NamedValues& named) {
 
 std::string param_table(const std::vector<ParamSpec>& specs) {
   std::ostringstream out;
+  out.precision(15);  // the default as the model holds it (six digits showed n0's 1.000277 as 1.00028)
   out << "\n\nParameters (name [unit] default, optimiser bounds: meaning):\n";
   for (const auto& s : specs) {
     out << "    " << s.name << " [" << s.unit << "] " << s.default_value << ", [" << s.lower << ", " << s.upper

@@ -67,7 +67,7 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
   static std::vector<ParamSpec> base_param_specs() {
     return {
         {"t_ground", kStandardGroundTemperature, 220.0, 330.0, "K",
-         "air temperature at h = 0 without the surface layer"},
+         "air temperature at h = 0 without the surface layer (the 1976 layers above shift with it)"},
         {"lapse_rate", kStandardLapseRate, -0.02, 0.02, "K/m", "tropospheric dT/dh is -lapse_rate"},
         {"pressure", kStandardPressure, 50000.0, 110000.0, "Pa", "pressure at h = 0"},
         {"inversion_dt", 0.0, -30.0, 30.0, "K", "temperature rise across the inversion layer"},
