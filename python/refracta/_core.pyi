@@ -1034,17 +1034,18 @@ class Scene:
         slightly down sees the horizon sky, importance-sampled over the whole sphere); 'ground' shows the
         Lambertian ground of `ground_albedo` (which must be 0 with 'horizon'). And the sun: a disc of
         `sun_angular_diameter` [deg] with linear limb darkening u, its radiance the 5778 K solar spectrum
-        through the atmosphere's extinction (reddened toward the horizon; none below it). Units: spectral
-        radiance W/(m^2 sr nm) in spectral renders, its CIE-Y-weighted mean in RGB (linear sRGB of XYZ /
-        integral ybar, as Color.illuminant: times 106.86 nm gives W/(m^2 sr)); RGB and spectral renders
-        agree. `scale` multiplies sky and sun (e.g. an exposure). Builds the sky's table (1-3 s;
-        `build_sky`). aerial_perspective (default True): the same air dims and lights every segment the
-        renderers cast (refracta.spectrum.AerialPerspective: transmittance and scattered sunlight, the sky's
-        multiple scattering included), so distant objects grey and blue into the sky; False keeps surfaces
-        as seen through empty space. visibility [km, at least 0.001]: meteorological visibility at the
-        ground (Koschmieder: extinction at 550 nm = 3.912 / V), setting the aerosol in its place (give one
-        of them; an aerosol thicker than 1 m of visibility is refused too). The scene's y = 0 lies
-        `altitude` above the sky's sea level.
+        through the atmosphere's extinction (reddened toward the horizon; within the horizon's refraction,
+        33', below the planet's limb the grazing column's, as the render's curved rays still reach it; none
+        further below). Units: spectral radiance W/(m^2 sr nm) in spectral renders, its CIE-Y-weighted mean
+        in RGB (linear sRGB of XYZ / integral ybar, as Color.illuminant: times 106.86 nm gives W/(m^2 sr));
+        RGB and spectral renders agree. `scale` multiplies sky and sun (e.g. an exposure). Builds the sky's
+        table (1-3 s; `build_sky`). aerial_perspective (default True): the same air dims and lights every
+        segment the renderers cast (refracta.spectrum.AerialPerspective: transmittance and scattered
+        sunlight, the sky's multiple scattering included), so distant objects grey and blue into the sky;
+        False keeps surfaces as seen through empty space. visibility [km, at least 0.001]: meteorological
+        visibility at the ground (Koschmieder: extinction at 550 nm = 3.912 / V), setting the aerosol in its
+        place (give one of them; an aerosol thicker than 1 m of visibility is refused too). The scene's y =
+        0 lies `altitude` above the sky's sea level.
         """
     def set_sky(self, horizon: typing.Any = None, zenith: typing.Any = None, environment: os.PathLike | str | bytes | None = None, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
         """
@@ -2778,6 +2779,11 @@ class SolveSummary:
     def time(self) -> float:
         """
         [s] solving, set-up excluded
+        """
+    @property
+    def unique(self) -> bool:
+        """
+        every pair met, and the pairs fix every free parameter (condition <= 1e6)
         """
     @property
     def values(self) -> numpy.typing.NDArray[numpy.float64]:

@@ -234,7 +234,9 @@ class EditResult:
     solver_report: the back-end's own report of the run that gave the result (Ceres' full summary).
     stopped_by: the limit that cut the solve short ('iteration limit', 'evaluation limit', 'time
     limit'; '' if none). condition, rank: of the Jacobian in the free parameters' unit box at a
-    result meeting every pair (else 0, 0); above 1e6 the message says the solution is not unique.
+    result meeting every pair (else 0, 0); above 1e6 the message says the solution is not unique,
+    and unique is False (True: every pair met and the pairs fix every free parameter; a success
+    with one landmark and five free parameters is not unique).
     history: cost per iteration (ceres) or best cost per evaluation (nlopt) of that run. free: the
     optimised parameters; insensitive: requested free parameters no pair depends on (held fixed);
     at_bounds: free parameters the result left on a bound of the search (the best fit may lie
@@ -296,7 +298,7 @@ class EditResult:
 
     def report(self) -> str:
         """A readable summary: outcome, costs, per-pair distances, parameters before and after."""
-        verdict = "success" if self.success else "FAILED"
+        verdict = ("success" if self.unique else "success, not unique") if self.success else "FAILED"
         lines = [
             f"Edit of {self.field.type_name} with {self.backend} ({self.derivatives} derivatives): {verdict}",
             f"  cost {self.initial_cost:.4g} -> {self.cost:.4g} m^2 in {self.iterations} iterations, "
@@ -342,7 +344,8 @@ class EditResult:
 
     def __repr__(self) -> str:
         return (
-            f"EditResult(success={self.success}, cost={self.cost:.3g}, max miss={np.max(self.distances):.3g} m, "
+            f"EditResult(success={self.success}, unique={self.unique}, cost={self.cost:.3g}, "
+            f"max miss={np.max(self.distances):.3g} m, "
             f"backend={self.backend!r}, iterations={self.iterations}, time={self.time:.3g} s)"
         )
 

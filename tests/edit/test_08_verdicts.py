@@ -72,10 +72,13 @@ def test_one_pair_cannot_fix_two_parameters_and_the_result_says_so():
     assert result.rank == 1
     assert "The solution is not unique" in result.message
     assert "rank 1 of 2" in result.report()
+    # A caller who reads only the flags is told too (a trial's one landmark and five free
+    # parameters came back success=True with a roll 3 deg off): unique is False, the verdict says so.
+    assert not result.unique and "success, not unique" in result.report() and "unique=False" in repr(result)
 
 
 def test_a_pair_per_parameter_pins_the_solution_down():
     field = refracta.LinearSquaredProfile()
     result = solve(field, (0.0, 1.5, 0.0), [PointPair((1.0, 1.5, 0.0), (1000.0, 3.0, 0.0))], free="alpha")
-    assert result.success and result.rank == 1
+    assert result.success and result.rank == 1 and result.unique
     assert "not unique" not in result.message

@@ -71,4 +71,4 @@ def test_the_sky_near_the_horizon_does_not_depend_on_max_length():
     camera = refracta.Camera(eye, (1e3, eye[1], 0.0), vfov=1.5, width=16, height=96)
     near, far = (refracta.render(scene, camera, air, spp=1, progress=False, max_length=m) for m in (5e3, 2e6))
     rows = np.abs(near - far).mean(axis=(1, 2)) / far.mean(axis=(1, 2))
-    assert rows.max() < 1e-3
+    assert rows.max() < 1e-3  # exits a trace's tol apart see skies far closer than 1e-3 (above); measured 3e-4

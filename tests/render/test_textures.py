@@ -66,9 +66,9 @@ def test_a_magnified_edge_is_a_bilinear_ramp_one_texel_wide(tmp_path):
     # Bilinear: the ramp spans the texel centres either side of the edge, 10 pixels (the pixel's own
     # width blurs each end by up to one more); the B-spline spread it over ~30.
     assert 9 <= len(ramp) <= 11
+    steps = np.abs(np.diff(profile[ramp[0] : ramp[-1] + 1]))
     # A straight ramp: each step the same, 0.1 of the swing a pixel, to the 16 samples' spread over
     # a pixel of a linear ramp (none: a pixel's mean of a line is its centre's value) and float.
-    steps = np.abs(np.diff(profile[ramp[0] : ramp[-1] + 1]))
     np.testing.assert_allclose(steps, 0.1, atol=2e-3)
 
 

@@ -174,3 +174,28 @@ def test_bad_below_horizon_raises_value_error():
     with pytest.raises(ValueError, match="ground_albedo must be 0 with below_horizon horizon"):
         refracta.Scene().set_physical_sky(SUN, ground_albedo=0.3)
     refracta.Scene().set_physical_sky(SUN, ground_albedo=0.3, below_horizon="ground")
+
+
+def test_a_sun_just_below_the_horizon_shines_by_the_grazing_column_and_one_further_down_not_at_all():
+    # On the ground a sun 0.5 deg below the horizon kept 1.8e-3 of its light at 700 nm (its column ran
+    # through the planet, read as ever denser air) while the aerial perspective gave it none (a
+    # trial). Within the horizon's refraction (33', astronomical_refraction of the standard air at
+    # 550 nm) the render's curved rays still reach it, so its light is the grazing column's: equal
+    # to a sun on the horizon's, in the sky and the aerial perspective alike; further down, none.
+    def sun(elevation_deg):
+        e = np.radians(elevation_deg)
+        return (np.cos(e), np.sin(e), 0.0)
+
+    lam = [450.0, 550.0, 700.0]
+    horizon = spectrum.PhysicalSky(sun(0.0), multiple_scattering=False).sun_transmittance(lam)
+    assert np.all(horizon > 0.0)
+    for elevation in (-0.2, -0.5):
+        sky = spectrum.PhysicalSky(sun(elevation), multiple_scattering=False)
+        # Both integrate the same horizontal column by the same rule: equal to rounding.
+        np.testing.assert_allclose(sky.sun_transmittance(lam), horizon, rtol=1e-12)
+        perspective = spectrum.AerialPerspective(sky)
+        # The aerial perspective's tabulated column at the ground: its table's interpolation (1e-3).
+        assert perspective.sun_transmittance(0.0, elevation, 700.0) == pytest.approx(horizon[2], rel=1e-3)
+    below = spectrum.PhysicalSky(sun(-0.6), multiple_scattering=False)
+    assert np.all(below.sun_transmittance(lam) == 0.0)
+    assert spectrum.AerialPerspective(below).sun_transmittance(0.0, -0.6, 700.0) == 0.0

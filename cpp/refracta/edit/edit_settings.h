@@ -152,6 +152,10 @@ struct SolveSummary {
   // other parameter values meet them as well (SolveSummary::message says so).
   double condition = 0.0;
   int rank = 0;
+  // Every pair met, and the pairs fix every free parameter (condition <= 1e6): no other values
+  // meet them as well. An underdetermined solve (one landmark, five free parameters) succeeds,
+  // but not uniquely.
+  bool unique = false;
   std::string solver_report;         // the back-end's own report of the run that gave the result
 };
 

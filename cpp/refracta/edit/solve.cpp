@@ -520,8 +520,9 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
   }
   // At a solution the misses vanish and the Jacobian says which parameter combinations they fix
   // (elsewhere it also carries the turning of the miss vectors, which says nothing about that).
-  if (unmet.empty() && jacobian_condition(*problem, result.x, &out.condition, &out.rank) &&
-      out.condition > kNonUniqueCondition) {
+  const bool conditioned = unmet.empty() && jacobian_condition(*problem, result.x, &out.condition, &out.rank);
+  out.unique = conditioned && out.condition <= kNonUniqueCondition;
+  if (conditioned && !out.unique) {
     out.message += concat(". The solution is not unique: the pairs fix ", out.rank, " of the ", problem->num_free(),
                           " free parameters' combinations (Jacobian rank ", out.rank, ", condition ", out.condition,
                           "); other values of ", concat_names(out.free), " meet them as well");

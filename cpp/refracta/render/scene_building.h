@@ -157,7 +157,9 @@ PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, std::optio
 // sky, importance-sampled over the whole sphere); 'ground' shows the Lambertian ground of
 // `ground_albedo` (which must be 0 with 'horizon'). And the sun: a disc of `sun_angular_diameter`
 // [deg] with linear limb darkening u, its radiance the 5778 K solar spectrum through the
-// atmosphere's extinction (reddened toward the horizon; none below it). Units: spectral radiance
+// atmosphere's extinction (reddened toward the horizon; within the horizon's refraction, 33', below
+// the planet's limb the grazing column's, as the render's curved rays still reach it; none further
+// below). Units: spectral radiance
 // W/(m^2 sr nm) in spectral renders, its CIE-Y-weighted mean in RGB (linear sRGB of XYZ / integral
 // ybar, as Color.illuminant: times 106.86 nm gives W/(m^2 sr)); RGB and spectral renders agree.
 // `scale` multiplies sky and sun (e.g. an exposure). Builds the sky's table (1-3 s; `build_sky`).

@@ -33,12 +33,13 @@ double t_to_elevation(double t) {
   return s >= 0.0 ? 0.5 * kPi * s * s : -kLowest * s * s;
 }
 
-// The sun's column from height h where it stands e above the horizon (nullopt: below the planet's limb).
+// The sun's column from height h where it stands e above the horizon (sun_column_direction: just
+// below the planet's limb the grazing one; nullopt further below).
 std::optional<Column> sun_column(double h, double e, int steps) {
-  const Vec3d p(0.0, kEarthRadius + std::max(h, 0.0), 0.0), d(std::cos(e), std::sin(e), 0.0);
-  // On the ground a sun below the horizon is hidden (hits_earth's strict test lets it through).
-  if (hits_earth(p, d) || (h <= 0.0 && e < 0.0)) return std::nullopt;
-  return column_to_top(p, d, steps);
+  const Vec3d p(0.0, kEarthRadius + std::max(h, 0.0), 0.0);
+  const auto d = sun_column_direction(p, Vec3d(std::cos(e), std::sin(e), 0.0));
+  if (!d) return std::nullopt;
+  return column_to_top(p, *d, steps);
 }
 
 }  // namespace

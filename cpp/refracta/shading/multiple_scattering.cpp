@@ -98,9 +98,7 @@ MultipleScattering::MultipleScattering(const AirComposition& composition, double
   table_.assign(size, 0.0);
   WorkControl control;
   auto sun_transmittance = [&](const Vec3d& sun, const Vec3d& p, double* out) {
-    // (On the ground with the sun below its horizon hits_earth's strict test passes: shadowed too,
-    // else the column would run through the planet.)
-    if (hits_earth(p, sun) || (p.dot(sun) < 0.0 && p.squaredNorm() <= kEarthRadius * kEarthRadius)) {
+    if (hits_earth(p, sun)) {
       std::fill(out, out + kNodes, 0.0);
       return false;
     }

@@ -201,8 +201,9 @@ PhysicalSky::PhysicalSky(const PhysicalSkySettings& settings) : settings_(settin
   const auto start = std::chrono::steady_clock::now();
   // Sun transmittance at the observer and the ground below the horizon.
   const Vec3d p0(0.0, kEarthRadius + settings_.altitude, 0.0);
-  const bool shadowed = hits_earth(p0, sun_);
-  const Column c0 = column_to_top(p0, sun_, 4 * kSunSteps);
+  const std::optional<Vec3d> sun_way = sun_column_direction(p0, sun_);
+  const bool shadowed = !sun_way;
+  const Column c0 = shadowed ? Column{} : column_to_top(p0, *sun_way, 4 * kSunSteps);
   const double ozone_density = settings_.ozone_du * kDobsonUnit / kOzoneHalfWidth;  // [1/m^3] at the peak
   for (int w = 0; w < kWavelengths; ++w) {
     const double l = wavelength(w);
