@@ -671,8 +671,9 @@ grey), ks (default 0), ns (default 1)). Its shading tangent (an anisotropic mate
 RoughConductor's alpha_u) runs around the +y axis, along the lines of latitude.)doc";
 inline constexpr const char mkd_doc_refracta_add_spot_light[] = R"doc(Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] (in
 (0, 360]) with `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives
-render_raster's 'embree' reference soft shadows of a disc that size. Returns its index among the
-spot lights.)doc";
+render_raster's 'embree' reference soft shadows of a disc that size. inner_angle [deg] in (0,
+angle]: a smooth falloff from it to angle (lights.SpotLight's, pbrt-v4's smoothstep); none: a hard
+edge. Returns its index among the spot lights.)doc";
 inline constexpr const char mkd_doc_refracta_area_light_normal[] = R"doc(The front normal of an area light's triangle (unit; 0 for a zero-area one; ValueError for an index
 past its triangles).)doc";
 inline constexpr const char mkd_doc_refracta_bsdf_f[] = R"doc(The BSDF value f(wo, wi) without the cosine [1/sr]: (N, 3) linear RGB, or (N, 4) per wavelength.

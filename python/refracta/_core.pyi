@@ -965,12 +965,13 @@ class Scene:
         grey), ks (default 0), ns (default 1)). Its shading tangent (an anisotropic material's u, e.g.
         RoughConductor's alpha_u) runs around the +y axis, along the lines of latitude.
         """
-    def add_spot_light(self, position: typing.Any, direction: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex = 60.0, intensity: typing.Any = (100.0, 100.0, 100.0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> int:
+    def add_spot_light(self, position: typing.Any, direction: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex = 60.0, intensity: typing.Any = (100.0, 100.0, 100.0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, *, inner_angle: typing.SupportsFloat | typing.SupportsIndex | None = None) -> int:
         """
         Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg] (in
         (0, 360]) with `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives
-        render_raster's 'embree' reference soft shadows of a disc that size. Returns its index among the
-        spot lights.
+        render_raster's 'embree' reference soft shadows of a disc that size. inner_angle [deg] in (0,
+        angle]: a smooth falloff from it to angle (lights.SpotLight's, pbrt-v4's smoothstep); none: a hard
+        edge. Returns its index among the spot lights.
         """
     def add_terrain(self, heights, origin = None, spacing = None, material = None, *, frame = None, earth_radius = None, orthophoto = None, water_level = None, water = None) -> TerrainGeometry:
         """

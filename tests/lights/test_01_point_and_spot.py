@@ -72,3 +72,24 @@ def test_spot_smoothstep_falloff_and_its_power():
     tt = np.clip((c - cos_o) / (cos_i - cos_o), 0, 1)
     power = 2 * np.pi * intensity * np.sum(tt * tt * (3 - 2 * tt)) * (edges[1] - edges[0])
     assert light.power == pytest.approx(power, rel=QUADRATURE)
+
+
+def test_scene_add_spot_light_takes_the_smooth_falloff_of_lights_spotlight():
+    # A trial against Mitsuba 3: only lights.SpotLight took inner_angle, the scene's shorthand made
+    # hard-edged spots alone. Now the same light either way: the same image to the bit.
+    import refracta
+
+    def floor_under(add):
+        scene = refracta.Scene()
+        scene.add_ground(0.0, 20.0, kd=0.5)
+        add(scene)
+        camera = refracta.Camera((0.0, 6.0, 0.01), (0.0, 0.0, 0.0), vfov=60.0, width=24, height=24)
+        return refracta.render(scene, camera, None, spp=2, progress=False)
+
+    args = ((0.0, 3.0, 0.0), (0.0, -1.0, 0.0), 60.0, (10.0, 10.0, 10.0))
+    shorthand = floor_under(lambda s: s.add_spot_light(*args, inner_angle=30.0))
+    assert np.array_equal(shorthand, floor_under(lambda s: s.add_light(SpotLight(*args, inner_angle=30.0))))
+    assert not np.array_equal(shorthand, floor_under(lambda s: s.add_spot_light(*args)))  # the hard edge
+    for bad in (-5.0, 0.0, 70.0, float("nan")):
+        with pytest.raises(ValueError, match=r"add_spot_light: inner_angle must be in \(0, angle = 60\]"):
+            refracta.Scene().add_spot_light(*args, inner_angle=bad)

@@ -123,12 +123,13 @@ void bind_scene_lights(SceneClass& scene) {
            py::arg("position"), py::arg("intensity"), DOC(refracta, add_point_light))
       .def("add_spot_light",
            [](RenderScene& s, const py::object& position, const py::object& direction, double angle,
-              const py::object& intensity, double radius) {
+              const py::object& intensity, double radius, std::optional<double> inner_angle) {
              return add_spot_light(s, to_point(position, "position"), to_point(direction, "direction"), angle,
-                                   to_illuminant(intensity, "intensity"), radius);
+                                   to_illuminant(intensity, "intensity"), radius, inner_angle);
            },
            py::arg("position"), py::arg("direction"), py::arg("angle") = 60.0,
-           py::arg("intensity") = py::make_tuple(100.0, 100.0, 100.0), py::arg("radius") = 0.0, DOC(refracta, add_spot_light))
+           py::arg("intensity") = py::make_tuple(100.0, 100.0, 100.0), py::arg("radius") = 0.0, py::kw_only(),
+           py::arg("inner_angle") = py::none(), DOC(refracta, add_spot_light))
       .def_property_readonly("lights", [](const RenderScene& s) { return s.lights(); });
 }
 

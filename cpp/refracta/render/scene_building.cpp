@@ -268,14 +268,18 @@ void set_sky(RenderScene& scene, const std::optional<Vec3d>& horizon, const std:
 }
 
 size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,
-                      const Color& intensity, double radius) {
+                      const Color& intensity, double radius, std::optional<double> inner_angle) {
   // The emitter's disc, for soft shadows: a kilometre is far beyond any lamp, and keeps the disc's
   // points, where shadow rays start, within the scene (a trial's 1e300 m turned them to NaN).
   constexpr double kWidestSpot = 1e3;  // [m]
   if (!(radius >= 0.0 && radius <= kWidestSpot)) {
     throw_invalid("spot light radius must be in [0, ", kWidestSpot, "] m (got ", radius, ")");
   }
-  const size_t index = scene.add_light(std::make_shared<SpotLight>(position, direction, angle, intensity));
+  if (inner_angle && !(*inner_angle > 0.0 && *inner_angle <= angle)) {
+    throw_invalid("add_spot_light: inner_angle must be in (0, angle = ", angle, "] degrees (got ", *inner_angle, ")");
+  }
+  const size_t index =
+      scene.add_light(std::make_shared<SpotLight>(position, direction, angle, intensity, inner_angle.value_or(-1.0)));
   if (radius > 0.0) scene.set_shadow_radius(index, radius);
   return scene.spots().size() - 1;
 }

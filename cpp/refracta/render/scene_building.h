@@ -124,10 +124,11 @@ size_t add_point_light(RenderScene& scene, const Vec3d& position, const Color& i
 
 // Add a spot light at `position` [m] shining along `direction` into a cone of full `angle` [deg]
 // (in (0, 360]) with `intensity` [W/sr per channel] (irradiance I cos / d^2); radius > 0 gives
-// render_raster's 'embree' reference soft shadows of a disc that size. Returns its index among the
-// spot lights.
+// render_raster's 'embree' reference soft shadows of a disc that size. inner_angle [deg] in
+// (0, angle]: a smooth falloff from it to angle (lights.SpotLight's, pbrt-v4's smoothstep); none: a
+// hard edge. Returns its index among the spot lights.
 size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& direction, double angle,
-                      const Color& intensity, double radius);
+                      const Color& intensity, double radius, std::optional<double> inner_angle = std::nullopt);
 
 // The sun (replacing any): direction toward it, disc radiance [W/(m^2 sr), RGB], angular diameter
 // [deg], limb darkening u (I(mu) = 1 - u (1 - mu)). Seen through the air along curved rays.
