@@ -184,10 +184,11 @@ class Caster {
   // Over a spherical Earth, a camera ray's path that ended in the air (after max_length) above every
   // object goes on through the air -- nothing is above it to meet -- to where it leaves the air
   // (escape_direction): its sky is seen there. Unchanged where it sinks under the objects on the
-  // way, and over a flat Earth. Shadow and bounce rays keep their ends: the sun reaches them
-  // through light sampling's exit map, and tracing the level ones on from the sea cost the cold
-  // sea 11 % and the Fata Morgana 13 % of their CPU for the sky near the horizon, which changes
-  // slowly (camera rays alone: no measurable cost, paired runs at 320 x 120).
+  // way, and over a flat Earth (turbulent air, whose perturbed walks end without it, is never over
+  // a spherical one: CurvedEarth takes height-only air). Shadow and bounce rays keep their ends:
+  // the sun reaches them through light sampling's exit map, and tracing the level ones on from the
+  // sea cost the cold sea 11 % and the Fata Morgana 13 % of their CPU for the sky near the
+  // horizon, which changes slowly (camera rays alone: no measurable cost, paired runs at 320 x 120).
   void continue_to_sky(PathEnd* end, double spread) const;
   // secondary: a shadow or bounce ray (cast without a spread of its own): the rest of its path may
   // go on straight above the bending air (straight_rest). s0 [m]: the arc length of the ray's
@@ -237,8 +238,9 @@ class Caster {
   // Height-only fields: where a ray at x moving along v leaves the air (at straight_above(), however
   // far: nothing is above it to meet) and its direction there -- or, in air with no such top, where
   // it ends after `remaining` [m] of path -- when it is above every object, rising, and cannot turn
-  // on the way (n stays above its invariant n(h) cos e); nullopt otherwise. spread: as cast's; over a spherical Earth
-  // the run (which turns the exit by run / R) is integrated to sagitta_pixels * spread * R.
+  // on the way (n stays above its invariant n(h) cos e); nullopt otherwise. spread: as cast's; over
+  // a spherical Earth the run (which turns the exit by run / R) is integrated to sagitta_pixels *
+  // spread * R.
   struct Escape {
     Vec3d direction, point;
     double length;  // path length from x to point [m]
