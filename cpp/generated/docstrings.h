@@ -143,8 +143,8 @@ inline constexpr const char mkd_doc_refracta_DisplaySettings_exposure[] = R"doc(
 inline constexpr const char mkd_doc_refracta_DisplaySettings_f_number[] = R"doc(a camera's f-number N (with shutter))doc";
 inline constexpr const char mkd_doc_refracta_DisplaySettings_iso[] = R"doc(a camera's ISO with shutter and f_number; None: ISO 100 (kDefaultIso))doc";
 inline constexpr const char mkd_doc_refracta_DisplaySettings_key[] = R"doc(Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the image,
-delta = kReinhardDelta times the mean luminance where that is below 1); given, it overrides any
-manual exposure; none: kAutoKey (0.18) when there is no manual exposure, else none.)doc";
+delta = kReinhardDelta times the mean luminance: exactly scale-free); given, it overrides any manual
+exposure; none: kAutoKey (0.18) when there is no manual exposure, else none.)doc";
 inline constexpr const char mkd_doc_refracta_DisplaySettings_luminous_efficacy[] = R"doc(K: luminance [cd/m^2] of an image value of 1 (EV100 and camera settings only): 683 lm/W for
 radiance in W/(m^2 sr).)doc";
 inline constexpr const char mkd_doc_refracta_DisplaySettings_shutter[] = R"doc([s] a camera's shutter time (with f_number); None: not this way)doc";

@@ -1371,8 +1371,8 @@ class DisplaySettings:
     def key(self) -> float | None:
         """
         Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the image,
-        delta = kReinhardDelta times the mean luminance where that is below 1); given, it overrides any
-        manual exposure; none: kAutoKey (0.18) when there is no manual exposure, else none.
+        delta = kReinhardDelta times the mean luminance: exactly scale-free); given, it overrides any manual
+        exposure; none: kAutoKey (0.18) when there is no manual exposure, else none.
         """
     @key.setter
     def key(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:

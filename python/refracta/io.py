@@ -7,9 +7,9 @@ Exposure c, the scale applied to the linear radiance first:
 
 - automatic, the default (no exposure argument): c = key / Lw_bar, Lw_bar = exp(mean(ln(delta +
   Lw))) the log-average luminance (Y of linear sRGB) of the image, key 0.18 (middle grey;
-  Reinhard et al. 2002, eq. 1-2; delta = 1e-6 times the mean luminance where that is below 1,
-  else 1e-6, so that black pixels keep the logarithm finite at any scale). A render of any scene
-  comes out with its average at middle grey, whatever the light's units. ``key`` (e.g. 0.09 for a
+  Reinhard et al. 2002, eq. 1-2; delta = 1e-6 times the mean luminance, so that black pixels
+  keep the logarithm finite at any scale). A render of any scene comes out with its average at
+  middle grey, whatever the light's units: c scales exactly as 1 / the units. ``key`` (e.g. 0.09 for a
   dusk, 0.36 for snow) sets the grey; given, it overrides the manual settings below.
 - manual: ``exposure`` (c itself), or photographic units: ``ev100``, or a camera's ``shutter`` [s]
   and ``f_number`` (with ``iso``, default 100): EV100 = log2(N^2 / t) - log2(ISO / 100) and
@@ -157,7 +157,8 @@ def write_image(
     luminous_efficacy: float | None = None,
     white_balance: str | float | tuple[float, float, float] | None = None,
 ) -> None:
-    """Write an (H, W, C) float image (C = 1..4; C = 2 and 4 carry alpha last).
+    """Write an (H, W, C) float image (C = 1..4; C = 2 and 4 carry alpha last, colour not
+    premultiplied by it; a format without alpha, JPEG, gets the colour alone).
 
     Float formats (.exr, .hdr, .tif) get the linear values times the manual exposure
     (exposure, ev100 or shutter/f_number/iso; none: unchanged, never automatic); display settings
@@ -166,7 +167,9 @@ def write_image(
     .jpg, ...) are encoded as to_display does -- by default automatically exposed (log-average
     to middle grey) and tone mapped by the ACES curve, see the module docstring -- and quantised to 8 bits.
     The display settings are a refracta.DisplaySettings (``display``, or its defaults) changed
-    by the other keywords, its fields (None: left as they are).
+    by the other keywords, its fields (None: left as they are). Radiance HDR keeps no negative
+    values (a UserWarning counts those written as 0; EXR, TIFF and PFM keep them); JPEG 2000 takes
+    images of at least 32 pixels a side.
     Raises refracta.IoError when the file cannot be written, ValueError for a bad image or option.
     """
     fields: dict[str, Any] = dict(exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white, ev100=ev100)
@@ -307,9 +310,12 @@ def read_image(path, linear: bool = False) -> np.ndarray:
 
     linear=False: the values as the file stores them: float files (EXR, HDR, PFM, float TIFF)
     their linear values, 8- and 16-bit files (PNG, JPEG, TIFF) their display-encoded values
-    scaled to [0, 1] (128 of 255 reads 0.502). linear=True: 8- and 16-bit files decoded from sRGB
-    to linear values, as textures and environment maps are (128 of 255 reads 0.216), alpha as
-    stored; float files as they are. Raises refracta.IoError for a missing or unreadable file.
+    scaled to [0, 1] (128 of 255 reads 0.502). linear=True: 8- and 16-bit files decoded to linear
+    values, as textures and environment maps are: by the transfer curve the file names (a PNG's
+    gAMA chunk: write_image's gamma='linear' PNGs read as stored, gamma=2.2 ones as v^2.2), else
+    from sRGB (128 of 255 reads 0.216); alpha as stored; float files as they are. WebP colour reads
+    straight (not premultiplied by alpha), as every other format's. Raises refracta.IoError for a
+    missing or unreadable file.
     """
     if not is_flag(linear):
         raise ValueError(f"read_image: linear must be True or False (got {linear!r})")

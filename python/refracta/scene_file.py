@@ -805,7 +805,8 @@ def load_scene(path, size=None) -> SceneFile:
 
     cam = data["camera"]
     _check_keys(cam, CAMERA_KEYS, where, "camera", "[camera]")
-    size = get(cam, "camera", "size", _image_size, [640, 360]) if size is None else size
+    # No size: the camera's own default (Camera's 640 x 360, a lens's sensor shape 960 px long).
+    size = get(cam, "camera", "size", _image_size, [None, None]) if size is None else size
     # A field of view, or a lens on a sensor; a thin lens from either (f_number with the focal
     # length, aperture_diameter with vfov).
     for a, b in (
@@ -830,7 +831,7 @@ def load_scene(path, size=None) -> SceneFile:
     if "sensor_mm" in cam:
         lens["sensor_mm"] = tuple(get(cam, "camera", "sensor_mm", lambda v: _number_list(v, 2)))
     focal_length = get(cam, "camera", "focal_length_mm", _real)
-    vfov = get(cam, "camera", "vfov", _real, 45.0)
+    vfov = get(cam, "camera", "vfov", _real)
     aperture = get(cam, "camera", "aperture_diameter", _real)
     try:
         if focal_length is not None:
@@ -838,7 +839,8 @@ def load_scene(path, size=None) -> SceneFile:
                 position, look_at, focal_length, width=size[0], height=size[1], up=up, **lens
             )
         else:
-            camera = _core.Camera(position, look_at, up, vfov, size[0], size[1])
+            view = {} if vfov is None else {"vfov": vfov}  # none: Camera's default
+            camera = _core.Camera(position, look_at, up, width=size[0], height=size[1], **view)
             if aperture is not None:
                 if "focus_distance" not in lens:
                     raise where.error("needs focus_distance", "camera", "aperture_diameter")

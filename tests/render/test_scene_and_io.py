@@ -95,18 +95,24 @@ def test_image_files_round_trip(tmp_path):
     refracta.io.write_image(tmp_path / "b.png", flat * 0.25, tonemap="linear", gamma="linear", exposure=2.0)
     # 8-bit PNG: half a level, plus float slack.
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "b.png"), 128 / 255, atol=0.6 / 255)
-    # linear=True decodes the 8-bit file from sRGB (IEC 61966-2-1: 0.50196 -> 0.21586); 8-bit: half
-    # a level's slope there (0.0021 per level), plus float slack.
-    np.testing.assert_allclose(refracta.io.read_image(tmp_path / "b.png", linear=True), 0.21586, atol=1.1e-3)
+    # linear=True: a PNG whose gAMA chunk says linear (gamma="linear") as stored; 8-bit: half a
+    # level, plus float slack.
+    np.testing.assert_allclose(refracta.io.read_image(tmp_path / "b.png", linear=True), 128 / 255, atol=0.6 / 255)
+    # An sRGB PNG decoded from sRGB (IEC 61966-2-1: 0.21586 -> 0.50196 -> 0.21586); 8-bit: half a
+    # level's slope there (0.0021 per level), plus float slack.
+    refracta.io.write_image(tmp_path / "s.png", flat * 0.21586, tonemap="linear", exposure=1.0)
+    np.testing.assert_allclose(refracta.io.read_image(tmp_path / "s.png", linear=True), 0.21586, atol=1.1e-3)
     # A float file is linear already.
     np.testing.assert_array_equal(refracta.io.read_image(tmp_path / "a.exr", linear=True), image)
 
 
 def test_read_image_linear_keeps_alpha(tmp_path):
     rgba = np.full((2, 3, 4), 0.5, np.float32)
-    refracta.io.write_image(tmp_path / "c.png", rgba, tonemap="linear", gamma="linear", exposure=1.0)
+    rgba[..., :3] = 0.21586
+    refracta.io.write_image(tmp_path / "c.png", rgba, tonemap="linear", exposure=1.0)
     linear = refracta.io.read_image(tmp_path / "c.png", linear=True)
-    # Colour decoded (128/255 -> 0.2159; half a level's slope, plus float slack), alpha as stored.
+    # Colour sRGB-encoded and decoded (0.2159 -> 128/255 -> 0.2159; half a level's slope, plus
+    # float slack), alpha as stored.
     np.testing.assert_allclose(linear[..., :3], 0.21586, atol=1.1e-3)
     # The alpha: 8-bit, half a level plus float slack.
     np.testing.assert_allclose(linear[..., 3], 128 / 255, atol=0.6 / 255)

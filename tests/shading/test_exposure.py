@@ -11,9 +11,9 @@ from refracta import io
 
 # Display values are float32: a few ulps of 1.
 FLOAT_TOLERANCE = 2e-7
-# The log-average adds delta = 1e-6 to each luminance: an image of luminance L gets a / (L + 1e-6)
-# instead of a / L, 1e-6 / L relative (1e-4 at L = 0.01, the darkest image below).
-DELTA_REL = 1.1e-4
+# The log-average adds delta = 1e-6 times the mean luminance to each: an image of uniform
+# luminance L gets a / (L (1 + 1e-6)) instead of a / L, 1e-6 relative at any L.
+DELTA_REL = 1.1e-6
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 
 # Hill's fit of the ACES RRT + sRGB ODT (BakingLab ACES.hlsl), with three.js's 1/0.6 boost:
@@ -69,8 +69,8 @@ def test_04_automatic_exposure_is_the_default_and_puts_the_log_average_at_middle
     image = np.full((4, 5, 3), luminance, np.float32)
     assert io.exposure_of(image) == pytest.approx(0.18 / luminance, rel=DELTA_REL)
     # Any brightness displays the same, ACES of middle grey (exactly: of 0.18 L / (L + delta), delta
-    # 1e-6 of the mean luminance below a mean of 1, else 1e-6).
-    scaled = 0.18 * luminance / (luminance + 1e-6 * min(luminance, 1.0))
+    # 1e-6 of the mean luminance).
+    scaled = 0.18 * luminance / (luminance + 1e-6 * luminance)
     np.testing.assert_allclose(
         io.to_display(image, gamma="linear")[0, 0], aces_reference([scaled] * 3), atol=FLOAT_TOLERANCE
     )

@@ -23,7 +23,7 @@ using Side = std::optional<int>;  // an image side that may be left out (Camera:
 
 // A photographic camera's image: a side left out follows the sensor's shape.
 std::pair<int, int> photo_size(Side width, Side height, const Sensor& sensor_mm) {
-  return Camera::image_size(width, height, kPhotoWidth, kPhotoHeight, sensor_mm.first / sensor_mm.second);
+  return Camera::photographic_size(width, height, sensor_mm.first, sensor_mm.second);
 }
 
 double photographic_vfov_of(double focal_length_mm, const Sensor& sensor_mm, int width, int height) {

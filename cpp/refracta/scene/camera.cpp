@@ -83,6 +83,13 @@ std::pair<int, int> Camera::image_size(std::optional<int> width, std::optional<i
   return width ? std::pair(*width, made) : std::pair(made, *height);
 }
 
+std::pair<int, int> Camera::photographic_size(std::optional<int> width, std::optional<int> height,
+                                              double sensor_w_mm, double sensor_h_mm) {
+  const double aspect = sensor_w_mm / sensor_h_mm;
+  if (!width && !height) (aspect >= 1.0 ? width : height) = CameraDefaults::kPhotoWidth;
+  return image_size(width, height, CameraDefaults::kPhotoWidth, CameraDefaults::kPhotoHeight, aspect);
+}
+
 Camera Camera::photographic(const Vec3d& position, const Vec3d& look_at, const Vec3d& up, double focal_length_mm,
                             double sensor_w_mm, double sensor_h_mm, int width, int height,
                             std::optional<double> f_number, std::optional<double> focus_distance) {
@@ -194,7 +201,12 @@ Camera Camera::framing(const Vec3d& lower, const Vec3d& upper, const Vec3d& dire
   const double half_v = 0.5 * degrees_to_radians(vfov_deg);
   const double half_h = std::atan(std::tan(half_v) * width / height);
   const double distance = radius / std::sin(std::min(half_v, half_h));
-  return Camera(centre - distance * direction.normalized(), centre, up, vfov_deg, width, height);
+  const Vec3d position = centre - distance * direction.normalized();
+  if (!within_reach(position)) {  // said here: the constructor would blame a position the caller never gave
+    throw_invalid("Camera.framing: a vfov of ", vfov_deg, " deg frames the bounds from ", distance,
+                  " m away, beyond the scene's reach (", kSceneReach, " m): give a wider vfov");
+  }
+  return Camera(position, centre, up, vfov_deg, width, height);
 }
 
 Vec3d Camera::direction(double u, double v) const {

@@ -31,8 +31,8 @@ constexpr int kMaxImageSide = 1 << 24;
 
 // The cameras' defaults, where Python leaves them out: Camera(...) and Camera.framing a 45 deg
 // view on a 16:9 image of 640 x 360; the photographic cameras (photographic, eye_level) a
-// full-frame 36 x 24 mm sensor and a 3:2 image of 960 x 640, eye_level a 50 mm lens 1.6 m above
-// the ground (a standing adult's eye).
+// full-frame 36 x 24 mm sensor and an image of its shape 960 px along its longer side (960 x 640
+// on it), eye_level a 50 mm lens 1.6 m above the ground (a standing adult's eye).
 struct CameraDefaults {
   static constexpr double kVfov = 45.0;  // [deg]
   static constexpr int kWidth = 640, kHeight = 360;
@@ -61,6 +61,12 @@ class Camera {
   // 640 x 360 default). Throws (ValueError) for a side it makes beyond an int.
   static std::pair<int, int> image_size(std::optional<int> width, std::optional<int> height, int default_width,
                                         int default_height, double aspect);
+  // The image of a photographic camera (photographic, eye_level) on a sensor of the given sides:
+  // image_size at the sensor's shape; both sides missing, kPhotoWidth pixels along the sensor's
+  // longer side (36 x 24 mm: 960 x 640; 24 x 36 mm: 640 x 960 and 17.3 x 13 mm: 960 x 721, not
+  // a 3:2 crop of them).
+  static std::pair<int, int> photographic_size(std::optional<int> width, std::optional<int> height,
+                                               double sensor_w_mm, double sensor_h_mm);
 
   // A camera that shows a whole scene (or box): it looks along ``direction`` (default: down
   // onto the box from its +x, +y, +z side) at the centre of the scene's box, from the distance at

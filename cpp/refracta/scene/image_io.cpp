@@ -7,9 +7,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 
 namespace refracta {
@@ -85,15 +87,61 @@ bool is_float_format(const std::string& path) {
   return ext == ".exr" || ext == ".hdr" || ext == ".pfm" || ext == ".tif" || ext == ".tiff";
 }
 
+bool keeps_negative_values(const std::string& path) { return extension(path) != ".hdr"; }
+
 void check_image_format(const std::string& path) {
   if (!OIIO::ImageOutput::create(path)) throw IoError(concat("cannot write '", path, "': ", OIIO::geterror()));
 }
 
-void write_image(const std::string& path, const Image& image, const std::string& colour_space) {
-  if (image.width < 1 || image.height < 1) throw_invalid("write_image: the image is empty");
+namespace {
+
+// OpenJPEG's default of 6 resolution levels needs 2^5 pixels a side: OIIO 2.4 wrote a smaller
+// image as a 77-byte header and reported success.
+constexpr int kSmallestJpeg2000Side = 32;
+
+// `image` without its alpha (the last of 2 or 4 channels).
+Image without_alpha(const Image& image) {
+  Image out(image.width, image.height, image.channels - 1);
+  const size_t count = size_t(image.width) * size_t(image.height);
+  for (size_t i = 0; i < count; ++i) {
+    std::copy_n(&image.pixels[i * image.channels], out.channels, &out.pixels[i * out.channels]);
+  }
+  return out;
+}
+
+// OIIO 2.4's WebP writer divides the colour by alpha (in a 2.2-gamma approximation of linear
+// light) whatever oiio:UnassociatedAlpha says, taking its input as premultiplied: a straight 0.5
+// grey at alpha 0.5 was stored as white. Multiplying by alpha^(1/2.2) first undoes that.
+Image premultiplied_for_webp(Image image) {
+  constexpr double kWriterGamma = 2.2;
+  const size_t count = size_t(image.width) * size_t(image.height);
+  for (size_t i = 0; i < count; ++i) {
+    float* p = &image.pixels[i * image.channels];
+    const float scale = float(std::pow(std::clamp(double(p[3]), 0.0, 1.0), 1.0 / kWriterGamma));
+    for (int c = 0; c < 3; ++c) p[c] *= scale;
+  }
+  return image;
+}
+
+}  // namespace
+
+void write_image(const std::string& path, const Image& given, const std::string& colour_space) {
+  if (given.width < 1 || given.height < 1) throw_invalid("write_image: the image is empty");
   check_writable(path);
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw IoError(concat("cannot write '", path, "': ", OIIO::geterror()));
+  const std::string format_name = out->format_name();
+  if (format_name == "jpeg2000" && std::min(given.width, given.height) < kSmallestJpeg2000Side) {
+    throw_invalid("write_image: JPEG 2000 needs at least ", kSmallestJpeg2000Side, " pixels a side (got ", given.width,
+                  " x ", given.height, "): write a PNG or an EXR");
+  }
+  // Alpha goes where the format keeps it: a format without (JPEG) gets the colour alone (its
+  // writer stored a grey image's alpha as a second colour channel: green).
+  const bool alpha = given.channels == 2 || given.channels == 4;
+  std::optional<Image> adapted;
+  if (alpha && !out->supports("alpha")) adapted = without_alpha(given);
+  if (alpha && format_name == "webp") adapted = premultiplied_for_webp(given);
+  const Image& image = adapted ? *adapted : given;
   const OIIO::TypeDesc format = is_float_format(path) ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
   OIIO::ImageSpec spec(image.width, image.height, image.channels, format);
   // Colours are not premultiplied by alpha (to_display's are what a PNG stores): OIIO would divide
@@ -187,15 +235,32 @@ Image read_image(const std::string& path) {
   if (!read || reports_truncation(trouble)) {
     throw IoError(concat("cannot read '", path, "' (damaged or truncated?): ", trouble));
   }
+  // OIIO 2.4's WebP reader multiplies the colour by alpha whatever oiio:UnassociatedAlpha asks
+  // (0.5 grey at alpha 0.5 read 0.25): divided back, as every other format reads straight.
+  if (std::string(in->format_name()) == "webp" && image.channels == 4) {
+    for (size_t i = 0; i < image.pixels.size(); i += 4) {
+      const float a = image.pixels[i + 3];
+      for (int c = 0; c < 3 && a > 0.0f; ++c) image.pixels[i + c] = std::min(image.pixels[i + c] / a, 1.0f);
+    }
+  }
   in->close();
   return image;
 }
 
-bool stores_encoded_colour(const std::string& path) {
+double stored_gamma(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw IoError(concat("cannot read '", path, "': ", OIIO::geterror()));
-  const OIIO::TypeDesc::BASETYPE stored = OIIO::TypeDesc::BASETYPE(in->spec().format.basetype);
-  return stored == OIIO::TypeDesc::UINT8 || stored == OIIO::TypeDesc::UINT16;
+  const OIIO::ImageSpec& spec = in->spec();
+  const OIIO::TypeDesc::BASETYPE stored = OIIO::TypeDesc::BASETYPE(spec.format.basetype);
+  if (stored != OIIO::TypeDesc::UINT8 && stored != OIIO::TypeDesc::UINT16) return 1.0;
+  // OIIO names a PNG's gAMA chunk (a TGA's gamma) "GammaCorrected<g>" or "Gamma<g>" with oiio:Gamma
+  // g, and a gAMA of 1 "linear"; the sRGB chunk, or no word at all, leaves the convention.
+  std::string space = spec.get_string_attribute("oiio:ColorSpace");
+  std::transform(space.begin(), space.end(), space.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (space == "linear") return 1.0;
+  const double gamma = spec.get_float_attribute("oiio:Gamma", 0.0);
+  if (space.rfind("gamma", 0) == 0 && gamma > 0.0 && std::isfinite(gamma)) return gamma;
+  return 0.0;
 }
 
 }  // namespace refracta

@@ -23,6 +23,9 @@ void check_png_complete(const std::string& path);
 void check_writable(const std::string& path);
 // True for formats that keep linear floating point (EXR, HDR, PFM, TIFF).
 bool is_float_format(const std::string& path);
+// False for Radiance HDR, whose RGBE floats have no sign: its writer stores negative values
+// (spectral renders hold some) as 0.
+bool keeps_negative_values(const std::string& path);
 // Writes pixels as they are: float formats keep them, others are quantised to 8 bits by OIIO
 // (so encode them for display first). `colour_space`, if given, is stored as the file's colour
 // space (OIIO's oiio:ColorSpace: "sRGB" gives a PNG its sRGB chunk, "linear" or
@@ -33,9 +36,12 @@ void write_image(const std::string& path, const Image& image, const std::string&
 void check_image_format(const std::string& path);
 // Any format OIIO reads, as float in the file's channel count. Throws IoError.
 Image read_image(const std::string& path);
-// Whether the file stores 8- or 16-bit integers: by convention sRGB-encoded colour (textures and
-// environment maps decode it), where float files hold linear values. Throws IoError.
-bool stores_encoded_colour(const std::string& path);
+// How the file encodes colour, for decoding it to linear values (textures, environment maps,
+// read_image(linear=True)): 1 for linear values (float files; 8- and 16-bit files whose header
+// says linear, as write_image's gamma='linear' PNGs do), g for a power law v = c^(1/g) the header
+// names (a PNG's gAMA chunk: gamma=2.2), 0 for sRGB (8- and 16-bit files by convention).
+// Throws IoError.
+double stored_gamma(const std::string& path);
 // A float file (EXR: layers by channel name, e.g. "R", "G", "B", "distance.Y", "position.X") with
 // one name per channel, the pixels as they are. Throws IoError, std::invalid_argument.
 void write_image_channels(const std::string& path, const Image& image, const std::vector<std::string>& names);

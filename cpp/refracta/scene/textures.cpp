@@ -96,7 +96,7 @@ std::string prepare(const std::string& path, int* channels) {
   const auto size = fs::file_size(path, error);
   if (error) throw IoError(concat("no such texture file: '", path, "'"));
   const auto time = fs::last_write_time(path, error).time_since_epoch().count();
-  constexpr int kPreparation = 2;  // 2: sRGB decoded by the stored format, colour channels only
+  constexpr int kPreparation = 3;  // 3: decoded by the header's transfer (stored_gamma), colour channels only
   const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time, "|v", kPreparation));
   const fs::path prepared = fs::path(texture_cache_folder()) / concat(std::hex, key, ".exr");
 
@@ -132,14 +132,14 @@ std::string prepare(const std::string& path, int* channels) {
   if (non_finite > 0) {
     throw IoError(concat("texture '", path, "' has ", non_finite, " NaN or infinite texel values; textures must be finite"));
   }
-  // 8- and 16-bit images store sRGB-encoded colour: filter in linear light. The format as stored,
-  // from the header: read as float, the buffer's own is float (and a PNG's 128 stayed 0.502).
-  const OIIO::TypeDesc stored = header.format;
+  // 8- and 16-bit images store encoded colour (stored_gamma: sRGB unless the header names another
+  // transfer): filter in linear light. The format as stored, from the header: read as float, the
+  // buffer's own is float (and a PNG's 128 stayed 0.502).
+  const double gamma = stored_gamma(path);
   OIIO::ImageBuf linear = *channels == header.nchannels ? source : OIIO::ImageBufAlgo::channels(source, *channels, {});
-  if (stored.basetype == OIIO::TypeDesc::UINT8 || stored.basetype == OIIO::TypeDesc::UINT16) {
-    linear = OIIO::ImageBufAlgo::colorconvert(linear, "sRGB", "linear");
-    if (linear.has_error()) throw IoError(concat("texture '", path, "': ", linear.geterror()));
-  }
+  if (gamma == 0.0) linear = OIIO::ImageBufAlgo::colorconvert(linear, "sRGB", "linear");
+  if (gamma > 0.0 && gamma != 1.0) linear = OIIO::ImageBufAlgo::pow(linear, float(gamma));
+  if (linear.has_error()) throw IoError(concat("texture '", path, "': ", linear.geterror()));
   // The source's ICC profile describes its encoded colours, not the linear copy; OpenEXR has no
   // place for it either (OIIO would print "Don't know what to do with ... ICCProfile").
   linear.specmod().erase_attribute("ICCProfile.*");

@@ -290,12 +290,13 @@ double log_average_luminance(const Image& image) {
   const size_t count = size_t(image.width) * image.height;
   if (count == 0) return 0.0;
   double sum = 0.0, scaled[3];
-  // delta in the image's own units where they are small (a mean luminance below 1): a scene scaled
-  // by 1e-7 was exposed to half its key and one scaled by 1e-9 came out black (a trial), as the
-  // constant delta outweighed every pixel. At a mean of 1 or more, Reinhard's constant itself.
+  // delta in the image's own units (Reinhard's constant times the mean luminance), so the exposure
+  // scales exactly with the light's units: a constant delta outweighed every pixel of a scene
+  // scaled by 1e-9 (it came out black), and, capped at 1, moved the exposure of an image with 5 %
+  // black pixels by 1.3x between units of 1 and 683 (two trials).
   for (size_t i = 0; i < count; ++i) sum += luminance(&image.pixels[i * image.channels], colour, 1.0, scaled);
   const double mean = sum / double(count);
-  const double delta = kReinhardDelta * (mean > 0.0 ? std::min(mean, 1.0) : 1.0);
+  const double delta = kReinhardDelta * (mean > 0.0 ? mean : 1.0);
   sum = 0.0;
   for (size_t i = 0; i < count; ++i) sum += std::log(delta + luminance(&image.pixels[i * image.channels], colour, 1.0, scaled));
   return std::exp(sum / double(count));
@@ -361,10 +362,12 @@ double srgb_decode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0
 
 Image read_linear_image(const std::string& path) {
   Image image = read_image(path);
-  if (!stores_encoded_colour(path)) return image;
+  const double gamma = stored_gamma(path);
+  if (gamma == 1.0) return image;
   const int colours = colour_channels(image.channels);  // alpha (2nd of 2, 4th of 4) as stored
   for (size_t i = 0; i < image.pixels.size(); ++i) {
-    if (int(i % size_t(image.channels)) < colours) image.pixels[i] = float(srgb_decode(image.pixels[i]));
+    float& v = image.pixels[i];
+    if (int(i % size_t(image.channels)) < colours) v = float(gamma > 0.0 ? std::pow(double(v), gamma) : srgb_decode(v));
   }
   return image;
 }

@@ -100,7 +100,7 @@ struct DisplaySettings {
   // The default: ACES, a photographic film curve (io.py says why, with figures).
   Tonemap tonemap = Tonemap::kAces;
   // Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the
-  // image, delta = kReinhardDelta times the mean luminance where that is below 1); given, it
+  // image, delta = kReinhardDelta times the mean luminance: exactly scale-free); given, it
   // overrides any manual exposure; none: kAutoKey (0.18) when there is no manual exposure, else none.
   std::optional<double> key;
   // Reinhard: L_white of eq. 4, Ld = min(1, L (1 + L / L_white^2) / (1 + L)), the smallest scaled
@@ -165,9 +165,10 @@ float tonemap(float radiance, float exposure, Tonemap mode);
 float srgb_encode(float linear);
 double srgb_decode(double encoded);
 
-// An image file's linear values (OIIO reads any format): 8- and 16-bit files hold sRGB-encoded
-// colour by convention (textures and environment maps decode it), decoded here, alpha (the 2nd
-// of 2 channels, the 4th of 4) as stored; float files as they are. Throws IoError.
+// An image file's linear values (OIIO reads any format): 8- and 16-bit files decoded by the
+// transfer their header names (stored_gamma: a PNG's gAMA chunk, "linear"), else from sRGB, the
+// convention for textures and environment maps; alpha (the 2nd of 2 channels, the 4th of 4) as
+// stored; float files as they are. Throws IoError.
 Image read_linear_image(const std::string& path);
 
 }  // namespace refracta
