@@ -7,12 +7,16 @@
 #include "refracta/edit/templated_field.h"
 
 #include <ceres/dynamic_autodiff_cost_function.h>
-#include <ceres/dynamic_numeric_diff_cost_function.h>
+#include <ceres/dynamic_cost_function.h>
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <tuple>
+#include <vector>
 
 namespace refracta {
 
@@ -153,14 +157,70 @@ struct FieldPairCost : PairCostBase {
   FieldPairCost(PairCostBase base, FieldPtr field) : PairCostBase(std::move(base)), field(std::move(field)) {}
 
   bool operator()(double const* const* parameters, double* residuals) const {
-    return context->guarded([&] {
-      Vec3d direction;
-      const FieldPtr at = field->with_param_values(field_values(parameters[0], &direction));
-      const PairMiss<double> miss = pair_miss_along<double>(*at, pair, direction, options, context->cancel);
-      record(miss);
-      write_residuals(miss, pair, residuals);
-    });
+    return context->guarded([&] { evaluate(parameters, residuals); });
   }
+
+  // As operator(), but a failure is not recorded: a derivative's probe step may leave the model's
+  // domain where the point itself is inside it.
+  bool quietly(double const* const* parameters, double* residuals) const {
+    try {
+      evaluate(parameters, residuals);
+      return true;
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
+
+ private:
+  void evaluate(double const* const* parameters, double* residuals) const {
+    Vec3d direction;
+    const FieldPtr at = field->with_param_values(field_values(parameters[0], &direction));
+    const PairMiss<double> miss = pair_miss_along<double>(*at, pair, direction, options, context->cancel);
+    record(miss);
+    write_residuals(miss, pair, residuals);
+  }
+};
+
+// Numeric derivatives of a FieldPairCost: central differences with Ceres' step (relative
+// kRelativeStep, at least sqrt(epsilon)), one-sided where one of the two steps leaves the
+// model's domain -- a parameter on its edge, as humidity's default 0: Ceres' central step to
+// -1.5e-8 failed every solve and Jacobian with humidity free (a trial). The relative step
+// balances truncation against the trace's tolerance-level noise.
+class NumericPairCost final : public ceres::DynamicCostFunction {
+ public:
+  explicit NumericPairCost(std::unique_ptr<FieldPairCost> cost) : cost_(std::move(cost)) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    if (!(*cost_)(parameters, residuals)) return false;
+    if (jacobians == nullptr || jacobians[0] == nullptr) return true;
+    constexpr double kRelativeStep = 1e-5;
+    const int m = parameter_block_sizes()[0];
+    std::vector<double> x(parameters[0], parameters[0] + m);
+    const double* at[] = {x.data()};
+    double ahead[3], behind[3];
+    for (int j = 0; j < m; ++j) {
+      const double x0 = x[size_t(j)];
+      const double h = std::max(std::sqrt(std::numeric_limits<double>::epsilon()), kRelativeStep * std::abs(x0));
+      x[size_t(j)] = x0 + h;
+      const bool up = cost_->quietly(at, ahead);
+      x[size_t(j)] = x0 - h;
+      const bool down = cost_->quietly(at, behind);
+      x[size_t(j)] = x0;
+      if (!up && !down) {
+        x[size_t(j)] = x0 + h;
+        return (*cost_)(at, ahead);  // false, with the reason recorded
+      }
+      for (int k = 0; k < 3; ++k) {
+        jacobians[0][k * m + j] = up && down ? (ahead[k] - behind[k]) / (2.0 * h)
+                                  : up       ? (ahead[k] - residuals[k]) / h
+                                             : (residuals[k] - behind[k]) / h;
+      }
+    }
+    return true;
+  }
+
+ private:
+  std::unique_ptr<FieldPairCost> cost_;
 };
 
 template <class Cost>
@@ -210,13 +270,7 @@ std::vector<std::unique_ptr<ceres::CostFunction>> make_pair_costs(
                                m));
       });
     } else {
-      // Central differences; the relative step balances truncation against the trace's
-      // tolerance-level noise.
-      ceres::NumericDiffOptions numeric;
-      numeric.relative_step_size = 1e-5;
-      costs.push_back(finish(new ceres::DynamicNumericDiffCostFunction<FieldPairCost, ceres::CENTRAL>(
-                                 new FieldPairCost(base, field), ceres::TAKE_OWNERSHIP, numeric),
-                             m));
+      costs.push_back(finish(new NumericPairCost(std::make_unique<FieldPairCost>(base, field)), m));
     }
   }
   return costs;

@@ -87,7 +87,10 @@ PairMiss<T> pair_miss_along(const Field& field, const PointPair& pair, const Vec
     stepper.keep_within(&regions);
     end = march(field, x0, t0, trace, stepper, visit);
   }
-  if (!best_a) best_a = end.end;  // no segment at all (cannot happen for a valid pair)
+  if (!best_a) {  // no segment at all: the eye on the ground (stop_height) looking down
+    best_a = end.end;
+    best = (node_values(end.end).x - pair.source).norm();  // a trial: the distance was inf
+  }
 
   PairMiss<T> out;
   Vec3<T> x, tangent;

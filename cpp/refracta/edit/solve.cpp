@@ -78,24 +78,45 @@ bool negligible(const std::vector<double>& effect, int j) {
   return effect[j] == 0.0 || effect[j] <= kInsensitive * largest;
 }
 
-// The free parameters no pair depends on: negligible at the start and at the centre of the bounds.
-// At the start alone a parameter can be idle only there -- the default air's surface_depth while
-// its surface_dt is 0, a hot spot's x and z while its dt is 0 -- and was held fixed, so that the
-// solve then reported no answer where one lay inside the bounds (a trial).
+// The free parameters no pair depends on: negligible at the start and at every probe -- the
+// centre of the bounds, then each free parameter alone moved to a quarter and three quarters of
+// its search box (the unit box: geometric for log-searched ones) -- probes evaluated only while a
+// parameter is still negligible at every one before them. At the start alone a parameter can be
+// idle only there -- the default air's surface_depth while its surface_dt is 0, a hot spot's x
+// and z while its dt is 0 -- and was held fixed, so that the solve then reported no answer where
+// one lay inside the bounds (a trial); at the centre too where that is the same idle value (an
+// inversion_dt bounded by [-30, 30] K idles inversion_base and inversion_thickness at both:
+// another trial), and moving every parameter at once put the layer kilometres above the paths.
 std::vector<std::string> insensitive_params(const EditProblem& problem) {
   const std::vector<double> at_start = effects_at(problem, problem.start());
   if (at_start.empty()) return {};
   const int m = problem.num_free();
+  std::vector<bool> idle(size_t(m), false);
+  for (int j = 0; j < m; ++j) idle[size_t(j)] = negligible(at_start, j);
+  std::vector<std::vector<double>> probes;
   std::vector<double> centre = problem.start();
   for (int j = 0; j < m; ++j) {
     const double mid = 0.5 * (problem.lower()[j] + problem.upper()[j]);
     if (std::isfinite(mid)) centre[size_t(j)] = mid;
   }
-  const std::vector<double> at_centre = effects_at(problem, centre);
+  probes.push_back(centre);
+  for (int k = 0; k < m; ++k) {
+    for (const double u : {0.25, 0.75}) {
+      std::vector<double> probe = problem.start();
+      probe[size_t(k)] = problem.from_unit(k, u);
+      probes.push_back(probe);
+    }
+  }
+  for (const std::vector<double>& probe : probes) {
+    if (std::none_of(idle.begin(), idle.end(), [](bool b) { return b; })) break;
+    const std::vector<double> effect = effects_at(problem, probe);
+    if (effect.empty()) continue;  // the pairs cannot be traced there
+    for (int j = 0; j < m; ++j) idle[size_t(j)] = idle[size_t(j)] && negligible(effect, j);
+  }
   std::vector<std::string> out;
   const auto names = problem.free_names();
   for (int j = 0; j < m; ++j) {
-    if (negligible(at_start, j) && (at_centre.empty() || negligible(at_centre, j))) out.push_back(names[j]);
+    if (idle[size_t(j)]) out.push_back(names[j]);
   }
   return out;
 }
@@ -120,6 +141,16 @@ class Strategy {
       : problem_(problem), settings_(settings), budget_(budget), out_(out) {}
 
   BackendResult run() {
+    if (budget_.exhausted() == StopReason::kTimeLimit) {
+      // The time ran out while the start was measured: the result is the start, with no stage
+      // begun (a local solve's first evaluation, no longer interrupted, ran to its end).
+      stopped("the first stage");
+      BackendResult start;
+      start.x = problem_.start();
+      start.stopped = StopReason::kTimeLimit;
+      start.message = "the start, measured; stopped by the time limit";
+      return start;
+    }
     if (settings_.strategy == SolveStrategy::kLocal) {
       Attempt attempt = local(problem_.start(), remaining_settings());
       if (attempt.result.stopped != StopReason::kNone) stage("local from the start", attempt);
@@ -305,8 +336,11 @@ constexpr double kRankTolerance = 1e-8;
 // the strongest direction's effect, beneath the misses accept_angle allows.
 constexpr double kNonUniqueCondition = 1e6;
 
-// Condition number and rank of the Jacobian (unit box) at free values x; false if it failed.
-bool jacobian_condition(const EditProblem& problem, const std::vector<double>& x, double* condition, int* rank) {
+// Condition number and rank of the Jacobian (unit box) at free values x, and its smallest
+// singular value `weakest` [m]: how far a move across the whole box along the least-determined
+// combination of the free parameters moves the weighted misses, to first order. False if it failed.
+bool jacobian_condition(const EditProblem& problem, const std::vector<double>& x, double* condition, int* rank,
+                        double* weakest) {
   std::vector<double> r, jacobian;
   if (!problem.evaluate(x, &r, &jacobian)) return false;
   const int rows = problem.num_residuals(), m = problem.num_free();
@@ -319,7 +353,16 @@ bool jacobian_condition(const EditProblem& problem, const std::vector<double>& x
   *rank = 0;
   for (int i = 0; i < sigma.size(); ++i) *rank += sigma(i) > kRankTolerance * largest;
   *condition = *rank < m || largest == 0.0 ? std::numeric_limits<double>::infinity() : largest / sigma(m - 1);
+  *weakest = sigma.size() == m ? sigma(m - 1) : 0.0;
   return true;
+}
+
+// The least weighted miss any pair accepts [m] (sqrt(weight) x its met tolerance, as the residuals
+// are weighted).
+double least_accepted_miss(const std::vector<PointPair>& pairs, double accept_angle) {
+  double least = std::numeric_limits<double>::infinity();
+  for (const PointPair& pair : pairs) least = std::min(least, std::sqrt(pair.weight) * pair.met_tolerance(accept_angle));
+  return least;
 }
 
 // Why pair i is not met, from the side of its source its path passes at the result and at every
@@ -336,6 +379,19 @@ std::string why_unmet(const EditProblem& problem, const std::vector<double>& res
   }
   const double vertical = residuals[3 * i + 1] / std::sqrt(problem.pairs()[i].weight);
   const char* side = vertical > 0.0 ? "above" : "below";
+  // The miss across the destination's vertical plane: air that varies with height alone bends a
+  // path within that plane, so that part stays whatever the solve tries (a trial's source 5 m to
+  // the side was called "within reach").
+  const Vec3d across(-pair.direction.z(), 0.0, pair.direction.x());
+  const double sideways = across.norm() > 1e-9 ? std::abs(across.normalized().dot(Vec3d(residuals[3 * i], residuals[3 * i + 1],
+                                                                                       residuals[3 * i + 2]))) /
+                                                     std::sqrt(pair.weight)
+                                               : 0.0;
+  if (sideways > std::abs(vertical)) {
+    return concat("its path passes ", sideways, " m to the side of the source (", std::abs(vertical), " m ", side,
+                  " it): air that varies only with height bends a path within its vertical plane, so this miss "
+                  "stays; aim the destination toward the source as seen from the eye (or free the camera's yaw)");
+  }
   std::string out = concat("its path passes ", std::abs(vertical), " m ", side, " the source");
   if (sampled.empty()) return out;
   int above = 0, below = 0;
@@ -344,11 +400,14 @@ std::string why_unmet(const EditProblem& problem, const std::vector<double>& res
     below += point[i] < 0.0;
   }
   if (above == int(sampled.size()) || below == int(sampled.size())) {
+    // "May": the samples can miss a narrow basin (a trial's inversion 60 m up, 20 m thick, in
+    // bounds of 5 km and 2 km, was met by none of 208 samples but by a second random start).
     out += concat(", and ", side, " it in all ", sampled.size(),
-                  " atmospheres the global stage sampled within the bounds: the destination lies ",
-                  vertical > 0.0 ? "above" : "below",
-                  " every image of the source those atmospheres made (", vertical > 0.0 ? "lower" : "raise",
-                  " the destination, free another parameter or widen the bounds)");
+                  " atmospheres the global stage sampled within the bounds: the destination may lie ",
+                  vertical > 0.0 ? "above" : "below", " every image of the source such atmospheres make (",
+                  vertical > 0.0 ? "lower" : "raise",
+                  " the destination, free another parameter or widen the bounds; or narrow the bounds or add "
+                  "starts, as the samples can miss a narrow basin)");
   } else {
     out += concat(" (the sampled atmospheres sent it ", above, " times above and ", below,
                   " times below the source: the destination is within reach, ",
@@ -443,11 +502,18 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
   out.backend = backend_name(settings);
   out.strategy = strategy_name(settings.strategy);
   out.starts = settings.starts;
-  out.initial_cost = problem->cost(problem->start());
+  std::vector<double> start_residuals;  // kept: the result when the time runs out before any stage
+  const auto measure_start = [&] {
+    if (!problem->evaluate(problem->start(), &start_residuals)) return std::numeric_limits<double>::infinity();
+    double sum = 0.0;
+    for (double v : start_residuals) sum += v * v;
+    return 0.5 * sum;  // EditProblem::cost's
+  };
+  out.initial_cost = measure_start();
   budget.check_cancelled();
   if (!std::isfinite(out.initial_cost) && budget.exhausted() == StopReason::kTimeLimit) {
     budget.resume_for_measurement();  // the time limit ran out while measuring the start
-    out.initial_cost = problem->cost(problem->start());
+    out.initial_cost = measure_start();
   }
   if (!std::isfinite(out.initial_cost)) {
     const std::string why = problem->context().first_failure();
@@ -470,7 +536,7 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
   out.pair_traces = problem->context().pair_evaluations.load() + strategy.design_traces();
   out.converged = result.converged;
   out.solver_report = result.report;
-  std::vector<double> residuals = result.residuals;
+  std::vector<double> residuals = result.residuals.empty() && result.x == problem->start() ? start_residuals : result.residuals;
   out.cost = std::numeric_limits<double>::infinity();
   if (residuals.size() == size_t(problem->num_residuals()) || problem->evaluate(result.x, &residuals)) {
     out.cost = 0.0;
@@ -520,12 +586,22 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
   }
   // At a solution the misses vanish and the Jacobian says which parameter combinations they fix
   // (elsewhere it also carries the turning of the miss vectors, which says nothing about that).
-  const bool conditioned = unmet.empty() && jacobian_condition(*problem, result.x, &out.condition, &out.rank);
-  out.unique = conditioned && out.condition <= kNonUniqueCondition;
-  if (conditioned && !out.unique) {
+  double weakest = 0.0;
+  const bool conditioned =
+      unmet.empty() && jacobian_condition(*problem, result.x, &out.condition, &out.rank, &weakest);
+  // Well conditioned is not enough: a trial's 3 pairs were met by every surface_dt from 0 to 60 K
+  // at condition 2e3, as the whole box moved the misses less than the pairs accept.
+  const double accepted = least_accepted_miss(pairs, settings.accept_angle);
+  out.unique = conditioned && out.condition <= kNonUniqueCondition && weakest > accepted;
+  if (conditioned && out.condition > kNonUniqueCondition) {
     out.message += concat(". The solution is not unique: the pairs fix ", out.rank, " of the ", problem->num_free(),
                           " free parameters' combinations (Jacobian rank ", out.rank, ", condition ", out.condition,
                           "); other values of ", concat_names(out.free), " meet them as well");
+  } else if (conditioned && !out.unique) {
+    out.message += concat(". The solution is not unique: across the whole search box the least-determined "
+                          "combination of ", concat_names(out.free), " moves the misses by about ", weakest,
+                          " m (to first order), within the ", accepted, " m a pair may miss by; other values meet "
+                          "the pairs as well (more pairs, or smaller tolerances, pin them down)");
   }
   if (out.success) already_met(*problem, settings.accept_angle, &out);
   on_bounds(*problem, result.x, &out);
@@ -617,10 +693,20 @@ SolveSummary solve_edit(const FieldPtr& field, const std::vector<PointPair>& pai
     }
   }
   if (best_start > 0) {
-    // Reported against the field given: a parameter the winning start drew is changed, even where
-    // that start held it (a trial: h_ciso drawn from 1 to 87 was listed as held fixed).
-    best.free = free;
-    best.insensitive = insensitive;
+    // Reported against the field given: a parameter the winning start drew (start 0's free) or
+    // optimised (its own free) is changed, even where that start held it (trials: h_ciso drawn
+    // from 1 to 87 was listed as held fixed; inversion_base and inversion_thickness, idle at start
+    // 0 but solved by start 2, were too); held fixed only what neither did.
+    std::vector<std::string> changed = free;
+    for (const std::string& name : best.free) {
+      if (std::find(changed.begin(), changed.end(), name) == changed.end()) changed.push_back(name);
+    }
+    std::vector<std::string> held;
+    for (const std::string& name : insensitive) {
+      if (std::find(changed.begin(), changed.end(), name) == changed.end()) held.push_back(name);
+    }
+    best.free = changed;
+    best.insensitive = held;
   }
   best.initial_cost = initial_cost;
   best.pair_traces = pair_traces;

@@ -10,6 +10,7 @@
 #include "refracta/core/math.h"
 
 #include <cmath>
+#include <type_traits>
 
 namespace refracta {
 
@@ -151,7 +152,10 @@ template <class T>
 void air_index_at(const T& pressure, const T& temperature, const T& humidity, const EdlenDispersion<T>& dispersion,
                   T* n, T* dn_dpressure, T* dn_dtemperature) {
   T e_s(0.0), de_dt(0.0);
-  if (value_of(humidity) != 0.0) saturation_vapour_pressure(temperature, &e_s, &de_dt);
+  // Dry air skips the vapour for a plain number only: a Jet's derivative in humidity is e_s even
+  // at humidity 0 (skipped, it was 0, and humidity free from its default looked idle: a trial).
+  const bool dry = std::is_same_v<T, double> && value_of(humidity) == 0.0;
+  if (!dry) saturation_vapour_pressure(temperature, &e_s, &de_dt);
   const AirIndex<T> air = air_index(pressure, temperature, T(humidity * e_s), dispersion);
   *n = T(1.0) + air.n_minus_1;
   *dn_dpressure = air.d_pressure;
