@@ -56,17 +56,18 @@ def test_reinhard_log_average_of_a_constant_image_is_the_key(luminance):
     exposure = 7.0  # cancels in L = (a / Lw_bar) Lw, but for delta
     out = display(image, tonemap="reinhard", key=key, exposure=exposure)
     lw = exposure * luminance
-    delta = REINHARD_DELTA * min(lw, 1.0)  # in the image's units below a mean luminance of 1
+    delta = REINHARD_DELTA * lw  # in the image's units: times its mean luminance
     scaled = key * lw / (delta + lw)  # L = a exactly, up to delta
     assert scaled == pytest.approx(key, rel=delta / lw * 1.01)
     np.testing.assert_allclose(out, scaled / (1 + scaled), rtol=1e-6)  # float32 output: a few ulps
 
 
 def test_reinhard_log_average_of_two_levels():
-    # Half the pixels at 1, half at 100: Lw_bar = sqrt((1+d)(100+d)) ~ 10.
+    # Half the pixels at 1, half at 100: Lw_bar = sqrt((1+d)(100+d)) ~ 10, d = REINHARD_DELTA times
+    # the mean luminance (50.5).
     image = np.ones((2, 2, 1), np.float32)
     image[1] = 100.0
-    lbar = np.exp(np.mean(np.log(REINHARD_DELTA + image)))
+    lbar = np.exp(np.mean(np.log(REINHARD_DELTA * image.mean() + image)))
     scaled = 0.18 / lbar * image
     # Float32 output: a few ulps.
     np.testing.assert_allclose(display(image, tonemap="reinhard", key=0.18), scaled / (1 + scaled), rtol=1e-6)

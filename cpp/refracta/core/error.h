@@ -2,9 +2,12 @@
 // bindings turn them into Python exceptions (ValueError, refracta.NumericalError, refracta.IoError).
 #pragma once
 
+#include <charconv>
+#include <ostream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -21,6 +24,19 @@ class IoError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// A number written so that reading it back gives the same double (shortest round-trip digits:
+// 0.1 as 0.1, 0.1 + 0.2 as 0.30000000000000004), for reprs that promise eval(repr(x)) == x;
+// concat's 10 digits changed the value (a trial). concat(..., exact(x), ...).
+struct Exact {
+  double value;
+};
+inline Exact exact(double value) { return {value}; }
+inline std::ostream& operator<<(std::ostream& out, Exact number) {
+  char digits[32];
+  const auto end = std::to_chars(digits, digits + sizeof(digits), number.value).ptr;
+  return out << std::string_view(digits, size_t(end - digits));
+}
 
 template <class... Parts>
 std::string concat(const Parts&... parts) {

@@ -64,7 +64,10 @@ OceanWaves::OceanWaves(const OceanWavesParameters& parameters) : parameters_(par
   if (!(p.wind_speed > 0.0 && p.wind_speed <= kMaxWindSpeed)) {
     problem(concat("wind_speed must be in (0, ", kMaxWindSpeed, "] m/s (got ", p.wind_speed, ")"));
   }
-  if (!p.wind_direction.allFinite() || !(p.wind_direction.norm() > 0.0)) {
+  // Scaled by its largest component first: the norm of (1e200, 0) overflowed (a flat sea) and that
+  // of (1e-170, 0) underflowed (refused as zero), where only the direction counts (a trial).
+  const double largest = p.wind_direction.cwiseAbs().maxCoeff();
+  if (!p.wind_direction.allFinite() || !(largest > 0.0)) {
     problem(concat("wind_direction must be a finite, non-zero (x, z) (got (", p.wind_direction.x(), ", ", p.wind_direction.y(), "))"));
   }
   if (!(p.patch_size >= kMinPatchSize && p.patch_size <= kMaxPatchSize)) {
@@ -82,7 +85,7 @@ OceanWaves::OceanWaves(const OceanWavesParameters& parameters) : parameters_(par
     problem(concat("time must be finite and within +-", kLongestTime, " s (got ", p.time, ")"));
   }
   if (!problems.empty()) throw_invalid("OceanWaves: ", problems);
-  wind_ = p.wind_direction.normalized();
+  wind_ = (p.wind_direction / largest).normalized();
 
   // The modes: h~(k) and i k h~(k) (Tessendorf 2001, section 3.4).
   const size_t count = size_t(n) * size_t(n);
@@ -408,9 +411,9 @@ std::optional<std::string> OceanWaves::patch_caveat() const {
 
 std::string OceanWaves::describe() const {
   const OceanWavesParameters& p = parameters_;
-  return concat("OceanWaves(wind_speed=", p.wind_speed, ", wind_direction=(", p.wind_direction.x(), ", ",
-                p.wind_direction.y(), "), patch_size=", p.patch_size, ", resolution=", p.resolution, ", seed=", p.seed,
-                ", time=", p.time, ")");
+  return concat("OceanWaves(wind_speed=", exact(p.wind_speed), ", wind_direction=(", exact(p.wind_direction.x()), ", ",
+                exact(p.wind_direction.y()), "), patch_size=", exact(p.patch_size), ", resolution=", p.resolution,
+                ", seed=", p.seed, ", time=", exact(p.time), ")");
 }
 
 }  // namespace refracta

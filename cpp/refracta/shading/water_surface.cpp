@@ -23,12 +23,15 @@ constexpr int kQuadrature = 64;
 
 }  // namespace
 
-RoughTransmittance::RoughTransmittance(const Beckmann& distribution) {
-  for (int k = 0; k < kEta; ++k) {
-    const double eta = kMinEta + (kMaxEta - kMinEta) * k / (kEta - 1);
+RoughTransmittance::EtaTable::EtaTable(const Beckmann& distribution, double lo, double hi, int nodes)
+    : lo(lo), hi(hi), nodes(nodes), t(size_t(kMu * nodes), 0.0), hemispherical(size_t(nodes), 0.0) {
+  // mu = 0 exactly is the proposal's degenerate direction: its grazing limit, from this mu.
+  constexpr double kGrazingMu = 1e-7;
+  for (int k = 0; k < nodes; ++k) {
+    const double eta = lo + (hi - lo) * k / (nodes - 1);
     const WaterInterfaceBsdf interface(Spectrum::Constant(eta), eta, distribution);
-    for (int j = 1; j < kMu; ++j) {  // mu = 0: grazing, masked entirely, T = 0
-      const double mu = mu_node(j);
+    for (int j = 0; j < kMu; ++j) {
+      const double mu = std::max(mu_node(j), kGrazingMu);
       const Vec3d wo(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu);
       double sum = 0.0;
       for (int a = 0; a < kQuadrature; ++a) {
@@ -43,15 +46,30 @@ RoughTransmittance::RoughTransmittance(const Beckmann& distribution) {
           if (pdf > 0.0) sum += interface.transmission(wo, wi, eta, TransportMode::kImportance) * std::abs(wi.z()) / pdf;
         }
       }
-      t_[k * kMu + j] = sum / (kQuadrature * kQuadrature);
+      t[size_t(k * kMu + j)] = sum / (kQuadrature * kQuadrature);
     }
     double h = 0.0;  // 2 int T mu dmu, trapezoidal over the mu nodes
     for (int j = 1; j < kMu; ++j) {
       const double mu0 = mu_node(j - 1), mu1 = mu_node(j);
-      h += (t_[k * kMu + j - 1] * mu0 + t_[k * kMu + j] * mu1) * (mu1 - mu0);
+      h += (t[size_t(k * kMu + j - 1)] * mu0 + t[size_t(k * kMu + j)] * mu1) * (mu1 - mu0);
     }
-    hemispherical_[k] = h;
+    hemispherical[size_t(k)] = h;
   }
+}
+
+double RoughTransmittance::EtaTable::node(double eta, int* k) const {
+  const double x = std::clamp((eta - lo) / (hi - lo) * (nodes - 1), 0.0, double(nodes - 1));
+  *k = std::min(int(x), nodes - 2);
+  return x - *k;
+}
+
+RoughTransmittance::RoughTransmittance(const Beckmann& distribution)
+    : distribution_(distribution), near_(distribution, kNearLo, kNearHi, kNearNodes) {}
+
+const RoughTransmittance::EtaTable& RoughTransmittance::table_for(double eta) const {
+  if (near_.covers(eta)) return near_;
+  std::call_once(wide_built_, [this] { wide_ = EtaTable(distribution_, kWideLo, kWideHi, kWideNodes); });
+  return wide_;
 }
 
 std::shared_ptr<const RoughTransmittance> RoughTransmittance::for_alpha(double alpha) {
@@ -63,26 +81,22 @@ std::shared_ptr<const RoughTransmittance> RoughTransmittance::for_alpha(double a
   return table;
 }
 
-double RoughTransmittance::eta_node(double eta, int* k) {
-  const double x = std::clamp((eta - kMinEta) / (kMaxEta - kMinEta) * (kEta - 1), 0.0, double(kEta - 1));
-  *k = std::min(int(x), kEta - 2);
-  return x - *k;
-}
-
 double RoughTransmittance::operator()(double mu, double eta) const {
+  const EtaTable& table = table_for(eta);
   int k;
-  const double we = eta_node(eta, &k);
+  const double we = table.node(eta, &k);
   const double x = std::sqrt(std::clamp(std::abs(mu), 0.0, 1.0)) * (kMu - 1);
   const int j = std::min(int(x), kMu - 2);
   const double wm = x - j;
-  auto at = [&](int kk) { return (1.0 - wm) * t_[kk * kMu + j] + wm * t_[kk * kMu + j + 1]; };
+  auto at = [&](int kk) { return (1.0 - wm) * table.t[size_t(kk * kMu + j)] + wm * table.t[size_t(kk * kMu + j + 1)]; };
   return (1.0 - we) * at(k) + we * at(k + 1);
 }
 
 double RoughTransmittance::hemispherical(double eta) const {
+  const EtaTable& table = table_for(eta);
   int k;
-  const double w = eta_node(eta, &k);
-  return (1.0 - w) * hemispherical_[k] + w * hemispherical_[k + 1];
+  const double w = table.node(eta, &k);
+  return (1.0 - w) * table.hemispherical[size_t(k)] + w * table.hemispherical[size_t(k + 1)];
 }
 
 Water::Water(const WaterParameters& parameters) : parameters_(parameters) {
@@ -157,9 +171,11 @@ std::optional<double> Water::interior_ior(const SampledWavelengths& lambda) cons
 
 std::string Water::describe() const {
   const WaterParameters& p = parameters_;
-  return concat("Water(wind_speed=", p.wind_speed, ", temperature_c=", p.temperature_c, ", salinity=", p.salinity,
-                p.body ? "" : ", body=False", p.priority ? concat(", priority=", p.priority) : "",
-                p.resolved_slope_variance > 0.0 ? concat(", resolved_slope_variance=", p.resolved_slope_variance) : "", ")");
+  return concat("Water(wind_speed=", exact(p.wind_speed), ", temperature_c=", exact(p.temperature_c),
+                ", salinity=", exact(p.salinity), p.body ? "" : ", body=False",
+                p.priority ? concat(", priority=", p.priority) : "",
+                p.resolved_slope_variance > 0.0 ? concat(", resolved_slope_variance=", exact(p.resolved_slope_variance)) : "",
+                ")");
 }
 
 }  // namespace refracta

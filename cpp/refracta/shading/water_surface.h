@@ -58,6 +58,7 @@
 
 #include <array>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -66,15 +67,18 @@ namespace refracta {
 
 // The directional transmittance T(mu, eta) = int f_t(wo, wi) |cos theta_i| dwi of the Beckmann
 // interface of one alpha, light arriving from above at cos theta_o = mu (importance transport: the
-// fraction of the energy that crosses), eta the relative index. Tabulated at construction over
-// kMu x kEta nodes (each a 64 x 64 midpoint quadrature over the visible-normal proposal's unit
-// square), the mu nodes uniform in sqrt(mu) (T climbs from 0 at mu = 0 within mu ~ alpha / 10,
-// where masking lets go), bilinear between them; eta outside [kMinEta, kMaxEta] is clamped (water against air over
-// 360-830 nm, 0-40 C, 0-40 g/kg lies in 1.32-1.36). Shared by the materials of one alpha (for_alpha).
+// fraction of the energy that crosses), eta the relative index. Tabulated over kMu mu nodes, uniform
+// in sqrt(mu) (T changes fastest near grazing, within mu ~ alpha / 10, where masking lets go; at
+// mu = 0 it keeps its grazing limit, 0.25 on a calm sea: the visible normals tilt toward the light),
+// by eta nodes, each a 64 x 64 midpoint quadrature over the visible-normal proposal's unit square,
+// bilinear between nodes. Water against air over 360-830 nm, 0-40 C, 0-40 g/kg lies in 1.32-1.36:
+// kNear's 5 nodes over [1.31, 1.37], built at construction. Another medium outside (Water under
+// glass or oil: eta_outside) takes kWide's 31 nodes over [0.5, 2], built the first time one is
+// asked for (0.7 s; a relative index beyond 0.89 is total internal reflection near grazing, which
+// kNear clamped to light: a trial); beyond [0.5, 2] clamped. Shared by the materials of one alpha.
 class RoughTransmittance {
  public:
-  static constexpr int kMu = 33, kEta = 5;
-  static constexpr double kMinEta = 1.31, kMaxEta = 1.37;
+  static constexpr int kMu = 33;
   explicit RoughTransmittance(const Beckmann& distribution);
   // The table of Beckmann(alpha), computed once per alpha and kept (a few kB each).
   static std::shared_ptr<const RoughTransmittance> for_alpha(double alpha);
@@ -83,10 +87,25 @@ class RoughTransmittance {
   double hemispherical(double eta) const;
 
  private:
-  static double eta_node(double eta, int* k);  // the lower node and the weight of the upper one
+  // T over kMu x nodes nodes of eta in [lo, hi].
+  struct EtaTable {
+    double lo = 0.0, hi = 0.0;
+    int nodes = 0;
+    std::vector<double> t, hemispherical;
+    EtaTable() = default;
+    EtaTable(const Beckmann& distribution, double lo, double hi, int nodes);
+    double node(double eta, int* k) const;  // the lower node and the weight of the upper one
+    bool covers(double eta) const { return eta >= lo && eta <= hi; }
+  };
+  static constexpr double kNearLo = 1.31, kNearHi = 1.37, kWideLo = 0.5, kWideHi = 2.0;
+  static constexpr int kNearNodes = 5, kWideNodes = 31;
   static double mu_node(int j) { return double(j * j) / double((kMu - 1) * (kMu - 1)); }
-  std::array<double, kMu * kEta> t_{};
-  std::array<double, kEta> hemispherical_{};
+  const EtaTable& table_for(double eta) const;
+
+  Beckmann distribution_;
+  EtaTable near_;
+  mutable std::once_flag wide_built_;
+  mutable EtaTable wide_;
 };
 
 // The deep-water surface seen from above (two-sided by mirroring): Beckmann reflection plus the
