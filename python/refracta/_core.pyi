@@ -2784,7 +2784,7 @@ class SolveSummary:
     @property
     def unique(self) -> bool:
         """
-        every pair met, and the pairs fix every free parameter (condition <= 1e6, and the whole box moves the misses more than a pair may miss)
+        every pair met, and the pairs fix every free parameter (condition <= 1e6, and a quarter of the search box along the least-determined combination meets them no longer)
         """
     @property
     def values(self) -> numpy.typing.NDArray[numpy.float64]:

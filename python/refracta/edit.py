@@ -236,8 +236,8 @@ class EditResult:
     limit'; '' if none). condition, rank: of the Jacobian in the free parameters' unit box at a
     result meeting every pair (else 0, 0); above 1e6 the message says the solution is not unique,
     and unique is False (True: every pair met and the pairs fix every free parameter -- condition
-    <= 1e6, and the least-determined combination moves the misses across the whole search box by
-    more than a pair may miss; a success with one landmark and five free parameters is not unique).
+    <= 1e6, and a quarter of the search box either way along the least-determined combination
+    meets them no longer; a success with one landmark and five free parameters is not unique).
     history: cost per iteration (ceres) or best cost per evaluation (nlopt) of that run. free: the
     optimised parameters; insensitive: requested free parameters no pair depends on (held fixed);
     at_bounds: free parameters the result left on a bound of the search (the best fit may lie

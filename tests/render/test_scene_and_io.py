@@ -98,9 +98,9 @@ def test_image_files_round_trip(tmp_path):
     # linear=True: a PNG whose gAMA chunk says linear (gamma="linear") as stored; 8-bit: half a
     # level, plus float slack.
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "b.png", linear=True), 128 / 255, atol=0.6 / 255)
-    # An sRGB PNG decoded from sRGB (IEC 61966-2-1: 0.21586 -> 0.50196 -> 0.21586); 8-bit: half a
-    # level's slope there (0.0021 per level), plus float slack.
+    # An sRGB PNG decoded from sRGB (IEC 61966-2-1: 0.21586 -> 0.50196 -> 0.21586).
     refracta.io.write_image(tmp_path / "s.png", flat * 0.21586, tonemap="linear", exposure=1.0)
+    # 8-bit: half a level's slope there (0.0021 per level), plus float slack.
     np.testing.assert_allclose(refracta.io.read_image(tmp_path / "s.png", linear=True), 0.21586, atol=1.1e-3)
     # A float file is linear already.
     np.testing.assert_array_equal(refracta.io.read_image(tmp_path / "a.exr", linear=True), image)

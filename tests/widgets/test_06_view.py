@@ -184,3 +184,23 @@ def test_camera_parameters_can_be_free_in_the_editor(road):
         assert editor._free.value == ("surface_depth", "camera_yaw") == tuple(editor.model.free)
     finally:
         editor.close()
+
+
+def test_an_accepted_edit_clears_the_last_mistakes_message(editor):
+    # A trial: after "weight must be > 0" and then an accepted weight, the red message stayed.
+    editor.add_pair((180.4, 66.0), (258.0, 0.4, 1.7))
+    pair_fields(editor)[0].value = "0"
+    assert "pair 0 weight" in editor._message.value
+    pair_fields(editor)[0].value = "2"
+    assert editor.pairs[0].weight == 2.0 and "weight" not in editor._message.value
+
+
+def test_a_refused_camera_value_shows_the_kept_camera_again(editor):
+    # A trial: a NaN eye x stayed in its box, and every later camera edit was refused for it.
+    x = editor._position[0]
+    kept = x.value
+    x.value = float("nan")
+    assert "position" in editor._message.value
+    assert x.value == kept
+    editor._vfov.value = 30.0
+    assert editor.model.camera.vfov == 30.0

@@ -158,7 +158,7 @@ const std::vector<SummaryField>& summary_fields() {
       plain("stopped_by", &S::stopped_by, "'iteration limit', 'evaluation limit', 'time limit' or ''"),
       plain("condition", &S::condition, "the Jacobian's condition number at a result meeting every pair (else 0)"),
       plain("rank", &S::rank, "its numerical rank (else 0)"),
-      plain("unique", &S::unique, "every pair met, and the pairs fix every free parameter (condition <= 1e6, and the whole box moves the misses more than a pair may miss)"),
+      plain("unique", &S::unique, "every pair met, and the pairs fix every free parameter (condition <= 1e6, and a quarter of the search box along the least-determined combination meets them no longer)"),
       plain("solver_report", &S::solver_report, "the back-end's own report of the run that gave the result"),
   };
   return fields;

@@ -152,10 +152,10 @@ struct SolveSummary {
   // other parameter values meet them as well (SolveSummary::message says so).
   double condition = 0.0;
   int rank = 0;
-  // Every pair met, and the pairs fix every free parameter: condition <= 1e6, and a move across
-  // the whole search box along the least-determined combination changes the misses (to first
-  // order) by more than the least miss a pair accepts: no other values meet them as well. An
-  // underdetermined solve (one landmark, five free parameters) succeeds, but not uniquely.
+  // Every pair met, and the pairs fix every free parameter: condition <= 1e6, and a move of a
+  // quarter of the search box (unit box) either way along the combination they determine least
+  // no longer meets every pair: no other values meet them as well. An underdetermined solve (one
+  // landmark, five free parameters) succeeds, but not uniquely.
   bool unique = false;
   std::string solver_report;         // the back-end's own report of the run that gave the result
 };

@@ -336,11 +336,11 @@ constexpr double kRankTolerance = 1e-8;
 // the strongest direction's effect, beneath the misses accept_angle allows.
 constexpr double kNonUniqueCondition = 1e6;
 
-// Condition number and rank of the Jacobian (unit box) at free values x, and its smallest
-// singular value `weakest` [m]: how far a move across the whole box along the least-determined
-// combination of the free parameters moves the weighted misses, to first order. False if it failed.
+// Condition number and rank of the Jacobian (unit box) at free values x, and its weakest
+// direction (unit box): the right singular vector of its smallest singular value, the combination
+// of the free parameters the pairs determine least. False if it failed.
 bool jacobian_condition(const EditProblem& problem, const std::vector<double>& x, double* condition, int* rank,
-                        double* weakest) {
+                        Eigen::VectorXd* weakest) {
   std::vector<double> r, jacobian;
   if (!problem.evaluate(x, &r, &jacobian)) return false;
   const int rows = problem.num_residuals(), m = problem.num_free();
@@ -348,21 +348,47 @@ bool jacobian_condition(const EditProblem& problem, const std::vector<double>& x
   for (int k = 0; k < rows; ++k) {
     for (int j = 0; j < m; ++j) J(k, j) = jacobian[size_t(k) * m + j] * problem.dx_du(j, problem.to_unit(j, x[j]));
   }
-  const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(J).singularValues();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinV);
+  const Eigen::VectorXd sigma = svd.singularValues();
   const double largest = sigma.size() > 0 ? sigma(0) : 0.0;
   *rank = 0;
   for (int i = 0; i < sigma.size(); ++i) *rank += sigma(i) > kRankTolerance * largest;
   *condition = *rank < m || largest == 0.0 ? std::numeric_limits<double>::infinity() : largest / sigma(m - 1);
-  *weakest = sigma.size() == m ? sigma(m - 1) : 0.0;
+  *weakest = svd.matrixV().col(svd.matrixV().cols() - 1);
   return true;
 }
 
-// The least weighted miss any pair accepts [m] (sqrt(weight) x its met tolerance, as the residuals
-// are weighted).
-double least_accepted_miss(const std::vector<PointPair>& pairs, double accept_angle) {
-  double least = std::numeric_limits<double>::infinity();
-  for (const PointPair& pair : pairs) least = std::min(least, std::sqrt(pair.weight) * pair.met_tolerance(accept_angle));
-  return least;
+// A move of this fraction of the search box (unit box) along the weakest direction that still
+// meets every pair makes a result not unique, however well conditioned: a trial's 3 pairs were
+// met by every surface_dt from 0 to 60 K at condition 2e3. A quarter of the box is far beyond
+// what a determined parameter may move (its pairs then miss by metres), and a move this long
+// tells a flat valley from a narrow one where the Jacobian alone cannot (the README's two-pair
+// edit, firm at a quarter of the box, moves its misses by 8.6 mm to first order across all of it).
+constexpr double kUniquenessProbe = 0.25;
+// A probe clamped by the box to less than this is not made (a result on a bound, moving out).
+constexpr double kShortestProbe = 0.1;
+
+// Whether a move of kUniquenessProbe of the box along `direction` (unit box), either way, still
+// meets every pair; sets *met_at to the free values there.
+bool met_along(const EditProblem& problem, const std::vector<double>& x, const Eigen::VectorXd& direction,
+               double accept_angle, std::vector<double>* met_at) {
+  for (const double sign : {1.0, -1.0}) {
+    std::vector<double> moved = x;
+    double length2 = 0.0;
+    for (int j = 0; j < problem.num_free(); ++j) {
+      const double u = problem.to_unit(j, x[size_t(j)]);
+      const double to = std::clamp(u + sign * kUniquenessProbe * direction(j), 0.0, 1.0);
+      length2 += (to - u) * (to - u);
+      moved[size_t(j)] = problem.from_unit(j, to);
+    }
+    if (std::sqrt(length2) < kShortestProbe) continue;
+    std::vector<double> r;
+    if (problem.evaluate(moved, &r) && problem.all_met(r, accept_angle)) {
+      *met_at = moved;
+      return true;
+    }
+  }
+  return false;
 }
 
 // Why pair i is not met, from the side of its source its path passes at the result and at every
@@ -586,22 +612,24 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
   }
   // At a solution the misses vanish and the Jacobian says which parameter combinations they fix
   // (elsewhere it also carries the turning of the miss vectors, which says nothing about that).
-  double weakest = 0.0;
+  Eigen::VectorXd weakest;
   const bool conditioned =
       unmet.empty() && jacobian_condition(*problem, result.x, &out.condition, &out.rank, &weakest);
-  // Well conditioned is not enough: a trial's 3 pairs were met by every surface_dt from 0 to 60 K
-  // at condition 2e3, as the whole box moved the misses less than the pairs accept.
-  const double accepted = least_accepted_miss(pairs, settings.accept_angle);
-  out.unique = conditioned && out.condition <= kNonUniqueCondition && weakest > accepted;
+  std::vector<double> also_met;
+  const bool flat = conditioned && out.condition <= kNonUniqueCondition &&
+                    met_along(*problem, result.x, weakest, settings.accept_angle, &also_met);
+  out.unique = conditioned && out.condition <= kNonUniqueCondition && !flat;
   if (conditioned && out.condition > kNonUniqueCondition) {
     out.message += concat(". The solution is not unique: the pairs fix ", out.rank, " of the ", problem->num_free(),
                           " free parameters' combinations (Jacobian rank ", out.rank, ", condition ", out.condition,
                           "); other values of ", concat_names(out.free), " meet them as well");
-  } else if (conditioned && !out.unique) {
-    out.message += concat(". The solution is not unique: across the whole search box the least-determined "
-                          "combination of ", concat_names(out.free), " moves the misses by about ", weakest,
-                          " m (to first order), within the ", accepted, " m a pair may miss by; other values meet "
-                          "the pairs as well (more pairs, or smaller tolerances, pin them down)");
+  } else if (flat) {
+    std::string values;
+    const std::vector<std::string> names = problem->free_names();
+    for (size_t j = 0; j < names.size(); ++j) values += concat(j ? ", " : "", names[j], " = ", also_met[j]);
+    out.message += concat(". The solution is not unique: ", values, " (a quarter of the search box along the "
+                          "combination the pairs determine least) meets every pair as well (more pairs, or smaller "
+                          "tolerances, pin it down)");
   }
   if (out.success) already_met(*problem, settings.accept_angle, &out);
   on_bounds(*problem, result.x, &out);

@@ -176,7 +176,8 @@ function render({ model, el }) {
     const first = queuedMove === null;
     queuedMove = position(event);
     if (first) {                                   // at most one move message per frame
-      requestAnimationFrame(() => { send("move", queuedMove); queuedMove = null; });
+      // onUp may have sent and cleared it before this frame: then there is nothing left to send.
+      requestAnimationFrame(() => { if (queuedMove !== null) send("move", queuedMove); queuedMove = null; });
     }
   }
   function onUp(event) {

@@ -55,7 +55,7 @@ import numpy as np
 from refracta import _checks, _core
 from refracta import io as _image_io
 from refracta._rays import without_refraction
-from refracta._render import render
+from refracta._render import SceneWarning, render
 from refracta.scene_file import relocate
 from refracta.widgets import camera_moves, files
 from refracta.widgets.jobs import Job, JobRunner
@@ -326,8 +326,10 @@ class EditorModel:
         if max_length is not None:
             self.render_options["max_length"] = _finite(max_length, "max_length")
         # Each render job passes its own, and shows one image: a tuple (aovs, return_stats) or a
-        # second scene would break the jobs in the background.
-        for reserved in ("progress", "method", "aovs", "return_stats", "stats", "frame", "scene", "camera", "field"):
+        # second scene would break the jobs in the background; the previews render whole images at
+        # a quarter of the size, where a full image's pixel_bounds fall outside (a trial).
+        reserved_names = ("progress", "method", "aovs", "return_stats", "stats", "frame", "scene", "camera", "field")
+        for reserved in (*reserved_names, "pixel_bounds"):
             if reserved in self.render_options:
                 raise ValueError(f"render_options: {reserved!r} is the editor's to choose")
         self.solve_options = dict(solve_options or {})
@@ -348,6 +350,7 @@ class EditorModel:
         self.result: EditResult | None = None  # the last EditResult applied
         self.fan_png: bytes | None = None  # its ray fan (refracta.plot.edit_report) as PNG
         self.message, self.message_kind = "", "info"
+        self.messages_said = 0  # say() calls so far (the view tells a handler that said nothing)
         self.images: dict[str, DisplayImage | None] = {"curved": None, "straight": None}
         self.progress: dict[str, tuple[str, float]] = {}
         self._undo: list[_Snapshot] = []
@@ -375,6 +378,7 @@ class EditorModel:
     def say(self, message: str, kind: str = "info") -> None:
         """Show `message` (kind 'info', 'success' or 'error') in the editor."""
         self.message, self.message_kind = message, kind
+        self.messages_said += 1
         self._notify("message")
 
     # ---------------------------------------------------------------- history
@@ -604,6 +608,11 @@ class EditorModel:
         """Every pair replaced, with other attributes (`state`: free, stop_height, solve_options,
         already checked) in the same undo step."""
         made = tuple(make_pair(p.destination, p.source, p.weight, p.margin) for p in pairs)
+        for index, pair in enumerate(made):  # as add_pair checks it (imported pairs were let through)
+            try:
+                self._check_in_image(pair)
+            except ValueError as error:
+                raise ValueError(f"pair {index}: {error}") from None
         with self._lock:
             before = self._snapshot(label)
             self.pairs, self.selected, self.pending_source = made, None, None
@@ -713,6 +722,8 @@ class EditorModel:
         u, v = _finite(u, "u"), _finite(v, "v")
         du, dv = u - drag["start"][0], v - drag["start"][1]
         if drag["kind"] in ("orbit", "pan"):
+            if du == 0.0 and dv == 0.0:
+                return  # a click without a move: no new camera, render or undo step (a trial's "orbit" did)
             move = camera_moves.orbit if drag["kind"] == "orbit" else camera_moves.pan
             self._set_camera(move(drag["camera"], du, dv))
             return
@@ -725,6 +736,9 @@ class EditorModel:
             mu, mv = min(max(mu, 0.0), self.camera.width), min(max(mv, 0.0), self.camera.height)
             self._replace_pair(index, drag["before"].label, record=False, destination=(mu, mv))
         else:
+            # A source is a point the image shows, as a click places it (one dragged to u = -20 was
+            # picked off the image, its marker beyond reach).
+            mu, mv = min(max(mu, 0.0), self.camera.width), min(max(mv, 0.0), self.camera.height)
             point = self.camera.pick(self.scene, mu, mv, without_refraction(self.field))
             if point is None:
                 self.say(
@@ -864,7 +878,8 @@ class EditorModel:
         self.say(f"{type(error).__name__}: {error}", "error")
 
     def _on_job_finished(self, job: Job) -> None:
-        if job.state == "cancelled" and job.slot == "solve":
+        # Superseded by a newer solve, it says nothing (it said "cancelled" while the next one ran).
+        if job.state == "cancelled" and job.slot == "solve" and not self.runner.busy("solve"):
             self.say("Solve cancelled; nothing changed.")
         if not self.runner.busy(job.slot):
             self.progress.pop(job.slot, None)
@@ -916,11 +931,18 @@ class EditorModel:
 
         def done(result):
             with self._lock:
-                before = self._snapshot("solve")
-                self.field, self.result, self.fan_png = result.field, result, None
-                if result.summary.camera is not None:  # camera parameters were free: the solved camera
-                    self.camera = result.camera
-                self._record(before)
+                # Pairs, atmosphere or camera changed (undo, an edit) while it ran: its answer is to
+                # another question (a trial's 2-pair result landed after undo had left one pair).
+                stale = (self.field, self.camera, tuple(self.pairs)) != (field, camera, tuple(pairs))
+                if not stale:
+                    before = self._snapshot("solve")
+                    self.field, self.result, self.fan_png = result.field, result, None
+                    if result.summary.camera is not None:  # camera parameters were free: the solved camera
+                        self.camera = result.camera
+                    self._record(before)
+            if stale:
+                self.say("The pairs, atmosphere or camera changed while the solve ran: its result is dropped; solve again.")
+                return
             self._notify("field", "result", "fan", "pairs", "history", "camera")
             unmet = unmet_pairs(result)
             if result.success:
@@ -985,7 +1007,14 @@ class EditorModel:
         """Write scene_toml() to `path`, its file names (objects, textures, environment maps)
         rewritten to name the same files from there; returns it. refracta.IoError if it cannot be
         written."""
-        return self._write(path, self.scene_toml(Path(os.fspath(path)).absolute().parent), "scene")
+        written = self._write(path, self.scene_toml(Path(os.fspath(path)).absolute().parent), "scene")
+        if self.scene_text is None:  # a Scene built in Python: no file describes its objects and lights
+            self.say(
+                f"Wrote {written} with the camera and atmosphere only: the scene was built in Python, not "
+                "loaded from a scene file, so its objects and lights are not in it (loading it gives an empty scene).",
+                "error",
+            )
+        return written
 
     def _write(self, path, text: str, what: str) -> Path:
         path = Path(path)
@@ -1021,9 +1050,17 @@ class EditorModel:
         from refracta.scene_file import load_scene, read_scene_text
 
         path = Path(path)
-        loaded = load_scene(path)
+        with warnings.catch_warnings(record=True) as caught:  # said in the editor, not on the worker's stderr
+            warnings.simplefilter("always", SceneWarning)
+            loaded = load_scene(path)
         scene, camera, field = loaded
         text = read_scene_text(path)
+        for index, pair in enumerate(self.pairs):  # the pairs stay: their destinations must fit the new image
+            if len(pair.destination) == 2 and not _checks.on_image(camera, *pair.destination):
+                raise ValueError(
+                    f"{path.name}: pair {index}'s destination {pair.destination} lies outside its "
+                    f"{camera.width} x {camera.height} image: remove or move that pair first"
+                )
         with self._lock:
             before = self._snapshot(f"load scene {path.name}")
             self.scene, self.scene_text, self.camera = scene, text, camera
@@ -1035,7 +1072,8 @@ class EditorModel:
             self.pending_source, self.selected = None, None
             self._record(before)
         self._notify("camera", "field", "pairs", "history")
-        self.say(f"Loaded {path}.", "success")
+        notes = [str(w.message) for w in caught if issubclass(w.category, SceneWarning)]
+        self.say(f"Loaded {path}." + "".join(f" {note}" for note in notes), "error" if notes else "success")
         self.render()
 
 

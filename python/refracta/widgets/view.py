@@ -20,6 +20,7 @@ import ipywidgets as w
 import numpy as np
 
 from refracta import _core
+from refracta.edit import CAMERA_PARAMETERS
 from refracta.widgets.canvas import ImageCanvas
 from refracta.widgets.model import EditorModel
 
@@ -160,11 +161,13 @@ class MirageEditor(w.VBox):
 
     def solve(self, wait: bool = False):
         """Start a solve; with wait=True block until it and the render after it have finished and
-        return the EditResult."""
+        return its EditResult (None when it failed, was cancelled or dropped; the message says why)."""
+        before = self.model.result
         job = self.model.solve()
         if wait and job is not None:
             self.model.wait()
-            return self.model.result
+            # This solve's result, or None when it failed or was dropped (the one before was returned: a trial).
+            return self.model.result if self.model.result is not before else None
         return None
 
     def wait(self, timeout: float | None = None) -> bool:
@@ -358,9 +361,15 @@ class MirageEditor(w.VBox):
 
     # ---------------------------------------------------------------- events from the browser
     def _guard(self, function, *args):
-        """Run a handler; user mistakes become a message in the editor, never a traceback."""
+        """Run a handler; user mistakes become a message in the editor, never a traceback. An
+        accepted edit (not a pointer event: a click's release follows its press's message) that
+        says nothing itself clears an earlier mistake's message (it stayed red)."""
+        was_error, said = self.model.message_kind == "error", self.model.messages_said
         try:
-            return function(*args)
+            result = function(*args)
+            if was_error and self.model.messages_said == said and function != self._pointer:
+                self.model.say("")
+            return result
         except USER_ERRORS as error:
             self.model.say(str(error), "error")
         except Exception as error:  # a bug: logged, and said in the editor
@@ -380,7 +389,7 @@ class MirageEditor(w.VBox):
                 bool(message.get("shift", False)),
                 float(message.get("scale", 1.0)),
             )
-        elif event == "move":
+        elif event == "move" and "u" in message and "v" in message:  # a move queued past its button's release carries none
             self.model.pointer_move(message["u"], message["v"])
         elif event == "up":
             self.model.pointer_up(message.get("u"), message.get("v"))
@@ -398,6 +407,8 @@ class MirageEditor(w.VBox):
         ):
             return
         self._guard(self.model.set_camera, position, look_at, self._vfov.value)
+        if self.model.camera is camera:  # refused: show the kept camera again (its value blocked every later edit)
+            self._show_camera()
 
     # ---------------------------------------------------------------- redrawing after model changes
     def _changed(self, what: str) -> None:
@@ -665,7 +676,8 @@ class MirageEditor(w.VBox):
         if self._syncing:
             return
         free = set(self.model.free or ()) - {name} | ({name} if on else set())
-        self._guard(self.model.set_free, [n for n in self.model.field.param_names if n in free])
+        names = [*self.model.field.param_names, *CAMERA_PARAMETERS]  # camera ones too (a trial lost them)
+        self._guard(self.model.set_free, [n for n in names if n in free])
 
     def _show_message(self) -> None:
         colour = MESSAGE_COLOURS.get(self.model.message_kind, "#333")
