@@ -59,7 +59,11 @@ def test_a_wind_direction_counts_by_its_direction_alone(scale):
 def test_reprs_read_back_exactly():
     water = shading.Water(wind_speed=5.123456789012, temperature_c=0.1 + 0.2, salinity=1.0 / 3.0)
     again = eval("shading." + repr(water))
-    assert (again.wind_speed, again.temperature_c, again.salinity) == (water.wind_speed, water.temperature_c, water.salinity)
+    assert (again.wind_speed, again.temperature_c, again.salinity) == (
+        water.wind_speed,
+        water.temperature_c,
+        water.salinity,
+    )
     assert again.roughness == water.roughness
     waves = refracta.OceanWaves(5.0 + 1e-12, wind_direction=(0.1, 0.7), patch_size=100.0 / 3.0, resolution=16)
     copy = eval("refracta." + repr(waves))

@@ -941,7 +941,9 @@ class EditorModel:
                         self.camera = result.camera
                     self._record(before)
             if stale:
-                self.say("The pairs, atmosphere or camera changed while the solve ran: its result is dropped; solve again.")
+                self.say(
+                    "The pairs, atmosphere or camera changed while the solve ran: its result is dropped; solve again."
+                )
                 return
             self._notify("field", "result", "fan", "pairs", "history", "camera")
             unmet = unmet_pairs(result)

@@ -389,7 +389,9 @@ class MirageEditor(w.VBox):
                 bool(message.get("shift", False)),
                 float(message.get("scale", 1.0)),
             )
-        elif event == "move" and "u" in message and "v" in message:  # a move queued past its button's release carries none
+        elif (
+            event == "move" and "u" in message and "v" in message
+        ):  # a move queued past its button's release carries none
             self.model.pointer_move(message["u"], message["v"])
         elif event == "up":
             self.model.pointer_up(message.get("u"), message.get("v"))
