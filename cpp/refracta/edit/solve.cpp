@@ -349,7 +349,7 @@ bool jacobian_condition(const EditProblem& problem, const std::vector<double>& x
     for (int j = 0; j < m; ++j) J(k, j) = jacobian[size_t(k) * m + j] * problem.dx_du(j, problem.to_unit(j, x[j]));
   }
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinV);
-  const Eigen::VectorXd sigma = svd.singularValues();
+  const Eigen::VectorXd& sigma = svd.singularValues();
   const double largest = sigma.size() > 0 ? sigma(0) : 0.0;
   *rank = 0;
   for (int i = 0; i < sigma.size(); ++i) *rank += sigma(i) > kRankTolerance * largest;

@@ -24,7 +24,7 @@ constexpr int kQuadrature = 64;
 }  // namespace
 
 RoughTransmittance::EtaTable::EtaTable(const Beckmann& distribution, double lo, double hi, int nodes)
-    : lo(lo), hi(hi), nodes(nodes), t(size_t(kMu * nodes), 0.0), hemispherical(size_t(nodes), 0.0) {
+    : lo(lo), hi(hi), nodes(nodes), t(size_t(kMu) * size_t(nodes), 0.0), hemispherical(size_t(nodes), 0.0) {
   // mu = 0 exactly is the proposal's degenerate direction: its grazing limit, from this mu.
   constexpr double kGrazingMu = 1e-7;
   for (int k = 0; k < nodes; ++k) {
@@ -46,12 +46,12 @@ RoughTransmittance::EtaTable::EtaTable(const Beckmann& distribution, double lo, 
           if (pdf > 0.0) sum += interface.transmission(wo, wi, eta, TransportMode::kImportance) * std::abs(wi.z()) / pdf;
         }
       }
-      t[size_t(k * kMu + j)] = sum / (kQuadrature * kQuadrature);
+      t[size_t(k) * kMu + size_t(j)] = sum / (kQuadrature * kQuadrature);
     }
     double h = 0.0;  // 2 int T mu dmu, trapezoidal over the mu nodes
     for (int j = 1; j < kMu; ++j) {
       const double mu0 = mu_node(j - 1), mu1 = mu_node(j);
-      h += (t[size_t(k * kMu + j - 1)] * mu0 + t[size_t(k * kMu + j)] * mu1) * (mu1 - mu0);
+      h += (t[size_t(k) * kMu + size_t(j - 1)] * mu0 + t[size_t(k) * kMu + size_t(j)] * mu1) * (mu1 - mu0);
     }
     hemispherical[size_t(k)] = h;
   }
@@ -88,7 +88,10 @@ double RoughTransmittance::operator()(double mu, double eta) const {
   const double x = std::sqrt(std::clamp(std::abs(mu), 0.0, 1.0)) * (kMu - 1);
   const int j = std::min(int(x), kMu - 2);
   const double wm = x - j;
-  auto at = [&](int kk) { return (1.0 - wm) * table.t[size_t(kk * kMu + j)] + wm * table.t[size_t(kk * kMu + j + 1)]; };
+  auto at = [&](int kk) {
+    const size_t row = size_t(kk) * kMu + size_t(j);
+    return (1.0 - wm) * table.t[row] + wm * table.t[row + 1];
+  };
   return (1.0 - we) * at(k) + we * at(k + 1);
 }
 
@@ -96,7 +99,7 @@ double RoughTransmittance::hemispherical(double eta) const {
   const EtaTable& table = table_for(eta);
   int k;
   const double w = table.node(eta, &k);
-  return (1.0 - w) * table.hemispherical[size_t(k)] + w * table.hemispherical[size_t(k + 1)];
+  return (1.0 - w) * table.hemispherical[size_t(k)] + w * table.hemispherical[size_t(k) + 1];
 }
 
 Water::Water(const WaterParameters& parameters) : parameters_(parameters) {
