@@ -144,6 +144,8 @@ def geometric_noise(
     correlation_pixels, seed, time, speed) -- NOT PHYSICAL: a seeded per-pixel angular jitter [rad]
     with a Gaussian spectrum (the follow-up editor's cheap shimmer; refracta.Turbulence is the
     physical one). Camera.project ignores the jitter."""
+    if not isinstance(camera, _core.Camera):
+        raise ValueError(f"geometric_noise: camera must be a refracta.Camera (got {type(camera).__name__})")
     return camera.jittered(geometric_noise_map(camera.height, camera.width, rms, correlation_pixels, seed, time, speed))
 
 
@@ -214,6 +216,11 @@ def animate(
     """
     # render's keywords first: a misspelt one (turbulance=) was blamed on a missing turbulence=.
     _options.build(_core.RenderOptions, where="animate", **options)
+    # Named before anything reads them (camera=None was an AttributeError on its width).
+    if not isinstance(scene, _core.Scene):
+        raise ValueError(f"animate: scene must be a refracta.Scene (got {type(scene).__name__})")
+    if not isinstance(camera, _core.Camera):
+        raise ValueError(f"animate: camera must be a refracta.Camera (got {type(camera).__name__})")
     times = real_array(times, "animate: times")  # not True/False, nor a string
     if times.ndim != 1 or times.size < 1:
         raise ValueError(f"animate: times must be a non-empty 1-D array of finite seconds (got shape {times.shape})")
@@ -251,6 +258,19 @@ def animate(
             needs = " and ".join(missing)
             raise ValueError(f"animate: noise needs {needs} (geometric_noise's keywords; got {noise!r})")
         geometric_noise_map(1, 1, **noise)  # checks the values before any work
+        moving = noise["rms"] > 0.0 and any(noise.get("speed", (10.0, 0.0)))  # geometric_noise's default speed
+        if not moving and (turbulence is None or not any(turbulence.wind)) and len(np.unique(times)) > 1:
+            raise ValueError(
+                "animate: the noise does not move (rms 0 or speed (0, 0)), so every frame is the same: "
+                "give it an rms > 0 and a speed, or turbulence= with a wind"
+            )
+        if camera.jitter is not None:
+            warnings.warn(
+                "animate: the camera is jittered, and noise= replaces its jitter in every frame "
+                "(give camera.without_jitter() to say so)",
+                SceneWarning,
+                stacklevel=2,
+            )
     if turbulence is not None:
         with_turbulence(field, turbulence)  # checks the field before any work
         if getattr(field, "turbulence", None) is not None:
@@ -524,11 +544,30 @@ def _display_bytes(frames, exposure, tonemap) -> np.ndarray:
     return np.stack([np.round(to_display(f, exposure, tonemap) * 255.0).astype(np.uint8) for f in frames])
 
 
+# The longest delay a GIF frame holds [ms]: a 16-bit count of hundredths of a second.
+_GIF_LONGEST_DELAY = 655_350
+
+
 def _write_gif(path, frames, fps, exposure, tonemap):
+    """Pillow writes a run of identical frames as one frame holding their delays together (the
+    animation's timing is kept, its frame count not), which a GIF keeps only up to 655.35 s: a
+    longer run is refused by name (it was a bare OverflowError after every frame had rendered)."""
     images = _gif_frames(_display_bytes(frames, exposure, tonemap))
-    images[0].save(
-        path, save_all=True, append_images=images[1:], duration=_gif_delays(len(images), fps), loop=0, optimize=False
-    )
+    delays = _gif_delays(len(images), fps)
+    start, held = 0, delays[0]
+    for i in range(1, len(images) + 1):
+        if i < len(images) and images[i].tobytes() == images[i - 1].tobytes():
+            held += delays[i]
+            continue
+        if held > _GIF_LONGEST_DELAY:
+            raise ValueError(
+                f"GIF: frames {start} to {i - 1} are identical and would be one GIF frame of {held / 1000:g} s, "
+                f"longer than the {_GIF_LONGEST_DELAY / 1000:g} s a GIF frame holds: write an MP4 or frame files, "
+                "or raise fps"
+            )
+        if i < len(images):
+            start, held = i, delays[i]
+    images[0].save(path, save_all=True, append_images=images[1:], duration=delays, loop=0, optimize=False)
 
 
 # Pixels (of every frame together) the GIF's shared palette is chosen from: median cut on ~1 MB.

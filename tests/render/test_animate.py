@@ -330,6 +330,31 @@ def test_animate_bad_input(tmp_path):
         refracta.animate(scene, camera, field, [0.0], turbulence=air, progress=False, no_such_option=1)
     with pytest.raises(ValueError, match="noise takes rms, .* not 'foo'"):
         refracta.animate(scene, camera, field, [0.0], noise=dict(rms=1e-4, correlation_pixels=3, foo=1), progress=False)
+    # A trial's: noise that does not move (its frames identical, like windless turbulence's), and
+    # a camera or scene that is none (AttributeErrors on their attributes).
+    for still in (dict(rms=0.0, correlation_pixels=3), dict(rms=1e-4, correlation_pixels=3, speed=(0, 0))):
+        with pytest.raises(ValueError, match="the noise does not move"):
+            refracta.animate(scene, camera, field, [0.0, 1.0], noise=still, progress=False)
+    with pytest.raises(ValueError, match="animate: camera must be a refracta.Camera"):
+        refracta.animate(scene, None, field, [0.0], turbulence=air, progress=False)
+    with pytest.raises(ValueError, match="animate: scene must be a refracta.Scene"):
+        refracta.animate(None, camera, field, [0.0], turbulence=air, progress=False)
+    with pytest.raises(ValueError, match="geometric_noise: camera must be a refracta.Camera"):
+        refracta.geometric_noise(None, 1e-4, 3)
+    jittered = refracta.geometric_noise(camera, 1e-4, 3)
+    with pytest.warns(refracta.SceneWarning, match="noise= replaces its jitter"):
+        refracta.animate(scene, jittered, field, [0.0], noise=dict(rms=1e-4, correlation_pixels=3), progress=False)
+
+
+def test_identical_frames_longer_than_a_gif_frame_holds_are_refused(tmp_path):
+    # Pillow writes identical frames as one; at 0.01 fps eight of them overflowed its 16-bit delay
+    # (a bare OverflowError after every frame had rendered).
+    frames = np.ones((8, 4, 4, 3), np.float32)
+    with pytest.raises(ValueError, match="GIF: frames 0 to 7 are identical .* 800 s"):
+        refracta.io.write_animation(tmp_path / "still.gif", frames, fps=0.01)
+    refracta.io.write_animation(tmp_path / "ok.gif", frames, fps=1.0)  # 8 s in one frame: allowed
+    with PIL_Image.open(tmp_path / "ok.gif") as gif:
+        assert gif.info["duration"] == 8000
 
 
 def test_a_missing_folder_is_refused_before_any_frame_is_rendered(tmp_path, monkeypatch):

@@ -146,3 +146,26 @@ def test_a_scattered_scene_in_the_grid_reaches_the_workers(client, texture):
     )
     for image, dt in zip(remote, [3.0, 12.0]):
         assert np.array_equal(image, render_scene(scene, dt))
+
+
+def returns_a_generator(x):
+    return (i for i in range(x)) if x == 1 else x
+
+
+def test_a_result_that_cannot_travel_fails_its_own_point_only(client):
+    # A trial: the Client's own executor never finished such a point's future, and the sweep hung.
+    result = refracta.sweep(returns_a_generator, {"x": [0, 1, 2]}, executor=client, progress=False, errors="keep")
+    assert list(result) == [0, None, 2]
+    assert [f.index for f in result.failures] == [1]
+
+
+def number_or_zero(x):
+    return x if isinstance(x, int) else 0
+
+
+def test_a_grid_value_that_cannot_travel_fails_its_own_point_only(client):
+    # A trial: its submit's serialisation error aborted the whole sweep, naming no point.
+    grid = {"x": [0, threading.Lock(), 2, 3]}
+    result = refracta.sweep(number_or_zero, grid, executor=client, progress=False, errors="keep")
+    assert list(result) == [0, None, 2, 3]
+    assert [f.index for f in result.failures] == [1]
