@@ -278,10 +278,14 @@ inline constexpr const char mkd_doc_refracta_PhysicalAtmosphereModel[] = R"doc(R
 gravity falling with height) + a smooth inversion layer + a surface layer surface_dt * exp(-h /
 surface_depth) (h >= 0) + areal hot spots (hot_spots=[refracta.HotSpot, ...]), hydrostatic pressure,
 and the index of air from Edlen's formula revised by Birch & Downs (1993/94) at `wavelength`,
-optional relative humidity. Defaults give n - 1 = 2.7784e-4 at the ground (15 C, 101325 Pa, 550 nm).
-Modelled for heights in [-1000, 86000] m (uniform above). With hot spots the field is no longer
-height-only: its parameters gain hot_spot<i>_x, _z, _radius, _dt, _depth, and height_only_part is
-the same air without them.)doc";
+optional relative humidity. The humidity is relative to the local temperature, so warmer air holds
+more vapour: a heated surface layer too, as if the road gave off water (at 50 %, 30 C air over a
+road 15 K warmer, the layer's index step is 7.9 % larger than with the air's vapour pressure carried
+down into it: a trial); a vapour pressure not below the air's is refused. The hydrostatic pressure
+takes dry air's gas constant (1.6 % in dP/dh in saturated air at 30 C, ~0.003 in k). Defaults give n
+- 1 = 2.7784e-4 at the ground (15 C, 101325 Pa, 550 nm). Modelled for heights in [-1000, 86000] m
+(uniform above). With hot spots the field is no longer height-only: its parameters gain
+hot_spot<i>_x, _z, _radius, _dt, _depth, and height_only_part is the same air without them.)doc";
 inline constexpr const char mkd_doc_refracta_PhysicalSkyLight[] = R"doc(A physical sky through a spherical standard atmosphere: single scattering (Nishita et al. 1993)
 plus, with multiple_scattering (default True), the higher orders by Hillaire 2020's isotropic
 multiple-scattering table (orders 2-13 explicit, then a geometric series): Rayleigh (lambda^-4, 8

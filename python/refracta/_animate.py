@@ -349,12 +349,15 @@ def write_animation(path, frames, fps: float | None = None, exposure: float | No
     them), or a pattern with a '{}' field for the frame number (one file per frame through
     refracta.io.write_image). GIF and MP4 frames share one exposure (`exposure`, or the automatic
     exposure of all the frames together; tonemap None: io's default curve), so nothing flickers.
+    A GIF holds a run of identical consecutive frames as one frame of their delays together
+    (Pillow's writing: the timing is kept, the frame count not).
     For frames made otherwise than by animate: a sweep's (refracta.sweep), a turntable's.
 
     Raises:
         ValueError: frames not (T, H, W, 3) finite numbers with T >= 1, fps missing or out of
             range for the format (a GIF: 1/655.35 to 50 fps; an MP4: 1/655.35 fps to 1e4), an
-            unknown format, a pattern that names two frames alike.
+            unknown format, a pattern that names two frames alike, identical GIF frames lasting
+            more than 655.35 s together.
         ImportError: Pillow or imageio-ffmpeg missing for a GIF or an MP4.
         FileNotFoundError, OSError: the folder missing, the file not writable.
         refracta.IoError: ffmpeg failed to write the MP4 (its message given).

@@ -246,7 +246,7 @@ def refraction_coefficient(
     surface. For a uniform gradient near the ground k = -R (dn/dh) / n: 503 P / T^2 (0.0343 + dT/dh)
     with P [hPa], T [K], dT/dh [K/m] (about 0.17 in the standard atmosphere; 1 at
     dT/dh = +0.128 K/m at 15 C and 1013 hPa, +0.112 K/m at 0 C: the ray follows the Earth; the
-    formula's rounding gives 0.129, where this air's k is 1.005).
+    formula's rounding gives 0.129, where this air's k is 1.004 from the ground, 1.002 from 2 m).
 
     field: a CurvedEarth (R is its radius) or a height-only field of true heights (PhysicalAtmosphere,
     TemperatureProfile, ...), which is put over a curved Earth, ``CurvedEarth(field, earth_radius)``

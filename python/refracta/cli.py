@@ -241,7 +241,7 @@ def demo(out: Path, size=None) -> int:
 # 0.35 deg (a ~4000 mm lens on full frame) shows the last gleam ~100 px wide and the sea below it.
 GREEN_FLASH_FRAMES = [(-0.45, 0.7), (-0.74, 0.7), (-0.768, 0.35), (-0.776, 0.35)]
 # [deg]: where each zoom looks (the fold is at -0.026). At 0.7 deg the first frame's flattened
-# disc spans apparent -0.144 (the mirage's cut, where the sea begins) to +0.306 deg: looking at
+# disc spans apparent -0.140 (the mirage's cut, where the sea begins) to +0.306 deg: looking at
 # +0.02 leaves 0.06 deg (44 px at 512) of sky above it and 0.19 deg of sea with the sun's glitter
 # path below (at -0.05 its top was cut off by the frame).
 GREEN_FLASH_LOOK = {0.7: 0.02, 0.35: -0.02}

@@ -534,8 +534,9 @@ def green_flash(width: int = 160, height: int = 160, sun_elevation: float = -0.7
     eye 4 m above the water, looking at the setting sun. The sun's centre is `sun_elevation` [deg]
     above the true horizon: -0.776 (the default) shows the last gleam, green; -0.768 the lens,
     orange inside a green rim; -0.74 the lens the sun's top and its mirror image make; -0.45 the
-    flattened disc cut by the mirage (make demo's frames). From about -0.778 the whole disc lies
-    below the mirage's cut, and the frame shows only the sky and the sea. Render spectrally
+    flattened disc cut by the mirage (make demo's frames). From about -0.778 its green is gone
+    (530 nm's last light: -0.7781); a fainter blue gleam lasts to about -0.787 (400 nm), below
+    which the frame shows only the sky and the sea. Render spectrally
     (refracta.render(..., spectral=True)): each wavelength is bent by its own air, blue and green
     lifted most, so the last sliver of the flattened sun turns green; below it the mirage of the
     warm sea squeezes the disc into an 'Etruscan vase' and cuts it off above the horizon."""

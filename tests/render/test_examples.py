@@ -400,7 +400,7 @@ def glitter_columns():
         eye, eye + [np.cos(look), np.sin(look), 0.0], vfov=vfov, width=GLITTER_SIZE, height=GLITTER_SIZE
     )
     # The sea's rows: from 0.2 deg below the frame's centre (+0.02 deg) down, below the disc's cut
-    # at -0.144 deg apparent.
+    # at -0.140 deg apparent.
     first = GLITTER_SIZE // 2 + int(np.ceil((np.radians(0.2) / np.radians(vfov)) * GLITTER_SIZE))
     image = refracta.render(
         example.scene,

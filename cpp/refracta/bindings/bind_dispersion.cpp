@@ -33,7 +33,7 @@ void bind_dispersion(py::module_& m) {
         "TemperatureProfile, CurvedEarth over them), else 550.");
   m.def("dispersed_field",
         [](const std::shared_ptr<IndexField>& field, double wavelength, std::optional<double> reference) {
-          return unconst(dispersed_field(field, wavelength, reference ? *reference : 0.0));
+          return unconst(dispersed_field(field, wavelength, reference));
         },
         py::arg("field"), py::arg("wavelength"), py::arg("reference") = py::none(),
         "The field at `wavelength` [nm] (dry-air dispersion, n - 1 scaled by air_dispersion_scale from\n"

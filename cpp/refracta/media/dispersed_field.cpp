@@ -24,13 +24,7 @@ double air_dispersion_scale(double wavelength_nm, double reference_nm) {
   return dry_air_k(wavelength_nm, "wavelength") / dry_air_k(reference_nm, "reference wavelength");
 }
 
-double field_reference_wavelength(const IndexField& field) {
-  const std::vector<ParamSpec>& specs = field.param_specs();
-  for (size_t i = 0; i < specs.size(); ++i) {
-    if (specs[i].name == "wavelength") return field.param_values().at(i);
-  }
-  return kDefaultFieldWavelength;
-}
+double field_reference_wavelength(const IndexField& field) { return field.reference_wavelength(); }
 
 DispersedField::DispersedField(FieldPtr base, double scale, double wavelength_nm)
     : DispersedField(std::move(base), std::make_shared<const double>(scale), wavelength_nm) {
@@ -91,18 +85,19 @@ std::shared_ptr<const IndexField> DispersedField::with_param_values(const std::v
                                           wavelength);
 }
 
-FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, double reference_nm) {
+FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, std::optional<double> reference_nm) {
   if (!field) throw_invalid("dispersed_field: field must be a field (got None)");
+  if (reference_nm) dry_air_k(*reference_nm, "reference wavelength");  // checked as given (0 was "none")
   // The wavelength is the field's to report only when the scale is from its own reference (a
   // reference of the caller's makes an air whose parameters say nothing of it: the base's kept).
   const double own = field_reference_wavelength(*field);
-  const bool known = reference_nm <= 0.0 || reference_nm == own;
-  if (reference_nm <= 0.0) reference_nm = own;
+  const bool known = !reference_nm || *reference_nm == own;
+  const double reference = reference_nm.value_or(own);
   if (const FieldPtr inner = field->decorated()) {  // disperse the air inside CurvedEarth
-    const FieldPtr base = dispersed_field(inner, wavelength_nm, reference_nm);
+    const FieldPtr base = dispersed_field(inner, wavelength_nm, reference);
     return base == inner ? field : field->with_base(base);
   }
-  const double scale = air_dispersion_scale(wavelength_nm, reference_nm);
+  const double scale = air_dispersion_scale(wavelength_nm, reference);
   if (scale == 1.0) return field;
   return std::make_shared<DispersedField>(field, scale, known ? wavelength_nm : std::numeric_limits<double>::quiet_NaN());
 }

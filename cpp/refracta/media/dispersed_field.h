@@ -27,7 +27,7 @@ constexpr double kDefaultFieldWavelength = 550.0;
 // K(lambda) / K(reference) of dry air; wavelengths [nm] in [230, 2000] (else std::invalid_argument).
 double air_dispersion_scale(double wavelength_nm, double reference_nm);
 
-// The field's `wavelength` parameter [nm], or kDefaultFieldWavelength.
+// The wavelength [nm] the field's n stands for: IndexField::reference_wavelength.
 double field_reference_wavelength(const IndexField& field);
 
 // n' = 1 + scale (n - 1) of a base field, grad n' = scale grad n; height-only as its base. Its
@@ -63,6 +63,11 @@ class DispersedField final : public IndexField {
   void evaluate_height(double h, double* n, double* dn_dh) const override;
   const std::vector<ParamSpec>& param_specs() const override { return base_->param_specs(); }
   std::vector<double> param_values() const override;
+  // The wavelength it was dispersed to (its base's parameters may have none: a LogisticProfile
+  // dispersed to 450 nm said 550, and dispersing it again scaled from there, 1 % off: a trial).
+  double reference_wavelength() const override {
+    return std::isfinite(wavelength_) ? wavelength_ : base_->reference_wavelength();
+  }
   std::shared_ptr<const IndexField> with_param_values(const std::vector<double>& values) const override;
   std::vector<std::string> gauge_params() const override { return base_->gauge_params(); }
   // The base's height-only part, dispersed alike; its regions.
@@ -89,9 +94,10 @@ class DispersedField final : public IndexField {
 };
 
 // The field at `wavelength_nm` [nm]: a DispersedField by air_dispersion_scale(wavelength,
-// reference) (reference <= 0: field_reference_wavelength(*field)); CurvedEarth through its base;
-// the field itself when the scale is 1.
-FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, double reference_nm = 0.0);
+// reference) (none: field_reference_wavelength(*field); given, in air_dispersion_scale's range,
+// else std::invalid_argument: a 0 or negative one passed as "none"); CurvedEarth through its
+// base; the field itself when the scale is 1.
+FieldPtr dispersed_field(const FieldPtr& field, double wavelength_nm, std::optional<double> reference_nm = std::nullopt);
 
 // The field dispersed by the scale `scale` points to, retuned whenever its owner changes it (the
 // DispersedField constructor above): CurvedEarth through its base, as dispersed_field.

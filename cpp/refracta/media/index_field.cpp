@@ -1,5 +1,6 @@
 // Shared, non-template parts of IndexField.
 #include "refracta/media/index_field.h"
+#include "refracta/media/dispersed_field.h"
 #include "refracta/media/ior_range.h"
 
 #include "refracta/core/error.h"
@@ -12,6 +13,15 @@
 namespace refracta {
 
 // By value, as the virtual's signature (the overrides keep the pointer); this default only refuses.
+double IndexField::reference_wavelength() const {
+  if (const auto inner = decorated()) return inner->reference_wavelength();
+  const std::vector<ParamSpec>& specs = param_specs();
+  for (size_t i = 0; i < specs.size(); ++i) {
+    if (specs[i].name == "wavelength") return param_values().at(i);
+  }
+  return kDefaultFieldWavelength;
+}
+
 std::shared_ptr<const IndexField> IndexField::with_base(
     std::shared_ptr<const IndexField> /*base*/) const {  // NOLINT(performance-unnecessary-value-param)
   throw std::logic_error(type_name() + " decorates no field: with_base is for decorators (decorated() != null)");

@@ -84,6 +84,9 @@ class IndexField {
   // through these three, so a function that must reach the air itself (dispersion, tabulation,
   // the autodiff dispatch) needs no type switch. decorated(): the field wrapped, null for others.
   virtual std::shared_ptr<const IndexField> decorated() const { return nullptr; }
+  // The wavelength [nm] the field's n stands for (field_reference_wavelength): the decorated
+  // field's, else its `wavelength` parameter, else kDefaultFieldWavelength (550).
+  virtual double reference_wavelength() const;
   // The same decoration around another base; throws std::logic_error for fields that decorate none.
   virtual std::shared_ptr<const IndexField> with_base(std::shared_ptr<const IndexField> base) const;
   // Height y [m] of this field in decorated()'s coordinates (y itself for others).

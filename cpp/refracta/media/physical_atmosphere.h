@@ -35,7 +35,12 @@ struct PhysicalAtmosphereConfig {
 // heights, gravity falling with height) + a smooth inversion layer + a surface layer surface_dt *
 // exp(-h / surface_depth) (h >= 0) + areal hot spots (hot_spots=[refracta.HotSpot, ...]),
 // hydrostatic pressure, and the index of air from Edlen's formula revised by Birch & Downs
-// (1993/94) at `wavelength`, optional relative humidity. Defaults give n - 1 = 2.7784e-4 at the
+// (1993/94) at `wavelength`, optional relative humidity. The humidity is relative to the local
+// temperature, so warmer air holds more vapour: a heated surface layer too, as if the road gave
+// off water (at 50 %, 30 C air over a road 15 K warmer, the layer's index step is 7.9 % larger
+// than with the air's vapour pressure carried down into it: a trial); a vapour pressure not below
+// the air's is refused. The hydrostatic pressure takes dry air's gas constant (1.6 % in dP/dh in
+// saturated air at 30 C, ~0.003 in k). Defaults give n - 1 = 2.7784e-4 at the
 // ground (15 C, 101325 Pa, 550 nm). Modelled for heights in [-1000, 86000] m (uniform above). With
 // hot spots the field is no longer height-only: its parameters gain hot_spot<i>_x, _z, _radius,
 // _dt, _depth, and height_only_part is the same air without them.
@@ -107,6 +112,24 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
     }
     if (!(v[kHumidity] >= 0.0 && v[kHumidity] <= 1.0)) {
       throw_invalid("PhysicalAtmosphere: humidity must be in [0, 1] (got ", v[kHumidity], ")");
+    }
+    if (v[kHumidity] > 0.0 && std::isfinite(v[kGroundTemperature] + v[kSurfaceDt])) {
+      // Relative humidity follows the local temperature (air.h), so the warmest air near the
+      // ground holds the most vapour: more than the air's own pressure is water boiling, not air
+      // (a trial's t_ground 400 K at humidity 1: 258 kPa of vapour in 101 kPa of air).
+      double hottest = v[kGroundTemperature] + std::max(v[kSurfaceDt], 0.0), spot = 0.0;
+      for (size_t i = 0; i < config.hot_spots.size(); ++i) {
+        spot = std::max(spot, v[kCount + hot_spot_param_count(true) * i + kSpotDt]);
+      }
+      hottest += spot;
+      double e_s, de_dt;
+      saturation_vapour_pressure(hottest, &e_s, &de_dt);
+      if (!(v[kHumidity] * e_s < v[kGroundPressure])) {
+        throw_invalid(kTypeName, ": humidity ", v[kHumidity], " at the ground's warmest ", hottest,
+                      " K (surface_dt and hot spots included) is ", v[kHumidity] * e_s,
+                      " Pa of water vapour, not less than the air's pressure ", v[kGroundPressure],
+                      " Pa (the water would boil): lower humidity or the temperatures");
+      }
     }
     if (!(v[kWavelength] >= 230.0 && v[kWavelength] <= 2000.0)) {
       throw_invalid("PhysicalAtmosphere: wavelength must be in [230, 2000] nm (got ",
