@@ -135,3 +135,9 @@ def test_radiance_hdr_warns_of_the_negative_values_it_cannot_keep(tmp_path):
         warnings.simplefilter("error")
         io.write_image(tmp_path / "n.exr", image)  # EXR keeps them, with no warning
     assert io.read_image(tmp_path / "n.exr")[0, 0, 0] == -1.0
+
+
+def test_webp_refuses_a_grey_image_with_alpha_by_name(tmp_path):
+    # Its colour is not premultiplied as a 4-channel image's (that read past a 2-channel image's end).
+    with pytest.raises(refracta.IoError, match="webp does not support 2-channel images"):
+        io.write_image(tmp_path / "g.webp", grey(2, alpha=0.5), exposure=1.0, tonemap="linear")

@@ -140,7 +140,7 @@ void write_image(const std::string& path, const Image& given, const std::string&
   const bool alpha = given.channels == 2 || given.channels == 4;
   std::optional<Image> adapted;
   if (alpha && !out->supports("alpha")) adapted = without_alpha(given);
-  if (alpha && format_name == "webp") adapted = premultiplied_for_webp(given);
+  if (given.channels == 4 && format_name == "webp") adapted = premultiplied_for_webp(given);
   const Image& image = adapted ? *adapted : given;
   const OIIO::TypeDesc format = is_float_format(path) ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
   OIIO::ImageSpec spec(image.width, image.height, image.channels, format);
