@@ -150,7 +150,8 @@ def test_the_view_lists_the_spots_and_their_toggles_free_their_parameters(road):
         assert editor._free.value == ("surface_dt", "hot_spot0_x")
         editor._free.value = ("hot_spot1_dt",)  # the free list drives the toggles too
         assert [n for n, t in editor._spot_toggles.items() if t.value] == ["hot_spot1_dt"]
-        editor.model.set_free(["surface_dt", "camera_pitch"])  # a toggle keeps free camera parameters (a trial's lost them)
+        # A toggle keeps free camera parameters (a trial's lost them).
+        editor.model.set_free(["surface_dt", "camera_pitch"])
         editor._spot_toggles["hot_spot0_x"].value = True
         assert editor.model.free == ("surface_dt", "hot_spot0_x", "camera_pitch")
         editor.model.wheel(1.0)  # a camera move redraws the outlines
