@@ -61,6 +61,9 @@ def field_at_time(field, turbulence, t: float):
 
 # -- the cheap shimmer: a random angle map (not physical) ----------------------------------------
 
+# The pattern's default drift [pixels/s] (geometric_noise_map, geometric_noise, animate's noise=).
+_NOISE_SPEED = (10.0, 0.0)
+
 
 def geometric_noise_map(
     height: int,
@@ -69,7 +72,7 @@ def geometric_noise_map(
     correlation_pixels: float,
     seed: int = 0,
     time: float = 0.0,
-    speed: Sequence[float] = (10.0, 0.0),
+    speed: Sequence[float] = _NOISE_SPEED,
 ) -> np.ndarray:
     """A seeded random map of small angles [rad], float64 (height, width, 2) (toward the image's
     right and up), for Camera.jittered: NOT PHYSICAL -- the follow-up editor's "geometric noise to
@@ -138,7 +141,7 @@ def geometric_noise(
     correlation_pixels: float,
     seed: int = 0,
     time: float = 0.0,
-    speed: Sequence[float] = (10.0, 0.0),
+    speed: Sequence[float] = _NOISE_SPEED,
 ) -> _core.Camera:
     """`camera` with every ray turned by geometric_noise_map(camera.height, camera.width, rms,
     correlation_pixels, seed, time, speed) -- NOT PHYSICAL: a seeded per-pixel angular jitter [rad]
@@ -258,7 +261,7 @@ def animate(
             needs = " and ".join(missing)
             raise ValueError(f"animate: noise needs {needs} (geometric_noise's keywords; got {noise!r})")
         geometric_noise_map(1, 1, **noise)  # checks the values before any work
-        moving = noise["rms"] > 0.0 and any(noise.get("speed", (10.0, 0.0)))  # geometric_noise's default speed
+        moving = noise["rms"] > 0.0 and any(noise.get("speed", _NOISE_SPEED))
         if not moving and (turbulence is None or not any(turbulence.wind)) and len(np.unique(times)) > 1:
             raise ValueError(
                 "animate: the noise does not move (rms 0 or speed (0, 0)), so every frame is the same: "

@@ -40,8 +40,9 @@ void write_display_image_warning(const std::string& path, Image image, const Dis
                                   " shape only displayed images (PNG, JPEG) and are not applied";
       if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();
     }
-    const auto negative = std::count_if(image.pixels.begin(), image.pixels.end(), [](float v) { return v < 0.0f; });
-    if (negative > 0 && !keeps_negative_values(path)) {
+    const auto negative = keeps_negative_values(path) ? 0 : std::count_if(image.pixels.begin(), image.pixels.end(),
+                                                                           [](float v) { return v < 0.0f; });
+    if (negative > 0) {
       const std::string message = "write_image: Radiance HDR stores no negative values: " + std::to_string(negative) +
                                   " written as 0 (EXR, TIFF and PFM keep them)";
       if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();

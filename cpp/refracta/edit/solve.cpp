@@ -408,11 +408,9 @@ std::string why_unmet(const EditProblem& problem, const std::vector<double>& res
   // The miss across the destination's vertical plane: air that varies with height alone bends a
   // path within that plane, so that part stays whatever the solve tries (a trial's source 5 m to
   // the side was called "within reach").
-  const Vec3d across(-pair.direction.z(), 0.0, pair.direction.x());
-  const double sideways = across.norm() > 1e-9 ? std::abs(across.normalized().dot(Vec3d(residuals[3 * i], residuals[3 * i + 1],
-                                                                                       residuals[3 * i + 2]))) /
-                                                     std::sqrt(pair.weight)
-                                               : 0.0;
+  const Vec3d across(-pair.direction.z(), 0.0, pair.direction.x());  // horizontal, across the plane
+  const Vec3d miss(residuals[3 * i], residuals[3 * i + 1], residuals[3 * i + 2]);
+  const double sideways = across.norm() > 1e-9 ? std::abs(across.normalized().dot(miss)) / std::sqrt(pair.weight) : 0.0;
   if (sideways > std::abs(vertical)) {
     return concat("its path passes ", sideways, " m to the side of the source (", std::abs(vertical), " m ", side,
                   " it): air that varies only with height bends a path within its vertical plane, so this miss "

@@ -240,7 +240,8 @@ Image read_image(const std::string& path) {
   if (std::string(in->format_name()) == "webp" && image.channels == 4) {
     for (size_t i = 0; i < image.pixels.size(); i += 4) {
       const float a = image.pixels[i + 3];
-      for (int c = 0; c < 3 && a > 0.0f; ++c) image.pixels[i + c] = std::min(image.pixels[i + c] / a, 1.0f);
+      if (!(a > 0.0f)) continue;  // no colour to recover under alpha 0
+      for (int c = 0; c < 3; ++c) image.pixels[i + c] = std::min(image.pixels[i + c] / a, 1.0f);
     }
   }
   in->close();

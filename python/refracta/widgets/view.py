@@ -220,7 +220,7 @@ class MirageEditor(w.VBox):
     def _build_toolbar(self) -> None:
         """The images, the buttons, the progress bars and the message line."""
         model = self.model
-        self._canvas = ImageCanvas(on_pointer=lambda message: self._guard(self._pointer, message))
+        self._canvas = ImageCanvas(on_pointer=lambda message: self._guard(self._pointer, message, clears_mistake=False))
         self._straight = ImageCanvas(interactive=False, cursor="default")
         self._straight_box = w.VBox(
             [w.HTML("<b>straight (no atmosphere)</b>"), self._straight], layout=w.Layout(display="none")
@@ -360,14 +360,15 @@ class MirageEditor(w.VBox):
             self._tabs.set_title(index, title)
 
     # ---------------------------------------------------------------- events from the browser
-    def _guard(self, function, *args):
-        """Run a handler; user mistakes become a message in the editor, never a traceback. An
-        accepted edit (not a pointer event: a click's release follows its press's message) that
-        says nothing itself clears an earlier mistake's message (it stayed red)."""
+    def _guard(self, function, *args, clears_mistake: bool = True):
+        """Run a handler; user mistakes become a message in the editor, never a traceback. With
+        clears_mistake, an accepted edit that says nothing itself clears an earlier mistake's
+        message (it stayed red); pointer events pass False (a click's release follows its press,
+        whose message stays)."""
         was_error, said = self.model.message_kind == "error", self.model.messages_said
         try:
             result = function(*args)
-            if was_error and self.model.messages_said == said and function != self._pointer:
+            if clears_mistake and was_error and self.model.messages_said == said:
                 self.model.say("")
             return result
         except USER_ERRORS as error:
