@@ -136,3 +136,6 @@ def test_saving_a_python_built_scene_says_what_the_file_lacks(make_model, tmp_pa
     model = make_model()
     model.export_scene(tmp_path / "scene.toml")
     assert "built in Python" in model.message and model.message_kind == "error"
+    model.import_scene(tmp_path / "scene.toml")  # render's hint, said in the editor (not on a worker's stderr)
+    assert "the scene has no light and no sky" in model.message and model.message_kind == "error"
+    assert model.wait(WAIT)

@@ -55,7 +55,7 @@ import numpy as np
 from refracta import _checks, _core
 from refracta import io as _image_io
 from refracta._rays import without_refraction
-from refracta._render import SceneWarning, render
+from refracta._render import SceneWarning, _check_scene, render
 from refracta.scene_file import relocate
 from refracta.widgets import camera_moves, files
 from refracta.widgets.jobs import Job, JobRunner
@@ -561,12 +561,12 @@ class EditorModel:
                 self._record(before)
         self._notify("pairs", "history")
 
-    def _check_in_image(self, pair) -> None:
-        """A pixel destination must lie on the camera's image, as solve requires (a pair added off it
-        failed only later, as a failed solve job)."""
-        if len(pair.destination) == 2 and not _checks.on_image(self.camera, *pair.destination):
-            width, height = self.camera.width, self.camera.height
-            raise ValueError(f"pixel {pair.destination} lies outside the {width} x {height} image")
+    def _check_in_image(self, pair, camera: _core.Camera | None = None) -> None:
+        """A pixel destination must lie on the camera's image (`camera`, default the editor's), as
+        solve requires (a pair added off it failed only later, as a failed solve job)."""
+        camera = camera or self.camera
+        if len(pair.destination) == 2 and not _checks.on_image(camera, *pair.destination):
+            raise ValueError(f"pixel {pair.destination} lies outside the {camera.width} x {camera.height} image")
 
     def _check_index(self, index: int) -> None:
         if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < len(self.pairs):
@@ -730,15 +730,14 @@ class EditorModel:
         if du == 0.0 and dv == 0.0 and not drag["moved"]:
             return  # a press on a marker without a move selects it and changes nothing
         index = drag["pair"]
-        mu, mv = drag["marker"][0] + du, drag["marker"][1] + dv
+        # Held on the image, as a pointer leaving it does: solve refuses destinations off it, and a
+        # source is a point the image shows, as a click places it (one dragged to u = -20 was picked
+        # off the image, its marker beyond reach).
+        mu = min(max(drag["marker"][0] + du, 0.0), self.camera.width)
+        mv = min(max(drag["marker"][1] + dv, 0.0), self.camera.height)
         if drag["kind"] == "destination":
-            # Held on the image (solve refuses destinations off it), as a pointer leaving it does.
-            mu, mv = min(max(mu, 0.0), self.camera.width), min(max(mv, 0.0), self.camera.height)
             self._replace_pair(index, drag["before"].label, record=False, destination=(mu, mv))
         else:
-            # A source is a point the image shows, as a click places it (one dragged to u = -20 was
-            # picked off the image, its marker beyond reach).
-            mu, mv = min(max(mu, 0.0), self.camera.width), min(max(mv, 0.0), self.camera.height)
             point = self.camera.pick(self.scene, mu, mv, without_refraction(self.field))
             if point is None:
                 self.say(
@@ -1052,17 +1051,19 @@ class EditorModel:
         from refracta.scene_file import load_scene, read_scene_text
 
         path = Path(path)
-        with warnings.catch_warnings(record=True) as caught:  # said in the editor, not on the worker's stderr
-            warnings.simplefilter("always", SceneWarning)
-            loaded = load_scene(path)
+        loaded = load_scene(path)
         scene, camera, field = loaded
         text = read_scene_text(path)
         for index, pair in enumerate(self.pairs):  # the pairs stay: their destinations must fit the new image
-            if len(pair.destination) == 2 and not _checks.on_image(camera, *pair.destination):
-                raise ValueError(
-                    f"{path.name}: pair {index}'s destination {pair.destination} lies outside its "
-                    f"{camera.width} x {camera.height} image: remove or move that pair first"
-                )
+            try:
+                self._check_in_image(pair, camera)
+            except ValueError as error:
+                raise ValueError(f"{path.name}: pair {index}: {error}: remove or move that pair first") from None
+        # render's own hints (no light, a camera under the ground, ...), said in the editor: from its
+        # render jobs they reached only the worker's stderr (a trial's scene saved without its objects).
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", SceneWarning)
+            _check_scene(scene, camera, field if field is not None else self.field, "curved", "load scene")
         with self._lock:
             before = self._snapshot(f"load scene {path.name}")
             self.scene, self.scene_text, self.camera = scene, text, camera
