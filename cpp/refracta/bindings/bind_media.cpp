@@ -196,6 +196,11 @@ void bind_hot_spot(py::module_& m) {
       .def_property_readonly("reach", &HotSpot::reach,
                              "Distance [m] beyond which the footprint is below 1e-6 (compact: exactly 0).")
       .def(py::self == py::self)  // NOLINT(misc-redundant-expression): pybind11's operator binding
+      .def("__hash__",  // immutable, so a set member or dict key; a NaN depth ("none") hashes as one value
+           [](const HotSpot& s) {
+             const py::object depth = std::isnan(s.depth) ? py::object(py::none()) : py::float_(s.depth);
+             return py::hash(py::make_tuple(s.x, s.z, s.radius, s.dt, depth, int(s.footprint)));
+           })
       .def("__repr__", &hot_spot_repr);
   using State = std::tuple<double, double, double, double, double, int>;
   def_tuple_pickle<State>(

@@ -45,7 +45,17 @@ void def_tuple_pickle(Class& cls, const char* name, Get state, Make make) {
   def_state_pickle(
       cls, name, std::tuple_size_v<TypedState>,
       [state](const typename Class::type& self) { return py::tuple(py::cast(TypedState(state(self)))); },
-      [make](const py::tuple& t) { return std::apply(make, py::cast<TypedState>(t)); });
+      [name, make](const py::tuple& t) {
+        TypedState typed;
+        try {
+          typed = py::cast<TypedState>(t);
+        } catch (const py::cast_error&) {
+          std::string types;
+          for (const py::handle item : t) types += (types.empty() ? "" : ", ") + std::string(Py_TYPE(item.ptr())->tp_name);
+          throw_invalid(name, ": bad pickle state (an item of the wrong type among ", types, ")");
+        }
+        return std::apply(make, std::move(typed));
+      });
 }
 
 }  // namespace refracta

@@ -35,11 +35,12 @@ const char* footprint_name(Footprint footprint);
 // warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre, with footprint
 // 'gaussian' F = exp(-r^2 / (2 radius^2)) or 'compact' F = (1 - r/R)^4 (4 r/R + 1) for r < R =
 // radius (Wendland's C2 function: exactly zero outside). Give it to
-// PhysicalAtmosphere(hot_spots=[...]) (dt [K]; depth [m], None: the atmosphere's surface_depth) or
-// LogisticProfile(hot_spots=[...]) (dt: strength of the profile's hot-spot term there, 1 = the
-// whole term; depth must be None: the term's width is a_hot). The fields expose each spot's numbers
-// as parameters hot_spot<i>_x, _z, _radius, _dt (, _depth), so refracta.edit.solve can move, resize
-// and heat them.
+// PhysicalAtmosphere(hot_spots=[...]) (dt [K]; depth [m], None: the atmosphere's surface_depth as
+// the field is made) or LogisticProfile(hot_spots=[...]) (dt: strength of the profile's hot-spot
+// term there, 1 = the whole term; depth must be None: the term's width is a_hot). The fields expose
+// each spot's numbers as parameters hot_spot<i>_x, _z, _radius, _dt (, _depth), so refracta.edit.solve
+// can move, resize and heat them; a spot's depth is then its own parameter, which with_params or a
+// solve of surface_depth leaves where it is (change hot_spot<i>_depth with it to move both).
 struct HotSpot {
   double x = 0.0, z = 0.0;  // centre on the ground [m]
   double radius = 1.0;      // [m]: the gaussian's standard deviation, or the compact support's radius

@@ -87,10 +87,10 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
   static std::vector<std::string> gauge_params() { return {}; }
 
   static void validate(const Config& config, const std::vector<double>& v) {
+    validate_base(v);  // first: a spot without its own depth took surface_depth's
     validate_hot_spots(kTypeName, v, kCount, config.hot_spots.size(), true);
-    // A spot's dt is a temperature excess here: the air it heats stays above 0 K for any plausible
-    // ground air (above ~200 K) and far below where the index of air formula fails
-    // (hydrostatic_column.h).
+    // A spot's dt is a temperature excess here, bounded alone as a plausible patch of ground; the
+    // air the spots heat or cool together is checked against the column's (check_heated_air).
     constexpr double kColdestSpotDt = -150.0, kHottestSpotDt = 500.0;  // [K]
     for (size_t i = 0; i < config.hot_spots.size(); ++i) {
       const double dt = v[kCount + hot_spot_param_count(true) * i + kSpotDt];
@@ -99,6 +99,27 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
                       dt, ")");
       }
     }
+    if (v[kHumidity] > 0.0 && std::isfinite(v[kGroundTemperature] + v[kSurfaceDt])) {
+      // Relative humidity follows the local temperature (air.h), so the warmest air near the
+      // ground holds the most vapour: more than the air's own pressure is water boiling, not air
+      // (a trial's t_ground 400 K at humidity 1: 258 kPa of vapour in 101 kPa of air).
+      double hottest = v[kGroundTemperature] + std::max(v[kSurfaceDt], 0.0);
+      for (size_t i = 0; i < config.hot_spots.size(); ++i) {  // where they overlap their excesses add
+        hottest += std::max(v[kCount + hot_spot_param_count(true) * i + kSpotDt], 0.0);
+      }
+      double e_s, de_dt;
+      saturation_vapour_pressure(hottest, &e_s, &de_dt);
+      if (!(v[kHumidity] * e_s < v[kGroundPressure])) {
+        throw_invalid(kTypeName, ": humidity ", v[kHumidity], " at the ground's warmest ", hottest,
+                      " K (surface_dt and hot spots included) is ", v[kHumidity] * e_s,
+                      " Pa of water vapour, not less than the air's pressure ", v[kGroundPressure],
+                      " Pa (the water would boil): lower humidity or the temperatures");
+      }
+    }
+    // Positive temperature everywhere is checked while the pressure column is built.
+  }
+
+  static void validate_base(const std::vector<double>& v) {
     if (!(v[kGroundPressure] > 0.0)) {
       throw_invalid("PhysicalAtmosphere: pressure must be > 0 Pa (got ", v[kGroundPressure], ")");
     }
@@ -113,29 +134,10 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
     if (!(v[kHumidity] >= 0.0 && v[kHumidity] <= 1.0)) {
       throw_invalid("PhysicalAtmosphere: humidity must be in [0, 1] (got ", v[kHumidity], ")");
     }
-    if (v[kHumidity] > 0.0 && std::isfinite(v[kGroundTemperature] + v[kSurfaceDt])) {
-      // Relative humidity follows the local temperature (air.h), so the warmest air near the
-      // ground holds the most vapour: more than the air's own pressure is water boiling, not air
-      // (a trial's t_ground 400 K at humidity 1: 258 kPa of vapour in 101 kPa of air).
-      double hottest = v[kGroundTemperature] + std::max(v[kSurfaceDt], 0.0), spot = 0.0;
-      for (size_t i = 0; i < config.hot_spots.size(); ++i) {
-        spot = std::max(spot, v[kCount + hot_spot_param_count(true) * i + kSpotDt]);
-      }
-      hottest += spot;
-      double e_s, de_dt;
-      saturation_vapour_pressure(hottest, &e_s, &de_dt);
-      if (!(v[kHumidity] * e_s < v[kGroundPressure])) {
-        throw_invalid(kTypeName, ": humidity ", v[kHumidity], " at the ground's warmest ", hottest,
-                      " K (surface_dt and hot spots included) is ", v[kHumidity] * e_s,
-                      " Pa of water vapour, not less than the air's pressure ", v[kGroundPressure],
-                      " Pa (the water would boil): lower humidity or the temperatures");
-      }
-    }
     if (!(v[kWavelength] >= 230.0 && v[kWavelength] <= 2000.0)) {
       throw_invalid("PhysicalAtmosphere: wavelength must be in [230, 2000] nm (got ",
                     v[kWavelength], ")");
     }
-    // Positive temperature everywhere is checked while the pressure column is built.
   }
 
   PhysicalAtmosphereModel(const Config& config, const std::vector<T>& v)
@@ -163,6 +165,7 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
          {12.0 * depth, 40.0 * depth, depth / 2.0},
          {base, base + thick, thick / 40.0}},
         kinks);
+    if (!spots_.empty()) check_heated_air(nodes);
     column_ = HydrostaticColumn<T>([this](const T& h, T* t, T* dt) { temperature(h, t, dt); },
                                    std::move(nodes), 0.0, p_[kGroundPressure], kTypeName);
     if constexpr (std::is_same_v<T, double>) tabulate_near_ground();
@@ -253,6 +256,31 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
 
  private:
   enum SpotIndex { kSpotX, kSpotZ, kSpotRadius, kSpotDt, kSpotDepth };
+
+  // Where spots overlap their excesses add: at each height the air over them is bounded by the
+  // column's temperature plus the sum of the cooling spots' dt e(h) (and of the heating ones'), e(h)
+  // up to 2 below the ground (surface_decay). That air must stay in (0, kHottestAir] K, as the
+  // column's own (a trial's -150 K spot over 140 K air read n = 0.992 with no error).
+  void check_heated_air(const std::vector<double>& heights) const {
+    for (const double h : heights) {
+      T t, slope;
+      temperature(T(h), &t, &slope);
+      double cooling = 0.0, heating = 0.0;
+      for (const std::vector<T>& v : spot_values_) {
+        T e, de_dh;
+        surface_decay(T(h), v[kSpotDepth], &e, &de_dh);
+        const double excess = value_of(v[kSpotDt] * e);
+        (excess < 0.0 ? cooling : heating) += excess;
+      }
+      for (const double air : {value_of(t) + cooling, value_of(t) + heating}) {
+        if (!(air > 0.0 && air <= kHottestAir)) {
+          throw_invalid(kTypeName, ": the hot spots make the air ", air, " K at h = ", h, " m (the column's ",
+                        value_of(t), " K and the spots' dt e^(-h/depth) added where they overlap, twice dt below the ",
+                        "ground); it must stay in (0, ", kHottestAir, "] K: give the spots smaller dt");
+        }
+      }
+    }
+  }
 
   // Spot i's excess dt e(h) F(r) added to t, and its gradient to grad_t; false where it adds nothing.
   bool add_spot(size_t i, const Vec3<T>& p, T* t, Vec3<T>* grad_t) const {

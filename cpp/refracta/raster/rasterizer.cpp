@@ -42,8 +42,14 @@ void clip(std::vector<ClipVertex>* polygon, const Plane& plane) {
     const double fa = plane(a.p), fb = plane(b.p);
     if (fa >= 0.0) out.push_back(a);
     if ((fa >= 0.0) != (fb >= 0.0)) {
-      const double t = fa / (fa - fb);
-      out.push_back({a.p + t * (b.p - a.p), a.bary + t * (b.bary - a.bary)});
+      // From the edge's lexicographically smaller end: the two triangles that share the edge walk
+      // it in opposite directions, and must cut it at the same point to the last bit (no crack).
+      const bool forward = std::lexicographical_compare(a.p.data(), a.p.data() + 3, b.p.data(), b.p.data() + 3);
+      const ClipVertex& from = forward ? a : b;
+      const ClipVertex& to = forward ? b : a;
+      const double f_from = forward ? fa : fb, f_to = forward ? fb : fa;
+      const double t = f_from / (f_from - f_to);
+      out.push_back({from.p + t * (to.p - from.p), from.bary + t * (to.bary - from.bary)});
     }
   }
   *polygon = std::move(out);
@@ -66,9 +72,14 @@ void clip_to_view(const RasterView& view, std::vector<ClipVertex>* polygon) {
   }
 }
 
-// Edge function of (a -> b) at p: twice the signed area of (a, b, p).
+// Edge function of (a -> b) at p: twice the signed area of (a, b, p). Evaluated from the edge's
+// lexicographically smaller end and negated for the other direction, so that the two triangles
+// sharing an edge get exactly opposite values at a pixel centre: with the top-left rule one of them
+// owns every pixel on it (a camera looking along the diagonal of a ground's two triangles showed
+// the sky through a row of pixels: rounding put them outside both, a trial).
 inline double edge(double ax, double ay, double bx, double by, double px, double py) {
-  return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+  if (ax < bx || (ax == bx && ay < by)) return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+  return -((ax - bx) * (py - by) - (ay - by) * (px - bx));
 }
 
 // Top-left rule for a triangle of positive area in (u right, v down) pixel coordinates: pixels

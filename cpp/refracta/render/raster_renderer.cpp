@@ -229,6 +229,22 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     if (air) L *= air->transmittance(si.p, at.p, caster.air_frame(), lambda);
     return L;
   };
+  // The sun along its disc's centre (irradiance = disc radiance x solid angle): on a diffuse surface
+  // within alpha^2 / 4 of the disc's integral (8e-5 for a 1 deg disc) while the whole disc stands
+  // above the surface's horizon. A wider disc, or one the horizon cuts, by light_strata^2 samples
+  // of it (as its shadow map, their visibility is the centre's): a 170 deg sun at the zenith was
+  // +84 %, the physical sun 0.1 deg up -15 % (a trial).
+  const SunLight* sun = lights.sun_shines ? render_scene.sun() : nullptr;
+  constexpr double kCentredSunRadius = kPi / 360.0;  // 0.5 deg [rad]
+  const double sun_radius = sun ? std::acos(1.0 - sun->solid_angle() / (2.0 * kPi)) : 0.0;
+  auto sunlight = [&](const SurfaceInteraction& si, const SurfaceBsdf& bsdf, const SampledWavelengths& lambda) {
+    if (sun_radius <= kCentredSunRadius && si.n_toward_wo().dot(sun->direction()) >= std::sin(sun_radius)) {
+      return lighting.sample_light(*lights.sun, si, bsdf, lambda, Vec2d(0.0, 0.0), false);
+    }
+    Spectrum L = Spectrum::Zero();
+    for (const Vec3d& u : points) L += lighting.sample_light(*lights.sun, si, bsdf, lambda, Vec2d(u.x(), u.y()), false);
+    return Spectrum(L * weight);
+  };
   auto shade = [&](const Hit& hit, const Vec3d& dir, double footprint) -> Vec3d {
     ScratchBuffer& scratch = scratch_per_thread.local();
     scratch.reset();
@@ -237,7 +253,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     const Scattering s = scattering_at(render_scene, si, MediumStack(), 1.0, lambda, scratch);
     Spectrum L = lighting.emitted(si, nullptr, 0.0, true, lambda);
     if (!s.bsdf) return through_air(si.p, L);
-    if (lights.sun_shines) L += lighting.sample_light(*lights.sun, si, s.bsdf, lambda, Vec2d(0.0, 0.0), false);
+    if (lights.sun_shines) L += sunlight(si, s.bsdf, lambda);
     for (size_t spot : lights.spots) L += lighting.sample_light(spot, si, s.bsdf, lambda, Vec2d(0.5, 0.5), false);
     for (size_t i : lights.others) {
       if (render_scene.lights()[i]->is_delta()) {

@@ -134,8 +134,12 @@ std::optional<LightLiSample> EnvironmentLight::sample_li(const LightSampleContex
 double EnvironmentLight::pdf_li(const LightSampleContext& /*ctx*/, const Vec3d& wi, const Vec3d&, const Vec3d&) const {
   if (!(distribution_.integral() > 0.0) || scale_ == 0.0) return 0.0;
   const Vec3d d = rotation_.transpose() * wi;
-  const double sin_theta = std::sqrt(d.x() * d.x() + d.z() * d.z());
-  if (!(sin_theta > 0.0)) return 0.0;
+  // At the map's poles the density in solid angle diverges (sin theta -> 0) wherever the pole's row
+  // has light: there it is taken as a finite stand-in for infinity, never 0 -- a BSDF sample exactly
+  // at the zenith was weighted fully against light sampling, and render_raster, whose first sample
+  // of a level surface is its normal, lit a floor under a bright zenith 3.7x too bright (a trial).
+  constexpr double kPoleSine = 1e-12;
+  const double sin_theta = std::max(std::sqrt(d.x() * d.x() + d.z() * d.z()), kPoleSine);
   const Vec2d uv = direction_to_uv(wi);
   const double pdf = distribution_.pdf(Vec2d(u_to_s(uv.x()), uv.y())) / (2.0 * kPi * kPi * sin_theta);
   return std::isfinite(pdf) ? pdf : 0.0;
