@@ -88,11 +88,8 @@ def trace_rays(
         raise ValueError(
             f"origins and directions must have matching shapes (N, 3); got {origins.shape} and {directions.shape}"
         )
-    return _batch(
-        *_core._trace_batch(
-            field, np.ascontiguousarray(origins), np.ascontiguousarray(directions), options, progress, **fields
-        )
-    )
+    # Broadcast views as they are: C++ counts the rays against memory before copying them.
+    return _batch(*_core._trace_batch(field, origins, directions, options, progress, **fields))
 
 
 def _rows(value, name: str) -> np.ndarray:

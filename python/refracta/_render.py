@@ -308,7 +308,8 @@ def render(
     spectral: 4 hero wavelengths per sample (Wilkie et al. 2014) with colours upsampled from RGB,
     converted to linear sRGB through the CIE 1931 observer. Through a field the air disperses: each
     sample keeps its hero wavelength only and traces every segment through
-    refracta.dispersed_field(field, hero) (no eye table: about 1.7x the RGB cost on the hot road).
+    refracta.dispersed_field(field, hero) (camera rays through an eye table per dispersion scale from
+    8 spp, see method; 3.5-4.1x the RGB cost on examples.hot_road(64, 24) at 4-16 spp, a trial).
     spp: samples per pixel (1: pixel centres; more: a correlated multi-jittered pattern, Kensler
     2013), seeded by `seed` per pixel (independent of the thread count). adaptive=True: the same
     width x height x spp samples, shared by a pilot of spp / 8 per pixel within each 32-pixel block

@@ -158,10 +158,19 @@ def test_bad_input_raises_value_error():
         spectrum.PhysicalSky([0.0, 1.0, 0.0]).radiance(np.array([[0.0, 2.0, 0.0]]), [550.0])
 
 
+LUMINANCE = np.array([0.2126, 0.7152, 0.0722])  # Y of linear sRGB (IEC 61966-2-1)
+
+
+def clip_keeping_luminance(rgb):
+    """RGB light outside the gamut as RGB renders take it: negative channels clipped, Y kept."""
+    clipped = np.maximum(rgb, 0.0)
+    return clipped * (rgb @ LUMINANCE) / (clipped @ LUMINANCE)
+
+
 def test_a_sun_on_the_horizon_lights_a_scene_in_rgb_and_spectral():
     # The horizontal column extinguishes 450 nm to ~0.2 % of 700 nm: the sun's spectrum lies
     # outside the sRGB gamut (its blue < 0). Scene.set_physical_sky and set_sun(wavelengths=) take
-    # it; RGB rendering clips the negative channel, spectral rendering keeps the spectrum.
+    # it; RGB rendering clips the negative channel keeping the luminance, spectral rendering keeps the spectrum.
     import refracta
 
     sun = (1.0, 0.0, 0.0)
@@ -177,10 +186,10 @@ def test_a_sun_on_the_horizon_lights_a_scene_in_rgb_and_spectral():
             scene.set_sun(sun, sky.sun_radiance(lam), wavelengths=lam)
         rgb = refracta.render(scene, camera, None, spp=4, progress=False)
         centre = rgb[4, 4]
-        expected = np.maximum(sky.sun_radiance_rgb(), 0.0)
+        expected = clip_keeping_luminance(sky.sun_radiance_rgb())
         assert expected[2] == 0.0  # the disc's negative blue, clipped
         if setup == "physical_sky":  # and the sky behind the disc (its multiple scattering is bluish)
-            expected += np.maximum(sky.rgb_radiance(np.array([sun]))[0], 0.0)
+            expected += clip_keeping_luminance(sky.rgb_radiance(np.array([sun]))[0])
         # The disc's uniform radiance through float32 pixels and the RGB path's rounding.
         np.testing.assert_allclose(centre, expected, rtol=1e-4)
         colour = refracta.render(scene, camera, None, spp=64, spectral=True, progress=False)[4, 4]

@@ -4,6 +4,7 @@
 #include "refracta/bindings/enum_property.h"
 #include "refracta/bindings/interruptible.h"
 #include "refracta/bindings/options_binding.h"
+#include "refracta/core/memory.h"
 #include "refracta/rays/astronomical_refraction.h"
 #include "refracta/rays/elevation_table.h"
 #include "refracta/rays/trace.h"
@@ -175,6 +176,10 @@ void bind_tracing(py::module_& m) {
            const py::object& options, const py::object& progress, const py::kwargs& fields) {
           const IndexField& f = checked_field(field);
           const TraceOptions checked = trace_options_from(options, fields, "trace_rays", 2);
+          // At its peak a ray holds its origin and direction twice (arrays, vectors), its ends and
+          // their arrays: 252-284 bytes measured.
+          constexpr double kPeakBytesPerRay = 300.0;
+          check_work_memory(double(py::len(origins)), kPeakBytesPerRay, "trace_rays", "rays");
           const std::vector<Vec3d> o = to_points(origins, "origins");
           const std::vector<Vec3d> d = to_points(directions, "directions");
           return ends_tuple(interruptible_result(

@@ -12,10 +12,18 @@ namespace refracta {
 
 namespace {
 
-std::vector<double> wavelengths(const py::handle& object) { return to_values(object, "wavelengths"); }
+// In nm: below 1 nm a value is a unit mistake (0.55: micrometres), not a wavelength whose colour is
+// 0 (what the colour functions returned for it).
+std::vector<double> wavelengths(const py::handle& object) {
+  std::vector<double> values = to_values(object, "wavelengths");
+  for (double x : values) {
+    if (!(x >= 1.0)) throw_invalid("wavelengths are in nm and must be >= 1 (got ", x, x > 0.0 ? ": micrometres?)" : ")");
+  }
+  return values;
+}
 // The sky's spectra are tabulated over the rendered range: outside it a ValueError, not 0.
 std::vector<double> sky_wavelengths(const py::handle& object) {
-  std::vector<double> values = wavelengths(object);
+  std::vector<double> values = to_values(object, "wavelengths");
   for (double x : values) checked_wavelength(x, "wavelengths");
   return values;
 }

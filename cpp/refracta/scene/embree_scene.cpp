@@ -328,8 +328,9 @@ void Scene::check_unchanging(const char* change) const {
   if (const int readers = readers_.load(); readers > 0) {
     // The change named last: a public call reaches it through internal ones (add_box adds a material).
     throw std::runtime_error(concat("Scene: the scene is being rendered (", readers,
-                                    " render(s) running on other threads) and cannot change; change it after they "
-                                    "return, or build a second Scene (refused: ", change, ")"));
+                                    " render(s) running, on other threads or calling this from their progress "
+                                    "callback) and cannot change; change it after they return, or build a second "
+                                    "Scene (refused: ", change, ", or the call that made it)"));
   }
 }
 

@@ -34,7 +34,9 @@ struct Textures::Impl {
     system = OIIO::TextureSystem::create(false);  // private: our files, our options
     system->attribute("max_memory_MB", 512.0f);
   }
-  ~Impl() { OIIO::TextureSystem::destroy(system); }
+  // With its private ImageCache: without teardown every Scene kept 24.7 kB, and one open file
+  // handle and the tiles read of each texture, until the process ran out of handles (a trial).
+  ~Impl() { OIIO::TextureSystem::destroy(system, /*teardown_imagecache=*/true); }
 };
 
 Textures::Textures() : impl_(std::make_unique<Impl>()) {}

@@ -122,6 +122,12 @@ Color Color::tabulated(const std::vector<double>& lambda_nm, const std::vector<d
       (*table)[i] = values[k - 1] * (1.0 - t) + values[k] * t;
     }
   }
+  if (std::all_of(table->begin(), table->end(), [](double v) { return v == 0.0; }) &&
+      std::any_of(values.begin(), values.end(), [](double v) { return v > 0.0; })) {
+    throw_invalid("tabulated: the spectrum's light lies between the 1 nm grid's wavelengths (samples at ",
+                  lambda_nm.front(), "-", lambda_nm.back(), " nm): it would be black; give samples on whole nm, "
+                  "or a band at least 1 nm wide");
+  }
   Color c;
   c.kind_ = kind;
   // Reflectance-like (reflectance, unbounded) under D65; emission as radiance.
@@ -160,13 +166,21 @@ double Color::evaluate(double lambda_nm) const {
 
 Spectrum Color::sample(const SampledWavelengths& lambda) const {
   if (!lambda.spectral) {
-    // A tabulated spectrum outside the sRGB gamut, clipped: negative light would subtract.
-    const Vec3d rgb = table_ ? Vec3d(rgb_.cwiseMax(0.0)) : rgb_;
+    const Vec3d rgb = table_ ? clip_keeping_luminance(rgb_) : rgb_;
     return Spectrum(rgb.x(), rgb.y(), rgb.z(), 0.0);
   }
   Spectrum s;
   for (int i = 0; i < kSpectrumSamples; ++i) s[i] = evaluate(lambda.lambda[i]);
   return s;
+}
+
+Vec3d clip_keeping_luminance(const Vec3d& rgb) {
+  if (rgb.minCoeff() >= 0.0) return rgb;
+  const Vec3d luminance_weights(0.2126, 0.7152, 0.0722);  // Y of linear sRGB (IEC 61966-2-1)
+  const Vec3d clipped = rgb.cwiseMax(0.0);
+  const double y = rgb.dot(luminance_weights), y_clipped = clipped.dot(luminance_weights);
+  // Clipping only adds luminance: the scale is at most 1 (0 where the light had none to keep).
+  return y_clipped > 0.0 ? Vec3d(clipped * (std::max(y, 0.0) / y_clipped)) : clipped;
 }
 
 Spectrum reflectance_spectrum(const Vec3d& rgb, const SampledWavelengths& lambda) {

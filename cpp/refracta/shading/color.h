@@ -59,6 +59,12 @@ class Color {
   std::shared_ptr<const std::vector<double>> table_;     // tabulated: 1 nm steps over [360, 830]
 };
 
+// Light given by a spectrum outside the sRGB gamut (a negative channel) as RGB renders take it:
+// the negative channels clipped (negative light would subtract) and the rest scaled to keep its
+// luminance Y. Clipping alone made a 500-520 nm sun 34 % brighter than its spectrum, and a setting
+// sun's (negative blue) light on a wall disagreed with the spectral render (a trial).
+Vec3d clip_keeping_luminance(const Vec3d& rgb);
+
 // A reflectance given as RGB at render time (a texel) to its spectral values at lambda; RGB
 // rendering returns (r, g, b, 0). Fast: served from a precomputed coefficient table
 // (spectral::rgb_to_spectrum_table, built once on first use, ~0.2 s); rgb clamped to [0, 1].

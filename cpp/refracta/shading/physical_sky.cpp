@@ -4,6 +4,7 @@
 #include "refracta/core/error.h"
 #include "refracta/core/parallel.h"
 #include "refracta/shading/air_optics.h"
+#include "refracta/shading/color.h"
 #include "refracta/shading/spectral.h"
 
 #include <algorithm>
@@ -450,8 +451,8 @@ double PhysicalSkyLight::pdf_li(const LightSampleContext& /*ctx*/, const Vec3d& 
 
 Spectrum PhysicalSkyLight::Le(const Vec3d& dir, const SampledWavelengths& lambda) const {
   if (!lambda.spectral) {
-    // Clipped to the sRGB gamut, as Color::sample: a low sun's reddened sky has negative blue.
-    const Vec3d c = sky_->rgb_radiance(dir).cwiseMax(0.0);
+    // Into the sRGB gamut as Color::sample takes light: a low sun's reddened sky has negative blue.
+    const Vec3d c = clip_keeping_luminance(sky_->rgb_radiance(dir));
     return Spectrum(c.x(), c.y(), c.z(), 0.0);
   }
   Spectrum s;
