@@ -10,6 +10,7 @@ OIT method and compares with the exact (sorted) composite.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Sequence
 from typing import Any
 
@@ -49,9 +50,10 @@ def shadows(
     """Each (method, kernel) against its reference.
 
     options go to render_raster (resolution, depth_range, storage, bias, ...). Returns (rows,
-    fig): rows, one dict per method and kernel with method, kernel, reference, mean_error,
-    p99_error, light_leak (fraction of lit-side pixels at least LEAK_THRESHOLD below the
-    reference), over_shadow (the same above), nan_count, bits_per_texel, seconds; fig (when
+    fig): rows, one dict per method and kernel with method, kernel, reference, pixels (how many
+    were compared: lit in both; none gives NaN errors), mean_error, p99_error, light_leak
+    (fraction of lit-side pixels at least LEAK_THRESHOLD below the reference), over_shadow (the
+    same above), nan_count, bits_per_texel, seconds; fig (when
     `figure`) shows, for the largest kernel, each method's shadow image and its error map.
     """
     _refuse_own(options, ("kernel", "shadows", "output", "return_stats"), "compare.shadows", "methods and kernels")
@@ -62,6 +64,8 @@ def shadows(
     kernels = [int(k) for k in kernels]
     if not methods or not kernels:
         raise ValueError("methods and kernels must not be empty")
+    if "none" in methods:  # it was compared as a 1x1 kernel against pcf 3x3
+        raise ValueError("methods: 'none' casts no shadow to compare (give shadow-map methods, e.g. 'pcf')")
     references: dict[tuple, np.ndarray] = {}
 
     def reference(name: str, kernel: int) -> np.ndarray:
@@ -84,17 +88,19 @@ def shadows(
             truth = reference(ref_name, kernel)
             valid = (image[..., 1] > 0) & (truth[..., 1] > 0)
             error = image[..., 0][valid] - truth[..., 0][valid]
-            finite = np.isfinite(error)
-            abs_error = np.abs(error[finite]) if finite.any() else np.zeros(1)
+            finite = error[np.isfinite(error)]
+            # No pixel sees a surface the light reaches (a camera on the sky): NaN, not a perfect 0.
+            nothing = finite.size == 0
             rows.append(
                 {
                     "method": method,
                     "kernel": fields.get("kernel", 1),
                     "reference": ref_name if ref_name == "embree" else f"pcf {kernel}x{kernel}",
-                    "mean_error": float(abs_error.mean()),
-                    "p99_error": float(np.quantile(abs_error, 0.99)),
-                    "light_leak": float(np.mean(error[finite] < -LEAK_THRESHOLD)) if finite.any() else 0.0,
-                    "over_shadow": float(np.mean(error[finite] > LEAK_THRESHOLD)) if finite.any() else 0.0,
+                    "pixels": int(finite.size),
+                    "mean_error": math.nan if nothing else float(np.abs(finite).mean()),
+                    "p99_error": math.nan if nothing else float(np.quantile(np.abs(finite), 0.99)),
+                    "light_leak": math.nan if nothing else float(np.mean(finite < -LEAK_THRESHOLD)),
+                    "over_shadow": math.nan if nothing else float(np.mean(finite > LEAK_THRESHOLD)),
                     "nan_count": int(np.count_nonzero(~np.isfinite(image[..., 0]))),
                     "bits_per_texel": 8 * counts.bytes_per_texel,
                     "seconds": counts.seconds,
@@ -134,8 +140,9 @@ def transparency(
     """Each transparency method against the exact (sorted) composite of the same fragments.
 
     methods: names of TRANSPARENCY_METHODS. options go to render_raster (shadows, ...). Returns
-    (rows, fig): rows with method, mean_error and p99_error (per pixel, the largest channel's
-    error relative to the exact pixel's brightest channel, over pixels with fragments), nan_count,
+    (rows, fig): rows with method, pixels (those transparency changes; none: NaN errors),
+    mean_error and p99_error (per pixel, the largest channel's error relative to the exact
+    pixel's brightest channel, over pixels with fragments), nan_count,
     bytes_per_pixel, seconds; fig shows the exact image and each method's error map.
     """
     own = {"transparency", "return_stats"}.union(*(TRANSPARENCY_METHODS[m] for m in TRANSPARENCY_METHODS))
@@ -154,12 +161,13 @@ def transparency(
     for method in methods:
         image, stats = render_raster(scene, camera, return_stats=True, **TRANSPARENCY_METHODS[method], **options)
         error = (np.abs(image - exact).max(axis=2) / scale)[covered]
-        finite = error[np.isfinite(error)] if error.size else np.zeros(1)
+        finite = error[np.isfinite(error)]
         rows.append(
             {
                 "method": method,
-                "mean_error": float(finite.mean()) if finite.size else 0.0,
-                "p99_error": float(np.quantile(finite, 0.99)) if finite.size else 0.0,
+                "pixels": int(finite.size),  # none: no transparent surface in view, errors NaN
+                "mean_error": float(finite.mean()) if finite.size else math.nan,
+                "p99_error": float(np.quantile(finite, 0.99)) if finite.size else math.nan,
                 "nan_count": int(np.count_nonzero(~np.isfinite(image))),
                 "bytes_per_pixel": stats.oit_bytes_per_pixel,
                 "seconds": stats.seconds,
@@ -170,6 +178,7 @@ def transparency(
         0,
         {
             "method": "exact",
+            "pixels": int(np.count_nonzero(covered)),
             "mean_error": 0.0,
             "p99_error": 0.0,
             "nan_count": 0,

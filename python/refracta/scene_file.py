@@ -405,7 +405,8 @@ def _offending_key(message: str, keys) -> str | None:
     exact = [word for word in words if word in keys]
     if exact:
         return exact[0]  # the first the message names
-    contained = sorted((k for k in keys if k in message), key=len, reverse=True)
+    # A key that begins a word, not one inside it ('size' in 'texture_size' blamed a box's size).
+    contained = sorted((k for k in keys if any(word.startswith(k) for word in words)), key=len, reverse=True)
     return contained[0] if contained else None
 
 
@@ -425,8 +426,8 @@ def _materials(entries: list, where: _Locator, get, path: Path) -> dict:
 
     materials = {}
     for index, entry in enumerate(entries):
-        name = get(entry, "materials", "name", str, required=True, index=index)
-        kind = get(entry, "materials", "type", str, required=True, index=index)
+        name = get(entry, "materials", "name", _text, required=True, index=index)
+        kind = get(entry, "materials", "type", _text, required=True, index=index)
         if kind not in MATERIAL_TYPES:
             raise where.error(
                 f"unknown material type '{kind}' (expected {', '.join(MATERIAL_TYPES)})", "materials", "type", index
@@ -467,7 +468,7 @@ def _materials(entries: list, where: _Locator, get, path: Path) -> dict:
 
 def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Path) -> None:
     """[environment]: constant, map, gradient or physical_sky."""
-    kind = get(table, "environment", "type", str, required=True)
+    kind = get(table, "environment", "type", _text, required=True)
     if kind not in ENVIRONMENT_KEYS:
         raise where.error(
             f"unknown environment type '{kind}' (expected {', '.join(ENVIRONMENT_KEYS)})", "environment", "type"
@@ -487,7 +488,7 @@ def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Pa
                 get(table, "environment", "radiance", lambda v: _colour(v, "radiance"), required=True)
             )
         elif kind == "map":
-            file = get(table, "environment", "file", str, required=True)
+            file = get(table, "environment", "file", _text, required=True)
             scene.set_environment(str(path.parent / file), get(table, "environment", "rotation", _real, None), scale)
         elif kind == "gradient":
             horizon = get(table, "environment", "horizon", lambda v: _colour(v, "horizon"), required=True)
@@ -534,7 +535,7 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get,
     vector = lambda v: _number_list(v, 3)  # noqa: E731
     suns = 0
     for index, entry in enumerate(entries):
-        kind = get(entry, "lights", "type", str, required=True, index=index)
+        kind = get(entry, "lights", "type", _text, required=True, index=index)
         if kind == "area":
             raise where.error("area lights are objects with emission = [r, g, b]", "lights", "type", index)
         if kind not in LIGHT_KEYS:
@@ -588,6 +589,13 @@ def _real(value: Any) -> float:
     return float(value)
 
 
+def _text(value: Any) -> str:
+    """A TOML string (not a number or a boolean read as one: name = 5 met material = "5")."""
+    if not isinstance(value, str):
+        raise TypeError(f"must be a string (got {value!r})")
+    return value
+
+
 def _whole(value: Any) -> int:
     """A whole number (an int; not a bool, not 16.0)."""
     if isinstance(value, bool) or not isinstance(value, int):
@@ -605,7 +613,7 @@ def _hot_spots(entries: Any, where: _Locator, get) -> list:
         _check_keys(entry, HOT_SPOT_KEYS, where, name, "a hot spot", index)
         numbers = {key: get(entry, name, key, _real, required=True, index=index) for key in ("x", "z", "radius", "dt")}
         depth = get(entry, name, "depth", _real, None, index=index)
-        footprint = get(entry, name, "footprint", str, "gaussian", index=index)
+        footprint = get(entry, name, "footprint", _text, "gaussian", index=index)
         try:
             spots.append(_core.HotSpot(**numbers, depth=depth, footprint=footprint))
         except ValueError as error:
@@ -793,7 +801,13 @@ def load_scene(path, size=None) -> SceneFile:
     tables = ("camera", "atmosphere", "geographic", "sun", "sky", "environment", "materials", "lights", "objects")
     unknown = set(data) - set(tables)
     if unknown:
-        raise where.error(f"unknown table (expected {', '.join(tables)})", sorted(unknown)[0])
+        first = sorted(unknown)[0]
+        value = data[first]
+        if isinstance(value, dict) or (isinstance(value, list) and value and all(isinstance(e, dict) for e in value)):
+            raise where.error(f"unknown table (expected {', '.join(tables)})", first)
+        # A key outside every table (version = 2): the format has no version; a newer file's
+        # keys are refused by name, never ignored.
+        raise where.error(f"unknown key outside the tables (a scene file holds only {', '.join(tables)})", first)
     for name in ("materials", "lights", "objects"):
         if name in data and not (isinstance(data[name], list) and all(isinstance(e, dict) for e in data[name])):
             raise where.error("must be an array of tables ([[" + name + "]])", name)
@@ -874,7 +888,7 @@ def load_scene(path, size=None) -> SceneFile:
     if "sky" in data:
         sky = data["sky"]
         _check_keys(sky, SKY_KEYS, where, "sky", "[sky]")
-        environment = get(sky, "sky", "environment", str, None)
+        environment = get(sky, "sky", "environment", _text, None)
         horizon = get(sky, "sky", "horizon", lambda v: _number_list(v, 3), required=environment is None)
         try:
             scene.set_sky(
@@ -891,7 +905,7 @@ def load_scene(path, size=None) -> SceneFile:
     _lights(scene, data.get("lights", []), data, where, get, present)
 
     for index, obj in enumerate(data.get("objects", [])):
-        kind = get(obj, "objects", "type", str, required=True, index=index)
+        kind = get(obj, "objects", "type", _text, required=True, index=index)
         if kind not in OBJECT_KEYS:
             raise where.error(f"unknown type '{kind}' (expected {', '.join(OBJECT_KEYS)})", "objects", "type", index)
         allowed = (
@@ -915,7 +929,7 @@ def load_scene(path, size=None) -> SceneFile:
             ns=get(obj, "objects", "ns", _real, None, index=index),
         )
         if "material" in obj:
-            name = get(obj, "objects", "material", str, index=index)
+            name = get(obj, "objects", "material", _text, index=index)
             if name not in materials:
                 known = ", ".join(materials) or "none defined"
                 raise where.error(f"unknown material '{name}' (materials: {known})", "objects", "material", index)
@@ -927,7 +941,7 @@ def load_scene(path, size=None) -> SceneFile:
             material["emission"] = get(obj, "objects", "emission", lambda v: _colour(v, "emission"), None, index=index)
         if kind == "mesh":
             material |= present(obj, "objects", ("two_sided",), _boolean, index=index)
-        texture = get(obj, "objects", "texture", str, None, index=index)
+        texture = get(obj, "objects", "texture", _text, None, index=index)
         texture = None if texture is None else str(path.parent / texture)
         try:
             if kind == "ground":
@@ -937,7 +951,7 @@ def load_scene(path, size=None) -> SceneFile:
                     texture=texture,
                 )
             elif kind == "billboard":
-                image = get(obj, "objects", "texture", str, required=True, index=index)
+                image = get(obj, "objects", "texture", _text, required=True, index=index)
                 scene.add_billboard(
                     get(obj, "objects", "centre", lambda v: _number_list(v, 3), required=True, index=index),
                     get(obj, "objects", "width", _real, required=True, index=index),
@@ -959,7 +973,7 @@ def load_scene(path, size=None) -> SceneFile:
                     **material,
                 )
             elif kind == "obj":
-                file = get(obj, "objects", "file", str, required=True, index=index)
+                file = get(obj, "objects", "file", _text, required=True, index=index)
                 scene.add_obj(
                     str(path.parent / file),
                     get(obj, "objects", "offset", lambda v: _number_list(v, 3), [0.0, 0.0, 0.0], index=index),
@@ -976,7 +990,11 @@ def load_scene(path, size=None) -> SceneFile:
         except ValueError as error:
             if str(error).startswith(str(where.path)):  # already located (a key's own check)
                 raise
-            raise where.error(str(error), "objects", _offending_key(str(error), obj), index) from None
+            # A texture the geometry cannot take came with its material (a box has no uvs).
+            blamed = _offending_key(str(error), obj) or (
+                "material" if "texture" in str(error) and "material" in obj else None
+            )
+            raise where.error(str(error), "objects", blamed, index) from None
         except _core.IoError as error:  # a file the entry names (an OBJ, its MTL, a texture): located
             source = _material_texture_entry(data.get("materials", []), obj.get("material"), str(error), path)
             if source is not None:  # its material's texture: read when the object takes the material
@@ -1214,6 +1232,8 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
     comments go with them. A byte-order mark (a text read without encoding="utf-8-sig") is dropped,
     or the first header would go unseen."""
     text = _without_root_keys(text.removeprefix("\ufeff"), name)
+    newline = "\r\n" if "\r\n" in text else "\n"  # a Windows file's line ends kept in the new lines too
+    table = table.replace("\n", newline)
     lines = _toml_lines(text)
     headers = _table_headers(text)
     starts = list(headers)
@@ -1221,13 +1241,13 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
     owned = [(start, end) for start, end in zip(starts, ends) if headers[start] == name]
     if not owned:
         if not first:
-            return text + ("" if text.endswith("\n") or not text else "\n") + "\n" + table
+            return text + ("" if text.endswith("\n") or not text else newline) + newline + table
         top = starts[0] if starts else len(lines)
         keys = [line for line, code in _lines_at_top_level(text)[:top] if code and line.strip()[:1] not in ("", "#")]
         if not keys:
-            return table + "\n" + text
+            return table + newline + text
         before = "".join(lines[:top])
-        return before + ("" if before.endswith("\n") else "\n") + table + "\n" + "".join(lines[top:])
+        return before + ("" if before.endswith("\n") else newline) + table + newline + "".join(lines[top:])
     loose = _loose_lines(text)
     kept, previous = [], 0
     for start, end in owned:
@@ -1237,7 +1257,7 @@ def _with_table(text: str, name: str, table: str, first: bool) -> str:
         previous = end
     rest = "".join(lines[previous:])
     # The new table where the first old one was; the others' lines dropped (with the blank lines after them).
-    return kept[0] + table + "\n" + "".join(part.lstrip("\n") for part in kept[1:] + [rest])
+    return kept[0] + table + newline + "".join(part.lstrip("\r\n") for part in kept[1:] + [rest])
 
 
 def _loose_lines(text: str) -> list[bool]:
