@@ -86,8 +86,8 @@
     [[lights]]                          # any number (area lights: emission on objects)
     type = "point"                      # point (position, intensity [W/sr]),
     position = [0.0, 5.0, 0.0]          # spot (position, direction, angle [deg], intensity,
-    intensity = [100.0, 100.0, 100.0]   # inner_angle), sun (direction, radiance, angular_diameter,
-                                        # limb_darkening)
+    intensity = [100.0, 100.0, 100.0]   # inner_angle, radius: soft 'embree' shadows), sun (direction,
+                                        # radiance, angular_diameter, limb_darkening)
 
     [environment]                       # optional, instead of [sky]
     type = "physical_sky"               # constant (radiance), map (file, rotation [deg about y],
@@ -183,7 +183,7 @@ MATERIAL_TYPES = {
 }
 LIGHT_KEYS = {
     "point": {"position", "intensity"},
-    "spot": {"position", "direction", "angle", "intensity", "inner_angle"},
+    "spot": {"position", "direction", "angle", "intensity", "inner_angle", "radius"},
     "sun": {"direction", "radiance", "angular_diameter", "limb_darkening"},
 }
 CAMERA_KEYS = {
@@ -530,7 +530,6 @@ def _environment(scene: _core.Scene, table: dict, where: _Locator, get, path: Pa
 
 def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get, present) -> None:
     """[[lights]]: point, spot and sun lights (area lights are objects with emission)."""
-    from refracta import lights
 
     vector = lambda v: _number_list(v, 3)  # noqa: E731
     suns = 0
@@ -558,13 +557,10 @@ def _lights(scene: _core.Scene, entries: list, data: dict, where: _Locator, get,
                 intensity = get(
                     entry, "lights", "intensity", lambda v: _colour(v, "intensity"), required=True, index=index
                 )
-                cone = present(entry, "lights", ("angle", "inner_angle"), _real, index=index)
-                if "inner_angle" in cone:
-                    if "angle" not in cone:  # a SpotLight's angle has no default (add_spot_light's 60 deg)
-                        raise where.error("inner_angle needs the cone's angle", "lights", "inner_angle", index)
-                    scene.add_light(lights.SpotLight(position, direction, intensity=intensity, **cone))
-                else:
-                    scene.add_spot_light(position, direction, intensity=intensity, **cone)
+                cone = present(entry, "lights", ("angle", "inner_angle", "radius"), _real, index=index)
+                if "inner_angle" in cone and "angle" not in cone:  # a falloff inside a cone the file names
+                    raise where.error("inner_angle needs the cone's angle", "lights", "inner_angle", index)
+                scene.add_spot_light(position, direction, intensity=intensity, **cone)
             else:
                 if "sun" in data or data.get("environment", {}).get("type") == "physical_sky":
                     raise where.error("a second sun ([sun] or the physical sky has one)", "lights", "type", index)

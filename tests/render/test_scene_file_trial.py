@@ -91,3 +91,23 @@ def test_a_windows_file_keeps_its_line_ends_when_its_camera_is_replaced(tmp_path
     path = tmp_path / "scene.toml"
     path.write_bytes(edited.encode())
     assert refracta.load_scene(path)[1].width == 20
+
+
+def test_a_spot_light_radius_in_a_file_softens_the_reference_shadows(tmp_path):
+    # [[lights]] radius was refused ("unknown key for a spot light"); Scene.add_spot_light takes it.
+    scene_text = (
+        '[[objects]]\ntype = "ground"\nheight = 0.0\nsize = 20.0\n'
+        '[[objects]]\ntype = "box"\ncentre = [0, 0.5, 0]\nsize = [1, 1, 1]\n'
+        "[[lights]]\ntype = \"spot\"\nposition = [0.5, 4, 0.3]\ndirection = [0, -1, 0]\nangle = 120.0\n"
+        "intensity = [50, 50, 50]\n"
+    )
+    camera = "[camera]\nposition = [0, 6, -5]\nlook_at = [0, 0, 0]\nsize = [48, 36]\n"
+    penumbra = []
+    for radius in ("", "radius = 0.5\n"):
+        path = tmp_path / "spot.toml"
+        path.write_text(camera + scene_text + radius)
+        scene, view, _ = refracta.load_scene(path)
+        shadow = refracta.render_raster(scene, view, shadows="embree", output="shadow", shadow_light=0)
+        lit = shadow[..., 1] > 0
+        penumbra.append(int(np.count_nonzero((shadow[..., 0] > 0.0) & (shadow[..., 0] < 1.0) & lit)))
+    assert penumbra[0] == 0 and penumbra[1] > 0  # a point light's shadow is hard, a disc's soft
