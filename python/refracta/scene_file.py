@@ -893,8 +893,9 @@ def load_scene(path, size=None) -> SceneFile:
                 None if environment is None else str(path.parent / environment),
                 get(sky, "sky", "scale", _real, 1.0),
             )
-        except ValueError as error:
-            raise where.error(str(error), "sky") from None
+        except ValueError as error:  # zenith left out is horizon's: a bad one is horizon's fault
+            blamed = _offending_key(str(error), sky) or ("horizon" if "horizon" in sky else None)
+            raise where.error(str(error), "sky", blamed) from None
         except _core.IoError as error:  # the environment file: located, its kind kept (as [environment]'s)
             raise where.located(error, "sky", "environment") from None
 

@@ -82,7 +82,7 @@ def test_published_moment_bias_vectors_stay_valid():
 def test_a_lens_wider_than_a_kilometre_is_named_as_the_lens():
     camera = refracta.Camera((0.0, 1.5, 0.0), (1.0, 1.5, 0.0))
     for diameter in (1e8, 1e300):  # was reported as "max_length ... from a camera 100000001.5 m out"
-        with pytest.raises(ValueError, match=r"aperture diameter must be in \[0, 1000\] m"):
+        with pytest.raises(ValueError, match=r"aperture_diameter must be in \[0, 1000\] m"):
             camera.with_lens(diameter, 10.0)
     with pytest.raises(ValueError, match=r"focus_distance must be in \(0, 10000000\] m"):
         camera.with_lens(0.01, 1e300)

@@ -98,7 +98,7 @@ def test_a_spot_light_radius_in_a_file_softens_the_reference_shadows(tmp_path):
     scene_text = (
         '[[objects]]\ntype = "ground"\nheight = 0.0\nsize = 20.0\n'
         '[[objects]]\ntype = "box"\ncentre = [0, 0.5, 0]\nsize = [1, 1, 1]\n'
-        "[[lights]]\ntype = \"spot\"\nposition = [0.5, 4, 0.3]\ndirection = [0, -1, 0]\nangle = 120.0\n"
+        '[[lights]]\ntype = "spot"\nposition = [0.5, 4, 0.3]\ndirection = [0, -1, 0]\nangle = 120.0\n'
         "intensity = [50, 50, 50]\n"
     )
     camera = "[camera]\nposition = [0, 6, -5]\nlook_at = [0, 0, 0]\nsize = [48, 36]\n"
@@ -111,3 +111,18 @@ def test_a_spot_light_radius_in_a_file_softens_the_reference_shadows(tmp_path):
         lit = shadow[..., 1] > 0
         penumbra.append(int(np.count_nonzero((shadow[..., 0] > 0.0) & (shadow[..., 0] < 1.0) & lit)))
     assert penumbra[0] == 0 and penumbra[1] > 0  # a point light's shadow is hard, a disc's soft
+
+
+def test_sky_and_lens_mistakes_name_their_keys(tmp_path):
+    # Both were placed on the table's header line, naming no key.
+    with pytest.raises(ValueError, match=r":\d+: \[sky\] horizon: .*must be finite"):
+        load(tmp_path, "[sky]\nhorizon = [nan, 0.5, 0.5]\n")
+    lens = "aperture_diameter = -0.01\nfocus_distance = 3.0\n"
+    with pytest.raises(ValueError, match=r"\[camera\] aperture_diameter: Camera: aperture_diameter must be in"):
+        refracta.load_scene(_write(tmp_path, CAMERA + lens))
+
+
+def _write(tmp_path, text):
+    path = tmp_path / "lens.toml"
+    path.write_text(text)
+    return path

@@ -158,7 +158,7 @@ Camera Camera::with_lens(double aperture_diameter, double focus_distance) const 
   // reported as a max_length too long for "a camera 100000001.5 m out").
   constexpr double kWidestAperture = 1e3;  // [m]
   if (!(aperture_diameter >= 0.0 && aperture_diameter <= kWidestAperture)) {
-    throw_invalid("Camera: aperture diameter must be in [0, ", kWidestAperture, "] m (got ", aperture_diameter, ")");
+    throw_invalid("Camera: aperture_diameter must be in [0, ", kWidestAperture, "] m (got ", aperture_diameter, ")");
   }
   if (!(focus_distance > 0.0 && focus_distance <= kSceneReach)) {
     throw_invalid("Camera: focus_distance must be in (0, ", kSceneReach, "] m (got ", focus_distance, ")");
