@@ -176,10 +176,12 @@ inline constexpr const char mkd_doc_refracta_HotSpot[] = R"doc(An areal hot (dt 
 warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre, with footprint
 'gaussian' F = exp(-r^2 / (2 radius^2)) or 'compact' F = (1 - r/R)^4 (4 r/R + 1) for r < R = radius
 (Wendland's C2 function: exactly zero outside). Give it to PhysicalAtmosphere(hot_spots=[...]) (dt
-[K]; depth [m], None: the atmosphere's surface_depth) or LogisticProfile(hot_spots=[...]) (dt:
-strength of the profile's hot-spot term there, 1 = the whole term; depth must be None: the term's
-width is a_hot). The fields expose each spot's numbers as parameters hot_spot<i>_x, _z, _radius, _dt
-(, _depth), so refracta.edit.solve can move, resize and heat them.)doc";
+[K]; depth [m], None: the atmosphere's surface_depth as the field is made) or
+LogisticProfile(hot_spots=[...]) (dt: strength of the profile's hot-spot term there, 1 = the whole
+term; depth must be None: the term's width is a_hot). The fields expose each spot's numbers as
+parameters hot_spot<i>_x, _z, _radius, _dt (, _depth), so refracta.edit.solve can move, resize and
+heat them; a spot's depth is then its own parameter, which with_params or a solve of surface_depth
+leaves where it is (change hot_spot<i>_depth with it to move both).)doc";
 inline constexpr const char mkd_doc_refracta_IndexField[] = R"doc(A refractive-index field n(x). Points are (N, 3) or (3,) float arrays in metres, y up.
 
 ior(points) -> n, shape (N,) (float for one point); grad_ior(points) -> grad n [1/m], (N, 3).
@@ -285,7 +287,9 @@ down into it: a trial); a vapour pressure not below the air's is refused. The hy
 takes dry air's gas constant (1.6 % in dP/dh in saturated air at 30 C, ~0.003 in k). Defaults give n
 - 1 = 2.7784e-4 at the ground (15 C, 101325 Pa, 550 nm). Modelled for heights in [-1000, 86000] m
 (uniform above). With hot spots the field is no longer height-only: its parameters gain
-hot_spot<i>_x, _z, _radius, _dt, _depth, and height_only_part is the same air without them.)doc";
+hot_spot<i>_x, _z, _radius, _dt, _depth (a spot made with depth None takes surface_depth's value
+then, and keeps it when with_params or a solve changes surface_depth), and height_only_part is the
+same air without them.)doc";
 inline constexpr const char mkd_doc_refracta_PhysicalSkyLight[] = R"doc(A physical sky through a spherical standard atmosphere: single scattering (Nishita et al. 1993)
 plus, with multiple_scattering (default True), the higher orders by Hillaire 2020's isotropic
 multiple-scattering table (orders 2-13 explicit, then a geometric series): Rayleigh (lambda^-4, 8
@@ -334,8 +338,9 @@ about 4 % bright.)doc";
 inline constexpr const char mkd_doc_refracta_RasterRenderOptions[] = R"doc(Options of refracta.render_raster, with their defaults (defined once, here). Set any field by name,
 nested ones through .shadow_map (ShadowMapOptions) and .transparency (OitSettings or None);
 validate() reports every bad value at once.)doc";
-inline constexpr const char mkd_doc_refracta_RasterRenderOptions_light_strata[] = R"doc(Samples (n^2, n = 1 .. 64) of each light with extent other than the sun and the spots (environment,
-sky, area lights), and as many of the BSDF, combined by MIS, deterministic per
+inline constexpr const char mkd_doc_refracta_RasterRenderOptions_light_strata[] = R"doc(Samples (n^2, n = 1 .. 64) of each light with extent other than the spots (environment, sky, area
+lights; the sun where its disc is wider than 1 deg or cut by a surface's horizon), and as many of
+the BSDF (not of the sun), combined by MIS, deterministic per
 pixel: the same n^2 quasi-random points everywhere, so their quadrature error is a bias, not
 noise. Measured at n = 8 (16, 32): a panel 0.2 m over a floor -0.9 % (+1.2 %, +0.4 %) of its form
 factor, an environment map with a small bright sun -0.3 % (-2.5 %, -1.2 %) of its integral, a sphere

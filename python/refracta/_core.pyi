@@ -18,15 +18,18 @@ class HotSpot:
     warmer by dt * exp(-h / depth) * F(r), r the horizontal distance from the centre, with footprint
     'gaussian' F = exp(-r^2 / (2 radius^2)) or 'compact' F = (1 - r/R)^4 (4 r/R + 1) for r < R = radius
     (Wendland's C2 function: exactly zero outside). Give it to PhysicalAtmosphere(hot_spots=[...]) (dt
-    [K]; depth [m], None: the atmosphere's surface_depth) or LogisticProfile(hot_spots=[...]) (dt:
-    strength of the profile's hot-spot term there, 1 = the whole term; depth must be None: the term's
-    width is a_hot). The fields expose each spot's numbers as parameters hot_spot<i>_x, _z, _radius, _dt
-    (, _depth), so refracta.edit.solve can move, resize and heat them.
+    [K]; depth [m], None: the atmosphere's surface_depth as the field is made) or
+    LogisticProfile(hot_spots=[...]) (dt: strength of the profile's hot-spot term there, 1 = the whole
+    term; depth must be None: the term's width is a_hot). The fields expose each spot's numbers as
+    parameters hot_spot<i>_x, _z, _radius, _dt (, _depth), so refracta.edit.solve can move, resize and
+    heat them; a spot's depth is then its own parameter, which with_params or a solve of surface_depth
+    leaves where it is (change hot_spot<i>_depth with it to move both).
     """
-    __hash__: typing.ClassVar[None] = None
     def __eq__(self, arg0: HotSpot) -> bool:
         ...
     def __getstate__(self) -> tuple:
+        ...
+    def __hash__(self) -> int:
         ...
     def __init__(self, x: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex, radius: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, depth: typing.SupportsFloat | typing.SupportsIndex | None = None, footprint: str = 'gaussian') -> None:
         ...
@@ -413,7 +416,9 @@ class PhysicalAtmosphere(IndexField):
     takes dry air's gas constant (1.6 % in dP/dh in saturated air at 30 C, ~0.003 in k). Defaults give n
     - 1 = 2.7784e-4 at the ground (15 C, 101325 Pa, 550 nm). Modelled for heights in [-1000, 86000] m
     (uniform above). With hot spots the field is no longer height-only: its parameters gain
-    hot_spot<i>_x, _z, _radius, _dt, _depth, and height_only_part is the same air without them.
+    hot_spot<i>_x, _z, _radius, _dt, _depth (a spot made with depth None takes surface_depth's value
+    then, and keeps it when with_params or a solve changes surface_depth), and height_only_part is the
+    same air without them.
     
     Parameters (name [unit] default, optimiser bounds: meaning):
         t_ground [K] 288.15, [220, 330]: air temperature at h = 0 without the surface layer (the 1976 layers above shift with it)
@@ -1229,7 +1234,8 @@ class Camera:
         """
     def pick(self, scene: Scene, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex, field: IndexField | None = None, max_length: typing.SupportsFloat | typing.SupportsIndex | None = None) -> typing.Any:
         """
-        The scene point [m] seen at film position (u, v) [pixels; a pixel's centre at +0.5], or None.
+        The scene point [m] seen at film position (u, v) [pixels; a pixel's centre at +0.5; in [0, width]
+        x [0, height], else ValueError], or None.
         field=None: along the straight ray of the scene's own frame. With a field: along the path through
         it, at most max_length [m] long (None: as far as scene coordinates go; curved paths by the
         render's default options). Over a CurvedEarth's flat frame the point seen without the air is
@@ -1245,7 +1251,7 @@ class Camera:
         """
     def ray(self, u: typing.Any, v: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
-        (origin, unit direction) of the ray through pixel coordinates (u, v), the pixel's corner at its integers (its centre at x + 0.5); u and v numbers, or (N,) arrays (either may be a number): then (N, 3) origins and directions.
+        (origin, unit direction) of the ray through pixel coordinates (u, v), the pixel's corner at its integers (its centre at x + 0.5); u and v numbers, or (N,) arrays (either may be a number): then (N, 3) origins and directions. Beyond [0, width] x [0, height] the pinhole's rays go on past the frame (overscan), as far as the view's half-space.
         """
     def resized(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> Camera:
         """
@@ -1868,8 +1874,9 @@ class RasterRenderOptions:
     @property
     def light_strata(self) -> int:
         """
-        Samples (n^2, n = 1 .. 64) of each light with extent other than the sun and the spots (environment,
-        sky, area lights), and as many of the BSDF, combined by MIS, deterministic per
+        Samples (n^2, n = 1 .. 64) of each light with extent other than the spots (environment, sky, area
+        lights; the sun where its disc is wider than 1 deg or cut by a surface's horizon), and as many of
+        the BSDF (not of the sun), combined by MIS, deterministic per
         pixel: the same n^2 quasi-random points everywhere, so their quadrature error is a bias, not
         noise. Measured at n = 8 (16, 32): a panel 0.2 m over a floor -0.9 % (+1.2 %, +0.4 %) of its form
         factor, an environment map with a small bright sun -0.3 % (-2.5 %, -1.2 %) of its integral, a sphere

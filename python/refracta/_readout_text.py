@@ -59,6 +59,8 @@ def readout_text(aovs: dict, u: float, v: float) -> str:
     a sky pixel's position, elevations), 'inf' for a sky pixel's distance (its ray ran off). A point
     outside the image reads the nearest edge pixel (a pointer just past the edge), the line
     'pixel (i, j)' saying which."""
+    if not (np.isfinite(u) and np.isfinite(v)):  # NaN said "cannot convert float NaN to integer"
+        raise ValueError(f"readout_text: the image point must be finite (got u={u!r}, v={v!r})")
     planes = _planes(aovs)
     height, width = planes[0][1].shape[:2] if planes else (1, 1)
     i, j = min(max(int(np.floor(u)), 0), width - 1), min(max(int(np.floor(v)), 0), height - 1)

@@ -248,9 +248,10 @@ def render(
     turning row belongs to both branches it joins); the count of branches on the pixel's object
     whose range of true elevations holds the pixel's (how many times the column shows that line of
     sight to the object: 1 unmiraged, 2 or 3 in a mirage), 0 where none (with pixel_bounds, the
-    bounds' whole columns are rendered for it, and RenderStats counts their samples). Averaged over the
-    samples: 'apparent_elevation' and 'apparent_azimuth' (H, W) [deg] of the mean of the samples'
-    camera-ray directions at the eye: elevation above the horizontal plane (y), azimuth clockwise
+    bounds' whole columns are rendered for it, and RenderStats counts their samples).
+    'apparent_elevation' and 'apparent_azimuth' (H, W) [deg]: the direction at the eye of the camera
+    ray whose hit the pixel reads (the nearest sample's, so apparent and true elevation are one
+    ray's; where no sample hit, the mean of the samples'): elevation above the horizontal plane (y), azimuth clockwise
     from the frame's north (-z) in [0, 360) (refracta.geo's conventions; a compass bearing at the eye
     is ``frame.bearing(aovs["apparent_azimuth"], camera.position)``, which differs away from the
     frame's origin by the meridians' convergence). And 'samples' (H, W) int32: how many

@@ -400,7 +400,7 @@ def _boolean(value: Any) -> bool:
 
 def _offending_key(message: str, keys) -> str | None:
     """The parameter a constructor's error message names: the first whole word that is a key,
-    then the longest key the message contains (alpha -> 'alpha_u must be ...')."""
+    then the longest key that begins a word of it (alpha -> 'alpha_u must be ...')."""
     words = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", message)
     exact = [word for word in words if word in keys]
     if exact:

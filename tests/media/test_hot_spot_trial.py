@@ -18,6 +18,8 @@ def test_overlapping_spots_are_checked_together_against_absolute_zero():
     refracta.PhysicalAtmosphere(hot_spots=[HotSpot(0.0, 0.0, 10.0, -100.0)])
     with pytest.raises(ValueError, match="the hot spots make the air"):
         refracta.PhysicalAtmosphere(hot_spots=[HotSpot(0.0, 0.0, 10.0, -100.0)] * 2)
+    # Apart (1 km, their 10 m gaussians reach 53 m) they never add: each cools its own patch.
+    refracta.PhysicalAtmosphere(hot_spots=[HotSpot(0.0, 0.0, 10.0, -100.0), HotSpot(1000.0, 0.0, 10.0, -100.0)])
     # Thirty 500 K spots add to 15 000 K on the ground: past the air formula's 10 000 K.
     with pytest.raises(ValueError, match=r"must stay in \(0, 10000\] K"):
         refracta.PhysicalAtmosphere(hot_spots=[HotSpot(0.0, 0.0, 10.0, 500.0)] * 30)
@@ -29,6 +31,8 @@ def test_humid_air_over_overlapping_spots_counts_their_sum():
     refracta.PhysicalAtmosphere(t_ground=300.0, humidity=1.0, hot_spots=[HotSpot(0.0, 0.0, 5.0, 40.0)])
     with pytest.raises(ValueError, match=r"warmest 380 K .*the water would boil"):
         refracta.PhysicalAtmosphere(t_ground=300.0, humidity=1.0, hot_spots=[HotSpot(0.0, 0.0, 5.0, 40.0)] * 2)
+    puddles = [HotSpot(0.0, 0.0, 5.0, 40.0), HotSpot(5000.0, 0.0, 5.0, 40.0)]  # 5 km apart
+    refracta.PhysicalAtmosphere(t_ground=300.0, humidity=1.0, hot_spots=puddles)
 
 
 def test_surface_depth_is_named_before_the_spots_that_take_it():

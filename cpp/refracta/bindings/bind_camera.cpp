@@ -152,7 +152,8 @@ void bind_camera(py::module_& m) {
           py::arg("u"), py::arg("v"),
           "(origin, unit direction) of the ray through pixel coordinates (u, v), the pixel's corner at its "
           "integers (its centre at x + 0.5); u and v numbers, or (N,) arrays (either may be a number): then "
-          "(N, 3) origins and directions.")
+          "(N, 3) origins and directions. Beyond [0, width] x [0, height] the pinhole's rays go on past the "
+          "frame (overscan), as far as the view's half-space.")
       .def(
           "project",
           [](const Camera& c, const py::object& points, double earth_radius) {
@@ -173,7 +174,8 @@ void bind_camera(py::module_& m) {
             return point ? py::object(vector_to_array(*point)) : py::object(py::none());
           },
           py::arg("scene"), py::arg("u"), py::arg("v"), py::arg("field") = py::none(), py::arg("max_length") = py::none(),
-          "The scene point [m] seen at film position (u, v) [pixels; a pixel's centre at +0.5], or None.\n"
+          "The scene point [m] seen at film position (u, v) [pixels; a pixel's centre at +0.5; in [0, width]\n"
+          "x [0, height], else ValueError], or None.\n"
           "field=None: along the straight ray of the scene's own frame. With a field: along the path through\n"
           "it, at most max_length [m] long (None: as far as scene coordinates go; curved paths by the\n"
           "render's default options). Over a CurvedEarth's flat frame the point seen without the air is\n"

@@ -29,18 +29,6 @@ inline std::string whole_bytes(double size) {
   return text;
 }
 
-// Refuses, before anything is allocated, work of `count` items (rays, samples) of bytes_per_item
-// each at its peak that would not fit in physical memory: std::invalid_argument (ValueError)
-// naming `what`. trace_rays of 1e8 rays traced for 12 s, then failed allocating its results.
-inline void check_work_memory(double count, double bytes_per_item, const char* what, const char* items) {
-  const double bytes = count * bytes_per_item, memory = physical_memory_bytes();
-  if (memory > 0.0 && bytes > memory) {
-    throw std::invalid_argument(std::string(what) + ": " + whole_bytes(count) + " " + items + " need at least " +
-                                whole_bytes(bytes) + " bytes (" + whole_bytes(bytes / 1e9) + " GB), more than this " +
-                                "machine's " + whole_bytes(memory / 1e9) + " GB of memory: split them into batches");
-  }
-}
-
 // A byte count in the largest unit that keeps it >= 1 (kB, MB, GB: powers of 1000).
 inline std::string readable_bytes(double size) {
   char text[64];
@@ -49,6 +37,18 @@ inline std::string readable_bytes(double size) {
   else if (size >= 1e3) std::snprintf(text, sizeof text, "%.1f kB", size / 1e3);
   else std::snprintf(text, sizeof text, "%.0f bytes", size);
   return text;
+}
+
+// Refuses, before anything is allocated, work of `count` items (rays, samples) of bytes_per_item
+// each at its peak that would not fit in physical memory: std::invalid_argument (ValueError)
+// naming `what`. trace_rays of 1e8 rays traced for 12 s, then failed allocating its results.
+inline void check_work_memory(double count, double bytes_per_item, const char* what, const char* items) {
+  const double bytes = count * bytes_per_item, memory = physical_memory_bytes();
+  if (memory > 0.0 && bytes > memory) {
+    throw std::invalid_argument(std::string(what) + ": " + whole_bytes(count) + " " + items + " need at least " +
+                                readable_bytes(bytes) + ", more than this machine's " + readable_bytes(memory) +
+                                " of memory: split them into batches");
+  }
 }
 
 // std::allocator, except that a vector's new elements are default-initialised: resize(n) of a

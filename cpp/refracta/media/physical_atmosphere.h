@@ -20,7 +20,10 @@
 #include "refracta/media/turbulence.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <type_traits>
+#include <vector>
 
 namespace refracta {
 
@@ -43,7 +46,8 @@ struct PhysicalAtmosphereConfig {
 // saturated air at 30 C, ~0.003 in k). Defaults give n - 1 = 2.7784e-4 at the
 // ground (15 C, 101325 Pa, 550 nm). Modelled for heights in [-1000, 86000] m (uniform above). With
 // hot spots the field is no longer height-only: its parameters gain hot_spot<i>_x, _z, _radius,
-// _dt, _depth, and height_only_part is the same air without them.
+// _dt, _depth (a spot made with depth None takes surface_depth's value then, and keeps it when
+// with_params or a solve changes surface_depth), and height_only_part is the same air without them.
 template <class T>
 class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereModel<T>, T> {
  public:
@@ -103,10 +107,20 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
       // Relative humidity follows the local temperature (air.h), so the warmest air near the
       // ground holds the most vapour: more than the air's own pressure is water boiling, not air
       // (a trial's t_ground 400 K at humidity 1: 258 kPa of vapour in 101 kPa of air).
-      double hottest = v[kGroundTemperature] + std::max(v[kSurfaceDt], 0.0);
-      for (size_t i = 0; i < config.hot_spots.size(); ++i) {  // where they overlap their excesses add
-        hottest += std::max(v[kCount + hot_spot_param_count(true) * i + kSpotDt], 0.0);
+      // Where spots overlap their excesses add: the most that meet on one spot's disc.
+      const int per = hot_spot_param_count(true);
+      std::vector<std::array<double, 3>> discs;
+      for (size_t i = 0; i < config.hot_spots.size(); ++i) {
+        const double* spot = &v[kCount + per * i];
+        discs.push_back({spot[kSpotX], spot[kSpotZ], reach_of(config.hot_spots[i], spot[kSpotRadius])});
       }
+      double spot_heat = 0.0;
+      for (const std::vector<size_t>& group : overlapping(discs)) {
+        double heat = 0.0;
+        for (size_t j : group) heat += std::max(v[kCount + per * j + kSpotDt], 0.0);
+        spot_heat = std::max(spot_heat, heat);
+      }
+      const double hottest = v[kGroundTemperature] + std::max(v[kSurfaceDt], 0.0) + spot_heat;
       double e_s, de_dt;
       saturation_vapour_pressure(hottest, &e_s, &de_dt);
       if (!(v[kHumidity] * e_s < v[kGroundPressure])) {
@@ -257,26 +271,55 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
  private:
   enum SpotIndex { kSpotX, kSpotZ, kSpotRadius, kSpotDt, kSpotDepth };
 
-  // Where spots overlap their excesses add: at each height the air over them is bounded by the
-  // column's temperature plus the sum of the cooling spots' dt e(h) (and of the heating ones'), e(h)
-  // up to 2 below the ground (surface_decay). That air must stay in (0, kHottestAir] K, as the
-  // column's own (a trial's -150 K spot over 140 K air read n = 0.992 with no error).
+  // A spot's reach [m] at `radius`: beyond it the spot heats nothing (HotSpot::reach).
+  static double reach_of(HotSpot spot, double radius) {
+    spot.radius = radius;
+    return spot.reach();
+  }
+  // For each spot (x, z, reach), the spots whose discs meet its own, itself included: a point is
+  // heated only by spots whose discs hold it, and those all meet the disc of any one of them.
+  static std::vector<std::vector<size_t>> overlapping(const std::vector<std::array<double, 3>>& discs) {
+    std::vector<std::vector<size_t>> groups(discs.size());
+    for (size_t i = 0; i < discs.size(); ++i) {
+      for (size_t j = 0; j < discs.size(); ++j) {
+        const double apart = std::hypot(discs[i][0] - discs[j][0], discs[i][1] - discs[j][1]);
+        if (apart < discs[i][2] + discs[j][2] || i == j) groups[i].push_back(j);
+      }
+    }
+    return groups;
+  }
+
+  // Where spots overlap their excesses add: at each height the air over a spot's disc is bounded by
+  // the column's temperature plus the sum of the cooling excesses dt e(h) of the spots that meet it
+  // (and of the heating ones'), e(h) up to 2 below the ground (surface_decay: the model's
+  // continuation, as the column's own surface layer's, so a -150 K spot needs air above ~300 K at
+  // -1000 m). That air must stay in (0, kHottestAir] K, as the column's own (a trial's -150 K spot
+  // over 140 K air read n = 0.992 with no error).
   void check_heated_air(const std::vector<double>& heights) const {
+    std::vector<std::array<double, 3>> discs;
+    for (size_t i = 0; i < spots_.size(); ++i) {
+      const std::vector<T>& v = spot_values_[i];
+      discs.push_back({value_of(v[kSpotX]), value_of(v[kSpotZ]), reach_of(spots_[i], value_of(v[kSpotRadius]))});
+    }
+    const std::vector<std::vector<size_t>> groups = overlapping(discs);
+    std::vector<double> excess(spots_.size());
     for (const double h : heights) {
       T t, slope;
       temperature(T(h), &t, &slope);
-      double cooling = 0.0, heating = 0.0;
-      for (const std::vector<T>& v : spot_values_) {
+      for (size_t i = 0; i < spots_.size(); ++i) {
         T e, de_dh;
-        surface_decay(T(h), v[kSpotDepth], &e, &de_dh);
-        const double excess = value_of(v[kSpotDt] * e);
-        (excess < 0.0 ? cooling : heating) += excess;
+        surface_decay(T(h), spot_values_[i][kSpotDepth], &e, &de_dh);
+        excess[i] = value_of(spot_values_[i][kSpotDt] * e);
       }
-      for (const double air : {value_of(t) + cooling, value_of(t) + heating}) {
-        if (!(air > 0.0 && air <= kHottestAir)) {
-          throw_invalid(kTypeName, ": the hot spots make the air ", air, " K at h = ", h, " m (the column's ",
-                        value_of(t), " K and the spots' dt e^(-h/depth) added where they overlap, twice dt below the ",
-                        "ground); it must stay in (0, ", kHottestAir, "] K: give the spots smaller dt");
+      for (const std::vector<size_t>& group : groups) {
+        double cooling = 0.0, heating = 0.0;
+        for (size_t j : group) (excess[j] < 0.0 ? cooling : heating) += excess[j];
+        for (const double air : {value_of(t) + cooling, value_of(t) + heating}) {
+          if (!(air > 0.0 && air <= kHottestAir)) {
+            throw_invalid(kTypeName, ": the hot spots make the air ", air, " K at h = ", h, " m (the column's ",
+                          value_of(t), " K and the spots' dt e^(-h/depth) added where they overlap, twice dt below ",
+                          "the ground); it must stay in (0, ", kHottestAir, "] K: give the spots smaller dt");
+          }
         }
       }
     }

@@ -1,6 +1,7 @@
 // The physical sky seen from a raised camera (raised_sky.h).
 #include "refracta/render/raised_sky.h"
 
+#include "refracta/shading/color.h"
 #include "refracta/shading/sun_light.h"
 
 #include <algorithm>
@@ -25,7 +26,10 @@ std::shared_ptr<const RaisedSky> RaisedSky::for_camera(const RenderScene& scene,
   raised->sun_ = scene.sun();
   raised->ground_sky_ = PhysicalSky::shared(sky->settings());
   raised->raised_ = std::make_shared<const PhysicalSkyLight>(settings);
-  const Vec3d below = raised->ground_sky_->sun_radiance_rgb(), above = raised->raised_->sky().sun_radiance_rgb();
+  // Ratios of the two suns as RGB renders take them (clip_keeping_luminance): the raised sun keeps
+  // its own luminance where either spectrum leaves the gamut.
+  const Vec3d below = clip_keeping_luminance(raised->ground_sky_->sun_radiance_rgb());
+  const Vec3d above = clip_keeping_luminance(raised->raised_->sky().sun_radiance_rgb());
   for (int c = 0; c < 3; ++c) raised->sun_ratio_rgb_[c] = below[c] > 0.0 ? above[c] / below[c] : 1.0;
   raised->height_ = camera_y;
   raised->scale_ = scale;

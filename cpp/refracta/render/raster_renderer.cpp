@@ -168,7 +168,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   lighting.use_raised_sky(RaisedSky::for_camera(render_scene, eye.y()));  // a raised camera's sky (raised_sky.h)
 
   // Shading of a rasterized surface, every shining light deterministically: the sun along its
-  // disc's centre (irradiance = disc radiance x solid angle), spots and point lights exactly, lights
+  // disc's centre (irradiance = disc radiance x solid angle; sunlight below), spots and point lights exactly, lights
   // with extent (area lights, environments, the sky) by light_strata^2 quasi-random light samples and
   // as many BSDF samples, combined by the power heuristic (Veach 1997, ch. 9) as the ray renderers'
   // direct lighting does. Light samples alone left a quadrature bias of +39 % under a panel 0.2 m
@@ -230,15 +230,16 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
     return L;
   };
   // The sun along its disc's centre (irradiance = disc radiance x solid angle): on a diffuse surface
-  // within alpha^2 / 4 of the disc's integral (8e-5 for a 1 deg disc) while the whole disc stands
-  // above the surface's horizon. A wider disc, or one the horizon cuts, by light_strata^2 samples
-  // of it (as its shadow map, their visibility is the centre's): a 170 deg sun at the zenith was
-  // +84 %, the physical sun 0.1 deg up -15 % (a trial).
+  // within alpha^2 / 4 of the disc's integral (1.9e-5 for a disc of radius alpha = 0.5 deg) while the
+  // whole disc stands above (or below) the surface's horizon. A wider disc, or one the horizon cuts,
+  // by light_strata^2 samples of it (as its shadow map, their visibility is the centre's): a 170 deg
+  // sun at the zenith was +84 %, the physical sun 0.1 deg up -15 % (a trial).
   const SunLight* sun = lights.sun_shines ? render_scene.sun() : nullptr;
   constexpr double kCentredSunRadius = kPi / 360.0;  // 0.5 deg [rad]
-  const double sun_radius = sun ? std::acos(1.0 - sun->solid_angle() / (2.0 * kPi)) : 0.0;
+  const double sun_radius = sun ? degrees_to_radians(0.5 * sun->angular_diameter()) : 0.0;
   auto sunlight = [&](const SurfaceInteraction& si, const SurfaceBsdf& bsdf, const SampledWavelengths& lambda) {
-    if (sun_radius <= kCentredSunRadius && si.n_toward_wo().dot(sun->direction()) >= std::sin(sun_radius)) {
+    if (sun_radius <= kCentredSunRadius &&
+        std::abs(si.n_toward_wo().dot(sun->direction())) >= std::sin(sun_radius)) {
       return lighting.sample_light(*lights.sun, si, bsdf, lambda, Vec2d(0.0, 0.0), false);
     }
     Spectrum L = Spectrum::Zero();

@@ -1,10 +1,10 @@
 // Per-pixel readouts of a render (issue 20 section 3): what each pixel's camera path met and
 // where it looks, extra channels of the one film loop (film.h) behind the radiance, albedo and
 // normal. Per sample the renderer records the camera ray's direction at the eye and its first
-// hit (SurfaceAovs); per pixel the film keeps the mean direction and the NEAREST hit among the
-// samples (a foreground and a background in one pixel are never blended into a point in the
-// air; deterministic, as every sample is seeded per pixel), and this file turns them into
-// angles and heights. Scene coordinates follow the geographic convention (x east, y up, z south;
+// hit (SurfaceAovs); per pixel the film keeps the NEAREST hit among the samples (a foreground and
+// a background in one pixel are never blended into a point in the air; deterministic, as every
+// sample is seeded per pixel) with that sample's direction (the samples' mean where none hit),
+// and this file turns them into angles and heights. Scene coordinates follow the geographic convention (x east, y up, z south;
 // azimuth clockwise from north = -z); over a CurvedEarth they are its flat frame (x' = R phi,
 // y' = R ln(1 + h/R), media/curved_earth.h), mapped back to the sphere where a straight line in
 // the true geometry is meant.
@@ -28,7 +28,7 @@ enum ReadoutChannel : int {
   kReadoutDistance = 0,           // path length along the camera path to the nearest sample's hit [m]; inf: none
   kReadoutPosition = 1,           // that hit's point, 3 channels [m]; NaN: none
   kReadoutObject = 4,             // its geometry id; -1: none
-  kReadoutApparentElevation = 5,  // of the mean camera ray at the eye [deg]
+  kReadoutApparentElevation = 5,  // of the nearest hit's camera ray at the eye (none: the mean ray) [deg]
   kReadoutApparentAzimuth = 6,    // [deg] clockwise from north (-z), in [0, 360)
   kReadoutTrueElevation = 7,      // of the hit from the eye along a straight line in the true geometry [deg]
   kReadoutHiddenHeight = 8,       // hidden height at the hit's vertical: geometric, then refracted [m]

@@ -200,14 +200,15 @@ std::unique_ptr<ElevationTable> eye_table(const RenderScene& scene, const Camera
 // (lambda - 538 nm)), over every colour) and three quarters the sun's radiance times x-bar + y-bar
 // + z-bar, on 1 nm bins; without one, uniform (unchanged). Through the ~38 air masses of a setting
 // sun its radiance at 450 nm is 0.2 % of 700 nm's: drawn uniformly, one wavelength's estimate of
-// the sky's luminance beside it has a relative standard deviation of 1.51 (0.92 for a white
-// spectrum), drawn by the sun so 0.34. All three matching functions, not y-bar alone: drawn by the
-// sun times y-bar, a wavelength where x-bar or z-bar is large and y-bar small carried a large
-// weight in X or Z, and a grey floor under a white sun was 3.3x noisier than with uniform
-// wavelengths (16 spp, relative RMSE 0.066 against 0.020; a blue one 0.152 against 0.033: a
-// trial). Now 0.009 and 0.014. The green flash's sky (64 x 64, 16 spp, 6 seeds) pays a little of
-// its luminance: per-pixel relative noise 0.052 against y-bar's 0.042, its blue channel 0.63
-// against 0.70. The visible share keeps every colour sampled.
+// the sky's luminance beside it has a relative standard deviation of 1.51, drawn by this density
+// 0.45 (its X 0.52, Z 2.9). All three matching functions, not y-bar alone: drawn by the sun times
+// y-bar (luminance 0.34, but X 0.72, Z 3.0; under a white sun Z 3.5 against 1.3 now), a wavelength
+// where x-bar or z-bar is large and y-bar small carried a large weight in X or Z, and a grey floor
+// under a white sun was 3.3x noisier than with uniform wavelengths (16 spp, relative RMSE 0.066
+// against 0.020; a blue one 0.152 against 0.033: a trial). Now 0.009 and 0.014. The green flash's
+// sky (64 x 64, 16 spp, 6 seeds) pays a little of its luminance: per-pixel relative noise 0.052
+// against y-bar's 0.042, its blue channel 0.63 against 0.70. The visible share keeps every colour
+// sampled.
 WavelengthDistribution hero_wavelengths(const RenderScene& scene) {
   const SunLight* sun = scene.sun();
   if (!sun) return WavelengthDistribution();

@@ -4,6 +4,7 @@
 #include "refracta/core/error.h"
 #include "refracta/core/parallel.h"
 #include "refracta/core/spectrum.h"
+#include "refracta/shading/color.h"
 #include "refracta/shading/spectral.h"
 
 #include <algorithm>
@@ -300,8 +301,8 @@ AerialPerspective::Segment AerialPerspective::along(const Vec3d& a, const Vec3d&
   integrate(a, b, frame, nodes_, true, T.data(), S.data());
   Vec3d rgb_s = Vec3d::Zero();
   for (int w = 0; w < kNodes; ++w) rgb_s += S[w] * rgb_weight_[w];
-  // Clipped to the sRGB gamut like the sky's Le (PhysicalSkyLight::Le).
-  rgb_s = rgb_s.cwiseMax(0.0);
+  // Into the sRGB gamut as the sky's Le (PhysicalSkyLight::Le): negative channels clipped, Y kept.
+  rgb_s = clip_keeping_luminance(rgb_s);
   out.transmittance = rgb_transmittance(T.data());
   out.inscatter = Spectrum(rgb_s.x(), rgb_s.y(), rgb_s.z(), 0.0);
   return out;

@@ -124,9 +124,17 @@ Color Color::tabulated(const std::vector<double>& lambda_nm, const std::vector<d
   }
   if (std::all_of(table->begin(), table->end(), [](double v) { return v == 0.0; }) &&
       std::any_of(values.begin(), values.end(), [](double v) { return v > 0.0; })) {
-    throw_invalid("tabulated: the spectrum's light lies between the 1 nm grid's wavelengths (samples at ",
-                  lambda_nm.front(), "-", lambda_nm.back(), " nm): it would be black; give samples on whole nm, "
-                  "or a band at least 1 nm wide");
+    bool inside = false;  // light at a sample within the rendered range, yet none on its grid
+    for (size_t i = 0; i < values.size(); ++i) {
+      inside = inside || (values[i] > 0.0 && lambda_nm[i] >= spectral::kTableMin && lambda_nm[i] <= spectral::kTableMax);
+    }
+    if (inside) {
+      throw_invalid("tabulated: the spectrum's light lies between the 1 nm grid's wavelengths (samples at ",
+                    lambda_nm.front(), "-", lambda_nm.back(), " nm): it would be black; give samples on whole nm, ",
+                    "or a band at least 1 nm wide");
+    }
+    throw_invalid("tabulated: the spectrum's light lies outside the rendered ", spectral::kTableMin, "-",
+                  spectral::kTableMax, " nm: the spectrum would be black");
   }
   Color c;
   c.kind_ = kind;
