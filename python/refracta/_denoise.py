@@ -18,13 +18,18 @@ def _channels(name: str, array, shape=None, lo: float = 0.0, hi: float = np.inf)
     if array is None or values.dtype.kind not in "biuf":
         shown = "None" if array is None else f"dtype {values.dtype}"
         raise ValueError(f"denoise: {name} must be an (H, W, 3) array of real numbers (got {shown})")
+    if values.dtype.kind != "f":  # an 8-bit picture came back as radiance 111-143
+        raise ValueError(
+            f"denoise: {name} must be floats, linear (got dtype {values.dtype}: a display-encoded picture? "
+            "refracta.io.read_image(path, linear=True) decodes one)"
+        )
     if values.ndim != 3 or values.shape[2] != 3 or values.shape[0] < 1 or values.shape[1] < 1:
         raise ValueError(f"denoise: {name} must have shape (H, W, 3), H and W >= 1 (got {values.shape})")
     if shape is not None and values.shape != shape:
         raise ValueError(f"denoise: {name} must have the image's shape {shape} (got {values.shape})")
     if not np.all(np.isfinite(values)):
         raise ValueError(f"denoise: {name} must be finite (it has NaN or inf)")
-    if name == "image" and values.min() < 0.0 <= values.max() <= hi:
+    if name == "image" and values.min() < 0.0 and values.max() <= hi:
         raise ValueError(
             f"denoise: image must be >= 0 (got values down to {values.min():g}): a spectral render's colours "
             "outside sRGB's gamut come out negative; denoise np.maximum(image, 0), as render(denoise=True) does"
@@ -109,13 +114,15 @@ def denoise(
 ) -> np.ndarray:
     """A Monte Carlo render with its noise removed by Intel Open Image Denoise's ``RT`` filter.
 
-    image: (H, W, 3) linear radiance (refracta.render's output; HDR, >= 0). albedo: the optional
-    (H, W, 3) reflectance of the first non-specular surface each pixel sees, in [0, 1]; normal:
-    its (H, W, 3) unit normal (needs albedo). Both sharpen edges and textures the noise would blur.
-    quality: 'high', 'balanced' or 'fast'. clean_aux: the albedo and normal are noise-free, as
-    render(aovs=...) gives them (a fixed-sample directional albedo; only the pixel's own
-    antialiasing averages them), so Open Image Denoise trusts them fully (measured on the hot road,
-    160 x 60, 16 spp: relative MSE against 1024 spp 3.3x lower with False, 4.1x with True);
+    image: (H, W, 3) linear radiance (refracta.render's output; HDR, >= 0; floats). A bright feature
+    smaller than a pixel that the guides do not show (a distant lamp, a glint) is taken for noise
+    and loses most of its light, even converged (a lamp 1.5 % of a pixel kept 13 % at 1024 spp).
+    albedo: the optional (H, W, 3) reflectance of the first non-specular surface each pixel sees, in
+    [0, 1]; normal: its (H, W, 3) unit normal (needs albedo). Both sharpen edges and textures the
+    noise would blur. quality: 'high', 'balanced' or 'fast'. clean_aux: the albedo and normal are
+    noise-free, as render(aovs=...) gives them (a fixed-sample directional albedo; only the pixel's
+    own antialiasing averages them), so Open Image Denoise trusts them fully (measured on the hot
+    road, 160 x 60, 16 spp: relative MSE against 1024 spp 3.3x lower with False, 4.1x with True);
     False for albedo and normal that carry Monte Carlo noise. guided: with clean albedo and normal,
     Open Image Denoise's output is then regressed on them in 3 x 3 windows (a guided filter, He et
     al. 2013; GUIDED_RADIUS, GUIDED_RIDGE): edges between surfaces take the coverage the guides
@@ -123,8 +130,8 @@ def denoise(
     (relative MSE on the demo scenes' hardest crops, 16 spp 'direct' against 4096: hot road 2.0x ->
     2.8x below the noisy image's, Fata Morgana 1.95x -> 2.1x; with guides of more samples than the
     image, render(guide_spp=64): 5.7x and 2.6x; benchmarks/bench_denoise.py). Off by default: it
-    also smooths lighting edges the guides do not show where they meet an edge the guides do show
-    -- the shadows at the feet of thin posts on a lit ground, 48 x 32 px, 16 spp: relative MSE 1.3x
+    also smooths lighting edges the guides do not show where they meet an edge the guides do show --
+    the shadows at the feet of thin posts on a lit ground, 48 x 32 px, 16 spp: relative MSE 1.3x
     below the noisy image's with Open Image Denoise alone, 0.5x (worse than noisy) guided. Negative
     results of the regression are clipped to 0; pixels whose normal is 0 (no surface met) keep Open
     Image Denoise's output. Returns float32 (H, W, 3).

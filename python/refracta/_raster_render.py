@@ -233,6 +233,12 @@ def render_raster(
     stats: deprecated (a dict filled with the statistics); use return_stats=True.
     """
     settings = raster_render_options(options, lights, shadows, transparency, **fields)
+    named_sun = lights == "sun" if isinstance(lights, str) else isinstance(lights, (list, tuple)) and "sun" in lights
+    has_sun = isinstance(scene, _core.Scene) and any(isinstance(light, _core.SunLight) for light in scene.lights)
+    if named_sun and isinstance(scene, _core.Scene) and not has_sun:  # it rendered the others without a word
+        raise ValueError(
+            "render_raster: lights names the sun, but the scene has none (Scene.set_sun or set_physical_sky)"
+        )
     flag(return_stats, "render_raster: return_stats")  # 'no' would return the statistics too
     if stats is not None:
         if not isinstance(stats, dict):

@@ -266,7 +266,10 @@ def render(
     demo and a display do). With pixel_bounds the denoiser sees the window alone, so its pixels
     are not the whole image's denoised ones (a trial: up to 15 % of the window's maximum on the
     cold sea at 4 spp); render a margin around the window (some 32 pixels) and crop it for those.
-    Executor tiles (tiles=) are joined before denoising.
+    Executor tiles (tiles=) are joined before denoising. A bright feature smaller than a pixel that
+    the guides do not show (a distant lamp, a star, a glint) is taken for noise and loses most of its
+    light, even converged (a 1.5 %-of-a-pixel lamp kept 13 % at 1024 spp: a trial): render those
+    without denoise.
     guide_spp (RenderOptions.guide_spp, default there: 0): when above spp, the albedo and normal
     come from a pass of their own of guide_spp samples per pixel that stop at the first
     non-specular surface (no lighting), so they hold each pixel's edge coverage to that many
@@ -316,9 +319,10 @@ def render(
     sample keeps its hero wavelength only and traces every segment through
     refracta.dispersed_field(field, hero) (camera rays through an eye table per dispersion scale from
     8 spp, see method; 3.5-4.1x the RGB cost on examples.hot_road(64, 24) at 4-16 spp, a trial).
-    spp: samples per pixel (1: pixel centres; more: a correlated multi-jittered pattern, Kensler
-    2013), seeded by `seed` per pixel (independent of the thread count). adaptive=True: the same
-    width x height x spp samples, shared by a pilot of spp / 8 per pixel within each 32-pixel block
+    spp: samples per pixel (1: pixel centres, whatever the seed, so renders averaged over seeds
+    converge to the pixel's integral only from spp=2; more: a correlated multi-jittered pattern,
+    Kensler 2013), seeded by `seed` per pixel (independent of the thread count). adaptive=True: the
+    same width x height x spp samples, shared by a pilot of max(2, round(spp / 8)) per pixel within each 32-pixel block
     (every pixel at least spp / 2, the rest where the pilot varies; unbiased; spp >= 6;
     RenderOptions.adaptive, cpp/refracta/render/adaptive_sampling.h); off by default, and not used
     by denoise=True: on the demo scenes it does not lower the error (benchmarks/bench_denoise.py).

@@ -88,3 +88,13 @@ def test_no_crack_along_the_diagonal_of_the_ground(size):
         refracta.render(scene, camera, None, spp=1, method="raster_march"),
     ):
         assert not np.any(np.all(image == sky, axis=-1) & ground)
+
+
+def test_render_raster_told_to_light_by_a_sun_the_scene_lacks_says_so():
+    scene = floor(0.5, size=20.0)
+    scene.add_point_light((0.0, 3.0, 0.0), (10.0, 10.0, 10.0))
+    camera = refracta.Camera((0.0, 5.0, 0.001), (0.0, 0.0, 0.0), **LOOKING_DOWN)
+    with pytest.raises(ValueError, match="lights names the sun, but the scene has none"):
+        refracta.render_raster(scene, camera, lights="sun")
+    scene.set_sun((0.0, 1.0, 0.0), (1.0, 1.0, 1.0))
+    assert refracta.render_raster(scene, camera, lights=["sun"]).mean() > 0.0

@@ -30,13 +30,26 @@ struct Textures::Impl {
   std::vector<int> channels;          // their colour channels, by id: 1 (grey) or 3 (RGB)
   std::mutex mutex;
 
-  Impl() {
-    system = OIIO::TextureSystem::create(false);  // private: our files, our options
-    system->attribute("max_memory_MB", 512.0f);
+  // Made with the first texture: a Scene without any keeps none (each private system's image cache
+  // outlives it, ~25 kB: a trial counted 24.7 kB for every Scene).
+  OIIO::TextureSystem* made() {
+    if (!system) {
+      system = OIIO::TextureSystem::create(false);  // private: our files, our options
+      system->attribute("max_memory_MB", 512.0f);
+    }
+    return system;
   }
-  // With its private ImageCache: without teardown every Scene kept 24.7 kB, and one open file
-  // handle and the tiles read of each texture, until the process ran out of handles (a trial).
-  ~Impl() { OIIO::TextureSystem::destroy(system, /*teardown_imagecache=*/true); }
+  // Its files closed and tiles dropped first: destroy() keeps a private system's image cache, and
+  // with it an open handle to each texture read, until the process ran out of handles (a trial).
+  // Not destroy(system, teardown_imagecache=true): OIIO 2.4 then frees the cache while threads'
+  // per-thread records of it live on, and a later cache at the same address read them (an
+  // assertion in resolve_udim, or a segfault, after a few hundred textured scenes).
+  ~Impl() {
+    if (!system) return;
+    system->invalidate_all(/*force=*/true);
+    system->close_all();
+    OIIO::TextureSystem::destroy(system);
+  }
 };
 
 Textures::Textures() : impl_(std::make_unique<Impl>()) {}
@@ -181,6 +194,7 @@ int Textures::add(const std::string& path) {
   int channels = 3;
   const std::string prepared = prepare(path, &channels);
   std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->made();
   impl_->files.emplace_back(prepared);
   impl_->channels.push_back(channels);
   paths_.push_back(path);
