@@ -19,13 +19,13 @@ FieldPtr straight_air(const IndexField* field) {
 
 std::optional<Vec3d> picked_point(const Scene& scene, const Camera& camera, const FieldPtr& field, double u, double v,
                                   std::optional<double> max_length) {
+  const Vec3d& eye = camera.position();
+  const Vec3d dir = camera.pixel_direction(u, v);  // first: it names non-finite u and v
   // Off the image the pinhole's ray is extrapolated: v = 1e9 picked the camera's foot (a trial).
   if (!(u >= 0.0 && u <= camera.width() && v >= 0.0 && v <= camera.height())) {
     throw_invalid("pick: pixel (", u, ", ", v, ") lies outside the camera's ", camera.width(), " x ", camera.height(),
                   " image (u in [0, ", camera.width(), "], v in [0, ", camera.height(), "])");
   }
-  const Vec3d& eye = camera.position();
-  const Vec3d dir = camera.pixel_direction(u, v);
   const double reach = kSceneReach - eye.cwiseAbs().maxCoeff();
   const double length = max_length.value_or(reach);
   if (!(length > 0.0 && length <= reach)) {
