@@ -17,7 +17,9 @@ namespace {
 std::vector<double> wavelengths(const py::handle& object) {
   std::vector<double> values = to_values(object, "wavelengths");
   for (double x : values) {
-    if (!(x >= 1.0)) throw_invalid("wavelengths are in nm and must be >= 1 (got ", x, x > 0.0 ? ": micrometres?)" : ")");
+    if (!(x >= 1.0)) {
+      throw_invalid("wavelengths are in nm and must be >= 1 (got ", x, x > 0.0 ? ": micrometres?)" : ")");
+    }
   }
   return values;
 }

@@ -51,7 +51,9 @@ void def_tuple_pickle(Class& cls, const char* name, Get state, Make make) {
           typed = py::cast<TypedState>(t);
         } catch (const py::cast_error&) {
           std::string types;
-          for (const py::handle item : t) types += (types.empty() ? "" : ", ") + std::string(Py_TYPE(item.ptr())->tp_name);
+          for (const py::handle item : t) {
+            types += (types.empty() ? "" : ", ") + std::string(Py_TYPE(item.ptr())->tp_name);
+          }
           throw_invalid(name, ": bad pickle state (an item of the wrong type among ", types, ")");
         }
         return std::apply(make, std::move(typed));

@@ -44,8 +44,8 @@ inline Image with_channel(const Image& image, const Image& extra) {
 // naming `what`, the size and the bytes. Without the guard a 100000 x 100000 render asked the
 // allocator for 120 GB and was killed, or swapped for minutes.
 inline void check_image_memory(int64_t width, int64_t height, double bytes_per_pixel, const char* what) {
-  const double bytes = double(width) * double(height) * bytes_per_pixel, memory = physical_memory_bytes();
-  if (memory > 0.0 && bytes > memory) {
+  const double bytes = double(width) * double(height) * bytes_per_pixel;
+  if (double memory; beyond_memory(bytes, &memory)) {
     throw std::invalid_argument(std::string(what) + ": a " + std::to_string(width) + " x " + std::to_string(height) +
                                 " image needs at least " + whole_bytes(bytes) + " bytes (" + whole_bytes(bytes / 1e9) +
                                 " GB), more than this machine's " + whole_bytes(memory / 1e9) + " GB of memory");

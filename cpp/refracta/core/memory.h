@@ -39,12 +39,19 @@ inline std::string readable_bytes(double size) {
   return text;
 }
 
+// Whether `bytes` would not fit in this machine's memory (read into `memory`; unknown: fits).
+inline bool beyond_memory(double bytes, double* memory) {
+  *memory = physical_memory_bytes();
+  return *memory > 0.0 && bytes > *memory;
+}
+
 // Refuses, before anything is allocated, work of `count` items (rays, samples) of bytes_per_item
 // each at its peak that would not fit in physical memory: std::invalid_argument (ValueError)
 // naming `what`. trace_rays of 1e8 rays traced for 12 s, then failed allocating its results.
+
 inline void check_work_memory(double count, double bytes_per_item, const char* what, const char* items) {
-  const double bytes = count * bytes_per_item, memory = physical_memory_bytes();
-  if (memory > 0.0 && bytes > memory) {
+  const double bytes = count * bytes_per_item;
+  if (double memory; beyond_memory(bytes, &memory)) {
     throw std::invalid_argument(std::string(what) + ": " + whole_bytes(count) + " " + items + " need at least " +
                                 readable_bytes(bytes) + ", more than this machine's " + readable_bytes(memory) +
                                 " of memory: split them into batches");

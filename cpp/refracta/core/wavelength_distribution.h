@@ -1,7 +1,8 @@
 // The density spectral rendering draws its hero wavelengths from: uniform over [kLambdaMin,
 // kLambdaMax] by default, or piecewise constant on equal bins, proportional to given weights
 // (importance sampling the spectrum a render's light carries: render/renderer.cpp's
-// hero_wavelengths, in proportion to the sun's radiance times x-bar + y-bar + z-bar, which the film draws from). Four wavelengths a sample, stratified through
+// hero_wavelengths, in proportion to the sun's radiance times x-bar + y-bar + z-bar, which the
+// film draws from). Four wavelengths a sample, stratified through
 // the inverse of the cumulative density (the hero from u, the others from u + i/4 wrapped into
 // [0, 1)), each with its own density: the estimate (1/4) sum_i L_i cmf_i / pdf_i
 // (shading/color.h to_linear_srgb) stays unbiased for any density that is positive wherever the

@@ -167,16 +167,15 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   DirectLighting lighting(render_scene, caster, ray_options, &visibility);
   lighting.use_raised_sky(RaisedSky::for_camera(render_scene, eye.y()));  // a raised camera's sky (raised_sky.h)
 
-  // Shading of a rasterized surface, every shining light deterministically: the sun along its
-  // disc's centre (irradiance = disc radiance x solid angle; sunlight below), spots and point lights exactly, lights
-  // with extent (area lights, environments, the sky) by light_strata^2 quasi-random light samples and
-  // as many BSDF samples, combined by the power heuristic (Veach 1997, ch. 9) as the ray renderers'
-  // direct lighting does. Light samples alone left a quadrature bias of +39 % under a panel 0.2 m
-  // above a floor at n = 8 (its samples a grid on the panel, as far apart as the floor is from it);
-  // BSDF samples alone (the earlier environment rule) missed or hit a small bright patch of a map:
-  // -73 % or +346 % (a trial). A light that no BSDF sample can meet (no emitting geometry), and with
-  // shadows 'none' an area light (a BSDF sample finds it through what stands in front), keeps its
-  // light samples alone.
+  // Shading of a rasterized surface, every shining light deterministically: the sun along its disc's
+  // centre (irradiance = disc radiance x solid angle; sunlight below), spots and point lights exactly,
+  // lights with extent (area lights, environments, the sky) by light_strata^2 quasi-random light samples
+  // and as many BSDF samples, combined by the power heuristic (Veach 1997, ch. 9) as the ray renderers'
+  // direct lighting does. Light samples alone left a quadrature bias of +39 % under a panel 0.2 m above a
+  // floor at n = 8 (its samples a grid on the panel, as far apart as the floor is from it); BSDF samples
+  // alone (the earlier environment rule) missed or hit a small bright patch of a map: -73 % or +346 % (a
+  // trial). A light that no BSDF sample can meet (no emitting geometry), and with shadows 'none' an area
+  // light (a BSDF sample finds it through what stands in front), keeps its light samples alone.
   tbb::enumerable_thread_specific<ScratchBuffer> scratch_per_thread;
   const SampledWavelengths lambda_rgb = SampledWavelengths::rgb();
   const int n = options.light_strata;
@@ -237,9 +236,10 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
   const SunLight* sun = lights.sun_shines ? render_scene.sun() : nullptr;
   constexpr double kCentredSunRadius = kPi / 360.0;  // 0.5 deg [rad]
   const double sun_radius = sun ? degrees_to_radians(0.5 * sun->angular_diameter()) : 0.0;
+  const bool small_sun = sun_radius <= kCentredSunRadius;
+  const double sin_sun_radius = std::sin(sun_radius);
   auto sunlight = [&](const SurfaceInteraction& si, const SurfaceBsdf& bsdf, const SampledWavelengths& lambda) {
-    if (sun_radius <= kCentredSunRadius &&
-        std::abs(si.n_toward_wo().dot(sun->direction())) >= std::sin(sun_radius)) {
+    if (small_sun && std::abs(si.n_toward_wo().dot(sun->direction())) >= sin_sun_radius) {
       return lighting.sample_light(*lights.sun, si, bsdf, lambda, Vec2d(0.0, 0.0), false);
     }
     Spectrum L = Spectrum::Zero();

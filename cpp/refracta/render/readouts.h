@@ -4,7 +4,8 @@
 // hit (SurfaceAovs); per pixel the film keeps the NEAREST hit among the samples (a foreground and
 // a background in one pixel are never blended into a point in the air; deterministic, as every
 // sample is seeded per pixel) with that sample's direction (the samples' mean where none hit),
-// and this file turns them into angles and heights. Scene coordinates follow the geographic convention (x east, y up, z south;
+// and this file turns them into angles and heights. Scene coordinates follow the geographic
+// convention (x east, y up, z south;
 // azimuth clockwise from north = -z); over a CurvedEarth they are its flat frame (x' = R phi,
 // y' = R ln(1 + h/R), media/curved_earth.h), mapped back to the sphere where a straight line in
 // the true geometry is meant.

@@ -126,7 +126,8 @@ Color Color::tabulated(const std::vector<double>& lambda_nm, const std::vector<d
       std::any_of(values.begin(), values.end(), [](double v) { return v > 0.0; })) {
     bool inside = false;  // light at a sample within the rendered range, yet none on its grid
     for (size_t i = 0; i < values.size(); ++i) {
-      inside = inside || (values[i] > 0.0 && lambda_nm[i] >= spectral::kTableMin && lambda_nm[i] <= spectral::kTableMax);
+      const bool rendered = lambda_nm[i] >= spectral::kTableMin && lambda_nm[i] <= spectral::kTableMax;
+      inside = inside || (values[i] > 0.0 && rendered);
     }
     if (inside) {
       throw_invalid("tabulated: the spectrum's light lies between the 1 nm grid's wavelengths (samples at ",
@@ -184,9 +185,8 @@ Spectrum Color::sample(const SampledWavelengths& lambda) const {
 
 Vec3d clip_keeping_luminance(const Vec3d& rgb) {
   if (rgb.minCoeff() >= 0.0) return rgb;
-  const Vec3d luminance_weights(0.2126, 0.7152, 0.0722);  // Y of linear sRGB (IEC 61966-2-1)
   const Vec3d clipped = rgb.cwiseMax(0.0);
-  const double y = rgb.dot(luminance_weights), y_clipped = clipped.dot(luminance_weights);
+  const double y = linear_srgb_luminance(rgb), y_clipped = linear_srgb_luminance(clipped);
   // Clipping only adds luminance: the scale is at most 1 (0 where the light had none to keep).
   return y_clipped > 0.0 ? Vec3d(clipped * (std::max(y, 0.0) / y_clipped)) : clipped;
 }

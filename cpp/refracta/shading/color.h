@@ -59,6 +59,12 @@ class Color {
   std::shared_ptr<const std::vector<double>> table_;     // tabulated: 1 nm steps over [360, 830]
 };
 
+// Luminance Y of linear sRGB (IEC 61966-2-1 primaries, D65 white): the second row of the RGB -> XYZ
+// matrix.
+inline double linear_srgb_luminance(const Vec3d& rgb) {
+  return 0.2126 * rgb.x() + 0.7152 * rgb.y() + 0.0722 * rgb.z();
+}
+
 // Light given by a spectrum outside the sRGB gamut (a negative channel) as RGB renders take it:
 // the negative channels clipped (negative light would subtract) and the rest scaled to keep its
 // luminance Y. Clipping alone made a 500-520 nm sun 34 % brighter than its spectrum, and a setting

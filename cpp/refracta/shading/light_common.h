@@ -11,9 +11,8 @@
 namespace refracta {
 namespace detail {
 
-// Luminance Y of linear sRGB (IEC 61966-2-1 primaries, D65 white): the second row of the
-// RGB -> XYZ matrix. power() of every light is this Y of its RGB power.
-inline double luminance(const Vec3d& rgb) { return 0.2126 * rgb.x() + 0.7152 * rgb.y() + 0.0722 * rgb.z(); }
+// power() of every light is the luminance Y of its RGB power.
+inline double luminance(const Vec3d& rgb) { return linear_srgb_luminance(rgb); }
 
 inline void check_point(const Vec3d& p, const char* what) {
   if (!is_finite(p)) throw_invalid(what, " must be finite (got (", p.x(), ", ", p.y(), ", ", p.z(), "))");
