@@ -305,8 +305,12 @@ def _as_completed_waking(futures):
     SIGINT). Each timed wait returns to the interpreter, and the Ctrl-C is raised between waits
     (_sigint_between_waits). The futures report to a queue as they finish: a
     concurrent.futures.wait over every pending future at each wake made n points cost n^2 (a
-    trial: 20 000 trivial points took 84 s against executor.map's 6 s)."""
-    finished: queue.SimpleQueue = queue.SimpleQueue()
+    trial: 20 000 trivial points took 84 s against executor.map's 6 s). A queue.Queue, not a
+    SimpleQueue: CPython 3.11's SimpleQueue.get(timeout=...), interrupted by a signal and given the
+    GIL back after its deadline, waits again with the negative time left, i.e. for ever (the check
+    _thread's lock.acquire makes is missing there). On a loaded machine the sweep hung so after
+    Ctrl-C, about 1 run in 25 beside two CPU burners."""
+    finished: queue.Queue = queue.Queue()
     for future in futures:
         future.add_done_callback(finished.put)
     remaining = len(futures)

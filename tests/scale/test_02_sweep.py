@@ -318,6 +318,45 @@ def _sigint_noted_then_raised(_sweep):
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
 
 
+# [s] a bound against a hung wait (the fault below waited forever), not a timing assertion.
+RESCUE_AFTER = 30.0
+# [s] how long the busy thread keeps the GIL after the signal: well past the 50 ms wait.
+GIL_HELD = 0.3
+
+
+def test_a_wait_interrupted_past_its_deadline_still_wakes():
+    # A make test: the thread-pool sweep hung after Ctrl-C, its main thread waiting for ever. CPython
+    # 3.11's SimpleQueue.get(timeout) waits again with the time left after a signal, and when that
+    # is negative (the main thread got the GIL back after the deadline) the wait has no timeout.
+    # Here a thread holds the GIL well past the 50 ms wait when the SIGINT reaches the main thread.
+    from refracta import _sweep
+
+    never_done: concurrent.futures.Future = concurrent.futures.Future()
+    main = threading.get_ident()
+
+    def interrupt_while_holding_the_gil():
+        time.sleep(0.02)  # the main thread is inside a wait by now (all but microseconds of a loop)
+        signal.pthread_kill(main, signal.SIGINT)
+        end = time.monotonic() + GIL_HELD
+        while time.monotonic() < end:  # pure Python: keeps the GIL within the switch interval
+            pass
+
+    rescue = threading.Timer(RESCUE_AFTER, never_done.set_result, args=(None,))
+    inherited = signal.signal(signal.SIGINT, signal.default_int_handler)
+    switch_interval = sys.getswitchinterval()
+    sys.setswitchinterval(1.0)  # the busy thread is not asked to give the GIL up sooner
+    try:
+        rescue.start()
+        threading.Thread(target=interrupt_while_holding_the_gil, daemon=True).start()
+        with pytest.raises(KeyboardInterrupt):
+            next(_sweep._as_completed_waking({never_done: 0}))
+        assert not never_done.done(), "the interrupted wait woke only when its future finished"
+    finally:
+        sys.setswitchinterval(switch_interval)
+        signal.signal(signal.SIGINT, inherited)
+        rescue.cancel()
+
+
 class TwoArgumentError(Exception):
     def __init__(self, code, text):
         super().__init__(f"{code}: {text}")
