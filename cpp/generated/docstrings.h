@@ -210,9 +210,9 @@ the ground, n_hot * sigma(-h / (0.3 a_hot)), is scaled by sum_i dt_i F_i(r_i), s
 only over the spots (parameters hot_spot<i>_x, _z, _radius, _dt).)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings[] = R"doc(Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
-published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit ROV
-variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (both 0: the
-fragments' own range, in render_raster the frame's).)doc";
+published value for the basis, moment count and storage; storage 'fp32', 'unorm16' (the 16-bit ROV
+variant, re-quantised after every fragment) or 'fp64' (the method itself); log-depth warp over
+[z_near, z_far] [m] (both 0: the fragments' own range, in render_raster the frame's).)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_beta[] = R"doc(overestimation in [0, 1]: the share of the fragment's own layer in front)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_bias[] = R"doc(alpha, the weight of the bias vector in [0, 1); unset (None) gives the published value for the
 basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).)doc";

@@ -7,11 +7,15 @@ import numpy
 import numpy.typing
 import os
 import typing
-__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW_DEG', 'Dielectric', 'Diffuse', 'DispersedField', 'DisplaySettings', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MomentShadowSettings', 'NumericalError', 'ObjOptions', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'physical_memory_bytes', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
+__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW_DEG', 'Dielectric', 'Diffuse', 'DispersedField', 'DisplaySettings', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MissingFileError', 'MomentShadowSettings', 'NumericalError', 'ObjOptions', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'physical_memory_bytes', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
     pass
+class MissingFileError(IoError, FileNotFoundError):
+    """
+    A file that is not there: a refracta.IoError and a FileNotFoundError.
+    """
 class HotSpot:
     """
     An areal hot (dt > 0) or cold (dt < 0) patch of ground centred at (x, z) [m]: the air above it is
@@ -790,7 +794,7 @@ class _ElevationTable:
         """
         The interpolation tolerance [m].
         """
-class TextureNotFoundError(IoError, FileNotFoundError):
+class TextureNotFoundError(MissingFileError):
     """
     A texture an MTL file names is in none of the folders searched (a refracta.IoError and a FileNotFoundError).
     """
@@ -1696,9 +1700,9 @@ class MboitSettings:
     """
     Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
     'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
-    published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit ROV
-    variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (both 0: the
-    fragments' own range, in render_raster the frame's).
+    published value for the basis, moment count and storage; storage 'fp32', 'unorm16' (the 16-bit ROV
+    variant, re-quantised after every fragment) or 'fp64' (the method itself); log-depth warp over
+    [z_near, z_far] [m] (both 0: the fragments' own range, in render_raster the frame's).
     """
     __hash__: typing.ClassVar[None] = None
     @staticmethod
@@ -1761,7 +1765,7 @@ class MboitSettings:
     @property
     def storage(self) -> str:
         """
-        'fp32' or 'unorm16'
+        'fp32', 'unorm16' (a GPU's storage) or 'fp64' (the method itself)
         """
     @storage.setter
     def storage(self, arg1: str) -> None:

@@ -14,11 +14,11 @@ the field; validate() runs last and lists every bad value.
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Iterable, Mapping
 from typing import Any, TypeVar
 
 from refracta import _core
+from refracta._warn import deprecated
 
 T = TypeVar("T")
 
@@ -46,14 +46,14 @@ def split(kw: dict[str, Any], *classes: type) -> list[dict[str, Any]]:
     return out
 
 
-def renamed(kw: dict[str, Any], aliases: Mapping[str, str], where: str, stacklevel: int = 3) -> dict[str, Any]:
+def renamed(kw: dict[str, Any], aliases: Mapping[str, str], where: str) -> dict[str, Any]:
     """`kw` with deprecated keyword spellings (aliases: old -> new) replaced by their new names,
     each with a DeprecationWarning; both spellings at once raise TypeError."""
     for old, new in aliases.items():
         if old in kw:
             if new in kw:
                 raise TypeError(f"{where}: pass {new}= only ({old}= is its deprecated spelling)")
-            warnings.warn(f"{where}: {old}= is deprecated; call it {new}=", DeprecationWarning, stacklevel=stacklevel)
+            deprecated(f"{where}: {old}= is deprecated; call it {new}=")
             kw[new] = kw.pop(old)
     return kw
 

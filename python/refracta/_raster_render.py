@@ -8,7 +8,6 @@ a keyword left out keeps the C++ default.
 
 from __future__ import annotations
 
-import warnings
 from typing import Callable
 
 import numpy as np
@@ -17,6 +16,7 @@ from refracta import _core
 from refracta._checks import flag
 from refracta._progress import progress_callback
 from refracta._render import _check_scene
+from refracta._warn import deprecated
 
 # render_raster's keywords that name a nested field of RasterRenderOptions: keyword -> its dotted
 # path, which the one keyword rule (_core._build_options) follows. Any other keyword must be a
@@ -91,9 +91,7 @@ def undeprecated(fields: dict, paths: dict[str, str], owner: str) -> dict:
         field = paths.get(keyword, keyword).rsplit(".", 1)[-1]
         if isinstance(value, str) and (field, value) in _DEPRECATED_VALUES:
             new = _DEPRECATED_VALUES[(field, value)]
-            warnings.warn(
-                f"{owner}: {keyword}={value!r} is deprecated; write {keyword}={new!r}", DeprecationWarning, stacklevel=4
-            )
+            deprecated(f"{owner}: {keyword}={value!r} is deprecated; write {keyword}={new!r}")
             fields[keyword] = new
     return fields
 
@@ -243,10 +241,8 @@ def render_raster(
     if stats is not None:
         if not isinstance(stats, dict):
             raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
-        warnings.warn(
-            "render_raster(stats=dict) is deprecated: pass return_stats=True and read the returned RasterRenderStats",
-            DeprecationWarning,
-            stacklevel=2,
+        deprecated(
+            "render_raster(stats=dict) is deprecated: pass return_stats=True and read the returned RasterRenderStats"
         )
     callback = progress_callback(progress, "rasterizing")
     image, counts = _core._render_raster(scene, camera, settings, callback)

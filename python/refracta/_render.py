@@ -14,6 +14,7 @@ from refracta import _core, _denoise, _options
 from refracta._checks import flag, is_seed
 from refracta._progress import progress_callback
 from refracta._sweep import as_executor, map_ordered
+from refracta._warn import deprecated
 
 
 class SceneWarning(UserWarning):
@@ -369,11 +370,7 @@ def render(
     if stats is not None:
         if not isinstance(stats, dict):
             raise ValueError(f"stats must be a dict to fill (got {type(stats).__name__})")
-        warnings.warn(
-            "render(stats=dict) is deprecated: pass return_stats=True and read the returned RenderStats",
-            DeprecationWarning,
-            stacklevel=2,
-        )
+        deprecated("render(stats=dict) is deprecated: pass return_stats=True and read the returned RenderStats")
     own = dict(return_stats=return_stats, aovs=aovs, denoise=denoise, frame=frame, executor=executor, tiles=tiles)
     wanted = check_render_keywords(camera, method, **own)
     if denoise or any(name != "samples" for name in wanted):

@@ -48,6 +48,7 @@ from refracta import _core, _options
 from refracta._checks import is_number, number, on_image, real_array
 from refracta._progress import progress_callback
 from refracta._rays import without_refraction
+from refracta._warn import deprecated
 
 # The options and summary of a solve, bound from C++ (edit_settings.h, point_pair.h).
 SolveSettings = _core.SolveSettings
@@ -146,6 +147,14 @@ def _pair_pixels(pairs: Sequence[PointPair]) -> np.ndarray:
     return np.array([p.destination if p.is_pixel else (np.nan, np.nan) for p in pairs], dtype=float).reshape(-1, 2)
 
 
+def _refuse_several_cameras(eye_or_camera) -> None:
+    if isinstance(eye_or_camera, (list, tuple)) and any(isinstance(item, _core.Camera) for item in eye_or_camera):
+        raise ValueError(
+            "eye_or_camera must be one Camera or one eye point (x, y, z) (got a sequence holding Cameras): an edit "
+            "sees through one camera; solve for each camera in turn"
+        )
+
+
 def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float | None = None):
     """(pairs, eye, camera or None, origins, directions, sources, weights, margins [m], tolerances [m])
     of the pairs.
@@ -164,6 +173,7 @@ def _pair_rays(eye_or_camera, pairs: Sequence[PointPair], pixel_tolerance: float
     for i, pair in enumerate(pairs):
         if not isinstance(pair, PointPair):
             raise ValueError(f"pairs[{i}] must be a PointPair (got {type(pair).__name__})")
+    _refuse_several_cameras(eye_or_camera)
     camera = eye_or_camera if isinstance(eye_or_camera, _core.Camera) else None
     eye = camera.position if camera is not None else _vector(eye_or_camera, (3,), "eye_or_camera")
     directions = []
@@ -209,7 +219,7 @@ _RENAMED = {"integrator": "trace", "ground": "stop_height"}
 def _pair_options(where: str, given: _core.PairOptions | None, options: dict) -> _core.PairOptions:
     """PairOptions from `given` (None: the defaults) and PairOptions fields as keywords (deprecated
     spellings renamed with a warning; any other keyword raises ValueError naming it)."""
-    options = _options.renamed(dict(options), _RENAMED, where, stacklevel=4)
+    options = _options.renamed(dict(options), _RENAMED, where)
     return _options.build(_core.PairOptions, given, where=where, **options)
 
 
@@ -433,7 +443,7 @@ def solve(
             met). PairOptions: trace ('rk45' to `tol` [m], or 'rk4' with `step` [m]),
             stop_height [m] (paths end on the ground there; default none), distance
             ('continuous' closest approach, or 'vertex': the nearest integrator node, the
-            original editor's measure), reach (paths are traced to ``reach * |source - eye| + 1``
+            original editor's measure, with trace='rk4' only), reach (paths are traced to ``reach * |source - eye| + 1``
             m), max_steps. Deprecated spellings: integrator= (trace), ground= (stop_height).
 
     Returns:
@@ -451,6 +461,7 @@ def solve(
         options["backend"] = backend
     if not isinstance(field, _core.IndexField):
         raise ValueError(f"field must be an IndexField (got {type(field).__name__})")
+    _refuse_several_cameras(eye_or_camera)
     free = _free_names(free)
     if free is not None:
         valid = list(field.param_names) + list(CAMERA_PARAMETERS)
@@ -706,8 +717,6 @@ def load_pairs(
     if "ground" in options:
         if "stop_height" in options:
             raise ValueError(f'{path}: give "stop_height" only ("ground" is its deprecated spelling)')
-        warnings.warn(
-            f'{path}: the key "ground" is deprecated; call it "stop_height"', DeprecationWarning, stacklevel=2
-        )
+        deprecated(f'{path}: the key "ground" is deprecated; call it "stop_height"')
         options["stop_height"] = options.pop("ground")
     return pairs, options

@@ -304,22 +304,37 @@ class LocalFrame:
     """
 
     def __init__(self, lat, lon, height=0.0, earth_radius=None):
-        self.lat = _number(lat, "lat", -90.0, 90.0)
+        self._lat = _number(lat, "lat", -90.0, 90.0)
         if abs(self.lat) == 90.0:
             raise ValueError(
                 f"lat must not be a pole (got {self.lat!r}): north, and so the scene's -z, is undefined there"
             )
-        self.lon = _number(lon, "lon", -360.0, 360.0)  # as every function of this module takes it
-        self.height = _number(height, "height", -_REACH, _REACH)
+        self._lon = _number(lon, "lon", -360.0, 360.0)  # as every function of this module takes it
+        self._height = _number(height, "height", -_REACH, _REACH)
         if earth_radius is None:
             m, n = principal_radii(self.lat)
             earth_radius = math.sqrt(m * n)
-        self.earth_radius, self._curved = _flattening(earth_radius)
+        self._earth_radius, self._curved = _flattening(earth_radius)
         aeqd = pyproj.CRS.from_proj4(
             f"+proj=aeqd +lat_0={self.lat!r} +lon_0={self.lon!r} +ellps=WGS84 +units=m +no_defs"
         )
         self._to_plane = pyproj.Transformer.from_crs(_LONLAT, aeqd, always_xy=True)
         self._to_lonlat = pyproj.Transformer.from_crs(aeqd, _LONLAT, always_xy=True)
+
+    def __setattr__(self, name: str, value) -> None:
+        # Read-only: the projection is made once, about the origin (a trial set lat = 45: the repr
+        # said 45, to_scene projected about 28).
+        if not name.startswith("_"):
+            raise AttributeError(
+                f"LocalFrame.{name} cannot be set: the frame's projection is made about its origin; make another "
+                "LocalFrame(lat, lon, height, earth_radius)"
+            )
+        object.__setattr__(self, name, value)
+
+    lat = property(lambda self: self._lat, doc="[deg] the origin's latitude")
+    lon = property(lambda self: self._lon, doc="[deg] the origin's longitude")
+    height = property(lambda self: self._height, doc="[m] the ground's height at the origin above the ellipsoid")
+    earth_radius = property(lambda self: self._earth_radius, doc="[m] R of the flat heights (inf: a flat Earth)")
 
     def __repr__(self) -> str:
         where = f"lat={self.lat!r}, lon={self.lon!r}, height={self.height!r}"

@@ -14,13 +14,17 @@ The 4MSMs' old names 'hamburger' and 'hausdorff' still work, with a DeprecationW
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Sequence
 
 import numpy as np
 
 from refracta import _core
 from refracta._checks import is_flag, is_seed, real_array
+from refracta._warn import deprecated
+
+# The moment methods use at most 8; beyond this, one numpy pass per moment made count=10**9 a hang
+# (a trial), and z^1024 of a depth below 0.5 is already under double's smallest normal number.
+_MOST_MOMENTS = 1024
 
 
 def power_moments(depths, weights=None, count: int = 4) -> np.ndarray:
@@ -28,8 +32,8 @@ def power_moments(depths, weights=None, count: int = 4) -> np.ndarray:
     depths = real_array(depths, "power_moments: depths")
     if depths.ndim < 1 or depths.shape[-1] < 1:
         raise ValueError(f"power_moments: depths must hold at least one depth along the last axis (got {depths.shape})")
-    if not (is_seed(count) and count >= 1):
-        raise ValueError(f"power_moments: count must be a whole number >= 1 (got {count!r})")
+    if not (is_seed(count) and 1 <= count <= _MOST_MOMENTS):
+        raise ValueError(f"power_moments: count must be a whole number in [1, {_MOST_MOMENTS}] (got {count!r})")
     if weights is None:
         weights = np.full_like(depths, 1.0 / depths.shape[-1])
     else:
@@ -81,9 +85,7 @@ def shadow_intensity(
     storage emulates how the moments were kept: 'fp64', 'fp32', or 'unorm16' (quantised through
     the optimised transform, as RGBA16_UNORM on a GPU, with the larger published bias)."""
     if method in _OLD_METHODS:
-        warnings.warn(
-            f"shadow_intensity: method {method!r} is now {_OLD_METHODS[method]!r}", DeprecationWarning, stacklevel=2
-        )
+        deprecated(f"shadow_intensity: method {method!r} is now {_OLD_METHODS[method]!r}")
         method = _OLD_METHODS[method]
     settings = _core.MomentShadowSettings(
         depth_range=depth_range,

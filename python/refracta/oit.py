@@ -4,11 +4,13 @@
 method 'exact', 'peel', 'wboit' or 'mboit'. depths are view depths (> 0), alphas in [0, 1], colors (K, 3)
 linear RGB (not premultiplied). The settings are a refracta.OitSettings (`options`, or its C++
 defaults) changed by keywords: layers, weight ('eq7' / 'eq9'), and MBOIT's moments, basis ('power'
-or 'trigonometric'; kind is its old name), beta, bias (None: the published value), storage ('fp32'
-or 'unorm16'), z_range (near, far) [m] (default: the fragments' range).
+or 'trigonometric'; kind is its old name), beta, bias (None: the published value), storage ('fp32',
+'unorm16': a GPU's; 'fp64': the method itself), z_range (near, far) [m] (default: the fragments' range).
 'exact' sorts (= depth peeling with enough layers); 'peel' keeps the `layers` nearest; 'wboit' is
 McGuire & Bavoil 2013; 'mboit' is moment-based OIT with power moments or trigonometric ones
-(wrapping zone pi/10) and a log depth warp.
+(wrapping zone pi/10) and a log depth warp; MBOIT clamps each alpha to 0.999 (as vkQuake's
+implementation: its absorbance -ln(1 - alpha) must stay finite), so an opaque fragment lets 1e-3 of
+what lies behind it through.
 """
 
 from __future__ import annotations

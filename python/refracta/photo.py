@@ -248,16 +248,13 @@ def _rational(value) -> float | None:
 
 
 def _existing_file(path, what: str) -> Path:
-    """`path` as a Path; refracta.IoError naming it when it is not a file."""
+    """`path` as a Path; refracta.IoError naming it when it is not a file (MissingFileError when
+    it is not there)."""
     path = Path(os.fspath(path))
+    if not path.exists():
+        raise _core.MissingFileError(f"cannot read {what} {path}: no such file")
     if not path.is_file():
-        reason = (
-            "it is a folder, not a file"
-            if path.is_dir()
-            else "not a regular file (a FIFO or a device)"
-            if path.exists()
-            else "no such file"
-        )
+        reason = "it is a folder, not a file" if path.is_dir() else "not a regular file (a FIFO or a device)"
         raise _core.IoError(f"cannot read {what} {path}: {reason}")
     return path
 

@@ -6,13 +6,13 @@ re-computed in Python.
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Sequence
 
 import numpy as np
 
 from refracta import _core
 from refracta._checks import is_number, real_array
+from refracta._warn import deprecated
 
 _UNSET = object()  # a deprecated keyword not given
 
@@ -21,7 +21,7 @@ def _renamed(old: str, old_value: object, new: str, value):
     """`value`, or the deprecated keyword `old`'s value (one release) with a DeprecationWarning."""
     if old_value is _UNSET:
         return value
-    warnings.warn(f"ray_fan: {old}= is deprecated; call it {new}=", DeprecationWarning, stacklevel=3)
+    deprecated(f"ray_fan: {old}= is deprecated; call it {new}=")
     return old_value
 
 

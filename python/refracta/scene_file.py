@@ -119,13 +119,13 @@ import math
 import os
 import re
 import sys
-import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from refracta import _core
+from refracta._warn import deprecated
 
 if TYPE_CHECKING:
     from refracta.geo import LocalFrame
@@ -450,7 +450,7 @@ def _materials(entries: list, where: _Locator, get, path: Path) -> dict:
                     raise where.error("must be a file name", "materials", key, index)
                 value = str(path.parent / value)
                 if not Path(value).is_file():
-                    raise _core.IoError(f"{path}: [[materials]] #{index + 1} texture: no such file '{value}'")
+                    raise _core.MissingFileError(f"{path}: [[materials]] #{index + 1} texture: no such file '{value}'")
             elif key == "body":  # Water's deep water body: a TOML boolean
                 if not isinstance(value, bool):
                     raise where.error(f"must be true or false (got {value!r})", "materials", key, index)
@@ -640,11 +640,7 @@ def _turbulence(table: Any, where: _Locator, get):
     )
     settings = {key: get(table, name, key, convert) for key, convert in converters.items() if key in table}
     if "yaw" in settings:
-        warnings.warn(
-            f"{where.path}: [atmosphere.turbulence] yaw [rad] is deprecated; write yaw_deg [deg]",
-            DeprecationWarning,
-            stacklevel=2,
-        )
+        deprecated(f"{where.path}: [atmosphere.turbulence] yaw [rad] is deprecated; write yaw_deg [deg]")
         if "yaw_deg" in settings:
             raise where.error("give yaw_deg or the deprecated yaw, not both", name, "yaw")
         settings["yaw_deg"] = math.degrees(settings.pop("yaw"))
@@ -765,7 +761,7 @@ def load_scene(path, size=None) -> SceneFile:
         except (TypeError, ValueError) as error:
             raise ValueError(f"load_scene: size {error}") from None
     if not path.exists():
-        raise _core.IoError(f"no such scene file: '{path}'")
+        raise _core.MissingFileError(f"no such scene file: '{path}'")
     try:
         text = read_scene_text(path)  # refuses a folder or a FIFO
     except UnicodeDecodeError as error:

@@ -22,16 +22,17 @@ Example::
 
 from __future__ import annotations
 
+import copy as _copy
 import math
 import numbers
 import time as _time
-import warnings
 from collections.abc import Sequence
 
 import numpy as np
 
 from refracta import _core
 from refracta._checks import is_number
+from refracta._warn import deprecated
 
 __all__ = [
     "Turbulence",
@@ -237,8 +238,9 @@ class Turbulence:
     & Eden 1991, "Fast
     B-spline transforms", eq. 10), synthesised for C_n^2 = 1 and scaled by sqrt(cn2) in the layer.
 
-    Attributes: settings (the TurbulenceSettings), layer (the TurbulenceLayer fields take), grid,
-    time, generation_seconds, every setting above, and yaw: yaw_deg in radians (the layer's unit).
+    Attributes (read-only: the pattern is synthesised from the settings): settings (a copy of the
+    TurbulenceSettings), layer (the TurbulenceLayer fields take), grid, time, generation_seconds,
+    every setting above, and yaw: yaw_deg in radians (the layer's unit).
     """
 
     def __init__(self, cn2: float | None = None, **settings):
@@ -250,18 +252,61 @@ class Turbulence:
         start = _time.perf_counter()
         grid = _core.synthesise_turbulence(checked)
         self._place(checked, grid, 0.0)
-        self.generation_seconds = _time.perf_counter() - start
+        self._generation_seconds = _time.perf_counter() - start
 
     def _place(self, settings: _core.TurbulenceSettings, grid: _core.TurbulenceGrid, time: float) -> None:
-        """Sets the attributes from the settings, the grid and the time."""
-        self.settings, self.grid, self.time = settings, grid, float(time)
-        self.cn2, self.outer_scale, self.inner_scale = settings.cn2, settings.outer_scale, settings.inner_scale
-        self.seed, self.spacing, self.cells = settings.seed, settings.spacing, settings.cell_count()
-        self.depth, self.wind, self.yaw_deg = settings.depth, settings.wind, settings.yaw_deg
-        self.layer = _core.TurbulenceLayer.of(settings, grid, self.time)
-        self.yaw = self.layer.yaw  # [rad]: yaw_deg converted once, in C++ (turbulence_layer)
+        """Sets the state from the settings, the grid and the time."""
+        self._settings, self._grid, self._time = settings, grid, float(time)
+        self._layer = _core.TurbulenceLayer.of(settings, grid, self._time)
         self._spectrum: _core._TurbulenceSpectrum | None = None  # the statistics' mode variances, when asked
         self._statistics: tuple[np.ndarray, np.ndarray, float] | None = None  # (k, weights, total), when asked
+
+    def __setattr__(self, name: str, value) -> None:
+        # Read-only: the pattern was synthesised from the settings (a trial set t.cn2 = 4e-10: the
+        # repr and the statistics said 4e-10, the field kept 1e-10).
+        if not name.startswith("_"):
+            raise AttributeError(
+                f"Turbulence.{name} cannot be set: a Turbulence is the pattern synthesised from its settings; "
+                "make another (Turbulence(cn2=..., seed=..., ...)) or move this one with at_time(t)"
+            )
+        object.__setattr__(self, name, value)
+
+    @property
+    def settings(self) -> _core.TurbulenceSettings:
+        """A copy of the TurbulenceSettings the pattern was synthesised from."""
+        return _copy.copy(self._settings)
+
+    @property
+    def grid(self) -> _core.TurbulenceGrid:
+        """The synthesised B-spline coefficients (shared by at_time's copies)."""
+        return self._grid
+
+    @property
+    def time(self) -> float:
+        """[s] the time the wind has carried the pattern to (at_time)."""
+        return self._time
+
+    @property
+    def layer(self) -> _core.TurbulenceLayer:
+        """The TurbulenceLayer fields take: the grid placed at this time."""
+        return self._layer
+
+    @property
+    def generation_seconds(self) -> float:
+        """[s] how long the synthesis took (0 for an unpickled or moved copy's own work)."""
+        return self._generation_seconds
+
+    cn2 = property(lambda self: self._settings.cn2, doc="C_n^2 [m^-2/3] in the layer")
+    outer_scale = property(lambda self: self._settings.outer_scale, doc="L0 [m]")
+    inner_scale = property(lambda self: self._settings.inner_scale, doc="l0 [m]")
+    seed = property(lambda self: self._settings.seed, doc="the synthesis' random seed")
+    spacing = property(lambda self: self._settings.spacing, doc="[m] the lattice's cell size")
+    cells = property(lambda self: self._settings.cell_count(), doc="cells along each axis of the lattice")
+    depth = property(lambda self: self._settings.depth, doc="[m] the turbulent layer's depth (None: uniform)")
+    wind = property(lambda self: self._settings.wind, doc="(u, w) [m/s] the wind that carries the pattern")
+    yaw_deg = property(lambda self: self._settings.yaw_deg, doc="[deg] the lattice's turn about the vertical")
+    # [rad]: yaw_deg converted once, in C++ (turbulence_layer)
+    yaw = property(lambda self: self._layer.yaw, doc="[rad] yaw_deg in the layer's unit")
 
     # -- the pattern -----------------------------------------------------------------------------
 
@@ -293,8 +338,8 @@ class Turbulence:
             raise ValueError(f"Turbulence.at_time: t must be a finite number of seconds (got {t!r})")
         moved = object.__new__(Turbulence)
         moved.__dict__.update(self.__dict__)
-        moved.time = float(t)
-        moved.layer = _core.TurbulenceLayer.of(self.settings, self.grid, moved.time)
+        moved._time = float(t)
+        moved._layer = _core.TurbulenceLayer.of(self._settings, self._grid, moved._time)
         return moved
 
     def evaluate(self, points) -> tuple[np.ndarray, np.ndarray]:
@@ -442,7 +487,7 @@ class Turbulence:
     # -- pickling and printing ------------------------------------------------------------------
 
     def __reduce__(self):
-        return (_restore, (self.settings, self.grid, self.time))
+        return (_restore, (self._settings, self._grid, self._time))
 
     def __repr__(self) -> str:
         depth = "uniform" if self.depth is None else f"depth={self.depth:g} m"
@@ -455,11 +500,7 @@ class Turbulence:
 
 def _deprecated_yaw(settings: dict) -> None:
     """Turbulence(yaw=radians), the former spelling: warns and sets yaw_deg (in place)."""
-    warnings.warn(
-        "Turbulence(yaw=...) [rad] is deprecated; give yaw_deg=... [deg] (as every angle in refracta)",
-        DeprecationWarning,
-        stacklevel=3,
-    )
+    deprecated("Turbulence(yaw=...) [rad] is deprecated; give yaw_deg=... [deg] (as every angle in refracta)")
     if "yaw_deg" in settings:
         raise ValueError("Turbulence: give yaw_deg or the deprecated yaw, not both")
     yaw = settings.pop("yaw")
@@ -471,7 +512,7 @@ def _restore(settings: _core.TurbulenceSettings, grid, time: float) -> Turbulenc
     """A Turbulence from its pickled settings and grid (no new synthesis)."""
     restored = object.__new__(Turbulence)
     restored._place(settings, grid, time)
-    restored.generation_seconds = 0.0
+    restored._generation_seconds = 0.0
     return restored
 
 

@@ -43,27 +43,58 @@ def test_peeling_with_enough_layers_is_exact_and_fewer_drop_the_farthest(rng):
 VARIANTS = [("power", 4), ("power", 6), ("power", 8), ("trigonometric", 2), ("trigonometric", 3), ("trigonometric", 4)]
 
 
+# fp32 storage sums in single precision: the order of the sums changes their rounding (2^-24 of
+# each), which the biased Hankel matrix amplifies by at most ~1/bias (5e-7 .. 5e-5 for power moments,
+# 2e-4 trigonometric): a bound of 2^-24 / 5e-7 = 0.12 in the worst case; measured <= 3e-5 here.
+FP32_ORDER_TOLERANCE = 1e-3
+
+
 @pytest.mark.parametrize("kind, moments", VARIANTS)
 def test_mboit_is_order_independent(rng, kind, moments):
     depths, alphas, colors = random_pixel(rng, 5)
-    reference = oit.composite(depths, alphas, colors, method="mboit", moments=moments, kind=kind)
-    for order in itertools.islice(itertools.permutations(range(5)), 0, 120, 7):
-        order = list(order)
-        # Order independence: the moments are sums, in double, whose order only changes rounding.
-        np.testing.assert_allclose(
-            oit.composite(depths[order], alphas[order], colors[order], method="mboit", moments=moments, kind=kind),
-            reference,
-            atol=1e-12,
-        )
+    for storage, tolerance in [("fp64", 1e-12), ("fp32", FP32_ORDER_TOLERANCE)]:
+        args = dict(method="mboit", moments=moments, kind=kind, storage=storage)
+        reference = oit.composite(depths, alphas, colors, **args)
+        for order in itertools.islice(itertools.permutations(range(5)), 0, 120, 7):
+            order = list(order)
+            # Order independence: the moments are sums whose order only changes rounding (in double
+            # for fp64: 1e-12).
+            np.testing.assert_allclose(
+                oit.composite(depths[order], alphas[order], colors[order], **args), reference, atol=tolerance
+            )
 
 
 @pytest.mark.parametrize("kind, moments", VARIANTS)
 def test_mboit_total_transmittance_is_exact(rng, kind, moments):
     depths, alphas, _ = random_pixel(rng, 7)
     black = np.zeros((7, 3))
-    result = oit.composite(depths, alphas, black, (1.0, 1.0, 1.0), method="mboit", moments=moments, kind=kind)
+    exact = np.prod(1 - alphas)
+    args = dict(method="mboit", moments=moments, kind=kind)
+    result = oit.composite(depths, alphas, black, (1.0, 1.0, 1.0), storage="fp64", **args)
     # Black layers: the moments' total transmittance is exact up to double rounding.
-    np.testing.assert_allclose(result, np.prod(1 - alphas), rtol=1e-12)
+    np.testing.assert_allclose(result, exact, rtol=1e-12)
+    # fp32 sums the 7 absorbances in single precision: ln T is off by at most 7 roundings of 2^-24.
+    fp32 = oit.composite(depths, alphas, black, (1.0, 1.0, 1.0), storage="fp32", **args)
+    np.testing.assert_allclose(fp32, exact, rtol=7 * 2.0**-24 * -np.log(exact) + 1e-12)
+
+
+def test_fp32_storage_rounds_the_moments_to_single_precision(rng):
+    # A trial: 'fp32' summed in double, up to 3.4e-3 from a float emulation. Absorbances whose sum
+    # float cannot hold: 1e-9 beside 6.9 is lost in fp32 and kept in fp64.
+    depths, alphas, colors = [2.0, 40.0], [0.999, 1e-9], [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+    args = dict(method="mboit", moments=4, beta=0.0, bias=0.0)
+    fp32 = oit.composite(depths, alphas, colors, (0.0, 0.0, 0.0), storage="fp32", **args)
+    fp64 = oit.composite(depths, alphas, colors, (0.0, 0.0, 0.0), storage="fp64", **args)
+    assert not np.array_equal(fp32, fp64)
+    for _ in range(50):
+        depths, alphas, colors = random_pixel(rng, 5)
+        args = dict(method="mboit", moments=4)
+        # Single-precision rounding, amplified as above.
+        np.testing.assert_allclose(
+            oit.composite(depths, alphas, colors, storage="fp32", **args),
+            oit.composite(depths, alphas, colors, storage="fp64", **args),
+            atol=FP32_ORDER_TOLERANCE,
+        )
 
 
 @pytest.mark.parametrize("moments", [4, 6, 8])

@@ -9,6 +9,11 @@ namespace refracta {
 void bind_core(py::module_& m) {
   py::register_exception<NumericalError>(m, "NumericalError", PyExc_RuntimeError);
   py::register_exception<IoError>(m, "IoError", PyExc_OSError);
+  // Registered after IoError, so tried before it; `except FileNotFoundError` catches it (a trial:
+  // a missing OBJ, image or texture file was an IoError only).
+  py::register_exception<MissingFile>(
+      m, "MissingFileError", py::make_tuple(m.attr("IoError"), py::handle(PyExc_FileNotFoundError)))
+      .attr("__doc__") = "A file that is not there: a refracta.IoError and a FileNotFoundError.";
   // Interpreter exit with a daemon thread inside render or trace_rays: cancel the work and wait
   // for it (GIL released) before Python finalizes. Cancellation takes < 1 s (the Ctrl-C tests);
   // 10 s leaves a wide margin for a slow machine.

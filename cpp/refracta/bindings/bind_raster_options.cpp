@@ -84,7 +84,8 @@ void bind_oit_settings(py::module_& m) {
             return M::published_bias(parse_moment_basis(basis), moments, parse_mboit_storage(storage));
           },
           py::arg("basis"), py::arg("moments"), py::arg("storage"), DOC(refracta, MboitSettings, published_bias));
-  def_enum_property(mboit, "storage", &M::storage, storage_name, parse_mboit_storage, "'fp32' or 'unorm16'");
+  def_enum_property(mboit, "storage", &M::storage, storage_name, parse_mboit_storage,
+                    "'fp32', 'unorm16' (a GPU's storage) or 'fp64' (the method itself)");
 
   using O = OitSettings;
   py::class_<O> cls(m, "OitSettings", DOC(refracta, OitSettings));

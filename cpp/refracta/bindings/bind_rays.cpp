@@ -18,25 +18,21 @@ namespace refracta {
 namespace {
 
 // `method` was the integrator's name before `trace` (README, notebooks): still accepted for one
-// release, with a DeprecationWarning.
-py::dict trace_fields(const py::kwargs& fields, const char* owner, int stacklevel) {
+// release, with a DeprecationWarning (refracta._warn: attributed to the user's line).
+py::dict trace_fields(const py::kwargs& fields, const char* owner) {
   py::dict out;
   for (const auto& item : fields) out[item.first] = item.second;
   if (out.contains("method")) {
     if (out.contains("trace")) throw_invalid(owner, ": give trace, not both trace and its old name method");
-    if (PyErr_WarnEx(PyExc_DeprecationWarning,
-                     concat(owner, ": method= is deprecated; the integrator is called trace= (TraceOptions.trace)").c_str(),
-                     stacklevel) < 0) {
-      throw py::error_already_set();
-    }
+    py::module_::import("refracta._warn")
+        .attr("deprecated")(concat(owner, ": method= is deprecated; the integrator is called trace= (TraceOptions.trace)"));
     out["trace"] = out.attr("pop")("method");
   }
   return out;
 }
 
-// stacklevel: of the DeprecationWarning (1: the caller of the bound function).
-TraceOptions trace_options_from(const py::object& options, const py::kwargs& fields, const char* owner, int stacklevel) {
-  return options_from<TraceOptions>(options, trace_fields(fields, owner, stacklevel), owner);
+TraceOptions trace_options_from(const py::object& options, const py::kwargs& fields, const char* owner) {
+  return options_from<TraceOptions>(options, trace_fields(fields, owner), owner);
 }
 
 // progress: True for a bar on stderr, else None / False or a callable progress(done, total).
@@ -145,7 +141,7 @@ void bind_tracing(py::module_& m) {
         [](const std::shared_ptr<IndexField>& field, const py::object& origin, const py::object& direction,
            const py::object& options, const py::kwargs& fields) {
           const IndexField& f = checked_field(field);
-          TraceOptions cancellable = trace_options_from(options, fields, "trace_ray", 1);
+          TraceOptions cancellable = trace_options_from(options, fields, "trace_ray");
           const Vec3d o = to_point(origin, "origin"), d = to_point(direction, "direction");
           // On a worker thread with the GIL released, like the batch: Ctrl-C stops a long path.
           return interruptible_result(py::none(), [&](WorkControl& control) {
@@ -175,7 +171,7 @@ void bind_tracing(py::module_& m) {
         [](const std::shared_ptr<IndexField>& field, const py::object& origins, const py::object& directions,
            const py::object& options, const py::object& progress, const py::kwargs& fields) {
           const IndexField& f = checked_field(field);
-          const TraceOptions checked = trace_options_from(options, fields, "trace_rays", 2);
+          const TraceOptions checked = trace_options_from(options, fields, "trace_rays");
           // At its peak a ray holds its origin and direction twice (arrays, vectors), its ends and
           // their arrays: 252-284 bytes measured.
           constexpr double kPeakBytesPerRay = 300.0;

@@ -59,11 +59,11 @@ Mesh mesh_from(const py::object& vertices, const py::object& triangles, const py
   return mesh;
 }
 
-// refracta.TextureNotFoundError: both a refracta.IoError (what every missing file raises, bound
-// in bind_core) and a FileNotFoundError.
+// refracta.TextureNotFoundError: a refracta.MissingFileError (what every missing file raises, bound
+// in bind_core: an IoError and a FileNotFoundError).
 void register_texture_not_found(py::module_& m) {
   auto& error = py::register_exception<TextureNotFound>(
-      m, "TextureNotFoundError", py::make_tuple(m.attr("IoError"), py::handle(PyExc_FileNotFoundError)));
+      m, "TextureNotFoundError", py::make_tuple(m.attr("MissingFileError")));
   error.attr("__doc__") =
       "A texture an MTL file names is in none of the folders searched (a refracta.IoError and a FileNotFoundError).";
 }

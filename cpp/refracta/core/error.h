@@ -25,6 +25,12 @@ class IoError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A file that is not there (Python: refracta.MissingFileError, an IoError and a FileNotFoundError).
+class MissingFile : public IoError {
+ public:
+  using IoError::IoError;
+};
+
 // A number written so that reading it back gives the same double (shortest round-trip digits:
 // 0.1 as 0.1, 0.1 + 0.2 as 0.30000000000000004), for reprs that promise eval(repr(x)) == x;
 // concat's 10 digits changed the value (a trial). concat(..., exact(x), ...).

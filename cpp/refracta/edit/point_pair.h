@@ -44,7 +44,8 @@ struct PointPair {
 // How far a path passes from its source.
 //   continuous: closest approach of the continuous (quintic Hermite) path, smooth in the field's
 //               parameters;
-//   vertex:     the nearest integrator node (the original editor's measure, piecewise constant).
+//   vertex:     the nearest integrator node (the original editor's measure, piecewise constant; with
+//               trace rk4 only: rk45's nodes are far apart).
 enum class PairDistance { kContinuous, kVertex };
 
 // How an edit's pairs are traced and measured (refracta.edit.solve, distances, jacobian and

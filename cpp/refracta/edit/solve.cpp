@@ -263,10 +263,15 @@ class Strategy {
     if (stopped_by_ == StopReason::kNone) stopped_by_ = reason;
   }
 
+  // The limit of the budget that has run out, if any (nlopt counts evaluations only).
+  StopReason budget_stop() const {
+    const StopReason reason = budget_.exhausted();
+    return reason == StopReason::kIterations && settings_.backend != SolveBackend::kCeres ? StopReason::kNone : reason;
+  }
+
   // True (and said in the stages, once) when a limit of the budget leaves nothing for `next`.
   bool stopped(const char* next) {
-    StopReason reason = budget_.exhausted();
-    if (reason == StopReason::kIterations && settings_.backend != SolveBackend::kCeres) reason = StopReason::kNone;
+    const StopReason reason = budget_stop();
     if (reason == StopReason::kNone) return false;
     if (!said_stop_) {
       out_->stages.push_back(concat("stopped by the ", stop_reason_name(reason), " (", budget_.iterations_used(),
@@ -284,9 +289,17 @@ class Strategy {
                      ? solve_with_ceres(problem_, x0, settings, budget_)
                      : solve_with_nlopt(problem_, settings.nlopt_algorithm, x0, settings, budget_);
     iterations_ += out.result.iterations;
-    // A stage's own cap (the quick start's quick_iterations) is not a limit of the solve: the
-    // solve's stopped_by names only a budget that ran out.
+    // A stage's own cap is not a limit of the solve: the solve's stopped_by names only a budget
+    // that ran out, and the stage's message its cap (a trial: "nlopt LN_BOBYQA: stopped by the
+    // evaluation limit" after 1 150 of 3 000 evaluations).
     if (budget_.exhausted() != StopReason::kNone) note_stop(out.result.stopped);
+    if (stopped_at_own_cap(out.result)) {
+      const std::string limit = concat("stopped by the ", stop_reason_name(out.result.stopped));
+      const std::string cap = concat("stopped at its stage's own cap of ", own_cap(out.result.stopped));
+      const size_t at = out.result.message.find(limit);
+      out.result.message = at == std::string::npos ? concat(out.result.message, "; ", cap)
+                                                   : out.result.message.replace(at, limit.size(), cap);
+    }
     // The time limit interrupted the traces: measure this result all the same (later stages see
     // the limit and do not start).
     if (budget_.exhausted() == StopReason::kTimeLimit) budget_.resume_for_measurement();
@@ -301,12 +314,22 @@ class Strategy {
     return out;
   }
 
+  // Stopped by a cap of its own (the quick start's quick_iterations, an nlopt start's share of the
+  // evaluations), not by the solve's budget.
+  bool stopped_at_own_cap(const BackendResult& result) const {
+    return (result.stopped == StopReason::kIterations || result.stopped == StopReason::kEvaluations) &&
+           budget_stop() == StopReason::kNone;
+  }
+  static const char* own_cap(StopReason reason) {
+    return reason == StopReason::kIterations ? "iterations (quick_iterations)"
+                                             : "evaluations (its share of max_evaluations)";
+  }
+
   void stage(const std::string& what, const Attempt& attempt) {
     std::string line = concat(what, ": ", attempt.result.iterations, " iterations, cost ", attempt.cost, " m^2, ",
                               attempt.met, " of ", problem_.pairs().size(), " pairs met");
-    if (attempt.result.stopped == StopReason::kIterations && budget_.exhausted() == StopReason::kNone) {
-      // The stage's own cap (the quick start's quick_iterations), not the solve's max_iterations.
-      line += "; stopped at the stage's own cap of iterations (quick_iterations)";
+    if (stopped_at_own_cap(attempt.result)) {
+      line += concat("; stopped at the stage's own cap of ", own_cap(attempt.result.stopped));
     } else if (attempt.result.stopped != StopReason::kNone) {
       line += concat("; stopped by the ", stop_reason_name(attempt.result.stopped));
     }
@@ -411,10 +434,21 @@ std::string why_unmet(const EditProblem& problem, const std::vector<double>& res
   const Vec3d across(-pair.direction.z(), 0.0, pair.direction.x());  // horizontal, across the plane
   const Vec3d miss(residuals[3 * i], residuals[3 * i + 1], residuals[3 * i + 2]);
   const double sideways = across.norm() > 1e-9 ? std::abs(across.normalized().dot(miss)) / std::sqrt(pair.weight) : 0.0;
+  // A path that ends short of the source (on the ground, or turned back) is nearest it at its end:
+  // the miss then lies along the way to the source (a trial's path ended on the sea 1.3 km out, and
+  // "passes 12.08 m below" a source 20 km away).
+  const Vec3d ahead = Vec3d(pair.direction.x(), 0.0, pair.direction.z()).normalized();
+  const double short_by = ahead.allFinite() ? -ahead.dot(miss) / std::sqrt(pair.weight) : 0.0;
+  if (short_by > std::max(sideways, std::abs(vertical))) {
+    return concat("its path ends ", short_by, " m short of the source, ", std::abs(vertical), " m ", side, " it",
+                  problem.pair_options().stop_height ? " (on the ground, stop_height: it descends before the source)"
+                                                     : " (it turns back before the source)");
+  }
   if (sideways > std::abs(vertical)) {
     return concat("its path passes ", sideways, " m to the side of the source (", std::abs(vertical), " m ", side,
                   " it): air that varies only with height bends a path within its vertical plane, so this miss "
-                  "stays; aim the destination toward the source as seen from the eye (or free the camera's yaw)");
+                  "stays; aim the destination toward the source as seen from the eye",
+                  pair.pixel ? " (or free the camera's yaw)" : " (a 3D destination does not turn with the camera)");
   }
   std::string out = concat("its path passes ", std::abs(vertical), " m ", side, " the source");
   if (sampled.empty()) return out;
@@ -517,10 +551,11 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
     }
     for (const auto& name : out.insensitive) reduced.bounds.erase(name);
     problem = std::make_unique<EditProblem>(field, pairs, reduced, budget.interrupt());
-  } else if (!out.insensitive.empty()) {
-    out.insensitive.clear();  // nothing depends on anything (e.g. all free params irrelevant):
-                              // let the solver report it rather than remove every parameter
   }
+  // No pair depends on any free parameter: none is removed (the solver then stays at the start),
+  // and the message says why (a trial: camera_yaw with 3D destinations, which do not follow the
+  // camera, was advised to "free the camera's yaw").
+  const bool all_idle = !out.insensitive.empty() && out.insensitive.size() == size_t(problem->num_free());
   out.free = problem->free_names();
   out.derivatives = derivatives_name(problem->derivatives());
   out.backend = backend_name(settings);
@@ -600,7 +635,14 @@ SolveSummary solve_from(const FieldPtr& field, const std::vector<PointPair>& pai
                                              " before its later stages (see stages)")
                                     : concat(". The solve was ", stop);
   }
-  if (!unmet.empty()) {
+  if (!unmet.empty() && all_idle) {
+    const bool camera = std::any_of(out.insensitive.begin(), out.insensitive.end(),
+                                    [](const std::string& name) { return name.rfind("camera_", 0) == 0; });
+    out.message += concat(". Not every pair is met: ", unmet, ". No pair depends on ", concat_names(out.insensitive),
+                          camera ? " (camera parameters move only pairs whose destination is a pixel of the camera: "
+                                   "PointPair((u, v), source))"
+                                 : ": the pairs' paths do not change with them anywhere in their bounds");
+  } else if (!unmet.empty()) {
     out.message += concat(". Not every pair is met: ", unmet);
     const std::string near = near_miss(pairs, out.distances, settings, result.converged);
     out.message += near.empty() ? ". None of the atmospheres the solve tried within these free parameters' bounds puts "

@@ -1,6 +1,8 @@
 // moment_shadow: storage, bias, method.
 #include "refracta/raster/moment_shadow.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 
 namespace refracta {
@@ -34,6 +36,10 @@ Moments4 MomentShadowSettings::published_bias_vector(DepthRange range, Storage s
   return storage == Storage::kUnorm16 ? Moments4{0.0, 0.628, 0.0, 0.628} : Moments4{0.0, 0.375, 0.0, 0.375};
 }
 
+// The published unit vector (0.5, ...) is a two-point distribution: its Hankel matrix is singular,
+// and round-off may leave its least eigenvalue this far below 0.
+constexpr double kMomentRoundOff = 1e-12;
+
 void MomentShadowSettings::check(Problems& problems) const {
   if (bias) problems.check(*bias >= 0.0 && *bias < 1.0, "bias must be in [0, 1) (got ", *bias, ")");
   if (bias_vector) {
@@ -50,6 +56,15 @@ void MomentShadowSettings::check(Problems& problems) const {
     problems.check(within, "bias_vector must hold moments of depths in the ", is_signed ? "signed" : "unit",
                    " range: b1..b4 each in ", is_signed ? "[-1, 1] (b2 and b4 in [0, 1])" : "[0, 1]", " (got (", b[0],
                    ", ", b[1], ", ", b[2], ", ", b[3], "))");
+    // Moments of some distribution have a positive semi-definite Hankel matrix (Peters & Klein
+    // 2015, sec. 3); (1, 0, 1, 0) is in the box but is none, and the biased moments then lost the
+    // lower bound on PCF (a trial: 1.0 where PCF is 0.65).
+    Eigen::Matrix3d hankel;
+    hankel << 1.0, b[0], b[1], b[0], b[1], b[2], b[1], b[2], b[3];
+    const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(hankel, Eigen::EigenvaluesOnly).eigenvalues()(0);
+    problems.check(!within || lowest >= -kMomentRoundOff, "bias_vector must be the moments of some distribution of "
+                   "depths: the Hankel matrix ((1, b1, b2), (b1, b2, b3), (b2, b3, b4)) must be positive semi-definite "
+                   "(got (", b[0], ", ", b[1], ", ", b[2], ", ", b[3], "): its least eigenvalue is ", lowest, ")");
   }
 }
 

@@ -30,14 +30,14 @@ enum class WboitWeight { kEq7, kEq9 };
 WboitWeight parse_wboit_weight(const std::string& name);  // "eq7", "eq9"
 const char* wboit_weight_name(WboitWeight weight);
 
-// MboitSettings.storage by name: 'fp32' or 'unorm16' (no 'fp64': MBOIT's published biases are
-// for these two); throws std::invalid_argument naming them for any other.
+// MboitSettings.storage by name: 'fp64', 'fp32' or 'unorm16'; throws std::invalid_argument naming
+// them for any other.
 Storage parse_mboit_storage(const std::string& name);
 
 // Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
 // 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
-// published value for the basis, moment count and storage; storage 'fp32' or 'unorm16' (the 16-bit
-// ROV variant, re-quantised after every fragment); log-depth warp over [z_near, z_far] [m] (both 0:
+// published value for the basis, moment count and storage; storage 'fp32', 'unorm16' (the 16-bit
+// ROV variant, re-quantised after every fragment) or 'fp64' (the method itself); log-depth warp over [z_near, z_far] [m] (both 0:
 // the fragments' own range, in render_raster the frame's).
 struct MboitSettings {
   MomentBasis basis = MomentBasis::kPower;
@@ -48,10 +48,12 @@ struct MboitSettings {
   std::optional<double> bias;
   double z_near = 0.0;  // near end of the log-depth warp [m]
   double z_far = 0.0;   // far end of the log-depth warp [m]; both 0: the fragments' own range
-  // fp32 (emulated in double), or unorm16, the 16-bit ROV variant (MOMENTS.md 4.5): b0 in fp32
-  // and the normalised moments re-quantised to 16 bits after every fragment, in list order (4
-  // power moments through Theta*_4, 6 and 8 through the MBOIT matrices (stored_mboit_unorm16),
-  // trigonometric ones as c/2 + 1/2). fp64 is refused (no GPU keeps it).
+  // fp32: the moments summed and normalised in single precision (additive blending into a float
+  // render target); unorm16, the 16-bit ROV variant (MOMENTS.md 4.5): b0 in fp32 and the
+  // normalised moments re-quantised to 16 bits after every fragment, in list order (4 power
+  // moments through Theta*_4, 6 and 8 through the MBOIT matrices (stored_mboit_unorm16),
+  // trigonometric ones as c/2 + 1/2); fp64: in double, no GPU's storage but the method's own
+  // behaviour (order independence, exactness for n/2 + 1 fragments), with fp32's bias.
   Storage storage = Storage::kFp32;
 
   // fp32: 5e-7 / 5e-6 / 5e-5 for 4 / 6 / 8 power moments; unorm16: 6e-5 (the Unity HDRP port),

@@ -22,9 +22,9 @@ namespace refracta {
 MaterialPtr material_from_mtl(const MtlMaterial& mtl, int texture);
 
 // A texture an MTL names is in none of the folders searched (add_obj with MissingTextures::kError).
-class TextureNotFound : public IoError {
+class TextureNotFound : public MissingFile {
  public:
-  using IoError::IoError;
+  using MissingFile::MissingFile;
 };
 
 enum class MissingTextures { kError, kWarn };

@@ -48,7 +48,7 @@ void check_path_text(const std::string& path) {
 
 void check_readable(const std::string& path) {
   const std::filesystem::file_type type = file_type_at(path, "read");
-  if (type == std::filesystem::file_type::not_found) throw IoError(concat("no such image file: '", path, "'"));
+  if (type == std::filesystem::file_type::not_found) throw MissingFile(concat("no such image file: '", path, "'"));
   if (type != std::filesystem::file_type::regular) throw IoError(concat("cannot read '", path, "': not a regular file"));
 }
 

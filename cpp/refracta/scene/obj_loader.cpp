@@ -15,7 +15,7 @@ namespace refracta {
 
 std::vector<MaterialMesh> load_obj(const std::string& path) {
   check_path_text(path);
-  if (!std::filesystem::exists(path)) throw IoError(concat("no such OBJ file: '", path, "'"));
+  if (!std::filesystem::exists(path)) throw MissingFile(concat("no such OBJ file: '", path, "'"));
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.mtl_search_path = std::filesystem::path(path).parent_path().string();

@@ -91,7 +91,7 @@ std::string texture_cache_folder() {
 void check_texture_file(const std::string& path) {
   check_path_text(path);
   std::error_code error;
-  if (!fs::exists(path, error)) throw IoError(concat("no such texture file: '", path, "'"));
+  if (!fs::exists(path, error)) throw MissingFile(concat("no such texture file: '", path, "'"));
   if (!fs::is_regular_file(path, error)) throw IoError(concat("cannot read texture '", path, "': not a regular file"));
 }
 
@@ -109,7 +109,7 @@ std::string prepare(const std::string& path, int* channels) {
   check_texture_file(path);
   std::error_code error;
   const auto size = fs::file_size(path, error);
-  if (error) throw IoError(concat("no such texture file: '", path, "'"));
+  if (error) throw MissingFile(concat("no such texture file: '", path, "'"));
   const auto time = fs::last_write_time(path, error).time_since_epoch().count();
   constexpr int kPreparation = 3;  // 3: decoded by the header's transfer (stored_gamma), colour channels only
   const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time, "|v", kPreparation));

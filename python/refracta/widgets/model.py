@@ -56,6 +56,7 @@ from refracta import _checks, _core
 from refracta import io as _image_io
 from refracta._rays import without_refraction
 from refracta._render import SceneWarning, _check_scene, render
+from refracta._warn import deprecated
 from refracta.scene_file import relocate
 from refracta.widgets import camera_moves, files
 from refracta.widgets.jobs import Job, JobRunner
@@ -223,7 +224,7 @@ def _deprecated_ground(ground: float | None, stop_height: float | None, where: s
         return stop_height
     if stop_height is not None:
         raise ValueError(f"{where}: pass stop_height= only (ground= is its deprecated spelling)")
-    warnings.warn(f"{where}: ground= is deprecated; call it stop_height=", DeprecationWarning, stacklevel=3)
+    deprecated(f"{where}: ground= is deprecated; call it stop_height=")
     return ground
 
 
