@@ -156,7 +156,7 @@ inline constexpr const char mkd_doc_refracta_ElevationTableOptions[] = R"doc(Opt
 'stratified'; their tol is trace_tol, or tol when None). Pickles through its fields.)doc";
 inline constexpr const char mkd_doc_refracta_ElevationTableOptions_initial_rays[] = R"doc(exact traces before refining)doc";
 inline constexpr const char mkd_doc_refracta_ElevationTableOptions_max_rays[] = R"doc(Beyond this many exact traces, unresolved intervals stay exact (traced exactly per query).)doc";
-inline constexpr const char mkd_doc_refracta_ElevationTableOptions_tol[] = R"doc(interpolation tolerance along the whole path [m], plus angular_tol)doc";
+inline constexpr const char mkd_doc_refracta_ElevationTableOptions_tol[] = R"doc(interpolation tolerance along the whole path [m] (renders add angular_tol))doc";
 inline constexpr const char mkd_doc_refracta_ElevationTableOptions_trace[] = R"doc(TraceOptions of the exact traces (max_length, stop_height, step): their integrator is forced to
 stratified, and their tol is trace_tol, or the table's tol when unset (the traces then as accurate
 as the interpolation asks).)doc";
@@ -550,7 +550,12 @@ metre by metre for turning points (a path climbing 100 km: 70 000 nodes, else ~1
 inline constexpr const char mkd_doc_refracta_TraceOptions_max_length[] = R"doc(arc length at which the path ends [m])doc";
 inline constexpr const char mkd_doc_refracta_TraceOptions_max_steps[] = R"doc(A guard against runaway step-size collapse: a path needing more steps is refused up front.)doc";
 inline constexpr const char mkd_doc_refracta_TraceOptions_stop_height[] = R"doc(The path ends where it descends through this height [m] (a ground); unset (None): no ground.)doc";
-inline constexpr const char mkd_doc_refracta_TraceOptions_tol[] = R"doc(rk45 and stratified: target error of positions along the path [m].)doc";
+inline constexpr const char mkd_doc_refracta_TraceOptions_tol[] = R"doc(rk45 and stratified: target error of positions along the path [m]. rk45 holds each step's local
+error to its share of it, which in smooth air keeps the global error within tol (measured 0.002-0.5
+tol); a thin hot layer or a duct amplifies errors (a trial: 10x tol at 1e-4 over 30 km in a duct,
+1.6x at 1e-5), and at a tol near the layer's own scale (1e-2 m and looser over a 0.1 m road layer) a
+step can cross the layer unseen: keep tol well below the thinnest layer. stratified meets tol down
+to about 1e-11 of max_length, its floor.)doc";
 inline constexpr const char mkd_doc_refracta_TrowbridgeReitz[] = R"doc(The GGX microfacet distribution: D, Lambda, G1, height-correlated G, the visible-normal density and
 sampler. Directions: (N, 3) unit vectors in the local frame.)doc";
 inline constexpr const char mkd_doc_refracta_Turbulence[] = R"doc(A grid placed in the air (Python's TurbulenceLayer): delta_n = scale * E(h) * grid(R_yaw (p -

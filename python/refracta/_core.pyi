@@ -102,7 +102,7 @@ class TurbulenceSettings:
     def cells(self) -> int | None:
         """
         N (the grid is N^3, one period N * spacing wide), or size [m] (N = ceil(size / spacing)); unset
-        both: 256, whose inertial range spans over a decade (x16 within 15 %), where 128 reaches x8.
+        both: 256, whose inertial range spans over a decade (x16 within 15 %), where 128 reaches x8. (default: None)
         """
     @cells.setter
     def cells(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
@@ -113,7 +113,7 @@ class TurbulenceSettings:
         C_n^2 [m^(-2/3)] at the ground, >= 0 (the pattern is weighted by E(h): C_n^2(h) = cn2 E(h)^2).
         1e-10: within centimetres of sun-heated asphalt (C_n^2 ~ 1e-13..1e-12 at 1-2 m in daytime, Andrews &
         Phillips 2005 ch. 12, rising as h^(-4/3) toward the ground in free convection, Wyngaard et al.
-        1971).
+        1971). (default: 1e-10)
         """
     @cn2.setter
     def cn2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -122,7 +122,7 @@ class TurbulenceSettings:
     def depth(self) -> float | None:
         """
         The height envelope E(h) = e^(-h/depth) [m]; unset (None): uniform. 0.1 m: the examples' surface
-        layer.
+        layer. (default: 0.1)
         """
     @depth.setter
     def depth(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -130,7 +130,7 @@ class TurbulenceSettings:
     @property
     def inner_scale(self) -> float:
         """
-        The inner scale l0 [m]: the Gaussian cutoff kappa_m = 5.92 / l0; 5 mm near hot ground.
+        The inner scale l0 [m]: the Gaussian cutoff kappa_m = 5.92 / l0; 5 mm near hot ground. (default: 0.005)
         """
     @inner_scale.setter
     def inner_scale(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -139,7 +139,7 @@ class TurbulenceSettings:
     def max_bytes(self) -> float | None:
         """
         The largest FFT work arrays allowed [bytes] (a grid needing more is refused); unset (None): half
-        this machine's memory (inf: no limit).
+        this machine's memory (inf: no limit). (default: None)
         """
     @max_bytes.setter
     def max_bytes(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -148,7 +148,7 @@ class TurbulenceSettings:
     def outer_scale(self) -> float:
         """
         The von Karman outer scale L0 [m]; inf: the periodic tile is the outer scale, which keeps the widest
-        inertial range.
+        inertial range. (default: inf)
         """
     @outer_scale.setter
     def outer_scale(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -156,7 +156,7 @@ class TurbulenceSettings:
     @property
     def seed(self) -> int:
         """
-        the random pattern (same seed and grid, same pattern)
+        the random pattern (same seed and grid, same pattern) (default: 0)
         """
     @seed.setter
     def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -164,7 +164,7 @@ class TurbulenceSettings:
     @property
     def size(self) -> float | None:
         """
-        [m] the tile, cells = ceil(size / spacing) (None: from cells)
+        [m] the tile, cells = ceil(size / spacing) (None: from cells) (default: None)
         """
     @size.setter
     def size(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -173,7 +173,7 @@ class TurbulenceSettings:
     def spacing(self) -> float:
         """
         The grid's cell [m], in [1e-6, 1e4]: the renderer steps half a cell through the layer, so a pixel's
-        cost grows as path length / spacing (benchmarks/bench_realism.py).
+        cost grows as path length / spacing (benchmarks/bench_realism.py). (default: 0.05)
         """
     @spacing.setter
     def spacing(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -182,7 +182,7 @@ class TurbulenceSettings:
     def wind(self) -> tuple[float, float]:
         """
         (u, w) [m/s] along x and z: the pattern at time t is shifted by (u t, 0, w t) (Taylor's frozen
-        flow). (0, 2): a light breeze across the examples' line of sight (+x).
+        flow). (0, 2): a light breeze across the examples' line of sight (+x). (default: (0.0, 2.0))
         """
     @wind.setter
     def wind(self, arg1: typing.Any) -> None:
@@ -192,7 +192,7 @@ class TurbulenceSettings:
         """
         The lattice's turn about the vertical [deg], as every angle users give
         (default_turbulence_yaw_deg()); turbulence_layer turns it into the layer's radians, the one
-        conversion.
+        conversion. (default: 31.71747441146101)
         """
     @yaw_deg.setter
     def yaw_deg(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -207,6 +207,8 @@ class TurbulenceGrid:
     def __getstate__(self) -> tuple:
         ...
     def __init__(self, coefficients: typing.Any, spacing: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
@@ -243,6 +245,8 @@ class TurbulenceLayer:
     def __getstate__(self) -> tuple:
         ...
     def __init__(self, grid: TurbulenceGrid, scale: typing.SupportsFloat | typing.SupportsIndex, offset: typing.Any, depth: typing.SupportsFloat | typing.SupportsIndex, yaw: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
@@ -631,7 +635,7 @@ class TraceOptions:
         """
         stratified: a lower bound of n over every height the path can reach (None: unknown). A ray
         whose invariant beta = n cos e stays clearly below it can never turn, so its heights are not scanned
-        metre by metre for turning points (a path climbing 100 km: 70 000 nodes, else ~1 000).
+        metre by metre for turning points (a path climbing 100 km: 70 000 nodes, else ~1 000). (default: None)
         """
     @ior_floor.setter
     def ior_floor(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -639,7 +643,7 @@ class TraceOptions:
     @property
     def max_length(self) -> float:
         """
-        arc length at which the path ends [m]
+        arc length at which the path ends [m] (default: 1000.0)
         """
     @max_length.setter
     def max_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -647,7 +651,7 @@ class TraceOptions:
     @property
     def max_steps(self) -> int:
         """
-        A guard against runaway step-size collapse: a path needing more steps is refused up front.
+        A guard against runaway step-size collapse: a path needing more steps is refused up front. (default: 10000000)
         """
     @max_steps.setter
     def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -655,7 +659,7 @@ class TraceOptions:
     @property
     def step(self) -> float:
         """
-        [m] rk4: the fixed step (0: 0.3 m, the original editor's); rk45: the largest step (0: none); stratified: the largest node spacing (0: 100 m)
+        [m] rk4: the fixed step (0: 0.3 m, the original editor's); rk45: the largest step (0: none); stratified: the largest node spacing (0: 100 m) (default: 0.0)
         """
     @step.setter
     def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -663,7 +667,7 @@ class TraceOptions:
     @property
     def stop_height(self) -> float | None:
         """
-        The path ends where it descends through this height [m] (a ground); unset (None): no ground.
+        The path ends where it descends through this height [m] (a ground); unset (None): no ground. (default: None)
         """
     @stop_height.setter
     def stop_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -671,7 +675,12 @@ class TraceOptions:
     @property
     def tol(self) -> float:
         """
-        rk45 and stratified: target error of positions along the path [m].
+        rk45 and stratified: target error of positions along the path [m]. rk45 holds each step's local
+        error to its share of it, which in smooth air keeps the global error within tol (measured 0.002-0.5
+        tol); a thin hot layer or a duct amplifies errors (a trial: 10x tol at 1e-4 over 30 km in a duct,
+        1.6x at 1e-5), and at a tol near the layer's own scale (1e-2 m and looser over a 0.1 m road layer) a
+        step can cross the layer unseen: keep tol well below the thinnest layer. stratified meets tol down
+        to about 1e-11 of max_length, its floor. (default: 1e-06)
         """
     @tol.setter
     def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -679,7 +688,7 @@ class TraceOptions:
     @property
     def trace(self) -> str:
         """
-        the integrator: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path), 'rk4' (fixed step `step`), or 'stratified' (height-only fields: exact paths from n(h) cos(e) = const by quadrature to tol; `step` is the largest node spacing)
+        the integrator: 'rk45' (adaptive Dormand-Prince; tol is the target position error [m] over the path), 'rk4' (fixed step `step`), or 'stratified' (height-only fields: exact paths from n(h) cos(e) = const by quadrature to tol; `step` is the largest node spacing) (default: 'rk45')
         """
     @trace.setter
     def trace(self, arg1: str) -> None:
@@ -712,7 +721,7 @@ class ElevationTableOptions:
     @property
     def initial_rays(self) -> int:
         """
-        exact traces before refining
+        exact traces before refining (default: 65)
         """
     @initial_rays.setter
     def initial_rays(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -720,7 +729,7 @@ class ElevationTableOptions:
     @property
     def max_rays(self) -> int:
         """
-        Beyond this many exact traces, unresolved intervals stay exact (traced exactly per query).
+        Beyond this many exact traces, unresolved intervals stay exact (traced exactly per query). (default: 200000)
         """
     @max_rays.setter
     def max_rays(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -728,7 +737,7 @@ class ElevationTableOptions:
     @property
     def tol(self) -> float:
         """
-        interpolation tolerance along the whole path [m], plus angular_tol
+        interpolation tolerance along the whole path [m] (renders add angular_tol) (default: 0.001)
         """
     @tol.setter
     def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -738,7 +747,7 @@ class ElevationTableOptions:
         """
         TraceOptions of the exact traces (max_length, stop_height, step): their integrator is forced to
         stratified, and their tol is trace_tol, or the table's tol when unset (the traces then as accurate
-        as the interpolation asks).
+        as the interpolation asks). (default: TraceOptions(ior_floor=None, max_length=1000.0, max_steps=10000000, step=0.0, stop_height=None, tol=1e-06, trace='rk45'))
         """
     @trace.setter
     def trace(self, arg0: TraceOptions) -> None:
@@ -746,7 +755,7 @@ class ElevationTableOptions:
     @property
     def trace_tol(self) -> float | None:
         """
-        the exact traces' tolerance [m]; unset (None): tol
+        the exact traces' tolerance [m]; unset (None): tol (default: None)
         """
     @trace_tol.setter
     def trace_tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -825,7 +834,7 @@ class ObjOptions:
     def missing_textures(self) -> str:
         """
         'error' (raise refracta.TextureNotFoundError) or 'warn' (a UserWarning once per texture name,
-        through the `warn` callback; the material keeps Kd)
+        through the `warn` callback; the material keeps Kd) (default: 'error')
         """
     @missing_textures.setter
     def missing_textures(self, arg1: str) -> None:
@@ -833,7 +842,7 @@ class ObjOptions:
     @property
     def offset(self) -> tuple[float, float, float]:
         """
-        [m] added to every vertex after scaling
+        [m] added to every vertex after scaling (default: (0.0, 0.0, 0.0))
         """
     @offset.setter
     def offset(self, arg1: typing.Any) -> None:
@@ -841,7 +850,7 @@ class ObjOptions:
     @property
     def scale(self) -> float:
         """
-        every vertex is multiplied by this (> 0), then offset
+        every vertex is multiplied by this (> 0), then offset (default: 1.0)
         """
     @scale.setter
     def scale(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -849,7 +858,7 @@ class ObjOptions:
     @property
     def texture_dirs(self) -> list[str]:
         """
-        folders searched, in order, after the MTL's own for each map_Kd (one folder or a sequence)
+        folders searched, in order, after the MTL's own for each map_Kd (one folder or a sequence) (default: [])
         """
     @texture_dirs.setter
     def texture_dirs(self, arg1: typing.Any) -> None:
@@ -1344,7 +1353,7 @@ class DisplaySettings:
     @property
     def ev100(self) -> float | None:
         """
-        manual exposure as EV100: c = K / (1.2 x 2^EV100); None: not this way
+        manual exposure as EV100: c = K / (1.2 x 2^EV100); None: not this way (default: None)
         """
     @ev100.setter
     def ev100(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1352,7 +1361,7 @@ class DisplaySettings:
     @property
     def exposure(self) -> float | None:
         """
-        c > 0 multiplying the radiance (manual); None: not this way
+        c > 0 multiplying the radiance (manual); None: not this way (default: None)
         """
     @exposure.setter
     def exposure(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1360,7 +1369,7 @@ class DisplaySettings:
     @property
     def f_number(self) -> float | None:
         """
-        a camera's f-number N (with shutter)
+        a camera's f-number N (with shutter) (default: None)
         """
     @f_number.setter
     def f_number(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1368,7 +1377,7 @@ class DisplaySettings:
     @property
     def gamma(self) -> str | float:
         """
-        the transfer curve: 'srgb', 'linear' or a gamma g in [1, 3]
+        the transfer curve: 'srgb', 'linear' or a gamma g in [1, 3] (default: 'srgb')
         """
     @gamma.setter
     def gamma(self, arg1: str | typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1376,7 +1385,7 @@ class DisplaySettings:
     @property
     def iso(self) -> float | None:
         """
-        a camera's ISO with shutter and f_number; None: ISO 100 (kDefaultIso)
+        a camera's ISO with shutter and f_number; None: ISO 100 (kDefaultIso) (default: None)
         """
     @iso.setter
     def iso(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1386,7 +1395,7 @@ class DisplaySettings:
         """
         Automatic exposure's key a (eq. 2: c = a / Lw_bar, Lw_bar = exp(mean ln(delta + Lw)) over the image,
         delta = kReinhardDelta times the mean luminance: exactly scale-free); given, it overrides any manual
-        exposure; none: kAutoKey (0.18) when there is no manual exposure, else none.
+        exposure; none: kAutoKey (0.18) when there is no manual exposure, else none. (default: None)
         """
     @key.setter
     def key(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1395,7 +1404,7 @@ class DisplaySettings:
     def luminous_efficacy(self) -> float:
         """
         K: luminance [cd/m^2] of an image value of 1 (EV100 and camera settings only): 683 lm/W for
-        radiance in W/(m^2 sr).
+        radiance in W/(m^2 sr). (default: 683.0)
         """
     @luminous_efficacy.setter
     def luminous_efficacy(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1403,7 +1412,7 @@ class DisplaySettings:
     @property
     def shutter(self) -> float | None:
         """
-        [s] a camera's shutter time (with f_number); None: not this way
+        [s] a camera's shutter time (with f_number); None: not this way (default: None)
         """
     @shutter.setter
     def shutter(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1411,7 +1420,7 @@ class DisplaySettings:
     @property
     def tonemap(self) -> str:
         """
-        'aces' (filmic), 'reinhard', 'film' (1 - e^(-cL)) or 'linear' (min(cL, 1))
+        'aces' (filmic), 'reinhard', 'film' (1 - e^(-cL)) or 'linear' (min(cL, 1)) (default: 'aces')
         """
     @tonemap.setter
     def tonemap(self, arg1: str) -> None:
@@ -1421,7 +1430,7 @@ class DisplaySettings:
         """
         Reinhard: L_white of eq. 4, Ld = min(1, L (1 + L / L_white^2) / (1 + L)), the smallest scaled
         luminance mapped to display luminance 1 (in the colour's own hue: Ld / Lw scales its channels);
-        none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other tone curves refuse it).
+        none: infinite, Ld = L / (1 + L) (eq. 3). Reinhard's only (other tone curves refuse it). (default: None)
         """
     @white.setter
     def white(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1429,7 +1438,7 @@ class DisplaySettings:
     @property
     def white_balance(self) -> typing.Any:
         """
-        the light shown white: 'none' (the render's D65 white), 'auto' (grey world), 'daylight' (D55), 'cloudy' (D65), 'shade' (D75), 'tungsten' (3200 K), a colour temperature [K] in [1000, 40000] (Planckian) or an RGB white (r, g, b) in linear sRGB with X, Y, Z and its cone responses > 0; Bradford adaptation to D65
+        the light shown white: 'none' (the render's D65 white), 'auto' (grey world), 'daylight' (D55), 'cloudy' (D65), 'shade' (D75), 'tungsten' (3200 K), a colour temperature [K] in [1000, 40000] (Planckian) or an RGB white (r, g, b) in linear sRGB with X, Y, Z and its cone responses > 0; Bradford adaptation to D65 (default: 'none')
         """
     @white_balance.setter
     def white_balance(self, arg1: str | typing.SupportsFloat | typing.SupportsIndex | typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> None:
@@ -1586,7 +1595,7 @@ class MomentShadowSettings:
     def bias(self) -> float | None:
         """
         alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None) gives
-        published_bias(depth_range, storage).
+        published_bias(depth_range, storage). (default: None)
         """
     @bias.setter
     def bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1594,7 +1603,7 @@ class MomentShadowSettings:
     @property
     def bias_vector(self) -> typing.Any:
         """
-        b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range, storage).
+        b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range, storage). (default: None)
         """
     @bias_vector.setter
     def bias_vector(self, arg1: typing.Any) -> None:
@@ -1602,7 +1611,7 @@ class MomentShadowSettings:
     @property
     def depth_range(self) -> str:
         """
-        'unit' ([0, 1]) or 'signed' ([-1, 1])
+        'unit' ([0, 1]) or 'signed' ([-1, 1]) (default: 'unit')
         """
     @depth_range.setter
     def depth_range(self, arg1: str) -> None:
@@ -1610,7 +1619,7 @@ class MomentShadowSettings:
     @property
     def storage(self) -> str:
         """
-        'fp64', 'fp32' or 'unorm16': how a GPU would keep the moments
+        'fp64', 'fp32' or 'unorm16': how a GPU would keep the moments (default: 'fp32')
         """
     @storage.setter
     def storage(self, arg1: str) -> None:
@@ -1643,7 +1652,7 @@ class ShadowMapOptions:
     @property
     def bleeding_reduction(self) -> float:
         """
-        VSM light-bleeding reduction (Lauritzen) in [0, 1): intensities below this amount of light become 0.
+        VSM light-bleeding reduction (Lauritzen) in [0, 1): intensities below this amount of light become 0. (default: 0.0)
         """
     @bleeding_reduction.setter
     def bleeding_reduction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1651,7 +1660,7 @@ class ShadowMapOptions:
     @property
     def depth_bias(self) -> float:
         """
-        hard / pcf: compare against z - depth_bias (normalised depth)
+        hard / pcf: compare against z - depth_bias (normalised depth) (default: 0.0002)
         """
     @depth_bias.setter
     def depth_bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1659,7 +1668,7 @@ class ShadowMapOptions:
     @property
     def kernel(self) -> int:
         """
-        k x k filter (odd) of PCF and of the moment map
+        k x k filter (odd) of PCF and of the moment map (default: 1)
         """
     @kernel.setter
     def kernel(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1667,7 +1676,7 @@ class ShadowMapOptions:
     @property
     def method(self) -> str:
         """
-        'hard', 'pcf', 'vsm', 'msm_hamburger' or 'msm_hausdorff'
+        'hard', 'pcf', 'vsm', 'msm_hamburger' or 'msm_hausdorff' (default: 'msm_hamburger')
         """
     @method.setter
     def method(self, arg1: str) -> None:
@@ -1675,7 +1684,7 @@ class ShadowMapOptions:
     @property
     def moments(self) -> MomentShadowSettings:
         """
-        MomentShadowSettings of the moment methods (vsm, msm_*): depth range, storage, bias
+        MomentShadowSettings of the moment methods (vsm, msm_*): depth range, storage, bias (default: MomentShadowSettings(bias=None, bias_vector=None, depth_range='unit', storage='fp32'))
         """
     @moments.setter
     def moments(self, arg0: MomentShadowSettings) -> None:
@@ -1683,7 +1692,7 @@ class ShadowMapOptions:
     @property
     def normal_offset(self) -> float:
         """
-        receivers are moved this many texels along their normal
+        receivers are moved this many texels along their normal (default: 1.5)
         """
     @normal_offset.setter
     def normal_offset(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1691,7 +1700,7 @@ class ShadowMapOptions:
     @property
     def resolution(self) -> int:
         """
-        texels per side, in [2, 8192]
+        texels per side, in [2, 8192] (default: 1024)
         """
     @resolution.setter
     def resolution(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1732,7 +1741,7 @@ class MboitSettings:
     @property
     def basis(self) -> str:
         """
-        'power' or 'trigonometric'
+        'power' or 'trigonometric' (default: 'power')
         """
     @basis.setter
     def basis(self, arg1: str) -> None:
@@ -1740,7 +1749,7 @@ class MboitSettings:
     @property
     def beta(self) -> float:
         """
-        overestimation in [0, 1]: the share of the fragment's own layer in front
+        overestimation in [0, 1]: the share of the fragment's own layer in front (default: 0.25)
         """
     @beta.setter
     def beta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1749,7 +1758,7 @@ class MboitSettings:
     def bias(self) -> float | None:
         """
         alpha, the weight of the bias vector in [0, 1); unset (None) gives the published value for the
-        basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).
+        basis, the moment count and the storage (MOMENTS.md 4.4; published_bias). (default: None)
         """
     @bias.setter
     def bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1757,7 +1766,7 @@ class MboitSettings:
     @property
     def moments(self) -> int:
         """
-        4, 6 or 8 power moments; 2, 3 or 4 trigonometric
+        4, 6 or 8 power moments; 2, 3 or 4 trigonometric (default: 4)
         """
     @moments.setter
     def moments(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1765,7 +1774,7 @@ class MboitSettings:
     @property
     def storage(self) -> str:
         """
-        'fp32', 'unorm16' (a GPU's storage) or 'fp64' (the method itself)
+        'fp32', 'unorm16' (a GPU's storage) or 'fp64' (the method itself) (default: 'fp32')
         """
     @storage.setter
     def storage(self, arg1: str) -> None:
@@ -1773,7 +1782,7 @@ class MboitSettings:
     @property
     def z_far(self) -> float:
         """
-        far end of the log-depth warp [m]; both 0: the fragments' own range
+        far end of the log-depth warp [m]; both 0: the fragments' own range (default: 0.0)
         """
     @z_far.setter
     def z_far(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1781,7 +1790,7 @@ class MboitSettings:
     @property
     def z_near(self) -> float:
         """
-        near end of the log-depth warp [m]
+        near end of the log-depth warp [m] (default: 0.0)
         """
     @z_near.setter
     def z_near(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1821,7 +1830,7 @@ class OitSettings:
     @property
     def layers(self) -> int:
         """
-        peel: layers kept
+        peel: layers kept (default: 4)
         """
     @layers.setter
     def layers(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1829,7 +1838,7 @@ class OitSettings:
     @property
     def mboit(self) -> MboitSettings:
         """
-        MboitSettings (method 'mboit')
+        MboitSettings (method 'mboit') (default: MboitSettings(basis='power', beta=0.25, bias=None, moments=4, storage='fp32', z_far=0.0, z_near=0.0))
         """
     @mboit.setter
     def mboit(self, arg0: MboitSettings) -> None:
@@ -1837,7 +1846,7 @@ class OitSettings:
     @property
     def method(self) -> str:
         """
-        'exact', 'peel', 'wboit' or 'mboit'
+        'exact', 'peel', 'wboit' or 'mboit' (default: 'mboit')
         """
     @method.setter
     def method(self, arg1: str) -> None:
@@ -1845,7 +1854,7 @@ class OitSettings:
     @property
     def weight(self) -> str:
         """
-        wboit: 'eq7' or 'eq9'
+        wboit: 'eq7' or 'eq9' (default: 'eq7')
         """
     @weight.setter
     def weight(self, arg1: str) -> None:
@@ -1885,7 +1894,7 @@ class RasterRenderOptions:
         noise. Measured at n = 8 (16, 32): a panel 0.2 m over a floor -0.9 % (+1.2 %, +0.4 %) of its form
         factor, an environment map with a small bright sun -0.3 % (-2.5 %, -1.2 %) of its integral, a sphere
         lamp 7e-4; a lobe taking a share F of the samples (water's reflection, F ~ 0.03) gets about F n^2 of
-        them: raise it for glossy or dielectric surfaces under bright skies.
+        them: raise it for glossy or dielectric surfaces under bright skies. (default: 8)
         """
     @light_strata.setter
     def light_strata(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1893,7 +1902,7 @@ class RasterRenderOptions:
     @property
     def output(self) -> str:
         """
-        'radiance' (linear RGB) or 'shadow' ((shadow intensity, 1, 0) where shadow_light reaches the surface)
+        'radiance' (linear RGB) or 'shadow' ((shadow intensity, 1, 0) where shadow_light reaches the surface) (default: 'radiance')
         """
     @output.setter
     def output(self, arg1: str) -> None:
@@ -1902,7 +1911,7 @@ class RasterRenderOptions:
     def shadow_centre(self) -> typing.Any:
         """
         The region the sun's map covers, seen from the sun: its centre [m]; unset (None): fitted to the
-        visible points closer than shadow_distance to the camera.
+        visible points closer than shadow_distance to the camera. (default: None)
         """
     @shadow_centre.setter
     def shadow_centre(self, arg1: typing.Any) -> None:
@@ -1910,7 +1919,7 @@ class RasterRenderOptions:
     @property
     def shadow_distance(self) -> float:
         """
-        [m] the sun's map covers the visible points closer than this to the camera
+        [m] the sun's map covers the visible points closer than this to the camera (default: inf)
         """
     @shadow_distance.setter
     def shadow_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1918,7 +1927,7 @@ class RasterRenderOptions:
     @property
     def shadow_half_size(self) -> float | None:
         """
-        half the side of the sun's map [m]; None: fitted to the visible points
+        half the side of the sun's map [m]; None: fitted to the visible points (default: None)
         """
     @shadow_half_size.setter
     def shadow_half_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1926,7 +1935,7 @@ class RasterRenderOptions:
     @property
     def shadow_light(self) -> int:
         """
-        output shadow: -1 the sun, k >= 0 the scene's spot light k
+        output shadow: -1 the sun, k >= 0 the scene's spot light k (default: -1)
         """
     @shadow_light.setter
     def shadow_light(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1934,7 +1943,7 @@ class RasterRenderOptions:
     @property
     def shadow_map(self) -> ShadowMapOptions:
         """
-        ShadowMapOptions of the sun's and the spot lights' maps (shadows 'map')
+        ShadowMapOptions of the sun's and the spot lights' maps (shadows 'map') (default: ShadowMapOptions(bleeding_reduction=0.0, depth_bias=0.0002, kernel=1, method='msm_hamburger', moments=MomentShadowSettings(bias=None, bias_vector=None, depth_range='unit', storage='fp32'), normal_offset=1.5, resolution=1024))
         """
     @shadow_map.setter
     def shadow_map(self, arg0: ShadowMapOptions) -> None:
@@ -1942,7 +1951,7 @@ class RasterRenderOptions:
     @property
     def shadows(self) -> str:
         """
-        'map' (shadow maps: shadow_map), 'embree' (shadow rays: the reference) or 'none'
+        'map' (shadow maps: shadow_map), 'embree' (shadow rays: the reference) or 'none' (default: 'map')
         """
     @shadows.setter
     def shadows(self, arg1: str) -> None:
@@ -1951,7 +1960,7 @@ class RasterRenderOptions:
     def spots(self) -> list[int] | None:
         """
         Indices of the spot lights that shine (spot k is the k-th spot light in the scene's order); unset
-        (None): all. Other lights (point, area, environment) shade with Embree shadow rays.
+        (None): all. Other lights (point, area, environment) shade with Embree shadow rays. (default: None)
         """
     @spots.setter
     def spots(self, arg0: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None) -> None:
@@ -1959,7 +1968,7 @@ class RasterRenderOptions:
     @property
     def tile(self) -> int:
         """
-        tile size [pixels] of the parallel loop
+        tile size [pixels] of the parallel loop (default: 16)
         """
     @tile.setter
     def tile(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1969,7 +1978,7 @@ class RasterRenderOptions:
         """
         Surfaces with material alpha < 1 are composited over the opaque ones with this method (fragments
         from the rasterizer, culled by the opaque depth); without it they are opaque. MBOIT's log-depth
-        range, when not set, is fitted to the frame's fragments. None: every surface opaque.
+        range, when not set, is fitted to the frame's fragments. None: every surface opaque. (default: None)
         """
     @transparency.setter
     def transparency(self, arg1: typing.Any) -> None:
@@ -1977,7 +1986,7 @@ class RasterRenderOptions:
     @property
     def use_sun(self) -> bool:
         """
-        the scene's sun shines
+        the scene's sun shines (default: True)
         """
     @use_sun.setter
     def use_sun(self, arg0: bool) -> None:
@@ -2057,7 +2066,7 @@ class RenderOptions:
         32 block's budget is shared: every pixel at least half of spp, the others where the pilot's samples
         vary most (edges, noise); each pixel is one pattern of its count, the pilot is not averaged in
         (unbiased); the image's total is still width x height x spp. 'straight' and 'curved' only; spp >= 6
-        (AdaptiveSampling::min_spp; below, a ValueError: the pilot would leave no samples to move).
+        (AdaptiveSampling::min_spp; below, a ValueError: the pilot would leave no samples to move). (default: False)
         """
     @adaptive.setter
     def adaptive(self, arg0: bool) -> None:
@@ -2065,7 +2074,7 @@ class RenderOptions:
     @property
     def chord(self) -> float:
         """
-        longest straight chord tested against the geometry [m]
+        longest straight chord tested against the geometry [m] (default: 1000.0)
         """
     @chord.setter
     def chord(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2075,7 +2084,7 @@ class RenderOptions:
         """
         A camera ray's footprint on a textured surface from ray differentials through the air
         (Caster::footprint: the paths of its neighbours, as squeezed or stretched by a mirage); false: the
-        ray cone (pixel angle x path length), as for every later bounce.
+        ray cone (pixel angle x path length), as for every later bounce. (default: True)
         """
     @differentials.setter
     def differentials(self, arg0: bool) -> None:
@@ -2087,7 +2096,7 @@ class RenderOptions:
         surfaces -- its first hits' mean albedo or normal differs from a neighbour's -- is rendered again as
         one pattern of edge_spp samples, so its coverage is weighed as a sensor's pixel integrates it; the
         other pixels keep spp. The edges' pixels are few (7-13 % on the demo scenes): the cost is that share
-        x edge_spp. 0 (or at most spp): off. Not with adaptive.
+        x edge_spp. 0 (or at most spp): off. Not with adaptive. (default: 0)
         """
     @edge_spp.setter
     def edge_spp(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2096,7 +2105,7 @@ class RenderOptions:
     def guard_band(self) -> float:
         """
         Extra raster view on each side, as a fraction of the image size: rays that bend out of the camera's
-        view can still find geometry there. What is in no raster pixel cannot appear.
+        view can still find geometry there. What is in no raster pixel cannot appear. (default: 0.1)
         """
     @guard_band.setter
     def guard_band(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2112,7 +2121,7 @@ class RenderOptions:
         its reference wavelength); 0 or at most spp: the image's own samples. Off by default: 64 guide
         samples cost 0.7-1.7x the CPU of 16 'direct' RGB ones on the demo scenes (about what 32 spp cost,
         and 32 spp denoised gain as much or more; 0.2x of the spectral green flash's, where they find no
-        surface: benchmarks/bench_denoise.py).
+        surface: benchmarks/bench_denoise.py). (default: 0)
         """
     @guide_spp.setter
     def guide_spp(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2120,7 +2129,7 @@ class RenderOptions:
     @property
     def march(self) -> str:
         """
-        raster_march: 'rk45' to tol, or 'rk4' with step (the original)
+        raster_march: 'rk45' to tol, or 'rk4' with step (the original) (default: 'rk45')
         """
     @march.setter
     def march(self, arg1: str) -> None:
@@ -2129,7 +2138,7 @@ class RenderOptions:
     def max_depth(self) -> int:
         """
         Scattering events along a path (0: emitters only, 1: direct lighting; Mitsuba's max_depth is this +
-        1). 'direct' uses it for specular chains only.
+        1). 'direct' uses it for specular chains only. (default: 5)
         """
     @max_depth.setter
     def max_depth(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2141,7 +2150,7 @@ class RenderOptions:
         with an Earth radius (the sphere's straight lines, render/picking.h straight_air). Over such a field
         a camera ray that ends in the air above every object goes on to where it leaves the air and shows
         the sky there (Caster::continue_to_sky): the scene is met within max_length, the sky's refraction
-        wherever it happens.
+        wherever it happens. (default: 5000.0)
         """
     @max_length.setter
     def max_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2149,7 +2158,7 @@ class RenderOptions:
     @property
     def max_steps(self) -> int:
         """
-        raster_march 'rk4': steps at most
+        raster_march 'rk4': steps at most (default: 1000)
         """
     @max_steps.setter
     def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2157,7 +2166,7 @@ class RenderOptions:
     @property
     def method(self) -> str:
         """
-        'curved' (exact curved rays), 'straight' (no refraction) or 'raster_march' (the original editor's method)
+        'curved' (exact curved rays), 'straight' (no refraction) or 'raster_march' (the original editor's method) (default: 'curved')
         """
     @method.setter
     def method(self, arg1: str) -> None:
@@ -2168,7 +2177,7 @@ class RenderOptions:
         Render only these pixels of the camera's image, (x0, y0, x1, y1): pixels [x0, x1) x [y0, y1) (the
         result has the bounds' size); each pixel exactly as in the whole image (its seed and the eye's
         ElevationTable are the whole image's: distributed tiles). Unset (None): the whole image. Checked
-        against the camera's image by bounds_in(width, height).
+        against the camera's image by bounds_in(width, height). (default: None)
         """
     @pixel_bounds.setter
     def pixel_bounds(self, arg1: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None) -> None:
@@ -2178,7 +2187,7 @@ class RenderOptions:
         """
         Also render the per-pixel readouts (readouts.h: distance, position, object id, apparent and true
         elevation, apparent azimuth, hidden heights) after those 9 channels: 19 in all. Implies
-        surface_aovs. 'straight' and 'curved' only.
+        surface_aovs. 'straight' and 'curved' only. (default: False)
         """
     @readouts.setter
     def readouts(self, arg0: bool) -> None:
@@ -2186,7 +2195,7 @@ class RenderOptions:
     @property
     def rr_depth(self) -> int:
         """
-        Russian roulette from this many scattering events on (survival min(0.95, max throughput)).
+        Russian roulette from this many scattering events on (survival min(0.95, max throughput)). (default: 3)
         """
     @rr_depth.setter
     def rr_depth(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2194,7 +2203,7 @@ class RenderOptions:
     @property
     def sagitta(self) -> float:
         """
-        largest distance between a chord and the curved path [m]
+        largest distance between a chord and the curved path [m] (default: 0.001)
         """
     @sagitta.setter
     def sagitta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2203,7 +2212,7 @@ class RenderOptions:
     def sagitta_pixels(self) -> float:
         """
         Camera rays may stray this fraction of a pixel's footprint (pixel angle x path length) from their
-        path when that is more than `sagitta`: what a pixel cannot resolve need not be traced.
+        path when that is more than `sagitta`: what a pixel cannot resolve need not be traced. (default: 0.25)
         """
     @sagitta_pixels.setter
     def sagitta_pixels(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2213,7 +2222,7 @@ class RenderOptions:
         """
         Also write each pixel's number of camera samples (the ones its value averages: spp, edge_spp at a
         refined edge, the adaptive count; a pilot's samples only choose that count) as one more, last
-        channel (renderer.h). 'straight' and 'curved' only.
+        channel (renderer.h). 'straight' and 'curved' only. (default: False)
         """
     @sample_counts.setter
     def sample_counts(self, arg0: bool) -> None:
@@ -2221,7 +2230,7 @@ class RenderOptions:
     @property
     def seed(self) -> int:
         """
-        seed of the per-pixel random streams
+        seed of the per-pixel random streams (default: 0)
         """
     @seed.setter
     def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2229,7 +2238,7 @@ class RenderOptions:
     @property
     def spectral(self) -> bool:
         """
-        Spectral rendering: 4 hero wavelengths per sample (Wilkie et al. 2014) instead of RGB.
+        Spectral rendering: 4 hero wavelengths per sample (Wilkie et al. 2014) instead of RGB. (default: False)
         """
     @spectral.setter
     def spectral(self, arg0: bool) -> None:
@@ -2237,7 +2246,7 @@ class RenderOptions:
     @property
     def spp(self) -> int:
         """
-        samples per pixel (1: the pixel centre; more: correlated multi-jittered, film.h)
+        samples per pixel (1: the pixel centre; more: correlated multi-jittered, film.h) (default: 1)
         """
     @spp.setter
     def spp(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2245,7 +2254,7 @@ class RenderOptions:
     @property
     def step(self) -> float:
         """
-        raster_march 'rk4': the step [m]
+        raster_march 'rk4': the step [m] (default: 0.3)
         """
     @step.setter
     def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2256,7 +2265,7 @@ class RenderOptions:
         Also render the albedo and normal of each sample's first non-specular hit (averaged over the pixel's
         samples): the image then has 9 channels, radiance, albedo, normal (Intel Open Image Denoise's
         auxiliary features; renderer.h; Python's render returns them as aovs=["albedo", "normal"] and the
-        image's 3). 'straight' and 'curved' only.
+        image's 3). 'straight' and 'curved' only. (default: False)
         """
     @surface_aovs.setter
     def surface_aovs(self, arg0: bool) -> None:
@@ -2267,7 +2276,7 @@ class RenderOptions:
         Height-only fields: serve every pixel from one ElevationTable for the camera's eye height
         (interpolated to `tol`) instead of tracing each pixel (over a CurvedEarth, paths over 150 km end in
         the table where they leave the air; spectral renders of 8 spp or more: one table per dispersion
-        scale; renderer.cpp).
+        scale; renderer.cpp). (default: True)
         """
     @table.setter
     def table(self, arg0: bool) -> None:
@@ -2277,7 +2286,7 @@ class RenderOptions:
         """
         Filter textures over each sample's footprint (OIIO MIP-mapping, anisotropic; bilinear between
         texels); false reads the finest level at the sample's point, bilinearly (aliases: only for
-        references and tests). Magnified, both are that bilinear lookup.
+        references and tests). Magnified, both are that bilinear lookup. (default: True)
         """
     @texture_filter.setter
     def texture_filter(self, arg0: bool) -> None:
@@ -2285,7 +2294,7 @@ class RenderOptions:
     @property
     def tile(self) -> int:
         """
-        tile size [pixels] of the parallel loop
+        tile size [pixels] of the parallel loop (default: 16)
         """
     @tile.setter
     def tile(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2294,7 +2303,7 @@ class RenderOptions:
     def tol(self) -> float:
         """
         Curved-ray integration tolerance [m] (the integrator, `trace`: 'stratified' for height-only fields,
-        'rk45' for others).
+        'rk45' for others). (default: 0.0001)
         """
     @tol.setter
     def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2302,7 +2311,7 @@ class RenderOptions:
     @property
     def trace(self) -> str | None:
         """
-        ray integrator for curved rays: None (stratified for height-only fields, rk45 otherwise), 'rk45', 'stratified'
+        ray integrator for curved rays: None (stratified for height-only fields, rk45 otherwise), 'rk45', 'stratified' (default: None)
         """
     @trace.setter
     def trace(self, arg1: str | None) -> None:
@@ -2310,7 +2319,7 @@ class RenderOptions:
     @property
     def transport(self) -> str:
         """
-        'direct' (direct lighting with MIS, mirror/glass chains) or 'path' (path tracing)
+        'direct' (direct lighting with MIS, mirror/glass chains) or 'path' (path tracing) (default: 'direct')
         """
     @transport.setter
     def transport(self, arg1: str) -> None:
@@ -2323,7 +2332,7 @@ class RenderOptions:
         wavenumbers 2 pi / h along the path: at 1 cell that is where the spline's response has its zeros
         (along the lattice axes), at 2 cells the grid's Nyquist, where it carries full power. In [0.01, 16]:
         below a hundredth of a cell nothing changes but the cost (1e-300 overflowed the step count and meant
-        one step through the layer).
+        one step through the layer). (default: 1.0)
         """
     @turbulence_step.setter
     def turbulence_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2404,7 +2413,7 @@ class SolveSettings:
         """
         A pair is met when its miss beyond its margin is at most accept_angle * (eye-to-source distance)
         [rad], or its tolerance if larger (PointPair::allowed_miss): 1e-6 rad is far below a pixel of any
-        camera.
+        camera. (default: 1e-06)
         """
     @accept_angle.setter
     def accept_angle(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2412,7 +2421,7 @@ class SolveSettings:
     @property
     def backend(self) -> str:
         """
-        'ceres' (Levenberg-Marquardt, automatic derivatives) or 'nlopt:<ALGORITHM>' (any nlopt name)
+        'ceres' (Levenberg-Marquardt, automatic derivatives) or 'nlopt:<ALGORITHM>' (any nlopt name) (default: 'ceres')
         """
     @backend.setter
     def backend(self, arg1: str) -> None:
@@ -2421,7 +2430,7 @@ class SolveSettings:
     def design_per_param(self) -> int:
         """
         auto: points per free parameter of the global stage (scan points on its axis; as many again
-        quasi-random points, half over the box, half near the start), at most 100000 (kMostDesignPerParam).
+        quasi-random points, half over the box, half near the start), at most 100000 (kMostDesignPerParam). (default: 16)
         """
     @design_per_param.setter
     def design_per_param(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2429,7 +2438,7 @@ class SolveSettings:
     @property
     def function_tolerance(self) -> float:
         """
-        relative change of the cost that ends the solve
+        relative change of the cost that ends the solve (default: 1e-14)
         """
     @function_tolerance.setter
     def function_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2437,7 +2446,7 @@ class SolveSettings:
     @property
     def gradient_tolerance(self) -> float:
         """
-        ceres: max-norm of the projected gradient
+        ceres: max-norm of the projected gradient (default: 1e-16)
         """
     @gradient_tolerance.setter
     def gradient_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2445,7 +2454,7 @@ class SolveSettings:
     @property
     def local_starts(self) -> int:
         """
-        auto: local solves from the global stage's best points, at most.
+        auto: local solves from the global stage's best points, at most. (default: 4)
         """
     @local_starts.setter
     def local_starts(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2453,7 +2462,7 @@ class SolveSettings:
     @property
     def loss(self) -> str:
         """
-        ceres robust loss on each pair's squared miss: 'none', 'huber', 'soft_l1', 'cauchy', 'arctan'
+        ceres robust loss on each pair's squared miss: 'none', 'huber', 'soft_l1', 'cauchy', 'arctan' (default: 'none')
         """
     @loss.setter
     def loss(self, arg1: str) -> None:
@@ -2461,7 +2470,7 @@ class SolveSettings:
     @property
     def loss_scale(self) -> float:
         """
-        [m] the miss where the robust loss starts to down-weight
+        [m] the miss where the robust loss starts to down-weight (default: 1.0)
         """
     @loss_scale.setter
     def loss_scale(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2470,7 +2479,7 @@ class SolveSettings:
     def max_evaluations(self) -> int:
         """
         Cost evaluations of the whole solve, each tracing every pair (ceres: residual and Jacobian passes;
-        nlopt: every call of the objective; the global stage: every design point).
+        nlopt: every call of the objective; the global stage: every design point). (default: 3000)
         """
     @max_evaluations.setter
     def max_evaluations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2478,7 +2487,7 @@ class SolveSettings:
     @property
     def max_iterations(self) -> int:
         """
-        LM iterations of the whole solve (ceres); nlopt has none: max_evaluations stops it
+        LM iterations of the whole solve (ceres); nlopt has none: max_evaluations stops it (default: 200)
         """
     @max_iterations.setter
     def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2486,7 +2495,7 @@ class SolveSettings:
     @property
     def parameter_tolerance(self) -> float:
         """
-        relative change of the parameters that ends the solve
+        relative change of the parameters that ends the solve (default: 1e-12)
         """
     @parameter_tolerance.setter
     def parameter_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2499,7 +2508,7 @@ class SolveSettings:
         PointPair::tolerance), when that exceeds accept_angle times its range. A tenth of a pixel cannot be
         seen in the image, and it spares an edit from failing on a miss of 0.01 px (issue 23: 5.9 mm at 1.9
         km). It judges the result only: the cost still pulls every pair onto its source. refracta.edit.solve
-        converts it to metres per pair (C++ sees metres only).
+        converts it to metres per pair (C++ sees metres only). (default: 0.1)
         """
     @pixel_tolerance.setter
     def pixel_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2509,7 +2518,7 @@ class SolveSettings:
         """
         auto: iterations of the first local solve (and of each continuation). Measured on
         benchmarks/bench_edit.py: LM meets, or is still closing in on, every case it solves from its start
-        at all within 15 iterations.
+        at all within 15 iterations. (default: 15)
         """
     @quick_iterations.setter
     def quick_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2517,7 +2526,7 @@ class SolveSettings:
     @property
     def seed(self) -> int:
         """
-        seed of the random starts
+        seed of the random starts (default: 0)
         """
     @seed.setter
     def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2528,7 +2537,7 @@ class SolveSettings:
         Starts of the whole strategy: the first from the field as given, the others uniformly random within
         the free parameters' bounds (seeded by `seed`); the best result is kept (every pair met first, then
         the lowest cost). All starts share the budget above; a start whose field cannot trace every pair is
-        skipped.
+        skipped. (default: 1)
         """
     @starts.setter
     def starts(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2536,7 +2545,7 @@ class SolveSettings:
     @property
     def strategy(self) -> str:
         """
-        'auto' (a short local solve; if not every pair is met, the global stage and local solves from its best points) or 'local' (the back-end from the start only)
+        'auto' (a short local solve; if not every pair is met, the global stage and local solves from its best points) or 'local' (the back-end from the start only) (default: 'auto')
         """
     @strategy.setter
     def strategy(self, arg1: str) -> None:
@@ -2544,7 +2553,7 @@ class SolveSettings:
     @property
     def target_cost(self) -> float:
         """
-        [m^2] stop once the cost is <= this (0: never early)
+        [m^2] stop once the cost is <= this (0: never early) (default: 0.0)
         """
     @target_cost.setter
     def target_cost(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2558,7 +2567,7 @@ class SolveSettings:
         itself ducts a long ray: 28 s over the limit for the issue's 1e7 m pair, before its residuals were
         reused; a fraction of a second for ordinary pairs). 300 s is generous: the slowest edit of
         benchmarks/bench_edit.py takes under a second, while a trial atmosphere that ducts a ray over a long
-        path costs seconds per evaluation (issue 23: 7.7 M steps for 150 km).
+        path costs seconds per evaluation (issue 23: 7.7 M steps for 150 km). (default: 300.0)
         """
     @time_limit.setter
     def time_limit(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2570,7 +2579,7 @@ class SolveSettings:
         parameters (1 = each parameter's whole bound range). Cautious first steps keep LM out of the flat
         regions of narrow layers (a logistic inversion far from every ray) that a bold first step lands in;
         measured on benchmarks/bench_edit.py: 1e4 (Ceres' default) fails the 16-pair logistic case, 0.1
-        solves every case.
+        solves every case. (default: 0.1)
         """
     @trust_region.setter
     def trust_region(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2603,7 +2612,7 @@ class PairOptions:
     @property
     def distance(self) -> str:
         """
-        'continuous' (closest approach of the continuous path) or 'vertex' (nearest integrator node)
+        'continuous' (closest approach of the continuous path) or 'vertex' (nearest integrator node) (default: 'continuous')
         """
     @distance.setter
     def distance(self, arg1: str) -> None:
@@ -2611,7 +2620,7 @@ class PairOptions:
     @property
     def max_steps(self) -> int:
         """
-        Integration steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails.
+        Integration steps a trace may take (TraceOptions::max_steps): beyond them the evaluation fails. (default: 10000000)
         """
     @max_steps.setter
     def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2620,7 +2629,7 @@ class PairOptions:
     def reach(self) -> float:
         """
         The path is traced to reach x (the eye-to-source distance) + 1 m (reach in [1, 100]), and stops
-        early once it is past the source.
+        early once it is past the source. (default: 1.5)
         """
     @reach.setter
     def reach(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2628,7 +2637,7 @@ class PairOptions:
     @property
     def step(self) -> float:
         """
-        rk4 step [m] (0: 0.3, the original editor's)
+        rk4 step [m] (0: 0.3, the original editor's) (default: 0.0)
         """
     @step.setter
     def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2636,7 +2645,7 @@ class PairOptions:
     @property
     def stop_height(self) -> float | None:
         """
-        Paths end where they descend through it (a ground) [m]; unset (None): no ground.
+        Paths end where they descend through it (a ground) [m]; unset (None): no ground. (default: None)
         """
     @stop_height.setter
     def stop_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -2644,7 +2653,7 @@ class PairOptions:
     @property
     def tol(self) -> float:
         """
-        rk45 target position error [m] (at least 1e-13 per metre of path)
+        rk45 target position error [m] (at least 1e-13 per metre of path) (default: 1e-09)
         """
     @tol.setter
     def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2652,7 +2661,7 @@ class PairOptions:
     @property
     def trace(self) -> str:
         """
-        the ray integrator: 'rk45' (to tol) or 'rk4' (fixed step); 'stratified' has no derivatives
+        the ray integrator: 'rk45' (to tol) or 'rk4' (fixed step); 'stratified' has no derivatives (default: 'rk45')
         """
     @trace.setter
     def trace(self, arg1: str) -> None:
@@ -3227,6 +3236,8 @@ class Beckmann:
         ...
     def __init__(self, alpha: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    def __repr__(self) -> str:
+        ...
     def __setstate__(self, arg0: tuple[typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
     @property
@@ -3626,6 +3637,8 @@ class AerialPerspective:
     def __getstate__(self) -> tuple[tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, float, float, float, float, int, bool], float]:
         ...
     def __init__(self, sky: PhysicalSky, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
+        ...
+    def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple[tuple[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex, bool], typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...

@@ -28,6 +28,22 @@ def fields(cls: type) -> tuple[str, ...]:
     return tuple(name for name in dir(cls) if not name.startswith("_") and isinstance(getattr(cls, name), property))
 
 
+def _document_defaults(cls: type) -> None:
+    """Ends each field's docstring with its default, read from a default-constructed object (the C++
+    initialiser's value: help(RenderOptions) gave units but no defaults, a trial)."""
+    default = cls()
+    for name in fields(cls):
+        field = cls.__dict__.get(name)
+        if isinstance(field, property) and "(default:" not in (field.__doc__ or ""):
+            doc = f"{(field.__doc__ or name).rstrip()} (default: {getattr(default, name)!r})"
+            setattr(cls, name, property(field.fget, field.fset, field.fdel, doc))
+
+
+for _cls in vars(_core).values():
+    if isinstance(_cls, type) and hasattr(_cls, "validate") and hasattr(_cls, "__getstate__"):
+        _document_defaults(_cls)
+
+
 def build(cls: type[T], options: T | None = None, *, where: str | None = None, **kw: Any) -> T:
     """A `cls` (a bound options class) from `options` (copied; None: the defaults) with the
     keywords set, validated (C++'s rule, above). `where` names the caller in messages (default:

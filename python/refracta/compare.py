@@ -179,8 +179,9 @@ def transparency(
         {
             "method": "exact",
             "pixels": int(np.count_nonzero(covered)),
-            "mean_error": 0.0,
-            "p99_error": 0.0,
+            # The reference's own error: 0 over the pixels compared, NaN over none (as the others').
+            "mean_error": 0.0 if covered.any() else math.nan,
+            "p99_error": 0.0 if covered.any() else math.nan,
             "nan_count": 0,
             "bytes_per_pixel": counts.oit_bytes_per_pixel,
             "seconds": counts.seconds,
@@ -229,11 +230,12 @@ def _figure(images, methods, kernel):
 
 
 # The columns format_table prints of each kind of row.
-_TRANSPARENCY_COLUMNS = ("method", "mean_error", "p99_error", "nan_count", "bytes_per_pixel", "seconds")
+_TRANSPARENCY_COLUMNS = ("method", "pixels", "mean_error", "p99_error", "nan_count", "bytes_per_pixel", "seconds")
 _SHADOW_COLUMNS = (
     "method",
     "kernel",
     "reference",
+    "pixels",
     "mean_error",
     "p99_error",
     "light_leak",
@@ -257,21 +259,23 @@ def format_table(rows: Sequence[dict]) -> str:
             )
     name = max([14] + [len(r["method"]) for r in rows])  # the widest method's name sets the column
     if not shadow_rows:
-        lines = [f"{'method':{name}s} {'mean':>8s} {'p99':>8s} {'NaN':>4s} {'bytes/px':>9s} {'time [s]':>8s}"]
+        lines = [
+            f"{'method':{name}s} {'pixels':>7s} {'mean':>8s} {'p99':>8s} {'NaN':>4s} {'bytes/px':>9s} {'time [s]':>8s}"
+        ]
         for r in rows:
             lines.append(
-                f"{r['method']:{name}s} {r['mean_error']:8.4f} {r['p99_error']:8.4f} {r['nan_count']:4d} "
-                f"{r['bytes_per_pixel']:9.1f} {r['seconds']:8.3f}"
+                f"{r['method']:{name}s} {r['pixels']:7d} {r['mean_error']:8.4f} {r['p99_error']:8.4f} "
+                f"{r['nan_count']:4d} {r['bytes_per_pixel']:9.1f} {r['seconds']:8.3f}"
             )
         return "\n".join(lines)
     header = (
-        f"{'method':{name}s} {'kernel':>6s} {'reference':>10s} {'mean':>8s} {'p99':>8s} {'leak':>7s} "
+        f"{'method':{name}s} {'kernel':>6s} {'reference':>10s} {'pixels':>7s} {'mean':>8s} {'p99':>8s} {'leak':>7s} "
         f"{'over':>7s} {'NaN':>4s} {'bits':>5s} {'time [s]':>8s}"
     )
     lines = [header]
     for r in rows:
         lines.append(
-            f"{r['method']:{name}s} {r['kernel']:6d} {r['reference']:>10s} {r['mean_error']:8.4f} "
+            f"{r['method']:{name}s} {r['kernel']:6d} {r['reference']:>10s} {r['pixels']:7d} {r['mean_error']:8.4f} "
             f"{r['p99_error']:8.4f} {r['light_leak']:7.4f} {r['over_shadow']:7.4f} {r['nan_count']:4d} "
             f"{r['bits_per_texel']:5d} {r['seconds']:8.3f}"
         )

@@ -113,8 +113,7 @@ PYTHON_OWN_DEFAULTS = {
     "refracta.widgets.model.EditorModel.markers": {"scale"},
     "refracta.widgets.model.EditorModel.pointer_down": {"button", "scale"},
     "refracta.widgets.jobs.Job.progress": {"start", "end"},  # a job's share of the bar: all of it
-    # Infrastructure: the warning's place in the stack, a bar's silence for quick work.
-    "refracta._options.renamed": {"stacklevel"},
+    # Infrastructure: a bar's silence for quick work.
     "refracta._progress.ProgressBar.__init__": {"quiet_seconds"},
 }
 

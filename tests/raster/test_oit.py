@@ -73,8 +73,8 @@ def test_mboit_total_transmittance_is_exact(rng, kind, moments):
     result = oit.composite(depths, alphas, black, (1.0, 1.0, 1.0), storage="fp64", **args)
     # Black layers: the moments' total transmittance is exact up to double rounding.
     np.testing.assert_allclose(result, exact, rtol=1e-12)
-    # fp32 sums the 7 absorbances in single precision: ln T is off by at most 7 roundings of 2^-24.
     fp32 = oit.composite(depths, alphas, black, (1.0, 1.0, 1.0), storage="fp32", **args)
+    # fp32 sums the 7 absorbances in single precision: ln T is off by at most 7 roundings of 2^-24.
     np.testing.assert_allclose(fp32, exact, rtol=7 * 2.0**-24 * -np.log(exact) + 1e-12)
 
 

@@ -49,6 +49,7 @@ void bind_microfacet(py::module_& m) {
   py::class_<Beckmann> beckmann(m, "Beckmann", DOC(refracta, Beckmann));
   beckmann.def(py::init([](double alpha) { return Beckmann(TrowbridgeReitz::checked_alpha(alpha, "alpha")); }), py::arg("alpha"))
       .def_property_readonly("alpha", &Beckmann::alpha)
+      .def("__repr__", [](const Beckmann& d) { return concat("Beckmann(alpha=", exact(d.alpha()), ")"); })
       .def(py::pickle([](const Beckmann& d) { return std::make_tuple(d.alpha()); },
                       [](std::tuple<double> t) {
                         return Beckmann(TrowbridgeReitz::checked_alpha(std::get<0>(t), "alpha"));

@@ -174,6 +174,8 @@ void bind_aerial_perspective(py::module_& m) {
              return std::make_shared<AerialPerspective>(PhysicalSky::shared(sky->settings()), scale);
            }),
            py::arg("sky"), py::arg("scale") = 1.0)
+      .def("__repr__",
+           [](const AerialPerspective& air) { return concat("AerialPerspective(scale=", air.scale(), ")"); })
       .def("along",
            [](const AerialPerspective& air, const py::object& a, const py::object& b, double wavelength, double earth_radius) {
              return air.along_at(to_point(a, "a"), to_point(b, "b"), AirFrame{earth_radius}, wavelength);

@@ -126,6 +126,11 @@ void bind_turbulence(py::module_& m) {
       .def_property_readonly("spacing", &TurbulenceGrid::spacing)
       .def_property_readonly("bound", &TurbulenceGrid::bound, "max |coefficient|: a bound of |values|.")
       .def_property_readonly("coefficients", &coefficients_of)
+      .def("__repr__",
+           [](const TurbulenceGrid& g) {
+             return concat("TurbulenceGrid(", g.shape()[0], " x ", g.shape()[1], " x ", g.shape()[2], " coefficients, spacing ",
+                           g.spacing(), " m, bound ", g.bound(), ")");
+           })
       .def("evaluate", &evaluate_points<TurbulenceGrid>, py::arg("points"),
            "(values (N,), gradients (N, 3) [1/m]) at points (N, 3) [m].");
   def_tuple_pickle<std::tuple<py::array, double>>(
@@ -152,6 +157,11 @@ void bind_turbulence(py::module_& m) {
       .def_readonly("scale", &Turbulence::scale)
       .def_property_readonly("offset", [](const Turbulence& t) { return vector_to_array(t.offset); })
       .def_readonly("depth", &Turbulence::depth)
+      .def("__repr__",
+           [](const Turbulence& t) {
+             return concat("TurbulenceLayer(scale=", t.scale, ", offset=(", t.offset.x(), ", ", t.offset.y(), ", ",
+                           t.offset.z(), ") m, depth=", t.depth, " m, yaw=", t.yaw, " rad)");
+           })
       .def("evaluate", &evaluate_points<Turbulence>, py::arg("points"),
            "(delta_n (N,), its gradient (N, 3) [1/m]) at points (N, 3) [m].");
   using Offset = std::tuple<double, double, double>;

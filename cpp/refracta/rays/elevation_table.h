@@ -45,8 +45,8 @@ struct ElevationTableOptions {
   double eye_height = 1.5;          // [m]
   double min_elevation = -0.0175;   // [rad]
   double max_elevation = 0.0175;    // [rad]
-  double tol = 1e-3;                // interpolation tolerance along the whole path [m], plus angular_tol
-  double angular_tol = 0.0;         // added to tol per metre of path [rad] (renders: a pixel)
+  double tol = 1e-3;                // interpolation tolerance along the whole path [m] (renders add angular_tol)
+  double angular_tol = 0.0;         // added to tol per metre of path [rad] (renders: a pixel; not bound)
   // Beyond this many exact traces, unresolved intervals stay exact (traced exactly per query).
   int64_t max_rays = 200000;
   int initial_rays = 65;            // exact traces before refining

@@ -79,10 +79,15 @@ std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const
   std::vector<int> materials(parts.size());
   for (size_t p = 0; p < parts.size(); ++p) {
     const MaterialMesh& part = parts[p];
-    if (!part.material.clamped.empty() && options.warn && noted.insert(part.material.name).second) {
+    const bool first_time = noted.insert(part.material.name).second;
+    if (!part.material.clamped.empty() && options.warn && first_time) {
       options.warn(concat("add_obj: '", path, "': material '", part.material.name, "' has ", part.material.clamped,
                           " out of range; moved to Kd, Ks, d, Pr, Pm in [0, 1] with Kd + Ks <= 1 (both scaled), "
                           "Ns, Ke >= 0, Ni <= 0 to 1"));
+    }
+    if (!part.material.ignored.empty() && options.warn && first_time) {
+      options.warn(concat("add_obj: '", path, "': material '", part.material.name, "' gives ", part.material.ignored,
+                          ", which refracta does not render: ignored"));
     }
     const int texture = textures[p].empty() ? -1 : scene.geometry.add_texture(textures[p]);
     if (texture >= 0 && registered.insert(textures[p]).second && options.progress) {

@@ -4,6 +4,7 @@
 #include "refracta/core/error.h"
 #include "refracta/core/frame.h"
 #include "refracta/core/image.h"
+#include "refracta/scene/surface_interaction.h"
 #include "refracta/scene/terrain.h"
 #include "refracta/shading/spot_light.h"
 #include "refracta/shading/sun_light.h"
@@ -18,7 +19,7 @@ namespace {
 
 
 // p moved off its surface along n, as SurfaceInteraction::offset_toward moves it (float Embree).
-Vec3d offset_point(const Vec3d& p, const Vec3d& n) { return p + n * (1e-5 + 2e-6 * p.cwiseAbs().maxCoeff()); }
+Vec3d offset_point(const Vec3d& p, const Vec3d& n) { return p + n * surface_offset(p.cwiseAbs().maxCoeff()); }
 
 // The reference for spot light shadows: the fraction of shadow rays blocked, one to the point
 // light, or for an area spot (radius > 0) 8 x 8 stratified ones to its disc (soft shadows).

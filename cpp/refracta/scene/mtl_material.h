@@ -24,6 +24,7 @@ struct MtlMaterial {
   std::string texture_name;  // map_Kd as the MTL file writes it (find_texture searches for it)
   std::string folder;        // the folder map_Kd is relative to: the MTL's
   std::string clamped;       // the values the loader moved into range ("Kd (5, -1, 0.5), d 7"), empty if none
+  std::string ignored;       // what it gives that refracta does not render ("map_d (an alpha texture)"), or empty
 };
 
 }  // namespace refracta

@@ -20,9 +20,14 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
   config.triangulate = true;
   config.mtl_search_path = std::filesystem::path(path).parent_path().string();
   // Regular files, no unparsable numbers; the colours given as one grey value.
-  const MtlGreys greys = check_obj_numbers(path, config.mtl_search_path);
+  std::vector<std::string> libraries;
+  const MtlGreys greys = check_obj_numbers(path, config.mtl_search_path, &libraries);
+  // The texts without byte-order marks; every library's materials in one text, so that one mtllib
+  // line may name several (tinyobjloader read only the first: "material [ 'm2' ] not found").
+  std::string materials_text;
+  for (const std::string& library : libraries) materials_text += text_without_bom(library, "MTL") + "\n";
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) {
+  if (!reader.ParseFromString(text_without_bom(path, "OBJ"), materials_text, config)) {
     throw IoError(concat("cannot read OBJ '", path, "': ", reader.Error()));
   }
   if (!reader.Warning().empty() && reader.Warning().find("not found") != std::string::npos) {
@@ -135,6 +140,20 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       if (m.roughness > 1.0f) moved.push_back(concat("Pr ", m.roughness));
       if (m.metallic > 1.0f) moved.push_back(concat("Pm ", m.metallic));
       for (const std::string& item : moved) out_m.clamped += (out_m.clamped.empty() ? "" : ", ") + item;
+      // Dropped without a word, a cut-out leaf rendered as an opaque card (a trial).
+      std::vector<std::string> ignored;
+      if (!m.diffuse_texname.empty() && !has_uvs) ignored.push_back("map_Kd on faces without texture coordinates (vt)");
+      const auto& option = m.diffuse_texopt;
+      if (!m.diffuse_texname.empty() && (option.scale[0] != 1.0 || option.scale[1] != 1.0 || option.origin_offset[0] != 0.0 ||
+                                         option.origin_offset[1] != 0.0)) {
+        ignored.push_back("map_Kd's -s and -o options");
+      }
+      if (!m.alpha_texname.empty()) ignored.push_back("map_d (an alpha texture)");
+      if (!m.specular_texname.empty()) ignored.push_back("map_Ks");
+      if (!m.bump_texname.empty() || !m.normal_texname.empty() || !m.displacement_texname.empty()) {
+        ignored.push_back("bump, normal or displacement maps");
+      }
+      for (const std::string& item : ignored) out_m.ignored += (out_m.ignored.empty() ? "" : ", ") + item;
     }
     if (!part.mesh.triangles.empty()) out.push_back(std::move(part));
   }

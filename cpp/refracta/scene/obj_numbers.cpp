@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -47,6 +48,7 @@ void check_indices(const std::string& path, int number, const std::string& key, 
 }
 
 const std::set<std::string> kMtlColours = {"Ka", "Kd", "Ks", "Ke", "Tf"};
+const std::string kByteOrderMark = "\xEF\xBB\xBF";
 
 // Checks one file's numeric records; appends its mtllib names to `libraries` (OBJ files) and its
 // one-value colours to `greys` (MTL files).
@@ -57,6 +59,7 @@ void check_file(const std::string& path, const char* kind, const std::set<std::s
   if (!in) throw IoError(concat("cannot read ", kind, " '", path, "'"));
   std::string line, material;
   for (int number = 1; std::getline(in, line); ++number) {
+    if (number == 1 && line.rfind(kByteOrderMark, 0) == 0) line.erase(0, kByteOrderMark.size());
     const size_t comment = line.find('#');
     if (comment != std::string::npos) line.resize(comment);
     std::istringstream tokens(line);
@@ -116,7 +119,8 @@ void check_file(const std::string& path, const char* kind, const std::set<std::s
 
 }  // namespace
 
-MtlGreys check_obj_numbers(const std::string& obj_path, const std::string& mtl_folder) {
+MtlGreys check_obj_numbers(const std::string& obj_path, const std::string& mtl_folder,
+                           std::vector<std::string>* library_paths) {
   std::vector<std::string> libraries;
   check_file(obj_path, "OBJ", kObjNumeric, &libraries, nullptr);
   MtlGreys greys;
@@ -127,8 +131,17 @@ MtlGreys check_obj_numbers(const std::string& obj_path, const std::string& mtl_f
                            mtl_folder.empty() ? std::string(".") : mtl_folder, "'"));
     }
     check_file(mtl.string(), "MTL", kMtlNumeric, nullptr, &greys);
+    if (library_paths) library_paths->push_back(mtl.string());
   }
   return greys;
+}
+
+std::string text_without_bom(const std::string& path, const char* kind) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(concat("cannot read ", kind, " '", path, "'"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text.rfind(kByteOrderMark, 0) == 0) text.erase(0, kByteOrderMark.size());
+  return text;
 }
 
 }  // namespace refracta
