@@ -230,12 +230,11 @@ def _figure(images, methods, kernel):
 
 
 # The columns format_table prints of each kind of row.
-_TRANSPARENCY_COLUMNS = ("method", "pixels", "mean_error", "p99_error", "nan_count", "bytes_per_pixel", "seconds")
+_TRANSPARENCY_COLUMNS = ("method", "mean_error", "p99_error", "nan_count", "bytes_per_pixel", "seconds")
 _SHADOW_COLUMNS = (
     "method",
     "kernel",
     "reference",
-    "pixels",
     "mean_error",
     "p99_error",
     "light_leak",
@@ -244,6 +243,11 @@ _SHADOW_COLUMNS = (
     "bits_per_texel",
     "seconds",
 )
+
+
+def _pixels(row: dict) -> str:
+    """A row's count of compared pixels in its column ("-" for a row made without one)."""
+    return f"{row['pixels']:7d}" if isinstance(row.get("pixels"), int) else f"{'-':>7s}"
 
 
 def format_table(rows: Sequence[dict]) -> str:
@@ -264,7 +268,7 @@ def format_table(rows: Sequence[dict]) -> str:
         ]
         for r in rows:
             lines.append(
-                f"{r['method']:{name}s} {r['pixels']:7d} {r['mean_error']:8.4f} {r['p99_error']:8.4f} "
+                f"{r['method']:{name}s} {_pixels(r)} {r['mean_error']:8.4f} {r['p99_error']:8.4f} "
                 f"{r['nan_count']:4d} {r['bytes_per_pixel']:9.1f} {r['seconds']:8.3f}"
             )
         return "\n".join(lines)
@@ -275,7 +279,7 @@ def format_table(rows: Sequence[dict]) -> str:
     lines = [header]
     for r in rows:
         lines.append(
-            f"{r['method']:{name}s} {r['kernel']:6d} {r['reference']:>10s} {r['pixels']:7d} {r['mean_error']:8.4f} "
+            f"{r['method']:{name}s} {r['kernel']:6d} {r['reference']:>10s} {_pixels(r)} {r['mean_error']:8.4f} "
             f"{r['p99_error']:8.4f} {r['light_leak']:7.4f} {r['over_shadow']:7.4f} {r['nan_count']:4d} "
             f"{r['bits_per_texel']:5d} {r['seconds']:8.3f}"
         )

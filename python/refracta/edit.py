@@ -249,7 +249,8 @@ class EditResult:
     <= 1e6, and a quarter of the search box either way along the least-determined combination
     meets them no longer; a success with one landmark and five free parameters is not unique).
     history: cost per iteration (ceres) or best cost per evaluation (nlopt) of that run. free: the
-    optimised parameters; insensitive: requested free parameters no pair depends on (held fixed);
+    optimised parameters; insensitive: requested free parameters no pair depends on (held fixed, or
+    when no pair depends on any, left free where the solver cannot move them);
     at_bounds: free parameters the result left on a bound of the search (the best fit may lie
     beyond: widen bounds=).
     iterations (of the start that gave the result), evaluations (cost evaluations, the global
@@ -340,7 +341,7 @@ class EditResult:
         if fixed:
             lines.append("  held fixed: " + ", ".join(fixed))
         if self.insensitive:
-            lines.append("  no pair depends on (held fixed): " + ", ".join(self.insensitive))
+            lines.append("  no pair depends on: " + ", ".join(self.insensitive))
         if self.stages:
             lines.append(f"  strategy {self.strategy}:")
             lines += ["    " + stage for stage in self.stages]
@@ -648,7 +649,7 @@ def load_pairs(
     the pairs are for: its Earth's straight lines (refracta.without_refraction(field)) pick the
     point; without it the scene's flat frame would be a flat Earth. The key "ground" is the deprecated
     spelling of "stop_height" (read for one release, with a DeprecationWarning). Raises
-    refracta.IoError for a missing file and ValueError naming the file and the pair for anything
+    refracta.MissingFileError for a missing file and ValueError naming the file and the pair for anything
     malformed.
     """
     import json
@@ -659,6 +660,8 @@ def load_pairs(
         raise ValueError(f"load_pairs: field must be a refracta index field or None (got {type(field).__name__})")
     path = Path(path)
     try:
+        if not path.exists():
+            raise _core.MissingFileError(f"cannot read pairs file {path}: no such file")
         # Refused before opening: reading a FIFO (or a device) waits for a writer that may never come.
         if not stat.S_ISREG(path.stat().st_mode):
             raise _core.IoError(f"cannot read pairs file {path}: not a regular file")

@@ -146,9 +146,9 @@ class Elevation:
         return lat, lon
 
 
-class ElevationFileNotFoundError(_core.IoError, FileNotFoundError):
-    """An elevation file that does not exist: a refracta.IoError, as every loader's missing file,
-    and the built-in FileNotFoundError."""
+class ElevationFileNotFoundError(_core.MissingFileError):
+    """An elevation file that does not exist: a refracta.MissingFileError (an IoError and a
+    FileNotFoundError), as every loader's missing file."""
 
 
 def _missing(path: str, what: str = "elevation file") -> None:

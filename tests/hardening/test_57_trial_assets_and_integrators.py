@@ -25,7 +25,8 @@ def _plate_over_ground(x0, height):
 @pytest.mark.parametrize("x0", [0.0, 3e5, 1e6])
 def test_a_plate_a_metre_up_shadows_the_ground_far_from_the_origin(x0):
     # Shadow rays started 2e-6 of the largest coordinate off the surface: 2 m at 1000 km (UTM), and
-    # a plate 1 m up cast nothing. Now 5e-7 (pbrt-v4's bound on a float triangle hit): 0.5 m there.
+    # a plate 1 m up cast nothing. Now |n| . the float error per axis (pbrt-v4): a level ground is
+    # exact in float across it, and its offset is 1e-5 m wherever it lies.
     scene = _plate_over_ground(x0, 1.0)
     camera = refracta.Camera((x0 - 4.0, 0.5, 0.0), (x0, 0.0, 0.0), vfov=40, width=32, height=32)
     image, aovs = refracta.render(scene, camera, None, progress=False, aovs=["object_id", "position"])
@@ -36,6 +37,24 @@ def test_a_plate_a_metre_up_shadows_the_ground_far_from_the_origin(x0):
     assert under.any() and lit.any()
     # The sun overhead, the plate over those points: no direct light at all (the sky is black).
     assert image[under].max() == 0.0 and image[lit].min() > 0.0
+
+
+@pytest.mark.parametrize("half, slope", [(3e4, 0.3), (1e5, 0.05)])
+def test_a_large_tilted_triangle_does_not_shadow_itself(half, slope):
+    # A review: offset by 5e-7 of the point's own coordinates (1000 m here), a quad 60 km wide met
+    # its own shadow rays (182 and 10 black pixels of 2304): Embree rounds its vertices, 3e4 m out,
+    # to float. The offset now follows the primitive's coordinates across it (Hit::extent).
+    scene = refracta.Scene()
+    corners = [[-half, -slope * half, -half], [half, slope * half, -half], [half, slope * half, half]]
+    scene.add_mesh(np.array(corners + [[-half, -slope * half, half]], float), np.array([[0, 2, 1], [0, 3, 2]]))
+    elevation = np.radians(73.0)
+    scene.set_sun((np.cos(elevation), np.sin(elevation), 0.0), 1e4)
+    target = np.array([1000.0, slope * 1000.0, 0.0])
+    camera = refracta.Camera(tuple(target + [-30.0, 40.0, 30.0]), tuple(target), (0, 1, 0), 30, 48, 48)
+    image, aovs = refracta.render(scene, camera, None, progress=False, aovs=["object_id"])
+    on_quad = aovs["object_id"] == 0
+    assert on_quad.all()  # the sun lights the whole quad's front: no pixel may be black
+    assert np.count_nonzero(image.max(axis=2)[on_quad] == 0.0) == 0
 
 
 def _write(path, text):
@@ -51,9 +70,9 @@ def test_obj_coordinates_keep_double_precision_for_the_offset(tmp_path):
     scene = refracta.Scene()
     scene.add_obj(obj, offset=(-5e5, 0.0, -5e6))
     lower, upper = scene.bounds
-    # Double parsing and a subtraction: round-off of 5e6 (1e-9 m), far below float's 0.3 m steps.
+    # Double parsing and a subtraction: round-off of 5e6 (1e-9 m), far below float's 0.5 m steps.
     np.testing.assert_allclose(lower, [0.3, 0.0, -9.7], atol=1e-8)
-    np.testing.assert_allclose(upper, [10.3, 0.0, 0.3], atol=1e-8)
+    np.testing.assert_allclose(upper, [10.3, 0.0, 0.3], atol=1e-8)  # as above
 
 
 def test_a_byte_order_mark_does_not_drop_the_first_vertex(tmp_path):
@@ -134,3 +153,14 @@ def test_a_transparency_comparison_with_nothing_transparent_says_nan_for_every_r
         rows, _ = compare.transparency(scene, camera, figure=False)
     assert all(row["pixels"] == 0 and np.isnan(row["mean_error"]) for row in rows)
     assert "pixels" in compare.format_table(rows).splitlines()[0]
+
+
+def test_the_other_missing_files_are_file_not_found_errors_too(tmp_path):
+    from refracta import edit, terrain
+
+    obj = _write(tmp_path / "m.obj", "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n")
+    with pytest.raises(refracta.MissingFileError, match="gone.mtl"):
+        refracta.Scene().add_obj(obj)
+    with pytest.raises(refracta.MissingFileError, match="no such file"):
+        edit.load_pairs(tmp_path / "pairs.json")
+    assert issubclass(terrain.ElevationFileNotFoundError, refracta.MissingFileError)

@@ -121,7 +121,9 @@ struct SolveSummary {
   std::vector<double> camera_values;
   std::optional<Camera> camera;
   std::vector<std::string> free;     // the parameters that were optimised
-  std::vector<std::string> insensitive;  // requested free, but no pair depends on them: held fixed
+  // Requested free, but no pair depends on them: held fixed (when none is depended on, left free
+  // and reported: the solver stays at the start).
+  std::vector<std::string> insensitive;
   // Free parameters the result left on a bound of the search box (within 1e-6 of its unit width):
   // the best fit may lie beyond it (the message says which bound, and how to widen it).
   std::vector<std::string> at_bounds;

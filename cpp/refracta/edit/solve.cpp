@@ -322,7 +322,7 @@ class Strategy {
   }
   static const char* own_cap(StopReason reason) {
     return reason == StopReason::kIterations ? "iterations (quick_iterations)"
-                                             : "evaluations (its share of max_evaluations)";
+                                             : "evaluations (the quick start's, or a start's share of max_evaluations)";
   }
 
   void stage(const std::string& what, const Attempt& attempt) {
@@ -442,7 +442,7 @@ std::string why_unmet(const EditProblem& problem, const std::vector<double>& res
   if (short_by > std::max(sideways, std::abs(vertical))) {
     return concat("its path ends ", short_by, " m short of the source, ", std::abs(vertical), " m ", side, " it",
                   problem.pair_options().stop_height ? " (on the ground, stop_height: it descends before the source)"
-                                                     : " (it turns back before the source)");
+                                                     : " (it ends before the source's range)");
   }
   if (sideways > std::abs(vertical)) {
     return concat("its path passes ", sideways, " m to the side of the source (", std::abs(vertical), " m ", side,

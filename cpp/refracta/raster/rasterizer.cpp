@@ -292,6 +292,7 @@ Hit surface_of(const Scene& scene, uint32_t geometry, uint32_t primitive, double
   hit.t = (toward - hit.point).norm();
   hit.geometry = geometry;
   hit.primitive = primitive;
+  hit.extent = a.cwiseAbs().cwiseMax(b.cwiseAbs()).cwiseMax(c.cwiseAbs());
   if (const Scene::Spheres* spheres = scene.spheres(geometry)) {
     // A sphere set is rasterized as one tessellation per sphere, in order; its hits name the sphere.
     hit.primitive = uint32_t(primitive / (mesh.mesh.triangles.size() / spheres->centres.size()));
@@ -303,6 +304,7 @@ Hit surface_of(const Scene& scene, uint32_t geometry, uint32_t primitive, double
     if (radial.norm() > 0.0) {
       const Vec3d outward = radial.normalized();
       hit.point = centre + spheres->radii[hit.primitive] * outward;
+      hit.extent = centre.cwiseAbs().array() + spheres->radii[hit.primitive];
       hit.front_face = outward.dot(toward - hit.point) >= 0.0;
       hit.normal = hit.front_face ? outward : Vec3d(-outward);
       hit.t = (toward - hit.point).norm();

@@ -39,11 +39,12 @@ std::shared_ptr<const LowestLaunches> LowestLaunches::build(const Scene& scene,
                                                             const std::vector<double>& scales) {
   if (casters.empty() || casters.size() != scales.size()) return nullptr;
   if (!std::isfinite(scene.lowest()) || !std::isfinite(scene.highest())) return nullptr;
-  // offset_toward lifts a point of a level surface by surface_offset of its largest coordinate:
-  // the start heights from the lowest surface's least lift (a cast from the surface itself meets
-  // it) to the highest's most.
+  // offset_toward lifts a point by kSurfaceOffsetAbsolute plus kSurfaceOffsetRelative of |n| . extent
+  // (offset_point; |n|_1 <= sqrt 3): the start heights from the lowest surface's least lift (a cast
+  // from the surface itself meets it) to the highest's most.
   const double reach = std::max(scene.lower().cwiseAbs().maxCoeff(), scene.upper().cwiseAbs().maxCoeff());
-  const double lo = scene.lowest() + surface_offset(0.0), hi = scene.highest() + surface_offset(reach);
+  const double lo = scene.lowest() + kSurfaceOffsetAbsolute;
+  const double hi = scene.highest() + kSurfaceOffsetAbsolute + kSurfaceOffsetRelative * std::sqrt(3.0) * reach;
   auto table = std::make_shared<LowestLaunches>();
   table->lo_ = lo;
   table->step_ = (hi - lo) / kLowestLaunchIntervals;

@@ -289,7 +289,7 @@ Image render_raster(const RenderScene& render_scene, const Camera& camera, const
       options.shadow_light < 0 ? lights.sun.value_or(0) : lights.spots[size_t(options.shadow_light)];
   auto shadow_pixel = [&](const std::optional<Hit>& hit) {
     if (!hit || !visibility.reaches(shadow_light, hit->point, hit->normal)) return Vec3d::Zero().eval();
-    return Vec3d(visibility.shadow(shadow_light, hit->point, hit->normal), 1.0, 0.0);
+    return Vec3d(visibility.shadow(shadow_light, hit->point, hit->normal, hit->extent), 1.0, 0.0);
   };
 
   // Every pixel: its opaque surface (or the sky), under the transparent fragments in front of it.

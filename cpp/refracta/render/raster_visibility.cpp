@@ -17,15 +17,11 @@ namespace refracta {
 
 namespace {
 
-
-// p moved off its surface along n, as SurfaceInteraction::offset_toward moves it (float Embree).
-Vec3d offset_point(const Vec3d& p, const Vec3d& n) { return p + n * surface_offset(p.cwiseAbs().maxCoeff()); }
-
 // The reference for spot light shadows: the fraction of shadow rays blocked, one to the point
 // light, or for an area spot (radius > 0) 8 x 8 stratified ones to its disc (soft shadows).
-double spot_occlusion(const Scene& scene, const Vec3d& p_surface, const Vec3d& n, const SpotLight& light,
+double spot_occlusion(const Scene& scene, const Vec3d& p_surface, const Vec3d& n, const Vec3d& extent, const SpotLight& light,
                       double radius) {
-  const Vec3d p = offset_point(p_surface, n);
+  const Vec3d p = offset_point(p_surface, n, extent);
   auto blocked = [&](const Vec3d& target) {
     const Vec3d to = target - p;
     const double d = to.norm();
@@ -197,11 +193,11 @@ bool RasterVisibility::reaches(size_t light, const Vec3d& p, const Vec3d& n) con
   return n.dot(sun_direction_) > 0.0;
 }
 
-double RasterVisibility::shadow(size_t light, const Vec3d& p, const Vec3d& n) const {
+double RasterVisibility::shadow(size_t light, const Vec3d& p, const Vec3d& n, const Vec3d& extent) const {
   if (source_ == ShadowSource::kNone) return 0.0;
   if (source_ == ShadowSource::kMap) return maps_[light]->shadow(p, n);
-  if (const SpotLight* spot = spot_[light]) return spot_occlusion(scene_.geometry, p, n, *spot, radius_[light]);
-  return scene_.geometry.occluded(offset_point(p, n), sun_direction_, kSceneReach) ? 1.0 : 0.0;
+  if (const SpotLight* spot = spot_[light]) return spot_occlusion(scene_.geometry, p, n, extent, *spot, radius_[light]);
+  return scene_.geometry.occluded(offset_point(p, n, extent), sun_direction_, kSceneReach) ? 1.0 : 0.0;
 }
 
 Spectrum RasterVisibility::arriving(size_t light, const SurfaceInteraction& si, const Vec3d& wi,
@@ -211,7 +207,7 @@ Spectrum RasterVisibility::arriving(size_t light, const SurfaceInteraction& si, 
   // them there too, and MIS needs both kinds of sample to cover the same directions).
   if (spot_[light] || light == sun_) {
     const Vec3d n = si.n_toward_wo();
-    return wi.dot(n) <= 0.0 ? Spectrum::Zero() : Spectrum(ls.L * (1.0 - shadow(light, si.p, n)));
+    return wi.dot(n) <= 0.0 ? Spectrum::Zero() : Spectrum(ls.L * (1.0 - shadow(light, si.p, n, si.extent)));
   }
   return source_ == ShadowSource::kNone ? ls.L : rays_.arriving(light, si, wi, ls, lambda);
 }

@@ -50,8 +50,9 @@ class RasterVisibility : public LightVisibility {
   bool reaches(size_t light, const Vec3d& p, const Vec3d& n) const;
   // The shadow intensity in [0, 1] at p (normal n, the viewer's side) of the sun or a chosen spot
   // light: the map's, the Embree reference's (the sun: one ray along its direction; an area spot
-  // light of radius > 0: 8 x 8 stratified rays to its disc), or 0 with shadows 'none'.
-  double shadow(size_t light, const Vec3d& p, const Vec3d& n) const;
+  // light of radius > 0: 8 x 8 stratified rays to its disc), or 0 with shadows 'none'. extent: the
+  // primitive's under p (Hit::extent), which the reference's rays clear (offset_point).
+  double shadow(size_t light, const Vec3d& p, const Vec3d& n, const Vec3d& extent) const;
 
   // Light from behind the viewed side (si's geometric normal) does not arrive: render_raster
   // shades reflection only. The sun and the spot lights arrive dimmed by their shadow(); the

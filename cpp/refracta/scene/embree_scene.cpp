@@ -470,6 +470,7 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
     const Vec3d& centre = spheres->centres.at(query.hit.primID);
     if (sphere.geometry == query.hit.geomID && sphere.primitive == query.hit.primID) hit.t = sphere.t;
     hit.point = origin + hit.t * dir;
+    hit.extent = centre.cwiseAbs().array() + spheres->radii.at(query.hit.primID);
     const Vec3d normal = (hit.point - centre).normalized();  // unit also where the float t was kept
     hit.front_face = normal.dot(dir) < 0.0;
     hit.normal = hit.front_face ? normal : Vec3d(-normal);
@@ -480,6 +481,7 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
     const Mesh& mesh = meshes_.at(query.hit.geomID).mesh;
     const auto& tri = mesh.triangles.at(query.hit.primID);
     const Vec3d& v0 = mesh.vertices[tri[0]];
+    for (int k = 0; k < 3; ++k) hit.extent = hit.extent.cwiseMax(mesh.vertices[tri[k]].cwiseAbs());
     const Vec3d n = (mesh.vertices[tri[1]] - v0).cross(mesh.vertices[tri[2]] - v0);
     const double along = n.dot(dir);
     if (along != 0.0) {
@@ -635,6 +637,7 @@ SurfaceInteraction Scene::interaction(const Hit& hit, const Vec3d& dir, double f
 SurfaceInteraction Scene::interaction(const Hit& hit, const Vec3d& dir, const std::array<Vec3d, 2>& footprint) const {
   SurfaceInteraction si;
   si.p = hit.point;
+  si.extent = hit.extent;
   si.t = hit.t;
   si.geometry = hit.geometry;
   si.primitive = hit.primitive;

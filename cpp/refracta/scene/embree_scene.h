@@ -41,6 +41,9 @@ struct Hit {
   unsigned primitive;
   double b1 = 0.0, b2 = 0.0;  // barycentric weights of the triangle's vertices 1 and 2
   bool front_face = true;     // the ray met the geometry's front (normal is then the unflipped one)
+  // [m] per axis, the largest |coordinate| of the primitive met (a triangle's vertices, a sphere's
+  // extent), which Embree rounds to float: what a ray leaving the point must clear (offset_point).
+  Vec3d extent = Vec3d::Zero();
 };
 
 class Scene {

@@ -31,7 +31,7 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
     throw IoError(concat("cannot read OBJ '", path, "': ", reader.Error()));
   }
   if (!reader.Warning().empty() && reader.Warning().find("not found") != std::string::npos) {
-    throw IoError(concat("OBJ '", path, "': ", reader.Warning()));  // a missing .mtl file
+    throw IoError(concat("OBJ '", path, "': ", reader.Warning()));  // usemtl of a material no library has
   }
   const auto& attrib = reader.GetAttrib();
   std::vector<tinyobj::material_t> materials = reader.GetMaterials();
@@ -114,17 +114,17 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       out_m.alpha = std::clamp(double(m.dissolve), 0.0, 1.0);
       // Kd + Ks > 1 reflects more light than arrives: both scaled down to a sum of 1 (per the
       // largest channel's sum), as energy-conserving renderers read Phong materials.
-      // (MTL values come as float: 0.8 + 0.2 is 1 + 1.5e-8, within kFloatSlack of a sum of 1.)
-      constexpr double kFloatSlack = 1e-6;
+      // (Exporters write about 6 digits: 0.333333 x 3 is a sum of 1 within kWrittenDigits.)
+      constexpr double kWrittenDigits = 1e-6;
       const double sum = (out_m.kd + out_m.ks).maxCoeff();
-      if (sum > 1.0 + kFloatSlack) out_m.kd /= sum, out_m.ks /= sum;
+      if (sum > 1.0 + kWrittenDigits) out_m.kd /= sum, out_m.ks /= sum;
       std::vector<std::string> moved;
       if (out_m.kd != kd) moved.push_back(concat("Kd (", kd.x(), ", ", kd.y(), ", ", kd.z(), ")"));
       if (out_m.ks != ks) moved.push_back(concat("Ks (", ks.x(), ", ", ks.y(), ", ", ks.z(), ")"));
       if (out_m.ns != double(m.shininess)) moved.push_back(concat("Ns ", m.shininess));
       if (out_m.alpha != double(m.dissolve)) moved.push_back(concat("d ", m.dissolve));
       out_m.ni = m.ior;
-      if (!(m.ior > 0.0f)) {  // an index of refraction is > 0: the refracting material takes 1 (none)
+      if (!(m.ior > 0.0)) {  // an index of refraction is > 0: the refracting material takes 1 (none)
         moved.push_back(concat("Ni ", m.ior));
         out_m.ni = 1.0;
       }
@@ -135,10 +135,10 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       const Vec3d ke(m.emission[0], m.emission[1], m.emission[2]);
       out_m.ke = ke.cwiseMax(0.0);
       if (out_m.ke != ke) moved.push_back(concat("Ke (", ke.x(), ", ", ke.y(), ", ", ke.z(), ")"));
-      out_m.pr = m.roughness > 0.0f ? std::min(1.0, double(m.roughness)) : -1.0;
-      out_m.pm = m.metallic > 0.0f ? std::min(1.0, double(m.metallic)) : -1.0;
-      if (m.roughness > 1.0f) moved.push_back(concat("Pr ", m.roughness));
-      if (m.metallic > 1.0f) moved.push_back(concat("Pm ", m.metallic));
+      out_m.pr = m.roughness > 0.0 ? std::min(1.0, double(m.roughness)) : -1.0;
+      out_m.pm = m.metallic > 0.0 ? std::min(1.0, double(m.metallic)) : -1.0;
+      if (m.roughness > 1.0) moved.push_back(concat("Pr ", m.roughness));
+      if (m.metallic > 1.0) moved.push_back(concat("Pm ", m.metallic));
       for (const std::string& item : moved) out_m.clamped += (out_m.clamped.empty() ? "" : ", ") + item;
       // Dropped without a word, a cut-out leaf rendered as an opaque card (a trial).
       std::vector<std::string> ignored;

@@ -127,7 +127,7 @@ MtlGreys check_obj_numbers(const std::string& obj_path, const std::string& mtl_f
   for (const std::string& name : libraries) {
     const std::filesystem::path mtl = std::filesystem::path(mtl_folder) / name;
     if (!std::filesystem::exists(mtl)) {  // tinyobjloader's own words: "Material file [ x.mtl ] not found in a path : ..."
-      throw IoError(concat("OBJ '", obj_path, "': its material library '", name, "' (mtllib) is not in '",
+      throw MissingFile(concat("OBJ '", obj_path, "': its material library '", name, "' (mtllib) is not in '",
                            mtl_folder.empty() ? std::string(".") : mtl_folder, "'"));
     }
     check_file(mtl.string(), "MTL", kMtlNumeric, nullptr, &greys);

@@ -9,19 +9,29 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+
 namespace refracta {
 
-// How far a surface point is moved off its surface before a ray leaves it, at largest coordinate
-// `reach` [m]: Embree holds vertices and hits in single precision, and a triangle hit's position
-// is good to about gamma_7 = 7 u / (1 - 7 u) of its coordinates (u = 2^-24: pbrt-v4, "Robust
-// spawned rays", 6.8.6), 4.2e-7; 5e-7 of them, plus 10 um for the origin. 2e-6 lost every shadow
-// of a plate 1 m above the ground 1000 km from the origin (a trial: UTM coordinates).
+// A point of a surface moved off it along its unit normal n before a ray leaves, so that Embree's
+// single-precision test of that ray does not meet the surface again. Embree holds the vertices in
+// float and computes with them: the float surface may lie about gamma_7 = 7 u / (1 - 7 u) = 4.2e-7
+// (u = 2^-24) of the coordinates away, per axis, and only the axes across the surface move it
+// along n (pbrt-v4 6.8.6, "Robust spawned ray origins": the offset |n| . error). `extent`: per
+// axis the largest |coordinate| of the primitive's vertices (Hit::extent; at least p's). 2e-6 of
+// the point's largest coordinate lost a 1 m plate's shadow 1000 km from the origin (a trial), and
+// of the point alone a 60 km tilted quad shadowed itself (a review); a level road 20 km wide keeps
+// a 1e-5 m offset (its float plane is exact).
 constexpr double kSurfaceOffsetAbsolute = 1e-5;  // [m]
 constexpr double kSurfaceOffsetRelative = 5e-7;
-inline double surface_offset(double reach) { return kSurfaceOffsetAbsolute + kSurfaceOffsetRelative * reach; }
+inline Vec3d offset_point(const Vec3d& p, const Vec3d& n, const Vec3d& extent) {
+  const double error = n.cwiseAbs().dot(extent.cwiseMax(p.cwiseAbs()));
+  return p + n * (kSurfaceOffsetAbsolute + kSurfaceOffsetRelative * error);
+}
 
 struct SurfaceInteraction {
   Vec3d p = Vec3d::Zero();           // [m]
+  Vec3d extent = Vec3d::Zero();      // [m] per axis, the primitive's largest |coordinate| (Hit::extent)
   Vec3d n = Vec3d::UnitY();          // unit geometric normal: triangles' counter-clockwise front, spheres outward
   Vec3d ns = Vec3d::UnitY();         // unit shading normal, on the same side as n
   Vec3d dpdu = Vec3d::UnitX();       // tangent along u (a unit fallback when there are no uvs)
@@ -68,9 +78,7 @@ struct SurfaceInteraction {
   }
   // A point moved off the surface along the geometric normal to the side of w, so that a ray
   // leaving along w does not find this surface again.
-  Vec3d offset_toward(const Vec3d& w) const {
-    return p + (n.dot(w) > 0.0 ? n : Vec3d(-n)) * surface_offset(p.cwiseAbs().maxCoeff());
-  }
+  Vec3d offset_toward(const Vec3d& w) const { return offset_point(p, n.dot(w) > 0.0 ? n : Vec3d(-n), extent); }
 };
 
 }  // namespace refracta
