@@ -8,6 +8,20 @@ import math
 import numpy as np
 
 
+class ReadOnly:
+    """A class whose public attributes are refused on assignment (its state lives in underscore
+    names, built from the constructor's arguments): an assignment the object would not follow left
+    its repr describing something else (a trial: Turbulence.cn2, LocalFrame.lat). `_remake` says
+    what to do instead."""
+
+    _remake = "make another"
+
+    def __setattr__(self, name: str, value) -> None:
+        if not name.startswith("_"):
+            raise AttributeError(f"{type(self).__name__}.{name} cannot be set: {self._remake}")
+        object.__setattr__(self, name, value)
+
+
 def is_number(value) -> bool:
     """Whether `value` is a real number given as one: an int, a float or a numpy scalar of them, not a
     bool (float(True) is 1) and not a string (float('1') is 1.0)."""

@@ -39,7 +39,7 @@ import numpy as np
 import pyproj
 
 from refracta import _core
-from refracta._checks import finite_pair, is_number, is_seed, no_unknown_keywords
+from refracta._checks import ReadOnly, finite_pair, is_number, is_seed, no_unknown_keywords
 from refracta._refraction_coefficient import straight_elevation
 
 __all__ = ["LocalFrame", "forward", "inverse", "principal_radii", "radius_of_curvature", "sun_position"]
@@ -283,7 +283,7 @@ def _within_reach(points: np.ndarray, name: str) -> None:
         raise ValueError(f"{name}: a scene height of {highest:.4g} m, beyond the scene's reach of {reach:g} m")
 
 
-class LocalFrame:
+class LocalFrame(ReadOnly):
     """The scene frame around an observer at (lat, lon) on WGS84 (see the module's conventions).
 
     lat, lon [deg]: the origin (not at a pole: north, and so the frame's -z, is undefined there).
@@ -321,15 +321,9 @@ class LocalFrame:
         self._to_plane = pyproj.Transformer.from_crs(_LONLAT, aeqd, always_xy=True)
         self._to_lonlat = pyproj.Transformer.from_crs(aeqd, _LONLAT, always_xy=True)
 
-    def __setattr__(self, name: str, value) -> None:
-        # Read-only: the projection is made once, about the origin (a trial set lat = 45: the repr
-        # said 45, to_scene projected about 28).
-        if not name.startswith("_"):
-            raise AttributeError(
-                f"LocalFrame.{name} cannot be set: the frame's projection is made about its origin; make another "
-                "LocalFrame(lat, lon, height, earth_radius)"
-            )
-        object.__setattr__(self, name, value)
+    # Read-only: the projection is made once, about the origin (a trial set lat = 45: the repr said
+    # 45, to_scene projected about 28).
+    _remake = "the frame's projection is made about its origin; make another LocalFrame(lat, lon, height, earth_radius)"
 
     lat = property(lambda self: self._lat, doc="[deg] the origin's latitude")
     lon = property(lambda self: self._lon, doc="[deg] the origin's longitude")

@@ -31,7 +31,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from refracta import _core
-from refracta._checks import is_number
+from refracta._checks import ReadOnly, is_number
 from refracta._warn import deprecated
 
 __all__ = [
@@ -183,7 +183,7 @@ def plane_wave_tilt_variance(cn2: float, path_length: float, aperture: float) ->
     return 2.91 * cn2 * path_length * aperture ** (-1.0 / 3.0)
 
 
-class Turbulence:
+class Turbulence(ReadOnly):
     """A frozen-flow, periodic random refractive-index pattern with the von Karman spectrum.
 
     ``Turbulence(cn2=None, **settings)``: the fields of :class:`refracta.TurbulenceSettings` as
@@ -261,41 +261,18 @@ class Turbulence:
         self._spectrum: _core._TurbulenceSpectrum | None = None  # the statistics' mode variances, when asked
         self._statistics: tuple[np.ndarray, np.ndarray, float] | None = None  # (k, weights, total), when asked
 
-    def __setattr__(self, name: str, value) -> None:
-        # Read-only: the pattern was synthesised from the settings (a trial set t.cn2 = 4e-10: the
-        # repr and the statistics said 4e-10, the field kept 1e-10).
-        if not name.startswith("_"):
-            raise AttributeError(
-                f"Turbulence.{name} cannot be set: a Turbulence is the pattern synthesised from its settings; "
-                "make another (Turbulence(cn2=..., seed=..., ...)) or move this one with at_time(t)"
-            )
-        object.__setattr__(self, name, value)
+    # Read-only: the pattern was synthesised from the settings (a trial set t.cn2 = 4e-10: the repr
+    # and the statistics said 4e-10, the field kept 1e-10).
+    _remake = (
+        "a Turbulence is the pattern synthesised from its settings; make another (Turbulence(cn2=..., seed=..., "
+        "...)) or move this one with at_time(t)"
+    )
 
-    @property
-    def settings(self) -> _core.TurbulenceSettings:
-        """A copy of the TurbulenceSettings the pattern was synthesised from."""
-        return _copy.copy(self._settings)
-
-    @property
-    def grid(self) -> _core.TurbulenceGrid:
-        """The synthesised B-spline coefficients (shared by at_time's copies)."""
-        return self._grid
-
-    @property
-    def time(self) -> float:
-        """[s] the time the wind has carried the pattern to (at_time)."""
-        return self._time
-
-    @property
-    def layer(self) -> _core.TurbulenceLayer:
-        """The TurbulenceLayer fields take: the grid placed at this time."""
-        return self._layer
-
-    @property
-    def generation_seconds(self) -> float:
-        """[s] how long the synthesis took (0 for an unpickled or moved copy's own work)."""
-        return self._generation_seconds
-
+    settings = property(lambda self: _copy.copy(self._settings), doc="a copy of the TurbulenceSettings synthesised")
+    grid = property(lambda self: self._grid, doc="the synthesised B-spline coefficients (shared by at_time's copies)")
+    time = property(lambda self: self._time, doc="[s] the time the wind has carried the pattern to (at_time)")
+    layer = property(lambda self: self._layer, doc="the TurbulenceLayer fields take: the grid placed at this time")
+    generation_seconds = property(lambda self: self._generation_seconds, doc="[s] the synthesis' time (0: a copy)")
     cn2 = property(lambda self: self._settings.cn2, doc="C_n^2 [m^-2/3] in the layer")
     outer_scale = property(lambda self: self._settings.outer_scale, doc="L0 [m]")
     inner_scale = property(lambda self: self._settings.inner_scale, doc="l0 [m]")

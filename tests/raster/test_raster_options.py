@@ -66,7 +66,7 @@ def test_unset_biases_are_the_published_ones():
     # fp64 (the method in double, no GPU's storage) takes fp32's published bias.
     assert refracta.MboitSettings(storage="fp64").storage == "fp64"
     assert refracta.MboitSettings.published_bias("power", 4, "fp64") == 5e-7
-    with pytest.raises(ValueError, match=r"storage must be 'fp32', 'unorm16' or 'fp64' \(got 'fp16'\)"):
+    with pytest.raises(ValueError, match=r"storage must be 'fp64', 'fp32' or 'unorm16' \(got 'fp16'\)"):
         refracta.MboitSettings(storage="fp16")
 
 

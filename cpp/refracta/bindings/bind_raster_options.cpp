@@ -81,10 +81,10 @@ void bind_oit_settings(py::module_& m) {
       .def_static(
           "published_bias",
           [](const std::string& basis, int moments, const std::string& storage) {
-            return M::published_bias(parse_moment_basis(basis), moments, parse_mboit_storage(storage));
+            return M::published_bias(parse_moment_basis(basis), moments, parse_storage(storage));
           },
           py::arg("basis"), py::arg("moments"), py::arg("storage"), DOC(refracta, MboitSettings, published_bias));
-  def_enum_property(mboit, "storage", &M::storage, storage_name, parse_mboit_storage,
+  def_enum_property(mboit, "storage", &M::storage, storage_name, parse_storage,
                     "'fp32', 'unorm16' (a GPU's storage) or 'fp64' (the method itself)");
 
   using O = OitSettings;

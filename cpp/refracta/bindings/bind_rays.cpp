@@ -25,7 +25,8 @@ py::dict trace_fields(const py::kwargs& fields, const char* owner) {
   if (out.contains("method")) {
     if (out.contains("trace")) throw_invalid(owner, ": give trace, not both trace and its old name method");
     py::module_::import("refracta._warn")
-        .attr("deprecated")(concat(owner, ": method= is deprecated; the integrator is called trace= (TraceOptions.trace)"));
+        .attr("deprecated")(
+            concat(owner, ": method= is deprecated; the integrator is called trace= (TraceOptions.trace)"));
     out["trace"] = out.attr("pop")("method");
   }
   return out;

@@ -63,7 +63,8 @@ void bind_sun_and_sky(SceneClass& scene) {
       .def("set_sky",
            [](RenderScene& s, const py::object& horizon, const py::object& zenith, std::optional<FilePath> environment,
               double scale) {
-             if (py::isinstance<py::str>(horizon) || py::hasattr(horizon, "__fspath__")) {  // a trial's set_sky('env.exr')
+             // A trial's set_sky('env.exr') read the path as a colour ("must hold real numbers").
+             if (py::isinstance<py::str>(horizon) || py::hasattr(horizon, "__fspath__")) {
                throw_invalid("set_sky: horizon is a colour; give an environment map file as environment= (got '",
                              py::str(horizon).cast<std::string>(), "')");
              }

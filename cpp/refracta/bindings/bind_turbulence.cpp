@@ -128,8 +128,8 @@ void bind_turbulence(py::module_& m) {
       .def_property_readonly("coefficients", &coefficients_of)
       .def("__repr__",
            [](const TurbulenceGrid& g) {
-             return concat("TurbulenceGrid(", g.shape()[0], " x ", g.shape()[1], " x ", g.shape()[2], " coefficients, spacing ",
-                           g.spacing(), " m, bound ", g.bound(), ")");
+             return concat("TurbulenceGrid(", g.shape()[0], " x ", g.shape()[1], " x ", g.shape()[2],
+                           " coefficients, spacing ", g.spacing(), " m, bound ", g.bound(), ")");
            })
       .def("evaluate", &evaluate_points<TurbulenceGrid>, py::arg("points"),
            "(values (N,), gradients (N, 3) [1/m]) at points (N, 3) [m].");

@@ -48,7 +48,6 @@ inline bool beyond_memory(double bytes, double* memory) {
 // Refuses, before anything is allocated, work of `count` items (rays, samples) of bytes_per_item
 // each at its peak that would not fit in physical memory: std::invalid_argument (ValueError)
 // naming `what`. trace_rays of 1e8 rays traced for 12 s, then failed allocating its results.
-
 inline void check_work_memory(double count, double bytes_per_item, const char* what, const char* items) {
   const double bytes = count * bytes_per_item;
   if (double memory; beyond_memory(bytes, &memory)) {

@@ -61,7 +61,8 @@ void MomentShadowSettings::check(Problems& problems) const {
     // lower bound on PCF (a trial: 1.0 where PCF is 0.65).
     Eigen::Matrix3d hankel;
     hankel << 1.0, b[0], b[1], b[0], b[1], b[2], b[1], b[2], b[3];
-    const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(hankel, Eigen::EigenvaluesOnly).eigenvalues()(0);
+    const double lowest =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(hankel, Eigen::EigenvaluesOnly).eigenvalues()(0);
     problems.check(!within || lowest >= -kMomentRoundOff, "bias_vector must be the moments of some distribution of "
                    "depths: the Hankel matrix ((1, b1, b2), (b1, b2, b3), (b2, b3, b4)) must be positive semi-definite "
                    "(got (", b[0], ", ", b[1], ", ", b[2], ", ", b[3], "): its least eigenvalue is ", lowest, ")");

@@ -256,13 +256,6 @@ double MboitSettings::published_bias(MomentBasis basis, int moments, Storage sto
   return moments == 4 ? 5e-7 : (moments == 6 ? 5e-6 : 5e-5);
 }
 
-Storage parse_mboit_storage(const std::string& name) {
-  if (name == "fp32") return Storage::kFp32;
-  if (name == "unorm16") return Storage::kUnorm16;
-  if (name == "fp64") return Storage::kFp64;
-  throw_invalid("storage must be 'fp32', 'unorm16' or 'fp64' (got '", name, "')");
-}
-
 void MboitSettings::check(Problems& problems) const {
   const int m = moments;
   if (basis == MomentBasis::kTrigonometric) {

@@ -30,15 +30,11 @@ enum class WboitWeight { kEq7, kEq9 };
 WboitWeight parse_wboit_weight(const std::string& name);  // "eq7", "eq9"
 const char* wboit_weight_name(WboitWeight weight);
 
-// MboitSettings.storage by name: 'fp64', 'fp32' or 'unorm16'; throws std::invalid_argument naming
-// them for any other.
-Storage parse_mboit_storage(const std::string& name);
-
 // Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
 // 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
 // published value for the basis, moment count and storage; storage 'fp32', 'unorm16' (the 16-bit
-// ROV variant, re-quantised after every fragment) or 'fp64' (the method itself); log-depth warp over [z_near, z_far] [m] (both 0:
-// the fragments' own range, in render_raster the frame's).
+// ROV variant, re-quantised after every fragment) or 'fp64' (the method itself); log-depth warp
+// over [z_near, z_far] [m] (both 0: the fragments' own range, in render_raster the frame's).
 struct MboitSettings {
   MomentBasis basis = MomentBasis::kPower;
   int moments = 4;              // 4, 6 or 8 power moments; 2, 3 or 4 trigonometric

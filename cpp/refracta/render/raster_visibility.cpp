@@ -19,8 +19,8 @@ namespace {
 
 // The reference for spot light shadows: the fraction of shadow rays blocked, one to the point
 // light, or for an area spot (radius > 0) 8 x 8 stratified ones to its disc (soft shadows).
-double spot_occlusion(const Scene& scene, const Vec3d& p_surface, const Vec3d& n, const Vec3d& extent, const SpotLight& light,
-                      double radius) {
+double spot_occlusion(const Scene& scene, const Vec3d& p_surface, const Vec3d& n, const Vec3d& extent,
+                      const SpotLight& light, double radius) {
   const Vec3d p = offset_point(p_surface, n, extent);
   auto blocked = [&](const Vec3d& target) {
     const Vec3d to = target - p;

@@ -144,8 +144,9 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       std::vector<std::string> ignored;
       if (!m.diffuse_texname.empty() && !has_uvs) ignored.push_back("map_Kd on faces without texture coordinates (vt)");
       const auto& option = m.diffuse_texopt;
-      if (!m.diffuse_texname.empty() && (option.scale[0] != 1.0 || option.scale[1] != 1.0 || option.origin_offset[0] != 0.0 ||
-                                         option.origin_offset[1] != 0.0)) {
+      const bool transformed = option.scale[0] != 1.0 || option.scale[1] != 1.0 || option.origin_offset[0] != 0.0 ||
+                               option.origin_offset[1] != 0.0;
+      if (!m.diffuse_texname.empty() && transformed) {
         ignored.push_back("map_Kd's -s and -o options");
       }
       if (!m.alpha_texname.empty()) ignored.push_back("map_d (an alpha texture)");
