@@ -3,6 +3,9 @@
 #include "refracta/bindings/bindings.h"
 #include "refracta/bindings/options_binding.h"
 #include "refracta/bindings/running_work.h"
+#include "refracta/render/obj_materials.h"
+
+#include <stdexcept>
 
 namespace refracta {
 
@@ -34,6 +37,56 @@ void bind_core(py::module_& m) {
       "refracta._options.build's rule.");
   m.def("_end_thread_cancel", &end_thread_cancel, py::arg("thread_id"),
         "Lets the thread's refracta calls run again after _cancel_thread_work.");
+}
+
+namespace {
+
+// `text` as UTF-8 with any byte that is not valid UTF-8 written \xNN (Python's backslashreplace).
+std::string escaped(const std::string& text) {
+  py::object decoded =
+      py::reinterpret_steal<py::object>(PyUnicode_DecodeUTF8(text.data(), py::ssize_t(text.size()), "backslashreplace"));
+  if (!decoded) throw py::error_already_set();
+  return py::cast<std::string>(decoded);
+}
+
+// Rethrows the exception `e` is (of the types bound or translated) with message `text`.
+[[noreturn]] void rethrow_as(const std::exception& e, const std::string& text) {
+  if (dynamic_cast<const TextureNotFound*>(&e)) throw TextureNotFound(text);
+  if (dynamic_cast<const MissingFile*>(&e)) throw MissingFile(text);
+  if (dynamic_cast<const IoError*>(&e)) throw IoError(text);
+  if (dynamic_cast<const NumericalError*>(&e)) throw NumericalError(text);
+  if (dynamic_cast<const std::invalid_argument*>(&e) || dynamic_cast<const std::domain_error*>(&e)) {
+    throw std::invalid_argument(text);
+  }
+  if (dynamic_cast<const std::out_of_range*>(&e)) throw std::out_of_range(text);
+  throw std::runtime_error(text);
+}
+
+}  // namespace
+
+void escape_undecodable_messages() {
+  // Messages may quote a file's bytes (a PNG's chunk name, an OBJ's line, a file name in Latin-1);
+  // pybind11's translators decode them as UTF-8, and an invalid byte raised UnicodeDecodeError in
+  // place of the error (a trial: read_image's IoError lost its type and file). Registered last,
+  // this translator runs first and hands the others the same exception with those bytes escaped.
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      std::rethrow_exception(thrown);
+    } catch (const py::error_already_set&) {
+      throw;
+    } catch (const py::builtin_exception&) {
+      throw;
+    } catch (const std::exception& e) {
+      const std::string text = e.what();
+      PyObject* strict = PyUnicode_DecodeUTF8(text.data(), py::ssize_t(text.size()), nullptr);
+      if (strict) {
+        Py_DECREF(strict);
+        throw;
+      }
+      PyErr_Clear();
+      rethrow_as(e, escaped(text));
+    }
+  });
 }
 
 }  // namespace refracta

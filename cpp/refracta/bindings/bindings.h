@@ -30,6 +30,8 @@ void bind_dispersion(py::module_& m);
 void bind_runtime(py::module_& m);
 // Last: every refracta class's objects made by __new__ alone raise TypeError when used (unbuilt_objects.cpp).
 void refuse_unbuilt_objects();
+// Last too (tried first): a message that is not UTF-8 reaches Python with its bytes escaped (bind_core.cpp).
+void escape_undecodable_messages();
 // A UserWarning of `message` (with the GIL held); a warning turned into an error raises.
 void warn(const std::string& message);
 // Moves the queued messages of Ceres (glog) to Python's logging; call with the GIL held.

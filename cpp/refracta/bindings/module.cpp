@@ -16,4 +16,5 @@ PYBIND11_MODULE(_core, m) {
   refracta::bind_spectrum(m);
   refracta::bind_dispersion(m);
   refracta::refuse_unbuilt_objects();
+  refracta::escape_undecodable_messages();
 }

@@ -14,7 +14,7 @@ namespace refracta {
 namespace {
 
 // The version of the Scene state (bump when its layout changes; older states are refused).
-constexpr int kSceneStateVersion = 2;  // 2: aerial perspective
+constexpr int kSceneStateVersion = 3;  // 2: aerial perspective; 3: cut-outs
 
 void check_size(const py::tuple& t, size_t size, const char* what) {
   if (t.size() != size) throw_invalid(what, ": bad pickle state (", t.size(), " items, expected ", size, ")");
@@ -120,7 +120,8 @@ py::tuple scene_state(const RenderScene& scene) {
       }
       parts.append(py::make_tuple("terrain", positions, uv, geometry.material(g)));
     } else {
-      parts.append(py::make_tuple("mesh", mesh_state(geometry.meshes().at(g).mesh), geometry.material(g)));
+      parts.append(py::make_tuple("mesh", mesh_state(geometry.meshes().at(g).mesh), geometry.material(g),
+                                  geometry.cutout(g)));
     }
   }
   for (size_t i = 0; i < scene.lights().size(); ++i) {
@@ -157,8 +158,9 @@ std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state) {
       check_size(part, 4, "Scene spheres");
       geometry.add_spheres(to_points(part[1], "centres"), to_values(part[2], "radii"), material_id(part[3]));
     } else if (kind == "mesh") {
-      check_size(part, 3, "Scene mesh");
-      geometry.add_mesh(mesh_from_state(part[1]), material_id(part[2]));
+      check_size(part, 4, "Scene mesh");
+      const unsigned id = geometry.add_mesh(mesh_from_state(part[1]), material_id(part[2]));
+      if (const int cutout = py::cast<int>(part[3]); cutout >= 0) geometry.set_cutout(id, cutout);
     } else if (kind == "terrain") {
       check_size(part, 4, "Scene terrain");
       const auto positions = py::cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(part[1]);

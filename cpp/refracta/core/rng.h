@@ -15,7 +15,9 @@ class Rng {
  public:
   Rng(uint64_t seed, uint64_t stream) : state_(mix(seed ^ mix(stream + 0x9E3779B97F4A7C15ull))) {}
   // Uniform in [0, 1).
-  double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
+  double uniform() { return to_unit(next()); }
+  // 64 random bits as a uniform number in [0, 1) (their top 53).
+  static double to_unit(uint64_t bits) { return double(bits >> 11) * (1.0 / 9007199254740992.0); }
 
   // SplitMix64's finaliser: a bijective hash of 64 bits.
   static uint64_t mix(uint64_t z) {

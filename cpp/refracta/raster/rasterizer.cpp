@@ -25,7 +25,11 @@ struct ScreenTriangle {
   Vec3d bary[3];
   uint32_t geometry, primitive;
   bool transparent = false;
+  bool cutout = false;  // Scene::set_cutout: drawn where its opacity is at least 1/2
 };
+
+// A rasterized cut-out's threshold: the ray renderers' stochastic test, made binary for one sample.
+constexpr double kCutoutDrawn = 0.5;
 
 // Guard band of the clipping planes: screen coordinates stay within 4x the view (exact
 // arithmetic of edge functions in double for any realistic image size).
@@ -168,6 +172,7 @@ VisibilityBuffer draw(const Scene& scene, const RasterView& view, WorkControl& c
       t.geometry = mesh.geometry;
       t.primitive = uint32_t(p);
       t.transparent = transparent && mesh.geometry < transparent->size() && (*transparent)[mesh.geometry];
+      t.cutout = scene.cutout(mesh.geometry) >= 0;
       double u[8], v[8];
       for (size_t k = 0; k < polygon.size(); ++k) view.to_pixel(polygon[k].p, &u[k], &v[k]);
       for (size_t k = 1; k + 1 < polygon.size(); ++k) {  // a fan over the clipped polygon
@@ -222,6 +227,9 @@ VisibilityBuffer draw(const Scene& scene, const RasterView& view, WorkControl& c
     fragments->height = out.height;
     fragments->lists.assign(pixels, {});
   }
+  const auto drawn = [&scene](const ScreenTriangle& t, const Vec3d& bary) {
+    return !t.cutout || scene.opacity(t.geometry, t.primitive, bary.y(), bary.z()) >= kCutoutDrawn;
+  };
   std::atomic<int64_t> covered{0};
   parallel_for_each(int64_t(bins.size()), 1, control, [&](int64_t b) {
     const int x0 = int(b % tiles_x) * tile, y0 = int(b / tiles_x) * tile;
@@ -234,7 +242,7 @@ VisibilityBuffer draw(const Scene& scene, const RasterView& view, WorkControl& c
       if (t.transparent) continue;
       fill(t, view.perspective(), x0, y0, x1, y1, &count, [&](int x, int y, double depth, const Vec3d& bary) {
         const size_t k = out.index(x, y);
-        if (!(depth < out.depth[k])) return;
+        if (!(depth < out.depth[k]) || !drawn(t, bary)) return;
         out.depth[k] = float(depth);
         if (!surfaces) return;
         out.geometry[k] = t.geometry;
@@ -250,7 +258,7 @@ VisibilityBuffer draw(const Scene& scene, const RasterView& view, WorkControl& c
         if (!t.transparent) continue;
         fill(t, view.perspective(), x0, y0, x1, y1, &count, [&](int x, int y, double depth, const Vec3d& bary) {
           const size_t k = out.index(x, y);
-          if (!(depth < out.depth[k])) return;
+          if (!(depth < out.depth[k]) || !drawn(t, bary)) return;
           fragments->lists[k].push_back({float(depth), t.geometry, t.primitive, float(bary.y()), float(bary.z())});
         });
       }

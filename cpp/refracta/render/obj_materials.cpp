@@ -9,6 +9,7 @@
 #include "refracta/shading/principled.h"
 
 #include <cmath>
+#include <optional>
 #include <set>
 
 namespace refracta {
@@ -36,27 +37,28 @@ void ObjOptions::validate() const {
 
 namespace {
 
-// The texture file of each part ("" for none): map_Kd searched by find_texture. A texture found
-// nowhere throws TextureNotFound, or with kWarn warns (once per name) and gives "" (Kd stays).
-std::vector<std::string> texture_paths(const std::vector<MaterialMesh>& parts, const ObjOptions& options) {
+// The file of each part's map_Kd (`name` &MtlMaterial::texture_name) or map_d (cutout_name), ""
+// for none, searched by find_texture. A texture found nowhere throws TextureNotFound, or with
+// kWarn warns (once per name, saying what the part does without it: `instead`) and gives "".
+std::vector<std::string> texture_paths(const std::vector<MaterialMesh>& parts, const ObjOptions& options,
+                                       std::string MtlMaterial::*name, const char* instead) {
   std::vector<std::string> out;
   std::set<std::string> warned;
   for (const MaterialMesh& part : parts) {
     const MtlMaterial& mtl = part.material;
+    const std::string& written = mtl.*name;
     std::vector<std::string> searched;
-    const auto found = mtl.texture_name.empty()
-                           ? std::optional<std::string>("")
-                           : find_texture(mtl.texture_name, mtl.folder, options.texture_dirs, &searched);
+    const auto found = written.empty() ? std::optional<std::string>("")
+                                       : find_texture(written, mtl.folder, options.texture_dirs, &searched);
     if (found) {
       out.push_back(*found);
       continue;
     }
     std::string folders;
     for (const auto& folder : searched) folders += concat(folders.empty() ? "" : ", ", "'", folder, "'");
-    const std::string message =
-        concat("texture '", mtl.texture_name, "' of material '", mtl.name, "' not found in ", folders);
+    const std::string message = concat("texture '", written, "' of material '", mtl.name, "' not found in ", folders);
     if (options.missing_textures == MissingTextures::kError) throw TextureNotFound(message);
-    if (warned.insert(mtl.texture_name).second) options.warn(message + "; its material uses Kd");
+    if (warned.insert(written).second) options.warn(concat(message, "; ", instead));
     out.emplace_back();
   }
   return out;
@@ -70,13 +72,17 @@ std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const
     throw_invalid("add_obj: missing_textures 'warn' needs a warn callback");
   }
   std::vector<MaterialMesh> parts = load_obj(path);
-  const std::vector<std::string> textures = texture_paths(parts, options);
+  const std::vector<std::string> textures =
+      texture_paths(parts, options, &MtlMaterial::texture_name, "its material uses Kd");
+  const std::vector<std::string> cutouts =
+      texture_paths(parts, options, &MtlMaterial::cutout_name, "its surface stays opaque");
   std::set<std::string> distinct(textures.begin(), textures.end()), registered, noted;
+  distinct.insert(cutouts.begin(), cutouts.end());
   distinct.erase("");
   // The callbacks (warnings, progress) may raise: they all run, and every texture loads, before
   // the first mesh is added, so that their failure leaves the scene's geometry as it was (the
   // materials and textures registered stay, unused).
-  std::vector<int> materials(parts.size());
+  std::vector<int> materials(parts.size()), cutout_ids(parts.size());
   for (size_t p = 0; p < parts.size(); ++p) {
     const MaterialMesh& part = parts[p];
     const bool first_time = noted.insert(part.material.name).second;
@@ -89,17 +95,21 @@ std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const
       options.warn(concat("add_obj: '", path, "': material '", part.material.name, "' gives ", part.material.ignored,
                           ", which refracta does not render: ignored"));
     }
-    const int texture = textures[p].empty() ? -1 : scene.geometry.add_texture(textures[p]);
-    if (texture >= 0 && registered.insert(textures[p]).second && options.progress) {
-      options.progress(registered.size(), distinct.size());
-    }
-    materials[p] = scene.add_material(material_from_mtl(part.material, texture));
+    const auto registered_id = [&](const std::string& file) {
+      if (file.empty()) return -1;
+      const int id = scene.geometry.add_texture(file);
+      if (registered.insert(file).second && options.progress) options.progress(registered.size(), distinct.size());
+      return id;
+    };
+    materials[p] = scene.add_material(material_from_mtl(part.material, registered_id(textures[p])));
+    cutout_ids[p] = registered_id(cutouts[p]);
   }
   std::vector<unsigned> ids;
   for (size_t p = 0; p < parts.size(); ++p) {
     MaterialMesh& part = parts[p];
     for (auto& v : part.mesh.vertices) v = v * options.scale + options.offset;
     const unsigned id = scene.geometry.add_mesh(part.mesh, materials[p]);
+    if (cutout_ids[p] >= 0) scene.geometry.set_cutout(id, cutout_ids[p]);
     if (part.material.ke.maxCoeff() > 0.0) {
       scene.add_light(std::make_shared<AreaLight>(part.mesh, Color::illuminant(part.material.ke), false), int(id));
     }

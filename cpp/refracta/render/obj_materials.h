@@ -35,7 +35,7 @@ struct ObjOptions {
   Vec3d offset = Vec3d::Zero();
   // every vertex is multiplied by this (> 0), then offset
   double scale = 1.0;
-  // folders searched, in order, after the MTL's own for each map_Kd (one folder or a sequence)
+  // folders searched, in order, after the MTL's own for each map_Kd and map_d (one folder or a sequence)
   std::vector<std::string> texture_dirs;
   // 'error' (raise refracta.TextureNotFoundError) or 'warn' (a UserWarning once per texture name,
   // through the `warn` callback; the material keeps Kd)
@@ -57,7 +57,8 @@ const char* missing_textures_name(MissingTextures m);  // "error", "warn"
 //
 // Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with
 // d < 1 and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as
-// shading normals.
+// shading normals. map_d is a cut-out mask (its alpha channel, else its first; Scene::set_cutout):
+// leaves and fences on cards, clear where the mask is.
 //
 // A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of
 // ``texture_dirs`` in order (relative folders from the working directory), as written and by its

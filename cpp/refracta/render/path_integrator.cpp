@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace refracta {
 
@@ -79,7 +80,10 @@ class PathTracer : public Integrator {
     // footprint as the ray sees it (SurfaceInteraction::cone_width_along); none after a specular
     // event (a curved mirror or a lens may narrow the cone) or an interface passed straight.
     double origin_width = 0.0;
-    for (int passes = 0; passes < 4 * max_depth + 64; ++passes) {
+    // Surfaces met, index-matched interfaces passed straight included, at most 4 per scattering
+    // event and 64 more; in 64 bits (a max_depth of 1e9 wrapped the bound negative: a trial).
+    const int64_t pass_limit = 4 * int64_t(max_depth) + 64;
+    for (int64_t passes = 0; passes < pass_limit; ++passes) {
       if (passes > 0) cast = caster_.cast(o, d, 0.0, 0.0, origin_width);
       const PathEnd& end = passes == 0 ? first : cast;
       travelled += end.length;

@@ -65,9 +65,14 @@ ReadoutGeometry::ReadoutGeometry(const Vec3d& eye, const IndexField* field, doub
   }
   if (!air || !(eye.y() > 0.0)) return;
   const TraceOptions options = grazing_options(max_length, cancel);
+  // A ray rising above straight_above() goes on straight in the world, away from the ground: it
+  // never meets it. The bisection's traces end there (they ran to max_length, and over a curved
+  // Earth's flat coordinates their steps shrink as they climb: 38 traces of 0.9 s each at 2000 km,
+  // a trial's 14.7 s for the readouts of an 8 x 8 render).
+  const double straight = air->straight_above();
   auto meets_ground = [&](double e) {
-    return trace(*air, eye, at_elevation(e), options, [](const RayNode<double>&, const RayNode<double>&) {
-             return true;
+    return trace(*air, eye, at_elevation(e), options, [straight](const RayNode<double>&, const RayNode<double>& b) {
+             return !(b.x.y() >= straight && b.tangent().y() > 0.0);
            }).stop == TraceStop::kStopHeight;
   };
   // Bisection between a ray that meets the ground and one that does not.

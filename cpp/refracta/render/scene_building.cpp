@@ -117,7 +117,11 @@ unsigned add_billboard(RenderScene& scene, const Vec3d& centre, double width, do
   const Mesh mesh = billboard_mesh(centre, width, height, facing);
   SurfaceLook look;
   look.kd = kd;
-  return scene.geometry.add_mesh(mesh, material_of(scene, look, scene.geometry.add_texture(texture), 1.0));
+  const int picture = scene.geometry.add_texture(texture);
+  const unsigned id = scene.geometry.add_mesh(mesh, material_of(scene, look, picture, 1.0));
+  // A picture with alpha is a cut-out: a ship photographed with its sky cleared stands as a ship.
+  if (scene.geometry.textures().has_alpha(picture)) scene.geometry.set_cutout(id, picture);
+  return id;
 }
 
 void set_geometry_material(RenderScene& scene, int geometry, const MaterialPtr& material) {

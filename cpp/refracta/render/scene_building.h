@@ -80,7 +80,10 @@ unsigned add_ground(RenderScene& scene, double height, double size, const Surfac
 
 // Add a vertical textured rectangle (a photo standing in the scene: a ship, a building) centred at
 // `centre`, width x height [m], its picture facing `facing` (default -x, toward a camera on the
-// -x side), upright; kd (default 1: the picture's own colours) multiplies the texture.
+// -x side), upright; kd (default 1: the picture's own colours) multiplies the texture. Where the
+// picture has alpha (an RGBA or grey-alpha image) it is a cut-out: rays and shadows pass through
+// its clear parts (a ray meets a point of alpha a with probability a; render_raster draws where
+// a >= 1/2).
 unsigned add_billboard(RenderScene& scene, const Vec3d& centre, double width, double height,
                        const std::string& texture, const Vec3d& facing, const std::optional<Vec3d>& kd);
 

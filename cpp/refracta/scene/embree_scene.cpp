@@ -4,12 +4,14 @@
 
 #include "refracta/core/error.h"
 #include "refracta/core/frame.h"
+#include "refracta/core/rng.h"
 
 #include <embree3/rtcore.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -143,6 +145,48 @@ void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
   }
 }
 
+// A uniform number in [0, 1) from a ray's float origin and direction (pbrt-v4 hashes the ray
+// for its stochastic alpha test the same way): the same ray always draws the same number.
+double ray_uniform(RTCRayN* ray, unsigned n, unsigned i) {
+  const float values[6] = {RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i),
+                           RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i)};
+  uint64_t hash = 0x9E3779B97F4A7C15ull;
+  for (const float value : values) {
+    uint32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    hash = Rng::mix(hash ^ bits);
+  }
+  return Rng::to_unit(hash);
+}
+
+// What a cut-out geometry's filter reads (its Embree user data): the scene and the geometry's id.
+struct CutoutFilter {
+  const Scene* scene;
+  unsigned geometry;
+  // A lookup that threw inside Embree (which must not see an exception): the query that met it
+  // throws it afterwards.
+  std::atomic<bool>* failed;
+  std::mutex* mutex;
+  std::string* message;
+};
+
+// Embree's intersect and occluded filter of a cut-out mesh: a candidate hit is dropped (Embree
+// goes on to the next) unless the ray's uniform number lies below the opacity there.
+void cutout_filter(const RTCFilterFunctionNArguments* args) {
+  const auto& filter = *static_cast<const CutoutFilter*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    try {
+      const double opacity = filter.scene->opacity(filter.geometry, RTCHitN_primID(args->hit, args->N, i),
+                                                   RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+      if (!(ray_uniform(args->ray, args->N, i) < opacity)) args->valid[i] = 0;
+    } catch (const std::exception& error) {
+      std::lock_guard<std::mutex> lock(*filter.mutex);
+      if (!filter.failed->exchange(true)) *filter.message = error.what();
+    }
+  }
+}
+
 }  // namespace
 
 struct Scene::Impl {
@@ -156,6 +200,11 @@ struct Scene::Impl {
   // The user-geometry spheres' data (Embree holds raw pointers): kept while the scene lives, a
   // removed geometry's too.
   std::vector<std::shared_ptr<const Spheres>> sphere_data;
+  // The cut-out filters' data (Embree holds raw pointers), and the first error one met.
+  std::vector<std::unique_ptr<CutoutFilter>> cutout_filters;
+  std::atomic<bool> filter_failed{false};
+  std::mutex filter_mutex;
+  std::string filter_message;
 
   Impl() {
     device = rtcNewDevice(nullptr);
@@ -179,6 +228,14 @@ struct Scene::Impl {
     rtcReleaseGeometry(geometry);
     check();
     return id;
+  }
+  // Throws IoError with a cut-out filter's error (a texture lookup that failed during a query).
+  void check_filters() {
+    if (!filter_failed.load()) return;
+    std::lock_guard<std::mutex> lock(filter_mutex);
+    const std::string message = filter_message;
+    filter_failed = false;
+    throw IoError(message);
   }
   void check() {
     if (!error.empty()) {
@@ -324,6 +381,37 @@ int Scene::add_texture(const std::string& path) {
   return textures_->add(path);
 }
 
+void Scene::set_cutout(unsigned geometry, int texture) {
+  check_unchanging("set_cutout");
+  check_geometry(geometry, "set_cutout");
+  if (is_spheres(geometry) || terrain(geometry) || meshes_[geometry].mesh.uvs.empty()) {
+    throw_invalid("set_cutout: geometry ", geometry, " is not a triangle mesh with texture coordinates (uvs)");
+  }
+  if (texture < 0 || size_t(texture) >= textures_->size()) {
+    throw_invalid("set_cutout: no texture ", texture, " (the scene has ", textures_->size(), ")");
+  }
+  cutouts_.resize(materials_.size(), -1);
+  cutouts_[geometry] = texture;
+  impl_->cutout_filters.push_back(std::make_unique<CutoutFilter>(
+      CutoutFilter{this, geometry, &impl_->filter_failed, &impl_->filter_mutex, &impl_->filter_message}));
+  RTCGeometry handle = rtcGetGeometry(impl_->scene, geometry);
+  rtcSetGeometryUserData(handle, impl_->cutout_filters.back().get());
+  rtcSetGeometryIntersectFilterFunction(handle, cutout_filter);
+  rtcSetGeometryOccludedFilterFunction(handle, cutout_filter);
+  rtcCommitGeometry(handle);
+  impl_->check();
+  impl_->dirty = true;
+}
+
+double Scene::opacity(unsigned geometry, unsigned primitive, double b1, double b2) const {
+  const int texture = cutout(geometry);
+  if (texture < 0) return 1.0;
+  const Mesh& mesh = meshes_[geometry].mesh;
+  const auto& tri = mesh.triangles.at(primitive);
+  const Eigen::Vector2d uv = (1.0 - b1 - b2) * mesh.uvs[tri[0]] + b1 * mesh.uvs[tri[1]] + b2 * mesh.uvs[tri[2]];
+  return textures_->opacity(texture, uv.x(), 1.0 - uv.y());  // OIIO's t runs down the image, OBJ's v up
+}
+
 void Scene::check_unchanging(const char* change) const {
   if (const int readers = readers_.load(); readers > 0) {
     // The change named last: a public call reaches it through internal ones (add_box adds a material).
@@ -355,6 +443,7 @@ void Scene::remove(unsigned geometry) {
   meshes_[geometry].mesh = Mesh{};
   sphere_sets_[geometry] = nullptr;
   if (geometry < terrains_.size()) terrains_[geometry] = nullptr;
+  if (geometry < cutouts_.size()) cutouts_[geometry] = -1;
   removed_.resize(materials_.size(), false);
   removed_[geometry] = true;
   // The bounds of what is left.
@@ -454,6 +543,7 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
   query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &sphere.context, &query);
+  impl_->check_filters();
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   Hit hit;
   hit.t = query.ray.tfar;
@@ -511,6 +601,7 @@ bool Scene::occluded(const Vec3d& origin, const Vec3d& dir, double t_max) const 
   RTCRay ray;
   fill_ray(ray, origin, dir, t_max);
   rtcOccluded1(impl_->scene, &context, &ray);
+  impl_->check_filters();
   return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 

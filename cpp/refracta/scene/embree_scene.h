@@ -65,6 +65,16 @@ class Scene {
 
   // Registers an image texture (Textures::add) for this scene's materials; a change like add_mesh.
   int add_texture(const std::string& path);
+  // Cuts a triangle-mesh geometry with uvs out where `texture` (an id of textures()) is clear:
+  // a ray passes through a point of it with probability 1 - opacity (Textures::opacity; pbrt-v4's
+  // stochastic alpha test, drawn from a hash of the ray, so the same ray gets the same answer),
+  // shadow rays too; the rasterizer draws it where the opacity is at least 1/2.
+  void set_cutout(unsigned geometry, int texture);
+  // A geometry's cut-out texture (set_cutout), -1 for none.
+  int cutout(unsigned geometry) const { return geometry < cutouts_.size() ? cutouts_[geometry] : -1; }
+  // The opacity of a triangle-mesh geometry at barycentric weights (b1, b2) of its triangle
+  // `primitive`: its cut-out's there, 1 without one.
+  double opacity(unsigned geometry, unsigned primitive, double b1, double b2) const;
 
   // Builds the acceleration structure; called by the renderers (not thread-safe itself).
   void commit() const;
@@ -147,6 +157,7 @@ class Scene {
   std::vector<std::shared_ptr<const Spheres>> sphere_sets_;  // null for meshes
   std::vector<std::shared_ptr<const TerrainGrid>> terrains_;  // by geometry id (shorter: the rest are not terrain)
   std::vector<bool> removed_;  // by geometry id (shorter: the rest not removed)
+  std::vector<int> cutouts_;   // cut-out texture by geometry id, -1 for none (shorter: the rest none)
   std::shared_ptr<Textures> textures_ = std::make_shared<Textures>();
   Vec3d lower_ = Vec3d::Constant(std::numeric_limits<double>::infinity());
   Vec3d upper_ = Vec3d::Constant(-std::numeric_limits<double>::infinity());

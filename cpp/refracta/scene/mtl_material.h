@@ -1,5 +1,5 @@
 // A Wavefront MTL material record as a file states it (Kd, Ks, Ns, d, Ni, illum, Ke, Pr, Pm,
-// map_Kd): data of the scene layer. The render layer turns it into a shading Material
+// map_Kd, map_d): data of the scene layer. The render layer turns it into a shading Material
 // (render/mtl_materials.h); shading/ never sees this struct.
 #pragma once
 
@@ -22,7 +22,8 @@ struct MtlMaterial {
   double pm = -1.0;          // PBR metallic (Pm), -1 when absent
   std::string texture;       // map_Kd path (resolved against the MTL's folder), empty when none
   std::string texture_name;  // map_Kd as the MTL file writes it (find_texture searches for it)
-  std::string folder;        // the folder map_Kd is relative to: the MTL's
+  std::string cutout_name;   // map_d as the MTL file writes it (a cut-out mask), empty when none
+  std::string folder;        // the folder map_Kd and map_d are relative to: the MTL's
   std::string clamped;       // the values the loader moved into range ("Kd (5, -1, 0.5), d 7"), empty if none
   std::string ignored;       // what it gives that refracta does not render ("map_d (an alpha texture)"), or empty
 };

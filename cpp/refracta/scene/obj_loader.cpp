@@ -100,11 +100,12 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       const auto& m = materials[id];
       MtlMaterial& out_m = part.material;
       out_m.name = m.name;
+      out_m.folder = config.mtl_search_path;
       if (textured) {
         out_m.texture = (std::filesystem::path(config.mtl_search_path) / m.diffuse_texname).string();
         out_m.texture_name = m.diffuse_texname;
-        out_m.folder = config.mtl_search_path;
       }
+      if (has_uvs) out_m.cutout_name = m.alpha_texname;
       // Albedos and opacity into [0, 1], the exponent to >= 0, as renderers read MTL files; the
       // values moved are noted (add_obj warns: a Kd of 5 is a mistake the image would hide).
       const Vec3d kd(m.diffuse[0], m.diffuse[1], m.diffuse[2]), ks(m.specular[0], m.specular[1], m.specular[2]);
@@ -149,7 +150,7 @@ std::vector<MaterialMesh> load_obj(const std::string& path) {
       if (!m.diffuse_texname.empty() && transformed) {
         ignored.push_back("map_Kd's -s and -o options");
       }
-      if (!m.alpha_texname.empty()) ignored.push_back("map_d (an alpha texture)");
+      if (!m.alpha_texname.empty() && !has_uvs) ignored.push_back("map_d on faces without texture coordinates (vt)");
       if (!m.specular_texname.empty()) ignored.push_back("map_Ks");
       if (!m.bump_texname.empty() || !m.normal_texname.empty() || !m.displacement_texname.empty()) {
         ignored.push_back("bump, normal or displacement maps");

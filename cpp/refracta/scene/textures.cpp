@@ -28,6 +28,7 @@ struct Textures::Impl {
   OIIO::TextureSystem* system = nullptr;
   std::vector<OIIO::ustring> files;  // prepared (MIP-mapped, linear) files, by id
   std::vector<int> channels;          // their colour channels, by id: 1 (grey) or 3 (RGB)
+  std::vector<bool> alpha;            // by id: the prepared file has an alpha channel after the colour
   std::mutex mutex;
 
   // Made with the first texture: a Scene without any keeps none (each private system's image cache
@@ -97,26 +98,25 @@ void check_texture_file(const std::string& path) {
 
 namespace {
 
-// A texture's colour channels: 1 for a grey image (with or without alpha), else 3. Alpha is not
-// a texture's: the prepared copy leaves it out (kept, make_texture premultiplied the colour by
-// it, and a cut-out's clear texels rendered black).
+// A texture's colour channels: 1 for a grey image (with or without alpha), else 3.
 int colour_channels(int channels) { return channels >= 3 ? 3 : 1; }
 
 // The prepared copy of `path`: a tiled, MIP-mapped, linear half-float OpenEXR of its colour
-// channels in the cache folder, named by the source's path, size and time (and this preparation's
-// version) so an edited file is prepared again. *channels: its colour channels.
-std::string prepare(const std::string& path, int* channels) {
+// channels, premultiplied by its alpha and followed by it when the image has one, in the cache
+// folder, named by the source's path, size and time (and this preparation's version) so an
+// edited file is prepared again. *channels: its colour channels; *alpha: whether it has alpha.
+std::string prepare(const std::string& path, int* channels, bool* alpha) {
   check_texture_file(path);
   std::error_code error;
   const auto size = fs::file_size(path, error);
   if (error) throw MissingFile(concat("no such texture file: '", path, "'"));
   const auto time = fs::last_write_time(path, error).time_since_epoch().count();
-  constexpr int kPreparation = 3;  // 3: decoded by the header's transfer (stored_gamma), colour channels only
+  constexpr int kPreparation = 4;  // 4: colour premultiplied by the alpha kept after it
   const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time, "|v", kPreparation));
   const fs::path prepared = fs::path(texture_cache_folder()) / concat(std::hex, key, ".exr");
 
   check_png_complete(path);
-  // Colours as stored, not premultiplied by their alpha (which is dropped below).
+  // Colours as stored, not premultiplied by their alpha: linearised first, then premultiplied.
   OIIO::ImageSpec straight;
   straight.attribute("oiio:UnassociatedAlpha", 1);
   OIIO::ImageBuf source(path, 0, 0, nullptr, &straight);
@@ -125,6 +125,7 @@ std::string prepare(const std::string& path, int* channels) {
   if (!source.init_spec(path, 0, 0)) throw IoError(concat("cannot read texture '", path, "': ", source.geterror()));
   const OIIO::ImageSpec header = source.spec();
   *channels = colour_channels(header.nchannels);
+  *alpha = header.alpha_channel >= 0 && header.alpha_channel < header.nchannels;
   if (fs::exists(prepared)) return prepared.string();
   if (header.full_width < 1 || header.full_height < 1 || header.width < 1 || header.height < 1) {
     throw IoError(concat("texture '", path, "': its header gives an empty image or display window"));
@@ -154,6 +155,14 @@ std::string prepare(const std::string& path, int* channels) {
   OIIO::ImageBuf linear = *channels == header.nchannels ? source : OIIO::ImageBufAlgo::channels(source, *channels, {});
   if (gamma == 0.0) linear = OIIO::ImageBufAlgo::colorconvert(linear, "sRGB", "linear");
   if (gamma > 0.0 && gamma != 1.0) linear = OIIO::ImageBufAlgo::pow(linear, float(gamma));
+  if (*alpha) {
+    // MIP levels of premultiplied colour: a cut-out's clear texels (whatever colour they store)
+    // then add nothing to its edge's (lookup divides by the filtered alpha).
+    const int order[] = {header.alpha_channel};
+    linear = OIIO::ImageBufAlgo::channel_append(linear, OIIO::ImageBufAlgo::channels(source, 1, order));
+    linear.specmod().alpha_channel = *channels;
+    linear = OIIO::ImageBufAlgo::premult(linear);
+  }
   if (linear.has_error()) throw IoError(concat("texture '", path, "': ", linear.geterror()));
   // The source's ICC profile describes its encoded colours, not the linear copy; OpenEXR has no
   // place for it either (OIIO would print "Don't know what to do with ... ICCProfile").
@@ -164,6 +173,7 @@ std::string prepare(const std::string& path, int* channels) {
   config.attribute("tile_height", 64);
   config.attribute("compression", "zip");
   config.set_format(OIIO::TypeDesc::HALF);
+  config.attribute("maketx:opaque_detect", 0);  // an alpha of 1 everywhere stays: lookups count the channels
   // Written under a name of this process and call, then renamed (atomic within the folder): a
   // session never reads a partial file, and sessions preparing the same texture at once each
   // write their own (the last rename wins; the copies are identical).
@@ -192,11 +202,13 @@ int Textures::add(const std::string& path) {
     if (paths_[i] == path) return int(i);
   }
   int channels = 3;
-  const std::string prepared = prepare(path, &channels);
+  bool alpha = false;
+  const std::string prepared = prepare(path, &channels, &alpha);
   std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->made();
   impl_->files.emplace_back(prepared);
   impl_->channels.push_back(channels);
+  impl_->alpha.push_back(alpha);
   paths_.push_back(path);
   return int(paths_.size() - 1);
 }
@@ -208,13 +220,35 @@ Vec3d Textures::lookup(int id, const TextureLookup& at) const {
   // a B-spline on the finest level that spread a magnified checker's edge over ~3 texels (a
   // trial against Mitsuba 3: 20 px where Mitsuba's bilinear gives 10, at 10 px a texel).
   options.interpmode = OIIO::TextureOpt::InterpBilinear;
-  float result[3] = {0, 0, 0};
+  const int colours = impl_->channels.at(id);
+  const bool alpha = impl_->alpha.at(id);
+  float result[4] = {0, 0, 0, 0};
   const OIIO::ustring& file = impl_->files.at(id);
   if (!impl_->system->texture(file, options, float(at.s), float(at.t), float(at.dsdx), float(at.dtdx),
-                              float(at.dsdy), float(at.dtdy), 3, result)) {
+                              float(at.dsdy), float(at.dtdy), colours + (alpha ? 1 : 0), result)) {
     throw IoError(concat("texture lookup failed for '", paths_.at(id), "': ", impl_->system->geterror()));
   }
-  return to_rgb(result, impl_->channels.at(id));
+  const Vec3d colour = to_rgb(result, colours);
+  if (!alpha) return colour;
+  // Below this filtered alpha the division would amplify the MIP filter's ringing; a cut-out is
+  // met there once in a thousand rays or less, and shows black.
+  constexpr double kClear = 1e-3;
+  const double a = result[colours];
+  return a > kClear ? Vec3d(colour / std::min(a, 1.0)) : Vec3d::Zero();
+}
+
+bool Textures::has_alpha(int id) const { return impl_->alpha.at(id); }
+
+double Textures::opacity(int id, double s, double t) const {
+  OIIO::TextureOpt options;
+  options.swrap = options.twrap = OIIO::TextureOpt::WrapPeriodic;
+  options.interpmode = OIIO::TextureOpt::InterpBilinear;
+  options.firstchannel = impl_->alpha.at(id) ? impl_->channels.at(id) : 0;
+  float result = 1.0f;
+  if (!impl_->system->texture(impl_->files.at(id), options, float(s), float(t), 0.0f, 0.0f, 0.0f, 0.0f, 1, &result)) {
+    throw IoError(concat("texture lookup failed for '", paths_.at(id), "': ", impl_->system->geterror()));
+  }
+  return std::clamp(double(result), 0.0, 1.0);
 }
 
 }  // namespace refracta

@@ -1,0 +1,22 @@
+"""What a service developer's trial (threads, callbacks, leaks, pickling) found: messages quoting
+a file's bytes that are not UTF-8 lost their exception."""
+
+import pytest
+
+import refracta
+
+
+def test_a_damaged_png_whose_chunk_name_is_not_utf8_raises_ioerror(tmp_path):
+    # The diagnostic quotes the chunk's name as the file stores it (bytes 0xdd...): pybind11 decoded
+    # it as UTF-8 and raised UnicodeDecodeError in place of the IoError naming the file.
+    bad = tmp_path / "bad.png"
+    bad.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR" + bytes(range(200, 256)) * 4)
+    with pytest.raises(refracta.IoError, match=r"bad\.png.*\\xdd\\xde\\xdf\\xe0 chunk"):
+        refracta.io.read_image(str(bad))
+
+
+def test_a_latin1_material_library_name_is_escaped_in_its_message(tmp_path):
+    obj = tmp_path / "m.obj"
+    obj.write_bytes(b"mtllib caf\xe9.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    with pytest.raises(refracta.MissingFileError, match=r"caf\\xe9\.mtl"):
+        refracta.Scene().add_obj(str(obj))
