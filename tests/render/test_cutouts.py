@@ -64,7 +64,9 @@ def test_a_billboard_shows_what_stands_behind_its_clear_parts(tmp_path, renderer
     np.testing.assert_array_equal(with_picture[CLEAR], np.broadcast_to(np.float32(WALL), with_picture[CLEAR].shape))
     # Its opaque half is the picture's red (lit by the sky), never the green its clear texels store.
     red = with_picture[OPAQUE]
-    assert not np.isclose(red, np.float32(WALL)).all(axis=-1).any()
+    # No pixel there is the wall's (exactly WALL in float32).
+    assert not (red == np.float32(WALL)).all(axis=-1).any()
+    # The sky's red 0.2 times the picture's 1 (> 0.1); green: float32 round-off of 0 at most.
     assert np.all(red[..., 0] > 0.1) and np.all(red[..., 1] < 1e-3 * red[..., 0]), red[..., :2].max(axis=(0, 1))
 
 
@@ -127,6 +129,7 @@ def test_light_passes_a_picture_where_it_is_clear(tmp_path, renderer):
     # Points 0.5 m or more above the shadow's edge (0.25 m on the picture, whose bilinear edge is
     # a texel, 0.094 m, wide): lit exactly as without the picture.
     np.testing.assert_array_equal(lit[upper], free[upper])
+    # Lit without the picture (200 W/sr over 10 m: > 0.1), black in its shadow (no other light).
     assert free[lower].min() > 0.1 and lit[lower].max() == 0.0
 
 
@@ -149,6 +152,7 @@ def test_an_obj_map_d_mask_cuts_its_card_out(tmp_path):
     # constant sky: radiance SKY (each cosine-distributed sky sample carries it exactly; 1e-6 is
     # float32's rounding of the sum).
     np.testing.assert_array_equal(image[CLEAR], np.broadcast_to(np.float32(WALL), image[CLEAR].shape))
+    # rtol: float32's rounding of the sum, as above.
     np.testing.assert_allclose(image[OPAQUE], np.broadcast_to(np.float32(SKY), image[OPAQUE].shape), rtol=1e-6)
 
 

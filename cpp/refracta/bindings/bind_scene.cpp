@@ -141,7 +141,13 @@ void bind_scene_geometry(py::class_<RenderScene, std::shared_ptr<RenderScene>>& 
              using namespace py::literals;
              const py::dict fields("offset"_a = offset, "scale"_a = scale, "texture_dirs"_a = texture_dirs,
                                    "missing_textures"_a = missing_textures);
-             return add_obj(s, path.string(), obj_options(options, fields, progress));
+             const ObjOptions settings = obj_options(options, fields, progress);
+             std::vector<MaterialMesh> parts;
+             {
+               py::gil_scoped_release release;  // a 2.4 M-triangle OBJ parses for 4 s (a trial)
+               parts = load_obj(path.string());
+             }
+             return add_loaded_obj(s, std::move(parts), path.string(), settings);
            },
            py::arg("path"), py::arg("offset") = py::none(), py::arg("scale") = py::none(), py::kw_only(),
            py::arg("options") = py::none(), py::arg("texture_dirs") = py::none(),

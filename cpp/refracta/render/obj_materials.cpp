@@ -68,10 +68,15 @@ std::vector<std::string> texture_paths(const std::vector<MaterialMesh>& parts, c
 
 std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const ObjOptions& options) {
   options.validate();
+  return add_loaded_obj(scene, load_obj(path), path, options);
+}
+
+std::vector<unsigned> add_loaded_obj(RenderScene& scene, std::vector<MaterialMesh> parts, const std::string& path,
+                                      const ObjOptions& options) {
+  options.validate();
   if (options.missing_textures == MissingTextures::kWarn && !options.warn) {
     throw_invalid("add_obj: missing_textures 'warn' needs a warn callback");
   }
-  std::vector<MaterialMesh> parts = load_obj(path);
   const std::vector<std::string> textures =
       texture_paths(parts, options, &MtlMaterial::texture_name, "its material uses Kd");
   const std::vector<std::string> cutouts =

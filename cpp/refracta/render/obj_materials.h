@@ -6,6 +6,7 @@
 #include "refracta/core/error.h"
 #include "refracta/render/render_scene.h"
 #include "refracta/scene/mtl_material.h"
+#include "refracta/scene/obj_loader.h"
 
 #include <cstddef>
 #include <functional>
@@ -74,5 +75,9 @@ const char* missing_textures_name(MissingTextures m);  // "error", "warn"
 //
 // Returns the geometry ids, one per part. A missing OBJ or MTL raises refracta.IoError.
 std::vector<unsigned> add_obj(RenderScene& scene, const std::string& path, const ObjOptions& options = {});
+// The same with the file already read (scene/obj_loader.h's load_obj(path)): the Python binding
+// reads it with the GIL released, then adds it here; `path` names the file in messages.
+std::vector<unsigned> add_loaded_obj(RenderScene& scene, std::vector<MaterialMesh> parts, const std::string& path,
+                                      const ObjOptions& options);
 
 }  // namespace refracta
