@@ -122,8 +122,8 @@ priority: nested dielectrics (larger wins). Model a glass of water with the wate
 the glass by more than the ray offset (offset_point: 1e-5 m + 5e-7 x the coordinates; 2e-4 m near
 the origin holds), or sharing its surface exactly as triangles: surfaces 2e-6 to 2e-5 m apart, or
 coincident exact spheres, are not told apart and the medium record goes wrong (a
-trial: 27-63 % of the light lost; Mitsuba 3's larger offset, 9e-5 x (1 + the largest coordinate),
-       has it too).)doc";
+trial: 27-63 % of the light lost; Mitsuba 3's larger offset, 9e-5 x (1 + the largest
+coordinate), has the same limit).)doc";
 inline constexpr const char mkd_doc_refracta_Diffuse[] = R"doc(Lambertian reflection f = R / pi (two-sided). reflectance: a number or (r, g, b) in [0, 1] (> 1 is
 refused: it would create energy).)doc";
 inline constexpr const char mkd_doc_refracta_DispersedField[] = R"doc(A field at another wavelength: n' = 1 + scale (n - 1), grad n' = scale grad n, height-only as its

@@ -2947,8 +2947,8 @@ class Dielectric(Material):
     the glass by more than the ray offset (offset_point: 1e-5 m + 5e-7 x the coordinates; 2e-4 m near
     the origin holds), or sharing its surface exactly as triangles: surfaces 2e-6 to 2e-5 m apart, or
     coincident exact spheres, are not told apart and the medium record goes wrong (a
-    trial: 27-63 % of the light lost; Mitsuba 3's larger offset, 9e-5 x (1 + the largest coordinate),
-           has it too).
+    trial: 27-63 % of the light lost; Mitsuba 3's larger offset, 9e-5 x (1 + the largest
+    coordinate), has the same limit).
     """
     def __getstate__(self) -> dict:
         ...
@@ -3801,7 +3801,7 @@ def _rasterize(scene: Scene, camera: Camera, guard_band: typing.SupportsFloat | 
     """
     (depth, geometry, primitive, barycentric (H * W, 3), offset, triangles, screen triangles, fragments).
     """
-def _read_image(path: os.PathLike | str | bytes, linear: bool) -> numpy.typing.NDArray[numpy.float32]:
+def _read_image(path: str, linear: bool) -> numpy.typing.NDArray[numpy.float32]:
     ...
 def _render(scene: Scene, camera: Camera, field: IndexField, options: RenderOptions, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], RenderStats]:
     ...
@@ -3871,7 +3871,7 @@ def _white_balance_matrix(image: typing.Any, display: DisplaySettings) -> numpy.
     """
     The white balance's linear sRGB matrix for this image (io.white_balance_of).
     """
-def _write_image(path: os.PathLike | str | bytes, image: typing.Any, display: DisplaySettings) -> None:
+def _write_image(path: str, image: typing.Any, display: DisplaySettings) -> None:
     """
     Write an image as refracta.io.write_image.
     """

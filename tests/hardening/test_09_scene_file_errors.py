@@ -92,7 +92,7 @@ def test_a_boolean_or_string_for_a_number_is_refused(tmp_path, text, line, key):
 def test_curved_earth_takes_true_or_a_planets_radius(tmp_path, radius):
     # A trial's `curved_earth = 1` (TOML's 1 is not true) loaded as a 1 m Earth and failed only when
     # rendering, with n overflowing in its flat frame.
-    message = r"scene.toml:5: \[atmosphere\] curved_earth: .*radius must be a planet's, at least 1000 m"
+    message = r"scene.toml:5: \[atmosphere\] curved_earth: .*radius must be a planet's, at least 100000 m"
     with pytest.raises(ValueError, match=message):
         load(tmp_path, CAMERA + f"[atmosphere]\ncurved_earth = {radius}\n")
     assert load(tmp_path, CAMERA + "[atmosphere]\ncurved_earth = 6371000.0\n")[2].radius == 6371000.0

@@ -96,7 +96,9 @@ def load(tmp_path, text):
 
 
 def test_scene_files_refuse_a_flat_zero_earth_and_a_second_sun(tmp_path):
-    with pytest.raises(ValueError, match=r"scene.toml:\d+: .*curved_earth.*radius must be a planet's, at least 1000 m"):
+    with pytest.raises(
+        ValueError, match=r"scene.toml:\d+: .*curved_earth.*radius must be a planet's, at least 100000 m"
+    ):
         load(tmp_path, CAMERA + "[atmosphere]\ncurved_earth = 0\n")
     sun = '[[lights]]\ntype = "sun"\ndirection = [0, 1, 1]\nradiance = [1, 1, 1]\n'
     with pytest.raises(ValueError, match=r"\[\[lights\]\] #2 type: a second sun"):

@@ -309,7 +309,7 @@ def test_astronomical_refraction_and_refraction_coefficient_name_their_numbers()
         refracta.astronomical_refraction(air, 5.0, "5")
     with pytest.raises(ValueError, match="earth_radius must be finite and > 0 m"):  # "> 0 (got inf)" before
         refracta.astronomical_refraction(air, 5.0, earth_radius=math.inf)
-    with pytest.raises(ValueError, match="at least 1000 m"):  # said ">= 0" for -1, then refused 0
+    with pytest.raises(ValueError, match="at least 100000 m"):  # said ">= 0" for -1, then refused 0
         refracta.refraction_coefficient(air, 2.0, 1000.0, earth_radius=-1.0)
 
 

@@ -141,7 +141,7 @@ def test_a_hand_made_ray_path_state_must_be_a_trace():
 def test_project_over_a_sphere_refuses_a_radius_that_would_overflow():
     camera = refracta.Camera((0.0, 5.0, 0.0), (1000.0, 5.0, 0.0))
     for radius in (1e-300, 10.0, -1.0, float("nan")):  # 1e-300 gave NaN pixels, 10 a depth of -2.8e35
-        with pytest.raises(ValueError, match=r"earth_radius must be at least 1000 m, or inf"):
+        with pytest.raises(ValueError, match=r"earth_radius must be at least 100000 m, or inf"):
             camera.project([100.0, 800.0, 0.0], earth_radius=radius)
     assert camera.project([100.0, 5.0, 0.0], earth_radius=float("inf"))[2] == pytest.approx(100.0)  # flat: exact
 

@@ -226,7 +226,7 @@ def test_bad_spot_parameters_and_arguments_are_refused():
             lambda: refracta.PhysicalAtmosphere(surface_dt=1e6),
             r"temperature is 2000294.6\d* K .* must stay in \(0, 10000\] K",
         ),
-        (lambda: refracta.PhysicalAtmosphere(t_ground=-400.0), r"must stay in \(0, 10000\] K"),
+        (lambda: refracta.PhysicalAtmosphere(t_ground=-400.0), r"t_ground must be in \[100, 10000\] K, in kelvin"),
         (
             lambda: refracta.PhysicalAtmosphere(hot_spots=[refracta.HotSpot(10, 0, 5, 1e6)]),
             r"hot_spot0_dt must be in \[-150, 500\] K",

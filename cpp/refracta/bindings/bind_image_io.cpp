@@ -91,8 +91,8 @@ void bind_image_io(py::module_& m) {
   m.def("_is_float_format", &is_float_format, py::arg("path"), "Whether write_image keeps path's format linear.");
   m.def(
       "_write_image",
-      [](const FilePath& path, const py::object& image, const DisplaySettings& display) {
-        write_display_image_warning(path.string(), to_image(image, "image"), display);
+      [](const std::string& path, const py::object& image, const DisplaySettings& display) {
+        write_display_image_warning(path, to_image(image, "image"), display);
       },
       py::arg("path"), py::arg("image"), py::arg("display"), "Write an image as refracta.io.write_image.");
   m.def(
@@ -123,9 +123,7 @@ void bind_image_io(py::module_& m) {
         "EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.");
   m.def(
       "_read_image",
-      [](const FilePath& file, bool linear) {
-        // A path, or a str with a name that is not UTF-8 (os.fsdecode's surrogates: a trial's TypeError).
-        const std::string path = file.string();
+      [](const std::string& path, bool linear) {
         Image image;
         {
           py::gil_scoped_release release;  // a 4096 x 2048 EXR reads for 1 s (a trial)

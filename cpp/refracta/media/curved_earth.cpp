@@ -13,8 +13,8 @@ CurvedEarth::CurvedEarth(FieldPtr base, double radius) : base_(std::move(base)),
     throw_invalid("CurvedEarth: the base field must depend on height only (", base_->type_name(), " does not)");
   }
   if (!(radius >= kMinRadius) || !std::isfinite(radius)) {
-    throw_invalid("CurvedEarth: radius must be a planet's, at least ", kMinRadius, " m (the Earth's is ", kEarthRadius,
-                  " m; got ", radius, ")");
+    throw_invalid("CurvedEarth: radius must be a planet's, at least ", kMinRadius, " m (in metres: the Earth's is ",
+                  kEarthRadius, " m; got ", radius, ")");
   }
   // Flattening twice would bend the rays by the Earth's curvature twice (and name earth_radius twice).
   if (std::isfinite(base_->earth_radius())) {

@@ -38,9 +38,10 @@ void flattened_height(const Base& base, const T& radius, const T& y, T* n, T* dn
 class CurvedEarth : public IndexField {
  public:
   // base must be height-only; radius [m] at least kMinRadius: a body that holds an atmosphere is
-  // far larger (the Moon's is 1.7e6 m), and the flat frame's n = e^(y/R) n(h) overflows double
-  // 115 R above the ground (a scene file's curved_earth = 1, meant as true, was a 1 m Earth).
-  static constexpr double kMinRadius = 1e3;
+  // far larger (Pluto's is 1.19e6 m), the flat frame's n = e^(y/R) n(h) overflows double 115 R
+  // above the ground (a scene file's curved_earth = 1, meant as true, was a 1 m Earth), and the
+  // Earth's radius in km, 6371, is caught (a trial: a 6.4 km Earth, k = -0.01, accepted).
+  static constexpr double kMinRadius = 1e5;
   CurvedEarth(FieldPtr base, double radius = kEarthRadius);
 
   std::string type_name() const override { return "CurvedEarth"; }

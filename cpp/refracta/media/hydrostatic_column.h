@@ -23,6 +23,10 @@ namespace refracta {
 // 1e4 K is far beyond any real air (a test's ducting lapse rate of -0.13 K/m reaches 1700 K at
 // 11 km) and well inside it.
 constexpr double kHottestAir = 1e4;
+// The coldest [K]: the summer mesopause, the coldest air there is, reaches ~110 K. Below it a
+// temperature is a mistake, most often Celsius given for kelvin (a trial's 15 "K" sounding gave
+// n - 1 19 times the real one).
+constexpr double kColdestAir = 100.0;
 
 // Sorted, de-duplicated nodes: [lo, hi] every `step`, plus finer runs (from, to, step), plus
 // `extra` nodes (kinks of the profile, where the interpolant must not straddle a jump of T').

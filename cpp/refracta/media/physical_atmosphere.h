@@ -134,6 +134,10 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
   }
 
   static void validate_base(const std::vector<double>& v) {
+    if (!(v[kGroundTemperature] >= kColdestAir && v[kGroundTemperature] <= kHottestAir)) {
+      throw_invalid("PhysicalAtmosphere: t_ground must be in [", kColdestAir, ", ", kHottestAir,
+                    "] K, in kelvin (15 C is 288.15 K; got ", v[kGroundTemperature], ")");
+    }
     if (!(v[kGroundPressure] > 0.0)) {
       throw_invalid("PhysicalAtmosphere: pressure must be > 0 Pa (got ", v[kGroundPressure], ")");
     }

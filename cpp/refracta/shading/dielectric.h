@@ -106,7 +106,8 @@ class ThinDielectricBsdf final : public Bsdf {
 // the glass by more than the ray offset (offset_point: 1e-5 m + 5e-7 x the coordinates; 2e-4 m
 // near the origin holds), or sharing its surface exactly as triangles: surfaces 2e-6 to 2e-5 m
 // apart, or coincident exact spheres, are not told apart and the medium record goes wrong (a
-// trial: 27-63 % of the light lost; Mitsuba 3's larger offset, 9e-5 x (1 + the largest coordinate), has it too).
+// trial: 27-63 % of the light lost; Mitsuba 3's larger offset, 9e-5 x (1 + the largest
+// coordinate), has the same limit).
 class Dielectric final : public Material {
  public:
   explicit Dielectric(const Ior& ior = Ior(1.5), int priority = 0) : ior_(ior), priority_(priority) {}
