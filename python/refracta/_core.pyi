@@ -3801,7 +3801,7 @@ def _rasterize(scene: Scene, camera: Camera, guard_band: typing.SupportsFloat | 
     """
     (depth, geometry, primitive, barycentric (H * W, 3), offset, triangles, screen triangles, fragments).
     """
-def _read_image(path: str, linear: bool) -> numpy.typing.NDArray[numpy.float32]:
+def _read_image(path: typing.Any, linear: bool) -> numpy.typing.NDArray[numpy.float32]:
     ...
 def _render(scene: Scene, camera: Camera, field: IndexField, options: RenderOptions, progress: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], RenderStats]:
     ...
@@ -3871,7 +3871,7 @@ def _white_balance_matrix(image: typing.Any, display: DisplaySettings) -> numpy.
     """
     The white balance's linear sRGB matrix for this image (io.white_balance_of).
     """
-def _write_image(path: str, image: typing.Any, display: DisplaySettings) -> None:
+def _write_image(path: typing.Any, image: typing.Any, display: DisplaySettings) -> None:
     """
     Write an image as refracta.io.write_image.
     """

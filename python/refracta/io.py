@@ -175,8 +175,7 @@ def write_image(
     fields: dict[str, Any] = dict(exposure=exposure, tonemap=tonemap, gamma=gamma, key=key, white=white, ev100=ev100)
     fields.update(iso=iso, shutter=shutter, f_number=f_number, luminous_efficacy=luminous_efficacy)
     fields.update(white_balance=white_balance)
-    # As the file system's bytes: a name that is not UTF-8 (os.fsdecode's surrogates) stays the file's.
-    _core._write_image(os.fsencode(path), _image_array(image, "write_image"), settings(display, **fields))
+    _core._write_image(os.fspath(path), _image_array(image, "write_image"), settings(display, **fields))
 
 
 # Channel suffixes of a layer in write_layers, by its number of channels (EXR's layer.channel names).
@@ -320,7 +319,7 @@ def read_image(path, linear: bool = False) -> np.ndarray:
     """
     if not is_flag(linear):
         raise ValueError(f"read_image: linear must be True or False (got {linear!r})")
-    return _core._read_image(os.fsencode(path), bool(linear))  # bytes, as write_image passes them
+    return _core._read_image(os.fspath(path), bool(linear))
 
 
 def to_display(

@@ -144,7 +144,10 @@ def test_the_command_line_refuses_an_unwritable_output_before_rendering(tmp_path
 
 
 def test_a_sounding_and_a_ground_name_the_value_out_of_range():
-    with pytest.raises(ValueError, match=r"temperatures\[1\] \(t1\) must be in \(0, 10000\] K \(got 1000000\)"):
+    with pytest.raises(
+        ValueError,
+        match=r"temperatures\[1\] \(t1\) must be in \[100, 10000\] K, in kelvin \(15 C is 288.15 K; got 1000000\)",
+    ):
         refracta.TemperatureProfile([0, 1, 10], [300, 295, 290]).with_params(t1=1e6)
     scene = refracta.Scene()
     with pytest.raises(ValueError, match=r"ground: size must be > 0 and at most 20000000 m \(got inf\)"):

@@ -270,4 +270,4 @@ def test_review_findings_bools_and_planets():
     # A planet, not a pebble: the flat frame's n = e^(y/R) n(h) overflows 115 R up.
     with pytest.raises(ValueError, match="CurvedEarth: radius must be a planet's, at least 100000 m"):
         refracta.CurvedEarth(refracta.PhysicalAtmosphere(), 1.0)
-    assert refracta.CurvedEarth(refracta.PhysicalAtmosphere(), 1000.0).radius == 1000.0
+    assert refracta.CurvedEarth(refracta.PhysicalAtmosphere(), 1e5).radius == 1e5  # the floor itself

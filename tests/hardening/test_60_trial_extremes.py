@@ -56,4 +56,5 @@ def test_hidden_heights_do_not_depend_on_how_far_the_bisection_traces():
     # The same rays to the boxes (within max_length either way): the same readouts.
     np.testing.assert_array_equal(np.isnan(short["hidden_height"]), np.isnan(long["hidden_height"]))
     assert np.isfinite(short["hidden_height"]).any()
+    # The same grazing ray: equal to round-off (assert_allclose's default 1e-7 relative).
     np.testing.assert_allclose(short["hidden_height"], long["hidden_height"], equal_nan=True)

@@ -29,6 +29,13 @@ py::array_t<float> image_to_float32(Image&& image) {
 
 namespace {
 
+// A path (str, bytes or os.PathLike) as the file system's bytes: a name that is not UTF-8 (a str
+// holding os.fsdecode's surrogates) stays the file's, and a NUL byte reaches the readers' and
+// writers' check_path_text, which refuses it by name.
+std::string file_system_path(const py::object& path) {
+  return py::cast<std::string>(py::module_::import("os").attr("fsencode")(path));
+}
+
 // io.write_image (display.h's write_display_image), warning first of the settings a float file leaves unused.
 void write_display_image_warning(const std::string& path, Image image, const DisplaySettings& settings) {
   if (is_float_format(path)) {
@@ -91,8 +98,8 @@ void bind_image_io(py::module_& m) {
   m.def("_is_float_format", &is_float_format, py::arg("path"), "Whether write_image keeps path's format linear.");
   m.def(
       "_write_image",
-      [](const std::string& path, const py::object& image, const DisplaySettings& display) {
-        write_display_image_warning(path, to_image(image, "image"), display);
+      [](const py::object& path, const py::object& image, const DisplaySettings& display) {
+        write_display_image_warning(file_system_path(path), to_image(image, "image"), display);
       },
       py::arg("path"), py::arg("image"), py::arg("display"), "Write an image as refracta.io.write_image.");
   m.def(
@@ -123,7 +130,8 @@ void bind_image_io(py::module_& m) {
         "EV100 = log2(N^2 / t) - log2(ISO / 100) of a camera's f-number, shutter time [s] and ISO.");
   m.def(
       "_read_image",
-      [](const std::string& path, bool linear) {
+      [](const py::object& file, bool linear) {
+        const std::string path = file_system_path(file);
         Image image;
         {
           py::gil_scoped_release release;  // a 4096 x 2048 EXR reads for 1 s (a trial)
