@@ -6,6 +6,7 @@
 #include "refracta/render/obj_materials.h"
 
 #include <stdexcept>
+#include <typeinfo>
 
 namespace refracta {
 
@@ -49,17 +50,16 @@ std::string escaped(const std::string& text) {
   return py::cast<std::string>(decoded);
 }
 
-// Rethrows the exception `e` is (of the types bound or translated) with message `text`.
-[[noreturn]] void rethrow_as(const std::exception& e, const std::string& text) {
-  if (dynamic_cast<const TextureNotFound*>(&e)) throw TextureNotFound(text);
-  if (dynamic_cast<const MissingFile*>(&e)) throw MissingFile(text);
-  if (dynamic_cast<const IoError*>(&e)) throw IoError(text);
-  if (dynamic_cast<const NumericalError*>(&e)) throw NumericalError(text);
-  if (dynamic_cast<const std::invalid_argument*>(&e) || dynamic_cast<const std::domain_error*>(&e)) {
-    throw std::invalid_argument(text);
-  }
-  if (dynamic_cast<const std::out_of_range*>(&e)) throw std::out_of_range(text);
-  throw std::runtime_error(text);
+// Rethrows `e` with message `text` when its type is one refracta throws (exactly: a type derived
+// from them, or another module's, passes unchanged); returns otherwise.
+void rethrow_as(const std::exception& e, const std::string& text) {
+  const std::type_info& type = typeid(e);
+  if (type == typeid(TextureNotFound)) throw TextureNotFound(text);
+  if (type == typeid(MissingFile)) throw MissingFile(text);
+  if (type == typeid(IoError)) throw IoError(text);
+  if (type == typeid(NumericalError)) throw NumericalError(text);
+  if (type == typeid(std::invalid_argument)) throw std::invalid_argument(text);
+  if (type == typeid(std::runtime_error)) throw std::runtime_error(text);
 }
 
 }  // namespace
@@ -85,6 +85,7 @@ void escape_undecodable_messages() {
       }
       PyErr_Clear();
       rethrow_as(e, escaped(text));
+      throw;
     }
   });
 }

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <string>
 
 namespace refracta {
@@ -85,14 +86,17 @@ Vec3d ray_dir(RTCRayN* ray, unsigned n, unsigned i) {
   return Vec3d(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i));
 }
 
-// What Scene::intersect hands Embree as its context: the query's ray in double, and the nearest
-// sphere root the callback accepted, solved from that double ray (Embree's ray is a float copy of
-// it): Scene::intersect then need not solve the hit's sphere again.
+// What Scene::intersect and Scene::occluded hand Embree as its context: the query's ray in
+// double, and the nearest sphere root the callback accepted, solved from that double ray
+// (Embree's ray is a float copy of it): Scene::intersect then need not solve the hit's sphere
+// again. And the first error of a cut-out's filter in this query (Embree must not see an
+// exception): the query throws it afterwards.
 struct SphereQuery {
   RTCIntersectContext context;  // first: Embree passes callbacks a pointer to it
   Vec3d origin, dir;
   double t = 0.0;
   unsigned geometry = RTC_INVALID_GEOMETRY_ID, primitive = 0;
+  std::optional<std::string> filter_error;
 };
 
 // The nearest root in (tnear, tfar): the hit, as Embree's sphere reported it (Ng = hit - centre).
@@ -145,12 +149,15 @@ void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
   }
 }
 
-// A uniform number in [0, 1) from a ray's float origin and direction (pbrt-v4 hashes the ray
-// for its stochastic alpha test the same way): the same ray always draws the same number.
-double ray_uniform(RTCRayN* ray, unsigned n, unsigned i) {
+// A uniform number in [0, 1) from a ray's float origin and direction and the triangle it meets
+// (pbrt-v4 hashes the ray for its stochastic alpha test, and leaves each surface by a new ray):
+// the same ray draws the same number at a triangle, and independent ones at the layers behind
+// it (one number for all, two cards of alpha 1/2 let half the rays through, not a quarter: a
+// review).
+double ray_uniform(RTCRayN* ray, unsigned n, unsigned i, unsigned geometry, unsigned primitive) {
   const float values[6] = {RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i),
                            RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i)};
-  uint64_t hash = 0x9E3779B97F4A7C15ull;
+  uint64_t hash = Rng::mix((uint64_t(geometry) << 32) ^ primitive ^ 0x9E3779B97F4A7C15ull);
   for (const float value : values) {
     uint32_t bits;
     std::memcpy(&bits, &value, sizeof bits);
@@ -163,26 +170,23 @@ double ray_uniform(RTCRayN* ray, unsigned n, unsigned i) {
 struct CutoutFilter {
   const Scene* scene;
   unsigned geometry;
-  // A lookup that threw inside Embree (which must not see an exception): the query that met it
-  // throws it afterwards.
-  std::atomic<bool>* failed;
-  std::mutex* mutex;
-  std::string* message;
 };
 
 // Embree's intersect and occluded filter of a cut-out mesh: a candidate hit is dropped (Embree
 // goes on to the next) unless the ray's uniform number lies below the opacity there.
 void cutout_filter(const RTCFilterFunctionNArguments* args) {
   const auto& filter = *static_cast<const CutoutFilter*>(args->geometryUserPtr);
+  // Scene's queries are single rays with a SphereQuery as their context.
+  auto& query = *reinterpret_cast<SphereQuery*>(const_cast<RTCIntersectContext*>(args->context));
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     try {
-      const double opacity = filter.scene->opacity(filter.geometry, RTCHitN_primID(args->hit, args->N, i),
-                                                   RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
-      if (!(ray_uniform(args->ray, args->N, i) < opacity)) args->valid[i] = 0;
+      const unsigned primitive = RTCHitN_primID(args->hit, args->N, i);
+      const double opacity =
+          filter.scene->opacity(filter.geometry, primitive, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+      if (!(ray_uniform(args->ray, args->N, i, filter.geometry, primitive) < opacity)) args->valid[i] = 0;
     } catch (const std::exception& error) {
-      std::lock_guard<std::mutex> lock(*filter.mutex);
-      if (!filter.failed->exchange(true)) *filter.message = error.what();
+      if (!query.filter_error) query.filter_error = error.what();
     }
   }
 }
@@ -200,11 +204,8 @@ struct Scene::Impl {
   // The user-geometry spheres' data (Embree holds raw pointers): kept while the scene lives, a
   // removed geometry's too.
   std::vector<std::shared_ptr<const Spheres>> sphere_data;
-  // The cut-out filters' data (Embree holds raw pointers), and the first error one met.
+  // The cut-out filters' data (Embree holds raw pointers).
   std::vector<std::unique_ptr<CutoutFilter>> cutout_filters;
-  std::atomic<bool> filter_failed{false};
-  std::mutex filter_mutex;
-  std::string filter_message;
 
   Impl() {
     device = rtcNewDevice(nullptr);
@@ -228,14 +229,6 @@ struct Scene::Impl {
     rtcReleaseGeometry(geometry);
     check();
     return id;
-  }
-  // Throws IoError with a cut-out filter's error (a texture lookup that failed during a query).
-  void check_filters() {
-    if (!filter_failed.load()) return;
-    std::lock_guard<std::mutex> lock(filter_mutex);
-    const std::string message = filter_message;
-    filter_failed = false;
-    throw IoError(message);
   }
   void check() {
     if (!error.empty()) {
@@ -392,8 +385,7 @@ void Scene::set_cutout(unsigned geometry, int texture) {
   }
   cutouts_.resize(materials_.size(), -1);
   cutouts_[geometry] = texture;
-  impl_->cutout_filters.push_back(std::make_unique<CutoutFilter>(
-      CutoutFilter{this, geometry, &impl_->filter_failed, &impl_->filter_mutex, &impl_->filter_message}));
+  impl_->cutout_filters.push_back(std::make_unique<CutoutFilter>(CutoutFilter{this, geometry}));
   RTCGeometry handle = rtcGetGeometry(impl_->scene, geometry);
   rtcSetGeometryUserData(handle, impl_->cutout_filters.back().get());
   rtcSetGeometryIntersectFilterFunction(handle, cutout_filter);
@@ -543,7 +535,7 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
   query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &sphere.context, &query);
-  impl_->check_filters();
+  if (sphere.filter_error) throw IoError(*sphere.filter_error);
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   Hit hit;
   hit.t = query.ray.tfar;
@@ -596,12 +588,12 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
 bool Scene::occluded(const Vec3d& origin, const Vec3d& dir, double t_max) const {
   check_ray(origin, dir, t_max);
   if (impl_->dirty) commit();
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  SphereQuery query;  // the context cut-out filters expect (the sphere callbacks' fields unused)
+  rtcInitIntersectContext(&query.context);
   RTCRay ray;
   fill_ray(ray, origin, dir, t_max);
-  rtcOccluded1(impl_->scene, &context, &ray);
-  impl_->check_filters();
+  rtcOccluded1(impl_->scene, &query.context, &ray);
+  if (query.filter_error) throw IoError(*query.filter_error);
   return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 

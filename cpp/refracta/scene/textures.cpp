@@ -102,8 +102,7 @@ namespace {
 int colour_channels(int channels) { return channels >= 3 ? 3 : 1; }
 
 // The prepared copy of `path`: a tiled, MIP-mapped, linear half-float OpenEXR of its colour
-// channels, premultiplied by its alpha and followed by it when the image has one, in the cache
-// folder, named by the source's path, size and time (and this preparation's version) so an
+// channels, followed by its alpha when the image has one, in the cache folder, named by the source's path, size and time (and this preparation's version) so an
 // edited file is prepared again. *channels: its colour channels; *alpha: whether it has alpha.
 std::string prepare(const std::string& path, int* channels, bool* alpha) {
   check_texture_file(path);
@@ -111,12 +110,12 @@ std::string prepare(const std::string& path, int* channels, bool* alpha) {
   const auto size = fs::file_size(path, error);
   if (error) throw MissingFile(concat("no such texture file: '", path, "'"));
   const auto time = fs::last_write_time(path, error).time_since_epoch().count();
-  constexpr int kPreparation = 4;  // 4: colour premultiplied by the alpha kept after it
+  constexpr int kPreparation = 5;  // 5: colour as stored, decoded, then the alpha as stored
   const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time, "|v", kPreparation));
   const fs::path prepared = fs::path(texture_cache_folder()) / concat(std::hex, key, ".exr");
 
   check_png_complete(path);
-  // Colours as stored, not premultiplied by their alpha: linearised first, then premultiplied.
+  // Colours as stored, not premultiplied by their alpha (kept after them, as stored).
   OIIO::ImageSpec straight;
   straight.attribute("oiio:UnassociatedAlpha", 1);
   OIIO::ImageBuf source(path, 0, 0, nullptr, &straight);
@@ -156,12 +155,10 @@ std::string prepare(const std::string& path, int* channels, bool* alpha) {
   if (gamma == 0.0) linear = OIIO::ImageBufAlgo::colorconvert(linear, "sRGB", "linear");
   if (gamma > 0.0 && gamma != 1.0) linear = OIIO::ImageBufAlgo::pow(linear, float(gamma));
   if (*alpha) {
-    // MIP levels of premultiplied colour: a cut-out's clear texels (whatever colour they store)
-    // then add nothing to its edge's (lookup divides by the filtered alpha).
+    // Straight colour, as pbrt-v4 and Mitsuba 3 read RGBA images: premultiplied and divided back,
+    // texels clear in an alpha used for something else (a packed mask) lost their colour (a review).
     const int order[] = {header.alpha_channel};
     linear = OIIO::ImageBufAlgo::channel_append(linear, OIIO::ImageBufAlgo::channels(source, 1, order));
-    linear.specmod().alpha_channel = *channels;
-    linear = OIIO::ImageBufAlgo::premult(linear);
   }
   if (linear.has_error()) throw IoError(concat("texture '", path, "': ", linear.geterror()));
   // The source's ICC profile describes its encoded colours, not the linear copy; OpenEXR has no
@@ -228,13 +225,7 @@ Vec3d Textures::lookup(int id, const TextureLookup& at) const {
                               float(at.dsdy), float(at.dtdy), colours + (alpha ? 1 : 0), result)) {
     throw IoError(concat("texture lookup failed for '", paths_.at(id), "': ", impl_->system->geterror()));
   }
-  const Vec3d colour = to_rgb(result, colours);
-  if (!alpha) return colour;
-  // Below this filtered alpha the division would amplify the MIP filter's ringing; a cut-out is
-  // met there once in a thousand rays or less, and shows black.
-  constexpr double kClear = 1e-3;
-  const double a = result[colours];
-  return a > kClear ? Vec3d(colour / std::min(a, 1.0)) : Vec3d::Zero();
+  return to_rgb(result, colours);
 }
 
 bool Textures::has_alpha(int id) const { return impl_->alpha.at(id); }

@@ -40,14 +40,13 @@ class Textures {
   // Registers an image file (any format OIIO reads); returns its id. The same path twice gives
   // the same id. Throws IoError naming the file when it is missing or unreadable.
   int add(const std::string& path);
-  // Filtered linear RGB (a grey image's value replicated). An image with alpha is filtered
-  // premultiplied and divided back, so clear texels lend no colour to a cut-out's edge; where the
-  // filtered alpha is (nearly) 0 the colour is 0.
+  // Filtered linear RGB (a grey image's value replicated; an image's alpha plays no part).
   Vec3d lookup(int id, const TextureLookup& at) const;
   // Whether the image has an alpha channel (grey-alpha or RGBA, as OIIO reads its header).
   bool has_alpha(int id) const;
-  // Opacity in [0, 1] at (s, t), bilinear on the finest level: the alpha channel, or the first
-  // channel of an image without one (a grey mask, as MTL's map_d gives).
+  // Opacity in [0, 1] at (s, t), bilinear on the finest level: the alpha channel as stored, or
+  // the first channel of an image without one (a grey mask, as MTL's map_d gives: decoded as its
+  // colour is, so 0 and 1 are exact and an sRGB 128 reads 0.216).
   double opacity(int id, double s, double t) const;
   const std::string& path(int id) const { return paths_.at(id); }
   size_t size() const { return paths_.size(); }  // textures registered (ids 0 .. size - 1)
