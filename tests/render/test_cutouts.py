@@ -70,38 +70,38 @@ def test_a_billboard_shows_what_stands_behind_its_clear_parts(tmp_path, renderer
     assert np.all(red[..., 0] > 0.1) and np.all(red[..., 1] < 1e-3 * red[..., 0]), red[..., :2].max(axis=(0, 1))
 
 
-def test_each_layer_of_cut_outs_draws_its_own_chance(tmp_path):
-    # Two black veils of alpha 128/255, 10 m and 12 m out: a ray passes both with probability
-    # (1 - a)^2 = 0.248. One number per ray for every layer let it through both whenever it passed
-    # one: 1 - a = 0.498 (a review measured 49.6 %).
-    opacity = 128.0 / 255.0
-    picture = write_picture(tmp_path / "veil.png", (0.0, 0.0, 0.0), np.full((4, 4), opacity, np.float32))
+VEIL = 128.0 / 255.0  # a black veil's opacity (alpha 128 of 255, stored linear)
+
+
+def veils(tmp_path, distances):
+    """A scene of black veils of opacity VEIL at these distances [m] (each wider than the one
+    before) under the sky, and the fraction of the sky's blue its centre's rays see (144 pixels x
+    256 rays)."""
+    picture = write_picture(tmp_path / "veil.png", (0.0, 0.0, 0.0), np.full((4, 4), VEIL, np.float32))
     scene = refracta.Scene()
     scene.set_sky(SKY, SKY)
-    scene.add_billboard((10.0, 0.0, 0.0), 4.0, 4.0, picture)
-    scene.add_billboard((12.0, 0.0, 0.0), 6.0, 6.0, picture)
+    for distance in distances:
+        scene.add_billboard((distance, 0.0, 0.0), 0.4 * distance, 0.4 * distance, picture)
     image = refracta.render(scene, CAMERA, None, method="straight", spp=256, progress=False)
-    passed = image[18:30, 18:30, 2].mean() / SKY[2]
-    # Bernoulli(0.248) over 36 864 rays: sigma 0.0023; 5 sigma.
-    assert passed == pytest.approx((1.0 - opacity) ** 2, abs=0.012)
+    return scene, image[18:30, 18:30, 2].mean() / SKY[2]
 
 
 def test_a_half_clear_picture_lets_half_the_rays_through(tmp_path):
-    # Black (absorbs everything) with alpha 128/255 everywhere: a ray passes with probability
-    # 1 - 0.50196, and the pixel sees that fraction of the sky.
-    opacity = 128.0 / 255.0
-    picture = write_picture(tmp_path / "veil.png", (0.0, 0.0, 0.0), np.full((4, 4), opacity, np.float32))
-    scene = refracta.Scene()
-    scene.set_sky(SKY, SKY)
-    scene.add_billboard((10.0, 0.0, 0.0), 4.0, 4.0, picture)
-    image = refracta.render(scene, CAMERA, None, method="straight", spp=256, progress=False)
-    region = image[18:30, 18:30, 2]  # 144 pixels x 256 rays, the sky's blue 0.8 where they pass
-    passed = region.mean() / SKY[2]
+    # Black (absorbs everything) with opacity 0.50196: a ray passes with probability 1 - VEIL.
+    scene, passed = veils(tmp_path, [10.0])
     # Bernoulli(1/2) over 36 864 rays: sigma 0.0026; 5 sigma (the hash is fixed: this is one draw).
-    assert passed == pytest.approx(1.0 - opacity, abs=0.013)
+    assert passed == pytest.approx(1.0 - VEIL, abs=0.013)
     # The raster draws it (opacity >= 1/2): black.
     raster = refracta.render_raster(scene, CAMERA, progress=False)
     assert np.all(raster[18:30, 18:30] == 0.0)
+
+
+def test_each_layer_of_cut_outs_draws_its_own_chance(tmp_path):
+    # Two veils: a ray passes both with probability (1 - a)^2 = 0.248. One number per ray for every
+    # layer let it through both whenever it passed one: 1 - a = 0.498 (a review measured 49.6 %).
+    _, passed = veils(tmp_path, [10.0, 12.0])
+    # Bernoulli(0.248) over 36 864 rays: sigma 0.0023; 5 sigma.
+    assert passed == pytest.approx((1.0 - VEIL) ** 2, abs=0.012)
 
 
 @pytest.mark.parametrize("renderer", ["render", "render_raster"])
