@@ -44,8 +44,8 @@ namespace {
 
 // `text` as UTF-8 with any byte that is not valid UTF-8 written \xNN (Python's backslashreplace).
 std::string escaped(const std::string& text) {
-  py::object decoded =
-      py::reinterpret_steal<py::object>(PyUnicode_DecodeUTF8(text.data(), py::ssize_t(text.size()), "backslashreplace"));
+  const auto size = py::ssize_t(text.size());
+  py::object decoded = py::reinterpret_steal<py::object>(PyUnicode_DecodeUTF8(text.data(), size, "backslashreplace"));
   if (!decoded) throw py::error_already_set();
   return py::cast<std::string>(decoded);
 }

@@ -29,13 +29,6 @@ py::array_t<float> image_to_float32(Image&& image) {
 
 namespace {
 
-// A path (str, bytes or os.PathLike) as the file system's bytes: a name that is not UTF-8 (a str
-// holding os.fsdecode's surrogates) stays the file's, and a NUL byte reaches the readers' and
-// writers' check_path_text, which refuses it by name.
-std::string file_system_path(const py::object& path) {
-  return py::cast<std::string>(py::module_::import("os").attr("fsencode")(path));
-}
-
 // io.write_image (display.h's write_display_image), warning first of the settings a float file leaves unused.
 void write_display_image_warning(const std::string& path, Image image, const DisplaySettings& settings) {
   if (is_float_format(path)) {

@@ -34,7 +34,7 @@ LightPtr environment_of(const py::object& source, const py::object& rotation, do
   if (!(scale >= 0.0 && std::isfinite(scale))) throw_invalid("set_environment: scale must be finite and >= 0 (got ", scale, ")");
   // Reading a map and building its sampling distribution take a second for 4096 x 2048: without the GIL.
   if (py::isinstance<py::str>(source) || py::isinstance<py::bytes>(source) || py::hasattr(source, "__fspath__")) {
-    const std::string path = py::cast<FilePath>(py::module_::import("os").attr("fsdecode")(source)).string();
+    const std::string path = file_system_path(source);
     const Eigen::Matrix3d turn = to_rotation(rotation, "rotation");
     py::gil_scoped_release release;
     return environment_from_file(path, scale, turn);

@@ -292,6 +292,10 @@ Image to_image(const py::handle& object, const char* what, bool raw) {
   return image;
 }
 
+std::string file_system_path(const py::handle& path) {
+  return py::cast<std::string>(py::module_::import("os").attr("fsencode")(path));
+}
+
 Eigen::Matrix3d to_rotation(const py::handle& object, const char* what) {
   if (object.is_none()) return Eigen::Matrix3d::Identity();
   const DoubleArray array = numbers(object, what, " must be an angle about +y [deg] or a 3 x 3 rotation matrix");

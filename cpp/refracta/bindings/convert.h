@@ -119,6 +119,10 @@ Image to_image(const py::handle& object, const char* what, bool raw = false);
 void require_float_radiance(const py::handle& object, const char* what);
 // A rotation: None (identity), an angle [deg] about +y, or a 3 x 3 matrix.
 Eigen::Matrix3d to_rotation(const py::handle& object, const char* what);
+// A path (str, bytes or os.PathLike) as the file system's bytes (os.fsencode): a name that is not
+// UTF-8 (a str holding os.fsdecode's surrogates) stays the file's, and a NUL byte reaches the
+// readers' check_path_text, which refuses it by name.
+std::string file_system_path(const py::handle& path);
 
 // C++ -> numpy.
 DoubleArray points_to_array(const std::vector<Vec3d>& points);

@@ -76,8 +76,8 @@ class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileMod
     const size_t m = h.size();
     for (size_t i = 0; i < m; ++i) {
       if (!(v[i] >= kColdestAir && v[i] <= kHottestAir)) {
-        throw_invalid("TemperatureProfile: temperatures[", i, "] (t", i, ") must be in [", kColdestAir, ", ", kHottestAir,
-                      "] K, in kelvin (15 C is 288.15 K; got ", v[i], ")");
+        throw_invalid("TemperatureProfile: temperatures[", i, "] (t", i, ") must be in [", kColdestAir, ", ",
+                      kHottestAir, "] K, in kelvin (15 C is 288.15 K; got ", v[i], ")");
       }
     }
     if (!(v[m] > 0.0)) throw_invalid("TemperatureProfile: pressure must be > 0 Pa (got ", v[m], ")");

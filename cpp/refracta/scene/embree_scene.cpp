@@ -91,7 +91,7 @@ Vec3d ray_dir(RTCRayN* ray, unsigned n, unsigned i) {
 // (Embree's ray is a float copy of it): Scene::intersect then need not solve the hit's sphere
 // again. And the first error of a cut-out's filter in this query (Embree must not see an
 // exception): the query throws it afterwards.
-struct SphereQuery {
+struct QueryContext {
   RTCIntersectContext context;  // first: Embree passes callbacks a pointer to it
   Vec3d origin, dir;
   double t = 0.0;
@@ -108,7 +108,7 @@ void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
   RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
   // Scene::intersect's single rays: from the double ray (the float copy's roots, re-solved from
   // the double ray, gave the same root).
-  auto* query = args->N == 1 ? reinterpret_cast<SphereQuery*>(args->context) : nullptr;
+  auto* query = args->N == 1 ? reinterpret_cast<QueryContext*>(args->context) : nullptr;
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     const Vec3d o = query ? query->origin : ray_origin(ray, args->N, i);
@@ -176,14 +176,14 @@ struct CutoutFilter {
 // goes on to the next) unless the ray's uniform number lies below the opacity there.
 void cutout_filter(const RTCFilterFunctionNArguments* args) {
   const auto& filter = *static_cast<const CutoutFilter*>(args->geometryUserPtr);
-  // Scene's queries are single rays with a SphereQuery as their context.
-  auto& query = *reinterpret_cast<SphereQuery*>(const_cast<RTCIntersectContext*>(args->context));
+  // Scene's queries are single rays with a QueryContext as their context.
+  auto& query = *reinterpret_cast<QueryContext*>(const_cast<RTCIntersectContext*>(args->context));
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     try {
       const unsigned primitive = RTCHitN_primID(args->hit, args->N, i);
-      const double opacity =
-          filter.scene->opacity(filter.geometry, primitive, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+      const double opacity = filter.scene->opacity(filter.geometry, primitive, RTCHitN_u(args->hit, args->N, i),
+                                                   RTCHitN_v(args->hit, args->N, i));
       if (!(ray_uniform(args->ray, args->N, i, filter.geometry, primitive) < opacity)) args->valid[i] = 0;
     } catch (const std::exception& error) {
       if (!query.filter_error) query.filter_error = error.what();
@@ -527,15 +527,15 @@ void terrain_hit(const TerrainGrid& grid, const Vec3d& origin, const Vec3d& dir,
 std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, double t_max) const {
   check_ray(origin, dir, t_max);
   if (impl_->dirty) commit();
-  SphereQuery sphere;
-  rtcInitIntersectContext(&sphere.context);
-  sphere.origin = origin, sphere.dir = dir;
+  QueryContext context;
+  rtcInitIntersectContext(&context.context);
+  context.origin = origin, context.dir = dir;
   RTCRayHit query;
   fill_ray(query.ray, origin, dir, t_max);
   query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &sphere.context, &query);
-  if (sphere.filter_error) throw IoError(*sphere.filter_error);
+  rtcIntersect1(impl_->scene, &context.context, &query);
+  if (context.filter_error) throw IoError(*context.filter_error);
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   Hit hit;
   hit.t = query.ray.tfar;
@@ -550,7 +550,7 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
   if (const auto& spheres = sphere_sets_.at(query.hit.geomID)) {
     // The callback's root, solved from the double ray; the normal from the centre in double.
     const Vec3d& centre = spheres->centres.at(query.hit.primID);
-    if (sphere.geometry == query.hit.geomID && sphere.primitive == query.hit.primID) hit.t = sphere.t;
+    if (context.geometry == query.hit.geomID && context.primitive == query.hit.primID) hit.t = context.t;
     hit.point = origin + hit.t * dir;
     hit.extent = centre.cwiseAbs().array() + spheres->radii.at(query.hit.primID);
     const Vec3d normal = (hit.point - centre).normalized();  // unit also where the float t was kept
@@ -588,7 +588,7 @@ std::optional<Hit> Scene::intersect(const Vec3d& origin, const Vec3d& dir, doubl
 bool Scene::occluded(const Vec3d& origin, const Vec3d& dir, double t_max) const {
   check_ray(origin, dir, t_max);
   if (impl_->dirty) commit();
-  SphereQuery query;  // the context cut-out filters expect (the sphere callbacks' fields unused)
+  QueryContext query;  // the context cut-out filters expect (the sphere fields unused)
   rtcInitIntersectContext(&query.context);
   RTCRay ray;
   fill_ray(ray, origin, dir, t_max);

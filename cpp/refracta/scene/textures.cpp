@@ -102,8 +102,9 @@ namespace {
 int colour_channels(int channels) { return channels >= 3 ? 3 : 1; }
 
 // The prepared copy of `path`: a tiled, MIP-mapped, linear half-float OpenEXR of its colour
-// channels, followed by its alpha when the image has one, in the cache folder, named by the source's path, size and time (and this preparation's version) so an
-// edited file is prepared again. *channels: its colour channels; *alpha: whether it has alpha.
+// channels, followed by its alpha when the image has one, in the cache folder, named by the
+// source's path, size and time (and this preparation's version) so an edited file is prepared
+// again. *channels: its colour channels; *alpha: whether it has alpha.
 std::string prepare(const std::string& path, int* channels, bool* alpha) {
   check_texture_file(path);
   std::error_code error;
@@ -155,8 +156,8 @@ std::string prepare(const std::string& path, int* channels, bool* alpha) {
   if (gamma == 0.0) linear = OIIO::ImageBufAlgo::colorconvert(linear, "sRGB", "linear");
   if (gamma > 0.0 && gamma != 1.0) linear = OIIO::ImageBufAlgo::pow(linear, float(gamma));
   if (*alpha) {
-    // Straight colour, as pbrt-v4 and Mitsuba 3 read RGBA images: premultiplied and divided back,
-    // texels clear in an alpha used for something else (a packed mask) lost their colour (a review).
+    // The colour straight, not premultiplied, as pbrt-v4 and Mitsuba 3 read RGBA images: an alpha
+    // that packs something else leaves the colour alone.
     const int order[] = {header.alpha_channel};
     linear = OIIO::ImageBufAlgo::channel_append(linear, OIIO::ImageBufAlgo::channels(source, 1, order));
   }
@@ -217,15 +218,13 @@ Vec3d Textures::lookup(int id, const TextureLookup& at) const {
   // a B-spline on the finest level that spread a magnified checker's edge over ~3 texels (a
   // trial against Mitsuba 3: 20 px where Mitsuba's bilinear gives 10, at 10 px a texel).
   options.interpmode = OIIO::TextureOpt::InterpBilinear;
-  const int colours = impl_->channels.at(id);
-  const bool alpha = impl_->alpha.at(id);
-  float result[4] = {0, 0, 0, 0};
+  float result[3] = {0, 0, 0};
   const OIIO::ustring& file = impl_->files.at(id);
   if (!impl_->system->texture(file, options, float(at.s), float(at.t), float(at.dsdx), float(at.dtdx),
-                              float(at.dsdy), float(at.dtdy), colours + (alpha ? 1 : 0), result)) {
+                              float(at.dsdy), float(at.dtdy), 3, result)) {
     throw IoError(concat("texture lookup failed for '", paths_.at(id), "': ", impl_->system->geterror()));
   }
-  return to_rgb(result, colours);
+  return to_rgb(result, impl_->channels.at(id));
 }
 
 bool Textures::has_alpha(int id) const { return impl_->alpha.at(id); }

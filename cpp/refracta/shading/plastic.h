@@ -103,7 +103,9 @@ class Plastic final : public Material {
   // alpha = 0: smooth coat; otherwise GGX roughness alpha_u, alpha_v (>= TrowbridgeReitz::kMinAlpha).
   Plastic(const TexturedReflectance& reflectance, double ior = kDefaultIor, double alpha_u = 0.0, double alpha_v = 0.0)
       : reflectance_(reflectance), ior_(ior) {
-    if (!(ior_.rgb_value() <= kMaxIor)) throw_invalid("Plastic: ior must be at most ", kMaxIor, " (got ", ior_.rgb_value(), ")");
+    if (!(ior_.rgb_value() <= kMaxIor)) {
+      throw_invalid("Plastic: ior must be at most ", kMaxIor, " (got ", ior_.rgb_value(), ")");
+    }
     const double au = checked_alpha_or_zero(alpha_u, "alpha_u"), av = checked_alpha_or_zero(alpha_v, "alpha_v");
     if ((au == 0.0) != (av == 0.0)) throw_invalid("alpha_u and alpha_v must both be 0 (smooth) or both > 0 (got ", alpha_u, ", ", alpha_v, ")");
     alpha_u_ = au, alpha_v_ = av;
