@@ -73,6 +73,7 @@ HEADERS = [
     "cpp/refracta/shading/plastic.h",
     "cpp/refracta/shading/point_light.h",
     "cpp/refracta/shading/principled.h",
+    "cpp/refracta/shading/scaled_light.h",
     "cpp/refracta/shading/sky_batch.h",
     "cpp/refracta/shading/sphere_light.h",
     "cpp/refracta/shading/spot_light.h",

@@ -470,6 +470,8 @@ inline constexpr const char mkd_doc_refracta_RoughConductor[] = R"doc(A rough me
 >= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F
 = 1), visible-normal sampling.)doc";
 inline constexpr const char mkd_doc_refracta_RoughDielectric[] = R"doc(Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.)doc";
+inline constexpr const char mkd_doc_refracta_ScaledInfiniteLight[] = R"doc(An infinite light (a sky, an environment or the sun) times a constant factor `scale`:
+Scene.set_physical_sky's `scale` on its sky. Pickles through its light and scale.)doc";
 inline constexpr const char mkd_doc_refracta_ShadowMapOptions[] = R"doc(The shadow maps of render_raster (an orthographic map for the sun, a perspective one per spot
 light): method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm_hamburger',
 'msm_hausdorff' (four moments box-filtered kernel x kernel, read through `moments`).)doc";

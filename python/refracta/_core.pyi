@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import os
 import typing
-__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW_DEG', 'Dielectric', 'Diffuse', 'DispersedField', 'DisplaySettings', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MissingFileError', 'MomentShadowSettings', 'NumericalError', 'ObjOptions', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'physical_memory_bytes', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
+__all__: list[str] = ['AerialPerspective', 'AreaLight', 'Beckmann', 'BlinnPhong', 'BsdfSample', 'Camera', 'Conductor', 'ConstantEnvironment', 'CurvedEarth', 'CustomField', 'DEFAULT_TURBULENCE_YAW_DEG', 'Dielectric', 'Diffuse', 'DispersedField', 'DisplaySettings', 'EDIT_CAMERA_PARAMETERS', 'ElevationTableOptions', 'EnvironmentLight', 'HotSpot', 'INNER_SCALE_FACTOR', 'IndexField', 'IoError', 'Ior', 'Light', 'LightSampler', 'LinearSquaredProfile', 'LogisticProfile', 'Material', 'MboitSettings', 'MissingFileError', 'MomentShadowSettings', 'NumericalError', 'ObjOptions', 'OceanWaves', 'OitSettings', 'PairOptions', 'PhysicalAtmosphere', 'PhysicalSky', 'Plastic', 'PointLight', 'Principled', 'RasterRenderOptions', 'RasterRenderStats', 'RayPath', 'RenderOptions', 'RenderStats', 'RoughConductor', 'RoughDielectric', 'SPECTRUM_CONSTANT', 'ScaledLight', 'Scene', 'ShadowMapOptions', 'SolveSettings', 'SolveSummary', 'SphereLight', 'SpotLight', 'SunLight', 'TemperatureProfile', 'TerrainShading', 'TextureNotFoundError', 'ThinDielectric', 'ThinFilm', 'TraceOptions', 'TrowbridgeReitz', 'TurbulenceGrid', 'TurbulenceLayer', 'TurbulenceSettings', 'Water', 'air_dispersion_scale', 'bessel_j1', 'cox_munk_mean_square_slope', 'dispersed_field', 'field_reference_wavelength', 'fresnel_conductor', 'fresnel_dielectric', 'fresnel_diffuse_reflectance', 'get_threads', 'physical_memory_bytes', 'set_threads', 'synthesise_turbulence', 'thin_film_reflectance', 'trace_ray', 'turbulence_memory_needed', 'von_karman_spectrum', 'water_absorption', 'water_backscattering', 'water_body_reflectance', 'water_density', 'water_ior']
 class NumericalError(RuntimeError):
     pass
 class IoError(OSError):
@@ -3548,6 +3548,23 @@ class ConstantEnvironment(Light):
     def __init__(self, radiance: typing.Any, sampling: str = 'cosine') -> None:
         ...
     def __setstate__(self, arg0: tuple) -> None:
+        ...
+class ScaledLight(Light):
+    """
+    An infinite light (a sky, an environment or the sun) times a constant factor `scale`:
+    Scene.set_physical_sky's `scale` on its sky. Pickles through its light and scale.
+    """
+    def __getstate__(self) -> tuple[typing.Any, float]:
+        ...
+    def __init__(self, light: typing.Any, scale: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    @property
+    def light(self) -> typing.Any:
+        ...
+    @property
+    def scale(self) -> float:
         ...
 class PhysicalSky:
     """

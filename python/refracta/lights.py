@@ -33,6 +33,8 @@ Lights:
   ``rotation`` is degrees about +y or a 3 x 3 matrix (map -> world). Importance-sampled by
   luminance x sin(theta).
 - ``ConstantEnvironment(radiance, sampling="cosine")``: uniform radiance; E = pi L.
+- ``ScaledLight(light, scale)``: an infinite light (a sky, an environment, the sun) times ``scale``
+  (``Scene.set_physical_sky(..., scale=)`` puts one in ``Scene.lights``); ``light`` and ``scale``.
 - ``LightSampler(lights, strategy="power")``: ``sample(u) -> (index, probability)``, ``pmf(i)``.
 
 Example::
@@ -51,6 +53,7 @@ from refracta._core import (
     Light,
     LightSampler,
     PointLight,
+    ScaledLight,
     SphereLight,
     SpotLight,
     SunLight,
@@ -63,6 +66,7 @@ __all__ = [
     "Light",
     "LightSampler",
     "PointLight",
+    "ScaledLight",
     "SphereLight",
     "SpotLight",
     "SunLight",

@@ -13,6 +13,7 @@
 #include "refracta/shading/light_common.h"
 #include "refracta/shading/light_sampler.h"
 #include "refracta/shading/point_light.h"
+#include "refracta/shading/scaled_light.h"
 #include "refracta/shading/sphere_light.h"
 #include "refracta/shading/spot_light.h"
 #include "refracta/shading/sun_light.h"
@@ -178,6 +179,20 @@ void bind_environment_lights(py::module_& m) {
         }
         return std::make_shared<ConstantEnvironment>(color_from_state(t[0]), ConstantEnvironment::Sampling(sampling));
       });
+
+  py::class_<ScaledInfiniteLight, Light, std::shared_ptr<ScaledInfiniteLight>> scaled(m, "ScaledLight",
+                                                                                      DOC(refracta, ScaledInfiniteLight));
+  scaled
+      .def(py::init([](const py::object& light, double scale) {
+             return std::make_shared<ScaledInfiniteLight>(light_from(light), scale);
+           }),
+           py::arg("light"), py::arg("scale"))
+      .def_property_readonly("light", [](const ScaledInfiniteLight& l) { return light_object(l.light()); })
+      .def_property_readonly("scale", &ScaledInfiniteLight::scale);
+  def_state_pickle(
+      scaled, "ScaledLight", 2,
+      [](const ScaledInfiniteLight& l) { return py::make_tuple(light_object(l.light()), l.scale()); },
+      [](const py::tuple& t) { return std::make_shared<ScaledInfiniteLight>(light_from(t[0]), py::cast<double>(t[1])); });
 }
 
 }  // namespace

@@ -330,7 +330,8 @@ A field written in Python: ior(points (N,3)) -> (N,) and grad_ior(points (N,3)) 
 vectorised. height_only=True promises n depends on y alone (enables method='stratified').
 Slow: the integrators call back into Python at every evaluation. Its first evaluation checks it
 there: height_only=True against n and grad_ior 1 m aside (ValueError if either changes), and
-grad_ior against ior's central differences 1 mm apart (a RuntimeWarning beyond 1e-3 of it).)doc");
+grad_ior against ior's central differences 1 mm apart (a RuntimeWarning beyond 1e-3 of it).)doc",
+                                                                     py::custom_type_setup(&CustomField::setup_type));
   custom
       .def(py::init<py::object, py::object, bool>(), py::arg("ior"), py::arg("grad_ior"),
            py::arg("height_only").noconvert() = false)

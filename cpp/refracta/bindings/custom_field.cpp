@@ -21,6 +21,40 @@ CustomField::~CustomField() {
   delete grad_;
 }
 
+namespace {
+
+// The CustomField a Python object holds, when Python alone owns it (else nullptr).
+CustomField* owned_by_python_alone(PyObject* self) {
+  auto* instance = reinterpret_cast<py::detail::instance*>(self);
+  const py::detail::value_and_holder v_h = instance->get_value_and_holder();
+  if (!v_h.holder_constructed()) return nullptr;
+  const auto& holder = v_h.holder<std::shared_ptr<CustomField>>();
+  return holder.use_count() == 1 ? holder.get() : nullptr;
+}
+
+}  // namespace
+
+void CustomField::setup_type(PyHeapTypeObject* heap_type) {
+  PyTypeObject* type = &heap_type->ht_type;
+  type->tp_flags |= Py_TPFLAGS_HAVE_GC;
+  type->tp_traverse = [](PyObject* self, visitproc visit, void* arg) {
+    Py_VISIT(Py_TYPE(self));  // a heap type's instances own a reference to it
+    if (const CustomField* field = owned_by_python_alone(self)) {
+      Py_VISIT(field->ior_->ptr());
+      Py_VISIT(field->grad_->ptr());
+    }
+    return 0;
+  };
+  type->tp_clear = [](PyObject* self) {
+    // Only a field the collector found unreachable: later calls would meet None (a TypeError).
+    if (CustomField* field = owned_by_python_alone(self)) {
+      *field->ior_ = py::none();
+      *field->grad_ = py::none();
+    }
+    return 0;
+  };
+}
+
 std::vector<double> CustomField::call_ior(const std::vector<Vec3d>& points) const {
   const py::ssize_t count = py::ssize_t(points.size());
   DoubleArray out = real_array((*ior_)(points_to_array(points)), "CustomField: ior(points)");

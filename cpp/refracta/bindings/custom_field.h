@@ -30,6 +30,12 @@ class CustomField : public IndexField {
   const py::object& ior_function() const { return *ior_; }
   const py::object& grad_function() const { return *grad_; }
 
+  // The class's garbage-collector support (py::custom_type_setup): a field whose callables refer
+  // back to it (a method of an object that holds the field) is collected. Its callables are shown
+  // to the collector only while Python alone owns the field: one a scene, a CurvedEarth or a
+  // render also holds stays alive whatever Python drops.
+  static void setup_type(PyHeapTypeObject* heap_type);
+
  private:
   // At its first evaluation, by any path (inside the work that makes it, GIL held), the field is checked where
   // it is evaluated: height_only=True against n and its gradient 1 m aside (a field that is not

@@ -20,18 +20,18 @@ void check_size(const py::tuple& t, size_t size, const char* what) {
   if (t.size() != size) throw_invalid(what, ": bad pickle state (", t.size(), " items, expected ", size, ")");
 }
 
-// A light object from its pickled Python object (PhysicalSky is bound apart from Light).
+}  // namespace
+
 LightPtr light_from(const py::handle& object) {
   if (py::isinstance<py::tuple>(object)) {  // ("scaled", light, scale): set_physical_sky's scaled sky
     const py::tuple t = py::reinterpret_borrow<py::tuple>(object);
     check_size(t, 3, "Scene light");
     return std::make_shared<ScaledInfiniteLight>(light_from(t[1]), py::cast<double>(t[2]));
   }
-  try {
-    return py::cast<std::shared_ptr<Light>>(object);
-  } catch (const py::cast_error&) {
-    return py::cast<std::shared_ptr<PhysicalSkyLight>>(object);
-  }
+  if (py::isinstance<Light>(object)) return py::cast<std::shared_ptr<Light>>(object);
+  if (py::isinstance<PhysicalSkyLight>(object)) return py::cast<std::shared_ptr<PhysicalSkyLight>>(object);
+  throw_invalid("a light must be a refracta.lights.Light or a refracta.spectrum.PhysicalSky (got ",
+                std::string(py::str(py::type::handle_of(object))), ")");
 }
 
 py::object light_object(const LightPtr& light) {
@@ -41,8 +41,6 @@ py::object light_object(const LightPtr& light) {
   if (auto sky = std::dynamic_pointer_cast<PhysicalSkyLight>(light)) return py::cast(sky);
   return py::cast(light);
 }
-
-}  // namespace
 
 py::tuple color_state(const Color& color) {
   const Vec3d& rgb = color.rgb();

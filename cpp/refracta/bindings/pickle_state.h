@@ -22,6 +22,11 @@ Color color_from_state(const py::handle& state);
 py::tuple mesh_state(const Mesh& mesh);
 Mesh mesh_from_state(const py::handle& state);
 
+// A scene's light as a Python object and back: PhysicalSky is bound apart from Light, and
+// set_physical_sky's scaled sky travels as ("scaled", sky, scale).
+py::object light_object(const LightPtr& light);
+LightPtr light_from(const py::handle& object);
+
 // Scene: textures (paths, in id order), materials (objects), geometry (meshes / sphere sets
 // with their material ids), lights (objects with the geometry they are emitted by and their
 // shadow radius). Textures are referenced by absolute path: the files must exist where it is

@@ -4,13 +4,20 @@
 #include "refracta/core/error.h"
 #include "refracta/shading/light.h"
 
+#include <cmath>
 #include <utility>
 
 namespace refracta {
 
+// An infinite light (a sky, an environment or the sun) times a constant factor `scale`:
+// Scene.set_physical_sky's `scale` on its sky. Pickles through its light and scale.
 class ScaledInfiniteLight final : public Light {
  public:
-  ScaledInfiniteLight(LightPtr light, double scale) : light_(std::move(light)), scale_(scale) {}
+  // `light` must be infinite (a sky, an environment, the sun) and `scale` finite and >= 0.
+  ScaledInfiniteLight(LightPtr light, double scale) : light_(std::move(light)), scale_(scale) {
+    if (!light_ || !light_->is_infinite()) throw_invalid("ScaledLight: the light must be infinite (a sky, an environment or the sun)");
+    if (!(scale_ >= 0.0 && std::isfinite(scale_))) throw_invalid("ScaledLight: scale must be finite and >= 0 (got ", scale_, ")");
+  }
   LightType type() const override { return light_->type(); }
   std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, const Vec2d& u,
                                          const SampledWavelengths& lambda) const override {

@@ -1,0 +1,111 @@
+"""Leftovers of earlier trials: a CustomField in a reference cycle through its own callables was
+never collected, and the scaled sky `set_physical_sky(..., scale=)` puts in `Scene.lights` could not
+be pickled."""
+
+import gc
+import pickle
+import weakref
+
+import numpy as np
+import pytest
+
+import refracta
+from refracta import lights
+
+
+class _AirOfAnObject:
+    """The usual way to write a field with state: its callables are methods of an object that holds it."""
+
+    def __init__(self):
+        self.field = refracta.CustomField(self.ior, self.grad, height_only=True)
+
+    def ior(self, points):
+        return 1.0003 - 1e-6 * np.asarray(points)[:, 1]
+
+    def grad(self, points):
+        out = np.zeros((len(points), 3))
+        out[:, 1] = -1e-6
+        return out
+
+
+def _dropped(owner_factory):
+    """A weak reference to an owner dropped by every Python name, after a collection."""
+    owner = owner_factory()
+    ref = weakref.ref(owner)
+    del owner
+    gc.collect()
+    return ref
+
+
+def test_a_custom_field_in_a_cycle_through_its_callables_is_collected():
+    # Before: the cycle owner -> field -> bound method -> owner was invisible to the collector.
+    assert _dropped(_AirOfAnObject)() is None
+
+
+def test_a_custom_field_held_by_the_library_stays_alive_and_callable():
+    owner = _AirOfAnObject()
+    earth = refracta.CurvedEarth(owner.field, 6371000.0)
+    ref = weakref.ref(owner)
+    del owner
+    gc.collect()
+    # The CurvedEarth still uses the field: its callables (and their object) must live.
+    assert ref() is not None
+    ray = refracta.trace_ray(earth, (0.0, 2.0, 0.0), (1.0, 0.0, 0.0), max_length=50.0)
+    assert np.all(np.isfinite(ray.points))
+    del earth, ray
+    gc.collect()
+    # Once only Python held it, the cycle goes.
+    assert ref() is None
+
+
+def test_a_field_kept_after_its_owner_is_dropped_still_evaluates():
+    owner = _AirOfAnObject()
+    field = owner.field
+    del owner
+    gc.collect()
+    # n = 1.0003 - 1e-6 y exactly as the callable computes it (one subtraction, no tolerance needed).
+    assert field.ior([[0.0, 2.0, 0.0]])[0] == 1.0003 - 2e-6
+
+
+def _scaled_sky_scene():
+    scene = refracta.Scene()
+    # The air's own light is the scene's, not a light's: off, so that the lights are all there is.
+    scene.set_physical_sky((0.0, 0.6, 0.8), scale=2.0, aerial_perspective=False)
+    return scene
+
+
+def test_the_scaled_sky_of_a_scene_pickles_and_keeps_its_light():
+    sky = _scaled_sky_scene().lights[0]
+    assert isinstance(sky, lights.ScaledLight) and sky.scale == 2.0
+    copy = pickle.loads(pickle.dumps(sky))
+    dirs = np.array([[0.0, 0.6, 0.8], [0.6, 0.8, 0.0], [0.0, 1.0, 0.0]])
+    # The sky's table is rebuilt from its settings: the same numbers bit for bit.
+    np.testing.assert_array_equal(copy.Le(dirs), sky.Le(dirs))
+    # Twice the unscaled sky, exactly (a power-of-two factor).
+    np.testing.assert_array_equal(copy.Le(dirs), 2.0 * sky.light.rgb_radiance(dirs))
+
+
+def test_the_lights_of_one_scene_light_another_identically():
+    source = _scaled_sky_scene()
+    source.add_box((0.0, 0.5, -5.0), (1.0, 1.0, 1.0))
+    target = refracta.Scene()
+    target.add_box((0.0, 0.5, -5.0), (1.0, 1.0, 1.0))
+    for light in source.lights:
+        target.add_light(light)
+    camera = refracta.Camera((0.0, 1.0, 0.0), (0.0, 0.8, -5.0), vfov=40.0, width=16, height=12)
+    first, second = (refracta.render(s, camera, None, spp=2, progress=False) for s in (source, target))
+    np.testing.assert_array_equal(first, second)
+
+
+@pytest.mark.parametrize(
+    ("make", "message"),
+    [
+        (lambda: lights.ScaledLight(lights.PointLight((0.0, 0.0, 0.0), 1.0), 2.0), "must be infinite"),
+        (lambda: lights.ScaledLight(3, 2.0), "must be a refracta.lights.Light"),
+        (lambda: lights.ScaledLight(lights.ConstantEnvironment(1.0), float("nan")), "finite and >= 0"),
+        (lambda: lights.ScaledLight(lights.ConstantEnvironment(1.0), -1.0), "finite and >= 0"),
+    ],
+)
+def test_a_scaled_light_refuses_what_it_cannot_scale(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
