@@ -157,6 +157,27 @@ def test_an_obj_map_d_mask_cuts_its_card_out(tmp_path):
     np.testing.assert_allclose(image[OPAQUE], np.broadcast_to(np.float32(SKY), image[OPAQUE].shape), rtol=1e-6)
 
 
+def test_a_grey_map_d_mask_is_read_as_data_not_colour(tmp_path):
+    # A mask storing 128 of 255 everywhere is opacity 0.502 (as Blender reads masks), not the
+    # 0.216 its sRGB decoding as a colour gave: a black card passes 1 - 0.502 of the rays.
+    # An sRGB PNG (no gamma of its own): the linear value whose sRGB encoding is 128 of 255.
+    linear = np.full((4, 4, 3), ((VEIL + 0.055) / 1.055) ** 2.4, np.float32)
+    refracta.io.write_image(tmp_path / "grey.png", linear, tonemap="linear", exposure=1.0)
+    (tmp_path / "black.mtl").write_text("newmtl black\nKd 0 0 0\nmap_d grey.png\n")
+    (tmp_path / "card.obj").write_text(
+        "mtllib black.mtl\nv 10 -2 2\nv 10 -2 -2\nv 10 2 -2\nv 10 2 2\n"
+        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl black\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"
+    )
+    assert np.all(refracta.io.read_image(tmp_path / "grey.png", linear=False) == np.float32(VEIL))
+    scene = refracta.Scene()
+    scene.set_sky(SKY, SKY)
+    scene.add_obj(str(tmp_path / "card.obj"))
+    image = refracta.render(scene, CAMERA, None, method="straight", spp=256, progress=False)
+    passed = image[18:30, 18:30, 2].mean() / SKY[2]
+    # Bernoulli(1/2) over 36 864 rays: sigma 0.0026; 5 sigma (0.784 when decoded as a colour).
+    assert passed == pytest.approx(1.0 - VEIL, abs=0.013)
+
+
 def test_a_pickled_scene_keeps_its_cut_outs(tmp_path):
     picture = write_picture(tmp_path / "half.png", *left_opaque())
     scene = scene_with_wall(picture)

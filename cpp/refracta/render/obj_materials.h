@@ -59,8 +59,8 @@ const char* missing_textures_name(MissingTextures m);  // "error", "warn"
 // Kd, Ks, Ns, d, map_Kd become BlinnPhong; Pr/Pm (PBR extension) Principled; illum 4/6/7 with
 // d < 1 and Ni > 1 Dielectric(Ni); Ke an area light. Vertex normals are kept as
 // shading normals. map_d is a cut-out mask (its alpha channel, else its first; Scene::set_cutout):
-// leaves and fences on cards, clear where the mask is 0. A grey mask is decoded as a colour is
-// (0 and 1 exact; an sRGB 128 is opacity 0.216); a map_d found nowhere is a missing texture.
+// leaves and fences on cards, clear where the mask is 0. A grey mask is data, read as stored
+// (its 128 of 255 is opacity 0.502); a map_d found nowhere is a missing texture.
 //
 // A texture the MTL names (map_Kd) is looked for in the MTL's folder, then in each of
 // ``texture_dirs`` in order (relative folders from the working directory), as written and by its

@@ -102,7 +102,7 @@ namespace {
 int colour_channels(int channels) { return channels >= 3 ? 3 : 1; }
 
 // The prepared copy of `path`: a tiled, MIP-mapped, linear half-float OpenEXR of its colour
-// channels, followed by its alpha when the image has one, in the cache folder, named by the
+// channels, followed by its opacity (its alpha, or its first channel as stored), in the cache folder, named by the
 // source's path, size and time (and this preparation's version) so an edited file is prepared
 // again. *channels: its colour channels; *alpha: whether it has alpha.
 std::string prepare(const std::string& path, int* channels, bool* alpha) {
@@ -111,7 +111,7 @@ std::string prepare(const std::string& path, int* channels, bool* alpha) {
   const auto size = fs::file_size(path, error);
   if (error) throw MissingFile(concat("no such texture file: '", path, "'"));
   const auto time = fs::last_write_time(path, error).time_since_epoch().count();
-  constexpr int kPreparation = 5;  // 5: colour as stored, decoded, then the alpha as stored
+  constexpr int kPreparation = 6;  // 5: colour as stored, decoded, then the alpha as stored; 6: a mask without alpha
   const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time, "|v", kPreparation));
   const fs::path prepared = fs::path(texture_cache_folder()) / concat(std::hex, key, ".exr");
 
@@ -155,12 +155,14 @@ std::string prepare(const std::string& path, int* channels, bool* alpha) {
   OIIO::ImageBuf linear = *channels == header.nchannels ? source : OIIO::ImageBufAlgo::channels(source, *channels, {});
   if (gamma == 0.0) linear = OIIO::ImageBufAlgo::colorconvert(linear, "sRGB", "linear");
   if (gamma > 0.0 && gamma != 1.0) linear = OIIO::ImageBufAlgo::pow(linear, float(gamma));
-  if (*alpha) {
-    // The colour straight, not premultiplied, as pbrt-v4 and Mitsuba 3 read RGBA images: an alpha
-    // that packs something else leaves the colour alone.
-    const int order[] = {header.alpha_channel};
-    linear = OIIO::ImageBufAlgo::channel_append(linear, OIIO::ImageBufAlgo::channels(source, 1, order));
-  }
+  // After the colour, the opacity as stored: the alpha (the colour stays straight, not
+  // premultiplied, as pbrt-v4 and Mitsuba 3 read RGBA images: an alpha that packs something else
+  // leaves the colour alone), or an image's first channel when it has none -- a grey mask (MTL's
+  // map_d) is data, not colour: its 128 of 255 is opacity 0.502, as Blender reads masks. Named
+  // "mask" there, so that nothing takes it for an alpha to weigh the colour by.
+  const int order[] = {*alpha ? header.alpha_channel : 0};
+  const std::string name[] = {*alpha ? header.channelnames[header.alpha_channel] : std::string("mask")};
+  linear = OIIO::ImageBufAlgo::channel_append(linear, OIIO::ImageBufAlgo::channels(source, 1, order, {}, name));
   if (linear.has_error()) throw IoError(concat("texture '", path, "': ", linear.geterror()));
   // The source's ICC profile describes its encoded colours, not the linear copy; OpenEXR has no
   // place for it either (OIIO would print "Don't know what to do with ... ICCProfile").
@@ -233,7 +235,7 @@ double Textures::opacity(int id, double s, double t) const {
   OIIO::TextureOpt options;
   options.swrap = options.twrap = OIIO::TextureOpt::WrapPeriodic;
   options.interpmode = OIIO::TextureOpt::InterpBilinear;
-  options.firstchannel = impl_->alpha.at(id) ? impl_->channels.at(id) : 0;
+  options.firstchannel = impl_->channels.at(id);  // the opacity channel after the colour (prepare)
   float result = 1.0f;
   if (!impl_->system->texture(impl_->files.at(id), options, float(s), float(t), 0.0f, 0.0f, 0.0f, 0.0f, 1, &result)) {
     throw IoError(concat("texture lookup failed for '", paths_.at(id), "': ", impl_->system->geterror()));

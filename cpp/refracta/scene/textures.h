@@ -45,8 +45,8 @@ class Textures {
   // Whether the image has an alpha channel (grey-alpha or RGBA, as OIIO reads its header).
   bool has_alpha(int id) const;
   // Opacity in [0, 1] at (s, t), bilinear on the finest level: the alpha channel as stored, or
-  // the first channel of an image without one (a grey mask, as MTL's map_d gives: decoded as its
-  // colour is, so 0 and 1 are exact and an sRGB 128 reads 0.216).
+  // the first channel of an image without one, as stored too (a grey mask, as MTL's map_d gives,
+  // is data: its 128 of 255 reads 0.502, as Blender reads masks).
   double opacity(int id, double s, double t) const;
   const std::string& path(int id) const { return paths_.at(id); }
   size_t size() const { return paths_.size(); }  // textures registered (ids 0 .. size - 1)
