@@ -29,7 +29,8 @@ def astronomical_refraction(
     CurvedEarth -- the Earth's curvature, `earth_radius` [m] (default 6371 km, the mean radius), is
     applied here); the ray is traced from `eye_height` [m] (default 0: the ground) to `top` [m]
     (default: where the field becomes uniform, 86 km for PhysicalAtmosphere, the top of the U.S.
-    Standard Atmosphere 1976) to within `tol` [m] (default 1e-7). `wavelength` [nm]: the air
+    Standard Atmosphere 1976, or a metre above an eye higher than that: from a spacecraft, a star
+    setting through the limb) to within `tol` [m] (default 1e-7). `wavelength` [nm]: the air
     dispersed to that wavelength (refracta.dispersed_field), default the field's own. The defaults
     are C++'s (AstronomicalRefractionOptions): None takes them.
 

@@ -1,6 +1,6 @@
 """Leftovers of earlier trials: a CustomField in a reference cycle through its own callables was
 never collected, and the scaled sky `set_physical_sky(..., scale=)` puts in `Scene.lights` could not
-be pickled."""
+be pickled; astronomical refraction from above the air was refused."""
 
 import gc
 import pickle
@@ -109,3 +109,36 @@ def test_the_lights_of_one_scene_light_another_identically():
 def test_a_scaled_light_refuses_what_it_cannot_scale(make, message):
     with pytest.raises(ValueError, match=message):
         make()
+
+
+def test_a_star_setting_through_the_limb_seen_from_above_the_air():
+    # From 400 km, looking at the limb 5 km up (straight line): the default top (86 km, below the
+    # eye) used to be refused. The air above 86 km is uniform, so the answer is the path's bending.
+    air, radius, eye = refracta.PhysicalAtmosphere(), 6371e3, 400e3
+    elevation = -np.degrees(np.arccos((radius + 5e3) / (radius + eye)))
+    seen = refracta.astronomical_refraction(air, elevation, eye_height=eye)
+    # Any top above the eye gives the same path: equal to the tracer's tolerance (4e-8 measured).
+    assert seen == pytest.approx(refracta.astronomical_refraction(air, elevation, eye_height=eye, top=500e3), rel=1e-6)
+
+    # The limb ray is symmetric about its lowest point, found by Bouguer's invariant n r cos e;
+    # it bends there twice what a level ray from that height bends on its way out.
+    def n(h):
+        return float(air.ior([0.0, h, 0.0]))
+
+    invariant = n(86e3) * (radius + eye) * np.cos(np.radians(elevation))
+    low, high = 0.0, 1e4
+    for _ in range(60):
+        mid = 0.5 * (low + high)
+        low, high = (mid, high) if n(mid) * (radius + mid) < invariant else (low, mid)
+    half = refracta.astronomical_refraction(air, 0.0, eye_height=low)
+    # 1.1e-6 apart measured: the two traces' tolerances and their vacuum steps at the top.
+    assert seen == pytest.approx(2.0 * half, rel=5e-6)
+
+
+def test_astronomical_refraction_names_what_the_caller_gave():
+    # A 1e11 m Earth (a flat Earth's stand-in) gave a message about TraceOptions and a max_length
+    # the caller never set; an eye beyond the scene's reach is refused by its name.
+    with pytest.raises(ValueError, match=r"tol must be at least .* for earth_radius 1e\+11 m"):
+        refracta.astronomical_refraction(refracta.PhysicalAtmosphere(), 10.0, earth_radius=1e11)
+    with pytest.raises(ValueError, match="eye_height must be >= 0 m and below"):
+        refracta.astronomical_refraction(refracta.PhysicalAtmosphere(), 10.0, eye_height=2e7)

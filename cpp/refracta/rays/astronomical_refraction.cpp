@@ -12,7 +12,8 @@ namespace refracta {
 
 void AstronomicalRefractionOptions::validate() const {
   Problems problems("astronomical_refraction");
-  problems.check(std::isfinite(eye_height) && eye_height >= 0.0, "eye_height must be >= 0 m and finite (got ", eye_height, ")");
+  problems.check(std::isfinite(eye_height) && eye_height >= 0.0 && eye_height < kSceneReach, "eye_height must be >= 0 m and below ",
+                 kSceneReach, " m (got ", eye_height, ")");
   // Air ends within 1 000 km; the trace's length grows with the top (4 x it): at most where scene
   // coordinates end.
   problems.check(!top || (std::isfinite(*top) && *top <= kSceneReach), "top must be at most ", kSceneReach,
@@ -35,7 +36,10 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
     throw_invalid("astronomical_refraction: apparent elevation must be in [-90, 90] deg (got ",
                   radians_to_degrees(apparent_elevation), " deg)");
   }
-  const double top = options.top ? *options.top : field->uniform_above();
+  double top = options.top ? *options.top : field->uniform_above();
+  // An eye above the air (a spacecraft watching a star set through the limb): n is uniform from
+  // the field's top up to the eye, so the ray may end as it climbs back to the eye's height.
+  if (!options.top && std::isfinite(top) && top <= options.eye_height) top = options.eye_height + 1.0;
   if (!std::isfinite(top)) {
     throw_invalid("astronomical_refraction: ", field->type_name(), " is not uniform above any height; give top [m]");
   }
@@ -52,6 +56,11 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
   // The longest way out: tangent to the ground to the top's sphere and a little more.
   const double r_top = options.earth_radius + top;
   trace_options.max_length = 2.0 * std::sqrt(r_top * r_top - options.earth_radius * options.earth_radius) + 4.0 * top;
+  if (options.tol < kMinRelativeTol * trace_options.max_length) {  // named by what the caller gave, not the trace's options
+    throw_invalid("astronomical_refraction: tol must be at least ", kMinRelativeTol * trace_options.max_length, " m for earth_radius ",
+                  options.earth_radius, " m and top ", top, " m (a path of up to ", trace_options.max_length,
+                  " m out of the air; positions round off at 1e-15 of it): raise tol (got ", options.tol, ")");
+  }
   // The ground, a micrometre down: a ray launched level from it must not stop at once.
   trace_options.stop_height = -1e-6;
   const Vec3d direction(std::cos(apparent_elevation), std::sin(apparent_elevation), 0.0);

@@ -21,9 +21,10 @@
 namespace refracta {
 
 struct AstronomicalRefractionOptions {
-  double eye_height = 0.0;   // [m] above the ground (h = 0)
+  double eye_height = 0.0;   // [m] above the ground (h = 0), below kSceneReach
   // The top of the air [m]: above it n is uniform (unset: the field's uniform_above(), e.g. 86 km
-  // for PhysicalAtmosphere; a field without one needs it given).
+  // for PhysicalAtmosphere, or a metre above an eye higher than that; a field without one needs
+  // it given).
   std::optional<double> top;
   double earth_radius = kEarthRadius;  // [m], the mean radius
   double tol = 1e-7;             // the tracer's position tolerance [m]
