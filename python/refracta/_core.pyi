@@ -916,9 +916,15 @@ class Scene:
         texture (or a textured material's) repeats every texture_size [m] (u along +x, v along -z;
         None: 1 m).
         """
+    @typing.overload
     def add_light(self, light: ...) -> int:
         """
-        Add any refracta.lights light (not area lights of geometry: use emission=). Returns its index.
+        Add a refracta.lights light (not area lights: their geometry takes emission=). Returns its index.
+        """
+    @typing.overload
+    def add_light(self, light: ...) -> int:
+        """
+        Add a refracta.spectrum.PhysicalSky (as Scene.lights gives it). Returns its index.
         """
     def add_mesh(self, vertices: typing.Any, triangles: typing.Any, material: typing.Any = None, emission: typing.Any = None, two_sided: bool = False, normals: typing.Any = None, *, uvs: typing.Any = None, kd: typing.Any = None, ks: typing.Any = None, ns: typing.Any = None, texture: os.PathLike | str | bytes | None = None, alpha: typing.Any = None) -> int:
         """
@@ -1120,7 +1126,9 @@ class Scene:
         """
     @property
     def lights(self) -> list[...]:
-        ...
+        """
+        The scene's lights. add_light puts its non-area lights into another scene; the air's own light is the scene's, not a light's: there, set_aerial_perspective(True) turns it on from its physical sky.
+        """
     @property
     def object_bounds(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
@@ -2678,6 +2686,8 @@ class SolveSummary:
     """
     def __getstate__(self) -> dict:
         ...
+    def __repr__(self) -> str:
+        ...
     def __setstate__(self, arg0: dict) -> None:
         ...
     @property
@@ -3274,6 +3284,8 @@ class TrowbridgeReitz:
     def __getstate__(self) -> tuple[float, float]:
         ...
     def __init__(self, alpha_x: typing.SupportsFloat | typing.SupportsIndex, alpha_y: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...

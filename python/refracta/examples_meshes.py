@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 
-@dataclass
+@dataclass(eq=False)  # arrays: == would be ambiguous (equal by identity)
 class Mesh:
     """Vertices (n, 3) [m] and triangles (m, 3) (indices), closed and wound outward; `part` names
     what it is (the material the scene gives it: 'hull', 'white', 'funnel', ...)."""

@@ -159,7 +159,7 @@ def _face_line(land, z):
     return np.convolve(padded, np.ones(2 * smooth + 1) / (2 * smooth + 1), mode="valid")
 
 
-@dataclass
+@dataclass(eq=False)  # arrays: == would be ambiguous (equal by identity)
 class CliffFaces:
     """The shore's cliff and quay faces: `mesh` (closed slabs, one per stretch, wound outward),
     `uvs` (n, 2) per vertex (u along the shore, v up), `albedo` (rows, columns, 3) its linear

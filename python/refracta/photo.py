@@ -117,7 +117,7 @@ class Exif:
             raise ValueError(f"Exif: orientation must be an EXIF orientation code 1..8 (got {self.orientation!r})")
 
 
-@dataclass
+@dataclass(eq=False)  # arrays: == would be ambiguous (equal by identity)
 class Photo:
     """A photograph as displayed (EXIF orientation applied).
 
@@ -380,7 +380,7 @@ def _as_display(image, linear: bool, what: str = "image") -> np.ndarray:
     return np.ascontiguousarray(shown, dtype=np.float32)
 
 
-@dataclass
+@dataclass(eq=False)  # arrays: == would be ambiguous (equal by identity)
 class OverlayResult:
     """What overlay() made.
 

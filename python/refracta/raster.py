@@ -19,7 +19,7 @@ from refracta._checks import is_number, number
 __all__ = ["RasterBuffers", "rasterize"]
 
 
-@dataclass
+@dataclass(eq=False)  # arrays: == would be ambiguous (equal by identity)
 class RasterBuffers:
     """depth (H, W) float32 view depth [m] (inf where empty); geometry, primitive (H, W) int64
     (-1 where empty); barycentric (H, W, 3) float32 weights of the triangle's vertices; offset:

@@ -108,7 +108,7 @@ class TerrainGeometry(NamedTuple):
     water: int | None
 
 
-@dataclass
+@dataclass(eq=False)  # arrays: == would be ambiguous (equal by identity)
 class Elevation:
     """Heights [m] on a regular geographic or projected grid, as :func:`read_elevation` returns them.
 

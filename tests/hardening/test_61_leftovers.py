@@ -142,3 +142,44 @@ def test_astronomical_refraction_names_what_the_caller_gave():
         refracta.astronomical_refraction(refracta.PhysicalAtmosphere(), 10.0, earth_radius=1e11)
     with pytest.raises(ValueError, match="eye_height must be >= 0 m and below"):
         refracta.astronomical_refraction(refracta.PhysicalAtmosphere(), 10.0, eye_height=2e7)
+
+
+def test_every_light_of_a_scene_goes_into_another_or_is_refused_by_name():
+    # A round-trip trial: the unscaled physical sky came back as a PhysicalSky that add_light
+    # refused ("must be a refracta.Light"), and an emissive sphere's SphereLight was taken without
+    # its sphere: it lit the ground but no camera ray saw it (5.05 where the source scene shows it).
+    source = refracta.Scene()
+    source.set_physical_sky((0.0, 0.6, 0.8), aerial_perspective=False)
+    source.add_sphere((20.0, 1.0, 0.0), 1.0, emission=(5.0, 5.0, 5.0))
+    target = refracta.Scene()
+    added = []
+    for light in source.lights:
+        if isinstance(light, lights.SphereLight):
+            with pytest.raises(
+                ValueError, match=r"an area light \(AreaLight, SphereLight\) must be emitted by a surface"
+            ):
+                target.add_light(light)
+        else:
+            index = target.add_light(light)
+            added.append(type(target.lights[index]).__name__)
+    assert added == ["PhysicalSky", "SunLight"]
+    with pytest.raises(refracta.ArgumentError, match=r"Scene.add_light: light must be a refracta.Light \(got 'sun'\)"):
+        target.add_light("sun")
+
+
+def test_reprs_tell_apart_what_behaves_differently():
+    calm = refracta.PhysicalAtmosphere()
+    turbulent = calm.with_turbulence(refracta.Turbulence(cn2=1e-10, depth=0.1, cells=16))
+    assert "turbulence=<layer" in repr(turbulent) and "turbulence" not in repr(calm)
+    texels = np.ones((4, 8, 3), np.float32)
+    assert repr(lights.EnvironmentLight(texels, rotation=90.0)) != repr(lights.EnvironmentLight(texels))
+    ggx = refracta.shading.TrowbridgeReitz(0.1, 0.3)
+    assert eval(repr(ggx), {"TrowbridgeReitz": refracta.shading.TrowbridgeReitz}).alpha_y == 0.3
+
+
+def test_objects_holding_arrays_compare_by_identity_not_by_an_ambiguous_truth(tmp_path):
+    # photo.load(p) == photo.load(p) raised "The truth value of an array ... is ambiguous".
+    path = tmp_path / "p.png"
+    refracta.io.write_image(path, np.full((4, 4, 3), 0.5, np.float32), tonemap="linear", exposure=1.0)
+    first, second = refracta.photo.load(path), refracta.photo.load(path)
+    assert first == first and first != second and first in [first]

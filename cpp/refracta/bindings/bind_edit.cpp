@@ -167,6 +167,12 @@ const std::vector<SummaryField>& summary_fields() {
 void bind_solve_summary(py::module_& m) {
   py::class_<SolveSummary> cls(m, "SolveSummary", DOC(refracta, SolveSummary));
   for (const SummaryField& field : summary_fields()) field.bind(cls);
+  cls.def("__repr__", [](const py::object& self) {
+    return py::str("SolveSummary(success={}, met={}, cost={:.6g}, initial_cost={:.6g}, backend='{}', "
+                   "iterations={}, evaluations={}, stopped_by='{}')")
+        .format(self.attr("success"), self.attr("met"), self.attr("cost"), self.attr("initial_cost"),
+                self.attr("backend"), self.attr("iterations"), self.attr("evaluations"), self.attr("stopped_by"));
+  });
   cls.def(py::pickle(
       [](const SolveSummary& s) {
         py::dict state;

@@ -69,6 +69,7 @@ void bind_microfacet(py::module_& m) {
       }, py::arg("w"), py::arg("u"))
       .def_property_readonly("alpha_x", &TrowbridgeReitz::alpha_x)
       .def_property_readonly("alpha_y", &TrowbridgeReitz::alpha_y)
+      .def("__repr__", [](const TrowbridgeReitz& d) { return concat("TrowbridgeReitz(alpha_x=", exact(d.alpha_x()), ", alpha_y=", exact(d.alpha_y()), ")"); })
       .def(py::pickle([](const TrowbridgeReitz& d) { return std::make_pair(d.alpha_x(), d.alpha_y()); },
                       [](std::pair<double, double> t) {
                         return TrowbridgeReitz(TrowbridgeReitz::checked_alpha(t.first, "alpha_x"),

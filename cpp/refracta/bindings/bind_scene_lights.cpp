@@ -123,11 +123,11 @@ void bind_scene_lights(SceneClass& scene) {
   bind_sun_and_sky(scene);
   scene
       .def("add_light",
-           [](RenderScene& s, const std::shared_ptr<Light>& light) {
-             if (!light) throw_invalid("light must be a refracta.lights light");
-             return s.add_light(light);
-           },
-           py::arg("light"), "Add any refracta.lights light (not area lights of geometry: use emission=). Returns its index.")
+           [](RenderScene& s, const std::shared_ptr<Light>& light) { return s.add_light(light); }, py::arg("light"),
+           "Add a refracta.lights light (not area lights: their geometry takes emission=). Returns its index.")
+      .def(
+          "add_light", [](RenderScene& s, const std::shared_ptr<PhysicalSkyLight>& sky) { return s.add_light(sky); },
+          py::arg("light"), "Add a refracta.spectrum.PhysicalSky (as Scene.lights gives it). Returns its index.")
       .def("add_point_light",
            [](RenderScene& s, const py::object& position, const py::object& intensity) {
              return add_point_light(s, to_point(position, "position"), to_illuminant(intensity, "intensity"));
@@ -142,7 +142,10 @@ void bind_scene_lights(SceneClass& scene) {
            py::arg("position"), py::arg("direction"), py::arg("angle") = 60.0,
            py::arg("intensity") = py::make_tuple(100.0, 100.0, 100.0), py::arg("radius") = 0.0, py::kw_only(),
            py::arg("inner_angle") = py::none(), DOC(refracta, add_spot_light))
-      .def_property_readonly("lights", [](const RenderScene& s) { return s.lights(); });
+      .def_property_readonly(
+          "lights", [](const RenderScene& s) { return s.lights(); },
+          "The scene's lights. add_light puts its non-area lights into another scene; the air's own light is "
+          "the scene's, not a light's: there, set_aerial_perspective(True) turns it on from its physical sky.");
 }
 
 }  // namespace refracta

@@ -1,6 +1,8 @@
 // A model's parameters from a caller's arguments, and its table and repr (model_args.h).
 #include "refracta/media/model_args.h"
 
+#include "refracta/media/turbulence.h"
+
 #include <set>
 #include <sstream>
 
@@ -83,6 +85,10 @@ std::string field_repr(const IndexField& field) {
   const auto& specs = field.param_specs();
   const auto values = field.param_values();
   for (size_t i = 0; i < specs.size(); ++i) out << (i ? ", " : "") << specs[i].name << "=" << values[i];
+  if (const auto turbulence = field.turbulence()) {  // else a turbulent air printed as its calm one
+    out << (specs.empty() ? "" : ", ") << "turbulence=<layer: scale " << turbulence->scale << ", depth "
+        << turbulence->depth << " m>";
+  }
   out << ")";
   return out.str();
 }

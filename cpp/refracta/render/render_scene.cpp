@@ -43,10 +43,11 @@ void RenderScene::remove_lights_if_emitted_by(int geometry_id) {
 size_t RenderScene::add_light(LightPtr light, int emitter) {
   geometry.check_unchanging("add_light");
   if (!light) throw_invalid("light must not be None");
-  // An area light alone lit the scene, but no camera or BSDF ray saw its surface (a trial).
-  if (emitter < 0 && dynamic_cast<const AreaLight*>(light.get())) {
-    throw_invalid("add_light: an area light must be emitted by a surface the rays see: give its geometry emission= "
-                  "(add_mesh, add_box, add_sphere, ...) instead");
+  // An area light alone lit the scene, but no camera or BSDF ray saw its surface (trials: a mesh's
+  // light, and a sphere's taken from another scene's lights).
+  if (emitter < 0 && light->type() == LightType::kArea) {
+    throw_invalid("add_light: an area light (AreaLight, SphereLight) must be emitted by a surface the rays see: give "
+                  "its geometry emission= (add_mesh, add_box, add_sphere, ...) instead");
   }
   if (emitter >= 0) {
     if (size_t(emitter) >= geometry.geometry_count()) throw_invalid("add_light: no geometry ", emitter);

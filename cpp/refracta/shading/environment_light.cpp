@@ -161,7 +161,16 @@ void EnvironmentLight::preprocess(const Vec3d& centre, double radius) {
 }
 
 std::string EnvironmentLight::describe() const {
-  return concat("EnvironmentLight(", width_, " x ", height_, " texels, scale=", scale_, ")");
+  // What tells two maps apart: their file (or size), scale and turn.
+  std::string out = source_.empty() ? concat("EnvironmentLight(", width_, " x ", height_, " texels")
+                                    : concat("EnvironmentLight('", source_, "', ", width_, " x ", height_, " texels");
+  out += concat(", scale=", scale_);
+  if (!rotation_.isIdentity(0.0)) {
+    out += ", rotation=[";
+    for (int r = 0; r < 3; ++r) out += concat(r ? ", [" : "[", rotation_(r, 0), ", ", rotation_(r, 1), ", ", rotation_(r, 2), "]");
+    out += "]";
+  }
+  return out + ")";
 }
 
 Image EnvironmentLight::image() const {

@@ -86,7 +86,7 @@ def chi2_survival(statistic: float, dof: int) -> float:
     return _gamma_q(0.5 * dof, 0.5 * statistic)
 
 
-@dataclass
+@dataclass(eq=False)  # arrays: == would be ambiguous (equal by identity)
 class Result:
     """Outcome of a chi-square test.
 

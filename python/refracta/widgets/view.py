@@ -197,6 +197,14 @@ class MirageEditor(w.VBox):
     def import_pairs(self, path) -> None:
         self.model.import_pairs(path)
 
+    def __reduce__(self):
+        # A live widget with a worker thread: what it edits pickles instead (the pickler's own
+        # error named a lambda inside it).
+        raise TypeError(
+            "MirageEditor cannot be pickled (a live widget with a worker thread): pickle what it edits "
+            "(editor.field, editor.camera, editor.pairs) or save it with editor.export_scene(path)"
+        )
+
     def close(self) -> None:
         """Stop the background work and close the widgets."""
         if hasattr(self, "model"):  # not when the constructor failed before making it
