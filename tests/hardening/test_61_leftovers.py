@@ -183,3 +183,17 @@ def test_objects_holding_arrays_compare_by_identity_not_by_an_ambiguous_truth(tm
     refracta.io.write_image(path, np.full((4, 4, 3), 0.5, np.float32), tonemap="linear", exposure=1.0)
     first, second = refracta.photo.load(path), refracta.photo.load(path)
     assert first == first and first != second and first in [first]
+
+
+def test_a_physical_sky_takes_its_sun_direction_as_the_scene_does():
+    # spectrum.PhysicalSky refused a direction that set_physical_sky normalises ("must be a unit
+    # vector (got norm 0.4387)"): one rule for both.
+    given = np.array([-0.3, 0.25, 0.2])
+    scene = refracta.Scene()
+    scene.set_physical_sky(given, aerial_perspective=False)
+    sky = refracta.spectrum.PhysicalSky(given, below_horizon="horizon")
+    dirs = np.array([[0.0, 1.0, 0.0], [0.6, 0.8, 0.0]])
+    # The same settings (the scene's sky is the first of its lights): the same table, bit for bit.
+    np.testing.assert_array_equal(sky.rgb_radiance(dirs), scene.lights[0].rgb_radiance(dirs))
+    with pytest.raises(ValueError, match="sun_direction must be non-zero and finite"):
+        refracta.spectrum.PhysicalSky((0.0, 0.0, 0.0))

@@ -291,12 +291,8 @@ size_t add_spot_light(RenderScene& scene, const Vec3d& position, const Vec3d& di
 PhysicalSkySettings physical_sky_settings(const Vec3d& sun_direction, std::optional<double> aerosol, double ozone_du,
                                           double ground_albedo, double altitude, const std::string& below_horizon,
                                           const std::optional<double>& visibility) {
-  const Vec3d& sun = sun_direction;
-  if (!(sun.norm() > 0.0)) {
-    throw_invalid("sun_direction must be non-zero (got (", sun.x(), ", ", sun.y(), ", ", sun.z(), "))");
-  }
-  return sky_settings(sun.normalized(), aerosol, ozone_du, ground_albedo, altitude,
-                      PhysicalSkySettings().rayleigh_scale, below_horizon, visibility);
+  return sky_settings(sun_direction, aerosol, ozone_du, ground_albedo, altitude, PhysicalSkySettings().rayleigh_scale,
+                      below_horizon, visibility);
 }
 
 void set_physical_sky(RenderScene& scene, const PhysicalSkySettings& settings, const SunDisc& sun, double scale,

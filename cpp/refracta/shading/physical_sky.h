@@ -201,7 +201,7 @@ class PhysicalSky {
 // `aerosol`, or set by a meteorological `visibility` [km] instead: the total extinction at the
 // ground at 550 nm is 3.912 / visibility, Koschmieder), ozone absorption (`ozone_du` Dobson
 // units), a 5778 K sun scaled to 1361 W/m^2.
-// sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
+// sun_direction: toward the sun (normalised), y up. Radiance in W/(m^2 sr nm); below the horizon, by
 // below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
 // BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
 // (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's

@@ -3,6 +3,8 @@
 
 #include "refracta/core/error.h"
 
+#include <cmath>
+
 namespace refracta {
 
 PhysicalSkySettings sky_settings(const Vec3d& sun_direction, std::optional<double> aerosol, double ozone_du, double ground_albedo,
@@ -10,7 +12,13 @@ PhysicalSkySettings sky_settings(const Vec3d& sun_direction, std::optional<doubl
                                  std::optional<double> visibility, bool multiple_scattering) {
   PhysicalSkySettings s;
   s.multiple_scattering = multiple_scattering;
-  s.sun_direction = sun_direction;
+  // Normalised, as Scene.set_physical_sky always did (one rule for both ways to make a sky).
+  const double norm = sun_direction.norm();
+  if (!(norm > 0.0 && std::isfinite(norm))) {
+    throw_invalid("sun_direction must be non-zero and finite (got (", sun_direction.x(), ", ", sun_direction.y(), ", ",
+                  sun_direction.z(), "))");
+  }
+  s.sun_direction = sun_direction / norm;
   if (aerosol && visibility) {  // an explicit aerosol = 1.0 (the default) is one too
     throw_invalid("give aerosol or visibility, not both (got aerosol ", *aerosol, " and visibility ", *visibility,
                   " km)");

@@ -14,8 +14,9 @@
 
 namespace refracta {
 
-// The settings of PhysicalSky's constructor: visibility [km], when given, sets the aerosol by
-// Koschmieder's law (set_visibility); below_horizon is 'ground' or 'horizon'.
+// The settings of PhysicalSky's constructor: sun_direction normalised (non-zero), visibility [km],
+// when given, sets the aerosol by Koschmieder's law (set_visibility); below_horizon is 'ground'
+// or 'horizon'.
 PhysicalSkySettings sky_settings(const Vec3d& sun_direction, std::optional<double> aerosol, double ozone_du, double ground_albedo,
                                  double altitude, double rayleigh_scale, const std::string& below_horizon,
                                  std::optional<double> visibility,
