@@ -197,3 +197,24 @@ def test_a_physical_sky_takes_its_sun_direction_as_the_scene_does():
     np.testing.assert_array_equal(sky.rgb_radiance(dirs), scene.lights[0].rgb_radiance(dirs))
     with pytest.raises(ValueError, match="sun_direction must be non-zero and finite"):
         refracta.spectrum.PhysicalSky((0.0, 0.0, 0.0))
+
+
+@pytest.mark.parametrize(
+    "slip",
+    [
+        lambda: refracta.PhysicalAtmosphere(pressure=1013.25),
+        lambda: refracta.TemperatureProfile([0.0, 10.0], [288.15, 288.0], pressure=337.0),
+    ],
+)
+def test_a_pressure_in_hectopascals_is_refused(slip):
+    # 1013.25 "Pa" gave n - 1 = 2.8e-6, a hundredth of the real air's, and no mirage, without a word.
+    with pytest.raises(ValueError, match=r"pressure must be in pascals .* hPa is"):
+        slip()
+
+
+def test_thin_air_outside_the_hectopascal_range_is_still_taken():
+    # Near-vacuum (a test of straight rays) and a high plateau's 60 kPa stay valid: n - 1 scales
+    # with P, 2.78e-4 at 101 325 Pa, so 2.7e-12 at 1e-3 Pa (bound 1e-10) ...
+    assert refracta.PhysicalAtmosphere(pressure=1e-3).ior([0.0, 1.0, 0.0]) < 1.0 + 1e-10
+    # ... and 1.6e-4 at 60 kPa (bound 1e-4).
+    assert refracta.PhysicalAtmosphere(pressure=6e4).ior([0.0, 1.0, 0.0]) > 1.0001

@@ -28,6 +28,18 @@ constexpr double kHottestAir = 1e4;
 // n - 1 19 times the real one).
 constexpr double kColdestAir = 100.0;
 
+// A ground pressure [Pa] must be > 0 and not in [300, 1100]: every surface pressure on Earth in
+// hectopascals (Everest's 337 to the record 1084), the air's 30-45 km up in pascals, which no
+// ground has. The slip gave n - 1 a hundredth of the real one, and no mirage, without a word.
+inline void check_ground_pressure(double pressure, const char* owner) {
+  if (!(pressure > 0.0)) throw_invalid(owner, ": pressure must be > 0 Pa (got ", pressure, ")");
+  constexpr double kLowestHectopascals = 300.0, kHighestHectopascals = 1100.0;
+  if (pressure >= kLowestHectopascals && pressure <= kHighestHectopascals) {
+    throw_invalid(owner, ": pressure must be in pascals (got ", pressure, " Pa, the air's some 30 km up; ", pressure,
+                  " hPa is ", 100.0 * pressure, " Pa)");
+  }
+}
+
 // Sorted, de-duplicated nodes: [lo, hi] every `step`, plus finer runs (from, to, step), plus
 // `extra` nodes (kinks of the profile, where the interpolant must not straddle a jump of T').
 struct NodeRun {

@@ -138,9 +138,7 @@ class PhysicalAtmosphereModel : public HydrostaticAirModel<PhysicalAtmosphereMod
       throw_invalid("PhysicalAtmosphere: t_ground must be in [", kColdestAir, ", ", kHottestAir,
                     "] K, in kelvin (15 C is 288.15 K; got ", v[kGroundTemperature], ")");
     }
-    if (!(v[kGroundPressure] > 0.0)) {
-      throw_invalid("PhysicalAtmosphere: pressure must be > 0 Pa (got ", v[kGroundPressure], ")");
-    }
+    check_ground_pressure(v[kGroundPressure], "PhysicalAtmosphere");
     if (!(v[kInversionThickness] > 0.0)) {
       throw_invalid("PhysicalAtmosphere: inversion_thickness must be > 0 m (got ",
                     v[kInversionThickness], ")");

@@ -80,7 +80,7 @@ class TemperatureProfileModel : public HydrostaticAirModel<TemperatureProfileMod
                       kHottestAir, "] K, in kelvin (15 C is 288.15 K; got ", v[i], ")");
       }
     }
-    if (!(v[m] > 0.0)) throw_invalid("TemperatureProfile: pressure must be > 0 Pa (got ", v[m], ")");
+    check_ground_pressure(v[m], "TemperatureProfile");
     if (!(v[m + 1] >= 0.0 && v[m + 1] <= 1.0)) {
       throw_invalid("TemperatureProfile: humidity must be in [0, 1] (got ", v[m + 1], ")");
     }
