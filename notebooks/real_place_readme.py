@@ -1,15 +1,17 @@
-"""Make README's "A real place" figures: ``python3 notebooks/real_place_readme.py``.
+"""Make README's "A real place" figures: ``python3 notebooks/real_place_readme.py [FOLDER]``.
 
 Renders refracta.examples.real_place at 640 x 320 with its readouts, prints the summit's readouts
 and refraction_coefficient's k (the figures quoted in the README), writes
 notebooks/images/real_place.png; then a stand-in for a photograph (a render, NOT a photograph: the
 camera turned 0.1 deg left and 0.04 deg up, and a cool marine layer instead of the standard
 atmosphere) at 320 x 160, notebooks/images/real_place_photo.png, and the standard-atmosphere
-render's edges and skyline drawn on it, notebooks/images/real_place_overlay.png.
+render's edges and skyline drawn on it, notebooks/images/real_place_overlay.png. FOLDER (default
+notebooks/images, the README's own figures) takes the three images instead.
 """
 
 from __future__ import annotations
 
+import sys
 import time
 from pathlib import Path
 
@@ -41,13 +43,14 @@ def summit_pixel(aovs) -> tuple[int, int]:
     return int(row), int(col)
 
 
-def main() -> None:
+def main(images: Path = IMAGES) -> None:
+    images.mkdir(parents=True, exist_ok=True)
     example = examples.real_place(640, 320)
     settings = dict(transport="direct", spp=1, denoise=True, max_length=example.max_length, progress=False)
     start = time.perf_counter()
     image = refracta.render(example.scene, example.camera, example.field, **settings)
     print(f"real_place 640x320 (no readouts): {time.perf_counter() - start:.1f} s")
-    save(IMAGES / "real_place.png", refracta.io.to_display(image))
+    save(images / "real_place.png", refracta.io.to_display(image))
 
     small = examples.real_place(320, 160)
     start = time.perf_counter()
@@ -83,13 +86,13 @@ def main() -> None:
     stand_in = refracta.render(marine.scene, camera, marine.field, **settings)
     k_marine = refracta.refraction_coefficient(marine.field, examples.REAL_PLACE_EYE, geodesic)
     print(f"stand-in's air: k = {k_marine.k:.3f}")
-    save(IMAGES / "real_place_photo.png", refracta.io.to_display(stand_in))
-    picture = photo.load(IMAGES / "real_place_photo.png")
+    save(images / "real_place_photo.png", refracta.io.to_display(stand_in))
+    picture = photo.load(images / "real_place_photo.png")
     result = photo.overlay(picture, (render, aovs), mode="edges")
-    save(IMAGES / "real_place_overlay.png", result.image)
+    save(images / "real_place_overlay.png", result.image)
     columns = result.skyline >= 0
     print(f"overlay: skyline drawn in {columns.sum()} of {columns.size} columns")
 
 
 if __name__ == "__main__":
-    main()
+    main(Path(sys.argv[1]) if len(sys.argv) > 1 else IMAGES)

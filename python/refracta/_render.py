@@ -24,7 +24,7 @@ class SceneWarning(UserWarning):
 
 
 # How far the scene's ground or sea (else its lowest geometry) may lie from the field's height 0 [m]
-# before render() warns: a hot road's surface layer e-folds over ~0.1 m (ORACLES.md's typical
+# before render() warns: a hot road's surface layer e-folds over ~0.1 m (a typical
 # layer), so a ground 0.1 m off already sits a whole e-folding above or below the air that makes
 # the mirage.
 GROUND_TOLERANCE = 0.1

@@ -695,7 +695,12 @@ def _run(argv=None) -> int:
     demo_parser = commands.add_parser("demo", help="render the example mirages and ray fans")
     demo_parser.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
     demo_parser.add_argument(
-        "--size", type=_size, default=None, help="image size WxH (default: each example's own, 640 px wide)"
+        "--size",
+        type=_size,
+        default=None,
+        help=(
+            "the examples' image size WxH (default: each example's own, 640 px wide); the green flash's square frames and the shimmer GIFs scale with its width"
+        ),
     )
     render_parser = commands.add_parser("render", help="render a TOML scene file")
     render_parser.add_argument("scene", type=Path, help="scene file (.toml)")

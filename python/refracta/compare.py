@@ -3,7 +3,7 @@
 compare.shadows(scene, camera, methods, kernels) renders the sun's shadow intensity per pixel
 (render_raster(output='shadow')) with each method and kernel and compares it with the reference:
 Embree shadow rays for unfiltered (1 x 1) lookups and for 'hard' / 'pcf', and PCF with the same
-kernel for filtered moment methods (shared/MOMENTS.md: filtered MSM approximates filtered PCF).
+kernel for filtered moment methods (Peters & Klein 2015: filtered MSM approximates filtered PCF).
 compare.transparency(scene, camera, methods) composites the same rasterized fragments with each
 OIT method and compares with the exact (sorted) composite.
 """

@@ -1,4 +1,4 @@
-"""Ready-made mirage scenes and atmospheres, with values from ORACLES.md.
+"""Ready-made mirage scenes and atmospheres, with values typical of the phenomena they show.
 
 Scenes: hot_road(), cold_sea(), fata_morgana(), hot_spot() and green_flash() return an Example
 with .scene, .camera, .field (procedural geometry; nothing to download); real_place() a geographic
@@ -126,7 +126,7 @@ def _car(scene, x, z, colour, glass):
 
 # The hot road's view: a 500 mm telephoto on full frame from a standing eye 1.5 m above the
 # asphalt, aimed 0.25 deg below the horizon. The mirage band lies between the horizon and the
-# critical depression theta_c = arccos(n(0)/n(h_eye)) below it (0.30 deg for 15 K: ORACLES.md);
+# critical depression theta_c = arccos(n(0)/n(h_eye)) below it (0.30 deg for 15 K);
 # a long lens makes it a large part of the frame (500 mm: 2.06 deg vertically at 2:1, so
 # ~14 % of the height; a 50 mm lens would show it as 1.5 %).
 HOT_ROAD_FOCAL_LENGTH = 500.0  # [mm]
@@ -140,7 +140,7 @@ HOT_ROAD_CARS = [(420.0, 1.7), (500.0, -1.9), (640.0, 1.8), (880.0, -1.9), (1150
 
 def hot_road(width: int = 640, height: int = 320) -> Example:
     """Inferior mirage, the "wet road": a straight desert road whose asphalt is 15 K warmer than
-    the air (e-folding 10 cm: 1.5 K/cm at the surface, ORACLES.md), seen as a photographer does,
+    the air (e-folding 10 cm: 1.5 K/cm at the surface), seen as a photographer does,
     through a 500 mm lens from 1.5 m, toward an afternoon sun 30 deg high and 25 deg to the right
     (out of frame), under a physical sky with desert haze (visibility 40 km). From ~300 m on the
     road turns into a bright pool: the sky below the horizon, the lower halves of the cars and the

@@ -1,6 +1,6 @@
 """Image files through OpenImageIO: EXR/HDR/TIFF stay linear float; PNG/JPEG are tone mapped.
 
-Display encoding (shared/SHADING.md section 8; C++ shading/tonemap.h, where the math and the
+Display encoding (C++ shading/tonemap.h, where the math and the
 defaults live; this module passes its arguments through, None meaning "not given"):
 
 Exposure c, the scale applied to the linear radiance first:

@@ -1,4 +1,4 @@
-"""Lights for refracta's integrators (shared/SHADING.md section 5), and for users' own.
+"""Lights for refracta's integrators, and for users' own.
 
 Every light derives from :class:`Light` and offers, in RGB rendering and vectorised over N points:
 

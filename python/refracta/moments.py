@@ -1,4 +1,4 @@
-"""Moment shadow mapping, one texel at a time (shared/MOMENTS.md 2-3).
+"""Moment shadow mapping, one texel at a time (Peters & Klein 2015; Peters et al. 2017).
 
 shadow_intensity(moments, z_f, method='msm_hamburger'|'msm_hausdorff'|'vsm'|'canonical',
 depth_range='unit'|'signed', bias=None, bias_vector=None, storage='fp64'): the shadow intensity

@@ -1,4 +1,4 @@
-"""Order-independent transparency for one pixel's fragments (shared/MOMENTS.md 4).
+"""Order-independent transparency for one pixel's fragments (Muenstermann et al. 2018).
 
 ``composite(depths, alphas, colors, background=(0, 0, 0), method, *, options=None, **fields)`` -> RGB,
 method 'exact', 'peel', 'wboit' or 'mboit'. depths are view depths (> 0), alphas in [0, 1], colors (K, 3)

@@ -18,8 +18,7 @@ elevation_deg, wavelength). Scene.set_physical_sky(aerial_perspective=True) appl
 segment the renderers cast.
 
 Thin vectorised wrappers of refracta's C++ colour code (cpp/refracta/shading/color.h,
-spectral.h, physical_sky.h), the same functions spectral rendering uses. Conventions
-(shared/SHADING.md section 7):
+spectral.h, physical_sky.h), the same functions spectral rendering uses. Conventions:
 
 - Wavelengths in nanometres; the tables cover [360, 830] nm and spectra are 0 outside.
 - Linear sRGB (IEC 61966-2-1 primaries, D65 white), not gamma-encoded.

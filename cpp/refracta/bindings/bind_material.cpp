@@ -81,7 +81,7 @@ void bind_material_base(py::module_& m) {
   bind_bsdf_sample(m);
   py::class_<Material, std::shared_ptr<Material>>(m, "Material",
                                                  "A surface material (shading/material.h): builds a BSDF at a hit. Evaluate it in\n"
-                                                 "the local shading frame with f, pdf and sample (shared/SHADING.md section 0).")
+                                                 "the local shading frame with f, pdf and sample (z along the shading normal).")
       .def(
           "f",
           [](const Material& material, const py::object& wo, const py::object& wi, const py::object& wavelengths,

@@ -56,13 +56,14 @@ void bind_runtime(py::module_& m) {
                         std::thread::hardware_concurrency(), " hardware threads)");
         }
         thread_limit().reset();  // one limit at a time: the newest is the one in force
+        limit_oiio_threads(n.value_or(0));
         if (n && *n > 0) {
           thread_limit() = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(*n));
         }
       },
       py::arg("n"), R"doc(
 Limit refracta's parallel work (oneTBB: render, trace_rays, render_raster, solve's pair traces,
-Embree's BVH builds) to n threads, n in [0, 256]; n = None or 0 restores the default, every core. Results do
+Embree's BVH builds; OpenImageIO's image and texture work) to n threads, n in [0, 256]; n = None or 0 restores the default, every core. Results do
 not depend on it: every parallel loop writes each item's result to its own slot.)doc");
   m.def(
       "get_threads",

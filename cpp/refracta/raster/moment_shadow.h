@@ -20,7 +20,7 @@ enum class MomentShadowMethod { kHamburger, kHausdorff, kVsm, kCanonical };
 MomentShadowMethod parse_moment_shadow_method(const std::string& name);  // "msm_hamburger", "msm_hausdorff", "vsm", "canonical"
 const char* moment_shadow_method_name(MomentShadowMethod method);
 
-// How a moment shadow map keeps its four power moments and biases them (shared/MOMENTS.md 2-3):
+// How a moment shadow map keeps its four power moments and biases them (Peters & Klein 2015; Peters et al. 2017):
 // depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT
 // 2017); storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation
 // transforms); bias (alpha) and bias_vector (b*): None means the published value for the depth
@@ -35,10 +35,10 @@ struct MomentShadowSettings {
   std::optional<Moments4> bias_vector;
 
   // The published strengths: 3e-6 (unit) / 3e-7 (signed) for fp32 and fp64 (Peters & Klein 2015
-  // sec. 5; Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5 (MOMENTS.md 2.5).
+  // sec. 5; Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5.
   static double published_bias(DepthRange range, Storage storage);
   // (0.5, 0.5, 0.5, 0.5) for unit depths; for signed ones (0, 0.375, 0, 0.375), and with 16-bit
-  // storage (the sparse quantisation) (0, 0.628, 0, 0.628) (Peters et al. 2017; MOMENTS.md 2.2).
+  // storage (the sparse quantisation) (0, 0.628, 0, 0.628) (Peters et al. 2017).
   static Moments4 published_bias_vector(DepthRange range, Storage storage);
   double bias_or_published() const { return bias ? *bias : published_bias(depth_range, storage); }
   Moments4 bias_vector_or_published() const { return bias_vector ? *bias_vector : published_bias_vector(depth_range, storage); }

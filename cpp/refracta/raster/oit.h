@@ -30,7 +30,7 @@ enum class WboitWeight { kEq7, kEq9 };
 WboitWeight parse_wboit_weight(const std::string& name);  // "eq7", "eq9"
 const char* wboit_weight_name(WboitWeight weight);
 
-// Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
+// Moment-based order-independent transparency (Muenstermann et al., I3D 2018): basis
 // 'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
 // published value for the basis, moment count and storage; storage 'fp32', 'unorm16' (the 16-bit
 // ROV variant, re-quantised after every fragment) or 'fp64' (the method itself); log-depth warp
@@ -40,7 +40,7 @@ struct MboitSettings {
   int moments = 4;              // 4, 6 or 8 power moments; 2, 3 or 4 trigonometric
   double beta = 0.25;           // overestimation in [0, 1]: the share of the fragment's own layer in front
   // alpha, the weight of the bias vector in [0, 1); unset (None) gives the published value for
-  // the basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).
+  // the basis, the moment count and the storage (published_bias).
   std::optional<double> bias;
   double z_near = 0.0;  // near end of the log-depth warp [m]
   double z_far = 0.0;   // far end of the log-depth warp [m]; both 0: the fragments' own range

@@ -1,4 +1,4 @@
-// OIIO's global "debug" attribute.
+// OIIO's global attributes: "debug", "threads".
 #include "refracta/scene/oiio_messages.h"
 
 #include <OpenImageIO/imageio.h>
@@ -9,6 +9,11 @@ namespace refracta {
 
 void silence_oiio_debug_output() {
   if (std::getenv("OPENIMAGEIO_DEBUG") == nullptr) OIIO::attribute("debug", 0);
+}
+
+void limit_oiio_threads(int n) {
+  OIIO::attribute("threads", n);
+  OIIO::attribute("exr_threads", n);  // OpenEXR's pool: 0 is its default too
 }
 
 }  // namespace refracta

@@ -8,4 +8,8 @@ namespace refracta {
 // Turns OIIO's debug printing off, unless the user asked for it with OPENIMAGEIO_DEBUG.
 void silence_oiio_debug_output();
 
+// OIIO's own threads (image reads and writes, OpenEXR's pool, texture preparation) at most n,
+// as set_threads limits refracta's; 0: OIIO's default, every core.
+void limit_oiio_threads(int n);
+
 }  // namespace refracta

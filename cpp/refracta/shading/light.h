@@ -36,7 +36,7 @@ struct LightLiSample {
   double distance = std::numeric_limits<double>::infinity();  // |p_light - p|; infinite lights: inf
 };
 
-// A light (shared/SHADING.md section 5). In Python its methods evaluate RGB rendering,
+// A light. In Python its methods evaluate RGB rendering,
 // vectorised over N points.
 class Light {
  public:

@@ -85,7 +85,7 @@ class PlasticBsdf final : public TwoSidedReflection<PlasticBsdf> {
 // reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX (or alpha_u, alpha_v). A
 // texture multiplies the reflectance. The base's light enters and leaves through the smooth coat's
 // Fresnel terms at any alpha, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fdr_internal))
-// (shared/SHADING.md 3). Smooth: Mitsuba 3's plastic with nonlinear=True (its default, False,
+// (internal reflections at the coat summed). Smooth: Mitsuba 3's plastic with nonlinear=True (its default, False,
 // divides by 1 - Fdr_internal instead: brighter by (1 - R Fdr_internal) / (1 - Fdr_internal),
 // 35 % at R 0.77 and 2.5x as R -> 0 for ior 1.5). Rough: roughplastic's specular lobe; its diffuse part differs from
 // roughplastic's, which takes the rough interface's tabulated transmittance and internal
