@@ -197,8 +197,7 @@ unchanged). Raises refracta.NumericalError where n <= 0 or is not finite.)doc";
 inline constexpr const char mkd_doc_refracta_L_rgb[] = R"doc(Area lights: RGB radiance (N, 3) leaving points (N, 3) with the light's front normals (N, 3) toward
 unit dirs (N, 3).)doc";
 inline constexpr const char mkd_doc_refracta_Le_rgb[] = R"doc(Infinite lights: RGB radiance (N, 3) seen looking along unit dirs (N, 3); 0 for others.)doc";
-inline constexpr const char mkd_doc_refracta_Light[] = R"doc(A light (shared/SHADING.md section 5). In Python its methods evaluate RGB rendering, vectorised over
-N points.)doc";
+inline constexpr const char mkd_doc_refracta_Light[] = R"doc(A light. In Python its methods evaluate RGB rendering, vectorised over N points.)doc";
 inline constexpr const char mkd_doc_refracta_LightSampler[] = R"doc(Chooses one light per sample, in proportion to power ('power'), by kind ('kind') or uniformly
 ('uniform'). Build it after preprocess() of infinite lights.)doc";
 inline constexpr const char mkd_doc_refracta_LinearSquaredModel[] = R"doc(n^2 = n0^2 + alpha y: rays are parabolas y = y0 + t0 x + alpha x^2 / (4 beta^2), beta = n(y0)
@@ -213,31 +212,31 @@ Scaling n_bg, n_inv, n_hot together changes nothing (gauge freedom): editing fix
 hot_spots=[refracta.HotSpot(x, z, radius, strength), ...] localise the hot term: its deficit near
 the ground, n_hot * sigma(-h / (0.3 a_hot)), is scaled by sum_i dt_i F_i(r_i), so the hot layer lies
 only over the spots (parameters hot_spot<i>_x, _z, _radius, _dt).)doc";
-inline constexpr const char mkd_doc_refracta_MboitSettings[] = R"doc(Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
-'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
-published value for the basis, moment count and storage; storage 'fp32', 'unorm16' (the 16-bit ROV
-variant, re-quantised after every fragment) or 'fp64' (the method itself); log-depth warp over
-[z_near, z_far] [m] (both 0: the fragments' own range, in render_raster the frame's).)doc";
+inline constexpr const char mkd_doc_refracta_MboitSettings[] = R"doc(Moment-based order-independent transparency (Muenstermann et al., I3D 2018): basis 'power' (moments
+4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the published value for
+the basis, moment count and storage; storage 'fp32', 'unorm16' (the 16-bit ROV variant, re-quantised
+after every fragment) or 'fp64' (the method itself); log-depth warp over [z_near, z_far] [m] (both
+0: the fragments' own range, in render_raster the frame's).)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_beta[] = R"doc(overestimation in [0, 1]: the share of the fragment's own layer in front)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_bias[] = R"doc(alpha, the weight of the bias vector in [0, 1); unset (None) gives the published value for the
-basis, the moment count and the storage (MOMENTS.md 4.4; published_bias).)doc";
+basis, the moment count and the storage (published_bias).)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_moments[] = R"doc(4, 6 or 8 power moments; 2, 3 or 4 trigonometric)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_published_bias[] = R"doc(fp32: 5e-7 / 5e-6 / 5e-5 for 4 / 6 / 8 power moments; unorm16: 6e-5 (the Unity HDRP port),
 5e-5, 5e-4; trigonometric: 4e-4 for 2 moments, 2e-4 for 3 and 4.)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_z_far[] = R"doc(far end of the log-depth warp [m]; both 0: the fragments' own range)doc";
 inline constexpr const char mkd_doc_refracta_MboitSettings_z_near[] = R"doc(near end of the log-depth warp [m])doc";
-inline constexpr const char mkd_doc_refracta_MomentShadowSettings[] = R"doc(How a moment shadow map keeps its four power moments and biases them (shared/MOMENTS.md 2-3):
-depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT 2017);
-storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation transforms); bias
-(alpha) and bias_vector (b*): None means the published value for the depth range and storage
-(published_bias, published_bias_vector).)doc";
+inline constexpr const char mkd_doc_refracta_MomentShadowSettings[] = R"doc(How a moment shadow map keeps its four power moments and biases them (Peters & Klein 2015; Peters et
+al. 2017): depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al.
+JCGT 2017); storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation
+transforms); bias (alpha) and bias_vector (b*): None means the published value for the depth range
+and storage (published_bias, published_bias_vector).)doc";
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings_bias[] = R"doc(alpha, the weight of bias_vector (Peters & Klein's alpha) in [0, 1); unset (None) gives
 published_bias(depth_range, storage).)doc";
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings_bias_vector[] = R"doc(b*, the 4 moments biased toward; unset (None): published_bias_vector(depth_range, storage).)doc";
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings_published_bias[] = R"doc(The published strengths: 3e-6 (unit) / 3e-7 (signed) for fp32 and fp64 (Peters & Klein 2015 sec. 5;
-Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5 (MOMENTS.md 2.5).)doc";
+Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5.)doc";
 inline constexpr const char mkd_doc_refracta_MomentShadowSettings_published_bias_vector[] = R"doc((0.5, 0.5, 0.5, 0.5) for unit depths; for signed ones (0, 0.375, 0, 0.375), and with 16-bit storage
-(the sparse quantisation) (0, 0.628, 0, 0.628) (Peters et al. 2017; MOMENTS.md 2.2).)doc";
+(the sparse quantisation) (0, 0.628, 0, 0.628) (Peters et al. 2017).)doc";
 inline constexpr const char mkd_doc_refracta_ObjOptions[] = R"doc(How add_obj (Scene.add_obj) places an OBJ file and finds its textures.)doc";
 inline constexpr const char mkd_doc_refracta_ObjOptions_missing_textures[] = R"doc('error' (raise refracta.TextureNotFoundError) or 'warn' (a UserWarning once per texture name,
 through the `warn` callback; the material keeps Kd))doc";
@@ -324,17 +323,17 @@ wavelength [nm] in [360, 830].)doc";
 inline constexpr const char mkd_doc_refracta_Plastic[] = R"doc(Coated diffuse (Weidlich & Wilkie 2007): a dielectric coat of index ior over a Lambertian base of
 reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX (or alpha_u, alpha_v). A
 texture multiplies the reflectance. The base's light enters and leaves through the smooth coat's
-Fresnel terms at any alpha, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fdr_internal))
-(shared/SHADING.md 3). Smooth: Mitsuba 3's plastic with nonlinear=True (its default, False, divides
-by 1 - Fdr_internal instead: brighter by (1 - R Fdr_internal) / (1 - Fdr_internal), 35 % at R 0.77
-and 2.5x as R -> 0 for ior 1.5). Rough: roughplastic's specular lobe; its diffuse part differs from
-roughplastic's, which takes the rough interface's tabulated transmittance and internal reflectance
-(a trial's directional albedos, alpha 0.3, white base, ior 1.5: 11.8 % above roughplastic's at
-normal incidence, 4.4 % below at 80 deg, 0.54 against 0.62 at 85 deg and 0.28 against 0.60 at 89
-deg). The rough lobe's Fresnel at grazing can outgrow the smooth coat's F that the diffuse part
-leaves room for: a white base under a coat of ior 10 reflects 1.05 of what arrives at 85 deg (1.29
-at ior 50); at a polymer's 1.5 it never exceeds 1. ior in (0, 100]: beyond, Fdr_internal rounds to 1
-and a white base's 1 / (1 - R Fdr_internal) to infinity.)doc";
+Fresnel terms at any alpha, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fdr_internal)) (internal
+reflections at the coat summed). Smooth: Mitsuba 3's plastic with nonlinear=True (its default,
+False, divides by 1 - Fdr_internal instead: brighter by (1 - R Fdr_internal) / (1 - Fdr_internal),
+35 % at R 0.77 and 2.5x as R -> 0 for ior 1.5). Rough: roughplastic's specular lobe; its diffuse
+part differs from roughplastic's, which takes the rough interface's tabulated transmittance and
+internal reflectance (a trial's directional albedos, alpha 0.3, white base, ior 1.5: 11.8 % above
+roughplastic's at normal incidence, 4.4 % below at 80 deg, 0.54 against 0.62 at 85 deg and 0.28
+against 0.60 at 89 deg). The rough lobe's Fresnel at grazing can outgrow the smooth coat's F that
+the diffuse part leaves room for: a white base under a coat of ior 10 reflects 1.05 of what arrives
+at 85 deg (1.29 at ior 50); at a polymer's 1.5 it never exceeds 1. ior in (0, 100]: beyond,
+Fdr_internal rounds to 1 and a white base's 1 / (1 - R Fdr_internal) to infinity.)doc";
 inline constexpr const char mkd_doc_refracta_PointLight[] = R"doc(A point light: intensity I [W/sr] (a colour: one number or RGB) in every direction from position
 [m]; irradiance at distance r on a surface tilted by theta E = I cos(theta) / r^2; power 4 pi I.)doc";
 inline constexpr const char mkd_doc_refracta_Principled[] = R"doc(Burley 2012's principled BRDF (disney.brdf without subsurface): base_color (r, g, b) in [0, 1], and
@@ -470,7 +469,7 @@ inline constexpr const char mkd_doc_refracta_RoughConductor[] = R"doc(A rough me
 >= 0, raised to 1e-4), height-correlated Smith masking, exact complex Fresnel of eta + i k (unset: F
 = 1), visible-normal sampling.)doc";
 inline constexpr const char mkd_doc_refracta_RoughDielectric[] = R"doc(Rough glass (Walter et al. 2007): GGX alpha (or alpha_u, alpha_v), ior as for Dielectric, priority.)doc";
-inline constexpr const char mkd_doc_refracta_ScaledInfiniteLight[] = R"doc(An infinite light (a sky, an environment or the sun) times a constant factor `scale`:
+inline constexpr const char mkd_doc_refracta_ScaledInfiniteLight[] = R"doc(An infinite light (a sky or an environment, not the sun) times a constant factor `scale`:
 Scene.set_physical_sky's `scale` on its sky. Pickles through its light and scale.)doc";
 inline constexpr const char mkd_doc_refracta_ShadowMapOptions[] = R"doc(The shadow maps of render_raster (an orthographic map for the sun, a perspective one per spot
 light): method 'hard' (one depth compare), 'pcf' (kernel x kernel compares), 'vsm', 'msm_hamburger',

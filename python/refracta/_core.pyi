@@ -530,6 +530,9 @@ class CustomField(IndexField):
     Slow: the integrators call back into Python at every evaluation. Its first evaluation checks it
     there: height_only=True against n and grad_ior 1 m aside (ValueError if either changes), and
     grad_ior against ior's central differences 1 mm apart (a RuntimeWarning beyond 1e-3 of it).
+    A field whose callables refer back to it (methods of an object holding it) is garbage-collected
+    while Python alone holds it; one a CurvedEarth, scene or other field also holds stays alive with
+    its callables, so a cycle through that holder too is kept until the holder is dropped.
     """
     def __getstate__(self) -> tuple:
         ...
@@ -1567,24 +1570,24 @@ class OceanWaves:
         """
 class MomentShadowSettings:
     """
-    How a moment shadow map keeps its four power moments and biases them (shared/MOMENTS.md 2-3):
-    depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al. JCGT 2017);
-    storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation transforms); bias
-    (alpha) and bias_vector (b*): None means the published value for the depth range and storage
-    (published_bias, published_bias_vector).
+    How a moment shadow map keeps its four power moments and biases them (Peters & Klein 2015; Peters et
+    al. 2017): depth_range 'unit' ([0, 1], Peters & Klein I3D 2015) or 'signed' ([-1, 1], Peters et al.
+    JCGT 2017); storage 'fp64', 'fp32' or 'unorm16' (16 bits through the optimised quantisation
+    transforms); bias (alpha) and bias_vector (b*): None means the published value for the depth range
+    and storage (published_bias, published_bias_vector).
     """
     __hash__: typing.ClassVar[None] = None
     @staticmethod
     def published_bias(depth_range: str, storage: str) -> float:
         """
         The published strengths: 3e-6 (unit) / 3e-7 (signed) for fp32 and fp64 (Peters & Klein 2015 sec. 5;
-        Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5 (MOMENTS.md 2.5).
+        Peters et al. 2017 sec. 3.2); unorm16 needs ~10x more: 3e-5 / 6e-5.
         """
     @staticmethod
     def published_bias_vector(depth_range: str, storage: str = 'fp32') -> typing.Any:
         """
         (0.5, 0.5, 0.5, 0.5) for unit depths; for signed ones (0, 0.375, 0, 0.375), and with 16-bit storage
-        (the sparse quantisation) (0, 0.628, 0, 0.628) (Peters et al. 2017; MOMENTS.md 2.2).
+        (the sparse quantisation) (0, 0.628, 0, 0.628) (Peters et al. 2017).
         """
     def __eq__(self, arg0: typing.Any) -> typing.Any:
         ...
@@ -1720,11 +1723,11 @@ class ShadowMapOptions:
         ...
 class MboitSettings:
     """
-    Moment-based order-independent transparency (Muenstermann et al., I3D 2018; MOMENTS.md 4): basis
-    'power' (moments 4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the
-    published value for the basis, moment count and storage; storage 'fp32', 'unorm16' (the 16-bit ROV
-    variant, re-quantised after every fragment) or 'fp64' (the method itself); log-depth warp over
-    [z_near, z_far] [m] (both 0: the fragments' own range, in render_raster the frame's).
+    Moment-based order-independent transparency (Muenstermann et al., I3D 2018): basis 'power' (moments
+    4, 6 or 8) or 'trigonometric' (2, 3 or 4); overestimation beta; bias None: the published value for
+    the basis, moment count and storage; storage 'fp32', 'unorm16' (the 16-bit ROV variant, re-quantised
+    after every fragment) or 'fp64' (the method itself); log-depth warp over [z_near, z_far] [m] (both
+    0: the fragments' own range, in render_raster the frame's).
     """
     __hash__: typing.ClassVar[None] = None
     @staticmethod
@@ -1771,7 +1774,7 @@ class MboitSettings:
     def bias(self) -> float | None:
         """
         alpha, the weight of the bias vector in [0, 1); unset (None) gives the published value for the
-        basis, the moment count and the storage (MOMENTS.md 4.4; published_bias). (default: None)
+        basis, the moment count and the storage (published_bias). (default: None)
         """
     @bias.setter
     def bias(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -2896,7 +2899,7 @@ class BsdfSample:
 class Material:
     """
     A surface material (shading/material.h): builds a BSDF at a hit. Evaluate it in
-    the local shading frame with f, pdf and sample (shared/SHADING.md section 0).
+    the local shading frame with f, pdf and sample (z along the shading normal).
     """
     def __repr__(self) -> str:
         ...
@@ -3084,17 +3087,17 @@ class Plastic(Material):
     Coated diffuse (Weidlich & Wilkie 2007): a dielectric coat of index ior over a Lambertian base of
     reflectance in [0, 1]; alpha = 0: smooth coat (a delta lobe), > 0: GGX (or alpha_u, alpha_v). A
     texture multiplies the reflectance. The base's light enters and leaves through the smooth coat's
-    Fresnel terms at any alpha, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fdr_internal))
-    (shared/SHADING.md 3). Smooth: Mitsuba 3's plastic with nonlinear=True (its default, False, divides
-    by 1 - Fdr_internal instead: brighter by (1 - R Fdr_internal) / (1 - Fdr_internal), 35 % at R 0.77
-    and 2.5x as R -> 0 for ior 1.5). Rough: roughplastic's specular lobe; its diffuse part differs from
-    roughplastic's, which takes the rough interface's tabulated transmittance and internal reflectance
-    (a trial's directional albedos, alpha 0.3, white base, ior 1.5: 11.8 % above roughplastic's at
-    normal incidence, 4.4 % below at 80 deg, 0.54 against 0.62 at 85 deg and 0.28 against 0.60 at 89
-    deg). The rough lobe's Fresnel at grazing can outgrow the smooth coat's F that the diffuse part
-    leaves room for: a white base under a coat of ior 10 reflects 1.05 of what arrives at 85 deg (1.29
-    at ior 50); at a polymer's 1.5 it never exceeds 1. ior in (0, 100]: beyond, Fdr_internal rounds to 1
-    and a white base's 1 / (1 - R Fdr_internal) to infinity. texture: an image file (str or os.PathLike;
+    Fresnel terms at any alpha, (1 - F(wi)) (1 - F(wo)) R / (pi eta^2 (1 - R Fdr_internal)) (internal
+    reflections at the coat summed). Smooth: Mitsuba 3's plastic with nonlinear=True (its default,
+    False, divides by 1 - Fdr_internal instead: brighter by (1 - R Fdr_internal) / (1 - Fdr_internal),
+    35 % at R 0.77 and 2.5x as R -> 0 for ior 1.5). Rough: roughplastic's specular lobe; its diffuse
+    part differs from roughplastic's, which takes the rough interface's tabulated transmittance and
+    internal reflectance (a trial's directional albedos, alpha 0.3, white base, ior 1.5: 11.8 % above
+    roughplastic's at normal incidence, 4.4 % below at 80 deg, 0.54 against 0.62 at 85 deg and 0.28
+    against 0.60 at 89 deg). The rough lobe's Fresnel at grazing can outgrow the smooth coat's F that
+    the diffuse part leaves room for: a white base under a coat of ior 10 reflects 1.05 of what arrives
+    at 85 deg (1.29 at ior 50); at a polymer's 1.5 it never exceeds 1. ior in (0, 100]: beyond,
+    Fdr_internal rounds to 1 and a white base's 1 / (1 - R Fdr_internal) to infinity. texture: an image file (str or os.PathLike;
     any format OpenImageIO reads, 8/16-bit files decoded from sRGB) whose linear RGB, clamped to [0, 1],
     multiplies the colour at the surface's uvs (OBJ texcoords, add_mesh(uvs=), add_ground's repeat);
     relative paths are from the working directory when the material is made. Each scene the material
@@ -3345,8 +3348,7 @@ class TerrainShading(Material):
         """
 class Light:
     """
-    A light (shared/SHADING.md section 5). In Python its methods evaluate RGB rendering, vectorised over
-    N points.
+    A light. In Python its methods evaluate RGB rendering, vectorised over N points.
     """
     def L(self, points: typing.Any, normals: typing.Any, dirs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -3563,7 +3565,7 @@ class ConstantEnvironment(Light):
         ...
 class ScaledLight(Light):
     """
-    An infinite light (a sky, an environment or the sun) times a constant factor `scale`:
+    An infinite light (a sky or an environment, not the sun) times a constant factor `scale`:
     Scene.set_physical_sky's `scale` on its sky. Pickles through its light and scale.
     """
     def __getstate__(self) -> tuple[typing.Any, float]:
@@ -3587,7 +3589,7 @@ class PhysicalSky:
     meteorological `visibility` [km] instead: the total extinction at the ground at 550 nm is 3.912 /
     visibility, Koschmieder), ozone absorption (`ozone_du` Dobson units), a 5778 K sun scaled to 1361
     W/m^2.
-    sun_direction: unit, toward the sun, y up. Radiance in W/(m^2 sr nm); below the horizon, by
+    sun_direction: toward the sun (normalised), y up. Radiance in W/(m^2 sr nm); below the horizon, by
     below_horizon: 'ground' (default) the ground's Lambertian radiance (ground_albedo), reached by
     BSDF sampling only (pdf_li 0); 'horizon' the radiance at the horizon at the same azimuth
     (ground_albedo must be 0), sample_li/pdf_li then cover the whole sphere (Scene.set_physical_sky's
@@ -3961,7 +3963,7 @@ def physical_memory_bytes() -> float:
 def set_threads(n: typing.SupportsInt | typing.SupportsIndex | None) -> None:
     """
     Limit refracta's parallel work (oneTBB: render, trace_rays, render_raster, solve's pair traces,
-    Embree's BVH builds) to n threads, n in [0, 256]; n = None or 0 restores the default, every core. Results do
+    Embree's BVH builds; OpenImageIO's image and texture work) to n threads, n in [0, 256]; n = None or 0 restores the default, every core. Results do
     not depend on it: every parallel loop writes each item's result to its own slot.
     """
 def synthesise_turbulence(settings: TurbulenceSettings, progress: typing.Any = None) -> TurbulenceGrid:

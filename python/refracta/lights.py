@@ -26,14 +26,15 @@ Lights:
   toward ``direction`` with mean radiance ``radiance``; I(mu) = 1 - u (1 - mu).
 - ``AreaLight(vertices, triangles, emission, two_sided=False)``: an emissive triangle mesh,
   emitting from the counter-clockwise front ((v1 - v0) x (v2 - v0)); sampled by area.
-- ``SphereLight(centre, radius, emission)``: an outward-emitting sphere, sampled by its cone.
+- ``SphereLight(centre, radius, emission)``: an outward-emitting sphere, sampled by its cone (in a
+  scene, ``Scene.add_sphere(..., emission=)`` makes one with the sphere the rays see).
 - ``EnvironmentLight(image, scale=1, rotation=None)``: an equirectangular map (H, W, 3), Mitsuba 3's
   orientation: u = atan2(d.x, -d.z) / (2 pi) wrapped to [0, 1), v = acos(d.y) / pi, d in the map's
   frame (d = rotation^T world); column i at u = (i + 1/2) / W, row j at v = j / (H - 1), bilinear;
   ``rotation`` is degrees about +y or a 3 x 3 matrix (map -> world). Importance-sampled by
   luminance x sin(theta).
 - ``ConstantEnvironment(radiance, sampling="cosine")``: uniform radiance; E = pi L.
-- ``ScaledLight(light, scale)``: an infinite light (a sky, an environment, the sun) times ``scale``
+- ``ScaledLight(light, scale)``: a sky or an environment times ``scale`` (the sun: scale its radiance)
   (``Scene.set_physical_sky(..., scale=)`` puts one in ``Scene.lights``); ``light`` and ``scale``.
 - ``LightSampler(lights, strategy="power")``: ``sample(u) -> (index, probability)``, ``pmf(i)``.
 

@@ -138,7 +138,9 @@ def test_a_star_setting_through_the_limb_seen_from_above_the_air():
 def test_astronomical_refraction_names_what_the_caller_gave():
     # A 1e11 m Earth (a flat Earth's stand-in) gave a message about TraceOptions and a max_length
     # the caller never set; an eye beyond the scene's reach is refused by its name.
-    with pytest.raises(ValueError, match=r"tol must be at least .* for earth_radius 1e\+11 m"):
+    with pytest.raises(
+        ValueError, match=r"tol must be at least .* for earth_radius 1e\+11 m and top 86000 m \(the default\)"
+    ):
         refracta.astronomical_refraction(refracta.PhysicalAtmosphere(), 10.0, earth_radius=1e11)
     with pytest.raises(ValueError, match="eye_height must be >= 0 m and below"):
         refracta.astronomical_refraction(refracta.PhysicalAtmosphere(), 10.0, eye_height=2e7)
@@ -218,3 +220,37 @@ def test_thin_air_outside_the_hectopascal_range_is_still_taken():
     assert refracta.PhysicalAtmosphere(pressure=1e-3).ior([0.0, 1.0, 0.0]) < 1.0 + 1e-10
     # ... and 1.6e-4 at 60 kPa (bound 1e-4).
     assert refracta.PhysicalAtmosphere(pressure=6e4).ior([0.0, 1.0, 0.0]) > 1.0001
+
+
+def test_the_collector_meets_a_python_subclass_of_custom_field_before_pybind11_lays_it_out():
+    # The first instance of a new subclass is tracked from its allocation, and laying it out makes
+    # objects the collector tracks: with a collection at every allocation, the traverse read a
+    # holder table not yet there (a segfault, exit code 139). In a child: a crash must not take pytest.
+    import subprocess
+    import sys
+
+    child = (
+        "import gc, numpy as np, refracta\n"
+        "class Sub(refracta.CustomField): pass\n"
+        "gc.set_threshold(1)\n"
+        "f = Sub(lambda p: np.ones(len(p)), lambda p: np.zeros((len(p), 3)))\n"
+        "gc.set_threshold(700)\n"
+        "print(f.ior([0.0, 1.0, 0.0]))\n"
+    )
+    done = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip() == "1.0"
+
+
+def test_a_scaled_light_of_a_scaled_light_is_one_and_the_sun_is_refused():
+    environment = lights.ConstantEnvironment(1.0)
+    twice = lights.ScaledLight(lights.ScaledLight(environment, 2.0), 3.0)
+    # .light gave the pickle's tuple form for a nested one.
+    assert isinstance(twice.light, lights.ScaledLight) and twice.light.scale == 2.0
+    # The scene finds its sun by type: a scaled sun it would not bend, replace or render as the sun.
+    sun = lights.SunLight((0.0, 1.0, 0.0), 1.0)
+    with pytest.raises(ValueError, match=r"scale the sun by its radiance"):
+        lights.ScaledLight(sun, 2.0)
+    # The scene pickle's old tuple form is not a light.
+    with pytest.raises(ValueError, match=r"a light must be a refracta.lights.Light .* \(got <class 'tuple'>\)"):
+        lights.ScaledLight(("scaled", environment, 2.0), 3.0)

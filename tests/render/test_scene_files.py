@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import refracta
-from refracta import cli
+from refracta import cli, lights
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 
@@ -121,9 +121,9 @@ def test_every_material_and_light_type_loads_and_renders_finite():
     scene, camera, field = refracta.load_scene(DATA / "materials_and_lights.toml")
     assert field is None
     # The physical sky (Scene.set_physical_sky through refracta.examples.set_physical_sky; scaled, so
-    # a plain Light whose repr names it) and its sun, point, spot, the emissive panel (AreaLight) and sphere.
+    # a ScaledLight of it) and its sun, point, spot, the emissive panel (AreaLight) and sphere.
     kinds = sorted(
-        "PhysicalSky" if repr(light).startswith("PhysicalSky(") else type(light).__name__ for light in scene.lights
+        type(light.light if isinstance(light, lights.ScaledLight) else light).__name__ for light in scene.lights
     )
     assert kinds == ["AreaLight", "PhysicalSky", "PointLight", "SphereLight", "SpotLight", "SunLight"]
     assert scene.geometry_count == 12  # ground, panel, 10 objects with the ten material types

@@ -204,3 +204,11 @@ def test_a_refused_camera_value_shows_the_kept_camera_again(editor):
     assert x.value == kept
     editor._vfov.value = 30.0
     assert editor.model.camera.vfov == 30.0
+
+
+def test_pickling_the_editor_is_refused_by_name(editor):
+    # A live widget with a worker thread: the pickler's own error named a lambda inside it.
+    import pickle
+
+    with pytest.raises(TypeError, match=r"MirageEditor cannot be pickled .* editor.export_scene"):
+        pickle.dumps(editor)

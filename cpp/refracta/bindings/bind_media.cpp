@@ -330,7 +330,10 @@ A field written in Python: ior(points (N,3)) -> (N,) and grad_ior(points (N,3)) 
 vectorised. height_only=True promises n depends on y alone (enables method='stratified').
 Slow: the integrators call back into Python at every evaluation. Its first evaluation checks it
 there: height_only=True against n and grad_ior 1 m aside (ValueError if either changes), and
-grad_ior against ior's central differences 1 mm apart (a RuntimeWarning beyond 1e-3 of it).)doc",
+grad_ior against ior's central differences 1 mm apart (a RuntimeWarning beyond 1e-3 of it).
+A field whose callables refer back to it (methods of an object holding it) is garbage-collected
+while Python alone holds it; one a CurvedEarth, scene or other field also holds stays alive with
+its callables, so a cycle through that holder too is kept until the holder is dropped.)doc",
                                                                      py::custom_type_setup(&CustomField::setup_type));
   custom
       .def(py::init<py::object, py::object, bool>(), py::arg("ior"), py::arg("grad_ior"),

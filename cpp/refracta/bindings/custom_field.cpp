@@ -26,6 +26,9 @@ namespace {
 // The CustomField a Python object holds, when Python alone owns it (else nullptr).
 CustomField* owned_by_python_alone(PyObject* self) {
   auto* instance = reinterpret_cast<py::detail::instance*>(self);
+  // Tracked from its allocation on: the first instance of a Python subclass can be visited before
+  // pybind11 lays it out (its memory still zero, no holder table to read).
+  if (!instance->simple_layout && instance->nonsimple.values_and_holders == nullptr) return nullptr;
   const py::detail::value_and_holder v_h = instance->get_value_and_holder();
   if (!v_h.holder_constructed()) return nullptr;
   const auto& holder = v_h.holder<std::shared_ptr<CustomField>>();

@@ -2,7 +2,6 @@
 #include "refracta/bindings/pickle_state.h"
 
 #include "refracta/shading/physical_sky.h"
-#include "refracta/shading/scaled_light.h"
 #include "refracta/shading/spectral.h"
 
 #include <algorithm>
@@ -14,7 +13,7 @@ namespace refracta {
 namespace {
 
 // The version of the Scene state (bump when its layout changes; older states are refused).
-constexpr int kSceneStateVersion = 3;  // 2: aerial perspective; 3: cut-outs
+constexpr int kSceneStateVersion = 4;  // 2: aerial perspective; 3: cut-outs; 4: masks, lights as objects
 
 void check_size(const py::tuple& t, size_t size, const char* what) {
   if (t.size() != size) throw_invalid(what, ": bad pickle state (", t.size(), " items, expected ", size, ")");
@@ -23,11 +22,6 @@ void check_size(const py::tuple& t, size_t size, const char* what) {
 }  // namespace
 
 LightPtr light_from(const py::handle& object) {
-  if (py::isinstance<py::tuple>(object)) {  // ("scaled", light, scale): set_physical_sky's scaled sky
-    const py::tuple t = py::reinterpret_borrow<py::tuple>(object);
-    check_size(t, 3, "Scene light");
-    return std::make_shared<ScaledInfiniteLight>(light_from(t[1]), py::cast<double>(t[2]));
-  }
   if (py::isinstance<Light>(object)) return py::cast<std::shared_ptr<Light>>(object);
   if (py::isinstance<PhysicalSkyLight>(object)) return py::cast<std::shared_ptr<PhysicalSkyLight>>(object);
   throw_invalid("a light must be a refracta.lights.Light or a refracta.spectrum.PhysicalSky (got ",
@@ -35,9 +29,6 @@ LightPtr light_from(const py::handle& object) {
 }
 
 py::object light_object(const LightPtr& light) {
-  if (auto scaled = std::dynamic_pointer_cast<const ScaledInfiniteLight>(light)) {
-    return py::make_tuple("scaled", light_object(scaled->light()), scaled->scale());
-  }
   if (auto sky = std::dynamic_pointer_cast<PhysicalSkyLight>(light)) return py::cast(sky);
   return py::cast(light);
 }
@@ -96,7 +87,8 @@ py::tuple scene_state(const RenderScene& scene) {
   py::list textures, materials, parts, lights;
   // Absolute paths: a worker may run in another working directory (the files must be there).
   for (int id = 0; id < int(geometry.textures().size()); ++id) {
-    textures.append(std::filesystem::absolute(geometry.textures().path(id)).string());
+    textures.append(py::make_tuple(std::filesystem::absolute(geometry.textures().path(id)).string(),
+                                   geometry.textures().is_mask(id)));
   }
   for (size_t id = 0; id < scene.material_count(); ++id) {
     materials.append(py::cast(std::const_pointer_cast<Material>(scene.material_ptr(int(id)))));
@@ -136,9 +128,12 @@ std::shared_ptr<RenderScene> scene_from_state(const py::tuple& state) {
   auto scene = std::make_shared<RenderScene>();
   Scene& geometry = scene->geometry;
   int expected_id = 0;
-  for (const py::handle path : state[1]) {  // Textures::add numbers new paths in turn: the same ids
-    if (geometry.textures().add(py::cast<std::string>(path)) != expected_id++) {
-      throw_invalid("Scene: bad pickle state (texture '", py::cast<std::string>(path), "' listed twice)");
+  for (const py::handle item : state[1]) {  // Textures::add numbers new textures in turn: the same ids
+    const py::tuple entry = py::cast<py::tuple>(item);
+    check_size(entry, 2, "Scene texture");
+    const std::string path = py::cast<std::string>(entry[0]);
+    if (geometry.textures().add(path, py::cast<bool>(entry[1])) != expected_id++) {
+      throw_invalid("Scene: bad pickle state (texture '", path, "' listed twice)");
     }
   }
   for (const py::handle material : state[2]) scene->add_material(py::cast<std::shared_ptr<Material>>(material));

@@ -22,8 +22,8 @@ Color color_from_state(const py::handle& state);
 py::tuple mesh_state(const Mesh& mesh);
 Mesh mesh_from_state(const py::handle& state);
 
-// A scene's light as a Python object and back: PhysicalSky is bound apart from Light, and
-// set_physical_sky's scaled sky travels as ("scaled", sky, scale).
+// A scene's light as a Python object and back (PhysicalSky is bound apart from Light); any other
+// object raises ValueError naming its type.
 py::object light_object(const LightPtr& light);
 LightPtr light_from(const py::handle& object);
 

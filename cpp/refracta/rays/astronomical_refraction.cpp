@@ -58,7 +58,7 @@ double astronomical_refraction(const FieldPtr& field, double apparent_elevation,
   trace_options.max_length = 2.0 * std::sqrt(r_top * r_top - options.earth_radius * options.earth_radius) + 4.0 * top;
   if (options.tol < kMinRelativeTol * trace_options.max_length) {  // named by what the caller gave, not the trace's options
     throw_invalid("astronomical_refraction: tol must be at least ", kMinRelativeTol * trace_options.max_length, " m for earth_radius ",
-                  options.earth_radius, " m and top ", top, " m (a path of up to ", trace_options.max_length,
+                  options.earth_radius, " m and top ", top, options.top ? " m" : " m (the default)", " (a path of up to ", trace_options.max_length,
                   " m out of the air; positions round off at 1e-15 of it): raise tol (got ", options.tol, ")");
   }
   // The ground, a micrometre down: a ray launched level from it must not stop at once.

@@ -100,14 +100,14 @@ std::vector<unsigned> add_loaded_obj(RenderScene& scene, std::vector<MaterialMes
       options.warn(concat("add_obj: '", path, "': material '", part.material.name, "' gives ", part.material.ignored,
                           ", which refracta does not render: ignored"));
     }
-    const auto registered_id = [&](const std::string& file) {
+    const auto registered_id = [&](const std::string& file, bool mask) {
       if (file.empty()) return -1;
-      const int id = scene.geometry.add_texture(file);
+      const int id = scene.geometry.add_texture(file, mask);
       if (registered.insert(file).second && options.progress) options.progress(registered.size(), distinct.size());
       return id;
     };
-    materials[p] = scene.add_material(material_from_mtl(part.material, registered_id(textures[p])));
-    cutout_ids[p] = registered_id(cutouts[p]);
+    materials[p] = scene.add_material(material_from_mtl(part.material, registered_id(textures[p], false)));
+    cutout_ids[p] = registered_id(cutouts[p], true);
   }
   std::vector<unsigned> ids;
   for (size_t p = 0; p < parts.size(); ++p) {

@@ -369,9 +369,9 @@ unsigned Scene::add_terrain(std::shared_ptr<const TerrainGrid> terrain, int mate
   return id;
 }
 
-int Scene::add_texture(const std::string& path) {
+int Scene::add_texture(const std::string& path, bool mask) {
   check_unchanging("add_texture");
-  return textures_->add(path);
+  return textures_->add(path, mask);
 }
 
 void Scene::set_cutout(unsigned geometry, int texture) {

@@ -63,8 +63,9 @@ class Scene {
   // b1 and b2 that triangle's barycentric weights.
   unsigned add_terrain(std::shared_ptr<const TerrainGrid> terrain, int material);
 
-  // Registers an image texture (Textures::add) for this scene's materials; a change like add_mesh.
-  int add_texture(const std::string& path);
+  // Registers an image texture, a colour or a `mask` (Textures::add), for this scene's materials
+  // and cut-outs; a change like add_mesh.
+  int add_texture(const std::string& path, bool mask = false);
   // Cuts a triangle-mesh geometry with uvs out where `texture` (an id of textures()) is clear:
   // a ray passes through a point of it with probability 1 - opacity (Textures::opacity; pbrt-v4's
   // stochastic alpha test, drawn from a hash of the ray, so the same ray gets the same answer),

@@ -28,7 +28,8 @@ struct Textures::Impl {
   OIIO::TextureSystem* system = nullptr;
   std::vector<OIIO::ustring> files;  // prepared (MIP-mapped, linear) files, by id
   std::vector<int> channels;          // their colour channels, by id: 1 (grey) or 3 (RGB)
-  std::vector<bool> alpha;            // by id: the prepared file has an alpha channel after the colour
+  std::vector<bool> alpha;            // by id: the image has an alpha channel (after the colour, unless a mask)
+  std::vector<int> opacity_channel;   // by id: the channel opacity() reads, -1 for none (opaque)
   std::mutex mutex;
 
   // Made with the first texture: a Scene without any keeps none (each private system's image cache
@@ -101,18 +102,20 @@ namespace {
 // A texture's colour channels: 1 for a grey image (with or without alpha), else 3.
 int colour_channels(int channels) { return channels >= 3 ? 3 : 1; }
 
-// The prepared copy of `path`: a tiled, MIP-mapped, linear half-float OpenEXR of its colour
-// channels, followed by its opacity (its alpha, or its first channel as stored), in the cache folder, named by the
-// source's path, size and time (and this preparation's version) so an edited file is prepared
-// again. *channels: its colour channels; *alpha: whether it has alpha.
-std::string prepare(const std::string& path, int* channels, bool* alpha) {
+// The prepared copy of `path`: a tiled, MIP-mapped, half-float OpenEXR in the cache folder, named
+// by the source's path, size and time, this preparation's version and its use, so an edited file
+// is prepared again. A colour texture: its colour channels, linear, followed by its alpha when the
+// image has one. A mask: one channel, its alpha or else its first channel, as stored. *channels:
+// the colour channels (a mask's 1); *alpha: whether the image has alpha.
+std::string prepare(const std::string& path, bool mask, int* channels, bool* alpha) {
   check_texture_file(path);
   std::error_code error;
   const auto size = fs::file_size(path, error);
   if (error) throw MissingFile(concat("no such texture file: '", path, "'"));
   const auto time = fs::last_write_time(path, error).time_since_epoch().count();
-  constexpr int kPreparation = 6;  // 5: colour as stored, decoded, then the alpha as stored; 6: a mask without alpha
-  const size_t key = std::hash<std::string>()(concat(fs::absolute(path).string(), "|", size, "|", time, "|v", kPreparation));
+  constexpr int kPreparation = 5;  // 5: colour as stored, decoded, then the alpha as stored
+  const size_t key = std::hash<std::string>()(
+      concat(fs::absolute(path).string(), "|", size, "|", time, "|v", kPreparation, mask ? "|mask" : ""));
   const fs::path prepared = fs::path(texture_cache_folder()) / concat(std::hex, key, ".exr");
 
   check_png_complete(path);
@@ -124,8 +127,8 @@ std::string prepare(const std::string& path, int* channels, bool* alpha) {
   // make_texture fills) was std::bad_alloc.
   if (!source.init_spec(path, 0, 0)) throw IoError(concat("cannot read texture '", path, "': ", source.geterror()));
   const OIIO::ImageSpec header = source.spec();
-  *channels = colour_channels(header.nchannels);
   *alpha = header.alpha_channel >= 0 && header.alpha_channel < header.nchannels;
+  *channels = mask ? 1 : colour_channels(header.nchannels);
   if (fs::exists(prepared)) return prepared.string();
   if (header.full_width < 1 || header.full_height < 1 || header.width < 1 || header.height < 1) {
     throw IoError(concat("texture '", path, "': its header gives an empty image or display window"));
@@ -151,18 +154,25 @@ std::string prepare(const std::string& path, int* channels, bool* alpha) {
   // 8- and 16-bit images store encoded colour (stored_gamma: sRGB unless the header names another
   // transfer): filter in linear light. The format as stored, from the header: read as float, the
   // buffer's own is float (and a PNG's 128 stayed 0.502).
-  const double gamma = stored_gamma(path);
-  OIIO::ImageBuf linear = *channels == header.nchannels ? source : OIIO::ImageBufAlgo::channels(source, *channels, {});
-  if (gamma == 0.0) linear = OIIO::ImageBufAlgo::colorconvert(linear, "sRGB", "linear");
-  if (gamma > 0.0 && gamma != 1.0) linear = OIIO::ImageBufAlgo::pow(linear, float(gamma));
-  // After the colour, the opacity as stored: the alpha (the colour stays straight, not
-  // premultiplied, as pbrt-v4 and Mitsuba 3 read RGBA images: an alpha that packs something else
-  // leaves the colour alone), or an image's first channel when it has none -- a grey mask (MTL's
-  // map_d) is data, not colour: its 128 of 255 is opacity 0.502, as Blender reads masks. Named
-  // "mask" there, so that nothing takes it for an alpha to weigh the colour by.
-  const int order[] = {*alpha ? header.alpha_channel : 0};
-  const std::string name[] = {*alpha ? header.channelnames[header.alpha_channel] : std::string("mask")};
-  linear = OIIO::ImageBufAlgo::channel_append(linear, OIIO::ImageBufAlgo::channels(source, 1, order, {}, name));
+  OIIO::ImageBuf linear;
+  if (mask) {
+    // A mask is data, not colour (MTL's map_d): its 128 of 255 is opacity 0.502, as Blender
+    // reads masks -- decoded from sRGB as a colour it was 0.216.
+    const int order[] = {*alpha ? header.alpha_channel : 0};
+    const std::string name[] = {"Y"};
+    linear = OIIO::ImageBufAlgo::channels(source, 1, order, {}, name);
+  } else {
+    const double gamma = stored_gamma(path);
+    linear = *channels == header.nchannels ? source : OIIO::ImageBufAlgo::channels(source, *channels, {});
+    if (gamma == 0.0) linear = OIIO::ImageBufAlgo::colorconvert(linear, "sRGB", "linear");
+    if (gamma > 0.0 && gamma != 1.0) linear = OIIO::ImageBufAlgo::pow(linear, float(gamma));
+    if (*alpha) {
+      // The colour straight, not premultiplied, as pbrt-v4 and Mitsuba 3 read RGBA images: an
+      // alpha that packs something else leaves the colour alone.
+      const int order[] = {header.alpha_channel};
+      linear = OIIO::ImageBufAlgo::channel_append(linear, OIIO::ImageBufAlgo::channels(source, 1, order));
+    }
+  }
   if (linear.has_error()) throw IoError(concat("texture '", path, "': ", linear.geterror()));
   // The source's ICC profile describes its encoded colours, not the linear copy; OpenEXR has no
   // place for it either (OIIO would print "Don't know what to do with ... ICCProfile").
@@ -197,19 +207,22 @@ Vec3d to_rgb(const float* c, int channels) {
 
 }  // namespace
 
-int Textures::add(const std::string& path) {
+int Textures::add(const std::string& path, bool mask) {
   for (size_t i = 0; i < paths_.size(); ++i) {
-    if (paths_[i] == path) return int(i);
+    if (paths_[i] == path && masks_[i] == mask) return int(i);
   }
   int channels = 3;
   bool alpha = false;
-  const std::string prepared = prepare(path, &channels, &alpha);
+  const std::string prepared = prepare(path, mask, &channels, &alpha);
   std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->made();
   impl_->files.emplace_back(prepared);
   impl_->channels.push_back(channels);
   impl_->alpha.push_back(alpha);
+  // What opacity() reads: a mask's one channel, a colour texture's alpha after its colour.
+  impl_->opacity_channel.push_back(mask ? 0 : alpha ? channels : -1);
   paths_.push_back(path);
+  masks_.push_back(mask);
   return int(paths_.size() - 1);
 }
 
@@ -235,7 +248,9 @@ double Textures::opacity(int id, double s, double t) const {
   OIIO::TextureOpt options;
   options.swrap = options.twrap = OIIO::TextureOpt::WrapPeriodic;
   options.interpmode = OIIO::TextureOpt::InterpBilinear;
-  options.firstchannel = impl_->channels.at(id);  // the opacity channel after the colour (prepare)
+  const int channel = impl_->opacity_channel.at(id);
+  if (channel < 0) return 1.0;  // a colour texture without alpha is opaque
+  options.firstchannel = channel;
   float result = 1.0f;
   if (!impl_->system->texture(impl_->files.at(id), options, float(s), float(t), 0.0f, 0.0f, 0.0f, 0.0f, 1, &result)) {
     throw IoError(concat("texture lookup failed for '", paths_.at(id), "': ", impl_->system->geterror()));

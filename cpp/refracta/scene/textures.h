@@ -37,24 +37,27 @@ class Textures {
   Textures(const Textures&) = delete;
   Textures& operator=(const Textures&) = delete;
 
-  // Registers an image file (any format OIIO reads); returns its id. The same path twice gives
-  // the same id. Throws IoError naming the file when it is missing or unreadable.
-  int add(const std::string& path);
+  // Registers an image file (any format OIIO reads) as a colour texture, or as a `mask` (an
+  // opacity, MTL's map_d); returns its id. The same path for the same use twice gives the same id.
+  // Throws IoError naming the file when it is missing or unreadable.
+  int add(const std::string& path, bool mask = false);
   // Filtered linear RGB (a grey image's value replicated; an image's alpha plays no part).
   Vec3d lookup(int id, const TextureLookup& at) const;
   // Whether the image has an alpha channel (grey-alpha or RGBA, as OIIO reads its header).
   bool has_alpha(int id) const;
-  // Opacity in [0, 1] at (s, t), bilinear on the finest level: the alpha channel as stored, or
-  // the first channel of an image without one, as stored too (a grey mask, as MTL's map_d gives,
-  // is data: its 128 of 255 reads 0.502, as Blender reads masks).
+  // Opacity in [0, 1] at (s, t), bilinear on the finest level, as stored: a mask's alpha, or its
+  // first channel without one (data: a grey mask's 128 of 255 reads 0.502, as Blender reads
+  // masks); a colour texture's alpha, or 1 without one.
   double opacity(int id, double s, double t) const;
   const std::string& path(int id) const { return paths_.at(id); }
+  bool is_mask(int id) const { return masks_.at(id); }
   size_t size() const { return paths_.size(); }  // textures registered (ids 0 .. size - 1)
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<std::string> paths_;
+  std::vector<bool> masks_;
 };
 
 }  // namespace refracta

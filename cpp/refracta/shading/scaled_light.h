@@ -3,19 +3,24 @@
 
 #include "refracta/core/error.h"
 #include "refracta/shading/light.h"
+#include "refracta/shading/sun_light.h"
 
 #include <cmath>
 #include <utility>
 
 namespace refracta {
 
-// An infinite light (a sky, an environment or the sun) times a constant factor `scale`:
+// An infinite light (a sky or an environment, not the sun) times a constant factor `scale`:
 // Scene.set_physical_sky's `scale` on its sky. Pickles through its light and scale.
 class ScaledInfiniteLight final : public Light {
  public:
-  // `light` must be infinite (a sky, an environment, the sun) and `scale` finite and >= 0.
+  // `light` must be infinite and not the sun, and `scale` finite and >= 0.
   ScaledInfiniteLight(LightPtr light, double scale) : light_(std::move(light)), scale_(scale) {
-    if (!light_ || !light_->is_infinite()) throw_invalid("ScaledLight: the light must be infinite (a sky, an environment or the sun)");
+    if (!light_ || !light_->is_infinite()) throw_invalid("ScaledLight: the light must be infinite (a sky or an environment)");
+    // The scene finds its sun by type (the bent sun, hero wavelengths, set_sun): a scaled one it would not.
+    if (dynamic_cast<const SunLight*>(light_.get())) {
+      throw_invalid("ScaledLight: scale the sun by its radiance instead (SunLight(direction, radiance * scale))");
+    }
     if (!(scale_ >= 0.0 && std::isfinite(scale_))) throw_invalid("ScaledLight: scale must be finite and >= 0 (got ", scale_, ")");
   }
   LightType type() const override { return light_->type(); }
