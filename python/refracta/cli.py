@@ -699,7 +699,8 @@ def _run(argv=None) -> int:
         type=_size,
         default=None,
         help=(
-            "the examples' image size WxH (default: each example's own, 640 px wide); the green flash's square frames and the shimmer GIFs scale with its width"
+            "the examples' image size WxH (default: each example's own, 640 px wide); the green flash's "
+            "square frames and the shimmer GIFs scale with its width"
         ),
     )
     render_parser = commands.add_parser("render", help="render a TOML scene file")

@@ -1,4 +1,5 @@
-"""The BSDF library: materials, Fresnel functions and the GGX distribution (pbrt-v4's models; Mitsuba 3 as the reference).
+"""The BSDF library: materials, Fresnel functions and the GGX distribution (pbrt-v4's models;
+Mitsuba 3 as the reference).
 
 Every material is a ``refracta._core.Material`` subclass, so any of them can be given where a scene
 takes ``material=``. Evaluate a material in its local shading frame (z = shading normal, x = the
