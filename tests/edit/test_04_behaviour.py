@@ -244,8 +244,10 @@ def test_pixel_destinations_a_fraction_of_a_pixel_apart_are_reported_in_pixels()
     # The two shifts are symmetric, so each pair ends 0.3 px off: alpha bends both paths alike to
     # 1e-4 px over 2 m of height at 1 km.
     assert rms == pytest.approx(0.3, abs=1e-3)
-    margins = [PointPair(p.destination, p.source, margin=0.5) for p in pairs]
-    assert solve(refracta.LinearSquaredProfile(), camera, margins, free="alpha").success  # as the message advises
+    # As the message advises: a pixel_tolerance of the reading error; then uncertainty() gives the spread.
+    assert "EditResult.uncertainty(pixel_sigma)" in result.message
+    tolerant = solve(refracta.LinearSquaredProfile(), camera, pairs, free="alpha", pixel_tolerance=0.5)
+    assert tolerant.success and 0.0 < tolerant.uncertainty(0.3)["alpha"] < np.inf
 
 
 def test_a_start_that_already_meets_every_pair_is_said_to():

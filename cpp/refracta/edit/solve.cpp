@@ -507,8 +507,10 @@ std::string near_miss(const std::vector<PointPair>& pairs, const std::vector<dou
   return concat(". The fit converged with every pair within a pixel of its place beyond its margin (rms ",
                 std::sqrt(squares / double(pairs.size())), " px, largest ", largest,
                 " px); a pair counts as met within pixel_tolerance = ", settings.pixel_tolerance,
-                " px. Destinations read off a photograph are rarely that exact: give each pair a margin of its "
-                "uncertainty in pixels (PointPair(..., margin=0.5)) or solve(..., pixel_tolerance=...)");
+                " px. Destinations read off a photograph are rarely that exact: solve(..., pixel_tolerance=) "
+                "of your reading error in pixels counts pairs met within it, and EditResult.uncertainty(pixel_sigma) "
+                "says how far that error moves the result (a margin, PointPair(..., margin=), is a dead zone for "
+                "less important pairs: the fit stops at its edge nearest the start)");
 }
 
 // The free parameters that x leaves on a bound of the search box, into out->at_bounds and its
