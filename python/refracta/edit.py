@@ -308,7 +308,7 @@ class EditResult:
             info |= dict.fromkeys(CAMERA_PARAMETERS, "deg")
         return [(name, float(start[name]), float(solved[name]), info[name]) for name in self.free]
 
-    def uncertainty(self, pixel_sigma: float = 0.5) -> dict[str, float]:
+    def uncertainty(self, pixel_sigma: float) -> dict[str, float]:
         """The standard deviation of each free parameter [its unit] that random errors of
         `pixel_sigma` pixels (each direction) in reading the destinations off a picture leave in
         the solved values: the linearised least-squares spread (J^T J)^-1 J^T C J (J^T J)^-1 of the

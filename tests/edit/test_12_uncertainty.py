@@ -44,8 +44,8 @@ def test_the_spread_matches_re_solving_with_moved_destinations(edit):
     # isotropic across the path (the re-solve moves it along the image's axes) and the slopes are
     # finite differences of an ill-conditioned edit (condition 74): 25 %.
     np.testing.assert_allclose([sigma["surface_dt"], sigma["surface_depth"]], spread, rtol=0.25)
-    # Linear in the reading error (exactly: the covariance scales with its square).
     half = result.uncertainty(0.5)
+    # Linear in the reading error: the covariance scales with its square (1e-12: round-off only).
     assert half["surface_dt"] == pytest.approx(0.5 * sigma["surface_dt"], rel=1e-12)
 
 
