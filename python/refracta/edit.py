@@ -385,7 +385,24 @@ class EditResult:
                 f"  Jacobian at the result: rank {self.rank} of {len(self.free)}, condition {self.condition:.3g}"
             )
         lines.append("  " + self.message)
+        lines += self._ground_note()
         return "\n".join(lines)
+
+    def _ground_note(self) -> list[str]:
+        """A line when a met pair's path dips below height 0 with stop_height None: over water or land
+        it ran through the ground to its source (a photo-fitting trial's 'success' for a source under
+        the sea, its inversion base at -3.8 m)."""
+        if self.pair_options.stop_height is not None or not self.success:
+            return []
+        lowest = [float(np.min(path.points[:, 1])) for path in self.paths()]
+        below = [(i, y) for i, y in enumerate(lowest) if y < 0.0]
+        if not below:
+            return []
+        i, y = min(below, key=lambda item: item[1])
+        return [
+            f"  note: stop_height is None, so no ground stops the paths: pair {i}'s dips to {y:.4g} m, below "
+            f"height 0 ({len(below)} of {len(lowest)} pairs below it); over water or land give stop_height=0.0"
+        ]
 
     __str__ = report
 

@@ -53,3 +53,22 @@ def test_bad_pixel_sigma_is_refused(edit):
     result, _ = edit[0](edit[1])
     with pytest.raises(ValueError, match="pixel_sigma must be > 0"):
         result.uncertainty(0.0)
+
+
+def test_a_report_notes_paths_that_run_below_the_ground_unstopped():
+    # A photo-fitting trial: a source 30 m under the sea, stop_height None (the default), was met
+    # through the sea ('success', inversion base -3.8 m) without a word.
+    import refracta
+
+    ship = examples.cold_sea(160, 60)
+    air = refracta.CurvedEarth(
+        refracta.PhysicalAtmosphere(t_ground=278.15, inversion_dt=10, inversion_base=20, inversion_thickness=10)
+    )
+    pairs = [PointPair((80.5, 50.0), (10000.0, -30.0, 0.0))]
+    result = solve(air, ship.camera, pairs, free=["inversion_dt", "inversion_base"], pixel_tolerance=0.7)
+    assert result.success  # met through the sea: the report says where the path went
+    assert "note: stop_height is None, so no ground stops the paths: pair 0's dips to -" in result.report()
+    grounded = solve(
+        air, ship.camera, pairs, free=["inversion_dt", "inversion_base"], pixel_tolerance=0.7, stop_height=0.0
+    )
+    assert not grounded.success and "note: stop_height" not in grounded.report()
