@@ -39,7 +39,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Callable
 
 import numpy as np
@@ -326,9 +326,7 @@ class EditResult:
             raise ValueError(
                 "uncertainty: every pair's destination must be a pixel (u, v); 3D destinations have no pixel"
             )
-        import dataclasses
-
-        pairs = [dataclasses.replace(pair, margin=0.0) for pair in self.pairs]
+        pairs = [replace(pair, margin=0.0) for pair in self.pairs]
         eye_or_camera = self.camera if self.camera is not None else self.eye
         _, matrix, names = jacobian(self.field, eye_or_camera, pairs, self.free, pair_options=self.pair_options)
         if not names:
